@@ -1,0 +1,5 @@
+"""Lets ``pytest`` find ``rtl`` and ``sim`` from a plain checkout."""
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))

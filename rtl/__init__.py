@@ -1,0 +1,1 @@
+"""RTL of the PCI DDA motion-control card (MyHDL, convertible to Verilog)."""

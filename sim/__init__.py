@@ -1,0 +1,1 @@
+"""Golden models, behavioural bus models and test benches (never imported by rtl/)."""
