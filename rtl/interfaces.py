@@ -77,8 +77,44 @@ class LocalBus:
         self.retry = Signal(bool(0))
 
 
+class DdaPort:
+    """Command and status of the DDA interpolator (``rtl/dda_arc.py``).
+
+    Inputs: ``start`` (one-clock pulse, taken when not busy), ``line`` (1: a
+    straight move by (``xe``, ``ye``); 0: an arc about the origin from
+    (``xs``, ``ys``) to (``xe``, ``ye``)), ``variant`` (0 traditional,
+    1 weighted, 2 improved of the paper, 3 the project's precise mode),
+    ``lambda_shift`` (weighting factor 2**-lambda_shift), ``ccw`` (direction),
+    ``advance`` (one iteration per clock in which it is high: the feed rate).
+    Outputs: ``busy`` (from the clock after ``start`` until the move ends),
+    ``done`` (one-clock pulse when the move has ended on its end point),
+    ``error`` (the last ``start`` was rejected: end not on the circle, radius
+    too large; held until the next ``start``), ``quadrant`` (of the moving
+    point, 0..3 for I..IV).
+    """
+
+    def __init__(self, coord_width=24):
+        self.coord_width = coord_width
+        low, high = -(1 << (coord_width - 1)), 1 << (coord_width - 1)
+        self.start = Signal(bool(0))
+        self.line = Signal(bool(0))
+        self.variant = Signal(intbv(3)[2:])
+        self.lambda_shift = Signal(intbv(0)[5:])
+        self.ccw = Signal(bool(1))
+        self.xs = Signal(intbv(0, min=low, max=high))
+        self.ys = Signal(intbv(0, min=low, max=high))
+        self.xe = Signal(intbv(0, min=low, max=high))
+        self.ye = Signal(intbv(0, min=low, max=high))
+        self.advance = Signal(bool(0))
+        self.busy = Signal(bool(0))
+        self.done = Signal(bool(0))
+        self.error = Signal(bool(0))
+        self.quadrant = Signal(intbv(0)[2:])
+
+
 class AxisPulses:
-    """Step and direction requests for the two axes, one clock per step."""
+    """Step requests for the two axes: ``step_*`` is high for one clock per
+    step, ``dir_*`` (1: positive direction) is valid in that clock."""
 
     def __init__(self):
         self.step_x = Signal(bool(0))
