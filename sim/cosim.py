@@ -7,6 +7,7 @@ arguments are flattened the way MyHDL's converter names top-level ports
 (``<argument>_<attribute>``).  The ``myhdl.vpi`` module is built once from the
 sources the ``myhdl`` wheel ships, into ``build/vpi``.
 """
+import os
 import re
 import shutil
 import subprocess
@@ -43,8 +44,9 @@ def vpi_module():
         for name in ("myhdl.c", "myhdl_table.c"):
             shutil.copy(sources / name, work)
         _run(["iverilog-vpi", "myhdl.c", "myhdl_table.c"], cwd=work)
-        shutil.move(str(Path(work) / "myhdl.vpi"), str(target.with_suffix(".tmp")))
-    target.with_suffix(".tmp").rename(target)
+        staged = target.with_name(f"myhdl.vpi.{os.getpid()}")
+        shutil.move(str(Path(work) / "myhdl.vpi"), str(staged))
+    os.replace(staged, target)  # atomic: parallel test workers may race here
     return target
 
 
