@@ -9,7 +9,7 @@ cores co-simulate and convert cleanly; only the pad wrapper at the top level
 has tri-states.  All PCI ``*_out`` values keep the bus polarity (active-low
 lines are 0 when asserted).
 """
-from myhdl import ResetSignal, Signal, intbv
+from myhdl import ResetSignal, Signal, TristateSignal, intbv
 
 
 class PciBus:
@@ -84,13 +84,19 @@ class DdaPort:
     straight move by (``xe``, ``ye``); 0: an arc about the origin from
     (``xs``, ``ys``) to (``xe``, ``ye``)), ``variant`` (0 traditional,
     1 weighted, 2 improved of the paper, 3 the project's precise mode),
-    ``lambda_shift`` (weighting factor 2**-lambda_shift), ``ccw`` (direction),
-    ``advance`` (one iteration per clock in which it is high: the feed rate).
+    ``lambda_shift`` (weighting factor 2**-lambda_shift), ``acc_bits`` (the
+    paper's accumulator width n, threshold 2**(n + lambda_shift); 0: n is the
+    bit length of the radius, i.e. left-shift normalisation; both only for
+    variants 0..2), ``ccw`` (direction), ``advance`` (one iteration per clock
+    in which it is high: the feed rate).  The command lines are read in the
+    clock of ``start``; an arc spends a fixed number of setup clocks (its
+    squares and root, 5 * coord_width + 1) before the first iteration.
     Outputs: ``busy`` (from the clock after ``start`` until the move ends),
     ``done`` (one-clock pulse when the move has ended on its end point),
-    ``error`` (the last ``start`` was rejected: end not on the circle, radius
-    too large; held until the next ``start``), ``quadrant`` (of the moving
-    point, 0..3 for I..IV).
+    ``error`` (the last ``start`` was rejected: end not within one step of
+    the start radius, radius too large, a centre point, acc_bits +
+    lambda_shift too wide; held until the next ``start``), ``quadrant`` (of
+    the moving point, 0..3 for I..IV).
     """
 
     def __init__(self, coord_width=24):
@@ -100,6 +106,7 @@ class DdaPort:
         self.line = Signal(bool(0))
         self.variant = Signal(intbv(3)[2:])
         self.lambda_shift = Signal(intbv(0)[5:])
+        self.acc_bits = Signal(intbv(0)[5:])
         self.ccw = Signal(bool(1))
         self.xs = Signal(intbv(0, min=low, max=high))
         self.ys = Signal(intbv(0, min=low, max=high))
@@ -126,3 +133,40 @@ class AxisPulses:
 def card_reset():
     """The card's reset: PCI RST#, asynchronous, active low."""
     return ResetSignal(1, active=0, isasync=True)
+
+
+class MotorPins:
+    """STEP and DIR pins of the two axes, as they leave the card (levels,
+    straight from flip-flops; ``dir_*`` already carries the polarity)."""
+
+    def __init__(self):
+        self.step_x = Signal(bool(0))
+        self.dir_x = Signal(bool(0))
+        self.step_y = Signal(bool(0))
+        self.dir_y = Signal(bool(0))
+
+
+class PciPins:
+    """The card's PCI pins, as the top level's ports (bus polarity).
+
+    Every line is a ``TristateSignal``, as on the bus: an agent drives it or
+    leaves it (the bench's bus model resolves the drivers and the pull-ups),
+    and every pin can be the ``PACKAGE_PIN`` of an iCE40 I/O cell.  The
+    target drives AD, PAR, TRDY#, DEVSEL#, STOP#, PERR#, SERR# and INTA#;
+    it only reads C/BE#, FRAME#, IRDY# and IDSEL.  Only ``rtl/pci_pads.py``
+    joins these to a ``PciBus``.
+    """
+
+    def __init__(self):
+        self.ad = TristateSignal(intbv(0)[32:])
+        self.cbe = TristateSignal(intbv(0xF)[4:])
+        self.par = TristateSignal(bool(0))
+        self.frame = TristateSignal(bool(1))
+        self.irdy = TristateSignal(bool(1))
+        self.idsel = TristateSignal(bool(0))
+        self.trdy = TristateSignal(bool(1))
+        self.devsel = TristateSignal(bool(1))
+        self.stop = TristateSignal(bool(1))
+        self.perr = TristateSignal(bool(1))
+        self.serr = TristateSignal(bool(1))
+        self.inta = TristateSignal(bool(1))

@@ -11,17 +11,76 @@ import sys
 import tempfile
 from pathlib import Path
 
+from myhdl import Signal, block
+
 GEN_DIR = Path(__file__).resolve().parent.parent / "gen"
 
 # Parameter name -> (type, default, help).  Each unit takes a subset.
 PARAMETERS = {
     "coord_width": (int, 24, "signed coordinate width of the DDA (bits)"),
+    "vendor_id": (lambda text: int(text, 0), 0x1234, "PCI Vendor ID (placeholder: use your own)"),
+    "device_id": (lambda text: int(text, 0), 0xDDA0, "PCI Device ID"),
+    "revision_id": (lambda text: int(text, 0), 0x01, "PCI Revision ID"),
+    "class_code": (lambda text: int(text, 0), 0x088000, "PCI class code (24 bits)"),
+    "subsystem_vendor_id": (lambda text: int(text, 0), 0x1234, "PCI Subsystem Vendor ID"),
+    "subsystem_id": (lambda text: int(text, 0), 0x0001, "PCI Subsystem ID"),
+    "io_bar_bits": (int, 6, "BAR0 (I/O) size is 2**bits bytes (2..8)"),
+    "mem_bar_bits": (int, 12, "BAR1 (memory) size is 2**bits bytes (4..24)"),
+    "fifo_depth": (int, 512, "data FIFO depth in 32-bit words (a power of two)"),
 }
 
 # Unit (module in rtl/ and block name) -> the parameters it takes.
 UNITS = {
     "dda_arc": ("coord_width",),
+    "pci_slave": ("vendor_id", "device_id", "revision_id", "class_code", "subsystem_vendor_id",
+                  "subsystem_id", "io_bar_bits", "mem_bar_bits"),
+    "regs_fifo": ("fifo_depth", "coord_width"),
+    "top": ("vendor_id", "device_id", "revision_id", "class_code", "subsystem_vendor_id",
+            "subsystem_id", "fifo_depth", "coord_width"),
 }
+
+
+C_HEADER = "dda_card.h"
+
+
+@block
+def top(clock, reset, pci_pins, motor, *, fifo_depth=512, coord_width=24, **ids):
+    """The card as synthesised: PCI pads (the only tri-states) around the card.
+
+    Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci_pins``
+    (``PciPins``: AD, C/BE#, PAR, FRAME#, IRDY#, TRDY#, DEVSEL#, STOP#, IDSEL,
+    PERR#, SERR#, INTA# as on the bus), ``motor`` (``MotorPins``: STEP/DIR).
+    Parameters: ``fifo_depth``, ``coord_width`` and the PCI IDs.  The pads
+    are ``rtl/pci_pads.py`` in its plain tri-state build; ``rtl/card.py`` is
+    the same card with split ports, for benches.
+
+        pins <-> pci_pads <-> card (pci_slave, regs_fifo, dda_arc) --> STEP/DIR
+    """
+    from rtl.card import card
+    from rtl.interfaces import PciBus
+    from rtl.pci_pads import pci_pads
+
+    pci = PciBus()
+    pads = pci_pads(clock, pci_pins, pci, io_registers=False)
+    core = card(clock, reset, pci, motor, fifo_depth=fifo_depth, coord_width=coord_width, **ids)
+    return pads, core
+
+
+def top_ports(fifo_depth=512, coord_width=24, **ids):
+    """Fresh ports of ``top`` for conversion and benches."""
+    from rtl.interfaces import MotorPins, PciPins, card_reset
+
+    return dict(clock=Signal(bool(0)), reset=card_reset(), pci_pins=PciPins(), motor=MotorPins())
+
+
+def write_c_header(out_dir=GEN_DIR):
+    """Write the C header of the register map and command set; return its path."""
+    from rtl import instructions, registers
+
+    target = Path(out_dir) / C_HEADER
+    target.parent.mkdir(parents=True, exist_ok=True)
+    target.write_text(registers.c_header(extra=instructions.c_defines()))
+    return target
 
 
 def unit_block(unit, params):
@@ -82,6 +141,7 @@ def main(argv=None):
         written = convert_all(args.out, **values)
     except ValueError as error:
         parser.exit(2, f"{parser.prog}: error: {error}\n")
+    written.append(write_c_header(args.out))
     for path in written:
         print(f"wrote {path}")
     return 0

@@ -1,0 +1,121 @@
+"""PCI target figures: ``python bench/pci_figures.py [--target verilog] [--no-synth]``.
+
+Runs the standard bench (host, bus model, monitor, zero-latency back end, no
+master wait states) and prints
+
+* memory burst throughput for 1, 4, 16 and 64 dwords, writes and reads:
+  bytes per clock and MB/s at 33 MHz, counting the clocks from the address
+  phase to the last data phase (both included) and, in brackets, with the
+  idle clock a following transaction needs after it;
+* for configuration, I/O and memory reads and writes: the edges from the one
+  that samples the address (FRAME# asserted) to the ones that sample DEVSEL#
+  and the first TRDY#;
+* when ``bench/synth.py`` is there, ``pci_slave`` alone on iCE40 HX8K: logic
+  cells, flip-flops and fmax (from ``gen/pci_slave.v``).
+"""
+import argparse
+import importlib.util
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+if str(ROOT) not in sys.path:
+    sys.path.insert(0, str(ROOT))
+
+from sim.pci_bench import PciBench  # noqa: E402
+from sim.pci_host import (COMMAND_IO, COMMAND_MEMORY, MEM_READ,  # noqa: E402
+                          MEM_READ_MULTIPLE)
+
+PCI_MHZ = 33
+IO_BASE, MEM_BASE = 0x1000, 0x80000000
+BURSTS = (1, 4, 16, 64)
+BYTES_PER_DWORD = 4
+
+
+def measure(target):
+    """Run the accesses; return (bursts, latencies) from the host's and the
+    monitor's records."""
+    results = {}
+
+    def scenario(bench):
+        host = bench.host
+        yield from host.config_write(0, 0x10, IO_BASE)
+        yield from host.config_write(0, 0x14, MEM_BASE)
+        yield from host.config_write(0, 0x04, COMMAND_IO | COMMAND_MEMORY, be=0x3)
+        for length in BURSTS:
+            results[("write", length)] = yield from host.mem_write(MEM_BASE, list(range(length)))
+            command = MEM_READ if length == 1 else MEM_READ_MULTIPLE
+            results[("read", length)] = yield from host.mem_read(MEM_BASE, length, command=command)
+        results["configuration read"] = yield from host.config_read(0, 0x00)
+        results["configuration write"] = yield from host.config_write(0, 0x3C, 0x0B, be=0x1)
+        results["I/O read"] = yield from host.io_read(IO_BASE)
+        results["I/O write"] = yield from host.io_write(IO_BASE, 0x12345678)
+        results["memory read"] = yield from host.mem_read(MEM_BASE)
+        results["memory write"] = yield from host.mem_write(MEM_BASE, [0x9ABCDEF0])
+
+    bench = PciBench(target=target)
+    bench.run(scenario, f"pci_figures_{target}")
+    records = {r.start: r for r in bench.checker.transactions}
+    bursts = {}
+    for key, result in results.items():
+        if isinstance(key, tuple):
+            (transaction,) = result.transactions
+            if not result.complete or len(transaction.data) != key[1]:
+                raise RuntimeError(f"{key} did not complete in one transaction")
+            record = records[transaction.start]
+            bursts[key] = record.end_edge - record.start_edge + 1
+    latencies = {name: (r.transactions[0].devsel_clock, r.transactions[0].first_trdy_clock)
+                 for name, r in results.items() if isinstance(name, str)}
+    return bursts, latencies
+
+
+def print_bursts(bursts):
+    print("Memory bursts (zero wait states in the host and the back end):")
+    print(f"  {'':11}{'dwords':>4}{'clocks':>8}{'bytes/clock':>14}{'MB/s @33MHz':>14}"
+          f"{'% of 132':>10}")
+    for (direction, length), clocks in sorted(bursts.items()):
+        for label, count in (("", clocks), (" +idle", clocks + 1)):
+            rate = BYTES_PER_DWORD * length / count
+            print(f"  {direction + label:<11}{length:>4}{count:>8}{rate:>14.2f}"
+                  f"{rate * PCI_MHZ:>14.1f}{100 * rate / BYTES_PER_DWORD:>9.1f}%")
+
+
+def print_latencies(latencies):
+    print("Edges after the address edge at which DEVSEL# / the first TRDY# are sampled:")
+    for name, (devsel, trdy) in latencies.items():
+        print(f"  {name:<22} DEVSEL# {devsel}   TRDY# {trdy}")
+
+
+def print_synthesis(freq):
+    script = ROOT / "bench" / "synth.py"
+    if not script.exists():
+        print("bench/synth.py not found: no synthesis figures")
+        return
+    spec = importlib.util.spec_from_file_location("synth", script)
+    synth = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(synth)
+    figures = synth.synthesize("pci_slave", freq=freq)
+    print(f"pci_slave alone on iCE40 HX8K (placed for {freq:g} MHz): "
+          f"{figures['lcs']} logic cells, {figures['fabric_ffs']} flip-flops in fabric "
+          f"+ {figures['io_ffs']} in I/O cells, fmax {figures['fmax_mhz']} MHz")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python bench/pci_figures.py",
+                                     description=__doc__.split("\n\n")[0])
+    parser.add_argument("--target", choices=("myhdl", "verilog"), default="myhdl",
+                        help="simulate the MyHDL design or gen/pci_slave.v (default: myhdl)")
+    parser.add_argument("--no-synth", action="store_true", help="skip the iCE40 figures")
+    parser.add_argument("--synth-freq", type=float, default=100.0,
+                        help="clock nextpnr places for, MHz (default: 100)")
+    args = parser.parse_args(argv)
+    bursts, latencies = measure(args.target)
+    print_bursts(bursts)
+    print_latencies(latencies)
+    if not args.no_synth:
+        print_synthesis(args.synth_freq)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

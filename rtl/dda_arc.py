@@ -1,0 +1,606 @@
+"""DDA arc and line interpolator: one iteration per clock in which ``advance`` is high.
+
+The golden model is ``sim/dda_model.py``; its docstring and ``docs/dda.md``
+give the algorithm.  The hardware has three parts:
+
+* setup (arcs only): a shift-add unit squares |xs|, |ys|, |xe|, |ye| (one
+  bit per clock, 4 * coord_width clocks) and a restoring square root takes
+  the start radius (coord_width clocks);
+* check (one clock): validation, quadrants, the axis-crossing count and the
+  per-axis step counts of the first and last quadrant pieces, the
+  accumulator threshold;
+* run: accumulators, magnitudes, radial error term and step counters, all
+  updated by additions only, one iteration per enabled clock.
+"""
+from myhdl import always_comb, always_seq, block, enum, intbv, modbv, Signal
+
+from rtl.interfaces import AxisPulses, DdaPort, card_reset
+
+TRADITIONAL, WEIGHTED, IMPROVED, PRECISE = range(4)
+ACC_EXTRA_BITS = 8
+ERROR_EXTRA_BITS = 4
+MAX_THRESHOLD_EXTRA = 4
+
+
+def _signed(width, value=0):
+    return Signal(intbv(value, min=-(1 << (width - 1)), max=1 << (width - 1)))
+
+
+def _unsigned(width, value=0):
+    return Signal(intbv(value)[width:])
+
+
+@block
+def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
+    """Two-axis DDA interpolator (arcs of the paper's section 4, and lines).
+
+    Ports:
+        clock, reset  clock and reset (``card_reset()``: async, active low)
+        cmd           ``DdaPort``: command lines, ``start``, ``advance`` in;
+                      ``busy``, ``done``, ``error``, ``quadrant`` out
+        steps         ``AxisPulses``: ``step_x``/``step_y`` one clock per step,
+                      ``dir_x``/``dir_y`` valid with them
+    Parameters:
+        coord_width   signed coordinate width (>= 4); accumulators are
+                      coord_width + 8 bits, the radial error term + 4
+
+    Timing (an arc; a line has a single setup clock)::
+
+        clock    _/~\\_/~\\_/~\\_ ... _/~\\_/~\\_/~\\_/~\\_/~\\_ ... _/~\\_/~\\_
+        start    _/~~~\\______ ... ________________________________
+        busy     _____/~~~~~~ ... ~~~~~~~~~~~~~~~~~~~~~~~ ... ~~~\\___
+        advance  ____________ ... ______/~~~~~~~~~~~\\___ ... ~~~~~~~~
+        step_x   ____________ ... __________/~~~\\___/~~~ ... ________
+        done     ____________ ... ___________________________/~~~\\___
+                      |<- 5*coord_width+1 ->|
+
+    ``step_*`` follows the clock edge of the iteration that made the step;
+    ``done`` comes with the last step.  ``error`` instead of the run when the
+    check rejects the command.
+    """
+    if coord_width < 4:
+        raise ValueError(f"coord_width must be at least 4, not {coord_width}")
+    width = coord_width
+    acc_width = width + ACC_EXTRA_BITS
+    err_width = width + ERROR_EXTRA_BITS
+    thr_width = width + MAX_THRESHOLD_EXTRA + 1
+    acc_max = (1 << (acc_width - 1)) - 1
+
+    t_state = enum("S_IDLE", "S_MAC", "S_ROOT", "S_CHECK", "S_RUN")
+    state = Signal(t_state.S_IDLE)
+
+    # latched command
+    is_line = Signal(bool(0))
+    variant = _unsigned(2)
+    lambda_shift = _unsigned(5)
+    acc_bits = _unsigned(5)
+    ccw = Signal(bool(0))
+    xs, ys, xe, ye = (_signed(width) for _ in range(4))
+    mag_xs, mag_ys, mag_xe, mag_ye = (_unsigned(width) for _ in range(4))
+
+    # setup: squares and root
+    mac_op = Signal(modbv(0)[2:])
+    mac_bit = Signal(intbv(0, min=0, max=width))
+    multiplicand = Signal(modbv(0)[2 * width:])
+    multiplier = _unsigned(width)
+    square_start = Signal(modbv(0)[2 * width:])
+    square_end = Signal(modbv(0)[2 * width:])
+    radicand = Signal(modbv(0)[2 * width:])
+    remainder = _unsigned(width + 3)
+    root = _unsigned(width)
+    root_bit = Signal(intbv(0, min=0, max=width))
+
+    # check results
+    chk_error = Signal(bool(0))
+    chk_threshold = _unsigned(thr_width)
+    chk_acc_init = _unsigned(thr_width)
+    chk_quadrant = _unsigned(2)
+    chk_crossings = _unsigned(3)
+    chk_first_x, chk_first_y, chk_last_x, chk_last_y = (_unsigned(width) for _ in range(4))
+    chk_radius = _unsigned(width + 1)
+
+    # run state
+    quadrant = Signal(modbv(0)[2:])
+    mag_x, mag_y = _unsigned(width), _unsigned(width)
+    acc_x, acc_y = _signed(acc_width), _signed(acc_width)
+    radial_error = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
+    count_x, count_y = _unsigned(width), _unsigned(width)
+    crossings = _unsigned(3)
+    threshold = _unsigned(thr_width)
+    radius = _unsigned(width)
+    last_x, last_y = _unsigned(width), _unsigned(width)
+
+    # one iteration, combinational
+    it_step_x, it_step_y = Signal(bool(0)), Signal(bool(0))
+    it_dir_x, it_dir_y = Signal(bool(0)), Signal(bool(0))
+    it_acc_x, it_acc_y = _signed(acc_width), _signed(acc_width)
+    it_mag_x, it_mag_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
+    it_error = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
+    it_finished = Signal(bool(0))
+    it_next_piece = Signal(bool(0))
+
+    @always_comb
+    def magnitudes():
+        if xs < 0:
+            mag_xs.next = -xs
+        else:
+            mag_xs.next = xs
+        if ys < 0:
+            mag_ys.next = -ys
+        else:
+            mag_ys.next = ys
+        if xe < 0:
+            mag_xe.next = -xe
+        else:
+            mag_xe.next = xe
+        if ye < 0:
+            mag_ye.next = -ye
+        else:
+            mag_ye.next = ye
+
+    @always_comb
+    def check_logic():
+        rq = intbv(0)[width + 1:]
+        r_sq = intbv(0)[2 * width + 1:]
+        e_sq = intbv(0)[2 * width + 1:]
+        near = intbv(0)[width + 1:]
+        lim_hi = intbv(0, min=-(1 << (width + 3)), max=1 << (width + 3))
+        lim_lo = intbv(0, min=-(1 << (width + 3)), max=1 << (width + 3))
+        diff = intbv(0, min=-(1 << (2 * width + 2)), max=1 << (2 * width + 2))
+        big = intbv(0)[width:]
+        bits = intbv(0)[6:]
+        shift = intbv(0)[7:]
+        thr = intbv(0)[thr_width:]
+        q_s = intbv(0)[2:]
+        q_e = intbv(0)[2:]
+        turns = intbv(0)[3:]
+        turn = modbv(0)[2:]
+        a_s = intbv(0)[width:]
+        b_s = intbv(0)[width:]
+        a_e = intbv(0)[width:]
+        b_e = intbv(0)[width:]
+        first_in = modbv(0)[width:]
+        first_out = modbv(0)[width:]
+        last_in = modbv(0)[width:]
+        last_out = modbv(0)[width:]
+        bad = False
+
+        # radius: the integer whose square is nearest to xs**2 + ys**2
+        if remainder > root:
+            rq[:] = root + 1
+        else:
+            rq[:] = root
+        r_sq[:] = square_start
+        e_sq[:] = square_end
+        diff[:] = e_sq.signed() - r_sq.signed()
+        if mag_xs > mag_ys:
+            big[:] = mag_xs
+        else:
+            big[:] = mag_ys
+        near[:] = big
+        if r_sq == 0 or (xe == 0 and ye == 0):
+            bad = True
+        if rq >= (1 << (width - 1)):
+            bad = True
+        lim_hi[:] = 2 * near + 1
+        lim_lo[:] = 2 - lim_hi
+        if diff > lim_hi or diff < lim_lo:
+            bad = True
+
+        # threshold of the paper's variants: 2**(n + k), n = bit length if acc_bits is 0
+        bits[:] = 0
+        for i in range(width + 1):
+            if rq[i]:
+                bits[:] = i + 1
+        if acc_bits != 0:
+            bits[:] = acc_bits
+        shift[:] = bits + lambda_shift
+        if variant != PRECISE and shift > width + MAX_THRESHOLD_EXTRA:
+            bad = True
+        thr[:] = 0
+        for i in range(thr_width):
+            if shift == i:
+                thr[i] = 1
+        if variant == PRECISE:
+            thr[:] = rq + 1
+
+        # departure quadrant of the start, arrival quadrant of the end
+        if ccw:
+            if xs > 0 and ys >= 0:
+                q_s[:] = 0
+            elif xs <= 0 and ys > 0:
+                q_s[:] = 1
+            elif xs < 0 and ys <= 0:
+                q_s[:] = 2
+            else:
+                q_s[:] = 3
+            if xe >= 0 and ye > 0:
+                q_e[:] = 0
+            elif xe < 0 and ye >= 0:
+                q_e[:] = 1
+            elif xe <= 0 and ye < 0:
+                q_e[:] = 2
+            else:
+                q_e[:] = 3
+            turn[:] = q_e - q_s
+        else:
+            if xs >= 0 and ys > 0:
+                q_s[:] = 0
+            elif xs < 0 and ys >= 0:
+                q_s[:] = 1
+            elif xs <= 0 and ys < 0:
+                q_s[:] = 2
+            else:
+                q_s[:] = 3
+            if xe > 0 and ye >= 0:
+                q_e[:] = 0
+            elif xe <= 0 and ye > 0:
+                q_e[:] = 1
+            elif xe < 0 and ye <= 0:
+                q_e[:] = 2
+            else:
+                q_e[:] = 3
+            turn[:] = q_s - q_e
+
+        turns[:] = turn
+
+        # inward / outward magnitudes (x is inward when quadrant[0] xor ccw)
+        if q_s[0] != ccw:
+            a_s[:] = mag_xs
+            b_s[:] = mag_ys
+        else:
+            a_s[:] = mag_ys
+            b_s[:] = mag_xs
+        if q_e[0] != ccw:
+            a_e[:] = mag_xe
+            b_e[:] = mag_ye
+        else:
+            a_e[:] = mag_ye
+            b_e[:] = mag_xe
+        first_in[:] = 0
+        first_out[:] = 0
+        last_in[:] = 0
+        last_out[:] = 0
+        if turns == 0 and a_e <= a_s and b_e >= b_s and not (a_e == a_s and b_e == b_s):
+            first_in[:] = a_s - a_e
+            first_out[:] = b_e - b_s
+        else:
+            if turns == 0:
+                turns[:] = 4
+            if a_e > rq:
+                bad = True
+            else:
+                first_in[:] = a_s
+                first_out[:] = rq[width:] - b_s
+                last_in[:] = rq[width:] - a_e
+                last_out[:] = b_e
+
+        chk_error.next = bad
+        chk_radius.next = rq
+        chk_quadrant.next = q_s
+        chk_crossings.next = turns
+        if q_s[0] != ccw:
+            chk_first_x.next = first_in
+            chk_first_y.next = first_out
+        else:
+            chk_first_x.next = first_out
+            chk_first_y.next = first_in
+        if q_e[0] != ccw:
+            chk_last_x.next = last_in
+            chk_last_y.next = last_out
+        else:
+            chk_last_x.next = last_out
+            chk_last_y.next = last_in
+        chk_threshold.next = thr
+        if variant == TRADITIONAL or variant == PRECISE:
+            chk_acc_init.next = thr >> 1
+        else:
+            chk_acc_init.next = 0
+
+    @always_comb
+    def iteration_logic():
+        x_in = bool(0)
+        x_right = bool(0)
+        y_up = bool(0)
+        mag_y_new = modbv(0)[width + 1:]
+        sum_x = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
+        sum_y = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
+        delta_x = intbv(0, min=-(1 << (width + 2)), max=1 << (width + 2))
+        delta_y = intbv(0, min=-(1 << (width + 2)), max=1 << (width + 2))
+        cand_d = intbv(0, min=-(1 << (err_width + 1)), max=1 << (err_width + 1))
+        cand_x = intbv(0, min=-(1 << (err_width + 1)), max=1 << (err_width + 1))
+        cand_y = intbv(0, min=-(1 << (err_width + 1)), max=1 << (err_width + 1))
+        abs_d = intbv(0)[err_width + 1:]
+        abs_x = intbv(0)[err_width + 1:]
+        abs_y = intbv(0)[err_width + 1:]
+        ahead_x = intbv(0, min=-(1 << (acc_width + 1)), max=1 << (acc_width + 1))
+        ahead_y = intbv(0, min=-(1 << (acc_width + 1)), max=1 << (acc_width + 1))
+        over_x = bool(0)
+        over_y = bool(0)
+        go_x = bool(0)
+        go_y = bool(0)
+
+        x_in = quadrant[0] != ccw
+        x_right = quadrant[0] == quadrant[1]
+        y_up = not quadrant[1]
+        if is_line:
+            it_dir_x.next = xe >= 0
+            it_dir_y.next = ye >= 0
+        else:
+            it_dir_x.next = x_right != x_in
+            it_dir_y.next = y_up == x_in
+        if x_in:
+            delta_x[:] = 1 - 2 * mag_x
+            delta_y[:] = 1 + 2 * mag_y
+        else:
+            delta_x[:] = 1 + 2 * mag_x
+            delta_y[:] = 1 - 2 * mag_y
+
+        # traditional: Y first, X integrates the new |y|
+        sum_y[:] = acc_y + mag_x
+        if not sum_y[acc_width] and sum_y[acc_width - 1]:
+            sum_y[:] = acc_max
+        mag_y_new[:] = mag_y
+        if not is_line and variant == TRADITIONAL and sum_y >= threshold:
+            if x_in:
+                mag_y_new[:] = mag_y + 1
+            else:
+                mag_y_new[:] = mag_y - 1
+        sum_x[:] = acc_x + mag_y_new
+        if not sum_x[acc_width] and sum_x[acc_width - 1]:
+            sum_x[:] = acc_max
+
+        if is_line or variant == TRADITIONAL:
+            over_x = sum_x >= threshold
+            over_y = sum_y >= threshold
+        else:
+            over_x = sum_x > threshold
+            over_y = sum_y > threshold
+
+        cand_d[:] = radial_error + delta_x + delta_y
+        cand_x[:] = radial_error + delta_x
+        cand_y[:] = radial_error + delta_y
+        if cand_d < 0:
+            abs_d[:] = -cand_d
+        else:
+            abs_d[:] = cand_d
+        if cand_x < 0:
+            abs_x[:] = -cand_x
+        else:
+            abs_x[:] = cand_x
+        if cand_y < 0:
+            abs_y[:] = -cand_y
+        else:
+            abs_y[:] = cand_y
+
+        go_x = over_x
+        go_y = over_y
+        if is_line:
+            go_x = over_x and count_x != 0
+            go_y = over_y and count_y != 0
+        elif variant == IMPROVED:
+            ahead_x[:] = sum_x + mag_y
+            ahead_y[:] = sum_y + mag_x
+            if over_x and not over_y and ahead_y > threshold:
+                go_y = True
+            elif over_y and not over_x and ahead_x > threshold:
+                go_x = True
+        elif variant == PRECISE:
+            go_x = False
+            go_y = False
+            if sum_x >= threshold or sum_y >= threshold:
+                if abs_d <= abs_x and abs_d <= abs_y:
+                    go_x = True
+                    go_y = True
+                elif abs_x <= abs_y:
+                    go_x = True
+                else:
+                    go_y = True
+
+        if not is_line and (count_x == 0 or count_y == 0):
+            go_x = count_x != 0
+            go_y = count_y != 0
+            it_acc_x.next = acc_x
+            it_acc_y.next = acc_y
+        else:
+            if go_x:
+                it_acc_x.next = sum_x - threshold
+            else:
+                it_acc_x.next = sum_x
+            if go_y:
+                it_acc_y.next = sum_y - threshold
+            else:
+                it_acc_y.next = sum_y
+        it_step_x.next = go_x
+        it_step_y.next = go_y
+        it_mag_x.next = mag_x
+        it_mag_y.next = mag_y
+        if not is_line:
+            if go_x:
+                if x_in:
+                    it_mag_x.next = mag_x - 1
+                else:
+                    it_mag_x.next = mag_x + 1
+            if go_y:
+                if x_in:
+                    it_mag_y.next = mag_y + 1
+                else:
+                    it_mag_y.next = mag_y - 1
+        if go_x and go_y:
+            it_error.next = cand_d[err_width:]
+        elif go_x:
+            it_error.next = cand_x[err_width:]
+        elif go_y:
+            it_error.next = cand_y[err_width:]
+        else:
+            it_error.next = radial_error
+
+        it_finished.next = False
+        it_next_piece.next = False
+        if (count_x == 1 and go_x or count_x == 0) and (count_y == 1 and go_y or count_y == 0):
+            if is_line or crossings == 0:
+                it_finished.next = True
+            else:
+                it_next_piece.next = True
+
+    @always_seq(clock.posedge, reset=reset)
+    def control():
+        steps.step_x.next = False
+        steps.step_y.next = False
+        cmd.done.next = False
+        if state == t_state.S_IDLE:
+            if cmd.start:
+                cmd.busy.next = True
+                cmd.error.next = False
+                is_line.next = cmd.line
+                variant.next = cmd.variant
+                lambda_shift.next = cmd.lambda_shift
+                acc_bits.next = cmd.acc_bits
+                ccw.next = cmd.ccw
+                xs.next = cmd.xs
+                ys.next = cmd.ys
+                xe.next = cmd.xe
+                ye.next = cmd.ye
+                square_start.next = 0
+                square_end.next = 0
+                mac_op.next = 0
+                mac_bit.next = 0
+                if cmd.xs < 0:
+                    multiplicand.next = -cmd.xs
+                    multiplier.next = -cmd.xs
+                else:
+                    multiplicand.next = cmd.xs
+                    multiplier.next = cmd.xs
+                if cmd.line:
+                    state.next = t_state.S_CHECK
+                else:
+                    state.next = t_state.S_MAC
+        elif state == t_state.S_MAC:
+            if multiplier[0]:
+                if mac_op < 2:
+                    square_start.next = square_start + multiplicand
+                else:
+                    square_end.next = square_end + multiplicand
+            if mac_bit == width - 1:
+                mac_bit.next = 0
+                mac_op.next = mac_op + 1
+                if mac_op == 0:
+                    multiplicand.next = mag_ys
+                    multiplier.next = mag_ys
+                elif mac_op == 1:
+                    multiplicand.next = mag_xe
+                    multiplier.next = mag_xe
+                else:
+                    multiplicand.next = mag_ye
+                    multiplier.next = mag_ye
+                if mac_op == 3:
+                    radicand.next = square_start
+                    remainder.next = 0
+                    root.next = 0
+                    root_bit.next = 0
+                    state.next = t_state.S_ROOT
+            else:
+                mac_bit.next = mac_bit + 1
+                multiplicand.next = multiplicand << 1
+                multiplier.next = multiplier >> 1
+        elif state == t_state.S_ROOT:
+            trial_rem = intbv(0)[width + 3:]
+            trial = intbv(0)[width + 3:]
+            trial_rem[:] = (remainder[width + 1:] << 2) | radicand[2 * width:2 * width - 2]
+            trial[:] = (root[width - 1:] << 2) | 1
+            if trial_rem >= trial:
+                remainder.next = trial_rem - trial
+                root.next = (root[width - 1:] << 1) | 1
+            else:
+                remainder.next = trial_rem
+                root.next = root[width - 1:] << 1
+            radicand.next = radicand << 2
+            if root_bit == width - 1:
+                state.next = t_state.S_CHECK
+            else:
+                root_bit.next = root_bit + 1
+        elif state == t_state.S_CHECK:
+            acc_x.next = chk_acc_init
+            acc_y.next = chk_acc_init
+            radial_error.next = 0
+            crossings.next = 0
+            quadrant.next = 0
+            state.next = t_state.S_RUN
+            if is_line:
+                if mag_xe > mag_ye:
+                    threshold.next = mag_xe
+                    acc_x.next = mag_xe >> 1
+                    acc_y.next = mag_xe >> 1
+                else:
+                    threshold.next = mag_ye
+                    acc_x.next = mag_ye >> 1
+                    acc_y.next = mag_ye >> 1
+                mag_x.next = mag_ye
+                mag_y.next = mag_xe
+                count_x.next = mag_xe
+                count_y.next = mag_ye
+                if mag_xe == 0 and mag_ye == 0:
+                    cmd.busy.next = False
+                    cmd.done.next = True
+                    state.next = t_state.S_IDLE
+            elif chk_error:
+                cmd.busy.next = False
+                cmd.error.next = True
+                state.next = t_state.S_IDLE
+            else:
+                threshold.next = chk_threshold
+                quadrant.next = chk_quadrant
+                crossings.next = chk_crossings
+                mag_x.next = mag_xs
+                mag_y.next = mag_ys
+                count_x.next = chk_first_x
+                count_y.next = chk_first_y
+                last_x.next = chk_last_x
+                last_y.next = chk_last_y
+                radius.next = chk_radius[width:]
+        elif state == t_state.S_RUN:
+            if cmd.advance:
+                steps.step_x.next = it_step_x
+                steps.step_y.next = it_step_y
+                steps.dir_x.next = it_dir_x
+                steps.dir_y.next = it_dir_y
+                acc_x.next = it_acc_x
+                acc_y.next = it_acc_y
+                mag_x.next = it_mag_x
+                mag_y.next = it_mag_y
+                radial_error.next = it_error
+                if it_finished:
+                    cmd.busy.next = False
+                    cmd.done.next = True
+                    state.next = t_state.S_IDLE
+                    count_x.next = 0
+                    count_y.next = 0
+                elif it_next_piece:
+                    if ccw:
+                        quadrant.next = quadrant + 1
+                    else:
+                        quadrant.next = quadrant - 1
+                    crossings.next = crossings - 1
+                    if crossings == 1:
+                        count_x.next = last_x
+                        count_y.next = last_y
+                    else:
+                        count_x.next = radius
+                        count_y.next = radius
+                else:
+                    if it_step_x:
+                        count_x.next = count_x - 1
+                    if it_step_y:
+                        count_y.next = count_y - 1
+
+    @always_comb
+    def status():
+        cmd.quadrant.next = quadrant
+
+    return magnitudes, check_logic, iteration_logic, control, status
+
+
+def dda_arc_ports(coord_width=24):
+    """Fresh ports of ``dda_arc`` for conversion or a bench."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(),
+                cmd=DdaPort(coord_width), steps=AxisPulses())

@@ -1,0 +1,202 @@
+"""PCI pads: the card's only tri-states, joining ``PciPins`` to the core's ``PciBus``.
+
+Two builds, chosen by ``io_registers`` (the top passes the same value to
+``pci_slave``):
+
+- ``False``: plain tri-state buffers.  The core's boundary flip-flops are
+  logic-cell flops; any vendor flow infers the I/O buffers.
+- ``True``: iCE40 ``SB_IO`` cells whose input and output registers ARE the
+  core's boundary flip-flops, so PCI set-up and clock-to-output paths never
+  cross the fabric.  AD, PAR, C/BE# and IDSEL are sampled in the I/O cell;
+  AD, PAR, TRDY#, DEVSEL#, STOP# and PERR# leave from the I/O cell's output
+  register, fed with the value the core wants on the pin after the next
+  edge.  Output enables are not registered here: they come straight from
+  the core's flip-flops, which have the asynchronous reset that iCE40 I/O
+  registers lack, so RST# still floats the bus at once.  FRAME# and IRDY#
+  are not registered here either: the core also uses them through its fast
+  path.
+
+Bus timing is the same in both builds.  SERR# and INTA# are open-drain
+(driven low or released) in both.
+
+Every pad is user-defined Verilog with a behavioural model for simulation.
+A line nobody drives reads as its pull-up value (FRAME#, IRDY#: 1) or 0.
+"""
+from myhdl import Signal, always, block
+
+from rtl.interfaces import PciBus, PciPins
+
+# SB_IO PIN_TYPE: output mode in bits 5:2, input mode in bits 1:0.
+PIN_REGISTERED_IO = "100100"      # registered output, direct enable, registered input
+PIN_REGISTERED_OUTPUT = "100101"  # registered output, direct enable, plain input
+PIN_REGISTERED_INPUT = "000000"   # input register only
+
+
+def _line_value(pin, undriven):
+    """What the core reads from ``pin``: its value, or ``undriven`` when released."""
+    return undriven if pin.val is None else pin.val
+
+
+@block
+def tristate_pad(pin, from_pin, to_pin, enable):
+    """A plain tri-state buffer: ``pin`` shows ``to_pin`` while ``enable``.
+
+    ``from_pin`` (None for a line the target never reads) follows the pin.
+    """
+    driver = pin.driver()
+
+    @always(to_pin, enable)
+    def drive():
+        driver.next = int(to_pin.val) if enable else None
+
+    code = f"assign $pin = $enable ? $to_pin : {{{len(pin)}{{1'bz}}}};\n"
+    instances = [drive]
+    if from_pin is not None:
+        @always(pin)
+        def sample():
+            from_pin.next = _line_value(pin, 0)
+
+        instances.append(sample)
+        code += "assign $from_pin = $pin;\n"
+        from_pin.driven = "wire"
+    pin.driven = "wire"
+    to_pin.read = True
+    enable.read = True
+    tristate_pad.verilog_code = code
+    return instances
+
+
+@block
+def input_pad(pin, from_pin, *, undriven):
+    """A plain input: ``from_pin`` follows ``pin`` (``undriven`` when released)."""
+    @always(pin)
+    def follow():
+        from_pin.next = _line_value(pin, undriven)
+
+    from_pin.driven = "wire"
+    pin.read = True
+    input_pad.verilog_code = "assign $from_pin = $pin;\n"
+    return follow
+
+
+@block
+def registered_pad(clock, pin, from_pin, to_pin, enable, *, label):
+    """iCE40 ``SB_IO`` cells, one per bit of ``pin``, with I/O-cell registers.
+
+    ``from_pin`` (None: not read) is the pin sampled at each ``clock`` edge in
+    the input register.  With ``to_pin`` (None: input only) the pin shows,
+    while ``enable``, the value ``to_pin`` had at the last edge (output
+    register).  ``label`` prefixes the cell instance names.
+
+        clock     _/~\\_/~\\_/~\\_
+        to_pin    --< A >< B >--
+        pin       -------< A >< B >    (while enable)
+        pin       --< C >< D >------
+        from_pin  -------< C >< D >
+    """
+    instances = []
+    if to_pin is not None:
+        driver = pin.driver()
+        held = [0]  # the I/O cell's output register (not a Signal: nothing to convert)
+
+        @always(clock.posedge)
+        def output_cell():
+            held[0] = int(to_pin.val)
+            driver.next = held[0] if enable else None
+
+        @always(enable)
+        def drive():
+            driver.next = held[0] if enable else None
+
+        instances += [output_cell, drive]
+        to_pin.read = True
+        enable.read = True
+    if from_pin is not None:
+        @always(clock.posedge)
+        def input_cell():
+            from_pin.next = _line_value(pin, 0)
+
+        instances.append(input_cell)
+        from_pin.driven = "wire"
+    # The cell's PACKAGE_PIN is an inout: the port must be one too.
+    pin.driven = "wire"
+    pin.read = True
+    clock.read = True
+    width = len(pin)
+    registered_pad.verilog_code = "".join(
+        _sb_io(label, index, width, from_pin is not None, to_pin is not None) for index in range(width))
+    return instances
+
+
+def _sb_io(label, index, width, has_input, has_output):
+    """Verilog of one ``SB_IO`` (bit ``index`` of a ``width``-bit pin)."""
+    bit = f"[{index}]" if width > 1 else ""
+    if has_output:
+        pin_type = PIN_REGISTERED_IO if has_input else PIN_REGISTERED_OUTPUT
+    else:
+        pin_type = PIN_REGISTERED_INPUT
+    # Every input of the cell is tied: the DDR and latch inputs are unused.
+    ports = [f".PACKAGE_PIN($pin{bit})", ".LATCH_INPUT_VALUE(1'b0)", ".CLOCK_ENABLE(1'b1)",
+             ".INPUT_CLK($clock)", ".OUTPUT_CLK($clock)", ".D_OUT_1(1'b0)"]
+    if has_output:
+        ports += [".OUTPUT_ENABLE($enable)", f".D_OUT_0($to_pin{bit})"]
+    else:
+        ports += [".OUTPUT_ENABLE(1'b0)", ".D_OUT_0(1'b0)"]
+    if has_input:
+        ports.append(f".D_IN_0($from_pin{bit})")
+    return f"SB_IO #(.PIN_TYPE(6'b{pin_type})) {label}_{index} (\n    " + ",\n    ".join(ports) + "\n);\n"
+
+
+@block
+def pci_pads(clock, pins, pci, *, io_registers=False):
+    """The PCI pad ring of the card.
+
+    Ports: ``clock`` PCI CLK (clocks the I/O cells with ``io_registers``),
+    ``pins`` ``PciPins`` (the top level's ports), ``pci`` ``PciBus`` (the
+    core's side).  Parameter: ``io_registers`` (bool), see the module text.
+
+    ``io_registers=False`` (no clock in the path)::
+
+        pci.ad_out    --< A >--      pins.ad  --< A >--   (while pci.ad_oe)
+        pins.frame    --< F >--      pci.frame_in --< F >--
+
+    ``io_registers=True`` (one I/O-cell register, which replaces the core's)::
+
+        clock         _/~\\_/~\\_/~\\_
+        pci.ad_out    --< A >-------      (the core's next value)
+        pins.ad       -------< A >--      (while pci.ad_oe)
+        pins.cbe      --< C >-------
+        pci.cbe_in    -------< C >--
+    """
+    open_drain = [
+        tristate_pad(pins.serr, None, pci.serr_out, pci.serr_oe),
+        tristate_pad(pins.inta, None, pci.inta_out, pci.inta_oe),
+        input_pad(pins.frame, pci.frame_in, undriven=1),
+        input_pad(pins.irdy, pci.irdy_in, undriven=1),
+    ]
+    if io_registers:
+        return open_drain + [
+            registered_pad(clock, pins.ad, pci.ad_in, pci.ad_out, pci.ad_oe, label="pad_ad"),
+            registered_pad(clock, pins.par, pci.par_in, pci.par_out, pci.par_oe, label="pad_par"),
+            registered_pad(clock, pins.trdy, None, pci.trdy_out, pci.trdy_oe, label="pad_trdy"),
+            registered_pad(clock, pins.devsel, None, pci.devsel_out, pci.devsel_oe, label="pad_devsel"),
+            registered_pad(clock, pins.stop, None, pci.stop_out, pci.stop_oe, label="pad_stop"),
+            registered_pad(clock, pins.perr, None, pci.perr_out, pci.perr_oe, label="pad_perr"),
+            registered_pad(clock, pins.cbe, pci.cbe_in, None, None, label="pad_cbe"),
+            registered_pad(clock, pins.idsel, pci.idsel_in, None, None, label="pad_idsel"),
+        ]
+    return open_drain + [
+        tristate_pad(pins.ad, pci.ad_in, pci.ad_out, pci.ad_oe),
+        tristate_pad(pins.par, pci.par_in, pci.par_out, pci.par_oe),
+        tristate_pad(pins.trdy, None, pci.trdy_out, pci.trdy_oe),
+        tristate_pad(pins.devsel, None, pci.devsel_out, pci.devsel_oe),
+        tristate_pad(pins.stop, None, pci.stop_out, pci.stop_oe),
+        tristate_pad(pins.perr, None, pci.perr_out, pci.perr_oe),
+        input_pad(pins.cbe, pci.cbe_in, undriven=0),
+        input_pad(pins.idsel, pci.idsel_in, undriven=0),
+    ]
+
+
+def pci_pads_ports(io_registers=False):
+    """Fresh ports of ``pci_pads`` (the same for both builds)."""
+    return {"clock": Signal(bool(0)), "pins": PciPins(), "pci": PciBus()}

@@ -1,0 +1,653 @@
+"""PCI 2.3 target (32-bit, 33 MHz) built on the state machine of the paper's section 3.
+
+The paper's states keep their names in code spelling: ``S_IDLE`` (Idle),
+``S_CON_HOLD`` (Con_Hold), ``S_IO_HOLD`` (I/O_Hold), ``S_MEM_HOLD``
+(Mem_Hold), ``S_READ_HOLD`` (Read_Hold), ``S_CONFIGURING`` (Configuring),
+``S_RWING`` (Rwing), ``S_ENDING`` (Ending); one state is added,
+``S_BACKOFF``: STOP# asserted, waiting for FRAME# to go (retry, disconnect,
+target abort).  ``docs/pci.md`` maps them and explains the timing.
+
+Timing architecture: AD, C/BE# and IDSEL are sampled into an input register
+before any logic, and every PCI output and output enable comes from a
+flip-flop.  Four inputs also reach an output register through one or two
+LUT levels, because PCI leaves no clock for a register in between: FRAME#
+and IRDY# (ending a burst, advancing read data), PAR (PERR# and SERR# two
+clocks after the phase they cover) and C/BE# (PAR on reads covers the C/BE#
+of the same clock).  DEVSEL# timing is therefore MEDIUM.
+"""
+from myhdl import Signal, always_comb, always_seq, block, concat, enum, instances, intbv, modbv
+
+from rtl.interfaces import LocalBus, PciBus, card_reset
+
+t_state = enum("S_IDLE", "S_CON_HOLD", "S_IO_HOLD", "S_MEM_HOLD", "S_READ_HOLD",
+               "S_CONFIGURING", "S_RWING", "S_BACKOFF", "S_ENDING")
+
+# Commands (C/BE# in the address phase) the target claims.
+CMD_IO_READ, CMD_IO_WRITE = 0x2, 0x3
+CMD_MEM_READ, CMD_MEM_WRITE = 0x6, 0x7
+CMD_CONFIG_READ, CMD_CONFIG_WRITE = 0xA, 0xB
+CMD_MEM_READ_MULTIPLE, CMD_MEM_READ_LINE, CMD_MEM_WRITE_INVALIDATE = 0xC, 0xE, 0xF
+
+# Configuration header: dword indices and the fields that exist.
+CONFIG_ID, CONFIG_COMMAND_STATUS, CONFIG_CLASS, CONFIG_BAR0, CONFIG_BAR1 = 0, 1, 2, 4, 5
+CONFIG_SUBSYSTEM, CONFIG_INTERRUPT = 11, 15
+STATUS_DEVSEL_MEDIUM = 0b01   # Status[10:9]
+INTERRUPT_PIN_INTA = 1
+
+# Latency budget: clocks a data phase may wait for TRDY#, counted from the
+# claim (first phase) or from the last completion.  STOP# then comes out so
+# that it is sampled 14 clocks after FRAME# (PCI allows 16) or 7 clocks after
+# the last completed phase (PCI allows 8).
+INITIAL_WAIT_LIMIT = 11
+SUBSEQUENT_WAIT_LIMIT = 5
+
+DEFAULTS = dict(vendor_id=0x1234, device_id=0xDDA0, revision_id=0x01, class_code=0x088000,
+                subsystem_vendor_id=0x1234, subsystem_id=0x0001, io_bar_bits=6,
+                mem_bar_bits=12, io_registers=False)
+ID_WIDTHS = dict(vendor_id=16, device_id=16, revision_id=8, class_code=24,
+                 subsystem_vendor_id=16, subsystem_id=16)
+IO_BAR_BITS = range(2, 9)      # 4..256 bytes: the I/O BAR sizes PCI allows
+MEM_BAR_BITS = range(4, 25)    # 16 bytes..16 MiB
+
+
+def check_params(params):
+    """``params`` completed with the defaults; ValueError on a bad one."""
+    unknown = set(params) - set(DEFAULTS)
+    if unknown:
+        raise ValueError(f"pci_slave: unknown parameters {sorted(unknown)}")
+    values = dict(DEFAULTS, **params)
+    for name, width in ID_WIDTHS.items():
+        value = values[name]
+        if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < 1 << width:
+            raise ValueError(f"pci_slave: {name} must be an integer of {width} bits, not {value!r}")
+    for name, allowed in (("io_bar_bits", IO_BAR_BITS), ("mem_bar_bits", MEM_BAR_BITS)):
+        if values[name] not in allowed:
+            raise ValueError(f"pci_slave: {name} must be within {allowed.start}.."
+                             f"{allowed.stop - 1}, not {values[name]!r}")
+    if not isinstance(values["io_registers"], bool):
+        raise ValueError(f"pci_slave: io_registers must be True or False, "
+                         f"not {values['io_registers']!r}")
+    return values
+
+
+def local_addr_width(io_bar_bits=6, mem_bar_bits=12):
+    """Address bits of ``LocalBus`` the target drives: the larger BAR, and at
+    least the 256 bytes of configuration space (one counter serves all)."""
+    return max(io_bar_bits, mem_bar_bits, 8)
+
+
+def pci_slave_ports(**params):
+    """Fresh ports of ``pci_slave`` for ``params`` (conversion and benches)."""
+    values = check_params(params)
+    return dict(clock=Signal(bool(0)), reset=card_reset(), pci=PciBus(),
+                local=LocalBus(local_addr_width(values["io_bar_bits"], values["mem_bar_bits"])),
+                irq=Signal(bool(0)))
+
+
+@block
+def pci_slave(clock, reset, pci, local, irq, **params):
+    """The PCI target.
+
+    Ports: ``clock`` PCI CLK; ``reset`` RST# (``card_reset()``); ``pci`` a
+    ``PciBus``; ``local`` a ``LocalBus`` of ``local_addr_width()`` address
+    bits (space 0: BAR0, I/O; space 1: BAR1, memory); ``irq`` level interrupt
+    request, drives INTA# unless Command.Interrupt Disable is set.
+
+    Parameters: vendor_id, device_id, revision_id, class_code (24 bits),
+    subsystem_vendor_id, subsystem_id; io_bar_bits (BAR0 is 2**io_bar_bits
+    bytes, 2..8), mem_bar_bits (BAR1 is 2**mem_bar_bits bytes, 4..24);
+    io_registers (False: the core's own flip-flops sample AD and IDSEL and
+    drive AD, PAR, TRDY#, DEVSEL#, STOP#, PERR#; True: the I/O cells of
+    ``rtl.pci_pads`` hold those registers, so ``pci.ad_in``/``idsel_in``
+    arrive registered and those ``*_out`` carry the value for after the next
+    edge; bus timing is the same).
+
+    Memory read burst, zero wait states (edge A samples the address; DEVSEL#
+    is medium: sampled asserted at A+2)::
+
+        edge        A     +1    +2    +3    +4    +5
+        FRAME#  ~~\\_______________________/~~~~~~~~~
+        IRDY#   ~~~~~~\\_________________________/~~~
+        AD      --<adr>-----<D0  ><D1  ><D2  >------   driven from A+1
+        DEVSEL# ~~~~~~~~~~\\_____________________/~~~
+        TRDY#   ~~~~~~~~~~~~~~~~\\_______________/~~~   data sampled at A+3..A+5
+        state     IDLE  MEM_HOLD RWING ...      ENDING
+    """
+    values = check_params(params)
+    io_bits, mem_bits = values["io_bar_bits"], values["mem_bar_bits"]
+    io_registers = values["io_registers"]
+    width = local_addr_width(io_bits, mem_bits) - 2   # dword address counters
+    if len(local.addr) != width + 2:
+        raise ValueError(f"pci_slave: local.addr must have {width + 2} bits, has {len(local.addr)}")
+    mem_last = (1 << (mem_bits - 2)) - 1               # last dword of BAR1
+    config_mask, io_mask = 0x3F, (1 << (io_bits - 2)) - 1
+    id_word = values["device_id"] << 16 | values["vendor_id"]
+    class_word = values["class_code"] << 8 | values["revision_id"]
+    subsystem_word = values["subsystem_id"] << 16 | values["subsystem_vendor_id"]
+    io_bar_writable = (0xFFFFFFFF << io_bits) & 0xFFFFFFFF
+    mem_bar_writable = (0xFFFFFFFF << mem_bits) & 0xFFFFFFFF
+
+    # --- input register: the bus as sampled at the last edge ---
+    ad_q = pci.ad_in if io_registers else Signal(intbv(0)[32:])
+    idsel_q = pci.idsel_in if io_registers else Signal(bool(0))
+    cbe_q = Signal(intbv(0xF)[4:])
+    frame_q = Signal(bool(1))
+    frame_qq = Signal(bool(1))
+    irdy_q = Signal(bool(1))
+
+    # --- bus outputs: next value and register (the pads may hold the latter) ---
+    trdy_next, trdy_q = Signal(bool(1)), Signal(bool(1))
+    stop_next, stop_q = Signal(bool(1)), Signal(bool(1))
+    devsel_next, devsel_q = Signal(bool(1)), Signal(bool(1))
+    ad_out_next, ad_out_q = Signal(intbv(0)[32:]), Signal(intbv(0)[32:])
+    par_next, par_q = Signal(bool(0)), Signal(bool(0))
+    perr_next, perr_q = Signal(bool(1)), Signal(bool(1))
+    drive_next = Signal(bool(0))      # DEVSEL#, TRDY#, STOP# driven
+    ad_oe_next = Signal(bool(0))
+
+    # --- transaction state ---
+    state, state_next = Signal(t_state.S_IDLE), Signal(t_state.S_IDLE)
+    is_read = Signal(bool(0))
+    is_config = Signal(bool(0))
+    space_mem = Signal(bool(0))
+    single = Signal(bool(0))          # one data phase only: config, I/O, non-linear order
+    first_phase = Signal(bool(0))     # no data phase completed yet
+    first_pending = Signal(bool(0))   # first back-end request not answered yet
+    fetching = Signal(bool(0))        # reads: more dwords may be requested
+    refused = Signal(bool(0))         # writes: the back end answered retry mid-burst
+    address_fault = Signal(bool(0))   # address parity error, Parity Error Response set
+    wait_count = Signal(intbv(0, min=0, max=16))
+    phase_addr = Signal(modbv(0)[width:])   # dword of the current data phase
+    req_addr = Signal(modbv(0)[width:])     # dword of the next back-end request
+    io_byte = Signal(intbv(0)[2:])          # AD[1:0] of an I/O access
+
+    # --- read data: the AD register, fed by a one-dword skid register B ---
+    b_valid = Signal(bool(0))
+    b_data = Signal(intbv(0)[32:])
+    ad_parity = Signal(bool(0))       # parity of ad_out_q
+
+    # --- posted write data: ad_q, then the head (h) and second (s) entries ---
+    wq_valid = Signal(bool(0))        # ad_q holds a posted dword
+    h_valid, s_valid = Signal(bool(0)), Signal(bool(0))
+    h_data, s_data = Signal(intbv(0)[32:]), Signal(intbv(0)[32:])
+    h_be, s_be = Signal(intbv(0)[4:]), Signal(intbv(0)[4:])
+    write_done_q = Signal(bool(0))    # ad_q holds data of a completed write phase
+    config_write_q = Signal(bool(0))
+
+    # --- configuration registers ---
+    io_enable, mem_enable = Signal(bool(0)), Signal(bool(0))
+    parity_response, serr_enable = Signal(bool(0)), Signal(bool(0))
+    interrupt_disable = Signal(bool(0))
+    bar0 = Signal(intbv(1)[32:])
+    bar1 = Signal(intbv(0)[32:])
+    interrupt_line = Signal(intbv(0)[8:])
+    signaled_target_abort = Signal(bool(0))
+    signaled_system_error = Signal(bool(0))
+    detected_parity_error = Signal(bool(0))
+
+    # --- combinational ---
+    address_phase = Signal(bool(0))
+    address_parity_error = Signal(bool(0))
+    data_parity_error = Signal(bool(0))
+    claim = Signal(bool(0))
+    claim_config, claim_io = Signal(bool(0)), Signal(bool(0))
+    fatal = Signal(bool(0))           # target abort now
+    config_index = Signal(intbv(0)[6:])
+    config_data = Signal(intbv(0)[32:])
+    write_mask = Signal(intbv(0)[32:])
+    phase_done = Signal(bool(0))      # a data phase completes at this edge
+    holding = Signal(bool(0))         # TRDY# asserted, the master not ready
+    request_addr = Signal(modbv(0)[width:])
+    got = Signal(bool(0))             # read data arrives at this edge
+    accepted = Signal(bool(0))        # the back end takes a write at this edge
+    back_end_retry = Signal(bool(0))
+    draining = Signal(bool(0))        # posted data waits for the back end
+    buffered_next = Signal(intbv(0, min=0, max=4))
+    read_source = Signal(intbv(0)[32:])
+    waiting = Signal(bool(0))         # a data phase waits for this target
+    timeout = Signal(bool(0))
+    at_last = Signal(bool(0))         # phase_addr is the last dword of BAR1
+    before_last = Signal(bool(0))
+
+    # ------------------------------------------------------------ input stage
+    if not io_registers:
+        @always_seq(clock.posedge, reset=reset)
+        def input_register():
+            ad_q.next = pci.ad_in
+            idsel_q.next = pci.idsel_in
+
+    @always_seq(clock.posedge, reset=reset)
+    def control_input_register():
+        cbe_q.next = pci.cbe_in
+        frame_q.next = pci.frame_in
+        frame_qq.next = frame_q
+        irdy_q.next = pci.irdy_in
+
+    @always_comb
+    def parity_check():
+        # PAR sampled now covers the AD and C/BE# in the input register.
+        parity = intbv(0)[1:]
+        for i in range(32):
+            parity[0] = parity[0] ^ ad_q[i]
+        for i in range(4):
+            parity[0] = parity[0] ^ cbe_q[i]
+        address_phase.next = frame_qq and not frame_q
+        address_parity_error.next = frame_qq and not frame_q and (parity[0] != pci.par_in)
+        data_parity_error.next = write_done_q and (parity[0] != pci.par_in)
+
+    # ------------------------------------------------------------ decoding
+    @always_comb
+    def decode():
+        code = cbe_q
+        config_hit = (idsel_q and not ad_q[0] and not ad_q[1] and ad_q[11:8] == 0
+                      and (code == CMD_CONFIG_READ or code == CMD_CONFIG_WRITE))
+        io_hit = (io_enable and (code == CMD_IO_READ or code == CMD_IO_WRITE)
+                  and ad_q[32:io_bits] == bar0[32:io_bits])
+        mem_hit = (mem_enable
+                   and (code == CMD_MEM_READ or code == CMD_MEM_WRITE
+                        or code == CMD_MEM_READ_MULTIPLE or code == CMD_MEM_READ_LINE
+                        or code == CMD_MEM_WRITE_INVALIDATE)
+                   and ad_q[32:mem_bits] == bar1[32:mem_bits])
+        claim.next = state == t_state.S_IDLE and address_phase and (config_hit or io_hit or mem_hit)
+        claim_config.next = config_hit
+        claim_io.next = io_hit
+
+    @always_comb
+    def handshake():
+        phase_done.next = not pci.irdy_in and not trdy_q
+        holding.next = pci.irdy_in and not trdy_q
+
+    # ------------------------------------------------------------ back end
+    @always_comb
+    def local_request():
+        # From flip-flops only, in one process, so that a request never shows
+        # a half-updated address or data.
+        drain = h_valid or wq_valid
+        hold_state = (state == t_state.S_CON_HOLD or state == t_state.S_IO_HOLD
+                      or state == t_state.S_MEM_HOLD or state == t_state.S_READ_HOLD)
+        # PCI: an I/O access that enables a byte below the one AD[1:0]
+        # addresses is fatal, and so is a corrupt address.
+        bad = False
+        if address_fault:
+            bad = True
+        elif state == t_state.S_IO_HOLD:
+            if io_byte == 1:
+                bad = not cbe_q[0]
+            elif io_byte == 2:
+                bad = not (cbe_q[0] and cbe_q[1])
+            elif io_byte == 3:
+                bad = not (cbe_q[0] and cbe_q[1] and cbe_q[2])
+        fatal.next = hold_state and bad
+        first = first_pending and hold_state and not is_config and not drain and not bad
+        prefetch = (state == t_state.S_RWING and is_read and fetching and not b_valid
+                    and (trdy_q or not frame_q))
+        local.re.next = (first and is_read) or prefetch
+        local.we.next = drain or (first and not is_read and not irdy_q)
+        local.space.next = drain or space_mem
+        if h_valid:
+            local.wdata.next = h_data
+            local.be.next = h_be
+        elif is_read and space_mem and not drain:
+            local.wdata.next = ad_q
+            local.be.next = 0xF
+        else:
+            local.wdata.next = ad_q
+            local.be.next = ~cbe_q
+        if first_pending and not drain:
+            local.addr.next = concat(phase_addr, intbv(0)[2:])
+            request_addr.next = phase_addr
+        else:
+            local.addr.next = concat(req_addr, intbv(0)[2:])
+            request_addr.next = req_addr
+
+    @always_comb
+    def local_answer():
+        draining.next = h_valid or wq_valid
+        got.next = (local.re and local.ready) or (state == t_state.S_CON_HOLD and is_read)
+        accepted.next = local.we and local.ready
+        back_end_retry.next = (local.re or local.we) and local.retry
+
+    @always_comb
+    def read_path():
+        if b_valid:
+            read_source.next = b_data
+        elif is_config:
+            read_source.next = config_data
+        else:
+            read_source.next = local.rdata
+
+    @always_comb
+    def write_path():
+        # Posted dwords held after this edge (head and second entry).
+        held = intbv(0, min=0, max=4)
+        if h_valid:
+            held[:] = 1
+            if s_valid:
+                held[:] = 2
+            if accepted:
+                held[:] = held - 1
+            if wq_valid:
+                held[:] = held + 1
+        elif wq_valid and not accepted:
+            held[:] = 1
+        buffered_next.next = held
+
+    # ------------------------------------------------------------ state machine
+    @always_comb
+    def latency():
+        target_waits = (trdy_q and stop_q and state != t_state.S_IDLE
+                        and state != t_state.S_BACKOFF and state != t_state.S_ENDING)
+        waiting.next = target_waits
+        timeout.next = target_waits and (
+            (first_phase and wait_count == INITIAL_WAIT_LIMIT)
+            or (not first_phase and wait_count == SUBSEQUENT_WAIT_LIMIT))
+
+    @always_comb
+    def burst_end():
+        at_last.next = phase_addr == mem_last
+        before_last.next = phase_addr == mem_last - 1
+
+    @always_comb
+    def control():
+        frame_asserted = not pci.frame_in
+        trdy = bool(trdy_q)
+        stop = bool(stop_q)
+        devsel = bool(devsel_q)
+        drive = bool(pci.devsel_oe)
+        ad_oe = bool(pci.ad_oe)
+        state_next.next = state
+        # Can the next data phase carry data, is it the last one, or will no
+        # data come any more?
+        last_data = single or at_last
+        if phase_done:
+            last_data = single or before_last
+        ready_for_phase = False
+        exhausted = False
+        room = False
+        if is_read:
+            ready_for_phase = b_valid or got
+            exhausted = not b_valid and not got and not fetching
+        else:
+            room = buffered_next <= 1
+            if phase_done and not first_phase:
+                room = buffered_next == 0
+            ready_for_phase = is_config or (room and not refused)
+            exhausted = bool(refused)
+        if state == t_state.S_IDLE:
+            drive = False
+            ad_oe = False
+            if claim:
+                drive = True
+                devsel = False
+                trdy = True
+                stop = True
+                ad_oe = not cbe_q[0]
+                if claim_config:
+                    state_next.next = t_state.S_CON_HOLD
+                elif claim_io:
+                    state_next.next = t_state.S_IO_HOLD
+                else:
+                    state_next.next = t_state.S_MEM_HOLD
+        elif (state == t_state.S_CON_HOLD or state == t_state.S_IO_HOLD
+              or state == t_state.S_MEM_HOLD or state == t_state.S_READ_HOLD):
+            if fatal:
+                state_next.next = t_state.S_BACKOFF
+                devsel = True
+                stop = False
+            elif state == t_state.S_CON_HOLD:
+                state_next.next = t_state.S_CONFIGURING
+                trdy = False
+                stop = not frame_asserted
+            elif (is_read and got) or (not is_read and accepted and first_pending
+                                       and not draining):
+                state_next.next = t_state.S_RWING
+                trdy = False
+                stop = not (last_data and frame_asserted)
+            elif (back_end_retry and first_pending and not draining) or timeout:
+                state_next.next = t_state.S_BACKOFF
+                stop = False
+            elif is_read:
+                state_next.next = t_state.S_READ_HOLD
+        elif state == t_state.S_CONFIGURING or state == t_state.S_RWING:
+            if holding:
+                pass
+            elif phase_done and (not frame_asserted or not stop_q):
+                trdy = True
+                if frame_asserted:
+                    state_next.next = t_state.S_BACKOFF
+                else:
+                    state_next.next = t_state.S_ENDING
+                    stop = True
+                    devsel = True
+                    ad_oe = False
+            elif ready_for_phase:
+                trdy = False
+                stop = not (last_data and frame_asserted)
+            elif exhausted or timeout:
+                state_next.next = t_state.S_BACKOFF
+                trdy = True
+                stop = False
+            else:
+                trdy = True
+        elif state == t_state.S_BACKOFF:
+            if not frame_asserted:
+                state_next.next = t_state.S_ENDING
+                trdy = True
+                stop = True
+                devsel = True
+                ad_oe = False
+        else:
+            state_next.next = t_state.S_IDLE
+            drive = False
+        trdy_next.next = trdy
+        stop_next.next = stop
+        devsel_next.next = devsel
+        drive_next.next = drive
+        ad_oe_next.next = ad_oe
+
+    @always_seq(clock.posedge, reset=reset)
+    def transaction():
+        state.next = state_next
+        address_fault.next = address_parity_error and parity_response
+        if claim:
+            is_read.next = not cbe_q[0]
+            is_config.next = claim_config
+            space_mem.next = not claim_config and not claim_io
+            single.next = claim_config or claim_io or ad_q[0] or ad_q[1]
+            first_phase.next = True
+            first_pending.next = True
+            fetching.next = not cbe_q[0] and not claim_config
+            refused.next = False
+            io_byte.next = ad_q[2:0]
+            if claim_config:
+                phase_addr.next = ad_q[width + 2:2] & intbv(config_mask)[width:]
+            elif claim_io:
+                phase_addr.next = ad_q[width + 2:2] & intbv(io_mask)[width:]
+            else:
+                phase_addr.next = ad_q[width + 2:2] & intbv(mem_last)[width:]
+        else:
+            if phase_done:
+                first_phase.next = False
+                if space_mem:
+                    phase_addr.next = phase_addr + 1
+            if got or accepted:
+                first_pending.next = first_pending and draining
+            if local.re and local.ready and (single or request_addr == mem_last):
+                fetching.next = False
+            if local.re and local.retry and not first_pending:
+                fetching.next = False
+            if back_end_retry and draining and state == t_state.S_RWING:
+                refused.next = True
+        if (local.re or local.we) and local.ready:
+            req_addr.next = request_addr + 1
+        if claim or phase_done or not waiting:
+            wait_count.next = 0
+        elif not timeout:
+            wait_count.next = wait_count + 1
+
+    # ------------------------------------------------------------ data registers
+    @always_comb
+    def ad_output():
+        # The AD register takes new data unless the master has yet to take
+        # the data on the bus (fast path: one LUT from IRDY#).
+        if holding:
+            ad_out_next.next = ad_out_q
+        else:
+            ad_out_next.next = read_source
+        par_next.next = ad_parity ^ pci.cbe_in[0] ^ pci.cbe_in[1] ^ pci.cbe_in[2] ^ pci.cbe_in[3]
+        perr_next.next = not (data_parity_error and parity_response)
+
+    @always_seq(clock.posedge, reset=reset)
+    def bus_registers():
+        trdy_q.next = trdy_next
+        stop_q.next = stop_next
+        devsel_q.next = devsel_next
+        ad_out_q.next = ad_out_next
+        par_q.next = par_next
+        perr_q.next = perr_next
+        pci.trdy_oe.next = drive_next
+        pci.stop_oe.next = drive_next
+        pci.devsel_oe.next = drive_next
+        pci.ad_oe.next = ad_oe_next
+        pci.par_oe.next = pci.ad_oe
+        pci.perr_oe.next = not perr_next or not perr_q   # asserted, then high one clock
+        pci.serr_out.next = False
+        pci.serr_oe.next = address_parity_error and serr_enable and parity_response
+        pci.inta_out.next = False
+        pci.inta_oe.next = irq and not interrupt_disable
+
+    if io_registers:
+        @always_comb
+        def pins():
+            pci.trdy_out.next = trdy_next
+            pci.stop_out.next = stop_next
+            pci.devsel_out.next = devsel_next
+            pci.ad_out.next = ad_out_next
+            pci.par_out.next = par_next
+            pci.perr_out.next = perr_next
+    else:
+        @always_comb
+        def pins():
+            pci.trdy_out.next = trdy_q
+            pci.stop_out.next = stop_q
+            pci.devsel_out.next = devsel_q
+            pci.ad_out.next = ad_out_q
+            pci.par_out.next = par_q
+            pci.perr_out.next = perr_q
+
+    @always_seq(clock.posedge, reset=reset)
+    def read_buffer():
+        if not holding:
+            parity = intbv(0)[1:]
+            for i in range(32):
+                parity[0] = parity[0] ^ read_source[i]
+            ad_parity.next = parity[0]
+        in_read = is_read and (state == t_state.S_MEM_HOLD or state == t_state.S_IO_HOLD
+                               or state == t_state.S_READ_HOLD or state == t_state.S_RWING)
+        b_valid.next = in_read and (b_valid or got) and holding
+        if got and holding:
+            b_data.next = local.rdata
+
+    @always_seq(clock.posedge, reset=reset)
+    def write_buffer():
+        write_done_q.next = phase_done and not is_read
+        config_write_q.next = phase_done and is_config and not is_read
+        wq_valid.next = phase_done and not is_read and not first_phase and space_mem
+        if h_valid:
+            if accepted:
+                if s_valid:
+                    h_data.next = s_data
+                    h_be.next = s_be
+                    s_valid.next = wq_valid
+                    if wq_valid:
+                        s_data.next = ad_q
+                        s_be.next = ~cbe_q
+                elif wq_valid:
+                    h_data.next = ad_q
+                    h_be.next = ~cbe_q
+                else:
+                    h_valid.next = False
+            elif wq_valid:
+                s_valid.next = True
+                s_data.next = ad_q
+                s_be.next = ~cbe_q
+        elif wq_valid and not accepted:
+            h_valid.next = True
+            h_data.next = ad_q
+            h_be.next = ~cbe_q
+
+    # ------------------------------------------------------------ configuration space
+    @always_comb
+    def config_register_index():
+        config_index.next = phase_addr[6:0]
+
+    @always_comb
+    def byte_mask():
+        mask = intbv(0)[32:]
+        if not cbe_q[0]:
+            mask[8:0] = 0xFF
+        if not cbe_q[1]:
+            mask[16:8] = 0xFF
+        if not cbe_q[2]:
+            mask[24:16] = 0xFF
+        if not cbe_q[3]:
+            mask[32:24] = 0xFF
+        write_mask.next = mask
+
+    @always_seq(clock.posedge, reset=reset)
+    def config_registers():
+        clear_target_abort = False
+        clear_system_error = False
+        clear_parity_error = False
+        if config_write_q:
+            if config_index == CONFIG_COMMAND_STATUS:
+                if not cbe_q[0]:
+                    io_enable.next = ad_q[0]
+                    mem_enable.next = ad_q[1]
+                    parity_response.next = ad_q[6]
+                if not cbe_q[1]:
+                    serr_enable.next = ad_q[8]
+                    interrupt_disable.next = ad_q[10]
+                if not cbe_q[3]:   # Status: write 1 to clear
+                    clear_target_abort = ad_q[27]
+                    clear_system_error = ad_q[30]
+                    clear_parity_error = ad_q[31]
+            elif config_index == CONFIG_BAR0:
+                bar0.next = ((bar0 & ~(write_mask & intbv(io_bar_writable)[32:]))
+                             | (ad_q & write_mask & intbv(io_bar_writable)[32:]))
+            elif config_index == CONFIG_BAR1:
+                bar1.next = ((bar1 & ~(write_mask & intbv(mem_bar_writable)[32:]))
+                             | (ad_q & write_mask & intbv(mem_bar_writable)[32:]))
+            elif config_index == CONFIG_INTERRUPT:
+                if not cbe_q[0]:
+                    interrupt_line.next = ad_q[8:0]
+        signaled_target_abort.next = fatal or (signaled_target_abort and not clear_target_abort)
+        signaled_system_error.next = ((address_parity_error and serr_enable and parity_response)
+                                      or (signaled_system_error and not clear_system_error))
+        detected_parity_error.next = (address_parity_error or data_parity_error
+                                      or (detected_parity_error and not clear_parity_error))
+
+    @always_comb
+    def config_read():
+        if config_index == CONFIG_ID:
+            config_data.next = intbv(id_word)[32:]
+        elif config_index == CONFIG_COMMAND_STATUS:
+            config_data.next = concat(
+                detected_parity_error, signaled_system_error, intbv(0)[2:],
+                signaled_target_abort, intbv(STATUS_DEVSEL_MEDIUM)[2:], intbv(0)[5:], irq,
+                intbv(0)[8:], interrupt_disable, False, serr_enable, False, parity_response,
+                intbv(0)[4:], mem_enable, io_enable)
+        elif config_index == CONFIG_CLASS:
+            config_data.next = intbv(class_word)[32:]
+        elif config_index == CONFIG_BAR0:
+            config_data.next = bar0
+        elif config_index == CONFIG_BAR1:
+            config_data.next = bar1
+        elif config_index == CONFIG_SUBSYSTEM:
+            config_data.next = intbv(subsystem_word)[32:]
+        elif config_index == CONFIG_INTERRUPT:
+            config_data.next = concat(intbv(0)[16:], intbv(INTERRUPT_PIN_INTA)[8:], interrupt_line)
+        else:
+            config_data.next = 0
+
+    return instances()

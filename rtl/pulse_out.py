@@ -1,0 +1,152 @@
+"""Registered STEP/DIR outputs of both axes with pulse width, DIR set-up/hold and polarity."""
+from myhdl import Signal, always_comb, always_seq, block, concat, enum, intbv, modbv
+
+from rtl.interfaces import AxisPulses, MotorPins, card_reset
+
+TIMING_BITS = 8
+ENTRY_BITS = 4  # step_x, step_y, dir_x, dir_y
+
+
+@block
+def pulse_out(clock, reset, request, ready, active, clear, clear_position, width, setup, hold,
+              polarity_x, polarity_y, pins, position_x, position_y, *, queue_depth=4, in_flight=2):
+    """STEP and DIR pins of both axes, driven straight from flip-flops.
+
+    Ports: ``request`` (``AxisPulses``: the steps of one iteration, a
+    diagonal is both at once) goes into a small queue; ``ready`` is high while
+    the queue has room for ``in_flight`` more (the steps already on their way
+    from the interpolator when ``ready`` falls); ``active``: a step is queued
+    or on the pins.  ``clear`` drops the queue (a pulse already high ends
+    normally); ``clear_position`` zeroes the positions.  Timing, shared by
+    both axes so that a diagonal step leaves on both pins in the same clock:
+    ``width``: STEP high time and minimum low time in clocks (>= 1);
+    ``setup``: clocks DIR is stable before a STEP leading edge (>= 1);
+    ``hold``: clocks DIR stays stable after a STEP trailing edge (>= 1);
+    ``polarity_*``: 1 inverts that DIR pin.  ``pins``: ``MotorPins``.
+    ``position_*`` (signed) count the steps at the edge where the STEP pin
+    rises, so they tell what left the pins.
+
+    width 1, setup 1, hold 1; X steps +, then -:
+        clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
+        request   _/~~~\\___/~~~\\_____________
+        step_x    _______/~~~\\___________/~~~\\_
+        dir_x     ~~~~~~~~~~~~~~~~~~~\\_________
+        position  ==0====X=1=============X=0==
+    """
+    if in_flight < 1 or queue_depth < in_flight + 1 or queue_depth & (queue_depth - 1):
+        raise ValueError(f"queue_depth {queue_depth} must be a power of two above in_flight {in_flight}")
+    index_bits = queue_depth.bit_length() - 1
+    phase_t = enum("P_IDLE", "P_SETUP", "P_HIGH")
+    phase = Signal(phase_t.P_IDLE)
+    queue = [Signal(intbv(0)[ENTRY_BITS:]) for _ in range(queue_depth)]
+    count = Signal(intbv(0, min=0, max=queue_depth + 1))
+    head = Signal(intbv(0)[ENTRY_BITS:])
+    level_x, level_y = Signal(bool(0)), Signal(bool(0))
+    dir_level_x, dir_level_y = Signal(bool(1)), Signal(bool(1))
+    phase_clocks = Signal(intbv(0)[TIMING_BITS:])
+    low_clocks = Signal(intbv((1 << TIMING_BITS) - 1)[TIMING_BITS:])
+    take, turn = Signal(bool(0)), Signal(bool(0))
+    limit = (1 << TIMING_BITS) - 1
+
+    @always_comb
+    def room():
+        ready.next = count <= queue_depth - in_flight
+        active.next = count != 0 or phase != phase_t.P_IDLE or pins.step_x or pins.step_y
+
+    @always_comb
+    def peek():
+        head.next = queue[0]
+
+    @always_comb
+    def decide():
+        turn.next = count != 0 and ((head[0] and head[2] != dir_level_x) or (head[1] and head[3] != dir_level_y))
+        take.next = False
+        if phase != phase_t.P_HIGH and not clear and low_clocks >= width:
+            if phase == phase_t.P_SETUP:
+                take.next = phase_clocks >= setup
+            elif count != 0:
+                take.next = not ((head[0] and head[2] != dir_level_x) or (head[1] and head[3] != dir_level_y))
+
+    @always_seq(clock.posedge, reset=reset)
+    def step_phases():
+        if phase == phase_t.P_HIGH:
+            if phase_clocks >= width:
+                level_x.next = 0
+                level_y.next = 0
+                low_clocks.next = 1
+                phase.next = phase_t.P_IDLE
+            else:
+                phase_clocks.next = phase_clocks + 1
+        else:
+            if low_clocks < limit:
+                low_clocks.next = low_clocks + 1
+            if take:
+                level_x.next = head[0]
+                level_y.next = head[1]
+                phase_clocks.next = 1
+                phase.next = phase_t.P_HIGH
+            elif clear:
+                phase.next = phase_t.P_IDLE
+            elif phase == phase_t.P_SETUP:
+                if phase_clocks < limit:
+                    phase_clocks.next = phase_clocks + 1
+            elif turn and low_clocks >= hold:
+                if head[0]:
+                    dir_level_x.next = head[2]
+                if head[1]:
+                    dir_level_y.next = head[3]
+                phase_clocks.next = 1
+                phase.next = phase_t.P_SETUP
+
+    @always_seq(clock.posedge, reset=reset)
+    def fill():
+        used = intbv(0, min=0, max=queue_depth + 1)
+        used[:] = count
+        if clear:
+            used[:] = 0
+        elif take:
+            for i in range(queue_depth - 1):
+                queue[i].next = queue[i + 1]
+            used[:] = used - 1
+        if (request.step_x or request.step_y) and not clear:
+            queue[used[index_bits:]].next = concat(request.dir_y, request.dir_x, request.step_y, request.step_x)
+            used[:] = used + 1
+        count.next = used
+
+    @always_seq(clock.posedge, reset=reset)
+    def drive_pins():
+        pins.step_x.next = level_x
+        pins.step_y.next = level_y
+        pins.dir_x.next = dir_level_x ^ polarity_x
+        pins.dir_y.next = dir_level_y ^ polarity_y
+        if clear_position:
+            position_x.next = 0
+            position_y.next = 0
+        else:
+            if level_x and not pins.step_x:
+                if dir_level_x:
+                    position_x.next = position_x + 1
+                else:
+                    position_x.next = position_x - 1
+            if level_y and not pins.step_y:
+                if dir_level_y:
+                    position_y.next = position_y + 1
+                else:
+                    position_y.next = position_y - 1
+
+    return room, peek, decide, step_phases, fill, drive_pins
+
+
+def pulse_out_ports(queue_depth=4, in_flight=2):
+    """Fresh ports of ``pulse_out`` for conversion and benches."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(), request=AxisPulses(), ready=Signal(bool(1)),
+                active=Signal(bool(0)), clear=Signal(bool(0)), clear_position=Signal(bool(0)),
+                width=Signal(intbv(1)[TIMING_BITS:]), setup=Signal(intbv(1)[TIMING_BITS:]),
+                hold=Signal(intbv(1)[TIMING_BITS:]), polarity_x=Signal(bool(0)),
+                polarity_y=Signal(bool(0)), pins=MotorPins(), position_x=position_signal(),
+                position_y=position_signal())
+
+
+def position_signal():
+    """A signed 32-bit step counter that wraps."""
+    return Signal(modbv(0, min=-(1 << 31), max=1 << 31))

@@ -1,0 +1,305 @@
+"""The card's function registers (I/O BAR), described once.
+
+``REGISTERS`` is the single table.  From it come the RTL decoder
+(``rtl/regs_fifo.py`` builds one ``reg_word`` per entry), ``docs/registers.md``
+(``markdown()``), the C header the converter writes into ``gen/``
+(``c_header()``) and the map the host benches use (``offset``, ``field_value``,
+``field_of``).
+
+Access kinds:
+
+- ``RO``: read only; writes are ignored.  The value comes from the hardware.
+- ``RW``: read/write, byte enables honoured.  A value outside the register's
+  ``minimum``/``maximum`` is clamped to the nearest bound (the register reads
+  back what the hardware honours) and ``INT_STATUS.CLAMPED`` is set.
+- ``W1C``: hardware sets bits, writing 1 clears them.
+- ``W1S``: writing 1 sets bits, the hardware clears them when it has acted.
+- ``WP`` (write pulse): a write gives a one-clock pulse of the written value
+  to the hardware; reads return a hardware value (e.g. what is left to do).
+
+Registers with a ``set_index`` can also be written from the command stream by
+the ``SET`` instruction (``docs/instructions.md``).
+"""
+from dataclasses import dataclass, field
+
+ACCESS_KINDS = ("RO", "RW", "W1C", "W1S", "WP")
+WORD_BYTES = 4
+ID_MAGIC = 0xDDAC
+VERSION = 0x0100  # major 1, minor 0
+RATE_ONE = 1 << 16  # feed rate of one iteration per clock
+
+
+@dataclass(frozen=True)
+class Field:
+    name: str
+    lsb: int
+    width: int
+    text: str
+    signed: bool = False
+
+    @property
+    def mask(self):
+        return ((1 << self.width) - 1) << self.lsb
+
+
+@dataclass(frozen=True)
+class Register:
+    name: str
+    offset: int
+    access: str
+    reset: int
+    text: str
+    fields: tuple = field(default_factory=tuple)
+    minimum: int = None
+    maximum: int = None
+    set_index: int = None
+
+    @property
+    def width(self):
+        return max(f.lsb + f.width for f in self.fields)
+
+    @property
+    def signed(self):
+        return len(self.fields) == 1 and self.fields[0].signed
+
+    def field(self, name):
+        for item in self.fields:
+            if item.name == name:
+                return item
+        raise ValueError(f"register {self.name} has no field {name}")
+
+
+def _one(name, width, text, signed=False):
+    """A register that holds one value in its low bits."""
+    return (Field(name, 0, width, text, signed),)
+
+
+_INT_FIELDS = (
+    Field("DONE", 0, 1, "motion done: the command queue ran empty after motion"),
+    Field("LOW_WATER", 1, 1, "FIFO level fell below LOW_WATER"),
+    Field("ERROR", 2, 1, "a command was rejected (STATUS.ERROR says why)"),
+    Field("MARK", 3, 1, "a MARK command was reached (MARK_TAG says which)"),
+    Field("CLAMPED", 4, 1, "a register write was out of range and was clamped"),
+)
+
+REGISTERS = (
+    Register("ID", 0x00, "RO", (ID_MAGIC << 16) | VERSION, "identity and version", (
+        Field("VERSION", 0, 16, "register-map version, major in bits 15:8"),
+        Field("MAGIC", 16, 16, "0xDDAC: this card"),
+    )),
+    Register("CONTROL", 0x04, "RW", 0, "operating mode", (
+        Field("ENABLE", 0, 1, "1: execute commands (0 holds the queue; words still enter the FIFO)"),
+        Field("MODE", 1, 1, "0: DDA interpolation from the FIFO, 1: direct pulses from PULSE_COUNT_*"),
+    )),
+    Register("COMMAND", 0x08, "WP", 0, "one-shot actions (read as 0)", (
+        Field("SOFT_RESET", 0, 1, "stop motion at once, empty the FIFO, reset the DDA, clear the error"),
+        Field("CLEAR_ERROR", 1, 1, "clear STATUS.ERROR; execution resumes with the next queued word"),
+        Field("CLEAR_POSITION", 2, 1, "zero POS_X and POS_Y"),
+    )),
+    Register("STATUS", 0x0C, "RO", 0, "what the card is doing", (
+        Field("BUSY", 0, 1, "a command is executing or queued"),
+        Field("DONE", 1, 1, "the queue ran empty after motion (cleared when a command starts)"),
+        Field("QUADRANT", 2, 2, "quadrant of the arc's moving point, 0..3 for I..IV"),
+        Field("ERROR", 4, 4, "error code, 0: none (docs/instructions.md lists them)"),
+        Field("FIFO_EMPTY", 8, 1, "the FIFO holds no word"),
+        Field("FIFO_FULL", 9, 1, "the FIFO is full: memory writes are retried"),
+        Field("FIFO_LEVEL", 16, 16, "words in the FIFO"),
+    )),
+    Register("INT_ENABLE", 0x10, "RW", 0, "interrupt enables (INTA# = any enabled status bit)", _INT_FIELDS),
+    Register("INT_STATUS", 0x14, "W1C", 0, "interrupt status, write 1 to clear", _INT_FIELDS),
+    Register("LOW_WATER", 0x18, "RW", 0, "FIFO low-water mark",
+             _one("LEVEL", 16, "LOW_WATER interrupt when the FIFO level falls below this")),
+    Register("MARK_TAG", 0x1C, "RO", 0, "tag of the last MARK reached",
+             _one("TAG", 16, "the MARK command's tag")),
+    Register("POS_X", 0x20, "RO", 0, "X position in steps; reading it snapshots POS_Y",
+             _one("STEPS", 32, "steps that left the X pins, signed", signed=True)),
+    Register("POS_Y", 0x24, "RO", 0, "Y position captured by the last POS_X read",
+             _one("STEPS", 32, "steps that left the Y pins, signed", signed=True)),
+    Register("FEED_RATE", 0x28, "RW", 4096, "target iteration rate, in 1/65536 per clock",
+             _one("RATE", 17, "iterations per clock times 65536 (65536: one per clock)"),
+             minimum=1, maximum=RATE_ONE, set_index=0),
+    Register("RAMP_START", 0x2C, "RW", 4096, "iteration rate a move starts with when RAMP_STEP is not 0",
+             _one("RATE", 17, "iterations per clock times 65536"),
+             minimum=1, maximum=RATE_ONE, set_index=1),
+    Register("RAMP_STEP", 0x30, "RW", 0, "rate change per iteration towards FEED_RATE (0: no ramp)",
+             _one("STEP", 16, "added to the rate each iteration until FEED_RATE"), set_index=2),
+    Register("STEP_WIDTH", 0x34, "RW", 1, "STEP high time, also its minimum low time, in clocks",
+             _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=3),
+    Register("DIR_SETUP", 0x38, "RW", 1, "DIR stable before the STEP leading edge, in clocks",
+             _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=4),
+    Register("DIR_HOLD", 0x3C, "RW", 1, "DIR stable after the STEP trailing edge, in clocks",
+             _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=5),
+    Register("DIR_POLARITY", 0x40, "RW", 0, "DIR pin polarity", (
+        Field("X", 0, 1, "1: invert the X DIR pin"),
+        Field("Y", 1, 1, "1: invert the Y DIR pin"),
+    )),
+    Register("PULSE_PERIOD_X", 0x44, "RW", 2, "clocks between direct X pulses",
+             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF, set_index=6),
+    Register("PULSE_PERIOD_Y", 0x48, "RW", 2, "clocks between direct Y pulses",
+             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF, set_index=7),
+    Register("PULSE_COUNT_X", 0x4C, "WP", 0, "direct mode: write a signed count of X pulses; read what is left",
+             _one("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
+                  signed=True), minimum=-(1 << 23), maximum=(1 << 23) - 1),
+    Register("PULSE_COUNT_Y", 0x50, "WP", 0, "direct mode: write a signed count of Y pulses; read what is left",
+             _one("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
+                  signed=True), minimum=-(1 << 23), maximum=(1 << 23) - 1),
+)
+
+IO_BAR_BITS = max(2, (max(r.offset for r in REGISTERS) + WORD_BYTES - 1).bit_length())
+SET_TARGETS = {r.set_index: r for r in REGISTERS if r.set_index is not None}
+_BY_NAME = {r.name: r for r in REGISTERS}
+
+
+def register(name):
+    """The register called ``name``."""
+    try:
+        return _BY_NAME[name]
+    except KeyError:
+        raise ValueError(f"no register {name}") from None
+
+
+def offset(name):
+    """Byte offset of register ``name`` in the I/O BAR."""
+    return register(name).offset
+
+
+def field_value(reg_name, field_name, word):
+    """The value of one field in a word read from ``reg_name``."""
+    item = register(reg_name).field(field_name)
+    value = (word >> item.lsb) & ((1 << item.width) - 1)
+    if item.signed and value >> (item.width - 1):
+        value -= 1 << item.width
+    return value
+
+
+def field_of(reg_name, **values):
+    """The word that puts ``values`` ({field: value}) into ``reg_name``."""
+    reg = register(reg_name)
+    word = 0
+    for name, value in values.items():
+        item = reg.field(name)
+        word |= (value << item.lsb) & item.mask
+    return word
+
+
+def check_table(registers=REGISTERS):
+    """Raise ValueError when the table contradicts itself."""
+    offsets, set_indices = set(), set()
+    for reg in registers:
+        if reg.access not in ACCESS_KINDS:
+            raise ValueError(f"{reg.name}: unknown access {reg.access}")
+        if reg.offset % WORD_BYTES or reg.offset in offsets:
+            raise ValueError(f"{reg.name}: offset {reg.offset:#x} misaligned or used twice")
+        offsets.add(reg.offset)
+        used = 0
+        for item in reg.fields:
+            if item.mask & used or item.lsb + item.width > 32:
+                raise ValueError(f"{reg.name}.{item.name}: overlaps or exceeds 32 bits")
+            used |= item.mask
+        if reg.reset & ~used & 0xFFFFFFFF:
+            raise ValueError(f"{reg.name}: reset value sets bits outside its fields")
+        if reg.set_index is not None:
+            if reg.set_index in set_indices or reg.access != "RW":
+                raise ValueError(f"{reg.name}: SET index reused or register not RW")
+            set_indices.add(reg.set_index)
+        if (reg.minimum is not None or reg.maximum is not None) and len(reg.fields) != 1:
+            raise ValueError(f"{reg.name}: only one-field registers can clamp")
+
+
+def markdown():
+    """``docs/registers.md``."""
+    lines = [
+        "# Function registers (I/O BAR)",
+        "",
+        "Generated from `rtl/registers.py` by `python -m rtl.registers`; do not edit.",
+        "",
+        f"The I/O BAR is {1 << IO_BAR_BITS} bytes (`io_bar_bits` = {IO_BAR_BITS}); registers are",
+        "32-bit, dword aligned.  Unlisted offsets read 0 and ignore writes.",
+        "",
+        "Access: RO read only; RW read/write (byte enables honoured; a value outside",
+        "min..max is clamped to the nearest bound, reads back clamped, and sets",
+        "INT_STATUS.CLAMPED); W1C write 1 to clear; W1S write 1 to set; WP write",
+        "pulse (the write acts once, reads return the hardware's value).",
+        "",
+        "| offset | name | access | reset | min | max | SET index | description |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- |",
+    ]
+    for reg in REGISTERS:
+        lines.append(
+            f"| {reg.offset:#04x} | {reg.name} | {reg.access} | {reg.reset:#x} | "
+            f"{_blank(reg.minimum)} | {_blank(reg.maximum)} | {_blank(reg.set_index)} | {reg.text} |")
+    lines.append("")
+    for reg in REGISTERS:
+        lines += [f"## {reg.name} ({reg.offset:#04x}, {reg.access})", "", reg.text, "",
+                  "| bits | field | description |", "| --- | --- | --- |"]
+        for item in reg.fields:
+            bits = f"{item.lsb + item.width - 1}:{item.lsb}" if item.width > 1 else f"{item.lsb}"
+            kind = " (signed)" if item.signed else ""
+            lines.append(f"| {bits} | {item.name} | {item.text}{kind} |")
+        lines.append("")
+    return "\n".join(lines)
+
+
+def _blank(value):
+    return "" if value is None else str(value)
+
+
+def c_header(prefix="DDA", extra=""):
+    """The C header with offsets, field masks and shifts (``extra``: more
+    definitions placed inside the include guard)."""
+    guard = f"{prefix}_REGISTERS_H"
+    lines = [
+        "/* Function registers of the PCI DDA card (I/O BAR).",
+        " * Generated from rtl/registers.py by python -m rtl.top --convert; do not edit. */",
+        f"#ifndef {guard}",
+        f"#define {guard}",
+        "",
+        f"#define {prefix}_IO_BAR_SIZE {1 << IO_BAR_BITS}u",
+        "",
+    ]
+    for reg in REGISTERS:
+        name = f"{prefix}_{reg.name}"
+        lines.append(f"#define {name} 0x{reg.offset:02X}u")
+        lines.append(f"#define {name}_RESET 0x{reg.reset:08X}u")
+        for item in reg.fields:
+            lines.append(f"#define {name}_{item.name}_SHIFT {item.lsb}u")
+            lines.append(f"#define {name}_{item.name}_MASK 0x{item.mask:08X}u")
+        if reg.set_index is not None:
+            lines.append(f"#define {name}_SET_INDEX {reg.set_index}u")
+        lines.append("")
+    if extra:
+        lines += [extra.rstrip("\n"), ""]
+    lines += [f"#endif /* {guard} */", ""]
+    return "\n".join(lines)
+
+
+check_table()
+
+
+DOCS_BEGIN = "<!-- generated from rtl/instructions.py: begin -->"
+DOCS_END = "<!-- generated from rtl/instructions.py: end -->"
+
+
+def refreshed_instructions_doc(text):
+    """``docs/instructions.md`` with its generated part replaced by the current table."""
+    from rtl import instructions
+
+    head, rest = text.split(DOCS_BEGIN, 1)
+    _, tail = rest.split(DOCS_END, 1)
+    return f"{head}{DOCS_BEGIN}\n{instructions.markdown()}{DOCS_END}{tail}"
+
+
+def write_docs(docs_dir):
+    """Write ``registers.md`` and refresh the generated part of ``instructions.md``."""
+    from pathlib import Path
+
+    docs_dir = Path(docs_dir)
+    (docs_dir / "registers.md").write_text(markdown() + "\n")
+    guide = docs_dir / "instructions.md"
+    guide.write_text(refreshed_instructions_doc(guide.read_text()))
+
+
+if __name__ == "__main__":
+    from pathlib import Path
+
+    write_docs(Path(__file__).resolve().parent.parent / "docs")

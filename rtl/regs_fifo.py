@@ -1,0 +1,285 @@
+"""Function registers, data FIFO, instruction register and pulse outputs of the card."""
+from myhdl import Signal, always_comb, always_seq, block, concat, intbv
+
+from rtl import registers as regmap
+from rtl.direct_pulse import COUNT_BITS, direct_pulse
+from rtl.feed_rate import feed_rate
+from rtl.interfaces import AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
+from rtl.pulse_out import position_signal, pulse_out
+from rtl.reg_word import reg_word
+from rtl.sequencer import CODE_BITS, ERROR_BITS, sequencer
+from rtl.sync_fifo import sync_fifo
+
+INT_BITS = len(regmap.register("INT_STATUS").fields)
+
+
+def _bit(name, field_name):
+    return regmap.register(name).field(field_name).lsb
+
+
+@block
+def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_depth=512, coord_width=24):
+    """The card behind the PCI target: everything of the paper's figure 1 but the DDA.
+
+    Ports: ``local`` (the target's back end; I/O BAR = the registers of
+    ``rtl/registers.py``, memory BAR = the FIFO: every data phase with a byte
+    enabled pushes one word; a write to a full FIFO answers ``retry``, so the
+    target retries or disconnects and no word is lost); ``dda`` (drives the
+    interpolator's command, reads its status); ``steps`` (the interpolator's
+    step requests); ``pins`` (STEP/DIR out); ``irq`` (level, to INTA#:
+    INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
+    COMMAND.SOFT_RESET: the top resets the DDA with it).
+    Parameters: ``fifo_depth`` (words, a power of two; 512 fills one iCE40
+    block RAM pair), ``coord_width`` (the DDA's).
+
+    Local bus: I/O and FIFO writes complete in the clock they are requested,
+    a full FIFO answers retry:
+        clock    _/~\\_/~\\_/~\\_/~\\_
+        we       _/~~~~~~~~~~~\\___
+        space    _/~~~~~~~~~~~\\___     memory BAR
+        ready    _/~~~~~~~\\_______
+        retry    _________/~~~\\___     FIFO full
+    """
+    specs = regmap.REGISTERS
+    io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
+    byte_mask = Signal(intbv(0)[32:])
+    fifo_dout = Signal(intbv(0)[32:])
+    fifo_pop, fifo_empty, fifo_full = Signal(bool(0)), Signal(bool(1)), Signal(bool(0))
+    fifo_level = Signal(intbv(0, min=0, max=fifo_depth + 1))
+    level_bits = regmap.register("STATUS").field("FIFO_LEVEL").width
+    if fifo_depth >= 1 << level_bits:
+        raise ValueError(f"fifo_depth {fifo_depth} does not fit STATUS.FIFO_LEVEL")
+    level_wide = Signal(intbv(0)[level_bits:])
+
+    values = {r.name: Signal(intbv(r.reset)[r.width:]) for r in specs}
+    hw = {r.name: Signal(intbv(r.reset if r.access == "RO" else 0)[r.width:]) for r in specs}
+    strobes = {r.name: Signal(bool(0)) for r in specs}
+    reads = [Signal(intbv(0)[32:]) for _ in range(len(specs) + 1)]
+    clamps = [Signal(bool(0)) for _ in range(len(specs) + 1)]
+
+    set_strobe, mark_strobe = Signal(bool(0)), Signal(bool(0))
+    set_index = Signal(intbv(0)[CODE_BITS:])
+    set_value = Signal(intbv(0)[32:])
+    mark_tag = Signal(intbv(0)[16:])
+    error_code = Signal(intbv(0)[ERROR_BITS:])
+    seq_busy, motion_run, clear_error, clear_position = (Signal(bool(0)) for _ in range(4))
+    enable, direct_mode = Signal(bool(0)), Signal(bool(0))
+    count_bounds = dict(min=-(1 << (COUNT_BITS - 1)), max=1 << (COUNT_BITS - 1))
+    seq_load = Signal(bool(0))
+    seq_count = [Signal(intbv(0, **count_bounds)) for _ in range(2)]
+    axis_load = [Signal(bool(0)) for _ in range(2)]
+    axis_count = [Signal(intbv(0, **count_bounds)) for _ in range(2)]
+    direct_request = [Signal(bool(0)) for _ in range(2)]
+    direct_dir = [Signal(bool(0)) for _ in range(2)]
+    direct_busy = [Signal(bool(0)) for _ in range(2)]
+    pulse_busy = Signal(bool(0))
+    requests = AxisPulses()
+    out_ready, out_active = Signal(bool(0)), Signal(bool(0))
+    positions = [position_signal() for _ in range(2)]
+    polarity = [values["DIR_POLARITY"](i) for i in range(2)]
+    tick, hold = Signal(bool(0)), Signal(bool(0))
+    any_busy, busy_before, done_flag, low_before, error_before = (Signal(bool(0)) for _ in range(5))
+    pos_y_snapshot = position_signal()
+
+    units = [sync_fifo(clock, reset, push, local.wdata, fifo_pop, fifo_dout, core_clear, fifo_level,
+                       fifo_empty, fifo_full, depth=fifo_depth, width=32)]
+    for i, spec in enumerate(specs):
+        units.append(reg_word(clock, reset, local.addr, io_write, io_read, byte_mask, local.wdata,
+                              set_strobe, set_index, set_value, hw[spec.name], values[spec.name],
+                              strobes[spec.name], clamps[i], clamps[i + 1], reads[i], reads[i + 1],
+                              spec=spec))
+    units.append(sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, core_clear,
+                           clear_error, dda, seq_load, seq_count[0], seq_count[1], pulse_busy,
+                           set_strobe, set_index, set_value, mark_strobe, mark_tag, error_code,
+                           seq_busy, motion_run, coord_width=coord_width,
+                           set_indices=tuple(regmap.SET_TARGETS)))
+    units.append(feed_rate(clock, reset, motion_run, hold, values["FEED_RATE"], values["RAMP_START"],
+                           values["RAMP_STEP"], tick))
+    for axis, name in enumerate("XY"):
+        units.append(direct_pulse(clock, reset, axis_load[axis], axis_count[axis],
+                                  values[f"PULSE_PERIOD_{name}"], out_ready, core_clear,
+                                  direct_request[axis], direct_dir[axis], hw[f"PULSE_COUNT_{name}"],
+                                  direct_busy[axis]))
+    units.append(pulse_out(clock, reset, requests, out_ready, out_active, core_clear, clear_position,
+                           values["STEP_WIDTH"], values["DIR_SETUP"], values["DIR_HOLD"], polarity[0],
+                           polarity[1], pins, positions[0], positions[1]))
+
+    read_end, clamp_end = reads[-1], clamps[-1]
+    control, command, command_strobe = values["CONTROL"], values["COMMAND"], strobes["COMMAND"]
+    enable_bit, mode_bit = _bit("CONTROL", "ENABLE"), _bit("CONTROL", "MODE")
+    reset_bit, clear_bit, zero_bit = (_bit("COMMAND", f) for f in ("SOFT_RESET", "CLEAR_ERROR", "CLEAR_POSITION"))
+    pos_x_offset = regmap.offset("POS_X")
+
+    @always_comb
+    def decode_bus():
+        mask = intbv(0)[32:]
+        if local.be[0]:
+            mask[8:0] = 0xFF
+        if local.be[1]:
+            mask[16:8] = 0xFF
+        if local.be[2]:
+            mask[24:16] = 0xFF
+        if local.be[3]:
+            mask[32:24] = 0xFF
+        byte_mask.next = mask
+        io_write.next = local.we and not local.space
+        io_read.next = local.re and not local.space
+        push.next = local.we and local.space and not fifo_full and local.be != 0
+
+    @always_comb
+    def answer_bus():
+        local.ready.next = local.re or (local.we and not (local.space and fifo_full))
+        local.retry.next = local.we and local.space and fifo_full
+        local.rdata.next = read_end
+
+    @always_comb
+    def control_bits():
+        enable.next = control[enable_bit] and not control[mode_bit]
+        direct_mode.next = control[mode_bit]
+        clear_error.next = command_strobe and command[clear_bit]
+        clear_position.next = command_strobe and command[zero_bit]
+
+    @always_seq(clock.posedge, reset=reset)
+    def soft_reset():
+        core_clear.next = command_strobe and command[reset_bit]
+
+    level_pad = level_bits - len(fifo_level)
+
+    @always_comb
+    def widen_level():
+        level_wide.next = concat(intbv(0)[level_pad:], fifo_level)
+
+    position_y = positions[1]
+    direct_busy_x, direct_busy_y = direct_busy
+    direct_request_x, direct_request_y = direct_request
+    direct_dir_x, direct_dir_y = direct_dir
+
+    @always_seq(clock.posedge, reset=reset)
+    def snapshot():
+        if io_read and local.addr == pos_x_offset:
+            pos_y_snapshot.next = position_y
+
+    @always_comb
+    def pulse_activity():
+        pulse_busy.next = direct_busy_x or direct_busy_y
+        hold.next = not out_ready
+        dda.advance.next = tick and out_ready and motion_run
+        any_busy.next = seq_busy or direct_busy_x or direct_busy_y or out_active or dda.busy
+
+    @always_comb
+    def merge_requests():
+        requests.step_x.next = steps.step_x or direct_request_x
+        requests.step_y.next = steps.step_y or direct_request_y
+        requests.dir_x.next = steps.dir_x if steps.step_x else direct_dir_x
+        requests.dir_y.next = steps.dir_y if steps.step_y else direct_dir_y
+
+    units += [decode_bus, answer_bus, control_bits, soft_reset, snapshot, pulse_activity, merge_requests,
+              widen_level]
+    for axis, name in enumerate("XY"):
+        units.append(_axis_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"],
+                                  seq_load, seq_count[axis], axis_load[axis], axis_count[axis]))
+    units.append(_status(clock, reset, any_busy, busy_before, done_flag, dda.quadrant, error_code,
+                     fifo_empty, fifo_full, level_wide, hw["STATUS"]))
+    units.append(_interrupts(clock, reset, any_busy, busy_before, error_code, error_before, mark_strobe,
+                         mark_tag, hw["MARK_TAG"], level_wide, values["LOW_WATER"], low_before, clamp_end,
+                         hw["INT_STATUS"], values["INT_STATUS"], values["INT_ENABLE"], irq))
+    units.append(_positions(positions[0], pos_y_snapshot, hw["POS_X"], hw["POS_Y"]))
+    return units
+
+
+@block
+def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, load, count):
+    """Direct pulses come from PULSE_COUNT_* in direct mode, from PULSE commands otherwise."""
+
+    @always_comb
+    def choose_source():
+        if direct_mode:
+            load.next = count_strobe
+            count.next = count_value.signed()
+        else:
+            load.next = seq_load
+            count.next = seq_count
+
+    return choose_source
+
+
+@block
+def _status(clock, reset, any_busy, busy_before, done_flag, quadrant, error_code, fifo_empty,
+            fifo_full, fifo_level, status):
+    """STATUS: DONE is set when the card goes idle and cleared when it gets busy."""
+    busy_bit, done_bit = _bit("STATUS", "BUSY"), _bit("STATUS", "DONE")
+    quadrant_lsb, error_lsb = _bit("STATUS", "QUADRANT"), _bit("STATUS", "ERROR")
+    empty_bit, full_bit, level_lsb = _bit("STATUS", "FIFO_EMPTY"), _bit("STATUS", "FIFO_FULL"), _bit("STATUS", "FIFO_LEVEL")
+
+    @always_seq(clock.posedge, reset=reset)
+    def track_done():
+        busy_before.next = any_busy
+        if any_busy:
+            done_flag.next = 0
+        elif busy_before:
+            done_flag.next = 1
+
+    @always_comb
+    def assemble():
+        word = intbv(0)[32:]
+        word[busy_bit] = any_busy
+        word[done_bit] = done_flag
+        word[quadrant_lsb + 2:quadrant_lsb] = quadrant
+        word[error_lsb + ERROR_BITS:error_lsb] = error_code
+        word[empty_bit] = fifo_empty
+        word[full_bit] = fifo_full
+        word[32:level_lsb] = fifo_level
+        status.next = word
+
+    return [track_done, assemble]
+
+
+@block
+def _interrupts(clock, reset, any_busy, busy_before, error_code, error_before, mark_strobe, mark_tag,
+                mark_register, fifo_level, low_water, low_before, clamp_end, set_bits,
+                int_status, int_enable, irq):
+    """INT_STATUS events (one clock each) and the INTA# level."""
+    done_bit, low_bit, error_bit = _bit("INT_STATUS", "DONE"), _bit("INT_STATUS", "LOW_WATER"), _bit("INT_STATUS", "ERROR")
+    mark_bit, clamp_bit = _bit("INT_STATUS", "MARK"), _bit("INT_STATUS", "CLAMPED")
+
+    @always_seq(clock.posedge, reset=reset)
+    def remember():
+        error_before.next = error_code != 0
+        low_before.next = fifo_level < low_water
+        if mark_strobe:
+            mark_register.next = mark_tag
+
+    @always_comb
+    def detect():
+        word = intbv(0)[INT_BITS:]
+        word[done_bit] = busy_before and not any_busy
+        word[low_bit] = fifo_level < low_water and not low_before
+        word[error_bit] = error_code != 0 and not error_before
+        word[mark_bit] = mark_strobe
+        word[clamp_bit] = clamp_end
+        set_bits.next = word
+
+    @always_comb
+    def request():
+        irq.next = (int_status & int_enable) != 0
+
+    return [remember, detect, request]
+
+
+@block
+def _positions(position_x, snapshot_y, pos_x, pos_y):
+    """POS_X reads the live X count; POS_Y the Y count captured with it."""
+
+    @always_comb
+    def show():
+        pos_x.next = position_x[32:]
+        pos_y.next = snapshot_y[32:]
+
+    return show
+
+
+def regs_fifo_ports(fifo_depth=512, coord_width=24):
+    """Fresh ports of ``regs_fifo`` for conversion and benches."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(),
+                dda=DdaPort(coord_width), steps=AxisPulses(), pins=MotorPins(), irq=Signal(bool(0)),
+                core_clear=Signal(bool(0)))

@@ -1,0 +1,287 @@
+"""Instruction register: fetches commands from the FIFO and executes them."""
+from myhdl import Signal, always_comb, always_seq, block, enum, intbv
+
+from rtl import instructions as isa
+from rtl.direct_pulse import COUNT_BITS
+from rtl.interfaces import DdaPort, card_reset
+
+CODE_BITS = 4
+ERROR_BITS = 4
+
+
+def _opcode_rom(value_of):
+    """A 16-entry tuple, indexed by opcode, converted to a case statement."""
+    return tuple(value_of(isa.BY_CODE[code]) if code in isa.BY_CODE else 0 for code in range(16))
+
+
+def _operand_mask(op, names):
+    return sum(1 << i for i, name in enumerate(op.operands) if name in names)
+
+
+def _field(op_name, field_name):
+    for name, lsb, width, _ in isa.BY_NAME[op_name].header_fields:
+        if name == field_name:
+            return lsb, lsb + width
+    raise ValueError(f"{op_name} has no field {field_name}")
+
+
+@block
+def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clear_error,
+              dda, pulse_load, pulse_count_x, pulse_count_y, pulse_busy,
+              set_strobe, set_index, set_value, mark_strobe, mark_tag,
+              error_code, busy, motion_run, *, coord_width=24, set_indices=(0,)):
+    """Fetch, check and execute the FIFO's commands (``docs/instructions.md``).
+
+    Fetch: the FIFO is read one word per clock (``fifo_pop``; the word arrives
+    in ``fifo_dout`` the next clock) into the next-instruction register while
+    the current command runs, so a segment starts in the clock the previous
+    one reports ``done``.  Execute: LINE/ARC drive ``dda`` (a one-clock
+    ``start`` with the operands) and wait for ``done``; PULSE loads both
+    direct pulse generators (``pulse_load``, ``pulse_count_*``) and waits
+    while ``pulse_busy``; DWELL counts clocks; SET gives a ``set_strobe``
+    with ``set_index``/``set_value``; MARK a ``mark_strobe`` with ``mark_tag``.
+    A malformed command, or an arc the DDA rejects, sets ``error_code`` and
+    nothing more executes until ``clear_error``.  ``enable`` low holds the
+    queue; ``clear`` (soft reset) drops everything.  ``busy``: something is
+    running or queued; ``motion_run``: the interpolator is running (feed-rate
+    ramp).  Parameters: ``coord_width`` (range of ARC/LINE operands),
+    ``set_indices`` (SET indices that exist).
+
+        clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
+        fifo_pop  _/~~~~~~~~~~~\\_______________     LINE: 3 words
+        next ok   _____________/~~~\\___________
+        dda.start _________________/~~~\\_______
+    """
+    seq_t = enum("S_IDLE", "S_MOTION", "S_PULSE", "S_DWELL", "S_ERROR")
+    state = Signal(seq_t.S_IDLE)
+    header = Signal(intbv(0)[32:])
+    operands = [Signal(intbv(0)[32:]) for _ in range(isa.MAX_OPERANDS)]
+    fetched = Signal(intbv(0, min=0, max=isa.MAX_OPERANDS + 2))
+    word_due = Signal(bool(0))
+    next_valid = Signal(bool(0))
+    next_error = Signal(intbv(0)[ERROR_BITS:])
+    issue = Signal(bool(0))
+    finishing = Signal(bool(0))
+    dwell_left = Signal(intbv(0)[32:])
+
+    arriving_count = Signal(intbv(0, min=0, max=isa.MAX_OPERANDS + 1))
+    next_count = Signal(intbv(0, min=0, max=isa.MAX_OPERANDS + 1))
+    next_known = Signal(bool(0))
+    opcode = Signal(intbv(0)[32 - isa.OPCODE_LSB:])
+    mask_high = Signal(intbv(0)[16:])
+    mask_low = Signal(intbv(0)[16:])
+    coord_mask = Signal(intbv(0)[isa.MAX_OPERANDS:])
+    count_mask = Signal(intbv(0)[isa.MAX_OPERANDS:])
+    set_known = Signal(bool(0))
+    opcode_known = _opcode_rom(lambda op: 1)
+    operand_count = _opcode_rom(lambda op: len(op.operands))
+    header_mask_high = _opcode_rom(lambda op: op.header_mask >> 16)
+    header_mask_low = _opcode_rom(lambda op: op.header_mask & 0xFFFF)
+    coord_operands = _opcode_rom(lambda op: _operand_mask(op, ("DX", "DY", "XS", "YS", "XE", "YE")))
+    count_operands = _opcode_rom(lambda op: _operand_mask(op, ("COUNT_X", "COUNT_Y")))
+    set_ok = tuple(int(i in set_indices) for i in range(16))
+    code = {op.name: op.code for op in isa.OPCODES}
+    line_op, arc_op, pulse_op, set_op, dwell_op, mark_op = (
+        code["LINE"], code["ARC"], code["PULSE"], code["SET"], code["DWELL"], code["MARK"])
+    E_NONE, E_BAD_OPCODE, E_RESERVED_BITS, E_RANGE, E_DDA_REJECTED = (
+        isa.ERROR_CODE[name] for name in ("NONE", "BAD_OPCODE", "RESERVED_BITS", "RANGE", "DDA_REJECTED"))
+    ccw_lsb = _field("ARC", "CCW")[0]
+    variant_lsb, variant_msb = _field("ARC", "VARIANT")
+    lambda_lsb, lambda_msb = _field("ARC", "LAMBDA")
+    acc_lsb, acc_msb = _field("ARC", "ACC_BITS")
+    index_lsb, index_msb = _field("SET", "INDEX")
+    tag_lsb, tag_msb = _field("MARK", "TAG")
+    coord_low, coord_high = -(1 << (coord_width - 1)), 1 << (coord_width - 1)
+    count_low, count_high = -(1 << (COUNT_BITS - 1)), 1 << (COUNT_BITS - 1)
+
+    @always_comb
+    def split_header():
+        opcode.next = header[32:isa.OPCODE_LSB]
+
+    @always_comb
+    def lookup_arriving():
+        arriving_count.next = operand_count[fifo_dout[32:isa.OPCODE_LSB]]
+
+    @always_comb
+    def lookup_count():
+        next_count.next = operand_count[header[32:isa.OPCODE_LSB]]
+
+    @always_comb
+    def lookup_valid():
+        next_known.next = opcode_known[header[32:isa.OPCODE_LSB]]
+
+    @always_comb
+    def lookup_mask_high():
+        mask_high.next = header_mask_high[header[32:isa.OPCODE_LSB]]
+
+    @always_comb
+    def lookup_mask_low():
+        mask_low.next = header_mask_low[header[32:isa.OPCODE_LSB]]
+
+    @always_comb
+    def lookup_coords():
+        coord_mask.next = coord_operands[header[32:isa.OPCODE_LSB]]
+
+    @always_comb
+    def lookup_counts():
+        count_mask.next = count_operands[header[32:isa.OPCODE_LSB]]
+
+    @always_comb
+    def lookup_set():
+        set_known.next = set_ok[header[index_msb:index_lsb]]
+
+    @always_comb
+    def fetch_request():
+        more = True
+        if word_due:
+            if fetched == 0:
+                more = arriving_count != 0
+            else:
+                more = fetched < next_count
+        fifo_pop.next = (not fifo_empty and not next_valid and more and not clear
+                         and state != seq_t.S_ERROR)
+
+    @always_seq(clock.posedge, reset=reset)
+    def fetch():
+        word_due.next = fifo_pop
+        if clear:
+            word_due.next = 0
+            fetched.next = 0
+            next_valid.next = 0
+        else:
+            if issue:
+                next_valid.next = 0
+            if word_due:
+                if fetched == 0:
+                    header.next = fifo_dout
+                    if arriving_count == 0:
+                        next_valid.next = 1
+                    else:
+                        fetched.next = 1
+                else:
+                    operands[fetched - 1].next = fifo_dout
+                    if fetched == next_count:
+                        next_valid.next = 1
+                        fetched.next = 0
+                    else:
+                        fetched.next = fetched + 1
+
+    @always_comb
+    def check():
+        result = intbv(0)[ERROR_BITS:]
+        result[:] = E_NONE
+        if not next_known:
+            result[:] = E_BAD_OPCODE
+        elif (header[32:16] & ~mask_high) != 0 or (header[16:] & ~mask_low) != 0:
+            result[:] = E_RESERVED_BITS
+        elif opcode == set_op and not set_known:
+            result[:] = E_RANGE
+        else:
+            for i in range(isa.MAX_OPERANDS):
+                if coord_mask[i] and (operands[i].signed() < coord_low or operands[i].signed() >= coord_high):
+                    result[:] = E_RANGE
+                if count_mask[i] and (operands[i].signed() < count_low or operands[i].signed() >= count_high):
+                    result[:] = E_RANGE
+        next_error.next = result
+
+    @always_comb
+    def completion():
+        finishing.next = False
+        if state == seq_t.S_IDLE:
+            finishing.next = True
+        elif state == seq_t.S_MOTION:
+            finishing.next = dda.done
+        elif state == seq_t.S_PULSE:
+            finishing.next = not pulse_busy
+        elif state == seq_t.S_DWELL:
+            finishing.next = dwell_left <= 1
+        else:
+            finishing.next = False
+
+    @always_comb
+    def issuing():
+        issue.next = next_valid and enable and finishing and not clear
+
+    @always_seq(clock.posedge, reset=reset)
+    def execute():
+        dda.start.next = 0
+        pulse_load.next = 0
+        set_strobe.next = 0
+        mark_strobe.next = 0
+        if clear:
+            state.next = seq_t.S_IDLE
+            error_code.next = E_NONE
+        elif state == seq_t.S_ERROR:
+            if clear_error:
+                state.next = seq_t.S_IDLE
+                error_code.next = E_NONE
+        elif state == seq_t.S_MOTION and dda.error and not dda.start and not dda.busy:
+            state.next = seq_t.S_ERROR
+            error_code.next = E_DDA_REJECTED
+        elif issue:
+            if next_error != E_NONE:
+                state.next = seq_t.S_ERROR
+                error_code.next = next_error
+            elif opcode == line_op or opcode == arc_op:
+                state.next = seq_t.S_MOTION
+                dda.start.next = 1
+                dda.line.next = opcode == line_op
+                dda.ccw.next = header[ccw_lsb]
+                dda.variant.next = header[variant_msb:variant_lsb]
+                dda.lambda_shift.next = header[lambda_msb:lambda_lsb]
+                dda.acc_bits.next = header[acc_msb:acc_lsb]
+                if opcode == line_op:
+                    dda.xs.next = 0
+                    dda.ys.next = 0
+                    dda.xe.next = operands[0][coord_width:].signed()
+                    dda.ye.next = operands[1][coord_width:].signed()
+                else:
+                    dda.xs.next = operands[0][coord_width:].signed()
+                    dda.ys.next = operands[1][coord_width:].signed()
+                    dda.xe.next = operands[2][coord_width:].signed()
+                    dda.ye.next = operands[3][coord_width:].signed()
+            elif opcode == pulse_op:
+                state.next = seq_t.S_PULSE
+                pulse_load.next = 1
+                pulse_count_x.next = operands[0][COUNT_BITS:].signed()
+                pulse_count_y.next = operands[1][COUNT_BITS:].signed()
+            elif opcode == dwell_op:
+                state.next = seq_t.S_DWELL
+                dwell_left.next = operands[0]
+            else:
+                state.next = seq_t.S_IDLE
+                if opcode == set_op:
+                    set_strobe.next = 1
+                    set_index.next = header[index_msb:index_lsb]
+                    set_value.next = operands[0]
+                elif opcode == mark_op:
+                    mark_strobe.next = 1
+                    mark_tag.next = header[tag_msb:tag_lsb]
+        elif finishing:
+            state.next = seq_t.S_IDLE
+        elif state == seq_t.S_DWELL:
+            dwell_left.next = dwell_left - 1
+
+    @always_comb
+    def report():
+        busy.next = (state == seq_t.S_MOTION or state == seq_t.S_PULSE or state == seq_t.S_DWELL
+                     or next_valid or word_due or fetched != 0 or not fifo_empty)
+        motion_run.next = state == seq_t.S_MOTION
+
+    return (split_header, lookup_arriving, lookup_count, lookup_valid, lookup_mask_high, lookup_mask_low,
+            lookup_coords, lookup_counts, lookup_set, fetch_request, fetch, check, completion,
+            issuing, execute, report)
+
+
+def sequencer_ports(coord_width=24):
+    """Fresh ports of ``sequencer`` for conversion and benches."""
+    count = dict(min=-(1 << (COUNT_BITS - 1)), max=1 << (COUNT_BITS - 1))
+    return dict(clock=Signal(bool(0)), reset=card_reset(), fifo_dout=Signal(intbv(0)[32:]),
+                fifo_empty=Signal(bool(1)), fifo_pop=Signal(bool(0)), enable=Signal(bool(0)),
+                clear=Signal(bool(0)), clear_error=Signal(bool(0)), dda=DdaPort(coord_width),
+                pulse_load=Signal(bool(0)), pulse_count_x=Signal(intbv(0, **count)),
+                pulse_count_y=Signal(intbv(0, **count)), pulse_busy=Signal(bool(0)),
+                set_strobe=Signal(bool(0)), set_index=Signal(intbv(0)[CODE_BITS:]),
+                set_value=Signal(intbv(0)[32:]), mark_strobe=Signal(bool(0)),
+                mark_tag=Signal(intbv(0)[16:]), error_code=Signal(intbv(0)[ERROR_BITS:]),
+                busy=Signal(bool(0)), motion_run=Signal(bool(0)))

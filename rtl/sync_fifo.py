@@ -1,0 +1,77 @@
+"""Synchronous FIFO whose storage maps to block RAM (the card's data FIFO)."""
+from myhdl import Signal, always, always_comb, always_seq, block, intbv, modbv
+
+from rtl.interfaces import card_reset
+
+
+@block
+def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, depth=512, width=32):
+    """First-in first-out buffer of ``depth`` words of ``width`` bits.
+
+    Ports: ``push`` writes ``din`` (ignored when ``full``); ``pop`` reads the
+    oldest word into ``dout`` at the clock edge (ignored when ``empty``), so
+    ``dout`` is valid the clock after ``pop``; ``flush`` (synchronous) empties
+    it; ``level`` counts the words held, ``empty``/``full`` follow it.
+    Push and pop in the same clock keep the level.  The storage and the read
+    register sit in a process without reset so that they become block RAM.
+    Parameters: ``depth`` (a power of two), ``width``.
+
+        clock  _/~\\_/~\\_/~\\_/~\\_
+        push   _/~~~\\__________
+        pop    _______/~~~\\____
+        level  ==0==X=1=X==0===
+        dout   ==========X=W0==
+    """
+    if depth < 2 or depth & (depth - 1):
+        raise ValueError(f"FIFO depth must be a power of two >= 2, got {depth}")
+    addr_bits = depth.bit_length() - 1
+    storage = [Signal(intbv(0)[width:]) for _ in range(depth)]
+    write_addr = Signal(modbv(0)[addr_bits:])
+    read_addr = Signal(modbv(0)[addr_bits:])
+    count = Signal(intbv(0, min=0, max=depth + 1))
+    do_write = Signal(bool(0))
+    do_read = Signal(bool(0))
+
+    @always_comb
+    def enables():
+        do_write.next = push and count != depth
+        do_read.next = pop and count != 0
+
+    @always(clock.posedge)
+    def memory():
+        if do_write:
+            storage[write_addr].next = din
+        if do_read:
+            dout.next = storage[read_addr]
+
+    @always_seq(clock.posedge, reset=reset)
+    def pointers():
+        if flush:
+            write_addr.next = 0
+            read_addr.next = 0
+            count.next = 0
+        else:
+            if do_write:
+                write_addr.next = write_addr + 1
+            if do_read:
+                read_addr.next = read_addr + 1
+            if do_write and not do_read:
+                count.next = count + 1
+            elif do_read and not do_write:
+                count.next = count - 1
+
+    @always_comb
+    def flags():
+        level.next = count
+        empty.next = count == 0
+        full.next = count == depth
+
+    return enables, memory, pointers, flags
+
+
+def sync_fifo_ports(depth=512, width=32):
+    """Fresh ports of ``sync_fifo`` for conversion and benches."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(), push=Signal(bool(0)),
+                din=Signal(intbv(0)[width:]), pop=Signal(bool(0)), dout=Signal(intbv(0)[width:]),
+                flush=Signal(bool(0)), level=Signal(intbv(0, min=0, max=depth + 1)),
+                empty=Signal(bool(1)), full=Signal(bool(0)))

@@ -1,0 +1,118 @@
+"""Bench pieces shared by the card benches: clock, pin capture, path rebuild, pin model check."""
+from dataclasses import dataclass, field
+
+from myhdl import always, block, delay, instance, now
+
+from rtl import instructions as isa
+from rtl import registers as regmap
+from sim.card_model import PulseOutModel
+from sim.dda_model import ArcCommand, LineCommand, iterate
+
+HALF_PERIOD = 5
+
+
+@dataclass
+class PinLog:
+    """Rises of the STEP pins: (clock, x stepped, y stepped, x dir pin, y dir pin)."""
+    rises: list = field(default_factory=list)
+    clock: int = 0
+
+    def path(self, start=(0, 0), polarity=(0, 0)):
+        """Points visited, one per clock with a rise (a diagonal is one point)."""
+        x, y = start
+        points = [(x, y)]
+        for _, sx, sy, dx, dy in self.rises:
+            x += (1 if dx != polarity[0] else -1) * sx
+            y += (1 if dy != polarity[1] else -1) * sy
+            points.append((x, y))
+        return points
+
+    def gaps(self):
+        """Clocks between consecutive rises."""
+        return [b[0] - a[0] for a, b in zip(self.rises, self.rises[1:])]
+
+
+@block
+def clock_and_pins(clock, pins, log):
+    """The bench clock and the STEP/DIR capture."""
+
+    @always(delay(HALF_PERIOD))
+    def clock_gen():
+        clock.next = not clock
+
+    return clock_gen, pin_capture(clock, pins, log)
+
+
+@block
+def pin_capture(clock, pins, log):
+    """Record every STEP rise into ``log`` (pins sampled at each falling edge)."""
+
+    @instance
+    def capture():
+        before = (False, False)
+        while True:
+            yield clock.negedge
+            log.clock += 1
+            now = (bool(pins.step_x), bool(pins.step_y))
+            sx, sy = now[0] and not before[0], now[1] and not before[1]
+            if sx or sy:
+                log.rises.append((log.clock, sx, sy, bool(pins.dir_x), bool(pins.dir_y)))
+            before = now
+
+    return capture
+
+
+@block
+def pin_model_check(clock, reset, pins, regs_block, timing, failures):
+    """Compare the pins every clock with ``PulseOutModel`` fed with the DDA's own
+    step outputs and the core's clear (MyHDL runs only: reads internal signals).
+    Stops at the first direct pulse (the model is fed from the DDA only)."""
+    sig = regs_block.sigdict
+    steps = [sig[f"steps_{name}"] for name in ("step_x", "step_y", "dir_x", "dir_y")]
+    clear, ready, direct_busy = sig["core_clear"], sig["out_ready"], sig["pulse_busy"]
+    model = PulseOutModel()
+
+    def differences():
+        seen = {"STEP": ((bool(pins.step_x), bool(pins.step_y)), model.step_pins),
+                "DIR": ((bool(pins.dir_x), bool(pins.dir_y)), model.dir_pins),
+                "ready": (bool(ready), model.ready)}
+        return [f"{name} {rtl} != model {golden} at {now()}" for name, (rtl, golden) in seen.items()
+                if rtl != golden]
+
+    @instance
+    def check():
+        yield reset.posedge  # released at a falling edge: the next rising edge is the first
+        while not bool(direct_busy):
+            model.clock((bool(steps[0]), bool(steps[1])), (bool(steps[2]), bool(steps[3])),
+                        clear=bool(clear), **timing)
+            yield clock.negedge
+            if not failures:
+                failures.extend(differences())
+
+    return check
+
+
+def expected_path(commands, coord_width=24):
+    """Points of the model's paths of ``commands`` (ArcCommand / LineCommand), chained."""
+    points = [(0, 0)]
+    for command in commands:
+        path = iterate(command, coord_width)
+        x0, y0 = points[-1]
+        if isinstance(command, ArcCommand):
+            sx, sy = command.xs, command.ys
+            points += [(x0 + x - sx, y0 + y - sy) for x, y in path.points()[1:]]
+        else:
+            points += [(x0 + x, y0 + y) for x, y in path.points()[1:]]
+    return points
+
+
+def command_words(command):
+    """FIFO words of a model command."""
+    if isinstance(command, LineCommand):
+        return isa.encode("LINE", command.dx, command.dy)
+    return isa.encode("ARC", command.xs, command.ys, command.xe, command.ye, CCW=int(command.ccw),
+                      VARIANT=command.variant, LAMBDA=command.lambda_shift, ACC_BITS=command.acc_bits)
+
+
+def offset(name):
+    return regmap.offset(name)

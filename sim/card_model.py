@@ -1,0 +1,229 @@
+"""Golden models of the card's blocks around the DDA, in plain Python, clock by clock.
+
+Each model has ``clock(**inputs)`` for one rising edge and exposes what the
+RTL's outputs are after that edge.  They are written from the rules in the
+documentation (timing stated as "clocks since an edge"), not from the RTL's
+state machines, so a bench comparing the two checks the RTL against the spec.
+
+* ``FifoModel``: the data FIFO (``rtl/sync_fifo.py``).
+* ``PulseOutModel``: STEP/DIR timing of both axes (``rtl/pulse_out.py``).
+* ``FeedRateModel``: the iteration enable with its ramp (``rtl/feed_rate.py``).
+* ``DirectPulseModel``: direct pulses of one axis (``rtl/direct_pulse.py``).
+* ``RegisterModel``: access semantics of the register table (``rtl/registers.py``).
+"""
+from collections import deque
+
+from rtl import registers as regmap
+
+FAR_PAST = -(1 << 20)
+TIMING_LIMIT = 255
+
+
+class FifoModel:
+    """A bounded queue; ``dout`` is the word popped at the last edge."""
+
+    def __init__(self, depth):
+        self.depth = depth
+        self.words = deque()
+        self.dout = 0
+
+    @property
+    def level(self):
+        return len(self.words)
+
+    @property
+    def full(self):
+        return len(self.words) == self.depth
+
+    def clock(self, push=False, din=0, pop=False, flush=False):
+        can_push = push and not self.full
+        can_pop = pop and self.words
+        if can_pop:
+            self.dout = self.words.popleft()
+        if flush:
+            self.words.clear()
+        elif can_push:
+            self.words.append(din)
+
+
+class PulseOutModel:
+    """Both axes: rises, falls and DIR changes as the timing rules allow.
+
+    Rules (clocks counted between the edges where the internal levels change;
+    the pins follow one clock later): the steps of one iteration leave
+    together; STEP is high ``width`` clocks and low at least ``width`` clocks;
+    DIR changes only while STEP is low, at least ``hold`` clocks after the
+    last fall, and at least ``setup`` clocks before the next rise;
+    ``position`` changes with the STEP pin's rise.
+    """
+
+    def __init__(self, queue_depth=4, in_flight=2):
+        self.queue_depth, self.in_flight = queue_depth, in_flight
+        self.queue = deque()
+        self.edge = 0
+        self.high = (False, False)
+        self.direction = [True, True]
+        self.rise_edge = self.fall_edge = self.dir_edge = FAR_PAST
+        self.in_setup = False
+        self.step_pins = (False, False)
+        self.dir_pins = (False, False)
+        self.positions = [0, 0]
+
+    @property
+    def ready(self):
+        return len(self.queue) <= self.queue_depth - self.in_flight
+
+    @property
+    def active(self):
+        return bool(self.queue) or self.in_setup or any(self.high) or any(self.step_pins)
+
+    def _needs_turn(self, entry):
+        steps, dirs = entry
+        return any(steps[a] and dirs[a] != self.direction[a] for a in range(2))
+
+    def clock(self, steps=(False, False), dirs=(False, False), clear=False, clear_position=False,
+              width=1, setup=1, hold=1, polarity=(False, False)):
+        self.edge += 1
+        n = self.edge
+        level_before, dir_before = self.high, tuple(self.direction)
+        low_time = min(n - self.fall_edge, TIMING_LIMIT)
+        rise = False
+        if any(self.high):
+            if n - self.rise_edge >= width:
+                self.high = (False, False)
+                self.fall_edge = n
+        elif self.in_setup:
+            if clear:
+                self.in_setup = False
+            elif min(n - self.dir_edge, TIMING_LIMIT) >= setup and low_time >= width:
+                rise = True
+        elif self.queue and not clear:
+            if not self._needs_turn(self.queue[0]):
+                rise = low_time >= width
+            elif low_time >= hold:
+                head_steps, head_dirs = self.queue[0]
+                for axis in range(2):
+                    if head_steps[axis]:
+                        self.direction[axis] = head_dirs[axis]
+                self.dir_edge = n
+                self.in_setup = True
+        if rise:
+            head_steps, _ = self.queue.popleft()
+            self.high, self.rise_edge, self.in_setup = tuple(head_steps), n, False
+        if clear:
+            self.queue.clear()
+        elif any(steps):
+            if len(self.queue) == self.queue_depth:
+                raise AssertionError("step request into a full pulse queue")
+            self.queue.append((tuple(map(bool, steps)), tuple(map(bool, dirs))))
+        for axis in range(2):
+            if clear_position:
+                self.positions[axis] = 0
+            elif level_before[axis] and not self.step_pins[axis]:
+                self.positions[axis] += 1 if dir_before[axis] else -1
+        self.step_pins = level_before
+        self.dir_pins = tuple(dir_before[a] != bool(polarity[a]) for a in range(2))
+
+
+class FeedRateModel:
+    """Phase accumulator: a tick whenever the phase passes 65536."""
+
+    def __init__(self):
+        self.rate = 0
+        self.phase = 0
+        self.tick = False
+
+    def clock(self, run, hold, target, ramp_start, ramp_step):
+        self.tick = False
+        if not run:
+            self.phase = 0
+            self.rate = target if ramp_step == 0 else ramp_start
+            return
+        if hold:
+            return
+        total = self.phase + self.rate
+        self.phase = total % regmap.RATE_ONE
+        if total >= regmap.RATE_ONE:
+            self.tick = True
+            if ramp_step == 0:
+                self.rate = target
+            elif self.rate < target:
+                self.rate = min(self.rate + ramp_step, target)
+            else:
+                self.rate = max(self.rate - ramp_step, target)
+
+
+class DirectPulseModel:
+    """A count of requests, one per ``period`` clocks while the output is ready."""
+
+    def __init__(self):
+        self.remaining = 0
+        self.direction = False
+        self.wait = 0
+        self.request = False
+
+    def busy(self, load):
+        return bool(load) or self.remaining != 0
+
+    def clock(self, load=False, count=0, period=1, ready=True, clear=False):
+        self.request = False
+        if clear:
+            self.remaining = 0
+        elif load:
+            self.remaining, self.direction, self.wait = abs(count), count >= 0, 0
+        elif self.remaining:
+            if self.wait:
+                self.wait -= 1
+            elif ready:
+                self.request = True
+                self.remaining -= 1
+                self.wait = period - 1
+
+
+class RegisterModel:
+    """What a host reads back from the registers it can write (RW, W1C, W1S, WP)."""
+
+    def __init__(self):
+        self.values = {r.name: r.reset for r in regmap.REGISTERS}
+
+    @staticmethod
+    def byte_mask(be):
+        return sum(0xFF << (8 * lane) for lane in range(4) if be >> lane & 1)
+
+    @staticmethod
+    def honour(reg, word):
+        """(value kept, clamped?) for ``word`` written into ``reg``."""
+        width = reg.width
+        if reg.signed:
+            word = word - (1 << 32) if word >> 31 else word
+        low = reg.minimum if reg.minimum is not None else None
+        high = reg.maximum if reg.maximum is not None else None
+        if low is not None and word < low:
+            return low & ((1 << width) - 1), True
+        if high is not None and word > high:
+            return high & ((1 << width) - 1), True
+        return word & ((1 << width) - 1), False
+
+    def write(self, name, data, be=0xF):
+        """Apply a bus write; return True when the value was clamped."""
+        reg = regmap.register(name)
+        mask = self.byte_mask(be)
+        if reg.access == "RW":
+            merged = (self.values[name] & ~mask) | (data & mask)
+        else:
+            merged = data & mask
+        kept, clamped = self.honour(reg, merged & 0xFFFFFFFF)
+        if reg.access == "RW":
+            self.values[name] = kept
+        elif reg.access == "W1C":
+            self.values[name] &= ~kept
+        elif reg.access == "W1S":
+            self.values[name] |= kept
+        return clamped and reg.access in ("RW", "WP")
+
+    def set_command(self, index, value):
+        """The SET instruction: like a full-word write of the register with that index."""
+        return self.write(regmap.SET_TARGETS[index].name, value)
+
+    def read(self, name):
+        return self.values[name]

@@ -1,0 +1,163 @@
+"""Clock-by-clock bench of ``rtl/dda_arc.py`` against ``sim.dda_model.DdaMachine``.
+
+``dda_bench(ports, commands, record, ...)`` drives a list of commands through
+the ``DdaPort`` (start pulse, a seeded random ``advance`` pattern, stray
+``start`` pulses while busy) and compares every output with the model after
+every clock.  The device is the MyHDL block, or with ``verilog`` (a list of
+files) a ``Cosimulation`` of the generated Verilog on the same ``ports``.  The moves the outputs made
+are collected in ``record`` for the tests.
+"""
+import math
+import random
+
+from myhdl import ResetSignal, StopSimulation, always, block, delay, instance
+
+from rtl.dda_arc import dda_arc
+from sim.cosim import cosimulate
+from sim.dda_model import ArcCommand, DdaMachine, LineCommand, plan_arc
+
+OUTPUTS = ("busy", "done", "error", "quadrant")
+PULSES = ("step_x", "step_y", "dir_x", "dir_y")
+HALF_PERIOD = 5
+
+
+class Record:
+    """What the device did: one entry per command, with the clock of each output step."""
+
+    def __init__(self):
+        self.moves = []
+        self.clocks = 0
+
+    def begin(self, command):
+        self.moves.append(dict(command=command, error=False, done=False, steps=[]))
+
+    def current(self):
+        return self.moves[-1]
+
+
+def _drive_command(cmd, command):
+    cmd.line.next = isinstance(command, LineCommand)
+    if isinstance(command, LineCommand):
+        cmd.xe.next, cmd.ye.next = command.dx, command.dy
+        return
+    cmd.xs.next, cmd.ys.next = command.xs, command.ys
+    cmd.xe.next, cmd.ye.next = command.xe, command.ye
+    cmd.ccw.next = command.ccw
+    cmd.variant.next = command.variant
+    cmd.lambda_shift.next = command.lambda_shift
+    cmd.acc_bits.next = command.acc_bits
+
+
+def _observed(cmd, steps):
+    values = {name: int(getattr(cmd, name).val) for name in OUTPUTS}
+    values.update({name: int(getattr(steps, name).val) for name in PULSES})
+    return values
+
+
+@block
+def dda_bench(ports, commands, record, *, coord_width=24, verilog=None, seed=1,
+              advance_rate=0.7, idle_gap=3):
+    """Drive ``commands`` into ``device`` and check it against the model on every clock."""
+    clock, reset, cmd, steps = ports["clock"], ports["reset"], ports["cmd"], ports["steps"]
+    rng = random.Random(seed)
+    model = DdaMachine(coord_width)
+
+    @always(delay(HALF_PERIOD))
+    def clock_driver():
+        clock.next = not clock
+
+    @instance
+    def stimulus():
+        reset.next = reset.active
+        cmd.start.next = False
+        cmd.advance.next = False
+        yield clock.negedge
+        yield clock.negedge
+        reset.next = not reset.active
+        expected = dict(model.outputs, **{k: int(v) for k, v in model.outputs.items()})
+        for command in commands:
+            record.begin(command)
+            _drive_command(cmd, command)
+            cmd.start.next = True
+            started = False
+            while True:
+                advance = rng.random() < advance_rate
+                cmd.advance.next = advance
+                expected = model.clock(cmd.start.next, advance, command)
+                yield clock.negedge
+                record.clocks += 1
+                _compare(expected, _observed(cmd, steps), record)
+                _collect(record, _observed(cmd, steps))
+                started = True
+                cmd.start.next = started and expected["busy"] and rng.random() < 0.01
+                if not expected["busy"]:
+                    break
+            cmd.start.next = False
+            for _ in range(idle_gap):
+                expected = model.clock(False, False, command)
+                yield clock.negedge
+                record.clocks += 1
+                _compare(expected, _observed(cmd, steps), record)
+        raise StopSimulation()
+
+    if verilog is None:
+        device = dda_arc(**ports, coord_width=coord_width)
+    else:
+        device = cosimulate("dda_arc", ports, verilog)
+    return device, clock_driver, stimulus
+
+
+def _compare(expected, observed, record):
+    wanted = {k: int(v) for k, v in expected.items()}
+    if wanted != observed:
+        move = len(record.moves) - 1
+        raise AssertionError(f"clock {record.clocks}, move {move} ({record.current()['command']}): "
+                             f"device {observed} != model {wanted}")
+
+
+def _collect(record, observed):
+    move = record.current()
+    if observed["step_x"] or observed["step_y"]:
+        move["steps"].append((record.clocks, observed["step_x"], observed["step_y"],
+                              observed["dir_x"], observed["dir_y"]))
+    move["error"] = move["error"] or bool(observed["error"])
+    move["done"] = move["done"] or bool(observed["done"])
+
+
+def end_point(move):
+    """Where the recorded step pulses of ``move`` lead from its start point."""
+    command = move["command"]
+    x, y = (0, 0) if isinstance(command, LineCommand) else (command.xs, command.ys)
+    for _, step_x, step_y, dir_x, dir_y in move["steps"]:
+        x += (1 if dir_x else -1) * step_x
+        y += (1 if dir_y else -1) * step_y
+    return x, y
+
+
+def accepted(command, coord_width=24):
+    try:
+        plan_arc(command, coord_width)
+    except ValueError:
+        return False
+    return True
+
+
+def random_arc(rng, coord_width=24, radius=None, span=None, variant=3, ccw=None):
+    """A seeded random arc that the model accepts (start and end near one circle)."""
+    limit = (1 << (coord_width - 1)) - 1
+    while True:
+        r = radius or rng.uniform(1, limit)
+        start = rng.uniform(0, 2 * math.pi)
+        turn = span if span is not None else rng.uniform(0, 2 * math.pi)
+        direction = rng.random() < 0.5 if ccw is None else ccw
+        end = start + (turn if direction else -turn)
+        xs, ys = round(r * math.cos(start)), round(r * math.sin(start))
+        xe, ye = round(r * math.cos(end)), round(r * math.sin(end))
+        lam = rng.randrange(0, 4) if variant in (1, 2) else 0
+        command = ArcCommand(xs, ys, xe, ye, direction, variant, lam, 0)
+        if accepted(command, coord_width):
+            return command
+
+
+def reset_signal():
+    return ResetSignal(1, active=0, isasync=True)

@@ -1,0 +1,215 @@
+"""End to end: the behavioural PCI host drives the whole card (``rtl/card.py``:
+``pci_slave`` + registers, FIFO, sequencer, pulse outputs, DDA) with the
+protocol monitor watching every clock.
+
+The host enumerates the card, sizes and places its BARs, programs registers
+over I/O, bursts commands into the FIFO over memory, waits for INTA#, reads
+position and status back.  The STEP/DIR pins are captured and the path is
+rebuilt from them; golden values come from ``sim.dda_model`` (paths, V_arc)
+and the register table.  The same bench runs on the MyHDL card and on its
+generated Verilog in Icarus (the split-port card: Icarus co-simulation cannot
+carry the top level's tri-state pins).
+"""
+import pytest
+from myhdl import Signal
+
+from rtl import instructions as isa
+from rtl import registers as regmap
+from rtl.card import card, card_ports
+from sim.card_bench import PinLog, command_words, expected_path, pin_capture
+from sim.cosim import convert_and_cosimulate
+from sim.dda_model import ArcCommand, LineCommand, iterate, metrics, v_arc
+from sim.pci_bench import PciBench
+from sim.pci_host import Termination
+from sim.waves import Waveform
+
+DEVICE = 0
+SMALL_FIFO = 16
+
+
+class CardUnderTest:
+    """The card as a PciBench target, plus what the scenario needs to see."""
+
+    def __init__(self, kind, fifo_depth):
+        self.kind, self.fifo_depth = kind, fifo_depth
+        self.log = PinLog()
+        self.io = self.mem = None
+
+    def __call__(self, bench):
+        ports = card_ports(fifo_depth=self.fifo_depth)
+        ports["clock"], ports["reset"] = bench.clock, bench.reset
+        if self.kind == "verilog":
+            core = (convert_and_cosimulate(card, "card", ports, fifo_depth=self.fifo_depth), None)
+        else:
+            core = (card, (), dict(ports, fifo_depth=self.fifo_depth))
+        capture = (pin_capture, (bench.clock, ports["pins"], self.log))
+        return ports["pci"], [core, capture]
+
+
+def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO):
+    target = CardUnderTest(kind, fifo_depth)
+    bench = PciBench(target=target, host_options=dict(max_retries=1 << 20))
+    out = {}
+
+    def wrapped(b):
+        devices = yield from b.host.enumerate_bus(devices=[DEVICE])
+        out["device"] = devices[0]
+        bars = {("io" if bar["io"] else "mem"): bar for bar in devices[0].bars}
+        target.io, target.mem = bars["io"]["base"], bars["mem"]["base"]
+        out["bars"] = bars
+        yield from scenario(b, target, out)
+
+    vcd = bench.run(wrapped, f"{name}_{kind}")
+    return out, target.log, Waveform(vcd), bench
+
+
+def io_write(bench, target, name, value):
+    result = yield from bench.host.io_write(target.io + regmap.offset(name), value & 0xFFFFFFFF)
+    assert result.complete, f"I/O write of {name} ended {result.termination}"
+
+
+def io_read(bench, target, name):
+    result = yield from bench.host.io_read(target.io + regmap.offset(name))
+    assert result.complete, f"I/O read of {name} ended {result.termination}"
+    return result.value
+
+
+def wait_inta(bench, limit=200000):
+    """Clocks until INTA# is low on the bus."""
+    for clocks in range(limit):
+        if not bool(bench.segment.lines.inta):
+            return clocks
+        yield bench.clock.posedge
+    raise AssertionError("INTA# never asserted")
+
+
+def program(bench, target, feed=regmap.RATE_ONE, control=1, interrupts=("DONE",)):
+    yield from io_write(bench, target, "FEED_RATE", feed)
+    yield from io_write(bench, target, "INT_ENABLE",
+                        regmap.field_of("INT_ENABLE", **{name: 1 for name in interrupts}))
+    yield from io_write(bench, target, "CONTROL", control)
+
+
+def finish(bench, target, out):
+    """Wait for INTA#, then read status and position; acknowledge."""
+    out["inta_clocks"] = yield from wait_inta(bench)
+    out["status"] = yield from io_read(bench, target, "STATUS")
+    out["int_status"] = yield from io_read(bench, target, "INT_STATUS")
+    x = yield from io_read(bench, target, "POS_X")
+    y = yield from io_read(bench, target, "POS_Y")
+    out["position"] = (regmap.field_value("POS_X", "STEPS", x), regmap.field_value("POS_Y", "STEPS", y))
+    yield from io_write(bench, target, "INT_STATUS", out["int_status"])
+
+
+def motion_scenario(commands, feed=regmap.RATE_ONE):
+    words = [w for c in commands for w in command_words(c)]
+
+    def scenario(bench, target, out):
+        yield from program(bench, target, feed)
+        out["burst"] = yield from bench.host.mem_write(target.mem, words)
+        yield from finish(bench, target, out)
+
+    return scenario
+
+
+ARC = ArcCommand(40, 0, 0, 40, ccw=True)
+CHAIN = [LineCommand(6, 2), LineCommand(5, 7), LineCommand(-3, 4), ArcCommand(0, 12, -12, 0)]
+
+
+@pytest.mark.parametrize("kind", ["myhdl", "verilog"])
+def test_enumerate_program_arc(kind):
+    out, log, _, _ = run_card(kind, motion_scenario([ARC]), "card_e2e_arc")
+    device = out["device"]
+    assert (device.vendor_id, device.device_id, device.interrupt_pin) == (0x1234, 0xDDA0, 1)
+    assert out["bars"]["io"]["size"] == 1 << regmap.IO_BAR_BITS
+    assert out["bars"]["mem"]["size"] == 4096
+    wanted = expected_path([ARC])
+    assert log.path() == wanted
+    # positions count from 0: the arc's displacement from its start point
+    assert out["position"] == wanted[-1] == (ARC.xe - ARC.xs, ARC.ye - ARC.ys)
+    rebuilt = [(x + ARC.xs, y + ARC.ys) for x, y in log.path()]
+    assert rebuilt[-1] == (ARC.xe, ARC.ye)
+    model_v_arc = metrics(iterate(ARC)).v_arc
+    assert v_arc(rebuilt, 40) == pytest.approx(model_v_arc, rel=1e-12)
+    assert regmap.field_value("STATUS", "BUSY", out["status"]) == 0
+    assert regmap.field_value("INT_STATUS", "DONE", out["int_status"]) == 1
+
+
+def test_chained_segments_no_gap_between_lines():
+    out, log, _, _ = run_card("myhdl", motion_scenario(CHAIN), "card_e2e_chain")
+    assert log.path() == expected_path(CHAIN)
+    assert out["position"] == expected_path(CHAIN)[-1]
+    line_rises = sum(max(abs(c.dx), abs(c.dy)) for c in CHAIN[:3])
+    gaps = log.gaps()[:line_rises - 1]
+    # one iteration per clock, two clocks per pulse: the lines leave back to back
+    assert max(gaps) <= 4, gaps
+
+
+@pytest.mark.parametrize("kind", ["myhdl", "verilog"])
+def test_direct_pulse_mode(kind):
+    def scenario(bench, target, out):
+        yield from io_write(bench, target, "PULSE_PERIOD_X", 5)
+        yield from io_write(bench, target, "PULSE_PERIOD_Y", 9)
+        yield from program(bench, target, control=regmap.field_of("CONTROL", ENABLE=1, MODE=1))
+        yield from io_write(bench, target, "PULSE_COUNT_X", 7)
+        yield from io_write(bench, target, "PULSE_COUNT_Y", -4)
+        yield from finish(bench, target, out)
+
+    out, log, _, _ = run_card(kind, scenario, "card_e2e_direct")
+    assert out["position"] == (7, -4)
+    assert sum(r[1] for r in log.rises) == 7 and sum(r[2] for r in log.rises) == 4
+
+
+def test_long_burst_fills_fifo_nothing_lost():
+    commands = [LineCommand(3 - (i % 7), (i % 5) - 2) for i in range(30)]
+    commands = [c if (c.dx, c.dy) != (0, 0) else LineCommand(1, 1) for c in commands]
+    words = [w for c in commands for w in command_words(c)]
+
+    def scenario(bench, target, out):
+        yield from program(bench, target, feed=regmap.RATE_ONE // 64)
+        out["burst"] = yield from bench.host.mem_write(target.mem, words)
+        yield from finish(bench, target, out)
+
+    out, log, _, _ = run_card("myhdl", scenario, "card_e2e_full")
+    assert len(words) > 2 * SMALL_FIFO
+    stops = [t.termination for t in out["burst"].transactions]
+    assert any(t in (Termination.RETRY, Termination.DISCONNECT) for t in stops), "the FIFO never filled"
+    assert out["burst"].complete and len(out["burst"].data) == len(words)
+    assert log.path() == expected_path(commands)
+    assert out["position"] == expected_path(commands)[-1]
+
+
+@pytest.mark.parametrize("kind", ["myhdl", "verilog"])
+def test_malformed_command_error_interrupt(kind):
+    bad = [0x1 << isa.OPCODE_LSB | 0x80, 0, 0]  # LINE with a reserved header bit
+    good = command_words(LineCommand(5, 3))
+
+    def scenario(bench, target, out):
+        yield from program(bench, target, interrupts=("ERROR",))
+        yield from bench.host.mem_write(target.mem, good + bad + good)
+        yield from finish(bench, target, out)
+
+    out, log, _, _ = run_card(kind, scenario, "card_e2e_error")
+    assert regmap.field_value("STATUS", "ERROR", out["status"]) == isa.ERROR_CODE["RESERVED_BITS"]
+    assert regmap.field_value("INT_STATUS", "ERROR", out["int_status"]) == 1
+    assert out["position"] == (5, 3) and log.path()[-1] == (5, 3)
+
+
+def test_soft_reset_mid_motion():
+    def scenario(bench, target, out):
+        yield from program(bench, target, feed=regmap.RATE_ONE // 4)
+        yield from bench.host.mem_write(target.mem, command_words(LineCommand(300, 200)))
+        yield from bench.clocks(300)
+        yield from io_write(bench, target, "COMMAND", regmap.field_of("COMMAND", SOFT_RESET=1))
+        yield from bench.clocks(20)
+        out["status"] = yield from io_read(bench, target, "STATUS")
+        out["rises"] = len(target.log.rises)
+        yield from bench.clocks(200)
+        out["rises_later"] = len(target.log.rises)
+        x = yield from io_read(bench, target, "POS_X")
+        out["x"] = regmap.field_value("POS_X", "STEPS", x)
+
+    out, log, _, _ = run_card("myhdl", scenario, "card_e2e_soft_reset")
+    assert regmap.field_value("STATUS", "BUSY", out["status"]) == 0
+    assert 0 < out["rises"] == out["rises_later"]
+    assert out["x"] == log.path()[-1][0] and 0 < out["x"] < 300

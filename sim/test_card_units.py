@@ -1,0 +1,180 @@
+"""The card's small units against their golden models (``sim/card_model.py``), every clock.
+
+Each bench drives seeded random inputs at the falling edge, advances the model
+by the coming rising edge, and at the next falling edge compares every output.
+The same bench runs on the MyHDL block and on its Verilog in Icarus.
+"""
+import random
+
+import pytest
+from myhdl import StopSimulation, always, block, delay, instance
+
+from rtl.direct_pulse import direct_pulse, direct_pulse_ports
+from rtl.feed_rate import feed_rate, feed_rate_ports
+from rtl.pulse_out import pulse_out, pulse_out_ports
+from rtl.sync_fifo import sync_fifo, sync_fifo_ports
+from sim.card_model import DirectPulseModel, FeedRateModel, FifoModel, PulseOutModel
+from sim.cosim import convert_and_cosimulate
+from sim.waves import Waveform, run_traced, write_gtkw
+
+HALF_PERIOD = 5
+
+
+def _dut(factory, module, ports, cosim, **params):
+    """What the bench needs to make the device under test (MyHDL or Icarus)."""
+    return factory, module, params, cosim
+
+
+@block
+def _bench(dut_spec, ports, step, cycles):
+    """Clock, reset, then ``step(clock_index)`` at every falling edge."""
+    clock, reset = ports["clock"], ports["reset"]
+    factory, module, params, cosim = dut_spec
+    if cosim:
+        dut = convert_and_cosimulate(factory, module, ports, **params)
+    else:
+        dut = factory(**ports, **params)
+
+    @always(delay(HALF_PERIOD))
+    def clock_gen():
+        clock.next = not clock
+
+    @instance
+    def stimulus():
+        reset.next = 0
+        yield clock.negedge
+        yield clock.negedge
+        reset.next = 1
+        for index in range(cycles):
+            yield clock.negedge
+            step(index)
+        raise StopSimulation
+
+    return dut, clock_gen, stimulus
+
+
+def _run(name, dut, ports, step, cycles, groups):
+    """Run traced; the MyHDL run also gets a GTKWave save file (a co-simulated
+    block has no MyHDL hierarchy for the trace to show)."""
+    vcd = run_traced(_bench(dut, ports, step, cycles), name)
+    cosim = dut[3]
+    if not cosim:
+        write_gtkw(vcd, groups)
+    return Waveform(vcd), cosim
+
+
+@pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
+@pytest.mark.parametrize("seed", [1, 2])
+def test_pulse_out_timing(seed, cosim):
+    rng = random.Random(seed)
+    ports = pulse_out_ports()
+    request, pins = ports["request"], ports["pins"]
+    model = PulseOutModel()
+    timing = {}
+    rises = []
+
+    def step(index):
+        if index == 0:
+            model.clock()  # the first edge after reset, inputs idle
+        assert (bool(pins.step_x), bool(pins.step_y)) == model.step_pins, f"STEP at clock {index}"
+        assert (bool(pins.dir_x), bool(pins.dir_y)) == model.dir_pins, f"DIR at clock {index}"
+        assert [int(ports["position_x"]), int(ports["position_y"])] == model.positions, f"clock {index}"
+        assert bool(ports["ready"]) == model.ready and bool(ports["active"]) == model.active
+        if index % 300 == 0:
+            timing.update(width=rng.randint(1, 4), setup=rng.randint(1, 4), hold=rng.randint(1, 4))
+            timing["polarity"] = (rng.random() < 0.5, rng.random() < 0.5)
+        wanted = model.ready and rng.random() < 0.6
+        steps = (wanted and rng.random() < 0.7, wanted and rng.random() < 0.5)
+        dirs = (rng.random() < 0.7, rng.random() < 0.4)
+        flags = dict(clear=rng.random() < 0.005, clear_position=rng.random() < 0.003)
+        request.step_x.next, request.step_y.next = steps
+        request.dir_x.next, request.dir_y.next = dirs
+        for key, value in dict(flags, **timing).items():
+            if key == "polarity":
+                ports["polarity_x"].next, ports["polarity_y"].next = value
+            else:
+                ports[key].next = value
+        was_high = model.step_pins[0]
+        model.clock(steps, dirs, **flags, **timing)
+        if model.step_pins[0] and not was_high:
+            rises.append(index)
+
+    wave, cosim = _run(f"pulse_out_{seed}_{'icarus' if cosim else 'myhdl'}",
+                       _dut(pulse_out, "pulse_out", ports, cosim), ports, step, 1200,
+                       {"request": ["request_step_x", "request_dir_x", "ready"],
+                        "pins": ["pins_step_x", "pins_dir_x", "pins_step_y", "pins_dir_y", "position_x"]})
+    assert len(rises) > 100
+    if not cosim:
+        assert len(wave.edges("pins_step_x", "1")) == len(rises)
+
+
+@pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
+def test_feed_rate_ramp(cosim):
+    rng = random.Random(7)
+    ports = feed_rate_ports()
+    model = FeedRateModel()
+    ticks = []
+
+    def step(index):
+        assert bool(ports["tick"]) == model.tick, f"tick at clock {index}"
+        ticks.append(model.tick)
+        if index % 400 == 0:
+            settings = dict(target=rng.choice([1, 3000, 40000, 65536]), ramp_start=rng.randint(1, 65536),
+                            ramp_step=rng.choice([0, 1, 500, 9000]))
+            for key, value in settings.items():
+                ports[key].next = value
+            step.settings = settings
+        inputs = dict(run=index % 400 > 5, hold=rng.random() < 0.1, **step.settings)
+        ports["run"].next = inputs["run"]
+        ports["hold"].next = inputs["hold"]
+        model.clock(**inputs)
+
+    _run(f"feed_rate_{'icarus' if cosim else 'myhdl'}", _dut(feed_rate, "feed_rate", ports, cosim),
+         ports, step, 2400, {"feed": ["run", "hold", "target", "tick"]})
+    assert sum(ticks) > 200
+
+
+@pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
+def test_direct_pulse_counts(cosim):
+    rng = random.Random(3)
+    ports = direct_pulse_ports()
+    model = DirectPulseModel()
+
+    def step(index):
+        assert bool(ports["request"]) == model.request, f"request at clock {index}"
+        assert int(ports["remaining"]) == model.remaining
+        if model.request:
+            assert bool(ports["request_dir"]) == model.direction
+        inputs = dict(load=model.remaining == 0 and rng.random() < 0.1,
+                      count=rng.randint(-20, 20), period=rng.randint(1, 5),
+                      ready=rng.random() < 0.8, clear=rng.random() < 0.003)
+        assert bool(ports["busy"]) == model.busy(bool(ports["load"]))
+        for key, value in inputs.items():
+            ports[key].next = value
+        model.clock(**inputs)
+
+    _run(f"direct_pulse_{'icarus' if cosim else 'myhdl'}", _dut(direct_pulse, "direct_pulse", ports, cosim),
+         ports, step, 1500, {"direct": ["load", "count", "period", "request", "remaining"]})
+
+
+@pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
+def test_sync_fifo_against_queue(cosim):
+    rng = random.Random(5)
+    depth = 16
+    ports = sync_fifo_ports(depth=depth)
+    model = FifoModel(depth)
+
+    def step(index):
+        assert int(ports["level"]) == model.level, f"level at clock {index}"
+        assert bool(ports["full"]) == model.full and bool(ports["empty"]) == (model.level == 0)
+        assert int(ports["dout"]) == model.dout, f"dout at clock {index}"
+        burst = (index // 100) % 2
+        inputs = dict(push=rng.random() < (0.8 if burst else 0.3), din=rng.getrandbits(32),
+                      pop=rng.random() < (0.3 if burst else 0.8), flush=rng.random() < 0.005)
+        for key, value in inputs.items():
+            ports[key].next = value
+        model.clock(**inputs)
+
+    _run(f"sync_fifo_{'icarus' if cosim else 'myhdl'}",
+         _dut(sync_fifo, "sync_fifo", ports, cosim, depth=depth), ports, step, 1000,
+         {"fifo": ["push", "din", "pop", "dout", "level", "full", "empty"]})

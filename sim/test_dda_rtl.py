@@ -1,0 +1,200 @@
+"""``rtl/dda_arc.py`` against the golden model on every clock, in MyHDL and in Icarus.
+
+The same bench (``sim/dda_bench.py``) runs on the MyHDL block and on
+``gen/dda_arc.v`` through co-simulation.  Each run writes a VCD and a
+``.gtkw`` under ``build/waves``; some checks read the VCD back.
+"""
+import math
+import random
+
+import pytest
+
+from rtl.dda_arc import dda_arc_ports
+from sim.dda_bench import HALF_PERIOD, Record, dda_bench, end_point, random_arc
+from sim.dda_model import (IMPROVED, PRECISE, TRADITIONAL, WEIGHTED, ArcCommand, LineCommand,
+                           accumulator_width, paper_configuration, setup_clocks)
+from sim.paths import GEN
+from sim.waves import Waveform, run_traced, write_gtkw
+
+GROUPS = {
+    "command": ["cmd_start", "cmd_line", "cmd_variant", "cmd_ccw", "cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye"],
+    "status": ["cmd_advance", "cmd_busy", "cmd_done", "cmd_error", "cmd_quadrant"],
+    "pulses": ["steps_step_x", "steps_dir_x", "steps_step_y", "steps_dir_y"],
+    "datapath": ["state", "quadrant", "mag_x", "mag_y", "acc_x", "acc_y", "radial_error",
+                 "count_x", "count_y", "crossings"],
+}
+SIGNED = ("cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye", "acc_x", "acc_y", "radial_error")
+
+PAPER_CASES = [ArcCommand(8, 0, 0, 8, variant=v) for v in range(4)] + \
+    [paper_configuration(v)[0] for v in (TRADITIONAL, WEIGHTED, IMPROVED)] + \
+    [ArcCommand(100, 0, 0, 100)]
+LINES = [LineCommand(12, 11), LineCommand(-5, 3), LineCommand(0, -4), LineCommand(7, 0),
+         LineCommand(0, 0), LineCommand(-9, -9)]
+BAD = [ArcCommand(100, 0, 0, 103), ArcCommand(0, 0, 5, 5), ArcCommand(7, 7, 0, 0),
+       ArcCommand(-(1 << 23), 0, 0, -(1 << 23)),
+       ArcCommand(50, 0, 0, 50, variant=WEIGHTED, acc_bits=25, lambda_shift=5)]
+
+
+def octant_arcs(seed, radius_limit=60):
+    """One arc starting in each octant, in each direction, all variants in turn."""
+    rng = random.Random(seed)
+    arcs = []
+    for octant in range(8):
+        for ccw in (True, False):
+            radius = rng.uniform(2, radius_limit)
+            angle = (octant + rng.random()) * math.pi / 4
+            span = rng.uniform(0.2, 1.8)
+            arcs.append(_arc_at(rng, radius, angle, span, ccw, variant=(octant + ccw) % 4))
+    return arcs
+
+
+def _arc_at(rng, radius, angle, span, ccw, variant):
+    for _ in range(50):
+        end = angle + (span if ccw else -span)
+        command = ArcCommand(round(radius * math.cos(angle)), round(radius * math.sin(angle)),
+                             round(radius * math.cos(end)), round(radius * math.sin(end)), ccw,
+                             variant, rng.randrange(4) if variant in (WEIGHTED, IMPROVED) else 0)
+        from sim.dda_bench import accepted
+        if accepted(command):
+            return command
+        radius += 0.37
+    return random_arc(rng, radius=radius, variant=variant, ccw=ccw)
+
+
+def wide_arcs(seed, count):
+    """Short arcs (a few dozen steps) at radii up to the 24-bit maximum, precise mode."""
+    rng = random.Random(seed)
+    arcs = []
+    for index in range(count):
+        radius = 2 ** rng.uniform(0, 23) if index else (1 << 23) - 2
+        span = min(2 * math.pi, 40 / max(radius, 1))
+        arcs.append(random_arc(rng, radius=radius, span=span, variant=PRECISE))
+    return arcs
+
+
+def full_circles():
+    return [ArcCommand(1, 0, 1, 0), ArcCommand(0, -3, 0, -3, ccw=False),
+            ArcCommand(6, 8, 6, 8, variant=IMPROVED, lambda_shift=2),
+            ArcCommand(-12, 5, -12, 5, ccw=False, variant=PRECISE)]
+
+
+def quadrant_crossings():
+    return [ArcCommand(10, -1, -10, 1), ArcCommand(-3, 20, 3, -20, ccw=False),
+            ArcCommand(15, 1, 15, -1), ArcCommand(15, -1, 15, 1, ccw=False, variant=TRADITIONAL),
+            ArcCommand(0, 30, 30, 0, variant=WEIGHTED, lambda_shift=1)]
+
+
+def run_bench(name, commands, cosim=False, seed=1, advance_rate=0.7):
+    """Run the bench traced; return the record and the VCD path."""
+    ports = dda_arc_ports(coord_width=24)
+    record = Record()
+    verilog = [GEN / "dda_arc.v"] if cosim else None
+    bench = dda_bench(ports, commands, record, coord_width=24, verilog=verilog, seed=seed,
+                      advance_rate=advance_rate)
+    vcd = run_traced(bench, name)
+    wave = Waveform(vcd)
+    groups = {g: [s for s in names if _has(wave, s)] for g, names in GROUPS.items()}
+    write_gtkw(vcd, {g: names for g, names in groups.items() if names},
+               signed=[s for s in SIGNED if _has(wave, s)])
+    return record, vcd
+
+
+def _has(wave, suffix):
+    try:
+        wave.full_name(suffix)
+    except KeyError:
+        return False
+    return True
+
+
+def check_moves(record):
+    """Independent of the model: accepted moves end on their end point, bad ones raise error."""
+    for move in record.moves:
+        command = move["command"]
+        if isinstance(command, LineCommand):
+            assert move["done"] and end_point(move) == (command.dx, command.dy)
+        elif command in BAD:
+            assert move["error"] and not move["steps"]
+        else:
+            assert move["done"] and not move["error"], command
+            assert end_point(move) == (command.xe, command.ye), command
+
+
+def sampled(wave, suffix, clocks):
+    """Value of ``suffix`` in each clock (sampled at the falling edges)."""
+    first_fall = wave.edges("clock", "0")
+    return [wave.at(suffix, t) for t in first_fall[:clocks]]
+
+
+BENCHES = {
+    "paper": lambda: PAPER_CASES,
+    "lines_and_bad": lambda: LINES + BAD,
+    "octants": lambda: octant_arcs(7),
+    "circles_crossings": lambda: full_circles() + quadrant_crossings(),
+    "wide": lambda: wide_arcs(5, 8),
+}
+
+
+@pytest.mark.parametrize("name", sorted(BENCHES))
+def test_rtl_equals_model_on_every_clock(name):
+    record, _ = run_bench(f"dda_{name}", BENCHES[name]())
+    check_moves(record)
+
+
+@pytest.mark.parametrize("name", ["paper", "lines_and_bad", "circles_crossings", "wide"])
+def test_generated_verilog_equals_model_on_every_clock(name):
+    commands = BENCHES[name]()
+    if name == "paper":
+        commands = [c for c in commands if c.variant in (PRECISE, TRADITIONAL)]
+    record, _ = run_bench(f"dda_{name}_cosim", commands, cosim=True)
+    check_moves(record)
+
+
+def test_line_pulses_read_back_from_the_vcd():
+    record, vcd = run_bench("dda_line_12_11", [LineCommand(12, 11)], advance_rate=1.0)
+    wave = Waveform(vcd)
+    clocks = record.clocks
+    for suffix, total in (("steps_step_x", 12), ("steps_step_y", 11)):
+        values = sampled(wave, suffix, clocks + 2)
+        high = [i for i, v in enumerate(values) if v == "1"]
+        assert len(high) == total
+        gaps = [b - a for a, b in zip(high, high[1:])]
+        assert max(gaps) - min(gaps) <= 1
+    done = [i for i, v in enumerate(sampled(wave, "cmd_done", clocks + 2)) if v == "1"]
+    assert len(done) == 1
+
+
+def test_arc_setup_time_and_steps_read_back_from_the_vcd():
+    command = ArcCommand(8, 0, 0, 8)
+    record, vcd = run_bench("dda_arc_8", [command], advance_rate=1.0)
+    wave = Waveform(vcd)
+    busy = sampled(wave, "cmd_busy", record.clocks + 2)
+    step_y = sampled(wave, "steps_step_y", record.clocks + 2)
+    first_busy = busy.index("1")
+    first_step = min(i for i, v in enumerate(step_y) if v == "1")
+    # the first iteration comes one clock after the setup of 5 * 24 + 1 clocks
+    assert first_step - first_busy == setup_clocks(24, line=False) + 1
+    assert sum(v == "1" for v in step_y) == 8
+    assert wave.at("cmd_quadrant", record.clocks * 2 * HALF_PERIOD) == 0
+
+
+def test_accumulator_width_is_sign_and_carry_extended():
+    assert accumulator_width(24) >= 24 + 2
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(4))
+def test_rtl_random_arcs_long(seed):
+    rng = random.Random(seed)
+    commands = octant_arcs(seed + 100, radius_limit=400) + wide_arcs(seed + 200, 20)
+    commands += [random_arc(rng, radius=rng.uniform(1, 200), variant=rng.randrange(4)) for _ in range(20)]
+    record, _ = run_bench(f"dda_random_{seed}", commands, seed=seed)
+    check_moves(record)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(2))
+def test_generated_verilog_random_arcs_long(seed):
+    commands = octant_arcs(seed + 300) + wide_arcs(seed + 400, 10) + BENCHES["paper"]()
+    record, _ = run_bench(f"dda_random_cosim_{seed}", commands, cosim=True, seed=seed)
+    check_moves(record)

@@ -1,0 +1,256 @@
+"""The card behind the PCI target (``rtl/card_core.py``: registers, FIFO, sequencer,
+pulse outputs, DDA) driven over its back-end bus.
+
+Golden values: register semantics from ``sim.card_model.RegisterModel``, pin
+timing from ``PulseOutModel`` (every clock), paths from ``sim.dda_model``.
+"""
+import random
+
+import pytest
+from myhdl import StopSimulation, block, delay, instance
+
+from rtl import instructions as isa
+from rtl import registers as regmap
+from rtl.card_core import card_core, card_core_ports
+from sim.card_bench import PinLog, clock_and_pins, command_words, expected_path, pin_model_check
+from sim.card_model import RegisterModel
+from sim.cosim import convert_and_cosimulate
+from sim.dda_model import ArcCommand, LineCommand
+from sim.local_bus_driver import LocalBusDriver
+from sim.waves import Waveform, run_traced, write_gtkw
+
+FIFO_DEPTH = 16
+TIMING = dict(width=1, setup=1, hold=1)
+GROUPS = {"bus": ["local_we", "local_re", "local_space", "local_addr", "local_be", "local_ready",
+                  "local_retry", "local_rdata"],
+          "pins": ["pins_step_x", "pins_dir_x", "pins_step_y", "pins_dir_y", "irq"]}
+
+
+def field(name, field_name, word):
+    return regmap.field_value(name, field_name, word)
+
+
+@block
+def _bench(ports, scenario, log, failures, cosim, check_pins):
+    clock, reset = ports["clock"], ports["reset"]
+    if cosim:
+        core = convert_and_cosimulate(card_core, "card_core", ports, fifo_depth=FIFO_DEPTH)
+        parts = [core, clock_and_pins(clock, ports["pins"], log)]
+    else:
+        core = card_core(**ports, fifo_depth=FIFO_DEPTH)
+        parts = [core, clock_and_pins(clock, ports["pins"], log)]
+        if check_pins:
+            parts.append(pin_model_check(clock, reset, ports["pins"], core.subs[1], TIMING, failures))
+    driver = LocalBusDriver(clock, ports["local"])
+
+    @instance
+    def run():
+        reset.next = 0
+        yield delay(1)  # a delay in the body: MyHDL then allows every kind of wait in the scenario
+        yield clock.negedge
+        yield clock.negedge
+        reset.next = 1
+        yield from scenario(driver)
+        raise StopSimulation
+
+    return parts, run
+
+
+def run_core(name, scenario, cosim=False, check_pins=True):
+    """Run ``scenario(driver)`` (a generator) on the core; (pin log, waveform)."""
+    ports = card_core_ports(fifo_depth=FIFO_DEPTH)
+    log, failures = PinLog(), []
+    vcd = run_traced(_bench(ports, scenario, log, failures, cosim, check_pins), name)
+    assert not failures, failures[0]
+    if not cosim:
+        write_gtkw(vcd, GROUPS)
+    return log, Waveform(vcd)
+
+
+def setup_motion(driver, control=1, feed=regmap.RATE_ONE):
+    yield from driver.io_write(regmap.offset("FEED_RATE"), feed)
+    yield from driver.io_write(regmap.offset("CONTROL"), control)
+
+
+def wait_idle(driver, limit=20000):
+    for _ in range(limit):
+        status = yield from driver.io_read(regmap.offset("STATUS"))
+        if not field("STATUS", "BUSY", status):
+            return status
+    raise AssertionError("card still busy")
+
+
+def read_position(driver):
+    x = yield from driver.io_read(regmap.offset("POS_X"))
+    y = yield from driver.io_read(regmap.offset("POS_Y"))
+    return field("POS_X", "STEPS", x), field("POS_Y", "STEPS", y)
+
+
+@pytest.mark.parametrize("seed", [11, 12])
+def test_register_semantics(seed):
+    rng = random.Random(seed)
+    model = RegisterModel()
+    writable = [r for r in regmap.REGISTERS if r.access in ("RW",) and r.name != "CONTROL"]
+    checks = []
+
+    def scenario(driver):
+        for reg in regmap.REGISTERS:
+            if reg.access in ("RW", "W1C") or reg.name == "ID":
+                word = yield from driver.io_read(reg.offset)
+                checks.append((reg.name, "reset", word, reg.reset))
+        for _ in range(60):
+            reg = rng.choice(writable)
+            data = rng.choice([rng.getrandbits(32), rng.randint(0, 300), 0, 0x10001])
+            be = rng.choice([0xF, 0xF, 0x1, 0x3, 0xC, 0x0])
+            yield from driver.io_write(reg.offset, data, be)
+            clamped = model.write(reg.name, data, be)
+            word = yield from driver.io_read(reg.offset)
+            checks.append((reg.name, f"{data:#x}/{be:#x}", word, model.read(reg.name)))
+            status = yield from driver.io_read(regmap.offset("INT_STATUS"))
+            checks.append((reg.name, "CLAMPED", field("INT_STATUS", "CLAMPED", status), int(clamped)))
+            yield from driver.io_write(regmap.offset("INT_STATUS"), status)
+        cleared = yield from driver.io_read(regmap.offset("INT_STATUS"))
+        checks.append(("INT_STATUS", "W1C", cleared, 0))
+
+    run_core(f"regs_semantics_{seed}", scenario, check_pins=False)
+    assert len(checks) > 100
+    for name, what, got, wanted in checks:
+        assert got == wanted, f"{name} {what}: read {got:#x}, model {wanted:#x}"
+
+
+def _motion_scenario(commands, results, setup=None, words=None):
+    def scenario(driver):
+        yield from (setup or setup_motion)(driver)
+        stream = words if words is not None else [w for c in commands for w in command_words(c)]
+        yield from driver.push_all(stream)
+        status = yield from wait_idle(driver)
+        results["status"] = status
+        results["position"] = yield from read_position(driver)
+        results["int_status"] = yield from driver.io_read(regmap.offset("INT_STATUS"))
+    return scenario
+
+
+MOTIONS = {
+    "lines": [LineCommand(12, 11), LineCommand(-7, 3), LineCommand(0, -9), LineCommand(20, 0)],
+    "arc_quarter": [ArcCommand(30, 0, 0, 30)],
+    "arc_crossing_cw": [ArcCommand(5, 14, 14, -5, ccw=False)],
+    "arc_then_line": [ArcCommand(0, 10, -10, 0), LineCommand(3, -4), ArcCommand(8, 6, 6, 8, ccw=True)],
+}
+
+
+@pytest.mark.parametrize("name", sorted(MOTIONS))
+def test_motion_matches_model(name):
+    commands = MOTIONS[name]
+    results = {}
+    log, _ = run_core(f"regs_motion_{name}", _motion_scenario(commands, results))
+    wanted = expected_path(commands)
+    assert log.path() == wanted
+    assert results["position"] == wanted[-1]
+    assert field("STATUS", "ERROR", results["status"]) == 0
+    assert field("INT_STATUS", "DONE", results["int_status"]) == 1
+
+
+def test_fifo_full_retries_nothing_lost():
+    commands = [LineCommand((-1) ** i * (i % 5 + 1), i % 3) for i in range(12)]
+    words = [w for c in commands for w in command_words(c)]
+    results = {}
+
+    def hold_then_run(driver):
+        yield from setup_motion(driver, control=0)
+        accepted = yield from driver.burst(words)
+        results["accepted"] = accepted
+        status = yield from driver.io_read(regmap.offset("STATUS"))
+        results["full_status"] = status
+        yield from driver.io_write(regmap.offset("CONTROL"), 1)
+        yield from driver.push_all(words[accepted:])
+        yield from wait_idle(driver)
+        results["position"] = yield from read_position(driver)
+
+    log, _ = run_core("regs_fifo_full", hold_then_run)
+    # the instruction register holds the first command even while CONTROL.ENABLE is 0
+    assert results["accepted"] == FIFO_DEPTH + len(command_words(commands[0]))
+    assert field("STATUS", "FIFO_FULL", results["full_status"]) == 1
+    assert field("STATUS", "FIFO_LEVEL", results["full_status"]) == FIFO_DEPTH
+    wanted = expected_path(commands)
+    assert log.path() == wanted and results["position"] == wanted[-1]
+
+
+def test_malformed_command_stops_until_cleared():
+    good = command_words(LineCommand(4, 2))
+    bad = [0xF << isa.OPCODE_LSB]
+    results = {}
+
+    def scenario(driver):
+        yield from setup_motion(driver)
+        yield from driver.io_write(regmap.offset("INT_ENABLE"), regmap.field_of("INT_ENABLE", ERROR=1))
+        yield from driver.push_all(good + bad + good)
+        for _ in range(200):
+            status = yield from driver.io_read(regmap.offset("STATUS"))
+            if field("STATUS", "ERROR", status):
+                break
+        results["error"] = field("STATUS", "ERROR", status)
+        for _ in range(50):
+            yield driver.clock.negedge
+        results["held"] = yield from read_position(driver)
+        yield from driver.io_write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", CLEAR_ERROR=1))
+        yield from wait_idle(driver)
+        results["after"] = yield from read_position(driver)
+
+    _, wave = run_core("regs_malformed", scenario)
+    assert results["error"] == isa.ERROR_CODE["BAD_OPCODE"]
+    assert results["held"] == (4, 2)
+    assert results["after"] == (8, 4)
+    assert wave.edges("irq", "1"), "INTA# request never raised"
+
+
+@pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
+def test_direct_pulse_mode(cosim):
+    results = {}
+    period = 7
+
+    def scenario(driver):
+        yield from driver.io_write(regmap.offset("PULSE_PERIOD_X"), period)
+        yield from driver.io_write(regmap.offset("PULSE_PERIOD_Y"), 3)
+        yield from driver.io_write(regmap.offset("CONTROL"), regmap.field_of("CONTROL", ENABLE=1, MODE=1))
+        yield from driver.io_write(regmap.offset("PULSE_COUNT_X"), -5 & 0xFFFFFFFF)
+        yield from driver.io_write(regmap.offset("PULSE_COUNT_Y"), 9)
+        yield from wait_idle(driver)
+        results["position"] = yield from read_position(driver)
+        results["left"] = yield from driver.io_read(regmap.offset("PULSE_COUNT_X"))
+
+    log, _ = run_core(f"regs_direct_{'icarus' if cosim else 'myhdl'}", scenario, cosim=cosim, check_pins=False)
+    x_rises = [r[0] for r in log.rises if r[1]]
+    assert len(x_rises) == 5 and all(not r[3] for r in log.rises if r[1])
+    # both axes share one pulse timer (diagonal steps leave together), so a Y pulse
+    # can shift an X pulse by up to one pulse (2 * width clocks) or a DIR set-up
+    slack = 2 * TIMING["width"] + TIMING["setup"]
+    gaps = [b - a for a, b in zip(x_rises, x_rises[1:])]
+    assert all(abs(gap - period) <= slack for gap in gaps)
+    assert abs(x_rises[-1] - x_rises[0] - 4 * period) <= slack
+    assert sum(1 for r in log.rises if r[2]) == 9
+    assert results["position"] == (-5, 9) and results["left"] == 0
+
+
+def test_soft_reset_mid_motion():
+    results = {}
+
+    def scenario(driver):
+        yield from setup_motion(driver, feed=regmap.RATE_ONE // 4)
+        yield from driver.push_all(command_words(LineCommand(400, 100)) + command_words(LineCommand(5, 5)))
+        for _ in range(150):
+            yield driver.clock.negedge
+        yield from driver.io_write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", SOFT_RESET=1))
+        status = yield from wait_idle(driver, limit=50)
+        results["status"] = status
+        for _ in range(100):
+            yield driver.clock.negedge
+        results["position"] = yield from read_position(driver)
+        yield from driver.push_all(command_words(LineCommand(3, -2)))
+        yield from wait_idle(driver)
+        results["after"] = yield from read_position(driver)
+
+    log, _ = run_core("regs_soft_reset", scenario)
+    assert field("STATUS", "FIFO_EMPTY", results["status"]) == 1
+    assert 0 < results["position"][0] < 400, "the soft reset did not stop the move"
+    assert results["after"] == log.path()[-1]
+    assert results["after"][0] - results["position"][0] == 3
