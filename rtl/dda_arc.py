@@ -12,13 +12,13 @@ give the algorithm.  The hardware has three parts:
 * run: accumulators, magnitudes, radial error term and step counters, all
   updated by additions only, one iteration per enabled clock.
 """
-from myhdl import always_comb, always_seq, block, enum, intbv, modbv, Signal
+from myhdl import Signal, always_comb, always_seq, block, concat, enum, intbv, modbv
 
 from rtl.interfaces import AxisPulses, DdaPort, card_reset
 
 TRADITIONAL, WEIGHTED, IMPROVED, PRECISE = range(4)
 ACC_EXTRA_BITS = 8
-ERROR_EXTRA_BITS = 4
+ERROR_EXTRA_BITS = 6
 MAX_THRESHOLD_EXTRA = 4
 
 
@@ -41,8 +41,8 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         steps         ``AxisPulses``: ``step_x``/``step_y`` one clock per step,
                       ``dir_x``/``dir_y`` valid with them
     Parameters:
-        coord_width   signed coordinate width (>= 4); accumulators are
-                      coord_width + 8 bits, the radial error term + 4
+        coord_width   signed coordinate width (4..31); accumulators are
+                      coord_width + 8 bits, the radial error term + 6
 
     Timing (an arc; a line has a single setup clock)::
 
@@ -58,8 +58,8 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     ``done`` comes with the last step.  ``error`` instead of the run when the
     check rejects the command.
     """
-    if coord_width < 4:
-        raise ValueError(f"coord_width must be at least 4, not {coord_width}")
+    if not 4 <= coord_width <= 31:
+        raise ValueError(f"coord_width must be 4..31, not {coord_width}")
     width = coord_width
     acc_width = width + ACC_EXTRA_BITS
     err_width = width + ERROR_EXTRA_BITS
@@ -77,6 +77,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     ccw = Signal(bool(0))
     xs, ys, xe, ye = (_signed(width) for _ in range(4))
     mag_xs, mag_ys, mag_xe, mag_ye = (_unsigned(width) for _ in range(4))
+    cmd_mag_xs = _unsigned(width)
 
     # setup: squares and root
     mac_op = Signal(modbv(0)[2:])
@@ -93,11 +94,11 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     # check results
     chk_error = Signal(bool(0))
     chk_threshold = _unsigned(thr_width)
-    chk_acc_init = _unsigned(thr_width)
+    chk_acc_init = _signed(acc_width)
     chk_quadrant = _unsigned(2)
     chk_crossings = _unsigned(3)
     chk_first_x, chk_first_y, chk_last_x, chk_last_y = (_unsigned(width) for _ in range(4))
-    chk_radius = _unsigned(width + 1)
+    chk_radius = _unsigned(width)
 
     # run state
     quadrant = Signal(modbv(0)[2:])
@@ -121,6 +122,10 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
 
     @always_comb
     def magnitudes():
+        if cmd.xs < 0:
+            cmd_mag_xs.next = -cmd.xs
+        else:
+            cmd_mag_xs.next = cmd.xs
         if xs < 0:
             mag_xs.next = -xs
         else:
@@ -141,16 +146,15 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     @always_comb
     def check_logic():
         rq = intbv(0)[width + 1:]
-        r_sq = intbv(0)[2 * width + 1:]
-        e_sq = intbv(0)[2 * width + 1:]
-        near = intbv(0)[width + 1:]
-        lim_hi = intbv(0, min=-(1 << (width + 3)), max=1 << (width + 3))
-        lim_lo = intbv(0, min=-(1 << (width + 3)), max=1 << (width + 3))
-        diff = intbv(0, min=-(1 << (2 * width + 2)), max=1 << (2 * width + 2))
+        diff = intbv(0, min=-(1 << (2 * width + 1)), max=1 << (2 * width + 1))
+        lim_hi = intbv(0, min=-(1 << (2 * width + 1)), max=1 << (2 * width + 1))
+        lim_lo = intbv(0, min=-(1 << (2 * width + 1)), max=1 << (2 * width + 1))
         big = intbv(0)[width:]
+        smear = intbv(0)[width + 1:]
         bits = intbv(0)[6:]
-        shift = intbv(0)[7:]
-        thr = intbv(0)[thr_width:]
+        shift = intbv(0)[6:]
+        one = intbv(1)[thr_width:]
+        thr = modbv(0)[thr_width:]
         q_s = intbv(0)[2:]
         q_e = intbv(0)[2:]
         turns = intbv(0)[3:]
@@ -166,43 +170,43 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         bad = False
 
         # radius: the integer whose square is nearest to xs**2 + ys**2
-        if remainder > root:
-            rq[:] = root + 1
+        if remainder > concat(intbv(0)[3:], root):
+            rq[:] = concat(False, root) + 1
         else:
-            rq[:] = root
-        r_sq[:] = square_start
-        e_sq[:] = square_end
-        diff[:] = e_sq.signed() - r_sq.signed()
+            rq[:] = concat(False, root)
+        diff[:] = concat(intbv(0)[2:], square_end).signed() - concat(intbv(0)[2:], square_start).signed()
         if mag_xs > mag_ys:
             big[:] = mag_xs
         else:
             big[:] = mag_ys
-        near[:] = big
-        if r_sq == 0 or (xe == 0 and ye == 0):
+        if square_start == 0 or (xe == 0 and ye == 0):
             bad = True
         if rq >= (1 << (width - 1)):
             bad = True
-        lim_hi[:] = 2 * near + 1
+        # |re - rs| <= 1 is guaranteed by -(2m - 1) <= re**2 - rs**2 <= 2m + 1, m = max(|xs|, |ys|)
+        lim_hi[:] = concat(intbv(0)[width + 1:], big, True).signed()
         lim_lo[:] = 2 - lim_hi
         if diff > lim_hi or diff < lim_lo:
             bad = True
 
-        # threshold of the paper's variants: 2**(n + k), n = bit length if acc_bits is 0
+        # threshold of the paper's variants: 2**(n + k), n = bit length of Rq if acc_bits is 0
+        smear[:] = rq | (rq >> 1)
+        smear[:] = smear | (smear >> 2)
+        smear[:] = smear | (smear >> 4)
+        smear[:] = smear | (smear >> 8)
+        smear[:] = smear | (smear >> 16)
         bits[:] = 0
         for i in range(width + 1):
-            if rq[i]:
-                bits[:] = i + 1
+            if smear[i]:
+                bits[:] = bits + 1
         if acc_bits != 0:
-            bits[:] = acc_bits
-        shift[:] = bits + lambda_shift
+            bits[:] = concat(False, acc_bits)
+        shift[:] = bits + concat(False, lambda_shift)
         if variant != PRECISE and shift > width + MAX_THRESHOLD_EXTRA:
             bad = True
-        thr[:] = 0
-        for i in range(thr_width):
-            if shift == i:
-                thr[i] = 1
+        thr[:] = one << shift
         if variant == PRECISE:
-            thr[:] = rq + 1
+            thr[:] = concat(intbv(0)[thr_width - width - 1:], rq) + 1
 
         # departure quadrant of the start, arrival quadrant of the end
         if ccw:
@@ -242,7 +246,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 q_e[:] = 3
             turn[:] = q_s - q_e
 
-        turns[:] = turn
+        turns[:] = concat(False, turn)
 
         # inward / outward magnitudes (x is inward when quadrant[0] xor ccw)
         if q_s[0] != ccw:
@@ -267,7 +271,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         else:
             if turns == 0:
                 turns[:] = 4
-            if a_e > rq:
+            if concat(False, a_e) > rq:
                 bad = True
             else:
                 first_in[:] = a_s
@@ -276,7 +280,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 last_out[:] = b_e
 
         chk_error.next = bad
-        chk_radius.next = rq
+        chk_radius.next = rq[width:]
         chk_quadrant.next = q_s
         chk_crossings.next = turns
         if q_s[0] != ccw:
@@ -293,7 +297,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             chk_last_y.next = last_in
         chk_threshold.next = thr
         if variant == TRADITIONAL or variant == PRECISE:
-            chk_acc_init.next = thr >> 1
+            chk_acc_init.next = concat(intbv(0)[acc_width - thr_width + 1:], thr[thr_width:1]).signed()
         else:
             chk_acc_init.next = 0
 
@@ -302,19 +306,22 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         x_in = bool(0)
         x_right = bool(0)
         y_up = bool(0)
-        mag_y_new = modbv(0)[width + 1:]
+        mag_y_new = modbv(0)[width:]
         sum_x = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         sum_y = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
-        delta_x = intbv(0, min=-(1 << (width + 2)), max=1 << (width + 2))
-        delta_y = intbv(0, min=-(1 << (width + 2)), max=1 << (width + 2))
-        cand_d = intbv(0, min=-(1 << (err_width + 1)), max=1 << (err_width + 1))
-        cand_x = intbv(0, min=-(1 << (err_width + 1)), max=1 << (err_width + 1))
-        cand_y = intbv(0, min=-(1 << (err_width + 1)), max=1 << (err_width + 1))
-        abs_d = intbv(0)[err_width + 1:]
-        abs_x = intbv(0)[err_width + 1:]
-        abs_y = intbv(0)[err_width + 1:]
-        ahead_x = intbv(0, min=-(1 << (acc_width + 1)), max=1 << (acc_width + 1))
-        ahead_y = intbv(0, min=-(1 << (acc_width + 1)), max=1 << (acc_width + 1))
+        thr_ext = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
+        ahead_x = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
+        ahead_y = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
+        less_x = modbv(0)[acc_width:]
+        less_y = modbv(0)[acc_width:]
+        delta_x = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
+        delta_y = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
+        cand_d = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
+        cand_x = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
+        cand_y = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
+        abs_d = modbv(0)[err_width:]
+        abs_x = modbv(0)[err_width:]
+        abs_y = modbv(0)[err_width:]
         over_x = bool(0)
         over_y = bool(0)
         go_x = bool(0)
@@ -337,25 +344,28 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             delta_y[:] = 1 - 2 * mag_y
 
         # traditional: Y first, X integrates the new |y|
-        sum_y[:] = acc_y + mag_x
+        thr_ext[:] = concat(intbv(0)[acc_width + 1 - thr_width:], threshold).signed()
+        sum_y[:] = concat(acc_y[acc_width - 1], acc_y).signed() + \
+            concat(intbv(0)[acc_width + 1 - width:], mag_x).signed()
         if not sum_y[acc_width] and sum_y[acc_width - 1]:
             sum_y[:] = acc_max
         mag_y_new[:] = mag_y
-        if not is_line and variant == TRADITIONAL and sum_y >= threshold:
+        if not is_line and variant == TRADITIONAL and sum_y >= thr_ext:
             if x_in:
                 mag_y_new[:] = mag_y + 1
             else:
                 mag_y_new[:] = mag_y - 1
-        sum_x[:] = acc_x + mag_y_new
+        sum_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + \
+            concat(intbv(0)[acc_width + 1 - width:], mag_y_new).signed()
         if not sum_x[acc_width] and sum_x[acc_width - 1]:
             sum_x[:] = acc_max
 
         if is_line or variant == TRADITIONAL:
-            over_x = sum_x >= threshold
-            over_y = sum_y >= threshold
+            over_x = sum_x >= thr_ext
+            over_y = sum_y >= thr_ext
         else:
-            over_x = sum_x > threshold
-            over_y = sum_y > threshold
+            over_x = sum_x > thr_ext
+            over_y = sum_y > thr_ext
 
         cand_d[:] = radial_error + delta_x + delta_y
         cand_x[:] = radial_error + delta_x
@@ -379,16 +389,16 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             go_x = over_x and count_x != 0
             go_y = over_y and count_y != 0
         elif variant == IMPROVED:
-            ahead_x[:] = sum_x + mag_y
-            ahead_y[:] = sum_y + mag_x
-            if over_x and not over_y and ahead_y > threshold:
+            ahead_x[:] = sum_x + concat(intbv(0)[acc_width + 1 - width:], mag_y).signed()
+            ahead_y[:] = sum_y + concat(intbv(0)[acc_width + 1 - width:], mag_x).signed()
+            if over_x and not over_y and ahead_y > thr_ext:
                 go_y = True
-            elif over_y and not over_x and ahead_x > threshold:
+            elif over_y and not over_x and ahead_x > thr_ext:
                 go_x = True
         elif variant == PRECISE:
             go_x = False
             go_y = False
-            if sum_x >= threshold or sum_y >= threshold:
+            if sum_x >= thr_ext or sum_y >= thr_ext:
                 if abs_d <= abs_x and abs_d <= abs_y:
                     go_x = True
                     go_y = True
@@ -403,14 +413,14 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             it_acc_x.next = acc_x
             it_acc_y.next = acc_y
         else:
+            less_x[:] = sum_x[acc_width:]
             if go_x:
-                it_acc_x.next = sum_x - threshold
-            else:
-                it_acc_x.next = sum_x
+                less_x[:] = sum_x[acc_width:] - thr_ext[acc_width:]
+            less_y[:] = sum_y[acc_width:]
             if go_y:
-                it_acc_y.next = sum_y - threshold
-            else:
-                it_acc_y.next = sum_y
+                less_y[:] = sum_y[acc_width:] - thr_ext[acc_width:]
+            it_acc_x.next = less_x.signed()
+            it_acc_y.next = less_y.signed()
         it_step_x.next = go_x
         it_step_y.next = go_y
         it_mag_x.next = mag_x
@@ -427,11 +437,11 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 else:
                     it_mag_y.next = mag_y - 1
         if go_x and go_y:
-            it_error.next = cand_d[err_width:]
+            it_error.next = cand_d
         elif go_x:
-            it_error.next = cand_x[err_width:]
+            it_error.next = cand_x
         elif go_y:
-            it_error.next = cand_y[err_width:]
+            it_error.next = cand_y
         else:
             it_error.next = radial_error
 
@@ -465,12 +475,8 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 square_end.next = 0
                 mac_op.next = 0
                 mac_bit.next = 0
-                if cmd.xs < 0:
-                    multiplicand.next = -cmd.xs
-                    multiplier.next = -cmd.xs
-                else:
-                    multiplicand.next = cmd.xs
-                    multiplier.next = cmd.xs
+                multiplicand.next = concat(intbv(0)[width:], cmd_mag_xs)
+                multiplier.next = cmd_mag_xs
                 if cmd.line:
                     state.next = t_state.S_CHECK
                 else:
@@ -485,13 +491,13 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 mac_bit.next = 0
                 mac_op.next = mac_op + 1
                 if mac_op == 0:
-                    multiplicand.next = mag_ys
+                    multiplicand.next = concat(intbv(0)[width:], mag_ys)
                     multiplier.next = mag_ys
                 elif mac_op == 1:
-                    multiplicand.next = mag_xe
+                    multiplicand.next = concat(intbv(0)[width:], mag_xe)
                     multiplier.next = mag_xe
                 else:
-                    multiplicand.next = mag_ye
+                    multiplicand.next = concat(intbv(0)[width:], mag_ye)
                     multiplier.next = mag_ye
                 if mac_op == 3:
                     radicand.next = square_start
@@ -506,14 +512,14 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         elif state == t_state.S_ROOT:
             trial_rem = intbv(0)[width + 3:]
             trial = intbv(0)[width + 3:]
-            trial_rem[:] = (remainder[width + 1:] << 2) | radicand[2 * width:2 * width - 2]
-            trial[:] = (root[width - 1:] << 2) | 1
+            trial_rem[:] = concat(remainder[width + 1:], radicand[2 * width:2 * width - 2])
+            trial[:] = concat(intbv(0)[2:], root[width - 1:], intbv(1)[2:])
             if trial_rem >= trial:
                 remainder.next = trial_rem - trial
-                root.next = (root[width - 1:] << 1) | 1
+                root.next = concat(root[width - 1:], True)
             else:
                 remainder.next = trial_rem
-                root.next = root[width - 1:] << 1
+                root.next = concat(root[width - 1:], False)
             radicand.next = radicand << 2
             if root_bit == width - 1:
                 state.next = t_state.S_CHECK
@@ -528,13 +534,13 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             state.next = t_state.S_RUN
             if is_line:
                 if mag_xe > mag_ye:
-                    threshold.next = mag_xe
-                    acc_x.next = mag_xe >> 1
-                    acc_y.next = mag_xe >> 1
+                    threshold.next = concat(intbv(0)[thr_width - width:], mag_xe)
+                    acc_x.next = concat(intbv(0)[acc_width - width + 1:], mag_xe[width:1]).signed()
+                    acc_y.next = concat(intbv(0)[acc_width - width + 1:], mag_xe[width:1]).signed()
                 else:
-                    threshold.next = mag_ye
-                    acc_x.next = mag_ye >> 1
-                    acc_y.next = mag_ye >> 1
+                    threshold.next = concat(intbv(0)[thr_width - width:], mag_ye)
+                    acc_x.next = concat(intbv(0)[acc_width - width + 1:], mag_ye[width:1]).signed()
+                    acc_y.next = concat(intbv(0)[acc_width - width + 1:], mag_ye[width:1]).signed()
                 mag_x.next = mag_ye
                 mag_y.next = mag_xe
                 count_x.next = mag_xe
@@ -557,8 +563,8 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 count_y.next = chk_first_y
                 last_x.next = chk_last_x
                 last_y.next = chk_last_y
-                radius.next = chk_radius[width:]
-        elif state == t_state.S_RUN:
+                radius.next = chk_radius
+        else:
             if cmd.advance:
                 steps.step_x.next = it_step_x
                 steps.step_y.next = it_step_y

@@ -6,15 +6,16 @@ Two builds, chosen by ``io_registers`` (the top passes the same value to
 - ``False``: plain tri-state buffers.  The core's boundary flip-flops are
   logic-cell flops; any vendor flow infers the I/O buffers.
 - ``True``: iCE40 ``SB_IO`` cells whose input and output registers ARE the
-  core's boundary flip-flops, so PCI set-up and clock-to-output paths never
-  cross the fabric.  AD, PAR, C/BE# and IDSEL are sampled in the I/O cell;
-  AD, PAR, TRDY#, DEVSEL#, STOP# and PERR# leave from the I/O cell's output
+  core's boundary flip-flops, so those PCI set-up and clock-to-output paths
+  never cross the fabric.  AD and IDSEL are sampled in the I/O cell; AD,
+  PAR, TRDY#, DEVSEL#, STOP# and PERR# leave from the I/O cell's output
   register, fed with the value the core wants on the pin after the next
   edge.  Output enables are not registered here: they come straight from
   the core's flip-flops, which have the asynchronous reset that iCE40 I/O
-  registers lack, so RST# still floats the bus at once.  FRAME# and IRDY#
-  are not registered here either: the core also uses them through its fast
-  path.
+  registers lack, so RST# still floats the bus at once.  FRAME#, IRDY#,
+  C/BE# and PAR reach the core unregistered: it needs them in the clock
+  they arrive (fast path; PAR on reads covers the C/BE# of its clock; PERR#
+  two clocks after a data phase needs the PAR of the next clock).
 
 Bus timing is the same in both builds.  SERR# and INTA# are open-drain
 (driven low or released) in both.
@@ -80,13 +81,14 @@ def input_pad(pin, from_pin, *, undriven):
 
 
 @block
-def registered_pad(clock, pin, from_pin, to_pin, enable, *, label):
+def registered_pad(clock, pin, from_pin, to_pin, enable, *, label, input_register=True):
     """iCE40 ``SB_IO`` cells, one per bit of ``pin``, with I/O-cell registers.
 
     ``from_pin`` (None: not read) is the pin sampled at each ``clock`` edge in
-    the input register.  With ``to_pin`` (None: input only) the pin shows,
-    while ``enable``, the value ``to_pin`` had at the last edge (output
-    register).  ``label`` prefixes the cell instance names.
+    the input register (``input_register``; else it follows the pin).  With
+    ``to_pin`` (None: input only) the pin shows, while ``enable``, the value
+    ``to_pin`` had at the last edge (output register).  ``label`` prefixes
+    the cell instance names.
 
         clock     _/~\\_/~\\_/~\\_
         to_pin    --< A >< B >--
@@ -112,7 +114,7 @@ def registered_pad(clock, pin, from_pin, to_pin, enable, *, label):
         to_pin.read = True
         enable.read = True
     if from_pin is not None:
-        @always(clock.posedge)
+        @always(clock.posedge if input_register else pin)
         def input_cell():
             from_pin.next = _line_value(pin, 0)
 
@@ -123,16 +125,18 @@ def registered_pad(clock, pin, from_pin, to_pin, enable, *, label):
     pin.read = True
     clock.read = True
     width = len(pin)
+    registered_input = from_pin is not None and input_register
     registered_pad.verilog_code = "".join(
-        _sb_io(label, index, width, from_pin is not None, to_pin is not None) for index in range(width))
+        _sb_io(label, index, width, from_pin is not None, registered_input, to_pin is not None)
+        for index in range(width))
     return instances
 
 
-def _sb_io(label, index, width, has_input, has_output):
+def _sb_io(label, index, width, has_input, registered_input, has_output):
     """Verilog of one ``SB_IO`` (bit ``index`` of a ``width``-bit pin)."""
     bit = f"[{index}]" if width > 1 else ""
     if has_output:
-        pin_type = PIN_REGISTERED_IO if has_input else PIN_REGISTERED_OUTPUT
+        pin_type = PIN_REGISTERED_IO if registered_input else PIN_REGISTERED_OUTPUT
     else:
         pin_type = PIN_REGISTERED_INPUT
     # Every input of the cell is tied: the DDR and latch inputs are unused.
@@ -165,27 +169,28 @@ def pci_pads(clock, pins, pci, *, io_registers=False):
         clock         _/~\\_/~\\_/~\\_
         pci.ad_out    --< A >-------      (the core's next value)
         pins.ad       -------< A >--      (while pci.ad_oe)
-        pins.cbe      --< C >-------
-        pci.cbe_in    -------< C >--
+        pins.idsel    --< I >-------
+        pci.idsel_in  -------< I >--
     """
-    open_drain = [
+    unregistered = [
         tristate_pad(pins.serr, None, pci.serr_out, pci.serr_oe),
         tristate_pad(pins.inta, None, pci.inta_out, pci.inta_oe),
         input_pad(pins.frame, pci.frame_in, undriven=1),
         input_pad(pins.irdy, pci.irdy_in, undriven=1),
     ]
     if io_registers:
-        return open_drain + [
+        return unregistered + [
             registered_pad(clock, pins.ad, pci.ad_in, pci.ad_out, pci.ad_oe, label="pad_ad"),
-            registered_pad(clock, pins.par, pci.par_in, pci.par_out, pci.par_oe, label="pad_par"),
+            registered_pad(clock, pins.par, pci.par_in, pci.par_out, pci.par_oe, label="pad_par",
+                           input_register=False),
             registered_pad(clock, pins.trdy, None, pci.trdy_out, pci.trdy_oe, label="pad_trdy"),
             registered_pad(clock, pins.devsel, None, pci.devsel_out, pci.devsel_oe, label="pad_devsel"),
             registered_pad(clock, pins.stop, None, pci.stop_out, pci.stop_oe, label="pad_stop"),
             registered_pad(clock, pins.perr, None, pci.perr_out, pci.perr_oe, label="pad_perr"),
-            registered_pad(clock, pins.cbe, pci.cbe_in, None, None, label="pad_cbe"),
+            input_pad(pins.cbe, pci.cbe_in, undriven=0),
             registered_pad(clock, pins.idsel, pci.idsel_in, None, None, label="pad_idsel"),
         ]
-    return open_drain + [
+    return unregistered + [
         tristate_pad(pins.ad, pci.ad_in, pci.ad_out, pci.ad_oe),
         tristate_pad(pins.par, pci.par_in, pci.par_out, pci.par_oe),
         tristate_pad(pins.trdy, None, pci.trdy_out, pci.trdy_oe),

@@ -197,7 +197,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     write_mask = Signal(intbv(0)[32:])
     phase_done = Signal(bool(0))      # a data phase completes at this edge
     holding = Signal(bool(0))         # TRDY# asserted, the master not ready
-    request_addr = Signal(modbv(0)[width:])
+    start_addr = Signal(modbv(0)[width:])  # dword offset the address phase names
+    req_addr_stale = Signal(bool(0))  # req_addr still serves posted data of the last write
     got = Signal(bool(0))             # read data arrives at this edge
     accepted = Signal(bool(0))        # the back end takes a write at this edge
     back_end_retry = Signal(bool(0))
@@ -226,14 +227,17 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     @always_comb
     def parity_check():
         # PAR sampled now covers the AD and C/BE# in the input register.
-        parity = intbv(0)[1:]
-        for i in range(32):
-            parity[0] = parity[0] ^ ad_q[i]
-        for i in range(4):
-            parity[0] = parity[0] ^ cbe_q[i]
+        fold = intbv(0)[32:]
+        fold[:] = ad_q
+        fold[4:] = fold[4:] ^ cbe_q
+        fold[16:] = fold[16:] ^ fold[32:16]
+        fold[8:] = fold[8:] ^ fold[16:8]
+        fold[4:] = fold[4:] ^ fold[8:4]
+        fold[2:] = fold[2:] ^ fold[4:2]
+        fold[1:] = fold[1:] ^ fold[2:1]
         address_phase.next = frame_qq and not frame_q
-        address_parity_error.next = frame_qq and not frame_q and (parity[0] != pci.par_in)
-        data_parity_error.next = write_done_q and (parity[0] != pci.par_in)
+        address_parity_error.next = frame_qq and not frame_q and (fold[0] != pci.par_in)
+        data_parity_error.next = write_done_q and (fold[0] != pci.par_in)
 
     # ------------------------------------------------------------ decoding
     @always_comb
@@ -251,6 +255,15 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         claim.next = state == t_state.S_IDLE and address_phase and (config_hit or io_hit or mem_hit)
         claim_config.next = config_hit
         claim_io.next = io_hit
+
+    @always_comb
+    def start_offset():
+        if claim_config:
+            start_addr.next = ad_q[width + 2:2] & intbv(config_mask)[width:]
+        elif claim_io:
+            start_addr.next = ad_q[width + 2:2] & intbv(io_mask)[width:]
+        else:
+            start_addr.next = ad_q[width + 2:2] & intbv(mem_last)[width:]
 
     @always_comb
     def handshake():
@@ -278,7 +291,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             elif io_byte == 3:
                 bad = not (cbe_q[0] and cbe_q[1] and cbe_q[2])
         fatal.next = hold_state and bad
-        first = first_pending and hold_state and not is_config and not drain and not bad
+        first = (first_pending and hold_state and not is_config and not drain
+                 and not req_addr_stale and not bad)
         prefetch = (state == t_state.S_RWING and is_read and fetching and not b_valid
                     and (trdy_q or not frame_q))
         local.re.next = (first and is_read) or prefetch
@@ -293,12 +307,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         else:
             local.wdata.next = ad_q
             local.be.next = ~cbe_q
-        if first_pending and not drain:
-            local.addr.next = concat(phase_addr, intbv(0)[2:])
-            request_addr.next = phase_addr
-        else:
-            local.addr.next = concat(req_addr, intbv(0)[2:])
-            request_addr.next = req_addr
+        local.addr.next = concat(req_addr, intbv(0)[2:])
 
     @always_comb
     def local_answer():
@@ -459,12 +468,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             fetching.next = not cbe_q[0] and not claim_config
             refused.next = False
             io_byte.next = ad_q[2:0]
-            if claim_config:
-                phase_addr.next = ad_q[width + 2:2] & intbv(config_mask)[width:]
-            elif claim_io:
-                phase_addr.next = ad_q[width + 2:2] & intbv(io_mask)[width:]
-            else:
-                phase_addr.next = ad_q[width + 2:2] & intbv(mem_last)[width:]
+            phase_addr.next = start_addr
+            req_addr_stale.next = draining
         else:
             if phase_done:
                 first_phase.next = False
@@ -472,14 +477,19 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                     phase_addr.next = phase_addr + 1
             if got or accepted:
                 first_pending.next = first_pending and draining
-            if local.re and local.ready and (single or request_addr == mem_last):
+            if local.re and local.ready and (single or req_addr == mem_last):
                 fetching.next = False
             if local.re and local.retry and not first_pending:
                 fetching.next = False
             if back_end_retry and draining and state == t_state.S_RWING:
                 refused.next = True
         if (local.re or local.we) and local.ready:
-            req_addr.next = request_addr + 1
+            req_addr.next = req_addr + 1
+        elif claim and not draining:
+            req_addr.next = start_addr
+        elif req_addr_stale and not draining:
+            req_addr.next = phase_addr
+            req_addr_stale.next = False
         if claim or phase_done or not waiting:
             wait_count.next = 0
         elif not timeout:
@@ -538,10 +548,14 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     @always_seq(clock.posedge, reset=reset)
     def read_buffer():
         if not holding:
-            parity = intbv(0)[1:]
-            for i in range(32):
-                parity[0] = parity[0] ^ read_source[i]
-            ad_parity.next = parity[0]
+            fold = intbv(0)[32:]
+            fold[:] = read_source
+            fold[16:] = fold[16:] ^ fold[32:16]
+            fold[8:] = fold[8:] ^ fold[16:8]
+            fold[4:] = fold[4:] ^ fold[8:4]
+            fold[2:] = fold[2:] ^ fold[4:2]
+            fold[1:] = fold[1:] ^ fold[2:1]
+            ad_parity.next = fold[0]
         in_read = is_read and (state == t_state.S_MEM_HOLD or state == t_state.S_IO_HOLD
                                or state == t_state.S_READ_HOLD or state == t_state.S_RWING)
         b_valid.next = in_read and (b_valid or got) and holding

@@ -89,7 +89,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
                               strobes[spec.name], clamps[i], clamps[i + 1], reads[i], reads[i + 1],
                               spec=spec))
     units.append(sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, core_clear,
-                           clear_error, dda, seq_load, seq_count[0], seq_count[1], pulse_busy,
+                           clear_error, dda, seq_load, seq_count[0], seq_count[1], pulse_busy, out_active,
                            set_strobe, set_index, set_value, mark_strobe, mark_tag, error_code,
                            seq_busy, motion_run, coord_width=coord_width,
                            set_indices=tuple(regmap.SET_TARGETS)))

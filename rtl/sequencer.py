@@ -27,7 +27,7 @@ def _field(op_name, field_name):
 
 @block
 def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clear_error,
-              dda, pulse_load, pulse_count_x, pulse_count_y, pulse_busy,
+              dda, pulse_load, pulse_count_x, pulse_count_y, pulse_busy, outputs_busy,
               set_strobe, set_index, set_value, mark_strobe, mark_tag,
               error_code, busy, motion_run, *, coord_width=24, set_indices=(0,)):
     """Fetch, check and execute the FIFO's commands (``docs/instructions.md``).
@@ -38,7 +38,8 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
     one reports ``done``.  Execute: LINE/ARC drive ``dda`` (a one-clock
     ``start`` with the operands) and wait for ``done``; PULSE loads both
     direct pulse generators (``pulse_load``, ``pulse_count_*``) and waits
-    while ``pulse_busy``; DWELL counts clocks; SET gives a ``set_strobe``
+    while ``pulse_busy``; DWELL counts clocks once the pulse outputs are
+    quiet (``outputs_busy`` low: the last step has left the pins); SET gives a ``set_strobe``
     with ``set_index``/``set_value``; MARK a ``mark_strobe`` with ``mark_tag``.
     A malformed command, or an arc the DDA rejects, sets ``error_code`` and
     nothing more executes until ``clear_error``.  ``enable`` low holds the
@@ -194,7 +195,7 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
         elif state == seq_t.S_PULSE:
             finishing.next = not pulse_busy
         elif state == seq_t.S_DWELL:
-            finishing.next = dwell_left <= 1
+            finishing.next = dwell_left <= 1 and not outputs_busy
         else:
             finishing.next = False
 
@@ -259,7 +260,7 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
                     mark_tag.next = header[tag_msb:tag_lsb]
         elif finishing:
             state.next = seq_t.S_IDLE
-        elif state == seq_t.S_DWELL:
+        elif state == seq_t.S_DWELL and not outputs_busy and dwell_left != 0:
             dwell_left.next = dwell_left - 1
 
     @always_comb
@@ -281,6 +282,7 @@ def sequencer_ports(coord_width=24):
                 clear=Signal(bool(0)), clear_error=Signal(bool(0)), dda=DdaPort(coord_width),
                 pulse_load=Signal(bool(0)), pulse_count_x=Signal(intbv(0, **count)),
                 pulse_count_y=Signal(intbv(0, **count)), pulse_busy=Signal(bool(0)),
+                outputs_busy=Signal(bool(0)),
                 set_strobe=Signal(bool(0)), set_index=Signal(intbv(0)[CODE_BITS:]),
                 set_value=Signal(intbv(0)[32:]), mark_strobe=Signal(bool(0)),
                 mark_tag=Signal(intbv(0)[16:]), error_code=Signal(intbv(0)[ERROR_BITS:]),

@@ -1,14 +1,23 @@
 """Bench pieces shared by the card benches: clock, pin capture, path rebuild, pin model check."""
 from dataclasses import dataclass, field
 
-from myhdl import always, block, delay, instance, now
+from myhdl import StopSimulation, always, block, delay, instance, now
 
 from rtl import instructions as isa
 from rtl import registers as regmap
+from rtl.card_core import card_core, card_core_ports
 from sim.card_model import PulseOutModel
+from sim.cosim import convert_and_cosimulate
+from sim.local_bus_driver import LocalBusDriver
+from sim.waves import Waveform, run_traced, write_gtkw
 from sim.dda_model import ArcCommand, LineCommand, iterate
 
 HALF_PERIOD = 5
+FIFO_DEPTH = 16
+TIMING = dict(width=1, setup=1, hold=1)  # the reset values of STEP_WIDTH, DIR_SETUP, DIR_HOLD
+GROUPS = {"bus": ["local_we", "local_re", "local_space", "local_addr", "local_be", "local_ready",
+                  "local_retry", "local_rdata"],
+          "pins": ["pins_step_x", "pins_dir_x", "pins_step_y", "pins_dir_y", "irq"]}
 
 
 @dataclass
@@ -90,6 +99,44 @@ def pin_model_check(clock, reset, pins, regs_block, timing, failures):
                 failures.extend(differences())
 
     return check
+
+
+@block
+def core_bench(ports, scenario, log, failures, cosim, check_pins, fifo_depth):
+    """``card_core`` (MyHDL or Icarus) on the back-end bus driver, pins captured."""
+    clock, reset = ports["clock"], ports["reset"]
+    if cosim:
+        core = convert_and_cosimulate(card_core, "card_core", ports, fifo_depth=fifo_depth)
+        parts = [core, clock_and_pins(clock, ports["pins"], log)]
+    else:
+        core = card_core(**ports, fifo_depth=fifo_depth)
+        parts = [core, clock_and_pins(clock, ports["pins"], log)]
+        if check_pins:
+            parts.append(pin_model_check(clock, reset, ports["pins"], core.subs[1], TIMING, failures))
+    driver = LocalBusDriver(clock, ports["local"])
+
+    @instance
+    def run():
+        reset.next = 0
+        yield delay(1)  # a delay in the body: MyHDL then allows every kind of wait in the scenario
+        yield clock.negedge
+        yield clock.negedge
+        reset.next = 1
+        yield from scenario(driver)
+        raise StopSimulation
+
+    return parts, run
+
+
+def run_core(name, scenario, cosim=False, check_pins=True, fifo_depth=FIFO_DEPTH):
+    """Run ``scenario(driver)`` (a generator) on the core; (pin log, waveform)."""
+    ports = card_core_ports(fifo_depth=fifo_depth)
+    log, failures = PinLog(), []
+    vcd = run_traced(core_bench(ports, scenario, log, failures, cosim, check_pins, fifo_depth), name)
+    assert not failures, failures[0]
+    if not cosim:
+        write_gtkw(vcd, GROUPS)
+    return log, Waveform(vcd)
 
 
 def expected_path(commands, coord_width=24):

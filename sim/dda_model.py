@@ -47,7 +47,7 @@ VARIANT_NAMES = {TRADITIONAL: "traditional", WEIGHTED: "weighted",
                  IMPROVED: "improved", PRECISE: "precise"}
 
 ACC_EXTRA_BITS = 8     # accumulator width beyond coord_width
-ERROR_EXTRA_BITS = 4   # radial error term width beyond coord_width
+ERROR_EXTRA_BITS = 6   # radial error term width beyond coord_width
 MAX_THRESHOLD_EXTRA = 4  # n + k may reach coord_width + this
 
 
@@ -303,10 +303,10 @@ class ArcIterator:
 
     def _precise_choice(self, delta_x, delta_y):
         """X, Y or diagonal, whichever ends closest to the circle (ties: D, X, Y)."""
-        error = self.error_term
-        candidates = ((abs(error + delta_x + delta_y), True, True),
-                      (abs(error + delta_x), True, False),
-                      (abs(error + delta_y), False, True))
+        error, width = self.error_term, self.error_width
+        candidates = ((abs(wrap(error + delta_x + delta_y, width)), True, True),
+                      (abs(wrap(error + delta_x, width)), True, False),
+                      (abs(wrap(error + delta_y, width)), False, True))
         best = min(candidates, key=lambda c: c[0])
         return best[1], best[2]
 

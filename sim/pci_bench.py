@@ -27,9 +27,9 @@ WAVE_GROUPS = {
     "PCI": ["clock", "reset"] + [f"bus_{line}" for line in (
         "frame", "irdy", "ad_view", "cbe", "par", "devsel", "trdy", "stop", "perr", "serr",
         "inta")],
-    # target_*: the bench's names (co-simulation); pci_*: the MyHDL design's own
-    "target drive": [f"{prefix}_{line}_oe" for prefix in ("target", "pci") for line in (
+    "target drive": [f"target_{line}_oe" for line in (
         "ad", "par", "devsel", "trdy", "stop", "perr", "serr", "inta")] + ["irq"],
+    "target state (MyHDL only: the paper's states)": ["state"],
     "local bus": ["local_space", "local_addr", "local_be", "local_we", "local_re",
                   "local_wdata", "local_rdata", "local_ready", "local_retry"],
 }

@@ -170,6 +170,20 @@ class _Request:
     transaction: BusTransaction = None
 
 
+class _Run:
+    """Progress of one bus transaction in the signal driver."""
+
+    def __init__(self, request, transaction):
+        self.request = request
+        self.transaction = transaction
+        self.write = bool(request.command & 1)
+        self.index = 0          # data phase on the bus
+        self.edges = 0          # rising edges since the address edge
+        self.waiting = 0        # IRDY# wait states left
+        self.stop_seen = False
+        self.final = False      # FRAME# is deasserted: this is the last phase
+
+
 def byte_enables(address, size):
     """Active-high byte enables of a ``size``-byte access at ``address``."""
     if size not in (1, 2, 4):
@@ -292,6 +306,12 @@ class PciHost:
         self.parity_errors_seen.append((now(), transaction.address, index))
         return True
 
+    def next_request(self):
+        """Take the next queued request; its transaction record starts now."""
+        request = self.queue.popleft()
+        self.transaction = BusTransaction(request.command, request.address, len(request.phases))
+        return request
+
     def cut_short(self):
         """The transaction RST# interrupted, marked so."""
         self.transaction.termination = Termination.RESET
@@ -310,96 +330,111 @@ class PciHost:
             raise ValueError(f"IRDY# wait states must be >= 0, not {count}")
         return count
 
-    def _start_phase(self, request, index, write):
-        be, data = request.phases[index]
+    def _start_phase(self, run):
+        """Put data phase ``run.index`` on the bus; return its IRDY# wait states."""
+        be, data = run.request.phases[run.index]
         self._drive("cbe", ~be & 0xF)
-        if write:
+        if run.write:
             self._drive("ad", data)
-            self._bad_par = index in request.bad_data_parity
+            self._bad_par = run.index in run.request.bad_data_parity
         else:
             self._release("ad")
             self._bad_par = False
-        return self._waits_for(request.waits, index)
+        return self._waits_for(run.request.waits, run.index)
+
+    def _assert_irdy(self, run):
+        """IRDY# now; FRAME# goes with it on the last phase or after STOP#."""
+        self._drive("irdy", 0)
+        if run.index == len(run.request.phases) - 1 or run.stop_seen:
+            self._drive("frame", 1)
+            run.final = True
 
     def _run(self, request):
         """Drive one bus transaction (the bus was sampled idle at the last edge)."""
-        write = bool(request.command & 1)
-        count = len(request.phases)
-        transaction = self.transaction = BusTransaction(request.command, request.address, count)
+        run = _Run(request, self.transaction)
         self._drive("frame", 0)
         self._drive("irdy", 1)
         self._drive("ad", request.address)
         self._drive("cbe", request.command)
         self._bad_par = request.bad_address_parity
         yield from self._tick()
-        transaction.start = now()
-        index, edges, claimed, stop_seen, final, abort = 0, 0, False, False, False, None
-        waiting = self._start_phase(request, 0, write)
-
-        def assert_irdy():
-            self._drive("irdy", 0)
-            if index == count - 1 or stop_seen:
-                self._drive("frame", 1)
-                return True
-            return False
-
-        if waiting == 0:
-            final = assert_irdy()
+        run.transaction.start = now()
+        run.waiting = self._start_phase(run)
+        if run.waiting == 0:
+            self._assert_irdy(run)
         while True:
             yield from self._tick()
-            edges += 1
-            irdy_asserted = self._driven_low("irdy")
-            devsel, trdy, stop = (self._sampled(n) for n in ("devsel", "trdy", "stop"))
-            if not devsel and not claimed:
-                claimed = True
-                transaction.devsel_clock = edges
-            if claimed and devsel and not stop:
-                abort = Termination.TARGET_ABORT
-            elif not claimed and edges >= MASTER_ABORT_EDGE:
-                abort = Termination.MASTER_ABORT
+            abort = self._observe(run)
             if abort is not None:
-                if not (final and irdy_asserted):
+                run.transaction.termination = abort
+                if not (run.final and self._driven_low("irdy")):
                     self._drive("irdy", 0)
                     self._drive("frame", 1)
                     yield from self._tick()
                 break
-            if edges > TARGET_TIMEOUT_EDGES:
-                raise HostError(f"no end of data phase {index} within {edges} clocks at {now()}")
-            if irdy_asserted and (not trdy or not stop):
-                if transaction.first_trdy_clock is None:
-                    transaction.first_trdy_clock = edges
-                if not trdy:
-                    self._accept(request, transaction, index, write)
-                    index += 1
-                stop_seen = stop_seen or not stop
-                if final:
-                    break
-                if stop_seen:
-                    if index < count:
-                        self._start_phase(request, index, write)
-                    final = assert_irdy()
-                    continue
-                waiting = self._start_phase(request, index, write)
-                if waiting == 0:
-                    final = assert_irdy()
-                else:
-                    self._drive("irdy", 1)
-            elif not irdy_asserted:
-                stop_seen = stop_seen or (claimed and not stop)
-                waiting -= 1
-                if waiting <= 0 or stop_seen:
-                    final = assert_irdy()
-        transaction.termination = abort or self._stop_kind(stop_seen, transaction)
-        yield from self._finish(transaction)
-        return transaction
+            if self._advance(run):
+                run.transaction.termination = self._stop_kind(run.stop_seen, run.transaction)
+                break
+        yield from self._finish(run.transaction)
+        return run.transaction
 
-    def _accept(self, request, transaction, index, write):
-        if write:
-            transaction.data.append(request.phases[index][1])
+    def _observe(self, run):
+        """Record DEVSEL# and TRDY# of this edge; the abort it shows, if any."""
+        run.edges += 1
+        transaction = run.transaction
+        devsel, trdy, stop = (self._sampled(n) for n in ("devsel", "trdy", "stop"))
+        if not devsel and transaction.devsel_clock is None:
+            transaction.devsel_clock = run.edges
+        if not trdy and transaction.first_trdy_clock is None:
+            transaction.first_trdy_clock = run.edges
+        claimed = transaction.devsel_clock is not None
+        if claimed and devsel and not stop:
+            return Termination.TARGET_ABORT
+        if not claimed and run.edges >= MASTER_ABORT_EDGE:
+            return Termination.MASTER_ABORT
+        if run.edges > TARGET_TIMEOUT_EDGES:
+            raise HostError(f"no end of data phase {run.index} within {run.edges} clocks at {now()}")
+        return None
+
+    def _advance(self, run):
+        """Act on this edge's TRDY#/STOP#; True once the last data phase is over."""
+        trdy, stop = self._sampled("trdy"), self._sampled("stop")
+        claimed = run.transaction.devsel_clock is not None
+        if not self._driven_low("irdy"):
+            run.stop_seen = run.stop_seen or (claimed and not stop)
+            run.waiting -= 1
+            if run.waiting <= 0 or run.stop_seen:
+                self._assert_irdy(run)
+            return False
+        if trdy and stop:
+            return False
+        if not trdy:
+            self._accept(run)
+            run.index += 1
+        run.stop_seen = run.stop_seen or not stop
+        if run.final:
+            return True
+        if run.stop_seen:
+            if run.index < len(run.request.phases):
+                self._start_phase(run)
+            self._assert_irdy(run)
+            return False
+        run.waiting = self._start_phase(run)
+        if run.waiting == 0:
+            self._assert_irdy(run)
+        else:
+            self._drive("irdy", 1)
+        return False
+
+    def _accept(self, run):
+        """Data phase ``run.index`` moved: keep its datum, check read parity next edge."""
+        transaction = run.transaction
+        if run.write:
+            transaction.data.append(run.request.phases[run.index][1])
         else:
             ad = int(self.agent.ad_in.val)
             transaction.data.append(ad)
-            self._par_check = (ad, int(self.agent.cbe_out.val), transaction, index)
+            self._par_check = (ad, int(self.agent.cbe_out.val), transaction, run.index)
 
     @staticmethod
     def _stop_kind(stop_seen, transaction):
@@ -613,7 +648,7 @@ def pci_host(clock, reset, host):
             except BusReset:
                 continue
             if host.queue and host._idle:
-                request = host.queue.popleft()
+                request = host.next_request()
                 try:
                     request.transaction = yield from host._run(request)
                 except BusReset:

@@ -10,9 +10,9 @@ import random
 import pytest
 
 from rtl.dda_arc import dda_arc_ports
-from sim.dda_bench import HALF_PERIOD, Record, dda_bench, end_point, random_arc
+from sim.dda_bench import HALF_PERIOD, Record, accepted, dda_bench, end_point, random_arc
 from sim.dda_model import (IMPROVED, PRECISE, TRADITIONAL, WEIGHTED, ArcCommand, LineCommand,
-                           accumulator_width, paper_configuration, setup_clocks)
+                           paper_configuration, setup_clocks)
 from sim.paths import GEN
 from sim.waves import Waveform, run_traced, write_gtkw
 
@@ -54,7 +54,6 @@ def _arc_at(rng, radius, angle, span, ccw, variant):
         command = ArcCommand(round(radius * math.cos(angle)), round(radius * math.sin(angle)),
                              round(radius * math.cos(end)), round(radius * math.sin(end)), ccw,
                              variant, rng.randrange(4) if variant in (WEIGHTED, IMPROVED) else 0)
-        from sim.dda_bench import accepted
         if accepted(command):
             return command
         radius += 0.37
@@ -84,13 +83,13 @@ def quadrant_crossings():
             ArcCommand(0, 30, 30, 0, variant=WEIGHTED, lambda_shift=1)]
 
 
-def run_bench(name, commands, cosim=False, seed=1, advance_rate=0.7):
+def run_bench(name, commands, cosim=False, seed=1, advance_rate=0.7, idle_gap=3, coord_width=24):
     """Run the bench traced; return the record and the VCD path."""
-    ports = dda_arc_ports(coord_width=24)
+    ports = dda_arc_ports(coord_width=coord_width)
     record = Record()
     verilog = [GEN / "dda_arc.v"] if cosim else None
-    bench = dda_bench(ports, commands, record, coord_width=24, verilog=verilog, seed=seed,
-                      advance_rate=advance_rate)
+    bench = dda_bench(ports, commands, record, coord_width=coord_width, verilog=verilog, seed=seed,
+                      advance_rate=advance_rate, idle_gap=idle_gap)
     vcd = run_traced(bench, name)
     wave = Waveform(vcd)
     groups = {g: [s for s in names if _has(wave, s)] for g, names in GROUPS.items()}
@@ -107,13 +106,13 @@ def _has(wave, suffix):
     return True
 
 
-def check_moves(record):
+def check_moves(record, bad=BAD):
     """Independent of the model: accepted moves end on their end point, bad ones raise error."""
     for move in record.moves:
         command = move["command"]
         if isinstance(command, LineCommand):
             assert move["done"] and end_point(move) == (command.dx, command.dy)
-        elif command in BAD:
+        elif command in bad:
             assert move["error"] and not move["steps"]
         else:
             assert move["done"] and not move["error"], command
@@ -137,7 +136,8 @@ BENCHES = {
 
 @pytest.mark.parametrize("name", sorted(BENCHES))
 def test_rtl_equals_model_on_every_clock(name):
-    record, _ = run_bench(f"dda_{name}", BENCHES[name]())
+    # back-to-back commands (start in the clock after done) in one of the benches
+    record, _ = run_bench(f"dda_{name}", BENCHES[name](), idle_gap=0 if name == "lines_and_bad" else 3)
     check_moves(record)
 
 
@@ -148,6 +148,19 @@ def test_generated_verilog_equals_model_on_every_clock(name):
         commands = [c for c in commands if c.variant in (PRECISE, TRADITIONAL)]
     record, _ = run_bench(f"dda_{name}_cosim", commands, cosim=True)
     check_moves(record)
+
+
+NARROW_BAD = [ArcCommand(511, 40, 40, 511), ArcCommand(-512, 0, 0, -512)]
+
+
+def test_narrow_width_up_to_the_largest_radius():
+    """10-bit coordinates: radii 1 .. 511 (the largest), and radii that do not fit."""
+    rng = random.Random(11)
+    commands = [ArcCommand(511, 0, 511, 0, ccw=False), ArcCommand(1, 0, 0, 1), ArcCommand(0, -1, 0, -1)]
+    commands += [random_arc(rng, coord_width=10, radius=rng.uniform(400, 511), span=0.05) for _ in range(3)]
+    commands += [LineCommand(-512, 511)] + NARROW_BAD
+    record, _ = run_bench("dda_narrow", commands, coord_width=10, advance_rate=0.9)
+    check_moves(record, bad=NARROW_BAD)
 
 
 def test_line_pulses_read_back_from_the_vcd():
@@ -176,10 +189,6 @@ def test_arc_setup_time_and_steps_read_back_from_the_vcd():
     assert first_step - first_busy == setup_clocks(24, line=False) + 1
     assert sum(v == "1" for v in step_y) == 8
     assert wave.at("cmd_quadrant", record.clocks * 2 * HALF_PERIOD) == 0
-
-
-def test_accumulator_width_is_sign_and_carry_extended():
-    assert accumulator_width(24) >= 24 + 2
 
 
 @pytest.mark.slow

@@ -4,6 +4,8 @@ These benches test the host's terminations, wait states and parity
 handling without the RTL; the monitor must stay quiet on this legal traffic
 (and report the parity errors the target was told to make).
 """
+import random
+
 import pytest
 
 from sim.pci_bench import CLOCK_PERIOD, PciBench
@@ -182,3 +184,39 @@ def test_helpers_reject_bad_arguments():
         config_address(16, 0)
     with pytest.raises(ValueError):
         config_address(0, 0x42)
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_random_legal_traffic_keeps_the_monitor_quiet(seed):
+    """Random plans on both sides (waits, retry, disconnect, abort): the
+    monitor must accept all of it and the host must report what happened."""
+    rng = random.Random(seed)
+
+    def plan(number):
+        roll = rng.random()
+        return TargetPlan(trdy_waits=[rng.choice([0, 0, 1, 3]) for _ in range(64)],
+                          retry=roll < 0.1, target_abort=0.1 <= roll < 0.15,
+                          disconnect_after=rng.randrange(8) if 0.15 <= roll < 0.35 else None)
+
+    bench, target = bench_with_target(plan, host_options={"irdy_waits": random_waits(seed, 7, 0.3),
+                                                          "max_retries": 100})
+    model = {}
+
+    def scenario(b, results):
+        terminations = set()
+        for _ in range(60):
+            start, length = BASE + 4 * rng.randrange(64), rng.randint(1, 16)
+            values = [rng.getrandbits(32) for _ in range(length)]
+            write = yield from b.host.mem_write(start, values)
+            moved = sum(len(t.data) for t in write.transactions)
+            model.update({start + 4 * i: values[i] for i in range(moved)})
+            read = yield from b.host.mem_read(start, length)
+            moved = sum(len(t.data) for t in read.transactions)
+            assert read.data[:moved] == [model.get(start + 4 * i, 0) for i in range(moved)]
+            terminations.update(t.termination for t in write.transactions + read.transactions)
+        results.append(terminations)
+
+    (terminations,), _ = run(bench, scenario, f"host_random_{seed}")
+    assert terminations == {Termination.NORMAL, Termination.RETRY, Termination.DISCONNECT,
+                            Termination.TARGET_ABORT}
+    assert target.memory == model

@@ -121,8 +121,31 @@ def burst_read_retry():
     return master, target
 
 
+def read_devsel_at(edge):
+    """Single read whose DEVSEL# is sampled ``edge`` edges after the address
+    (TRDY# and AD not before the second: AD needs its turnaround clock)."""
+    master, _ = read_single()
+    data_edge = max(edge, 2)
+    master = master[:3] + [{}] * (data_edge - 2) + master[3:]
+    target = [{}] * edge + [{"devsel": 0, "trdy": 1, "stop": 1}] * (data_edge - edge) + [
+        {"devsel": 0, "trdy": 0, "stop": 1, "ad": X}] + end_target(par(X, 0))
+    return master, target
+
+
+def write_target_abort():
+    """Memory write claimed, then target abort (STOP# with DEVSEL# deasserted)."""
+    master = [{"frame": 0, "irdy": 1, "ad": A, "cbe": WRITE},
+              {"frame": 1, "irdy": 0, "ad": D, "cbe": 0, "par": par(A, WRITE)},
+              {"par": par(D, 0)}, {}] + end_master()
+    target = [{}, {}, {"devsel": 0, "trdy": 1, "stop": 1}, {"devsel": 1, "stop": 0},
+              {"stop": 1}, {"devsel": None, "trdy": None, "stop": None}, {}, {}]
+    return master, target
+
+
 LEGAL = {"read": read_single, "write_wait": write_with_target_wait,
-         "read_master_wait": read_with_master_wait, "retry": burst_read_retry}
+         "read_master_wait": read_with_master_wait, "retry": burst_read_retry,
+         "fast_devsel": lambda: read_devsel_at(1), "slow_devsel": lambda: read_devsel_at(3),
+         "subtractive_devsel": lambda: read_devsel_at(4), "target_abort": write_target_abort}
 
 
 @pytest.mark.parametrize("name", sorted(LEGAL))
@@ -184,6 +207,14 @@ def broken_cases():
         "16 contention": (read_m, with_step(read_t, 0, frame=0), {}),
         17: (read_m, with_step(read_t, 3, devsel=None, trdy=None, stop=None), {}),
         18: ([{}] * 4, [{"devsel": 1}] + [{}] * 3, {"during_reset": True}),
+        "15 DEVSEL# after clock 5": (
+            [{"frame": 0, "irdy": 1, "ad": A, "cbe": READ},
+             {"irdy": 0, "ad": None, "cbe": 0, "par": par(A, READ)}, {"par": None}, {}, {},
+             {"frame": 1}] + end_master(),
+            [{}] * 5 + [{"devsel": 0, "trdy": 1, "stop": 1}] + end_target(), {}),
+        "12 abort without a claim": (write_m, [{}, {}, {"devsel": 1, "stop": 0},
+                                               {"stop": 1}, {"stop": None}, {}], {}),
+        "14 false SERR#": (read_m, with_step(read_t, 3, serr=0), {}),
     }
 
 

@@ -7,64 +7,17 @@ timing from ``PulseOutModel`` (every clock), paths from ``sim.dda_model``.
 import random
 
 import pytest
-from myhdl import StopSimulation, block, delay, instance
-
 from rtl import instructions as isa
 from rtl import registers as regmap
-from rtl.card_core import card_core, card_core_ports
-from sim.card_bench import PinLog, clock_and_pins, command_words, expected_path, pin_model_check
+from sim.card_bench import command_words, expected_path, run_core
 from sim.card_model import RegisterModel
-from sim.cosim import convert_and_cosimulate
 from sim.dda_model import ArcCommand, LineCommand
-from sim.local_bus_driver import LocalBusDriver
-from sim.waves import Waveform, run_traced, write_gtkw
 
-FIFO_DEPTH = 16
-TIMING = dict(width=1, setup=1, hold=1)
-GROUPS = {"bus": ["local_we", "local_re", "local_space", "local_addr", "local_be", "local_ready",
-                  "local_retry", "local_rdata"],
-          "pins": ["pins_step_x", "pins_dir_x", "pins_step_y", "pins_dir_y", "irq"]}
+from sim.card_bench import FIFO_DEPTH, TIMING
 
 
 def field(name, field_name, word):
     return regmap.field_value(name, field_name, word)
-
-
-@block
-def _bench(ports, scenario, log, failures, cosim, check_pins):
-    clock, reset = ports["clock"], ports["reset"]
-    if cosim:
-        core = convert_and_cosimulate(card_core, "card_core", ports, fifo_depth=FIFO_DEPTH)
-        parts = [core, clock_and_pins(clock, ports["pins"], log)]
-    else:
-        core = card_core(**ports, fifo_depth=FIFO_DEPTH)
-        parts = [core, clock_and_pins(clock, ports["pins"], log)]
-        if check_pins:
-            parts.append(pin_model_check(clock, reset, ports["pins"], core.subs[1], TIMING, failures))
-    driver = LocalBusDriver(clock, ports["local"])
-
-    @instance
-    def run():
-        reset.next = 0
-        yield delay(1)  # a delay in the body: MyHDL then allows every kind of wait in the scenario
-        yield clock.negedge
-        yield clock.negedge
-        reset.next = 1
-        yield from scenario(driver)
-        raise StopSimulation
-
-    return parts, run
-
-
-def run_core(name, scenario, cosim=False, check_pins=True):
-    """Run ``scenario(driver)`` (a generator) on the core; (pin log, waveform)."""
-    ports = card_core_ports(fifo_depth=FIFO_DEPTH)
-    log, failures = PinLog(), []
-    vcd = run_traced(_bench(ports, scenario, log, failures, cosim, check_pins), name)
-    assert not failures, failures[0]
-    if not cosim:
-        write_gtkw(vcd, GROUPS)
-    return log, Waveform(vcd)
 
 
 def setup_motion(driver, control=1, feed=regmap.RATE_ONE):
@@ -254,3 +207,37 @@ def test_soft_reset_mid_motion():
     assert 0 < results["position"][0] < 400, "the soft reset did not stop the move"
     assert results["after"] == log.path()[-1]
     assert results["after"][0] - results["position"][0] == 3
+
+
+def test_stream_commands_set_mark_dwell_pulse():
+    tag, dwell = 0xBEEF, 300
+    stream = (isa.encode("SET", 3, INDEX=regmap.register("STEP_WIDTH").set_index)
+              + command_words(LineCommand(4, 0))
+              + isa.encode("DWELL", dwell)
+              + isa.encode("PULSE", 3, -2)
+              + isa.encode("MARK", TAG=tag)
+              + isa.encode("SET", 999, INDEX=regmap.register("DIR_SETUP").set_index))
+    results = {}
+
+    def scenario(driver):
+        yield from driver.io_write(regmap.offset("LOW_WATER"), 4)
+        yield from setup_motion(driver)
+        yield from driver.push_all(stream)
+        yield from wait_idle(driver)
+        for name in ("STEP_WIDTH", "DIR_SETUP", "MARK_TAG", "INT_STATUS"):
+            results[name] = yield from driver.io_read(regmap.offset(name))
+        results["position"] = yield from read_position(driver)
+
+    log, wave = run_core("regs_stream", scenario, check_pins=False)
+    assert results["STEP_WIDTH"] == 3 and results["MARK_TAG"] == tag
+    assert results["DIR_SETUP"] == 255, "SET is clamped like a bus write"
+    events = results["INT_STATUS"]
+    for name in ("MARK", "CLAMPED", "LOW_WATER", "DONE"):
+        assert field("INT_STATUS", name, events) == 1, name
+    assert results["position"] == (4 + 3, -2) == log.path()[-1]
+    x_rises = [r[0] for r in log.rises if r[1]]
+    assert dwell < x_rises[4] - x_rises[3] < dwell + 20, "DWELL did not wait its clocks after the pins"
+    highs = [t for t, v in zip(*wave.changes[wave.full_name("pins_step_x")]) if v == "1"]
+    lows = [t for t, v in zip(*wave.changes[wave.full_name("pins_step_x")]) if v == "0"]
+    widths = {(low - high) // 10 for high, low in zip(highs, lows[1:] if lows[0] < highs[0] else lows)}
+    assert widths == {3}, widths

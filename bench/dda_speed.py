@@ -1,0 +1,98 @@
+"""Simulation speed of the DDA interpolator: ``python bench/dda_speed.py [--radius R]``.
+
+Runs one precise quarter arc (R, 0) -> (0, R) with ``advance`` always high
+and prints clocks per second of wall time for
+
+* the MyHDL block in MyHDL's simulator,
+* ``gen/dda_arc.v`` in Icarus through MyHDL co-simulation,
+
+each once with a bare driver (start, advance, wait for done) and once inside
+the test bench that also runs the golden model and compares every clock.
+Elaboration (and the Icarus compile) is not counted; the machine's other load
+is, so run it on a quiet machine.
+"""
+import argparse
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+if str(ROOT) not in sys.path:
+    sys.path.insert(0, str(ROOT))
+
+from myhdl import StopSimulation, always, block, delay, instance  # noqa: E402
+
+from rtl.dda_arc import dda_arc, dda_arc_ports  # noqa: E402
+from sim.cosim import cosimulate  # noqa: E402
+from sim.dda_bench import Record, dda_bench  # noqa: E402
+from sim.dda_model import ArcCommand  # noqa: E402
+from sim.paths import GEN  # noqa: E402
+
+
+@block
+def bare_driver(ports, command, counter, verilog):
+    """Start ``command``, keep ``advance`` high, stop at ``done``; count clocks."""
+    clock, reset, cmd = ports["clock"], ports["reset"], ports["cmd"]
+    device = dda_arc(**ports) if verilog is None else cosimulate("dda_arc", ports, verilog)
+
+    @always(delay(5))
+    def clock_driver():
+        clock.next = not clock
+
+    @instance
+    def stimulus():
+        reset.next = reset.active
+        yield clock.negedge
+        reset.next = not reset.active
+        cmd.xs.next, cmd.ys.next, cmd.xe.next, cmd.ye.next = (command.xs, command.ys,
+                                                                command.xe, command.ye)
+        cmd.start.next = True
+        cmd.advance.next = True
+        yield clock.negedge
+        cmd.start.next = False
+        while not cmd.done:
+            yield clock.negedge
+            counter.append(1)
+        raise StopSimulation()
+
+    return device, clock_driver, stimulus
+
+
+def measure(command, verilog, checked):
+    ports = dda_arc_ports()
+    if checked:
+        record = Record()
+        bench = dda_bench(ports, [command], record, verilog=verilog, advance_rate=1.0, idle_gap=0)
+    else:
+        counter = []
+        bench = bare_driver(ports, command, counter, verilog)
+    started = time.perf_counter()
+    try:
+        bench.run_sim(quiet=1)
+    finally:
+        if bench.sim is not None and not bench.sim._finished:
+            bench.quit_sim()
+    elapsed = time.perf_counter() - started
+    clocks = record.clocks if checked else len(counter)
+    return clocks, elapsed
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python bench/dda_speed.py", description=__doc__.split("\n")[0])
+    parser.add_argument("--radius", type=int, default=2000, help="arc radius in steps (default 2000)")
+    args = parser.parse_args(argv)
+    if not 1 <= args.radius < 1 << 23:
+        parser.error("radius must be 1 .. 2**23 - 1")
+    command = ArcCommand(args.radius, 0, 0, args.radius)
+    print(f"precise quarter arc, R = {args.radius}, advance always high")
+    print(f"{'simulator':<34} {'clocks':>8} {'seconds':>8} {'clocks/s':>10}")
+    for label, verilog in (("MyHDL", None), ("Icarus co-simulation", [GEN / "dda_arc.v"])):
+        for checked in (False, True):
+            clocks, elapsed = measure(command, verilog, checked)
+            name = f"{label}{' + model check' if checked else ''}"
+            print(f"{name:<34} {clocks:>8} {elapsed:8.2f} {clocks / elapsed:10.0f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
