@@ -341,6 +341,7 @@ def pin_timing(sdf, io_cells):
     nextpnr's own I/O buffers (``<pin>$sb_io``) are plain input/output cells.
     """
     graph = TimingGraph(Path(sdf).read_text())
+    sys.setrecursionlimit(max(sys.getrecursionlimit(), 20000))  # long carry chains
     cells = dict(io_cells)
     for instance, kind in graph.cell_type.items():
         if kind == "SB_IO" and instance.endswith("$sb_io") and instance not in cells:
@@ -520,13 +521,16 @@ def main(argv=None):
     units = args.units or available_units(args.gen)
     if not units:
         parser.error(f"no Verilog in {args.gen}: run `python -m rtl.top --convert` first")
+    with_pins = False
     for unit in units:
         try:
             figures = synthesize(unit, gen_dir=args.gen, freq=args.freq, seed=args.seed, timeout=args.timeout)
         except SynthError as error:
             parser.exit(1, f"{parser.prog}: error: {error}\n")
-        print(format_figures(figures, args.freq))
-    print(format_pad_figures())
+        print(format_figures(figures, args.freq), flush=True)
+        with_pins = with_pins or bool(figures["pins"])
+    if with_pins:
+        print(format_pad_figures())
     return 0
 
 

@@ -9,13 +9,13 @@ from rtl.pci_slave import local_addr_width, pci_slave
 MEM_BAR_BITS = 12  # 4 KiB FIFO window: a host burst of up to 1024 words
 
 
-def slave_params(**ids):
+def slave_params(**slave):
     """``pci_slave`` parameters of the card: the BAR sizes follow the register table."""
-    return dict(ids, io_bar_bits=regmap.IO_BAR_BITS, mem_bar_bits=MEM_BAR_BITS)
+    return dict(slave, io_bar_bits=regmap.IO_BAR_BITS, mem_bar_bits=MEM_BAR_BITS)
 
 
 @block
-def card(clock, reset, pci, pins, *, fifo_depth=512, coord_width=24, **ids):
+def card(clock, reset, pci, pins, *, fifo_depth=512, coord_width=24, **slave):
     """The paper's figure 1 in the FPGA, PCI lines still split in / out / enable.
 
     Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci``
@@ -28,7 +28,7 @@ def card(clock, reset, pci, pins, *, fifo_depth=512, coord_width=24, **ids):
                     ^                       |
                     +---------- irq --------+
     """
-    params = slave_params(**ids)
+    params = slave_params(**slave)
     local = LocalBus(local_addr_width(params["io_bar_bits"], params["mem_bar_bits"]))
     irq = Signal(bool(0))
     target = pci_slave(clock, reset, pci, local, irq, **params)
@@ -36,6 +36,6 @@ def card(clock, reset, pci, pins, *, fifo_depth=512, coord_width=24, **ids):
     return target, core
 
 
-def card_ports(fifo_depth=512, coord_width=24, **ids):
+def card_ports(fifo_depth=512, coord_width=24, **slave):
     """Fresh ports of ``card`` for conversion and benches."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), pci=PciBus(), pins=MotorPins())

@@ -4,8 +4,9 @@ The golden model is ``sim/dda_model.py``; its docstring and ``docs/dda.md``
 give the algorithm.  The hardware has three parts:
 
 * setup (arcs only): a shift-add unit squares |xs|, |ys|, |xe|, |ye| (one
-  bit per clock, 4 * coord_width clocks) and a restoring square root takes
-  the start radius (coord_width clocks);
+  bit per clock, 4 * coord_width clocks), a restoring square root takes the
+  start radius (coord_width clocks, while the end point's radius is checked)
+  and one clock rounds it;
 * check (one clock): validation, quadrants, the axis-crossing count and the
   per-axis step counts of the first and last quadrant pieces, the
   accumulator threshold;
@@ -52,7 +53,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         advance  ____________ ... ______/~~~~~~~~~~~\\___ ... ~~~~~~~~
         step_x   ____________ ... __________/~~~\\___/~~~ ... ________
         done     ____________ ... ___________________________/~~~\\___
-                      |<- 5*coord_width+1 ->|
+                      |<- 5*coord_width+2 ->|
 
     ``step_*`` follows the clock edge of the iteration that made the step;
     ``done`` comes with the last step.  ``error`` instead of the run when the
@@ -66,7 +67,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     thr_width = width + MAX_THRESHOLD_EXTRA + 1
     acc_max = (1 << (acc_width - 1)) - 1
 
-    t_state = enum("S_IDLE", "S_MAC", "S_ROOT", "S_CHECK", "S_RUN")
+    t_state = enum("S_IDLE", "S_MAC", "S_ROOT", "S_ROUND", "S_CHECK", "S_RUN")
     state = Signal(t_state.S_IDLE)
 
     # latched command
@@ -90,6 +91,10 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     remainder = _unsigned(width + 3)
     root = _unsigned(width)
     root_bit = Signal(intbv(0, min=0, max=width))
+    radius_q = _unsigned(width + 1)
+    end_gap = _signed(2 * width + 2)
+    end_limit = _signed(2 * width + 2)
+    off_circle = Signal(bool(0))
 
     # check results
     chk_error = Signal(bool(0))
@@ -99,12 +104,17 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     chk_crossings = _unsigned(3)
     chk_first_x, chk_first_y, chk_last_x, chk_last_y = (_unsigned(width) for _ in range(4))
     chk_radius = _unsigned(width)
+    chk_delta_x = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
+    chk_delta_y = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
 
     # run state
     quadrant = Signal(modbv(0)[2:])
     mag_x, mag_y = _unsigned(width), _unsigned(width)
     acc_x, acc_y = _signed(acc_width), _signed(acc_width)
     radial_error = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
+    # change of x**2 (y**2) on the next step of x (y): 1 - 2|x| inward, 1 + 2|x| outward
+    delta_x = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
+    delta_y = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
     count_x, count_y = _unsigned(width), _unsigned(width)
     crossings = _unsigned(3)
     threshold = _unsigned(thr_width)
@@ -146,13 +156,9 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     @always_comb
     def check_logic():
         rq = intbv(0)[width + 1:]
-        diff = intbv(0, min=-(1 << (2 * width + 1)), max=1 << (2 * width + 1))
-        lim_hi = intbv(0, min=-(1 << (2 * width + 1)), max=1 << (2 * width + 1))
-        lim_lo = intbv(0, min=-(1 << (2 * width + 1)), max=1 << (2 * width + 1))
-        big = intbv(0)[width:]
         smear = intbv(0)[width + 1:]
-        bits = intbv(0)[6:]
-        shift = intbv(0)[6:]
+        top = intbv(0)[width + 1:]
+        base = modbv(0)[thr_width:]
         one = intbv(1)[thr_width:]
         thr = modbv(0)[thr_width:]
         q_s = intbv(0)[2:]
@@ -167,44 +173,34 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         first_out = modbv(0)[width:]
         last_in = modbv(0)[width:]
         last_out = modbv(0)[width:]
+        out_x = intbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
+        out_y = intbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
         bad = False
 
-        # radius: the integer whose square is nearest to xs**2 + ys**2
-        if remainder > concat(intbv(0)[3:], root):
-            rq[:] = concat(False, root) + 1
-        else:
-            rq[:] = concat(False, root)
-        diff[:] = concat(intbv(0)[2:], square_end).signed() - concat(intbv(0)[2:], square_start).signed()
-        if mag_xs > mag_ys:
-            big[:] = mag_xs
-        else:
-            big[:] = mag_ys
+        rq[:] = radius_q
         if square_start == 0 or (xe == 0 and ye == 0):
             bad = True
         if rq >= (1 << (width - 1)):
             bad = True
-        # |re - rs| <= 1 is guaranteed by -(2m - 1) <= re**2 - rs**2 <= 2m + 1, m = max(|xs|, |ys|)
-        lim_hi[:] = concat(intbv(0)[width + 1:], big, True).signed()
-        lim_lo[:] = 2 - lim_hi
-        if diff > lim_hi or diff < lim_lo:
+        if off_circle:
             bad = True
 
-        # threshold of the paper's variants: 2**(n + k), n = bit length of Rq if acc_bits is 0
+        # threshold of the paper's variants: 2**(n + k); n = acc_bits, or if that is 0
+        # the bit length of Rq (left-shift normalisation): 2**n = twice the top bit of Rq
         smear[:] = rq | (rq >> 1)
         smear[:] = smear | (smear >> 2)
         smear[:] = smear | (smear >> 4)
         smear[:] = smear | (smear >> 8)
         smear[:] = smear | (smear >> 16)
-        bits[:] = 0
-        for i in range(width + 1):
-            if smear[i]:
-                bits[:] = bits + 1
+        top[:] = smear ^ (smear >> 1)
         if acc_bits != 0:
-            bits[:] = concat(False, acc_bits)
-        shift[:] = bits + concat(False, lambda_shift)
-        if variant != PRECISE and shift > width + MAX_THRESHOLD_EXTRA:
+            base[:] = one << acc_bits
+        else:
+            base[:] = concat(intbv(0)[thr_width - width - 2:], top, False)
+        thr[:] = base << lambda_shift
+        # a one-hot threshold shifted out of its thr_width bits: n + k > coord_width + 4
+        if variant != PRECISE and thr == 0:
             bad = True
-        thr[:] = one << shift
         if variant == PRECISE:
             thr[:] = concat(intbv(0)[thr_width - width - 1:], rq) + 1
 
@@ -296,6 +292,15 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             chk_last_x.next = last_out
             chk_last_y.next = last_in
         chk_threshold.next = thr
+        # 1 + 2|x| outward, 1 - 2|x| = 2 - (1 + 2|x|) inward
+        out_x[:] = concat(intbv(0)[err_width - width - 1:], mag_xs, True).signed()
+        out_y[:] = concat(intbv(0)[err_width - width - 1:], mag_ys, True).signed()
+        if q_s[0] != ccw:
+            chk_delta_x.next = 2 - out_x
+            chk_delta_y.next = out_y
+        else:
+            chk_delta_x.next = out_x
+            chk_delta_y.next = 2 - out_y
         if variant == TRADITIONAL or variant == PRECISE:
             chk_acc_init.next = concat(intbv(0)[acc_width - thr_width + 1:], thr[thr_width:1]).signed()
         else:
@@ -306,22 +311,28 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         x_in = bool(0)
         x_right = bool(0)
         y_up = bool(0)
-        mag_y_new = modbv(0)[width:]
+        to_mag = intbv(0)[acc_width + 1 - width:]
         sum_x = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
+        sum_x_up = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
+        sum_x_down = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         sum_y = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         thr_ext = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         ahead_x = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         ahead_y = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         less_x = modbv(0)[acc_width:]
         less_y = modbv(0)[acc_width:]
-        delta_x = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
-        delta_y = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
+        mag_y_up = modbv(0)[width:]
+        mag_y_down = modbv(0)[width:]
         cand_d = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
         cand_x = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
         cand_y = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
-        abs_d = modbv(0)[err_width:]
-        abs_x = modbv(0)[err_width:]
-        abs_y = modbv(0)[err_width:]
+        both_dx = intbv(0, min=-(1 << err_width), max=1 << err_width)
+        both_dy = intbv(0, min=-(1 << err_width), max=1 << err_width)
+        both_xy = intbv(0, min=-(1 << err_width), max=1 << err_width)
+        gap_xy = intbv(0, min=-(1 << err_width), max=1 << err_width)
+        d_le_x = bool(0)
+        d_le_y = bool(0)
+        x_le_y = bool(0)
         over_x = bool(0)
         over_y = bool(0)
         go_x = bool(0)
@@ -336,30 +347,23 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         else:
             it_dir_x.next = x_right != x_in
             it_dir_y.next = y_up == x_in
-        if x_in:
-            delta_x[:] = 1 - 2 * mag_x
-            delta_y[:] = 1 + 2 * mag_y
-        else:
-            delta_x[:] = 1 + 2 * mag_x
-            delta_y[:] = 1 - 2 * mag_y
 
-        # traditional: Y first, X integrates the new |y|
+        # accumulators; the compares use the unsaturated sums (T is far below the
+        # saturation value, so the result is the same) to keep the carry chains short
+        to_mag[:] = 0
         thr_ext[:] = concat(intbv(0)[acc_width + 1 - thr_width:], threshold).signed()
-        sum_y[:] = concat(acc_y[acc_width - 1], acc_y).signed() + \
-            concat(intbv(0)[acc_width + 1 - width:], mag_x).signed()
-        if not sum_y[acc_width] and sum_y[acc_width - 1]:
-            sum_y[:] = acc_max
-        mag_y_new[:] = mag_y
+        sum_y[:] = concat(acc_y[acc_width - 1], acc_y).signed() + concat(to_mag, mag_x).signed()
+        mag_y_up[:] = mag_y + 1
+        mag_y_down[:] = mag_y - 1
+        sum_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y).signed()
+        sum_x_up[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y_up).signed()
+        sum_x_down[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y_down).signed()
+        # traditional: Y first, X integrates the new |y| (all three sums formed in parallel)
         if not is_line and variant == TRADITIONAL and sum_y >= thr_ext:
             if x_in:
-                mag_y_new[:] = mag_y + 1
+                sum_x[:] = sum_x_up
             else:
-                mag_y_new[:] = mag_y - 1
-        sum_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + \
-            concat(intbv(0)[acc_width + 1 - width:], mag_y_new).signed()
-        if not sum_x[acc_width] and sum_x[acc_width - 1]:
-            sum_x[:] = acc_max
-
+                sum_x[:] = sum_x_down
         if is_line or variant == TRADITIONAL:
             over_x = sum_x >= thr_ext
             over_y = sum_y >= thr_ext
@@ -367,21 +371,17 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             over_x = sum_x > thr_ext
             over_y = sum_y > thr_ext
 
-        cand_d[:] = radial_error + delta_x + delta_y
+        # precise: |a| <= |b| exactly when (a - b) and (a + b) differ in sign or one is 0
         cand_x[:] = radial_error + delta_x
         cand_y[:] = radial_error + delta_y
-        if cand_d < 0:
-            abs_d[:] = -cand_d
-        else:
-            abs_d[:] = cand_d
-        if cand_x < 0:
-            abs_x[:] = -cand_x
-        else:
-            abs_x[:] = cand_x
-        if cand_y < 0:
-            abs_y[:] = -cand_y
-        else:
-            abs_y[:] = cand_y
+        cand_d[:] = cand_x + delta_y
+        both_dx[:] = concat(cand_x[err_width - 1], cand_x).signed() + concat(cand_d[err_width - 1], cand_d).signed()
+        both_dy[:] = concat(cand_y[err_width - 1], cand_y).signed() + concat(cand_d[err_width - 1], cand_d).signed()
+        both_xy[:] = concat(cand_x[err_width - 1], cand_x).signed() + concat(cand_y[err_width - 1], cand_y).signed()
+        gap_xy[:] = concat(delta_x[err_width - 1], delta_x).signed() - concat(delta_y[err_width - 1], delta_y).signed()
+        d_le_x = delta_y == 0 or both_dx == 0 or delta_y[err_width - 1] != both_dx[err_width]
+        d_le_y = delta_x == 0 or both_dy == 0 or delta_x[err_width - 1] != both_dy[err_width]
+        x_le_y = gap_xy == 0 or both_xy == 0 or gap_xy[err_width] != both_xy[err_width]
 
         go_x = over_x
         go_y = over_y
@@ -389,8 +389,8 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             go_x = over_x and count_x != 0
             go_y = over_y and count_y != 0
         elif variant == IMPROVED:
-            ahead_x[:] = sum_x + concat(intbv(0)[acc_width + 1 - width:], mag_y).signed()
-            ahead_y[:] = sum_y + concat(intbv(0)[acc_width + 1 - width:], mag_x).signed()
+            ahead_x[:] = sum_x + concat(to_mag, mag_y).signed()
+            ahead_y[:] = sum_y + concat(to_mag, mag_x).signed()
             if over_x and not over_y and ahead_y > thr_ext:
                 go_y = True
             elif over_y and not over_x and ahead_x > thr_ext:
@@ -399,10 +399,10 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             go_x = False
             go_y = False
             if sum_x >= thr_ext or sum_y >= thr_ext:
-                if abs_d <= abs_x and abs_d <= abs_y:
+                if d_le_x and d_le_y:
                     go_x = True
                     go_y = True
-                elif abs_x <= abs_y:
+                elif x_le_y:
                     go_x = True
                 else:
                     go_y = True
@@ -413,6 +413,10 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             it_acc_x.next = acc_x
             it_acc_y.next = acc_y
         else:
+            if not sum_x[acc_width] and sum_x[acc_width - 1]:
+                sum_x[:] = acc_max
+            if not sum_y[acc_width] and sum_y[acc_width - 1]:
+                sum_y[:] = acc_max
             less_x[:] = sum_x[acc_width:]
             if go_x:
                 less_x[:] = sum_x[acc_width:] - thr_ext[acc_width:]
@@ -433,9 +437,9 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                     it_mag_x.next = mag_x + 1
             if go_y:
                 if x_in:
-                    it_mag_y.next = mag_y + 1
+                    it_mag_y.next = mag_y_up
                 else:
-                    it_mag_y.next = mag_y - 1
+                    it_mag_y.next = mag_y_down
         if go_x and go_y:
             it_error.next = cand_d
         elif go_x:
@@ -521,10 +525,25 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 remainder.next = trial_rem
                 root.next = concat(root[width - 1:], False)
             radicand.next = radicand << 2
+            # end point within one step: -(2m - 1) <= re**2 - rs**2 <= 2m + 1, m = max(|xs|, |ys|)
+            # (|re - rs| <= 1 follows as m <= rs); pipelined over the root's clocks
+            end_gap.next = concat(intbv(0)[2:], square_end).signed() - concat(intbv(0)[2:], square_start).signed()
+            if mag_xs > mag_ys:
+                end_limit.next = concat(intbv(0)[width + 1:], mag_xs, True).signed()
+            else:
+                end_limit.next = concat(intbv(0)[width + 1:], mag_ys, True).signed()
+            off_circle.next = end_gap > end_limit or end_gap < 2 - end_limit
             if root_bit == width - 1:
-                state.next = t_state.S_CHECK
+                state.next = t_state.S_ROUND
             else:
                 root_bit.next = root_bit + 1
+        elif state == t_state.S_ROUND:
+            # Rq: the integer whose square is nearest to xs**2 + ys**2
+            if remainder > concat(intbv(0)[3:], root):
+                radius_q.next = concat(False, root) + 1
+            else:
+                radius_q.next = concat(False, root)
+            state.next = t_state.S_CHECK
         elif state == t_state.S_CHECK:
             acc_x.next = chk_acc_init
             acc_y.next = chk_acc_init
@@ -564,6 +583,8 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 last_x.next = chk_last_x
                 last_y.next = chk_last_y
                 radius.next = chk_radius
+                delta_x.next = chk_delta_x
+                delta_y.next = chk_delta_y
         else:
             if cmd.advance:
                 steps.step_x.next = it_step_x
@@ -582,6 +603,15 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                     count_x.next = 0
                     count_y.next = 0
                 elif it_next_piece:
+                    # the outward axis turns inward and vice versa: delta <- 2 - delta
+                    if it_step_x:
+                        delta_x.next = -delta_x
+                    else:
+                        delta_x.next = 2 - delta_x
+                    if it_step_y:
+                        delta_y.next = -delta_y
+                    else:
+                        delta_y.next = 2 - delta_y
                     if ccw:
                         quadrant.next = quadrant + 1
                     else:
@@ -594,10 +624,13 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                         count_x.next = radius
                         count_y.next = radius
                 else:
+                    # one step further in the same direction adds 2 to the change of x**2
                     if it_step_x:
                         count_x.next = count_x - 1
+                        delta_x.next = delta_x + 2
                     if it_step_y:
                         count_y.next = count_y - 1
+                        delta_y.next = delta_y + 2
 
     @always_comb
     def status():

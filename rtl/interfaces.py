@@ -90,7 +90,7 @@ class DdaPort:
     variants 0..2), ``ccw`` (direction), ``advance`` (one iteration per clock
     in which it is high: the feed rate).  The command lines are read in the
     clock of ``start``; an arc spends a fixed number of setup clocks (its
-    squares and root, 5 * coord_width + 1) before the first iteration.
+    squares, root and rounding, 5 * coord_width + 2) before the first iteration.
     Outputs: ``busy`` (from the clock after ``start`` until the move ends),
     ``done`` (one-clock pulse when the move has ended on its end point),
     ``error`` (the last ``start`` was rejected: end not within one step of

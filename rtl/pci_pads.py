@@ -43,6 +43,11 @@ def tristate_pad(pin, from_pin, to_pin, enable):
     """A plain tri-state buffer: ``pin`` shows ``to_pin`` while ``enable``.
 
     ``from_pin`` (None for a line the target never reads) follows the pin.
+    No clock: the core's own flip-flops sit right behind it.
+
+        enable    __/~~~~~~~~\\____
+        to_pin    --< A >< B >----
+        pin       zz< A >< B >zzzz
     """
     driver = pin.driver()
 
@@ -69,7 +74,11 @@ def tristate_pad(pin, from_pin, to_pin, enable):
 
 @block
 def input_pad(pin, from_pin, *, undriven):
-    """A plain input: ``from_pin`` follows ``pin`` (``undriven`` when released)."""
+    """A plain input: ``from_pin`` follows ``pin`` (``undriven`` when released).
+
+        pin       --< A >< B >zzzz
+        from_pin  --< A >< B >< undriven >
+    """
     @always(pin)
     def follow():
         from_pin.next = _line_value(pin, undriven)

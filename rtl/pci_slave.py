@@ -33,6 +33,7 @@ CONFIG_ID, CONFIG_COMMAND_STATUS, CONFIG_CLASS, CONFIG_BAR0, CONFIG_BAR1 = 0, 1,
 CONFIG_SUBSYSTEM, CONFIG_INTERRUPT = 11, 15
 STATUS_DEVSEL_MEDIUM = 0b01   # Status[10:9]
 INTERRUPT_PIN_INTA = 1
+BAR_IO_SPACE = 1              # BAR bit 0: I/O space (BAR1: 0, memory, 32-bit, non-prefetchable)
 
 # Latency budget: clocks a data phase may wait for TRDY#, counted from the
 # claim (first phase) or from the last completion.  STOP# then comes out so
@@ -68,6 +69,18 @@ def check_params(params):
         raise ValueError(f"pci_slave: io_registers must be True or False, "
                          f"not {values['io_registers']!r}")
     return values
+
+
+class ControlNext:
+    """Next state and control lines of the target for one case of the pins."""
+
+    def __init__(self):
+        self.state = Signal(t_state.S_IDLE)
+        self.trdy = Signal(bool(1))
+        self.stop = Signal(bool(1))
+        self.devsel = Signal(bool(1))
+        self.drive = Signal(bool(0))
+        self.ad_oe = Signal(bool(0))
 
 
 def local_addr_width(io_bar_bits=6, mem_bar_bits=12):
@@ -161,15 +174,13 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     req_addr = Signal(modbv(0)[width:])     # dword of the next back-end request
     io_byte = Signal(intbv(0)[2:])          # AD[1:0] of an I/O access
 
-    # --- read data: the AD register, fed by a one-dword skid register B ---
+    # --- read data: the AD register, fed by a one-dword skid register B;
+    # --- posted write data: ad_q, then the head (h) and second (s) entries.
+    # B and s share one register: reads and writes never use it at once.
     b_valid = Signal(bool(0))
-    b_data = Signal(intbv(0)[32:])
-    ad_parity = Signal(bool(0))       # parity of ad_out_q
-
-    # --- posted write data: ad_q, then the head (h) and second (s) entries ---
     wq_valid = Signal(bool(0))        # ad_q holds a posted dword
     h_valid, s_valid = Signal(bool(0)), Signal(bool(0))
-    h_data, s_data = Signal(intbv(0)[32:]), Signal(intbv(0)[32:])
+    h_data, spare_data = Signal(intbv(0)[32:]), Signal(intbv(0)[32:])
     h_be, s_be = Signal(intbv(0)[4:]), Signal(intbv(0)[4:])
     write_done_q = Signal(bool(0))    # ad_q holds data of a completed write phase
     config_write_q = Signal(bool(0))
@@ -178,7 +189,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     io_enable, mem_enable = Signal(bool(0)), Signal(bool(0))
     parity_response, serr_enable = Signal(bool(0)), Signal(bool(0))
     interrupt_disable = Signal(bool(0))
-    bar0 = Signal(intbv(1)[32:])
+    bar0 = Signal(intbv(0)[32:])
     bar1 = Signal(intbv(0)[32:])
     interrupt_line = Signal(intbv(0)[8:])
     signaled_target_abort = Signal(bool(0))
@@ -194,7 +205,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     fatal = Signal(bool(0))           # target abort now
     config_index = Signal(intbv(0)[6:])
     config_data = Signal(intbv(0)[32:])
-    write_mask = Signal(intbv(0)[32:])
     phase_done = Signal(bool(0))      # a data phase completes at this edge
     holding = Signal(bool(0))         # TRDY# asserted, the master not ready
     start_addr = Signal(modbv(0)[width:])  # dword offset the address phase names
@@ -209,6 +219,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     timeout = Signal(bool(0))
     at_last = Signal(bool(0))         # phase_addr is the last dword of BAR1
     before_last = Signal(bool(0))
+    next_if_neither, next_if_frame = ControlNext(), ControlNext()   # IRDY#, FRAME# asserted
+    next_if_irdy, next_if_both = ControlNext(), ControlNext()
 
     # ------------------------------------------------------------ input stage
     if not io_registers:
@@ -319,7 +331,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     @always_comb
     def read_path():
         if b_valid:
-            read_source.next = b_data
+            read_source.next = spare_data
         elif is_config:
             read_source.next = config_data
         else:
@@ -356,103 +368,150 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         at_last.next = phase_addr == mem_last
         before_last.next = phase_addr == mem_last - 1
 
-    @always_comb
-    def control():
-        frame_asserted = not pci.frame_in
-        trdy = bool(trdy_q)
-        stop = bool(stop_q)
-        devsel = bool(devsel_q)
-        drive = bool(pci.devsel_oe)
-        ad_oe = bool(pci.ad_oe)
-        state_next.next = state
-        # Can the next data phase carry data, is it the last one, or will no
-        # data come any more?
-        last_data = single or at_last
-        if phase_done:
-            last_data = single or before_last
-        ready_for_phase = False
-        exhausted = False
-        room = False
-        if is_read:
-            ready_for_phase = b_valid or got
-            exhausted = not b_valid and not got and not fetching
-        else:
-            room = buffered_next <= 1
-            if phase_done and not first_phase:
-                room = buffered_next == 0
-            ready_for_phase = is_config or (room and not refused)
-            exhausted = bool(refused)
-        if state == t_state.S_IDLE:
-            drive = False
-            ad_oe = False
-            if claim:
-                drive = True
-                devsel = False
-                trdy = True
-                stop = True
-                ad_oe = not cbe_q[0]
-                if claim_config:
-                    state_next.next = t_state.S_CON_HOLD
-                elif claim_io:
-                    state_next.next = t_state.S_IO_HOLD
+    # Shannon expansion on the pins of the fast path: the next values are
+    # computed from flip-flops for each case of IRDY# and FRAME#, the pins
+    # only choose among them (at most two LUT levels from a pin).
+    @block
+    def control_case(irdy_asserted, frame_asserted, out):
+        """Next values of the state and the target's control lines, should
+        IRDY# and FRAME# be as given at this edge."""
+
+        @always_comb
+        def control():
+            done = irdy_asserted and not trdy_q      # a data phase completes
+            hold = not irdy_asserted and not trdy_q  # TRDY# waits for the master
+            trdy = bool(trdy_q)
+            stop = bool(stop_q)
+            devsel = bool(devsel_q)
+            drive = bool(pci.devsel_oe)
+            ad_oe = bool(pci.ad_oe)
+            out.state.next = state
+            # Can the next data phase carry data, is it the last one, or will no
+            # data come any more?
+            last_data = single or at_last
+            if done:
+                last_data = single or before_last
+            ready_for_phase = False
+            exhausted = False
+            room = False
+            if is_read:
+                ready_for_phase = b_valid or got
+                exhausted = not b_valid and not got and not fetching
+            else:
+                room = buffered_next <= 1
+                if done and not first_phase:
+                    room = buffered_next == 0
+                ready_for_phase = is_config or (room and not refused)
+                exhausted = bool(refused)
+            if state == t_state.S_IDLE:
+                drive = False
+                ad_oe = False
+                if claim:
+                    drive = True
+                    devsel = False
+                    trdy = True
+                    stop = True
+                    ad_oe = not cbe_q[0]
+                    if claim_config:
+                        out.state.next = t_state.S_CON_HOLD
+                    elif claim_io:
+                        out.state.next = t_state.S_IO_HOLD
+                    else:
+                        out.state.next = t_state.S_MEM_HOLD
+            elif (state == t_state.S_CON_HOLD or state == t_state.S_IO_HOLD
+                  or state == t_state.S_MEM_HOLD or state == t_state.S_READ_HOLD):
+                if fatal:
+                    out.state.next = t_state.S_BACKOFF
+                    devsel = True
+                    stop = False
+                elif state == t_state.S_CON_HOLD:
+                    out.state.next = t_state.S_CONFIGURING
+                    trdy = False
+                    stop = not frame_asserted
+                elif (is_read and got) or (not is_read and accepted and first_pending
+                                           and not draining):
+                    out.state.next = t_state.S_RWING
+                    trdy = False
+                    stop = not (last_data and frame_asserted)
+                elif (back_end_retry and first_pending and not draining) or timeout:
+                    out.state.next = t_state.S_BACKOFF
+                    stop = False
+                elif is_read:
+                    out.state.next = t_state.S_READ_HOLD
+            elif state == t_state.S_CONFIGURING or state == t_state.S_RWING:
+                if hold:
+                    pass
+                elif done and (not frame_asserted or not stop_q):
+                    trdy = True
+                    if frame_asserted:
+                        out.state.next = t_state.S_BACKOFF
+                    else:
+                        out.state.next = t_state.S_ENDING
+                        stop = True
+                        devsel = True
+                        ad_oe = False
+                elif ready_for_phase:
+                    trdy = False
+                    stop = not (last_data and frame_asserted)
+                elif exhausted or timeout:
+                    out.state.next = t_state.S_BACKOFF
+                    trdy = True
+                    stop = False
                 else:
-                    state_next.next = t_state.S_MEM_HOLD
-        elif (state == t_state.S_CON_HOLD or state == t_state.S_IO_HOLD
-              or state == t_state.S_MEM_HOLD or state == t_state.S_READ_HOLD):
-            if fatal:
-                state_next.next = t_state.S_BACKOFF
-                devsel = True
-                stop = False
-            elif state == t_state.S_CON_HOLD:
-                state_next.next = t_state.S_CONFIGURING
-                trdy = False
-                stop = not frame_asserted
-            elif (is_read and got) or (not is_read and accepted and first_pending
-                                       and not draining):
-                state_next.next = t_state.S_RWING
-                trdy = False
-                stop = not (last_data and frame_asserted)
-            elif (back_end_retry and first_pending and not draining) or timeout:
-                state_next.next = t_state.S_BACKOFF
-                stop = False
-            elif is_read:
-                state_next.next = t_state.S_READ_HOLD
-        elif state == t_state.S_CONFIGURING or state == t_state.S_RWING:
-            if holding:
-                pass
-            elif phase_done and (not frame_asserted or not stop_q):
-                trdy = True
-                if frame_asserted:
-                    state_next.next = t_state.S_BACKOFF
-                else:
-                    state_next.next = t_state.S_ENDING
+                    trdy = True
+            elif state == t_state.S_BACKOFF:
+                if not frame_asserted:
+                    out.state.next = t_state.S_ENDING
+                    trdy = True
                     stop = True
                     devsel = True
                     ad_oe = False
-            elif ready_for_phase:
-                trdy = False
-                stop = not (last_data and frame_asserted)
-            elif exhausted or timeout:
-                state_next.next = t_state.S_BACKOFF
-                trdy = True
-                stop = False
             else:
-                trdy = True
-        elif state == t_state.S_BACKOFF:
-            if not frame_asserted:
-                state_next.next = t_state.S_ENDING
-                trdy = True
-                stop = True
-                devsel = True
-                ad_oe = False
+                out.state.next = t_state.S_IDLE
+                drive = False
+            out.trdy.next = trdy
+            out.stop.next = stop
+            out.devsel.next = devsel
+            out.drive.next = drive
+            out.ad_oe.next = ad_oe
+
+        return control
+
+    control_cases = [control_case(False, False, next_if_neither),
+                     control_case(False, True, next_if_frame),
+                     control_case(True, False, next_if_irdy),
+                     control_case(True, True, next_if_both)]
+
+    @always_comb
+    def control_pick():
+        if not pci.irdy_in and not pci.frame_in:
+            state_next.next = next_if_both.state
+            trdy_next.next = next_if_both.trdy
+            stop_next.next = next_if_both.stop
+            devsel_next.next = next_if_both.devsel
+            drive_next.next = next_if_both.drive
+            ad_oe_next.next = next_if_both.ad_oe
+        elif not pci.irdy_in:
+            state_next.next = next_if_irdy.state
+            trdy_next.next = next_if_irdy.trdy
+            stop_next.next = next_if_irdy.stop
+            devsel_next.next = next_if_irdy.devsel
+            drive_next.next = next_if_irdy.drive
+            ad_oe_next.next = next_if_irdy.ad_oe
+        elif not pci.frame_in:
+            state_next.next = next_if_frame.state
+            trdy_next.next = next_if_frame.trdy
+            stop_next.next = next_if_frame.stop
+            devsel_next.next = next_if_frame.devsel
+            drive_next.next = next_if_frame.drive
+            ad_oe_next.next = next_if_frame.ad_oe
         else:
-            state_next.next = t_state.S_IDLE
-            drive = False
-        trdy_next.next = trdy
-        stop_next.next = stop
-        devsel_next.next = devsel
-        drive_next.next = drive
-        ad_oe_next.next = ad_oe
+            state_next.next = next_if_neither.state
+            trdy_next.next = next_if_neither.trdy
+            stop_next.next = next_if_neither.stop
+            devsel_next.next = next_if_neither.devsel
+            drive_next.next = next_if_neither.drive
+            ad_oe_next.next = next_if_neither.ad_oe
 
     @always_seq(clock.posedge, reset=reset)
     def transaction():
@@ -504,7 +563,14 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             ad_out_next.next = ad_out_q
         else:
             ad_out_next.next = read_source
-        par_next.next = ad_parity ^ pci.cbe_in[0] ^ pci.cbe_in[1] ^ pci.cbe_in[2] ^ pci.cbe_in[3]
+        fold = intbv(0)[32:]
+        fold[:] = ad_out_q
+        fold[16:] = fold[16:] ^ fold[32:16]
+        fold[8:] = fold[8:] ^ fold[16:8]
+        fold[4:] = fold[4:] ^ fold[8:4]
+        fold[2:] = fold[2:] ^ fold[4:2]
+        fold[1:] = fold[1:] ^ fold[2:1]
+        par_next.next = fold[0] ^ pci.cbe_in[0] ^ pci.cbe_in[1] ^ pci.cbe_in[2] ^ pci.cbe_in[3]
         perr_next.next = not (data_parity_error and parity_response)
 
     @always_seq(clock.posedge, reset=reset)
@@ -547,20 +613,9 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     @always_seq(clock.posedge, reset=reset)
     def read_buffer():
-        if not holding:
-            fold = intbv(0)[32:]
-            fold[:] = read_source
-            fold[16:] = fold[16:] ^ fold[32:16]
-            fold[8:] = fold[8:] ^ fold[16:8]
-            fold[4:] = fold[4:] ^ fold[8:4]
-            fold[2:] = fold[2:] ^ fold[4:2]
-            fold[1:] = fold[1:] ^ fold[2:1]
-            ad_parity.next = fold[0]
         in_read = is_read and (state == t_state.S_MEM_HOLD or state == t_state.S_IO_HOLD
                                or state == t_state.S_READ_HOLD or state == t_state.S_RWING)
         b_valid.next = in_read and (b_valid or got) and holding
-        if got and holding:
-            b_data.next = local.rdata
 
     @always_seq(clock.posedge, reset=reset)
     def write_buffer():
@@ -570,11 +625,11 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         if h_valid:
             if accepted:
                 if s_valid:
-                    h_data.next = s_data
+                    h_data.next = spare_data
                     h_be.next = s_be
                     s_valid.next = wq_valid
                     if wq_valid:
-                        s_data.next = ad_q
+                        spare_data.next = ad_q
                         s_be.next = ~cbe_q
                 elif wq_valid:
                     h_data.next = ad_q
@@ -583,30 +638,19 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                     h_valid.next = False
             elif wq_valid:
                 s_valid.next = True
-                s_data.next = ad_q
+                spare_data.next = ad_q
                 s_be.next = ~cbe_q
         elif wq_valid and not accepted:
             h_valid.next = True
             h_data.next = ad_q
             h_be.next = ~cbe_q
+        if got and holding:
+            spare_data.next = local.rdata
 
     # ------------------------------------------------------------ configuration space
     @always_comb
     def config_register_index():
         config_index.next = phase_addr[6:0]
-
-    @always_comb
-    def byte_mask():
-        mask = intbv(0)[32:]
-        if not cbe_q[0]:
-            mask[8:0] = 0xFF
-        if not cbe_q[1]:
-            mask[16:8] = 0xFF
-        if not cbe_q[2]:
-            mask[24:16] = 0xFF
-        if not cbe_q[3]:
-            mask[32:24] = 0xFF
-        write_mask.next = mask
 
     @always_seq(clock.posedge, reset=reset)
     def config_registers():
@@ -627,11 +671,24 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                     clear_system_error = ad_q[30]
                     clear_parity_error = ad_q[31]
             elif config_index == CONFIG_BAR0:
-                bar0.next = ((bar0 & ~(write_mask & intbv(io_bar_writable)[32:]))
-                             | (ad_q & write_mask & intbv(io_bar_writable)[32:]))
+                # all lanes stored; the read-only bits are masked where read
+                if not cbe_q[0]:
+                    bar0.next[8:0] = ad_q[8:0]
+                if not cbe_q[1]:
+                    bar0.next[16:8] = ad_q[16:8]
+                if not cbe_q[2]:
+                    bar0.next[24:16] = ad_q[24:16]
+                if not cbe_q[3]:
+                    bar0.next[32:24] = ad_q[32:24]
             elif config_index == CONFIG_BAR1:
-                bar1.next = ((bar1 & ~(write_mask & intbv(mem_bar_writable)[32:]))
-                             | (ad_q & write_mask & intbv(mem_bar_writable)[32:]))
+                if not cbe_q[0]:
+                    bar1.next[8:0] = ad_q[8:0]
+                if not cbe_q[1]:
+                    bar1.next[16:8] = ad_q[16:8]
+                if not cbe_q[2]:
+                    bar1.next[24:16] = ad_q[24:16]
+                if not cbe_q[3]:
+                    bar1.next[32:24] = ad_q[32:24]
             elif config_index == CONFIG_INTERRUPT:
                 if not cbe_q[0]:
                     interrupt_line.next = ad_q[8:0]
@@ -654,9 +711,9 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         elif config_index == CONFIG_CLASS:
             config_data.next = intbv(class_word)[32:]
         elif config_index == CONFIG_BAR0:
-            config_data.next = bar0
+            config_data.next = (bar0 & intbv(io_bar_writable)[32:]) | intbv(BAR_IO_SPACE)[32:]
         elif config_index == CONFIG_BAR1:
-            config_data.next = bar1
+            config_data.next = bar1 & intbv(mem_bar_writable)[32:]
         elif config_index == CONFIG_SUBSYSTEM:
             config_data.next = intbv(subsystem_word)[32:]
         elif config_index == CONFIG_INTERRUPT:

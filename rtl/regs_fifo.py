@@ -29,8 +29,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     step requests); ``pins`` (STEP/DIR out); ``irq`` (level, to INTA#:
     INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
     COMMAND.SOFT_RESET: the top resets the DDA with it).
-    Parameters: ``fifo_depth`` (words, a power of two; 512 fills one iCE40
-    block RAM pair), ``coord_width`` (the DDA's).
+    Parameters: ``fifo_depth`` (words, a power of two; 512 words of 32 bits
+    are four iCE40 4-Kbit block RAMs), ``coord_width`` (the DDA's).
 
     Local bus: I/O and FIFO writes complete in the clock they are requested,
     a full FIFO answers retry:

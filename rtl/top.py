@@ -44,15 +44,16 @@ C_HEADER = "dda_card.h"
 
 
 @block
-def top(clock, reset, pci_pins, motor, *, fifo_depth=512, coord_width=24, **ids):
+def top(clock, reset, pci_pins, motor, *, fifo_depth=512, coord_width=24, io_registers=True, **ids):
     """The card as synthesised: PCI pads (the only tri-states) around the card.
 
     Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci_pins``
     (``PciPins``: AD, C/BE#, PAR, FRAME#, IRDY#, TRDY#, DEVSEL#, STOP#, IDSEL,
     PERR#, SERR#, INTA# as on the bus), ``motor`` (``MotorPins``: STEP/DIR).
-    Parameters: ``fifo_depth``, ``coord_width`` and the PCI IDs.  The pads
-    are ``rtl/pci_pads.py`` in its plain tri-state build; ``rtl/card.py`` is
-    the same card with split ports, for benches.
+    Parameters: ``fifo_depth``, ``coord_width``, the PCI IDs, and
+    ``io_registers`` (True: the PCI boundary flip-flops are the iCE40 I/O
+    cells' registers, ``rtl/pci_pads.py``; the target is told so).
+    ``rtl/card.py`` is the same card with split ports, for benches.
 
         pins <-> pci_pads <-> card (pci_slave, regs_fifo, dda_arc) --> STEP/DIR
     """
@@ -61,12 +62,13 @@ def top(clock, reset, pci_pins, motor, *, fifo_depth=512, coord_width=24, **ids)
     from rtl.pci_pads import pci_pads
 
     pci = PciBus()
-    pads = pci_pads(clock, pci_pins, pci, io_registers=False)
-    core = card(clock, reset, pci, motor, fifo_depth=fifo_depth, coord_width=coord_width, **ids)
+    pads = pci_pads(clock, pci_pins, pci, io_registers=io_registers)
+    core = card(clock, reset, pci, motor, fifo_depth=fifo_depth, coord_width=coord_width,
+                io_registers=io_registers, **ids)
     return pads, core
 
 
-def top_ports(fifo_depth=512, coord_width=24, **ids):
+def top_ports(fifo_depth=512, coord_width=24, io_registers=True, **ids):
     """Fresh ports of ``top`` for conversion and benches."""
     from rtl.interfaces import MotorPins, PciPins, card_reset
 

@@ -4,7 +4,6 @@ from dataclasses import dataclass, field
 from myhdl import StopSimulation, always, block, delay, instance, now
 
 from rtl import instructions as isa
-from rtl import registers as regmap
 from rtl.card_core import card_core, card_core_ports
 from sim.card_model import PulseOutModel
 from sim.cosim import convert_and_cosimulate
@@ -159,7 +158,3 @@ def command_words(command):
         return isa.encode("LINE", command.dx, command.dy)
     return isa.encode("ARC", command.xs, command.ys, command.xe, command.ye, CCW=int(command.ccw),
                       VARIANT=command.variant, LAMBDA=command.lambda_shift, ACC_BITS=command.acc_bits)
-
-
-def offset(name):
-    return regmap.offset(name)

@@ -60,8 +60,8 @@ def error_term_width(coord_width):
 
 
 def setup_clocks(coord_width, line):
-    """Clocks from the ``start`` edge to the check edge (squares, root, check)."""
-    return 1 if line else 5 * coord_width + 1
+    """Clocks from the ``start`` edge to the check edge (squares, root, rounding, check)."""
+    return 1 if line else 5 * coord_width + 2
 
 
 def wrap(value, width):

@@ -11,6 +11,16 @@ know when PERR# and SERR# are due, and keeps a summary of every transaction
 
 Parity errors are violations unless ``allow_parity_errors`` is set (a bench
 that injects them on purpose); then only their reporting is checked.
+Fast back-to-back transactions are reported under rule 4: the benches have
+one master, which always leaves an idle clock between transactions.
+
+Timing the checker holds the target to (edges counted from the one that
+samples the address): DEVSEL# by edge 4, first TRDY#/STOP# by edge 16, later
+ones at most 8 edges after the previous data phase completed; PERR# sampled
+two edges after a data phase that moved data with bad parity (write: when the
+target's Parity Error Response is set; read: when the master's is), SERR#
+two edges after a bad address when the target's SERR# Enable and Parity
+Error Response are set, each for exactly one clock per error.
 """
 from dataclasses import dataclass, field
 

@@ -241,3 +241,23 @@ def test_stream_commands_set_mark_dwell_pulse():
     lows = [t for t, v in zip(*wave.changes[wave.full_name("pins_step_x")]) if v == "0"]
     widths = {(low - high) // 10 for high, low in zip(highs, lows[1:] if lows[0] < highs[0] else lows)}
     assert widths == {3}, widths
+
+
+def test_position_snapshot_is_coherent_while_moving():
+    reads = []
+
+    def scenario(driver):
+        yield from setup_motion(driver, feed=regmap.RATE_ONE // 2)
+        yield from driver.push_all(command_words(LineCommand(300, 300)))
+        for _ in range(5):
+            for _ in range(40):
+                yield driver.clock.negedge
+            x = yield from driver.io_read(regmap.offset("POS_X"))
+            for _ in range(15):  # the Y axis moves on meanwhile: POS_Y must not
+                yield driver.clock.negedge
+            y = yield from driver.io_read(regmap.offset("POS_Y"))
+            reads.append((field("POS_X", "STEPS", x), field("POS_Y", "STEPS", y)))
+
+    run_core("regs_snapshot", scenario)
+    assert all(x == y for x, y in reads), reads
+    assert 0 < reads[0][0] < reads[-1][0] < 300

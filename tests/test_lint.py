@@ -15,6 +15,7 @@ WAIVERS = ROOT / "tests" / "verilator.vlt"
 SOURCES = sorted(GEN.glob("*.v"))
 
 SB_IO_BLACKBOX = """\
+`timescale 1ns/10ps
 module SB_IO (inout PACKAGE_PIN, input LATCH_INPUT_VALUE, input CLOCK_ENABLE,
               input INPUT_CLK, input OUTPUT_CLK, input OUTPUT_ENABLE,
               input D_OUT_0, input D_OUT_1, output D_IN_0, output D_IN_1);

@@ -50,3 +50,21 @@ def test_pcf_matches_the_top_ports():
         pytest.skip("gen/top.v not written yet")
     ports, pinned = verilog_port_bits(top), set(synth.pcf_pins(synth.PCF))
     assert ports == pinned, f"ports without a pin: {sorted(ports - pinned)}; pins without a port: {sorted(pinned - ports)}"
+
+
+def sdc_port_patterns(text):
+    """The names in every ``[get_ports ...]`` of an SDC file (``*`` is a wildcard)."""
+    groups = re.findall(r"\[get_ports (?:\{([^}]*)\}|(\w+))\]", text)
+    return [name for braced, bare in groups for name in (braced.split() if braced else [bare])]
+
+
+def test_sdc_names_only_ports_of_the_top():
+    top = GEN / "top.v"
+    if not top.exists():
+        pytest.skip("gen/top.v not written yet")
+    ports = verilog_port_bits(top)
+    patterns = sdc_port_patterns((ROOT / "constraints" / "pci_card.sdc").read_text())
+    assert {"clock", "reset", "pci_pins_ad[*]"} <= set(patterns)
+    unmatched = [p for p in patterns
+                 if not any(re.fullmatch(re.escape(p).replace(r"\*", ".*"), port) for port in ports)]
+    assert not unmatched, f"SDC names ports gen/top.v does not have: {unmatched}"
