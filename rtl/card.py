@@ -20,8 +20,8 @@ def card(clock, reset, pci, pins, *, fifo_depth=512, coord_width=24, **slave):
 
     Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci``
     (``PciBus``), ``pins`` (``MotorPins``).  Parameters: ``fifo_depth``,
-    ``coord_width`` and the PCI IDs of ``pci_slave`` (``vendor_id``,
-    ``device_id``, ...).  BAR0 (I/O) is ``2**IO_BAR_BITS`` bytes, the size the
+    ``coord_width`` and those of ``pci_slave`` but the BAR sizes (``vendor_id``,
+    ``device_id``, ..., ``io_registers``).  BAR0 (I/O) is ``2**IO_BAR_BITS`` bytes, the size the
     register table needs; BAR1 (memory, the FIFO window) is 4 KiB.
 
         PCI --> pci_slave --LocalBus--> card_core --> STEP/DIR

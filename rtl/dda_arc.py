@@ -301,10 +301,12 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         else:
             chk_delta_x.next = out_x
             chk_delta_y.next = 2 - out_y
+        # accumulators hold A - T (A - T - 1 for the strict compares): overflow is A - bias >= 0
         if variant == TRADITIONAL or variant == PRECISE:
-            chk_acc_init.next = concat(intbv(0)[acc_width - thr_width + 1:], thr[thr_width:1]).signed()
+            chk_acc_init.next = concat(intbv(0)[acc_width - thr_width + 1:], thr[thr_width:1]).signed() - \
+                concat(intbv(0)[acc_width - thr_width:], thr).signed()
         else:
-            chk_acc_init.next = 0
+            chk_acc_init.next = -concat(intbv(0)[acc_width - thr_width:], thr).signed() - 1
 
     @always_comb
     def iteration_logic():
@@ -316,7 +318,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         sum_x_up = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         sum_x_down = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         sum_y = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
-        thr_ext = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
+        thr_low = intbv(0)[acc_width:]
         ahead_x = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         ahead_y = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         less_x = modbv(0)[acc_width:]
@@ -326,14 +328,17 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         cand_d = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
         cand_x = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
         cand_y = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
-        both_dx = intbv(0, min=-(1 << err_width), max=1 << err_width)
-        both_dy = intbv(0, min=-(1 << err_width), max=1 << err_width)
-        both_xy = intbv(0, min=-(1 << err_width), max=1 << err_width)
-        gap_xy = intbv(0, min=-(1 << err_width), max=1 << err_width)
+        delta_xy = modbv(0, min=-(1 << err_width), max=1 << err_width)
+        both_dx = modbv(0, min=-(1 << err_width), max=1 << err_width)
+        both_dy = modbv(0, min=-(1 << err_width), max=1 << err_width)
+        both_xy = modbv(0, min=-(1 << err_width), max=1 << err_width)
+        gap_xy = modbv(0, min=-(1 << err_width), max=1 << err_width)
         d_le_x = bool(0)
         d_le_y = bool(0)
         x_le_y = bool(0)
         over_x = bool(0)
+        over_x_up = bool(0)
+        over_x_down = bool(0)
         over_y = bool(0)
         go_x = bool(0)
         go_y = bool(0)
@@ -351,33 +356,36 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         # accumulators; the compares use the unsaturated sums (T is far below the
         # saturation value, so the result is the same) to keep the carry chains short
         to_mag[:] = 0
-        thr_ext[:] = concat(intbv(0)[acc_width + 1 - thr_width:], threshold).signed()
+        thr_low[:] = concat(intbv(0)[acc_width - thr_width:], threshold)
         sum_y[:] = concat(acc_y[acc_width - 1], acc_y).signed() + concat(to_mag, mag_x).signed()
         mag_y_up[:] = mag_y + 1
         mag_y_down[:] = mag_y - 1
         sum_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y).signed()
         sum_x_up[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y_up).signed()
         sum_x_down[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y_down).signed()
-        # traditional: Y first, X integrates the new |y| (all three sums formed in parallel)
-        if not is_line and variant == TRADITIONAL and sum_y >= thr_ext:
+        # the registers hold A - bias: an overflow is a sum that is not negative
+        over_x = not sum_x[acc_width]
+        over_x_up = not sum_x_up[acc_width]
+        over_x_down = not sum_x_down[acc_width]
+        over_y = not sum_y[acc_width]
+        # traditional: Y first, X integrates the new |y| (sums and compares formed in parallel)
+        if not is_line and variant == TRADITIONAL and over_y:
             if x_in:
                 sum_x[:] = sum_x_up
+                over_x = over_x_up
             else:
                 sum_x[:] = sum_x_down
-        if is_line or variant == TRADITIONAL:
-            over_x = sum_x >= thr_ext
-            over_y = sum_y >= thr_ext
-        else:
-            over_x = sum_x > thr_ext
-            over_y = sum_y > thr_ext
+                over_x = over_x_down
 
         # precise: |a| <= |b| exactly when (a - b) and (a + b) differ in sign or one is 0
+        # (all sums two adders deep: cand_x + cand_d = 2 cand_x + dy, and so on)
+        delta_xy[:] = concat(delta_x[err_width - 1], delta_x).signed() + concat(delta_y[err_width - 1], delta_y).signed()
         cand_x[:] = radial_error + delta_x
         cand_y[:] = radial_error + delta_y
-        cand_d[:] = cand_x + delta_y
-        both_dx[:] = concat(cand_x[err_width - 1], cand_x).signed() + concat(cand_d[err_width - 1], cand_d).signed()
-        both_dy[:] = concat(cand_y[err_width - 1], cand_y).signed() + concat(cand_d[err_width - 1], cand_d).signed()
-        both_xy[:] = concat(cand_x[err_width - 1], cand_x).signed() + concat(cand_y[err_width - 1], cand_y).signed()
+        cand_d[:] = radial_error + delta_xy[err_width:].signed()
+        both_dx[:] = concat(cand_x[err_width:], False).signed() + concat(delta_y[err_width - 1], delta_y).signed()
+        both_dy[:] = concat(cand_y[err_width:], False).signed() + concat(delta_x[err_width - 1], delta_x).signed()
+        both_xy[:] = concat(radial_error[err_width:], False).signed() + delta_xy
         gap_xy[:] = concat(delta_x[err_width - 1], delta_x).signed() - concat(delta_y[err_width - 1], delta_y).signed()
         d_le_x = delta_y == 0 or both_dx == 0 or delta_y[err_width - 1] != both_dx[err_width]
         d_le_y = delta_x == 0 or both_dy == 0 or delta_x[err_width - 1] != both_dy[err_width]
@@ -389,16 +397,17 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             go_x = over_x and count_x != 0
             go_y = over_y and count_y != 0
         elif variant == IMPROVED:
-            ahead_x[:] = sum_x + concat(to_mag, mag_y).signed()
-            ahead_y[:] = sum_y + concat(to_mag, mag_x).signed()
-            if over_x and not over_y and ahead_y > thr_ext:
+            # A + 2i straight from the registers (one adder)
+            ahead_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag[acc_width - width:], mag_y, False).signed()
+            ahead_y[:] = concat(acc_y[acc_width - 1], acc_y).signed() + concat(to_mag[acc_width - width:], mag_x, False).signed()
+            if over_x and not over_y and ahead_y >= 0:
                 go_y = True
-            elif over_y and not over_x and ahead_x > thr_ext:
+            elif over_y and not over_x and ahead_x >= 0:
                 go_x = True
         elif variant == PRECISE:
             go_x = False
             go_y = False
-            if sum_x >= thr_ext or sum_y >= thr_ext:
+            if over_x or over_y:
                 if d_le_x and d_le_y:
                     go_x = True
                     go_y = True
@@ -419,10 +428,10 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 sum_y[:] = acc_max
             less_x[:] = sum_x[acc_width:]
             if go_x:
-                less_x[:] = sum_x[acc_width:] - thr_ext[acc_width:]
+                less_x[:] = sum_x[acc_width:] - thr_low
             less_y[:] = sum_y[acc_width:]
             if go_y:
-                less_y[:] = sum_y[acc_width:] - thr_ext[acc_width:]
+                less_y[:] = sum_y[acc_width:] - thr_low
             it_acc_x.next = less_x.signed()
             it_acc_y.next = less_y.signed()
         it_step_x.next = go_x
@@ -552,14 +561,19 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             quadrant.next = 0
             state.next = t_state.S_RUN
             if is_line:
+                # A = T // 2 held as A - T
                 if mag_xe > mag_ye:
                     threshold.next = concat(intbv(0)[thr_width - width:], mag_xe)
-                    acc_x.next = concat(intbv(0)[acc_width - width + 1:], mag_xe[width:1]).signed()
-                    acc_y.next = concat(intbv(0)[acc_width - width + 1:], mag_xe[width:1]).signed()
+                    acc_x.next = concat(intbv(0)[acc_width - width + 1:], mag_xe[width:1]).signed() - \
+                        concat(intbv(0)[acc_width - width:], mag_xe).signed()
+                    acc_y.next = concat(intbv(0)[acc_width - width + 1:], mag_xe[width:1]).signed() - \
+                        concat(intbv(0)[acc_width - width:], mag_xe).signed()
                 else:
                     threshold.next = concat(intbv(0)[thr_width - width:], mag_ye)
-                    acc_x.next = concat(intbv(0)[acc_width - width + 1:], mag_ye[width:1]).signed()
-                    acc_y.next = concat(intbv(0)[acc_width - width + 1:], mag_ye[width:1]).signed()
+                    acc_x.next = concat(intbv(0)[acc_width - width + 1:], mag_ye[width:1]).signed() - \
+                        concat(intbv(0)[acc_width - width:], mag_ye).signed()
+                    acc_y.next = concat(intbv(0)[acc_width - width + 1:], mag_ye[width:1]).signed() - \
+                        concat(intbv(0)[acc_width - width:], mag_ye).signed()
                 mag_x.next = mag_ye
                 mag_y.next = mag_xe
                 count_x.next = mag_xe

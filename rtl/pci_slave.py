@@ -9,11 +9,13 @@ target abort).  ``docs/pci.md`` maps them and explains the timing.
 
 Timing architecture: AD, C/BE# and IDSEL are sampled into an input register
 before any logic, and every PCI output and output enable comes from a
-flip-flop.  Four inputs also reach an output register through one or two
-LUT levels, because PCI leaves no clock for a register in between: FRAME#
-and IRDY# (ending a burst, advancing read data), PAR (PERR# and SERR# two
-clocks after the phase they cover) and C/BE# (PAR on reads covers the C/BE#
-of the same clock).  DEVSEL# timing is therefore MEDIUM.
+flip-flop.  Four inputs also reach an output register through logic,
+because PCI leaves no clock for a register in between: FRAME# and IRDY#
+(ending a burst, advancing read data; the state machine's next values are
+computed for each case of the two pins, which only choose among them), PAR
+(PERR# and SERR# two clocks after the phase they cover) and C/BE# (PAR on
+reads covers the C/BE# of the same clock).  DEVSEL# timing is therefore
+MEDIUM.
 """
 from myhdl import Signal, always_comb, always_seq, block, concat, enum, instances, intbv, modbv
 
@@ -137,7 +139,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     id_word = values["device_id"] << 16 | values["vendor_id"]
     class_word = values["class_code"] << 8 | values["revision_id"]
     subsystem_word = values["subsystem_id"] << 16 | values["subsystem_vendor_id"]
-    io_bar_writable = (0xFFFFFFFF << io_bits) & 0xFFFFFFFF
+    io_bar_writable = (0xFFFF << io_bits) & 0xFFFF   # BAR0[31:16] hardwired to 0 (PC I/O)
     mem_bar_writable = (0xFFFFFFFF << mem_bits) & 0xFFFFFFFF
 
     # --- input register: the bus as sampled at the last edge ---
@@ -172,6 +174,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     wait_count = Signal(intbv(0, min=0, max=16))
     phase_addr = Signal(modbv(0)[width:])   # dword of the current data phase
     req_addr = Signal(modbv(0)[width:])     # dword of the next back-end request
+    req_addr_stale = Signal(bool(0))  # req_addr still serves posted data of the last write
     io_byte = Signal(intbv(0)[2:])          # AD[1:0] of an I/O access
 
     # --- read data: the AD register, fed by a one-dword skid register B;
@@ -189,7 +192,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     io_enable, mem_enable = Signal(bool(0)), Signal(bool(0))
     parity_response, serr_enable = Signal(bool(0)), Signal(bool(0))
     interrupt_disable = Signal(bool(0))
-    bar0 = Signal(intbv(0)[32:])
+    bar0 = Signal(intbv(0)[16:])
     bar1 = Signal(intbv(0)[32:])
     interrupt_line = Signal(intbv(0)[8:])
     signaled_target_abort = Signal(bool(0))
@@ -197,6 +200,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     detected_parity_error = Signal(bool(0))
 
     # --- combinational ---
+    bus_parity = Signal(bool(0))      # parity of the AD and C/BE# input registers
     address_phase = Signal(bool(0))
     address_parity_error = Signal(bool(0))
     data_parity_error = Signal(bool(0))
@@ -205,10 +209,10 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     fatal = Signal(bool(0))           # target abort now
     config_index = Signal(intbv(0)[6:])
     config_data = Signal(intbv(0)[32:])
+    bar0_read = Signal(intbv(0)[16:])  # BAR0 as read: base bits and the I/O flag
     phase_done = Signal(bool(0))      # a data phase completes at this edge
     holding = Signal(bool(0))         # TRDY# asserted, the master not ready
     start_addr = Signal(modbv(0)[width:])  # dword offset the address phase names
-    req_addr_stale = Signal(bool(0))  # req_addr still serves posted data of the last write
     got = Signal(bool(0))             # read data arrives at this edge
     accepted = Signal(bool(0))        # the back end takes a write at this edge
     back_end_retry = Signal(bool(0))
@@ -247,9 +251,13 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         fold[4:] = fold[4:] ^ fold[8:4]
         fold[2:] = fold[2:] ^ fold[4:2]
         fold[1:] = fold[1:] ^ fold[2:1]
+        bus_parity.next = fold[0]
+
+    @always_comb
+    def parity_errors():
         address_phase.next = frame_qq and not frame_q
-        address_parity_error.next = frame_qq and not frame_q and (fold[0] != pci.par_in)
-        data_parity_error.next = write_done_q and (fold[0] != pci.par_in)
+        address_parity_error.next = frame_qq and not frame_q and (bus_parity != pci.par_in)
+        data_parity_error.next = write_done_q and (bus_parity != pci.par_in)
 
     # ------------------------------------------------------------ decoding
     @always_comb
@@ -258,7 +266,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         config_hit = (idsel_q and not ad_q[0] and not ad_q[1] and ad_q[11:8] == 0
                       and (code == CMD_CONFIG_READ or code == CMD_CONFIG_WRITE))
         io_hit = (io_enable and (code == CMD_IO_READ or code == CMD_IO_WRITE)
-                  and ad_q[32:io_bits] == bar0[32:io_bits])
+                  and ad_q[32:16] == 0 and ad_q[16:io_bits] == bar0[16:io_bits])
         mem_hit = (mem_enable
                    and (code == CMD_MEM_READ or code == CMD_MEM_WRITE
                         or code == CMD_MEM_READ_MULTIPLE or code == CMD_MEM_READ_LINE
@@ -270,6 +278,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     @always_comb
     def start_offset():
+        # the dword inside the BAR, or of the configuration header
         if claim_config:
             start_addr.next = ad_q[width + 2:2] & intbv(config_mask)[width:]
         elif claim_io:
@@ -579,7 +588,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         stop_q.next = stop_next
         devsel_q.next = devsel_next
         ad_out_q.next = ad_out_next
-        par_q.next = par_next
         perr_q.next = perr_next
         pci.trdy_oe.next = drive_next
         pci.stop_oe.next = drive_next
@@ -591,6 +599,11 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         pci.serr_oe.next = address_parity_error and serr_enable and parity_response
         pci.inta_out.next = False
         pci.inta_oe.next = irq and not interrupt_disable
+
+    if not io_registers:
+        @always_seq(clock.posedge, reset=reset)
+        def parity_register():   # no fabric copy needed with io_registers: never read
+            par_q.next = par_next
 
     if io_registers:
         @always_comb
@@ -676,10 +689,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                     bar0.next[8:0] = ad_q[8:0]
                 if not cbe_q[1]:
                     bar0.next[16:8] = ad_q[16:8]
-                if not cbe_q[2]:
-                    bar0.next[24:16] = ad_q[24:16]
-                if not cbe_q[3]:
-                    bar0.next[32:24] = ad_q[32:24]
             elif config_index == CONFIG_BAR1:
                 if not cbe_q[0]:
                     bar1.next[8:0] = ad_q[8:0]
@@ -699,6 +708,10 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                                       or (detected_parity_error and not clear_parity_error))
 
     @always_comb
+    def io_bar_read():
+        bar0_read.next = (bar0 & intbv(io_bar_writable)[16:]) | intbv(BAR_IO_SPACE)[16:]
+
+    @always_comb
     def config_read():
         if config_index == CONFIG_ID:
             config_data.next = intbv(id_word)[32:]
@@ -711,7 +724,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         elif config_index == CONFIG_CLASS:
             config_data.next = intbv(class_word)[32:]
         elif config_index == CONFIG_BAR0:
-            config_data.next = (bar0 & intbv(io_bar_writable)[32:]) | intbv(BAR_IO_SPACE)[32:]
+            config_data.next = concat(intbv(0)[16:], bar0_read)
         elif config_index == CONFIG_BAR1:
             config_data.next = bar1 & intbv(mem_bar_writable)[32:]
         elif config_index == CONFIG_SUBSYSTEM:

@@ -115,29 +115,51 @@ def _limit(written, honoured, out_of_range, spec):
         return cut
 
     if spec.signed:
+        if (low, high) != (-(1 << (width - 1)), (1 << (width - 1)) - 1):
+            raise ValueError(f"{spec.name}: a signed register clamps to its full width only")
+        ones = (1 << (33 - width)) - 1
+
         @always_comb
         def clamp_signed():
-            out_of_range.next = True
-            if written.signed() < low:
-                honoured.next = low_bits
-            elif written.signed() > high:
-                honoured.next = high_bits
-            else:
+            # in range when bits 31..width-1 are copies of the sign: no comparator needed
+            if written[32:width - 1] == 0 or written[32:width - 1] == ones:
                 honoured.next = written[width:]
                 out_of_range.next = False
+            elif written[31]:
+                honoured.next = low_bits
+                out_of_range.next = True
+            else:
+                honoured.next = high_bits
+                out_of_range.next = True
         return clamp_signed
+
+    high_top, low_top = high.bit_length(), max(low.bit_length(), 1)
 
     @always_comb
     def clamp_unsigned():
+        # compare only the bits a bound has; any higher bit set is out of range
         out_of_range.next = True
-        if written < low:
+        if written[32:low_top] == 0 and written[low_top:] < low:
             honoured.next = low_bits
-        elif written > high:
+        elif written[32:high_top] != 0 or written[high_top:] > high:
             honoured.next = high_bits
         else:
             honoured.next = written[width:]
             out_of_range.next = False
-    return clamp_unsigned
+
+    @always_comb
+    def clamp_unsigned_power_of_two():
+        # high is 2**high_top - 1: above it exactly when a higher bit is set
+        out_of_range.next = True
+        if written[32:low_top] == 0 and written[low_top:] < low:
+            honoured.next = low_bits
+        elif written[32:high_top] != 0:
+            honoured.next = high_bits
+        else:
+            honoured.next = written[width:]
+            out_of_range.next = False
+
+    return clamp_unsigned_power_of_two if high == (1 << high_top) - 1 else clamp_unsigned
 
 
 @block

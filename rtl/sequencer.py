@@ -56,7 +56,9 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
     seq_t = enum("S_IDLE", "S_MOTION", "S_PULSE", "S_DWELL", "S_ERROR")
     state = Signal(seq_t.S_IDLE)
     header = Signal(intbv(0)[32:])
-    operands = [Signal(intbv(0)[32:]) for _ in range(isa.MAX_OPERANDS)]
+    if isa.MAX_OPERANDS != 4:
+        raise ValueError("the instruction register holds four operand words")
+    operand_0, operand_1, operand_2, operand_3 = (Signal(intbv(0)[32:]) for _ in range(4))
     fetched = Signal(intbv(0, min=0, max=isa.MAX_OPERANDS + 2))
     word_due = Signal(bool(0))
     next_valid = Signal(bool(0))
@@ -74,6 +76,9 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
     coord_mask = Signal(intbv(0)[isa.MAX_OPERANDS:])
     count_mask = Signal(intbv(0)[isa.MAX_OPERANDS:])
     set_known = Signal(bool(0))
+    coord_fits = Signal(intbv(0)[isa.MAX_OPERANDS:])
+    count_fits = Signal(intbv(0)[isa.MAX_OPERANDS:])
+    arriving_coord_fits, arriving_count_fits = Signal(bool(0)), Signal(bool(0))
     opcode_known = _opcode_rom(lambda op: 1)
     operand_count = _opcode_rom(lambda op: len(op.operands))
     header_mask_high = _opcode_rom(lambda op: op.header_mask >> 16)
@@ -92,8 +97,6 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
     acc_lsb, acc_msb = _field("ARC", "ACC_BITS")
     index_lsb, index_msb = _field("SET", "INDEX")
     tag_lsb, tag_msb = _field("MARK", "TAG")
-    coord_low, coord_high = -(1 << (coord_width - 1)), 1 << (coord_width - 1)
-    count_low, count_high = -(1 << (COUNT_BITS - 1)), 1 << (COUNT_BITS - 1)
 
     @always_comb
     def split_header():
@@ -160,7 +163,16 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
                     else:
                         fetched.next = 1
                 else:
-                    operands[fetched - 1].next = fifo_dout
+                    if fetched == 1:
+                        operand_0.next = fifo_dout
+                    elif fetched == 2:
+                        operand_1.next = fifo_dout
+                    elif fetched == 3:
+                        operand_2.next = fifo_dout
+                    else:
+                        operand_3.next = fifo_dout
+                    coord_fits.next[fetched - 1] = arriving_coord_fits
+                    count_fits.next[fetched - 1] = arriving_count_fits
                     if fetched == next_count:
                         next_valid.next = 1
                         fetched.next = 0
@@ -177,12 +189,8 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
             result[:] = E_RESERVED_BITS
         elif opcode == set_op and not set_known:
             result[:] = E_RANGE
-        else:
-            for i in range(isa.MAX_OPERANDS):
-                if coord_mask[i] and (operands[i].signed() < coord_low or operands[i].signed() >= coord_high):
-                    result[:] = E_RANGE
-                if count_mask[i] and (operands[i].signed() < count_low or operands[i].signed() >= count_high):
-                    result[:] = E_RANGE
+        elif (coord_mask & ~coord_fits) != 0 or (count_mask & ~count_fits) != 0:
+            result[:] = E_RANGE
         next_error.next = result
 
     @always_comb
@@ -226,42 +234,48 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
             elif opcode == line_op or opcode == arc_op:
                 state.next = seq_t.S_MOTION
                 dda.start.next = 1
-                dda.line.next = opcode == line_op
-                dda.ccw.next = header[ccw_lsb]
-                dda.variant.next = header[variant_msb:variant_lsb]
-                dda.lambda_shift.next = header[lambda_msb:lambda_lsb]
-                dda.acc_bits.next = header[acc_msb:acc_lsb]
-                if opcode == line_op:
-                    dda.xs.next = 0
-                    dda.ys.next = 0
-                    dda.xe.next = operands[0][coord_width:].signed()
-                    dda.ye.next = operands[1][coord_width:].signed()
-                else:
-                    dda.xs.next = operands[0][coord_width:].signed()
-                    dda.ys.next = operands[1][coord_width:].signed()
-                    dda.xe.next = operands[2][coord_width:].signed()
-                    dda.ye.next = operands[3][coord_width:].signed()
             elif opcode == pulse_op:
                 state.next = seq_t.S_PULSE
                 pulse_load.next = 1
-                pulse_count_x.next = operands[0][COUNT_BITS:].signed()
-                pulse_count_y.next = operands[1][COUNT_BITS:].signed()
             elif opcode == dwell_op:
                 state.next = seq_t.S_DWELL
-                dwell_left.next = operands[0]
+                dwell_left.next = operand_0
             else:
                 state.next = seq_t.S_IDLE
                 if opcode == set_op:
                     set_strobe.next = 1
-                    set_index.next = header[index_msb:index_lsb]
-                    set_value.next = operands[0]
                 elif opcode == mark_op:
                     mark_strobe.next = 1
-                    mark_tag.next = header[tag_msb:tag_lsb]
         elif finishing:
             state.next = seq_t.S_IDLE
         elif state == seq_t.S_DWELL and not outputs_busy and dwell_left != 0:
             dwell_left.next = dwell_left - 1
+
+    @always_comb
+    def present():
+        # The receivers take these in the clock of their strobe (start, load,
+        # set, mark), one clock after the issue and before the next fetched
+        # word can overwrite the instruction register: no copy is needed.
+        dda.line.next = opcode == line_op
+        dda.ccw.next = header[ccw_lsb]
+        dda.variant.next = header[variant_msb:variant_lsb]
+        dda.lambda_shift.next = header[lambda_msb:lambda_lsb]
+        dda.acc_bits.next = header[acc_msb:acc_lsb]
+        if opcode == line_op:
+            dda.xs.next = 0
+            dda.ys.next = 0
+            dda.xe.next = operand_0[coord_width:].signed()
+            dda.ye.next = operand_1[coord_width:].signed()
+        else:
+            dda.xs.next = operand_0[coord_width:].signed()
+            dda.ys.next = operand_1[coord_width:].signed()
+            dda.xe.next = operand_2[coord_width:].signed()
+            dda.ye.next = operand_3[coord_width:].signed()
+        pulse_count_x.next = operand_0[COUNT_BITS:].signed()
+        pulse_count_y.next = operand_1[COUNT_BITS:].signed()
+        set_index.next = header[index_msb:index_lsb]
+        set_value.next = operand_0
+        mark_tag.next = header[tag_msb:tag_lsb]
 
     @always_comb
     def report():
@@ -269,9 +283,23 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
                      or next_valid or word_due or fetched != 0 or not fifo_empty)
         motion_run.next = state == seq_t.S_MOTION
 
-    return (split_header, lookup_arriving, lookup_count, lookup_valid, lookup_mask_high, lookup_mask_low,
+    fits = [_fits(fifo_dout, arriving_coord_fits, coord_width), _fits(fifo_dout, arriving_count_fits, COUNT_BITS)]
+    return (fits, split_header, lookup_arriving, lookup_count, lookup_valid, lookup_mask_high, lookup_mask_low,
             lookup_coords, lookup_counts, lookup_set, fetch_request, fetch, check, completion,
-            issuing, execute, report)
+            issuing, execute, present, report)
+
+
+@block
+def _fits(operand, fits, width):
+    """``fits``: the 32-bit ``operand`` is a ``width``-bit signed number (its top
+    bits are copies of bit ``width - 1``)."""
+    ones = (1 << (33 - width)) - 1
+
+    @always_comb
+    def sign_extension():
+        fits.next = operand[32:width - 1] == 0 or operand[32:width - 1] == ones
+
+    return sign_extension
 
 
 def sequencer_ports(coord_width=24):

@@ -262,7 +262,10 @@ class ArcIterator:
             raise ValueError("end_rule 'reach' handles arcs inside one quadrant only")
         self.reach = end_rule == "reach"
         self.acc_x = self.acc_y = load[initial_load]
-        self.acc_max = (1 << (accumulator_width(coord_width) - 1)) - 1
+        # the hardware holds A - bias (bias T, or T + 1 for a strict compare) so that an
+        # overflow is a sign bit; it saturates that register at its maximum
+        bias = plan.threshold + (command.variant in (WEIGHTED, IMPROVED))
+        self.acc_max = (1 << (accumulator_width(coord_width) - 1)) - 1 + bias
         self.error_width = error_term_width(coord_width)
         self.x, self.y = command.xs, command.ys
         self.error_term = 0

@@ -181,3 +181,24 @@ def test_ports_follow_the_bar_sizes():
     assert len(pci_slave_ports(mem_bar_bits=16)["local"].addr) == 16
     assert len(pci_slave_ports(io_bar_bits=2, mem_bar_bits=4)["local"].addr) == 8
     assert isinstance(pci_slave_ports()["irq"], type(Signal(bool(0))))
+
+
+def test_smallest_bars_keep_the_whole_configuration_header():
+    """BAR1 of 16 bytes has fewer offset bits than the header has dwords:
+    every register must still be reachable (values from the parameters)."""
+    params = {"io_bar_bits": 2, "mem_bar_bits": 4, "subsystem_vendor_id": 0xABCD,
+              "subsystem_id": 0x1357}
+    out = {}
+
+    def scenario(b):
+        host = b.host
+        yield from host.config_write(DEVICE, 0x3C, 0x5A)
+        for register in (0x00, 0x2C, 0x3C):
+            out[register] = (yield from host.config_read(DEVICE, register)).value
+        out["devices"] = yield from host.enumerate_bus(devices=[DEVICE])
+
+    PciBench(target="myhdl", slave_params=params).run(scenario, "pci_directed_small_bars")
+    assert out[0x00] == 0xDDA0 << 16 | 0x1234
+    assert out[0x2C] == 0x1357 << 16 | 0xABCD
+    assert out[0x3C] == 1 << 8 | 0x5A
+    assert [bar["size"] for bar in out["devices"][0].bars] == [4, 16]

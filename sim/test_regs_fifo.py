@@ -128,9 +128,19 @@ def test_fifo_full_retries_nothing_lost():
     assert log.path() == wanted and results["position"] == wanted[-1]
 
 
-def test_malformed_command_stops_until_cleared():
+MALFORMED = {  # case: (error code, words)
+    "opcode": ("BAD_OPCODE", [0xF << isa.OPCODE_LSB]),
+    "reserved": ("RESERVED_BITS", [isa.encode("LINE", 1, 1)[0] | 1 << 20, 1, 1]),
+    "coordinate": ("RANGE", isa.encode("LINE", 1 << 23, 0)),
+    "set_index": ("RANGE", isa.encode("SET", 5, INDEX=15)),
+    "off_circle": ("DDA_REJECTED", isa.encode("ARC", 10, 0, 0, 20, CCW=1, VARIANT=3)),
+}
+
+
+@pytest.mark.parametrize("case", sorted(MALFORMED))
+def test_malformed_command_stops_until_cleared(case):
+    code, bad = MALFORMED[case]
     good = command_words(LineCommand(4, 2))
-    bad = [0xF << isa.OPCODE_LSB]
     results = {}
 
     def scenario(driver):
@@ -149,8 +159,8 @@ def test_malformed_command_stops_until_cleared():
         yield from wait_idle(driver)
         results["after"] = yield from read_position(driver)
 
-    _, wave = run_core("regs_malformed", scenario)
-    assert results["error"] == isa.ERROR_CODE["BAD_OPCODE"]
+    _, wave = run_core(f"regs_malformed_{case}", scenario)
+    assert results["error"] == isa.ERROR_CODE[code]
     assert results["held"] == (4, 2)
     assert results["after"] == (8, 4)
     assert wave.edges("irq", "1"), "INTA# request never raised"

@@ -1,0 +1,146 @@
+"""The bench's own building blocks: the bus model's resolution and driver
+record, and the memory back end's latency, retry and errors."""
+import pytest
+from myhdl import Signal, StopSimulation, always, block, delay, instance
+
+from rtl.interfaces import LocalBus, card_reset
+from sim.local_memory import NOT_READY_DATA, LocalMemory, local_memory
+from sim.pci_bus import PciAgent, PciSegment, even_parity, pci_segment, scripted_agent
+from sim.waves import run_traced
+
+
+@block
+def two_agents(clock, segment, scripts, samples):
+    """Play a script on each agent, keep one sample of the segment per edge."""
+    players = [scripted_agent(clock, segment.agents[name], script)
+               for name, script in scripts.items()]
+    bus = pci_segment(clock, segment)
+    length = max(len(script) for script in scripts.values())
+
+    @always(delay(15))
+    def clock_driver():
+        clock.next = not clock
+
+    @instance
+    def sampler():
+        for _ in range(length + 1):
+            yield clock.posedge
+            samples.append(segment.sample())
+        raise StopSimulation()
+
+    return players, bus, clock_driver, sampler
+
+
+def play(scripts, idsel=None):
+    segment = PciSegment({name: PciAgent() for name in scripts}, idsel=idsel)
+    samples = []
+    run_traced(two_agents(Signal(bool(0)), segment, scripts, samples), "bus_model")
+    return segment, samples[1:]  # samples[k]: the clock script step k drove
+
+
+def test_resolution_pull_ups_and_floating_lines():
+    _, samples = play({"a": [{"frame": 0, "ad": 0x1234, "cbe": 0x6}, {"frame": None, "ad": None}],
+                       "b": [{}, {}]})
+    first, second = samples[0], samples[1]
+    assert first.frame == 0 and first.ad == 0x1234 and first.drivers["ad"] == {"a"}
+    assert second.frame == 1 and second.ad is None and second.drivers["ad"] == frozenset()
+    assert first.irdy == 1 and first.par is None  # undriven: pulled up / floating
+
+
+def test_open_drain_lines_are_wired_or_and_contention_is_recorded():
+    _, samples = play({"a": [{"serr": 0, "trdy": 0}, {"serr": None}],
+                       "b": [{"serr": 0, "trdy": 1}, {"serr": 1}]})
+    assert samples[0].serr == 0 and samples[0].drivers["serr"] == {"a", "b"}
+    assert samples[0].drivers["trdy"] == {"a", "b"}
+    assert samples[1].serr == 1  # b lets go (drives 1: not asserted)
+
+
+def test_idsel_follows_its_ad_line():
+    segment, _ = play({"host": [{"ad": 1 << 17}, {"ad": 1 << 16}], "dev": [{}, {}]},
+                      idsel={"dev": 17})
+    assert segment.agents["dev"].idsel_in.val == 0  # AD[17] low in the last clock
+    with pytest.raises(ValueError):
+        PciSegment({"dev": PciAgent()}, idsel={"dev": 3})
+    with pytest.raises(ValueError):
+        PciSegment({"dev": PciAgent()}, idsel={"nobody": 20})
+
+
+def test_even_parity():
+    assert even_parity(0, 0) == 0 and even_parity(1, 0) == 1
+    assert even_parity(0xFFFFFFFF, 0xF) == 0 and even_parity(0x80000000, 0x1) == 0
+
+
+@block
+def local_requests(clock, reset, local, memory, requests, log):
+    """Present each (kind, space, addr, data, be) request until it is answered."""
+    back_end = local_memory(clock, reset, local, memory)
+
+    @always(delay(15))
+    def clock_driver():
+        clock.next = not clock
+
+    @instance
+    def driver():
+        reset.next = reset.active
+        yield clock.posedge
+        reset.next = not reset.active
+        for kind, space, addr, data, be in requests:
+            yield clock.negedge
+            local.space.next, local.addr.next, local.be.next = space, addr, be
+            local.wdata.next, local.we.next, local.re.next = data, kind == "w", kind == "r"
+            waited = 0
+            while True:
+                yield clock.posedge
+                if local.ready or local.retry:
+                    log.append((kind, waited, bool(local.retry), int(local.rdata)))
+                    break
+                waited += 1
+            local.we.next = local.re.next = False
+        yield clock.posedge  # the back end acts on the last answer at that same edge
+        raise StopSimulation()
+
+    return back_end, clock_driver, driver
+
+
+def serve(memory, requests):
+    log = []
+    local = LocalBus(12)
+    run_traced(local_requests(Signal(bool(0)), card_reset(), local, memory, requests, log),
+               "local_memory")
+    return log
+
+
+def test_latency_and_data():
+    memory = LocalMemory(64, 4096, latency=3)
+    log = serve(memory, [("w", 1, 0x10, 0xAABBCCDD, 0xF), ("w", 1, 0x10, 0x11223344, 0x6),
+                         ("r", 1, 0x10, 0, 0xF), ("r", 0, 0x3C, 0, 0xF)])
+    assert [entry[1] for entry in log] == [3, 3, 3, 3]
+    assert log[2][3] == 0xAA2233DD and log[3][3] == 0
+    assert memory.read(1, 0x10) == 0xAA2233DD
+
+
+def test_retry_injection_is_seeded():
+    requests = [("r", 1, 4 * i, 0, 0xF) for i in range(40)]
+    first = serve(LocalMemory(retry_rate=0.3, latency=(0, 2), seed=5), requests)
+    again = serve(LocalMemory(retry_rate=0.3, latency=(0, 2), seed=5), requests)
+    assert first == again
+    assert 0 < sum(entry[2] for entry in first) < 40
+    assert all(entry[3] == NOT_READY_DATA for entry in first if entry[2])
+
+
+def test_schedule_overrides_latency_and_retry():
+    memory = LocalMemory(schedule=lambda n, space, addr, write: (n, n == 1))
+    log = serve(memory, [("w", 1, 0, 5, 0xF), ("w", 1, 4, 6, 0xF), ("w", 1, 8, 7, 0xF)])
+    assert [(entry[1], entry[2]) for entry in log] == [(0, False), (1, True), (2, False)]
+    assert memory.read(1, 4) == 0 and memory.read(1, 8) == 7
+
+
+def test_misuse_is_reported():
+    with pytest.raises(ValueError, match="outside"):
+        serve(LocalMemory(64, 64), [("r", 1, 0x40, 0, 0xF)])
+    with pytest.raises(ValueError, match="aligned"):
+        serve(LocalMemory(), [("w", 0, 0x2, 0, 0xF)])
+    with pytest.raises(ValueError):
+        LocalMemory(io_bytes=6)
+    with pytest.raises(ValueError):
+        LocalMemory(retry_rate=2)
