@@ -113,14 +113,15 @@ def e2e_speed(kind):
 
 
 def synthesis():
+    """The synthesis figures of the whole top, as ``bench/synth.py`` prints them."""
     try:
-        from bench.synth import synthesize
+        from bench.synth import format_figures, synthesize
     except ImportError as error:
         return f"not available ({error})"
     from sim.paths import GEN
     if not (GEN / "top.v").exists():
         return "gen/top.v missing: run python -m rtl.top --convert"
-    return synthesize("top")
+    return "\n" + format_figures(synthesize("top"))
 
 
 def main(argv=None):

@@ -171,7 +171,13 @@ def run_nextpnr(unit, netlist, pcf, work, freq, seed, *, place=True, timeout=TIM
     command += ["--sdf", str(sdf), "--asc", str(work / f"{unit}.asc")] if place else ["--pack-only"]
     if unit != "top":
         command.append("--pcf-allow-unconstrained")
-    _run(command, log, work, timeout)
+    try:
+        _run(command, log, work, timeout)
+    except SynthError as error:
+        usage = re.search(r"ICESTORM_LC:\s*(\d+)/\s*(\d+)", log.read_text() if log.exists() else "")
+        if usage and int(usage[1]) > int(usage[2]):
+            raise SynthError(f"{unit} does not fit: {usage[1]} / {usage[2]} logic cells, see {log}") from None
+        raise error
     return report, sdf, log
 
 

@@ -100,6 +100,8 @@ class DdaPort:
     """
 
     def __init__(self, coord_width=24):
+        if not 4 <= coord_width <= 48:
+            raise ValueError(f"coord_width must be 4..48 bits, got {coord_width}")
         self.coord_width = coord_width
         low, high = -(1 << (coord_width - 1)), 1 << (coord_width - 1)
         self.start = Signal(bool(0))

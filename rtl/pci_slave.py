@@ -76,6 +76,8 @@ def check_params(params):
 class ControlNext:
     """Next state and control lines of the target for one case of the pins."""
 
+    FIELDS = ("state", "trdy", "stop", "devsel", "drive", "ad_oe")
+
     def __init__(self):
         self.state = Signal(t_state.S_IDLE)
         self.trdy = Signal(bool(1))
@@ -83,6 +85,23 @@ class ControlNext:
         self.devsel = Signal(bool(1))
         self.drive = Signal(bool(0))
         self.ad_oe = Signal(bool(0))
+
+
+@block
+def timing_boundary(source, sink):
+    """``sink`` follows ``source`` through a net that synthesis keeps, so
+    that no logic is merged across it: a late input (a PCI pin) joining
+    ``sink`` then stays in the last LUT before its register."""
+
+    @always_comb
+    def follow():
+        sink.next = source
+
+    sink.driven = "wire"
+    bits = f"[{len(sink) - 1}:0] " if len(sink) > 1 else ""
+    timing_boundary.verilog_code = (f"(* keep *) wire {bits}${{sink}}_kept_net = $source;\n"
+                                    "assign $sink = ${sink}_kept_net;\n")
+    return follow
 
 
 def local_addr_width(io_bar_bits=6, mem_bar_bits=12):
@@ -201,9 +220,14 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     # --- combinational ---
     bus_parity = Signal(bool(0))      # parity of the AD and C/BE# input registers
+    bus_parity_kept = Signal(bool(0))
+    ad_out_parity, ad_out_parity_kept = Signal(bool(0)), Signal(bool(0))   # of ad_out_q
     address_phase = Signal(bool(0))
     address_parity_error = Signal(bool(0))
     data_parity_error = Signal(bool(0))
+    serr_armed = Signal(bool(0))      # SERR# follows an address parity error
+    perr_armed = Signal(bool(0))      # PERR# follows a write data parity error
+    parity_error_q = Signal(bool(0))  # a parity error was detected at the last edge
     claim = Signal(bool(0))
     claim_config, claim_io = Signal(bool(0)), Signal(bool(0))
     fatal = Signal(bool(0))           # target abort now
@@ -255,9 +279,13 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     @always_comb
     def parity_errors():
+        # PAR comes straight from its pin: one LUT from it to each register
+        # that needs it in this clock (PERR#, SERR#, the claim's abort).
         address_phase.next = frame_qq and not frame_q
-        address_parity_error.next = frame_qq and not frame_q and (bus_parity != pci.par_in)
-        data_parity_error.next = write_done_q and (bus_parity != pci.par_in)
+        serr_armed.next = frame_qq and not frame_q and serr_enable and parity_response
+        perr_armed.next = write_done_q and parity_response
+        address_parity_error.next = frame_qq and not frame_q and (bus_parity_kept != pci.par_in)
+        data_parity_error.next = write_done_q and (bus_parity_kept != pci.par_in)
 
     # ------------------------------------------------------------ decoding
     @always_comb
@@ -486,10 +514,16 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
         return control
 
-    control_cases = [control_case(False, False, next_if_neither),
-                     control_case(False, True, next_if_frame),
-                     control_case(True, False, next_if_irdy),
-                     control_case(True, True, next_if_both)]
+    case_values = [ControlNext() for _ in range(4)]
+    control_cases = [control_case(False, False, case_values[0]),
+                     control_case(False, True, case_values[1]),
+                     control_case(True, False, case_values[2]),
+                     control_case(True, True, case_values[3])]
+    # kept nets: the pins only choose among finished case values
+    case_boundaries = [timing_boundary(getattr(value, field), getattr(kept, field))
+                       for value, kept in zip(case_values, (next_if_neither, next_if_frame,
+                                                            next_if_irdy, next_if_both))
+                       for field in ControlNext.FIELDS]
 
     @always_comb
     def control_pick():
@@ -558,7 +592,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         elif req_addr_stale and not draining:
             req_addr.next = phase_addr
             req_addr_stale.next = False
-        if claim or phase_done or not waiting:
+        if claim or not waiting:
             wait_count.next = 0
         elif not timeout:
             wait_count.next = wait_count + 1
@@ -572,6 +606,11 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             ad_out_next.next = ad_out_q
         else:
             ad_out_next.next = read_source
+        par_next.next = ad_out_parity_kept ^ pci.cbe_in[0] ^ pci.cbe_in[1] ^ pci.cbe_in[2] ^ pci.cbe_in[3]
+        perr_next.next = not (perr_armed and bus_parity_kept != pci.par_in)
+
+    @always_comb
+    def ad_out_parity_tree():
         fold = intbv(0)[32:]
         fold[:] = ad_out_q
         fold[16:] = fold[16:] ^ fold[32:16]
@@ -579,8 +618,11 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         fold[4:] = fold[4:] ^ fold[8:4]
         fold[2:] = fold[2:] ^ fold[4:2]
         fold[1:] = fold[1:] ^ fold[2:1]
-        par_next.next = fold[0] ^ pci.cbe_in[0] ^ pci.cbe_in[1] ^ pci.cbe_in[2] ^ pci.cbe_in[3]
-        perr_next.next = not (data_parity_error and parity_response)
+        ad_out_parity.next = fold[0]
+
+    # the parity trees end in kept nets: the pins join after them
+    parity_boundaries = [timing_boundary(bus_parity, bus_parity_kept),
+                         timing_boundary(ad_out_parity, ad_out_parity_kept)]
 
     @always_seq(clock.posedge, reset=reset)
     def bus_registers():
@@ -596,7 +638,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         pci.par_oe.next = pci.ad_oe
         pci.perr_oe.next = not perr_next or not perr_q   # asserted, then high one clock
         pci.serr_out.next = False
-        pci.serr_oe.next = address_parity_error and serr_enable and parity_response
+        pci.serr_oe.next = serr_armed and bus_parity_kept != pci.par_in
+        parity_error_q.next = address_parity_error or data_parity_error
         pci.inta_out.next = False
         pci.inta_oe.next = irq and not interrupt_disable
 
@@ -657,7 +700,9 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             h_valid.next = True
             h_data.next = ad_q
             h_be.next = ~cbe_q
-        if got and holding:
+        if local.re and local.ready:
+            # B takes every dword read; it counts only if the AD register
+            # is holding (b_valid), which keeps IRDY# out of this path
             spare_data.next = local.rdata
 
     # ------------------------------------------------------------ configuration space
@@ -702,9 +747,10 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 if not cbe_q[0]:
                     interrupt_line.next = ad_q[8:0]
         signaled_target_abort.next = fatal or (signaled_target_abort and not clear_target_abort)
-        signaled_system_error.next = ((address_parity_error and serr_enable and parity_response)
+        # set one clock after the event: status only
+        signaled_system_error.next = (pci.serr_oe
                                       or (signaled_system_error and not clear_system_error))
-        detected_parity_error.next = (address_parity_error or data_parity_error
+        detected_parity_error.next = (parity_error_q
                                       or (detected_parity_error and not clear_parity_error))
 
     @always_comb

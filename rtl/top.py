@@ -96,16 +96,21 @@ def _strip_date(text):
     return "".join(line for line in text.splitlines(keepends=True) if not line.startswith("// Date:"))
 
 
-def convert_unit(unit, params, out_dir):
-    """Convert one unit into ``out_dir``; return the path written."""
+def convert_block(unit, instance, out_dir):
+    """Convert an elaborated unit into ``out_dir``; return the path written."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as work:
-        unit_block(unit, params).convert(hdl="Verilog", path=work, name=unit, testbench=False)
+        instance.convert(hdl="Verilog", path=work, name=unit, testbench=False)
         text = (Path(work) / f"{unit}.v").read_text()
     target = out_dir / f"{unit}.v"
     target.write_text(_strip_date(text))
     return target
+
+
+def convert_unit(unit, params, out_dir):
+    """Elaborate and convert one unit into ``out_dir``; return the path written."""
+    return convert_block(unit, unit_block(unit, params), out_dir)
 
 
 def convert_all(out_dir=GEN_DIR, **values):
@@ -114,14 +119,20 @@ def convert_all(out_dir=GEN_DIR, **values):
     if unknown:
         raise ValueError(f"unknown parameters: {sorted(unknown)}")
     settings = {name: values.get(name, spec[1]) for name, spec in PARAMETERS.items()}
-    written = []
-    for unit, names in UNITS.items():
-        written.append(convert_unit(unit, {n: settings[n] for n in names}, out_dir))
-    return written
+    # Elaborate every unit first: a bad value fails before anything is written.
+    blocks = {unit: unit_block(unit, {n: settings[n] for n in names}) for unit, names in UNITS.items()}
+    return [convert_block(unit, instance, out_dir) for unit, instance in blocks.items()]
+
+
+class _Parser(argparse.ArgumentParser):
+    """Reports a bad command line in one line (no usage block) and exits 2."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message}\n")
 
 
 def _parser():
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="python -m rtl.top",
         description="Convert the PCI DDA motion-control card to Verilog.",
     )

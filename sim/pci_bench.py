@@ -7,7 +7,8 @@ save file, the monitor watching every clock.
 
 Targets: ``target="myhdl"`` (``rtl.pci_slave``), ``"verilog"`` (the
 generated ``gen/pci_slave.v`` in Icarus), or a function ``bench -> (agent,
-[(block factory, args)])`` for any other target (the behavioural one of the host tests).
+[(block factory, args[, keyword args])])`` for any other target (the
+behavioural one of the host tests, the whole card).
 """
 from myhdl import Signal, StopSimulation, always, block, delay, instance
 
@@ -17,7 +18,7 @@ from sim.paths import GEN
 from sim.pci_bus import PciSegment, pci_segment
 from sim.pci_host import PciHost, pci_host
 from sim.pci_monitor import ProtocolChecker, pci_monitor
-from sim.waves import run_traced, write_gtkw
+from sim.waves import Waveform, run_traced, write_gtkw
 
 CLOCK_PERIOD = 30  # time units per PCI clock; 30 ns is 33.3 MHz
 RESET_CLOCKS = 3
@@ -51,9 +52,9 @@ class PciBench:
         self.host = PciHost(self.clock, **(host_options or {}))
         self.ports = None
         self.memory = memory
-        self.extra = []
+        self.other_blocks = []
         if callable(target):
-            agent, self.extra = target(self)
+            agent, self.other_blocks = target(self)
         else:
             agent = self._slave_ports()
         self.segment = PciSegment({"host": self.host.agent, "target": agent},
@@ -61,7 +62,7 @@ class PciBench:
         self.checker = ProtocolChecker(TARGET_DEVICE, self.host.parity_response, allow_parity_errors)
 
     def _slave_ports(self):
-        from rtl.pci_slave import pci_slave_ports
+        from rtl.pci_slave import pci_slave_ports  # here: other targets need no RTL
 
         ports = pci_slave_ports(**self.slave_params)
         ports["clock"], ports["reset"], ports["irq"] = self.clock, self.reset, self.irq
@@ -76,7 +77,7 @@ class PciBench:
         """[(block factory, args)] of the target side, or a ready Cosimulation
         in place of a factory (MyHDL wants blocks created in the bench body)."""
         if callable(self.target):
-            return self.extra
+            return self.other_blocks
         blocks = [(local_memory, (self.clock, self.reset, self.ports["local"], self.memory))]
         if self.target == "myhdl":
             from rtl.pci_slave import pci_slave
@@ -107,15 +108,14 @@ class PciBench:
             try:
                 top.run_sim(quiet=1)
             finally:
-                top.quit_sim()
+                if top.sim is not None and not top.sim._finished:
+                    top.quit_sim()
             return None
         vcd = run_traced(top, name)
         write_gtkw(vcd, self._wave_groups(vcd))
         return vcd
 
     def _wave_groups(self, vcd):
-        from sim.waves import Waveform
-
         wave = Waveform(vcd)
         groups = {}
         for group, names in WAVE_GROUPS.items():

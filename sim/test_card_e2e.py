@@ -145,7 +145,7 @@ def test_chained_segments_no_gap_between_lines():
     assert set(gaps) == {2}, gaps
 
 
-@pytest.mark.parametrize("kind", ["myhdl", "verilog"])
+@pytest.mark.parametrize("kind", ["myhdl", pytest.param("verilog", marks=pytest.mark.slow)])
 def test_direct_pulse_mode(kind):
     def scenario(bench, target, out):
         yield from io_write(bench, target, "PULSE_PERIOD_X", 5)
@@ -179,7 +179,7 @@ def test_long_burst_fills_fifo_nothing_lost():
     assert out["position"] == expected_path(commands)[-1]
 
 
-@pytest.mark.parametrize("kind", ["myhdl", "verilog"])
+@pytest.mark.parametrize("kind", ["myhdl", pytest.param("verilog", marks=pytest.mark.slow)])
 def test_malformed_command_error_interrupt(kind):
     bad = [0x1 << isa.OPCODE_LSB | 0x80, 0, 0]  # LINE with a reserved header bit
     good = command_words(LineCommand(5, 3))
