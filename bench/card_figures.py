@@ -97,19 +97,25 @@ def pci_burst(kind, words=192):
     return 4 * words * PCI_HZ / clocks / 1e6, clocks, len(transactions)
 
 
-def e2e_speed(kind):
-    """Simulated clocks per wall second of the end-to-end bench, from two runs
-    that differ only in the length of the move (elaboration and compilation cancel)."""
-    from sim.test_card_e2e import motion_scenario, run_card
+def e2e_speed(kind, steps=1500):
+    """Simulated clocks per wall second of the end-to-end bench (host, bus model,
+    monitor, card) during a long move: timed from inside the simulation, so
+    elaboration and Verilog compilation are left out."""
+    from sim.test_card_e2e import finish, program, run_card
 
-    runs = []
-    for steps in (20, 1500):
-        started = time.perf_counter()
-        _, _, _, bench = run_card(kind, motion_scenario([LineCommand(steps, steps // 3)]),
-                                  f"figures_speed_{kind}")
-        runs.append((int(now()) / CLOCK_PERIOD, time.perf_counter() - started))
-    (short_clocks, short_wall), (long_clocks, long_wall) = runs
-    return (long_clocks - short_clocks) / (long_wall - short_wall)
+    marks = []
+    words = command_words(LineCommand(steps, steps // 3))
+
+    def scenario(bench, target, out):
+        yield from program(bench, target)
+        marks.append((now(), time.perf_counter()))
+        yield from bench.host.mem_write(target.mem, words)
+        yield from finish(bench, target, out)
+        marks.append((now(), time.perf_counter()))
+
+    run_card(kind, scenario, f"figures_speed_{kind}")
+    (start_time, start_wall), (end_time, end_wall) = marks
+    return (end_time - start_time) / CLOCK_PERIOD / (end_wall - start_wall)
 
 
 def synthesis():

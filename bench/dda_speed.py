@@ -8,10 +8,13 @@ and prints clocks per second of wall time for
 
 each once with a bare driver (start, advance, wait for done) and once inside
 the test bench that also runs the golden model and compares every clock.
-Elaboration (and the Icarus compile) is not counted; the machine's other load
-is, so run it on a quiet machine.
+Elaboration (and the Icarus compile) is not counted.  clocks/s is per second
+of wall time, which the machine's other load lowers (the load average is
+printed); the last column divides by the CPU time of the Python process
+alone (for co-simulation that leaves out Icarus' own process).
 """
 import argparse
+import os
 import sys
 import time
 from pathlib import Path
@@ -66,15 +69,15 @@ def measure(command, verilog, checked):
     else:
         counter = []
         bench = bare_driver(ports, command, counter, verilog)
-    started = time.perf_counter()
+    started, cpu_started = time.perf_counter(), time.process_time()
     try:
         bench.run_sim(quiet=1)
     finally:
         if bench.sim is not None and not bench.sim._finished:
             bench.quit_sim()
-    elapsed = time.perf_counter() - started
+    elapsed, cpu = time.perf_counter() - started, time.process_time() - cpu_started
     clocks = record.clocks if checked else len(counter)
-    return clocks, elapsed
+    return clocks, elapsed, cpu
 
 
 def main(argv=None):
@@ -84,13 +87,14 @@ def main(argv=None):
     if not 1 <= args.radius < 1 << 23:
         parser.error("radius must be 1 .. 2**23 - 1")
     command = ArcCommand(args.radius, 0, 0, args.radius)
-    print(f"precise quarter arc, R = {args.radius}, advance always high")
-    print(f"{'simulator':<34} {'clocks':>8} {'seconds':>8} {'clocks/s':>10}")
+    print(f"precise quarter arc, R = {args.radius}, advance always high; "
+          f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
+    print(f"{'simulator':<34} {'clocks':>8} {'seconds':>8} {'clocks/s':>10} {'per Python CPU s':>17}")
     for label, verilog in (("MyHDL", None), ("Icarus co-simulation", [GEN / "dda_arc.v"])):
         for checked in (False, True):
-            clocks, elapsed = measure(command, verilog, checked)
+            clocks, elapsed, cpu = measure(command, verilog, checked)
             name = f"{label}{' + model check' if checked else ''}"
-            print(f"{name:<34} {clocks:>8} {elapsed:8.2f} {clocks / elapsed:10.0f}")
+            print(f"{name:<34} {clocks:>8} {elapsed:8.2f} {clocks / elapsed:10.0f} {clocks / cpu:17.0f}")
     return 0
 
 

@@ -81,7 +81,8 @@ def print_bursts(bursts):
 
 
 def print_latencies(latencies):
-    print("Edges after the address edge at which DEVSEL# / the first TRDY# are sampled:")
+    print("Clocks from FRAME# asserted to DEVSEL# / first TRDY# asserted (= edges after the"
+          " address edge at which they are sampled):")
     for name, (devsel, trdy) in latencies.items():
         print(f"  {name:<22} DEVSEL# {devsel}   TRDY# {trdy}")
 

@@ -31,6 +31,11 @@ def _unsigned(width, value=0):
     return Signal(intbv(value)[width:])
 
 
+def _wrapping(width):
+    """A signed register that wraps (two's complement) instead of overflowing."""
+    return Signal(modbv(0, min=-(1 << (width - 1)), max=1 << (width - 1)))
+
+
 @block
 def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     """Two-axis DDA interpolator (arcs of the paper's section 4, and lines).
@@ -104,17 +109,17 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     chk_crossings = _unsigned(3)
     chk_first_x, chk_first_y, chk_last_x, chk_last_y = (_unsigned(width) for _ in range(4))
     chk_radius = _unsigned(width)
-    chk_delta_x = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
-    chk_delta_y = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
+    chk_delta_x = _wrapping(err_width)
+    chk_delta_y = _wrapping(err_width)
 
     # run state
     quadrant = Signal(modbv(0)[2:])
     mag_x, mag_y = _unsigned(width), _unsigned(width)
     acc_x, acc_y = _signed(acc_width), _signed(acc_width)
-    radial_error = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
+    radial_error = _wrapping(err_width)
     # change of x**2 (y**2) on the next step of x (y): 1 - 2|x| inward, 1 + 2|x| outward
-    delta_x = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
-    delta_y = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
+    delta_x = _wrapping(err_width)
+    delta_y = _wrapping(err_width)
     count_x, count_y = _unsigned(width), _unsigned(width)
     crossings = _unsigned(3)
     threshold = _unsigned(thr_width)
@@ -126,7 +131,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     it_dir_x, it_dir_y = Signal(bool(0)), Signal(bool(0))
     it_acc_x, it_acc_y = _signed(acc_width), _signed(acc_width)
     it_mag_x, it_mag_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
-    it_error = Signal(modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1)))
+    it_error = _wrapping(err_width)
     it_finished = Signal(bool(0))
     it_next_piece = Signal(bool(0))
 
@@ -157,7 +162,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     def check_logic():
         rq = intbv(0)[width + 1:]
         smear = intbv(0)[width + 1:]
-        top = intbv(0)[width + 1:]
+        top_bit = intbv(0)[width + 1:]
         base = modbv(0)[thr_width:]
         one = intbv(1)[thr_width:]
         thr = modbv(0)[thr_width:]
@@ -192,11 +197,11 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         smear[:] = smear | (smear >> 4)
         smear[:] = smear | (smear >> 8)
         smear[:] = smear | (smear >> 16)
-        top[:] = smear ^ (smear >> 1)
+        top_bit[:] = smear ^ (smear >> 1)
         if acc_bits != 0:
             base[:] = one << acc_bits
         else:
-            base[:] = concat(intbv(0)[thr_width - width - 2:], top, False)
+            base[:] = concat(intbv(0)[thr_width - width - 2:], top_bit, False)
         thr[:] = base << lambda_shift
         # a one-hot threshold shifted out of its thr_width bits: n + k > coord_width + 4
         if variant != PRECISE and thr == 0:

@@ -172,3 +172,20 @@ class PciPins:
         self.perr = TristateSignal(bool(1))
         self.serr = TristateSignal(bool(1))
         self.inta = TristateSignal(bool(1))
+
+
+class TargetControlNext:
+    """Next state and control lines of the PCI target (``rtl/pci_slave.py``)
+    for one case of the FRAME# and IRDY# pins; ``idle`` is the state enum's
+    idle item.  The target computes one bundle per case from registers only,
+    and the pins choose among them."""
+
+    FIELDS = ("state", "trdy", "stop", "devsel", "drive", "ad_oe")
+
+    def __init__(self, idle):
+        self.state = Signal(idle)
+        self.trdy = Signal(bool(1))
+        self.stop = Signal(bool(1))
+        self.devsel = Signal(bool(1))
+        self.drive = Signal(bool(0))
+        self.ad_oe = Signal(bool(0))

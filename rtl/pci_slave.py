@@ -19,7 +19,7 @@ MEDIUM.
 """
 from myhdl import Signal, always_comb, always_seq, block, concat, enum, instances, intbv, modbv
 
-from rtl.interfaces import LocalBus, PciBus, card_reset
+from rtl.interfaces import LocalBus, PciBus, TargetControlNext, card_reset
 
 t_state = enum("S_IDLE", "S_CON_HOLD", "S_IO_HOLD", "S_MEM_HOLD", "S_READ_HOLD",
                "S_CONFIGURING", "S_RWING", "S_BACKOFF", "S_ENDING")
@@ -73,25 +73,15 @@ def check_params(params):
     return values
 
 
-class ControlNext:
-    """Next state and control lines of the target for one case of the pins."""
-
-    FIELDS = ("state", "trdy", "stop", "devsel", "drive", "ad_oe")
-
-    def __init__(self):
-        self.state = Signal(t_state.S_IDLE)
-        self.trdy = Signal(bool(1))
-        self.stop = Signal(bool(1))
-        self.devsel = Signal(bool(1))
-        self.drive = Signal(bool(0))
-        self.ad_oe = Signal(bool(0))
-
-
 @block
 def timing_boundary(source, sink):
-    """``sink`` follows ``source`` through a net that synthesis keeps, so
-    that no logic is merged across it: a late input (a PCI pin) joining
-    ``sink`` then stays in the last LUT before its register."""
+    """``sink`` follows ``source`` (no clock, no delay) through a net that
+    synthesis keeps, so that no logic is merged across it: a late input (a
+    PCI pin) joining ``sink`` then stays in the last LUT before its register.
+
+        source  --< A >< B >--
+        sink    --< A >< B >--
+    """
 
     @always_comb
     def follow():
@@ -247,8 +237,11 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     timeout = Signal(bool(0))
     at_last = Signal(bool(0))         # phase_addr is the last dword of BAR1
     before_last = Signal(bool(0))
-    next_if_neither, next_if_frame = ControlNext(), ControlNext()   # IRDY#, FRAME# asserted
-    next_if_irdy, next_if_both = ControlNext(), ControlNext()
+    # next values should FRAME#, IRDY# or both be asserted at this edge
+    # (FRAME# deasserts only while IRDY# is asserted, so with IRDY#
+    # deasserted a transaction still has FRAME# asserted)
+    next_if_frame, next_if_irdy, next_if_both = (
+        TargetControlNext(t_state.S_IDLE) for _ in range(3))
 
     # ------------------------------------------------------------ input stage
     if not io_registers:
@@ -411,7 +404,14 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     @block
     def control_case(irdy_asserted, frame_asserted, out):
         """Next values of the state and the target's control lines, should
-        IRDY# and FRAME# be as given at this edge."""
+        IRDY# and FRAME# be as given at this edge (``irdy_asserted``,
+        ``frame_asserted``: Python bools).  Combinational, from registers and
+        the back end's answer only; ``control_pick`` registers one of them.
+
+            edge      k           k+1
+            pins      IRDY#, FRAME# sampled at k choose
+            out       --<next values for k>--
+        """
 
         @always_comb
         def control():
@@ -514,47 +514,39 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
         return control
 
-    case_values = [ControlNext() for _ in range(4)]
-    control_cases = [control_case(False, False, case_values[0]),
-                     control_case(False, True, case_values[1]),
-                     control_case(True, False, case_values[2]),
-                     control_case(True, True, case_values[3])]
+    case_values = [TargetControlNext(t_state.S_IDLE) for _ in range(3)]
+    control_cases = [control_case(False, True, case_values[0]),
+                     control_case(True, False, case_values[1]),
+                     control_case(True, True, case_values[2])]
     # kept nets: the pins only choose among finished case values
     case_boundaries = [timing_boundary(getattr(value, field), getattr(kept, field))
-                       for value, kept in zip(case_values, (next_if_neither, next_if_frame,
-                                                            next_if_irdy, next_if_both))
-                       for field in ControlNext.FIELDS]
+                       for value, kept in zip(case_values, (next_if_frame, next_if_irdy,
+                                                            next_if_both))
+                       for field in TargetControlNext.FIELDS]
 
     @always_comb
     def control_pick():
-        if not pci.irdy_in and not pci.frame_in:
-            state_next.next = next_if_both.state
-            trdy_next.next = next_if_both.trdy
-            stop_next.next = next_if_both.stop
-            devsel_next.next = next_if_both.devsel
-            drive_next.next = next_if_both.drive
-            ad_oe_next.next = next_if_both.ad_oe
-        elif not pci.irdy_in:
-            state_next.next = next_if_irdy.state
-            trdy_next.next = next_if_irdy.trdy
-            stop_next.next = next_if_irdy.stop
-            devsel_next.next = next_if_irdy.devsel
-            drive_next.next = next_if_irdy.drive
-            ad_oe_next.next = next_if_irdy.ad_oe
-        elif not pci.frame_in:
+        if pci.irdy_in:
             state_next.next = next_if_frame.state
             trdy_next.next = next_if_frame.trdy
             stop_next.next = next_if_frame.stop
             devsel_next.next = next_if_frame.devsel
             drive_next.next = next_if_frame.drive
             ad_oe_next.next = next_if_frame.ad_oe
+        elif pci.frame_in:
+            state_next.next = next_if_irdy.state
+            trdy_next.next = next_if_irdy.trdy
+            stop_next.next = next_if_irdy.stop
+            devsel_next.next = next_if_irdy.devsel
+            drive_next.next = next_if_irdy.drive
+            ad_oe_next.next = next_if_irdy.ad_oe
         else:
-            state_next.next = next_if_neither.state
-            trdy_next.next = next_if_neither.trdy
-            stop_next.next = next_if_neither.stop
-            devsel_next.next = next_if_neither.devsel
-            drive_next.next = next_if_neither.drive
-            ad_oe_next.next = next_if_neither.ad_oe
+            state_next.next = next_if_both.state
+            trdy_next.next = next_if_both.trdy
+            stop_next.next = next_if_both.stop
+            devsel_next.next = next_if_both.devsel
+            drive_next.next = next_if_both.drive
+            ad_oe_next.next = next_if_both.ad_oe
 
     @always_seq(clock.posedge, reset=reset)
     def transaction():

@@ -11,8 +11,8 @@ import pytest
 
 from rtl.dda_arc import dda_arc_ports
 from sim.dda_bench import HALF_PERIOD, Record, accepted, dda_bench, end_point, random_arc
-from sim.dda_model import (IMPROVED, PRECISE, TRADITIONAL, WEIGHTED, ArcCommand, LineCommand,
-                           paper_configuration, setup_clocks)
+from sim.dda_model import (IMPROVED, PAPER_V_ARC, PRECISE, TRADITIONAL, WEIGHTED, ArcCommand,
+                           LineCommand, paper_configuration, setup_clocks, v_arc)
 from sim.paths import GEN
 from sim.waves import Waveform, run_traced, write_gtkw
 
@@ -148,6 +148,29 @@ def test_generated_verilog_equals_model_on_every_clock(name):
         commands = [c for c in commands if c.variant in (PRECISE, TRADITIONAL)]
     record, _ = run_bench(f"dda_{name}_cosim", commands, cosim=True)
     check_moves(record)
+
+
+def device_points(move):
+    """Start point and the point after each step pulse of the device."""
+    command = move["command"]
+    x, y = command.xs, command.ys
+    points = [(x, y)]
+    for _, step_x, step_y, dir_x, dir_y in move["steps"]:
+        x += (1 if dir_x else -1) * step_x
+        y += (1 if dir_y else -1) * step_y
+        points.append((x, y))
+    return points
+
+
+def test_device_reproduces_the_paper_and_the_accuracy_target():
+    """V_arc of the device's own step pulses: the paper's figure 6 (eq. 13) and the precise target."""
+    traditional = paper_configuration(TRADITIONAL)[0]
+    record, _ = run_bench("dda_accuracy", [traditional, ArcCommand(100, 0, 0, 100)], advance_rate=0.5)
+    paper_move, precise_move = record.moves
+    assert v_arc(device_points(paper_move), 100) == pytest.approx(PAPER_V_ARC[TRADITIONAL], rel=0.01)
+    points = device_points(precise_move)
+    assert v_arc(points, 100) <= 0.10
+    assert max(abs(math.hypot(x, y) - 100) for x, y in points) <= 0.75
 
 
 NARROW_BAD = [ArcCommand(511, 40, 40, 511), ArcCommand(-512, 0, 0, -512)]

@@ -39,12 +39,14 @@ def play(scripts, idsel=None):
 
 
 def test_resolution_pull_ups_and_floating_lines():
-    _, samples = play({"a": [{"frame": 0, "ad": 0x1234, "cbe": 0x6}, {"frame": None, "ad": None}],
+    segment, samples = play({"a": [{"frame": 0, "ad": 0x1234, "cbe": 0x6}, {"frame": None, "ad": None}],
                        "b": [{}, {}]})
     first, second = samples[0], samples[1]
     assert first.frame == 0 and first.ad == 0x1234 and first.drivers["ad"] == {"a"}
     assert second.frame == 1 and second.ad is None and second.drivers["ad"] == frozenset()
     assert first.irdy == 1 and first.par is None  # undriven: pulled up / floating
+    recorded = list(segment.history)[-len(samples):]
+    assert [r.drivers for r in recorded] == [s.drivers for s in samples]
 
 
 def test_open_drain_lines_are_wired_or_and_contention_is_recorded():

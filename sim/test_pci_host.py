@@ -173,7 +173,7 @@ def test_bad_write_parity_is_injected_on_the_chosen_phase_only():
     assert [kind for _, kind in bench.checker.parity_errors] == ["write data", "address"]
 
 
-def test_helpers_reject_bad_arguments():
+def test_address_and_byte_enable_functions_reject_bad_arguments():
     assert byte_enables(0x102, 2) == 0b1100 and byte_enables(0x101, 1) == 0b0010
     assert config_address(2, 0x10, 1) == (1 << 18) | 0x110
     with pytest.raises(ValueError):

@@ -211,6 +211,8 @@ def test_random_traffic_short(target):
     assert board.stats["dwords checked"] > 500 and board.stats["write dwords"] > 500
     assert bench.memory.retries > 0 and bench.memory.abandoned > 0  # the stalls happened
     assert board.stats["retry"] > 0 and board.stats["disconnect"] > 0
+    records = bench.checker.transactions
+    assert any(r.master_abort for r in records) and any(r.target_abort for r in records)
 
 
 @pytest.mark.slow
