@@ -7,6 +7,8 @@ when ``gen/`` is stale.
 """
 import argparse
 import importlib
+import os
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -92,8 +94,10 @@ def unit_block(unit, params):
     return getattr(module, unit)(**ports, **params)
 
 
-def _strip_date(text):
-    return "".join(line for line in text.splitlines(keepends=True) if not line.startswith("// Date:"))
+def _strip_run_details(text):
+    """Drop MyHDL's date and temporary-path lines, which differ on every run."""
+    return "".join(line for line in text.splitlines(keepends=True)
+                   if not line.startswith(("// Date:", "// File:")))
 
 
 def convert_block(unit, instance, out_dir):
@@ -104,7 +108,7 @@ def convert_block(unit, instance, out_dir):
         instance.convert(hdl="Verilog", path=work, name=unit, testbench=False)
         text = (Path(work) / f"{unit}.v").read_text()
     target = out_dir / f"{unit}.v"
-    target.write_text(_strip_date(text))
+    target.write_text(_strip_run_details(text))
     return target
 
 
@@ -144,7 +148,20 @@ def _parser():
     return parser
 
 
+def _rerun_with_fixed_hash_seed(argv):
+    """Run the converter again with PYTHONHASHSEED=0; return its exit code.
+
+    MyHDL writes sensitivity lists and reset blocks in set order, which follows
+    Python's string hashing: a fixed seed makes ``gen/`` byte-stable.
+    """
+    env = dict(os.environ, PYTHONHASHSEED="0")
+    return subprocess.run([sys.executable, "-m", "rtl.top", *argv], env=env).returncode
+
+
 def main(argv=None):
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if os.environ.get("PYTHONHASHSEED") != "0":
+        return _rerun_with_fixed_hash_seed(argv)
     parser = _parser()
     args = parser.parse_args(argv)
     if not args.convert:
