@@ -70,7 +70,9 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     acc_width = width + ACC_EXTRA_BITS
     err_width = width + ERROR_EXTRA_BITS
     thr_width = width + MAX_THRESHOLD_EXTRA + 1
+    gap_width = 2 * width + 2
     acc_max = (1 << (acc_width - 1)) - 1
+    fill_ones = (1 << (err_width - width - 2)) - 1
 
     t_state = enum("S_IDLE", "S_MAC", "S_ROOT", "S_ROUND", "S_CHECK", "S_RUN")
     state = Signal(t_state.S_IDLE)
@@ -82,24 +84,28 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     acc_bits = _unsigned(5)
     ccw = Signal(bool(0))
     xs, ys, xe, ye = (_signed(width) for _ in range(4))
+    neg_xs, neg_ys = _signed(width + 1), _signed(width + 1)
     mag_xs, mag_ys, mag_xe, mag_ye = (_unsigned(width) for _ in range(4))
     cmd_mag_xs = _unsigned(width)
 
-    # setup: squares and root
+    # setup: one adder-subtractor forms gap = xe**2 + ye**2 - xs**2 - ys**2 - 1 (shift-add),
+    # then checks it against the end-point limits; a restoring square root takes xs**2 + ys**2
     mac_op = Signal(modbv(0)[2:])
     mac_bit = Signal(intbv(0, min=0, max=width))
     multiplicand = Signal(modbv(0)[2 * width:])
     multiplier = _unsigned(width)
-    square_start = Signal(modbv(0)[2 * width:])
-    square_end = Signal(modbv(0)[2 * width:])
+    gap = _wrapping(gap_width)
+    gap_sum = _wrapping(gap_width)
     radicand = Signal(modbv(0)[2 * width:])
     remainder = _unsigned(width + 3)
     root = _unsigned(width)
     root_bit = Signal(intbv(0, min=0, max=width))
+    root_length = _unsigned(6)
+    root_all_ones = Signal(bool(0))
     radius_q = _unsigned(width + 1)
-    end_gap = _signed(2 * width + 2)
-    end_limit = _signed(2 * width + 2)
-    off_circle = Signal(bool(0))
+    radius_length = _unsigned(6)
+    end_reaches_low = Signal(bool(0))
+    end_beyond_high = Signal(bool(0))
 
     # check results
     chk_error = Signal(bool(0))
@@ -107,10 +113,11 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     chk_acc_init = _signed(acc_width)
     chk_quadrant = _unsigned(2)
     chk_crossings = _unsigned(3)
-    chk_first_x, chk_first_y, chk_last_x, chk_last_y = (_unsigned(width) for _ in range(4))
+    chk_target_x, chk_target_y = _unsigned(width), _unsigned(width)
     chk_radius = _unsigned(width)
     chk_delta_x = _wrapping(err_width)
     chk_delta_y = _wrapping(err_width)
+    chk_delta_turn = _wrapping(err_width)
 
     # run state
     quadrant = Signal(modbv(0)[2:])
@@ -120,11 +127,14 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     # change of x**2 (y**2) on the next step of x (y): 1 - 2|x| inward, 1 + 2|x| outward
     delta_x = _wrapping(err_width)
     delta_y = _wrapping(err_width)
-    count_x, count_y = _unsigned(width), _unsigned(width)
+    # 1 - 2 Rq: the delta of the axis that turns inward on a crossing (it is then at Rq)
+    delta_turn = _wrapping(err_width)
+    # each axis stops in the current piece when its magnitude reaches its target:
+    # 0 inward and Rq outward, |xe|, |ye| in the last piece; a line counts up to |dx|, |dy|
+    target_x, target_y = _unsigned(width), _unsigned(width)
     crossings = _unsigned(3)
     threshold = _unsigned(thr_width)
     radius = _unsigned(width)
-    last_x, last_y = _unsigned(width), _unsigned(width)
 
     # one iteration, combinational
     it_step_x, it_step_y = Signal(bool(0)), Signal(bool(0))
@@ -134,6 +144,9 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     it_error = _wrapping(err_width)
     it_finished = Signal(bool(0))
     it_next_piece = Signal(bool(0))
+    x_down, y_down = Signal(bool(0)), Signal(bool(0))
+    count_x, count_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
+    integrand_x, integrand_y = _unsigned(width), _unsigned(width)
 
     @always_comb
     def magnitudes():
@@ -141,14 +154,16 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             cmd_mag_xs.next = -cmd.xs
         else:
             cmd_mag_xs.next = cmd.xs
+        neg_xs.next = -concat(xs[width - 1], xs).signed()
+        neg_ys.next = -concat(ys[width - 1], ys).signed()
         if xs < 0:
-            mag_xs.next = -xs
+            mag_xs.next = neg_xs[width:]
         else:
-            mag_xs.next = xs
+            mag_xs.next = xs[width:]
         if ys < 0:
-            mag_ys.next = -ys
+            mag_ys.next = neg_ys[width:]
         else:
-            mag_ys.next = ys
+            mag_ys.next = ys[width:]
         if xe < 0:
             mag_xe.next = -xe
         else:
@@ -159,13 +174,38 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             mag_ye.next = ye
 
     @always_comb
+    def setup_adder():
+        # gap - multiplicand while squaring xs, ys; gap + multiplicand while squaring xe, ye
+        # and at the first limit; gap - multiplicand - 1 at the second (see control).  The
+        # carry is the adder's carry input: one carry chain.
+        subtract = bool(0)
+        carry = bool(0)
+        operand = modbv(0)[gap_width:]
+        carry_in = intbv(0)[gap_width:]
+        total = modbv(0)[gap_width:]
+        if state == t_state.S_MAC:
+            subtract = mac_op < 2
+            carry = mac_op < 2
+        else:
+            subtract = root_bit == 2
+        operand[:] = concat(intbv(0)[gap_width - 2 * width:], multiplicand)
+        if subtract:
+            operand[:] = ~operand
+        carry_in[:] = concat(intbv(0)[gap_width - 1:], carry)
+        total[:] = gap[gap_width:] + operand + carry_in
+        gap_sum.next = total.signed()
+
+    @always_comb
     def check_logic():
         rq = intbv(0)[width + 1:]
-        smear = intbv(0)[width + 1:]
-        top_bit = intbv(0)[width + 1:]
-        base = modbv(0)[thr_width:]
-        one = intbv(1)[thr_width:]
+        exponent = modbv(0)[6:]
         thr = modbv(0)[thr_width:]
+        thr_less = modbv(0)[thr_width:]
+        one = intbv(1)[thr_width:]
+        below = modbv(0)[acc_width:]
+        half = modbv(0)[acc_width:]
+        major = intbv(0)[width:]
+        major_less = modbv(0)[width:]
         q_s = intbv(0)[2:]
         q_e = intbv(0)[2:]
         turns = intbv(0)[3:]
@@ -174,40 +214,50 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         b_s = intbv(0)[width:]
         a_e = intbv(0)[width:]
         b_e = intbv(0)[width:]
-        first_in = modbv(0)[width:]
-        first_out = modbv(0)[width:]
-        last_in = modbv(0)[width:]
-        last_out = modbv(0)[width:]
-        out_x = intbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
-        out_y = intbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
+        half_x = modbv(0)[width + 1:]
+        half_y = modbv(0)[width + 1:]
+        half_turn = modbv(0)[width + 1:]
+        fill_x = intbv(0)[err_width - width - 2:]
+        fill_y = intbv(0)[err_width - width - 2:]
+        fill_turn = intbv(0)[err_width - width - 2:]
         bad = False
 
         rq[:] = radius_q
-        if square_start == 0 or (xe == 0 and ye == 0):
+        if (xs == 0 and ys == 0) or (xe == 0 and ye == 0):
             bad = True
         if rq >= (1 << (width - 1)):
             bad = True
-        if off_circle:
+        if not end_reaches_low or end_beyond_high:
             bad = True
 
         # threshold of the paper's variants: 2**(n + k); n = acc_bits, or if that is 0
-        # the bit length of Rq (left-shift normalisation): 2**n = twice the top bit of Rq
-        smear[:] = rq | (rq >> 1)
-        smear[:] = smear | (smear >> 2)
-        smear[:] = smear | (smear >> 4)
-        smear[:] = smear | (smear >> 8)
-        smear[:] = smear | (smear >> 16)
-        top_bit[:] = smear ^ (smear >> 1)
+        # the bit length of Rq (left-shift normalisation); rejected when n + k > coord_width + 4
         if acc_bits != 0:
-            base[:] = one << acc_bits
+            exponent[:] = concat(False, acc_bits) + concat(False, lambda_shift)
         else:
-            base[:] = concat(intbv(0)[thr_width - width - 2:], top_bit, False)
-        thr[:] = base << lambda_shift
-        # a one-hot threshold shifted out of its thr_width bits: n + k > coord_width + 4
-        if variant != PRECISE and thr == 0:
+            exponent[:] = radius_length + concat(False, lambda_shift)
+        thr[:] = one << exponent
+        if variant != PRECISE and exponent > thr_width - 1:
             bad = True
+        # the accumulators hold A - T (A - T - 1 for the strict compares), so the initial
+        # load is -ceil(T/2) = ~((T - 1) >> 1), or -T - 1 = ~T; precise: T = Rq + 1
+        thr_less[:] = thr - 1
+        below[:] = concat(intbv(0)[acc_width - thr_width:], thr_less)
+        half[:] = ~(below >> 1)
+        if variant == WEIGHTED or variant == IMPROVED:
+            half[:] = ~concat(intbv(0)[acc_width - thr_width:], thr)
         if variant == PRECISE:
             thr[:] = concat(intbv(0)[thr_width - width - 1:], rq) + 1
+            half[:] = ~concat(intbv(0)[acc_width - width:], rq[width + 1:1])
+        # a line: T = max(|dx|, |dy|), loaded with T / 2 (held as ~((T - 1) >> 1) too)
+        if mag_xe > mag_ye:
+            major[:] = mag_xe
+        else:
+            major[:] = mag_ye
+        major_less[:] = major - 1
+        if is_line:
+            thr[:] = concat(intbv(0)[thr_width - width:], major)
+            half[:] = ~(concat(intbv(0)[acc_width - width:], major_less) >> 1)
 
         # departure quadrant of the start, arrival quadrant of the end
         if ccw:
@@ -262,56 +312,74 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         else:
             a_e[:] = mag_ye
             b_e[:] = mag_xe
-        first_in[:] = 0
-        first_out[:] = 0
-        last_in[:] = 0
-        last_out[:] = 0
+        # an end ahead in the start's quadrant is one piece; otherwise the end must not lie
+        # beyond Rq on its inward axis
         if turns == 0 and a_e <= a_s and b_e >= b_s and not (a_e == a_s and b_e == b_s):
-            first_in[:] = a_s - a_e
-            first_out[:] = b_e - b_s
+            chk_target_x.next = mag_xe
+            chk_target_y.next = mag_ye
         else:
             if turns == 0:
                 turns[:] = 4
             if concat(False, a_e) > rq:
                 bad = True
+            if q_s[0] != ccw:
+                chk_target_x.next = 0
+                chk_target_y.next = rq[width:]
             else:
-                first_in[:] = a_s
-                first_out[:] = rq[width:] - b_s
-                last_in[:] = rq[width:] - a_e
-                last_out[:] = b_e
+                chk_target_x.next = rq[width:]
+                chk_target_y.next = 0
 
         chk_error.next = bad
         chk_radius.next = rq[width:]
         chk_quadrant.next = q_s
         chk_crossings.next = turns
-        if q_s[0] != ccw:
-            chk_first_x.next = first_in
-            chk_first_y.next = first_out
-        else:
-            chk_first_x.next = first_out
-            chk_first_y.next = first_in
-        if q_e[0] != ccw:
-            chk_last_x.next = last_in
-            chk_last_y.next = last_out
-        else:
-            chk_last_x.next = last_out
-            chk_last_y.next = last_in
         chk_threshold.next = thr
-        # 1 + 2|x| outward, 1 - 2|x| = 2 - (1 + 2|x|) inward
-        out_x[:] = concat(intbv(0)[err_width - width - 1:], mag_xs, True).signed()
-        out_y[:] = concat(intbv(0)[err_width - width - 1:], mag_ys, True).signed()
-        if q_s[0] != ccw:
-            chk_delta_x.next = 2 - out_x
-            chk_delta_y.next = out_y
+        chk_acc_init.next = half.signed()
+        # delta = 1 + 2h with h = |x| outward, -|x| inward: h is x or -x
+        if (xs < 0) != (q_s[0] != ccw):
+            half_x[:] = neg_xs
         else:
-            chk_delta_x.next = out_x
-            chk_delta_y.next = 2 - out_y
-        # accumulators hold A - T (A - T - 1 for the strict compares): overflow is A - bias >= 0
-        if variant == TRADITIONAL or variant == PRECISE:
-            chk_acc_init.next = concat(intbv(0)[acc_width - thr_width + 1:], thr[thr_width:1]).signed() - \
-                concat(intbv(0)[acc_width - thr_width:], thr).signed()
+            half_x[:] = concat(xs[width - 1], xs)
+        if (ys < 0) != (q_s[0] == ccw):
+            half_y[:] = neg_ys
         else:
-            chk_acc_init.next = -concat(intbv(0)[acc_width - thr_width:], thr).signed() - 1
+            half_y[:] = concat(ys[width - 1], ys)
+        half_turn[:] = -rq
+        # sign extension of 2h + 1 to the error term's width
+        fill_x[:] = 0
+        fill_y[:] = 0
+        fill_turn[:] = 0
+        if half_x[width]:
+            fill_x[:] = fill_ones
+        if half_y[width]:
+            fill_y[:] = fill_ones
+        if half_turn[width]:
+            fill_turn[:] = fill_ones
+        chk_delta_x.next = concat(fill_x, half_x, True).signed()
+        chk_delta_y.next = concat(fill_y, half_y, True).signed()
+        chk_delta_turn.next = concat(fill_turn, half_turn, True).signed()
+
+    @always_comb
+    def piece_progress():
+        # steps left in the current piece: the inward axis falls to its target
+        x_down.next = not is_line and quadrant[0] != ccw
+        y_down.next = not is_line and quadrant[0] == ccw
+        if not is_line and quadrant[0] != ccw:
+            count_x.next = mag_x - target_x
+            count_y.next = target_y - mag_y
+        elif not is_line:
+            count_x.next = target_x - mag_x
+            count_y.next = mag_y - target_y
+        else:
+            count_x.next = target_x - mag_x
+            count_y.next = target_y - mag_y
+        # a line's magnitudes count its steps; it integrates |dx|, |dy|
+        if is_line:
+            integrand_x.next = target_x
+            integrand_y.next = target_y
+        else:
+            integrand_x.next = mag_y
+            integrand_y.next = mag_x
 
     @always_comb
     def iteration_logic():
@@ -362,10 +430,10 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         # saturation value, so the result is the same) to keep the carry chains short
         to_mag[:] = 0
         thr_low[:] = concat(intbv(0)[acc_width - thr_width:], threshold)
-        sum_y[:] = concat(acc_y[acc_width - 1], acc_y).signed() + concat(to_mag, mag_x).signed()
+        sum_y[:] = concat(acc_y[acc_width - 1], acc_y).signed() + concat(to_mag, integrand_y).signed()
         mag_y_up[:] = mag_y + 1
         mag_y_down[:] = mag_y - 1
-        sum_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y).signed()
+        sum_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, integrand_x).signed()
         sum_x_up[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y_up).signed()
         sum_x_down[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y_down).signed()
         # the registers hold A - bias: an overflow is a sum that is not negative
@@ -443,17 +511,16 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         it_step_y.next = go_y
         it_mag_x.next = mag_x
         it_mag_y.next = mag_y
-        if not is_line:
-            if go_x:
-                if x_in:
-                    it_mag_x.next = mag_x - 1
-                else:
-                    it_mag_x.next = mag_x + 1
-            if go_y:
-                if x_in:
-                    it_mag_y.next = mag_y_up
-                else:
-                    it_mag_y.next = mag_y_down
+        if go_x:
+            if x_down:
+                it_mag_x.next = mag_x - 1
+            else:
+                it_mag_x.next = mag_x + 1
+        if go_y:
+            if y_down:
+                it_mag_y.next = mag_y_down
+            else:
+                it_mag_y.next = mag_y_up
         if go_x and go_y:
             it_error.next = cand_d
         elif go_x:
@@ -489,8 +556,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 ys.next = cmd.ys
                 xe.next = cmd.xe
                 ye.next = cmd.ye
-                square_start.next = 0
-                square_end.next = 0
+                gap.next = -1
                 mac_op.next = 0
                 mac_bit.next = 0
                 multiplicand.next = concat(intbv(0)[width:], cmd_mag_xs)
@@ -501,10 +567,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                     state.next = t_state.S_MAC
         elif state == t_state.S_MAC:
             if multiplier[0]:
-                if mac_op < 2:
-                    square_start.next = square_start + multiplicand
-                else:
-                    square_end.next = square_end + multiplicand
+                gap.next = gap_sum
             if mac_bit == width - 1:
                 mac_bit.next = 0
                 mac_op.next = mac_op + 1
@@ -514,14 +577,25 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 elif mac_op == 1:
                     multiplicand.next = concat(intbv(0)[width:], mag_xe)
                     multiplier.next = mag_xe
-                else:
+                    # gap = -1 - xs**2 - ys**2 now: its complement is the radicand
+                    if multiplier[0]:
+                        radicand.next = ~gap_sum[2 * width:]
+                    else:
+                        radicand.next = ~gap[2 * width:]
+                elif mac_op == 2:
                     multiplicand.next = concat(intbv(0)[width:], mag_ye)
                     multiplier.next = mag_ye
-                if mac_op == 3:
-                    radicand.next = square_start
+                else:
+                    # m = max(|xs|, |ys|) for the end-point limits
+                    if mag_xs > mag_ys:
+                        multiplicand.next = concat(intbv(0)[width:], mag_xs)
+                    else:
+                        multiplicand.next = concat(intbv(0)[width:], mag_ys)
                     remainder.next = 0
                     root.next = 0
                     root_bit.next = 0
+                    root_length.next = 0
+                    root_all_ones.next = True
                     state.next = t_state.S_ROOT
             else:
                 mac_bit.next = mac_bit + 1
@@ -538,15 +612,24 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             else:
                 remainder.next = trial_rem
                 root.next = concat(root[width - 1:], False)
+                if root != 0:
+                    root_all_ones.next = False
+            if root != 0 or trial_rem >= trial:
+                root_length.next = root_length + 1
             radicand.next = radicand << 2
-            # end point within one step: -(2m - 1) <= re**2 - rs**2 <= 2m + 1, m = max(|xs|, |ys|)
-            # (|re - rs| <= 1 follows as m <= rs); pipelined over the root's clocks
-            end_gap.next = concat(intbv(0)[2:], square_end).signed() - concat(intbv(0)[2:], square_start).signed()
-            if mag_xs > mag_ys:
-                end_limit.next = concat(intbv(0)[width + 1:], mag_xs, True).signed()
-            else:
-                end_limit.next = concat(intbv(0)[width + 1:], mag_ys, True).signed()
-            off_circle.next = end_gap > end_limit or end_gap < 2 - end_limit
+            # end point within one step: -(2m - 1) <= re**2 - rs**2 <= 2m + 1 with
+            # m = max(|xs|, |ys|) (|re - rs| <= 1 follows as m <= rs); the gap is
+            # re**2 - rs**2 - 1: add 2m, test the sign, take 4m + 1, test the sign
+            if root_bit == 0:
+                multiplicand.next = multiplicand << 1
+            elif root_bit == 1:
+                gap.next = gap_sum
+                multiplicand.next = multiplicand << 1
+            elif root_bit == 2:
+                end_reaches_low.next = not gap[gap_width - 1]
+                gap.next = gap_sum
+            elif root_bit == 3:
+                end_beyond_high.next = not gap[gap_width - 1]
             if root_bit == width - 1:
                 state.next = t_state.S_ROUND
             else:
@@ -555,34 +638,27 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             # Rq: the integer whose square is nearest to xs**2 + ys**2
             if remainder > concat(intbv(0)[3:], root):
                 radius_q.next = concat(False, root) + 1
+                if root_all_ones:
+                    radius_length.next = root_length + 1
+                else:
+                    radius_length.next = root_length
             else:
                 radius_q.next = concat(False, root)
+                radius_length.next = root_length
             state.next = t_state.S_CHECK
         elif state == t_state.S_CHECK:
             acc_x.next = chk_acc_init
             acc_y.next = chk_acc_init
+            threshold.next = chk_threshold
             radial_error.next = 0
             crossings.next = 0
             quadrant.next = 0
             state.next = t_state.S_RUN
             if is_line:
-                # A = T // 2 held as A - T
-                if mag_xe > mag_ye:
-                    threshold.next = concat(intbv(0)[thr_width - width:], mag_xe)
-                    acc_x.next = concat(intbv(0)[acc_width - width + 1:], mag_xe[width:1]).signed() - \
-                        concat(intbv(0)[acc_width - width:], mag_xe).signed()
-                    acc_y.next = concat(intbv(0)[acc_width - width + 1:], mag_xe[width:1]).signed() - \
-                        concat(intbv(0)[acc_width - width:], mag_xe).signed()
-                else:
-                    threshold.next = concat(intbv(0)[thr_width - width:], mag_ye)
-                    acc_x.next = concat(intbv(0)[acc_width - width + 1:], mag_ye[width:1]).signed() - \
-                        concat(intbv(0)[acc_width - width:], mag_ye).signed()
-                    acc_y.next = concat(intbv(0)[acc_width - width + 1:], mag_ye[width:1]).signed() - \
-                        concat(intbv(0)[acc_width - width:], mag_ye).signed()
-                mag_x.next = mag_ye
-                mag_y.next = mag_xe
-                count_x.next = mag_xe
-                count_y.next = mag_ye
+                mag_x.next = 0
+                mag_y.next = 0
+                target_x.next = mag_xe
+                target_y.next = mag_ye
                 if mag_xe == 0 and mag_ye == 0:
                     cmd.busy.next = False
                     cmd.done.next = True
@@ -592,18 +668,16 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 cmd.error.next = True
                 state.next = t_state.S_IDLE
             else:
-                threshold.next = chk_threshold
                 quadrant.next = chk_quadrant
                 crossings.next = chk_crossings
                 mag_x.next = mag_xs
                 mag_y.next = mag_ys
-                count_x.next = chk_first_x
-                count_y.next = chk_first_y
-                last_x.next = chk_last_x
-                last_y.next = chk_last_y
+                target_x.next = chk_target_x
+                target_y.next = chk_target_y
                 radius.next = chk_radius
                 delta_x.next = chk_delta_x
                 delta_y.next = chk_delta_y
+                delta_turn.next = chk_delta_turn
         else:
             if cmd.advance:
                 steps.step_x.next = it_step_x
@@ -619,43 +693,41 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                     cmd.busy.next = False
                     cmd.done.next = True
                     state.next = t_state.S_IDLE
-                    count_x.next = 0
-                    count_y.next = 0
                 elif it_next_piece:
-                    # the outward axis turns inward and vice versa: delta <- 2 - delta
-                    if it_step_x:
-                        delta_x.next = -delta_x
+                    # the inward axis is at 0 and turns outward (1 + 2 * 0); the outward
+                    # one is at Rq and turns inward (1 - 2 Rq)
+                    if quadrant[0] != ccw:
+                        delta_x.next = 1
+                        delta_y.next = delta_turn
                     else:
-                        delta_x.next = 2 - delta_x
-                    if it_step_y:
-                        delta_y.next = -delta_y
-                    else:
-                        delta_y.next = 2 - delta_y
+                        delta_x.next = delta_turn
+                        delta_y.next = 1
                     if ccw:
                         quadrant.next = quadrant + 1
                     else:
                         quadrant.next = quadrant - 1
                     crossings.next = crossings - 1
                     if crossings == 1:
-                        count_x.next = last_x
-                        count_y.next = last_y
+                        target_x.next = mag_xe
+                        target_y.next = mag_ye
+                    elif quadrant[0] != ccw:
+                        target_x.next = radius
+                        target_y.next = 0
                     else:
-                        count_x.next = radius
-                        count_y.next = radius
+                        target_x.next = 0
+                        target_y.next = radius
                 else:
                     # one step further in the same direction adds 2 to the change of x**2
                     if it_step_x:
-                        count_x.next = count_x - 1
                         delta_x.next = delta_x + 2
                     if it_step_y:
-                        count_y.next = count_y - 1
                         delta_y.next = delta_y + 2
 
     @always_comb
     def status():
         cmd.quadrant.next = quadrant
 
-    return magnitudes, check_logic, iteration_logic, control, status
+    return magnitudes, setup_adder, check_logic, piece_progress, iteration_logic, control, status
 
 
 def dda_arc_ports(coord_width=24):

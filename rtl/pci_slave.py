@@ -399,8 +399,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         before_last.next = phase_addr == mem_last - 1
 
     # Shannon expansion on the pins of the fast path: the next values are
-    # computed from flip-flops for each case of IRDY# and FRAME#, the pins
-    # only choose among them (at most two LUT levels from a pin).
+    # computed from flip-flops for each case of IRDY# and FRAME# that can
+    # occur in a transaction, the pins only choose among them.
     @block
     def control_case(irdy_asserted, frame_asserted, out):
         """Next values of the state and the target's control lines, should

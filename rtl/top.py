@@ -17,17 +17,22 @@ from myhdl import Signal, block
 
 GEN_DIR = Path(__file__).resolve().parent.parent / "gen"
 
+def integer(text):
+    """A command-line integer, decimal or with a 0x / 0o / 0b prefix."""
+    return int(text, 0)
+
+
 # Parameter name -> (type, default, help).  Each unit takes a subset.
 PARAMETERS = {
     "coord_width": (int, 24, "signed coordinate width of the DDA (bits)"),
-    "vendor_id": (lambda text: int(text, 0), 0x1234, "PCI Vendor ID (placeholder: use your own)"),
-    "device_id": (lambda text: int(text, 0), 0xDDA0, "PCI Device ID"),
-    "revision_id": (lambda text: int(text, 0), 0x01, "PCI Revision ID"),
-    "class_code": (lambda text: int(text, 0), 0x088000, "PCI class code (24 bits)"),
-    "subsystem_vendor_id": (lambda text: int(text, 0), 0x1234, "PCI Subsystem Vendor ID"),
-    "subsystem_id": (lambda text: int(text, 0), 0x0001, "PCI Subsystem ID"),
-    "io_bar_bits": (int, 6, "BAR0 (I/O) size is 2**bits bytes (2..8)"),
-    "mem_bar_bits": (int, 12, "BAR1 (memory) size is 2**bits bytes (4..24)"),
+    "vendor_id": (integer, 0x1234, "PCI Vendor ID (placeholder: use your own)"),
+    "device_id": (integer, 0xDDA0, "PCI Device ID"),
+    "revision_id": (integer, 0x01, "PCI Revision ID"),
+    "class_code": (integer, 0x088000, "PCI class code (24 bits)"),
+    "subsystem_vendor_id": (integer, 0x1234, "PCI Subsystem Vendor ID"),
+    "subsystem_id": (integer, 0x0001, "PCI Subsystem ID"),
+    "io_bar_bits": (int, 6, "BAR0 (I/O) size of the stand-alone pci_slave unit is 2**bits bytes (2..8); the card sizes it from its register map"),
+    "mem_bar_bits": (int, 12, "BAR1 (memory) size of the stand-alone pci_slave unit is 2**bits bytes (4..24)"),
     "fifo_depth": (int, 512, "data FIFO depth in 32-bit words (a power of two)"),
 }
 
