@@ -88,24 +88,28 @@ reg signed [31:0] acc_y;
 reg ccw;
 reg signed [31:0] chk_acc_init;
 reg [2:0] chk_crossings;
+reg signed [29:0] chk_delta_turn;
 reg signed [29:0] chk_delta_x;
 reg signed [29:0] chk_delta_y;
 reg chk_error;
-reg [23:0] chk_first_x;
-reg [23:0] chk_first_y;
-reg [23:0] chk_last_x;
-reg [23:0] chk_last_y;
 reg [1:0] chk_quadrant;
 reg [23:0] chk_radius;
+reg [23:0] chk_target_x;
+reg [23:0] chk_target_y;
 reg [28:0] chk_threshold;
 reg [23:0] cmd_mag_xs;
 reg [23:0] count_x;
 reg [23:0] count_y;
 reg [2:0] crossings;
+reg signed [29:0] delta_turn;
 reg signed [29:0] delta_x;
 reg signed [29:0] delta_y;
-reg signed [49:0] end_gap;
-reg signed [49:0] end_limit;
+reg end_beyond_high;
+reg end_reaches_low;
+reg signed [49:0] gap;
+reg signed [49:0] gap_sum;
+reg [23:0] integrand_x;
+reg [23:0] integrand_y;
 reg is_line;
 reg signed [31:0] it_acc_x;
 reg signed [31:0] it_acc_y;
@@ -119,8 +123,6 @@ reg it_next_piece;
 reg it_step_x;
 reg it_step_y;
 reg [4:0] lambda_shift;
-reg [23:0] last_x;
-reg [23:0] last_y;
 reg [4:0] mac_bit;
 reg [1:0] mac_op;
 reg [23:0] mag_x;
@@ -131,45 +133,53 @@ reg [23:0] mag_ye;
 reg [23:0] mag_ys;
 reg [47:0] multiplicand;
 reg [23:0] multiplier;
-reg off_circle;
+reg signed [24:0] neg_xs;
+reg signed [24:0] neg_ys;
 reg [1:0] quadrant;
 reg signed [29:0] radial_error;
 reg [47:0] radicand;
 reg [23:0] radius;
+reg [5:0] radius_length;
 reg [24:0] radius_q;
 reg [26:0] remainder;
 reg [23:0] root;
+reg root_all_ones;
 reg [4:0] root_bit;
-reg [47:0] square_end;
-reg [47:0] square_start;
+reg [5:0] root_length;
 reg [2:0] state;
+reg [23:0] target_x;
+reg [23:0] target_y;
 reg [28:0] threshold;
 reg [1:0] variant;
+reg x_down;
 reg signed [23:0] xe;
 reg signed [23:0] xs;
+reg y_down;
 reg signed [23:0] ye;
 reg signed [23:0] ys;
 
 
 
-always @(xe, cmd_xs, ys, ye, xs) begin: magnitudes
+always @(xe, cmd_xs, ys, ye, xs, neg_ys, neg_xs) begin: magnitudes
     if ((cmd_xs < 0)) begin
         cmd_mag_xs = (-cmd_xs);
     end
     else begin
         cmd_mag_xs = cmd_xs;
     end
+    neg_xs = (-$signed({xs[(24 - 1)], xs}));
+    neg_ys = (-$signed({ys[(24 - 1)], ys}));
     if ((xs < 0)) begin
-        mag_xs = (-xs);
+        mag_xs = neg_xs[24-1:0];
     end
     else begin
-        mag_xs = xs;
+        mag_xs = xs[24-1:0];
     end
     if ((ys < 0)) begin
-        mag_ys = (-ys);
+        mag_ys = neg_ys[24-1:0];
     end
     else begin
-        mag_ys = ys;
+        mag_ys = ys[24-1:0];
     end
     if ((xe < 0)) begin
         mag_xe = (-xe);
@@ -186,13 +196,44 @@ always @(xe, cmd_xs, ys, ye, xs) begin: magnitudes
 end
 
 
-always @(mag_ys, xe, variant, ys, mag_xs, mag_xe, lambda_shift, ye, xs, ccw, mag_ye, radius_q, acc_bits, off_circle, square_start) begin: check_logic
+always @(gap, root_bit, state, multiplicand, mac_op) begin: setup_adder
+    reg subtract;
+    reg carry;
+    reg [50-1:0] operand;
+    reg [50-1:0] carry_in;
+    reg [50-1:0] total;
+    subtract = (0 != 0);
+    carry = (0 != 0);
+    operand = 50'h0;
+    carry_in = 50'h0;
+    total = 50'h0;
+    if ((state == 3'b001)) begin
+        subtract = (mac_op < 2);
+        carry = (mac_op < 2);
+    end
+    else begin
+        subtract = (root_bit == 2);
+    end
+    operand = {2'h0, multiplicand};
+    if (subtract) begin
+        operand = (~operand);
+    end
+    carry_in = {49'h0, carry};
+    total = ((gap[50-1:0] + operand) + carry_in);
+    gap_sum = $signed(total);
+end
+
+
+always @(radius_length, acc_bits, neg_ys, mag_ys, variant, mag_xs, radius_q, end_reaches_low, mag_ye, xe, lambda_shift, ye, xs, neg_xs, mag_xe, is_line, ys, end_beyond_high, ccw) begin: check_logic
     reg [25-1:0] rq;
-    reg [25-1:0] smear;
-    reg [25-1:0] top_bit;
-    reg [29-1:0] base;
-    reg [29-1:0] one;
+    reg [6-1:0] exponent;
     reg [29-1:0] thr;
+    reg [29-1:0] thr_less;
+    reg [29-1:0] one;
+    reg [32-1:0] below;
+    reg [32-1:0] half;
+    reg [24-1:0] major;
+    reg [24-1:0] major_less;
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
     reg [3-1:0] turns;
@@ -201,19 +242,22 @@ always @(mag_ys, xe, variant, ys, mag_xs, mag_xe, lambda_shift, ye, xs, ccw, mag
     reg [24-1:0] b_s;
     reg [24-1:0] a_e;
     reg [24-1:0] b_e;
-    reg [24-1:0] first_in;
-    reg [24-1:0] first_out;
-    reg [24-1:0] last_in;
-    reg [24-1:0] last_out;
-    reg signed [30-1:0] out_x;
-    reg signed [30-1:0] out_y;
+    reg [25-1:0] half_x;
+    reg [25-1:0] half_y;
+    reg [25-1:0] half_turn;
+    reg [4-1:0] fill_x;
+    reg [4-1:0] fill_y;
+    reg [4-1:0] fill_turn;
     reg bad;
     rq = 25'h0;
-    smear = 25'h0;
-    top_bit = 25'h0;
-    base = 29'h0;
-    one = 29'h1;
+    exponent = 6'h0;
     thr = 29'h0;
+    thr_less = 29'h0;
+    one = 29'h1;
+    below = 32'h0;
+    half = 32'h0;
+    major = 24'h0;
+    major_less = 24'h0;
     q_s = 2'h0;
     q_e = 2'h0;
     turns = 3'h0;
@@ -222,41 +266,53 @@ always @(mag_ys, xe, variant, ys, mag_xs, mag_xe, lambda_shift, ye, xs, ccw, mag
     b_s = 24'h0;
     a_e = 24'h0;
     b_e = 24'h0;
-    first_in = 24'h0;
-    first_out = 24'h0;
-    last_in = 24'h0;
-    last_out = 24'h0;
-    out_x = 0;
-    out_y = 0;
+    half_x = 25'h0;
+    half_y = 25'h0;
+    half_turn = 25'h0;
+    fill_x = 4'h0;
+    fill_y = 4'h0;
+    fill_turn = 4'h0;
     bad = 1'b0;
     rq = radius_q;
-    if (((square_start == 0) || ((xe == 0) && (ye == 0)))) begin
+    if ((((xs == 0) && (ys == 0)) || ((xe == 0) && (ye == 0)))) begin
         bad = 1'b1;
     end
     if (($signed({1'b0, rq}) >= (1 << (24 - 1)))) begin
         bad = 1'b1;
     end
-    if (off_circle) begin
+    if (((!end_reaches_low) || end_beyond_high)) begin
         bad = 1'b1;
     end
-    smear = (rq | (rq >>> 1));
-    smear = (smear | (smear >>> 2));
-    smear = (smear | (smear >>> 4));
-    smear = (smear | (smear >>> 8));
-    smear = (smear | (smear >>> 16));
-    top_bit = (smear ^ (smear >>> 1));
     if ((acc_bits != 0)) begin
-        base = (one << acc_bits);
+        exponent = ({1'b0, acc_bits} + {1'b0, lambda_shift});
     end
     else begin
-        base = {3'h0, top_bit, 1'b0};
+        exponent = (radius_length + {1'b0, lambda_shift});
     end
-    thr = (base << lambda_shift);
-    if (((variant != 3) && (thr == 0))) begin
+    thr = (one << exponent);
+    if (((variant != 3) && ($signed({1'b0, exponent}) > (29 - 1)))) begin
         bad = 1'b1;
+    end
+    thr_less = (thr - 1);
+    below = {3'h0, thr_less};
+    half = (~(below >>> 1));
+    if (((variant == 1) || (variant == 2))) begin
+        half = (~{3'h0, thr});
     end
     if ((variant == 3)) begin
         thr = ({4'h0, rq} + 1);
+        half = (~{8'h0, rq[(24 + 1)-1:1]});
+    end
+    if ((mag_xe > mag_ye)) begin
+        major = mag_xe;
+    end
+    else begin
+        major = mag_ye;
+    end
+    major_less = (major - 1);
+    if (is_line) begin
+        thr = {5'h0, major};
+        half = (~({8'h0, major_less} >>> 1));
     end
     if (ccw) begin
         if (((xs > 0) && (ys >= 0))) begin
@@ -329,13 +385,9 @@ always @(mag_ys, xe, variant, ys, mag_xs, mag_xe, lambda_shift, ye, xs, ccw, mag
         a_e = mag_ye;
         b_e = mag_xe;
     end
-    first_in = 0;
-    first_out = 0;
-    last_in = 0;
-    last_out = 0;
     if (((turns == 0) && (a_e <= a_s) && (b_e >= b_s) && (!((a_e == a_s) && (b_e == b_s))))) begin
-        first_in = (a_s - a_e);
-        first_out = (b_e - b_s);
+        chk_target_x = mag_xe;
+        chk_target_y = mag_ye;
     end
     else begin
         if ((turns == 0)) begin
@@ -344,54 +396,79 @@ always @(mag_ys, xe, variant, ys, mag_xs, mag_xe, lambda_shift, ye, xs, ccw, mag
         if (({1'b0, a_e} > rq)) begin
             bad = 1'b1;
         end
+        if ((q_s[0] != ccw)) begin
+            chk_target_x = 0;
+            chk_target_y = rq[24-1:0];
+        end
         else begin
-            first_in = a_s;
-            first_out = (rq[24-1:0] - b_s);
-            last_in = (rq[24-1:0] - a_e);
-            last_out = b_e;
+            chk_target_x = rq[24-1:0];
+            chk_target_y = 0;
         end
     end
     chk_error = bad;
     chk_radius = rq[24-1:0];
     chk_quadrant = q_s;
     chk_crossings = turns;
-    if ((q_s[0] != ccw)) begin
-        chk_first_x = first_in;
-        chk_first_y = first_out;
-    end
-    else begin
-        chk_first_x = first_out;
-        chk_first_y = first_in;
-    end
-    if ((q_e[0] != ccw)) begin
-        chk_last_x = last_in;
-        chk_last_y = last_out;
-    end
-    else begin
-        chk_last_x = last_out;
-        chk_last_y = last_in;
-    end
     chk_threshold = thr;
-    out_x = $signed({5'h0, mag_xs, 1'b1});
-    out_y = $signed({5'h0, mag_ys, 1'b1});
-    if ((q_s[0] != ccw)) begin
-        chk_delta_x = (2 - out_x);
-        chk_delta_y = out_y;
+    chk_acc_init = $signed(half);
+    if (((xs < 0) != (q_s[0] != ccw))) begin
+        half_x = neg_xs;
     end
     else begin
-        chk_delta_x = out_x;
-        chk_delta_y = (2 - out_y);
+        half_x = {xs[(24 - 1)], xs};
     end
-    if (((variant == 0) || (variant == 3))) begin
-        chk_acc_init = ($signed({4'h0, thr[29-1:1]}) - $signed({3'h0, thr}));
+    if (((ys < 0) != (q_s[0] == ccw))) begin
+        half_y = neg_ys;
     end
     else begin
-        chk_acc_init = ((-$signed({3'h0, thr})) - 1);
+        half_y = {ys[(24 - 1)], ys};
+    end
+    half_turn = (-rq);
+    fill_x = 0;
+    fill_y = 0;
+    fill_turn = 0;
+    if (half_x[24]) begin
+        fill_x = 15;
+    end
+    if (half_y[24]) begin
+        fill_y = 15;
+    end
+    if (half_turn[24]) begin
+        fill_turn = 15;
+    end
+    chk_delta_x = $signed({fill_x, half_x, 1'b1});
+    chk_delta_y = $signed({fill_y, half_y, 1'b1});
+    chk_delta_turn = $signed({fill_turn, half_turn, 1'b1});
+end
+
+
+always @(mag_y, quadrant, mag_x, target_y, ccw, target_x, is_line) begin: piece_progress
+    x_down = ((!is_line) && (quadrant[0] != ccw));
+    y_down = ((!is_line) && (quadrant[0] == ccw));
+    if (((!is_line) && (quadrant[0] != ccw))) begin
+        count_x = (mag_x - target_x);
+        count_y = (target_y - mag_y);
+    end
+    else if ((!is_line)) begin
+        count_x = (target_x - mag_x);
+        count_y = (mag_y - target_y);
+    end
+    else begin
+        count_x = (target_x - mag_x);
+        count_y = (target_y - mag_y);
+    end
+    if (is_line) begin
+        integrand_x = target_x;
+        integrand_y = target_y;
+    end
+    else begin
+        integrand_x = mag_y;
+        integrand_y = mag_x;
     end
 end
 
 
-always @(count_y, xe, threshold, mag_y, variant, delta_x, delta_y, count_x, ye, quadrant, mag_x, acc_x, ccw, acc_y, crossings, is_line, radial_error) begin: iteration_logic
+always @(mag_y, x_down, variant, delta_x, delta_y, crossings, xe, integrand_x, ye, quadrant, integrand_y, y_down, is_line, radial_error, count_y, threshold, count_x, acc_x, mag_x, ccw, acc_y) begin: iteration_logic
     reg x_in;
     reg x_right;
     reg y_up;
@@ -469,10 +546,10 @@ always @(count_y, xe, threshold, mag_y, variant, delta_x, delta_y, count_x, ye, 
     end
     to_mag = 0;
     thr_low = {3'h0, threshold};
-    sum_y = ($signed({acc_y[(32 - 1)], acc_y}) + $signed({to_mag, mag_x}));
+    sum_y = ($signed({acc_y[(32 - 1)], acc_y}) + $signed({to_mag, integrand_y}));
     mag_y_up = (mag_y + 1);
     mag_y_down = (mag_y - 1);
-    sum_x = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({to_mag, mag_y}));
+    sum_x = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({to_mag, integrand_x}));
     sum_x_up = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({to_mag, mag_y_up}));
     sum_x_down = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({to_mag, mag_y_down}));
     over_x = (!sum_x[32]);
@@ -560,22 +637,20 @@ always @(count_y, xe, threshold, mag_y, variant, delta_x, delta_y, count_x, ye, 
     it_step_y = go_y;
     it_mag_x = mag_x;
     it_mag_y = mag_y;
-    if ((!is_line)) begin
-        if (go_x) begin
-            if (x_in) begin
-                it_mag_x = (mag_x - 1);
-            end
-            else begin
-                it_mag_x = (mag_x + 1);
-            end
+    if (go_x) begin
+        if (x_down) begin
+            it_mag_x = (mag_x - 1);
         end
-        if (go_y) begin
-            if (x_in) begin
-                it_mag_y = mag_y_up;
-            end
-            else begin
-                it_mag_y = mag_y_down;
-            end
+        else begin
+            it_mag_x = (mag_x + 1);
+        end
+    end
+    if (go_y) begin
+        if (y_down) begin
+            it_mag_y = mag_y_down;
+        end
+        else begin
+            it_mag_y = mag_y_up;
         end
     end
     if ((go_x && go_y)) begin
@@ -607,26 +682,29 @@ always @(posedge clock, negedge reset) begin: control
     reg [27-1:0] trial_rem;
     reg [27-1:0] trial;
     if (reset == 0) begin
-        last_y <= 0;
+        radius_length <= 0;
         mag_y <= 0;
         cmd_done <= 0;
-        square_end <= 0;
         acc_bits <= 0;
-        square_start <= 0;
+        delta_turn <= 0;
+        gap <= 0;
         cmd_busy <= 0;
         variant <= 0;
-        end_limit <= 0;
+        root_all_ones <= 0;
         steps_step_x <= 0;
         delta_x <= 0;
         delta_y <= 0;
         multiplicand <= 0;
+        target_y <= 0;
         crossings <= 0;
+        target_x <= 0;
         radius_q <= 0;
+        end_reaches_low <= 0;
+        root_length <= 0;
         mac_op <= 0;
         state <= 3'b000;
         xe <= 0;
         multiplier <= 0;
-        end_gap <= 0;
         radius <= 0;
         cmd_error <= 0;
         root <= 0;
@@ -635,20 +713,17 @@ always @(posedge clock, negedge reset) begin: control
         radicand <= 0;
         ye <= 0;
         quadrant <= 0;
-        last_x <= 0;
         steps_dir_x <= 0;
         steps_dir_y <= 0;
         xs <= 0;
         steps_step_y <= 0;
-        off_circle <= 0;
         mac_bit <= 0;
         remainder <= 0;
         is_line <= 0;
         radial_error <= 0;
-        count_y <= 0;
         threshold <= 0;
         ys <= 0;
-        count_x <= 0;
+        end_beyond_high <= 0;
         acc_x <= 0;
         mag_x <= 0;
         ccw <= 0;
@@ -672,8 +747,7 @@ always @(posedge clock, negedge reset) begin: control
                     ys <= cmd_ys;
                     xe <= cmd_xe;
                     ye <= cmd_ye;
-                    square_start <= 0;
-                    square_end <= 0;
+                    gap <= (-1);
                     mac_op <= 0;
                     mac_bit <= 0;
                     multiplicand <= {24'h0, cmd_mag_xs};
@@ -688,12 +762,7 @@ always @(posedge clock, negedge reset) begin: control
             end
             3'b001: begin
                 if (multiplier[0]) begin
-                    if ((mac_op < 2)) begin
-                        square_start <= (square_start + multiplicand);
-                    end
-                    else begin
-                        square_end <= (square_end + multiplicand);
-                    end
+                    gap <= gap_sum;
                 end
                 if (($signed({1'b0, mac_bit}) == (24 - 1))) begin
                     mac_bit <= 0;
@@ -706,19 +775,32 @@ always @(posedge clock, negedge reset) begin: control
                         'h1: begin
                             multiplicand <= {24'h0, mag_xe};
                             multiplier <= mag_xe;
+                            if (multiplier[0]) begin
+                                radicand <= (~gap_sum[(2 * 24)-1:0]);
+                            end
+                            else begin
+                                radicand <= (~gap[(2 * 24)-1:0]);
+                            end
                         end
-                        default: begin
+                        'h2: begin
                             multiplicand <= {24'h0, mag_ye};
                             multiplier <= mag_ye;
                         end
+                        default: begin
+                            if ((mag_xs > mag_ys)) begin
+                                multiplicand <= {24'h0, mag_xs};
+                            end
+                            else begin
+                                multiplicand <= {24'h0, mag_ys};
+                            end
+                            remainder <= 0;
+                            root <= 0;
+                            root_bit <= 0;
+                            root_length <= 0;
+                            root_all_ones <= 1'b1;
+                            state <= 3'b010;
+                        end
                     endcase
-                    if ((mac_op == 3)) begin
-                        radicand <= square_start;
-                        remainder <= 0;
-                        root <= 0;
-                        root_bit <= 0;
-                        state <= 3'b010;
-                    end
                 end
                 else begin
                     mac_bit <= (mac_bit + 1);
@@ -738,16 +820,30 @@ always @(posedge clock, negedge reset) begin: control
                 else begin
                     remainder <= trial_rem;
                     root <= {root[(24 - 1)-1:0], 1'b0};
+                    if ((root != 0)) begin
+                        root_all_ones <= 1'b0;
+                    end
+                end
+                if (((root != 0) || (trial_rem >= trial))) begin
+                    root_length <= (root_length + 1);
                 end
                 radicand <= (radicand << 2);
-                end_gap <= ($signed({2'h0, square_end}) - $signed({2'h0, square_start}));
-                if ((mag_xs > mag_ys)) begin
-                    end_limit <= $signed({25'h0, mag_xs, 1'b1});
-                end
-                else begin
-                    end_limit <= $signed({25'h0, mag_ys, 1'b1});
-                end
-                off_circle <= ((end_gap > end_limit) || (end_gap < (2 - end_limit)));
+                case (root_bit)
+                    'h0: begin
+                        multiplicand <= (multiplicand << 1);
+                    end
+                    'h1: begin
+                        gap <= gap_sum;
+                        multiplicand <= (multiplicand << 1);
+                    end
+                    'h2: begin
+                        end_reaches_low <= (!gap[(50 - 1)]);
+                        gap <= gap_sum;
+                    end
+                    'h3: begin
+                        end_beyond_high <= (!gap[(50 - 1)]);
+                    end
+                endcase
                 if (($signed({1'b0, root_bit}) == (24 - 1))) begin
                     state <= 3'b011;
                 end
@@ -758,34 +854,32 @@ always @(posedge clock, negedge reset) begin: control
             3'b011: begin
                 if ((remainder > {3'h0, root})) begin
                     radius_q <= ({1'b0, root} + 1);
+                    if (root_all_ones) begin
+                        radius_length <= (root_length + 1);
+                    end
+                    else begin
+                        radius_length <= root_length;
+                    end
                 end
                 else begin
                     radius_q <= {1'b0, root};
+                    radius_length <= root_length;
                 end
                 state <= 3'b100;
             end
             3'b100: begin
                 acc_x <= chk_acc_init;
                 acc_y <= chk_acc_init;
+                threshold <= chk_threshold;
                 radial_error <= 0;
                 crossings <= 0;
                 quadrant <= 0;
                 state <= 3'b101;
                 if (is_line) begin
-                    if ((mag_xe > mag_ye)) begin
-                        threshold <= {5'h0, mag_xe};
-                        acc_x <= ($signed({9'h0, mag_xe[24-1:1]}) - $signed({8'h0, mag_xe}));
-                        acc_y <= ($signed({9'h0, mag_xe[24-1:1]}) - $signed({8'h0, mag_xe}));
-                    end
-                    else begin
-                        threshold <= {5'h0, mag_ye};
-                        acc_x <= ($signed({9'h0, mag_ye[24-1:1]}) - $signed({8'h0, mag_ye}));
-                        acc_y <= ($signed({9'h0, mag_ye[24-1:1]}) - $signed({8'h0, mag_ye}));
-                    end
-                    mag_x <= mag_ye;
-                    mag_y <= mag_xe;
-                    count_x <= mag_xe;
-                    count_y <= mag_ye;
+                    mag_x <= 0;
+                    mag_y <= 0;
+                    target_x <= mag_xe;
+                    target_y <= mag_ye;
                     if (((mag_xe == 0) && (mag_ye == 0))) begin
                         cmd_busy <= 1'b0;
                         cmd_done <= 1'b1;
@@ -798,18 +892,16 @@ always @(posedge clock, negedge reset) begin: control
                     state <= 3'b000;
                 end
                 else begin
-                    threshold <= chk_threshold;
                     quadrant <= chk_quadrant;
                     crossings <= chk_crossings;
                     mag_x <= mag_xs;
                     mag_y <= mag_ys;
-                    count_x <= chk_first_x;
-                    count_y <= chk_first_y;
-                    last_x <= chk_last_x;
-                    last_y <= chk_last_y;
+                    target_x <= chk_target_x;
+                    target_y <= chk_target_y;
                     radius <= chk_radius;
                     delta_x <= chk_delta_x;
                     delta_y <= chk_delta_y;
+                    delta_turn <= chk_delta_turn;
                 end
             end
             default: begin
@@ -827,21 +919,15 @@ always @(posedge clock, negedge reset) begin: control
                         cmd_busy <= 1'b0;
                         cmd_done <= 1'b1;
                         state <= 3'b000;
-                        count_x <= 0;
-                        count_y <= 0;
                     end
                     else if (it_next_piece) begin
-                        if (it_step_x) begin
-                            delta_x <= (-delta_x);
+                        if ((quadrant[0] != ccw)) begin
+                            delta_x <= 1;
+                            delta_y <= delta_turn;
                         end
                         else begin
-                            delta_x <= (2 - delta_x);
-                        end
-                        if (it_step_y) begin
-                            delta_y <= (-delta_y);
-                        end
-                        else begin
-                            delta_y <= (2 - delta_y);
+                            delta_x <= delta_turn;
+                            delta_y <= 1;
                         end
                         if (ccw) begin
                             quadrant <= (quadrant + 1);
@@ -851,21 +937,23 @@ always @(posedge clock, negedge reset) begin: control
                         end
                         crossings <= (crossings - 1);
                         if ((crossings == 1)) begin
-                            count_x <= last_x;
-                            count_y <= last_y;
+                            target_x <= mag_xe;
+                            target_y <= mag_ye;
+                        end
+                        else if ((quadrant[0] != ccw)) begin
+                            target_x <= radius;
+                            target_y <= 0;
                         end
                         else begin
-                            count_x <= radius;
-                            count_y <= radius;
+                            target_x <= 0;
+                            target_y <= radius;
                         end
                     end
                     else begin
                         if (it_step_x) begin
-                            count_x <= (count_x - 1);
                             delta_x <= (delta_x + 2);
                         end
                         if (it_step_y) begin
-                            count_y <= (count_y - 1);
                             delta_y <= (delta_y + 2);
                         end
                     end

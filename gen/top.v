@@ -89,519 +89,527 @@ wire pci_pads0_registered_pad5_to_pin;
 reg pci_pads0_registered_pad5_enable;
 wire [3:0] pci_pads0_input_pad2_from_pin;
 wire pci_pads0_registered_pad6_from_pin;
-wire card0_irq;
-wire card0_pci_slave1_accepted;
-reg card0_pci_slave1_ad_oe_next;
-reg [31:0] card0_pci_slave1_ad_out_next;
-reg card0_pci_slave1_ad_out_parity;
-wire card0_pci_slave1_ad_out_parity_kept;
-reg [31:0] card0_pci_slave1_ad_out_q;
-reg card0_pci_slave1_address_fault;
-wire card0_pci_slave1_address_parity_error;
-wire card0_pci_slave1_address_phase;
-wire card0_pci_slave1_at_last;
-reg card0_pci_slave1_b_valid;
-wire card0_pci_slave1_back_end_retry;
-reg [15:0] card0_pci_slave1_bar0;
-wire [15:0] card0_pci_slave1_bar0_read;
-reg [31:0] card0_pci_slave1_bar1;
-wire card0_pci_slave1_before_last;
-reg [1:0] card0_pci_slave1_buffered_next;
-reg card0_pci_slave1_bus_parity;
-wire card0_pci_slave1_bus_parity_kept;
-reg [3:0] card0_pci_slave1_cbe_q;
-reg card0_pci_slave1_claim;
-reg card0_pci_slave1_claim_config;
-reg card0_pci_slave1_claim_io;
-reg [31:0] card0_pci_slave1_config_data;
-wire [5:0] card0_pci_slave1_config_index;
-reg card0_pci_slave1_config_write_q;
-wire card0_pci_slave1_data_parity_error;
-reg card0_pci_slave1_detected_parity_error;
-reg card0_pci_slave1_devsel_next;
-reg card0_pci_slave1_devsel_q;
-wire card0_pci_slave1_draining;
-reg card0_pci_slave1_drive_next;
-reg card0_pci_slave1_fatal;
-reg card0_pci_slave1_fetching;
-reg card0_pci_slave1_first_pending;
-reg card0_pci_slave1_first_phase;
-reg card0_pci_slave1_frame_q;
-reg card0_pci_slave1_frame_qq;
-wire card0_pci_slave1_got;
-reg [3:0] card0_pci_slave1_h_be;
-reg [31:0] card0_pci_slave1_h_data;
-reg card0_pci_slave1_h_valid;
-wire card0_pci_slave1_holding;
-reg card0_pci_slave1_interrupt_disable;
-reg [7:0] card0_pci_slave1_interrupt_line;
-reg [1:0] card0_pci_slave1_io_byte;
-reg card0_pci_slave1_io_enable;
-reg card0_pci_slave1_irdy_q;
-reg card0_pci_slave1_is_config;
-reg card0_pci_slave1_is_read;
-reg card0_pci_slave1_mem_enable;
-reg card0_pci_slave1_par_next;
-reg card0_pci_slave1_parity_error_q;
-reg card0_pci_slave1_parity_response;
-wire card0_pci_slave1_perr_armed;
-reg card0_pci_slave1_perr_next;
-reg card0_pci_slave1_perr_q;
-reg [9:0] card0_pci_slave1_phase_addr;
-wire card0_pci_slave1_phase_done;
-reg [31:0] card0_pci_slave1_read_source;
-reg card0_pci_slave1_refused;
-reg [9:0] card0_pci_slave1_req_addr;
-reg card0_pci_slave1_req_addr_stale;
-reg [3:0] card0_pci_slave1_s_be;
-reg card0_pci_slave1_s_valid;
-wire card0_pci_slave1_serr_armed;
-reg card0_pci_slave1_serr_enable;
-reg card0_pci_slave1_signaled_system_error;
-reg card0_pci_slave1_signaled_target_abort;
-reg card0_pci_slave1_single;
-reg card0_pci_slave1_space_mem;
-reg [31:0] card0_pci_slave1_spare_data;
-reg [9:0] card0_pci_slave1_start_addr;
-reg [3:0] card0_pci_slave1_state;
-reg [3:0] card0_pci_slave1_state_next;
-reg card0_pci_slave1_stop_next;
-reg card0_pci_slave1_stop_q;
-reg card0_pci_slave1_timeout;
-reg card0_pci_slave1_trdy_next;
-reg card0_pci_slave1_trdy_q;
-reg [3:0] card0_pci_slave1_wait_count;
-reg card0_pci_slave1_waiting;
-reg card0_pci_slave1_wq_valid;
-reg card0_pci_slave1_write_done_q;
-reg card0_pci_slave1_local_re;
-reg card0_pci_slave1_local_we;
-reg card0_pci_slave1_local_space;
-reg [31:0] card0_pci_slave1_local_wdata;
-reg [3:0] card0_pci_slave1_local_be;
-reg [11:0] card0_pci_slave1_local_addr;
-wire card0_pci_slave1_local_ready;
-wire card0_pci_slave1_local_retry;
-wire [31:0] card0_pci_slave1_local_rdata;
-wire [3:0] card0_pci_slave1_next_if_frame_state;
-wire card0_pci_slave1_next_if_frame_trdy;
-wire card0_pci_slave1_next_if_frame_stop;
-wire card0_pci_slave1_next_if_frame_devsel;
-wire card0_pci_slave1_next_if_frame_drive;
-wire card0_pci_slave1_next_if_frame_ad_oe;
-wire [3:0] card0_pci_slave1_next_if_irdy_state;
-wire card0_pci_slave1_next_if_irdy_trdy;
-wire card0_pci_slave1_next_if_irdy_stop;
-wire card0_pci_slave1_next_if_irdy_devsel;
-wire card0_pci_slave1_next_if_irdy_drive;
-wire card0_pci_slave1_next_if_irdy_ad_oe;
-wire [3:0] card0_pci_slave1_next_if_both_state;
-wire card0_pci_slave1_next_if_both_trdy;
-wire card0_pci_slave1_next_if_both_stop;
-wire card0_pci_slave1_next_if_both_devsel;
-wire card0_pci_slave1_next_if_both_drive;
-wire card0_pci_slave1_next_if_both_ad_oe;
-reg [3:0] card0_pci_slave1_control_case0_0_out_state;
-reg card0_pci_slave1_control_case0_0_out_trdy;
-reg card0_pci_slave1_control_case0_0_out_stop;
-reg card0_pci_slave1_control_case0_0_out_devsel;
-reg card0_pci_slave1_control_case0_0_out_drive;
-reg card0_pci_slave1_control_case0_0_out_ad_oe;
-reg [3:0] card0_pci_slave1_control_case1_0_out_state;
-reg card0_pci_slave1_control_case1_0_out_trdy;
-reg card0_pci_slave1_control_case1_0_out_stop;
-reg card0_pci_slave1_control_case1_0_out_devsel;
-reg card0_pci_slave1_control_case1_0_out_drive;
-reg card0_pci_slave1_control_case1_0_out_ad_oe;
-reg [3:0] card0_pci_slave1_control_case2_0_out_state;
-reg card0_pci_slave1_control_case2_0_out_trdy;
-reg card0_pci_slave1_control_case2_0_out_stop;
-reg card0_pci_slave1_control_case2_0_out_devsel;
-reg card0_pci_slave1_control_case2_0_out_drive;
-reg card0_pci_slave1_control_case2_0_out_ad_oe;
-reg card0_card_core0_core_clear;
-wire card0_card_core0_dda_reset;
-reg [31:0] card0_card_core0_regs_fifo1_fifo_dout;
-reg card0_card_core0_regs_fifo1_fifo_pop;
-wire card0_card_core0_regs_fifo1_fifo_empty;
-reg card0_card_core0_regs_fifo1_set_strobe;
-reg card0_card_core0_regs_fifo1_mark_strobe;
-reg [3:0] card0_card_core0_regs_fifo1_set_index;
-reg [31:0] card0_card_core0_regs_fifo1_set_value;
-reg [15:0] card0_card_core0_regs_fifo1_mark_tag;
-reg [3:0] card0_card_core0_regs_fifo1_error_code;
-reg card0_card_core0_regs_fifo1_seq_load;
-reg card0_card_core0_regs_fifo1_busy_before;
-reg card0_card_core0_regs_fifo1_done_flag;
-reg card0_card_core0_regs_fifo1_low_before;
-reg card0_card_core0_regs_fifo1_error_before;
-wire card0_card_core0_regs_fifo1_any_busy;
-reg [31:0] card0_card_core0_regs_fifo1_byte_mask;
-wire card0_card_core0_regs_fifo1_clear_error;
-wire card0_card_core0_regs_fifo1_clear_position;
-wire card0_card_core0_regs_fifo1_direct_mode;
-wire card0_card_core0_regs_fifo1_enable;
-wire card0_card_core0_regs_fifo1_fifo_full;
-wire [9:0] card0_card_core0_regs_fifo1_fifo_level;
-wire card0_card_core0_regs_fifo1_hold;
-reg card0_card_core0_regs_fifo1_io_read;
-reg card0_card_core0_regs_fifo1_io_write;
-wire [15:0] card0_card_core0_regs_fifo1_level_wide;
-wire card0_card_core0_regs_fifo1_motion_run;
-wire card0_card_core0_regs_fifo1_out_active;
-wire card0_card_core0_regs_fifo1_out_ready;
-reg signed [31:0] card0_card_core0_regs_fifo1_pos_y_snapshot;
-wire card0_card_core0_regs_fifo1_pulse_busy;
-reg card0_card_core0_regs_fifo1_push;
-wire card0_card_core0_regs_fifo1_seq_busy;
-reg card0_card_core0_regs_fifo1_tick;
-reg [31:0] card0_card_core0_regs_fifo1_read_end;
-reg [1:0] card0_card_core0_regs_fifo1_control;
-reg card0_card_core0_regs_fifo1_command_strobe;
-reg [2:0] card0_card_core0_regs_fifo1_command;
-reg signed [31:0] card0_card_core0_regs_fifo1_position_y;
-wire card0_card_core0_regs_fifo1_direct_busy_x;
-wire card0_card_core0_regs_fifo1_direct_busy_y;
-wire card0_card_core0_regs_fifo1_dda_advance;
-reg card0_card_core0_regs_fifo1_dda_busy;
-wire card0_card_core0_regs_fifo1_requests_step_x;
-reg card0_card_core0_regs_fifo1_steps_step_x;
-reg card0_card_core0_regs_fifo1_direct_request_x;
-wire card0_card_core0_regs_fifo1_requests_step_y;
-reg card0_card_core0_regs_fifo1_steps_step_y;
-reg card0_card_core0_regs_fifo1_direct_request_y;
-wire card0_card_core0_regs_fifo1_requests_dir_x;
-reg card0_card_core0_regs_fifo1_steps_dir_x;
-reg card0_card_core0_regs_fifo1_direct_dir_x;
-wire card0_card_core0_regs_fifo1_requests_dir_y;
-reg card0_card_core0_regs_fifo1_steps_dir_y;
-reg card0_card_core0_regs_fifo1_direct_dir_y;
-reg [9:0] card0_card_core0_regs_fifo1_sync_fifo1_count;
-wire card0_card_core0_regs_fifo1_sync_fifo1_do_read;
-wire card0_card_core0_regs_fifo1_sync_fifo1_do_write;
-reg [8:0] card0_card_core0_regs_fifo1_sync_fifo1_read_addr;
-reg [8:0] card0_card_core0_regs_fifo1_sync_fifo1_write_addr;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word21_hw_value;
-wire card0_card_core0_regs_fifo1_reg_word21_clamp_in;
-wire card0_card_core0_regs_fifo1_reg_word21_clamp_out;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word21_read_in;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word21_read_out;
-wire card0_card_core0_regs_fifo1_reg_word21_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word21_shown_wide;
-wire card0_card_core0_regs_fifo1_reg_word22_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word22_read_out;
-wire [1:0] card0_card_core0_regs_fifo1_reg_word22_honoured;
-wire card0_card_core0_regs_fifo1_reg_word22_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word22_clamped;
-wire card0_card_core0_regs_fifo1_reg_word22_mine;
-wire card0_card_core0_regs_fifo1_reg_word22_set_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word22_shown_wide;
-reg [1:0] card0_card_core0_regs_fifo1_reg_word22_written;
-wire [2:0] card0_card_core0_regs_fifo1_reg_word23_hw_value;
-wire card0_card_core0_regs_fifo1_reg_word23_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word23_read_out;
-wire [2:0] card0_card_core0_regs_fifo1_reg_word23_honoured;
-wire card0_card_core0_regs_fifo1_reg_word23_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word23_clamped;
-wire card0_card_core0_regs_fifo1_reg_word23_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word23_shown_wide;
-wire [2:0] card0_card_core0_regs_fifo1_reg_word23_written;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word24_hw_value;
-wire card0_card_core0_regs_fifo1_reg_word24_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word24_read_out;
-wire card0_card_core0_regs_fifo1_reg_word24_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word24_shown_wide;
-reg [4:0] card0_card_core0_regs_fifo1_reg_word25_value;
-wire card0_card_core0_regs_fifo1_reg_word25_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word25_read_out;
-wire [4:0] card0_card_core0_regs_fifo1_reg_word25_honoured;
-wire card0_card_core0_regs_fifo1_reg_word25_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word25_clamped;
-wire card0_card_core0_regs_fifo1_reg_word25_mine;
-wire card0_card_core0_regs_fifo1_reg_word25_set_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word25_shown_wide;
-reg [4:0] card0_card_core0_regs_fifo1_reg_word25_written;
-reg [4:0] card0_card_core0_regs_fifo1_reg_word26_hw_value;
-reg [4:0] card0_card_core0_regs_fifo1_reg_word26_value;
-wire card0_card_core0_regs_fifo1_reg_word26_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word26_read_out;
-wire [4:0] card0_card_core0_regs_fifo1_reg_word26_honoured;
-wire card0_card_core0_regs_fifo1_reg_word26_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word26_shown_wide;
-wire [4:0] card0_card_core0_regs_fifo1_reg_word26_written;
-reg [15:0] card0_card_core0_regs_fifo1_reg_word27_value;
-wire card0_card_core0_regs_fifo1_reg_word27_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word27_read_out;
-wire [15:0] card0_card_core0_regs_fifo1_reg_word27_honoured;
-wire card0_card_core0_regs_fifo1_reg_word27_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word27_clamped;
-wire card0_card_core0_regs_fifo1_reg_word27_mine;
-wire card0_card_core0_regs_fifo1_reg_word27_set_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word27_shown_wide;
-reg [15:0] card0_card_core0_regs_fifo1_reg_word27_written;
-reg [15:0] card0_card_core0_regs_fifo1_reg_word28_hw_value;
-wire card0_card_core0_regs_fifo1_reg_word28_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word28_read_out;
-wire card0_card_core0_regs_fifo1_reg_word28_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word28_shown_wide;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word29_hw_value;
-wire card0_card_core0_regs_fifo1_reg_word29_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word29_read_out;
-wire card0_card_core0_regs_fifo1_reg_word29_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word29_shown_wide;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word30_hw_value;
-wire card0_card_core0_regs_fifo1_reg_word30_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word30_read_out;
-wire card0_card_core0_regs_fifo1_reg_word30_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word30_shown_wide;
-reg [16:0] card0_card_core0_regs_fifo1_reg_word31_value;
-wire card0_card_core0_regs_fifo1_reg_word31_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word31_read_out;
-reg [16:0] card0_card_core0_regs_fifo1_reg_word31_honoured;
-reg card0_card_core0_regs_fifo1_reg_word31_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word31_clamped;
-wire card0_card_core0_regs_fifo1_reg_word31_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word31_shown_wide;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word31_written;
-reg [16:0] card0_card_core0_regs_fifo1_reg_word32_value;
-wire card0_card_core0_regs_fifo1_reg_word32_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word32_read_out;
-reg [16:0] card0_card_core0_regs_fifo1_reg_word32_honoured;
-reg card0_card_core0_regs_fifo1_reg_word32_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word32_clamped;
-wire card0_card_core0_regs_fifo1_reg_word32_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word32_shown_wide;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word32_written;
-reg [15:0] card0_card_core0_regs_fifo1_reg_word33_value;
-wire card0_card_core0_regs_fifo1_reg_word33_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word33_read_out;
-wire [15:0] card0_card_core0_regs_fifo1_reg_word33_honoured;
-wire card0_card_core0_regs_fifo1_reg_word33_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word33_clamped;
-wire card0_card_core0_regs_fifo1_reg_word33_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word33_shown_wide;
-reg [15:0] card0_card_core0_regs_fifo1_reg_word33_written;
-reg [7:0] card0_card_core0_regs_fifo1_reg_word34_value;
-wire card0_card_core0_regs_fifo1_reg_word34_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word34_read_out;
-reg [7:0] card0_card_core0_regs_fifo1_reg_word34_honoured;
-reg card0_card_core0_regs_fifo1_reg_word34_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word34_clamped;
-wire card0_card_core0_regs_fifo1_reg_word34_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word34_shown_wide;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word34_written;
-reg [7:0] card0_card_core0_regs_fifo1_reg_word35_value;
-wire card0_card_core0_regs_fifo1_reg_word35_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word35_read_out;
-reg [7:0] card0_card_core0_regs_fifo1_reg_word35_honoured;
-reg card0_card_core0_regs_fifo1_reg_word35_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word35_clamped;
-wire card0_card_core0_regs_fifo1_reg_word35_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word35_shown_wide;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word35_written;
-reg [7:0] card0_card_core0_regs_fifo1_reg_word36_value;
-wire card0_card_core0_regs_fifo1_reg_word36_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word36_read_out;
-reg [7:0] card0_card_core0_regs_fifo1_reg_word36_honoured;
-reg card0_card_core0_regs_fifo1_reg_word36_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word36_clamped;
-wire card0_card_core0_regs_fifo1_reg_word36_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word36_shown_wide;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word36_written;
-reg [1:0] card0_card_core0_regs_fifo1_reg_word37_value;
-wire card0_card_core0_regs_fifo1_reg_word37_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word37_read_out;
-wire [1:0] card0_card_core0_regs_fifo1_reg_word37_honoured;
-wire card0_card_core0_regs_fifo1_reg_word37_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word37_clamped;
-wire card0_card_core0_regs_fifo1_reg_word37_mine;
-wire card0_card_core0_regs_fifo1_reg_word37_set_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word37_shown_wide;
-reg [1:0] card0_card_core0_regs_fifo1_reg_word37_written;
-reg [15:0] card0_card_core0_regs_fifo1_reg_word38_value;
-wire card0_card_core0_regs_fifo1_reg_word38_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word38_read_out;
-reg [15:0] card0_card_core0_regs_fifo1_reg_word38_honoured;
-reg card0_card_core0_regs_fifo1_reg_word38_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word38_clamped;
-wire card0_card_core0_regs_fifo1_reg_word38_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word38_shown_wide;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word38_written;
-reg [15:0] card0_card_core0_regs_fifo1_reg_word39_value;
-wire card0_card_core0_regs_fifo1_reg_word39_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word39_read_out;
-reg [15:0] card0_card_core0_regs_fifo1_reg_word39_honoured;
-reg card0_card_core0_regs_fifo1_reg_word39_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word39_clamped;
-wire card0_card_core0_regs_fifo1_reg_word39_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word39_shown_wide;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word39_written;
-reg [23:0] card0_card_core0_regs_fifo1_reg_word40_hw_value;
-reg [23:0] card0_card_core0_regs_fifo1_reg_word40_value;
-reg card0_card_core0_regs_fifo1_reg_word40_strobe;
-wire card0_card_core0_regs_fifo1_reg_word40_clamp_out;
-reg [31:0] card0_card_core0_regs_fifo1_reg_word40_read_out;
-reg [23:0] card0_card_core0_regs_fifo1_reg_word40_honoured;
-reg card0_card_core0_regs_fifo1_reg_word40_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word40_clamped;
-wire card0_card_core0_regs_fifo1_reg_word40_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word40_shown_wide;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word40_written;
-reg [23:0] card0_card_core0_regs_fifo1_reg_word41_hw_value;
-reg [23:0] card0_card_core0_regs_fifo1_reg_word41_value;
-reg card0_card_core0_regs_fifo1_reg_word41_strobe;
-wire card0_card_core0_regs_fifo1_reg_word41_clamp_out;
-reg [23:0] card0_card_core0_regs_fifo1_reg_word41_honoured;
-reg card0_card_core0_regs_fifo1_reg_word41_out_of_range;
-reg card0_card_core0_regs_fifo1_reg_word41_clamped;
-wire card0_card_core0_regs_fifo1_reg_word41_mine;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word41_shown_wide;
-wire [31:0] card0_card_core0_regs_fifo1_reg_word41_written;
-reg signed [23:0] card0_card_core0_regs_fifo1_sequencer1_pulse_count_x;
-reg signed [23:0] card0_card_core0_regs_fifo1_sequencer1_pulse_count_y;
-wire card0_card_core0_regs_fifo1_sequencer1_arriving_coord_fits;
-reg [2:0] card0_card_core0_regs_fifo1_sequencer1_arriving_count;
-wire card0_card_core0_regs_fifo1_sequencer1_arriving_count_fits;
-reg [3:0] card0_card_core0_regs_fifo1_sequencer1_coord_fits;
-reg [3:0] card0_card_core0_regs_fifo1_sequencer1_coord_mask;
-reg [3:0] card0_card_core0_regs_fifo1_sequencer1_count_fits;
-reg [3:0] card0_card_core0_regs_fifo1_sequencer1_count_mask;
-reg [31:0] card0_card_core0_regs_fifo1_sequencer1_dwell_left;
-reg [2:0] card0_card_core0_regs_fifo1_sequencer1_fetched;
-reg card0_card_core0_regs_fifo1_sequencer1_finishing;
-reg [31:0] card0_card_core0_regs_fifo1_sequencer1_header;
-wire card0_card_core0_regs_fifo1_sequencer1_issue;
-reg [15:0] card0_card_core0_regs_fifo1_sequencer1_mask_high;
-reg [15:0] card0_card_core0_regs_fifo1_sequencer1_mask_low;
-reg [2:0] card0_card_core0_regs_fifo1_sequencer1_next_count;
-reg [3:0] card0_card_core0_regs_fifo1_sequencer1_next_error;
-reg card0_card_core0_regs_fifo1_sequencer1_next_known;
-reg card0_card_core0_regs_fifo1_sequencer1_next_valid;
-wire [3:0] card0_card_core0_regs_fifo1_sequencer1_opcode;
-reg [31:0] card0_card_core0_regs_fifo1_sequencer1_operand_0;
-reg [31:0] card0_card_core0_regs_fifo1_sequencer1_operand_1;
-reg [31:0] card0_card_core0_regs_fifo1_sequencer1_operand_2;
-reg [31:0] card0_card_core0_regs_fifo1_sequencer1_operand_3;
-reg card0_card_core0_regs_fifo1_sequencer1_set_known;
-reg [2:0] card0_card_core0_regs_fifo1_sequencer1_state;
-reg card0_card_core0_regs_fifo1_sequencer1_word_due;
-reg card0_card_core0_regs_fifo1_sequencer1_dda_done;
-reg card0_card_core0_regs_fifo1_sequencer1_dda_start;
-reg card0_card_core0_regs_fifo1_sequencer1_dda_error;
-reg card0_card_core0_regs_fifo1_sequencer1_dda_line;
-reg card0_card_core0_regs_fifo1_sequencer1_dda_ccw;
-reg [1:0] card0_card_core0_regs_fifo1_sequencer1_dda_variant;
-reg [4:0] card0_card_core0_regs_fifo1_sequencer1_dda_lambda_shift;
-reg [4:0] card0_card_core0_regs_fifo1_sequencer1_dda_acc_bits;
-reg signed [23:0] card0_card_core0_regs_fifo1_sequencer1_dda_xs;
-reg signed [23:0] card0_card_core0_regs_fifo1_sequencer1_dda_ys;
-reg signed [23:0] card0_card_core0_regs_fifo1_sequencer1_dda_xe;
-reg signed [23:0] card0_card_core0_regs_fifo1_sequencer1_dda_ye;
-reg [15:0] card0_card_core0_regs_fifo1_feed_rate1_phase;
-reg [16:0] card0_card_core0_regs_fifo1_feed_rate1_rate;
-reg card0_card_core0_regs_fifo1_direct_pulse2_load;
-reg signed [23:0] card0_card_core0_regs_fifo1_direct_pulse2_count;
-reg [15:0] card0_card_core0_regs_fifo1_direct_pulse2_gap;
-reg card0_card_core0_regs_fifo1_direct_pulse3_load;
-reg signed [23:0] card0_card_core0_regs_fifo1_direct_pulse3_count;
-reg [15:0] card0_card_core0_regs_fifo1_direct_pulse3_gap;
-reg signed [31:0] card0_card_core0_regs_fifo1_pulse_out1_position_x;
-reg [2:0] card0_card_core0_regs_fifo1_pulse_out1_count;
-reg card0_card_core0_regs_fifo1_pulse_out1_dir_level_x;
-reg card0_card_core0_regs_fifo1_pulse_out1_dir_level_y;
-wire [3:0] card0_card_core0_regs_fifo1_pulse_out1_head;
-reg card0_card_core0_regs_fifo1_pulse_out1_level_x;
-reg card0_card_core0_regs_fifo1_pulse_out1_level_y;
-reg [7:0] card0_card_core0_regs_fifo1_pulse_out1_low_clocks;
-reg [1:0] card0_card_core0_regs_fifo1_pulse_out1_phase;
-reg [7:0] card0_card_core0_regs_fifo1_pulse_out1_phase_clocks;
-reg card0_card_core0_regs_fifo1_pulse_out1_take;
-reg card0_card_core0_regs_fifo1_pulse_out1_turn;
-wire [1:0] card0_card_core0_regs_fifo1__status1_quadrant;
-reg [4:0] card0_card_core0_dda_arc1_acc_bits;
-reg signed [31:0] card0_card_core0_dda_arc1_acc_x;
-reg signed [31:0] card0_card_core0_dda_arc1_acc_y;
-reg card0_card_core0_dda_arc1_ccw;
-reg signed [31:0] card0_card_core0_dda_arc1_chk_acc_init;
-reg [2:0] card0_card_core0_dda_arc1_chk_crossings;
-reg signed [29:0] card0_card_core0_dda_arc1_chk_delta_x;
-reg signed [29:0] card0_card_core0_dda_arc1_chk_delta_y;
-reg card0_card_core0_dda_arc1_chk_error;
-reg [23:0] card0_card_core0_dda_arc1_chk_first_x;
-reg [23:0] card0_card_core0_dda_arc1_chk_first_y;
-reg [23:0] card0_card_core0_dda_arc1_chk_last_x;
-reg [23:0] card0_card_core0_dda_arc1_chk_last_y;
-reg [1:0] card0_card_core0_dda_arc1_chk_quadrant;
-reg [23:0] card0_card_core0_dda_arc1_chk_radius;
-reg [28:0] card0_card_core0_dda_arc1_chk_threshold;
-reg [23:0] card0_card_core0_dda_arc1_cmd_mag_xs;
-reg [23:0] card0_card_core0_dda_arc1_count_x;
-reg [23:0] card0_card_core0_dda_arc1_count_y;
-reg [2:0] card0_card_core0_dda_arc1_crossings;
-reg signed [29:0] card0_card_core0_dda_arc1_delta_x;
-reg signed [29:0] card0_card_core0_dda_arc1_delta_y;
-reg signed [49:0] card0_card_core0_dda_arc1_end_gap;
-reg signed [49:0] card0_card_core0_dda_arc1_end_limit;
-reg card0_card_core0_dda_arc1_is_line;
-reg signed [31:0] card0_card_core0_dda_arc1_it_acc_x;
-reg signed [31:0] card0_card_core0_dda_arc1_it_acc_y;
-reg card0_card_core0_dda_arc1_it_dir_x;
-reg card0_card_core0_dda_arc1_it_dir_y;
-reg signed [29:0] card0_card_core0_dda_arc1_it_error;
-reg card0_card_core0_dda_arc1_it_finished;
-reg [23:0] card0_card_core0_dda_arc1_it_mag_x;
-reg [23:0] card0_card_core0_dda_arc1_it_mag_y;
-reg card0_card_core0_dda_arc1_it_next_piece;
-reg card0_card_core0_dda_arc1_it_step_x;
-reg card0_card_core0_dda_arc1_it_step_y;
-reg [4:0] card0_card_core0_dda_arc1_lambda_shift;
-reg [23:0] card0_card_core0_dda_arc1_last_x;
-reg [23:0] card0_card_core0_dda_arc1_last_y;
-reg [4:0] card0_card_core0_dda_arc1_mac_bit;
-reg [1:0] card0_card_core0_dda_arc1_mac_op;
-reg [23:0] card0_card_core0_dda_arc1_mag_x;
-reg [23:0] card0_card_core0_dda_arc1_mag_xe;
-reg [23:0] card0_card_core0_dda_arc1_mag_xs;
-reg [23:0] card0_card_core0_dda_arc1_mag_y;
-reg [23:0] card0_card_core0_dda_arc1_mag_ye;
-reg [23:0] card0_card_core0_dda_arc1_mag_ys;
-reg [47:0] card0_card_core0_dda_arc1_multiplicand;
-reg [23:0] card0_card_core0_dda_arc1_multiplier;
-reg card0_card_core0_dda_arc1_off_circle;
-reg [1:0] card0_card_core0_dda_arc1_quadrant;
-reg signed [29:0] card0_card_core0_dda_arc1_radial_error;
-reg [47:0] card0_card_core0_dda_arc1_radicand;
-reg [23:0] card0_card_core0_dda_arc1_radius;
-reg [24:0] card0_card_core0_dda_arc1_radius_q;
-reg [26:0] card0_card_core0_dda_arc1_remainder;
-reg [23:0] card0_card_core0_dda_arc1_root;
-reg [4:0] card0_card_core0_dda_arc1_root_bit;
-reg [47:0] card0_card_core0_dda_arc1_square_end;
-reg [47:0] card0_card_core0_dda_arc1_square_start;
-reg [2:0] card0_card_core0_dda_arc1_state;
-reg [28:0] card0_card_core0_dda_arc1_threshold;
-reg [1:0] card0_card_core0_dda_arc1_variant;
-reg signed [23:0] card0_card_core0_dda_arc1_xe;
-reg signed [23:0] card0_card_core0_dda_arc1_xs;
-reg signed [23:0] card0_card_core0_dda_arc1_ye;
-reg signed [23:0] card0_card_core0_dda_arc1_ys;
-reg [31:0] card0_card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
-reg [3:0] card0_card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
+wire card1_irq;
+wire card1_pci_slave2_accepted;
+reg card1_pci_slave2_ad_oe_next;
+reg [31:0] card1_pci_slave2_ad_out_next;
+reg card1_pci_slave2_ad_out_parity;
+wire card1_pci_slave2_ad_out_parity_kept;
+reg [31:0] card1_pci_slave2_ad_out_q;
+reg card1_pci_slave2_address_fault;
+wire card1_pci_slave2_address_parity_error;
+wire card1_pci_slave2_address_phase;
+wire card1_pci_slave2_at_last;
+reg card1_pci_slave2_b_valid;
+wire card1_pci_slave2_back_end_retry;
+reg [15:0] card1_pci_slave2_bar0;
+wire [15:0] card1_pci_slave2_bar0_read;
+reg [31:0] card1_pci_slave2_bar1;
+wire card1_pci_slave2_before_last;
+reg [1:0] card1_pci_slave2_buffered_next;
+reg card1_pci_slave2_bus_parity;
+wire card1_pci_slave2_bus_parity_kept;
+reg [3:0] card1_pci_slave2_cbe_q;
+reg card1_pci_slave2_claim;
+reg card1_pci_slave2_claim_config;
+reg card1_pci_slave2_claim_io;
+reg [31:0] card1_pci_slave2_config_data;
+wire [5:0] card1_pci_slave2_config_index;
+reg card1_pci_slave2_config_write_q;
+wire card1_pci_slave2_data_parity_error;
+reg card1_pci_slave2_detected_parity_error;
+reg card1_pci_slave2_devsel_next;
+reg card1_pci_slave2_devsel_q;
+wire card1_pci_slave2_draining;
+reg card1_pci_slave2_drive_next;
+reg card1_pci_slave2_fatal;
+reg card1_pci_slave2_fetching;
+reg card1_pci_slave2_first_pending;
+reg card1_pci_slave2_first_phase;
+reg card1_pci_slave2_frame_q;
+reg card1_pci_slave2_frame_qq;
+wire card1_pci_slave2_got;
+reg [3:0] card1_pci_slave2_h_be;
+reg [31:0] card1_pci_slave2_h_data;
+reg card1_pci_slave2_h_valid;
+wire card1_pci_slave2_holding;
+reg card1_pci_slave2_interrupt_disable;
+reg [7:0] card1_pci_slave2_interrupt_line;
+reg [1:0] card1_pci_slave2_io_byte;
+reg card1_pci_slave2_io_enable;
+reg card1_pci_slave2_irdy_q;
+reg card1_pci_slave2_is_config;
+reg card1_pci_slave2_is_read;
+reg card1_pci_slave2_mem_enable;
+reg card1_pci_slave2_par_next;
+reg card1_pci_slave2_parity_error_q;
+reg card1_pci_slave2_parity_response;
+wire card1_pci_slave2_perr_armed;
+reg card1_pci_slave2_perr_next;
+reg card1_pci_slave2_perr_q;
+reg [9:0] card1_pci_slave2_phase_addr;
+wire card1_pci_slave2_phase_done;
+reg [31:0] card1_pci_slave2_read_source;
+reg card1_pci_slave2_refused;
+reg [9:0] card1_pci_slave2_req_addr;
+reg card1_pci_slave2_req_addr_stale;
+reg [3:0] card1_pci_slave2_s_be;
+reg card1_pci_slave2_s_valid;
+wire card1_pci_slave2_serr_armed;
+reg card1_pci_slave2_serr_enable;
+reg card1_pci_slave2_signaled_system_error;
+reg card1_pci_slave2_signaled_target_abort;
+reg card1_pci_slave2_single;
+reg card1_pci_slave2_space_mem;
+reg [31:0] card1_pci_slave2_spare_data;
+reg [9:0] card1_pci_slave2_start_addr;
+reg [3:0] card1_pci_slave2_state;
+reg [3:0] card1_pci_slave2_state_next;
+reg card1_pci_slave2_stop_next;
+reg card1_pci_slave2_stop_q;
+reg card1_pci_slave2_timeout;
+reg card1_pci_slave2_trdy_next;
+reg card1_pci_slave2_trdy_q;
+reg [3:0] card1_pci_slave2_wait_count;
+reg card1_pci_slave2_waiting;
+reg card1_pci_slave2_wq_valid;
+reg card1_pci_slave2_write_done_q;
+reg card1_pci_slave2_local_re;
+reg card1_pci_slave2_local_we;
+reg card1_pci_slave2_local_space;
+reg [31:0] card1_pci_slave2_local_wdata;
+reg [3:0] card1_pci_slave2_local_be;
+reg [11:0] card1_pci_slave2_local_addr;
+wire card1_pci_slave2_local_ready;
+wire card1_pci_slave2_local_retry;
+wire [31:0] card1_pci_slave2_local_rdata;
+wire [3:0] card1_pci_slave2_next_if_frame_state;
+wire card1_pci_slave2_next_if_frame_trdy;
+wire card1_pci_slave2_next_if_frame_stop;
+wire card1_pci_slave2_next_if_frame_devsel;
+wire card1_pci_slave2_next_if_frame_drive;
+wire card1_pci_slave2_next_if_frame_ad_oe;
+wire [3:0] card1_pci_slave2_next_if_irdy_state;
+wire card1_pci_slave2_next_if_irdy_trdy;
+wire card1_pci_slave2_next_if_irdy_stop;
+wire card1_pci_slave2_next_if_irdy_devsel;
+wire card1_pci_slave2_next_if_irdy_drive;
+wire card1_pci_slave2_next_if_irdy_ad_oe;
+wire [3:0] card1_pci_slave2_next_if_both_state;
+wire card1_pci_slave2_next_if_both_trdy;
+wire card1_pci_slave2_next_if_both_stop;
+wire card1_pci_slave2_next_if_both_devsel;
+wire card1_pci_slave2_next_if_both_drive;
+wire card1_pci_slave2_next_if_both_ad_oe;
+reg [3:0] card1_pci_slave2_control_case0_0_1_out_state;
+reg card1_pci_slave2_control_case0_0_1_out_trdy;
+reg card1_pci_slave2_control_case0_0_1_out_stop;
+reg card1_pci_slave2_control_case0_0_1_out_devsel;
+reg card1_pci_slave2_control_case0_0_1_out_drive;
+reg card1_pci_slave2_control_case0_0_1_out_ad_oe;
+reg [3:0] card1_pci_slave2_control_case1_0_1_out_state;
+reg card1_pci_slave2_control_case1_0_1_out_trdy;
+reg card1_pci_slave2_control_case1_0_1_out_stop;
+reg card1_pci_slave2_control_case1_0_1_out_devsel;
+reg card1_pci_slave2_control_case1_0_1_out_drive;
+reg card1_pci_slave2_control_case1_0_1_out_ad_oe;
+reg [3:0] card1_pci_slave2_control_case2_0_1_out_state;
+reg card1_pci_slave2_control_case2_0_1_out_trdy;
+reg card1_pci_slave2_control_case2_0_1_out_stop;
+reg card1_pci_slave2_control_case2_0_1_out_devsel;
+reg card1_pci_slave2_control_case2_0_1_out_drive;
+reg card1_pci_slave2_control_case2_0_1_out_ad_oe;
+reg card1_card_core1_core_clear;
+wire card1_card_core1_dda_reset;
+reg [31:0] card1_card_core1_regs_fifo2_fifo_dout;
+reg card1_card_core1_regs_fifo2_fifo_pop;
+wire card1_card_core1_regs_fifo2_fifo_empty;
+reg card1_card_core1_regs_fifo2_set_strobe;
+reg card1_card_core1_regs_fifo2_mark_strobe;
+reg [3:0] card1_card_core1_regs_fifo2_set_index;
+reg [31:0] card1_card_core1_regs_fifo2_set_value;
+reg [15:0] card1_card_core1_regs_fifo2_mark_tag;
+reg [3:0] card1_card_core1_regs_fifo2_error_code;
+reg card1_card_core1_regs_fifo2_seq_load;
+reg card1_card_core1_regs_fifo2_busy_before;
+reg card1_card_core1_regs_fifo2_done_flag;
+reg card1_card_core1_regs_fifo2_low_before;
+reg card1_card_core1_regs_fifo2_error_before;
+wire card1_card_core1_regs_fifo2_any_busy;
+reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
+wire card1_card_core1_regs_fifo2_clear_error;
+wire card1_card_core1_regs_fifo2_clear_position;
+wire card1_card_core1_regs_fifo2_direct_mode;
+wire card1_card_core1_regs_fifo2_enable;
+wire card1_card_core1_regs_fifo2_fifo_full;
+wire [9:0] card1_card_core1_regs_fifo2_fifo_level;
+wire card1_card_core1_regs_fifo2_hold;
+reg card1_card_core1_regs_fifo2_io_read;
+reg card1_card_core1_regs_fifo2_io_write;
+wire [15:0] card1_card_core1_regs_fifo2_level_wide;
+wire card1_card_core1_regs_fifo2_motion_run;
+wire card1_card_core1_regs_fifo2_out_active;
+wire card1_card_core1_regs_fifo2_out_ready;
+reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
+wire card1_card_core1_regs_fifo2_pulse_busy;
+reg card1_card_core1_regs_fifo2_push;
+wire card1_card_core1_regs_fifo2_seq_busy;
+reg card1_card_core1_regs_fifo2_tick;
+reg [31:0] card1_card_core1_regs_fifo2_read_end;
+reg [1:0] card1_card_core1_regs_fifo2_control;
+reg card1_card_core1_regs_fifo2_command_strobe;
+reg [2:0] card1_card_core1_regs_fifo2_command;
+reg signed [31:0] card1_card_core1_regs_fifo2_position_y;
+wire card1_card_core1_regs_fifo2_direct_busy_x;
+wire card1_card_core1_regs_fifo2_direct_busy_y;
+wire card1_card_core1_regs_fifo2_dda_advance;
+reg card1_card_core1_regs_fifo2_dda_busy;
+wire card1_card_core1_regs_fifo2_requests_step_x;
+reg card1_card_core1_regs_fifo2_steps_step_x;
+reg card1_card_core1_regs_fifo2_direct_request_x;
+wire card1_card_core1_regs_fifo2_requests_step_y;
+reg card1_card_core1_regs_fifo2_steps_step_y;
+reg card1_card_core1_regs_fifo2_direct_request_y;
+wire card1_card_core1_regs_fifo2_requests_dir_x;
+reg card1_card_core1_regs_fifo2_steps_dir_x;
+reg card1_card_core1_regs_fifo2_direct_dir_x;
+wire card1_card_core1_regs_fifo2_requests_dir_y;
+reg card1_card_core1_regs_fifo2_steps_dir_y;
+reg card1_card_core1_regs_fifo2_direct_dir_y;
+reg [9:0] card1_card_core1_regs_fifo2_sync_fifo2_count;
+wire card1_card_core1_regs_fifo2_sync_fifo2_do_read;
+wire card1_card_core1_regs_fifo2_sync_fifo2_do_write;
+reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_read_addr;
+reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_write_addr;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word42_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word42_clamp_in;
+wire card1_card_core1_regs_fifo2_reg_word42_clamp_out;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word42_read_in;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word42_read_out;
+wire card1_card_core1_regs_fifo2_reg_word42_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word42_shown_wide;
+wire card1_card_core1_regs_fifo2_reg_word43_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word43_read_out;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word43_honoured;
+wire card1_card_core1_regs_fifo2_reg_word43_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word43_clamped;
+wire card1_card_core1_regs_fifo2_reg_word43_mine;
+wire card1_card_core1_regs_fifo2_reg_word43_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word43_shown_wide;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word43_written;
+wire [2:0] card1_card_core1_regs_fifo2_reg_word44_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word44_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word44_read_out;
+wire [2:0] card1_card_core1_regs_fifo2_reg_word44_honoured;
+wire card1_card_core1_regs_fifo2_reg_word44_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word44_clamped;
+wire card1_card_core1_regs_fifo2_reg_word44_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word44_shown_wide;
+wire [2:0] card1_card_core1_regs_fifo2_reg_word44_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word45_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word45_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word45_read_out;
+wire card1_card_core1_regs_fifo2_reg_word45_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word45_shown_wide;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word46_value;
+wire card1_card_core1_regs_fifo2_reg_word46_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word46_read_out;
+wire [4:0] card1_card_core1_regs_fifo2_reg_word46_honoured;
+wire card1_card_core1_regs_fifo2_reg_word46_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word46_clamped;
+wire card1_card_core1_regs_fifo2_reg_word46_mine;
+wire card1_card_core1_regs_fifo2_reg_word46_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word46_shown_wide;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word46_written;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word47_hw_value;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word47_value;
+wire card1_card_core1_regs_fifo2_reg_word47_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word47_read_out;
+wire [4:0] card1_card_core1_regs_fifo2_reg_word47_honoured;
+wire card1_card_core1_regs_fifo2_reg_word47_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word47_shown_wide;
+wire [4:0] card1_card_core1_regs_fifo2_reg_word47_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word48_value;
+wire card1_card_core1_regs_fifo2_reg_word48_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word48_read_out;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word48_honoured;
+wire card1_card_core1_regs_fifo2_reg_word48_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word48_clamped;
+wire card1_card_core1_regs_fifo2_reg_word48_mine;
+wire card1_card_core1_regs_fifo2_reg_word48_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word48_shown_wide;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word48_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word49_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word49_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word49_read_out;
+wire card1_card_core1_regs_fifo2_reg_word49_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word49_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word50_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word50_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word50_read_out;
+wire card1_card_core1_regs_fifo2_reg_word50_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word50_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word51_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word51_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word51_read_out;
+wire card1_card_core1_regs_fifo2_reg_word51_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word51_shown_wide;
+reg [16:0] card1_card_core1_regs_fifo2_reg_word52_value;
+wire card1_card_core1_regs_fifo2_reg_word52_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word52_read_out;
+reg [16:0] card1_card_core1_regs_fifo2_reg_word52_honoured;
+reg card1_card_core1_regs_fifo2_reg_word52_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word52_clamped;
+wire card1_card_core1_regs_fifo2_reg_word52_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word52_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word52_written;
+reg [16:0] card1_card_core1_regs_fifo2_reg_word53_value;
+wire card1_card_core1_regs_fifo2_reg_word53_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word53_read_out;
+reg [16:0] card1_card_core1_regs_fifo2_reg_word53_honoured;
+reg card1_card_core1_regs_fifo2_reg_word53_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word53_clamped;
+wire card1_card_core1_regs_fifo2_reg_word53_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word53_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word53_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word54_value;
+wire card1_card_core1_regs_fifo2_reg_word54_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word54_read_out;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word54_honoured;
+wire card1_card_core1_regs_fifo2_reg_word54_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word54_clamped;
+wire card1_card_core1_regs_fifo2_reg_word54_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word54_shown_wide;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word54_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word55_value;
+wire card1_card_core1_regs_fifo2_reg_word55_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word55_read_out;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word55_honoured;
+reg card1_card_core1_regs_fifo2_reg_word55_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word55_clamped;
+wire card1_card_core1_regs_fifo2_reg_word55_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word55_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word55_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word56_value;
+wire card1_card_core1_regs_fifo2_reg_word56_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word56_read_out;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word56_honoured;
+reg card1_card_core1_regs_fifo2_reg_word56_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word56_clamped;
+wire card1_card_core1_regs_fifo2_reg_word56_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word56_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word56_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word57_value;
+wire card1_card_core1_regs_fifo2_reg_word57_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word57_read_out;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word57_honoured;
+reg card1_card_core1_regs_fifo2_reg_word57_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word57_clamped;
+wire card1_card_core1_regs_fifo2_reg_word57_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word57_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word57_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word58_value;
+wire card1_card_core1_regs_fifo2_reg_word58_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word58_read_out;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word58_honoured;
+wire card1_card_core1_regs_fifo2_reg_word58_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word58_clamped;
+wire card1_card_core1_regs_fifo2_reg_word58_mine;
+wire card1_card_core1_regs_fifo2_reg_word58_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word58_shown_wide;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word58_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word59_value;
+wire card1_card_core1_regs_fifo2_reg_word59_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word59_read_out;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word59_honoured;
+reg card1_card_core1_regs_fifo2_reg_word59_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word59_clamped;
+wire card1_card_core1_regs_fifo2_reg_word59_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word59_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word59_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word60_value;
+wire card1_card_core1_regs_fifo2_reg_word60_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word60_read_out;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word60_honoured;
+reg card1_card_core1_regs_fifo2_reg_word60_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word60_clamped;
+wire card1_card_core1_regs_fifo2_reg_word60_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word60_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word60_written;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word61_hw_value;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word61_value;
+reg card1_card_core1_regs_fifo2_reg_word61_strobe;
+wire card1_card_core1_regs_fifo2_reg_word61_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word61_read_out;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word61_honoured;
+reg card1_card_core1_regs_fifo2_reg_word61_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word61_clamped;
+wire card1_card_core1_regs_fifo2_reg_word61_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word61_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word61_written;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word62_hw_value;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word62_value;
+reg card1_card_core1_regs_fifo2_reg_word62_strobe;
+wire card1_card_core1_regs_fifo2_reg_word62_clamp_out;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word62_honoured;
+reg card1_card_core1_regs_fifo2_reg_word62_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word62_clamped;
+wire card1_card_core1_regs_fifo2_reg_word62_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word62_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word62_written;
+reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulse_count_x;
+reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulse_count_y;
+wire card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
+reg [2:0] card1_card_core1_regs_fifo2_sequencer2_arriving_count;
+wire card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_coord_fits;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_coord_mask;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_count_fits;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_count_mask;
+reg [31:0] card1_card_core1_regs_fifo2_sequencer2_dwell_left;
+reg [2:0] card1_card_core1_regs_fifo2_sequencer2_fetched;
+reg card1_card_core1_regs_fifo2_sequencer2_finishing;
+reg [31:0] card1_card_core1_regs_fifo2_sequencer2_header;
+wire card1_card_core1_regs_fifo2_sequencer2_issue;
+reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mask_high;
+reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mask_low;
+reg [2:0] card1_card_core1_regs_fifo2_sequencer2_next_count;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_next_error;
+reg card1_card_core1_regs_fifo2_sequencer2_next_known;
+reg card1_card_core1_regs_fifo2_sequencer2_next_valid;
+wire [3:0] card1_card_core1_regs_fifo2_sequencer2_opcode;
+reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_0;
+reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_1;
+reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_2;
+reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_3;
+reg card1_card_core1_regs_fifo2_sequencer2_set_known;
+reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
+reg card1_card_core1_regs_fifo2_sequencer2_word_due;
+reg card1_card_core1_regs_fifo2_sequencer2_dda_done;
+reg card1_card_core1_regs_fifo2_sequencer2_dda_start;
+reg card1_card_core1_regs_fifo2_sequencer2_dda_error;
+reg card1_card_core1_regs_fifo2_sequencer2_dda_line;
+reg card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
+reg [1:0] card1_card_core1_regs_fifo2_sequencer2_dda_variant;
+reg [4:0] card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift;
+reg [4:0] card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
+reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_xs;
+reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ys;
+reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_xe;
+reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ye;
+reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_phase;
+reg [16:0] card1_card_core1_regs_fifo2_feed_rate2_rate;
+reg card1_card_core1_regs_fifo2_direct_pulse4_load;
+reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count;
+reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap;
+reg card1_card_core1_regs_fifo2_direct_pulse5_load;
+reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse5_count;
+reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap;
+reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_position_x;
+reg [2:0] card1_card_core1_regs_fifo2_pulse_out2_count;
+reg card1_card_core1_regs_fifo2_pulse_out2_dir_level_x;
+reg card1_card_core1_regs_fifo2_pulse_out2_dir_level_y;
+wire [3:0] card1_card_core1_regs_fifo2_pulse_out2_head;
+reg card1_card_core1_regs_fifo2_pulse_out2_level_x;
+reg card1_card_core1_regs_fifo2_pulse_out2_level_y;
+reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_low_clocks;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_phase;
+reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_clocks;
+reg card1_card_core1_regs_fifo2_pulse_out2_take;
+reg card1_card_core1_regs_fifo2_pulse_out2_turn;
+wire [1:0] card1_card_core1_regs_fifo2__status2_quadrant;
+reg [4:0] card1_card_core1_dda_arc2_acc_bits;
+reg signed [31:0] card1_card_core1_dda_arc2_acc_x;
+reg signed [31:0] card1_card_core1_dda_arc2_acc_y;
+reg card1_card_core1_dda_arc2_ccw;
+reg signed [31:0] card1_card_core1_dda_arc2_chk_acc_init;
+reg [2:0] card1_card_core1_dda_arc2_chk_crossings;
+reg signed [29:0] card1_card_core1_dda_arc2_chk_delta_turn;
+reg signed [29:0] card1_card_core1_dda_arc2_chk_delta_x;
+reg signed [29:0] card1_card_core1_dda_arc2_chk_delta_y;
+reg card1_card_core1_dda_arc2_chk_error;
+reg [1:0] card1_card_core1_dda_arc2_chk_quadrant;
+reg [23:0] card1_card_core1_dda_arc2_chk_radius;
+reg [23:0] card1_card_core1_dda_arc2_chk_target_x;
+reg [23:0] card1_card_core1_dda_arc2_chk_target_y;
+reg [28:0] card1_card_core1_dda_arc2_chk_threshold;
+reg [23:0] card1_card_core1_dda_arc2_cmd_mag_xs;
+reg [23:0] card1_card_core1_dda_arc2_count_x;
+reg [23:0] card1_card_core1_dda_arc2_count_y;
+reg [2:0] card1_card_core1_dda_arc2_crossings;
+reg signed [29:0] card1_card_core1_dda_arc2_delta_turn;
+reg signed [29:0] card1_card_core1_dda_arc2_delta_x;
+reg signed [29:0] card1_card_core1_dda_arc2_delta_y;
+reg card1_card_core1_dda_arc2_end_beyond_high;
+reg card1_card_core1_dda_arc2_end_reaches_low;
+reg signed [49:0] card1_card_core1_dda_arc2_gap;
+reg signed [49:0] card1_card_core1_dda_arc2_gap_sum;
+reg [23:0] card1_card_core1_dda_arc2_integrand_x;
+reg [23:0] card1_card_core1_dda_arc2_integrand_y;
+reg card1_card_core1_dda_arc2_is_line;
+reg signed [31:0] card1_card_core1_dda_arc2_it_acc_x;
+reg signed [31:0] card1_card_core1_dda_arc2_it_acc_y;
+reg card1_card_core1_dda_arc2_it_dir_x;
+reg card1_card_core1_dda_arc2_it_dir_y;
+reg signed [29:0] card1_card_core1_dda_arc2_it_error;
+reg card1_card_core1_dda_arc2_it_finished;
+reg [23:0] card1_card_core1_dda_arc2_it_mag_x;
+reg [23:0] card1_card_core1_dda_arc2_it_mag_y;
+reg card1_card_core1_dda_arc2_it_next_piece;
+reg card1_card_core1_dda_arc2_it_step_x;
+reg card1_card_core1_dda_arc2_it_step_y;
+reg [4:0] card1_card_core1_dda_arc2_lambda_shift;
+reg [4:0] card1_card_core1_dda_arc2_mac_bit;
+reg [1:0] card1_card_core1_dda_arc2_mac_op;
+reg [23:0] card1_card_core1_dda_arc2_mag_x;
+reg [23:0] card1_card_core1_dda_arc2_mag_xe;
+reg [23:0] card1_card_core1_dda_arc2_mag_xs;
+reg [23:0] card1_card_core1_dda_arc2_mag_y;
+reg [23:0] card1_card_core1_dda_arc2_mag_ye;
+reg [23:0] card1_card_core1_dda_arc2_mag_ys;
+reg [47:0] card1_card_core1_dda_arc2_multiplicand;
+reg [23:0] card1_card_core1_dda_arc2_multiplier;
+reg signed [24:0] card1_card_core1_dda_arc2_neg_xs;
+reg signed [24:0] card1_card_core1_dda_arc2_neg_ys;
+reg [1:0] card1_card_core1_dda_arc2_quadrant;
+reg signed [29:0] card1_card_core1_dda_arc2_radial_error;
+reg [47:0] card1_card_core1_dda_arc2_radicand;
+reg [23:0] card1_card_core1_dda_arc2_radius;
+reg [5:0] card1_card_core1_dda_arc2_radius_length;
+reg [24:0] card1_card_core1_dda_arc2_radius_q;
+reg [26:0] card1_card_core1_dda_arc2_remainder;
+reg [23:0] card1_card_core1_dda_arc2_root;
+reg card1_card_core1_dda_arc2_root_all_ones;
+reg [4:0] card1_card_core1_dda_arc2_root_bit;
+reg [5:0] card1_card_core1_dda_arc2_root_length;
+reg [2:0] card1_card_core1_dda_arc2_state;
+reg [23:0] card1_card_core1_dda_arc2_target_x;
+reg [23:0] card1_card_core1_dda_arc2_target_y;
+reg [28:0] card1_card_core1_dda_arc2_threshold;
+reg [1:0] card1_card_core1_dda_arc2_variant;
+reg card1_card_core1_dda_arc2_x_down;
+reg signed [23:0] card1_card_core1_dda_arc2_xe;
+reg signed [23:0] card1_card_core1_dda_arc2_xs;
+reg card1_card_core1_dda_arc2_y_down;
+reg signed [23:0] card1_card_core1_dda_arc2_ye;
+reg signed [23:0] card1_card_core1_dda_arc2_ys;
+reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
+reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card0_card_core0_regs_fifo1_reg_word21_hw_value = 32'd3719037184;
-assign card0_card_core0_regs_fifo1_reg_word21_clamp_in = 1'd0;
-assign card0_card_core0_regs_fifo1_reg_word21_read_in = 32'd0;
-assign card0_card_core0_regs_fifo1_reg_word22_out_of_range = 1'd0;
-assign card0_card_core0_regs_fifo1_reg_word22_set_mine = 1'd0;
-assign card0_card_core0_regs_fifo1_reg_word23_hw_value = 3'd0;
-assign card0_card_core0_regs_fifo1_reg_word23_out_of_range = 1'd0;
-assign card0_card_core0_regs_fifo1_reg_word25_out_of_range = 1'd0;
-assign card0_card_core0_regs_fifo1_reg_word25_set_mine = 1'd0;
-assign card0_card_core0_regs_fifo1_reg_word27_out_of_range = 1'd0;
-assign card0_card_core0_regs_fifo1_reg_word27_set_mine = 1'd0;
-assign card0_card_core0_regs_fifo1_reg_word33_out_of_range = 1'd0;
-assign card0_card_core0_regs_fifo1_reg_word37_out_of_range = 1'd0;
-assign card0_card_core0_regs_fifo1_reg_word37_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word42_hw_value = 32'd3719037184;
+assign card1_card_core1_regs_fifo2_reg_word42_clamp_in = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word42_read_in = 32'd0;
+assign card1_card_core1_regs_fifo2_reg_word43_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word43_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word44_hw_value = 3'd0;
+assign card1_card_core1_regs_fifo2_reg_word44_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word46_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word46_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word48_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word48_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word54_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word58_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word58_set_mine = 1'd0;
 
 
 
@@ -1056,180 +1064,180 @@ SB_IO #(.PIN_TYPE(6'b000000)) pad_idsel_0 (
 );
 
 
-always @(posedge clock, negedge reset) begin: card0_pci_slave1_control_input_register
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_control_input_register
     if (reset == 0) begin
-        card0_pci_slave1_frame_q <= 1;
-        card0_pci_slave1_cbe_q <= 15;
-        card0_pci_slave1_frame_qq <= 1;
-        card0_pci_slave1_irdy_q <= 1;
+        card1_pci_slave2_frame_q <= 1;
+        card1_pci_slave2_cbe_q <= 15;
+        card1_pci_slave2_frame_qq <= 1;
+        card1_pci_slave2_irdy_q <= 1;
     end
     else begin
-        card0_pci_slave1_cbe_q <= pci_pads0_input_pad2_from_pin;
-        card0_pci_slave1_frame_q <= pci_pads0_input_pad0_from_pin;
-        card0_pci_slave1_frame_qq <= card0_pci_slave1_frame_q;
-        card0_pci_slave1_irdy_q <= pci_pads0_input_pad1_from_pin;
+        card1_pci_slave2_cbe_q <= pci_pads0_input_pad2_from_pin;
+        card1_pci_slave2_frame_q <= pci_pads0_input_pad0_from_pin;
+        card1_pci_slave2_frame_qq <= card1_pci_slave2_frame_q;
+        card1_pci_slave2_irdy_q <= pci_pads0_input_pad1_from_pin;
     end
 end
 
 
-always @(pci_pads0_registered_pad0_from_pin, card0_pci_slave1_cbe_q) begin: card0_pci_slave1_parity_check
+always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_cbe_q) begin: card1_pci_slave2_parity_check
     reg [32-1:0] fold;
     fold = 32'h0;
     fold = pci_pads0_registered_pad0_from_pin;
-    fold[4-1:0] = (fold[4-1:0] ^ card0_pci_slave1_cbe_q);
+    fold[4-1:0] = (fold[4-1:0] ^ card1_pci_slave2_cbe_q);
     fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
     fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
     fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
     fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
     fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    card0_pci_slave1_bus_parity = fold[0];
+    card1_pci_slave2_bus_parity = fold[0];
 end
 
 
 
-assign card0_pci_slave1_address_phase = (card0_pci_slave1_frame_qq && (!card0_pci_slave1_frame_q));
-assign card0_pci_slave1_serr_armed = (card0_pci_slave1_frame_qq && (!card0_pci_slave1_frame_q) && card0_pci_slave1_serr_enable && card0_pci_slave1_parity_response);
-assign card0_pci_slave1_perr_armed = (card0_pci_slave1_write_done_q && card0_pci_slave1_parity_response);
-assign card0_pci_slave1_address_parity_error = (card0_pci_slave1_frame_qq && (!card0_pci_slave1_frame_q) && (card0_pci_slave1_bus_parity_kept != pci_pads0_registered_pad1_from_pin));
-assign card0_pci_slave1_data_parity_error = (card0_pci_slave1_write_done_q && (card0_pci_slave1_bus_parity_kept != pci_pads0_registered_pad1_from_pin));
+assign card1_pci_slave2_address_phase = (card1_pci_slave2_frame_qq && (!card1_pci_slave2_frame_q));
+assign card1_pci_slave2_serr_armed = (card1_pci_slave2_frame_qq && (!card1_pci_slave2_frame_q) && card1_pci_slave2_serr_enable && card1_pci_slave2_parity_response);
+assign card1_pci_slave2_perr_armed = (card1_pci_slave2_write_done_q && card1_pci_slave2_parity_response);
+assign card1_pci_slave2_address_parity_error = (card1_pci_slave2_frame_qq && (!card1_pci_slave2_frame_q) && (card1_pci_slave2_bus_parity_kept != pci_pads0_registered_pad1_from_pin));
+assign card1_pci_slave2_data_parity_error = (card1_pci_slave2_write_done_q && (card1_pci_slave2_bus_parity_kept != pci_pads0_registered_pad1_from_pin));
 
 
-always @(card0_pci_slave1_bar1, pci_pads0_registered_pad0_from_pin, card0_pci_slave1_address_phase, card0_pci_slave1_io_enable, card0_pci_slave1_bar0, card0_pci_slave1_cbe_q, pci_pads0_registered_pad6_from_pin, card0_pci_slave1_mem_enable, card0_pci_slave1_state) begin: card0_pci_slave1_decode
+always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_slave2_address_phase, card1_pci_slave2_io_enable, card1_pci_slave2_bar0, card1_pci_slave2_cbe_q, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_mem_enable, card1_pci_slave2_state) begin: card1_pci_slave2_decode
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
     reg mem_hit;
-    code = card0_pci_slave1_cbe_q;
+    code = card1_pci_slave2_cbe_q;
     config_hit = (pci_pads0_registered_pad6_from_pin && (!pci_pads0_registered_pad0_from_pin[0]) && (!pci_pads0_registered_pad0_from_pin[1]) && (pci_pads0_registered_pad0_from_pin[11-1:8] == 0) && ((code == 10) || (code == 11)));
-    io_hit = (card0_pci_slave1_io_enable && ((code == 2) || (code == 3)) && (pci_pads0_registered_pad0_from_pin[32-1:16] == 0) && (pci_pads0_registered_pad0_from_pin[16-1:7] == card0_pci_slave1_bar0[16-1:7]));
-    mem_hit = (card0_pci_slave1_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)) && (pci_pads0_registered_pad0_from_pin[32-1:12] == card0_pci_slave1_bar1[32-1:12]));
-    card0_pci_slave1_claim = ((card0_pci_slave1_state == 4'b0000) && card0_pci_slave1_address_phase && (config_hit || io_hit || mem_hit));
-    card0_pci_slave1_claim_config = config_hit;
-    card0_pci_slave1_claim_io = io_hit;
+    io_hit = (card1_pci_slave2_io_enable && ((code == 2) || (code == 3)) && (pci_pads0_registered_pad0_from_pin[32-1:16] == 0) && (pci_pads0_registered_pad0_from_pin[16-1:7] == card1_pci_slave2_bar0[16-1:7]));
+    mem_hit = (card1_pci_slave2_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)) && (pci_pads0_registered_pad0_from_pin[32-1:12] == card1_pci_slave2_bar1[32-1:12]));
+    card1_pci_slave2_claim = ((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (config_hit || io_hit || mem_hit));
+    card1_pci_slave2_claim_config = config_hit;
+    card1_pci_slave2_claim_io = io_hit;
 end
 
 
-always @(pci_pads0_registered_pad0_from_pin, card0_pci_slave1_claim_config, card0_pci_slave1_claim_io) begin: card0_pci_slave1_start_offset
-    if (card0_pci_slave1_claim_config) begin
-        card0_pci_slave1_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
+always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_claim_config, card1_pci_slave2_claim_io) begin: card1_pci_slave2_start_offset
+    if (card1_pci_slave2_claim_config) begin
+        card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
     end
-    else if (card0_pci_slave1_claim_io) begin
-        card0_pci_slave1_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h1f);
+    else if (card1_pci_slave2_claim_io) begin
+        card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h1f);
     end
     else begin
-        card0_pci_slave1_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3ff);
+        card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3ff);
     end
 end
 
 
 
-assign card0_pci_slave1_phase_done = ((!pci_pads0_input_pad1_from_pin) && (!card0_pci_slave1_trdy_q));
-assign card0_pci_slave1_holding = (pci_pads0_input_pad1_from_pin && (!card0_pci_slave1_trdy_q));
+assign card1_pci_slave2_phase_done = ((!pci_pads0_input_pad1_from_pin) && (!card1_pci_slave2_trdy_q));
+assign card1_pci_slave2_holding = (pci_pads0_input_pad1_from_pin && (!card1_pci_slave2_trdy_q));
 
 
-always @(pci_pads0_registered_pad0_from_pin, card0_pci_slave1_req_addr, card0_pci_slave1_first_pending, card0_pci_slave1_io_byte, card0_pci_slave1_b_valid, card0_pci_slave1_is_read, card0_pci_slave1_fetching, card0_pci_slave1_state, card0_pci_slave1_trdy_q, card0_pci_slave1_wq_valid, card0_pci_slave1_space_mem, card0_pci_slave1_h_be, card0_pci_slave1_h_data, card0_pci_slave1_is_config, card0_pci_slave1_irdy_q, card0_pci_slave1_req_addr_stale, card0_pci_slave1_address_fault, card0_pci_slave1_frame_q, card0_pci_slave1_h_valid, card0_pci_slave1_cbe_q) begin: card0_pci_slave1_local_request
+always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pci_slave2_first_pending, card1_pci_slave2_io_byte, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_wq_valid, card1_pci_slave2_space_mem, card1_pci_slave2_h_be, card1_pci_slave2_h_data, card1_pci_slave2_is_config, card1_pci_slave2_irdy_q, card1_pci_slave2_req_addr_stale, card1_pci_slave2_address_fault, card1_pci_slave2_frame_q, card1_pci_slave2_h_valid, card1_pci_slave2_cbe_q) begin: card1_pci_slave2_local_request
     reg drain;
     reg hold_state;
     reg bad;
     reg first;
     reg prefetch;
-    drain = (card0_pci_slave1_h_valid || card0_pci_slave1_wq_valid);
-    hold_state = ((card0_pci_slave1_state == 4'b0001) || (card0_pci_slave1_state == 4'b0010) || (card0_pci_slave1_state == 4'b0011) || (card0_pci_slave1_state == 4'b0100));
+    drain = (card1_pci_slave2_h_valid || card1_pci_slave2_wq_valid);
+    hold_state = ((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100));
     bad = 1'b0;
-    if (card0_pci_slave1_address_fault) begin
+    if (card1_pci_slave2_address_fault) begin
         bad = 1'b1;
     end
-    else if ((card0_pci_slave1_state == 4'b0010)) begin
-        case (card0_pci_slave1_io_byte)
+    else if ((card1_pci_slave2_state == 4'b0010)) begin
+        case (card1_pci_slave2_io_byte)
             'h1: begin
-                bad = (!card0_pci_slave1_cbe_q[0]);
+                bad = (!card1_pci_slave2_cbe_q[0]);
             end
             'h2: begin
-                bad = (!(card0_pci_slave1_cbe_q[0] && card0_pci_slave1_cbe_q[1]));
+                bad = (!(card1_pci_slave2_cbe_q[0] && card1_pci_slave2_cbe_q[1]));
             end
             'h3: begin
-                bad = (!(card0_pci_slave1_cbe_q[0] && card0_pci_slave1_cbe_q[1] && card0_pci_slave1_cbe_q[2]));
+                bad = (!(card1_pci_slave2_cbe_q[0] && card1_pci_slave2_cbe_q[1] && card1_pci_slave2_cbe_q[2]));
             end
         endcase
     end
-    card0_pci_slave1_fatal = (hold_state && bad);
-    first = (card0_pci_slave1_first_pending && hold_state && (!card0_pci_slave1_is_config) && (!drain) && (!card0_pci_slave1_req_addr_stale) && (!bad));
-    prefetch = ((card0_pci_slave1_state == 4'b0110) && card0_pci_slave1_is_read && card0_pci_slave1_fetching && (!card0_pci_slave1_b_valid) && (card0_pci_slave1_trdy_q || (!card0_pci_slave1_frame_q)));
-    card0_pci_slave1_local_re = ((first && card0_pci_slave1_is_read) || prefetch);
-    card0_pci_slave1_local_we = (drain || (first && (!card0_pci_slave1_is_read) && (!card0_pci_slave1_irdy_q)));
-    card0_pci_slave1_local_space = (drain || card0_pci_slave1_space_mem);
-    if (card0_pci_slave1_h_valid) begin
-        card0_pci_slave1_local_wdata = card0_pci_slave1_h_data;
-        card0_pci_slave1_local_be = card0_pci_slave1_h_be;
+    card1_pci_slave2_fatal = (hold_state && bad);
+    first = (card1_pci_slave2_first_pending && hold_state && (!card1_pci_slave2_is_config) && (!drain) && (!card1_pci_slave2_req_addr_stale) && (!bad));
+    prefetch = ((card1_pci_slave2_state == 4'b0110) && card1_pci_slave2_is_read && card1_pci_slave2_fetching && (!card1_pci_slave2_b_valid) && (card1_pci_slave2_trdy_q || (!card1_pci_slave2_frame_q)));
+    card1_pci_slave2_local_re = ((first && card1_pci_slave2_is_read) || prefetch);
+    card1_pci_slave2_local_we = (drain || (first && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q)));
+    card1_pci_slave2_local_space = (drain || card1_pci_slave2_space_mem);
+    if (card1_pci_slave2_h_valid) begin
+        card1_pci_slave2_local_wdata = card1_pci_slave2_h_data;
+        card1_pci_slave2_local_be = card1_pci_slave2_h_be;
     end
-    else if ((card0_pci_slave1_is_read && card0_pci_slave1_space_mem && (!drain))) begin
-        card0_pci_slave1_local_wdata = pci_pads0_registered_pad0_from_pin;
-        card0_pci_slave1_local_be = 15;
+    else if ((card1_pci_slave2_is_read && card1_pci_slave2_space_mem && (!drain))) begin
+        card1_pci_slave2_local_wdata = pci_pads0_registered_pad0_from_pin;
+        card1_pci_slave2_local_be = 15;
     end
     else begin
-        card0_pci_slave1_local_wdata = pci_pads0_registered_pad0_from_pin;
-        card0_pci_slave1_local_be = (~card0_pci_slave1_cbe_q);
+        card1_pci_slave2_local_wdata = pci_pads0_registered_pad0_from_pin;
+        card1_pci_slave2_local_be = (~card1_pci_slave2_cbe_q);
     end
-    card0_pci_slave1_local_addr = {card0_pci_slave1_req_addr, 2'h0};
+    card1_pci_slave2_local_addr = {card1_pci_slave2_req_addr, 2'h0};
 end
 
 
 
-assign card0_pci_slave1_draining = (card0_pci_slave1_h_valid || card0_pci_slave1_wq_valid);
-assign card0_pci_slave1_got = ((card0_pci_slave1_local_re && card0_pci_slave1_local_ready) || ((card0_pci_slave1_state == 4'b0001) && card0_pci_slave1_is_read));
-assign card0_pci_slave1_accepted = (card0_pci_slave1_local_we && card0_pci_slave1_local_ready);
-assign card0_pci_slave1_back_end_retry = ((card0_pci_slave1_local_re || card0_pci_slave1_local_we) && card0_pci_slave1_local_retry);
+assign card1_pci_slave2_draining = (card1_pci_slave2_h_valid || card1_pci_slave2_wq_valid);
+assign card1_pci_slave2_got = ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready) || ((card1_pci_slave2_state == 4'b0001) && card1_pci_slave2_is_read));
+assign card1_pci_slave2_accepted = (card1_pci_slave2_local_we && card1_pci_slave2_local_ready);
+assign card1_pci_slave2_back_end_retry = ((card1_pci_slave2_local_re || card1_pci_slave2_local_we) && card1_pci_slave2_local_retry);
 
 
-always @(card0_pci_slave1_is_config, card0_pci_slave1_b_valid, card0_pci_slave1_config_data, card0_pci_slave1_spare_data, card0_pci_slave1_local_rdata) begin: card0_pci_slave1_read_path
-    if (card0_pci_slave1_b_valid) begin
-        card0_pci_slave1_read_source = card0_pci_slave1_spare_data;
+always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_config_data, card1_pci_slave2_spare_data, card1_pci_slave2_local_rdata) begin: card1_pci_slave2_read_path
+    if (card1_pci_slave2_b_valid) begin
+        card1_pci_slave2_read_source = card1_pci_slave2_spare_data;
     end
-    else if (card0_pci_slave1_is_config) begin
-        card0_pci_slave1_read_source = card0_pci_slave1_config_data;
+    else if (card1_pci_slave2_is_config) begin
+        card1_pci_slave2_read_source = card1_pci_slave2_config_data;
     end
     else begin
-        card0_pci_slave1_read_source = card0_pci_slave1_local_rdata;
+        card1_pci_slave2_read_source = card1_pci_slave2_local_rdata;
     end
 end
 
 
-always @(card0_pci_slave1_h_valid, card0_pci_slave1_wq_valid, card0_pci_slave1_accepted, card0_pci_slave1_s_valid) begin: card0_pci_slave1_write_path
+always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_accepted, card1_pci_slave2_s_valid) begin: card1_pci_slave2_write_path
     reg [2-1:0] held;
     held = 0;
-    if (card0_pci_slave1_h_valid) begin
+    if (card1_pci_slave2_h_valid) begin
         held = 1;
-        if (card0_pci_slave1_s_valid) begin
+        if (card1_pci_slave2_s_valid) begin
             held = 2;
         end
-        if (card0_pci_slave1_accepted) begin
+        if (card1_pci_slave2_accepted) begin
             held = (held - 1);
         end
-        if (card0_pci_slave1_wq_valid) begin
+        if (card1_pci_slave2_wq_valid) begin
             held = (held + 1);
         end
     end
-    else if ((card0_pci_slave1_wq_valid && (!card0_pci_slave1_accepted))) begin
+    else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_accepted))) begin
         held = 1;
     end
-    card0_pci_slave1_buffered_next = held;
+    card1_pci_slave2_buffered_next = held;
 end
 
 
-always @(card0_pci_slave1_stop_q, card0_pci_slave1_first_phase, card0_pci_slave1_wait_count, card0_pci_slave1_state, card0_pci_slave1_trdy_q) begin: card0_pci_slave1_latency
+always @(card1_pci_slave2_stop_q, card1_pci_slave2_first_phase, card1_pci_slave2_wait_count, card1_pci_slave2_state, card1_pci_slave2_trdy_q) begin: card1_pci_slave2_latency
     reg target_waits;
-    target_waits = (card0_pci_slave1_trdy_q && card0_pci_slave1_stop_q && (card0_pci_slave1_state != 4'b0000) && (card0_pci_slave1_state != 4'b0111) && (card0_pci_slave1_state != 4'b1000));
-    card0_pci_slave1_waiting = target_waits;
-    card0_pci_slave1_timeout = (target_waits && ((card0_pci_slave1_first_phase && (card0_pci_slave1_wait_count == 11)) || ((!card0_pci_slave1_first_phase) && (card0_pci_slave1_wait_count == 5))));
+    target_waits = (card1_pci_slave2_trdy_q && card1_pci_slave2_stop_q && (card1_pci_slave2_state != 4'b0000) && (card1_pci_slave2_state != 4'b0111) && (card1_pci_slave2_state != 4'b1000));
+    card1_pci_slave2_waiting = target_waits;
+    card1_pci_slave2_timeout = (target_waits && ((card1_pci_slave2_first_phase && (card1_pci_slave2_wait_count == 11)) || ((!card1_pci_slave2_first_phase) && (card1_pci_slave2_wait_count == 5))));
 end
 
 
 
-assign card0_pci_slave1_at_last = (card0_pci_slave1_phase_addr == 1023);
-assign card0_pci_slave1_before_last = ($signed({1'b0, card0_pci_slave1_phase_addr}) == (1023 - 1));
+assign card1_pci_slave2_at_last = (card1_pci_slave2_phase_addr == 1023);
+assign card1_pci_slave2_before_last = ($signed({1'b0, card1_pci_slave2_phase_addr}) == (1023 - 1));
 
 
-always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_slave1_claim_config, card0_pci_slave1_first_pending, card0_pci_slave1_before_last, card0_pci_slave1_fatal, card0_pci_slave1_b_valid, pci_pads0_registered_pad3_enable, card0_pci_slave1_stop_q, card0_pci_slave1_is_read, card0_pci_slave1_fetching, card0_pci_slave1_state, card0_pci_slave1_trdy_q, card0_pci_slave1_claim, card0_pci_slave1_got, card0_pci_slave1_at_last, card0_pci_slave1_first_phase, card0_pci_slave1_timeout, card0_pci_slave1_is_config, card0_pci_slave1_draining, card0_pci_slave1_claim_io, card0_pci_slave1_buffered_next, card0_pci_slave1_single, pci_pads0_registered_pad0_enable, card0_pci_slave1_cbe_q, card0_pci_slave1_devsel_q, card0_pci_slave1_refused) begin: card0_pci_slave1_control_case0_0_control
+always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad3_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_got, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_cbe_q, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case0_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1241,88 +1249,88 @@ always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_s
     reg ready_for_phase;
     reg exhausted;
     reg room;
-    done = (1'b0 && (!card0_pci_slave1_trdy_q));
-    hold = ((!1'b0) && (!card0_pci_slave1_trdy_q));
-    trdy = (card0_pci_slave1_trdy_q != 0);
-    stop = (card0_pci_slave1_stop_q != 0);
-    devsel = (card0_pci_slave1_devsel_q != 0);
+    done = (1'b0 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b0) && (!card1_pci_slave2_trdy_q));
+    trdy = (card1_pci_slave2_trdy_q != 0);
+    stop = (card1_pci_slave2_stop_q != 0);
+    devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad3_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card0_pci_slave1_control_case0_0_out_state = card0_pci_slave1_state;
-    last_data = (card0_pci_slave1_single || card0_pci_slave1_at_last);
+    card1_pci_slave2_control_case0_0_1_out_state = card1_pci_slave2_state;
+    last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     if (done) begin
-        last_data = (card0_pci_slave1_single || card0_pci_slave1_before_last);
+        last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
     end
     ready_for_phase = 1'b0;
     exhausted = 1'b0;
     room = 1'b0;
-    if (card0_pci_slave1_is_read) begin
-        ready_for_phase = (card0_pci_slave1_b_valid || card0_pci_slave1_got);
-        exhausted = ((!card0_pci_slave1_b_valid) && (!card0_pci_slave1_got) && (!card0_pci_slave1_fetching));
+    if (card1_pci_slave2_is_read) begin
+        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_got);
+        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_got) && (!card1_pci_slave2_fetching));
     end
     else begin
-        room = (card0_pci_slave1_buffered_next <= 1);
-        if ((done && (!card0_pci_slave1_first_phase))) begin
-            room = (card0_pci_slave1_buffered_next == 0);
+        room = (card1_pci_slave2_buffered_next <= 1);
+        if ((done && (!card1_pci_slave2_first_phase))) begin
+            room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card0_pci_slave1_is_config || (room && (!card0_pci_slave1_refused)));
-        exhausted = (card0_pci_slave1_refused != 0);
+        ready_for_phase = (card1_pci_slave2_is_config || (room && (!card1_pci_slave2_refused)));
+        exhausted = (card1_pci_slave2_refused != 0);
     end
-    if ((card0_pci_slave1_state == 4'b0000)) begin
+    if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
-        if (card0_pci_slave1_claim) begin
+        if (card1_pci_slave2_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
             trdy = 1'b1;
             stop = 1'b1;
-            ad_oe = (!card0_pci_slave1_cbe_q[0]);
-            if (card0_pci_slave1_claim_config) begin
-                card0_pci_slave1_control_case0_0_out_state = 4'b0001;
+            ad_oe = (!card1_pci_slave2_cbe_q[0]);
+            if (card1_pci_slave2_claim_config) begin
+                card1_pci_slave2_control_case0_0_1_out_state = 4'b0001;
             end
-            else if (card0_pci_slave1_claim_io) begin
-                card0_pci_slave1_control_case0_0_out_state = 4'b0010;
+            else if (card1_pci_slave2_claim_io) begin
+                card1_pci_slave2_control_case0_0_1_out_state = 4'b0010;
             end
             else begin
-                card0_pci_slave1_control_case0_0_out_state = 4'b0011;
+                card1_pci_slave2_control_case0_0_1_out_state = 4'b0011;
             end
         end
     end
-    else if (((card0_pci_slave1_state == 4'b0001) || (card0_pci_slave1_state == 4'b0010) || (card0_pci_slave1_state == 4'b0011) || (card0_pci_slave1_state == 4'b0100))) begin
-        if (card0_pci_slave1_fatal) begin
-            card0_pci_slave1_control_case0_0_out_state = 4'b0111;
+    else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
-        else if ((card0_pci_slave1_state == 4'b0001)) begin
-            card0_pci_slave1_control_case0_0_out_state = 4'b0101;
+        else if ((card1_pci_slave2_state == 4'b0001)) begin
+            card1_pci_slave2_control_case0_0_1_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((card0_pci_slave1_is_read && card0_pci_slave1_got) || ((!card0_pci_slave1_is_read) && card0_pci_slave1_accepted && card0_pci_slave1_first_pending && (!card0_pci_slave1_draining)))) begin
-            card0_pci_slave1_control_case0_0_out_state = 4'b0110;
+        else if (((card1_pci_slave2_is_read && card1_pci_slave2_got) || ((!card1_pci_slave2_is_read) && card1_pci_slave2_accepted && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)))) begin
+            card1_pci_slave2_control_case0_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((card0_pci_slave1_back_end_retry && card0_pci_slave1_first_pending && (!card0_pci_slave1_draining)) || card0_pci_slave1_timeout)) begin
-            card0_pci_slave1_control_case0_0_out_state = 4'b0111;
+        else if (((card1_pci_slave2_back_end_retry && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)) || card1_pci_slave2_timeout)) begin
+            card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
-        else if (card0_pci_slave1_is_read) begin
-            card0_pci_slave1_control_case0_0_out_state = 4'b0100;
+        else if (card1_pci_slave2_is_read) begin
+            card1_pci_slave2_control_case0_0_1_out_state = 4'b0100;
         end
     end
-    else if (((card0_pci_slave1_state == 4'b0101) || (card0_pci_slave1_state == 4'b0110))) begin
+    else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
         if (hold) begin
             // pass
         end
-        else if ((done && ((!1'b1) || (!card0_pci_slave1_stop_q)))) begin
+        else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
             trdy = 1'b1;
             if (1'b1) begin
-                card0_pci_slave1_control_case0_0_out_state = 4'b0111;
+                card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
             end
             else begin
-                card0_pci_slave1_control_case0_0_out_state = 4'b1000;
+                card1_pci_slave2_control_case0_0_1_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1332,8 +1340,8 @@ always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_s
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if ((exhausted || card0_pci_slave1_timeout)) begin
-            card0_pci_slave1_control_case0_0_out_state = 4'b0111;
+        else if ((exhausted || card1_pci_slave2_timeout)) begin
+            card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1341,9 +1349,9 @@ always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_s
             trdy = 1'b1;
         end
     end
-    else if ((card0_pci_slave1_state == 4'b0111)) begin
+    else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            card0_pci_slave1_control_case0_0_out_state = 4'b1000;
+            card1_pci_slave2_control_case0_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1351,18 +1359,18 @@ always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_s
         end
     end
     else begin
-        card0_pci_slave1_control_case0_0_out_state = 4'b0000;
+        card1_pci_slave2_control_case0_0_1_out_state = 4'b0000;
         drive = 1'b0;
     end
-    card0_pci_slave1_control_case0_0_out_trdy = trdy;
-    card0_pci_slave1_control_case0_0_out_stop = stop;
-    card0_pci_slave1_control_case0_0_out_devsel = devsel;
-    card0_pci_slave1_control_case0_0_out_drive = drive;
-    card0_pci_slave1_control_case0_0_out_ad_oe = ad_oe;
+    card1_pci_slave2_control_case0_0_1_out_trdy = trdy;
+    card1_pci_slave2_control_case0_0_1_out_stop = stop;
+    card1_pci_slave2_control_case0_0_1_out_devsel = devsel;
+    card1_pci_slave2_control_case0_0_1_out_drive = drive;
+    card1_pci_slave2_control_case0_0_1_out_ad_oe = ad_oe;
 end
 
 
-always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_slave1_claim_config, card0_pci_slave1_first_pending, card0_pci_slave1_before_last, card0_pci_slave1_fatal, card0_pci_slave1_b_valid, pci_pads0_registered_pad3_enable, card0_pci_slave1_stop_q, card0_pci_slave1_is_read, card0_pci_slave1_fetching, card0_pci_slave1_state, card0_pci_slave1_trdy_q, card0_pci_slave1_claim, card0_pci_slave1_got, card0_pci_slave1_at_last, card0_pci_slave1_first_phase, card0_pci_slave1_timeout, card0_pci_slave1_is_config, card0_pci_slave1_draining, card0_pci_slave1_claim_io, card0_pci_slave1_buffered_next, card0_pci_slave1_single, pci_pads0_registered_pad0_enable, card0_pci_slave1_cbe_q, card0_pci_slave1_devsel_q, card0_pci_slave1_refused) begin: card0_pci_slave1_control_case1_0_control
+always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad3_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_got, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_cbe_q, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case1_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1374,88 +1382,88 @@ always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_s
     reg ready_for_phase;
     reg exhausted;
     reg room;
-    done = (1'b1 && (!card0_pci_slave1_trdy_q));
-    hold = ((!1'b1) && (!card0_pci_slave1_trdy_q));
-    trdy = (card0_pci_slave1_trdy_q != 0);
-    stop = (card0_pci_slave1_stop_q != 0);
-    devsel = (card0_pci_slave1_devsel_q != 0);
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
+    trdy = (card1_pci_slave2_trdy_q != 0);
+    stop = (card1_pci_slave2_stop_q != 0);
+    devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad3_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card0_pci_slave1_control_case1_0_out_state = card0_pci_slave1_state;
-    last_data = (card0_pci_slave1_single || card0_pci_slave1_at_last);
+    card1_pci_slave2_control_case1_0_1_out_state = card1_pci_slave2_state;
+    last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     if (done) begin
-        last_data = (card0_pci_slave1_single || card0_pci_slave1_before_last);
+        last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
     end
     ready_for_phase = 1'b0;
     exhausted = 1'b0;
     room = 1'b0;
-    if (card0_pci_slave1_is_read) begin
-        ready_for_phase = (card0_pci_slave1_b_valid || card0_pci_slave1_got);
-        exhausted = ((!card0_pci_slave1_b_valid) && (!card0_pci_slave1_got) && (!card0_pci_slave1_fetching));
+    if (card1_pci_slave2_is_read) begin
+        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_got);
+        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_got) && (!card1_pci_slave2_fetching));
     end
     else begin
-        room = (card0_pci_slave1_buffered_next <= 1);
-        if ((done && (!card0_pci_slave1_first_phase))) begin
-            room = (card0_pci_slave1_buffered_next == 0);
+        room = (card1_pci_slave2_buffered_next <= 1);
+        if ((done && (!card1_pci_slave2_first_phase))) begin
+            room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card0_pci_slave1_is_config || (room && (!card0_pci_slave1_refused)));
-        exhausted = (card0_pci_slave1_refused != 0);
+        ready_for_phase = (card1_pci_slave2_is_config || (room && (!card1_pci_slave2_refused)));
+        exhausted = (card1_pci_slave2_refused != 0);
     end
-    if ((card0_pci_slave1_state == 4'b0000)) begin
+    if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
-        if (card0_pci_slave1_claim) begin
+        if (card1_pci_slave2_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
             trdy = 1'b1;
             stop = 1'b1;
-            ad_oe = (!card0_pci_slave1_cbe_q[0]);
-            if (card0_pci_slave1_claim_config) begin
-                card0_pci_slave1_control_case1_0_out_state = 4'b0001;
+            ad_oe = (!card1_pci_slave2_cbe_q[0]);
+            if (card1_pci_slave2_claim_config) begin
+                card1_pci_slave2_control_case1_0_1_out_state = 4'b0001;
             end
-            else if (card0_pci_slave1_claim_io) begin
-                card0_pci_slave1_control_case1_0_out_state = 4'b0010;
+            else if (card1_pci_slave2_claim_io) begin
+                card1_pci_slave2_control_case1_0_1_out_state = 4'b0010;
             end
             else begin
-                card0_pci_slave1_control_case1_0_out_state = 4'b0011;
+                card1_pci_slave2_control_case1_0_1_out_state = 4'b0011;
             end
         end
     end
-    else if (((card0_pci_slave1_state == 4'b0001) || (card0_pci_slave1_state == 4'b0010) || (card0_pci_slave1_state == 4'b0011) || (card0_pci_slave1_state == 4'b0100))) begin
-        if (card0_pci_slave1_fatal) begin
-            card0_pci_slave1_control_case1_0_out_state = 4'b0111;
+    else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
-        else if ((card0_pci_slave1_state == 4'b0001)) begin
-            card0_pci_slave1_control_case1_0_out_state = 4'b0101;
+        else if ((card1_pci_slave2_state == 4'b0001)) begin
+            card1_pci_slave2_control_case1_0_1_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b0);
         end
-        else if (((card0_pci_slave1_is_read && card0_pci_slave1_got) || ((!card0_pci_slave1_is_read) && card0_pci_slave1_accepted && card0_pci_slave1_first_pending && (!card0_pci_slave1_draining)))) begin
-            card0_pci_slave1_control_case1_0_out_state = 4'b0110;
+        else if (((card1_pci_slave2_is_read && card1_pci_slave2_got) || ((!card1_pci_slave2_is_read) && card1_pci_slave2_accepted && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)))) begin
+            card1_pci_slave2_control_case1_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
-        else if (((card0_pci_slave1_back_end_retry && card0_pci_slave1_first_pending && (!card0_pci_slave1_draining)) || card0_pci_slave1_timeout)) begin
-            card0_pci_slave1_control_case1_0_out_state = 4'b0111;
+        else if (((card1_pci_slave2_back_end_retry && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)) || card1_pci_slave2_timeout)) begin
+            card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
-        else if (card0_pci_slave1_is_read) begin
-            card0_pci_slave1_control_case1_0_out_state = 4'b0100;
+        else if (card1_pci_slave2_is_read) begin
+            card1_pci_slave2_control_case1_0_1_out_state = 4'b0100;
         end
     end
-    else if (((card0_pci_slave1_state == 4'b0101) || (card0_pci_slave1_state == 4'b0110))) begin
+    else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
         if (hold) begin
             // pass
         end
-        else if ((done && ((!1'b0) || (!card0_pci_slave1_stop_q)))) begin
+        else if ((done && ((!1'b0) || (!card1_pci_slave2_stop_q)))) begin
             trdy = 1'b1;
             if (1'b0) begin
-                card0_pci_slave1_control_case1_0_out_state = 4'b0111;
+                card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
             end
             else begin
-                card0_pci_slave1_control_case1_0_out_state = 4'b1000;
+                card1_pci_slave2_control_case1_0_1_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1465,8 +1473,8 @@ always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_s
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
-        else if ((exhausted || card0_pci_slave1_timeout)) begin
-            card0_pci_slave1_control_case1_0_out_state = 4'b0111;
+        else if ((exhausted || card1_pci_slave2_timeout)) begin
+            card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1474,9 +1482,9 @@ always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_s
             trdy = 1'b1;
         end
     end
-    else if ((card0_pci_slave1_state == 4'b0111)) begin
+    else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b0)) begin
-            card0_pci_slave1_control_case1_0_out_state = 4'b1000;
+            card1_pci_slave2_control_case1_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1484,18 +1492,18 @@ always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_s
         end
     end
     else begin
-        card0_pci_slave1_control_case1_0_out_state = 4'b0000;
+        card1_pci_slave2_control_case1_0_1_out_state = 4'b0000;
         drive = 1'b0;
     end
-    card0_pci_slave1_control_case1_0_out_trdy = trdy;
-    card0_pci_slave1_control_case1_0_out_stop = stop;
-    card0_pci_slave1_control_case1_0_out_devsel = devsel;
-    card0_pci_slave1_control_case1_0_out_drive = drive;
-    card0_pci_slave1_control_case1_0_out_ad_oe = ad_oe;
+    card1_pci_slave2_control_case1_0_1_out_trdy = trdy;
+    card1_pci_slave2_control_case1_0_1_out_stop = stop;
+    card1_pci_slave2_control_case1_0_1_out_devsel = devsel;
+    card1_pci_slave2_control_case1_0_1_out_drive = drive;
+    card1_pci_slave2_control_case1_0_1_out_ad_oe = ad_oe;
 end
 
 
-always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_slave1_claim_config, card0_pci_slave1_first_pending, card0_pci_slave1_before_last, card0_pci_slave1_fatal, card0_pci_slave1_b_valid, pci_pads0_registered_pad3_enable, card0_pci_slave1_stop_q, card0_pci_slave1_is_read, card0_pci_slave1_fetching, card0_pci_slave1_state, card0_pci_slave1_trdy_q, card0_pci_slave1_claim, card0_pci_slave1_got, card0_pci_slave1_at_last, card0_pci_slave1_first_phase, card0_pci_slave1_timeout, card0_pci_slave1_is_config, card0_pci_slave1_draining, card0_pci_slave1_claim_io, card0_pci_slave1_buffered_next, card0_pci_slave1_single, pci_pads0_registered_pad0_enable, card0_pci_slave1_cbe_q, card0_pci_slave1_devsel_q, card0_pci_slave1_refused) begin: card0_pci_slave1_control_case2_0_control
+always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad3_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_got, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_cbe_q, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case2_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1507,88 +1515,88 @@ always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_s
     reg ready_for_phase;
     reg exhausted;
     reg room;
-    done = (1'b1 && (!card0_pci_slave1_trdy_q));
-    hold = ((!1'b1) && (!card0_pci_slave1_trdy_q));
-    trdy = (card0_pci_slave1_trdy_q != 0);
-    stop = (card0_pci_slave1_stop_q != 0);
-    devsel = (card0_pci_slave1_devsel_q != 0);
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
+    trdy = (card1_pci_slave2_trdy_q != 0);
+    stop = (card1_pci_slave2_stop_q != 0);
+    devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad3_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card0_pci_slave1_control_case2_0_out_state = card0_pci_slave1_state;
-    last_data = (card0_pci_slave1_single || card0_pci_slave1_at_last);
+    card1_pci_slave2_control_case2_0_1_out_state = card1_pci_slave2_state;
+    last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     if (done) begin
-        last_data = (card0_pci_slave1_single || card0_pci_slave1_before_last);
+        last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
     end
     ready_for_phase = 1'b0;
     exhausted = 1'b0;
     room = 1'b0;
-    if (card0_pci_slave1_is_read) begin
-        ready_for_phase = (card0_pci_slave1_b_valid || card0_pci_slave1_got);
-        exhausted = ((!card0_pci_slave1_b_valid) && (!card0_pci_slave1_got) && (!card0_pci_slave1_fetching));
+    if (card1_pci_slave2_is_read) begin
+        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_got);
+        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_got) && (!card1_pci_slave2_fetching));
     end
     else begin
-        room = (card0_pci_slave1_buffered_next <= 1);
-        if ((done && (!card0_pci_slave1_first_phase))) begin
-            room = (card0_pci_slave1_buffered_next == 0);
+        room = (card1_pci_slave2_buffered_next <= 1);
+        if ((done && (!card1_pci_slave2_first_phase))) begin
+            room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card0_pci_slave1_is_config || (room && (!card0_pci_slave1_refused)));
-        exhausted = (card0_pci_slave1_refused != 0);
+        ready_for_phase = (card1_pci_slave2_is_config || (room && (!card1_pci_slave2_refused)));
+        exhausted = (card1_pci_slave2_refused != 0);
     end
-    if ((card0_pci_slave1_state == 4'b0000)) begin
+    if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
-        if (card0_pci_slave1_claim) begin
+        if (card1_pci_slave2_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
             trdy = 1'b1;
             stop = 1'b1;
-            ad_oe = (!card0_pci_slave1_cbe_q[0]);
-            if (card0_pci_slave1_claim_config) begin
-                card0_pci_slave1_control_case2_0_out_state = 4'b0001;
+            ad_oe = (!card1_pci_slave2_cbe_q[0]);
+            if (card1_pci_slave2_claim_config) begin
+                card1_pci_slave2_control_case2_0_1_out_state = 4'b0001;
             end
-            else if (card0_pci_slave1_claim_io) begin
-                card0_pci_slave1_control_case2_0_out_state = 4'b0010;
+            else if (card1_pci_slave2_claim_io) begin
+                card1_pci_slave2_control_case2_0_1_out_state = 4'b0010;
             end
             else begin
-                card0_pci_slave1_control_case2_0_out_state = 4'b0011;
+                card1_pci_slave2_control_case2_0_1_out_state = 4'b0011;
             end
         end
     end
-    else if (((card0_pci_slave1_state == 4'b0001) || (card0_pci_slave1_state == 4'b0010) || (card0_pci_slave1_state == 4'b0011) || (card0_pci_slave1_state == 4'b0100))) begin
-        if (card0_pci_slave1_fatal) begin
-            card0_pci_slave1_control_case2_0_out_state = 4'b0111;
+    else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
-        else if ((card0_pci_slave1_state == 4'b0001)) begin
-            card0_pci_slave1_control_case2_0_out_state = 4'b0101;
+        else if ((card1_pci_slave2_state == 4'b0001)) begin
+            card1_pci_slave2_control_case2_0_1_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((card0_pci_slave1_is_read && card0_pci_slave1_got) || ((!card0_pci_slave1_is_read) && card0_pci_slave1_accepted && card0_pci_slave1_first_pending && (!card0_pci_slave1_draining)))) begin
-            card0_pci_slave1_control_case2_0_out_state = 4'b0110;
+        else if (((card1_pci_slave2_is_read && card1_pci_slave2_got) || ((!card1_pci_slave2_is_read) && card1_pci_slave2_accepted && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)))) begin
+            card1_pci_slave2_control_case2_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((card0_pci_slave1_back_end_retry && card0_pci_slave1_first_pending && (!card0_pci_slave1_draining)) || card0_pci_slave1_timeout)) begin
-            card0_pci_slave1_control_case2_0_out_state = 4'b0111;
+        else if (((card1_pci_slave2_back_end_retry && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)) || card1_pci_slave2_timeout)) begin
+            card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
-        else if (card0_pci_slave1_is_read) begin
-            card0_pci_slave1_control_case2_0_out_state = 4'b0100;
+        else if (card1_pci_slave2_is_read) begin
+            card1_pci_slave2_control_case2_0_1_out_state = 4'b0100;
         end
     end
-    else if (((card0_pci_slave1_state == 4'b0101) || (card0_pci_slave1_state == 4'b0110))) begin
+    else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
         if (hold) begin
             // pass
         end
-        else if ((done && ((!1'b1) || (!card0_pci_slave1_stop_q)))) begin
+        else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
             trdy = 1'b1;
             if (1'b1) begin
-                card0_pci_slave1_control_case2_0_out_state = 4'b0111;
+                card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
             end
             else begin
-                card0_pci_slave1_control_case2_0_out_state = 4'b1000;
+                card1_pci_slave2_control_case2_0_1_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1598,8 +1606,8 @@ always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_s
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if ((exhausted || card0_pci_slave1_timeout)) begin
-            card0_pci_slave1_control_case2_0_out_state = 4'b0111;
+        else if ((exhausted || card1_pci_slave2_timeout)) begin
+            card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1607,9 +1615,9 @@ always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_s
             trdy = 1'b1;
         end
     end
-    else if ((card0_pci_slave1_state == 4'b0111)) begin
+    else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            card0_pci_slave1_control_case2_0_out_state = 4'b1000;
+            card1_pci_slave2_control_case2_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1617,494 +1625,494 @@ always @(card0_pci_slave1_accepted, card0_pci_slave1_back_end_retry, card0_pci_s
         end
     end
     else begin
-        card0_pci_slave1_control_case2_0_out_state = 4'b0000;
+        card1_pci_slave2_control_case2_0_1_out_state = 4'b0000;
         drive = 1'b0;
     end
-    card0_pci_slave1_control_case2_0_out_trdy = trdy;
-    card0_pci_slave1_control_case2_0_out_stop = stop;
-    card0_pci_slave1_control_case2_0_out_devsel = devsel;
-    card0_pci_slave1_control_case2_0_out_drive = drive;
-    card0_pci_slave1_control_case2_0_out_ad_oe = ad_oe;
+    card1_pci_slave2_control_case2_0_1_out_trdy = trdy;
+    card1_pci_slave2_control_case2_0_1_out_stop = stop;
+    card1_pci_slave2_control_case2_0_1_out_devsel = devsel;
+    card1_pci_slave2_control_case2_0_1_out_drive = drive;
+    card1_pci_slave2_control_case2_0_1_out_ad_oe = ad_oe;
 end
 
 
-(* keep *) wire [3:0] card0_pci_slave1_next_if_frame_state_kept_net = card0_pci_slave1_control_case0_0_out_state;
-assign card0_pci_slave1_next_if_frame_state = card0_pci_slave1_next_if_frame_state_kept_net;
+(* keep *) wire [3:0] card1_pci_slave2_next_if_frame_state_kept_net = card1_pci_slave2_control_case0_0_1_out_state;
+assign card1_pci_slave2_next_if_frame_state = card1_pci_slave2_next_if_frame_state_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_frame_trdy_kept_net = card0_pci_slave1_control_case0_0_out_trdy;
-assign card0_pci_slave1_next_if_frame_trdy = card0_pci_slave1_next_if_frame_trdy_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_frame_trdy_kept_net = card1_pci_slave2_control_case0_0_1_out_trdy;
+assign card1_pci_slave2_next_if_frame_trdy = card1_pci_slave2_next_if_frame_trdy_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_frame_stop_kept_net = card0_pci_slave1_control_case0_0_out_stop;
-assign card0_pci_slave1_next_if_frame_stop = card0_pci_slave1_next_if_frame_stop_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_frame_stop_kept_net = card1_pci_slave2_control_case0_0_1_out_stop;
+assign card1_pci_slave2_next_if_frame_stop = card1_pci_slave2_next_if_frame_stop_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_frame_devsel_kept_net = card0_pci_slave1_control_case0_0_out_devsel;
-assign card0_pci_slave1_next_if_frame_devsel = card0_pci_slave1_next_if_frame_devsel_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_frame_devsel_kept_net = card1_pci_slave2_control_case0_0_1_out_devsel;
+assign card1_pci_slave2_next_if_frame_devsel = card1_pci_slave2_next_if_frame_devsel_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_frame_drive_kept_net = card0_pci_slave1_control_case0_0_out_drive;
-assign card0_pci_slave1_next_if_frame_drive = card0_pci_slave1_next_if_frame_drive_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_frame_drive_kept_net = card1_pci_slave2_control_case0_0_1_out_drive;
+assign card1_pci_slave2_next_if_frame_drive = card1_pci_slave2_next_if_frame_drive_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_frame_ad_oe_kept_net = card0_pci_slave1_control_case0_0_out_ad_oe;
-assign card0_pci_slave1_next_if_frame_ad_oe = card0_pci_slave1_next_if_frame_ad_oe_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_frame_ad_oe_kept_net = card1_pci_slave2_control_case0_0_1_out_ad_oe;
+assign card1_pci_slave2_next_if_frame_ad_oe = card1_pci_slave2_next_if_frame_ad_oe_kept_net;
 
 
-(* keep *) wire [3:0] card0_pci_slave1_next_if_irdy_state_kept_net = card0_pci_slave1_control_case1_0_out_state;
-assign card0_pci_slave1_next_if_irdy_state = card0_pci_slave1_next_if_irdy_state_kept_net;
+(* keep *) wire [3:0] card1_pci_slave2_next_if_irdy_state_kept_net = card1_pci_slave2_control_case1_0_1_out_state;
+assign card1_pci_slave2_next_if_irdy_state = card1_pci_slave2_next_if_irdy_state_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_irdy_trdy_kept_net = card0_pci_slave1_control_case1_0_out_trdy;
-assign card0_pci_slave1_next_if_irdy_trdy = card0_pci_slave1_next_if_irdy_trdy_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_irdy_trdy_kept_net = card1_pci_slave2_control_case1_0_1_out_trdy;
+assign card1_pci_slave2_next_if_irdy_trdy = card1_pci_slave2_next_if_irdy_trdy_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_irdy_stop_kept_net = card0_pci_slave1_control_case1_0_out_stop;
-assign card0_pci_slave1_next_if_irdy_stop = card0_pci_slave1_next_if_irdy_stop_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_irdy_stop_kept_net = card1_pci_slave2_control_case1_0_1_out_stop;
+assign card1_pci_slave2_next_if_irdy_stop = card1_pci_slave2_next_if_irdy_stop_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_irdy_devsel_kept_net = card0_pci_slave1_control_case1_0_out_devsel;
-assign card0_pci_slave1_next_if_irdy_devsel = card0_pci_slave1_next_if_irdy_devsel_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_irdy_devsel_kept_net = card1_pci_slave2_control_case1_0_1_out_devsel;
+assign card1_pci_slave2_next_if_irdy_devsel = card1_pci_slave2_next_if_irdy_devsel_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_irdy_drive_kept_net = card0_pci_slave1_control_case1_0_out_drive;
-assign card0_pci_slave1_next_if_irdy_drive = card0_pci_slave1_next_if_irdy_drive_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_irdy_drive_kept_net = card1_pci_slave2_control_case1_0_1_out_drive;
+assign card1_pci_slave2_next_if_irdy_drive = card1_pci_slave2_next_if_irdy_drive_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_irdy_ad_oe_kept_net = card0_pci_slave1_control_case1_0_out_ad_oe;
-assign card0_pci_slave1_next_if_irdy_ad_oe = card0_pci_slave1_next_if_irdy_ad_oe_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_irdy_ad_oe_kept_net = card1_pci_slave2_control_case1_0_1_out_ad_oe;
+assign card1_pci_slave2_next_if_irdy_ad_oe = card1_pci_slave2_next_if_irdy_ad_oe_kept_net;
 
 
-(* keep *) wire [3:0] card0_pci_slave1_next_if_both_state_kept_net = card0_pci_slave1_control_case2_0_out_state;
-assign card0_pci_slave1_next_if_both_state = card0_pci_slave1_next_if_both_state_kept_net;
+(* keep *) wire [3:0] card1_pci_slave2_next_if_both_state_kept_net = card1_pci_slave2_control_case2_0_1_out_state;
+assign card1_pci_slave2_next_if_both_state = card1_pci_slave2_next_if_both_state_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_both_trdy_kept_net = card0_pci_slave1_control_case2_0_out_trdy;
-assign card0_pci_slave1_next_if_both_trdy = card0_pci_slave1_next_if_both_trdy_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_both_trdy_kept_net = card1_pci_slave2_control_case2_0_1_out_trdy;
+assign card1_pci_slave2_next_if_both_trdy = card1_pci_slave2_next_if_both_trdy_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_both_stop_kept_net = card0_pci_slave1_control_case2_0_out_stop;
-assign card0_pci_slave1_next_if_both_stop = card0_pci_slave1_next_if_both_stop_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_both_stop_kept_net = card1_pci_slave2_control_case2_0_1_out_stop;
+assign card1_pci_slave2_next_if_both_stop = card1_pci_slave2_next_if_both_stop_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_both_devsel_kept_net = card0_pci_slave1_control_case2_0_out_devsel;
-assign card0_pci_slave1_next_if_both_devsel = card0_pci_slave1_next_if_both_devsel_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_both_devsel_kept_net = card1_pci_slave2_control_case2_0_1_out_devsel;
+assign card1_pci_slave2_next_if_both_devsel = card1_pci_slave2_next_if_both_devsel_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_both_drive_kept_net = card0_pci_slave1_control_case2_0_out_drive;
-assign card0_pci_slave1_next_if_both_drive = card0_pci_slave1_next_if_both_drive_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_both_drive_kept_net = card1_pci_slave2_control_case2_0_1_out_drive;
+assign card1_pci_slave2_next_if_both_drive = card1_pci_slave2_next_if_both_drive_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_next_if_both_ad_oe_kept_net = card0_pci_slave1_control_case2_0_out_ad_oe;
-assign card0_pci_slave1_next_if_both_ad_oe = card0_pci_slave1_next_if_both_ad_oe_kept_net;
+(* keep *) wire card1_pci_slave2_next_if_both_ad_oe_kept_net = card1_pci_slave2_control_case2_0_1_out_ad_oe;
+assign card1_pci_slave2_next_if_both_ad_oe = card1_pci_slave2_next_if_both_ad_oe_kept_net;
 
 
-always @(pci_pads0_input_pad1_from_pin, card0_pci_slave1_next_if_irdy_drive, card0_pci_slave1_next_if_irdy_state, card0_pci_slave1_next_if_both_stop, card0_pci_slave1_next_if_both_devsel, card0_pci_slave1_next_if_irdy_ad_oe, card0_pci_slave1_next_if_frame_drive, card0_pci_slave1_next_if_frame_stop, card0_pci_slave1_next_if_irdy_stop, card0_pci_slave1_next_if_frame_state, card0_pci_slave1_next_if_both_ad_oe, card0_pci_slave1_next_if_irdy_trdy, card0_pci_slave1_next_if_both_drive, pci_pads0_input_pad0_from_pin, card0_pci_slave1_next_if_frame_devsel, card0_pci_slave1_next_if_irdy_devsel, card0_pci_slave1_next_if_both_state, card0_pci_slave1_next_if_both_trdy, card0_pci_slave1_next_if_frame_ad_oe, card0_pci_slave1_next_if_frame_trdy) begin: card0_pci_slave1_control_pick
+always @(pci_pads0_input_pad1_from_pin, card1_pci_slave2_next_if_irdy_drive, card1_pci_slave2_next_if_irdy_state, card1_pci_slave2_next_if_both_stop, card1_pci_slave2_next_if_both_devsel, card1_pci_slave2_next_if_irdy_ad_oe, card1_pci_slave2_next_if_frame_drive, card1_pci_slave2_next_if_frame_stop, card1_pci_slave2_next_if_irdy_stop, card1_pci_slave2_next_if_frame_state, card1_pci_slave2_next_if_both_ad_oe, card1_pci_slave2_next_if_irdy_trdy, card1_pci_slave2_next_if_both_drive, pci_pads0_input_pad0_from_pin, card1_pci_slave2_next_if_frame_devsel, card1_pci_slave2_next_if_irdy_devsel, card1_pci_slave2_next_if_both_state, card1_pci_slave2_next_if_both_trdy, card1_pci_slave2_next_if_frame_ad_oe, card1_pci_slave2_next_if_frame_trdy) begin: card1_pci_slave2_control_pick
     if (pci_pads0_input_pad1_from_pin) begin
-        card0_pci_slave1_state_next = card0_pci_slave1_next_if_frame_state;
-        card0_pci_slave1_trdy_next = card0_pci_slave1_next_if_frame_trdy;
-        card0_pci_slave1_stop_next = card0_pci_slave1_next_if_frame_stop;
-        card0_pci_slave1_devsel_next = card0_pci_slave1_next_if_frame_devsel;
-        card0_pci_slave1_drive_next = card0_pci_slave1_next_if_frame_drive;
-        card0_pci_slave1_ad_oe_next = card0_pci_slave1_next_if_frame_ad_oe;
+        card1_pci_slave2_state_next = card1_pci_slave2_next_if_frame_state;
+        card1_pci_slave2_trdy_next = card1_pci_slave2_next_if_frame_trdy;
+        card1_pci_slave2_stop_next = card1_pci_slave2_next_if_frame_stop;
+        card1_pci_slave2_devsel_next = card1_pci_slave2_next_if_frame_devsel;
+        card1_pci_slave2_drive_next = card1_pci_slave2_next_if_frame_drive;
+        card1_pci_slave2_ad_oe_next = card1_pci_slave2_next_if_frame_ad_oe;
     end
     else if (pci_pads0_input_pad0_from_pin) begin
-        card0_pci_slave1_state_next = card0_pci_slave1_next_if_irdy_state;
-        card0_pci_slave1_trdy_next = card0_pci_slave1_next_if_irdy_trdy;
-        card0_pci_slave1_stop_next = card0_pci_slave1_next_if_irdy_stop;
-        card0_pci_slave1_devsel_next = card0_pci_slave1_next_if_irdy_devsel;
-        card0_pci_slave1_drive_next = card0_pci_slave1_next_if_irdy_drive;
-        card0_pci_slave1_ad_oe_next = card0_pci_slave1_next_if_irdy_ad_oe;
+        card1_pci_slave2_state_next = card1_pci_slave2_next_if_irdy_state;
+        card1_pci_slave2_trdy_next = card1_pci_slave2_next_if_irdy_trdy;
+        card1_pci_slave2_stop_next = card1_pci_slave2_next_if_irdy_stop;
+        card1_pci_slave2_devsel_next = card1_pci_slave2_next_if_irdy_devsel;
+        card1_pci_slave2_drive_next = card1_pci_slave2_next_if_irdy_drive;
+        card1_pci_slave2_ad_oe_next = card1_pci_slave2_next_if_irdy_ad_oe;
     end
     else begin
-        card0_pci_slave1_state_next = card0_pci_slave1_next_if_both_state;
-        card0_pci_slave1_trdy_next = card0_pci_slave1_next_if_both_trdy;
-        card0_pci_slave1_stop_next = card0_pci_slave1_next_if_both_stop;
-        card0_pci_slave1_devsel_next = card0_pci_slave1_next_if_both_devsel;
-        card0_pci_slave1_drive_next = card0_pci_slave1_next_if_both_drive;
-        card0_pci_slave1_ad_oe_next = card0_pci_slave1_next_if_both_ad_oe;
+        card1_pci_slave2_state_next = card1_pci_slave2_next_if_both_state;
+        card1_pci_slave2_trdy_next = card1_pci_slave2_next_if_both_trdy;
+        card1_pci_slave2_stop_next = card1_pci_slave2_next_if_both_stop;
+        card1_pci_slave2_devsel_next = card1_pci_slave2_next_if_both_devsel;
+        card1_pci_slave2_drive_next = card1_pci_slave2_next_if_both_drive;
+        card1_pci_slave2_ad_oe_next = card1_pci_slave2_next_if_both_ad_oe;
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: card0_pci_slave1_transaction
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
     if (reset == 0) begin
-        card0_pci_slave1_req_addr <= 0;
-        card0_pci_slave1_is_config <= 0;
-        card0_pci_slave1_space_mem <= 0;
-        card0_pci_slave1_first_pending <= 0;
-        card0_pci_slave1_refused <= 0;
-        card0_pci_slave1_io_byte <= 0;
-        card0_pci_slave1_single <= 0;
-        card0_pci_slave1_req_addr_stale <= 0;
-        card0_pci_slave1_address_fault <= 0;
-        card0_pci_slave1_is_read <= 0;
-        card0_pci_slave1_first_phase <= 0;
-        card0_pci_slave1_wait_count <= 0;
-        card0_pci_slave1_fetching <= 0;
-        card0_pci_slave1_state <= 4'b0000;
-        card0_pci_slave1_phase_addr <= 0;
+        card1_pci_slave2_req_addr <= 0;
+        card1_pci_slave2_is_config <= 0;
+        card1_pci_slave2_space_mem <= 0;
+        card1_pci_slave2_first_pending <= 0;
+        card1_pci_slave2_refused <= 0;
+        card1_pci_slave2_io_byte <= 0;
+        card1_pci_slave2_single <= 0;
+        card1_pci_slave2_req_addr_stale <= 0;
+        card1_pci_slave2_address_fault <= 0;
+        card1_pci_slave2_is_read <= 0;
+        card1_pci_slave2_first_phase <= 0;
+        card1_pci_slave2_wait_count <= 0;
+        card1_pci_slave2_fetching <= 0;
+        card1_pci_slave2_state <= 4'b0000;
+        card1_pci_slave2_phase_addr <= 0;
     end
     else begin
-        card0_pci_slave1_state <= card0_pci_slave1_state_next;
-        card0_pci_slave1_address_fault <= (card0_pci_slave1_address_parity_error && card0_pci_slave1_parity_response);
-        if (card0_pci_slave1_claim) begin
-            card0_pci_slave1_is_read <= (!card0_pci_slave1_cbe_q[0]);
-            card0_pci_slave1_is_config <= card0_pci_slave1_claim_config;
-            card0_pci_slave1_space_mem <= ((!card0_pci_slave1_claim_config) && (!card0_pci_slave1_claim_io));
-            card0_pci_slave1_single <= (card0_pci_slave1_claim_config || card0_pci_slave1_claim_io || pci_pads0_registered_pad0_from_pin[0] || pci_pads0_registered_pad0_from_pin[1]);
-            card0_pci_slave1_first_phase <= 1'b1;
-            card0_pci_slave1_first_pending <= 1'b1;
-            card0_pci_slave1_fetching <= ((!card0_pci_slave1_cbe_q[0]) && (!card0_pci_slave1_claim_config));
-            card0_pci_slave1_refused <= 1'b0;
-            card0_pci_slave1_io_byte <= pci_pads0_registered_pad0_from_pin[2-1:0];
-            card0_pci_slave1_phase_addr <= card0_pci_slave1_start_addr;
-            card0_pci_slave1_req_addr_stale <= card0_pci_slave1_draining;
+        card1_pci_slave2_state <= card1_pci_slave2_state_next;
+        card1_pci_slave2_address_fault <= (card1_pci_slave2_address_parity_error && card1_pci_slave2_parity_response);
+        if (card1_pci_slave2_claim) begin
+            card1_pci_slave2_is_read <= (!card1_pci_slave2_cbe_q[0]);
+            card1_pci_slave2_is_config <= card1_pci_slave2_claim_config;
+            card1_pci_slave2_space_mem <= ((!card1_pci_slave2_claim_config) && (!card1_pci_slave2_claim_io));
+            card1_pci_slave2_single <= (card1_pci_slave2_claim_config || card1_pci_slave2_claim_io || pci_pads0_registered_pad0_from_pin[0] || pci_pads0_registered_pad0_from_pin[1]);
+            card1_pci_slave2_first_phase <= 1'b1;
+            card1_pci_slave2_first_pending <= 1'b1;
+            card1_pci_slave2_fetching <= ((!card1_pci_slave2_cbe_q[0]) && (!card1_pci_slave2_claim_config));
+            card1_pci_slave2_refused <= 1'b0;
+            card1_pci_slave2_io_byte <= pci_pads0_registered_pad0_from_pin[2-1:0];
+            card1_pci_slave2_phase_addr <= card1_pci_slave2_start_addr;
+            card1_pci_slave2_req_addr_stale <= card1_pci_slave2_draining;
         end
         else begin
-            if (card0_pci_slave1_phase_done) begin
-                card0_pci_slave1_first_phase <= 1'b0;
-                if (card0_pci_slave1_space_mem) begin
-                    card0_pci_slave1_phase_addr <= (card0_pci_slave1_phase_addr + 1);
+            if (card1_pci_slave2_phase_done) begin
+                card1_pci_slave2_first_phase <= 1'b0;
+                if (card1_pci_slave2_space_mem) begin
+                    card1_pci_slave2_phase_addr <= (card1_pci_slave2_phase_addr + 1);
                 end
             end
-            if ((card0_pci_slave1_got || card0_pci_slave1_accepted)) begin
-                card0_pci_slave1_first_pending <= (card0_pci_slave1_first_pending && card0_pci_slave1_draining);
+            if ((card1_pci_slave2_got || card1_pci_slave2_accepted)) begin
+                card1_pci_slave2_first_pending <= (card1_pci_slave2_first_pending && card1_pci_slave2_draining);
             end
-            if ((card0_pci_slave1_local_re && card0_pci_slave1_local_ready && (card0_pci_slave1_single || (card0_pci_slave1_req_addr == 1023)))) begin
-                card0_pci_slave1_fetching <= 1'b0;
+            if ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready && (card1_pci_slave2_single || (card1_pci_slave2_req_addr == 1023)))) begin
+                card1_pci_slave2_fetching <= 1'b0;
             end
-            if ((card0_pci_slave1_local_re && card0_pci_slave1_local_retry && (!card0_pci_slave1_first_pending))) begin
-                card0_pci_slave1_fetching <= 1'b0;
+            if ((card1_pci_slave2_local_re && card1_pci_slave2_local_retry && (!card1_pci_slave2_first_pending))) begin
+                card1_pci_slave2_fetching <= 1'b0;
             end
-            if ((card0_pci_slave1_back_end_retry && card0_pci_slave1_draining && (card0_pci_slave1_state == 4'b0110))) begin
-                card0_pci_slave1_refused <= 1'b1;
+            if ((card1_pci_slave2_back_end_retry && card1_pci_slave2_draining && (card1_pci_slave2_state == 4'b0110))) begin
+                card1_pci_slave2_refused <= 1'b1;
             end
         end
-        if (((card0_pci_slave1_local_re || card0_pci_slave1_local_we) && card0_pci_slave1_local_ready)) begin
-            card0_pci_slave1_req_addr <= (card0_pci_slave1_req_addr + 1);
+        if (((card1_pci_slave2_local_re || card1_pci_slave2_local_we) && card1_pci_slave2_local_ready)) begin
+            card1_pci_slave2_req_addr <= (card1_pci_slave2_req_addr + 1);
         end
-        else if ((card0_pci_slave1_claim && (!card0_pci_slave1_draining))) begin
-            card0_pci_slave1_req_addr <= card0_pci_slave1_start_addr;
+        else if ((card1_pci_slave2_claim && (!card1_pci_slave2_draining))) begin
+            card1_pci_slave2_req_addr <= card1_pci_slave2_start_addr;
         end
-        else if ((card0_pci_slave1_req_addr_stale && (!card0_pci_slave1_draining))) begin
-            card0_pci_slave1_req_addr <= card0_pci_slave1_phase_addr;
-            card0_pci_slave1_req_addr_stale <= 1'b0;
+        else if ((card1_pci_slave2_req_addr_stale && (!card1_pci_slave2_draining))) begin
+            card1_pci_slave2_req_addr <= card1_pci_slave2_phase_addr;
+            card1_pci_slave2_req_addr_stale <= 1'b0;
         end
-        if ((card0_pci_slave1_claim || (!card0_pci_slave1_waiting))) begin
-            card0_pci_slave1_wait_count <= 0;
+        if ((card1_pci_slave2_claim || (!card1_pci_slave2_waiting))) begin
+            card1_pci_slave2_wait_count <= 0;
         end
-        else if ((!card0_pci_slave1_timeout)) begin
-            card0_pci_slave1_wait_count <= (card0_pci_slave1_wait_count + 1);
+        else if ((!card1_pci_slave2_timeout)) begin
+            card1_pci_slave2_wait_count <= (card1_pci_slave2_wait_count + 1);
         end
     end
 end
 
 
-always @(card0_pci_slave1_perr_armed, card0_pci_slave1_ad_out_q, pci_pads0_registered_pad1_from_pin, card0_pci_slave1_holding, card0_pci_slave1_read_source, card0_pci_slave1_bus_parity_kept, pci_pads0_input_pad2_from_pin, card0_pci_slave1_ad_out_parity_kept) begin: card0_pci_slave1_ad_output
-    if (card0_pci_slave1_holding) begin
-        card0_pci_slave1_ad_out_next = card0_pci_slave1_ad_out_q;
+always @(card1_pci_slave2_perr_armed, card1_pci_slave2_ad_out_q, pci_pads0_registered_pad1_from_pin, card1_pci_slave2_holding, card1_pci_slave2_read_source, card1_pci_slave2_bus_parity_kept, pci_pads0_input_pad2_from_pin, card1_pci_slave2_ad_out_parity_kept) begin: card1_pci_slave2_ad_output
+    if (card1_pci_slave2_holding) begin
+        card1_pci_slave2_ad_out_next = card1_pci_slave2_ad_out_q;
     end
     else begin
-        card0_pci_slave1_ad_out_next = card0_pci_slave1_read_source;
+        card1_pci_slave2_ad_out_next = card1_pci_slave2_read_source;
     end
-    card0_pci_slave1_par_next = ((((card0_pci_slave1_ad_out_parity_kept ^ pci_pads0_input_pad2_from_pin[0]) ^ pci_pads0_input_pad2_from_pin[1]) ^ pci_pads0_input_pad2_from_pin[2]) ^ pci_pads0_input_pad2_from_pin[3]);
-    card0_pci_slave1_perr_next = (!(card0_pci_slave1_perr_armed && (card0_pci_slave1_bus_parity_kept != pci_pads0_registered_pad1_from_pin)));
+    card1_pci_slave2_par_next = ((((card1_pci_slave2_ad_out_parity_kept ^ pci_pads0_input_pad2_from_pin[0]) ^ pci_pads0_input_pad2_from_pin[1]) ^ pci_pads0_input_pad2_from_pin[2]) ^ pci_pads0_input_pad2_from_pin[3]);
+    card1_pci_slave2_perr_next = (!(card1_pci_slave2_perr_armed && (card1_pci_slave2_bus_parity_kept != pci_pads0_registered_pad1_from_pin)));
 end
 
 
-always @(card0_pci_slave1_ad_out_q) begin: card0_pci_slave1_ad_out_parity_tree
+always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_ad_out_parity_tree
     reg [32-1:0] fold;
     fold = 32'h0;
-    fold = card0_pci_slave1_ad_out_q;
+    fold = card1_pci_slave2_ad_out_q;
     fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
     fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
     fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
     fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
     fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    card0_pci_slave1_ad_out_parity = fold[0];
+    card1_pci_slave2_ad_out_parity = fold[0];
 end
 
 
-(* keep *) wire card0_pci_slave1_bus_parity_kept_kept_net = card0_pci_slave1_bus_parity;
-assign card0_pci_slave1_bus_parity_kept = card0_pci_slave1_bus_parity_kept_kept_net;
+(* keep *) wire card1_pci_slave2_bus_parity_kept_kept_net = card1_pci_slave2_bus_parity;
+assign card1_pci_slave2_bus_parity_kept = card1_pci_slave2_bus_parity_kept_kept_net;
 
 
-(* keep *) wire card0_pci_slave1_ad_out_parity_kept_kept_net = card0_pci_slave1_ad_out_parity;
-assign card0_pci_slave1_ad_out_parity_kept = card0_pci_slave1_ad_out_parity_kept_kept_net;
+(* keep *) wire card1_pci_slave2_ad_out_parity_kept_kept_net = card1_pci_slave2_ad_out_parity;
+assign card1_pci_slave2_ad_out_parity_kept = card1_pci_slave2_ad_out_parity_kept_kept_net;
 
 
-always @(posedge clock, negedge reset) begin: card0_pci_slave1_bus_registers
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_bus_registers
     if (reset == 0) begin
         pci_pads0_registered_pad2_enable <= 0;
         pci_pads0_registered_pad5_enable <= 0;
-        card0_pci_slave1_ad_out_q <= 0;
+        card1_pci_slave2_ad_out_q <= 0;
         pci_pads0_registered_pad4_enable <= 0;
         pci_pads0_tristate_pad0_to_pin <= 1;
         pci_pads0_registered_pad0_enable <= 0;
         pci_pads0_tristate_pad1_enable <= 0;
-        card0_pci_slave1_perr_q <= 1;
+        card1_pci_slave2_perr_q <= 1;
         pci_pads0_registered_pad3_enable <= 0;
         pci_pads0_registered_pad1_enable <= 0;
-        card0_pci_slave1_parity_error_q <= 0;
-        card0_pci_slave1_stop_q <= 1;
+        card1_pci_slave2_parity_error_q <= 0;
+        card1_pci_slave2_stop_q <= 1;
         pci_pads0_tristate_pad1_to_pin <= 1;
         pci_pads0_tristate_pad0_enable <= 0;
-        card0_pci_slave1_devsel_q <= 1;
-        card0_pci_slave1_trdy_q <= 1;
+        card1_pci_slave2_devsel_q <= 1;
+        card1_pci_slave2_trdy_q <= 1;
     end
     else begin
-        card0_pci_slave1_trdy_q <= card0_pci_slave1_trdy_next;
-        card0_pci_slave1_stop_q <= card0_pci_slave1_stop_next;
-        card0_pci_slave1_devsel_q <= card0_pci_slave1_devsel_next;
-        card0_pci_slave1_ad_out_q <= card0_pci_slave1_ad_out_next;
-        card0_pci_slave1_perr_q <= card0_pci_slave1_perr_next;
-        pci_pads0_registered_pad2_enable <= card0_pci_slave1_drive_next;
-        pci_pads0_registered_pad4_enable <= card0_pci_slave1_drive_next;
-        pci_pads0_registered_pad3_enable <= card0_pci_slave1_drive_next;
-        pci_pads0_registered_pad0_enable <= card0_pci_slave1_ad_oe_next;
+        card1_pci_slave2_trdy_q <= card1_pci_slave2_trdy_next;
+        card1_pci_slave2_stop_q <= card1_pci_slave2_stop_next;
+        card1_pci_slave2_devsel_q <= card1_pci_slave2_devsel_next;
+        card1_pci_slave2_ad_out_q <= card1_pci_slave2_ad_out_next;
+        card1_pci_slave2_perr_q <= card1_pci_slave2_perr_next;
+        pci_pads0_registered_pad2_enable <= card1_pci_slave2_drive_next;
+        pci_pads0_registered_pad4_enable <= card1_pci_slave2_drive_next;
+        pci_pads0_registered_pad3_enable <= card1_pci_slave2_drive_next;
+        pci_pads0_registered_pad0_enable <= card1_pci_slave2_ad_oe_next;
         pci_pads0_registered_pad1_enable <= pci_pads0_registered_pad0_enable;
-        pci_pads0_registered_pad5_enable <= ((!card0_pci_slave1_perr_next) || (!card0_pci_slave1_perr_q));
+        pci_pads0_registered_pad5_enable <= ((!card1_pci_slave2_perr_next) || (!card1_pci_slave2_perr_q));
         pci_pads0_tristate_pad0_to_pin <= 1'b0;
-        pci_pads0_tristate_pad0_enable <= (card0_pci_slave1_serr_armed && (card0_pci_slave1_bus_parity_kept != pci_pads0_registered_pad1_from_pin));
-        card0_pci_slave1_parity_error_q <= (card0_pci_slave1_address_parity_error || card0_pci_slave1_data_parity_error);
+        pci_pads0_tristate_pad0_enable <= (card1_pci_slave2_serr_armed && (card1_pci_slave2_bus_parity_kept != pci_pads0_registered_pad1_from_pin));
+        card1_pci_slave2_parity_error_q <= (card1_pci_slave2_address_parity_error || card1_pci_slave2_data_parity_error);
         pci_pads0_tristate_pad1_to_pin <= 1'b0;
-        pci_pads0_tristate_pad1_enable <= (card0_irq && (!card0_pci_slave1_interrupt_disable));
+        pci_pads0_tristate_pad1_enable <= (card1_irq && (!card1_pci_slave2_interrupt_disable));
     end
 end
 
 
 
-assign pci_pads0_registered_pad2_to_pin = card0_pci_slave1_trdy_next;
-assign pci_pads0_registered_pad4_to_pin = card0_pci_slave1_stop_next;
-assign pci_pads0_registered_pad3_to_pin = card0_pci_slave1_devsel_next;
-assign pci_pads0_registered_pad0_to_pin = card0_pci_slave1_ad_out_next;
-assign pci_pads0_registered_pad1_to_pin = card0_pci_slave1_par_next;
-assign pci_pads0_registered_pad5_to_pin = card0_pci_slave1_perr_next;
+assign pci_pads0_registered_pad2_to_pin = card1_pci_slave2_trdy_next;
+assign pci_pads0_registered_pad4_to_pin = card1_pci_slave2_stop_next;
+assign pci_pads0_registered_pad3_to_pin = card1_pci_slave2_devsel_next;
+assign pci_pads0_registered_pad0_to_pin = card1_pci_slave2_ad_out_next;
+assign pci_pads0_registered_pad1_to_pin = card1_pci_slave2_par_next;
+assign pci_pads0_registered_pad5_to_pin = card1_pci_slave2_perr_next;
 
 
-always @(posedge clock, negedge reset) begin: card0_pci_slave1_read_buffer
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_read_buffer
     reg in_read;
     if (reset == 0) begin
-        card0_pci_slave1_b_valid <= 0;
+        card1_pci_slave2_b_valid <= 0;
     end
     else begin
-        in_read = (card0_pci_slave1_is_read && ((card0_pci_slave1_state == 4'b0011) || (card0_pci_slave1_state == 4'b0010) || (card0_pci_slave1_state == 4'b0100) || (card0_pci_slave1_state == 4'b0110)));
-        card0_pci_slave1_b_valid <= (in_read && (card0_pci_slave1_b_valid || card0_pci_slave1_got) && card0_pci_slave1_holding);
+        in_read = (card1_pci_slave2_is_read && ((card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0100) || (card1_pci_slave2_state == 4'b0110)));
+        card1_pci_slave2_b_valid <= (in_read && (card1_pci_slave2_b_valid || card1_pci_slave2_got) && card1_pci_slave2_holding);
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: card0_pci_slave1_write_buffer
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_write_buffer
     if (reset == 0) begin
-        card0_pci_slave1_wq_valid <= 0;
-        card0_pci_slave1_config_write_q <= 0;
-        card0_pci_slave1_write_done_q <= 0;
-        card0_pci_slave1_h_be <= 0;
-        card0_pci_slave1_s_valid <= 0;
-        card0_pci_slave1_h_data <= 0;
-        card0_pci_slave1_s_be <= 0;
-        card0_pci_slave1_h_valid <= 0;
-        card0_pci_slave1_spare_data <= 0;
+        card1_pci_slave2_wq_valid <= 0;
+        card1_pci_slave2_config_write_q <= 0;
+        card1_pci_slave2_write_done_q <= 0;
+        card1_pci_slave2_h_be <= 0;
+        card1_pci_slave2_s_valid <= 0;
+        card1_pci_slave2_h_data <= 0;
+        card1_pci_slave2_s_be <= 0;
+        card1_pci_slave2_h_valid <= 0;
+        card1_pci_slave2_spare_data <= 0;
     end
     else begin
-        card0_pci_slave1_write_done_q <= (card0_pci_slave1_phase_done && (!card0_pci_slave1_is_read));
-        card0_pci_slave1_config_write_q <= (card0_pci_slave1_phase_done && card0_pci_slave1_is_config && (!card0_pci_slave1_is_read));
-        card0_pci_slave1_wq_valid <= (card0_pci_slave1_phase_done && (!card0_pci_slave1_is_read) && (!card0_pci_slave1_first_phase) && card0_pci_slave1_space_mem);
-        if (card0_pci_slave1_h_valid) begin
-            if (card0_pci_slave1_accepted) begin
-                if (card0_pci_slave1_s_valid) begin
-                    card0_pci_slave1_h_data <= card0_pci_slave1_spare_data;
-                    card0_pci_slave1_h_be <= card0_pci_slave1_s_be;
-                    card0_pci_slave1_s_valid <= card0_pci_slave1_wq_valid;
-                    if (card0_pci_slave1_wq_valid) begin
-                        card0_pci_slave1_spare_data <= pci_pads0_registered_pad0_from_pin;
-                        card0_pci_slave1_s_be <= (~card0_pci_slave1_cbe_q);
+        card1_pci_slave2_write_done_q <= (card1_pci_slave2_phase_done && (!card1_pci_slave2_is_read));
+        card1_pci_slave2_config_write_q <= (card1_pci_slave2_phase_done && card1_pci_slave2_is_config && (!card1_pci_slave2_is_read));
+        card1_pci_slave2_wq_valid <= (card1_pci_slave2_phase_done && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_first_phase) && card1_pci_slave2_space_mem);
+        if (card1_pci_slave2_h_valid) begin
+            if (card1_pci_slave2_accepted) begin
+                if (card1_pci_slave2_s_valid) begin
+                    card1_pci_slave2_h_data <= card1_pci_slave2_spare_data;
+                    card1_pci_slave2_h_be <= card1_pci_slave2_s_be;
+                    card1_pci_slave2_s_valid <= card1_pci_slave2_wq_valid;
+                    if (card1_pci_slave2_wq_valid) begin
+                        card1_pci_slave2_spare_data <= pci_pads0_registered_pad0_from_pin;
+                        card1_pci_slave2_s_be <= (~card1_pci_slave2_cbe_q);
                     end
                 end
-                else if (card0_pci_slave1_wq_valid) begin
-                    card0_pci_slave1_h_data <= pci_pads0_registered_pad0_from_pin;
-                    card0_pci_slave1_h_be <= (~card0_pci_slave1_cbe_q);
+                else if (card1_pci_slave2_wq_valid) begin
+                    card1_pci_slave2_h_data <= pci_pads0_registered_pad0_from_pin;
+                    card1_pci_slave2_h_be <= (~card1_pci_slave2_cbe_q);
                 end
                 else begin
-                    card0_pci_slave1_h_valid <= 1'b0;
+                    card1_pci_slave2_h_valid <= 1'b0;
                 end
             end
-            else if (card0_pci_slave1_wq_valid) begin
-                card0_pci_slave1_s_valid <= 1'b1;
-                card0_pci_slave1_spare_data <= pci_pads0_registered_pad0_from_pin;
-                card0_pci_slave1_s_be <= (~card0_pci_slave1_cbe_q);
+            else if (card1_pci_slave2_wq_valid) begin
+                card1_pci_slave2_s_valid <= 1'b1;
+                card1_pci_slave2_spare_data <= pci_pads0_registered_pad0_from_pin;
+                card1_pci_slave2_s_be <= (~card1_pci_slave2_cbe_q);
             end
         end
-        else if ((card0_pci_slave1_wq_valid && (!card0_pci_slave1_accepted))) begin
-            card0_pci_slave1_h_valid <= 1'b1;
-            card0_pci_slave1_h_data <= pci_pads0_registered_pad0_from_pin;
-            card0_pci_slave1_h_be <= (~card0_pci_slave1_cbe_q);
+        else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_accepted))) begin
+            card1_pci_slave2_h_valid <= 1'b1;
+            card1_pci_slave2_h_data <= pci_pads0_registered_pad0_from_pin;
+            card1_pci_slave2_h_be <= (~card1_pci_slave2_cbe_q);
         end
-        if ((card0_pci_slave1_local_re && card0_pci_slave1_local_ready)) begin
-            card0_pci_slave1_spare_data <= card0_pci_slave1_local_rdata;
+        if ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready)) begin
+            card1_pci_slave2_spare_data <= card1_pci_slave2_local_rdata;
         end
     end
 end
 
 
 
-assign card0_pci_slave1_config_index = card0_pci_slave1_phase_addr[6-1:0];
+assign card1_pci_slave2_config_index = card1_pci_slave2_phase_addr[6-1:0];
 
 
-always @(posedge clock, negedge reset) begin: card0_pci_slave1_config_registers
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_config_registers
     reg clear_target_abort;
     reg clear_system_error;
     reg clear_parity_error;
     if (reset == 0) begin
-        card0_pci_slave1_serr_enable <= 0;
-        card0_pci_slave1_bar1 <= 0;
-        card0_pci_slave1_signaled_system_error <= 0;
-        card0_pci_slave1_interrupt_disable <= 0;
-        card0_pci_slave1_io_enable <= 0;
-        card0_pci_slave1_bar0 <= 0;
-        card0_pci_slave1_signaled_target_abort <= 0;
-        card0_pci_slave1_detected_parity_error <= 0;
-        card0_pci_slave1_interrupt_line <= 0;
-        card0_pci_slave1_mem_enable <= 0;
-        card0_pci_slave1_parity_response <= 0;
+        card1_pci_slave2_serr_enable <= 0;
+        card1_pci_slave2_bar1 <= 0;
+        card1_pci_slave2_signaled_system_error <= 0;
+        card1_pci_slave2_interrupt_disable <= 0;
+        card1_pci_slave2_io_enable <= 0;
+        card1_pci_slave2_bar0 <= 0;
+        card1_pci_slave2_signaled_target_abort <= 0;
+        card1_pci_slave2_detected_parity_error <= 0;
+        card1_pci_slave2_interrupt_line <= 0;
+        card1_pci_slave2_mem_enable <= 0;
+        card1_pci_slave2_parity_response <= 0;
     end
     else begin
         clear_target_abort = 1'b0;
         clear_system_error = 1'b0;
         clear_parity_error = 1'b0;
-        if (card0_pci_slave1_config_write_q) begin
-            case (card0_pci_slave1_config_index)
+        if (card1_pci_slave2_config_write_q) begin
+            case (card1_pci_slave2_config_index)
                 'h1: begin
-                    if ((!card0_pci_slave1_cbe_q[0])) begin
-                        card0_pci_slave1_io_enable <= pci_pads0_registered_pad0_from_pin[0];
-                        card0_pci_slave1_mem_enable <= pci_pads0_registered_pad0_from_pin[1];
-                        card0_pci_slave1_parity_response <= pci_pads0_registered_pad0_from_pin[6];
+                    if ((!card1_pci_slave2_cbe_q[0])) begin
+                        card1_pci_slave2_io_enable <= pci_pads0_registered_pad0_from_pin[0];
+                        card1_pci_slave2_mem_enable <= pci_pads0_registered_pad0_from_pin[1];
+                        card1_pci_slave2_parity_response <= pci_pads0_registered_pad0_from_pin[6];
                     end
-                    if ((!card0_pci_slave1_cbe_q[1])) begin
-                        card0_pci_slave1_serr_enable <= pci_pads0_registered_pad0_from_pin[8];
-                        card0_pci_slave1_interrupt_disable <= pci_pads0_registered_pad0_from_pin[10];
+                    if ((!card1_pci_slave2_cbe_q[1])) begin
+                        card1_pci_slave2_serr_enable <= pci_pads0_registered_pad0_from_pin[8];
+                        card1_pci_slave2_interrupt_disable <= pci_pads0_registered_pad0_from_pin[10];
                     end
-                    if ((!card0_pci_slave1_cbe_q[3])) begin
+                    if ((!card1_pci_slave2_cbe_q[3])) begin
                         clear_target_abort = pci_pads0_registered_pad0_from_pin[27];
                         clear_system_error = pci_pads0_registered_pad0_from_pin[30];
                         clear_parity_error = pci_pads0_registered_pad0_from_pin[31];
                     end
                 end
                 'h4: begin
-                    if ((!card0_pci_slave1_cbe_q[0])) begin
-                        card0_pci_slave1_bar0[8-1:0] <= pci_pads0_registered_pad0_from_pin[8-1:0];
+                    if ((!card1_pci_slave2_cbe_q[0])) begin
+                        card1_pci_slave2_bar0[8-1:0] <= pci_pads0_registered_pad0_from_pin[8-1:0];
                     end
-                    if ((!card0_pci_slave1_cbe_q[1])) begin
-                        card0_pci_slave1_bar0[16-1:8] <= pci_pads0_registered_pad0_from_pin[16-1:8];
+                    if ((!card1_pci_slave2_cbe_q[1])) begin
+                        card1_pci_slave2_bar0[16-1:8] <= pci_pads0_registered_pad0_from_pin[16-1:8];
                     end
                 end
                 'h5: begin
-                    if ((!card0_pci_slave1_cbe_q[0])) begin
-                        card0_pci_slave1_bar1[8-1:0] <= pci_pads0_registered_pad0_from_pin[8-1:0];
+                    if ((!card1_pci_slave2_cbe_q[0])) begin
+                        card1_pci_slave2_bar1[8-1:0] <= pci_pads0_registered_pad0_from_pin[8-1:0];
                     end
-                    if ((!card0_pci_slave1_cbe_q[1])) begin
-                        card0_pci_slave1_bar1[16-1:8] <= pci_pads0_registered_pad0_from_pin[16-1:8];
+                    if ((!card1_pci_slave2_cbe_q[1])) begin
+                        card1_pci_slave2_bar1[16-1:8] <= pci_pads0_registered_pad0_from_pin[16-1:8];
                     end
-                    if ((!card0_pci_slave1_cbe_q[2])) begin
-                        card0_pci_slave1_bar1[24-1:16] <= pci_pads0_registered_pad0_from_pin[24-1:16];
+                    if ((!card1_pci_slave2_cbe_q[2])) begin
+                        card1_pci_slave2_bar1[24-1:16] <= pci_pads0_registered_pad0_from_pin[24-1:16];
                     end
-                    if ((!card0_pci_slave1_cbe_q[3])) begin
-                        card0_pci_slave1_bar1[32-1:24] <= pci_pads0_registered_pad0_from_pin[32-1:24];
+                    if ((!card1_pci_slave2_cbe_q[3])) begin
+                        card1_pci_slave2_bar1[32-1:24] <= pci_pads0_registered_pad0_from_pin[32-1:24];
                     end
                 end
                 'hf: begin
-                    if ((!card0_pci_slave1_cbe_q[0])) begin
-                        card0_pci_slave1_interrupt_line <= pci_pads0_registered_pad0_from_pin[8-1:0];
+                    if ((!card1_pci_slave2_cbe_q[0])) begin
+                        card1_pci_slave2_interrupt_line <= pci_pads0_registered_pad0_from_pin[8-1:0];
                     end
                 end
             endcase
         end
-        card0_pci_slave1_signaled_target_abort <= (card0_pci_slave1_fatal || (card0_pci_slave1_signaled_target_abort && (!clear_target_abort)));
-        card0_pci_slave1_signaled_system_error <= (pci_pads0_tristate_pad0_enable || (card0_pci_slave1_signaled_system_error && (!clear_system_error)));
-        card0_pci_slave1_detected_parity_error <= (card0_pci_slave1_parity_error_q || (card0_pci_slave1_detected_parity_error && (!clear_parity_error)));
+        card1_pci_slave2_signaled_target_abort <= (card1_pci_slave2_fatal || (card1_pci_slave2_signaled_target_abort && (!clear_target_abort)));
+        card1_pci_slave2_signaled_system_error <= (pci_pads0_tristate_pad0_enable || (card1_pci_slave2_signaled_system_error && (!clear_system_error)));
+        card1_pci_slave2_detected_parity_error <= (card1_pci_slave2_parity_error_q || (card1_pci_slave2_detected_parity_error && (!clear_parity_error)));
     end
 end
 
 
 
-assign card0_pci_slave1_bar0_read = ((card0_pci_slave1_bar0 & 16'hff80) | 16'h1);
+assign card1_pci_slave2_bar0_read = ((card1_pci_slave2_bar0 & 16'hff80) | 16'h1);
 
 
-always @(card0_pci_slave1_signaled_system_error, card0_pci_slave1_serr_enable, card0_pci_slave1_bar1, card0_pci_slave1_config_index, card0_pci_slave1_interrupt_disable, card0_irq, card0_pci_slave1_bar0_read, card0_pci_slave1_io_enable, card0_pci_slave1_signaled_target_abort, card0_pci_slave1_detected_parity_error, card0_pci_slave1_interrupt_line, card0_pci_slave1_mem_enable, card0_pci_slave1_parity_response) begin: card0_pci_slave1_config_read
-    case (card0_pci_slave1_config_index)
+always @(card1_pci_slave2_signaled_system_error, card1_pci_slave2_serr_enable, card1_pci_slave2_bar1, card1_pci_slave2_config_index, card1_pci_slave2_interrupt_disable, card1_irq, card1_pci_slave2_bar0_read, card1_pci_slave2_io_enable, card1_pci_slave2_signaled_target_abort, card1_pci_slave2_detected_parity_error, card1_pci_slave2_interrupt_line, card1_pci_slave2_mem_enable, card1_pci_slave2_parity_response) begin: card1_pci_slave2_config_read
+    case (card1_pci_slave2_config_index)
         'h0: begin
-            card0_pci_slave1_config_data = 32'hdda01234;
+            card1_pci_slave2_config_data = 32'hdda01234;
         end
         'h1: begin
-            card0_pci_slave1_config_data = {card0_pci_slave1_detected_parity_error, card0_pci_slave1_signaled_system_error, 2'h0, card0_pci_slave1_signaled_target_abort, 2'h1, 5'h0, card0_irq, 8'h0, card0_pci_slave1_interrupt_disable, 1'b0, card0_pci_slave1_serr_enable, 1'b0, card0_pci_slave1_parity_response, 4'h0, card0_pci_slave1_mem_enable, card0_pci_slave1_io_enable};
+            card1_pci_slave2_config_data = {card1_pci_slave2_detected_parity_error, card1_pci_slave2_signaled_system_error, 2'h0, card1_pci_slave2_signaled_target_abort, 2'h1, 5'h0, card1_irq, 8'h0, card1_pci_slave2_interrupt_disable, 1'b0, card1_pci_slave2_serr_enable, 1'b0, card1_pci_slave2_parity_response, 4'h0, card1_pci_slave2_mem_enable, card1_pci_slave2_io_enable};
         end
         'h2: begin
-            card0_pci_slave1_config_data = 32'h8800001;
+            card1_pci_slave2_config_data = 32'h8800001;
         end
         'h4: begin
-            card0_pci_slave1_config_data = {16'h0, card0_pci_slave1_bar0_read};
+            card1_pci_slave2_config_data = {16'h0, card1_pci_slave2_bar0_read};
         end
         'h5: begin
-            card0_pci_slave1_config_data = (card0_pci_slave1_bar1 & 32'hfffff000);
+            card1_pci_slave2_config_data = (card1_pci_slave2_bar1 & 32'hfffff000);
         end
         'hb: begin
-            card0_pci_slave1_config_data = 32'h11234;
+            card1_pci_slave2_config_data = 32'h11234;
         end
         'hf: begin
-            card0_pci_slave1_config_data = {16'h0, 8'h1, card0_pci_slave1_interrupt_line};
+            card1_pci_slave2_config_data = {16'h0, 8'h1, card1_pci_slave2_interrupt_line};
         end
         default: begin
-            card0_pci_slave1_config_data = 0;
+            card1_pci_slave2_config_data = 0;
         end
     endcase
 end
 
 
 
-assign card0_card_core0_dda_reset = (reset && (!card0_card_core0_core_clear));
+assign card1_card_core1_dda_reset = (reset && (!card1_card_core1_core_clear));
 
 
 
-assign card0_card_core0_regs_fifo1_sync_fifo1_do_write = (card0_card_core0_regs_fifo1_push && (card0_card_core0_regs_fifo1_sync_fifo1_count != 512));
-assign card0_card_core0_regs_fifo1_sync_fifo1_do_read = (card0_card_core0_regs_fifo1_fifo_pop && (card0_card_core0_regs_fifo1_sync_fifo1_count != 0));
+assign card1_card_core1_regs_fifo2_sync_fifo2_do_write = (card1_card_core1_regs_fifo2_push && (card1_card_core1_regs_fifo2_sync_fifo2_count != 512));
+assign card1_card_core1_regs_fifo2_sync_fifo2_do_read = (card1_card_core1_regs_fifo2_fifo_pop && (card1_card_core1_regs_fifo2_sync_fifo2_count != 0));
 
 
-always @(posedge clock) begin: card0_card_core0_regs_fifo1_sync_fifo1_memory
-    if (card0_card_core0_regs_fifo1_sync_fifo1_do_write) begin
-        card0_card_core0_regs_fifo1_sync_fifo1_storage[card0_card_core0_regs_fifo1_sync_fifo1_write_addr] <= card0_pci_slave1_local_wdata;
+always @(posedge clock) begin: card1_card_core1_regs_fifo2_sync_fifo2_memory
+    if (card1_card_core1_regs_fifo2_sync_fifo2_do_write) begin
+        card1_card_core1_regs_fifo2_sync_fifo2_storage[card1_card_core1_regs_fifo2_sync_fifo2_write_addr] <= card1_pci_slave2_local_wdata;
     end
-    if (card0_card_core0_regs_fifo1_sync_fifo1_do_read) begin
-        card0_card_core0_regs_fifo1_fifo_dout <= card0_card_core0_regs_fifo1_sync_fifo1_storage[card0_card_core0_regs_fifo1_sync_fifo1_read_addr];
+    if (card1_card_core1_regs_fifo2_sync_fifo2_do_read) begin
+        card1_card_core1_regs_fifo2_fifo_dout <= card1_card_core1_regs_fifo2_sync_fifo2_storage[card1_card_core1_regs_fifo2_sync_fifo2_read_addr];
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_sync_fifo1_pointers
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sync_fifo2_pointers
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_sync_fifo1_read_addr <= 0;
-        card0_card_core0_regs_fifo1_sync_fifo1_write_addr <= 0;
-        card0_card_core0_regs_fifo1_sync_fifo1_count <= 0;
+        card1_card_core1_regs_fifo2_sync_fifo2_read_addr <= 0;
+        card1_card_core1_regs_fifo2_sync_fifo2_write_addr <= 0;
+        card1_card_core1_regs_fifo2_sync_fifo2_count <= 0;
     end
     else begin
-        if (card0_card_core0_core_clear) begin
-            card0_card_core0_regs_fifo1_sync_fifo1_write_addr <= 0;
-            card0_card_core0_regs_fifo1_sync_fifo1_read_addr <= 0;
-            card0_card_core0_regs_fifo1_sync_fifo1_count <= 0;
+        if (card1_card_core1_core_clear) begin
+            card1_card_core1_regs_fifo2_sync_fifo2_write_addr <= 0;
+            card1_card_core1_regs_fifo2_sync_fifo2_read_addr <= 0;
+            card1_card_core1_regs_fifo2_sync_fifo2_count <= 0;
         end
         else begin
-            if (card0_card_core0_regs_fifo1_sync_fifo1_do_write) begin
-                card0_card_core0_regs_fifo1_sync_fifo1_write_addr <= (card0_card_core0_regs_fifo1_sync_fifo1_write_addr + 1);
+            if (card1_card_core1_regs_fifo2_sync_fifo2_do_write) begin
+                card1_card_core1_regs_fifo2_sync_fifo2_write_addr <= (card1_card_core1_regs_fifo2_sync_fifo2_write_addr + 1);
             end
-            if (card0_card_core0_regs_fifo1_sync_fifo1_do_read) begin
-                card0_card_core0_regs_fifo1_sync_fifo1_read_addr <= (card0_card_core0_regs_fifo1_sync_fifo1_read_addr + 1);
+            if (card1_card_core1_regs_fifo2_sync_fifo2_do_read) begin
+                card1_card_core1_regs_fifo2_sync_fifo2_read_addr <= (card1_card_core1_regs_fifo2_sync_fifo2_read_addr + 1);
             end
-            if ((card0_card_core0_regs_fifo1_sync_fifo1_do_write && (!card0_card_core0_regs_fifo1_sync_fifo1_do_read))) begin
-                card0_card_core0_regs_fifo1_sync_fifo1_count <= (card0_card_core0_regs_fifo1_sync_fifo1_count + 1);
+            if ((card1_card_core1_regs_fifo2_sync_fifo2_do_write && (!card1_card_core1_regs_fifo2_sync_fifo2_do_read))) begin
+                card1_card_core1_regs_fifo2_sync_fifo2_count <= (card1_card_core1_regs_fifo2_sync_fifo2_count + 1);
             end
-            else if ((card0_card_core0_regs_fifo1_sync_fifo1_do_read && (!card0_card_core0_regs_fifo1_sync_fifo1_do_write))) begin
-                card0_card_core0_regs_fifo1_sync_fifo1_count <= (card0_card_core0_regs_fifo1_sync_fifo1_count - 1);
+            else if ((card1_card_core1_regs_fifo2_sync_fifo2_do_read && (!card1_card_core1_regs_fifo2_sync_fifo2_do_write))) begin
+                card1_card_core1_regs_fifo2_sync_fifo2_count <= (card1_card_core1_regs_fifo2_sync_fifo2_count - 1);
             end
         end
     end
@@ -2112,1283 +2120,1283 @@ end
 
 
 
-assign card0_card_core0_regs_fifo1_fifo_level = card0_card_core0_regs_fifo1_sync_fifo1_count;
-assign card0_card_core0_regs_fifo1_fifo_empty = (card0_card_core0_regs_fifo1_sync_fifo1_count == 0);
-assign card0_card_core0_regs_fifo1_fifo_full = (card0_card_core0_regs_fifo1_sync_fifo1_count == 512);
+assign card1_card_core1_regs_fifo2_fifo_level = card1_card_core1_regs_fifo2_sync_fifo2_count;
+assign card1_card_core1_regs_fifo2_fifo_empty = (card1_card_core1_regs_fifo2_sync_fifo2_count == 0);
+assign card1_card_core1_regs_fifo2_fifo_full = (card1_card_core1_regs_fifo2_sync_fifo2_count == 512);
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word21_mine = (card0_pci_slave1_local_addr == 0);
+assign card1_card_core1_regs_fifo2_reg_word42_mine = (card1_pci_slave2_local_addr == 0);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word21_mine, card0_card_core0_regs_fifo1_reg_word21_shown_wide, card0_card_core0_regs_fifo1_reg_word21_read_in, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word21_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word21_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word21_read_out = (card0_card_core0_regs_fifo1_reg_word21_read_in | card0_card_core0_regs_fifo1_reg_word21_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word42_mine, card1_card_core1_regs_fifo2_reg_word42_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_in, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word42_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word42_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word42_read_out = (card1_card_core1_regs_fifo2_reg_word42_read_in | card1_card_core1_regs_fifo2_reg_word42_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word21_read_out = card0_card_core0_regs_fifo1_reg_word21_read_in;
+        card1_card_core1_regs_fifo2_reg_word42_read_out = card1_card_core1_regs_fifo2_reg_word42_read_in;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word21_shown_wide = card0_card_core0_regs_fifo1_reg_word21_hw_value;
+assign card1_card_core1_regs_fifo2_reg_word42_shown_wide = card1_card_core1_regs_fifo2_reg_word42_hw_value;
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word21_clamp_out = card0_card_core0_regs_fifo1_reg_word21_clamp_in;
+assign card1_card_core1_regs_fifo2_reg_word42_clamp_out = card1_card_core1_regs_fifo2_reg_word42_clamp_in;
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word22_mine = (card0_pci_slave1_local_addr == 4);
+assign card1_card_core1_regs_fifo2_reg_word43_mine = (card1_pci_slave2_local_addr == 4);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word22_mine, card0_card_core0_regs_fifo1_reg_word22_shown_wide, card0_card_core0_regs_fifo1_reg_word21_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word22_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word22_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word22_read_out = (card0_card_core0_regs_fifo1_reg_word21_read_out | card0_card_core0_regs_fifo1_reg_word22_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word43_mine, card1_card_core1_regs_fifo2_reg_word43_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word43_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word43_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word43_read_out = (card1_card_core1_regs_fifo2_reg_word42_read_out | card1_card_core1_regs_fifo2_reg_word43_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word22_read_out = card0_card_core0_regs_fifo1_reg_word21_read_out;
+        card1_card_core1_regs_fifo2_reg_word43_read_out = card1_card_core1_regs_fifo2_reg_word42_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word22_shown_wide = {30'h0, card0_card_core0_regs_fifo1_control};
+assign card1_card_core1_regs_fifo2_reg_word43_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word22_shown_wide, card0_card_core0_regs_fifo1_reg_word22_set_mine, card0_card_core0_regs_fifo1_byte_mask, card0_card_core0_regs_fifo1_set_index, card0_card_core0_regs_fifo1_set_value, card0_pci_slave1_local_wdata) begin: card0_card_core0_regs_fifo1_reg_word22_merge_bytes
-    if ((card0_card_core0_regs_fifo1_reg_word22_set_mine && (card0_card_core0_regs_fifo1_set_index == 0))) begin
-        card0_card_core0_regs_fifo1_reg_word22_written = card0_card_core0_regs_fifo1_set_value[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word43_shown_wide, card1_card_core1_regs_fifo2_reg_word43_set_mine, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word43_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word43_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word43_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word22_written = ((card0_card_core0_regs_fifo1_reg_word22_shown_wide[2-1:0] & (~card0_card_core0_regs_fifo1_byte_mask[2-1:0])) | (card0_pci_slave1_local_wdata[2-1:0] & card0_card_core0_regs_fifo1_byte_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word43_written = ((card1_card_core1_regs_fifo2_reg_word43_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[2-1:0])) | (card1_pci_slave2_local_wdata[2-1:0] & card1_card_core1_regs_fifo2_byte_mask[2-1:0]));
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word22_honoured = card0_card_core0_regs_fifo1_reg_word22_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word43_honoured = card1_card_core1_regs_fifo2_reg_word43_written[2-1:0];
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word22_clamp_out = (card0_card_core0_regs_fifo1_reg_word21_clamp_out || card0_card_core0_regs_fifo1_reg_word22_clamped);
+assign card1_card_core1_regs_fifo2_reg_word43_clamp_out = (card1_card_core1_regs_fifo2_reg_word42_clamp_out || card1_card_core1_regs_fifo2_reg_word43_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word22__store16_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word43__store32_hold_rw
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_control <= 0;
-        card0_card_core0_regs_fifo1_reg_word22_clamped <= 0;
+        card1_card_core1_regs_fifo2_control <= 0;
+        card1_card_core1_regs_fifo2_reg_word43_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word22_clamped <= 1'b0;
-        if (((card0_card_core0_regs_fifo1_reg_word22_set_mine && (card0_card_core0_regs_fifo1_set_index == 0)) || (card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word22_mine))) begin
-            card0_card_core0_regs_fifo1_control <= card0_card_core0_regs_fifo1_reg_word22_honoured;
-            card0_card_core0_regs_fifo1_reg_word22_clamped <= card0_card_core0_regs_fifo1_reg_word22_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word43_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word43_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word43_mine))) begin
+            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word43_honoured;
+            card1_card_core1_regs_fifo2_reg_word43_clamped <= card1_card_core1_regs_fifo2_reg_word43_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word23_mine = (card0_pci_slave1_local_addr == 8);
+assign card1_card_core1_regs_fifo2_reg_word44_mine = (card1_pci_slave2_local_addr == 8);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word23_mine, card0_card_core0_regs_fifo1_reg_word23_shown_wide, card0_card_core0_regs_fifo1_reg_word22_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word23_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word23_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word23_read_out = (card0_card_core0_regs_fifo1_reg_word22_read_out | card0_card_core0_regs_fifo1_reg_word23_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word44_mine, card1_card_core1_regs_fifo2_reg_word44_shown_wide, card1_card_core1_regs_fifo2_reg_word43_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word44_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word44_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word44_read_out = (card1_card_core1_regs_fifo2_reg_word43_read_out | card1_card_core1_regs_fifo2_reg_word44_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word23_read_out = card0_card_core0_regs_fifo1_reg_word22_read_out;
+        card1_card_core1_regs_fifo2_reg_word44_read_out = card1_card_core1_regs_fifo2_reg_word43_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word23_shown_wide = {29'h0, card0_card_core0_regs_fifo1_reg_word23_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word44_shown_wide = {29'h0, card1_card_core1_regs_fifo2_reg_word44_hw_value};
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word23_written = (card0_pci_slave1_local_wdata[3-1:0] & card0_card_core0_regs_fifo1_byte_mask[3-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word44_written = (card1_pci_slave2_local_wdata[3-1:0] & card1_card_core1_regs_fifo2_byte_mask[3-1:0]);
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word23_honoured = card0_card_core0_regs_fifo1_reg_word23_written[3-1:0];
+assign card1_card_core1_regs_fifo2_reg_word44_honoured = card1_card_core1_regs_fifo2_reg_word44_written[3-1:0];
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word23_clamp_out = (card0_card_core0_regs_fifo1_reg_word22_clamp_out || card0_card_core0_regs_fifo1_reg_word23_clamped);
+assign card1_card_core1_regs_fifo2_reg_word44_clamp_out = (card1_card_core1_regs_fifo2_reg_word43_clamp_out || card1_card_core1_regs_fifo2_reg_word44_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word23__store17_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word44__store33_pulse_on_write
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_command_strobe <= 0;
-        card0_card_core0_regs_fifo1_command <= 0;
-        card0_card_core0_regs_fifo1_reg_word23_clamped <= 0;
+        card1_card_core1_regs_fifo2_command_strobe <= 0;
+        card1_card_core1_regs_fifo2_command <= 0;
+        card1_card_core1_regs_fifo2_reg_word44_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_command_strobe <= 1'b0;
-        card0_card_core0_regs_fifo1_reg_word23_clamped <= 1'b0;
-        if ((card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word23_mine)) begin
-            card0_card_core0_regs_fifo1_command <= card0_card_core0_regs_fifo1_reg_word23_honoured;
-            card0_card_core0_regs_fifo1_command_strobe <= 1'b1;
-            card0_card_core0_regs_fifo1_reg_word23_clamped <= card0_card_core0_regs_fifo1_reg_word23_out_of_range;
+        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word44_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word44_mine)) begin
+            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word44_honoured;
+            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word44_clamped <= card1_card_core1_regs_fifo2_reg_word44_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word24_mine = (card0_pci_slave1_local_addr == 12);
+assign card1_card_core1_regs_fifo2_reg_word45_mine = (card1_pci_slave2_local_addr == 12);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word24_mine, card0_card_core0_regs_fifo1_reg_word24_shown_wide, card0_card_core0_regs_fifo1_reg_word23_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word24_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word24_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word24_read_out = (card0_card_core0_regs_fifo1_reg_word23_read_out | card0_card_core0_regs_fifo1_reg_word24_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word45_mine, card1_card_core1_regs_fifo2_reg_word45_shown_wide, card1_card_core1_regs_fifo2_reg_word44_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word45_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word45_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word45_read_out = (card1_card_core1_regs_fifo2_reg_word44_read_out | card1_card_core1_regs_fifo2_reg_word45_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word24_read_out = card0_card_core0_regs_fifo1_reg_word23_read_out;
+        card1_card_core1_regs_fifo2_reg_word45_read_out = card1_card_core1_regs_fifo2_reg_word44_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word24_shown_wide = card0_card_core0_regs_fifo1_reg_word24_hw_value;
+assign card1_card_core1_regs_fifo2_reg_word45_shown_wide = card1_card_core1_regs_fifo2_reg_word45_hw_value;
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word24_clamp_out = card0_card_core0_regs_fifo1_reg_word23_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word45_clamp_out = card1_card_core1_regs_fifo2_reg_word44_clamp_out;
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word25_mine = (card0_pci_slave1_local_addr == 16);
+assign card1_card_core1_regs_fifo2_reg_word46_mine = (card1_pci_slave2_local_addr == 16);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word25_mine, card0_card_core0_regs_fifo1_reg_word25_shown_wide, card0_card_core0_regs_fifo1_reg_word24_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word25_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word25_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word25_read_out = (card0_card_core0_regs_fifo1_reg_word24_read_out | card0_card_core0_regs_fifo1_reg_word25_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word46_mine, card1_card_core1_regs_fifo2_reg_word46_shown_wide, card1_card_core1_regs_fifo2_reg_word45_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word46_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word46_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word46_read_out = (card1_card_core1_regs_fifo2_reg_word45_read_out | card1_card_core1_regs_fifo2_reg_word46_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word25_read_out = card0_card_core0_regs_fifo1_reg_word24_read_out;
+        card1_card_core1_regs_fifo2_reg_word46_read_out = card1_card_core1_regs_fifo2_reg_word45_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word25_shown_wide = {27'h0, card0_card_core0_regs_fifo1_reg_word25_value};
+assign card1_card_core1_regs_fifo2_reg_word46_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word46_value};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word25_shown_wide, card0_card_core0_regs_fifo1_reg_word25_set_mine, card0_card_core0_regs_fifo1_byte_mask, card0_card_core0_regs_fifo1_set_index, card0_card_core0_regs_fifo1_set_value, card0_pci_slave1_local_wdata) begin: card0_card_core0_regs_fifo1_reg_word25_merge_bytes
-    if ((card0_card_core0_regs_fifo1_reg_word25_set_mine && (card0_card_core0_regs_fifo1_set_index == 0))) begin
-        card0_card_core0_regs_fifo1_reg_word25_written = card0_card_core0_regs_fifo1_set_value[5-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word46_shown_wide, card1_card_core1_regs_fifo2_reg_word46_set_mine, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word46_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word46_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word46_written = card1_card_core1_regs_fifo2_set_value[5-1:0];
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word25_written = ((card0_card_core0_regs_fifo1_reg_word25_shown_wide[5-1:0] & (~card0_card_core0_regs_fifo1_byte_mask[5-1:0])) | (card0_pci_slave1_local_wdata[5-1:0] & card0_card_core0_regs_fifo1_byte_mask[5-1:0]));
+        card1_card_core1_regs_fifo2_reg_word46_written = ((card1_card_core1_regs_fifo2_reg_word46_shown_wide[5-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[5-1:0])) | (card1_pci_slave2_local_wdata[5-1:0] & card1_card_core1_regs_fifo2_byte_mask[5-1:0]));
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word25_honoured = card0_card_core0_regs_fifo1_reg_word25_written[5-1:0];
+assign card1_card_core1_regs_fifo2_reg_word46_honoured = card1_card_core1_regs_fifo2_reg_word46_written[5-1:0];
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word25_clamp_out = (card0_card_core0_regs_fifo1_reg_word24_clamp_out || card0_card_core0_regs_fifo1_reg_word25_clamped);
+assign card1_card_core1_regs_fifo2_reg_word46_clamp_out = (card1_card_core1_regs_fifo2_reg_word45_clamp_out || card1_card_core1_regs_fifo2_reg_word46_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word25__store18_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word46__store34_hold_rw
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word25_value <= 0;
-        card0_card_core0_regs_fifo1_reg_word25_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word46_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word46_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word25_clamped <= 1'b0;
-        if (((card0_card_core0_regs_fifo1_reg_word25_set_mine && (card0_card_core0_regs_fifo1_set_index == 0)) || (card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word25_mine))) begin
-            card0_card_core0_regs_fifo1_reg_word25_value <= card0_card_core0_regs_fifo1_reg_word25_honoured;
-            card0_card_core0_regs_fifo1_reg_word25_clamped <= card0_card_core0_regs_fifo1_reg_word25_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word46_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word46_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word46_mine))) begin
+            card1_card_core1_regs_fifo2_reg_word46_value <= card1_card_core1_regs_fifo2_reg_word46_honoured;
+            card1_card_core1_regs_fifo2_reg_word46_clamped <= card1_card_core1_regs_fifo2_reg_word46_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word26_mine = (card0_pci_slave1_local_addr == 20);
+assign card1_card_core1_regs_fifo2_reg_word47_mine = (card1_pci_slave2_local_addr == 20);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word26_mine, card0_card_core0_regs_fifo1_reg_word26_shown_wide, card0_card_core0_regs_fifo1_reg_word25_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word26_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word26_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word26_read_out = (card0_card_core0_regs_fifo1_reg_word25_read_out | card0_card_core0_regs_fifo1_reg_word26_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word47_mine, card1_card_core1_regs_fifo2_reg_word47_shown_wide, card1_card_core1_regs_fifo2_reg_word46_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word47_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word47_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word47_read_out = (card1_card_core1_regs_fifo2_reg_word46_read_out | card1_card_core1_regs_fifo2_reg_word47_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word26_read_out = card0_card_core0_regs_fifo1_reg_word25_read_out;
+        card1_card_core1_regs_fifo2_reg_word47_read_out = card1_card_core1_regs_fifo2_reg_word46_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word26_shown_wide = {27'h0, card0_card_core0_regs_fifo1_reg_word26_value};
+assign card1_card_core1_regs_fifo2_reg_word47_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word47_value};
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word26_written = (card0_pci_slave1_local_wdata[5-1:0] & card0_card_core0_regs_fifo1_byte_mask[5-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word47_written = (card1_pci_slave2_local_wdata[5-1:0] & card1_card_core1_regs_fifo2_byte_mask[5-1:0]);
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word26_honoured = card0_card_core0_regs_fifo1_reg_word26_written[5-1:0];
+assign card1_card_core1_regs_fifo2_reg_word47_honoured = card1_card_core1_regs_fifo2_reg_word47_written[5-1:0];
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word26_clamp_out = card0_card_core0_regs_fifo1_reg_word25_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word47_clamp_out = card1_card_core1_regs_fifo2_reg_word46_clamp_out;
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word26__store19_clear_on_one
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word47__store35_clear_on_one
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word26_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word47_value <= 0;
     end
     else begin
-        if ((card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word26_mine)) begin
-            card0_card_core0_regs_fifo1_reg_word26_value <= ((card0_card_core0_regs_fifo1_reg_word26_value & (~card0_card_core0_regs_fifo1_reg_word26_honoured)) | card0_card_core0_regs_fifo1_reg_word26_hw_value);
+        if ((card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word47_mine)) begin
+            card1_card_core1_regs_fifo2_reg_word47_value <= ((card1_card_core1_regs_fifo2_reg_word47_value & (~card1_card_core1_regs_fifo2_reg_word47_honoured)) | card1_card_core1_regs_fifo2_reg_word47_hw_value);
         end
         else begin
-            card0_card_core0_regs_fifo1_reg_word26_value <= (card0_card_core0_regs_fifo1_reg_word26_value | card0_card_core0_regs_fifo1_reg_word26_hw_value);
+            card1_card_core1_regs_fifo2_reg_word47_value <= (card1_card_core1_regs_fifo2_reg_word47_value | card1_card_core1_regs_fifo2_reg_word47_hw_value);
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word27_mine = (card0_pci_slave1_local_addr == 24);
+assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_local_addr == 24);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word27_mine, card0_card_core0_regs_fifo1_reg_word27_shown_wide, card0_card_core0_regs_fifo1_reg_word26_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word27_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word27_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word27_read_out = (card0_card_core0_regs_fifo1_reg_word26_read_out | card0_card_core0_regs_fifo1_reg_word27_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word47_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word48_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word48_read_out = (card1_card_core1_regs_fifo2_reg_word47_read_out | card1_card_core1_regs_fifo2_reg_word48_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word27_read_out = card0_card_core0_regs_fifo1_reg_word26_read_out;
+        card1_card_core1_regs_fifo2_reg_word48_read_out = card1_card_core1_regs_fifo2_reg_word47_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word27_shown_wide = {16'h0, card0_card_core0_regs_fifo1_reg_word27_value};
+assign card1_card_core1_regs_fifo2_reg_word48_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word48_value};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word27_shown_wide, card0_card_core0_regs_fifo1_reg_word27_set_mine, card0_card_core0_regs_fifo1_byte_mask, card0_card_core0_regs_fifo1_set_index, card0_card_core0_regs_fifo1_set_value, card0_pci_slave1_local_wdata) begin: card0_card_core0_regs_fifo1_reg_word27_merge_bytes
-    if ((card0_card_core0_regs_fifo1_reg_word27_set_mine && (card0_card_core0_regs_fifo1_set_index == 0))) begin
-        card0_card_core0_regs_fifo1_reg_word27_written = card0_card_core0_regs_fifo1_set_value[16-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word48_set_mine, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word48_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word48_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word48_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word27_written = ((card0_card_core0_regs_fifo1_reg_word27_shown_wide[16-1:0] & (~card0_card_core0_regs_fifo1_byte_mask[16-1:0])) | (card0_pci_slave1_local_wdata[16-1:0] & card0_card_core0_regs_fifo1_byte_mask[16-1:0]));
+        card1_card_core1_regs_fifo2_reg_word48_written = ((card1_card_core1_regs_fifo2_reg_word48_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[16-1:0])) | (card1_pci_slave2_local_wdata[16-1:0] & card1_card_core1_regs_fifo2_byte_mask[16-1:0]));
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word27_honoured = card0_card_core0_regs_fifo1_reg_word27_written[16-1:0];
+assign card1_card_core1_regs_fifo2_reg_word48_honoured = card1_card_core1_regs_fifo2_reg_word48_written[16-1:0];
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word27_clamp_out = (card0_card_core0_regs_fifo1_reg_word26_clamp_out || card0_card_core0_regs_fifo1_reg_word27_clamped);
+assign card1_card_core1_regs_fifo2_reg_word48_clamp_out = (card1_card_core1_regs_fifo2_reg_word47_clamp_out || card1_card_core1_regs_fifo2_reg_word48_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word27__store20_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word48__store36_hold_rw
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word27_value <= 0;
-        card0_card_core0_regs_fifo1_reg_word27_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word48_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word48_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word27_clamped <= 1'b0;
-        if (((card0_card_core0_regs_fifo1_reg_word27_set_mine && (card0_card_core0_regs_fifo1_set_index == 0)) || (card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word27_mine))) begin
-            card0_card_core0_regs_fifo1_reg_word27_value <= card0_card_core0_regs_fifo1_reg_word27_honoured;
-            card0_card_core0_regs_fifo1_reg_word27_clamped <= card0_card_core0_regs_fifo1_reg_word27_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word48_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word48_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word48_mine))) begin
+            card1_card_core1_regs_fifo2_reg_word48_value <= card1_card_core1_regs_fifo2_reg_word48_honoured;
+            card1_card_core1_regs_fifo2_reg_word48_clamped <= card1_card_core1_regs_fifo2_reg_word48_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word28_mine = (card0_pci_slave1_local_addr == 28);
+assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_local_addr == 28);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word28_mine, card0_card_core0_regs_fifo1_reg_word28_shown_wide, card0_card_core0_regs_fifo1_reg_word27_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word28_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word28_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word28_read_out = (card0_card_core0_regs_fifo1_reg_word27_read_out | card0_card_core0_regs_fifo1_reg_word28_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word49_mine, card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word48_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word49_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word49_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word49_read_out = (card1_card_core1_regs_fifo2_reg_word48_read_out | card1_card_core1_regs_fifo2_reg_word49_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word28_read_out = card0_card_core0_regs_fifo1_reg_word27_read_out;
+        card1_card_core1_regs_fifo2_reg_word49_read_out = card1_card_core1_regs_fifo2_reg_word48_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word28_shown_wide = {16'h0, card0_card_core0_regs_fifo1_reg_word28_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word49_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word49_hw_value};
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word28_clamp_out = card0_card_core0_regs_fifo1_reg_word27_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word49_clamp_out = card1_card_core1_regs_fifo2_reg_word48_clamp_out;
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word29_mine = (card0_pci_slave1_local_addr == 32);
+assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_local_addr == 32);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word29_mine, card0_card_core0_regs_fifo1_reg_word29_shown_wide, card0_card_core0_regs_fifo1_reg_word28_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word29_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word29_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word29_read_out = (card0_card_core0_regs_fifo1_reg_word28_read_out | card0_card_core0_regs_fifo1_reg_word29_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word50_mine, card1_card_core1_regs_fifo2_reg_word50_shown_wide, card1_card_core1_regs_fifo2_reg_word49_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word50_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word50_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word50_read_out = (card1_card_core1_regs_fifo2_reg_word49_read_out | card1_card_core1_regs_fifo2_reg_word50_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word29_read_out = card0_card_core0_regs_fifo1_reg_word28_read_out;
+        card1_card_core1_regs_fifo2_reg_word50_read_out = card1_card_core1_regs_fifo2_reg_word49_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word29_shown_wide = card0_card_core0_regs_fifo1_reg_word29_hw_value;
+assign card1_card_core1_regs_fifo2_reg_word50_shown_wide = card1_card_core1_regs_fifo2_reg_word50_hw_value;
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word29_clamp_out = card0_card_core0_regs_fifo1_reg_word28_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word50_clamp_out = card1_card_core1_regs_fifo2_reg_word49_clamp_out;
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word30_mine = (card0_pci_slave1_local_addr == 36);
+assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_local_addr == 36);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word30_mine, card0_card_core0_regs_fifo1_reg_word30_shown_wide, card0_card_core0_regs_fifo1_reg_word29_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word30_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word30_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word30_read_out = (card0_card_core0_regs_fifo1_reg_word29_read_out | card0_card_core0_regs_fifo1_reg_word30_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word51_mine, card1_card_core1_regs_fifo2_reg_word51_shown_wide, card1_card_core1_regs_fifo2_reg_word50_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word51_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word51_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word51_read_out = (card1_card_core1_regs_fifo2_reg_word50_read_out | card1_card_core1_regs_fifo2_reg_word51_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word30_read_out = card0_card_core0_regs_fifo1_reg_word29_read_out;
+        card1_card_core1_regs_fifo2_reg_word51_read_out = card1_card_core1_regs_fifo2_reg_word50_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word30_shown_wide = card0_card_core0_regs_fifo1_reg_word30_hw_value;
+assign card1_card_core1_regs_fifo2_reg_word51_shown_wide = card1_card_core1_regs_fifo2_reg_word51_hw_value;
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word30_clamp_out = card0_card_core0_regs_fifo1_reg_word29_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word51_clamp_out = card1_card_core1_regs_fifo2_reg_word50_clamp_out;
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word31_mine = (card0_pci_slave1_local_addr == 40);
+assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_local_addr == 40);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word31_mine, card0_card_core0_regs_fifo1_reg_word31_shown_wide, card0_card_core0_regs_fifo1_reg_word30_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word31_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word31_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word31_read_out = (card0_card_core0_regs_fifo1_reg_word30_read_out | card0_card_core0_regs_fifo1_reg_word31_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word52_mine, card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word51_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word52_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word52_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word52_read_out = (card1_card_core1_regs_fifo2_reg_word51_read_out | card1_card_core1_regs_fifo2_reg_word52_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word31_read_out = card0_card_core0_regs_fifo1_reg_word30_read_out;
+        card1_card_core1_regs_fifo2_reg_word52_read_out = card1_card_core1_regs_fifo2_reg_word51_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word31_shown_wide = {15'h0, card0_card_core0_regs_fifo1_reg_word31_value};
+assign card1_card_core1_regs_fifo2_reg_word52_shown_wide = {15'h0, card1_card_core1_regs_fifo2_reg_word52_value};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word31_shown_wide, card0_card_core0_regs_fifo1_set_strobe, card0_card_core0_regs_fifo1_byte_mask, card0_card_core0_regs_fifo1_set_index, card0_card_core0_regs_fifo1_set_value, card0_pci_slave1_local_wdata) begin: card0_card_core0_regs_fifo1_reg_word31_merge_bytes
-    if ((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 0))) begin
-        card0_card_core0_regs_fifo1_reg_word31_written = card0_card_core0_regs_fifo1_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word52_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word52_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word31_written = ((card0_card_core0_regs_fifo1_reg_word31_shown_wide[32-1:0] & (~card0_card_core0_regs_fifo1_byte_mask[32-1:0])) | (card0_pci_slave1_local_wdata[32-1:0] & card0_card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word52_written = ((card1_card_core1_regs_fifo2_reg_word52_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
     end
 end
 
 
-always @(card0_card_core0_regs_fifo1_reg_word31_written) begin: card0_card_core0_regs_fifo1_reg_word31__limit21_clamp_unsigned
-    card0_card_core0_regs_fifo1_reg_word31_out_of_range = 1'b1;
-    if (((card0_card_core0_regs_fifo1_reg_word31_written[32-1:1] == 0) && (card0_card_core0_regs_fifo1_reg_word31_written[1-1:0] < 1))) begin
-        card0_card_core0_regs_fifo1_reg_word31_honoured = 1;
+always @(card1_card_core1_regs_fifo2_reg_word52_written) begin: card1_card_core1_regs_fifo2_reg_word52__limit37_clamp_unsigned
+    card1_card_core1_regs_fifo2_reg_word52_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word52_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word52_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word52_honoured = 1;
     end
-    else if (((card0_card_core0_regs_fifo1_reg_word31_written[32-1:17] != 0) || (card0_card_core0_regs_fifo1_reg_word31_written[17-1:0] > 65536))) begin
-        card0_card_core0_regs_fifo1_reg_word31_honoured = 65536;
+    else if (((card1_card_core1_regs_fifo2_reg_word52_written[32-1:17] != 0) || (card1_card_core1_regs_fifo2_reg_word52_written[17-1:0] > 65536))) begin
+        card1_card_core1_regs_fifo2_reg_word52_honoured = 65536;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word31_honoured = card0_card_core0_regs_fifo1_reg_word31_written[17-1:0];
-        card0_card_core0_regs_fifo1_reg_word31_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word52_honoured = card1_card_core1_regs_fifo2_reg_word52_written[17-1:0];
+        card1_card_core1_regs_fifo2_reg_word52_out_of_range = 1'b0;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word31_clamp_out = (card0_card_core0_regs_fifo1_reg_word30_clamp_out || card0_card_core0_regs_fifo1_reg_word31_clamped);
+assign card1_card_core1_regs_fifo2_reg_word52_clamp_out = (card1_card_core1_regs_fifo2_reg_word51_clamp_out || card1_card_core1_regs_fifo2_reg_word52_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word31__store21_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word52__store37_hold_rw
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word31_value <= 4096;
-        card0_card_core0_regs_fifo1_reg_word31_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word52_value <= 4096;
+        card1_card_core1_regs_fifo2_reg_word52_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word31_clamped <= 1'b0;
-        if (((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 0)) || (card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word31_mine))) begin
-            card0_card_core0_regs_fifo1_reg_word31_value <= card0_card_core0_regs_fifo1_reg_word31_honoured;
-            card0_card_core0_regs_fifo1_reg_word31_clamped <= card0_card_core0_regs_fifo1_reg_word31_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word52_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word52_mine))) begin
+            card1_card_core1_regs_fifo2_reg_word52_value <= card1_card_core1_regs_fifo2_reg_word52_honoured;
+            card1_card_core1_regs_fifo2_reg_word52_clamped <= card1_card_core1_regs_fifo2_reg_word52_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word32_mine = (card0_pci_slave1_local_addr == 44);
+assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_local_addr == 44);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word32_mine, card0_card_core0_regs_fifo1_reg_word32_shown_wide, card0_card_core0_regs_fifo1_reg_word31_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word32_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word32_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word32_read_out = (card0_card_core0_regs_fifo1_reg_word31_read_out | card0_card_core0_regs_fifo1_reg_word32_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word53_mine, card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_reg_word52_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word53_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word53_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word53_read_out = (card1_card_core1_regs_fifo2_reg_word52_read_out | card1_card_core1_regs_fifo2_reg_word53_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word32_read_out = card0_card_core0_regs_fifo1_reg_word31_read_out;
+        card1_card_core1_regs_fifo2_reg_word53_read_out = card1_card_core1_regs_fifo2_reg_word52_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word32_shown_wide = {15'h0, card0_card_core0_regs_fifo1_reg_word32_value};
+assign card1_card_core1_regs_fifo2_reg_word53_shown_wide = {15'h0, card1_card_core1_regs_fifo2_reg_word53_value};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word32_shown_wide, card0_card_core0_regs_fifo1_set_strobe, card0_card_core0_regs_fifo1_byte_mask, card0_card_core0_regs_fifo1_set_index, card0_card_core0_regs_fifo1_set_value, card0_pci_slave1_local_wdata) begin: card0_card_core0_regs_fifo1_reg_word32_merge_bytes
-    if ((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 1))) begin
-        card0_card_core0_regs_fifo1_reg_word32_written = card0_card_core0_regs_fifo1_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word53_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
+        card1_card_core1_regs_fifo2_reg_word53_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word32_written = ((card0_card_core0_regs_fifo1_reg_word32_shown_wide[32-1:0] & (~card0_card_core0_regs_fifo1_byte_mask[32-1:0])) | (card0_pci_slave1_local_wdata[32-1:0] & card0_card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word53_written = ((card1_card_core1_regs_fifo2_reg_word53_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
     end
 end
 
 
-always @(card0_card_core0_regs_fifo1_reg_word32_written) begin: card0_card_core0_regs_fifo1_reg_word32__limit22_clamp_unsigned
-    card0_card_core0_regs_fifo1_reg_word32_out_of_range = 1'b1;
-    if (((card0_card_core0_regs_fifo1_reg_word32_written[32-1:1] == 0) && (card0_card_core0_regs_fifo1_reg_word32_written[1-1:0] < 1))) begin
-        card0_card_core0_regs_fifo1_reg_word32_honoured = 1;
+always @(card1_card_core1_regs_fifo2_reg_word53_written) begin: card1_card_core1_regs_fifo2_reg_word53__limit38_clamp_unsigned
+    card1_card_core1_regs_fifo2_reg_word53_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word53_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word53_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word53_honoured = 1;
     end
-    else if (((card0_card_core0_regs_fifo1_reg_word32_written[32-1:17] != 0) || (card0_card_core0_regs_fifo1_reg_word32_written[17-1:0] > 65536))) begin
-        card0_card_core0_regs_fifo1_reg_word32_honoured = 65536;
+    else if (((card1_card_core1_regs_fifo2_reg_word53_written[32-1:17] != 0) || (card1_card_core1_regs_fifo2_reg_word53_written[17-1:0] > 65536))) begin
+        card1_card_core1_regs_fifo2_reg_word53_honoured = 65536;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word32_honoured = card0_card_core0_regs_fifo1_reg_word32_written[17-1:0];
-        card0_card_core0_regs_fifo1_reg_word32_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word53_honoured = card1_card_core1_regs_fifo2_reg_word53_written[17-1:0];
+        card1_card_core1_regs_fifo2_reg_word53_out_of_range = 1'b0;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word32_clamp_out = (card0_card_core0_regs_fifo1_reg_word31_clamp_out || card0_card_core0_regs_fifo1_reg_word32_clamped);
+assign card1_card_core1_regs_fifo2_reg_word53_clamp_out = (card1_card_core1_regs_fifo2_reg_word52_clamp_out || card1_card_core1_regs_fifo2_reg_word53_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word32__store22_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word53__store38_hold_rw
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word32_value <= 4096;
-        card0_card_core0_regs_fifo1_reg_word32_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word53_value <= 4096;
+        card1_card_core1_regs_fifo2_reg_word53_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word32_clamped <= 1'b0;
-        if (((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 1)) || (card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word32_mine))) begin
-            card0_card_core0_regs_fifo1_reg_word32_value <= card0_card_core0_regs_fifo1_reg_word32_honoured;
-            card0_card_core0_regs_fifo1_reg_word32_clamped <= card0_card_core0_regs_fifo1_reg_word32_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word53_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word53_mine))) begin
+            card1_card_core1_regs_fifo2_reg_word53_value <= card1_card_core1_regs_fifo2_reg_word53_honoured;
+            card1_card_core1_regs_fifo2_reg_word53_clamped <= card1_card_core1_regs_fifo2_reg_word53_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word33_mine = (card0_pci_slave1_local_addr == 48);
+assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_local_addr == 48);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word33_mine, card0_card_core0_regs_fifo1_reg_word33_shown_wide, card0_card_core0_regs_fifo1_reg_word32_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word33_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word33_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word33_read_out = (card0_card_core0_regs_fifo1_reg_word32_read_out | card0_card_core0_regs_fifo1_reg_word33_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word54_mine, card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word53_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word54_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word54_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word54_read_out = (card1_card_core1_regs_fifo2_reg_word53_read_out | card1_card_core1_regs_fifo2_reg_word54_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word33_read_out = card0_card_core0_regs_fifo1_reg_word32_read_out;
+        card1_card_core1_regs_fifo2_reg_word54_read_out = card1_card_core1_regs_fifo2_reg_word53_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word33_shown_wide = {16'h0, card0_card_core0_regs_fifo1_reg_word33_value};
+assign card1_card_core1_regs_fifo2_reg_word54_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word54_value};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word33_shown_wide, card0_card_core0_regs_fifo1_set_strobe, card0_card_core0_regs_fifo1_byte_mask, card0_card_core0_regs_fifo1_set_index, card0_card_core0_regs_fifo1_set_value, card0_pci_slave1_local_wdata) begin: card0_card_core0_regs_fifo1_reg_word33_merge_bytes
-    if ((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 2))) begin
-        card0_card_core0_regs_fifo1_reg_word33_written = card0_card_core0_regs_fifo1_set_value[16-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word54_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
+        card1_card_core1_regs_fifo2_reg_word54_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word33_written = ((card0_card_core0_regs_fifo1_reg_word33_shown_wide[16-1:0] & (~card0_card_core0_regs_fifo1_byte_mask[16-1:0])) | (card0_pci_slave1_local_wdata[16-1:0] & card0_card_core0_regs_fifo1_byte_mask[16-1:0]));
+        card1_card_core1_regs_fifo2_reg_word54_written = ((card1_card_core1_regs_fifo2_reg_word54_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[16-1:0])) | (card1_pci_slave2_local_wdata[16-1:0] & card1_card_core1_regs_fifo2_byte_mask[16-1:0]));
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word33_honoured = card0_card_core0_regs_fifo1_reg_word33_written[16-1:0];
+assign card1_card_core1_regs_fifo2_reg_word54_honoured = card1_card_core1_regs_fifo2_reg_word54_written[16-1:0];
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word33_clamp_out = (card0_card_core0_regs_fifo1_reg_word32_clamp_out || card0_card_core0_regs_fifo1_reg_word33_clamped);
+assign card1_card_core1_regs_fifo2_reg_word54_clamp_out = (card1_card_core1_regs_fifo2_reg_word53_clamp_out || card1_card_core1_regs_fifo2_reg_word54_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word33__store23_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word54__store39_hold_rw
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word33_value <= 0;
-        card0_card_core0_regs_fifo1_reg_word33_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word54_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word54_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word33_clamped <= 1'b0;
-        if (((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 2)) || (card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word33_mine))) begin
-            card0_card_core0_regs_fifo1_reg_word33_value <= card0_card_core0_regs_fifo1_reg_word33_honoured;
-            card0_card_core0_regs_fifo1_reg_word33_clamped <= card0_card_core0_regs_fifo1_reg_word33_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word54_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word54_mine))) begin
+            card1_card_core1_regs_fifo2_reg_word54_value <= card1_card_core1_regs_fifo2_reg_word54_honoured;
+            card1_card_core1_regs_fifo2_reg_word54_clamped <= card1_card_core1_regs_fifo2_reg_word54_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word34_mine = (card0_pci_slave1_local_addr == 52);
+assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_local_addr == 52);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word34_mine, card0_card_core0_regs_fifo1_reg_word34_shown_wide, card0_card_core0_regs_fifo1_reg_word33_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word34_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word34_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word34_read_out = (card0_card_core0_regs_fifo1_reg_word33_read_out | card0_card_core0_regs_fifo1_reg_word34_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word55_mine, card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_reg_word54_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word55_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word55_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word55_read_out = (card1_card_core1_regs_fifo2_reg_word54_read_out | card1_card_core1_regs_fifo2_reg_word55_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word34_read_out = card0_card_core0_regs_fifo1_reg_word33_read_out;
+        card1_card_core1_regs_fifo2_reg_word55_read_out = card1_card_core1_regs_fifo2_reg_word54_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word34_shown_wide = {24'h0, card0_card_core0_regs_fifo1_reg_word34_value};
+assign card1_card_core1_regs_fifo2_reg_word55_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word55_value};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word34_shown_wide, card0_card_core0_regs_fifo1_set_strobe, card0_card_core0_regs_fifo1_byte_mask, card0_card_core0_regs_fifo1_set_index, card0_card_core0_regs_fifo1_set_value, card0_pci_slave1_local_wdata) begin: card0_card_core0_regs_fifo1_reg_word34_merge_bytes
-    if ((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 3))) begin
-        card0_card_core0_regs_fifo1_reg_word34_written = card0_card_core0_regs_fifo1_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word55_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
+        card1_card_core1_regs_fifo2_reg_word55_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word34_written = ((card0_card_core0_regs_fifo1_reg_word34_shown_wide[32-1:0] & (~card0_card_core0_regs_fifo1_byte_mask[32-1:0])) | (card0_pci_slave1_local_wdata[32-1:0] & card0_card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word55_written = ((card1_card_core1_regs_fifo2_reg_word55_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
     end
 end
 
 
-always @(card0_card_core0_regs_fifo1_reg_word34_written) begin: card0_card_core0_regs_fifo1_reg_word34__limit24_clamp_unsigned_power_of_two
-    card0_card_core0_regs_fifo1_reg_word34_out_of_range = 1'b1;
-    if (((card0_card_core0_regs_fifo1_reg_word34_written[32-1:1] == 0) && (card0_card_core0_regs_fifo1_reg_word34_written[1-1:0] < 1))) begin
-        card0_card_core0_regs_fifo1_reg_word34_honoured = 1;
+always @(card1_card_core1_regs_fifo2_reg_word55_written) begin: card1_card_core1_regs_fifo2_reg_word55__limit40_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word55_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word55_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word55_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word55_honoured = 1;
     end
-    else if ((card0_card_core0_regs_fifo1_reg_word34_written[32-1:8] != 0)) begin
-        card0_card_core0_regs_fifo1_reg_word34_honoured = 255;
+    else if ((card1_card_core1_regs_fifo2_reg_word55_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word55_honoured = 255;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word34_honoured = card0_card_core0_regs_fifo1_reg_word34_written[8-1:0];
-        card0_card_core0_regs_fifo1_reg_word34_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word55_honoured = card1_card_core1_regs_fifo2_reg_word55_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word55_out_of_range = 1'b0;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word34_clamp_out = (card0_card_core0_regs_fifo1_reg_word33_clamp_out || card0_card_core0_regs_fifo1_reg_word34_clamped);
+assign card1_card_core1_regs_fifo2_reg_word55_clamp_out = (card1_card_core1_regs_fifo2_reg_word54_clamp_out || card1_card_core1_regs_fifo2_reg_word55_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word34__store24_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word55__store40_hold_rw
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word34_value <= 1;
-        card0_card_core0_regs_fifo1_reg_word34_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word55_value <= 1;
+        card1_card_core1_regs_fifo2_reg_word55_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word34_clamped <= 1'b0;
-        if (((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 3)) || (card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word34_mine))) begin
-            card0_card_core0_regs_fifo1_reg_word34_value <= card0_card_core0_regs_fifo1_reg_word34_honoured;
-            card0_card_core0_regs_fifo1_reg_word34_clamped <= card0_card_core0_regs_fifo1_reg_word34_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word55_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word55_mine))) begin
+            card1_card_core1_regs_fifo2_reg_word55_value <= card1_card_core1_regs_fifo2_reg_word55_honoured;
+            card1_card_core1_regs_fifo2_reg_word55_clamped <= card1_card_core1_regs_fifo2_reg_word55_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word35_mine = (card0_pci_slave1_local_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_local_addr == 56);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word35_mine, card0_card_core0_regs_fifo1_reg_word35_shown_wide, card0_card_core0_regs_fifo1_reg_word34_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word35_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word35_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word35_read_out = (card0_card_core0_regs_fifo1_reg_word34_read_out | card0_card_core0_regs_fifo1_reg_word35_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word56_mine, card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_reg_word55_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word56_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word56_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word56_read_out = (card1_card_core1_regs_fifo2_reg_word55_read_out | card1_card_core1_regs_fifo2_reg_word56_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word35_read_out = card0_card_core0_regs_fifo1_reg_word34_read_out;
+        card1_card_core1_regs_fifo2_reg_word56_read_out = card1_card_core1_regs_fifo2_reg_word55_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word35_shown_wide = {24'h0, card0_card_core0_regs_fifo1_reg_word35_value};
+assign card1_card_core1_regs_fifo2_reg_word56_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word56_value};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word35_shown_wide, card0_card_core0_regs_fifo1_set_strobe, card0_card_core0_regs_fifo1_byte_mask, card0_card_core0_regs_fifo1_set_index, card0_card_core0_regs_fifo1_set_value, card0_pci_slave1_local_wdata) begin: card0_card_core0_regs_fifo1_reg_word35_merge_bytes
-    if ((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 4))) begin
-        card0_card_core0_regs_fifo1_reg_word35_written = card0_card_core0_regs_fifo1_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word56_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
+        card1_card_core1_regs_fifo2_reg_word56_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word35_written = ((card0_card_core0_regs_fifo1_reg_word35_shown_wide[32-1:0] & (~card0_card_core0_regs_fifo1_byte_mask[32-1:0])) | (card0_pci_slave1_local_wdata[32-1:0] & card0_card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word56_written = ((card1_card_core1_regs_fifo2_reg_word56_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
     end
 end
 
 
-always @(card0_card_core0_regs_fifo1_reg_word35_written) begin: card0_card_core0_regs_fifo1_reg_word35__limit25_clamp_unsigned_power_of_two
-    card0_card_core0_regs_fifo1_reg_word35_out_of_range = 1'b1;
-    if (((card0_card_core0_regs_fifo1_reg_word35_written[32-1:1] == 0) && (card0_card_core0_regs_fifo1_reg_word35_written[1-1:0] < 1))) begin
-        card0_card_core0_regs_fifo1_reg_word35_honoured = 1;
+always @(card1_card_core1_regs_fifo2_reg_word56_written) begin: card1_card_core1_regs_fifo2_reg_word56__limit41_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word56_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word56_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word56_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word56_honoured = 1;
     end
-    else if ((card0_card_core0_regs_fifo1_reg_word35_written[32-1:8] != 0)) begin
-        card0_card_core0_regs_fifo1_reg_word35_honoured = 255;
+    else if ((card1_card_core1_regs_fifo2_reg_word56_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word56_honoured = 255;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word35_honoured = card0_card_core0_regs_fifo1_reg_word35_written[8-1:0];
-        card0_card_core0_regs_fifo1_reg_word35_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word56_honoured = card1_card_core1_regs_fifo2_reg_word56_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word56_out_of_range = 1'b0;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word35_clamp_out = (card0_card_core0_regs_fifo1_reg_word34_clamp_out || card0_card_core0_regs_fifo1_reg_word35_clamped);
+assign card1_card_core1_regs_fifo2_reg_word56_clamp_out = (card1_card_core1_regs_fifo2_reg_word55_clamp_out || card1_card_core1_regs_fifo2_reg_word56_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word35__store25_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word56__store41_hold_rw
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word35_value <= 1;
-        card0_card_core0_regs_fifo1_reg_word35_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word56_value <= 1;
+        card1_card_core1_regs_fifo2_reg_word56_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word35_clamped <= 1'b0;
-        if (((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 4)) || (card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word35_mine))) begin
-            card0_card_core0_regs_fifo1_reg_word35_value <= card0_card_core0_regs_fifo1_reg_word35_honoured;
-            card0_card_core0_regs_fifo1_reg_word35_clamped <= card0_card_core0_regs_fifo1_reg_word35_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word56_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word56_mine))) begin
+            card1_card_core1_regs_fifo2_reg_word56_value <= card1_card_core1_regs_fifo2_reg_word56_honoured;
+            card1_card_core1_regs_fifo2_reg_word56_clamped <= card1_card_core1_regs_fifo2_reg_word56_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word36_mine = (card0_pci_slave1_local_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_local_addr == 60);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word36_mine, card0_card_core0_regs_fifo1_reg_word36_shown_wide, card0_card_core0_regs_fifo1_reg_word35_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word36_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word36_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word36_read_out = (card0_card_core0_regs_fifo1_reg_word35_read_out | card0_card_core0_regs_fifo1_reg_word36_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word57_mine, card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_reg_word56_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word57_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word57_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word57_read_out = (card1_card_core1_regs_fifo2_reg_word56_read_out | card1_card_core1_regs_fifo2_reg_word57_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word36_read_out = card0_card_core0_regs_fifo1_reg_word35_read_out;
+        card1_card_core1_regs_fifo2_reg_word57_read_out = card1_card_core1_regs_fifo2_reg_word56_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word36_shown_wide = {24'h0, card0_card_core0_regs_fifo1_reg_word36_value};
+assign card1_card_core1_regs_fifo2_reg_word57_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word57_value};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word36_shown_wide, card0_card_core0_regs_fifo1_set_strobe, card0_card_core0_regs_fifo1_byte_mask, card0_card_core0_regs_fifo1_set_index, card0_card_core0_regs_fifo1_set_value, card0_pci_slave1_local_wdata) begin: card0_card_core0_regs_fifo1_reg_word36_merge_bytes
-    if ((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 5))) begin
-        card0_card_core0_regs_fifo1_reg_word36_written = card0_card_core0_regs_fifo1_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word57_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
+        card1_card_core1_regs_fifo2_reg_word57_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word36_written = ((card0_card_core0_regs_fifo1_reg_word36_shown_wide[32-1:0] & (~card0_card_core0_regs_fifo1_byte_mask[32-1:0])) | (card0_pci_slave1_local_wdata[32-1:0] & card0_card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word57_written = ((card1_card_core1_regs_fifo2_reg_word57_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
     end
 end
 
 
-always @(card0_card_core0_regs_fifo1_reg_word36_written) begin: card0_card_core0_regs_fifo1_reg_word36__limit26_clamp_unsigned_power_of_two
-    card0_card_core0_regs_fifo1_reg_word36_out_of_range = 1'b1;
-    if (((card0_card_core0_regs_fifo1_reg_word36_written[32-1:1] == 0) && (card0_card_core0_regs_fifo1_reg_word36_written[1-1:0] < 1))) begin
-        card0_card_core0_regs_fifo1_reg_word36_honoured = 1;
+always @(card1_card_core1_regs_fifo2_reg_word57_written) begin: card1_card_core1_regs_fifo2_reg_word57__limit42_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word57_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word57_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word57_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word57_honoured = 1;
     end
-    else if ((card0_card_core0_regs_fifo1_reg_word36_written[32-1:8] != 0)) begin
-        card0_card_core0_regs_fifo1_reg_word36_honoured = 255;
+    else if ((card1_card_core1_regs_fifo2_reg_word57_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word57_honoured = 255;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word36_honoured = card0_card_core0_regs_fifo1_reg_word36_written[8-1:0];
-        card0_card_core0_regs_fifo1_reg_word36_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word57_honoured = card1_card_core1_regs_fifo2_reg_word57_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word57_out_of_range = 1'b0;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word36_clamp_out = (card0_card_core0_regs_fifo1_reg_word35_clamp_out || card0_card_core0_regs_fifo1_reg_word36_clamped);
+assign card1_card_core1_regs_fifo2_reg_word57_clamp_out = (card1_card_core1_regs_fifo2_reg_word56_clamp_out || card1_card_core1_regs_fifo2_reg_word57_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word36__store26_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word57__store42_hold_rw
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word36_value <= 1;
-        card0_card_core0_regs_fifo1_reg_word36_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word57_value <= 1;
+        card1_card_core1_regs_fifo2_reg_word57_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word36_clamped <= 1'b0;
-        if (((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 5)) || (card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word36_mine))) begin
-            card0_card_core0_regs_fifo1_reg_word36_value <= card0_card_core0_regs_fifo1_reg_word36_honoured;
-            card0_card_core0_regs_fifo1_reg_word36_clamped <= card0_card_core0_regs_fifo1_reg_word36_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word57_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word57_mine))) begin
+            card1_card_core1_regs_fifo2_reg_word57_value <= card1_card_core1_regs_fifo2_reg_word57_honoured;
+            card1_card_core1_regs_fifo2_reg_word57_clamped <= card1_card_core1_regs_fifo2_reg_word57_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word37_mine = (card0_pci_slave1_local_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_local_addr == 64);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word37_mine, card0_card_core0_regs_fifo1_reg_word37_shown_wide, card0_card_core0_regs_fifo1_reg_word36_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word37_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word37_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word37_read_out = (card0_card_core0_regs_fifo1_reg_word36_read_out | card0_card_core0_regs_fifo1_reg_word37_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word58_mine, card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word57_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word58_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word58_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word58_read_out = (card1_card_core1_regs_fifo2_reg_word57_read_out | card1_card_core1_regs_fifo2_reg_word58_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word37_read_out = card0_card_core0_regs_fifo1_reg_word36_read_out;
+        card1_card_core1_regs_fifo2_reg_word58_read_out = card1_card_core1_regs_fifo2_reg_word57_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word37_shown_wide = {30'h0, card0_card_core0_regs_fifo1_reg_word37_value};
+assign card1_card_core1_regs_fifo2_reg_word58_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word58_value};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word37_shown_wide, card0_card_core0_regs_fifo1_reg_word37_set_mine, card0_card_core0_regs_fifo1_byte_mask, card0_card_core0_regs_fifo1_set_index, card0_card_core0_regs_fifo1_set_value, card0_pci_slave1_local_wdata) begin: card0_card_core0_regs_fifo1_reg_word37_merge_bytes
-    if ((card0_card_core0_regs_fifo1_reg_word37_set_mine && (card0_card_core0_regs_fifo1_set_index == 0))) begin
-        card0_card_core0_regs_fifo1_reg_word37_written = card0_card_core0_regs_fifo1_set_value[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word58_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word58_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word37_written = ((card0_card_core0_regs_fifo1_reg_word37_shown_wide[2-1:0] & (~card0_card_core0_regs_fifo1_byte_mask[2-1:0])) | (card0_pci_slave1_local_wdata[2-1:0] & card0_card_core0_regs_fifo1_byte_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word58_written = ((card1_card_core1_regs_fifo2_reg_word58_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[2-1:0])) | (card1_pci_slave2_local_wdata[2-1:0] & card1_card_core1_regs_fifo2_byte_mask[2-1:0]));
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word37_honoured = card0_card_core0_regs_fifo1_reg_word37_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word58_honoured = card1_card_core1_regs_fifo2_reg_word58_written[2-1:0];
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word37_clamp_out = (card0_card_core0_regs_fifo1_reg_word36_clamp_out || card0_card_core0_regs_fifo1_reg_word37_clamped);
+assign card1_card_core1_regs_fifo2_reg_word58_clamp_out = (card1_card_core1_regs_fifo2_reg_word57_clamp_out || card1_card_core1_regs_fifo2_reg_word58_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word37__store27_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word58__store43_hold_rw
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word37_value <= 0;
-        card0_card_core0_regs_fifo1_reg_word37_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word58_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word58_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word37_clamped <= 1'b0;
-        if (((card0_card_core0_regs_fifo1_reg_word37_set_mine && (card0_card_core0_regs_fifo1_set_index == 0)) || (card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word37_mine))) begin
-            card0_card_core0_regs_fifo1_reg_word37_value <= card0_card_core0_regs_fifo1_reg_word37_honoured;
-            card0_card_core0_regs_fifo1_reg_word37_clamped <= card0_card_core0_regs_fifo1_reg_word37_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word58_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word58_mine))) begin
+            card1_card_core1_regs_fifo2_reg_word58_value <= card1_card_core1_regs_fifo2_reg_word58_honoured;
+            card1_card_core1_regs_fifo2_reg_word58_clamped <= card1_card_core1_regs_fifo2_reg_word58_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word38_mine = (card0_pci_slave1_local_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_local_addr == 68);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word38_mine, card0_card_core0_regs_fifo1_reg_word38_shown_wide, card0_card_core0_regs_fifo1_reg_word37_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word38_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word38_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word38_read_out = (card0_card_core0_regs_fifo1_reg_word37_read_out | card0_card_core0_regs_fifo1_reg_word38_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word59_mine, card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word59_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word59_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word59_read_out = (card1_card_core1_regs_fifo2_reg_word58_read_out | card1_card_core1_regs_fifo2_reg_word59_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word38_read_out = card0_card_core0_regs_fifo1_reg_word37_read_out;
+        card1_card_core1_regs_fifo2_reg_word59_read_out = card1_card_core1_regs_fifo2_reg_word58_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word38_shown_wide = {16'h0, card0_card_core0_regs_fifo1_reg_word38_value};
+assign card1_card_core1_regs_fifo2_reg_word59_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word59_value};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word38_shown_wide, card0_card_core0_regs_fifo1_set_strobe, card0_card_core0_regs_fifo1_byte_mask, card0_card_core0_regs_fifo1_set_index, card0_card_core0_regs_fifo1_set_value, card0_pci_slave1_local_wdata) begin: card0_card_core0_regs_fifo1_reg_word38_merge_bytes
-    if ((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 6))) begin
-        card0_card_core0_regs_fifo1_reg_word38_written = card0_card_core0_regs_fifo1_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word59_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+        card1_card_core1_regs_fifo2_reg_word59_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word38_written = ((card0_card_core0_regs_fifo1_reg_word38_shown_wide[32-1:0] & (~card0_card_core0_regs_fifo1_byte_mask[32-1:0])) | (card0_pci_slave1_local_wdata[32-1:0] & card0_card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word59_written = ((card1_card_core1_regs_fifo2_reg_word59_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
     end
 end
 
 
-always @(card0_card_core0_regs_fifo1_reg_word38_written) begin: card0_card_core0_regs_fifo1_reg_word38__limit28_clamp_unsigned_power_of_two
-    card0_card_core0_regs_fifo1_reg_word38_out_of_range = 1'b1;
-    if (((card0_card_core0_regs_fifo1_reg_word38_written[32-1:1] == 0) && (card0_card_core0_regs_fifo1_reg_word38_written[1-1:0] < 1))) begin
-        card0_card_core0_regs_fifo1_reg_word38_honoured = 1;
+always @(card1_card_core1_regs_fifo2_reg_word59_written) begin: card1_card_core1_regs_fifo2_reg_word59__limit44_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word59_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word59_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word59_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word59_honoured = 1;
     end
-    else if ((card0_card_core0_regs_fifo1_reg_word38_written[32-1:16] != 0)) begin
-        card0_card_core0_regs_fifo1_reg_word38_honoured = 65535;
+    else if ((card1_card_core1_regs_fifo2_reg_word59_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word59_honoured = 65535;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word38_honoured = card0_card_core0_regs_fifo1_reg_word38_written[16-1:0];
-        card0_card_core0_regs_fifo1_reg_word38_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word59_honoured = card1_card_core1_regs_fifo2_reg_word59_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word59_out_of_range = 1'b0;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word38_clamp_out = (card0_card_core0_regs_fifo1_reg_word37_clamp_out || card0_card_core0_regs_fifo1_reg_word38_clamped);
+assign card1_card_core1_regs_fifo2_reg_word59_clamp_out = (card1_card_core1_regs_fifo2_reg_word58_clamp_out || card1_card_core1_regs_fifo2_reg_word59_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word38__store28_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word59__store44_hold_rw
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word38_value <= 2;
-        card0_card_core0_regs_fifo1_reg_word38_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word59_value <= 2;
+        card1_card_core1_regs_fifo2_reg_word59_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word38_clamped <= 1'b0;
-        if (((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 6)) || (card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word38_mine))) begin
-            card0_card_core0_regs_fifo1_reg_word38_value <= card0_card_core0_regs_fifo1_reg_word38_honoured;
-            card0_card_core0_regs_fifo1_reg_word38_clamped <= card0_card_core0_regs_fifo1_reg_word38_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word59_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word59_mine))) begin
+            card1_card_core1_regs_fifo2_reg_word59_value <= card1_card_core1_regs_fifo2_reg_word59_honoured;
+            card1_card_core1_regs_fifo2_reg_word59_clamped <= card1_card_core1_regs_fifo2_reg_word59_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word39_mine = (card0_pci_slave1_local_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_local_addr == 72);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word39_mine, card0_card_core0_regs_fifo1_reg_word39_shown_wide, card0_card_core0_regs_fifo1_reg_word38_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word39_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word39_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word39_read_out = (card0_card_core0_regs_fifo1_reg_word38_read_out | card0_card_core0_regs_fifo1_reg_word39_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word60_mine, card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word59_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word60_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word60_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word60_read_out = (card1_card_core1_regs_fifo2_reg_word59_read_out | card1_card_core1_regs_fifo2_reg_word60_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word39_read_out = card0_card_core0_regs_fifo1_reg_word38_read_out;
+        card1_card_core1_regs_fifo2_reg_word60_read_out = card1_card_core1_regs_fifo2_reg_word59_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word39_shown_wide = {16'h0, card0_card_core0_regs_fifo1_reg_word39_value};
+assign card1_card_core1_regs_fifo2_reg_word60_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word60_value};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word39_shown_wide, card0_card_core0_regs_fifo1_set_strobe, card0_card_core0_regs_fifo1_byte_mask, card0_card_core0_regs_fifo1_set_index, card0_card_core0_regs_fifo1_set_value, card0_pci_slave1_local_wdata) begin: card0_card_core0_regs_fifo1_reg_word39_merge_bytes
-    if ((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 7))) begin
-        card0_card_core0_regs_fifo1_reg_word39_written = card0_card_core0_regs_fifo1_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word60_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
+        card1_card_core1_regs_fifo2_reg_word60_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word39_written = ((card0_card_core0_regs_fifo1_reg_word39_shown_wide[32-1:0] & (~card0_card_core0_regs_fifo1_byte_mask[32-1:0])) | (card0_pci_slave1_local_wdata[32-1:0] & card0_card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word60_written = ((card1_card_core1_regs_fifo2_reg_word60_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
     end
 end
 
 
-always @(card0_card_core0_regs_fifo1_reg_word39_written) begin: card0_card_core0_regs_fifo1_reg_word39__limit29_clamp_unsigned_power_of_two
-    card0_card_core0_regs_fifo1_reg_word39_out_of_range = 1'b1;
-    if (((card0_card_core0_regs_fifo1_reg_word39_written[32-1:1] == 0) && (card0_card_core0_regs_fifo1_reg_word39_written[1-1:0] < 1))) begin
-        card0_card_core0_regs_fifo1_reg_word39_honoured = 1;
+always @(card1_card_core1_regs_fifo2_reg_word60_written) begin: card1_card_core1_regs_fifo2_reg_word60__limit45_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word60_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word60_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word60_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word60_honoured = 1;
     end
-    else if ((card0_card_core0_regs_fifo1_reg_word39_written[32-1:16] != 0)) begin
-        card0_card_core0_regs_fifo1_reg_word39_honoured = 65535;
+    else if ((card1_card_core1_regs_fifo2_reg_word60_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word60_honoured = 65535;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word39_honoured = card0_card_core0_regs_fifo1_reg_word39_written[16-1:0];
-        card0_card_core0_regs_fifo1_reg_word39_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word60_honoured = card1_card_core1_regs_fifo2_reg_word60_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word60_out_of_range = 1'b0;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word39_clamp_out = (card0_card_core0_regs_fifo1_reg_word38_clamp_out || card0_card_core0_regs_fifo1_reg_word39_clamped);
+assign card1_card_core1_regs_fifo2_reg_word60_clamp_out = (card1_card_core1_regs_fifo2_reg_word59_clamp_out || card1_card_core1_regs_fifo2_reg_word60_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word39__store29_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word60__store45_hold_rw
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word39_value <= 2;
-        card0_card_core0_regs_fifo1_reg_word39_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word60_value <= 2;
+        card1_card_core1_regs_fifo2_reg_word60_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word39_clamped <= 1'b0;
-        if (((card0_card_core0_regs_fifo1_set_strobe && (card0_card_core0_regs_fifo1_set_index == 7)) || (card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word39_mine))) begin
-            card0_card_core0_regs_fifo1_reg_word39_value <= card0_card_core0_regs_fifo1_reg_word39_honoured;
-            card0_card_core0_regs_fifo1_reg_word39_clamped <= card0_card_core0_regs_fifo1_reg_word39_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word60_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word60_mine))) begin
+            card1_card_core1_regs_fifo2_reg_word60_value <= card1_card_core1_regs_fifo2_reg_word60_honoured;
+            card1_card_core1_regs_fifo2_reg_word60_clamped <= card1_card_core1_regs_fifo2_reg_word60_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word40_mine = (card0_pci_slave1_local_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_local_addr == 76);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word40_mine, card0_card_core0_regs_fifo1_reg_word40_shown_wide, card0_card_core0_regs_fifo1_reg_word39_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word40_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word40_mine)) begin
-        card0_card_core0_regs_fifo1_reg_word40_read_out = (card0_card_core0_regs_fifo1_reg_word39_read_out | card0_card_core0_regs_fifo1_reg_word40_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word61_mine, card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word60_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word61_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word61_mine)) begin
+        card1_card_core1_regs_fifo2_reg_word61_read_out = (card1_card_core1_regs_fifo2_reg_word60_read_out | card1_card_core1_regs_fifo2_reg_word61_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word40_read_out = card0_card_core0_regs_fifo1_reg_word39_read_out;
+        card1_card_core1_regs_fifo2_reg_word61_read_out = card1_card_core1_regs_fifo2_reg_word60_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word40_shown_wide = {8'h0, card0_card_core0_regs_fifo1_reg_word40_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word61_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word61_hw_value};
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word40_written = (card0_pci_slave1_local_wdata[32-1:0] & card0_card_core0_regs_fifo1_byte_mask[32-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word61_written = (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word40_written) begin: card0_card_core0_regs_fifo1_reg_word40__limit30_clamp_signed
-    if (((card0_card_core0_regs_fifo1_reg_word40_written[32-1:(24 - 1)] == 0) || (card0_card_core0_regs_fifo1_reg_word40_written[32-1:(24 - 1)] == 511))) begin
-        card0_card_core0_regs_fifo1_reg_word40_honoured = card0_card_core0_regs_fifo1_reg_word40_written[24-1:0];
-        card0_card_core0_regs_fifo1_reg_word40_out_of_range = 1'b0;
+always @(card1_card_core1_regs_fifo2_reg_word61_written) begin: card1_card_core1_regs_fifo2_reg_word61__limit46_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word61_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word61_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word61_honoured = card1_card_core1_regs_fifo2_reg_word61_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b0;
     end
-    else if (card0_card_core0_regs_fifo1_reg_word40_written[31]) begin
-        card0_card_core0_regs_fifo1_reg_word40_honoured = 8388608;
-        card0_card_core0_regs_fifo1_reg_word40_out_of_range = 1'b1;
+    else if (card1_card_core1_regs_fifo2_reg_word61_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word61_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b1;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word40_honoured = 8388607;
-        card0_card_core0_regs_fifo1_reg_word40_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word61_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b1;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word40_clamp_out = (card0_card_core0_regs_fifo1_reg_word39_clamp_out || card0_card_core0_regs_fifo1_reg_word40_clamped);
+assign card1_card_core1_regs_fifo2_reg_word61_clamp_out = (card1_card_core1_regs_fifo2_reg_word60_clamp_out || card1_card_core1_regs_fifo2_reg_word61_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word40__store30_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word61__store46_pulse_on_write
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word40_strobe <= 0;
-        card0_card_core0_regs_fifo1_reg_word40_value <= 0;
-        card0_card_core0_regs_fifo1_reg_word40_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word61_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word61_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word61_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word40_strobe <= 1'b0;
-        card0_card_core0_regs_fifo1_reg_word40_clamped <= 1'b0;
-        if ((card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word40_mine)) begin
-            card0_card_core0_regs_fifo1_reg_word40_value <= card0_card_core0_regs_fifo1_reg_word40_honoured;
-            card0_card_core0_regs_fifo1_reg_word40_strobe <= 1'b1;
-            card0_card_core0_regs_fifo1_reg_word40_clamped <= card0_card_core0_regs_fifo1_reg_word40_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word61_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word61_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word61_mine)) begin
+            card1_card_core1_regs_fifo2_reg_word61_value <= card1_card_core1_regs_fifo2_reg_word61_honoured;
+            card1_card_core1_regs_fifo2_reg_word61_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word61_clamped <= card1_card_core1_regs_fifo2_reg_word61_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word41_mine = (card0_pci_slave1_local_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_local_addr == 80);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word41_mine, card0_card_core0_regs_fifo1_reg_word41_shown_wide, card0_card_core0_regs_fifo1_reg_word40_read_out, card0_card_core0_regs_fifo1_io_read) begin: card0_card_core0_regs_fifo1_reg_word41_read_chain
-    if ((card0_card_core0_regs_fifo1_io_read && card0_card_core0_regs_fifo1_reg_word41_mine)) begin
-        card0_card_core0_regs_fifo1_read_end = (card0_card_core0_regs_fifo1_reg_word40_read_out | card0_card_core0_regs_fifo1_reg_word41_shown_wide);
+always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word61_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
+    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word62_mine)) begin
+        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word61_read_out | card1_card_core1_regs_fifo2_reg_word62_shown_wide);
     end
     else begin
-        card0_card_core0_regs_fifo1_read_end = card0_card_core0_regs_fifo1_reg_word40_read_out;
+        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word61_read_out;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word41_shown_wide = {8'h0, card0_card_core0_regs_fifo1_reg_word41_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word62_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word62_hw_value};
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word41_written = (card0_pci_slave1_local_wdata[32-1:0] & card0_card_core0_regs_fifo1_byte_mask[32-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word62_written = (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]);
 
 
-always @(card0_card_core0_regs_fifo1_reg_word41_written) begin: card0_card_core0_regs_fifo1_reg_word41__limit31_clamp_signed
-    if (((card0_card_core0_regs_fifo1_reg_word41_written[32-1:(24 - 1)] == 0) || (card0_card_core0_regs_fifo1_reg_word41_written[32-1:(24 - 1)] == 511))) begin
-        card0_card_core0_regs_fifo1_reg_word41_honoured = card0_card_core0_regs_fifo1_reg_word41_written[24-1:0];
-        card0_card_core0_regs_fifo1_reg_word41_out_of_range = 1'b0;
+always @(card1_card_core1_regs_fifo2_reg_word62_written) begin: card1_card_core1_regs_fifo2_reg_word62__limit47_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word62_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word62_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word62_honoured = card1_card_core1_regs_fifo2_reg_word62_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b0;
     end
-    else if (card0_card_core0_regs_fifo1_reg_word41_written[31]) begin
-        card0_card_core0_regs_fifo1_reg_word41_honoured = 8388608;
-        card0_card_core0_regs_fifo1_reg_word41_out_of_range = 1'b1;
+    else if (card1_card_core1_regs_fifo2_reg_word62_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word62_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b1;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word41_honoured = 8388607;
-        card0_card_core0_regs_fifo1_reg_word41_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word62_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b1;
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word41_clamp_out = (card0_card_core0_regs_fifo1_reg_word40_clamp_out || card0_card_core0_regs_fifo1_reg_word41_clamped);
+assign card1_card_core1_regs_fifo2_reg_word62_clamp_out = (card1_card_core1_regs_fifo2_reg_word61_clamp_out || card1_card_core1_regs_fifo2_reg_word62_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_reg_word41__store31_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word62__store47_pulse_on_write
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_reg_word41_strobe <= 0;
-        card0_card_core0_regs_fifo1_reg_word41_value <= 0;
-        card0_card_core0_regs_fifo1_reg_word41_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word62_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word62_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word62_clamped <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_reg_word41_strobe <= 1'b0;
-        card0_card_core0_regs_fifo1_reg_word41_clamped <= 1'b0;
-        if ((card0_card_core0_regs_fifo1_io_write && card0_card_core0_regs_fifo1_reg_word41_mine)) begin
-            card0_card_core0_regs_fifo1_reg_word41_value <= card0_card_core0_regs_fifo1_reg_word41_honoured;
-            card0_card_core0_regs_fifo1_reg_word41_strobe <= 1'b1;
-            card0_card_core0_regs_fifo1_reg_word41_clamped <= card0_card_core0_regs_fifo1_reg_word41_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word62_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word62_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word62_mine)) begin
+            card1_card_core1_regs_fifo2_reg_word62_value <= card1_card_core1_regs_fifo2_reg_word62_honoured;
+            card1_card_core1_regs_fifo2_reg_word62_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word62_clamped <= card1_card_core1_regs_fifo2_reg_word62_out_of_range;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_sequencer1_arriving_coord_fits = ((card0_card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 0) || (card0_card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 511));
+assign card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits = ((card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 511));
 
 
 
-assign card0_card_core0_regs_fifo1_sequencer1_arriving_count_fits = ((card0_card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 0) || (card0_card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 511));
+assign card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits = ((card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 511));
 
 
 
-assign card0_card_core0_regs_fifo1_sequencer1_opcode = card0_card_core0_regs_fifo1_sequencer1_header[32-1:28];
+assign card1_card_core1_regs_fifo2_sequencer2_opcode = card1_card_core1_regs_fifo2_sequencer2_header[32-1:28];
 
 
-always @(card0_card_core0_regs_fifo1_fifo_dout) begin: card0_card_core0_regs_fifo1_sequencer1_lookup_arriving
-    case (card0_card_core0_regs_fifo1_fifo_dout[32-1:28])
-        0: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        1: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 2;
-        2: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 4;
-        3: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 2;
-        4: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 1;
-        5: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 1;
-        6: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        7: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        8: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        9: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        10: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        11: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        12: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        13: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        14: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        default: card0_card_core0_regs_fifo1_sequencer1_arriving_count = 0;
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_arriving
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 2;
+        2: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 4;
+        3: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 2;
+        4: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
     endcase
 end
 
 
-always @(card0_card_core0_regs_fifo1_sequencer1_header) begin: card0_card_core0_regs_fifo1_sequencer1_lookup_count
-    case (card0_card_core0_regs_fifo1_sequencer1_header[32-1:28])
-        0: card0_card_core0_regs_fifo1_sequencer1_next_count = 0;
-        1: card0_card_core0_regs_fifo1_sequencer1_next_count = 2;
-        2: card0_card_core0_regs_fifo1_sequencer1_next_count = 4;
-        3: card0_card_core0_regs_fifo1_sequencer1_next_count = 2;
-        4: card0_card_core0_regs_fifo1_sequencer1_next_count = 1;
-        5: card0_card_core0_regs_fifo1_sequencer1_next_count = 1;
-        6: card0_card_core0_regs_fifo1_sequencer1_next_count = 0;
-        7: card0_card_core0_regs_fifo1_sequencer1_next_count = 0;
-        8: card0_card_core0_regs_fifo1_sequencer1_next_count = 0;
-        9: card0_card_core0_regs_fifo1_sequencer1_next_count = 0;
-        10: card0_card_core0_regs_fifo1_sequencer1_next_count = 0;
-        11: card0_card_core0_regs_fifo1_sequencer1_next_count = 0;
-        12: card0_card_core0_regs_fifo1_sequencer1_next_count = 0;
-        13: card0_card_core0_regs_fifo1_sequencer1_next_count = 0;
-        14: card0_card_core0_regs_fifo1_sequencer1_next_count = 0;
-        default: card0_card_core0_regs_fifo1_sequencer1_next_count = 0;
+always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_count
+    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_next_count = 2;
+        2: card1_card_core1_regs_fifo2_sequencer2_next_count = 4;
+        3: card1_card_core1_regs_fifo2_sequencer2_next_count = 2;
+        4: card1_card_core1_regs_fifo2_sequencer2_next_count = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_next_count = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
     endcase
 end
 
 
-always @(card0_card_core0_regs_fifo1_sequencer1_header) begin: card0_card_core0_regs_fifo1_sequencer1_lookup_valid
-    case (card0_card_core0_regs_fifo1_sequencer1_header[32-1:28])
-        0: card0_card_core0_regs_fifo1_sequencer1_next_known = 0;
-        1: card0_card_core0_regs_fifo1_sequencer1_next_known = 1;
-        2: card0_card_core0_regs_fifo1_sequencer1_next_known = 1;
-        3: card0_card_core0_regs_fifo1_sequencer1_next_known = 1;
-        4: card0_card_core0_regs_fifo1_sequencer1_next_known = 1;
-        5: card0_card_core0_regs_fifo1_sequencer1_next_known = 1;
-        6: card0_card_core0_regs_fifo1_sequencer1_next_known = 1;
-        7: card0_card_core0_regs_fifo1_sequencer1_next_known = 0;
-        8: card0_card_core0_regs_fifo1_sequencer1_next_known = 0;
-        9: card0_card_core0_regs_fifo1_sequencer1_next_known = 0;
-        10: card0_card_core0_regs_fifo1_sequencer1_next_known = 0;
-        11: card0_card_core0_regs_fifo1_sequencer1_next_known = 0;
-        12: card0_card_core0_regs_fifo1_sequencer1_next_known = 0;
-        13: card0_card_core0_regs_fifo1_sequencer1_next_known = 0;
-        14: card0_card_core0_regs_fifo1_sequencer1_next_known = 0;
-        default: card0_card_core0_regs_fifo1_sequencer1_next_known = 0;
+always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_valid
+    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
+        3: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
+        7: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
     endcase
 end
 
 
-always @(card0_card_core0_regs_fifo1_sequencer1_header) begin: card0_card_core0_regs_fifo1_sequencer1_lookup_mask_high
-    case (card0_card_core0_regs_fifo1_sequencer1_header[32-1:28])
-        0: card0_card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        1: card0_card_core0_regs_fifo1_sequencer1_mask_high = 61440;
-        2: card0_card_core0_regs_fifo1_sequencer1_mask_high = 61440;
-        3: card0_card_core0_regs_fifo1_sequencer1_mask_high = 61440;
-        4: card0_card_core0_regs_fifo1_sequencer1_mask_high = 61440;
-        5: card0_card_core0_regs_fifo1_sequencer1_mask_high = 61440;
-        6: card0_card_core0_regs_fifo1_sequencer1_mask_high = 61440;
-        7: card0_card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        8: card0_card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        9: card0_card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        10: card0_card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        11: card0_card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        12: card0_card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        13: card0_card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        14: card0_card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        default: card0_card_core0_regs_fifo1_sequencer1_mask_high = 0;
+always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_mask_high
+    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
+        2: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
+        3: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
+        4: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
+        5: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
+        6: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
+        7: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
     endcase
 end
 
 
-always @(card0_card_core0_regs_fifo1_sequencer1_header) begin: card0_card_core0_regs_fifo1_sequencer1_lookup_mask_low
-    case (card0_card_core0_regs_fifo1_sequencer1_header[32-1:28])
-        0: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        1: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        2: card0_card_core0_regs_fifo1_sequencer1_mask_low = 8191;
-        3: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        4: card0_card_core0_regs_fifo1_sequencer1_mask_low = 15;
-        5: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        6: card0_card_core0_regs_fifo1_sequencer1_mask_low = 65535;
-        7: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        8: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        9: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        10: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        11: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        12: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        13: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        14: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        default: card0_card_core0_regs_fifo1_sequencer1_mask_low = 0;
+always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_mask_low
+    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_mask_low = 8191;
+        3: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+        4: card1_card_core1_regs_fifo2_sequencer2_mask_low = 15;
+        5: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+        6: card1_card_core1_regs_fifo2_sequencer2_mask_low = 65535;
+        7: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
     endcase
 end
 
 
-always @(card0_card_core0_regs_fifo1_sequencer1_header) begin: card0_card_core0_regs_fifo1_sequencer1_lookup_coords
-    case (card0_card_core0_regs_fifo1_sequencer1_header[32-1:28])
-        0: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        1: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 3;
-        2: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 15;
-        3: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        4: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        5: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        6: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        7: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        8: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        9: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        10: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        11: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        12: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        13: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        14: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        default: card0_card_core0_regs_fifo1_sequencer1_coord_mask = 0;
+always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_coords
+    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 3;
+        2: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 15;
+        3: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        4: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        5: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        6: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
     endcase
 end
 
 
-always @(card0_card_core0_regs_fifo1_sequencer1_header) begin: card0_card_core0_regs_fifo1_sequencer1_lookup_counts
-    case (card0_card_core0_regs_fifo1_sequencer1_header[32-1:28])
-        0: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        1: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        2: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        3: card0_card_core0_regs_fifo1_sequencer1_count_mask = 3;
-        4: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        5: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        6: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        7: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        8: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        9: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        10: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        11: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        12: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        13: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        14: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        default: card0_card_core0_regs_fifo1_sequencer1_count_mask = 0;
+always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_counts
+    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_count_mask = 3;
+        4: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        5: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        6: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
     endcase
 end
 
 
-always @(card0_card_core0_regs_fifo1_sequencer1_header) begin: card0_card_core0_regs_fifo1_sequencer1_lookup_set
-    case (card0_card_core0_regs_fifo1_sequencer1_header[4-1:0])
-        0: card0_card_core0_regs_fifo1_sequencer1_set_known = 1;
-        1: card0_card_core0_regs_fifo1_sequencer1_set_known = 1;
-        2: card0_card_core0_regs_fifo1_sequencer1_set_known = 1;
-        3: card0_card_core0_regs_fifo1_sequencer1_set_known = 1;
-        4: card0_card_core0_regs_fifo1_sequencer1_set_known = 1;
-        5: card0_card_core0_regs_fifo1_sequencer1_set_known = 1;
-        6: card0_card_core0_regs_fifo1_sequencer1_set_known = 1;
-        7: card0_card_core0_regs_fifo1_sequencer1_set_known = 1;
-        8: card0_card_core0_regs_fifo1_sequencer1_set_known = 0;
-        9: card0_card_core0_regs_fifo1_sequencer1_set_known = 0;
-        10: card0_card_core0_regs_fifo1_sequencer1_set_known = 0;
-        11: card0_card_core0_regs_fifo1_sequencer1_set_known = 0;
-        12: card0_card_core0_regs_fifo1_sequencer1_set_known = 0;
-        13: card0_card_core0_regs_fifo1_sequencer1_set_known = 0;
-        14: card0_card_core0_regs_fifo1_sequencer1_set_known = 0;
-        default: card0_card_core0_regs_fifo1_sequencer1_set_known = 0;
+always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_set
+    case (card1_card_core1_regs_fifo2_sequencer2_header[4-1:0])
+        0: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
+        3: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
+        7: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
     endcase
 end
 
 
-always @(card0_card_core0_regs_fifo1_sequencer1_arriving_count, card0_card_core0_regs_fifo1_fifo_empty, card0_card_core0_regs_fifo1_sequencer1_state, card0_card_core0_core_clear, card0_card_core0_regs_fifo1_sequencer1_word_due, card0_card_core0_regs_fifo1_sequencer1_next_valid, card0_card_core0_regs_fifo1_sequencer1_next_count, card0_card_core0_regs_fifo1_sequencer1_fetched) begin: card0_card_core0_regs_fifo1_sequencer1_fetch_request
+always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
     reg more;
     more = 1'b1;
-    if (card0_card_core0_regs_fifo1_sequencer1_word_due) begin
-        if ((card0_card_core0_regs_fifo1_sequencer1_fetched == 0)) begin
-            more = (card0_card_core0_regs_fifo1_sequencer1_arriving_count != 0);
+    if (card1_card_core1_regs_fifo2_sequencer2_word_due) begin
+        if ((card1_card_core1_regs_fifo2_sequencer2_fetched == 0)) begin
+            more = (card1_card_core1_regs_fifo2_sequencer2_arriving_count != 0);
         end
         else begin
-            more = (card0_card_core0_regs_fifo1_sequencer1_fetched < card0_card_core0_regs_fifo1_sequencer1_next_count);
+            more = (card1_card_core1_regs_fifo2_sequencer2_fetched < card1_card_core1_regs_fifo2_sequencer2_next_count);
         end
     end
-    card0_card_core0_regs_fifo1_fifo_pop = ((!card0_card_core0_regs_fifo1_fifo_empty) && (!card0_card_core0_regs_fifo1_sequencer1_next_valid) && more && (!card0_card_core0_core_clear) && (card0_card_core0_regs_fifo1_sequencer1_state != 3'b100));
+    card1_card_core1_regs_fifo2_fifo_pop = ((!card1_card_core1_regs_fifo2_fifo_empty) && (!card1_card_core1_regs_fifo2_sequencer2_next_valid) && more && (!card1_card_core1_core_clear) && (card1_card_core1_regs_fifo2_sequencer2_state != 3'b100));
 end
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_sequencer1_fetch
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_fetch
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_sequencer1_operand_0 <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_operand_3 <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_word_due <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_next_valid <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_operand_1 <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_header <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_coord_fits <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_count_fits <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_fetched <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_operand_2 <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_operand_0 <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_operand_3 <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_word_due <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_next_valid <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_operand_1 <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_header <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_coord_fits <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_count_fits <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_fetched <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_operand_2 <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_sequencer1_word_due <= card0_card_core0_regs_fifo1_fifo_pop;
-        if (card0_card_core0_core_clear) begin
-            card0_card_core0_regs_fifo1_sequencer1_word_due <= 0;
-            card0_card_core0_regs_fifo1_sequencer1_fetched <= 0;
-            card0_card_core0_regs_fifo1_sequencer1_next_valid <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_word_due <= card1_card_core1_regs_fifo2_fifo_pop;
+        if (card1_card_core1_core_clear) begin
+            card1_card_core1_regs_fifo2_sequencer2_word_due <= 0;
+            card1_card_core1_regs_fifo2_sequencer2_fetched <= 0;
+            card1_card_core1_regs_fifo2_sequencer2_next_valid <= 0;
         end
         else begin
-            if (card0_card_core0_regs_fifo1_sequencer1_issue) begin
-                card0_card_core0_regs_fifo1_sequencer1_next_valid <= 0;
+            if (card1_card_core1_regs_fifo2_sequencer2_issue) begin
+                card1_card_core1_regs_fifo2_sequencer2_next_valid <= 0;
             end
-            if (card0_card_core0_regs_fifo1_sequencer1_word_due) begin
-                if ((card0_card_core0_regs_fifo1_sequencer1_fetched == 0)) begin
-                    card0_card_core0_regs_fifo1_sequencer1_header <= card0_card_core0_regs_fifo1_fifo_dout;
-                    if ((card0_card_core0_regs_fifo1_sequencer1_arriving_count == 0)) begin
-                        card0_card_core0_regs_fifo1_sequencer1_next_valid <= 1;
+            if (card1_card_core1_regs_fifo2_sequencer2_word_due) begin
+                if ((card1_card_core1_regs_fifo2_sequencer2_fetched == 0)) begin
+                    card1_card_core1_regs_fifo2_sequencer2_header <= card1_card_core1_regs_fifo2_fifo_dout;
+                    if ((card1_card_core1_regs_fifo2_sequencer2_arriving_count == 0)) begin
+                        card1_card_core1_regs_fifo2_sequencer2_next_valid <= 1;
                     end
                     else begin
-                        card0_card_core0_regs_fifo1_sequencer1_fetched <= 1;
+                        card1_card_core1_regs_fifo2_sequencer2_fetched <= 1;
                     end
                 end
                 else begin
-                    case (card0_card_core0_regs_fifo1_sequencer1_fetched)
+                    case (card1_card_core1_regs_fifo2_sequencer2_fetched)
                         'h1: begin
-                            card0_card_core0_regs_fifo1_sequencer1_operand_0 <= card0_card_core0_regs_fifo1_fifo_dout;
+                            card1_card_core1_regs_fifo2_sequencer2_operand_0 <= card1_card_core1_regs_fifo2_fifo_dout;
                         end
                         'h2: begin
-                            card0_card_core0_regs_fifo1_sequencer1_operand_1 <= card0_card_core0_regs_fifo1_fifo_dout;
+                            card1_card_core1_regs_fifo2_sequencer2_operand_1 <= card1_card_core1_regs_fifo2_fifo_dout;
                         end
                         'h3: begin
-                            card0_card_core0_regs_fifo1_sequencer1_operand_2 <= card0_card_core0_regs_fifo1_fifo_dout;
+                            card1_card_core1_regs_fifo2_sequencer2_operand_2 <= card1_card_core1_regs_fifo2_fifo_dout;
                         end
                         default: begin
-                            card0_card_core0_regs_fifo1_sequencer1_operand_3 <= card0_card_core0_regs_fifo1_fifo_dout;
+                            card1_card_core1_regs_fifo2_sequencer2_operand_3 <= card1_card_core1_regs_fifo2_fifo_dout;
                         end
                     endcase
-                    card0_card_core0_regs_fifo1_sequencer1_coord_fits[($signed({1'b0, card0_card_core0_regs_fifo1_sequencer1_fetched}) - 1)] <= card0_card_core0_regs_fifo1_sequencer1_arriving_coord_fits;
-                    card0_card_core0_regs_fifo1_sequencer1_count_fits[($signed({1'b0, card0_card_core0_regs_fifo1_sequencer1_fetched}) - 1)] <= card0_card_core0_regs_fifo1_sequencer1_arriving_count_fits;
-                    if ((card0_card_core0_regs_fifo1_sequencer1_fetched == card0_card_core0_regs_fifo1_sequencer1_next_count)) begin
-                        card0_card_core0_regs_fifo1_sequencer1_next_valid <= 1;
-                        card0_card_core0_regs_fifo1_sequencer1_fetched <= 0;
+                    card1_card_core1_regs_fifo2_sequencer2_coord_fits[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] <= card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
+                    card1_card_core1_regs_fifo2_sequencer2_count_fits[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] <= card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits;
+                    if ((card1_card_core1_regs_fifo2_sequencer2_fetched == card1_card_core1_regs_fifo2_sequencer2_next_count)) begin
+                        card1_card_core1_regs_fifo2_sequencer2_next_valid <= 1;
+                        card1_card_core1_regs_fifo2_sequencer2_fetched <= 0;
                     end
                     else begin
-                        card0_card_core0_regs_fifo1_sequencer1_fetched <= (card0_card_core0_regs_fifo1_sequencer1_fetched + 1);
+                        card1_card_core1_regs_fifo2_sequencer2_fetched <= (card1_card_core1_regs_fifo2_sequencer2_fetched + 1);
                     end
                 end
             end
@@ -3397,192 +3405,192 @@ always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_sequen
 end
 
 
-always @(card0_card_core0_regs_fifo1_sequencer1_set_known, card0_card_core0_regs_fifo1_sequencer1_count_fits, card0_card_core0_regs_fifo1_sequencer1_coord_fits, card0_card_core0_regs_fifo1_sequencer1_header, card0_card_core0_regs_fifo1_sequencer1_count_mask, card0_card_core0_regs_fifo1_sequencer1_opcode, card0_card_core0_regs_fifo1_sequencer1_next_known, card0_card_core0_regs_fifo1_sequencer1_coord_mask, card0_card_core0_regs_fifo1_sequencer1_mask_high, card0_card_core0_regs_fifo1_sequencer1_mask_low) begin: card0_card_core0_regs_fifo1_sequencer1_check
+always @(card1_card_core1_regs_fifo2_sequencer2_set_known, card1_card_core1_regs_fifo2_sequencer2_count_fits, card1_card_core1_regs_fifo2_sequencer2_coord_fits, card1_card_core1_regs_fifo2_sequencer2_header, card1_card_core1_regs_fifo2_sequencer2_count_mask, card1_card_core1_regs_fifo2_sequencer2_opcode, card1_card_core1_regs_fifo2_sequencer2_next_known, card1_card_core1_regs_fifo2_sequencer2_coord_mask, card1_card_core1_regs_fifo2_sequencer2_mask_high, card1_card_core1_regs_fifo2_sequencer2_mask_low) begin: card1_card_core1_regs_fifo2_sequencer2_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
-    if ((!card0_card_core0_regs_fifo1_sequencer1_next_known)) begin
+    if ((!card1_card_core1_regs_fifo2_sequencer2_next_known)) begin
         result = 1;
     end
-    else if ((((card0_card_core0_regs_fifo1_sequencer1_header[32-1:16] & (~card0_card_core0_regs_fifo1_sequencer1_mask_high)) != 0) || ((card0_card_core0_regs_fifo1_sequencer1_header[16-1:0] & (~card0_card_core0_regs_fifo1_sequencer1_mask_low)) != 0))) begin
+    else if ((((card1_card_core1_regs_fifo2_sequencer2_header[32-1:16] & (~card1_card_core1_regs_fifo2_sequencer2_mask_high)) != 0) || ((card1_card_core1_regs_fifo2_sequencer2_header[16-1:0] & (~card1_card_core1_regs_fifo2_sequencer2_mask_low)) != 0))) begin
         result = 2;
     end
-    else if (((card0_card_core0_regs_fifo1_sequencer1_opcode == 4) && (!card0_card_core0_regs_fifo1_sequencer1_set_known))) begin
+    else if (((card1_card_core1_regs_fifo2_sequencer2_opcode == 4) && (!card1_card_core1_regs_fifo2_sequencer2_set_known))) begin
         result = 3;
     end
-    else if ((((card0_card_core0_regs_fifo1_sequencer1_coord_mask & (~card0_card_core0_regs_fifo1_sequencer1_coord_fits)) != 0) || ((card0_card_core0_regs_fifo1_sequencer1_count_mask & (~card0_card_core0_regs_fifo1_sequencer1_count_fits)) != 0))) begin
+    else if ((((card1_card_core1_regs_fifo2_sequencer2_coord_mask & (~card1_card_core1_regs_fifo2_sequencer2_coord_fits)) != 0) || ((card1_card_core1_regs_fifo2_sequencer2_count_mask & (~card1_card_core1_regs_fifo2_sequencer2_count_fits)) != 0))) begin
         result = 3;
     end
-    card0_card_core0_regs_fifo1_sequencer1_next_error = result;
+    card1_card_core1_regs_fifo2_sequencer2_next_error = result;
 end
 
 
-always @(card0_card_core0_regs_fifo1_out_active, card0_card_core0_regs_fifo1_pulse_busy, card0_card_core0_regs_fifo1_sequencer1_dwell_left, card0_card_core0_regs_fifo1_sequencer1_state, card0_card_core0_regs_fifo1_sequencer1_dda_done) begin: card0_card_core0_regs_fifo1_sequencer1_completion
-    card0_card_core0_regs_fifo1_sequencer1_finishing = 1'b0;
-    case (card0_card_core0_regs_fifo1_sequencer1_state)
+always @(card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_sequencer2_dwell_left, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_regs_fifo2_sequencer2_dda_done) begin: card1_card_core1_regs_fifo2_sequencer2_completion
+    card1_card_core1_regs_fifo2_sequencer2_finishing = 1'b0;
+    case (card1_card_core1_regs_fifo2_sequencer2_state)
         3'b000: begin
-            card0_card_core0_regs_fifo1_sequencer1_finishing = 1'b1;
+            card1_card_core1_regs_fifo2_sequencer2_finishing = 1'b1;
         end
         3'b001: begin
-            card0_card_core0_regs_fifo1_sequencer1_finishing = card0_card_core0_regs_fifo1_sequencer1_dda_done;
+            card1_card_core1_regs_fifo2_sequencer2_finishing = card1_card_core1_regs_fifo2_sequencer2_dda_done;
         end
         3'b010: begin
-            card0_card_core0_regs_fifo1_sequencer1_finishing = (!card0_card_core0_regs_fifo1_pulse_busy);
+            card1_card_core1_regs_fifo2_sequencer2_finishing = (!card1_card_core1_regs_fifo2_pulse_busy);
         end
         3'b011: begin
-            card0_card_core0_regs_fifo1_sequencer1_finishing = ((card0_card_core0_regs_fifo1_sequencer1_dwell_left <= 1) && (!card0_card_core0_regs_fifo1_out_active));
+            card1_card_core1_regs_fifo2_sequencer2_finishing = ((card1_card_core1_regs_fifo2_sequencer2_dwell_left <= 1) && (!card1_card_core1_regs_fifo2_out_active));
         end
         default: begin
-            card0_card_core0_regs_fifo1_sequencer1_finishing = 1'b0;
+            card1_card_core1_regs_fifo2_sequencer2_finishing = 1'b0;
         end
     endcase
 end
 
 
 
-assign card0_card_core0_regs_fifo1_sequencer1_issue = (card0_card_core0_regs_fifo1_sequencer1_next_valid && card0_card_core0_regs_fifo1_enable && card0_card_core0_regs_fifo1_sequencer1_finishing && (!card0_card_core0_core_clear));
+assign card1_card_core1_regs_fifo2_sequencer2_issue = (card1_card_core1_regs_fifo2_sequencer2_next_valid && card1_card_core1_regs_fifo2_enable && card1_card_core1_regs_fifo2_sequencer2_finishing && (!card1_card_core1_core_clear));
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_sequencer1_execute
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_execute
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_set_strobe <= 0;
-        card0_card_core0_regs_fifo1_error_code <= 0;
-        card0_card_core0_regs_fifo1_mark_strobe <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_dda_start <= 0;
-        card0_card_core0_regs_fifo1_seq_load <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_dwell_left <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_state <= 3'b000;
+        card1_card_core1_regs_fifo2_set_strobe <= 0;
+        card1_card_core1_regs_fifo2_error_code <= 0;
+        card1_card_core1_regs_fifo2_mark_strobe <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_dda_start <= 0;
+        card1_card_core1_regs_fifo2_seq_load <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_dwell_left <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
     end
     else begin
-        card0_card_core0_regs_fifo1_sequencer1_dda_start <= 0;
-        card0_card_core0_regs_fifo1_seq_load <= 0;
-        card0_card_core0_regs_fifo1_set_strobe <= 0;
-        card0_card_core0_regs_fifo1_mark_strobe <= 0;
-        if (card0_card_core0_core_clear) begin
-            card0_card_core0_regs_fifo1_sequencer1_state <= 3'b000;
-            card0_card_core0_regs_fifo1_error_code <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_dda_start <= 0;
+        card1_card_core1_regs_fifo2_seq_load <= 0;
+        card1_card_core1_regs_fifo2_set_strobe <= 0;
+        card1_card_core1_regs_fifo2_mark_strobe <= 0;
+        if (card1_card_core1_core_clear) begin
+            card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
+            card1_card_core1_regs_fifo2_error_code <= 0;
         end
-        else if ((card0_card_core0_regs_fifo1_sequencer1_state == 3'b100)) begin
-            if (card0_card_core0_regs_fifo1_clear_error) begin
-                card0_card_core0_regs_fifo1_sequencer1_state <= 3'b000;
-                card0_card_core0_regs_fifo1_error_code <= 0;
+        else if ((card1_card_core1_regs_fifo2_sequencer2_state == 3'b100)) begin
+            if (card1_card_core1_regs_fifo2_clear_error) begin
+                card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
+                card1_card_core1_regs_fifo2_error_code <= 0;
             end
         end
-        else if (((card0_card_core0_regs_fifo1_sequencer1_state == 3'b001) && card0_card_core0_regs_fifo1_sequencer1_dda_error && (!card0_card_core0_regs_fifo1_sequencer1_dda_start) && (!card0_card_core0_regs_fifo1_dda_busy))) begin
-            card0_card_core0_regs_fifo1_sequencer1_state <= 3'b100;
-            card0_card_core0_regs_fifo1_error_code <= 4;
+        else if (((card1_card_core1_regs_fifo2_sequencer2_state == 3'b001) && card1_card_core1_regs_fifo2_sequencer2_dda_error && (!card1_card_core1_regs_fifo2_sequencer2_dda_start) && (!card1_card_core1_regs_fifo2_dda_busy))) begin
+            card1_card_core1_regs_fifo2_sequencer2_state <= 3'b100;
+            card1_card_core1_regs_fifo2_error_code <= 4;
         end
-        else if (card0_card_core0_regs_fifo1_sequencer1_issue) begin
-            if ((card0_card_core0_regs_fifo1_sequencer1_next_error != 0)) begin
-                card0_card_core0_regs_fifo1_sequencer1_state <= 3'b100;
-                card0_card_core0_regs_fifo1_error_code <= card0_card_core0_regs_fifo1_sequencer1_next_error;
+        else if (card1_card_core1_regs_fifo2_sequencer2_issue) begin
+            if ((card1_card_core1_regs_fifo2_sequencer2_next_error != 0)) begin
+                card1_card_core1_regs_fifo2_sequencer2_state <= 3'b100;
+                card1_card_core1_regs_fifo2_error_code <= card1_card_core1_regs_fifo2_sequencer2_next_error;
             end
-            else if (((card0_card_core0_regs_fifo1_sequencer1_opcode == 1) || (card0_card_core0_regs_fifo1_sequencer1_opcode == 2))) begin
-                card0_card_core0_regs_fifo1_sequencer1_state <= 3'b001;
-                card0_card_core0_regs_fifo1_sequencer1_dda_start <= 1;
+            else if (((card1_card_core1_regs_fifo2_sequencer2_opcode == 1) || (card1_card_core1_regs_fifo2_sequencer2_opcode == 2))) begin
+                card1_card_core1_regs_fifo2_sequencer2_state <= 3'b001;
+                card1_card_core1_regs_fifo2_sequencer2_dda_start <= 1;
             end
-            else if ((card0_card_core0_regs_fifo1_sequencer1_opcode == 3)) begin
-                card0_card_core0_regs_fifo1_sequencer1_state <= 3'b010;
-                card0_card_core0_regs_fifo1_seq_load <= 1;
+            else if ((card1_card_core1_regs_fifo2_sequencer2_opcode == 3)) begin
+                card1_card_core1_regs_fifo2_sequencer2_state <= 3'b010;
+                card1_card_core1_regs_fifo2_seq_load <= 1;
             end
-            else if ((card0_card_core0_regs_fifo1_sequencer1_opcode == 5)) begin
-                card0_card_core0_regs_fifo1_sequencer1_state <= 3'b011;
-                card0_card_core0_regs_fifo1_sequencer1_dwell_left <= card0_card_core0_regs_fifo1_sequencer1_operand_0;
+            else if ((card1_card_core1_regs_fifo2_sequencer2_opcode == 5)) begin
+                card1_card_core1_regs_fifo2_sequencer2_state <= 3'b011;
+                card1_card_core1_regs_fifo2_sequencer2_dwell_left <= card1_card_core1_regs_fifo2_sequencer2_operand_0;
             end
             else begin
-                card0_card_core0_regs_fifo1_sequencer1_state <= 3'b000;
-                case (card0_card_core0_regs_fifo1_sequencer1_opcode)
+                card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
+                case (card1_card_core1_regs_fifo2_sequencer2_opcode)
                     'h4: begin
-                        card0_card_core0_regs_fifo1_set_strobe <= 1;
+                        card1_card_core1_regs_fifo2_set_strobe <= 1;
                     end
                     'h6: begin
-                        card0_card_core0_regs_fifo1_mark_strobe <= 1;
+                        card1_card_core1_regs_fifo2_mark_strobe <= 1;
                     end
                 endcase
             end
         end
-        else if (card0_card_core0_regs_fifo1_sequencer1_finishing) begin
-            card0_card_core0_regs_fifo1_sequencer1_state <= 3'b000;
+        else if (card1_card_core1_regs_fifo2_sequencer2_finishing) begin
+            card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
         end
-        else if (((card0_card_core0_regs_fifo1_sequencer1_state == 3'b011) && (!card0_card_core0_regs_fifo1_out_active) && (card0_card_core0_regs_fifo1_sequencer1_dwell_left != 0))) begin
-            card0_card_core0_regs_fifo1_sequencer1_dwell_left <= (card0_card_core0_regs_fifo1_sequencer1_dwell_left - 1);
+        else if (((card1_card_core1_regs_fifo2_sequencer2_state == 3'b011) && (!card1_card_core1_regs_fifo2_out_active) && (card1_card_core1_regs_fifo2_sequencer2_dwell_left != 0))) begin
+            card1_card_core1_regs_fifo2_sequencer2_dwell_left <= (card1_card_core1_regs_fifo2_sequencer2_dwell_left - 1);
         end
     end
 end
 
 
-always @(card0_card_core0_regs_fifo1_sequencer1_operand_0, card0_card_core0_regs_fifo1_sequencer1_operand_3, card0_card_core0_regs_fifo1_sequencer1_operand_1, card0_card_core0_regs_fifo1_sequencer1_header, card0_card_core0_regs_fifo1_sequencer1_opcode, card0_card_core0_regs_fifo1_sequencer1_operand_2) begin: card0_card_core0_regs_fifo1_sequencer1_present
-    card0_card_core0_regs_fifo1_sequencer1_dda_line = (card0_card_core0_regs_fifo1_sequencer1_opcode == 1);
-    card0_card_core0_regs_fifo1_sequencer1_dda_ccw = card0_card_core0_regs_fifo1_sequencer1_header[0];
-    card0_card_core0_regs_fifo1_sequencer1_dda_variant = card0_card_core0_regs_fifo1_sequencer1_header[3-1:1];
-    card0_card_core0_regs_fifo1_sequencer1_dda_lambda_shift = card0_card_core0_regs_fifo1_sequencer1_header[8-1:3];
-    card0_card_core0_regs_fifo1_sequencer1_dda_acc_bits = card0_card_core0_regs_fifo1_sequencer1_header[13-1:8];
-    if ((card0_card_core0_regs_fifo1_sequencer1_opcode == 1)) begin
-        card0_card_core0_regs_fifo1_sequencer1_dda_xs = 0;
-        card0_card_core0_regs_fifo1_sequencer1_dda_ys = 0;
-        card0_card_core0_regs_fifo1_sequencer1_dda_xe = $signed(card0_card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
-        card0_card_core0_regs_fifo1_sequencer1_dda_ye = $signed(card0_card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
+always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs_fifo2_sequencer2_operand_3, card1_card_core1_regs_fifo2_sequencer2_operand_1, card1_card_core1_regs_fifo2_sequencer2_header, card1_card_core1_regs_fifo2_sequencer2_opcode, card1_card_core1_regs_fifo2_sequencer2_operand_2) begin: card1_card_core1_regs_fifo2_sequencer2_present
+    card1_card_core1_regs_fifo2_sequencer2_dda_line = (card1_card_core1_regs_fifo2_sequencer2_opcode == 1);
+    card1_card_core1_regs_fifo2_sequencer2_dda_ccw = card1_card_core1_regs_fifo2_sequencer2_header[0];
+    card1_card_core1_regs_fifo2_sequencer2_dda_variant = card1_card_core1_regs_fifo2_sequencer2_header[3-1:1];
+    card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift = card1_card_core1_regs_fifo2_sequencer2_header[8-1:3];
+    card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits = card1_card_core1_regs_fifo2_sequencer2_header[13-1:8];
+    if ((card1_card_core1_regs_fifo2_sequencer2_opcode == 1)) begin
+        card1_card_core1_regs_fifo2_sequencer2_dda_xs = 0;
+        card1_card_core1_regs_fifo2_sequencer2_dda_ys = 0;
+        card1_card_core1_regs_fifo2_sequencer2_dda_xe = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
+        card1_card_core1_regs_fifo2_sequencer2_dda_ye = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
     end
     else begin
-        card0_card_core0_regs_fifo1_sequencer1_dda_xs = $signed(card0_card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
-        card0_card_core0_regs_fifo1_sequencer1_dda_ys = $signed(card0_card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
-        card0_card_core0_regs_fifo1_sequencer1_dda_xe = $signed(card0_card_core0_regs_fifo1_sequencer1_operand_2[24-1:0]);
-        card0_card_core0_regs_fifo1_sequencer1_dda_ye = $signed(card0_card_core0_regs_fifo1_sequencer1_operand_3[24-1:0]);
+        card1_card_core1_regs_fifo2_sequencer2_dda_xs = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
+        card1_card_core1_regs_fifo2_sequencer2_dda_ys = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
+        card1_card_core1_regs_fifo2_sequencer2_dda_xe = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_2[24-1:0]);
+        card1_card_core1_regs_fifo2_sequencer2_dda_ye = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_3[24-1:0]);
     end
-    card0_card_core0_regs_fifo1_sequencer1_pulse_count_x = $signed(card0_card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
-    card0_card_core0_regs_fifo1_sequencer1_pulse_count_y = $signed(card0_card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
-    card0_card_core0_regs_fifo1_set_index = card0_card_core0_regs_fifo1_sequencer1_header[4-1:0];
-    card0_card_core0_regs_fifo1_set_value = card0_card_core0_regs_fifo1_sequencer1_operand_0;
-    card0_card_core0_regs_fifo1_mark_tag = card0_card_core0_regs_fifo1_sequencer1_header[16-1:0];
+    card1_card_core1_regs_fifo2_sequencer2_pulse_count_x = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
+    card1_card_core1_regs_fifo2_sequencer2_pulse_count_y = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
+    card1_card_core1_regs_fifo2_set_index = card1_card_core1_regs_fifo2_sequencer2_header[4-1:0];
+    card1_card_core1_regs_fifo2_set_value = card1_card_core1_regs_fifo2_sequencer2_operand_0;
+    card1_card_core1_regs_fifo2_mark_tag = card1_card_core1_regs_fifo2_sequencer2_header[16-1:0];
 end
 
 
 
-assign card0_card_core0_regs_fifo1_seq_busy = ((card0_card_core0_regs_fifo1_sequencer1_state == 3'b001) || (card0_card_core0_regs_fifo1_sequencer1_state == 3'b010) || (card0_card_core0_regs_fifo1_sequencer1_state == 3'b011) || card0_card_core0_regs_fifo1_sequencer1_next_valid || card0_card_core0_regs_fifo1_sequencer1_word_due || (card0_card_core0_regs_fifo1_sequencer1_fetched != 0) || (!card0_card_core0_regs_fifo1_fifo_empty));
-assign card0_card_core0_regs_fifo1_motion_run = (card0_card_core0_regs_fifo1_sequencer1_state == 3'b001);
+assign card1_card_core1_regs_fifo2_seq_busy = ((card1_card_core1_regs_fifo2_sequencer2_state == 3'b001) || (card1_card_core1_regs_fifo2_sequencer2_state == 3'b010) || (card1_card_core1_regs_fifo2_sequencer2_state == 3'b011) || card1_card_core1_regs_fifo2_sequencer2_next_valid || card1_card_core1_regs_fifo2_sequencer2_word_due || (card1_card_core1_regs_fifo2_sequencer2_fetched != 0) || (!card1_card_core1_regs_fifo2_fifo_empty));
+assign card1_card_core1_regs_fifo2_motion_run = (card1_card_core1_regs_fifo2_sequencer2_state == 3'b001);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_feed_rate1_accumulate
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_accumulate
     reg [18-1:0] total;
     reg [18-1:0] raised;
     reg [18-1:0] lowered;
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_tick <= 0;
-        card0_card_core0_regs_fifo1_feed_rate1_rate <= 0;
-        card0_card_core0_regs_fifo1_feed_rate1_phase <= 0;
+        card1_card_core1_regs_fifo2_tick <= 0;
+        card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
+        card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
     end
     else begin
         total = 18'h0;
         raised = 18'h0;
         lowered = 18'h0;
-        card0_card_core0_regs_fifo1_tick <= 0;
-        if ((!card0_card_core0_regs_fifo1_motion_run)) begin
-            card0_card_core0_regs_fifo1_feed_rate1_phase <= 0;
-            if ((card0_card_core0_regs_fifo1_reg_word33_value == 0)) begin
-                card0_card_core0_regs_fifo1_feed_rate1_rate <= card0_card_core0_regs_fifo1_reg_word31_value;
+        card1_card_core1_regs_fifo2_tick <= 0;
+        if ((!card1_card_core1_regs_fifo2_motion_run)) begin
+            card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
+            if ((card1_card_core1_regs_fifo2_reg_word54_value == 0)) begin
+                card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_reg_word52_value;
             end
             else begin
-                card0_card_core0_regs_fifo1_feed_rate1_rate <= card0_card_core0_regs_fifo1_reg_word32_value;
+                card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_reg_word53_value;
             end
         end
-        else if ((!card0_card_core0_regs_fifo1_hold)) begin
-            total = ({2'h0, card0_card_core0_regs_fifo1_feed_rate1_phase} + {1'b0, card0_card_core0_regs_fifo1_feed_rate1_rate});
-            card0_card_core0_regs_fifo1_feed_rate1_phase <= total[(17 - 1)-1:0];
-            raised = ({1'b0, card0_card_core0_regs_fifo1_feed_rate1_rate} + {2'h0, card0_card_core0_regs_fifo1_reg_word33_value});
-            lowered = ({1'b0, card0_card_core0_regs_fifo1_reg_word31_value} + {2'h0, card0_card_core0_regs_fifo1_reg_word33_value});
+        else if ((!card1_card_core1_regs_fifo2_hold)) begin
+            total = ({2'h0, card1_card_core1_regs_fifo2_feed_rate2_phase} + {1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate});
+            card1_card_core1_regs_fifo2_feed_rate2_phase <= total[(17 - 1)-1:0];
+            raised = ({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate} + {2'h0, card1_card_core1_regs_fifo2_reg_word54_value});
+            lowered = ({1'b0, card1_card_core1_regs_fifo2_reg_word52_value} + {2'h0, card1_card_core1_regs_fifo2_reg_word54_value});
             if ((total >= 65536)) begin
-                card0_card_core0_regs_fifo1_tick <= 1;
-                if ((card0_card_core0_regs_fifo1_reg_word33_value == 0)) begin
-                    card0_card_core0_regs_fifo1_feed_rate1_rate <= card0_card_core0_regs_fifo1_reg_word31_value;
+                card1_card_core1_regs_fifo2_tick <= 1;
+                if ((card1_card_core1_regs_fifo2_reg_word54_value == 0)) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_reg_word52_value;
                 end
-                else if ((raised <= {1'b0, card0_card_core0_regs_fifo1_reg_word31_value})) begin
-                    card0_card_core0_regs_fifo1_feed_rate1_rate <= raised[17-1:0];
+                else if ((raised <= {1'b0, card1_card_core1_regs_fifo2_reg_word52_value})) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= raised[17-1:0];
                 end
-                else if (({1'b0, card0_card_core0_regs_fifo1_feed_rate1_rate} >= lowered)) begin
-                    card0_card_core0_regs_fifo1_feed_rate1_rate <= (card0_card_core0_regs_fifo1_feed_rate1_rate - card0_card_core0_regs_fifo1_reg_word33_value);
+                else if (({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate} >= lowered)) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= (card1_card_core1_regs_fifo2_feed_rate2_rate - card1_card_core1_regs_fifo2_reg_word54_value);
                 end
                 else begin
-                    card0_card_core0_regs_fifo1_feed_rate1_rate <= card0_card_core0_regs_fifo1_reg_word31_value;
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_reg_word52_value;
                 end
             end
         end
@@ -3591,40 +3599,40 @@ end
 
 
 
-assign card0_card_core0_regs_fifo1_direct_busy_x = (card0_card_core0_regs_fifo1_direct_pulse2_load || (card0_card_core0_regs_fifo1_reg_word40_hw_value != 0));
+assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_load || (card1_card_core1_regs_fifo2_reg_word61_hw_value != 0));
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_direct_pulse2_emit
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct_pulse4_emit
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_direct_request_x <= 0;
-        card0_card_core0_regs_fifo1_direct_dir_x <= 0;
-        card0_card_core0_regs_fifo1_reg_word40_hw_value <= 0;
-        card0_card_core0_regs_fifo1_direct_pulse2_gap <= 0;
+        card1_card_core1_regs_fifo2_direct_request_x <= 0;
+        card1_card_core1_regs_fifo2_direct_dir_x <= 0;
+        card1_card_core1_regs_fifo2_reg_word61_hw_value <= 0;
+        card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_direct_request_x <= 0;
-        if (card0_card_core0_core_clear) begin
-            card0_card_core0_regs_fifo1_reg_word40_hw_value <= 0;
+        card1_card_core1_regs_fifo2_direct_request_x <= 0;
+        if (card1_card_core1_core_clear) begin
+            card1_card_core1_regs_fifo2_reg_word61_hw_value <= 0;
         end
-        else if (card0_card_core0_regs_fifo1_direct_pulse2_load) begin
-            if ((card0_card_core0_regs_fifo1_direct_pulse2_count < 0)) begin
-                card0_card_core0_regs_fifo1_reg_word40_hw_value <= (-card0_card_core0_regs_fifo1_direct_pulse2_count);
-                card0_card_core0_regs_fifo1_direct_dir_x <= 0;
+        else if (card1_card_core1_regs_fifo2_direct_pulse4_load) begin
+            if ((card1_card_core1_regs_fifo2_direct_pulse4_count < 0)) begin
+                card1_card_core1_regs_fifo2_reg_word61_hw_value <= (-card1_card_core1_regs_fifo2_direct_pulse4_count);
+                card1_card_core1_regs_fifo2_direct_dir_x <= 0;
             end
             else begin
-                card0_card_core0_regs_fifo1_reg_word40_hw_value <= card0_card_core0_regs_fifo1_direct_pulse2_count;
-                card0_card_core0_regs_fifo1_direct_dir_x <= 1;
+                card1_card_core1_regs_fifo2_reg_word61_hw_value <= card1_card_core1_regs_fifo2_direct_pulse4_count;
+                card1_card_core1_regs_fifo2_direct_dir_x <= 1;
             end
-            card0_card_core0_regs_fifo1_direct_pulse2_gap <= 0;
+            card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
         end
-        else if ((card0_card_core0_regs_fifo1_reg_word40_hw_value != 0)) begin
-            if ((card0_card_core0_regs_fifo1_direct_pulse2_gap != 0)) begin
-                card0_card_core0_regs_fifo1_direct_pulse2_gap <= (card0_card_core0_regs_fifo1_direct_pulse2_gap - 1);
+        else if ((card1_card_core1_regs_fifo2_reg_word61_hw_value != 0)) begin
+            if ((card1_card_core1_regs_fifo2_direct_pulse4_gap != 0)) begin
+                card1_card_core1_regs_fifo2_direct_pulse4_gap <= (card1_card_core1_regs_fifo2_direct_pulse4_gap - 1);
             end
-            else if (card0_card_core0_regs_fifo1_out_ready) begin
-                card0_card_core0_regs_fifo1_direct_request_x <= 1;
-                card0_card_core0_regs_fifo1_reg_word40_hw_value <= (card0_card_core0_regs_fifo1_reg_word40_hw_value - 1);
-                card0_card_core0_regs_fifo1_direct_pulse2_gap <= (card0_card_core0_regs_fifo1_reg_word38_value - 1);
+            else if (card1_card_core1_regs_fifo2_out_ready) begin
+                card1_card_core1_regs_fifo2_direct_request_x <= 1;
+                card1_card_core1_regs_fifo2_reg_word61_hw_value <= (card1_card_core1_regs_fifo2_reg_word61_hw_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_gap <= (card1_card_core1_regs_fifo2_reg_word59_value - 1);
             end
         end
     end
@@ -3632,40 +3640,40 @@ end
 
 
 
-assign card0_card_core0_regs_fifo1_direct_busy_y = (card0_card_core0_regs_fifo1_direct_pulse3_load || (card0_card_core0_regs_fifo1_reg_word41_hw_value != 0));
+assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_load || (card1_card_core1_regs_fifo2_reg_word62_hw_value != 0));
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_direct_pulse3_emit
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct_pulse5_emit
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_direct_request_y <= 0;
-        card0_card_core0_regs_fifo1_direct_dir_y <= 0;
-        card0_card_core0_regs_fifo1_reg_word41_hw_value <= 0;
-        card0_card_core0_regs_fifo1_direct_pulse3_gap <= 0;
+        card1_card_core1_regs_fifo2_direct_request_y <= 0;
+        card1_card_core1_regs_fifo2_direct_dir_y <= 0;
+        card1_card_core1_regs_fifo2_reg_word62_hw_value <= 0;
+        card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_direct_request_y <= 0;
-        if (card0_card_core0_core_clear) begin
-            card0_card_core0_regs_fifo1_reg_word41_hw_value <= 0;
+        card1_card_core1_regs_fifo2_direct_request_y <= 0;
+        if (card1_card_core1_core_clear) begin
+            card1_card_core1_regs_fifo2_reg_word62_hw_value <= 0;
         end
-        else if (card0_card_core0_regs_fifo1_direct_pulse3_load) begin
-            if ((card0_card_core0_regs_fifo1_direct_pulse3_count < 0)) begin
-                card0_card_core0_regs_fifo1_reg_word41_hw_value <= (-card0_card_core0_regs_fifo1_direct_pulse3_count);
-                card0_card_core0_regs_fifo1_direct_dir_y <= 0;
+        else if (card1_card_core1_regs_fifo2_direct_pulse5_load) begin
+            if ((card1_card_core1_regs_fifo2_direct_pulse5_count < 0)) begin
+                card1_card_core1_regs_fifo2_reg_word62_hw_value <= (-card1_card_core1_regs_fifo2_direct_pulse5_count);
+                card1_card_core1_regs_fifo2_direct_dir_y <= 0;
             end
             else begin
-                card0_card_core0_regs_fifo1_reg_word41_hw_value <= card0_card_core0_regs_fifo1_direct_pulse3_count;
-                card0_card_core0_regs_fifo1_direct_dir_y <= 1;
+                card1_card_core1_regs_fifo2_reg_word62_hw_value <= card1_card_core1_regs_fifo2_direct_pulse5_count;
+                card1_card_core1_regs_fifo2_direct_dir_y <= 1;
             end
-            card0_card_core0_regs_fifo1_direct_pulse3_gap <= 0;
+            card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
         end
-        else if ((card0_card_core0_regs_fifo1_reg_word41_hw_value != 0)) begin
-            if ((card0_card_core0_regs_fifo1_direct_pulse3_gap != 0)) begin
-                card0_card_core0_regs_fifo1_direct_pulse3_gap <= (card0_card_core0_regs_fifo1_direct_pulse3_gap - 1);
+        else if ((card1_card_core1_regs_fifo2_reg_word62_hw_value != 0)) begin
+            if ((card1_card_core1_regs_fifo2_direct_pulse5_gap != 0)) begin
+                card1_card_core1_regs_fifo2_direct_pulse5_gap <= (card1_card_core1_regs_fifo2_direct_pulse5_gap - 1);
             end
-            else if (card0_card_core0_regs_fifo1_out_ready) begin
-                card0_card_core0_regs_fifo1_direct_request_y <= 1;
-                card0_card_core0_regs_fifo1_reg_word41_hw_value <= (card0_card_core0_regs_fifo1_reg_word41_hw_value - 1);
-                card0_card_core0_regs_fifo1_direct_pulse3_gap <= (card0_card_core0_regs_fifo1_reg_word39_value - 1);
+            else if (card1_card_core1_regs_fifo2_out_ready) begin
+                card1_card_core1_regs_fifo2_direct_request_y <= 1;
+                card1_card_core1_regs_fifo2_reg_word62_hw_value <= (card1_card_core1_regs_fifo2_reg_word62_hw_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_gap <= (card1_card_core1_regs_fifo2_reg_word60_value - 1);
             end
         end
     end
@@ -3673,147 +3681,147 @@ end
 
 
 
-assign card0_card_core0_regs_fifo1_out_ready = ($signed({1'b0, card0_card_core0_regs_fifo1_pulse_out1_count}) <= (4 - 2));
-assign card0_card_core0_regs_fifo1_out_active = ((card0_card_core0_regs_fifo1_pulse_out1_count != 0) || (card0_card_core0_regs_fifo1_pulse_out1_phase != 2'b00) || motor_step_x || motor_step_y);
+assign card1_card_core1_regs_fifo2_out_ready = ($signed({1'b0, card1_card_core1_regs_fifo2_pulse_out2_count}) <= (4 - 2));
+assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) || (card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b00) || motor_step_x || motor_step_y);
 
 
 
-assign card0_card_core0_regs_fifo1_pulse_out1_head = card0_card_core0_regs_fifo1_pulse_out1_queue[0];
+assign card1_card_core1_regs_fifo2_pulse_out2_head = card1_card_core1_regs_fifo2_pulse_out2_queue[0];
 
 
-always @(card0_card_core0_regs_fifo1_pulse_out1_phase_clocks, card0_card_core0_regs_fifo1_pulse_out1_head, card0_card_core0_regs_fifo1_pulse_out1_phase, card0_card_core0_regs_fifo1_pulse_out1_count, card0_card_core0_regs_fifo1_pulse_out1_dir_level_x, card0_card_core0_regs_fifo1_pulse_out1_dir_level_y, card0_card_core0_core_clear, card0_card_core0_regs_fifo1_reg_word34_value, card0_card_core0_regs_fifo1_reg_word35_value, card0_card_core0_regs_fifo1_pulse_out1_low_clocks) begin: card0_card_core0_regs_fifo1_pulse_out1_decide
-    card0_card_core0_regs_fifo1_pulse_out1_turn = ((card0_card_core0_regs_fifo1_pulse_out1_count != 0) && ((card0_card_core0_regs_fifo1_pulse_out1_head[0] && (card0_card_core0_regs_fifo1_pulse_out1_head[2] != card0_card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card0_card_core0_regs_fifo1_pulse_out1_head[1] && (card0_card_core0_regs_fifo1_pulse_out1_head[3] != card0_card_core0_regs_fifo1_pulse_out1_dir_level_y))));
-    card0_card_core0_regs_fifo1_pulse_out1_take = 1'b0;
-    if (((card0_card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card0_card_core0_core_clear) && (card0_card_core0_regs_fifo1_pulse_out1_low_clocks >= card0_card_core0_regs_fifo1_reg_word34_value))) begin
-        if ((card0_card_core0_regs_fifo1_pulse_out1_phase == 2'b01)) begin
-            card0_card_core0_regs_fifo1_pulse_out1_take = (card0_card_core0_regs_fifo1_pulse_out1_phase_clocks >= card0_card_core0_regs_fifo1_reg_word35_value);
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_reg_word55_value, card1_card_core1_regs_fifo2_reg_word56_value, card1_card_core1_regs_fifo2_pulse_out2_low_clocks) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
+    card1_card_core1_regs_fifo2_pulse_out2_turn = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) && ((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
+    card1_card_core1_regs_fifo2_pulse_out2_take = 1'b0;
+    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_core_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word55_value))) begin
+        if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b01)) begin
+            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word56_value);
         end
-        else if ((card0_card_core0_regs_fifo1_pulse_out1_count != 0)) begin
-            card0_card_core0_regs_fifo1_pulse_out1_take = (!((card0_card_core0_regs_fifo1_pulse_out1_head[0] && (card0_card_core0_regs_fifo1_pulse_out1_head[2] != card0_card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card0_card_core0_regs_fifo1_pulse_out1_head[1] && (card0_card_core0_regs_fifo1_pulse_out1_head[3] != card0_card_core0_regs_fifo1_pulse_out1_dir_level_y))));
+        else if ((card1_card_core1_regs_fifo2_pulse_out2_count != 0)) begin
+            card1_card_core1_regs_fifo2_pulse_out2_take = (!((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
         end
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_pulse_out1_step_phases
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_step_phases
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_pulse_out1_phase_clocks <= 0;
-        card0_card_core0_regs_fifo1_pulse_out1_level_y <= 0;
-        card0_card_core0_regs_fifo1_pulse_out1_phase <= 2'b00;
-        card0_card_core0_regs_fifo1_pulse_out1_dir_level_x <= 1;
-        card0_card_core0_regs_fifo1_pulse_out1_dir_level_y <= 1;
-        card0_card_core0_regs_fifo1_pulse_out1_low_clocks <= 255;
-        card0_card_core0_regs_fifo1_pulse_out1_level_x <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_phase_clocks <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_level_y <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b00;
+        card1_card_core1_regs_fifo2_pulse_out2_dir_level_x <= 1;
+        card1_card_core1_regs_fifo2_pulse_out2_dir_level_y <= 1;
+        card1_card_core1_regs_fifo2_pulse_out2_low_clocks <= 255;
+        card1_card_core1_regs_fifo2_pulse_out2_level_x <= 0;
     end
     else begin
-        if ((card0_card_core0_regs_fifo1_pulse_out1_phase == 2'b10)) begin
-            if ((card0_card_core0_regs_fifo1_pulse_out1_phase_clocks >= card0_card_core0_regs_fifo1_reg_word34_value)) begin
-                card0_card_core0_regs_fifo1_pulse_out1_level_x <= 0;
-                card0_card_core0_regs_fifo1_pulse_out1_level_y <= 0;
-                card0_card_core0_regs_fifo1_pulse_out1_low_clocks <= 1;
-                card0_card_core0_regs_fifo1_pulse_out1_phase <= 2'b00;
+        if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10)) begin
+            if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word55_value)) begin
+                card1_card_core1_regs_fifo2_pulse_out2_level_x <= 0;
+                card1_card_core1_regs_fifo2_pulse_out2_level_y <= 0;
+                card1_card_core1_regs_fifo2_pulse_out2_low_clocks <= 1;
+                card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b00;
             end
             else begin
-                card0_card_core0_regs_fifo1_pulse_out1_phase_clocks <= (card0_card_core0_regs_fifo1_pulse_out1_phase_clocks + 1);
+                card1_card_core1_regs_fifo2_pulse_out2_phase_clocks <= (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks + 1);
             end
         end
         else begin
-            if ((card0_card_core0_regs_fifo1_pulse_out1_low_clocks < 255)) begin
-                card0_card_core0_regs_fifo1_pulse_out1_low_clocks <= (card0_card_core0_regs_fifo1_pulse_out1_low_clocks + 1);
+            if ((card1_card_core1_regs_fifo2_pulse_out2_low_clocks < 255)) begin
+                card1_card_core1_regs_fifo2_pulse_out2_low_clocks <= (card1_card_core1_regs_fifo2_pulse_out2_low_clocks + 1);
             end
-            if (card0_card_core0_regs_fifo1_pulse_out1_take) begin
-                card0_card_core0_regs_fifo1_pulse_out1_level_x <= card0_card_core0_regs_fifo1_pulse_out1_head[0];
-                card0_card_core0_regs_fifo1_pulse_out1_level_y <= card0_card_core0_regs_fifo1_pulse_out1_head[1];
-                card0_card_core0_regs_fifo1_pulse_out1_phase_clocks <= 1;
-                card0_card_core0_regs_fifo1_pulse_out1_phase <= 2'b10;
+            if (card1_card_core1_regs_fifo2_pulse_out2_take) begin
+                card1_card_core1_regs_fifo2_pulse_out2_level_x <= card1_card_core1_regs_fifo2_pulse_out2_head[0];
+                card1_card_core1_regs_fifo2_pulse_out2_level_y <= card1_card_core1_regs_fifo2_pulse_out2_head[1];
+                card1_card_core1_regs_fifo2_pulse_out2_phase_clocks <= 1;
+                card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b10;
             end
-            else if (card0_card_core0_core_clear) begin
-                card0_card_core0_regs_fifo1_pulse_out1_phase <= 2'b00;
+            else if (card1_card_core1_core_clear) begin
+                card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b00;
             end
-            else if ((card0_card_core0_regs_fifo1_pulse_out1_phase == 2'b01)) begin
-                if ((card0_card_core0_regs_fifo1_pulse_out1_phase_clocks < 255)) begin
-                    card0_card_core0_regs_fifo1_pulse_out1_phase_clocks <= (card0_card_core0_regs_fifo1_pulse_out1_phase_clocks + 1);
+            else if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b01)) begin
+                if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks < 255)) begin
+                    card1_card_core1_regs_fifo2_pulse_out2_phase_clocks <= (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks + 1);
                 end
             end
-            else if ((card0_card_core0_regs_fifo1_pulse_out1_turn && (card0_card_core0_regs_fifo1_pulse_out1_low_clocks >= card0_card_core0_regs_fifo1_reg_word36_value))) begin
-                if (card0_card_core0_regs_fifo1_pulse_out1_head[0]) begin
-                    card0_card_core0_regs_fifo1_pulse_out1_dir_level_x <= card0_card_core0_regs_fifo1_pulse_out1_head[2];
+            else if ((card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word57_value))) begin
+                if (card1_card_core1_regs_fifo2_pulse_out2_head[0]) begin
+                    card1_card_core1_regs_fifo2_pulse_out2_dir_level_x <= card1_card_core1_regs_fifo2_pulse_out2_head[2];
                 end
-                if (card0_card_core0_regs_fifo1_pulse_out1_head[1]) begin
-                    card0_card_core0_regs_fifo1_pulse_out1_dir_level_y <= card0_card_core0_regs_fifo1_pulse_out1_head[3];
+                if (card1_card_core1_regs_fifo2_pulse_out2_head[1]) begin
+                    card1_card_core1_regs_fifo2_pulse_out2_dir_level_y <= card1_card_core1_regs_fifo2_pulse_out2_head[3];
                 end
-                card0_card_core0_regs_fifo1_pulse_out1_phase_clocks <= 1;
-                card0_card_core0_regs_fifo1_pulse_out1_phase <= 2'b01;
+                card1_card_core1_regs_fifo2_pulse_out2_phase_clocks <= 1;
+                card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b01;
             end
         end
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_pulse_out1_fill
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_fill
     reg [3-1:0] used;
     integer i;
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_pulse_out1_count <= 0;
-        card0_card_core0_regs_fifo1_pulse_out1_queue[0] <= 0;
-        card0_card_core0_regs_fifo1_pulse_out1_queue[1] <= 0;
-        card0_card_core0_regs_fifo1_pulse_out1_queue[2] <= 0;
-        card0_card_core0_regs_fifo1_pulse_out1_queue[3] <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_count <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_queue[0] <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_queue[1] <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_queue[2] <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_queue[3] <= 0;
     end
     else begin
         used = 0;
-        used = card0_card_core0_regs_fifo1_pulse_out1_count;
-        if (card0_card_core0_core_clear) begin
+        used = card1_card_core1_regs_fifo2_pulse_out2_count;
+        if (card1_card_core1_core_clear) begin
             used = 0;
         end
-        else if (card0_card_core0_regs_fifo1_pulse_out1_take) begin
+        else if (card1_card_core1_regs_fifo2_pulse_out2_take) begin
             for (i=0; i<(4 - 1); i=i+1) begin
-                card0_card_core0_regs_fifo1_pulse_out1_queue[i] <= card0_card_core0_regs_fifo1_pulse_out1_queue[(i + 1)];
+                card1_card_core1_regs_fifo2_pulse_out2_queue[i] <= card1_card_core1_regs_fifo2_pulse_out2_queue[(i + 1)];
             end
             used = (used - 1);
         end
-        if (((card0_card_core0_regs_fifo1_requests_step_x || card0_card_core0_regs_fifo1_requests_step_y) && (!card0_card_core0_core_clear))) begin
-            card0_card_core0_regs_fifo1_pulse_out1_queue[used[2-1:0]] <= {card0_card_core0_regs_fifo1_requests_dir_y, card0_card_core0_regs_fifo1_requests_dir_x, card0_card_core0_regs_fifo1_requests_step_y, card0_card_core0_regs_fifo1_requests_step_x};
+        if (((card1_card_core1_regs_fifo2_requests_step_x || card1_card_core1_regs_fifo2_requests_step_y) && (!card1_card_core1_core_clear))) begin
+            card1_card_core1_regs_fifo2_pulse_out2_queue[used[2-1:0]] <= {card1_card_core1_regs_fifo2_requests_dir_y, card1_card_core1_regs_fifo2_requests_dir_x, card1_card_core1_regs_fifo2_requests_step_y, card1_card_core1_regs_fifo2_requests_step_x};
             used = (used + 1);
         end
-        card0_card_core0_regs_fifo1_pulse_out1_count <= used;
+        card1_card_core1_regs_fifo2_pulse_out2_count <= used;
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_pulse_out1_drive_pins
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_drive_pins
     if (reset == 0) begin
         motor_step_x <= 0;
         motor_dir_x <= 0;
         motor_dir_y <= 0;
-        card0_card_core0_regs_fifo1_position_y <= 0;
-        card0_card_core0_regs_fifo1_pulse_out1_position_x <= 0;
+        card1_card_core1_regs_fifo2_position_y <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
         motor_step_y <= 0;
     end
     else begin
-        motor_step_x <= card0_card_core0_regs_fifo1_pulse_out1_level_x;
-        motor_step_y <= card0_card_core0_regs_fifo1_pulse_out1_level_y;
-        motor_dir_x <= (card0_card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card0_card_core0_regs_fifo1_reg_word37_value[0]);
-        motor_dir_y <= (card0_card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card0_card_core0_regs_fifo1_reg_word37_value[1]);
-        if (card0_card_core0_regs_fifo1_clear_position) begin
-            card0_card_core0_regs_fifo1_pulse_out1_position_x <= 0;
-            card0_card_core0_regs_fifo1_position_y <= 0;
+        motor_step_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
+        motor_step_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
+        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word58_value[0]);
+        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word58_value[1]);
+        if (card1_card_core1_regs_fifo2_clear_position) begin
+            card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
+            card1_card_core1_regs_fifo2_position_y <= 0;
         end
         else begin
-            if ((card0_card_core0_regs_fifo1_pulse_out1_level_x && (!motor_step_x))) begin
-                if (card0_card_core0_regs_fifo1_pulse_out1_dir_level_x) begin
-                    card0_card_core0_regs_fifo1_pulse_out1_position_x <= (card0_card_core0_regs_fifo1_pulse_out1_position_x + 1);
+            if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!motor_step_x))) begin
+                if (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x) begin
+                    card1_card_core1_regs_fifo2_pulse_out2_position_x <= (card1_card_core1_regs_fifo2_pulse_out2_position_x + 1);
                 end
                 else begin
-                    card0_card_core0_regs_fifo1_pulse_out1_position_x <= (card0_card_core0_regs_fifo1_pulse_out1_position_x - 1);
+                    card1_card_core1_regs_fifo2_pulse_out2_position_x <= (card1_card_core1_regs_fifo2_pulse_out2_position_x - 1);
                 end
             end
-            if ((card0_card_core0_regs_fifo1_pulse_out1_level_y && (!motor_step_y))) begin
-                if (card0_card_core0_regs_fifo1_pulse_out1_dir_level_y) begin
-                    card0_card_core0_regs_fifo1_position_y <= (card0_card_core0_regs_fifo1_position_y + 1);
+            if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!motor_step_y))) begin
+                if (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y) begin
+                    card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y + 1);
                 end
                 else begin
-                    card0_card_core0_regs_fifo1_position_y <= (card0_card_core0_regs_fifo1_position_y - 1);
+                    card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y - 1);
                 end
             end
         end
@@ -3821,214 +3829,247 @@ always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_pulse_
 end
 
 
-always @(card0_pci_slave1_local_re, card0_pci_slave1_local_be, card0_pci_slave1_local_space, card0_pci_slave1_local_we, card0_card_core0_regs_fifo1_fifo_full) begin: card0_card_core0_regs_fifo1_decode_bus
+always @(card1_pci_slave2_local_re, card1_pci_slave2_local_be, card1_pci_slave2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
-    if (card0_pci_slave1_local_be[0]) begin
+    if (card1_pci_slave2_local_be[0]) begin
         mask[8-1:0] = 255;
     end
-    if (card0_pci_slave1_local_be[1]) begin
+    if (card1_pci_slave2_local_be[1]) begin
         mask[16-1:8] = 255;
     end
-    if (card0_pci_slave1_local_be[2]) begin
+    if (card1_pci_slave2_local_be[2]) begin
         mask[24-1:16] = 255;
     end
-    if (card0_pci_slave1_local_be[3]) begin
+    if (card1_pci_slave2_local_be[3]) begin
         mask[32-1:24] = 255;
     end
-    card0_card_core0_regs_fifo1_byte_mask = mask;
-    card0_card_core0_regs_fifo1_io_write = (card0_pci_slave1_local_we && (!card0_pci_slave1_local_space));
-    card0_card_core0_regs_fifo1_io_read = (card0_pci_slave1_local_re && (!card0_pci_slave1_local_space));
-    card0_card_core0_regs_fifo1_push = (card0_pci_slave1_local_we && card0_pci_slave1_local_space && (!card0_card_core0_regs_fifo1_fifo_full) && (card0_pci_slave1_local_be != 0));
+    card1_card_core1_regs_fifo2_byte_mask = mask;
+    card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_local_we && (!card1_pci_slave2_local_space));
+    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_local_space));
+    card1_card_core1_regs_fifo2_push = (card1_pci_slave2_local_we && card1_pci_slave2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_local_be != 0));
 end
 
 
 
-assign card0_pci_slave1_local_ready = (card0_pci_slave1_local_re || (card0_pci_slave1_local_we && (!(card0_pci_slave1_local_space && card0_card_core0_regs_fifo1_fifo_full))));
-assign card0_pci_slave1_local_retry = (card0_pci_slave1_local_we && card0_pci_slave1_local_space && card0_card_core0_regs_fifo1_fifo_full);
-assign card0_pci_slave1_local_rdata = card0_card_core0_regs_fifo1_read_end;
+assign card1_pci_slave2_local_ready = (card1_pci_slave2_local_re || (card1_pci_slave2_local_we && (!(card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full))));
+assign card1_pci_slave2_local_retry = (card1_pci_slave2_local_we && card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full);
+assign card1_pci_slave2_local_rdata = card1_card_core1_regs_fifo2_read_end;
 
 
 
-assign card0_card_core0_regs_fifo1_enable = (card0_card_core0_regs_fifo1_control[0] && (!card0_card_core0_regs_fifo1_control[1]));
-assign card0_card_core0_regs_fifo1_direct_mode = card0_card_core0_regs_fifo1_control[1];
-assign card0_card_core0_regs_fifo1_clear_error = (card0_card_core0_regs_fifo1_command_strobe && card0_card_core0_regs_fifo1_command[1]);
-assign card0_card_core0_regs_fifo1_clear_position = (card0_card_core0_regs_fifo1_command_strobe && card0_card_core0_regs_fifo1_command[2]);
+assign card1_card_core1_regs_fifo2_enable = (card1_card_core1_regs_fifo2_control[0] && (!card1_card_core1_regs_fifo2_control[1]));
+assign card1_card_core1_regs_fifo2_direct_mode = card1_card_core1_regs_fifo2_control[1];
+assign card1_card_core1_regs_fifo2_clear_error = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[1]);
+assign card1_card_core1_regs_fifo2_clear_position = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[2]);
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_soft_reset
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_soft_reset
     if (reset == 0) begin
-        card0_card_core0_core_clear <= 0;
+        card1_card_core1_core_clear <= 0;
     end
     else begin
-        card0_card_core0_core_clear <= (card0_card_core0_regs_fifo1_command_strobe && card0_card_core0_regs_fifo1_command[0]);
+        card1_card_core1_core_clear <= (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[0]);
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1_snapshot
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_snapshot
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_pos_y_snapshot <= 0;
+        card1_card_core1_regs_fifo2_pos_y_snapshot <= 0;
     end
     else begin
-        if ((card0_card_core0_regs_fifo1_io_read && (card0_pci_slave1_local_addr == 32))) begin
-            card0_card_core0_regs_fifo1_pos_y_snapshot <= card0_card_core0_regs_fifo1_position_y;
+        if ((card1_card_core1_regs_fifo2_io_read && (card1_pci_slave2_local_addr == 32))) begin
+            card1_card_core1_regs_fifo2_pos_y_snapshot <= card1_card_core1_regs_fifo2_position_y;
         end
     end
 end
 
 
 
-assign card0_card_core0_regs_fifo1_pulse_busy = (card0_card_core0_regs_fifo1_direct_busy_x || card0_card_core0_regs_fifo1_direct_busy_y);
-assign card0_card_core0_regs_fifo1_hold = (!card0_card_core0_regs_fifo1_out_ready);
-assign card0_card_core0_regs_fifo1_dda_advance = (card0_card_core0_regs_fifo1_tick && card0_card_core0_regs_fifo1_out_ready && card0_card_core0_regs_fifo1_motion_run);
-assign card0_card_core0_regs_fifo1_any_busy = (card0_card_core0_regs_fifo1_seq_busy || card0_card_core0_regs_fifo1_direct_busy_x || card0_card_core0_regs_fifo1_direct_busy_y || card0_card_core0_regs_fifo1_out_active || card0_card_core0_regs_fifo1_dda_busy);
+assign card1_card_core1_regs_fifo2_pulse_busy = (card1_card_core1_regs_fifo2_direct_busy_x || card1_card_core1_regs_fifo2_direct_busy_y);
+assign card1_card_core1_regs_fifo2_hold = (!card1_card_core1_regs_fifo2_out_ready);
+assign card1_card_core1_regs_fifo2_dda_advance = (card1_card_core1_regs_fifo2_tick && card1_card_core1_regs_fifo2_out_ready && card1_card_core1_regs_fifo2_motion_run);
+assign card1_card_core1_regs_fifo2_any_busy = (card1_card_core1_regs_fifo2_seq_busy || card1_card_core1_regs_fifo2_direct_busy_x || card1_card_core1_regs_fifo2_direct_busy_y || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy);
 
 
 
-assign card0_card_core0_regs_fifo1_requests_step_x = (card0_card_core0_regs_fifo1_steps_step_x || card0_card_core0_regs_fifo1_direct_request_x);
-assign card0_card_core0_regs_fifo1_requests_step_y = (card0_card_core0_regs_fifo1_steps_step_y || card0_card_core0_regs_fifo1_direct_request_y);
-assign card0_card_core0_regs_fifo1_requests_dir_x = card0_card_core0_regs_fifo1_steps_step_x ? card0_card_core0_regs_fifo1_steps_dir_x : card0_card_core0_regs_fifo1_direct_dir_x;
-assign card0_card_core0_regs_fifo1_requests_dir_y = card0_card_core0_regs_fifo1_steps_step_y ? card0_card_core0_regs_fifo1_steps_dir_y : card0_card_core0_regs_fifo1_direct_dir_y;
+assign card1_card_core1_regs_fifo2_requests_step_x = (card1_card_core1_regs_fifo2_steps_step_x || card1_card_core1_regs_fifo2_direct_request_x);
+assign card1_card_core1_regs_fifo2_requests_step_y = (card1_card_core1_regs_fifo2_steps_step_y || card1_card_core1_regs_fifo2_direct_request_y);
+assign card1_card_core1_regs_fifo2_requests_dir_x = card1_card_core1_regs_fifo2_steps_step_x ? card1_card_core1_regs_fifo2_steps_dir_x : card1_card_core1_regs_fifo2_direct_dir_x;
+assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_steps_step_y ? card1_card_core1_regs_fifo2_steps_dir_y : card1_card_core1_regs_fifo2_direct_dir_y;
 
 
 
-assign card0_card_core0_regs_fifo1_level_wide = {6'h0, card0_card_core0_regs_fifo1_fifo_level};
+assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card0_card_core0_regs_fifo1_reg_word40_strobe, card0_card_core0_regs_fifo1_reg_word40_value, card0_card_core0_regs_fifo1_seq_load, card0_card_core0_regs_fifo1_sequencer1_pulse_count_x, card0_card_core0_regs_fifo1_direct_mode) begin: card0_card_core0_regs_fifo1__axis_source2_choose_source
-    if (card0_card_core0_regs_fifo1_direct_mode) begin
-        card0_card_core0_regs_fifo1_direct_pulse2_load = card0_card_core0_regs_fifo1_reg_word40_strobe;
-        card0_card_core0_regs_fifo1_direct_pulse2_count = $signed(card0_card_core0_regs_fifo1_reg_word40_value);
+always @(card1_card_core1_regs_fifo2_reg_word61_strobe, card1_card_core1_regs_fifo2_reg_word61_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulse_count_x, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
+    if (card1_card_core1_regs_fifo2_direct_mode) begin
+        card1_card_core1_regs_fifo2_direct_pulse4_load = card1_card_core1_regs_fifo2_reg_word61_strobe;
+        card1_card_core1_regs_fifo2_direct_pulse4_count = $signed(card1_card_core1_regs_fifo2_reg_word61_value);
     end
     else begin
-        card0_card_core0_regs_fifo1_direct_pulse2_load = card0_card_core0_regs_fifo1_seq_load;
-        card0_card_core0_regs_fifo1_direct_pulse2_count = card0_card_core0_regs_fifo1_sequencer1_pulse_count_x;
+        card1_card_core1_regs_fifo2_direct_pulse4_load = card1_card_core1_regs_fifo2_seq_load;
+        card1_card_core1_regs_fifo2_direct_pulse4_count = card1_card_core1_regs_fifo2_sequencer2_pulse_count_x;
     end
 end
 
 
-always @(card0_card_core0_regs_fifo1_reg_word41_strobe, card0_card_core0_regs_fifo1_reg_word41_value, card0_card_core0_regs_fifo1_seq_load, card0_card_core0_regs_fifo1_sequencer1_pulse_count_y, card0_card_core0_regs_fifo1_direct_mode) begin: card0_card_core0_regs_fifo1__axis_source3_choose_source
-    if (card0_card_core0_regs_fifo1_direct_mode) begin
-        card0_card_core0_regs_fifo1_direct_pulse3_load = card0_card_core0_regs_fifo1_reg_word41_strobe;
-        card0_card_core0_regs_fifo1_direct_pulse3_count = $signed(card0_card_core0_regs_fifo1_reg_word41_value);
+always @(card1_card_core1_regs_fifo2_reg_word62_strobe, card1_card_core1_regs_fifo2_reg_word62_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulse_count_y, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
+    if (card1_card_core1_regs_fifo2_direct_mode) begin
+        card1_card_core1_regs_fifo2_direct_pulse5_load = card1_card_core1_regs_fifo2_reg_word62_strobe;
+        card1_card_core1_regs_fifo2_direct_pulse5_count = $signed(card1_card_core1_regs_fifo2_reg_word62_value);
     end
     else begin
-        card0_card_core0_regs_fifo1_direct_pulse3_load = card0_card_core0_regs_fifo1_seq_load;
-        card0_card_core0_regs_fifo1_direct_pulse3_count = card0_card_core0_regs_fifo1_sequencer1_pulse_count_y;
+        card1_card_core1_regs_fifo2_direct_pulse5_load = card1_card_core1_regs_fifo2_seq_load;
+        card1_card_core1_regs_fifo2_direct_pulse5_count = card1_card_core1_regs_fifo2_sequencer2_pulse_count_y;
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1__status1_track_done
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2__status2_track_done
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_done_flag <= 0;
-        card0_card_core0_regs_fifo1_busy_before <= 0;
+        card1_card_core1_regs_fifo2_done_flag <= 0;
+        card1_card_core1_regs_fifo2_busy_before <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_busy_before <= card0_card_core0_regs_fifo1_any_busy;
-        if (card0_card_core0_regs_fifo1_any_busy) begin
-            card0_card_core0_regs_fifo1_done_flag <= 0;
+        card1_card_core1_regs_fifo2_busy_before <= card1_card_core1_regs_fifo2_any_busy;
+        if (card1_card_core1_regs_fifo2_any_busy) begin
+            card1_card_core1_regs_fifo2_done_flag <= 0;
         end
-        else if (card0_card_core0_regs_fifo1_busy_before) begin
-            card0_card_core0_regs_fifo1_done_flag <= 1;
+        else if (card1_card_core1_regs_fifo2_busy_before) begin
+            card1_card_core1_regs_fifo2_done_flag <= 1;
         end
     end
 end
 
 
-always @(card0_card_core0_regs_fifo1_fifo_empty, card0_card_core0_regs_fifo1_done_flag, card0_card_core0_regs_fifo1_error_code, card0_card_core0_regs_fifo1_any_busy, card0_card_core0_regs_fifo1__status1_quadrant, card0_card_core0_regs_fifo1_level_wide, card0_card_core0_regs_fifo1_fifo_full) begin: card0_card_core0_regs_fifo1__status1_assemble
+always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_done_flag, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2__status2_quadrant, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2__status2_assemble
     reg [32-1:0] word;
     word = 32'h0;
-    word[0] = card0_card_core0_regs_fifo1_any_busy;
-    word[1] = card0_card_core0_regs_fifo1_done_flag;
-    word[2+:2] = card0_card_core0_regs_fifo1__status1_quadrant;
-    word[4+:4] = card0_card_core0_regs_fifo1_error_code;
-    word[8] = card0_card_core0_regs_fifo1_fifo_empty;
-    word[9] = card0_card_core0_regs_fifo1_fifo_full;
-    word[32-1:16] = card0_card_core0_regs_fifo1_level_wide;
-    card0_card_core0_regs_fifo1_reg_word24_hw_value = word;
+    word[0] = card1_card_core1_regs_fifo2_any_busy;
+    word[1] = card1_card_core1_regs_fifo2_done_flag;
+    word[2+:2] = card1_card_core1_regs_fifo2__status2_quadrant;
+    word[4+:4] = card1_card_core1_regs_fifo2_error_code;
+    word[8] = card1_card_core1_regs_fifo2_fifo_empty;
+    word[9] = card1_card_core1_regs_fifo2_fifo_full;
+    word[32-1:16] = card1_card_core1_regs_fifo2_level_wide;
+    card1_card_core1_regs_fifo2_reg_word45_hw_value = word;
 end
 
 
-always @(posedge clock, negedge reset) begin: card0_card_core0_regs_fifo1__interrupts1_remember
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2__interrupts2_remember
     if (reset == 0) begin
-        card0_card_core0_regs_fifo1_error_before <= 0;
-        card0_card_core0_regs_fifo1_low_before <= 0;
-        card0_card_core0_regs_fifo1_reg_word28_hw_value <= 0;
+        card1_card_core1_regs_fifo2_error_before <= 0;
+        card1_card_core1_regs_fifo2_low_before <= 0;
+        card1_card_core1_regs_fifo2_reg_word49_hw_value <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_error_before <= (card0_card_core0_regs_fifo1_error_code != 0);
-        card0_card_core0_regs_fifo1_low_before <= (card0_card_core0_regs_fifo1_level_wide < card0_card_core0_regs_fifo1_reg_word27_value);
-        if (card0_card_core0_regs_fifo1_mark_strobe) begin
-            card0_card_core0_regs_fifo1_reg_word28_hw_value <= card0_card_core0_regs_fifo1_mark_tag;
+        card1_card_core1_regs_fifo2_error_before <= (card1_card_core1_regs_fifo2_error_code != 0);
+        card1_card_core1_regs_fifo2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word48_value);
+        if (card1_card_core1_regs_fifo2_mark_strobe) begin
+            card1_card_core1_regs_fifo2_reg_word49_hw_value <= card1_card_core1_regs_fifo2_mark_tag;
         end
     end
 end
 
 
-always @(card0_card_core0_regs_fifo1_reg_word41_clamp_out, card0_card_core0_regs_fifo1_error_code, card0_card_core0_regs_fifo1_reg_word27_value, card0_card_core0_regs_fifo1_mark_strobe, card0_card_core0_regs_fifo1_error_before, card0_card_core0_regs_fifo1_any_busy, card0_card_core0_regs_fifo1_level_wide, card0_card_core0_regs_fifo1_busy_before, card0_card_core0_regs_fifo1_low_before) begin: card0_card_core0_regs_fifo1__interrupts1_detect
+always @(card1_card_core1_regs_fifo2_reg_word62_clamp_out, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_reg_word48_value, card1_card_core1_regs_fifo2_mark_strobe, card1_card_core1_regs_fifo2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_busy_before, card1_card_core1_regs_fifo2_low_before) begin: card1_card_core1_regs_fifo2__interrupts2_detect
     reg [5-1:0] word;
     word = 5'h0;
-    word[0] = (card0_card_core0_regs_fifo1_busy_before && (!card0_card_core0_regs_fifo1_any_busy));
-    word[1] = ((card0_card_core0_regs_fifo1_level_wide < card0_card_core0_regs_fifo1_reg_word27_value) && (!card0_card_core0_regs_fifo1_low_before));
-    word[2] = ((card0_card_core0_regs_fifo1_error_code != 0) && (!card0_card_core0_regs_fifo1_error_before));
-    word[3] = card0_card_core0_regs_fifo1_mark_strobe;
-    word[4] = card0_card_core0_regs_fifo1_reg_word41_clamp_out;
-    card0_card_core0_regs_fifo1_reg_word26_hw_value = word;
+    word[0] = (card1_card_core1_regs_fifo2_busy_before && (!card1_card_core1_regs_fifo2_any_busy));
+    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word48_value) && (!card1_card_core1_regs_fifo2_low_before));
+    word[2] = ((card1_card_core1_regs_fifo2_error_code != 0) && (!card1_card_core1_regs_fifo2_error_before));
+    word[3] = card1_card_core1_regs_fifo2_mark_strobe;
+    word[4] = card1_card_core1_regs_fifo2_reg_word62_clamp_out;
+    card1_card_core1_regs_fifo2_reg_word47_hw_value = word;
 end
 
 
 
-assign card0_irq = ((card0_card_core0_regs_fifo1_reg_word26_value & card0_card_core0_regs_fifo1_reg_word25_value) != 0);
+assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word47_value & card1_card_core1_regs_fifo2_reg_word46_value) != 0);
 
 
 
-assign card0_card_core0_regs_fifo1_reg_word29_hw_value = card0_card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
-assign card0_card_core0_regs_fifo1_reg_word30_hw_value = card0_card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word50_hw_value = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word51_hw_value = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
-always @(card0_card_core0_dda_arc1_xe, card0_card_core0_regs_fifo1_sequencer1_dda_xs, card0_card_core0_dda_arc1_ys, card0_card_core0_dda_arc1_ye, card0_card_core0_dda_arc1_xs) begin: card0_card_core0_dda_arc1_magnitudes
-    if ((card0_card_core0_regs_fifo1_sequencer1_dda_xs < 0)) begin
-        card0_card_core0_dda_arc1_cmd_mag_xs = (-card0_card_core0_regs_fifo1_sequencer1_dda_xs);
+always @(card1_card_core1_dda_arc2_xe, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_dda_arc2_ys, card1_card_core1_dda_arc2_ye, card1_card_core1_dda_arc2_xs, card1_card_core1_dda_arc2_neg_ys, card1_card_core1_dda_arc2_neg_xs) begin: card1_card_core1_dda_arc2_magnitudes
+    if ((card1_card_core1_regs_fifo2_sequencer2_dda_xs < 0)) begin
+        card1_card_core1_dda_arc2_cmd_mag_xs = (-card1_card_core1_regs_fifo2_sequencer2_dda_xs);
     end
     else begin
-        card0_card_core0_dda_arc1_cmd_mag_xs = card0_card_core0_regs_fifo1_sequencer1_dda_xs;
+        card1_card_core1_dda_arc2_cmd_mag_xs = card1_card_core1_regs_fifo2_sequencer2_dda_xs;
     end
-    if ((card0_card_core0_dda_arc1_xs < 0)) begin
-        card0_card_core0_dda_arc1_mag_xs = (-card0_card_core0_dda_arc1_xs);
-    end
-    else begin
-        card0_card_core0_dda_arc1_mag_xs = card0_card_core0_dda_arc1_xs;
-    end
-    if ((card0_card_core0_dda_arc1_ys < 0)) begin
-        card0_card_core0_dda_arc1_mag_ys = (-card0_card_core0_dda_arc1_ys);
+    card1_card_core1_dda_arc2_neg_xs = (-$signed({card1_card_core1_dda_arc2_xs[(24 - 1)], card1_card_core1_dda_arc2_xs}));
+    card1_card_core1_dda_arc2_neg_ys = (-$signed({card1_card_core1_dda_arc2_ys[(24 - 1)], card1_card_core1_dda_arc2_ys}));
+    if ((card1_card_core1_dda_arc2_xs < 0)) begin
+        card1_card_core1_dda_arc2_mag_xs = card1_card_core1_dda_arc2_neg_xs[24-1:0];
     end
     else begin
-        card0_card_core0_dda_arc1_mag_ys = card0_card_core0_dda_arc1_ys;
+        card1_card_core1_dda_arc2_mag_xs = card1_card_core1_dda_arc2_xs[24-1:0];
     end
-    if ((card0_card_core0_dda_arc1_xe < 0)) begin
-        card0_card_core0_dda_arc1_mag_xe = (-card0_card_core0_dda_arc1_xe);
-    end
-    else begin
-        card0_card_core0_dda_arc1_mag_xe = card0_card_core0_dda_arc1_xe;
-    end
-    if ((card0_card_core0_dda_arc1_ye < 0)) begin
-        card0_card_core0_dda_arc1_mag_ye = (-card0_card_core0_dda_arc1_ye);
+    if ((card1_card_core1_dda_arc2_ys < 0)) begin
+        card1_card_core1_dda_arc2_mag_ys = card1_card_core1_dda_arc2_neg_ys[24-1:0];
     end
     else begin
-        card0_card_core0_dda_arc1_mag_ye = card0_card_core0_dda_arc1_ye;
+        card1_card_core1_dda_arc2_mag_ys = card1_card_core1_dda_arc2_ys[24-1:0];
+    end
+    if ((card1_card_core1_dda_arc2_xe < 0)) begin
+        card1_card_core1_dda_arc2_mag_xe = (-card1_card_core1_dda_arc2_xe);
+    end
+    else begin
+        card1_card_core1_dda_arc2_mag_xe = card1_card_core1_dda_arc2_xe;
+    end
+    if ((card1_card_core1_dda_arc2_ye < 0)) begin
+        card1_card_core1_dda_arc2_mag_ye = (-card1_card_core1_dda_arc2_ye);
+    end
+    else begin
+        card1_card_core1_dda_arc2_mag_ye = card1_card_core1_dda_arc2_ye;
     end
 end
 
 
-always @(card0_card_core0_dda_arc1_mag_ys, card0_card_core0_dda_arc1_xe, card0_card_core0_dda_arc1_variant, card0_card_core0_dda_arc1_ys, card0_card_core0_dda_arc1_mag_xs, card0_card_core0_dda_arc1_mag_xe, card0_card_core0_dda_arc1_lambda_shift, card0_card_core0_dda_arc1_ye, card0_card_core0_dda_arc1_xs, card0_card_core0_dda_arc1_ccw, card0_card_core0_dda_arc1_mag_ye, card0_card_core0_dda_arc1_radius_q, card0_card_core0_dda_arc1_acc_bits, card0_card_core0_dda_arc1_off_circle, card0_card_core0_dda_arc1_square_start) begin: card0_card_core0_dda_arc1_check_logic
+always @(card1_card_core1_dda_arc2_gap, card1_card_core1_dda_arc2_root_bit, card1_card_core1_dda_arc2_state, card1_card_core1_dda_arc2_multiplicand, card1_card_core1_dda_arc2_mac_op) begin: card1_card_core1_dda_arc2_setup_adder
+    reg subtract;
+    reg carry;
+    reg [50-1:0] operand;
+    reg [50-1:0] carry_in;
+    reg [50-1:0] total;
+    subtract = (0 != 0);
+    carry = (0 != 0);
+    operand = 50'h0;
+    carry_in = 50'h0;
+    total = 50'h0;
+    if ((card1_card_core1_dda_arc2_state == 3'b001)) begin
+        subtract = (card1_card_core1_dda_arc2_mac_op < 2);
+        carry = (card1_card_core1_dda_arc2_mac_op < 2);
+    end
+    else begin
+        subtract = (card1_card_core1_dda_arc2_root_bit == 2);
+    end
+    operand = {2'h0, card1_card_core1_dda_arc2_multiplicand};
+    if (subtract) begin
+        operand = (~operand);
+    end
+    carry_in = {49'h0, carry};
+    total = ((card1_card_core1_dda_arc2_gap[50-1:0] + operand) + carry_in);
+    card1_card_core1_dda_arc2_gap_sum = $signed(total);
+end
+
+
+always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_bits, card1_card_core1_dda_arc2_neg_ys, card1_card_core1_dda_arc2_mag_ys, card1_card_core1_dda_arc2_variant, card1_card_core1_dda_arc2_mag_xs, card1_card_core1_dda_arc2_radius_q, card1_card_core1_dda_arc2_end_reaches_low, card1_card_core1_dda_arc2_mag_ye, card1_card_core1_dda_arc2_xe, card1_card_core1_dda_arc2_lambda_shift, card1_card_core1_dda_arc2_ye, card1_card_core1_dda_arc2_xs, card1_card_core1_dda_arc2_neg_xs, card1_card_core1_dda_arc2_mag_xe, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_ys, card1_card_core1_dda_arc2_end_beyond_high, card1_card_core1_dda_arc2_ccw) begin: card1_card_core1_dda_arc2_check_logic
     reg [25-1:0] rq;
-    reg [25-1:0] smear;
-    reg [25-1:0] top_bit;
-    reg [29-1:0] base;
-    reg [29-1:0] one;
+    reg [6-1:0] exponent;
     reg [29-1:0] thr;
+    reg [29-1:0] thr_less;
+    reg [29-1:0] one;
+    reg [32-1:0] below;
+    reg [32-1:0] half;
+    reg [24-1:0] major;
+    reg [24-1:0] major_less;
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
     reg [3-1:0] turns;
@@ -4037,19 +4078,22 @@ always @(card0_card_core0_dda_arc1_mag_ys, card0_card_core0_dda_arc1_xe, card0_c
     reg [24-1:0] b_s;
     reg [24-1:0] a_e;
     reg [24-1:0] b_e;
-    reg [24-1:0] first_in;
-    reg [24-1:0] first_out;
-    reg [24-1:0] last_in;
-    reg [24-1:0] last_out;
-    reg signed [30-1:0] out_x;
-    reg signed [30-1:0] out_y;
+    reg [25-1:0] half_x;
+    reg [25-1:0] half_y;
+    reg [25-1:0] half_turn;
+    reg [4-1:0] fill_x;
+    reg [4-1:0] fill_y;
+    reg [4-1:0] fill_turn;
     reg bad;
     rq = 25'h0;
-    smear = 25'h0;
-    top_bit = 25'h0;
-    base = 29'h0;
-    one = 29'h1;
+    exponent = 6'h0;
     thr = 29'h0;
+    thr_less = 29'h0;
+    one = 29'h1;
+    below = 32'h0;
+    half = 32'h0;
+    major = 24'h0;
+    major_less = 24'h0;
     q_s = 2'h0;
     q_e = 2'h0;
     turns = 3'h0;
@@ -4058,62 +4102,74 @@ always @(card0_card_core0_dda_arc1_mag_ys, card0_card_core0_dda_arc1_xe, card0_c
     b_s = 24'h0;
     a_e = 24'h0;
     b_e = 24'h0;
-    first_in = 24'h0;
-    first_out = 24'h0;
-    last_in = 24'h0;
-    last_out = 24'h0;
-    out_x = 0;
-    out_y = 0;
+    half_x = 25'h0;
+    half_y = 25'h0;
+    half_turn = 25'h0;
+    fill_x = 4'h0;
+    fill_y = 4'h0;
+    fill_turn = 4'h0;
     bad = 1'b0;
-    rq = card0_card_core0_dda_arc1_radius_q;
-    if (((card0_card_core0_dda_arc1_square_start == 0) || ((card0_card_core0_dda_arc1_xe == 0) && (card0_card_core0_dda_arc1_ye == 0)))) begin
+    rq = card1_card_core1_dda_arc2_radius_q;
+    if ((((card1_card_core1_dda_arc2_xs == 0) && (card1_card_core1_dda_arc2_ys == 0)) || ((card1_card_core1_dda_arc2_xe == 0) && (card1_card_core1_dda_arc2_ye == 0)))) begin
         bad = 1'b1;
     end
     if (($signed({1'b0, rq}) >= (1 << (24 - 1)))) begin
         bad = 1'b1;
     end
-    if (card0_card_core0_dda_arc1_off_circle) begin
+    if (((!card1_card_core1_dda_arc2_end_reaches_low) || card1_card_core1_dda_arc2_end_beyond_high)) begin
         bad = 1'b1;
     end
-    smear = (rq | (rq >>> 1));
-    smear = (smear | (smear >>> 2));
-    smear = (smear | (smear >>> 4));
-    smear = (smear | (smear >>> 8));
-    smear = (smear | (smear >>> 16));
-    top_bit = (smear ^ (smear >>> 1));
-    if ((card0_card_core0_dda_arc1_acc_bits != 0)) begin
-        base = (one << card0_card_core0_dda_arc1_acc_bits);
+    if ((card1_card_core1_dda_arc2_acc_bits != 0)) begin
+        exponent = ({1'b0, card1_card_core1_dda_arc2_acc_bits} + {1'b0, card1_card_core1_dda_arc2_lambda_shift});
     end
     else begin
-        base = {3'h0, top_bit, 1'b0};
+        exponent = (card1_card_core1_dda_arc2_radius_length + {1'b0, card1_card_core1_dda_arc2_lambda_shift});
     end
-    thr = (base << card0_card_core0_dda_arc1_lambda_shift);
-    if (((card0_card_core0_dda_arc1_variant != 3) && (thr == 0))) begin
+    thr = (one << exponent);
+    if (((card1_card_core1_dda_arc2_variant != 3) && ($signed({1'b0, exponent}) > (29 - 1)))) begin
         bad = 1'b1;
     end
-    if ((card0_card_core0_dda_arc1_variant == 3)) begin
-        thr = ({4'h0, rq} + 1);
+    thr_less = (thr - 1);
+    below = {3'h0, thr_less};
+    half = (~(below >>> 1));
+    if (((card1_card_core1_dda_arc2_variant == 1) || (card1_card_core1_dda_arc2_variant == 2))) begin
+        half = (~{3'h0, thr});
     end
-    if (card0_card_core0_dda_arc1_ccw) begin
-        if (((card0_card_core0_dda_arc1_xs > 0) && (card0_card_core0_dda_arc1_ys >= 0))) begin
+    if ((card1_card_core1_dda_arc2_variant == 3)) begin
+        thr = ({4'h0, rq} + 1);
+        half = (~{8'h0, rq[(24 + 1)-1:1]});
+    end
+    if ((card1_card_core1_dda_arc2_mag_xe > card1_card_core1_dda_arc2_mag_ye)) begin
+        major = card1_card_core1_dda_arc2_mag_xe;
+    end
+    else begin
+        major = card1_card_core1_dda_arc2_mag_ye;
+    end
+    major_less = (major - 1);
+    if (card1_card_core1_dda_arc2_is_line) begin
+        thr = {5'h0, major};
+        half = (~({8'h0, major_less} >>> 1));
+    end
+    if (card1_card_core1_dda_arc2_ccw) begin
+        if (((card1_card_core1_dda_arc2_xs > 0) && (card1_card_core1_dda_arc2_ys >= 0))) begin
             q_s = 0;
         end
-        else if (((card0_card_core0_dda_arc1_xs <= 0) && (card0_card_core0_dda_arc1_ys > 0))) begin
+        else if (((card1_card_core1_dda_arc2_xs <= 0) && (card1_card_core1_dda_arc2_ys > 0))) begin
             q_s = 1;
         end
-        else if (((card0_card_core0_dda_arc1_xs < 0) && (card0_card_core0_dda_arc1_ys <= 0))) begin
+        else if (((card1_card_core1_dda_arc2_xs < 0) && (card1_card_core1_dda_arc2_ys <= 0))) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((card0_card_core0_dda_arc1_xe >= 0) && (card0_card_core0_dda_arc1_ye > 0))) begin
+        if (((card1_card_core1_dda_arc2_xe >= 0) && (card1_card_core1_dda_arc2_ye > 0))) begin
             q_e = 0;
         end
-        else if (((card0_card_core0_dda_arc1_xe < 0) && (card0_card_core0_dda_arc1_ye >= 0))) begin
+        else if (((card1_card_core1_dda_arc2_xe < 0) && (card1_card_core1_dda_arc2_ye >= 0))) begin
             q_e = 1;
         end
-        else if (((card0_card_core0_dda_arc1_xe <= 0) && (card0_card_core0_dda_arc1_ye < 0))) begin
+        else if (((card1_card_core1_dda_arc2_xe <= 0) && (card1_card_core1_dda_arc2_ye < 0))) begin
             q_e = 2;
         end
         else begin
@@ -4122,25 +4178,25 @@ always @(card0_card_core0_dda_arc1_mag_ys, card0_card_core0_dda_arc1_xe, card0_c
         turn = (q_e - q_s);
     end
     else begin
-        if (((card0_card_core0_dda_arc1_xs >= 0) && (card0_card_core0_dda_arc1_ys > 0))) begin
+        if (((card1_card_core1_dda_arc2_xs >= 0) && (card1_card_core1_dda_arc2_ys > 0))) begin
             q_s = 0;
         end
-        else if (((card0_card_core0_dda_arc1_xs < 0) && (card0_card_core0_dda_arc1_ys >= 0))) begin
+        else if (((card1_card_core1_dda_arc2_xs < 0) && (card1_card_core1_dda_arc2_ys >= 0))) begin
             q_s = 1;
         end
-        else if (((card0_card_core0_dda_arc1_xs <= 0) && (card0_card_core0_dda_arc1_ys < 0))) begin
+        else if (((card1_card_core1_dda_arc2_xs <= 0) && (card1_card_core1_dda_arc2_ys < 0))) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((card0_card_core0_dda_arc1_xe > 0) && (card0_card_core0_dda_arc1_ye >= 0))) begin
+        if (((card1_card_core1_dda_arc2_xe > 0) && (card1_card_core1_dda_arc2_ye >= 0))) begin
             q_e = 0;
         end
-        else if (((card0_card_core0_dda_arc1_xe <= 0) && (card0_card_core0_dda_arc1_ye > 0))) begin
+        else if (((card1_card_core1_dda_arc2_xe <= 0) && (card1_card_core1_dda_arc2_ye > 0))) begin
             q_e = 1;
         end
-        else if (((card0_card_core0_dda_arc1_xe < 0) && (card0_card_core0_dda_arc1_ye <= 0))) begin
+        else if (((card1_card_core1_dda_arc2_xe < 0) && (card1_card_core1_dda_arc2_ye <= 0))) begin
             q_e = 2;
         end
         else begin
@@ -4149,29 +4205,25 @@ always @(card0_card_core0_dda_arc1_mag_ys, card0_card_core0_dda_arc1_xe, card0_c
         turn = (q_s - q_e);
     end
     turns = {1'b0, turn};
-    if ((q_s[0] != card0_card_core0_dda_arc1_ccw)) begin
-        a_s = card0_card_core0_dda_arc1_mag_xs;
-        b_s = card0_card_core0_dda_arc1_mag_ys;
+    if ((q_s[0] != card1_card_core1_dda_arc2_ccw)) begin
+        a_s = card1_card_core1_dda_arc2_mag_xs;
+        b_s = card1_card_core1_dda_arc2_mag_ys;
     end
     else begin
-        a_s = card0_card_core0_dda_arc1_mag_ys;
-        b_s = card0_card_core0_dda_arc1_mag_xs;
+        a_s = card1_card_core1_dda_arc2_mag_ys;
+        b_s = card1_card_core1_dda_arc2_mag_xs;
     end
-    if ((q_e[0] != card0_card_core0_dda_arc1_ccw)) begin
-        a_e = card0_card_core0_dda_arc1_mag_xe;
-        b_e = card0_card_core0_dda_arc1_mag_ye;
+    if ((q_e[0] != card1_card_core1_dda_arc2_ccw)) begin
+        a_e = card1_card_core1_dda_arc2_mag_xe;
+        b_e = card1_card_core1_dda_arc2_mag_ye;
     end
     else begin
-        a_e = card0_card_core0_dda_arc1_mag_ye;
-        b_e = card0_card_core0_dda_arc1_mag_xe;
+        a_e = card1_card_core1_dda_arc2_mag_ye;
+        b_e = card1_card_core1_dda_arc2_mag_xe;
     end
-    first_in = 0;
-    first_out = 0;
-    last_in = 0;
-    last_out = 0;
     if (((turns == 0) && (a_e <= a_s) && (b_e >= b_s) && (!((a_e == a_s) && (b_e == b_s))))) begin
-        first_in = (a_s - a_e);
-        first_out = (b_e - b_s);
+        card1_card_core1_dda_arc2_chk_target_x = card1_card_core1_dda_arc2_mag_xe;
+        card1_card_core1_dda_arc2_chk_target_y = card1_card_core1_dda_arc2_mag_ye;
     end
     else begin
         if ((turns == 0)) begin
@@ -4180,54 +4232,79 @@ always @(card0_card_core0_dda_arc1_mag_ys, card0_card_core0_dda_arc1_xe, card0_c
         if (({1'b0, a_e} > rq)) begin
             bad = 1'b1;
         end
+        if ((q_s[0] != card1_card_core1_dda_arc2_ccw)) begin
+            card1_card_core1_dda_arc2_chk_target_x = 0;
+            card1_card_core1_dda_arc2_chk_target_y = rq[24-1:0];
+        end
         else begin
-            first_in = a_s;
-            first_out = (rq[24-1:0] - b_s);
-            last_in = (rq[24-1:0] - a_e);
-            last_out = b_e;
+            card1_card_core1_dda_arc2_chk_target_x = rq[24-1:0];
+            card1_card_core1_dda_arc2_chk_target_y = 0;
         end
     end
-    card0_card_core0_dda_arc1_chk_error = bad;
-    card0_card_core0_dda_arc1_chk_radius = rq[24-1:0];
-    card0_card_core0_dda_arc1_chk_quadrant = q_s;
-    card0_card_core0_dda_arc1_chk_crossings = turns;
-    if ((q_s[0] != card0_card_core0_dda_arc1_ccw)) begin
-        card0_card_core0_dda_arc1_chk_first_x = first_in;
-        card0_card_core0_dda_arc1_chk_first_y = first_out;
+    card1_card_core1_dda_arc2_chk_error = bad;
+    card1_card_core1_dda_arc2_chk_radius = rq[24-1:0];
+    card1_card_core1_dda_arc2_chk_quadrant = q_s;
+    card1_card_core1_dda_arc2_chk_crossings = turns;
+    card1_card_core1_dda_arc2_chk_threshold = thr;
+    card1_card_core1_dda_arc2_chk_acc_init = $signed(half);
+    if (((card1_card_core1_dda_arc2_xs < 0) != (q_s[0] != card1_card_core1_dda_arc2_ccw))) begin
+        half_x = card1_card_core1_dda_arc2_neg_xs;
     end
     else begin
-        card0_card_core0_dda_arc1_chk_first_x = first_out;
-        card0_card_core0_dda_arc1_chk_first_y = first_in;
+        half_x = {card1_card_core1_dda_arc2_xs[(24 - 1)], card1_card_core1_dda_arc2_xs};
     end
-    if ((q_e[0] != card0_card_core0_dda_arc1_ccw)) begin
-        card0_card_core0_dda_arc1_chk_last_x = last_in;
-        card0_card_core0_dda_arc1_chk_last_y = last_out;
+    if (((card1_card_core1_dda_arc2_ys < 0) != (q_s[0] == card1_card_core1_dda_arc2_ccw))) begin
+        half_y = card1_card_core1_dda_arc2_neg_ys;
     end
     else begin
-        card0_card_core0_dda_arc1_chk_last_x = last_out;
-        card0_card_core0_dda_arc1_chk_last_y = last_in;
+        half_y = {card1_card_core1_dda_arc2_ys[(24 - 1)], card1_card_core1_dda_arc2_ys};
     end
-    card0_card_core0_dda_arc1_chk_threshold = thr;
-    out_x = $signed({5'h0, card0_card_core0_dda_arc1_mag_xs, 1'b1});
-    out_y = $signed({5'h0, card0_card_core0_dda_arc1_mag_ys, 1'b1});
-    if ((q_s[0] != card0_card_core0_dda_arc1_ccw)) begin
-        card0_card_core0_dda_arc1_chk_delta_x = (2 - out_x);
-        card0_card_core0_dda_arc1_chk_delta_y = out_y;
+    half_turn = (-rq);
+    fill_x = 0;
+    fill_y = 0;
+    fill_turn = 0;
+    if (half_x[24]) begin
+        fill_x = 15;
+    end
+    if (half_y[24]) begin
+        fill_y = 15;
+    end
+    if (half_turn[24]) begin
+        fill_turn = 15;
+    end
+    card1_card_core1_dda_arc2_chk_delta_x = $signed({fill_x, half_x, 1'b1});
+    card1_card_core1_dda_arc2_chk_delta_y = $signed({fill_y, half_y, 1'b1});
+    card1_card_core1_dda_arc2_chk_delta_turn = $signed({fill_turn, half_turn, 1'b1});
+end
+
+
+always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_quadrant, card1_card_core1_dda_arc2_mag_x, card1_card_core1_dda_arc2_target_y, card1_card_core1_dda_arc2_ccw, card1_card_core1_dda_arc2_target_x, card1_card_core1_dda_arc2_is_line) begin: card1_card_core1_dda_arc2_piece_progress
+    card1_card_core1_dda_arc2_x_down = ((!card1_card_core1_dda_arc2_is_line) && (card1_card_core1_dda_arc2_quadrant[0] != card1_card_core1_dda_arc2_ccw));
+    card1_card_core1_dda_arc2_y_down = ((!card1_card_core1_dda_arc2_is_line) && (card1_card_core1_dda_arc2_quadrant[0] == card1_card_core1_dda_arc2_ccw));
+    if (((!card1_card_core1_dda_arc2_is_line) && (card1_card_core1_dda_arc2_quadrant[0] != card1_card_core1_dda_arc2_ccw))) begin
+        card1_card_core1_dda_arc2_count_x = (card1_card_core1_dda_arc2_mag_x - card1_card_core1_dda_arc2_target_x);
+        card1_card_core1_dda_arc2_count_y = (card1_card_core1_dda_arc2_target_y - card1_card_core1_dda_arc2_mag_y);
+    end
+    else if ((!card1_card_core1_dda_arc2_is_line)) begin
+        card1_card_core1_dda_arc2_count_x = (card1_card_core1_dda_arc2_target_x - card1_card_core1_dda_arc2_mag_x);
+        card1_card_core1_dda_arc2_count_y = (card1_card_core1_dda_arc2_mag_y - card1_card_core1_dda_arc2_target_y);
     end
     else begin
-        card0_card_core0_dda_arc1_chk_delta_x = out_x;
-        card0_card_core0_dda_arc1_chk_delta_y = (2 - out_y);
+        card1_card_core1_dda_arc2_count_x = (card1_card_core1_dda_arc2_target_x - card1_card_core1_dda_arc2_mag_x);
+        card1_card_core1_dda_arc2_count_y = (card1_card_core1_dda_arc2_target_y - card1_card_core1_dda_arc2_mag_y);
     end
-    if (((card0_card_core0_dda_arc1_variant == 0) || (card0_card_core0_dda_arc1_variant == 3))) begin
-        card0_card_core0_dda_arc1_chk_acc_init = ($signed({4'h0, thr[29-1:1]}) - $signed({3'h0, thr}));
+    if (card1_card_core1_dda_arc2_is_line) begin
+        card1_card_core1_dda_arc2_integrand_x = card1_card_core1_dda_arc2_target_x;
+        card1_card_core1_dda_arc2_integrand_y = card1_card_core1_dda_arc2_target_y;
     end
     else begin
-        card0_card_core0_dda_arc1_chk_acc_init = ((-$signed({3'h0, thr})) - 1);
+        card1_card_core1_dda_arc2_integrand_x = card1_card_core1_dda_arc2_mag_y;
+        card1_card_core1_dda_arc2_integrand_y = card1_card_core1_dda_arc2_mag_x;
     end
 end
 
 
-always @(card0_card_core0_dda_arc1_count_y, card0_card_core0_dda_arc1_xe, card0_card_core0_dda_arc1_threshold, card0_card_core0_dda_arc1_mag_y, card0_card_core0_dda_arc1_variant, card0_card_core0_dda_arc1_delta_x, card0_card_core0_dda_arc1_delta_y, card0_card_core0_dda_arc1_count_x, card0_card_core0_dda_arc1_ye, card0_card_core0_dda_arc1_quadrant, card0_card_core0_dda_arc1_mag_x, card0_card_core0_dda_arc1_acc_x, card0_card_core0_dda_arc1_ccw, card0_card_core0_dda_arc1_acc_y, card0_card_core0_dda_arc1_crossings, card0_card_core0_dda_arc1_is_line, card0_card_core0_dda_arc1_radial_error) begin: card0_card_core0_dda_arc1_iteration_logic
+always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_x_down, card1_card_core1_dda_arc2_variant, card1_card_core1_dda_arc2_delta_x, card1_card_core1_dda_arc2_delta_y, card1_card_core1_dda_arc2_crossings, card1_card_core1_dda_arc2_xe, card1_card_core1_dda_arc2_integrand_x, card1_card_core1_dda_arc2_ye, card1_card_core1_dda_arc2_quadrant, card1_card_core1_dda_arc2_integrand_y, card1_card_core1_dda_arc2_y_down, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_radial_error, card1_card_core1_dda_arc2_count_y, card1_card_core1_dda_arc2_threshold, card1_card_core1_dda_arc2_count_x, card1_card_core1_dda_arc2_acc_x, card1_card_core1_dda_arc2_mag_x, card1_card_core1_dda_arc2_ccw, card1_card_core1_dda_arc2_acc_y) begin: card1_card_core1_dda_arc2_iteration_logic
     reg x_in;
     reg x_right;
     reg y_up;
@@ -4292,30 +4369,30 @@ always @(card0_card_core0_dda_arc1_count_y, card0_card_core0_dda_arc1_xe, card0_
     over_y = (0 != 0);
     go_x = (0 != 0);
     go_y = (0 != 0);
-    x_in = (card0_card_core0_dda_arc1_quadrant[0] != card0_card_core0_dda_arc1_ccw);
-    x_right = (card0_card_core0_dda_arc1_quadrant[0] == card0_card_core0_dda_arc1_quadrant[1]);
-    y_up = (!card0_card_core0_dda_arc1_quadrant[1]);
-    if (card0_card_core0_dda_arc1_is_line) begin
-        card0_card_core0_dda_arc1_it_dir_x = (card0_card_core0_dda_arc1_xe >= 0);
-        card0_card_core0_dda_arc1_it_dir_y = (card0_card_core0_dda_arc1_ye >= 0);
+    x_in = (card1_card_core1_dda_arc2_quadrant[0] != card1_card_core1_dda_arc2_ccw);
+    x_right = (card1_card_core1_dda_arc2_quadrant[0] == card1_card_core1_dda_arc2_quadrant[1]);
+    y_up = (!card1_card_core1_dda_arc2_quadrant[1]);
+    if (card1_card_core1_dda_arc2_is_line) begin
+        card1_card_core1_dda_arc2_it_dir_x = (card1_card_core1_dda_arc2_xe >= 0);
+        card1_card_core1_dda_arc2_it_dir_y = (card1_card_core1_dda_arc2_ye >= 0);
     end
     else begin
-        card0_card_core0_dda_arc1_it_dir_x = (x_right != x_in);
-        card0_card_core0_dda_arc1_it_dir_y = (y_up == x_in);
+        card1_card_core1_dda_arc2_it_dir_x = (x_right != x_in);
+        card1_card_core1_dda_arc2_it_dir_y = (y_up == x_in);
     end
     to_mag = 0;
-    thr_low = {3'h0, card0_card_core0_dda_arc1_threshold};
-    sum_y = ($signed({card0_card_core0_dda_arc1_acc_y[(32 - 1)], card0_card_core0_dda_arc1_acc_y}) + $signed({to_mag, card0_card_core0_dda_arc1_mag_x}));
-    mag_y_up = (card0_card_core0_dda_arc1_mag_y + 1);
-    mag_y_down = (card0_card_core0_dda_arc1_mag_y - 1);
-    sum_x = ($signed({card0_card_core0_dda_arc1_acc_x[(32 - 1)], card0_card_core0_dda_arc1_acc_x}) + $signed({to_mag, card0_card_core0_dda_arc1_mag_y}));
-    sum_x_up = ($signed({card0_card_core0_dda_arc1_acc_x[(32 - 1)], card0_card_core0_dda_arc1_acc_x}) + $signed({to_mag, mag_y_up}));
-    sum_x_down = ($signed({card0_card_core0_dda_arc1_acc_x[(32 - 1)], card0_card_core0_dda_arc1_acc_x}) + $signed({to_mag, mag_y_down}));
+    thr_low = {3'h0, card1_card_core1_dda_arc2_threshold};
+    sum_y = ($signed({card1_card_core1_dda_arc2_acc_y[(32 - 1)], card1_card_core1_dda_arc2_acc_y}) + $signed({to_mag, card1_card_core1_dda_arc2_integrand_y}));
+    mag_y_up = (card1_card_core1_dda_arc2_mag_y + 1);
+    mag_y_down = (card1_card_core1_dda_arc2_mag_y - 1);
+    sum_x = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({to_mag, card1_card_core1_dda_arc2_integrand_x}));
+    sum_x_up = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({to_mag, mag_y_up}));
+    sum_x_down = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({to_mag, mag_y_down}));
     over_x = (!sum_x[32]);
     over_x_up = (!sum_x_up[32]);
     over_x_down = (!sum_x_down[32]);
     over_y = (!sum_y[32]);
-    if (((!card0_card_core0_dda_arc1_is_line) && (card0_card_core0_dda_arc1_variant == 0) && over_y)) begin
+    if (((!card1_card_core1_dda_arc2_is_line) && (card1_card_core1_dda_arc2_variant == 0) && over_y)) begin
         if (x_in) begin
             sum_x = sum_x_up;
             over_x = over_x_up;
@@ -4325,26 +4402,26 @@ always @(card0_card_core0_dda_arc1_count_y, card0_card_core0_dda_arc1_xe, card0_
             over_x = over_x_down;
         end
     end
-    delta_xy = ($signed({card0_card_core0_dda_arc1_delta_x[(30 - 1)], card0_card_core0_dda_arc1_delta_x}) + $signed({card0_card_core0_dda_arc1_delta_y[(30 - 1)], card0_card_core0_dda_arc1_delta_y}));
-    cand_x = (card0_card_core0_dda_arc1_radial_error + card0_card_core0_dda_arc1_delta_x);
-    cand_y = (card0_card_core0_dda_arc1_radial_error + card0_card_core0_dda_arc1_delta_y);
-    cand_d = (card0_card_core0_dda_arc1_radial_error + $signed(delta_xy[30-1:0]));
-    both_dx = ($signed({cand_x[30-1:0], 1'b0}) + $signed({card0_card_core0_dda_arc1_delta_y[(30 - 1)], card0_card_core0_dda_arc1_delta_y}));
-    both_dy = ($signed({cand_y[30-1:0], 1'b0}) + $signed({card0_card_core0_dda_arc1_delta_x[(30 - 1)], card0_card_core0_dda_arc1_delta_x}));
-    both_xy = ($signed({card0_card_core0_dda_arc1_radial_error[30-1:0], 1'b0}) + delta_xy);
-    gap_xy = ($signed({card0_card_core0_dda_arc1_delta_x[(30 - 1)], card0_card_core0_dda_arc1_delta_x}) - $signed({card0_card_core0_dda_arc1_delta_y[(30 - 1)], card0_card_core0_dda_arc1_delta_y}));
-    d_le_x = ((card0_card_core0_dda_arc1_delta_y == 0) || (both_dx == 0) || (card0_card_core0_dda_arc1_delta_y[(30 - 1)] != both_dx[30]));
-    d_le_y = ((card0_card_core0_dda_arc1_delta_x == 0) || (both_dy == 0) || (card0_card_core0_dda_arc1_delta_x[(30 - 1)] != both_dy[30]));
+    delta_xy = ($signed({card1_card_core1_dda_arc2_delta_x[(30 - 1)], card1_card_core1_dda_arc2_delta_x}) + $signed({card1_card_core1_dda_arc2_delta_y[(30 - 1)], card1_card_core1_dda_arc2_delta_y}));
+    cand_x = (card1_card_core1_dda_arc2_radial_error + card1_card_core1_dda_arc2_delta_x);
+    cand_y = (card1_card_core1_dda_arc2_radial_error + card1_card_core1_dda_arc2_delta_y);
+    cand_d = (card1_card_core1_dda_arc2_radial_error + $signed(delta_xy[30-1:0]));
+    both_dx = ($signed({cand_x[30-1:0], 1'b0}) + $signed({card1_card_core1_dda_arc2_delta_y[(30 - 1)], card1_card_core1_dda_arc2_delta_y}));
+    both_dy = ($signed({cand_y[30-1:0], 1'b0}) + $signed({card1_card_core1_dda_arc2_delta_x[(30 - 1)], card1_card_core1_dda_arc2_delta_x}));
+    both_xy = ($signed({card1_card_core1_dda_arc2_radial_error[30-1:0], 1'b0}) + delta_xy);
+    gap_xy = ($signed({card1_card_core1_dda_arc2_delta_x[(30 - 1)], card1_card_core1_dda_arc2_delta_x}) - $signed({card1_card_core1_dda_arc2_delta_y[(30 - 1)], card1_card_core1_dda_arc2_delta_y}));
+    d_le_x = ((card1_card_core1_dda_arc2_delta_y == 0) || (both_dx == 0) || (card1_card_core1_dda_arc2_delta_y[(30 - 1)] != both_dx[30]));
+    d_le_y = ((card1_card_core1_dda_arc2_delta_x == 0) || (both_dy == 0) || (card1_card_core1_dda_arc2_delta_x[(30 - 1)] != both_dy[30]));
     x_le_y = ((gap_xy == 0) || (both_xy == 0) || (gap_xy[30] != both_xy[30]));
     go_x = over_x;
     go_y = over_y;
-    if (card0_card_core0_dda_arc1_is_line) begin
-        go_x = (over_x && (card0_card_core0_dda_arc1_count_x != 0));
-        go_y = (over_y && (card0_card_core0_dda_arc1_count_y != 0));
+    if (card1_card_core1_dda_arc2_is_line) begin
+        go_x = (over_x && (card1_card_core1_dda_arc2_count_x != 0));
+        go_y = (over_y && (card1_card_core1_dda_arc2_count_y != 0));
     end
-    else if ((card0_card_core0_dda_arc1_variant == 2)) begin
-        ahead_x = ($signed({card0_card_core0_dda_arc1_acc_x[(32 - 1)], card0_card_core0_dda_arc1_acc_x}) + $signed({to_mag[(32 - 24)-1:0], card0_card_core0_dda_arc1_mag_y, 1'b0}));
-        ahead_y = ($signed({card0_card_core0_dda_arc1_acc_y[(32 - 1)], card0_card_core0_dda_arc1_acc_y}) + $signed({to_mag[(32 - 24)-1:0], card0_card_core0_dda_arc1_mag_x, 1'b0}));
+    else if ((card1_card_core1_dda_arc2_variant == 2)) begin
+        ahead_x = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({to_mag[(32 - 24)-1:0], card1_card_core1_dda_arc2_mag_y, 1'b0}));
+        ahead_y = ($signed({card1_card_core1_dda_arc2_acc_y[(32 - 1)], card1_card_core1_dda_arc2_acc_y}) + $signed({to_mag[(32 - 24)-1:0], card1_card_core1_dda_arc2_mag_x, 1'b0}));
         if ((over_x && (!over_y) && (ahead_y >= 0))) begin
             go_y = 1'b1;
         end
@@ -4352,7 +4429,7 @@ always @(card0_card_core0_dda_arc1_count_y, card0_card_core0_dda_arc1_xe, card0_
             go_x = 1'b1;
         end
     end
-    else if ((card0_card_core0_dda_arc1_variant == 3)) begin
+    else if ((card1_card_core1_dda_arc2_variant == 3)) begin
         go_x = 1'b0;
         go_y = 1'b0;
         if ((over_x || over_y)) begin
@@ -4368,11 +4445,11 @@ always @(card0_card_core0_dda_arc1_count_y, card0_card_core0_dda_arc1_xe, card0_
             end
         end
     end
-    if (((!card0_card_core0_dda_arc1_is_line) && ((card0_card_core0_dda_arc1_count_x == 0) || (card0_card_core0_dda_arc1_count_y == 0)))) begin
-        go_x = (card0_card_core0_dda_arc1_count_x != 0);
-        go_y = (card0_card_core0_dda_arc1_count_y != 0);
-        card0_card_core0_dda_arc1_it_acc_x = card0_card_core0_dda_arc1_acc_x;
-        card0_card_core0_dda_arc1_it_acc_y = card0_card_core0_dda_arc1_acc_y;
+    if (((!card1_card_core1_dda_arc2_is_line) && ((card1_card_core1_dda_arc2_count_x == 0) || (card1_card_core1_dda_arc2_count_y == 0)))) begin
+        go_x = (card1_card_core1_dda_arc2_count_x != 0);
+        go_y = (card1_card_core1_dda_arc2_count_y != 0);
+        card1_card_core1_dda_arc2_it_acc_x = card1_card_core1_dda_arc2_acc_x;
+        card1_card_core1_dda_arc2_it_acc_y = card1_card_core1_dda_arc2_acc_y;
     end
     else begin
         if (((!sum_x[32]) && sum_x[(32 - 1)])) begin
@@ -4389,320 +4466,331 @@ always @(card0_card_core0_dda_arc1_count_y, card0_card_core0_dda_arc1_xe, card0_
         if (go_y) begin
             less_y = (sum_y[32-1:0] - thr_low);
         end
-        card0_card_core0_dda_arc1_it_acc_x = $signed(less_x);
-        card0_card_core0_dda_arc1_it_acc_y = $signed(less_y);
+        card1_card_core1_dda_arc2_it_acc_x = $signed(less_x);
+        card1_card_core1_dda_arc2_it_acc_y = $signed(less_y);
     end
-    card0_card_core0_dda_arc1_it_step_x = go_x;
-    card0_card_core0_dda_arc1_it_step_y = go_y;
-    card0_card_core0_dda_arc1_it_mag_x = card0_card_core0_dda_arc1_mag_x;
-    card0_card_core0_dda_arc1_it_mag_y = card0_card_core0_dda_arc1_mag_y;
-    if ((!card0_card_core0_dda_arc1_is_line)) begin
-        if (go_x) begin
-            if (x_in) begin
-                card0_card_core0_dda_arc1_it_mag_x = (card0_card_core0_dda_arc1_mag_x - 1);
-            end
-            else begin
-                card0_card_core0_dda_arc1_it_mag_x = (card0_card_core0_dda_arc1_mag_x + 1);
-            end
+    card1_card_core1_dda_arc2_it_step_x = go_x;
+    card1_card_core1_dda_arc2_it_step_y = go_y;
+    card1_card_core1_dda_arc2_it_mag_x = card1_card_core1_dda_arc2_mag_x;
+    card1_card_core1_dda_arc2_it_mag_y = card1_card_core1_dda_arc2_mag_y;
+    if (go_x) begin
+        if (card1_card_core1_dda_arc2_x_down) begin
+            card1_card_core1_dda_arc2_it_mag_x = (card1_card_core1_dda_arc2_mag_x - 1);
         end
-        if (go_y) begin
-            if (x_in) begin
-                card0_card_core0_dda_arc1_it_mag_y = mag_y_up;
-            end
-            else begin
-                card0_card_core0_dda_arc1_it_mag_y = mag_y_down;
-            end
+        else begin
+            card1_card_core1_dda_arc2_it_mag_x = (card1_card_core1_dda_arc2_mag_x + 1);
+        end
+    end
+    if (go_y) begin
+        if (card1_card_core1_dda_arc2_y_down) begin
+            card1_card_core1_dda_arc2_it_mag_y = mag_y_down;
+        end
+        else begin
+            card1_card_core1_dda_arc2_it_mag_y = mag_y_up;
         end
     end
     if ((go_x && go_y)) begin
-        card0_card_core0_dda_arc1_it_error = cand_d;
+        card1_card_core1_dda_arc2_it_error = cand_d;
     end
     else if (go_x) begin
-        card0_card_core0_dda_arc1_it_error = cand_x;
+        card1_card_core1_dda_arc2_it_error = cand_x;
     end
     else if (go_y) begin
-        card0_card_core0_dda_arc1_it_error = cand_y;
+        card1_card_core1_dda_arc2_it_error = cand_y;
     end
     else begin
-        card0_card_core0_dda_arc1_it_error = card0_card_core0_dda_arc1_radial_error;
+        card1_card_core1_dda_arc2_it_error = card1_card_core1_dda_arc2_radial_error;
     end
-    card0_card_core0_dda_arc1_it_finished = 1'b0;
-    card0_card_core0_dda_arc1_it_next_piece = 1'b0;
-    if (((((card0_card_core0_dda_arc1_count_x == 1) && go_x) || (card0_card_core0_dda_arc1_count_x == 0)) && (((card0_card_core0_dda_arc1_count_y == 1) && go_y) || (card0_card_core0_dda_arc1_count_y == 0)))) begin
-        if ((card0_card_core0_dda_arc1_is_line || (card0_card_core0_dda_arc1_crossings == 0))) begin
-            card0_card_core0_dda_arc1_it_finished = 1'b1;
+    card1_card_core1_dda_arc2_it_finished = 1'b0;
+    card1_card_core1_dda_arc2_it_next_piece = 1'b0;
+    if (((((card1_card_core1_dda_arc2_count_x == 1) && go_x) || (card1_card_core1_dda_arc2_count_x == 0)) && (((card1_card_core1_dda_arc2_count_y == 1) && go_y) || (card1_card_core1_dda_arc2_count_y == 0)))) begin
+        if ((card1_card_core1_dda_arc2_is_line || (card1_card_core1_dda_arc2_crossings == 0))) begin
+            card1_card_core1_dda_arc2_it_finished = 1'b1;
         end
         else begin
-            card0_card_core0_dda_arc1_it_next_piece = 1'b1;
+            card1_card_core1_dda_arc2_it_next_piece = 1'b1;
         end
     end
 end
 
 
-always @(posedge clock, negedge card0_card_core0_dda_reset) begin: card0_card_core0_dda_arc1_control
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_control
     reg [27-1:0] trial_rem;
     reg [27-1:0] trial;
-    if (card0_card_core0_dda_reset == 0) begin
-        card0_card_core0_dda_arc1_last_y <= 0;
-        card0_card_core0_dda_arc1_mag_y <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_dda_done <= 0;
-        card0_card_core0_dda_arc1_square_end <= 0;
-        card0_card_core0_dda_arc1_acc_bits <= 0;
-        card0_card_core0_dda_arc1_square_start <= 0;
-        card0_card_core0_regs_fifo1_dda_busy <= 0;
-        card0_card_core0_dda_arc1_variant <= 0;
-        card0_card_core0_dda_arc1_end_limit <= 0;
-        card0_card_core0_regs_fifo1_steps_step_x <= 0;
-        card0_card_core0_dda_arc1_delta_x <= 0;
-        card0_card_core0_dda_arc1_delta_y <= 0;
-        card0_card_core0_dda_arc1_multiplicand <= 0;
-        card0_card_core0_dda_arc1_crossings <= 0;
-        card0_card_core0_dda_arc1_radius_q <= 0;
-        card0_card_core0_dda_arc1_mac_op <= 0;
-        card0_card_core0_dda_arc1_state <= 3'b000;
-        card0_card_core0_dda_arc1_xe <= 0;
-        card0_card_core0_dda_arc1_multiplier <= 0;
-        card0_card_core0_dda_arc1_end_gap <= 0;
-        card0_card_core0_dda_arc1_radius <= 0;
-        card0_card_core0_regs_fifo1_sequencer1_dda_error <= 0;
-        card0_card_core0_dda_arc1_root <= 0;
-        card0_card_core0_dda_arc1_root_bit <= 0;
-        card0_card_core0_dda_arc1_lambda_shift <= 0;
-        card0_card_core0_dda_arc1_radicand <= 0;
-        card0_card_core0_dda_arc1_ye <= 0;
-        card0_card_core0_dda_arc1_quadrant <= 0;
-        card0_card_core0_dda_arc1_last_x <= 0;
-        card0_card_core0_regs_fifo1_steps_dir_x <= 0;
-        card0_card_core0_regs_fifo1_steps_dir_y <= 0;
-        card0_card_core0_dda_arc1_xs <= 0;
-        card0_card_core0_regs_fifo1_steps_step_y <= 0;
-        card0_card_core0_dda_arc1_off_circle <= 0;
-        card0_card_core0_dda_arc1_mac_bit <= 0;
-        card0_card_core0_dda_arc1_remainder <= 0;
-        card0_card_core0_dda_arc1_is_line <= 0;
-        card0_card_core0_dda_arc1_radial_error <= 0;
-        card0_card_core0_dda_arc1_count_y <= 0;
-        card0_card_core0_dda_arc1_threshold <= 0;
-        card0_card_core0_dda_arc1_ys <= 0;
-        card0_card_core0_dda_arc1_count_x <= 0;
-        card0_card_core0_dda_arc1_acc_x <= 0;
-        card0_card_core0_dda_arc1_mag_x <= 0;
-        card0_card_core0_dda_arc1_ccw <= 0;
-        card0_card_core0_dda_arc1_acc_y <= 0;
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_radius_length <= 0;
+        card1_card_core1_dda_arc2_mag_y <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
+        card1_card_core1_dda_arc2_acc_bits <= 0;
+        card1_card_core1_dda_arc2_delta_turn <= 0;
+        card1_card_core1_dda_arc2_gap <= 0;
+        card1_card_core1_regs_fifo2_dda_busy <= 0;
+        card1_card_core1_dda_arc2_variant <= 0;
+        card1_card_core1_dda_arc2_root_all_ones <= 0;
+        card1_card_core1_regs_fifo2_steps_step_x <= 0;
+        card1_card_core1_dda_arc2_delta_x <= 0;
+        card1_card_core1_dda_arc2_delta_y <= 0;
+        card1_card_core1_dda_arc2_multiplicand <= 0;
+        card1_card_core1_dda_arc2_target_y <= 0;
+        card1_card_core1_dda_arc2_crossings <= 0;
+        card1_card_core1_dda_arc2_target_x <= 0;
+        card1_card_core1_dda_arc2_radius_q <= 0;
+        card1_card_core1_dda_arc2_end_reaches_low <= 0;
+        card1_card_core1_dda_arc2_root_length <= 0;
+        card1_card_core1_dda_arc2_mac_op <= 0;
+        card1_card_core1_dda_arc2_state <= 3'b000;
+        card1_card_core1_dda_arc2_xe <= 0;
+        card1_card_core1_dda_arc2_multiplier <= 0;
+        card1_card_core1_dda_arc2_radius <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_dda_error <= 0;
+        card1_card_core1_dda_arc2_root <= 0;
+        card1_card_core1_dda_arc2_root_bit <= 0;
+        card1_card_core1_dda_arc2_lambda_shift <= 0;
+        card1_card_core1_dda_arc2_radicand <= 0;
+        card1_card_core1_dda_arc2_ye <= 0;
+        card1_card_core1_dda_arc2_quadrant <= 0;
+        card1_card_core1_regs_fifo2_steps_dir_x <= 0;
+        card1_card_core1_regs_fifo2_steps_dir_y <= 0;
+        card1_card_core1_dda_arc2_xs <= 0;
+        card1_card_core1_regs_fifo2_steps_step_y <= 0;
+        card1_card_core1_dda_arc2_mac_bit <= 0;
+        card1_card_core1_dda_arc2_remainder <= 0;
+        card1_card_core1_dda_arc2_is_line <= 0;
+        card1_card_core1_dda_arc2_radial_error <= 0;
+        card1_card_core1_dda_arc2_threshold <= 0;
+        card1_card_core1_dda_arc2_ys <= 0;
+        card1_card_core1_dda_arc2_end_beyond_high <= 0;
+        card1_card_core1_dda_arc2_acc_x <= 0;
+        card1_card_core1_dda_arc2_mag_x <= 0;
+        card1_card_core1_dda_arc2_ccw <= 0;
+        card1_card_core1_dda_arc2_acc_y <= 0;
     end
     else begin
-        card0_card_core0_regs_fifo1_steps_step_x <= 1'b0;
-        card0_card_core0_regs_fifo1_steps_step_y <= 1'b0;
-        card0_card_core0_regs_fifo1_sequencer1_dda_done <= 1'b0;
-        case (card0_card_core0_dda_arc1_state)
+        card1_card_core1_regs_fifo2_steps_step_x <= 1'b0;
+        card1_card_core1_regs_fifo2_steps_step_y <= 1'b0;
+        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b0;
+        case (card1_card_core1_dda_arc2_state)
             3'b000: begin
-                if (card0_card_core0_regs_fifo1_sequencer1_dda_start) begin
-                    card0_card_core0_regs_fifo1_dda_busy <= 1'b1;
-                    card0_card_core0_regs_fifo1_sequencer1_dda_error <= 1'b0;
-                    card0_card_core0_dda_arc1_is_line <= card0_card_core0_regs_fifo1_sequencer1_dda_line;
-                    card0_card_core0_dda_arc1_variant <= card0_card_core0_regs_fifo1_sequencer1_dda_variant;
-                    card0_card_core0_dda_arc1_lambda_shift <= card0_card_core0_regs_fifo1_sequencer1_dda_lambda_shift;
-                    card0_card_core0_dda_arc1_acc_bits <= card0_card_core0_regs_fifo1_sequencer1_dda_acc_bits;
-                    card0_card_core0_dda_arc1_ccw <= card0_card_core0_regs_fifo1_sequencer1_dda_ccw;
-                    card0_card_core0_dda_arc1_xs <= card0_card_core0_regs_fifo1_sequencer1_dda_xs;
-                    card0_card_core0_dda_arc1_ys <= card0_card_core0_regs_fifo1_sequencer1_dda_ys;
-                    card0_card_core0_dda_arc1_xe <= card0_card_core0_regs_fifo1_sequencer1_dda_xe;
-                    card0_card_core0_dda_arc1_ye <= card0_card_core0_regs_fifo1_sequencer1_dda_ye;
-                    card0_card_core0_dda_arc1_square_start <= 0;
-                    card0_card_core0_dda_arc1_square_end <= 0;
-                    card0_card_core0_dda_arc1_mac_op <= 0;
-                    card0_card_core0_dda_arc1_mac_bit <= 0;
-                    card0_card_core0_dda_arc1_multiplicand <= {24'h0, card0_card_core0_dda_arc1_cmd_mag_xs};
-                    card0_card_core0_dda_arc1_multiplier <= card0_card_core0_dda_arc1_cmd_mag_xs;
-                    if (card0_card_core0_regs_fifo1_sequencer1_dda_line) begin
-                        card0_card_core0_dda_arc1_state <= 3'b100;
+                if (card1_card_core1_regs_fifo2_sequencer2_dda_start) begin
+                    card1_card_core1_regs_fifo2_dda_busy <= 1'b1;
+                    card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b0;
+                    card1_card_core1_dda_arc2_is_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
+                    card1_card_core1_dda_arc2_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
+                    card1_card_core1_dda_arc2_lambda_shift <= card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift;
+                    card1_card_core1_dda_arc2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
+                    card1_card_core1_dda_arc2_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
+                    card1_card_core1_dda_arc2_xs <= card1_card_core1_regs_fifo2_sequencer2_dda_xs;
+                    card1_card_core1_dda_arc2_ys <= card1_card_core1_regs_fifo2_sequencer2_dda_ys;
+                    card1_card_core1_dda_arc2_xe <= card1_card_core1_regs_fifo2_sequencer2_dda_xe;
+                    card1_card_core1_dda_arc2_ye <= card1_card_core1_regs_fifo2_sequencer2_dda_ye;
+                    card1_card_core1_dda_arc2_gap <= (-1);
+                    card1_card_core1_dda_arc2_mac_op <= 0;
+                    card1_card_core1_dda_arc2_mac_bit <= 0;
+                    card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_cmd_mag_xs};
+                    card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_cmd_mag_xs;
+                    if (card1_card_core1_regs_fifo2_sequencer2_dda_line) begin
+                        card1_card_core1_dda_arc2_state <= 3'b100;
                     end
                     else begin
-                        card0_card_core0_dda_arc1_state <= 3'b001;
+                        card1_card_core1_dda_arc2_state <= 3'b001;
                     end
                 end
             end
             3'b001: begin
-                if (card0_card_core0_dda_arc1_multiplier[0]) begin
-                    if ((card0_card_core0_dda_arc1_mac_op < 2)) begin
-                        card0_card_core0_dda_arc1_square_start <= (card0_card_core0_dda_arc1_square_start + card0_card_core0_dda_arc1_multiplicand);
-                    end
-                    else begin
-                        card0_card_core0_dda_arc1_square_end <= (card0_card_core0_dda_arc1_square_end + card0_card_core0_dda_arc1_multiplicand);
-                    end
+                if (card1_card_core1_dda_arc2_multiplier[0]) begin
+                    card1_card_core1_dda_arc2_gap <= card1_card_core1_dda_arc2_gap_sum;
                 end
-                if (($signed({1'b0, card0_card_core0_dda_arc1_mac_bit}) == (24 - 1))) begin
-                    card0_card_core0_dda_arc1_mac_bit <= 0;
-                    card0_card_core0_dda_arc1_mac_op <= (card0_card_core0_dda_arc1_mac_op + 1);
-                    case (card0_card_core0_dda_arc1_mac_op)
+                if (($signed({1'b0, card1_card_core1_dda_arc2_mac_bit}) == (24 - 1))) begin
+                    card1_card_core1_dda_arc2_mac_bit <= 0;
+                    card1_card_core1_dda_arc2_mac_op <= (card1_card_core1_dda_arc2_mac_op + 1);
+                    case (card1_card_core1_dda_arc2_mac_op)
                         'h0: begin
-                            card0_card_core0_dda_arc1_multiplicand <= {24'h0, card0_card_core0_dda_arc1_mag_ys};
-                            card0_card_core0_dda_arc1_multiplier <= card0_card_core0_dda_arc1_mag_ys;
+                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ys};
+                            card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_ys;
                         end
                         'h1: begin
-                            card0_card_core0_dda_arc1_multiplicand <= {24'h0, card0_card_core0_dda_arc1_mag_xe};
-                            card0_card_core0_dda_arc1_multiplier <= card0_card_core0_dda_arc1_mag_xe;
+                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_xe};
+                            card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_xe;
+                            if (card1_card_core1_dda_arc2_multiplier[0]) begin
+                                card1_card_core1_dda_arc2_radicand <= (~card1_card_core1_dda_arc2_gap_sum[(2 * 24)-1:0]);
+                            end
+                            else begin
+                                card1_card_core1_dda_arc2_radicand <= (~card1_card_core1_dda_arc2_gap[(2 * 24)-1:0]);
+                            end
+                        end
+                        'h2: begin
+                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ye};
+                            card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_ye;
                         end
                         default: begin
-                            card0_card_core0_dda_arc1_multiplicand <= {24'h0, card0_card_core0_dda_arc1_mag_ye};
-                            card0_card_core0_dda_arc1_multiplier <= card0_card_core0_dda_arc1_mag_ye;
+                            if ((card1_card_core1_dda_arc2_mag_xs > card1_card_core1_dda_arc2_mag_ys)) begin
+                                card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_xs};
+                            end
+                            else begin
+                                card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ys};
+                            end
+                            card1_card_core1_dda_arc2_remainder <= 0;
+                            card1_card_core1_dda_arc2_root <= 0;
+                            card1_card_core1_dda_arc2_root_bit <= 0;
+                            card1_card_core1_dda_arc2_root_length <= 0;
+                            card1_card_core1_dda_arc2_root_all_ones <= 1'b1;
+                            card1_card_core1_dda_arc2_state <= 3'b010;
                         end
                     endcase
-                    if ((card0_card_core0_dda_arc1_mac_op == 3)) begin
-                        card0_card_core0_dda_arc1_radicand <= card0_card_core0_dda_arc1_square_start;
-                        card0_card_core0_dda_arc1_remainder <= 0;
-                        card0_card_core0_dda_arc1_root <= 0;
-                        card0_card_core0_dda_arc1_root_bit <= 0;
-                        card0_card_core0_dda_arc1_state <= 3'b010;
-                    end
                 end
                 else begin
-                    card0_card_core0_dda_arc1_mac_bit <= (card0_card_core0_dda_arc1_mac_bit + 1);
-                    card0_card_core0_dda_arc1_multiplicand <= (card0_card_core0_dda_arc1_multiplicand << 1);
-                    card0_card_core0_dda_arc1_multiplier <= (card0_card_core0_dda_arc1_multiplier >>> 1);
+                    card1_card_core1_dda_arc2_mac_bit <= (card1_card_core1_dda_arc2_mac_bit + 1);
+                    card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
+                    card1_card_core1_dda_arc2_multiplier <= (card1_card_core1_dda_arc2_multiplier >>> 1);
                 end
             end
             3'b010: begin
                 trial_rem = 27'h0;
                 trial = 27'h0;
-                trial_rem = {card0_card_core0_dda_arc1_remainder[(24 + 1)-1:0], card0_card_core0_dda_arc1_radicand[(2 * 24)-1:((2 * 24) - 2)]};
-                trial = {2'h0, card0_card_core0_dda_arc1_root[(24 - 1)-1:0], 2'h1};
+                trial_rem = {card1_card_core1_dda_arc2_remainder[(24 + 1)-1:0], card1_card_core1_dda_arc2_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+                trial = {2'h0, card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 2'h1};
                 if ((trial_rem >= trial)) begin
-                    card0_card_core0_dda_arc1_remainder <= (trial_rem - trial);
-                    card0_card_core0_dda_arc1_root <= {card0_card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b1};
+                    card1_card_core1_dda_arc2_remainder <= (trial_rem - trial);
+                    card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b1};
                 end
                 else begin
-                    card0_card_core0_dda_arc1_remainder <= trial_rem;
-                    card0_card_core0_dda_arc1_root <= {card0_card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b0};
+                    card1_card_core1_dda_arc2_remainder <= trial_rem;
+                    card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b0};
+                    if ((card1_card_core1_dda_arc2_root != 0)) begin
+                        card1_card_core1_dda_arc2_root_all_ones <= 1'b0;
+                    end
                 end
-                card0_card_core0_dda_arc1_radicand <= (card0_card_core0_dda_arc1_radicand << 2);
-                card0_card_core0_dda_arc1_end_gap <= ($signed({2'h0, card0_card_core0_dda_arc1_square_end}) - $signed({2'h0, card0_card_core0_dda_arc1_square_start}));
-                if ((card0_card_core0_dda_arc1_mag_xs > card0_card_core0_dda_arc1_mag_ys)) begin
-                    card0_card_core0_dda_arc1_end_limit <= $signed({25'h0, card0_card_core0_dda_arc1_mag_xs, 1'b1});
+                if (((card1_card_core1_dda_arc2_root != 0) || (trial_rem >= trial))) begin
+                    card1_card_core1_dda_arc2_root_length <= (card1_card_core1_dda_arc2_root_length + 1);
+                end
+                card1_card_core1_dda_arc2_radicand <= (card1_card_core1_dda_arc2_radicand << 2);
+                case (card1_card_core1_dda_arc2_root_bit)
+                    'h0: begin
+                        card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
+                    end
+                    'h1: begin
+                        card1_card_core1_dda_arc2_gap <= card1_card_core1_dda_arc2_gap_sum;
+                        card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
+                    end
+                    'h2: begin
+                        card1_card_core1_dda_arc2_end_reaches_low <= (!card1_card_core1_dda_arc2_gap[(50 - 1)]);
+                        card1_card_core1_dda_arc2_gap <= card1_card_core1_dda_arc2_gap_sum;
+                    end
+                    'h3: begin
+                        card1_card_core1_dda_arc2_end_beyond_high <= (!card1_card_core1_dda_arc2_gap[(50 - 1)]);
+                    end
+                endcase
+                if (($signed({1'b0, card1_card_core1_dda_arc2_root_bit}) == (24 - 1))) begin
+                    card1_card_core1_dda_arc2_state <= 3'b011;
                 end
                 else begin
-                    card0_card_core0_dda_arc1_end_limit <= $signed({25'h0, card0_card_core0_dda_arc1_mag_ys, 1'b1});
-                end
-                card0_card_core0_dda_arc1_off_circle <= ((card0_card_core0_dda_arc1_end_gap > card0_card_core0_dda_arc1_end_limit) || (card0_card_core0_dda_arc1_end_gap < (2 - card0_card_core0_dda_arc1_end_limit)));
-                if (($signed({1'b0, card0_card_core0_dda_arc1_root_bit}) == (24 - 1))) begin
-                    card0_card_core0_dda_arc1_state <= 3'b011;
-                end
-                else begin
-                    card0_card_core0_dda_arc1_root_bit <= (card0_card_core0_dda_arc1_root_bit + 1);
+                    card1_card_core1_dda_arc2_root_bit <= (card1_card_core1_dda_arc2_root_bit + 1);
                 end
             end
             3'b011: begin
-                if ((card0_card_core0_dda_arc1_remainder > {3'h0, card0_card_core0_dda_arc1_root})) begin
-                    card0_card_core0_dda_arc1_radius_q <= ({1'b0, card0_card_core0_dda_arc1_root} + 1);
-                end
-                else begin
-                    card0_card_core0_dda_arc1_radius_q <= {1'b0, card0_card_core0_dda_arc1_root};
-                end
-                card0_card_core0_dda_arc1_state <= 3'b100;
-            end
-            3'b100: begin
-                card0_card_core0_dda_arc1_acc_x <= card0_card_core0_dda_arc1_chk_acc_init;
-                card0_card_core0_dda_arc1_acc_y <= card0_card_core0_dda_arc1_chk_acc_init;
-                card0_card_core0_dda_arc1_radial_error <= 0;
-                card0_card_core0_dda_arc1_crossings <= 0;
-                card0_card_core0_dda_arc1_quadrant <= 0;
-                card0_card_core0_dda_arc1_state <= 3'b101;
-                if (card0_card_core0_dda_arc1_is_line) begin
-                    if ((card0_card_core0_dda_arc1_mag_xe > card0_card_core0_dda_arc1_mag_ye)) begin
-                        card0_card_core0_dda_arc1_threshold <= {5'h0, card0_card_core0_dda_arc1_mag_xe};
-                        card0_card_core0_dda_arc1_acc_x <= ($signed({9'h0, card0_card_core0_dda_arc1_mag_xe[24-1:1]}) - $signed({8'h0, card0_card_core0_dda_arc1_mag_xe}));
-                        card0_card_core0_dda_arc1_acc_y <= ($signed({9'h0, card0_card_core0_dda_arc1_mag_xe[24-1:1]}) - $signed({8'h0, card0_card_core0_dda_arc1_mag_xe}));
+                if ((card1_card_core1_dda_arc2_remainder > {3'h0, card1_card_core1_dda_arc2_root})) begin
+                    card1_card_core1_dda_arc2_radius_q <= ({1'b0, card1_card_core1_dda_arc2_root} + 1);
+                    if (card1_card_core1_dda_arc2_root_all_ones) begin
+                        card1_card_core1_dda_arc2_radius_length <= (card1_card_core1_dda_arc2_root_length + 1);
                     end
                     else begin
-                        card0_card_core0_dda_arc1_threshold <= {5'h0, card0_card_core0_dda_arc1_mag_ye};
-                        card0_card_core0_dda_arc1_acc_x <= ($signed({9'h0, card0_card_core0_dda_arc1_mag_ye[24-1:1]}) - $signed({8'h0, card0_card_core0_dda_arc1_mag_ye}));
-                        card0_card_core0_dda_arc1_acc_y <= ($signed({9'h0, card0_card_core0_dda_arc1_mag_ye[24-1:1]}) - $signed({8'h0, card0_card_core0_dda_arc1_mag_ye}));
+                        card1_card_core1_dda_arc2_radius_length <= card1_card_core1_dda_arc2_root_length;
                     end
-                    card0_card_core0_dda_arc1_mag_x <= card0_card_core0_dda_arc1_mag_ye;
-                    card0_card_core0_dda_arc1_mag_y <= card0_card_core0_dda_arc1_mag_xe;
-                    card0_card_core0_dda_arc1_count_x <= card0_card_core0_dda_arc1_mag_xe;
-                    card0_card_core0_dda_arc1_count_y <= card0_card_core0_dda_arc1_mag_ye;
-                    if (((card0_card_core0_dda_arc1_mag_xe == 0) && (card0_card_core0_dda_arc1_mag_ye == 0))) begin
-                        card0_card_core0_regs_fifo1_dda_busy <= 1'b0;
-                        card0_card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
-                        card0_card_core0_dda_arc1_state <= 3'b000;
-                    end
-                end
-                else if (card0_card_core0_dda_arc1_chk_error) begin
-                    card0_card_core0_regs_fifo1_dda_busy <= 1'b0;
-                    card0_card_core0_regs_fifo1_sequencer1_dda_error <= 1'b1;
-                    card0_card_core0_dda_arc1_state <= 3'b000;
                 end
                 else begin
-                    card0_card_core0_dda_arc1_threshold <= card0_card_core0_dda_arc1_chk_threshold;
-                    card0_card_core0_dda_arc1_quadrant <= card0_card_core0_dda_arc1_chk_quadrant;
-                    card0_card_core0_dda_arc1_crossings <= card0_card_core0_dda_arc1_chk_crossings;
-                    card0_card_core0_dda_arc1_mag_x <= card0_card_core0_dda_arc1_mag_xs;
-                    card0_card_core0_dda_arc1_mag_y <= card0_card_core0_dda_arc1_mag_ys;
-                    card0_card_core0_dda_arc1_count_x <= card0_card_core0_dda_arc1_chk_first_x;
-                    card0_card_core0_dda_arc1_count_y <= card0_card_core0_dda_arc1_chk_first_y;
-                    card0_card_core0_dda_arc1_last_x <= card0_card_core0_dda_arc1_chk_last_x;
-                    card0_card_core0_dda_arc1_last_y <= card0_card_core0_dda_arc1_chk_last_y;
-                    card0_card_core0_dda_arc1_radius <= card0_card_core0_dda_arc1_chk_radius;
-                    card0_card_core0_dda_arc1_delta_x <= card0_card_core0_dda_arc1_chk_delta_x;
-                    card0_card_core0_dda_arc1_delta_y <= card0_card_core0_dda_arc1_chk_delta_y;
+                    card1_card_core1_dda_arc2_radius_q <= {1'b0, card1_card_core1_dda_arc2_root};
+                    card1_card_core1_dda_arc2_radius_length <= card1_card_core1_dda_arc2_root_length;
+                end
+                card1_card_core1_dda_arc2_state <= 3'b100;
+            end
+            3'b100: begin
+                card1_card_core1_dda_arc2_acc_x <= card1_card_core1_dda_arc2_chk_acc_init;
+                card1_card_core1_dda_arc2_acc_y <= card1_card_core1_dda_arc2_chk_acc_init;
+                card1_card_core1_dda_arc2_threshold <= card1_card_core1_dda_arc2_chk_threshold;
+                card1_card_core1_dda_arc2_radial_error <= 0;
+                card1_card_core1_dda_arc2_crossings <= 0;
+                card1_card_core1_dda_arc2_quadrant <= 0;
+                card1_card_core1_dda_arc2_state <= 3'b101;
+                if (card1_card_core1_dda_arc2_is_line) begin
+                    card1_card_core1_dda_arc2_mag_x <= 0;
+                    card1_card_core1_dda_arc2_mag_y <= 0;
+                    card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_mag_xe;
+                    card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_mag_ye;
+                    if (((card1_card_core1_dda_arc2_mag_xe == 0) && (card1_card_core1_dda_arc2_mag_ye == 0))) begin
+                        card1_card_core1_regs_fifo2_dda_busy <= 1'b0;
+                        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
+                        card1_card_core1_dda_arc2_state <= 3'b000;
+                    end
+                end
+                else if (card1_card_core1_dda_arc2_chk_error) begin
+                    card1_card_core1_regs_fifo2_dda_busy <= 1'b0;
+                    card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b1;
+                    card1_card_core1_dda_arc2_state <= 3'b000;
+                end
+                else begin
+                    card1_card_core1_dda_arc2_quadrant <= card1_card_core1_dda_arc2_chk_quadrant;
+                    card1_card_core1_dda_arc2_crossings <= card1_card_core1_dda_arc2_chk_crossings;
+                    card1_card_core1_dda_arc2_mag_x <= card1_card_core1_dda_arc2_mag_xs;
+                    card1_card_core1_dda_arc2_mag_y <= card1_card_core1_dda_arc2_mag_ys;
+                    card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_chk_target_x;
+                    card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_chk_target_y;
+                    card1_card_core1_dda_arc2_radius <= card1_card_core1_dda_arc2_chk_radius;
+                    card1_card_core1_dda_arc2_delta_x <= card1_card_core1_dda_arc2_chk_delta_x;
+                    card1_card_core1_dda_arc2_delta_y <= card1_card_core1_dda_arc2_chk_delta_y;
+                    card1_card_core1_dda_arc2_delta_turn <= card1_card_core1_dda_arc2_chk_delta_turn;
                 end
             end
             default: begin
-                if (card0_card_core0_regs_fifo1_dda_advance) begin
-                    card0_card_core0_regs_fifo1_steps_step_x <= card0_card_core0_dda_arc1_it_step_x;
-                    card0_card_core0_regs_fifo1_steps_step_y <= card0_card_core0_dda_arc1_it_step_y;
-                    card0_card_core0_regs_fifo1_steps_dir_x <= card0_card_core0_dda_arc1_it_dir_x;
-                    card0_card_core0_regs_fifo1_steps_dir_y <= card0_card_core0_dda_arc1_it_dir_y;
-                    card0_card_core0_dda_arc1_acc_x <= card0_card_core0_dda_arc1_it_acc_x;
-                    card0_card_core0_dda_arc1_acc_y <= card0_card_core0_dda_arc1_it_acc_y;
-                    card0_card_core0_dda_arc1_mag_x <= card0_card_core0_dda_arc1_it_mag_x;
-                    card0_card_core0_dda_arc1_mag_y <= card0_card_core0_dda_arc1_it_mag_y;
-                    card0_card_core0_dda_arc1_radial_error <= card0_card_core0_dda_arc1_it_error;
-                    if (card0_card_core0_dda_arc1_it_finished) begin
-                        card0_card_core0_regs_fifo1_dda_busy <= 1'b0;
-                        card0_card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
-                        card0_card_core0_dda_arc1_state <= 3'b000;
-                        card0_card_core0_dda_arc1_count_x <= 0;
-                        card0_card_core0_dda_arc1_count_y <= 0;
+                if (card1_card_core1_regs_fifo2_dda_advance) begin
+                    card1_card_core1_regs_fifo2_steps_step_x <= card1_card_core1_dda_arc2_it_step_x;
+                    card1_card_core1_regs_fifo2_steps_step_y <= card1_card_core1_dda_arc2_it_step_y;
+                    card1_card_core1_regs_fifo2_steps_dir_x <= card1_card_core1_dda_arc2_it_dir_x;
+                    card1_card_core1_regs_fifo2_steps_dir_y <= card1_card_core1_dda_arc2_it_dir_y;
+                    card1_card_core1_dda_arc2_acc_x <= card1_card_core1_dda_arc2_it_acc_x;
+                    card1_card_core1_dda_arc2_acc_y <= card1_card_core1_dda_arc2_it_acc_y;
+                    card1_card_core1_dda_arc2_mag_x <= card1_card_core1_dda_arc2_it_mag_x;
+                    card1_card_core1_dda_arc2_mag_y <= card1_card_core1_dda_arc2_it_mag_y;
+                    card1_card_core1_dda_arc2_radial_error <= card1_card_core1_dda_arc2_it_error;
+                    if (card1_card_core1_dda_arc2_it_finished) begin
+                        card1_card_core1_regs_fifo2_dda_busy <= 1'b0;
+                        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
+                        card1_card_core1_dda_arc2_state <= 3'b000;
                     end
-                    else if (card0_card_core0_dda_arc1_it_next_piece) begin
-                        if (card0_card_core0_dda_arc1_it_step_x) begin
-                            card0_card_core0_dda_arc1_delta_x <= (-card0_card_core0_dda_arc1_delta_x);
+                    else if (card1_card_core1_dda_arc2_it_next_piece) begin
+                        if ((card1_card_core1_dda_arc2_quadrant[0] != card1_card_core1_dda_arc2_ccw)) begin
+                            card1_card_core1_dda_arc2_delta_x <= 1;
+                            card1_card_core1_dda_arc2_delta_y <= card1_card_core1_dda_arc2_delta_turn;
                         end
                         else begin
-                            card0_card_core0_dda_arc1_delta_x <= (2 - card0_card_core0_dda_arc1_delta_x);
+                            card1_card_core1_dda_arc2_delta_x <= card1_card_core1_dda_arc2_delta_turn;
+                            card1_card_core1_dda_arc2_delta_y <= 1;
                         end
-                        if (card0_card_core0_dda_arc1_it_step_y) begin
-                            card0_card_core0_dda_arc1_delta_y <= (-card0_card_core0_dda_arc1_delta_y);
-                        end
-                        else begin
-                            card0_card_core0_dda_arc1_delta_y <= (2 - card0_card_core0_dda_arc1_delta_y);
-                        end
-                        if (card0_card_core0_dda_arc1_ccw) begin
-                            card0_card_core0_dda_arc1_quadrant <= (card0_card_core0_dda_arc1_quadrant + 1);
+                        if (card1_card_core1_dda_arc2_ccw) begin
+                            card1_card_core1_dda_arc2_quadrant <= (card1_card_core1_dda_arc2_quadrant + 1);
                         end
                         else begin
-                            card0_card_core0_dda_arc1_quadrant <= (card0_card_core0_dda_arc1_quadrant - 1);
+                            card1_card_core1_dda_arc2_quadrant <= (card1_card_core1_dda_arc2_quadrant - 1);
                         end
-                        card0_card_core0_dda_arc1_crossings <= (card0_card_core0_dda_arc1_crossings - 1);
-                        if ((card0_card_core0_dda_arc1_crossings == 1)) begin
-                            card0_card_core0_dda_arc1_count_x <= card0_card_core0_dda_arc1_last_x;
-                            card0_card_core0_dda_arc1_count_y <= card0_card_core0_dda_arc1_last_y;
+                        card1_card_core1_dda_arc2_crossings <= (card1_card_core1_dda_arc2_crossings - 1);
+                        if ((card1_card_core1_dda_arc2_crossings == 1)) begin
+                            card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_mag_xe;
+                            card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_mag_ye;
+                        end
+                        else if ((card1_card_core1_dda_arc2_quadrant[0] != card1_card_core1_dda_arc2_ccw)) begin
+                            card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_radius;
+                            card1_card_core1_dda_arc2_target_y <= 0;
                         end
                         else begin
-                            card0_card_core0_dda_arc1_count_x <= card0_card_core0_dda_arc1_radius;
-                            card0_card_core0_dda_arc1_count_y <= card0_card_core0_dda_arc1_radius;
+                            card1_card_core1_dda_arc2_target_x <= 0;
+                            card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_radius;
                         end
                     end
                     else begin
-                        if (card0_card_core0_dda_arc1_it_step_x) begin
-                            card0_card_core0_dda_arc1_count_x <= (card0_card_core0_dda_arc1_count_x - 1);
-                            card0_card_core0_dda_arc1_delta_x <= (card0_card_core0_dda_arc1_delta_x + 2);
+                        if (card1_card_core1_dda_arc2_it_step_x) begin
+                            card1_card_core1_dda_arc2_delta_x <= (card1_card_core1_dda_arc2_delta_x + 2);
                         end
-                        if (card0_card_core0_dda_arc1_it_step_y) begin
-                            card0_card_core0_dda_arc1_count_y <= (card0_card_core0_dda_arc1_count_y - 1);
-                            card0_card_core0_dda_arc1_delta_y <= (card0_card_core0_dda_arc1_delta_y + 2);
+                        if (card1_card_core1_dda_arc2_it_step_y) begin
+                            card1_card_core1_dda_arc2_delta_y <= (card1_card_core1_dda_arc2_delta_y + 2);
                         end
                     end
                 end
@@ -4713,6 +4801,6 @@ end
 
 
 
-assign card0_card_core0_regs_fifo1__status1_quadrant = card0_card_core0_dda_arc1_quadrant;
+assign card1_card_core1_regs_fifo2__status2_quadrant = card1_card_core1_dda_arc2_quadrant;
 
 endmodule

@@ -42,6 +42,8 @@ UNITS = {
     "pci_slave": ("vendor_id", "device_id", "revision_id", "class_code", "subsystem_vendor_id",
                   "subsystem_id", "io_bar_bits", "mem_bar_bits"),
     "regs_fifo": ("fifo_depth", "coord_width"),
+    "card": ("vendor_id", "device_id", "revision_id", "class_code", "subsystem_vendor_id",
+             "subsystem_id", "fifo_depth", "coord_width"),
     "top": ("vendor_id", "device_id", "revision_id", "class_code", "subsystem_vendor_id",
             "subsystem_id", "fifo_depth", "coord_width"),
 }
