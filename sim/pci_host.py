@@ -179,6 +179,7 @@ class _Run:
         self.write = bool(request.command & 1)
         self.index = 0          # data phase on the bus
         self.edges = 0          # rising edges since the address edge
+        self.phase_edge = 0     # the edge at which the current data phase began
         self.waiting = 0        # IRDY# wait states left
         self.stop_seen = False
         self.final = False      # FRAME# is deasserted: this is the last phase
@@ -392,8 +393,9 @@ class PciHost:
             return Termination.TARGET_ABORT
         if not claimed and run.edges >= MASTER_ABORT_EDGE:
             return Termination.MASTER_ABORT
-        if run.edges > TARGET_TIMEOUT_EDGES:
-            raise HostError(f"no end of data phase {run.index} within {run.edges} clocks at {now()}")
+        if run.edges - run.phase_edge > TARGET_TIMEOUT_EDGES:
+            raise HostError(f"no end of data phase {run.index} within "
+                            f"{run.edges - run.phase_edge} clocks at {now()}")
         return None
 
     def _advance(self, run):
@@ -411,6 +413,7 @@ class PciHost:
         if not trdy:
             self._accept(run)
             run.index += 1
+            run.phase_edge = run.edges
         run.stop_seen = run.stop_seen or not stop
         if run.final:
             return True

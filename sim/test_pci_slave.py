@@ -312,6 +312,23 @@ def test_zero_wait_states_once_data_flows(target):
 
 
 @pytest.mark.parametrize("target", TARGETS)
+def test_a_burst_of_a_thousand_dwords_is_one_transaction(target):
+    # stops short of the BAR's end, where the target disconnects by design
+    values = [(0x9E3779B9 * (i + 1)) & 0xFFFFFFFF for i in range(1000)]
+
+    def scenario(b, out):
+        yield from setup(b.host)
+        out["write"] = yield from b.host.mem_write(MEM_BASE, values)
+        out["read"] = yield from b.host.mem_read(MEM_BASE, len(values))
+
+    out, bench, _ = run(target, scenario, "pci_long_burst")
+    for result in (out["write"], out["read"]):
+        assert result.termination is Termination.NORMAL and len(result.transactions) == 1
+    assert out["read"].data == values
+    assert [bench.memory.read(1, 4 * i) for i in range(len(values))] == values
+
+
+@pytest.mark.parametrize("target", TARGETS)
 def test_byte_and_word_writes_honour_byte_enables(target):
     def scenario(b, out):
         host = b.host
