@@ -23,13 +23,14 @@ ROOT = Path(__file__).resolve().parent.parent
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from myhdl import StopSimulation, always, block, delay, instance  # noqa: E402
+from myhdl import StopSimulation, block, instance  # noqa: E402
 
 from rtl.dda_arc import dda_arc, dda_arc_ports  # noqa: E402
 from sim.cosim import cosimulate  # noqa: E402
 from sim.dda_bench import Record, dda_bench  # noqa: E402
 from sim.dda_model import ArcCommand  # noqa: E402
 from sim.paths import GEN  # noqa: E402
+from sim.clocking import clock_source
 
 
 @block
@@ -38,9 +39,7 @@ def bare_driver(ports, command, counter, verilog):
     clock, reset, cmd = ports["clock"], ports["reset"], ports["cmd"]
     device = dda_arc(**ports) if verilog is None else cosimulate("dda_arc", ports, verilog)
 
-    @always(delay(5))
-    def clock_driver():
-        clock.next = not clock
+    clock_driver = clock_source(clock, 2 * 5)
 
     @instance
     def stimulus():

@@ -49,7 +49,7 @@ def paper_rows():
         label = f"paper {VARIANT_NAMES[variant]} ({settings}{', reach' if options else ''})"
         lines.append(row(label, command, options, PAPER_V_ARC[variant]))
         if options:
-            lines.append(row(f"  same, hardware end (counters)", command))
+            lines.append(row("  same, hardware end (counters)", command))
     return lines
 
 

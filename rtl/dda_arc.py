@@ -237,19 +237,13 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         else:
             exponent[:] = radius_length + concat(False, lambda_shift)
         thr[:] = one << exponent
+        thr_less[:] = thr - 1
         if variant != PRECISE and exponent > thr_width - 1:
             bad = True
-        # the accumulators hold A - T (A - T - 1 for the strict compares), so the initial
-        # load is -ceil(T/2) = ~((T - 1) >> 1), or -T - 1 = ~T; precise: T = Rq + 1
-        thr_less[:] = thr - 1
-        below[:] = concat(intbv(0)[acc_width - thr_width:], thr_less)
-        half[:] = ~(below >> 1)
-        if variant == WEIGHTED or variant == IMPROVED:
-            half[:] = ~concat(intbv(0)[acc_width - thr_width:], thr)
         if variant == PRECISE:
             thr[:] = concat(intbv(0)[thr_width - width - 1:], rq) + 1
-            half[:] = ~concat(intbv(0)[acc_width - width:], rq[width + 1:1])
-        # a line: T = max(|dx|, |dy|), loaded with T / 2 (held as ~((T - 1) >> 1) too)
+            thr_less[:] = concat(intbv(0)[thr_width - width - 1:], rq)
+        # a line: T = max(|dx|, |dy|)
         if mag_xe > mag_ye:
             major[:] = mag_xe
         else:
@@ -257,7 +251,13 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         major_less[:] = major - 1
         if is_line:
             thr[:] = concat(intbv(0)[thr_width - width:], major)
-            half[:] = ~(concat(intbv(0)[acc_width - width:], major_less) >> 1)
+            thr_less[:] = concat(intbv(0)[thr_width - width:], major_less)
+        # the accumulators hold A - T (A - T - 1 for the strict compares), so the initial
+        # load T // 2 is held as -ceil(T/2) = ~((T - 1) >> 1), zero as -T - 1 = ~T
+        below[:] = concat(intbv(0)[acc_width - thr_width:], thr_less)
+        half[:] = ~(below >> 1)
+        if not is_line and (variant == WEIGHTED or variant == IMPROVED):
+            half[:] = ~concat(intbv(0)[acc_width - thr_width:], thr)
 
         # departure quadrant of the start, arrival quadrant of the end
         if ccw:
@@ -603,18 +603,19 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 multiplier.next = multiplier >> 1
         elif state == t_state.S_ROOT:
             trial_rem = intbv(0)[width + 3:]
-            trial = intbv(0)[width + 3:]
+            trial_diff = modbv(0)[width + 4:]
             trial_rem[:] = concat(remainder[width + 1:], radicand[2 * width:2 * width - 2])
-            trial[:] = concat(intbv(0)[2:], root[width - 1:], intbv(1)[2:])
-            if trial_rem >= trial:
-                remainder.next = trial_rem - trial
+            # one subtractor: its borrow is the compare
+            trial_diff[:] = concat(False, trial_rem) - concat(intbv(0)[3:], root[width - 1:], intbv(1)[2:])
+            if not trial_diff[width + 3]:
+                remainder.next = trial_diff[width + 3:]
                 root.next = concat(root[width - 1:], True)
             else:
                 remainder.next = trial_rem
                 root.next = concat(root[width - 1:], False)
                 if root != 0:
                     root_all_ones.next = False
-            if root != 0 or trial_rem >= trial:
+            if root != 0 or not trial_diff[width + 3]:
                 root_length.next = root_length + 1
             radicand.next = radicand << 2
             # end point within one step: -(2m - 1) <= re**2 - rs**2 <= 2m + 1 with

@@ -1,7 +1,7 @@
 """Bench pieces shared by the card benches: clock, pin capture, path rebuild, pin model check."""
 from dataclasses import dataclass, field
 
-from myhdl import StopSimulation, always, block, delay, instance, now
+from myhdl import StopSimulation, block, delay, instance, now
 
 from rtl import instructions as isa
 from rtl.card_core import card_core, card_core_ports
@@ -10,6 +10,7 @@ from sim.cosim import convert_and_cosimulate
 from sim.local_bus_driver import LocalBusDriver
 from sim.waves import Waveform, run_traced, write_gtkw
 from sim.dda_model import ArcCommand, LineCommand, iterate
+from sim.clocking import clock_source
 
 HALF_PERIOD = 5
 FIFO_DEPTH = 16
@@ -44,9 +45,7 @@ class PinLog:
 def clock_and_pins(clock, pins, log):
     """The bench clock and the STEP/DIR capture."""
 
-    @always(delay(HALF_PERIOD))
-    def clock_gen():
-        clock.next = not clock
+    clock_gen = clock_source(clock, 2 * HALF_PERIOD)
 
     return clock_gen, pin_capture(clock, pins, log)
 

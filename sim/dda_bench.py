@@ -10,11 +10,12 @@ are collected in ``record`` for the tests.
 import math
 import random
 
-from myhdl import StopSimulation, always, block, delay, instance
+from myhdl import StopSimulation, block, instance
 
 from rtl.dda_arc import dda_arc
 from sim.cosim import cosimulate
 from sim.dda_model import ArcCommand, DdaMachine, LineCommand, plan_arc
+from sim.clocking import clock_source
 
 OUTPUTS = ("busy", "done", "error", "quadrant")
 PULSES = ("step_x", "step_y", "dir_x", "dir_y")
@@ -62,9 +63,7 @@ def dda_bench(ports, commands, record, *, coord_width=24, verilog=None, seed=1,
     rng = random.Random(seed)
     model = DdaMachine(coord_width)
 
-    @always(delay(HALF_PERIOD))
-    def clock_driver():
-        clock.next = not clock
+    clock_driver = clock_source(clock, 2 * HALF_PERIOD)
 
     @instance
     def stimulus():

@@ -10,7 +10,7 @@ generated ``gen/pci_slave.v`` in Icarus), or a function ``bench -> (agent,
 [(block factory, args[, keyword args])])`` for any other target (the
 behavioural one of the host tests, the whole card).
 """
-from myhdl import Signal, StopSimulation, always, block, delay, instance
+from myhdl import Signal, StopSimulation, block, instance
 
 from rtl.interfaces import card_reset
 from sim.local_memory import LocalMemory, local_memory
@@ -19,6 +19,7 @@ from sim.pci_bus import PciSegment, pci_segment
 from sim.pci_host import PciHost, pci_host
 from sim.pci_monitor import ProtocolChecker, pci_monitor
 from sim.waves import Waveform, run_traced, write_gtkw
+from sim.clocking import clock_source
 
 CLOCK_PERIOD = 30  # time units per PCI clock; 30 ns is 33.3 MHz
 RESET_CLOCKS = 3
@@ -171,9 +172,7 @@ def pci_testbench(bench, scenario, background=None):
         options = entry[2] if len(entry) > 2 else {}
         target.append(factory if args is None else factory(*args, **options))
 
-    @always(delay(CLOCK_PERIOD // 2))
-    def clock_driver():
-        clock.next = not clock
+    clock_driver = clock_source(clock, 2 * CLOCK_PERIOD // 2)
 
     @instance
     def stimulus():

@@ -7,7 +7,7 @@ The same bench runs on the MyHDL block and on its Verilog in Icarus.
 import random
 
 import pytest
-from myhdl import StopSimulation, always, block, delay, instance
+from myhdl import StopSimulation, block, instance
 
 from rtl.direct_pulse import direct_pulse, direct_pulse_ports
 from rtl.feed_rate import feed_rate, feed_rate_ports
@@ -16,6 +16,7 @@ from rtl.sync_fifo import sync_fifo, sync_fifo_ports
 from sim.card_model import DirectPulseModel, FeedRateModel, FifoModel, PulseOutModel
 from sim.cosim import convert_and_cosimulate
 from sim.waves import Waveform, run_traced, write_gtkw
+from sim.clocking import clock_source
 
 HALF_PERIOD = 5
 
@@ -35,9 +36,7 @@ def _bench(dut_spec, ports, step, cycles):
     else:
         dut = factory(**ports, **params)
 
-    @always(delay(HALF_PERIOD))
-    def clock_gen():
-        clock.next = not clock
+    clock_gen = clock_source(clock, 2 * HALF_PERIOD)
 
     @instance
     def stimulus():

@@ -1,12 +1,13 @@
 """The bench's own building blocks: the bus model's resolution and driver
 record, and the memory back end's latency, retry and errors."""
 import pytest
-from myhdl import Signal, StopSimulation, always, block, delay, instance
+from myhdl import Signal, StopSimulation, block, instance
 
 from rtl.interfaces import LocalBus, card_reset
 from sim.local_memory import NOT_READY_DATA, LocalMemory, local_memory
 from sim.pci_bus import PciAgent, PciSegment, even_parity, pci_segment, scripted_agent
 from sim.waves import run_traced
+from sim.clocking import clock_source
 
 
 @block
@@ -17,9 +18,7 @@ def two_agents(clock, segment, scripts, samples):
     bus = pci_segment(clock, segment)
     length = max(len(script) for script in scripts.values())
 
-    @always(delay(15))
-    def clock_driver():
-        clock.next = not clock
+    clock_driver = clock_source(clock, 2 * 15)
 
     @instance
     def sampler():
@@ -77,9 +76,7 @@ def local_requests(clock, reset, local, memory, requests, log):
     """Present each (kind, space, addr, data, be) request until it is answered."""
     back_end = local_memory(clock, reset, local, memory)
 
-    @always(delay(15))
-    def clock_driver():
-        clock.next = not clock
+    clock_driver = clock_source(clock, 2 * 15)
 
     @instance
     def driver():

@@ -2,12 +2,13 @@
 stay quiet) and then the same traffic broken in one place (the monitor must
 name the rule that was broken)."""
 import pytest
-from myhdl import Signal, StopSimulation, always, block, delay, instance
+from myhdl import Signal, StopSimulation, block, instance
 
 from rtl.interfaces import card_reset
 from sim.pci_bus import PciAgent, PciSegment, even_parity, pci_segment, scripted_agent
 from sim.pci_monitor import ProtocolChecker, ProtocolViolation, pci_monitor
 from sim.waves import run_traced, waves_dir, write_gtkw
+from sim.clocking import clock_source
 
 RESET_CLOCKS = 2
 A, D, X = 0x1000, 0x12345678, 0xCAFEF00D
@@ -32,9 +33,7 @@ def scripted_bench(clock, reset, segment, checker, master, target):
     bus = pci_segment(clock, segment)
     monitor = pci_monitor(clock, reset, segment, checker)
 
-    @always(delay(15))
-    def clock_driver():
-        clock.next = not clock
+    clock_driver = clock_source(clock, 2 * 15)
 
     @instance
     def control():

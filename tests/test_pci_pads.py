@@ -11,10 +11,11 @@ stimulus itself (what was driven one clock earlier), not from the pads.
 import random
 
 import pytest
-from myhdl import Signal, StopSimulation, always, always_seq, block, delay, instance, intbv
+from myhdl import Signal, StopSimulation, always, always_seq, block, instance, intbv
 
 from rtl.interfaces import PciBus, PciPins, card_reset
 from rtl.pci_pads import pci_pads, pci_pads_ports
+from sim.clocking import clock_source
 
 CLOCKS = 200
 
@@ -93,9 +94,7 @@ def pads_bench(log, stimulus):
                                  io_registers=io_registers)]
         host_drivers.append((pins.ad.driver(), pins.cbe.driver(), pins.frame.driver()))
 
-    @always(delay(15))
-    def tick():
-        clock.next = not clock
+    tick = clock_source(clock, 2 * 15)
 
     @instance
     def apply():
