@@ -94,6 +94,108 @@ def timing_boundary(source, sink):
     return follow
 
 
+# One-LUT fast path.  Each bit of the state machine's next value has three
+# candidates computed from registers: F (IRDY# deasserted, so FRAME# is
+# asserted), I (IRDY# asserted, FRAME# deasserted: the last data phase) and
+# B (both asserted); FRAME# and IRDY# both deasserted only happens idle or
+# ending, where the three are equal.  A 4-input LUT takes the two pins and
+# two encoded values x, y, so a coding maps (F, I, B) to (x, y) and back; it
+# fits a bit if that bit's triples are among the four it can tell apart.
+# coding: (x from F, I, B; y from F, I, B; out from FRAME#, IRDY#, x, y), in
+# Python and in Verilog ({f} ... {irdy} stand for the bits).
+PIN_CODINGS = {
+    "frame": ((lambda f, i, b: f), (lambda f, i, b: i),
+              (lambda frame, irdy, x, y: y if frame else x),
+              ("{f}", "{i}", "{frame} ? {y} : {x}")),
+    "stop": ((lambda f, i, b: f), (lambda f, i, b: b if f else i),
+             (lambda frame, irdy, x, y: x | y if frame else (x if irdy else x & y)),
+             ("{f}", "{f} ? {b} : {i}", "{frame} ? {x} | {y} : ({irdy} ? {x} : {x} & {y})")),
+    "trdy": ((lambda f, i, b: f ^ i), (lambda f, i, b: b if f ^ i else f),
+             (lambda frame, irdy, x, y: x | y if frame else ((1 - x) & y if irdy else y)),
+             ("{f} ^ {i}", "({f} ^ {i}) ? {b} : {f}", "{frame} ? {x} | {y} : ({irdy} ? ~{x} & {y} : {y})")),
+    "hold": ((lambda f, i, b: f), (lambda f, i, b: b ^ i),
+             (lambda frame, irdy, x, y: x & (1 - y) if frame else (x if irdy else x | y)),
+             ("{f}", "{b} ^ {i}", "{frame} ? {x} & ~{y} : ({irdy} ? {x} : {x} | {y})")),
+}
+
+
+def pin_coding(triples):
+    """Name of the first coding in ``PIN_CODINGS`` that gives back every
+    (F, I, B) of ``triples`` for its pin case; ValueError if none does."""
+    for name, (to_x, to_y, pick, _) in PIN_CODINGS.items():
+        if all(pick(0, 1, to_x(*t), to_y(*t)) == t[0] and pick(1, 0, to_x(*t), to_y(*t)) == t[1]
+               and pick(0, 0, to_x(*t), to_y(*t)) == t[2] for t in triples):
+            return name
+    raise ValueError(f"pci_slave: no one-LUT coding for the pin cases {sorted(triples)}")
+
+
+def state_triples(bit):
+    """(F, I, B) of one bit of the state code: the pins change the state only
+    when a data phase can end (Rwing, Configuring -> Ending or Backoff) and
+    in Backoff (-> Ending)."""
+    code = {item: int(getattr(t_state, item)._val, 2) >> bit & 1
+            for item in ("S_RWING", "S_CONFIGURING", "S_BACKOFF", "S_ENDING")}
+    ending, backoff = code["S_ENDING"], code["S_BACKOFF"]
+    triples = {(0, 0, 0), (1, 1, 1), (backoff, ending, backoff)}
+    for phase in (code["S_RWING"], code["S_CONFIGURING"]):
+        triples |= {(phase, ending, phase), (phase, ending, backoff)}
+    return triples
+
+
+# (F, I, B) of the control lines (1 = deasserted); see ``control_case``:
+# TRDY# ends high after the last phase, stays low while the master waits,
+# and goes high or stays low after a completed phase; STOP# likewise, but
+# it stays low while the master waits on a disconnect; DEVSEL# and the AD
+# drive only change at the last phase (FRAME# deasserted).
+CONTROL_TRIPLES = dict(
+    trdy={(0, 0, 0), (1, 1, 1), (0, 1, 0), (0, 1, 1)},
+    stop={(0, 0, 0), (1, 1, 1), (0, 1, 0), (1, 1, 0)},
+    devsel={(0, 0, 0), (1, 1, 1), (0, 1, 0)},
+    ad_oe={(0, 0, 0), (1, 1, 1), (1, 0, 1)})
+
+
+@block
+def pin_pick(frame_pin, irdy_pin, if_frame, if_irdy, if_both, picked, codings):
+    """``picked`` is ``if_frame``, ``if_irdy`` or ``if_both`` as the FRAME#
+    and IRDY# pins (bus polarity) say (IRDY# deasserted: ``if_frame``), one
+    LUT per bit after the pins: each bit's candidates are coded into two
+    kept nets by ``codings`` (a ``PIN_CODINGS`` name per bit, LSB first).
+    Works on bools and on the state enum.
+
+        pins     --< sampled at edge k >--
+        picked   --< value the register takes at k >--
+    """
+    width = len(codings)
+    items = {int(getattr(t_state, name)._val, 2): getattr(t_state, name) for name in t_state._names}
+
+    def code_of(value):
+        return int(bool(value)) if width == 1 else int(value.val._val, 2)
+
+    @always_comb
+    def choose():
+        f, i, b = code_of(if_frame), code_of(if_irdy), code_of(if_both)
+        out = 0
+        for bit, name in enumerate(codings):
+            to_x, to_y, pick, _ = PIN_CODINGS[name]
+            fib = (f >> bit & 1, i >> bit & 1, b >> bit & 1)
+            out |= pick(int(frame_pin), int(irdy_pin), to_x(*fib), to_y(*fib)) << bit
+        picked.next = bool(out) if width == 1 else items[out]
+
+    picked.driven = "wire"
+    lines = []
+    for bit, name in enumerate(codings):
+        sel = f"[{bit}]" if width > 1 else ""
+        x_text, y_text, out_text = PIN_CODINGS[name][3]
+        names = dict(f=f"$if_frame{sel}", i=f"$if_irdy{sel}", b=f"$if_both{sel}",
+                     x=f"${{picked}}_x{bit}", y=f"${{picked}}_y{bit}",
+                     frame="$frame_pin", irdy="$irdy_pin")
+        lines += [f"(* keep *) wire {names['x']} = {x_text.format(**names)};",
+                  f"(* keep *) wire {names['y']} = {y_text.format(**names)};",
+                  f"assign $picked{sel} = {out_text.format(**names)};"]
+    pin_pick.verilog_code = "\n".join(lines) + "\n"
+    return choose
+
+
 def local_addr_width(io_bar_bits=6, mem_bar_bits=12):
     """Address bits of ``LocalBus`` the target drives: the larger BAR, and at
     least the 256 bytes of configuration space (one counter serves all)."""
@@ -237,11 +339,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     timeout = Signal(bool(0))
     at_last = Signal(bool(0))         # phase_addr is the last dword of BAR1
     before_last = Signal(bool(0))
-    # next values should FRAME#, IRDY# or both be asserted at this edge
-    # (FRAME# deasserts only while IRDY# is asserted, so with IRDY#
-    # deasserted a transaction still has FRAME# asserted)
-    next_if_frame, next_if_irdy, next_if_both = (
-        TargetControlNext(t_state.S_IDLE) for _ in range(3))
 
     # ------------------------------------------------------------ input stage
     if not io_registers:
@@ -514,39 +611,33 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
         return control
 
-    case_values = [TargetControlNext(t_state.S_IDLE) for _ in range(3)]
-    control_cases = [control_case(False, True, case_values[0]),
-                     control_case(True, False, case_values[1]),
-                     control_case(True, True, case_values[2])]
-    # kept nets: the pins only choose among finished case values
-    case_boundaries = [timing_boundary(getattr(value, field), getattr(kept, field))
-                       for value, kept in zip(case_values, (next_if_frame, next_if_irdy,
-                                                            next_if_both))
-                       for field in TargetControlNext.FIELDS]
+    if_frame, if_irdy, if_both = (TargetControlNext(t_state.S_IDLE) for _ in range(3))
+    control_cases = [control_case(False, True, if_frame), control_case(True, False, if_irdy),
+                     control_case(True, True, if_both)]
+    picks = [pin_pick(pci.frame_in, pci.irdy_in, if_frame.state, if_irdy.state, if_both.state,
+                      state_next, [pin_coding(state_triples(bit)) for bit in range(len(state))])]
+    picks += [pin_pick(pci.frame_in, pci.irdy_in, getattr(if_frame, field), getattr(if_irdy, field),
+                       getattr(if_both, field), picked, [pin_coding(CONTROL_TRIPLES[field])])
+              for field, picked in (("trdy", trdy_next), ("stop", stop_next),
+                                    ("devsel", devsel_next), ("ad_oe", ad_oe_next))]
+
+    from myhdl import always as _always
+    @_always(clock.posedge)
+    def _tmp_check():
+        for field in ("trdy", "stop", "devsel", "ad_oe", "drive"):
+            t = (int(getattr(if_frame, field)), int(getattr(if_irdy, field)), int(getattr(if_both, field)))
+            allowed = CONTROL_TRIPLES.get(field, {(0, 0, 0), (1, 1, 1)})
+            if t not in allowed:
+                raise AssertionError(f"TMPCHECK {field} {t} state {state}")
+        for bit in range(4):
+            t = tuple(int(x.val._val, 2) >> bit & 1 for x in (if_frame.state, if_irdy.state, if_both.state))
+            if t not in state_triples(bit):
+                raise AssertionError(f"TMPCHECK state bit {bit} {t} state {state}")
 
     @always_comb
-    def control_pick():
-        if pci.irdy_in:
-            state_next.next = next_if_frame.state
-            trdy_next.next = next_if_frame.trdy
-            stop_next.next = next_if_frame.stop
-            devsel_next.next = next_if_frame.devsel
-            drive_next.next = next_if_frame.drive
-            ad_oe_next.next = next_if_frame.ad_oe
-        elif pci.frame_in:
-            state_next.next = next_if_irdy.state
-            trdy_next.next = next_if_irdy.trdy
-            stop_next.next = next_if_irdy.stop
-            devsel_next.next = next_if_irdy.devsel
-            drive_next.next = next_if_irdy.drive
-            ad_oe_next.next = next_if_irdy.ad_oe
-        else:
-            state_next.next = next_if_both.state
-            trdy_next.next = next_if_both.trdy
-            stop_next.next = next_if_both.stop
-            devsel_next.next = next_if_both.devsel
-            drive_next.next = next_if_both.drive
-            ad_oe_next.next = next_if_both.ad_oe
+    def drive_pick():
+        # the drivers only change idle and ending, whatever the pins
+        drive_next.next = if_frame.drive
 
     @always_seq(clock.posedge, reset=reset)
     def transaction():

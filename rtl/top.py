@@ -15,6 +15,11 @@ from pathlib import Path
 
 from myhdl import Signal, block
 
+from rtl import instructions, registers
+from rtl.card import card
+from rtl.interfaces import MotorPins, PciBus, PciPins, card_reset
+from rtl.pci_pads import pci_pads
+
 GEN_DIR = Path(__file__).resolve().parent.parent / "gen"
 
 def integer(text):
@@ -66,10 +71,6 @@ def top(clock, reset, pci_pins, motor, *, fifo_depth=512, coord_width=24, io_reg
 
         pins <-> pci_pads <-> card (pci_slave, regs_fifo, dda_arc) --> STEP/DIR
     """
-    from rtl.card import card
-    from rtl.interfaces import PciBus
-    from rtl.pci_pads import pci_pads
-
     pci = PciBus()
     pads = pci_pads(clock, pci_pins, pci, io_registers=io_registers)
     core = card(clock, reset, pci, motor, fifo_depth=fifo_depth, coord_width=coord_width,
@@ -79,15 +80,11 @@ def top(clock, reset, pci_pins, motor, *, fifo_depth=512, coord_width=24, io_reg
 
 def top_ports(fifo_depth=512, coord_width=24, io_registers=True, **ids):
     """Fresh ports of ``top`` for conversion and benches."""
-    from rtl.interfaces import MotorPins, PciPins, card_reset
-
     return dict(clock=Signal(bool(0)), reset=card_reset(), pci_pins=PciPins(), motor=MotorPins())
 
 
 def write_c_header(out_dir=GEN_DIR):
     """Write the C header of the register map and command set; return its path."""
-    from rtl import instructions, registers
-
     target = Path(out_dir) / C_HEADER
     target.parent.mkdir(parents=True, exist_ok=True)
     target.write_text(registers.c_header(extra=instructions.c_defines()))
