@@ -96,17 +96,19 @@ reg pins_dir_y;
 
 wire irq;
 wire pci_slave1_accepted;
-reg pci_slave1_ad_oe_next;
+wire pci_slave1_ad_oe_next;
 reg [31:0] pci_slave1_ad_out_next;
 reg pci_slave1_ad_out_parity;
 wire pci_slave1_ad_out_parity_kept;
 reg [31:0] pci_slave1_ad_out_q;
 reg [31:0] pci_slave1_ad_q;
 reg pci_slave1_address_fault;
-wire pci_slave1_address_parity_error;
+wire pci_slave1_address_fault_next;
 wire pci_slave1_address_phase;
 wire pci_slave1_at_last;
+reg pci_slave1_b_kept;
 reg pci_slave1_b_valid;
+wire pci_slave1_b_valid_next;
 wire pci_slave1_back_end_retry;
 reg [15:0] pci_slave1_bar0;
 wire [15:0] pci_slave1_bar0_read;
@@ -114,31 +116,30 @@ reg [31:0] pci_slave1_bar1;
 wire pci_slave1_before_last;
 reg [1:0] pci_slave1_buffered_next;
 reg pci_slave1_bus_parity;
-wire pci_slave1_bus_parity_kept;
 reg [3:0] pci_slave1_cbe_q;
 reg pci_slave1_claim;
 reg pci_slave1_claim_config;
 reg pci_slave1_claim_io;
 reg [31:0] pci_slave1_config_data;
 wire [5:0] pci_slave1_config_index;
+wire pci_slave1_config_write_next;
 reg pci_slave1_config_write_q;
-wire pci_slave1_data_parity_error;
 reg pci_slave1_detected_parity_error;
-reg pci_slave1_devsel_next;
+wire pci_slave1_devsel_next;
 reg pci_slave1_devsel_q;
 wire pci_slave1_draining;
-reg pci_slave1_drive_next;
+wire pci_slave1_drive_next;
 reg pci_slave1_fatal;
 reg pci_slave1_fetching;
 reg pci_slave1_first_pending;
 reg pci_slave1_first_phase;
+wire pci_slave1_first_phase_next;
 reg pci_slave1_frame_q;
 reg pci_slave1_frame_qq;
 wire pci_slave1_got;
 reg [3:0] pci_slave1_h_be;
 reg [31:0] pci_slave1_h_data;
 reg pci_slave1_h_valid;
-wire pci_slave1_holding;
 reg pci_slave1_idsel_q;
 reg pci_slave1_interrupt_disable;
 reg [7:0] pci_slave1_interrupt_line;
@@ -148,15 +149,18 @@ reg pci_slave1_irdy_q;
 reg pci_slave1_is_config;
 reg pci_slave1_is_read;
 reg pci_slave1_mem_enable;
-reg pci_slave1_par_next;
+wire pci_slave1_par_next;
 reg pci_slave1_par_q;
+wire pci_slave1_parity_error_next;
 reg pci_slave1_parity_error_q;
 reg pci_slave1_parity_response;
 wire pci_slave1_perr_armed;
-reg pci_slave1_perr_next;
+wire pci_slave1_perr_next;
+wire pci_slave1_perr_oe_next;
 reg pci_slave1_perr_q;
 reg [9:0] pci_slave1_phase_addr;
-wire pci_slave1_phase_done;
+wire pci_slave1_phase_step;
+wire pci_slave1_posting;
 reg [31:0] pci_slave1_read_source;
 reg pci_slave1_refused;
 reg [9:0] pci_slave1_req_addr;
@@ -165,6 +169,7 @@ reg [3:0] pci_slave1_s_be;
 reg pci_slave1_s_valid;
 wire pci_slave1_serr_armed;
 reg pci_slave1_serr_enable;
+wire pci_slave1_serr_oe_next;
 reg pci_slave1_signaled_system_error;
 reg pci_slave1_signaled_target_abort;
 reg pci_slave1_single;
@@ -172,15 +177,17 @@ reg pci_slave1_space_mem;
 reg [31:0] pci_slave1_spare_data;
 reg [9:0] pci_slave1_start_addr;
 reg [3:0] pci_slave1_state;
-reg [3:0] pci_slave1_state_next;
-reg pci_slave1_stop_next;
+wire [3:0] pci_slave1_state_next;
+wire pci_slave1_stop_next;
 reg pci_slave1_stop_q;
 reg pci_slave1_timeout;
-reg pci_slave1_trdy_next;
+wire pci_slave1_trdy_next;
 reg pci_slave1_trdy_q;
 reg [3:0] pci_slave1_wait_count;
 reg pci_slave1_waiting;
 reg pci_slave1_wq_valid;
+wire pci_slave1_wq_valid_next;
+wire pci_slave1_write_done_next;
 reg pci_slave1_write_done_q;
 reg pci_slave1_local_re;
 reg pci_slave1_local_we;
@@ -191,24 +198,6 @@ reg [11:0] pci_slave1_local_addr;
 wire pci_slave1_local_ready;
 wire pci_slave1_local_retry;
 wire [31:0] pci_slave1_local_rdata;
-wire [3:0] pci_slave1_next_if_frame_state;
-wire pci_slave1_next_if_frame_trdy;
-wire pci_slave1_next_if_frame_stop;
-wire pci_slave1_next_if_frame_devsel;
-wire pci_slave1_next_if_frame_drive;
-wire pci_slave1_next_if_frame_ad_oe;
-wire [3:0] pci_slave1_next_if_irdy_state;
-wire pci_slave1_next_if_irdy_trdy;
-wire pci_slave1_next_if_irdy_stop;
-wire pci_slave1_next_if_irdy_devsel;
-wire pci_slave1_next_if_irdy_drive;
-wire pci_slave1_next_if_irdy_ad_oe;
-wire [3:0] pci_slave1_next_if_both_state;
-wire pci_slave1_next_if_both_trdy;
-wire pci_slave1_next_if_both_stop;
-wire pci_slave1_next_if_both_devsel;
-wire pci_slave1_next_if_both_drive;
-wire pci_slave1_next_if_both_ad_oe;
 reg [3:0] pci_slave1_control_case0_0_out_state;
 reg pci_slave1_control_case0_0_out_trdy;
 reg pci_slave1_control_case0_0_out_stop;
@@ -529,13 +518,16 @@ wire [1:0] card_core0_regs_fifo1__status1_quadrant;
 reg [4:0] card_core0_dda_arc1_acc_bits;
 reg signed [31:0] card_core0_dda_arc1_acc_x;
 reg signed [31:0] card_core0_dda_arc1_acc_y;
+reg card_core0_dda_arc1_at_x;
+reg card_core0_dda_arc1_at_y;
 reg card_core0_dda_arc1_ccw;
 reg signed [31:0] card_core0_dda_arc1_chk_acc_init;
 reg [2:0] card_core0_dda_arc1_chk_crossings;
-reg signed [29:0] card_core0_dda_arc1_chk_delta_turn;
-reg signed [29:0] card_core0_dda_arc1_chk_delta_x;
-reg signed [29:0] card_core0_dda_arc1_chk_delta_y;
 reg card_core0_dda_arc1_chk_error;
+reg [23:0] card_core0_dda_arc1_chk_mag_x;
+reg [23:0] card_core0_dda_arc1_chk_mag_y;
+reg [24:0] card_core0_dda_arc1_chk_neg_mag_x;
+reg [24:0] card_core0_dda_arc1_chk_neg_mag_y;
 reg [1:0] card_core0_dda_arc1_chk_quadrant;
 reg [23:0] card_core0_dda_arc1_chk_radius;
 reg [23:0] card_core0_dda_arc1_chk_target_x;
@@ -545,13 +537,17 @@ reg [23:0] card_core0_dda_arc1_cmd_mag_xs;
 reg [23:0] card_core0_dda_arc1_count_x;
 reg [23:0] card_core0_dda_arc1_count_y;
 reg [2:0] card_core0_dda_arc1_crossings;
-reg signed [29:0] card_core0_dda_arc1_delta_turn;
 reg signed [29:0] card_core0_dda_arc1_delta_x;
 reg signed [29:0] card_core0_dda_arc1_delta_y;
 reg card_core0_dda_arc1_end_beyond_high;
 reg card_core0_dda_arc1_end_reaches_low;
 reg signed [49:0] card_core0_dda_arc1_gap;
 reg signed [49:0] card_core0_dda_arc1_gap_sum;
+reg card_core0_dda_arc1_geo_ahead;
+reg card_core0_dda_arc1_geo_centre;
+reg [2:0] card_core0_dda_arc1_geo_crossings;
+reg [23:0] card_core0_dda_arc1_geo_end_inward;
+reg [1:0] card_core0_dda_arc1_geo_quadrant;
 reg [23:0] card_core0_dda_arc1_integrand_x;
 reg [23:0] card_core0_dda_arc1_integrand_y;
 reg card_core0_dda_arc1_is_line;
@@ -563,20 +559,31 @@ reg signed [29:0] card_core0_dda_arc1_it_error;
 reg card_core0_dda_arc1_it_finished;
 reg [23:0] card_core0_dda_arc1_it_mag_x;
 reg [23:0] card_core0_dda_arc1_it_mag_y;
+reg [24:0] card_core0_dda_arc1_it_neg_mag_x;
+reg [24:0] card_core0_dda_arc1_it_neg_mag_y;
 reg card_core0_dda_arc1_it_next_piece;
 reg card_core0_dda_arc1_it_step_x;
 reg card_core0_dda_arc1_it_step_y;
+reg card_core0_dda_arc1_it_tail;
 reg [4:0] card_core0_dda_arc1_lambda_shift;
 reg [4:0] card_core0_dda_arc1_mac_bit;
 reg [1:0] card_core0_dda_arc1_mac_op;
 reg [23:0] card_core0_dda_arc1_mag_x;
+reg [23:0] card_core0_dda_arc1_mag_x_step;
 reg [23:0] card_core0_dda_arc1_mag_xe;
 reg [23:0] card_core0_dda_arc1_mag_xs;
 reg [23:0] card_core0_dda_arc1_mag_y;
+reg [23:0] card_core0_dda_arc1_mag_y_step;
 reg [23:0] card_core0_dda_arc1_mag_ye;
 reg [23:0] card_core0_dda_arc1_mag_ys;
 reg [47:0] card_core0_dda_arc1_multiplicand;
 reg [23:0] card_core0_dda_arc1_multiplier;
+reg card_core0_dda_arc1_near_x;
+reg card_core0_dda_arc1_near_y;
+reg [24:0] card_core0_dda_arc1_neg_mag_x;
+reg [24:0] card_core0_dda_arc1_neg_mag_x_step;
+reg [24:0] card_core0_dda_arc1_neg_mag_y;
+reg [24:0] card_core0_dda_arc1_neg_mag_y_step;
 reg signed [24:0] card_core0_dda_arc1_neg_xs;
 reg signed [24:0] card_core0_dda_arc1_neg_ys;
 reg [1:0] card_core0_dda_arc1_quadrant;
@@ -595,10 +602,9 @@ reg [23:0] card_core0_dda_arc1_target_x;
 reg [23:0] card_core0_dda_arc1_target_y;
 reg [28:0] card_core0_dda_arc1_threshold;
 reg [1:0] card_core0_dda_arc1_variant;
-reg card_core0_dda_arc1_x_down;
+reg card_core0_dda_arc1_x_inward;
 reg signed [23:0] card_core0_dda_arc1_xe;
 reg signed [23:0] card_core0_dda_arc1_xs;
-reg card_core0_dda_arc1_y_down;
 reg signed [23:0] card_core0_dda_arc1_ye;
 reg signed [23:0] card_core0_dda_arc1_ys;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
@@ -666,8 +672,46 @@ end
 assign pci_slave1_address_phase = (pci_slave1_frame_qq && (!pci_slave1_frame_q));
 assign pci_slave1_serr_armed = (pci_slave1_frame_qq && (!pci_slave1_frame_q) && pci_slave1_serr_enable && pci_slave1_parity_response);
 assign pci_slave1_perr_armed = (pci_slave1_write_done_q && pci_slave1_parity_response);
-assign pci_slave1_address_parity_error = (pci_slave1_frame_qq && (!pci_slave1_frame_q) && (pci_slave1_bus_parity_kept != pci_par_in));
-assign pci_slave1_data_parity_error = (pci_slave1_write_done_q && (pci_slave1_bus_parity_kept != pci_par_in));
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h9F9F)) pci_slave1_perr_next_lut (.O(pci_slave1_perr_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_perr_armed), .I3(1'b0));
+`else
+wire [7:0] pci_slave1_perr_next_lut_table = 8'h9F;
+assign pci_slave1_perr_next = pci_slave1_perr_next_lut_table[{pci_slave1_perr_armed, pci_slave1_bus_parity, pci_par_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h60FF)) pci_slave1_perr_oe_next_lut (.O(pci_slave1_perr_oe_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_perr_armed), .I3(pci_slave1_perr_q));
+`else
+wire [15:0] pci_slave1_perr_oe_next_lut_table = 16'h60FF;
+assign pci_slave1_perr_oe_next = pci_slave1_perr_oe_next_lut_table[{pci_slave1_perr_q, pci_slave1_perr_armed, pci_slave1_bus_parity, pci_par_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h6060)) pci_slave1_serr_oe_next_lut (.O(pci_slave1_serr_oe_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_serr_armed), .I3(1'b0));
+`else
+wire [7:0] pci_slave1_serr_oe_next_lut_table = 8'h60;
+assign pci_slave1_serr_oe_next = pci_slave1_serr_oe_next_lut_table[{pci_slave1_serr_armed, pci_slave1_bus_parity, pci_par_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h6000)) pci_slave1_address_fault_next_lut (.O(pci_slave1_address_fault_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_address_phase), .I3(pci_slave1_parity_response));
+`else
+wire [15:0] pci_slave1_address_fault_next_lut_table = 16'h6000;
+assign pci_slave1_address_fault_next = pci_slave1_address_fault_next_lut_table[{pci_slave1_parity_response, pci_slave1_address_phase, pci_slave1_bus_parity, pci_par_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h6660)) pci_slave1_parity_error_next_lut (.O(pci_slave1_parity_error_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_address_phase), .I3(pci_slave1_write_done_q));
+`else
+wire [15:0] pci_slave1_parity_error_next_lut_table = 16'h6660;
+assign pci_slave1_parity_error_next = pci_slave1_parity_error_next_lut_table[{pci_slave1_write_done_q, pci_slave1_address_phase, pci_slave1_bus_parity, pci_par_in}];
+`endif
 
 
 always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_io_enable, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_mem_enable, pci_slave1_state) begin: pci_slave1_decode
@@ -698,9 +742,52 @@ always @(pci_slave1_ad_q, pci_slave1_claim_config, pci_slave1_claim_io) begin: p
 end
 
 
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFEF0)) pci_slave1_first_phase_next_lut (.O(pci_slave1_first_phase_next), .I0(pci_irdy_in), .I1(pci_slave1_trdy_q), .I2(pci_slave1_claim), .I3(pci_slave1_first_phase));
+`else
+wire [15:0] pci_slave1_first_phase_next_lut_table = 16'hFEF0;
+assign pci_slave1_first_phase_next = pci_slave1_first_phase_next_lut_table[{pci_slave1_first_phase, pci_slave1_claim, pci_slave1_trdy_q, pci_irdy_in}];
+`endif
 
-assign pci_slave1_phase_done = ((!pci_irdy_in) && (!pci_slave1_trdy_q));
-assign pci_slave1_holding = (pci_irdy_in && (!pci_slave1_trdy_q));
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hF1F0)) pci_slave1_phase_step_lut (.O(pci_slave1_phase_step), .I0(pci_irdy_in), .I1(pci_slave1_trdy_q), .I2(pci_slave1_claim), .I3(pci_slave1_space_mem));
+`else
+wire [15:0] pci_slave1_phase_step_lut_table = 16'hF1F0;
+assign pci_slave1_phase_step = pci_slave1_phase_step_lut_table[{pci_slave1_space_mem, pci_slave1_claim, pci_slave1_trdy_q, pci_irdy_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h0101)) pci_slave1_write_done_next_lut (.O(pci_slave1_write_done_next), .I0(pci_irdy_in), .I1(pci_slave1_trdy_q), .I2(pci_slave1_is_read), .I3(1'b0));
+`else
+wire [7:0] pci_slave1_write_done_next_lut_table = 8'h01;
+assign pci_slave1_write_done_next = pci_slave1_write_done_next_lut_table[{pci_slave1_is_read, pci_slave1_trdy_q, pci_irdy_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h0100)) pci_slave1_config_write_next_lut (.O(pci_slave1_config_write_next), .I0(pci_irdy_in), .I1(pci_slave1_trdy_q), .I2(pci_slave1_is_read), .I3(pci_slave1_is_config));
+`else
+wire [15:0] pci_slave1_config_write_next_lut_table = 16'h0100;
+assign pci_slave1_config_write_next = pci_slave1_config_write_next_lut_table[{pci_slave1_is_config, pci_slave1_is_read, pci_slave1_trdy_q, pci_irdy_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h4444)) pci_slave1_wq_valid_next_lut (.O(pci_slave1_wq_valid_next), .I0(pci_irdy_in), .I1(pci_slave1_posting), .I2(1'b0), .I3(1'b0));
+`else
+wire [3:0] pci_slave1_wq_valid_next_lut_table = 4'h4;
+assign pci_slave1_wq_valid_next = pci_slave1_wq_valid_next_lut_table[{pci_slave1_posting, pci_irdy_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h8888)) pci_slave1_b_valid_next_lut (.O(pci_slave1_b_valid_next), .I0(pci_irdy_in), .I1(pci_slave1_b_kept), .I2(1'b0), .I3(1'b0));
+`else
+wire [3:0] pci_slave1_b_valid_next_lut_table = 4'h8;
+assign pci_slave1_b_valid_next = pci_slave1_b_valid_next_lut_table[{pci_slave1_b_kept, pci_irdy_in}];
+`endif
 
 
 always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_slave1_io_byte, pci_slave1_b_valid, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_wq_valid, pci_slave1_space_mem, pci_slave1_h_be, pci_slave1_h_data, pci_slave1_is_config, pci_slave1_irdy_q, pci_slave1_req_addr_stale, pci_slave1_address_fault, pci_slave1_frame_q, pci_slave1_h_valid, pci_slave1_cbe_q) begin: pci_slave1_local_request
@@ -1204,104 +1291,88 @@ always @(pci_slave1_accepted, pci_slave1_back_end_retry, pci_slave1_claim_config
 end
 
 
-(* keep *) wire [3:0] pci_slave1_next_if_frame_state_kept_net = pci_slave1_control_case0_0_out_state;
-assign pci_slave1_next_if_frame_state = pci_slave1_next_if_frame_state_kept_net;
+wire pci_slave1_state_next_x0 = pci_slave1_control_case0_0_out_state[0];
+wire pci_slave1_state_next_y0 = pci_slave1_control_case2_0_out_state[0] ^ pci_slave1_control_case1_0_out_state[0];
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h2A2E)) pci_slave1_state_next_lut0 (.O(pci_slave1_state_next[0]), .I0(pci_slave1_state_next_x0), .I1(pci_slave1_state_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] pci_slave1_state_next_lut0_table = 16'h2A2E;
+assign pci_slave1_state_next[0] = pci_slave1_state_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_state_next_y0, pci_slave1_state_next_x0}];
+`endif
+wire pci_slave1_state_next_x1 = pci_slave1_control_case0_0_out_state[1];
+wire pci_slave1_state_next_y1 = pci_slave1_control_case2_0_out_state[1] ^ pci_slave1_control_case1_0_out_state[1];
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h2A2E)) pci_slave1_state_next_lut1 (.O(pci_slave1_state_next[1]), .I0(pci_slave1_state_next_x1), .I1(pci_slave1_state_next_y1), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] pci_slave1_state_next_lut1_table = 16'h2A2E;
+assign pci_slave1_state_next[1] = pci_slave1_state_next_lut1_table[{pci_irdy_in, pci_frame_in, pci_slave1_state_next_y1, pci_slave1_state_next_x1}];
+`endif
+wire pci_slave1_state_next_x2 = pci_slave1_control_case0_0_out_state[2];
+wire pci_slave1_state_next_y2 = pci_slave1_control_case2_0_out_state[2] ^ pci_slave1_control_case1_0_out_state[2];
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h2A2E)) pci_slave1_state_next_lut2 (.O(pci_slave1_state_next[2]), .I0(pci_slave1_state_next_x2), .I1(pci_slave1_state_next_y2), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] pci_slave1_state_next_lut2_table = 16'h2A2E;
+assign pci_slave1_state_next[2] = pci_slave1_state_next_lut2_table[{pci_irdy_in, pci_frame_in, pci_slave1_state_next_y2, pci_slave1_state_next_x2}];
+`endif
+wire pci_slave1_state_next_x3 = pci_slave1_control_case0_0_out_state[3];
+wire pci_slave1_state_next_y3 = pci_slave1_control_case0_0_out_state[3] ? pci_slave1_control_case2_0_out_state[3] : pci_slave1_control_case1_0_out_state[3];
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hEAE8)) pci_slave1_state_next_lut3 (.O(pci_slave1_state_next[3]), .I0(pci_slave1_state_next_x3), .I1(pci_slave1_state_next_y3), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] pci_slave1_state_next_lut3_table = 16'hEAE8;
+assign pci_slave1_state_next[3] = pci_slave1_state_next_lut3_table[{pci_irdy_in, pci_frame_in, pci_slave1_state_next_y3, pci_slave1_state_next_x3}];
+`endif
 
 
-(* keep *) wire pci_slave1_next_if_frame_trdy_kept_net = pci_slave1_control_case0_0_out_trdy;
-assign pci_slave1_next_if_frame_trdy = pci_slave1_next_if_frame_trdy_kept_net;
+wire pci_slave1_trdy_next_x0 = pci_slave1_control_case0_0_out_trdy ^ pci_slave1_control_case1_0_out_trdy;
+wire pci_slave1_trdy_next_y0 = (pci_slave1_control_case0_0_out_trdy ^ pci_slave1_control_case1_0_out_trdy) ? pci_slave1_control_case2_0_out_trdy : pci_slave1_control_case0_0_out_trdy;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hE4EC)) pci_slave1_trdy_next_lut0 (.O(pci_slave1_trdy_next), .I0(pci_slave1_trdy_next_x0), .I1(pci_slave1_trdy_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] pci_slave1_trdy_next_lut0_table = 16'hE4EC;
+assign pci_slave1_trdy_next = pci_slave1_trdy_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_trdy_next_y0, pci_slave1_trdy_next_x0}];
+`endif
 
 
-(* keep *) wire pci_slave1_next_if_frame_stop_kept_net = pci_slave1_control_case0_0_out_stop;
-assign pci_slave1_next_if_frame_stop = pci_slave1_next_if_frame_stop_kept_net;
+wire pci_slave1_stop_next_x0 = pci_slave1_control_case0_0_out_stop;
+wire pci_slave1_stop_next_y0 = pci_slave1_control_case0_0_out_stop ? pci_slave1_control_case2_0_out_stop : pci_slave1_control_case1_0_out_stop;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hEAE8)) pci_slave1_stop_next_lut0 (.O(pci_slave1_stop_next), .I0(pci_slave1_stop_next_x0), .I1(pci_slave1_stop_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] pci_slave1_stop_next_lut0_table = 16'hEAE8;
+assign pci_slave1_stop_next = pci_slave1_stop_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_stop_next_y0, pci_slave1_stop_next_x0}];
+`endif
 
 
-(* keep *) wire pci_slave1_next_if_frame_devsel_kept_net = pci_slave1_control_case0_0_out_devsel;
-assign pci_slave1_next_if_frame_devsel = pci_slave1_next_if_frame_devsel_kept_net;
+wire pci_slave1_devsel_next_x0 = pci_slave1_control_case0_0_out_devsel;
+wire pci_slave1_devsel_next_y0 = pci_slave1_control_case0_0_out_devsel ? pci_slave1_control_case2_0_out_devsel : pci_slave1_control_case1_0_out_devsel;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hEAE8)) pci_slave1_devsel_next_lut0 (.O(pci_slave1_devsel_next), .I0(pci_slave1_devsel_next_x0), .I1(pci_slave1_devsel_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] pci_slave1_devsel_next_lut0_table = 16'hEAE8;
+assign pci_slave1_devsel_next = pci_slave1_devsel_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_devsel_next_y0, pci_slave1_devsel_next_x0}];
+`endif
 
 
-(* keep *) wire pci_slave1_next_if_frame_drive_kept_net = pci_slave1_control_case0_0_out_drive;
-assign pci_slave1_next_if_frame_drive = pci_slave1_next_if_frame_drive_kept_net;
+wire pci_slave1_drive_next_x0 = pci_slave1_control_case0_0_out_drive;
+wire pci_slave1_drive_next_y0 = pci_slave1_control_case0_0_out_drive ? pci_slave1_control_case2_0_out_drive : pci_slave1_control_case1_0_out_drive;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hEAE8)) pci_slave1_drive_next_lut0 (.O(pci_slave1_drive_next), .I0(pci_slave1_drive_next_x0), .I1(pci_slave1_drive_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] pci_slave1_drive_next_lut0_table = 16'hEAE8;
+assign pci_slave1_drive_next = pci_slave1_drive_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_drive_next_y0, pci_slave1_drive_next_x0}];
+`endif
 
 
-(* keep *) wire pci_slave1_next_if_frame_ad_oe_kept_net = pci_slave1_control_case0_0_out_ad_oe;
-assign pci_slave1_next_if_frame_ad_oe = pci_slave1_next_if_frame_ad_oe_kept_net;
-
-
-(* keep *) wire [3:0] pci_slave1_next_if_irdy_state_kept_net = pci_slave1_control_case1_0_out_state;
-assign pci_slave1_next_if_irdy_state = pci_slave1_next_if_irdy_state_kept_net;
-
-
-(* keep *) wire pci_slave1_next_if_irdy_trdy_kept_net = pci_slave1_control_case1_0_out_trdy;
-assign pci_slave1_next_if_irdy_trdy = pci_slave1_next_if_irdy_trdy_kept_net;
-
-
-(* keep *) wire pci_slave1_next_if_irdy_stop_kept_net = pci_slave1_control_case1_0_out_stop;
-assign pci_slave1_next_if_irdy_stop = pci_slave1_next_if_irdy_stop_kept_net;
-
-
-(* keep *) wire pci_slave1_next_if_irdy_devsel_kept_net = pci_slave1_control_case1_0_out_devsel;
-assign pci_slave1_next_if_irdy_devsel = pci_slave1_next_if_irdy_devsel_kept_net;
-
-
-(* keep *) wire pci_slave1_next_if_irdy_drive_kept_net = pci_slave1_control_case1_0_out_drive;
-assign pci_slave1_next_if_irdy_drive = pci_slave1_next_if_irdy_drive_kept_net;
-
-
-(* keep *) wire pci_slave1_next_if_irdy_ad_oe_kept_net = pci_slave1_control_case1_0_out_ad_oe;
-assign pci_slave1_next_if_irdy_ad_oe = pci_slave1_next_if_irdy_ad_oe_kept_net;
-
-
-(* keep *) wire [3:0] pci_slave1_next_if_both_state_kept_net = pci_slave1_control_case2_0_out_state;
-assign pci_slave1_next_if_both_state = pci_slave1_next_if_both_state_kept_net;
-
-
-(* keep *) wire pci_slave1_next_if_both_trdy_kept_net = pci_slave1_control_case2_0_out_trdy;
-assign pci_slave1_next_if_both_trdy = pci_slave1_next_if_both_trdy_kept_net;
-
-
-(* keep *) wire pci_slave1_next_if_both_stop_kept_net = pci_slave1_control_case2_0_out_stop;
-assign pci_slave1_next_if_both_stop = pci_slave1_next_if_both_stop_kept_net;
-
-
-(* keep *) wire pci_slave1_next_if_both_devsel_kept_net = pci_slave1_control_case2_0_out_devsel;
-assign pci_slave1_next_if_both_devsel = pci_slave1_next_if_both_devsel_kept_net;
-
-
-(* keep *) wire pci_slave1_next_if_both_drive_kept_net = pci_slave1_control_case2_0_out_drive;
-assign pci_slave1_next_if_both_drive = pci_slave1_next_if_both_drive_kept_net;
-
-
-(* keep *) wire pci_slave1_next_if_both_ad_oe_kept_net = pci_slave1_control_case2_0_out_ad_oe;
-assign pci_slave1_next_if_both_ad_oe = pci_slave1_next_if_both_ad_oe_kept_net;
-
-
-always @(pci_irdy_in, pci_slave1_next_if_irdy_drive, pci_slave1_next_if_irdy_state, pci_slave1_next_if_both_stop, pci_slave1_next_if_both_devsel, pci_slave1_next_if_irdy_ad_oe, pci_slave1_next_if_frame_drive, pci_slave1_next_if_frame_stop, pci_slave1_next_if_irdy_stop, pci_slave1_next_if_frame_state, pci_slave1_next_if_both_ad_oe, pci_slave1_next_if_irdy_trdy, pci_slave1_next_if_both_drive, pci_frame_in, pci_slave1_next_if_frame_devsel, pci_slave1_next_if_irdy_devsel, pci_slave1_next_if_both_state, pci_slave1_next_if_both_trdy, pci_slave1_next_if_frame_ad_oe, pci_slave1_next_if_frame_trdy) begin: pci_slave1_control_pick
-    if (pci_irdy_in) begin
-        pci_slave1_state_next = pci_slave1_next_if_frame_state;
-        pci_slave1_trdy_next = pci_slave1_next_if_frame_trdy;
-        pci_slave1_stop_next = pci_slave1_next_if_frame_stop;
-        pci_slave1_devsel_next = pci_slave1_next_if_frame_devsel;
-        pci_slave1_drive_next = pci_slave1_next_if_frame_drive;
-        pci_slave1_ad_oe_next = pci_slave1_next_if_frame_ad_oe;
-    end
-    else if (pci_frame_in) begin
-        pci_slave1_state_next = pci_slave1_next_if_irdy_state;
-        pci_slave1_trdy_next = pci_slave1_next_if_irdy_trdy;
-        pci_slave1_stop_next = pci_slave1_next_if_irdy_stop;
-        pci_slave1_devsel_next = pci_slave1_next_if_irdy_devsel;
-        pci_slave1_drive_next = pci_slave1_next_if_irdy_drive;
-        pci_slave1_ad_oe_next = pci_slave1_next_if_irdy_ad_oe;
-    end
-    else begin
-        pci_slave1_state_next = pci_slave1_next_if_both_state;
-        pci_slave1_trdy_next = pci_slave1_next_if_both_trdy;
-        pci_slave1_stop_next = pci_slave1_next_if_both_stop;
-        pci_slave1_devsel_next = pci_slave1_next_if_both_devsel;
-        pci_slave1_drive_next = pci_slave1_next_if_both_drive;
-        pci_slave1_ad_oe_next = pci_slave1_next_if_both_ad_oe;
-    end
-end
+wire pci_slave1_ad_oe_next_x0 = pci_slave1_control_case0_0_out_ad_oe;
+wire pci_slave1_ad_oe_next_y0 = pci_slave1_control_case2_0_out_ad_oe ^ pci_slave1_control_case1_0_out_ad_oe;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h2A2E)) pci_slave1_ad_oe_next_lut0 (.O(pci_slave1_ad_oe_next), .I0(pci_slave1_ad_oe_next_x0), .I1(pci_slave1_ad_oe_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] pci_slave1_ad_oe_next_lut0_table = 16'h2A2E;
+assign pci_slave1_ad_oe_next = pci_slave1_ad_oe_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_ad_oe_next_y0, pci_slave1_ad_oe_next_x0}];
+`endif
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_transaction
@@ -1324,27 +1395,28 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
     end
     else begin
         pci_slave1_state <= pci_slave1_state_next;
-        pci_slave1_address_fault <= (pci_slave1_address_parity_error && pci_slave1_parity_response);
+        pci_slave1_first_phase <= pci_slave1_first_phase_next;
+        if (pci_slave1_phase_step) begin
+            if (pci_slave1_claim) begin
+                pci_slave1_phase_addr <= pci_slave1_start_addr;
+            end
+            else begin
+                pci_slave1_phase_addr <= (pci_slave1_phase_addr + 1);
+            end
+        end
+        pci_slave1_address_fault <= pci_slave1_address_fault_next;
         if (pci_slave1_claim) begin
             pci_slave1_is_read <= (!pci_slave1_cbe_q[0]);
             pci_slave1_is_config <= pci_slave1_claim_config;
             pci_slave1_space_mem <= ((!pci_slave1_claim_config) && (!pci_slave1_claim_io));
             pci_slave1_single <= (pci_slave1_claim_config || pci_slave1_claim_io || pci_slave1_ad_q[0] || pci_slave1_ad_q[1]);
-            pci_slave1_first_phase <= 1'b1;
             pci_slave1_first_pending <= 1'b1;
             pci_slave1_fetching <= ((!pci_slave1_cbe_q[0]) && (!pci_slave1_claim_config));
             pci_slave1_refused <= 1'b0;
             pci_slave1_io_byte <= pci_slave1_ad_q[2-1:0];
-            pci_slave1_phase_addr <= pci_slave1_start_addr;
             pci_slave1_req_addr_stale <= pci_slave1_draining;
         end
         else begin
-            if (pci_slave1_phase_done) begin
-                pci_slave1_first_phase <= 1'b0;
-                if (pci_slave1_space_mem) begin
-                    pci_slave1_phase_addr <= (pci_slave1_phase_addr + 1);
-                end
-            end
             if ((pci_slave1_got || pci_slave1_accepted)) begin
                 pci_slave1_first_pending <= (pci_slave1_first_pending && pci_slave1_draining);
             end
@@ -1378,16 +1450,18 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
 end
 
 
-always @(pci_slave1_perr_armed, pci_slave1_ad_out_q, pci_par_in, pci_slave1_holding, pci_slave1_read_source, pci_slave1_bus_parity_kept, pci_cbe_in, pci_slave1_ad_out_parity_kept) begin: pci_slave1_ad_output
-    if (pci_slave1_holding) begin
+always @(pci_slave1_read_source, pci_slave1_ad_out_q, pci_irdy_in, pci_slave1_trdy_q) begin: pci_slave1_ad_output
+    if ((pci_irdy_in && (!pci_slave1_trdy_q))) begin
         pci_slave1_ad_out_next = pci_slave1_ad_out_q;
     end
     else begin
         pci_slave1_ad_out_next = pci_slave1_read_source;
     end
-    pci_slave1_par_next = ((((pci_slave1_ad_out_parity_kept ^ pci_cbe_in[0]) ^ pci_cbe_in[1]) ^ pci_cbe_in[2]) ^ pci_cbe_in[3]);
-    pci_slave1_perr_next = (!(pci_slave1_perr_armed && (pci_slave1_bus_parity_kept != pci_par_in)));
 end
+
+
+
+assign pci_slave1_par_next = ((((pci_slave1_ad_out_parity_kept ^ pci_cbe_in[0]) ^ pci_cbe_in[1]) ^ pci_cbe_in[2]) ^ pci_cbe_in[3]);
 
 
 always @(pci_slave1_ad_out_q) begin: pci_slave1_ad_out_parity_tree
@@ -1401,10 +1475,6 @@ always @(pci_slave1_ad_out_q) begin: pci_slave1_ad_out_parity_tree
     fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
     pci_slave1_ad_out_parity = fold[0];
 end
-
-
-(* keep *) wire pci_slave1_bus_parity_kept_kept_net = pci_slave1_bus_parity;
-assign pci_slave1_bus_parity_kept = pci_slave1_bus_parity_kept_kept_net;
 
 
 (* keep *) wire pci_slave1_ad_out_parity_kept_kept_net = pci_slave1_ad_out_parity;
@@ -1441,10 +1511,10 @@ always @(posedge clock, negedge reset) begin: pci_slave1_bus_registers
         pci_devsel_oe <= pci_slave1_drive_next;
         pci_ad_oe <= pci_slave1_ad_oe_next;
         pci_par_oe <= pci_ad_oe;
-        pci_perr_oe <= ((!pci_slave1_perr_next) || (!pci_slave1_perr_q));
+        pci_perr_oe <= pci_slave1_perr_oe_next;
         pci_serr_out <= 1'b0;
-        pci_serr_oe <= (pci_slave1_serr_armed && (pci_slave1_bus_parity_kept != pci_par_in));
-        pci_slave1_parity_error_q <= (pci_slave1_address_parity_error || pci_slave1_data_parity_error);
+        pci_serr_oe <= pci_slave1_serr_oe_next;
+        pci_slave1_parity_error_q <= pci_slave1_parity_error_next;
         pci_inta_out <= 1'b0;
         pci_inta_oe <= (irq && (!pci_slave1_interrupt_disable));
     end
@@ -1471,15 +1541,24 @@ assign pci_perr_out = pci_slave1_perr_q;
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_read_buffer
-    reg in_read;
     if (reset == 0) begin
         pci_slave1_b_valid <= 0;
     end
     else begin
-        in_read = (pci_slave1_is_read && ((pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0100) || (pci_slave1_state == 4'b0110)));
-        pci_slave1_b_valid <= (in_read && (pci_slave1_b_valid || pci_slave1_got) && pci_slave1_holding);
+        pci_slave1_b_valid <= pci_slave1_b_valid_next;
     end
 end
+
+
+always @(pci_slave1_got, pci_slave1_b_valid, pci_slave1_is_read, pci_slave1_state, pci_slave1_trdy_q) begin: pci_slave1_read_buffer_hold
+    reg in_read;
+    in_read = (pci_slave1_is_read && ((pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0100) || (pci_slave1_state == 4'b0110)));
+    pci_slave1_b_kept = (in_read && (pci_slave1_b_valid || pci_slave1_got) && (!pci_slave1_trdy_q));
+end
+
+
+
+assign pci_slave1_posting = ((!pci_slave1_trdy_q) && (!pci_slave1_is_read) && (!pci_slave1_first_phase) && pci_slave1_space_mem);
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_write_buffer
@@ -1495,9 +1574,9 @@ always @(posedge clock, negedge reset) begin: pci_slave1_write_buffer
         pci_slave1_spare_data <= 0;
     end
     else begin
-        pci_slave1_write_done_q <= (pci_slave1_phase_done && (!pci_slave1_is_read));
-        pci_slave1_config_write_q <= (pci_slave1_phase_done && pci_slave1_is_config && (!pci_slave1_is_read));
-        pci_slave1_wq_valid <= (pci_slave1_phase_done && (!pci_slave1_is_read) && (!pci_slave1_first_phase) && pci_slave1_space_mem);
+        pci_slave1_write_done_q <= pci_slave1_write_done_next;
+        pci_slave1_config_write_q <= pci_slave1_config_write_next;
+        pci_slave1_wq_valid <= pci_slave1_wq_valid_next;
         if (pci_slave1_h_valid) begin
             if (pci_slave1_accepted) begin
                 if (pci_slave1_s_valid) begin
@@ -3638,7 +3717,118 @@ always @(card_core0_dda_arc1_gap, card_core0_dda_arc1_root_bit, card_core0_dda_a
 end
 
 
-always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_core0_dda_arc1_neg_ys, card_core0_dda_arc1_mag_ys, card_core0_dda_arc1_variant, card_core0_dda_arc1_mag_xs, card_core0_dda_arc1_radius_q, card_core0_dda_arc1_end_reaches_low, card_core0_dda_arc1_mag_ye, card_core0_dda_arc1_xe, card_core0_dda_arc1_lambda_shift, card_core0_dda_arc1_ye, card_core0_dda_arc1_xs, card_core0_dda_arc1_neg_xs, card_core0_dda_arc1_mag_xe, card_core0_dda_arc1_is_line, card_core0_dda_arc1_ys, card_core0_dda_arc1_end_beyond_high, card_core0_dda_arc1_ccw) begin: card_core0_dda_arc1_check_logic
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_geometry
+    reg [2-1:0] q_s;
+    reg [2-1:0] q_e;
+    reg [3-1:0] turns;
+    reg [2-1:0] turn;
+    reg [24-1:0] a_s;
+    reg [24-1:0] b_s;
+    reg [24-1:0] a_e;
+    reg [24-1:0] b_e;
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_geo_quadrant <= 0;
+        card_core0_dda_arc1_geo_ahead <= 0;
+        card_core0_dda_arc1_geo_centre <= 0;
+        card_core0_dda_arc1_geo_end_inward <= 0;
+        card_core0_dda_arc1_geo_crossings <= 0;
+    end
+    else begin
+        q_s = 2'h0;
+        q_e = 2'h0;
+        turns = 3'h0;
+        turn = 2'h0;
+        a_s = 24'h0;
+        b_s = 24'h0;
+        a_e = 24'h0;
+        b_e = 24'h0;
+        if (card_core0_dda_arc1_ccw) begin
+            if (((card_core0_dda_arc1_xs > 0) && (card_core0_dda_arc1_ys >= 0))) begin
+                q_s = 0;
+            end
+            else if (((card_core0_dda_arc1_xs <= 0) && (card_core0_dda_arc1_ys > 0))) begin
+                q_s = 1;
+            end
+            else if (((card_core0_dda_arc1_xs < 0) && (card_core0_dda_arc1_ys <= 0))) begin
+                q_s = 2;
+            end
+            else begin
+                q_s = 3;
+            end
+            if (((card_core0_dda_arc1_xe >= 0) && (card_core0_dda_arc1_ye > 0))) begin
+                q_e = 0;
+            end
+            else if (((card_core0_dda_arc1_xe < 0) && (card_core0_dda_arc1_ye >= 0))) begin
+                q_e = 1;
+            end
+            else if (((card_core0_dda_arc1_xe <= 0) && (card_core0_dda_arc1_ye < 0))) begin
+                q_e = 2;
+            end
+            else begin
+                q_e = 3;
+            end
+            turn = (q_e - q_s);
+        end
+        else begin
+            if (((card_core0_dda_arc1_xs >= 0) && (card_core0_dda_arc1_ys > 0))) begin
+                q_s = 0;
+            end
+            else if (((card_core0_dda_arc1_xs < 0) && (card_core0_dda_arc1_ys >= 0))) begin
+                q_s = 1;
+            end
+            else if (((card_core0_dda_arc1_xs <= 0) && (card_core0_dda_arc1_ys < 0))) begin
+                q_s = 2;
+            end
+            else begin
+                q_s = 3;
+            end
+            if (((card_core0_dda_arc1_xe > 0) && (card_core0_dda_arc1_ye >= 0))) begin
+                q_e = 0;
+            end
+            else if (((card_core0_dda_arc1_xe <= 0) && (card_core0_dda_arc1_ye > 0))) begin
+                q_e = 1;
+            end
+            else if (((card_core0_dda_arc1_xe < 0) && (card_core0_dda_arc1_ye <= 0))) begin
+                q_e = 2;
+            end
+            else begin
+                q_e = 3;
+            end
+            turn = (q_s - q_e);
+        end
+        turns = {1'b0, turn};
+        if ((q_s[0] != card_core0_dda_arc1_ccw)) begin
+            a_s = card_core0_dda_arc1_mag_xs;
+            b_s = card_core0_dda_arc1_mag_ys;
+        end
+        else begin
+            a_s = card_core0_dda_arc1_mag_ys;
+            b_s = card_core0_dda_arc1_mag_xs;
+        end
+        if ((q_e[0] != card_core0_dda_arc1_ccw)) begin
+            a_e = card_core0_dda_arc1_mag_xe;
+            b_e = card_core0_dda_arc1_mag_ye;
+        end
+        else begin
+            a_e = card_core0_dda_arc1_mag_ye;
+            b_e = card_core0_dda_arc1_mag_xe;
+        end
+        card_core0_dda_arc1_geo_ahead <= 1'b0;
+        if (((turns == 0) && (a_e <= a_s) && (b_e >= b_s) && (!((a_e == a_s) && (b_e == b_s))))) begin
+            card_core0_dda_arc1_geo_ahead <= 1'b1;
+        end
+        else if ((turns == 0)) begin
+            turns = 4;
+        end
+        card_core0_dda_arc1_geo_quadrant <= q_s;
+        card_core0_dda_arc1_geo_crossings <= turns;
+        card_core0_dda_arc1_geo_end_inward <= a_e;
+        card_core0_dda_arc1_geo_centre <= (((card_core0_dda_arc1_xs == 0) && (card_core0_dda_arc1_ys == 0)) || ((card_core0_dda_arc1_xe == 0) && (card_core0_dda_arc1_ye == 0)));
+    end
+end
+
+
+always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_core0_dda_arc1_neg_ys, card_core0_dda_arc1_geo_crossings, card_core0_dda_arc1_mag_ys, card_core0_dda_arc1_variant, card_core0_dda_arc1_geo_quadrant, card_core0_dda_arc1_mag_xs, card_core0_dda_arc1_radius_q, card_core0_dda_arc1_end_reaches_low, card_core0_dda_arc1_mag_ye, card_core0_dda_arc1_geo_centre, card_core0_dda_arc1_lambda_shift, card_core0_dda_arc1_geo_ahead, card_core0_dda_arc1_xs, card_core0_dda_arc1_mag_xe, card_core0_dda_arc1_neg_xs, card_core0_dda_arc1_is_line, card_core0_dda_arc1_ys, card_core0_dda_arc1_end_beyond_high, card_core0_dda_arc1_ccw, card_core0_dda_arc1_geo_end_inward) begin: card_core0_dda_arc1_check_logic
     reg [25-1:0] rq;
     reg [6-1:0] exponent;
     reg [29-1:0] thr;
@@ -3648,20 +3838,6 @@ always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_c
     reg [32-1:0] half;
     reg [24-1:0] major;
     reg [24-1:0] major_less;
-    reg [2-1:0] q_s;
-    reg [2-1:0] q_e;
-    reg [3-1:0] turns;
-    reg [2-1:0] turn;
-    reg [24-1:0] a_s;
-    reg [24-1:0] b_s;
-    reg [24-1:0] a_e;
-    reg [24-1:0] b_e;
-    reg [25-1:0] half_x;
-    reg [25-1:0] half_y;
-    reg [25-1:0] half_turn;
-    reg [4-1:0] fill_x;
-    reg [4-1:0] fill_y;
-    reg [4-1:0] fill_turn;
     reg bad;
     rq = 25'h0;
     exponent = 6'h0;
@@ -3672,23 +3848,9 @@ always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_c
     half = 32'h0;
     major = 24'h0;
     major_less = 24'h0;
-    q_s = 2'h0;
-    q_e = 2'h0;
-    turns = 3'h0;
-    turn = 2'h0;
-    a_s = 24'h0;
-    b_s = 24'h0;
-    a_e = 24'h0;
-    b_e = 24'h0;
-    half_x = 25'h0;
-    half_y = 25'h0;
-    half_turn = 25'h0;
-    fill_x = 4'h0;
-    fill_y = 4'h0;
-    fill_turn = 4'h0;
     bad = 1'b0;
     rq = card_core0_dda_arc1_radius_q;
-    if ((((card_core0_dda_arc1_xs == 0) && (card_core0_dda_arc1_ys == 0)) || ((card_core0_dda_arc1_xe == 0) && (card_core0_dda_arc1_ye == 0)))) begin
+    if (card_core0_dda_arc1_geo_centre) begin
         bad = 1'b1;
     end
     if (($signed({1'b0, rq}) >= (1 << (24 - 1)))) begin
@@ -3704,18 +3866,13 @@ always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_c
         exponent = (card_core0_dda_arc1_radius_length + {1'b0, card_core0_dda_arc1_lambda_shift});
     end
     thr = (one << exponent);
+    thr_less = (thr - 1);
     if (((card_core0_dda_arc1_variant != 3) && ($signed({1'b0, exponent}) > (29 - 1)))) begin
         bad = 1'b1;
     end
-    thr_less = (thr - 1);
-    below = {3'h0, thr_less};
-    half = (~(below >>> 1));
-    if (((card_core0_dda_arc1_variant == 1) || (card_core0_dda_arc1_variant == 2))) begin
-        half = (~{3'h0, thr});
-    end
     if ((card_core0_dda_arc1_variant == 3)) begin
         thr = ({4'h0, rq} + 1);
-        half = (~{8'h0, rq[(24 + 1)-1:1]});
+        thr_less = {4'h0, rq};
     end
     if ((card_core0_dda_arc1_mag_xe > card_core0_dda_arc1_mag_ye)) begin
         major = card_core0_dda_arc1_mag_xe;
@@ -3726,91 +3883,22 @@ always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_c
     major_less = (major - 1);
     if (card_core0_dda_arc1_is_line) begin
         thr = {5'h0, major};
-        half = (~({8'h0, major_less} >>> 1));
+        thr_less = {5'h0, major_less};
     end
-    if (card_core0_dda_arc1_ccw) begin
-        if (((card_core0_dda_arc1_xs > 0) && (card_core0_dda_arc1_ys >= 0))) begin
-            q_s = 0;
-        end
-        else if (((card_core0_dda_arc1_xs <= 0) && (card_core0_dda_arc1_ys > 0))) begin
-            q_s = 1;
-        end
-        else if (((card_core0_dda_arc1_xs < 0) && (card_core0_dda_arc1_ys <= 0))) begin
-            q_s = 2;
-        end
-        else begin
-            q_s = 3;
-        end
-        if (((card_core0_dda_arc1_xe >= 0) && (card_core0_dda_arc1_ye > 0))) begin
-            q_e = 0;
-        end
-        else if (((card_core0_dda_arc1_xe < 0) && (card_core0_dda_arc1_ye >= 0))) begin
-            q_e = 1;
-        end
-        else if (((card_core0_dda_arc1_xe <= 0) && (card_core0_dda_arc1_ye < 0))) begin
-            q_e = 2;
-        end
-        else begin
-            q_e = 3;
-        end
-        turn = (q_e - q_s);
+    below = {3'h0, thr_less};
+    half = (~(below >>> 1));
+    if (((!card_core0_dda_arc1_is_line) && ((card_core0_dda_arc1_variant == 1) || (card_core0_dda_arc1_variant == 2)))) begin
+        half = (~{3'h0, thr});
     end
-    else begin
-        if (((card_core0_dda_arc1_xs >= 0) && (card_core0_dda_arc1_ys > 0))) begin
-            q_s = 0;
-        end
-        else if (((card_core0_dda_arc1_xs < 0) && (card_core0_dda_arc1_ys >= 0))) begin
-            q_s = 1;
-        end
-        else if (((card_core0_dda_arc1_xs <= 0) && (card_core0_dda_arc1_ys < 0))) begin
-            q_s = 2;
-        end
-        else begin
-            q_s = 3;
-        end
-        if (((card_core0_dda_arc1_xe > 0) && (card_core0_dda_arc1_ye >= 0))) begin
-            q_e = 0;
-        end
-        else if (((card_core0_dda_arc1_xe <= 0) && (card_core0_dda_arc1_ye > 0))) begin
-            q_e = 1;
-        end
-        else if (((card_core0_dda_arc1_xe < 0) && (card_core0_dda_arc1_ye <= 0))) begin
-            q_e = 2;
-        end
-        else begin
-            q_e = 3;
-        end
-        turn = (q_s - q_e);
-    end
-    turns = {1'b0, turn};
-    if ((q_s[0] != card_core0_dda_arc1_ccw)) begin
-        a_s = card_core0_dda_arc1_mag_xs;
-        b_s = card_core0_dda_arc1_mag_ys;
-    end
-    else begin
-        a_s = card_core0_dda_arc1_mag_ys;
-        b_s = card_core0_dda_arc1_mag_xs;
-    end
-    if ((q_e[0] != card_core0_dda_arc1_ccw)) begin
-        a_e = card_core0_dda_arc1_mag_xe;
-        b_e = card_core0_dda_arc1_mag_ye;
-    end
-    else begin
-        a_e = card_core0_dda_arc1_mag_ye;
-        b_e = card_core0_dda_arc1_mag_xe;
-    end
-    if (((turns == 0) && (a_e <= a_s) && (b_e >= b_s) && (!((a_e == a_s) && (b_e == b_s))))) begin
+    if ((card_core0_dda_arc1_is_line || card_core0_dda_arc1_geo_ahead)) begin
         card_core0_dda_arc1_chk_target_x = card_core0_dda_arc1_mag_xe;
         card_core0_dda_arc1_chk_target_y = card_core0_dda_arc1_mag_ye;
     end
     else begin
-        if ((turns == 0)) begin
-            turns = 4;
-        end
-        if (({1'b0, a_e} > rq)) begin
+        if (({1'b0, card_core0_dda_arc1_geo_end_inward} > rq)) begin
             bad = 1'b1;
         end
-        if ((q_s[0] != card_core0_dda_arc1_ccw)) begin
+        if ((card_core0_dda_arc1_geo_quadrant[0] != card_core0_dda_arc1_ccw)) begin
             card_core0_dda_arc1_chk_target_x = 0;
             card_core0_dda_arc1_chk_target_y = rq[24-1:0];
         end
@@ -3821,45 +3909,39 @@ always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_c
     end
     card_core0_dda_arc1_chk_error = bad;
     card_core0_dda_arc1_chk_radius = rq[24-1:0];
-    card_core0_dda_arc1_chk_quadrant = q_s;
-    card_core0_dda_arc1_chk_crossings = turns;
+    card_core0_dda_arc1_chk_quadrant = card_core0_dda_arc1_geo_quadrant;
+    card_core0_dda_arc1_chk_crossings = card_core0_dda_arc1_geo_crossings;
+    card_core0_dda_arc1_chk_mag_x = card_core0_dda_arc1_mag_xs;
+    card_core0_dda_arc1_chk_mag_y = card_core0_dda_arc1_mag_ys;
+    if ((card_core0_dda_arc1_is_line || bad)) begin
+        card_core0_dda_arc1_chk_quadrant = 0;
+    end
+    if (card_core0_dda_arc1_is_line) begin
+        card_core0_dda_arc1_chk_crossings = 0;
+        card_core0_dda_arc1_chk_mag_x = 0;
+        card_core0_dda_arc1_chk_mag_y = 0;
+    end
     card_core0_dda_arc1_chk_threshold = thr;
     card_core0_dda_arc1_chk_acc_init = $signed(half);
-    if (((card_core0_dda_arc1_xs < 0) != (q_s[0] != card_core0_dda_arc1_ccw))) begin
-        half_x = card_core0_dda_arc1_neg_xs;
+    if ((card_core0_dda_arc1_xs < 0)) begin
+        card_core0_dda_arc1_chk_neg_mag_x = {card_core0_dda_arc1_xs[(24 - 1)], card_core0_dda_arc1_xs};
     end
     else begin
-        half_x = {card_core0_dda_arc1_xs[(24 - 1)], card_core0_dda_arc1_xs};
+        card_core0_dda_arc1_chk_neg_mag_x = card_core0_dda_arc1_neg_xs;
     end
-    if (((card_core0_dda_arc1_ys < 0) != (q_s[0] == card_core0_dda_arc1_ccw))) begin
-        half_y = card_core0_dda_arc1_neg_ys;
+    if ((card_core0_dda_arc1_ys < 0)) begin
+        card_core0_dda_arc1_chk_neg_mag_y = {card_core0_dda_arc1_ys[(24 - 1)], card_core0_dda_arc1_ys};
     end
     else begin
-        half_y = {card_core0_dda_arc1_ys[(24 - 1)], card_core0_dda_arc1_ys};
+        card_core0_dda_arc1_chk_neg_mag_y = card_core0_dda_arc1_neg_ys;
     end
-    half_turn = (-rq);
-    fill_x = 0;
-    fill_y = 0;
-    fill_turn = 0;
-    if (half_x[24]) begin
-        fill_x = 15;
-    end
-    if (half_y[24]) begin
-        fill_y = 15;
-    end
-    if (half_turn[24]) begin
-        fill_turn = 15;
-    end
-    card_core0_dda_arc1_chk_delta_x = $signed({fill_x, half_x, 1'b1});
-    card_core0_dda_arc1_chk_delta_y = $signed({fill_y, half_y, 1'b1});
-    card_core0_dda_arc1_chk_delta_turn = $signed({fill_turn, half_turn, 1'b1});
 end
 
 
-always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_quadrant, card_core0_dda_arc1_mag_x, card_core0_dda_arc1_target_y, card_core0_dda_arc1_ccw, card_core0_dda_arc1_target_x, card_core0_dda_arc1_is_line) begin: card_core0_dda_arc1_piece_progress
-    card_core0_dda_arc1_x_down = ((!card_core0_dda_arc1_is_line) && (card_core0_dda_arc1_quadrant[0] != card_core0_dda_arc1_ccw));
-    card_core0_dda_arc1_y_down = ((!card_core0_dda_arc1_is_line) && (card_core0_dda_arc1_quadrant[0] == card_core0_dda_arc1_ccw));
-    if (((!card_core0_dda_arc1_is_line) && (card_core0_dda_arc1_quadrant[0] != card_core0_dda_arc1_ccw))) begin
+always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_mag_x_step, card_core0_dda_arc1_mag_x, card_core0_dda_arc1_target_y, card_core0_dda_arc1_neg_mag_y, card_core0_dda_arc1_x_inward, card_core0_dda_arc1_target_x, card_core0_dda_arc1_neg_mag_x, card_core0_dda_arc1_mag_y_step, card_core0_dda_arc1_is_line) begin: card_core0_dda_arc1_piece_progress
+    reg [4-1:0] fill_x;
+    reg [4-1:0] fill_y;
+    if (((!card_core0_dda_arc1_is_line) && card_core0_dda_arc1_x_inward)) begin
         card_core0_dda_arc1_count_x = (card_core0_dda_arc1_mag_x - card_core0_dda_arc1_target_x);
         card_core0_dda_arc1_count_y = (card_core0_dda_arc1_target_y - card_core0_dda_arc1_mag_y);
     end
@@ -3870,6 +3952,44 @@ always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_quadrant, card_core0_dda
     else begin
         card_core0_dda_arc1_count_x = (card_core0_dda_arc1_target_x - card_core0_dda_arc1_mag_x);
         card_core0_dda_arc1_count_y = (card_core0_dda_arc1_target_y - card_core0_dda_arc1_mag_y);
+    end
+    if (((!card_core0_dda_arc1_is_line) && card_core0_dda_arc1_x_inward)) begin
+        card_core0_dda_arc1_mag_x_step = (card_core0_dda_arc1_mag_x + 16777215);
+        card_core0_dda_arc1_neg_mag_x_step = (card_core0_dda_arc1_neg_mag_x + 1);
+        card_core0_dda_arc1_mag_y_step = (card_core0_dda_arc1_mag_y + 1);
+        card_core0_dda_arc1_neg_mag_y_step = (card_core0_dda_arc1_neg_mag_y + 33554431);
+    end
+    else if ((!card_core0_dda_arc1_is_line)) begin
+        card_core0_dda_arc1_mag_x_step = (card_core0_dda_arc1_mag_x + 1);
+        card_core0_dda_arc1_neg_mag_x_step = (card_core0_dda_arc1_neg_mag_x + 33554431);
+        card_core0_dda_arc1_mag_y_step = (card_core0_dda_arc1_mag_y + 16777215);
+        card_core0_dda_arc1_neg_mag_y_step = (card_core0_dda_arc1_neg_mag_y + 1);
+    end
+    else begin
+        card_core0_dda_arc1_mag_x_step = (card_core0_dda_arc1_mag_x + 1);
+        card_core0_dda_arc1_neg_mag_x_step = (card_core0_dda_arc1_neg_mag_x + 33554431);
+        card_core0_dda_arc1_mag_y_step = (card_core0_dda_arc1_mag_y + 1);
+        card_core0_dda_arc1_neg_mag_y_step = (card_core0_dda_arc1_neg_mag_y + 33554431);
+    end
+    card_core0_dda_arc1_at_x = (card_core0_dda_arc1_mag_x == card_core0_dda_arc1_target_x);
+    card_core0_dda_arc1_at_y = (card_core0_dda_arc1_mag_y == card_core0_dda_arc1_target_y);
+    card_core0_dda_arc1_near_x = (card_core0_dda_arc1_mag_x_step == card_core0_dda_arc1_target_x);
+    card_core0_dda_arc1_near_y = (card_core0_dda_arc1_mag_y_step == card_core0_dda_arc1_target_y);
+    fill_x = 4'h0;
+    fill_y = 4'h0;
+    if (card_core0_dda_arc1_neg_mag_x[24]) begin
+        fill_x = 15;
+    end
+    if (card_core0_dda_arc1_neg_mag_y[24]) begin
+        fill_y = 15;
+    end
+    if (card_core0_dda_arc1_x_inward) begin
+        card_core0_dda_arc1_delta_x = $signed({fill_x, card_core0_dda_arc1_neg_mag_x, 1'b1});
+        card_core0_dda_arc1_delta_y = $signed({5'h0, card_core0_dda_arc1_mag_y, 1'b1});
+    end
+    else begin
+        card_core0_dda_arc1_delta_x = $signed({5'h0, card_core0_dda_arc1_mag_x, 1'b1});
+        card_core0_dda_arc1_delta_y = $signed({fill_y, card_core0_dda_arc1_neg_mag_y, 1'b1});
     end
     if (card_core0_dda_arc1_is_line) begin
         card_core0_dda_arc1_integrand_x = card_core0_dda_arc1_target_x;
@@ -3882,72 +4002,59 @@ always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_quadrant, card_core0_dda
 end
 
 
-always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_x_down, card_core0_dda_arc1_variant, card_core0_dda_arc1_delta_x, card_core0_dda_arc1_delta_y, card_core0_dda_arc1_crossings, card_core0_dda_arc1_xe, card_core0_dda_arc1_integrand_x, card_core0_dda_arc1_ye, card_core0_dda_arc1_quadrant, card_core0_dda_arc1_integrand_y, card_core0_dda_arc1_y_down, card_core0_dda_arc1_is_line, card_core0_dda_arc1_radial_error, card_core0_dda_arc1_count_y, card_core0_dda_arc1_threshold, card_core0_dda_arc1_count_x, card_core0_dda_arc1_acc_x, card_core0_dda_arc1_mag_x, card_core0_dda_arc1_ccw, card_core0_dda_arc1_acc_y) begin: card_core0_dda_arc1_iteration_logic
-    reg x_in;
+always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_neg_mag_y_step, card_core0_dda_arc1_variant, card_core0_dda_arc1_mag_x_step, card_core0_dda_arc1_delta_x, card_core0_dda_arc1_delta_y, card_core0_dda_arc1_x_inward, card_core0_dda_arc1_crossings, card_core0_dda_arc1_mag_y_step, card_core0_dda_arc1_xe, card_core0_dda_arc1_at_x, card_core0_dda_arc1_near_y, card_core0_dda_arc1_integrand_x, card_core0_dda_arc1_near_x, card_core0_dda_arc1_ye, card_core0_dda_arc1_quadrant, card_core0_dda_arc1_neg_mag_y, card_core0_dda_arc1_integrand_y, card_core0_dda_arc1_is_line, card_core0_dda_arc1_radial_error, card_core0_dda_arc1_count_y, card_core0_dda_arc1_threshold, card_core0_dda_arc1_count_x, card_core0_dda_arc1_neg_mag_x_step, card_core0_dda_arc1_acc_x, card_core0_dda_arc1_at_y, card_core0_dda_arc1_mag_x, card_core0_dda_arc1_acc_y, card_core0_dda_arc1_neg_mag_x) begin: card_core0_dda_arc1_iteration_logic
     reg x_right;
     reg y_up;
     reg [9-1:0] to_mag;
     reg signed [33-1:0] sum_x;
-    reg signed [33-1:0] sum_x_up;
-    reg signed [33-1:0] sum_x_down;
+    reg signed [33-1:0] sum_x_step;
     reg signed [33-1:0] sum_y;
     reg [32-1:0] thr_low;
     reg signed [33-1:0] ahead_x;
     reg signed [33-1:0] ahead_y;
     reg [32-1:0] less_x;
     reg [32-1:0] less_y;
-    reg [24-1:0] mag_y_up;
-    reg [24-1:0] mag_y_down;
     reg signed [30-1:0] cand_d;
     reg signed [30-1:0] cand_x;
     reg signed [30-1:0] cand_y;
-    reg signed [31-1:0] delta_xy;
-    reg signed [31-1:0] both_dx;
-    reg signed [31-1:0] both_dy;
-    reg signed [31-1:0] both_xy;
-    reg signed [31-1:0] gap_xy;
+    reg signed [30-1:0] delta_xy;
+    reg signed [31-1:0] half_xy;
+    reg sum_le_0;
+    reg sum_lt_0;
     reg d_le_x;
     reg d_le_y;
     reg x_le_y;
     reg over_x;
-    reg over_x_up;
-    reg over_x_down;
+    reg over_x_step;
     reg over_y;
     reg go_x;
     reg go_y;
-    x_in = (0 != 0);
     x_right = (0 != 0);
     y_up = (0 != 0);
     to_mag = 9'h0;
     sum_x = 0;
-    sum_x_up = 0;
-    sum_x_down = 0;
+    sum_x_step = 0;
     sum_y = 0;
     thr_low = 32'h0;
     ahead_x = 0;
     ahead_y = 0;
     less_x = 32'h0;
     less_y = 32'h0;
-    mag_y_up = 24'h0;
-    mag_y_down = 24'h0;
     cand_d = 0;
     cand_x = 0;
     cand_y = 0;
     delta_xy = 0;
-    both_dx = 0;
-    both_dy = 0;
-    both_xy = 0;
-    gap_xy = 0;
+    half_xy = 0;
+    sum_le_0 = (0 != 0);
+    sum_lt_0 = (0 != 0);
     d_le_x = (0 != 0);
     d_le_y = (0 != 0);
     x_le_y = (0 != 0);
     over_x = (0 != 0);
-    over_x_up = (0 != 0);
-    over_x_down = (0 != 0);
+    over_x_step = (0 != 0);
     over_y = (0 != 0);
     go_x = (0 != 0);
     go_y = (0 != 0);
-    x_in = (card_core0_dda_arc1_quadrant[0] != card_core0_dda_arc1_ccw);
     x_right = (card_core0_dda_arc1_quadrant[0] == card_core0_dda_arc1_quadrant[1]);
     y_up = (!card_core0_dda_arc1_quadrant[1]);
     if (card_core0_dda_arc1_is_line) begin
@@ -3955,47 +4062,36 @@ always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_x_down, card_core0_dda_a
         card_core0_dda_arc1_it_dir_y = (card_core0_dda_arc1_ye >= 0);
     end
     else begin
-        card_core0_dda_arc1_it_dir_x = (x_right != x_in);
-        card_core0_dda_arc1_it_dir_y = (y_up == x_in);
+        card_core0_dda_arc1_it_dir_x = (x_right != card_core0_dda_arc1_x_inward);
+        card_core0_dda_arc1_it_dir_y = (y_up == card_core0_dda_arc1_x_inward);
     end
     to_mag = 0;
     thr_low = {3'h0, card_core0_dda_arc1_threshold};
     sum_y = ($signed({card_core0_dda_arc1_acc_y[(32 - 1)], card_core0_dda_arc1_acc_y}) + $signed({to_mag, card_core0_dda_arc1_integrand_y}));
-    mag_y_up = (card_core0_dda_arc1_mag_y + 1);
-    mag_y_down = (card_core0_dda_arc1_mag_y - 1);
     sum_x = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({to_mag, card_core0_dda_arc1_integrand_x}));
-    sum_x_up = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({to_mag, mag_y_up}));
-    sum_x_down = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({to_mag, mag_y_down}));
+    sum_x_step = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({to_mag, card_core0_dda_arc1_mag_y_step}));
     over_x = (!sum_x[32]);
-    over_x_up = (!sum_x_up[32]);
-    over_x_down = (!sum_x_down[32]);
+    over_x_step = (!sum_x_step[32]);
     over_y = (!sum_y[32]);
     if (((!card_core0_dda_arc1_is_line) && (card_core0_dda_arc1_variant == 0) && over_y)) begin
-        if (x_in) begin
-            sum_x = sum_x_up;
-            over_x = over_x_up;
-        end
-        else begin
-            sum_x = sum_x_down;
-            over_x = over_x_down;
-        end
+        sum_x = sum_x_step;
+        over_x = over_x_step;
     end
-    delta_xy = ($signed({card_core0_dda_arc1_delta_x[(30 - 1)], card_core0_dda_arc1_delta_x}) + $signed({card_core0_dda_arc1_delta_y[(30 - 1)], card_core0_dda_arc1_delta_y}));
+    delta_xy = (card_core0_dda_arc1_delta_x + card_core0_dda_arc1_delta_y);
     cand_x = (card_core0_dda_arc1_radial_error + card_core0_dda_arc1_delta_x);
     cand_y = (card_core0_dda_arc1_radial_error + card_core0_dda_arc1_delta_y);
-    cand_d = (card_core0_dda_arc1_radial_error + $signed(delta_xy[30-1:0]));
-    both_dx = ($signed({cand_x[30-1:0], 1'b0}) + $signed({card_core0_dda_arc1_delta_y[(30 - 1)], card_core0_dda_arc1_delta_y}));
-    both_dy = ($signed({cand_y[30-1:0], 1'b0}) + $signed({card_core0_dda_arc1_delta_x[(30 - 1)], card_core0_dda_arc1_delta_x}));
-    both_xy = ($signed({card_core0_dda_arc1_radial_error[30-1:0], 1'b0}) + delta_xy);
-    gap_xy = ($signed({card_core0_dda_arc1_delta_x[(30 - 1)], card_core0_dda_arc1_delta_x}) - $signed({card_core0_dda_arc1_delta_y[(30 - 1)], card_core0_dda_arc1_delta_y}));
-    d_le_x = ((card_core0_dda_arc1_delta_y == 0) || (both_dx == 0) || (card_core0_dda_arc1_delta_y[(30 - 1)] != both_dx[30]));
-    d_le_y = ((card_core0_dda_arc1_delta_x == 0) || (both_dy == 0) || (card_core0_dda_arc1_delta_x[(30 - 1)] != both_dy[30]));
-    x_le_y = ((gap_xy == 0) || (both_xy == 0) || (gap_xy[30] != both_xy[30]));
+    cand_d = (card_core0_dda_arc1_radial_error + delta_xy);
+    half_xy = ($signed({card_core0_dda_arc1_delta_x[(30 - 1)], card_core0_dda_arc1_delta_x[(30 - 1)], card_core0_dda_arc1_delta_x[30-1:1]}) + $signed({card_core0_dda_arc1_delta_y[(30 - 1)], card_core0_dda_arc1_delta_y[(30 - 1)], card_core0_dda_arc1_delta_y[30-1:1]}));
+    sum_le_0 = (($signed({card_core0_dda_arc1_radial_error[(30 - 1)], card_core0_dda_arc1_radial_error}) + half_xy) < 0);
+    sum_lt_0 = ((($signed({card_core0_dda_arc1_radial_error[(30 - 1)], card_core0_dda_arc1_radial_error}) + half_xy) + 1) < 0);
+    d_le_x = ((card_core0_dda_arc1_delta_y < 0) != (($signed({cand_x[30-1:0], 1'b0}) + $signed({card_core0_dda_arc1_delta_y[(30 - 1)], card_core0_dda_arc1_delta_y})) < 0));
+    d_le_y = ((card_core0_dda_arc1_delta_x < 0) != (($signed({cand_y[30-1:0], 1'b0}) + $signed({card_core0_dda_arc1_delta_x[(30 - 1)], card_core0_dda_arc1_delta_x})) < 0));
+    x_le_y = ((card_core0_dda_arc1_delta_x == card_core0_dda_arc1_delta_y) || ((card_core0_dda_arc1_delta_x > card_core0_dda_arc1_delta_y) && sum_le_0) || ((card_core0_dda_arc1_delta_x < card_core0_dda_arc1_delta_y) && (!sum_lt_0)));
     go_x = over_x;
     go_y = over_y;
     if (card_core0_dda_arc1_is_line) begin
-        go_x = (over_x && (card_core0_dda_arc1_count_x != 0));
-        go_y = (over_y && (card_core0_dda_arc1_count_y != 0));
+        go_x = (over_x && (!card_core0_dda_arc1_at_x));
+        go_y = (over_y && (!card_core0_dda_arc1_at_y));
     end
     else if ((card_core0_dda_arc1_variant == 2)) begin
         ahead_x = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({to_mag[(32 - 24)-1:0], card_core0_dda_arc1_mag_y, 1'b0}));
@@ -4023,49 +4119,40 @@ always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_x_down, card_core0_dda_a
             end
         end
     end
-    if (((!card_core0_dda_arc1_is_line) && ((card_core0_dda_arc1_count_x == 0) || (card_core0_dda_arc1_count_y == 0)))) begin
-        go_x = (card_core0_dda_arc1_count_x != 0);
-        go_y = (card_core0_dda_arc1_count_y != 0);
-        card_core0_dda_arc1_it_acc_x = card_core0_dda_arc1_acc_x;
-        card_core0_dda_arc1_it_acc_y = card_core0_dda_arc1_acc_y;
+    card_core0_dda_arc1_it_tail = ((!card_core0_dda_arc1_is_line) && ((card_core0_dda_arc1_count_x == 0) || (card_core0_dda_arc1_count_y == 0)));
+    if (((!card_core0_dda_arc1_is_line) && (card_core0_dda_arc1_at_x || card_core0_dda_arc1_at_y))) begin
+        go_x = (!card_core0_dda_arc1_at_x);
+        go_y = (!card_core0_dda_arc1_at_y);
     end
-    else begin
-        if (((!sum_x[32]) && sum_x[(32 - 1)])) begin
-            sum_x = 33'h7fffffff;
-        end
-        if (((!sum_y[32]) && sum_y[(32 - 1)])) begin
-            sum_y = 33'h7fffffff;
-        end
-        less_x = sum_x[32-1:0];
-        if (go_x) begin
-            less_x = (sum_x[32-1:0] - thr_low);
-        end
-        less_y = sum_y[32-1:0];
-        if (go_y) begin
-            less_y = (sum_y[32-1:0] - thr_low);
-        end
-        card_core0_dda_arc1_it_acc_x = $signed(less_x);
-        card_core0_dda_arc1_it_acc_y = $signed(less_y);
+    if (((!sum_x[32]) && sum_x[(32 - 1)])) begin
+        sum_x = 33'h7fffffff;
     end
+    if (((!sum_y[32]) && sum_y[(32 - 1)])) begin
+        sum_y = 33'h7fffffff;
+    end
+    less_x = sum_x[32-1:0];
+    if (go_x) begin
+        less_x = (sum_x[32-1:0] - thr_low);
+    end
+    less_y = sum_y[32-1:0];
+    if (go_y) begin
+        less_y = (sum_y[32-1:0] - thr_low);
+    end
+    card_core0_dda_arc1_it_acc_x = $signed(less_x);
+    card_core0_dda_arc1_it_acc_y = $signed(less_y);
     card_core0_dda_arc1_it_step_x = go_x;
     card_core0_dda_arc1_it_step_y = go_y;
     card_core0_dda_arc1_it_mag_x = card_core0_dda_arc1_mag_x;
     card_core0_dda_arc1_it_mag_y = card_core0_dda_arc1_mag_y;
+    card_core0_dda_arc1_it_neg_mag_x = card_core0_dda_arc1_neg_mag_x;
+    card_core0_dda_arc1_it_neg_mag_y = card_core0_dda_arc1_neg_mag_y;
     if (go_x) begin
-        if (card_core0_dda_arc1_x_down) begin
-            card_core0_dda_arc1_it_mag_x = (card_core0_dda_arc1_mag_x - 1);
-        end
-        else begin
-            card_core0_dda_arc1_it_mag_x = (card_core0_dda_arc1_mag_x + 1);
-        end
+        card_core0_dda_arc1_it_mag_x = card_core0_dda_arc1_mag_x_step;
+        card_core0_dda_arc1_it_neg_mag_x = card_core0_dda_arc1_neg_mag_x_step;
     end
     if (go_y) begin
-        if (card_core0_dda_arc1_y_down) begin
-            card_core0_dda_arc1_it_mag_y = mag_y_down;
-        end
-        else begin
-            card_core0_dda_arc1_it_mag_y = mag_y_up;
-        end
+        card_core0_dda_arc1_it_mag_y = card_core0_dda_arc1_mag_y_step;
+        card_core0_dda_arc1_it_neg_mag_y = card_core0_dda_arc1_neg_mag_y_step;
     end
     if ((go_x && go_y)) begin
         card_core0_dda_arc1_it_error = cand_d;
@@ -4081,7 +4168,7 @@ always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_x_down, card_core0_dda_a
     end
     card_core0_dda_arc1_it_finished = 1'b0;
     card_core0_dda_arc1_it_next_piece = 1'b0;
-    if (((((card_core0_dda_arc1_count_x == 1) && go_x) || (card_core0_dda_arc1_count_x == 0)) && (((card_core0_dda_arc1_count_y == 1) && go_y) || (card_core0_dda_arc1_count_y == 0)))) begin
+    if ((((card_core0_dda_arc1_near_x && go_x) || card_core0_dda_arc1_at_x) && ((card_core0_dda_arc1_near_y && go_y) || card_core0_dda_arc1_at_y))) begin
         if ((card_core0_dda_arc1_is_line || (card_core0_dda_arc1_crossings == 0))) begin
             card_core0_dda_arc1_it_finished = 1'b1;
         end
@@ -4094,26 +4181,25 @@ end
 
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_control
     reg [27-1:0] trial_rem;
-    reg [27-1:0] trial;
+    reg [28-1:0] trial_diff;
+    reg round_up;
     if (card_core0_dda_reset == 0) begin
         card_core0_dda_arc1_radius_length <= 0;
         card_core0_dda_arc1_mag_y <= 0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 0;
         card_core0_dda_arc1_acc_bits <= 0;
-        card_core0_dda_arc1_delta_turn <= 0;
         card_core0_dda_arc1_gap <= 0;
         card_core0_regs_fifo1_dda_busy <= 0;
         card_core0_dda_arc1_variant <= 0;
         card_core0_dda_arc1_root_all_ones <= 0;
         card_core0_regs_fifo1_steps_step_x <= 0;
-        card_core0_dda_arc1_delta_x <= 0;
-        card_core0_dda_arc1_delta_y <= 0;
         card_core0_dda_arc1_multiplicand <= 0;
         card_core0_dda_arc1_target_y <= 0;
+        card_core0_dda_arc1_x_inward <= 0;
         card_core0_dda_arc1_crossings <= 0;
-        card_core0_dda_arc1_target_x <= 0;
         card_core0_dda_arc1_radius_q <= 0;
         card_core0_dda_arc1_end_reaches_low <= 0;
+        card_core0_dda_arc1_target_x <= 0;
         card_core0_dda_arc1_root_length <= 0;
         card_core0_dda_arc1_mac_op <= 0;
         card_core0_dda_arc1_state <= 3'b000;
@@ -4127,6 +4213,7 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         card_core0_dda_arc1_radicand <= 0;
         card_core0_dda_arc1_ye <= 0;
         card_core0_dda_arc1_quadrant <= 0;
+        card_core0_dda_arc1_neg_mag_y <= 0;
         card_core0_regs_fifo1_steps_dir_x <= 0;
         card_core0_regs_fifo1_steps_dir_y <= 0;
         card_core0_dda_arc1_xs <= 0;
@@ -4142,238 +4229,206 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         card_core0_dda_arc1_mag_x <= 0;
         card_core0_dda_arc1_ccw <= 0;
         card_core0_dda_arc1_acc_y <= 0;
+        card_core0_dda_arc1_neg_mag_x <= 0;
     end
     else begin
         card_core0_regs_fifo1_steps_step_x <= 1'b0;
         card_core0_regs_fifo1_steps_step_y <= 1'b0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 1'b0;
-        case (card_core0_dda_arc1_state)
-            3'b000: begin
-                if (card_core0_regs_fifo1_sequencer1_dda_start) begin
-                    card_core0_regs_fifo1_dda_busy <= 1'b1;
-                    card_core0_regs_fifo1_sequencer1_dda_error <= 1'b0;
-                    card_core0_dda_arc1_is_line <= card_core0_regs_fifo1_sequencer1_dda_line;
-                    card_core0_dda_arc1_variant <= card_core0_regs_fifo1_sequencer1_dda_variant;
-                    card_core0_dda_arc1_lambda_shift <= card_core0_regs_fifo1_sequencer1_dda_lambda_shift;
-                    card_core0_dda_arc1_acc_bits <= card_core0_regs_fifo1_sequencer1_dda_acc_bits;
-                    card_core0_dda_arc1_ccw <= card_core0_regs_fifo1_sequencer1_dda_ccw;
-                    card_core0_dda_arc1_xs <= card_core0_regs_fifo1_sequencer1_dda_xs;
-                    card_core0_dda_arc1_ys <= card_core0_regs_fifo1_sequencer1_dda_ys;
-                    card_core0_dda_arc1_xe <= card_core0_regs_fifo1_sequencer1_dda_xe;
-                    card_core0_dda_arc1_ye <= card_core0_regs_fifo1_sequencer1_dda_ye;
-                    card_core0_dda_arc1_gap <= (-1);
-                    card_core0_dda_arc1_mac_op <= 0;
-                    card_core0_dda_arc1_mac_bit <= 0;
-                    card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_cmd_mag_xs};
-                    card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_cmd_mag_xs;
-                    if (card_core0_regs_fifo1_sequencer1_dda_line) begin
-                        card_core0_dda_arc1_state <= 3'b100;
-                    end
-                    else begin
-                        card_core0_dda_arc1_state <= 3'b001;
-                    end
-                end
-            end
-            3'b001: begin
-                if (card_core0_dda_arc1_multiplier[0]) begin
-                    card_core0_dda_arc1_gap <= card_core0_dda_arc1_gap_sum;
-                end
-                if (($signed({1'b0, card_core0_dda_arc1_mac_bit}) == (24 - 1))) begin
-                    card_core0_dda_arc1_mac_bit <= 0;
-                    card_core0_dda_arc1_mac_op <= (card_core0_dda_arc1_mac_op + 1);
-                    case (card_core0_dda_arc1_mac_op)
-                        'h0: begin
-                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ys};
-                            card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_ys;
-                        end
-                        'h1: begin
-                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_xe};
-                            card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_xe;
-                            if (card_core0_dda_arc1_multiplier[0]) begin
-                                card_core0_dda_arc1_radicand <= (~card_core0_dda_arc1_gap_sum[(2 * 24)-1:0]);
-                            end
-                            else begin
-                                card_core0_dda_arc1_radicand <= (~card_core0_dda_arc1_gap[(2 * 24)-1:0]);
-                            end
-                        end
-                        'h2: begin
-                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ye};
-                            card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_ye;
-                        end
-                        default: begin
-                            if ((card_core0_dda_arc1_mag_xs > card_core0_dda_arc1_mag_ys)) begin
-                                card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_xs};
-                            end
-                            else begin
-                                card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ys};
-                            end
-                            card_core0_dda_arc1_remainder <= 0;
-                            card_core0_dda_arc1_root <= 0;
-                            card_core0_dda_arc1_root_bit <= 0;
-                            card_core0_dda_arc1_root_length <= 0;
-                            card_core0_dda_arc1_root_all_ones <= 1'b1;
-                            card_core0_dda_arc1_state <= 3'b010;
-                        end
-                    endcase
+        if ((card_core0_dda_arc1_state == 3'b000)) begin
+            if (card_core0_regs_fifo1_sequencer1_dda_start) begin
+                card_core0_regs_fifo1_dda_busy <= 1'b1;
+                card_core0_regs_fifo1_sequencer1_dda_error <= 1'b0;
+                card_core0_dda_arc1_is_line <= card_core0_regs_fifo1_sequencer1_dda_line;
+                card_core0_dda_arc1_variant <= card_core0_regs_fifo1_sequencer1_dda_variant;
+                card_core0_dda_arc1_lambda_shift <= card_core0_regs_fifo1_sequencer1_dda_lambda_shift;
+                card_core0_dda_arc1_acc_bits <= card_core0_regs_fifo1_sequencer1_dda_acc_bits;
+                card_core0_dda_arc1_ccw <= card_core0_regs_fifo1_sequencer1_dda_ccw;
+                card_core0_dda_arc1_xs <= card_core0_regs_fifo1_sequencer1_dda_xs;
+                card_core0_dda_arc1_ys <= card_core0_regs_fifo1_sequencer1_dda_ys;
+                card_core0_dda_arc1_xe <= card_core0_regs_fifo1_sequencer1_dda_xe;
+                card_core0_dda_arc1_ye <= card_core0_regs_fifo1_sequencer1_dda_ye;
+                card_core0_dda_arc1_gap <= (-1);
+                card_core0_dda_arc1_mac_op <= 0;
+                card_core0_dda_arc1_mac_bit <= 0;
+                card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_cmd_mag_xs};
+                card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_cmd_mag_xs;
+                if (card_core0_regs_fifo1_sequencer1_dda_line) begin
+                    card_core0_dda_arc1_state <= 3'b100;
                 end
                 else begin
-                    card_core0_dda_arc1_mac_bit <= (card_core0_dda_arc1_mac_bit + 1);
-                    card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
-                    card_core0_dda_arc1_multiplier <= (card_core0_dda_arc1_multiplier >>> 1);
+                    card_core0_dda_arc1_state <= 3'b001;
                 end
             end
-            3'b010: begin
-                trial_rem = 27'h0;
-                trial = 27'h0;
-                trial_rem = {card_core0_dda_arc1_remainder[(24 + 1)-1:0], card_core0_dda_arc1_radicand[(2 * 24)-1:((2 * 24) - 2)]};
-                trial = {2'h0, card_core0_dda_arc1_root[(24 - 1)-1:0], 2'h1};
-                if ((trial_rem >= trial)) begin
-                    card_core0_dda_arc1_remainder <= (trial_rem - trial);
-                    card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b1};
-                end
-                else begin
-                    card_core0_dda_arc1_remainder <= trial_rem;
-                    card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b0};
-                    if ((card_core0_dda_arc1_root != 0)) begin
-                        card_core0_dda_arc1_root_all_ones <= 1'b0;
-                    end
-                end
-                if (((card_core0_dda_arc1_root != 0) || (trial_rem >= trial))) begin
-                    card_core0_dda_arc1_root_length <= (card_core0_dda_arc1_root_length + 1);
-                end
-                card_core0_dda_arc1_radicand <= (card_core0_dda_arc1_radicand << 2);
-                case (card_core0_dda_arc1_root_bit)
+        end
+        else if ((card_core0_dda_arc1_state == 3'b001)) begin
+            if (card_core0_dda_arc1_multiplier[0]) begin
+                card_core0_dda_arc1_gap <= card_core0_dda_arc1_gap_sum;
+            end
+            if (((card_core0_dda_arc1_mac_op == 2) && (card_core0_dda_arc1_mac_bit == 0))) begin
+                card_core0_dda_arc1_radicand <= (~card_core0_dda_arc1_gap[(2 * 24)-1:0]);
+            end
+            if (($signed({1'b0, card_core0_dda_arc1_mac_bit}) == (24 - 1))) begin
+                card_core0_dda_arc1_mac_bit <= 0;
+                card_core0_dda_arc1_mac_op <= (card_core0_dda_arc1_mac_op + 1);
+                case (card_core0_dda_arc1_mac_op)
                     'h0: begin
-                        card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
+                        card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ys};
+                        card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_ys;
                     end
                     'h1: begin
-                        card_core0_dda_arc1_gap <= card_core0_dda_arc1_gap_sum;
-                        card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
+                        card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_xe};
+                        card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_xe;
                     end
                     'h2: begin
-                        card_core0_dda_arc1_end_reaches_low <= (!card_core0_dda_arc1_gap[(50 - 1)]);
-                        card_core0_dda_arc1_gap <= card_core0_dda_arc1_gap_sum;
+                        card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ye};
+                        card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_ye;
                     end
-                    'h3: begin
-                        card_core0_dda_arc1_end_beyond_high <= (!card_core0_dda_arc1_gap[(50 - 1)]);
+                    default: begin
+                        if ((card_core0_dda_arc1_mag_xs > card_core0_dda_arc1_mag_ys)) begin
+                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_xs};
+                        end
+                        else begin
+                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ys};
+                        end
+                        card_core0_dda_arc1_remainder <= 0;
+                        card_core0_dda_arc1_root <= 0;
+                        card_core0_dda_arc1_root_bit <= 0;
+                        card_core0_dda_arc1_root_length <= 0;
+                        card_core0_dda_arc1_root_all_ones <= 1'b1;
+                        card_core0_dda_arc1_state <= 3'b010;
                     end
                 endcase
-                if (($signed({1'b0, card_core0_dda_arc1_root_bit}) == (24 - 1))) begin
-                    card_core0_dda_arc1_state <= 3'b011;
-                end
-                else begin
-                    card_core0_dda_arc1_root_bit <= (card_core0_dda_arc1_root_bit + 1);
+            end
+            else begin
+                card_core0_dda_arc1_mac_bit <= (card_core0_dda_arc1_mac_bit + 1);
+                card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
+                card_core0_dda_arc1_multiplier <= (card_core0_dda_arc1_multiplier >>> 1);
+            end
+        end
+        else if ((card_core0_dda_arc1_state == 3'b010)) begin
+            trial_rem = 27'h0;
+            trial_diff = 28'h0;
+            trial_rem = {card_core0_dda_arc1_remainder[(24 + 1)-1:0], card_core0_dda_arc1_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+            trial_diff = ({1'b0, trial_rem} - {3'h0, card_core0_dda_arc1_root[(24 - 1)-1:0], 2'h1});
+            if ((!trial_diff[(24 + 3)])) begin
+                card_core0_dda_arc1_remainder <= trial_diff[(24 + 3)-1:0];
+                card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b1};
+            end
+            else begin
+                card_core0_dda_arc1_remainder <= trial_rem;
+                card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b0};
+                if ((card_core0_dda_arc1_root != 0)) begin
+                    card_core0_dda_arc1_root_all_ones <= 1'b0;
                 end
             end
-            3'b011: begin
-                if ((card_core0_dda_arc1_remainder > {3'h0, card_core0_dda_arc1_root})) begin
-                    card_core0_dda_arc1_radius_q <= ({1'b0, card_core0_dda_arc1_root} + 1);
-                    if (card_core0_dda_arc1_root_all_ones) begin
-                        card_core0_dda_arc1_radius_length <= (card_core0_dda_arc1_root_length + 1);
-                    end
-                    else begin
-                        card_core0_dda_arc1_radius_length <= card_core0_dda_arc1_root_length;
-                    end
+            if (((card_core0_dda_arc1_root != 0) || (!trial_diff[(24 + 3)]))) begin
+                card_core0_dda_arc1_root_length <= (card_core0_dda_arc1_root_length + 1);
+            end
+            card_core0_dda_arc1_radicand <= (card_core0_dda_arc1_radicand << 2);
+            case (card_core0_dda_arc1_root_bit)
+                'h0: begin
+                    card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
+                end
+                'h1: begin
+                    card_core0_dda_arc1_gap <= card_core0_dda_arc1_gap_sum;
+                    card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
+                end
+                'h2: begin
+                    card_core0_dda_arc1_end_reaches_low <= (!card_core0_dda_arc1_gap[(50 - 1)]);
+                    card_core0_dda_arc1_gap <= card_core0_dda_arc1_gap_sum;
+                end
+                'h3: begin
+                    card_core0_dda_arc1_end_beyond_high <= (!card_core0_dda_arc1_gap[(50 - 1)]);
+                end
+            endcase
+            if (($signed({1'b0, card_core0_dda_arc1_root_bit}) == (24 - 1))) begin
+                card_core0_dda_arc1_state <= 3'b011;
+            end
+            else begin
+                card_core0_dda_arc1_root_bit <= (card_core0_dda_arc1_root_bit + 1);
+            end
+        end
+        else if ((card_core0_dda_arc1_state == 3'b011)) begin
+            round_up = (card_core0_dda_arc1_remainder > {3'h0, card_core0_dda_arc1_root});
+            card_core0_dda_arc1_radius_q <= ({1'b0, card_core0_dda_arc1_root} + {24'h0, round_up});
+            if ((round_up && card_core0_dda_arc1_root_all_ones)) begin
+                card_core0_dda_arc1_radius_length <= (card_core0_dda_arc1_root_length + 1);
+            end
+            else begin
+                card_core0_dda_arc1_radius_length <= card_core0_dda_arc1_root_length;
+            end
+            card_core0_dda_arc1_state <= 3'b100;
+        end
+        else if ((card_core0_dda_arc1_state == 3'b100)) begin
+            card_core0_dda_arc1_acc_x <= card_core0_dda_arc1_chk_acc_init;
+            card_core0_dda_arc1_acc_y <= card_core0_dda_arc1_chk_acc_init;
+            card_core0_dda_arc1_threshold <= card_core0_dda_arc1_chk_threshold;
+            card_core0_dda_arc1_radial_error <= 0;
+            card_core0_dda_arc1_quadrant <= card_core0_dda_arc1_chk_quadrant;
+            card_core0_dda_arc1_x_inward <= (card_core0_dda_arc1_chk_quadrant[0] != card_core0_dda_arc1_ccw);
+            card_core0_dda_arc1_crossings <= card_core0_dda_arc1_chk_crossings;
+            card_core0_dda_arc1_mag_x <= card_core0_dda_arc1_chk_mag_x;
+            card_core0_dda_arc1_mag_y <= card_core0_dda_arc1_chk_mag_y;
+            card_core0_dda_arc1_target_x <= card_core0_dda_arc1_chk_target_x;
+            card_core0_dda_arc1_target_y <= card_core0_dda_arc1_chk_target_y;
+            card_core0_dda_arc1_radius <= card_core0_dda_arc1_chk_radius;
+            card_core0_dda_arc1_neg_mag_x <= card_core0_dda_arc1_chk_neg_mag_x;
+            card_core0_dda_arc1_neg_mag_y <= card_core0_dda_arc1_chk_neg_mag_y;
+            card_core0_dda_arc1_state <= 3'b101;
+            if ((card_core0_dda_arc1_is_line && (card_core0_dda_arc1_mag_xe == 0) && (card_core0_dda_arc1_mag_ye == 0))) begin
+                card_core0_regs_fifo1_dda_busy <= 1'b0;
+                card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
+                card_core0_dda_arc1_state <= 3'b000;
+            end
+            else if (((!card_core0_dda_arc1_is_line) && card_core0_dda_arc1_chk_error)) begin
+                card_core0_regs_fifo1_dda_busy <= 1'b0;
+                card_core0_regs_fifo1_sequencer1_dda_error <= 1'b1;
+                card_core0_dda_arc1_state <= 3'b000;
+            end
+        end
+        else if (card_core0_regs_fifo1_dda_advance) begin
+            card_core0_regs_fifo1_steps_step_x <= card_core0_dda_arc1_it_step_x;
+            card_core0_regs_fifo1_steps_step_y <= card_core0_dda_arc1_it_step_y;
+            card_core0_regs_fifo1_steps_dir_x <= card_core0_dda_arc1_it_dir_x;
+            card_core0_regs_fifo1_steps_dir_y <= card_core0_dda_arc1_it_dir_y;
+            if ((!card_core0_dda_arc1_it_tail)) begin
+                card_core0_dda_arc1_acc_x <= card_core0_dda_arc1_it_acc_x;
+                card_core0_dda_arc1_acc_y <= card_core0_dda_arc1_it_acc_y;
+            end
+            card_core0_dda_arc1_mag_x <= card_core0_dda_arc1_it_mag_x;
+            card_core0_dda_arc1_mag_y <= card_core0_dda_arc1_it_mag_y;
+            card_core0_dda_arc1_neg_mag_x <= card_core0_dda_arc1_it_neg_mag_x;
+            card_core0_dda_arc1_neg_mag_y <= card_core0_dda_arc1_it_neg_mag_y;
+            card_core0_dda_arc1_radial_error <= card_core0_dda_arc1_it_error;
+            if (card_core0_dda_arc1_it_finished) begin
+                card_core0_regs_fifo1_dda_busy <= 1'b0;
+                card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
+                card_core0_dda_arc1_state <= 3'b000;
+            end
+            if (card_core0_dda_arc1_it_next_piece) begin
+                card_core0_dda_arc1_x_inward <= (!card_core0_dda_arc1_x_inward);
+                if (card_core0_dda_arc1_x_inward) begin
+                    card_core0_dda_arc1_target_x <= card_core0_dda_arc1_radius;
+                    card_core0_dda_arc1_target_y <= 0;
                 end
                 else begin
-                    card_core0_dda_arc1_radius_q <= {1'b0, card_core0_dda_arc1_root};
-                    card_core0_dda_arc1_radius_length <= card_core0_dda_arc1_root_length;
+                    card_core0_dda_arc1_target_x <= 0;
+                    card_core0_dda_arc1_target_y <= card_core0_dda_arc1_radius;
                 end
-                card_core0_dda_arc1_state <= 3'b100;
-            end
-            3'b100: begin
-                card_core0_dda_arc1_acc_x <= card_core0_dda_arc1_chk_acc_init;
-                card_core0_dda_arc1_acc_y <= card_core0_dda_arc1_chk_acc_init;
-                card_core0_dda_arc1_threshold <= card_core0_dda_arc1_chk_threshold;
-                card_core0_dda_arc1_radial_error <= 0;
-                card_core0_dda_arc1_crossings <= 0;
-                card_core0_dda_arc1_quadrant <= 0;
-                card_core0_dda_arc1_state <= 3'b101;
-                if (card_core0_dda_arc1_is_line) begin
-                    card_core0_dda_arc1_mag_x <= 0;
-                    card_core0_dda_arc1_mag_y <= 0;
+                if ((card_core0_dda_arc1_crossings == 1)) begin
                     card_core0_dda_arc1_target_x <= card_core0_dda_arc1_mag_xe;
                     card_core0_dda_arc1_target_y <= card_core0_dda_arc1_mag_ye;
-                    if (((card_core0_dda_arc1_mag_xe == 0) && (card_core0_dda_arc1_mag_ye == 0))) begin
-                        card_core0_regs_fifo1_dda_busy <= 1'b0;
-                        card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
-                        card_core0_dda_arc1_state <= 3'b000;
-                    end
                 end
-                else if (card_core0_dda_arc1_chk_error) begin
-                    card_core0_regs_fifo1_dda_busy <= 1'b0;
-                    card_core0_regs_fifo1_sequencer1_dda_error <= 1'b1;
-                    card_core0_dda_arc1_state <= 3'b000;
+                if (card_core0_dda_arc1_ccw) begin
+                    card_core0_dda_arc1_quadrant <= (card_core0_dda_arc1_quadrant + 1);
                 end
                 else begin
-                    card_core0_dda_arc1_quadrant <= card_core0_dda_arc1_chk_quadrant;
-                    card_core0_dda_arc1_crossings <= card_core0_dda_arc1_chk_crossings;
-                    card_core0_dda_arc1_mag_x <= card_core0_dda_arc1_mag_xs;
-                    card_core0_dda_arc1_mag_y <= card_core0_dda_arc1_mag_ys;
-                    card_core0_dda_arc1_target_x <= card_core0_dda_arc1_chk_target_x;
-                    card_core0_dda_arc1_target_y <= card_core0_dda_arc1_chk_target_y;
-                    card_core0_dda_arc1_radius <= card_core0_dda_arc1_chk_radius;
-                    card_core0_dda_arc1_delta_x <= card_core0_dda_arc1_chk_delta_x;
-                    card_core0_dda_arc1_delta_y <= card_core0_dda_arc1_chk_delta_y;
-                    card_core0_dda_arc1_delta_turn <= card_core0_dda_arc1_chk_delta_turn;
+                    card_core0_dda_arc1_quadrant <= (card_core0_dda_arc1_quadrant - 1);
                 end
+                card_core0_dda_arc1_crossings <= (card_core0_dda_arc1_crossings - 1);
             end
-            default: begin
-                if (card_core0_regs_fifo1_dda_advance) begin
-                    card_core0_regs_fifo1_steps_step_x <= card_core0_dda_arc1_it_step_x;
-                    card_core0_regs_fifo1_steps_step_y <= card_core0_dda_arc1_it_step_y;
-                    card_core0_regs_fifo1_steps_dir_x <= card_core0_dda_arc1_it_dir_x;
-                    card_core0_regs_fifo1_steps_dir_y <= card_core0_dda_arc1_it_dir_y;
-                    card_core0_dda_arc1_acc_x <= card_core0_dda_arc1_it_acc_x;
-                    card_core0_dda_arc1_acc_y <= card_core0_dda_arc1_it_acc_y;
-                    card_core0_dda_arc1_mag_x <= card_core0_dda_arc1_it_mag_x;
-                    card_core0_dda_arc1_mag_y <= card_core0_dda_arc1_it_mag_y;
-                    card_core0_dda_arc1_radial_error <= card_core0_dda_arc1_it_error;
-                    if (card_core0_dda_arc1_it_finished) begin
-                        card_core0_regs_fifo1_dda_busy <= 1'b0;
-                        card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
-                        card_core0_dda_arc1_state <= 3'b000;
-                    end
-                    else if (card_core0_dda_arc1_it_next_piece) begin
-                        if ((card_core0_dda_arc1_quadrant[0] != card_core0_dda_arc1_ccw)) begin
-                            card_core0_dda_arc1_delta_x <= 1;
-                            card_core0_dda_arc1_delta_y <= card_core0_dda_arc1_delta_turn;
-                        end
-                        else begin
-                            card_core0_dda_arc1_delta_x <= card_core0_dda_arc1_delta_turn;
-                            card_core0_dda_arc1_delta_y <= 1;
-                        end
-                        if (card_core0_dda_arc1_ccw) begin
-                            card_core0_dda_arc1_quadrant <= (card_core0_dda_arc1_quadrant + 1);
-                        end
-                        else begin
-                            card_core0_dda_arc1_quadrant <= (card_core0_dda_arc1_quadrant - 1);
-                        end
-                        card_core0_dda_arc1_crossings <= (card_core0_dda_arc1_crossings - 1);
-                        if ((card_core0_dda_arc1_crossings == 1)) begin
-                            card_core0_dda_arc1_target_x <= card_core0_dda_arc1_mag_xe;
-                            card_core0_dda_arc1_target_y <= card_core0_dda_arc1_mag_ye;
-                        end
-                        else if ((card_core0_dda_arc1_quadrant[0] != card_core0_dda_arc1_ccw)) begin
-                            card_core0_dda_arc1_target_x <= card_core0_dda_arc1_radius;
-                            card_core0_dda_arc1_target_y <= 0;
-                        end
-                        else begin
-                            card_core0_dda_arc1_target_x <= 0;
-                            card_core0_dda_arc1_target_y <= card_core0_dda_arc1_radius;
-                        end
-                    end
-                    else begin
-                        if (card_core0_dda_arc1_it_step_x) begin
-                            card_core0_dda_arc1_delta_x <= (card_core0_dda_arc1_delta_x + 2);
-                        end
-                        if (card_core0_dda_arc1_it_step_y) begin
-                            card_core0_dda_arc1_delta_y <= (card_core0_dda_arc1_delta_y + 2);
-                        end
-                    end
-                end
-            end
-        endcase
+        end
     end
 end
 

@@ -85,13 +85,16 @@ reg steps_dir_y;
 reg [4:0] acc_bits;
 reg signed [31:0] acc_x;
 reg signed [31:0] acc_y;
+reg at_x;
+reg at_y;
 reg ccw;
 reg signed [31:0] chk_acc_init;
 reg [2:0] chk_crossings;
-reg signed [29:0] chk_delta_turn;
-reg signed [29:0] chk_delta_x;
-reg signed [29:0] chk_delta_y;
 reg chk_error;
+reg [23:0] chk_mag_x;
+reg [23:0] chk_mag_y;
+reg [24:0] chk_neg_mag_x;
+reg [24:0] chk_neg_mag_y;
 reg [1:0] chk_quadrant;
 reg [23:0] chk_radius;
 reg [23:0] chk_target_x;
@@ -101,13 +104,17 @@ reg [23:0] cmd_mag_xs;
 reg [23:0] count_x;
 reg [23:0] count_y;
 reg [2:0] crossings;
-reg signed [29:0] delta_turn;
 reg signed [29:0] delta_x;
 reg signed [29:0] delta_y;
 reg end_beyond_high;
 reg end_reaches_low;
 reg signed [49:0] gap;
 reg signed [49:0] gap_sum;
+reg geo_ahead;
+reg geo_centre;
+reg [2:0] geo_crossings;
+reg [23:0] geo_end_inward;
+reg [1:0] geo_quadrant;
 reg [23:0] integrand_x;
 reg [23:0] integrand_y;
 reg is_line;
@@ -119,20 +126,31 @@ reg signed [29:0] it_error;
 reg it_finished;
 reg [23:0] it_mag_x;
 reg [23:0] it_mag_y;
+reg [24:0] it_neg_mag_x;
+reg [24:0] it_neg_mag_y;
 reg it_next_piece;
 reg it_step_x;
 reg it_step_y;
+reg it_tail;
 reg [4:0] lambda_shift;
 reg [4:0] mac_bit;
 reg [1:0] mac_op;
 reg [23:0] mag_x;
+reg [23:0] mag_x_step;
 reg [23:0] mag_xe;
 reg [23:0] mag_xs;
 reg [23:0] mag_y;
+reg [23:0] mag_y_step;
 reg [23:0] mag_ye;
 reg [23:0] mag_ys;
 reg [47:0] multiplicand;
 reg [23:0] multiplier;
+reg near_x;
+reg near_y;
+reg [24:0] neg_mag_x;
+reg [24:0] neg_mag_x_step;
+reg [24:0] neg_mag_y;
+reg [24:0] neg_mag_y_step;
 reg signed [24:0] neg_xs;
 reg signed [24:0] neg_ys;
 reg [1:0] quadrant;
@@ -151,10 +169,9 @@ reg [23:0] target_x;
 reg [23:0] target_y;
 reg [28:0] threshold;
 reg [1:0] variant;
-reg x_down;
+reg x_inward;
 reg signed [23:0] xe;
 reg signed [23:0] xs;
-reg y_down;
 reg signed [23:0] ye;
 reg signed [23:0] ys;
 
@@ -224,7 +241,118 @@ always @(gap, root_bit, state, multiplicand, mac_op) begin: setup_adder
 end
 
 
-always @(radius_length, acc_bits, neg_ys, mag_ys, variant, mag_xs, radius_q, end_reaches_low, mag_ye, xe, lambda_shift, ye, xs, neg_xs, mag_xe, is_line, ys, end_beyond_high, ccw) begin: check_logic
+always @(posedge clock, negedge reset) begin: geometry
+    reg [2-1:0] q_s;
+    reg [2-1:0] q_e;
+    reg [3-1:0] turns;
+    reg [2-1:0] turn;
+    reg [24-1:0] a_s;
+    reg [24-1:0] b_s;
+    reg [24-1:0] a_e;
+    reg [24-1:0] b_e;
+    if (reset == 0) begin
+        geo_quadrant <= 0;
+        geo_ahead <= 0;
+        geo_centre <= 0;
+        geo_end_inward <= 0;
+        geo_crossings <= 0;
+    end
+    else begin
+        q_s = 2'h0;
+        q_e = 2'h0;
+        turns = 3'h0;
+        turn = 2'h0;
+        a_s = 24'h0;
+        b_s = 24'h0;
+        a_e = 24'h0;
+        b_e = 24'h0;
+        if (ccw) begin
+            if (((xs > 0) && (ys >= 0))) begin
+                q_s = 0;
+            end
+            else if (((xs <= 0) && (ys > 0))) begin
+                q_s = 1;
+            end
+            else if (((xs < 0) && (ys <= 0))) begin
+                q_s = 2;
+            end
+            else begin
+                q_s = 3;
+            end
+            if (((xe >= 0) && (ye > 0))) begin
+                q_e = 0;
+            end
+            else if (((xe < 0) && (ye >= 0))) begin
+                q_e = 1;
+            end
+            else if (((xe <= 0) && (ye < 0))) begin
+                q_e = 2;
+            end
+            else begin
+                q_e = 3;
+            end
+            turn = (q_e - q_s);
+        end
+        else begin
+            if (((xs >= 0) && (ys > 0))) begin
+                q_s = 0;
+            end
+            else if (((xs < 0) && (ys >= 0))) begin
+                q_s = 1;
+            end
+            else if (((xs <= 0) && (ys < 0))) begin
+                q_s = 2;
+            end
+            else begin
+                q_s = 3;
+            end
+            if (((xe > 0) && (ye >= 0))) begin
+                q_e = 0;
+            end
+            else if (((xe <= 0) && (ye > 0))) begin
+                q_e = 1;
+            end
+            else if (((xe < 0) && (ye <= 0))) begin
+                q_e = 2;
+            end
+            else begin
+                q_e = 3;
+            end
+            turn = (q_s - q_e);
+        end
+        turns = {1'b0, turn};
+        if ((q_s[0] != ccw)) begin
+            a_s = mag_xs;
+            b_s = mag_ys;
+        end
+        else begin
+            a_s = mag_ys;
+            b_s = mag_xs;
+        end
+        if ((q_e[0] != ccw)) begin
+            a_e = mag_xe;
+            b_e = mag_ye;
+        end
+        else begin
+            a_e = mag_ye;
+            b_e = mag_xe;
+        end
+        geo_ahead <= 1'b0;
+        if (((turns == 0) && (a_e <= a_s) && (b_e >= b_s) && (!((a_e == a_s) && (b_e == b_s))))) begin
+            geo_ahead <= 1'b1;
+        end
+        else if ((turns == 0)) begin
+            turns = 4;
+        end
+        geo_quadrant <= q_s;
+        geo_crossings <= turns;
+        geo_end_inward <= a_e;
+        geo_centre <= (((xs == 0) && (ys == 0)) || ((xe == 0) && (ye == 0)));
+    end
+end
+
+
+always @(radius_length, acc_bits, neg_ys, geo_crossings, mag_ys, variant, geo_quadrant, mag_xs, radius_q, end_reaches_low, mag_ye, geo_centre, lambda_shift, geo_ahead, xs, mag_xe, neg_xs, is_line, ys, end_beyond_high, ccw, geo_end_inward) begin: check_logic
     reg [25-1:0] rq;
     reg [6-1:0] exponent;
     reg [29-1:0] thr;
@@ -234,20 +362,6 @@ always @(radius_length, acc_bits, neg_ys, mag_ys, variant, mag_xs, radius_q, end
     reg [32-1:0] half;
     reg [24-1:0] major;
     reg [24-1:0] major_less;
-    reg [2-1:0] q_s;
-    reg [2-1:0] q_e;
-    reg [3-1:0] turns;
-    reg [2-1:0] turn;
-    reg [24-1:0] a_s;
-    reg [24-1:0] b_s;
-    reg [24-1:0] a_e;
-    reg [24-1:0] b_e;
-    reg [25-1:0] half_x;
-    reg [25-1:0] half_y;
-    reg [25-1:0] half_turn;
-    reg [4-1:0] fill_x;
-    reg [4-1:0] fill_y;
-    reg [4-1:0] fill_turn;
     reg bad;
     rq = 25'h0;
     exponent = 6'h0;
@@ -258,23 +372,9 @@ always @(radius_length, acc_bits, neg_ys, mag_ys, variant, mag_xs, radius_q, end
     half = 32'h0;
     major = 24'h0;
     major_less = 24'h0;
-    q_s = 2'h0;
-    q_e = 2'h0;
-    turns = 3'h0;
-    turn = 2'h0;
-    a_s = 24'h0;
-    b_s = 24'h0;
-    a_e = 24'h0;
-    b_e = 24'h0;
-    half_x = 25'h0;
-    half_y = 25'h0;
-    half_turn = 25'h0;
-    fill_x = 4'h0;
-    fill_y = 4'h0;
-    fill_turn = 4'h0;
     bad = 1'b0;
     rq = radius_q;
-    if ((((xs == 0) && (ys == 0)) || ((xe == 0) && (ye == 0)))) begin
+    if (geo_centre) begin
         bad = 1'b1;
     end
     if (($signed({1'b0, rq}) >= (1 << (24 - 1)))) begin
@@ -290,18 +390,13 @@ always @(radius_length, acc_bits, neg_ys, mag_ys, variant, mag_xs, radius_q, end
         exponent = (radius_length + {1'b0, lambda_shift});
     end
     thr = (one << exponent);
+    thr_less = (thr - 1);
     if (((variant != 3) && ($signed({1'b0, exponent}) > (29 - 1)))) begin
         bad = 1'b1;
     end
-    thr_less = (thr - 1);
-    below = {3'h0, thr_less};
-    half = (~(below >>> 1));
-    if (((variant == 1) || (variant == 2))) begin
-        half = (~{3'h0, thr});
-    end
     if ((variant == 3)) begin
         thr = ({4'h0, rq} + 1);
-        half = (~{8'h0, rq[(24 + 1)-1:1]});
+        thr_less = {4'h0, rq};
     end
     if ((mag_xe > mag_ye)) begin
         major = mag_xe;
@@ -312,91 +407,22 @@ always @(radius_length, acc_bits, neg_ys, mag_ys, variant, mag_xs, radius_q, end
     major_less = (major - 1);
     if (is_line) begin
         thr = {5'h0, major};
-        half = (~({8'h0, major_less} >>> 1));
+        thr_less = {5'h0, major_less};
     end
-    if (ccw) begin
-        if (((xs > 0) && (ys >= 0))) begin
-            q_s = 0;
-        end
-        else if (((xs <= 0) && (ys > 0))) begin
-            q_s = 1;
-        end
-        else if (((xs < 0) && (ys <= 0))) begin
-            q_s = 2;
-        end
-        else begin
-            q_s = 3;
-        end
-        if (((xe >= 0) && (ye > 0))) begin
-            q_e = 0;
-        end
-        else if (((xe < 0) && (ye >= 0))) begin
-            q_e = 1;
-        end
-        else if (((xe <= 0) && (ye < 0))) begin
-            q_e = 2;
-        end
-        else begin
-            q_e = 3;
-        end
-        turn = (q_e - q_s);
+    below = {3'h0, thr_less};
+    half = (~(below >>> 1));
+    if (((!is_line) && ((variant == 1) || (variant == 2)))) begin
+        half = (~{3'h0, thr});
     end
-    else begin
-        if (((xs >= 0) && (ys > 0))) begin
-            q_s = 0;
-        end
-        else if (((xs < 0) && (ys >= 0))) begin
-            q_s = 1;
-        end
-        else if (((xs <= 0) && (ys < 0))) begin
-            q_s = 2;
-        end
-        else begin
-            q_s = 3;
-        end
-        if (((xe > 0) && (ye >= 0))) begin
-            q_e = 0;
-        end
-        else if (((xe <= 0) && (ye > 0))) begin
-            q_e = 1;
-        end
-        else if (((xe < 0) && (ye <= 0))) begin
-            q_e = 2;
-        end
-        else begin
-            q_e = 3;
-        end
-        turn = (q_s - q_e);
-    end
-    turns = {1'b0, turn};
-    if ((q_s[0] != ccw)) begin
-        a_s = mag_xs;
-        b_s = mag_ys;
-    end
-    else begin
-        a_s = mag_ys;
-        b_s = mag_xs;
-    end
-    if ((q_e[0] != ccw)) begin
-        a_e = mag_xe;
-        b_e = mag_ye;
-    end
-    else begin
-        a_e = mag_ye;
-        b_e = mag_xe;
-    end
-    if (((turns == 0) && (a_e <= a_s) && (b_e >= b_s) && (!((a_e == a_s) && (b_e == b_s))))) begin
+    if ((is_line || geo_ahead)) begin
         chk_target_x = mag_xe;
         chk_target_y = mag_ye;
     end
     else begin
-        if ((turns == 0)) begin
-            turns = 4;
-        end
-        if (({1'b0, a_e} > rq)) begin
+        if (({1'b0, geo_end_inward} > rq)) begin
             bad = 1'b1;
         end
-        if ((q_s[0] != ccw)) begin
+        if ((geo_quadrant[0] != ccw)) begin
             chk_target_x = 0;
             chk_target_y = rq[24-1:0];
         end
@@ -407,45 +433,39 @@ always @(radius_length, acc_bits, neg_ys, mag_ys, variant, mag_xs, radius_q, end
     end
     chk_error = bad;
     chk_radius = rq[24-1:0];
-    chk_quadrant = q_s;
-    chk_crossings = turns;
+    chk_quadrant = geo_quadrant;
+    chk_crossings = geo_crossings;
+    chk_mag_x = mag_xs;
+    chk_mag_y = mag_ys;
+    if ((is_line || bad)) begin
+        chk_quadrant = 0;
+    end
+    if (is_line) begin
+        chk_crossings = 0;
+        chk_mag_x = 0;
+        chk_mag_y = 0;
+    end
     chk_threshold = thr;
     chk_acc_init = $signed(half);
-    if (((xs < 0) != (q_s[0] != ccw))) begin
-        half_x = neg_xs;
+    if ((xs < 0)) begin
+        chk_neg_mag_x = {xs[(24 - 1)], xs};
     end
     else begin
-        half_x = {xs[(24 - 1)], xs};
+        chk_neg_mag_x = neg_xs;
     end
-    if (((ys < 0) != (q_s[0] == ccw))) begin
-        half_y = neg_ys;
+    if ((ys < 0)) begin
+        chk_neg_mag_y = {ys[(24 - 1)], ys};
     end
     else begin
-        half_y = {ys[(24 - 1)], ys};
+        chk_neg_mag_y = neg_ys;
     end
-    half_turn = (-rq);
-    fill_x = 0;
-    fill_y = 0;
-    fill_turn = 0;
-    if (half_x[24]) begin
-        fill_x = 15;
-    end
-    if (half_y[24]) begin
-        fill_y = 15;
-    end
-    if (half_turn[24]) begin
-        fill_turn = 15;
-    end
-    chk_delta_x = $signed({fill_x, half_x, 1'b1});
-    chk_delta_y = $signed({fill_y, half_y, 1'b1});
-    chk_delta_turn = $signed({fill_turn, half_turn, 1'b1});
 end
 
 
-always @(mag_y, quadrant, mag_x, target_y, ccw, target_x, is_line) begin: piece_progress
-    x_down = ((!is_line) && (quadrant[0] != ccw));
-    y_down = ((!is_line) && (quadrant[0] == ccw));
-    if (((!is_line) && (quadrant[0] != ccw))) begin
+always @(mag_y, mag_x_step, mag_x, target_y, neg_mag_y, x_inward, target_x, neg_mag_x, mag_y_step, is_line) begin: piece_progress
+    reg [4-1:0] fill_x;
+    reg [4-1:0] fill_y;
+    if (((!is_line) && x_inward)) begin
         count_x = (mag_x - target_x);
         count_y = (target_y - mag_y);
     end
@@ -456,6 +476,44 @@ always @(mag_y, quadrant, mag_x, target_y, ccw, target_x, is_line) begin: piece_
     else begin
         count_x = (target_x - mag_x);
         count_y = (target_y - mag_y);
+    end
+    if (((!is_line) && x_inward)) begin
+        mag_x_step = (mag_x + 16777215);
+        neg_mag_x_step = (neg_mag_x + 1);
+        mag_y_step = (mag_y + 1);
+        neg_mag_y_step = (neg_mag_y + 33554431);
+    end
+    else if ((!is_line)) begin
+        mag_x_step = (mag_x + 1);
+        neg_mag_x_step = (neg_mag_x + 33554431);
+        mag_y_step = (mag_y + 16777215);
+        neg_mag_y_step = (neg_mag_y + 1);
+    end
+    else begin
+        mag_x_step = (mag_x + 1);
+        neg_mag_x_step = (neg_mag_x + 33554431);
+        mag_y_step = (mag_y + 1);
+        neg_mag_y_step = (neg_mag_y + 33554431);
+    end
+    at_x = (mag_x == target_x);
+    at_y = (mag_y == target_y);
+    near_x = (mag_x_step == target_x);
+    near_y = (mag_y_step == target_y);
+    fill_x = 4'h0;
+    fill_y = 4'h0;
+    if (neg_mag_x[24]) begin
+        fill_x = 15;
+    end
+    if (neg_mag_y[24]) begin
+        fill_y = 15;
+    end
+    if (x_inward) begin
+        delta_x = $signed({fill_x, neg_mag_x, 1'b1});
+        delta_y = $signed({5'h0, mag_y, 1'b1});
+    end
+    else begin
+        delta_x = $signed({5'h0, mag_x, 1'b1});
+        delta_y = $signed({fill_y, neg_mag_y, 1'b1});
     end
     if (is_line) begin
         integrand_x = target_x;
@@ -468,72 +526,59 @@ always @(mag_y, quadrant, mag_x, target_y, ccw, target_x, is_line) begin: piece_
 end
 
 
-always @(mag_y, x_down, variant, delta_x, delta_y, crossings, xe, integrand_x, ye, quadrant, integrand_y, y_down, is_line, radial_error, count_y, threshold, count_x, acc_x, mag_x, ccw, acc_y) begin: iteration_logic
-    reg x_in;
+always @(mag_y, neg_mag_y_step, variant, mag_x_step, delta_x, delta_y, x_inward, crossings, mag_y_step, xe, at_x, near_y, integrand_x, near_x, ye, quadrant, neg_mag_y, integrand_y, is_line, radial_error, count_y, threshold, count_x, neg_mag_x_step, acc_x, at_y, mag_x, acc_y, neg_mag_x) begin: iteration_logic
     reg x_right;
     reg y_up;
     reg [9-1:0] to_mag;
     reg signed [33-1:0] sum_x;
-    reg signed [33-1:0] sum_x_up;
-    reg signed [33-1:0] sum_x_down;
+    reg signed [33-1:0] sum_x_step;
     reg signed [33-1:0] sum_y;
     reg [32-1:0] thr_low;
     reg signed [33-1:0] ahead_x;
     reg signed [33-1:0] ahead_y;
     reg [32-1:0] less_x;
     reg [32-1:0] less_y;
-    reg [24-1:0] mag_y_up;
-    reg [24-1:0] mag_y_down;
     reg signed [30-1:0] cand_d;
     reg signed [30-1:0] cand_x;
     reg signed [30-1:0] cand_y;
-    reg signed [31-1:0] delta_xy;
-    reg signed [31-1:0] both_dx;
-    reg signed [31-1:0] both_dy;
-    reg signed [31-1:0] both_xy;
-    reg signed [31-1:0] gap_xy;
+    reg signed [30-1:0] delta_xy;
+    reg signed [31-1:0] half_xy;
+    reg sum_le_0;
+    reg sum_lt_0;
     reg d_le_x;
     reg d_le_y;
     reg x_le_y;
     reg over_x;
-    reg over_x_up;
-    reg over_x_down;
+    reg over_x_step;
     reg over_y;
     reg go_x;
     reg go_y;
-    x_in = (0 != 0);
     x_right = (0 != 0);
     y_up = (0 != 0);
     to_mag = 9'h0;
     sum_x = 0;
-    sum_x_up = 0;
-    sum_x_down = 0;
+    sum_x_step = 0;
     sum_y = 0;
     thr_low = 32'h0;
     ahead_x = 0;
     ahead_y = 0;
     less_x = 32'h0;
     less_y = 32'h0;
-    mag_y_up = 24'h0;
-    mag_y_down = 24'h0;
     cand_d = 0;
     cand_x = 0;
     cand_y = 0;
     delta_xy = 0;
-    both_dx = 0;
-    both_dy = 0;
-    both_xy = 0;
-    gap_xy = 0;
+    half_xy = 0;
+    sum_le_0 = (0 != 0);
+    sum_lt_0 = (0 != 0);
     d_le_x = (0 != 0);
     d_le_y = (0 != 0);
     x_le_y = (0 != 0);
     over_x = (0 != 0);
-    over_x_up = (0 != 0);
-    over_x_down = (0 != 0);
+    over_x_step = (0 != 0);
     over_y = (0 != 0);
     go_x = (0 != 0);
     go_y = (0 != 0);
-    x_in = (quadrant[0] != ccw);
     x_right = (quadrant[0] == quadrant[1]);
     y_up = (!quadrant[1]);
     if (is_line) begin
@@ -541,47 +586,36 @@ always @(mag_y, x_down, variant, delta_x, delta_y, crossings, xe, integrand_x, y
         it_dir_y = (ye >= 0);
     end
     else begin
-        it_dir_x = (x_right != x_in);
-        it_dir_y = (y_up == x_in);
+        it_dir_x = (x_right != x_inward);
+        it_dir_y = (y_up == x_inward);
     end
     to_mag = 0;
     thr_low = {3'h0, threshold};
     sum_y = ($signed({acc_y[(32 - 1)], acc_y}) + $signed({to_mag, integrand_y}));
-    mag_y_up = (mag_y + 1);
-    mag_y_down = (mag_y - 1);
     sum_x = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({to_mag, integrand_x}));
-    sum_x_up = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({to_mag, mag_y_up}));
-    sum_x_down = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({to_mag, mag_y_down}));
+    sum_x_step = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({to_mag, mag_y_step}));
     over_x = (!sum_x[32]);
-    over_x_up = (!sum_x_up[32]);
-    over_x_down = (!sum_x_down[32]);
+    over_x_step = (!sum_x_step[32]);
     over_y = (!sum_y[32]);
     if (((!is_line) && (variant == 0) && over_y)) begin
-        if (x_in) begin
-            sum_x = sum_x_up;
-            over_x = over_x_up;
-        end
-        else begin
-            sum_x = sum_x_down;
-            over_x = over_x_down;
-        end
+        sum_x = sum_x_step;
+        over_x = over_x_step;
     end
-    delta_xy = ($signed({delta_x[(30 - 1)], delta_x}) + $signed({delta_y[(30 - 1)], delta_y}));
+    delta_xy = (delta_x + delta_y);
     cand_x = (radial_error + delta_x);
     cand_y = (radial_error + delta_y);
-    cand_d = (radial_error + $signed(delta_xy[30-1:0]));
-    both_dx = ($signed({cand_x[30-1:0], 1'b0}) + $signed({delta_y[(30 - 1)], delta_y}));
-    both_dy = ($signed({cand_y[30-1:0], 1'b0}) + $signed({delta_x[(30 - 1)], delta_x}));
-    both_xy = ($signed({radial_error[30-1:0], 1'b0}) + delta_xy);
-    gap_xy = ($signed({delta_x[(30 - 1)], delta_x}) - $signed({delta_y[(30 - 1)], delta_y}));
-    d_le_x = ((delta_y == 0) || (both_dx == 0) || (delta_y[(30 - 1)] != both_dx[30]));
-    d_le_y = ((delta_x == 0) || (both_dy == 0) || (delta_x[(30 - 1)] != both_dy[30]));
-    x_le_y = ((gap_xy == 0) || (both_xy == 0) || (gap_xy[30] != both_xy[30]));
+    cand_d = (radial_error + delta_xy);
+    half_xy = ($signed({delta_x[(30 - 1)], delta_x[(30 - 1)], delta_x[30-1:1]}) + $signed({delta_y[(30 - 1)], delta_y[(30 - 1)], delta_y[30-1:1]}));
+    sum_le_0 = (($signed({radial_error[(30 - 1)], radial_error}) + half_xy) < 0);
+    sum_lt_0 = ((($signed({radial_error[(30 - 1)], radial_error}) + half_xy) + 1) < 0);
+    d_le_x = ((delta_y < 0) != (($signed({cand_x[30-1:0], 1'b0}) + $signed({delta_y[(30 - 1)], delta_y})) < 0));
+    d_le_y = ((delta_x < 0) != (($signed({cand_y[30-1:0], 1'b0}) + $signed({delta_x[(30 - 1)], delta_x})) < 0));
+    x_le_y = ((delta_x == delta_y) || ((delta_x > delta_y) && sum_le_0) || ((delta_x < delta_y) && (!sum_lt_0)));
     go_x = over_x;
     go_y = over_y;
     if (is_line) begin
-        go_x = (over_x && (count_x != 0));
-        go_y = (over_y && (count_y != 0));
+        go_x = (over_x && (!at_x));
+        go_y = (over_y && (!at_y));
     end
     else if ((variant == 2)) begin
         ahead_x = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({to_mag[(32 - 24)-1:0], mag_y, 1'b0}));
@@ -609,49 +643,40 @@ always @(mag_y, x_down, variant, delta_x, delta_y, crossings, xe, integrand_x, y
             end
         end
     end
-    if (((!is_line) && ((count_x == 0) || (count_y == 0)))) begin
-        go_x = (count_x != 0);
-        go_y = (count_y != 0);
-        it_acc_x = acc_x;
-        it_acc_y = acc_y;
+    it_tail = ((!is_line) && ((count_x == 0) || (count_y == 0)));
+    if (((!is_line) && (at_x || at_y))) begin
+        go_x = (!at_x);
+        go_y = (!at_y);
     end
-    else begin
-        if (((!sum_x[32]) && sum_x[(32 - 1)])) begin
-            sum_x = 33'h7fffffff;
-        end
-        if (((!sum_y[32]) && sum_y[(32 - 1)])) begin
-            sum_y = 33'h7fffffff;
-        end
-        less_x = sum_x[32-1:0];
-        if (go_x) begin
-            less_x = (sum_x[32-1:0] - thr_low);
-        end
-        less_y = sum_y[32-1:0];
-        if (go_y) begin
-            less_y = (sum_y[32-1:0] - thr_low);
-        end
-        it_acc_x = $signed(less_x);
-        it_acc_y = $signed(less_y);
+    if (((!sum_x[32]) && sum_x[(32 - 1)])) begin
+        sum_x = 33'h7fffffff;
     end
+    if (((!sum_y[32]) && sum_y[(32 - 1)])) begin
+        sum_y = 33'h7fffffff;
+    end
+    less_x = sum_x[32-1:0];
+    if (go_x) begin
+        less_x = (sum_x[32-1:0] - thr_low);
+    end
+    less_y = sum_y[32-1:0];
+    if (go_y) begin
+        less_y = (sum_y[32-1:0] - thr_low);
+    end
+    it_acc_x = $signed(less_x);
+    it_acc_y = $signed(less_y);
     it_step_x = go_x;
     it_step_y = go_y;
     it_mag_x = mag_x;
     it_mag_y = mag_y;
+    it_neg_mag_x = neg_mag_x;
+    it_neg_mag_y = neg_mag_y;
     if (go_x) begin
-        if (x_down) begin
-            it_mag_x = (mag_x - 1);
-        end
-        else begin
-            it_mag_x = (mag_x + 1);
-        end
+        it_mag_x = mag_x_step;
+        it_neg_mag_x = neg_mag_x_step;
     end
     if (go_y) begin
-        if (y_down) begin
-            it_mag_y = mag_y_down;
-        end
-        else begin
-            it_mag_y = mag_y_up;
-        end
+        it_mag_y = mag_y_step;
+        it_neg_mag_y = neg_mag_y_step;
     end
     if ((go_x && go_y)) begin
         it_error = cand_d;
@@ -667,7 +692,7 @@ always @(mag_y, x_down, variant, delta_x, delta_y, crossings, xe, integrand_x, y
     end
     it_finished = 1'b0;
     it_next_piece = 1'b0;
-    if (((((count_x == 1) && go_x) || (count_x == 0)) && (((count_y == 1) && go_y) || (count_y == 0)))) begin
+    if ((((near_x && go_x) || at_x) && ((near_y && go_y) || at_y))) begin
         if ((is_line || (crossings == 0))) begin
             it_finished = 1'b1;
         end
@@ -680,26 +705,25 @@ end
 
 always @(posedge clock, negedge reset) begin: control
     reg [27-1:0] trial_rem;
-    reg [27-1:0] trial;
+    reg [28-1:0] trial_diff;
+    reg round_up;
     if (reset == 0) begin
         radius_length <= 0;
         mag_y <= 0;
         cmd_done <= 0;
         acc_bits <= 0;
-        delta_turn <= 0;
         gap <= 0;
         cmd_busy <= 0;
         variant <= 0;
         root_all_ones <= 0;
         steps_step_x <= 0;
-        delta_x <= 0;
-        delta_y <= 0;
         multiplicand <= 0;
         target_y <= 0;
+        x_inward <= 0;
         crossings <= 0;
-        target_x <= 0;
         radius_q <= 0;
         end_reaches_low <= 0;
+        target_x <= 0;
         root_length <= 0;
         mac_op <= 0;
         state <= 3'b000;
@@ -713,6 +737,7 @@ always @(posedge clock, negedge reset) begin: control
         radicand <= 0;
         ye <= 0;
         quadrant <= 0;
+        neg_mag_y <= 0;
         steps_dir_x <= 0;
         steps_dir_y <= 0;
         xs <= 0;
@@ -728,238 +753,206 @@ always @(posedge clock, negedge reset) begin: control
         mag_x <= 0;
         ccw <= 0;
         acc_y <= 0;
+        neg_mag_x <= 0;
     end
     else begin
         steps_step_x <= 1'b0;
         steps_step_y <= 1'b0;
         cmd_done <= 1'b0;
-        case (state)
-            3'b000: begin
-                if (cmd_start) begin
-                    cmd_busy <= 1'b1;
-                    cmd_error <= 1'b0;
-                    is_line <= cmd_line;
-                    variant <= cmd_variant;
-                    lambda_shift <= cmd_lambda_shift;
-                    acc_bits <= cmd_acc_bits;
-                    ccw <= cmd_ccw;
-                    xs <= cmd_xs;
-                    ys <= cmd_ys;
-                    xe <= cmd_xe;
-                    ye <= cmd_ye;
-                    gap <= (-1);
-                    mac_op <= 0;
-                    mac_bit <= 0;
-                    multiplicand <= {24'h0, cmd_mag_xs};
-                    multiplier <= cmd_mag_xs;
-                    if (cmd_line) begin
-                        state <= 3'b100;
-                    end
-                    else begin
-                        state <= 3'b001;
-                    end
-                end
-            end
-            3'b001: begin
-                if (multiplier[0]) begin
-                    gap <= gap_sum;
-                end
-                if (($signed({1'b0, mac_bit}) == (24 - 1))) begin
-                    mac_bit <= 0;
-                    mac_op <= (mac_op + 1);
-                    case (mac_op)
-                        'h0: begin
-                            multiplicand <= {24'h0, mag_ys};
-                            multiplier <= mag_ys;
-                        end
-                        'h1: begin
-                            multiplicand <= {24'h0, mag_xe};
-                            multiplier <= mag_xe;
-                            if (multiplier[0]) begin
-                                radicand <= (~gap_sum[(2 * 24)-1:0]);
-                            end
-                            else begin
-                                radicand <= (~gap[(2 * 24)-1:0]);
-                            end
-                        end
-                        'h2: begin
-                            multiplicand <= {24'h0, mag_ye};
-                            multiplier <= mag_ye;
-                        end
-                        default: begin
-                            if ((mag_xs > mag_ys)) begin
-                                multiplicand <= {24'h0, mag_xs};
-                            end
-                            else begin
-                                multiplicand <= {24'h0, mag_ys};
-                            end
-                            remainder <= 0;
-                            root <= 0;
-                            root_bit <= 0;
-                            root_length <= 0;
-                            root_all_ones <= 1'b1;
-                            state <= 3'b010;
-                        end
-                    endcase
+        if ((state == 3'b000)) begin
+            if (cmd_start) begin
+                cmd_busy <= 1'b1;
+                cmd_error <= 1'b0;
+                is_line <= cmd_line;
+                variant <= cmd_variant;
+                lambda_shift <= cmd_lambda_shift;
+                acc_bits <= cmd_acc_bits;
+                ccw <= cmd_ccw;
+                xs <= cmd_xs;
+                ys <= cmd_ys;
+                xe <= cmd_xe;
+                ye <= cmd_ye;
+                gap <= (-1);
+                mac_op <= 0;
+                mac_bit <= 0;
+                multiplicand <= {24'h0, cmd_mag_xs};
+                multiplier <= cmd_mag_xs;
+                if (cmd_line) begin
+                    state <= 3'b100;
                 end
                 else begin
-                    mac_bit <= (mac_bit + 1);
-                    multiplicand <= (multiplicand << 1);
-                    multiplier <= (multiplier >>> 1);
+                    state <= 3'b001;
                 end
             end
-            3'b010: begin
-                trial_rem = 27'h0;
-                trial = 27'h0;
-                trial_rem = {remainder[(24 + 1)-1:0], radicand[(2 * 24)-1:((2 * 24) - 2)]};
-                trial = {2'h0, root[(24 - 1)-1:0], 2'h1};
-                if ((trial_rem >= trial)) begin
-                    remainder <= (trial_rem - trial);
-                    root <= {root[(24 - 1)-1:0], 1'b1};
-                end
-                else begin
-                    remainder <= trial_rem;
-                    root <= {root[(24 - 1)-1:0], 1'b0};
-                    if ((root != 0)) begin
-                        root_all_ones <= 1'b0;
-                    end
-                end
-                if (((root != 0) || (trial_rem >= trial))) begin
-                    root_length <= (root_length + 1);
-                end
-                radicand <= (radicand << 2);
-                case (root_bit)
+        end
+        else if ((state == 3'b001)) begin
+            if (multiplier[0]) begin
+                gap <= gap_sum;
+            end
+            if (((mac_op == 2) && (mac_bit == 0))) begin
+                radicand <= (~gap[(2 * 24)-1:0]);
+            end
+            if (($signed({1'b0, mac_bit}) == (24 - 1))) begin
+                mac_bit <= 0;
+                mac_op <= (mac_op + 1);
+                case (mac_op)
                     'h0: begin
-                        multiplicand <= (multiplicand << 1);
+                        multiplicand <= {24'h0, mag_ys};
+                        multiplier <= mag_ys;
                     end
                     'h1: begin
-                        gap <= gap_sum;
-                        multiplicand <= (multiplicand << 1);
+                        multiplicand <= {24'h0, mag_xe};
+                        multiplier <= mag_xe;
                     end
                     'h2: begin
-                        end_reaches_low <= (!gap[(50 - 1)]);
-                        gap <= gap_sum;
+                        multiplicand <= {24'h0, mag_ye};
+                        multiplier <= mag_ye;
                     end
-                    'h3: begin
-                        end_beyond_high <= (!gap[(50 - 1)]);
+                    default: begin
+                        if ((mag_xs > mag_ys)) begin
+                            multiplicand <= {24'h0, mag_xs};
+                        end
+                        else begin
+                            multiplicand <= {24'h0, mag_ys};
+                        end
+                        remainder <= 0;
+                        root <= 0;
+                        root_bit <= 0;
+                        root_length <= 0;
+                        root_all_ones <= 1'b1;
+                        state <= 3'b010;
                     end
                 endcase
-                if (($signed({1'b0, root_bit}) == (24 - 1))) begin
-                    state <= 3'b011;
-                end
-                else begin
-                    root_bit <= (root_bit + 1);
+            end
+            else begin
+                mac_bit <= (mac_bit + 1);
+                multiplicand <= (multiplicand << 1);
+                multiplier <= (multiplier >>> 1);
+            end
+        end
+        else if ((state == 3'b010)) begin
+            trial_rem = 27'h0;
+            trial_diff = 28'h0;
+            trial_rem = {remainder[(24 + 1)-1:0], radicand[(2 * 24)-1:((2 * 24) - 2)]};
+            trial_diff = ({1'b0, trial_rem} - {3'h0, root[(24 - 1)-1:0], 2'h1});
+            if ((!trial_diff[(24 + 3)])) begin
+                remainder <= trial_diff[(24 + 3)-1:0];
+                root <= {root[(24 - 1)-1:0], 1'b1};
+            end
+            else begin
+                remainder <= trial_rem;
+                root <= {root[(24 - 1)-1:0], 1'b0};
+                if ((root != 0)) begin
+                    root_all_ones <= 1'b0;
                 end
             end
-            3'b011: begin
-                if ((remainder > {3'h0, root})) begin
-                    radius_q <= ({1'b0, root} + 1);
-                    if (root_all_ones) begin
-                        radius_length <= (root_length + 1);
-                    end
-                    else begin
-                        radius_length <= root_length;
-                    end
+            if (((root != 0) || (!trial_diff[(24 + 3)]))) begin
+                root_length <= (root_length + 1);
+            end
+            radicand <= (radicand << 2);
+            case (root_bit)
+                'h0: begin
+                    multiplicand <= (multiplicand << 1);
+                end
+                'h1: begin
+                    gap <= gap_sum;
+                    multiplicand <= (multiplicand << 1);
+                end
+                'h2: begin
+                    end_reaches_low <= (!gap[(50 - 1)]);
+                    gap <= gap_sum;
+                end
+                'h3: begin
+                    end_beyond_high <= (!gap[(50 - 1)]);
+                end
+            endcase
+            if (($signed({1'b0, root_bit}) == (24 - 1))) begin
+                state <= 3'b011;
+            end
+            else begin
+                root_bit <= (root_bit + 1);
+            end
+        end
+        else if ((state == 3'b011)) begin
+            round_up = (remainder > {3'h0, root});
+            radius_q <= ({1'b0, root} + {24'h0, round_up});
+            if ((round_up && root_all_ones)) begin
+                radius_length <= (root_length + 1);
+            end
+            else begin
+                radius_length <= root_length;
+            end
+            state <= 3'b100;
+        end
+        else if ((state == 3'b100)) begin
+            acc_x <= chk_acc_init;
+            acc_y <= chk_acc_init;
+            threshold <= chk_threshold;
+            radial_error <= 0;
+            quadrant <= chk_quadrant;
+            x_inward <= (chk_quadrant[0] != ccw);
+            crossings <= chk_crossings;
+            mag_x <= chk_mag_x;
+            mag_y <= chk_mag_y;
+            target_x <= chk_target_x;
+            target_y <= chk_target_y;
+            radius <= chk_radius;
+            neg_mag_x <= chk_neg_mag_x;
+            neg_mag_y <= chk_neg_mag_y;
+            state <= 3'b101;
+            if ((is_line && (mag_xe == 0) && (mag_ye == 0))) begin
+                cmd_busy <= 1'b0;
+                cmd_done <= 1'b1;
+                state <= 3'b000;
+            end
+            else if (((!is_line) && chk_error)) begin
+                cmd_busy <= 1'b0;
+                cmd_error <= 1'b1;
+                state <= 3'b000;
+            end
+        end
+        else if (cmd_advance) begin
+            steps_step_x <= it_step_x;
+            steps_step_y <= it_step_y;
+            steps_dir_x <= it_dir_x;
+            steps_dir_y <= it_dir_y;
+            if ((!it_tail)) begin
+                acc_x <= it_acc_x;
+                acc_y <= it_acc_y;
+            end
+            mag_x <= it_mag_x;
+            mag_y <= it_mag_y;
+            neg_mag_x <= it_neg_mag_x;
+            neg_mag_y <= it_neg_mag_y;
+            radial_error <= it_error;
+            if (it_finished) begin
+                cmd_busy <= 1'b0;
+                cmd_done <= 1'b1;
+                state <= 3'b000;
+            end
+            if (it_next_piece) begin
+                x_inward <= (!x_inward);
+                if (x_inward) begin
+                    target_x <= radius;
+                    target_y <= 0;
                 end
                 else begin
-                    radius_q <= {1'b0, root};
-                    radius_length <= root_length;
+                    target_x <= 0;
+                    target_y <= radius;
                 end
-                state <= 3'b100;
-            end
-            3'b100: begin
-                acc_x <= chk_acc_init;
-                acc_y <= chk_acc_init;
-                threshold <= chk_threshold;
-                radial_error <= 0;
-                crossings <= 0;
-                quadrant <= 0;
-                state <= 3'b101;
-                if (is_line) begin
-                    mag_x <= 0;
-                    mag_y <= 0;
+                if ((crossings == 1)) begin
                     target_x <= mag_xe;
                     target_y <= mag_ye;
-                    if (((mag_xe == 0) && (mag_ye == 0))) begin
-                        cmd_busy <= 1'b0;
-                        cmd_done <= 1'b1;
-                        state <= 3'b000;
-                    end
                 end
-                else if (chk_error) begin
-                    cmd_busy <= 1'b0;
-                    cmd_error <= 1'b1;
-                    state <= 3'b000;
+                if (ccw) begin
+                    quadrant <= (quadrant + 1);
                 end
                 else begin
-                    quadrant <= chk_quadrant;
-                    crossings <= chk_crossings;
-                    mag_x <= mag_xs;
-                    mag_y <= mag_ys;
-                    target_x <= chk_target_x;
-                    target_y <= chk_target_y;
-                    radius <= chk_radius;
-                    delta_x <= chk_delta_x;
-                    delta_y <= chk_delta_y;
-                    delta_turn <= chk_delta_turn;
+                    quadrant <= (quadrant - 1);
                 end
+                crossings <= (crossings - 1);
             end
-            default: begin
-                if (cmd_advance) begin
-                    steps_step_x <= it_step_x;
-                    steps_step_y <= it_step_y;
-                    steps_dir_x <= it_dir_x;
-                    steps_dir_y <= it_dir_y;
-                    acc_x <= it_acc_x;
-                    acc_y <= it_acc_y;
-                    mag_x <= it_mag_x;
-                    mag_y <= it_mag_y;
-                    radial_error <= it_error;
-                    if (it_finished) begin
-                        cmd_busy <= 1'b0;
-                        cmd_done <= 1'b1;
-                        state <= 3'b000;
-                    end
-                    else if (it_next_piece) begin
-                        if ((quadrant[0] != ccw)) begin
-                            delta_x <= 1;
-                            delta_y <= delta_turn;
-                        end
-                        else begin
-                            delta_x <= delta_turn;
-                            delta_y <= 1;
-                        end
-                        if (ccw) begin
-                            quadrant <= (quadrant + 1);
-                        end
-                        else begin
-                            quadrant <= (quadrant - 1);
-                        end
-                        crossings <= (crossings - 1);
-                        if ((crossings == 1)) begin
-                            target_x <= mag_xe;
-                            target_y <= mag_ye;
-                        end
-                        else if ((quadrant[0] != ccw)) begin
-                            target_x <= radius;
-                            target_y <= 0;
-                        end
-                        else begin
-                            target_x <= 0;
-                            target_y <= radius;
-                        end
-                    end
-                    else begin
-                        if (it_step_x) begin
-                            delta_x <= (delta_x + 2);
-                        end
-                        if (it_step_y) begin
-                            delta_y <= (delta_y + 2);
-                        end
-                    end
-                end
-            end
-        endcase
+        end
     end
 end
 

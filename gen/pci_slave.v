@@ -124,17 +124,19 @@ input local_ready;
 input local_retry;
 
 wire accepted;
-reg ad_oe_next;
+wire ad_oe_next;
 reg [31:0] ad_out_next;
 reg ad_out_parity;
 wire ad_out_parity_kept;
 reg [31:0] ad_out_q;
 reg [31:0] ad_q;
 reg address_fault;
-wire address_parity_error;
+wire address_fault_next;
 wire address_phase;
 wire at_last;
+reg b_kept;
 reg b_valid;
+wire b_valid_next;
 wire back_end_retry;
 reg [15:0] bar0;
 wire [15:0] bar0_read;
@@ -142,31 +144,30 @@ reg [31:0] bar1;
 wire before_last;
 reg [1:0] buffered_next;
 reg bus_parity;
-wire bus_parity_kept;
 reg [3:0] cbe_q;
 reg claim;
 reg claim_config;
 reg claim_io;
 reg [31:0] config_data;
 wire [5:0] config_index;
+wire config_write_next;
 reg config_write_q;
-wire data_parity_error;
 reg detected_parity_error;
-reg devsel_next;
+wire devsel_next;
 reg devsel_q;
 wire draining;
-reg drive_next;
+wire drive_next;
 reg fatal;
 reg fetching;
 reg first_pending;
 reg first_phase;
+wire first_phase_next;
 reg frame_q;
 reg frame_qq;
 wire got;
 reg [3:0] h_be;
 reg [31:0] h_data;
 reg h_valid;
-wire holding;
 reg idsel_q;
 reg interrupt_disable;
 reg [7:0] interrupt_line;
@@ -176,15 +177,18 @@ reg irdy_q;
 reg is_config;
 reg is_read;
 reg mem_enable;
-reg par_next;
+wire par_next;
 reg par_q;
+wire parity_error_next;
 reg parity_error_q;
 reg parity_response;
 wire perr_armed;
-reg perr_next;
+wire perr_next;
+wire perr_oe_next;
 reg perr_q;
 reg [9:0] phase_addr;
-wire phase_done;
+wire phase_step;
+wire posting;
 reg [31:0] read_source;
 reg refused;
 reg [9:0] req_addr;
@@ -193,6 +197,7 @@ reg [3:0] s_be;
 reg s_valid;
 wire serr_armed;
 reg serr_enable;
+wire serr_oe_next;
 reg signaled_system_error;
 reg signaled_target_abort;
 reg single;
@@ -200,34 +205,18 @@ reg space_mem;
 reg [31:0] spare_data;
 reg [9:0] start_addr;
 reg [3:0] state;
-reg [3:0] state_next;
-reg stop_next;
+wire [3:0] state_next;
+wire stop_next;
 reg stop_q;
 reg timeout;
-reg trdy_next;
+wire trdy_next;
 reg trdy_q;
 reg [3:0] wait_count;
 reg waiting;
 reg wq_valid;
+wire wq_valid_next;
+wire write_done_next;
 reg write_done_q;
-wire [3:0] next_if_frame_state;
-wire next_if_frame_trdy;
-wire next_if_frame_stop;
-wire next_if_frame_devsel;
-wire next_if_frame_drive;
-wire next_if_frame_ad_oe;
-wire [3:0] next_if_irdy_state;
-wire next_if_irdy_trdy;
-wire next_if_irdy_stop;
-wire next_if_irdy_devsel;
-wire next_if_irdy_drive;
-wire next_if_irdy_ad_oe;
-wire [3:0] next_if_both_state;
-wire next_if_both_trdy;
-wire next_if_both_stop;
-wire next_if_both_devsel;
-wire next_if_both_drive;
-wire next_if_both_ad_oe;
 reg [3:0] control_case0_out_state;
 reg control_case0_out_trdy;
 reg control_case0_out_stop;
@@ -295,8 +284,46 @@ end
 assign address_phase = (frame_qq && (!frame_q));
 assign serr_armed = (frame_qq && (!frame_q) && serr_enable && parity_response);
 assign perr_armed = (write_done_q && parity_response);
-assign address_parity_error = (frame_qq && (!frame_q) && (bus_parity_kept != pci_par_in));
-assign data_parity_error = (write_done_q && (bus_parity_kept != pci_par_in));
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h9F9F)) perr_next_lut (.O(perr_next), .I0(pci_par_in), .I1(bus_parity), .I2(perr_armed), .I3(1'b0));
+`else
+wire [7:0] perr_next_lut_table = 8'h9F;
+assign perr_next = perr_next_lut_table[{perr_armed, bus_parity, pci_par_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h60FF)) perr_oe_next_lut (.O(perr_oe_next), .I0(pci_par_in), .I1(bus_parity), .I2(perr_armed), .I3(perr_q));
+`else
+wire [15:0] perr_oe_next_lut_table = 16'h60FF;
+assign perr_oe_next = perr_oe_next_lut_table[{perr_q, perr_armed, bus_parity, pci_par_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h6060)) serr_oe_next_lut (.O(serr_oe_next), .I0(pci_par_in), .I1(bus_parity), .I2(serr_armed), .I3(1'b0));
+`else
+wire [7:0] serr_oe_next_lut_table = 8'h60;
+assign serr_oe_next = serr_oe_next_lut_table[{serr_armed, bus_parity, pci_par_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h6000)) address_fault_next_lut (.O(address_fault_next), .I0(pci_par_in), .I1(bus_parity), .I2(address_phase), .I3(parity_response));
+`else
+wire [15:0] address_fault_next_lut_table = 16'h6000;
+assign address_fault_next = address_fault_next_lut_table[{parity_response, address_phase, bus_parity, pci_par_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h6660)) parity_error_next_lut (.O(parity_error_next), .I0(pci_par_in), .I1(bus_parity), .I2(address_phase), .I3(write_done_q));
+`else
+wire [15:0] parity_error_next_lut_table = 16'h6660;
+assign parity_error_next = parity_error_next_lut_table[{write_done_q, address_phase, bus_parity, pci_par_in}];
+`endif
 
 
 always @(bar1, ad_q, address_phase, io_enable, bar0, cbe_q, idsel_q, mem_enable, state) begin: decode
@@ -327,9 +354,52 @@ always @(ad_q, claim_config, claim_io) begin: start_offset
 end
 
 
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFEF0)) first_phase_next_lut (.O(first_phase_next), .I0(pci_irdy_in), .I1(trdy_q), .I2(claim), .I3(first_phase));
+`else
+wire [15:0] first_phase_next_lut_table = 16'hFEF0;
+assign first_phase_next = first_phase_next_lut_table[{first_phase, claim, trdy_q, pci_irdy_in}];
+`endif
 
-assign phase_done = ((!pci_irdy_in) && (!trdy_q));
-assign holding = (pci_irdy_in && (!trdy_q));
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hF1F0)) phase_step_lut (.O(phase_step), .I0(pci_irdy_in), .I1(trdy_q), .I2(claim), .I3(space_mem));
+`else
+wire [15:0] phase_step_lut_table = 16'hF1F0;
+assign phase_step = phase_step_lut_table[{space_mem, claim, trdy_q, pci_irdy_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h0101)) write_done_next_lut (.O(write_done_next), .I0(pci_irdy_in), .I1(trdy_q), .I2(is_read), .I3(1'b0));
+`else
+wire [7:0] write_done_next_lut_table = 8'h01;
+assign write_done_next = write_done_next_lut_table[{is_read, trdy_q, pci_irdy_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h0100)) config_write_next_lut (.O(config_write_next), .I0(pci_irdy_in), .I1(trdy_q), .I2(is_read), .I3(is_config));
+`else
+wire [15:0] config_write_next_lut_table = 16'h0100;
+assign config_write_next = config_write_next_lut_table[{is_config, is_read, trdy_q, pci_irdy_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h4444)) wq_valid_next_lut (.O(wq_valid_next), .I0(pci_irdy_in), .I1(posting), .I2(1'b0), .I3(1'b0));
+`else
+wire [3:0] wq_valid_next_lut_table = 4'h4;
+assign wq_valid_next = wq_valid_next_lut_table[{posting, pci_irdy_in}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h8888)) b_valid_next_lut (.O(b_valid_next), .I0(pci_irdy_in), .I1(b_kept), .I2(1'b0), .I3(1'b0));
+`else
+wire [3:0] b_valid_next_lut_table = 4'h8;
+assign b_valid_next = b_valid_next_lut_table[{b_kept, pci_irdy_in}];
+`endif
 
 
 always @(ad_q, req_addr, first_pending, io_byte, b_valid, is_read, fetching, state, trdy_q, wq_valid, space_mem, h_be, h_data, is_config, irdy_q, req_addr_stale, address_fault, frame_q, h_valid, cbe_q) begin: local_request
@@ -833,104 +903,88 @@ always @(accepted, back_end_retry, claim_config, first_pending, before_last, fat
 end
 
 
-(* keep *) wire [3:0] next_if_frame_state_kept_net = control_case0_out_state;
-assign next_if_frame_state = next_if_frame_state_kept_net;
+wire state_next_x0 = control_case0_out_state[0];
+wire state_next_y0 = control_case2_out_state[0] ^ control_case1_out_state[0];
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h2A2E)) state_next_lut0 (.O(state_next[0]), .I0(state_next_x0), .I1(state_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] state_next_lut0_table = 16'h2A2E;
+assign state_next[0] = state_next_lut0_table[{pci_irdy_in, pci_frame_in, state_next_y0, state_next_x0}];
+`endif
+wire state_next_x1 = control_case0_out_state[1];
+wire state_next_y1 = control_case2_out_state[1] ^ control_case1_out_state[1];
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h2A2E)) state_next_lut1 (.O(state_next[1]), .I0(state_next_x1), .I1(state_next_y1), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] state_next_lut1_table = 16'h2A2E;
+assign state_next[1] = state_next_lut1_table[{pci_irdy_in, pci_frame_in, state_next_y1, state_next_x1}];
+`endif
+wire state_next_x2 = control_case0_out_state[2];
+wire state_next_y2 = control_case2_out_state[2] ^ control_case1_out_state[2];
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h2A2E)) state_next_lut2 (.O(state_next[2]), .I0(state_next_x2), .I1(state_next_y2), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] state_next_lut2_table = 16'h2A2E;
+assign state_next[2] = state_next_lut2_table[{pci_irdy_in, pci_frame_in, state_next_y2, state_next_x2}];
+`endif
+wire state_next_x3 = control_case0_out_state[3];
+wire state_next_y3 = control_case0_out_state[3] ? control_case2_out_state[3] : control_case1_out_state[3];
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hEAE8)) state_next_lut3 (.O(state_next[3]), .I0(state_next_x3), .I1(state_next_y3), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] state_next_lut3_table = 16'hEAE8;
+assign state_next[3] = state_next_lut3_table[{pci_irdy_in, pci_frame_in, state_next_y3, state_next_x3}];
+`endif
 
 
-(* keep *) wire next_if_frame_trdy_kept_net = control_case0_out_trdy;
-assign next_if_frame_trdy = next_if_frame_trdy_kept_net;
+wire trdy_next_x0 = control_case0_out_trdy ^ control_case1_out_trdy;
+wire trdy_next_y0 = (control_case0_out_trdy ^ control_case1_out_trdy) ? control_case2_out_trdy : control_case0_out_trdy;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hE4EC)) trdy_next_lut0 (.O(trdy_next), .I0(trdy_next_x0), .I1(trdy_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] trdy_next_lut0_table = 16'hE4EC;
+assign trdy_next = trdy_next_lut0_table[{pci_irdy_in, pci_frame_in, trdy_next_y0, trdy_next_x0}];
+`endif
 
 
-(* keep *) wire next_if_frame_stop_kept_net = control_case0_out_stop;
-assign next_if_frame_stop = next_if_frame_stop_kept_net;
+wire stop_next_x0 = control_case0_out_stop;
+wire stop_next_y0 = control_case0_out_stop ? control_case2_out_stop : control_case1_out_stop;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hEAE8)) stop_next_lut0 (.O(stop_next), .I0(stop_next_x0), .I1(stop_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] stop_next_lut0_table = 16'hEAE8;
+assign stop_next = stop_next_lut0_table[{pci_irdy_in, pci_frame_in, stop_next_y0, stop_next_x0}];
+`endif
 
 
-(* keep *) wire next_if_frame_devsel_kept_net = control_case0_out_devsel;
-assign next_if_frame_devsel = next_if_frame_devsel_kept_net;
+wire devsel_next_x0 = control_case0_out_devsel;
+wire devsel_next_y0 = control_case0_out_devsel ? control_case2_out_devsel : control_case1_out_devsel;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hEAE8)) devsel_next_lut0 (.O(devsel_next), .I0(devsel_next_x0), .I1(devsel_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] devsel_next_lut0_table = 16'hEAE8;
+assign devsel_next = devsel_next_lut0_table[{pci_irdy_in, pci_frame_in, devsel_next_y0, devsel_next_x0}];
+`endif
 
 
-(* keep *) wire next_if_frame_drive_kept_net = control_case0_out_drive;
-assign next_if_frame_drive = next_if_frame_drive_kept_net;
+wire drive_next_x0 = control_case0_out_drive;
+wire drive_next_y0 = control_case0_out_drive ? control_case2_out_drive : control_case1_out_drive;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hEAE8)) drive_next_lut0 (.O(drive_next), .I0(drive_next_x0), .I1(drive_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] drive_next_lut0_table = 16'hEAE8;
+assign drive_next = drive_next_lut0_table[{pci_irdy_in, pci_frame_in, drive_next_y0, drive_next_x0}];
+`endif
 
 
-(* keep *) wire next_if_frame_ad_oe_kept_net = control_case0_out_ad_oe;
-assign next_if_frame_ad_oe = next_if_frame_ad_oe_kept_net;
-
-
-(* keep *) wire [3:0] next_if_irdy_state_kept_net = control_case1_out_state;
-assign next_if_irdy_state = next_if_irdy_state_kept_net;
-
-
-(* keep *) wire next_if_irdy_trdy_kept_net = control_case1_out_trdy;
-assign next_if_irdy_trdy = next_if_irdy_trdy_kept_net;
-
-
-(* keep *) wire next_if_irdy_stop_kept_net = control_case1_out_stop;
-assign next_if_irdy_stop = next_if_irdy_stop_kept_net;
-
-
-(* keep *) wire next_if_irdy_devsel_kept_net = control_case1_out_devsel;
-assign next_if_irdy_devsel = next_if_irdy_devsel_kept_net;
-
-
-(* keep *) wire next_if_irdy_drive_kept_net = control_case1_out_drive;
-assign next_if_irdy_drive = next_if_irdy_drive_kept_net;
-
-
-(* keep *) wire next_if_irdy_ad_oe_kept_net = control_case1_out_ad_oe;
-assign next_if_irdy_ad_oe = next_if_irdy_ad_oe_kept_net;
-
-
-(* keep *) wire [3:0] next_if_both_state_kept_net = control_case2_out_state;
-assign next_if_both_state = next_if_both_state_kept_net;
-
-
-(* keep *) wire next_if_both_trdy_kept_net = control_case2_out_trdy;
-assign next_if_both_trdy = next_if_both_trdy_kept_net;
-
-
-(* keep *) wire next_if_both_stop_kept_net = control_case2_out_stop;
-assign next_if_both_stop = next_if_both_stop_kept_net;
-
-
-(* keep *) wire next_if_both_devsel_kept_net = control_case2_out_devsel;
-assign next_if_both_devsel = next_if_both_devsel_kept_net;
-
-
-(* keep *) wire next_if_both_drive_kept_net = control_case2_out_drive;
-assign next_if_both_drive = next_if_both_drive_kept_net;
-
-
-(* keep *) wire next_if_both_ad_oe_kept_net = control_case2_out_ad_oe;
-assign next_if_both_ad_oe = next_if_both_ad_oe_kept_net;
-
-
-always @(pci_irdy_in, next_if_irdy_drive, next_if_irdy_state, next_if_both_stop, next_if_both_devsel, next_if_irdy_ad_oe, next_if_frame_drive, next_if_frame_stop, next_if_irdy_stop, next_if_frame_state, next_if_both_ad_oe, next_if_irdy_trdy, next_if_both_drive, pci_frame_in, next_if_frame_devsel, next_if_irdy_devsel, next_if_both_state, next_if_both_trdy, next_if_frame_ad_oe, next_if_frame_trdy) begin: control_pick
-    if (pci_irdy_in) begin
-        state_next = next_if_frame_state;
-        trdy_next = next_if_frame_trdy;
-        stop_next = next_if_frame_stop;
-        devsel_next = next_if_frame_devsel;
-        drive_next = next_if_frame_drive;
-        ad_oe_next = next_if_frame_ad_oe;
-    end
-    else if (pci_frame_in) begin
-        state_next = next_if_irdy_state;
-        trdy_next = next_if_irdy_trdy;
-        stop_next = next_if_irdy_stop;
-        devsel_next = next_if_irdy_devsel;
-        drive_next = next_if_irdy_drive;
-        ad_oe_next = next_if_irdy_ad_oe;
-    end
-    else begin
-        state_next = next_if_both_state;
-        trdy_next = next_if_both_trdy;
-        stop_next = next_if_both_stop;
-        devsel_next = next_if_both_devsel;
-        drive_next = next_if_both_drive;
-        ad_oe_next = next_if_both_ad_oe;
-    end
-end
+wire ad_oe_next_x0 = control_case0_out_ad_oe;
+wire ad_oe_next_y0 = control_case2_out_ad_oe ^ control_case1_out_ad_oe;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h2A2E)) ad_oe_next_lut0 (.O(ad_oe_next), .I0(ad_oe_next_x0), .I1(ad_oe_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
+`else
+wire [15:0] ad_oe_next_lut0_table = 16'h2A2E;
+assign ad_oe_next = ad_oe_next_lut0_table[{pci_irdy_in, pci_frame_in, ad_oe_next_y0, ad_oe_next_x0}];
+`endif
 
 
 always @(posedge clock, negedge reset) begin: transaction
@@ -953,27 +1007,28 @@ always @(posedge clock, negedge reset) begin: transaction
     end
     else begin
         state <= state_next;
-        address_fault <= (address_parity_error && parity_response);
+        first_phase <= first_phase_next;
+        if (phase_step) begin
+            if (claim) begin
+                phase_addr <= start_addr;
+            end
+            else begin
+                phase_addr <= (phase_addr + 1);
+            end
+        end
+        address_fault <= address_fault_next;
         if (claim) begin
             is_read <= (!cbe_q[0]);
             is_config <= claim_config;
             space_mem <= ((!claim_config) && (!claim_io));
             single <= (claim_config || claim_io || ad_q[0] || ad_q[1]);
-            first_phase <= 1'b1;
             first_pending <= 1'b1;
             fetching <= ((!cbe_q[0]) && (!claim_config));
             refused <= 1'b0;
             io_byte <= ad_q[2-1:0];
-            phase_addr <= start_addr;
             req_addr_stale <= draining;
         end
         else begin
-            if (phase_done) begin
-                first_phase <= 1'b0;
-                if (space_mem) begin
-                    phase_addr <= (phase_addr + 1);
-                end
-            end
             if ((got || accepted)) begin
                 first_pending <= (first_pending && draining);
             end
@@ -1007,16 +1062,18 @@ always @(posedge clock, negedge reset) begin: transaction
 end
 
 
-always @(perr_armed, ad_out_q, pci_par_in, holding, read_source, bus_parity_kept, pci_cbe_in, ad_out_parity_kept) begin: ad_output
-    if (holding) begin
+always @(read_source, ad_out_q, pci_irdy_in, trdy_q) begin: ad_output
+    if ((pci_irdy_in && (!trdy_q))) begin
         ad_out_next = ad_out_q;
     end
     else begin
         ad_out_next = read_source;
     end
-    par_next = ((((ad_out_parity_kept ^ pci_cbe_in[0]) ^ pci_cbe_in[1]) ^ pci_cbe_in[2]) ^ pci_cbe_in[3]);
-    perr_next = (!(perr_armed && (bus_parity_kept != pci_par_in)));
 end
+
+
+
+assign par_next = ((((ad_out_parity_kept ^ pci_cbe_in[0]) ^ pci_cbe_in[1]) ^ pci_cbe_in[2]) ^ pci_cbe_in[3]);
 
 
 always @(ad_out_q) begin: ad_out_parity_tree
@@ -1030,10 +1087,6 @@ always @(ad_out_q) begin: ad_out_parity_tree
     fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
     ad_out_parity = fold[0];
 end
-
-
-(* keep *) wire bus_parity_kept_kept_net = bus_parity;
-assign bus_parity_kept = bus_parity_kept_kept_net;
 
 
 (* keep *) wire ad_out_parity_kept_kept_net = ad_out_parity;
@@ -1070,10 +1123,10 @@ always @(posedge clock, negedge reset) begin: bus_registers
         pci_devsel_oe <= drive_next;
         pci_ad_oe <= ad_oe_next;
         pci_par_oe <= pci_ad_oe;
-        pci_perr_oe <= ((!perr_next) || (!perr_q));
+        pci_perr_oe <= perr_oe_next;
         pci_serr_out <= 1'b0;
-        pci_serr_oe <= (serr_armed && (bus_parity_kept != pci_par_in));
-        parity_error_q <= (address_parity_error || data_parity_error);
+        pci_serr_oe <= serr_oe_next;
+        parity_error_q <= parity_error_next;
         pci_inta_out <= 1'b0;
         pci_inta_oe <= (irq && (!interrupt_disable));
     end
@@ -1100,15 +1153,24 @@ assign pci_perr_out = perr_q;
 
 
 always @(posedge clock, negedge reset) begin: read_buffer
-    reg in_read;
     if (reset == 0) begin
         b_valid <= 0;
     end
     else begin
-        in_read = (is_read && ((state == 4'b0011) || (state == 4'b0010) || (state == 4'b0100) || (state == 4'b0110)));
-        b_valid <= (in_read && (b_valid || got) && holding);
+        b_valid <= b_valid_next;
     end
 end
+
+
+always @(got, b_valid, is_read, state, trdy_q) begin: read_buffer_hold
+    reg in_read;
+    in_read = (is_read && ((state == 4'b0011) || (state == 4'b0010) || (state == 4'b0100) || (state == 4'b0110)));
+    b_kept = (in_read && (b_valid || got) && (!trdy_q));
+end
+
+
+
+assign posting = ((!trdy_q) && (!is_read) && (!first_phase) && space_mem);
 
 
 always @(posedge clock, negedge reset) begin: write_buffer
@@ -1124,9 +1186,9 @@ always @(posedge clock, negedge reset) begin: write_buffer
         spare_data <= 0;
     end
     else begin
-        write_done_q <= (phase_done && (!is_read));
-        config_write_q <= (phase_done && is_config && (!is_read));
-        wq_valid <= (phase_done && (!is_read) && (!first_phase) && space_mem);
+        write_done_q <= write_done_next;
+        config_write_q <= config_write_next;
+        wq_valid <= wq_valid_next;
         if (h_valid) begin
             if (accepted) begin
                 if (s_valid) begin

@@ -91,16 +91,18 @@ wire [3:0] pci_pads0_input_pad2_from_pin;
 wire pci_pads0_registered_pad6_from_pin;
 wire card1_irq;
 wire card1_pci_slave2_accepted;
-reg card1_pci_slave2_ad_oe_next;
-reg [31:0] card1_pci_slave2_ad_out_next;
+wire card1_pci_slave2_ad_oe_next;
+wire [31:0] card1_pci_slave2_ad_out_next;
 reg card1_pci_slave2_ad_out_parity;
 wire card1_pci_slave2_ad_out_parity_kept;
 reg [31:0] card1_pci_slave2_ad_out_q;
 reg card1_pci_slave2_address_fault;
-wire card1_pci_slave2_address_parity_error;
+wire card1_pci_slave2_address_fault_next;
 wire card1_pci_slave2_address_phase;
 wire card1_pci_slave2_at_last;
+reg card1_pci_slave2_b_kept;
 reg card1_pci_slave2_b_valid;
+wire card1_pci_slave2_b_valid_next;
 wire card1_pci_slave2_back_end_retry;
 reg [15:0] card1_pci_slave2_bar0;
 wire [15:0] card1_pci_slave2_bar0_read;
@@ -108,31 +110,30 @@ reg [31:0] card1_pci_slave2_bar1;
 wire card1_pci_slave2_before_last;
 reg [1:0] card1_pci_slave2_buffered_next;
 reg card1_pci_slave2_bus_parity;
-wire card1_pci_slave2_bus_parity_kept;
 reg [3:0] card1_pci_slave2_cbe_q;
 reg card1_pci_slave2_claim;
 reg card1_pci_slave2_claim_config;
 reg card1_pci_slave2_claim_io;
 reg [31:0] card1_pci_slave2_config_data;
 wire [5:0] card1_pci_slave2_config_index;
+wire card1_pci_slave2_config_write_next;
 reg card1_pci_slave2_config_write_q;
-wire card1_pci_slave2_data_parity_error;
 reg card1_pci_slave2_detected_parity_error;
-reg card1_pci_slave2_devsel_next;
+wire card1_pci_slave2_devsel_next;
 reg card1_pci_slave2_devsel_q;
 wire card1_pci_slave2_draining;
-reg card1_pci_slave2_drive_next;
+wire card1_pci_slave2_drive_next;
 reg card1_pci_slave2_fatal;
 reg card1_pci_slave2_fetching;
 reg card1_pci_slave2_first_pending;
 reg card1_pci_slave2_first_phase;
+wire card1_pci_slave2_first_phase_next;
 reg card1_pci_slave2_frame_q;
 reg card1_pci_slave2_frame_qq;
 wire card1_pci_slave2_got;
 reg [3:0] card1_pci_slave2_h_be;
 reg [31:0] card1_pci_slave2_h_data;
 reg card1_pci_slave2_h_valid;
-wire card1_pci_slave2_holding;
 reg card1_pci_slave2_interrupt_disable;
 reg [7:0] card1_pci_slave2_interrupt_line;
 reg [1:0] card1_pci_slave2_io_byte;
@@ -141,14 +142,17 @@ reg card1_pci_slave2_irdy_q;
 reg card1_pci_slave2_is_config;
 reg card1_pci_slave2_is_read;
 reg card1_pci_slave2_mem_enable;
-reg card1_pci_slave2_par_next;
+wire card1_pci_slave2_par_next;
+wire card1_pci_slave2_parity_error_next;
 reg card1_pci_slave2_parity_error_q;
 reg card1_pci_slave2_parity_response;
 wire card1_pci_slave2_perr_armed;
-reg card1_pci_slave2_perr_next;
+wire card1_pci_slave2_perr_next;
+wire card1_pci_slave2_perr_oe_next;
 reg card1_pci_slave2_perr_q;
 reg [9:0] card1_pci_slave2_phase_addr;
-wire card1_pci_slave2_phase_done;
+wire card1_pci_slave2_phase_step;
+wire card1_pci_slave2_posting;
 reg [31:0] card1_pci_slave2_read_source;
 reg card1_pci_slave2_refused;
 reg [9:0] card1_pci_slave2_req_addr;
@@ -157,6 +161,7 @@ reg [3:0] card1_pci_slave2_s_be;
 reg card1_pci_slave2_s_valid;
 wire card1_pci_slave2_serr_armed;
 reg card1_pci_slave2_serr_enable;
+wire card1_pci_slave2_serr_oe_next;
 reg card1_pci_slave2_signaled_system_error;
 reg card1_pci_slave2_signaled_target_abort;
 reg card1_pci_slave2_single;
@@ -164,15 +169,17 @@ reg card1_pci_slave2_space_mem;
 reg [31:0] card1_pci_slave2_spare_data;
 reg [9:0] card1_pci_slave2_start_addr;
 reg [3:0] card1_pci_slave2_state;
-reg [3:0] card1_pci_slave2_state_next;
-reg card1_pci_slave2_stop_next;
+wire [3:0] card1_pci_slave2_state_next;
+wire card1_pci_slave2_stop_next;
 reg card1_pci_slave2_stop_q;
 reg card1_pci_slave2_timeout;
-reg card1_pci_slave2_trdy_next;
+wire card1_pci_slave2_trdy_next;
 reg card1_pci_slave2_trdy_q;
 reg [3:0] card1_pci_slave2_wait_count;
 reg card1_pci_slave2_waiting;
 reg card1_pci_slave2_wq_valid;
+wire card1_pci_slave2_wq_valid_next;
+wire card1_pci_slave2_write_done_next;
 reg card1_pci_slave2_write_done_q;
 reg card1_pci_slave2_local_re;
 reg card1_pci_slave2_local_we;
@@ -183,24 +190,6 @@ reg [11:0] card1_pci_slave2_local_addr;
 wire card1_pci_slave2_local_ready;
 wire card1_pci_slave2_local_retry;
 wire [31:0] card1_pci_slave2_local_rdata;
-wire [3:0] card1_pci_slave2_next_if_frame_state;
-wire card1_pci_slave2_next_if_frame_trdy;
-wire card1_pci_slave2_next_if_frame_stop;
-wire card1_pci_slave2_next_if_frame_devsel;
-wire card1_pci_slave2_next_if_frame_drive;
-wire card1_pci_slave2_next_if_frame_ad_oe;
-wire [3:0] card1_pci_slave2_next_if_irdy_state;
-wire card1_pci_slave2_next_if_irdy_trdy;
-wire card1_pci_slave2_next_if_irdy_stop;
-wire card1_pci_slave2_next_if_irdy_devsel;
-wire card1_pci_slave2_next_if_irdy_drive;
-wire card1_pci_slave2_next_if_irdy_ad_oe;
-wire [3:0] card1_pci_slave2_next_if_both_state;
-wire card1_pci_slave2_next_if_both_trdy;
-wire card1_pci_slave2_next_if_both_stop;
-wire card1_pci_slave2_next_if_both_devsel;
-wire card1_pci_slave2_next_if_both_drive;
-wire card1_pci_slave2_next_if_both_ad_oe;
 reg [3:0] card1_pci_slave2_control_case0_0_1_out_state;
 reg card1_pci_slave2_control_case0_0_1_out_trdy;
 reg card1_pci_slave2_control_case0_0_1_out_stop;
@@ -219,6 +208,38 @@ reg card1_pci_slave2_control_case2_0_1_out_stop;
 reg card1_pci_slave2_control_case2_0_1_out_devsel;
 reg card1_pci_slave2_control_case2_0_1_out_drive;
 reg card1_pci_slave2_control_case2_0_1_out_ad_oe;
+wire card1_pci_slave2_pin_lut33_out;
+wire card1_pci_slave2_pin_lut34_out;
+wire card1_pci_slave2_pin_lut35_out;
+wire card1_pci_slave2_pin_lut36_out;
+wire card1_pci_slave2_pin_lut37_out;
+wire card1_pci_slave2_pin_lut38_out;
+wire card1_pci_slave2_pin_lut39_out;
+wire card1_pci_slave2_pin_lut40_out;
+wire card1_pci_slave2_pin_lut41_out;
+wire card1_pci_slave2_pin_lut42_out;
+wire card1_pci_slave2_pin_lut43_out;
+wire card1_pci_slave2_pin_lut44_out;
+wire card1_pci_slave2_pin_lut45_out;
+wire card1_pci_slave2_pin_lut46_out;
+wire card1_pci_slave2_pin_lut47_out;
+wire card1_pci_slave2_pin_lut48_out;
+wire card1_pci_slave2_pin_lut49_out;
+wire card1_pci_slave2_pin_lut50_out;
+wire card1_pci_slave2_pin_lut51_out;
+wire card1_pci_slave2_pin_lut52_out;
+wire card1_pci_slave2_pin_lut53_out;
+wire card1_pci_slave2_pin_lut54_out;
+wire card1_pci_slave2_pin_lut55_out;
+wire card1_pci_slave2_pin_lut56_out;
+wire card1_pci_slave2_pin_lut57_out;
+wire card1_pci_slave2_pin_lut58_out;
+wire card1_pci_slave2_pin_lut59_out;
+wire card1_pci_slave2_pin_lut60_out;
+wire card1_pci_slave2_pin_lut61_out;
+wire card1_pci_slave2_pin_lut62_out;
+wire card1_pci_slave2_pin_lut63_out;
+wire card1_pci_slave2_pin_lut64_out;
 reg card1_card_core1_core_clear;
 wire card1_card_core1_dda_reset;
 reg [31:0] card1_card_core1_regs_fifo2_fifo_dout;
@@ -521,13 +542,16 @@ wire [1:0] card1_card_core1_regs_fifo2__status2_quadrant;
 reg [4:0] card1_card_core1_dda_arc2_acc_bits;
 reg signed [31:0] card1_card_core1_dda_arc2_acc_x;
 reg signed [31:0] card1_card_core1_dda_arc2_acc_y;
+reg card1_card_core1_dda_arc2_at_x;
+reg card1_card_core1_dda_arc2_at_y;
 reg card1_card_core1_dda_arc2_ccw;
 reg signed [31:0] card1_card_core1_dda_arc2_chk_acc_init;
 reg [2:0] card1_card_core1_dda_arc2_chk_crossings;
-reg signed [29:0] card1_card_core1_dda_arc2_chk_delta_turn;
-reg signed [29:0] card1_card_core1_dda_arc2_chk_delta_x;
-reg signed [29:0] card1_card_core1_dda_arc2_chk_delta_y;
 reg card1_card_core1_dda_arc2_chk_error;
+reg [23:0] card1_card_core1_dda_arc2_chk_mag_x;
+reg [23:0] card1_card_core1_dda_arc2_chk_mag_y;
+reg [24:0] card1_card_core1_dda_arc2_chk_neg_mag_x;
+reg [24:0] card1_card_core1_dda_arc2_chk_neg_mag_y;
 reg [1:0] card1_card_core1_dda_arc2_chk_quadrant;
 reg [23:0] card1_card_core1_dda_arc2_chk_radius;
 reg [23:0] card1_card_core1_dda_arc2_chk_target_x;
@@ -537,13 +561,17 @@ reg [23:0] card1_card_core1_dda_arc2_cmd_mag_xs;
 reg [23:0] card1_card_core1_dda_arc2_count_x;
 reg [23:0] card1_card_core1_dda_arc2_count_y;
 reg [2:0] card1_card_core1_dda_arc2_crossings;
-reg signed [29:0] card1_card_core1_dda_arc2_delta_turn;
 reg signed [29:0] card1_card_core1_dda_arc2_delta_x;
 reg signed [29:0] card1_card_core1_dda_arc2_delta_y;
 reg card1_card_core1_dda_arc2_end_beyond_high;
 reg card1_card_core1_dda_arc2_end_reaches_low;
 reg signed [49:0] card1_card_core1_dda_arc2_gap;
 reg signed [49:0] card1_card_core1_dda_arc2_gap_sum;
+reg card1_card_core1_dda_arc2_geo_ahead;
+reg card1_card_core1_dda_arc2_geo_centre;
+reg [2:0] card1_card_core1_dda_arc2_geo_crossings;
+reg [23:0] card1_card_core1_dda_arc2_geo_end_inward;
+reg [1:0] card1_card_core1_dda_arc2_geo_quadrant;
 reg [23:0] card1_card_core1_dda_arc2_integrand_x;
 reg [23:0] card1_card_core1_dda_arc2_integrand_y;
 reg card1_card_core1_dda_arc2_is_line;
@@ -555,20 +583,31 @@ reg signed [29:0] card1_card_core1_dda_arc2_it_error;
 reg card1_card_core1_dda_arc2_it_finished;
 reg [23:0] card1_card_core1_dda_arc2_it_mag_x;
 reg [23:0] card1_card_core1_dda_arc2_it_mag_y;
+reg [24:0] card1_card_core1_dda_arc2_it_neg_mag_x;
+reg [24:0] card1_card_core1_dda_arc2_it_neg_mag_y;
 reg card1_card_core1_dda_arc2_it_next_piece;
 reg card1_card_core1_dda_arc2_it_step_x;
 reg card1_card_core1_dda_arc2_it_step_y;
+reg card1_card_core1_dda_arc2_it_tail;
 reg [4:0] card1_card_core1_dda_arc2_lambda_shift;
 reg [4:0] card1_card_core1_dda_arc2_mac_bit;
 reg [1:0] card1_card_core1_dda_arc2_mac_op;
 reg [23:0] card1_card_core1_dda_arc2_mag_x;
+reg [23:0] card1_card_core1_dda_arc2_mag_x_step;
 reg [23:0] card1_card_core1_dda_arc2_mag_xe;
 reg [23:0] card1_card_core1_dda_arc2_mag_xs;
 reg [23:0] card1_card_core1_dda_arc2_mag_y;
+reg [23:0] card1_card_core1_dda_arc2_mag_y_step;
 reg [23:0] card1_card_core1_dda_arc2_mag_ye;
 reg [23:0] card1_card_core1_dda_arc2_mag_ys;
 reg [47:0] card1_card_core1_dda_arc2_multiplicand;
 reg [23:0] card1_card_core1_dda_arc2_multiplier;
+reg card1_card_core1_dda_arc2_near_x;
+reg card1_card_core1_dda_arc2_near_y;
+reg [24:0] card1_card_core1_dda_arc2_neg_mag_x;
+reg [24:0] card1_card_core1_dda_arc2_neg_mag_x_step;
+reg [24:0] card1_card_core1_dda_arc2_neg_mag_y;
+reg [24:0] card1_card_core1_dda_arc2_neg_mag_y_step;
 reg signed [24:0] card1_card_core1_dda_arc2_neg_xs;
 reg signed [24:0] card1_card_core1_dda_arc2_neg_ys;
 reg [1:0] card1_card_core1_dda_arc2_quadrant;
@@ -587,10 +626,9 @@ reg [23:0] card1_card_core1_dda_arc2_target_x;
 reg [23:0] card1_card_core1_dda_arc2_target_y;
 reg [28:0] card1_card_core1_dda_arc2_threshold;
 reg [1:0] card1_card_core1_dda_arc2_variant;
-reg card1_card_core1_dda_arc2_x_down;
+reg card1_card_core1_dda_arc2_x_inward;
 reg signed [23:0] card1_card_core1_dda_arc2_xe;
 reg signed [23:0] card1_card_core1_dda_arc2_xs;
-reg card1_card_core1_dda_arc2_y_down;
 reg signed [23:0] card1_card_core1_dda_arc2_ye;
 reg signed [23:0] card1_card_core1_dda_arc2_ys;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
@@ -619,6 +657,38 @@ assign card1_card_core1_regs_fifo2_reg_word58_set_mine = 1'd0;
 
 
 
+assign card1_pci_slave2_ad_out_next[31] = card1_pci_slave2_pin_lut64_out;
+assign card1_pci_slave2_ad_out_next[30] = card1_pci_slave2_pin_lut63_out;
+assign card1_pci_slave2_ad_out_next[29] = card1_pci_slave2_pin_lut62_out;
+assign card1_pci_slave2_ad_out_next[28] = card1_pci_slave2_pin_lut61_out;
+assign card1_pci_slave2_ad_out_next[27] = card1_pci_slave2_pin_lut60_out;
+assign card1_pci_slave2_ad_out_next[26] = card1_pci_slave2_pin_lut59_out;
+assign card1_pci_slave2_ad_out_next[25] = card1_pci_slave2_pin_lut58_out;
+assign card1_pci_slave2_ad_out_next[24] = card1_pci_slave2_pin_lut57_out;
+assign card1_pci_slave2_ad_out_next[23] = card1_pci_slave2_pin_lut56_out;
+assign card1_pci_slave2_ad_out_next[22] = card1_pci_slave2_pin_lut55_out;
+assign card1_pci_slave2_ad_out_next[21] = card1_pci_slave2_pin_lut54_out;
+assign card1_pci_slave2_ad_out_next[20] = card1_pci_slave2_pin_lut53_out;
+assign card1_pci_slave2_ad_out_next[19] = card1_pci_slave2_pin_lut52_out;
+assign card1_pci_slave2_ad_out_next[18] = card1_pci_slave2_pin_lut51_out;
+assign card1_pci_slave2_ad_out_next[17] = card1_pci_slave2_pin_lut50_out;
+assign card1_pci_slave2_ad_out_next[16] = card1_pci_slave2_pin_lut49_out;
+assign card1_pci_slave2_ad_out_next[15] = card1_pci_slave2_pin_lut48_out;
+assign card1_pci_slave2_ad_out_next[14] = card1_pci_slave2_pin_lut47_out;
+assign card1_pci_slave2_ad_out_next[13] = card1_pci_slave2_pin_lut46_out;
+assign card1_pci_slave2_ad_out_next[12] = card1_pci_slave2_pin_lut45_out;
+assign card1_pci_slave2_ad_out_next[11] = card1_pci_slave2_pin_lut44_out;
+assign card1_pci_slave2_ad_out_next[10] = card1_pci_slave2_pin_lut43_out;
+assign card1_pci_slave2_ad_out_next[9] = card1_pci_slave2_pin_lut42_out;
+assign card1_pci_slave2_ad_out_next[8] = card1_pci_slave2_pin_lut41_out;
+assign card1_pci_slave2_ad_out_next[7] = card1_pci_slave2_pin_lut40_out;
+assign card1_pci_slave2_ad_out_next[6] = card1_pci_slave2_pin_lut39_out;
+assign card1_pci_slave2_ad_out_next[5] = card1_pci_slave2_pin_lut38_out;
+assign card1_pci_slave2_ad_out_next[4] = card1_pci_slave2_pin_lut37_out;
+assign card1_pci_slave2_ad_out_next[3] = card1_pci_slave2_pin_lut36_out;
+assign card1_pci_slave2_ad_out_next[2] = card1_pci_slave2_pin_lut35_out;
+assign card1_pci_slave2_ad_out_next[1] = card1_pci_slave2_pin_lut34_out;
+assign card1_pci_slave2_ad_out_next[0] = card1_pci_slave2_pin_lut33_out;
 
 
 assign pci_pins_serr = pci_pads0_tristate_pad0_enable ? pci_pads0_tristate_pad0_to_pin : {1{1'bz}};
@@ -1098,8 +1168,46 @@ end
 assign card1_pci_slave2_address_phase = (card1_pci_slave2_frame_qq && (!card1_pci_slave2_frame_q));
 assign card1_pci_slave2_serr_armed = (card1_pci_slave2_frame_qq && (!card1_pci_slave2_frame_q) && card1_pci_slave2_serr_enable && card1_pci_slave2_parity_response);
 assign card1_pci_slave2_perr_armed = (card1_pci_slave2_write_done_q && card1_pci_slave2_parity_response);
-assign card1_pci_slave2_address_parity_error = (card1_pci_slave2_frame_qq && (!card1_pci_slave2_frame_q) && (card1_pci_slave2_bus_parity_kept != pci_pads0_registered_pad1_from_pin));
-assign card1_pci_slave2_data_parity_error = (card1_pci_slave2_write_done_q && (card1_pci_slave2_bus_parity_kept != pci_pads0_registered_pad1_from_pin));
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h9F9F)) card1_pci_slave2_perr_next_lut (.O(card1_pci_slave2_perr_next), .I0(pci_pads0_registered_pad1_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(1'b0));
+`else
+wire [7:0] card1_pci_slave2_perr_next_lut_table = 8'h9F;
+assign card1_pci_slave2_perr_next = card1_pci_slave2_perr_next_lut_table[{card1_pci_slave2_perr_armed, card1_pci_slave2_bus_parity, pci_pads0_registered_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h60FF)) card1_pci_slave2_perr_oe_next_lut (.O(card1_pci_slave2_perr_oe_next), .I0(pci_pads0_registered_pad1_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(card1_pci_slave2_perr_q));
+`else
+wire [15:0] card1_pci_slave2_perr_oe_next_lut_table = 16'h60FF;
+assign card1_pci_slave2_perr_oe_next = card1_pci_slave2_perr_oe_next_lut_table[{card1_pci_slave2_perr_q, card1_pci_slave2_perr_armed, card1_pci_slave2_bus_parity, pci_pads0_registered_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h6060)) card1_pci_slave2_serr_oe_next_lut (.O(card1_pci_slave2_serr_oe_next), .I0(pci_pads0_registered_pad1_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_serr_armed), .I3(1'b0));
+`else
+wire [7:0] card1_pci_slave2_serr_oe_next_lut_table = 8'h60;
+assign card1_pci_slave2_serr_oe_next = card1_pci_slave2_serr_oe_next_lut_table[{card1_pci_slave2_serr_armed, card1_pci_slave2_bus_parity, pci_pads0_registered_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h6000)) card1_pci_slave2_address_fault_next_lut (.O(card1_pci_slave2_address_fault_next), .I0(pci_pads0_registered_pad1_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_parity_response));
+`else
+wire [15:0] card1_pci_slave2_address_fault_next_lut_table = 16'h6000;
+assign card1_pci_slave2_address_fault_next = card1_pci_slave2_address_fault_next_lut_table[{card1_pci_slave2_parity_response, card1_pci_slave2_address_phase, card1_pci_slave2_bus_parity, pci_pads0_registered_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h6660)) card1_pci_slave2_parity_error_next_lut (.O(card1_pci_slave2_parity_error_next), .I0(pci_pads0_registered_pad1_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_write_done_q));
+`else
+wire [15:0] card1_pci_slave2_parity_error_next_lut_table = 16'h6660;
+assign card1_pci_slave2_parity_error_next = card1_pci_slave2_parity_error_next_lut_table[{card1_pci_slave2_write_done_q, card1_pci_slave2_address_phase, card1_pci_slave2_bus_parity, pci_pads0_registered_pad1_from_pin}];
+`endif
 
 
 always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_slave2_address_phase, card1_pci_slave2_io_enable, card1_pci_slave2_bar0, card1_pci_slave2_cbe_q, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_mem_enable, card1_pci_slave2_state) begin: card1_pci_slave2_decode
@@ -1130,9 +1238,52 @@ always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_claim_config, card
 end
 
 
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFEF0)) card1_pci_slave2_first_phase_next_lut (.O(card1_pci_slave2_first_phase_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_claim), .I3(card1_pci_slave2_first_phase));
+`else
+wire [15:0] card1_pci_slave2_first_phase_next_lut_table = 16'hFEF0;
+assign card1_pci_slave2_first_phase_next = card1_pci_slave2_first_phase_next_lut_table[{card1_pci_slave2_first_phase, card1_pci_slave2_claim, card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
 
-assign card1_pci_slave2_phase_done = ((!pci_pads0_input_pad1_from_pin) && (!card1_pci_slave2_trdy_q));
-assign card1_pci_slave2_holding = (pci_pads0_input_pad1_from_pin && (!card1_pci_slave2_trdy_q));
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hF1F0)) card1_pci_slave2_phase_step_lut (.O(card1_pci_slave2_phase_step), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_claim), .I3(card1_pci_slave2_space_mem));
+`else
+wire [15:0] card1_pci_slave2_phase_step_lut_table = 16'hF1F0;
+assign card1_pci_slave2_phase_step = card1_pci_slave2_phase_step_lut_table[{card1_pci_slave2_space_mem, card1_pci_slave2_claim, card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h0101)) card1_pci_slave2_write_done_next_lut (.O(card1_pci_slave2_write_done_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_is_read), .I3(1'b0));
+`else
+wire [7:0] card1_pci_slave2_write_done_next_lut_table = 8'h01;
+assign card1_pci_slave2_write_done_next = card1_pci_slave2_write_done_next_lut_table[{card1_pci_slave2_is_read, card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h0100)) card1_pci_slave2_config_write_next_lut (.O(card1_pci_slave2_config_write_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_is_read), .I3(card1_pci_slave2_is_config));
+`else
+wire [15:0] card1_pci_slave2_config_write_next_lut_table = 16'h0100;
+assign card1_pci_slave2_config_write_next = card1_pci_slave2_config_write_next_lut_table[{card1_pci_slave2_is_config, card1_pci_slave2_is_read, card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h4444)) card1_pci_slave2_wq_valid_next_lut (.O(card1_pci_slave2_wq_valid_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_posting), .I2(1'b0), .I3(1'b0));
+`else
+wire [3:0] card1_pci_slave2_wq_valid_next_lut_table = 4'h4;
+assign card1_pci_slave2_wq_valid_next = card1_pci_slave2_wq_valid_next_lut_table[{card1_pci_slave2_posting, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h8888)) card1_pci_slave2_b_valid_next_lut (.O(card1_pci_slave2_b_valid_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_b_kept), .I2(1'b0), .I3(1'b0));
+`else
+wire [3:0] card1_pci_slave2_b_valid_next_lut_table = 4'h8;
+assign card1_pci_slave2_b_valid_next = card1_pci_slave2_b_valid_next_lut_table[{card1_pci_slave2_b_kept, pci_pads0_input_pad1_from_pin}];
+`endif
 
 
 always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pci_slave2_first_pending, card1_pci_slave2_io_byte, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_wq_valid, card1_pci_slave2_space_mem, card1_pci_slave2_h_be, card1_pci_slave2_h_data, card1_pci_slave2_is_config, card1_pci_slave2_irdy_q, card1_pci_slave2_req_addr_stale, card1_pci_slave2_address_fault, card1_pci_slave2_frame_q, card1_pci_slave2_h_valid, card1_pci_slave2_cbe_q) begin: card1_pci_slave2_local_request
@@ -1636,104 +1787,88 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
 end
 
 
-(* keep *) wire [3:0] card1_pci_slave2_next_if_frame_state_kept_net = card1_pci_slave2_control_case0_0_1_out_state;
-assign card1_pci_slave2_next_if_frame_state = card1_pci_slave2_next_if_frame_state_kept_net;
+wire card1_pci_slave2_state_next_x0 = card1_pci_slave2_control_case0_0_1_out_state[0];
+wire card1_pci_slave2_state_next_y0 = card1_pci_slave2_control_case2_0_1_out_state[0] ^ card1_pci_slave2_control_case1_0_1_out_state[0];
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut0 (.O(card1_pci_slave2_state_next[0]), .I0(card1_pci_slave2_state_next_x0), .I1(card1_pci_slave2_state_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
+`else
+wire [15:0] card1_pci_slave2_state_next_lut0_table = 16'h2A2E;
+assign card1_pci_slave2_state_next[0] = card1_pci_slave2_state_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_state_next_y0, card1_pci_slave2_state_next_x0}];
+`endif
+wire card1_pci_slave2_state_next_x1 = card1_pci_slave2_control_case0_0_1_out_state[1];
+wire card1_pci_slave2_state_next_y1 = card1_pci_slave2_control_case2_0_1_out_state[1] ^ card1_pci_slave2_control_case1_0_1_out_state[1];
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut1 (.O(card1_pci_slave2_state_next[1]), .I0(card1_pci_slave2_state_next_x1), .I1(card1_pci_slave2_state_next_y1), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
+`else
+wire [15:0] card1_pci_slave2_state_next_lut1_table = 16'h2A2E;
+assign card1_pci_slave2_state_next[1] = card1_pci_slave2_state_next_lut1_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_state_next_y1, card1_pci_slave2_state_next_x1}];
+`endif
+wire card1_pci_slave2_state_next_x2 = card1_pci_slave2_control_case0_0_1_out_state[2];
+wire card1_pci_slave2_state_next_y2 = card1_pci_slave2_control_case2_0_1_out_state[2] ^ card1_pci_slave2_control_case1_0_1_out_state[2];
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut2 (.O(card1_pci_slave2_state_next[2]), .I0(card1_pci_slave2_state_next_x2), .I1(card1_pci_slave2_state_next_y2), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
+`else
+wire [15:0] card1_pci_slave2_state_next_lut2_table = 16'h2A2E;
+assign card1_pci_slave2_state_next[2] = card1_pci_slave2_state_next_lut2_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_state_next_y2, card1_pci_slave2_state_next_x2}];
+`endif
+wire card1_pci_slave2_state_next_x3 = card1_pci_slave2_control_case0_0_1_out_state[3];
+wire card1_pci_slave2_state_next_y3 = card1_pci_slave2_control_case0_0_1_out_state[3] ? card1_pci_slave2_control_case2_0_1_out_state[3] : card1_pci_slave2_control_case1_0_1_out_state[3];
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_state_next_lut3 (.O(card1_pci_slave2_state_next[3]), .I0(card1_pci_slave2_state_next_x3), .I1(card1_pci_slave2_state_next_y3), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
+`else
+wire [15:0] card1_pci_slave2_state_next_lut3_table = 16'hEAE8;
+assign card1_pci_slave2_state_next[3] = card1_pci_slave2_state_next_lut3_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_state_next_y3, card1_pci_slave2_state_next_x3}];
+`endif
 
 
-(* keep *) wire card1_pci_slave2_next_if_frame_trdy_kept_net = card1_pci_slave2_control_case0_0_1_out_trdy;
-assign card1_pci_slave2_next_if_frame_trdy = card1_pci_slave2_next_if_frame_trdy_kept_net;
+wire card1_pci_slave2_trdy_next_x0 = card1_pci_slave2_control_case0_0_1_out_trdy ^ card1_pci_slave2_control_case1_0_1_out_trdy;
+wire card1_pci_slave2_trdy_next_y0 = (card1_pci_slave2_control_case0_0_1_out_trdy ^ card1_pci_slave2_control_case1_0_1_out_trdy) ? card1_pci_slave2_control_case2_0_1_out_trdy : card1_pci_slave2_control_case0_0_1_out_trdy;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hE4EC)) card1_pci_slave2_trdy_next_lut0 (.O(card1_pci_slave2_trdy_next), .I0(card1_pci_slave2_trdy_next_x0), .I1(card1_pci_slave2_trdy_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
+`else
+wire [15:0] card1_pci_slave2_trdy_next_lut0_table = 16'hE4EC;
+assign card1_pci_slave2_trdy_next = card1_pci_slave2_trdy_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_trdy_next_y0, card1_pci_slave2_trdy_next_x0}];
+`endif
 
 
-(* keep *) wire card1_pci_slave2_next_if_frame_stop_kept_net = card1_pci_slave2_control_case0_0_1_out_stop;
-assign card1_pci_slave2_next_if_frame_stop = card1_pci_slave2_next_if_frame_stop_kept_net;
+wire card1_pci_slave2_stop_next_x0 = card1_pci_slave2_control_case0_0_1_out_stop;
+wire card1_pci_slave2_stop_next_y0 = card1_pci_slave2_control_case0_0_1_out_stop ? card1_pci_slave2_control_case2_0_1_out_stop : card1_pci_slave2_control_case1_0_1_out_stop;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_stop_next_lut0 (.O(card1_pci_slave2_stop_next), .I0(card1_pci_slave2_stop_next_x0), .I1(card1_pci_slave2_stop_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
+`else
+wire [15:0] card1_pci_slave2_stop_next_lut0_table = 16'hEAE8;
+assign card1_pci_slave2_stop_next = card1_pci_slave2_stop_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_stop_next_y0, card1_pci_slave2_stop_next_x0}];
+`endif
 
 
-(* keep *) wire card1_pci_slave2_next_if_frame_devsel_kept_net = card1_pci_slave2_control_case0_0_1_out_devsel;
-assign card1_pci_slave2_next_if_frame_devsel = card1_pci_slave2_next_if_frame_devsel_kept_net;
+wire card1_pci_slave2_devsel_next_x0 = card1_pci_slave2_control_case0_0_1_out_devsel;
+wire card1_pci_slave2_devsel_next_y0 = card1_pci_slave2_control_case0_0_1_out_devsel ? card1_pci_slave2_control_case2_0_1_out_devsel : card1_pci_slave2_control_case1_0_1_out_devsel;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_devsel_next_lut0 (.O(card1_pci_slave2_devsel_next), .I0(card1_pci_slave2_devsel_next_x0), .I1(card1_pci_slave2_devsel_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
+`else
+wire [15:0] card1_pci_slave2_devsel_next_lut0_table = 16'hEAE8;
+assign card1_pci_slave2_devsel_next = card1_pci_slave2_devsel_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_devsel_next_y0, card1_pci_slave2_devsel_next_x0}];
+`endif
 
 
-(* keep *) wire card1_pci_slave2_next_if_frame_drive_kept_net = card1_pci_slave2_control_case0_0_1_out_drive;
-assign card1_pci_slave2_next_if_frame_drive = card1_pci_slave2_next_if_frame_drive_kept_net;
+wire card1_pci_slave2_drive_next_x0 = card1_pci_slave2_control_case0_0_1_out_drive;
+wire card1_pci_slave2_drive_next_y0 = card1_pci_slave2_control_case0_0_1_out_drive ? card1_pci_slave2_control_case2_0_1_out_drive : card1_pci_slave2_control_case1_0_1_out_drive;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_drive_next_lut0 (.O(card1_pci_slave2_drive_next), .I0(card1_pci_slave2_drive_next_x0), .I1(card1_pci_slave2_drive_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
+`else
+wire [15:0] card1_pci_slave2_drive_next_lut0_table = 16'hEAE8;
+assign card1_pci_slave2_drive_next = card1_pci_slave2_drive_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_drive_next_y0, card1_pci_slave2_drive_next_x0}];
+`endif
 
 
-(* keep *) wire card1_pci_slave2_next_if_frame_ad_oe_kept_net = card1_pci_slave2_control_case0_0_1_out_ad_oe;
-assign card1_pci_slave2_next_if_frame_ad_oe = card1_pci_slave2_next_if_frame_ad_oe_kept_net;
-
-
-(* keep *) wire [3:0] card1_pci_slave2_next_if_irdy_state_kept_net = card1_pci_slave2_control_case1_0_1_out_state;
-assign card1_pci_slave2_next_if_irdy_state = card1_pci_slave2_next_if_irdy_state_kept_net;
-
-
-(* keep *) wire card1_pci_slave2_next_if_irdy_trdy_kept_net = card1_pci_slave2_control_case1_0_1_out_trdy;
-assign card1_pci_slave2_next_if_irdy_trdy = card1_pci_slave2_next_if_irdy_trdy_kept_net;
-
-
-(* keep *) wire card1_pci_slave2_next_if_irdy_stop_kept_net = card1_pci_slave2_control_case1_0_1_out_stop;
-assign card1_pci_slave2_next_if_irdy_stop = card1_pci_slave2_next_if_irdy_stop_kept_net;
-
-
-(* keep *) wire card1_pci_slave2_next_if_irdy_devsel_kept_net = card1_pci_slave2_control_case1_0_1_out_devsel;
-assign card1_pci_slave2_next_if_irdy_devsel = card1_pci_slave2_next_if_irdy_devsel_kept_net;
-
-
-(* keep *) wire card1_pci_slave2_next_if_irdy_drive_kept_net = card1_pci_slave2_control_case1_0_1_out_drive;
-assign card1_pci_slave2_next_if_irdy_drive = card1_pci_slave2_next_if_irdy_drive_kept_net;
-
-
-(* keep *) wire card1_pci_slave2_next_if_irdy_ad_oe_kept_net = card1_pci_slave2_control_case1_0_1_out_ad_oe;
-assign card1_pci_slave2_next_if_irdy_ad_oe = card1_pci_slave2_next_if_irdy_ad_oe_kept_net;
-
-
-(* keep *) wire [3:0] card1_pci_slave2_next_if_both_state_kept_net = card1_pci_slave2_control_case2_0_1_out_state;
-assign card1_pci_slave2_next_if_both_state = card1_pci_slave2_next_if_both_state_kept_net;
-
-
-(* keep *) wire card1_pci_slave2_next_if_both_trdy_kept_net = card1_pci_slave2_control_case2_0_1_out_trdy;
-assign card1_pci_slave2_next_if_both_trdy = card1_pci_slave2_next_if_both_trdy_kept_net;
-
-
-(* keep *) wire card1_pci_slave2_next_if_both_stop_kept_net = card1_pci_slave2_control_case2_0_1_out_stop;
-assign card1_pci_slave2_next_if_both_stop = card1_pci_slave2_next_if_both_stop_kept_net;
-
-
-(* keep *) wire card1_pci_slave2_next_if_both_devsel_kept_net = card1_pci_slave2_control_case2_0_1_out_devsel;
-assign card1_pci_slave2_next_if_both_devsel = card1_pci_slave2_next_if_both_devsel_kept_net;
-
-
-(* keep *) wire card1_pci_slave2_next_if_both_drive_kept_net = card1_pci_slave2_control_case2_0_1_out_drive;
-assign card1_pci_slave2_next_if_both_drive = card1_pci_slave2_next_if_both_drive_kept_net;
-
-
-(* keep *) wire card1_pci_slave2_next_if_both_ad_oe_kept_net = card1_pci_slave2_control_case2_0_1_out_ad_oe;
-assign card1_pci_slave2_next_if_both_ad_oe = card1_pci_slave2_next_if_both_ad_oe_kept_net;
-
-
-always @(pci_pads0_input_pad1_from_pin, card1_pci_slave2_next_if_irdy_drive, card1_pci_slave2_next_if_irdy_state, card1_pci_slave2_next_if_both_stop, card1_pci_slave2_next_if_both_devsel, card1_pci_slave2_next_if_irdy_ad_oe, card1_pci_slave2_next_if_frame_drive, card1_pci_slave2_next_if_frame_stop, card1_pci_slave2_next_if_irdy_stop, card1_pci_slave2_next_if_frame_state, card1_pci_slave2_next_if_both_ad_oe, card1_pci_slave2_next_if_irdy_trdy, card1_pci_slave2_next_if_both_drive, pci_pads0_input_pad0_from_pin, card1_pci_slave2_next_if_frame_devsel, card1_pci_slave2_next_if_irdy_devsel, card1_pci_slave2_next_if_both_state, card1_pci_slave2_next_if_both_trdy, card1_pci_slave2_next_if_frame_ad_oe, card1_pci_slave2_next_if_frame_trdy) begin: card1_pci_slave2_control_pick
-    if (pci_pads0_input_pad1_from_pin) begin
-        card1_pci_slave2_state_next = card1_pci_slave2_next_if_frame_state;
-        card1_pci_slave2_trdy_next = card1_pci_slave2_next_if_frame_trdy;
-        card1_pci_slave2_stop_next = card1_pci_slave2_next_if_frame_stop;
-        card1_pci_slave2_devsel_next = card1_pci_slave2_next_if_frame_devsel;
-        card1_pci_slave2_drive_next = card1_pci_slave2_next_if_frame_drive;
-        card1_pci_slave2_ad_oe_next = card1_pci_slave2_next_if_frame_ad_oe;
-    end
-    else if (pci_pads0_input_pad0_from_pin) begin
-        card1_pci_slave2_state_next = card1_pci_slave2_next_if_irdy_state;
-        card1_pci_slave2_trdy_next = card1_pci_slave2_next_if_irdy_trdy;
-        card1_pci_slave2_stop_next = card1_pci_slave2_next_if_irdy_stop;
-        card1_pci_slave2_devsel_next = card1_pci_slave2_next_if_irdy_devsel;
-        card1_pci_slave2_drive_next = card1_pci_slave2_next_if_irdy_drive;
-        card1_pci_slave2_ad_oe_next = card1_pci_slave2_next_if_irdy_ad_oe;
-    end
-    else begin
-        card1_pci_slave2_state_next = card1_pci_slave2_next_if_both_state;
-        card1_pci_slave2_trdy_next = card1_pci_slave2_next_if_both_trdy;
-        card1_pci_slave2_stop_next = card1_pci_slave2_next_if_both_stop;
-        card1_pci_slave2_devsel_next = card1_pci_slave2_next_if_both_devsel;
-        card1_pci_slave2_drive_next = card1_pci_slave2_next_if_both_drive;
-        card1_pci_slave2_ad_oe_next = card1_pci_slave2_next_if_both_ad_oe;
-    end
-end
+wire card1_pci_slave2_ad_oe_next_x0 = card1_pci_slave2_control_case0_0_1_out_ad_oe;
+wire card1_pci_slave2_ad_oe_next_y0 = card1_pci_slave2_control_case2_0_1_out_ad_oe ^ card1_pci_slave2_control_case1_0_1_out_ad_oe;
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_ad_oe_next_lut0 (.O(card1_pci_slave2_ad_oe_next), .I0(card1_pci_slave2_ad_oe_next_x0), .I1(card1_pci_slave2_ad_oe_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
+`else
+wire [15:0] card1_pci_slave2_ad_oe_next_lut0_table = 16'h2A2E;
+assign card1_pci_slave2_ad_oe_next = card1_pci_slave2_ad_oe_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_ad_oe_next_y0, card1_pci_slave2_ad_oe_next_x0}];
+`endif
 
 
 always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
@@ -1756,27 +1891,28 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
     end
     else begin
         card1_pci_slave2_state <= card1_pci_slave2_state_next;
-        card1_pci_slave2_address_fault <= (card1_pci_slave2_address_parity_error && card1_pci_slave2_parity_response);
+        card1_pci_slave2_first_phase <= card1_pci_slave2_first_phase_next;
+        if (card1_pci_slave2_phase_step) begin
+            if (card1_pci_slave2_claim) begin
+                card1_pci_slave2_phase_addr <= card1_pci_slave2_start_addr;
+            end
+            else begin
+                card1_pci_slave2_phase_addr <= (card1_pci_slave2_phase_addr + 1);
+            end
+        end
+        card1_pci_slave2_address_fault <= card1_pci_slave2_address_fault_next;
         if (card1_pci_slave2_claim) begin
             card1_pci_slave2_is_read <= (!card1_pci_slave2_cbe_q[0]);
             card1_pci_slave2_is_config <= card1_pci_slave2_claim_config;
             card1_pci_slave2_space_mem <= ((!card1_pci_slave2_claim_config) && (!card1_pci_slave2_claim_io));
             card1_pci_slave2_single <= (card1_pci_slave2_claim_config || card1_pci_slave2_claim_io || pci_pads0_registered_pad0_from_pin[0] || pci_pads0_registered_pad0_from_pin[1]);
-            card1_pci_slave2_first_phase <= 1'b1;
             card1_pci_slave2_first_pending <= 1'b1;
             card1_pci_slave2_fetching <= ((!card1_pci_slave2_cbe_q[0]) && (!card1_pci_slave2_claim_config));
             card1_pci_slave2_refused <= 1'b0;
             card1_pci_slave2_io_byte <= pci_pads0_registered_pad0_from_pin[2-1:0];
-            card1_pci_slave2_phase_addr <= card1_pci_slave2_start_addr;
             card1_pci_slave2_req_addr_stale <= card1_pci_slave2_draining;
         end
         else begin
-            if (card1_pci_slave2_phase_done) begin
-                card1_pci_slave2_first_phase <= 1'b0;
-                if (card1_pci_slave2_space_mem) begin
-                    card1_pci_slave2_phase_addr <= (card1_pci_slave2_phase_addr + 1);
-                end
-            end
             if ((card1_pci_slave2_got || card1_pci_slave2_accepted)) begin
                 card1_pci_slave2_first_pending <= (card1_pci_slave2_first_pending && card1_pci_slave2_draining);
             end
@@ -1810,16 +1946,264 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
 end
 
 
-always @(card1_pci_slave2_perr_armed, card1_pci_slave2_ad_out_q, pci_pads0_registered_pad1_from_pin, card1_pci_slave2_holding, card1_pci_slave2_read_source, card1_pci_slave2_bus_parity_kept, pci_pads0_input_pad2_from_pin, card1_pci_slave2_ad_out_parity_kept) begin: card1_pci_slave2_ad_output
-    if (card1_pci_slave2_holding) begin
-        card1_pci_slave2_ad_out_next = card1_pci_slave2_ad_out_q;
-    end
-    else begin
-        card1_pci_slave2_ad_out_next = card1_pci_slave2_read_source;
-    end
-    card1_pci_slave2_par_next = ((((card1_pci_slave2_ad_out_parity_kept ^ pci_pads0_input_pad2_from_pin[0]) ^ pci_pads0_input_pad2_from_pin[1]) ^ pci_pads0_input_pad2_from_pin[2]) ^ pci_pads0_input_pad2_from_pin[3]);
-    card1_pci_slave2_perr_next = (!(card1_pci_slave2_perr_armed && (card1_pci_slave2_bus_parity_kept != pci_pads0_registered_pad1_from_pin)));
-end
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut33_out_lut (.O(card1_pci_slave2_pin_lut33_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[0]), .I3(card1_pci_slave2_read_source[0]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut33_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut33_out = card1_pci_slave2_pin_lut33_out_lut_table[{card1_pci_slave2_read_source[0], card1_pci_slave2_ad_out_q[0], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut34_out_lut (.O(card1_pci_slave2_pin_lut34_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[1]), .I3(card1_pci_slave2_read_source[1]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut34_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut34_out = card1_pci_slave2_pin_lut34_out_lut_table[{card1_pci_slave2_read_source[1], card1_pci_slave2_ad_out_q[1], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut35_out_lut (.O(card1_pci_slave2_pin_lut35_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[2]), .I3(card1_pci_slave2_read_source[2]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut35_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut35_out = card1_pci_slave2_pin_lut35_out_lut_table[{card1_pci_slave2_read_source[2], card1_pci_slave2_ad_out_q[2], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut36_out_lut (.O(card1_pci_slave2_pin_lut36_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[3]), .I3(card1_pci_slave2_read_source[3]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut36_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut36_out = card1_pci_slave2_pin_lut36_out_lut_table[{card1_pci_slave2_read_source[3], card1_pci_slave2_ad_out_q[3], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut37_out_lut (.O(card1_pci_slave2_pin_lut37_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[4]), .I3(card1_pci_slave2_read_source[4]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut37_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut37_out = card1_pci_slave2_pin_lut37_out_lut_table[{card1_pci_slave2_read_source[4], card1_pci_slave2_ad_out_q[4], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut38_out_lut (.O(card1_pci_slave2_pin_lut38_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[5]), .I3(card1_pci_slave2_read_source[5]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut38_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut38_out = card1_pci_slave2_pin_lut38_out_lut_table[{card1_pci_slave2_read_source[5], card1_pci_slave2_ad_out_q[5], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut39_out_lut (.O(card1_pci_slave2_pin_lut39_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[6]), .I3(card1_pci_slave2_read_source[6]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut39_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut39_out = card1_pci_slave2_pin_lut39_out_lut_table[{card1_pci_slave2_read_source[6], card1_pci_slave2_ad_out_q[6], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut40_out_lut (.O(card1_pci_slave2_pin_lut40_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[7]), .I3(card1_pci_slave2_read_source[7]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut40_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut40_out = card1_pci_slave2_pin_lut40_out_lut_table[{card1_pci_slave2_read_source[7], card1_pci_slave2_ad_out_q[7], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut41_out_lut (.O(card1_pci_slave2_pin_lut41_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[8]), .I3(card1_pci_slave2_read_source[8]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut41_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut41_out = card1_pci_slave2_pin_lut41_out_lut_table[{card1_pci_slave2_read_source[8], card1_pci_slave2_ad_out_q[8], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut42_out_lut (.O(card1_pci_slave2_pin_lut42_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[9]), .I3(card1_pci_slave2_read_source[9]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut42_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut42_out = card1_pci_slave2_pin_lut42_out_lut_table[{card1_pci_slave2_read_source[9], card1_pci_slave2_ad_out_q[9], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut43_out_lut (.O(card1_pci_slave2_pin_lut43_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[10]), .I3(card1_pci_slave2_read_source[10]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut43_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut43_out = card1_pci_slave2_pin_lut43_out_lut_table[{card1_pci_slave2_read_source[10], card1_pci_slave2_ad_out_q[10], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut44_out_lut (.O(card1_pci_slave2_pin_lut44_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[11]), .I3(card1_pci_slave2_read_source[11]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut44_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut44_out = card1_pci_slave2_pin_lut44_out_lut_table[{card1_pci_slave2_read_source[11], card1_pci_slave2_ad_out_q[11], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut45_out_lut (.O(card1_pci_slave2_pin_lut45_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[12]), .I3(card1_pci_slave2_read_source[12]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut45_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut45_out = card1_pci_slave2_pin_lut45_out_lut_table[{card1_pci_slave2_read_source[12], card1_pci_slave2_ad_out_q[12], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut46_out_lut (.O(card1_pci_slave2_pin_lut46_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[13]), .I3(card1_pci_slave2_read_source[13]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut46_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut46_out = card1_pci_slave2_pin_lut46_out_lut_table[{card1_pci_slave2_read_source[13], card1_pci_slave2_ad_out_q[13], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut47_out_lut (.O(card1_pci_slave2_pin_lut47_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[14]), .I3(card1_pci_slave2_read_source[14]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut47_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut47_out = card1_pci_slave2_pin_lut47_out_lut_table[{card1_pci_slave2_read_source[14], card1_pci_slave2_ad_out_q[14], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut48_out_lut (.O(card1_pci_slave2_pin_lut48_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[15]), .I3(card1_pci_slave2_read_source[15]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut48_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut48_out = card1_pci_slave2_pin_lut48_out_lut_table[{card1_pci_slave2_read_source[15], card1_pci_slave2_ad_out_q[15], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut49_out_lut (.O(card1_pci_slave2_pin_lut49_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[16]), .I3(card1_pci_slave2_read_source[16]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut49_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut49_out = card1_pci_slave2_pin_lut49_out_lut_table[{card1_pci_slave2_read_source[16], card1_pci_slave2_ad_out_q[16], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut50_out_lut (.O(card1_pci_slave2_pin_lut50_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[17]), .I3(card1_pci_slave2_read_source[17]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut50_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut50_out = card1_pci_slave2_pin_lut50_out_lut_table[{card1_pci_slave2_read_source[17], card1_pci_slave2_ad_out_q[17], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut51_out_lut (.O(card1_pci_slave2_pin_lut51_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[18]), .I3(card1_pci_slave2_read_source[18]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut51_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut51_out = card1_pci_slave2_pin_lut51_out_lut_table[{card1_pci_slave2_read_source[18], card1_pci_slave2_ad_out_q[18], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut52_out_lut (.O(card1_pci_slave2_pin_lut52_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[19]), .I3(card1_pci_slave2_read_source[19]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut52_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut52_out = card1_pci_slave2_pin_lut52_out_lut_table[{card1_pci_slave2_read_source[19], card1_pci_slave2_ad_out_q[19], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut53_out_lut (.O(card1_pci_slave2_pin_lut53_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[20]), .I3(card1_pci_slave2_read_source[20]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut53_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut53_out = card1_pci_slave2_pin_lut53_out_lut_table[{card1_pci_slave2_read_source[20], card1_pci_slave2_ad_out_q[20], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut54_out_lut (.O(card1_pci_slave2_pin_lut54_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[21]), .I3(card1_pci_slave2_read_source[21]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut54_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut54_out = card1_pci_slave2_pin_lut54_out_lut_table[{card1_pci_slave2_read_source[21], card1_pci_slave2_ad_out_q[21], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut55_out_lut (.O(card1_pci_slave2_pin_lut55_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[22]), .I3(card1_pci_slave2_read_source[22]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut55_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut55_out = card1_pci_slave2_pin_lut55_out_lut_table[{card1_pci_slave2_read_source[22], card1_pci_slave2_ad_out_q[22], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut56_out_lut (.O(card1_pci_slave2_pin_lut56_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[23]), .I3(card1_pci_slave2_read_source[23]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut56_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut56_out = card1_pci_slave2_pin_lut56_out_lut_table[{card1_pci_slave2_read_source[23], card1_pci_slave2_ad_out_q[23], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut57_out_lut (.O(card1_pci_slave2_pin_lut57_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[24]), .I3(card1_pci_slave2_read_source[24]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut57_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut57_out = card1_pci_slave2_pin_lut57_out_lut_table[{card1_pci_slave2_read_source[24], card1_pci_slave2_ad_out_q[24], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut58_out_lut (.O(card1_pci_slave2_pin_lut58_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[25]), .I3(card1_pci_slave2_read_source[25]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut58_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut58_out = card1_pci_slave2_pin_lut58_out_lut_table[{card1_pci_slave2_read_source[25], card1_pci_slave2_ad_out_q[25], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut59_out_lut (.O(card1_pci_slave2_pin_lut59_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[26]), .I3(card1_pci_slave2_read_source[26]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut59_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut59_out = card1_pci_slave2_pin_lut59_out_lut_table[{card1_pci_slave2_read_source[26], card1_pci_slave2_ad_out_q[26], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut60_out_lut (.O(card1_pci_slave2_pin_lut60_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[27]), .I3(card1_pci_slave2_read_source[27]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut60_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut60_out = card1_pci_slave2_pin_lut60_out_lut_table[{card1_pci_slave2_read_source[27], card1_pci_slave2_ad_out_q[27], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut61_out_lut (.O(card1_pci_slave2_pin_lut61_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[28]), .I3(card1_pci_slave2_read_source[28]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut61_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut61_out = card1_pci_slave2_pin_lut61_out_lut_table[{card1_pci_slave2_read_source[28], card1_pci_slave2_ad_out_q[28], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut62_out_lut (.O(card1_pci_slave2_pin_lut62_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[29]), .I3(card1_pci_slave2_read_source[29]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut62_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut62_out = card1_pci_slave2_pin_lut62_out_lut_table[{card1_pci_slave2_read_source[29], card1_pci_slave2_ad_out_q[29], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut63_out_lut (.O(card1_pci_slave2_pin_lut63_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[30]), .I3(card1_pci_slave2_read_source[30]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut63_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut63_out = card1_pci_slave2_pin_lut63_out_lut_table[{card1_pci_slave2_read_source[30], card1_pci_slave2_ad_out_q[30], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut64_out_lut (.O(card1_pci_slave2_pin_lut64_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[31]), .I3(card1_pci_slave2_read_source[31]));
+`else
+wire [15:0] card1_pci_slave2_pin_lut64_out_lut_table = 16'hFD20;
+assign card1_pci_slave2_pin_lut64_out = card1_pci_slave2_pin_lut64_out_lut_table[{card1_pci_slave2_read_source[31], card1_pci_slave2_ad_out_q[31], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+`endif
+
+
+
+assign card1_pci_slave2_par_next = ((((card1_pci_slave2_ad_out_parity_kept ^ pci_pads0_input_pad2_from_pin[0]) ^ pci_pads0_input_pad2_from_pin[1]) ^ pci_pads0_input_pad2_from_pin[2]) ^ pci_pads0_input_pad2_from_pin[3]);
 
 
 always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_ad_out_parity_tree
@@ -1833,10 +2217,6 @@ always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_ad_out_parity_tree
     fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
     card1_pci_slave2_ad_out_parity = fold[0];
 end
-
-
-(* keep *) wire card1_pci_slave2_bus_parity_kept_kept_net = card1_pci_slave2_bus_parity;
-assign card1_pci_slave2_bus_parity_kept = card1_pci_slave2_bus_parity_kept_kept_net;
 
 
 (* keep *) wire card1_pci_slave2_ad_out_parity_kept_kept_net = card1_pci_slave2_ad_out_parity;
@@ -1873,10 +2253,10 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_bus_registers
         pci_pads0_registered_pad3_enable <= card1_pci_slave2_drive_next;
         pci_pads0_registered_pad0_enable <= card1_pci_slave2_ad_oe_next;
         pci_pads0_registered_pad1_enable <= pci_pads0_registered_pad0_enable;
-        pci_pads0_registered_pad5_enable <= ((!card1_pci_slave2_perr_next) || (!card1_pci_slave2_perr_q));
+        pci_pads0_registered_pad5_enable <= card1_pci_slave2_perr_oe_next;
         pci_pads0_tristate_pad0_to_pin <= 1'b0;
-        pci_pads0_tristate_pad0_enable <= (card1_pci_slave2_serr_armed && (card1_pci_slave2_bus_parity_kept != pci_pads0_registered_pad1_from_pin));
-        card1_pci_slave2_parity_error_q <= (card1_pci_slave2_address_parity_error || card1_pci_slave2_data_parity_error);
+        pci_pads0_tristate_pad0_enable <= card1_pci_slave2_serr_oe_next;
+        card1_pci_slave2_parity_error_q <= card1_pci_slave2_parity_error_next;
         pci_pads0_tristate_pad1_to_pin <= 1'b0;
         pci_pads0_tristate_pad1_enable <= (card1_irq && (!card1_pci_slave2_interrupt_disable));
     end
@@ -1893,15 +2273,24 @@ assign pci_pads0_registered_pad5_to_pin = card1_pci_slave2_perr_next;
 
 
 always @(posedge clock, negedge reset) begin: card1_pci_slave2_read_buffer
-    reg in_read;
     if (reset == 0) begin
         card1_pci_slave2_b_valid <= 0;
     end
     else begin
-        in_read = (card1_pci_slave2_is_read && ((card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0100) || (card1_pci_slave2_state == 4'b0110)));
-        card1_pci_slave2_b_valid <= (in_read && (card1_pci_slave2_b_valid || card1_pci_slave2_got) && card1_pci_slave2_holding);
+        card1_pci_slave2_b_valid <= card1_pci_slave2_b_valid_next;
     end
 end
+
+
+always @(card1_pci_slave2_got, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_state, card1_pci_slave2_trdy_q) begin: card1_pci_slave2_read_buffer_hold
+    reg in_read;
+    in_read = (card1_pci_slave2_is_read && ((card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0100) || (card1_pci_slave2_state == 4'b0110)));
+    card1_pci_slave2_b_kept = (in_read && (card1_pci_slave2_b_valid || card1_pci_slave2_got) && (!card1_pci_slave2_trdy_q));
+end
+
+
+
+assign card1_pci_slave2_posting = ((!card1_pci_slave2_trdy_q) && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_first_phase) && card1_pci_slave2_space_mem);
 
 
 always @(posedge clock, negedge reset) begin: card1_pci_slave2_write_buffer
@@ -1917,9 +2306,9 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_write_buffer
         card1_pci_slave2_spare_data <= 0;
     end
     else begin
-        card1_pci_slave2_write_done_q <= (card1_pci_slave2_phase_done && (!card1_pci_slave2_is_read));
-        card1_pci_slave2_config_write_q <= (card1_pci_slave2_phase_done && card1_pci_slave2_is_config && (!card1_pci_slave2_is_read));
-        card1_pci_slave2_wq_valid <= (card1_pci_slave2_phase_done && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_first_phase) && card1_pci_slave2_space_mem);
+        card1_pci_slave2_write_done_q <= card1_pci_slave2_write_done_next;
+        card1_pci_slave2_config_write_q <= card1_pci_slave2_config_write_next;
+        card1_pci_slave2_wq_valid <= card1_pci_slave2_wq_valid_next;
         if (card1_pci_slave2_h_valid) begin
             if (card1_pci_slave2_accepted) begin
                 if (card1_pci_slave2_s_valid) begin
@@ -4060,7 +4449,118 @@ always @(card1_card_core1_dda_arc2_gap, card1_card_core1_dda_arc2_root_bit, card
 end
 
 
-always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_bits, card1_card_core1_dda_arc2_neg_ys, card1_card_core1_dda_arc2_mag_ys, card1_card_core1_dda_arc2_variant, card1_card_core1_dda_arc2_mag_xs, card1_card_core1_dda_arc2_radius_q, card1_card_core1_dda_arc2_end_reaches_low, card1_card_core1_dda_arc2_mag_ye, card1_card_core1_dda_arc2_xe, card1_card_core1_dda_arc2_lambda_shift, card1_card_core1_dda_arc2_ye, card1_card_core1_dda_arc2_xs, card1_card_core1_dda_arc2_neg_xs, card1_card_core1_dda_arc2_mag_xe, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_ys, card1_card_core1_dda_arc2_end_beyond_high, card1_card_core1_dda_arc2_ccw) begin: card1_card_core1_dda_arc2_check_logic
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_geometry
+    reg [2-1:0] q_s;
+    reg [2-1:0] q_e;
+    reg [3-1:0] turns;
+    reg [2-1:0] turn;
+    reg [24-1:0] a_s;
+    reg [24-1:0] b_s;
+    reg [24-1:0] a_e;
+    reg [24-1:0] b_e;
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_geo_quadrant <= 0;
+        card1_card_core1_dda_arc2_geo_ahead <= 0;
+        card1_card_core1_dda_arc2_geo_centre <= 0;
+        card1_card_core1_dda_arc2_geo_end_inward <= 0;
+        card1_card_core1_dda_arc2_geo_crossings <= 0;
+    end
+    else begin
+        q_s = 2'h0;
+        q_e = 2'h0;
+        turns = 3'h0;
+        turn = 2'h0;
+        a_s = 24'h0;
+        b_s = 24'h0;
+        a_e = 24'h0;
+        b_e = 24'h0;
+        if (card1_card_core1_dda_arc2_ccw) begin
+            if (((card1_card_core1_dda_arc2_xs > 0) && (card1_card_core1_dda_arc2_ys >= 0))) begin
+                q_s = 0;
+            end
+            else if (((card1_card_core1_dda_arc2_xs <= 0) && (card1_card_core1_dda_arc2_ys > 0))) begin
+                q_s = 1;
+            end
+            else if (((card1_card_core1_dda_arc2_xs < 0) && (card1_card_core1_dda_arc2_ys <= 0))) begin
+                q_s = 2;
+            end
+            else begin
+                q_s = 3;
+            end
+            if (((card1_card_core1_dda_arc2_xe >= 0) && (card1_card_core1_dda_arc2_ye > 0))) begin
+                q_e = 0;
+            end
+            else if (((card1_card_core1_dda_arc2_xe < 0) && (card1_card_core1_dda_arc2_ye >= 0))) begin
+                q_e = 1;
+            end
+            else if (((card1_card_core1_dda_arc2_xe <= 0) && (card1_card_core1_dda_arc2_ye < 0))) begin
+                q_e = 2;
+            end
+            else begin
+                q_e = 3;
+            end
+            turn = (q_e - q_s);
+        end
+        else begin
+            if (((card1_card_core1_dda_arc2_xs >= 0) && (card1_card_core1_dda_arc2_ys > 0))) begin
+                q_s = 0;
+            end
+            else if (((card1_card_core1_dda_arc2_xs < 0) && (card1_card_core1_dda_arc2_ys >= 0))) begin
+                q_s = 1;
+            end
+            else if (((card1_card_core1_dda_arc2_xs <= 0) && (card1_card_core1_dda_arc2_ys < 0))) begin
+                q_s = 2;
+            end
+            else begin
+                q_s = 3;
+            end
+            if (((card1_card_core1_dda_arc2_xe > 0) && (card1_card_core1_dda_arc2_ye >= 0))) begin
+                q_e = 0;
+            end
+            else if (((card1_card_core1_dda_arc2_xe <= 0) && (card1_card_core1_dda_arc2_ye > 0))) begin
+                q_e = 1;
+            end
+            else if (((card1_card_core1_dda_arc2_xe < 0) && (card1_card_core1_dda_arc2_ye <= 0))) begin
+                q_e = 2;
+            end
+            else begin
+                q_e = 3;
+            end
+            turn = (q_s - q_e);
+        end
+        turns = {1'b0, turn};
+        if ((q_s[0] != card1_card_core1_dda_arc2_ccw)) begin
+            a_s = card1_card_core1_dda_arc2_mag_xs;
+            b_s = card1_card_core1_dda_arc2_mag_ys;
+        end
+        else begin
+            a_s = card1_card_core1_dda_arc2_mag_ys;
+            b_s = card1_card_core1_dda_arc2_mag_xs;
+        end
+        if ((q_e[0] != card1_card_core1_dda_arc2_ccw)) begin
+            a_e = card1_card_core1_dda_arc2_mag_xe;
+            b_e = card1_card_core1_dda_arc2_mag_ye;
+        end
+        else begin
+            a_e = card1_card_core1_dda_arc2_mag_ye;
+            b_e = card1_card_core1_dda_arc2_mag_xe;
+        end
+        card1_card_core1_dda_arc2_geo_ahead <= 1'b0;
+        if (((turns == 0) && (a_e <= a_s) && (b_e >= b_s) && (!((a_e == a_s) && (b_e == b_s))))) begin
+            card1_card_core1_dda_arc2_geo_ahead <= 1'b1;
+        end
+        else if ((turns == 0)) begin
+            turns = 4;
+        end
+        card1_card_core1_dda_arc2_geo_quadrant <= q_s;
+        card1_card_core1_dda_arc2_geo_crossings <= turns;
+        card1_card_core1_dda_arc2_geo_end_inward <= a_e;
+        card1_card_core1_dda_arc2_geo_centre <= (((card1_card_core1_dda_arc2_xs == 0) && (card1_card_core1_dda_arc2_ys == 0)) || ((card1_card_core1_dda_arc2_xe == 0) && (card1_card_core1_dda_arc2_ye == 0)));
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_bits, card1_card_core1_dda_arc2_neg_ys, card1_card_core1_dda_arc2_geo_crossings, card1_card_core1_dda_arc2_mag_ys, card1_card_core1_dda_arc2_variant, card1_card_core1_dda_arc2_geo_quadrant, card1_card_core1_dda_arc2_mag_xs, card1_card_core1_dda_arc2_radius_q, card1_card_core1_dda_arc2_end_reaches_low, card1_card_core1_dda_arc2_mag_ye, card1_card_core1_dda_arc2_geo_centre, card1_card_core1_dda_arc2_lambda_shift, card1_card_core1_dda_arc2_geo_ahead, card1_card_core1_dda_arc2_xs, card1_card_core1_dda_arc2_mag_xe, card1_card_core1_dda_arc2_neg_xs, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_ys, card1_card_core1_dda_arc2_end_beyond_high, card1_card_core1_dda_arc2_ccw, card1_card_core1_dda_arc2_geo_end_inward) begin: card1_card_core1_dda_arc2_check_logic
     reg [25-1:0] rq;
     reg [6-1:0] exponent;
     reg [29-1:0] thr;
@@ -4070,20 +4570,6 @@ always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_
     reg [32-1:0] half;
     reg [24-1:0] major;
     reg [24-1:0] major_less;
-    reg [2-1:0] q_s;
-    reg [2-1:0] q_e;
-    reg [3-1:0] turns;
-    reg [2-1:0] turn;
-    reg [24-1:0] a_s;
-    reg [24-1:0] b_s;
-    reg [24-1:0] a_e;
-    reg [24-1:0] b_e;
-    reg [25-1:0] half_x;
-    reg [25-1:0] half_y;
-    reg [25-1:0] half_turn;
-    reg [4-1:0] fill_x;
-    reg [4-1:0] fill_y;
-    reg [4-1:0] fill_turn;
     reg bad;
     rq = 25'h0;
     exponent = 6'h0;
@@ -4094,23 +4580,9 @@ always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_
     half = 32'h0;
     major = 24'h0;
     major_less = 24'h0;
-    q_s = 2'h0;
-    q_e = 2'h0;
-    turns = 3'h0;
-    turn = 2'h0;
-    a_s = 24'h0;
-    b_s = 24'h0;
-    a_e = 24'h0;
-    b_e = 24'h0;
-    half_x = 25'h0;
-    half_y = 25'h0;
-    half_turn = 25'h0;
-    fill_x = 4'h0;
-    fill_y = 4'h0;
-    fill_turn = 4'h0;
     bad = 1'b0;
     rq = card1_card_core1_dda_arc2_radius_q;
-    if ((((card1_card_core1_dda_arc2_xs == 0) && (card1_card_core1_dda_arc2_ys == 0)) || ((card1_card_core1_dda_arc2_xe == 0) && (card1_card_core1_dda_arc2_ye == 0)))) begin
+    if (card1_card_core1_dda_arc2_geo_centre) begin
         bad = 1'b1;
     end
     if (($signed({1'b0, rq}) >= (1 << (24 - 1)))) begin
@@ -4126,18 +4598,13 @@ always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_
         exponent = (card1_card_core1_dda_arc2_radius_length + {1'b0, card1_card_core1_dda_arc2_lambda_shift});
     end
     thr = (one << exponent);
+    thr_less = (thr - 1);
     if (((card1_card_core1_dda_arc2_variant != 3) && ($signed({1'b0, exponent}) > (29 - 1)))) begin
         bad = 1'b1;
     end
-    thr_less = (thr - 1);
-    below = {3'h0, thr_less};
-    half = (~(below >>> 1));
-    if (((card1_card_core1_dda_arc2_variant == 1) || (card1_card_core1_dda_arc2_variant == 2))) begin
-        half = (~{3'h0, thr});
-    end
     if ((card1_card_core1_dda_arc2_variant == 3)) begin
         thr = ({4'h0, rq} + 1);
-        half = (~{8'h0, rq[(24 + 1)-1:1]});
+        thr_less = {4'h0, rq};
     end
     if ((card1_card_core1_dda_arc2_mag_xe > card1_card_core1_dda_arc2_mag_ye)) begin
         major = card1_card_core1_dda_arc2_mag_xe;
@@ -4148,91 +4615,22 @@ always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_
     major_less = (major - 1);
     if (card1_card_core1_dda_arc2_is_line) begin
         thr = {5'h0, major};
-        half = (~({8'h0, major_less} >>> 1));
+        thr_less = {5'h0, major_less};
     end
-    if (card1_card_core1_dda_arc2_ccw) begin
-        if (((card1_card_core1_dda_arc2_xs > 0) && (card1_card_core1_dda_arc2_ys >= 0))) begin
-            q_s = 0;
-        end
-        else if (((card1_card_core1_dda_arc2_xs <= 0) && (card1_card_core1_dda_arc2_ys > 0))) begin
-            q_s = 1;
-        end
-        else if (((card1_card_core1_dda_arc2_xs < 0) && (card1_card_core1_dda_arc2_ys <= 0))) begin
-            q_s = 2;
-        end
-        else begin
-            q_s = 3;
-        end
-        if (((card1_card_core1_dda_arc2_xe >= 0) && (card1_card_core1_dda_arc2_ye > 0))) begin
-            q_e = 0;
-        end
-        else if (((card1_card_core1_dda_arc2_xe < 0) && (card1_card_core1_dda_arc2_ye >= 0))) begin
-            q_e = 1;
-        end
-        else if (((card1_card_core1_dda_arc2_xe <= 0) && (card1_card_core1_dda_arc2_ye < 0))) begin
-            q_e = 2;
-        end
-        else begin
-            q_e = 3;
-        end
-        turn = (q_e - q_s);
+    below = {3'h0, thr_less};
+    half = (~(below >>> 1));
+    if (((!card1_card_core1_dda_arc2_is_line) && ((card1_card_core1_dda_arc2_variant == 1) || (card1_card_core1_dda_arc2_variant == 2)))) begin
+        half = (~{3'h0, thr});
     end
-    else begin
-        if (((card1_card_core1_dda_arc2_xs >= 0) && (card1_card_core1_dda_arc2_ys > 0))) begin
-            q_s = 0;
-        end
-        else if (((card1_card_core1_dda_arc2_xs < 0) && (card1_card_core1_dda_arc2_ys >= 0))) begin
-            q_s = 1;
-        end
-        else if (((card1_card_core1_dda_arc2_xs <= 0) && (card1_card_core1_dda_arc2_ys < 0))) begin
-            q_s = 2;
-        end
-        else begin
-            q_s = 3;
-        end
-        if (((card1_card_core1_dda_arc2_xe > 0) && (card1_card_core1_dda_arc2_ye >= 0))) begin
-            q_e = 0;
-        end
-        else if (((card1_card_core1_dda_arc2_xe <= 0) && (card1_card_core1_dda_arc2_ye > 0))) begin
-            q_e = 1;
-        end
-        else if (((card1_card_core1_dda_arc2_xe < 0) && (card1_card_core1_dda_arc2_ye <= 0))) begin
-            q_e = 2;
-        end
-        else begin
-            q_e = 3;
-        end
-        turn = (q_s - q_e);
-    end
-    turns = {1'b0, turn};
-    if ((q_s[0] != card1_card_core1_dda_arc2_ccw)) begin
-        a_s = card1_card_core1_dda_arc2_mag_xs;
-        b_s = card1_card_core1_dda_arc2_mag_ys;
-    end
-    else begin
-        a_s = card1_card_core1_dda_arc2_mag_ys;
-        b_s = card1_card_core1_dda_arc2_mag_xs;
-    end
-    if ((q_e[0] != card1_card_core1_dda_arc2_ccw)) begin
-        a_e = card1_card_core1_dda_arc2_mag_xe;
-        b_e = card1_card_core1_dda_arc2_mag_ye;
-    end
-    else begin
-        a_e = card1_card_core1_dda_arc2_mag_ye;
-        b_e = card1_card_core1_dda_arc2_mag_xe;
-    end
-    if (((turns == 0) && (a_e <= a_s) && (b_e >= b_s) && (!((a_e == a_s) && (b_e == b_s))))) begin
+    if ((card1_card_core1_dda_arc2_is_line || card1_card_core1_dda_arc2_geo_ahead)) begin
         card1_card_core1_dda_arc2_chk_target_x = card1_card_core1_dda_arc2_mag_xe;
         card1_card_core1_dda_arc2_chk_target_y = card1_card_core1_dda_arc2_mag_ye;
     end
     else begin
-        if ((turns == 0)) begin
-            turns = 4;
-        end
-        if (({1'b0, a_e} > rq)) begin
+        if (({1'b0, card1_card_core1_dda_arc2_geo_end_inward} > rq)) begin
             bad = 1'b1;
         end
-        if ((q_s[0] != card1_card_core1_dda_arc2_ccw)) begin
+        if ((card1_card_core1_dda_arc2_geo_quadrant[0] != card1_card_core1_dda_arc2_ccw)) begin
             card1_card_core1_dda_arc2_chk_target_x = 0;
             card1_card_core1_dda_arc2_chk_target_y = rq[24-1:0];
         end
@@ -4243,45 +4641,39 @@ always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_
     end
     card1_card_core1_dda_arc2_chk_error = bad;
     card1_card_core1_dda_arc2_chk_radius = rq[24-1:0];
-    card1_card_core1_dda_arc2_chk_quadrant = q_s;
-    card1_card_core1_dda_arc2_chk_crossings = turns;
+    card1_card_core1_dda_arc2_chk_quadrant = card1_card_core1_dda_arc2_geo_quadrant;
+    card1_card_core1_dda_arc2_chk_crossings = card1_card_core1_dda_arc2_geo_crossings;
+    card1_card_core1_dda_arc2_chk_mag_x = card1_card_core1_dda_arc2_mag_xs;
+    card1_card_core1_dda_arc2_chk_mag_y = card1_card_core1_dda_arc2_mag_ys;
+    if ((card1_card_core1_dda_arc2_is_line || bad)) begin
+        card1_card_core1_dda_arc2_chk_quadrant = 0;
+    end
+    if (card1_card_core1_dda_arc2_is_line) begin
+        card1_card_core1_dda_arc2_chk_crossings = 0;
+        card1_card_core1_dda_arc2_chk_mag_x = 0;
+        card1_card_core1_dda_arc2_chk_mag_y = 0;
+    end
     card1_card_core1_dda_arc2_chk_threshold = thr;
     card1_card_core1_dda_arc2_chk_acc_init = $signed(half);
-    if (((card1_card_core1_dda_arc2_xs < 0) != (q_s[0] != card1_card_core1_dda_arc2_ccw))) begin
-        half_x = card1_card_core1_dda_arc2_neg_xs;
+    if ((card1_card_core1_dda_arc2_xs < 0)) begin
+        card1_card_core1_dda_arc2_chk_neg_mag_x = {card1_card_core1_dda_arc2_xs[(24 - 1)], card1_card_core1_dda_arc2_xs};
     end
     else begin
-        half_x = {card1_card_core1_dda_arc2_xs[(24 - 1)], card1_card_core1_dda_arc2_xs};
+        card1_card_core1_dda_arc2_chk_neg_mag_x = card1_card_core1_dda_arc2_neg_xs;
     end
-    if (((card1_card_core1_dda_arc2_ys < 0) != (q_s[0] == card1_card_core1_dda_arc2_ccw))) begin
-        half_y = card1_card_core1_dda_arc2_neg_ys;
+    if ((card1_card_core1_dda_arc2_ys < 0)) begin
+        card1_card_core1_dda_arc2_chk_neg_mag_y = {card1_card_core1_dda_arc2_ys[(24 - 1)], card1_card_core1_dda_arc2_ys};
     end
     else begin
-        half_y = {card1_card_core1_dda_arc2_ys[(24 - 1)], card1_card_core1_dda_arc2_ys};
+        card1_card_core1_dda_arc2_chk_neg_mag_y = card1_card_core1_dda_arc2_neg_ys;
     end
-    half_turn = (-rq);
-    fill_x = 0;
-    fill_y = 0;
-    fill_turn = 0;
-    if (half_x[24]) begin
-        fill_x = 15;
-    end
-    if (half_y[24]) begin
-        fill_y = 15;
-    end
-    if (half_turn[24]) begin
-        fill_turn = 15;
-    end
-    card1_card_core1_dda_arc2_chk_delta_x = $signed({fill_x, half_x, 1'b1});
-    card1_card_core1_dda_arc2_chk_delta_y = $signed({fill_y, half_y, 1'b1});
-    card1_card_core1_dda_arc2_chk_delta_turn = $signed({fill_turn, half_turn, 1'b1});
 end
 
 
-always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_quadrant, card1_card_core1_dda_arc2_mag_x, card1_card_core1_dda_arc2_target_y, card1_card_core1_dda_arc2_ccw, card1_card_core1_dda_arc2_target_x, card1_card_core1_dda_arc2_is_line) begin: card1_card_core1_dda_arc2_piece_progress
-    card1_card_core1_dda_arc2_x_down = ((!card1_card_core1_dda_arc2_is_line) && (card1_card_core1_dda_arc2_quadrant[0] != card1_card_core1_dda_arc2_ccw));
-    card1_card_core1_dda_arc2_y_down = ((!card1_card_core1_dda_arc2_is_line) && (card1_card_core1_dda_arc2_quadrant[0] == card1_card_core1_dda_arc2_ccw));
-    if (((!card1_card_core1_dda_arc2_is_line) && (card1_card_core1_dda_arc2_quadrant[0] != card1_card_core1_dda_arc2_ccw))) begin
+always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_mag_x_step, card1_card_core1_dda_arc2_mag_x, card1_card_core1_dda_arc2_target_y, card1_card_core1_dda_arc2_neg_mag_y, card1_card_core1_dda_arc2_x_inward, card1_card_core1_dda_arc2_target_x, card1_card_core1_dda_arc2_neg_mag_x, card1_card_core1_dda_arc2_mag_y_step, card1_card_core1_dda_arc2_is_line) begin: card1_card_core1_dda_arc2_piece_progress
+    reg [4-1:0] fill_x;
+    reg [4-1:0] fill_y;
+    if (((!card1_card_core1_dda_arc2_is_line) && card1_card_core1_dda_arc2_x_inward)) begin
         card1_card_core1_dda_arc2_count_x = (card1_card_core1_dda_arc2_mag_x - card1_card_core1_dda_arc2_target_x);
         card1_card_core1_dda_arc2_count_y = (card1_card_core1_dda_arc2_target_y - card1_card_core1_dda_arc2_mag_y);
     end
@@ -4292,6 +4684,44 @@ always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_quadrant, ca
     else begin
         card1_card_core1_dda_arc2_count_x = (card1_card_core1_dda_arc2_target_x - card1_card_core1_dda_arc2_mag_x);
         card1_card_core1_dda_arc2_count_y = (card1_card_core1_dda_arc2_target_y - card1_card_core1_dda_arc2_mag_y);
+    end
+    if (((!card1_card_core1_dda_arc2_is_line) && card1_card_core1_dda_arc2_x_inward)) begin
+        card1_card_core1_dda_arc2_mag_x_step = (card1_card_core1_dda_arc2_mag_x + 16777215);
+        card1_card_core1_dda_arc2_neg_mag_x_step = (card1_card_core1_dda_arc2_neg_mag_x + 1);
+        card1_card_core1_dda_arc2_mag_y_step = (card1_card_core1_dda_arc2_mag_y + 1);
+        card1_card_core1_dda_arc2_neg_mag_y_step = (card1_card_core1_dda_arc2_neg_mag_y + 33554431);
+    end
+    else if ((!card1_card_core1_dda_arc2_is_line)) begin
+        card1_card_core1_dda_arc2_mag_x_step = (card1_card_core1_dda_arc2_mag_x + 1);
+        card1_card_core1_dda_arc2_neg_mag_x_step = (card1_card_core1_dda_arc2_neg_mag_x + 33554431);
+        card1_card_core1_dda_arc2_mag_y_step = (card1_card_core1_dda_arc2_mag_y + 16777215);
+        card1_card_core1_dda_arc2_neg_mag_y_step = (card1_card_core1_dda_arc2_neg_mag_y + 1);
+    end
+    else begin
+        card1_card_core1_dda_arc2_mag_x_step = (card1_card_core1_dda_arc2_mag_x + 1);
+        card1_card_core1_dda_arc2_neg_mag_x_step = (card1_card_core1_dda_arc2_neg_mag_x + 33554431);
+        card1_card_core1_dda_arc2_mag_y_step = (card1_card_core1_dda_arc2_mag_y + 1);
+        card1_card_core1_dda_arc2_neg_mag_y_step = (card1_card_core1_dda_arc2_neg_mag_y + 33554431);
+    end
+    card1_card_core1_dda_arc2_at_x = (card1_card_core1_dda_arc2_mag_x == card1_card_core1_dda_arc2_target_x);
+    card1_card_core1_dda_arc2_at_y = (card1_card_core1_dda_arc2_mag_y == card1_card_core1_dda_arc2_target_y);
+    card1_card_core1_dda_arc2_near_x = (card1_card_core1_dda_arc2_mag_x_step == card1_card_core1_dda_arc2_target_x);
+    card1_card_core1_dda_arc2_near_y = (card1_card_core1_dda_arc2_mag_y_step == card1_card_core1_dda_arc2_target_y);
+    fill_x = 4'h0;
+    fill_y = 4'h0;
+    if (card1_card_core1_dda_arc2_neg_mag_x[24]) begin
+        fill_x = 15;
+    end
+    if (card1_card_core1_dda_arc2_neg_mag_y[24]) begin
+        fill_y = 15;
+    end
+    if (card1_card_core1_dda_arc2_x_inward) begin
+        card1_card_core1_dda_arc2_delta_x = $signed({fill_x, card1_card_core1_dda_arc2_neg_mag_x, 1'b1});
+        card1_card_core1_dda_arc2_delta_y = $signed({5'h0, card1_card_core1_dda_arc2_mag_y, 1'b1});
+    end
+    else begin
+        card1_card_core1_dda_arc2_delta_x = $signed({5'h0, card1_card_core1_dda_arc2_mag_x, 1'b1});
+        card1_card_core1_dda_arc2_delta_y = $signed({fill_y, card1_card_core1_dda_arc2_neg_mag_y, 1'b1});
     end
     if (card1_card_core1_dda_arc2_is_line) begin
         card1_card_core1_dda_arc2_integrand_x = card1_card_core1_dda_arc2_target_x;
@@ -4304,72 +4734,59 @@ always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_quadrant, ca
 end
 
 
-always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_x_down, card1_card_core1_dda_arc2_variant, card1_card_core1_dda_arc2_delta_x, card1_card_core1_dda_arc2_delta_y, card1_card_core1_dda_arc2_crossings, card1_card_core1_dda_arc2_xe, card1_card_core1_dda_arc2_integrand_x, card1_card_core1_dda_arc2_ye, card1_card_core1_dda_arc2_quadrant, card1_card_core1_dda_arc2_integrand_y, card1_card_core1_dda_arc2_y_down, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_radial_error, card1_card_core1_dda_arc2_count_y, card1_card_core1_dda_arc2_threshold, card1_card_core1_dda_arc2_count_x, card1_card_core1_dda_arc2_acc_x, card1_card_core1_dda_arc2_mag_x, card1_card_core1_dda_arc2_ccw, card1_card_core1_dda_arc2_acc_y) begin: card1_card_core1_dda_arc2_iteration_logic
-    reg x_in;
+always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_neg_mag_y_step, card1_card_core1_dda_arc2_variant, card1_card_core1_dda_arc2_mag_x_step, card1_card_core1_dda_arc2_delta_x, card1_card_core1_dda_arc2_delta_y, card1_card_core1_dda_arc2_x_inward, card1_card_core1_dda_arc2_crossings, card1_card_core1_dda_arc2_mag_y_step, card1_card_core1_dda_arc2_xe, card1_card_core1_dda_arc2_at_x, card1_card_core1_dda_arc2_near_y, card1_card_core1_dda_arc2_integrand_x, card1_card_core1_dda_arc2_near_x, card1_card_core1_dda_arc2_ye, card1_card_core1_dda_arc2_quadrant, card1_card_core1_dda_arc2_neg_mag_y, card1_card_core1_dda_arc2_integrand_y, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_radial_error, card1_card_core1_dda_arc2_count_y, card1_card_core1_dda_arc2_threshold, card1_card_core1_dda_arc2_count_x, card1_card_core1_dda_arc2_neg_mag_x_step, card1_card_core1_dda_arc2_acc_x, card1_card_core1_dda_arc2_at_y, card1_card_core1_dda_arc2_mag_x, card1_card_core1_dda_arc2_acc_y, card1_card_core1_dda_arc2_neg_mag_x) begin: card1_card_core1_dda_arc2_iteration_logic
     reg x_right;
     reg y_up;
     reg [9-1:0] to_mag;
     reg signed [33-1:0] sum_x;
-    reg signed [33-1:0] sum_x_up;
-    reg signed [33-1:0] sum_x_down;
+    reg signed [33-1:0] sum_x_step;
     reg signed [33-1:0] sum_y;
     reg [32-1:0] thr_low;
     reg signed [33-1:0] ahead_x;
     reg signed [33-1:0] ahead_y;
     reg [32-1:0] less_x;
     reg [32-1:0] less_y;
-    reg [24-1:0] mag_y_up;
-    reg [24-1:0] mag_y_down;
     reg signed [30-1:0] cand_d;
     reg signed [30-1:0] cand_x;
     reg signed [30-1:0] cand_y;
-    reg signed [31-1:0] delta_xy;
-    reg signed [31-1:0] both_dx;
-    reg signed [31-1:0] both_dy;
-    reg signed [31-1:0] both_xy;
-    reg signed [31-1:0] gap_xy;
+    reg signed [30-1:0] delta_xy;
+    reg signed [31-1:0] half_xy;
+    reg sum_le_0;
+    reg sum_lt_0;
     reg d_le_x;
     reg d_le_y;
     reg x_le_y;
     reg over_x;
-    reg over_x_up;
-    reg over_x_down;
+    reg over_x_step;
     reg over_y;
     reg go_x;
     reg go_y;
-    x_in = (0 != 0);
     x_right = (0 != 0);
     y_up = (0 != 0);
     to_mag = 9'h0;
     sum_x = 0;
-    sum_x_up = 0;
-    sum_x_down = 0;
+    sum_x_step = 0;
     sum_y = 0;
     thr_low = 32'h0;
     ahead_x = 0;
     ahead_y = 0;
     less_x = 32'h0;
     less_y = 32'h0;
-    mag_y_up = 24'h0;
-    mag_y_down = 24'h0;
     cand_d = 0;
     cand_x = 0;
     cand_y = 0;
     delta_xy = 0;
-    both_dx = 0;
-    both_dy = 0;
-    both_xy = 0;
-    gap_xy = 0;
+    half_xy = 0;
+    sum_le_0 = (0 != 0);
+    sum_lt_0 = (0 != 0);
     d_le_x = (0 != 0);
     d_le_y = (0 != 0);
     x_le_y = (0 != 0);
     over_x = (0 != 0);
-    over_x_up = (0 != 0);
-    over_x_down = (0 != 0);
+    over_x_step = (0 != 0);
     over_y = (0 != 0);
     go_x = (0 != 0);
     go_y = (0 != 0);
-    x_in = (card1_card_core1_dda_arc2_quadrant[0] != card1_card_core1_dda_arc2_ccw);
     x_right = (card1_card_core1_dda_arc2_quadrant[0] == card1_card_core1_dda_arc2_quadrant[1]);
     y_up = (!card1_card_core1_dda_arc2_quadrant[1]);
     if (card1_card_core1_dda_arc2_is_line) begin
@@ -4377,47 +4794,36 @@ always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_x_down, card
         card1_card_core1_dda_arc2_it_dir_y = (card1_card_core1_dda_arc2_ye >= 0);
     end
     else begin
-        card1_card_core1_dda_arc2_it_dir_x = (x_right != x_in);
-        card1_card_core1_dda_arc2_it_dir_y = (y_up == x_in);
+        card1_card_core1_dda_arc2_it_dir_x = (x_right != card1_card_core1_dda_arc2_x_inward);
+        card1_card_core1_dda_arc2_it_dir_y = (y_up == card1_card_core1_dda_arc2_x_inward);
     end
     to_mag = 0;
     thr_low = {3'h0, card1_card_core1_dda_arc2_threshold};
     sum_y = ($signed({card1_card_core1_dda_arc2_acc_y[(32 - 1)], card1_card_core1_dda_arc2_acc_y}) + $signed({to_mag, card1_card_core1_dda_arc2_integrand_y}));
-    mag_y_up = (card1_card_core1_dda_arc2_mag_y + 1);
-    mag_y_down = (card1_card_core1_dda_arc2_mag_y - 1);
     sum_x = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({to_mag, card1_card_core1_dda_arc2_integrand_x}));
-    sum_x_up = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({to_mag, mag_y_up}));
-    sum_x_down = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({to_mag, mag_y_down}));
+    sum_x_step = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({to_mag, card1_card_core1_dda_arc2_mag_y_step}));
     over_x = (!sum_x[32]);
-    over_x_up = (!sum_x_up[32]);
-    over_x_down = (!sum_x_down[32]);
+    over_x_step = (!sum_x_step[32]);
     over_y = (!sum_y[32]);
     if (((!card1_card_core1_dda_arc2_is_line) && (card1_card_core1_dda_arc2_variant == 0) && over_y)) begin
-        if (x_in) begin
-            sum_x = sum_x_up;
-            over_x = over_x_up;
-        end
-        else begin
-            sum_x = sum_x_down;
-            over_x = over_x_down;
-        end
+        sum_x = sum_x_step;
+        over_x = over_x_step;
     end
-    delta_xy = ($signed({card1_card_core1_dda_arc2_delta_x[(30 - 1)], card1_card_core1_dda_arc2_delta_x}) + $signed({card1_card_core1_dda_arc2_delta_y[(30 - 1)], card1_card_core1_dda_arc2_delta_y}));
+    delta_xy = (card1_card_core1_dda_arc2_delta_x + card1_card_core1_dda_arc2_delta_y);
     cand_x = (card1_card_core1_dda_arc2_radial_error + card1_card_core1_dda_arc2_delta_x);
     cand_y = (card1_card_core1_dda_arc2_radial_error + card1_card_core1_dda_arc2_delta_y);
-    cand_d = (card1_card_core1_dda_arc2_radial_error + $signed(delta_xy[30-1:0]));
-    both_dx = ($signed({cand_x[30-1:0], 1'b0}) + $signed({card1_card_core1_dda_arc2_delta_y[(30 - 1)], card1_card_core1_dda_arc2_delta_y}));
-    both_dy = ($signed({cand_y[30-1:0], 1'b0}) + $signed({card1_card_core1_dda_arc2_delta_x[(30 - 1)], card1_card_core1_dda_arc2_delta_x}));
-    both_xy = ($signed({card1_card_core1_dda_arc2_radial_error[30-1:0], 1'b0}) + delta_xy);
-    gap_xy = ($signed({card1_card_core1_dda_arc2_delta_x[(30 - 1)], card1_card_core1_dda_arc2_delta_x}) - $signed({card1_card_core1_dda_arc2_delta_y[(30 - 1)], card1_card_core1_dda_arc2_delta_y}));
-    d_le_x = ((card1_card_core1_dda_arc2_delta_y == 0) || (both_dx == 0) || (card1_card_core1_dda_arc2_delta_y[(30 - 1)] != both_dx[30]));
-    d_le_y = ((card1_card_core1_dda_arc2_delta_x == 0) || (both_dy == 0) || (card1_card_core1_dda_arc2_delta_x[(30 - 1)] != both_dy[30]));
-    x_le_y = ((gap_xy == 0) || (both_xy == 0) || (gap_xy[30] != both_xy[30]));
+    cand_d = (card1_card_core1_dda_arc2_radial_error + delta_xy);
+    half_xy = ($signed({card1_card_core1_dda_arc2_delta_x[(30 - 1)], card1_card_core1_dda_arc2_delta_x[(30 - 1)], card1_card_core1_dda_arc2_delta_x[30-1:1]}) + $signed({card1_card_core1_dda_arc2_delta_y[(30 - 1)], card1_card_core1_dda_arc2_delta_y[(30 - 1)], card1_card_core1_dda_arc2_delta_y[30-1:1]}));
+    sum_le_0 = (($signed({card1_card_core1_dda_arc2_radial_error[(30 - 1)], card1_card_core1_dda_arc2_radial_error}) + half_xy) < 0);
+    sum_lt_0 = ((($signed({card1_card_core1_dda_arc2_radial_error[(30 - 1)], card1_card_core1_dda_arc2_radial_error}) + half_xy) + 1) < 0);
+    d_le_x = ((card1_card_core1_dda_arc2_delta_y < 0) != (($signed({cand_x[30-1:0], 1'b0}) + $signed({card1_card_core1_dda_arc2_delta_y[(30 - 1)], card1_card_core1_dda_arc2_delta_y})) < 0));
+    d_le_y = ((card1_card_core1_dda_arc2_delta_x < 0) != (($signed({cand_y[30-1:0], 1'b0}) + $signed({card1_card_core1_dda_arc2_delta_x[(30 - 1)], card1_card_core1_dda_arc2_delta_x})) < 0));
+    x_le_y = ((card1_card_core1_dda_arc2_delta_x == card1_card_core1_dda_arc2_delta_y) || ((card1_card_core1_dda_arc2_delta_x > card1_card_core1_dda_arc2_delta_y) && sum_le_0) || ((card1_card_core1_dda_arc2_delta_x < card1_card_core1_dda_arc2_delta_y) && (!sum_lt_0)));
     go_x = over_x;
     go_y = over_y;
     if (card1_card_core1_dda_arc2_is_line) begin
-        go_x = (over_x && (card1_card_core1_dda_arc2_count_x != 0));
-        go_y = (over_y && (card1_card_core1_dda_arc2_count_y != 0));
+        go_x = (over_x && (!card1_card_core1_dda_arc2_at_x));
+        go_y = (over_y && (!card1_card_core1_dda_arc2_at_y));
     end
     else if ((card1_card_core1_dda_arc2_variant == 2)) begin
         ahead_x = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({to_mag[(32 - 24)-1:0], card1_card_core1_dda_arc2_mag_y, 1'b0}));
@@ -4445,49 +4851,40 @@ always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_x_down, card
             end
         end
     end
-    if (((!card1_card_core1_dda_arc2_is_line) && ((card1_card_core1_dda_arc2_count_x == 0) || (card1_card_core1_dda_arc2_count_y == 0)))) begin
-        go_x = (card1_card_core1_dda_arc2_count_x != 0);
-        go_y = (card1_card_core1_dda_arc2_count_y != 0);
-        card1_card_core1_dda_arc2_it_acc_x = card1_card_core1_dda_arc2_acc_x;
-        card1_card_core1_dda_arc2_it_acc_y = card1_card_core1_dda_arc2_acc_y;
+    card1_card_core1_dda_arc2_it_tail = ((!card1_card_core1_dda_arc2_is_line) && ((card1_card_core1_dda_arc2_count_x == 0) || (card1_card_core1_dda_arc2_count_y == 0)));
+    if (((!card1_card_core1_dda_arc2_is_line) && (card1_card_core1_dda_arc2_at_x || card1_card_core1_dda_arc2_at_y))) begin
+        go_x = (!card1_card_core1_dda_arc2_at_x);
+        go_y = (!card1_card_core1_dda_arc2_at_y);
     end
-    else begin
-        if (((!sum_x[32]) && sum_x[(32 - 1)])) begin
-            sum_x = 33'h7fffffff;
-        end
-        if (((!sum_y[32]) && sum_y[(32 - 1)])) begin
-            sum_y = 33'h7fffffff;
-        end
-        less_x = sum_x[32-1:0];
-        if (go_x) begin
-            less_x = (sum_x[32-1:0] - thr_low);
-        end
-        less_y = sum_y[32-1:0];
-        if (go_y) begin
-            less_y = (sum_y[32-1:0] - thr_low);
-        end
-        card1_card_core1_dda_arc2_it_acc_x = $signed(less_x);
-        card1_card_core1_dda_arc2_it_acc_y = $signed(less_y);
+    if (((!sum_x[32]) && sum_x[(32 - 1)])) begin
+        sum_x = 33'h7fffffff;
     end
+    if (((!sum_y[32]) && sum_y[(32 - 1)])) begin
+        sum_y = 33'h7fffffff;
+    end
+    less_x = sum_x[32-1:0];
+    if (go_x) begin
+        less_x = (sum_x[32-1:0] - thr_low);
+    end
+    less_y = sum_y[32-1:0];
+    if (go_y) begin
+        less_y = (sum_y[32-1:0] - thr_low);
+    end
+    card1_card_core1_dda_arc2_it_acc_x = $signed(less_x);
+    card1_card_core1_dda_arc2_it_acc_y = $signed(less_y);
     card1_card_core1_dda_arc2_it_step_x = go_x;
     card1_card_core1_dda_arc2_it_step_y = go_y;
     card1_card_core1_dda_arc2_it_mag_x = card1_card_core1_dda_arc2_mag_x;
     card1_card_core1_dda_arc2_it_mag_y = card1_card_core1_dda_arc2_mag_y;
+    card1_card_core1_dda_arc2_it_neg_mag_x = card1_card_core1_dda_arc2_neg_mag_x;
+    card1_card_core1_dda_arc2_it_neg_mag_y = card1_card_core1_dda_arc2_neg_mag_y;
     if (go_x) begin
-        if (card1_card_core1_dda_arc2_x_down) begin
-            card1_card_core1_dda_arc2_it_mag_x = (card1_card_core1_dda_arc2_mag_x - 1);
-        end
-        else begin
-            card1_card_core1_dda_arc2_it_mag_x = (card1_card_core1_dda_arc2_mag_x + 1);
-        end
+        card1_card_core1_dda_arc2_it_mag_x = card1_card_core1_dda_arc2_mag_x_step;
+        card1_card_core1_dda_arc2_it_neg_mag_x = card1_card_core1_dda_arc2_neg_mag_x_step;
     end
     if (go_y) begin
-        if (card1_card_core1_dda_arc2_y_down) begin
-            card1_card_core1_dda_arc2_it_mag_y = mag_y_down;
-        end
-        else begin
-            card1_card_core1_dda_arc2_it_mag_y = mag_y_up;
-        end
+        card1_card_core1_dda_arc2_it_mag_y = card1_card_core1_dda_arc2_mag_y_step;
+        card1_card_core1_dda_arc2_it_neg_mag_y = card1_card_core1_dda_arc2_neg_mag_y_step;
     end
     if ((go_x && go_y)) begin
         card1_card_core1_dda_arc2_it_error = cand_d;
@@ -4503,7 +4900,7 @@ always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_x_down, card
     end
     card1_card_core1_dda_arc2_it_finished = 1'b0;
     card1_card_core1_dda_arc2_it_next_piece = 1'b0;
-    if (((((card1_card_core1_dda_arc2_count_x == 1) && go_x) || (card1_card_core1_dda_arc2_count_x == 0)) && (((card1_card_core1_dda_arc2_count_y == 1) && go_y) || (card1_card_core1_dda_arc2_count_y == 0)))) begin
+    if ((((card1_card_core1_dda_arc2_near_x && go_x) || card1_card_core1_dda_arc2_at_x) && ((card1_card_core1_dda_arc2_near_y && go_y) || card1_card_core1_dda_arc2_at_y))) begin
         if ((card1_card_core1_dda_arc2_is_line || (card1_card_core1_dda_arc2_crossings == 0))) begin
             card1_card_core1_dda_arc2_it_finished = 1'b1;
         end
@@ -4516,26 +4913,25 @@ end
 
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_control
     reg [27-1:0] trial_rem;
-    reg [27-1:0] trial;
+    reg [28-1:0] trial_diff;
+    reg round_up;
     if (card1_card_core1_dda_reset == 0) begin
         card1_card_core1_dda_arc2_radius_length <= 0;
         card1_card_core1_dda_arc2_mag_y <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
         card1_card_core1_dda_arc2_acc_bits <= 0;
-        card1_card_core1_dda_arc2_delta_turn <= 0;
         card1_card_core1_dda_arc2_gap <= 0;
         card1_card_core1_regs_fifo2_dda_busy <= 0;
         card1_card_core1_dda_arc2_variant <= 0;
         card1_card_core1_dda_arc2_root_all_ones <= 0;
         card1_card_core1_regs_fifo2_steps_step_x <= 0;
-        card1_card_core1_dda_arc2_delta_x <= 0;
-        card1_card_core1_dda_arc2_delta_y <= 0;
         card1_card_core1_dda_arc2_multiplicand <= 0;
         card1_card_core1_dda_arc2_target_y <= 0;
+        card1_card_core1_dda_arc2_x_inward <= 0;
         card1_card_core1_dda_arc2_crossings <= 0;
-        card1_card_core1_dda_arc2_target_x <= 0;
         card1_card_core1_dda_arc2_radius_q <= 0;
         card1_card_core1_dda_arc2_end_reaches_low <= 0;
+        card1_card_core1_dda_arc2_target_x <= 0;
         card1_card_core1_dda_arc2_root_length <= 0;
         card1_card_core1_dda_arc2_mac_op <= 0;
         card1_card_core1_dda_arc2_state <= 3'b000;
@@ -4549,6 +4945,7 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_dda_arc2_radicand <= 0;
         card1_card_core1_dda_arc2_ye <= 0;
         card1_card_core1_dda_arc2_quadrant <= 0;
+        card1_card_core1_dda_arc2_neg_mag_y <= 0;
         card1_card_core1_regs_fifo2_steps_dir_x <= 0;
         card1_card_core1_regs_fifo2_steps_dir_y <= 0;
         card1_card_core1_dda_arc2_xs <= 0;
@@ -4564,238 +4961,206 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_dda_arc2_mag_x <= 0;
         card1_card_core1_dda_arc2_ccw <= 0;
         card1_card_core1_dda_arc2_acc_y <= 0;
+        card1_card_core1_dda_arc2_neg_mag_x <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_steps_step_x <= 1'b0;
         card1_card_core1_regs_fifo2_steps_step_y <= 1'b0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b0;
-        case (card1_card_core1_dda_arc2_state)
-            3'b000: begin
-                if (card1_card_core1_regs_fifo2_sequencer2_dda_start) begin
-                    card1_card_core1_regs_fifo2_dda_busy <= 1'b1;
-                    card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b0;
-                    card1_card_core1_dda_arc2_is_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
-                    card1_card_core1_dda_arc2_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
-                    card1_card_core1_dda_arc2_lambda_shift <= card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift;
-                    card1_card_core1_dda_arc2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
-                    card1_card_core1_dda_arc2_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
-                    card1_card_core1_dda_arc2_xs <= card1_card_core1_regs_fifo2_sequencer2_dda_xs;
-                    card1_card_core1_dda_arc2_ys <= card1_card_core1_regs_fifo2_sequencer2_dda_ys;
-                    card1_card_core1_dda_arc2_xe <= card1_card_core1_regs_fifo2_sequencer2_dda_xe;
-                    card1_card_core1_dda_arc2_ye <= card1_card_core1_regs_fifo2_sequencer2_dda_ye;
-                    card1_card_core1_dda_arc2_gap <= (-1);
-                    card1_card_core1_dda_arc2_mac_op <= 0;
-                    card1_card_core1_dda_arc2_mac_bit <= 0;
-                    card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_cmd_mag_xs};
-                    card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_cmd_mag_xs;
-                    if (card1_card_core1_regs_fifo2_sequencer2_dda_line) begin
-                        card1_card_core1_dda_arc2_state <= 3'b100;
-                    end
-                    else begin
-                        card1_card_core1_dda_arc2_state <= 3'b001;
-                    end
-                end
-            end
-            3'b001: begin
-                if (card1_card_core1_dda_arc2_multiplier[0]) begin
-                    card1_card_core1_dda_arc2_gap <= card1_card_core1_dda_arc2_gap_sum;
-                end
-                if (($signed({1'b0, card1_card_core1_dda_arc2_mac_bit}) == (24 - 1))) begin
-                    card1_card_core1_dda_arc2_mac_bit <= 0;
-                    card1_card_core1_dda_arc2_mac_op <= (card1_card_core1_dda_arc2_mac_op + 1);
-                    case (card1_card_core1_dda_arc2_mac_op)
-                        'h0: begin
-                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ys};
-                            card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_ys;
-                        end
-                        'h1: begin
-                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_xe};
-                            card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_xe;
-                            if (card1_card_core1_dda_arc2_multiplier[0]) begin
-                                card1_card_core1_dda_arc2_radicand <= (~card1_card_core1_dda_arc2_gap_sum[(2 * 24)-1:0]);
-                            end
-                            else begin
-                                card1_card_core1_dda_arc2_radicand <= (~card1_card_core1_dda_arc2_gap[(2 * 24)-1:0]);
-                            end
-                        end
-                        'h2: begin
-                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ye};
-                            card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_ye;
-                        end
-                        default: begin
-                            if ((card1_card_core1_dda_arc2_mag_xs > card1_card_core1_dda_arc2_mag_ys)) begin
-                                card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_xs};
-                            end
-                            else begin
-                                card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ys};
-                            end
-                            card1_card_core1_dda_arc2_remainder <= 0;
-                            card1_card_core1_dda_arc2_root <= 0;
-                            card1_card_core1_dda_arc2_root_bit <= 0;
-                            card1_card_core1_dda_arc2_root_length <= 0;
-                            card1_card_core1_dda_arc2_root_all_ones <= 1'b1;
-                            card1_card_core1_dda_arc2_state <= 3'b010;
-                        end
-                    endcase
+        if ((card1_card_core1_dda_arc2_state == 3'b000)) begin
+            if (card1_card_core1_regs_fifo2_sequencer2_dda_start) begin
+                card1_card_core1_regs_fifo2_dda_busy <= 1'b1;
+                card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b0;
+                card1_card_core1_dda_arc2_is_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
+                card1_card_core1_dda_arc2_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
+                card1_card_core1_dda_arc2_lambda_shift <= card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift;
+                card1_card_core1_dda_arc2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
+                card1_card_core1_dda_arc2_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
+                card1_card_core1_dda_arc2_xs <= card1_card_core1_regs_fifo2_sequencer2_dda_xs;
+                card1_card_core1_dda_arc2_ys <= card1_card_core1_regs_fifo2_sequencer2_dda_ys;
+                card1_card_core1_dda_arc2_xe <= card1_card_core1_regs_fifo2_sequencer2_dda_xe;
+                card1_card_core1_dda_arc2_ye <= card1_card_core1_regs_fifo2_sequencer2_dda_ye;
+                card1_card_core1_dda_arc2_gap <= (-1);
+                card1_card_core1_dda_arc2_mac_op <= 0;
+                card1_card_core1_dda_arc2_mac_bit <= 0;
+                card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_cmd_mag_xs};
+                card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_cmd_mag_xs;
+                if (card1_card_core1_regs_fifo2_sequencer2_dda_line) begin
+                    card1_card_core1_dda_arc2_state <= 3'b100;
                 end
                 else begin
-                    card1_card_core1_dda_arc2_mac_bit <= (card1_card_core1_dda_arc2_mac_bit + 1);
-                    card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
-                    card1_card_core1_dda_arc2_multiplier <= (card1_card_core1_dda_arc2_multiplier >>> 1);
+                    card1_card_core1_dda_arc2_state <= 3'b001;
                 end
             end
-            3'b010: begin
-                trial_rem = 27'h0;
-                trial = 27'h0;
-                trial_rem = {card1_card_core1_dda_arc2_remainder[(24 + 1)-1:0], card1_card_core1_dda_arc2_radicand[(2 * 24)-1:((2 * 24) - 2)]};
-                trial = {2'h0, card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 2'h1};
-                if ((trial_rem >= trial)) begin
-                    card1_card_core1_dda_arc2_remainder <= (trial_rem - trial);
-                    card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b1};
-                end
-                else begin
-                    card1_card_core1_dda_arc2_remainder <= trial_rem;
-                    card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b0};
-                    if ((card1_card_core1_dda_arc2_root != 0)) begin
-                        card1_card_core1_dda_arc2_root_all_ones <= 1'b0;
-                    end
-                end
-                if (((card1_card_core1_dda_arc2_root != 0) || (trial_rem >= trial))) begin
-                    card1_card_core1_dda_arc2_root_length <= (card1_card_core1_dda_arc2_root_length + 1);
-                end
-                card1_card_core1_dda_arc2_radicand <= (card1_card_core1_dda_arc2_radicand << 2);
-                case (card1_card_core1_dda_arc2_root_bit)
+        end
+        else if ((card1_card_core1_dda_arc2_state == 3'b001)) begin
+            if (card1_card_core1_dda_arc2_multiplier[0]) begin
+                card1_card_core1_dda_arc2_gap <= card1_card_core1_dda_arc2_gap_sum;
+            end
+            if (((card1_card_core1_dda_arc2_mac_op == 2) && (card1_card_core1_dda_arc2_mac_bit == 0))) begin
+                card1_card_core1_dda_arc2_radicand <= (~card1_card_core1_dda_arc2_gap[(2 * 24)-1:0]);
+            end
+            if (($signed({1'b0, card1_card_core1_dda_arc2_mac_bit}) == (24 - 1))) begin
+                card1_card_core1_dda_arc2_mac_bit <= 0;
+                card1_card_core1_dda_arc2_mac_op <= (card1_card_core1_dda_arc2_mac_op + 1);
+                case (card1_card_core1_dda_arc2_mac_op)
                     'h0: begin
-                        card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
+                        card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ys};
+                        card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_ys;
                     end
                     'h1: begin
-                        card1_card_core1_dda_arc2_gap <= card1_card_core1_dda_arc2_gap_sum;
-                        card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
+                        card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_xe};
+                        card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_xe;
                     end
                     'h2: begin
-                        card1_card_core1_dda_arc2_end_reaches_low <= (!card1_card_core1_dda_arc2_gap[(50 - 1)]);
-                        card1_card_core1_dda_arc2_gap <= card1_card_core1_dda_arc2_gap_sum;
+                        card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ye};
+                        card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_ye;
                     end
-                    'h3: begin
-                        card1_card_core1_dda_arc2_end_beyond_high <= (!card1_card_core1_dda_arc2_gap[(50 - 1)]);
+                    default: begin
+                        if ((card1_card_core1_dda_arc2_mag_xs > card1_card_core1_dda_arc2_mag_ys)) begin
+                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_xs};
+                        end
+                        else begin
+                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ys};
+                        end
+                        card1_card_core1_dda_arc2_remainder <= 0;
+                        card1_card_core1_dda_arc2_root <= 0;
+                        card1_card_core1_dda_arc2_root_bit <= 0;
+                        card1_card_core1_dda_arc2_root_length <= 0;
+                        card1_card_core1_dda_arc2_root_all_ones <= 1'b1;
+                        card1_card_core1_dda_arc2_state <= 3'b010;
                     end
                 endcase
-                if (($signed({1'b0, card1_card_core1_dda_arc2_root_bit}) == (24 - 1))) begin
-                    card1_card_core1_dda_arc2_state <= 3'b011;
-                end
-                else begin
-                    card1_card_core1_dda_arc2_root_bit <= (card1_card_core1_dda_arc2_root_bit + 1);
+            end
+            else begin
+                card1_card_core1_dda_arc2_mac_bit <= (card1_card_core1_dda_arc2_mac_bit + 1);
+                card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
+                card1_card_core1_dda_arc2_multiplier <= (card1_card_core1_dda_arc2_multiplier >>> 1);
+            end
+        end
+        else if ((card1_card_core1_dda_arc2_state == 3'b010)) begin
+            trial_rem = 27'h0;
+            trial_diff = 28'h0;
+            trial_rem = {card1_card_core1_dda_arc2_remainder[(24 + 1)-1:0], card1_card_core1_dda_arc2_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+            trial_diff = ({1'b0, trial_rem} - {3'h0, card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 2'h1});
+            if ((!trial_diff[(24 + 3)])) begin
+                card1_card_core1_dda_arc2_remainder <= trial_diff[(24 + 3)-1:0];
+                card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b1};
+            end
+            else begin
+                card1_card_core1_dda_arc2_remainder <= trial_rem;
+                card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b0};
+                if ((card1_card_core1_dda_arc2_root != 0)) begin
+                    card1_card_core1_dda_arc2_root_all_ones <= 1'b0;
                 end
             end
-            3'b011: begin
-                if ((card1_card_core1_dda_arc2_remainder > {3'h0, card1_card_core1_dda_arc2_root})) begin
-                    card1_card_core1_dda_arc2_radius_q <= ({1'b0, card1_card_core1_dda_arc2_root} + 1);
-                    if (card1_card_core1_dda_arc2_root_all_ones) begin
-                        card1_card_core1_dda_arc2_radius_length <= (card1_card_core1_dda_arc2_root_length + 1);
-                    end
-                    else begin
-                        card1_card_core1_dda_arc2_radius_length <= card1_card_core1_dda_arc2_root_length;
-                    end
+            if (((card1_card_core1_dda_arc2_root != 0) || (!trial_diff[(24 + 3)]))) begin
+                card1_card_core1_dda_arc2_root_length <= (card1_card_core1_dda_arc2_root_length + 1);
+            end
+            card1_card_core1_dda_arc2_radicand <= (card1_card_core1_dda_arc2_radicand << 2);
+            case (card1_card_core1_dda_arc2_root_bit)
+                'h0: begin
+                    card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
+                end
+                'h1: begin
+                    card1_card_core1_dda_arc2_gap <= card1_card_core1_dda_arc2_gap_sum;
+                    card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
+                end
+                'h2: begin
+                    card1_card_core1_dda_arc2_end_reaches_low <= (!card1_card_core1_dda_arc2_gap[(50 - 1)]);
+                    card1_card_core1_dda_arc2_gap <= card1_card_core1_dda_arc2_gap_sum;
+                end
+                'h3: begin
+                    card1_card_core1_dda_arc2_end_beyond_high <= (!card1_card_core1_dda_arc2_gap[(50 - 1)]);
+                end
+            endcase
+            if (($signed({1'b0, card1_card_core1_dda_arc2_root_bit}) == (24 - 1))) begin
+                card1_card_core1_dda_arc2_state <= 3'b011;
+            end
+            else begin
+                card1_card_core1_dda_arc2_root_bit <= (card1_card_core1_dda_arc2_root_bit + 1);
+            end
+        end
+        else if ((card1_card_core1_dda_arc2_state == 3'b011)) begin
+            round_up = (card1_card_core1_dda_arc2_remainder > {3'h0, card1_card_core1_dda_arc2_root});
+            card1_card_core1_dda_arc2_radius_q <= ({1'b0, card1_card_core1_dda_arc2_root} + {24'h0, round_up});
+            if ((round_up && card1_card_core1_dda_arc2_root_all_ones)) begin
+                card1_card_core1_dda_arc2_radius_length <= (card1_card_core1_dda_arc2_root_length + 1);
+            end
+            else begin
+                card1_card_core1_dda_arc2_radius_length <= card1_card_core1_dda_arc2_root_length;
+            end
+            card1_card_core1_dda_arc2_state <= 3'b100;
+        end
+        else if ((card1_card_core1_dda_arc2_state == 3'b100)) begin
+            card1_card_core1_dda_arc2_acc_x <= card1_card_core1_dda_arc2_chk_acc_init;
+            card1_card_core1_dda_arc2_acc_y <= card1_card_core1_dda_arc2_chk_acc_init;
+            card1_card_core1_dda_arc2_threshold <= card1_card_core1_dda_arc2_chk_threshold;
+            card1_card_core1_dda_arc2_radial_error <= 0;
+            card1_card_core1_dda_arc2_quadrant <= card1_card_core1_dda_arc2_chk_quadrant;
+            card1_card_core1_dda_arc2_x_inward <= (card1_card_core1_dda_arc2_chk_quadrant[0] != card1_card_core1_dda_arc2_ccw);
+            card1_card_core1_dda_arc2_crossings <= card1_card_core1_dda_arc2_chk_crossings;
+            card1_card_core1_dda_arc2_mag_x <= card1_card_core1_dda_arc2_chk_mag_x;
+            card1_card_core1_dda_arc2_mag_y <= card1_card_core1_dda_arc2_chk_mag_y;
+            card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_chk_target_x;
+            card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_chk_target_y;
+            card1_card_core1_dda_arc2_radius <= card1_card_core1_dda_arc2_chk_radius;
+            card1_card_core1_dda_arc2_neg_mag_x <= card1_card_core1_dda_arc2_chk_neg_mag_x;
+            card1_card_core1_dda_arc2_neg_mag_y <= card1_card_core1_dda_arc2_chk_neg_mag_y;
+            card1_card_core1_dda_arc2_state <= 3'b101;
+            if ((card1_card_core1_dda_arc2_is_line && (card1_card_core1_dda_arc2_mag_xe == 0) && (card1_card_core1_dda_arc2_mag_ye == 0))) begin
+                card1_card_core1_regs_fifo2_dda_busy <= 1'b0;
+                card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
+                card1_card_core1_dda_arc2_state <= 3'b000;
+            end
+            else if (((!card1_card_core1_dda_arc2_is_line) && card1_card_core1_dda_arc2_chk_error)) begin
+                card1_card_core1_regs_fifo2_dda_busy <= 1'b0;
+                card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b1;
+                card1_card_core1_dda_arc2_state <= 3'b000;
+            end
+        end
+        else if (card1_card_core1_regs_fifo2_dda_advance) begin
+            card1_card_core1_regs_fifo2_steps_step_x <= card1_card_core1_dda_arc2_it_step_x;
+            card1_card_core1_regs_fifo2_steps_step_y <= card1_card_core1_dda_arc2_it_step_y;
+            card1_card_core1_regs_fifo2_steps_dir_x <= card1_card_core1_dda_arc2_it_dir_x;
+            card1_card_core1_regs_fifo2_steps_dir_y <= card1_card_core1_dda_arc2_it_dir_y;
+            if ((!card1_card_core1_dda_arc2_it_tail)) begin
+                card1_card_core1_dda_arc2_acc_x <= card1_card_core1_dda_arc2_it_acc_x;
+                card1_card_core1_dda_arc2_acc_y <= card1_card_core1_dda_arc2_it_acc_y;
+            end
+            card1_card_core1_dda_arc2_mag_x <= card1_card_core1_dda_arc2_it_mag_x;
+            card1_card_core1_dda_arc2_mag_y <= card1_card_core1_dda_arc2_it_mag_y;
+            card1_card_core1_dda_arc2_neg_mag_x <= card1_card_core1_dda_arc2_it_neg_mag_x;
+            card1_card_core1_dda_arc2_neg_mag_y <= card1_card_core1_dda_arc2_it_neg_mag_y;
+            card1_card_core1_dda_arc2_radial_error <= card1_card_core1_dda_arc2_it_error;
+            if (card1_card_core1_dda_arc2_it_finished) begin
+                card1_card_core1_regs_fifo2_dda_busy <= 1'b0;
+                card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
+                card1_card_core1_dda_arc2_state <= 3'b000;
+            end
+            if (card1_card_core1_dda_arc2_it_next_piece) begin
+                card1_card_core1_dda_arc2_x_inward <= (!card1_card_core1_dda_arc2_x_inward);
+                if (card1_card_core1_dda_arc2_x_inward) begin
+                    card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_radius;
+                    card1_card_core1_dda_arc2_target_y <= 0;
                 end
                 else begin
-                    card1_card_core1_dda_arc2_radius_q <= {1'b0, card1_card_core1_dda_arc2_root};
-                    card1_card_core1_dda_arc2_radius_length <= card1_card_core1_dda_arc2_root_length;
+                    card1_card_core1_dda_arc2_target_x <= 0;
+                    card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_radius;
                 end
-                card1_card_core1_dda_arc2_state <= 3'b100;
-            end
-            3'b100: begin
-                card1_card_core1_dda_arc2_acc_x <= card1_card_core1_dda_arc2_chk_acc_init;
-                card1_card_core1_dda_arc2_acc_y <= card1_card_core1_dda_arc2_chk_acc_init;
-                card1_card_core1_dda_arc2_threshold <= card1_card_core1_dda_arc2_chk_threshold;
-                card1_card_core1_dda_arc2_radial_error <= 0;
-                card1_card_core1_dda_arc2_crossings <= 0;
-                card1_card_core1_dda_arc2_quadrant <= 0;
-                card1_card_core1_dda_arc2_state <= 3'b101;
-                if (card1_card_core1_dda_arc2_is_line) begin
-                    card1_card_core1_dda_arc2_mag_x <= 0;
-                    card1_card_core1_dda_arc2_mag_y <= 0;
+                if ((card1_card_core1_dda_arc2_crossings == 1)) begin
                     card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_mag_xe;
                     card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_mag_ye;
-                    if (((card1_card_core1_dda_arc2_mag_xe == 0) && (card1_card_core1_dda_arc2_mag_ye == 0))) begin
-                        card1_card_core1_regs_fifo2_dda_busy <= 1'b0;
-                        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
-                        card1_card_core1_dda_arc2_state <= 3'b000;
-                    end
                 end
-                else if (card1_card_core1_dda_arc2_chk_error) begin
-                    card1_card_core1_regs_fifo2_dda_busy <= 1'b0;
-                    card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b1;
-                    card1_card_core1_dda_arc2_state <= 3'b000;
+                if (card1_card_core1_dda_arc2_ccw) begin
+                    card1_card_core1_dda_arc2_quadrant <= (card1_card_core1_dda_arc2_quadrant + 1);
                 end
                 else begin
-                    card1_card_core1_dda_arc2_quadrant <= card1_card_core1_dda_arc2_chk_quadrant;
-                    card1_card_core1_dda_arc2_crossings <= card1_card_core1_dda_arc2_chk_crossings;
-                    card1_card_core1_dda_arc2_mag_x <= card1_card_core1_dda_arc2_mag_xs;
-                    card1_card_core1_dda_arc2_mag_y <= card1_card_core1_dda_arc2_mag_ys;
-                    card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_chk_target_x;
-                    card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_chk_target_y;
-                    card1_card_core1_dda_arc2_radius <= card1_card_core1_dda_arc2_chk_radius;
-                    card1_card_core1_dda_arc2_delta_x <= card1_card_core1_dda_arc2_chk_delta_x;
-                    card1_card_core1_dda_arc2_delta_y <= card1_card_core1_dda_arc2_chk_delta_y;
-                    card1_card_core1_dda_arc2_delta_turn <= card1_card_core1_dda_arc2_chk_delta_turn;
+                    card1_card_core1_dda_arc2_quadrant <= (card1_card_core1_dda_arc2_quadrant - 1);
                 end
+                card1_card_core1_dda_arc2_crossings <= (card1_card_core1_dda_arc2_crossings - 1);
             end
-            default: begin
-                if (card1_card_core1_regs_fifo2_dda_advance) begin
-                    card1_card_core1_regs_fifo2_steps_step_x <= card1_card_core1_dda_arc2_it_step_x;
-                    card1_card_core1_regs_fifo2_steps_step_y <= card1_card_core1_dda_arc2_it_step_y;
-                    card1_card_core1_regs_fifo2_steps_dir_x <= card1_card_core1_dda_arc2_it_dir_x;
-                    card1_card_core1_regs_fifo2_steps_dir_y <= card1_card_core1_dda_arc2_it_dir_y;
-                    card1_card_core1_dda_arc2_acc_x <= card1_card_core1_dda_arc2_it_acc_x;
-                    card1_card_core1_dda_arc2_acc_y <= card1_card_core1_dda_arc2_it_acc_y;
-                    card1_card_core1_dda_arc2_mag_x <= card1_card_core1_dda_arc2_it_mag_x;
-                    card1_card_core1_dda_arc2_mag_y <= card1_card_core1_dda_arc2_it_mag_y;
-                    card1_card_core1_dda_arc2_radial_error <= card1_card_core1_dda_arc2_it_error;
-                    if (card1_card_core1_dda_arc2_it_finished) begin
-                        card1_card_core1_regs_fifo2_dda_busy <= 1'b0;
-                        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
-                        card1_card_core1_dda_arc2_state <= 3'b000;
-                    end
-                    else if (card1_card_core1_dda_arc2_it_next_piece) begin
-                        if ((card1_card_core1_dda_arc2_quadrant[0] != card1_card_core1_dda_arc2_ccw)) begin
-                            card1_card_core1_dda_arc2_delta_x <= 1;
-                            card1_card_core1_dda_arc2_delta_y <= card1_card_core1_dda_arc2_delta_turn;
-                        end
-                        else begin
-                            card1_card_core1_dda_arc2_delta_x <= card1_card_core1_dda_arc2_delta_turn;
-                            card1_card_core1_dda_arc2_delta_y <= 1;
-                        end
-                        if (card1_card_core1_dda_arc2_ccw) begin
-                            card1_card_core1_dda_arc2_quadrant <= (card1_card_core1_dda_arc2_quadrant + 1);
-                        end
-                        else begin
-                            card1_card_core1_dda_arc2_quadrant <= (card1_card_core1_dda_arc2_quadrant - 1);
-                        end
-                        card1_card_core1_dda_arc2_crossings <= (card1_card_core1_dda_arc2_crossings - 1);
-                        if ((card1_card_core1_dda_arc2_crossings == 1)) begin
-                            card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_mag_xe;
-                            card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_mag_ye;
-                        end
-                        else if ((card1_card_core1_dda_arc2_quadrant[0] != card1_card_core1_dda_arc2_ccw)) begin
-                            card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_radius;
-                            card1_card_core1_dda_arc2_target_y <= 0;
-                        end
-                        else begin
-                            card1_card_core1_dda_arc2_target_x <= 0;
-                            card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_radius;
-                        end
-                    end
-                    else begin
-                        if (card1_card_core1_dda_arc2_it_step_x) begin
-                            card1_card_core1_dda_arc2_delta_x <= (card1_card_core1_dda_arc2_delta_x + 2);
-                        end
-                        if (card1_card_core1_dda_arc2_it_step_y) begin
-                            card1_card_core1_dda_arc2_delta_y <= (card1_card_core1_dda_arc2_delta_y + 2);
-                        end
-                    end
-                end
-            end
-        endcase
+        end
     end
 end
 

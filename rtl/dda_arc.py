@@ -3,15 +3,19 @@
 The golden model is ``sim/dda_model.py``; its docstring and ``docs/dda.md``
 give the algorithm.  The hardware has three parts:
 
-* setup (arcs only): a shift-add unit squares |xs|, |ys|, |xe|, |ye| (one
-  bit per clock, 4 * coord_width clocks), a restoring square root takes the
-  start radius (coord_width clocks, while the end point's radius is checked)
-  and one clock rounds it;
-* check (one clock): validation, quadrants, the axis-crossing count and the
-  per-axis step counts of the first and last quadrant pieces, the
-  accumulator threshold;
-* run: accumulators, magnitudes, radial error term and step counters, all
-  updated by additions only, one iteration per enabled clock.
+* setup (arcs only): one adder-subtractor forms, by shift-add (one bit per
+  clock, 4 * coord_width clocks), gap = xe**2 + ye**2 - xs**2 - ys**2 - 1,
+  whose complement half-way is xs**2 + ys**2, the radicand; a restoring
+  square root takes it (coord_width clocks) while the same adder checks the
+  gap against the end-point limits, and one clock rounds the root to Rq
+  (counting its bit length on the way);
+* check (one clock): validation, quadrants, the axis-crossing count, the
+  per-axis targets of the first quadrant piece, the accumulator threshold
+  and initial load (bit inversions, no subtractor);
+* run: accumulators, magnitudes and the radial error term, all updated by
+  additions only, one iteration per enabled clock.  An axis stops in a
+  piece when its magnitude reaches its target (0 inward, Rq outward, the end
+  point in the last piece), so there are no step counters to precompute.
 """
 from myhdl import Signal, always_comb, always_seq, block, concat, enum, intbv, modbv
 
@@ -73,6 +77,8 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     gap_width = 2 * width + 2
     acc_max = (1 << (acc_width - 1)) - 1
     fill_ones = (1 << (err_width - width - 2)) - 1
+    minus_one = (1 << width) - 1  # -1 in width bits: one adder steps either way
+    minus_one_wide = (1 << (width + 1)) - 1
 
     t_state = enum("S_IDLE", "S_MAC", "S_ROOT", "S_ROUND", "S_CHECK", "S_RUN")
     state = Signal(t_state.S_IDLE)
@@ -107,6 +113,13 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     end_reaches_low = Signal(bool(0))
     end_beyond_high = Signal(bool(0))
 
+    # quadrants and pieces (registered, ahead of the check)
+    geo_quadrant = _unsigned(2)
+    geo_crossings = _unsigned(3)
+    geo_ahead = Signal(bool(0))
+    geo_end_inward = _unsigned(width)
+    geo_centre = Signal(bool(0))
+
     # check results
     chk_error = Signal(bool(0))
     chk_threshold = _unsigned(thr_width)
@@ -114,21 +127,19 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     chk_quadrant = _unsigned(2)
     chk_crossings = _unsigned(3)
     chk_target_x, chk_target_y = _unsigned(width), _unsigned(width)
+    chk_mag_x, chk_mag_y = _unsigned(width), _unsigned(width)
     chk_radius = _unsigned(width)
-    chk_delta_x = _wrapping(err_width)
-    chk_delta_y = _wrapping(err_width)
-    chk_delta_turn = _wrapping(err_width)
+    chk_neg_mag_x, chk_neg_mag_y = Signal(modbv(0)[width + 1:]), Signal(modbv(0)[width + 1:])
 
     # run state
     quadrant = Signal(modbv(0)[2:])
+    x_inward = Signal(bool(0))  # quadrant[0] xor ccw, kept as a register: it selects early
     mag_x, mag_y = _unsigned(width), _unsigned(width)
     acc_x, acc_y = _signed(acc_width), _signed(acc_width)
     radial_error = _wrapping(err_width)
-    # change of x**2 (y**2) on the next step of x (y): 1 - 2|x| inward, 1 + 2|x| outward
-    delta_x = _wrapping(err_width)
-    delta_y = _wrapping(err_width)
-    # 1 - 2 Rq: the delta of the axis that turns inward on a crossing (it is then at Rq)
-    delta_turn = _wrapping(err_width)
+    # -|x|, -|y| (two's complement) beside the magnitudes, so that the change of x**2 on
+    # the next step of x, 1 - 2|x| inward, 1 + 2|x| outward, needs no subtractor
+    neg_mag_x, neg_mag_y = Signal(modbv(0)[width + 1:]), Signal(modbv(0)[width + 1:])
     # each axis stops in the current piece when its magnitude reaches its target:
     # 0 inward and Rq outward, |xe|, |ye| in the last piece; a line counts up to |dx|, |dy|
     target_x, target_y = _unsigned(width), _unsigned(width)
@@ -141,11 +152,18 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     it_dir_x, it_dir_y = Signal(bool(0)), Signal(bool(0))
     it_acc_x, it_acc_y = _signed(acc_width), _signed(acc_width)
     it_mag_x, it_mag_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
+    it_neg_mag_x, it_neg_mag_y = Signal(modbv(0)[width + 1:]), Signal(modbv(0)[width + 1:])
+    delta_x, delta_y = _wrapping(err_width), _wrapping(err_width)
     it_error = _wrapping(err_width)
     it_finished = Signal(bool(0))
     it_next_piece = Signal(bool(0))
-    x_down, y_down = Signal(bool(0)), Signal(bool(0))
+    it_tail = Signal(bool(0))
     count_x, count_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
+    at_x, at_y = Signal(bool(0)), Signal(bool(0))
+    near_x, near_y = Signal(bool(0)), Signal(bool(0))
+    # the magnitudes one step further (inward: -1, outward: +1), one adder each
+    mag_x_step, mag_y_step = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
+    neg_mag_x_step, neg_mag_y_step = Signal(modbv(0)[width + 1:]), Signal(modbv(0)[width + 1:])
     integrand_x, integrand_y = _unsigned(width), _unsigned(width)
 
     @always_comb
@@ -195,17 +213,10 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         total[:] = gap[gap_width:] + operand + carry_in
         gap_sum.next = total.signed()
 
-    @always_comb
-    def check_logic():
-        rq = intbv(0)[width + 1:]
-        exponent = modbv(0)[6:]
-        thr = modbv(0)[thr_width:]
-        thr_less = modbv(0)[thr_width:]
-        one = intbv(1)[thr_width:]
-        below = modbv(0)[acc_width:]
-        half = modbv(0)[acc_width:]
-        major = intbv(0)[width:]
-        major_less = modbv(0)[width:]
+    @always_seq(clock.posedge, reset=reset)
+    def geometry():
+        # quadrants and pieces from the latched command alone, registered on every clock
+        # (valid from the second setup clock on: ahead of the check, off its path)
         q_s = intbv(0)[2:]
         q_e = intbv(0)[2:]
         turns = intbv(0)[3:]
@@ -214,50 +225,6 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         b_s = intbv(0)[width:]
         a_e = intbv(0)[width:]
         b_e = intbv(0)[width:]
-        half_x = modbv(0)[width + 1:]
-        half_y = modbv(0)[width + 1:]
-        half_turn = modbv(0)[width + 1:]
-        fill_x = intbv(0)[err_width - width - 2:]
-        fill_y = intbv(0)[err_width - width - 2:]
-        fill_turn = intbv(0)[err_width - width - 2:]
-        bad = False
-
-        rq[:] = radius_q
-        if (xs == 0 and ys == 0) or (xe == 0 and ye == 0):
-            bad = True
-        if rq >= (1 << (width - 1)):
-            bad = True
-        if not end_reaches_low or end_beyond_high:
-            bad = True
-
-        # threshold of the paper's variants: 2**(n + k); n = acc_bits, or if that is 0
-        # the bit length of Rq (left-shift normalisation); rejected when n + k > coord_width + 4
-        if acc_bits != 0:
-            exponent[:] = concat(False, acc_bits) + concat(False, lambda_shift)
-        else:
-            exponent[:] = radius_length + concat(False, lambda_shift)
-        thr[:] = one << exponent
-        thr_less[:] = thr - 1
-        if variant != PRECISE and exponent > thr_width - 1:
-            bad = True
-        if variant == PRECISE:
-            thr[:] = concat(intbv(0)[thr_width - width - 1:], rq) + 1
-            thr_less[:] = concat(intbv(0)[thr_width - width - 1:], rq)
-        # a line: T = max(|dx|, |dy|)
-        if mag_xe > mag_ye:
-            major[:] = mag_xe
-        else:
-            major[:] = mag_ye
-        major_less[:] = major - 1
-        if is_line:
-            thr[:] = concat(intbv(0)[thr_width - width:], major)
-            thr_less[:] = concat(intbv(0)[thr_width - width:], major_less)
-        # the accumulators hold A - T (A - T - 1 for the strict compares), so the initial
-        # load T // 2 is held as -ceil(T/2) = ~((T - 1) >> 1), zero as -T - 1 = ~T
-        below[:] = concat(intbv(0)[acc_width - thr_width:], thr_less)
-        half[:] = ~(below >> 1)
-        if not is_line and (variant == WEIGHTED or variant == IMPROVED):
-            half[:] = ~concat(intbv(0)[acc_width - thr_width:], thr)
 
         # departure quadrant of the start, arrival quadrant of the end
         if ccw:
@@ -313,16 +280,76 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             a_e[:] = mag_ye
             b_e[:] = mag_xe
         # an end ahead in the start's quadrant is one piece; otherwise the end must not lie
-        # beyond Rq on its inward axis
+        # beyond Rq on its inward axis (checked with Rq)
+        geo_ahead.next = False
         if turns == 0 and a_e <= a_s and b_e >= b_s and not (a_e == a_s and b_e == b_s):
+            geo_ahead.next = True
+        elif turns == 0:
+            turns[:] = 4
+        geo_quadrant.next = q_s
+        geo_crossings.next = turns
+        geo_end_inward.next = a_e
+        geo_centre.next = (xs == 0 and ys == 0) or (xe == 0 and ye == 0)
+
+    @always_comb
+    def check_logic():
+        rq = intbv(0)[width + 1:]
+        exponent = modbv(0)[6:]
+        thr = modbv(0)[thr_width:]
+        thr_less = modbv(0)[thr_width:]
+        one = intbv(1)[thr_width:]
+        below = modbv(0)[acc_width:]
+        half = modbv(0)[acc_width:]
+        major = intbv(0)[width:]
+        major_less = modbv(0)[width:]
+        bad = False
+
+        rq[:] = radius_q
+        if geo_centre:
+            bad = True
+        if rq >= (1 << (width - 1)):
+            bad = True
+        if not end_reaches_low or end_beyond_high:
+            bad = True
+
+        # threshold of the paper's variants: 2**(n + k); n = acc_bits, or if that is 0
+        # the bit length of Rq (left-shift normalisation); rejected when n + k > coord_width + 4
+        if acc_bits != 0:
+            exponent[:] = concat(False, acc_bits) + concat(False, lambda_shift)
+        else:
+            exponent[:] = radius_length + concat(False, lambda_shift)
+        thr[:] = one << exponent
+        thr_less[:] = thr - 1
+        if variant != PRECISE and exponent > thr_width - 1:
+            bad = True
+        if variant == PRECISE:
+            thr[:] = concat(intbv(0)[thr_width - width - 1:], rq) + 1
+            thr_less[:] = concat(intbv(0)[thr_width - width - 1:], rq)
+        # a line: T = max(|dx|, |dy|)
+        if mag_xe > mag_ye:
+            major[:] = mag_xe
+        else:
+            major[:] = mag_ye
+        major_less[:] = major - 1
+        if is_line:
+            thr[:] = concat(intbv(0)[thr_width - width:], major)
+            thr_less[:] = concat(intbv(0)[thr_width - width:], major_less)
+        # the accumulators hold A - T (A - T - 1 for the strict compares), so the initial
+        # load T // 2 is held as -ceil(T/2) = ~((T - 1) >> 1), zero as -T - 1 = ~T
+        below[:] = concat(intbv(0)[acc_width - thr_width:], thr_less)
+        half[:] = ~(below >> 1)
+        if not is_line and (variant == WEIGHTED or variant == IMPROVED):
+            half[:] = ~concat(intbv(0)[acc_width - thr_width:], thr)
+
+        # an end ahead in the start's quadrant is one piece; otherwise the end must not lie
+        # beyond Rq on its inward axis
+        if is_line or geo_ahead:
             chk_target_x.next = mag_xe
             chk_target_y.next = mag_ye
         else:
-            if turns == 0:
-                turns[:] = 4
-            if concat(False, a_e) > rq:
+            if concat(False, geo_end_inward) > rq:
                 bad = True
-            if q_s[0] != ccw:
+            if geo_quadrant[0] != ccw:
                 chk_target_x.next = 0
                 chk_target_y.next = rq[width:]
             else:
@@ -331,40 +358,33 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
 
         chk_error.next = bad
         chk_radius.next = rq[width:]
-        chk_quadrant.next = q_s
-        chk_crossings.next = turns
+        # a line starts at magnitude 0 in quadrant 0 and counts its steps up to |dx|, |dy|
+        chk_quadrant.next = geo_quadrant
+        chk_crossings.next = geo_crossings
+        chk_mag_x.next = mag_xs
+        chk_mag_y.next = mag_ys
+        if is_line or bad:
+            chk_quadrant.next = 0
+        if is_line:
+            chk_crossings.next = 0
+            chk_mag_x.next = 0
+            chk_mag_y.next = 0
         chk_threshold.next = thr
         chk_acc_init.next = half.signed()
-        # delta = 1 + 2h with h = |x| outward, -|x| inward: h is x or -x
-        if (xs < 0) != (q_s[0] != ccw):
-            half_x[:] = neg_xs
+        # -|x| is x or -x
+        if xs < 0:
+            chk_neg_mag_x.next = concat(xs[width - 1], xs)
         else:
-            half_x[:] = concat(xs[width - 1], xs)
-        if (ys < 0) != (q_s[0] == ccw):
-            half_y[:] = neg_ys
+            chk_neg_mag_x.next = neg_xs
+        if ys < 0:
+            chk_neg_mag_y.next = concat(ys[width - 1], ys)
         else:
-            half_y[:] = concat(ys[width - 1], ys)
-        half_turn[:] = -rq
-        # sign extension of 2h + 1 to the error term's width
-        fill_x[:] = 0
-        fill_y[:] = 0
-        fill_turn[:] = 0
-        if half_x[width]:
-            fill_x[:] = fill_ones
-        if half_y[width]:
-            fill_y[:] = fill_ones
-        if half_turn[width]:
-            fill_turn[:] = fill_ones
-        chk_delta_x.next = concat(fill_x, half_x, True).signed()
-        chk_delta_y.next = concat(fill_y, half_y, True).signed()
-        chk_delta_turn.next = concat(fill_turn, half_turn, True).signed()
+            chk_neg_mag_y.next = neg_ys
 
     @always_comb
     def piece_progress():
         # steps left in the current piece: the inward axis falls to its target
-        x_down.next = not is_line and quadrant[0] != ccw
-        y_down.next = not is_line and quadrant[0] == ccw
-        if not is_line and quadrant[0] != ccw:
+        if not is_line and x_inward:
             count_x.next = mag_x - target_x
             count_y.next = target_y - mag_y
         elif not is_line:
@@ -373,6 +393,39 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         else:
             count_x.next = target_x - mag_x
             count_y.next = target_y - mag_y
+        # the same without a subtractor in the way: at the target, one step before it
+        if not is_line and x_inward:
+            mag_x_step.next = mag_x + minus_one
+            neg_mag_x_step.next = neg_mag_x + 1
+            mag_y_step.next = mag_y + 1
+            neg_mag_y_step.next = neg_mag_y + minus_one_wide
+        elif not is_line:
+            mag_x_step.next = mag_x + 1
+            neg_mag_x_step.next = neg_mag_x + minus_one_wide
+            mag_y_step.next = mag_y + minus_one
+            neg_mag_y_step.next = neg_mag_y + 1
+        else:
+            mag_x_step.next = mag_x + 1
+            neg_mag_x_step.next = neg_mag_x + minus_one_wide
+            mag_y_step.next = mag_y + 1
+            neg_mag_y_step.next = neg_mag_y + minus_one_wide
+        at_x.next = mag_x == target_x
+        at_y.next = mag_y == target_y
+        near_x.next = mag_x_step == target_x
+        near_y.next = mag_y_step == target_y
+        # change of x**2 (y**2) on the next step of x (y): 1 - 2|x| inward, 1 + 2|x| outward
+        fill_x = intbv(0)[err_width - width - 2:]
+        fill_y = intbv(0)[err_width - width - 2:]
+        if neg_mag_x[width]:
+            fill_x[:] = fill_ones
+        if neg_mag_y[width]:
+            fill_y[:] = fill_ones
+        if x_inward:
+            delta_x.next = concat(fill_x, neg_mag_x, True).signed()
+            delta_y.next = concat(intbv(0)[err_width - width - 1:], mag_y, True).signed()
+        else:
+            delta_x.next = concat(intbv(0)[err_width - width - 1:], mag_x, True).signed()
+            delta_y.next = concat(fill_y, neg_mag_y, True).signed()
         # a line's magnitudes count its steps; it integrates |dx|, |dy|
         if is_line:
             integrand_x.next = target_x
@@ -383,92 +436,83 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
 
     @always_comb
     def iteration_logic():
-        x_in = bool(0)
         x_right = bool(0)
         y_up = bool(0)
         to_mag = intbv(0)[acc_width + 1 - width:]
         sum_x = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
-        sum_x_up = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
-        sum_x_down = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
+        sum_x_step = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         sum_y = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         thr_low = intbv(0)[acc_width:]
         ahead_x = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         ahead_y = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         less_x = modbv(0)[acc_width:]
         less_y = modbv(0)[acc_width:]
-        mag_y_up = modbv(0)[width:]
-        mag_y_down = modbv(0)[width:]
         cand_d = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
         cand_x = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
         cand_y = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
-        delta_xy = modbv(0, min=-(1 << err_width), max=1 << err_width)
-        both_dx = modbv(0, min=-(1 << err_width), max=1 << err_width)
-        both_dy = modbv(0, min=-(1 << err_width), max=1 << err_width)
-        both_xy = modbv(0, min=-(1 << err_width), max=1 << err_width)
-        gap_xy = modbv(0, min=-(1 << err_width), max=1 << err_width)
+        delta_xy = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
+        half_xy = modbv(0, min=-(1 << err_width), max=1 << err_width)
+        sum_le_0 = bool(0)
+        sum_lt_0 = bool(0)
         d_le_x = bool(0)
         d_le_y = bool(0)
         x_le_y = bool(0)
         over_x = bool(0)
-        over_x_up = bool(0)
-        over_x_down = bool(0)
+        over_x_step = bool(0)
         over_y = bool(0)
         go_x = bool(0)
         go_y = bool(0)
 
-        x_in = quadrant[0] != ccw
         x_right = quadrant[0] == quadrant[1]
         y_up = not quadrant[1]
         if is_line:
             it_dir_x.next = xe >= 0
             it_dir_y.next = ye >= 0
         else:
-            it_dir_x.next = x_right != x_in
-            it_dir_y.next = y_up == x_in
+            it_dir_x.next = x_right != x_inward
+            it_dir_y.next = y_up == x_inward
 
         # accumulators; the compares use the unsaturated sums (T is far below the
         # saturation value, so the result is the same) to keep the carry chains short
         to_mag[:] = 0
         thr_low[:] = concat(intbv(0)[acc_width - thr_width:], threshold)
         sum_y[:] = concat(acc_y[acc_width - 1], acc_y).signed() + concat(to_mag, integrand_y).signed()
-        mag_y_up[:] = mag_y + 1
-        mag_y_down[:] = mag_y - 1
         sum_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, integrand_x).signed()
-        sum_x_up[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y_up).signed()
-        sum_x_down[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y_down).signed()
+        sum_x_step[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y_step).signed()
         # the registers hold A - bias: an overflow is a sum that is not negative
         over_x = not sum_x[acc_width]
-        over_x_up = not sum_x_up[acc_width]
-        over_x_down = not sum_x_down[acc_width]
+        over_x_step = not sum_x_step[acc_width]
         over_y = not sum_y[acc_width]
         # traditional: Y first, X integrates the new |y| (sums and compares formed in parallel)
         if not is_line and variant == TRADITIONAL and over_y:
-            if x_in:
-                sum_x[:] = sum_x_up
-                over_x = over_x_up
-            else:
-                sum_x[:] = sum_x_down
-                over_x = over_x_down
+            sum_x[:] = sum_x_step
+            over_x = over_x_step
 
         # precise: |a| <= |b| exactly when (a - b) and (a + b) differ in sign or one is 0
-        # (all sums two adders deep: cand_x + cand_d = 2 cand_x + dy, and so on)
-        delta_xy[:] = concat(delta_x[err_width - 1], delta_x).signed() + concat(delta_y[err_width - 1], delta_y).signed()
+        # (all sums two adders deep: cand_x + cand_d = 2 cand_x + dy, and so on); the deltas
+        # are odd, so dy, dx, 2 cand_x + dy and 2 cand_y + dx are never 0
+        delta_xy[:] = delta_x + delta_y
         cand_x[:] = radial_error + delta_x
         cand_y[:] = radial_error + delta_y
-        cand_d[:] = radial_error + delta_xy[err_width:].signed()
-        both_dx[:] = concat(cand_x[err_width:], False).signed() + concat(delta_y[err_width - 1], delta_y).signed()
-        both_dy[:] = concat(cand_y[err_width:], False).signed() + concat(delta_x[err_width - 1], delta_x).signed()
-        both_xy[:] = concat(radial_error[err_width:], False).signed() + delta_xy
-        gap_xy[:] = concat(delta_x[err_width - 1], delta_x).signed() - concat(delta_y[err_width - 1], delta_y).signed()
-        d_le_x = delta_y == 0 or both_dx == 0 or delta_y[err_width - 1] != both_dx[err_width]
-        d_le_y = delta_x == 0 or both_dy == 0 or delta_x[err_width - 1] != both_dy[err_width]
-        x_le_y = gap_xy == 0 or both_xy == 0 or gap_xy[err_width] != both_xy[err_width]
+        cand_d[:] = radial_error + delta_xy
+        # X against Y: a - b = dx - dy, a + b = 2E + dx + dy = 2 (E + h + 1) with the odd
+        # deltas' h = (dx >> 1) + (dy >> 1); a + b <= 0 is E + h < 0, a + b < 0 is E + h + 1 < 0
+        # (signs only, no zero test on a sum)
+        half_xy[:] = concat(delta_x[err_width - 1], delta_x[err_width - 1], delta_x[err_width:1]).signed() + \
+            concat(delta_y[err_width - 1], delta_y[err_width - 1], delta_y[err_width:1]).signed()
+        sum_le_0 = concat(radial_error[err_width - 1], radial_error).signed() + half_xy < 0
+        sum_lt_0 = concat(radial_error[err_width - 1], radial_error).signed() + half_xy + 1 < 0
+        d_le_x = (delta_y < 0) != (concat(cand_x[err_width:], False).signed() +
+                                   concat(delta_y[err_width - 1], delta_y).signed() < 0)
+        d_le_y = (delta_x < 0) != (concat(cand_y[err_width:], False).signed() +
+                                   concat(delta_x[err_width - 1], delta_x).signed() < 0)
+        x_le_y = delta_x == delta_y or (delta_x > delta_y and sum_le_0) or (delta_x < delta_y and not sum_lt_0)
 
         go_x = over_x
         go_y = over_y
         if is_line:
-            go_x = over_x and count_x != 0
-            go_y = over_y and count_y != 0
+            go_x = over_x and not at_x
+            go_y = over_y and not at_y
         elif variant == IMPROVED:
             # A + 2i straight from the registers (one adder)
             ahead_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag[acc_width - width:], mag_y, False).signed()
@@ -489,38 +533,35 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 else:
                     go_y = True
 
-        if not is_line and (count_x == 0 or count_y == 0):
-            go_x = count_x != 0
-            go_y = count_y != 0
-            it_acc_x.next = acc_x
-            it_acc_y.next = acc_y
-        else:
-            if not sum_x[acc_width] and sum_x[acc_width - 1]:
-                sum_x[:] = acc_max
-            if not sum_y[acc_width] and sum_y[acc_width - 1]:
-                sum_y[:] = acc_max
-            less_x[:] = sum_x[acc_width:]
-            if go_x:
-                less_x[:] = sum_x[acc_width:] - thr_low
-            less_y[:] = sum_y[acc_width:]
-            if go_y:
-                less_y[:] = sum_y[acc_width:] - thr_low
-            it_acc_x.next = less_x.signed()
-            it_acc_y.next = less_y.signed()
+        # an axis at its target stops; the other one steps alone, the accumulators hold
+        it_tail.next = not is_line and (count_x == 0 or count_y == 0)
+        if not is_line and (at_x or at_y):
+            go_x = not at_x
+            go_y = not at_y
+        if not sum_x[acc_width] and sum_x[acc_width - 1]:
+            sum_x[:] = acc_max
+        if not sum_y[acc_width] and sum_y[acc_width - 1]:
+            sum_y[:] = acc_max
+        less_x[:] = sum_x[acc_width:]
+        if go_x:
+            less_x[:] = sum_x[acc_width:] - thr_low
+        less_y[:] = sum_y[acc_width:]
+        if go_y:
+            less_y[:] = sum_y[acc_width:] - thr_low
+        it_acc_x.next = less_x.signed()
+        it_acc_y.next = less_y.signed()
         it_step_x.next = go_x
         it_step_y.next = go_y
         it_mag_x.next = mag_x
         it_mag_y.next = mag_y
+        it_neg_mag_x.next = neg_mag_x
+        it_neg_mag_y.next = neg_mag_y
         if go_x:
-            if x_down:
-                it_mag_x.next = mag_x - 1
-            else:
-                it_mag_x.next = mag_x + 1
+            it_mag_x.next = mag_x_step
+            it_neg_mag_x.next = neg_mag_x_step
         if go_y:
-            if y_down:
-                it_mag_y.next = mag_y_down
-            else:
-                it_mag_y.next = mag_y_up
+            it_mag_y.next = mag_y_step
+            it_neg_mag_y.next = neg_mag_y_step
         if go_x and go_y:
             it_error.next = cand_d
         elif go_x:
@@ -532,7 +573,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
 
         it_finished.next = False
         it_next_piece.next = False
-        if (count_x == 1 and go_x or count_x == 0) and (count_y == 1 and go_y or count_y == 0):
+        if (near_x and go_x or at_x) and (near_y and go_y or at_y):
             if is_line or crossings == 0:
                 it_finished.next = True
             else:
@@ -568,6 +609,9 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         elif state == t_state.S_MAC:
             if multiplier[0]:
                 gap.next = gap_sum
+            if mac_op == 2 and mac_bit == 0:
+                # gap = -1 - xs**2 - ys**2 now: its complement is the radicand
+                radicand.next = ~gap[2 * width:]
             if mac_bit == width - 1:
                 mac_bit.next = 0
                 mac_op.next = mac_op + 1
@@ -577,11 +621,6 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 elif mac_op == 1:
                     multiplicand.next = concat(intbv(0)[width:], mag_xe)
                     multiplier.next = mag_xe
-                    # gap = -1 - xs**2 - ys**2 now: its complement is the radicand
-                    if multiplier[0]:
-                        radicand.next = ~gap_sum[2 * width:]
-                    else:
-                        radicand.next = ~gap[2 * width:]
                 elif mac_op == 2:
                     multiplicand.next = concat(intbv(0)[width:], mag_ye)
                     multiplier.next = mag_ye
@@ -637,14 +676,11 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 root_bit.next = root_bit + 1
         elif state == t_state.S_ROUND:
             # Rq: the integer whose square is nearest to xs**2 + ys**2
-            if remainder > concat(intbv(0)[3:], root):
-                radius_q.next = concat(False, root) + 1
-                if root_all_ones:
-                    radius_length.next = root_length + 1
-                else:
-                    radius_length.next = root_length
+            round_up = remainder > concat(intbv(0)[3:], root)
+            radius_q.next = concat(False, root) + concat(intbv(0)[width:], round_up)
+            if round_up and root_all_ones:
+                radius_length.next = root_length + 1
             else:
-                radius_q.next = concat(False, root)
                 radius_length.next = root_length
             state.next = t_state.S_CHECK
         elif state == t_state.S_CHECK:
@@ -652,83 +688,64 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             acc_y.next = chk_acc_init
             threshold.next = chk_threshold
             radial_error.next = 0
-            crossings.next = 0
-            quadrant.next = 0
+            quadrant.next = chk_quadrant
+            x_inward.next = chk_quadrant[0] != ccw
+            crossings.next = chk_crossings
+            mag_x.next = chk_mag_x
+            mag_y.next = chk_mag_y
+            target_x.next = chk_target_x
+            target_y.next = chk_target_y
+            radius.next = chk_radius
+            neg_mag_x.next = chk_neg_mag_x
+            neg_mag_y.next = chk_neg_mag_y
             state.next = t_state.S_RUN
-            if is_line:
-                mag_x.next = 0
-                mag_y.next = 0
-                target_x.next = mag_xe
-                target_y.next = mag_ye
-                if mag_xe == 0 and mag_ye == 0:
-                    cmd.busy.next = False
-                    cmd.done.next = True
-                    state.next = t_state.S_IDLE
-            elif chk_error:
+            if is_line and mag_xe == 0 and mag_ye == 0:
+                cmd.busy.next = False
+                cmd.done.next = True
+                state.next = t_state.S_IDLE
+            elif not is_line and chk_error:
                 cmd.busy.next = False
                 cmd.error.next = True
                 state.next = t_state.S_IDLE
-            else:
-                quadrant.next = chk_quadrant
-                crossings.next = chk_crossings
-                mag_x.next = mag_xs
-                mag_y.next = mag_ys
-                target_x.next = chk_target_x
-                target_y.next = chk_target_y
-                radius.next = chk_radius
-                delta_x.next = chk_delta_x
-                delta_y.next = chk_delta_y
-                delta_turn.next = chk_delta_turn
-        else:
-            if cmd.advance:
-                steps.step_x.next = it_step_x
-                steps.step_y.next = it_step_y
-                steps.dir_x.next = it_dir_x
-                steps.dir_y.next = it_dir_y
+        elif cmd.advance:
+            steps.step_x.next = it_step_x
+            steps.step_y.next = it_step_y
+            steps.dir_x.next = it_dir_x
+            steps.dir_y.next = it_dir_y
+            if not it_tail:
                 acc_x.next = it_acc_x
                 acc_y.next = it_acc_y
-                mag_x.next = it_mag_x
-                mag_y.next = it_mag_y
-                radial_error.next = it_error
-                if it_finished:
-                    cmd.busy.next = False
-                    cmd.done.next = True
-                    state.next = t_state.S_IDLE
-                elif it_next_piece:
-                    # the inward axis is at 0 and turns outward (1 + 2 * 0); the outward
-                    # one is at Rq and turns inward (1 - 2 Rq)
-                    if quadrant[0] != ccw:
-                        delta_x.next = 1
-                        delta_y.next = delta_turn
-                    else:
-                        delta_x.next = delta_turn
-                        delta_y.next = 1
-                    if ccw:
-                        quadrant.next = quadrant + 1
-                    else:
-                        quadrant.next = quadrant - 1
-                    crossings.next = crossings - 1
-                    if crossings == 1:
-                        target_x.next = mag_xe
-                        target_y.next = mag_ye
-                    elif quadrant[0] != ccw:
-                        target_x.next = radius
-                        target_y.next = 0
-                    else:
-                        target_x.next = 0
-                        target_y.next = radius
+            mag_x.next = it_mag_x
+            mag_y.next = it_mag_y
+            neg_mag_x.next = it_neg_mag_x
+            neg_mag_y.next = it_neg_mag_y
+            radial_error.next = it_error
+            if it_finished:
+                cmd.busy.next = False
+                cmd.done.next = True
+                state.next = t_state.S_IDLE
+            if it_next_piece:
+                x_inward.next = not x_inward
+                if x_inward:
+                    target_x.next = radius
+                    target_y.next = 0
                 else:
-                    # one step further in the same direction adds 2 to the change of x**2
-                    if it_step_x:
-                        delta_x.next = delta_x + 2
-                    if it_step_y:
-                        delta_y.next = delta_y + 2
+                    target_x.next = 0
+                    target_y.next = radius
+                if crossings == 1:
+                    target_x.next = mag_xe
+                    target_y.next = mag_ye
+                if ccw:
+                    quadrant.next = quadrant + 1
+                else:
+                    quadrant.next = quadrant - 1
+                crossings.next = crossings - 1
 
     @always_comb
     def status():
         cmd.quadrant.next = quadrant
 
-    return magnitudes, setup_adder, check_logic, piece_progress, iteration_logic, control, status
+    return magnitudes, setup_adder, geometry, check_logic, piece_progress, iteration_logic, control, status
 
 
 def dda_arc_ports(coord_width=24):

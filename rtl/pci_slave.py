@@ -14,10 +14,12 @@ because PCI leaves no clock for a register in between: FRAME# and IRDY#
 (ending a burst, advancing read data; the state machine's next values are
 computed for each case of the two pins, which only choose among them), PAR
 (PERR# and SERR# two clocks after the phase they cover) and C/BE# (PAR on
-reads covers the C/BE# of the same clock).  DEVSEL# timing is therefore
-MEDIUM.
+reads covers the C/BE# of the same clock).  FRAME#, IRDY# and PAR pass one
+LUT on the way (``pin_pick``, ``pin_lut``), C/BE# two.  The registered
+address makes DEVSEL# timing MEDIUM.
 """
-from myhdl import Signal, always_comb, always_seq, block, concat, enum, instances, intbv, modbv
+from myhdl import (ConcatSignal, Signal, always_comb, always_seq, block, concat, enum, instance, instances, intbv,
+                   modbv)
 
 from rtl.interfaces import LocalBus, PciBus, TargetControlNext, card_reset
 
@@ -94,6 +96,32 @@ def timing_boundary(source, sink):
     return follow
 
 
+def lut_table(function, inputs):
+    """Truth table of ``function`` (of ``inputs`` bits, 0/1) as an integer:
+    bit n is the value for the inputs' bits n[0], n[1], ... (LUT order)."""
+    return sum(function(*(n >> k & 1 for k in range(inputs))) << n for n in range(1 << inputs))
+
+
+def lut_verilog(out, name, inputs, function):
+    """Verilog lines driving ``out`` by ``function`` of ``inputs`` (1..4 net
+    names): an iCE40 ``SB_LUT4`` for synthesis, so that no logic is merged
+    into it and a PCI pin among the inputs stays one logic cell from its
+    register; the same truth table, indexed, for simulators."""
+    count = len(inputs)
+    table = lut_table(function, count)
+    init = lut_table(lambda *bits: function(*bits[:count]), 4)   # unused inputs tied to 0
+    tied = [*inputs, *["1'b0"] * (4 - count)]
+    ports = ", ".join(f".I{k}({net})" for k, net in enumerate(tied))
+    index = ", ".join(reversed(inputs))
+    digits = max(1, (1 << count) // 4)
+    return ["`ifdef SYNTHESIS",
+            f"SB_LUT4 #(.LUT_INIT(16'h{init:04X})) {name} (.O({out}), {ports});",
+            "`else",
+            f"wire [{(1 << count) - 1}:0] {name}_table = {1 << count}'h{table:0{digits}X};",
+            f"assign {out} = {name}_table[{{{index}}}];",
+            "`endif"]
+
+
 # One-LUT fast path.  Each bit of the state machine's next value has three
 # candidates computed from registers: F (IRDY# deasserted, so FRAME# is
 # asserted), I (IRDY# asserted, FRAME# deasserted: the last data phase) and
@@ -101,21 +129,18 @@ def timing_boundary(source, sink):
 # ending, where the three are equal.  A 4-input LUT takes the two pins and
 # two encoded values x, y, so a coding maps (F, I, B) to (x, y) and back; it
 # fits a bit if that bit's triples are among the four it can tell apart.
-# coding: (x from F, I, B; y from F, I, B; out from FRAME#, IRDY#, x, y), in
-# Python and in Verilog ({f} ... {irdy} stand for the bits).
+# coding: (x from F, I, B; y from F, I, B; out from FRAME#, IRDY#, x, y;
+# x and y in Verilog, {f}, {i}, {b} standing for the bits).
 PIN_CODINGS = {
-    "frame": ((lambda f, i, b: f), (lambda f, i, b: i),
-              (lambda frame, irdy, x, y: y if frame else x),
-              ("{f}", "{i}", "{frame} ? {y} : {x}")),
     "stop": ((lambda f, i, b: f), (lambda f, i, b: b if f else i),
              (lambda frame, irdy, x, y: x | y if frame else (x if irdy else x & y)),
-             ("{f}", "{f} ? {b} : {i}", "{frame} ? {x} | {y} : ({irdy} ? {x} : {x} & {y})")),
+             ("{f}", "{f} ? {b} : {i}")),
     "trdy": ((lambda f, i, b: f ^ i), (lambda f, i, b: b if f ^ i else f),
              (lambda frame, irdy, x, y: x | y if frame else ((1 - x) & y if irdy else y)),
-             ("{f} ^ {i}", "({f} ^ {i}) ? {b} : {f}", "{frame} ? {x} | {y} : ({irdy} ? ~{x} & {y} : {y})")),
+             ("{f} ^ {i}", "({f} ^ {i}) ? {b} : {f}")),
     "hold": ((lambda f, i, b: f), (lambda f, i, b: b ^ i),
              (lambda frame, irdy, x, y: x & (1 - y) if frame else (x if irdy else x | y)),
-             ("{f}", "{b} ^ {i}", "{frame} ? {x} & ~{y} : ({irdy} ? {x} : {x} | {y})")),
+             ("{f}", "{b} ^ {i}")),
 }
 
 
@@ -146,11 +171,13 @@ def state_triples(bit):
 # TRDY# ends high after the last phase, stays low while the master waits,
 # and goes high or stays low after a completed phase; STOP# likewise, but
 # it stays low while the master waits on a disconnect; DEVSEL# and the AD
-# drive only change at the last phase (FRAME# deasserted).
+# drive only change at the last phase (FRAME# deasserted); the drivers of
+# DEVSEL#, TRDY#, STOP# only idle and ending, whatever the pins.
 CONTROL_TRIPLES = dict(
     trdy={(0, 0, 0), (1, 1, 1), (0, 1, 0), (0, 1, 1)},
     stop={(0, 0, 0), (1, 1, 1), (0, 1, 0), (1, 1, 0)},
     devsel={(0, 0, 0), (1, 1, 1), (0, 1, 0)},
+    drive={(0, 0, 0), (1, 1, 1)},
     ad_oe={(0, 0, 0), (1, 1, 1), (1, 0, 1)})
 
 
@@ -159,7 +186,7 @@ def pin_pick(frame_pin, irdy_pin, if_frame, if_irdy, if_both, picked, codings):
     """``picked`` is ``if_frame``, ``if_irdy`` or ``if_both`` as the FRAME#
     and IRDY# pins (bus polarity) say (IRDY# deasserted: ``if_frame``), one
     LUT per bit after the pins: each bit's candidates are coded into two
-    kept nets by ``codings`` (a ``PIN_CODINGS`` name per bit, LSB first).
+    nets by ``codings`` (a ``PIN_CODINGS`` name per bit, LSB first).
     Works on bools and on the state enum.
 
         pins     --< sampled at edge k >--
@@ -185,15 +212,40 @@ def pin_pick(frame_pin, irdy_pin, if_frame, if_irdy, if_both, picked, codings):
     lines = []
     for bit, name in enumerate(codings):
         sel = f"[{bit}]" if width > 1 else ""
-        x_text, y_text, out_text = PIN_CODINGS[name][3]
-        names = dict(f=f"$if_frame{sel}", i=f"$if_irdy{sel}", b=f"$if_both{sel}",
-                     x=f"${{picked}}_x{bit}", y=f"${{picked}}_y{bit}",
-                     frame="$frame_pin", irdy="$irdy_pin")
-        lines += [f"(* keep *) wire {names['x']} = {x_text.format(**names)};",
-                  f"(* keep *) wire {names['y']} = {y_text.format(**names)};",
-                  f"assign $picked{sel} = {out_text.format(**names)};"]
+        pick, (x_text, y_text) = PIN_CODINGS[name][2:]
+        names = dict(f=f"$if_frame{sel}", i=f"$if_irdy{sel}", b=f"$if_both{sel}")
+        x, y = f"${{picked}}_x{bit}", f"${{picked}}_y{bit}"
+        lines += [f"wire {x} = {x_text.format(**names)};",
+                  f"wire {y} = {y_text.format(**names)};",
+                  *lut_verilog(f"$picked{sel}", f"${{picked}}_lut{bit}",
+                               [x, y, "$frame_pin", "$irdy_pin"],
+                               lambda x_bit, y_bit, frame, irdy, pick=pick:
+                               pick(frame, irdy, x_bit, y_bit))]
     pin_pick.verilog_code = "\n".join(lines) + "\n"
     return choose
+
+
+@block
+def pin_lut(out, function, in0, in1, in2=None, in3=None):
+    """``out`` = ``function`` of the inputs (0/1 each, ``in0`` first) in one
+    LUT that synthesis cannot merge (``lut_verilog``): for registers whose
+    next value depends on a PCI pin.
+
+        in0..in3  --< A >< B >--
+        out       --< f(A) >< f(B) >--
+    """
+    inputs = tuple(sig for sig in (in0, in1, in2, in3) if sig is not None)
+
+    @instance
+    def follow():   # combinational: at the start and on every input change
+        while True:
+            out.next = bool(function(*(int(sig) for sig in inputs)))
+            yield inputs
+
+    out.driven = "wire"
+    names = [f"$in{k}" for k in range(len(inputs))]
+    pin_lut.verilog_code = "\n".join(lut_verilog("$out", "${out}_lut", names, function)) + "\n"
+    return follow
 
 
 def local_addr_width(io_bar_bits=6, mem_bar_bits=12):
@@ -265,7 +317,11 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     trdy_next, trdy_q = Signal(bool(1)), Signal(bool(1))
     stop_next, stop_q = Signal(bool(1)), Signal(bool(1))
     devsel_next, devsel_q = Signal(bool(1)), Signal(bool(1))
-    ad_out_next, ad_out_q = Signal(intbv(0)[32:]), Signal(intbv(0)[32:])
+    ad_out_q = Signal(intbv(0)[32:])
+    # with io_registers the I/O cells register ad_out_next and have no enable:
+    # one LUT per bit after IRDY# (``ad_output_luts``)
+    ad_out_bits = [Signal(bool(0)) for _ in range(32)] if io_registers else []
+    ad_out_next = ConcatSignal(*reversed(ad_out_bits)) if io_registers else Signal(intbv(0)[32:])
     par_next, par_q = Signal(bool(0)), Signal(bool(0))
     perr_next, perr_q = Signal(bool(1)), Signal(bool(1))
     drive_next = Signal(bool(0))      # DEVSEL#, TRDY#, STOP# driven
@@ -312,11 +368,11 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     # --- combinational ---
     bus_parity = Signal(bool(0))      # parity of the AD and C/BE# input registers
-    bus_parity_kept = Signal(bool(0))
     ad_out_parity, ad_out_parity_kept = Signal(bool(0)), Signal(bool(0))   # of ad_out_q
     address_phase = Signal(bool(0))
-    address_parity_error = Signal(bool(0))
-    data_parity_error = Signal(bool(0))
+    # next values that the PAR pin decides
+    perr_oe_next, serr_oe_next = Signal(bool(0)), Signal(bool(0))
+    address_fault_next, parity_error_next = Signal(bool(0)), Signal(bool(0))
     serr_armed = Signal(bool(0))      # SERR# follows an address parity error
     perr_armed = Signal(bool(0))      # PERR# follows a write data parity error
     parity_error_q = Signal(bool(0))  # a parity error was detected at the last edge
@@ -326,8 +382,11 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     config_index = Signal(intbv(0)[6:])
     config_data = Signal(intbv(0)[32:])
     bar0_read = Signal(intbv(0)[16:])  # BAR0 as read: base bits and the I/O flag
-    phase_done = Signal(bool(0))      # a data phase completes at this edge
-    holding = Signal(bool(0))         # TRDY# asserted, the master not ready
+    # next values of registers that a data phase (IRDY# pin) changes
+    first_phase_next, phase_step = Signal(bool(0)), Signal(bool(0))
+    write_done_next, config_write_next = Signal(bool(0)), Signal(bool(0))
+    posting, wq_valid_next = Signal(bool(0)), Signal(bool(0))
+    b_kept, b_valid_next = Signal(bool(0)), Signal(bool(0))
     start_addr = Signal(modbv(0)[width:])  # dword offset the address phase names
     got = Signal(bool(0))             # read data arrives at this edge
     accepted = Signal(bool(0))        # the back end takes a write at this edge
@@ -369,13 +428,27 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     @always_comb
     def parity_errors():
-        # PAR comes straight from its pin: one LUT from it to each register
-        # that needs it in this clock (PERR#, SERR#, the claim's abort).
+        # what a wrong PAR at this edge would report (``parity_luts``)
         address_phase.next = frame_qq and not frame_q
         serr_armed.next = frame_qq and not frame_q and serr_enable and parity_response
         perr_armed.next = write_done_q and parity_response
-        address_parity_error.next = frame_qq and not frame_q and (bus_parity_kept != pci.par_in)
-        data_parity_error.next = write_done_q and (bus_parity_kept != pci.par_in)
+
+    # PAR comes straight from its pin: one LUT from it to each register that
+    # needs it in this clock (PERR#, SERR#, the claim's abort, the status).
+    parity_luts = [
+        pin_lut(perr_next, lambda par, parity, armed: int(not (armed and par != parity)),
+                pci.par_in, bus_parity, perr_armed),
+        pin_lut(perr_oe_next, lambda par, parity, armed, perr: int(
+            (armed and par != parity) or not perr),   # asserted, then high one clock
+            pci.par_in, bus_parity, perr_armed, perr_q),
+        pin_lut(serr_oe_next, lambda par, parity, armed: int(armed and par != parity),
+                pci.par_in, bus_parity, serr_armed),
+        pin_lut(address_fault_next, lambda par, parity, phase, response: int(
+            phase and response and par != parity),
+            pci.par_in, bus_parity, address_phase, parity_response),
+        pin_lut(parity_error_next, lambda par, parity, phase, written: int(
+            (phase or written) and par != parity),
+            pci.par_in, bus_parity, address_phase, write_done_q)]
 
     # ------------------------------------------------------------ decoding
     @always_comb
@@ -404,10 +477,22 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         else:
             start_addr.next = ad_q[width + 2:2] & intbv(mem_last)[width:]
 
-    @always_comb
-    def handshake():
-        phase_done.next = not pci.irdy_in and not trdy_q
-        holding.next = pci.irdy_in and not trdy_q
+    # A data phase completes when the IRDY# pin and TRDY# (trdy_q) are both
+    # low; each register it changes has its next value in one LUT after the pin.
+    phase_luts = [
+        pin_lut(first_phase_next, lambda irdy, trdy, claimed, first: int(
+            claimed or (first and not (not irdy and not trdy))),
+            pci.irdy_in, trdy_q, claim, first_phase),
+        pin_lut(phase_step, lambda irdy, trdy, claimed, mem: int(
+            claimed or (not irdy and not trdy and mem)),
+            pci.irdy_in, trdy_q, claim, space_mem),
+        pin_lut(write_done_next, lambda irdy, trdy, read: int(not irdy and not trdy and not read),
+                pci.irdy_in, trdy_q, is_read),
+        pin_lut(config_write_next, lambda irdy, trdy, read, config: int(
+            not irdy and not trdy and not read and config),
+            pci.irdy_in, trdy_q, is_read, is_config),
+        pin_lut(wq_valid_next, lambda irdy, posted: int(not irdy and posted), pci.irdy_in, posting),
+        pin_lut(b_valid_next, lambda irdy, kept: int(irdy and kept), pci.irdy_in, b_kept)]
 
     # ------------------------------------------------------------ back end
     @always_comb
@@ -503,7 +588,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         """Next values of the state and the target's control lines, should
         IRDY# and FRAME# be as given at this edge (``irdy_asserted``,
         ``frame_asserted``: Python bools).  Combinational, from registers and
-        the back end's answer only; ``control_pick`` registers one of them.
+        the back end's answer only; ``pin_pick`` chooses one for the registers.
 
             edge      k           k+1
             pins      IRDY#, FRAME# sampled at k choose
@@ -619,47 +704,30 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     picks += [pin_pick(pci.frame_in, pci.irdy_in, getattr(if_frame, field), getattr(if_irdy, field),
                        getattr(if_both, field), picked, [pin_coding(CONTROL_TRIPLES[field])])
               for field, picked in (("trdy", trdy_next), ("stop", stop_next),
-                                    ("devsel", devsel_next), ("ad_oe", ad_oe_next))]
-
-    from myhdl import always as _always
-    @_always(clock.posedge)
-    def _tmp_check():
-        for field in ("trdy", "stop", "devsel", "ad_oe", "drive"):
-            t = (int(getattr(if_frame, field)), int(getattr(if_irdy, field)), int(getattr(if_both, field)))
-            allowed = CONTROL_TRIPLES.get(field, {(0, 0, 0), (1, 1, 1)})
-            if t not in allowed:
-                raise AssertionError(f"TMPCHECK {field} {t} state {state}")
-        for bit in range(4):
-            t = tuple(int(x.val._val, 2) >> bit & 1 for x in (if_frame.state, if_irdy.state, if_both.state))
-            if t not in state_triples(bit):
-                raise AssertionError(f"TMPCHECK state bit {bit} {t} state {state}")
-
-    @always_comb
-    def drive_pick():
-        # the drivers only change idle and ending, whatever the pins
-        drive_next.next = if_frame.drive
+                                    ("devsel", devsel_next), ("drive", drive_next),
+                                    ("ad_oe", ad_oe_next))]
 
     @always_seq(clock.posedge, reset=reset)
     def transaction():
         state.next = state_next
-        address_fault.next = address_parity_error and parity_response
+        first_phase.next = first_phase_next
+        if phase_step:   # the claim, or a completed phase of a memory burst
+            if claim:
+                phase_addr.next = start_addr
+            else:
+                phase_addr.next = phase_addr + 1
+        address_fault.next = address_fault_next
         if claim:
             is_read.next = not cbe_q[0]
             is_config.next = claim_config
             space_mem.next = not claim_config and not claim_io
             single.next = claim_config or claim_io or ad_q[0] or ad_q[1]
-            first_phase.next = True
             first_pending.next = True
             fetching.next = not cbe_q[0] and not claim_config
             refused.next = False
             io_byte.next = ad_q[2:0]
-            phase_addr.next = start_addr
             req_addr_stale.next = draining
         else:
-            if phase_done:
-                first_phase.next = False
-                if space_mem:
-                    phase_addr.next = phase_addr + 1
             if got or accepted:
                 first_pending.next = first_pending and draining
             if local.re and local.ready and (single or req_addr == mem_last):
@@ -681,16 +749,25 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             wait_count.next = wait_count + 1
 
     # ------------------------------------------------------------ data registers
+    # The AD register takes new data unless the master has yet to take the
+    # data on the bus (fast path: one LUT from IRDY#, as the register's
+    # enable or, for the I/O cells, per bit).
+    if io_registers:
+        ad_output_luts = [
+            pin_lut(ad_out_bits[bit], lambda irdy, trdy, held, fresh: int(
+                held if irdy and not trdy else fresh),
+                pci.irdy_in, trdy_q, ad_out_q(bit), read_source(bit)) for bit in range(32)]
+    else:
+        @always_comb
+        def ad_output():
+            if pci.irdy_in and not trdy_q:   # TRDY# asserted, the master not ready
+                ad_out_next.next = ad_out_q
+            else:
+                ad_out_next.next = read_source
+
     @always_comb
-    def ad_output():
-        # The AD register takes new data unless the master has yet to take
-        # the data on the bus (fast path: one LUT from IRDY#).
-        if holding:
-            ad_out_next.next = ad_out_q
-        else:
-            ad_out_next.next = read_source
+    def parity_output():
         par_next.next = ad_out_parity_kept ^ pci.cbe_in[0] ^ pci.cbe_in[1] ^ pci.cbe_in[2] ^ pci.cbe_in[3]
-        perr_next.next = not (perr_armed and bus_parity_kept != pci.par_in)
 
     @always_comb
     def ad_out_parity_tree():
@@ -703,9 +780,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         fold[1:] = fold[1:] ^ fold[2:1]
         ad_out_parity.next = fold[0]
 
-    # the parity trees end in kept nets: the pins join after them
-    parity_boundaries = [timing_boundary(bus_parity, bus_parity_kept),
-                         timing_boundary(ad_out_parity, ad_out_parity_kept)]
+    # the parity tree of the AD register ends in a kept net: C/BE# join after it
+    parity_boundary = timing_boundary(ad_out_parity, ad_out_parity_kept)
 
     @always_seq(clock.posedge, reset=reset)
     def bus_registers():
@@ -719,10 +795,10 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         pci.devsel_oe.next = drive_next
         pci.ad_oe.next = ad_oe_next
         pci.par_oe.next = pci.ad_oe
-        pci.perr_oe.next = not perr_next or not perr_q   # asserted, then high one clock
+        pci.perr_oe.next = perr_oe_next
         pci.serr_out.next = False
-        pci.serr_oe.next = serr_armed and bus_parity_kept != pci.par_in
-        parity_error_q.next = address_parity_error or data_parity_error
+        pci.serr_oe.next = serr_oe_next
+        parity_error_q.next = parity_error_next
         pci.inta_out.next = False
         pci.inta_oe.next = irq and not interrupt_disable
 
@@ -752,15 +828,25 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     @always_seq(clock.posedge, reset=reset)
     def read_buffer():
+        b_valid.next = b_valid_next
+
+    @always_comb
+    def read_buffer_hold():
+        # B keeps a dword if the AD register holds (IRDY# pin: ``b_valid_next``)
         in_read = is_read and (state == t_state.S_MEM_HOLD or state == t_state.S_IO_HOLD
                                or state == t_state.S_READ_HOLD or state == t_state.S_RWING)
-        b_valid.next = in_read and (b_valid or got) and holding
+        b_kept.next = in_read and (b_valid or got) and not trdy_q
+
+    @always_comb
+    def write_posting():
+        # a completed phase now (IRDY# pin: ``wq_valid_next``) is posted
+        posting.next = not trdy_q and not is_read and not first_phase and space_mem
 
     @always_seq(clock.posedge, reset=reset)
     def write_buffer():
-        write_done_q.next = phase_done and not is_read
-        config_write_q.next = phase_done and is_config and not is_read
-        wq_valid.next = phase_done and not is_read and not first_phase and space_mem
+        write_done_q.next = write_done_next
+        config_write_q.next = config_write_next
+        wq_valid.next = wq_valid_next
         if h_valid:
             if accepted:
                 if s_valid:
