@@ -597,6 +597,9 @@ reg [23:0] card_core0_dda_arc1_root;
 reg card_core0_dda_arc1_root_all_ones;
 reg [4:0] card_core0_dda_arc1_root_bit;
 reg [5:0] card_core0_dda_arc1_root_length;
+reg [26:0] card_core0_dda_arc1_root_trial_diff;
+reg card_core0_dda_arc1_root_trial_fits;
+reg [26:0] card_core0_dda_arc1_root_trial_rem;
 reg [2:0] card_core0_dda_arc1_state;
 reg [23:0] card_core0_dda_arc1_target_x;
 reg [23:0] card_core0_dda_arc1_target_y;
@@ -3717,15 +3720,27 @@ always @(card_core0_dda_arc1_gap, card_core0_dda_arc1_root_bit, card_core0_dda_a
 end
 
 
+always @(card_core0_dda_arc1_radicand, card_core0_dda_arc1_remainder, card_core0_dda_arc1_root) begin: card_core0_dda_arc1_root_trial
+    reg [27-1:0] trial_rem;
+    reg [28-1:0] trial_diff;
+    trial_rem = 27'h0;
+    trial_diff = 28'h0;
+    trial_rem = {card_core0_dda_arc1_remainder[(24 + 1)-1:0], card_core0_dda_arc1_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+    trial_diff = ({1'b0, trial_rem} - {2'h0, card_core0_dda_arc1_root, 2'h1});
+    card_core0_dda_arc1_root_trial_rem = trial_rem;
+    card_core0_dda_arc1_root_trial_diff = trial_diff[(24 + 3)-1:0];
+    card_core0_dda_arc1_root_trial_fits = (!trial_diff[(24 + 3)]);
+end
+
+
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_geometry
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
     reg [3-1:0] turns;
     reg [2-1:0] turn;
-    reg [24-1:0] a_s;
-    reg [24-1:0] b_s;
-    reg [24-1:0] a_e;
-    reg [24-1:0] b_e;
+    reg [25-1:0] shrink_x;
+    reg [25-1:0] shrink_y;
+    reg ahead;
     if (card_core0_dda_reset == 0) begin
         card_core0_dda_arc1_geo_quadrant <= 0;
         card_core0_dda_arc1_geo_ahead <= 0;
@@ -3738,10 +3753,9 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         q_e = 2'h0;
         turns = 3'h0;
         turn = 2'h0;
-        a_s = 24'h0;
-        b_s = 24'h0;
-        a_e = 24'h0;
-        b_e = 24'h0;
+        shrink_x = 25'h0;
+        shrink_y = 25'h0;
+        ahead = (0 != 0);
         if (card_core0_dda_arc1_ccw) begin
             if (((card_core0_dda_arc1_xs > 0) && (card_core0_dda_arc1_ys >= 0))) begin
                 q_s = 0;
@@ -3797,24 +3811,16 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             turn = (q_s - q_e);
         end
         turns = {1'b0, turn};
+        shrink_x = ({1'b0, card_core0_dda_arc1_mag_xs} - {1'b0, card_core0_dda_arc1_mag_xe});
+        shrink_y = ({1'b0, card_core0_dda_arc1_mag_ys} - {1'b0, card_core0_dda_arc1_mag_ye});
         if ((q_s[0] != card_core0_dda_arc1_ccw)) begin
-            a_s = card_core0_dda_arc1_mag_xs;
-            b_s = card_core0_dda_arc1_mag_ys;
+            ahead = ((!shrink_x[24]) && (shrink_y[24] || (shrink_y == 0)));
         end
         else begin
-            a_s = card_core0_dda_arc1_mag_ys;
-            b_s = card_core0_dda_arc1_mag_xs;
-        end
-        if ((q_e[0] != card_core0_dda_arc1_ccw)) begin
-            a_e = card_core0_dda_arc1_mag_xe;
-            b_e = card_core0_dda_arc1_mag_ye;
-        end
-        else begin
-            a_e = card_core0_dda_arc1_mag_ye;
-            b_e = card_core0_dda_arc1_mag_xe;
+            ahead = ((!shrink_y[24]) && (shrink_x[24] || (shrink_x == 0)));
         end
         card_core0_dda_arc1_geo_ahead <= 1'b0;
-        if (((turns == 0) && (a_e <= a_s) && (b_e >= b_s) && (!((a_e == a_s) && (b_e == b_s))))) begin
+        if (((turns == 0) && ahead && (!((shrink_x == 0) && (shrink_y == 0))))) begin
             card_core0_dda_arc1_geo_ahead <= 1'b1;
         end
         else if ((turns == 0)) begin
@@ -3822,7 +3828,12 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         end
         card_core0_dda_arc1_geo_quadrant <= q_s;
         card_core0_dda_arc1_geo_crossings <= turns;
-        card_core0_dda_arc1_geo_end_inward <= a_e;
+        if ((q_e[0] != card_core0_dda_arc1_ccw)) begin
+            card_core0_dda_arc1_geo_end_inward <= card_core0_dda_arc1_mag_xe;
+        end
+        else begin
+            card_core0_dda_arc1_geo_end_inward <= card_core0_dda_arc1_mag_ye;
+        end
         card_core0_dda_arc1_geo_centre <= (((card_core0_dda_arc1_xs == 0) && (card_core0_dda_arc1_ys == 0)) || ((card_core0_dda_arc1_xe == 0) && (card_core0_dda_arc1_ye == 0)));
     end
 end
@@ -4180,9 +4191,6 @@ end
 
 
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_control
-    reg [27-1:0] trial_rem;
-    reg [28-1:0] trial_diff;
-    reg round_up;
     if (card_core0_dda_reset == 0) begin
         card_core0_dda_arc1_radius_length <= 0;
         card_core0_dda_arc1_mag_y <= 0;
@@ -4307,22 +4315,18 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             end
         end
         else if ((card_core0_dda_arc1_state == 3'b010)) begin
-            trial_rem = 27'h0;
-            trial_diff = 28'h0;
-            trial_rem = {card_core0_dda_arc1_remainder[(24 + 1)-1:0], card_core0_dda_arc1_radicand[(2 * 24)-1:((2 * 24) - 2)]};
-            trial_diff = ({1'b0, trial_rem} - {3'h0, card_core0_dda_arc1_root[(24 - 1)-1:0], 2'h1});
-            if ((!trial_diff[(24 + 3)])) begin
-                card_core0_dda_arc1_remainder <= trial_diff[(24 + 3)-1:0];
+            if (card_core0_dda_arc1_root_trial_fits) begin
+                card_core0_dda_arc1_remainder <= card_core0_dda_arc1_root_trial_diff;
                 card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b1};
             end
             else begin
-                card_core0_dda_arc1_remainder <= trial_rem;
+                card_core0_dda_arc1_remainder <= card_core0_dda_arc1_root_trial_rem;
                 card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b0};
                 if ((card_core0_dda_arc1_root != 0)) begin
                     card_core0_dda_arc1_root_all_ones <= 1'b0;
                 end
             end
-            if (((card_core0_dda_arc1_root != 0) || (!trial_diff[(24 + 3)]))) begin
+            if (((card_core0_dda_arc1_root != 0) || card_core0_dda_arc1_root_trial_fits)) begin
                 card_core0_dda_arc1_root_length <= (card_core0_dda_arc1_root_length + 1);
             end
             card_core0_dda_arc1_radicand <= (card_core0_dda_arc1_radicand << 2);
@@ -4350,9 +4354,8 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             end
         end
         else if ((card_core0_dda_arc1_state == 3'b011)) begin
-            round_up = (card_core0_dda_arc1_remainder > {3'h0, card_core0_dda_arc1_root});
-            card_core0_dda_arc1_radius_q <= ({1'b0, card_core0_dda_arc1_root} + {24'h0, round_up});
-            if ((round_up && card_core0_dda_arc1_root_all_ones)) begin
+            card_core0_dda_arc1_radius_q <= ({1'b0, card_core0_dda_arc1_root} + {24'h0, card_core0_dda_arc1_root_trial_fits});
+            if ((card_core0_dda_arc1_root_trial_fits && card_core0_dda_arc1_root_all_ones)) begin
                 card_core0_dda_arc1_radius_length <= (card_core0_dda_arc1_root_length + 1);
             end
             else begin

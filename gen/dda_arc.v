@@ -164,6 +164,9 @@ reg [23:0] root;
 reg root_all_ones;
 reg [4:0] root_bit;
 reg [5:0] root_length;
+reg [26:0] root_trial_diff;
+reg root_trial_fits;
+reg [26:0] root_trial_rem;
 reg [2:0] state;
 reg [23:0] target_x;
 reg [23:0] target_y;
@@ -241,15 +244,27 @@ always @(gap, root_bit, state, multiplicand, mac_op) begin: setup_adder
 end
 
 
+always @(radicand, remainder, root) begin: root_trial
+    reg [27-1:0] trial_rem;
+    reg [28-1:0] trial_diff;
+    trial_rem = 27'h0;
+    trial_diff = 28'h0;
+    trial_rem = {remainder[(24 + 1)-1:0], radicand[(2 * 24)-1:((2 * 24) - 2)]};
+    trial_diff = ({1'b0, trial_rem} - {2'h0, root, 2'h1});
+    root_trial_rem = trial_rem;
+    root_trial_diff = trial_diff[(24 + 3)-1:0];
+    root_trial_fits = (!trial_diff[(24 + 3)]);
+end
+
+
 always @(posedge clock, negedge reset) begin: geometry
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
     reg [3-1:0] turns;
     reg [2-1:0] turn;
-    reg [24-1:0] a_s;
-    reg [24-1:0] b_s;
-    reg [24-1:0] a_e;
-    reg [24-1:0] b_e;
+    reg [25-1:0] shrink_x;
+    reg [25-1:0] shrink_y;
+    reg ahead;
     if (reset == 0) begin
         geo_quadrant <= 0;
         geo_ahead <= 0;
@@ -262,10 +277,9 @@ always @(posedge clock, negedge reset) begin: geometry
         q_e = 2'h0;
         turns = 3'h0;
         turn = 2'h0;
-        a_s = 24'h0;
-        b_s = 24'h0;
-        a_e = 24'h0;
-        b_e = 24'h0;
+        shrink_x = 25'h0;
+        shrink_y = 25'h0;
+        ahead = (0 != 0);
         if (ccw) begin
             if (((xs > 0) && (ys >= 0))) begin
                 q_s = 0;
@@ -321,24 +335,16 @@ always @(posedge clock, negedge reset) begin: geometry
             turn = (q_s - q_e);
         end
         turns = {1'b0, turn};
+        shrink_x = ({1'b0, mag_xs} - {1'b0, mag_xe});
+        shrink_y = ({1'b0, mag_ys} - {1'b0, mag_ye});
         if ((q_s[0] != ccw)) begin
-            a_s = mag_xs;
-            b_s = mag_ys;
+            ahead = ((!shrink_x[24]) && (shrink_y[24] || (shrink_y == 0)));
         end
         else begin
-            a_s = mag_ys;
-            b_s = mag_xs;
-        end
-        if ((q_e[0] != ccw)) begin
-            a_e = mag_xe;
-            b_e = mag_ye;
-        end
-        else begin
-            a_e = mag_ye;
-            b_e = mag_xe;
+            ahead = ((!shrink_y[24]) && (shrink_x[24] || (shrink_x == 0)));
         end
         geo_ahead <= 1'b0;
-        if (((turns == 0) && (a_e <= a_s) && (b_e >= b_s) && (!((a_e == a_s) && (b_e == b_s))))) begin
+        if (((turns == 0) && ahead && (!((shrink_x == 0) && (shrink_y == 0))))) begin
             geo_ahead <= 1'b1;
         end
         else if ((turns == 0)) begin
@@ -346,7 +352,12 @@ always @(posedge clock, negedge reset) begin: geometry
         end
         geo_quadrant <= q_s;
         geo_crossings <= turns;
-        geo_end_inward <= a_e;
+        if ((q_e[0] != ccw)) begin
+            geo_end_inward <= mag_xe;
+        end
+        else begin
+            geo_end_inward <= mag_ye;
+        end
         geo_centre <= (((xs == 0) && (ys == 0)) || ((xe == 0) && (ye == 0)));
     end
 end
@@ -704,9 +715,6 @@ end
 
 
 always @(posedge clock, negedge reset) begin: control
-    reg [27-1:0] trial_rem;
-    reg [28-1:0] trial_diff;
-    reg round_up;
     if (reset == 0) begin
         radius_length <= 0;
         mag_y <= 0;
@@ -831,22 +839,18 @@ always @(posedge clock, negedge reset) begin: control
             end
         end
         else if ((state == 3'b010)) begin
-            trial_rem = 27'h0;
-            trial_diff = 28'h0;
-            trial_rem = {remainder[(24 + 1)-1:0], radicand[(2 * 24)-1:((2 * 24) - 2)]};
-            trial_diff = ({1'b0, trial_rem} - {3'h0, root[(24 - 1)-1:0], 2'h1});
-            if ((!trial_diff[(24 + 3)])) begin
-                remainder <= trial_diff[(24 + 3)-1:0];
+            if (root_trial_fits) begin
+                remainder <= root_trial_diff;
                 root <= {root[(24 - 1)-1:0], 1'b1};
             end
             else begin
-                remainder <= trial_rem;
+                remainder <= root_trial_rem;
                 root <= {root[(24 - 1)-1:0], 1'b0};
                 if ((root != 0)) begin
                     root_all_ones <= 1'b0;
                 end
             end
-            if (((root != 0) || (!trial_diff[(24 + 3)]))) begin
+            if (((root != 0) || root_trial_fits)) begin
                 root_length <= (root_length + 1);
             end
             radicand <= (radicand << 2);
@@ -874,9 +878,8 @@ always @(posedge clock, negedge reset) begin: control
             end
         end
         else if ((state == 3'b011)) begin
-            round_up = (remainder > {3'h0, root});
-            radius_q <= ({1'b0, root} + {24'h0, round_up});
-            if ((round_up && root_all_ones)) begin
+            radius_q <= ({1'b0, root} + {24'h0, root_trial_fits});
+            if ((root_trial_fits && root_all_ones)) begin
                 radius_length <= (root_length + 1);
             end
             else begin

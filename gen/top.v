@@ -621,6 +621,9 @@ reg [23:0] card1_card_core1_dda_arc2_root;
 reg card1_card_core1_dda_arc2_root_all_ones;
 reg [4:0] card1_card_core1_dda_arc2_root_bit;
 reg [5:0] card1_card_core1_dda_arc2_root_length;
+reg [26:0] card1_card_core1_dda_arc2_root_trial_diff;
+reg card1_card_core1_dda_arc2_root_trial_fits;
+reg [26:0] card1_card_core1_dda_arc2_root_trial_rem;
 reg [2:0] card1_card_core1_dda_arc2_state;
 reg [23:0] card1_card_core1_dda_arc2_target_x;
 reg [23:0] card1_card_core1_dda_arc2_target_y;
@@ -4449,15 +4452,27 @@ always @(card1_card_core1_dda_arc2_gap, card1_card_core1_dda_arc2_root_bit, card
 end
 
 
+always @(card1_card_core1_dda_arc2_radicand, card1_card_core1_dda_arc2_remainder, card1_card_core1_dda_arc2_root) begin: card1_card_core1_dda_arc2_root_trial
+    reg [27-1:0] trial_rem;
+    reg [28-1:0] trial_diff;
+    trial_rem = 27'h0;
+    trial_diff = 28'h0;
+    trial_rem = {card1_card_core1_dda_arc2_remainder[(24 + 1)-1:0], card1_card_core1_dda_arc2_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+    trial_diff = ({1'b0, trial_rem} - {2'h0, card1_card_core1_dda_arc2_root, 2'h1});
+    card1_card_core1_dda_arc2_root_trial_rem = trial_rem;
+    card1_card_core1_dda_arc2_root_trial_diff = trial_diff[(24 + 3)-1:0];
+    card1_card_core1_dda_arc2_root_trial_fits = (!trial_diff[(24 + 3)]);
+end
+
+
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_geometry
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
     reg [3-1:0] turns;
     reg [2-1:0] turn;
-    reg [24-1:0] a_s;
-    reg [24-1:0] b_s;
-    reg [24-1:0] a_e;
-    reg [24-1:0] b_e;
+    reg [25-1:0] shrink_x;
+    reg [25-1:0] shrink_y;
+    reg ahead;
     if (card1_card_core1_dda_reset == 0) begin
         card1_card_core1_dda_arc2_geo_quadrant <= 0;
         card1_card_core1_dda_arc2_geo_ahead <= 0;
@@ -4470,10 +4485,9 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         q_e = 2'h0;
         turns = 3'h0;
         turn = 2'h0;
-        a_s = 24'h0;
-        b_s = 24'h0;
-        a_e = 24'h0;
-        b_e = 24'h0;
+        shrink_x = 25'h0;
+        shrink_y = 25'h0;
+        ahead = (0 != 0);
         if (card1_card_core1_dda_arc2_ccw) begin
             if (((card1_card_core1_dda_arc2_xs > 0) && (card1_card_core1_dda_arc2_ys >= 0))) begin
                 q_s = 0;
@@ -4529,24 +4543,16 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             turn = (q_s - q_e);
         end
         turns = {1'b0, turn};
+        shrink_x = ({1'b0, card1_card_core1_dda_arc2_mag_xs} - {1'b0, card1_card_core1_dda_arc2_mag_xe});
+        shrink_y = ({1'b0, card1_card_core1_dda_arc2_mag_ys} - {1'b0, card1_card_core1_dda_arc2_mag_ye});
         if ((q_s[0] != card1_card_core1_dda_arc2_ccw)) begin
-            a_s = card1_card_core1_dda_arc2_mag_xs;
-            b_s = card1_card_core1_dda_arc2_mag_ys;
+            ahead = ((!shrink_x[24]) && (shrink_y[24] || (shrink_y == 0)));
         end
         else begin
-            a_s = card1_card_core1_dda_arc2_mag_ys;
-            b_s = card1_card_core1_dda_arc2_mag_xs;
-        end
-        if ((q_e[0] != card1_card_core1_dda_arc2_ccw)) begin
-            a_e = card1_card_core1_dda_arc2_mag_xe;
-            b_e = card1_card_core1_dda_arc2_mag_ye;
-        end
-        else begin
-            a_e = card1_card_core1_dda_arc2_mag_ye;
-            b_e = card1_card_core1_dda_arc2_mag_xe;
+            ahead = ((!shrink_y[24]) && (shrink_x[24] || (shrink_x == 0)));
         end
         card1_card_core1_dda_arc2_geo_ahead <= 1'b0;
-        if (((turns == 0) && (a_e <= a_s) && (b_e >= b_s) && (!((a_e == a_s) && (b_e == b_s))))) begin
+        if (((turns == 0) && ahead && (!((shrink_x == 0) && (shrink_y == 0))))) begin
             card1_card_core1_dda_arc2_geo_ahead <= 1'b1;
         end
         else if ((turns == 0)) begin
@@ -4554,7 +4560,12 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         end
         card1_card_core1_dda_arc2_geo_quadrant <= q_s;
         card1_card_core1_dda_arc2_geo_crossings <= turns;
-        card1_card_core1_dda_arc2_geo_end_inward <= a_e;
+        if ((q_e[0] != card1_card_core1_dda_arc2_ccw)) begin
+            card1_card_core1_dda_arc2_geo_end_inward <= card1_card_core1_dda_arc2_mag_xe;
+        end
+        else begin
+            card1_card_core1_dda_arc2_geo_end_inward <= card1_card_core1_dda_arc2_mag_ye;
+        end
         card1_card_core1_dda_arc2_geo_centre <= (((card1_card_core1_dda_arc2_xs == 0) && (card1_card_core1_dda_arc2_ys == 0)) || ((card1_card_core1_dda_arc2_xe == 0) && (card1_card_core1_dda_arc2_ye == 0)));
     end
 end
@@ -4912,9 +4923,6 @@ end
 
 
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_control
-    reg [27-1:0] trial_rem;
-    reg [28-1:0] trial_diff;
-    reg round_up;
     if (card1_card_core1_dda_reset == 0) begin
         card1_card_core1_dda_arc2_radius_length <= 0;
         card1_card_core1_dda_arc2_mag_y <= 0;
@@ -5039,22 +5047,18 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             end
         end
         else if ((card1_card_core1_dda_arc2_state == 3'b010)) begin
-            trial_rem = 27'h0;
-            trial_diff = 28'h0;
-            trial_rem = {card1_card_core1_dda_arc2_remainder[(24 + 1)-1:0], card1_card_core1_dda_arc2_radicand[(2 * 24)-1:((2 * 24) - 2)]};
-            trial_diff = ({1'b0, trial_rem} - {3'h0, card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 2'h1});
-            if ((!trial_diff[(24 + 3)])) begin
-                card1_card_core1_dda_arc2_remainder <= trial_diff[(24 + 3)-1:0];
+            if (card1_card_core1_dda_arc2_root_trial_fits) begin
+                card1_card_core1_dda_arc2_remainder <= card1_card_core1_dda_arc2_root_trial_diff;
                 card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b1};
             end
             else begin
-                card1_card_core1_dda_arc2_remainder <= trial_rem;
+                card1_card_core1_dda_arc2_remainder <= card1_card_core1_dda_arc2_root_trial_rem;
                 card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b0};
                 if ((card1_card_core1_dda_arc2_root != 0)) begin
                     card1_card_core1_dda_arc2_root_all_ones <= 1'b0;
                 end
             end
-            if (((card1_card_core1_dda_arc2_root != 0) || (!trial_diff[(24 + 3)]))) begin
+            if (((card1_card_core1_dda_arc2_root != 0) || card1_card_core1_dda_arc2_root_trial_fits)) begin
                 card1_card_core1_dda_arc2_root_length <= (card1_card_core1_dda_arc2_root_length + 1);
             end
             card1_card_core1_dda_arc2_radicand <= (card1_card_core1_dda_arc2_radicand << 2);
@@ -5082,9 +5086,8 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             end
         end
         else if ((card1_card_core1_dda_arc2_state == 3'b011)) begin
-            round_up = (card1_card_core1_dda_arc2_remainder > {3'h0, card1_card_core1_dda_arc2_root});
-            card1_card_core1_dda_arc2_radius_q <= ({1'b0, card1_card_core1_dda_arc2_root} + {24'h0, round_up});
-            if ((round_up && card1_card_core1_dda_arc2_root_all_ones)) begin
+            card1_card_core1_dda_arc2_radius_q <= ({1'b0, card1_card_core1_dda_arc2_root} + {24'h0, card1_card_core1_dda_arc2_root_trial_fits});
+            if ((card1_card_core1_dda_arc2_root_trial_fits && card1_card_core1_dda_arc2_root_all_ones)) begin
                 card1_card_core1_dda_arc2_radius_length <= (card1_card_core1_dda_arc2_root_length + 1);
             end
             else begin

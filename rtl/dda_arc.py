@@ -106,6 +106,9 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     remainder = _unsigned(width + 3)
     root = _unsigned(width)
     root_bit = Signal(intbv(0, min=0, max=width))
+    root_trial_rem = _unsigned(width + 3)
+    root_trial_diff = _unsigned(width + 3)
+    root_trial_fits = Signal(bool(0))
     root_length = _unsigned(6)
     root_all_ones = Signal(bool(0))
     radius_q = _unsigned(width + 1)
@@ -213,6 +216,17 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         total[:] = gap[gap_width:] + operand + carry_in
         gap_sum.next = total.signed()
 
+    @always_comb
+    def root_trial():
+        # restoring square root, one bit per clock: one subtractor, its borrow is the compare
+        trial_rem = intbv(0)[width + 3:]
+        trial_diff = modbv(0)[width + 4:]
+        trial_rem[:] = concat(remainder[width + 1:], radicand[2 * width:2 * width - 2])
+        trial_diff[:] = concat(False, trial_rem) - concat(intbv(0)[2:], root, intbv(1)[2:])
+        root_trial_rem.next = trial_rem
+        root_trial_diff.next = trial_diff[width + 3:]
+        root_trial_fits.next = not trial_diff[width + 3]
+
     @always_seq(clock.posedge, reset=reset)
     def geometry():
         # quadrants and pieces from the latched command alone, registered on every clock
@@ -221,10 +235,9 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         q_e = intbv(0)[2:]
         turns = intbv(0)[3:]
         turn = modbv(0)[2:]
-        a_s = intbv(0)[width:]
-        b_s = intbv(0)[width:]
-        a_e = intbv(0)[width:]
-        b_e = intbv(0)[width:]
+        shrink_x = modbv(0)[width + 1:]
+        shrink_y = modbv(0)[width + 1:]
+        ahead = bool(0)
 
         # departure quadrant of the start, arrival quadrant of the end
         if ccw:
@@ -266,29 +279,27 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
 
         turns[:] = concat(False, turn)
 
-        # inward / outward magnitudes (x is inward when quadrant[0] xor ccw)
+        # an end ahead in the start's quadrant is one piece: the inward magnitude does not
+        # grow, the outward one does not shrink, and the end is not the start (x is inward
+        # when quadrant[0] xor ccw; the differences' signs are the compares)
+        shrink_x[:] = concat(False, mag_xs) - concat(False, mag_xe)
+        shrink_y[:] = concat(False, mag_ys) - concat(False, mag_ye)
         if q_s[0] != ccw:
-            a_s[:] = mag_xs
-            b_s[:] = mag_ys
+            ahead = not shrink_x[width] and (shrink_y[width] or shrink_y == 0)
         else:
-            a_s[:] = mag_ys
-            b_s[:] = mag_xs
-        if q_e[0] != ccw:
-            a_e[:] = mag_xe
-            b_e[:] = mag_ye
-        else:
-            a_e[:] = mag_ye
-            b_e[:] = mag_xe
-        # an end ahead in the start's quadrant is one piece; otherwise the end must not lie
-        # beyond Rq on its inward axis (checked with Rq)
+            ahead = not shrink_y[width] and (shrink_x[width] or shrink_x == 0)
         geo_ahead.next = False
-        if turns == 0 and a_e <= a_s and b_e >= b_s and not (a_e == a_s and b_e == b_s):
+        if turns == 0 and ahead and not (shrink_x == 0 and shrink_y == 0):
             geo_ahead.next = True
         elif turns == 0:
             turns[:] = 4
         geo_quadrant.next = q_s
         geo_crossings.next = turns
-        geo_end_inward.next = a_e
+        # otherwise the end must not lie beyond Rq on its inward axis (checked with Rq)
+        if q_e[0] != ccw:
+            geo_end_inward.next = mag_xe
+        else:
+            geo_end_inward.next = mag_ye
         geo_centre.next = (xs == 0 and ys == 0) or (xe == 0 and ye == 0)
 
     @always_comb
@@ -641,20 +652,15 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 multiplicand.next = multiplicand << 1
                 multiplier.next = multiplier >> 1
         elif state == t_state.S_ROOT:
-            trial_rem = intbv(0)[width + 3:]
-            trial_diff = modbv(0)[width + 4:]
-            trial_rem[:] = concat(remainder[width + 1:], radicand[2 * width:2 * width - 2])
-            # one subtractor: its borrow is the compare
-            trial_diff[:] = concat(False, trial_rem) - concat(intbv(0)[3:], root[width - 1:], intbv(1)[2:])
-            if not trial_diff[width + 3]:
-                remainder.next = trial_diff[width + 3:]
+            if root_trial_fits:
+                remainder.next = root_trial_diff
                 root.next = concat(root[width - 1:], True)
             else:
-                remainder.next = trial_rem
+                remainder.next = root_trial_rem
                 root.next = concat(root[width - 1:], False)
                 if root != 0:
                     root_all_ones.next = False
-            if root != 0 or not trial_diff[width + 3]:
+            if root != 0 or root_trial_fits:
                 root_length.next = root_length + 1
             radicand.next = radicand << 2
             # end point within one step: -(2m - 1) <= re**2 - rs**2 <= 2m + 1 with
@@ -676,9 +682,9 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 root_bit.next = root_bit + 1
         elif state == t_state.S_ROUND:
             # Rq: the integer whose square is nearest to xs**2 + ys**2
-            round_up = remainder > concat(intbv(0)[3:], root)
-            radius_q.next = concat(False, root) + concat(intbv(0)[width:], round_up)
-            if round_up and root_all_ones:
+            # Rq = root + 1 when remainder > root: the next root bit (radicand bits 00 now)
+            radius_q.next = concat(False, root) + concat(intbv(0)[width:], root_trial_fits)
+            if root_trial_fits and root_all_ones:
                 radius_length.next = root_length + 1
             else:
                 radius_length.next = root_length
@@ -745,7 +751,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     def status():
         cmd.quadrant.next = quadrant
 
-    return magnitudes, setup_adder, geometry, check_logic, piece_progress, iteration_logic, control, status
+    return magnitudes, setup_adder, root_trial, geometry, check_logic, piece_progress, iteration_logic, control, status
 
 
 def dda_arc_ports(coord_width=24):
