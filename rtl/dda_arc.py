@@ -394,7 +394,8 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
 
     @always_comb
     def piece_progress():
-        # steps left in the current piece: the inward axis falls to its target
+        # steps left in the current piece (the inward axis falls to its target); their zero
+        # holds the accumulators, while the step choice uses the equality tests below
         if not is_line and x_inward:
             count_x.next = mag_x - target_x
             count_y.next = target_y - mag_y
@@ -404,7 +405,8 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         else:
             count_x.next = target_x - mag_x
             count_y.next = target_y - mag_y
-        # the same without a subtractor in the way: at the target, one step before it
+        # the magnitudes one step further, one adder each (-1 is the all-ones operand);
+        # "at the target" and "one step before it" are then equality tests
         if not is_line and x_inward:
             mag_x_step.next = mag_x + minus_one
             neg_mag_x_step.next = neg_mag_x + 1
