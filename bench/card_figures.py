@@ -15,6 +15,7 @@ Prints, at PCI's 33 MHz:
 import argparse
 import sys
 import time
+import warnings
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -23,7 +24,7 @@ if str(ROOT) not in sys.path:
 
 from rtl import instructions as isa  # noqa: E402
 from rtl import registers as regmap  # noqa: E402
-from myhdl import now  # noqa: E402
+from myhdl import ToVerilogWarning, now  # noqa: E402
 
 from sim.card_bench import HALF_PERIOD, command_words, run_core  # noqa: E402
 from sim.dda_model import LineCommand  # noqa: E402
@@ -131,6 +132,7 @@ def synthesis():
 
 
 def main(argv=None):
+    warnings.simplefilter("ignore", ToVerilogWarning)  # conversion notes, not figures
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--no-synth", action="store_true", help="skip the synthesis of the top")
     parser.add_argument("--no-icarus", action="store_true", help="skip the Icarus co-simulation figure")

@@ -14,11 +14,9 @@ from sim.paths import ROOT
 sys.path.insert(0, str(ROOT / "bench"))
 import synth  # noqa: E402
 
-# Out of the default run for now: the whole top fills 98 % of the logic
-# cells and takes 4-5 minutes to place and route (one run at 97 % did not
-# finish routing in 10).  Run with `pytest -m synth`; drop `slow` once
-# `python bench/synth.py` on the top takes a couple of minutes.
-pytestmark = [pytest.mark.synth, pytest.mark.slow]
+# In the default run: the top places and routes in about 90 s on a 2-core
+# machine (plus 1-2 minutes once, while yowasp compiles its WebAssembly).
+pytestmark = pytest.mark.synth
 TOOL_TIMEOUT_S = 900
 
 UNITS = synth.available_units()
