@@ -2,7 +2,7 @@
 
 Prints, at PCI's 33 MHz:
 - the maximum step rate per axis (a long X line, then a diagonal, at one
-  iteration per clock and the shortest pulse timing);
+  iteration every other clock, the most, and the shortest pulse timing);
 - commands per second through the FIFO (MARK: the sequencer alone; LINE
   (1, 1): a move each);
 - burst throughput into the FIFO over PCI (one memory-write burst, counted
@@ -34,7 +34,7 @@ CLOCK_PERIOD = 30  # time units per PCI clock in the PCI bench
 
 
 def _full_speed(driver):
-    yield from driver.io_write(regmap.offset("FEED_RATE"), regmap.RATE_ONE)
+    yield from driver.io_write(regmap.offset("FEED_RATE"), regmap.RATE_MAX)
     yield from driver.io_write(regmap.offset("CONTROL"), 1)
 
 
@@ -69,7 +69,7 @@ def command_rates(count=120):
         marks = []
 
         def scenario(driver, words=words):
-            yield from driver.io_write(regmap.offset("FEED_RATE"), regmap.RATE_ONE)
+            yield from driver.io_write(regmap.offset("FEED_RATE"), regmap.RATE_MAX)
             yield from driver.push_all(words * count)
             start = now()
             yield from driver.io_write(regmap.offset("CONTROL"), 1)

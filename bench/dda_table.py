@@ -11,8 +11,9 @@ model (``sim/dda_model.py``; the RTL equals it clock for clock):
   R = 100, 1,000, 10,000, 100,000.
 
 Columns: V_arc (eq. 12), maximum and RMS radial error (steps), sawteeth,
-diagonal steps, iterations (clocks with ``advance`` high) and clocks
-including the setup.
+diagonal steps, iterations (``advance`` pulses) and clocks from ``start`` to
+``done`` at the fastest feed rate (an iteration every other clock), including
+the setup.
 """
 import sys
 from pathlib import Path
@@ -35,7 +36,7 @@ def row(label, command, options=None, paper=None):
     result = metrics(path)
     radius = command.xs
     paper_text = f"{paper:8.4f}" if paper is not None else f"{'':>8}"
-    clocks = result.iterations + setup_clocks(24, line=False) + 1
+    clocks = setup_clocks(24, line=False) + 2 * result.iterations
     return (f"{label:<44} {radius:>7} {result.v_arc:8.4f} {paper_text} "
             f"{result.max_radial_error:8.3f} {result.rms_radial_error:8.3f} {result.sawteeth:>6} "
             f"{result.diagonal_steps:>7} {result.iterations:>8} {clocks:>8}")

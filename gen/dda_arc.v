@@ -12,6 +12,7 @@ module dda_arc (
     cmd_lambda_shift,
     cmd_acc_bits,
     cmd_ccw,
+    cmd_blend,
     cmd_xs,
     cmd_ys,
     cmd_xe,
@@ -21,6 +22,8 @@ module dda_arc (
     cmd_done,
     cmd_error,
     cmd_quadrant,
+    cmd_ready,
+    cmd_stop_left,
     steps_step_x,
     steps_step_y,
     steps_dir_x,
@@ -30,27 +33,44 @@ module dda_arc (
 // 
 // Ports:
 //     clock, reset  clock and reset (``card_reset()``: async, active low)
-//     cmd           ``DdaPort``: command lines, ``start``, ``advance`` in;
-//                   ``busy``, ``done``, ``error``, ``quadrant`` out
+//     cmd           ``DdaPort``: command lines, ``start``, ``blend``, ``advance``
+//                   in; ``ready``, ``busy``, ``done``, ``error``, ``quadrant``,
+//                   ``stop_left`` out
 //     steps         ``AxisPulses``: ``step_x``/``step_y`` one clock per step,
 //                   ``dir_x``/``dir_y`` valid with them
 // Parameters:
 //     coord_width   signed coordinate width (4..31); accumulators are
 //                   coord_width + 8 bits, the radial error term + 6
 // 
-// Timing (an arc; a line has a single setup clock)::
+// Timing (an arc; a line has two setup clocks)::
 // 
 //     clock    _/~\_/~\_/~\_ ... _/~\_/~\_/~\_/~\_/~\_ ... _/~\_/~\_
 //     start    _/~~~\______ ... ________________________________
+//     ready    ~~~~~\______ ... _____/~~~~~~~~~~~~~~~~~ ... ~~~~~~~~
 //     busy     _____/~~~~~~ ... ~~~~~~~~~~~~~~~~~~~~~~~ ... ~~~\___
-//     advance  ____________ ... ______/~~~~~~~~~~~\___ ... ~~~~~~~~
+//     advance  ____________ ... ______/~~~\___/~~~\___ ... ~~~~~~~~
 //     step_x   ____________ ... __________/~~~\___/~~~ ... ________
 //     done     ____________ ... ___________________________/~~~\___
-//                   |<- 5*coord_width+2 ->|
+//                   |<- 5*coord_width+3 ->|
 // 
-// ``step_*`` follows the clock edge of the iteration that made the step;
-// ``done`` comes with the last step.  ``error`` instead of the run when the
-// check rejects the command.
+// An iteration takes the clock of its ``advance`` and the next one: an
+// ``advance`` in the clock after a taken one is ignored (the card sends at
+// most one every other clock).  ``step_*`` follows the clock edge of the
+// iteration that made the step; ``done`` comes with the last step.  A
+// ``start`` taken while a move runs (``ready`` high) is set up meanwhile;
+// the run takes it in the clock after its last iteration, so the next
+// ``advance`` iterates the new move::
+// 
+//     advance  _/~\_/~\_/~\_/~\_      every other clock
+//     step_x   _____/~\_/~\_/~\_/~\_  last of move n, then move n + 1
+//     done     _____/~\________
+// 
+// ``error`` (a rejected move) and the ``done`` of a line of length 0 come
+// once no move runs.  ``quadrant`` changes in the clock after the
+// iteration.  ``stop_left`` is registered from the steps left as the
+// second clock of the iterations leaves them, minus one: with its own
+// register one iteration behind the ``advance`` pulses at the fastest rate,
+// it still never exceeds the iterations left.
 
 input clock;
 input reset;
@@ -60,19 +80,24 @@ input [1:0] cmd_variant;
 input [4:0] cmd_lambda_shift;
 input [4:0] cmd_acc_bits;
 input cmd_ccw;
+input cmd_blend;
 input signed [23:0] cmd_xs;
 input signed [23:0] cmd_ys;
 input signed [23:0] cmd_xe;
 input signed [23:0] cmd_ye;
 input cmd_advance;
 output cmd_busy;
-reg cmd_busy;
+wire cmd_busy;
 output cmd_done;
 reg cmd_done;
 output cmd_error;
 reg cmd_error;
 output [1:0] cmd_quadrant;
 wire [1:0] cmd_quadrant;
+output cmd_ready;
+wire cmd_ready;
+output [26:0] cmd_stop_left;
+reg [26:0] cmd_stop_left;
 output steps_step_x;
 reg steps_step_x;
 output steps_step_y;
@@ -87,72 +112,109 @@ reg signed [31:0] acc_x;
 reg signed [31:0] acc_y;
 reg at_x;
 reg at_y;
+reg blend;
 reg ccw;
+reg signed [31:0] check_acc_init;
+reg [2:0] check_crossings;
+reg check_error;
+reg signed [26:0] check_left_x;
+reg signed [26:0] check_left_y;
+reg signed [28:0] check_neg_in;
+reg [1:0] check_quadrant;
+reg [23:0] check_target_x;
+reg [23:0] check_target_y;
+reg [28:0] check_threshold;
+reg check_zero;
 reg signed [31:0] chk_acc_init;
 reg [2:0] chk_crossings;
 reg chk_error;
-reg [23:0] chk_mag_x;
-reg [23:0] chk_mag_y;
-reg [24:0] chk_neg_mag_x;
-reg [24:0] chk_neg_mag_y;
+reg signed [26:0] chk_left_x;
+reg signed [26:0] chk_left_y;
+reg signed [28:0] chk_neg_in;
 reg [1:0] chk_quadrant;
-reg [23:0] chk_radius;
 reg [23:0] chk_target_x;
 reg [23:0] chk_target_y;
 reg [28:0] chk_threshold;
+reg chk_zero;
+reg [23:0] cmd_mag_xe;
 reg [23:0] cmd_mag_xs;
-reg [23:0] count_x;
-reg [23:0] count_y;
+reg [23:0] cmd_mag_ye;
+reg [23:0] cmd_mag_ys;
 reg [2:0] crossings;
-reg signed [29:0] delta_x;
-reg signed [29:0] delta_y;
+reg dec_finished;
+reg dec_in;
+reg dec_next_piece;
+reg dec_out;
+reg dec_step_x;
+reg dec_step_y;
+reg signed [31:0] dec_sum_x;
+reg signed [31:0] dec_sum_y;
+reg dec_tail;
+reg dec_x_down;
+reg dec_x_move;
+reg dec_y_down;
+reg dec_y_move;
 reg end_beyond_high;
 reg end_reaches_low;
-reg signed [49:0] gap;
-reg signed [49:0] gap_sum;
+reg signed [30:0] first_half;
+reg [23:0] first_integrand_x;
+reg [23:0] first_integrand_y;
+reg [23:0] first_out;
+reg signed [31:0] first_q_in;
+reg signed [31:0] first_q_out;
+reg [23:0] first_stepped_x;
+reg [23:0] first_stepped_y;
+reg gap_carry;
+reg [24:0] gap_high;
+reg [24:0] gap_low;
+reg gap_sum_carry;
+reg [24:0] gap_sum_high;
+reg [24:0] gap_sum_low;
+reg [24:0] gap_top;
 reg geo_ahead;
 reg geo_centre;
 reg [2:0] geo_crossings;
 reg [23:0] geo_end_inward;
 reg [1:0] geo_quadrant;
+reg geo_x_in_end;
+reg geo_x_in_start;
+reg signed [30:0] half_sum;
+reg hand_end;
+reg hand_load;
 reg [23:0] integrand_x;
 reg [23:0] integrand_y;
 reg is_line;
-reg signed [31:0] it_acc_x;
-reg signed [31:0] it_acc_y;
 reg it_dir_x;
 reg it_dir_y;
-reg signed [29:0] it_error;
 reg it_finished;
-reg [23:0] it_mag_x;
-reg [23:0] it_mag_y;
-reg [24:0] it_neg_mag_x;
-reg [24:0] it_neg_mag_y;
 reg it_next_piece;
 reg it_step_x;
 reg it_step_y;
+reg signed [31:0] it_sum_x;
+reg signed [31:0] it_sum_y;
 reg it_tail;
 reg [4:0] lambda_shift;
+reg signed [26:0] left_x;
+reg signed [26:0] left_y;
 reg [4:0] mac_bit;
 reg [1:0] mac_op;
-reg [23:0] mag_x;
-reg [23:0] mag_x_step;
 reg [23:0] mag_xe;
 reg [23:0] mag_xs;
-reg [23:0] mag_y;
-reg [23:0] mag_y_step;
 reg [23:0] mag_ye;
 reg [23:0] mag_ys;
 reg [47:0] multiplicand;
 reg [23:0] multiplier;
 reg near_x;
 reg near_y;
-reg [24:0] neg_mag_x;
-reg [24:0] neg_mag_x_step;
-reg [24:0] neg_mag_y;
-reg [24:0] neg_mag_y_step;
-reg signed [24:0] neg_xs;
-reg signed [24:0] neg_ys;
+reg signed [28:0] neg_in;
+reg neg_xe;
+reg neg_xs;
+reg neg_ye;
+reg neg_ys;
+reg pending;
+reg [23:0] pos_out;
+reg signed [31:0] q_in;
+reg signed [31:0] q_out;
 reg [1:0] quadrant;
 reg signed [29:0] radial_error;
 reg [47:0] radicand;
@@ -167,66 +229,85 @@ reg [5:0] root_length;
 reg [26:0] root_trial_diff;
 reg root_trial_fits;
 reg [26:0] root_trial_rem;
+reg run_active;
+reg run_blend;
+reg run_ccw;
+reg [23:0] run_end_x;
+reg [23:0] run_end_y;
+reg run_line;
+reg run_right;
+reg run_up;
+reg [1:0] run_variant;
 reg [2:0] state;
+reg [23:0] stepped_x;
+reg [23:0] stepped_y;
 reg [23:0] target_x;
 reg [23:0] target_y;
 reg [28:0] threshold;
+reg tot_k2_x;
+reg tot_k2_y;
+reg tot_k4_x;
+reg tot_k4_y;
+reg signed [27:0] tot_sum_x;
+reg signed [27:0] tot_sum_y;
+reg signed [27:0] tot_x;
+reg signed [27:0] tot_y;
 reg [1:0] variant;
 reg x_inward;
-reg signed [23:0] xe;
-reg signed [23:0] xs;
-reg signed [23:0] ye;
-reg signed [23:0] ys;
 
 
 
-always @(xe, cmd_xs, ys, ye, xs, neg_ys, neg_xs) begin: magnitudes
-    if ((cmd_xs < 0)) begin
-        cmd_mag_xs = (-cmd_xs);
+always @(cmd_ys, cmd_ye, cmd_xs, cmd_xe) begin: magnitudes
+    reg [24-1:0] sign_xs;
+    reg [24-1:0] sign_ys;
+    reg [24-1:0] sign_xe;
+    reg [24-1:0] sign_ye;
+    reg [24-1:0] less_xs;
+    reg [24-1:0] less_ys;
+    reg [24-1:0] less_xe;
+    reg [24-1:0] less_ye;
+    sign_xs = 24'h0;
+    sign_ys = 24'h0;
+    sign_xe = 24'h0;
+    sign_ye = 24'h0;
+    less_xs = 24'h0;
+    less_ys = 24'h0;
+    less_xe = 24'h0;
+    less_ye = 24'h0;
+    if (cmd_xs[(24 - 1)]) begin
+        sign_xs = 16777215;
     end
-    else begin
-        cmd_mag_xs = cmd_xs;
+    if (cmd_ys[(24 - 1)]) begin
+        sign_ys = 16777215;
     end
-    neg_xs = (-$signed({xs[(24 - 1)], xs}));
-    neg_ys = (-$signed({ys[(24 - 1)], ys}));
-    if ((xs < 0)) begin
-        mag_xs = neg_xs[24-1:0];
+    if (cmd_xe[(24 - 1)]) begin
+        sign_xe = 16777215;
     end
-    else begin
-        mag_xs = xs[24-1:0];
+    if (cmd_ye[(24 - 1)]) begin
+        sign_ye = 16777215;
     end
-    if ((ys < 0)) begin
-        mag_ys = neg_ys[24-1:0];
-    end
-    else begin
-        mag_ys = ys[24-1:0];
-    end
-    if ((xe < 0)) begin
-        mag_xe = (-xe);
-    end
-    else begin
-        mag_xe = xe;
-    end
-    if ((ye < 0)) begin
-        mag_ye = (-ye);
-    end
-    else begin
-        mag_ye = ye;
-    end
+    less_xs = (cmd_xs[24-1:0] + sign_xs);
+    less_ys = (cmd_ys[24-1:0] + sign_ys);
+    less_xe = (cmd_xe[24-1:0] + sign_xe);
+    less_ye = (cmd_ye[24-1:0] + sign_ye);
+    cmd_mag_xs = (less_xs ^ sign_xs);
+    cmd_mag_ys = (less_ys ^ sign_ys);
+    cmd_mag_xe = (less_xe ^ sign_xe);
+    cmd_mag_ye = (less_ye ^ sign_ye);
 end
 
 
-always @(gap, root_bit, state, multiplicand, mac_op) begin: setup_adder
+always @(gap_low, root_bit, state, multiplicand, gap_carry, gap_high, mac_op) begin: setup_adder
     reg subtract;
     reg carry;
     reg [50-1:0] operand;
-    reg [50-1:0] carry_in;
-    reg [50-1:0] total;
+    reg [26-1:0] total_low;
+    reg [25-1:0] total_high;
     subtract = (0 != 0);
     carry = (0 != 0);
     operand = 50'h0;
-    carry_in = 50'h0;
-    total = 50'h0;
+    total_low = 26'h0;
+    total_high = 25'h0;
     if ((state == 3'b001)) begin
         subtract = (mac_op < 2);
         carry = (mac_op < 2);
@@ -238,9 +319,12 @@ always @(gap, root_bit, state, multiplicand, mac_op) begin: setup_adder
     if (subtract) begin
         operand = (~operand);
     end
-    carry_in = {49'h0, carry};
-    total = ((gap[50-1:0] + operand) + carry_in);
-    gap_sum = $signed(total);
+    total_low = (({1'b0, gap_low} + {1'b0, operand[25-1:0]}) + {25'h0, carry});
+    total_high = ((gap_high + operand[50-1:25]) + {24'h0, gap_carry});
+    gap_sum_low = total_low[25-1:0];
+    gap_sum_carry = total_low[25];
+    gap_sum_high = total_high;
+    gap_top = (gap_high + {24'h0, gap_carry});
 end
 
 
@@ -265,11 +349,17 @@ always @(posedge clock, negedge reset) begin: geometry
     reg [25-1:0] shrink_x;
     reg [25-1:0] shrink_y;
     reg ahead;
+    reg zero_xs;
+    reg zero_ys;
+    reg zero_xe;
+    reg zero_ye;
     if (reset == 0) begin
         geo_quadrant <= 0;
         geo_ahead <= 0;
+        geo_x_in_start <= 0;
         geo_centre <= 0;
         geo_end_inward <= 0;
+        geo_x_in_end <= 0;
         geo_crossings <= 0;
     end
     else begin
@@ -280,26 +370,34 @@ always @(posedge clock, negedge reset) begin: geometry
         shrink_x = 25'h0;
         shrink_y = 25'h0;
         ahead = (0 != 0);
+        zero_xs = (0 != 0);
+        zero_ys = (0 != 0);
+        zero_xe = (0 != 0);
+        zero_ye = (0 != 0);
+        zero_xs = (mag_xs == 0);
+        zero_ys = (mag_ys == 0);
+        zero_xe = (mag_xe == 0);
+        zero_ye = (mag_ye == 0);
         if (ccw) begin
-            if (((xs > 0) && (ys >= 0))) begin
+            if (((!neg_xs) && (!zero_xs) && (!neg_ys))) begin
                 q_s = 0;
             end
-            else if (((xs <= 0) && (ys > 0))) begin
+            else if (((neg_xs || zero_xs) && (!neg_ys) && (!zero_ys))) begin
                 q_s = 1;
             end
-            else if (((xs < 0) && (ys <= 0))) begin
+            else if ((neg_xs && (neg_ys || zero_ys))) begin
                 q_s = 2;
             end
             else begin
                 q_s = 3;
             end
-            if (((xe >= 0) && (ye > 0))) begin
+            if (((!neg_xe) && (!neg_ye) && (!zero_ye))) begin
                 q_e = 0;
             end
-            else if (((xe < 0) && (ye >= 0))) begin
+            else if ((neg_xe && (!neg_ye))) begin
                 q_e = 1;
             end
-            else if (((xe <= 0) && (ye < 0))) begin
+            else if (((neg_xe || zero_xe) && neg_ye)) begin
                 q_e = 2;
             end
             else begin
@@ -308,25 +406,25 @@ always @(posedge clock, negedge reset) begin: geometry
             turn = (q_e - q_s);
         end
         else begin
-            if (((xs >= 0) && (ys > 0))) begin
+            if (((!neg_xs) && (!neg_ys) && (!zero_ys))) begin
                 q_s = 0;
             end
-            else if (((xs < 0) && (ys >= 0))) begin
+            else if ((neg_xs && (!neg_ys))) begin
                 q_s = 1;
             end
-            else if (((xs <= 0) && (ys < 0))) begin
+            else if (((neg_xs || zero_xs) && neg_ys)) begin
                 q_s = 2;
             end
             else begin
                 q_s = 3;
             end
-            if (((xe > 0) && (ye >= 0))) begin
+            if (((!neg_xe) && (!zero_xe) && (!neg_ye))) begin
                 q_e = 0;
             end
-            else if (((xe <= 0) && (ye > 0))) begin
+            else if (((neg_xe || zero_xe) && (!neg_ye) && (!zero_ye))) begin
                 q_e = 1;
             end
-            else if (((xe < 0) && (ye <= 0))) begin
+            else if ((neg_xe && (neg_ye || zero_ye))) begin
                 q_e = 2;
             end
             else begin
@@ -358,31 +456,125 @@ always @(posedge clock, negedge reset) begin: geometry
         else begin
             geo_end_inward <= mag_ye;
         end
-        geo_centre <= (((xs == 0) && (ys == 0)) || ((xe == 0) && (ye == 0)));
+        geo_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+        geo_x_in_start <= (q_s[0] != ccw);
+        geo_x_in_end <= (q_e[0] != ccw);
     end
 end
 
 
-always @(radius_length, acc_bits, neg_ys, geo_crossings, mag_ys, variant, geo_quadrant, mag_xs, radius_q, end_reaches_low, mag_ye, geo_centre, lambda_shift, geo_ahead, xs, mag_xe, neg_xs, is_line, ys, end_beyond_high, ccw, geo_end_inward) begin: check_logic
+always @(geo_crossings, geo_x_in_end, geo_x_in_start) begin: totals_k
+    reg out_in;
+    reg in_out;
+    out_in = ((!geo_x_in_start) && geo_x_in_end);
+    in_out = (geo_x_in_start && (!geo_x_in_end));
+    tot_k4_x = ((geo_crossings == 4) || ((geo_crossings == 3) && out_in));
+    tot_k4_y = ((geo_crossings == 4) || ((geo_crossings == 3) && in_out));
+    tot_k2_x = ((geo_crossings == 2) || ((geo_crossings == 1) && out_in) || ((geo_crossings == 3) && in_out));
+    tot_k2_y = ((geo_crossings == 2) || ((geo_crossings == 1) && in_out) || ((geo_crossings == 3) && out_in));
+end
+
+
+always @(mag_ys, tot_x, mag_xs, state, tot_y, mag_ye, mag_xe, mac_bit, geo_x_in_end, mac_op, geo_x_in_start) begin: totals_adder
+    reg [28-1:0] operand_x;
+    reg [28-1:0] operand_y;
+    reg invert_x;
+    reg invert_y;
+    reg carry_x;
+    reg carry_y;
+    reg [28-1:0] total_x;
+    reg [28-1:0] total_y;
+    operand_x = 28'h0;
+    operand_y = 28'h0;
+    invert_x = (0 != 0);
+    invert_y = (0 != 0);
+    carry_x = (0 != 0);
+    carry_y = (0 != 0);
+    total_x = 28'h0;
+    total_y = 28'h0;
+    if (((state == 3'b001) && (mac_op == 0) && (mac_bit == 1))) begin
+        operand_x = {4'h0, mag_xs};
+        operand_y = {4'h0, mag_ys};
+        invert_x = (!geo_x_in_start);
+        invert_y = (geo_x_in_start == 1);
+    end
+    else if (((state == 3'b001) && (mac_op == 0) && (mac_bit == 2))) begin
+        operand_x = {4'h0, mag_xe};
+        operand_y = {4'h0, mag_ye};
+        invert_x = (geo_x_in_end == 1);
+        invert_y = (!geo_x_in_end);
+    end
+    if (invert_x) begin
+        operand_x = (~operand_x);
+        carry_x = 1'b1;
+    end
+    if (invert_y) begin
+        operand_y = (~operand_y);
+        carry_y = 1'b1;
+    end
+    total_x = ((tot_x[28-1:0] + operand_x) + {27'h0, carry_x});
+    total_y = ((tot_y[28-1:0] + operand_y) + {27'h0, carry_y});
+    tot_sum_x = $signed(total_x);
+    tot_sum_y = $signed(total_y);
+end
+
+
+always @(tot_x, tot_k2_y, tot_k4_y, tot_k4_x, radius_q, tot_k2_x, mag_ye, mag_xe, is_line, tot_y) begin: totals_check
+    reg [27-1:0] operand_x;
+    reg [27-1:0] operand_y;
+    reg [27-1:0] total_x;
+    reg [27-1:0] total_y;
+    operand_x = 27'h0;
+    operand_y = 27'h0;
+    total_x = 27'h0;
+    total_y = 27'h0;
+    if (is_line) begin
+        operand_x = {3'h0, mag_xe};
+        operand_y = {3'h0, mag_ye};
+    end
+    else begin
+        if (tot_k2_x) begin
+            operand_x = {1'h0, radius_q, 1'b0};
+        end
+        else if (tot_k4_x) begin
+            operand_x = {radius_q, 2'h0};
+        end
+        if (tot_k2_y) begin
+            operand_y = {1'h0, radius_q, 1'b0};
+        end
+        else if (tot_k4_y) begin
+            operand_y = {radius_q, 2'h0};
+        end
+    end
+    total_x = (tot_x[27-1:0] + operand_x);
+    total_y = (tot_y[27-1:0] + operand_y);
+    check_left_x = $signed(total_x[27-1:0]);
+    check_left_y = $signed(total_y[27-1:0]);
+end
+
+
+always @(radius_length, acc_bits, geo_crossings, mag_ys, variant, geo_quadrant, mag_xs, radius_q, end_reaches_low, mag_ye, geo_centre, lambda_shift, geo_ahead, mag_xe, is_line, geo_x_in_start, end_beyond_high, ccw, geo_end_inward) begin: check_logic
     reg [25-1:0] rq;
     reg [6-1:0] exponent;
     reg [29-1:0] thr;
     reg [29-1:0] thr_less;
-    reg [29-1:0] one;
+    reg [29-1:0] mask;
     reg [32-1:0] below;
     reg [32-1:0] half;
     reg [24-1:0] major;
     reg [24-1:0] major_less;
+    reg [24-1:0] inward;
     reg bad;
     rq = 25'h0;
     exponent = 6'h0;
     thr = 29'h0;
     thr_less = 29'h0;
-    one = 29'h1;
+    mask = 29'h0;
     below = 32'h0;
     half = 32'h0;
     major = 24'h0;
     major_less = 24'h0;
+    inward = 24'h0;
     bad = 1'b0;
     rq = radius_q;
     if (geo_centre) begin
@@ -400,8 +592,10 @@ always @(radius_length, acc_bits, neg_ys, geo_crossings, mag_ys, variant, geo_qu
     else begin
         exponent = (radius_length + {1'b0, lambda_shift});
     end
-    thr = (one << exponent);
-    thr_less = (thr - 1);
+    mask = ((1 << 29) - 1);
+    mask = (mask << exponent);
+    thr_less = (~mask);
+    thr = ({thr_less[(29 - 1)-1:0], 1'b1} & mask);
     if (((variant != 3) && ($signed({1'b0, exponent}) > (29 - 1)))) begin
         bad = 1'b1;
     end
@@ -411,11 +605,12 @@ always @(radius_length, acc_bits, neg_ys, geo_crossings, mag_ys, variant, geo_qu
     end
     if ((mag_xe > mag_ye)) begin
         major = mag_xe;
+        major_less = (mag_xe + 16777215);
     end
     else begin
         major = mag_ye;
+        major_less = (mag_ye + 16777215);
     end
-    major_less = (major - 1);
     if (is_line) begin
         thr = {5'h0, major};
         thr_less = {5'h0, major_less};
@@ -426,138 +621,113 @@ always @(radius_length, acc_bits, neg_ys, geo_crossings, mag_ys, variant, geo_qu
         half = (~{3'h0, thr});
     end
     if ((is_line || geo_ahead)) begin
-        chk_target_x = mag_xe;
-        chk_target_y = mag_ye;
+        check_target_x = mag_xe;
+        check_target_y = mag_ye;
     end
     else begin
         if (({1'b0, geo_end_inward} > rq)) begin
             bad = 1'b1;
         end
         if ((geo_quadrant[0] != ccw)) begin
-            chk_target_x = 0;
-            chk_target_y = rq[24-1:0];
+            check_target_x = 0;
+            check_target_y = rq[24-1:0];
         end
         else begin
-            chk_target_x = rq[24-1:0];
-            chk_target_y = 0;
+            check_target_x = rq[24-1:0];
+            check_target_y = 0;
         end
     end
-    chk_error = bad;
-    chk_radius = rq[24-1:0];
-    chk_quadrant = geo_quadrant;
-    chk_crossings = geo_crossings;
-    chk_mag_x = mag_xs;
-    chk_mag_y = mag_ys;
-    if ((is_line || bad)) begin
-        chk_quadrant = 0;
-    end
+    check_error = (bad && (!is_line));
+    check_zero = (is_line && (mag_xe == 0) && (mag_ye == 0));
+    check_quadrant = geo_quadrant;
+    check_crossings = geo_crossings;
     if (is_line) begin
-        chk_crossings = 0;
-        chk_mag_x = 0;
-        chk_mag_y = 0;
+        check_quadrant = 0;
+        check_crossings = 0;
     end
-    chk_threshold = thr;
-    chk_acc_init = $signed(half);
-    if ((xs < 0)) begin
-        chk_neg_mag_x = {xs[(24 - 1)], xs};
+    check_threshold = thr;
+    check_acc_init = $signed(half);
+    inward = mag_ys;
+    if (geo_x_in_start) begin
+        inward = mag_xs;
+    end
+    check_neg_in = (-$signed({5'h0, inward}));
+end
+
+
+always @(mag_ys, mag_xs, chk_neg_in, mag_ye, mag_xe, is_line, geo_x_in_start) begin: first_iteration
+    reg [2-1:0] fill;
+    reg [31-1:0] half;
+    reg [32-1:0] twice_in;
+    reg [32-1:0] twice_out;
+    reg [24-1:0] out;
+    reg [24-1:0] step_in;
+    reg [24-1:0] step_out;
+    fill = 2'h0;
+    half = 31'h0;
+    twice_in = 32'h0;
+    twice_out = 32'h0;
+    out = 24'h0;
+    first_integrand_x = mag_ys;
+    first_integrand_y = mag_xs;
+    if (is_line) begin
+        first_integrand_x = mag_xe;
+        first_integrand_y = mag_ye;
+    end
+    step_in = 24'h1;
+    step_out = 24'h1;
+    if (geo_x_in_start) begin
+        step_out = 16777215;
+        out = mag_ys;
     end
     else begin
-        chk_neg_mag_x = neg_xs;
+        step_in = 16777215;
+        out = mag_xs;
     end
-    if ((ys < 0)) begin
-        chk_neg_mag_y = {ys[(24 - 1)], ys};
+    first_stepped_x = (mag_ys + step_in);
+    first_stepped_y = (mag_xs + step_out);
+    first_out = out;
+    if (chk_neg_in[(30 - 2)]) begin
+        fill = 3;
+    end
+    half = ({7'h0, out} + {fill, chk_neg_in[(30 - 1)-1:0]});
+    twice_in = ({fill[0], chk_neg_in[(30 - 1)-1:0], 2'h3} + {7'h0, out, 1'b0});
+    twice_out = ({6'h0, out, 2'h3} + {fill, chk_neg_in[(30 - 1)-1:0], 1'b0});
+    first_half = $signed(half);
+    first_q_in = $signed(twice_in);
+    first_q_out = $signed(twice_out);
+end
+
+
+always @(left_x, stepped_y, integrand_x, stepped_x, target_y, integrand_y, target_x, run_line, left_y) begin: end_tests
+    if (run_line) begin
+        at_x = (left_x[27-1:0] == 134217727);
+        at_y = (left_y[27-1:0] == 134217727);
+        near_x = (left_x == 0);
+        near_y = (left_y == 0);
     end
     else begin
-        chk_neg_mag_y = neg_ys;
+        at_x = (integrand_y == target_x);
+        at_y = (integrand_x == target_y);
+        near_x = (stepped_y == target_x);
+        near_y = (stepped_x == target_y);
     end
 end
 
 
-always @(mag_y, mag_x_step, mag_x, target_y, neg_mag_y, x_inward, target_x, neg_mag_x, mag_y_step, is_line) begin: piece_progress
-    reg [4-1:0] fill_x;
-    reg [4-1:0] fill_y;
-    if (((!is_line) && x_inward)) begin
-        count_x = (mag_x - target_x);
-        count_y = (target_y - mag_y);
-    end
-    else if ((!is_line)) begin
-        count_x = (target_x - mag_x);
-        count_y = (mag_y - target_y);
-    end
-    else begin
-        count_x = (target_x - mag_x);
-        count_y = (target_y - mag_y);
-    end
-    if (((!is_line) && x_inward)) begin
-        mag_x_step = (mag_x + 16777215);
-        neg_mag_x_step = (neg_mag_x + 1);
-        mag_y_step = (mag_y + 1);
-        neg_mag_y_step = (neg_mag_y + 33554431);
-    end
-    else if ((!is_line)) begin
-        mag_x_step = (mag_x + 1);
-        neg_mag_x_step = (neg_mag_x + 33554431);
-        mag_y_step = (mag_y + 16777215);
-        neg_mag_y_step = (neg_mag_y + 1);
-    end
-    else begin
-        mag_x_step = (mag_x + 1);
-        neg_mag_x_step = (neg_mag_x + 33554431);
-        mag_y_step = (mag_y + 1);
-        neg_mag_y_step = (neg_mag_y + 33554431);
-    end
-    at_x = (mag_x == target_x);
-    at_y = (mag_y == target_y);
-    near_x = (mag_x_step == target_x);
-    near_y = (mag_y_step == target_y);
-    fill_x = 4'h0;
-    fill_y = 4'h0;
-    if (neg_mag_x[24]) begin
-        fill_x = 15;
-    end
-    if (neg_mag_y[24]) begin
-        fill_y = 15;
-    end
-    if (x_inward) begin
-        delta_x = $signed({fill_x, neg_mag_x, 1'b1});
-        delta_y = $signed({5'h0, mag_y, 1'b1});
-    end
-    else begin
-        delta_x = $signed({5'h0, mag_x, 1'b1});
-        delta_y = $signed({fill_y, neg_mag_y, 1'b1});
-    end
-    if (is_line) begin
-        integrand_x = target_x;
-        integrand_y = target_y;
-    end
-    else begin
-        integrand_x = mag_y;
-        integrand_y = mag_x;
-    end
-end
-
-
-always @(mag_y, neg_mag_y_step, variant, mag_x_step, delta_x, delta_y, x_inward, crossings, mag_y_step, xe, at_x, near_y, integrand_x, near_x, ye, quadrant, neg_mag_y, integrand_y, is_line, radial_error, count_y, threshold, count_x, neg_mag_x_step, acc_x, at_y, mag_x, acc_y, neg_mag_x) begin: iteration_logic
+always @(q_out, half_sum, neg_in, run_variant, run_up, x_inward, crossings, at_x, near_y, integrand_x, near_x, quadrant, integrand_y, stepped_x, radial_error, acc_x, at_y, acc_y, run_right, q_in, run_line) begin: iteration_logic
     reg x_right;
     reg y_up;
-    reg [9-1:0] to_mag;
     reg signed [33-1:0] sum_x;
     reg signed [33-1:0] sum_x_step;
     reg signed [33-1:0] sum_y;
-    reg [32-1:0] thr_low;
     reg signed [33-1:0] ahead_x;
     reg signed [33-1:0] ahead_y;
-    reg [32-1:0] less_x;
-    reg [32-1:0] less_y;
-    reg signed [30-1:0] cand_d;
-    reg signed [30-1:0] cand_x;
-    reg signed [30-1:0] cand_y;
-    reg signed [30-1:0] delta_xy;
-    reg signed [31-1:0] half_xy;
-    reg sum_le_0;
-    reg sum_lt_0;
-    reg d_le_x;
-    reg d_le_y;
+    reg signed [32-1:0] twice_in;
+    reg signed [32-1:0] twice_out;
+    reg [31-1:0] error_half;
+    reg d_le_in;
+    reg d_le_out;
     reg x_le_y;
     reg over_x;
     reg over_x_step;
@@ -566,24 +736,16 @@ always @(mag_y, neg_mag_y_step, variant, mag_x_step, delta_x, delta_y, x_inward,
     reg go_y;
     x_right = (0 != 0);
     y_up = (0 != 0);
-    to_mag = 9'h0;
     sum_x = 0;
     sum_x_step = 0;
     sum_y = 0;
-    thr_low = 32'h0;
     ahead_x = 0;
     ahead_y = 0;
-    less_x = 32'h0;
-    less_y = 32'h0;
-    cand_d = 0;
-    cand_x = 0;
-    cand_y = 0;
-    delta_xy = 0;
-    half_xy = 0;
-    sum_le_0 = (0 != 0);
-    sum_lt_0 = (0 != 0);
-    d_le_x = (0 != 0);
-    d_le_y = (0 != 0);
+    twice_in = 0;
+    twice_out = 0;
+    error_half = 31'h0;
+    d_le_in = (0 != 0);
+    d_le_out = (0 != 0);
     x_le_y = (0 != 0);
     over_x = (0 != 0);
     over_x_step = (0 != 0);
@@ -592,45 +754,39 @@ always @(mag_y, neg_mag_y_step, variant, mag_x_step, delta_x, delta_y, x_inward,
     go_y = (0 != 0);
     x_right = (quadrant[0] == quadrant[1]);
     y_up = (!quadrant[1]);
-    if (is_line) begin
-        it_dir_x = (xe >= 0);
-        it_dir_y = (ye >= 0);
+    if (run_line) begin
+        it_dir_x = run_right;
+        it_dir_y = run_up;
     end
     else begin
         it_dir_x = (x_right != x_inward);
         it_dir_y = (y_up == x_inward);
     end
-    to_mag = 0;
-    thr_low = {3'h0, threshold};
-    sum_y = ($signed({acc_y[(32 - 1)], acc_y}) + $signed({to_mag, integrand_y}));
-    sum_x = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({to_mag, integrand_x}));
-    sum_x_step = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({to_mag, mag_y_step}));
+    sum_y = ($signed({acc_y[(32 - 1)], acc_y}) + $signed({9'h0, integrand_y}));
+    sum_x = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({9'h0, integrand_x}));
+    sum_x_step = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({9'h0, stepped_x}));
     over_x = (!sum_x[32]);
     over_x_step = (!sum_x_step[32]);
     over_y = (!sum_y[32]);
-    if (((!is_line) && (variant == 0) && over_y)) begin
+    if (((!run_line) && (run_variant == 0) && over_y)) begin
         sum_x = sum_x_step;
         over_x = over_x_step;
     end
-    delta_xy = (delta_x + delta_y);
-    cand_x = (radial_error + delta_x);
-    cand_y = (radial_error + delta_y);
-    cand_d = (radial_error + delta_xy);
-    half_xy = ($signed({delta_x[(30 - 1)], delta_x[(30 - 1)], delta_x[30-1:1]}) + $signed({delta_y[(30 - 1)], delta_y[(30 - 1)], delta_y[30-1:1]}));
-    sum_le_0 = (($signed({radial_error[(30 - 1)], radial_error}) + half_xy) < 0);
-    sum_lt_0 = ((($signed({radial_error[(30 - 1)], radial_error}) + half_xy) + 1) < 0);
-    d_le_x = ((delta_y < 0) != (($signed({cand_x[30-1:0], 1'b0}) + $signed({delta_y[(30 - 1)], delta_y})) < 0));
-    d_le_y = ((delta_x < 0) != (($signed({cand_y[30-1:0], 1'b0}) + $signed({delta_x[(30 - 1)], delta_x})) < 0));
-    x_le_y = ((delta_x == delta_y) || ((delta_x > delta_y) && sum_le_0) || ((delta_x < delta_y) && (!sum_lt_0)));
+    twice_in = ($signed({radial_error[(30 - 1)], radial_error, 1'b0}) + q_in);
+    twice_out = ($signed({radial_error[(30 - 1)], radial_error, 1'b0}) + q_out);
+    error_half = (({radial_error[(30 - 1)], radial_error} + half_sum[(30 + 1)-1:0]) + {30'h0, x_inward});
+    d_le_in = (twice_in < 0);
+    d_le_out = ((neg_in < 0) != (twice_out < 0));
+    x_le_y = (($signed(error_half) < 0) != x_inward);
     go_x = over_x;
     go_y = over_y;
-    if (is_line) begin
+    if (run_line) begin
         go_x = (over_x && (!at_x));
         go_y = (over_y && (!at_y));
     end
-    else if ((variant == 2)) begin
-        ahead_x = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({to_mag[(32 - 24)-1:0], mag_y, 1'b0}));
-        ahead_y = ($signed({acc_y[(32 - 1)], acc_y}) + $signed({to_mag[(32 - 24)-1:0], mag_x, 1'b0}));
+    else if ((run_variant == 2)) begin
+        ahead_x = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({8'h0, integrand_x, 1'b0}));
+        ahead_y = ($signed({acc_y[(32 - 1)], acc_y}) + $signed({8'h0, integrand_y, 1'b0}));
         if ((over_x && (!over_y) && (ahead_y >= 0))) begin
             go_y = 1'b1;
         end
@@ -638,11 +794,11 @@ always @(mag_y, neg_mag_y_step, variant, mag_x_step, delta_x, delta_y, x_inward,
             go_x = 1'b1;
         end
     end
-    else if ((variant == 3)) begin
+    else if ((run_variant == 3)) begin
         go_x = 1'b0;
         go_y = 1'b0;
         if ((over_x || over_y)) begin
-            if ((d_le_x && d_le_y)) begin
+            if ((d_le_in && d_le_out)) begin
                 go_x = 1'b1;
                 go_y = 1'b1;
             end
@@ -654,8 +810,8 @@ always @(mag_y, neg_mag_y_step, variant, mag_x_step, delta_x, delta_y, x_inward,
             end
         end
     end
-    it_tail = ((!is_line) && ((count_x == 0) || (count_y == 0)));
-    if (((!is_line) && (at_x || at_y))) begin
+    it_tail = ((!run_line) && (at_x || at_y));
+    if (((!run_line) && (at_x || at_y))) begin
         go_x = (!at_x);
         go_y = (!at_y);
     end
@@ -665,46 +821,14 @@ always @(mag_y, neg_mag_y_step, variant, mag_x_step, delta_x, delta_y, x_inward,
     if (((!sum_y[32]) && sum_y[(32 - 1)])) begin
         sum_y = 33'h7fffffff;
     end
-    less_x = sum_x[32-1:0];
-    if (go_x) begin
-        less_x = (sum_x[32-1:0] - thr_low);
-    end
-    less_y = sum_y[32-1:0];
-    if (go_y) begin
-        less_y = (sum_y[32-1:0] - thr_low);
-    end
-    it_acc_x = $signed(less_x);
-    it_acc_y = $signed(less_y);
+    it_sum_x = $signed(sum_x[32-1:0]);
+    it_sum_y = $signed(sum_y[32-1:0]);
     it_step_x = go_x;
     it_step_y = go_y;
-    it_mag_x = mag_x;
-    it_mag_y = mag_y;
-    it_neg_mag_x = neg_mag_x;
-    it_neg_mag_y = neg_mag_y;
-    if (go_x) begin
-        it_mag_x = mag_x_step;
-        it_neg_mag_x = neg_mag_x_step;
-    end
-    if (go_y) begin
-        it_mag_y = mag_y_step;
-        it_neg_mag_y = neg_mag_y_step;
-    end
-    if ((go_x && go_y)) begin
-        it_error = cand_d;
-    end
-    else if (go_x) begin
-        it_error = cand_x;
-    end
-    else if (go_y) begin
-        it_error = cand_y;
-    end
-    else begin
-        it_error = radial_error;
-    end
     it_finished = 1'b0;
     it_next_piece = 1'b0;
     if ((((near_x && go_x) || at_x) && ((near_y && go_y) || at_y))) begin
-        if ((is_line || (crossings == 0))) begin
+        if ((run_line || (crossings == 0))) begin
             it_finished = 1'b1;
         end
         else begin
@@ -714,226 +838,445 @@ always @(mag_y, neg_mag_y_step, variant, mag_x_step, delta_x, delta_y, x_inward,
 end
 
 
-always @(posedge clock, negedge reset) begin: control
+always @(dec_finished, run_active, pending, chk_error, chk_zero, state) begin: handover_logic
+    reg free;
+    free = ((!run_active) || (pending && dec_finished));
+    hand_load = 1'b0;
+    hand_end = 1'b0;
+    if ((state == 3'b101)) begin
+        if ((chk_zero || chk_error)) begin
+            hand_end = free;
+        end
+        else begin
+            hand_load = free;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: setup_control
     if (reset == 0) begin
         radius_length <= 0;
-        mag_y <= 0;
-        cmd_done <= 0;
+        neg_ye <= 0;
+        chk_quadrant <= 0;
+        chk_target_y <= 0;
         acc_bits <= 0;
-        gap <= 0;
-        cmd_busy <= 0;
+        neg_ys <= 0;
+        chk_zero <= 0;
+        tot_y <= 0;
+        mag_ys <= 0;
+        gap_low <= 0;
         variant <= 0;
         root_all_ones <= 0;
-        steps_step_x <= 0;
+        mag_xs <= 0;
         multiplicand <= 0;
-        target_y <= 0;
-        x_inward <= 0;
-        crossings <= 0;
+        chk_target_x <= 0;
         radius_q <= 0;
         end_reaches_low <= 0;
-        target_x <= 0;
+        mag_ye <= 0;
         root_length <= 0;
         mac_op <= 0;
         state <= 3'b000;
-        xe <= 0;
+        chk_threshold <= 0;
+        chk_crossings <= 0;
+        blend <= 0;
+        tot_x <= 0;
         multiplier <= 0;
-        radius <= 0;
         cmd_error <= 0;
         root <= 0;
         root_bit <= 0;
         lambda_shift <= 0;
         radicand <= 0;
-        ye <= 0;
-        quadrant <= 0;
-        neg_mag_y <= 0;
-        steps_dir_x <= 0;
-        steps_dir_y <= 0;
-        xs <= 0;
-        steps_step_y <= 0;
+        gap_carry <= 0;
+        chk_left_y <= 0;
+        chk_neg_in <= 0;
+        gap_high <= 0;
+        mag_xe <= 0;
+        neg_xs <= 0;
         mac_bit <= 0;
         remainder <= 0;
         is_line <= 0;
-        radial_error <= 0;
-        threshold <= 0;
-        ys <= 0;
+        chk_error <= 0;
+        chk_acc_init <= 0;
         end_beyond_high <= 0;
-        acc_x <= 0;
-        mag_x <= 0;
         ccw <= 0;
-        acc_y <= 0;
-        neg_mag_x <= 0;
+        neg_xe <= 0;
+        chk_left_x <= 0;
     end
     else begin
+        case (state)
+            3'b000: begin
+                if (cmd_start) begin
+                    cmd_error <= 1'b0;
+                    is_line <= cmd_line;
+                    variant <= cmd_variant;
+                    lambda_shift <= cmd_lambda_shift;
+                    acc_bits <= cmd_acc_bits;
+                    ccw <= cmd_ccw;
+                    blend <= cmd_blend;
+                    tot_x <= (-1);
+                    tot_y <= (-1);
+                    neg_xs <= (cmd_xs < 0);
+                    neg_ys <= (cmd_ys < 0);
+                    neg_xe <= (cmd_xe < 0);
+                    neg_ye <= (cmd_ye < 0);
+                    mag_xs <= cmd_mag_xs;
+                    mag_ys <= cmd_mag_ys;
+                    mag_xe <= cmd_mag_xe;
+                    mag_ye <= cmd_mag_ye;
+                    gap_low <= ((1 << 25) - 1);
+                    gap_high <= ((1 << (50 - 25)) - 1);
+                    gap_carry <= 1'b0;
+                    mac_op <= 0;
+                    mac_bit <= 0;
+                    multiplicand <= {24'h0, cmd_mag_xs};
+                    multiplier <= cmd_mag_xs;
+                    if (cmd_line) begin
+                        state <= 3'b100;
+                    end
+                    else begin
+                        state <= 3'b001;
+                    end
+                end
+            end
+            3'b001: begin
+                tot_x <= tot_sum_x;
+                tot_y <= tot_sum_y;
+                gap_high <= gap_top;
+                gap_carry <= 1'b0;
+                if (multiplier[0]) begin
+                    gap_low <= gap_sum_low;
+                    gap_high <= gap_sum_high;
+                    gap_carry <= gap_sum_carry;
+                end
+                if (((mac_op == 2) && (mac_bit == 0))) begin
+                    radicand <= (~{gap_top[((2 * 24) - 25)-1:0], gap_low});
+                end
+                if (($signed({1'b0, mac_bit}) == (24 - 1))) begin
+                    mac_bit <= 0;
+                    mac_op <= (mac_op + 1);
+                    case (mac_op)
+                        'h0: begin
+                            multiplicand <= {24'h0, mag_ys};
+                            multiplier <= mag_ys;
+                        end
+                        'h1: begin
+                            multiplicand <= {24'h0, mag_xe};
+                            multiplier <= mag_xe;
+                        end
+                        'h2: begin
+                            multiplicand <= {24'h0, mag_ye};
+                            multiplier <= mag_ye;
+                        end
+                        default: begin
+                            if ((mag_xs > mag_ys)) begin
+                                multiplicand <= {24'h0, mag_xs};
+                            end
+                            else begin
+                                multiplicand <= {24'h0, mag_ys};
+                            end
+                            remainder <= 0;
+                            root <= 0;
+                            root_bit <= 0;
+                            root_length <= 0;
+                            root_all_ones <= 1'b1;
+                            state <= 3'b010;
+                        end
+                    endcase
+                end
+                else begin
+                    mac_bit <= (mac_bit + 1);
+                    multiplicand <= (multiplicand << 1);
+                    multiplier <= (multiplier >>> 1);
+                end
+            end
+            3'b010: begin
+                if (root_trial_fits) begin
+                    remainder <= root_trial_diff;
+                    root <= {root[(24 - 1)-1:0], 1'b1};
+                end
+                else begin
+                    remainder <= root_trial_rem;
+                    root <= {root[(24 - 1)-1:0], 1'b0};
+                    if ((root != 0)) begin
+                        root_all_ones <= 1'b0;
+                    end
+                end
+                if (((root != 0) || root_trial_fits)) begin
+                    root_length <= (root_length + 1);
+                end
+                radicand <= (radicand << 2);
+                gap_high <= gap_top;
+                gap_carry <= 1'b0;
+                case (root_bit)
+                    'h0: begin
+                        multiplicand <= (multiplicand << 1);
+                    end
+                    'h1: begin
+                        gap_low <= gap_sum_low;
+                        gap_high <= gap_sum_high;
+                        gap_carry <= gap_sum_carry;
+                        multiplicand <= (multiplicand << 1);
+                    end
+                    'h2: begin
+                        end_reaches_low <= (!gap_top[((50 - 25) - 1)]);
+                        gap_low <= gap_sum_low;
+                        gap_high <= gap_sum_high;
+                        gap_carry <= gap_sum_carry;
+                    end
+                    'h3: begin
+                        end_beyond_high <= (!gap_top[((50 - 25) - 1)]);
+                    end
+                endcase
+                if (($signed({1'b0, root_bit}) == (24 - 1))) begin
+                    state <= 3'b011;
+                end
+                else begin
+                    root_bit <= (root_bit + 1);
+                end
+            end
+            3'b011: begin
+                radius_q <= ({1'b0, root} + {24'h0, root_trial_fits});
+                if ((root_trial_fits && root_all_ones)) begin
+                    radius_length <= (root_length + 1);
+                end
+                else begin
+                    radius_length <= root_length;
+                end
+                state <= 3'b100;
+            end
+            3'b100: begin
+                chk_error <= check_error;
+                chk_zero <= check_zero;
+                chk_threshold <= check_threshold;
+                chk_acc_init <= check_acc_init;
+                chk_quadrant <= check_quadrant;
+                chk_crossings <= check_crossings;
+                chk_target_x <= check_target_x;
+                chk_target_y <= check_target_y;
+                chk_left_x <= check_left_x;
+                chk_left_y <= check_left_y;
+                chk_neg_in <= check_neg_in;
+                state <= 3'b101;
+            end
+            default: begin
+                if ((hand_load || hand_end)) begin
+                    state <= 3'b000;
+                end
+                if ((hand_end && (!chk_zero))) begin
+                    cmd_error <= 1'b1;
+                end
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: run_control
+    reg [24-1:0] step_op_x;
+    reg [24-1:0] step_op_y;
+    reg [24-1:0] base_x;
+    reg [24-1:0] base_y;
+    reg [24-1:0] base_op_x;
+    reg [24-1:0] base_op_y;
+    reg [32-1:0] less_x;
+    reg [32-1:0] less_y;
+    reg [31-1:0] inverse;
+    reg [29-1:0] neg_base;
+    reg [31-1:0] half_base;
+    reg [32-1:0] q_in_base;
+    reg [32-1:0] q_out_base;
+    reg [2-1:0] in_out;
+    reg [3-1:0] q_in_op;
+    reg [3-1:0] q_out_op;
+    reg [30-1:0] error_op;
+    reg [30-1:0] error_sum;
+    if (reset == 0) begin
+        q_out <= 0;
+        run_end_y <= 0;
+        stepped_y <= 0;
+        dec_sum_y <= 0;
+        cmd_done <= 0;
+        half_sum <= 0;
+        pos_out <= 0;
+        dec_out <= 0;
+        left_y <= 0;
+        neg_in <= 0;
+        dec_y_down <= 0;
+        dec_next_piece <= 0;
+        dec_y_move <= 0;
+        steps_step_x <= 0;
+        dec_in <= 0;
+        run_variant <= 0;
+        dec_step_y <= 0;
+        run_end_x <= 0;
+        run_up <= 0;
+        dec_sum_x <= 0;
+        target_y <= 0;
+        x_inward <= 0;
+        target_x <= 0;
+        crossings <= 0;
+        dec_x_down <= 0;
+        dec_step_x <= 0;
+        left_x <= 0;
+        dec_finished <= 0;
+        dec_tail <= 0;
+        radius <= 0;
+        integrand_x <= 0;
+        run_active <= 0;
+        steps_dir_x <= 0;
+        steps_dir_y <= 0;
+        quadrant <= 0;
+        integrand_y <= 0;
+        steps_step_y <= 0;
+        pending <= 0;
+        stepped_x <= 0;
+        radial_error <= 0;
+        run_ccw <= 0;
+        threshold <= 0;
+        run_blend <= 0;
+        acc_x <= 0;
+        dec_x_move <= 0;
+        acc_y <= 0;
+        q_in <= 0;
+        run_right <= 0;
+        run_line <= 0;
+    end
+    else begin
+        step_op_x = 24'h0;
+        step_op_y = 24'h0;
+        base_x = 24'h0;
+        base_y = 24'h0;
+        base_op_x = 24'h0;
+        base_op_y = 24'h0;
+        less_x = 32'h0;
+        less_y = 32'h0;
+        inverse = 31'h0;
+        neg_base = 29'h0;
+        half_base = 31'h0;
+        q_in_base = 32'h0;
+        q_out_base = 32'h0;
+        in_out = 2'h0;
+        q_in_op = 3'h0;
+        q_out_op = 3'h0;
+        error_op = 30'h0;
+        error_sum = 30'h0;
         steps_step_x <= 1'b0;
         steps_step_y <= 1'b0;
         cmd_done <= 1'b0;
-        if ((state == 3'b000)) begin
-            if (cmd_start) begin
-                cmd_busy <= 1'b1;
-                cmd_error <= 1'b0;
-                is_line <= cmd_line;
-                variant <= cmd_variant;
-                lambda_shift <= cmd_lambda_shift;
-                acc_bits <= cmd_acc_bits;
-                ccw <= cmd_ccw;
-                xs <= cmd_xs;
-                ys <= cmd_ys;
-                xe <= cmd_xe;
-                ye <= cmd_ye;
-                gap <= (-1);
-                mac_op <= 0;
-                mac_bit <= 0;
-                multiplicand <= {24'h0, cmd_mag_xs};
-                multiplier <= cmd_mag_xs;
-                if (cmd_line) begin
-                    state <= 3'b100;
-                end
-                else begin
-                    state <= 3'b001;
-                end
-            end
-        end
-        else if ((state == 3'b001)) begin
-            if (multiplier[0]) begin
-                gap <= gap_sum;
-            end
-            if (((mac_op == 2) && (mac_bit == 0))) begin
-                radicand <= (~gap[(2 * 24)-1:0]);
-            end
-            if (($signed({1'b0, mac_bit}) == (24 - 1))) begin
-                mac_bit <= 0;
-                mac_op <= (mac_op + 1);
-                case (mac_op)
-                    'h0: begin
-                        multiplicand <= {24'h0, mag_ys};
-                        multiplier <= mag_ys;
-                    end
-                    'h1: begin
-                        multiplicand <= {24'h0, mag_xe};
-                        multiplier <= mag_xe;
-                    end
-                    'h2: begin
-                        multiplicand <= {24'h0, mag_ye};
-                        multiplier <= mag_ye;
-                    end
-                    default: begin
-                        if ((mag_xs > mag_ys)) begin
-                            multiplicand <= {24'h0, mag_xs};
-                        end
-                        else begin
-                            multiplicand <= {24'h0, mag_ys};
-                        end
-                        remainder <= 0;
-                        root <= 0;
-                        root_bit <= 0;
-                        root_length <= 0;
-                        root_all_ones <= 1'b1;
-                        state <= 3'b010;
-                    end
-                endcase
-            end
-            else begin
-                mac_bit <= (mac_bit + 1);
-                multiplicand <= (multiplicand << 1);
-                multiplier <= (multiplier >>> 1);
-            end
-        end
-        else if ((state == 3'b010)) begin
-            if (root_trial_fits) begin
-                remainder <= root_trial_diff;
-                root <= {root[(24 - 1)-1:0], 1'b1};
-            end
-            else begin
-                remainder <= root_trial_rem;
-                root <= {root[(24 - 1)-1:0], 1'b0};
-                if ((root != 0)) begin
-                    root_all_ones <= 1'b0;
-                end
-            end
-            if (((root != 0) || root_trial_fits)) begin
-                root_length <= (root_length + 1);
-            end
-            radicand <= (radicand << 2);
-            case (root_bit)
-                'h0: begin
-                    multiplicand <= (multiplicand << 1);
-                end
-                'h1: begin
-                    gap <= gap_sum;
-                    multiplicand <= (multiplicand << 1);
-                end
-                'h2: begin
-                    end_reaches_low <= (!gap[(50 - 1)]);
-                    gap <= gap_sum;
-                end
-                'h3: begin
-                    end_beyond_high <= (!gap[(50 - 1)]);
-                end
-            endcase
-            if (($signed({1'b0, root_bit}) == (24 - 1))) begin
-                state <= 3'b011;
-            end
-            else begin
-                root_bit <= (root_bit + 1);
-            end
-        end
-        else if ((state == 3'b011)) begin
-            radius_q <= ({1'b0, root} + {24'h0, root_trial_fits});
-            if ((root_trial_fits && root_all_ones)) begin
-                radius_length <= (root_length + 1);
-            end
-            else begin
-                radius_length <= root_length;
-            end
-            state <= 3'b100;
-        end
-        else if ((state == 3'b100)) begin
-            acc_x <= chk_acc_init;
-            acc_y <= chk_acc_init;
-            threshold <= chk_threshold;
-            radial_error <= 0;
-            quadrant <= chk_quadrant;
-            x_inward <= (chk_quadrant[0] != ccw);
-            crossings <= chk_crossings;
-            mag_x <= chk_mag_x;
-            mag_y <= chk_mag_y;
-            target_x <= chk_target_x;
-            target_y <= chk_target_y;
-            radius <= chk_radius;
-            neg_mag_x <= chk_neg_mag_x;
-            neg_mag_y <= chk_neg_mag_y;
-            state <= 3'b101;
-            if ((is_line && (mag_xe == 0) && (mag_ye == 0))) begin
-                cmd_busy <= 1'b0;
-                cmd_done <= 1'b1;
-                state <= 3'b000;
-            end
-            else if (((!is_line) && chk_error)) begin
-                cmd_busy <= 1'b0;
-                cmd_error <= 1'b1;
-                state <= 3'b000;
-            end
-        end
-        else if (cmd_advance) begin
+        pending <= 1'b0;
+        dec_step_x <= it_step_x;
+        dec_step_y <= it_step_y;
+        dec_tail <= it_tail;
+        dec_finished <= it_finished;
+        dec_next_piece <= it_next_piece;
+        dec_x_move <= (it_step_x && (!run_line));
+        dec_x_down <= (it_step_x && x_inward && (!run_line));
+        dec_y_move <= (it_step_y && (!run_line));
+        dec_y_down <= (it_step_y && (!x_inward) && (!run_line));
+        dec_in <= (((it_step_x && x_inward) || (it_step_y && (!x_inward))) && (!run_line));
+        dec_out <= (((it_step_x && (!x_inward)) || (it_step_y && x_inward)) && (!run_line));
+        dec_sum_x <= it_sum_x;
+        dec_sum_y <= it_sum_y;
+        if ((run_active && cmd_advance && (!pending))) begin
+            pending <= 1'b1;
             steps_step_x <= it_step_x;
             steps_step_y <= it_step_y;
             steps_dir_x <= it_dir_x;
             steps_dir_y <= it_dir_y;
-            if ((!it_tail)) begin
-                acc_x <= it_acc_x;
-                acc_y <= it_acc_y;
+            cmd_done <= it_finished;
+        end
+        else if (pending) begin
+            if ((!dec_tail)) begin
+                less_x = dec_sum_x[32-1:0];
+                if (dec_step_x) begin
+                    less_x = (dec_sum_x[32-1:0] - {3'h0, threshold});
+                end
+                less_y = dec_sum_y[32-1:0];
+                if (dec_step_y) begin
+                    less_y = (dec_sum_y[32-1:0] - {3'h0, threshold});
+                end
+                acc_x <= $signed(less_x);
+                acc_y <= $signed(less_y);
             end
-            mag_x <= it_mag_x;
-            mag_y <= it_mag_y;
-            neg_mag_x <= it_neg_mag_x;
-            neg_mag_y <= it_neg_mag_y;
-            radial_error <= it_error;
-            if (it_finished) begin
-                cmd_busy <= 1'b0;
-                cmd_done <= 1'b1;
-                state <= 3'b000;
+            error_op = {5'h0, pos_out, 1'b1};
+            if ((dec_in && dec_out)) begin
+                error_op = {half_sum[(30 - 1)-1:0], 1'b1};
             end
-            if (it_next_piece) begin
+            else if (dec_in) begin
+                error_op = {neg_in[(30 - 1)-1:0], 1'b1};
+            end
+            error_sum = ((radial_error[30-1:0] + error_op) + {29'h0, (dec_in && dec_out)});
+            if ((dec_in || dec_out)) begin
+                radial_error <= $signed(error_sum);
+            end
+            left_x <= (left_x - $signed({26'h0, dec_step_x}));
+            left_y <= (left_y - $signed({26'h0, dec_step_y}));
+            if (dec_x_down) begin
+                step_op_y = 16777215;
+            end
+            else if (dec_x_move) begin
+                step_op_y = 1;
+            end
+            if (dec_y_down) begin
+                step_op_x = 16777215;
+            end
+            else if (dec_y_move) begin
+                step_op_x = 1;
+            end
+            integrand_y <= (integrand_y + step_op_y);
+            integrand_x <= (integrand_x + step_op_x);
+            base_y = stepped_y;
+            base_op_y = step_op_y;
+            base_x = stepped_x;
+            base_op_x = step_op_x;
+            if (dec_next_piece) begin
+                base_op_y = 1;
+                base_y = 0;
+                base_op_x = 1;
+                base_x = 0;
+                if (x_inward) begin
+                    base_op_x = 16777215;
+                    base_x = radius;
+                end
+                else begin
+                    base_op_y = 16777215;
+                    base_y = radius;
+                end
+            end
+            stepped_y <= (base_y + base_op_y);
+            stepped_x <= (base_x + base_op_x);
+            in_out = {dec_in, dec_out};
+            neg_base = neg_in;
+            half_base = half_sum;
+            q_in_base = q_in;
+            q_out_base = q_out;
+            q_in_op = {dec_in, dec_out, 1'b0};
+            q_out_op = {dec_out, dec_in, 1'b0};
+            pos_out <= (pos_out + {23'h0, dec_out});
+            if (dec_next_piece) begin
+                inverse = (~{7'h0, radius});
+                neg_base = inverse[(30 - 1)-1:0];
+                half_base = inverse[(30 + 1)-1:0];
+                q_in_base = {inverse[30-1:0], 2'h3};
+                q_out_base = {inverse[(30 + 1)-1:0], 1'b1};
+                in_out = 1;
+                q_in_op = 4;
+                q_out_op = 4;
+                pos_out <= 0;
+            end
+            neg_base = (neg_base + {28'h0, (dec_in || dec_next_piece)});
+            half_base = ((half_base + {30'h0, in_out[1]}) + {30'h0, in_out[0]});
+            q_in_base = (q_in_base + {29'h0, q_in_op});
+            q_out_base = (q_out_base + {29'h0, q_out_op});
+            neg_in <= $signed(neg_base);
+            half_sum <= $signed(half_base);
+            q_in <= $signed(q_in_base);
+            q_out <= $signed(q_out_base);
+            if (dec_finished) begin
+                run_active <= 1'b0;
+            end
+            if (dec_next_piece) begin
                 x_inward <= (!x_inward);
                 if (x_inward) begin
                     target_x <= radius;
@@ -944,10 +1287,10 @@ always @(posedge clock, negedge reset) begin: control
                     target_y <= radius;
                 end
                 if ((crossings == 1)) begin
-                    target_x <= mag_xe;
-                    target_y <= mag_ye;
+                    target_x <= run_end_x;
+                    target_y <= run_end_y;
                 end
-                if (ccw) begin
+                if (run_ccw) begin
                     quadrant <= (quadrant + 1);
                 end
                 else begin
@@ -956,11 +1299,77 @@ always @(posedge clock, negedge reset) begin: control
                 crossings <= (crossings - 1);
             end
         end
+        if ((hand_end && chk_zero)) begin
+            cmd_done <= 1'b1;
+            quadrant <= 0;
+        end
+        if (hand_load) begin
+            run_active <= 1'b1;
+            run_line <= is_line;
+            run_variant <= variant;
+            run_ccw <= ccw;
+            run_blend <= blend;
+            run_end_x <= mag_xe;
+            run_end_y <= mag_ye;
+            run_right <= (!neg_xe);
+            run_up <= (!neg_ye);
+            acc_x <= chk_acc_init;
+            acc_y <= chk_acc_init;
+            threshold <= chk_threshold;
+            radial_error <= 0;
+            quadrant <= chk_quadrant;
+            x_inward <= (chk_quadrant[0] != ccw);
+            crossings <= chk_crossings;
+            target_x <= chk_target_x;
+            target_y <= chk_target_y;
+            radius <= radius_q[24-1:0];
+            left_x <= chk_left_x;
+            left_y <= chk_left_y;
+            integrand_x <= first_integrand_x;
+            integrand_y <= first_integrand_y;
+            stepped_x <= first_stepped_x;
+            stepped_y <= first_stepped_y;
+            neg_in <= chk_neg_in;
+            pos_out <= first_out;
+            half_sum <= first_half;
+            q_in <= first_q_in;
+            q_out <= first_q_out;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: left_output
+    reg signed [27-1:0] larger;
+    if (reset == 0) begin
+        cmd_stop_left <= 134217727;
+    end
+    else begin
+        larger = 0;
+        if ((left_x >= left_y)) begin
+            larger = left_x;
+        end
+        else begin
+            larger = left_y;
+        end
+        if ((run_active && (!run_blend))) begin
+            if ((larger < 0)) begin
+                cmd_stop_left <= 0;
+            end
+            else begin
+                cmd_stop_left <= larger[27-1:0];
+            end
+        end
+        else begin
+            cmd_stop_left <= 134217727;
+        end
     end
 end
 
 
 
 assign cmd_quadrant = quadrant;
+assign cmd_ready = (state == 3'b000);
+assign cmd_busy = ((state != 3'b000) || (run_active && (!(pending && dec_finished))));
 
 endmodule

@@ -35,6 +35,7 @@ module pci_slave (
     local_wdata,
     local_we,
     local_re,
+    local_write,
     local_rdata,
     local_ready,
     local_retry
@@ -119,6 +120,8 @@ output local_we;
 reg local_we;
 output local_re;
 reg local_re;
+output local_write;
+reg local_write;
 input [31:0] local_rdata;
 input local_ready;
 input local_retry;
@@ -433,6 +436,7 @@ always @(ad_q, req_addr, first_pending, io_byte, b_valid, is_read, fetching, sta
     local_re = ((first && is_read) || prefetch);
     local_we = (drain || (first && (!is_read) && (!irdy_q)));
     local_space = (drain || space_mem);
+    local_write = (drain || (!is_read));
     if (h_valid) begin
         local_wdata = h_data;
         local_be = h_be;

@@ -14,6 +14,7 @@ module regs_fifo (
     local_wdata,
     local_we,
     local_re,
+    local_write,
     local_rdata,
     local_ready,
     local_retry,
@@ -23,6 +24,7 @@ module regs_fifo (
     dda_lambda_shift,
     dda_acc_bits,
     dda_ccw,
+    dda_blend,
     dda_xs,
     dda_ys,
     dda_xe,
@@ -32,6 +34,8 @@ module regs_fifo (
     dda_done,
     dda_error,
     dda_quadrant,
+    dda_ready,
+    dda_stop_left,
     steps_step_x,
     steps_step_y,
     steps_dir_x,
@@ -55,7 +59,9 @@ module regs_fifo (
 // are four iCE40 4-Kbit block RAMs), ``coord_width`` (the DDA's).
 // 
 // Local bus: I/O and FIFO writes complete in the clock they are requested,
-// a full FIFO answers retry:
+// a full FIFO answers retry; an I/O write reaches the registers one clock
+// later, and a request in that clock waits one clock (PCI never asks that
+// soon):
 //     clock    _/~\_/~\_/~\_/~\_
 //     we       _/~~~~~~~~~~~\___
 //     space    _/~~~~~~~~~~~\___     memory BAR
@@ -74,6 +80,7 @@ input [3:0] local_be;
 input [31:0] local_wdata;
 input local_we;
 input local_re;
+input local_write;
 output [31:0] local_rdata;
 wire [31:0] local_rdata;
 output local_ready;
@@ -92,6 +99,8 @@ output [4:0] dda_acc_bits;
 reg [4:0] dda_acc_bits;
 output dda_ccw;
 reg dda_ccw;
+output dda_blend;
+reg dda_blend;
 output signed [23:0] dda_xs;
 reg signed [23:0] dda_xs;
 output signed [23:0] dda_ys;
@@ -106,6 +115,8 @@ input dda_busy;
 input dda_done;
 input dda_error;
 input [1:0] dda_quadrant;
+input dda_ready;
+input [26:0] dda_stop_left;
 input steps_step_x;
 input steps_step_y;
 input steps_dir_x;
@@ -138,31 +149,41 @@ reg [31:0] byte_mask;
 wire clear_error;
 wire clear_position;
 wire direct_mode;
+wire discard_on_clear;
 wire enable;
+wire fifo_flush;
 wire fifo_full;
 wire [9:0] fifo_level;
 wire hold;
 reg io_read;
+reg io_space;
 reg io_write;
+reg io_written;
 wire [15:0] level_wide;
 wire motion_run;
 wire out_active;
+reg out_active_before;
 wire out_ready;
+wire outputs_busy;
 reg signed [31:0] pos_y_snapshot;
 wire pulse_busy;
 reg push;
+reg requested_before;
 wire seq_busy;
 reg tick;
+reg [15:0] written_addr;
+reg [31:0] written_data;
+reg [31:0] written_mask;
 reg [31:0] read_end;
 reg [1:0] control;
 reg command_strobe;
 reg [2:0] command;
+wire requests_step_x;
+wire requests_step_y;
 reg signed [31:0] position_y;
 wire direct_busy_x;
 wire direct_busy_y;
-wire requests_step_x;
 reg direct_request_x;
-wire requests_step_y;
 reg direct_request_y;
 wire requests_dir_x;
 reg direct_dir_x;
@@ -171,6 +192,8 @@ reg direct_dir_y;
 reg [9:0] sync_fifo0_count;
 wire sync_fifo0_do_read;
 wire sync_fifo0_do_write;
+reg sync_fifo0_is_empty;
+reg sync_fifo0_is_full;
 reg [8:0] sync_fifo0_read_addr;
 reg [8:0] sync_fifo0_write_addr;
 wire [31:0] reg_word0_hw_value;
@@ -186,6 +209,7 @@ wire [1:0] reg_word1_honoured;
 wire reg_word1_out_of_range;
 reg reg_word1_clamped;
 wire reg_word1_mine;
+wire reg_word1_mine_write;
 wire reg_word1_set_mine;
 wire [31:0] reg_word1_shown_wide;
 reg [1:0] reg_word1_written;
@@ -196,6 +220,7 @@ wire [2:0] reg_word2_honoured;
 wire reg_word2_out_of_range;
 reg reg_word2_clamped;
 wire reg_word2_mine;
+wire reg_word2_mine_write;
 wire [31:0] reg_word2_shown_wide;
 wire [2:0] reg_word2_written;
 reg [31:0] reg_word3_hw_value;
@@ -210,6 +235,7 @@ wire [4:0] reg_word4_honoured;
 wire reg_word4_out_of_range;
 reg reg_word4_clamped;
 wire reg_word4_mine;
+wire reg_word4_mine_write;
 wire reg_word4_set_mine;
 wire [31:0] reg_word4_shown_wide;
 reg [4:0] reg_word4_written;
@@ -219,6 +245,7 @@ wire reg_word5_clamp_out;
 reg [31:0] reg_word5_read_out;
 wire [4:0] reg_word5_honoured;
 wire reg_word5_mine;
+wire reg_word5_mine_write;
 wire [31:0] reg_word5_shown_wide;
 wire [4:0] reg_word5_written;
 reg [15:0] reg_word6_value;
@@ -228,6 +255,7 @@ wire [15:0] reg_word6_honoured;
 wire reg_word6_out_of_range;
 reg reg_word6_clamped;
 wire reg_word6_mine;
+wire reg_word6_mine_write;
 wire reg_word6_set_mine;
 wire [31:0] reg_word6_shown_wide;
 reg [15:0] reg_word6_written;
@@ -246,22 +274,24 @@ wire reg_word9_clamp_out;
 reg [31:0] reg_word9_read_out;
 wire reg_word9_mine;
 wire [31:0] reg_word9_shown_wide;
-reg [16:0] reg_word10_value;
+reg [15:0] reg_word10_value;
 wire reg_word10_clamp_out;
 reg [31:0] reg_word10_read_out;
-reg [16:0] reg_word10_honoured;
+reg [15:0] reg_word10_honoured;
 reg reg_word10_out_of_range;
 reg reg_word10_clamped;
 wire reg_word10_mine;
+wire reg_word10_mine_write;
 wire [31:0] reg_word10_shown_wide;
 reg [31:0] reg_word10_written;
-reg [16:0] reg_word11_value;
+reg [15:0] reg_word11_value;
 wire reg_word11_clamp_out;
 reg [31:0] reg_word11_read_out;
-reg [16:0] reg_word11_honoured;
+reg [15:0] reg_word11_honoured;
 reg reg_word11_out_of_range;
 reg reg_word11_clamped;
 wire reg_word11_mine;
+wire reg_word11_mine_write;
 wire [31:0] reg_word11_shown_wide;
 reg [31:0] reg_word11_written;
 reg [15:0] reg_word12_value;
@@ -271,6 +301,7 @@ wire [15:0] reg_word12_honoured;
 wire reg_word12_out_of_range;
 reg reg_word12_clamped;
 wire reg_word12_mine;
+wire reg_word12_mine_write;
 wire [31:0] reg_word12_shown_wide;
 reg [15:0] reg_word12_written;
 reg [7:0] reg_word13_value;
@@ -280,6 +311,7 @@ reg [7:0] reg_word13_honoured;
 reg reg_word13_out_of_range;
 reg reg_word13_clamped;
 wire reg_word13_mine;
+wire reg_word13_mine_write;
 wire [31:0] reg_word13_shown_wide;
 reg [31:0] reg_word13_written;
 reg [7:0] reg_word14_value;
@@ -289,6 +321,7 @@ reg [7:0] reg_word14_honoured;
 reg reg_word14_out_of_range;
 reg reg_word14_clamped;
 wire reg_word14_mine;
+wire reg_word14_mine_write;
 wire [31:0] reg_word14_shown_wide;
 reg [31:0] reg_word14_written;
 reg [7:0] reg_word15_value;
@@ -298,6 +331,7 @@ reg [7:0] reg_word15_honoured;
 reg reg_word15_out_of_range;
 reg reg_word15_clamped;
 wire reg_word15_mine;
+wire reg_word15_mine_write;
 wire [31:0] reg_word15_shown_wide;
 reg [31:0] reg_word15_written;
 reg [1:0] reg_word16_value;
@@ -307,6 +341,7 @@ wire [1:0] reg_word16_honoured;
 wire reg_word16_out_of_range;
 reg reg_word16_clamped;
 wire reg_word16_mine;
+wire reg_word16_mine_write;
 wire reg_word16_set_mine;
 wire [31:0] reg_word16_shown_wide;
 reg [1:0] reg_word16_written;
@@ -317,6 +352,7 @@ reg [15:0] reg_word17_honoured;
 reg reg_word17_out_of_range;
 reg reg_word17_clamped;
 wire reg_word17_mine;
+wire reg_word17_mine_write;
 wire [31:0] reg_word17_shown_wide;
 reg [31:0] reg_word17_written;
 reg [15:0] reg_word18_value;
@@ -326,6 +362,7 @@ reg [15:0] reg_word18_honoured;
 reg reg_word18_out_of_range;
 reg reg_word18_clamped;
 wire reg_word18_mine;
+wire reg_word18_mine_write;
 wire [31:0] reg_word18_shown_wide;
 reg [31:0] reg_word18_written;
 reg [23:0] reg_word19_hw_value;
@@ -337,6 +374,7 @@ reg [23:0] reg_word19_honoured;
 reg reg_word19_out_of_range;
 reg reg_word19_clamped;
 wire reg_word19_mine;
+wire reg_word19_mine_write;
 wire [31:0] reg_word19_shown_wide;
 wire [31:0] reg_word19_written;
 reg [23:0] reg_word20_hw_value;
@@ -347,6 +385,7 @@ reg [23:0] reg_word20_honoured;
 reg reg_word20_out_of_range;
 reg reg_word20_clamped;
 wire reg_word20_mine;
+wire reg_word20_mine_write;
 wire [31:0] reg_word20_shown_wide;
 wire [31:0] reg_word20_written;
 reg signed [23:0] sequencer0_pulse_count_x;
@@ -354,10 +393,14 @@ reg signed [23:0] sequencer0_pulse_count_y;
 wire sequencer0_arriving_coord_fits;
 reg [2:0] sequencer0_arriving_count;
 wire sequencer0_arriving_count_fits;
-reg [3:0] sequencer0_coord_fits;
+reg sequencer0_arriving_moves;
+reg sequencer0_bad_header_bits;
+reg sequencer0_bad_opcode;
+reg sequencer0_bad_operand;
+reg sequencer0_bad_set_index;
 reg [3:0] sequencer0_coord_mask;
-reg [3:0] sequencer0_count_fits;
 reg [3:0] sequencer0_count_mask;
+wire sequencer0_discard;
 reg [31:0] sequencer0_dwell_left;
 reg [2:0] sequencer0_fetched;
 reg sequencer0_finishing;
@@ -365,9 +408,11 @@ reg [31:0] sequencer0_header;
 wire sequencer0_issue;
 reg [15:0] sequencer0_mask_high;
 reg [15:0] sequencer0_mask_low;
+wire sequencer0_motion_done;
 reg [2:0] sequencer0_next_count;
 reg [3:0] sequencer0_next_error;
 reg sequencer0_next_known;
+reg sequencer0_next_motion;
 reg sequencer0_next_valid;
 wire [3:0] sequencer0_opcode;
 reg [31:0] sequencer0_operand_0;
@@ -376,25 +421,57 @@ reg [31:0] sequencer0_operand_2;
 reg [31:0] sequencer0_operand_3;
 reg sequencer0_set_known;
 reg [2:0] sequencer0_state;
+reg sequencer0_state_over;
 reg sequencer0_word_due;
+wire feed_rate0_above;
+wire feed_rate0_above_floor;
+wire feed_rate0_below;
+wire feed_rate0_can_lower;
+wire feed_rate0_can_raise;
+reg [15:0] feed_rate0_count;
+reg [15:0] feed_rate0_count_down;
+wire feed_rate0_count_empty;
+wire feed_rate0_count_last;
+reg [15:0] feed_rate0_count_up;
+reg feed_rate0_decelerate;
+reg [16:0] feed_rate0_floor_limit;
+reg [16:0] feed_rate0_lower_limit;
+wire [15:0] feed_rate0_lowered;
 reg [15:0] feed_rate0_phase;
-reg [16:0] feed_rate0_rate;
+reg signed [16:0] feed_rate0_raise_limit;
+wire [15:0] feed_rate0_raised;
+reg [15:0] feed_rate0_rate;
+reg [15:0] feed_rate0_start_s;
+reg [15:0] feed_rate0_step_s;
+reg feed_rate0_step_zero;
+reg [15:0] feed_rate0_target_s;
+wire [16:0] feed_rate0_total;
 reg direct_pulse0_load;
 reg signed [23:0] direct_pulse0_count;
 reg [15:0] direct_pulse0_gap;
+reg direct_pulse0_pending;
+reg direct_pulse0_waiting;
 reg direct_pulse1_load;
 reg signed [23:0] direct_pulse1_count;
 reg [15:0] direct_pulse1_gap;
+reg direct_pulse1_pending;
+reg direct_pulse1_waiting;
 reg signed [31:0] pulse_out0_position_x;
 reg [2:0] pulse_out0_count;
 reg pulse_out0_dir_level_x;
 reg pulse_out0_dir_level_y;
+wire [1:0] pulse_out0_free_slot;
 wire [3:0] pulse_out0_head;
+reg pulse_out0_high_ends;
+wire [1:0] pulse_out0_last_slot;
 reg pulse_out0_level_x;
 reg pulse_out0_level_y;
 reg [7:0] pulse_out0_low_clocks;
+reg [7:0] pulse_out0_low_step;
 reg [1:0] pulse_out0_phase;
 reg [7:0] pulse_out0_phase_clocks;
+reg [7:0] pulse_out0_phase_step;
+reg pulse_out0_starts;
 reg pulse_out0_take;
 reg pulse_out0_turn;
 reg [31:0] sync_fifo0_storage [0:512-1];
@@ -417,8 +494,8 @@ assign reg_word16_set_mine = 1'd0;
 
 
 
-assign sync_fifo0_do_write = (push && (sync_fifo0_count != 512));
-assign sync_fifo0_do_read = (fifo_pop && (sync_fifo0_count != 0));
+assign sync_fifo0_do_write = (push && (!sync_fifo0_is_full));
+assign sync_fifo0_do_read = (fifo_pop && (!sync_fifo0_is_empty));
 
 
 always @(posedge clock) begin: sync_fifo0_memory
@@ -432,16 +509,21 @@ end
 
 
 always @(posedge clock, negedge reset) begin: sync_fifo0_pointers
+    reg [10-1:0] following;
     if (reset == 0) begin
         sync_fifo0_read_addr <= 0;
-        sync_fifo0_write_addr <= 0;
+        sync_fifo0_is_empty <= 1;
+        sync_fifo0_is_full <= 0;
         sync_fifo0_count <= 0;
+        sync_fifo0_write_addr <= 0;
     end
     else begin
-        if (core_clear) begin
+        following = 0;
+        following = sync_fifo0_count;
+        if (fifo_flush) begin
             sync_fifo0_write_addr <= 0;
             sync_fifo0_read_addr <= 0;
-            sync_fifo0_count <= 0;
+            following = 0;
         end
         else begin
             if (sync_fifo0_do_write) begin
@@ -451,28 +533,31 @@ always @(posedge clock, negedge reset) begin: sync_fifo0_pointers
                 sync_fifo0_read_addr <= (sync_fifo0_read_addr + 1);
             end
             if ((sync_fifo0_do_write && (!sync_fifo0_do_read))) begin
-                sync_fifo0_count <= (sync_fifo0_count + 1);
+                following = (sync_fifo0_count + 1);
             end
             else if ((sync_fifo0_do_read && (!sync_fifo0_do_write))) begin
-                sync_fifo0_count <= (sync_fifo0_count - 1);
+                following = (sync_fifo0_count - 1);
             end
         end
+        sync_fifo0_count <= following;
+        sync_fifo0_is_empty <= (following == 0);
+        sync_fifo0_is_full <= (following == 512);
     end
 end
 
 
 
 assign fifo_level = sync_fifo0_count;
-assign fifo_empty = (sync_fifo0_count == 0);
-assign fifo_full = (sync_fifo0_count == 512);
+assign fifo_empty = sync_fifo0_is_empty;
+assign fifo_full = sync_fifo0_is_full;
 
 
 
 assign reg_word0_mine = (local_addr == 0);
 
 
-always @(reg_word0_mine, reg_word0_shown_wide, reg_word0_read_in, io_read) begin: reg_word0_read_chain
-    if ((io_read && reg_word0_mine)) begin
+always @(reg_word0_mine, reg_word0_shown_wide, reg_word0_read_in, io_space) begin: reg_word0_read_chain
+    if ((io_space && reg_word0_mine)) begin
         reg_word0_read_out = (reg_word0_read_in | reg_word0_shown_wide);
     end
     else begin
@@ -493,8 +578,8 @@ assign reg_word0_clamp_out = reg_word0_clamp_in;
 assign reg_word1_mine = (local_addr == 4);
 
 
-always @(reg_word1_mine, reg_word1_shown_wide, reg_word0_read_out, io_read) begin: reg_word1_read_chain
-    if ((io_read && reg_word1_mine)) begin
+always @(reg_word1_mine, reg_word1_shown_wide, reg_word0_read_out, io_space) begin: reg_word1_read_chain
+    if ((io_space && reg_word1_mine)) begin
         reg_word1_read_out = (reg_word0_read_out | reg_word1_shown_wide);
     end
     else begin
@@ -507,12 +592,16 @@ end
 assign reg_word1_shown_wide = {30'h0, control};
 
 
-always @(reg_word1_shown_wide, reg_word1_set_mine, byte_mask, set_index, set_value, local_wdata) begin: reg_word1_merge_bytes
+
+assign reg_word1_mine_write = (written_addr == 4);
+
+
+always @(reg_word1_shown_wide, reg_word1_set_mine, written_mask, set_index, set_value, written_data) begin: reg_word1_merge_bytes
     if ((reg_word1_set_mine && (set_index == 0))) begin
         reg_word1_written = set_value[2-1:0];
     end
     else begin
-        reg_word1_written = ((reg_word1_shown_wide[2-1:0] & (~byte_mask[2-1:0])) | (local_wdata[2-1:0] & byte_mask[2-1:0]));
+        reg_word1_written = ((reg_word1_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
     end
 end
 
@@ -532,7 +621,7 @@ always @(posedge clock, negedge reset) begin: reg_word1__store0_hold_rw
     end
     else begin
         reg_word1_clamped <= 1'b0;
-        if (((reg_word1_set_mine && (set_index == 0)) || (io_write && reg_word1_mine))) begin
+        if (((reg_word1_set_mine && (set_index == 0)) || (io_written && reg_word1_mine_write))) begin
             control <= reg_word1_honoured;
             reg_word1_clamped <= reg_word1_out_of_range;
         end
@@ -544,8 +633,8 @@ end
 assign reg_word2_mine = (local_addr == 8);
 
 
-always @(reg_word2_mine, reg_word2_shown_wide, reg_word1_read_out, io_read) begin: reg_word2_read_chain
-    if ((io_read && reg_word2_mine)) begin
+always @(reg_word2_mine, reg_word2_shown_wide, reg_word1_read_out, io_space) begin: reg_word2_read_chain
+    if ((io_space && reg_word2_mine)) begin
         reg_word2_read_out = (reg_word1_read_out | reg_word2_shown_wide);
     end
     else begin
@@ -559,7 +648,11 @@ assign reg_word2_shown_wide = {29'h0, reg_word2_hw_value};
 
 
 
-assign reg_word2_written = (local_wdata[3-1:0] & byte_mask[3-1:0]);
+assign reg_word2_mine_write = (written_addr == 8);
+
+
+
+assign reg_word2_written = (written_data[3-1:0] & written_mask[3-1:0]);
 
 
 
@@ -579,7 +672,7 @@ always @(posedge clock, negedge reset) begin: reg_word2__store1_pulse_on_write
     else begin
         command_strobe <= 1'b0;
         reg_word2_clamped <= 1'b0;
-        if ((io_write && reg_word2_mine)) begin
+        if ((io_written && reg_word2_mine_write)) begin
             command <= reg_word2_honoured;
             command_strobe <= 1'b1;
             reg_word2_clamped <= reg_word2_out_of_range;
@@ -592,8 +685,8 @@ end
 assign reg_word3_mine = (local_addr == 12);
 
 
-always @(reg_word3_mine, reg_word3_shown_wide, reg_word2_read_out, io_read) begin: reg_word3_read_chain
-    if ((io_read && reg_word3_mine)) begin
+always @(reg_word3_mine, reg_word3_shown_wide, reg_word2_read_out, io_space) begin: reg_word3_read_chain
+    if ((io_space && reg_word3_mine)) begin
         reg_word3_read_out = (reg_word2_read_out | reg_word3_shown_wide);
     end
     else begin
@@ -614,8 +707,8 @@ assign reg_word3_clamp_out = reg_word2_clamp_out;
 assign reg_word4_mine = (local_addr == 16);
 
 
-always @(reg_word4_mine, reg_word4_shown_wide, reg_word3_read_out, io_read) begin: reg_word4_read_chain
-    if ((io_read && reg_word4_mine)) begin
+always @(reg_word4_mine, reg_word4_shown_wide, reg_word3_read_out, io_space) begin: reg_word4_read_chain
+    if ((io_space && reg_word4_mine)) begin
         reg_word4_read_out = (reg_word3_read_out | reg_word4_shown_wide);
     end
     else begin
@@ -628,12 +721,16 @@ end
 assign reg_word4_shown_wide = {27'h0, reg_word4_value};
 
 
-always @(reg_word4_shown_wide, reg_word4_set_mine, byte_mask, set_index, set_value, local_wdata) begin: reg_word4_merge_bytes
+
+assign reg_word4_mine_write = (written_addr == 16);
+
+
+always @(reg_word4_shown_wide, reg_word4_set_mine, written_mask, set_index, set_value, written_data) begin: reg_word4_merge_bytes
     if ((reg_word4_set_mine && (set_index == 0))) begin
         reg_word4_written = set_value[5-1:0];
     end
     else begin
-        reg_word4_written = ((reg_word4_shown_wide[5-1:0] & (~byte_mask[5-1:0])) | (local_wdata[5-1:0] & byte_mask[5-1:0]));
+        reg_word4_written = ((reg_word4_shown_wide[5-1:0] & (~written_mask[5-1:0])) | (written_data[5-1:0] & written_mask[5-1:0]));
     end
 end
 
@@ -653,7 +750,7 @@ always @(posedge clock, negedge reset) begin: reg_word4__store2_hold_rw
     end
     else begin
         reg_word4_clamped <= 1'b0;
-        if (((reg_word4_set_mine && (set_index == 0)) || (io_write && reg_word4_mine))) begin
+        if (((reg_word4_set_mine && (set_index == 0)) || (io_written && reg_word4_mine_write))) begin
             reg_word4_value <= reg_word4_honoured;
             reg_word4_clamped <= reg_word4_out_of_range;
         end
@@ -665,8 +762,8 @@ end
 assign reg_word5_mine = (local_addr == 20);
 
 
-always @(reg_word5_mine, reg_word5_shown_wide, reg_word4_read_out, io_read) begin: reg_word5_read_chain
-    if ((io_read && reg_word5_mine)) begin
+always @(reg_word5_mine, reg_word5_shown_wide, reg_word4_read_out, io_space) begin: reg_word5_read_chain
+    if ((io_space && reg_word5_mine)) begin
         reg_word5_read_out = (reg_word4_read_out | reg_word5_shown_wide);
     end
     else begin
@@ -680,7 +777,11 @@ assign reg_word5_shown_wide = {27'h0, reg_word5_value};
 
 
 
-assign reg_word5_written = (local_wdata[5-1:0] & byte_mask[5-1:0]);
+assign reg_word5_mine_write = (written_addr == 20);
+
+
+
+assign reg_word5_written = (written_data[5-1:0] & written_mask[5-1:0]);
 
 
 
@@ -696,7 +797,7 @@ always @(posedge clock, negedge reset) begin: reg_word5__store3_clear_on_one
         reg_word5_value <= 0;
     end
     else begin
-        if ((io_write && reg_word5_mine)) begin
+        if ((io_written && reg_word5_mine_write)) begin
             reg_word5_value <= ((reg_word5_value & (~reg_word5_honoured)) | reg_word5_hw_value);
         end
         else begin
@@ -710,8 +811,8 @@ end
 assign reg_word6_mine = (local_addr == 24);
 
 
-always @(reg_word6_mine, reg_word6_shown_wide, reg_word5_read_out, io_read) begin: reg_word6_read_chain
-    if ((io_read && reg_word6_mine)) begin
+always @(reg_word6_mine, reg_word6_shown_wide, reg_word5_read_out, io_space) begin: reg_word6_read_chain
+    if ((io_space && reg_word6_mine)) begin
         reg_word6_read_out = (reg_word5_read_out | reg_word6_shown_wide);
     end
     else begin
@@ -724,12 +825,16 @@ end
 assign reg_word6_shown_wide = {16'h0, reg_word6_value};
 
 
-always @(reg_word6_shown_wide, reg_word6_set_mine, byte_mask, set_index, set_value, local_wdata) begin: reg_word6_merge_bytes
+
+assign reg_word6_mine_write = (written_addr == 24);
+
+
+always @(reg_word6_shown_wide, reg_word6_set_mine, written_mask, set_index, set_value, written_data) begin: reg_word6_merge_bytes
     if ((reg_word6_set_mine && (set_index == 0))) begin
         reg_word6_written = set_value[16-1:0];
     end
     else begin
-        reg_word6_written = ((reg_word6_shown_wide[16-1:0] & (~byte_mask[16-1:0])) | (local_wdata[16-1:0] & byte_mask[16-1:0]));
+        reg_word6_written = ((reg_word6_shown_wide[16-1:0] & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
     end
 end
 
@@ -749,7 +854,7 @@ always @(posedge clock, negedge reset) begin: reg_word6__store4_hold_rw
     end
     else begin
         reg_word6_clamped <= 1'b0;
-        if (((reg_word6_set_mine && (set_index == 0)) || (io_write && reg_word6_mine))) begin
+        if (((reg_word6_set_mine && (set_index == 0)) || (io_written && reg_word6_mine_write))) begin
             reg_word6_value <= reg_word6_honoured;
             reg_word6_clamped <= reg_word6_out_of_range;
         end
@@ -761,8 +866,8 @@ end
 assign reg_word7_mine = (local_addr == 28);
 
 
-always @(reg_word7_mine, reg_word7_shown_wide, reg_word6_read_out, io_read) begin: reg_word7_read_chain
-    if ((io_read && reg_word7_mine)) begin
+always @(reg_word7_mine, reg_word7_shown_wide, reg_word6_read_out, io_space) begin: reg_word7_read_chain
+    if ((io_space && reg_word7_mine)) begin
         reg_word7_read_out = (reg_word6_read_out | reg_word7_shown_wide);
     end
     else begin
@@ -783,8 +888,8 @@ assign reg_word7_clamp_out = reg_word6_clamp_out;
 assign reg_word8_mine = (local_addr == 32);
 
 
-always @(reg_word8_mine, reg_word8_shown_wide, reg_word7_read_out, io_read) begin: reg_word8_read_chain
-    if ((io_read && reg_word8_mine)) begin
+always @(reg_word8_mine, reg_word8_shown_wide, reg_word7_read_out, io_space) begin: reg_word8_read_chain
+    if ((io_space && reg_word8_mine)) begin
         reg_word8_read_out = (reg_word7_read_out | reg_word8_shown_wide);
     end
     else begin
@@ -805,8 +910,8 @@ assign reg_word8_clamp_out = reg_word7_clamp_out;
 assign reg_word9_mine = (local_addr == 36);
 
 
-always @(reg_word9_mine, reg_word9_shown_wide, reg_word8_read_out, io_read) begin: reg_word9_read_chain
-    if ((io_read && reg_word9_mine)) begin
+always @(reg_word9_mine, reg_word9_shown_wide, reg_word8_read_out, io_space) begin: reg_word9_read_chain
+    if ((io_space && reg_word9_mine)) begin
         reg_word9_read_out = (reg_word8_read_out | reg_word9_shown_wide);
     end
     else begin
@@ -827,8 +932,8 @@ assign reg_word9_clamp_out = reg_word8_clamp_out;
 assign reg_word10_mine = (local_addr == 40);
 
 
-always @(reg_word10_mine, reg_word10_shown_wide, reg_word9_read_out, io_read) begin: reg_word10_read_chain
-    if ((io_read && reg_word10_mine)) begin
+always @(reg_word10_mine, reg_word10_shown_wide, reg_word9_read_out, io_space) begin: reg_word10_read_chain
+    if ((io_space && reg_word10_mine)) begin
         reg_word10_read_out = (reg_word9_read_out | reg_word10_shown_wide);
     end
     else begin
@@ -838,15 +943,19 @@ end
 
 
 
-assign reg_word10_shown_wide = {15'h0, reg_word10_value};
+assign reg_word10_shown_wide = {16'h0, reg_word10_value};
 
 
-always @(reg_word10_shown_wide, set_strobe, byte_mask, set_index, set_value, local_wdata) begin: reg_word10_merge_bytes
+
+assign reg_word10_mine_write = (written_addr == 40);
+
+
+always @(reg_word10_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word10_merge_bytes
     if ((set_strobe && (set_index == 0))) begin
         reg_word10_written = set_value[32-1:0];
     end
     else begin
-        reg_word10_written = ((reg_word10_shown_wide[32-1:0] & (~byte_mask[32-1:0])) | (local_wdata[32-1:0] & byte_mask[32-1:0]));
+        reg_word10_written = ((reg_word10_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
     end
 end
 
@@ -856,11 +965,11 @@ always @(reg_word10_written) begin: reg_word10__limit5_clamp_unsigned
     if (((reg_word10_written[32-1:1] == 0) && (reg_word10_written[1-1:0] < 1))) begin
         reg_word10_honoured = 1;
     end
-    else if (((reg_word10_written[32-1:17] != 0) || (reg_word10_written[17-1:0] > 65536))) begin
-        reg_word10_honoured = 65536;
+    else if (((reg_word10_written[32-1:16] != 0) || (reg_word10_written[16-1:0] > 32768))) begin
+        reg_word10_honoured = 32768;
     end
     else begin
-        reg_word10_honoured = reg_word10_written[17-1:0];
+        reg_word10_honoured = reg_word10_written[16-1:0];
         reg_word10_out_of_range = 1'b0;
     end
 end
@@ -877,7 +986,7 @@ always @(posedge clock, negedge reset) begin: reg_word10__store5_hold_rw
     end
     else begin
         reg_word10_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 0)) || (io_write && reg_word10_mine))) begin
+        if (((set_strobe && (set_index == 0)) || (io_written && reg_word10_mine_write))) begin
             reg_word10_value <= reg_word10_honoured;
             reg_word10_clamped <= reg_word10_out_of_range;
         end
@@ -889,8 +998,8 @@ end
 assign reg_word11_mine = (local_addr == 44);
 
 
-always @(reg_word11_mine, reg_word11_shown_wide, reg_word10_read_out, io_read) begin: reg_word11_read_chain
-    if ((io_read && reg_word11_mine)) begin
+always @(reg_word11_mine, reg_word11_shown_wide, reg_word10_read_out, io_space) begin: reg_word11_read_chain
+    if ((io_space && reg_word11_mine)) begin
         reg_word11_read_out = (reg_word10_read_out | reg_word11_shown_wide);
     end
     else begin
@@ -900,15 +1009,19 @@ end
 
 
 
-assign reg_word11_shown_wide = {15'h0, reg_word11_value};
+assign reg_word11_shown_wide = {16'h0, reg_word11_value};
 
 
-always @(reg_word11_shown_wide, set_strobe, byte_mask, set_index, set_value, local_wdata) begin: reg_word11_merge_bytes
+
+assign reg_word11_mine_write = (written_addr == 44);
+
+
+always @(reg_word11_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word11_merge_bytes
     if ((set_strobe && (set_index == 1))) begin
         reg_word11_written = set_value[32-1:0];
     end
     else begin
-        reg_word11_written = ((reg_word11_shown_wide[32-1:0] & (~byte_mask[32-1:0])) | (local_wdata[32-1:0] & byte_mask[32-1:0]));
+        reg_word11_written = ((reg_word11_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
     end
 end
 
@@ -918,11 +1031,11 @@ always @(reg_word11_written) begin: reg_word11__limit6_clamp_unsigned
     if (((reg_word11_written[32-1:1] == 0) && (reg_word11_written[1-1:0] < 1))) begin
         reg_word11_honoured = 1;
     end
-    else if (((reg_word11_written[32-1:17] != 0) || (reg_word11_written[17-1:0] > 65536))) begin
-        reg_word11_honoured = 65536;
+    else if (((reg_word11_written[32-1:16] != 0) || (reg_word11_written[16-1:0] > 32768))) begin
+        reg_word11_honoured = 32768;
     end
     else begin
-        reg_word11_honoured = reg_word11_written[17-1:0];
+        reg_word11_honoured = reg_word11_written[16-1:0];
         reg_word11_out_of_range = 1'b0;
     end
 end
@@ -939,7 +1052,7 @@ always @(posedge clock, negedge reset) begin: reg_word11__store6_hold_rw
     end
     else begin
         reg_word11_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 1)) || (io_write && reg_word11_mine))) begin
+        if (((set_strobe && (set_index == 1)) || (io_written && reg_word11_mine_write))) begin
             reg_word11_value <= reg_word11_honoured;
             reg_word11_clamped <= reg_word11_out_of_range;
         end
@@ -951,8 +1064,8 @@ end
 assign reg_word12_mine = (local_addr == 48);
 
 
-always @(reg_word12_mine, reg_word12_shown_wide, reg_word11_read_out, io_read) begin: reg_word12_read_chain
-    if ((io_read && reg_word12_mine)) begin
+always @(reg_word12_mine, reg_word12_shown_wide, reg_word11_read_out, io_space) begin: reg_word12_read_chain
+    if ((io_space && reg_word12_mine)) begin
         reg_word12_read_out = (reg_word11_read_out | reg_word12_shown_wide);
     end
     else begin
@@ -965,12 +1078,16 @@ end
 assign reg_word12_shown_wide = {16'h0, reg_word12_value};
 
 
-always @(reg_word12_shown_wide, set_strobe, byte_mask, set_index, set_value, local_wdata) begin: reg_word12_merge_bytes
+
+assign reg_word12_mine_write = (written_addr == 48);
+
+
+always @(reg_word12_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word12_merge_bytes
     if ((set_strobe && (set_index == 2))) begin
         reg_word12_written = set_value[16-1:0];
     end
     else begin
-        reg_word12_written = ((reg_word12_shown_wide[16-1:0] & (~byte_mask[16-1:0])) | (local_wdata[16-1:0] & byte_mask[16-1:0]));
+        reg_word12_written = ((reg_word12_shown_wide[16-1:0] & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
     end
 end
 
@@ -990,7 +1107,7 @@ always @(posedge clock, negedge reset) begin: reg_word12__store7_hold_rw
     end
     else begin
         reg_word12_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 2)) || (io_write && reg_word12_mine))) begin
+        if (((set_strobe && (set_index == 2)) || (io_written && reg_word12_mine_write))) begin
             reg_word12_value <= reg_word12_honoured;
             reg_word12_clamped <= reg_word12_out_of_range;
         end
@@ -1002,8 +1119,8 @@ end
 assign reg_word13_mine = (local_addr == 52);
 
 
-always @(reg_word13_mine, reg_word13_shown_wide, reg_word12_read_out, io_read) begin: reg_word13_read_chain
-    if ((io_read && reg_word13_mine)) begin
+always @(reg_word13_mine, reg_word13_shown_wide, reg_word12_read_out, io_space) begin: reg_word13_read_chain
+    if ((io_space && reg_word13_mine)) begin
         reg_word13_read_out = (reg_word12_read_out | reg_word13_shown_wide);
     end
     else begin
@@ -1016,12 +1133,16 @@ end
 assign reg_word13_shown_wide = {24'h0, reg_word13_value};
 
 
-always @(reg_word13_shown_wide, set_strobe, byte_mask, set_index, set_value, local_wdata) begin: reg_word13_merge_bytes
+
+assign reg_word13_mine_write = (written_addr == 52);
+
+
+always @(reg_word13_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word13_merge_bytes
     if ((set_strobe && (set_index == 3))) begin
         reg_word13_written = set_value[32-1:0];
     end
     else begin
-        reg_word13_written = ((reg_word13_shown_wide[32-1:0] & (~byte_mask[32-1:0])) | (local_wdata[32-1:0] & byte_mask[32-1:0]));
+        reg_word13_written = ((reg_word13_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
     end
 end
 
@@ -1052,7 +1173,7 @@ always @(posedge clock, negedge reset) begin: reg_word13__store8_hold_rw
     end
     else begin
         reg_word13_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 3)) || (io_write && reg_word13_mine))) begin
+        if (((set_strobe && (set_index == 3)) || (io_written && reg_word13_mine_write))) begin
             reg_word13_value <= reg_word13_honoured;
             reg_word13_clamped <= reg_word13_out_of_range;
         end
@@ -1064,8 +1185,8 @@ end
 assign reg_word14_mine = (local_addr == 56);
 
 
-always @(reg_word14_mine, reg_word14_shown_wide, reg_word13_read_out, io_read) begin: reg_word14_read_chain
-    if ((io_read && reg_word14_mine)) begin
+always @(reg_word14_mine, reg_word14_shown_wide, reg_word13_read_out, io_space) begin: reg_word14_read_chain
+    if ((io_space && reg_word14_mine)) begin
         reg_word14_read_out = (reg_word13_read_out | reg_word14_shown_wide);
     end
     else begin
@@ -1078,12 +1199,16 @@ end
 assign reg_word14_shown_wide = {24'h0, reg_word14_value};
 
 
-always @(reg_word14_shown_wide, set_strobe, byte_mask, set_index, set_value, local_wdata) begin: reg_word14_merge_bytes
+
+assign reg_word14_mine_write = (written_addr == 56);
+
+
+always @(reg_word14_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word14_merge_bytes
     if ((set_strobe && (set_index == 4))) begin
         reg_word14_written = set_value[32-1:0];
     end
     else begin
-        reg_word14_written = ((reg_word14_shown_wide[32-1:0] & (~byte_mask[32-1:0])) | (local_wdata[32-1:0] & byte_mask[32-1:0]));
+        reg_word14_written = ((reg_word14_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
     end
 end
 
@@ -1114,7 +1239,7 @@ always @(posedge clock, negedge reset) begin: reg_word14__store9_hold_rw
     end
     else begin
         reg_word14_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 4)) || (io_write && reg_word14_mine))) begin
+        if (((set_strobe && (set_index == 4)) || (io_written && reg_word14_mine_write))) begin
             reg_word14_value <= reg_word14_honoured;
             reg_word14_clamped <= reg_word14_out_of_range;
         end
@@ -1126,8 +1251,8 @@ end
 assign reg_word15_mine = (local_addr == 60);
 
 
-always @(reg_word15_mine, reg_word15_shown_wide, reg_word14_read_out, io_read) begin: reg_word15_read_chain
-    if ((io_read && reg_word15_mine)) begin
+always @(reg_word15_mine, reg_word15_shown_wide, reg_word14_read_out, io_space) begin: reg_word15_read_chain
+    if ((io_space && reg_word15_mine)) begin
         reg_word15_read_out = (reg_word14_read_out | reg_word15_shown_wide);
     end
     else begin
@@ -1140,12 +1265,16 @@ end
 assign reg_word15_shown_wide = {24'h0, reg_word15_value};
 
 
-always @(reg_word15_shown_wide, set_strobe, byte_mask, set_index, set_value, local_wdata) begin: reg_word15_merge_bytes
+
+assign reg_word15_mine_write = (written_addr == 60);
+
+
+always @(reg_word15_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word15_merge_bytes
     if ((set_strobe && (set_index == 5))) begin
         reg_word15_written = set_value[32-1:0];
     end
     else begin
-        reg_word15_written = ((reg_word15_shown_wide[32-1:0] & (~byte_mask[32-1:0])) | (local_wdata[32-1:0] & byte_mask[32-1:0]));
+        reg_word15_written = ((reg_word15_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
     end
 end
 
@@ -1176,7 +1305,7 @@ always @(posedge clock, negedge reset) begin: reg_word15__store10_hold_rw
     end
     else begin
         reg_word15_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 5)) || (io_write && reg_word15_mine))) begin
+        if (((set_strobe && (set_index == 5)) || (io_written && reg_word15_mine_write))) begin
             reg_word15_value <= reg_word15_honoured;
             reg_word15_clamped <= reg_word15_out_of_range;
         end
@@ -1188,8 +1317,8 @@ end
 assign reg_word16_mine = (local_addr == 64);
 
 
-always @(reg_word16_mine, reg_word16_shown_wide, reg_word15_read_out, io_read) begin: reg_word16_read_chain
-    if ((io_read && reg_word16_mine)) begin
+always @(reg_word16_mine, reg_word16_shown_wide, reg_word15_read_out, io_space) begin: reg_word16_read_chain
+    if ((io_space && reg_word16_mine)) begin
         reg_word16_read_out = (reg_word15_read_out | reg_word16_shown_wide);
     end
     else begin
@@ -1202,12 +1331,16 @@ end
 assign reg_word16_shown_wide = {30'h0, reg_word16_value};
 
 
-always @(reg_word16_shown_wide, reg_word16_set_mine, byte_mask, set_index, set_value, local_wdata) begin: reg_word16_merge_bytes
+
+assign reg_word16_mine_write = (written_addr == 64);
+
+
+always @(reg_word16_shown_wide, reg_word16_set_mine, written_mask, set_index, set_value, written_data) begin: reg_word16_merge_bytes
     if ((reg_word16_set_mine && (set_index == 0))) begin
         reg_word16_written = set_value[2-1:0];
     end
     else begin
-        reg_word16_written = ((reg_word16_shown_wide[2-1:0] & (~byte_mask[2-1:0])) | (local_wdata[2-1:0] & byte_mask[2-1:0]));
+        reg_word16_written = ((reg_word16_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
     end
 end
 
@@ -1227,7 +1360,7 @@ always @(posedge clock, negedge reset) begin: reg_word16__store11_hold_rw
     end
     else begin
         reg_word16_clamped <= 1'b0;
-        if (((reg_word16_set_mine && (set_index == 0)) || (io_write && reg_word16_mine))) begin
+        if (((reg_word16_set_mine && (set_index == 0)) || (io_written && reg_word16_mine_write))) begin
             reg_word16_value <= reg_word16_honoured;
             reg_word16_clamped <= reg_word16_out_of_range;
         end
@@ -1239,8 +1372,8 @@ end
 assign reg_word17_mine = (local_addr == 68);
 
 
-always @(reg_word17_mine, reg_word17_shown_wide, reg_word16_read_out, io_read) begin: reg_word17_read_chain
-    if ((io_read && reg_word17_mine)) begin
+always @(reg_word17_mine, reg_word17_shown_wide, reg_word16_read_out, io_space) begin: reg_word17_read_chain
+    if ((io_space && reg_word17_mine)) begin
         reg_word17_read_out = (reg_word16_read_out | reg_word17_shown_wide);
     end
     else begin
@@ -1253,12 +1386,16 @@ end
 assign reg_word17_shown_wide = {16'h0, reg_word17_value};
 
 
-always @(reg_word17_shown_wide, set_strobe, byte_mask, set_index, set_value, local_wdata) begin: reg_word17_merge_bytes
+
+assign reg_word17_mine_write = (written_addr == 68);
+
+
+always @(reg_word17_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word17_merge_bytes
     if ((set_strobe && (set_index == 6))) begin
         reg_word17_written = set_value[32-1:0];
     end
     else begin
-        reg_word17_written = ((reg_word17_shown_wide[32-1:0] & (~byte_mask[32-1:0])) | (local_wdata[32-1:0] & byte_mask[32-1:0]));
+        reg_word17_written = ((reg_word17_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
     end
 end
 
@@ -1289,7 +1426,7 @@ always @(posedge clock, negedge reset) begin: reg_word17__store12_hold_rw
     end
     else begin
         reg_word17_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 6)) || (io_write && reg_word17_mine))) begin
+        if (((set_strobe && (set_index == 6)) || (io_written && reg_word17_mine_write))) begin
             reg_word17_value <= reg_word17_honoured;
             reg_word17_clamped <= reg_word17_out_of_range;
         end
@@ -1301,8 +1438,8 @@ end
 assign reg_word18_mine = (local_addr == 72);
 
 
-always @(reg_word18_mine, reg_word18_shown_wide, reg_word17_read_out, io_read) begin: reg_word18_read_chain
-    if ((io_read && reg_word18_mine)) begin
+always @(reg_word18_mine, reg_word18_shown_wide, reg_word17_read_out, io_space) begin: reg_word18_read_chain
+    if ((io_space && reg_word18_mine)) begin
         reg_word18_read_out = (reg_word17_read_out | reg_word18_shown_wide);
     end
     else begin
@@ -1315,12 +1452,16 @@ end
 assign reg_word18_shown_wide = {16'h0, reg_word18_value};
 
 
-always @(reg_word18_shown_wide, set_strobe, byte_mask, set_index, set_value, local_wdata) begin: reg_word18_merge_bytes
+
+assign reg_word18_mine_write = (written_addr == 72);
+
+
+always @(reg_word18_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word18_merge_bytes
     if ((set_strobe && (set_index == 7))) begin
         reg_word18_written = set_value[32-1:0];
     end
     else begin
-        reg_word18_written = ((reg_word18_shown_wide[32-1:0] & (~byte_mask[32-1:0])) | (local_wdata[32-1:0] & byte_mask[32-1:0]));
+        reg_word18_written = ((reg_word18_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
     end
 end
 
@@ -1351,7 +1492,7 @@ always @(posedge clock, negedge reset) begin: reg_word18__store13_hold_rw
     end
     else begin
         reg_word18_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 7)) || (io_write && reg_word18_mine))) begin
+        if (((set_strobe && (set_index == 7)) || (io_written && reg_word18_mine_write))) begin
             reg_word18_value <= reg_word18_honoured;
             reg_word18_clamped <= reg_word18_out_of_range;
         end
@@ -1363,8 +1504,8 @@ end
 assign reg_word19_mine = (local_addr == 76);
 
 
-always @(reg_word19_mine, reg_word19_shown_wide, reg_word18_read_out, io_read) begin: reg_word19_read_chain
-    if ((io_read && reg_word19_mine)) begin
+always @(reg_word19_mine, reg_word19_shown_wide, reg_word18_read_out, io_space) begin: reg_word19_read_chain
+    if ((io_space && reg_word19_mine)) begin
         reg_word19_read_out = (reg_word18_read_out | reg_word19_shown_wide);
     end
     else begin
@@ -1378,7 +1519,11 @@ assign reg_word19_shown_wide = {8'h0, reg_word19_hw_value};
 
 
 
-assign reg_word19_written = (local_wdata[32-1:0] & byte_mask[32-1:0]);
+assign reg_word19_mine_write = (written_addr == 76);
+
+
+
+assign reg_word19_written = (written_data[32-1:0] & written_mask[32-1:0]);
 
 
 always @(reg_word19_written) begin: reg_word19__limit14_clamp_signed
@@ -1410,7 +1555,7 @@ always @(posedge clock, negedge reset) begin: reg_word19__store14_pulse_on_write
     else begin
         reg_word19_strobe <= 1'b0;
         reg_word19_clamped <= 1'b0;
-        if ((io_write && reg_word19_mine)) begin
+        if ((io_written && reg_word19_mine_write)) begin
             reg_word19_value <= reg_word19_honoured;
             reg_word19_strobe <= 1'b1;
             reg_word19_clamped <= reg_word19_out_of_range;
@@ -1423,8 +1568,8 @@ end
 assign reg_word20_mine = (local_addr == 80);
 
 
-always @(reg_word20_mine, reg_word20_shown_wide, reg_word19_read_out, io_read) begin: reg_word20_read_chain
-    if ((io_read && reg_word20_mine)) begin
+always @(reg_word20_mine, reg_word20_shown_wide, reg_word19_read_out, io_space) begin: reg_word20_read_chain
+    if ((io_space && reg_word20_mine)) begin
         read_end = (reg_word19_read_out | reg_word20_shown_wide);
     end
     else begin
@@ -1438,7 +1583,11 @@ assign reg_word20_shown_wide = {8'h0, reg_word20_hw_value};
 
 
 
-assign reg_word20_written = (local_wdata[32-1:0] & byte_mask[32-1:0]);
+assign reg_word20_mine_write = (written_addr == 80);
+
+
+
+assign reg_word20_written = (written_data[32-1:0] & written_mask[32-1:0]);
 
 
 always @(reg_word20_written) begin: reg_word20__limit15_clamp_signed
@@ -1470,7 +1619,7 @@ always @(posedge clock, negedge reset) begin: reg_word20__store15_pulse_on_write
     else begin
         reg_word20_strobe <= 1'b0;
         reg_word20_clamped <= 1'b0;
-        if ((io_write && reg_word20_mine)) begin
+        if ((io_written && reg_word20_mine_write)) begin
             reg_word20_value <= reg_word20_honoured;
             reg_word20_strobe <= 1'b1;
             reg_word20_clamped <= reg_word20_out_of_range;
@@ -1513,6 +1662,28 @@ always @(fifo_dout) begin: sequencer0_lookup_arriving
 end
 
 
+always @(fifo_dout) begin: sequencer0_lookup_arriving_kind
+    case (fifo_dout[32-1:28])
+        0: sequencer0_arriving_moves = 0;
+        1: sequencer0_arriving_moves = 1;
+        2: sequencer0_arriving_moves = 1;
+        3: sequencer0_arriving_moves = 0;
+        4: sequencer0_arriving_moves = 0;
+        5: sequencer0_arriving_moves = 0;
+        6: sequencer0_arriving_moves = 0;
+        7: sequencer0_arriving_moves = 0;
+        8: sequencer0_arriving_moves = 0;
+        9: sequencer0_arriving_moves = 0;
+        10: sequencer0_arriving_moves = 0;
+        11: sequencer0_arriving_moves = 0;
+        12: sequencer0_arriving_moves = 0;
+        13: sequencer0_arriving_moves = 0;
+        14: sequencer0_arriving_moves = 0;
+        default: sequencer0_arriving_moves = 0;
+    endcase
+end
+
+
 always @(sequencer0_header) begin: sequencer0_lookup_count
     case (sequencer0_header[32-1:28])
         0: sequencer0_next_count = 0;
@@ -1535,8 +1706,8 @@ always @(sequencer0_header) begin: sequencer0_lookup_count
 end
 
 
-always @(sequencer0_header) begin: sequencer0_lookup_valid
-    case (sequencer0_header[32-1:28])
+always @(fifo_dout) begin: sequencer0_lookup_valid
+    case (fifo_dout[32-1:28])
         0: sequencer0_next_known = 0;
         1: sequencer0_next_known = 1;
         2: sequencer0_next_known = 1;
@@ -1557,11 +1728,11 @@ always @(sequencer0_header) begin: sequencer0_lookup_valid
 end
 
 
-always @(sequencer0_header) begin: sequencer0_lookup_mask_high
-    case (sequencer0_header[32-1:28])
+always @(fifo_dout) begin: sequencer0_lookup_mask_high
+    case (fifo_dout[32-1:28])
         0: sequencer0_mask_high = 0;
-        1: sequencer0_mask_high = 61440;
-        2: sequencer0_mask_high = 61440;
+        1: sequencer0_mask_high = 61441;
+        2: sequencer0_mask_high = 61441;
         3: sequencer0_mask_high = 61440;
         4: sequencer0_mask_high = 61440;
         5: sequencer0_mask_high = 61440;
@@ -1579,8 +1750,8 @@ always @(sequencer0_header) begin: sequencer0_lookup_mask_high
 end
 
 
-always @(sequencer0_header) begin: sequencer0_lookup_mask_low
-    case (sequencer0_header[32-1:28])
+always @(fifo_dout) begin: sequencer0_lookup_mask_low
+    case (fifo_dout[32-1:28])
         0: sequencer0_mask_low = 0;
         1: sequencer0_mask_low = 0;
         2: sequencer0_mask_low = 8191;
@@ -1645,8 +1816,8 @@ always @(sequencer0_header) begin: sequencer0_lookup_counts
 end
 
 
-always @(sequencer0_header) begin: sequencer0_lookup_set
-    case (sequencer0_header[4-1:0])
+always @(fifo_dout) begin: sequencer0_lookup_set
+    case (fifo_dout[4-1:0])
         0: sequencer0_set_known = 1;
         1: sequencer0_set_known = 1;
         2: sequencer0_set_known = 1;
@@ -1682,22 +1853,30 @@ always @(sequencer0_arriving_count, fifo_empty, sequencer0_state, core_clear, se
 end
 
 
+
+assign discard_on_clear = ((sequencer0_state == 3'b100) && (error_code == 1));
+assign sequencer0_discard = (clear_error && (sequencer0_state == 3'b100) && (error_code == 1));
+
+
 always @(posedge clock, negedge reset) begin: sequencer0_fetch
     if (reset == 0) begin
         sequencer0_operand_0 <= 0;
+        sequencer0_next_motion <= 0;
+        sequencer0_bad_set_index <= 0;
         sequencer0_operand_3 <= 0;
+        sequencer0_bad_opcode <= 0;
         sequencer0_word_due <= 0;
         sequencer0_next_valid <= 0;
-        sequencer0_operand_1 <= 0;
+        sequencer0_bad_operand <= 0;
         sequencer0_header <= 0;
-        sequencer0_coord_fits <= 0;
-        sequencer0_count_fits <= 0;
+        sequencer0_operand_1 <= 0;
+        sequencer0_bad_header_bits <= 0;
         sequencer0_fetched <= 0;
         sequencer0_operand_2 <= 0;
     end
     else begin
         sequencer0_word_due <= fifo_pop;
-        if (core_clear) begin
+        if ((core_clear || sequencer0_discard)) begin
             sequencer0_word_due <= 0;
             sequencer0_fetched <= 0;
             sequencer0_next_valid <= 0;
@@ -1709,6 +1888,11 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
             if (sequencer0_word_due) begin
                 if ((sequencer0_fetched == 0)) begin
                     sequencer0_header <= fifo_dout;
+                    sequencer0_next_motion <= sequencer0_arriving_moves;
+                    sequencer0_bad_opcode <= (!sequencer0_next_known);
+                    sequencer0_bad_header_bits <= (((fifo_dout[32-1:16] & (~sequencer0_mask_high)) != 0) || ((fifo_dout[16-1:0] & (~sequencer0_mask_low)) != 0));
+                    sequencer0_bad_set_index <= ((fifo_dout[32-1:28] == 4) && (!sequencer0_set_known));
+                    sequencer0_bad_operand <= 0;
                     if ((sequencer0_arriving_count == 0)) begin
                         sequencer0_next_valid <= 1;
                     end
@@ -1731,8 +1915,9 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
                             sequencer0_operand_3 <= fifo_dout;
                         end
                     endcase
-                    sequencer0_coord_fits[($signed({1'b0, sequencer0_fetched}) - 1)] <= sequencer0_arriving_coord_fits;
-                    sequencer0_count_fits[($signed({1'b0, sequencer0_fetched}) - 1)] <= sequencer0_arriving_count_fits;
+                    if (((sequencer0_coord_mask[($signed({1'b0, sequencer0_fetched}) - 1)] && (!sequencer0_arriving_coord_fits)) || (sequencer0_count_mask[($signed({1'b0, sequencer0_fetched}) - 1)] && (!sequencer0_arriving_count_fits)))) begin
+                        sequencer0_bad_operand <= 1;
+                    end
                     if ((sequencer0_fetched == sequencer0_next_count)) begin
                         sequencer0_next_valid <= 1;
                         sequencer0_fetched <= 0;
@@ -1747,45 +1932,61 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
 end
 
 
-always @(sequencer0_set_known, sequencer0_count_fits, sequencer0_coord_fits, sequencer0_header, sequencer0_count_mask, sequencer0_opcode, sequencer0_next_known, sequencer0_coord_mask, sequencer0_mask_high, sequencer0_mask_low) begin: sequencer0_check
+always @(sequencer0_bad_operand, sequencer0_bad_set_index, sequencer0_bad_header_bits, sequencer0_bad_opcode) begin: sequencer0_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
-    if ((!sequencer0_next_known)) begin
+    if (sequencer0_bad_opcode) begin
         result = 1;
     end
-    else if ((((sequencer0_header[32-1:16] & (~sequencer0_mask_high)) != 0) || ((sequencer0_header[16-1:0] & (~sequencer0_mask_low)) != 0))) begin
+    else if (sequencer0_bad_header_bits) begin
         result = 2;
     end
-    else if (((sequencer0_opcode == 4) && (!sequencer0_set_known))) begin
-        result = 3;
-    end
-    else if ((((sequencer0_coord_mask & (~sequencer0_coord_fits)) != 0) || ((sequencer0_count_mask & (~sequencer0_count_fits)) != 0))) begin
+    else if ((sequencer0_bad_set_index || sequencer0_bad_operand)) begin
         result = 3;
     end
     sequencer0_next_error = result;
 end
 
 
-always @(out_active, pulse_busy, sequencer0_dwell_left, sequencer0_state, dda_done) begin: sequencer0_completion
-    sequencer0_finishing = 1'b0;
+
+assign sequencer0_motion_done = ((!dda_start) && (!dda_busy) && (!dda_done));
+
+
+always @(outputs_busy, sequencer0_motion_done, pulse_busy, sequencer0_dwell_left, sequencer0_state) begin: sequencer0_completion
+    sequencer0_state_over = 1'b0;
     case (sequencer0_state)
         3'b000: begin
-            sequencer0_finishing = 1'b1;
+            sequencer0_state_over = 1'b1;
         end
         3'b001: begin
-            sequencer0_finishing = dda_done;
+            sequencer0_state_over = sequencer0_motion_done;
         end
         3'b010: begin
-            sequencer0_finishing = (!pulse_busy);
+            sequencer0_state_over = (!pulse_busy);
         end
         3'b011: begin
-            sequencer0_finishing = ((sequencer0_dwell_left <= 1) && (!out_active));
+            sequencer0_state_over = ((sequencer0_dwell_left <= 1) && (!outputs_busy));
         end
         default: begin
-            sequencer0_finishing = 1'b0;
+            sequencer0_state_over = 1'b0;
         end
     endcase
+end
+
+
+always @(outputs_busy, sequencer0_next_motion, dda_ready, sequencer0_state_over, dda_start, sequencer0_next_error, dda_error, sequencer0_state) begin: sequencer0_readiness
+    if ((sequencer0_next_motion && (sequencer0_next_error == 0))) begin
+        if ((sequencer0_state == 3'b001)) begin
+            sequencer0_finishing = (dda_ready && (!dda_start) && (!dda_error));
+        end
+        else begin
+            sequencer0_finishing = sequencer0_state_over;
+        end
+    end
+    else begin
+        sequencer0_finishing = (sequencer0_state_over && (!outputs_busy));
+    end
 end
 
 
@@ -1818,7 +2019,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
                 error_code <= 0;
             end
         end
-        else if (((sequencer0_state == 3'b001) && dda_error && (!dda_start) && (!dda_busy))) begin
+        else if (((sequencer0_state == 3'b001) && dda_error && (!dda_start))) begin
             sequencer0_state <= 3'b100;
             error_code <= 4;
         end
@@ -1851,10 +2052,10 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
                 endcase
             end
         end
-        else if (sequencer0_finishing) begin
+        else if (sequencer0_state_over) begin
             sequencer0_state <= 3'b000;
         end
-        else if (((sequencer0_state == 3'b011) && (!out_active) && (sequencer0_dwell_left != 0))) begin
+        else if (((sequencer0_state == 3'b011) && (!outputs_busy) && (sequencer0_dwell_left != 0))) begin
             sequencer0_dwell_left <= (sequencer0_dwell_left - 1);
         end
     end
@@ -1864,6 +2065,7 @@ end
 always @(sequencer0_operand_0, sequencer0_operand_3, sequencer0_operand_1, sequencer0_header, sequencer0_opcode, sequencer0_operand_2) begin: sequencer0_present
     dda_line = (sequencer0_opcode == 1);
     dda_ccw = sequencer0_header[0];
+    dda_blend = sequencer0_header[16];
     dda_variant = sequencer0_header[3-1:1];
     dda_lambda_shift = sequencer0_header[8-1:3];
     dda_acc_bits = sequencer0_header[13-1:8];
@@ -1892,47 +2094,117 @@ assign seq_busy = ((sequencer0_state == 3'b001) || (sequencer0_state == 3'b010) 
 assign motion_run = (sequencer0_state == 3'b001);
 
 
+always @(posedge clock, negedge reset) begin: feed_rate0_settings
+    if (reset == 0) begin
+        feed_rate0_target_s <= 0;
+        feed_rate0_step_zero <= 1;
+        feed_rate0_lower_limit <= 0;
+        feed_rate0_floor_limit <= 0;
+        feed_rate0_step_s <= 0;
+        feed_rate0_start_s <= 0;
+        feed_rate0_raise_limit <= 0;
+    end
+    else begin
+        feed_rate0_target_s <= reg_word10_value;
+        feed_rate0_start_s <= reg_word11_value;
+        feed_rate0_step_s <= reg_word12_value;
+        feed_rate0_step_zero <= (reg_word12_value == 0);
+        feed_rate0_raise_limit <= ($signed({1'b0, reg_word10_value}) - $signed({1'b0, reg_word12_value}));
+        feed_rate0_lower_limit <= ({1'b0, reg_word10_value} + {1'b0, reg_word12_value});
+        feed_rate0_floor_limit <= ({1'b0, reg_word11_value} + {1'b0, reg_word12_value});
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: feed_rate0_end_ahead
+    if (reset == 0) begin
+        feed_rate0_decelerate <= 0;
+    end
+    else begin
+        feed_rate0_decelerate <= (dda_stop_left <= {11'h0, feed_rate0_count});
+    end
+end
+
+
+
+assign feed_rate0_total = ({1'b0, feed_rate0_phase} + {1'b0, feed_rate0_rate});
+assign feed_rate0_raised = (feed_rate0_rate + feed_rate0_step_s);
+assign feed_rate0_lowered = (feed_rate0_rate - feed_rate0_step_s);
+assign feed_rate0_can_raise = ($signed({1'b0, feed_rate0_rate}) <= feed_rate0_raise_limit);
+assign feed_rate0_can_lower = ({1'b0, feed_rate0_rate} >= feed_rate0_lower_limit);
+assign feed_rate0_above_floor = ({1'b0, feed_rate0_rate} >= feed_rate0_floor_limit);
+assign feed_rate0_below = (feed_rate0_rate < feed_rate0_target_s);
+assign feed_rate0_above = (feed_rate0_rate > feed_rate0_target_s);
+assign feed_rate0_count_empty = (feed_rate0_count == 2);
+assign feed_rate0_count_last = (feed_rate0_count == (2 + 1));
+
+
+always @(feed_rate0_count_empty, feed_rate0_count) begin: feed_rate0_count_steps
+    feed_rate0_count_up = (feed_rate0_count + 1);
+    if (feed_rate0_count_empty) begin
+        feed_rate0_count_down = feed_rate0_count;
+    end
+    else begin
+        feed_rate0_count_down = (feed_rate0_count - 1);
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: feed_rate0_accumulate
-    reg [18-1:0] total;
-    reg [18-1:0] raised;
-    reg [18-1:0] lowered;
     if (reset == 0) begin
         tick <= 0;
         feed_rate0_rate <= 0;
+        feed_rate0_count <= 2;
         feed_rate0_phase <= 0;
     end
     else begin
-        total = 18'h0;
-        raised = 18'h0;
-        lowered = 18'h0;
         tick <= 0;
         if ((!motion_run)) begin
             feed_rate0_phase <= 0;
-            if ((reg_word12_value == 0)) begin
-                feed_rate0_rate <= reg_word10_value;
+            feed_rate0_count <= 2;
+            if (feed_rate0_step_zero) begin
+                feed_rate0_rate <= feed_rate0_target_s;
             end
             else begin
-                feed_rate0_rate <= reg_word11_value;
+                feed_rate0_rate <= feed_rate0_start_s;
             end
         end
         else if ((!hold)) begin
-            total = ({2'h0, feed_rate0_phase} + {1'b0, feed_rate0_rate});
-            feed_rate0_phase <= total[(17 - 1)-1:0];
-            raised = ({1'b0, feed_rate0_rate} + {2'h0, reg_word12_value});
-            lowered = ({1'b0, reg_word10_value} + {2'h0, reg_word12_value});
-            if ((total >= 65536)) begin
+            feed_rate0_phase <= feed_rate0_total[16-1:0];
+            if (feed_rate0_total[16]) begin
                 tick <= 1;
-                if ((reg_word12_value == 0)) begin
-                    feed_rate0_rate <= reg_word10_value;
+                if (feed_rate0_step_zero) begin
+                    feed_rate0_rate <= feed_rate0_target_s;
+                    feed_rate0_count <= 2;
                 end
-                else if ((raised <= {1'b0, reg_word10_value})) begin
-                    feed_rate0_rate <= raised[17-1:0];
+                else if (feed_rate0_decelerate) begin
+                    if ((!feed_rate0_count_empty)) begin
+                        feed_rate0_count <= feed_rate0_count_down;
+                        if ((feed_rate0_count_last || (!feed_rate0_above_floor))) begin
+                            feed_rate0_rate <= feed_rate0_start_s;
+                        end
+                        else begin
+                            feed_rate0_rate <= feed_rate0_lowered;
+                        end
+                    end
                 end
-                else if (({1'b0, feed_rate0_rate} >= lowered)) begin
-                    feed_rate0_rate <= (feed_rate0_rate - reg_word12_value);
+                else if (feed_rate0_below) begin
+                    feed_rate0_count <= feed_rate0_count_up;
+                    if (feed_rate0_can_raise) begin
+                        feed_rate0_rate <= feed_rate0_raised;
+                    end
+                    else begin
+                        feed_rate0_rate <= feed_rate0_target_s;
+                    end
                 end
-                else begin
-                    feed_rate0_rate <= reg_word10_value;
+                else if (feed_rate0_above) begin
+                    feed_rate0_count <= feed_rate0_count_down;
+                    if (feed_rate0_can_lower) begin
+                        feed_rate0_rate <= feed_rate0_lowered;
+                    end
+                    else begin
+                        feed_rate0_rate <= feed_rate0_target_s;
+                    end
                 end
             end
         end
@@ -1941,20 +2213,23 @@ end
 
 
 
-assign direct_busy_x = (direct_pulse0_load || (reg_word19_hw_value != 0));
+assign direct_busy_x = (direct_pulse0_load || direct_pulse0_pending);
 
 
 always @(posedge clock, negedge reset) begin: direct_pulse0_emit
     if (reset == 0) begin
         direct_request_x <= 0;
         direct_dir_x <= 0;
+        direct_pulse0_waiting <= 0;
         reg_word19_hw_value <= 0;
+        direct_pulse0_pending <= 0;
         direct_pulse0_gap <= 0;
     end
     else begin
         direct_request_x <= 0;
         if (core_clear) begin
             reg_word19_hw_value <= 0;
+            direct_pulse0_pending <= 0;
         end
         else if (direct_pulse0_load) begin
             if ((direct_pulse0_count < 0)) begin
@@ -1965,16 +2240,21 @@ always @(posedge clock, negedge reset) begin: direct_pulse0_emit
                 reg_word19_hw_value <= direct_pulse0_count;
                 direct_dir_x <= 1;
             end
+            direct_pulse0_pending <= (direct_pulse0_count != 0);
             direct_pulse0_gap <= 0;
+            direct_pulse0_waiting <= 0;
         end
-        else if ((reg_word19_hw_value != 0)) begin
-            if ((direct_pulse0_gap != 0)) begin
+        else if (direct_pulse0_pending) begin
+            if (direct_pulse0_waiting) begin
                 direct_pulse0_gap <= (direct_pulse0_gap - 1);
+                direct_pulse0_waiting <= (direct_pulse0_gap != 1);
             end
             else if (out_ready) begin
                 direct_request_x <= 1;
                 reg_word19_hw_value <= (reg_word19_hw_value - 1);
+                direct_pulse0_pending <= (reg_word19_hw_value != 1);
                 direct_pulse0_gap <= (reg_word17_value - 1);
+                direct_pulse0_waiting <= (reg_word17_value != 1);
             end
         end
     end
@@ -1982,20 +2262,23 @@ end
 
 
 
-assign direct_busy_y = (direct_pulse1_load || (reg_word20_hw_value != 0));
+assign direct_busy_y = (direct_pulse1_load || direct_pulse1_pending);
 
 
 always @(posedge clock, negedge reset) begin: direct_pulse1_emit
     if (reset == 0) begin
         direct_request_y <= 0;
         direct_dir_y <= 0;
+        direct_pulse1_waiting <= 0;
         reg_word20_hw_value <= 0;
+        direct_pulse1_pending <= 0;
         direct_pulse1_gap <= 0;
     end
     else begin
         direct_request_y <= 0;
         if (core_clear) begin
             reg_word20_hw_value <= 0;
+            direct_pulse1_pending <= 0;
         end
         else if (direct_pulse1_load) begin
             if ((direct_pulse1_count < 0)) begin
@@ -2006,16 +2289,21 @@ always @(posedge clock, negedge reset) begin: direct_pulse1_emit
                 reg_word20_hw_value <= direct_pulse1_count;
                 direct_dir_y <= 1;
             end
+            direct_pulse1_pending <= (direct_pulse1_count != 0);
             direct_pulse1_gap <= 0;
+            direct_pulse1_waiting <= 0;
         end
-        else if ((reg_word20_hw_value != 0)) begin
-            if ((direct_pulse1_gap != 0)) begin
+        else if (direct_pulse1_pending) begin
+            if (direct_pulse1_waiting) begin
                 direct_pulse1_gap <= (direct_pulse1_gap - 1);
+                direct_pulse1_waiting <= (direct_pulse1_gap != 1);
             end
             else if (out_ready) begin
                 direct_request_y <= 1;
                 reg_word20_hw_value <= (reg_word20_hw_value - 1);
+                direct_pulse1_pending <= (reg_word20_hw_value != 1);
                 direct_pulse1_gap <= (reg_word18_value - 1);
+                direct_pulse1_waiting <= (reg_word18_value != 1);
             end
         end
     end
@@ -2045,63 +2333,82 @@ always @(pulse_out0_phase_clocks, pulse_out0_head, pulse_out0_phase, pulse_out0_
 end
 
 
-always @(posedge clock, negedge reset) begin: pulse_out0_step_phases
+always @(pulse_out0_phase_clocks, pulse_out0_phase, core_clear, reg_word13_value, reg_word15_value, pulse_out0_low_clocks, pulse_out0_turn, pulse_out0_take) begin: pulse_out0_restart
+    pulse_out0_starts = (pulse_out0_take || ((pulse_out0_phase == 2'b00) && (!core_clear) && pulse_out0_turn && (pulse_out0_low_clocks >= reg_word15_value)));
+    pulse_out0_high_ends = ((pulse_out0_phase == 2'b10) && (pulse_out0_phase_clocks >= reg_word13_value));
+    pulse_out0_phase_step = 0;
+    if ((pulse_out0_phase_clocks != 255)) begin
+        pulse_out0_phase_step = 1;
+    end
+    pulse_out0_low_step = 0;
+    if ((pulse_out0_low_clocks != 255)) begin
+        pulse_out0_low_step = 1;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pulse_out0_count_clocks
     if (reset == 0) begin
         pulse_out0_phase_clocks <= 0;
+        pulse_out0_low_clocks <= 255;
+    end
+    else begin
+        if (pulse_out0_starts) begin
+            pulse_out0_phase_clocks <= 1;
+        end
+        else begin
+            pulse_out0_phase_clocks <= (pulse_out0_phase_clocks + pulse_out0_phase_step);
+        end
+        if (pulse_out0_high_ends) begin
+            pulse_out0_low_clocks <= 1;
+        end
+        else begin
+            pulse_out0_low_clocks <= (pulse_out0_low_clocks + pulse_out0_low_step);
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pulse_out0_step_phases
+    if (reset == 0) begin
         pulse_out0_level_y <= 0;
         pulse_out0_phase <= 2'b00;
         pulse_out0_dir_level_x <= 1;
         pulse_out0_dir_level_y <= 1;
-        pulse_out0_low_clocks <= 255;
         pulse_out0_level_x <= 0;
     end
     else begin
         if ((pulse_out0_phase == 2'b10)) begin
-            if ((pulse_out0_phase_clocks >= reg_word13_value)) begin
+            if (pulse_out0_high_ends) begin
                 pulse_out0_level_x <= 0;
                 pulse_out0_level_y <= 0;
-                pulse_out0_low_clocks <= 1;
                 pulse_out0_phase <= 2'b00;
-            end
-            else begin
-                pulse_out0_phase_clocks <= (pulse_out0_phase_clocks + 1);
             end
         end
-        else begin
-            if ((pulse_out0_low_clocks < 255)) begin
-                pulse_out0_low_clocks <= (pulse_out0_low_clocks + 1);
+        else if (pulse_out0_take) begin
+            pulse_out0_level_x <= pulse_out0_head[0];
+            pulse_out0_level_y <= pulse_out0_head[1];
+            pulse_out0_phase <= 2'b10;
+        end
+        else if (core_clear) begin
+            pulse_out0_phase <= 2'b00;
+        end
+        else if (((pulse_out0_phase == 2'b00) && pulse_out0_starts)) begin
+            if (pulse_out0_head[0]) begin
+                pulse_out0_dir_level_x <= pulse_out0_head[2];
             end
-            if (pulse_out0_take) begin
-                pulse_out0_level_x <= pulse_out0_head[0];
-                pulse_out0_level_y <= pulse_out0_head[1];
-                pulse_out0_phase_clocks <= 1;
-                pulse_out0_phase <= 2'b10;
+            if (pulse_out0_head[1]) begin
+                pulse_out0_dir_level_y <= pulse_out0_head[3];
             end
-            else if (core_clear) begin
-                pulse_out0_phase <= 2'b00;
-            end
-            else if ((pulse_out0_phase == 2'b01)) begin
-                if ((pulse_out0_phase_clocks < 255)) begin
-                    pulse_out0_phase_clocks <= (pulse_out0_phase_clocks + 1);
-                end
-            end
-            else if ((pulse_out0_turn && (pulse_out0_low_clocks >= reg_word15_value))) begin
-                if (pulse_out0_head[0]) begin
-                    pulse_out0_dir_level_x <= pulse_out0_head[2];
-                end
-                if (pulse_out0_head[1]) begin
-                    pulse_out0_dir_level_y <= pulse_out0_head[3];
-                end
-                pulse_out0_phase_clocks <= 1;
-                pulse_out0_phase <= 2'b01;
-            end
+            pulse_out0_phase <= 2'b01;
         end
     end
 end
 
 
 always @(posedge clock, negedge reset) begin: pulse_out0_fill
-    reg [3-1:0] used;
+    reg pushed;
+    reg [4-1:0] entry;
     integer i;
     if (reset == 0) begin
         pulse_out0_count <= 0;
@@ -2111,24 +2418,33 @@ always @(posedge clock, negedge reset) begin: pulse_out0_fill
         pulse_out0_queue[3] <= 0;
     end
     else begin
-        used = 0;
-        used = pulse_out0_count;
+        pushed = (requests_step_x || requests_step_y);
+        entry = {requests_dir_y, requests_dir_x, requests_step_y, requests_step_x};
         if (core_clear) begin
-            used = 0;
+            pulse_out0_count <= 0;
         end
         else if (pulse_out0_take) begin
             for (i=0; i<(4 - 1); i=i+1) begin
                 pulse_out0_queue[i] <= pulse_out0_queue[(i + 1)];
             end
-            used = (used - 1);
+            if (pushed) begin
+                pulse_out0_queue[pulse_out0_last_slot] <= entry;
+            end
+            else begin
+                pulse_out0_count <= (pulse_out0_count - 1);
+            end
         end
-        if (((requests_step_x || requests_step_y) && (!core_clear))) begin
-            pulse_out0_queue[used[2-1:0]] <= {requests_dir_y, requests_dir_x, requests_step_y, requests_step_x};
-            used = (used + 1);
+        else if (pushed) begin
+            pulse_out0_queue[pulse_out0_free_slot] <= entry;
+            pulse_out0_count <= (pulse_out0_count + 1);
         end
-        pulse_out0_count <= used;
     end
 end
+
+
+
+assign pulse_out0_last_slot = (pulse_out0_count[2-1:0] - 1);
+assign pulse_out0_free_slot = pulse_out0_count[2-1:0];
 
 
 always @(posedge clock, negedge reset) begin: pulse_out0_drive_pins
@@ -2171,7 +2487,7 @@ always @(posedge clock, negedge reset) begin: pulse_out0_drive_pins
 end
 
 
-always @(local_re, local_be, local_space, local_we, fifo_full) begin: decode_bus
+always @(local_re, io_written, local_be, local_space, local_we, fifo_full) begin: decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
     if (local_be[0]) begin
@@ -2187,16 +2503,33 @@ always @(local_re, local_be, local_space, local_we, fifo_full) begin: decode_bus
         mask[32-1:24] = 255;
     end
     byte_mask = mask;
-    io_write = (local_we && (!local_space));
-    io_read = (local_re && (!local_space));
-    push = (local_we && local_space && (!fifo_full) && (local_be != 0));
+    io_write = (local_we && (!local_space) && (!io_written));
+    io_read = (local_re && (!local_space) && (!io_written));
+    io_space = (!local_space);
+    push = (local_we && local_space && (!fifo_full) && (local_be != 0) && (!io_written));
 end
 
 
 
-assign local_ready = (local_re || (local_we && (!(local_space && fifo_full))));
-assign local_retry = (local_we && local_space && fifo_full);
+assign local_ready = ((!(local_write && local_space && fifo_full)) && (!io_written));
+assign local_retry = (local_write && local_space && fifo_full && (!io_written));
 assign local_rdata = read_end;
+
+
+always @(posedge clock, negedge reset) begin: write_stage
+    if (reset == 0) begin
+        written_mask <= 0;
+        written_addr <= 0;
+        io_written <= 0;
+        written_data <= 0;
+    end
+    else begin
+        io_written <= io_write;
+        written_addr <= local_addr;
+        written_data <= local_wdata;
+        written_mask <= byte_mask;
+    end
+end
 
 
 
@@ -2216,6 +2549,22 @@ always @(posedge clock, negedge reset) begin: soft_reset
 end
 
 
+
+assign fifo_flush = (core_clear || (discard_on_clear && io_written && (written_addr == 8) && written_data[1] && written_mask[1]));
+
+
+always @(posedge clock, negedge reset) begin: outputs_before
+    if (reset == 0) begin
+        requested_before <= 0;
+        out_active_before <= 0;
+    end
+    else begin
+        requested_before <= (requests_step_x || requests_step_y);
+        out_active_before <= out_active;
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: snapshot
     if (reset == 0) begin
         pos_y_snapshot <= 0;
@@ -2230,6 +2579,7 @@ end
 
 
 assign pulse_busy = (direct_busy_x || direct_busy_y);
+assign outputs_busy = (requests_step_x || requests_step_y || requested_before || out_active_before);
 assign hold = (!out_ready);
 assign dda_advance = (tick && out_ready && motion_run);
 assign any_busy = (seq_busy || direct_busy_x || direct_busy_y || out_active || dda_busy);

@@ -184,6 +184,7 @@ reg card1_pci_slave2_write_done_q;
 reg card1_pci_slave2_local_re;
 reg card1_pci_slave2_local_we;
 reg card1_pci_slave2_local_space;
+reg card1_pci_slave2_local_write;
 reg [31:0] card1_pci_slave2_local_wdata;
 reg [3:0] card1_pci_slave2_local_be;
 reg [11:0] card1_pci_slave2_local_addr;
@@ -261,34 +262,44 @@ reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
 wire card1_card_core1_regs_fifo2_clear_error;
 wire card1_card_core1_regs_fifo2_clear_position;
 wire card1_card_core1_regs_fifo2_direct_mode;
+wire card1_card_core1_regs_fifo2_discard_on_clear;
 wire card1_card_core1_regs_fifo2_enable;
+wire card1_card_core1_regs_fifo2_fifo_flush;
 wire card1_card_core1_regs_fifo2_fifo_full;
 wire [9:0] card1_card_core1_regs_fifo2_fifo_level;
 wire card1_card_core1_regs_fifo2_hold;
 reg card1_card_core1_regs_fifo2_io_read;
+reg card1_card_core1_regs_fifo2_io_space;
 reg card1_card_core1_regs_fifo2_io_write;
+reg card1_card_core1_regs_fifo2_io_written;
 wire [15:0] card1_card_core1_regs_fifo2_level_wide;
 wire card1_card_core1_regs_fifo2_motion_run;
 wire card1_card_core1_regs_fifo2_out_active;
+reg card1_card_core1_regs_fifo2_out_active_before;
 wire card1_card_core1_regs_fifo2_out_ready;
+wire card1_card_core1_regs_fifo2_outputs_busy;
 reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 wire card1_card_core1_regs_fifo2_pulse_busy;
 reg card1_card_core1_regs_fifo2_push;
+reg card1_card_core1_regs_fifo2_requested_before;
 wire card1_card_core1_regs_fifo2_seq_busy;
 reg card1_card_core1_regs_fifo2_tick;
+reg [11:0] card1_card_core1_regs_fifo2_written_addr;
+reg [31:0] card1_card_core1_regs_fifo2_written_data;
+reg [31:0] card1_card_core1_regs_fifo2_written_mask;
 reg [31:0] card1_card_core1_regs_fifo2_read_end;
 reg [1:0] card1_card_core1_regs_fifo2_control;
 reg card1_card_core1_regs_fifo2_command_strobe;
 reg [2:0] card1_card_core1_regs_fifo2_command;
+wire card1_card_core1_regs_fifo2_requests_step_x;
+wire card1_card_core1_regs_fifo2_requests_step_y;
 reg signed [31:0] card1_card_core1_regs_fifo2_position_y;
 wire card1_card_core1_regs_fifo2_direct_busy_x;
 wire card1_card_core1_regs_fifo2_direct_busy_y;
 wire card1_card_core1_regs_fifo2_dda_advance;
-reg card1_card_core1_regs_fifo2_dda_busy;
-wire card1_card_core1_regs_fifo2_requests_step_x;
+wire card1_card_core1_regs_fifo2_dda_busy;
 reg card1_card_core1_regs_fifo2_steps_step_x;
 reg card1_card_core1_regs_fifo2_direct_request_x;
-wire card1_card_core1_regs_fifo2_requests_step_y;
 reg card1_card_core1_regs_fifo2_steps_step_y;
 reg card1_card_core1_regs_fifo2_direct_request_y;
 wire card1_card_core1_regs_fifo2_requests_dir_x;
@@ -300,6 +311,8 @@ reg card1_card_core1_regs_fifo2_direct_dir_y;
 reg [9:0] card1_card_core1_regs_fifo2_sync_fifo2_count;
 wire card1_card_core1_regs_fifo2_sync_fifo2_do_read;
 wire card1_card_core1_regs_fifo2_sync_fifo2_do_write;
+reg card1_card_core1_regs_fifo2_sync_fifo2_is_empty;
+reg card1_card_core1_regs_fifo2_sync_fifo2_is_full;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_read_addr;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_write_addr;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word42_hw_value;
@@ -315,6 +328,7 @@ wire [1:0] card1_card_core1_regs_fifo2_reg_word43_honoured;
 wire card1_card_core1_regs_fifo2_reg_word43_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word43_clamped;
 wire card1_card_core1_regs_fifo2_reg_word43_mine;
+wire card1_card_core1_regs_fifo2_reg_word43_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word43_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word43_shown_wide;
 reg [1:0] card1_card_core1_regs_fifo2_reg_word43_written;
@@ -325,6 +339,7 @@ wire [2:0] card1_card_core1_regs_fifo2_reg_word44_honoured;
 wire card1_card_core1_regs_fifo2_reg_word44_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word44_clamped;
 wire card1_card_core1_regs_fifo2_reg_word44_mine;
+wire card1_card_core1_regs_fifo2_reg_word44_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word44_shown_wide;
 wire [2:0] card1_card_core1_regs_fifo2_reg_word44_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word45_hw_value;
@@ -339,6 +354,7 @@ wire [4:0] card1_card_core1_regs_fifo2_reg_word46_honoured;
 wire card1_card_core1_regs_fifo2_reg_word46_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word46_clamped;
 wire card1_card_core1_regs_fifo2_reg_word46_mine;
+wire card1_card_core1_regs_fifo2_reg_word46_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word46_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word46_shown_wide;
 reg [4:0] card1_card_core1_regs_fifo2_reg_word46_written;
@@ -348,6 +364,7 @@ wire card1_card_core1_regs_fifo2_reg_word47_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word47_read_out;
 wire [4:0] card1_card_core1_regs_fifo2_reg_word47_honoured;
 wire card1_card_core1_regs_fifo2_reg_word47_mine;
+wire card1_card_core1_regs_fifo2_reg_word47_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word47_shown_wide;
 wire [4:0] card1_card_core1_regs_fifo2_reg_word47_written;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word48_value;
@@ -357,6 +374,7 @@ wire [15:0] card1_card_core1_regs_fifo2_reg_word48_honoured;
 wire card1_card_core1_regs_fifo2_reg_word48_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word48_clamped;
 wire card1_card_core1_regs_fifo2_reg_word48_mine;
+wire card1_card_core1_regs_fifo2_reg_word48_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word48_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word48_shown_wide;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word48_written;
@@ -375,22 +393,24 @@ wire card1_card_core1_regs_fifo2_reg_word51_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word51_read_out;
 wire card1_card_core1_regs_fifo2_reg_word51_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word51_shown_wide;
-reg [16:0] card1_card_core1_regs_fifo2_reg_word52_value;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word52_value;
 wire card1_card_core1_regs_fifo2_reg_word52_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word52_read_out;
-reg [16:0] card1_card_core1_regs_fifo2_reg_word52_honoured;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word52_honoured;
 reg card1_card_core1_regs_fifo2_reg_word52_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word52_clamped;
 wire card1_card_core1_regs_fifo2_reg_word52_mine;
+wire card1_card_core1_regs_fifo2_reg_word52_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word52_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word52_written;
-reg [16:0] card1_card_core1_regs_fifo2_reg_word53_value;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word53_value;
 wire card1_card_core1_regs_fifo2_reg_word53_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word53_read_out;
-reg [16:0] card1_card_core1_regs_fifo2_reg_word53_honoured;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word53_honoured;
 reg card1_card_core1_regs_fifo2_reg_word53_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word53_clamped;
 wire card1_card_core1_regs_fifo2_reg_word53_mine;
+wire card1_card_core1_regs_fifo2_reg_word53_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word53_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word53_written;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word54_value;
@@ -400,6 +420,7 @@ wire [15:0] card1_card_core1_regs_fifo2_reg_word54_honoured;
 wire card1_card_core1_regs_fifo2_reg_word54_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word54_clamped;
 wire card1_card_core1_regs_fifo2_reg_word54_mine;
+wire card1_card_core1_regs_fifo2_reg_word54_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word54_shown_wide;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word54_written;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word55_value;
@@ -409,6 +430,7 @@ reg [7:0] card1_card_core1_regs_fifo2_reg_word55_honoured;
 reg card1_card_core1_regs_fifo2_reg_word55_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word55_clamped;
 wire card1_card_core1_regs_fifo2_reg_word55_mine;
+wire card1_card_core1_regs_fifo2_reg_word55_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word55_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word55_written;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word56_value;
@@ -418,6 +440,7 @@ reg [7:0] card1_card_core1_regs_fifo2_reg_word56_honoured;
 reg card1_card_core1_regs_fifo2_reg_word56_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word56_clamped;
 wire card1_card_core1_regs_fifo2_reg_word56_mine;
+wire card1_card_core1_regs_fifo2_reg_word56_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word56_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word56_written;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word57_value;
@@ -427,6 +450,7 @@ reg [7:0] card1_card_core1_regs_fifo2_reg_word57_honoured;
 reg card1_card_core1_regs_fifo2_reg_word57_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word57_clamped;
 wire card1_card_core1_regs_fifo2_reg_word57_mine;
+wire card1_card_core1_regs_fifo2_reg_word57_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word57_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word57_written;
 reg [1:0] card1_card_core1_regs_fifo2_reg_word58_value;
@@ -436,6 +460,7 @@ wire [1:0] card1_card_core1_regs_fifo2_reg_word58_honoured;
 wire card1_card_core1_regs_fifo2_reg_word58_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word58_clamped;
 wire card1_card_core1_regs_fifo2_reg_word58_mine;
+wire card1_card_core1_regs_fifo2_reg_word58_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word58_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word58_shown_wide;
 reg [1:0] card1_card_core1_regs_fifo2_reg_word58_written;
@@ -446,6 +471,7 @@ reg [15:0] card1_card_core1_regs_fifo2_reg_word59_honoured;
 reg card1_card_core1_regs_fifo2_reg_word59_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word59_clamped;
 wire card1_card_core1_regs_fifo2_reg_word59_mine;
+wire card1_card_core1_regs_fifo2_reg_word59_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word59_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word59_written;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word60_value;
@@ -455,6 +481,7 @@ reg [15:0] card1_card_core1_regs_fifo2_reg_word60_honoured;
 reg card1_card_core1_regs_fifo2_reg_word60_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word60_clamped;
 wire card1_card_core1_regs_fifo2_reg_word60_mine;
+wire card1_card_core1_regs_fifo2_reg_word60_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word60_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word60_written;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word61_hw_value;
@@ -466,6 +493,7 @@ reg [23:0] card1_card_core1_regs_fifo2_reg_word61_honoured;
 reg card1_card_core1_regs_fifo2_reg_word61_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word61_clamped;
 wire card1_card_core1_regs_fifo2_reg_word61_mine;
+wire card1_card_core1_regs_fifo2_reg_word61_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word61_shown_wide;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word61_written;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word62_hw_value;
@@ -476,6 +504,7 @@ reg [23:0] card1_card_core1_regs_fifo2_reg_word62_honoured;
 reg card1_card_core1_regs_fifo2_reg_word62_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word62_clamped;
 wire card1_card_core1_regs_fifo2_reg_word62_mine;
+wire card1_card_core1_regs_fifo2_reg_word62_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word62_shown_wide;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word62_written;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulse_count_x;
@@ -483,10 +512,14 @@ reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulse_count_y;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_arriving_count;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits;
-reg [3:0] card1_card_core1_regs_fifo2_sequencer2_coord_fits;
+reg card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
+reg card1_card_core1_regs_fifo2_sequencer2_bad_header_bits;
+reg card1_card_core1_regs_fifo2_sequencer2_bad_opcode;
+reg card1_card_core1_regs_fifo2_sequencer2_bad_operand;
+reg card1_card_core1_regs_fifo2_sequencer2_bad_set_index;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_coord_mask;
-reg [3:0] card1_card_core1_regs_fifo2_sequencer2_count_fits;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_count_mask;
+wire card1_card_core1_regs_fifo2_sequencer2_discard;
 reg [31:0] card1_card_core1_regs_fifo2_sequencer2_dwell_left;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_fetched;
 reg card1_card_core1_regs_fifo2_sequencer2_finishing;
@@ -494,9 +527,11 @@ reg [31:0] card1_card_core1_regs_fifo2_sequencer2_header;
 wire card1_card_core1_regs_fifo2_sequencer2_issue;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mask_high;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mask_low;
+wire card1_card_core1_regs_fifo2_sequencer2_motion_done;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_next_count;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_next_error;
 reg card1_card_core1_regs_fifo2_sequencer2_next_known;
+reg card1_card_core1_regs_fifo2_sequencer2_next_motion;
 reg card1_card_core1_regs_fifo2_sequencer2_next_valid;
 wire [3:0] card1_card_core1_regs_fifo2_sequencer2_opcode;
 reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_0;
@@ -505,12 +540,15 @@ reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_2;
 reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_3;
 reg card1_card_core1_regs_fifo2_sequencer2_set_known;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
+reg card1_card_core1_regs_fifo2_sequencer2_state_over;
 reg card1_card_core1_regs_fifo2_sequencer2_word_due;
-reg card1_card_core1_regs_fifo2_sequencer2_dda_done;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_start;
+reg card1_card_core1_regs_fifo2_sequencer2_dda_done;
+wire card1_card_core1_regs_fifo2_sequencer2_dda_ready;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_error;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_line;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
+reg card1_card_core1_regs_fifo2_sequencer2_dda_blend;
 reg [1:0] card1_card_core1_regs_fifo2_sequencer2_dda_variant;
 reg [4:0] card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift;
 reg [4:0] card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
@@ -518,24 +556,56 @@ reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_xs;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ys;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_xe;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ye;
+reg [26:0] card1_card_core1_regs_fifo2_feed_rate2_stop_left;
+wire card1_card_core1_regs_fifo2_feed_rate2_above;
+wire card1_card_core1_regs_fifo2_feed_rate2_above_floor;
+wire card1_card_core1_regs_fifo2_feed_rate2_below;
+wire card1_card_core1_regs_fifo2_feed_rate2_can_lower;
+wire card1_card_core1_regs_fifo2_feed_rate2_can_raise;
+reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_count;
+reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_count_down;
+wire card1_card_core1_regs_fifo2_feed_rate2_count_empty;
+wire card1_card_core1_regs_fifo2_feed_rate2_count_last;
+reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_count_up;
+reg card1_card_core1_regs_fifo2_feed_rate2_decelerate;
+reg [16:0] card1_card_core1_regs_fifo2_feed_rate2_floor_limit;
+reg [16:0] card1_card_core1_regs_fifo2_feed_rate2_lower_limit;
+wire [15:0] card1_card_core1_regs_fifo2_feed_rate2_lowered;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_phase;
-reg [16:0] card1_card_core1_regs_fifo2_feed_rate2_rate;
+reg signed [16:0] card1_card_core1_regs_fifo2_feed_rate2_raise_limit;
+wire [15:0] card1_card_core1_regs_fifo2_feed_rate2_raised;
+reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_rate;
+reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_start_s;
+reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_step_s;
+reg card1_card_core1_regs_fifo2_feed_rate2_step_zero;
+reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_target_s;
+wire [16:0] card1_card_core1_regs_fifo2_feed_rate2_total;
 reg card1_card_core1_regs_fifo2_direct_pulse4_load;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap;
+reg card1_card_core1_regs_fifo2_direct_pulse4_pending;
+reg card1_card_core1_regs_fifo2_direct_pulse4_waiting;
 reg card1_card_core1_regs_fifo2_direct_pulse5_load;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse5_count;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap;
+reg card1_card_core1_regs_fifo2_direct_pulse5_pending;
+reg card1_card_core1_regs_fifo2_direct_pulse5_waiting;
 reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_position_x;
 reg [2:0] card1_card_core1_regs_fifo2_pulse_out2_count;
 reg card1_card_core1_regs_fifo2_pulse_out2_dir_level_x;
 reg card1_card_core1_regs_fifo2_pulse_out2_dir_level_y;
+wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_free_slot;
 wire [3:0] card1_card_core1_regs_fifo2_pulse_out2_head;
+reg card1_card_core1_regs_fifo2_pulse_out2_high_ends;
+wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_last_slot;
 reg card1_card_core1_regs_fifo2_pulse_out2_level_x;
 reg card1_card_core1_regs_fifo2_pulse_out2_level_y;
 reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_low_clocks;
+reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_low_step;
 reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_phase;
 reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_clocks;
+reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_step;
+reg card1_card_core1_regs_fifo2_pulse_out2_starts;
 reg card1_card_core1_regs_fifo2_pulse_out2_take;
 reg card1_card_core1_regs_fifo2_pulse_out2_turn;
 wire [1:0] card1_card_core1_regs_fifo2__status2_quadrant;
@@ -544,72 +614,109 @@ reg signed [31:0] card1_card_core1_dda_arc2_acc_x;
 reg signed [31:0] card1_card_core1_dda_arc2_acc_y;
 reg card1_card_core1_dda_arc2_at_x;
 reg card1_card_core1_dda_arc2_at_y;
+reg card1_card_core1_dda_arc2_blend;
 reg card1_card_core1_dda_arc2_ccw;
+reg signed [31:0] card1_card_core1_dda_arc2_check_acc_init;
+reg [2:0] card1_card_core1_dda_arc2_check_crossings;
+reg card1_card_core1_dda_arc2_check_error;
+reg signed [26:0] card1_card_core1_dda_arc2_check_left_x;
+reg signed [26:0] card1_card_core1_dda_arc2_check_left_y;
+reg signed [28:0] card1_card_core1_dda_arc2_check_neg_in;
+reg [1:0] card1_card_core1_dda_arc2_check_quadrant;
+reg [23:0] card1_card_core1_dda_arc2_check_target_x;
+reg [23:0] card1_card_core1_dda_arc2_check_target_y;
+reg [28:0] card1_card_core1_dda_arc2_check_threshold;
+reg card1_card_core1_dda_arc2_check_zero;
 reg signed [31:0] card1_card_core1_dda_arc2_chk_acc_init;
 reg [2:0] card1_card_core1_dda_arc2_chk_crossings;
 reg card1_card_core1_dda_arc2_chk_error;
-reg [23:0] card1_card_core1_dda_arc2_chk_mag_x;
-reg [23:0] card1_card_core1_dda_arc2_chk_mag_y;
-reg [24:0] card1_card_core1_dda_arc2_chk_neg_mag_x;
-reg [24:0] card1_card_core1_dda_arc2_chk_neg_mag_y;
+reg signed [26:0] card1_card_core1_dda_arc2_chk_left_x;
+reg signed [26:0] card1_card_core1_dda_arc2_chk_left_y;
+reg signed [28:0] card1_card_core1_dda_arc2_chk_neg_in;
 reg [1:0] card1_card_core1_dda_arc2_chk_quadrant;
-reg [23:0] card1_card_core1_dda_arc2_chk_radius;
 reg [23:0] card1_card_core1_dda_arc2_chk_target_x;
 reg [23:0] card1_card_core1_dda_arc2_chk_target_y;
 reg [28:0] card1_card_core1_dda_arc2_chk_threshold;
+reg card1_card_core1_dda_arc2_chk_zero;
+reg [23:0] card1_card_core1_dda_arc2_cmd_mag_xe;
 reg [23:0] card1_card_core1_dda_arc2_cmd_mag_xs;
-reg [23:0] card1_card_core1_dda_arc2_count_x;
-reg [23:0] card1_card_core1_dda_arc2_count_y;
+reg [23:0] card1_card_core1_dda_arc2_cmd_mag_ye;
+reg [23:0] card1_card_core1_dda_arc2_cmd_mag_ys;
 reg [2:0] card1_card_core1_dda_arc2_crossings;
-reg signed [29:0] card1_card_core1_dda_arc2_delta_x;
-reg signed [29:0] card1_card_core1_dda_arc2_delta_y;
+reg card1_card_core1_dda_arc2_dec_finished;
+reg card1_card_core1_dda_arc2_dec_in;
+reg card1_card_core1_dda_arc2_dec_next_piece;
+reg card1_card_core1_dda_arc2_dec_out;
+reg card1_card_core1_dda_arc2_dec_step_x;
+reg card1_card_core1_dda_arc2_dec_step_y;
+reg signed [31:0] card1_card_core1_dda_arc2_dec_sum_x;
+reg signed [31:0] card1_card_core1_dda_arc2_dec_sum_y;
+reg card1_card_core1_dda_arc2_dec_tail;
+reg card1_card_core1_dda_arc2_dec_x_down;
+reg card1_card_core1_dda_arc2_dec_x_move;
+reg card1_card_core1_dda_arc2_dec_y_down;
+reg card1_card_core1_dda_arc2_dec_y_move;
 reg card1_card_core1_dda_arc2_end_beyond_high;
 reg card1_card_core1_dda_arc2_end_reaches_low;
-reg signed [49:0] card1_card_core1_dda_arc2_gap;
-reg signed [49:0] card1_card_core1_dda_arc2_gap_sum;
+reg signed [30:0] card1_card_core1_dda_arc2_first_half;
+reg [23:0] card1_card_core1_dda_arc2_first_integrand_x;
+reg [23:0] card1_card_core1_dda_arc2_first_integrand_y;
+reg [23:0] card1_card_core1_dda_arc2_first_out;
+reg signed [31:0] card1_card_core1_dda_arc2_first_q_in;
+reg signed [31:0] card1_card_core1_dda_arc2_first_q_out;
+reg [23:0] card1_card_core1_dda_arc2_first_stepped_x;
+reg [23:0] card1_card_core1_dda_arc2_first_stepped_y;
+reg card1_card_core1_dda_arc2_gap_carry;
+reg [24:0] card1_card_core1_dda_arc2_gap_high;
+reg [24:0] card1_card_core1_dda_arc2_gap_low;
+reg card1_card_core1_dda_arc2_gap_sum_carry;
+reg [24:0] card1_card_core1_dda_arc2_gap_sum_high;
+reg [24:0] card1_card_core1_dda_arc2_gap_sum_low;
+reg [24:0] card1_card_core1_dda_arc2_gap_top;
 reg card1_card_core1_dda_arc2_geo_ahead;
 reg card1_card_core1_dda_arc2_geo_centre;
 reg [2:0] card1_card_core1_dda_arc2_geo_crossings;
 reg [23:0] card1_card_core1_dda_arc2_geo_end_inward;
 reg [1:0] card1_card_core1_dda_arc2_geo_quadrant;
+reg card1_card_core1_dda_arc2_geo_x_in_end;
+reg card1_card_core1_dda_arc2_geo_x_in_start;
+reg signed [30:0] card1_card_core1_dda_arc2_half_sum;
+reg card1_card_core1_dda_arc2_hand_end;
+reg card1_card_core1_dda_arc2_hand_load;
 reg [23:0] card1_card_core1_dda_arc2_integrand_x;
 reg [23:0] card1_card_core1_dda_arc2_integrand_y;
 reg card1_card_core1_dda_arc2_is_line;
-reg signed [31:0] card1_card_core1_dda_arc2_it_acc_x;
-reg signed [31:0] card1_card_core1_dda_arc2_it_acc_y;
 reg card1_card_core1_dda_arc2_it_dir_x;
 reg card1_card_core1_dda_arc2_it_dir_y;
-reg signed [29:0] card1_card_core1_dda_arc2_it_error;
 reg card1_card_core1_dda_arc2_it_finished;
-reg [23:0] card1_card_core1_dda_arc2_it_mag_x;
-reg [23:0] card1_card_core1_dda_arc2_it_mag_y;
-reg [24:0] card1_card_core1_dda_arc2_it_neg_mag_x;
-reg [24:0] card1_card_core1_dda_arc2_it_neg_mag_y;
 reg card1_card_core1_dda_arc2_it_next_piece;
 reg card1_card_core1_dda_arc2_it_step_x;
 reg card1_card_core1_dda_arc2_it_step_y;
+reg signed [31:0] card1_card_core1_dda_arc2_it_sum_x;
+reg signed [31:0] card1_card_core1_dda_arc2_it_sum_y;
 reg card1_card_core1_dda_arc2_it_tail;
 reg [4:0] card1_card_core1_dda_arc2_lambda_shift;
+reg signed [26:0] card1_card_core1_dda_arc2_left_x;
+reg signed [26:0] card1_card_core1_dda_arc2_left_y;
 reg [4:0] card1_card_core1_dda_arc2_mac_bit;
 reg [1:0] card1_card_core1_dda_arc2_mac_op;
-reg [23:0] card1_card_core1_dda_arc2_mag_x;
-reg [23:0] card1_card_core1_dda_arc2_mag_x_step;
 reg [23:0] card1_card_core1_dda_arc2_mag_xe;
 reg [23:0] card1_card_core1_dda_arc2_mag_xs;
-reg [23:0] card1_card_core1_dda_arc2_mag_y;
-reg [23:0] card1_card_core1_dda_arc2_mag_y_step;
 reg [23:0] card1_card_core1_dda_arc2_mag_ye;
 reg [23:0] card1_card_core1_dda_arc2_mag_ys;
 reg [47:0] card1_card_core1_dda_arc2_multiplicand;
 reg [23:0] card1_card_core1_dda_arc2_multiplier;
 reg card1_card_core1_dda_arc2_near_x;
 reg card1_card_core1_dda_arc2_near_y;
-reg [24:0] card1_card_core1_dda_arc2_neg_mag_x;
-reg [24:0] card1_card_core1_dda_arc2_neg_mag_x_step;
-reg [24:0] card1_card_core1_dda_arc2_neg_mag_y;
-reg [24:0] card1_card_core1_dda_arc2_neg_mag_y_step;
-reg signed [24:0] card1_card_core1_dda_arc2_neg_xs;
-reg signed [24:0] card1_card_core1_dda_arc2_neg_ys;
+reg signed [28:0] card1_card_core1_dda_arc2_neg_in;
+reg card1_card_core1_dda_arc2_neg_xe;
+reg card1_card_core1_dda_arc2_neg_xs;
+reg card1_card_core1_dda_arc2_neg_ye;
+reg card1_card_core1_dda_arc2_neg_ys;
+reg card1_card_core1_dda_arc2_pending;
+reg [23:0] card1_card_core1_dda_arc2_pos_out;
+reg signed [31:0] card1_card_core1_dda_arc2_q_in;
+reg signed [31:0] card1_card_core1_dda_arc2_q_out;
 reg [1:0] card1_card_core1_dda_arc2_quadrant;
 reg signed [29:0] card1_card_core1_dda_arc2_radial_error;
 reg [47:0] card1_card_core1_dda_arc2_radicand;
@@ -624,16 +731,31 @@ reg [5:0] card1_card_core1_dda_arc2_root_length;
 reg [26:0] card1_card_core1_dda_arc2_root_trial_diff;
 reg card1_card_core1_dda_arc2_root_trial_fits;
 reg [26:0] card1_card_core1_dda_arc2_root_trial_rem;
+reg card1_card_core1_dda_arc2_run_active;
+reg card1_card_core1_dda_arc2_run_blend;
+reg card1_card_core1_dda_arc2_run_ccw;
+reg [23:0] card1_card_core1_dda_arc2_run_end_x;
+reg [23:0] card1_card_core1_dda_arc2_run_end_y;
+reg card1_card_core1_dda_arc2_run_line;
+reg card1_card_core1_dda_arc2_run_right;
+reg card1_card_core1_dda_arc2_run_up;
+reg [1:0] card1_card_core1_dda_arc2_run_variant;
 reg [2:0] card1_card_core1_dda_arc2_state;
+reg [23:0] card1_card_core1_dda_arc2_stepped_x;
+reg [23:0] card1_card_core1_dda_arc2_stepped_y;
 reg [23:0] card1_card_core1_dda_arc2_target_x;
 reg [23:0] card1_card_core1_dda_arc2_target_y;
 reg [28:0] card1_card_core1_dda_arc2_threshold;
+reg card1_card_core1_dda_arc2_tot_k2_x;
+reg card1_card_core1_dda_arc2_tot_k2_y;
+reg card1_card_core1_dda_arc2_tot_k4_x;
+reg card1_card_core1_dda_arc2_tot_k4_y;
+reg signed [27:0] card1_card_core1_dda_arc2_tot_sum_x;
+reg signed [27:0] card1_card_core1_dda_arc2_tot_sum_y;
+reg signed [27:0] card1_card_core1_dda_arc2_tot_x;
+reg signed [27:0] card1_card_core1_dda_arc2_tot_y;
 reg [1:0] card1_card_core1_dda_arc2_variant;
 reg card1_card_core1_dda_arc2_x_inward;
-reg signed [23:0] card1_card_core1_dda_arc2_xe;
-reg signed [23:0] card1_card_core1_dda_arc2_xs;
-reg signed [23:0] card1_card_core1_dda_arc2_ye;
-reg signed [23:0] card1_card_core1_dda_arc2_ys;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
@@ -1320,6 +1442,7 @@ always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pc
     card1_pci_slave2_local_re = ((first && card1_pci_slave2_is_read) || prefetch);
     card1_pci_slave2_local_we = (drain || (first && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q)));
     card1_pci_slave2_local_space = (drain || card1_pci_slave2_space_mem);
+    card1_pci_slave2_local_write = (drain || (!card1_pci_slave2_is_read));
     if (card1_pci_slave2_h_valid) begin
         card1_pci_slave2_local_wdata = card1_pci_slave2_h_data;
         card1_pci_slave2_local_be = card1_pci_slave2_h_be;
@@ -2467,8 +2590,8 @@ assign card1_card_core1_dda_reset = (reset && (!card1_card_core1_core_clear));
 
 
 
-assign card1_card_core1_regs_fifo2_sync_fifo2_do_write = (card1_card_core1_regs_fifo2_push && (card1_card_core1_regs_fifo2_sync_fifo2_count != 512));
-assign card1_card_core1_regs_fifo2_sync_fifo2_do_read = (card1_card_core1_regs_fifo2_fifo_pop && (card1_card_core1_regs_fifo2_sync_fifo2_count != 0));
+assign card1_card_core1_regs_fifo2_sync_fifo2_do_write = (card1_card_core1_regs_fifo2_push && (!card1_card_core1_regs_fifo2_sync_fifo2_is_full));
+assign card1_card_core1_regs_fifo2_sync_fifo2_do_read = (card1_card_core1_regs_fifo2_fifo_pop && (!card1_card_core1_regs_fifo2_sync_fifo2_is_empty));
 
 
 always @(posedge clock) begin: card1_card_core1_regs_fifo2_sync_fifo2_memory
@@ -2482,16 +2605,21 @@ end
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sync_fifo2_pointers
+    reg [10-1:0] following;
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_sync_fifo2_read_addr <= 0;
-        card1_card_core1_regs_fifo2_sync_fifo2_write_addr <= 0;
+        card1_card_core1_regs_fifo2_sync_fifo2_is_empty <= 1;
+        card1_card_core1_regs_fifo2_sync_fifo2_is_full <= 0;
         card1_card_core1_regs_fifo2_sync_fifo2_count <= 0;
+        card1_card_core1_regs_fifo2_sync_fifo2_write_addr <= 0;
     end
     else begin
-        if (card1_card_core1_core_clear) begin
+        following = 0;
+        following = card1_card_core1_regs_fifo2_sync_fifo2_count;
+        if (card1_card_core1_regs_fifo2_fifo_flush) begin
             card1_card_core1_regs_fifo2_sync_fifo2_write_addr <= 0;
             card1_card_core1_regs_fifo2_sync_fifo2_read_addr <= 0;
-            card1_card_core1_regs_fifo2_sync_fifo2_count <= 0;
+            following = 0;
         end
         else begin
             if (card1_card_core1_regs_fifo2_sync_fifo2_do_write) begin
@@ -2501,28 +2629,31 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sync_f
                 card1_card_core1_regs_fifo2_sync_fifo2_read_addr <= (card1_card_core1_regs_fifo2_sync_fifo2_read_addr + 1);
             end
             if ((card1_card_core1_regs_fifo2_sync_fifo2_do_write && (!card1_card_core1_regs_fifo2_sync_fifo2_do_read))) begin
-                card1_card_core1_regs_fifo2_sync_fifo2_count <= (card1_card_core1_regs_fifo2_sync_fifo2_count + 1);
+                following = (card1_card_core1_regs_fifo2_sync_fifo2_count + 1);
             end
             else if ((card1_card_core1_regs_fifo2_sync_fifo2_do_read && (!card1_card_core1_regs_fifo2_sync_fifo2_do_write))) begin
-                card1_card_core1_regs_fifo2_sync_fifo2_count <= (card1_card_core1_regs_fifo2_sync_fifo2_count - 1);
+                following = (card1_card_core1_regs_fifo2_sync_fifo2_count - 1);
             end
         end
+        card1_card_core1_regs_fifo2_sync_fifo2_count <= following;
+        card1_card_core1_regs_fifo2_sync_fifo2_is_empty <= (following == 0);
+        card1_card_core1_regs_fifo2_sync_fifo2_is_full <= (following == 512);
     end
 end
 
 
 
 assign card1_card_core1_regs_fifo2_fifo_level = card1_card_core1_regs_fifo2_sync_fifo2_count;
-assign card1_card_core1_regs_fifo2_fifo_empty = (card1_card_core1_regs_fifo2_sync_fifo2_count == 0);
-assign card1_card_core1_regs_fifo2_fifo_full = (card1_card_core1_regs_fifo2_sync_fifo2_count == 512);
+assign card1_card_core1_regs_fifo2_fifo_empty = card1_card_core1_regs_fifo2_sync_fifo2_is_empty;
+assign card1_card_core1_regs_fifo2_fifo_full = card1_card_core1_regs_fifo2_sync_fifo2_is_full;
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word42_mine = (card1_pci_slave2_local_addr == 0);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word42_mine, card1_card_core1_regs_fifo2_reg_word42_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_in, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word42_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word42_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word42_mine, card1_card_core1_regs_fifo2_reg_word42_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_in, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word42_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word42_mine)) begin
         card1_card_core1_regs_fifo2_reg_word42_read_out = (card1_card_core1_regs_fifo2_reg_word42_read_in | card1_card_core1_regs_fifo2_reg_word42_shown_wide);
     end
     else begin
@@ -2543,8 +2674,8 @@ assign card1_card_core1_regs_fifo2_reg_word42_clamp_out = card1_card_core1_regs_
 assign card1_card_core1_regs_fifo2_reg_word43_mine = (card1_pci_slave2_local_addr == 4);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word43_mine, card1_card_core1_regs_fifo2_reg_word43_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word43_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word43_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word43_mine, card1_card_core1_regs_fifo2_reg_word43_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word43_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word43_mine)) begin
         card1_card_core1_regs_fifo2_reg_word43_read_out = (card1_card_core1_regs_fifo2_reg_word42_read_out | card1_card_core1_regs_fifo2_reg_word43_shown_wide);
     end
     else begin
@@ -2557,12 +2688,16 @@ end
 assign card1_card_core1_regs_fifo2_reg_word43_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word43_shown_wide, card1_card_core1_regs_fifo2_reg_word43_set_mine, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word43_merge_bytes
+
+assign card1_card_core1_regs_fifo2_reg_word43_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word43_shown_wide, card1_card_core1_regs_fifo2_reg_word43_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word43_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word43_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word43_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word43_written = ((card1_card_core1_regs_fifo2_reg_word43_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[2-1:0])) | (card1_pci_slave2_local_wdata[2-1:0] & card1_card_core1_regs_fifo2_byte_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word43_written = ((card1_card_core1_regs_fifo2_reg_word43_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
     end
 end
 
@@ -2582,7 +2717,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word43_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word43_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word43_mine))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word43_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word43_mine_write))) begin
             card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word43_honoured;
             card1_card_core1_regs_fifo2_reg_word43_clamped <= card1_card_core1_regs_fifo2_reg_word43_out_of_range;
         end
@@ -2594,8 +2729,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word44_mine = (card1_pci_slave2_local_addr == 8);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word44_mine, card1_card_core1_regs_fifo2_reg_word44_shown_wide, card1_card_core1_regs_fifo2_reg_word43_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word44_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word44_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word44_mine, card1_card_core1_regs_fifo2_reg_word44_shown_wide, card1_card_core1_regs_fifo2_reg_word43_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word44_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word44_mine)) begin
         card1_card_core1_regs_fifo2_reg_word44_read_out = (card1_card_core1_regs_fifo2_reg_word43_read_out | card1_card_core1_regs_fifo2_reg_word44_shown_wide);
     end
     else begin
@@ -2609,7 +2744,11 @@ assign card1_card_core1_regs_fifo2_reg_word44_shown_wide = {29'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word44_written = (card1_pci_slave2_local_wdata[3-1:0] & card1_card_core1_regs_fifo2_byte_mask[3-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word44_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word44_written = (card1_card_core1_regs_fifo2_written_data[3-1:0] & card1_card_core1_regs_fifo2_written_mask[3-1:0]);
 
 
 
@@ -2629,7 +2768,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     else begin
         card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word44_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word44_mine)) begin
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word44_mine_write)) begin
             card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word44_honoured;
             card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word44_clamped <= card1_card_core1_regs_fifo2_reg_word44_out_of_range;
@@ -2642,8 +2781,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word45_mine = (card1_pci_slave2_local_addr == 12);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word45_mine, card1_card_core1_regs_fifo2_reg_word45_shown_wide, card1_card_core1_regs_fifo2_reg_word44_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word45_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word45_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word45_mine, card1_card_core1_regs_fifo2_reg_word45_shown_wide, card1_card_core1_regs_fifo2_reg_word44_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word45_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word45_mine)) begin
         card1_card_core1_regs_fifo2_reg_word45_read_out = (card1_card_core1_regs_fifo2_reg_word44_read_out | card1_card_core1_regs_fifo2_reg_word45_shown_wide);
     end
     else begin
@@ -2664,8 +2803,8 @@ assign card1_card_core1_regs_fifo2_reg_word45_clamp_out = card1_card_core1_regs_
 assign card1_card_core1_regs_fifo2_reg_word46_mine = (card1_pci_slave2_local_addr == 16);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word46_mine, card1_card_core1_regs_fifo2_reg_word46_shown_wide, card1_card_core1_regs_fifo2_reg_word45_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word46_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word46_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word46_mine, card1_card_core1_regs_fifo2_reg_word46_shown_wide, card1_card_core1_regs_fifo2_reg_word45_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word46_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word46_mine)) begin
         card1_card_core1_regs_fifo2_reg_word46_read_out = (card1_card_core1_regs_fifo2_reg_word45_read_out | card1_card_core1_regs_fifo2_reg_word46_shown_wide);
     end
     else begin
@@ -2678,12 +2817,16 @@ end
 assign card1_card_core1_regs_fifo2_reg_word46_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word46_value};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word46_shown_wide, card1_card_core1_regs_fifo2_reg_word46_set_mine, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word46_merge_bytes
+
+assign card1_card_core1_regs_fifo2_reg_word46_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word46_shown_wide, card1_card_core1_regs_fifo2_reg_word46_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word46_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word46_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word46_written = card1_card_core1_regs_fifo2_set_value[5-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word46_written = ((card1_card_core1_regs_fifo2_reg_word46_shown_wide[5-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[5-1:0])) | (card1_pci_slave2_local_wdata[5-1:0] & card1_card_core1_regs_fifo2_byte_mask[5-1:0]));
+        card1_card_core1_regs_fifo2_reg_word46_written = ((card1_card_core1_regs_fifo2_reg_word46_shown_wide[5-1:0] & (~card1_card_core1_regs_fifo2_written_mask[5-1:0])) | (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]));
     end
 end
 
@@ -2703,7 +2846,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word46_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word46_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word46_mine))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word46_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word46_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word46_value <= card1_card_core1_regs_fifo2_reg_word46_honoured;
             card1_card_core1_regs_fifo2_reg_word46_clamped <= card1_card_core1_regs_fifo2_reg_word46_out_of_range;
         end
@@ -2715,8 +2858,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word47_mine = (card1_pci_slave2_local_addr == 20);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word47_mine, card1_card_core1_regs_fifo2_reg_word47_shown_wide, card1_card_core1_regs_fifo2_reg_word46_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word47_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word47_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word47_mine, card1_card_core1_regs_fifo2_reg_word47_shown_wide, card1_card_core1_regs_fifo2_reg_word46_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word47_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word47_mine)) begin
         card1_card_core1_regs_fifo2_reg_word47_read_out = (card1_card_core1_regs_fifo2_reg_word46_read_out | card1_card_core1_regs_fifo2_reg_word47_shown_wide);
     end
     else begin
@@ -2730,7 +2873,11 @@ assign card1_card_core1_regs_fifo2_reg_word47_shown_wide = {27'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word47_written = (card1_pci_slave2_local_wdata[5-1:0] & card1_card_core1_regs_fifo2_byte_mask[5-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word47_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word47_written = (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]);
 
 
 
@@ -2746,7 +2893,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
         card1_card_core1_regs_fifo2_reg_word47_value <= 0;
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word47_mine)) begin
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word47_mine_write)) begin
             card1_card_core1_regs_fifo2_reg_word47_value <= ((card1_card_core1_regs_fifo2_reg_word47_value & (~card1_card_core1_regs_fifo2_reg_word47_honoured)) | card1_card_core1_regs_fifo2_reg_word47_hw_value);
         end
         else begin
@@ -2760,8 +2907,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_local_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word47_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word48_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word47_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word48_mine)) begin
         card1_card_core1_regs_fifo2_reg_word48_read_out = (card1_card_core1_regs_fifo2_reg_word47_read_out | card1_card_core1_regs_fifo2_reg_word48_shown_wide);
     end
     else begin
@@ -2774,12 +2921,16 @@ end
 assign card1_card_core1_regs_fifo2_reg_word48_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word48_value};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word48_set_mine, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word48_merge_bytes
+
+assign card1_card_core1_regs_fifo2_reg_word48_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word48_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word48_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word48_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word48_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word48_written = ((card1_card_core1_regs_fifo2_reg_word48_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[16-1:0])) | (card1_pci_slave2_local_wdata[16-1:0] & card1_card_core1_regs_fifo2_byte_mask[16-1:0]));
+        card1_card_core1_regs_fifo2_reg_word48_written = ((card1_card_core1_regs_fifo2_reg_word48_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
@@ -2799,7 +2950,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word48_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word48_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word48_mine))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word48_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word48_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word48_value <= card1_card_core1_regs_fifo2_reg_word48_honoured;
             card1_card_core1_regs_fifo2_reg_word48_clamped <= card1_card_core1_regs_fifo2_reg_word48_out_of_range;
         end
@@ -2811,8 +2962,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_local_addr == 28);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word49_mine, card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word48_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word49_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word49_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word49_mine, card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word48_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word49_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word49_mine)) begin
         card1_card_core1_regs_fifo2_reg_word49_read_out = (card1_card_core1_regs_fifo2_reg_word48_read_out | card1_card_core1_regs_fifo2_reg_word49_shown_wide);
     end
     else begin
@@ -2833,8 +2984,8 @@ assign card1_card_core1_regs_fifo2_reg_word49_clamp_out = card1_card_core1_regs_
 assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_local_addr == 32);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word50_mine, card1_card_core1_regs_fifo2_reg_word50_shown_wide, card1_card_core1_regs_fifo2_reg_word49_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word50_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word50_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word50_mine, card1_card_core1_regs_fifo2_reg_word50_shown_wide, card1_card_core1_regs_fifo2_reg_word49_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word50_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word50_mine)) begin
         card1_card_core1_regs_fifo2_reg_word50_read_out = (card1_card_core1_regs_fifo2_reg_word49_read_out | card1_card_core1_regs_fifo2_reg_word50_shown_wide);
     end
     else begin
@@ -2855,8 +3006,8 @@ assign card1_card_core1_regs_fifo2_reg_word50_clamp_out = card1_card_core1_regs_
 assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_local_addr == 36);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word51_mine, card1_card_core1_regs_fifo2_reg_word51_shown_wide, card1_card_core1_regs_fifo2_reg_word50_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word51_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word51_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word51_mine, card1_card_core1_regs_fifo2_reg_word51_shown_wide, card1_card_core1_regs_fifo2_reg_word50_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word51_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word51_mine)) begin
         card1_card_core1_regs_fifo2_reg_word51_read_out = (card1_card_core1_regs_fifo2_reg_word50_read_out | card1_card_core1_regs_fifo2_reg_word51_shown_wide);
     end
     else begin
@@ -2877,8 +3028,8 @@ assign card1_card_core1_regs_fifo2_reg_word51_clamp_out = card1_card_core1_regs_
 assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_local_addr == 40);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word52_mine, card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word51_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word52_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word52_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word52_mine, card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word51_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word52_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word52_mine)) begin
         card1_card_core1_regs_fifo2_reg_word52_read_out = (card1_card_core1_regs_fifo2_reg_word51_read_out | card1_card_core1_regs_fifo2_reg_word52_shown_wide);
     end
     else begin
@@ -2888,15 +3039,19 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word52_shown_wide = {15'h0, card1_card_core1_regs_fifo2_reg_word52_value};
+assign card1_card_core1_regs_fifo2_reg_word52_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word52_value};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word52_merge_bytes
+
+assign card1_card_core1_regs_fifo2_reg_word52_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word52_merge_bytes
     if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word52_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word52_written = ((card1_card_core1_regs_fifo2_reg_word52_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word52_written = ((card1_card_core1_regs_fifo2_reg_word52_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
@@ -2906,11 +3061,11 @@ always @(card1_card_core1_regs_fifo2_reg_word52_written) begin: card1_card_core1
     if (((card1_card_core1_regs_fifo2_reg_word52_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word52_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word52_honoured = 1;
     end
-    else if (((card1_card_core1_regs_fifo2_reg_word52_written[32-1:17] != 0) || (card1_card_core1_regs_fifo2_reg_word52_written[17-1:0] > 65536))) begin
-        card1_card_core1_regs_fifo2_reg_word52_honoured = 65536;
+    else if (((card1_card_core1_regs_fifo2_reg_word52_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word52_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word52_honoured = 32768;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word52_honoured = card1_card_core1_regs_fifo2_reg_word52_written[17-1:0];
+        card1_card_core1_regs_fifo2_reg_word52_honoured = card1_card_core1_regs_fifo2_reg_word52_written[16-1:0];
         card1_card_core1_regs_fifo2_reg_word52_out_of_range = 1'b0;
     end
 end
@@ -2927,7 +3082,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word52_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word52_mine))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word52_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word52_value <= card1_card_core1_regs_fifo2_reg_word52_honoured;
             card1_card_core1_regs_fifo2_reg_word52_clamped <= card1_card_core1_regs_fifo2_reg_word52_out_of_range;
         end
@@ -2939,8 +3094,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_local_addr == 44);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word53_mine, card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_reg_word52_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word53_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word53_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word53_mine, card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_reg_word52_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word53_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word53_mine)) begin
         card1_card_core1_regs_fifo2_reg_word53_read_out = (card1_card_core1_regs_fifo2_reg_word52_read_out | card1_card_core1_regs_fifo2_reg_word53_shown_wide);
     end
     else begin
@@ -2950,15 +3105,19 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_shown_wide = {15'h0, card1_card_core1_regs_fifo2_reg_word53_value};
+assign card1_card_core1_regs_fifo2_reg_word53_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word53_value};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word53_merge_bytes
+
+assign card1_card_core1_regs_fifo2_reg_word53_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word53_merge_bytes
     if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
         card1_card_core1_regs_fifo2_reg_word53_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word53_written = ((card1_card_core1_regs_fifo2_reg_word53_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word53_written = ((card1_card_core1_regs_fifo2_reg_word53_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
@@ -2968,11 +3127,11 @@ always @(card1_card_core1_regs_fifo2_reg_word53_written) begin: card1_card_core1
     if (((card1_card_core1_regs_fifo2_reg_word53_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word53_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word53_honoured = 1;
     end
-    else if (((card1_card_core1_regs_fifo2_reg_word53_written[32-1:17] != 0) || (card1_card_core1_regs_fifo2_reg_word53_written[17-1:0] > 65536))) begin
-        card1_card_core1_regs_fifo2_reg_word53_honoured = 65536;
+    else if (((card1_card_core1_regs_fifo2_reg_word53_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word53_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word53_honoured = 32768;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word53_honoured = card1_card_core1_regs_fifo2_reg_word53_written[17-1:0];
+        card1_card_core1_regs_fifo2_reg_word53_honoured = card1_card_core1_regs_fifo2_reg_word53_written[16-1:0];
         card1_card_core1_regs_fifo2_reg_word53_out_of_range = 1'b0;
     end
 end
@@ -2989,7 +3148,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word53_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word53_mine))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word53_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word53_value <= card1_card_core1_regs_fifo2_reg_word53_honoured;
             card1_card_core1_regs_fifo2_reg_word53_clamped <= card1_card_core1_regs_fifo2_reg_word53_out_of_range;
         end
@@ -3001,8 +3160,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_local_addr == 48);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word54_mine, card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word53_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word54_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word54_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word54_mine, card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word53_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word54_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word54_mine)) begin
         card1_card_core1_regs_fifo2_reg_word54_read_out = (card1_card_core1_regs_fifo2_reg_word53_read_out | card1_card_core1_regs_fifo2_reg_word54_shown_wide);
     end
     else begin
@@ -3015,12 +3174,16 @@ end
 assign card1_card_core1_regs_fifo2_reg_word54_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word54_value};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word54_merge_bytes
+
+assign card1_card_core1_regs_fifo2_reg_word54_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word54_merge_bytes
     if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
         card1_card_core1_regs_fifo2_reg_word54_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word54_written = ((card1_card_core1_regs_fifo2_reg_word54_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[16-1:0])) | (card1_pci_slave2_local_wdata[16-1:0] & card1_card_core1_regs_fifo2_byte_mask[16-1:0]));
+        card1_card_core1_regs_fifo2_reg_word54_written = ((card1_card_core1_regs_fifo2_reg_word54_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
@@ -3040,7 +3203,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word54_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word54_mine))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word54_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word54_value <= card1_card_core1_regs_fifo2_reg_word54_honoured;
             card1_card_core1_regs_fifo2_reg_word54_clamped <= card1_card_core1_regs_fifo2_reg_word54_out_of_range;
         end
@@ -3052,8 +3215,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_local_addr == 52);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word55_mine, card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_reg_word54_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word55_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word55_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word55_mine, card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_reg_word54_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word55_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word55_mine)) begin
         card1_card_core1_regs_fifo2_reg_word55_read_out = (card1_card_core1_regs_fifo2_reg_word54_read_out | card1_card_core1_regs_fifo2_reg_word55_shown_wide);
     end
     else begin
@@ -3066,12 +3229,16 @@ end
 assign card1_card_core1_regs_fifo2_reg_word55_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word55_value};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word55_merge_bytes
+
+assign card1_card_core1_regs_fifo2_reg_word55_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word55_merge_bytes
     if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
         card1_card_core1_regs_fifo2_reg_word55_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word55_written = ((card1_card_core1_regs_fifo2_reg_word55_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word55_written = ((card1_card_core1_regs_fifo2_reg_word55_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
@@ -3102,7 +3269,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word55_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word55_mine))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word55_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word55_value <= card1_card_core1_regs_fifo2_reg_word55_honoured;
             card1_card_core1_regs_fifo2_reg_word55_clamped <= card1_card_core1_regs_fifo2_reg_word55_out_of_range;
         end
@@ -3114,8 +3281,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_local_addr == 56);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word56_mine, card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_reg_word55_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word56_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word56_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word56_mine, card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_reg_word55_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word56_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word56_mine)) begin
         card1_card_core1_regs_fifo2_reg_word56_read_out = (card1_card_core1_regs_fifo2_reg_word55_read_out | card1_card_core1_regs_fifo2_reg_word56_shown_wide);
     end
     else begin
@@ -3128,12 +3295,16 @@ end
 assign card1_card_core1_regs_fifo2_reg_word56_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word56_value};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word56_merge_bytes
+
+assign card1_card_core1_regs_fifo2_reg_word56_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word56_merge_bytes
     if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
         card1_card_core1_regs_fifo2_reg_word56_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word56_written = ((card1_card_core1_regs_fifo2_reg_word56_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word56_written = ((card1_card_core1_regs_fifo2_reg_word56_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
@@ -3164,7 +3335,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word56_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word56_mine))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word56_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word56_value <= card1_card_core1_regs_fifo2_reg_word56_honoured;
             card1_card_core1_regs_fifo2_reg_word56_clamped <= card1_card_core1_regs_fifo2_reg_word56_out_of_range;
         end
@@ -3176,8 +3347,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_local_addr == 60);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word57_mine, card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_reg_word56_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word57_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word57_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word57_mine, card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_reg_word56_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word57_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word57_mine)) begin
         card1_card_core1_regs_fifo2_reg_word57_read_out = (card1_card_core1_regs_fifo2_reg_word56_read_out | card1_card_core1_regs_fifo2_reg_word57_shown_wide);
     end
     else begin
@@ -3190,12 +3361,16 @@ end
 assign card1_card_core1_regs_fifo2_reg_word57_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word57_value};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word57_merge_bytes
+
+assign card1_card_core1_regs_fifo2_reg_word57_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word57_merge_bytes
     if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
         card1_card_core1_regs_fifo2_reg_word57_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word57_written = ((card1_card_core1_regs_fifo2_reg_word57_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word57_written = ((card1_card_core1_regs_fifo2_reg_word57_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
@@ -3226,7 +3401,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word57_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word57_mine))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word57_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word57_value <= card1_card_core1_regs_fifo2_reg_word57_honoured;
             card1_card_core1_regs_fifo2_reg_word57_clamped <= card1_card_core1_regs_fifo2_reg_word57_out_of_range;
         end
@@ -3238,8 +3413,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_local_addr == 64);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word58_mine, card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word57_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word58_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word58_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word58_mine, card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word57_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word58_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word58_mine)) begin
         card1_card_core1_regs_fifo2_reg_word58_read_out = (card1_card_core1_regs_fifo2_reg_word57_read_out | card1_card_core1_regs_fifo2_reg_word58_shown_wide);
     end
     else begin
@@ -3252,12 +3427,16 @@ end
 assign card1_card_core1_regs_fifo2_reg_word58_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word58_value};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word58_merge_bytes
+
+assign card1_card_core1_regs_fifo2_reg_word58_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word58_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word58_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word58_written = ((card1_card_core1_regs_fifo2_reg_word58_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[2-1:0])) | (card1_pci_slave2_local_wdata[2-1:0] & card1_card_core1_regs_fifo2_byte_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word58_written = ((card1_card_core1_regs_fifo2_reg_word58_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
     end
 end
 
@@ -3277,7 +3456,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word58_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word58_mine))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word58_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word58_value <= card1_card_core1_regs_fifo2_reg_word58_honoured;
             card1_card_core1_regs_fifo2_reg_word58_clamped <= card1_card_core1_regs_fifo2_reg_word58_out_of_range;
         end
@@ -3289,8 +3468,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_local_addr == 68);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word59_mine, card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word59_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word59_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word59_mine, card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word59_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word59_mine)) begin
         card1_card_core1_regs_fifo2_reg_word59_read_out = (card1_card_core1_regs_fifo2_reg_word58_read_out | card1_card_core1_regs_fifo2_reg_word59_shown_wide);
     end
     else begin
@@ -3303,12 +3482,16 @@ end
 assign card1_card_core1_regs_fifo2_reg_word59_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word59_value};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word59_merge_bytes
+
+assign card1_card_core1_regs_fifo2_reg_word59_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word59_merge_bytes
     if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
         card1_card_core1_regs_fifo2_reg_word59_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word59_written = ((card1_card_core1_regs_fifo2_reg_word59_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word59_written = ((card1_card_core1_regs_fifo2_reg_word59_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
@@ -3339,7 +3522,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word59_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word59_mine))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word59_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word59_value <= card1_card_core1_regs_fifo2_reg_word59_honoured;
             card1_card_core1_regs_fifo2_reg_word59_clamped <= card1_card_core1_regs_fifo2_reg_word59_out_of_range;
         end
@@ -3351,8 +3534,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_local_addr == 72);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word60_mine, card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word59_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word60_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word60_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word60_mine, card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word59_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word60_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word60_mine)) begin
         card1_card_core1_regs_fifo2_reg_word60_read_out = (card1_card_core1_regs_fifo2_reg_word59_read_out | card1_card_core1_regs_fifo2_reg_word60_shown_wide);
     end
     else begin
@@ -3365,12 +3548,16 @@ end
 assign card1_card_core1_regs_fifo2_reg_word60_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word60_value};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_byte_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_pci_slave2_local_wdata) begin: card1_card_core1_regs_fifo2_reg_word60_merge_bytes
+
+assign card1_card_core1_regs_fifo2_reg_word60_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word60_merge_bytes
     if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
         card1_card_core1_regs_fifo2_reg_word60_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word60_written = ((card1_card_core1_regs_fifo2_reg_word60_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_byte_mask[32-1:0])) | (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word60_written = ((card1_card_core1_regs_fifo2_reg_word60_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
@@ -3401,7 +3588,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word60_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word60_mine))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word60_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word60_value <= card1_card_core1_regs_fifo2_reg_word60_honoured;
             card1_card_core1_regs_fifo2_reg_word60_clamped <= card1_card_core1_regs_fifo2_reg_word60_out_of_range;
         end
@@ -3413,8 +3600,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_local_addr == 76);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word61_mine, card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word60_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word61_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word61_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word61_mine, card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word60_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word61_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word61_mine)) begin
         card1_card_core1_regs_fifo2_reg_word61_read_out = (card1_card_core1_regs_fifo2_reg_word60_read_out | card1_card_core1_regs_fifo2_reg_word61_shown_wide);
     end
     else begin
@@ -3428,7 +3615,11 @@ assign card1_card_core1_regs_fifo2_reg_word61_shown_wide = {8'h0, card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word61_written = (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word61_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word61_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word61_written) begin: card1_card_core1_regs_fifo2_reg_word61__limit46_clamp_signed
@@ -3460,7 +3651,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     else begin
         card1_card_core1_regs_fifo2_reg_word61_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word61_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word61_mine)) begin
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word61_mine_write)) begin
             card1_card_core1_regs_fifo2_reg_word61_value <= card1_card_core1_regs_fifo2_reg_word61_honoured;
             card1_card_core1_regs_fifo2_reg_word61_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word61_clamped <= card1_card_core1_regs_fifo2_reg_word61_out_of_range;
@@ -3473,8 +3664,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_local_addr == 80);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word61_read_out, card1_card_core1_regs_fifo2_io_read) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
-    if ((card1_card_core1_regs_fifo2_io_read && card1_card_core1_regs_fifo2_reg_word62_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word61_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
+    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word62_mine)) begin
         card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word61_read_out | card1_card_core1_regs_fifo2_reg_word62_shown_wide);
     end
     else begin
@@ -3488,7 +3679,11 @@ assign card1_card_core1_regs_fifo2_reg_word62_shown_wide = {8'h0, card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_written = (card1_pci_slave2_local_wdata[32-1:0] & card1_card_core1_regs_fifo2_byte_mask[32-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word62_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word62_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word62_written) begin: card1_card_core1_regs_fifo2_reg_word62__limit47_clamp_signed
@@ -3520,7 +3715,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     else begin
         card1_card_core1_regs_fifo2_reg_word62_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word62_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_write && card1_card_core1_regs_fifo2_reg_word62_mine)) begin
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word62_mine_write)) begin
             card1_card_core1_regs_fifo2_reg_word62_value <= card1_card_core1_regs_fifo2_reg_word62_honoured;
             card1_card_core1_regs_fifo2_reg_word62_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word62_clamped <= card1_card_core1_regs_fifo2_reg_word62_out_of_range;
@@ -3563,6 +3758,28 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_arriving_kind
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 1;
+        3: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        4: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        5: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        6: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
+    endcase
+end
+
+
 always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_count
     case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
@@ -3585,8 +3802,8 @@ always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_valid
-    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_valid
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
         2: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
@@ -3607,11 +3824,11 @@ always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_mask_high
-    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_mask_high
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
-        1: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
-        2: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
+        1: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61441;
+        2: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61441;
         3: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
         4: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
         5: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
@@ -3629,8 +3846,8 @@ always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_mask_low
-    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_mask_low
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
         2: card1_card_core1_regs_fifo2_sequencer2_mask_low = 8191;
@@ -3695,8 +3912,8 @@ always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_set
-    case (card1_card_core1_regs_fifo2_sequencer2_header[4-1:0])
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_set
+    case (card1_card_core1_regs_fifo2_fifo_dout[4-1:0])
         0: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
         1: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
         2: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
@@ -3732,22 +3949,30 @@ always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1
 end
 
 
+
+assign card1_card_core1_regs_fifo2_discard_on_clear = ((card1_card_core1_regs_fifo2_sequencer2_state == 3'b100) && (card1_card_core1_regs_fifo2_error_code == 1));
+assign card1_card_core1_regs_fifo2_sequencer2_discard = (card1_card_core1_regs_fifo2_clear_error && (card1_card_core1_regs_fifo2_sequencer2_state == 3'b100) && (card1_card_core1_regs_fifo2_error_code == 1));
+
+
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_fetch
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_sequencer2_operand_0 <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_next_motion <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_bad_set_index <= 0;
         card1_card_core1_regs_fifo2_sequencer2_operand_3 <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_bad_opcode <= 0;
         card1_card_core1_regs_fifo2_sequencer2_word_due <= 0;
         card1_card_core1_regs_fifo2_sequencer2_next_valid <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_operand_1 <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_bad_operand <= 0;
         card1_card_core1_regs_fifo2_sequencer2_header <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_coord_fits <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_count_fits <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_operand_1 <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= 0;
         card1_card_core1_regs_fifo2_sequencer2_fetched <= 0;
         card1_card_core1_regs_fifo2_sequencer2_operand_2 <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_sequencer2_word_due <= card1_card_core1_regs_fifo2_fifo_pop;
-        if (card1_card_core1_core_clear) begin
+        if ((card1_card_core1_core_clear || card1_card_core1_regs_fifo2_sequencer2_discard)) begin
             card1_card_core1_regs_fifo2_sequencer2_word_due <= 0;
             card1_card_core1_regs_fifo2_sequencer2_fetched <= 0;
             card1_card_core1_regs_fifo2_sequencer2_next_valid <= 0;
@@ -3759,6 +3984,11 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
             if (card1_card_core1_regs_fifo2_sequencer2_word_due) begin
                 if ((card1_card_core1_regs_fifo2_sequencer2_fetched == 0)) begin
                     card1_card_core1_regs_fifo2_sequencer2_header <= card1_card_core1_regs_fifo2_fifo_dout;
+                    card1_card_core1_regs_fifo2_sequencer2_next_motion <= card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
+                    card1_card_core1_regs_fifo2_sequencer2_bad_opcode <= (!card1_card_core1_regs_fifo2_sequencer2_next_known);
+                    card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= (((card1_card_core1_regs_fifo2_fifo_dout[32-1:16] & (~card1_card_core1_regs_fifo2_sequencer2_mask_high)) != 0) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:0] & (~card1_card_core1_regs_fifo2_sequencer2_mask_low)) != 0));
+                    card1_card_core1_regs_fifo2_sequencer2_bad_set_index <= ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 4) && (!card1_card_core1_regs_fifo2_sequencer2_set_known));
+                    card1_card_core1_regs_fifo2_sequencer2_bad_operand <= 0;
                     if ((card1_card_core1_regs_fifo2_sequencer2_arriving_count == 0)) begin
                         card1_card_core1_regs_fifo2_sequencer2_next_valid <= 1;
                     end
@@ -3781,8 +4011,9 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                             card1_card_core1_regs_fifo2_sequencer2_operand_3 <= card1_card_core1_regs_fifo2_fifo_dout;
                         end
                     endcase
-                    card1_card_core1_regs_fifo2_sequencer2_coord_fits[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] <= card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
-                    card1_card_core1_regs_fifo2_sequencer2_count_fits[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] <= card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits;
+                    if (((card1_card_core1_regs_fifo2_sequencer2_coord_mask[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] && (!card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits)) || (card1_card_core1_regs_fifo2_sequencer2_count_mask[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] && (!card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits)))) begin
+                        card1_card_core1_regs_fifo2_sequencer2_bad_operand <= 1;
+                    end
                     if ((card1_card_core1_regs_fifo2_sequencer2_fetched == card1_card_core1_regs_fifo2_sequencer2_next_count)) begin
                         card1_card_core1_regs_fifo2_sequencer2_next_valid <= 1;
                         card1_card_core1_regs_fifo2_sequencer2_fetched <= 0;
@@ -3797,45 +4028,61 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_set_known, card1_card_core1_regs_fifo2_sequencer2_count_fits, card1_card_core1_regs_fifo2_sequencer2_coord_fits, card1_card_core1_regs_fifo2_sequencer2_header, card1_card_core1_regs_fifo2_sequencer2_count_mask, card1_card_core1_regs_fifo2_sequencer2_opcode, card1_card_core1_regs_fifo2_sequencer2_next_known, card1_card_core1_regs_fifo2_sequencer2_coord_mask, card1_card_core1_regs_fifo2_sequencer2_mask_high, card1_card_core1_regs_fifo2_sequencer2_mask_low) begin: card1_card_core1_regs_fifo2_sequencer2_check
+always @(card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_regs_fifo2_sequencer2_bad_set_index, card1_card_core1_regs_fifo2_sequencer2_bad_header_bits, card1_card_core1_regs_fifo2_sequencer2_bad_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
-    if ((!card1_card_core1_regs_fifo2_sequencer2_next_known)) begin
+    if (card1_card_core1_regs_fifo2_sequencer2_bad_opcode) begin
         result = 1;
     end
-    else if ((((card1_card_core1_regs_fifo2_sequencer2_header[32-1:16] & (~card1_card_core1_regs_fifo2_sequencer2_mask_high)) != 0) || ((card1_card_core1_regs_fifo2_sequencer2_header[16-1:0] & (~card1_card_core1_regs_fifo2_sequencer2_mask_low)) != 0))) begin
+    else if (card1_card_core1_regs_fifo2_sequencer2_bad_header_bits) begin
         result = 2;
     end
-    else if (((card1_card_core1_regs_fifo2_sequencer2_opcode == 4) && (!card1_card_core1_regs_fifo2_sequencer2_set_known))) begin
-        result = 3;
-    end
-    else if ((((card1_card_core1_regs_fifo2_sequencer2_coord_mask & (~card1_card_core1_regs_fifo2_sequencer2_coord_fits)) != 0) || ((card1_card_core1_regs_fifo2_sequencer2_count_mask & (~card1_card_core1_regs_fifo2_sequencer2_count_fits)) != 0))) begin
+    else if ((card1_card_core1_regs_fifo2_sequencer2_bad_set_index || card1_card_core1_regs_fifo2_sequencer2_bad_operand)) begin
         result = 3;
     end
     card1_card_core1_regs_fifo2_sequencer2_next_error = result;
 end
 
 
-always @(card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_sequencer2_dwell_left, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_regs_fifo2_sequencer2_dda_done) begin: card1_card_core1_regs_fifo2_sequencer2_completion
-    card1_card_core1_regs_fifo2_sequencer2_finishing = 1'b0;
+
+assign card1_card_core1_regs_fifo2_sequencer2_motion_done = ((!card1_card_core1_regs_fifo2_sequencer2_dda_start) && (!card1_card_core1_regs_fifo2_dda_busy) && (!card1_card_core1_regs_fifo2_sequencer2_dda_done));
+
+
+always @(card1_card_core1_regs_fifo2_outputs_busy, card1_card_core1_regs_fifo2_sequencer2_motion_done, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_sequencer2_dwell_left, card1_card_core1_regs_fifo2_sequencer2_state) begin: card1_card_core1_regs_fifo2_sequencer2_completion
+    card1_card_core1_regs_fifo2_sequencer2_state_over = 1'b0;
     case (card1_card_core1_regs_fifo2_sequencer2_state)
         3'b000: begin
-            card1_card_core1_regs_fifo2_sequencer2_finishing = 1'b1;
+            card1_card_core1_regs_fifo2_sequencer2_state_over = 1'b1;
         end
         3'b001: begin
-            card1_card_core1_regs_fifo2_sequencer2_finishing = card1_card_core1_regs_fifo2_sequencer2_dda_done;
+            card1_card_core1_regs_fifo2_sequencer2_state_over = card1_card_core1_regs_fifo2_sequencer2_motion_done;
         end
         3'b010: begin
-            card1_card_core1_regs_fifo2_sequencer2_finishing = (!card1_card_core1_regs_fifo2_pulse_busy);
+            card1_card_core1_regs_fifo2_sequencer2_state_over = (!card1_card_core1_regs_fifo2_pulse_busy);
         end
         3'b011: begin
-            card1_card_core1_regs_fifo2_sequencer2_finishing = ((card1_card_core1_regs_fifo2_sequencer2_dwell_left <= 1) && (!card1_card_core1_regs_fifo2_out_active));
+            card1_card_core1_regs_fifo2_sequencer2_state_over = ((card1_card_core1_regs_fifo2_sequencer2_dwell_left <= 1) && (!card1_card_core1_regs_fifo2_outputs_busy));
         end
         default: begin
-            card1_card_core1_regs_fifo2_sequencer2_finishing = 1'b0;
+            card1_card_core1_regs_fifo2_sequencer2_state_over = 1'b0;
         end
     endcase
+end
+
+
+always @(card1_card_core1_regs_fifo2_outputs_busy, card1_card_core1_regs_fifo2_sequencer2_next_motion, card1_card_core1_regs_fifo2_sequencer2_dda_ready, card1_card_core1_regs_fifo2_sequencer2_state_over, card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_regs_fifo2_sequencer2_next_error, card1_card_core1_regs_fifo2_sequencer2_dda_error, card1_card_core1_regs_fifo2_sequencer2_state) begin: card1_card_core1_regs_fifo2_sequencer2_readiness
+    if ((card1_card_core1_regs_fifo2_sequencer2_next_motion && (card1_card_core1_regs_fifo2_sequencer2_next_error == 0))) begin
+        if ((card1_card_core1_regs_fifo2_sequencer2_state == 3'b001)) begin
+            card1_card_core1_regs_fifo2_sequencer2_finishing = (card1_card_core1_regs_fifo2_sequencer2_dda_ready && (!card1_card_core1_regs_fifo2_sequencer2_dda_start) && (!card1_card_core1_regs_fifo2_sequencer2_dda_error));
+        end
+        else begin
+            card1_card_core1_regs_fifo2_sequencer2_finishing = card1_card_core1_regs_fifo2_sequencer2_state_over;
+        end
+    end
+    else begin
+        card1_card_core1_regs_fifo2_sequencer2_finishing = (card1_card_core1_regs_fifo2_sequencer2_state_over && (!card1_card_core1_regs_fifo2_outputs_busy));
+    end
 end
 
 
@@ -3868,7 +4115,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                 card1_card_core1_regs_fifo2_error_code <= 0;
             end
         end
-        else if (((card1_card_core1_regs_fifo2_sequencer2_state == 3'b001) && card1_card_core1_regs_fifo2_sequencer2_dda_error && (!card1_card_core1_regs_fifo2_sequencer2_dda_start) && (!card1_card_core1_regs_fifo2_dda_busy))) begin
+        else if (((card1_card_core1_regs_fifo2_sequencer2_state == 3'b001) && card1_card_core1_regs_fifo2_sequencer2_dda_error && (!card1_card_core1_regs_fifo2_sequencer2_dda_start))) begin
             card1_card_core1_regs_fifo2_sequencer2_state <= 3'b100;
             card1_card_core1_regs_fifo2_error_code <= 4;
         end
@@ -3901,10 +4148,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                 endcase
             end
         end
-        else if (card1_card_core1_regs_fifo2_sequencer2_finishing) begin
+        else if (card1_card_core1_regs_fifo2_sequencer2_state_over) begin
             card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
         end
-        else if (((card1_card_core1_regs_fifo2_sequencer2_state == 3'b011) && (!card1_card_core1_regs_fifo2_out_active) && (card1_card_core1_regs_fifo2_sequencer2_dwell_left != 0))) begin
+        else if (((card1_card_core1_regs_fifo2_sequencer2_state == 3'b011) && (!card1_card_core1_regs_fifo2_outputs_busy) && (card1_card_core1_regs_fifo2_sequencer2_dwell_left != 0))) begin
             card1_card_core1_regs_fifo2_sequencer2_dwell_left <= (card1_card_core1_regs_fifo2_sequencer2_dwell_left - 1);
         end
     end
@@ -3914,6 +4161,7 @@ end
 always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs_fifo2_sequencer2_operand_3, card1_card_core1_regs_fifo2_sequencer2_operand_1, card1_card_core1_regs_fifo2_sequencer2_header, card1_card_core1_regs_fifo2_sequencer2_opcode, card1_card_core1_regs_fifo2_sequencer2_operand_2) begin: card1_card_core1_regs_fifo2_sequencer2_present
     card1_card_core1_regs_fifo2_sequencer2_dda_line = (card1_card_core1_regs_fifo2_sequencer2_opcode == 1);
     card1_card_core1_regs_fifo2_sequencer2_dda_ccw = card1_card_core1_regs_fifo2_sequencer2_header[0];
+    card1_card_core1_regs_fifo2_sequencer2_dda_blend = card1_card_core1_regs_fifo2_sequencer2_header[16];
     card1_card_core1_regs_fifo2_sequencer2_dda_variant = card1_card_core1_regs_fifo2_sequencer2_header[3-1:1];
     card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift = card1_card_core1_regs_fifo2_sequencer2_header[8-1:3];
     card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits = card1_card_core1_regs_fifo2_sequencer2_header[13-1:8];
@@ -3942,47 +4190,117 @@ assign card1_card_core1_regs_fifo2_seq_busy = ((card1_card_core1_regs_fifo2_sequ
 assign card1_card_core1_regs_fifo2_motion_run = (card1_card_core1_regs_fifo2_sequencer2_state == 3'b001);
 
 
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_settings
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_feed_rate2_target_s <= 0;
+        card1_card_core1_regs_fifo2_feed_rate2_step_zero <= 1;
+        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= 0;
+        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= 0;
+        card1_card_core1_regs_fifo2_feed_rate2_step_s <= 0;
+        card1_card_core1_regs_fifo2_feed_rate2_start_s <= 0;
+        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word52_value;
+        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word53_value;
+        card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_reg_word54_value;
+        card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_reg_word54_value == 0);
+        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word52_value}) - $signed({1'b0, card1_card_core1_regs_fifo2_reg_word54_value}));
+        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word52_value} + {1'b0, card1_card_core1_regs_fifo2_reg_word54_value});
+        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word53_value} + {1'b0, card1_card_core1_regs_fifo2_reg_word54_value});
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_end_ahead
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_feed_rate2_decelerate <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_feed_rate2_decelerate <= (card1_card_core1_regs_fifo2_feed_rate2_stop_left <= {11'h0, card1_card_core1_regs_fifo2_feed_rate2_count});
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_feed_rate2_total = ({1'b0, card1_card_core1_regs_fifo2_feed_rate2_phase} + {1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate});
+assign card1_card_core1_regs_fifo2_feed_rate2_raised = (card1_card_core1_regs_fifo2_feed_rate2_rate + card1_card_core1_regs_fifo2_feed_rate2_step_s);
+assign card1_card_core1_regs_fifo2_feed_rate2_lowered = (card1_card_core1_regs_fifo2_feed_rate2_rate - card1_card_core1_regs_fifo2_feed_rate2_step_s);
+assign card1_card_core1_regs_fifo2_feed_rate2_can_raise = ($signed({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate}) <= card1_card_core1_regs_fifo2_feed_rate2_raise_limit);
+assign card1_card_core1_regs_fifo2_feed_rate2_can_lower = ({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate} >= card1_card_core1_regs_fifo2_feed_rate2_lower_limit);
+assign card1_card_core1_regs_fifo2_feed_rate2_above_floor = ({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate} >= card1_card_core1_regs_fifo2_feed_rate2_floor_limit);
+assign card1_card_core1_regs_fifo2_feed_rate2_below = (card1_card_core1_regs_fifo2_feed_rate2_rate < card1_card_core1_regs_fifo2_feed_rate2_target_s);
+assign card1_card_core1_regs_fifo2_feed_rate2_above = (card1_card_core1_regs_fifo2_feed_rate2_rate > card1_card_core1_regs_fifo2_feed_rate2_target_s);
+assign card1_card_core1_regs_fifo2_feed_rate2_count_empty = (card1_card_core1_regs_fifo2_feed_rate2_count == 2);
+assign card1_card_core1_regs_fifo2_feed_rate2_count_last = (card1_card_core1_regs_fifo2_feed_rate2_count == (2 + 1));
+
+
+always @(card1_card_core1_regs_fifo2_feed_rate2_count_empty, card1_card_core1_regs_fifo2_feed_rate2_count) begin: card1_card_core1_regs_fifo2_feed_rate2_count_steps
+    card1_card_core1_regs_fifo2_feed_rate2_count_up = (card1_card_core1_regs_fifo2_feed_rate2_count + 1);
+    if (card1_card_core1_regs_fifo2_feed_rate2_count_empty) begin
+        card1_card_core1_regs_fifo2_feed_rate2_count_down = card1_card_core1_regs_fifo2_feed_rate2_count;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_feed_rate2_count_down = (card1_card_core1_regs_fifo2_feed_rate2_count - 1);
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_accumulate
-    reg [18-1:0] total;
-    reg [18-1:0] raised;
-    reg [18-1:0] lowered;
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_tick <= 0;
         card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
+        card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
         card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
     end
     else begin
-        total = 18'h0;
-        raised = 18'h0;
-        lowered = 18'h0;
         card1_card_core1_regs_fifo2_tick <= 0;
         if ((!card1_card_core1_regs_fifo2_motion_run)) begin
             card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
-            if ((card1_card_core1_regs_fifo2_reg_word54_value == 0)) begin
-                card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_reg_word52_value;
+            card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
+            if (card1_card_core1_regs_fifo2_feed_rate2_step_zero) begin
+                card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
             end
             else begin
-                card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_reg_word53_value;
+                card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_start_s;
             end
         end
         else if ((!card1_card_core1_regs_fifo2_hold)) begin
-            total = ({2'h0, card1_card_core1_regs_fifo2_feed_rate2_phase} + {1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate});
-            card1_card_core1_regs_fifo2_feed_rate2_phase <= total[(17 - 1)-1:0];
-            raised = ({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate} + {2'h0, card1_card_core1_regs_fifo2_reg_word54_value});
-            lowered = ({1'b0, card1_card_core1_regs_fifo2_reg_word52_value} + {2'h0, card1_card_core1_regs_fifo2_reg_word54_value});
-            if ((total >= 65536)) begin
+            card1_card_core1_regs_fifo2_feed_rate2_phase <= card1_card_core1_regs_fifo2_feed_rate2_total[16-1:0];
+            if (card1_card_core1_regs_fifo2_feed_rate2_total[16]) begin
                 card1_card_core1_regs_fifo2_tick <= 1;
-                if ((card1_card_core1_regs_fifo2_reg_word54_value == 0)) begin
-                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_reg_word52_value;
+                if (card1_card_core1_regs_fifo2_feed_rate2_step_zero) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
+                    card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
                 end
-                else if ((raised <= {1'b0, card1_card_core1_regs_fifo2_reg_word52_value})) begin
-                    card1_card_core1_regs_fifo2_feed_rate2_rate <= raised[17-1:0];
+                else if (card1_card_core1_regs_fifo2_feed_rate2_decelerate) begin
+                    if ((!card1_card_core1_regs_fifo2_feed_rate2_count_empty)) begin
+                        card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
+                        if ((card1_card_core1_regs_fifo2_feed_rate2_count_last || (!card1_card_core1_regs_fifo2_feed_rate2_above_floor))) begin
+                            card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_start_s;
+                        end
+                        else begin
+                            card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_lowered;
+                        end
+                    end
                 end
-                else if (({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate} >= lowered)) begin
-                    card1_card_core1_regs_fifo2_feed_rate2_rate <= (card1_card_core1_regs_fifo2_feed_rate2_rate - card1_card_core1_regs_fifo2_reg_word54_value);
+                else if (card1_card_core1_regs_fifo2_feed_rate2_below) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_up;
+                    if (card1_card_core1_regs_fifo2_feed_rate2_can_raise) begin
+                        card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_raised;
+                    end
+                    else begin
+                        card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
+                    end
                 end
-                else begin
-                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_reg_word52_value;
+                else if (card1_card_core1_regs_fifo2_feed_rate2_above) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
+                    if (card1_card_core1_regs_fifo2_feed_rate2_can_lower) begin
+                        card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_lowered;
+                    end
+                    else begin
+                        card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
+                    end
                 end
             end
         end
@@ -3991,20 +4309,23 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_load || (card1_card_core1_regs_fifo2_reg_word61_hw_value != 0));
+assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_load || card1_card_core1_regs_fifo2_direct_pulse4_pending);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct_pulse4_emit
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         card1_card_core1_regs_fifo2_direct_dir_x <= 0;
+        card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
         card1_card_core1_regs_fifo2_reg_word61_hw_value <= 0;
+        card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         if (card1_card_core1_core_clear) begin
             card1_card_core1_regs_fifo2_reg_word61_hw_value <= 0;
+            card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_load) begin
             if ((card1_card_core1_regs_fifo2_direct_pulse4_count < 0)) begin
@@ -4015,16 +4336,21 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
                 card1_card_core1_regs_fifo2_reg_word61_hw_value <= card1_card_core1_regs_fifo2_direct_pulse4_count;
                 card1_card_core1_regs_fifo2_direct_dir_x <= 1;
             end
+            card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
+            card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
         end
-        else if ((card1_card_core1_regs_fifo2_reg_word61_hw_value != 0)) begin
-            if ((card1_card_core1_regs_fifo2_direct_pulse4_gap != 0)) begin
+        else if (card1_card_core1_regs_fifo2_direct_pulse4_pending) begin
+            if (card1_card_core1_regs_fifo2_direct_pulse4_waiting) begin
                 card1_card_core1_regs_fifo2_direct_pulse4_gap <= (card1_card_core1_regs_fifo2_direct_pulse4_gap - 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_direct_pulse4_gap != 1);
             end
             else if (card1_card_core1_regs_fifo2_out_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_x <= 1;
                 card1_card_core1_regs_fifo2_reg_word61_hw_value <= (card1_card_core1_regs_fifo2_reg_word61_hw_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word61_hw_value != 1);
                 card1_card_core1_regs_fifo2_direct_pulse4_gap <= (card1_card_core1_regs_fifo2_reg_word59_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_reg_word59_value != 1);
             end
         end
     end
@@ -4032,20 +4358,23 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_load || (card1_card_core1_regs_fifo2_reg_word62_hw_value != 0));
+assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_load || card1_card_core1_regs_fifo2_direct_pulse5_pending);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct_pulse5_emit
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         card1_card_core1_regs_fifo2_direct_dir_y <= 0;
+        card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
         card1_card_core1_regs_fifo2_reg_word62_hw_value <= 0;
+        card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         if (card1_card_core1_core_clear) begin
             card1_card_core1_regs_fifo2_reg_word62_hw_value <= 0;
+            card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_load) begin
             if ((card1_card_core1_regs_fifo2_direct_pulse5_count < 0)) begin
@@ -4056,16 +4385,21 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
                 card1_card_core1_regs_fifo2_reg_word62_hw_value <= card1_card_core1_regs_fifo2_direct_pulse5_count;
                 card1_card_core1_regs_fifo2_direct_dir_y <= 1;
             end
+            card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
+            card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
         end
-        else if ((card1_card_core1_regs_fifo2_reg_word62_hw_value != 0)) begin
-            if ((card1_card_core1_regs_fifo2_direct_pulse5_gap != 0)) begin
+        else if (card1_card_core1_regs_fifo2_direct_pulse5_pending) begin
+            if (card1_card_core1_regs_fifo2_direct_pulse5_waiting) begin
                 card1_card_core1_regs_fifo2_direct_pulse5_gap <= (card1_card_core1_regs_fifo2_direct_pulse5_gap - 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_gap != 1);
             end
             else if (card1_card_core1_regs_fifo2_out_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_y <= 1;
                 card1_card_core1_regs_fifo2_reg_word62_hw_value <= (card1_card_core1_regs_fifo2_reg_word62_hw_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word62_hw_value != 1);
                 card1_card_core1_regs_fifo2_direct_pulse5_gap <= (card1_card_core1_regs_fifo2_reg_word60_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_reg_word60_value != 1);
             end
         end
     end
@@ -4095,63 +4429,82 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_r
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_step_phases
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_reg_word55_value, card1_card_core1_regs_fifo2_reg_word57_value, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_pulse_out2_take) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
+    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_core_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word57_value)));
+    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word55_value));
+    card1_card_core1_regs_fifo2_pulse_out2_phase_step = 0;
+    if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks != 255)) begin
+        card1_card_core1_regs_fifo2_pulse_out2_phase_step = 1;
+    end
+    card1_card_core1_regs_fifo2_pulse_out2_low_step = 0;
+    if ((card1_card_core1_regs_fifo2_pulse_out2_low_clocks != 255)) begin
+        card1_card_core1_regs_fifo2_pulse_out2_low_step = 1;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_count_clocks
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_pulse_out2_phase_clocks <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_low_clocks <= 255;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_pulse_out2_starts) begin
+            card1_card_core1_regs_fifo2_pulse_out2_phase_clocks <= 1;
+        end
+        else begin
+            card1_card_core1_regs_fifo2_pulse_out2_phase_clocks <= (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks + card1_card_core1_regs_fifo2_pulse_out2_phase_step);
+        end
+        if (card1_card_core1_regs_fifo2_pulse_out2_high_ends) begin
+            card1_card_core1_regs_fifo2_pulse_out2_low_clocks <= 1;
+        end
+        else begin
+            card1_card_core1_regs_fifo2_pulse_out2_low_clocks <= (card1_card_core1_regs_fifo2_pulse_out2_low_clocks + card1_card_core1_regs_fifo2_pulse_out2_low_step);
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_step_phases
+    if (reset == 0) begin
         card1_card_core1_regs_fifo2_pulse_out2_level_y <= 0;
         card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b00;
         card1_card_core1_regs_fifo2_pulse_out2_dir_level_x <= 1;
         card1_card_core1_regs_fifo2_pulse_out2_dir_level_y <= 1;
-        card1_card_core1_regs_fifo2_pulse_out2_low_clocks <= 255;
         card1_card_core1_regs_fifo2_pulse_out2_level_x <= 0;
     end
     else begin
         if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10)) begin
-            if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word55_value)) begin
+            if (card1_card_core1_regs_fifo2_pulse_out2_high_ends) begin
                 card1_card_core1_regs_fifo2_pulse_out2_level_x <= 0;
                 card1_card_core1_regs_fifo2_pulse_out2_level_y <= 0;
-                card1_card_core1_regs_fifo2_pulse_out2_low_clocks <= 1;
                 card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b00;
-            end
-            else begin
-                card1_card_core1_regs_fifo2_pulse_out2_phase_clocks <= (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks + 1);
             end
         end
-        else begin
-            if ((card1_card_core1_regs_fifo2_pulse_out2_low_clocks < 255)) begin
-                card1_card_core1_regs_fifo2_pulse_out2_low_clocks <= (card1_card_core1_regs_fifo2_pulse_out2_low_clocks + 1);
+        else if (card1_card_core1_regs_fifo2_pulse_out2_take) begin
+            card1_card_core1_regs_fifo2_pulse_out2_level_x <= card1_card_core1_regs_fifo2_pulse_out2_head[0];
+            card1_card_core1_regs_fifo2_pulse_out2_level_y <= card1_card_core1_regs_fifo2_pulse_out2_head[1];
+            card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b10;
+        end
+        else if (card1_card_core1_core_clear) begin
+            card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b00;
+        end
+        else if (((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && card1_card_core1_regs_fifo2_pulse_out2_starts)) begin
+            if (card1_card_core1_regs_fifo2_pulse_out2_head[0]) begin
+                card1_card_core1_regs_fifo2_pulse_out2_dir_level_x <= card1_card_core1_regs_fifo2_pulse_out2_head[2];
             end
-            if (card1_card_core1_regs_fifo2_pulse_out2_take) begin
-                card1_card_core1_regs_fifo2_pulse_out2_level_x <= card1_card_core1_regs_fifo2_pulse_out2_head[0];
-                card1_card_core1_regs_fifo2_pulse_out2_level_y <= card1_card_core1_regs_fifo2_pulse_out2_head[1];
-                card1_card_core1_regs_fifo2_pulse_out2_phase_clocks <= 1;
-                card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b10;
+            if (card1_card_core1_regs_fifo2_pulse_out2_head[1]) begin
+                card1_card_core1_regs_fifo2_pulse_out2_dir_level_y <= card1_card_core1_regs_fifo2_pulse_out2_head[3];
             end
-            else if (card1_card_core1_core_clear) begin
-                card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b00;
-            end
-            else if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b01)) begin
-                if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks < 255)) begin
-                    card1_card_core1_regs_fifo2_pulse_out2_phase_clocks <= (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks + 1);
-                end
-            end
-            else if ((card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word57_value))) begin
-                if (card1_card_core1_regs_fifo2_pulse_out2_head[0]) begin
-                    card1_card_core1_regs_fifo2_pulse_out2_dir_level_x <= card1_card_core1_regs_fifo2_pulse_out2_head[2];
-                end
-                if (card1_card_core1_regs_fifo2_pulse_out2_head[1]) begin
-                    card1_card_core1_regs_fifo2_pulse_out2_dir_level_y <= card1_card_core1_regs_fifo2_pulse_out2_head[3];
-                end
-                card1_card_core1_regs_fifo2_pulse_out2_phase_clocks <= 1;
-                card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b01;
-            end
+            card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b01;
         end
     end
 end
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_fill
-    reg [3-1:0] used;
+    reg pushed;
+    reg [4-1:0] entry;
     integer i;
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_pulse_out2_count <= 0;
@@ -4161,24 +4514,33 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
         card1_card_core1_regs_fifo2_pulse_out2_queue[3] <= 0;
     end
     else begin
-        used = 0;
-        used = card1_card_core1_regs_fifo2_pulse_out2_count;
+        pushed = (card1_card_core1_regs_fifo2_requests_step_x || card1_card_core1_regs_fifo2_requests_step_y);
+        entry = {card1_card_core1_regs_fifo2_requests_dir_y, card1_card_core1_regs_fifo2_requests_dir_x, card1_card_core1_regs_fifo2_requests_step_y, card1_card_core1_regs_fifo2_requests_step_x};
         if (card1_card_core1_core_clear) begin
-            used = 0;
+            card1_card_core1_regs_fifo2_pulse_out2_count <= 0;
         end
         else if (card1_card_core1_regs_fifo2_pulse_out2_take) begin
             for (i=0; i<(4 - 1); i=i+1) begin
                 card1_card_core1_regs_fifo2_pulse_out2_queue[i] <= card1_card_core1_regs_fifo2_pulse_out2_queue[(i + 1)];
             end
-            used = (used - 1);
+            if (pushed) begin
+                card1_card_core1_regs_fifo2_pulse_out2_queue[card1_card_core1_regs_fifo2_pulse_out2_last_slot] <= entry;
+            end
+            else begin
+                card1_card_core1_regs_fifo2_pulse_out2_count <= (card1_card_core1_regs_fifo2_pulse_out2_count - 1);
+            end
         end
-        if (((card1_card_core1_regs_fifo2_requests_step_x || card1_card_core1_regs_fifo2_requests_step_y) && (!card1_card_core1_core_clear))) begin
-            card1_card_core1_regs_fifo2_pulse_out2_queue[used[2-1:0]] <= {card1_card_core1_regs_fifo2_requests_dir_y, card1_card_core1_regs_fifo2_requests_dir_x, card1_card_core1_regs_fifo2_requests_step_y, card1_card_core1_regs_fifo2_requests_step_x};
-            used = (used + 1);
+        else if (pushed) begin
+            card1_card_core1_regs_fifo2_pulse_out2_queue[card1_card_core1_regs_fifo2_pulse_out2_free_slot] <= entry;
+            card1_card_core1_regs_fifo2_pulse_out2_count <= (card1_card_core1_regs_fifo2_pulse_out2_count + 1);
         end
-        card1_card_core1_regs_fifo2_pulse_out2_count <= used;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_pulse_out2_last_slot = (card1_card_core1_regs_fifo2_pulse_out2_count[2-1:0] - 1);
+assign card1_card_core1_regs_fifo2_pulse_out2_free_slot = card1_card_core1_regs_fifo2_pulse_out2_count[2-1:0];
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_drive_pins
@@ -4221,7 +4583,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
 end
 
 
-always @(card1_pci_slave2_local_re, card1_pci_slave2_local_be, card1_pci_slave2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
+always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_local_be, card1_pci_slave2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
     if (card1_pci_slave2_local_be[0]) begin
@@ -4237,16 +4599,33 @@ always @(card1_pci_slave2_local_re, card1_pci_slave2_local_be, card1_pci_slave2_
         mask[32-1:24] = 255;
     end
     card1_card_core1_regs_fifo2_byte_mask = mask;
-    card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_local_we && (!card1_pci_slave2_local_space));
-    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_local_space));
-    card1_card_core1_regs_fifo2_push = (card1_pci_slave2_local_we && card1_pci_slave2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_local_be != 0));
+    card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_local_we && (!card1_pci_slave2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_io_space = (!card1_pci_slave2_local_space);
+    card1_card_core1_regs_fifo2_push = (card1_pci_slave2_local_we && card1_pci_slave2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_local_be != 0) && (!card1_card_core1_regs_fifo2_io_written));
 end
 
 
 
-assign card1_pci_slave2_local_ready = (card1_pci_slave2_local_re || (card1_pci_slave2_local_we && (!(card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full))));
-assign card1_pci_slave2_local_retry = (card1_pci_slave2_local_we && card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full);
+assign card1_pci_slave2_local_ready = ((!(card1_pci_slave2_local_write && card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full)) && (!card1_card_core1_regs_fifo2_io_written));
+assign card1_pci_slave2_local_retry = (card1_pci_slave2_local_write && card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
 assign card1_pci_slave2_local_rdata = card1_card_core1_regs_fifo2_read_end;
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_write_stage
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_written_mask <= 0;
+        card1_card_core1_regs_fifo2_written_addr <= 0;
+        card1_card_core1_regs_fifo2_io_written <= 0;
+        card1_card_core1_regs_fifo2_written_data <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_io_written <= card1_card_core1_regs_fifo2_io_write;
+        card1_card_core1_regs_fifo2_written_addr <= card1_pci_slave2_local_addr;
+        card1_card_core1_regs_fifo2_written_data <= card1_pci_slave2_local_wdata;
+        card1_card_core1_regs_fifo2_written_mask <= card1_card_core1_regs_fifo2_byte_mask;
+    end
+end
 
 
 
@@ -4266,6 +4645,22 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_soft_r
 end
 
 
+
+assign card1_card_core1_regs_fifo2_fifo_flush = (card1_card_core1_core_clear || (card1_card_core1_regs_fifo2_discard_on_clear && card1_card_core1_regs_fifo2_io_written && (card1_card_core1_regs_fifo2_written_addr == 8) && card1_card_core1_regs_fifo2_written_data[1] && card1_card_core1_regs_fifo2_written_mask[1]));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_outputs_before
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_requested_before <= 0;
+        card1_card_core1_regs_fifo2_out_active_before <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_requested_before <= (card1_card_core1_regs_fifo2_requests_step_x || card1_card_core1_regs_fifo2_requests_step_y);
+        card1_card_core1_regs_fifo2_out_active_before <= card1_card_core1_regs_fifo2_out_active;
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_snapshot
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_pos_y_snapshot <= 0;
@@ -4280,6 +4675,7 @@ end
 
 
 assign card1_card_core1_regs_fifo2_pulse_busy = (card1_card_core1_regs_fifo2_direct_busy_x || card1_card_core1_regs_fifo2_direct_busy_y);
+assign card1_card_core1_regs_fifo2_outputs_busy = (card1_card_core1_regs_fifo2_requests_step_x || card1_card_core1_regs_fifo2_requests_step_y || card1_card_core1_regs_fifo2_requested_before || card1_card_core1_regs_fifo2_out_active_before);
 assign card1_card_core1_regs_fifo2_hold = (!card1_card_core1_regs_fifo2_out_ready);
 assign card1_card_core1_regs_fifo2_dda_advance = (card1_card_core1_regs_fifo2_tick && card1_card_core1_regs_fifo2_out_ready && card1_card_core1_regs_fifo2_motion_run);
 assign card1_card_core1_regs_fifo2_any_busy = (card1_card_core1_regs_fifo2_seq_busy || card1_card_core1_regs_fifo2_direct_busy_x || card1_card_core1_regs_fifo2_direct_busy_y || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy);
@@ -4388,53 +4784,57 @@ assign card1_card_core1_regs_fifo2_reg_word50_hw_value = card1_card_core1_regs_f
 assign card1_card_core1_regs_fifo2_reg_word51_hw_value = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
-always @(card1_card_core1_dda_arc2_xe, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_dda_arc2_ys, card1_card_core1_dda_arc2_ye, card1_card_core1_dda_arc2_xs, card1_card_core1_dda_arc2_neg_ys, card1_card_core1_dda_arc2_neg_xs) begin: card1_card_core1_dda_arc2_magnitudes
-    if ((card1_card_core1_regs_fifo2_sequencer2_dda_xs < 0)) begin
-        card1_card_core1_dda_arc2_cmd_mag_xs = (-card1_card_core1_regs_fifo2_sequencer2_dda_xs);
+always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_magnitudes
+    reg [24-1:0] sign_xs;
+    reg [24-1:0] sign_ys;
+    reg [24-1:0] sign_xe;
+    reg [24-1:0] sign_ye;
+    reg [24-1:0] less_xs;
+    reg [24-1:0] less_ys;
+    reg [24-1:0] less_xe;
+    reg [24-1:0] less_ye;
+    sign_xs = 24'h0;
+    sign_ys = 24'h0;
+    sign_xe = 24'h0;
+    sign_ye = 24'h0;
+    less_xs = 24'h0;
+    less_ys = 24'h0;
+    less_xe = 24'h0;
+    less_ye = 24'h0;
+    if (card1_card_core1_regs_fifo2_sequencer2_dda_xs[(24 - 1)]) begin
+        sign_xs = 16777215;
     end
-    else begin
-        card1_card_core1_dda_arc2_cmd_mag_xs = card1_card_core1_regs_fifo2_sequencer2_dda_xs;
+    if (card1_card_core1_regs_fifo2_sequencer2_dda_ys[(24 - 1)]) begin
+        sign_ys = 16777215;
     end
-    card1_card_core1_dda_arc2_neg_xs = (-$signed({card1_card_core1_dda_arc2_xs[(24 - 1)], card1_card_core1_dda_arc2_xs}));
-    card1_card_core1_dda_arc2_neg_ys = (-$signed({card1_card_core1_dda_arc2_ys[(24 - 1)], card1_card_core1_dda_arc2_ys}));
-    if ((card1_card_core1_dda_arc2_xs < 0)) begin
-        card1_card_core1_dda_arc2_mag_xs = card1_card_core1_dda_arc2_neg_xs[24-1:0];
+    if (card1_card_core1_regs_fifo2_sequencer2_dda_xe[(24 - 1)]) begin
+        sign_xe = 16777215;
     end
-    else begin
-        card1_card_core1_dda_arc2_mag_xs = card1_card_core1_dda_arc2_xs[24-1:0];
+    if (card1_card_core1_regs_fifo2_sequencer2_dda_ye[(24 - 1)]) begin
+        sign_ye = 16777215;
     end
-    if ((card1_card_core1_dda_arc2_ys < 0)) begin
-        card1_card_core1_dda_arc2_mag_ys = card1_card_core1_dda_arc2_neg_ys[24-1:0];
-    end
-    else begin
-        card1_card_core1_dda_arc2_mag_ys = card1_card_core1_dda_arc2_ys[24-1:0];
-    end
-    if ((card1_card_core1_dda_arc2_xe < 0)) begin
-        card1_card_core1_dda_arc2_mag_xe = (-card1_card_core1_dda_arc2_xe);
-    end
-    else begin
-        card1_card_core1_dda_arc2_mag_xe = card1_card_core1_dda_arc2_xe;
-    end
-    if ((card1_card_core1_dda_arc2_ye < 0)) begin
-        card1_card_core1_dda_arc2_mag_ye = (-card1_card_core1_dda_arc2_ye);
-    end
-    else begin
-        card1_card_core1_dda_arc2_mag_ye = card1_card_core1_dda_arc2_ye;
-    end
+    less_xs = (card1_card_core1_regs_fifo2_sequencer2_dda_xs[24-1:0] + sign_xs);
+    less_ys = (card1_card_core1_regs_fifo2_sequencer2_dda_ys[24-1:0] + sign_ys);
+    less_xe = (card1_card_core1_regs_fifo2_sequencer2_dda_xe[24-1:0] + sign_xe);
+    less_ye = (card1_card_core1_regs_fifo2_sequencer2_dda_ye[24-1:0] + sign_ye);
+    card1_card_core1_dda_arc2_cmd_mag_xs = (less_xs ^ sign_xs);
+    card1_card_core1_dda_arc2_cmd_mag_ys = (less_ys ^ sign_ys);
+    card1_card_core1_dda_arc2_cmd_mag_xe = (less_xe ^ sign_xe);
+    card1_card_core1_dda_arc2_cmd_mag_ye = (less_ye ^ sign_ye);
 end
 
 
-always @(card1_card_core1_dda_arc2_gap, card1_card_core1_dda_arc2_root_bit, card1_card_core1_dda_arc2_state, card1_card_core1_dda_arc2_multiplicand, card1_card_core1_dda_arc2_mac_op) begin: card1_card_core1_dda_arc2_setup_adder
+always @(card1_card_core1_dda_arc2_gap_low, card1_card_core1_dda_arc2_root_bit, card1_card_core1_dda_arc2_state, card1_card_core1_dda_arc2_multiplicand, card1_card_core1_dda_arc2_gap_carry, card1_card_core1_dda_arc2_gap_high, card1_card_core1_dda_arc2_mac_op) begin: card1_card_core1_dda_arc2_setup_adder
     reg subtract;
     reg carry;
     reg [50-1:0] operand;
-    reg [50-1:0] carry_in;
-    reg [50-1:0] total;
+    reg [26-1:0] total_low;
+    reg [25-1:0] total_high;
     subtract = (0 != 0);
     carry = (0 != 0);
     operand = 50'h0;
-    carry_in = 50'h0;
-    total = 50'h0;
+    total_low = 26'h0;
+    total_high = 25'h0;
     if ((card1_card_core1_dda_arc2_state == 3'b001)) begin
         subtract = (card1_card_core1_dda_arc2_mac_op < 2);
         carry = (card1_card_core1_dda_arc2_mac_op < 2);
@@ -4446,9 +4846,12 @@ always @(card1_card_core1_dda_arc2_gap, card1_card_core1_dda_arc2_root_bit, card
     if (subtract) begin
         operand = (~operand);
     end
-    carry_in = {49'h0, carry};
-    total = ((card1_card_core1_dda_arc2_gap[50-1:0] + operand) + carry_in);
-    card1_card_core1_dda_arc2_gap_sum = $signed(total);
+    total_low = (({1'b0, card1_card_core1_dda_arc2_gap_low} + {1'b0, operand[25-1:0]}) + {25'h0, carry});
+    total_high = ((card1_card_core1_dda_arc2_gap_high + operand[50-1:25]) + {24'h0, card1_card_core1_dda_arc2_gap_carry});
+    card1_card_core1_dda_arc2_gap_sum_low = total_low[25-1:0];
+    card1_card_core1_dda_arc2_gap_sum_carry = total_low[25];
+    card1_card_core1_dda_arc2_gap_sum_high = total_high;
+    card1_card_core1_dda_arc2_gap_top = (card1_card_core1_dda_arc2_gap_high + {24'h0, card1_card_core1_dda_arc2_gap_carry});
 end
 
 
@@ -4473,11 +4876,17 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
     reg [25-1:0] shrink_x;
     reg [25-1:0] shrink_y;
     reg ahead;
+    reg zero_xs;
+    reg zero_ys;
+    reg zero_xe;
+    reg zero_ye;
     if (card1_card_core1_dda_reset == 0) begin
         card1_card_core1_dda_arc2_geo_quadrant <= 0;
         card1_card_core1_dda_arc2_geo_ahead <= 0;
+        card1_card_core1_dda_arc2_geo_x_in_start <= 0;
         card1_card_core1_dda_arc2_geo_centre <= 0;
         card1_card_core1_dda_arc2_geo_end_inward <= 0;
+        card1_card_core1_dda_arc2_geo_x_in_end <= 0;
         card1_card_core1_dda_arc2_geo_crossings <= 0;
     end
     else begin
@@ -4488,26 +4897,34 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         shrink_x = 25'h0;
         shrink_y = 25'h0;
         ahead = (0 != 0);
+        zero_xs = (0 != 0);
+        zero_ys = (0 != 0);
+        zero_xe = (0 != 0);
+        zero_ye = (0 != 0);
+        zero_xs = (card1_card_core1_dda_arc2_mag_xs == 0);
+        zero_ys = (card1_card_core1_dda_arc2_mag_ys == 0);
+        zero_xe = (card1_card_core1_dda_arc2_mag_xe == 0);
+        zero_ye = (card1_card_core1_dda_arc2_mag_ye == 0);
         if (card1_card_core1_dda_arc2_ccw) begin
-            if (((card1_card_core1_dda_arc2_xs > 0) && (card1_card_core1_dda_arc2_ys >= 0))) begin
+            if (((!card1_card_core1_dda_arc2_neg_xs) && (!zero_xs) && (!card1_card_core1_dda_arc2_neg_ys))) begin
                 q_s = 0;
             end
-            else if (((card1_card_core1_dda_arc2_xs <= 0) && (card1_card_core1_dda_arc2_ys > 0))) begin
+            else if (((card1_card_core1_dda_arc2_neg_xs || zero_xs) && (!card1_card_core1_dda_arc2_neg_ys) && (!zero_ys))) begin
                 q_s = 1;
             end
-            else if (((card1_card_core1_dda_arc2_xs < 0) && (card1_card_core1_dda_arc2_ys <= 0))) begin
+            else if ((card1_card_core1_dda_arc2_neg_xs && (card1_card_core1_dda_arc2_neg_ys || zero_ys))) begin
                 q_s = 2;
             end
             else begin
                 q_s = 3;
             end
-            if (((card1_card_core1_dda_arc2_xe >= 0) && (card1_card_core1_dda_arc2_ye > 0))) begin
+            if (((!card1_card_core1_dda_arc2_neg_xe) && (!card1_card_core1_dda_arc2_neg_ye) && (!zero_ye))) begin
                 q_e = 0;
             end
-            else if (((card1_card_core1_dda_arc2_xe < 0) && (card1_card_core1_dda_arc2_ye >= 0))) begin
+            else if ((card1_card_core1_dda_arc2_neg_xe && (!card1_card_core1_dda_arc2_neg_ye))) begin
                 q_e = 1;
             end
-            else if (((card1_card_core1_dda_arc2_xe <= 0) && (card1_card_core1_dda_arc2_ye < 0))) begin
+            else if (((card1_card_core1_dda_arc2_neg_xe || zero_xe) && card1_card_core1_dda_arc2_neg_ye)) begin
                 q_e = 2;
             end
             else begin
@@ -4516,25 +4933,25 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             turn = (q_e - q_s);
         end
         else begin
-            if (((card1_card_core1_dda_arc2_xs >= 0) && (card1_card_core1_dda_arc2_ys > 0))) begin
+            if (((!card1_card_core1_dda_arc2_neg_xs) && (!card1_card_core1_dda_arc2_neg_ys) && (!zero_ys))) begin
                 q_s = 0;
             end
-            else if (((card1_card_core1_dda_arc2_xs < 0) && (card1_card_core1_dda_arc2_ys >= 0))) begin
+            else if ((card1_card_core1_dda_arc2_neg_xs && (!card1_card_core1_dda_arc2_neg_ys))) begin
                 q_s = 1;
             end
-            else if (((card1_card_core1_dda_arc2_xs <= 0) && (card1_card_core1_dda_arc2_ys < 0))) begin
+            else if (((card1_card_core1_dda_arc2_neg_xs || zero_xs) && card1_card_core1_dda_arc2_neg_ys)) begin
                 q_s = 2;
             end
             else begin
                 q_s = 3;
             end
-            if (((card1_card_core1_dda_arc2_xe > 0) && (card1_card_core1_dda_arc2_ye >= 0))) begin
+            if (((!card1_card_core1_dda_arc2_neg_xe) && (!zero_xe) && (!card1_card_core1_dda_arc2_neg_ye))) begin
                 q_e = 0;
             end
-            else if (((card1_card_core1_dda_arc2_xe <= 0) && (card1_card_core1_dda_arc2_ye > 0))) begin
+            else if (((card1_card_core1_dda_arc2_neg_xe || zero_xe) && (!card1_card_core1_dda_arc2_neg_ye) && (!zero_ye))) begin
                 q_e = 1;
             end
-            else if (((card1_card_core1_dda_arc2_xe < 0) && (card1_card_core1_dda_arc2_ye <= 0))) begin
+            else if ((card1_card_core1_dda_arc2_neg_xe && (card1_card_core1_dda_arc2_neg_ye || zero_ye))) begin
                 q_e = 2;
             end
             else begin
@@ -4566,31 +4983,125 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         else begin
             card1_card_core1_dda_arc2_geo_end_inward <= card1_card_core1_dda_arc2_mag_ye;
         end
-        card1_card_core1_dda_arc2_geo_centre <= (((card1_card_core1_dda_arc2_xs == 0) && (card1_card_core1_dda_arc2_ys == 0)) || ((card1_card_core1_dda_arc2_xe == 0) && (card1_card_core1_dda_arc2_ye == 0)));
+        card1_card_core1_dda_arc2_geo_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+        card1_card_core1_dda_arc2_geo_x_in_start <= (q_s[0] != card1_card_core1_dda_arc2_ccw);
+        card1_card_core1_dda_arc2_geo_x_in_end <= (q_e[0] != card1_card_core1_dda_arc2_ccw);
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_bits, card1_card_core1_dda_arc2_neg_ys, card1_card_core1_dda_arc2_geo_crossings, card1_card_core1_dda_arc2_mag_ys, card1_card_core1_dda_arc2_variant, card1_card_core1_dda_arc2_geo_quadrant, card1_card_core1_dda_arc2_mag_xs, card1_card_core1_dda_arc2_radius_q, card1_card_core1_dda_arc2_end_reaches_low, card1_card_core1_dda_arc2_mag_ye, card1_card_core1_dda_arc2_geo_centre, card1_card_core1_dda_arc2_lambda_shift, card1_card_core1_dda_arc2_geo_ahead, card1_card_core1_dda_arc2_xs, card1_card_core1_dda_arc2_mag_xe, card1_card_core1_dda_arc2_neg_xs, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_ys, card1_card_core1_dda_arc2_end_beyond_high, card1_card_core1_dda_arc2_ccw, card1_card_core1_dda_arc2_geo_end_inward) begin: card1_card_core1_dda_arc2_check_logic
+always @(card1_card_core1_dda_arc2_geo_crossings, card1_card_core1_dda_arc2_geo_x_in_end, card1_card_core1_dda_arc2_geo_x_in_start) begin: card1_card_core1_dda_arc2_totals_k
+    reg out_in;
+    reg in_out;
+    out_in = ((!card1_card_core1_dda_arc2_geo_x_in_start) && card1_card_core1_dda_arc2_geo_x_in_end);
+    in_out = (card1_card_core1_dda_arc2_geo_x_in_start && (!card1_card_core1_dda_arc2_geo_x_in_end));
+    card1_card_core1_dda_arc2_tot_k4_x = ((card1_card_core1_dda_arc2_geo_crossings == 4) || ((card1_card_core1_dda_arc2_geo_crossings == 3) && out_in));
+    card1_card_core1_dda_arc2_tot_k4_y = ((card1_card_core1_dda_arc2_geo_crossings == 4) || ((card1_card_core1_dda_arc2_geo_crossings == 3) && in_out));
+    card1_card_core1_dda_arc2_tot_k2_x = ((card1_card_core1_dda_arc2_geo_crossings == 2) || ((card1_card_core1_dda_arc2_geo_crossings == 1) && out_in) || ((card1_card_core1_dda_arc2_geo_crossings == 3) && in_out));
+    card1_card_core1_dda_arc2_tot_k2_y = ((card1_card_core1_dda_arc2_geo_crossings == 2) || ((card1_card_core1_dda_arc2_geo_crossings == 1) && in_out) || ((card1_card_core1_dda_arc2_geo_crossings == 3) && out_in));
+end
+
+
+always @(card1_card_core1_dda_arc2_mag_ys, card1_card_core1_dda_arc2_tot_x, card1_card_core1_dda_arc2_mag_xs, card1_card_core1_dda_arc2_state, card1_card_core1_dda_arc2_tot_y, card1_card_core1_dda_arc2_mag_ye, card1_card_core1_dda_arc2_mag_xe, card1_card_core1_dda_arc2_mac_bit, card1_card_core1_dda_arc2_geo_x_in_end, card1_card_core1_dda_arc2_mac_op, card1_card_core1_dda_arc2_geo_x_in_start) begin: card1_card_core1_dda_arc2_totals_adder
+    reg [28-1:0] operand_x;
+    reg [28-1:0] operand_y;
+    reg invert_x;
+    reg invert_y;
+    reg carry_x;
+    reg carry_y;
+    reg [28-1:0] total_x;
+    reg [28-1:0] total_y;
+    operand_x = 28'h0;
+    operand_y = 28'h0;
+    invert_x = (0 != 0);
+    invert_y = (0 != 0);
+    carry_x = (0 != 0);
+    carry_y = (0 != 0);
+    total_x = 28'h0;
+    total_y = 28'h0;
+    if (((card1_card_core1_dda_arc2_state == 3'b001) && (card1_card_core1_dda_arc2_mac_op == 0) && (card1_card_core1_dda_arc2_mac_bit == 1))) begin
+        operand_x = {4'h0, card1_card_core1_dda_arc2_mag_xs};
+        operand_y = {4'h0, card1_card_core1_dda_arc2_mag_ys};
+        invert_x = (!card1_card_core1_dda_arc2_geo_x_in_start);
+        invert_y = (card1_card_core1_dda_arc2_geo_x_in_start == 1);
+    end
+    else if (((card1_card_core1_dda_arc2_state == 3'b001) && (card1_card_core1_dda_arc2_mac_op == 0) && (card1_card_core1_dda_arc2_mac_bit == 2))) begin
+        operand_x = {4'h0, card1_card_core1_dda_arc2_mag_xe};
+        operand_y = {4'h0, card1_card_core1_dda_arc2_mag_ye};
+        invert_x = (card1_card_core1_dda_arc2_geo_x_in_end == 1);
+        invert_y = (!card1_card_core1_dda_arc2_geo_x_in_end);
+    end
+    if (invert_x) begin
+        operand_x = (~operand_x);
+        carry_x = 1'b1;
+    end
+    if (invert_y) begin
+        operand_y = (~operand_y);
+        carry_y = 1'b1;
+    end
+    total_x = ((card1_card_core1_dda_arc2_tot_x[28-1:0] + operand_x) + {27'h0, carry_x});
+    total_y = ((card1_card_core1_dda_arc2_tot_y[28-1:0] + operand_y) + {27'h0, carry_y});
+    card1_card_core1_dda_arc2_tot_sum_x = $signed(total_x);
+    card1_card_core1_dda_arc2_tot_sum_y = $signed(total_y);
+end
+
+
+always @(card1_card_core1_dda_arc2_tot_x, card1_card_core1_dda_arc2_tot_k2_y, card1_card_core1_dda_arc2_tot_k4_y, card1_card_core1_dda_arc2_tot_k4_x, card1_card_core1_dda_arc2_radius_q, card1_card_core1_dda_arc2_tot_k2_x, card1_card_core1_dda_arc2_mag_ye, card1_card_core1_dda_arc2_mag_xe, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_tot_y) begin: card1_card_core1_dda_arc2_totals_check
+    reg [27-1:0] operand_x;
+    reg [27-1:0] operand_y;
+    reg [27-1:0] total_x;
+    reg [27-1:0] total_y;
+    operand_x = 27'h0;
+    operand_y = 27'h0;
+    total_x = 27'h0;
+    total_y = 27'h0;
+    if (card1_card_core1_dda_arc2_is_line) begin
+        operand_x = {3'h0, card1_card_core1_dda_arc2_mag_xe};
+        operand_y = {3'h0, card1_card_core1_dda_arc2_mag_ye};
+    end
+    else begin
+        if (card1_card_core1_dda_arc2_tot_k2_x) begin
+            operand_x = {1'h0, card1_card_core1_dda_arc2_radius_q, 1'b0};
+        end
+        else if (card1_card_core1_dda_arc2_tot_k4_x) begin
+            operand_x = {card1_card_core1_dda_arc2_radius_q, 2'h0};
+        end
+        if (card1_card_core1_dda_arc2_tot_k2_y) begin
+            operand_y = {1'h0, card1_card_core1_dda_arc2_radius_q, 1'b0};
+        end
+        else if (card1_card_core1_dda_arc2_tot_k4_y) begin
+            operand_y = {card1_card_core1_dda_arc2_radius_q, 2'h0};
+        end
+    end
+    total_x = (card1_card_core1_dda_arc2_tot_x[27-1:0] + operand_x);
+    total_y = (card1_card_core1_dda_arc2_tot_y[27-1:0] + operand_y);
+    card1_card_core1_dda_arc2_check_left_x = $signed(total_x[27-1:0]);
+    card1_card_core1_dda_arc2_check_left_y = $signed(total_y[27-1:0]);
+end
+
+
+always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_bits, card1_card_core1_dda_arc2_geo_crossings, card1_card_core1_dda_arc2_mag_ys, card1_card_core1_dda_arc2_variant, card1_card_core1_dda_arc2_geo_quadrant, card1_card_core1_dda_arc2_mag_xs, card1_card_core1_dda_arc2_radius_q, card1_card_core1_dda_arc2_end_reaches_low, card1_card_core1_dda_arc2_mag_ye, card1_card_core1_dda_arc2_geo_centre, card1_card_core1_dda_arc2_lambda_shift, card1_card_core1_dda_arc2_geo_ahead, card1_card_core1_dda_arc2_mag_xe, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_geo_x_in_start, card1_card_core1_dda_arc2_end_beyond_high, card1_card_core1_dda_arc2_ccw, card1_card_core1_dda_arc2_geo_end_inward) begin: card1_card_core1_dda_arc2_check_logic
     reg [25-1:0] rq;
     reg [6-1:0] exponent;
     reg [29-1:0] thr;
     reg [29-1:0] thr_less;
-    reg [29-1:0] one;
+    reg [29-1:0] mask;
     reg [32-1:0] below;
     reg [32-1:0] half;
     reg [24-1:0] major;
     reg [24-1:0] major_less;
+    reg [24-1:0] inward;
     reg bad;
     rq = 25'h0;
     exponent = 6'h0;
     thr = 29'h0;
     thr_less = 29'h0;
-    one = 29'h1;
+    mask = 29'h0;
     below = 32'h0;
     half = 32'h0;
     major = 24'h0;
     major_less = 24'h0;
+    inward = 24'h0;
     bad = 1'b0;
     rq = card1_card_core1_dda_arc2_radius_q;
     if (card1_card_core1_dda_arc2_geo_centre) begin
@@ -4608,8 +5119,10 @@ always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_
     else begin
         exponent = (card1_card_core1_dda_arc2_radius_length + {1'b0, card1_card_core1_dda_arc2_lambda_shift});
     end
-    thr = (one << exponent);
-    thr_less = (thr - 1);
+    mask = ((1 << 29) - 1);
+    mask = (mask << exponent);
+    thr_less = (~mask);
+    thr = ({thr_less[(29 - 1)-1:0], 1'b1} & mask);
     if (((card1_card_core1_dda_arc2_variant != 3) && ($signed({1'b0, exponent}) > (29 - 1)))) begin
         bad = 1'b1;
     end
@@ -4619,11 +5132,12 @@ always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_
     end
     if ((card1_card_core1_dda_arc2_mag_xe > card1_card_core1_dda_arc2_mag_ye)) begin
         major = card1_card_core1_dda_arc2_mag_xe;
+        major_less = (card1_card_core1_dda_arc2_mag_xe + 16777215);
     end
     else begin
         major = card1_card_core1_dda_arc2_mag_ye;
+        major_less = (card1_card_core1_dda_arc2_mag_ye + 16777215);
     end
-    major_less = (major - 1);
     if (card1_card_core1_dda_arc2_is_line) begin
         thr = {5'h0, major};
         thr_less = {5'h0, major_less};
@@ -4634,138 +5148,113 @@ always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_
         half = (~{3'h0, thr});
     end
     if ((card1_card_core1_dda_arc2_is_line || card1_card_core1_dda_arc2_geo_ahead)) begin
-        card1_card_core1_dda_arc2_chk_target_x = card1_card_core1_dda_arc2_mag_xe;
-        card1_card_core1_dda_arc2_chk_target_y = card1_card_core1_dda_arc2_mag_ye;
+        card1_card_core1_dda_arc2_check_target_x = card1_card_core1_dda_arc2_mag_xe;
+        card1_card_core1_dda_arc2_check_target_y = card1_card_core1_dda_arc2_mag_ye;
     end
     else begin
         if (({1'b0, card1_card_core1_dda_arc2_geo_end_inward} > rq)) begin
             bad = 1'b1;
         end
         if ((card1_card_core1_dda_arc2_geo_quadrant[0] != card1_card_core1_dda_arc2_ccw)) begin
-            card1_card_core1_dda_arc2_chk_target_x = 0;
-            card1_card_core1_dda_arc2_chk_target_y = rq[24-1:0];
+            card1_card_core1_dda_arc2_check_target_x = 0;
+            card1_card_core1_dda_arc2_check_target_y = rq[24-1:0];
         end
         else begin
-            card1_card_core1_dda_arc2_chk_target_x = rq[24-1:0];
-            card1_card_core1_dda_arc2_chk_target_y = 0;
+            card1_card_core1_dda_arc2_check_target_x = rq[24-1:0];
+            card1_card_core1_dda_arc2_check_target_y = 0;
         end
     end
-    card1_card_core1_dda_arc2_chk_error = bad;
-    card1_card_core1_dda_arc2_chk_radius = rq[24-1:0];
-    card1_card_core1_dda_arc2_chk_quadrant = card1_card_core1_dda_arc2_geo_quadrant;
-    card1_card_core1_dda_arc2_chk_crossings = card1_card_core1_dda_arc2_geo_crossings;
-    card1_card_core1_dda_arc2_chk_mag_x = card1_card_core1_dda_arc2_mag_xs;
-    card1_card_core1_dda_arc2_chk_mag_y = card1_card_core1_dda_arc2_mag_ys;
-    if ((card1_card_core1_dda_arc2_is_line || bad)) begin
-        card1_card_core1_dda_arc2_chk_quadrant = 0;
-    end
+    card1_card_core1_dda_arc2_check_error = (bad && (!card1_card_core1_dda_arc2_is_line));
+    card1_card_core1_dda_arc2_check_zero = (card1_card_core1_dda_arc2_is_line && (card1_card_core1_dda_arc2_mag_xe == 0) && (card1_card_core1_dda_arc2_mag_ye == 0));
+    card1_card_core1_dda_arc2_check_quadrant = card1_card_core1_dda_arc2_geo_quadrant;
+    card1_card_core1_dda_arc2_check_crossings = card1_card_core1_dda_arc2_geo_crossings;
     if (card1_card_core1_dda_arc2_is_line) begin
-        card1_card_core1_dda_arc2_chk_crossings = 0;
-        card1_card_core1_dda_arc2_chk_mag_x = 0;
-        card1_card_core1_dda_arc2_chk_mag_y = 0;
+        card1_card_core1_dda_arc2_check_quadrant = 0;
+        card1_card_core1_dda_arc2_check_crossings = 0;
     end
-    card1_card_core1_dda_arc2_chk_threshold = thr;
-    card1_card_core1_dda_arc2_chk_acc_init = $signed(half);
-    if ((card1_card_core1_dda_arc2_xs < 0)) begin
-        card1_card_core1_dda_arc2_chk_neg_mag_x = {card1_card_core1_dda_arc2_xs[(24 - 1)], card1_card_core1_dda_arc2_xs};
+    card1_card_core1_dda_arc2_check_threshold = thr;
+    card1_card_core1_dda_arc2_check_acc_init = $signed(half);
+    inward = card1_card_core1_dda_arc2_mag_ys;
+    if (card1_card_core1_dda_arc2_geo_x_in_start) begin
+        inward = card1_card_core1_dda_arc2_mag_xs;
+    end
+    card1_card_core1_dda_arc2_check_neg_in = (-$signed({5'h0, inward}));
+end
+
+
+always @(card1_card_core1_dda_arc2_mag_ys, card1_card_core1_dda_arc2_mag_xs, card1_card_core1_dda_arc2_chk_neg_in, card1_card_core1_dda_arc2_mag_ye, card1_card_core1_dda_arc2_mag_xe, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_geo_x_in_start) begin: card1_card_core1_dda_arc2_first_iteration
+    reg [2-1:0] fill;
+    reg [31-1:0] half;
+    reg [32-1:0] twice_in;
+    reg [32-1:0] twice_out;
+    reg [24-1:0] out;
+    reg [24-1:0] step_in;
+    reg [24-1:0] step_out;
+    fill = 2'h0;
+    half = 31'h0;
+    twice_in = 32'h0;
+    twice_out = 32'h0;
+    out = 24'h0;
+    card1_card_core1_dda_arc2_first_integrand_x = card1_card_core1_dda_arc2_mag_ys;
+    card1_card_core1_dda_arc2_first_integrand_y = card1_card_core1_dda_arc2_mag_xs;
+    if (card1_card_core1_dda_arc2_is_line) begin
+        card1_card_core1_dda_arc2_first_integrand_x = card1_card_core1_dda_arc2_mag_xe;
+        card1_card_core1_dda_arc2_first_integrand_y = card1_card_core1_dda_arc2_mag_ye;
+    end
+    step_in = 24'h1;
+    step_out = 24'h1;
+    if (card1_card_core1_dda_arc2_geo_x_in_start) begin
+        step_out = 16777215;
+        out = card1_card_core1_dda_arc2_mag_ys;
     end
     else begin
-        card1_card_core1_dda_arc2_chk_neg_mag_x = card1_card_core1_dda_arc2_neg_xs;
+        step_in = 16777215;
+        out = card1_card_core1_dda_arc2_mag_xs;
     end
-    if ((card1_card_core1_dda_arc2_ys < 0)) begin
-        card1_card_core1_dda_arc2_chk_neg_mag_y = {card1_card_core1_dda_arc2_ys[(24 - 1)], card1_card_core1_dda_arc2_ys};
+    card1_card_core1_dda_arc2_first_stepped_x = (card1_card_core1_dda_arc2_mag_ys + step_in);
+    card1_card_core1_dda_arc2_first_stepped_y = (card1_card_core1_dda_arc2_mag_xs + step_out);
+    card1_card_core1_dda_arc2_first_out = out;
+    if (card1_card_core1_dda_arc2_chk_neg_in[(30 - 2)]) begin
+        fill = 3;
+    end
+    half = ({7'h0, out} + {fill, card1_card_core1_dda_arc2_chk_neg_in[(30 - 1)-1:0]});
+    twice_in = ({fill[0], card1_card_core1_dda_arc2_chk_neg_in[(30 - 1)-1:0], 2'h3} + {7'h0, out, 1'b0});
+    twice_out = ({6'h0, out, 2'h3} + {fill, card1_card_core1_dda_arc2_chk_neg_in[(30 - 1)-1:0], 1'b0});
+    card1_card_core1_dda_arc2_first_half = $signed(half);
+    card1_card_core1_dda_arc2_first_q_in = $signed(twice_in);
+    card1_card_core1_dda_arc2_first_q_out = $signed(twice_out);
+end
+
+
+always @(card1_card_core1_dda_arc2_left_x, card1_card_core1_dda_arc2_stepped_y, card1_card_core1_dda_arc2_integrand_x, card1_card_core1_dda_arc2_stepped_x, card1_card_core1_dda_arc2_target_y, card1_card_core1_dda_arc2_integrand_y, card1_card_core1_dda_arc2_target_x, card1_card_core1_dda_arc2_run_line, card1_card_core1_dda_arc2_left_y) begin: card1_card_core1_dda_arc2_end_tests
+    if (card1_card_core1_dda_arc2_run_line) begin
+        card1_card_core1_dda_arc2_at_x = (card1_card_core1_dda_arc2_left_x[27-1:0] == 134217727);
+        card1_card_core1_dda_arc2_at_y = (card1_card_core1_dda_arc2_left_y[27-1:0] == 134217727);
+        card1_card_core1_dda_arc2_near_x = (card1_card_core1_dda_arc2_left_x == 0);
+        card1_card_core1_dda_arc2_near_y = (card1_card_core1_dda_arc2_left_y == 0);
     end
     else begin
-        card1_card_core1_dda_arc2_chk_neg_mag_y = card1_card_core1_dda_arc2_neg_ys;
+        card1_card_core1_dda_arc2_at_x = (card1_card_core1_dda_arc2_integrand_y == card1_card_core1_dda_arc2_target_x);
+        card1_card_core1_dda_arc2_at_y = (card1_card_core1_dda_arc2_integrand_x == card1_card_core1_dda_arc2_target_y);
+        card1_card_core1_dda_arc2_near_x = (card1_card_core1_dda_arc2_stepped_y == card1_card_core1_dda_arc2_target_x);
+        card1_card_core1_dda_arc2_near_y = (card1_card_core1_dda_arc2_stepped_x == card1_card_core1_dda_arc2_target_y);
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_mag_x_step, card1_card_core1_dda_arc2_mag_x, card1_card_core1_dda_arc2_target_y, card1_card_core1_dda_arc2_neg_mag_y, card1_card_core1_dda_arc2_x_inward, card1_card_core1_dda_arc2_target_x, card1_card_core1_dda_arc2_neg_mag_x, card1_card_core1_dda_arc2_mag_y_step, card1_card_core1_dda_arc2_is_line) begin: card1_card_core1_dda_arc2_piece_progress
-    reg [4-1:0] fill_x;
-    reg [4-1:0] fill_y;
-    if (((!card1_card_core1_dda_arc2_is_line) && card1_card_core1_dda_arc2_x_inward)) begin
-        card1_card_core1_dda_arc2_count_x = (card1_card_core1_dda_arc2_mag_x - card1_card_core1_dda_arc2_target_x);
-        card1_card_core1_dda_arc2_count_y = (card1_card_core1_dda_arc2_target_y - card1_card_core1_dda_arc2_mag_y);
-    end
-    else if ((!card1_card_core1_dda_arc2_is_line)) begin
-        card1_card_core1_dda_arc2_count_x = (card1_card_core1_dda_arc2_target_x - card1_card_core1_dda_arc2_mag_x);
-        card1_card_core1_dda_arc2_count_y = (card1_card_core1_dda_arc2_mag_y - card1_card_core1_dda_arc2_target_y);
-    end
-    else begin
-        card1_card_core1_dda_arc2_count_x = (card1_card_core1_dda_arc2_target_x - card1_card_core1_dda_arc2_mag_x);
-        card1_card_core1_dda_arc2_count_y = (card1_card_core1_dda_arc2_target_y - card1_card_core1_dda_arc2_mag_y);
-    end
-    if (((!card1_card_core1_dda_arc2_is_line) && card1_card_core1_dda_arc2_x_inward)) begin
-        card1_card_core1_dda_arc2_mag_x_step = (card1_card_core1_dda_arc2_mag_x + 16777215);
-        card1_card_core1_dda_arc2_neg_mag_x_step = (card1_card_core1_dda_arc2_neg_mag_x + 1);
-        card1_card_core1_dda_arc2_mag_y_step = (card1_card_core1_dda_arc2_mag_y + 1);
-        card1_card_core1_dda_arc2_neg_mag_y_step = (card1_card_core1_dda_arc2_neg_mag_y + 33554431);
-    end
-    else if ((!card1_card_core1_dda_arc2_is_line)) begin
-        card1_card_core1_dda_arc2_mag_x_step = (card1_card_core1_dda_arc2_mag_x + 1);
-        card1_card_core1_dda_arc2_neg_mag_x_step = (card1_card_core1_dda_arc2_neg_mag_x + 33554431);
-        card1_card_core1_dda_arc2_mag_y_step = (card1_card_core1_dda_arc2_mag_y + 16777215);
-        card1_card_core1_dda_arc2_neg_mag_y_step = (card1_card_core1_dda_arc2_neg_mag_y + 1);
-    end
-    else begin
-        card1_card_core1_dda_arc2_mag_x_step = (card1_card_core1_dda_arc2_mag_x + 1);
-        card1_card_core1_dda_arc2_neg_mag_x_step = (card1_card_core1_dda_arc2_neg_mag_x + 33554431);
-        card1_card_core1_dda_arc2_mag_y_step = (card1_card_core1_dda_arc2_mag_y + 1);
-        card1_card_core1_dda_arc2_neg_mag_y_step = (card1_card_core1_dda_arc2_neg_mag_y + 33554431);
-    end
-    card1_card_core1_dda_arc2_at_x = (card1_card_core1_dda_arc2_mag_x == card1_card_core1_dda_arc2_target_x);
-    card1_card_core1_dda_arc2_at_y = (card1_card_core1_dda_arc2_mag_y == card1_card_core1_dda_arc2_target_y);
-    card1_card_core1_dda_arc2_near_x = (card1_card_core1_dda_arc2_mag_x_step == card1_card_core1_dda_arc2_target_x);
-    card1_card_core1_dda_arc2_near_y = (card1_card_core1_dda_arc2_mag_y_step == card1_card_core1_dda_arc2_target_y);
-    fill_x = 4'h0;
-    fill_y = 4'h0;
-    if (card1_card_core1_dda_arc2_neg_mag_x[24]) begin
-        fill_x = 15;
-    end
-    if (card1_card_core1_dda_arc2_neg_mag_y[24]) begin
-        fill_y = 15;
-    end
-    if (card1_card_core1_dda_arc2_x_inward) begin
-        card1_card_core1_dda_arc2_delta_x = $signed({fill_x, card1_card_core1_dda_arc2_neg_mag_x, 1'b1});
-        card1_card_core1_dda_arc2_delta_y = $signed({5'h0, card1_card_core1_dda_arc2_mag_y, 1'b1});
-    end
-    else begin
-        card1_card_core1_dda_arc2_delta_x = $signed({5'h0, card1_card_core1_dda_arc2_mag_x, 1'b1});
-        card1_card_core1_dda_arc2_delta_y = $signed({fill_y, card1_card_core1_dda_arc2_neg_mag_y, 1'b1});
-    end
-    if (card1_card_core1_dda_arc2_is_line) begin
-        card1_card_core1_dda_arc2_integrand_x = card1_card_core1_dda_arc2_target_x;
-        card1_card_core1_dda_arc2_integrand_y = card1_card_core1_dda_arc2_target_y;
-    end
-    else begin
-        card1_card_core1_dda_arc2_integrand_x = card1_card_core1_dda_arc2_mag_y;
-        card1_card_core1_dda_arc2_integrand_y = card1_card_core1_dda_arc2_mag_x;
-    end
-end
-
-
-always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_neg_mag_y_step, card1_card_core1_dda_arc2_variant, card1_card_core1_dda_arc2_mag_x_step, card1_card_core1_dda_arc2_delta_x, card1_card_core1_dda_arc2_delta_y, card1_card_core1_dda_arc2_x_inward, card1_card_core1_dda_arc2_crossings, card1_card_core1_dda_arc2_mag_y_step, card1_card_core1_dda_arc2_xe, card1_card_core1_dda_arc2_at_x, card1_card_core1_dda_arc2_near_y, card1_card_core1_dda_arc2_integrand_x, card1_card_core1_dda_arc2_near_x, card1_card_core1_dda_arc2_ye, card1_card_core1_dda_arc2_quadrant, card1_card_core1_dda_arc2_neg_mag_y, card1_card_core1_dda_arc2_integrand_y, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_radial_error, card1_card_core1_dda_arc2_count_y, card1_card_core1_dda_arc2_threshold, card1_card_core1_dda_arc2_count_x, card1_card_core1_dda_arc2_neg_mag_x_step, card1_card_core1_dda_arc2_acc_x, card1_card_core1_dda_arc2_at_y, card1_card_core1_dda_arc2_mag_x, card1_card_core1_dda_arc2_acc_y, card1_card_core1_dda_arc2_neg_mag_x) begin: card1_card_core1_dda_arc2_iteration_logic
+always @(card1_card_core1_dda_arc2_q_out, card1_card_core1_dda_arc2_half_sum, card1_card_core1_dda_arc2_neg_in, card1_card_core1_dda_arc2_run_variant, card1_card_core1_dda_arc2_run_up, card1_card_core1_dda_arc2_x_inward, card1_card_core1_dda_arc2_crossings, card1_card_core1_dda_arc2_at_x, card1_card_core1_dda_arc2_near_y, card1_card_core1_dda_arc2_integrand_x, card1_card_core1_dda_arc2_near_x, card1_card_core1_dda_arc2_quadrant, card1_card_core1_dda_arc2_integrand_y, card1_card_core1_dda_arc2_stepped_x, card1_card_core1_dda_arc2_radial_error, card1_card_core1_dda_arc2_acc_x, card1_card_core1_dda_arc2_at_y, card1_card_core1_dda_arc2_acc_y, card1_card_core1_dda_arc2_run_right, card1_card_core1_dda_arc2_q_in, card1_card_core1_dda_arc2_run_line) begin: card1_card_core1_dda_arc2_iteration_logic
     reg x_right;
     reg y_up;
-    reg [9-1:0] to_mag;
     reg signed [33-1:0] sum_x;
     reg signed [33-1:0] sum_x_step;
     reg signed [33-1:0] sum_y;
-    reg [32-1:0] thr_low;
     reg signed [33-1:0] ahead_x;
     reg signed [33-1:0] ahead_y;
-    reg [32-1:0] less_x;
-    reg [32-1:0] less_y;
-    reg signed [30-1:0] cand_d;
-    reg signed [30-1:0] cand_x;
-    reg signed [30-1:0] cand_y;
-    reg signed [30-1:0] delta_xy;
-    reg signed [31-1:0] half_xy;
-    reg sum_le_0;
-    reg sum_lt_0;
-    reg d_le_x;
-    reg d_le_y;
+    reg signed [32-1:0] twice_in;
+    reg signed [32-1:0] twice_out;
+    reg [31-1:0] error_half;
+    reg d_le_in;
+    reg d_le_out;
     reg x_le_y;
     reg over_x;
     reg over_x_step;
@@ -4774,24 +5263,16 @@ always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_neg_mag_y_st
     reg go_y;
     x_right = (0 != 0);
     y_up = (0 != 0);
-    to_mag = 9'h0;
     sum_x = 0;
     sum_x_step = 0;
     sum_y = 0;
-    thr_low = 32'h0;
     ahead_x = 0;
     ahead_y = 0;
-    less_x = 32'h0;
-    less_y = 32'h0;
-    cand_d = 0;
-    cand_x = 0;
-    cand_y = 0;
-    delta_xy = 0;
-    half_xy = 0;
-    sum_le_0 = (0 != 0);
-    sum_lt_0 = (0 != 0);
-    d_le_x = (0 != 0);
-    d_le_y = (0 != 0);
+    twice_in = 0;
+    twice_out = 0;
+    error_half = 31'h0;
+    d_le_in = (0 != 0);
+    d_le_out = (0 != 0);
     x_le_y = (0 != 0);
     over_x = (0 != 0);
     over_x_step = (0 != 0);
@@ -4800,45 +5281,39 @@ always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_neg_mag_y_st
     go_y = (0 != 0);
     x_right = (card1_card_core1_dda_arc2_quadrant[0] == card1_card_core1_dda_arc2_quadrant[1]);
     y_up = (!card1_card_core1_dda_arc2_quadrant[1]);
-    if (card1_card_core1_dda_arc2_is_line) begin
-        card1_card_core1_dda_arc2_it_dir_x = (card1_card_core1_dda_arc2_xe >= 0);
-        card1_card_core1_dda_arc2_it_dir_y = (card1_card_core1_dda_arc2_ye >= 0);
+    if (card1_card_core1_dda_arc2_run_line) begin
+        card1_card_core1_dda_arc2_it_dir_x = card1_card_core1_dda_arc2_run_right;
+        card1_card_core1_dda_arc2_it_dir_y = card1_card_core1_dda_arc2_run_up;
     end
     else begin
         card1_card_core1_dda_arc2_it_dir_x = (x_right != card1_card_core1_dda_arc2_x_inward);
         card1_card_core1_dda_arc2_it_dir_y = (y_up == card1_card_core1_dda_arc2_x_inward);
     end
-    to_mag = 0;
-    thr_low = {3'h0, card1_card_core1_dda_arc2_threshold};
-    sum_y = ($signed({card1_card_core1_dda_arc2_acc_y[(32 - 1)], card1_card_core1_dda_arc2_acc_y}) + $signed({to_mag, card1_card_core1_dda_arc2_integrand_y}));
-    sum_x = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({to_mag, card1_card_core1_dda_arc2_integrand_x}));
-    sum_x_step = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({to_mag, card1_card_core1_dda_arc2_mag_y_step}));
+    sum_y = ($signed({card1_card_core1_dda_arc2_acc_y[(32 - 1)], card1_card_core1_dda_arc2_acc_y}) + $signed({9'h0, card1_card_core1_dda_arc2_integrand_y}));
+    sum_x = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({9'h0, card1_card_core1_dda_arc2_integrand_x}));
+    sum_x_step = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({9'h0, card1_card_core1_dda_arc2_stepped_x}));
     over_x = (!sum_x[32]);
     over_x_step = (!sum_x_step[32]);
     over_y = (!sum_y[32]);
-    if (((!card1_card_core1_dda_arc2_is_line) && (card1_card_core1_dda_arc2_variant == 0) && over_y)) begin
+    if (((!card1_card_core1_dda_arc2_run_line) && (card1_card_core1_dda_arc2_run_variant == 0) && over_y)) begin
         sum_x = sum_x_step;
         over_x = over_x_step;
     end
-    delta_xy = (card1_card_core1_dda_arc2_delta_x + card1_card_core1_dda_arc2_delta_y);
-    cand_x = (card1_card_core1_dda_arc2_radial_error + card1_card_core1_dda_arc2_delta_x);
-    cand_y = (card1_card_core1_dda_arc2_radial_error + card1_card_core1_dda_arc2_delta_y);
-    cand_d = (card1_card_core1_dda_arc2_radial_error + delta_xy);
-    half_xy = ($signed({card1_card_core1_dda_arc2_delta_x[(30 - 1)], card1_card_core1_dda_arc2_delta_x[(30 - 1)], card1_card_core1_dda_arc2_delta_x[30-1:1]}) + $signed({card1_card_core1_dda_arc2_delta_y[(30 - 1)], card1_card_core1_dda_arc2_delta_y[(30 - 1)], card1_card_core1_dda_arc2_delta_y[30-1:1]}));
-    sum_le_0 = (($signed({card1_card_core1_dda_arc2_radial_error[(30 - 1)], card1_card_core1_dda_arc2_radial_error}) + half_xy) < 0);
-    sum_lt_0 = ((($signed({card1_card_core1_dda_arc2_radial_error[(30 - 1)], card1_card_core1_dda_arc2_radial_error}) + half_xy) + 1) < 0);
-    d_le_x = ((card1_card_core1_dda_arc2_delta_y < 0) != (($signed({cand_x[30-1:0], 1'b0}) + $signed({card1_card_core1_dda_arc2_delta_y[(30 - 1)], card1_card_core1_dda_arc2_delta_y})) < 0));
-    d_le_y = ((card1_card_core1_dda_arc2_delta_x < 0) != (($signed({cand_y[30-1:0], 1'b0}) + $signed({card1_card_core1_dda_arc2_delta_x[(30 - 1)], card1_card_core1_dda_arc2_delta_x})) < 0));
-    x_le_y = ((card1_card_core1_dda_arc2_delta_x == card1_card_core1_dda_arc2_delta_y) || ((card1_card_core1_dda_arc2_delta_x > card1_card_core1_dda_arc2_delta_y) && sum_le_0) || ((card1_card_core1_dda_arc2_delta_x < card1_card_core1_dda_arc2_delta_y) && (!sum_lt_0)));
+    twice_in = ($signed({card1_card_core1_dda_arc2_radial_error[(30 - 1)], card1_card_core1_dda_arc2_radial_error, 1'b0}) + card1_card_core1_dda_arc2_q_in);
+    twice_out = ($signed({card1_card_core1_dda_arc2_radial_error[(30 - 1)], card1_card_core1_dda_arc2_radial_error, 1'b0}) + card1_card_core1_dda_arc2_q_out);
+    error_half = (({card1_card_core1_dda_arc2_radial_error[(30 - 1)], card1_card_core1_dda_arc2_radial_error} + card1_card_core1_dda_arc2_half_sum[(30 + 1)-1:0]) + {30'h0, card1_card_core1_dda_arc2_x_inward});
+    d_le_in = (twice_in < 0);
+    d_le_out = ((card1_card_core1_dda_arc2_neg_in < 0) != (twice_out < 0));
+    x_le_y = (($signed(error_half) < 0) != card1_card_core1_dda_arc2_x_inward);
     go_x = over_x;
     go_y = over_y;
-    if (card1_card_core1_dda_arc2_is_line) begin
+    if (card1_card_core1_dda_arc2_run_line) begin
         go_x = (over_x && (!card1_card_core1_dda_arc2_at_x));
         go_y = (over_y && (!card1_card_core1_dda_arc2_at_y));
     end
-    else if ((card1_card_core1_dda_arc2_variant == 2)) begin
-        ahead_x = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({to_mag[(32 - 24)-1:0], card1_card_core1_dda_arc2_mag_y, 1'b0}));
-        ahead_y = ($signed({card1_card_core1_dda_arc2_acc_y[(32 - 1)], card1_card_core1_dda_arc2_acc_y}) + $signed({to_mag[(32 - 24)-1:0], card1_card_core1_dda_arc2_mag_x, 1'b0}));
+    else if ((card1_card_core1_dda_arc2_run_variant == 2)) begin
+        ahead_x = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({8'h0, card1_card_core1_dda_arc2_integrand_x, 1'b0}));
+        ahead_y = ($signed({card1_card_core1_dda_arc2_acc_y[(32 - 1)], card1_card_core1_dda_arc2_acc_y}) + $signed({8'h0, card1_card_core1_dda_arc2_integrand_y, 1'b0}));
         if ((over_x && (!over_y) && (ahead_y >= 0))) begin
             go_y = 1'b1;
         end
@@ -4846,11 +5321,11 @@ always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_neg_mag_y_st
             go_x = 1'b1;
         end
     end
-    else if ((card1_card_core1_dda_arc2_variant == 3)) begin
+    else if ((card1_card_core1_dda_arc2_run_variant == 3)) begin
         go_x = 1'b0;
         go_y = 1'b0;
         if ((over_x || over_y)) begin
-            if ((d_le_x && d_le_y)) begin
+            if ((d_le_in && d_le_out)) begin
                 go_x = 1'b1;
                 go_y = 1'b1;
             end
@@ -4862,8 +5337,8 @@ always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_neg_mag_y_st
             end
         end
     end
-    card1_card_core1_dda_arc2_it_tail = ((!card1_card_core1_dda_arc2_is_line) && ((card1_card_core1_dda_arc2_count_x == 0) || (card1_card_core1_dda_arc2_count_y == 0)));
-    if (((!card1_card_core1_dda_arc2_is_line) && (card1_card_core1_dda_arc2_at_x || card1_card_core1_dda_arc2_at_y))) begin
+    card1_card_core1_dda_arc2_it_tail = ((!card1_card_core1_dda_arc2_run_line) && (card1_card_core1_dda_arc2_at_x || card1_card_core1_dda_arc2_at_y));
+    if (((!card1_card_core1_dda_arc2_run_line) && (card1_card_core1_dda_arc2_at_x || card1_card_core1_dda_arc2_at_y))) begin
         go_x = (!card1_card_core1_dda_arc2_at_x);
         go_y = (!card1_card_core1_dda_arc2_at_y);
     end
@@ -4873,46 +5348,14 @@ always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_neg_mag_y_st
     if (((!sum_y[32]) && sum_y[(32 - 1)])) begin
         sum_y = 33'h7fffffff;
     end
-    less_x = sum_x[32-1:0];
-    if (go_x) begin
-        less_x = (sum_x[32-1:0] - thr_low);
-    end
-    less_y = sum_y[32-1:0];
-    if (go_y) begin
-        less_y = (sum_y[32-1:0] - thr_low);
-    end
-    card1_card_core1_dda_arc2_it_acc_x = $signed(less_x);
-    card1_card_core1_dda_arc2_it_acc_y = $signed(less_y);
+    card1_card_core1_dda_arc2_it_sum_x = $signed(sum_x[32-1:0]);
+    card1_card_core1_dda_arc2_it_sum_y = $signed(sum_y[32-1:0]);
     card1_card_core1_dda_arc2_it_step_x = go_x;
     card1_card_core1_dda_arc2_it_step_y = go_y;
-    card1_card_core1_dda_arc2_it_mag_x = card1_card_core1_dda_arc2_mag_x;
-    card1_card_core1_dda_arc2_it_mag_y = card1_card_core1_dda_arc2_mag_y;
-    card1_card_core1_dda_arc2_it_neg_mag_x = card1_card_core1_dda_arc2_neg_mag_x;
-    card1_card_core1_dda_arc2_it_neg_mag_y = card1_card_core1_dda_arc2_neg_mag_y;
-    if (go_x) begin
-        card1_card_core1_dda_arc2_it_mag_x = card1_card_core1_dda_arc2_mag_x_step;
-        card1_card_core1_dda_arc2_it_neg_mag_x = card1_card_core1_dda_arc2_neg_mag_x_step;
-    end
-    if (go_y) begin
-        card1_card_core1_dda_arc2_it_mag_y = card1_card_core1_dda_arc2_mag_y_step;
-        card1_card_core1_dda_arc2_it_neg_mag_y = card1_card_core1_dda_arc2_neg_mag_y_step;
-    end
-    if ((go_x && go_y)) begin
-        card1_card_core1_dda_arc2_it_error = cand_d;
-    end
-    else if (go_x) begin
-        card1_card_core1_dda_arc2_it_error = cand_x;
-    end
-    else if (go_y) begin
-        card1_card_core1_dda_arc2_it_error = cand_y;
-    end
-    else begin
-        card1_card_core1_dda_arc2_it_error = card1_card_core1_dda_arc2_radial_error;
-    end
     card1_card_core1_dda_arc2_it_finished = 1'b0;
     card1_card_core1_dda_arc2_it_next_piece = 1'b0;
     if ((((card1_card_core1_dda_arc2_near_x && go_x) || card1_card_core1_dda_arc2_at_x) && ((card1_card_core1_dda_arc2_near_y && go_y) || card1_card_core1_dda_arc2_at_y))) begin
-        if ((card1_card_core1_dda_arc2_is_line || (card1_card_core1_dda_arc2_crossings == 0))) begin
+        if ((card1_card_core1_dda_arc2_run_line || (card1_card_core1_dda_arc2_crossings == 0))) begin
             card1_card_core1_dda_arc2_it_finished = 1'b1;
         end
         else begin
@@ -4922,226 +5365,445 @@ always @(card1_card_core1_dda_arc2_mag_y, card1_card_core1_dda_arc2_neg_mag_y_st
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_control
+always @(card1_card_core1_dda_arc2_dec_finished, card1_card_core1_dda_arc2_run_active, card1_card_core1_dda_arc2_pending, card1_card_core1_dda_arc2_chk_error, card1_card_core1_dda_arc2_chk_zero, card1_card_core1_dda_arc2_state) begin: card1_card_core1_dda_arc2_handover_logic
+    reg free;
+    free = ((!card1_card_core1_dda_arc2_run_active) || (card1_card_core1_dda_arc2_pending && card1_card_core1_dda_arc2_dec_finished));
+    card1_card_core1_dda_arc2_hand_load = 1'b0;
+    card1_card_core1_dda_arc2_hand_end = 1'b0;
+    if ((card1_card_core1_dda_arc2_state == 3'b101)) begin
+        if ((card1_card_core1_dda_arc2_chk_zero || card1_card_core1_dda_arc2_chk_error)) begin
+            card1_card_core1_dda_arc2_hand_end = free;
+        end
+        else begin
+            card1_card_core1_dda_arc2_hand_load = free;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_setup_control
     if (card1_card_core1_dda_reset == 0) begin
         card1_card_core1_dda_arc2_radius_length <= 0;
-        card1_card_core1_dda_arc2_mag_y <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
+        card1_card_core1_dda_arc2_neg_ye <= 0;
+        card1_card_core1_dda_arc2_chk_quadrant <= 0;
+        card1_card_core1_dda_arc2_chk_target_y <= 0;
         card1_card_core1_dda_arc2_acc_bits <= 0;
-        card1_card_core1_dda_arc2_gap <= 0;
-        card1_card_core1_regs_fifo2_dda_busy <= 0;
+        card1_card_core1_dda_arc2_neg_ys <= 0;
+        card1_card_core1_dda_arc2_chk_zero <= 0;
+        card1_card_core1_dda_arc2_tot_y <= 0;
+        card1_card_core1_dda_arc2_mag_ys <= 0;
+        card1_card_core1_dda_arc2_gap_low <= 0;
         card1_card_core1_dda_arc2_variant <= 0;
         card1_card_core1_dda_arc2_root_all_ones <= 0;
-        card1_card_core1_regs_fifo2_steps_step_x <= 0;
+        card1_card_core1_dda_arc2_mag_xs <= 0;
         card1_card_core1_dda_arc2_multiplicand <= 0;
-        card1_card_core1_dda_arc2_target_y <= 0;
-        card1_card_core1_dda_arc2_x_inward <= 0;
-        card1_card_core1_dda_arc2_crossings <= 0;
+        card1_card_core1_dda_arc2_chk_target_x <= 0;
         card1_card_core1_dda_arc2_radius_q <= 0;
         card1_card_core1_dda_arc2_end_reaches_low <= 0;
-        card1_card_core1_dda_arc2_target_x <= 0;
+        card1_card_core1_dda_arc2_mag_ye <= 0;
         card1_card_core1_dda_arc2_root_length <= 0;
         card1_card_core1_dda_arc2_mac_op <= 0;
         card1_card_core1_dda_arc2_state <= 3'b000;
-        card1_card_core1_dda_arc2_xe <= 0;
+        card1_card_core1_dda_arc2_chk_threshold <= 0;
+        card1_card_core1_dda_arc2_chk_crossings <= 0;
+        card1_card_core1_dda_arc2_blend <= 0;
+        card1_card_core1_dda_arc2_tot_x <= 0;
         card1_card_core1_dda_arc2_multiplier <= 0;
-        card1_card_core1_dda_arc2_radius <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dda_error <= 0;
         card1_card_core1_dda_arc2_root <= 0;
         card1_card_core1_dda_arc2_root_bit <= 0;
         card1_card_core1_dda_arc2_lambda_shift <= 0;
         card1_card_core1_dda_arc2_radicand <= 0;
-        card1_card_core1_dda_arc2_ye <= 0;
-        card1_card_core1_dda_arc2_quadrant <= 0;
-        card1_card_core1_dda_arc2_neg_mag_y <= 0;
-        card1_card_core1_regs_fifo2_steps_dir_x <= 0;
-        card1_card_core1_regs_fifo2_steps_dir_y <= 0;
-        card1_card_core1_dda_arc2_xs <= 0;
-        card1_card_core1_regs_fifo2_steps_step_y <= 0;
+        card1_card_core1_dda_arc2_gap_carry <= 0;
+        card1_card_core1_dda_arc2_chk_left_y <= 0;
+        card1_card_core1_dda_arc2_chk_neg_in <= 0;
+        card1_card_core1_dda_arc2_gap_high <= 0;
+        card1_card_core1_dda_arc2_mag_xe <= 0;
+        card1_card_core1_dda_arc2_neg_xs <= 0;
         card1_card_core1_dda_arc2_mac_bit <= 0;
         card1_card_core1_dda_arc2_remainder <= 0;
         card1_card_core1_dda_arc2_is_line <= 0;
-        card1_card_core1_dda_arc2_radial_error <= 0;
-        card1_card_core1_dda_arc2_threshold <= 0;
-        card1_card_core1_dda_arc2_ys <= 0;
+        card1_card_core1_dda_arc2_chk_error <= 0;
+        card1_card_core1_dda_arc2_chk_acc_init <= 0;
         card1_card_core1_dda_arc2_end_beyond_high <= 0;
-        card1_card_core1_dda_arc2_acc_x <= 0;
-        card1_card_core1_dda_arc2_mag_x <= 0;
         card1_card_core1_dda_arc2_ccw <= 0;
-        card1_card_core1_dda_arc2_acc_y <= 0;
-        card1_card_core1_dda_arc2_neg_mag_x <= 0;
+        card1_card_core1_dda_arc2_neg_xe <= 0;
+        card1_card_core1_dda_arc2_chk_left_x <= 0;
     end
     else begin
+        case (card1_card_core1_dda_arc2_state)
+            3'b000: begin
+                if (card1_card_core1_regs_fifo2_sequencer2_dda_start) begin
+                    card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b0;
+                    card1_card_core1_dda_arc2_is_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
+                    card1_card_core1_dda_arc2_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
+                    card1_card_core1_dda_arc2_lambda_shift <= card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift;
+                    card1_card_core1_dda_arc2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
+                    card1_card_core1_dda_arc2_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
+                    card1_card_core1_dda_arc2_blend <= card1_card_core1_regs_fifo2_sequencer2_dda_blend;
+                    card1_card_core1_dda_arc2_tot_x <= (-1);
+                    card1_card_core1_dda_arc2_tot_y <= (-1);
+                    card1_card_core1_dda_arc2_neg_xs <= (card1_card_core1_regs_fifo2_sequencer2_dda_xs < 0);
+                    card1_card_core1_dda_arc2_neg_ys <= (card1_card_core1_regs_fifo2_sequencer2_dda_ys < 0);
+                    card1_card_core1_dda_arc2_neg_xe <= (card1_card_core1_regs_fifo2_sequencer2_dda_xe < 0);
+                    card1_card_core1_dda_arc2_neg_ye <= (card1_card_core1_regs_fifo2_sequencer2_dda_ye < 0);
+                    card1_card_core1_dda_arc2_mag_xs <= card1_card_core1_dda_arc2_cmd_mag_xs;
+                    card1_card_core1_dda_arc2_mag_ys <= card1_card_core1_dda_arc2_cmd_mag_ys;
+                    card1_card_core1_dda_arc2_mag_xe <= card1_card_core1_dda_arc2_cmd_mag_xe;
+                    card1_card_core1_dda_arc2_mag_ye <= card1_card_core1_dda_arc2_cmd_mag_ye;
+                    card1_card_core1_dda_arc2_gap_low <= ((1 << 25) - 1);
+                    card1_card_core1_dda_arc2_gap_high <= ((1 << (50 - 25)) - 1);
+                    card1_card_core1_dda_arc2_gap_carry <= 1'b0;
+                    card1_card_core1_dda_arc2_mac_op <= 0;
+                    card1_card_core1_dda_arc2_mac_bit <= 0;
+                    card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_cmd_mag_xs};
+                    card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_cmd_mag_xs;
+                    if (card1_card_core1_regs_fifo2_sequencer2_dda_line) begin
+                        card1_card_core1_dda_arc2_state <= 3'b100;
+                    end
+                    else begin
+                        card1_card_core1_dda_arc2_state <= 3'b001;
+                    end
+                end
+            end
+            3'b001: begin
+                card1_card_core1_dda_arc2_tot_x <= card1_card_core1_dda_arc2_tot_sum_x;
+                card1_card_core1_dda_arc2_tot_y <= card1_card_core1_dda_arc2_tot_sum_y;
+                card1_card_core1_dda_arc2_gap_high <= card1_card_core1_dda_arc2_gap_top;
+                card1_card_core1_dda_arc2_gap_carry <= 1'b0;
+                if (card1_card_core1_dda_arc2_multiplier[0]) begin
+                    card1_card_core1_dda_arc2_gap_low <= card1_card_core1_dda_arc2_gap_sum_low;
+                    card1_card_core1_dda_arc2_gap_high <= card1_card_core1_dda_arc2_gap_sum_high;
+                    card1_card_core1_dda_arc2_gap_carry <= card1_card_core1_dda_arc2_gap_sum_carry;
+                end
+                if (((card1_card_core1_dda_arc2_mac_op == 2) && (card1_card_core1_dda_arc2_mac_bit == 0))) begin
+                    card1_card_core1_dda_arc2_radicand <= (~{card1_card_core1_dda_arc2_gap_top[((2 * 24) - 25)-1:0], card1_card_core1_dda_arc2_gap_low});
+                end
+                if (($signed({1'b0, card1_card_core1_dda_arc2_mac_bit}) == (24 - 1))) begin
+                    card1_card_core1_dda_arc2_mac_bit <= 0;
+                    card1_card_core1_dda_arc2_mac_op <= (card1_card_core1_dda_arc2_mac_op + 1);
+                    case (card1_card_core1_dda_arc2_mac_op)
+                        'h0: begin
+                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ys};
+                            card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_ys;
+                        end
+                        'h1: begin
+                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_xe};
+                            card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_xe;
+                        end
+                        'h2: begin
+                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ye};
+                            card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_ye;
+                        end
+                        default: begin
+                            if ((card1_card_core1_dda_arc2_mag_xs > card1_card_core1_dda_arc2_mag_ys)) begin
+                                card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_xs};
+                            end
+                            else begin
+                                card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ys};
+                            end
+                            card1_card_core1_dda_arc2_remainder <= 0;
+                            card1_card_core1_dda_arc2_root <= 0;
+                            card1_card_core1_dda_arc2_root_bit <= 0;
+                            card1_card_core1_dda_arc2_root_length <= 0;
+                            card1_card_core1_dda_arc2_root_all_ones <= 1'b1;
+                            card1_card_core1_dda_arc2_state <= 3'b010;
+                        end
+                    endcase
+                end
+                else begin
+                    card1_card_core1_dda_arc2_mac_bit <= (card1_card_core1_dda_arc2_mac_bit + 1);
+                    card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
+                    card1_card_core1_dda_arc2_multiplier <= (card1_card_core1_dda_arc2_multiplier >>> 1);
+                end
+            end
+            3'b010: begin
+                if (card1_card_core1_dda_arc2_root_trial_fits) begin
+                    card1_card_core1_dda_arc2_remainder <= card1_card_core1_dda_arc2_root_trial_diff;
+                    card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b1};
+                end
+                else begin
+                    card1_card_core1_dda_arc2_remainder <= card1_card_core1_dda_arc2_root_trial_rem;
+                    card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b0};
+                    if ((card1_card_core1_dda_arc2_root != 0)) begin
+                        card1_card_core1_dda_arc2_root_all_ones <= 1'b0;
+                    end
+                end
+                if (((card1_card_core1_dda_arc2_root != 0) || card1_card_core1_dda_arc2_root_trial_fits)) begin
+                    card1_card_core1_dda_arc2_root_length <= (card1_card_core1_dda_arc2_root_length + 1);
+                end
+                card1_card_core1_dda_arc2_radicand <= (card1_card_core1_dda_arc2_radicand << 2);
+                card1_card_core1_dda_arc2_gap_high <= card1_card_core1_dda_arc2_gap_top;
+                card1_card_core1_dda_arc2_gap_carry <= 1'b0;
+                case (card1_card_core1_dda_arc2_root_bit)
+                    'h0: begin
+                        card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
+                    end
+                    'h1: begin
+                        card1_card_core1_dda_arc2_gap_low <= card1_card_core1_dda_arc2_gap_sum_low;
+                        card1_card_core1_dda_arc2_gap_high <= card1_card_core1_dda_arc2_gap_sum_high;
+                        card1_card_core1_dda_arc2_gap_carry <= card1_card_core1_dda_arc2_gap_sum_carry;
+                        card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
+                    end
+                    'h2: begin
+                        card1_card_core1_dda_arc2_end_reaches_low <= (!card1_card_core1_dda_arc2_gap_top[((50 - 25) - 1)]);
+                        card1_card_core1_dda_arc2_gap_low <= card1_card_core1_dda_arc2_gap_sum_low;
+                        card1_card_core1_dda_arc2_gap_high <= card1_card_core1_dda_arc2_gap_sum_high;
+                        card1_card_core1_dda_arc2_gap_carry <= card1_card_core1_dda_arc2_gap_sum_carry;
+                    end
+                    'h3: begin
+                        card1_card_core1_dda_arc2_end_beyond_high <= (!card1_card_core1_dda_arc2_gap_top[((50 - 25) - 1)]);
+                    end
+                endcase
+                if (($signed({1'b0, card1_card_core1_dda_arc2_root_bit}) == (24 - 1))) begin
+                    card1_card_core1_dda_arc2_state <= 3'b011;
+                end
+                else begin
+                    card1_card_core1_dda_arc2_root_bit <= (card1_card_core1_dda_arc2_root_bit + 1);
+                end
+            end
+            3'b011: begin
+                card1_card_core1_dda_arc2_radius_q <= ({1'b0, card1_card_core1_dda_arc2_root} + {24'h0, card1_card_core1_dda_arc2_root_trial_fits});
+                if ((card1_card_core1_dda_arc2_root_trial_fits && card1_card_core1_dda_arc2_root_all_ones)) begin
+                    card1_card_core1_dda_arc2_radius_length <= (card1_card_core1_dda_arc2_root_length + 1);
+                end
+                else begin
+                    card1_card_core1_dda_arc2_radius_length <= card1_card_core1_dda_arc2_root_length;
+                end
+                card1_card_core1_dda_arc2_state <= 3'b100;
+            end
+            3'b100: begin
+                card1_card_core1_dda_arc2_chk_error <= card1_card_core1_dda_arc2_check_error;
+                card1_card_core1_dda_arc2_chk_zero <= card1_card_core1_dda_arc2_check_zero;
+                card1_card_core1_dda_arc2_chk_threshold <= card1_card_core1_dda_arc2_check_threshold;
+                card1_card_core1_dda_arc2_chk_acc_init <= card1_card_core1_dda_arc2_check_acc_init;
+                card1_card_core1_dda_arc2_chk_quadrant <= card1_card_core1_dda_arc2_check_quadrant;
+                card1_card_core1_dda_arc2_chk_crossings <= card1_card_core1_dda_arc2_check_crossings;
+                card1_card_core1_dda_arc2_chk_target_x <= card1_card_core1_dda_arc2_check_target_x;
+                card1_card_core1_dda_arc2_chk_target_y <= card1_card_core1_dda_arc2_check_target_y;
+                card1_card_core1_dda_arc2_chk_left_x <= card1_card_core1_dda_arc2_check_left_x;
+                card1_card_core1_dda_arc2_chk_left_y <= card1_card_core1_dda_arc2_check_left_y;
+                card1_card_core1_dda_arc2_chk_neg_in <= card1_card_core1_dda_arc2_check_neg_in;
+                card1_card_core1_dda_arc2_state <= 3'b101;
+            end
+            default: begin
+                if ((card1_card_core1_dda_arc2_hand_load || card1_card_core1_dda_arc2_hand_end)) begin
+                    card1_card_core1_dda_arc2_state <= 3'b000;
+                end
+                if ((card1_card_core1_dda_arc2_hand_end && (!card1_card_core1_dda_arc2_chk_zero))) begin
+                    card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b1;
+                end
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_run_control
+    reg [24-1:0] step_op_x;
+    reg [24-1:0] step_op_y;
+    reg [24-1:0] base_x;
+    reg [24-1:0] base_y;
+    reg [24-1:0] base_op_x;
+    reg [24-1:0] base_op_y;
+    reg [32-1:0] less_x;
+    reg [32-1:0] less_y;
+    reg [31-1:0] inverse;
+    reg [29-1:0] neg_base;
+    reg [31-1:0] half_base;
+    reg [32-1:0] q_in_base;
+    reg [32-1:0] q_out_base;
+    reg [2-1:0] in_out;
+    reg [3-1:0] q_in_op;
+    reg [3-1:0] q_out_op;
+    reg [30-1:0] error_op;
+    reg [30-1:0] error_sum;
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_q_out <= 0;
+        card1_card_core1_dda_arc2_run_end_y <= 0;
+        card1_card_core1_dda_arc2_stepped_y <= 0;
+        card1_card_core1_dda_arc2_dec_sum_y <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
+        card1_card_core1_dda_arc2_half_sum <= 0;
+        card1_card_core1_dda_arc2_pos_out <= 0;
+        card1_card_core1_dda_arc2_dec_out <= 0;
+        card1_card_core1_dda_arc2_left_y <= 0;
+        card1_card_core1_dda_arc2_neg_in <= 0;
+        card1_card_core1_dda_arc2_dec_y_down <= 0;
+        card1_card_core1_dda_arc2_dec_next_piece <= 0;
+        card1_card_core1_dda_arc2_dec_y_move <= 0;
+        card1_card_core1_regs_fifo2_steps_step_x <= 0;
+        card1_card_core1_dda_arc2_dec_in <= 0;
+        card1_card_core1_dda_arc2_run_variant <= 0;
+        card1_card_core1_dda_arc2_dec_step_y <= 0;
+        card1_card_core1_dda_arc2_run_end_x <= 0;
+        card1_card_core1_dda_arc2_run_up <= 0;
+        card1_card_core1_dda_arc2_dec_sum_x <= 0;
+        card1_card_core1_dda_arc2_target_y <= 0;
+        card1_card_core1_dda_arc2_x_inward <= 0;
+        card1_card_core1_dda_arc2_target_x <= 0;
+        card1_card_core1_dda_arc2_crossings <= 0;
+        card1_card_core1_dda_arc2_dec_x_down <= 0;
+        card1_card_core1_dda_arc2_dec_step_x <= 0;
+        card1_card_core1_dda_arc2_left_x <= 0;
+        card1_card_core1_dda_arc2_dec_finished <= 0;
+        card1_card_core1_dda_arc2_dec_tail <= 0;
+        card1_card_core1_dda_arc2_radius <= 0;
+        card1_card_core1_dda_arc2_integrand_x <= 0;
+        card1_card_core1_dda_arc2_run_active <= 0;
+        card1_card_core1_regs_fifo2_steps_dir_x <= 0;
+        card1_card_core1_regs_fifo2_steps_dir_y <= 0;
+        card1_card_core1_dda_arc2_quadrant <= 0;
+        card1_card_core1_dda_arc2_integrand_y <= 0;
+        card1_card_core1_regs_fifo2_steps_step_y <= 0;
+        card1_card_core1_dda_arc2_pending <= 0;
+        card1_card_core1_dda_arc2_stepped_x <= 0;
+        card1_card_core1_dda_arc2_radial_error <= 0;
+        card1_card_core1_dda_arc2_run_ccw <= 0;
+        card1_card_core1_dda_arc2_threshold <= 0;
+        card1_card_core1_dda_arc2_run_blend <= 0;
+        card1_card_core1_dda_arc2_acc_x <= 0;
+        card1_card_core1_dda_arc2_dec_x_move <= 0;
+        card1_card_core1_dda_arc2_acc_y <= 0;
+        card1_card_core1_dda_arc2_q_in <= 0;
+        card1_card_core1_dda_arc2_run_right <= 0;
+        card1_card_core1_dda_arc2_run_line <= 0;
+    end
+    else begin
+        step_op_x = 24'h0;
+        step_op_y = 24'h0;
+        base_x = 24'h0;
+        base_y = 24'h0;
+        base_op_x = 24'h0;
+        base_op_y = 24'h0;
+        less_x = 32'h0;
+        less_y = 32'h0;
+        inverse = 31'h0;
+        neg_base = 29'h0;
+        half_base = 31'h0;
+        q_in_base = 32'h0;
+        q_out_base = 32'h0;
+        in_out = 2'h0;
+        q_in_op = 3'h0;
+        q_out_op = 3'h0;
+        error_op = 30'h0;
+        error_sum = 30'h0;
         card1_card_core1_regs_fifo2_steps_step_x <= 1'b0;
         card1_card_core1_regs_fifo2_steps_step_y <= 1'b0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b0;
-        if ((card1_card_core1_dda_arc2_state == 3'b000)) begin
-            if (card1_card_core1_regs_fifo2_sequencer2_dda_start) begin
-                card1_card_core1_regs_fifo2_dda_busy <= 1'b1;
-                card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b0;
-                card1_card_core1_dda_arc2_is_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
-                card1_card_core1_dda_arc2_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
-                card1_card_core1_dda_arc2_lambda_shift <= card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift;
-                card1_card_core1_dda_arc2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
-                card1_card_core1_dda_arc2_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
-                card1_card_core1_dda_arc2_xs <= card1_card_core1_regs_fifo2_sequencer2_dda_xs;
-                card1_card_core1_dda_arc2_ys <= card1_card_core1_regs_fifo2_sequencer2_dda_ys;
-                card1_card_core1_dda_arc2_xe <= card1_card_core1_regs_fifo2_sequencer2_dda_xe;
-                card1_card_core1_dda_arc2_ye <= card1_card_core1_regs_fifo2_sequencer2_dda_ye;
-                card1_card_core1_dda_arc2_gap <= (-1);
-                card1_card_core1_dda_arc2_mac_op <= 0;
-                card1_card_core1_dda_arc2_mac_bit <= 0;
-                card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_cmd_mag_xs};
-                card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_cmd_mag_xs;
-                if (card1_card_core1_regs_fifo2_sequencer2_dda_line) begin
-                    card1_card_core1_dda_arc2_state <= 3'b100;
-                end
-                else begin
-                    card1_card_core1_dda_arc2_state <= 3'b001;
-                end
-            end
-        end
-        else if ((card1_card_core1_dda_arc2_state == 3'b001)) begin
-            if (card1_card_core1_dda_arc2_multiplier[0]) begin
-                card1_card_core1_dda_arc2_gap <= card1_card_core1_dda_arc2_gap_sum;
-            end
-            if (((card1_card_core1_dda_arc2_mac_op == 2) && (card1_card_core1_dda_arc2_mac_bit == 0))) begin
-                card1_card_core1_dda_arc2_radicand <= (~card1_card_core1_dda_arc2_gap[(2 * 24)-1:0]);
-            end
-            if (($signed({1'b0, card1_card_core1_dda_arc2_mac_bit}) == (24 - 1))) begin
-                card1_card_core1_dda_arc2_mac_bit <= 0;
-                card1_card_core1_dda_arc2_mac_op <= (card1_card_core1_dda_arc2_mac_op + 1);
-                case (card1_card_core1_dda_arc2_mac_op)
-                    'h0: begin
-                        card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ys};
-                        card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_ys;
-                    end
-                    'h1: begin
-                        card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_xe};
-                        card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_xe;
-                    end
-                    'h2: begin
-                        card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ye};
-                        card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_ye;
-                    end
-                    default: begin
-                        if ((card1_card_core1_dda_arc2_mag_xs > card1_card_core1_dda_arc2_mag_ys)) begin
-                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_xs};
-                        end
-                        else begin
-                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ys};
-                        end
-                        card1_card_core1_dda_arc2_remainder <= 0;
-                        card1_card_core1_dda_arc2_root <= 0;
-                        card1_card_core1_dda_arc2_root_bit <= 0;
-                        card1_card_core1_dda_arc2_root_length <= 0;
-                        card1_card_core1_dda_arc2_root_all_ones <= 1'b1;
-                        card1_card_core1_dda_arc2_state <= 3'b010;
-                    end
-                endcase
-            end
-            else begin
-                card1_card_core1_dda_arc2_mac_bit <= (card1_card_core1_dda_arc2_mac_bit + 1);
-                card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
-                card1_card_core1_dda_arc2_multiplier <= (card1_card_core1_dda_arc2_multiplier >>> 1);
-            end
-        end
-        else if ((card1_card_core1_dda_arc2_state == 3'b010)) begin
-            if (card1_card_core1_dda_arc2_root_trial_fits) begin
-                card1_card_core1_dda_arc2_remainder <= card1_card_core1_dda_arc2_root_trial_diff;
-                card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b1};
-            end
-            else begin
-                card1_card_core1_dda_arc2_remainder <= card1_card_core1_dda_arc2_root_trial_rem;
-                card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b0};
-                if ((card1_card_core1_dda_arc2_root != 0)) begin
-                    card1_card_core1_dda_arc2_root_all_ones <= 1'b0;
-                end
-            end
-            if (((card1_card_core1_dda_arc2_root != 0) || card1_card_core1_dda_arc2_root_trial_fits)) begin
-                card1_card_core1_dda_arc2_root_length <= (card1_card_core1_dda_arc2_root_length + 1);
-            end
-            card1_card_core1_dda_arc2_radicand <= (card1_card_core1_dda_arc2_radicand << 2);
-            case (card1_card_core1_dda_arc2_root_bit)
-                'h0: begin
-                    card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
-                end
-                'h1: begin
-                    card1_card_core1_dda_arc2_gap <= card1_card_core1_dda_arc2_gap_sum;
-                    card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
-                end
-                'h2: begin
-                    card1_card_core1_dda_arc2_end_reaches_low <= (!card1_card_core1_dda_arc2_gap[(50 - 1)]);
-                    card1_card_core1_dda_arc2_gap <= card1_card_core1_dda_arc2_gap_sum;
-                end
-                'h3: begin
-                    card1_card_core1_dda_arc2_end_beyond_high <= (!card1_card_core1_dda_arc2_gap[(50 - 1)]);
-                end
-            endcase
-            if (($signed({1'b0, card1_card_core1_dda_arc2_root_bit}) == (24 - 1))) begin
-                card1_card_core1_dda_arc2_state <= 3'b011;
-            end
-            else begin
-                card1_card_core1_dda_arc2_root_bit <= (card1_card_core1_dda_arc2_root_bit + 1);
-            end
-        end
-        else if ((card1_card_core1_dda_arc2_state == 3'b011)) begin
-            card1_card_core1_dda_arc2_radius_q <= ({1'b0, card1_card_core1_dda_arc2_root} + {24'h0, card1_card_core1_dda_arc2_root_trial_fits});
-            if ((card1_card_core1_dda_arc2_root_trial_fits && card1_card_core1_dda_arc2_root_all_ones)) begin
-                card1_card_core1_dda_arc2_radius_length <= (card1_card_core1_dda_arc2_root_length + 1);
-            end
-            else begin
-                card1_card_core1_dda_arc2_radius_length <= card1_card_core1_dda_arc2_root_length;
-            end
-            card1_card_core1_dda_arc2_state <= 3'b100;
-        end
-        else if ((card1_card_core1_dda_arc2_state == 3'b100)) begin
-            card1_card_core1_dda_arc2_acc_x <= card1_card_core1_dda_arc2_chk_acc_init;
-            card1_card_core1_dda_arc2_acc_y <= card1_card_core1_dda_arc2_chk_acc_init;
-            card1_card_core1_dda_arc2_threshold <= card1_card_core1_dda_arc2_chk_threshold;
-            card1_card_core1_dda_arc2_radial_error <= 0;
-            card1_card_core1_dda_arc2_quadrant <= card1_card_core1_dda_arc2_chk_quadrant;
-            card1_card_core1_dda_arc2_x_inward <= (card1_card_core1_dda_arc2_chk_quadrant[0] != card1_card_core1_dda_arc2_ccw);
-            card1_card_core1_dda_arc2_crossings <= card1_card_core1_dda_arc2_chk_crossings;
-            card1_card_core1_dda_arc2_mag_x <= card1_card_core1_dda_arc2_chk_mag_x;
-            card1_card_core1_dda_arc2_mag_y <= card1_card_core1_dda_arc2_chk_mag_y;
-            card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_chk_target_x;
-            card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_chk_target_y;
-            card1_card_core1_dda_arc2_radius <= card1_card_core1_dda_arc2_chk_radius;
-            card1_card_core1_dda_arc2_neg_mag_x <= card1_card_core1_dda_arc2_chk_neg_mag_x;
-            card1_card_core1_dda_arc2_neg_mag_y <= card1_card_core1_dda_arc2_chk_neg_mag_y;
-            card1_card_core1_dda_arc2_state <= 3'b101;
-            if ((card1_card_core1_dda_arc2_is_line && (card1_card_core1_dda_arc2_mag_xe == 0) && (card1_card_core1_dda_arc2_mag_ye == 0))) begin
-                card1_card_core1_regs_fifo2_dda_busy <= 1'b0;
-                card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
-                card1_card_core1_dda_arc2_state <= 3'b000;
-            end
-            else if (((!card1_card_core1_dda_arc2_is_line) && card1_card_core1_dda_arc2_chk_error)) begin
-                card1_card_core1_regs_fifo2_dda_busy <= 1'b0;
-                card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b1;
-                card1_card_core1_dda_arc2_state <= 3'b000;
-            end
-        end
-        else if (card1_card_core1_regs_fifo2_dda_advance) begin
+        card1_card_core1_dda_arc2_pending <= 1'b0;
+        card1_card_core1_dda_arc2_dec_step_x <= card1_card_core1_dda_arc2_it_step_x;
+        card1_card_core1_dda_arc2_dec_step_y <= card1_card_core1_dda_arc2_it_step_y;
+        card1_card_core1_dda_arc2_dec_tail <= card1_card_core1_dda_arc2_it_tail;
+        card1_card_core1_dda_arc2_dec_finished <= card1_card_core1_dda_arc2_it_finished;
+        card1_card_core1_dda_arc2_dec_next_piece <= card1_card_core1_dda_arc2_it_next_piece;
+        card1_card_core1_dda_arc2_dec_x_move <= (card1_card_core1_dda_arc2_it_step_x && (!card1_card_core1_dda_arc2_run_line));
+        card1_card_core1_dda_arc2_dec_x_down <= (card1_card_core1_dda_arc2_it_step_x && card1_card_core1_dda_arc2_x_inward && (!card1_card_core1_dda_arc2_run_line));
+        card1_card_core1_dda_arc2_dec_y_move <= (card1_card_core1_dda_arc2_it_step_y && (!card1_card_core1_dda_arc2_run_line));
+        card1_card_core1_dda_arc2_dec_y_down <= (card1_card_core1_dda_arc2_it_step_y && (!card1_card_core1_dda_arc2_x_inward) && (!card1_card_core1_dda_arc2_run_line));
+        card1_card_core1_dda_arc2_dec_in <= (((card1_card_core1_dda_arc2_it_step_x && card1_card_core1_dda_arc2_x_inward) || (card1_card_core1_dda_arc2_it_step_y && (!card1_card_core1_dda_arc2_x_inward))) && (!card1_card_core1_dda_arc2_run_line));
+        card1_card_core1_dda_arc2_dec_out <= (((card1_card_core1_dda_arc2_it_step_x && (!card1_card_core1_dda_arc2_x_inward)) || (card1_card_core1_dda_arc2_it_step_y && card1_card_core1_dda_arc2_x_inward)) && (!card1_card_core1_dda_arc2_run_line));
+        card1_card_core1_dda_arc2_dec_sum_x <= card1_card_core1_dda_arc2_it_sum_x;
+        card1_card_core1_dda_arc2_dec_sum_y <= card1_card_core1_dda_arc2_it_sum_y;
+        if ((card1_card_core1_dda_arc2_run_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_arc2_pending))) begin
+            card1_card_core1_dda_arc2_pending <= 1'b1;
             card1_card_core1_regs_fifo2_steps_step_x <= card1_card_core1_dda_arc2_it_step_x;
             card1_card_core1_regs_fifo2_steps_step_y <= card1_card_core1_dda_arc2_it_step_y;
             card1_card_core1_regs_fifo2_steps_dir_x <= card1_card_core1_dda_arc2_it_dir_x;
             card1_card_core1_regs_fifo2_steps_dir_y <= card1_card_core1_dda_arc2_it_dir_y;
-            if ((!card1_card_core1_dda_arc2_it_tail)) begin
-                card1_card_core1_dda_arc2_acc_x <= card1_card_core1_dda_arc2_it_acc_x;
-                card1_card_core1_dda_arc2_acc_y <= card1_card_core1_dda_arc2_it_acc_y;
+            card1_card_core1_regs_fifo2_sequencer2_dda_done <= card1_card_core1_dda_arc2_it_finished;
+        end
+        else if (card1_card_core1_dda_arc2_pending) begin
+            if ((!card1_card_core1_dda_arc2_dec_tail)) begin
+                less_x = card1_card_core1_dda_arc2_dec_sum_x[32-1:0];
+                if (card1_card_core1_dda_arc2_dec_step_x) begin
+                    less_x = (card1_card_core1_dda_arc2_dec_sum_x[32-1:0] - {3'h0, card1_card_core1_dda_arc2_threshold});
+                end
+                less_y = card1_card_core1_dda_arc2_dec_sum_y[32-1:0];
+                if (card1_card_core1_dda_arc2_dec_step_y) begin
+                    less_y = (card1_card_core1_dda_arc2_dec_sum_y[32-1:0] - {3'h0, card1_card_core1_dda_arc2_threshold});
+                end
+                card1_card_core1_dda_arc2_acc_x <= $signed(less_x);
+                card1_card_core1_dda_arc2_acc_y <= $signed(less_y);
             end
-            card1_card_core1_dda_arc2_mag_x <= card1_card_core1_dda_arc2_it_mag_x;
-            card1_card_core1_dda_arc2_mag_y <= card1_card_core1_dda_arc2_it_mag_y;
-            card1_card_core1_dda_arc2_neg_mag_x <= card1_card_core1_dda_arc2_it_neg_mag_x;
-            card1_card_core1_dda_arc2_neg_mag_y <= card1_card_core1_dda_arc2_it_neg_mag_y;
-            card1_card_core1_dda_arc2_radial_error <= card1_card_core1_dda_arc2_it_error;
-            if (card1_card_core1_dda_arc2_it_finished) begin
-                card1_card_core1_regs_fifo2_dda_busy <= 1'b0;
-                card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
-                card1_card_core1_dda_arc2_state <= 3'b000;
+            error_op = {5'h0, card1_card_core1_dda_arc2_pos_out, 1'b1};
+            if ((card1_card_core1_dda_arc2_dec_in && card1_card_core1_dda_arc2_dec_out)) begin
+                error_op = {card1_card_core1_dda_arc2_half_sum[(30 - 1)-1:0], 1'b1};
             end
-            if (card1_card_core1_dda_arc2_it_next_piece) begin
+            else if (card1_card_core1_dda_arc2_dec_in) begin
+                error_op = {card1_card_core1_dda_arc2_neg_in[(30 - 1)-1:0], 1'b1};
+            end
+            error_sum = ((card1_card_core1_dda_arc2_radial_error[30-1:0] + error_op) + {29'h0, (card1_card_core1_dda_arc2_dec_in && card1_card_core1_dda_arc2_dec_out)});
+            if ((card1_card_core1_dda_arc2_dec_in || card1_card_core1_dda_arc2_dec_out)) begin
+                card1_card_core1_dda_arc2_radial_error <= $signed(error_sum);
+            end
+            card1_card_core1_dda_arc2_left_x <= (card1_card_core1_dda_arc2_left_x - $signed({26'h0, card1_card_core1_dda_arc2_dec_step_x}));
+            card1_card_core1_dda_arc2_left_y <= (card1_card_core1_dda_arc2_left_y - $signed({26'h0, card1_card_core1_dda_arc2_dec_step_y}));
+            if (card1_card_core1_dda_arc2_dec_x_down) begin
+                step_op_y = 16777215;
+            end
+            else if (card1_card_core1_dda_arc2_dec_x_move) begin
+                step_op_y = 1;
+            end
+            if (card1_card_core1_dda_arc2_dec_y_down) begin
+                step_op_x = 16777215;
+            end
+            else if (card1_card_core1_dda_arc2_dec_y_move) begin
+                step_op_x = 1;
+            end
+            card1_card_core1_dda_arc2_integrand_y <= (card1_card_core1_dda_arc2_integrand_y + step_op_y);
+            card1_card_core1_dda_arc2_integrand_x <= (card1_card_core1_dda_arc2_integrand_x + step_op_x);
+            base_y = card1_card_core1_dda_arc2_stepped_y;
+            base_op_y = step_op_y;
+            base_x = card1_card_core1_dda_arc2_stepped_x;
+            base_op_x = step_op_x;
+            if (card1_card_core1_dda_arc2_dec_next_piece) begin
+                base_op_y = 1;
+                base_y = 0;
+                base_op_x = 1;
+                base_x = 0;
+                if (card1_card_core1_dda_arc2_x_inward) begin
+                    base_op_x = 16777215;
+                    base_x = card1_card_core1_dda_arc2_radius;
+                end
+                else begin
+                    base_op_y = 16777215;
+                    base_y = card1_card_core1_dda_arc2_radius;
+                end
+            end
+            card1_card_core1_dda_arc2_stepped_y <= (base_y + base_op_y);
+            card1_card_core1_dda_arc2_stepped_x <= (base_x + base_op_x);
+            in_out = {card1_card_core1_dda_arc2_dec_in, card1_card_core1_dda_arc2_dec_out};
+            neg_base = card1_card_core1_dda_arc2_neg_in;
+            half_base = card1_card_core1_dda_arc2_half_sum;
+            q_in_base = card1_card_core1_dda_arc2_q_in;
+            q_out_base = card1_card_core1_dda_arc2_q_out;
+            q_in_op = {card1_card_core1_dda_arc2_dec_in, card1_card_core1_dda_arc2_dec_out, 1'b0};
+            q_out_op = {card1_card_core1_dda_arc2_dec_out, card1_card_core1_dda_arc2_dec_in, 1'b0};
+            card1_card_core1_dda_arc2_pos_out <= (card1_card_core1_dda_arc2_pos_out + {23'h0, card1_card_core1_dda_arc2_dec_out});
+            if (card1_card_core1_dda_arc2_dec_next_piece) begin
+                inverse = (~{7'h0, card1_card_core1_dda_arc2_radius});
+                neg_base = inverse[(30 - 1)-1:0];
+                half_base = inverse[(30 + 1)-1:0];
+                q_in_base = {inverse[30-1:0], 2'h3};
+                q_out_base = {inverse[(30 + 1)-1:0], 1'b1};
+                in_out = 1;
+                q_in_op = 4;
+                q_out_op = 4;
+                card1_card_core1_dda_arc2_pos_out <= 0;
+            end
+            neg_base = (neg_base + {28'h0, (card1_card_core1_dda_arc2_dec_in || card1_card_core1_dda_arc2_dec_next_piece)});
+            half_base = ((half_base + {30'h0, in_out[1]}) + {30'h0, in_out[0]});
+            q_in_base = (q_in_base + {29'h0, q_in_op});
+            q_out_base = (q_out_base + {29'h0, q_out_op});
+            card1_card_core1_dda_arc2_neg_in <= $signed(neg_base);
+            card1_card_core1_dda_arc2_half_sum <= $signed(half_base);
+            card1_card_core1_dda_arc2_q_in <= $signed(q_in_base);
+            card1_card_core1_dda_arc2_q_out <= $signed(q_out_base);
+            if (card1_card_core1_dda_arc2_dec_finished) begin
+                card1_card_core1_dda_arc2_run_active <= 1'b0;
+            end
+            if (card1_card_core1_dda_arc2_dec_next_piece) begin
                 card1_card_core1_dda_arc2_x_inward <= (!card1_card_core1_dda_arc2_x_inward);
                 if (card1_card_core1_dda_arc2_x_inward) begin
                     card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_radius;
@@ -5152,10 +5814,10 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
                     card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_radius;
                 end
                 if ((card1_card_core1_dda_arc2_crossings == 1)) begin
-                    card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_mag_xe;
-                    card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_mag_ye;
+                    card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_run_end_x;
+                    card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_run_end_y;
                 end
-                if (card1_card_core1_dda_arc2_ccw) begin
+                if (card1_card_core1_dda_arc2_run_ccw) begin
                     card1_card_core1_dda_arc2_quadrant <= (card1_card_core1_dda_arc2_quadrant + 1);
                 end
                 else begin
@@ -5164,11 +5826,77 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
                 card1_card_core1_dda_arc2_crossings <= (card1_card_core1_dda_arc2_crossings - 1);
             end
         end
+        if ((card1_card_core1_dda_arc2_hand_end && card1_card_core1_dda_arc2_chk_zero)) begin
+            card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
+            card1_card_core1_dda_arc2_quadrant <= 0;
+        end
+        if (card1_card_core1_dda_arc2_hand_load) begin
+            card1_card_core1_dda_arc2_run_active <= 1'b1;
+            card1_card_core1_dda_arc2_run_line <= card1_card_core1_dda_arc2_is_line;
+            card1_card_core1_dda_arc2_run_variant <= card1_card_core1_dda_arc2_variant;
+            card1_card_core1_dda_arc2_run_ccw <= card1_card_core1_dda_arc2_ccw;
+            card1_card_core1_dda_arc2_run_blend <= card1_card_core1_dda_arc2_blend;
+            card1_card_core1_dda_arc2_run_end_x <= card1_card_core1_dda_arc2_mag_xe;
+            card1_card_core1_dda_arc2_run_end_y <= card1_card_core1_dda_arc2_mag_ye;
+            card1_card_core1_dda_arc2_run_right <= (!card1_card_core1_dda_arc2_neg_xe);
+            card1_card_core1_dda_arc2_run_up <= (!card1_card_core1_dda_arc2_neg_ye);
+            card1_card_core1_dda_arc2_acc_x <= card1_card_core1_dda_arc2_chk_acc_init;
+            card1_card_core1_dda_arc2_acc_y <= card1_card_core1_dda_arc2_chk_acc_init;
+            card1_card_core1_dda_arc2_threshold <= card1_card_core1_dda_arc2_chk_threshold;
+            card1_card_core1_dda_arc2_radial_error <= 0;
+            card1_card_core1_dda_arc2_quadrant <= card1_card_core1_dda_arc2_chk_quadrant;
+            card1_card_core1_dda_arc2_x_inward <= (card1_card_core1_dda_arc2_chk_quadrant[0] != card1_card_core1_dda_arc2_ccw);
+            card1_card_core1_dda_arc2_crossings <= card1_card_core1_dda_arc2_chk_crossings;
+            card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_chk_target_x;
+            card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_chk_target_y;
+            card1_card_core1_dda_arc2_radius <= card1_card_core1_dda_arc2_radius_q[24-1:0];
+            card1_card_core1_dda_arc2_left_x <= card1_card_core1_dda_arc2_chk_left_x;
+            card1_card_core1_dda_arc2_left_y <= card1_card_core1_dda_arc2_chk_left_y;
+            card1_card_core1_dda_arc2_integrand_x <= card1_card_core1_dda_arc2_first_integrand_x;
+            card1_card_core1_dda_arc2_integrand_y <= card1_card_core1_dda_arc2_first_integrand_y;
+            card1_card_core1_dda_arc2_stepped_x <= card1_card_core1_dda_arc2_first_stepped_x;
+            card1_card_core1_dda_arc2_stepped_y <= card1_card_core1_dda_arc2_first_stepped_y;
+            card1_card_core1_dda_arc2_neg_in <= card1_card_core1_dda_arc2_chk_neg_in;
+            card1_card_core1_dda_arc2_pos_out <= card1_card_core1_dda_arc2_first_out;
+            card1_card_core1_dda_arc2_half_sum <= card1_card_core1_dda_arc2_first_half;
+            card1_card_core1_dda_arc2_q_in <= card1_card_core1_dda_arc2_first_q_in;
+            card1_card_core1_dda_arc2_q_out <= card1_card_core1_dda_arc2_first_q_out;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_left_output
+    reg signed [27-1:0] larger;
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_regs_fifo2_feed_rate2_stop_left <= 134217727;
+    end
+    else begin
+        larger = 0;
+        if ((card1_card_core1_dda_arc2_left_x >= card1_card_core1_dda_arc2_left_y)) begin
+            larger = card1_card_core1_dda_arc2_left_x;
+        end
+        else begin
+            larger = card1_card_core1_dda_arc2_left_y;
+        end
+        if ((card1_card_core1_dda_arc2_run_active && (!card1_card_core1_dda_arc2_run_blend))) begin
+            if ((larger < 0)) begin
+                card1_card_core1_regs_fifo2_feed_rate2_stop_left <= 0;
+            end
+            else begin
+                card1_card_core1_regs_fifo2_feed_rate2_stop_left <= larger[27-1:0];
+            end
+        end
+        else begin
+            card1_card_core1_regs_fifo2_feed_rate2_stop_left <= 134217727;
+        end
     end
 end
 
 
 
 assign card1_card_core1_regs_fifo2__status2_quadrant = card1_card_core1_dda_arc2_quadrant;
+assign card1_card_core1_regs_fifo2_sequencer2_dda_ready = (card1_card_core1_dda_arc2_state == 3'b000);
+assign card1_card_core1_regs_fifo2_dda_busy = ((card1_card_core1_dda_arc2_state != 3'b000) || (card1_card_core1_dda_arc2_run_active && (!(card1_card_core1_dda_arc2_pending && card1_card_core1_dda_arc2_dec_finished))));
 
 endmodule

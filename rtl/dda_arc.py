@@ -1,7 +1,10 @@
-"""DDA arc and line interpolator: one iteration per clock in which ``advance`` is high.
+"""DDA arc and line interpolator: one iteration per ``advance`` pulse, in two clocks.
 
 The golden model is ``sim/dda_model.py``; its docstring and ``docs/dda.md``
-give the algorithm.  The hardware has three parts:
+give the algorithm.  Two stages work in parallel: the setup stage (setup and
+check below) prepares the next move while the run stage iterates the current
+one, and hands it over in the clock after the running move's last iteration.
+The hardware has three parts:
 
 * setup (arcs only): one adder-subtractor forms, by shift-add (one bit per
   clock, 4 * coord_width clocks), gap = xe**2 + ye**2 - xs**2 - ys**2 - 1,
@@ -9,13 +12,22 @@ give the algorithm.  The hardware has three parts:
   square root takes it (coord_width clocks) while the same adder checks the
   gap against the end-point limits, and one clock rounds the root to Rq
   (counting its bit length on the way);
-* check (one clock): validation, quadrants, the axis-crossing count, the
-  per-axis targets of the first quadrant piece, the accumulator threshold
-  and initial load (bit inversions, no subtractor);
-* run: accumulators, magnitudes and the radial error term, all updated by
-  additions only, one iteration per enabled clock.  An axis stops in a
-  piece when its magnitude reaches its target (0 inward, Rq outward, the end
-  point in the last piece), so there are no step counters to precompute.
+* check (one clock, registered): validation, quadrants, the axis-crossing
+  count, the per-axis targets of the first quadrant piece, the accumulator
+  threshold and initial load, each axis' steps over the whole move (for
+  ``stop_left``); the checked move then waits for the run stage;
+* run: an iteration takes two clocks.  In the clock of ``advance`` every
+  decision is formed from registers alone (overflows, the precise mode's
+  step choice, the end tests) and registered with the sums it needs; in the
+  next clock the registered decision is applied (accumulators minus T,
+  magnitudes, the radial error term, the piece change or the handover) and
+  the values the next decision needs are stepped beside the magnitudes, so
+  that each clock has about one adder between registers.  An axis stops in
+  a piece when its magnitude reaches its target (0 inward, Rq outward, the
+  end point in the last piece); a line counts its steps left instead.
+  Beside them, each axis' steps left over the whole move count down;
+  ``stop_left`` comes from the larger one (an iteration steps each axis at
+  most once).
 """
 from myhdl import Signal, always_comb, always_seq, block, concat, enum, intbv, modbv
 
@@ -46,27 +58,44 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
 
     Ports:
         clock, reset  clock and reset (``card_reset()``: async, active low)
-        cmd           ``DdaPort``: command lines, ``start``, ``advance`` in;
-                      ``busy``, ``done``, ``error``, ``quadrant`` out
+        cmd           ``DdaPort``: command lines, ``start``, ``blend``, ``advance``
+                      in; ``ready``, ``busy``, ``done``, ``error``, ``quadrant``,
+                      ``stop_left`` out
         steps         ``AxisPulses``: ``step_x``/``step_y`` one clock per step,
                       ``dir_x``/``dir_y`` valid with them
     Parameters:
         coord_width   signed coordinate width (4..31); accumulators are
                       coord_width + 8 bits, the radial error term + 6
 
-    Timing (an arc; a line has a single setup clock)::
+    Timing (an arc; a line has two setup clocks)::
 
         clock    _/~\\_/~\\_/~\\_ ... _/~\\_/~\\_/~\\_/~\\_/~\\_ ... _/~\\_/~\\_
         start    _/~~~\\______ ... ________________________________
+        ready    ~~~~~\\______ ... _____/~~~~~~~~~~~~~~~~~ ... ~~~~~~~~
         busy     _____/~~~~~~ ... ~~~~~~~~~~~~~~~~~~~~~~~ ... ~~~\\___
-        advance  ____________ ... ______/~~~~~~~~~~~\\___ ... ~~~~~~~~
+        advance  ____________ ... ______/~~~\\___/~~~\\___ ... ~~~~~~~~
         step_x   ____________ ... __________/~~~\\___/~~~ ... ________
         done     ____________ ... ___________________________/~~~\\___
-                      |<- 5*coord_width+2 ->|
+                      |<- 5*coord_width+3 ->|
 
-    ``step_*`` follows the clock edge of the iteration that made the step;
-    ``done`` comes with the last step.  ``error`` instead of the run when the
-    check rejects the command.
+    An iteration takes the clock of its ``advance`` and the next one: an
+    ``advance`` in the clock after a taken one is ignored (the card sends at
+    most one every other clock).  ``step_*`` follows the clock edge of the
+    iteration that made the step; ``done`` comes with the last step.  A
+    ``start`` taken while a move runs (``ready`` high) is set up meanwhile;
+    the run takes it in the clock after its last iteration, so the next
+    ``advance`` iterates the new move::
+
+        advance  _/~\\_/~\\_/~\\_/~\\_      every other clock
+        step_x   _____/~\\_/~\\_/~\\_/~\\_  last of move n, then move n + 1
+        done     _____/~\\________
+
+    ``error`` (a rejected move) and the ``done`` of a line of length 0 come
+    once no move runs.  ``quadrant`` changes in the clock after the
+    iteration.  ``stop_left`` is registered from the steps left as the
+    second clock of the iterations leaves them, minus one: with its own
+    register one iteration behind the ``advance`` pulses at the fastest rate,
+    it still never exceeds the iterations left.
     """
     if not 4 <= coord_width <= 31:
         raise ValueError(f"coord_width must be 4..31, not {coord_width}")
@@ -75,24 +104,27 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     err_width = width + ERROR_EXTRA_BITS
     thr_width = width + MAX_THRESHOLD_EXTRA + 1
     gap_width = 2 * width + 2
+    gap_split = width + 1
     acc_max = (1 << (acc_width - 1)) - 1
-    fill_ones = (1 << (err_width - width - 2)) - 1
-    minus_one = (1 << width) - 1  # -1 in width bits: one adder steps either way
-    minus_one_wide = (1 << (width + 1)) - 1
+    left_width = cmd.left_width
+    tot_width = left_width + 1
+    left_all_ones = (1 << left_width) - 1
+    width_ones = (1 << width) - 1
 
-    t_state = enum("S_IDLE", "S_MAC", "S_ROOT", "S_ROUND", "S_CHECK", "S_RUN")
+    t_state = enum("S_IDLE", "S_MAC", "S_ROOT", "S_ROUND", "S_CHECK", "S_WAIT")
     state = Signal(t_state.S_IDLE)
 
-    # latched command
+    # latched command (with the magnitudes of its coordinates)
     is_line = Signal(bool(0))
     variant = _unsigned(2)
     lambda_shift = _unsigned(5)
     acc_bits = _unsigned(5)
     ccw = Signal(bool(0))
-    xs, ys, xe, ye = (_signed(width) for _ in range(4))
-    neg_xs, neg_ys = _signed(width + 1), _signed(width + 1)
+    blend = Signal(bool(0))
+    # the coordinates as sign and magnitude (a zero magnitude is the zero test)
+    neg_xs, neg_ys, neg_xe, neg_ye = (Signal(bool(0)) for _ in range(4))
     mag_xs, mag_ys, mag_xe, mag_ye = (_unsigned(width) for _ in range(4))
-    cmd_mag_xs = _unsigned(width)
+    cmd_mag_xs, cmd_mag_ys, cmd_mag_xe, cmd_mag_ye = (_unsigned(width) for _ in range(4))
 
     # setup: one adder-subtractor forms gap = xe**2 + ye**2 - xs**2 - ys**2 - 1 (shift-add),
     # then checks it against the end-point limits; a restoring square root takes xs**2 + ys**2
@@ -100,8 +132,12 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     mac_bit = Signal(intbv(0, min=0, max=width))
     multiplicand = Signal(modbv(0)[2 * width:])
     multiplier = _unsigned(width)
-    gap = _wrapping(gap_width)
-    gap_sum = _wrapping(gap_width)
+    # the gap in two halves with the carry between them registered (two short carry chains):
+    # its value is (gap_high + gap_carry) * 2**gap_split + gap_low
+    gap_low, gap_sum_low = Signal(modbv(0)[gap_split:]), Signal(modbv(0)[gap_split:])
+    gap_high, gap_sum_high = Signal(modbv(0)[gap_width - gap_split:]), Signal(modbv(0)[gap_width - gap_split:])
+    gap_carry, gap_sum_carry = Signal(bool(0)), Signal(bool(0))
+    gap_top = Signal(modbv(0)[gap_width - gap_split:])
     radicand = Signal(modbv(0)[2 * width:])
     remainder = _unsigned(width + 3)
     root = _unsigned(width)
@@ -122,88 +158,132 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     geo_ahead = Signal(bool(0))
     geo_end_inward = _unsigned(width)
     geo_centre = Signal(bool(0))
+    geo_x_in_start, geo_x_in_end = Signal(bool(0)), Signal(bool(0))
 
-    # check results
-    chk_error = Signal(bool(0))
+    # each axis' steps over the whole arc, s1 |start| + s2 |end| + k Rq (k = 0, 2 or 4 per
+    # axis, from the quadrants): the signed magnitudes during the squares, k Rq with the check
+    tot_x, tot_y = _wrapping(tot_width), _wrapping(tot_width)
+    tot_sum_x, tot_sum_y = _wrapping(tot_width), _wrapping(tot_width)
+    tot_k2_x, tot_k2_y = Signal(bool(0)), Signal(bool(0))
+    tot_k4_x, tot_k4_y = Signal(bool(0)), Signal(bool(0))
+
+    # the check (combinational) and its registered results
+    check_error, check_zero = Signal(bool(0)), Signal(bool(0))
+    check_threshold = _unsigned(thr_width)
+    check_acc_init = _signed(acc_width)
+    check_quadrant = _unsigned(2)
+    check_crossings = _unsigned(3)
+    check_target_x, check_target_y = _unsigned(width), _unsigned(width)
+    check_left_x, check_left_y = _wrapping(left_width), _wrapping(left_width)
+    check_neg_in = _wrapping(err_width - 1)
+    chk_error, chk_zero = Signal(bool(0)), Signal(bool(0))
     chk_threshold = _unsigned(thr_width)
     chk_acc_init = _signed(acc_width)
     chk_quadrant = _unsigned(2)
     chk_crossings = _unsigned(3)
     chk_target_x, chk_target_y = _unsigned(width), _unsigned(width)
-    chk_mag_x, chk_mag_y = _unsigned(width), _unsigned(width)
-    chk_radius = _unsigned(width)
-    chk_neg_mag_x, chk_neg_mag_y = Signal(modbv(0)[width + 1:]), Signal(modbv(0)[width + 1:])
+    chk_left_x, chk_left_y = _wrapping(left_width), _wrapping(left_width)
+    chk_neg_in = _wrapping(err_width - 1)
+    # what the first iteration needs beside the magnitudes, from the registered check
+    first_integrand_x, first_integrand_y = _unsigned(width), _unsigned(width)
+    first_stepped_x, first_stepped_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
+    first_out = _unsigned(width)
+    first_half = _wrapping(err_width + 1)
+    first_q_in, first_q_out = _wrapping(err_width + 2), _wrapping(err_width + 2)
 
-    # run state
+    # handover from the setup stage to the run stage
+    hand_load, hand_end = Signal(bool(0)), Signal(bool(0))
+
+    # run state, with its own copy of the command
+    run_active = Signal(bool(0))
+    run_line, run_ccw, run_blend = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    run_variant = _unsigned(2)
+    run_end_x, run_end_y = _unsigned(width), _unsigned(width)
+    run_right, run_up = Signal(bool(0)), Signal(bool(0))
     quadrant = Signal(modbv(0)[2:])
     x_inward = Signal(bool(0))  # quadrant[0] xor ccw, kept as a register: it selects early
-    mag_x, mag_y = _unsigned(width), _unsigned(width)
     acc_x, acc_y = _signed(acc_width), _signed(acc_width)
     radial_error = _wrapping(err_width)
-    # -|x|, -|y| (two's complement) beside the magnitudes, so that the change of x**2 on
-    # the next step of x, 1 - 2|x| inward, 1 + 2|x| outward, needs no subtractor
-    neg_mag_x, neg_mag_y = Signal(modbv(0)[width + 1:]), Signal(modbv(0)[width + 1:])
+    # what each accumulator adds: |y| for X and |x| for Y on an arc (|dx|, |dy| on a line),
+    # and the same after the other axis' next step (|y| - 1 inward, |y| + 1 outward)
+    integrand_x, integrand_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
+    stepped_x, stepped_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
     # each axis stops in the current piece when its magnitude reaches its target:
-    # 0 inward and Rq outward, |xe|, |ye| in the last piece; a line counts up to |dx|, |dy|
+    # 0 inward and Rq outward, |xe|, |ye| in the last piece
     target_x, target_y = _unsigned(width), _unsigned(width)
     crossings = _unsigned(3)
     threshold = _unsigned(thr_width)
     radius = _unsigned(width)
+    # steps left per axis over the rest of the move, minus one (a line ends on them)
+    left_x, left_y = _wrapping(left_width), _wrapping(left_width)
+    # the precise mode's terms, by inward magnitude a and outward magnitude b: -a, b,
+    # h = b - a, q_in = 2 d_in + d_out = 3 + 2b - 4a, q_out = 2 d_out + d_in = 3 + 4b - 2a
+    # (d_in = 1 - 2a, d_out = 1 + 2b: the change of E on an inward, outward step)
+    neg_in = _wrapping(err_width - 1)
+    pos_out = Signal(modbv(0)[width:])
+    half_sum = _wrapping(err_width + 1)
+    q_in, q_out = _wrapping(err_width + 2), _wrapping(err_width + 2)
 
-    # one iteration, combinational
+    # second clock of an iteration: the registered decision of the first
+    pending = Signal(bool(0))
+    dec_step_x, dec_step_y = Signal(bool(0)), Signal(bool(0))
+    dec_tail = Signal(bool(0))
+    dec_finished, dec_next_piece = Signal(bool(0)), Signal(bool(0))
+    dec_x_move, dec_x_down = Signal(bool(0)), Signal(bool(0))
+    dec_y_move, dec_y_down = Signal(bool(0)), Signal(bool(0))
+    dec_in, dec_out = Signal(bool(0)), Signal(bool(0))
+    dec_sum_x, dec_sum_y = _signed(acc_width), _signed(acc_width)
+
+    # first clock of an iteration, combinational from registers
     it_step_x, it_step_y = Signal(bool(0)), Signal(bool(0))
     it_dir_x, it_dir_y = Signal(bool(0)), Signal(bool(0))
-    it_acc_x, it_acc_y = _signed(acc_width), _signed(acc_width)
-    it_mag_x, it_mag_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
-    it_neg_mag_x, it_neg_mag_y = Signal(modbv(0)[width + 1:]), Signal(modbv(0)[width + 1:])
-    delta_x, delta_y = _wrapping(err_width), _wrapping(err_width)
-    it_error = _wrapping(err_width)
+    it_sum_x, it_sum_y = _signed(acc_width), _signed(acc_width)
     it_finished = Signal(bool(0))
     it_next_piece = Signal(bool(0))
     it_tail = Signal(bool(0))
-    count_x, count_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
     at_x, at_y = Signal(bool(0)), Signal(bool(0))
     near_x, near_y = Signal(bool(0)), Signal(bool(0))
-    # the magnitudes one step further (inward: -1, outward: +1), one adder each
-    mag_x_step, mag_y_step = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
-    neg_mag_x_step, neg_mag_y_step = Signal(modbv(0)[width + 1:]), Signal(modbv(0)[width + 1:])
-    integrand_x, integrand_y = _unsigned(width), _unsigned(width)
 
     @always_comb
     def magnitudes():
-        if cmd.xs < 0:
-            cmd_mag_xs.next = -cmd.xs
-        else:
-            cmd_mag_xs.next = cmd.xs
-        neg_xs.next = -concat(xs[width - 1], xs).signed()
-        neg_ys.next = -concat(ys[width - 1], ys).signed()
-        if xs < 0:
-            mag_xs.next = neg_xs[width:]
-        else:
-            mag_xs.next = xs[width:]
-        if ys < 0:
-            mag_ys.next = neg_ys[width:]
-        else:
-            mag_ys.next = ys[width:]
-        if xe < 0:
-            mag_xe.next = -xe
-        else:
-            mag_xe.next = xe
-        if ye < 0:
-            mag_ye.next = -ye
-        else:
-            mag_ye.next = ye
+        # |v| is v - 1 inverted for a negative v, v itself otherwise: one adder whose
+        # operand is the sign (all ones or zero), its sum inverted by the same sign
+        sign_xs = modbv(0)[width:]
+        sign_ys = modbv(0)[width:]
+        sign_xe = modbv(0)[width:]
+        sign_ye = modbv(0)[width:]
+        less_xs = modbv(0)[width:]
+        less_ys = modbv(0)[width:]
+        less_xe = modbv(0)[width:]
+        less_ye = modbv(0)[width:]
+        if cmd.xs[width - 1]:
+            sign_xs[:] = width_ones
+        if cmd.ys[width - 1]:
+            sign_ys[:] = width_ones
+        if cmd.xe[width - 1]:
+            sign_xe[:] = width_ones
+        if cmd.ye[width - 1]:
+            sign_ye[:] = width_ones
+        less_xs[:] = cmd.xs[width:] + sign_xs
+        less_ys[:] = cmd.ys[width:] + sign_ys
+        less_xe[:] = cmd.xe[width:] + sign_xe
+        less_ye[:] = cmd.ye[width:] + sign_ye
+        cmd_mag_xs.next = less_xs ^ sign_xs
+        cmd_mag_ys.next = less_ys ^ sign_ys
+        cmd_mag_xe.next = less_xe ^ sign_xe
+        cmd_mag_ye.next = less_ye ^ sign_ye
 
     @always_comb
     def setup_adder():
         # gap - multiplicand while squaring xs, ys; gap + multiplicand while squaring xe, ye
         # and at the first limit; gap - multiplicand - 1 at the second (see control).  The
-        # carry is the adder's carry input: one carry chain.
+        # carry is the adder's carry input.  The high half adds the low half's carry of the
+        # clock before (gap_top: with no operand, the resolved high half).
         subtract = bool(0)
         carry = bool(0)
         operand = modbv(0)[gap_width:]
-        carry_in = intbv(0)[gap_width:]
-        total = modbv(0)[gap_width:]
+        total_low = modbv(0)[gap_split + 1:]
+        total_high = modbv(0)[gap_width - gap_split:]
         if state == t_state.S_MAC:
             subtract = mac_op < 2
             carry = mac_op < 2
@@ -212,9 +292,14 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         operand[:] = concat(intbv(0)[gap_width - 2 * width:], multiplicand)
         if subtract:
             operand[:] = ~operand
-        carry_in[:] = concat(intbv(0)[gap_width - 1:], carry)
-        total[:] = gap[gap_width:] + operand + carry_in
-        gap_sum.next = total.signed()
+        total_low[:] = concat(False, gap_low) + concat(False, operand[gap_split:]) + \
+            concat(intbv(0)[gap_split:], carry)
+        total_high[:] = gap_high + operand[gap_width:gap_split] + \
+            concat(intbv(0)[gap_width - gap_split - 1:], gap_carry)
+        gap_sum_low.next = total_low[gap_split:]
+        gap_sum_carry.next = total_low[gap_split]
+        gap_sum_high.next = total_high
+        gap_top.next = gap_high + concat(intbv(0)[gap_width - gap_split - 1:], gap_carry)
 
     @always_comb
     def root_trial():
@@ -238,40 +323,48 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         shrink_x = modbv(0)[width + 1:]
         shrink_y = modbv(0)[width + 1:]
         ahead = bool(0)
+        zero_xs = bool(0)
+        zero_ys = bool(0)
+        zero_xe = bool(0)
+        zero_ye = bool(0)
 
+        zero_xs = mag_xs == 0
+        zero_ys = mag_ys == 0
+        zero_xe = mag_xe == 0
+        zero_ye = mag_ye == 0
         # departure quadrant of the start, arrival quadrant of the end
         if ccw:
-            if xs > 0 and ys >= 0:
+            if not neg_xs and not zero_xs and not neg_ys:
                 q_s[:] = 0
-            elif xs <= 0 and ys > 0:
+            elif (neg_xs or zero_xs) and not neg_ys and not zero_ys:
                 q_s[:] = 1
-            elif xs < 0 and ys <= 0:
+            elif neg_xs and (neg_ys or zero_ys):
                 q_s[:] = 2
             else:
                 q_s[:] = 3
-            if xe >= 0 and ye > 0:
+            if not neg_xe and not neg_ye and not zero_ye:
                 q_e[:] = 0
-            elif xe < 0 and ye >= 0:
+            elif neg_xe and not neg_ye:
                 q_e[:] = 1
-            elif xe <= 0 and ye < 0:
+            elif (neg_xe or zero_xe) and neg_ye:
                 q_e[:] = 2
             else:
                 q_e[:] = 3
             turn[:] = q_e - q_s
         else:
-            if xs >= 0 and ys > 0:
+            if not neg_xs and not neg_ys and not zero_ys:
                 q_s[:] = 0
-            elif xs < 0 and ys >= 0:
+            elif neg_xs and not neg_ys:
                 q_s[:] = 1
-            elif xs <= 0 and ys < 0:
+            elif (neg_xs or zero_xs) and neg_ys:
                 q_s[:] = 2
             else:
                 q_s[:] = 3
-            if xe > 0 and ye >= 0:
+            if not neg_xe and not zero_xe and not neg_ye:
                 q_e[:] = 0
-            elif xe <= 0 and ye > 0:
+            elif (neg_xe or zero_xe) and not neg_ye and not zero_ye:
                 q_e[:] = 1
-            elif xe < 0 and ye <= 0:
+            elif neg_xe and (neg_ye or zero_ye):
                 q_e[:] = 2
             else:
                 q_e[:] = 3
@@ -300,19 +393,89 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             geo_end_inward.next = mag_xe
         else:
             geo_end_inward.next = mag_ye
-        geo_centre.next = (xs == 0 and ys == 0) or (xe == 0 and ye == 0)
+        geo_centre.next = (zero_xs and zero_ys) or (zero_xe and zero_ye)
+        geo_x_in_start.next = q_s[0] != ccw
+        geo_x_in_end.next = q_e[0] != ccw
 
+    @always_comb
+    def totals_k():
+        # first piece (|xs| inward, Rq - |xs| outward) + (crossings - 1) Rq + last piece
+        # (Rq - |xe| inward, |xe| outward): k = crossings - 1 + (x outward at the start)
+        # + (x inward at the end), for y with the axes swapped; 0 within one quadrant
+        out_in = not geo_x_in_start and geo_x_in_end
+        in_out = geo_x_in_start and not geo_x_in_end
+        tot_k4_x.next = geo_crossings == 4 or (geo_crossings == 3 and out_in)
+        tot_k4_y.next = geo_crossings == 4 or (geo_crossings == 3 and in_out)
+        tot_k2_x.next = geo_crossings == 2 or (geo_crossings == 1 and out_in) or (geo_crossings == 3 and in_out)
+        tot_k2_y.next = geo_crossings == 2 or (geo_crossings == 1 and in_out) or (geo_crossings == 3 and out_in)
+
+    @always_comb
+    def totals_adder():
+        # s1 is + for the inward axis at the start, s2 - for the inward axis at the end
+        operand_x = modbv(0)[tot_width:]
+        operand_y = modbv(0)[tot_width:]
+        invert_x = bool(0)
+        invert_y = bool(0)
+        carry_x = bool(0)
+        carry_y = bool(0)
+        total_x = modbv(0)[tot_width:]
+        total_y = modbv(0)[tot_width:]
+        if state == t_state.S_MAC and mac_op == 0 and mac_bit == 1:
+            operand_x[:] = concat(intbv(0)[tot_width - width:], mag_xs)
+            operand_y[:] = concat(intbv(0)[tot_width - width:], mag_ys)
+            invert_x = not geo_x_in_start
+            invert_y = geo_x_in_start == 1
+        elif state == t_state.S_MAC and mac_op == 0 and mac_bit == 2:
+            operand_x[:] = concat(intbv(0)[tot_width - width:], mag_xe)
+            operand_y[:] = concat(intbv(0)[tot_width - width:], mag_ye)
+            invert_x = geo_x_in_end == 1
+            invert_y = not geo_x_in_end
+        if invert_x:
+            operand_x[:] = ~operand_x
+            carry_x = True
+        if invert_y:
+            operand_y[:] = ~operand_y
+            carry_y = True
+        total_x[:] = tot_x[tot_width:] + operand_x + concat(intbv(0)[tot_width - 1:], carry_x)
+        total_y[:] = tot_y[tot_width:] + operand_y + concat(intbv(0)[tot_width - 1:], carry_y)
+        tot_sum_x.next = total_x.signed()
+        tot_sum_y.next = total_y.signed()
+
+    @always_comb
+    def totals_check():
+        # the last term: k Rq for an arc, |dx|, |dy| for a line
+        operand_x = modbv(0)[left_width:]
+        operand_y = modbv(0)[left_width:]
+        total_x = modbv(0)[left_width:]
+        total_y = modbv(0)[left_width:]
+        if is_line:
+            operand_x[:] = concat(intbv(0)[left_width - width:], mag_xe)
+            operand_y[:] = concat(intbv(0)[left_width - width:], mag_ye)
+        else:
+            if tot_k2_x:
+                operand_x[:] = concat(intbv(0)[left_width - width - 2:], radius_q, False)
+            elif tot_k4_x:
+                operand_x[:] = concat(radius_q, intbv(0)[2:])
+            if tot_k2_y:
+                operand_y[:] = concat(intbv(0)[left_width - width - 2:], radius_q, False)
+            elif tot_k4_y:
+                operand_y[:] = concat(radius_q, intbv(0)[2:])
+        total_x[:] = tot_x[left_width:] + operand_x
+        total_y[:] = tot_y[left_width:] + operand_y
+        check_left_x.next = total_x[left_width:].signed()
+        check_left_y.next = total_y[left_width:].signed()
     @always_comb
     def check_logic():
         rq = intbv(0)[width + 1:]
         exponent = modbv(0)[6:]
         thr = modbv(0)[thr_width:]
         thr_less = modbv(0)[thr_width:]
-        one = intbv(1)[thr_width:]
+        mask = modbv(0)[thr_width:]
         below = modbv(0)[acc_width:]
         half = modbv(0)[acc_width:]
         major = intbv(0)[width:]
         major_less = modbv(0)[width:]
+        inward = intbv(0)[width:]
         bad = False
 
         rq[:] = radius_q
@@ -329,19 +492,25 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             exponent[:] = concat(False, acc_bits) + concat(False, lambda_shift)
         else:
             exponent[:] = radius_length + concat(False, lambda_shift)
-        thr[:] = one << exponent
-        thr_less[:] = thr - 1
+        # 2**e - 1 is the e low bits set (one shifter, no subtractor); 2**e is its
+        # lowest clear bit (0 when e is beyond the width, as the shift would give)
+        mask[:] = (1 << thr_width) - 1
+        mask[:] = mask << exponent
+        thr_less[:] = ~mask
+        thr[:] = concat(thr_less[thr_width - 1:], True) & mask
         if variant != PRECISE and exponent > thr_width - 1:
             bad = True
         if variant == PRECISE:
             thr[:] = concat(intbv(0)[thr_width - width - 1:], rq) + 1
             thr_less[:] = concat(intbv(0)[thr_width - width - 1:], rq)
         # a line: T = max(|dx|, |dy|)
+        # (both decrements formed beside the compare)
         if mag_xe > mag_ye:
             major[:] = mag_xe
+            major_less[:] = mag_xe + width_ones
         else:
             major[:] = mag_ye
-        major_less[:] = major - 1
+            major_less[:] = mag_ye + width_ones
         if is_line:
             thr[:] = concat(intbv(0)[thr_width - width:], major)
             thr_less[:] = concat(intbv(0)[thr_width - width:], major_less)
@@ -353,122 +522,101 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             half[:] = ~concat(intbv(0)[acc_width - thr_width:], thr)
 
         # an end ahead in the start's quadrant is one piece; otherwise the end must not lie
-        # beyond Rq on its inward axis
+        # beyond Rq on its inward axis (a line's targets are unused: it counts its steps left)
         if is_line or geo_ahead:
-            chk_target_x.next = mag_xe
-            chk_target_y.next = mag_ye
+            check_target_x.next = mag_xe
+            check_target_y.next = mag_ye
         else:
             if concat(False, geo_end_inward) > rq:
                 bad = True
             if geo_quadrant[0] != ccw:
-                chk_target_x.next = 0
-                chk_target_y.next = rq[width:]
+                check_target_x.next = 0
+                check_target_y.next = rq[width:]
             else:
-                chk_target_x.next = rq[width:]
-                chk_target_y.next = 0
+                check_target_x.next = rq[width:]
+                check_target_y.next = 0
 
-        chk_error.next = bad
-        chk_radius.next = rq[width:]
-        # a line starts at magnitude 0 in quadrant 0 and counts its steps up to |dx|, |dy|
-        chk_quadrant.next = geo_quadrant
-        chk_crossings.next = geo_crossings
-        chk_mag_x.next = mag_xs
-        chk_mag_y.next = mag_ys
-        if is_line or bad:
-            chk_quadrant.next = 0
+        check_error.next = bad and not is_line
+        check_zero.next = is_line and mag_xe == 0 and mag_ye == 0
+        # a line starts in quadrant 0
+        check_quadrant.next = geo_quadrant
+        check_crossings.next = geo_crossings
         if is_line:
-            chk_crossings.next = 0
-            chk_mag_x.next = 0
-            chk_mag_y.next = 0
-        chk_threshold.next = thr
-        chk_acc_init.next = half.signed()
-        # -|x| is x or -x
-        if xs < 0:
-            chk_neg_mag_x.next = concat(xs[width - 1], xs)
+            check_quadrant.next = 0
+            check_crossings.next = 0
+        check_threshold.next = thr
+        check_acc_init.next = half.signed()
+        # -|inward start coordinate|
+        inward[:] = mag_ys
+        if geo_x_in_start:
+            inward[:] = mag_xs
+        check_neg_in.next = -concat(intbv(0)[err_width - 1 - width:], inward).signed()
+    @always_comb
+    def first_iteration():
+        # the run's stepped values for the first iteration, from registers (the checked
+        # move waits at least one clock): integrands, magnitudes one step further and the
+        # precise mode's terms (b the outward magnitude at the start, -a from the check)
+        fill = intbv(0)[2:]
+        half = modbv(0)[err_width + 1:]
+        twice_in = modbv(0)[err_width + 2:]
+        twice_out = modbv(0)[err_width + 2:]
+        out = intbv(0)[width:]
+        first_integrand_x.next = mag_ys
+        first_integrand_y.next = mag_xs
+        if is_line:
+            first_integrand_x.next = mag_xe
+            first_integrand_y.next = mag_ye
+        # +1 or -1 as the operand of one adder per axis (constant bits, no select)
+        step_in = modbv(1)[width:]
+        step_out = modbv(1)[width:]
+        if geo_x_in_start:
+            step_out[:] = width_ones
+            out[:] = mag_ys
         else:
-            chk_neg_mag_x.next = neg_xs
-        if ys < 0:
-            chk_neg_mag_y.next = concat(ys[width - 1], ys)
-        else:
-            chk_neg_mag_y.next = neg_ys
+            step_in[:] = width_ones
+            out[:] = mag_xs
+        first_stepped_x.next = mag_ys + step_in
+        first_stepped_y.next = mag_xs + step_out
+        first_out.next = out
+        if chk_neg_in[err_width - 2]:
+            fill[:] = 3
+        half[:] = concat(intbv(0)[err_width + 1 - width:], out) + concat(fill, chk_neg_in[err_width - 1:])
+        twice_in[:] = concat(fill[0], chk_neg_in[err_width - 1:], intbv(3)[2:]) + concat(intbv(0)[err_width + 1 - width:], out, False)
+        twice_out[:] = concat(intbv(0)[err_width - width:], out, intbv(3)[2:]) + concat(fill, chk_neg_in[err_width - 1:], False)
+        first_half.next = half.signed()
+        first_q_in.next = twice_in.signed()
+        first_q_out.next = twice_out.signed()
 
     @always_comb
-    def piece_progress():
-        # steps left in the current piece (the inward axis falls to its target); their zero
-        # holds the accumulators, while the step choice uses the equality tests below
-        if not is_line and x_inward:
-            count_x.next = mag_x - target_x
-            count_y.next = target_y - mag_y
-        elif not is_line:
-            count_x.next = target_x - mag_x
-            count_y.next = mag_y - target_y
+    def end_tests():
+        # an arc's axis is at its target, or one step before it; a line's steps left
+        # (minus one) are -1 or 0
+        if run_line:
+            at_x.next = left_x[left_width:] == left_all_ones
+            at_y.next = left_y[left_width:] == left_all_ones
+            near_x.next = left_x == 0
+            near_y.next = left_y == 0
         else:
-            count_x.next = target_x - mag_x
-            count_y.next = target_y - mag_y
-        # the magnitudes one step further, one adder each (-1 is the all-ones operand);
-        # "at the target" and "one step before it" are then equality tests
-        if not is_line and x_inward:
-            mag_x_step.next = mag_x + minus_one
-            neg_mag_x_step.next = neg_mag_x + 1
-            mag_y_step.next = mag_y + 1
-            neg_mag_y_step.next = neg_mag_y + minus_one_wide
-        elif not is_line:
-            mag_x_step.next = mag_x + 1
-            neg_mag_x_step.next = neg_mag_x + minus_one_wide
-            mag_y_step.next = mag_y + minus_one
-            neg_mag_y_step.next = neg_mag_y + 1
-        else:
-            mag_x_step.next = mag_x + 1
-            neg_mag_x_step.next = neg_mag_x + minus_one_wide
-            mag_y_step.next = mag_y + 1
-            neg_mag_y_step.next = neg_mag_y + minus_one_wide
-        at_x.next = mag_x == target_x
-        at_y.next = mag_y == target_y
-        near_x.next = mag_x_step == target_x
-        near_y.next = mag_y_step == target_y
-        # change of x**2 (y**2) on the next step of x (y): 1 - 2|x| inward, 1 + 2|x| outward
-        fill_x = intbv(0)[err_width - width - 2:]
-        fill_y = intbv(0)[err_width - width - 2:]
-        if neg_mag_x[width]:
-            fill_x[:] = fill_ones
-        if neg_mag_y[width]:
-            fill_y[:] = fill_ones
-        if x_inward:
-            delta_x.next = concat(fill_x, neg_mag_x, True).signed()
-            delta_y.next = concat(intbv(0)[err_width - width - 1:], mag_y, True).signed()
-        else:
-            delta_x.next = concat(intbv(0)[err_width - width - 1:], mag_x, True).signed()
-            delta_y.next = concat(fill_y, neg_mag_y, True).signed()
-        # a line's magnitudes count its steps; it integrates |dx|, |dy|
-        if is_line:
-            integrand_x.next = target_x
-            integrand_y.next = target_y
-        else:
-            integrand_x.next = mag_y
-            integrand_y.next = mag_x
+            at_x.next = integrand_y == target_x
+            at_y.next = integrand_x == target_y
+            near_x.next = stepped_y == target_x
+            near_y.next = stepped_x == target_y
 
     @always_comb
     def iteration_logic():
+        # the first clock of an iteration: every sum is one adder on registers
         x_right = bool(0)
         y_up = bool(0)
-        to_mag = intbv(0)[acc_width + 1 - width:]
         sum_x = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         sum_x_step = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         sum_y = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
-        thr_low = intbv(0)[acc_width:]
         ahead_x = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
         ahead_y = intbv(0, min=-(1 << acc_width), max=1 << acc_width)
-        less_x = modbv(0)[acc_width:]
-        less_y = modbv(0)[acc_width:]
-        cand_d = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
-        cand_x = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
-        cand_y = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
-        delta_xy = modbv(0, min=-(1 << (err_width - 1)), max=1 << (err_width - 1))
-        half_xy = modbv(0, min=-(1 << err_width), max=1 << err_width)
-        sum_le_0 = bool(0)
-        sum_lt_0 = bool(0)
-        d_le_x = bool(0)
-        d_le_y = bool(0)
+        twice_in = intbv(0, min=-(1 << (err_width + 1)), max=1 << (err_width + 1))
+        twice_out = intbv(0, min=-(1 << (err_width + 1)), max=1 << (err_width + 1))
+        error_half = modbv(0)[err_width + 1:]
+        d_le_in = bool(0)
+        d_le_out = bool(0)
         x_le_y = bool(0)
         over_x = bool(0)
         over_x_step = bool(0)
@@ -478,67 +626,65 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
 
         x_right = quadrant[0] == quadrant[1]
         y_up = not quadrant[1]
-        if is_line:
-            it_dir_x.next = xe >= 0
-            it_dir_y.next = ye >= 0
+        if run_line:
+            it_dir_x.next = run_right
+            it_dir_y.next = run_up
         else:
             it_dir_x.next = x_right != x_inward
             it_dir_y.next = y_up == x_inward
 
         # accumulators; the compares use the unsaturated sums (T is far below the
-        # saturation value, so the result is the same) to keep the carry chains short
-        to_mag[:] = 0
-        thr_low[:] = concat(intbv(0)[acc_width - thr_width:], threshold)
-        sum_y[:] = concat(acc_y[acc_width - 1], acc_y).signed() + concat(to_mag, integrand_y).signed()
-        sum_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, integrand_x).signed()
-        sum_x_step[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag, mag_y_step).signed()
+        # saturation value, so the result is the same)
+        sum_y[:] = concat(acc_y[acc_width - 1], acc_y).signed() + \
+            concat(intbv(0)[acc_width + 1 - width:], integrand_y).signed()
+        sum_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + \
+            concat(intbv(0)[acc_width + 1 - width:], integrand_x).signed()
+        sum_x_step[:] = concat(acc_x[acc_width - 1], acc_x).signed() + \
+            concat(intbv(0)[acc_width + 1 - width:], stepped_x).signed()
         # the registers hold A - bias: an overflow is a sum that is not negative
         over_x = not sum_x[acc_width]
         over_x_step = not sum_x_step[acc_width]
         over_y = not sum_y[acc_width]
         # traditional: Y first, X integrates the new |y| (sums and compares formed in parallel)
-        if not is_line and variant == TRADITIONAL and over_y:
+        if not run_line and run_variant == TRADITIONAL and over_y:
             sum_x[:] = sum_x_step
             over_x = over_x_step
 
-        # precise: |a| <= |b| exactly when (a - b) and (a + b) differ in sign or one is 0
-        # (all sums two adders deep: cand_x + cand_d = 2 cand_x + dy, and so on); the deltas
-        # are odd, so dy, dx, 2 cand_x + dy and 2 cand_y + dx are never 0
-        delta_xy[:] = delta_x + delta_y
-        cand_x[:] = radial_error + delta_x
-        cand_y[:] = radial_error + delta_y
-        cand_d[:] = radial_error + delta_xy
-        # X against Y: a - b = dx - dy, a + b = 2E + dx + dy = 2 (E + h + 1) with the odd
-        # deltas' h = (dx >> 1) + (dy >> 1); a + b <= 0 is E + h < 0, a + b < 0 is E + h + 1 < 0
-        # (signs only, no zero test on a sum)
-        half_xy[:] = concat(delta_x[err_width - 1], delta_x[err_width - 1], delta_x[err_width:1]).signed() + \
-            concat(delta_y[err_width - 1], delta_y[err_width - 1], delta_y[err_width:1]).signed()
-        sum_le_0 = concat(radial_error[err_width - 1], radial_error).signed() + half_xy < 0
-        sum_lt_0 = concat(radial_error[err_width - 1], radial_error).signed() + half_xy + 1 < 0
-        d_le_x = (delta_y < 0) != (concat(cand_x[err_width:], False).signed() +
-                                   concat(delta_y[err_width - 1], delta_y).signed() < 0)
-        d_le_y = (delta_x < 0) != (concat(cand_y[err_width:], False).signed() +
-                                   concat(delta_x[err_width - 1], delta_x).signed() < 0)
-        x_le_y = delta_x == delta_y or (delta_x > delta_y and sum_le_0) or (delta_x < delta_y and not sum_lt_0)
+        # precise: |u| <= |v| exactly when (u - v) and (u + v) differ in sign or one is 0.
+        # Diagonal against inward only: u - v = d_out > 0, u + v = 2E + q_in (odd);
+        # against outward only: u - v = d_in (< 0 unless a = 0), u + v = 2E + q_out (odd);
+        # inward against outward: u - v = -2 (a + b), u + v = 2 (E + h + 1), so inward is
+        # closer or as close when E + h + 1 >= 0, outward when E + h + 1 <= 0, i.e. E + h < 0
+        twice_in[:] = concat(radial_error[err_width - 1], radial_error, False).signed() + q_in
+        twice_out[:] = concat(radial_error[err_width - 1], radial_error, False).signed() + q_out
+        # E + h + 1 >= 0 (x inward) and E + h < 0 (x outward) by one adder, the carry
+        # input being x_inward
+        error_half[:] = concat(radial_error[err_width - 1], radial_error) + half_sum[err_width + 1:] + \
+            concat(intbv(0)[err_width:], x_inward)
+        d_le_in = twice_in < 0
+        d_le_out = (neg_in < 0) != (twice_out < 0)
+        x_le_y = (error_half.signed() < 0) != x_inward
 
         go_x = over_x
         go_y = over_y
-        if is_line:
+        if run_line:
             go_x = over_x and not at_x
             go_y = over_y and not at_y
-        elif variant == IMPROVED:
+        elif run_variant == IMPROVED:
             # A + 2i straight from the registers (one adder)
-            ahead_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + concat(to_mag[acc_width - width:], mag_y, False).signed()
-            ahead_y[:] = concat(acc_y[acc_width - 1], acc_y).signed() + concat(to_mag[acc_width - width:], mag_x, False).signed()
+            ahead_x[:] = concat(acc_x[acc_width - 1], acc_x).signed() + \
+                concat(intbv(0)[acc_width - width:], integrand_x, False).signed()
+            ahead_y[:] = concat(acc_y[acc_width - 1], acc_y).signed() + \
+                concat(intbv(0)[acc_width - width:], integrand_y, False).signed()
             if over_x and not over_y and ahead_y >= 0:
                 go_y = True
             elif over_y and not over_x and ahead_x >= 0:
                 go_x = True
-        elif variant == PRECISE:
+        elif run_variant == PRECISE:
             go_x = False
             go_y = False
             if over_x or over_y:
-                if d_le_x and d_le_y:
+                if d_le_in and d_le_out:
                     go_x = True
                     go_y = True
                 elif x_le_y:
@@ -547,70 +693,65 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                     go_y = True
 
         # an axis at its target stops; the other one steps alone, the accumulators hold
-        it_tail.next = not is_line and (count_x == 0 or count_y == 0)
-        if not is_line and (at_x or at_y):
+        it_tail.next = not run_line and (at_x or at_y)
+        if not run_line and (at_x or at_y):
             go_x = not at_x
             go_y = not at_y
         if not sum_x[acc_width] and sum_x[acc_width - 1]:
             sum_x[:] = acc_max
         if not sum_y[acc_width] and sum_y[acc_width - 1]:
             sum_y[:] = acc_max
-        less_x[:] = sum_x[acc_width:]
-        if go_x:
-            less_x[:] = sum_x[acc_width:] - thr_low
-        less_y[:] = sum_y[acc_width:]
-        if go_y:
-            less_y[:] = sum_y[acc_width:] - thr_low
-        it_acc_x.next = less_x.signed()
-        it_acc_y.next = less_y.signed()
+        it_sum_x.next = sum_x[acc_width:].signed()
+        it_sum_y.next = sum_y[acc_width:].signed()
         it_step_x.next = go_x
         it_step_y.next = go_y
-        it_mag_x.next = mag_x
-        it_mag_y.next = mag_y
-        it_neg_mag_x.next = neg_mag_x
-        it_neg_mag_y.next = neg_mag_y
-        if go_x:
-            it_mag_x.next = mag_x_step
-            it_neg_mag_x.next = neg_mag_x_step
-        if go_y:
-            it_mag_y.next = mag_y_step
-            it_neg_mag_y.next = neg_mag_y_step
-        if go_x and go_y:
-            it_error.next = cand_d
-        elif go_x:
-            it_error.next = cand_x
-        elif go_y:
-            it_error.next = cand_y
-        else:
-            it_error.next = radial_error
 
         it_finished.next = False
         it_next_piece.next = False
         if (near_x and go_x or at_x) and (near_y and go_y or at_y):
-            if is_line or crossings == 0:
+            if run_line or crossings == 0:
                 it_finished.next = True
             else:
                 it_next_piece.next = True
 
+    @always_comb
+    def handover_logic():
+        # the run takes a checked move when it is idle or in the second clock of its last
+        # iteration; a rejected move and a line of length 0 end only once no move runs
+        free = not run_active or (pending and dec_finished)
+        hand_load.next = False
+        hand_end.next = False
+        if state == t_state.S_WAIT:
+            if chk_zero or chk_error:
+                hand_end.next = free
+            else:
+                hand_load.next = free
+
     @always_seq(clock.posedge, reset=reset)
-    def control():
-        steps.step_x.next = False
-        steps.step_y.next = False
-        cmd.done.next = False
+    def setup_control():
         if state == t_state.S_IDLE:
             if cmd.start:
-                cmd.busy.next = True
                 cmd.error.next = False
                 is_line.next = cmd.line
                 variant.next = cmd.variant
                 lambda_shift.next = cmd.lambda_shift
                 acc_bits.next = cmd.acc_bits
                 ccw.next = cmd.ccw
-                xs.next = cmd.xs
-                ys.next = cmd.ys
-                xe.next = cmd.xe
-                ye.next = cmd.ye
-                gap.next = -1
+                blend.next = cmd.blend
+                # the totals start at -1: the run counts steps left - 1 (see left_output)
+                tot_x.next = -1
+                tot_y.next = -1
+                neg_xs.next = cmd.xs < 0
+                neg_ys.next = cmd.ys < 0
+                neg_xe.next = cmd.xe < 0
+                neg_ye.next = cmd.ye < 0
+                mag_xs.next = cmd_mag_xs
+                mag_ys.next = cmd_mag_ys
+                mag_xe.next = cmd_mag_xe
+                mag_ye.next = cmd_mag_ye
+                gap_low.next = (1 << gap_split) - 1
+                gap_high.next = (1 << (gap_width - gap_split)) - 1
+                gap_carry.next = False
                 mac_op.next = 0
                 mac_bit.next = 0
                 multiplicand.next = concat(intbv(0)[width:], cmd_mag_xs)
@@ -620,11 +761,17 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 else:
                     state.next = t_state.S_MAC
         elif state == t_state.S_MAC:
+            tot_x.next = tot_sum_x
+            tot_y.next = tot_sum_y
+            gap_high.next = gap_top
+            gap_carry.next = False
             if multiplier[0]:
-                gap.next = gap_sum
+                gap_low.next = gap_sum_low
+                gap_high.next = gap_sum_high
+                gap_carry.next = gap_sum_carry
             if mac_op == 2 and mac_bit == 0:
                 # gap = -1 - xs**2 - ys**2 now: its complement is the radicand
-                radicand.next = ~gap[2 * width:]
+                radicand.next = ~concat(gap_top[2 * width - gap_split:], gap_low)
             if mac_bit == width - 1:
                 mac_bit.next = 0
                 mac_op.next = mac_op + 1
@@ -668,16 +815,22 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             # end point within one step: -(2m - 1) <= re**2 - rs**2 <= 2m + 1 with
             # m = max(|xs|, |ys|) (|re - rs| <= 1 follows as m <= rs); the gap is
             # re**2 - rs**2 - 1: add 2m, test the sign, take 4m + 1, test the sign
+            gap_high.next = gap_top
+            gap_carry.next = False
             if root_bit == 0:
                 multiplicand.next = multiplicand << 1
             elif root_bit == 1:
-                gap.next = gap_sum
+                gap_low.next = gap_sum_low
+                gap_high.next = gap_sum_high
+                gap_carry.next = gap_sum_carry
                 multiplicand.next = multiplicand << 1
             elif root_bit == 2:
-                end_reaches_low.next = not gap[gap_width - 1]
-                gap.next = gap_sum
+                end_reaches_low.next = not gap_top[gap_width - gap_split - 1]
+                gap_low.next = gap_sum_low
+                gap_high.next = gap_sum_high
+                gap_carry.next = gap_sum_carry
             elif root_bit == 3:
-                end_beyond_high.next = not gap[gap_width - 1]
+                end_beyond_high.next = not gap_top[gap_width - gap_split - 1]
             if root_bit == width - 1:
                 state.next = t_state.S_ROUND
             else:
@@ -692,47 +845,157 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 radius_length.next = root_length
             state.next = t_state.S_CHECK
         elif state == t_state.S_CHECK:
-            acc_x.next = chk_acc_init
-            acc_y.next = chk_acc_init
-            threshold.next = chk_threshold
-            radial_error.next = 0
-            quadrant.next = chk_quadrant
-            x_inward.next = chk_quadrant[0] != ccw
-            crossings.next = chk_crossings
-            mag_x.next = chk_mag_x
-            mag_y.next = chk_mag_y
-            target_x.next = chk_target_x
-            target_y.next = chk_target_y
-            radius.next = chk_radius
-            neg_mag_x.next = chk_neg_mag_x
-            neg_mag_y.next = chk_neg_mag_y
-            state.next = t_state.S_RUN
-            if is_line and mag_xe == 0 and mag_ye == 0:
-                cmd.busy.next = False
-                cmd.done.next = True
+            # the check's results are registered: the handover depends on registers only
+            chk_error.next = check_error
+            chk_zero.next = check_zero
+            chk_threshold.next = check_threshold
+            chk_acc_init.next = check_acc_init
+            chk_quadrant.next = check_quadrant
+            chk_crossings.next = check_crossings
+            chk_target_x.next = check_target_x
+            chk_target_y.next = check_target_y
+            chk_left_x.next = check_left_x
+            chk_left_y.next = check_left_y
+            chk_neg_in.next = check_neg_in
+            state.next = t_state.S_WAIT
+        else:
+            # S_WAIT: the checked move waits for the run stage
+            if hand_load or hand_end:
                 state.next = t_state.S_IDLE
-            elif not is_line and chk_error:
-                cmd.busy.next = False
+            if hand_end and not chk_zero:
                 cmd.error.next = True
-                state.next = t_state.S_IDLE
-        elif cmd.advance:
+    @always_seq(clock.posedge, reset=reset)
+    def run_control():
+        step_op_x = modbv(0)[width:]
+        step_op_y = modbv(0)[width:]
+        base_x = modbv(0)[width:]
+        base_y = modbv(0)[width:]
+        base_op_x = modbv(0)[width:]
+        base_op_y = modbv(0)[width:]
+        less_x = modbv(0)[acc_width:]
+        less_y = modbv(0)[acc_width:]
+        inverse = modbv(0)[err_width + 1:]
+        neg_base = modbv(0)[err_width - 1:]
+        half_base = modbv(0)[err_width + 1:]
+        q_in_base = modbv(0)[err_width + 2:]
+        q_out_base = modbv(0)[err_width + 2:]
+        in_out = intbv(0)[2:]
+        q_in_op = intbv(0)[3:]
+        q_out_op = intbv(0)[3:]
+        error_op = modbv(0)[err_width:]
+        error_sum = modbv(0)[err_width:]
+
+        steps.step_x.next = False
+        steps.step_y.next = False
+        cmd.done.next = False
+        # the decision of this clock, kept for the next one (used there only after an advance)
+        pending.next = False
+        dec_step_x.next = it_step_x
+        dec_step_y.next = it_step_y
+        dec_tail.next = it_tail
+        dec_finished.next = it_finished
+        dec_next_piece.next = it_next_piece
+        dec_x_move.next = it_step_x and not run_line
+        dec_x_down.next = it_step_x and x_inward and not run_line
+        dec_y_move.next = it_step_y and not run_line
+        dec_y_down.next = it_step_y and not x_inward and not run_line
+        dec_in.next = (it_step_x and x_inward or it_step_y and not x_inward) and not run_line
+        dec_out.next = (it_step_x and not x_inward or it_step_y and x_inward) and not run_line
+        dec_sum_x.next = it_sum_x
+        dec_sum_y.next = it_sum_y
+
+        if run_active and cmd.advance and not pending:
+            # first clock of an iteration: the outputs go with the decision
+            pending.next = True
             steps.step_x.next = it_step_x
             steps.step_y.next = it_step_y
             steps.dir_x.next = it_dir_x
             steps.dir_y.next = it_dir_y
-            if not it_tail:
-                acc_x.next = it_acc_x
-                acc_y.next = it_acc_y
-            mag_x.next = it_mag_x
-            mag_y.next = it_mag_y
-            neg_mag_x.next = it_neg_mag_x
-            neg_mag_y.next = it_neg_mag_y
-            radial_error.next = it_error
-            if it_finished:
-                cmd.busy.next = False
-                cmd.done.next = True
-                state.next = t_state.S_IDLE
-            if it_next_piece:
+            cmd.done.next = it_finished
+        elif pending:
+            # second clock: apply the registered decision
+            if not dec_tail:
+                less_x[:] = dec_sum_x[acc_width:]
+                if dec_step_x:
+                    less_x[:] = dec_sum_x[acc_width:] - concat(intbv(0)[acc_width - thr_width:], threshold)
+                less_y[:] = dec_sum_y[acc_width:]
+                if dec_step_y:
+                    less_y[:] = dec_sum_y[acc_width:] - concat(intbv(0)[acc_width - thr_width:], threshold)
+                acc_x.next = less_x.signed()
+                acc_y.next = less_y.signed()
+            # E plus its change by the registered step: d_in = 1 - 2a, d_out = 1 + 2b or
+            # both, 2 + 2h (one adder behind a select of registers, still unchanged here)
+            error_op[:] = concat(intbv(0)[err_width - width - 1:], pos_out, True)
+            if dec_in and dec_out:
+                error_op[:] = concat(half_sum[err_width - 1:], True)
+            elif dec_in:
+                error_op[:] = concat(neg_in[err_width - 1:], True)
+            error_sum[:] = radial_error[err_width:] + error_op + \
+                concat(intbv(0)[err_width - 1:], dec_in and dec_out)
+            if dec_in or dec_out:
+                radial_error.next = error_sum.signed()
+            left_x.next = left_x - concat(intbv(0)[left_width - 1:], dec_step_x).signed()
+            left_y.next = left_y - concat(intbv(0)[left_width - 1:], dec_step_y).signed()
+            # |x| (Y's integrand) and |y| (X's) step by +-1; on a piece change their stepped
+            # copies restart from Rq - 1 (the axis turns inward at Rq) or 1 (outward at 0)
+            if dec_x_down:
+                step_op_y[:] = width_ones
+            elif dec_x_move:
+                step_op_y[:] = 1
+            if dec_y_down:
+                step_op_x[:] = width_ones
+            elif dec_y_move:
+                step_op_x[:] = 1
+            integrand_y.next = integrand_y + step_op_y
+            integrand_x.next = integrand_x + step_op_x
+            base_y[:] = stepped_y
+            base_op_y[:] = step_op_y
+            base_x[:] = stepped_x
+            base_op_x[:] = step_op_x
+            if dec_next_piece:
+                base_op_y[:] = 1
+                base_y[:] = 0
+                base_op_x[:] = 1
+                base_x[:] = 0
+                if x_inward:
+                    base_op_x[:] = width_ones
+                    base_x[:] = radius
+                else:
+                    base_op_y[:] = width_ones
+                    base_y[:] = radius
+            stepped_y.next = base_y + base_op_y
+            stepped_x.next = base_x + base_op_x
+            # the precise terms: a falls by an inward step, b grows by an outward one; a new
+            # piece starts at a = Rq, b = 0 (-Rq = ~Rq + 1, 3 - 4Rq = {~Rq, 11} + 4, ...)
+            in_out[:] = concat(dec_in, dec_out)
+            neg_base[:] = neg_in
+            half_base[:] = half_sum
+            q_in_base[:] = q_in
+            q_out_base[:] = q_out
+            q_in_op[:] = concat(dec_in, dec_out, False)
+            q_out_op[:] = concat(dec_out, dec_in, False)
+            pos_out.next = pos_out + concat(intbv(0)[width - 1:], dec_out)
+            if dec_next_piece:
+                inverse[:] = ~concat(intbv(0)[err_width + 1 - width:], radius)
+                neg_base[:] = inverse[err_width - 1:]
+                half_base[:] = inverse[err_width + 1:]
+                q_in_base[:] = concat(inverse[err_width:], intbv(3)[2:])
+                q_out_base[:] = concat(inverse[err_width + 1:], True)
+                in_out[:] = 1
+                q_in_op[:] = 4
+                q_out_op[:] = 4
+                pos_out.next = 0
+            neg_base[:] = neg_base + concat(intbv(0)[err_width - 2:], dec_in or dec_next_piece)
+            half_base[:] = half_base + concat(intbv(0)[err_width:], in_out[1]) + concat(intbv(0)[err_width:], in_out[0])
+            q_in_base[:] = q_in_base + concat(intbv(0)[err_width - 1:], q_in_op)
+            q_out_base[:] = q_out_base + concat(intbv(0)[err_width - 1:], q_out_op)
+            neg_in.next = neg_base.signed()
+            half_sum.next = half_base.signed()
+            q_in.next = q_in_base.signed()
+            q_out.next = q_out_base.signed()
+            if dec_finished:
+                run_active.next = False
+            if dec_next_piece:
                 x_inward.next = not x_inward
                 if x_inward:
                     target_x.next = radius
@@ -741,19 +1004,77 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                     target_x.next = 0
                     target_y.next = radius
                 if crossings == 1:
-                    target_x.next = mag_xe
-                    target_y.next = mag_ye
-                if ccw:
+                    target_x.next = run_end_x
+                    target_y.next = run_end_y
+                if run_ccw:
                     quadrant.next = quadrant + 1
                 else:
                     quadrant.next = quadrant - 1
                 crossings.next = crossings - 1
+        if hand_end and chk_zero:
+            cmd.done.next = True
+            quadrant.next = 0
+        if hand_load:
+            # the run's own copy of what the setup stage overwrites with the next move
+            run_active.next = True
+            run_line.next = is_line
+            run_variant.next = variant
+            run_ccw.next = ccw
+            run_blend.next = blend
+            run_end_x.next = mag_xe
+            run_end_y.next = mag_ye
+            run_right.next = not neg_xe
+            run_up.next = not neg_ye
+            acc_x.next = chk_acc_init
+            acc_y.next = chk_acc_init
+            threshold.next = chk_threshold
+            radial_error.next = 0
+            quadrant.next = chk_quadrant
+            x_inward.next = chk_quadrant[0] != ccw
+            crossings.next = chk_crossings
+            target_x.next = chk_target_x
+            target_y.next = chk_target_y
+            radius.next = radius_q[width:]
+            left_x.next = chk_left_x
+            left_y.next = chk_left_y
+            integrand_x.next = first_integrand_x
+            integrand_y.next = first_integrand_y
+            stepped_x.next = first_stepped_x
+            stepped_y.next = first_stepped_y
+            neg_in.next = chk_neg_in
+            pos_out.next = first_out
+            half_sum.next = first_half
+            q_in.next = first_q_in
+            q_out.next = first_q_out
+
+    @always_seq(clock.posedge, reset=reset)
+    def left_output():
+        # a lower bound of the iterations left: the larger count of steps left (minus one)
+        # as the second clock of the iterations leaves it; the register lags the counts by
+        # a clock, so at the next advance one more iteration may have been taken (the
+        # minus one covers it)
+        larger = intbv(0, min=-(1 << (left_width - 1)), max=1 << (left_width - 1))
+        if left_x >= left_y:
+            larger[:] = left_x
+        else:
+            larger[:] = left_y
+        if run_active and not run_blend:
+            if larger < 0:
+                cmd.stop_left.next = 0
+            else:
+                cmd.stop_left.next = larger[left_width:]
+        else:
+            cmd.stop_left.next = left_all_ones
 
     @always_comb
     def status():
         cmd.quadrant.next = quadrant
+        cmd.ready.next = state == t_state.S_IDLE
+        cmd.busy.next = state != t_state.S_IDLE or (run_active and not (pending and dec_finished))
 
-    return magnitudes, setup_adder, root_trial, geometry, check_logic, piece_progress, iteration_logic, control, status
+    return (magnitudes, setup_adder, root_trial, geometry, totals_k, totals_adder, totals_check,
+            check_logic, first_iteration, end_tests, iteration_logic, handover_logic, setup_control,
+            run_control, left_output, status)
 
 
 def dda_arc_ports(coord_width=24):

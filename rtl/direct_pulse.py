@@ -24,16 +24,22 @@ def direct_pulse(clock, reset, load, count, period, ready, clear, request, reque
         remaining ==0==X=2=X=1=========X=0====
     """
     gap = Signal(intbv(0)[PERIOD_BITS:])
+    # remaining != 0 and gap != 0, each kept in a flip-flop next to its
+    # counter: ``busy`` and the next decision then start from one register
+    # instead of a 24-bit (16-bit) zero test.
+    pending = Signal(bool(0))
+    waiting = Signal(bool(0))
 
     @always_comb
     def activity():
-        busy.next = load or remaining != 0
+        busy.next = load or pending
 
     @always_seq(clock.posedge, reset=reset)
     def emit():
         request.next = 0
         if clear:
             remaining.next = 0
+            pending.next = 0
         elif load:
             if count < 0:
                 remaining.next = -count
@@ -41,14 +47,19 @@ def direct_pulse(clock, reset, load, count, period, ready, clear, request, reque
             else:
                 remaining.next = count
                 request_dir.next = 1
+            pending.next = count != 0
             gap.next = 0
-        elif remaining != 0:
-            if gap != 0:
+            waiting.next = 0
+        elif pending:
+            if waiting:
                 gap.next = gap - 1
+                waiting.next = gap != 1
             elif ready:
                 request.next = 1
                 remaining.next = remaining - 1
+                pending.next = remaining != 1
                 gap.next = period - 1
+                waiting.next = period != 1
 
     return activity, emit
 

@@ -27,14 +27,18 @@ class Opcode:
         return mask
 
 
+BLEND_FIELD = ("BLEND", 16, 1, "1: go on into the next LINE/ARC at speed; 0: slow down to RAMP_START "
+               "at the end of this move")
+
 OPCODES = (
-    Opcode("LINE", 0x1, ("DX", "DY"), (),
+    Opcode("LINE", 0x1, ("DX", "DY"), (BLEND_FIELD,),
            "straight move by (DX, DY) steps (signed, must fit the coordinate width)"),
     Opcode("ARC", 0x2, ("XS", "YS", "XE", "YE"),
            (("CCW", 0, 1, "1: counter-clockwise"),
             ("VARIANT", 1, 2, "0 traditional, 1 weighted, 2 improved, 3 precise"),
             ("LAMBDA", 3, 5, "weighting factor 2**-LAMBDA"),
-            ("ACC_BITS", 8, 5, "paper variants: accumulator width n (0: normalised to the radius)")),
+            ("ACC_BITS", 8, 5, "paper variants: accumulator width n (0: normalised to the radius)"),
+            BLEND_FIELD),
            "arc about the centre from (XS, YS) to (XE, YE), centre-relative signed steps"),
     Opcode("PULSE", 0x3, ("COUNT_X", "COUNT_Y"), (),
            "direct pulses: signed counts per axis at PULSE_PERIOD_X / _Y, both axes at once"),
@@ -52,7 +56,7 @@ BY_CODE = {op.code: op for op in OPCODES}
 # Error codes (STATUS.ERROR).
 ERRORS = (
     (0, "NONE", "no error"),
-    (1, "BAD_OPCODE", "the header's opcode is not in the table"),
+    (1, "BAD_OPCODE", "the header's opcode is not in the table (CLEAR_ERROR then empties the FIFO)"),
     (2, "RESERVED_BITS", "a header bit outside the opcode's fields is set"),
     (3, "RANGE", "an operand does not fit (coordinate outside the DDA's width, SET index unknown)"),
     (4, "DDA_REJECTED", "the DDA refused the arc (end not on the circle, radius too large)"),

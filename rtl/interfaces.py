@@ -56,7 +56,11 @@ class LocalBus:
 
     ``space`` 0 is the I/O BAR (function registers), 1 the memory BAR (data
     FIFO window).  ``addr`` is the byte offset inside the BAR, dword aligned.
-    ``be`` are active-high byte enables.
+    ``be`` are active-high byte enables.  ``write`` gives the direction of a
+    request (1: ``we``) from the target's flip-flops, ahead of ``we``/``re``:
+    a back end answers from it, ``space`` and its own state, so that the
+    target's request logic and its reaction to the answer do not form one
+    combinational loop through the back end.
 
         clock    _/~\\_/~\\_/~\\_/~\\_
         we       __/~~~~~~~~~~~\\___
@@ -72,6 +76,7 @@ class LocalBus:
         self.wdata = Signal(intbv(0)[32:])
         self.we = Signal(bool(0))
         self.re = Signal(bool(0))
+        self.write = Signal(bool(0))
         self.rdata = Signal(intbv(0)[32:])
         self.ready = Signal(bool(0))
         self.retry = Signal(bool(0))
@@ -80,23 +85,30 @@ class LocalBus:
 class DdaPort:
     """Command and status of the DDA interpolator (``rtl/dda_arc.py``).
 
-    Inputs: ``start`` (one-clock pulse, taken when not busy), ``line`` (1: a
+    Inputs: ``start`` (one-clock pulse, taken when ``ready``), ``line`` (1: a
     straight move by (``xe``, ``ye``); 0: an arc about the origin from
     (``xs``, ``ys``) to (``xe``, ``ye``)), ``variant`` (0 traditional,
     1 weighted, 2 improved of the paper, 3 the project's precise mode),
     ``lambda_shift`` (weighting factor 2**-lambda_shift), ``acc_bits`` (the
     paper's accumulator width n, threshold 2**(n + lambda_shift); 0: n is the
     bit length of the radius, i.e. left-shift normalisation; both only for
-    variants 0..2), ``ccw`` (direction), ``advance`` (one iteration per clock
-    in which it is high: the feed rate).  The command lines are read in the
-    clock of ``start``; an arc spends a fixed number of setup clocks (its
-    squares, root and rounding, 5 * coord_width + 2) before the first iteration.
-    Outputs: ``busy`` (from the clock after ``start`` until the move ends),
-    ``done`` (one-clock pulse when the move has ended on its end point),
-    ``error`` (the last ``start`` was rejected: end not within one step of
-    the start radius, radius too large, a centre point, acc_bits +
-    lambda_shift too wide; held until the next ``start``), ``quadrant`` (of
-    the moving point, 0..3 for I..IV).
+    variants 0..2), ``ccw`` (direction), ``blend`` (1: the path goes on into
+    the next move at speed, so ``stop_left`` does not count down for this
+    one), ``advance`` (the feed rate: one iteration per pulse; pulses come at
+    most every other clock).  The command lines are read in the clock of
+    ``start``; an arc spends a fixed number of setup clocks (its squares, root
+    and rounding) before its first iteration.  The setup of a move overlaps
+    the run of the move before it, so chained moves leave no gap.
+    Outputs: ``ready`` (a ``start`` would be taken: the setup stage is free),
+    ``busy`` (a move is being set up or run), ``done`` (one-clock pulse when a
+    move has ended on its end point, with its last step), ``error`` (a move
+    was rejected: end not within one step of the start radius, radius too
+    large, a centre point, acc_bits + lambda_shift too wide; raised once the
+    moves before it have ended, held until the next ``start``), ``quadrant``
+    (of the moving point, 0..3 for I..IV), ``stop_left`` (a lower bound of
+    the iterations left before the path stops: those of the running move
+    when it was started with ``blend`` = 0, the all-ones value while the
+    running move blends or none runs; the feed-rate ramp decelerates on it).
     """
 
     def __init__(self, coord_width=24):
@@ -110,6 +122,7 @@ class DdaPort:
         self.lambda_shift = Signal(intbv(0)[5:])
         self.acc_bits = Signal(intbv(0)[5:])
         self.ccw = Signal(bool(1))
+        self.blend = Signal(bool(0))
         self.xs = Signal(intbv(0, min=low, max=high))
         self.ys = Signal(intbv(0, min=low, max=high))
         self.xe = Signal(intbv(0, min=low, max=high))
@@ -119,6 +132,13 @@ class DdaPort:
         self.done = Signal(bool(0))
         self.error = Signal(bool(0))
         self.quadrant = Signal(intbv(0)[2:])
+        self.ready = Signal(bool(1))
+        self.stop_left = Signal(intbv((1 << self.left_width) - 1)[self.left_width:])
+
+    @property
+    def left_width(self):
+        """Width of ``stop_left``: four quadrant pieces of the largest radius, plus one."""
+        return self.coord_width + 3
 
 
 class AxisPulses:

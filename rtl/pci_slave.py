@@ -522,6 +522,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         local.re.next = (first and is_read) or prefetch
         local.we.next = drain or (first and not is_read and not irdy_q)
         local.space.next = drain or space_mem
+        local.write.next = drain or not is_read
         if h_valid:
             local.wdata.next = h_data
             local.be.next = h_be

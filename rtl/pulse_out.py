@@ -46,6 +46,9 @@ def pulse_out(clock, reset, request, ready, active, clear, clear_position, width
     phase_clocks = Signal(intbv(0)[TIMING_BITS:])
     low_clocks = Signal(intbv((1 << TIMING_BITS) - 1)[TIMING_BITS:])
     take, turn = Signal(bool(0)), Signal(bool(0))
+    starts, high_ends = Signal(bool(0)), Signal(bool(0))
+    phase_step, low_step = Signal(intbv(0)[TIMING_BITS:]), Signal(intbv(0)[TIMING_BITS:])  # 1, or 0 at the limit
+    last_slot, free_slot = Signal(modbv(0)[index_bits:]), Signal(intbv(0)[index_bits:])
     limit = (1 << TIMING_BITS) - 1
 
     @always_comb
@@ -67,51 +70,77 @@ def pulse_out(clock, reset, request, ready, active, clear, clear_position, width
             elif count != 0:
                 take.next = not ((head[0] and head[2] != dir_level_x) or (head[1] and head[3] != dir_level_y))
 
+    @always_comb
+    def restart():
+        # a phase (STEP high, or DIR set-up) starts: its clock count restarts at 1
+        starts.next = take or (phase == phase_t.P_IDLE and not clear and turn and low_clocks >= hold)
+        high_ends.next = phase == phase_t.P_HIGH and phase_clocks >= width
+        phase_step.next = 0
+        if phase_clocks != limit:
+            phase_step.next = 1
+        low_step.next = 0
+        if low_clocks != limit:
+            low_step.next = 1
+
+    @always_seq(clock.posedge, reset=reset)
+    def count_clocks():
+        # Both counters run in every phase (saturating: the increment is 0 at
+        # the limit) and restart at 1, so that the comparisons only choose a
+        # value at the end and never gate a clock enable.  phase_clocks is
+        # only read in P_SETUP and P_HIGH, which both start at 1; low_clocks
+        # is not read in P_HIGH and restarts when it ends.
+        if starts:
+            phase_clocks.next = 1
+        else:
+            phase_clocks.next = phase_clocks + phase_step
+        if high_ends:
+            low_clocks.next = 1
+        else:
+            low_clocks.next = low_clocks + low_step
+
     @always_seq(clock.posedge, reset=reset)
     def step_phases():
         if phase == phase_t.P_HIGH:
-            if phase_clocks >= width:
+            if high_ends:
                 level_x.next = 0
                 level_y.next = 0
-                low_clocks.next = 1
                 phase.next = phase_t.P_IDLE
-            else:
-                phase_clocks.next = phase_clocks + 1
-        else:
-            if low_clocks < limit:
-                low_clocks.next = low_clocks + 1
-            if take:
-                level_x.next = head[0]
-                level_y.next = head[1]
-                phase_clocks.next = 1
-                phase.next = phase_t.P_HIGH
-            elif clear:
-                phase.next = phase_t.P_IDLE
-            elif phase == phase_t.P_SETUP:
-                if phase_clocks < limit:
-                    phase_clocks.next = phase_clocks + 1
-            elif turn and low_clocks >= hold:
-                if head[0]:
-                    dir_level_x.next = head[2]
-                if head[1]:
-                    dir_level_y.next = head[3]
-                phase_clocks.next = 1
-                phase.next = phase_t.P_SETUP
+        elif take:
+            level_x.next = head[0]
+            level_y.next = head[1]
+            phase.next = phase_t.P_HIGH
+        elif clear:
+            phase.next = phase_t.P_IDLE
+        elif phase == phase_t.P_IDLE and starts:
+            if head[0]:
+                dir_level_x.next = head[2]
+            if head[1]:
+                dir_level_y.next = head[3]
+            phase.next = phase_t.P_SETUP
 
     @always_seq(clock.posedge, reset=reset)
     def fill():
-        used = intbv(0, min=0, max=queue_depth + 1)
-        used[:] = count
+        # The queue shifts when its head is taken; a new entry goes behind
+        # the last one held after that shift: slot count - 1 or count.
+        pushed = request.step_x or request.step_y
+        entry = concat(request.dir_y, request.dir_x, request.step_y, request.step_x)
         if clear:
-            used[:] = 0
+            count.next = 0
         elif take:
             for i in range(queue_depth - 1):
                 queue[i].next = queue[i + 1]
-            used[:] = used - 1
-        if (request.step_x or request.step_y) and not clear:
-            queue[used[index_bits:]].next = concat(request.dir_y, request.dir_x, request.step_y, request.step_x)
-            used[:] = used + 1
-        count.next = used
+            if pushed:
+                queue[last_slot].next = entry
+            else:
+                count.next = count - 1
+        elif pushed:
+            queue[free_slot].next = entry
+            count.next = count + 1
+
+    @always_comb
+    def slots():
+        last_slot.next = count[index_bits:] - 1   # wraps: only used with count >= 1
+        free_slot.next = count[index_bits:]
 
     @always_seq(clock.posedge, reset=reset)
     def drive_pins():
@@ -134,7 +163,7 @@ def pulse_out(clock, reset, request, ready, active, clear, clear_position, width
                 else:
                     position_y.next = position_y - 1
 
-    return room, peek, decide, step_phases, fill, drive_pins
+    return room, peek, decide, restart, count_clocks, step_phases, fill, slots, drive_pins
 
 
 def pulse_out_ports(queue_depth=4, in_flight=2):

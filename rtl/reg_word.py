@@ -5,12 +5,14 @@ from rtl.registers import Register
 
 
 @block
-def reg_word(clock, reset, addr, write_now, read_now, byte_mask, wdata, set_strobe, set_index,
+def reg_word(clock, reset, addr, write_addr, write_now, read_now, byte_mask, wdata, set_strobe, set_index,
              set_value, hw_value, value, strobe, clamp_in, clamp_out, read_in, read_out, *, spec):
     """The register ``spec`` (a ``rtl.registers.Register``) on the I/O bus.
 
-    Ports: ``addr`` (byte offset), ``write_now``/``read_now`` (an I/O transfer
-    happens at this clock edge), ``byte_mask`` (byte enables as a bit mask),
+    Ports: ``addr`` (byte offset of reads), ``write_addr`` (of writes),
+    ``write_now`` (an I/O write happens at this clock edge), ``read_now`` (the
+    read chain shows the register at ``addr``; reads have no side effect
+    here), ``byte_mask`` (byte enables of the write as a bit mask),
     ``wdata``; ``set_strobe``/``set_index``/``set_value`` (the SET command's
     write port); ``hw_value`` (RO and WP: what reads return; W1C: bits the
     hardware sets; W1S: bits the hardware clears); ``value`` (RW/W1C/W1S:
@@ -29,6 +31,7 @@ def reg_word(clock, reset, addr, write_now, read_now, byte_mask, wdata, set_stro
     width, offset = spec.width, spec.offset
     checked = spec.minimum is not None or spec.maximum is not None
     mine = Signal(bool(0))
+    mine_write = Signal(bool(0))
     written = Signal(intbv(0)[32:] if checked else intbv(0)[width:])
     shown_wide = Signal(intbv(0)[32:])
     honoured = Signal(intbv(0)[width:])
@@ -42,6 +45,10 @@ def reg_word(clock, reset, addr, write_now, read_now, byte_mask, wdata, set_stro
     @always_comb
     def select():
         mine.next = addr == offset
+
+    @always_comb
+    def select_write():
+        mine_write.next = write_addr == offset
 
     @always_comb
     def read_chain():
@@ -75,9 +82,9 @@ def reg_word(clock, reset, addr, write_now, read_now, byte_mask, wdata, set_stro
     generators = [select, read_chain, _widen(shown, shown_wide)]
     if not stored:
         return generators + [clamp_pass]
-    generators += [merge, _limit(written, honoured, out_of_range, spec)]
+    generators += [select_write, merge, _limit(written, honoured, out_of_range, spec)]
     generators.append(clamp_chain if spec.access in ("RW", "WP") else clamp_pass)
-    generators.append(_store(clock, reset, mine, write_now, set_mine, set_index, set_target, written,
+    generators.append(_store(clock, reset, mine_write, write_now, set_mine, set_index, set_target, written,
                              honoured, out_of_range, hw_value, value, strobe, clamped, spec))
     return generators
 
@@ -206,7 +213,7 @@ def reg_word_ports(spec):
     if not isinstance(spec, Register):
         raise ValueError("spec must be a rtl.registers.Register")
     width = spec.width
-    return dict(clock=Signal(bool(0)), reset=None, addr=Signal(intbv(0)[16:]),
+    return dict(clock=Signal(bool(0)), reset=None, addr=Signal(intbv(0)[16:]), write_addr=Signal(intbv(0)[16:]),
                 write_now=Signal(bool(0)), read_now=Signal(bool(0)), byte_mask=Signal(intbv(0)[32:]),
                 wdata=Signal(intbv(0)[32:]), set_strobe=Signal(bool(0)), set_index=Signal(intbv(0)[4:]),
                 set_value=Signal(intbv(0)[32:]), hw_value=Signal(intbv(0)[width:]),

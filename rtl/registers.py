@@ -27,6 +27,7 @@ WORD_BYTES = 4
 ID_MAGIC = 0xDDAC
 VERSION = 0x0100  # major 1, minor 0
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock
+RATE_MAX = RATE_ONE // 2  # the DDA takes an iteration at most every other clock
 
 
 @dataclass(frozen=True)
@@ -115,14 +116,18 @@ REGISTERS = (
              _one("STEPS", 32, "steps that left the X pins, signed", signed=True)),
     Register("POS_Y", 0x24, "RO", 0, "Y position captured by the last POS_X read",
              _one("STEPS", 32, "steps that left the Y pins, signed", signed=True)),
-    Register("FEED_RATE", 0x28, "RW", 4096, "target iteration rate, in 1/65536 per clock",
-             _one("RATE", 17, "iterations per clock times 65536 (65536: one per clock)"),
-             minimum=1, maximum=RATE_ONE, set_index=0),
-    Register("RAMP_START", 0x2C, "RW", 4096, "iteration rate a move starts with when RAMP_STEP is not 0",
-             _one("RATE", 17, "iterations per clock times 65536"),
-             minimum=1, maximum=RATE_ONE, set_index=1),
-    Register("RAMP_STEP", 0x30, "RW", 0, "rate change per iteration towards FEED_RATE (0: no ramp)",
-             _one("STEP", 16, "added to the rate each iteration until FEED_RATE"), set_index=2),
+    Register("FEED_RATE", 0x28, "RW", 4096,
+             "target iteration rate, in 1/65536 per clock (ramps: docs/instructions.md)",
+             _one("RATE", 16, "iterations per clock times 65536 (32768: one every other clock, the most)"),
+             minimum=1, maximum=RATE_MAX, set_index=0),
+    Register("RAMP_START", 0x2C, "RW", 4096,
+             "iteration rate a move starts with, and ends with unless it blends, when RAMP_STEP is not 0",
+             _one("RATE", 16, "iterations per clock times 65536 (at most 32768)"),
+             minimum=1, maximum=RATE_MAX, set_index=1),
+    Register("RAMP_STEP", 0x30, "RW", 0,
+             "rate change per iteration: up towards FEED_RATE, down to RAMP_START before a stop (0: no ramp)",
+             _one("STEP", 16, "added to the rate each iteration until FEED_RATE; subtracted as the end nears"),
+             set_index=2),
     Register("STEP_WIDTH", 0x34, "RW", 1, "STEP high time, also its minimum low time, in clocks",
              _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=3),
     Register("DIR_SETUP", 0x38, "RW", 1, "DIR stable before the STEP leading edge, in clocks",

@@ -33,7 +33,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     are four iCE40 4-Kbit block RAMs), ``coord_width`` (the DDA's).
 
     Local bus: I/O and FIFO writes complete in the clock they are requested,
-    a full FIFO answers retry:
+    a full FIFO answers retry; an I/O write reaches the registers one clock
+    later, and a request in that clock waits one clock (PCI never asks that
+    soon):
         clock    _/~\\_/~\\_/~\\_/~\\_
         we       _/~~~~~~~~~~~\\___
         space    _/~~~~~~~~~~~\\___     memory BAR
@@ -41,8 +43,13 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         retry    _________/~~~\\___     FIFO full
     """
     specs = regmap.REGISTERS
-    io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
+    io_write, io_read, io_space, push = (Signal(bool(0)) for _ in range(4))
     byte_mask = Signal(intbv(0)[32:])
+    # an I/O write reaches the registers one clock after the bus transfer (see write_stage)
+    io_written = Signal(bool(0))
+    written_addr = Signal(intbv(0)[len(local.addr):])
+    written_data = Signal(intbv(0)[32:])
+    written_mask = Signal(intbv(0)[32:])
     fifo_dout = Signal(intbv(0)[32:])
     fifo_pop, fifo_empty, fifo_full = Signal(bool(0)), Signal(bool(1)), Signal(bool(0))
     fifo_level = Signal(intbv(0, min=0, max=fifo_depth + 1))
@@ -78,23 +85,25 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     positions = [position_signal() for _ in range(2)]
     polarity = [values["DIR_POLARITY"](i) for i in range(2)]
     tick, hold = Signal(bool(0)), Signal(bool(0))
+    outputs_busy, discard_on_clear, fifo_flush = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    requested_before, out_active_before = Signal(bool(0)), Signal(bool(0))
     any_busy, busy_before, done_flag, low_before, error_before = (Signal(bool(0)) for _ in range(5))
     pos_y_snapshot = position_signal()
 
-    units = [sync_fifo(clock, reset, push, local.wdata, fifo_pop, fifo_dout, core_clear, fifo_level,
+    units = [sync_fifo(clock, reset, push, local.wdata, fifo_pop, fifo_dout, fifo_flush, fifo_level,
                        fifo_empty, fifo_full, depth=fifo_depth, width=32)]
     for i, spec in enumerate(specs):
-        units.append(reg_word(clock, reset, local.addr, io_write, io_read, byte_mask, local.wdata,
+        units.append(reg_word(clock, reset, local.addr, written_addr, io_written, io_space, written_mask, written_data,
                               set_strobe, set_index, set_value, hw[spec.name], values[spec.name],
                               strobes[spec.name], clamps[i], clamps[i + 1], reads[i], reads[i + 1],
                               spec=spec))
     units.append(sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, core_clear,
-                           clear_error, dda, seq_load, seq_count[0], seq_count[1], pulse_busy, out_active,
+                           clear_error, dda, seq_load, seq_count[0], seq_count[1], pulse_busy, outputs_busy,
                            set_strobe, set_index, set_value, mark_strobe, mark_tag, error_code,
-                           seq_busy, motion_run, coord_width=coord_width,
+                           seq_busy, motion_run, discard_on_clear, coord_width=coord_width,
                            set_indices=tuple(regmap.SET_TARGETS)))
     units.append(feed_rate(clock, reset, motion_run, hold, values["FEED_RATE"], values["RAMP_START"],
-                           values["RAMP_STEP"], tick))
+                           values["RAMP_STEP"], dda.stop_left, tick))
     for axis, name in enumerate("XY"):
         units.append(direct_pulse(clock, reset, axis_load[axis], axis_count[axis],
                                   values[f"PULSE_PERIOD_{name}"], out_ready, core_clear,
@@ -109,6 +118,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     enable_bit, mode_bit = _bit("CONTROL", "ENABLE"), _bit("CONTROL", "MODE")
     reset_bit, clear_bit, zero_bit = (_bit("COMMAND", f) for f in ("SOFT_RESET", "CLEAR_ERROR", "CLEAR_POSITION"))
     pos_x_offset = regmap.offset("POS_X")
+    command_offset = regmap.offset("COMMAND")
 
     @always_comb
     def decode_bus():
@@ -122,15 +132,30 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         if local.be[3]:
             mask[32:24] = 0xFF
         byte_mask.next = mask
-        io_write.next = local.we and not local.space
-        io_read.next = local.re and not local.space
-        push.next = local.we and local.space and not fifo_full and local.be != 0
+        # transfers happen only while answered ready: not in the clock after an I/O write
+        io_write.next = local.we and not local.space and not io_written
+        io_read.next = local.re and not local.space and not io_written
+        # read data follows the address alone: the target samples it only with
+        # re and ready, and re (the target's late request logic) stays off the read mux
+        io_space.next = not local.space
+        push.next = local.we and local.space and not fifo_full and local.be != 0 and not io_written
 
     @always_comb
     def answer_bus():
-        local.ready.next = local.re or (local.we and not (local.space and fifo_full))
-        local.retry.next = local.we and local.space and fifo_full
+        # from the request's direction, not from we/re: see LocalBus; a request in
+        # the clock after an I/O write waits one clock, so it sees that write's effect
+        local.ready.next = not (local.write and local.space and fifo_full) and not io_written
+        local.retry.next = local.write and local.space and fifo_full and not io_written
         local.rdata.next = read_end
+
+    @always_seq(clock.posedge, reset=reset)
+    def write_stage():
+        # registered, so the target's request logic does not reach the register
+        # merge and clamp logic in the same clock
+        io_written.next = io_write
+        written_addr.next = local.addr
+        written_data.next = local.wdata
+        written_mask.next = byte_mask
 
     @always_comb
     def control_bits():
@@ -142,6 +167,14 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     @always_seq(clock.posedge, reset=reset)
     def soft_reset():
         core_clear.next = command_strobe and command[reset_bit]
+
+    @always_comb
+    def fifo_emptying():
+        # after BAD_OPCODE, CLEAR_ERROR empties the FIFO when the registers take it,
+        # the clock after its bus write; a request in that clock waits (answer_bus),
+        # so every word written before the clear is dropped, every later one kept
+        fifo_flush.next = core_clear or (discard_on_clear and io_written and written_addr == command_offset
+                                         and written_data[clear_bit] and written_mask[clear_bit])
 
     level_pad = level_bits - len(fifo_level)
 
@@ -155,6 +188,12 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     direct_dir_x, direct_dir_y = direct_dir
 
     @always_seq(clock.posedge, reset=reset)
+    def outputs_before():
+        # registered, so the pulse queue's logic does not reach the sequencer's issue
+        requested_before.next = requests.step_x or requests.step_y
+        out_active_before.next = out_active
+
+    @always_seq(clock.posedge, reset=reset)
     def snapshot():
         if io_read and local.addr == pos_x_offset:
             pos_y_snapshot.next = position_y
@@ -162,6 +201,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     @always_comb
     def pulse_activity():
         pulse_busy.next = direct_busy_x or direct_busy_y
+        # a step request is not yet in the pulse queue in its own clock, nor seen
+        # in out_active_before in the next: both clocks are covered by the requests
+        outputs_busy.next = requests.step_x or requests.step_y or requested_before or out_active_before
         hold.next = not out_ready
         dda.advance.next = tick and out_ready and motion_run
         any_busy.next = seq_busy or direct_busy_x or direct_busy_y or out_active or dda.busy
@@ -173,8 +215,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         requests.dir_x.next = steps.dir_x if steps.step_x else direct_dir_x
         requests.dir_y.next = steps.dir_y if steps.step_y else direct_dir_y
 
-    units += [decode_bus, answer_bus, control_bits, soft_reset, snapshot, pulse_activity, merge_requests,
-              widen_level]
+    units += [decode_bus, answer_bus, write_stage, control_bits, soft_reset, fifo_emptying, outputs_before, snapshot,
+              pulse_activity,
+              merge_requests, widen_level]
     for axis, name in enumerate("XY"):
         units.append(_axis_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"],
                                   seq_load, seq_count[axis], axis_load[axis], axis_count[axis]))

@@ -29,29 +29,36 @@ def _field(op_name, field_name):
 def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clear_error,
               dda, pulse_load, pulse_count_x, pulse_count_y, pulse_busy, outputs_busy,
               set_strobe, set_index, set_value, mark_strobe, mark_tag,
-              error_code, busy, motion_run, *, coord_width=24, set_indices=(0,)):
+              error_code, busy, motion_run, discard_on_clear, *, coord_width=24, set_indices=(0,)):
     """Fetch, check and execute the FIFO's commands (``docs/instructions.md``).
 
     Fetch: the FIFO is read one word per clock (``fifo_pop``; the word arrives
     in ``fifo_dout`` the next clock) into the next-instruction register while
-    the current command runs, so a segment starts in the clock the previous
-    one reports ``done``.  Execute: LINE/ARC drive ``dda`` (a one-clock
-    ``start`` with the operands) and wait for ``done``; PULSE loads both
-    direct pulse generators (``pulse_load``, ``pulse_count_*``) and waits
-    while ``pulse_busy``; DWELL counts clocks once the pulse outputs are
-    quiet (``outputs_busy`` low: the last step has left the pins); SET gives a ``set_strobe``
-    with ``set_index``/``set_value``; MARK a ``mark_strobe`` with ``mark_tag``.
-    A malformed command, or an arc the DDA rejects, sets ``error_code`` and
-    nothing more executes until ``clear_error``.  ``enable`` low holds the
-    queue; ``clear`` (soft reset) drops everything.  ``busy``: something is
-    running or queued; ``motion_run``: the interpolator is running (feed-rate
-    ramp).  Parameters: ``coord_width`` (range of ARC/LINE operands),
-    ``set_indices`` (SET indices that exist).
+    the current command runs.  Execute: LINE/ARC drive ``dda`` (a one-clock
+    ``start`` with the operands and BLEND) as soon as the DDA is ``ready``,
+    also while the move before still runs, so chained segments leave no gap;
+    PULSE loads both direct pulse generators (``pulse_load``,
+    ``pulse_count_*``) and waits while ``pulse_busy``; DWELL counts clocks
+    once the pulse outputs are quiet (``outputs_busy`` low: no step request
+    pending and the last step has left the pins); SET gives a ``set_strobe``
+    with ``set_index``/``set_value``; MARK a ``mark_strobe`` with
+    ``mark_tag``.  SET, DWELL, MARK, PULSE and a malformed command wait until
+    the motion before them has ended (DDA idle, outputs quiet), so a MARK
+    means "reached" and the moves before a bad command complete.  A malformed
+    command, or a move the DDA rejects, sets ``error_code`` and nothing more
+    executes until ``clear_error``; after BAD_OPCODE the stream cannot be
+    framed any more, so ``discard_on_clear`` tells the FIFO to empty itself on
+    that ``clear_error`` (the fetch restarts at a header).  ``enable`` low
+    holds the queue; ``clear`` (soft reset) drops everything.  ``busy``:
+    something is running or queued; ``motion_run``: a path is under way
+    (feed-rate ramp; high across chained segments).  Parameters:
+    ``coord_width`` (range of ARC/LINE operands), ``set_indices`` (SET
+    indices that exist).
 
         clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
         fifo_pop  _/~~~~~~~~~~~\\_______________     LINE: 3 words
         next ok   _____________/~~~\\___________
-        dda.start _________________/~~~\\_______
+        dda.start _________________/~~~\\_______     (dda.ready high)
     """
     seq_t = enum("S_IDLE", "S_MOTION", "S_PULSE", "S_DWELL", "S_ERROR")
     state = Signal(seq_t.S_IDLE)
@@ -63,23 +70,28 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
     word_due = Signal(bool(0))
     next_valid = Signal(bool(0))
     next_error = Signal(intbv(0)[ERROR_BITS:])
+    next_motion, arriving_moves = Signal(bool(0)), Signal(bool(0))
     issue = Signal(bool(0))
     finishing = Signal(bool(0))
+    state_over = Signal(bool(0))
+    motion_done = Signal(bool(0))
+    discard = Signal(bool(0))
     dwell_left = Signal(intbv(0)[32:])
 
     arriving_count = Signal(intbv(0, min=0, max=isa.MAX_OPERANDS + 1))
     next_count = Signal(intbv(0, min=0, max=isa.MAX_OPERANDS + 1))
-    next_known = Signal(bool(0))
+    next_known = Signal(bool(0))  # of the arriving word, like the masks and set_known
     opcode = Signal(intbv(0)[32 - isa.OPCODE_LSB:])
     mask_high = Signal(intbv(0)[16:])
     mask_low = Signal(intbv(0)[16:])
     coord_mask = Signal(intbv(0)[isa.MAX_OPERANDS:])
     count_mask = Signal(intbv(0)[isa.MAX_OPERANDS:])
     set_known = Signal(bool(0))
-    coord_fits = Signal(intbv(0)[isa.MAX_OPERANDS:])
-    count_fits = Signal(intbv(0)[isa.MAX_OPERANDS:])
+    # the checks, made as the words arrive and kept beside them (no deep logic before the issue)
+    bad_opcode, bad_header_bits, bad_set_index, bad_operand = (Signal(bool(0)) for _ in range(4))
     arriving_coord_fits, arriving_count_fits = Signal(bool(0)), Signal(bool(0))
     opcode_known = _opcode_rom(lambda op: 1)
+    opcode_moves = _opcode_rom(lambda op: int(op.name in ("LINE", "ARC")))
     operand_count = _opcode_rom(lambda op: len(op.operands))
     header_mask_high = _opcode_rom(lambda op: op.header_mask >> 16)
     header_mask_low = _opcode_rom(lambda op: op.header_mask & 0xFFFF)
@@ -92,6 +104,9 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
     E_NONE, E_BAD_OPCODE, E_RESERVED_BITS, E_RANGE, E_DDA_REJECTED = (
         isa.ERROR_CODE[name] for name in ("NONE", "BAD_OPCODE", "RESERVED_BITS", "RANGE", "DDA_REJECTED"))
     ccw_lsb = _field("ARC", "CCW")[0]
+    blend_lsb = _field("ARC", "BLEND")[0]
+    if _field("LINE", "BLEND")[0] != blend_lsb:
+        raise ValueError("LINE and ARC must have BLEND in the same header bit")
     variant_lsb, variant_msb = _field("ARC", "VARIANT")
     lambda_lsb, lambda_msb = _field("ARC", "LAMBDA")
     acc_lsb, acc_msb = _field("ARC", "ACC_BITS")
@@ -107,20 +122,24 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
         arriving_count.next = operand_count[fifo_dout[32:isa.OPCODE_LSB]]
 
     @always_comb
+    def lookup_arriving_kind():
+        arriving_moves.next = opcode_moves[fifo_dout[32:isa.OPCODE_LSB]]
+
+    @always_comb
     def lookup_count():
         next_count.next = operand_count[header[32:isa.OPCODE_LSB]]
 
     @always_comb
     def lookup_valid():
-        next_known.next = opcode_known[header[32:isa.OPCODE_LSB]]
+        next_known.next = opcode_known[fifo_dout[32:isa.OPCODE_LSB]]
 
     @always_comb
     def lookup_mask_high():
-        mask_high.next = header_mask_high[header[32:isa.OPCODE_LSB]]
+        mask_high.next = header_mask_high[fifo_dout[32:isa.OPCODE_LSB]]
 
     @always_comb
     def lookup_mask_low():
-        mask_low.next = header_mask_low[header[32:isa.OPCODE_LSB]]
+        mask_low.next = header_mask_low[fifo_dout[32:isa.OPCODE_LSB]]
 
     @always_comb
     def lookup_coords():
@@ -132,7 +151,7 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
 
     @always_comb
     def lookup_set():
-        set_known.next = set_ok[header[index_msb:index_lsb]]
+        set_known.next = set_ok[fifo_dout[index_msb:index_lsb]]
 
     @always_comb
     def fetch_request():
@@ -145,10 +164,15 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
         fifo_pop.next = (not fifo_empty and not next_valid and more and not clear
                          and state != seq_t.S_ERROR)
 
+    @always_comb
+    def discarding():
+        discard_on_clear.next = state == seq_t.S_ERROR and error_code == E_BAD_OPCODE
+        discard.next = clear_error and state == seq_t.S_ERROR and error_code == E_BAD_OPCODE
+
     @always_seq(clock.posedge, reset=reset)
     def fetch():
         word_due.next = fifo_pop
-        if clear:
+        if clear or discard:
             word_due.next = 0
             fetched.next = 0
             next_valid.next = 0
@@ -158,6 +182,11 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
             if word_due:
                 if fetched == 0:
                     header.next = fifo_dout
+                    next_motion.next = arriving_moves
+                    bad_opcode.next = not next_known
+                    bad_header_bits.next = (fifo_dout[32:16] & ~mask_high) != 0 or (fifo_dout[16:] & ~mask_low) != 0
+                    bad_set_index.next = fifo_dout[32:isa.OPCODE_LSB] == set_op and not set_known
+                    bad_operand.next = 0
                     if arriving_count == 0:
                         next_valid.next = 1
                     else:
@@ -171,8 +200,9 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
                         operand_2.next = fifo_dout
                     else:
                         operand_3.next = fifo_dout
-                    coord_fits.next[fetched - 1] = arriving_coord_fits
-                    count_fits.next[fetched - 1] = arriving_count_fits
+                    if ((coord_mask[fetched - 1] and not arriving_coord_fits)
+                            or (count_mask[fetched - 1] and not arriving_count_fits)):
+                        bad_operand.next = 1
                     if fetched == next_count:
                         next_valid.next = 1
                         fetched.next = 0
@@ -183,29 +213,43 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
     def check():
         result = intbv(0)[ERROR_BITS:]
         result[:] = E_NONE
-        if not next_known:
+        if bad_opcode:
             result[:] = E_BAD_OPCODE
-        elif (header[32:16] & ~mask_high) != 0 or (header[16:] & ~mask_low) != 0:
+        elif bad_header_bits:
             result[:] = E_RESERVED_BITS
-        elif opcode == set_op and not set_known:
-            result[:] = E_RANGE
-        elif (coord_mask & ~coord_fits) != 0 or (count_mask & ~count_fits) != 0:
+        elif bad_set_index or bad_operand:
             result[:] = E_RANGE
         next_error.next = result
 
     @always_comb
+    def motion_status():
+        # every move handed to the DDA has ended (a start is not yet seen as busy)
+        motion_done.next = not dda.start and not dda.busy and not dda.done
+
+    @always_comb
     def completion():
-        finishing.next = False
+        state_over.next = False
         if state == seq_t.S_IDLE:
-            finishing.next = True
+            state_over.next = True
         elif state == seq_t.S_MOTION:
-            finishing.next = dda.done
+            state_over.next = motion_done
         elif state == seq_t.S_PULSE:
-            finishing.next = not pulse_busy
+            state_over.next = not pulse_busy
         elif state == seq_t.S_DWELL:
-            finishing.next = dwell_left <= 1 and not outputs_busy
+            state_over.next = dwell_left <= 1 and not outputs_busy
         else:
-            finishing.next = False
+            state_over.next = False
+
+    @always_comb
+    def readiness():
+        if next_motion and next_error == E_NONE:
+            if state == seq_t.S_MOTION:
+                # chain: the DDA sets the move up while the one before runs
+                finishing.next = dda.ready and not dda.start and not dda.error
+            else:
+                finishing.next = state_over
+        else:
+            finishing.next = state_over and not outputs_busy
 
     @always_comb
     def issuing():
@@ -224,7 +268,7 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
             if clear_error:
                 state.next = seq_t.S_IDLE
                 error_code.next = E_NONE
-        elif state == seq_t.S_MOTION and dda.error and not dda.start and not dda.busy:
+        elif state == seq_t.S_MOTION and dda.error and not dda.start:
             state.next = seq_t.S_ERROR
             error_code.next = E_DDA_REJECTED
         elif issue:
@@ -246,7 +290,7 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
                     set_strobe.next = 1
                 elif opcode == mark_op:
                     mark_strobe.next = 1
-        elif finishing:
+        elif state_over:
             state.next = seq_t.S_IDLE
         elif state == seq_t.S_DWELL and not outputs_busy and dwell_left != 0:
             dwell_left.next = dwell_left - 1
@@ -258,6 +302,7 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
         # word can overwrite the instruction register: no copy is needed.
         dda.line.next = opcode == line_op
         dda.ccw.next = header[ccw_lsb]
+        dda.blend.next = header[blend_lsb]
         dda.variant.next = header[variant_msb:variant_lsb]
         dda.lambda_shift.next = header[lambda_msb:lambda_lsb]
         dda.acc_bits.next = header[acc_msb:acc_lsb]
@@ -284,9 +329,9 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
         motion_run.next = state == seq_t.S_MOTION
 
     fits = [_fits(fifo_dout, arriving_coord_fits, coord_width), _fits(fifo_dout, arriving_count_fits, COUNT_BITS)]
-    return (fits, split_header, lookup_arriving, lookup_count, lookup_valid, lookup_mask_high, lookup_mask_low,
-            lookup_coords, lookup_counts, lookup_set, fetch_request, fetch, check, completion,
-            issuing, execute, present, report)
+    return (fits, split_header, lookup_arriving, lookup_arriving_kind, lookup_count, lookup_valid, lookup_mask_high, lookup_mask_low,
+            lookup_coords, lookup_counts, lookup_set, fetch_request, discarding, fetch, check, motion_status,
+            completion, readiness, issuing, execute, present, report)
 
 
 @block
@@ -314,4 +359,4 @@ def sequencer_ports(coord_width=24):
                 set_strobe=Signal(bool(0)), set_index=Signal(intbv(0)[CODE_BITS:]),
                 set_value=Signal(intbv(0)[32:]), mark_strobe=Signal(bool(0)),
                 mark_tag=Signal(intbv(0)[16:]), error_code=Signal(intbv(0)[ERROR_BITS:]),
-                busy=Signal(bool(0)), motion_run=Signal(bool(0)))
+                busy=Signal(bool(0)), motion_run=Signal(bool(0)), discard_on_clear=Signal(bool(0)))

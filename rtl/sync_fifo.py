@@ -29,13 +29,17 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, 
     write_addr = Signal(modbv(0)[addr_bits:])
     read_addr = Signal(modbv(0)[addr_bits:])
     count = Signal(intbv(0, min=0, max=depth + 1))
+    # count == 0 and count == depth as flip-flops, set from the next count, so that
+    # the back end's answer to the PCI target starts at a register, not at a compare
+    is_empty = Signal(bool(1))
+    is_full = Signal(bool(0))
     do_write = Signal(bool(0))
     do_read = Signal(bool(0))
 
     @always_comb
     def enables():
-        do_write.next = push and count != depth
-        do_read.next = pop and count != 0
+        do_write.next = push and not is_full
+        do_read.next = pop and not is_empty
 
     @always(clock.posedge)
     def memory():
@@ -46,25 +50,30 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, 
 
     @always_seq(clock.posedge, reset=reset)
     def pointers():
+        following = intbv(0, min=0, max=depth + 1)
+        following[:] = count
         if flush:
             write_addr.next = 0
             read_addr.next = 0
-            count.next = 0
+            following[:] = 0
         else:
             if do_write:
                 write_addr.next = write_addr + 1
             if do_read:
                 read_addr.next = read_addr + 1
             if do_write and not do_read:
-                count.next = count + 1
+                following[:] = count + 1
             elif do_read and not do_write:
-                count.next = count - 1
+                following[:] = count - 1
+        count.next = following
+        is_empty.next = following == 0
+        is_full.next = following == depth
 
     @always_comb
     def flags():
         level.next = count
-        empty.next = count == 0
-        full.next = count == depth
+        empty.next = is_empty
+        full.next = is_full
 
     return enables, memory, pointers, flags
 

@@ -4,6 +4,7 @@ from dataclasses import dataclass, field
 from myhdl import StopSimulation, block, delay, instance, now
 
 from rtl import instructions as isa
+from rtl import registers as regmap
 from rtl.card_core import card_core, card_core_ports
 from sim.card_model import PulseOutModel
 from sim.cosim import convert_and_cosimulate
@@ -112,6 +113,12 @@ def core_bench(ports, scenario, log, failures, cosim, check_pins, fifo_depth):
         if check_pins:
             parts.append(pin_model_check(clock, reset, ports["pins"], core.subs[1], TIMING, failures))
     driver = LocalBusDriver(clock, ports["local"])
+    return parts, scenario_runner(clock, reset, driver, scenario)
+
+
+@block
+def scenario_runner(clock, reset, driver, scenario):
+    """Hold reset for two clocks, then run ``scenario(driver)`` and stop."""
 
     @instance
     def run():
@@ -123,7 +130,23 @@ def core_bench(ports, scenario, log, failures, cosim, check_pins, fifo_depth):
         yield from scenario(driver)
         raise StopSimulation
 
-    return parts, run
+    return run
+
+
+def wait_idle(driver, limit=50000):
+    """Read STATUS until BUSY is 0; returns that STATUS word."""
+    for _ in range(limit):
+        status = yield from driver.io_read(regmap.offset("STATUS"))
+        if not regmap.field_value("STATUS", "BUSY", status):
+            return status
+    raise AssertionError("card still busy")
+
+
+def read_position(driver):
+    """(POS_X, POS_Y) in steps."""
+    x = yield from driver.io_read(regmap.offset("POS_X"))
+    y = yield from driver.io_read(regmap.offset("POS_Y"))
+    return regmap.field_value("POS_X", "STEPS", x), regmap.field_value("POS_Y", "STEPS", y)
 
 
 def run_core(name, scenario, cosim=False, check_pins=True, fifo_depth=FIFO_DEPTH):

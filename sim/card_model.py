@@ -126,31 +126,55 @@ class PulseOutModel:
 
 
 class FeedRateModel:
-    """Phase accumulator: a tick whenever the phase passes 65536."""
+    """Phase accumulator: a tick whenever the phase passes 65536, with a
+    trapezoidal ramp (``docs/registers.md``, RAMP_STEP).
 
-    def __init__(self):
+    The ramp count is the number of ticks the rate needs to come back down to
+    ``ramp_start``: up by one per increment (a clamped last one too), down by
+    one per decrement.  Deceleration is due when ``stop_left`` is at most the
+    count plus ``margin`` iterations.  Timing: the settings and ``stop_left``
+    act one clock after they are presented (the unit registers them).
+    """
+
+    def __init__(self, margin=2):
+        self.margin = margin
         self.rate = 0
         self.phase = 0
+        self.count = 0
         self.tick = False
+        self.decelerate = False
+        self.settings = (0, 0, 0)  # target, ramp_start, ramp_step, as after reset
 
-    def clock(self, run, hold, target, ramp_start, ramp_step):
+    def clock(self, run, hold, target, ramp_start, ramp_step, stop_left=(1 << 27) - 1):
+        if not 1 <= target <= regmap.RATE_MAX or not 1 <= ramp_start <= regmap.RATE_MAX:
+            raise ValueError(f"rates must be 1..{regmap.RATE_MAX}, got {target} and {ramp_start}")
+        due, (goal, floor, step) = self.decelerate, self.settings
+        self.decelerate = stop_left <= self.count + self.margin
+        self.settings = (target, ramp_start, ramp_step)
         self.tick = False
         if not run:
-            self.phase = 0
-            self.rate = target if ramp_step == 0 else ramp_start
+            self.phase, self.count = 0, 0
+            self.rate = goal if step == 0 else floor
             return
         if hold:
             return
         total = self.phase + self.rate
         self.phase = total % regmap.RATE_ONE
-        if total >= regmap.RATE_ONE:
-            self.tick = True
-            if ramp_step == 0:
-                self.rate = target
-            elif self.rate < target:
-                self.rate = min(self.rate + ramp_step, target)
-            else:
-                self.rate = max(self.rate - ramp_step, target)
+        if total < regmap.RATE_ONE:
+            return
+        self.tick = True
+        if step == 0:
+            self.rate, self.count = goal, 0
+        elif due:
+            if self.count:
+                self.rate = floor if self.count == 1 else max(self.rate - step, floor)
+                self.count -= 1
+        elif self.rate < goal:
+            self.rate = min(self.rate + step, goal)
+            self.count += 1
+        elif self.rate > goal:
+            self.rate = max(self.rate - step, goal)
+            self.count = max(self.count - 1, 0)
 
 
 class DirectPulseModel:
@@ -227,3 +251,66 @@ class RegisterModel:
 
     def read(self, name):
         return self.values[name]
+
+
+class DdaContractModel:
+    """The DDA as ``rtl.interfaces.DdaPort`` promises it to the card, clock by clock.
+
+    Not a model of ``rtl/dda_arc.py``'s internals: a stand-in that keeps the
+    contract with the fewest freedoms, to test the card's side against it.
+    Two stages: setup (``setup_clocks(command)`` clocks from the ``start``
+    edge, then the prepared move waits) and run (one iteration per
+    ``advance``).  A prepared move enters the run at the edge of the running
+    move's last iteration, so the next ``advance`` iterates it: no gap.
+    ``ready``: the setup stage is free (it frees when its move enters the run
+    or its error is raised).  A rejected move raises ``error`` once the run
+    stage is empty.  ``done`` comes with each move's last step.
+    ``stop_left``: the iterations left in the running move (exact, so a lower
+    bound) unless it blends; all ones otherwise.  ``steps_of(command)``: the
+    list of its iterations (``Step``; ValueError when rejected);
+    ``blend_of(command)``: its BLEND bit.
+    """
+
+    def __init__(self, steps_of, blend_of, setup_clocks, left_width):
+        self.steps_of, self.blend_of, self.setup_clocks = steps_of, blend_of, setup_clocks
+        self.all_ones = (1 << left_width) - 1
+        self.setup = None  # [clocks left, iterations or None (rejected), blend]
+        self.run = None  # [iterations left (a deque), blend]
+        self.ready, self.busy, self.done, self.error = True, False, False, False
+        self.steps = (False, False, False, False)  # step_x, step_y, dir_x, dir_y
+        self.stop_left = self.all_ones
+
+    def clock(self, start=False, advance=False, command=None):
+        self.done = False
+        self.steps = (False, False) + self.steps[2:]
+        if self.run and advance:
+            step = self.run[0].popleft()
+            self.steps = (step.step_x, step.step_y, step.dir_x, step.dir_y)
+            if not self.run[0]:
+                self.done, self.run = True, None
+        if self.setup and self.setup[0]:
+            self.setup[0] -= 1
+        elif self.setup and self.run is None:
+            _, iterations, blend = self.setup
+            self.setup = None
+            if iterations is None:
+                self.error = True
+            elif not iterations:
+                self.done = True
+            else:
+                self.run = [iterations, blend]
+        if start:
+            if not self.ready:
+                raise AssertionError("start while the DDA's setup stage is busy")
+            try:
+                iterations = deque(self.steps_of(command))
+            except ValueError:
+                iterations = None
+            self.setup = [self.setup_clocks(command) - 1, iterations, self.blend_of(command)]
+            self.error = False
+        self.ready = self.setup is None
+        self.busy = self.setup is not None or self.run is not None
+        if self.run is None or self.run[1]:
+            self.stop_left = self.all_ones
+        else:
+            self.stop_left = len(self.run[0])

@@ -95,11 +95,14 @@ def _run(cmd, cwd=None):
     return result
 
 
-def cosimulate(module, ports, verilog_files):
+def cosimulate(module, ports, verilog_files, libraries=(), defines=()):
     """A ``Cosimulation`` of ``module`` (defined in ``verilog_files``).
 
     ``ports`` maps each argument of the MyHDL block to the Signal or interface
     the bench uses; every port of the Verilog module must be covered.
+    ``libraries``: Verilog files whose modules are compiled only where
+    instantiated (a vendor's cell models); ``defines``: ``NAME`` or
+    ``NAME=value`` macros for the compiler.
     """
     verilog_files = [Path(f) for f in verilog_files]
     text = "\n".join(f.read_text() for f in verilog_files)
@@ -112,7 +115,11 @@ def cosimulate(module, ports, verilog_files):
     wrapper = work / f"tb_{module}.v"
     wrapper.write_text(_wrapper(module, declared))
     image = work / f"{module}.vvp"
-    _run(["iverilog", "-g2005", "-o", str(image), str(wrapper), *map(str, verilog_files)])
+    options = [f"-D{name}" for name in defines]
+    for library in libraries:
+        options += ["-l", str(library)]
+    _run(["iverilog", "-g2005", *options, "-s", f"tb_{module}", "-o", str(image), str(wrapper),
+          *map(str, verilog_files)])
     used = {n: signals[n] for _, _, n in declared}
     cosim = Cosimulation(f"vvp -m {vpi_module()} {image}", **used)
     cosim.name = module  # lets MyHDL's tracer list it among a bench's instances

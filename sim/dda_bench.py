@@ -1,9 +1,9 @@
 """Clock-by-clock bench of ``rtl/dda_arc.py`` against ``sim.dda_model.DdaMachine``.
 
 ``dda_bench(ports, commands, record, ...)`` drives a list of commands through
-the ``DdaPort`` (start pulse, a seeded random ``advance`` pattern, stray
-``start`` pulses while busy) and compares every output with the model after
-every clock.  The device is the MyHDL block, or with ``verilog`` (a list of
+the ``DdaPort`` (start pulse when ready, one after the other or overlapped, a
+seeded random or alternating ``advance`` pattern, stray ``start`` pulses while
+not ready) and compares every output with the model after every clock.  The device is the MyHDL block, or with ``verilog`` (a list of
 files) a ``Cosimulation`` of the generated Verilog on the same ``ports``.  The moves the outputs made
 are collected in ``record`` for the tests.
 """
@@ -17,20 +17,22 @@ from sim.cosim import cosimulate
 from sim.dda_model import ArcCommand, DdaMachine, LineCommand, plan_arc
 from sim.clocking import clock_source
 
-OUTPUTS = ("busy", "done", "error", "quadrant")
+OUTPUTS = ("busy", "ready", "done", "error", "quadrant", "stop_left")
 PULSES = ("step_x", "step_y", "dir_x", "dir_y")
 HALF_PERIOD = 5
 
 
 class Record:
-    """What the device did: one entry per command, with the clock of each output step."""
+    """What the device did: one entry per command, with the clock of each output step and
+    of each iteration (``ticks``, the clocks after the edges that iterated it)."""
 
     def __init__(self):
         self.moves = []
         self.clocks = 0
 
     def begin(self, command):
-        self.moves.append(dict(command=command, error=False, done=False, steps=[]))
+        self.moves.append(dict(command=command, error=False, done=False, steps=[], ticks=[],
+                               start_clock=self.clocks, done_clock=None))
 
     def current(self):
         return self.moves[-1]
@@ -38,6 +40,7 @@ class Record:
 
 def _drive_command(cmd, command):
     cmd.line.next = isinstance(command, LineCommand)
+    cmd.blend.next = command.blend
     if isinstance(command, LineCommand):
         cmd.xe.next, cmd.ye.next = command.dx, command.dy
         return
@@ -57,8 +60,15 @@ def _observed(cmd, steps):
 
 @block
 def dda_bench(ports, commands, record, *, coord_width=24, verilog=None, seed=1,
-              advance_rate=0.7, idle_gap=3):
-    """Drive ``commands`` into ``device`` and check it against the model on every clock."""
+              advance_rate=0.7, idle_gap=3, overlap=False, alternate=False):
+    """Drive ``commands`` into the device and check it against the model on every clock.
+
+    Each command starts when ``ready``; with ``overlap`` at once (set up while
+    the move before it runs), otherwise ``idle_gap`` clocks after ``busy``
+    fell.  ``advance`` is high with probability ``advance_rate``, or with
+    ``alternate`` in every other clock (the fastest feed rate).  Stray
+    ``start`` pulses while not ready must be ignored.
+    """
     clock, reset, cmd, steps = ports["clock"], ports["reset"], ports["cmd"], ports["steps"]
     rng = random.Random(seed)
     model = DdaMachine(coord_width)
@@ -73,28 +83,32 @@ def dda_bench(ports, commands, record, *, coord_width=24, verilog=None, seed=1,
         yield clock.negedge
         yield clock.negedge
         reset.next = not reset.active
-        for command in commands:
-            record.begin(command)
-            _drive_command(cmd, command)
-            cmd.start.next = True
-            busy = True
-            while busy:
+        pending = list(commands)
+        command = None
+        expected = dict(model.outputs)
+        idle = idle_gap
+        while pending or expected["busy"] or idle < idle_gap:
+            start = False
+            if pending and expected["ready"] and (overlap or (not expected["busy"] and idle >= idle_gap)):
+                command = pending.pop(0)
+                record.begin(command)
+                _drive_command(cmd, command)
+                start = True
+            elif not expected["ready"]:
+                start = rng.random() < 0.01
+            if alternate:
+                advance = record.clocks % 2 == 0
+            else:
                 advance = rng.random() < advance_rate
-                cmd.advance.next = advance
-                expected = model.clock(cmd.start.next, advance, command)
-                yield clock.negedge
-                record.clocks += 1
-                observed = _observed(cmd, steps)
-                _compare(expected, observed, record)
-                _collect(record, observed)
-                busy = expected["busy"]
-                # a stray start while busy must be ignored
-                cmd.start.next = busy and rng.random() < 0.01
-            for _ in range(idle_gap):
-                expected = model.clock(False, False, command)
-                yield clock.negedge
-                record.clocks += 1
-                _compare(expected, _observed(cmd, steps), record)
+            cmd.start.next = start
+            cmd.advance.next = advance
+            expected = model.clock(start, advance, command)
+            yield clock.negedge
+            record.clocks += 1
+            observed = _observed(cmd, steps)
+            _compare(expected, observed, record)
+            _collect(record, observed, model)
+            idle = 0 if expected["busy"] else idle + 1
         raise StopSimulation()
 
     if verilog is None:
@@ -112,13 +126,20 @@ def _compare(expected, observed, record):
                              f"device {observed} != model {wanted}")
 
 
-def _collect(record, observed):
-    move = record.current()
-    if observed["step_x"] or observed["step_y"]:
-        move["steps"].append((record.clocks, observed["step_x"], observed["step_y"],
-                              observed["dir_x"], observed["dir_y"]))
-    move["error"] = move["error"] or bool(observed["error"])
-    move["done"] = move["done"] or bool(observed["done"])
+def _collect(record, observed, model):
+    """File the outputs of the last edge under the moves the model says they belong to."""
+    if model.step_move is not None:
+        move = record.moves[model.step_move]
+        move["ticks"].append(record.clocks)
+        if observed["step_x"] or observed["step_y"]:
+            move["steps"].append((record.clocks, observed["step_x"], observed["step_y"],
+                                  observed["dir_x"], observed["dir_y"]))
+    if model.done_move is not None:
+        record.moves[model.done_move]["done"] = True
+        record.moves[model.done_move]["done_clock"] = record.clocks
+    if model.error_move is not None:
+        record.moves[model.error_move]["error"] = bool(observed["error"])
+        record.moves[model.error_move]["error_clock"] = record.clocks
 
 
 def end_point(move):

@@ -60,8 +60,9 @@ def error_term_width(coord_width):
 
 
 def setup_clocks(coord_width, line):
-    """Clocks from the ``start`` edge to the check edge (squares, root, rounding, check)."""
-    return 1 if line else 5 * coord_width + 2
+    """Clocks from the ``start`` edge to the first edge that may hand the move to the run
+    (squares, root, rounding, the registered check)."""
+    return 2 if line else 5 * coord_width + 3
 
 
 def wrap(value, width):
@@ -133,13 +134,19 @@ class ArcCommand:
     variant: int = PRECISE
     lambda_shift: int = 0
     acc_bits: int = 0
+    blend: bool = False
 
 
 @dataclass(frozen=True)
 class LineCommand:
-    """A straight move by (dx, dy) from the current position."""
+    """A straight move by (dx, dy) from the current position.
+
+    ``blend`` (both commands): the path goes on into the next move at speed, so
+    the hardware's ``stop_left`` does not count down for this move.
+    """
     dx: int
     dy: int
+    blend: bool = False
 
 
 @dataclass(frozen=True)
@@ -365,6 +372,15 @@ class ArcIterator:
         radius = self.plan.radius
         self.count_x, self.count_y = self.plan.last_counts if self.pieces_left == 0 else (radius, radius)
 
+    def steps_left(self):
+        """(x, y): the steps each axis still makes, over all remaining quadrant pieces."""
+        x, y = self.count_x, self.count_y
+        if self.pieces_left:
+            middle = (self.pieces_left - 1) * self.plan.radius
+            x += middle + self.plan.last_counts[0]
+            y += middle + self.plan.last_counts[1]
+        return x, y
+
 
 class LineIterator:
     """Iterations of a line: Bresenham-like DDA normalised to the major axis.
@@ -403,6 +419,16 @@ class LineIterator:
         self.y += (1 if self.dir_y else -1) * step_y
         self.finished = self.count_x == 0 and self.count_y == 0
         return Step(step_x, step_y, self.dir_x, self.dir_y)
+
+    def steps_left(self):
+        """(x, y): the steps each axis still makes."""
+        return self.count_x, self.count_y
+
+
+def iterations_left_bound(iterator):
+    """A lower bound of the iterations ``iterator`` still runs: an iteration steps
+    each axis at most once, so at least the larger of the axes' remaining steps."""
+    return max(iterator.steps_left())
 
 
 def iterator_for(command, coord_width=24, **options):
@@ -520,51 +546,120 @@ def paper_configuration(variant):
     raise ValueError(f"the paper has no figure for variant {variant}")
 
 
+def stop_left_width(coord_width):
+    """Width of the ``stop_left`` output (``DdaPort.left_width``)."""
+    return coord_width + 3
+
+
 class DdaMachine:
     """Clock-level model of ``rtl/dda_arc.py``: call ``clock()`` once per rising edge.
 
     ``clock(start, advance, command)`` takes the inputs sampled at the edge
     (``command``: the ``ArcCommand``/``LineCommand`` on the cmd lines, read
     when ``start`` is taken) and returns the registered outputs after it.
+
+    Two stages, as in the hardware.  The setup stage takes a ``start`` while
+    it is free (``ready``), counts the setup clocks and then offers the
+    checked move.  An iteration takes two clocks: at the edge of its
+    ``advance`` it makes its step outputs (and ``done`` with the last one);
+    at the next edge it is applied (``quadrant`` follows then) and an
+    ``advance`` there is ignored.  The run takes the offered move at an edge
+    where it is idle or applies its running move's last iteration, so the
+    next ``advance`` already iterates the new move.  A rejected move
+    (``error``) or a line of length 0 (``done``) is handed over at the same
+    edges only.  ``stop_left`` after an edge is, for the running move as the
+    last applied iteration (or the handover) before that edge left it,
+    ``iterations_left_bound`` minus one (not below 0): lagging the ``advance``
+    pulses by at most one iteration, it stays a lower bound; the all-ones
+    value while no move runs or the running one blends.  ``busy`` falls with
+    the last ``done``.  Every started move gets a number (0, 1, ...);
+    ``step_move``, ``done_move`` and ``error_move`` say which move the outputs
+    of the last edge belong to.
     """
 
     def __init__(self, coord_width=24):
         self.coord_width = coord_width
-        self.iterator = None
-        self.setup_left = 0
-        self.pending = None
-        self.outputs = dict(busy=False, done=False, error=False, step_x=False, step_y=False,
-                            dir_x=False, dir_y=False, quadrant=0)
+        self.all_ones = (1 << stop_left_width(coord_width)) - 1
+        self.started = 0
+        self.setup = None       # [command, number, setup clocks left]
+        self.run = None         # (iterator, command, number)
+        self.pending = False    # an iteration was taken at the last edge: applied at this one
+        self.left = None        # (blend, bound - 1) of the running move as last applied
+        self.step_move = self.done_move = self.error_move = None
+        self.outputs = dict(busy=False, ready=True, done=False, error=False, step_x=False,
+                            step_y=False, dir_x=False, dir_y=False, quadrant=0,
+                            stop_left=self.all_ones)
+
+    def _stop_left(self):
+        if self.left is None or self.left[0]:
+            return self.all_ones
+        return max(self.left[1], 0)
+
+    def _applied(self, iterator, command):
+        self.left = (command.blend, iterations_left_bound(iterator) - 1)
 
     def clock(self, start, advance, command):
         out = self.outputs
+        stop_left = self._stop_left()
         out.update(done=False, step_x=False, step_y=False)
-        if not out["busy"]:
-            if start:
-                out.update(busy=True, error=False)
-                self.pending = command
-                self.setup_left = setup_clocks(self.coord_width, isinstance(command, LineCommand))
-            return dict(out)
-        if self.setup_left:
-            self.setup_left -= 1
-            if self.setup_left == 0:
-                self._check()
-            return dict(out)
-        if advance:
-            step = self.iterator.step()
-            out.update(step_x=step.step_x, step_y=step.step_y, dir_x=step.dir_x, dir_y=step.dir_y,
-                       quadrant=self.iterator.quadrant)
-            if self.iterator.finished:
-                out.update(busy=False, done=True)
+        self.step_move = self.done_move = self.error_move = None
+        was_running = self.run is not None
+        finishing = False
+        if self.pending:
+            self.pending = False
+            iterator, run_command, _ = self.run
+            out["quadrant"] = iterator.quadrant
+            self._applied(iterator, run_command)
+            if iterator.finished:
+                finishing = True
+                self.run = None
+                self.left = None
+        elif was_running and advance:
+            self._iterate()
+            self.pending = True
+        self._setup_edge(start, command, was_running, finishing)
+        ending = self.pending and self.run[0].finished
+        out.update(stop_left=stop_left, ready=self.setup is None,
+                   busy=self.setup is not None or (self.run is not None and not ending))
         return dict(out)
 
-    def _check(self):
+    def _iterate(self):
+        """The first clock of an iteration of the running move: its outputs."""
         out = self.outputs
-        try:
-            self.iterator = iterator_for(self.pending, self.coord_width)
-        except ValueError:
-            out.update(busy=False, error=True)
+        iterator, _, number = self.run
+        step = iterator.step()
+        self.step_move = number
+        out.update(step_x=step.step_x, step_y=step.step_y, dir_x=step.dir_x, dir_y=step.dir_y)
+        if iterator.finished:
+            self.done_move = number
+            out["done"] = True
+
+    def _setup_edge(self, start, command, was_running, finishing):
+        out = self.outputs
+        if self.setup is None:
+            if start:
+                out["error"] = False
+                self.setup = [command, self.started, setup_clocks(self.coord_width,
+                                                                  isinstance(command, LineCommand))]
+                self.started += 1
             return
-        out["quadrant"] = self.iterator.quadrant
-        if self.iterator.finished:
-            out.update(busy=False, done=True)
+        if self.setup[2] > 1:
+            self.setup[2] -= 1
+            return
+        if was_running and not finishing:
+            return
+        command, number, _ = self.setup
+        self.setup = None
+        try:
+            iterator = iterator_for(command, self.coord_width)
+        except ValueError:
+            self.error_move = number
+            out["error"] = True
+            return
+        if iterator.finished:
+            self.done_move = number
+            out.update(done=True, quadrant=iterator.quadrant)
+            return
+        self.run = (iterator, command, number)
+        out["quadrant"] = iterator.quadrant
+        self._applied(iterator, command)

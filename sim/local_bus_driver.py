@@ -25,6 +25,7 @@ class LocalBusDriver:
         local.wdata.next = wdata
         local.we.next = write
         local.re.next = not write
+        local.write.next = write
 
     def _idle(self):
         self.local.we.next = 0
@@ -62,13 +63,17 @@ class LocalBusDriver:
         local = self.local
         for index, word in enumerate(words):
             self._request(MEMORY_SPACE, (4 * index) & 0xFFF, 0xF, word, True)
-            yield delay(SETTLE)
-            if bool(local.retry):
-                self.retries += 1
-                self._idle()
+            while True:  # a wait state holds the word
+                yield delay(SETTLE)
+                if bool(local.retry):
+                    self.retries += 1
+                    self._idle()
+                    yield self.clock.negedge
+                    return index
+                accepted = bool(local.ready)
                 yield self.clock.negedge
-                return index
-            yield self.clock.negedge
+                if accepted:
+                    break
         self._idle()
         return len(words)
 

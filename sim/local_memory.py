@@ -155,6 +155,8 @@ def local_memory(clock, reset, local, memory):
     def check(key):
         if local.we.val and local.re.val:
             raise ValueError(f"local bus: read and write requested together at {now()}")
+        if bool(local.write.val) != bool(local.we.val):
+            raise ValueError(f"local bus: write = {int(local.write.val)} disagrees with the request at {now()}")
         memory._index(key[0], key[1])
 
     def transfer(key):

@@ -6,24 +6,27 @@ The host enumerates the card, sizes and places its BARs, programs registers
 over I/O, bursts commands into the FIFO over memory, waits for INTA#, reads
 position and status back.  The STEP/DIR pins are captured and the path is
 rebuilt from them; golden values come from ``sim.dda_model`` (paths, V_arc)
-and the register table.  The same bench runs on the MyHDL card and on its
-generated Verilog in Icarus: ``gen/card.v`` as committed for the default
-configuration (the split-port card, i.e. ``gen/top.v`` without its pads:
-Icarus co-simulation cannot carry the top level's tri-state pins), a fresh
-conversion for a small FIFO.
+and the register table.  The same bench runs on the MyHDL card (``rtl/card.py``,
+split PCI ports) and on the generated top level in Icarus: ``gen/top.v`` as
+committed for the default configuration (``$DDA_CARD_GEN/top.v`` if set), a
+fresh conversion for a small FIFO, with its PCI pads (iCE40 ``SB_IO`` cells,
+yosys's cell model) on the same bus model through ``sim/top_harness.py``.
+The split-port card already has the pads' I/O-register timing, so both show
+the bus the same, clock for clock.
 """
 import pytest
+from myhdl import always, block
 
 from rtl import instructions as isa
 from rtl import registers as regmap
 from rtl.card import card, card_ports
+from rtl.interfaces import MotorPins
 from rtl.top import PARAMETERS
 from sim.card_bench import PinLog, command_words, expected_path, pin_capture
-from sim.cosim import convert_and_cosimulate, cosimulate
 from sim.dda_model import ArcCommand, LineCommand, iterate, metrics, v_arc
-from sim.pci_bench import PciBench
-from sim.paths import GEN
+from sim.pci_bench import TARGET_DEVICE, PciBench
 from sim.pci_host import Termination
+from sim.top_harness import TopHarness, convert_top, generated_top, top_on_bus
 from sim.waves import Waveform
 
 DEVICE = 0
@@ -32,24 +35,42 @@ DEFAULT_FIFO = PARAMETERS["fifo_depth"][1]
 
 
 class CardUnderTest:
-    """The card as a PciBench target, plus what the scenario needs to see."""
+    """The card as a PciBench target, plus what the scenario needs to see:
+    ``kind`` "myhdl" (``rtl.card``) or "verilog" (``top.v`` in Icarus);
+    ``samples`` gets the bus of every clock (values and drivers)."""
 
     def __init__(self, kind, fifo_depth):
         self.kind, self.fifo_depth = kind, fifo_depth
         self.log = PinLog()
+        self.samples = []
         self.io = self.mem = None
 
     def __call__(self, bench):
-        ports = card_ports(fifo_depth=self.fifo_depth)
-        ports["clock"], ports["reset"] = bench.clock, bench.reset
-        if self.kind == "verilog" and self.fifo_depth == DEFAULT_FIFO:
-            core = (cosimulate("card", ports, [GEN / "card.v"]), None)  # the committed gen/card.v
-        elif self.kind == "verilog":
-            core = (convert_and_cosimulate(card, "card", ports, fifo_depth=self.fifo_depth), None)
-        else:
+        if self.kind == "verilog":
+            top = generated_top() if self.fifo_depth == DEFAULT_FIFO else convert_top(fifo_depth=self.fifo_depth)
+            harness = TopHarness(top, idsel_bit=16 + TARGET_DEVICE)
+            agent, motor = harness.card, MotorPins()
+            core = (top_on_bus, (bench.clock, bench.reset, bench.host.agent, harness, motor))
+        elif self.kind == "myhdl":
+            ports = card_ports(fifo_depth=self.fifo_depth)
+            ports["clock"], ports["reset"] = bench.clock, bench.reset
+            agent, motor = ports["pci"], ports["pins"]
             core = (card, (), dict(ports, fifo_depth=self.fifo_depth))
-        capture = (pin_capture, (bench.clock, ports["pins"], self.log))
-        return ports["pci"], [core, capture]
+        else:
+            raise ValueError(f"unknown card kind {self.kind!r}: use 'myhdl' or 'verilog'")
+        capture = (pin_capture, (bench.clock, motor, self.log))
+        return agent, [core, capture, (bus_record, (bench, self.samples))]
+
+
+@block
+def bus_record(bench, samples):
+    """Append the segment's sample (values and drivers) at every rising edge."""
+
+    @always(bench.clock.posedge)
+    def record():
+        samples.append(bench.segment.sample())
+
+    return record
 
 
 def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO):
@@ -89,7 +110,7 @@ def wait_inta(bench, limit=200000):
     raise AssertionError("INTA# never asserted")
 
 
-def program(bench, target, feed=regmap.RATE_ONE, control=1, interrupts=("DONE",)):
+def program(bench, target, feed=regmap.RATE_MAX, control=1, interrupts=("DONE",)):
     yield from io_write(bench, target, "FEED_RATE", feed)
     yield from io_write(bench, target, "INT_ENABLE",
                         regmap.field_of("INT_ENABLE", **{name: 1 for name in interrupts}))
@@ -107,7 +128,7 @@ def finish(bench, target, out):
     yield from io_write(bench, target, "INT_STATUS", out["int_status"])
 
 
-def motion_scenario(commands, feed=regmap.RATE_ONE):
+def motion_scenario(commands, feed=regmap.RATE_MAX):
     words = [w for c in commands for w in command_words(c)]
 
     def scenario(bench, target, out):
@@ -124,7 +145,7 @@ CHAIN = [LineCommand(6, 2), LineCommand(5, 7), LineCommand(3, 4), ArcCommand(0, 
 
 @pytest.mark.parametrize("kind", ["myhdl", "verilog"])
 def test_enumerate_program_arc(kind):
-    out, log, _, _ = run_card(kind, motion_scenario([ARC]), f"card_e2e_arc_{kind}", DEFAULT_FIFO)
+    out, log, _, _ = run_card(kind, motion_scenario([ARC]), "card_e2e_arc", DEFAULT_FIFO)
     device = out["device"]
     assert (device.vendor_id, device.device_id, device.interrupt_pin) == (0x1234, 0xDDA0, 1)
     assert out["bars"]["io"]["size"] == 1 << regmap.IO_BAR_BITS
@@ -139,6 +160,23 @@ def test_enumerate_program_arc(kind):
     assert v_arc(rebuilt, 40) == pytest.approx(model_v_arc, rel=1e-12)
     assert regmap.field_value("STATUS", "BUSY", out["status"]) == 0
     assert regmap.field_value("INT_STATUS", "DONE", out["int_status"]) == 1
+
+
+def test_top_level_pins_match_the_split_port_card_clock_for_clock():
+    """The pads' I/O registers replace the card's boundary flip-flops: the top
+    in Icarus and the MyHDL card put the same values on every line, with the
+    same drivers, on every clock (the golden run is the MyHDL card, which the
+    other tests check against the models and the monitor)."""
+    scenario = motion_scenario([LineCommand(5, 3)])
+    samples = {}
+    for kind in ("myhdl", "verilog"):
+        _, log, _, bench = run_card(kind, scenario, "card_e2e_bus", DEFAULT_FIFO)
+        assert log.path() == expected_path([LineCommand(5, 3)])
+        samples[kind] = [(s.time, s.values, s.drivers) for s in bench.target.samples]
+    card_run, top_run = samples["myhdl"], samples["verilog"]
+    assert len(card_run) == len(top_run) > 100
+    for clock, (card_sample, top_sample) in enumerate(zip(card_run, top_run)):
+        assert top_sample == card_sample, f"clock {clock}: top {top_sample} != card {card_sample}"
 
 
 def test_chained_segments_no_gap_between_lines():

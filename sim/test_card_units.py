@@ -12,6 +12,7 @@ from myhdl import StopSimulation, block, instance
 from rtl.direct_pulse import direct_pulse, direct_pulse_ports
 from rtl.feed_rate import feed_rate, feed_rate_ports
 from rtl.pulse_out import pulse_out, pulse_out_ports
+from rtl.registers import RATE_MAX, RATE_ONE
 from rtl.sync_fifo import sync_fifo, sync_fifo_ports
 from sim.card_model import DirectPulseModel, FeedRateModel, FifoModel, PulseOutModel
 from sim.cosim import convert_and_cosimulate
@@ -109,28 +110,93 @@ def test_pulse_out_timing(seed, cosim):
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
 def test_feed_rate_ramp(cosim):
+    """Random settings, holds and moves; ``stop_left`` counts the ticks down
+    like a DDA (sometimes a clock late, sometimes blending: all ones)."""
     rng = random.Random(7)
     ports = feed_rate_ports()
     model = FeedRateModel()
-    ticks = []
+    ticks, left = [], {"count": None, "late": False}
+    all_ones = (1 << len(ports["stop_left"])) - 1
 
     def step(index):
         assert bool(ports["tick"]) == model.tick, f"tick at clock {index}"
         ticks.append(model.tick)
         if index % 400 == 0:
-            settings = dict(target=rng.choice([1, 3000, 40000, 65536]), ramp_start=rng.randint(1, 65536),
+            settings = dict(target=rng.choice([1, 3000, 20000, RATE_MAX]), ramp_start=rng.randint(1, RATE_MAX),
                             ramp_step=rng.choice([0, 1, 500, 9000]))
-            for key, value in settings.items():
-                ports[key].next = value
+            if index % 1200 == 800:  # a SET during the move
+                settings["target"] = rng.randint(1, RATE_MAX)
             step.settings = settings
-        inputs = dict(run=index % 400 > 5, hold=rng.random() < 0.1, **step.settings)
+            left.update(count=rng.choice([None, rng.randint(20, 300)]), late=rng.random() < 0.5)
+        if index % 400 == 200:
+            ports["target"].next = step.settings["target"]
+        if index % 400 < 2:
+            for key, value in step.settings.items():
+                ports[key].next = value
+        inputs = dict(run=index % 400 > 5, hold=rng.random() < 0.1,
+                      target=int(ports["target"].next), ramp_start=int(ports["ramp_start"].next),
+                      ramp_step=int(ports["ramp_step"].next),
+                      stop_left=all_ones if left["count"] is None else left["count"])
         ports["run"].next = inputs["run"]
         ports["hold"].next = inputs["hold"]
+        ports["stop_left"].next = inputs["stop_left"]
         model.clock(**inputs)
+        if left["count"] and model.tick and not left["late"]:
+            left["count"] -= 1
+        elif left["count"] and ticks[-1] and left["late"]:
+            left["count"] -= 1
 
     _run(f"feed_rate_{'icarus' if cosim else 'myhdl'}", _dut(feed_rate, "feed_rate", ports, cosim),
-         ports, step, 2400, {"feed": ["run", "hold", "target", "tick"]})
+         ports, step, 2400, {"feed": ["run", "hold", "target", "stop_left", "tick"]})
     assert sum(ticks) > 200
+
+
+def _model_intervals(iterations, target, ramp_start, ramp_step, late):
+    """Clocks between the ticks of a move of ``iterations`` on ``FeedRateModel``,
+    ``stop_left`` counted down on each tick (``late``: one clock after it)."""
+    model, left, times, clock = FeedRateModel(), iterations, [], 0
+    settings = dict(target=target, ramp_start=ramp_start, ramp_step=ramp_step)
+    model.clock(run=False, hold=False, **settings)
+    model.clock(run=False, hold=False, **settings)
+    pending = False
+    while left:
+        clock += 1
+        model.clock(run=True, hold=False, stop_left=left, **settings)
+        if pending:
+            left, pending = left - 1, False
+        if model.tick:
+            times.append(clock)
+            if late:
+                pending = True
+            else:
+                left -= 1
+    return [b - a for a, b in zip([0] + times, times)]
+
+
+@pytest.mark.parametrize("late", [False, True], ids=["fresh", "late"])
+@pytest.mark.parametrize("iterations, target, ramp_start, ramp_step", [
+    (400, RATE_MAX, 2048, 700), (400, 20000, 1000, 3000), (60, RATE_MAX, 1000, 500), (9, 30000, 5000, 9000)])
+def test_feed_rate_model_is_a_trapezoid(iterations, target, ramp_start, ramp_step, late):
+    """The spec of the ramp, on the model: intervals shrink, stay, grow back,
+    the first and the last are those of RAMP_START, and the deceleration
+    mirrors the acceleration (within the margin of two iterations)."""
+    gaps = _model_intervals(iterations, target, ramp_start, ramp_step, late)
+    assert len(gaps) == iterations
+    start_gap = RATE_ONE / ramp_start
+    # the phase left by the faster tick before it can shorten the last interval by up to step/start
+    assert abs(gaps[0] - start_gap) <= 1 and abs(gaps[-1] - start_gap) <= 1 + ramp_step / ramp_start, \
+        (gaps[:3], gaps[-3:])
+    fastest = min(gaps)
+    low = gaps.index(fastest)
+    high = len(gaps) - 1 - gaps[::-1].index(fastest)
+    # dithering of the phase accumulator: one clock either way
+    assert all(b <= a + 1 for a, b in zip(gaps[:low], gaps[1:low + 1])), "not shrinking"
+    assert all(b >= a - 1 for a, b in zip(gaps[high:], gaps[high + 1:])), "not growing back"
+    if fastest <= RATE_ONE / target + 1 and iterations > 100:
+        assert all(abs(g - fastest) <= 1 for g in gaps[low:high + 1]), "not steady at FEED_RATE"
+    up = sum(1 for g in gaps[:len(gaps) // 2] if g > fastest + 1)
+    down = sum(1 for g in gaps[len(gaps) // 2:] if g > fastest + 1)
+    assert abs(up - down) <= 3, (up, down)
 
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])

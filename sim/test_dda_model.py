@@ -11,8 +11,8 @@ import pytest
 
 from sim.dda_bench import random_arc
 from sim.dda_model import (IMPROVED, PAPER_V_ARC, PRECISE, TRADITIONAL, WEIGHTED, ArcCommand,
-                           LineCommand, Path, Step, count_sawteeth, iterate, metrics,
-                           nearest_root, paper_configuration, plan_arc, v_arc)
+                           LineCommand, Path, Step, count_sawteeth, iterate, iterations_left_bound,
+                           iterator_for, metrics, nearest_root, paper_configuration, plan_arc, v_arc)
 
 
 def best_lattice_path(radius):
@@ -183,3 +183,53 @@ def test_metrics_of_a_known_path():
     assert result.v_arc == pytest.approx(expected)
     assert (result.output_steps, result.diagonal_steps, result.iterations) == (2, 1, 3)
     assert (result.interval_min, result.interval_max) == (2, 2)
+
+
+def _left_along(command):
+    """(bound, steps left per axis, iterations left) before every iteration of ``command``."""
+    steps = iterate(command).steps
+    iterator = iterator_for(command)
+    rows = []
+    for index in range(len(steps) + 1):
+        after = steps[index:]
+        rows.append((iterations_left_bound(iterator), iterator.steps_left(),
+                     (sum(s.step_x for s in after), sum(s.step_y for s in after)), len(after)))
+        if index < len(steps):
+            iterator.step()
+    return rows
+
+
+STOP_CASES = [ArcCommand(100, 0, 0, 100), ArcCommand(1000, 0, 0, 1000), ArcCommand(50, 0, 50, 0),
+              ArcCommand(30, 40, -40, -30, ccw=False, variant=TRADITIONAL),
+              ArcCommand(-12, 5, -12, 5, ccw=False), ArcCommand(10, -1, -10, 1),
+              ArcCommand(15, 1, 15, -1), ArcCommand(0, 30, 30, 0, variant=WEIGHTED, lambda_shift=1),
+              LineCommand(12, -7), LineCommand(0, 9), LineCommand(-4, -4)]
+
+
+def _random_stop_cases(count):
+    rng = random.Random(5)
+    return [random_arc(rng, radius=rng.uniform(1, 300), variant=index % 4) for index in range(count)]
+
+
+@pytest.mark.parametrize("command", STOP_CASES + _random_stop_cases(12))
+def test_steps_left_count_the_remaining_steps_and_bound_the_iterations(command):
+    """Steps left per axis equal the steps the path still makes; the bound never exceeds
+    the iterations left and reaches 0 with the last one."""
+    rows = _left_along(command)
+    for bound, left, made, iterations in rows:
+        assert left == made
+        assert bound <= iterations
+    assert rows[-1][0] == 0
+
+
+@pytest.mark.parametrize("command", [LineCommand(12, -7), LineCommand(-3, 40)])
+def test_stop_left_of_a_line_is_exact(command):
+    assert all(bound == iterations for bound, _, _, iterations in _left_along(command))
+
+
+@pytest.mark.parametrize("radius", [100, 1000])
+def test_stop_left_of_a_precise_quarter_arc_is_close(radius):
+    # iterations run about pi/2 R (one step length per iteration), the bound R: 0.64
+    rows = _left_along(ArcCommand(radius, 0, 0, radius))
+    ratios = [bound / iterations for bound, _, _, iterations in rows if iterations]
+    assert 0.6 <= min(ratios) and ratios[0] == pytest.approx(2 / math.pi, rel=0.02)

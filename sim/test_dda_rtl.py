@@ -1,11 +1,14 @@
 """``rtl/dda_arc.py`` against the golden model on every clock, in MyHDL and in Icarus.
 
 The same bench (``sim/dda_bench.py``) runs on the MyHDL block and on
-``gen/dda_arc.v`` through co-simulation.  Each run writes a VCD and a
-``.gtkw`` under ``build/waves``; some checks read the VCD back.
+``gen/dda_arc.v`` through co-simulation (``DDA_VERILOG_DIR`` names another
+folder, e.g. a fresh ``python -m rtl.top --convert --out build/x``).  Each run
+writes a VCD and a ``.gtkw`` under ``build/waves``; some checks read the VCD back.
 """
 import math
+import os
 import random
+from pathlib import Path
 
 import pytest
 
@@ -18,17 +21,19 @@ from sim.waves import Waveform, run_traced, write_gtkw
 
 GROUPS = {
     "command": ["cmd_start", "cmd_line", "cmd_variant", "cmd_ccw", "cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye"],
-    "status": ["cmd_advance", "cmd_busy", "cmd_done", "cmd_error", "cmd_quadrant"],
+    "status": ["cmd_advance", "cmd_ready", "cmd_busy", "cmd_done", "cmd_error", "cmd_quadrant",
+               "cmd_blend", "cmd_stop_left"],
     "pulses": ["steps_step_x", "steps_dir_x", "steps_step_y", "steps_dir_y"],
     "datapath": ["state", "quadrant", "mag_x", "mag_y", "acc_x", "acc_y", "radial_error",
                  "count_x", "count_y", "crossings"],
 }
+VERILOG_DIR = Path(os.environ.get("DDA_VERILOG_DIR", GEN))
 SIGNED = ("cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye", "acc_x", "acc_y", "radial_error")
 
 PAPER_CASES = [ArcCommand(8, 0, 0, 8, variant=v) for v in range(4)] + \
     [paper_configuration(v)[0] for v in (TRADITIONAL, WEIGHTED, IMPROVED)] + \
     [ArcCommand(100, 0, 0, 100)]
-LINES = [LineCommand(12, 11), LineCommand(-5, 3), LineCommand(0, -4), LineCommand(7, 0),
+LINES = [LineCommand(12, 11), LineCommand(-5, 3), LineCommand(0, -4), LineCommand(7, 0, blend=True),
          LineCommand(0, 0), LineCommand(-9, -9)]
 BAD = [ArcCommand(100, 0, 0, 103), ArcCommand(0, 0, 5, 5), ArcCommand(7, 7, 0, 0),
        ArcCommand(-(1 << 23), 0, 0, -(1 << 23)),
@@ -78,18 +83,19 @@ def full_circles():
 
 
 def quadrant_crossings():
-    return [ArcCommand(10, -1, -10, 1), ArcCommand(-3, 20, 3, -20, ccw=False),
+    return [ArcCommand(10, -1, -10, 1), ArcCommand(-3, 20, 3, -20, ccw=False, blend=True),
             ArcCommand(15, 1, 15, -1), ArcCommand(15, -1, 15, 1, ccw=False, variant=TRADITIONAL),
             ArcCommand(0, 30, 30, 0, variant=WEIGHTED, lambda_shift=1)]
 
 
-def run_bench(name, commands, cosim=False, seed=1, advance_rate=0.7, idle_gap=3, coord_width=24):
+def run_bench(name, commands, cosim=False, seed=1, advance_rate=0.7, idle_gap=3, coord_width=24,
+              overlap=False, alternate=False):
     """Run the bench traced; return the record and the VCD path."""
     ports = dda_arc_ports(coord_width=coord_width)
     record = Record()
-    verilog = [GEN / "dda_arc.v"] if cosim else None
+    verilog = [VERILOG_DIR / "dda_arc.v"] if cosim else None
     bench = dda_bench(ports, commands, record, coord_width=coord_width, verilog=verilog, seed=seed,
-                      advance_rate=advance_rate, idle_gap=idle_gap)
+                      advance_rate=advance_rate, idle_gap=idle_gap, overlap=overlap, alternate=alternate)
     vcd = run_traced(bench, name)
     wave = Waveform(vcd)
     groups = {g: [s for s in names if _has(wave, s)] for g, names in GROUPS.items()}
@@ -136,8 +142,9 @@ BENCHES = {
 
 @pytest.mark.parametrize("name", sorted(BENCHES))
 def test_rtl_equals_model_on_every_clock(name):
-    # back-to-back commands (start in the clock after done) in one of the benches
-    record, _ = run_bench(f"dda_{name}", BENCHES[name](), idle_gap=0 if name == "lines_and_bad" else 3)
+    # overlapped commands (each started as soon as the setup stage is free) in two benches
+    overlap = name in ("lines_and_bad", "circles_crossings")
+    record, _ = run_bench(f"dda_{name}", BENCHES[name](), overlap=overlap)
     check_moves(record)
 
 
@@ -146,8 +153,33 @@ def test_generated_verilog_equals_model_on_every_clock(name):
     commands = BENCHES[name]()
     if name == "paper":
         commands = [c for c in commands if c.variant in (PRECISE, TRADITIONAL)]
-    record, _ = run_bench(f"dda_{name}_cosim", commands, cosim=True)
+    record, _ = run_bench(f"dda_{name}_cosim", commands, cosim=True, overlap=name == "lines_and_bad")
     check_moves(record)
+
+
+CHAIN = [ArcCommand(100, 0, 0, 100, blend=True), ArcCommand(0, 100, -100, 0), LineCommand(120, -50),
+         ArcCommand(-100, 0, 0, -100), ArcCommand(0, -100, 103, 0), LineCommand(5, 5)]
+CHAIN_BAD = [ArcCommand(0, -100, 103, 0)]
+
+
+@pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
+def test_chained_moves_leave_no_gap(cosim):
+    """Arc after arc, line after arc, arc after line at the fastest feed rate (advance
+    every other clock): each move is set up while the one before runs, and its first
+    iteration comes two clocks after the last one of the move before; a rejected arc
+    started while an arc runs raises error only after that arc's done."""
+    record, _ = run_bench("dda_chain" + ("_cosim" if cosim else ""), CHAIN, cosim=cosim,
+                          overlap=True, alternate=True)
+    check_moves(record, bad=CHAIN_BAD)
+    moves = record.moves
+    for before, after in zip(moves[:3], moves[1:4]):
+        assert after["start_clock"] < before["done_clock"]
+        assert after["ticks"][0] - before["ticks"][-1] == 2
+        assert after["ticks"][0] == before["done_clock"] + 2
+    # the line's every iteration steps its major axis: its pulses show the ticks
+    assert [s[0] for s in moves[2]["steps"]] == moves[2]["ticks"]
+    assert moves[4]["error_clock"] == moves[3]["done_clock"] + 1
+    assert moves[5]["start_clock"] >= moves[4]["error_clock"]
 
 
 def device_points(move):
@@ -187,6 +219,7 @@ def test_narrow_width_up_to_the_largest_radius():
 
 
 def test_line_pulses_read_back_from_the_vcd():
+    # advance in every clock: an iteration takes two, so the X pulses come every other clock
     record, vcd = run_bench("dda_line_12_11", [LineCommand(12, 11)], advance_rate=1.0)
     wave = Waveform(vcd)
     clocks = record.clocks
@@ -195,7 +228,8 @@ def test_line_pulses_read_back_from_the_vcd():
         high = [i for i, v in enumerate(values) if v == "1"]
         assert len(high) == total
         gaps = [b - a for a, b in zip(high, high[1:])]
-        assert max(gaps) - min(gaps) <= 1
+        assert all(gap % 2 == 0 for gap in gaps)
+        assert max(gaps) - min(gaps) <= 2
     done = [i for i, v in enumerate(sampled(wave, "cmd_done", clocks + 2)) if v == "1"]
     assert len(done) == 1
 

