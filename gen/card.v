@@ -99,8 +99,8 @@ wire pci_slave1_accepted;
 wire pci_slave1_ad_oe_next;
 reg [31:0] pci_slave1_ad_out_next;
 reg pci_slave1_ad_out_parity;
-wire pci_slave1_ad_out_parity_kept;
 reg [31:0] pci_slave1_ad_out_q;
+reg pci_slave1_ad_parity_q;
 reg [31:0] pci_slave1_ad_q;
 reg pci_slave1_address_fault;
 wire pci_slave1_address_fault_next;
@@ -149,8 +149,6 @@ reg pci_slave1_irdy_q;
 reg pci_slave1_is_config;
 reg pci_slave1_is_read;
 reg pci_slave1_mem_enable;
-wire pci_slave1_par_next;
-reg pci_slave1_par_q;
 wire pci_slave1_parity_error_next;
 reg pci_slave1_parity_error_q;
 reg pci_slave1_parity_response;
@@ -755,9 +753,11 @@ always @(posedge clock, negedge reset) begin: pci_slave1_input_register
     if (reset == 0) begin
         pci_slave1_ad_q <= 0;
         pci_slave1_idsel_q <= 0;
+        pci_slave1_cbe_q <= 15;
     end
     else begin
         pci_slave1_ad_q <= pci_ad_in;
+        pci_slave1_cbe_q <= pci_cbe_in;
         pci_slave1_idsel_q <= pci_idsel_in;
     end
 end
@@ -766,12 +766,10 @@ end
 always @(posedge clock, negedge reset) begin: pci_slave1_control_input_register
     if (reset == 0) begin
         pci_slave1_frame_q <= 1;
-        pci_slave1_cbe_q <= 15;
         pci_slave1_frame_qq <= 1;
         pci_slave1_irdy_q <= 1;
     end
     else begin
-        pci_slave1_cbe_q <= pci_cbe_in;
         pci_slave1_frame_q <= pci_frame_in;
         pci_slave1_frame_qq <= pci_slave1_frame_q;
         pci_slave1_irdy_q <= pci_irdy_in;
@@ -1587,7 +1585,7 @@ end
 
 
 
-assign pci_slave1_par_next = ((((pci_slave1_ad_out_parity_kept ^ pci_cbe_in[0]) ^ pci_cbe_in[1]) ^ pci_cbe_in[2]) ^ pci_cbe_in[3]);
+assign pci_par_out = ((((pci_slave1_ad_parity_q ^ pci_slave1_cbe_q[0]) ^ pci_slave1_cbe_q[1]) ^ pci_slave1_cbe_q[2]) ^ pci_slave1_cbe_q[3]);
 
 
 always @(pci_slave1_ad_out_q) begin: pci_slave1_ad_out_parity_tree
@@ -1603,13 +1601,10 @@ always @(pci_slave1_ad_out_q) begin: pci_slave1_ad_out_parity_tree
 end
 
 
-(* keep *) wire pci_slave1_ad_out_parity_kept_kept_net = pci_slave1_ad_out_parity;
-assign pci_slave1_ad_out_parity_kept = pci_slave1_ad_out_parity_kept_kept_net;
-
-
 always @(posedge clock, negedge reset) begin: pci_slave1_bus_registers
     if (reset == 0) begin
         pci_trdy_oe <= 0;
+        pci_slave1_ad_parity_q <= 0;
         pci_perr_oe <= 0;
         pci_slave1_ad_out_q <= 0;
         pci_stop_oe <= 0;
@@ -1632,6 +1627,7 @@ always @(posedge clock, negedge reset) begin: pci_slave1_bus_registers
         pci_slave1_devsel_q <= pci_slave1_devsel_next;
         pci_slave1_ad_out_q <= pci_slave1_ad_out_next;
         pci_slave1_perr_q <= pci_slave1_perr_next;
+        pci_slave1_ad_parity_q <= pci_slave1_ad_out_parity;
         pci_trdy_oe <= pci_slave1_drive_next;
         pci_stop_oe <= pci_slave1_drive_next;
         pci_devsel_oe <= pci_slave1_drive_next;
@@ -1647,22 +1643,11 @@ always @(posedge clock, negedge reset) begin: pci_slave1_bus_registers
 end
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_parity_register
-    if (reset == 0) begin
-        pci_slave1_par_q <= 0;
-    end
-    else begin
-        pci_slave1_par_q <= pci_slave1_par_next;
-    end
-end
-
-
 
 assign pci_trdy_out = pci_slave1_trdy_q;
 assign pci_stop_out = pci_slave1_stop_q;
 assign pci_devsel_out = pci_slave1_devsel_q;
 assign pci_ad_out = pci_slave1_ad_out_q;
-assign pci_par_out = pci_slave1_par_q;
 assign pci_perr_out = pci_slave1_perr_q;
 
 

@@ -130,8 +130,8 @@ wire accepted;
 wire ad_oe_next;
 reg [31:0] ad_out_next;
 reg ad_out_parity;
-wire ad_out_parity_kept;
 reg [31:0] ad_out_q;
+reg ad_parity_q;
 reg [31:0] ad_q;
 reg address_fault;
 wire address_fault_next;
@@ -180,8 +180,6 @@ reg irdy_q;
 reg is_config;
 reg is_read;
 reg mem_enable;
-wire par_next;
-reg par_q;
 wire parity_error_next;
 reg parity_error_q;
 reg parity_response;
@@ -245,9 +243,11 @@ always @(posedge clock, negedge reset) begin: input_register
     if (reset == 0) begin
         ad_q <= 0;
         idsel_q <= 0;
+        cbe_q <= 15;
     end
     else begin
         ad_q <= pci_ad_in;
+        cbe_q <= pci_cbe_in;
         idsel_q <= pci_idsel_in;
     end
 end
@@ -256,12 +256,10 @@ end
 always @(posedge clock, negedge reset) begin: control_input_register
     if (reset == 0) begin
         frame_q <= 1;
-        cbe_q <= 15;
         frame_qq <= 1;
         irdy_q <= 1;
     end
     else begin
-        cbe_q <= pci_cbe_in;
         frame_q <= pci_frame_in;
         frame_qq <= frame_q;
         irdy_q <= pci_irdy_in;
@@ -1077,7 +1075,7 @@ end
 
 
 
-assign par_next = ((((ad_out_parity_kept ^ pci_cbe_in[0]) ^ pci_cbe_in[1]) ^ pci_cbe_in[2]) ^ pci_cbe_in[3]);
+assign pci_par_out = ((((ad_parity_q ^ cbe_q[0]) ^ cbe_q[1]) ^ cbe_q[2]) ^ cbe_q[3]);
 
 
 always @(ad_out_q) begin: ad_out_parity_tree
@@ -1093,13 +1091,10 @@ always @(ad_out_q) begin: ad_out_parity_tree
 end
 
 
-(* keep *) wire ad_out_parity_kept_kept_net = ad_out_parity;
-assign ad_out_parity_kept = ad_out_parity_kept_kept_net;
-
-
 always @(posedge clock, negedge reset) begin: bus_registers
     if (reset == 0) begin
         pci_trdy_oe <= 0;
+        ad_parity_q <= 0;
         pci_perr_oe <= 0;
         ad_out_q <= 0;
         pci_stop_oe <= 0;
@@ -1122,6 +1117,7 @@ always @(posedge clock, negedge reset) begin: bus_registers
         devsel_q <= devsel_next;
         ad_out_q <= ad_out_next;
         perr_q <= perr_next;
+        ad_parity_q <= ad_out_parity;
         pci_trdy_oe <= drive_next;
         pci_stop_oe <= drive_next;
         pci_devsel_oe <= drive_next;
@@ -1137,22 +1133,11 @@ always @(posedge clock, negedge reset) begin: bus_registers
 end
 
 
-always @(posedge clock, negedge reset) begin: parity_register
-    if (reset == 0) begin
-        par_q <= 0;
-    end
-    else begin
-        par_q <= par_next;
-    end
-end
-
-
 
 assign pci_trdy_out = trdy_q;
 assign pci_stop_out = stop_q;
 assign pci_devsel_out = devsel_q;
 assign pci_ad_out = ad_out_q;
-assign pci_par_out = par_q;
 assign pci_perr_out = perr_q;
 
 

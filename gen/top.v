@@ -39,7 +39,8 @@ input clock;
 input reset;
 inout [31:0] pci_pins_ad;
 wire [31:0] pci_pins_ad;
-input [3:0] pci_pins_cbe;
+inout [3:0] pci_pins_cbe;
+wire [3:0] pci_pins_cbe;
 inout pci_pins_par;
 wire pci_pins_par;
 input pci_pins_frame;
@@ -76,7 +77,9 @@ wire pci_pads0_input_pad1_from_pin;
 wire [31:0] pci_pads0_registered_pad0_from_pin;
 wire [31:0] pci_pads0_registered_pad0_to_pin;
 reg pci_pads0_registered_pad0_enable;
-wire pci_pads0_registered_pad1_from_pin;
+wire pci_pads0_tristate_pad2_from_pin;
+wire pci_pads0_tristate_pad2_to_pin;
+reg pci_pads0_tristate_pad2_enable;
 wire pci_pads0_registered_pad1_to_pin;
 reg pci_pads0_registered_pad1_enable;
 wire pci_pads0_registered_pad2_to_pin;
@@ -85,17 +88,15 @@ wire pci_pads0_registered_pad3_to_pin;
 reg pci_pads0_registered_pad3_enable;
 wire pci_pads0_registered_pad4_to_pin;
 reg pci_pads0_registered_pad4_enable;
-wire pci_pads0_registered_pad5_to_pin;
-reg pci_pads0_registered_pad5_enable;
-wire [3:0] pci_pads0_input_pad2_from_pin;
+wire [3:0] pci_pads0_registered_pad5_from_pin;
 wire pci_pads0_registered_pad6_from_pin;
 wire card1_irq;
 wire card1_pci_slave2_accepted;
 wire card1_pci_slave2_ad_oe_next;
 wire [31:0] card1_pci_slave2_ad_out_next;
 reg card1_pci_slave2_ad_out_parity;
-wire card1_pci_slave2_ad_out_parity_kept;
 reg [31:0] card1_pci_slave2_ad_out_q;
+reg card1_pci_slave2_ad_parity_q;
 reg card1_pci_slave2_address_fault;
 wire card1_pci_slave2_address_fault_next;
 wire card1_pci_slave2_address_phase;
@@ -110,7 +111,6 @@ reg [31:0] card1_pci_slave2_bar1;
 wire card1_pci_slave2_before_last;
 reg [1:0] card1_pci_slave2_buffered_next;
 reg card1_pci_slave2_bus_parity;
-reg [3:0] card1_pci_slave2_cbe_q;
 reg card1_pci_slave2_claim;
 reg card1_pci_slave2_claim_config;
 reg card1_pci_slave2_claim_io;
@@ -142,7 +142,6 @@ reg card1_pci_slave2_irdy_q;
 reg card1_pci_slave2_is_config;
 reg card1_pci_slave2_is_read;
 reg card1_pci_slave2_mem_enable;
-wire card1_pci_slave2_par_next;
 wire card1_pci_slave2_parity_error_next;
 reg card1_pci_slave2_parity_error_q;
 reg card1_pci_slave2_parity_response;
@@ -782,6 +781,7 @@ assign card1_card_core1_regs_fifo2_reg_word58_set_mine = 1'd0;
 
 
 
+
 assign card1_pci_slave2_ad_out_next[31] = card1_pci_slave2_pin_lut64_out;
 assign card1_pci_slave2_ad_out_next[30] = card1_pci_slave2_pin_lut63_out;
 assign card1_pci_slave2_ad_out_next[29] = card1_pci_slave2_pin_lut62_out;
@@ -1182,16 +1182,16 @@ SB_IO #(.PIN_TYPE(6'b100100)) pad_ad_31 (
 );
 
 
-SB_IO #(.PIN_TYPE(6'b100101)) pad_par_0 (
+SB_IO #(.PIN_TYPE(6'b101001)) pad_par_0 (
     .PACKAGE_PIN(pci_pins_par),
     .LATCH_INPUT_VALUE(1'b0),
     .CLOCK_ENABLE(1'b1),
     .INPUT_CLK(clock),
     .OUTPUT_CLK(clock),
     .D_OUT_1(1'b0),
-    .OUTPUT_ENABLE(pci_pads0_registered_pad1_enable),
-    .D_OUT_0(pci_pads0_registered_pad1_to_pin),
-    .D_IN_0(pci_pads0_registered_pad1_from_pin)
+    .OUTPUT_ENABLE(pci_pads0_tristate_pad2_enable),
+    .D_OUT_0(pci_pads0_tristate_pad2_to_pin),
+    .D_IN_0(pci_pads0_tristate_pad2_from_pin)
 );
 
 
@@ -1202,8 +1202,8 @@ SB_IO #(.PIN_TYPE(6'b100101)) pad_trdy_0 (
     .INPUT_CLK(clock),
     .OUTPUT_CLK(clock),
     .D_OUT_1(1'b0),
-    .OUTPUT_ENABLE(pci_pads0_registered_pad2_enable),
-    .D_OUT_0(pci_pads0_registered_pad2_to_pin)
+    .OUTPUT_ENABLE(pci_pads0_registered_pad1_enable),
+    .D_OUT_0(pci_pads0_registered_pad1_to_pin)
 );
 
 
@@ -1214,8 +1214,8 @@ SB_IO #(.PIN_TYPE(6'b100101)) pad_devsel_0 (
     .INPUT_CLK(clock),
     .OUTPUT_CLK(clock),
     .D_OUT_1(1'b0),
-    .OUTPUT_ENABLE(pci_pads0_registered_pad3_enable),
-    .D_OUT_0(pci_pads0_registered_pad3_to_pin)
+    .OUTPUT_ENABLE(pci_pads0_registered_pad2_enable),
+    .D_OUT_0(pci_pads0_registered_pad2_to_pin)
 );
 
 
@@ -1226,8 +1226,8 @@ SB_IO #(.PIN_TYPE(6'b100101)) pad_stop_0 (
     .INPUT_CLK(clock),
     .OUTPUT_CLK(clock),
     .D_OUT_1(1'b0),
-    .OUTPUT_ENABLE(pci_pads0_registered_pad4_enable),
-    .D_OUT_0(pci_pads0_registered_pad4_to_pin)
+    .OUTPUT_ENABLE(pci_pads0_registered_pad3_enable),
+    .D_OUT_0(pci_pads0_registered_pad3_to_pin)
 );
 
 
@@ -1238,12 +1238,55 @@ SB_IO #(.PIN_TYPE(6'b100101)) pad_perr_0 (
     .INPUT_CLK(clock),
     .OUTPUT_CLK(clock),
     .D_OUT_1(1'b0),
-    .OUTPUT_ENABLE(pci_pads0_registered_pad5_enable),
-    .D_OUT_0(pci_pads0_registered_pad5_to_pin)
+    .OUTPUT_ENABLE(pci_pads0_registered_pad4_enable),
+    .D_OUT_0(pci_pads0_registered_pad4_to_pin)
 );
 
 
-assign pci_pads0_input_pad2_from_pin = pci_pins_cbe;
+SB_IO #(.PIN_TYPE(6'b000000)) pad_cbe_0 (
+    .PACKAGE_PIN(pci_pins_cbe[0]),
+    .LATCH_INPUT_VALUE(1'b0),
+    .CLOCK_ENABLE(1'b1),
+    .INPUT_CLK(clock),
+    .OUTPUT_CLK(clock),
+    .D_OUT_1(1'b0),
+    .OUTPUT_ENABLE(1'b0),
+    .D_OUT_0(1'b0),
+    .D_IN_0(pci_pads0_registered_pad5_from_pin[0])
+);
+SB_IO #(.PIN_TYPE(6'b000000)) pad_cbe_1 (
+    .PACKAGE_PIN(pci_pins_cbe[1]),
+    .LATCH_INPUT_VALUE(1'b0),
+    .CLOCK_ENABLE(1'b1),
+    .INPUT_CLK(clock),
+    .OUTPUT_CLK(clock),
+    .D_OUT_1(1'b0),
+    .OUTPUT_ENABLE(1'b0),
+    .D_OUT_0(1'b0),
+    .D_IN_0(pci_pads0_registered_pad5_from_pin[1])
+);
+SB_IO #(.PIN_TYPE(6'b000000)) pad_cbe_2 (
+    .PACKAGE_PIN(pci_pins_cbe[2]),
+    .LATCH_INPUT_VALUE(1'b0),
+    .CLOCK_ENABLE(1'b1),
+    .INPUT_CLK(clock),
+    .OUTPUT_CLK(clock),
+    .D_OUT_1(1'b0),
+    .OUTPUT_ENABLE(1'b0),
+    .D_OUT_0(1'b0),
+    .D_IN_0(pci_pads0_registered_pad5_from_pin[2])
+);
+SB_IO #(.PIN_TYPE(6'b000000)) pad_cbe_3 (
+    .PACKAGE_PIN(pci_pins_cbe[3]),
+    .LATCH_INPUT_VALUE(1'b0),
+    .CLOCK_ENABLE(1'b1),
+    .INPUT_CLK(clock),
+    .OUTPUT_CLK(clock),
+    .D_OUT_1(1'b0),
+    .OUTPUT_ENABLE(1'b0),
+    .D_OUT_0(1'b0),
+    .D_IN_0(pci_pads0_registered_pad5_from_pin[3])
+);
 
 
 SB_IO #(.PIN_TYPE(6'b000000)) pad_idsel_0 (
@@ -1262,12 +1305,10 @@ SB_IO #(.PIN_TYPE(6'b000000)) pad_idsel_0 (
 always @(posedge clock, negedge reset) begin: card1_pci_slave2_control_input_register
     if (reset == 0) begin
         card1_pci_slave2_frame_q <= 1;
-        card1_pci_slave2_cbe_q <= 15;
         card1_pci_slave2_frame_qq <= 1;
         card1_pci_slave2_irdy_q <= 1;
     end
     else begin
-        card1_pci_slave2_cbe_q <= pci_pads0_input_pad2_from_pin;
         card1_pci_slave2_frame_q <= pci_pads0_input_pad0_from_pin;
         card1_pci_slave2_frame_qq <= card1_pci_slave2_frame_q;
         card1_pci_slave2_irdy_q <= pci_pads0_input_pad1_from_pin;
@@ -1275,11 +1316,11 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_control_input_reg
 end
 
 
-always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_cbe_q) begin: card1_pci_slave2_parity_check
+always @(pci_pads0_registered_pad0_from_pin, pci_pads0_registered_pad5_from_pin) begin: card1_pci_slave2_parity_check
     reg [32-1:0] fold;
     fold = 32'h0;
     fold = pci_pads0_registered_pad0_from_pin;
-    fold[4-1:0] = (fold[4-1:0] ^ card1_pci_slave2_cbe_q);
+    fold[4-1:0] = (fold[4-1:0] ^ pci_pads0_registered_pad5_from_pin);
     fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
     fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
     fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
@@ -1296,51 +1337,51 @@ assign card1_pci_slave2_perr_armed = (card1_pci_slave2_write_done_q && card1_pci
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h9F9F)) card1_pci_slave2_perr_next_lut (.O(card1_pci_slave2_perr_next), .I0(pci_pads0_registered_pad1_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(1'b0));
+SB_LUT4 #(.LUT_INIT(16'h9F9F)) card1_pci_slave2_perr_next_lut (.O(card1_pci_slave2_perr_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(1'b0));
 `else
 wire [7:0] card1_pci_slave2_perr_next_lut_table = 8'h9F;
-assign card1_pci_slave2_perr_next = card1_pci_slave2_perr_next_lut_table[{card1_pci_slave2_perr_armed, card1_pci_slave2_bus_parity, pci_pads0_registered_pad1_from_pin}];
+assign card1_pci_slave2_perr_next = card1_pci_slave2_perr_next_lut_table[{card1_pci_slave2_perr_armed, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
 `endif
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h60FF)) card1_pci_slave2_perr_oe_next_lut (.O(card1_pci_slave2_perr_oe_next), .I0(pci_pads0_registered_pad1_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(card1_pci_slave2_perr_q));
+SB_LUT4 #(.LUT_INIT(16'h60FF)) card1_pci_slave2_perr_oe_next_lut (.O(card1_pci_slave2_perr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(card1_pci_slave2_perr_q));
 `else
 wire [15:0] card1_pci_slave2_perr_oe_next_lut_table = 16'h60FF;
-assign card1_pci_slave2_perr_oe_next = card1_pci_slave2_perr_oe_next_lut_table[{card1_pci_slave2_perr_q, card1_pci_slave2_perr_armed, card1_pci_slave2_bus_parity, pci_pads0_registered_pad1_from_pin}];
+assign card1_pci_slave2_perr_oe_next = card1_pci_slave2_perr_oe_next_lut_table[{card1_pci_slave2_perr_q, card1_pci_slave2_perr_armed, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
 `endif
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6060)) card1_pci_slave2_serr_oe_next_lut (.O(card1_pci_slave2_serr_oe_next), .I0(pci_pads0_registered_pad1_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_serr_armed), .I3(1'b0));
+SB_LUT4 #(.LUT_INIT(16'h6060)) card1_pci_slave2_serr_oe_next_lut (.O(card1_pci_slave2_serr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_serr_armed), .I3(1'b0));
 `else
 wire [7:0] card1_pci_slave2_serr_oe_next_lut_table = 8'h60;
-assign card1_pci_slave2_serr_oe_next = card1_pci_slave2_serr_oe_next_lut_table[{card1_pci_slave2_serr_armed, card1_pci_slave2_bus_parity, pci_pads0_registered_pad1_from_pin}];
+assign card1_pci_slave2_serr_oe_next = card1_pci_slave2_serr_oe_next_lut_table[{card1_pci_slave2_serr_armed, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
 `endif
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6000)) card1_pci_slave2_address_fault_next_lut (.O(card1_pci_slave2_address_fault_next), .I0(pci_pads0_registered_pad1_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_parity_response));
+SB_LUT4 #(.LUT_INIT(16'h6000)) card1_pci_slave2_address_fault_next_lut (.O(card1_pci_slave2_address_fault_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_parity_response));
 `else
 wire [15:0] card1_pci_slave2_address_fault_next_lut_table = 16'h6000;
-assign card1_pci_slave2_address_fault_next = card1_pci_slave2_address_fault_next_lut_table[{card1_pci_slave2_parity_response, card1_pci_slave2_address_phase, card1_pci_slave2_bus_parity, pci_pads0_registered_pad1_from_pin}];
+assign card1_pci_slave2_address_fault_next = card1_pci_slave2_address_fault_next_lut_table[{card1_pci_slave2_parity_response, card1_pci_slave2_address_phase, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
 `endif
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6660)) card1_pci_slave2_parity_error_next_lut (.O(card1_pci_slave2_parity_error_next), .I0(pci_pads0_registered_pad1_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_write_done_q));
+SB_LUT4 #(.LUT_INIT(16'h6660)) card1_pci_slave2_parity_error_next_lut (.O(card1_pci_slave2_parity_error_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_write_done_q));
 `else
 wire [15:0] card1_pci_slave2_parity_error_next_lut_table = 16'h6660;
-assign card1_pci_slave2_parity_error_next = card1_pci_slave2_parity_error_next_lut_table[{card1_pci_slave2_write_done_q, card1_pci_slave2_address_phase, card1_pci_slave2_bus_parity, pci_pads0_registered_pad1_from_pin}];
+assign card1_pci_slave2_parity_error_next = card1_pci_slave2_parity_error_next_lut_table[{card1_pci_slave2_write_done_q, card1_pci_slave2_address_phase, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
 `endif
 
 
-always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_slave2_address_phase, card1_pci_slave2_io_enable, card1_pci_slave2_bar0, card1_pci_slave2_cbe_q, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_mem_enable, card1_pci_slave2_state) begin: card1_pci_slave2_decode
+always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_slave2_address_phase, card1_pci_slave2_io_enable, card1_pci_slave2_bar0, pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_mem_enable, card1_pci_slave2_state) begin: card1_pci_slave2_decode
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
     reg mem_hit;
-    code = card1_pci_slave2_cbe_q;
+    code = pci_pads0_registered_pad5_from_pin;
     config_hit = (pci_pads0_registered_pad6_from_pin && (!pci_pads0_registered_pad0_from_pin[0]) && (!pci_pads0_registered_pad0_from_pin[1]) && (pci_pads0_registered_pad0_from_pin[11-1:8] == 0) && ((code == 10) || (code == 11)));
     io_hit = (card1_pci_slave2_io_enable && ((code == 2) || (code == 3)) && (pci_pads0_registered_pad0_from_pin[32-1:16] == 0) && (pci_pads0_registered_pad0_from_pin[16-1:7] == card1_pci_slave2_bar0[16-1:7]));
     mem_hit = (card1_pci_slave2_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)) && (pci_pads0_registered_pad0_from_pin[32-1:12] == card1_pci_slave2_bar1[32-1:12]));
@@ -1411,7 +1452,7 @@ assign card1_pci_slave2_b_valid_next = card1_pci_slave2_b_valid_next_lut_table[{
 `endif
 
 
-always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pci_slave2_first_pending, card1_pci_slave2_io_byte, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_wq_valid, card1_pci_slave2_space_mem, card1_pci_slave2_h_be, card1_pci_slave2_h_data, card1_pci_slave2_is_config, card1_pci_slave2_irdy_q, card1_pci_slave2_req_addr_stale, card1_pci_slave2_address_fault, card1_pci_slave2_frame_q, card1_pci_slave2_h_valid, card1_pci_slave2_cbe_q) begin: card1_pci_slave2_local_request
+always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pci_slave2_first_pending, card1_pci_slave2_io_byte, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_wq_valid, card1_pci_slave2_space_mem, card1_pci_slave2_h_be, card1_pci_slave2_h_data, card1_pci_slave2_is_config, card1_pci_slave2_irdy_q, card1_pci_slave2_req_addr_stale, card1_pci_slave2_address_fault, card1_pci_slave2_frame_q, card1_pci_slave2_h_valid, pci_pads0_registered_pad5_from_pin) begin: card1_pci_slave2_local_request
     reg drain;
     reg hold_state;
     reg bad;
@@ -1426,13 +1467,13 @@ always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pc
     else if ((card1_pci_slave2_state == 4'b0010)) begin
         case (card1_pci_slave2_io_byte)
             'h1: begin
-                bad = (!card1_pci_slave2_cbe_q[0]);
+                bad = (!pci_pads0_registered_pad5_from_pin[0]);
             end
             'h2: begin
-                bad = (!(card1_pci_slave2_cbe_q[0] && card1_pci_slave2_cbe_q[1]));
+                bad = (!(pci_pads0_registered_pad5_from_pin[0] && pci_pads0_registered_pad5_from_pin[1]));
             end
             'h3: begin
-                bad = (!(card1_pci_slave2_cbe_q[0] && card1_pci_slave2_cbe_q[1] && card1_pci_slave2_cbe_q[2]));
+                bad = (!(pci_pads0_registered_pad5_from_pin[0] && pci_pads0_registered_pad5_from_pin[1] && pci_pads0_registered_pad5_from_pin[2]));
             end
         endcase
     end
@@ -1453,7 +1494,7 @@ always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pc
     end
     else begin
         card1_pci_slave2_local_wdata = pci_pads0_registered_pad0_from_pin;
-        card1_pci_slave2_local_be = (~card1_pci_slave2_cbe_q);
+        card1_pci_slave2_local_be = (~pci_pads0_registered_pad5_from_pin);
     end
     card1_pci_slave2_local_addr = {card1_pci_slave2_req_addr, 2'h0};
 end
@@ -1514,7 +1555,7 @@ assign card1_pci_slave2_at_last = (card1_pci_slave2_phase_addr == 1023);
 assign card1_pci_slave2_before_last = ($signed({1'b0, card1_pci_slave2_phase_addr}) == (1023 - 1));
 
 
-always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad3_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_got, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_cbe_q, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case0_0_1_control
+always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_got, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case0_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1531,7 +1572,7 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
     trdy = (card1_pci_slave2_trdy_q != 0);
     stop = (card1_pci_slave2_stop_q != 0);
     devsel = (card1_pci_slave2_devsel_q != 0);
-    drive = (pci_pads0_registered_pad3_enable != 0);
+    drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
     card1_pci_slave2_control_case0_0_1_out_state = card1_pci_slave2_state;
     last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
@@ -1561,7 +1602,7 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
             devsel = 1'b0;
             trdy = 1'b1;
             stop = 1'b1;
-            ad_oe = (!card1_pci_slave2_cbe_q[0]);
+            ad_oe = (!pci_pads0_registered_pad5_from_pin[0]);
             if (card1_pci_slave2_claim_config) begin
                 card1_pci_slave2_control_case0_0_1_out_state = 4'b0001;
             end
@@ -1647,7 +1688,7 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
 end
 
 
-always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad3_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_got, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_cbe_q, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case1_0_1_control
+always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_got, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case1_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1664,7 +1705,7 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
     trdy = (card1_pci_slave2_trdy_q != 0);
     stop = (card1_pci_slave2_stop_q != 0);
     devsel = (card1_pci_slave2_devsel_q != 0);
-    drive = (pci_pads0_registered_pad3_enable != 0);
+    drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
     card1_pci_slave2_control_case1_0_1_out_state = card1_pci_slave2_state;
     last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
@@ -1694,7 +1735,7 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
             devsel = 1'b0;
             trdy = 1'b1;
             stop = 1'b1;
-            ad_oe = (!card1_pci_slave2_cbe_q[0]);
+            ad_oe = (!pci_pads0_registered_pad5_from_pin[0]);
             if (card1_pci_slave2_claim_config) begin
                 card1_pci_slave2_control_case1_0_1_out_state = 4'b0001;
             end
@@ -1780,7 +1821,7 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
 end
 
 
-always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad3_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_got, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_cbe_q, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case2_0_1_control
+always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_got, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case2_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1797,7 +1838,7 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
     trdy = (card1_pci_slave2_trdy_q != 0);
     stop = (card1_pci_slave2_stop_q != 0);
     devsel = (card1_pci_slave2_devsel_q != 0);
-    drive = (pci_pads0_registered_pad3_enable != 0);
+    drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
     card1_pci_slave2_control_case2_0_1_out_state = card1_pci_slave2_state;
     last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
@@ -1827,7 +1868,7 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
             devsel = 1'b0;
             trdy = 1'b1;
             stop = 1'b1;
-            ad_oe = (!card1_pci_slave2_cbe_q[0]);
+            ad_oe = (!pci_pads0_registered_pad5_from_pin[0]);
             if (card1_pci_slave2_claim_config) begin
                 card1_pci_slave2_control_case2_0_1_out_state = 4'b0001;
             end
@@ -2028,12 +2069,12 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
         end
         card1_pci_slave2_address_fault <= card1_pci_slave2_address_fault_next;
         if (card1_pci_slave2_claim) begin
-            card1_pci_slave2_is_read <= (!card1_pci_slave2_cbe_q[0]);
+            card1_pci_slave2_is_read <= (!pci_pads0_registered_pad5_from_pin[0]);
             card1_pci_slave2_is_config <= card1_pci_slave2_claim_config;
             card1_pci_slave2_space_mem <= ((!card1_pci_slave2_claim_config) && (!card1_pci_slave2_claim_io));
             card1_pci_slave2_single <= (card1_pci_slave2_claim_config || card1_pci_slave2_claim_io || pci_pads0_registered_pad0_from_pin[0] || pci_pads0_registered_pad0_from_pin[1]);
             card1_pci_slave2_first_pending <= 1'b1;
-            card1_pci_slave2_fetching <= ((!card1_pci_slave2_cbe_q[0]) && (!card1_pci_slave2_claim_config));
+            card1_pci_slave2_fetching <= ((!pci_pads0_registered_pad5_from_pin[0]) && (!card1_pci_slave2_claim_config));
             card1_pci_slave2_refused <= 1'b0;
             card1_pci_slave2_io_byte <= pci_pads0_registered_pad0_from_pin[2-1:0];
             card1_pci_slave2_req_addr_stale <= card1_pci_slave2_draining;
@@ -2329,7 +2370,7 @@ assign card1_pci_slave2_pin_lut64_out = card1_pci_slave2_pin_lut64_out_lut_table
 
 
 
-assign card1_pci_slave2_par_next = ((((card1_pci_slave2_ad_out_parity_kept ^ pci_pads0_input_pad2_from_pin[0]) ^ pci_pads0_input_pad2_from_pin[1]) ^ pci_pads0_input_pad2_from_pin[2]) ^ pci_pads0_input_pad2_from_pin[3]);
+assign pci_pads0_tristate_pad2_to_pin = ((((card1_pci_slave2_ad_parity_q ^ pci_pads0_registered_pad5_from_pin[0]) ^ pci_pads0_registered_pad5_from_pin[1]) ^ pci_pads0_registered_pad5_from_pin[2]) ^ pci_pads0_registered_pad5_from_pin[3]);
 
 
 always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_ad_out_parity_tree
@@ -2345,22 +2386,19 @@ always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_ad_out_parity_tree
 end
 
 
-(* keep *) wire card1_pci_slave2_ad_out_parity_kept_kept_net = card1_pci_slave2_ad_out_parity;
-assign card1_pci_slave2_ad_out_parity_kept = card1_pci_slave2_ad_out_parity_kept_kept_net;
-
-
 always @(posedge clock, negedge reset) begin: card1_pci_slave2_bus_registers
     if (reset == 0) begin
-        pci_pads0_registered_pad2_enable <= 0;
-        pci_pads0_registered_pad5_enable <= 0;
-        card1_pci_slave2_ad_out_q <= 0;
+        pci_pads0_registered_pad1_enable <= 0;
+        card1_pci_slave2_ad_parity_q <= 0;
         pci_pads0_registered_pad4_enable <= 0;
+        card1_pci_slave2_ad_out_q <= 0;
+        pci_pads0_registered_pad3_enable <= 0;
         pci_pads0_tristate_pad0_to_pin <= 1;
         pci_pads0_registered_pad0_enable <= 0;
         pci_pads0_tristate_pad1_enable <= 0;
         card1_pci_slave2_perr_q <= 1;
-        pci_pads0_registered_pad3_enable <= 0;
-        pci_pads0_registered_pad1_enable <= 0;
+        pci_pads0_registered_pad2_enable <= 0;
+        pci_pads0_tristate_pad2_enable <= 0;
         card1_pci_slave2_parity_error_q <= 0;
         card1_pci_slave2_stop_q <= 1;
         pci_pads0_tristate_pad1_to_pin <= 1;
@@ -2374,12 +2412,13 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_bus_registers
         card1_pci_slave2_devsel_q <= card1_pci_slave2_devsel_next;
         card1_pci_slave2_ad_out_q <= card1_pci_slave2_ad_out_next;
         card1_pci_slave2_perr_q <= card1_pci_slave2_perr_next;
-        pci_pads0_registered_pad2_enable <= card1_pci_slave2_drive_next;
-        pci_pads0_registered_pad4_enable <= card1_pci_slave2_drive_next;
+        card1_pci_slave2_ad_parity_q <= card1_pci_slave2_ad_out_parity;
+        pci_pads0_registered_pad1_enable <= card1_pci_slave2_drive_next;
         pci_pads0_registered_pad3_enable <= card1_pci_slave2_drive_next;
+        pci_pads0_registered_pad2_enable <= card1_pci_slave2_drive_next;
         pci_pads0_registered_pad0_enable <= card1_pci_slave2_ad_oe_next;
-        pci_pads0_registered_pad1_enable <= pci_pads0_registered_pad0_enable;
-        pci_pads0_registered_pad5_enable <= card1_pci_slave2_perr_oe_next;
+        pci_pads0_tristate_pad2_enable <= pci_pads0_registered_pad0_enable;
+        pci_pads0_registered_pad4_enable <= card1_pci_slave2_perr_oe_next;
         pci_pads0_tristate_pad0_to_pin <= 1'b0;
         pci_pads0_tristate_pad0_enable <= card1_pci_slave2_serr_oe_next;
         card1_pci_slave2_parity_error_q <= card1_pci_slave2_parity_error_next;
@@ -2390,12 +2429,11 @@ end
 
 
 
-assign pci_pads0_registered_pad2_to_pin = card1_pci_slave2_trdy_next;
-assign pci_pads0_registered_pad4_to_pin = card1_pci_slave2_stop_next;
-assign pci_pads0_registered_pad3_to_pin = card1_pci_slave2_devsel_next;
+assign pci_pads0_registered_pad1_to_pin = card1_pci_slave2_trdy_next;
+assign pci_pads0_registered_pad3_to_pin = card1_pci_slave2_stop_next;
+assign pci_pads0_registered_pad2_to_pin = card1_pci_slave2_devsel_next;
 assign pci_pads0_registered_pad0_to_pin = card1_pci_slave2_ad_out_next;
-assign pci_pads0_registered_pad1_to_pin = card1_pci_slave2_par_next;
-assign pci_pads0_registered_pad5_to_pin = card1_pci_slave2_perr_next;
+assign pci_pads0_registered_pad4_to_pin = card1_pci_slave2_perr_next;
 
 
 always @(posedge clock, negedge reset) begin: card1_pci_slave2_read_buffer
@@ -2443,12 +2481,12 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_write_buffer
                     card1_pci_slave2_s_valid <= card1_pci_slave2_wq_valid;
                     if (card1_pci_slave2_wq_valid) begin
                         card1_pci_slave2_spare_data <= pci_pads0_registered_pad0_from_pin;
-                        card1_pci_slave2_s_be <= (~card1_pci_slave2_cbe_q);
+                        card1_pci_slave2_s_be <= (~pci_pads0_registered_pad5_from_pin);
                     end
                 end
                 else if (card1_pci_slave2_wq_valid) begin
                     card1_pci_slave2_h_data <= pci_pads0_registered_pad0_from_pin;
-                    card1_pci_slave2_h_be <= (~card1_pci_slave2_cbe_q);
+                    card1_pci_slave2_h_be <= (~pci_pads0_registered_pad5_from_pin);
                 end
                 else begin
                     card1_pci_slave2_h_valid <= 1'b0;
@@ -2457,13 +2495,13 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_write_buffer
             else if (card1_pci_slave2_wq_valid) begin
                 card1_pci_slave2_s_valid <= 1'b1;
                 card1_pci_slave2_spare_data <= pci_pads0_registered_pad0_from_pin;
-                card1_pci_slave2_s_be <= (~card1_pci_slave2_cbe_q);
+                card1_pci_slave2_s_be <= (~pci_pads0_registered_pad5_from_pin);
             end
         end
         else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_accepted))) begin
             card1_pci_slave2_h_valid <= 1'b1;
             card1_pci_slave2_h_data <= pci_pads0_registered_pad0_from_pin;
-            card1_pci_slave2_h_be <= (~card1_pci_slave2_cbe_q);
+            card1_pci_slave2_h_be <= (~pci_pads0_registered_pad5_from_pin);
         end
         if ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready)) begin
             card1_pci_slave2_spare_data <= card1_pci_slave2_local_rdata;
@@ -2500,45 +2538,45 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_config_registers
         if (card1_pci_slave2_config_write_q) begin
             case (card1_pci_slave2_config_index)
                 'h1: begin
-                    if ((!card1_pci_slave2_cbe_q[0])) begin
+                    if ((!pci_pads0_registered_pad5_from_pin[0])) begin
                         card1_pci_slave2_io_enable <= pci_pads0_registered_pad0_from_pin[0];
                         card1_pci_slave2_mem_enable <= pci_pads0_registered_pad0_from_pin[1];
                         card1_pci_slave2_parity_response <= pci_pads0_registered_pad0_from_pin[6];
                     end
-                    if ((!card1_pci_slave2_cbe_q[1])) begin
+                    if ((!pci_pads0_registered_pad5_from_pin[1])) begin
                         card1_pci_slave2_serr_enable <= pci_pads0_registered_pad0_from_pin[8];
                         card1_pci_slave2_interrupt_disable <= pci_pads0_registered_pad0_from_pin[10];
                     end
-                    if ((!card1_pci_slave2_cbe_q[3])) begin
+                    if ((!pci_pads0_registered_pad5_from_pin[3])) begin
                         clear_target_abort = pci_pads0_registered_pad0_from_pin[27];
                         clear_system_error = pci_pads0_registered_pad0_from_pin[30];
                         clear_parity_error = pci_pads0_registered_pad0_from_pin[31];
                     end
                 end
                 'h4: begin
-                    if ((!card1_pci_slave2_cbe_q[0])) begin
+                    if ((!pci_pads0_registered_pad5_from_pin[0])) begin
                         card1_pci_slave2_bar0[8-1:0] <= pci_pads0_registered_pad0_from_pin[8-1:0];
                     end
-                    if ((!card1_pci_slave2_cbe_q[1])) begin
+                    if ((!pci_pads0_registered_pad5_from_pin[1])) begin
                         card1_pci_slave2_bar0[16-1:8] <= pci_pads0_registered_pad0_from_pin[16-1:8];
                     end
                 end
                 'h5: begin
-                    if ((!card1_pci_slave2_cbe_q[0])) begin
+                    if ((!pci_pads0_registered_pad5_from_pin[0])) begin
                         card1_pci_slave2_bar1[8-1:0] <= pci_pads0_registered_pad0_from_pin[8-1:0];
                     end
-                    if ((!card1_pci_slave2_cbe_q[1])) begin
+                    if ((!pci_pads0_registered_pad5_from_pin[1])) begin
                         card1_pci_slave2_bar1[16-1:8] <= pci_pads0_registered_pad0_from_pin[16-1:8];
                     end
-                    if ((!card1_pci_slave2_cbe_q[2])) begin
+                    if ((!pci_pads0_registered_pad5_from_pin[2])) begin
                         card1_pci_slave2_bar1[24-1:16] <= pci_pads0_registered_pad0_from_pin[24-1:16];
                     end
-                    if ((!card1_pci_slave2_cbe_q[3])) begin
+                    if ((!pci_pads0_registered_pad5_from_pin[3])) begin
                         card1_pci_slave2_bar1[32-1:24] <= pci_pads0_registered_pad0_from_pin[32-1:24];
                     end
                 end
                 'hf: begin
-                    if ((!card1_pci_slave2_cbe_q[0])) begin
+                    if ((!pci_pads0_registered_pad5_from_pin[0])) begin
                         card1_pci_slave2_interrupt_line <= pci_pads0_registered_pad0_from_pin[8-1:0];
                     end
                 end

@@ -7,15 +7,16 @@ Two builds, chosen by ``io_registers`` (the top passes the same value to
   logic-cell flops; any vendor flow infers the I/O buffers.
 - ``True``: iCE40 ``SB_IO`` cells whose input and output registers ARE the
   core's boundary flip-flops, so those PCI set-up and clock-to-output paths
-  never cross the fabric.  AD and IDSEL are sampled in the I/O cell; AD,
-  PAR, TRDY#, DEVSEL#, STOP# and PERR# leave from the I/O cell's output
+  never cross the fabric.  AD, C/BE# and IDSEL are sampled in the I/O cell;
+  AD, TRDY#, DEVSEL#, STOP# and PERR# leave from the I/O cell's output
   register, fed with the value the core wants on the pin after the next
   edge.  Output enables are not registered here: they come straight from
   the core's flip-flops, which have the asynchronous reset that iCE40 I/O
-  registers lack, so RST# still floats the bus at once.  FRAME#, IRDY#,
-  C/BE# and PAR reach the core unregistered: it needs them in the clock
-  they arrive (fast path; PAR on reads covers the C/BE# of its clock; PERR#
-  two clocks after a data phase needs the PAR of the next clock).
+  registers lack, so RST# still floats the bus at once.  FRAME#, IRDY# and
+  PAR reach the core unregistered: it needs them in the clock they arrive
+  (fast path; PERR# two clocks after a data phase needs the PAR of the
+  next clock).  PAR passes an ``SB_IO`` cell without registers: the core
+  forms it from its AD and C/BE# registers, one LUT level before the pin.
 
 Bus timing is the same in both builds.  SERR# and INTA# are open-drain
 (driven low or released) in both.
@@ -29,8 +30,9 @@ from rtl.interfaces import PciBus, PciPins
 
 # SB_IO PIN_TYPE: output mode in bits 5:2, input mode in bits 1:0.
 PIN_REGISTERED_IO = "100100"      # registered output, direct enable, registered input
-PIN_REGISTERED_OUTPUT = "100101"  # registered output, direct enable, plain input
+PIN_REGISTERED_OUTPUT = "100101"  # registered output, direct enable (input unused)
 PIN_REGISTERED_INPUT = "000000"   # input register only
+PIN_PLAIN_IO = "101001"           # plain output, direct enable, plain input: no register
 
 
 def _line_value(pin, undriven):
@@ -39,11 +41,16 @@ def _line_value(pin, undriven):
 
 
 @block
-def tristate_pad(pin, from_pin, to_pin, enable):
+def tristate_pad(pin, from_pin, to_pin, enable, *, label=None, clock=None):
     """A plain tri-state buffer: ``pin`` shows ``to_pin`` while ``enable``.
 
     ``from_pin`` (None for a line the target never reads) follows the pin.
-    No clock: the core's own flip-flops sit right behind it.
+    No clock: the core's own flip-flops sit right behind it.  With
+    ``label`` the buffer is written as iCE40 ``SB_IO`` cells without
+    registers (``PIN_PLAIN_IO``, named ``<label>_<bit>``) instead of being
+    left to inference: the same circuit, with cells a harness can look into.
+    Their clock ports take ``clock``: unused without registers, but the two
+    cells of an I/O tile share one clock net.
 
         enable    __/~~~~~~~~\\____
         to_pin    --< A >< B >----
@@ -65,6 +72,11 @@ def tristate_pad(pin, from_pin, to_pin, enable):
         instances.append(sample)
         code += "assign $from_pin = $pin;\n"
         from_pin.driven = "wire"
+    if label is not None:
+        code = "".join(_sb_io(label, index, len(pin), PIN_PLAIN_IO, from_pin is not None, True)
+                       for index in range(len(pin)))
+        pin.read = True
+        clock.read = True
     pin.driven = "wire"
     to_pin.read = True
     enable.read = True
@@ -90,11 +102,11 @@ def input_pad(pin, from_pin, *, undriven):
 
 
 @block
-def registered_pad(clock, pin, from_pin, to_pin, enable, *, label, input_register=True):
+def registered_pad(clock, pin, from_pin, to_pin, enable, *, label):
     """iCE40 ``SB_IO`` cells, one per bit of ``pin``, with I/O-cell registers.
 
     ``from_pin`` (None: not read) is the pin sampled at each ``clock`` edge in
-    the input register (``input_register``; else it follows the pin).  With
+    the input register.  With
     ``to_pin`` (None: input only) the pin shows, while ``enable``, the value
     ``to_pin`` had at the last edge (output register).  ``label`` prefixes
     the cell instance names.
@@ -123,7 +135,7 @@ def registered_pad(clock, pin, from_pin, to_pin, enable, *, label, input_registe
         to_pin.read = True
         enable.read = True
     if from_pin is not None:
-        @always(clock.posedge if input_register else pin)
+        @always(clock.posedge)
         def input_cell():
             from_pin.next = _line_value(pin, 0)
 
@@ -134,20 +146,19 @@ def registered_pad(clock, pin, from_pin, to_pin, enable, *, label, input_registe
     pin.read = True
     clock.read = True
     width = len(pin)
-    registered_input = from_pin is not None and input_register
+    if to_pin is None:
+        pin_type = PIN_REGISTERED_INPUT
+    else:
+        pin_type = PIN_REGISTERED_IO if from_pin is not None else PIN_REGISTERED_OUTPUT
     registered_pad.verilog_code = "".join(
-        _sb_io(label, index, width, from_pin is not None, registered_input, to_pin is not None)
+        _sb_io(label, index, width, pin_type, from_pin is not None, to_pin is not None)
         for index in range(width))
     return instances
 
 
-def _sb_io(label, index, width, has_input, registered_input, has_output):
+def _sb_io(label, index, width, pin_type, has_input, has_output):
     """Verilog of one ``SB_IO`` (bit ``index`` of a ``width``-bit pin)."""
     bit = f"[{index}]" if width > 1 else ""
-    if has_output:
-        pin_type = PIN_REGISTERED_IO if registered_input else PIN_REGISTERED_OUTPUT
-    else:
-        pin_type = PIN_REGISTERED_INPUT
     # Every input of the cell is tied: the DDR and latch inputs are unused.
     ports = [f".PACKAGE_PIN($pin{bit})", ".LATCH_INPUT_VALUE(1'b0)", ".CLOCK_ENABLE(1'b1)",
              ".INPUT_CLK($clock)", ".OUTPUT_CLK($clock)", ".D_OUT_1(1'b0)"]
@@ -178,7 +189,7 @@ def pci_pads(clock, pins, pci, *, io_registers=False):
         clock         _/~\\_/~\\_/~\\_
         pci.ad_out    --< A >-------      (the core's next value)
         pins.ad       -------< A >--      (while pci.ad_oe)
-        pins.idsel    --< I >-------
+        pins.idsel    --< I >-------      (likewise AD, C/BE#)
         pci.idsel_in  -------< I >--
     """
     unregistered = [
@@ -190,13 +201,12 @@ def pci_pads(clock, pins, pci, *, io_registers=False):
     if io_registers:
         return unregistered + [
             registered_pad(clock, pins.ad, pci.ad_in, pci.ad_out, pci.ad_oe, label="pad_ad"),
-            registered_pad(clock, pins.par, pci.par_in, pci.par_out, pci.par_oe, label="pad_par",
-                           input_register=False),
+            tristate_pad(pins.par, pci.par_in, pci.par_out, pci.par_oe, label="pad_par", clock=clock),
             registered_pad(clock, pins.trdy, None, pci.trdy_out, pci.trdy_oe, label="pad_trdy"),
             registered_pad(clock, pins.devsel, None, pci.devsel_out, pci.devsel_oe, label="pad_devsel"),
             registered_pad(clock, pins.stop, None, pci.stop_out, pci.stop_oe, label="pad_stop"),
             registered_pad(clock, pins.perr, None, pci.perr_out, pci.perr_oe, label="pad_perr"),
-            input_pad(pins.cbe, pci.cbe_in, undriven=0),
+            registered_pad(clock, pins.cbe, pci.cbe_in, None, None, label="pad_cbe"),
             registered_pad(clock, pins.idsel, pci.idsel_in, None, None, label="pad_idsel"),
         ]
     return unregistered + [

@@ -8,15 +8,17 @@ The paper's states keep their names in code spelling: ``S_IDLE`` (Idle),
 target abort).  ``docs/pci.md`` maps them and explains the timing.
 
 Timing architecture: AD, C/BE# and IDSEL are sampled into an input register
-before any logic, and every PCI output and output enable comes from a
-flip-flop.  Four inputs also reach an output register through logic,
+before any logic, and every PCI output and output enable but PAR comes
+from a flip-flop.  Three inputs also reach a register through logic,
 because PCI leaves no clock for a register in between: FRAME# and IRDY#
 (ending a burst, advancing read data; the state machine's next values are
-computed for each case of the two pins, which only choose among them), PAR
-(PERR# and SERR# two clocks after the phase they cover) and C/BE# (PAR on
-reads covers the C/BE# of the same clock).  FRAME#, IRDY# and PAR pass one
-LUT on the way (``pin_pick``, ``pin_lut``), C/BE# two.  The registered
-address makes DEVSEL# timing MEDIUM.
+computed for each case of the two pins, which only choose among them) and
+PAR (PERR# and SERR# two clocks after the phase they cover); each passes
+one LUT on the way (``pin_pick``, ``pin_lut``).  PAR on reads covers the
+AD and C/BE# of the clock before: it is the XOR of the AD register's
+registered parity and the C/BE# input register, one LUT level after
+flip-flops on the way out, where PCI's 11 ns leave room (the 7 ns of
+set-up do not).  The registered address makes DEVSEL# timing MEDIUM.
 """
 from myhdl import (ConcatSignal, Signal, always_comb, always_seq, block, concat, enum, instance, instances, intbv,
                    modbv)
@@ -73,27 +75,6 @@ def check_params(params):
         raise ValueError(f"pci_slave: io_registers must be True or False, "
                          f"not {values['io_registers']!r}")
     return values
-
-
-@block
-def timing_boundary(source, sink):
-    """``sink`` follows ``source`` (no clock, no delay) through a net that
-    synthesis keeps, so that no logic is merged across it: a late input (a
-    PCI pin) joining ``sink`` then stays in the last LUT before its register.
-
-        source  --< A >< B >--
-        sink    --< A >< B >--
-    """
-
-    @always_comb
-    def follow():
-        sink.next = source
-
-    sink.driven = "wire"
-    bits = f"[{len(sink) - 1}:0] " if len(sink) > 1 else ""
-    timing_boundary.verilog_code = (f"(* keep *) wire {bits}${{sink}}_kept_net = $source;\n"
-                                    "assign $sink = ${sink}_kept_net;\n")
-    return follow
 
 
 def lut_table(function, inputs):
@@ -308,7 +289,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     # --- input register: the bus as sampled at the last edge ---
     ad_q = pci.ad_in if io_registers else Signal(intbv(0)[32:])
     idsel_q = pci.idsel_in if io_registers else Signal(bool(0))
-    cbe_q = Signal(intbv(0xF)[4:])
+    cbe_q = pci.cbe_in if io_registers else Signal(intbv(0xF)[4:])
     frame_q = Signal(bool(1))
     frame_qq = Signal(bool(1))
     irdy_q = Signal(bool(1))
@@ -322,7 +303,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     # one LUT per bit after IRDY# (``ad_output_luts``)
     ad_out_bits = [Signal(bool(0)) for _ in range(32)] if io_registers else []
     ad_out_next = ConcatSignal(*reversed(ad_out_bits)) if io_registers else Signal(intbv(0)[32:])
-    par_next, par_q = Signal(bool(0)), Signal(bool(0))
+    ad_parity_q = Signal(bool(0))     # parity of the AD driven in the clock before
     perr_next, perr_q = Signal(bool(1)), Signal(bool(1))
     drive_next = Signal(bool(0))      # DEVSEL#, TRDY#, STOP# driven
     ad_oe_next = Signal(bool(0))
@@ -368,7 +349,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     # --- combinational ---
     bus_parity = Signal(bool(0))      # parity of the AD and C/BE# input registers
-    ad_out_parity, ad_out_parity_kept = Signal(bool(0)), Signal(bool(0))   # of ad_out_q
+    ad_out_parity = Signal(bool(0))   # of ad_out_q
     address_phase = Signal(bool(0))
     # next values that the PAR pin decides
     perr_oe_next, serr_oe_next = Signal(bool(0)), Signal(bool(0))
@@ -404,11 +385,11 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         @always_seq(clock.posedge, reset=reset)
         def input_register():
             ad_q.next = pci.ad_in
+            cbe_q.next = pci.cbe_in
             idsel_q.next = pci.idsel_in
 
     @always_seq(clock.posedge, reset=reset)
     def control_input_register():
-        cbe_q.next = pci.cbe_in
         frame_q.next = pci.frame_in
         frame_qq.next = frame_q
         irdy_q.next = pci.irdy_in
@@ -768,7 +749,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     @always_comb
     def parity_output():
-        par_next.next = ad_out_parity_kept ^ pci.cbe_in[0] ^ pci.cbe_in[1] ^ pci.cbe_in[2] ^ pci.cbe_in[3]
+        # PAR covers the AD and C/BE# of the clock before (both now registered)
+        pci.par_out.next = ad_parity_q ^ cbe_q[0] ^ cbe_q[1] ^ cbe_q[2] ^ cbe_q[3]
 
     @always_comb
     def ad_out_parity_tree():
@@ -781,9 +763,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         fold[1:] = fold[1:] ^ fold[2:1]
         ad_out_parity.next = fold[0]
 
-    # the parity tree of the AD register ends in a kept net: C/BE# join after it
-    parity_boundary = timing_boundary(ad_out_parity, ad_out_parity_kept)
-
     @always_seq(clock.posedge, reset=reset)
     def bus_registers():
         trdy_q.next = trdy_next
@@ -791,6 +770,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         devsel_q.next = devsel_next
         ad_out_q.next = ad_out_next
         perr_q.next = perr_next
+        ad_parity_q.next = ad_out_parity
         pci.trdy_oe.next = drive_next
         pci.stop_oe.next = drive_next
         pci.devsel_oe.next = drive_next
@@ -803,11 +783,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         pci.inta_out.next = False
         pci.inta_oe.next = irq and not interrupt_disable
 
-    if not io_registers:
-        @always_seq(clock.posedge, reset=reset)
-        def parity_register():   # no fabric copy needed with io_registers: never read
-            par_q.next = par_next
-
     if io_registers:
         @always_comb
         def pins():
@@ -815,7 +790,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             pci.stop_out.next = stop_next
             pci.devsel_out.next = devsel_next
             pci.ad_out.next = ad_out_next
-            pci.par_out.next = par_next
             pci.perr_out.next = perr_next
     else:
         @always_comb
@@ -824,7 +798,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             pci.stop_out.next = stop_q
             pci.devsel_out.next = devsel_q
             pci.ad_out.next = ad_out_q
-            pci.par_out.next = par_q
             pci.perr_out.next = perr_q
 
     @always_seq(clock.posedge, reset=reset)

@@ -4,11 +4,12 @@ feed-rate ramp, BLEND, chained segments with no gap, errors in a chain.
 Two interpolators behind the card's registers (``rtl/regs_fifo.py``):
 ``contract``, ``sim.card_model.DdaContractModel`` (the DDA as
 ``rtl.interfaces.DdaPort`` promises it: overlapped setup, ``ready``,
-``stop_left``), and ``rtl``, the card's own ``rtl/dda_arc.py`` through
-``rtl/card_core.py`` (skipped while it does not drive ``ready``).  Golden
-values: paths and iterations from ``sim.dda_model``, step intervals from the
-register settings (65536 / rate clocks per iteration), pin timing from
-``PulseOutModel`` every clock.
+``stop_left``), and the card's own ``rtl/dda_arc.py`` through
+``rtl/card_core.py``, as MyHDL (``rtl``) and as its Verilog co-simulated in
+Icarus (``verilog``).  Golden values: paths and iterations from
+``sim.dda_model``, step intervals from the register settings (65536 / rate
+clocks per iteration), pin timing from ``PulseOutModel`` every clock (on
+the MyHDL card, whose registers it reads).
 """
 import pytest
 from myhdl import Signal, block, instance
@@ -16,12 +17,12 @@ from myhdl import Signal, block, instance
 from rtl import instructions as isa
 from rtl import registers as regmap
 from rtl.card_core import card_core, card_core_ports
-from rtl.dda_arc import dda_arc, dda_arc_ports
 from rtl.interfaces import AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
 from rtl.regs_fifo import regs_fifo
 from sim.card_bench import (TIMING, PinLog, clock_and_pins, expected_path, pin_model_check, read_position,
                             scenario_runner, wait_idle)
 from sim.card_model import DdaContractModel
+from sim.cosim import convert_and_cosimulate
 from sim.dda_model import ArcCommand, LineCommand, iterate, setup_clocks
 from sim.local_bus_driver import LocalBusDriver
 from sim.waves import run_traced
@@ -31,26 +32,7 @@ FIFO_DEPTH = 32
 STEADY = regmap.RATE_MAX  # one iteration every other clock: a step every other clock at width 1
 
 
-def _rtl_dda_drives_ready():
-    """True once ``rtl/dda_arc.py`` drives ``DdaPort.ready`` (the chained-move contract)."""
-    outputs = set()
-
-    def walk(unit):
-        for sub in unit.subs:
-            if hasattr(sub, "subs"):
-                walk(sub)
-            else:
-                outputs.update(getattr(sub, "outputs", ()) or ())
-
-    try:
-        walk(dda_arc(**dda_arc_ports(COORD_WIDTH), coord_width=COORD_WIDTH))
-    except Exception:  # noqa: BLE001 - a DDA that does not elaborate is tested in sim/test_dda_rtl.py
-        return False
-    return "cmd_ready" in outputs
-
-
-DDAS = ["contract", pytest.param("rtl", marks=pytest.mark.skipif(
-    not _rtl_dda_drives_ready(), reason="rtl/dda_arc.py does not drive DdaPort.ready yet"))]
+DDAS = ["contract", "rtl", "verilog"]
 
 
 def _command_of(dda):
@@ -94,7 +76,13 @@ def contract_dda(clock, core_clear, dda, steps):
 def motion_bench(kind, scenario, log, failures):
     clock, reset = Signal(bool(0)), card_reset()
     local, pins, irq = LocalBus(), MotorPins(), Signal(bool(0))
-    if kind == "rtl":
+    if kind == "verilog":
+        ports = card_core_ports(fifo_depth=FIFO_DEPTH, coord_width=COORD_WIDTH)
+        clock, reset, local, pins = ports["clock"], ports["reset"], ports["local"], ports["pins"]
+        regs = None   # its registers are inside Icarus: the pins are judged by the tests alone
+        parts = [convert_and_cosimulate(card_core, "card_core", ports, fifo_depth=FIFO_DEPTH,
+                                        coord_width=COORD_WIDTH)]
+    elif kind == "rtl":
         ports = card_core_ports(fifo_depth=FIFO_DEPTH, coord_width=COORD_WIDTH)
         clock, reset, local, pins = ports["clock"], ports["reset"], ports["local"], ports["pins"]
         core = card_core(**ports, fifo_depth=FIFO_DEPTH, coord_width=COORD_WIDTH)
@@ -105,7 +93,9 @@ def motion_bench(kind, scenario, log, failures):
         regs = regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, fifo_depth=FIFO_DEPTH,
                          coord_width=COORD_WIDTH)
         parts = [regs, contract_dda(clock, core_clear, dda, steps)]
-    parts += [clock_and_pins(clock, pins, log), pin_model_check(clock, reset, pins, regs, TIMING, failures)]
+    parts.append(clock_and_pins(clock, pins, log))
+    if regs is not None:
+        parts.append(pin_model_check(clock, reset, pins, regs, TIMING, failures))
     return parts, scenario_runner(clock, reset, LocalBusDriver(clock, local), scenario)
 
 

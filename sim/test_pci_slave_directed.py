@@ -28,18 +28,18 @@ def setup(host):
 
 @block
 def io_cell_registers(clock, bus, core):
-    """What ``pci_pads(io_registers=True)`` does, as a bench model: AD and
-    IDSEL sampled into registers, AD, PAR, TRDY#, DEVSEL#, STOP#, PERR#
-    leaving from registers fed with the core's next values; enables, C/BE#,
-    PAR in, FRAME#, IRDY#, SERR#, INTA# straight through.  No reset, like
-    the iCE40 I/O-cell registers."""
+    """What ``pci_pads(io_registers=True)`` does, as a bench model: AD, C/BE#
+    and IDSEL sampled into registers, AD, TRDY#, DEVSEL#, STOP#, PERR#
+    leaving from registers fed with the core's next values; enables, PAR,
+    FRAME#, IRDY#, SERR#, INTA# straight through.  No reset, like the iCE40
+    I/O-cell registers."""
 
     @always_seq(clock.posedge, reset=None)
     def registers():
         core.ad_in.next = bus.ad_in
+        core.cbe_in.next = bus.cbe_in
         core.idsel_in.next = bus.idsel_in
         bus.ad_out.next = core.ad_out
-        bus.par_out.next = core.par_out
         bus.trdy_out.next = core.trdy_out
         bus.devsel_out.next = core.devsel_out
         bus.stop_out.next = core.stop_out
@@ -47,8 +47,8 @@ def io_cell_registers(clock, bus, core):
 
     @always_comb
     def straight():
-        core.cbe_in.next = bus.cbe_in
         core.par_in.next = bus.par_in
+        bus.par_out.next = core.par_out
         core.frame_in.next = bus.frame_in
         core.irdy_in.next = bus.irdy_in
         bus.ad_oe.next = core.ad_oe

@@ -3,7 +3,7 @@
 Expected classes come from the pad ring's description (``rtl/pci_pads.py``
 with I/O registers): AD, PAR, TRDY#, DEVSEL#, STOP#, PERR# leave through
 SB_IO cells, SERR# and INTA# through plain open-drain buffers the card never
-reads, C/BE#, FRAME#, IRDY# are inputs.  The harness's end-to-end behaviour
+reads, C/BE# (SB_IO input registers), FRAME#, IRDY# are inputs.  The harness's end-to-end behaviour
 is checked in ``sim/test_card_e2e.py`` (clock for clock against the
 split-port card).
 """

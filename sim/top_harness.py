@@ -102,7 +102,7 @@ class TopHarness:
     ``idsel_bit``: the AD line IDSEL is wired to (the bus model's ``idsel``).
     ``shared``: lines on a bus net (inputs of the top and SB_IO lines);
     ``private``: lines only the card drives and never reads; ``driven``:
-    the lines the top can drive.  A top whose drive of a line cannot be
+    the lines the top can drive (not those with input-only cells).  A top whose drive of a line cannot be
     told exactly is refused with a ``CosimError``.
     """
 
@@ -132,8 +132,15 @@ class TopHarness:
                 raise CosimError(f"{self.top_verilog}: cannot tell the card's own drive of {pin} "
                                  "(read by the card, but not through SB_IO cells on every bit)")
         self.driven = [line for line in LINE_WIDTHS if line in self.private
-                       or (line in self.shared and self.ports[PIN_PREFIX + line][0] != "input")]
+                       or (line in self.shared and self.ports[PIN_PREFIX + line][0] != "input"
+                           and not self._input_cells_only(line))]
         self.card = CardDrive(self.driven)
+
+    def _input_cells_only(self, line):
+        """Whether every SB_IO of ``line`` has its output disabled (an inout
+        port only because the cell's pin is one)."""
+        cells = [self.cells[(PIN_PREFIX + line, bit)] for bit in range(LINE_WIDTHS[line])]
+        return all(_cell_enable(name, pin_type) == "1'b0" for name, pin_type in cells)
 
     def verilog(self):
         """Text of the ``top_harness`` module."""

@@ -22,10 +22,7 @@ CLOCKS = 200
 
 @block
 def stand_in_core(clock, reset, pci, drive_value, drive_enable, sampled, *, io_registers):
-    """Outputs ``drive_value`` (AD, TRDY#) from a flip-flop, samples AD and C/BE#.
-
-    C/BE# reaches the core unregistered in both builds; it registers it itself.
-    """
+    """Outputs ``drive_value`` (AD, TRDY#) from a flip-flop, samples AD and C/BE#."""
     ad_q = Signal(intbv(0)[32:])
     trdy_q = Signal(bool(1))
 
@@ -44,19 +41,17 @@ def stand_in_core(clock, reset, pci, drive_value, drive_enable, sampled, *, io_r
         pci.serr_out.next = 0
 
     if io_registers:
-        @always(pci.ad_in)
+        @always(pci.ad_in, pci.cbe_in)
         def inputs():
             sampled["ad"].next = pci.ad_in
+            sampled["cbe"].next = pci.cbe_in
     else:
         @always_seq(clock.posedge, reset=reset)
         def inputs():
             sampled["ad"].next = pci.ad_in
+            sampled["cbe"].next = pci.cbe_in
 
-    @always_seq(clock.posedge, reset=reset)
-    def unregistered_inputs():
-        sampled["cbe"].next = pci.cbe_in
-
-    return output_flops, outputs, inputs, unregistered_inputs
+    return output_flops, outputs, inputs
 
 
 def make_stimulus(seed):
@@ -187,7 +182,7 @@ module tb;
   assign pins_irdy = 1'b1;
   assign pins_idsel = host_idsel;
   reg [31:0] ad_out = 0;
-  reg ad_oe = 0, trdy_out = 1, trdy_oe = 0, serr_oe = 0;
+  reg ad_oe = 0, trdy_out = 1, trdy_oe = 0, serr_oe = 0, par_out = 0, par_oe = 0;
   wire [31:0] ad_in;
   wire [3:0] cbe_in;
   wire par_in, frame_in, irdy_in, idsel_in;
@@ -195,7 +190,7 @@ module tb;
     .pins_frame(pins_frame), .pins_irdy(pins_irdy), .pins_idsel(pins_idsel), .pins_trdy(pins_trdy),
     .pins_devsel(pins_devsel), .pins_stop(pins_stop), .pins_perr(pins_perr), .pins_serr(pins_serr),
     .pins_inta(pins_inta), .pci_ad_in(ad_in), .pci_ad_out(ad_out), .pci_ad_oe(ad_oe),
-    .pci_cbe_in(cbe_in), .pci_par_in(par_in), .pci_par_out(1'b0), .pci_par_oe(1'b0),
+    .pci_cbe_in(cbe_in), .pci_par_in(par_in), .pci_par_out(par_out), .pci_par_oe(par_oe),
     .pci_frame_in(frame_in), .pci_irdy_in(irdy_in), .pci_idsel_in(idsel_in),
     .pci_trdy_out(trdy_out), .pci_trdy_oe(trdy_oe), .pci_devsel_out(1'b1), .pci_devsel_oe(1'b0),
     .pci_stop_out(1'b1), .pci_stop_oe(1'b0), .pci_perr_out(1'b1), .pci_perr_oe(1'b0),
@@ -218,11 +213,16 @@ module tb;
     host_ad = 32'hCAFEF00D; host_ad_en = 1; host_cbe = 4'h6; host_frame = 0; host_idsel = 1; #1;
     check(ad_in !== 32'hCAFEF00D, "AD input waits for the clock edge");
     check(idsel_in !== 1'b1, "IDSEL waits for the clock edge");
-    check(cbe_in === 4'h6, "C/BE# passes straight through");
+    check(cbe_in !== 4'h6, "C/BE# waits for the clock edge");
     check(frame_in === 1'b0, "FRAME# passes straight through");
     @(negedge clock);
     check(ad_in === 32'hCAFEF00D, "AD input registered at the edge");
     check(idsel_in === 1'b1, "IDSEL registered at the edge");
+    check(cbe_in === 4'h6, "C/BE# registered at the edge");
+    par_out = 1; par_oe = 1; #1;
+    check(pins_par === 1'b1, "PAR follows the core at once");
+    par_oe = 0; #1;
+    check(pins_par === 1'bz, "PAR released at once");
     serr_oe = 1; #1;
     check(pins_serr === 1'b0, "SERR# pulled low at once");
     serr_oe = 0; #1;
@@ -252,4 +252,4 @@ def test_registered_pads_match_the_ice40_cell_model(tmp_path):
     assert compiled.returncode == 0, compiled.stderr
     run = subprocess.run(["vvp", "-n", str(tmp_path / "tb.vvp")], capture_output=True, text=True, timeout=300)
     results = [line for line in run.stdout.splitlines() if line.startswith(("PASS", "FAIL"))]
-    assert len(results) == 14 and all(line.startswith("PASS") for line in results), run.stdout
+    assert len(results) == 17 and all(line.startswith("PASS") for line in results), run.stdout
