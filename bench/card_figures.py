@@ -122,13 +122,14 @@ def e2e_speed(kind, steps=1500):
 def synthesis():
     """The synthesis figures of the whole top, as ``bench/synth.py`` prints them."""
     try:
-        from bench.synth import format_figures, synthesize
+        from bench.synth import SWEEP_SEEDS, format_figures, synthesize_closing
     except ImportError as error:
         return f"not available ({error})"
     from sim.paths import GEN
     if not (GEN / "top.v").exists():
         return "gen/top.v missing: run python -m rtl.top --convert"
-    return "\n" + format_figures(synthesize("top"))
+    figures = synthesize_closing("top", range(1, 1 + SWEEP_SEEDS))
+    return "\n" + format_figures(figures) + f"\n   placement seed {figures['seed']}"
 
 
 def main(argv=None):

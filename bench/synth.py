@@ -50,7 +50,8 @@ DEVICE = ("--hx8k", "--package", "ct256")
 PCI_MHZ = 33.0
 CLOCK_PORT = "clock"
 PACKAGE_IOS = 206
-TIMEOUT_S = 1200
+TIMEOUT_S = 600
+SWEEP_SEEDS = 3  # placement seeds tried by default until timing closes (``synthesize_closing``)
 
 # iCE40 HX data sheet, typical PIO/PLB timing (LVCMOS, 1.2 V core), in ns:
 # the parts of a pin-to-pin figure that nextpnr's model leaves out.
@@ -860,9 +861,9 @@ def main(argv=None):
     parser.add_argument("units", nargs="*", help="units to synthesise (default: top, else every unit in gen/)")
     parser.add_argument("--freq", type=float, default=PCI_MHZ, help="target clock in MHz (default: 33)")
     parser.add_argument("--seed", type=int, default=1, help="nextpnr placement seed (default: 1)")
-    parser.add_argument("--sweep", type=int, default=1, metavar="N",
+    parser.add_argument("--sweep", type=int, default=SWEEP_SEEDS, metavar="N",
                         help="try seeds SEED .. SEED+N-1 until timing closes (clock and PCI pin "
-                             "budgets) and report that one (default: 1)")
+                             f"budgets) and report that one (default: {SWEEP_SEEDS})")
     parser.add_argument("--gen", type=Path, default=GEN, help="folder with the Verilog (default: gen/)")
     parser.add_argument("--timeout", type=int, default=TIMEOUT_S,
                         help=f"seconds each tool may take (default: {TIMEOUT_S})")
@@ -897,8 +898,7 @@ def main(argv=None):
         except SynthError as error:
             parser.exit(1, f"{parser.prog}: error: {error}\n")
         print(format_figures(figures, args.freq), flush=True)
-        if args.sweep > 1:
-            print(f"   placement seed {figures['seed']}", flush=True)
+        print(f"   placement seed {figures['seed']}", flush=True)
         with_pins = with_pins or bool(figures["pins"])
     if with_pins:
         print(format_pad_figures())

@@ -96,6 +96,7 @@ reg pins_dir_y;
 
 wire irq;
 wire pci_slave1_accepted;
+wire pci_slave1_accepted_open;
 wire pci_slave1_ad_oe_next;
 reg [31:0] pci_slave1_ad_out_next;
 reg pci_slave1_ad_out_parity;
@@ -137,6 +138,7 @@ wire pci_slave1_first_phase_next;
 reg pci_slave1_frame_q;
 reg pci_slave1_frame_qq;
 wire pci_slave1_got;
+wire pci_slave1_got_open;
 reg [3:0] pci_slave1_h_be;
 reg [31:0] pci_slave1_h_data;
 reg pci_slave1_h_valid;
@@ -159,10 +161,12 @@ reg pci_slave1_perr_q;
 reg [9:0] pci_slave1_phase_addr;
 wire pci_slave1_phase_step;
 wire pci_slave1_posting;
+reg pci_slave1_read_open;
 reg [31:0] pci_slave1_read_source;
 reg pci_slave1_refused;
 reg [9:0] pci_slave1_req_addr;
 reg pci_slave1_req_addr_stale;
+wire pci_slave1_retry_open;
 reg [3:0] pci_slave1_s_be;
 reg pci_slave1_s_valid;
 wire pci_slave1_serr_armed;
@@ -187,6 +191,7 @@ reg pci_slave1_wq_valid;
 wire pci_slave1_wq_valid_next;
 wire pci_slave1_write_done_next;
 reg pci_slave1_write_done_q;
+reg pci_slave1_write_open;
 reg pci_slave1_local_re;
 reg pci_slave1_local_we;
 reg pci_slave1_local_space;
@@ -917,6 +922,7 @@ always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_sla
     reg drain;
     reg hold_state;
     reg bad;
+    reg first_open;
     reg first;
     reg prefetch;
     drain = (pci_slave1_h_valid || pci_slave1_wq_valid);
@@ -939,10 +945,13 @@ always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_sla
         endcase
     end
     pci_slave1_fatal = (hold_state && bad);
-    first = (pci_slave1_first_pending && hold_state && (!pci_slave1_is_config) && (!drain) && (!pci_slave1_req_addr_stale) && (!bad));
+    first_open = (pci_slave1_first_pending && hold_state && (!pci_slave1_is_config) && (!drain) && (!pci_slave1_req_addr_stale));
+    first = (first_open && (!bad));
     prefetch = ((pci_slave1_state == 4'b0110) && pci_slave1_is_read && pci_slave1_fetching && (!pci_slave1_b_valid) && (pci_slave1_trdy_q || (!pci_slave1_frame_q)));
     pci_slave1_local_re = ((first && pci_slave1_is_read) || prefetch);
     pci_slave1_local_we = (drain || (first && (!pci_slave1_is_read) && (!pci_slave1_irdy_q)));
+    pci_slave1_read_open = ((first_open && pci_slave1_is_read) || prefetch);
+    pci_slave1_write_open = (drain || (first_open && (!pci_slave1_is_read) && (!pci_slave1_irdy_q)));
     pci_slave1_local_space = (drain || pci_slave1_space_mem);
     pci_slave1_local_write = (drain || (!pci_slave1_is_read));
     if (pci_slave1_h_valid) begin
@@ -966,6 +975,9 @@ assign pci_slave1_draining = (pci_slave1_h_valid || pci_slave1_wq_valid);
 assign pci_slave1_got = ((pci_slave1_local_re && pci_slave1_local_ready) || ((pci_slave1_state == 4'b0001) && pci_slave1_is_read));
 assign pci_slave1_accepted = (pci_slave1_local_we && pci_slave1_local_ready);
 assign pci_slave1_back_end_retry = ((pci_slave1_local_re || pci_slave1_local_we) && pci_slave1_local_retry);
+assign pci_slave1_got_open = ((pci_slave1_read_open && pci_slave1_local_ready) || ((pci_slave1_state == 4'b0001) && pci_slave1_is_read));
+assign pci_slave1_accepted_open = (pci_slave1_write_open && pci_slave1_local_ready);
+assign pci_slave1_retry_open = ((pci_slave1_read_open || pci_slave1_write_open) && pci_slave1_local_retry);
 
 
 always @(pci_slave1_is_config, pci_slave1_b_valid, pci_slave1_config_data, pci_slave1_spare_data, pci_slave1_local_rdata) begin: pci_slave1_read_path
@@ -1016,7 +1028,7 @@ assign pci_slave1_at_last = (pci_slave1_phase_addr == 1023);
 assign pci_slave1_before_last = ($signed({1'b0, pci_slave1_phase_addr}) == (1023 - 1));
 
 
-always @(pci_slave1_accepted, pci_slave1_back_end_retry, pci_slave1_claim_config, pci_slave1_first_pending, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_claim, pci_slave1_got, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_draining, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case0_0_control
+always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pending, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_draining, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_accepted_open, pci_slave1_cbe_q, pci_slave1_got_open, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case0_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1044,8 +1056,8 @@ always @(pci_slave1_accepted, pci_slave1_back_end_retry, pci_slave1_claim_config
     exhausted = 1'b0;
     room = 1'b0;
     if (pci_slave1_is_read) begin
-        ready_for_phase = (pci_slave1_b_valid || pci_slave1_got);
-        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_got) && (!pci_slave1_fetching));
+        ready_for_phase = (pci_slave1_b_valid || pci_slave1_got_open);
+        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_got_open) && (!pci_slave1_fetching));
     end
     else begin
         room = (pci_slave1_buffered_next <= 1);
@@ -1086,12 +1098,12 @@ always @(pci_slave1_accepted, pci_slave1_back_end_retry, pci_slave1_claim_config
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((pci_slave1_is_read && pci_slave1_got) || ((!pci_slave1_is_read) && pci_slave1_accepted && pci_slave1_first_pending && (!pci_slave1_draining)))) begin
+        else if (((pci_slave1_is_read && pci_slave1_got_open) || ((!pci_slave1_is_read) && pci_slave1_accepted_open && pci_slave1_first_pending && (!pci_slave1_draining)))) begin
             pci_slave1_control_case0_0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((pci_slave1_back_end_retry && pci_slave1_first_pending && (!pci_slave1_draining)) || pci_slave1_timeout)) begin
+        else if (((pci_slave1_retry_open && pci_slave1_first_pending && (!pci_slave1_draining)) || pci_slave1_timeout)) begin
             pci_slave1_control_case0_0_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -1149,7 +1161,7 @@ always @(pci_slave1_accepted, pci_slave1_back_end_retry, pci_slave1_claim_config
 end
 
 
-always @(pci_slave1_accepted, pci_slave1_back_end_retry, pci_slave1_claim_config, pci_slave1_first_pending, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_claim, pci_slave1_got, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_draining, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case1_0_control
+always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pending, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_draining, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_accepted_open, pci_slave1_cbe_q, pci_slave1_got_open, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case1_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1177,8 +1189,8 @@ always @(pci_slave1_accepted, pci_slave1_back_end_retry, pci_slave1_claim_config
     exhausted = 1'b0;
     room = 1'b0;
     if (pci_slave1_is_read) begin
-        ready_for_phase = (pci_slave1_b_valid || pci_slave1_got);
-        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_got) && (!pci_slave1_fetching));
+        ready_for_phase = (pci_slave1_b_valid || pci_slave1_got_open);
+        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_got_open) && (!pci_slave1_fetching));
     end
     else begin
         room = (pci_slave1_buffered_next <= 1);
@@ -1219,12 +1231,12 @@ always @(pci_slave1_accepted, pci_slave1_back_end_retry, pci_slave1_claim_config
             trdy = 1'b0;
             stop = (!1'b0);
         end
-        else if (((pci_slave1_is_read && pci_slave1_got) || ((!pci_slave1_is_read) && pci_slave1_accepted && pci_slave1_first_pending && (!pci_slave1_draining)))) begin
+        else if (((pci_slave1_is_read && pci_slave1_got_open) || ((!pci_slave1_is_read) && pci_slave1_accepted_open && pci_slave1_first_pending && (!pci_slave1_draining)))) begin
             pci_slave1_control_case1_0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
-        else if (((pci_slave1_back_end_retry && pci_slave1_first_pending && (!pci_slave1_draining)) || pci_slave1_timeout)) begin
+        else if (((pci_slave1_retry_open && pci_slave1_first_pending && (!pci_slave1_draining)) || pci_slave1_timeout)) begin
             pci_slave1_control_case1_0_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -1282,7 +1294,7 @@ always @(pci_slave1_accepted, pci_slave1_back_end_retry, pci_slave1_claim_config
 end
 
 
-always @(pci_slave1_accepted, pci_slave1_back_end_retry, pci_slave1_claim_config, pci_slave1_first_pending, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_claim, pci_slave1_got, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_draining, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case2_0_control
+always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pending, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_draining, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_accepted_open, pci_slave1_cbe_q, pci_slave1_got_open, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case2_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1310,8 +1322,8 @@ always @(pci_slave1_accepted, pci_slave1_back_end_retry, pci_slave1_claim_config
     exhausted = 1'b0;
     room = 1'b0;
     if (pci_slave1_is_read) begin
-        ready_for_phase = (pci_slave1_b_valid || pci_slave1_got);
-        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_got) && (!pci_slave1_fetching));
+        ready_for_phase = (pci_slave1_b_valid || pci_slave1_got_open);
+        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_got_open) && (!pci_slave1_fetching));
     end
     else begin
         room = (pci_slave1_buffered_next <= 1);
@@ -1352,12 +1364,12 @@ always @(pci_slave1_accepted, pci_slave1_back_end_retry, pci_slave1_claim_config
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((pci_slave1_is_read && pci_slave1_got) || ((!pci_slave1_is_read) && pci_slave1_accepted && pci_slave1_first_pending && (!pci_slave1_draining)))) begin
+        else if (((pci_slave1_is_read && pci_slave1_got_open) || ((!pci_slave1_is_read) && pci_slave1_accepted_open && pci_slave1_first_pending && (!pci_slave1_draining)))) begin
             pci_slave1_control_case2_0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((pci_slave1_back_end_retry && pci_slave1_first_pending && (!pci_slave1_draining)) || pci_slave1_timeout)) begin
+        else if (((pci_slave1_retry_open && pci_slave1_first_pending && (!pci_slave1_draining)) || pci_slave1_timeout)) begin
             pci_slave1_control_case2_0_out_state = 4'b0111;
             stop = 1'b0;
         end

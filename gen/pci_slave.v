@@ -127,6 +127,7 @@ input local_ready;
 input local_retry;
 
 wire accepted;
+wire accepted_open;
 wire ad_oe_next;
 reg [31:0] ad_out_next;
 reg ad_out_parity;
@@ -168,6 +169,7 @@ wire first_phase_next;
 reg frame_q;
 reg frame_qq;
 wire got;
+wire got_open;
 reg [3:0] h_be;
 reg [31:0] h_data;
 reg h_valid;
@@ -190,10 +192,12 @@ reg perr_q;
 reg [9:0] phase_addr;
 wire phase_step;
 wire posting;
+reg read_open;
 reg [31:0] read_source;
 reg refused;
 reg [9:0] req_addr;
 reg req_addr_stale;
+wire retry_open;
 reg [3:0] s_be;
 reg s_valid;
 wire serr_armed;
@@ -218,6 +222,7 @@ reg wq_valid;
 wire wq_valid_next;
 wire write_done_next;
 reg write_done_q;
+reg write_open;
 reg [3:0] control_case0_out_state;
 reg control_case0_out_trdy;
 reg control_case0_out_stop;
@@ -407,6 +412,7 @@ always @(ad_q, req_addr, first_pending, io_byte, b_valid, is_read, fetching, sta
     reg drain;
     reg hold_state;
     reg bad;
+    reg first_open;
     reg first;
     reg prefetch;
     drain = (h_valid || wq_valid);
@@ -429,10 +435,13 @@ always @(ad_q, req_addr, first_pending, io_byte, b_valid, is_read, fetching, sta
         endcase
     end
     fatal = (hold_state && bad);
-    first = (first_pending && hold_state && (!is_config) && (!drain) && (!req_addr_stale) && (!bad));
+    first_open = (first_pending && hold_state && (!is_config) && (!drain) && (!req_addr_stale));
+    first = (first_open && (!bad));
     prefetch = ((state == 4'b0110) && is_read && fetching && (!b_valid) && (trdy_q || (!frame_q)));
     local_re = ((first && is_read) || prefetch);
     local_we = (drain || (first && (!is_read) && (!irdy_q)));
+    read_open = ((first_open && is_read) || prefetch);
+    write_open = (drain || (first_open && (!is_read) && (!irdy_q)));
     local_space = (drain || space_mem);
     local_write = (drain || (!is_read));
     if (h_valid) begin
@@ -456,6 +465,9 @@ assign draining = (h_valid || wq_valid);
 assign got = ((local_re && local_ready) || ((state == 4'b0001) && is_read));
 assign accepted = (local_we && local_ready);
 assign back_end_retry = ((local_re || local_we) && local_retry);
+assign got_open = ((read_open && local_ready) || ((state == 4'b0001) && is_read));
+assign accepted_open = (write_open && local_ready);
+assign retry_open = ((read_open || write_open) && local_retry);
 
 
 always @(is_config, b_valid, config_data, spare_data, local_rdata) begin: read_path
@@ -506,7 +518,7 @@ assign at_last = (phase_addr == 1023);
 assign before_last = ($signed({1'b0, phase_addr}) == (1023 - 1));
 
 
-always @(accepted, back_end_retry, claim_config, first_pending, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, fetching, state, trdy_q, claim, got, at_last, first_phase, timeout, is_config, draining, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q, refused) begin: control_case0_control
+always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, fetching, state, trdy_q, claim, at_last, first_phase, timeout, is_config, draining, claim_io, buffered_next, single, pci_ad_oe, accepted_open, cbe_q, got_open, devsel_q, refused) begin: control_case0_control
     reg done;
     reg hold;
     reg trdy;
@@ -534,8 +546,8 @@ always @(accepted, back_end_retry, claim_config, first_pending, before_last, fat
     exhausted = 1'b0;
     room = 1'b0;
     if (is_read) begin
-        ready_for_phase = (b_valid || got);
-        exhausted = ((!b_valid) && (!got) && (!fetching));
+        ready_for_phase = (b_valid || got_open);
+        exhausted = ((!b_valid) && (!got_open) && (!fetching));
     end
     else begin
         room = (buffered_next <= 1);
@@ -576,12 +588,12 @@ always @(accepted, back_end_retry, claim_config, first_pending, before_last, fat
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((is_read && got) || ((!is_read) && accepted && first_pending && (!draining)))) begin
+        else if (((is_read && got_open) || ((!is_read) && accepted_open && first_pending && (!draining)))) begin
             control_case0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((back_end_retry && first_pending && (!draining)) || timeout)) begin
+        else if (((retry_open && first_pending && (!draining)) || timeout)) begin
             control_case0_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -639,7 +651,7 @@ always @(accepted, back_end_retry, claim_config, first_pending, before_last, fat
 end
 
 
-always @(accepted, back_end_retry, claim_config, first_pending, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, fetching, state, trdy_q, claim, got, at_last, first_phase, timeout, is_config, draining, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q, refused) begin: control_case1_control
+always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, fetching, state, trdy_q, claim, at_last, first_phase, timeout, is_config, draining, claim_io, buffered_next, single, pci_ad_oe, accepted_open, cbe_q, got_open, devsel_q, refused) begin: control_case1_control
     reg done;
     reg hold;
     reg trdy;
@@ -667,8 +679,8 @@ always @(accepted, back_end_retry, claim_config, first_pending, before_last, fat
     exhausted = 1'b0;
     room = 1'b0;
     if (is_read) begin
-        ready_for_phase = (b_valid || got);
-        exhausted = ((!b_valid) && (!got) && (!fetching));
+        ready_for_phase = (b_valid || got_open);
+        exhausted = ((!b_valid) && (!got_open) && (!fetching));
     end
     else begin
         room = (buffered_next <= 1);
@@ -709,12 +721,12 @@ always @(accepted, back_end_retry, claim_config, first_pending, before_last, fat
             trdy = 1'b0;
             stop = (!1'b0);
         end
-        else if (((is_read && got) || ((!is_read) && accepted && first_pending && (!draining)))) begin
+        else if (((is_read && got_open) || ((!is_read) && accepted_open && first_pending && (!draining)))) begin
             control_case1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
-        else if (((back_end_retry && first_pending && (!draining)) || timeout)) begin
+        else if (((retry_open && first_pending && (!draining)) || timeout)) begin
             control_case1_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -772,7 +784,7 @@ always @(accepted, back_end_retry, claim_config, first_pending, before_last, fat
 end
 
 
-always @(accepted, back_end_retry, claim_config, first_pending, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, fetching, state, trdy_q, claim, got, at_last, first_phase, timeout, is_config, draining, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q, refused) begin: control_case2_control
+always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, fetching, state, trdy_q, claim, at_last, first_phase, timeout, is_config, draining, claim_io, buffered_next, single, pci_ad_oe, accepted_open, cbe_q, got_open, devsel_q, refused) begin: control_case2_control
     reg done;
     reg hold;
     reg trdy;
@@ -800,8 +812,8 @@ always @(accepted, back_end_retry, claim_config, first_pending, before_last, fat
     exhausted = 1'b0;
     room = 1'b0;
     if (is_read) begin
-        ready_for_phase = (b_valid || got);
-        exhausted = ((!b_valid) && (!got) && (!fetching));
+        ready_for_phase = (b_valid || got_open);
+        exhausted = ((!b_valid) && (!got_open) && (!fetching));
     end
     else begin
         room = (buffered_next <= 1);
@@ -842,12 +854,12 @@ always @(accepted, back_end_retry, claim_config, first_pending, before_last, fat
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((is_read && got) || ((!is_read) && accepted && first_pending && (!draining)))) begin
+        else if (((is_read && got_open) || ((!is_read) && accepted_open && first_pending && (!draining)))) begin
             control_case2_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((back_end_retry && first_pending && (!draining)) || timeout)) begin
+        else if (((retry_open && first_pending && (!draining)) || timeout)) begin
             control_case2_out_state = 4'b0111;
             stop = 1'b0;
         end

@@ -92,6 +92,7 @@ wire [3:0] pci_pads0_registered_pad5_from_pin;
 wire pci_pads0_registered_pad6_from_pin;
 wire card1_irq;
 wire card1_pci_slave2_accepted;
+wire card1_pci_slave2_accepted_open;
 wire card1_pci_slave2_ad_oe_next;
 wire [31:0] card1_pci_slave2_ad_out_next;
 reg card1_pci_slave2_ad_out_parity;
@@ -131,6 +132,7 @@ wire card1_pci_slave2_first_phase_next;
 reg card1_pci_slave2_frame_q;
 reg card1_pci_slave2_frame_qq;
 wire card1_pci_slave2_got;
+wire card1_pci_slave2_got_open;
 reg [3:0] card1_pci_slave2_h_be;
 reg [31:0] card1_pci_slave2_h_data;
 reg card1_pci_slave2_h_valid;
@@ -152,10 +154,12 @@ reg card1_pci_slave2_perr_q;
 reg [9:0] card1_pci_slave2_phase_addr;
 wire card1_pci_slave2_phase_step;
 wire card1_pci_slave2_posting;
+reg card1_pci_slave2_read_open;
 reg [31:0] card1_pci_slave2_read_source;
 reg card1_pci_slave2_refused;
 reg [9:0] card1_pci_slave2_req_addr;
 reg card1_pci_slave2_req_addr_stale;
+wire card1_pci_slave2_retry_open;
 reg [3:0] card1_pci_slave2_s_be;
 reg card1_pci_slave2_s_valid;
 wire card1_pci_slave2_serr_armed;
@@ -180,6 +184,7 @@ reg card1_pci_slave2_wq_valid;
 wire card1_pci_slave2_wq_valid_next;
 wire card1_pci_slave2_write_done_next;
 reg card1_pci_slave2_write_done_q;
+reg card1_pci_slave2_write_open;
 reg card1_pci_slave2_local_re;
 reg card1_pci_slave2_local_we;
 reg card1_pci_slave2_local_space;
@@ -1456,6 +1461,7 @@ always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pc
     reg drain;
     reg hold_state;
     reg bad;
+    reg first_open;
     reg first;
     reg prefetch;
     drain = (card1_pci_slave2_h_valid || card1_pci_slave2_wq_valid);
@@ -1478,10 +1484,13 @@ always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pc
         endcase
     end
     card1_pci_slave2_fatal = (hold_state && bad);
-    first = (card1_pci_slave2_first_pending && hold_state && (!card1_pci_slave2_is_config) && (!drain) && (!card1_pci_slave2_req_addr_stale) && (!bad));
+    first_open = (card1_pci_slave2_first_pending && hold_state && (!card1_pci_slave2_is_config) && (!drain) && (!card1_pci_slave2_req_addr_stale));
+    first = (first_open && (!bad));
     prefetch = ((card1_pci_slave2_state == 4'b0110) && card1_pci_slave2_is_read && card1_pci_slave2_fetching && (!card1_pci_slave2_b_valid) && (card1_pci_slave2_trdy_q || (!card1_pci_slave2_frame_q)));
     card1_pci_slave2_local_re = ((first && card1_pci_slave2_is_read) || prefetch);
     card1_pci_slave2_local_we = (drain || (first && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q)));
+    card1_pci_slave2_read_open = ((first_open && card1_pci_slave2_is_read) || prefetch);
+    card1_pci_slave2_write_open = (drain || (first_open && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q)));
     card1_pci_slave2_local_space = (drain || card1_pci_slave2_space_mem);
     card1_pci_slave2_local_write = (drain || (!card1_pci_slave2_is_read));
     if (card1_pci_slave2_h_valid) begin
@@ -1505,6 +1514,9 @@ assign card1_pci_slave2_draining = (card1_pci_slave2_h_valid || card1_pci_slave2
 assign card1_pci_slave2_got = ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready) || ((card1_pci_slave2_state == 4'b0001) && card1_pci_slave2_is_read));
 assign card1_pci_slave2_accepted = (card1_pci_slave2_local_we && card1_pci_slave2_local_ready);
 assign card1_pci_slave2_back_end_retry = ((card1_pci_slave2_local_re || card1_pci_slave2_local_we) && card1_pci_slave2_local_retry);
+assign card1_pci_slave2_got_open = ((card1_pci_slave2_read_open && card1_pci_slave2_local_ready) || ((card1_pci_slave2_state == 4'b0001) && card1_pci_slave2_is_read));
+assign card1_pci_slave2_accepted_open = (card1_pci_slave2_write_open && card1_pci_slave2_local_ready);
+assign card1_pci_slave2_retry_open = ((card1_pci_slave2_read_open || card1_pci_slave2_write_open) && card1_pci_slave2_local_retry);
 
 
 always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_config_data, card1_pci_slave2_spare_data, card1_pci_slave2_local_rdata) begin: card1_pci_slave2_read_path
@@ -1555,7 +1567,7 @@ assign card1_pci_slave2_at_last = (card1_pci_slave2_phase_addr == 1023);
 assign card1_pci_slave2_before_last = ($signed({1'b0, card1_pci_slave2_phase_addr}) == (1023 - 1));
 
 
-always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_got, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case0_0_1_control
+always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_accepted_open, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_got_open, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case0_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1583,8 +1595,8 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
     exhausted = 1'b0;
     room = 1'b0;
     if (card1_pci_slave2_is_read) begin
-        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_got);
-        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_got) && (!card1_pci_slave2_fetching));
+        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_got_open);
+        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_got_open) && (!card1_pci_slave2_fetching));
     end
     else begin
         room = (card1_pci_slave2_buffered_next <= 1);
@@ -1625,12 +1637,12 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((card1_pci_slave2_is_read && card1_pci_slave2_got) || ((!card1_pci_slave2_is_read) && card1_pci_slave2_accepted && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)))) begin
+        else if (((card1_pci_slave2_is_read && card1_pci_slave2_got_open) || ((!card1_pci_slave2_is_read) && card1_pci_slave2_accepted_open && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)))) begin
             card1_pci_slave2_control_case0_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((card1_pci_slave2_back_end_retry && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)) || card1_pci_slave2_timeout)) begin
+        else if (((card1_pci_slave2_retry_open && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)) || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -1688,7 +1700,7 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
 end
 
 
-always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_got, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case1_0_1_control
+always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_accepted_open, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_got_open, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case1_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1716,8 +1728,8 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
     exhausted = 1'b0;
     room = 1'b0;
     if (card1_pci_slave2_is_read) begin
-        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_got);
-        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_got) && (!card1_pci_slave2_fetching));
+        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_got_open);
+        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_got_open) && (!card1_pci_slave2_fetching));
     end
     else begin
         room = (card1_pci_slave2_buffered_next <= 1);
@@ -1758,12 +1770,12 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
             trdy = 1'b0;
             stop = (!1'b0);
         end
-        else if (((card1_pci_slave2_is_read && card1_pci_slave2_got) || ((!card1_pci_slave2_is_read) && card1_pci_slave2_accepted && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)))) begin
+        else if (((card1_pci_slave2_is_read && card1_pci_slave2_got_open) || ((!card1_pci_slave2_is_read) && card1_pci_slave2_accepted_open && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)))) begin
             card1_pci_slave2_control_case1_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
-        else if (((card1_pci_slave2_back_end_retry && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)) || card1_pci_slave2_timeout)) begin
+        else if (((card1_pci_slave2_retry_open && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)) || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -1821,7 +1833,7 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
 end
 
 
-always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_got, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case2_0_1_control
+always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_accepted_open, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_got_open, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case2_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1849,8 +1861,8 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
     exhausted = 1'b0;
     room = 1'b0;
     if (card1_pci_slave2_is_read) begin
-        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_got);
-        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_got) && (!card1_pci_slave2_fetching));
+        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_got_open);
+        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_got_open) && (!card1_pci_slave2_fetching));
     end
     else begin
         room = (card1_pci_slave2_buffered_next <= 1);
@@ -1891,12 +1903,12 @@ always @(card1_pci_slave2_accepted, card1_pci_slave2_back_end_retry, card1_pci_s
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((card1_pci_slave2_is_read && card1_pci_slave2_got) || ((!card1_pci_slave2_is_read) && card1_pci_slave2_accepted && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)))) begin
+        else if (((card1_pci_slave2_is_read && card1_pci_slave2_got_open) || ((!card1_pci_slave2_is_read) && card1_pci_slave2_accepted_open && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)))) begin
             card1_pci_slave2_control_case2_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((card1_pci_slave2_back_end_retry && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)) || card1_pci_slave2_timeout)) begin
+        else if (((card1_pci_slave2_retry_open && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)) || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end

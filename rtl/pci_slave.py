@@ -372,6 +372,10 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     got = Signal(bool(0))             # read data arrives at this edge
     accepted = Signal(bool(0))        # the back end takes a write at this edge
     back_end_retry = Signal(bool(0))
+    # the same answers to the request as it would be without the abort check
+    # (for the state machine, where ``fatal`` overrides them: see local_answer)
+    read_open, write_open = Signal(bool(0)), Signal(bool(0))
+    got_open, accepted_open, retry_open = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
     draining = Signal(bool(0))        # posted data waits for the back end
     buffered_next = Signal(intbv(0, min=0, max=4))
     read_source = Signal(intbv(0)[32:])
@@ -496,12 +500,15 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             elif io_byte == 3:
                 bad = not (cbe_q[0] and cbe_q[1] and cbe_q[2])
         fatal.next = hold_state and bad
-        first = (first_pending and hold_state and not is_config and not drain
-                 and not req_addr_stale and not bad)
+        first_open = (first_pending and hold_state and not is_config and not drain
+                      and not req_addr_stale)
+        first = first_open and not bad
         prefetch = (state == t_state.S_RWING and is_read and fetching and not b_valid
                     and (trdy_q or not frame_q))
         local.re.next = (first and is_read) or prefetch
         local.we.next = drain or (first and not is_read and not irdy_q)
+        read_open.next = (first_open and is_read) or prefetch
+        write_open.next = drain or (first_open and not is_read and not irdy_q)
         local.space.next = drain or space_mem
         local.write.next = drain or not is_read
         if h_valid:
@@ -521,6 +528,13 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         got.next = (local.re and local.ready) or (state == t_state.S_CON_HOLD and is_read)
         accepted.next = local.we and local.ready
         back_end_retry.next = (local.re or local.we) and local.retry
+        # Only in a hold state can the abort check withhold a request, and
+        # there ``fatal`` decides the next state before any answer does: so
+        # the state machine may read the answers to the unchecked request,
+        # which keeps the check (C/BE# of the first data phase) off its path.
+        got_open.next = (read_open and local.ready) or (state == t_state.S_CON_HOLD and is_read)
+        accepted_open.next = write_open and local.ready
+        retry_open.next = (read_open or write_open) and local.retry
 
     @always_comb
     def read_path():
@@ -596,8 +610,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             exhausted = False
             room = False
             if is_read:
-                ready_for_phase = b_valid or got
-                exhausted = not b_valid and not got and not fetching
+                ready_for_phase = b_valid or got_open
+                exhausted = not b_valid and not got_open and not fetching
             else:
                 room = buffered_next <= 1
                 if done and not first_phase:
@@ -629,12 +643,12 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                     out.state.next = t_state.S_CONFIGURING
                     trdy = False
                     stop = not frame_asserted
-                elif (is_read and got) or (not is_read and accepted and first_pending
+                elif (is_read and got_open) or (not is_read and accepted_open and first_pending
                                            and not draining):
                     out.state.next = t_state.S_RWING
                     trdy = False
                     stop = not (last_data and frame_asserted)
-                elif (back_end_retry and first_pending and not draining) or timeout:
+                elif (retry_open and first_pending and not draining) or timeout:
                     out.state.next = t_state.S_BACKOFF
                     stop = False
                 elif is_read:
