@@ -106,7 +106,7 @@ reg [31:0] pci_slave1_ad_q;
 reg pci_slave1_address_fault;
 wire pci_slave1_address_fault_next;
 wire pci_slave1_address_phase;
-wire pci_slave1_at_last;
+reg pci_slave1_at_last;
 reg pci_slave1_b_kept;
 reg pci_slave1_b_valid;
 wire pci_slave1_b_valid_next;
@@ -114,7 +114,7 @@ wire pci_slave1_back_end_retry;
 reg [15:0] pci_slave1_bar0;
 wire [15:0] pci_slave1_bar0_read;
 reg [31:0] pci_slave1_bar1;
-wire pci_slave1_before_last;
+reg pci_slave1_before_last;
 reg [1:0] pci_slave1_buffered_next;
 reg pci_slave1_bus_parity;
 reg [3:0] pci_slave1_cbe_q;
@@ -143,6 +143,7 @@ reg [3:0] pci_slave1_h_be;
 reg [31:0] pci_slave1_h_data;
 reg pci_slave1_h_valid;
 reg pci_slave1_idsel_q;
+reg pci_slave1_initial_wait_over;
 reg pci_slave1_interrupt_disable;
 reg [7:0] pci_slave1_interrupt_line;
 reg [1:0] pci_slave1_io_byte;
@@ -182,6 +183,7 @@ reg [3:0] pci_slave1_state;
 wire [3:0] pci_slave1_state_next;
 wire pci_slave1_stop_next;
 reg pci_slave1_stop_q;
+reg pci_slave1_subsequent_wait_over;
 reg pci_slave1_timeout;
 wire pci_slave1_trdy_next;
 reg pci_slave1_trdy_q;
@@ -199,9 +201,9 @@ reg pci_slave1_local_write;
 reg [31:0] pci_slave1_local_wdata;
 reg [3:0] pci_slave1_local_be;
 reg [11:0] pci_slave1_local_addr;
-wire pci_slave1_local_ready;
-wire pci_slave1_local_retry;
-wire [31:0] pci_slave1_local_rdata;
+reg pci_slave1_local_ready;
+reg pci_slave1_local_retry;
+reg [31:0] pci_slave1_local_rdata;
 reg [3:0] pci_slave1_control_case0_0_out_state;
 reg pci_slave1_control_case0_0_out_trdy;
 reg pci_slave1_control_case0_0_out_stop;
@@ -248,7 +250,6 @@ wire card_core0_regs_fifo1_fifo_full;
 wire [9:0] card_core0_regs_fifo1_fifo_level;
 wire card_core0_regs_fifo1_hold;
 reg card_core0_regs_fifo1_io_read;
-reg card_core0_regs_fifo1_io_space;
 reg card_core0_regs_fifo1_io_write;
 reg card_core0_regs_fifo1_io_written;
 wire [15:0] card_core0_regs_fifo1_level_wide;
@@ -292,6 +293,8 @@ wire card_core0_regs_fifo1_sync_fifo1_do_read;
 wire card_core0_regs_fifo1_sync_fifo1_do_write;
 reg card_core0_regs_fifo1_sync_fifo1_is_empty;
 reg card_core0_regs_fifo1_sync_fifo1_is_full;
+wire card_core0_regs_fifo1_sync_fifo1_one_free;
+wire card_core0_regs_fifo1_sync_fifo1_one_word;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_read_addr;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_write_addr;
 wire [31:0] card_core0_regs_fifo1_reg_word21_hw_value;
@@ -1015,17 +1018,12 @@ always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_accepted, pci_slave
 end
 
 
-always @(pci_slave1_stop_q, pci_slave1_first_phase, pci_slave1_wait_count, pci_slave1_state, pci_slave1_trdy_q) begin: pci_slave1_latency
+always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_first_phase, pci_slave1_initial_wait_over, pci_slave1_state, pci_slave1_trdy_q) begin: pci_slave1_latency
     reg target_waits;
     target_waits = (pci_slave1_trdy_q && pci_slave1_stop_q && (pci_slave1_state != 4'b0000) && (pci_slave1_state != 4'b0111) && (pci_slave1_state != 4'b1000));
     pci_slave1_waiting = target_waits;
-    pci_slave1_timeout = (target_waits && ((pci_slave1_first_phase && (pci_slave1_wait_count == 11)) || ((!pci_slave1_first_phase) && (pci_slave1_wait_count == 5))));
+    pci_slave1_timeout = (target_waits && ((pci_slave1_first_phase && pci_slave1_initial_wait_over) || ((!pci_slave1_first_phase) && pci_slave1_subsequent_wait_over)));
 end
-
-
-
-assign pci_slave1_at_last = (pci_slave1_phase_addr == 1023);
-assign pci_slave1_before_last = ($signed({1'b0, pci_slave1_phase_addr}) == (1023 - 1));
 
 
 always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pending, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_draining, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_accepted_open, pci_slave1_cbe_q, pci_slave1_got_open, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case0_0_control
@@ -1513,20 +1511,24 @@ assign pci_slave1_ad_oe_next = pci_slave1_ad_oe_next_lut0_table[{pci_irdy_in, pc
 
 always @(posedge clock, negedge reset) begin: pci_slave1_transaction
     if (reset == 0) begin
+        pci_slave1_wait_count <= 0;
+        pci_slave1_initial_wait_over <= 0;
         pci_slave1_req_addr <= 0;
-        pci_slave1_is_config <= 0;
-        pci_slave1_space_mem <= 0;
         pci_slave1_first_pending <= 0;
-        pci_slave1_refused <= 0;
+        pci_slave1_before_last <= 0;
         pci_slave1_io_byte <= 0;
+        pci_slave1_is_read <= 0;
+        pci_slave1_fetching <= 0;
+        pci_slave1_state <= 4'b0000;
+        pci_slave1_space_mem <= 0;
+        pci_slave1_at_last <= 0;
+        pci_slave1_first_phase <= 0;
+        pci_slave1_subsequent_wait_over <= 0;
+        pci_slave1_is_config <= 0;
         pci_slave1_single <= 0;
         pci_slave1_req_addr_stale <= 0;
         pci_slave1_address_fault <= 0;
-        pci_slave1_is_read <= 0;
-        pci_slave1_first_phase <= 0;
-        pci_slave1_wait_count <= 0;
-        pci_slave1_fetching <= 0;
-        pci_slave1_state <= 4'b0000;
+        pci_slave1_refused <= 0;
         pci_slave1_phase_addr <= 0;
     end
     else begin
@@ -1535,9 +1537,13 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
         if (pci_slave1_phase_step) begin
             if (pci_slave1_claim) begin
                 pci_slave1_phase_addr <= pci_slave1_start_addr;
+                pci_slave1_at_last <= (pci_slave1_start_addr == 1023);
+                pci_slave1_before_last <= ($signed({1'b0, pci_slave1_start_addr}) == (1023 - 1));
             end
             else begin
                 pci_slave1_phase_addr <= (pci_slave1_phase_addr + 1);
+                pci_slave1_at_last <= pci_slave1_before_last;
+                pci_slave1_before_last <= ($signed({1'b0, pci_slave1_phase_addr}) == (1023 - 2));
             end
         end
         pci_slave1_address_fault <= pci_slave1_address_fault_next;
@@ -1578,9 +1584,13 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
         end
         if ((pci_slave1_claim || (!pci_slave1_waiting))) begin
             pci_slave1_wait_count <= 0;
+            pci_slave1_initial_wait_over <= 1'b0;
+            pci_slave1_subsequent_wait_over <= 1'b0;
         end
         else if ((!pci_slave1_timeout)) begin
             pci_slave1_wait_count <= (pci_slave1_wait_count + 1);
+            pci_slave1_initial_wait_over <= ($signed({1'b0, pci_slave1_wait_count}) == (11 - 1));
+            pci_slave1_subsequent_wait_over <= ($signed({1'b0, pci_slave1_wait_count}) == (5 - 1));
         end
     end
 end
@@ -1859,6 +1869,11 @@ assign card_core0_regs_fifo1_sync_fifo1_do_write = (card_core0_regs_fifo1_push &
 assign card_core0_regs_fifo1_sync_fifo1_do_read = (card_core0_regs_fifo1_fifo_pop && (!card_core0_regs_fifo1_sync_fifo1_is_empty));
 
 
+
+assign card_core0_regs_fifo1_sync_fifo1_one_word = (card_core0_regs_fifo1_sync_fifo1_count == 1);
+assign card_core0_regs_fifo1_sync_fifo1_one_free = ($signed({1'b0, card_core0_regs_fifo1_sync_fifo1_count}) == (512 - 1));
+
+
 always @(posedge clock) begin: card_core0_regs_fifo1_sync_fifo1_memory
     if (card_core0_regs_fifo1_sync_fifo1_do_write) begin
         card_core0_regs_fifo1_sync_fifo1_storage[card_core0_regs_fifo1_sync_fifo1_write_addr] <= pci_slave1_local_wdata;
@@ -1871,6 +1886,8 @@ end
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sync_fifo1_pointers
     reg [10-1:0] following;
+    reg only_read;
+    reg only_write;
     if (reset == 0) begin
         card_core0_regs_fifo1_sync_fifo1_read_addr <= 0;
         card_core0_regs_fifo1_sync_fifo1_is_empty <= 1;
@@ -1901,8 +1918,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sync_fifo1_p
             end
         end
         card_core0_regs_fifo1_sync_fifo1_count <= following;
-        card_core0_regs_fifo1_sync_fifo1_is_empty <= (following == 0);
-        card_core0_regs_fifo1_sync_fifo1_is_full <= (following == 512);
+        only_read = (card_core0_regs_fifo1_sync_fifo1_do_read && (!card_core0_regs_fifo1_sync_fifo1_do_write));
+        only_write = (card_core0_regs_fifo1_sync_fifo1_do_write && (!card_core0_regs_fifo1_sync_fifo1_do_read));
+        card_core0_regs_fifo1_sync_fifo1_is_empty <= (card_core0_regs_fifo1_fifo_flush || (card_core0_regs_fifo1_sync_fifo1_is_empty && (!card_core0_regs_fifo1_sync_fifo1_do_write)) || (card_core0_regs_fifo1_sync_fifo1_one_word && only_read));
+        card_core0_regs_fifo1_sync_fifo1_is_full <= ((!card_core0_regs_fifo1_fifo_flush) && ((card_core0_regs_fifo1_sync_fifo1_is_full && (!card_core0_regs_fifo1_sync_fifo1_do_read)) || (card_core0_regs_fifo1_sync_fifo1_one_free && only_write)));
     end
 end
 
@@ -1917,8 +1936,8 @@ assign card_core0_regs_fifo1_fifo_full = card_core0_regs_fifo1_sync_fifo1_is_ful
 assign card_core0_regs_fifo1_reg_word21_mine = (pci_slave1_local_addr == 0);
 
 
-always @(card_core0_regs_fifo1_reg_word21_mine, card_core0_regs_fifo1_reg_word21_shown_wide, card_core0_regs_fifo1_reg_word21_read_in, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word21_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word21_mine)) begin
+always @(card_core0_regs_fifo1_reg_word21_mine, card_core0_regs_fifo1_reg_word21_shown_wide, card_core0_regs_fifo1_reg_word21_read_in) begin: card_core0_regs_fifo1_reg_word21_read_chain
+    if (card_core0_regs_fifo1_reg_word21_mine) begin
         card_core0_regs_fifo1_reg_word21_read_out = (card_core0_regs_fifo1_reg_word21_read_in | card_core0_regs_fifo1_reg_word21_shown_wide);
     end
     else begin
@@ -1939,8 +1958,8 @@ assign card_core0_regs_fifo1_reg_word21_clamp_out = card_core0_regs_fifo1_reg_wo
 assign card_core0_regs_fifo1_reg_word22_mine = (pci_slave1_local_addr == 4);
 
 
-always @(card_core0_regs_fifo1_reg_word22_mine, card_core0_regs_fifo1_reg_word22_shown_wide, card_core0_regs_fifo1_reg_word21_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word22_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word22_mine)) begin
+always @(card_core0_regs_fifo1_reg_word22_mine, card_core0_regs_fifo1_reg_word22_shown_wide, card_core0_regs_fifo1_reg_word21_read_out) begin: card_core0_regs_fifo1_reg_word22_read_chain
+    if (card_core0_regs_fifo1_reg_word22_mine) begin
         card_core0_regs_fifo1_reg_word22_read_out = (card_core0_regs_fifo1_reg_word21_read_out | card_core0_regs_fifo1_reg_word22_shown_wide);
     end
     else begin
@@ -1994,8 +2013,8 @@ end
 assign card_core0_regs_fifo1_reg_word23_mine = (pci_slave1_local_addr == 8);
 
 
-always @(card_core0_regs_fifo1_reg_word23_mine, card_core0_regs_fifo1_reg_word23_shown_wide, card_core0_regs_fifo1_reg_word22_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word23_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word23_mine)) begin
+always @(card_core0_regs_fifo1_reg_word23_mine, card_core0_regs_fifo1_reg_word23_shown_wide, card_core0_regs_fifo1_reg_word22_read_out) begin: card_core0_regs_fifo1_reg_word23_read_chain
+    if (card_core0_regs_fifo1_reg_word23_mine) begin
         card_core0_regs_fifo1_reg_word23_read_out = (card_core0_regs_fifo1_reg_word22_read_out | card_core0_regs_fifo1_reg_word23_shown_wide);
     end
     else begin
@@ -2046,8 +2065,8 @@ end
 assign card_core0_regs_fifo1_reg_word24_mine = (pci_slave1_local_addr == 12);
 
 
-always @(card_core0_regs_fifo1_reg_word24_mine, card_core0_regs_fifo1_reg_word24_shown_wide, card_core0_regs_fifo1_reg_word23_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word24_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word24_mine)) begin
+always @(card_core0_regs_fifo1_reg_word24_mine, card_core0_regs_fifo1_reg_word24_shown_wide, card_core0_regs_fifo1_reg_word23_read_out) begin: card_core0_regs_fifo1_reg_word24_read_chain
+    if (card_core0_regs_fifo1_reg_word24_mine) begin
         card_core0_regs_fifo1_reg_word24_read_out = (card_core0_regs_fifo1_reg_word23_read_out | card_core0_regs_fifo1_reg_word24_shown_wide);
     end
     else begin
@@ -2068,8 +2087,8 @@ assign card_core0_regs_fifo1_reg_word24_clamp_out = card_core0_regs_fifo1_reg_wo
 assign card_core0_regs_fifo1_reg_word25_mine = (pci_slave1_local_addr == 16);
 
 
-always @(card_core0_regs_fifo1_reg_word25_mine, card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word24_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word25_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word25_mine)) begin
+always @(card_core0_regs_fifo1_reg_word25_mine, card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word24_read_out) begin: card_core0_regs_fifo1_reg_word25_read_chain
+    if (card_core0_regs_fifo1_reg_word25_mine) begin
         card_core0_regs_fifo1_reg_word25_read_out = (card_core0_regs_fifo1_reg_word24_read_out | card_core0_regs_fifo1_reg_word25_shown_wide);
     end
     else begin
@@ -2123,8 +2142,8 @@ end
 assign card_core0_regs_fifo1_reg_word26_mine = (pci_slave1_local_addr == 20);
 
 
-always @(card_core0_regs_fifo1_reg_word26_mine, card_core0_regs_fifo1_reg_word26_shown_wide, card_core0_regs_fifo1_reg_word25_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word26_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word26_mine)) begin
+always @(card_core0_regs_fifo1_reg_word26_mine, card_core0_regs_fifo1_reg_word26_shown_wide, card_core0_regs_fifo1_reg_word25_read_out) begin: card_core0_regs_fifo1_reg_word26_read_chain
+    if (card_core0_regs_fifo1_reg_word26_mine) begin
         card_core0_regs_fifo1_reg_word26_read_out = (card_core0_regs_fifo1_reg_word25_read_out | card_core0_regs_fifo1_reg_word26_shown_wide);
     end
     else begin
@@ -2172,8 +2191,8 @@ end
 assign card_core0_regs_fifo1_reg_word27_mine = (pci_slave1_local_addr == 24);
 
 
-always @(card_core0_regs_fifo1_reg_word27_mine, card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word26_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word27_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word27_mine)) begin
+always @(card_core0_regs_fifo1_reg_word27_mine, card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word26_read_out) begin: card_core0_regs_fifo1_reg_word27_read_chain
+    if (card_core0_regs_fifo1_reg_word27_mine) begin
         card_core0_regs_fifo1_reg_word27_read_out = (card_core0_regs_fifo1_reg_word26_read_out | card_core0_regs_fifo1_reg_word27_shown_wide);
     end
     else begin
@@ -2227,8 +2246,8 @@ end
 assign card_core0_regs_fifo1_reg_word28_mine = (pci_slave1_local_addr == 28);
 
 
-always @(card_core0_regs_fifo1_reg_word28_mine, card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word27_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word28_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word28_mine)) begin
+always @(card_core0_regs_fifo1_reg_word28_mine, card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word27_read_out) begin: card_core0_regs_fifo1_reg_word28_read_chain
+    if (card_core0_regs_fifo1_reg_word28_mine) begin
         card_core0_regs_fifo1_reg_word28_read_out = (card_core0_regs_fifo1_reg_word27_read_out | card_core0_regs_fifo1_reg_word28_shown_wide);
     end
     else begin
@@ -2249,8 +2268,8 @@ assign card_core0_regs_fifo1_reg_word28_clamp_out = card_core0_regs_fifo1_reg_wo
 assign card_core0_regs_fifo1_reg_word29_mine = (pci_slave1_local_addr == 32);
 
 
-always @(card_core0_regs_fifo1_reg_word29_mine, card_core0_regs_fifo1_reg_word29_shown_wide, card_core0_regs_fifo1_reg_word28_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word29_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word29_mine)) begin
+always @(card_core0_regs_fifo1_reg_word29_mine, card_core0_regs_fifo1_reg_word29_shown_wide, card_core0_regs_fifo1_reg_word28_read_out) begin: card_core0_regs_fifo1_reg_word29_read_chain
+    if (card_core0_regs_fifo1_reg_word29_mine) begin
         card_core0_regs_fifo1_reg_word29_read_out = (card_core0_regs_fifo1_reg_word28_read_out | card_core0_regs_fifo1_reg_word29_shown_wide);
     end
     else begin
@@ -2271,8 +2290,8 @@ assign card_core0_regs_fifo1_reg_word29_clamp_out = card_core0_regs_fifo1_reg_wo
 assign card_core0_regs_fifo1_reg_word30_mine = (pci_slave1_local_addr == 36);
 
 
-always @(card_core0_regs_fifo1_reg_word30_mine, card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word29_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word30_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word30_mine)) begin
+always @(card_core0_regs_fifo1_reg_word30_mine, card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word29_read_out) begin: card_core0_regs_fifo1_reg_word30_read_chain
+    if (card_core0_regs_fifo1_reg_word30_mine) begin
         card_core0_regs_fifo1_reg_word30_read_out = (card_core0_regs_fifo1_reg_word29_read_out | card_core0_regs_fifo1_reg_word30_shown_wide);
     end
     else begin
@@ -2293,8 +2312,8 @@ assign card_core0_regs_fifo1_reg_word30_clamp_out = card_core0_regs_fifo1_reg_wo
 assign card_core0_regs_fifo1_reg_word31_mine = (pci_slave1_local_addr == 40);
 
 
-always @(card_core0_regs_fifo1_reg_word31_mine, card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_reg_word30_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word31_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word31_mine)) begin
+always @(card_core0_regs_fifo1_reg_word31_mine, card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_reg_word30_read_out) begin: card_core0_regs_fifo1_reg_word31_read_chain
+    if (card_core0_regs_fifo1_reg_word31_mine) begin
         card_core0_regs_fifo1_reg_word31_read_out = (card_core0_regs_fifo1_reg_word30_read_out | card_core0_regs_fifo1_reg_word31_shown_wide);
     end
     else begin
@@ -2359,8 +2378,8 @@ end
 assign card_core0_regs_fifo1_reg_word32_mine = (pci_slave1_local_addr == 44);
 
 
-always @(card_core0_regs_fifo1_reg_word32_mine, card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word31_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word32_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word32_mine)) begin
+always @(card_core0_regs_fifo1_reg_word32_mine, card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word31_read_out) begin: card_core0_regs_fifo1_reg_word32_read_chain
+    if (card_core0_regs_fifo1_reg_word32_mine) begin
         card_core0_regs_fifo1_reg_word32_read_out = (card_core0_regs_fifo1_reg_word31_read_out | card_core0_regs_fifo1_reg_word32_shown_wide);
     end
     else begin
@@ -2425,8 +2444,8 @@ end
 assign card_core0_regs_fifo1_reg_word33_mine = (pci_slave1_local_addr == 48);
 
 
-always @(card_core0_regs_fifo1_reg_word33_mine, card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_reg_word32_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word33_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word33_mine)) begin
+always @(card_core0_regs_fifo1_reg_word33_mine, card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_reg_word32_read_out) begin: card_core0_regs_fifo1_reg_word33_read_chain
+    if (card_core0_regs_fifo1_reg_word33_mine) begin
         card_core0_regs_fifo1_reg_word33_read_out = (card_core0_regs_fifo1_reg_word32_read_out | card_core0_regs_fifo1_reg_word33_shown_wide);
     end
     else begin
@@ -2480,8 +2499,8 @@ end
 assign card_core0_regs_fifo1_reg_word34_mine = (pci_slave1_local_addr == 52);
 
 
-always @(card_core0_regs_fifo1_reg_word34_mine, card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word33_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word34_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word34_mine)) begin
+always @(card_core0_regs_fifo1_reg_word34_mine, card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word33_read_out) begin: card_core0_regs_fifo1_reg_word34_read_chain
+    if (card_core0_regs_fifo1_reg_word34_mine) begin
         card_core0_regs_fifo1_reg_word34_read_out = (card_core0_regs_fifo1_reg_word33_read_out | card_core0_regs_fifo1_reg_word34_shown_wide);
     end
     else begin
@@ -2546,8 +2565,8 @@ end
 assign card_core0_regs_fifo1_reg_word35_mine = (pci_slave1_local_addr == 56);
 
 
-always @(card_core0_regs_fifo1_reg_word35_mine, card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word35_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word35_mine)) begin
+always @(card_core0_regs_fifo1_reg_word35_mine, card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_read_out) begin: card_core0_regs_fifo1_reg_word35_read_chain
+    if (card_core0_regs_fifo1_reg_word35_mine) begin
         card_core0_regs_fifo1_reg_word35_read_out = (card_core0_regs_fifo1_reg_word34_read_out | card_core0_regs_fifo1_reg_word35_shown_wide);
     end
     else begin
@@ -2612,8 +2631,8 @@ end
 assign card_core0_regs_fifo1_reg_word36_mine = (pci_slave1_local_addr == 60);
 
 
-always @(card_core0_regs_fifo1_reg_word36_mine, card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word35_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word36_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word36_mine)) begin
+always @(card_core0_regs_fifo1_reg_word36_mine, card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word35_read_out) begin: card_core0_regs_fifo1_reg_word36_read_chain
+    if (card_core0_regs_fifo1_reg_word36_mine) begin
         card_core0_regs_fifo1_reg_word36_read_out = (card_core0_regs_fifo1_reg_word35_read_out | card_core0_regs_fifo1_reg_word36_shown_wide);
     end
     else begin
@@ -2678,8 +2697,8 @@ end
 assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_local_addr == 64);
 
 
-always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word36_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word37_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word37_mine)) begin
+always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word36_read_out) begin: card_core0_regs_fifo1_reg_word37_read_chain
+    if (card_core0_regs_fifo1_reg_word37_mine) begin
         card_core0_regs_fifo1_reg_word37_read_out = (card_core0_regs_fifo1_reg_word36_read_out | card_core0_regs_fifo1_reg_word37_shown_wide);
     end
     else begin
@@ -2733,8 +2752,8 @@ end
 assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_local_addr == 68);
 
 
-always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word38_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word38_mine)) begin
+always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_read_out) begin: card_core0_regs_fifo1_reg_word38_read_chain
+    if (card_core0_regs_fifo1_reg_word38_mine) begin
         card_core0_regs_fifo1_reg_word38_read_out = (card_core0_regs_fifo1_reg_word37_read_out | card_core0_regs_fifo1_reg_word38_shown_wide);
     end
     else begin
@@ -2799,8 +2818,8 @@ end
 assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_local_addr == 72);
 
 
-always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word39_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word39_mine)) begin
+always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_read_out) begin: card_core0_regs_fifo1_reg_word39_read_chain
+    if (card_core0_regs_fifo1_reg_word39_mine) begin
         card_core0_regs_fifo1_reg_word39_read_out = (card_core0_regs_fifo1_reg_word38_read_out | card_core0_regs_fifo1_reg_word39_shown_wide);
     end
     else begin
@@ -2865,8 +2884,8 @@ end
 assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_local_addr == 76);
 
 
-always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word40_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word40_mine)) begin
+always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_read_out) begin: card_core0_regs_fifo1_reg_word40_read_chain
+    if (card_core0_regs_fifo1_reg_word40_mine) begin
         card_core0_regs_fifo1_reg_word40_read_out = (card_core0_regs_fifo1_reg_word39_read_out | card_core0_regs_fifo1_reg_word40_shown_wide);
     end
     else begin
@@ -2929,8 +2948,8 @@ end
 assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_local_addr == 80);
 
 
-always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_read_out, card_core0_regs_fifo1_io_space) begin: card_core0_regs_fifo1_reg_word41_read_chain
-    if ((card_core0_regs_fifo1_io_space && card_core0_regs_fifo1_reg_word41_mine)) begin
+always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_read_out) begin: card_core0_regs_fifo1_reg_word41_read_chain
+    if (card_core0_regs_fifo1_reg_word41_mine) begin
         card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word40_read_out | card_core0_regs_fifo1_reg_word41_shown_wide);
     end
     else begin
@@ -3866,15 +3885,20 @@ always @(pci_slave1_local_re, card_core0_regs_fifo1_io_written, pci_slave1_local
     card_core0_regs_fifo1_byte_mask = mask;
     card_core0_regs_fifo1_io_write = (pci_slave1_local_we && (!pci_slave1_local_space) && (!card_core0_regs_fifo1_io_written));
     card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_local_space) && (!card_core0_regs_fifo1_io_written));
-    card_core0_regs_fifo1_io_space = (!pci_slave1_local_space);
     card_core0_regs_fifo1_push = (pci_slave1_local_we && pci_slave1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_local_be != 0) && (!card_core0_regs_fifo1_io_written));
 end
 
 
-
-assign pci_slave1_local_ready = ((!(pci_slave1_local_write && pci_slave1_local_space && card_core0_regs_fifo1_fifo_full)) && (!card_core0_regs_fifo1_io_written));
-assign pci_slave1_local_retry = (pci_slave1_local_write && pci_slave1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
-assign pci_slave1_local_rdata = card_core0_regs_fifo1_read_end;
+always @(card_core0_regs_fifo1_io_written, pci_slave1_local_write, pci_slave1_local_space, card_core0_regs_fifo1_read_end, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_answer_bus
+    pci_slave1_local_ready = ((!(pci_slave1_local_write && pci_slave1_local_space && card_core0_regs_fifo1_fifo_full)) && (!card_core0_regs_fifo1_io_written));
+    pci_slave1_local_retry = (pci_slave1_local_write && pci_slave1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
+    if (pci_slave1_local_space) begin
+        pci_slave1_local_rdata = 0;
+    end
+    else begin
+        pci_slave1_local_rdata = card_core0_regs_fifo1_read_end;
+    end
+end
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_write_stage

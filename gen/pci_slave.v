@@ -137,7 +137,7 @@ reg [31:0] ad_q;
 reg address_fault;
 wire address_fault_next;
 wire address_phase;
-wire at_last;
+reg at_last;
 reg b_kept;
 reg b_valid;
 wire b_valid_next;
@@ -145,7 +145,7 @@ wire back_end_retry;
 reg [15:0] bar0;
 wire [15:0] bar0_read;
 reg [31:0] bar1;
-wire before_last;
+reg before_last;
 reg [1:0] buffered_next;
 reg bus_parity;
 reg [3:0] cbe_q;
@@ -174,6 +174,7 @@ reg [3:0] h_be;
 reg [31:0] h_data;
 reg h_valid;
 reg idsel_q;
+reg initial_wait_over;
 reg interrupt_disable;
 reg [7:0] interrupt_line;
 reg [1:0] io_byte;
@@ -213,6 +214,7 @@ reg [3:0] state;
 wire [3:0] state_next;
 wire stop_next;
 reg stop_q;
+reg subsequent_wait_over;
 reg timeout;
 wire trdy_next;
 reg trdy_q;
@@ -505,17 +507,12 @@ always @(h_valid, wq_valid, accepted, s_valid) begin: write_path
 end
 
 
-always @(stop_q, first_phase, wait_count, state, trdy_q) begin: latency
+always @(subsequent_wait_over, stop_q, first_phase, initial_wait_over, state, trdy_q) begin: latency
     reg target_waits;
     target_waits = (trdy_q && stop_q && (state != 4'b0000) && (state != 4'b0111) && (state != 4'b1000));
     waiting = target_waits;
-    timeout = (target_waits && ((first_phase && (wait_count == 11)) || ((!first_phase) && (wait_count == 5))));
+    timeout = (target_waits && ((first_phase && initial_wait_over) || ((!first_phase) && subsequent_wait_over)));
 end
-
-
-
-assign at_last = (phase_addr == 1023);
-assign before_last = ($signed({1'b0, phase_addr}) == (1023 - 1));
 
 
 always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, fetching, state, trdy_q, claim, at_last, first_phase, timeout, is_config, draining, claim_io, buffered_next, single, pci_ad_oe, accepted_open, cbe_q, got_open, devsel_q, refused) begin: control_case0_control
@@ -1003,20 +1000,24 @@ assign ad_oe_next = ad_oe_next_lut0_table[{pci_irdy_in, pci_frame_in, ad_oe_next
 
 always @(posedge clock, negedge reset) begin: transaction
     if (reset == 0) begin
+        wait_count <= 0;
+        initial_wait_over <= 0;
         req_addr <= 0;
-        is_config <= 0;
-        space_mem <= 0;
         first_pending <= 0;
-        refused <= 0;
+        before_last <= 0;
         io_byte <= 0;
+        is_read <= 0;
+        fetching <= 0;
+        state <= 4'b0000;
+        space_mem <= 0;
+        at_last <= 0;
+        first_phase <= 0;
+        subsequent_wait_over <= 0;
+        is_config <= 0;
         single <= 0;
         req_addr_stale <= 0;
         address_fault <= 0;
-        is_read <= 0;
-        first_phase <= 0;
-        wait_count <= 0;
-        fetching <= 0;
-        state <= 4'b0000;
+        refused <= 0;
         phase_addr <= 0;
     end
     else begin
@@ -1025,9 +1026,13 @@ always @(posedge clock, negedge reset) begin: transaction
         if (phase_step) begin
             if (claim) begin
                 phase_addr <= start_addr;
+                at_last <= (start_addr == 1023);
+                before_last <= ($signed({1'b0, start_addr}) == (1023 - 1));
             end
             else begin
                 phase_addr <= (phase_addr + 1);
+                at_last <= before_last;
+                before_last <= ($signed({1'b0, phase_addr}) == (1023 - 2));
             end
         end
         address_fault <= address_fault_next;
@@ -1068,9 +1073,13 @@ always @(posedge clock, negedge reset) begin: transaction
         end
         if ((claim || (!waiting))) begin
             wait_count <= 0;
+            initial_wait_over <= 1'b0;
+            subsequent_wait_over <= 1'b0;
         end
         else if ((!timeout)) begin
             wait_count <= (wait_count + 1);
+            initial_wait_over <= ($signed({1'b0, wait_count}) == (11 - 1));
+            subsequent_wait_over <= ($signed({1'b0, wait_count}) == (5 - 1));
         end
     end
 end

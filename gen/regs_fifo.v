@@ -82,11 +82,11 @@ input local_we;
 input local_re;
 input local_write;
 output [31:0] local_rdata;
-wire [31:0] local_rdata;
+reg [31:0] local_rdata;
 output local_ready;
-wire local_ready;
+reg local_ready;
 output local_retry;
-wire local_retry;
+reg local_retry;
 output dda_start;
 reg dda_start;
 output dda_line;
@@ -156,7 +156,6 @@ wire fifo_full;
 wire [9:0] fifo_level;
 wire hold;
 reg io_read;
-reg io_space;
 reg io_write;
 reg io_written;
 wire [15:0] level_wide;
@@ -194,6 +193,8 @@ wire sync_fifo0_do_read;
 wire sync_fifo0_do_write;
 reg sync_fifo0_is_empty;
 reg sync_fifo0_is_full;
+wire sync_fifo0_one_free;
+wire sync_fifo0_one_word;
 reg [8:0] sync_fifo0_read_addr;
 reg [8:0] sync_fifo0_write_addr;
 wire [31:0] reg_word0_hw_value;
@@ -498,6 +499,11 @@ assign sync_fifo0_do_write = (push && (!sync_fifo0_is_full));
 assign sync_fifo0_do_read = (fifo_pop && (!sync_fifo0_is_empty));
 
 
+
+assign sync_fifo0_one_word = (sync_fifo0_count == 1);
+assign sync_fifo0_one_free = ($signed({1'b0, sync_fifo0_count}) == (512 - 1));
+
+
 always @(posedge clock) begin: sync_fifo0_memory
     if (sync_fifo0_do_write) begin
         sync_fifo0_storage[sync_fifo0_write_addr] <= local_wdata;
@@ -510,6 +516,8 @@ end
 
 always @(posedge clock, negedge reset) begin: sync_fifo0_pointers
     reg [10-1:0] following;
+    reg only_read;
+    reg only_write;
     if (reset == 0) begin
         sync_fifo0_read_addr <= 0;
         sync_fifo0_is_empty <= 1;
@@ -540,8 +548,10 @@ always @(posedge clock, negedge reset) begin: sync_fifo0_pointers
             end
         end
         sync_fifo0_count <= following;
-        sync_fifo0_is_empty <= (following == 0);
-        sync_fifo0_is_full <= (following == 512);
+        only_read = (sync_fifo0_do_read && (!sync_fifo0_do_write));
+        only_write = (sync_fifo0_do_write && (!sync_fifo0_do_read));
+        sync_fifo0_is_empty <= (fifo_flush || (sync_fifo0_is_empty && (!sync_fifo0_do_write)) || (sync_fifo0_one_word && only_read));
+        sync_fifo0_is_full <= ((!fifo_flush) && ((sync_fifo0_is_full && (!sync_fifo0_do_read)) || (sync_fifo0_one_free && only_write)));
     end
 end
 
@@ -556,8 +566,8 @@ assign fifo_full = sync_fifo0_is_full;
 assign reg_word0_mine = (local_addr == 0);
 
 
-always @(reg_word0_mine, reg_word0_shown_wide, reg_word0_read_in, io_space) begin: reg_word0_read_chain
-    if ((io_space && reg_word0_mine)) begin
+always @(reg_word0_mine, reg_word0_shown_wide, reg_word0_read_in) begin: reg_word0_read_chain
+    if (reg_word0_mine) begin
         reg_word0_read_out = (reg_word0_read_in | reg_word0_shown_wide);
     end
     else begin
@@ -578,8 +588,8 @@ assign reg_word0_clamp_out = reg_word0_clamp_in;
 assign reg_word1_mine = (local_addr == 4);
 
 
-always @(reg_word1_mine, reg_word1_shown_wide, reg_word0_read_out, io_space) begin: reg_word1_read_chain
-    if ((io_space && reg_word1_mine)) begin
+always @(reg_word1_mine, reg_word1_shown_wide, reg_word0_read_out) begin: reg_word1_read_chain
+    if (reg_word1_mine) begin
         reg_word1_read_out = (reg_word0_read_out | reg_word1_shown_wide);
     end
     else begin
@@ -633,8 +643,8 @@ end
 assign reg_word2_mine = (local_addr == 8);
 
 
-always @(reg_word2_mine, reg_word2_shown_wide, reg_word1_read_out, io_space) begin: reg_word2_read_chain
-    if ((io_space && reg_word2_mine)) begin
+always @(reg_word2_mine, reg_word2_shown_wide, reg_word1_read_out) begin: reg_word2_read_chain
+    if (reg_word2_mine) begin
         reg_word2_read_out = (reg_word1_read_out | reg_word2_shown_wide);
     end
     else begin
@@ -685,8 +695,8 @@ end
 assign reg_word3_mine = (local_addr == 12);
 
 
-always @(reg_word3_mine, reg_word3_shown_wide, reg_word2_read_out, io_space) begin: reg_word3_read_chain
-    if ((io_space && reg_word3_mine)) begin
+always @(reg_word3_mine, reg_word3_shown_wide, reg_word2_read_out) begin: reg_word3_read_chain
+    if (reg_word3_mine) begin
         reg_word3_read_out = (reg_word2_read_out | reg_word3_shown_wide);
     end
     else begin
@@ -707,8 +717,8 @@ assign reg_word3_clamp_out = reg_word2_clamp_out;
 assign reg_word4_mine = (local_addr == 16);
 
 
-always @(reg_word4_mine, reg_word4_shown_wide, reg_word3_read_out, io_space) begin: reg_word4_read_chain
-    if ((io_space && reg_word4_mine)) begin
+always @(reg_word4_mine, reg_word4_shown_wide, reg_word3_read_out) begin: reg_word4_read_chain
+    if (reg_word4_mine) begin
         reg_word4_read_out = (reg_word3_read_out | reg_word4_shown_wide);
     end
     else begin
@@ -762,8 +772,8 @@ end
 assign reg_word5_mine = (local_addr == 20);
 
 
-always @(reg_word5_mine, reg_word5_shown_wide, reg_word4_read_out, io_space) begin: reg_word5_read_chain
-    if ((io_space && reg_word5_mine)) begin
+always @(reg_word5_mine, reg_word5_shown_wide, reg_word4_read_out) begin: reg_word5_read_chain
+    if (reg_word5_mine) begin
         reg_word5_read_out = (reg_word4_read_out | reg_word5_shown_wide);
     end
     else begin
@@ -811,8 +821,8 @@ end
 assign reg_word6_mine = (local_addr == 24);
 
 
-always @(reg_word6_mine, reg_word6_shown_wide, reg_word5_read_out, io_space) begin: reg_word6_read_chain
-    if ((io_space && reg_word6_mine)) begin
+always @(reg_word6_mine, reg_word6_shown_wide, reg_word5_read_out) begin: reg_word6_read_chain
+    if (reg_word6_mine) begin
         reg_word6_read_out = (reg_word5_read_out | reg_word6_shown_wide);
     end
     else begin
@@ -866,8 +876,8 @@ end
 assign reg_word7_mine = (local_addr == 28);
 
 
-always @(reg_word7_mine, reg_word7_shown_wide, reg_word6_read_out, io_space) begin: reg_word7_read_chain
-    if ((io_space && reg_word7_mine)) begin
+always @(reg_word7_mine, reg_word7_shown_wide, reg_word6_read_out) begin: reg_word7_read_chain
+    if (reg_word7_mine) begin
         reg_word7_read_out = (reg_word6_read_out | reg_word7_shown_wide);
     end
     else begin
@@ -888,8 +898,8 @@ assign reg_word7_clamp_out = reg_word6_clamp_out;
 assign reg_word8_mine = (local_addr == 32);
 
 
-always @(reg_word8_mine, reg_word8_shown_wide, reg_word7_read_out, io_space) begin: reg_word8_read_chain
-    if ((io_space && reg_word8_mine)) begin
+always @(reg_word8_mine, reg_word8_shown_wide, reg_word7_read_out) begin: reg_word8_read_chain
+    if (reg_word8_mine) begin
         reg_word8_read_out = (reg_word7_read_out | reg_word8_shown_wide);
     end
     else begin
@@ -910,8 +920,8 @@ assign reg_word8_clamp_out = reg_word7_clamp_out;
 assign reg_word9_mine = (local_addr == 36);
 
 
-always @(reg_word9_mine, reg_word9_shown_wide, reg_word8_read_out, io_space) begin: reg_word9_read_chain
-    if ((io_space && reg_word9_mine)) begin
+always @(reg_word9_mine, reg_word9_shown_wide, reg_word8_read_out) begin: reg_word9_read_chain
+    if (reg_word9_mine) begin
         reg_word9_read_out = (reg_word8_read_out | reg_word9_shown_wide);
     end
     else begin
@@ -932,8 +942,8 @@ assign reg_word9_clamp_out = reg_word8_clamp_out;
 assign reg_word10_mine = (local_addr == 40);
 
 
-always @(reg_word10_mine, reg_word10_shown_wide, reg_word9_read_out, io_space) begin: reg_word10_read_chain
-    if ((io_space && reg_word10_mine)) begin
+always @(reg_word10_mine, reg_word10_shown_wide, reg_word9_read_out) begin: reg_word10_read_chain
+    if (reg_word10_mine) begin
         reg_word10_read_out = (reg_word9_read_out | reg_word10_shown_wide);
     end
     else begin
@@ -998,8 +1008,8 @@ end
 assign reg_word11_mine = (local_addr == 44);
 
 
-always @(reg_word11_mine, reg_word11_shown_wide, reg_word10_read_out, io_space) begin: reg_word11_read_chain
-    if ((io_space && reg_word11_mine)) begin
+always @(reg_word11_mine, reg_word11_shown_wide, reg_word10_read_out) begin: reg_word11_read_chain
+    if (reg_word11_mine) begin
         reg_word11_read_out = (reg_word10_read_out | reg_word11_shown_wide);
     end
     else begin
@@ -1064,8 +1074,8 @@ end
 assign reg_word12_mine = (local_addr == 48);
 
 
-always @(reg_word12_mine, reg_word12_shown_wide, reg_word11_read_out, io_space) begin: reg_word12_read_chain
-    if ((io_space && reg_word12_mine)) begin
+always @(reg_word12_mine, reg_word12_shown_wide, reg_word11_read_out) begin: reg_word12_read_chain
+    if (reg_word12_mine) begin
         reg_word12_read_out = (reg_word11_read_out | reg_word12_shown_wide);
     end
     else begin
@@ -1119,8 +1129,8 @@ end
 assign reg_word13_mine = (local_addr == 52);
 
 
-always @(reg_word13_mine, reg_word13_shown_wide, reg_word12_read_out, io_space) begin: reg_word13_read_chain
-    if ((io_space && reg_word13_mine)) begin
+always @(reg_word13_mine, reg_word13_shown_wide, reg_word12_read_out) begin: reg_word13_read_chain
+    if (reg_word13_mine) begin
         reg_word13_read_out = (reg_word12_read_out | reg_word13_shown_wide);
     end
     else begin
@@ -1185,8 +1195,8 @@ end
 assign reg_word14_mine = (local_addr == 56);
 
 
-always @(reg_word14_mine, reg_word14_shown_wide, reg_word13_read_out, io_space) begin: reg_word14_read_chain
-    if ((io_space && reg_word14_mine)) begin
+always @(reg_word14_mine, reg_word14_shown_wide, reg_word13_read_out) begin: reg_word14_read_chain
+    if (reg_word14_mine) begin
         reg_word14_read_out = (reg_word13_read_out | reg_word14_shown_wide);
     end
     else begin
@@ -1251,8 +1261,8 @@ end
 assign reg_word15_mine = (local_addr == 60);
 
 
-always @(reg_word15_mine, reg_word15_shown_wide, reg_word14_read_out, io_space) begin: reg_word15_read_chain
-    if ((io_space && reg_word15_mine)) begin
+always @(reg_word15_mine, reg_word15_shown_wide, reg_word14_read_out) begin: reg_word15_read_chain
+    if (reg_word15_mine) begin
         reg_word15_read_out = (reg_word14_read_out | reg_word15_shown_wide);
     end
     else begin
@@ -1317,8 +1327,8 @@ end
 assign reg_word16_mine = (local_addr == 64);
 
 
-always @(reg_word16_mine, reg_word16_shown_wide, reg_word15_read_out, io_space) begin: reg_word16_read_chain
-    if ((io_space && reg_word16_mine)) begin
+always @(reg_word16_mine, reg_word16_shown_wide, reg_word15_read_out) begin: reg_word16_read_chain
+    if (reg_word16_mine) begin
         reg_word16_read_out = (reg_word15_read_out | reg_word16_shown_wide);
     end
     else begin
@@ -1372,8 +1382,8 @@ end
 assign reg_word17_mine = (local_addr == 68);
 
 
-always @(reg_word17_mine, reg_word17_shown_wide, reg_word16_read_out, io_space) begin: reg_word17_read_chain
-    if ((io_space && reg_word17_mine)) begin
+always @(reg_word17_mine, reg_word17_shown_wide, reg_word16_read_out) begin: reg_word17_read_chain
+    if (reg_word17_mine) begin
         reg_word17_read_out = (reg_word16_read_out | reg_word17_shown_wide);
     end
     else begin
@@ -1438,8 +1448,8 @@ end
 assign reg_word18_mine = (local_addr == 72);
 
 
-always @(reg_word18_mine, reg_word18_shown_wide, reg_word17_read_out, io_space) begin: reg_word18_read_chain
-    if ((io_space && reg_word18_mine)) begin
+always @(reg_word18_mine, reg_word18_shown_wide, reg_word17_read_out) begin: reg_word18_read_chain
+    if (reg_word18_mine) begin
         reg_word18_read_out = (reg_word17_read_out | reg_word18_shown_wide);
     end
     else begin
@@ -1504,8 +1514,8 @@ end
 assign reg_word19_mine = (local_addr == 76);
 
 
-always @(reg_word19_mine, reg_word19_shown_wide, reg_word18_read_out, io_space) begin: reg_word19_read_chain
-    if ((io_space && reg_word19_mine)) begin
+always @(reg_word19_mine, reg_word19_shown_wide, reg_word18_read_out) begin: reg_word19_read_chain
+    if (reg_word19_mine) begin
         reg_word19_read_out = (reg_word18_read_out | reg_word19_shown_wide);
     end
     else begin
@@ -1568,8 +1578,8 @@ end
 assign reg_word20_mine = (local_addr == 80);
 
 
-always @(reg_word20_mine, reg_word20_shown_wide, reg_word19_read_out, io_space) begin: reg_word20_read_chain
-    if ((io_space && reg_word20_mine)) begin
+always @(reg_word20_mine, reg_word20_shown_wide, reg_word19_read_out) begin: reg_word20_read_chain
+    if (reg_word20_mine) begin
         read_end = (reg_word19_read_out | reg_word20_shown_wide);
     end
     else begin
@@ -2505,15 +2515,20 @@ always @(local_re, io_written, local_be, local_space, local_we, fifo_full) begin
     byte_mask = mask;
     io_write = (local_we && (!local_space) && (!io_written));
     io_read = (local_re && (!local_space) && (!io_written));
-    io_space = (!local_space);
     push = (local_we && local_space && (!fifo_full) && (local_be != 0) && (!io_written));
 end
 
 
-
-assign local_ready = ((!(local_write && local_space && fifo_full)) && (!io_written));
-assign local_retry = (local_write && local_space && fifo_full && (!io_written));
-assign local_rdata = read_end;
+always @(io_written, local_write, local_space, read_end, fifo_full) begin: answer_bus
+    local_ready = ((!(local_write && local_space && fifo_full)) && (!io_written));
+    local_retry = (local_write && local_space && fifo_full && (!io_written));
+    if (local_space) begin
+        local_rdata = 0;
+    end
+    else begin
+        local_rdata = read_end;
+    end
+end
 
 
 always @(posedge clock, negedge reset) begin: write_stage

@@ -101,7 +101,7 @@ reg card1_pci_slave2_ad_parity_q;
 reg card1_pci_slave2_address_fault;
 wire card1_pci_slave2_address_fault_next;
 wire card1_pci_slave2_address_phase;
-wire card1_pci_slave2_at_last;
+reg card1_pci_slave2_at_last;
 reg card1_pci_slave2_b_kept;
 reg card1_pci_slave2_b_valid;
 wire card1_pci_slave2_b_valid_next;
@@ -109,7 +109,7 @@ wire card1_pci_slave2_back_end_retry;
 reg [15:0] card1_pci_slave2_bar0;
 wire [15:0] card1_pci_slave2_bar0_read;
 reg [31:0] card1_pci_slave2_bar1;
-wire card1_pci_slave2_before_last;
+reg card1_pci_slave2_before_last;
 reg [1:0] card1_pci_slave2_buffered_next;
 reg card1_pci_slave2_bus_parity;
 reg card1_pci_slave2_claim;
@@ -136,6 +136,7 @@ wire card1_pci_slave2_got_open;
 reg [3:0] card1_pci_slave2_h_be;
 reg [31:0] card1_pci_slave2_h_data;
 reg card1_pci_slave2_h_valid;
+reg card1_pci_slave2_initial_wait_over;
 reg card1_pci_slave2_interrupt_disable;
 reg [7:0] card1_pci_slave2_interrupt_line;
 reg [1:0] card1_pci_slave2_io_byte;
@@ -175,6 +176,7 @@ reg [3:0] card1_pci_slave2_state;
 wire [3:0] card1_pci_slave2_state_next;
 wire card1_pci_slave2_stop_next;
 reg card1_pci_slave2_stop_q;
+reg card1_pci_slave2_subsequent_wait_over;
 reg card1_pci_slave2_timeout;
 wire card1_pci_slave2_trdy_next;
 reg card1_pci_slave2_trdy_q;
@@ -192,9 +194,9 @@ reg card1_pci_slave2_local_write;
 reg [31:0] card1_pci_slave2_local_wdata;
 reg [3:0] card1_pci_slave2_local_be;
 reg [11:0] card1_pci_slave2_local_addr;
-wire card1_pci_slave2_local_ready;
-wire card1_pci_slave2_local_retry;
-wire [31:0] card1_pci_slave2_local_rdata;
+reg card1_pci_slave2_local_ready;
+reg card1_pci_slave2_local_retry;
+reg [31:0] card1_pci_slave2_local_rdata;
 reg [3:0] card1_pci_slave2_control_case0_0_1_out_state;
 reg card1_pci_slave2_control_case0_0_1_out_trdy;
 reg card1_pci_slave2_control_case0_0_1_out_stop;
@@ -273,7 +275,6 @@ wire card1_card_core1_regs_fifo2_fifo_full;
 wire [9:0] card1_card_core1_regs_fifo2_fifo_level;
 wire card1_card_core1_regs_fifo2_hold;
 reg card1_card_core1_regs_fifo2_io_read;
-reg card1_card_core1_regs_fifo2_io_space;
 reg card1_card_core1_regs_fifo2_io_write;
 reg card1_card_core1_regs_fifo2_io_written;
 wire [15:0] card1_card_core1_regs_fifo2_level_wide;
@@ -317,6 +318,8 @@ wire card1_card_core1_regs_fifo2_sync_fifo2_do_read;
 wire card1_card_core1_regs_fifo2_sync_fifo2_do_write;
 reg card1_card_core1_regs_fifo2_sync_fifo2_is_empty;
 reg card1_card_core1_regs_fifo2_sync_fifo2_is_full;
+wire card1_card_core1_regs_fifo2_sync_fifo2_one_free;
+wire card1_card_core1_regs_fifo2_sync_fifo2_one_word;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_read_addr;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_write_addr;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word42_hw_value;
@@ -1554,17 +1557,12 @@ always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_a
 end
 
 
-always @(card1_pci_slave2_stop_q, card1_pci_slave2_first_phase, card1_pci_slave2_wait_count, card1_pci_slave2_state, card1_pci_slave2_trdy_q) begin: card1_pci_slave2_latency
+always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_pci_slave2_first_phase, card1_pci_slave2_initial_wait_over, card1_pci_slave2_state, card1_pci_slave2_trdy_q) begin: card1_pci_slave2_latency
     reg target_waits;
     target_waits = (card1_pci_slave2_trdy_q && card1_pci_slave2_stop_q && (card1_pci_slave2_state != 4'b0000) && (card1_pci_slave2_state != 4'b0111) && (card1_pci_slave2_state != 4'b1000));
     card1_pci_slave2_waiting = target_waits;
-    card1_pci_slave2_timeout = (target_waits && ((card1_pci_slave2_first_phase && (card1_pci_slave2_wait_count == 11)) || ((!card1_pci_slave2_first_phase) && (card1_pci_slave2_wait_count == 5))));
+    card1_pci_slave2_timeout = (target_waits && ((card1_pci_slave2_first_phase && card1_pci_slave2_initial_wait_over) || ((!card1_pci_slave2_first_phase) && card1_pci_slave2_subsequent_wait_over)));
 end
-
-
-
-assign card1_pci_slave2_at_last = (card1_pci_slave2_phase_addr == 1023);
-assign card1_pci_slave2_before_last = ($signed({1'b0, card1_pci_slave2_phase_addr}) == (1023 - 1));
 
 
 always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_accepted_open, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_got_open, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case0_0_1_control
@@ -2052,20 +2050,24 @@ assign card1_pci_slave2_ad_oe_next = card1_pci_slave2_ad_oe_next_lut0_table[{pci
 
 always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
     if (reset == 0) begin
+        card1_pci_slave2_wait_count <= 0;
+        card1_pci_slave2_initial_wait_over <= 0;
         card1_pci_slave2_req_addr <= 0;
-        card1_pci_slave2_is_config <= 0;
-        card1_pci_slave2_space_mem <= 0;
         card1_pci_slave2_first_pending <= 0;
-        card1_pci_slave2_refused <= 0;
+        card1_pci_slave2_before_last <= 0;
         card1_pci_slave2_io_byte <= 0;
+        card1_pci_slave2_is_read <= 0;
+        card1_pci_slave2_fetching <= 0;
+        card1_pci_slave2_state <= 4'b0000;
+        card1_pci_slave2_space_mem <= 0;
+        card1_pci_slave2_at_last <= 0;
+        card1_pci_slave2_first_phase <= 0;
+        card1_pci_slave2_subsequent_wait_over <= 0;
+        card1_pci_slave2_is_config <= 0;
         card1_pci_slave2_single <= 0;
         card1_pci_slave2_req_addr_stale <= 0;
         card1_pci_slave2_address_fault <= 0;
-        card1_pci_slave2_is_read <= 0;
-        card1_pci_slave2_first_phase <= 0;
-        card1_pci_slave2_wait_count <= 0;
-        card1_pci_slave2_fetching <= 0;
-        card1_pci_slave2_state <= 4'b0000;
+        card1_pci_slave2_refused <= 0;
         card1_pci_slave2_phase_addr <= 0;
     end
     else begin
@@ -2074,9 +2076,13 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
         if (card1_pci_slave2_phase_step) begin
             if (card1_pci_slave2_claim) begin
                 card1_pci_slave2_phase_addr <= card1_pci_slave2_start_addr;
+                card1_pci_slave2_at_last <= (card1_pci_slave2_start_addr == 1023);
+                card1_pci_slave2_before_last <= ($signed({1'b0, card1_pci_slave2_start_addr}) == (1023 - 1));
             end
             else begin
                 card1_pci_slave2_phase_addr <= (card1_pci_slave2_phase_addr + 1);
+                card1_pci_slave2_at_last <= card1_pci_slave2_before_last;
+                card1_pci_slave2_before_last <= ($signed({1'b0, card1_pci_slave2_phase_addr}) == (1023 - 2));
             end
         end
         card1_pci_slave2_address_fault <= card1_pci_slave2_address_fault_next;
@@ -2117,9 +2123,13 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
         end
         if ((card1_pci_slave2_claim || (!card1_pci_slave2_waiting))) begin
             card1_pci_slave2_wait_count <= 0;
+            card1_pci_slave2_initial_wait_over <= 1'b0;
+            card1_pci_slave2_subsequent_wait_over <= 1'b0;
         end
         else if ((!card1_pci_slave2_timeout)) begin
             card1_pci_slave2_wait_count <= (card1_pci_slave2_wait_count + 1);
+            card1_pci_slave2_initial_wait_over <= ($signed({1'b0, card1_pci_slave2_wait_count}) == (11 - 1));
+            card1_pci_slave2_subsequent_wait_over <= ($signed({1'b0, card1_pci_slave2_wait_count}) == (5 - 1));
         end
     end
 end
@@ -2644,6 +2654,11 @@ assign card1_card_core1_regs_fifo2_sync_fifo2_do_write = (card1_card_core1_regs_
 assign card1_card_core1_regs_fifo2_sync_fifo2_do_read = (card1_card_core1_regs_fifo2_fifo_pop && (!card1_card_core1_regs_fifo2_sync_fifo2_is_empty));
 
 
+
+assign card1_card_core1_regs_fifo2_sync_fifo2_one_word = (card1_card_core1_regs_fifo2_sync_fifo2_count == 1);
+assign card1_card_core1_regs_fifo2_sync_fifo2_one_free = ($signed({1'b0, card1_card_core1_regs_fifo2_sync_fifo2_count}) == (512 - 1));
+
+
 always @(posedge clock) begin: card1_card_core1_regs_fifo2_sync_fifo2_memory
     if (card1_card_core1_regs_fifo2_sync_fifo2_do_write) begin
         card1_card_core1_regs_fifo2_sync_fifo2_storage[card1_card_core1_regs_fifo2_sync_fifo2_write_addr] <= card1_pci_slave2_local_wdata;
@@ -2656,6 +2671,8 @@ end
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sync_fifo2_pointers
     reg [10-1:0] following;
+    reg only_read;
+    reg only_write;
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_sync_fifo2_read_addr <= 0;
         card1_card_core1_regs_fifo2_sync_fifo2_is_empty <= 1;
@@ -2686,8 +2703,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sync_f
             end
         end
         card1_card_core1_regs_fifo2_sync_fifo2_count <= following;
-        card1_card_core1_regs_fifo2_sync_fifo2_is_empty <= (following == 0);
-        card1_card_core1_regs_fifo2_sync_fifo2_is_full <= (following == 512);
+        only_read = (card1_card_core1_regs_fifo2_sync_fifo2_do_read && (!card1_card_core1_regs_fifo2_sync_fifo2_do_write));
+        only_write = (card1_card_core1_regs_fifo2_sync_fifo2_do_write && (!card1_card_core1_regs_fifo2_sync_fifo2_do_read));
+        card1_card_core1_regs_fifo2_sync_fifo2_is_empty <= (card1_card_core1_regs_fifo2_fifo_flush || (card1_card_core1_regs_fifo2_sync_fifo2_is_empty && (!card1_card_core1_regs_fifo2_sync_fifo2_do_write)) || (card1_card_core1_regs_fifo2_sync_fifo2_one_word && only_read));
+        card1_card_core1_regs_fifo2_sync_fifo2_is_full <= ((!card1_card_core1_regs_fifo2_fifo_flush) && ((card1_card_core1_regs_fifo2_sync_fifo2_is_full && (!card1_card_core1_regs_fifo2_sync_fifo2_do_read)) || (card1_card_core1_regs_fifo2_sync_fifo2_one_free && only_write)));
     end
 end
 
@@ -2702,8 +2721,8 @@ assign card1_card_core1_regs_fifo2_fifo_full = card1_card_core1_regs_fifo2_sync_
 assign card1_card_core1_regs_fifo2_reg_word42_mine = (card1_pci_slave2_local_addr == 0);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word42_mine, card1_card_core1_regs_fifo2_reg_word42_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_in, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word42_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word42_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word42_mine, card1_card_core1_regs_fifo2_reg_word42_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_in) begin: card1_card_core1_regs_fifo2_reg_word42_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word42_mine) begin
         card1_card_core1_regs_fifo2_reg_word42_read_out = (card1_card_core1_regs_fifo2_reg_word42_read_in | card1_card_core1_regs_fifo2_reg_word42_shown_wide);
     end
     else begin
@@ -2724,8 +2743,8 @@ assign card1_card_core1_regs_fifo2_reg_word42_clamp_out = card1_card_core1_regs_
 assign card1_card_core1_regs_fifo2_reg_word43_mine = (card1_pci_slave2_local_addr == 4);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word43_mine, card1_card_core1_regs_fifo2_reg_word43_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word43_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word43_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word43_mine, card1_card_core1_regs_fifo2_reg_word43_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_out) begin: card1_card_core1_regs_fifo2_reg_word43_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word43_mine) begin
         card1_card_core1_regs_fifo2_reg_word43_read_out = (card1_card_core1_regs_fifo2_reg_word42_read_out | card1_card_core1_regs_fifo2_reg_word43_shown_wide);
     end
     else begin
@@ -2779,8 +2798,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word44_mine = (card1_pci_slave2_local_addr == 8);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word44_mine, card1_card_core1_regs_fifo2_reg_word44_shown_wide, card1_card_core1_regs_fifo2_reg_word43_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word44_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word44_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word44_mine, card1_card_core1_regs_fifo2_reg_word44_shown_wide, card1_card_core1_regs_fifo2_reg_word43_read_out) begin: card1_card_core1_regs_fifo2_reg_word44_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word44_mine) begin
         card1_card_core1_regs_fifo2_reg_word44_read_out = (card1_card_core1_regs_fifo2_reg_word43_read_out | card1_card_core1_regs_fifo2_reg_word44_shown_wide);
     end
     else begin
@@ -2831,8 +2850,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word45_mine = (card1_pci_slave2_local_addr == 12);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word45_mine, card1_card_core1_regs_fifo2_reg_word45_shown_wide, card1_card_core1_regs_fifo2_reg_word44_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word45_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word45_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word45_mine, card1_card_core1_regs_fifo2_reg_word45_shown_wide, card1_card_core1_regs_fifo2_reg_word44_read_out) begin: card1_card_core1_regs_fifo2_reg_word45_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word45_mine) begin
         card1_card_core1_regs_fifo2_reg_word45_read_out = (card1_card_core1_regs_fifo2_reg_word44_read_out | card1_card_core1_regs_fifo2_reg_word45_shown_wide);
     end
     else begin
@@ -2853,8 +2872,8 @@ assign card1_card_core1_regs_fifo2_reg_word45_clamp_out = card1_card_core1_regs_
 assign card1_card_core1_regs_fifo2_reg_word46_mine = (card1_pci_slave2_local_addr == 16);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word46_mine, card1_card_core1_regs_fifo2_reg_word46_shown_wide, card1_card_core1_regs_fifo2_reg_word45_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word46_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word46_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word46_mine, card1_card_core1_regs_fifo2_reg_word46_shown_wide, card1_card_core1_regs_fifo2_reg_word45_read_out) begin: card1_card_core1_regs_fifo2_reg_word46_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word46_mine) begin
         card1_card_core1_regs_fifo2_reg_word46_read_out = (card1_card_core1_regs_fifo2_reg_word45_read_out | card1_card_core1_regs_fifo2_reg_word46_shown_wide);
     end
     else begin
@@ -2908,8 +2927,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word47_mine = (card1_pci_slave2_local_addr == 20);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word47_mine, card1_card_core1_regs_fifo2_reg_word47_shown_wide, card1_card_core1_regs_fifo2_reg_word46_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word47_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word47_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word47_mine, card1_card_core1_regs_fifo2_reg_word47_shown_wide, card1_card_core1_regs_fifo2_reg_word46_read_out) begin: card1_card_core1_regs_fifo2_reg_word47_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word47_mine) begin
         card1_card_core1_regs_fifo2_reg_word47_read_out = (card1_card_core1_regs_fifo2_reg_word46_read_out | card1_card_core1_regs_fifo2_reg_word47_shown_wide);
     end
     else begin
@@ -2957,8 +2976,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_local_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word47_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word48_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word47_read_out) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word48_mine) begin
         card1_card_core1_regs_fifo2_reg_word48_read_out = (card1_card_core1_regs_fifo2_reg_word47_read_out | card1_card_core1_regs_fifo2_reg_word48_shown_wide);
     end
     else begin
@@ -3012,8 +3031,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_local_addr == 28);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word49_mine, card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word48_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word49_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word49_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word49_mine, card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word48_read_out) begin: card1_card_core1_regs_fifo2_reg_word49_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word49_mine) begin
         card1_card_core1_regs_fifo2_reg_word49_read_out = (card1_card_core1_regs_fifo2_reg_word48_read_out | card1_card_core1_regs_fifo2_reg_word49_shown_wide);
     end
     else begin
@@ -3034,8 +3053,8 @@ assign card1_card_core1_regs_fifo2_reg_word49_clamp_out = card1_card_core1_regs_
 assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_local_addr == 32);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word50_mine, card1_card_core1_regs_fifo2_reg_word50_shown_wide, card1_card_core1_regs_fifo2_reg_word49_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word50_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word50_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word50_mine, card1_card_core1_regs_fifo2_reg_word50_shown_wide, card1_card_core1_regs_fifo2_reg_word49_read_out) begin: card1_card_core1_regs_fifo2_reg_word50_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word50_mine) begin
         card1_card_core1_regs_fifo2_reg_word50_read_out = (card1_card_core1_regs_fifo2_reg_word49_read_out | card1_card_core1_regs_fifo2_reg_word50_shown_wide);
     end
     else begin
@@ -3056,8 +3075,8 @@ assign card1_card_core1_regs_fifo2_reg_word50_clamp_out = card1_card_core1_regs_
 assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_local_addr == 36);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word51_mine, card1_card_core1_regs_fifo2_reg_word51_shown_wide, card1_card_core1_regs_fifo2_reg_word50_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word51_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word51_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word51_mine, card1_card_core1_regs_fifo2_reg_word51_shown_wide, card1_card_core1_regs_fifo2_reg_word50_read_out) begin: card1_card_core1_regs_fifo2_reg_word51_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word51_mine) begin
         card1_card_core1_regs_fifo2_reg_word51_read_out = (card1_card_core1_regs_fifo2_reg_word50_read_out | card1_card_core1_regs_fifo2_reg_word51_shown_wide);
     end
     else begin
@@ -3078,8 +3097,8 @@ assign card1_card_core1_regs_fifo2_reg_word51_clamp_out = card1_card_core1_regs_
 assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_local_addr == 40);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word52_mine, card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word51_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word52_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word52_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word52_mine, card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word51_read_out) begin: card1_card_core1_regs_fifo2_reg_word52_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word52_mine) begin
         card1_card_core1_regs_fifo2_reg_word52_read_out = (card1_card_core1_regs_fifo2_reg_word51_read_out | card1_card_core1_regs_fifo2_reg_word52_shown_wide);
     end
     else begin
@@ -3144,8 +3163,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_local_addr == 44);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word53_mine, card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_reg_word52_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word53_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word53_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word53_mine, card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_reg_word52_read_out) begin: card1_card_core1_regs_fifo2_reg_word53_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word53_mine) begin
         card1_card_core1_regs_fifo2_reg_word53_read_out = (card1_card_core1_regs_fifo2_reg_word52_read_out | card1_card_core1_regs_fifo2_reg_word53_shown_wide);
     end
     else begin
@@ -3210,8 +3229,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_local_addr == 48);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word54_mine, card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word53_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word54_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word54_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word54_mine, card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word53_read_out) begin: card1_card_core1_regs_fifo2_reg_word54_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word54_mine) begin
         card1_card_core1_regs_fifo2_reg_word54_read_out = (card1_card_core1_regs_fifo2_reg_word53_read_out | card1_card_core1_regs_fifo2_reg_word54_shown_wide);
     end
     else begin
@@ -3265,8 +3284,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_local_addr == 52);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word55_mine, card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_reg_word54_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word55_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word55_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word55_mine, card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_reg_word54_read_out) begin: card1_card_core1_regs_fifo2_reg_word55_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word55_mine) begin
         card1_card_core1_regs_fifo2_reg_word55_read_out = (card1_card_core1_regs_fifo2_reg_word54_read_out | card1_card_core1_regs_fifo2_reg_word55_shown_wide);
     end
     else begin
@@ -3331,8 +3350,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_local_addr == 56);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word56_mine, card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_reg_word55_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word56_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word56_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word56_mine, card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_reg_word55_read_out) begin: card1_card_core1_regs_fifo2_reg_word56_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word56_mine) begin
         card1_card_core1_regs_fifo2_reg_word56_read_out = (card1_card_core1_regs_fifo2_reg_word55_read_out | card1_card_core1_regs_fifo2_reg_word56_shown_wide);
     end
     else begin
@@ -3397,8 +3416,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_local_addr == 60);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word57_mine, card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_reg_word56_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word57_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word57_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word57_mine, card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_reg_word56_read_out) begin: card1_card_core1_regs_fifo2_reg_word57_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word57_mine) begin
         card1_card_core1_regs_fifo2_reg_word57_read_out = (card1_card_core1_regs_fifo2_reg_word56_read_out | card1_card_core1_regs_fifo2_reg_word57_shown_wide);
     end
     else begin
@@ -3463,8 +3482,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_local_addr == 64);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word58_mine, card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word57_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word58_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word58_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word58_mine, card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word57_read_out) begin: card1_card_core1_regs_fifo2_reg_word58_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word58_mine) begin
         card1_card_core1_regs_fifo2_reg_word58_read_out = (card1_card_core1_regs_fifo2_reg_word57_read_out | card1_card_core1_regs_fifo2_reg_word58_shown_wide);
     end
     else begin
@@ -3518,8 +3537,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_local_addr == 68);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word59_mine, card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word59_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word59_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word59_mine, card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_read_out) begin: card1_card_core1_regs_fifo2_reg_word59_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word59_mine) begin
         card1_card_core1_regs_fifo2_reg_word59_read_out = (card1_card_core1_regs_fifo2_reg_word58_read_out | card1_card_core1_regs_fifo2_reg_word59_shown_wide);
     end
     else begin
@@ -3584,8 +3603,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_local_addr == 72);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word60_mine, card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word59_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word60_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word60_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word60_mine, card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word59_read_out) begin: card1_card_core1_regs_fifo2_reg_word60_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word60_mine) begin
         card1_card_core1_regs_fifo2_reg_word60_read_out = (card1_card_core1_regs_fifo2_reg_word59_read_out | card1_card_core1_regs_fifo2_reg_word60_shown_wide);
     end
     else begin
@@ -3650,8 +3669,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_local_addr == 76);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word61_mine, card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word60_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word61_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word61_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word61_mine, card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word60_read_out) begin: card1_card_core1_regs_fifo2_reg_word61_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word61_mine) begin
         card1_card_core1_regs_fifo2_reg_word61_read_out = (card1_card_core1_regs_fifo2_reg_word60_read_out | card1_card_core1_regs_fifo2_reg_word61_shown_wide);
     end
     else begin
@@ -3714,8 +3733,8 @@ end
 assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_local_addr == 80);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word61_read_out, card1_card_core1_regs_fifo2_io_space) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
-    if ((card1_card_core1_regs_fifo2_io_space && card1_card_core1_regs_fifo2_reg_word62_mine)) begin
+always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word61_read_out) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word62_mine) begin
         card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word61_read_out | card1_card_core1_regs_fifo2_reg_word62_shown_wide);
     end
     else begin
@@ -4651,15 +4670,20 @@ always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_io_written, card
     card1_card_core1_regs_fifo2_byte_mask = mask;
     card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_local_we && (!card1_pci_slave2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
     card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
-    card1_card_core1_regs_fifo2_io_space = (!card1_pci_slave2_local_space);
     card1_card_core1_regs_fifo2_push = (card1_pci_slave2_local_we && card1_pci_slave2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_local_be != 0) && (!card1_card_core1_regs_fifo2_io_written));
 end
 
 
-
-assign card1_pci_slave2_local_ready = ((!(card1_pci_slave2_local_write && card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full)) && (!card1_card_core1_regs_fifo2_io_written));
-assign card1_pci_slave2_local_retry = (card1_pci_slave2_local_write && card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
-assign card1_pci_slave2_local_rdata = card1_card_core1_regs_fifo2_read_end;
+always @(card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_local_write, card1_pci_slave2_local_space, card1_card_core1_regs_fifo2_read_end, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_answer_bus
+    card1_pci_slave2_local_ready = ((!(card1_pci_slave2_local_write && card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full)) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_pci_slave2_local_retry = (card1_pci_slave2_local_write && card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
+    if (card1_pci_slave2_local_space) begin
+        card1_pci_slave2_local_rdata = 0;
+    end
+    else begin
+        card1_pci_slave2_local_rdata = card1_card_core1_regs_fifo2_read_end;
+    end
+end
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_write_stage

@@ -320,6 +320,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     refused = Signal(bool(0))         # writes: the back end answered retry mid-burst
     address_fault = Signal(bool(0))   # address parity error, Parity Error Response set
     wait_count = Signal(intbv(0, min=0, max=16))
+    # wait_count at its limits, registered with it (no compare before the timeout)
+    initial_wait_over, subsequent_wait_over = Signal(bool(0)), Signal(bool(0))
     phase_addr = Signal(modbv(0)[width:])   # dword of the current data phase
     req_addr = Signal(modbv(0)[width:])     # dword of the next back-end request
     req_addr_stale = Signal(bool(0))  # req_addr still serves posted data of the last write
@@ -381,8 +383,9 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     read_source = Signal(intbv(0)[32:])
     waiting = Signal(bool(0))         # a data phase waits for this target
     timeout = Signal(bool(0))
-    at_last = Signal(bool(0))         # phase_addr is the last dword of BAR1
-    before_last = Signal(bool(0))
+    # phase_addr is the last / the last but one dword of BAR1: registered
+    # with phase_addr, so the state machine sees no address compare
+    at_last, before_last = Signal(bool(0)), Signal(bool(0))
 
     # ------------------------------------------------------------ input stage
     if not io_registers:
@@ -568,13 +571,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                         and state != t_state.S_BACKOFF and state != t_state.S_ENDING)
         waiting.next = target_waits
         timeout.next = target_waits and (
-            (first_phase and wait_count == INITIAL_WAIT_LIMIT)
-            or (not first_phase and wait_count == SUBSEQUENT_WAIT_LIMIT))
-
-    @always_comb
-    def burst_end():
-        at_last.next = phase_addr == mem_last
-        before_last.next = phase_addr == mem_last - 1
+            (first_phase and initial_wait_over) or (not first_phase and subsequent_wait_over))
 
     # Shannon expansion on the pins of the fast path: the next values are
     # computed from flip-flops for each case of IRDY# and FRAME# that can
@@ -710,8 +707,12 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         if phase_step:   # the claim, or a completed phase of a memory burst
             if claim:
                 phase_addr.next = start_addr
+                at_last.next = start_addr == mem_last
+                before_last.next = start_addr == mem_last - 1
             else:
                 phase_addr.next = phase_addr + 1
+                at_last.next = before_last
+                before_last.next = phase_addr == mem_last - 2
         address_fault.next = address_fault_next
         if claim:
             is_read.next = not cbe_q[0]
@@ -741,8 +742,12 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             req_addr_stale.next = False
         if claim or not waiting:
             wait_count.next = 0
+            initial_wait_over.next = False
+            subsequent_wait_over.next = False
         elif not timeout:
             wait_count.next = wait_count + 1
+            initial_wait_over.next = wait_count == INITIAL_WAIT_LIMIT - 1
+            subsequent_wait_over.next = wait_count == SUBSEQUENT_WAIT_LIMIT - 1
 
     # ------------------------------------------------------------ data registers
     # The AD register takes new data unless the master has yet to take the

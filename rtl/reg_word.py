@@ -5,14 +5,12 @@ from rtl.registers import Register
 
 
 @block
-def reg_word(clock, reset, addr, write_addr, write_now, read_now, byte_mask, wdata, set_strobe, set_index,
+def reg_word(clock, reset, addr, write_addr, write_now, byte_mask, wdata, set_strobe, set_index,
              set_value, hw_value, value, strobe, clamp_in, clamp_out, read_in, read_out, *, spec):
     """The register ``spec`` (a ``rtl.registers.Register``) on the I/O bus.
 
     Ports: ``addr`` (byte offset of reads), ``write_addr`` (of writes),
-    ``write_now`` (an I/O write happens at this clock edge), ``read_now`` (the
-    read chain shows the register at ``addr``; reads have no side effect
-    here), ``byte_mask`` (byte enables of the write as a bit mask),
+    ``write_now`` (an I/O write happens at this clock edge), ``byte_mask`` (byte enables of the write as a bit mask),
     ``wdata``; ``set_strobe``/``set_index``/``set_value`` (the SET command's
     write port); ``hw_value`` (RO and WP: what reads return; W1C: bits the
     hardware sets; W1S: bits the hardware clears); ``value`` (RW/W1C/W1S:
@@ -20,8 +18,10 @@ def reg_word(clock, reset, addr, write_addr, write_now, read_now, byte_mask, wda
     write); ``clamp_out`` is ``clamp_in`` or'ed with a one-clock flag raised
     when a write to this register was out of range and was clamped; the read
     data of the registers before this one comes in on ``read_in`` and leaves,
-    with this register's, on ``read_out`` (a chain of ORs, so the decoder is
-    generated from the table).
+    with this register's when ``addr`` is its offset, on ``read_out`` (a
+    chain of ORs, so the decoder is generated from the table; reads have no
+    side effect here, and whether the bus reads at all is decided after the
+    chain's end).
 
         clock     _/~\\_/~\\_/~\\_
         write_now _/~~~\\_______     addr = spec.offset
@@ -52,7 +52,7 @@ def reg_word(clock, reset, addr, write_addr, write_now, read_now, byte_mask, wda
 
     @always_comb
     def read_chain():
-        if read_now and mine:
+        if mine:
             read_out.next = read_in | shown_wide
         else:
             read_out.next = read_in
@@ -214,7 +214,7 @@ def reg_word_ports(spec):
         raise ValueError("spec must be a rtl.registers.Register")
     width = spec.width
     return dict(clock=Signal(bool(0)), reset=None, addr=Signal(intbv(0)[16:]), write_addr=Signal(intbv(0)[16:]),
-                write_now=Signal(bool(0)), read_now=Signal(bool(0)), byte_mask=Signal(intbv(0)[32:]),
+                write_now=Signal(bool(0)), byte_mask=Signal(intbv(0)[32:]),
                 wdata=Signal(intbv(0)[32:]), set_strobe=Signal(bool(0)), set_index=Signal(intbv(0)[4:]),
                 set_value=Signal(intbv(0)[32:]), hw_value=Signal(intbv(0)[width:]),
                 value=Signal(intbv(spec.reset)[width:]), strobe=Signal(bool(0)),

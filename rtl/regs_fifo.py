@@ -43,7 +43,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         retry    _________/~~~\\___     FIFO full
     """
     specs = regmap.REGISTERS
-    io_write, io_read, io_space, push = (Signal(bool(0)) for _ in range(4))
+    io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
     byte_mask = Signal(intbv(0)[32:])
     # an I/O write reaches the registers one clock after the bus transfer (see write_stage)
     io_written = Signal(bool(0))
@@ -93,7 +93,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     units = [sync_fifo(clock, reset, push, local.wdata, fifo_pop, fifo_dout, fifo_flush, fifo_level,
                        fifo_empty, fifo_full, depth=fifo_depth, width=32)]
     for i, spec in enumerate(specs):
-        units.append(reg_word(clock, reset, local.addr, written_addr, io_written, io_space, written_mask, written_data,
+        units.append(reg_word(clock, reset, local.addr, written_addr, io_written, written_mask, written_data,
                               set_strobe, set_index, set_value, hw[spec.name], values[spec.name],
                               strobes[spec.name], clamps[i], clamps[i + 1], reads[i], reads[i + 1],
                               spec=spec))
@@ -135,9 +135,6 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         # transfers happen only while answered ready: not in the clock after an I/O write
         io_write.next = local.we and not local.space and not io_written
         io_read.next = local.re and not local.space and not io_written
-        # read data follows the address alone: the target samples it only with
-        # re and ready, and re (the target's late request logic) stays off the read mux
-        io_space.next = not local.space
         push.next = local.we and local.space and not fifo_full and local.be != 0 and not io_written
 
     @always_comb
@@ -146,7 +143,13 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         # the clock after an I/O write waits one clock, so it sees that write's effect
         local.ready.next = not (local.write and local.space and fifo_full) and not io_written
         local.retry.next = local.write and local.space and fifo_full and not io_written
-        local.rdata.next = read_end
+        # read data follows the address and the space alone (the target samples
+        # it only with re and ready, and re, its late request logic, stays off
+        # the read mux); the space joins after the chain, one LUT from the end
+        if local.space:
+            local.rdata.next = 0
+        else:
+            local.rdata.next = read_end
 
     @always_seq(clock.posedge, reset=reset)
     def write_stage():

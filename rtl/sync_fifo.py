@@ -29,10 +29,14 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, 
     write_addr = Signal(modbv(0)[addr_bits:])
     read_addr = Signal(modbv(0)[addr_bits:])
     count = Signal(intbv(0, min=0, max=depth + 1))
-    # count == 0 and count == depth as flip-flops, set from the next count, so that
-    # the back end's answer to the PCI target starts at a register, not at a compare
+    # count == 0 and count == depth as flip-flops, so that the back end's answer
+    # to the PCI target starts at a register, not at a compare; they are set
+    # from the compares of the present count (one word from empty or full),
+    # which do not wait for push and pop
     is_empty = Signal(bool(1))
     is_full = Signal(bool(0))
+    one_word = Signal(bool(0))
+    one_free = Signal(bool(0))
     do_write = Signal(bool(0))
     do_read = Signal(bool(0))
 
@@ -40,6 +44,11 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, 
     def enables():
         do_write.next = push and not is_full
         do_read.next = pop and not is_empty
+
+    @always_comb
+    def near_ends():
+        one_word.next = count == 1
+        one_free.next = count == depth - 1
 
     @always(clock.posedge)
     def memory():
@@ -66,8 +75,10 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, 
             elif do_read and not do_write:
                 following[:] = count - 1
         count.next = following
-        is_empty.next = following == 0
-        is_full.next = following == depth
+        only_read = do_read and not do_write
+        only_write = do_write and not do_read
+        is_empty.next = flush or (is_empty and not do_write) or (one_word and only_read)
+        is_full.next = not flush and ((is_full and not do_read) or (one_free and only_write))
 
     @always_comb
     def flags():
@@ -75,7 +86,7 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, 
         empty.next = is_empty
         full.next = is_full
 
-    return enables, memory, pointers, flags
+    return enables, near_ends, memory, pointers, flags
 
 
 def sync_fifo_ports(depth=512, width=32):
