@@ -10,8 +10,8 @@ def reg_word(clock, reset, addr, write_addr, write_now, byte_mask, wdata, set_st
     """The register ``spec`` (a ``rtl.registers.Register``) on the I/O bus.
 
     Ports: ``addr`` (byte offset of reads), ``write_addr`` (of writes),
-    ``write_now`` (an I/O write happens at this clock edge), ``byte_mask`` (byte enables of the write as a bit mask),
-    ``wdata``; ``set_strobe``/``set_index``/``set_value`` (the SET command's
+    ``write_now`` (an I/O write happens at this clock edge), ``byte_mask``
+    (byte enables of the write as a bit mask), ``wdata``; ``set_strobe``/``set_index``/``set_value`` (the SET command's
     write port); ``hw_value`` (RO and WP: what reads return; W1C: bits the
     hardware sets; W1S: bits the hardware clears); ``value`` (RW/W1C/W1S:
     the register; WP: the last value written); ``strobe`` (WP: one clock per

@@ -74,25 +74,24 @@ def contract_dda(clock, core_clear, dda, steps):
 
 @block
 def motion_bench(kind, scenario, log, failures):
-    clock, reset = Signal(bool(0)), card_reset()
-    local, pins, irq = LocalBus(), MotorPins(), Signal(bool(0))
-    if kind == "verilog":
-        ports = card_core_ports(fifo_depth=FIFO_DEPTH, coord_width=COORD_WIDTH)
-        clock, reset, local, pins = ports["clock"], ports["reset"], ports["local"], ports["pins"]
-        regs = None   # its registers are inside Icarus: the pins are judged by the tests alone
-        parts = [convert_and_cosimulate(card_core, "card_core", ports, fifo_depth=FIFO_DEPTH,
-                                        coord_width=COORD_WIDTH)]
-    elif kind == "rtl":
-        ports = card_core_ports(fifo_depth=FIFO_DEPTH, coord_width=COORD_WIDTH)
-        clock, reset, local, pins = ports["clock"], ports["reset"], ports["local"], ports["pins"]
-        core = card_core(**ports, fifo_depth=FIFO_DEPTH, coord_width=COORD_WIDTH)
-        regs = core.subs[1]
-        parts = [core]
-    else:
+    if kind == "contract":
+        clock, reset = Signal(bool(0)), card_reset()
+        local, pins, irq = LocalBus(), MotorPins(), Signal(bool(0))
         dda, steps, core_clear = DdaPort(COORD_WIDTH), AxisPulses(), Signal(bool(0))
         regs = regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, fifo_depth=FIFO_DEPTH,
                          coord_width=COORD_WIDTH)
         parts = [regs, contract_dda(clock, core_clear, dda, steps)]
+    else:
+        ports = card_core_ports(fifo_depth=FIFO_DEPTH, coord_width=COORD_WIDTH)
+        clock, reset, local, pins = ports["clock"], ports["reset"], ports["local"], ports["pins"]
+        if kind == "verilog":
+            regs = None   # its registers are inside Icarus: the pins are judged by the tests alone
+            parts = [convert_and_cosimulate(card_core, "card_core", ports, fifo_depth=FIFO_DEPTH,
+                                            coord_width=COORD_WIDTH)]
+        else:
+            core = card_core(**ports, fifo_depth=FIFO_DEPTH, coord_width=COORD_WIDTH)
+            regs = core.subs[1]
+            parts = [core]
     parts.append(clock_and_pins(clock, pins, log))
     if regs is not None:
         parts.append(pin_model_check(clock, reset, pins, regs, TIMING, failures))
