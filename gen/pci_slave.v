@@ -127,7 +127,6 @@ input local_ready;
 input local_retry;
 
 wire accepted;
-wire accepted_open;
 wire ad_oe_next;
 reg [31:0] ad_out_next;
 reg ad_out_parity;
@@ -147,6 +146,7 @@ wire [15:0] bar0_read;
 reg [31:0] bar1;
 reg before_last;
 reg [1:0] buffered_next;
+wire burst_got;
 reg bus_parity;
 reg [3:0] cbe_q;
 reg claim;
@@ -162,17 +162,21 @@ reg devsel_q;
 wire draining;
 wire drive_next;
 reg fatal;
+reg fetch_more;
 reg fetching;
 reg first_pending;
 reg first_phase;
 wire first_phase_next;
+reg first_ready;
 reg frame_q;
 reg frame_qq;
 wire got;
-wire got_open;
 reg [3:0] h_be;
 reg [31:0] h_data;
 reg h_valid;
+wire hold_accepted;
+wire hold_got;
+wire hold_retry;
 reg idsel_q;
 reg initial_wait_over;
 reg interrupt_disable;
@@ -193,12 +197,10 @@ reg perr_q;
 reg [9:0] phase_addr;
 wire phase_step;
 wire posting;
-reg read_open;
 reg [31:0] read_source;
 reg refused;
 reg [9:0] req_addr;
 reg req_addr_stale;
-wire retry_open;
 reg [3:0] s_be;
 reg s_valid;
 wire serr_armed;
@@ -224,7 +226,6 @@ reg wq_valid;
 wire wq_valid_next;
 wire write_done_next;
 reg write_done_q;
-reg write_open;
 reg [3:0] control_case0_out_state;
 reg control_case0_out_trdy;
 reg control_case0_out_stop;
@@ -442,8 +443,8 @@ always @(ad_q, req_addr, first_pending, io_byte, b_valid, is_read, fetching, sta
     prefetch = ((state == 4'b0110) && is_read && fetching && (!b_valid) && (trdy_q || (!frame_q)));
     local_re = ((first && is_read) || prefetch);
     local_we = (drain || (first && (!is_read) && (!irdy_q)));
-    read_open = ((first_open && is_read) || prefetch);
-    write_open = (drain || (first_open && (!is_read) && (!irdy_q)));
+    first_ready = (first_pending && (!is_config) && (!drain) && (!req_addr_stale));
+    fetch_more = (is_read && fetching && (!b_valid) && (trdy_q || (!frame_q)));
     local_space = (drain || space_mem);
     local_write = (drain || (!is_read));
     if (h_valid) begin
@@ -467,9 +468,10 @@ assign draining = (h_valid || wq_valid);
 assign got = ((local_re && local_ready) || ((state == 4'b0001) && is_read));
 assign accepted = (local_we && local_ready);
 assign back_end_retry = ((local_re || local_we) && local_retry);
-assign got_open = ((read_open && local_ready) || ((state == 4'b0001) && is_read));
-assign accepted_open = (write_open && local_ready);
-assign retry_open = ((read_open || write_open) && local_retry);
+assign hold_got = (first_ready && is_read && local_ready);
+assign hold_accepted = (first_ready && (!is_read) && (!irdy_q) && local_ready);
+assign hold_retry = (first_ready && (is_read || (!irdy_q)) && local_retry);
+assign burst_got = (fetch_more && local_ready);
 
 
 always @(is_config, b_valid, config_data, spare_data, local_rdata) begin: read_path
@@ -485,7 +487,7 @@ always @(is_config, b_valid, config_data, spare_data, local_rdata) begin: read_p
 end
 
 
-always @(h_valid, wq_valid, accepted, s_valid) begin: write_path
+always @(h_valid, wq_valid, local_ready, s_valid) begin: write_path
     reg [2-1:0] held;
     held = 0;
     if (h_valid) begin
@@ -493,14 +495,14 @@ always @(h_valid, wq_valid, accepted, s_valid) begin: write_path
         if (s_valid) begin
             held = 2;
         end
-        if (accepted) begin
+        if (local_ready) begin
             held = (held - 1);
         end
         if (wq_valid) begin
             held = (held + 1);
         end
     end
-    else if ((wq_valid && (!accepted))) begin
+    else if ((wq_valid && (!local_ready))) begin
         held = 1;
     end
     buffered_next = held;
@@ -515,7 +517,7 @@ always @(subsequent_wait_over, stop_q, first_phase, initial_wait_over, state, tr
 end
 
 
-always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, fetching, state, trdy_q, claim, at_last, first_phase, timeout, is_config, draining, claim_io, buffered_next, single, pci_ad_oe, accepted_open, cbe_q, got_open, devsel_q, refused) begin: control_case0_control
+always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, burst_got, fetching, state, trdy_q, hold_got, claim, at_last, first_phase, timeout, is_config, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q, refused) begin: control_case0_control
     reg done;
     reg hold;
     reg trdy;
@@ -543,8 +545,8 @@ always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, p
     exhausted = 1'b0;
     room = 1'b0;
     if (is_read) begin
-        ready_for_phase = (b_valid || got_open);
-        exhausted = ((!b_valid) && (!got_open) && (!fetching));
+        ready_for_phase = (b_valid || burst_got);
+        exhausted = ((!b_valid) && (!burst_got) && (!fetching));
     end
     else begin
         room = (buffered_next <= 1);
@@ -585,12 +587,12 @@ always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, p
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((is_read && got_open) || ((!is_read) && accepted_open && first_pending && (!draining)))) begin
+        else if ((hold_got || hold_accepted)) begin
             control_case0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((retry_open && first_pending && (!draining)) || timeout)) begin
+        else if ((hold_retry || timeout)) begin
             control_case0_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -648,7 +650,7 @@ always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, p
 end
 
 
-always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, fetching, state, trdy_q, claim, at_last, first_phase, timeout, is_config, draining, claim_io, buffered_next, single, pci_ad_oe, accepted_open, cbe_q, got_open, devsel_q, refused) begin: control_case1_control
+always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, burst_got, fetching, state, trdy_q, hold_got, claim, at_last, first_phase, timeout, is_config, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q, refused) begin: control_case1_control
     reg done;
     reg hold;
     reg trdy;
@@ -676,8 +678,8 @@ always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, p
     exhausted = 1'b0;
     room = 1'b0;
     if (is_read) begin
-        ready_for_phase = (b_valid || got_open);
-        exhausted = ((!b_valid) && (!got_open) && (!fetching));
+        ready_for_phase = (b_valid || burst_got);
+        exhausted = ((!b_valid) && (!burst_got) && (!fetching));
     end
     else begin
         room = (buffered_next <= 1);
@@ -718,12 +720,12 @@ always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, p
             trdy = 1'b0;
             stop = (!1'b0);
         end
-        else if (((is_read && got_open) || ((!is_read) && accepted_open && first_pending && (!draining)))) begin
+        else if ((hold_got || hold_accepted)) begin
             control_case1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
-        else if (((retry_open && first_pending && (!draining)) || timeout)) begin
+        else if ((hold_retry || timeout)) begin
             control_case1_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -781,7 +783,7 @@ always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, p
 end
 
 
-always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, fetching, state, trdy_q, claim, at_last, first_phase, timeout, is_config, draining, claim_io, buffered_next, single, pci_ad_oe, accepted_open, cbe_q, got_open, devsel_q, refused) begin: control_case2_control
+always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, burst_got, fetching, state, trdy_q, hold_got, claim, at_last, first_phase, timeout, is_config, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q, refused) begin: control_case2_control
     reg done;
     reg hold;
     reg trdy;
@@ -809,8 +811,8 @@ always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, p
     exhausted = 1'b0;
     room = 1'b0;
     if (is_read) begin
-        ready_for_phase = (b_valid || got_open);
-        exhausted = ((!b_valid) && (!got_open) && (!fetching));
+        ready_for_phase = (b_valid || burst_got);
+        exhausted = ((!b_valid) && (!burst_got) && (!fetching));
     end
     else begin
         room = (buffered_next <= 1);
@@ -851,12 +853,12 @@ always @(retry_open, claim_config, first_pending, before_last, fatal, b_valid, p
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((is_read && got_open) || ((!is_read) && accepted_open && first_pending && (!draining)))) begin
+        else if ((hold_got || hold_accepted)) begin
             control_case2_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((retry_open && first_pending && (!draining)) || timeout)) begin
+        else if ((hold_retry || timeout)) begin
             control_case2_out_state = 4'b0111;
             stop = 1'b0;
         end

@@ -92,7 +92,6 @@ wire [3:0] pci_pads0_registered_pad5_from_pin;
 wire pci_pads0_registered_pad6_from_pin;
 wire card1_irq;
 wire card1_pci_slave2_accepted;
-wire card1_pci_slave2_accepted_open;
 wire card1_pci_slave2_ad_oe_next;
 wire [31:0] card1_pci_slave2_ad_out_next;
 reg card1_pci_slave2_ad_out_parity;
@@ -111,6 +110,7 @@ wire [15:0] card1_pci_slave2_bar0_read;
 reg [31:0] card1_pci_slave2_bar1;
 reg card1_pci_slave2_before_last;
 reg [1:0] card1_pci_slave2_buffered_next;
+wire card1_pci_slave2_burst_got;
 reg card1_pci_slave2_bus_parity;
 reg card1_pci_slave2_claim;
 reg card1_pci_slave2_claim_config;
@@ -125,17 +125,21 @@ reg card1_pci_slave2_devsel_q;
 wire card1_pci_slave2_draining;
 wire card1_pci_slave2_drive_next;
 reg card1_pci_slave2_fatal;
+reg card1_pci_slave2_fetch_more;
 reg card1_pci_slave2_fetching;
 reg card1_pci_slave2_first_pending;
 reg card1_pci_slave2_first_phase;
 wire card1_pci_slave2_first_phase_next;
+reg card1_pci_slave2_first_ready;
 reg card1_pci_slave2_frame_q;
 reg card1_pci_slave2_frame_qq;
 wire card1_pci_slave2_got;
-wire card1_pci_slave2_got_open;
 reg [3:0] card1_pci_slave2_h_be;
 reg [31:0] card1_pci_slave2_h_data;
 reg card1_pci_slave2_h_valid;
+wire card1_pci_slave2_hold_accepted;
+wire card1_pci_slave2_hold_got;
+wire card1_pci_slave2_hold_retry;
 reg card1_pci_slave2_initial_wait_over;
 reg card1_pci_slave2_interrupt_disable;
 reg [7:0] card1_pci_slave2_interrupt_line;
@@ -155,12 +159,10 @@ reg card1_pci_slave2_perr_q;
 reg [9:0] card1_pci_slave2_phase_addr;
 wire card1_pci_slave2_phase_step;
 wire card1_pci_slave2_posting;
-reg card1_pci_slave2_read_open;
 reg [31:0] card1_pci_slave2_read_source;
 reg card1_pci_slave2_refused;
 reg [9:0] card1_pci_slave2_req_addr;
 reg card1_pci_slave2_req_addr_stale;
-wire card1_pci_slave2_retry_open;
 reg [3:0] card1_pci_slave2_s_be;
 reg card1_pci_slave2_s_valid;
 wire card1_pci_slave2_serr_armed;
@@ -186,7 +188,6 @@ reg card1_pci_slave2_wq_valid;
 wire card1_pci_slave2_wq_valid_next;
 wire card1_pci_slave2_write_done_next;
 reg card1_pci_slave2_write_done_q;
-reg card1_pci_slave2_write_open;
 reg card1_pci_slave2_local_re;
 reg card1_pci_slave2_local_we;
 reg card1_pci_slave2_local_space;
@@ -659,10 +660,6 @@ reg card1_card_core1_dda_arc2_dec_step_y;
 reg signed [31:0] card1_card_core1_dda_arc2_dec_sum_x;
 reg signed [31:0] card1_card_core1_dda_arc2_dec_sum_y;
 reg card1_card_core1_dda_arc2_dec_tail;
-reg card1_card_core1_dda_arc2_dec_x_down;
-reg card1_card_core1_dda_arc2_dec_x_move;
-reg card1_card_core1_dda_arc2_dec_y_down;
-reg card1_card_core1_dda_arc2_dec_y_move;
 reg card1_card_core1_dda_arc2_end_beyond_high;
 reg card1_card_core1_dda_arc2_end_reaches_low;
 reg signed [30:0] card1_card_core1_dda_arc2_first_half;
@@ -738,6 +735,7 @@ reg [5:0] card1_card_core1_dda_arc2_root_length;
 reg [26:0] card1_card_core1_dda_arc2_root_trial_diff;
 reg card1_card_core1_dda_arc2_root_trial_fits;
 reg [26:0] card1_card_core1_dda_arc2_root_trial_rem;
+reg [24:0] card1_card_core1_dda_arc2_root_up;
 reg card1_card_core1_dda_arc2_run_active;
 reg card1_card_core1_dda_arc2_run_blend;
 reg card1_card_core1_dda_arc2_run_ccw;
@@ -1492,8 +1490,8 @@ always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pc
     prefetch = ((card1_pci_slave2_state == 4'b0110) && card1_pci_slave2_is_read && card1_pci_slave2_fetching && (!card1_pci_slave2_b_valid) && (card1_pci_slave2_trdy_q || (!card1_pci_slave2_frame_q)));
     card1_pci_slave2_local_re = ((first && card1_pci_slave2_is_read) || prefetch);
     card1_pci_slave2_local_we = (drain || (first && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q)));
-    card1_pci_slave2_read_open = ((first_open && card1_pci_slave2_is_read) || prefetch);
-    card1_pci_slave2_write_open = (drain || (first_open && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q)));
+    card1_pci_slave2_first_ready = (card1_pci_slave2_first_pending && (!card1_pci_slave2_is_config) && (!drain) && (!card1_pci_slave2_req_addr_stale));
+    card1_pci_slave2_fetch_more = (card1_pci_slave2_is_read && card1_pci_slave2_fetching && (!card1_pci_slave2_b_valid) && (card1_pci_slave2_trdy_q || (!card1_pci_slave2_frame_q)));
     card1_pci_slave2_local_space = (drain || card1_pci_slave2_space_mem);
     card1_pci_slave2_local_write = (drain || (!card1_pci_slave2_is_read));
     if (card1_pci_slave2_h_valid) begin
@@ -1517,9 +1515,10 @@ assign card1_pci_slave2_draining = (card1_pci_slave2_h_valid || card1_pci_slave2
 assign card1_pci_slave2_got = ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready) || ((card1_pci_slave2_state == 4'b0001) && card1_pci_slave2_is_read));
 assign card1_pci_slave2_accepted = (card1_pci_slave2_local_we && card1_pci_slave2_local_ready);
 assign card1_pci_slave2_back_end_retry = ((card1_pci_slave2_local_re || card1_pci_slave2_local_we) && card1_pci_slave2_local_retry);
-assign card1_pci_slave2_got_open = ((card1_pci_slave2_read_open && card1_pci_slave2_local_ready) || ((card1_pci_slave2_state == 4'b0001) && card1_pci_slave2_is_read));
-assign card1_pci_slave2_accepted_open = (card1_pci_slave2_write_open && card1_pci_slave2_local_ready);
-assign card1_pci_slave2_retry_open = ((card1_pci_slave2_read_open || card1_pci_slave2_write_open) && card1_pci_slave2_local_retry);
+assign card1_pci_slave2_hold_got = (card1_pci_slave2_first_ready && card1_pci_slave2_is_read && card1_pci_slave2_local_ready);
+assign card1_pci_slave2_hold_accepted = (card1_pci_slave2_first_ready && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q) && card1_pci_slave2_local_ready);
+assign card1_pci_slave2_hold_retry = (card1_pci_slave2_first_ready && (card1_pci_slave2_is_read || (!card1_pci_slave2_irdy_q)) && card1_pci_slave2_local_retry);
+assign card1_pci_slave2_burst_got = (card1_pci_slave2_fetch_more && card1_pci_slave2_local_ready);
 
 
 always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_config_data, card1_pci_slave2_spare_data, card1_pci_slave2_local_rdata) begin: card1_pci_slave2_read_path
@@ -1535,7 +1534,7 @@ always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_
 end
 
 
-always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_accepted, card1_pci_slave2_s_valid) begin: card1_pci_slave2_write_path
+always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_local_ready, card1_pci_slave2_s_valid) begin: card1_pci_slave2_write_path
     reg [2-1:0] held;
     held = 0;
     if (card1_pci_slave2_h_valid) begin
@@ -1543,14 +1542,14 @@ always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_a
         if (card1_pci_slave2_s_valid) begin
             held = 2;
         end
-        if (card1_pci_slave2_accepted) begin
+        if (card1_pci_slave2_local_ready) begin
             held = (held - 1);
         end
         if (card1_pci_slave2_wq_valid) begin
             held = (held + 1);
         end
     end
-    else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_accepted))) begin
+    else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_local_ready))) begin
         held = 1;
     end
     card1_pci_slave2_buffered_next = held;
@@ -1565,7 +1564,7 @@ always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_p
 end
 
 
-always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_accepted_open, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_got_open, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case0_0_1_control
+always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case0_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1593,8 +1592,8 @@ always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_s
     exhausted = 1'b0;
     room = 1'b0;
     if (card1_pci_slave2_is_read) begin
-        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_got_open);
-        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_got_open) && (!card1_pci_slave2_fetching));
+        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
+        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
     end
     else begin
         room = (card1_pci_slave2_buffered_next <= 1);
@@ -1635,12 +1634,12 @@ always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_s
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((card1_pci_slave2_is_read && card1_pci_slave2_got_open) || ((!card1_pci_slave2_is_read) && card1_pci_slave2_accepted_open && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)))) begin
+        else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
             card1_pci_slave2_control_case0_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((card1_pci_slave2_retry_open && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)) || card1_pci_slave2_timeout)) begin
+        else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -1698,7 +1697,7 @@ always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_s
 end
 
 
-always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_accepted_open, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_got_open, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case1_0_1_control
+always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case1_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1726,8 +1725,8 @@ always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_s
     exhausted = 1'b0;
     room = 1'b0;
     if (card1_pci_slave2_is_read) begin
-        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_got_open);
-        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_got_open) && (!card1_pci_slave2_fetching));
+        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
+        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
     end
     else begin
         room = (card1_pci_slave2_buffered_next <= 1);
@@ -1768,12 +1767,12 @@ always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_s
             trdy = 1'b0;
             stop = (!1'b0);
         end
-        else if (((card1_pci_slave2_is_read && card1_pci_slave2_got_open) || ((!card1_pci_slave2_is_read) && card1_pci_slave2_accepted_open && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)))) begin
+        else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
             card1_pci_slave2_control_case1_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
-        else if (((card1_pci_slave2_retry_open && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)) || card1_pci_slave2_timeout)) begin
+        else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -1831,7 +1830,7 @@ always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_s
 end
 
 
-always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_slave2_first_pending, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_draining, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, card1_pci_slave2_accepted_open, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_got_open, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case2_0_1_control
+always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case2_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1859,8 +1858,8 @@ always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_s
     exhausted = 1'b0;
     room = 1'b0;
     if (card1_pci_slave2_is_read) begin
-        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_got_open);
-        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_got_open) && (!card1_pci_slave2_fetching));
+        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
+        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
     end
     else begin
         room = (card1_pci_slave2_buffered_next <= 1);
@@ -1901,12 +1900,12 @@ always @(card1_pci_slave2_retry_open, card1_pci_slave2_claim_config, card1_pci_s
             trdy = 1'b0;
             stop = (!1'b1);
         end
-        else if (((card1_pci_slave2_is_read && card1_pci_slave2_got_open) || ((!card1_pci_slave2_is_read) && card1_pci_slave2_accepted_open && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)))) begin
+        else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
             card1_pci_slave2_control_case2_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
-        else if (((card1_pci_slave2_retry_open && card1_pci_slave2_first_pending && (!card1_pci_slave2_draining)) || card1_pci_slave2_timeout)) begin
+        else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
@@ -5492,6 +5491,7 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_dda_arc2_chk_left_y <= 0;
         card1_card_core1_dda_arc2_chk_neg_in <= 0;
         card1_card_core1_dda_arc2_gap_high <= 0;
+        card1_card_core1_dda_arc2_root_up <= 0;
         card1_card_core1_dda_arc2_mag_xe <= 0;
         card1_card_core1_dda_arc2_neg_xs <= 0;
         card1_card_core1_dda_arc2_mac_bit <= 0;
@@ -5578,6 +5578,7 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
                             end
                             card1_card_core1_dda_arc2_remainder <= 0;
                             card1_card_core1_dda_arc2_root <= 0;
+                            card1_card_core1_dda_arc2_root_up <= 1;
                             card1_card_core1_dda_arc2_root_bit <= 0;
                             card1_card_core1_dda_arc2_root_length <= 0;
                             card1_card_core1_dda_arc2_root_all_ones <= 1'b1;
@@ -5595,10 +5596,12 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
                 if (card1_card_core1_dda_arc2_root_trial_fits) begin
                     card1_card_core1_dda_arc2_remainder <= card1_card_core1_dda_arc2_root_trial_diff;
                     card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b1};
+                    card1_card_core1_dda_arc2_root_up <= {card1_card_core1_dda_arc2_root_up[24-1:0], 1'b0};
                 end
                 else begin
                     card1_card_core1_dda_arc2_remainder <= card1_card_core1_dda_arc2_root_trial_rem;
                     card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b0};
+                    card1_card_core1_dda_arc2_root_up <= {1'b0, card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b1};
                     if ((card1_card_core1_dda_arc2_root != 0)) begin
                         card1_card_core1_dda_arc2_root_all_ones <= 1'b0;
                     end
@@ -5637,7 +5640,12 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
                 end
             end
             3'b011: begin
-                card1_card_core1_dda_arc2_radius_q <= ({1'b0, card1_card_core1_dda_arc2_root} + {24'h0, card1_card_core1_dda_arc2_root_trial_fits});
+                if (card1_card_core1_dda_arc2_root_trial_fits) begin
+                    card1_card_core1_dda_arc2_radius_q <= card1_card_core1_dda_arc2_root_up;
+                end
+                else begin
+                    card1_card_core1_dda_arc2_radius_q <= {1'b0, card1_card_core1_dda_arc2_root};
+                end
                 if ((card1_card_core1_dda_arc2_root_trial_fits && card1_card_core1_dda_arc2_root_all_ones)) begin
                     card1_card_core1_dda_arc2_radius_length <= (card1_card_core1_dda_arc2_root_length + 1);
                 end
@@ -5703,9 +5711,7 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_dda_arc2_dec_out <= 0;
         card1_card_core1_dda_arc2_left_y <= 0;
         card1_card_core1_dda_arc2_neg_in <= 0;
-        card1_card_core1_dda_arc2_dec_y_down <= 0;
         card1_card_core1_dda_arc2_dec_next_piece <= 0;
-        card1_card_core1_dda_arc2_dec_y_move <= 0;
         card1_card_core1_regs_fifo2_steps_step_x <= 0;
         card1_card_core1_dda_arc2_dec_in <= 0;
         card1_card_core1_dda_arc2_run_variant <= 0;
@@ -5717,7 +5723,6 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_dda_arc2_x_inward <= 0;
         card1_card_core1_dda_arc2_target_x <= 0;
         card1_card_core1_dda_arc2_crossings <= 0;
-        card1_card_core1_dda_arc2_dec_x_down <= 0;
         card1_card_core1_dda_arc2_dec_step_x <= 0;
         card1_card_core1_dda_arc2_left_x <= 0;
         card1_card_core1_dda_arc2_dec_finished <= 0;
@@ -5737,7 +5742,6 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_dda_arc2_threshold <= 0;
         card1_card_core1_dda_arc2_run_blend <= 0;
         card1_card_core1_dda_arc2_acc_x <= 0;
-        card1_card_core1_dda_arc2_dec_x_move <= 0;
         card1_card_core1_dda_arc2_acc_y <= 0;
         card1_card_core1_dda_arc2_q_in <= 0;
         card1_card_core1_dda_arc2_run_right <= 0;
@@ -5771,10 +5775,6 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_dda_arc2_dec_tail <= card1_card_core1_dda_arc2_it_tail;
         card1_card_core1_dda_arc2_dec_finished <= card1_card_core1_dda_arc2_it_finished;
         card1_card_core1_dda_arc2_dec_next_piece <= card1_card_core1_dda_arc2_it_next_piece;
-        card1_card_core1_dda_arc2_dec_x_move <= (card1_card_core1_dda_arc2_it_step_x && (!card1_card_core1_dda_arc2_run_line));
-        card1_card_core1_dda_arc2_dec_x_down <= (card1_card_core1_dda_arc2_it_step_x && card1_card_core1_dda_arc2_x_inward && (!card1_card_core1_dda_arc2_run_line));
-        card1_card_core1_dda_arc2_dec_y_move <= (card1_card_core1_dda_arc2_it_step_y && (!card1_card_core1_dda_arc2_run_line));
-        card1_card_core1_dda_arc2_dec_y_down <= (card1_card_core1_dda_arc2_it_step_y && (!card1_card_core1_dda_arc2_x_inward) && (!card1_card_core1_dda_arc2_run_line));
         card1_card_core1_dda_arc2_dec_in <= (((card1_card_core1_dda_arc2_it_step_x && card1_card_core1_dda_arc2_x_inward) || (card1_card_core1_dda_arc2_it_step_y && (!card1_card_core1_dda_arc2_x_inward))) && (!card1_card_core1_dda_arc2_run_line));
         card1_card_core1_dda_arc2_dec_out <= (((card1_card_core1_dda_arc2_it_step_x && (!card1_card_core1_dda_arc2_x_inward)) || (card1_card_core1_dda_arc2_it_step_y && card1_card_core1_dda_arc2_x_inward)) && (!card1_card_core1_dda_arc2_run_line));
         card1_card_core1_dda_arc2_dec_sum_x <= card1_card_core1_dda_arc2_it_sum_x;
@@ -5813,17 +5813,17 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             end
             card1_card_core1_dda_arc2_left_x <= (card1_card_core1_dda_arc2_left_x - $signed({26'h0, card1_card_core1_dda_arc2_dec_step_x}));
             card1_card_core1_dda_arc2_left_y <= (card1_card_core1_dda_arc2_left_y - $signed({26'h0, card1_card_core1_dda_arc2_dec_step_y}));
-            if (card1_card_core1_dda_arc2_dec_x_down) begin
-                step_op_y = 16777215;
-            end
-            else if (card1_card_core1_dda_arc2_dec_x_move) begin
+            if ((card1_card_core1_dda_arc2_dec_step_x && (!card1_card_core1_dda_arc2_run_line))) begin
                 step_op_y = 1;
+                if (card1_card_core1_dda_arc2_x_inward) begin
+                    step_op_y = 16777215;
+                end
             end
-            if (card1_card_core1_dda_arc2_dec_y_down) begin
+            if ((card1_card_core1_dda_arc2_dec_step_y && (!card1_card_core1_dda_arc2_run_line))) begin
                 step_op_x = 16777215;
-            end
-            else if (card1_card_core1_dda_arc2_dec_y_move) begin
-                step_op_x = 1;
+                if (card1_card_core1_dda_arc2_x_inward) begin
+                    step_op_x = 1;
+                end
             end
             card1_card_core1_dda_arc2_integrand_y <= (card1_card_core1_dda_arc2_integrand_y + step_op_y);
             card1_card_core1_dda_arc2_integrand_x <= (card1_card_core1_dda_arc2_integrand_x + step_op_x);

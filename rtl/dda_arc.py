@@ -141,6 +141,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     radicand = Signal(modbv(0)[2 * width:])
     remainder = _unsigned(width + 3)
     root = _unsigned(width)
+    root_up = _unsigned(width + 1)   # root + 1, kept beside root: no adder after the last trial
     root_bit = Signal(intbv(0, min=0, max=width))
     root_trial_rem = _unsigned(width + 3)
     root_trial_diff = _unsigned(width + 3)
@@ -229,8 +230,6 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     dec_step_x, dec_step_y = Signal(bool(0)), Signal(bool(0))
     dec_tail = Signal(bool(0))
     dec_finished, dec_next_piece = Signal(bool(0)), Signal(bool(0))
-    dec_x_move, dec_x_down = Signal(bool(0)), Signal(bool(0))
-    dec_y_move, dec_y_down = Signal(bool(0)), Signal(bool(0))
     dec_in, dec_out = Signal(bool(0)), Signal(bool(0))
     dec_sum_x, dec_sum_y = _signed(acc_width), _signed(acc_width)
 
@@ -792,6 +791,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                         multiplicand.next = concat(intbv(0)[width:], mag_ys)
                     remainder.next = 0
                     root.next = 0
+                    root_up.next = 1
                     root_bit.next = 0
                     root_length.next = 0
                     root_all_ones.next = True
@@ -801,12 +801,15 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
                 multiplicand.next = multiplicand << 1
                 multiplier.next = multiplier >> 1
         elif state == t_state.S_ROOT:
+            # root + 1 doubles with a 1 bit and is 2 root + 1 after a 0 bit
             if root_trial_fits:
                 remainder.next = root_trial_diff
                 root.next = concat(root[width - 1:], True)
+                root_up.next = concat(root_up[width:], False)
             else:
                 remainder.next = root_trial_rem
                 root.next = concat(root[width - 1:], False)
+                root_up.next = concat(False, root[width - 1:], True)
                 if root != 0:
                     root_all_ones.next = False
             if root != 0 or root_trial_fits:
@@ -838,7 +841,10 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         elif state == t_state.S_ROUND:
             # Rq: the integer whose square is nearest to xs**2 + ys**2
             # Rq = root + 1 when remainder > root: the next root bit (radicand bits 00 now)
-            radius_q.next = concat(False, root) + concat(intbv(0)[width:], root_trial_fits)
+            if root_trial_fits:
+                radius_q.next = root_up
+            else:
+                radius_q.next = concat(False, root)
             if root_trial_fits and root_all_ones:
                 radius_length.next = root_length + 1
             else:
@@ -895,10 +901,6 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         dec_tail.next = it_tail
         dec_finished.next = it_finished
         dec_next_piece.next = it_next_piece
-        dec_x_move.next = it_step_x and not run_line
-        dec_x_down.next = it_step_x and x_inward and not run_line
-        dec_y_move.next = it_step_y and not run_line
-        dec_y_down.next = it_step_y and not x_inward and not run_line
         dec_in.next = (it_step_x and x_inward or it_step_y and not x_inward) and not run_line
         dec_out.next = (it_step_x and not x_inward or it_step_y and x_inward) and not run_line
         dec_sum_x.next = it_sum_x
@@ -938,14 +940,16 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             left_y.next = left_y - concat(intbv(0)[left_width - 1:], dec_step_y).signed()
             # |x| (Y's integrand) and |y| (X's) step by +-1; on a piece change their stepped
             # copies restart from Rq - 1 (the axis turns inward at Rq) or 1 (outward at 0)
-            if dec_x_down:
-                step_op_y[:] = width_ones
-            elif dec_x_move:
+            # (the step's axis and sense decoded here, off the first clock's path: x_inward
+            # and run_line hold through the iteration)
+            if dec_step_x and not run_line:
                 step_op_y[:] = 1
-            if dec_y_down:
+                if x_inward:
+                    step_op_y[:] = width_ones
+            if dec_step_y and not run_line:
                 step_op_x[:] = width_ones
-            elif dec_y_move:
-                step_op_x[:] = 1
+                if x_inward:
+                    step_op_x[:] = 1
             integrand_y.next = integrand_y + step_op_y
             integrand_x.next = integrand_x + step_op_x
             base_y[:] = stepped_y

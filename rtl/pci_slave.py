@@ -374,10 +374,12 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     got = Signal(bool(0))             # read data arrives at this edge
     accepted = Signal(bool(0))        # the back end takes a write at this edge
     back_end_retry = Signal(bool(0))
-    # the same answers to the request as it would be without the abort check
-    # (for the state machine, where ``fatal`` overrides them: see local_answer)
-    read_open, write_open = Signal(bool(0)), Signal(bool(0))
-    got_open, accepted_open, retry_open = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    # the request's conditions without the state, and the answers to them
+    # as the state machine reads them in its hold and in its burst states
+    # (see local_answer)
+    first_ready, fetch_more = Signal(bool(0)), Signal(bool(0))
+    hold_got, hold_accepted, hold_retry = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    burst_got = Signal(bool(0))
     draining = Signal(bool(0))        # posted data waits for the back end
     buffered_next = Signal(intbv(0, min=0, max=4))
     read_source = Signal(intbv(0)[32:])
@@ -510,8 +512,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                     and (trdy_q or not frame_q))
         local.re.next = (first and is_read) or prefetch
         local.we.next = drain or (first and not is_read and not irdy_q)
-        read_open.next = (first_open and is_read) or prefetch
-        write_open.next = drain or (first_open and not is_read and not irdy_q)
+        first_ready.next = first_pending and not is_config and not drain and not req_addr_stale
+        fetch_more.next = is_read and fetching and not b_valid and (trdy_q or not frame_q)
         local.space.next = drain or space_mem
         local.write.next = drain or not is_read
         if h_valid:
@@ -531,13 +533,18 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         got.next = (local.re and local.ready) or (state == t_state.S_CON_HOLD and is_read)
         accepted.next = local.we and local.ready
         back_end_retry.next = (local.re or local.we) and local.retry
-        # Only in a hold state can the abort check withhold a request, and
-        # there ``fatal`` decides the next state before any answer does: so
-        # the state machine may read the answers to the unchecked request,
-        # which keeps the check (C/BE# of the first data phase) off its path.
-        got_open.next = (read_open and local.ready) or (state == t_state.S_CON_HOLD and is_read)
-        accepted_open.next = write_open and local.ready
-        retry_open.next = (read_open or write_open) and local.retry
+        # The answers as the state machine reads them: each takes what the
+        # state already says about the request, so that no state test lies
+        # between the registers and the answer.  In I/O_Hold, Mem_Hold and
+        # Read_Hold the request is the first one, once posted data has
+        # drained; the abort check is left out, as ``fatal`` decides first
+        # there (which keeps C/BE# of the first data phase off the path).
+        # In Configuring and Rwing the request is a prefetch, or posted data
+        # (see write_path).
+        hold_got.next = first_ready and is_read and local.ready
+        hold_accepted.next = first_ready and not is_read and not irdy_q and local.ready
+        hold_retry.next = first_ready and (is_read or not irdy_q) and local.retry
+        burst_got.next = fetch_more and local.ready
 
     @always_comb
     def read_path():
@@ -550,17 +557,20 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     @always_comb
     def write_path():
-        # Posted dwords held after this edge (head and second entry).
+        # Posted dwords held after this edge (head and second entry), as the
+        # state machine reads it in Configuring and Rwing: there the only
+        # write request drains posted data, so a held dword goes when the
+        # back end answers ready (``accepted``, without the request logic).
         held = intbv(0, min=0, max=4)
         if h_valid:
             held[:] = 1
             if s_valid:
                 held[:] = 2
-            if accepted:
+            if local.ready:
                 held[:] = held - 1
             if wq_valid:
                 held[:] = held + 1
-        elif wq_valid and not accepted:
+        elif wq_valid and not local.ready:
             held[:] = 1
         buffered_next.next = held
 
@@ -607,8 +617,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             exhausted = False
             room = False
             if is_read:
-                ready_for_phase = b_valid or got_open
-                exhausted = not b_valid and not got_open and not fetching
+                ready_for_phase = b_valid or burst_got
+                exhausted = not b_valid and not burst_got and not fetching
             else:
                 room = buffered_next <= 1
                 if done and not first_phase:
@@ -640,12 +650,11 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                     out.state.next = t_state.S_CONFIGURING
                     trdy = False
                     stop = not frame_asserted
-                elif (is_read and got_open) or (not is_read and accepted_open and first_pending
-                                           and not draining):
+                elif hold_got or hold_accepted:
                     out.state.next = t_state.S_RWING
                     trdy = False
                     stop = not (last_data and frame_asserted)
-                elif (retry_open and first_pending and not draining) or timeout:
+                elif hold_retry or timeout:
                     out.state.next = t_state.S_BACKOFF
                     stop = False
                 elif is_read:

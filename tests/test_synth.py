@@ -5,6 +5,7 @@ the top must also fit PCI 33's budgets: 7 ns from pin to register, 11 ns from
 clock to pin, with the pad and clock-buffer delays nextpnr leaves out added
 from the data sheet (``bench/synth.py`` ``at_the_pins``).
 """
+import json
 import sys
 
 import pytest
@@ -104,3 +105,37 @@ def test_wrapped_unit_paths_match_nextpnr(tmp_path):
     assert not synth.wrapper_own(worst)
     ends = [path["end"][0].split("[")[0] for path in figures["paths"]]
     assert len(ends) == len(set(ends)), "one path per end register"
+
+
+UNREAD_UNIT = """module unread_unit (clock, reset, a, y);
+input clock;
+input reset;
+input [3:0] a;
+output reg [3:0] y;
+reg [2:0] spare;
+always @(posedge clock, negedge reset) begin: unread_unit_store
+    if (reset == 0) begin
+        y <= 0;
+        spare <= 0;
+    end else begin
+        y <= a ^ {1'b0, spare & ~spare};
+        spare <= ~a[2:0];
+    end
+end
+endmodule
+"""
+
+
+def test_registers_keep_their_names_and_unread_bits_are_counted(tmp_path):
+    # ``spare`` is read until the logic optimisation drops the read (x & ~x):
+    # the kept register stays, named, and counts as read by nothing
+    gen = tmp_path / "gen"
+    gen.mkdir()
+    (gen / "unread_unit.v").write_text(UNREAD_UNIT)
+    work = tmp_path / "synth"
+    work.mkdir()
+    netlist = synth.run_yosys("unread_unit", gen, work, timeout=TOOL_TIMEOUT_S)
+    cells = synth.netlist_figures(netlist, "unread_unit")
+    assert cells["fabric_ffs"] == 4 + 3 and cells["unread_ffs"] == 3
+    names = set(json.loads(netlist.read_text())["modules"]["unread_unit"]["netnames"])
+    assert "spare" in names
