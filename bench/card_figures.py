@@ -1,4 +1,4 @@
-"""Figures of the whole card: ``python bench/card_figures.py [--no-synth] [--no-icarus]``.
+"""Figures of the whole card: ``python -m bench.card_figures [--no-synth] [--no-icarus]``.
 
 Prints, at PCI's 33 MHz:
 - the maximum step rate per axis (a long X line, then a diagonal, at one
@@ -9,25 +9,20 @@ Prints, at PCI's 33 MHz:
   from FRAME# to the last data phase by the behavioural host);
 - simulation speed of the end-to-end bench (host + target + card + monitor)
   on MyHDL and on the generated Verilog in Icarus, in clocks per second;
-- with ``bench/synth.py`` present and ``gen/top.v`` written: LCs, FFs, block
-  RAMs and fmax of the whole top on iCE40 HX8K.
+- with ``gen/top.v`` written: LCs, FFs, block RAMs and fmax of the whole top
+  on iCE40 HX8K (``fpgaflow``).
 """
 import argparse
 import sys
 import time
 import warnings
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
+from rtl import instructions as isa
+from rtl import registers as regmap
+from myhdl import ToVerilogWarning, now
 
-from rtl import instructions as isa  # noqa: E402
-from rtl import registers as regmap  # noqa: E402
-from myhdl import ToVerilogWarning, now  # noqa: E402
-
-from sim.card_bench import HALF_PERIOD, command_words, run_core  # noqa: E402
-from sim.dda_model import LineCommand  # noqa: E402
+from sim.card_bench import HALF_PERIOD, command_words, run_core
+from sim.dda_model import LineCommand
 
 PCI_HZ = 33e6
 CLOCK_PERIOD = 30  # time units per PCI clock in the PCI bench
@@ -120,12 +115,10 @@ def e2e_speed(kind, steps=1500):
 
 
 def synthesis():
-    """The synthesis figures of the whole top, as ``bench/synth.py`` prints them."""
-    try:
-        from bench.synth import SWEEP_SEEDS, format_figures, synthesize_closing
-    except ImportError as error:
-        return f"not available ({error})"
+    """The synthesis figures of the whole top, as ``python -m fpgaflow`` prints them."""
+    from fpgaflow import SWEEP_SEEDS, format_figures, synthesize_closing
     from sim.paths import GEN
+
     if not (GEN / "top.v").exists():
         return "gen/top.v missing: run python -m rtl.top --convert"
     figures = synthesize_closing("top", range(1, 1 + SWEEP_SEEDS))

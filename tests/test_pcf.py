@@ -1,14 +1,11 @@
 """``constraints/ice40_hx8k_ct256.pcf`` pins every port of ``gen/top.v`` and nothing else."""
 import re
-import sys
 from collections import Counter
 
 import pytest
 
+from fpgaflow import CLOCK_PORT, ICE40
 from sim.paths import GEN, ROOT
-
-sys.path.insert(0, str(ROOT / "bench"))
-import synth  # noqa: E402
 
 # Balls measured to reach a global buffer directly (nextpnr accepts SB_GB_IO there).
 GLOBAL_BUFFER_BALLS = {"J3", "G1", "C8", "F7", "R9"}
@@ -30,14 +27,14 @@ def verilog_port_bits(path):
 
 
 def test_balls_are_distinct_and_clock_is_on_a_global_buffer_ball():
-    pins = synth.pcf_pins(synth.PCF)
+    pins = ICE40.pins()
     shared = [ball for ball, count in Counter(pins.values()).items() if count > 1]
     assert not shared, f"balls used twice: {shared}"
-    assert pins[synth.CLOCK_PORT] in GLOBAL_BUFFER_BALLS
+    assert pins[CLOCK_PORT] in GLOBAL_BUFFER_BALLS
 
 
 def test_every_pci_signal_has_a_pin():
-    pins = synth.pcf_pins(synth.PCF)
+    pins = ICE40.pins()
     for name, width in PCI_PINS.items():
         expected = {f"pci_pins_{name}[{i}]" for i in range(width)} if width > 1 else {f"pci_pins_{name}"}
         assert expected <= set(pins), f"PCI {name} not fully pinned"
@@ -48,7 +45,7 @@ def test_pcf_matches_the_top_ports():
     top = GEN / "top.v"
     if not top.exists():
         pytest.skip("gen/top.v not written yet")
-    ports, pinned = verilog_port_bits(top), set(synth.pcf_pins(synth.PCF))
+    ports, pinned = verilog_port_bits(top), set(ICE40.pins())
     assert ports == pinned, f"ports without a pin: {sorted(ports - pinned)}; pins without a port: {sorted(pinned - ports)}"
 
 
