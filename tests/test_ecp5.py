@@ -1,16 +1,12 @@
-"""The ECP5 flow (``python -m fpgaflow --family ecp5``) on a small unit, and its pin file.
+"""The ECP5 flow (``python -m fpgaflow --family ecp5``) on a small unit.
 
 The flow's own figures must agree with nextpnr-ecp5's report: the worst
 register-to-register path with its fmax, the worst pin-to-register and
 register-to-pin paths with the ``<async>`` paths of the report.
 """
-import re
-
 import pytest
 
 import fpgaflow
-from fpgaflow import ECP5
-from sim.paths import GEN
 
 pytestmark = pytest.mark.synth
 TOOL_TIMEOUT_S = 600
@@ -74,20 +70,3 @@ def test_refuses_ice40_cells(tmp_path):
     (tmp_path / "ice40_cell_unit.v").write_text(ICE40_CELL_UNIT)
     with pytest.raises(fpgaflow.SynthError, match="generic build"):
         fpgaflow.synthesize("ice40_cell_unit", family="ecp5", gen_dir=tmp_path, build=tmp_path / "ecp5")
-
-
-def _lpf_ports(text):
-    return re.findall(r'IOBUF PORT "([^"]+)" IO_TYPE=(\w+);', text)
-
-
-def test_lpf_pins_every_top_port_once_at_3v3():
-    pins = ECP5.pins()
-    assert len(set(pins.values())) == len(pins), "a ball used twice"
-    assert pins[fpgaflow.CLOCK_PORT] == "K16"  # PCLKT2_0, a primary clock input
-    io_types = dict(_lpf_ports(ECP5.constraints.read_text()))
-    assert set(io_types) == set(pins) and set(io_types.values()) == {"LVCMOS33"}
-    top = GEN / "top.v"
-    if top.exists():
-        ports = set(re.findall(r"^\s*(?:input|output|inout)\s+(?:\[(\d+):0\]\s*)?(\w+)\s*;", top.read_text(), re.M))
-        bits = {f"{name}[{i}]" if high else name for high, name in ports for i in range(int(high or 0) + 1)}
-        assert bits == set(pins)
