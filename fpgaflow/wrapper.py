@@ -52,8 +52,8 @@ def wrapper_verilog(unit, ports):
     name = f"{unit}{WRAPPER_SUFFIX}"
     chain_bits, out_bits = sum(w for _, w in inputs), sum(w for _, w in outputs)
     pins = [*direct, *(["scan_in"] if inputs else []), "scan_out"]
-    lines = [f"// Standalone timing wrapper of {unit}: python -m fpgaflow --wrap (see its wrapper_verilog).",
-             f"module {name} ({', '.join(pins)});",
+    lines = [f"// Standalone timing wrapper of {unit}: python -m fpgaflow --wrap (fpgaflow/wrapper.py).",
+             "`timescale 1ns/10ps", f"module {name} ({', '.join(pins)});",
              *(f"input {pin};" for pin in pins[:-1]), "output scan_out;",
              f"wire [{out_bits - 1}:0] unit_outputs;", f"reg [{out_bits - 1}:0] captured;"]
     body = ["always @(posedge clock) begin", "    captured <= unit_outputs;"]

@@ -6,12 +6,15 @@ clock to pin, with the pad and clock-buffer delays nextpnr leaves out added
 from the data sheet (``fpgaflow.ice40``, ``Ice40.at_the_pins``).
 """
 import json
+import shutil
+import subprocess
 
 import pytest
 
 import fpgaflow
 from fpgaflow.flow import netlist_figures
 from fpgaflow.tools import run_yosys
+from fpgaflow.wrapper import unit_ports
 
 # In the default run: the top places and routes in about 90 s on a 2-core
 # machine (plus 1-2 minutes once, while yowasp compiles its WebAssembly).
@@ -84,6 +87,16 @@ def test_wrapper_feeds_and_folds_every_port_bit():
 def test_wrapper_refuses_what_it_cannot_time(ports, message):
     with pytest.raises(fpgaflow.SynthError, match=message):
         fpgaflow.wrapper_verilog("u", ports)
+
+
+def test_wrapper_is_lint_clean(tmp_path):
+    assert shutil.which("verilator"), "verilator not found: install it (Debian package verilator)"
+    (tmp_path / "adder_unit.v").write_text("`timescale 1ns/10ps\n" + ADDER_UNIT)
+    wrapper = tmp_path / "adder_unit_timed.v"
+    wrapper.write_text(fpgaflow.wrapper_verilog("adder_unit", unit_ports("adder_unit", tmp_path, tmp_path)))
+    result = subprocess.run(["verilator", "--lint-only", "-Wall", str(wrapper), str(tmp_path / "adder_unit.v"),
+                             "--top-module", "adder_unit_timed"], capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
 
 
 def test_wrapped_unit_paths_match_nextpnr(tmp_path):
