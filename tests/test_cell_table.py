@@ -1,6 +1,6 @@
 """``python -m fpgaflow --table``: every logic cell and flip-flop lands in one unit and register group.
 
-A two-unit design named as MyHDL names things (``<block><index>_<name>``):
+A two-unit design, on iCE40 and ECP5, named as MyHDL names things (``<block><index>_<name>``):
 ``wide1`` holds a 16-bit accumulator (a carry chain and 16 flip-flops),
 ``narrow1`` a 2-bit counter.  The flip-flop counts come from the Verilog,
 the logic-cell total from nextpnr's own utilisation report.
@@ -36,12 +36,12 @@ endmodule
 BLOCKS = {"wide": True, "narrow": True, "_helper": False}
 
 
-@pytest.fixture(scope="module")
-def table(tmp_path_factory):
+@pytest.fixture(scope="module", params=["ice40", "ecp5"])
+def table(request, tmp_path_factory):
     gen = tmp_path_factory.mktemp("gen")
     (gen / "two_units.v").write_text(TWO_UNITS)
     build = tmp_path_factory.mktemp("cells")
-    return cell_table("two_units", gen_dir=gen, build=build, blocks=BLOCKS), build
+    return cell_table("two_units", family=request.param, gen_dir=gen, build=build, blocks=BLOCKS), build
 
 
 def test_names_split_into_units_and_leaves():
@@ -58,7 +58,7 @@ def test_every_cell_is_counted_once(table):
     cells, build = table
     report = json.loads((build / "two_units" / "report.json").read_text())
     lcs, ffs, _ = cells.totals()
-    assert lcs == report["utilization"]["ICESTORM_LC"]["used"]
+    assert lcs == report["utilization"][cells.family.utilisation["logic"]]["used"]
     assert ffs == 16 + 2
 
 
