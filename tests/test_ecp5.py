@@ -4,9 +4,13 @@ The flow's own figures must agree with nextpnr-ecp5's report: the worst
 register-to-register path with its fmax, the worst pin-to-register and
 register-to-pin paths with the ``<async>`` paths of the report.
 """
+import subprocess
+import sys
+
 import pytest
 
 import fpgaflow
+from sim.paths import ROOT
 
 pytestmark = pytest.mark.synth
 TOOL_TIMEOUT_S = 600
@@ -70,3 +74,18 @@ def test_refuses_ice40_cells(tmp_path):
     (tmp_path / "ice40_cell_unit.v").write_text(ICE40_CELL_UNIT)
     with pytest.raises(fpgaflow.SynthError, match="generic build"):
         fpgaflow.synthesize("ice40_cell_unit", family="ecp5", gen_dir=tmp_path, build=tmp_path / "ecp5")
+
+
+@pytest.mark.slow
+def test_generic_top_places_on_ecp5_and_meets_the_pci_clock(tmp_path):
+    # about 1.5 minutes of CPU a seed on top of the conversion: in the slow set
+    gen = tmp_path / "gen"
+    result = subprocess.run([sys.executable, "-m", "rtl.top", "--convert", "--device", "generic", "--out", str(gen)],
+                            capture_output=True, text=True, cwd=ROOT, timeout=TOOL_TIMEOUT_S)
+    if result.returncode == 2 and "--device" in result.stderr:
+        pytest.skip("the converter has no --device generic yet")
+    assert result.returncode == 0, result.stderr
+    figures = fpgaflow.synthesize_closing("top", range(1, 1 + fpgaflow.SWEEP_SEEDS), family="ecp5", gen_dir=gen,
+                                          build=tmp_path / "ecp5", timeout=TOOL_TIMEOUT_S)
+    assert figures["placed"] and figures["meets"], figures["critical"]
+    assert figures["lcs"] <= figures["lcs_available"]
