@@ -36,7 +36,8 @@ def format_figures(figures, freq=PCI_MHZ):
 def format_pins(figures, family):
     """The pin table: worst figure per port, with the estimate at the balls where the family has one."""
     groups = {name: entry for name, entry in pin_groups(figures["pins"]).items()
-              if figures["unit"] == "top" or name.startswith(PCI_PREFIX)}
+              if (figures["unit"] == "top" or name.startswith(PCI_PREFIX))
+              and any(entry[key] is not None for key in ("in", "out", "oe"))}  # not the clock pad
     if not groups:
         return []
     budgets = f"PCI 33 allows set-up {PCI33_SETUP_NS:g}, clock to output {PCI33_CLOCK_TO_OUT_NS:g}"
