@@ -22,9 +22,9 @@ from rtl import registers as regmap
 from rtl.card import card, card_ports
 from rtl.interfaces import MotorPins
 from rtl.top import PARAMETERS
-from sim.card_bench import PinLog, command_words, expected_path, pin_capture
+from sim.card_bench import PinLog, command_words, expected_path, pin_capture, write_motion_view
 from sim.dda_model import ArcCommand, LineCommand, iterate, metrics, v_arc
-from sim.pci_bench import TARGET_DEVICE, PciBench
+from sim.pci_bench import TARGET_DEVICE, WAVE_GROUPS, PciBench
 from sim.pci_host import Termination
 from sim.top_harness import TopHarness, convert_top, generated_top, top_on_bus
 from sim.waves import Waveform
@@ -87,7 +87,9 @@ def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO):
         yield from scenario(b, target, out)
 
     vcd = bench.run(wrapped, f"{name}_{kind}")
-    return out, target.log, Waveform(vcd), bench
+    wave = Waveform(vcd)
+    write_motion_view(vcd, WAVE_GROUPS, wave)
+    return out, target.log, wave, bench
 
 
 def io_write(bench, target, name, value):
