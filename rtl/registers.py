@@ -254,8 +254,8 @@ def c_header(prefix="DDA", extra=""):
     definitions placed inside the include guard)."""
     guard = f"{prefix}_REGISTERS_H"
     lines = [
-        "/* Function registers of the PCI DDA card (I/O BAR).",
-        " * Generated from rtl/registers.py by python -m rtl.top --convert; do not edit. */",
+        "/* Host interface of the PCI DDA card: function registers (I/O BAR) and more.",
+        " * Generated from rtl/ by python -m rtl.top --convert; do not edit. */",
         f"#ifndef {guard}",
         f"#define {guard}",
         "",
