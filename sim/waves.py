@@ -168,9 +168,10 @@ def end_time(vcd_path, tail=1 << 16):
 
 def _pattern(suffix):
     """A signal named by its trailing path: ``pulse_out.position_x`` also matches
-    ``pulse_out2.position_x`` (MyHDL numbers the instances of a block)."""
+    ``pulse_out2.position_x`` or ``pulse_out2_0_1.position_x`` (MyHDL numbers
+    the instances of a block)."""
     *scopes, leaf = suffix.split(".")
-    parts = [re.escape(s) + r"\d*(?:_\d+)?" for s in scopes] + [re.escape(leaf)]
+    parts = [re.escape(s) + r"\d*(?:_\d+)*" for s in scopes] + [re.escape(leaf)]
     return re.compile(r"(?:^|\.)" + r"\.".join(parts) + "$")
 
 
