@@ -2,9 +2,12 @@
 import json
 import os
 import subprocess
+import time
 from pathlib import Path
 
-TIMEOUT_S = 300
+TIMEOUT_S = 300  # CPU seconds a tool may take (``run``)
+WALL_FACTOR = 4
+POLL_S = 2
 CLOCK_PORT = "clock"
 
 
@@ -22,17 +25,42 @@ def relative(path, cwd):
     return os.path.relpath(path, cwd)
 
 
-def run(command, log, cwd, timeout=TIMEOUT_S):
-    """Run a tool in ``cwd``; SynthError with the log's tail if it fails or takes longer than ``timeout``."""
+def cpu_seconds(pid, started):
+    """CPU time a running process has used (Linux ``/proc``); elsewhere the wall time since ``started``."""
     try:
-        result = subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+        fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except OSError:
+        return time.monotonic() - started
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")  # utime + stime
+
+
+def run(command, log, cwd, timeout=TIMEOUT_S):
+    """Run a tool in ``cwd``; SynthError with the log's tail if it fails.
+
+    ``timeout`` counts the tool's CPU seconds, so that a router that does
+    not converge is stopped while a tool that merely waits for a busy
+    machine's cores is not; the wall time is capped at ``WALL_FACTOR`` times
+    as much.  (The yowasp tools run their WebAssembly in the one process.)
+    """
+    started = time.monotonic()
+    try:
+        process = subprocess.Popen(command, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     except FileNotFoundError:
         raise SynthError(f"{command[0]} not found: pip install '.[synth]'") from None
-    except subprocess.TimeoutExpired:
-        raise SynthError(f"{command[0]} did not finish within {timeout} s, see {log}") from None
-    if result.returncode != 0:
-        tail = log.read_text()[-2000:] if log.exists() else result.stderr[-2000:]
-        raise SynthError(f"{command[0]} failed (exit {result.returncode}), see {log}:\n{tail}")
+    while True:
+        try:
+            _, stderr = process.communicate(timeout=POLL_S)
+            break
+        except subprocess.TimeoutExpired:
+            over = cpu_seconds(process.pid, started) > timeout or time.monotonic() - started > WALL_FACTOR * timeout
+            if over:
+                process.kill()
+                process.communicate()
+                raise SynthError(f"{command[0]} did not finish within {timeout} s of CPU "
+                                 f"({time.monotonic() - started:.0f} s), see {log}") from None
+    if process.returncode != 0:
+        tail = log.read_text()[-2000:] if log.exists() else stderr[-2000:]
+        raise SynthError(f"{command[0]} failed (exit {process.returncode}), see {log}:\n{tail}")
 
 
 def unit_sources(unit, gen_dir, extra=()):
