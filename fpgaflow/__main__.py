@@ -35,7 +35,7 @@ def _parser():
                         help="register groups listed by --table (default: 40)")
     parser.add_argument("--gen", type=Path, default=GEN, help="folder with the Verilog (default: gen/)")
     parser.add_argument("--timeout", type=int, default=TIMEOUT_S,
-                        help=f"seconds each tool may take (default: {TIMEOUT_S})")
+                        help=f"CPU seconds each tool may take, wall time four times that (default: {TIMEOUT_S})")
     parser.add_argument("--wrap", action="store_true",
                         help="place each unit between flip-flops (an input shift chain from one pin, output "
                              "captures XOR-folded onto one pin): fmax of any unit, whatever its port count")

@@ -19,8 +19,8 @@ from fpgaflow.wrapper import unit_ports
 # In the default run: the top places and routes in about 90 s on a 2-core
 # machine (plus 1-2 minutes once, while yowasp compiles its WebAssembly).
 pytestmark = pytest.mark.synth
-TOOL_TIMEOUT_S = 240  # per tool and seed: the top routes in about 50 s; a router that
-# does not converge on a seed (it happens at 95 % of the logic cells) then costs 4 minutes
+TOOL_TIMEOUT_S = 240  # CPU seconds per tool and seed: the top routes in about 60 s; a router
+# that does not converge on a seed (it happens at 95 % of the logic cells) then costs 4 minutes
 
 UNITS = fpgaflow.available_units()
 
