@@ -43,11 +43,12 @@ BASE = 0x80000000
 
 
 def core_speed(bursts=400):
-    """(edges, seconds) of ``bursts`` alternating 256-dword writes and reads."""
+    """(edges, CPU seconds) of ``bursts`` alternating 256-dword writes and reads
+    (CPU time: the figure should not depend on what else the machine runs)."""
     core = HostCore()
     drive = core.drive
     edges = 0
-    start = time.perf_counter()
+    start = time.process_time()
     for number in range(bursts):
         command = MEM_WRITE if number % 2 else MEM_READ
         request = core.submit(Request(command, 0x1000, [(0xF, number)] * BURST))
@@ -56,17 +57,17 @@ def core_speed(bursts=400):
             frame = drive.frame_out if drive.frame_oe else 1
             irdy = drive.irdy_out if drive.irdy_oe else 1
             core.step(30 * edges, 0x5A5A5A5A, 0, frame, irdy, 0, 0, 1)
-    return edges, time.perf_counter() - start
+    return edges, time.process_time() - start
 
 
 def print_core():
     edges, seconds = core_speed()
-    print(f"HostCore.step during {BURST}-dword bursts: {edges / seconds:,.0f} edges/s, "
+    print(f"HostCore.step during {BURST}-dword bursts: {edges / seconds:,.0f} edges per CPU second, "
           f"{1e6 * seconds / edges:.2f} us per edge ({edges:,} edges)")
 
 
 def delayed_run(retries, prefetch, seed=1):
-    """Bursts moved, retries seen, data errors, clocks, seconds for one setting."""
+    """Bursts moved, retries seen, data errors, clocks, wall and CPU seconds for one setting."""
     rng = random.Random(seed)
     target = DelayedTarget(base=BASE, size=0x1000, read_retries=retries, prefetch=prefetch,
                            latency=(0, 6), seed=seed)
@@ -74,7 +75,7 @@ def delayed_run(retries, prefetch, seed=1):
                     {"target": target})
     bus.reset()
     moved = seen = errors = 0
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     for length in LENGTHS:
         address = BASE + 4 * rng.randrange(1024 - length + 1)
         values = [rng.getrandbits(32) for _ in range(length)]
@@ -83,31 +84,31 @@ def delayed_run(retries, prefetch, seed=1):
         moved += write.complete + read.complete
         seen += write.retries + read.retries
         errors += sum(a != b for a, b in zip(read.data, values)) + abs(len(read.data) - length)
-    return moved, seen, errors, bus.edges, time.perf_counter() - start
+    return moved, seen, errors, bus.edges, time.perf_counter() - start, time.process_time() - cpu
 
 
 def print_delayed():
     print("Delayed-transaction target, pure-Python loop, checker on (bursts of "
           f"{', '.join(map(str, LENGTHS))} dwords, written and read back):")
     print(f"  {'retries/read':>12}{'prefetch':>9}{'bursts':>8}{'retries seen':>14}{'data errors':>13}"
-          f"{'clocks':>10}{'wall s':>8}{'clocks/s':>10}")
+          f"{'clocks':>10}{'wall s':>8}{'CPU s':>7}{'clocks/CPU s':>14}")
     for retries in RETRY_SETTINGS:
         for prefetch in (0, 8):
-            moved, seen, errors, clocks, seconds = delayed_run(retries, prefetch)
+            moved, seen, errors, clocks, wall, cpu = delayed_run(retries, prefetch)
             print(f"  {retries:>12}{prefetch:>9}{moved:>8}{seen:>14,}{errors:>13}{clocks:>10,}"
-                  f"{seconds:>8.1f}{clocks / seconds:>10,.0f}")
+                  f"{wall:>8.1f}{cpu:>7.1f}{clocks / cpu:>14,.0f}")
 
 
 def print_xz():
     from sim.pci_bench import PciBench
-    from sim.test_card_e2e import ARC, motion_scenario, run_card
+    from sim.test_card_e2e import ARC, DEFAULT_FIFO, motion_scenario, run_card
     from sim.test_pci_random import run_random
     from sim.test_pci_verilog_target import scenario, scratch_target
 
     print("X/Z detector in float mode (clocks with a line X or Z while driven / clocks watched):")
     bench, _ = run_random("verilog", 300, seed=7)
     print(f"  gen/pci_slave.v, 300 random transactions: {bench.checker.unknown_clocks} / {bench.checker.edges:,}")
-    _, _, _, bench = run_card("verilog", motion_scenario([ARC]), "figures_xz_top")
+    _, _, _, bench = run_card("verilog", motion_scenario([ARC]), "figures_xz_top", DEFAULT_FIFO)
     print(f"  gen/top.v, enumerate, program, arc:        {bench.checker.unknown_clocks} / {bench.checker.edges:,}")
     bench = PciBench(target=scratch_target())
     bench.run(scenario({}), "figures_xz_scratch", trace=False)

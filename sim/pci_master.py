@@ -227,13 +227,14 @@ class PciMaster:
             retries = retries + 1 if transaction.termination is Termination.RETRY else 0
             spent = self.core.edge - first_edge
             if retries > retry_budget or (clock_budget is not None and spent > clock_budget):
-                self._give_up(request, result, retries > retry_budget, spent)
+                self._give_up(request, result, retries if retries > retry_budget else 0, spent)
         return result
 
     def _give_up(self, request, result, retries, clocks):
+        """Raise ``HostError`` (``retries`` in a row, or else ``clocks``, spent)."""
         if not request.command & 1:
             self.abandoned.append(request)
-        budget = f"{retries - 1} retries in a row" if retries else f"{clocks} clocks"
+        budget = f"{retries} retries in a row" if retries else f"{clocks} clocks"
         transaction = result.transactions[-1]
         raise HostError(f"{transaction.command:#x} at {transaction.address:#x} gave up after {budget}"
                         f" ({len(result.data)} of {result.requested} data phases done, "

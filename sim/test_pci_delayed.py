@@ -82,7 +82,7 @@ def test_the_retry_budget_counts_per_resumption_not_per_access():
     read = bus.run(bus.host.mem_read(BASE, 33))
     assert read.complete and read.retries == 66
     bus.host.max_retries = 1
-    with pytest.raises(HostError) as failure:
+    with pytest.raises(HostError, match="2 retries in a row") as failure:
         bus.run(bus.host.mem_read(BASE + 0x200, 4))
     log = failure.value.transactions
     assert [t.termination for t in log] == [Termination.RETRY] * 2
