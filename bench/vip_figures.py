@@ -96,7 +96,7 @@ def print_delayed():
         for prefetch in (0, 8):
             moved, seen, errors, clocks, wall, cpu = delayed_run(retries, prefetch)
             print(f"  {retries:>12}{prefetch:>9}{moved:>8}{seen:>14,}{errors:>13}{clocks:>10,}"
-                  f"{wall:>8.1f}{cpu:>7.1f}{clocks / cpu:>14,.0f}")
+                  f"{wall:>8.1f}{cpu:>7.2f}{clocks / cpu:>14,.0f}")
 
 
 def print_xz():
