@@ -11,11 +11,12 @@
 
 module scratch_target #(
     parameter WORDS = 16,
-    parameter ADDR_BITS = 6          // BAR size 2^ADDR_BITS bytes = 4 * WORDS
+    parameter ADDR_BITS = 6,         // BAR size 2^ADDR_BITS bytes = 4 * WORDS
+    parameter AD_BITS = 32           // no 64-bit extension
 ) (
     input  wire        clk,
     input  wire        rst_n,
-    inout  wire [31:0] ad,
+    inout  wire [AD_BITS-1:0] ad,
     input  wire [3:0]  cbe_n,
     inout  wire        par,
     input  wire        frame_n,
