@@ -53,16 +53,18 @@ class CardUnderTest:
             top = generated_top() if self.fifo_depth == DEFAULT_FIFO else convert_top(fifo_depth=self.fifo_depth)
             harness = TopHarness(top, idsel_bit=16 + TARGET_DEVICE)
             agent, motor = harness.card, MotorPins()
-            core = (top_on_bus, (bench.clock, bench.reset, bench.host.agent, harness, motor))
+            def core(b):  # the X/Z report needs the bus model, which exists only later
+                return top_on_bus, (b.clock, b.reset, b.host.agent, harness, motor), {"segment": b.segment}
         elif self.kind == "myhdl":
             ports = card_ports(fifo_depth=self.fifo_depth)
             ports["clock"], ports["reset"] = bench.clock, bench.reset
             agent, motor = ports["pci"], ports["pins"]
-            core = (card, (), dict(ports, fifo_depth=self.fifo_depth))
+            def core(_):
+                return card, (), dict(ports, fifo_depth=self.fifo_depth)
         else:
             raise ValueError(f"unknown card kind {self.kind!r}: use 'myhdl' or 'verilog'")
         capture = (pin_capture, (bench.clock, motor, self.log))
-        return agent, [core, capture, (bus_record, (bench, self.samples))]
+        return agent, lambda b: [core(b), capture, (bus_record, (b, self.samples))]
 
 
 @block
