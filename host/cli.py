@@ -55,9 +55,16 @@ def count(text):
     return value
 
 
+class _Parser(argparse.ArgumentParser):
+    """Reports a bad command line in one line (no usage block) and exits 2."""
+
+    def error(self, message):
+        self.exit(2, f"{PROG}: error: {message}\n")
+
+
 def parser():
-    top = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n\n")[0])
-    commands = top.add_subparsers(dest="command", required=True)
+    top = _Parser(prog=PROG, description=__doc__.split("\n\n")[0])
+    commands = top.add_subparsers(dest="command", required=True, parser_class=_Parser)
     plan_cmd = commands.add_parser("plan", help="plan FILE and measure the path against the drawing")
     plan_cmd.add_argument("file", type=Path, help="G-code program, or an .svg drawing")
     plan_cmd.add_argument("--steps-per-mm", type=scales, default=(200.0, 200.0), metavar="X[,Y]",

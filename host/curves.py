@@ -6,8 +6,9 @@ tangent, leaving the curve's start along its start tangent and arriving
 along its end tangent (the "equal tangent length" biarc).  The piece's error
 is measured, not assumed: the largest distance from ``SAMPLES`` points of the
 curve to the biarc and from ``SAMPLES`` points of each arc to the curve's
-polyline through ``DENSE`` points.  A piece whose error exceeds the tolerance
-is halved; a piece shorter than the tolerance is a line.
+polyline through ``DENSE`` points.  A piece whose error exceeds 90 % of the
+tolerance (the rest covers what peaks between the samples) is halved; a piece
+shorter than the tolerance is a line.
 """
 import math
 
@@ -15,6 +16,7 @@ from host.geometry import Arc, Line
 
 SAMPLES = 16
 DENSE = 64
+SAMPLED_SHARE = 0.9  # a piece is kept at 90 % of the tolerance: the error may peak between samples
 MIN_SPAN = 1e-7   # parameter span below which a piece is a line
 FLAT = 1e-9       # relative: a normal offset this small is a straight line
 
@@ -26,13 +28,13 @@ def approximate(point, derivative, tolerance, feed, where):
 
 def _piece(point, derivative, u0, u1, tolerance, feed, where):
     p0, p1 = point(u0), point(u1)
-    if math.dist(p0, p1) <= tolerance and _error([Line(p0, p1)], point, u0, u1) <= tolerance:
+    if math.dist(p0, p1) <= tolerance and _error([Line(p0, p1)], point, u0, u1) <= tolerance * SAMPLED_SHARE:
         return [Line(p0, p1, feed, where)] if p0 != p1 else []
     if u1 - u0 < MIN_SPAN:
         return [Line(p0, p1, feed, where)]
     candidate = biarc(p0, _tangent(point, derivative, u0, 1), p1,
                       _tangent(point, derivative, u1, -1), feed, where)
-    if candidate and _error(candidate, point, u0, u1) <= tolerance:
+    if candidate and _error(candidate, point, u0, u1) <= tolerance * SAMPLED_SHARE:
         return candidate
     middle = (u0 + u1) / 2
     return (_piece(point, derivative, u0, middle, tolerance, feed, where)

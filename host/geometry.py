@@ -140,11 +140,6 @@ def _unit(dx, dy):
     return (0.0, 0.0) if norm == 0 else (dx / norm, dy / norm)
 
 
-def moves(drawing):
-    """The ``Line`` and ``Arc`` primitives of ``drawing``, in order."""
-    return [item for item in drawing if not isinstance(item, Dwell)]
-
-
 def turn_angle(before, after):
     """Direction change in radians (0..pi) between the end of ``before`` and the start of ``after``."""
     (ax, ay), (bx, by) = before.end_tangent(), after.start_tangent()

@@ -15,10 +15,14 @@ of the start radius (``sim.dda_model.plan_arc``, the card's rule, decides).
    equal angles, each changing the radius by at most that; the cuts are the
    lattice points next to the ideal ones whose distance from the centre is
    nearest the ideal radius;
-3. each piece is one ARC if the card accepts it and it turns the intended
-   way by about the intended angle; otherwise it is halved at the ideal
-   point of its middle angle (rounded to the lattice), down to pieces of at
-   most ``LINE_SPAN`` steps, which become LINEs.
+3. each piece is one ARC if the card accepts it, it turns the intended way
+   by about the intended angle, and the radius the card holds (its start's)
+   stays within ``RADIUS_SLACK`` of the ideal curve's distance from the
+   lattice centre along it (sampled); otherwise it is halved at the lattice
+   point next to the ideal one of its middle angle, down to pieces of at
+   most ``LINE_SPAN`` steps, which become LINEs.  So a start or end point that
+   rounding put off the ideal radius is joined to the ideal curve by short
+   pieces instead of moving the whole arc.
 
 A radius beyond the coordinate width is refused; a line beyond it is cut
 into equal parts.
@@ -31,6 +35,8 @@ from sim.dda_model import ArcCommand, LineCommand, plan_arc
 RADIUS_STEP = 0.25  # steps: most radius change of one spiral piece
 LINE_SPAN = 2          # steps: a piece this short is a LINE
 SWEEP_SLACK = math.pi / 4  # a lattice piece may turn this much more or less than intended
+RADIUS_SLACK = 0.5  # steps: a piece's radius may differ this much from the ideal curve's
+RADIUS_SAMPLES = 8
 MAX_DEPTH = 40
 
 
@@ -63,7 +69,7 @@ def arc_commands(arc, start, end, scale, coord_width):
     parts = max(1, math.ceil(abs(end_radius - start_radius) / RADIUS_STEP))
     if start == end and sweep > math.pi:
         # (nearly) a full circle: one ARC whose start is its end, else two halves
-        whole = mapper.lattice_arc(start, end, sweep)
+        whole = mapper.lattice_arc(start, end, 0.0, sweep)
         if whole is not None:
             return [whole]
         parts = max(parts, 2)
@@ -109,21 +115,33 @@ class _ArcMapper:
         near = [(base[0] + i, base[1] + j) for i in (-1, 0, 1) for j in (-1, 0, 1)]
         return min(near, key=lambda p: (abs(math.dist(p, self.centre) - radius), math.dist(p, (x, y))))
 
-    def lattice_arc(self, start, end, sweep):
-        """The ARC from ``start`` to ``end`` if the card takes it and it turns by about ``sweep``."""
+    def lattice_arc(self, start, end, angle_from, angle_to):
+        """The ARC from ``start`` to ``end`` if the card takes it, it turns by about
+        the intended angle and its radius keeps near the ideal one."""
         cx, cy = self.centre
         command = ArcCommand(start[0] - cx, start[1] - cy, end[0] - cx, end[1] - cy, self.arc.ccw)
         try:
             plan_arc(command, self.coord_width)
         except ValueError:
             return None
-        turned = _turn(command, self.arc.ccw)
-        return command if abs(turned - sweep) <= SWEEP_SLACK else None
+        if abs(_turn(command, self.arc.ccw) - (angle_to - angle_from)) > SWEEP_SLACK:
+            return None
+        return command if self.radius_error(start, angle_from, angle_to) <= RADIUS_SLACK else None
+
+    def radius_error(self, start, angle_from, angle_to):
+        """Largest difference, at ``RADIUS_SAMPLES`` angles of the piece, between the
+        radius the card holds (the start's) and the ideal point's distance from the centre."""
+        radius = math.dist(start, self.centre)
+        worst = 0.0
+        for i in range(RADIUS_SAMPLES + 1):
+            x, y = self.arc.point_at(angle_from + (angle_to - angle_from) * i / RADIUS_SAMPLES)
+            worst = max(worst, abs(math.dist((x * self.scale, y * self.scale), self.centre) - radius))
+        return worst
 
     def pieces(self, start, end, angle_from, angle_to, depth):
         if start == end:
             return []
-        whole = self.lattice_arc(start, end, angle_to - angle_from)
+        whole = self.lattice_arc(start, end, angle_from, angle_to)
         if whole is not None:
             return [whole]
         if max(abs(end[0] - start[0]), abs(end[1] - start[1])) <= LINE_SPAN or depth >= MAX_DEPTH:

@@ -3,7 +3,8 @@
 * Every shape is drawn: path, line, polyline, polygon, rect (rounded corners
   too), circle, ellipse, with its transforms and the document's units and
   viewBox (``svgelements`` resolves them into pixels at 96 per inch; here
-  1 px = 25.4 / 96 mm).
+  1 px = 25.4 / 96 mm, or svgelements' own mm size for a document sized in
+  mm or cm, so that its millimetres stay exact).
 * Machine coordinates: y up, so ``y_machine = height - y_svg`` (the page's
   lower left corner is the origin).
 * Straight segments are lines; circular arcs (equal radii after the
@@ -23,6 +24,9 @@ from host.errors import ProgramError
 from host.geometry import SAME_POINT, Arc, Line
 
 MM_PER_PX = 25.4 / 96
+# svgelements turns mm and cm into pixels with 0.0393701 in/mm (1/25.4 rounded, 5.4 ppm
+# long); for a document sized in mm or cm this undoes that, so its millimetres stay exact
+SVGELEMENTS_MM_PER_PX = 1 / (svg.DEFAULT_PPI * 0.0393701)
 CIRCULAR = 1e-9  # relative radius difference below which an arc is circular
 
 
@@ -39,8 +43,9 @@ def parse(source, tolerance=0.01, feed=1200.0, name=None):
         document = svg.SVG.parse(source)
     except Exception as error:  # svgelements raises whatever its XML parser raises
         raise ProgramError(name, f"cannot read the SVG: {error}") from None
-    height = (document.height or 0) * MM_PER_PX
-    reader = _Reader(height, tolerance, feed)
+    unit = str(document.values.get("width", "")).strip().lstrip("+-.0123456789eE")
+    scale = SVGELEMENTS_MM_PER_PX if unit in ("mm", "cm") else MM_PER_PX
+    reader = _Reader((document.height or 0) * scale, scale, tolerance, feed)
     for number, element in enumerate(document.elements()):
         where = f"{name}#{element.id}" if getattr(element, "id", None) else f"{name}: element {number}"
         if isinstance(element, (svg.Text, svg.Image)):
@@ -51,13 +56,13 @@ def parse(source, tolerance=0.01, feed=1200.0, name=None):
 
 
 class _Reader:
-    def __init__(self, height, tolerance, feed):
-        self.height, self.tolerance, self.feed = height, tolerance, feed
+    def __init__(self, height, scale, tolerance, feed):
+        self.height, self.scale, self.tolerance, self.feed = height, scale, tolerance, feed
         self.position = (0.0, 0.0)
         self.drawing = []
 
     def machine(self, point):
-        return point[0] * MM_PER_PX, self.height - point[1] * MM_PER_PX
+        return point[0] * self.scale, self.height - point[1] * self.scale
 
     def shape(self, element, where):
         for segment in svg.Path(element).segments():
@@ -105,7 +110,7 @@ class _Reader:
         def derivative(u):
             t = start_t + sweep * u
             x, y = -rx * math.sin(t) * sweep, ry * math.cos(t) * sweep
-            return (x * cos_r - y * sin_r) * MM_PER_PX, -(x * sin_r + y * cos_r) * MM_PER_PX
+            return (x * cos_r - y * sin_r) * self.scale, -(x * sin_r + y * cos_r) * self.scale
 
         if math.dist(point(0), start) > 1e-6 or math.dist(point(1), end) > 1e-6:
             raise ProgramError(where, "elliptical arc does not meet its end points")
