@@ -155,7 +155,17 @@ def summary(planned, result):
         f"(at {result.worst_where})",
         f"feed:       fed runs at {', '.join(f'{f:g}' for f in feeds) or '-'} mm/min "
         f"(FEED_RATE unit: {machine.iterations_per_second(1):.1f} iterations/s, at most {RATE_MAX})",
+        f"ramps:      up to {_steepest(planned):.0f} mm/s^2 at the top of a ramp (asked "
+        f"{machine.acceleration:g}; RAMP_STEP is at least 1 per iteration)",
         f"job time:   {result.job_seconds:.3f} s at the planned rates and ramps "
         f"(length / programmed feed: {result.ideal_seconds:.3f} s)",
     ]
     return lines
+
+
+def _steepest(planned):
+    """The largest acceleration of any run's ramp, at its top speed (mm/s^2):
+    ``v * RAMP_STEP * f_clk / 65536`` (the ramp is linear in distance)."""
+    machine = planned.machine
+    return max((machine.iterations_per_second(run.feed_rate) * run.mm_per_iteration
+                * machine.iterations_per_second(run.ramp_step) for run in planned.runs), default=0.0)
