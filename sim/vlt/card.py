@@ -58,13 +58,13 @@ class VerilatedCard:
         model.bind_bus(lines, "pci_idsel_in", idsel_bit)
         self.lines = lines
         self.pin_state = 0
-        self.log_rises = []
 
     def collect_pins(self, log):
         """Move the edges recorded so far into ``log`` (a ``PinLog``)."""
         clocks, states = self.model.take_edges()
         if len(states):
             log.rises.extend(rises(clocks, states, self.pin_state))
+            log.edges.extend(zip(clocks.tolist(), states.tolist()))
             self.pin_state = int(states[-1])
         log.clock = self.model.clocks
 
