@@ -19,9 +19,10 @@ from rtl import instructions as isa
 from rtl import registers as regmap
 from sim.card_bench import command_words, expected_path
 from sim.card_e2e import (DEFAULT_FIFO, KINDS, SMALL_FIFO, clocks, finish, io_read, io_write, motion_scenario,
-                          program, run_card)
+                          program, run_card, wait)
 from sim.dda_model import ArcCommand, LineCommand, iterate, metrics, v_arc
 from sim.pci_host import Termination
+from sim.vlt.model import Stop
 
 ARC = ArcCommand(40, 0, 0, 40, ccw=True)
 CHAIN = [LineCommand(6, 2), LineCommand(5, 7), LineCommand(3, 4), ArcCommand(0, 12, -12, 0)]
@@ -65,7 +66,8 @@ def _direct_pulses(bench, target, out):
 def _soft_reset(bench, target, out):
     yield from program(bench, target, feed=regmap.RATE_ONE // 4)
     yield from bench.host.mem_write(target.mem, command_words(LineCommand(300, 200)))
-    yield from clocks(bench, target, 300)
+    waited, reason = yield from wait(bench, target, steps=40)  # mid-move, on every back end alike
+    assert reason is Stop.STEPS, (waited, reason)
     yield from io_write(bench, target, "COMMAND", regmap.field_of("COMMAND", SOFT_RESET=1))
     yield from clocks(bench, target, 20)
     out["status"] = yield from io_read(bench, target, "STATUS")

@@ -190,6 +190,9 @@ void* vc_new() {
     card->ports.push_back(Port{#name, width, direction, static_cast<void*>(&card->model->name)});
     VC_PORTS(VC_ADD_PORT)
 #undef VC_ADD_PORT
+    // Settle once with every input at 0: the first rising edge is then an edge
+    // (the model's first eval only records the clock's level).
+    card->model->eval();
     return card;
 }
 
