@@ -168,18 +168,15 @@ def _sample(time, values, drivers, floating):
 def test_bus_clock_by_clock_reads_the_ids_under_the_monitor(card):
     """Configuration read of the ID register through ``step_bus``, one foreign
     call per clock; the protocol monitor sees every clock."""
-    import numpy as np
-
     model = card.model
-    host = (np.zeros(len(LINES), np.uint64), np.zeros(len(LINES), np.uint64))
-    values, drivers, floating = (np.zeros(len(LINES), np.uint64) for _ in range(3))
+    bus = model.bus()
     checker = ProtocolChecker(target_device=0)
     assert set(LINES) == set(LINE_WIDTHS)
 
     def clock(drive, in_reset=False):
-        _drives(host, drive)
-        model.step_bus(*host, values, drivers, floating)
-        sample = _sample(model.clocks, values, drivers, floating)
+        _drives((bus.host_out, bus.host_oe), drive)
+        model.step_bus(bus)
+        sample = _sample(model.clocks, bus.values, bus.drivers, bus.floating)
         checker.step(sample, in_reset)
         return sample
 

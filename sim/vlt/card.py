@@ -112,18 +112,16 @@ def verilated_card_on_bus(clock, reset, pci, card, log, wait, host):
     in_signals = [reset] + [getattr(pci, n[len("pci_"):]) for n in in_names[1:]]
     out_names = [n for line in LINES for n in card.lines[line][1:] if n is not None]
     out_signals = [getattr(pci, n[len("pci_"):]) for n in out_names]
-    inputs = np.array([model.input_index(n) for n in in_names], dtype=np.intc)
-    outputs = np.array([model.index(n) for n in out_names], dtype=np.intc)
-    values = np.zeros(len(inputs), dtype=np.uint64)
-    out = np.zeros(len(outputs), dtype=np.uint64)
+    port = model.io_exchange(in_names, out_names)
+    values, out = port.values, port.out
     host_enables = [getattr(host, f"{line}_oe") for line in LINES]
 
     def exchange(tick):
         for index, signal in enumerate(in_signals):
             values[index] = int(signal.val)
-        model.io(inputs, values, tick, outputs, out)
-        for signal, value in zip(out_signals, out):
-            signal.next = int(value)
+        port(tick)
+        for signal, value in zip(out_signals, out.tolist()):
+            signal.next = value
 
     def run_wait():
         pending = wait.pending

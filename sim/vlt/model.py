@@ -39,8 +39,8 @@ _SIGNATURES = {
     "vc_bind_clock": (None, [_p, _int]),
     "vc_bind_pins": (None, [_p, _int_array]),
     "vc_bind_bus": (None, [_p, _int_array, _int_array, _int_array, _int, _int]),
-    "vc_io": (None, [_p, _int, _int_array, _u64_array, _int, _int, _int_array, _u64_array]),
-    "vc_step_bus": (_int, [_p, _u64_array, _u64_array, _u64_array, _u64_array, _u64_array]),
+    "vc_io": (None, [_p, _int, _p, _p, _int, _int, _p, _p]),
+    "vc_step_bus": (_int, [_p, _p, _p, _p, _p, _p]),
     "vc_run": (_int, [_p, _u64, _int, _u64, ctypes.POINTER(_u64)]),
     "vc_edge_count": (_u64, [_p]),
     "vc_take_edges": (None, [_p, _u64_array, _u8_array]),
@@ -156,12 +156,9 @@ class VerilatedModel:
         done = _u64()
         self._lib.vc_run(self._handle, count, 0, 0, ctypes.byref(done))
 
-    def io(self, inputs, values, tick, outputs, out):
-        """Set ``inputs`` (an intc array of port indices) to ``values`` (uint64),
-        tick or settle, read ``outputs`` into ``out``: one foreign call."""
-        if tick:
-            self._need_clock()
-        self._lib.vc_io(self._handle, len(inputs), inputs, values, int(tick), len(outputs), outputs, out)
+    def io_exchange(self, inputs, outputs):
+        """A prepared exchange of ``inputs`` and ``outputs`` (port names): see ``Exchange``."""
+        return Exchange(self, [self.input_index(n) for n in inputs], [self.index(n) for n in outputs])
 
     def run(self, limit, until_interrupt=False, steps=0):
         """Clocks in compiled code until ``limit`` clocks, INTA# (``until_interrupt``),
@@ -174,10 +171,16 @@ class VerilatedModel:
                                   ctypes.byref(done))
         return Stop(reason), done.value
 
-    def step_bus(self, host_out, host_oe, values, drivers, floating):
-        """One bus clock (see ``harness.cpp``); the arrays are uint64, one per line."""
+    def bus(self):
+        """Arrays for ``step_bus``: see ``BusArrays``."""
         self._need_clock()
-        rounds = self._lib.vc_step_bus(self._handle, host_out, host_oe, values, drivers, floating)
+        return BusArrays()
+
+    def step_bus(self, bus):
+        """One bus clock (``harness.cpp``'s ``vc_step_bus``): the host's drive in
+        ``bus.host_out`` / ``bus.host_oe``, the sampled segment back in
+        ``bus.values`` / ``drivers`` / ``floating``; one foreign call."""
+        rounds = self._lib.vc_step_bus(self._handle, *bus.pointers)
         if rounds < 0:
             raise VerilatorError(f"the bus never settled in clock {self.clocks + 1}: a combinational loop "
                                  "through the card's PCI lines")
@@ -211,3 +214,33 @@ class VerilatedModel:
             self.close()
         except Exception:  # interpreter shutdown: ctypes may be gone
             pass
+
+
+class BusArrays:
+    """Per PCI line (``LINES`` order), uint64: ``host_out``, ``host_oe`` (what the
+    host drives), ``values``, ``drivers`` (bit 0 host, bit 1 card),
+    ``floating`` (as sampled); their addresses are taken once."""
+
+    def __init__(self):
+        self.host_out, self.host_oe, self.values, self.drivers, self.floating = (
+            np.zeros(len(LINES), np.uint64) for _ in range(5))
+        self.pointers = [a.ctypes.data for a in (self.host_out, self.host_oe, self.values, self.drivers,
+                                                 self.floating)]
+
+
+class Exchange:
+    """``values`` (uint64, one per input port) go in, ``out`` (one per output
+    port) comes back, with a tick or a settle in between: one foreign call."""
+
+    def __init__(self, model, inputs, outputs):
+        self._model = model
+        self._inputs, self._outputs = np.array(inputs, np.intc), np.array(outputs, np.intc)
+        self.values, self.out = np.zeros(len(inputs), np.uint64), np.zeros(len(outputs), np.uint64)
+        self._call = model._lib.vc_io
+        self._args = (len(inputs), self._inputs.ctypes.data, self.values.ctypes.data)
+        self._out_args = (len(outputs), self._outputs.ctypes.data, self.out.ctypes.data)
+
+    def __call__(self, tick):
+        if tick:
+            self._model._need_clock()
+        self._call(self._model._handle, *self._args, int(tick), *self._out_args)

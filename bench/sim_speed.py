@@ -1,0 +1,152 @@
+"""Simulation speed of the whole card on its three back ends: ``python3 -m bench.sim_speed``.
+
+Three jobs, each on MyHDL, Icarus (``top.v`` with its pads) and Verilator
+(``card.v``), driven end to end by the behavioural PCI host with the
+protocol monitor on every bus clock (``sim/card_e2e.py``):
+
+* a long arc: one precise quarter arc, no bus traffic while it runs;
+* a burst of 1,000 LINE commands: one memory-write burst of 3,000 words
+  into the 512-word FIFO, which the host resumes after every retry and
+  disconnect while the moves drain it;
+* a random job of 10,000 segments (``sim/card_jobs.py``): LINE and ARC
+  moves with SET, DWELL and MARK, streamed as host software does (burst
+  what fits, sleep until LOW_WATER, read every MARK back).
+
+Clocks/s counts the card's clocks from the first command word to the end of
+the job over the wall time between the same two points (elaboration and
+compilation left out).  Then the Verilator goals: a long arc at a slow feed
+(millions of clocks), the bus path alone (one foreign call per clock, no
+host), and the time to build the model.
+"""
+import argparse
+import os
+import sys
+import tempfile
+import time
+import warnings
+from pathlib import Path
+
+from myhdl import ToVerilogWarning
+
+from rtl import registers as regmap
+from sim.card_bench import command_words
+from sim.card_e2e import DEFAULT_FIFO, finish, program, run_card
+from sim.card_jobs import random_job, streaming_scenario
+from sim.dda_model import ArcCommand, LineCommand
+from sim.paths import GEN
+from sim.vlt.build import _build, find_tool
+from sim.vlt.card import VerilatedCard
+
+BACKENDS = ("myhdl", "icarus", "verilator")
+LABELS = {"myhdl": "MyHDL", "icarus": "Icarus", "verilator": "Verilator"}
+
+
+def timed(kind, job):
+    """Run ``job(bench, target, out)`` after enumeration; (card clocks, seconds) of the job."""
+    marks = []
+
+    def scenario(bench, target, out):
+        marks.append((target.log.clock, time.perf_counter()))
+        yield from job(bench, target, out)
+        marks.append((target.log.clock, time.perf_counter()))
+
+    run_card(kind, scenario, f"speed_{kind}", DEFAULT_FIFO, trace=False)
+    (clock0, wall0), (clock1, wall1) = marks
+    return clock1 - clock0, wall1 - wall0
+
+
+def arc_job(radius, feed):
+    arc = ArcCommand(radius, 0, 0, radius, ccw=True)
+
+    def job(bench, target, out):
+        yield from program(bench, target, feed)
+        yield from bench.host.mem_write(target.mem, command_words(arc))
+        yield from finish(bench, target, out, limit=1 << 40)
+
+    return job
+
+
+def line_burst_job(count):
+    words = [w for i in range(count) for w in command_words(LineCommand(1 + i % 3, i % 2))]
+
+    def job(bench, target, out):
+        yield from program(bench, target)
+        out["burst"] = yield from bench.host.mem_write(target.mem, words)
+        assert out["burst"].complete
+        yield from finish(bench, target, out, limit=1 << 40)
+
+    return job
+
+
+def random_segments_job(segments):
+    plan, results = random_job(1, segments), {}
+    streamed = streaming_scenario(plan, DEFAULT_FIFO, results)
+
+    def job(bench, target, out):
+        yield from program(bench, target)
+        yield from streamed(bench, target, out)
+        assert results["position"] == plan.position
+
+    return job
+
+
+def bus_path_speed(clocks=200000):
+    """Clocks/s of ``step_bus`` alone: a Python loop, one foreign call per clock, the host idle."""
+    card = VerilatedCard()
+    model = card.model
+    bus = model.bus()
+    model["reset"] = 1
+    start = time.perf_counter()
+    for _ in range(clocks):
+        model.step_bus(bus)
+    seconds = time.perf_counter() - start
+    model.close()
+    return clocks / seconds
+
+
+def build_seconds():
+    """Seconds to build the model of gen/card.v from nothing (outside the cache)."""
+    tool = find_tool()
+    with tempfile.TemporaryDirectory() as work:
+        start = time.perf_counter()
+        _build(Path(work), [GEN / "card.v"], "card", None, (), tool)
+        return time.perf_counter() - start, tool.version
+
+
+def main(argv=None):
+    warnings.simplefilter("ignore", ToVerilogWarning)
+    parser = argparse.ArgumentParser(prog="python3 -m bench.sim_speed", description=__doc__.splitlines()[0])
+    parser.add_argument("--backends", default=",".join(BACKENDS),
+                        help=f"comma-separated, of {', '.join(BACKENDS)} (default: all)")
+    parser.add_argument("--radius", type=int, default=20000, help="radius of the long arc (default 20000)")
+    parser.add_argument("--lines", type=int, default=1000, help="LINE commands in the burst (default 1000)")
+    parser.add_argument("--segments", type=int, default=10000, help="segments of the random job (default 10000)")
+    args = parser.parse_args(argv)
+    backends = args.backends.split(",")
+    unknown = set(backends) - set(BACKENDS)
+    if unknown:
+        parser.error(f"unknown back ends {sorted(unknown)}: use {', '.join(BACKENDS)}")
+    if not 1 <= args.radius < 1 << 22 or args.lines < 1 or args.segments < 1:
+        parser.error("radius must be 1 .. 2**22 - 1, lines and segments at least 1")
+    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
+    jobs = {f"long arc (R = {args.radius}, full speed)": arc_job(args.radius, regmap.RATE_MAX),
+            f"burst of {args.lines} LINE commands": line_burst_job(args.lines),
+            f"random job of {args.segments} segments": random_segments_job(args.segments)}
+    for name, job in jobs.items():
+        for kind in backends:
+            clocks, seconds = timed(kind, job)
+            print(f"{name:<40} {LABELS[kind]:<10} {clocks:>10} clocks {seconds:9.2f} s {clocks / seconds:>12,.0f} clocks/s",
+                  flush=True)
+    if "verilator" in backends:
+        slow_arc = arc_job(100000, regmap.RATE_ONE // 16)
+        clocks, seconds = timed("verilator", slow_arc)
+        print(f"Verilator, long arc with no bus traffic (R = 100000, 16 clocks/iteration): {clocks} clocks in "
+              f"{seconds:.2f} s = {clocks / seconds:,.0f} clocks/s (goal 1,000,000)")
+        print(f"Verilator, bus path alone (step_bus from a Python loop): {bus_path_speed():,.0f} clocks/s")
+        seconds, version = build_seconds()
+        print(f"Verilator model build of gen/card.v: {seconds:.1f} s ({version}), then cached in build/vlt")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
