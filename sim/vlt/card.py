@@ -19,12 +19,12 @@ clocks run, and the pins keep the card's clock numbers.
 import numpy as np
 from myhdl import Signal, block, instance
 
+from sim.card_bench import PIN_BITS
 from sim.paths import GEN
 from sim.vlt.build import VerilatorError, build_model
 from sim.vlt.model import LINES, PINS, Stop, VerilatedModel
 
 TOP = "card"
-CLOCK_PERIOD = 30  # time units per clock in traces, as the PCI bench's
 
 
 def rises(clocks, states, before=0):
@@ -33,9 +33,9 @@ def rises(clocks, states, before=0):
     states = np.asarray(states, dtype=np.uint8)
     previous = np.concatenate(([before], states[:-1])).astype(np.uint8)
     rose = states & ~previous
-    step_x, step_y = (rose & 1) != 0, (rose & 4) != 0
+    step_x, step_y = (rose & PIN_BITS["step_x"]) != 0, (rose & PIN_BITS["step_y"]) != 0
     keep = step_x | step_y
-    dir_x, dir_y = (states & 2) != 0, (states & 8) != 0
+    dir_x, dir_y = (states & PIN_BITS["dir_x"]) != 0, (states & PIN_BITS["dir_y"]) != 0
     return [(int(c), bool(sx), bool(sy), bool(dx), bool(dy)) for c, sx, sy, dx, dy in
             zip(np.asarray(clocks)[keep], step_x[keep], step_y[keep], dir_x[keep], dir_y[keep])]
 
@@ -53,7 +53,7 @@ class VerilatedCard:
         for line in LINES:
             names = tuple(f"pci_{line}_{kind}" for kind in ("in", "out", "oe"))
             lines[line] = tuple(n if n in model.ports else None for n in names)
-        if not any(n for n in lines["ad"]) or lines["ad"][0] is None:
+        if lines["ad"][0] is None:
             raise VerilatorError(f"{self.verilog} has no pci_ad_in: not the split-port card")
         model.bind_bus(lines, "pci_idsel_in", idsel_bit)
         self.lines = lines

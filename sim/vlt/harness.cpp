@@ -282,6 +282,12 @@ int vc_step_bus(void* handle, const uint64_t* host_out, const uint64_t* host_oe,
     return -1;
 }
 
+// `count` clocks with the inputs as they are, whatever happens.
+void vc_tick(void* handle, uint64_t count) {
+    Card* card = static_cast<Card*>(handle);
+    for (uint64_t i = 0; i < count; ++i) card->tick();
+}
+
 // Run with the inputs as they are (a quiet bus) until an event; `done` gets
 // the clocks run.  Each condition is judged on the state before an edge and
 // the run stops after that edge, as a per-clock waiter sampling at the edge

@@ -41,6 +41,7 @@ _SIGNATURES = {
     "vc_bind_bus": (None, [_p, _int_array, _int_array, _int_array, _int, _int]),
     "vc_io": (None, [_p, _int, _p, _p, _int, _int, _p, _p]),
     "vc_step_bus": (_int, [_p, _p, _p, _p, _p, _p]),
+    "vc_tick": (None, [_p, _u64]),
     "vc_run": (_int, [_p, _u64, _int, _u64, ctypes.POINTER(_u64)]),
     "vc_edge_count": (_u64, [_p]),
     "vc_take_edges": (None, [_p, _u64_array, _u8_array]),
@@ -106,8 +107,8 @@ class VerilatedModel:
         return self._lib.vc_get(self._handle, self.index(name))
 
     def __setitem__(self, name, value):
-        index, width, _ = self.ports[name] if name in self.ports else (self.index(name), 0, 0)
-        self.input_index(name)
+        index = self.input_index(name)
+        width = self.ports[name][1]
         if not 0 <= int(value) < 1 << width:
             raise VerilatorError(f"{value} does not fit the {width}-bit port {name}")
         self._lib.vc_set(self._handle, index, int(value))
@@ -153,8 +154,7 @@ class VerilatedModel:
     def tick(self, count=1):
         """``count`` clocks with the inputs as they are."""
         self._need_clock()
-        done = _u64()
-        self._lib.vc_run(self._handle, count, 0, 0, ctypes.byref(done))
+        self._lib.vc_tick(self._handle, int(count))
 
     def io_exchange(self, inputs, outputs):
         """A prepared exchange of ``inputs`` and ``outputs`` (port names): see ``Exchange``."""
