@@ -114,9 +114,9 @@ def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=True, card_trace
     waveform or None, bench).  ``trace``: the bench's VCD (MyHDL, Icarus);
     ``card_trace`` ("vcd" or "fst", Verilator only): the card's own waves of
     the clocks ``card_trace_window`` (first, last) into
-    ``build/waves/<name>_verilator_card.<card_trace>``; ``monitor`` (Verilator
-    only; the MyHDL benches always check): the protocol checker on every bus
-    clock."""
+    ``build/waves/<name>_verilator.<card_trace>``, named as the others name
+    their bench's; ``monitor`` (Verilator only; the MyHDL benches always
+    check): the protocol checker on every bus clock."""
     target = CardUnderTest(kind, fifo_depth)
     host_options = dict(max_retries=1 << 20)
     verilated = None
@@ -125,7 +125,7 @@ def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=True, card_trace
         bench = VerilatorBench(verilated, target, host_options=host_options, monitor=monitor)
         if card_trace:
             first, last = card_trace_window or (0, 1 << 62)
-            verilated.model.trace(build_dir("waves") / f"{name}_{kind}_card.{card_trace}", first, last)
+            verilated.model.trace(build_dir("waves") / f"{name}_{kind}.{card_trace}", first, last)
     elif card_trace or not monitor:
         raise ValueError("card_trace and monitor=False are for the Verilator card")
     else:

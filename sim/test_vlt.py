@@ -217,7 +217,7 @@ def test_waves_of_a_window(tmp_path):
     first, last = 200, 600
     _, log, _, _ = run_card("verilator", motion_scenario([LineCommand(40, 15)]), "vlt_trace", trace=False,
                             card_trace="vcd", card_trace_window=(first, last))
-    path = build.build_dir("waves") / "vlt_trace_verilator_card.vcd"
+    path = build.build_dir("waves") / "vlt_trace_verilator.vcd"
     wave = Waveform(path)
     times, values = wave.changes[wave.full_name("pins_step_x")]
     # the first entry is the window's opening value; changes follow
@@ -227,3 +227,11 @@ def test_waves_of_a_window(tmp_path):
     period = 2 * 15
     assert [(t - period // 2) // period + 1 for t in rises_in_trace] == rises_in_log
     assert min(times[1:]) >= (first - 1) * period and max(times) <= last * period
+
+
+def test_waves_in_fst():
+    """The FST build writes its window too (GTKWave reads it; here only its size is judged)."""
+    _, log, _, _ = run_card("verilator", motion_scenario([LineCommand(4, 1)]), "vlt_trace", trace=False,
+                            card_trace="fst", card_trace_window=(100, 300))
+    path = build.build_dir("waves") / "vlt_trace_verilator.fst"
+    assert log.rises and path.stat().st_size > 0

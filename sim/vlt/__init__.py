@@ -2,6 +2,7 @@
 
 ``build`` makes and caches the shared library (model + ``harness.cpp``),
 ``model`` loads it (ports by name, the clock loop, runs until an event, the
-STEP/DIR edges as numpy arrays), ``card`` binds the card's ports and puts it
-on a bench's PCI segment.  ``docs/simulation.md`` has the whole picture.
+STEP/DIR edges as numpy arrays, one bus clock per call), ``card`` binds the
+card's ports, ``bench`` puts it on the PCI bus with the host engine and the
+protocol checker.  ``docs/simulation.md`` has the whole picture.
 """
