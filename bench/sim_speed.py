@@ -15,13 +15,16 @@ protocol monitor on every bus clock (``sim/card_e2e.py``):
 
 Clocks/s counts the card's clocks from the first command word to the end of
 the job over the wall time between the same two points (elaboration and
-compilation left out).  Then the Verilator goals: the bus-heavy jobs again
+compilation left out); "per CPU s" over the CPU time of this process (for
+Icarus that leaves its own process out), which the machine's other load
+does not lower.  Then the Verilator goals: the bus-heavy jobs again
 without the protocol monitor, a long arc at a slow feed (millions of
 clocks), the bus path alone (one foreign call per clock, no host), and the
 time to build the model.
 """
 import argparse
 import os
+import resource
 import sys
 import tempfile
 import time
@@ -44,18 +47,19 @@ LABELS = {"myhdl": "MyHDL", "icarus": "Icarus", "verilator": "Verilator"}
 
 
 def timed(kind, job, monitor=True):
-    """Run ``job(bench, target, out)`` after enumeration; (card clocks, seconds) of the job."""
+    """Run ``job(bench, target, out)`` after enumeration; (card clocks, wall
+    seconds, CPU seconds of this process) of the job."""
     marks = []
 
     def scenario(bench, target, out):
-        marks.append((target.log.clock, time.perf_counter()))
+        marks.append((target.log.clock, time.perf_counter(), time.process_time()))
         yield from job(bench, target, out)
-        marks.append((target.log.clock, time.perf_counter()))
+        marks.append((target.log.clock, time.perf_counter(), time.process_time()))
 
     run_card(kind, scenario, f"speed_{kind}", DEFAULT_FIFO, trace=False,
              **({} if monitor else {"monitor": False}))
-    (clock0, wall0), (clock1, wall1) = marks
-    return clock1 - clock0, wall1 - wall0
+    (clock0, wall0, cpu0), (clock1, wall1, cpu1) = marks
+    return clock1 - clock0, wall1 - wall0, cpu1 - cpu0
 
 
 def arc_job(radius, feed):
@@ -103,26 +107,29 @@ def bus_path_speed(clocks=200000):
     model = card.model
     bus = model.bus()
     model["reset"] = 1
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     for _ in range(clocks):
         model.step_bus(bus)
-    seconds = time.perf_counter() - start
+    seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
     model.close()
-    return clocks / seconds
+    return clocks / seconds, clocks / cpu
 
 
 def build_seconds():
-    """Seconds to build the model of gen/card.v from nothing (outside the cache)."""
+    """(wall seconds, CPU seconds of the tools, tool) of a build of gen/card.v's
+    model from nothing (outside the cache)."""
     tool = find_tool()
     with tempfile.TemporaryDirectory() as work:
-        start = time.perf_counter()
+        start, children = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN)
         _build(Path(work), [GEN / "card.v"], "card", None, (), tool)
-        return time.perf_counter() - start, tool.version
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = after.ru_utime + after.ru_stime - children.ru_utime - children.ru_stime
+        return time.perf_counter() - start, cpu, tool.version
 
 
-def report(job, back_end, clocks, seconds):
-    print(f"{job:<40} {back_end:<31} {clocks:>10} clocks {seconds:9.2f} s {clocks / seconds:>12,.0f} clocks/s",
-          flush=True)
+def report(job, back_end, clocks, seconds, cpu):
+    print(f"{job:<40} {back_end:<31} {clocks:>9} clocks {seconds:8.2f} s {clocks / seconds:>10,.0f} clocks/s "
+          f"{clocks / max(cpu, 1e-6):>10,.0f} per CPU s", flush=True)
 
 
 def main(argv=None):
@@ -151,12 +158,14 @@ def main(argv=None):
         for name, job in list(jobs.items())[1:]:
             report(name, "Verilator, no protocol monitor", *timed("verilator", job, monitor=False))
         slow_arc = arc_job(100000, regmap.RATE_ONE // 16)
-        clocks, seconds = timed("verilator", slow_arc)
+        clocks, seconds, cpu = timed("verilator", slow_arc)
         print(f"Verilator, long arc with no bus traffic (R = 100000, 16 clocks/iteration): {clocks} clocks in "
-              f"{seconds:.2f} s = {clocks / seconds:,.0f} clocks/s (goal 1,000,000)")
-        print(f"Verilator, bus path alone (step_bus from a Python loop): {bus_path_speed():,.0f} clocks/s")
-        seconds, version = build_seconds()
-        print(f"Verilator model build of gen/card.v: {seconds:.1f} s ({version}), then cached in build/vlt")
+              f"{seconds:.2f} s = {clocks / seconds:,.0f} clocks/s, {clocks / cpu:,.0f} per CPU s (goal 1,000,000)")
+        wall, cpu = bus_path_speed()
+        print(f"Verilator, bus path alone (step_bus from a Python loop): {wall:,.0f} clocks/s, {cpu:,.0f} per CPU s")
+        seconds, cpu, version = build_seconds()
+        print(f"Verilator model build of gen/card.v: {seconds:.1f} s, {cpu:.1f} CPU s ({version}), "
+              "then cached in build/vlt")
     return 0
 
 
