@@ -36,7 +36,7 @@ from myhdl import ToVerilogWarning
 from rtl import registers as regmap
 from sim.card_bench import command_words
 from sim.card_e2e import DEFAULT_FIFO, finish, program, run_card
-from sim.card_jobs import random_job, streaming_scenario
+from sim.card_jobs import LONGEST_WAIT, random_job, streaming_scenario
 from sim.dda_model import ArcCommand, LineCommand
 from sim.paths import GEN
 from sim.vlt.build import _build, find_tool
@@ -68,7 +68,7 @@ def arc_job(radius, feed):
     def job(bench, target, out):
         yield from program(bench, target, feed)
         yield from bench.host.mem_write(target.mem, command_words(arc))
-        yield from finish(bench, target, out, limit=1 << 40)
+        yield from finish(bench, target, out, limit=LONGEST_WAIT)
 
     return job
 
@@ -84,7 +84,7 @@ def line_burst_job(count):
         for start in range(0, len(words), WINDOW_WORDS):
             burst = yield from bench.host.mem_write(target.mem, words[start:start + WINDOW_WORDS])
             assert burst.complete, burst.termination
-        yield from finish(bench, target, out, limit=1 << 40)
+        yield from finish(bench, target, out, limit=LONGEST_WAIT)
 
     return job
 

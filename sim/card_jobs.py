@@ -91,7 +91,10 @@ def random_job(seed, segments, max_line=40, max_scale=8, feeds=(regmap.RATE_MAX,
     return job
 
 
-def streaming_scenario(job, fifo_depth, results, low_water=None, limit=1 << 40):
+LONGEST_WAIT = 10 ** 9  # clocks between two interrupts before a job counts as stuck (minutes on Verilator)
+
+
+def streaming_scenario(job, fifo_depth, results, low_water=None, limit=LONGEST_WAIT):
     """Stream ``job`` into the FIFO as host software would (see the module
     docstring); ``results`` gets ``marks`` [(tag, MARK_TAG read, position)],
     ``position``, ``status``, ``bursts`` (the host's Results)."""
