@@ -21,7 +21,9 @@ STEP/DIR pins land in ``target.log`` (a ``PinLog``) with their clock numbers
 (rising edges since the start).
 """
 import hashlib
-from pathlib import Path
+import os
+import shutil
+import tempfile
 
 from myhdl import __version__ as myhdl_version
 from myhdl import always, block
@@ -29,7 +31,7 @@ from myhdl import always, block
 from rtl import registers as regmap
 from rtl.card import card, card_ports
 from rtl.interfaces import MotorPins
-from rtl.top import PARAMETERS
+from rtl.top import PARAMETERS, convert_unit
 from sim.card_bench import PinLog, command_words, pin_capture
 from sim.paths import GEN, ROOT, build_dir
 from sim.pci_bench import TARGET_DEVICE, PciBench
@@ -57,10 +59,10 @@ def card_verilog(fifo_depth):
     folder = build_dir("vlt", "conv", f"card-{digest.hexdigest()[:20]}")
     verilog = folder / "card.v"
     if not verilog.exists():
-        from rtl.top import convert_unit
-
-        written = convert_unit("card", {"fifo_depth": fifo_depth}, build_dir("vlt", "conv", ".staging"))
-        Path(written).replace(verilog)
+        staging = tempfile.mkdtemp(prefix=".card-", dir=build_dir("vlt", "conv"))
+        written = convert_unit("card", {"fifo_depth": fifo_depth}, staging)
+        os.replace(written, verilog)  # whole: a parallel worker finds the file complete or not at all
+        shutil.rmtree(staging, ignore_errors=True)
     return verilog
 
 
