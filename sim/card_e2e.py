@@ -32,14 +32,14 @@ from rtl import registers as regmap
 from rtl.card import card, card_ports
 from rtl.interfaces import MotorPins
 from rtl.top import PARAMETERS, convert_unit
-from sim.card_bench import PinLog, command_words, pin_capture
+from sim.card_bench import PinLog, command_words, pin_capture, write_motion_view
 from sim.paths import GEN, ROOT, build_dir
-from sim.pci_bench import TARGET_DEVICE, PciBench
+from sim.pci_bench import TARGET_DEVICE, WAVE_GROUPS, PciBench
 from sim.top_harness import TopHarness, convert_top, generated_top, top_on_bus
 from sim.vlt.bench import VerilatorBench
 from sim.vlt.card import ArrayPinLog, CardWait, VerilatedCard, card_waiter
 from sim.vlt.model import Stop
-from sim.waves import Waveform
+from sim.waves import Waveform, trace_stem
 
 KINDS = ("myhdl", "icarus", "verilator")
 DEVICE = 0
@@ -115,9 +115,9 @@ def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=True, card_trace
     """Enumerate the card, run ``scenario(bench, target, out)``; (out, pin log,
     waveform or None, bench).  ``trace``: the bench's VCD (MyHDL, Icarus);
     ``card_trace`` ("vcd" or "fst", Verilator only): the card's own waves of
-    the clocks ``card_trace_window`` (first, last) into
-    ``build/waves/<name>_verilator.<card_trace>``, named as the others name
-    their bench's; ``monitor`` (Verilator only; the MyHDL benches always
+    the clocks ``card_trace_window`` (first, last), named as the other back
+    ends name their bench's (``sim.waves.trace_stem``; the path is
+    ``bench.trace_path``, the VCD comes back as the waveform); ``monitor`` (Verilator only; the MyHDL benches always
     check): the protocol checker on every bus clock."""
     target = CardUnderTest(kind, fifo_depth)
     host_options = dict(max_retries=1 << 20)
@@ -127,7 +127,9 @@ def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=True, card_trace
         bench = VerilatorBench(verilated, target, host_options=host_options, monitor=monitor)
         if card_trace:
             first, last = card_trace_window or (0, 1 << 62)
-            verilated.model.trace(build_dir("waves") / f"{name}_{kind}.{card_trace}", first, last)
+            folder, stem = trace_stem(f"{name}_{kind}")
+            bench.trace_path = folder / f"{stem}.{card_trace}"
+            verilated.model.trace(bench.trace_path, first, last)
     elif card_trace or not monitor:
         raise ValueError("card_trace and monitor=False are for the Verilator card")
     else:
@@ -147,7 +149,12 @@ def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=True, card_trace
     finally:
         if verilated is not None:
             verilated.model.close()
-    return out, target.log, Waveform(vcd) if vcd else None, bench
+    if vcd is None:
+        traced = getattr(bench, "trace_path", None)
+        return out, target.log, Waveform(traced) if card_trace == "vcd" else None, bench
+    wave = Waveform(vcd)
+    write_motion_view(vcd, WAVE_GROUPS, wave)
+    return out, target.log, wave, bench
 
 
 def wait(bench, target, clocks=INTA_LIMIT, inta=False, steps=0):

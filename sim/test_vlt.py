@@ -17,7 +17,6 @@ from sim.vlt import build
 from sim.vlt.build import VerilatorError, build_model, model_key, ports_of
 from sim.vlt.card import VerilatedCard
 from sim.vlt.model import LINES, Stop, VerilatedModel
-from sim.waves import Waveform
 
 COUNTER = """
 module counter(input clock, input reset, input [7:0] step, output reg [7:0] count);
@@ -215,10 +214,9 @@ def test_run_stops_at_its_limit_on_a_quiet_bus(card):
 def test_waves_of_a_window(tmp_path):
     """A traced model writes the clocks asked for, the pins as captured."""
     first, last = 200, 600
-    _, log, _, _ = run_card("verilator", motion_scenario([LineCommand(40, 15)]), "vlt_trace", trace=False,
-                            card_trace="vcd", card_trace_window=(first, last))
-    path = build.build_dir("waves") / "vlt_trace_verilator.vcd"
-    wave = Waveform(path)
+    _, log, wave, bench = run_card("verilator", motion_scenario([LineCommand(40, 15)]), "vlt_trace",
+                                   trace=False, card_trace="vcd", card_trace_window=(first, last))
+    assert bench.trace_path.suffix == ".vcd" and wave.path == bench.trace_path
     times, values = wave.changes[wave.full_name("pins_step_x")]
     # the first entry is the window's opening value; changes follow
     rises_in_trace = [t for t, v in zip(times[1:], values[1:]) if v == "1"]
@@ -231,7 +229,6 @@ def test_waves_of_a_window(tmp_path):
 
 def test_waves_in_fst():
     """The FST build writes its window too (GTKWave reads it; here only its size is judged)."""
-    _, log, _, _ = run_card("verilator", motion_scenario([LineCommand(4, 1)]), "vlt_trace", trace=False,
-                            card_trace="fst", card_trace_window=(100, 300))
-    path = build.build_dir("waves") / "vlt_trace_verilator.fst"
-    assert log.rises and path.stat().st_size > 0
+    _, log, _, bench = run_card("verilator", motion_scenario([LineCommand(4, 1)]), "vlt_trace", trace=False,
+                                card_trace="fst", card_trace_window=(100, 300))
+    assert log.rises and bench.trace_path.suffix == ".fst" and bench.trace_path.stat().st_size > 0
