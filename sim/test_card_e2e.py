@@ -31,7 +31,7 @@ from sim.waves import Waveform
 
 DEVICE = 0
 SMALL_FIFO = 16
-DEFAULT_FIFO = PARAMETERS["fifo_depth"][1]
+DEFAULT_FIFO = PARAMETERS["fifo_depth"].default
 
 
 class CardUnderTest:
