@@ -3,7 +3,7 @@
 Two builds, chosen by ``io_registers`` (the top passes the same value to
 ``pci_slave``; it is the top's ``device``: ``rtl/parameters.py``):
 
-- ``False`` (``generic``): plain tri-state buffers, no clock.  The core's
+- ``False`` (``generic``): plain tri-state buffers.  The core's
   boundary flip-flops are logic-cell flops; any vendor flow infers the I/O
   buffers.
 - ``True`` (``ice40``): iCE40 ``SB_IO`` cells (``rtl/ice40.py``) whose input
@@ -157,8 +157,7 @@ def registered_pad(clock, pin, from_pin, to_pin, enable, *, label):
 def pci_pads(clock, pins, pci, *, io_registers=False):
     """The PCI pad ring of the card.
 
-    Ports: ``clock`` PCI CLK (clocks the I/O cells with ``io_registers``;
-    unused, and may be None, without),
+    Ports: ``clock`` PCI CLK (clocks the I/O cells with ``io_registers``),
     ``pins`` ``PciPins`` (the top level's ports), ``pci`` ``PciBus`` (the
     core's side).  Parameter: ``io_registers`` (bool), see the module text.
 
@@ -211,7 +210,7 @@ def _check_io_registers(io_registers):
 
 
 def pci_pads_ports(io_registers=False):
-    """Fresh ports of ``pci_pads`` for ``io_registers``: the plain pads have no
-    clock (``None``), the I/O cells' registers take one."""
+    """Fresh ports of ``pci_pads`` (the same for both builds, so that the top
+    takes either; ``io_registers`` is checked)."""
     _check_io_registers(io_registers)
-    return {"clock": Signal(bool(0)) if io_registers else None, "pins": PciPins(), "pci": PciBus()}
+    return {"clock": Signal(bool(0)), "pins": PciPins(), "pci": PciBus()}

@@ -20,15 +20,15 @@ Access kinds:
 Registers with a ``set_index`` can also be written from the command stream by
 the ``SET`` instruction (``docs/instructions.md``).
 
-The capability registers (CLOCK_HZ, FIFO_DEPTH, BUILD) are RO fields whose
+The capability registers (CLOCK_HZ, FIFO_SIZE, BUILD) are RO fields whose
 ``build`` names the build parameter (``rtl/parameters.py``) they hold, so a
 host reads what it needs instead of knowing the build; ``build_word`` gives
 their value for a build, and the ``reset`` of the table is the default
-build's.
+build's top.
 
 ID.VERSION: the major version (bits 15:8) changes when a register or field
 moves or changes meaning, the minor version (bits 7:0) when registers or
-fields are added.  1.1 added CLOCK_HZ, FIFO_DEPTH and BUILD.
+fields are added.  1.1 added CLOCK_HZ, FIFO_SIZE and BUILD.
 """
 from dataclasses import dataclass, field
 
@@ -105,10 +105,12 @@ def build_word(reg, values):
 
 
 def _capability(name, offset, text, fields):
-    """A read-only register of build facts; its reset value is the default build's."""
+    """A read-only register of build facts; its reset value is that of the
+    default build's top (``gen/top.v``, built for iCE40)."""
     constants = sum(value << item.lsb for item, value in fields)
     reg = Register(name, offset, "RO", constants, text, tuple(item for item, _ in fields))
-    return Register(name, offset, "RO", build_word(reg, {}), text, reg.fields)
+    top = {item.build: parameters.PARAMETERS[item.build].default_for("top") for item in reg.fields if item.build}
+    return Register(name, offset, "RO", build_word(reg, top), text, reg.fields)
 
 
 _VARIANT_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(parameters.VARIANT_NAMES))
@@ -137,7 +139,8 @@ REGISTERS = (
         Field("CLEAR_ERROR", 1, 1, "clear STATUS.ERROR; execution resumes with the next queued word"),
         Field("CLEAR_POSITION", 2, 1, "zero POS_X and POS_Y"),
     )),
-    Register("STATUS", 0x0C, "RO", 0, "what the card is doing", (
+    # after reset: idle, no error, the FIFO empty
+    Register("STATUS", 0x0C, "RO", 1 << 8, "what the card is doing", (
         Field("BUSY", 0, 1, "a command is executing or queued"),
         Field("DONE", 1, 1, "the queue ran empty after motion (cleared when a command starts)"),
         Field("QUADRANT", 2, 2, "quadrant of the arc's moving point, 0..3 for I..IV"),
@@ -192,7 +195,7 @@ REGISTERS = (
         (Field("HZ", 0, 32, "PCI clock in Hz: the host converts times (DWELL, STEP_WIDTH, DIR_*, "
                "rates) with it", build="clock_hz"), 0),
     )),
-    _capability("FIFO_DEPTH", 0x58, "size of the data FIFO (build parameter fifo_depth)", (
+    _capability("FIFO_SIZE", 0x58, "size of the data FIFO (build parameter fifo_depth)", (
         (Field("WORDS", 0, 16, "32-bit words the FIFO holds", build="fifo_depth"), 0),
     )),
     _capability("BUILD", 0x5C, "options the card was built with", (
@@ -281,13 +284,13 @@ def markdown():
         f"The I/O BAR is {1 << IO_BAR_BITS} bytes (`io_bar_bits` = {IO_BAR_BITS}); registers are",
         "32-bit, dword aligned.  Unlisted offsets read 0 and ignore writes.",
         "",
-        "CLOCK_HZ, FIFO_DEPTH and BUILD hold the parameters the card was built with",
-        "(`python -m rtl.top --help` lists them); their reset column shows the defaults, device",
-        "generic (the iCE40 top of `gen/` reads BUILD.DEVICE = 1).",
+        "CLOCK_HZ, FIFO_SIZE and BUILD hold the parameters the card was built with",
+        "(`python -m rtl.top --help` lists them); their reset column shows the default build's",
+        "top, `gen/top.v`, built for iCE40 (the generic `gen/card.v` reads BUILD.DEVICE = 0).",
         "",
         f"ID.VERSION is {VERSION >> 8}.{VERSION & 0xFF}: the major version (bits 15:8) changes when a",
         "register or field moves or changes meaning, the minor version (bits 7:0) when",
-        "registers or fields are added.  1.1 added CLOCK_HZ, FIFO_DEPTH and BUILD.",
+        "registers or fields are added.  1.1 added CLOCK_HZ, FIFO_SIZE and BUILD.",
         "",
         "Access: RO read only; RW read/write (byte enables honoured; a value outside",
         "min..max is clamped to the nearest bound, reads back clamped, and sets",
@@ -324,8 +327,8 @@ def c_header(prefix="DDA", extra="", values=None):
     defaults)."""
     guard = f"{prefix}_REGISTERS_H"
     lines = [
-        "/* Function registers of the PCI DDA card (I/O BAR).",
-        " * Generated from rtl/registers.py by python -m rtl.top --convert; do not edit. */",
+        "/* Host interface of the PCI DDA card: function registers (I/O BAR) and more.",
+        " * Generated from rtl/ by python -m rtl.top --convert; do not edit. */",
         f"#ifndef {guard}",
         f"#define {guard}",
         "",

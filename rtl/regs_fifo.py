@@ -35,8 +35,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     COMMAND.SOFT_RESET: the top resets the DDA with it).
     Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
     two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
-    ``clock_hz``, ``variants`` and ``device`` only set the capability
-    registers (CLOCK_HZ, BUILD), as do ``fifo_depth`` and ``dda.coord_width``.
+    ``clock_hz``, ``variants`` and ``device`` only set capability registers
+    (CLOCK_HZ, BUILD; FIFO_SIZE and BUILD.COORD_WIDTH come from
+    ``fifo_depth`` and ``dda.coord_width``).
 
     Local bus: I/O and FIFO writes complete in the clock they are requested,
     a full FIFO answers retry; an I/O write reaches the registers one clock

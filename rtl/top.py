@@ -26,9 +26,9 @@ from pathlib import Path
 from myhdl import Signal, ToVerilogWarning, block
 
 from rtl import instructions, parameters, registers
-from rtl.card import CARD_PARAMETERS, card
+from rtl.card import CARD_PARAMETERS, card, slave_params
 from rtl.interfaces import MotorPins, PciBus, PciPins, card_reset
-from rtl.parameters import DEVICE, PARAMETERS, ParameterError
+from rtl.parameters import DEVICE, PARAMETERS, PCI_IDS, ParameterError
 from rtl.pci_pads import pci_pads
 from rtl.pci_slave import SLAVE_PARAMETERS
 from rtl.regs_fifo import REGS_FIFO_PARAMETERS
@@ -100,13 +100,21 @@ def build_settings(values):
     return {unit: unit_settings(values, unit) for unit in UNITS}
 
 
-def write_c_header(out_dir=GEN_DIR, values=None):
-    """Write the C header of the register map and command set, for the top
-    built with ``values`` (default: the default build); return its path."""
+def write_c_header(out_dir=GEN_DIR, **values):
+    """Write the C header of the top built with ``values`` (build parameters,
+    the top's defaults for the rest): PCI identity and BAR sizes of the card,
+    register map (reset values of this build), command set and command
+    builders; return its path."""
+    settings = unit_settings(values, "top")
+    bars = slave_params()
+    identity = [f"#define DDA_PCI_{name.upper()} {PARAMETERS[name].shown(settings[name])}u" for name in PCI_IDS]
+    identity += [f"#define DDA_BAR0_SIZE {1 << bars['io_bar_bits']}u /* I/O: function registers */",
+                 f"#define DDA_BAR1_SIZE {1 << bars['mem_bar_bits']}u /* memory: the command FIFO window */",
+                 f"#define DDA_FIFO_DEPTH {settings['fifo_depth']}u /* words */", ""]
     target = Path(out_dir) / C_HEADER
     target.parent.mkdir(parents=True, exist_ok=True)
-    target.write_text(registers.c_header(extra=instructions.c_defines(),
-                                         values=unit_settings(values or {}, "top")))
+    target.write_text(registers.c_header(extra="\n".join(identity) + instructions.c_defines() + "\n"
+                                         + instructions.c_builders(), values=settings))
     return target
 
 
@@ -212,7 +220,7 @@ def convert_all(out_dir=GEN_DIR, **values):
     _set_folder_mode(staged, out_dir)
     try:
         names = [convert_block(unit, instance, staged).name for unit, instance in blocks.items()]
-        names.append(write_c_header(staged, values).name)
+        names.append(write_c_header(staged, **values).name)
         _move_into_place(staged, out_dir)
     finally:
         shutil.rmtree(staged, ignore_errors=True)

@@ -3,7 +3,7 @@
 Cards built with chosen parameters, as MyHDL (``rtl/card.py``), as their
 generated ``card.v`` and as the iCE40 top (``top.v`` with its pads) in
 Icarus, and the committed default build in ``gen/``: the host enumerates
-the card, reads ID, CLOCK_HZ, FIFO_DEPTH and BUILD over I/O, then runs a
+the card, reads ID, CLOCK_HZ, FIFO_SIZE and BUILD over I/O, then runs a
 LINE through the FIFO (the smallest build's FIFO of two words is shorter
 than the command) and reads the position back.  The expected words are
 written out here from the build parameters and the documented encodings
@@ -31,10 +31,10 @@ DEVICE_CODES = {"generic": 0, "ice40": 1}
 
 
 def expected_words(build, device):
-    """ID, CLOCK_HZ, FIFO_DEPTH and BUILD as docs/registers.md defines them."""
+    """ID, CLOCK_HZ, FIFO_SIZE and BUILD as docs/registers.md defines them."""
     return {"ID": 0xDDAC << 16 | 0x0101,
             "CLOCK_HZ": build["clock_hz"],
-            "FIFO_DEPTH": build["fifo_depth"],
+            "FIFO_SIZE": build["fifo_depth"],
             "BUILD": (build["coord_width"] | 2 << 8 | VARIANT_BITS[build["variants"]] << 16
                       | DEVICE_CODES[device] << 24)}
 
@@ -66,7 +66,7 @@ def read_build(kind, build, device, tmp_path):
     def scenario(b):
         found = yield from b.host.enumerate_bus(devices=[DEVICE])
         bars = {("io" if bar["io"] else "mem"): bar["base"] for bar in found[0].bars}
-        for name in ("ID", "CLOCK_HZ", "FIFO_DEPTH", "BUILD"):
+        for name in ("ID", "CLOCK_HZ", "FIFO_SIZE", "BUILD"):
             result = yield from b.host.io_read(bars["io"] + regmap.offset(name))
             assert result.complete, f"{name}: {result.termination}"
             out[name] = result.value
