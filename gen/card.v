@@ -824,19 +824,19 @@ assign pci_slave1_serr_armed = (pci_slave1_frame_qq && (!pci_slave1_frame_q) && 
 assign pci_slave1_perr_armed = (pci_slave1_write_done_q && pci_slave1_parity_response);
 
 
-assign pci_slave1_perr_next = (pci_slave1_perr_armed ? (pci_slave1_bus_parity ? pci_par_in : !pci_par_in) : 1'b1);
+assign pci_slave1_perr_next = (pci_slave1_perr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
 
 
-assign pci_slave1_perr_oe_next = (pci_slave1_perr_q ? (pci_slave1_perr_armed ? (pci_slave1_bus_parity ? !pci_par_in : pci_par_in) : 1'b0) : 1'b1);
+assign pci_slave1_perr_oe_next = (pci_slave1_perr_q ? (pci_slave1_perr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 
 
-assign pci_slave1_serr_oe_next = (pci_slave1_serr_armed ? (pci_slave1_bus_parity ? !pci_par_in : pci_par_in) : 1'b0);
+assign pci_slave1_serr_oe_next = (pci_slave1_serr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
 
 
-assign pci_slave1_address_fault_next = (pci_slave1_parity_response ? (pci_slave1_address_phase ? (pci_slave1_bus_parity ? !pci_par_in : pci_par_in) : 1'b0) : 1'b0);
+assign pci_slave1_address_fault_next = (pci_slave1_parity_response ? (pci_slave1_address_phase ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 
 
-assign pci_slave1_parity_error_next = (pci_slave1_write_done_q ? (pci_slave1_bus_parity ? !pci_par_in : pci_par_in) : (pci_slave1_address_phase ? (pci_slave1_bus_parity ? !pci_par_in : pci_par_in) : 1'b0));
+assign pci_slave1_parity_error_next = (pci_slave1_write_done_q ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (pci_slave1_address_phase ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
 
 
 always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_io_enable, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_mem_enable, pci_slave1_state) begin: pci_slave1_decode
@@ -867,22 +867,22 @@ always @(pci_slave1_ad_q, pci_slave1_claim_config, pci_slave1_claim_io) begin: p
 end
 
 
-assign pci_slave1_first_phase_next = (pci_slave1_first_phase ? (pci_slave1_claim ? 1'b1 : (pci_slave1_trdy_q ? 1'b1 : pci_irdy_in)) : pci_slave1_claim);
+assign pci_slave1_first_phase_next = (pci_slave1_first_phase ? (pci_slave1_claim ? 1'b1 : (pci_slave1_trdy_q ? 1'b1 : (pci_irdy_in ? 1'b1 : 1'b0))) : (pci_slave1_claim ? 1'b1 : 1'b0));
 
 
-assign pci_slave1_phase_step = (pci_slave1_space_mem ? (pci_slave1_claim ? 1'b1 : (pci_slave1_trdy_q ? 1'b0 : !pci_irdy_in)) : pci_slave1_claim);
+assign pci_slave1_phase_step = (pci_slave1_space_mem ? (pci_slave1_claim ? 1'b1 : (pci_slave1_trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1))) : (pci_slave1_claim ? 1'b1 : 1'b0));
 
 
-assign pci_slave1_write_done_next = (pci_slave1_is_read ? 1'b0 : (pci_slave1_trdy_q ? 1'b0 : !pci_irdy_in));
+assign pci_slave1_write_done_next = (pci_slave1_is_read ? 1'b0 : (pci_slave1_trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1)));
 
 
-assign pci_slave1_config_write_next = (pci_slave1_is_config ? (pci_slave1_is_read ? 1'b0 : (pci_slave1_trdy_q ? 1'b0 : !pci_irdy_in)) : 1'b0);
+assign pci_slave1_config_write_next = (pci_slave1_is_config ? (pci_slave1_is_read ? 1'b0 : (pci_slave1_trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1))) : 1'b0);
 
 
-assign pci_slave1_wq_valid_next = (pci_slave1_posting ? !pci_irdy_in : 1'b0);
+assign pci_slave1_wq_valid_next = (pci_slave1_posting ? (pci_irdy_in ? 1'b0 : 1'b1) : 1'b0);
 
 
-assign pci_slave1_b_valid_next = (pci_slave1_b_kept ? pci_irdy_in : 1'b0);
+assign pci_slave1_b_valid_next = (pci_slave1_b_kept ? (pci_irdy_in ? 1'b1 : 1'b0) : 1'b0);
 
 
 always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_slave1_io_byte, pci_slave1_b_valid, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_wq_valid, pci_slave1_space_mem, pci_slave1_h_be, pci_slave1_h_data, pci_slave1_is_config, pci_slave1_irdy_q, pci_slave1_req_addr_stale, pci_slave1_address_fault, pci_slave1_frame_q, pci_slave1_h_valid, pci_slave1_cbe_q) begin: pci_slave1_local_request
@@ -1392,41 +1392,41 @@ end
 
 wire pci_slave1_state_next_x0 = pci_slave1_control_case0_0_out_state[0];
 wire pci_slave1_state_next_y0 = pci_slave1_control_case2_0_out_state[0] ^ pci_slave1_control_case1_0_out_state[0];
-assign pci_slave1_state_next[0] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y0 ? 1'b0 : pci_slave1_state_next_x0) : pci_slave1_state_next_x0) : (pci_frame_in ? (pci_slave1_state_next_y0 ? 1'b0 : pci_slave1_state_next_x0) : (pci_slave1_state_next_y0 ? 1'b1 : pci_slave1_state_next_x0)));
+assign pci_slave1_state_next[0] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y0 ? 1'b0 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y0 ? 1'b0 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y0 ? 1'b1 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0))));
 wire pci_slave1_state_next_x1 = pci_slave1_control_case0_0_out_state[1];
 wire pci_slave1_state_next_y1 = pci_slave1_control_case2_0_out_state[1] ^ pci_slave1_control_case1_0_out_state[1];
-assign pci_slave1_state_next[1] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y1 ? 1'b0 : pci_slave1_state_next_x1) : pci_slave1_state_next_x1) : (pci_frame_in ? (pci_slave1_state_next_y1 ? 1'b0 : pci_slave1_state_next_x1) : (pci_slave1_state_next_y1 ? 1'b1 : pci_slave1_state_next_x1)));
+assign pci_slave1_state_next[1] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y1 ? 1'b0 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y1 ? 1'b0 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y1 ? 1'b1 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0))));
 wire pci_slave1_state_next_x2 = pci_slave1_control_case0_0_out_state[2];
 wire pci_slave1_state_next_y2 = pci_slave1_control_case2_0_out_state[2] ^ pci_slave1_control_case1_0_out_state[2];
-assign pci_slave1_state_next[2] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y2 ? 1'b0 : pci_slave1_state_next_x2) : pci_slave1_state_next_x2) : (pci_frame_in ? (pci_slave1_state_next_y2 ? 1'b0 : pci_slave1_state_next_x2) : (pci_slave1_state_next_y2 ? 1'b1 : pci_slave1_state_next_x2)));
+assign pci_slave1_state_next[2] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y2 ? 1'b0 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y2 ? 1'b0 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y2 ? 1'b1 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0))));
 wire pci_slave1_state_next_x3 = pci_slave1_control_case0_0_out_state[3];
 wire pci_slave1_state_next_y3 = pci_slave1_control_case0_0_out_state[3] ? pci_slave1_control_case2_0_out_state[3] : pci_slave1_control_case1_0_out_state[3];
-assign pci_slave1_state_next[3] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y3 ? 1'b1 : pci_slave1_state_next_x3) : pci_slave1_state_next_x3) : (pci_frame_in ? (pci_slave1_state_next_y3 ? 1'b1 : pci_slave1_state_next_x3) : (pci_slave1_state_next_y3 ? pci_slave1_state_next_x3 : 1'b0)));
+assign pci_slave1_state_next[3] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y3 ? 1'b1 : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y3 ? 1'b1 : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y3 ? (pci_slave1_state_next_x3 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire pci_slave1_trdy_next_x0 = pci_slave1_control_case0_0_out_trdy ^ pci_slave1_control_case1_0_out_trdy;
 wire pci_slave1_trdy_next_y0 = (pci_slave1_control_case0_0_out_trdy ^ pci_slave1_control_case1_0_out_trdy) ? pci_slave1_control_case2_0_out_trdy : pci_slave1_control_case0_0_out_trdy;
-assign pci_slave1_trdy_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_trdy_next_y0 ? 1'b1 : pci_slave1_trdy_next_x0) : (pci_slave1_trdy_next_y0 ? !pci_slave1_trdy_next_x0 : 1'b0)) : (pci_frame_in ? (pci_slave1_trdy_next_y0 ? 1'b1 : pci_slave1_trdy_next_x0) : pci_slave1_trdy_next_y0));
+assign pci_slave1_trdy_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_trdy_next_y0 ? 1'b1 : (pci_slave1_trdy_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_trdy_next_y0 ? (pci_slave1_trdy_next_x0 ? 1'b0 : 1'b1) : 1'b0)) : (pci_frame_in ? (pci_slave1_trdy_next_y0 ? 1'b1 : (pci_slave1_trdy_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_trdy_next_y0 ? 1'b1 : 1'b0)));
 
 
 wire pci_slave1_stop_next_x0 = pci_slave1_control_case0_0_out_stop;
 wire pci_slave1_stop_next_y0 = pci_slave1_control_case0_0_out_stop ? pci_slave1_control_case2_0_out_stop : pci_slave1_control_case1_0_out_stop;
-assign pci_slave1_stop_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_stop_next_y0 ? 1'b1 : pci_slave1_stop_next_x0) : pci_slave1_stop_next_x0) : (pci_frame_in ? (pci_slave1_stop_next_y0 ? 1'b1 : pci_slave1_stop_next_x0) : (pci_slave1_stop_next_y0 ? pci_slave1_stop_next_x0 : 1'b0)));
+assign pci_slave1_stop_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_stop_next_y0 ? 1'b1 : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_stop_next_y0 ? 1'b1 : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_stop_next_y0 ? (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire pci_slave1_devsel_next_x0 = pci_slave1_control_case0_0_out_devsel;
 wire pci_slave1_devsel_next_y0 = pci_slave1_control_case0_0_out_devsel ? pci_slave1_control_case2_0_out_devsel : pci_slave1_control_case1_0_out_devsel;
-assign pci_slave1_devsel_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_devsel_next_y0 ? 1'b1 : pci_slave1_devsel_next_x0) : pci_slave1_devsel_next_x0) : (pci_frame_in ? (pci_slave1_devsel_next_y0 ? 1'b1 : pci_slave1_devsel_next_x0) : (pci_slave1_devsel_next_y0 ? pci_slave1_devsel_next_x0 : 1'b0)));
+assign pci_slave1_devsel_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_devsel_next_y0 ? 1'b1 : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_devsel_next_y0 ? 1'b1 : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_devsel_next_y0 ? (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire pci_slave1_drive_next_x0 = pci_slave1_control_case0_0_out_drive;
 wire pci_slave1_drive_next_y0 = pci_slave1_control_case0_0_out_drive ? pci_slave1_control_case2_0_out_drive : pci_slave1_control_case1_0_out_drive;
-assign pci_slave1_drive_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_drive_next_y0 ? 1'b1 : pci_slave1_drive_next_x0) : pci_slave1_drive_next_x0) : (pci_frame_in ? (pci_slave1_drive_next_y0 ? 1'b1 : pci_slave1_drive_next_x0) : (pci_slave1_drive_next_y0 ? pci_slave1_drive_next_x0 : 1'b0)));
+assign pci_slave1_drive_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_drive_next_y0 ? 1'b1 : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_drive_next_y0 ? 1'b1 : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_drive_next_y0 ? (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire pci_slave1_ad_oe_next_x0 = pci_slave1_control_case0_0_out_ad_oe;
 wire pci_slave1_ad_oe_next_y0 = pci_slave1_control_case2_0_out_ad_oe ^ pci_slave1_control_case1_0_out_ad_oe;
-assign pci_slave1_ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : pci_slave1_ad_oe_next_x0) : pci_slave1_ad_oe_next_x0) : (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : pci_slave1_ad_oe_next_x0) : (pci_slave1_ad_oe_next_y0 ? 1'b1 : pci_slave1_ad_oe_next_x0)));
+assign pci_slave1_ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_y0 ? 1'b1 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_transaction

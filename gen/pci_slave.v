@@ -297,19 +297,19 @@ assign serr_armed = (frame_qq && (!frame_q) && serr_enable && parity_response);
 assign perr_armed = (write_done_q && parity_response);
 
 
-assign perr_next = (perr_armed ? (bus_parity ? pci_par_in : !pci_par_in) : 1'b1);
+assign perr_next = (perr_armed ? (bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
 
 
-assign perr_oe_next = (perr_q ? (perr_armed ? (bus_parity ? !pci_par_in : pci_par_in) : 1'b0) : 1'b1);
+assign perr_oe_next = (perr_q ? (perr_armed ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 
 
-assign serr_oe_next = (serr_armed ? (bus_parity ? !pci_par_in : pci_par_in) : 1'b0);
+assign serr_oe_next = (serr_armed ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
 
 
-assign address_fault_next = (parity_response ? (address_phase ? (bus_parity ? !pci_par_in : pci_par_in) : 1'b0) : 1'b0);
+assign address_fault_next = (parity_response ? (address_phase ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 
 
-assign parity_error_next = (write_done_q ? (bus_parity ? !pci_par_in : pci_par_in) : (address_phase ? (bus_parity ? !pci_par_in : pci_par_in) : 1'b0));
+assign parity_error_next = (write_done_q ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (address_phase ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
 
 
 always @(bar1, ad_q, address_phase, io_enable, bar0, cbe_q, idsel_q, mem_enable, state) begin: decode
@@ -340,22 +340,22 @@ always @(ad_q, claim_config, claim_io) begin: start_offset
 end
 
 
-assign first_phase_next = (first_phase ? (claim ? 1'b1 : (trdy_q ? 1'b1 : pci_irdy_in)) : claim);
+assign first_phase_next = (first_phase ? (claim ? 1'b1 : (trdy_q ? 1'b1 : (pci_irdy_in ? 1'b1 : 1'b0))) : (claim ? 1'b1 : 1'b0));
 
 
-assign phase_step = (space_mem ? (claim ? 1'b1 : (trdy_q ? 1'b0 : !pci_irdy_in)) : claim);
+assign phase_step = (space_mem ? (claim ? 1'b1 : (trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1))) : (claim ? 1'b1 : 1'b0));
 
 
-assign write_done_next = (is_read ? 1'b0 : (trdy_q ? 1'b0 : !pci_irdy_in));
+assign write_done_next = (is_read ? 1'b0 : (trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1)));
 
 
-assign config_write_next = (is_config ? (is_read ? 1'b0 : (trdy_q ? 1'b0 : !pci_irdy_in)) : 1'b0);
+assign config_write_next = (is_config ? (is_read ? 1'b0 : (trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1))) : 1'b0);
 
 
-assign wq_valid_next = (posting ? !pci_irdy_in : 1'b0);
+assign wq_valid_next = (posting ? (pci_irdy_in ? 1'b0 : 1'b1) : 1'b0);
 
 
-assign b_valid_next = (b_kept ? pci_irdy_in : 1'b0);
+assign b_valid_next = (b_kept ? (pci_irdy_in ? 1'b1 : 1'b0) : 1'b0);
 
 
 always @(ad_q, req_addr, first_pending, io_byte, b_valid, is_read, fetching, state, trdy_q, wq_valid, space_mem, h_be, h_data, is_config, irdy_q, req_addr_stale, address_fault, frame_q, h_valid, cbe_q) begin: local_request
@@ -865,41 +865,41 @@ end
 
 wire state_next_x0 = control_case0_out_state[0];
 wire state_next_y0 = control_case2_out_state[0] ^ control_case1_out_state[0];
-assign state_next[0] = (pci_irdy_in ? (pci_frame_in ? (state_next_y0 ? 1'b0 : state_next_x0) : state_next_x0) : (pci_frame_in ? (state_next_y0 ? 1'b0 : state_next_x0) : (state_next_y0 ? 1'b1 : state_next_x0)));
+assign state_next[0] = (pci_irdy_in ? (pci_frame_in ? (state_next_y0 ? 1'b0 : (state_next_x0 ? 1'b1 : 1'b0)) : (state_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (state_next_y0 ? 1'b0 : (state_next_x0 ? 1'b1 : 1'b0)) : (state_next_y0 ? 1'b1 : (state_next_x0 ? 1'b1 : 1'b0))));
 wire state_next_x1 = control_case0_out_state[1];
 wire state_next_y1 = control_case2_out_state[1] ^ control_case1_out_state[1];
-assign state_next[1] = (pci_irdy_in ? (pci_frame_in ? (state_next_y1 ? 1'b0 : state_next_x1) : state_next_x1) : (pci_frame_in ? (state_next_y1 ? 1'b0 : state_next_x1) : (state_next_y1 ? 1'b1 : state_next_x1)));
+assign state_next[1] = (pci_irdy_in ? (pci_frame_in ? (state_next_y1 ? 1'b0 : (state_next_x1 ? 1'b1 : 1'b0)) : (state_next_x1 ? 1'b1 : 1'b0)) : (pci_frame_in ? (state_next_y1 ? 1'b0 : (state_next_x1 ? 1'b1 : 1'b0)) : (state_next_y1 ? 1'b1 : (state_next_x1 ? 1'b1 : 1'b0))));
 wire state_next_x2 = control_case0_out_state[2];
 wire state_next_y2 = control_case2_out_state[2] ^ control_case1_out_state[2];
-assign state_next[2] = (pci_irdy_in ? (pci_frame_in ? (state_next_y2 ? 1'b0 : state_next_x2) : state_next_x2) : (pci_frame_in ? (state_next_y2 ? 1'b0 : state_next_x2) : (state_next_y2 ? 1'b1 : state_next_x2)));
+assign state_next[2] = (pci_irdy_in ? (pci_frame_in ? (state_next_y2 ? 1'b0 : (state_next_x2 ? 1'b1 : 1'b0)) : (state_next_x2 ? 1'b1 : 1'b0)) : (pci_frame_in ? (state_next_y2 ? 1'b0 : (state_next_x2 ? 1'b1 : 1'b0)) : (state_next_y2 ? 1'b1 : (state_next_x2 ? 1'b1 : 1'b0))));
 wire state_next_x3 = control_case0_out_state[3];
 wire state_next_y3 = control_case0_out_state[3] ? control_case2_out_state[3] : control_case1_out_state[3];
-assign state_next[3] = (pci_irdy_in ? (pci_frame_in ? (state_next_y3 ? 1'b1 : state_next_x3) : state_next_x3) : (pci_frame_in ? (state_next_y3 ? 1'b1 : state_next_x3) : (state_next_y3 ? state_next_x3 : 1'b0)));
+assign state_next[3] = (pci_irdy_in ? (pci_frame_in ? (state_next_y3 ? 1'b1 : (state_next_x3 ? 1'b1 : 1'b0)) : (state_next_x3 ? 1'b1 : 1'b0)) : (pci_frame_in ? (state_next_y3 ? 1'b1 : (state_next_x3 ? 1'b1 : 1'b0)) : (state_next_y3 ? (state_next_x3 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire trdy_next_x0 = control_case0_out_trdy ^ control_case1_out_trdy;
 wire trdy_next_y0 = (control_case0_out_trdy ^ control_case1_out_trdy) ? control_case2_out_trdy : control_case0_out_trdy;
-assign trdy_next = (pci_irdy_in ? (pci_frame_in ? (trdy_next_y0 ? 1'b1 : trdy_next_x0) : (trdy_next_y0 ? !trdy_next_x0 : 1'b0)) : (pci_frame_in ? (trdy_next_y0 ? 1'b1 : trdy_next_x0) : trdy_next_y0));
+assign trdy_next = (pci_irdy_in ? (pci_frame_in ? (trdy_next_y0 ? 1'b1 : (trdy_next_x0 ? 1'b1 : 1'b0)) : (trdy_next_y0 ? (trdy_next_x0 ? 1'b0 : 1'b1) : 1'b0)) : (pci_frame_in ? (trdy_next_y0 ? 1'b1 : (trdy_next_x0 ? 1'b1 : 1'b0)) : (trdy_next_y0 ? 1'b1 : 1'b0)));
 
 
 wire stop_next_x0 = control_case0_out_stop;
 wire stop_next_y0 = control_case0_out_stop ? control_case2_out_stop : control_case1_out_stop;
-assign stop_next = (pci_irdy_in ? (pci_frame_in ? (stop_next_y0 ? 1'b1 : stop_next_x0) : stop_next_x0) : (pci_frame_in ? (stop_next_y0 ? 1'b1 : stop_next_x0) : (stop_next_y0 ? stop_next_x0 : 1'b0)));
+assign stop_next = (pci_irdy_in ? (pci_frame_in ? (stop_next_y0 ? 1'b1 : (stop_next_x0 ? 1'b1 : 1'b0)) : (stop_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (stop_next_y0 ? 1'b1 : (stop_next_x0 ? 1'b1 : 1'b0)) : (stop_next_y0 ? (stop_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire devsel_next_x0 = control_case0_out_devsel;
 wire devsel_next_y0 = control_case0_out_devsel ? control_case2_out_devsel : control_case1_out_devsel;
-assign devsel_next = (pci_irdy_in ? (pci_frame_in ? (devsel_next_y0 ? 1'b1 : devsel_next_x0) : devsel_next_x0) : (pci_frame_in ? (devsel_next_y0 ? 1'b1 : devsel_next_x0) : (devsel_next_y0 ? devsel_next_x0 : 1'b0)));
+assign devsel_next = (pci_irdy_in ? (pci_frame_in ? (devsel_next_y0 ? 1'b1 : (devsel_next_x0 ? 1'b1 : 1'b0)) : (devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (devsel_next_y0 ? 1'b1 : (devsel_next_x0 ? 1'b1 : 1'b0)) : (devsel_next_y0 ? (devsel_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire drive_next_x0 = control_case0_out_drive;
 wire drive_next_y0 = control_case0_out_drive ? control_case2_out_drive : control_case1_out_drive;
-assign drive_next = (pci_irdy_in ? (pci_frame_in ? (drive_next_y0 ? 1'b1 : drive_next_x0) : drive_next_x0) : (pci_frame_in ? (drive_next_y0 ? 1'b1 : drive_next_x0) : (drive_next_y0 ? drive_next_x0 : 1'b0)));
+assign drive_next = (pci_irdy_in ? (pci_frame_in ? (drive_next_y0 ? 1'b1 : (drive_next_x0 ? 1'b1 : 1'b0)) : (drive_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (drive_next_y0 ? 1'b1 : (drive_next_x0 ? 1'b1 : 1'b0)) : (drive_next_y0 ? (drive_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire ad_oe_next_x0 = control_case0_out_ad_oe;
 wire ad_oe_next_y0 = control_case2_out_ad_oe ^ control_case1_out_ad_oe;
-assign ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : ad_oe_next_x0) : ad_oe_next_x0) : (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : ad_oe_next_x0) : (ad_oe_next_y0 ? 1'b1 : ad_oe_next_x0)));
+assign ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (ad_oe_next_y0 ? 1'b1 : (ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
 always @(posedge clock, negedge reset) begin: transaction

@@ -1365,35 +1365,35 @@ assign card1_pci_slave2_perr_armed = (card1_pci_slave2_write_done_q && card1_pci
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h9F9F)) card1_pci_slave2_perr_next_lut (.O(card1_pci_slave2_perr_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(1'b0));
 `else
-assign card1_pci_slave2_perr_next = (card1_pci_slave2_perr_armed ? (card1_pci_slave2_bus_parity ? pci_pads0_tristate_pad2_from_pin : !pci_pads0_tristate_pad2_from_pin) : 1'b1);
+assign card1_pci_slave2_perr_next = (card1_pci_slave2_perr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0) : (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1)) : 1'b1);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h60FF)) card1_pci_slave2_perr_oe_next_lut (.O(card1_pci_slave2_perr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(card1_pci_slave2_perr_q));
 `else
-assign card1_pci_slave2_perr_oe_next = (card1_pci_slave2_perr_q ? (card1_pci_slave2_perr_armed ? (card1_pci_slave2_bus_parity ? !pci_pads0_tristate_pad2_from_pin : pci_pads0_tristate_pad2_from_pin) : 1'b0) : 1'b1);
+assign card1_pci_slave2_perr_oe_next = (card1_pci_slave2_perr_q ? (card1_pci_slave2_perr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h6060)) card1_pci_slave2_serr_oe_next_lut (.O(card1_pci_slave2_serr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_serr_armed), .I3(1'b0));
 `else
-assign card1_pci_slave2_serr_oe_next = (card1_pci_slave2_serr_armed ? (card1_pci_slave2_bus_parity ? !pci_pads0_tristate_pad2_from_pin : pci_pads0_tristate_pad2_from_pin) : 1'b0);
+assign card1_pci_slave2_serr_oe_next = (card1_pci_slave2_serr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h6000)) card1_pci_slave2_address_fault_next_lut (.O(card1_pci_slave2_address_fault_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_parity_response));
 `else
-assign card1_pci_slave2_address_fault_next = (card1_pci_slave2_parity_response ? (card1_pci_slave2_address_phase ? (card1_pci_slave2_bus_parity ? !pci_pads0_tristate_pad2_from_pin : pci_pads0_tristate_pad2_from_pin) : 1'b0) : 1'b0);
+assign card1_pci_slave2_address_fault_next = (card1_pci_slave2_parity_response ? (card1_pci_slave2_address_phase ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h6660)) card1_pci_slave2_parity_error_next_lut (.O(card1_pci_slave2_parity_error_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_write_done_q));
 `else
-assign card1_pci_slave2_parity_error_next = (card1_pci_slave2_write_done_q ? (card1_pci_slave2_bus_parity ? !pci_pads0_tristate_pad2_from_pin : pci_pads0_tristate_pad2_from_pin) : (card1_pci_slave2_address_phase ? (card1_pci_slave2_bus_parity ? !pci_pads0_tristate_pad2_from_pin : pci_pads0_tristate_pad2_from_pin) : 1'b0));
+assign card1_pci_slave2_parity_error_next = (card1_pci_slave2_write_done_q ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : (card1_pci_slave2_address_phase ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
@@ -1428,42 +1428,42 @@ end
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFEF0)) card1_pci_slave2_first_phase_next_lut (.O(card1_pci_slave2_first_phase_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_claim), .I3(card1_pci_slave2_first_phase));
 `else
-assign card1_pci_slave2_first_phase_next = (card1_pci_slave2_first_phase ? (card1_pci_slave2_claim ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : pci_pads0_input_pad1_from_pin)) : card1_pci_slave2_claim);
+assign card1_pci_slave2_first_phase_next = (card1_pci_slave2_first_phase ? (card1_pci_slave2_claim ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0))) : (card1_pci_slave2_claim ? 1'b1 : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hF1F0)) card1_pci_slave2_phase_step_lut (.O(card1_pci_slave2_phase_step), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_claim), .I3(card1_pci_slave2_space_mem));
 `else
-assign card1_pci_slave2_phase_step = (card1_pci_slave2_space_mem ? (card1_pci_slave2_claim ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b0 : !pci_pads0_input_pad1_from_pin)) : card1_pci_slave2_claim);
+assign card1_pci_slave2_phase_step = (card1_pci_slave2_space_mem ? (card1_pci_slave2_claim ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_claim ? 1'b1 : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h0101)) card1_pci_slave2_write_done_next_lut (.O(card1_pci_slave2_write_done_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_is_read), .I3(1'b0));
 `else
-assign card1_pci_slave2_write_done_next = (card1_pci_slave2_is_read ? 1'b0 : (card1_pci_slave2_trdy_q ? 1'b0 : !pci_pads0_input_pad1_from_pin));
+assign card1_pci_slave2_write_done_next = (card1_pci_slave2_is_read ? 1'b0 : (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1)));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h0100)) card1_pci_slave2_config_write_next_lut (.O(card1_pci_slave2_config_write_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_is_read), .I3(card1_pci_slave2_is_config));
 `else
-assign card1_pci_slave2_config_write_next = (card1_pci_slave2_is_config ? (card1_pci_slave2_is_read ? 1'b0 : (card1_pci_slave2_trdy_q ? 1'b0 : !pci_pads0_input_pad1_from_pin)) : 1'b0);
+assign card1_pci_slave2_config_write_next = (card1_pci_slave2_is_config ? (card1_pci_slave2_is_read ? 1'b0 : (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h4444)) card1_pci_slave2_wq_valid_next_lut (.O(card1_pci_slave2_wq_valid_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_posting), .I2(1'b0), .I3(1'b0));
 `else
-assign card1_pci_slave2_wq_valid_next = (card1_pci_slave2_posting ? !pci_pads0_input_pad1_from_pin : 1'b0);
+assign card1_pci_slave2_wq_valid_next = (card1_pci_slave2_posting ? (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h8888)) card1_pci_slave2_b_valid_next_lut (.O(card1_pci_slave2_b_valid_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_b_kept), .I2(1'b0), .I3(1'b0));
 `else
-assign card1_pci_slave2_b_valid_next = (card1_pci_slave2_b_kept ? pci_pads0_input_pad1_from_pin : 1'b0);
+assign card1_pci_slave2_b_valid_next = (card1_pci_slave2_b_kept ? (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0) : 1'b0);
 `endif
 
 
@@ -1977,28 +1977,28 @@ wire card1_pci_slave2_state_next_y0 = card1_pci_slave2_control_case2_0_1_out_sta
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut0 (.O(card1_pci_slave2_state_next[0]), .I0(card1_pci_slave2_state_next_x0), .I1(card1_pci_slave2_state_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-assign card1_pci_slave2_state_next[0] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y0 ? 1'b0 : card1_pci_slave2_state_next_x0) : card1_pci_slave2_state_next_x0) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y0 ? 1'b0 : card1_pci_slave2_state_next_x0) : (card1_pci_slave2_state_next_y0 ? 1'b1 : card1_pci_slave2_state_next_x0)));
+assign card1_pci_slave2_state_next[0] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y0 ? 1'b0 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y0 ? 1'b0 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y0 ? 1'b1 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0))));
 `endif
 wire card1_pci_slave2_state_next_x1 = card1_pci_slave2_control_case0_0_1_out_state[1];
 wire card1_pci_slave2_state_next_y1 = card1_pci_slave2_control_case2_0_1_out_state[1] ^ card1_pci_slave2_control_case1_0_1_out_state[1];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut1 (.O(card1_pci_slave2_state_next[1]), .I0(card1_pci_slave2_state_next_x1), .I1(card1_pci_slave2_state_next_y1), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-assign card1_pci_slave2_state_next[1] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y1 ? 1'b0 : card1_pci_slave2_state_next_x1) : card1_pci_slave2_state_next_x1) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y1 ? 1'b0 : card1_pci_slave2_state_next_x1) : (card1_pci_slave2_state_next_y1 ? 1'b1 : card1_pci_slave2_state_next_x1)));
+assign card1_pci_slave2_state_next[1] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y1 ? 1'b0 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y1 ? 1'b0 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y1 ? 1'b1 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0))));
 `endif
 wire card1_pci_slave2_state_next_x2 = card1_pci_slave2_control_case0_0_1_out_state[2];
 wire card1_pci_slave2_state_next_y2 = card1_pci_slave2_control_case2_0_1_out_state[2] ^ card1_pci_slave2_control_case1_0_1_out_state[2];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut2 (.O(card1_pci_slave2_state_next[2]), .I0(card1_pci_slave2_state_next_x2), .I1(card1_pci_slave2_state_next_y2), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-assign card1_pci_slave2_state_next[2] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y2 ? 1'b0 : card1_pci_slave2_state_next_x2) : card1_pci_slave2_state_next_x2) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y2 ? 1'b0 : card1_pci_slave2_state_next_x2) : (card1_pci_slave2_state_next_y2 ? 1'b1 : card1_pci_slave2_state_next_x2)));
+assign card1_pci_slave2_state_next[2] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y2 ? 1'b0 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y2 ? 1'b0 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y2 ? 1'b1 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0))));
 `endif
 wire card1_pci_slave2_state_next_x3 = card1_pci_slave2_control_case0_0_1_out_state[3];
 wire card1_pci_slave2_state_next_y3 = card1_pci_slave2_control_case0_0_1_out_state[3] ? card1_pci_slave2_control_case2_0_1_out_state[3] : card1_pci_slave2_control_case1_0_1_out_state[3];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_state_next_lut3 (.O(card1_pci_slave2_state_next[3]), .I0(card1_pci_slave2_state_next_x3), .I1(card1_pci_slave2_state_next_y3), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-assign card1_pci_slave2_state_next[3] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y3 ? 1'b1 : card1_pci_slave2_state_next_x3) : card1_pci_slave2_state_next_x3) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y3 ? 1'b1 : card1_pci_slave2_state_next_x3) : (card1_pci_slave2_state_next_y3 ? card1_pci_slave2_state_next_x3 : 1'b0)));
+assign card1_pci_slave2_state_next[3] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y3 ? 1'b1 : (card1_pci_slave2_state_next_x3 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x3 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y3 ? 1'b1 : (card1_pci_slave2_state_next_x3 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y3 ? (card1_pci_slave2_state_next_x3 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -2007,7 +2007,7 @@ wire card1_pci_slave2_trdy_next_y0 = (card1_pci_slave2_control_case0_0_1_out_trd
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hE4EC)) card1_pci_slave2_trdy_next_lut0 (.O(card1_pci_slave2_trdy_next), .I0(card1_pci_slave2_trdy_next_x0), .I1(card1_pci_slave2_trdy_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-assign card1_pci_slave2_trdy_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_trdy_next_y0 ? 1'b1 : card1_pci_slave2_trdy_next_x0) : (card1_pci_slave2_trdy_next_y0 ? !card1_pci_slave2_trdy_next_x0 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_trdy_next_y0 ? 1'b1 : card1_pci_slave2_trdy_next_x0) : card1_pci_slave2_trdy_next_y0));
+assign card1_pci_slave2_trdy_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_trdy_next_y0 ? 1'b1 : (card1_pci_slave2_trdy_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_trdy_next_y0 ? (card1_pci_slave2_trdy_next_x0 ? 1'b0 : 1'b1) : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_trdy_next_y0 ? 1'b1 : (card1_pci_slave2_trdy_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_trdy_next_y0 ? 1'b1 : 1'b0)));
 `endif
 
 
@@ -2016,7 +2016,7 @@ wire card1_pci_slave2_stop_next_y0 = card1_pci_slave2_control_case0_0_1_out_stop
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_stop_next_lut0 (.O(card1_pci_slave2_stop_next), .I0(card1_pci_slave2_stop_next_x0), .I1(card1_pci_slave2_stop_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-assign card1_pci_slave2_stop_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_stop_next_y0 ? 1'b1 : card1_pci_slave2_stop_next_x0) : card1_pci_slave2_stop_next_x0) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_stop_next_y0 ? 1'b1 : card1_pci_slave2_stop_next_x0) : (card1_pci_slave2_stop_next_y0 ? card1_pci_slave2_stop_next_x0 : 1'b0)));
+assign card1_pci_slave2_stop_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_stop_next_y0 ? 1'b1 : (card1_pci_slave2_stop_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_stop_next_y0 ? 1'b1 : (card1_pci_slave2_stop_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_stop_next_y0 ? (card1_pci_slave2_stop_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -2025,7 +2025,7 @@ wire card1_pci_slave2_devsel_next_y0 = card1_pci_slave2_control_case0_0_1_out_de
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_devsel_next_lut0 (.O(card1_pci_slave2_devsel_next), .I0(card1_pci_slave2_devsel_next_x0), .I1(card1_pci_slave2_devsel_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-assign card1_pci_slave2_devsel_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_devsel_next_y0 ? 1'b1 : card1_pci_slave2_devsel_next_x0) : card1_pci_slave2_devsel_next_x0) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_devsel_next_y0 ? 1'b1 : card1_pci_slave2_devsel_next_x0) : (card1_pci_slave2_devsel_next_y0 ? card1_pci_slave2_devsel_next_x0 : 1'b0)));
+assign card1_pci_slave2_devsel_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_devsel_next_y0 ? 1'b1 : (card1_pci_slave2_devsel_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_devsel_next_y0 ? 1'b1 : (card1_pci_slave2_devsel_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_devsel_next_y0 ? (card1_pci_slave2_devsel_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -2034,7 +2034,7 @@ wire card1_pci_slave2_drive_next_y0 = card1_pci_slave2_control_case0_0_1_out_dri
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_drive_next_lut0 (.O(card1_pci_slave2_drive_next), .I0(card1_pci_slave2_drive_next_x0), .I1(card1_pci_slave2_drive_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-assign card1_pci_slave2_drive_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_drive_next_y0 ? 1'b1 : card1_pci_slave2_drive_next_x0) : card1_pci_slave2_drive_next_x0) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_drive_next_y0 ? 1'b1 : card1_pci_slave2_drive_next_x0) : (card1_pci_slave2_drive_next_y0 ? card1_pci_slave2_drive_next_x0 : 1'b0)));
+assign card1_pci_slave2_drive_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_drive_next_y0 ? 1'b1 : (card1_pci_slave2_drive_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_drive_next_y0 ? 1'b1 : (card1_pci_slave2_drive_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_drive_next_y0 ? (card1_pci_slave2_drive_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -2043,7 +2043,7 @@ wire card1_pci_slave2_ad_oe_next_y0 = card1_pci_slave2_control_case2_0_1_out_ad_
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_ad_oe_next_lut0 (.O(card1_pci_slave2_ad_oe_next), .I0(card1_pci_slave2_ad_oe_next_x0), .I1(card1_pci_slave2_ad_oe_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-assign card1_pci_slave2_ad_oe_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_ad_oe_next_y0 ? 1'b0 : card1_pci_slave2_ad_oe_next_x0) : card1_pci_slave2_ad_oe_next_x0) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_ad_oe_next_y0 ? 1'b0 : card1_pci_slave2_ad_oe_next_x0) : (card1_pci_slave2_ad_oe_next_y0 ? 1'b1 : card1_pci_slave2_ad_oe_next_x0)));
+assign card1_pci_slave2_ad_oe_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_ad_oe_next_y0 ? 1'b0 : (card1_pci_slave2_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_ad_oe_next_y0 ? 1'b0 : (card1_pci_slave2_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_ad_oe_next_y0 ? 1'b1 : (card1_pci_slave2_ad_oe_next_x0 ? 1'b1 : 1'b0))));
 `endif
 
 
@@ -2137,224 +2137,224 @@ end
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut33_out_lut (.O(card1_pci_slave2_pin_lut33_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[0]), .I3(card1_pci_slave2_read_source[0]));
 `else
-assign card1_pci_slave2_pin_lut33_out = (card1_pci_slave2_read_source[0] ? (card1_pci_slave2_ad_out_q[0] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[0] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut33_out = (card1_pci_slave2_read_source[0] ? (card1_pci_slave2_ad_out_q[0] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[0] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut34_out_lut (.O(card1_pci_slave2_pin_lut34_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[1]), .I3(card1_pci_slave2_read_source[1]));
 `else
-assign card1_pci_slave2_pin_lut34_out = (card1_pci_slave2_read_source[1] ? (card1_pci_slave2_ad_out_q[1] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[1] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut34_out = (card1_pci_slave2_read_source[1] ? (card1_pci_slave2_ad_out_q[1] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[1] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut35_out_lut (.O(card1_pci_slave2_pin_lut35_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[2]), .I3(card1_pci_slave2_read_source[2]));
 `else
-assign card1_pci_slave2_pin_lut35_out = (card1_pci_slave2_read_source[2] ? (card1_pci_slave2_ad_out_q[2] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[2] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut35_out = (card1_pci_slave2_read_source[2] ? (card1_pci_slave2_ad_out_q[2] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[2] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut36_out_lut (.O(card1_pci_slave2_pin_lut36_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[3]), .I3(card1_pci_slave2_read_source[3]));
 `else
-assign card1_pci_slave2_pin_lut36_out = (card1_pci_slave2_read_source[3] ? (card1_pci_slave2_ad_out_q[3] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[3] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut36_out = (card1_pci_slave2_read_source[3] ? (card1_pci_slave2_ad_out_q[3] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[3] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut37_out_lut (.O(card1_pci_slave2_pin_lut37_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[4]), .I3(card1_pci_slave2_read_source[4]));
 `else
-assign card1_pci_slave2_pin_lut37_out = (card1_pci_slave2_read_source[4] ? (card1_pci_slave2_ad_out_q[4] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[4] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut37_out = (card1_pci_slave2_read_source[4] ? (card1_pci_slave2_ad_out_q[4] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[4] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut38_out_lut (.O(card1_pci_slave2_pin_lut38_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[5]), .I3(card1_pci_slave2_read_source[5]));
 `else
-assign card1_pci_slave2_pin_lut38_out = (card1_pci_slave2_read_source[5] ? (card1_pci_slave2_ad_out_q[5] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[5] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut38_out = (card1_pci_slave2_read_source[5] ? (card1_pci_slave2_ad_out_q[5] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[5] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut39_out_lut (.O(card1_pci_slave2_pin_lut39_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[6]), .I3(card1_pci_slave2_read_source[6]));
 `else
-assign card1_pci_slave2_pin_lut39_out = (card1_pci_slave2_read_source[6] ? (card1_pci_slave2_ad_out_q[6] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[6] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut39_out = (card1_pci_slave2_read_source[6] ? (card1_pci_slave2_ad_out_q[6] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[6] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut40_out_lut (.O(card1_pci_slave2_pin_lut40_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[7]), .I3(card1_pci_slave2_read_source[7]));
 `else
-assign card1_pci_slave2_pin_lut40_out = (card1_pci_slave2_read_source[7] ? (card1_pci_slave2_ad_out_q[7] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[7] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut40_out = (card1_pci_slave2_read_source[7] ? (card1_pci_slave2_ad_out_q[7] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[7] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut41_out_lut (.O(card1_pci_slave2_pin_lut41_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[8]), .I3(card1_pci_slave2_read_source[8]));
 `else
-assign card1_pci_slave2_pin_lut41_out = (card1_pci_slave2_read_source[8] ? (card1_pci_slave2_ad_out_q[8] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[8] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut41_out = (card1_pci_slave2_read_source[8] ? (card1_pci_slave2_ad_out_q[8] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[8] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut42_out_lut (.O(card1_pci_slave2_pin_lut42_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[9]), .I3(card1_pci_slave2_read_source[9]));
 `else
-assign card1_pci_slave2_pin_lut42_out = (card1_pci_slave2_read_source[9] ? (card1_pci_slave2_ad_out_q[9] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[9] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut42_out = (card1_pci_slave2_read_source[9] ? (card1_pci_slave2_ad_out_q[9] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[9] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut43_out_lut (.O(card1_pci_slave2_pin_lut43_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[10]), .I3(card1_pci_slave2_read_source[10]));
 `else
-assign card1_pci_slave2_pin_lut43_out = (card1_pci_slave2_read_source[10] ? (card1_pci_slave2_ad_out_q[10] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[10] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut43_out = (card1_pci_slave2_read_source[10] ? (card1_pci_slave2_ad_out_q[10] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[10] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut44_out_lut (.O(card1_pci_slave2_pin_lut44_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[11]), .I3(card1_pci_slave2_read_source[11]));
 `else
-assign card1_pci_slave2_pin_lut44_out = (card1_pci_slave2_read_source[11] ? (card1_pci_slave2_ad_out_q[11] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[11] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut44_out = (card1_pci_slave2_read_source[11] ? (card1_pci_slave2_ad_out_q[11] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[11] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut45_out_lut (.O(card1_pci_slave2_pin_lut45_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[12]), .I3(card1_pci_slave2_read_source[12]));
 `else
-assign card1_pci_slave2_pin_lut45_out = (card1_pci_slave2_read_source[12] ? (card1_pci_slave2_ad_out_q[12] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[12] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut45_out = (card1_pci_slave2_read_source[12] ? (card1_pci_slave2_ad_out_q[12] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[12] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut46_out_lut (.O(card1_pci_slave2_pin_lut46_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[13]), .I3(card1_pci_slave2_read_source[13]));
 `else
-assign card1_pci_slave2_pin_lut46_out = (card1_pci_slave2_read_source[13] ? (card1_pci_slave2_ad_out_q[13] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[13] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut46_out = (card1_pci_slave2_read_source[13] ? (card1_pci_slave2_ad_out_q[13] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[13] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut47_out_lut (.O(card1_pci_slave2_pin_lut47_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[14]), .I3(card1_pci_slave2_read_source[14]));
 `else
-assign card1_pci_slave2_pin_lut47_out = (card1_pci_slave2_read_source[14] ? (card1_pci_slave2_ad_out_q[14] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[14] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut47_out = (card1_pci_slave2_read_source[14] ? (card1_pci_slave2_ad_out_q[14] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[14] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut48_out_lut (.O(card1_pci_slave2_pin_lut48_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[15]), .I3(card1_pci_slave2_read_source[15]));
 `else
-assign card1_pci_slave2_pin_lut48_out = (card1_pci_slave2_read_source[15] ? (card1_pci_slave2_ad_out_q[15] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[15] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut48_out = (card1_pci_slave2_read_source[15] ? (card1_pci_slave2_ad_out_q[15] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[15] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut49_out_lut (.O(card1_pci_slave2_pin_lut49_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[16]), .I3(card1_pci_slave2_read_source[16]));
 `else
-assign card1_pci_slave2_pin_lut49_out = (card1_pci_slave2_read_source[16] ? (card1_pci_slave2_ad_out_q[16] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[16] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut49_out = (card1_pci_slave2_read_source[16] ? (card1_pci_slave2_ad_out_q[16] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[16] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut50_out_lut (.O(card1_pci_slave2_pin_lut50_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[17]), .I3(card1_pci_slave2_read_source[17]));
 `else
-assign card1_pci_slave2_pin_lut50_out = (card1_pci_slave2_read_source[17] ? (card1_pci_slave2_ad_out_q[17] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[17] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut50_out = (card1_pci_slave2_read_source[17] ? (card1_pci_slave2_ad_out_q[17] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[17] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut51_out_lut (.O(card1_pci_slave2_pin_lut51_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[18]), .I3(card1_pci_slave2_read_source[18]));
 `else
-assign card1_pci_slave2_pin_lut51_out = (card1_pci_slave2_read_source[18] ? (card1_pci_slave2_ad_out_q[18] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[18] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut51_out = (card1_pci_slave2_read_source[18] ? (card1_pci_slave2_ad_out_q[18] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[18] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut52_out_lut (.O(card1_pci_slave2_pin_lut52_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[19]), .I3(card1_pci_slave2_read_source[19]));
 `else
-assign card1_pci_slave2_pin_lut52_out = (card1_pci_slave2_read_source[19] ? (card1_pci_slave2_ad_out_q[19] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[19] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut52_out = (card1_pci_slave2_read_source[19] ? (card1_pci_slave2_ad_out_q[19] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[19] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut53_out_lut (.O(card1_pci_slave2_pin_lut53_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[20]), .I3(card1_pci_slave2_read_source[20]));
 `else
-assign card1_pci_slave2_pin_lut53_out = (card1_pci_slave2_read_source[20] ? (card1_pci_slave2_ad_out_q[20] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[20] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut53_out = (card1_pci_slave2_read_source[20] ? (card1_pci_slave2_ad_out_q[20] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[20] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut54_out_lut (.O(card1_pci_slave2_pin_lut54_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[21]), .I3(card1_pci_slave2_read_source[21]));
 `else
-assign card1_pci_slave2_pin_lut54_out = (card1_pci_slave2_read_source[21] ? (card1_pci_slave2_ad_out_q[21] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[21] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut54_out = (card1_pci_slave2_read_source[21] ? (card1_pci_slave2_ad_out_q[21] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[21] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut55_out_lut (.O(card1_pci_slave2_pin_lut55_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[22]), .I3(card1_pci_slave2_read_source[22]));
 `else
-assign card1_pci_slave2_pin_lut55_out = (card1_pci_slave2_read_source[22] ? (card1_pci_slave2_ad_out_q[22] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[22] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut55_out = (card1_pci_slave2_read_source[22] ? (card1_pci_slave2_ad_out_q[22] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[22] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut56_out_lut (.O(card1_pci_slave2_pin_lut56_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[23]), .I3(card1_pci_slave2_read_source[23]));
 `else
-assign card1_pci_slave2_pin_lut56_out = (card1_pci_slave2_read_source[23] ? (card1_pci_slave2_ad_out_q[23] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[23] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut56_out = (card1_pci_slave2_read_source[23] ? (card1_pci_slave2_ad_out_q[23] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[23] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut57_out_lut (.O(card1_pci_slave2_pin_lut57_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[24]), .I3(card1_pci_slave2_read_source[24]));
 `else
-assign card1_pci_slave2_pin_lut57_out = (card1_pci_slave2_read_source[24] ? (card1_pci_slave2_ad_out_q[24] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[24] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut57_out = (card1_pci_slave2_read_source[24] ? (card1_pci_slave2_ad_out_q[24] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[24] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut58_out_lut (.O(card1_pci_slave2_pin_lut58_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[25]), .I3(card1_pci_slave2_read_source[25]));
 `else
-assign card1_pci_slave2_pin_lut58_out = (card1_pci_slave2_read_source[25] ? (card1_pci_slave2_ad_out_q[25] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[25] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut58_out = (card1_pci_slave2_read_source[25] ? (card1_pci_slave2_ad_out_q[25] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[25] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut59_out_lut (.O(card1_pci_slave2_pin_lut59_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[26]), .I3(card1_pci_slave2_read_source[26]));
 `else
-assign card1_pci_slave2_pin_lut59_out = (card1_pci_slave2_read_source[26] ? (card1_pci_slave2_ad_out_q[26] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[26] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut59_out = (card1_pci_slave2_read_source[26] ? (card1_pci_slave2_ad_out_q[26] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[26] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut60_out_lut (.O(card1_pci_slave2_pin_lut60_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[27]), .I3(card1_pci_slave2_read_source[27]));
 `else
-assign card1_pci_slave2_pin_lut60_out = (card1_pci_slave2_read_source[27] ? (card1_pci_slave2_ad_out_q[27] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[27] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut60_out = (card1_pci_slave2_read_source[27] ? (card1_pci_slave2_ad_out_q[27] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[27] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut61_out_lut (.O(card1_pci_slave2_pin_lut61_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[28]), .I3(card1_pci_slave2_read_source[28]));
 `else
-assign card1_pci_slave2_pin_lut61_out = (card1_pci_slave2_read_source[28] ? (card1_pci_slave2_ad_out_q[28] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[28] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut61_out = (card1_pci_slave2_read_source[28] ? (card1_pci_slave2_ad_out_q[28] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[28] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut62_out_lut (.O(card1_pci_slave2_pin_lut62_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[29]), .I3(card1_pci_slave2_read_source[29]));
 `else
-assign card1_pci_slave2_pin_lut62_out = (card1_pci_slave2_read_source[29] ? (card1_pci_slave2_ad_out_q[29] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[29] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut62_out = (card1_pci_slave2_read_source[29] ? (card1_pci_slave2_ad_out_q[29] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[29] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut63_out_lut (.O(card1_pci_slave2_pin_lut63_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[30]), .I3(card1_pci_slave2_read_source[30]));
 `else
-assign card1_pci_slave2_pin_lut63_out = (card1_pci_slave2_read_source[30] ? (card1_pci_slave2_ad_out_q[30] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[30] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut63_out = (card1_pci_slave2_read_source[30] ? (card1_pci_slave2_ad_out_q[30] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[30] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut64_out_lut (.O(card1_pci_slave2_pin_lut64_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[31]), .I3(card1_pci_slave2_read_source[31]));
 `else
-assign card1_pci_slave2_pin_lut64_out = (card1_pci_slave2_read_source[31] ? (card1_pci_slave2_ad_out_q[31] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : !pci_pads0_input_pad1_from_pin)) : (card1_pci_slave2_ad_out_q[31] ? (card1_pci_slave2_trdy_q ? 1'b0 : pci_pads0_input_pad1_from_pin) : 1'b0));
+assign card1_pci_slave2_pin_lut64_out = (card1_pci_slave2_read_source[31] ? (card1_pci_slave2_ad_out_q[31] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[31] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 

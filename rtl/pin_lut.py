@@ -10,9 +10,9 @@
 The nested ``? :`` tests the inputs from the last to the first (``in0``,
 the pin, innermost) and leaves out every input the function does not
 depend on under the inputs tested before it.  Verilog merges the two
-branches of a ``? :`` whose condition is X bit by bit, so an input that
-floats (X or Z, as AD, C/BE# and PAR do between transactions) makes the
-output X only when the output really depends on it.
+branches of a ``? :`` whose condition is X or Z bit by bit, so an input
+that floats (as AD, C/BE# and PAR do between transactions) makes the
+output X only when the output really depends on it, and never Z.
 """
 from myhdl import block, instance
 
@@ -40,11 +40,7 @@ def lut_expression(inputs, function):
         high, low = expand(level - 1, (1, *bits)), expand(level - 1, (0, *bits))
         if high == low:
             return high
-        if (high, low) == (ONE, ZERO):
-            return net
-        if (high, low) == (ZERO, ONE):
-            return f"!{net}"
-        return f"({net} ? {high} : {low})"
+        return f"({net} ? {high} : {low})"  # a bare input would pass a Z on: a LUT drives 0, 1 or X
 
     return expand(len(inputs), ())
 
