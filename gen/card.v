@@ -520,7 +520,7 @@ wire card_core0_regs_fifo1_sequencer1_discard;
 reg [31:0] card_core0_regs_fifo1_sequencer1_dwell_left;
 reg [2:0] card_core0_regs_fifo1_sequencer1_fetched;
 reg card_core0_regs_fifo1_sequencer1_finishing;
-reg [31:0] card_core0_regs_fifo1_sequencer1_header;
+reg [16:0] card_core0_regs_fifo1_sequencer1_header;
 wire card_core0_regs_fifo1_sequencer1_issue;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mask_high;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mask_low;
@@ -530,11 +530,11 @@ reg [3:0] card_core0_regs_fifo1_sequencer1_next_error;
 reg card_core0_regs_fifo1_sequencer1_next_known;
 reg card_core0_regs_fifo1_sequencer1_next_motion;
 reg card_core0_regs_fifo1_sequencer1_next_valid;
-wire [3:0] card_core0_regs_fifo1_sequencer1_opcode;
+reg [3:0] card_core0_regs_fifo1_sequencer1_opcode;
 reg [31:0] card_core0_regs_fifo1_sequencer1_operand_0;
-reg [31:0] card_core0_regs_fifo1_sequencer1_operand_1;
-reg [31:0] card_core0_regs_fifo1_sequencer1_operand_2;
-reg [31:0] card_core0_regs_fifo1_sequencer1_operand_3;
+reg [23:0] card_core0_regs_fifo1_sequencer1_operand_1;
+reg [23:0] card_core0_regs_fifo1_sequencer1_operand_2;
+reg [23:0] card_core0_regs_fifo1_sequencer1_operand_3;
 reg card_core0_regs_fifo1_sequencer1_set_known;
 reg [2:0] card_core0_regs_fifo1_sequencer1_state;
 reg card_core0_regs_fifo1_sequencer1_state_over;
@@ -581,17 +581,29 @@ reg card_core0_regs_fifo1_feed_rate1_step_zero;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_target_s;
 wire [16:0] card_core0_regs_fifo1_feed_rate1_total;
 reg [26:0] card_core0_regs_fifo1_feed_rate1_feed_stop_left;
+reg [23:0] card_core0_regs_fifo1_direct_pulse2_count_addend;
+reg [23:0] card_core0_regs_fifo1_direct_pulse2_count_operand;
+wire [23:0] card_core0_regs_fifo1_direct_pulse2_counted;
 reg [15:0] card_core0_regs_fifo1_direct_pulse2_gap;
+wire [15:0] card_core0_regs_fifo1_direct_pulse2_gap_less;
+reg [15:0] card_core0_regs_fifo1_direct_pulse2_gap_operand;
 reg card_core0_regs_fifo1_direct_pulse2_pending;
 reg card_core0_regs_fifo1_direct_pulse2_waiting;
 reg card_core0_regs_fifo1_direct_pulse2_command_load;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse2_command_count;
+reg [23:0] card_core0_regs_fifo1_direct_pulse3_count_addend;
+reg [23:0] card_core0_regs_fifo1_direct_pulse3_count_operand;
+wire [23:0] card_core0_regs_fifo1_direct_pulse3_counted;
 reg [15:0] card_core0_regs_fifo1_direct_pulse3_gap;
+wire [15:0] card_core0_regs_fifo1_direct_pulse3_gap_less;
+reg [15:0] card_core0_regs_fifo1_direct_pulse3_gap_operand;
 reg card_core0_regs_fifo1_direct_pulse3_pending;
 reg card_core0_regs_fifo1_direct_pulse3_waiting;
 reg card_core0_regs_fifo1_direct_pulse3_command_load;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse3_command_count;
 reg [2:0] card_core0_regs_fifo1_pulse_out1_count;
+reg signed [1:0] card_core0_regs_fifo1_pulse_out1_delta_x;
+reg signed [1:0] card_core0_regs_fifo1_pulse_out1_delta_y;
 reg card_core0_regs_fifo1_pulse_out1_dir_level_x;
 reg card_core0_regs_fifo1_pulse_out1_dir_level_y;
 wire [1:0] card_core0_regs_fifo1_pulse_out1_free_slot;
@@ -3002,10 +3014,6 @@ assign card_core0_regs_fifo1_sequencer1_arriving_coord_fits = ((card_core0_regs_
 assign card_core0_regs_fifo1_sequencer1_arriving_count_fits = ((card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 511));
 
 
-
-assign card_core0_regs_fifo1_sequencer1_opcode = card_core0_regs_fifo1_sequencer1_header[32-1:28];
-
-
 always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_arriving
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_arriving_count = 0;
@@ -3050,8 +3058,8 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_sequencer1_lookup_count
-    case (card_core0_regs_fifo1_sequencer1_header[32-1:28])
+always @(card_core0_regs_fifo1_sequencer1_opcode) begin: card_core0_regs_fifo1_sequencer1_lookup_count
+    case (card_core0_regs_fifo1_sequencer1_opcode)
         0: card_core0_regs_fifo1_sequencer1_next_count = 0;
         1: card_core0_regs_fifo1_sequencer1_next_count = 2;
         2: card_core0_regs_fifo1_sequencer1_next_count = 4;
@@ -3138,8 +3146,8 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_sequencer1_lookup_coords
-    case (card_core0_regs_fifo1_sequencer1_header[32-1:28])
+always @(card_core0_regs_fifo1_sequencer1_opcode) begin: card_core0_regs_fifo1_sequencer1_lookup_coords
+    case (card_core0_regs_fifo1_sequencer1_opcode)
         0: card_core0_regs_fifo1_sequencer1_coord_mask = 0;
         1: card_core0_regs_fifo1_sequencer1_coord_mask = 3;
         2: card_core0_regs_fifo1_sequencer1_coord_mask = 15;
@@ -3160,8 +3168,8 @@ always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_s
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_sequencer1_lookup_counts
-    case (card_core0_regs_fifo1_sequencer1_header[32-1:28])
+always @(card_core0_regs_fifo1_sequencer1_opcode) begin: card_core0_regs_fifo1_sequencer1_lookup_counts
+    case (card_core0_regs_fifo1_sequencer1_opcode)
         0: card_core0_regs_fifo1_sequencer1_count_mask = 0;
         1: card_core0_regs_fifo1_sequencer1_count_mask = 0;
         2: card_core0_regs_fifo1_sequencer1_count_mask = 0;
@@ -3237,6 +3245,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
         card_core0_regs_fifo1_sequencer1_header <= 0;
         card_core0_regs_fifo1_sequencer1_operand_1 <= 0;
         card_core0_regs_fifo1_sequencer1_bad_header_bits <= 0;
+        card_core0_regs_fifo1_sequencer1_opcode <= 0;
         card_core0_regs_fifo1_sequencer1_fetched <= 0;
         card_core0_regs_fifo1_sequencer1_operand_2 <= 0;
     end
@@ -3253,7 +3262,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
             end
             if (card_core0_regs_fifo1_sequencer1_word_due) begin
                 if ((card_core0_regs_fifo1_sequencer1_fetched == 0)) begin
-                    card_core0_regs_fifo1_sequencer1_header <= card_core0_regs_fifo1_fifo_dout;
+                    card_core0_regs_fifo1_sequencer1_opcode <= card_core0_regs_fifo1_fifo_dout[32-1:28];
+                    card_core0_regs_fifo1_sequencer1_header <= card_core0_regs_fifo1_fifo_dout[17-1:0];
                     card_core0_regs_fifo1_sequencer1_next_motion <= card_core0_regs_fifo1_sequencer1_arriving_moves;
                     card_core0_regs_fifo1_sequencer1_bad_opcode <= (!card_core0_regs_fifo1_sequencer1_next_known);
                     card_core0_regs_fifo1_sequencer1_bad_header_bits <= (((card_core0_regs_fifo1_fifo_dout[32-1:16] & (~card_core0_regs_fifo1_sequencer1_mask_high)) != 0) || ((card_core0_regs_fifo1_fifo_dout[16-1:0] & (~card_core0_regs_fifo1_sequencer1_mask_low)) != 0));
@@ -3272,13 +3282,13 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
                             card_core0_regs_fifo1_sequencer1_operand_0 <= card_core0_regs_fifo1_fifo_dout;
                         end
                         'h2: begin
-                            card_core0_regs_fifo1_sequencer1_operand_1 <= card_core0_regs_fifo1_fifo_dout;
+                            card_core0_regs_fifo1_sequencer1_operand_1 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
                         end
                         'h3: begin
-                            card_core0_regs_fifo1_sequencer1_operand_2 <= card_core0_regs_fifo1_fifo_dout;
+                            card_core0_regs_fifo1_sequencer1_operand_2 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
                         end
                         default: begin
-                            card_core0_regs_fifo1_sequencer1_operand_3 <= card_core0_regs_fifo1_fifo_dout;
+                            card_core0_regs_fifo1_sequencer1_operand_3 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
                         end
                     endcase
                     if (((card_core0_regs_fifo1_sequencer1_coord_mask[($signed({1'b0, card_core0_regs_fifo1_sequencer1_fetched}) - 1)] && (!card_core0_regs_fifo1_sequencer1_arriving_coord_fits)) || (card_core0_regs_fifo1_sequencer1_count_mask[($signed({1'b0, card_core0_regs_fifo1_sequencer1_fetched}) - 1)] && (!card_core0_regs_fifo1_sequencer1_arriving_count_fits)))) begin
@@ -3582,6 +3592,37 @@ end
 assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending);
 
 
+always @(card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count, card_core0_regs_fifo1_reg_word43_shown) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
+    if ((!card_core0_regs_fifo1_direct_pulse2_command_load)) begin
+        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word43_shown;
+        card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
+    end
+    else if ((card_core0_regs_fifo1_direct_pulse2_command_count < 0)) begin
+        card_core0_regs_fifo1_direct_pulse2_count_operand = (~card_core0_regs_fifo1_direct_pulse2_command_count[24-1:0]);
+        card_core0_regs_fifo1_direct_pulse2_count_addend = 1;
+    end
+    else begin
+        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_direct_pulse2_command_count[24-1:0];
+        card_core0_regs_fifo1_direct_pulse2_count_addend = 0;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word41_shown, card_core0_regs_fifo1_direct_pulse2_waiting, card_core0_regs_fifo1_direct_pulse2_gap) begin: card_core0_regs_fifo1_direct_pulse2_gap_operands
+    if (card_core0_regs_fifo1_direct_pulse2_waiting) begin
+        card_core0_regs_fifo1_direct_pulse2_gap_operand = card_core0_regs_fifo1_direct_pulse2_gap;
+    end
+    else begin
+        card_core0_regs_fifo1_direct_pulse2_gap_operand = card_core0_regs_fifo1_reg_word41_shown;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_direct_pulse2_counted = (card_core0_regs_fifo1_direct_pulse2_count_operand + card_core0_regs_fifo1_direct_pulse2_count_addend);
+assign card_core0_regs_fifo1_direct_pulse2_gap_less = (card_core0_regs_fifo1_direct_pulse2_gap_operand - 1);
+
+
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse2_emit
     if (reset == 0) begin
         card_core0_regs_fifo1_direct_dir_x <= 0;
@@ -3598,28 +3639,22 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             card_core0_regs_fifo1_direct_pulse2_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse2_command_load) begin
-            if ((card_core0_regs_fifo1_direct_pulse2_command_count < 0)) begin
-                card_core0_regs_fifo1_reg_word43_shown <= (-card_core0_regs_fifo1_direct_pulse2_command_count);
-                card_core0_regs_fifo1_direct_dir_x <= 0;
-            end
-            else begin
-                card_core0_regs_fifo1_reg_word43_shown <= card_core0_regs_fifo1_direct_pulse2_command_count;
-                card_core0_regs_fifo1_direct_dir_x <= 1;
-            end
+            card_core0_regs_fifo1_reg_word43_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+            card_core0_regs_fifo1_direct_dir_x <= (card_core0_regs_fifo1_direct_pulse2_command_count >= 0);
             card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_command_count != 0);
             card_core0_regs_fifo1_direct_pulse2_gap <= 0;
             card_core0_regs_fifo1_direct_pulse2_waiting <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse2_pending) begin
             if (card_core0_regs_fifo1_direct_pulse2_waiting) begin
-                card_core0_regs_fifo1_direct_pulse2_gap <= (card_core0_regs_fifo1_direct_pulse2_gap - 1);
+                card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
                 card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_direct_pulse2_gap != 1);
             end
             else if (card_core0_regs_fifo1_out_ready) begin
                 card_core0_regs_fifo1_direct_request_x <= 1;
-                card_core0_regs_fifo1_reg_word43_shown <= (card_core0_regs_fifo1_reg_word43_shown - 1);
+                card_core0_regs_fifo1_reg_word43_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
                 card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word43_shown != 1);
-                card_core0_regs_fifo1_direct_pulse2_gap <= (card_core0_regs_fifo1_reg_word41_shown - 1);
+                card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
                 card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_reg_word41_shown != 1);
             end
         end
@@ -3629,6 +3664,37 @@ end
 
 
 assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending);
+
+
+always @(card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count, card_core0_regs_fifo1_reg_word44_shown) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
+    if ((!card_core0_regs_fifo1_direct_pulse3_command_load)) begin
+        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word44_shown;
+        card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
+    end
+    else if ((card_core0_regs_fifo1_direct_pulse3_command_count < 0)) begin
+        card_core0_regs_fifo1_direct_pulse3_count_operand = (~card_core0_regs_fifo1_direct_pulse3_command_count[24-1:0]);
+        card_core0_regs_fifo1_direct_pulse3_count_addend = 1;
+    end
+    else begin
+        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_direct_pulse3_command_count[24-1:0];
+        card_core0_regs_fifo1_direct_pulse3_count_addend = 0;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word42_shown, card_core0_regs_fifo1_direct_pulse3_waiting, card_core0_regs_fifo1_direct_pulse3_gap) begin: card_core0_regs_fifo1_direct_pulse3_gap_operands
+    if (card_core0_regs_fifo1_direct_pulse3_waiting) begin
+        card_core0_regs_fifo1_direct_pulse3_gap_operand = card_core0_regs_fifo1_direct_pulse3_gap;
+    end
+    else begin
+        card_core0_regs_fifo1_direct_pulse3_gap_operand = card_core0_regs_fifo1_reg_word42_shown;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_direct_pulse3_counted = (card_core0_regs_fifo1_direct_pulse3_count_operand + card_core0_regs_fifo1_direct_pulse3_count_addend);
+assign card_core0_regs_fifo1_direct_pulse3_gap_less = (card_core0_regs_fifo1_direct_pulse3_gap_operand - 1);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse3_emit
@@ -3647,28 +3713,22 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             card_core0_regs_fifo1_direct_pulse3_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse3_command_load) begin
-            if ((card_core0_regs_fifo1_direct_pulse3_command_count < 0)) begin
-                card_core0_regs_fifo1_reg_word44_shown <= (-card_core0_regs_fifo1_direct_pulse3_command_count);
-                card_core0_regs_fifo1_direct_dir_y <= 0;
-            end
-            else begin
-                card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_direct_pulse3_command_count;
-                card_core0_regs_fifo1_direct_dir_y <= 1;
-            end
+            card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+            card_core0_regs_fifo1_direct_dir_y <= (card_core0_regs_fifo1_direct_pulse3_command_count >= 0);
             card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_command_count != 0);
             card_core0_regs_fifo1_direct_pulse3_gap <= 0;
             card_core0_regs_fifo1_direct_pulse3_waiting <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse3_pending) begin
             if (card_core0_regs_fifo1_direct_pulse3_waiting) begin
-                card_core0_regs_fifo1_direct_pulse3_gap <= (card_core0_regs_fifo1_direct_pulse3_gap - 1);
+                card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
                 card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_gap != 1);
             end
             else if (card_core0_regs_fifo1_out_ready) begin
                 card_core0_regs_fifo1_direct_request_y <= 1;
-                card_core0_regs_fifo1_reg_word44_shown <= (card_core0_regs_fifo1_reg_word44_shown - 1);
+                card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
                 card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word44_shown != 1);
-                card_core0_regs_fifo1_direct_pulse3_gap <= (card_core0_regs_fifo1_reg_word42_shown - 1);
+                card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
                 card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_reg_word42_shown != 1);
             end
         end
@@ -3813,6 +3873,18 @@ assign card_core0_regs_fifo1_pulse_out1_last_slot = (card_core0_regs_fifo1_pulse
 assign card_core0_regs_fifo1_pulse_out1_free_slot = card_core0_regs_fifo1_pulse_out1_count[2-1:0];
 
 
+always @(card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y) begin: card_core0_regs_fifo1_pulse_out1_step_sense
+    card_core0_regs_fifo1_pulse_out1_delta_x = 1;
+    if ((!card_core0_regs_fifo1_pulse_out1_dir_level_x)) begin
+        card_core0_regs_fifo1_pulse_out1_delta_x = (-1);
+    end
+    card_core0_regs_fifo1_pulse_out1_delta_y = 1;
+    if ((!card_core0_regs_fifo1_pulse_out1_dir_level_y)) begin
+        card_core0_regs_fifo1_pulse_out1_delta_y = (-1);
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_drive_pins
     if (reset == 0) begin
         pins_step_x <= 0;
@@ -3833,20 +3905,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_d
         end
         else begin
             if ((card_core0_regs_fifo1_pulse_out1_level_x && (!pins_step_x))) begin
-                if (card_core0_regs_fifo1_pulse_out1_dir_level_x) begin
-                    card_core0_regs_fifo1_pulse_out1_position_x <= (card_core0_regs_fifo1_pulse_out1_position_x + 1);
-                end
-                else begin
-                    card_core0_regs_fifo1_pulse_out1_position_x <= (card_core0_regs_fifo1_pulse_out1_position_x - 1);
-                end
+                card_core0_regs_fifo1_pulse_out1_position_x <= (card_core0_regs_fifo1_pulse_out1_position_x + card_core0_regs_fifo1_pulse_out1_delta_x);
             end
             if ((card_core0_regs_fifo1_pulse_out1_level_y && (!pins_step_y))) begin
-                if (card_core0_regs_fifo1_pulse_out1_dir_level_y) begin
-                    card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y + 1);
-                end
-                else begin
-                    card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y - 1);
-                end
+                card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y + card_core0_regs_fifo1_pulse_out1_delta_y);
             end
         end
     end

@@ -419,7 +419,7 @@ wire sequencer0_discard;
 reg [31:0] sequencer0_dwell_left;
 reg [2:0] sequencer0_fetched;
 reg sequencer0_finishing;
-reg [31:0] sequencer0_header;
+reg [16:0] sequencer0_header;
 wire sequencer0_issue;
 reg [15:0] sequencer0_mask_high;
 reg [15:0] sequencer0_mask_low;
@@ -429,11 +429,11 @@ reg [3:0] sequencer0_next_error;
 reg sequencer0_next_known;
 reg sequencer0_next_motion;
 reg sequencer0_next_valid;
-wire [3:0] sequencer0_opcode;
+reg [3:0] sequencer0_opcode;
 reg [31:0] sequencer0_operand_0;
-reg [31:0] sequencer0_operand_1;
-reg [31:0] sequencer0_operand_2;
-reg [31:0] sequencer0_operand_3;
+reg [23:0] sequencer0_operand_1;
+reg [23:0] sequencer0_operand_2;
+reg [23:0] sequencer0_operand_3;
 reg sequencer0_set_known;
 reg [2:0] sequencer0_state;
 reg sequencer0_state_over;
@@ -465,17 +465,29 @@ reg [15:0] feed_rate0_step_s;
 reg feed_rate0_step_zero;
 reg [15:0] feed_rate0_target_s;
 wire [16:0] feed_rate0_total;
+reg [23:0] direct_pulse0_count_addend;
+reg [23:0] direct_pulse0_count_operand;
+wire [23:0] direct_pulse0_counted;
 reg [15:0] direct_pulse0_gap;
+wire [15:0] direct_pulse0_gap_less;
+reg [15:0] direct_pulse0_gap_operand;
 reg direct_pulse0_pending;
 reg direct_pulse0_waiting;
 reg direct_pulse0_command_load;
 reg signed [23:0] direct_pulse0_command_count;
+reg [23:0] direct_pulse1_count_addend;
+reg [23:0] direct_pulse1_count_operand;
+wire [23:0] direct_pulse1_counted;
 reg [15:0] direct_pulse1_gap;
+wire [15:0] direct_pulse1_gap_less;
+reg [15:0] direct_pulse1_gap_operand;
 reg direct_pulse1_pending;
 reg direct_pulse1_waiting;
 reg direct_pulse1_command_load;
 reg signed [23:0] direct_pulse1_command_count;
 reg [2:0] pulse_out0_count;
+reg signed [1:0] pulse_out0_delta_x;
+reg signed [1:0] pulse_out0_delta_y;
 reg pulse_out0_dir_level_x;
 reg pulse_out0_dir_level_y;
 wire [1:0] pulse_out0_free_slot;
@@ -1733,10 +1745,6 @@ assign sequencer0_arriving_coord_fits = ((fifo_dout[32-1:(24 - 1)] == 0) || (fif
 assign sequencer0_arriving_count_fits = ((fifo_dout[32-1:(24 - 1)] == 0) || (fifo_dout[32-1:(24 - 1)] == 511));
 
 
-
-assign sequencer0_opcode = sequencer0_header[32-1:28];
-
-
 always @(fifo_dout) begin: sequencer0_lookup_arriving
     case (fifo_dout[32-1:28])
         0: sequencer0_arriving_count = 0;
@@ -1781,8 +1789,8 @@ always @(fifo_dout) begin: sequencer0_lookup_arriving_kind
 end
 
 
-always @(sequencer0_header) begin: sequencer0_lookup_count
-    case (sequencer0_header[32-1:28])
+always @(sequencer0_opcode) begin: sequencer0_lookup_count
+    case (sequencer0_opcode)
         0: sequencer0_next_count = 0;
         1: sequencer0_next_count = 2;
         2: sequencer0_next_count = 4;
@@ -1869,8 +1877,8 @@ always @(fifo_dout) begin: sequencer0_lookup_mask_low
 end
 
 
-always @(sequencer0_header) begin: sequencer0_lookup_coords
-    case (sequencer0_header[32-1:28])
+always @(sequencer0_opcode) begin: sequencer0_lookup_coords
+    case (sequencer0_opcode)
         0: sequencer0_coord_mask = 0;
         1: sequencer0_coord_mask = 3;
         2: sequencer0_coord_mask = 15;
@@ -1891,8 +1899,8 @@ always @(sequencer0_header) begin: sequencer0_lookup_coords
 end
 
 
-always @(sequencer0_header) begin: sequencer0_lookup_counts
-    case (sequencer0_header[32-1:28])
+always @(sequencer0_opcode) begin: sequencer0_lookup_counts
+    case (sequencer0_opcode)
         0: sequencer0_count_mask = 0;
         1: sequencer0_count_mask = 0;
         2: sequencer0_count_mask = 0;
@@ -1968,6 +1976,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
         sequencer0_header <= 0;
         sequencer0_operand_1 <= 0;
         sequencer0_bad_header_bits <= 0;
+        sequencer0_opcode <= 0;
         sequencer0_fetched <= 0;
         sequencer0_operand_2 <= 0;
     end
@@ -1984,7 +1993,8 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
             end
             if (sequencer0_word_due) begin
                 if ((sequencer0_fetched == 0)) begin
-                    sequencer0_header <= fifo_dout;
+                    sequencer0_opcode <= fifo_dout[32-1:28];
+                    sequencer0_header <= fifo_dout[17-1:0];
                     sequencer0_next_motion <= sequencer0_arriving_moves;
                     sequencer0_bad_opcode <= (!sequencer0_next_known);
                     sequencer0_bad_header_bits <= (((fifo_dout[32-1:16] & (~sequencer0_mask_high)) != 0) || ((fifo_dout[16-1:0] & (~sequencer0_mask_low)) != 0));
@@ -2003,13 +2013,13 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
                             sequencer0_operand_0 <= fifo_dout;
                         end
                         'h2: begin
-                            sequencer0_operand_1 <= fifo_dout;
+                            sequencer0_operand_1 <= fifo_dout[24-1:0];
                         end
                         'h3: begin
-                            sequencer0_operand_2 <= fifo_dout;
+                            sequencer0_operand_2 <= fifo_dout[24-1:0];
                         end
                         default: begin
-                            sequencer0_operand_3 <= fifo_dout;
+                            sequencer0_operand_3 <= fifo_dout[24-1:0];
                         end
                     endcase
                     if (((sequencer0_coord_mask[($signed({1'b0, sequencer0_fetched}) - 1)] && (!sequencer0_arriving_coord_fits)) || (sequencer0_count_mask[($signed({1'b0, sequencer0_fetched}) - 1)] && (!sequencer0_arriving_count_fits)))) begin
@@ -2313,6 +2323,37 @@ end
 assign direct_busy_x = (direct_pulse0_command_load || direct_pulse0_pending);
 
 
+always @(direct_pulse0_command_load, direct_pulse0_command_count, reg_word19_shown) begin: direct_pulse0_count_operands
+    if ((!direct_pulse0_command_load)) begin
+        direct_pulse0_count_operand = reg_word19_shown;
+        direct_pulse0_count_addend = 16777215;
+    end
+    else if ((direct_pulse0_command_count < 0)) begin
+        direct_pulse0_count_operand = (~direct_pulse0_command_count[24-1:0]);
+        direct_pulse0_count_addend = 1;
+    end
+    else begin
+        direct_pulse0_count_operand = direct_pulse0_command_count[24-1:0];
+        direct_pulse0_count_addend = 0;
+    end
+end
+
+
+always @(reg_word17_shown, direct_pulse0_waiting, direct_pulse0_gap) begin: direct_pulse0_gap_operands
+    if (direct_pulse0_waiting) begin
+        direct_pulse0_gap_operand = direct_pulse0_gap;
+    end
+    else begin
+        direct_pulse0_gap_operand = reg_word17_shown;
+    end
+end
+
+
+
+assign direct_pulse0_counted = (direct_pulse0_count_operand + direct_pulse0_count_addend);
+assign direct_pulse0_gap_less = (direct_pulse0_gap_operand - 1);
+
+
 always @(posedge clock, negedge reset) begin: direct_pulse0_emit
     if (reset == 0) begin
         direct_dir_x <= 0;
@@ -2329,28 +2370,22 @@ always @(posedge clock, negedge reset) begin: direct_pulse0_emit
             direct_pulse0_pending <= 0;
         end
         else if (direct_pulse0_command_load) begin
-            if ((direct_pulse0_command_count < 0)) begin
-                reg_word19_shown <= (-direct_pulse0_command_count);
-                direct_dir_x <= 0;
-            end
-            else begin
-                reg_word19_shown <= direct_pulse0_command_count;
-                direct_dir_x <= 1;
-            end
+            reg_word19_shown <= direct_pulse0_counted;
+            direct_dir_x <= (direct_pulse0_command_count >= 0);
             direct_pulse0_pending <= (direct_pulse0_command_count != 0);
             direct_pulse0_gap <= 0;
             direct_pulse0_waiting <= 0;
         end
         else if (direct_pulse0_pending) begin
             if (direct_pulse0_waiting) begin
-                direct_pulse0_gap <= (direct_pulse0_gap - 1);
+                direct_pulse0_gap <= direct_pulse0_gap_less;
                 direct_pulse0_waiting <= (direct_pulse0_gap != 1);
             end
             else if (out_ready) begin
                 direct_request_x <= 1;
-                reg_word19_shown <= (reg_word19_shown - 1);
+                reg_word19_shown <= direct_pulse0_counted;
                 direct_pulse0_pending <= (reg_word19_shown != 1);
-                direct_pulse0_gap <= (reg_word17_shown - 1);
+                direct_pulse0_gap <= direct_pulse0_gap_less;
                 direct_pulse0_waiting <= (reg_word17_shown != 1);
             end
         end
@@ -2360,6 +2395,37 @@ end
 
 
 assign direct_busy_y = (direct_pulse1_command_load || direct_pulse1_pending);
+
+
+always @(direct_pulse1_command_load, direct_pulse1_command_count, reg_word20_shown) begin: direct_pulse1_count_operands
+    if ((!direct_pulse1_command_load)) begin
+        direct_pulse1_count_operand = reg_word20_shown;
+        direct_pulse1_count_addend = 16777215;
+    end
+    else if ((direct_pulse1_command_count < 0)) begin
+        direct_pulse1_count_operand = (~direct_pulse1_command_count[24-1:0]);
+        direct_pulse1_count_addend = 1;
+    end
+    else begin
+        direct_pulse1_count_operand = direct_pulse1_command_count[24-1:0];
+        direct_pulse1_count_addend = 0;
+    end
+end
+
+
+always @(reg_word18_shown, direct_pulse1_waiting, direct_pulse1_gap) begin: direct_pulse1_gap_operands
+    if (direct_pulse1_waiting) begin
+        direct_pulse1_gap_operand = direct_pulse1_gap;
+    end
+    else begin
+        direct_pulse1_gap_operand = reg_word18_shown;
+    end
+end
+
+
+
+assign direct_pulse1_counted = (direct_pulse1_count_operand + direct_pulse1_count_addend);
+assign direct_pulse1_gap_less = (direct_pulse1_gap_operand - 1);
 
 
 always @(posedge clock, negedge reset) begin: direct_pulse1_emit
@@ -2378,28 +2444,22 @@ always @(posedge clock, negedge reset) begin: direct_pulse1_emit
             direct_pulse1_pending <= 0;
         end
         else if (direct_pulse1_command_load) begin
-            if ((direct_pulse1_command_count < 0)) begin
-                reg_word20_shown <= (-direct_pulse1_command_count);
-                direct_dir_y <= 0;
-            end
-            else begin
-                reg_word20_shown <= direct_pulse1_command_count;
-                direct_dir_y <= 1;
-            end
+            reg_word20_shown <= direct_pulse1_counted;
+            direct_dir_y <= (direct_pulse1_command_count >= 0);
             direct_pulse1_pending <= (direct_pulse1_command_count != 0);
             direct_pulse1_gap <= 0;
             direct_pulse1_waiting <= 0;
         end
         else if (direct_pulse1_pending) begin
             if (direct_pulse1_waiting) begin
-                direct_pulse1_gap <= (direct_pulse1_gap - 1);
+                direct_pulse1_gap <= direct_pulse1_gap_less;
                 direct_pulse1_waiting <= (direct_pulse1_gap != 1);
             end
             else if (out_ready) begin
                 direct_request_y <= 1;
-                reg_word20_shown <= (reg_word20_shown - 1);
+                reg_word20_shown <= direct_pulse1_counted;
                 direct_pulse1_pending <= (reg_word20_shown != 1);
-                direct_pulse1_gap <= (reg_word18_shown - 1);
+                direct_pulse1_gap <= direct_pulse1_gap_less;
                 direct_pulse1_waiting <= (reg_word18_shown != 1);
             end
         end
@@ -2544,6 +2604,18 @@ assign pulse_out0_last_slot = (pulse_out0_count[2-1:0] - 1);
 assign pulse_out0_free_slot = pulse_out0_count[2-1:0];
 
 
+always @(pulse_out0_dir_level_x, pulse_out0_dir_level_y) begin: pulse_out0_step_sense
+    pulse_out0_delta_x = 1;
+    if ((!pulse_out0_dir_level_x)) begin
+        pulse_out0_delta_x = (-1);
+    end
+    pulse_out0_delta_y = 1;
+    if ((!pulse_out0_dir_level_y)) begin
+        pulse_out0_delta_y = (-1);
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: pulse_out0_drive_pins
     if (reset == 0) begin
         pins_step_x <= 0;
@@ -2564,20 +2636,10 @@ always @(posedge clock, negedge reset) begin: pulse_out0_drive_pins
         end
         else begin
             if ((pulse_out0_level_x && (!pins_step_x))) begin
-                if (pulse_out0_dir_level_x) begin
-                    pulse_out0_position_x <= (pulse_out0_position_x + 1);
-                end
-                else begin
-                    pulse_out0_position_x <= (pulse_out0_position_x - 1);
-                end
+                pulse_out0_position_x <= (pulse_out0_position_x + pulse_out0_delta_x);
             end
             if ((pulse_out0_level_y && (!pins_step_y))) begin
-                if (pulse_out0_dir_level_y) begin
-                    position_y <= (position_y + 1);
-                end
-                else begin
-                    position_y <= (position_y - 1);
-                end
+                position_y <= (position_y + pulse_out0_delta_y);
             end
         end
     end

@@ -544,7 +544,7 @@ wire card1_card_core1_regs_fifo2_sequencer2_discard;
 reg [31:0] card1_card_core1_regs_fifo2_sequencer2_dwell_left;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_fetched;
 reg card1_card_core1_regs_fifo2_sequencer2_finishing;
-reg [31:0] card1_card_core1_regs_fifo2_sequencer2_header;
+reg [16:0] card1_card_core1_regs_fifo2_sequencer2_header;
 wire card1_card_core1_regs_fifo2_sequencer2_issue;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mask_high;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mask_low;
@@ -554,11 +554,11 @@ reg [3:0] card1_card_core1_regs_fifo2_sequencer2_next_error;
 reg card1_card_core1_regs_fifo2_sequencer2_next_known;
 reg card1_card_core1_regs_fifo2_sequencer2_next_motion;
 reg card1_card_core1_regs_fifo2_sequencer2_next_valid;
-wire [3:0] card1_card_core1_regs_fifo2_sequencer2_opcode;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_opcode;
 reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_0;
-reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_1;
-reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_2;
-reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_3;
+reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_1;
+reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_2;
+reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_3;
 reg card1_card_core1_regs_fifo2_sequencer2_set_known;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
 reg card1_card_core1_regs_fifo2_sequencer2_state_over;
@@ -605,17 +605,29 @@ reg card1_card_core1_regs_fifo2_feed_rate2_step_zero;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_target_s;
 wire [16:0] card1_card_core1_regs_fifo2_feed_rate2_total;
 reg [26:0] card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left;
+reg [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count_addend;
+reg [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count_operand;
+wire [23:0] card1_card_core1_regs_fifo2_direct_pulse4_counted;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap;
+wire [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
+reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap_operand;
 reg card1_card_core1_regs_fifo2_direct_pulse4_pending;
 reg card1_card_core1_regs_fifo2_direct_pulse4_waiting;
 reg card1_card_core1_regs_fifo2_direct_pulse4_command_load;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse4_command_count;
+reg [23:0] card1_card_core1_regs_fifo2_direct_pulse5_count_addend;
+reg [23:0] card1_card_core1_regs_fifo2_direct_pulse5_count_operand;
+wire [23:0] card1_card_core1_regs_fifo2_direct_pulse5_counted;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap;
+wire [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
+reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap_operand;
 reg card1_card_core1_regs_fifo2_direct_pulse5_pending;
 reg card1_card_core1_regs_fifo2_direct_pulse5_waiting;
 reg card1_card_core1_regs_fifo2_direct_pulse5_command_load;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse5_command_count;
 reg [2:0] card1_card_core1_regs_fifo2_pulse_out2_count;
+reg signed [1:0] card1_card_core1_regs_fifo2_pulse_out2_delta_x;
+reg signed [1:0] card1_card_core1_regs_fifo2_pulse_out2_delta_y;
 reg card1_card_core1_regs_fifo2_pulse_out2_dir_level_x;
 reg card1_card_core1_regs_fifo2_pulse_out2_dir_level_y;
 wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_free_slot;
@@ -3834,10 +3846,6 @@ assign card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits = ((card1_card
 assign card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits = ((card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 511));
 
 
-
-assign card1_card_core1_regs_fifo2_sequencer2_opcode = card1_card_core1_regs_fifo2_sequencer2_header[32-1:28];
-
-
 always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_arriving
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
@@ -3882,8 +3890,8 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_count
-    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+always @(card1_card_core1_regs_fifo2_sequencer2_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_count
+    case (card1_card_core1_regs_fifo2_sequencer2_opcode)
         0: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_next_count = 2;
         2: card1_card_core1_regs_fifo2_sequencer2_next_count = 4;
@@ -3970,8 +3978,8 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_coords
-    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+always @(card1_card_core1_regs_fifo2_sequencer2_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_coords
+    case (card1_card_core1_regs_fifo2_sequencer2_opcode)
         0: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 3;
         2: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 15;
@@ -3992,8 +4000,8 @@ always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_counts
-    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+always @(card1_card_core1_regs_fifo2_sequencer2_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_counts
+    case (card1_card_core1_regs_fifo2_sequencer2_opcode)
         0: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
         2: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
@@ -4069,6 +4077,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
         card1_card_core1_regs_fifo2_sequencer2_header <= 0;
         card1_card_core1_regs_fifo2_sequencer2_operand_1 <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_opcode <= 0;
         card1_card_core1_regs_fifo2_sequencer2_fetched <= 0;
         card1_card_core1_regs_fifo2_sequencer2_operand_2 <= 0;
     end
@@ -4085,7 +4094,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
             end
             if (card1_card_core1_regs_fifo2_sequencer2_word_due) begin
                 if ((card1_card_core1_regs_fifo2_sequencer2_fetched == 0)) begin
-                    card1_card_core1_regs_fifo2_sequencer2_header <= card1_card_core1_regs_fifo2_fifo_dout;
+                    card1_card_core1_regs_fifo2_sequencer2_opcode <= card1_card_core1_regs_fifo2_fifo_dout[32-1:28];
+                    card1_card_core1_regs_fifo2_sequencer2_header <= card1_card_core1_regs_fifo2_fifo_dout[17-1:0];
                     card1_card_core1_regs_fifo2_sequencer2_next_motion <= card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
                     card1_card_core1_regs_fifo2_sequencer2_bad_opcode <= (!card1_card_core1_regs_fifo2_sequencer2_next_known);
                     card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= (((card1_card_core1_regs_fifo2_fifo_dout[32-1:16] & (~card1_card_core1_regs_fifo2_sequencer2_mask_high)) != 0) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:0] & (~card1_card_core1_regs_fifo2_sequencer2_mask_low)) != 0));
@@ -4104,13 +4114,13 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                             card1_card_core1_regs_fifo2_sequencer2_operand_0 <= card1_card_core1_regs_fifo2_fifo_dout;
                         end
                         'h2: begin
-                            card1_card_core1_regs_fifo2_sequencer2_operand_1 <= card1_card_core1_regs_fifo2_fifo_dout;
+                            card1_card_core1_regs_fifo2_sequencer2_operand_1 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
                         end
                         'h3: begin
-                            card1_card_core1_regs_fifo2_sequencer2_operand_2 <= card1_card_core1_regs_fifo2_fifo_dout;
+                            card1_card_core1_regs_fifo2_sequencer2_operand_2 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
                         end
                         default: begin
-                            card1_card_core1_regs_fifo2_sequencer2_operand_3 <= card1_card_core1_regs_fifo2_fifo_dout;
+                            card1_card_core1_regs_fifo2_sequencer2_operand_3 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
                         end
                     endcase
                     if (((card1_card_core1_regs_fifo2_sequencer2_coord_mask[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] && (!card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits)) || (card1_card_core1_regs_fifo2_sequencer2_count_mask[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] && (!card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits)))) begin
@@ -4414,6 +4424,37 @@ end
 assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending);
 
 
+always @(card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count, card1_card_core1_regs_fifo2_reg_word67_shown) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
+    if ((!card1_card_core1_regs_fifo2_direct_pulse4_command_load)) begin
+        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word67_shown;
+        card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
+    end
+    else if ((card1_card_core1_regs_fifo2_direct_pulse4_command_count < 0)) begin
+        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = (~card1_card_core1_regs_fifo2_direct_pulse4_command_count[24-1:0]);
+        card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_direct_pulse4_command_count[24-1:0];
+        card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 0;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word65_shown, card1_card_core1_regs_fifo2_direct_pulse4_waiting, card1_card_core1_regs_fifo2_direct_pulse4_gap) begin: card1_card_core1_regs_fifo2_direct_pulse4_gap_operands
+    if (card1_card_core1_regs_fifo2_direct_pulse4_waiting) begin
+        card1_card_core1_regs_fifo2_direct_pulse4_gap_operand = card1_card_core1_regs_fifo2_direct_pulse4_gap;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_direct_pulse4_gap_operand = card1_card_core1_regs_fifo2_reg_word65_shown;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_direct_pulse4_counted = (card1_card_core1_regs_fifo2_direct_pulse4_count_operand + card1_card_core1_regs_fifo2_direct_pulse4_count_addend);
+assign card1_card_core1_regs_fifo2_direct_pulse4_gap_less = (card1_card_core1_regs_fifo2_direct_pulse4_gap_operand - 1);
+
+
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct_pulse4_emit
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_direct_dir_x <= 0;
@@ -4430,28 +4471,22 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_command_load) begin
-            if ((card1_card_core1_regs_fifo2_direct_pulse4_command_count < 0)) begin
-                card1_card_core1_regs_fifo2_reg_word67_shown <= (-card1_card_core1_regs_fifo2_direct_pulse4_command_count);
-                card1_card_core1_regs_fifo2_direct_dir_x <= 0;
-            end
-            else begin
-                card1_card_core1_regs_fifo2_reg_word67_shown <= card1_card_core1_regs_fifo2_direct_pulse4_command_count;
-                card1_card_core1_regs_fifo2_direct_dir_x <= 1;
-            end
+            card1_card_core1_regs_fifo2_reg_word67_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+            card1_card_core1_regs_fifo2_direct_dir_x <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count >= 0);
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
             card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_pending) begin
             if (card1_card_core1_regs_fifo2_direct_pulse4_waiting) begin
-                card1_card_core1_regs_fifo2_direct_pulse4_gap <= (card1_card_core1_regs_fifo2_direct_pulse4_gap - 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_direct_pulse4_gap != 1);
             end
             else if (card1_card_core1_regs_fifo2_out_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_x <= 1;
-                card1_card_core1_regs_fifo2_reg_word67_shown <= (card1_card_core1_regs_fifo2_reg_word67_shown - 1);
+                card1_card_core1_regs_fifo2_reg_word67_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
                 card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word67_shown != 1);
-                card1_card_core1_regs_fifo2_direct_pulse4_gap <= (card1_card_core1_regs_fifo2_reg_word65_shown - 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_reg_word65_shown != 1);
             end
         end
@@ -4461,6 +4496,37 @@ end
 
 
 assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending);
+
+
+always @(card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count, card1_card_core1_regs_fifo2_reg_word68_shown) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
+    if ((!card1_card_core1_regs_fifo2_direct_pulse5_command_load)) begin
+        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word68_shown;
+        card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
+    end
+    else if ((card1_card_core1_regs_fifo2_direct_pulse5_command_count < 0)) begin
+        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = (~card1_card_core1_regs_fifo2_direct_pulse5_command_count[24-1:0]);
+        card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_direct_pulse5_command_count[24-1:0];
+        card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 0;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word66_shown, card1_card_core1_regs_fifo2_direct_pulse5_waiting, card1_card_core1_regs_fifo2_direct_pulse5_gap) begin: card1_card_core1_regs_fifo2_direct_pulse5_gap_operands
+    if (card1_card_core1_regs_fifo2_direct_pulse5_waiting) begin
+        card1_card_core1_regs_fifo2_direct_pulse5_gap_operand = card1_card_core1_regs_fifo2_direct_pulse5_gap;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_direct_pulse5_gap_operand = card1_card_core1_regs_fifo2_reg_word66_shown;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_direct_pulse5_counted = (card1_card_core1_regs_fifo2_direct_pulse5_count_operand + card1_card_core1_regs_fifo2_direct_pulse5_count_addend);
+assign card1_card_core1_regs_fifo2_direct_pulse5_gap_less = (card1_card_core1_regs_fifo2_direct_pulse5_gap_operand - 1);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct_pulse5_emit
@@ -4479,28 +4545,22 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_command_load) begin
-            if ((card1_card_core1_regs_fifo2_direct_pulse5_command_count < 0)) begin
-                card1_card_core1_regs_fifo2_reg_word68_shown <= (-card1_card_core1_regs_fifo2_direct_pulse5_command_count);
-                card1_card_core1_regs_fifo2_direct_dir_y <= 0;
-            end
-            else begin
-                card1_card_core1_regs_fifo2_reg_word68_shown <= card1_card_core1_regs_fifo2_direct_pulse5_command_count;
-                card1_card_core1_regs_fifo2_direct_dir_y <= 1;
-            end
+            card1_card_core1_regs_fifo2_reg_word68_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+            card1_card_core1_regs_fifo2_direct_dir_y <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count >= 0);
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
             card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_pending) begin
             if (card1_card_core1_regs_fifo2_direct_pulse5_waiting) begin
-                card1_card_core1_regs_fifo2_direct_pulse5_gap <= (card1_card_core1_regs_fifo2_direct_pulse5_gap - 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_gap != 1);
             end
             else if (card1_card_core1_regs_fifo2_out_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_y <= 1;
-                card1_card_core1_regs_fifo2_reg_word68_shown <= (card1_card_core1_regs_fifo2_reg_word68_shown - 1);
+                card1_card_core1_regs_fifo2_reg_word68_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
                 card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word68_shown != 1);
-                card1_card_core1_regs_fifo2_direct_pulse5_gap <= (card1_card_core1_regs_fifo2_reg_word66_shown - 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_reg_word66_shown != 1);
             end
         end
@@ -4645,6 +4705,18 @@ assign card1_card_core1_regs_fifo2_pulse_out2_last_slot = (card1_card_core1_regs
 assign card1_card_core1_regs_fifo2_pulse_out2_free_slot = card1_card_core1_regs_fifo2_pulse_out2_count[2-1:0];
 
 
+always @(card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y) begin: card1_card_core1_regs_fifo2_pulse_out2_step_sense
+    card1_card_core1_regs_fifo2_pulse_out2_delta_x = 1;
+    if ((!card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) begin
+        card1_card_core1_regs_fifo2_pulse_out2_delta_x = (-1);
+    end
+    card1_card_core1_regs_fifo2_pulse_out2_delta_y = 1;
+    if ((!card1_card_core1_regs_fifo2_pulse_out2_dir_level_y)) begin
+        card1_card_core1_regs_fifo2_pulse_out2_delta_y = (-1);
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_drive_pins
     if (reset == 0) begin
         motor_step_x <= 0;
@@ -4665,20 +4737,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
         end
         else begin
             if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!motor_step_x))) begin
-                if (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x) begin
-                    card1_card_core1_regs_fifo2_pulse_out2_position_x <= (card1_card_core1_regs_fifo2_pulse_out2_position_x + 1);
-                end
-                else begin
-                    card1_card_core1_regs_fifo2_pulse_out2_position_x <= (card1_card_core1_regs_fifo2_pulse_out2_position_x - 1);
-                end
+                card1_card_core1_regs_fifo2_pulse_out2_position_x <= (card1_card_core1_regs_fifo2_pulse_out2_position_x + card1_card_core1_regs_fifo2_pulse_out2_delta_x);
             end
             if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!motor_step_y))) begin
-                if (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y) begin
-                    card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y + 1);
-                end
-                else begin
-                    card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y - 1);
-                end
+                card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y + card1_card_core1_regs_fifo2_pulse_out2_delta_y);
             end
         end
     end

@@ -1,5 +1,5 @@
 """Direct pulses of one axis: a host-given count at a host-given period."""
-from myhdl import Signal, always_comb, always_seq, block, intbv
+from myhdl import Signal, always_comb, always_seq, block, intbv, modbv
 
 from rtl.interfaces import DirectPulseCommand, StepRequest, card_reset
 
@@ -22,16 +22,49 @@ def direct_pulse(clock, reset, command, out):
         out.step  _____/~~~\\_______/~~~\\_____
         remaining ==0==X=2=X=1=========X=0====
     """
-    gap = Signal(intbv(0)[len(command.period):])
+    count_bits, period_bits = len(command.remaining), len(command.period)
+    gap = Signal(intbv(0)[period_bits:])
     # remaining != 0 and gap != 0, each kept in a flip-flop next to its
     # counter: ``busy`` and the next decision then start from one register
     # instead of a 24-bit (16-bit) zero test.
     pending = Signal(bool(0))
     waiting = Signal(bool(0))
+    # One adder per counter: remaining takes |count| (count ^ sign + sign) on
+    # a load and remaining - 1 on a request; gap takes period - 1 on a
+    # request and gap - 1 while waiting.
+    count_operand, count_addend = Signal(intbv(0)[count_bits:]), Signal(intbv(0)[count_bits:])
+    counted = Signal(modbv(0)[count_bits:])
+    gap_operand = Signal(intbv(0)[period_bits:])
+    gap_less = Signal(modbv(0)[period_bits:])
+    all_ones = (1 << count_bits) - 1
 
     @always_comb
     def activity():
         command.busy.next = command.load or pending
+
+    @always_comb
+    def count_operands():
+        if not command.load:
+            count_operand.next = command.remaining
+            count_addend.next = all_ones
+        elif command.count < 0:
+            count_operand.next = ~command.count[count_bits:]
+            count_addend.next = 1
+        else:
+            count_operand.next = command.count[count_bits:]
+            count_addend.next = 0
+
+    @always_comb
+    def gap_operands():
+        if waiting:
+            gap_operand.next = gap
+        else:
+            gap_operand.next = command.period
+
+    @always_comb
+    def sums():
+        counted.next = count_operand + count_addend
+        gap_less.next = gap_operand - 1
 
     @always_seq(clock.posedge, reset=reset)
     def emit():
@@ -40,27 +73,23 @@ def direct_pulse(clock, reset, command, out):
             command.remaining.next = 0
             pending.next = 0
         elif command.load:
-            if command.count < 0:
-                command.remaining.next = -command.count
-                out.dir.next = 0
-            else:
-                command.remaining.next = command.count
-                out.dir.next = 1
+            command.remaining.next = counted
+            out.dir.next = command.count >= 0
             pending.next = command.count != 0
             gap.next = 0
             waiting.next = 0
         elif pending:
             if waiting:
-                gap.next = gap - 1
+                gap.next = gap_less
                 waiting.next = gap != 1
             elif out.ready:
                 out.step.next = 1
-                command.remaining.next = command.remaining - 1
+                command.remaining.next = counted
                 pending.next = command.remaining != 1
-                gap.next = command.period - 1
+                gap.next = gap_less
                 waiting.next = command.period != 1
 
-    return activity, emit
+    return activity, count_operands, gap_operands, sums, emit
 
 
 def direct_pulse_ports():

@@ -54,6 +54,7 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
     starts, high_ends = Signal(bool(0)), Signal(bool(0))
     phase_step, low_step = Signal(intbv(0)[timing_bits:]), Signal(intbv(0)[timing_bits:])  # 1, or 0 at the limit
     last_slot, free_slot = Signal(modbv(0)[index_bits:]), Signal(intbv(0)[index_bits:])
+    delta_x, delta_y = (Signal(intbv(1, min=-1, max=2)) for _ in range(2))  # a step's count: +1 or -1
     limit = (1 << timing_bits) - 1
 
     @always_comb
@@ -147,6 +148,16 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
         last_slot.next = count[index_bits:] - 1   # wraps: only used with count >= 1
         free_slot.next = count[index_bits:]
 
+    @always_comb
+    def step_sense():
+        # one adder per counter, adding +1 or -1, instead of an incrementer and a decrementer
+        delta_x.next = 1
+        if not dir_level_x:
+            delta_x.next = -1
+        delta_y.next = 1
+        if not dir_level_y:
+            delta_y.next = -1
+
     @always_seq(clock.posedge, reset=reset)
     def drive_pins():
         pins.step_x.next = level_x
@@ -158,17 +169,11 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
             position.y.next = 0
         else:
             if level_x and not pins.step_x:
-                if dir_level_x:
-                    position.x.next = position.x + 1
-                else:
-                    position.x.next = position.x - 1
+                position.x.next = position.x + delta_x
             if level_y and not pins.step_y:
-                if dir_level_y:
-                    position.y.next = position.y + 1
-                else:
-                    position.y.next = position.y - 1
+                position.y.next = position.y + delta_y
 
-    return room, peek, decide, restart, count_clocks, step_phases, fill, slots, drive_pins
+    return room, peek, decide, restart, count_clocks, step_phases, fill, slots, step_sense, drive_pins
 
 
 def pulse_out_ports(queue_depth=QUEUE_DEPTH, in_flight=IN_FLIGHT):

@@ -61,10 +61,19 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
     coord_width, count_bits, error_bits = dda.coord_width, len(pulses.count_x), len(control.error_code)
     seq_t = enum("S_IDLE", "S_MOTION", "S_PULSE", "S_DWELL", "S_ERROR")
     state = Signal(seq_t.S_IDLE)
-    header = Signal(intbv(0)[32:])
+    # the instruction register keeps the bits something reads: the opcode, the
+    # header's fields, SET's and DWELL's 32-bit operand 0, and of the other
+    # operands the coordinate and count bits (their checks read the arriving word)
+    field_bits = max(lsb + width for op in isa.OPCODES for _, lsb, width, _ in op.header_fields)
+    if field_bits > isa.OPCODE_LSB:
+        raise ValueError("the header's fields overlap the opcode")
+    header = Signal(intbv(0)[field_bits:])
     if isa.MAX_OPERANDS != 4:
         raise ValueError("the instruction register holds four operand words")
-    operand_0, operand_1, operand_2, operand_3 = (Signal(intbv(0)[32:]) for _ in range(4))
+    operand_0 = Signal(intbv(0)[32:])
+    operand_1 = Signal(intbv(0)[max(coord_width, count_bits):])
+    operand_2, operand_3 = Signal(intbv(0)[coord_width:]), Signal(intbv(0)[coord_width:])
+    operand_1_bits = len(operand_1)
     fetched = Signal(intbv(0, min=0, max=isa.MAX_OPERANDS + 2))
     word_due = Signal(bool(0))
     next_valid = Signal(bool(0))
@@ -113,10 +122,6 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
     tag_lsb, tag_msb = _field("MARK", "TAG")
 
     @always_comb
-    def split_header():
-        opcode.next = header[32:isa.OPCODE_LSB]
-
-    @always_comb
     def lookup_arriving():
         arriving_count.next = operand_count[fifo.dout[32:isa.OPCODE_LSB]]
 
@@ -126,7 +131,7 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
 
     @always_comb
     def lookup_count():
-        next_count.next = operand_count[header[32:isa.OPCODE_LSB]]
+        next_count.next = operand_count[opcode]
 
     @always_comb
     def lookup_valid():
@@ -142,11 +147,11 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
 
     @always_comb
     def lookup_coords():
-        coord_mask.next = coord_operands[header[32:isa.OPCODE_LSB]]
+        coord_mask.next = coord_operands[opcode]
 
     @always_comb
     def lookup_counts():
-        count_mask.next = count_operands[header[32:isa.OPCODE_LSB]]
+        count_mask.next = count_operands[opcode]
 
     @always_comb
     def lookup_set():
@@ -180,7 +185,8 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
                 next_valid.next = 0
             if word_due:
                 if fetched == 0:
-                    header.next = fifo.dout
+                    opcode.next = fifo.dout[32:isa.OPCODE_LSB]
+                    header.next = fifo.dout[field_bits:]
                     next_motion.next = arriving_moves
                     bad_opcode.next = not next_known
                     bad_header_bits.next = (fifo.dout[32:16] & ~mask_high) != 0 or (fifo.dout[16:] & ~mask_low) != 0
@@ -194,11 +200,11 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
                     if fetched == 1:
                         operand_0.next = fifo.dout
                     elif fetched == 2:
-                        operand_1.next = fifo.dout
+                        operand_1.next = fifo.dout[operand_1_bits:]
                     elif fetched == 3:
-                        operand_2.next = fifo.dout
+                        operand_2.next = fifo.dout[coord_width:]
                     else:
-                        operand_3.next = fifo.dout
+                        operand_3.next = fifo.dout[coord_width:]
                     if ((coord_mask[fetched - 1] and not arriving_coord_fits)
                             or (count_mask[fetched - 1] and not arriving_count_fits)):
                         bad_operand.next = 1
@@ -328,7 +334,7 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
         control.motion_run.next = state == seq_t.S_MOTION
 
     fits = [_fits(fifo.dout, arriving_coord_fits, coord_width), _fits(fifo.dout, arriving_count_fits, count_bits)]
-    return (fits, split_header, lookup_arriving, lookup_arriving_kind, lookup_count, lookup_valid, lookup_mask_high, lookup_mask_low,
+    return (fits, lookup_arriving, lookup_arriving_kind, lookup_count, lookup_valid, lookup_mask_high, lookup_mask_low,
             lookup_coords, lookup_counts, lookup_set, fetch_request, discarding, fetch, check, motion_status,
             completion, readiness, issuing, execute, present, report)
 
