@@ -97,14 +97,16 @@ def print_delayed():
 
 def print_xz():
     from sim.pci_bench import PciBench
-    from sim.test_card_e2e import ARC, DEFAULT_FIFO, motion_scenario, run_card
+    from sim.card_e2e import DEFAULT_FIFO, motion_scenario, run_card
+    from sim.dda_model import ArcCommand
+    from sim.scratch_example import scenario, scratch_target
     from sim.test_pci_random import run_random
-    from sim.test_pci_verilog_target import scenario, scratch_target
 
+    quarter_arc = ArcCommand(40, 0, 0, 40, ccw=True)
     print("X/Z detector in float mode (clocks with a line X or Z while driven / clocks watched):")
     bench, _ = run_random("verilog", 300, seed=7)
     print(f"  gen/pci_slave.v, 300 random transactions: {bench.checker.unknown_clocks} / {bench.checker.edges:,}")
-    _, _, _, bench = run_card("verilog", motion_scenario([ARC]), "figures_xz_top", DEFAULT_FIFO)
+    _, _, _, bench = run_card("icarus", motion_scenario([quarter_arc]), "figures_xz_top", DEFAULT_FIFO)
     print(f"  gen/top.v, enumerate, program, arc:        {bench.checker.unknown_clocks} / {bench.checker.edges:,}")
     bench = PciBench(target=scratch_target())
     bench.run(scenario({}), "figures_xz_scratch", trace=False)
