@@ -54,7 +54,8 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
     starts, high_ends = Signal(bool(0)), Signal(bool(0))
     phase_step, low_step = Signal(intbv(0)[timing_bits:]), Signal(intbv(0)[timing_bits:])  # 1, or 0 at the limit
     last_slot, free_slot = Signal(modbv(0)[index_bits:]), Signal(intbv(0)[index_bits:])
-    delta_x, delta_y = (Signal(intbv(1, min=-1, max=2)) for _ in range(2))  # a step's count: +1 or -1
+    # a step's count, +1 or -1, as wide as the counters
+    delta_x, delta_y = (Signal(intbv(1, min=position.x.min, max=position.x.max)) for _ in range(2))
     limit = (1 << timing_bits) - 1
 
     @always_comb
