@@ -29,7 +29,6 @@ from rtl import registers as regmap
 from sim.dda_model import ArcCommand, plan_arc
 
 from host.machine import Machine
-from host.transport import TransportError
 
 MAJOR = regmap.VERSION >> 8
 MINOR = regmap.VERSION & 0xFF
@@ -323,5 +322,3 @@ class Card:
         self._written = 0
         self._starts, self._names, self._opcodes = [], [], []
 
-
-__all__ = ["Card", "CardError", "Identity", "IdentityError", "TransportError"]

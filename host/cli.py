@@ -89,7 +89,7 @@ def parser():
     plan_cmd.add_argument("--list", action="store_true", help="print every command")
     plan_cmd.add_argument("--words", type=Path, help="write the FIFO words here (hex, one a line)")
     plan_cmd.add_argument("--preview", type=Path, help="draw the path over the drawing into this PNG")
-    cli_card.add_commands(commands, positive, scales, count, _refuse)
+    cli_card.add_commands(commands, positive, scales, count)
     return top
 
 
@@ -103,6 +103,9 @@ def main(argv=None):
     except (ProgramError, ValueError, CardError, IdentityError, TransportError, TimeoutError) as error:
         print(f"{PROG}: error: {error}", file=sys.stderr)
         return 1
+    except KeyboardInterrupt:  # before the card runs anything (the streamer handles SIGINT itself)
+        print(f"{PROG}: interrupted", file=sys.stderr)
+        return 130
 
 
 def _refuse(message):

@@ -6,9 +6,11 @@ machine) or ``pci:DDDD:BB:DD.F`` (that one).  Every option is checked before
 the card is opened or anything is written.
 """
 import dataclasses
+import importlib.util
 import signal
 import sys
 import time
+from pathlib import Path
 
 from host import gcode, svg
 from host.card import Card
@@ -22,7 +24,7 @@ from host.transport import SIM_KINDS, open_transport
 STOP_EXIT = 130  # the shell's code for a job ended by SIGINT
 
 
-def add_commands(commands, positive, scales, count, refuse):
+def add_commands(commands, positive, scales, count):
     """The ``run``, ``info`` and ``selftest`` sub-commands on ``commands`` (argparse sub-parsers)."""
     def card_options(sub):
         sub.add_argument("--card", default="verilator",
@@ -51,7 +53,6 @@ def add_commands(commands, positive, scales, count, refuse):
     for name, text in (("info", "identify the card and print what it reports"),
                        ("selftest", "register walk, FIFO loop and a short move checked on position")):
         card_options(commands.add_parser(name, help=text))
-    return refuse
 
 
 def card_spec(options, refuse):
@@ -63,9 +64,6 @@ def card_spec(options, refuse):
 
 def run_command(options, refuse):
     """``run``; the exit code."""
-    from pathlib import Path
-    import importlib.util
-
     spec = card_spec(options, refuse)
     path = Path(options.file)
     if not path.is_file():
@@ -116,18 +114,18 @@ def run_command(options, refuse):
         print(f"position:   {result.position} steps (plan: {planned.end})")
         print(f"job time:   {model.job_seconds:.4f} s planned; {result.seconds:.4f} s of card time")
         if transport.clocks is not None:
-            _pins_report(planned, model, transport, first_rise, options.preview)
+            _pins_report(planned, model, transport, first_rise, options.preview, card.timing["DIR_SETUP"])
             print(f"simulated:  {transport.clocks - first_clock} clocks, wall time {time.monotonic() - wall:.1f} s")
     return 0 if result.position == planned.end else 1
 
 
-def _pins_report(planned, model, transport, first_rise, preview):
+def _pins_report(planned, model, transport, first_rise, preview, dir_setup):
     rises = transport.pins.rises[first_rise:]
     moves = pin_moves(planned, model, rises)
     ideal = [p for _, points in model.points for p in points[1:]]
     got = [p for _, points in moves for p in points[1:]]
     mm, steps, where = deviation(planned, moves)
-    measured, over = junction_gaps(planned, model, rises)
+    measured, over = junction_gaps(planned, model, rises, dir_setup)
     print(f"pins:       {len(rises)} STEP rises; the path {'is' if got == ideal else 'is NOT'} the golden "
           f"model's; max deviation {mm:.5f} mm = {steps:.3f} steps (at {where})")
     print(f"gaps:       {len(over)} of {measured} blended junctions slower than the move before them")

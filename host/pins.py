@@ -9,12 +9,13 @@
 * ``junction_gaps(plan, check, rises)``: the starvation measure.  At every
   junction inside a blended run (a move with BLEND followed by the next
   move) the interval between the last STEP rise of the move and the first of
-  the next must not exceed the longest of the last three intervals of the
-  move plus one clock: the rate never falls inside a blended run
+  the next must not exceed the longest of the three intervals before it in
+  the run plus DIR_SETUP: the rate never falls inside a blended run
   (docs/instructions.md: it only ramps up towards FEED_RATE; the decrease
-  comes in the run's last move), so a longer interval is a stall at the
-  boundary, e.g. a FIFO that ran empty.  Junctions after a move with fewer
-  than two rises are not measured.  With a constant rate (RAMP_STEP 0) and
+  comes in the run's last move), and a step after a direction change waits
+  for the set-up time, so a longer interval is a stall at the boundary,
+  e.g. a FIFO that ran empty.  Junctions with no interval before them in
+  the run are not measured.  With a constant rate (RAMP_STEP 0) and
   LINEs only, every interval of the run is also at most
   ``ceil(65536 / FEED_RATE)`` clocks plus DIR_SETUP (a step after a
   direction change waits for the set-up time): ``period_violations``.
@@ -25,7 +26,7 @@ from sim.dda_model import ArcCommand, LineCommand
 
 from rtl.registers import RATE_ONE
 
-TAIL = 3  # intervals of the move before a junction that give its step period
+TAIL = 3  # intervals before a junction that give the run's step period there
 
 
 def pin_points(rises, start=(0, 0), polarity=(0, 0)):
@@ -71,17 +72,19 @@ def _moves(plan):
     return [e for e in plan.entries if isinstance(e.command, (LineCommand, ArcCommand))]
 
 
-def junction_gaps(plan, check, rises):
+def junction_gaps(plan, check, rises, dir_setup=1):
     """(junctions measured, [(clock, interval, allowed, where)] of those over the bound)."""
     clocks = [r[0] for r in rises]
     entries = _moves(plan)
     measured, over = 0, []
-    first = 0
+    first = run_first = 0
     for number, (entry, count) in enumerate(zip(entries, move_rises(check))):
+        if number == 0 or entries[number - 1].run != entry.run:
+            run_first = first
         last = first + count - 1
-        if entry.command.blend and number + 1 < len(entries) and count >= 2 and last + 1 < len(clocks):
-            tail = [clocks[i + 1] - clocks[i] for i in range(max(first, last - TAIL), last)]
-            allowed = max(tail) + 1
+        if entry.command.blend and number + 1 < len(entries) and last > run_first and last + 1 < len(clocks):
+            before = [clocks[i + 1] - clocks[i] for i in range(max(run_first, last - TAIL), last)]
+            allowed = max(before) + dir_setup
             interval = clocks[last + 1] - clocks[last]
             measured += 1
             if interval > allowed:
