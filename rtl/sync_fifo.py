@@ -5,9 +5,9 @@ from rtl.interfaces import LocalBus, card_reset
 
 
 @block
-def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, room, *, depth=512, width=32,
+def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, room, *, depth,
               room_places=LocalBus.ROOM_PLACES):
-    """First-in first-out buffer of ``depth`` words of ``width`` bits.
+    """First-in first-out buffer of ``depth`` words as wide as ``din``.
 
     Ports: ``push`` writes ``din`` (ignored when ``full``); ``pop`` reads the
     oldest word into ``dout`` at the clock edge (ignored when ``empty``), so
@@ -17,8 +17,8 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, roo
     are free.  Push and pop in the same clock keep the level.  The storage
     and the read register sit in a process without reset so that they
     become block RAM.
-    Parameters: ``depth`` (a power of two above ``room_places``), ``width``,
-    ``room_places`` (2 or more).
+    Parameters: ``depth`` (a power of two above ``room_places``; ``level``
+    counts 0..depth), ``room_places`` (2 or more).
 
         clock  _/~\\_/~\\_/~\\_/~\\_
         push   _/~~~\\__________
@@ -32,6 +32,9 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, roo
         raise ValueError(f"FIFO room_places must be 2 or more, got {levels}")
     if depth <= levels or depth & (depth - 1):
         raise ValueError(f"FIFO depth must be a power of two above room_places ({levels}), got {depth}")
+    if len(dout) != len(din) or level.max != depth + 1:
+        raise ValueError(f"sync_fifo: dout must be as wide as din and level count 0..{depth}")
+    width = len(din)
     addr_bits = depth.bit_length() - 1
     all_free = (1 << levels) - 1   # ``free`` of the empty FIFO
     storage = [Signal(intbv(0)[width:]) for _ in range(depth)]
@@ -110,7 +113,7 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, roo
     return enables, near_ends, memory, pointers, flags
 
 
-def sync_fifo_ports(depth=512, width=32):
+def sync_fifo_ports(depth, width=32):
     """Fresh ports of ``sync_fifo`` for conversion and benches."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), push=Signal(bool(0)),
                 din=Signal(intbv(0)[width:]), pop=Signal(bool(0)), dout=Signal(intbv(0)[width:]),

@@ -33,7 +33,7 @@ from rtl import instructions as isa
 from rtl import registers as regmap
 from rtl.card import MEM_BAR_BITS
 from sim.fifo_scoreboard import LINE_WORDS, run_bench, x_lines
-from sim.pci_host import Termination, random_waits
+from sim.pci_host import HostError, Termination, random_waits
 
 INITIAL_LATENCY = 16        # PCI: TRDY# (or STOP#) by the 16th clock after the address phase
 WINDOW_DWORDS = 1 << (MEM_BAR_BITS - 2)
@@ -166,10 +166,14 @@ class _Host:
         """Read (``value`` None) or write a register: one transaction, no
         retry, TRDY# within the initial latency; the value read."""
         address = self.io + regmap.offset(name)
-        if value is None:
-            result = yield from self.host.io_read(address, max_retries=0)
-        else:
-            result = yield from self.host.io_write(address, value & 0xFFFFFFFF, max_retries=0)
+        try:
+            if value is None:
+                result = yield from self.host.io_read(address, max_retries=0)
+            else:
+                result = yield from self.host.io_write(address, value & 0xFFFFFFFF, max_retries=0)
+        except HostError as error:
+            raise AssertionError(f"{name} {'read' if value is None else 'write'} with the FIFO "
+                                 f"{'full' if self.full else 'not full'}: {error}") from None
         access = RegisterAccess(name, result, self.stopped, self.full)
         self.run.accesses.append(access)
         if not access.prompt:
@@ -185,17 +189,22 @@ class _Host:
 
     def burst(self, words, retries):
         """Write ``words`` as one access at a random place in the window,
-        with random IRDY# waits (giving up after ``retries`` retries); the
-        count the bus completed."""
+        with random IRDY# waits (giving up after ``retries`` retries in a
+        row, as the host's ``HostError`` says); the count the bus completed."""
         start = 0 if self.fixed_bursts else self.rng.randrange(WINDOW_DWORDS - len(words) + 1)
-        result = yield from self.host.mem_write(self.mem + 4 * start, words, irdy_waits=self.waits,
-                                                max_retries=retries)
-        for transaction in result.transactions:
+        try:
+            result = yield from self.host.mem_write(self.mem + 4 * start, words, irdy_waits=self.waits,
+                                                    max_retries=retries)
+            transactions = result.transactions
+        except HostError as error:
+            transactions = error.transactions
+        moved = 0
+        for transaction in transactions:
             self.run.completed.extend(transaction.data)
             self.run.endings[transaction.termination] += 1
+            moved += len(transaction.data)
         self.run.bursts += 1
         self.run.offered += len(words)
-        moved = len(result.data)
         self.full = moved < len(words)
         return moved
 

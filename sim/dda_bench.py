@@ -5,7 +5,8 @@ the ``DdaPort`` (start pulse when ready, one after the other or overlapped, a
 seeded random or alternating ``advance`` pattern, stray ``start`` pulses while
 not ready) and compares every output with the model after every clock.  The device is the MyHDL block, or with ``verilog`` (a list of
 files) a ``Cosimulation`` of the generated Verilog on the same ``ports``.  The moves the outputs made
-are collected in ``record`` for the tests.
+are collected in ``record`` for the tests.  ``write_view(vcd)`` writes the
+run's GTKWave save file.
 """
 import math
 import random
@@ -16,7 +17,18 @@ from rtl.dda_arc import dda_arc
 from sim.cosim import cosimulate
 from sim.dda_model import ArcCommand, DdaMachine, LineCommand, plan_arc
 from sim.clocking import clock_source
+from sim.waves import Waveform, write_gtkw
 
+VIEW_GROUPS = {
+    "command": ["cmd_start", "cmd_line", "cmd_variant", "cmd_ccw", "cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye"],
+    "status": ["cmd_advance", "cmd_ready", "cmd_busy", "cmd_done", "cmd_error", "cmd_quadrant",
+               "cmd_blend", "cmd_stop_left"],
+    "pulses": ["steps_step_x", "steps_dir_x", "steps_step_y", "steps_dir_y"],
+    "datapath (MyHDL only)": ["dda_arc.state", "dda_arc.quadrant", "integrand_x", "integrand_y", "target_x",
+                              "target_y", "acc_x", "acc_y", "radial_error", "left_x", "left_y", "crossings"],
+}
+VIEW_SIGNED = ("cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye", "acc_x", "acc_y", "radial_error", "left_x", "left_y")
+VIEW_DECIMAL = ("integrand_x", "integrand_y", "target_x", "target_y")
 OUTPUTS = ("busy", "ready", "done", "error", "quadrant", "stop_left")
 PULSES = ("step_x", "step_y", "dir_x", "dir_y")
 HALF_PERIOD = 5
@@ -112,7 +124,7 @@ def dda_bench(ports, commands, record, *, coord_width=24, verilog=None, seed=1,
         raise StopSimulation()
 
     if verilog is None:
-        device = dda_arc(**ports, coord_width=coord_width)
+        device = dda_arc(**ports)
     else:
         device = cosimulate("dda_arc", ports, verilog)
     return device, clock_driver, stimulus
@@ -175,3 +187,14 @@ def random_arc(rng, coord_width=24, radius=None, span=None, variant=3, ccw=None)
         command = ArcCommand(xs, ys, xe, ye, direction, variant, lam, 0)
         if accepted(command, coord_width):
             return command
+
+
+def write_view(vcd, wave=None):
+    """The save file of a DDA bench: command, status, pulses and (MyHDL) the
+    datapath (the magnitudes each accumulator adds, |y| and |x| on an arc, the
+    accumulators, the radial error term, the steps left); the whole run, the
+    marker on the first command's start."""
+    wave = wave or Waveform(vcd)
+    starts = wave.edges("cmd_start", "1")
+    return write_gtkw(vcd, VIEW_GROUPS, signed=VIEW_SIGNED, decimal=VIEW_DECIMAL, optional=True,
+                      marker=starts[0] if starts else None)

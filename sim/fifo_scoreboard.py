@@ -16,12 +16,12 @@ from myhdl import always, block
 from rtl import instructions as isa
 from rtl.card import card, card_ports
 from rtl.interfaces import MotorPins
-from rtl.top import PARAMETERS
+from rtl.parameters import FIFO_DEPTH
 from sim.card_bench import PinLog, pin_capture
 from sim.pci_bench import TARGET_DEVICE, PciBench
 from sim.top_harness import TopHarness, convert_top, generated_top, top_on_bus
 
-DEFAULT_FIFO = PARAMETERS["fifo_depth"][1]
+DEFAULT_FIFO = FIFO_DEPTH.default
 LINE_WORDS = len(isa.encode("LINE", 1, 0))
 _converted_tops = {}
 
@@ -100,10 +100,16 @@ def card_target(kind, fifo_depth, log, taken):
         elif kind == "verilog":
             harness = TopHarness(converted_top(fifo_depth), idsel_bit=16 + TARGET_DEVICE)
             agent, motor = harness.card, MotorPins()
-            core = (top_on_bus, (bench.clock, bench.reset, bench.host.agent, harness, motor))
+            # the segment (which reports an X/Z drive) exists only once the target does
+            core = (top_on_bus, (bench.clock, bench.reset, bench.host.agent, harness, motor), {})
         else:
             raise ValueError(f"unknown card kind {kind!r}: use 'myhdl' or 'verilog'")
-        return agent, [core, (pin_capture, (bench.clock, motor, log))]
+
+        def blocks(b):
+            cosim = [(core[0], core[1], {"segment": b.segment})] if kind == "verilog" else [core]
+            return cosim + [(pin_capture, (b.clock, motor, log))]
+
+        return agent, blocks
 
     return build
 
@@ -120,9 +126,9 @@ def run_bench(kind, fifo_depth, scenario, run, name, trace=False):
     def wrapped(b):
         devices = yield from b.host.enumerate_bus(devices=[TARGET_DEVICE])
         bases = {("io" if bar["io"] else "mem"): bar["base"] for bar in devices[0].bars}
-        start = b.host.edge
+        start = b.host.core.edge
         yield from scenario(b, bases["io"], bases["mem"])
-        run.clocks = b.host.edge - start
+        run.clocks = b.host.core.edge - start
 
     bench.run(wrapped, name, trace=trace)
     run.taken = taken

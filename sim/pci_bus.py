@@ -19,23 +19,11 @@ line in the clock that just ended (``drivers`` of ``sample()``), which the
 monitor uses for the contention and turnaround rules.
 """
 from collections import deque
-from dataclasses import dataclass
 
 from myhdl import Signal, TristateSignal, always, block, instance, intbv, now
 
-# Line name -> width.  Order is the order of the VCD and of the samples.
-LINE_WIDTHS = {
-    "ad": 32, "cbe": 4, "par": 1, "frame": 1, "irdy": 1, "trdy": 1,
-    "devsel": 1, "stop": 1, "perr": 1, "serr": 1, "inta": 1,
-}
-PULLED_UP = ("frame", "irdy", "trdy", "devsel", "stop", "perr", "serr", "inta")
-OPEN_DRAIN = ("serr", "inta")
-SUSTAINED_TRISTATE = ("frame", "irdy", "trdy", "devsel", "stop", "perr")
-
-
-def even_parity(ad, cbe):
-    """PAR that makes the number of ones over AD[31:0], C/BE#[3:0] and PAR even."""
-    return bin((int(ad) & 0xFFFFFFFF) | ((int(cbe) & 0xF) << 32)).count("1") & 1
+from sim.pci_lines import (LINE_WIDTHS, OPEN_DRAIN, PULLED_UP, SUSTAINED_TRISTATE,  # noqa: F401
+                           BusSample, even_parity)
 
 
 def _line_signal(line, value):
@@ -69,23 +57,6 @@ class PciLines:
         self.ad_view = TristateSignal(intbv(0)[32:])
 
 
-@dataclass(frozen=True)
-class BusSample:
-    """The segment as sampled at one rising edge: ``values[line]`` (``None``
-    for a floating AD, C/BE# or PAR) and ``drivers[line]`` (the set of agent
-    names that drove the line in the clock that ended at this edge)."""
-
-    time: int
-    values: dict
-    drivers: dict
-
-    def __getattr__(self, line):
-        try:
-            return self.values[line]
-        except KeyError:
-            raise AttributeError(line) from None
-
-
 class PciSegment:
     """Resolution and driver record of one PCI segment.
 
@@ -110,6 +81,7 @@ class PciSegment:
         self._ports = {line: self._drive_ports(line) for line in LINE_WIDTHS}
         self.values, self.drivers = {}, {}
         self._seen = {}
+        self._unknown = []          # [(Signal, lines)] of X/Z detectors
         for line in LINE_WIDTHS:
             self.update(line)
 
@@ -149,9 +121,20 @@ class PciSegment:
         self.values[line], self.drivers[line] = value, names
         return True
 
+    def watch_unknown(self, report, lines):
+        """Take X/Z reports into every sample: bit i of the Signal ``report``
+        high means ``lines[i]`` was X or Z while driven (a four-state
+        simulator's detector, e.g. the wrapper of ``sim.pci_cosim``)."""
+        self._unknown.append((report, tuple(lines)))
+
     def sample(self):
         """The segment as it is now (at a rising edge: the clock that ended)."""
-        return BusSample(now(), dict(self.values), dict(self.drivers))
+        unknown = frozenset()
+        for report, lines in self._unknown:
+            bits = int(report.val)
+            if bits:
+                unknown |= {line for bit, line in enumerate(lines) if bits >> bit & 1}
+        return BusSample(now(), dict(self.values), dict(self.drivers), unknown)
 
 
 @block
@@ -242,3 +225,37 @@ def scripted_agent(clock, agent, script, done=None):
             done.next = True
 
     return player
+
+
+@block
+def edge_agent(clock, reset, agent, model):
+    """A per-edge Python agent (``model.step(sample)``, ``model.drive``; e.g.
+    ``sim.pci_delayed_target.DelayedTarget``) on ``agent``'s Signals (a
+    ``PciAgent`` on a ``PciSegment``).  While RST# (``reset``, or None) is
+    asserted the agent is released and not stepped.
+
+        clock        _/~\\_/~\\_/~\\_
+        agent *_in     ^   ^   ^       sampled: model.step(sample)
+        agent out/oe   --< d >< d >    model.drive for the next clock
+    """
+    drive = model.drive
+    names = [line for line in LINE_WIDTHS if hasattr(drive, f"{line}_oe")]
+    ports = [(getattr(agent, f"{line}_out"), getattr(agent, f"{line}_oe"), f"{line}_out", f"{line}_oe")
+             for line in names]
+    inputs = [(line, getattr(agent, f"{line}_in")) for line in LINE_WIDTHS]
+
+    @instance
+    def run():
+        while True:
+            yield clock.posedge
+            if reset is not None and reset.val == reset.active:
+                for _, enable, _, _ in ports:
+                    enable.next = False
+                continue
+            values = {line: int(port.val) for line, port in inputs}
+            model.step(BusSample(now(), values, {}))
+            for out, enable, out_name, enable_name in ports:
+                out.next = getattr(drive, out_name)
+                enable.next = getattr(drive, enable_name)
+
+    return run

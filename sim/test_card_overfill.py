@@ -18,11 +18,11 @@ within PCI's 16-clock initial latency.
 """
 import pytest
 
-from rtl.top import PARAMETERS
+from rtl.parameters import FIFO_DEPTH
 from sim.card_overfill import INITIAL_LATENCY, Overfill, run_bench, run_overfill, soak
 
 KINDS = ["myhdl", "verilog"]
-DEFAULT_FIFO = PARAMETERS["fifo_depth"][1]
+DEFAULT_FIFO = FIFO_DEPTH.default
 
 CASES = {
     "disabled": Overfill("disabled", "enable", rounds=3, factor=3, seed=1),
