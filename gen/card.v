@@ -230,11 +230,6 @@ wire card_core0_dda_reset;
 reg [31:0] card_core0_regs_fifo1_fifo_dout;
 reg card_core0_regs_fifo1_fifo_pop;
 wire card_core0_regs_fifo1_fifo_empty;
-reg card_core0_regs_fifo1_set_strobe;
-reg card_core0_regs_fifo1_mark_strobe;
-reg [3:0] card_core0_regs_fifo1_set_index;
-reg [31:0] card_core0_regs_fifo1_set_value;
-reg [15:0] card_core0_regs_fifo1_mark_tag;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
 reg card_core0_regs_fifo1_busy_before;
@@ -301,15 +296,13 @@ wire card_core0_regs_fifo1_sync_fifo1_last_beyond;
 wire card_core0_regs_fifo1_sync_fifo1_one_word;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_read_addr;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_write_addr;
-wire [31:0] card_core0_regs_fifo1_reg_word24_hw_value;
-wire card_core0_regs_fifo1_reg_word24_clamp_in;
-wire card_core0_regs_fifo1_reg_word24_clamp_out;
-wire [31:0] card_core0_regs_fifo1_reg_word24_read_in;
-reg [31:0] card_core0_regs_fifo1_reg_word24_read_out;
+wire [31:0] card_core0_regs_fifo1_reg_word24_shown;
 wire card_core0_regs_fifo1_reg_word24_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word24_shown_wide;
-wire card_core0_regs_fifo1_reg_word25_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word25_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word24_chain_out_data;
+wire [31:0] card_core0_regs_fifo1_reg_word24_chain_in_data;
+wire card_core0_regs_fifo1_reg_word24_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word24_chain_in_clamped;
 wire [1:0] card_core0_regs_fifo1_reg_word25_honoured;
 wire card_core0_regs_fifo1_reg_word25_out_of_range;
 reg card_core0_regs_fifo1_reg_word25_clamped;
@@ -318,198 +311,201 @@ wire card_core0_regs_fifo1_reg_word25_mine_write;
 wire card_core0_regs_fifo1_reg_word25_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word25_shown_wide;
 reg [1:0] card_core0_regs_fifo1_reg_word25_written;
-wire [2:0] card_core0_regs_fifo1_reg_word26_hw_value;
-wire card_core0_regs_fifo1_reg_word26_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word26_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word25_chain_out_data;
+reg [3:0] card_core0_regs_fifo1_reg_word25_set_port_index;
+reg [31:0] card_core0_regs_fifo1_reg_word25_set_port_value;
+wire card_core0_regs_fifo1_reg_word25_chain_out_clamped;
 wire [2:0] card_core0_regs_fifo1_reg_word26_honoured;
 wire card_core0_regs_fifo1_reg_word26_out_of_range;
+wire [2:0] card_core0_regs_fifo1_reg_word26_shown;
 reg card_core0_regs_fifo1_reg_word26_clamped;
 wire card_core0_regs_fifo1_reg_word26_mine;
 wire card_core0_regs_fifo1_reg_word26_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word26_shown_wide;
 wire [2:0] card_core0_regs_fifo1_reg_word26_written;
-reg [31:0] card_core0_regs_fifo1_reg_word27_hw_value;
-wire card_core0_regs_fifo1_reg_word27_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word27_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word26_chain_out_data;
+wire card_core0_regs_fifo1_reg_word26_chain_out_clamped;
+reg [31:0] card_core0_regs_fifo1_reg_word27_shown;
 wire card_core0_regs_fifo1_reg_word27_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word27_shown_wide;
-reg [4:0] card_core0_regs_fifo1_reg_word28_value;
-wire card_core0_regs_fifo1_reg_word28_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word28_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word27_chain_out_data;
+wire card_core0_regs_fifo1_reg_word27_chain_out_clamped;
 wire [4:0] card_core0_regs_fifo1_reg_word28_honoured;
 wire card_core0_regs_fifo1_reg_word28_out_of_range;
+reg [4:0] card_core0_regs_fifo1_reg_word28_shown;
 reg card_core0_regs_fifo1_reg_word28_clamped;
 wire card_core0_regs_fifo1_reg_word28_mine;
 wire card_core0_regs_fifo1_reg_word28_mine_write;
 wire card_core0_regs_fifo1_reg_word28_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word28_shown_wide;
 reg [4:0] card_core0_regs_fifo1_reg_word28_written;
-reg [4:0] card_core0_regs_fifo1_reg_word29_hw_value;
-reg [4:0] card_core0_regs_fifo1_reg_word29_value;
-wire card_core0_regs_fifo1_reg_word29_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word29_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word28_chain_out_data;
+wire card_core0_regs_fifo1_reg_word28_chain_out_clamped;
 wire [4:0] card_core0_regs_fifo1_reg_word29_honoured;
+reg [4:0] card_core0_regs_fifo1_reg_word29_shown;
 wire card_core0_regs_fifo1_reg_word29_mine;
 wire card_core0_regs_fifo1_reg_word29_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word29_shown_wide;
 wire [4:0] card_core0_regs_fifo1_reg_word29_written;
-reg [15:0] card_core0_regs_fifo1_reg_word30_value;
-wire card_core0_regs_fifo1_reg_word30_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word30_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word29_chain_out_data;
+wire card_core0_regs_fifo1_reg_word29_chain_out_clamped;
+reg [4:0] card_core0_regs_fifo1_reg_word29__store19_word_hw;
 wire [15:0] card_core0_regs_fifo1_reg_word30_honoured;
 wire card_core0_regs_fifo1_reg_word30_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word30_shown;
 reg card_core0_regs_fifo1_reg_word30_clamped;
 wire card_core0_regs_fifo1_reg_word30_mine;
 wire card_core0_regs_fifo1_reg_word30_mine_write;
 wire card_core0_regs_fifo1_reg_word30_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word30_shown_wide;
 reg [15:0] card_core0_regs_fifo1_reg_word30_written;
-reg [15:0] card_core0_regs_fifo1_reg_word31_hw_value;
-wire card_core0_regs_fifo1_reg_word31_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word31_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word30_chain_out_data;
+wire card_core0_regs_fifo1_reg_word30_chain_out_clamped;
+reg [15:0] card_core0_regs_fifo1_reg_word31_shown;
 wire card_core0_regs_fifo1_reg_word31_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word31_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word32_hw_value;
-wire card_core0_regs_fifo1_reg_word32_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word32_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word31_chain_out_data;
+wire card_core0_regs_fifo1_reg_word31_chain_out_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word32_shown;
 wire card_core0_regs_fifo1_reg_word32_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word32_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word33_hw_value;
-wire card_core0_regs_fifo1_reg_word33_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word33_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word32_chain_out_data;
+wire card_core0_regs_fifo1_reg_word32_chain_out_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word33_shown;
 wire card_core0_regs_fifo1_reg_word33_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word33_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word34_value;
-wire card_core0_regs_fifo1_reg_word34_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word34_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word33_chain_out_data;
+wire card_core0_regs_fifo1_reg_word33_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word34_honoured;
 reg card_core0_regs_fifo1_reg_word34_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word34_shown;
 reg card_core0_regs_fifo1_reg_word34_clamped;
 wire card_core0_regs_fifo1_reg_word34_mine;
 wire card_core0_regs_fifo1_reg_word34_mine_write;
+reg card_core0_regs_fifo1_reg_word34_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word34_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word34_written;
-reg [15:0] card_core0_regs_fifo1_reg_word35_value;
-wire card_core0_regs_fifo1_reg_word35_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word35_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word34_chain_out_data;
+wire card_core0_regs_fifo1_reg_word34_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word35_honoured;
 reg card_core0_regs_fifo1_reg_word35_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word35_shown;
 reg card_core0_regs_fifo1_reg_word35_clamped;
 wire card_core0_regs_fifo1_reg_word35_mine;
 wire card_core0_regs_fifo1_reg_word35_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word35_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word35_written;
-reg [15:0] card_core0_regs_fifo1_reg_word36_value;
-wire card_core0_regs_fifo1_reg_word36_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word36_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word35_chain_out_data;
+wire card_core0_regs_fifo1_reg_word35_chain_out_clamped;
 wire [15:0] card_core0_regs_fifo1_reg_word36_honoured;
 wire card_core0_regs_fifo1_reg_word36_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word36_shown;
 reg card_core0_regs_fifo1_reg_word36_clamped;
 wire card_core0_regs_fifo1_reg_word36_mine;
 wire card_core0_regs_fifo1_reg_word36_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word36_shown_wide;
 reg [15:0] card_core0_regs_fifo1_reg_word36_written;
-reg [7:0] card_core0_regs_fifo1_reg_word37_value;
-wire card_core0_regs_fifo1_reg_word37_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word37_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word36_chain_out_data;
+wire card_core0_regs_fifo1_reg_word36_chain_out_clamped;
 reg [7:0] card_core0_regs_fifo1_reg_word37_honoured;
 reg card_core0_regs_fifo1_reg_word37_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word37_shown;
 reg card_core0_regs_fifo1_reg_word37_clamped;
 wire card_core0_regs_fifo1_reg_word37_mine;
 wire card_core0_regs_fifo1_reg_word37_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word37_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word37_written;
-reg [7:0] card_core0_regs_fifo1_reg_word38_value;
-wire card_core0_regs_fifo1_reg_word38_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word38_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word37_chain_out_data;
+wire card_core0_regs_fifo1_reg_word37_chain_out_clamped;
 reg [7:0] card_core0_regs_fifo1_reg_word38_honoured;
 reg card_core0_regs_fifo1_reg_word38_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word38_shown;
 reg card_core0_regs_fifo1_reg_word38_clamped;
 wire card_core0_regs_fifo1_reg_word38_mine;
 wire card_core0_regs_fifo1_reg_word38_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word38_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word38_written;
-reg [7:0] card_core0_regs_fifo1_reg_word39_value;
-wire card_core0_regs_fifo1_reg_word39_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word39_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word38_chain_out_data;
+wire card_core0_regs_fifo1_reg_word38_chain_out_clamped;
 reg [7:0] card_core0_regs_fifo1_reg_word39_honoured;
 reg card_core0_regs_fifo1_reg_word39_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word39_shown;
 reg card_core0_regs_fifo1_reg_word39_clamped;
 wire card_core0_regs_fifo1_reg_word39_mine;
 wire card_core0_regs_fifo1_reg_word39_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word39_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word39_written;
-reg [1:0] card_core0_regs_fifo1_reg_word40_value;
-wire card_core0_regs_fifo1_reg_word40_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word40_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word39_chain_out_data;
+wire card_core0_regs_fifo1_reg_word39_chain_out_clamped;
 wire [1:0] card_core0_regs_fifo1_reg_word40_honoured;
 wire card_core0_regs_fifo1_reg_word40_out_of_range;
+reg [1:0] card_core0_regs_fifo1_reg_word40_shown;
 reg card_core0_regs_fifo1_reg_word40_clamped;
 wire card_core0_regs_fifo1_reg_word40_mine;
 wire card_core0_regs_fifo1_reg_word40_mine_write;
 wire card_core0_regs_fifo1_reg_word40_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word40_shown_wide;
 reg [1:0] card_core0_regs_fifo1_reg_word40_written;
-reg [15:0] card_core0_regs_fifo1_reg_word41_value;
-wire card_core0_regs_fifo1_reg_word41_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word41_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word40_chain_out_data;
+wire card_core0_regs_fifo1_reg_word40_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word41_honoured;
 reg card_core0_regs_fifo1_reg_word41_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word41_shown;
 reg card_core0_regs_fifo1_reg_word41_clamped;
 wire card_core0_regs_fifo1_reg_word41_mine;
 wire card_core0_regs_fifo1_reg_word41_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word41_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word41_written;
-reg [15:0] card_core0_regs_fifo1_reg_word42_value;
-wire card_core0_regs_fifo1_reg_word42_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word42_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word41_chain_out_data;
+wire card_core0_regs_fifo1_reg_word41_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word42_honoured;
 reg card_core0_regs_fifo1_reg_word42_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word42_shown;
 reg card_core0_regs_fifo1_reg_word42_clamped;
 wire card_core0_regs_fifo1_reg_word42_mine;
 wire card_core0_regs_fifo1_reg_word42_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word42_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word42_written;
-reg [23:0] card_core0_regs_fifo1_reg_word43_hw_value;
-reg [23:0] card_core0_regs_fifo1_reg_word43_value;
-reg card_core0_regs_fifo1_reg_word43_strobe;
-wire card_core0_regs_fifo1_reg_word43_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word43_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word42_chain_out_data;
+wire card_core0_regs_fifo1_reg_word42_chain_out_clamped;
 reg [23:0] card_core0_regs_fifo1_reg_word43_honoured;
 reg card_core0_regs_fifo1_reg_word43_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word43_shown;
 reg card_core0_regs_fifo1_reg_word43_clamped;
 wire card_core0_regs_fifo1_reg_word43_mine;
 wire card_core0_regs_fifo1_reg_word43_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word43_shown_wide;
 wire [31:0] card_core0_regs_fifo1_reg_word43_written;
-reg [23:0] card_core0_regs_fifo1_reg_word44_hw_value;
-reg [23:0] card_core0_regs_fifo1_reg_word44_value;
-reg card_core0_regs_fifo1_reg_word44_strobe;
-wire card_core0_regs_fifo1_reg_word44_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word44_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word43_chain_out_data;
+wire card_core0_regs_fifo1_reg_word43_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word43__store30_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word43__store30_word_value;
 reg [23:0] card_core0_regs_fifo1_reg_word44_honoured;
 reg card_core0_regs_fifo1_reg_word44_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word44_shown;
 reg card_core0_regs_fifo1_reg_word44_clamped;
 wire card_core0_regs_fifo1_reg_word44_mine;
 wire card_core0_regs_fifo1_reg_word44_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word44_shown_wide;
 wire [31:0] card_core0_regs_fifo1_reg_word44_written;
-wire [31:0] card_core0_regs_fifo1_reg_word45_hw_value;
-wire card_core0_regs_fifo1_reg_word45_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word45_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word44_chain_out_data;
+wire card_core0_regs_fifo1_reg_word44_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word44__store31_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word44__store31_word_value;
+wire [31:0] card_core0_regs_fifo1_reg_word45_shown;
 wire card_core0_regs_fifo1_reg_word45_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word45_shown_wide;
-wire [15:0] card_core0_regs_fifo1_reg_word46_hw_value;
-wire card_core0_regs_fifo1_reg_word46_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word46_read_out;
+reg [31:0] card_core0_regs_fifo1_reg_word45_chain_out_data;
+wire card_core0_regs_fifo1_reg_word45_chain_out_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word46_shown;
 wire card_core0_regs_fifo1_reg_word46_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word46_shown_wide;
-wire [27:0] card_core0_regs_fifo1_reg_word47_hw_value;
-wire card_core0_regs_fifo1_reg_word47_clamp_out;
+reg [31:0] card_core0_regs_fifo1_reg_word46_chain_out_data;
+wire card_core0_regs_fifo1_reg_word46_chain_out_clamped;
+wire [27:0] card_core0_regs_fifo1_reg_word47_shown;
 wire card_core0_regs_fifo1_reg_word47_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word47_shown_wide;
-reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulse_count_x;
-reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulse_count_y;
+wire card_core0_regs_fifo1_reg_word47_chain_out_clamped;
 wire card_core0_regs_fifo1_sequencer1_arriving_coord_fits;
 reg [2:0] card_core0_regs_fifo1_sequencer1_arriving_count;
 wire card_core0_regs_fifo1_sequencer1_arriving_count_fits;
@@ -524,7 +520,7 @@ wire card_core0_regs_fifo1_sequencer1_discard;
 reg [31:0] card_core0_regs_fifo1_sequencer1_dwell_left;
 reg [2:0] card_core0_regs_fifo1_sequencer1_fetched;
 reg card_core0_regs_fifo1_sequencer1_finishing;
-reg [31:0] card_core0_regs_fifo1_sequencer1_header;
+reg [16:0] card_core0_regs_fifo1_sequencer1_header;
 wire card_core0_regs_fifo1_sequencer1_issue;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mask_high;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mask_low;
@@ -534,11 +530,11 @@ reg [3:0] card_core0_regs_fifo1_sequencer1_next_error;
 reg card_core0_regs_fifo1_sequencer1_next_known;
 reg card_core0_regs_fifo1_sequencer1_next_motion;
 reg card_core0_regs_fifo1_sequencer1_next_valid;
-wire [3:0] card_core0_regs_fifo1_sequencer1_opcode;
+reg [3:0] card_core0_regs_fifo1_sequencer1_opcode;
 reg [31:0] card_core0_regs_fifo1_sequencer1_operand_0;
-reg [31:0] card_core0_regs_fifo1_sequencer1_operand_1;
-reg [31:0] card_core0_regs_fifo1_sequencer1_operand_2;
-reg [31:0] card_core0_regs_fifo1_sequencer1_operand_3;
+reg [23:0] card_core0_regs_fifo1_sequencer1_operand_1;
+reg [23:0] card_core0_regs_fifo1_sequencer1_operand_2;
+reg [23:0] card_core0_regs_fifo1_sequencer1_operand_3;
 reg card_core0_regs_fifo1_sequencer1_set_known;
 reg [2:0] card_core0_regs_fifo1_sequencer1_state;
 reg card_core0_regs_fifo1_sequencer1_state_over;
@@ -547,6 +543,7 @@ reg card_core0_regs_fifo1_sequencer1_dda_start;
 reg card_core0_regs_fifo1_sequencer1_dda_done;
 wire card_core0_regs_fifo1_sequencer1_dda_ready;
 reg card_core0_regs_fifo1_sequencer1_dda_error;
+reg card_core0_regs_fifo1_sequencer1_mark_strobe;
 reg card_core0_regs_fifo1_sequencer1_dda_line;
 reg card_core0_regs_fifo1_sequencer1_dda_ccw;
 reg card_core0_regs_fifo1_sequencer1_dda_blend;
@@ -557,7 +554,9 @@ reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_xs;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ys;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_xe;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ye;
-reg [26:0] card_core0_regs_fifo1_feed_rate1_stop_left;
+reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_x;
+reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_y;
+reg [15:0] card_core0_regs_fifo1_sequencer1_mark_tag;
 wire card_core0_regs_fifo1_feed_rate1_above;
 wire card_core0_regs_fifo1_feed_rate1_above_floor;
 wire card_core0_regs_fifo1_feed_rate1_below;
@@ -581,18 +580,30 @@ reg [15:0] card_core0_regs_fifo1_feed_rate1_step_s;
 reg card_core0_regs_fifo1_feed_rate1_step_zero;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_target_s;
 wire [16:0] card_core0_regs_fifo1_feed_rate1_total;
-reg card_core0_regs_fifo1_direct_pulse2_load;
-reg signed [23:0] card_core0_regs_fifo1_direct_pulse2_count;
+reg [26:0] card_core0_regs_fifo1_feed_rate1_feed_stop_left;
+reg [23:0] card_core0_regs_fifo1_direct_pulse2_count_addend;
+reg [23:0] card_core0_regs_fifo1_direct_pulse2_count_operand;
+wire [23:0] card_core0_regs_fifo1_direct_pulse2_counted;
 reg [15:0] card_core0_regs_fifo1_direct_pulse2_gap;
+wire [15:0] card_core0_regs_fifo1_direct_pulse2_gap_less;
+reg [15:0] card_core0_regs_fifo1_direct_pulse2_gap_operand;
 reg card_core0_regs_fifo1_direct_pulse2_pending;
 reg card_core0_regs_fifo1_direct_pulse2_waiting;
-reg card_core0_regs_fifo1_direct_pulse3_load;
-reg signed [23:0] card_core0_regs_fifo1_direct_pulse3_count;
+reg card_core0_regs_fifo1_direct_pulse2_command_load;
+reg signed [23:0] card_core0_regs_fifo1_direct_pulse2_command_count;
+reg [23:0] card_core0_regs_fifo1_direct_pulse3_count_addend;
+reg [23:0] card_core0_regs_fifo1_direct_pulse3_count_operand;
+wire [23:0] card_core0_regs_fifo1_direct_pulse3_counted;
 reg [15:0] card_core0_regs_fifo1_direct_pulse3_gap;
+wire [15:0] card_core0_regs_fifo1_direct_pulse3_gap_less;
+reg [15:0] card_core0_regs_fifo1_direct_pulse3_gap_operand;
 reg card_core0_regs_fifo1_direct_pulse3_pending;
 reg card_core0_regs_fifo1_direct_pulse3_waiting;
-reg signed [31:0] card_core0_regs_fifo1_pulse_out1_position_x;
+reg card_core0_regs_fifo1_direct_pulse3_command_load;
+reg signed [23:0] card_core0_regs_fifo1_direct_pulse3_command_count;
 reg [2:0] card_core0_regs_fifo1_pulse_out1_count;
+reg signed [31:0] card_core0_regs_fifo1_pulse_out1_delta_x;
+reg signed [31:0] card_core0_regs_fifo1_pulse_out1_delta_y;
 reg card_core0_regs_fifo1_pulse_out1_dir_level_x;
 reg card_core0_regs_fifo1_pulse_out1_dir_level_y;
 wire [1:0] card_core0_regs_fifo1_pulse_out1_free_slot;
@@ -609,6 +620,7 @@ reg [7:0] card_core0_regs_fifo1_pulse_out1_phase_step;
 reg card_core0_regs_fifo1_pulse_out1_starts;
 reg card_core0_regs_fifo1_pulse_out1_take;
 reg card_core0_regs_fifo1_pulse_out1_turn;
+reg signed [31:0] card_core0_regs_fifo1_pulse_out1_position_x;
 wire [1:0] card_core0_regs_fifo1__status1_quadrant;
 reg [4:0] card_core0_dda_arc1_acc_bits;
 reg signed [31:0] card_core0_dda_arc1_acc_x;
@@ -757,13 +769,13 @@ reg card_core0_dda_arc1_x_inward;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word24_hw_value = 32'd3719037185;
-assign card_core0_regs_fifo1_reg_word24_clamp_in = 1'd0;
-assign card_core0_regs_fifo1_reg_word24_read_in = 32'd0;
+assign card_core0_regs_fifo1_reg_word24_shown = 32'd3719037185;
+assign card_core0_regs_fifo1_reg_word24_chain_in_data = 32'd0;
+assign card_core0_regs_fifo1_reg_word24_chain_in_clamped = 1'd0;
 assign card_core0_regs_fifo1_reg_word25_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word25_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word26_hw_value = 3'd0;
 assign card_core0_regs_fifo1_reg_word26_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word26_shown = 3'd0;
 assign card_core0_regs_fifo1_reg_word28_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word28_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word30_out_of_range = 1'd0;
@@ -771,9 +783,9 @@ assign card_core0_regs_fifo1_reg_word30_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word36_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word40_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word40_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word45_hw_value = 32'd33333333;
-assign card_core0_regs_fifo1_reg_word46_hw_value = 16'd512;
-assign card_core0_regs_fifo1_reg_word47_hw_value = 28'd786968;
+assign card_core0_regs_fifo1_reg_word45_shown = 32'd33333333;
+assign card_core0_regs_fifo1_reg_word46_shown = 16'd512;
+assign card_core0_regs_fifo1_reg_word47_shown = 28'd786968;
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_input_register
@@ -1854,34 +1866,34 @@ assign pci_slave1_control_case0_0_local_room = card_core0_regs_fifo1_sync_fifo1_
 assign card_core0_regs_fifo1_reg_word24_mine = (pci_slave1_local_addr == 0);
 
 
-always @(card_core0_regs_fifo1_reg_word24_mine, card_core0_regs_fifo1_reg_word24_shown_wide, card_core0_regs_fifo1_reg_word24_read_in) begin: card_core0_regs_fifo1_reg_word24_read_chain
+always @(card_core0_regs_fifo1_reg_word24_mine, card_core0_regs_fifo1_reg_word24_shown_wide, card_core0_regs_fifo1_reg_word24_chain_in_data) begin: card_core0_regs_fifo1_reg_word24_read_chain
     if (card_core0_regs_fifo1_reg_word24_mine) begin
-        card_core0_regs_fifo1_reg_word24_read_out = (card_core0_regs_fifo1_reg_word24_read_in | card_core0_regs_fifo1_reg_word24_shown_wide);
+        card_core0_regs_fifo1_reg_word24_chain_out_data = (card_core0_regs_fifo1_reg_word24_chain_in_data | card_core0_regs_fifo1_reg_word24_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word24_read_out = card_core0_regs_fifo1_reg_word24_read_in;
+        card_core0_regs_fifo1_reg_word24_chain_out_data = card_core0_regs_fifo1_reg_word24_chain_in_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word24_shown_wide = card_core0_regs_fifo1_reg_word24_hw_value;
+assign card_core0_regs_fifo1_reg_word24_shown_wide = card_core0_regs_fifo1_reg_word24_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word24_clamp_out = card_core0_regs_fifo1_reg_word24_clamp_in;
+assign card_core0_regs_fifo1_reg_word24_chain_out_clamped = card_core0_regs_fifo1_reg_word24_chain_in_clamped;
 
 
 
 assign card_core0_regs_fifo1_reg_word25_mine = (pci_slave1_local_addr == 4);
 
 
-always @(card_core0_regs_fifo1_reg_word25_mine, card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word24_read_out) begin: card_core0_regs_fifo1_reg_word25_read_chain
+always @(card_core0_regs_fifo1_reg_word25_mine, card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word24_chain_out_data) begin: card_core0_regs_fifo1_reg_word25_read_chain
     if (card_core0_regs_fifo1_reg_word25_mine) begin
-        card_core0_regs_fifo1_reg_word25_read_out = (card_core0_regs_fifo1_reg_word24_read_out | card_core0_regs_fifo1_reg_word25_shown_wide);
+        card_core0_regs_fifo1_reg_word25_chain_out_data = (card_core0_regs_fifo1_reg_word24_chain_out_data | card_core0_regs_fifo1_reg_word25_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word25_read_out = card_core0_regs_fifo1_reg_word24_read_out;
+        card_core0_regs_fifo1_reg_word25_chain_out_data = card_core0_regs_fifo1_reg_word24_chain_out_data;
     end
 end
 
@@ -1894,9 +1906,9 @@ assign card_core0_regs_fifo1_reg_word25_shown_wide = {30'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word25_mine_write = (card_core0_regs_fifo1_written_addr == 4);
 
 
-always @(card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word25_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word25_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word25_written = card_core0_regs_fifo1_set_value[2-1:0];
+always @(card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word25_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word25_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0))) begin
+        card_core0_regs_fifo1_reg_word25_written = card_core0_regs_fifo1_reg_word25_set_port_value[2-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word25_written = ((card_core0_regs_fifo1_reg_word25_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
@@ -1909,7 +1921,7 @@ assign card_core0_regs_fifo1_reg_word25_honoured = card_core0_regs_fifo1_reg_wor
 
 
 
-assign card_core0_regs_fifo1_reg_word25_clamp_out = (card_core0_regs_fifo1_reg_word24_clamp_out || card_core0_regs_fifo1_reg_word25_clamped);
+assign card_core0_regs_fifo1_reg_word25_chain_out_clamped = (card_core0_regs_fifo1_reg_word24_chain_out_clamped || card_core0_regs_fifo1_reg_word25_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word25__store16_hold_rw
@@ -1919,7 +1931,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word25__
     end
     else begin
         card_core0_regs_fifo1_reg_word25_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word25_mine_write))) begin
+        if (((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word25_mine_write))) begin
             card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word25_honoured;
             card_core0_regs_fifo1_reg_word25_clamped <= card_core0_regs_fifo1_reg_word25_out_of_range;
         end
@@ -1931,18 +1943,18 @@ end
 assign card_core0_regs_fifo1_reg_word26_mine = (pci_slave1_local_addr == 8);
 
 
-always @(card_core0_regs_fifo1_reg_word26_mine, card_core0_regs_fifo1_reg_word26_shown_wide, card_core0_regs_fifo1_reg_word25_read_out) begin: card_core0_regs_fifo1_reg_word26_read_chain
+always @(card_core0_regs_fifo1_reg_word26_mine, card_core0_regs_fifo1_reg_word26_shown_wide, card_core0_regs_fifo1_reg_word25_chain_out_data) begin: card_core0_regs_fifo1_reg_word26_read_chain
     if (card_core0_regs_fifo1_reg_word26_mine) begin
-        card_core0_regs_fifo1_reg_word26_read_out = (card_core0_regs_fifo1_reg_word25_read_out | card_core0_regs_fifo1_reg_word26_shown_wide);
+        card_core0_regs_fifo1_reg_word26_chain_out_data = (card_core0_regs_fifo1_reg_word25_chain_out_data | card_core0_regs_fifo1_reg_word26_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word26_read_out = card_core0_regs_fifo1_reg_word25_read_out;
+        card_core0_regs_fifo1_reg_word26_chain_out_data = card_core0_regs_fifo1_reg_word25_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word26_shown_wide = {29'h0, card_core0_regs_fifo1_reg_word26_hw_value};
+assign card_core0_regs_fifo1_reg_word26_shown_wide = {29'h0, card_core0_regs_fifo1_reg_word26_shown};
 
 
 
@@ -1958,7 +1970,7 @@ assign card_core0_regs_fifo1_reg_word26_honoured = card_core0_regs_fifo1_reg_wor
 
 
 
-assign card_core0_regs_fifo1_reg_word26_clamp_out = (card_core0_regs_fifo1_reg_word25_clamp_out || card_core0_regs_fifo1_reg_word26_clamped);
+assign card_core0_regs_fifo1_reg_word26_chain_out_clamped = (card_core0_regs_fifo1_reg_word25_chain_out_clamped || card_core0_regs_fifo1_reg_word26_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word26__store17_pulse_on_write
@@ -1983,49 +1995,49 @@ end
 assign card_core0_regs_fifo1_reg_word27_mine = (pci_slave1_local_addr == 12);
 
 
-always @(card_core0_regs_fifo1_reg_word27_mine, card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word26_read_out) begin: card_core0_regs_fifo1_reg_word27_read_chain
+always @(card_core0_regs_fifo1_reg_word27_mine, card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word26_chain_out_data) begin: card_core0_regs_fifo1_reg_word27_read_chain
     if (card_core0_regs_fifo1_reg_word27_mine) begin
-        card_core0_regs_fifo1_reg_word27_read_out = (card_core0_regs_fifo1_reg_word26_read_out | card_core0_regs_fifo1_reg_word27_shown_wide);
+        card_core0_regs_fifo1_reg_word27_chain_out_data = (card_core0_regs_fifo1_reg_word26_chain_out_data | card_core0_regs_fifo1_reg_word27_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word27_read_out = card_core0_regs_fifo1_reg_word26_read_out;
+        card_core0_regs_fifo1_reg_word27_chain_out_data = card_core0_regs_fifo1_reg_word26_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word27_shown_wide = card_core0_regs_fifo1_reg_word27_hw_value;
+assign card_core0_regs_fifo1_reg_word27_shown_wide = card_core0_regs_fifo1_reg_word27_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word27_clamp_out = card_core0_regs_fifo1_reg_word26_clamp_out;
+assign card_core0_regs_fifo1_reg_word27_chain_out_clamped = card_core0_regs_fifo1_reg_word26_chain_out_clamped;
 
 
 
 assign card_core0_regs_fifo1_reg_word28_mine = (pci_slave1_local_addr == 16);
 
 
-always @(card_core0_regs_fifo1_reg_word28_mine, card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word27_read_out) begin: card_core0_regs_fifo1_reg_word28_read_chain
+always @(card_core0_regs_fifo1_reg_word28_mine, card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word27_chain_out_data) begin: card_core0_regs_fifo1_reg_word28_read_chain
     if (card_core0_regs_fifo1_reg_word28_mine) begin
-        card_core0_regs_fifo1_reg_word28_read_out = (card_core0_regs_fifo1_reg_word27_read_out | card_core0_regs_fifo1_reg_word28_shown_wide);
+        card_core0_regs_fifo1_reg_word28_chain_out_data = (card_core0_regs_fifo1_reg_word27_chain_out_data | card_core0_regs_fifo1_reg_word28_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word28_read_out = card_core0_regs_fifo1_reg_word27_read_out;
+        card_core0_regs_fifo1_reg_word28_chain_out_data = card_core0_regs_fifo1_reg_word27_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word28_shown_wide = {27'h0, card_core0_regs_fifo1_reg_word28_value};
+assign card_core0_regs_fifo1_reg_word28_shown_wide = {27'h0, card_core0_regs_fifo1_reg_word28_shown};
 
 
 
 assign card_core0_regs_fifo1_reg_word28_mine_write = (card_core0_regs_fifo1_written_addr == 16);
 
 
-always @(card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word28_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word28_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word28_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word28_written = card_core0_regs_fifo1_set_value[5-1:0];
+always @(card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word28_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word28_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word28_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0))) begin
+        card_core0_regs_fifo1_reg_word28_written = card_core0_regs_fifo1_reg_word25_set_port_value[5-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word28_written = ((card_core0_regs_fifo1_reg_word28_shown_wide[5-1:0] & (~card_core0_regs_fifo1_written_mask[5-1:0])) | (card_core0_regs_fifo1_written_data[5-1:0] & card_core0_regs_fifo1_written_mask[5-1:0]));
@@ -2038,18 +2050,18 @@ assign card_core0_regs_fifo1_reg_word28_honoured = card_core0_regs_fifo1_reg_wor
 
 
 
-assign card_core0_regs_fifo1_reg_word28_clamp_out = (card_core0_regs_fifo1_reg_word27_clamp_out || card_core0_regs_fifo1_reg_word28_clamped);
+assign card_core0_regs_fifo1_reg_word28_chain_out_clamped = (card_core0_regs_fifo1_reg_word27_chain_out_clamped || card_core0_regs_fifo1_reg_word28_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word28__store18_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word28_value <= 0;
+        card_core0_regs_fifo1_reg_word28_shown <= 0;
         card_core0_regs_fifo1_reg_word28_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word28_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word28_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word28_mine_write))) begin
-            card_core0_regs_fifo1_reg_word28_value <= card_core0_regs_fifo1_reg_word28_honoured;
+        if (((card_core0_regs_fifo1_reg_word28_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word28_mine_write))) begin
+            card_core0_regs_fifo1_reg_word28_shown <= card_core0_regs_fifo1_reg_word28_honoured;
             card_core0_regs_fifo1_reg_word28_clamped <= card_core0_regs_fifo1_reg_word28_out_of_range;
         end
     end
@@ -2060,18 +2072,18 @@ end
 assign card_core0_regs_fifo1_reg_word29_mine = (pci_slave1_local_addr == 20);
 
 
-always @(card_core0_regs_fifo1_reg_word29_mine, card_core0_regs_fifo1_reg_word29_shown_wide, card_core0_regs_fifo1_reg_word28_read_out) begin: card_core0_regs_fifo1_reg_word29_read_chain
+always @(card_core0_regs_fifo1_reg_word29_mine, card_core0_regs_fifo1_reg_word29_shown_wide, card_core0_regs_fifo1_reg_word28_chain_out_data) begin: card_core0_regs_fifo1_reg_word29_read_chain
     if (card_core0_regs_fifo1_reg_word29_mine) begin
-        card_core0_regs_fifo1_reg_word29_read_out = (card_core0_regs_fifo1_reg_word28_read_out | card_core0_regs_fifo1_reg_word29_shown_wide);
+        card_core0_regs_fifo1_reg_word29_chain_out_data = (card_core0_regs_fifo1_reg_word28_chain_out_data | card_core0_regs_fifo1_reg_word29_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word29_read_out = card_core0_regs_fifo1_reg_word28_read_out;
+        card_core0_regs_fifo1_reg_word29_chain_out_data = card_core0_regs_fifo1_reg_word28_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word29_shown_wide = {27'h0, card_core0_regs_fifo1_reg_word29_value};
+assign card_core0_regs_fifo1_reg_word29_shown_wide = {27'h0, card_core0_regs_fifo1_reg_word29_shown};
 
 
 
@@ -2087,19 +2099,19 @@ assign card_core0_regs_fifo1_reg_word29_honoured = card_core0_regs_fifo1_reg_wor
 
 
 
-assign card_core0_regs_fifo1_reg_word29_clamp_out = card_core0_regs_fifo1_reg_word28_clamp_out;
+assign card_core0_regs_fifo1_reg_word29_chain_out_clamped = card_core0_regs_fifo1_reg_word28_chain_out_clamped;
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word29__store19_clear_on_one
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word29_value <= 0;
+        card_core0_regs_fifo1_reg_word29_shown <= 0;
     end
     else begin
         if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word29_mine_write)) begin
-            card_core0_regs_fifo1_reg_word29_value <= ((card_core0_regs_fifo1_reg_word29_value & (~card_core0_regs_fifo1_reg_word29_honoured)) | card_core0_regs_fifo1_reg_word29_hw_value);
+            card_core0_regs_fifo1_reg_word29_shown <= ((card_core0_regs_fifo1_reg_word29_shown & (~card_core0_regs_fifo1_reg_word29_honoured)) | card_core0_regs_fifo1_reg_word29__store19_word_hw);
         end
         else begin
-            card_core0_regs_fifo1_reg_word29_value <= (card_core0_regs_fifo1_reg_word29_value | card_core0_regs_fifo1_reg_word29_hw_value);
+            card_core0_regs_fifo1_reg_word29_shown <= (card_core0_regs_fifo1_reg_word29_shown | card_core0_regs_fifo1_reg_word29__store19_word_hw);
         end
     end
 end
@@ -2109,27 +2121,27 @@ end
 assign card_core0_regs_fifo1_reg_word30_mine = (pci_slave1_local_addr == 24);
 
 
-always @(card_core0_regs_fifo1_reg_word30_mine, card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word29_read_out) begin: card_core0_regs_fifo1_reg_word30_read_chain
+always @(card_core0_regs_fifo1_reg_word30_mine, card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word29_chain_out_data) begin: card_core0_regs_fifo1_reg_word30_read_chain
     if (card_core0_regs_fifo1_reg_word30_mine) begin
-        card_core0_regs_fifo1_reg_word30_read_out = (card_core0_regs_fifo1_reg_word29_read_out | card_core0_regs_fifo1_reg_word30_shown_wide);
+        card_core0_regs_fifo1_reg_word30_chain_out_data = (card_core0_regs_fifo1_reg_word29_chain_out_data | card_core0_regs_fifo1_reg_word30_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word30_read_out = card_core0_regs_fifo1_reg_word29_read_out;
+        card_core0_regs_fifo1_reg_word30_chain_out_data = card_core0_regs_fifo1_reg_word29_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word30_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word30_value};
+assign card_core0_regs_fifo1_reg_word30_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word30_shown};
 
 
 
 assign card_core0_regs_fifo1_reg_word30_mine_write = (card_core0_regs_fifo1_written_addr == 24);
 
 
-always @(card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word30_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word30_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word30_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word30_written = card_core0_regs_fifo1_set_value[16-1:0];
+always @(card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word30_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word30_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word30_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0))) begin
+        card_core0_regs_fifo1_reg_word30_written = card_core0_regs_fifo1_reg_word25_set_port_value[16-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word30_written = ((card_core0_regs_fifo1_reg_word30_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
@@ -2142,18 +2154,18 @@ assign card_core0_regs_fifo1_reg_word30_honoured = card_core0_regs_fifo1_reg_wor
 
 
 
-assign card_core0_regs_fifo1_reg_word30_clamp_out = (card_core0_regs_fifo1_reg_word29_clamp_out || card_core0_regs_fifo1_reg_word30_clamped);
+assign card_core0_regs_fifo1_reg_word30_chain_out_clamped = (card_core0_regs_fifo1_reg_word29_chain_out_clamped || card_core0_regs_fifo1_reg_word30_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word30__store20_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word30_value <= 0;
+        card_core0_regs_fifo1_reg_word30_shown <= 0;
         card_core0_regs_fifo1_reg_word30_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word30_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word30_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word30_mine_write))) begin
-            card_core0_regs_fifo1_reg_word30_value <= card_core0_regs_fifo1_reg_word30_honoured;
+        if (((card_core0_regs_fifo1_reg_word30_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word30_mine_write))) begin
+            card_core0_regs_fifo1_reg_word30_shown <= card_core0_regs_fifo1_reg_word30_honoured;
             card_core0_regs_fifo1_reg_word30_clamped <= card_core0_regs_fifo1_reg_word30_out_of_range;
         end
     end
@@ -2164,93 +2176,93 @@ end
 assign card_core0_regs_fifo1_reg_word31_mine = (pci_slave1_local_addr == 28);
 
 
-always @(card_core0_regs_fifo1_reg_word31_mine, card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_reg_word30_read_out) begin: card_core0_regs_fifo1_reg_word31_read_chain
+always @(card_core0_regs_fifo1_reg_word31_mine, card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_reg_word30_chain_out_data) begin: card_core0_regs_fifo1_reg_word31_read_chain
     if (card_core0_regs_fifo1_reg_word31_mine) begin
-        card_core0_regs_fifo1_reg_word31_read_out = (card_core0_regs_fifo1_reg_word30_read_out | card_core0_regs_fifo1_reg_word31_shown_wide);
+        card_core0_regs_fifo1_reg_word31_chain_out_data = (card_core0_regs_fifo1_reg_word30_chain_out_data | card_core0_regs_fifo1_reg_word31_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word31_read_out = card_core0_regs_fifo1_reg_word30_read_out;
+        card_core0_regs_fifo1_reg_word31_chain_out_data = card_core0_regs_fifo1_reg_word30_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word31_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word31_hw_value};
+assign card_core0_regs_fifo1_reg_word31_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word31_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word31_clamp_out = card_core0_regs_fifo1_reg_word30_clamp_out;
+assign card_core0_regs_fifo1_reg_word31_chain_out_clamped = card_core0_regs_fifo1_reg_word30_chain_out_clamped;
 
 
 
 assign card_core0_regs_fifo1_reg_word32_mine = (pci_slave1_local_addr == 32);
 
 
-always @(card_core0_regs_fifo1_reg_word32_mine, card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word31_read_out) begin: card_core0_regs_fifo1_reg_word32_read_chain
+always @(card_core0_regs_fifo1_reg_word32_mine, card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word31_chain_out_data) begin: card_core0_regs_fifo1_reg_word32_read_chain
     if (card_core0_regs_fifo1_reg_word32_mine) begin
-        card_core0_regs_fifo1_reg_word32_read_out = (card_core0_regs_fifo1_reg_word31_read_out | card_core0_regs_fifo1_reg_word32_shown_wide);
+        card_core0_regs_fifo1_reg_word32_chain_out_data = (card_core0_regs_fifo1_reg_word31_chain_out_data | card_core0_regs_fifo1_reg_word32_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word32_read_out = card_core0_regs_fifo1_reg_word31_read_out;
+        card_core0_regs_fifo1_reg_word32_chain_out_data = card_core0_regs_fifo1_reg_word31_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word32_shown_wide = card_core0_regs_fifo1_reg_word32_hw_value;
+assign card_core0_regs_fifo1_reg_word32_shown_wide = card_core0_regs_fifo1_reg_word32_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word32_clamp_out = card_core0_regs_fifo1_reg_word31_clamp_out;
+assign card_core0_regs_fifo1_reg_word32_chain_out_clamped = card_core0_regs_fifo1_reg_word31_chain_out_clamped;
 
 
 
 assign card_core0_regs_fifo1_reg_word33_mine = (pci_slave1_local_addr == 36);
 
 
-always @(card_core0_regs_fifo1_reg_word33_mine, card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_reg_word32_read_out) begin: card_core0_regs_fifo1_reg_word33_read_chain
+always @(card_core0_regs_fifo1_reg_word33_mine, card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_reg_word32_chain_out_data) begin: card_core0_regs_fifo1_reg_word33_read_chain
     if (card_core0_regs_fifo1_reg_word33_mine) begin
-        card_core0_regs_fifo1_reg_word33_read_out = (card_core0_regs_fifo1_reg_word32_read_out | card_core0_regs_fifo1_reg_word33_shown_wide);
+        card_core0_regs_fifo1_reg_word33_chain_out_data = (card_core0_regs_fifo1_reg_word32_chain_out_data | card_core0_regs_fifo1_reg_word33_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word33_read_out = card_core0_regs_fifo1_reg_word32_read_out;
+        card_core0_regs_fifo1_reg_word33_chain_out_data = card_core0_regs_fifo1_reg_word32_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word33_shown_wide = card_core0_regs_fifo1_reg_word33_hw_value;
+assign card_core0_regs_fifo1_reg_word33_shown_wide = card_core0_regs_fifo1_reg_word33_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word33_clamp_out = card_core0_regs_fifo1_reg_word32_clamp_out;
+assign card_core0_regs_fifo1_reg_word33_chain_out_clamped = card_core0_regs_fifo1_reg_word32_chain_out_clamped;
 
 
 
 assign card_core0_regs_fifo1_reg_word34_mine = (pci_slave1_local_addr == 40);
 
 
-always @(card_core0_regs_fifo1_reg_word34_mine, card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word33_read_out) begin: card_core0_regs_fifo1_reg_word34_read_chain
+always @(card_core0_regs_fifo1_reg_word34_mine, card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word33_chain_out_data) begin: card_core0_regs_fifo1_reg_word34_read_chain
     if (card_core0_regs_fifo1_reg_word34_mine) begin
-        card_core0_regs_fifo1_reg_word34_read_out = (card_core0_regs_fifo1_reg_word33_read_out | card_core0_regs_fifo1_reg_word34_shown_wide);
+        card_core0_regs_fifo1_reg_word34_chain_out_data = (card_core0_regs_fifo1_reg_word33_chain_out_data | card_core0_regs_fifo1_reg_word34_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word34_read_out = card_core0_regs_fifo1_reg_word33_read_out;
+        card_core0_regs_fifo1_reg_word34_chain_out_data = card_core0_regs_fifo1_reg_word33_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word34_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word34_value};
+assign card_core0_regs_fifo1_reg_word34_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word34_shown};
 
 
 
 assign card_core0_regs_fifo1_reg_word34_mine_write = (card_core0_regs_fifo1_written_addr == 40);
 
 
-always @(card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word34_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word34_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word34_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0))) begin
+        card_core0_regs_fifo1_reg_word34_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word34_written = ((card_core0_regs_fifo1_reg_word34_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2274,18 +2286,18 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word34_clamp_out = (card_core0_regs_fifo1_reg_word33_clamp_out || card_core0_regs_fifo1_reg_word34_clamped);
+assign card_core0_regs_fifo1_reg_word34_chain_out_clamped = (card_core0_regs_fifo1_reg_word33_chain_out_clamped || card_core0_regs_fifo1_reg_word34_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word34__store21_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word34_value <= 4096;
+        card_core0_regs_fifo1_reg_word34_shown <= 4096;
         card_core0_regs_fifo1_reg_word34_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word34_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word34_mine_write))) begin
-            card_core0_regs_fifo1_reg_word34_value <= card_core0_regs_fifo1_reg_word34_honoured;
+        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word34_mine_write))) begin
+            card_core0_regs_fifo1_reg_word34_shown <= card_core0_regs_fifo1_reg_word34_honoured;
             card_core0_regs_fifo1_reg_word34_clamped <= card_core0_regs_fifo1_reg_word34_out_of_range;
         end
     end
@@ -2296,27 +2308,27 @@ end
 assign card_core0_regs_fifo1_reg_word35_mine = (pci_slave1_local_addr == 44);
 
 
-always @(card_core0_regs_fifo1_reg_word35_mine, card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_read_out) begin: card_core0_regs_fifo1_reg_word35_read_chain
+always @(card_core0_regs_fifo1_reg_word35_mine, card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_chain_out_data) begin: card_core0_regs_fifo1_reg_word35_read_chain
     if (card_core0_regs_fifo1_reg_word35_mine) begin
-        card_core0_regs_fifo1_reg_word35_read_out = (card_core0_regs_fifo1_reg_word34_read_out | card_core0_regs_fifo1_reg_word35_shown_wide);
+        card_core0_regs_fifo1_reg_word35_chain_out_data = (card_core0_regs_fifo1_reg_word34_chain_out_data | card_core0_regs_fifo1_reg_word35_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word35_read_out = card_core0_regs_fifo1_reg_word34_read_out;
+        card_core0_regs_fifo1_reg_word35_chain_out_data = card_core0_regs_fifo1_reg_word34_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word35_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word35_value};
+assign card_core0_regs_fifo1_reg_word35_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word35_shown};
 
 
 
 assign card_core0_regs_fifo1_reg_word35_mine_write = (card_core0_regs_fifo1_written_addr == 44);
 
 
-always @(card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word35_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
-        card_core0_regs_fifo1_reg_word35_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word35_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 1))) begin
+        card_core0_regs_fifo1_reg_word35_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word35_written = ((card_core0_regs_fifo1_reg_word35_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2340,18 +2352,18 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word35_clamp_out = (card_core0_regs_fifo1_reg_word34_clamp_out || card_core0_regs_fifo1_reg_word35_clamped);
+assign card_core0_regs_fifo1_reg_word35_chain_out_clamped = (card_core0_regs_fifo1_reg_word34_chain_out_clamped || card_core0_regs_fifo1_reg_word35_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word35__store22_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word35_value <= 4096;
+        card_core0_regs_fifo1_reg_word35_shown <= 4096;
         card_core0_regs_fifo1_reg_word35_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word35_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word35_mine_write))) begin
-            card_core0_regs_fifo1_reg_word35_value <= card_core0_regs_fifo1_reg_word35_honoured;
+        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word35_mine_write))) begin
+            card_core0_regs_fifo1_reg_word35_shown <= card_core0_regs_fifo1_reg_word35_honoured;
             card_core0_regs_fifo1_reg_word35_clamped <= card_core0_regs_fifo1_reg_word35_out_of_range;
         end
     end
@@ -2362,27 +2374,27 @@ end
 assign card_core0_regs_fifo1_reg_word36_mine = (pci_slave1_local_addr == 48);
 
 
-always @(card_core0_regs_fifo1_reg_word36_mine, card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word35_read_out) begin: card_core0_regs_fifo1_reg_word36_read_chain
+always @(card_core0_regs_fifo1_reg_word36_mine, card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word35_chain_out_data) begin: card_core0_regs_fifo1_reg_word36_read_chain
     if (card_core0_regs_fifo1_reg_word36_mine) begin
-        card_core0_regs_fifo1_reg_word36_read_out = (card_core0_regs_fifo1_reg_word35_read_out | card_core0_regs_fifo1_reg_word36_shown_wide);
+        card_core0_regs_fifo1_reg_word36_chain_out_data = (card_core0_regs_fifo1_reg_word35_chain_out_data | card_core0_regs_fifo1_reg_word36_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word36_read_out = card_core0_regs_fifo1_reg_word35_read_out;
+        card_core0_regs_fifo1_reg_word36_chain_out_data = card_core0_regs_fifo1_reg_word35_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word36_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word36_value};
+assign card_core0_regs_fifo1_reg_word36_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word36_shown};
 
 
 
 assign card_core0_regs_fifo1_reg_word36_mine_write = (card_core0_regs_fifo1_written_addr == 48);
 
 
-always @(card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word36_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
-        card_core0_regs_fifo1_reg_word36_written = card_core0_regs_fifo1_set_value[16-1:0];
+always @(card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word36_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 2))) begin
+        card_core0_regs_fifo1_reg_word36_written = card_core0_regs_fifo1_reg_word25_set_port_value[16-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word36_written = ((card_core0_regs_fifo1_reg_word36_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
@@ -2395,18 +2407,18 @@ assign card_core0_regs_fifo1_reg_word36_honoured = card_core0_regs_fifo1_reg_wor
 
 
 
-assign card_core0_regs_fifo1_reg_word36_clamp_out = (card_core0_regs_fifo1_reg_word35_clamp_out || card_core0_regs_fifo1_reg_word36_clamped);
+assign card_core0_regs_fifo1_reg_word36_chain_out_clamped = (card_core0_regs_fifo1_reg_word35_chain_out_clamped || card_core0_regs_fifo1_reg_word36_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word36__store23_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word36_value <= 0;
+        card_core0_regs_fifo1_reg_word36_shown <= 0;
         card_core0_regs_fifo1_reg_word36_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word36_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word36_mine_write))) begin
-            card_core0_regs_fifo1_reg_word36_value <= card_core0_regs_fifo1_reg_word36_honoured;
+        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word36_mine_write))) begin
+            card_core0_regs_fifo1_reg_word36_shown <= card_core0_regs_fifo1_reg_word36_honoured;
             card_core0_regs_fifo1_reg_word36_clamped <= card_core0_regs_fifo1_reg_word36_out_of_range;
         end
     end
@@ -2417,27 +2429,27 @@ end
 assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_local_addr == 52);
 
 
-always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word36_read_out) begin: card_core0_regs_fifo1_reg_word37_read_chain
+always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word36_chain_out_data) begin: card_core0_regs_fifo1_reg_word37_read_chain
     if (card_core0_regs_fifo1_reg_word37_mine) begin
-        card_core0_regs_fifo1_reg_word37_read_out = (card_core0_regs_fifo1_reg_word36_read_out | card_core0_regs_fifo1_reg_word37_shown_wide);
+        card_core0_regs_fifo1_reg_word37_chain_out_data = (card_core0_regs_fifo1_reg_word36_chain_out_data | card_core0_regs_fifo1_reg_word37_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word37_read_out = card_core0_regs_fifo1_reg_word36_read_out;
+        card_core0_regs_fifo1_reg_word37_chain_out_data = card_core0_regs_fifo1_reg_word36_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word37_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word37_value};
+assign card_core0_regs_fifo1_reg_word37_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word37_shown};
 
 
 
 assign card_core0_regs_fifo1_reg_word37_mine_write = (card_core0_regs_fifo1_written_addr == 52);
 
 
-always @(card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word37_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
-        card_core0_regs_fifo1_reg_word37_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word37_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 3))) begin
+        card_core0_regs_fifo1_reg_word37_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word37_written = ((card_core0_regs_fifo1_reg_word37_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2461,18 +2473,18 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word37_clamp_out = (card_core0_regs_fifo1_reg_word36_clamp_out || card_core0_regs_fifo1_reg_word37_clamped);
+assign card_core0_regs_fifo1_reg_word37_chain_out_clamped = (card_core0_regs_fifo1_reg_word36_chain_out_clamped || card_core0_regs_fifo1_reg_word37_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word37__store24_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word37_value <= 1;
+        card_core0_regs_fifo1_reg_word37_shown <= 1;
         card_core0_regs_fifo1_reg_word37_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word37_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word37_mine_write))) begin
-            card_core0_regs_fifo1_reg_word37_value <= card_core0_regs_fifo1_reg_word37_honoured;
+        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word37_mine_write))) begin
+            card_core0_regs_fifo1_reg_word37_shown <= card_core0_regs_fifo1_reg_word37_honoured;
             card_core0_regs_fifo1_reg_word37_clamped <= card_core0_regs_fifo1_reg_word37_out_of_range;
         end
     end
@@ -2483,27 +2495,27 @@ end
 assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_local_addr == 56);
 
 
-always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_read_out) begin: card_core0_regs_fifo1_reg_word38_read_chain
+always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_chain_out_data) begin: card_core0_regs_fifo1_reg_word38_read_chain
     if (card_core0_regs_fifo1_reg_word38_mine) begin
-        card_core0_regs_fifo1_reg_word38_read_out = (card_core0_regs_fifo1_reg_word37_read_out | card_core0_regs_fifo1_reg_word38_shown_wide);
+        card_core0_regs_fifo1_reg_word38_chain_out_data = (card_core0_regs_fifo1_reg_word37_chain_out_data | card_core0_regs_fifo1_reg_word38_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word38_read_out = card_core0_regs_fifo1_reg_word37_read_out;
+        card_core0_regs_fifo1_reg_word38_chain_out_data = card_core0_regs_fifo1_reg_word37_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word38_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word38_value};
+assign card_core0_regs_fifo1_reg_word38_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word38_shown};
 
 
 
 assign card_core0_regs_fifo1_reg_word38_mine_write = (card_core0_regs_fifo1_written_addr == 56);
 
 
-always @(card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word38_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
-        card_core0_regs_fifo1_reg_word38_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word38_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 4))) begin
+        card_core0_regs_fifo1_reg_word38_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word38_written = ((card_core0_regs_fifo1_reg_word38_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2527,18 +2539,18 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word38_clamp_out = (card_core0_regs_fifo1_reg_word37_clamp_out || card_core0_regs_fifo1_reg_word38_clamped);
+assign card_core0_regs_fifo1_reg_word38_chain_out_clamped = (card_core0_regs_fifo1_reg_word37_chain_out_clamped || card_core0_regs_fifo1_reg_word38_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word38__store25_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word38_value <= 1;
+        card_core0_regs_fifo1_reg_word38_shown <= 1;
         card_core0_regs_fifo1_reg_word38_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word38_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word38_mine_write))) begin
-            card_core0_regs_fifo1_reg_word38_value <= card_core0_regs_fifo1_reg_word38_honoured;
+        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word38_mine_write))) begin
+            card_core0_regs_fifo1_reg_word38_shown <= card_core0_regs_fifo1_reg_word38_honoured;
             card_core0_regs_fifo1_reg_word38_clamped <= card_core0_regs_fifo1_reg_word38_out_of_range;
         end
     end
@@ -2549,27 +2561,27 @@ end
 assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_local_addr == 60);
 
 
-always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_read_out) begin: card_core0_regs_fifo1_reg_word39_read_chain
+always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_chain_out_data) begin: card_core0_regs_fifo1_reg_word39_read_chain
     if (card_core0_regs_fifo1_reg_word39_mine) begin
-        card_core0_regs_fifo1_reg_word39_read_out = (card_core0_regs_fifo1_reg_word38_read_out | card_core0_regs_fifo1_reg_word39_shown_wide);
+        card_core0_regs_fifo1_reg_word39_chain_out_data = (card_core0_regs_fifo1_reg_word38_chain_out_data | card_core0_regs_fifo1_reg_word39_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word39_read_out = card_core0_regs_fifo1_reg_word38_read_out;
+        card_core0_regs_fifo1_reg_word39_chain_out_data = card_core0_regs_fifo1_reg_word38_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word39_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word39_value};
+assign card_core0_regs_fifo1_reg_word39_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word39_shown};
 
 
 
 assign card_core0_regs_fifo1_reg_word39_mine_write = (card_core0_regs_fifo1_written_addr == 60);
 
 
-always @(card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word39_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
-        card_core0_regs_fifo1_reg_word39_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word39_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 5))) begin
+        card_core0_regs_fifo1_reg_word39_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word39_written = ((card_core0_regs_fifo1_reg_word39_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2593,18 +2605,18 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word39_clamp_out = (card_core0_regs_fifo1_reg_word38_clamp_out || card_core0_regs_fifo1_reg_word39_clamped);
+assign card_core0_regs_fifo1_reg_word39_chain_out_clamped = (card_core0_regs_fifo1_reg_word38_chain_out_clamped || card_core0_regs_fifo1_reg_word39_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word39__store26_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word39_value <= 1;
+        card_core0_regs_fifo1_reg_word39_shown <= 1;
         card_core0_regs_fifo1_reg_word39_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word39_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word39_mine_write))) begin
-            card_core0_regs_fifo1_reg_word39_value <= card_core0_regs_fifo1_reg_word39_honoured;
+        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word39_mine_write))) begin
+            card_core0_regs_fifo1_reg_word39_shown <= card_core0_regs_fifo1_reg_word39_honoured;
             card_core0_regs_fifo1_reg_word39_clamped <= card_core0_regs_fifo1_reg_word39_out_of_range;
         end
     end
@@ -2615,27 +2627,27 @@ end
 assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_local_addr == 64);
 
 
-always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_read_out) begin: card_core0_regs_fifo1_reg_word40_read_chain
+always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_chain_out_data) begin: card_core0_regs_fifo1_reg_word40_read_chain
     if (card_core0_regs_fifo1_reg_word40_mine) begin
-        card_core0_regs_fifo1_reg_word40_read_out = (card_core0_regs_fifo1_reg_word39_read_out | card_core0_regs_fifo1_reg_word40_shown_wide);
+        card_core0_regs_fifo1_reg_word40_chain_out_data = (card_core0_regs_fifo1_reg_word39_chain_out_data | card_core0_regs_fifo1_reg_word40_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word40_read_out = card_core0_regs_fifo1_reg_word39_read_out;
+        card_core0_regs_fifo1_reg_word40_chain_out_data = card_core0_regs_fifo1_reg_word39_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word40_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word40_value};
+assign card_core0_regs_fifo1_reg_word40_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word40_shown};
 
 
 
 assign card_core0_regs_fifo1_reg_word40_mine_write = (card_core0_regs_fifo1_written_addr == 64);
 
 
-always @(card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word40_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word40_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word40_written = card_core0_regs_fifo1_set_value[2-1:0];
+always @(card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word40_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word40_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0))) begin
+        card_core0_regs_fifo1_reg_word40_written = card_core0_regs_fifo1_reg_word25_set_port_value[2-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word40_written = ((card_core0_regs_fifo1_reg_word40_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
@@ -2648,18 +2660,18 @@ assign card_core0_regs_fifo1_reg_word40_honoured = card_core0_regs_fifo1_reg_wor
 
 
 
-assign card_core0_regs_fifo1_reg_word40_clamp_out = (card_core0_regs_fifo1_reg_word39_clamp_out || card_core0_regs_fifo1_reg_word40_clamped);
+assign card_core0_regs_fifo1_reg_word40_chain_out_clamped = (card_core0_regs_fifo1_reg_word39_chain_out_clamped || card_core0_regs_fifo1_reg_word40_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word40__store27_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word40_value <= 0;
+        card_core0_regs_fifo1_reg_word40_shown <= 0;
         card_core0_regs_fifo1_reg_word40_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word40_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word40_mine_write))) begin
-            card_core0_regs_fifo1_reg_word40_value <= card_core0_regs_fifo1_reg_word40_honoured;
+        if (((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word40_mine_write))) begin
+            card_core0_regs_fifo1_reg_word40_shown <= card_core0_regs_fifo1_reg_word40_honoured;
             card_core0_regs_fifo1_reg_word40_clamped <= card_core0_regs_fifo1_reg_word40_out_of_range;
         end
     end
@@ -2670,27 +2682,27 @@ end
 assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_local_addr == 68);
 
 
-always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_read_out) begin: card_core0_regs_fifo1_reg_word41_read_chain
+always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_chain_out_data) begin: card_core0_regs_fifo1_reg_word41_read_chain
     if (card_core0_regs_fifo1_reg_word41_mine) begin
-        card_core0_regs_fifo1_reg_word41_read_out = (card_core0_regs_fifo1_reg_word40_read_out | card_core0_regs_fifo1_reg_word41_shown_wide);
+        card_core0_regs_fifo1_reg_word41_chain_out_data = (card_core0_regs_fifo1_reg_word40_chain_out_data | card_core0_regs_fifo1_reg_word41_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word41_read_out = card_core0_regs_fifo1_reg_word40_read_out;
+        card_core0_regs_fifo1_reg_word41_chain_out_data = card_core0_regs_fifo1_reg_word40_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word41_value};
+assign card_core0_regs_fifo1_reg_word41_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word41_shown};
 
 
 
 assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 68);
 
 
-always @(card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word41_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
-        card_core0_regs_fifo1_reg_word41_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word41_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 6))) begin
+        card_core0_regs_fifo1_reg_word41_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word41_written = ((card_core0_regs_fifo1_reg_word41_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2714,18 +2726,18 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_clamp_out = (card_core0_regs_fifo1_reg_word40_clamp_out || card_core0_regs_fifo1_reg_word41_clamped);
+assign card_core0_regs_fifo1_reg_word41_chain_out_clamped = (card_core0_regs_fifo1_reg_word40_chain_out_clamped || card_core0_regs_fifo1_reg_word41_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__store28_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word41_value <= 2;
+        card_core0_regs_fifo1_reg_word41_shown <= 2;
         card_core0_regs_fifo1_reg_word41_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word41_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write))) begin
-            card_core0_regs_fifo1_reg_word41_value <= card_core0_regs_fifo1_reg_word41_honoured;
+        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write))) begin
+            card_core0_regs_fifo1_reg_word41_shown <= card_core0_regs_fifo1_reg_word41_honoured;
             card_core0_regs_fifo1_reg_word41_clamped <= card_core0_regs_fifo1_reg_word41_out_of_range;
         end
     end
@@ -2736,27 +2748,27 @@ end
 assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_local_addr == 72);
 
 
-always @(card_core0_regs_fifo1_reg_word42_mine, card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word41_read_out) begin: card_core0_regs_fifo1_reg_word42_read_chain
+always @(card_core0_regs_fifo1_reg_word42_mine, card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word41_chain_out_data) begin: card_core0_regs_fifo1_reg_word42_read_chain
     if (card_core0_regs_fifo1_reg_word42_mine) begin
-        card_core0_regs_fifo1_reg_word42_read_out = (card_core0_regs_fifo1_reg_word41_read_out | card_core0_regs_fifo1_reg_word42_shown_wide);
+        card_core0_regs_fifo1_reg_word42_chain_out_data = (card_core0_regs_fifo1_reg_word41_chain_out_data | card_core0_regs_fifo1_reg_word42_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word42_read_out = card_core0_regs_fifo1_reg_word41_read_out;
+        card_core0_regs_fifo1_reg_word42_chain_out_data = card_core0_regs_fifo1_reg_word41_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word42_value};
+assign card_core0_regs_fifo1_reg_word42_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word42_shown};
 
 
 
 assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_written_addr == 72);
 
 
-always @(card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word42_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
-        card_core0_regs_fifo1_reg_word42_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word42_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 7))) begin
+        card_core0_regs_fifo1_reg_word42_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word42_written = ((card_core0_regs_fifo1_reg_word42_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2780,18 +2792,18 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_clamp_out = (card_core0_regs_fifo1_reg_word41_clamp_out || card_core0_regs_fifo1_reg_word42_clamped);
+assign card_core0_regs_fifo1_reg_word42_chain_out_clamped = (card_core0_regs_fifo1_reg_word41_chain_out_clamped || card_core0_regs_fifo1_reg_word42_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word42__store29_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word42_value <= 2;
+        card_core0_regs_fifo1_reg_word42_shown <= 2;
         card_core0_regs_fifo1_reg_word42_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word42_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word42_mine_write))) begin
-            card_core0_regs_fifo1_reg_word42_value <= card_core0_regs_fifo1_reg_word42_honoured;
+        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word42_mine_write))) begin
+            card_core0_regs_fifo1_reg_word42_shown <= card_core0_regs_fifo1_reg_word42_honoured;
             card_core0_regs_fifo1_reg_word42_clamped <= card_core0_regs_fifo1_reg_word42_out_of_range;
         end
     end
@@ -2802,18 +2814,18 @@ end
 assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_local_addr == 76);
 
 
-always @(card_core0_regs_fifo1_reg_word43_mine, card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word42_read_out) begin: card_core0_regs_fifo1_reg_word43_read_chain
+always @(card_core0_regs_fifo1_reg_word43_mine, card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word42_chain_out_data) begin: card_core0_regs_fifo1_reg_word43_read_chain
     if (card_core0_regs_fifo1_reg_word43_mine) begin
-        card_core0_regs_fifo1_reg_word43_read_out = (card_core0_regs_fifo1_reg_word42_read_out | card_core0_regs_fifo1_reg_word43_shown_wide);
+        card_core0_regs_fifo1_reg_word43_chain_out_data = (card_core0_regs_fifo1_reg_word42_chain_out_data | card_core0_regs_fifo1_reg_word43_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word43_read_out = card_core0_regs_fifo1_reg_word42_read_out;
+        card_core0_regs_fifo1_reg_word43_chain_out_data = card_core0_regs_fifo1_reg_word42_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word43_hw_value};
+assign card_core0_regs_fifo1_reg_word43_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word43_shown};
 
 
 
@@ -2841,21 +2853,21 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_clamp_out = (card_core0_regs_fifo1_reg_word42_clamp_out || card_core0_regs_fifo1_reg_word43_clamped);
+assign card_core0_regs_fifo1_reg_word43_chain_out_clamped = (card_core0_regs_fifo1_reg_word42_chain_out_clamped || card_core0_regs_fifo1_reg_word43_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word43__store30_pulse_on_write
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word43_strobe <= 0;
-        card_core0_regs_fifo1_reg_word43_value <= 0;
+        card_core0_regs_fifo1_reg_word43__store30_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word43__store30_word_value <= 0;
         card_core0_regs_fifo1_reg_word43_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word43_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word43__store30_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word43_clamped <= 1'b0;
         if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word43_mine_write)) begin
-            card_core0_regs_fifo1_reg_word43_value <= card_core0_regs_fifo1_reg_word43_honoured;
-            card_core0_regs_fifo1_reg_word43_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word43__store30_word_value <= card_core0_regs_fifo1_reg_word43_honoured;
+            card_core0_regs_fifo1_reg_word43__store30_word_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word43_clamped <= card_core0_regs_fifo1_reg_word43_out_of_range;
         end
     end
@@ -2866,18 +2878,18 @@ end
 assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_local_addr == 80);
 
 
-always @(card_core0_regs_fifo1_reg_word44_mine, card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_reg_word43_read_out) begin: card_core0_regs_fifo1_reg_word44_read_chain
+always @(card_core0_regs_fifo1_reg_word44_mine, card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_reg_word43_chain_out_data) begin: card_core0_regs_fifo1_reg_word44_read_chain
     if (card_core0_regs_fifo1_reg_word44_mine) begin
-        card_core0_regs_fifo1_reg_word44_read_out = (card_core0_regs_fifo1_reg_word43_read_out | card_core0_regs_fifo1_reg_word44_shown_wide);
+        card_core0_regs_fifo1_reg_word44_chain_out_data = (card_core0_regs_fifo1_reg_word43_chain_out_data | card_core0_regs_fifo1_reg_word44_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word44_read_out = card_core0_regs_fifo1_reg_word43_read_out;
+        card_core0_regs_fifo1_reg_word44_chain_out_data = card_core0_regs_fifo1_reg_word43_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word44_hw_value};
+assign card_core0_regs_fifo1_reg_word44_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word44_shown};
 
 
 
@@ -2905,21 +2917,21 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_clamp_out = (card_core0_regs_fifo1_reg_word43_clamp_out || card_core0_regs_fifo1_reg_word44_clamped);
+assign card_core0_regs_fifo1_reg_word44_chain_out_clamped = (card_core0_regs_fifo1_reg_word43_chain_out_clamped || card_core0_regs_fifo1_reg_word44_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word44__store31_pulse_on_write
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word44_strobe <= 0;
-        card_core0_regs_fifo1_reg_word44_value <= 0;
+        card_core0_regs_fifo1_reg_word44__store31_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word44__store31_word_value <= 0;
         card_core0_regs_fifo1_reg_word44_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word44_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word44__store31_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word44_clamped <= 1'b0;
         if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word44_mine_write)) begin
-            card_core0_regs_fifo1_reg_word44_value <= card_core0_regs_fifo1_reg_word44_honoured;
-            card_core0_regs_fifo1_reg_word44_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word44__store31_word_value <= card_core0_regs_fifo1_reg_word44_honoured;
+            card_core0_regs_fifo1_reg_word44__store31_word_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word44_clamped <= card_core0_regs_fifo1_reg_word44_out_of_range;
         end
     end
@@ -2930,66 +2942,66 @@ end
 assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_local_addr == 84);
 
 
-always @(card_core0_regs_fifo1_reg_word45_mine, card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word44_read_out) begin: card_core0_regs_fifo1_reg_word45_read_chain
+always @(card_core0_regs_fifo1_reg_word45_mine, card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word44_chain_out_data) begin: card_core0_regs_fifo1_reg_word45_read_chain
     if (card_core0_regs_fifo1_reg_word45_mine) begin
-        card_core0_regs_fifo1_reg_word45_read_out = (card_core0_regs_fifo1_reg_word44_read_out | card_core0_regs_fifo1_reg_word45_shown_wide);
+        card_core0_regs_fifo1_reg_word45_chain_out_data = (card_core0_regs_fifo1_reg_word44_chain_out_data | card_core0_regs_fifo1_reg_word45_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word45_read_out = card_core0_regs_fifo1_reg_word44_read_out;
+        card_core0_regs_fifo1_reg_word45_chain_out_data = card_core0_regs_fifo1_reg_word44_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_shown_wide = card_core0_regs_fifo1_reg_word45_hw_value;
+assign card_core0_regs_fifo1_reg_word45_shown_wide = card_core0_regs_fifo1_reg_word45_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word45_clamp_out = card_core0_regs_fifo1_reg_word44_clamp_out;
+assign card_core0_regs_fifo1_reg_word45_chain_out_clamped = card_core0_regs_fifo1_reg_word44_chain_out_clamped;
 
 
 
 assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_local_addr == 88);
 
 
-always @(card_core0_regs_fifo1_reg_word46_mine, card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_reg_word45_read_out) begin: card_core0_regs_fifo1_reg_word46_read_chain
+always @(card_core0_regs_fifo1_reg_word46_mine, card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_reg_word45_chain_out_data) begin: card_core0_regs_fifo1_reg_word46_read_chain
     if (card_core0_regs_fifo1_reg_word46_mine) begin
-        card_core0_regs_fifo1_reg_word46_read_out = (card_core0_regs_fifo1_reg_word45_read_out | card_core0_regs_fifo1_reg_word46_shown_wide);
+        card_core0_regs_fifo1_reg_word46_chain_out_data = (card_core0_regs_fifo1_reg_word45_chain_out_data | card_core0_regs_fifo1_reg_word46_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word46_read_out = card_core0_regs_fifo1_reg_word45_read_out;
+        card_core0_regs_fifo1_reg_word46_chain_out_data = card_core0_regs_fifo1_reg_word45_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word46_hw_value};
+assign card_core0_regs_fifo1_reg_word46_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word46_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word46_clamp_out = card_core0_regs_fifo1_reg_word45_clamp_out;
+assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = card_core0_regs_fifo1_reg_word45_chain_out_clamped;
 
 
 
 assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_local_addr == 92);
 
 
-always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_read_out) begin: card_core0_regs_fifo1_reg_word47_read_chain
+always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_chain_out_data) begin: card_core0_regs_fifo1_reg_word47_read_chain
     if (card_core0_regs_fifo1_reg_word47_mine) begin
-        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word46_read_out | card_core0_regs_fifo1_reg_word47_shown_wide);
+        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word46_chain_out_data | card_core0_regs_fifo1_reg_word47_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word46_read_out;
+        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word46_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word47_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word47_hw_value};
+assign card_core0_regs_fifo1_reg_word47_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word47_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word47_clamp_out = card_core0_regs_fifo1_reg_word46_clamp_out;
+assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = card_core0_regs_fifo1_reg_word46_chain_out_clamped;
 
 
 
@@ -2998,10 +3010,6 @@ assign card_core0_regs_fifo1_sequencer1_arriving_coord_fits = ((card_core0_regs_
 
 
 assign card_core0_regs_fifo1_sequencer1_arriving_count_fits = ((card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 511));
-
-
-
-assign card_core0_regs_fifo1_sequencer1_opcode = card_core0_regs_fifo1_sequencer1_header[32-1:28];
 
 
 always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_arriving
@@ -3048,8 +3056,8 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_sequencer1_lookup_count
-    case (card_core0_regs_fifo1_sequencer1_header[32-1:28])
+always @(card_core0_regs_fifo1_sequencer1_opcode) begin: card_core0_regs_fifo1_sequencer1_lookup_count
+    case (card_core0_regs_fifo1_sequencer1_opcode)
         0: card_core0_regs_fifo1_sequencer1_next_count = 0;
         1: card_core0_regs_fifo1_sequencer1_next_count = 2;
         2: card_core0_regs_fifo1_sequencer1_next_count = 4;
@@ -3136,8 +3144,8 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_sequencer1_lookup_coords
-    case (card_core0_regs_fifo1_sequencer1_header[32-1:28])
+always @(card_core0_regs_fifo1_sequencer1_opcode) begin: card_core0_regs_fifo1_sequencer1_lookup_coords
+    case (card_core0_regs_fifo1_sequencer1_opcode)
         0: card_core0_regs_fifo1_sequencer1_coord_mask = 0;
         1: card_core0_regs_fifo1_sequencer1_coord_mask = 3;
         2: card_core0_regs_fifo1_sequencer1_coord_mask = 15;
@@ -3158,8 +3166,8 @@ always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_s
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_header) begin: card_core0_regs_fifo1_sequencer1_lookup_counts
-    case (card_core0_regs_fifo1_sequencer1_header[32-1:28])
+always @(card_core0_regs_fifo1_sequencer1_opcode) begin: card_core0_regs_fifo1_sequencer1_lookup_counts
+    case (card_core0_regs_fifo1_sequencer1_opcode)
         0: card_core0_regs_fifo1_sequencer1_count_mask = 0;
         1: card_core0_regs_fifo1_sequencer1_count_mask = 0;
         2: card_core0_regs_fifo1_sequencer1_count_mask = 0;
@@ -3202,7 +3210,7 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_arriving_count, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_state, card_core0_core_clear, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer1_next_valid, card_core0_regs_fifo1_sequencer1_next_count, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_fetch_request
+always @(card_core0_regs_fifo1_sequencer1_arriving_count, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_state, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer1_next_valid, card_core0_core_clear, card_core0_regs_fifo1_sequencer1_next_count, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_fetch_request
     reg more;
     more = 1'b1;
     if (card_core0_regs_fifo1_sequencer1_word_due) begin
@@ -3235,6 +3243,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
         card_core0_regs_fifo1_sequencer1_header <= 0;
         card_core0_regs_fifo1_sequencer1_operand_1 <= 0;
         card_core0_regs_fifo1_sequencer1_bad_header_bits <= 0;
+        card_core0_regs_fifo1_sequencer1_opcode <= 0;
         card_core0_regs_fifo1_sequencer1_fetched <= 0;
         card_core0_regs_fifo1_sequencer1_operand_2 <= 0;
     end
@@ -3251,7 +3260,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
             end
             if (card_core0_regs_fifo1_sequencer1_word_due) begin
                 if ((card_core0_regs_fifo1_sequencer1_fetched == 0)) begin
-                    card_core0_regs_fifo1_sequencer1_header <= card_core0_regs_fifo1_fifo_dout;
+                    card_core0_regs_fifo1_sequencer1_opcode <= card_core0_regs_fifo1_fifo_dout[32-1:28];
+                    card_core0_regs_fifo1_sequencer1_header <= card_core0_regs_fifo1_fifo_dout[17-1:0];
                     card_core0_regs_fifo1_sequencer1_next_motion <= card_core0_regs_fifo1_sequencer1_arriving_moves;
                     card_core0_regs_fifo1_sequencer1_bad_opcode <= (!card_core0_regs_fifo1_sequencer1_next_known);
                     card_core0_regs_fifo1_sequencer1_bad_header_bits <= (((card_core0_regs_fifo1_fifo_dout[32-1:16] & (~card_core0_regs_fifo1_sequencer1_mask_high)) != 0) || ((card_core0_regs_fifo1_fifo_dout[16-1:0] & (~card_core0_regs_fifo1_sequencer1_mask_low)) != 0));
@@ -3270,13 +3280,13 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
                             card_core0_regs_fifo1_sequencer1_operand_0 <= card_core0_regs_fifo1_fifo_dout;
                         end
                         'h2: begin
-                            card_core0_regs_fifo1_sequencer1_operand_1 <= card_core0_regs_fifo1_fifo_dout;
+                            card_core0_regs_fifo1_sequencer1_operand_1 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
                         end
                         'h3: begin
-                            card_core0_regs_fifo1_sequencer1_operand_2 <= card_core0_regs_fifo1_fifo_dout;
+                            card_core0_regs_fifo1_sequencer1_operand_2 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
                         end
                         default: begin
-                            card_core0_regs_fifo1_sequencer1_operand_3 <= card_core0_regs_fifo1_fifo_dout;
+                            card_core0_regs_fifo1_sequencer1_operand_3 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
                         end
                     endcase
                     if (((card_core0_regs_fifo1_sequencer1_coord_mask[($signed({1'b0, card_core0_regs_fifo1_sequencer1_fetched}) - 1)] && (!card_core0_regs_fifo1_sequencer1_arriving_coord_fits)) || (card_core0_regs_fifo1_sequencer1_count_mask[($signed({1'b0, card_core0_regs_fifo1_sequencer1_fetched}) - 1)] && (!card_core0_regs_fifo1_sequencer1_arriving_count_fits)))) begin
@@ -3317,7 +3327,7 @@ end
 assign card_core0_regs_fifo1_sequencer1_motion_done = ((!card_core0_regs_fifo1_sequencer1_dda_start) && (!card_core0_regs_fifo1_dda_busy) && (!card_core0_regs_fifo1_sequencer1_dda_done));
 
 
-always @(card_core0_regs_fifo1_outputs_busy, card_core0_regs_fifo1_sequencer1_motion_done, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_sequencer1_dwell_left, card_core0_regs_fifo1_sequencer1_state) begin: card_core0_regs_fifo1_sequencer1_completion
+always @(card_core0_regs_fifo1_sequencer1_motion_done, card_core0_regs_fifo1_outputs_busy, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_sequencer1_dwell_left, card_core0_regs_fifo1_sequencer1_state) begin: card_core0_regs_fifo1_sequencer1_completion
     card_core0_regs_fifo1_sequencer1_state_over = 1'b0;
     case (card_core0_regs_fifo1_sequencer1_state)
         3'b000: begin
@@ -3339,7 +3349,7 @@ always @(card_core0_regs_fifo1_outputs_busy, card_core0_regs_fifo1_sequencer1_mo
 end
 
 
-always @(card_core0_regs_fifo1_outputs_busy, card_core0_regs_fifo1_sequencer1_next_motion, card_core0_regs_fifo1_sequencer1_dda_ready, card_core0_regs_fifo1_sequencer1_state_over, card_core0_regs_fifo1_sequencer1_dda_start, card_core0_regs_fifo1_sequencer1_next_error, card_core0_regs_fifo1_sequencer1_dda_error, card_core0_regs_fifo1_sequencer1_state) begin: card_core0_regs_fifo1_sequencer1_readiness
+always @(card_core0_regs_fifo1_sequencer1_next_motion, card_core0_regs_fifo1_sequencer1_dda_ready, card_core0_regs_fifo1_sequencer1_state_over, card_core0_regs_fifo1_outputs_busy, card_core0_regs_fifo1_sequencer1_dda_start, card_core0_regs_fifo1_sequencer1_next_error, card_core0_regs_fifo1_sequencer1_dda_error, card_core0_regs_fifo1_sequencer1_state) begin: card_core0_regs_fifo1_sequencer1_readiness
     if ((card_core0_regs_fifo1_sequencer1_next_motion && (card_core0_regs_fifo1_sequencer1_next_error == 0))) begin
         if ((card_core0_regs_fifo1_sequencer1_state == 3'b001)) begin
             card_core0_regs_fifo1_sequencer1_finishing = (card_core0_regs_fifo1_sequencer1_dda_ready && (!card_core0_regs_fifo1_sequencer1_dda_start) && (!card_core0_regs_fifo1_sequencer1_dda_error));
@@ -3360,19 +3370,19 @@ assign card_core0_regs_fifo1_sequencer1_issue = (card_core0_regs_fifo1_sequencer
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_execute
     if (reset == 0) begin
-        card_core0_regs_fifo1_set_strobe <= 0;
-        card_core0_regs_fifo1_error_code <= 0;
-        card_core0_regs_fifo1_mark_strobe <= 0;
-        card_core0_regs_fifo1_sequencer1_dda_start <= 0;
         card_core0_regs_fifo1_seq_load <= 0;
+        card_core0_regs_fifo1_error_code <= 0;
+        card_core0_regs_fifo1_sequencer1_mark_strobe <= 0;
+        card_core0_regs_fifo1_sequencer1_dda_start <= 0;
+        card_core0_regs_fifo1_reg_word34_set_mine <= 0;
         card_core0_regs_fifo1_sequencer1_dwell_left <= 0;
         card_core0_regs_fifo1_sequencer1_state <= 3'b000;
     end
     else begin
         card_core0_regs_fifo1_sequencer1_dda_start <= 0;
         card_core0_regs_fifo1_seq_load <= 0;
-        card_core0_regs_fifo1_set_strobe <= 0;
-        card_core0_regs_fifo1_mark_strobe <= 0;
+        card_core0_regs_fifo1_reg_word34_set_mine <= 0;
+        card_core0_regs_fifo1_sequencer1_mark_strobe <= 0;
         if (card_core0_core_clear) begin
             card_core0_regs_fifo1_sequencer1_state <= 3'b000;
             card_core0_regs_fifo1_error_code <= 0;
@@ -3408,10 +3418,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
                 card_core0_regs_fifo1_sequencer1_state <= 3'b000;
                 case (card_core0_regs_fifo1_sequencer1_opcode)
                     'h4: begin
-                        card_core0_regs_fifo1_set_strobe <= 1;
+                        card_core0_regs_fifo1_reg_word34_set_mine <= 1;
                     end
                     'h6: begin
-                        card_core0_regs_fifo1_mark_strobe <= 1;
+                        card_core0_regs_fifo1_sequencer1_mark_strobe <= 1;
                     end
                 endcase
             end
@@ -3445,11 +3455,11 @@ always @(card_core0_regs_fifo1_sequencer1_operand_0, card_core0_regs_fifo1_seque
         card_core0_regs_fifo1_sequencer1_dda_xe = $signed(card_core0_regs_fifo1_sequencer1_operand_2[24-1:0]);
         card_core0_regs_fifo1_sequencer1_dda_ye = $signed(card_core0_regs_fifo1_sequencer1_operand_3[24-1:0]);
     end
-    card_core0_regs_fifo1_sequencer1_pulse_count_x = $signed(card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
-    card_core0_regs_fifo1_sequencer1_pulse_count_y = $signed(card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
-    card_core0_regs_fifo1_set_index = card_core0_regs_fifo1_sequencer1_header[4-1:0];
-    card_core0_regs_fifo1_set_value = card_core0_regs_fifo1_sequencer1_operand_0;
-    card_core0_regs_fifo1_mark_tag = card_core0_regs_fifo1_sequencer1_header[16-1:0];
+    card_core0_regs_fifo1_sequencer1_pulses_count_x = $signed(card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
+    card_core0_regs_fifo1_sequencer1_pulses_count_y = $signed(card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
+    card_core0_regs_fifo1_reg_word25_set_port_index = card_core0_regs_fifo1_sequencer1_header[4-1:0];
+    card_core0_regs_fifo1_reg_word25_set_port_value = card_core0_regs_fifo1_sequencer1_operand_0;
+    card_core0_regs_fifo1_sequencer1_mark_tag = card_core0_regs_fifo1_sequencer1_header[16-1:0];
 end
 
 
@@ -3458,7 +3468,7 @@ assign card_core0_regs_fifo1_seq_busy = ((card_core0_regs_fifo1_sequencer1_state
 assign card_core0_regs_fifo1_motion_run = (card_core0_regs_fifo1_sequencer1_state == 3'b001);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_settings
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_register_settings
     if (reset == 0) begin
         card_core0_regs_fifo1_feed_rate1_target_s <= 0;
         card_core0_regs_fifo1_feed_rate1_step_zero <= 1;
@@ -3469,13 +3479,13 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_s
         card_core0_regs_fifo1_feed_rate1_raise_limit <= 0;
     end
     else begin
-        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word34_value;
-        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word35_value;
-        card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_reg_word36_value;
-        card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_reg_word36_value == 0);
-        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word34_value}) - $signed({1'b0, card_core0_regs_fifo1_reg_word36_value}));
-        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word34_value} + {1'b0, card_core0_regs_fifo1_reg_word36_value});
-        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word35_value} + {1'b0, card_core0_regs_fifo1_reg_word36_value});
+        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word34_shown;
+        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word35_shown;
+        card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_reg_word36_shown;
+        card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_reg_word36_shown == 0);
+        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word34_shown}) - $signed({1'b0, card_core0_regs_fifo1_reg_word36_shown}));
+        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word34_shown} + {1'b0, card_core0_regs_fifo1_reg_word36_shown});
+        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word35_shown} + {1'b0, card_core0_regs_fifo1_reg_word36_shown});
     end
 end
 
@@ -3485,7 +3495,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_e
         card_core0_regs_fifo1_feed_rate1_decelerate <= 0;
     end
     else begin
-        card_core0_regs_fifo1_feed_rate1_decelerate <= (card_core0_regs_fifo1_feed_rate1_stop_left <= {11'h0, card_core0_regs_fifo1_feed_rate1_count});
+        card_core0_regs_fifo1_feed_rate1_decelerate <= (card_core0_regs_fifo1_feed_rate1_feed_stop_left <= {11'h0, card_core0_regs_fifo1_feed_rate1_count});
     end
 end
 
@@ -3516,8 +3526,8 @@ end
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_accumulate
     if (reset == 0) begin
-        card_core0_regs_fifo1_tick <= 0;
         card_core0_regs_fifo1_feed_rate1_rate <= 0;
+        card_core0_regs_fifo1_tick <= 0;
         card_core0_regs_fifo1_feed_rate1_count <= 2;
         card_core0_regs_fifo1_feed_rate1_phase <= 0;
     end
@@ -3577,48 +3587,73 @@ end
 
 
 
-assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_load || card_core0_regs_fifo1_direct_pulse2_pending);
+assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending);
+
+
+always @(card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count, card_core0_regs_fifo1_reg_word43_shown) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
+    if ((!card_core0_regs_fifo1_direct_pulse2_command_load)) begin
+        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word43_shown;
+        card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
+    end
+    else if ((card_core0_regs_fifo1_direct_pulse2_command_count < 0)) begin
+        card_core0_regs_fifo1_direct_pulse2_count_operand = (~card_core0_regs_fifo1_direct_pulse2_command_count[24-1:0]);
+        card_core0_regs_fifo1_direct_pulse2_count_addend = 1;
+    end
+    else begin
+        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_direct_pulse2_command_count[24-1:0];
+        card_core0_regs_fifo1_direct_pulse2_count_addend = 0;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word41_shown, card_core0_regs_fifo1_direct_pulse2_waiting, card_core0_regs_fifo1_direct_pulse2_gap) begin: card_core0_regs_fifo1_direct_pulse2_gap_operands
+    if (card_core0_regs_fifo1_direct_pulse2_waiting) begin
+        card_core0_regs_fifo1_direct_pulse2_gap_operand = card_core0_regs_fifo1_direct_pulse2_gap;
+    end
+    else begin
+        card_core0_regs_fifo1_direct_pulse2_gap_operand = card_core0_regs_fifo1_reg_word41_shown;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_direct_pulse2_counted = (card_core0_regs_fifo1_direct_pulse2_count_operand + card_core0_regs_fifo1_direct_pulse2_count_addend);
+assign card_core0_regs_fifo1_direct_pulse2_gap_less = (card_core0_regs_fifo1_direct_pulse2_gap_operand - 1);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse2_emit
     if (reset == 0) begin
-        card_core0_regs_fifo1_direct_request_x <= 0;
         card_core0_regs_fifo1_direct_dir_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_waiting <= 0;
-        card_core0_regs_fifo1_reg_word43_hw_value <= 0;
         card_core0_regs_fifo1_direct_pulse2_pending <= 0;
+        card_core0_regs_fifo1_reg_word43_shown <= 0;
+        card_core0_regs_fifo1_direct_request_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_x <= 0;
         if (card_core0_core_clear) begin
-            card_core0_regs_fifo1_reg_word43_hw_value <= 0;
+            card_core0_regs_fifo1_reg_word43_shown <= 0;
             card_core0_regs_fifo1_direct_pulse2_pending <= 0;
         end
-        else if (card_core0_regs_fifo1_direct_pulse2_load) begin
-            if ((card_core0_regs_fifo1_direct_pulse2_count < 0)) begin
-                card_core0_regs_fifo1_reg_word43_hw_value <= (-card_core0_regs_fifo1_direct_pulse2_count);
-                card_core0_regs_fifo1_direct_dir_x <= 0;
-            end
-            else begin
-                card_core0_regs_fifo1_reg_word43_hw_value <= card_core0_regs_fifo1_direct_pulse2_count;
-                card_core0_regs_fifo1_direct_dir_x <= 1;
-            end
-            card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_count != 0);
+        else if (card_core0_regs_fifo1_direct_pulse2_command_load) begin
+            card_core0_regs_fifo1_reg_word43_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+            card_core0_regs_fifo1_direct_dir_x <= (card_core0_regs_fifo1_direct_pulse2_command_count >= 0);
+            card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_command_count != 0);
             card_core0_regs_fifo1_direct_pulse2_gap <= 0;
             card_core0_regs_fifo1_direct_pulse2_waiting <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse2_pending) begin
             if (card_core0_regs_fifo1_direct_pulse2_waiting) begin
-                card_core0_regs_fifo1_direct_pulse2_gap <= (card_core0_regs_fifo1_direct_pulse2_gap - 1);
+                card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
                 card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_direct_pulse2_gap != 1);
             end
             else if (card_core0_regs_fifo1_out_ready) begin
                 card_core0_regs_fifo1_direct_request_x <= 1;
-                card_core0_regs_fifo1_reg_word43_hw_value <= (card_core0_regs_fifo1_reg_word43_hw_value - 1);
-                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word43_hw_value != 1);
-                card_core0_regs_fifo1_direct_pulse2_gap <= (card_core0_regs_fifo1_reg_word41_value - 1);
-                card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_reg_word41_value != 1);
+                card_core0_regs_fifo1_reg_word43_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word43_shown != 1);
+                card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
+                card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_reg_word41_shown != 1);
             end
         end
     end
@@ -3626,48 +3661,73 @@ end
 
 
 
-assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_load || card_core0_regs_fifo1_direct_pulse3_pending);
+assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending);
+
+
+always @(card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count, card_core0_regs_fifo1_reg_word44_shown) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
+    if ((!card_core0_regs_fifo1_direct_pulse3_command_load)) begin
+        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word44_shown;
+        card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
+    end
+    else if ((card_core0_regs_fifo1_direct_pulse3_command_count < 0)) begin
+        card_core0_regs_fifo1_direct_pulse3_count_operand = (~card_core0_regs_fifo1_direct_pulse3_command_count[24-1:0]);
+        card_core0_regs_fifo1_direct_pulse3_count_addend = 1;
+    end
+    else begin
+        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_direct_pulse3_command_count[24-1:0];
+        card_core0_regs_fifo1_direct_pulse3_count_addend = 0;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word42_shown, card_core0_regs_fifo1_direct_pulse3_waiting, card_core0_regs_fifo1_direct_pulse3_gap) begin: card_core0_regs_fifo1_direct_pulse3_gap_operands
+    if (card_core0_regs_fifo1_direct_pulse3_waiting) begin
+        card_core0_regs_fifo1_direct_pulse3_gap_operand = card_core0_regs_fifo1_direct_pulse3_gap;
+    end
+    else begin
+        card_core0_regs_fifo1_direct_pulse3_gap_operand = card_core0_regs_fifo1_reg_word42_shown;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_direct_pulse3_counted = (card_core0_regs_fifo1_direct_pulse3_count_operand + card_core0_regs_fifo1_direct_pulse3_count_addend);
+assign card_core0_regs_fifo1_direct_pulse3_gap_less = (card_core0_regs_fifo1_direct_pulse3_gap_operand - 1);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse3_emit
     if (reset == 0) begin
-        card_core0_regs_fifo1_direct_request_y <= 0;
         card_core0_regs_fifo1_direct_dir_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_waiting <= 0;
-        card_core0_regs_fifo1_reg_word44_hw_value <= 0;
         card_core0_regs_fifo1_direct_pulse3_pending <= 0;
+        card_core0_regs_fifo1_reg_word44_shown <= 0;
+        card_core0_regs_fifo1_direct_request_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_y <= 0;
         if (card_core0_core_clear) begin
-            card_core0_regs_fifo1_reg_word44_hw_value <= 0;
+            card_core0_regs_fifo1_reg_word44_shown <= 0;
             card_core0_regs_fifo1_direct_pulse3_pending <= 0;
         end
-        else if (card_core0_regs_fifo1_direct_pulse3_load) begin
-            if ((card_core0_regs_fifo1_direct_pulse3_count < 0)) begin
-                card_core0_regs_fifo1_reg_word44_hw_value <= (-card_core0_regs_fifo1_direct_pulse3_count);
-                card_core0_regs_fifo1_direct_dir_y <= 0;
-            end
-            else begin
-                card_core0_regs_fifo1_reg_word44_hw_value <= card_core0_regs_fifo1_direct_pulse3_count;
-                card_core0_regs_fifo1_direct_dir_y <= 1;
-            end
-            card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_count != 0);
+        else if (card_core0_regs_fifo1_direct_pulse3_command_load) begin
+            card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+            card_core0_regs_fifo1_direct_dir_y <= (card_core0_regs_fifo1_direct_pulse3_command_count >= 0);
+            card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_command_count != 0);
             card_core0_regs_fifo1_direct_pulse3_gap <= 0;
             card_core0_regs_fifo1_direct_pulse3_waiting <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse3_pending) begin
             if (card_core0_regs_fifo1_direct_pulse3_waiting) begin
-                card_core0_regs_fifo1_direct_pulse3_gap <= (card_core0_regs_fifo1_direct_pulse3_gap - 1);
+                card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
                 card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_gap != 1);
             end
             else if (card_core0_regs_fifo1_out_ready) begin
                 card_core0_regs_fifo1_direct_request_y <= 1;
-                card_core0_regs_fifo1_reg_word44_hw_value <= (card_core0_regs_fifo1_reg_word44_hw_value - 1);
-                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word44_hw_value != 1);
-                card_core0_regs_fifo1_direct_pulse3_gap <= (card_core0_regs_fifo1_reg_word42_value - 1);
-                card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_reg_word42_value != 1);
+                card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word44_shown != 1);
+                card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
+                card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_reg_word42_shown != 1);
             end
         end
     end
@@ -3683,12 +3743,12 @@ assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_cou
 assign card_core0_regs_fifo1_pulse_out1_head = card_core0_regs_fifo1_pulse_out1_queue[0];
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_core_clear, card_core0_regs_fifo1_reg_word37_value, card_core0_regs_fifo1_reg_word38_value, card_core0_regs_fifo1_pulse_out1_low_clocks) begin: card_core0_regs_fifo1_pulse_out1_decide
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_reg_word38_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_reg_word37_shown, card_core0_core_clear) begin: card_core0_regs_fifo1_pulse_out1_decide
     card_core0_regs_fifo1_pulse_out1_turn = ((card_core0_regs_fifo1_pulse_out1_count != 0) && ((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
     card_core0_regs_fifo1_pulse_out1_take = 1'b0;
-    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_core_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word37_value))) begin
+    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_core_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word37_shown))) begin
         if ((card_core0_regs_fifo1_pulse_out1_phase == 2'b01)) begin
-            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word38_value);
+            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word38_shown);
         end
         else if ((card_core0_regs_fifo1_pulse_out1_count != 0)) begin
             card_core0_regs_fifo1_pulse_out1_take = (!((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
@@ -3697,9 +3757,9 @@ always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pu
 end
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_core_clear, card_core0_regs_fifo1_reg_word37_value, card_core0_regs_fifo1_reg_word39_value, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_pulse_out1_take) begin: card_core0_regs_fifo1_pulse_out1_restart
-    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_core_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word39_value)));
-    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word37_value));
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_reg_word37_shown, card_core0_core_clear, card_core0_regs_fifo1_pulse_out1_take, card_core0_regs_fifo1_reg_word39_shown) begin: card_core0_regs_fifo1_pulse_out1_restart
+    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_core_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word39_shown)));
+    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word37_shown));
     card_core0_regs_fifo1_pulse_out1_phase_step = 0;
     if ((card_core0_regs_fifo1_pulse_out1_phase_clocks != 255)) begin
         card_core0_regs_fifo1_pulse_out1_phase_step = 1;
@@ -3811,6 +3871,18 @@ assign card_core0_regs_fifo1_pulse_out1_last_slot = (card_core0_regs_fifo1_pulse
 assign card_core0_regs_fifo1_pulse_out1_free_slot = card_core0_regs_fifo1_pulse_out1_count[2-1:0];
 
 
+always @(card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y) begin: card_core0_regs_fifo1_pulse_out1_step_sense
+    card_core0_regs_fifo1_pulse_out1_delta_x = 1;
+    if ((!card_core0_regs_fifo1_pulse_out1_dir_level_x)) begin
+        card_core0_regs_fifo1_pulse_out1_delta_x = (-1);
+    end
+    card_core0_regs_fifo1_pulse_out1_delta_y = 1;
+    if ((!card_core0_regs_fifo1_pulse_out1_dir_level_y)) begin
+        card_core0_regs_fifo1_pulse_out1_delta_y = (-1);
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_drive_pins
     if (reset == 0) begin
         pins_step_x <= 0;
@@ -3823,28 +3895,18 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_d
     else begin
         pins_step_x <= card_core0_regs_fifo1_pulse_out1_level_x;
         pins_step_y <= card_core0_regs_fifo1_pulse_out1_level_y;
-        pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word40_value[0]);
-        pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word40_value[1]);
+        pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word40_shown[0]);
+        pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word40_shown[1]);
         if (card_core0_regs_fifo1_clear_position) begin
             card_core0_regs_fifo1_pulse_out1_position_x <= 0;
             card_core0_regs_fifo1_position_y <= 0;
         end
         else begin
             if ((card_core0_regs_fifo1_pulse_out1_level_x && (!pins_step_x))) begin
-                if (card_core0_regs_fifo1_pulse_out1_dir_level_x) begin
-                    card_core0_regs_fifo1_pulse_out1_position_x <= (card_core0_regs_fifo1_pulse_out1_position_x + 1);
-                end
-                else begin
-                    card_core0_regs_fifo1_pulse_out1_position_x <= (card_core0_regs_fifo1_pulse_out1_position_x - 1);
-                end
+                card_core0_regs_fifo1_pulse_out1_position_x <= (card_core0_regs_fifo1_pulse_out1_position_x + card_core0_regs_fifo1_pulse_out1_delta_x);
             end
             if ((card_core0_regs_fifo1_pulse_out1_level_y && (!pins_step_y))) begin
-                if (card_core0_regs_fifo1_pulse_out1_dir_level_y) begin
-                    card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y + 1);
-                end
-                else begin
-                    card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y - 1);
-                end
+                card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y + card_core0_regs_fifo1_pulse_out1_delta_y);
             end
         end
     end
@@ -3965,26 +4027,26 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_reg_word43_strobe, card_core0_regs_fifo1_reg_word43_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulse_count_x, card_core0_regs_fifo1_direct_mode) begin: card_core0_regs_fifo1__axis_source2_choose_source
+always @(card_core0_regs_fifo1_reg_word43__store30_word_strobe, card_core0_regs_fifo1_reg_word43__store30_word_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode) begin: card_core0_regs_fifo1__axis_source2_choose_source
     if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse2_load = card_core0_regs_fifo1_reg_word43_strobe;
-        card_core0_regs_fifo1_direct_pulse2_count = $signed(card_core0_regs_fifo1_reg_word43_value);
+        card_core0_regs_fifo1_direct_pulse2_command_load = card_core0_regs_fifo1_reg_word43__store30_word_strobe;
+        card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word43__store30_word_value);
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse2_load = card_core0_regs_fifo1_seq_load;
-        card_core0_regs_fifo1_direct_pulse2_count = card_core0_regs_fifo1_sequencer1_pulse_count_x;
+        card_core0_regs_fifo1_direct_pulse2_command_load = card_core0_regs_fifo1_seq_load;
+        card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_x;
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word44_strobe, card_core0_regs_fifo1_reg_word44_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulse_count_y, card_core0_regs_fifo1_direct_mode) begin: card_core0_regs_fifo1__axis_source3_choose_source
+always @(card_core0_regs_fifo1_reg_word44__store31_word_strobe, card_core0_regs_fifo1_reg_word44__store31_word_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode) begin: card_core0_regs_fifo1__axis_source3_choose_source
     if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse3_load = card_core0_regs_fifo1_reg_word44_strobe;
-        card_core0_regs_fifo1_direct_pulse3_count = $signed(card_core0_regs_fifo1_reg_word44_value);
+        card_core0_regs_fifo1_direct_pulse3_command_load = card_core0_regs_fifo1_reg_word44__store31_word_strobe;
+        card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word44__store31_word_value);
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse3_load = card_core0_regs_fifo1_seq_load;
-        card_core0_regs_fifo1_direct_pulse3_count = card_core0_regs_fifo1_sequencer1_pulse_count_y;
+        card_core0_regs_fifo1_direct_pulse3_command_load = card_core0_regs_fifo1_seq_load;
+        card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_y;
     end
 end
 
@@ -4016,7 +4078,7 @@ always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_done_flag, card
     word[8] = card_core0_regs_fifo1_fifo_empty;
     word[9] = card_core0_regs_fifo1_fifo_full;
     word[32-1:16] = card_core0_regs_fifo1_level_wide;
-    card_core0_regs_fifo1_reg_word27_hw_value = word;
+    card_core0_regs_fifo1_reg_word27_shown = word;
 end
 
 
@@ -4024,37 +4086,37 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1__interrupts1
     if (reset == 0) begin
         card_core0_regs_fifo1_error_before <= 0;
         card_core0_regs_fifo1_low_before <= 0;
-        card_core0_regs_fifo1_reg_word31_hw_value <= 0;
+        card_core0_regs_fifo1_reg_word31_shown <= 0;
     end
     else begin
         card_core0_regs_fifo1_error_before <= (card_core0_regs_fifo1_error_code != 0);
-        card_core0_regs_fifo1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word30_value);
-        if (card_core0_regs_fifo1_mark_strobe) begin
-            card_core0_regs_fifo1_reg_word31_hw_value <= card_core0_regs_fifo1_mark_tag;
+        card_core0_regs_fifo1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word30_shown);
+        if (card_core0_regs_fifo1_sequencer1_mark_strobe) begin
+            card_core0_regs_fifo1_reg_word31_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
         end
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word47_clamp_out, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_reg_word30_value, card_core0_regs_fifo1_mark_strobe, card_core0_regs_fifo1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_busy_before, card_core0_regs_fifo1_low_before) begin: card_core0_regs_fifo1__interrupts1_detect
+always @(card_core0_regs_fifo1_reg_word47_chain_out_clamped, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_reg_word30_shown, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_busy_before, card_core0_regs_fifo1_low_before) begin: card_core0_regs_fifo1__interrupts1_detect
     reg [5-1:0] word;
     word = 5'h0;
     word[0] = (card_core0_regs_fifo1_busy_before && (!card_core0_regs_fifo1_any_busy));
-    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word30_value) && (!card_core0_regs_fifo1_low_before));
+    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word30_shown) && (!card_core0_regs_fifo1_low_before));
     word[2] = ((card_core0_regs_fifo1_error_code != 0) && (!card_core0_regs_fifo1_error_before));
-    word[3] = card_core0_regs_fifo1_mark_strobe;
-    word[4] = card_core0_regs_fifo1_reg_word47_clamp_out;
-    card_core0_regs_fifo1_reg_word29_hw_value = word;
+    word[3] = card_core0_regs_fifo1_sequencer1_mark_strobe;
+    word[4] = card_core0_regs_fifo1_reg_word47_chain_out_clamped;
+    card_core0_regs_fifo1_reg_word29__store19_word_hw = word;
 end
 
 
 
-assign irq = ((card_core0_regs_fifo1_reg_word29_value & card_core0_regs_fifo1_reg_word28_value) != 0);
+assign irq = ((card_core0_regs_fifo1_reg_word29_shown & card_core0_regs_fifo1_reg_word28_shown) != 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word32_hw_value = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
-assign card_core0_regs_fifo1_reg_word33_hw_value = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
+assign card_core0_regs_fifo1_reg_word32_shown = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
+assign card_core0_regs_fifo1_reg_word33_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
 
 
 always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_arc1_magnitudes
@@ -5143,7 +5205,7 @@ end
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_left_output
     reg signed [27-1:0] larger;
     if (card_core0_dda_reset == 0) begin
-        card_core0_regs_fifo1_feed_rate1_stop_left <= 134217727;
+        card_core0_regs_fifo1_feed_rate1_feed_stop_left <= 134217727;
     end
     else begin
         larger = 0;
@@ -5155,14 +5217,14 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         end
         if ((card_core0_dda_arc1_run_active && (!card_core0_dda_arc1_run_blend))) begin
             if ((larger < 0)) begin
-                card_core0_regs_fifo1_feed_rate1_stop_left <= 0;
+                card_core0_regs_fifo1_feed_rate1_feed_stop_left <= 0;
             end
             else begin
-                card_core0_regs_fifo1_feed_rate1_stop_left <= larger[27-1:0];
+                card_core0_regs_fifo1_feed_rate1_feed_stop_left <= larger[27-1:0];
             end
         end
         else begin
-            card_core0_regs_fifo1_feed_rate1_stop_left <= 27'h7ffffff;
+            card_core0_regs_fifo1_feed_rate1_feed_stop_left <= 27'h7ffffff;
         end
     end
 end

@@ -142,11 +142,6 @@ reg pins_dir_y;
 reg [31:0] fifo_dout;
 reg fifo_pop;
 wire fifo_empty;
-reg set_strobe;
-reg mark_strobe;
-reg [3:0] set_index;
-reg [31:0] set_value;
-reg [15:0] mark_tag;
 reg [3:0] error_code;
 reg seq_load;
 reg busy_before;
@@ -207,15 +202,13 @@ wire sync_fifo0_last_beyond;
 wire sync_fifo0_one_word;
 reg [8:0] sync_fifo0_read_addr;
 reg [8:0] sync_fifo0_write_addr;
-wire [31:0] reg_word0_hw_value;
-wire reg_word0_clamp_in;
-wire reg_word0_clamp_out;
-wire [31:0] reg_word0_read_in;
-reg [31:0] reg_word0_read_out;
+wire [31:0] reg_word0_shown;
 wire reg_word0_mine;
 wire [31:0] reg_word0_shown_wide;
-wire reg_word1_clamp_out;
-reg [31:0] reg_word1_read_out;
+reg [31:0] reg_word0_chain_out_data;
+wire [31:0] reg_word0_chain_in_data;
+wire reg_word0_chain_out_clamped;
+wire reg_word0_chain_in_clamped;
 wire [1:0] reg_word1_honoured;
 wire reg_word1_out_of_range;
 reg reg_word1_clamped;
@@ -224,198 +217,201 @@ wire reg_word1_mine_write;
 wire reg_word1_set_mine;
 wire [31:0] reg_word1_shown_wide;
 reg [1:0] reg_word1_written;
-wire [2:0] reg_word2_hw_value;
-wire reg_word2_clamp_out;
-reg [31:0] reg_word2_read_out;
+reg [31:0] reg_word1_chain_out_data;
+reg [3:0] reg_word1_set_port_index;
+reg [31:0] reg_word1_set_port_value;
+wire reg_word1_chain_out_clamped;
 wire [2:0] reg_word2_honoured;
 wire reg_word2_out_of_range;
+wire [2:0] reg_word2_shown;
 reg reg_word2_clamped;
 wire reg_word2_mine;
 wire reg_word2_mine_write;
 wire [31:0] reg_word2_shown_wide;
 wire [2:0] reg_word2_written;
-reg [31:0] reg_word3_hw_value;
-wire reg_word3_clamp_out;
-reg [31:0] reg_word3_read_out;
+reg [31:0] reg_word2_chain_out_data;
+wire reg_word2_chain_out_clamped;
+reg [31:0] reg_word3_shown;
 wire reg_word3_mine;
 wire [31:0] reg_word3_shown_wide;
-reg [4:0] reg_word4_value;
-wire reg_word4_clamp_out;
-reg [31:0] reg_word4_read_out;
+reg [31:0] reg_word3_chain_out_data;
+wire reg_word3_chain_out_clamped;
 wire [4:0] reg_word4_honoured;
 wire reg_word4_out_of_range;
+reg [4:0] reg_word4_shown;
 reg reg_word4_clamped;
 wire reg_word4_mine;
 wire reg_word4_mine_write;
 wire reg_word4_set_mine;
 wire [31:0] reg_word4_shown_wide;
 reg [4:0] reg_word4_written;
-reg [4:0] reg_word5_hw_value;
-reg [4:0] reg_word5_value;
-wire reg_word5_clamp_out;
-reg [31:0] reg_word5_read_out;
+reg [31:0] reg_word4_chain_out_data;
+wire reg_word4_chain_out_clamped;
 wire [4:0] reg_word5_honoured;
+reg [4:0] reg_word5_shown;
 wire reg_word5_mine;
 wire reg_word5_mine_write;
 wire [31:0] reg_word5_shown_wide;
 wire [4:0] reg_word5_written;
-reg [15:0] reg_word6_value;
-wire reg_word6_clamp_out;
-reg [31:0] reg_word6_read_out;
+reg [31:0] reg_word5_chain_out_data;
+wire reg_word5_chain_out_clamped;
+reg [4:0] reg_word5__store3_word_hw;
 wire [15:0] reg_word6_honoured;
 wire reg_word6_out_of_range;
+reg [15:0] reg_word6_shown;
 reg reg_word6_clamped;
 wire reg_word6_mine;
 wire reg_word6_mine_write;
 wire reg_word6_set_mine;
 wire [31:0] reg_word6_shown_wide;
 reg [15:0] reg_word6_written;
-reg [15:0] reg_word7_hw_value;
-wire reg_word7_clamp_out;
-reg [31:0] reg_word7_read_out;
+reg [31:0] reg_word6_chain_out_data;
+wire reg_word6_chain_out_clamped;
+reg [15:0] reg_word7_shown;
 wire reg_word7_mine;
 wire [31:0] reg_word7_shown_wide;
-wire [31:0] reg_word8_hw_value;
-wire reg_word8_clamp_out;
-reg [31:0] reg_word8_read_out;
+reg [31:0] reg_word7_chain_out_data;
+wire reg_word7_chain_out_clamped;
+wire [31:0] reg_word8_shown;
 wire reg_word8_mine;
 wire [31:0] reg_word8_shown_wide;
-wire [31:0] reg_word9_hw_value;
-wire reg_word9_clamp_out;
-reg [31:0] reg_word9_read_out;
+reg [31:0] reg_word8_chain_out_data;
+wire reg_word8_chain_out_clamped;
+wire [31:0] reg_word9_shown;
 wire reg_word9_mine;
 wire [31:0] reg_word9_shown_wide;
-reg [15:0] reg_word10_value;
-wire reg_word10_clamp_out;
-reg [31:0] reg_word10_read_out;
+reg [31:0] reg_word9_chain_out_data;
+wire reg_word9_chain_out_clamped;
 reg [15:0] reg_word10_honoured;
 reg reg_word10_out_of_range;
+reg [15:0] reg_word10_shown;
 reg reg_word10_clamped;
 wire reg_word10_mine;
 wire reg_word10_mine_write;
+reg reg_word10_set_mine;
 wire [31:0] reg_word10_shown_wide;
 reg [31:0] reg_word10_written;
-reg [15:0] reg_word11_value;
-wire reg_word11_clamp_out;
-reg [31:0] reg_word11_read_out;
+reg [31:0] reg_word10_chain_out_data;
+wire reg_word10_chain_out_clamped;
 reg [15:0] reg_word11_honoured;
 reg reg_word11_out_of_range;
+reg [15:0] reg_word11_shown;
 reg reg_word11_clamped;
 wire reg_word11_mine;
 wire reg_word11_mine_write;
 wire [31:0] reg_word11_shown_wide;
 reg [31:0] reg_word11_written;
-reg [15:0] reg_word12_value;
-wire reg_word12_clamp_out;
-reg [31:0] reg_word12_read_out;
+reg [31:0] reg_word11_chain_out_data;
+wire reg_word11_chain_out_clamped;
 wire [15:0] reg_word12_honoured;
 wire reg_word12_out_of_range;
+reg [15:0] reg_word12_shown;
 reg reg_word12_clamped;
 wire reg_word12_mine;
 wire reg_word12_mine_write;
 wire [31:0] reg_word12_shown_wide;
 reg [15:0] reg_word12_written;
-reg [7:0] reg_word13_value;
-wire reg_word13_clamp_out;
-reg [31:0] reg_word13_read_out;
+reg [31:0] reg_word12_chain_out_data;
+wire reg_word12_chain_out_clamped;
 reg [7:0] reg_word13_honoured;
 reg reg_word13_out_of_range;
+reg [7:0] reg_word13_shown;
 reg reg_word13_clamped;
 wire reg_word13_mine;
 wire reg_word13_mine_write;
 wire [31:0] reg_word13_shown_wide;
 reg [31:0] reg_word13_written;
-reg [7:0] reg_word14_value;
-wire reg_word14_clamp_out;
-reg [31:0] reg_word14_read_out;
+reg [31:0] reg_word13_chain_out_data;
+wire reg_word13_chain_out_clamped;
 reg [7:0] reg_word14_honoured;
 reg reg_word14_out_of_range;
+reg [7:0] reg_word14_shown;
 reg reg_word14_clamped;
 wire reg_word14_mine;
 wire reg_word14_mine_write;
 wire [31:0] reg_word14_shown_wide;
 reg [31:0] reg_word14_written;
-reg [7:0] reg_word15_value;
-wire reg_word15_clamp_out;
-reg [31:0] reg_word15_read_out;
+reg [31:0] reg_word14_chain_out_data;
+wire reg_word14_chain_out_clamped;
 reg [7:0] reg_word15_honoured;
 reg reg_word15_out_of_range;
+reg [7:0] reg_word15_shown;
 reg reg_word15_clamped;
 wire reg_word15_mine;
 wire reg_word15_mine_write;
 wire [31:0] reg_word15_shown_wide;
 reg [31:0] reg_word15_written;
-reg [1:0] reg_word16_value;
-wire reg_word16_clamp_out;
-reg [31:0] reg_word16_read_out;
+reg [31:0] reg_word15_chain_out_data;
+wire reg_word15_chain_out_clamped;
 wire [1:0] reg_word16_honoured;
 wire reg_word16_out_of_range;
+reg [1:0] reg_word16_shown;
 reg reg_word16_clamped;
 wire reg_word16_mine;
 wire reg_word16_mine_write;
 wire reg_word16_set_mine;
 wire [31:0] reg_word16_shown_wide;
 reg [1:0] reg_word16_written;
-reg [15:0] reg_word17_value;
-wire reg_word17_clamp_out;
-reg [31:0] reg_word17_read_out;
+reg [31:0] reg_word16_chain_out_data;
+wire reg_word16_chain_out_clamped;
 reg [15:0] reg_word17_honoured;
 reg reg_word17_out_of_range;
+reg [15:0] reg_word17_shown;
 reg reg_word17_clamped;
 wire reg_word17_mine;
 wire reg_word17_mine_write;
 wire [31:0] reg_word17_shown_wide;
 reg [31:0] reg_word17_written;
-reg [15:0] reg_word18_value;
-wire reg_word18_clamp_out;
-reg [31:0] reg_word18_read_out;
+reg [31:0] reg_word17_chain_out_data;
+wire reg_word17_chain_out_clamped;
 reg [15:0] reg_word18_honoured;
 reg reg_word18_out_of_range;
+reg [15:0] reg_word18_shown;
 reg reg_word18_clamped;
 wire reg_word18_mine;
 wire reg_word18_mine_write;
 wire [31:0] reg_word18_shown_wide;
 reg [31:0] reg_word18_written;
-reg [23:0] reg_word19_hw_value;
-reg [23:0] reg_word19_value;
-reg reg_word19_strobe;
-wire reg_word19_clamp_out;
-reg [31:0] reg_word19_read_out;
+reg [31:0] reg_word18_chain_out_data;
+wire reg_word18_chain_out_clamped;
 reg [23:0] reg_word19_honoured;
 reg reg_word19_out_of_range;
+reg [23:0] reg_word19_shown;
 reg reg_word19_clamped;
 wire reg_word19_mine;
 wire reg_word19_mine_write;
 wire [31:0] reg_word19_shown_wide;
 wire [31:0] reg_word19_written;
-reg [23:0] reg_word20_hw_value;
-reg [23:0] reg_word20_value;
-reg reg_word20_strobe;
-wire reg_word20_clamp_out;
-reg [31:0] reg_word20_read_out;
+reg [31:0] reg_word19_chain_out_data;
+wire reg_word19_chain_out_clamped;
+reg reg_word19__store14_word_strobe;
+reg [23:0] reg_word19__store14_word_value;
 reg [23:0] reg_word20_honoured;
 reg reg_word20_out_of_range;
+reg [23:0] reg_word20_shown;
 reg reg_word20_clamped;
 wire reg_word20_mine;
 wire reg_word20_mine_write;
 wire [31:0] reg_word20_shown_wide;
 wire [31:0] reg_word20_written;
-wire [31:0] reg_word21_hw_value;
-wire reg_word21_clamp_out;
-reg [31:0] reg_word21_read_out;
+reg [31:0] reg_word20_chain_out_data;
+wire reg_word20_chain_out_clamped;
+reg reg_word20__store15_word_strobe;
+reg [23:0] reg_word20__store15_word_value;
+wire [31:0] reg_word21_shown;
 wire reg_word21_mine;
 wire [31:0] reg_word21_shown_wide;
-wire [15:0] reg_word22_hw_value;
-wire reg_word22_clamp_out;
-reg [31:0] reg_word22_read_out;
+reg [31:0] reg_word21_chain_out_data;
+wire reg_word21_chain_out_clamped;
+wire [15:0] reg_word22_shown;
 wire reg_word22_mine;
 wire [31:0] reg_word22_shown_wide;
-wire [27:0] reg_word23_hw_value;
-wire reg_word23_clamp_out;
+reg [31:0] reg_word22_chain_out_data;
+wire reg_word22_chain_out_clamped;
+wire [27:0] reg_word23_shown;
 wire reg_word23_mine;
 wire [31:0] reg_word23_shown_wide;
-reg signed [23:0] sequencer0_pulse_count_x;
-reg signed [23:0] sequencer0_pulse_count_y;
+wire reg_word23_chain_out_clamped;
 wire sequencer0_arriving_coord_fits;
 reg [2:0] sequencer0_arriving_count;
 wire sequencer0_arriving_count_fits;
@@ -430,7 +426,7 @@ wire sequencer0_discard;
 reg [31:0] sequencer0_dwell_left;
 reg [2:0] sequencer0_fetched;
 reg sequencer0_finishing;
-reg [31:0] sequencer0_header;
+reg [16:0] sequencer0_header;
 wire sequencer0_issue;
 reg [15:0] sequencer0_mask_high;
 reg [15:0] sequencer0_mask_low;
@@ -440,15 +436,19 @@ reg [3:0] sequencer0_next_error;
 reg sequencer0_next_known;
 reg sequencer0_next_motion;
 reg sequencer0_next_valid;
-wire [3:0] sequencer0_opcode;
+reg [3:0] sequencer0_opcode;
 reg [31:0] sequencer0_operand_0;
-reg [31:0] sequencer0_operand_1;
-reg [31:0] sequencer0_operand_2;
-reg [31:0] sequencer0_operand_3;
+reg [23:0] sequencer0_operand_1;
+reg [23:0] sequencer0_operand_2;
+reg [23:0] sequencer0_operand_3;
 reg sequencer0_set_known;
 reg [2:0] sequencer0_state;
 reg sequencer0_state_over;
 reg sequencer0_word_due;
+reg sequencer0_mark_strobe;
+reg signed [23:0] sequencer0_pulses_count_x;
+reg signed [23:0] sequencer0_pulses_count_y;
+reg [15:0] sequencer0_mark_tag;
 wire feed_rate0_above;
 wire feed_rate0_above_floor;
 wire feed_rate0_below;
@@ -472,18 +472,29 @@ reg [15:0] feed_rate0_step_s;
 reg feed_rate0_step_zero;
 reg [15:0] feed_rate0_target_s;
 wire [16:0] feed_rate0_total;
-reg direct_pulse0_load;
-reg signed [23:0] direct_pulse0_count;
+reg [23:0] direct_pulse0_count_addend;
+reg [23:0] direct_pulse0_count_operand;
+wire [23:0] direct_pulse0_counted;
 reg [15:0] direct_pulse0_gap;
+wire [15:0] direct_pulse0_gap_less;
+reg [15:0] direct_pulse0_gap_operand;
 reg direct_pulse0_pending;
 reg direct_pulse0_waiting;
-reg direct_pulse1_load;
-reg signed [23:0] direct_pulse1_count;
+reg direct_pulse0_command_load;
+reg signed [23:0] direct_pulse0_command_count;
+reg [23:0] direct_pulse1_count_addend;
+reg [23:0] direct_pulse1_count_operand;
+wire [23:0] direct_pulse1_counted;
 reg [15:0] direct_pulse1_gap;
+wire [15:0] direct_pulse1_gap_less;
+reg [15:0] direct_pulse1_gap_operand;
 reg direct_pulse1_pending;
 reg direct_pulse1_waiting;
-reg signed [31:0] pulse_out0_position_x;
+reg direct_pulse1_command_load;
+reg signed [23:0] direct_pulse1_command_count;
 reg [2:0] pulse_out0_count;
+reg signed [31:0] pulse_out0_delta_x;
+reg signed [31:0] pulse_out0_delta_y;
 reg pulse_out0_dir_level_x;
 reg pulse_out0_dir_level_y;
 wire [1:0] pulse_out0_free_slot;
@@ -500,16 +511,17 @@ reg [7:0] pulse_out0_phase_step;
 reg pulse_out0_starts;
 reg pulse_out0_take;
 reg pulse_out0_turn;
+reg signed [31:0] pulse_out0_position_x;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_hw_value = 32'd3719037185;
-assign reg_word0_clamp_in = 1'd0;
-assign reg_word0_read_in = 32'd0;
+assign reg_word0_shown = 32'd3719037185;
+assign reg_word0_chain_in_data = 32'd0;
+assign reg_word0_chain_in_clamped = 1'd0;
 assign reg_word1_out_of_range = 1'd0;
 assign reg_word1_set_mine = 1'd0;
-assign reg_word2_hw_value = 3'd0;
 assign reg_word2_out_of_range = 1'd0;
+assign reg_word2_shown = 3'd0;
 assign reg_word4_out_of_range = 1'd0;
 assign reg_word4_set_mine = 1'd0;
 assign reg_word6_out_of_range = 1'd0;
@@ -517,9 +529,9 @@ assign reg_word6_set_mine = 1'd0;
 assign reg_word12_out_of_range = 1'd0;
 assign reg_word16_out_of_range = 1'd0;
 assign reg_word16_set_mine = 1'd0;
-assign reg_word21_hw_value = 32'd33333333;
-assign reg_word22_hw_value = 16'd512;
-assign reg_word23_hw_value = 28'd786968;
+assign reg_word21_shown = 32'd33333333;
+assign reg_word22_shown = 16'd512;
+assign reg_word23_shown = 28'd786968;
 
 
 
@@ -607,34 +619,34 @@ assign local_room = sync_fifo0_free[(3 - 1)];
 assign reg_word0_mine = (local_addr == 0);
 
 
-always @(reg_word0_mine, reg_word0_shown_wide, reg_word0_read_in) begin: reg_word0_read_chain
+always @(reg_word0_mine, reg_word0_shown_wide, reg_word0_chain_in_data) begin: reg_word0_read_chain
     if (reg_word0_mine) begin
-        reg_word0_read_out = (reg_word0_read_in | reg_word0_shown_wide);
+        reg_word0_chain_out_data = (reg_word0_chain_in_data | reg_word0_shown_wide);
     end
     else begin
-        reg_word0_read_out = reg_word0_read_in;
+        reg_word0_chain_out_data = reg_word0_chain_in_data;
     end
 end
 
 
 
-assign reg_word0_shown_wide = reg_word0_hw_value;
+assign reg_word0_shown_wide = reg_word0_shown;
 
 
 
-assign reg_word0_clamp_out = reg_word0_clamp_in;
+assign reg_word0_chain_out_clamped = reg_word0_chain_in_clamped;
 
 
 
 assign reg_word1_mine = (local_addr == 4);
 
 
-always @(reg_word1_mine, reg_word1_shown_wide, reg_word0_read_out) begin: reg_word1_read_chain
+always @(reg_word1_mine, reg_word1_shown_wide, reg_word0_chain_out_data) begin: reg_word1_read_chain
     if (reg_word1_mine) begin
-        reg_word1_read_out = (reg_word0_read_out | reg_word1_shown_wide);
+        reg_word1_chain_out_data = (reg_word0_chain_out_data | reg_word1_shown_wide);
     end
     else begin
-        reg_word1_read_out = reg_word0_read_out;
+        reg_word1_chain_out_data = reg_word0_chain_out_data;
     end
 end
 
@@ -647,9 +659,9 @@ assign reg_word1_shown_wide = {30'h0, control};
 assign reg_word1_mine_write = (written_addr == 4);
 
 
-always @(reg_word1_shown_wide, reg_word1_set_mine, written_mask, set_index, set_value, written_data) begin: reg_word1_merge_bytes
-    if ((reg_word1_set_mine && (set_index == 0))) begin
-        reg_word1_written = set_value[2-1:0];
+always @(reg_word1_shown_wide, reg_word1_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word1_merge_bytes
+    if ((reg_word1_set_mine && (reg_word1_set_port_index == 0))) begin
+        reg_word1_written = reg_word1_set_port_value[2-1:0];
     end
     else begin
         reg_word1_written = ((reg_word1_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
@@ -662,7 +674,7 @@ assign reg_word1_honoured = reg_word1_written[2-1:0];
 
 
 
-assign reg_word1_clamp_out = (reg_word0_clamp_out || reg_word1_clamped);
+assign reg_word1_chain_out_clamped = (reg_word0_chain_out_clamped || reg_word1_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word1__store0_hold_rw
@@ -672,7 +684,7 @@ always @(posedge clock, negedge reset) begin: reg_word1__store0_hold_rw
     end
     else begin
         reg_word1_clamped <= 1'b0;
-        if (((reg_word1_set_mine && (set_index == 0)) || (io_written && reg_word1_mine_write))) begin
+        if (((reg_word1_set_mine && (reg_word1_set_port_index == 0)) || (io_written && reg_word1_mine_write))) begin
             control <= reg_word1_honoured;
             reg_word1_clamped <= reg_word1_out_of_range;
         end
@@ -684,18 +696,18 @@ end
 assign reg_word2_mine = (local_addr == 8);
 
 
-always @(reg_word2_mine, reg_word2_shown_wide, reg_word1_read_out) begin: reg_word2_read_chain
+always @(reg_word2_mine, reg_word2_shown_wide, reg_word1_chain_out_data) begin: reg_word2_read_chain
     if (reg_word2_mine) begin
-        reg_word2_read_out = (reg_word1_read_out | reg_word2_shown_wide);
+        reg_word2_chain_out_data = (reg_word1_chain_out_data | reg_word2_shown_wide);
     end
     else begin
-        reg_word2_read_out = reg_word1_read_out;
+        reg_word2_chain_out_data = reg_word1_chain_out_data;
     end
 end
 
 
 
-assign reg_word2_shown_wide = {29'h0, reg_word2_hw_value};
+assign reg_word2_shown_wide = {29'h0, reg_word2_shown};
 
 
 
@@ -711,7 +723,7 @@ assign reg_word2_honoured = reg_word2_written[3-1:0];
 
 
 
-assign reg_word2_clamp_out = (reg_word1_clamp_out || reg_word2_clamped);
+assign reg_word2_chain_out_clamped = (reg_word1_chain_out_clamped || reg_word2_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word2__store1_pulse_on_write
@@ -736,49 +748,49 @@ end
 assign reg_word3_mine = (local_addr == 12);
 
 
-always @(reg_word3_mine, reg_word3_shown_wide, reg_word2_read_out) begin: reg_word3_read_chain
+always @(reg_word3_mine, reg_word3_shown_wide, reg_word2_chain_out_data) begin: reg_word3_read_chain
     if (reg_word3_mine) begin
-        reg_word3_read_out = (reg_word2_read_out | reg_word3_shown_wide);
+        reg_word3_chain_out_data = (reg_word2_chain_out_data | reg_word3_shown_wide);
     end
     else begin
-        reg_word3_read_out = reg_word2_read_out;
+        reg_word3_chain_out_data = reg_word2_chain_out_data;
     end
 end
 
 
 
-assign reg_word3_shown_wide = reg_word3_hw_value;
+assign reg_word3_shown_wide = reg_word3_shown;
 
 
 
-assign reg_word3_clamp_out = reg_word2_clamp_out;
+assign reg_word3_chain_out_clamped = reg_word2_chain_out_clamped;
 
 
 
 assign reg_word4_mine = (local_addr == 16);
 
 
-always @(reg_word4_mine, reg_word4_shown_wide, reg_word3_read_out) begin: reg_word4_read_chain
+always @(reg_word4_mine, reg_word4_shown_wide, reg_word3_chain_out_data) begin: reg_word4_read_chain
     if (reg_word4_mine) begin
-        reg_word4_read_out = (reg_word3_read_out | reg_word4_shown_wide);
+        reg_word4_chain_out_data = (reg_word3_chain_out_data | reg_word4_shown_wide);
     end
     else begin
-        reg_word4_read_out = reg_word3_read_out;
+        reg_word4_chain_out_data = reg_word3_chain_out_data;
     end
 end
 
 
 
-assign reg_word4_shown_wide = {27'h0, reg_word4_value};
+assign reg_word4_shown_wide = {27'h0, reg_word4_shown};
 
 
 
 assign reg_word4_mine_write = (written_addr == 16);
 
 
-always @(reg_word4_shown_wide, reg_word4_set_mine, written_mask, set_index, set_value, written_data) begin: reg_word4_merge_bytes
-    if ((reg_word4_set_mine && (set_index == 0))) begin
-        reg_word4_written = set_value[5-1:0];
+always @(reg_word4_shown_wide, reg_word4_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word4_merge_bytes
+    if ((reg_word4_set_mine && (reg_word1_set_port_index == 0))) begin
+        reg_word4_written = reg_word1_set_port_value[5-1:0];
     end
     else begin
         reg_word4_written = ((reg_word4_shown_wide[5-1:0] & (~written_mask[5-1:0])) | (written_data[5-1:0] & written_mask[5-1:0]));
@@ -791,18 +803,18 @@ assign reg_word4_honoured = reg_word4_written[5-1:0];
 
 
 
-assign reg_word4_clamp_out = (reg_word3_clamp_out || reg_word4_clamped);
+assign reg_word4_chain_out_clamped = (reg_word3_chain_out_clamped || reg_word4_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word4__store2_hold_rw
     if (reset == 0) begin
-        reg_word4_value <= 0;
+        reg_word4_shown <= 0;
         reg_word4_clamped <= 0;
     end
     else begin
         reg_word4_clamped <= 1'b0;
-        if (((reg_word4_set_mine && (set_index == 0)) || (io_written && reg_word4_mine_write))) begin
-            reg_word4_value <= reg_word4_honoured;
+        if (((reg_word4_set_mine && (reg_word1_set_port_index == 0)) || (io_written && reg_word4_mine_write))) begin
+            reg_word4_shown <= reg_word4_honoured;
             reg_word4_clamped <= reg_word4_out_of_range;
         end
     end
@@ -813,18 +825,18 @@ end
 assign reg_word5_mine = (local_addr == 20);
 
 
-always @(reg_word5_mine, reg_word5_shown_wide, reg_word4_read_out) begin: reg_word5_read_chain
+always @(reg_word5_mine, reg_word5_shown_wide, reg_word4_chain_out_data) begin: reg_word5_read_chain
     if (reg_word5_mine) begin
-        reg_word5_read_out = (reg_word4_read_out | reg_word5_shown_wide);
+        reg_word5_chain_out_data = (reg_word4_chain_out_data | reg_word5_shown_wide);
     end
     else begin
-        reg_word5_read_out = reg_word4_read_out;
+        reg_word5_chain_out_data = reg_word4_chain_out_data;
     end
 end
 
 
 
-assign reg_word5_shown_wide = {27'h0, reg_word5_value};
+assign reg_word5_shown_wide = {27'h0, reg_word5_shown};
 
 
 
@@ -840,19 +852,19 @@ assign reg_word5_honoured = reg_word5_written[5-1:0];
 
 
 
-assign reg_word5_clamp_out = reg_word4_clamp_out;
+assign reg_word5_chain_out_clamped = reg_word4_chain_out_clamped;
 
 
 always @(posedge clock, negedge reset) begin: reg_word5__store3_clear_on_one
     if (reset == 0) begin
-        reg_word5_value <= 0;
+        reg_word5_shown <= 0;
     end
     else begin
         if ((io_written && reg_word5_mine_write)) begin
-            reg_word5_value <= ((reg_word5_value & (~reg_word5_honoured)) | reg_word5_hw_value);
+            reg_word5_shown <= ((reg_word5_shown & (~reg_word5_honoured)) | reg_word5__store3_word_hw);
         end
         else begin
-            reg_word5_value <= (reg_word5_value | reg_word5_hw_value);
+            reg_word5_shown <= (reg_word5_shown | reg_word5__store3_word_hw);
         end
     end
 end
@@ -862,27 +874,27 @@ end
 assign reg_word6_mine = (local_addr == 24);
 
 
-always @(reg_word6_mine, reg_word6_shown_wide, reg_word5_read_out) begin: reg_word6_read_chain
+always @(reg_word6_mine, reg_word6_shown_wide, reg_word5_chain_out_data) begin: reg_word6_read_chain
     if (reg_word6_mine) begin
-        reg_word6_read_out = (reg_word5_read_out | reg_word6_shown_wide);
+        reg_word6_chain_out_data = (reg_word5_chain_out_data | reg_word6_shown_wide);
     end
     else begin
-        reg_word6_read_out = reg_word5_read_out;
+        reg_word6_chain_out_data = reg_word5_chain_out_data;
     end
 end
 
 
 
-assign reg_word6_shown_wide = {16'h0, reg_word6_value};
+assign reg_word6_shown_wide = {16'h0, reg_word6_shown};
 
 
 
 assign reg_word6_mine_write = (written_addr == 24);
 
 
-always @(reg_word6_shown_wide, reg_word6_set_mine, written_mask, set_index, set_value, written_data) begin: reg_word6_merge_bytes
-    if ((reg_word6_set_mine && (set_index == 0))) begin
-        reg_word6_written = set_value[16-1:0];
+always @(reg_word6_shown_wide, reg_word6_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word6_merge_bytes
+    if ((reg_word6_set_mine && (reg_word1_set_port_index == 0))) begin
+        reg_word6_written = reg_word1_set_port_value[16-1:0];
     end
     else begin
         reg_word6_written = ((reg_word6_shown_wide[16-1:0] & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
@@ -895,18 +907,18 @@ assign reg_word6_honoured = reg_word6_written[16-1:0];
 
 
 
-assign reg_word6_clamp_out = (reg_word5_clamp_out || reg_word6_clamped);
+assign reg_word6_chain_out_clamped = (reg_word5_chain_out_clamped || reg_word6_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word6__store4_hold_rw
     if (reset == 0) begin
-        reg_word6_value <= 0;
+        reg_word6_shown <= 0;
         reg_word6_clamped <= 0;
     end
     else begin
         reg_word6_clamped <= 1'b0;
-        if (((reg_word6_set_mine && (set_index == 0)) || (io_written && reg_word6_mine_write))) begin
-            reg_word6_value <= reg_word6_honoured;
+        if (((reg_word6_set_mine && (reg_word1_set_port_index == 0)) || (io_written && reg_word6_mine_write))) begin
+            reg_word6_shown <= reg_word6_honoured;
             reg_word6_clamped <= reg_word6_out_of_range;
         end
     end
@@ -917,93 +929,93 @@ end
 assign reg_word7_mine = (local_addr == 28);
 
 
-always @(reg_word7_mine, reg_word7_shown_wide, reg_word6_read_out) begin: reg_word7_read_chain
+always @(reg_word7_mine, reg_word7_shown_wide, reg_word6_chain_out_data) begin: reg_word7_read_chain
     if (reg_word7_mine) begin
-        reg_word7_read_out = (reg_word6_read_out | reg_word7_shown_wide);
+        reg_word7_chain_out_data = (reg_word6_chain_out_data | reg_word7_shown_wide);
     end
     else begin
-        reg_word7_read_out = reg_word6_read_out;
+        reg_word7_chain_out_data = reg_word6_chain_out_data;
     end
 end
 
 
 
-assign reg_word7_shown_wide = {16'h0, reg_word7_hw_value};
+assign reg_word7_shown_wide = {16'h0, reg_word7_shown};
 
 
 
-assign reg_word7_clamp_out = reg_word6_clamp_out;
+assign reg_word7_chain_out_clamped = reg_word6_chain_out_clamped;
 
 
 
 assign reg_word8_mine = (local_addr == 32);
 
 
-always @(reg_word8_mine, reg_word8_shown_wide, reg_word7_read_out) begin: reg_word8_read_chain
+always @(reg_word8_mine, reg_word8_shown_wide, reg_word7_chain_out_data) begin: reg_word8_read_chain
     if (reg_word8_mine) begin
-        reg_word8_read_out = (reg_word7_read_out | reg_word8_shown_wide);
+        reg_word8_chain_out_data = (reg_word7_chain_out_data | reg_word8_shown_wide);
     end
     else begin
-        reg_word8_read_out = reg_word7_read_out;
+        reg_word8_chain_out_data = reg_word7_chain_out_data;
     end
 end
 
 
 
-assign reg_word8_shown_wide = reg_word8_hw_value;
+assign reg_word8_shown_wide = reg_word8_shown;
 
 
 
-assign reg_word8_clamp_out = reg_word7_clamp_out;
+assign reg_word8_chain_out_clamped = reg_word7_chain_out_clamped;
 
 
 
 assign reg_word9_mine = (local_addr == 36);
 
 
-always @(reg_word9_mine, reg_word9_shown_wide, reg_word8_read_out) begin: reg_word9_read_chain
+always @(reg_word9_mine, reg_word9_shown_wide, reg_word8_chain_out_data) begin: reg_word9_read_chain
     if (reg_word9_mine) begin
-        reg_word9_read_out = (reg_word8_read_out | reg_word9_shown_wide);
+        reg_word9_chain_out_data = (reg_word8_chain_out_data | reg_word9_shown_wide);
     end
     else begin
-        reg_word9_read_out = reg_word8_read_out;
+        reg_word9_chain_out_data = reg_word8_chain_out_data;
     end
 end
 
 
 
-assign reg_word9_shown_wide = reg_word9_hw_value;
+assign reg_word9_shown_wide = reg_word9_shown;
 
 
 
-assign reg_word9_clamp_out = reg_word8_clamp_out;
+assign reg_word9_chain_out_clamped = reg_word8_chain_out_clamped;
 
 
 
 assign reg_word10_mine = (local_addr == 40);
 
 
-always @(reg_word10_mine, reg_word10_shown_wide, reg_word9_read_out) begin: reg_word10_read_chain
+always @(reg_word10_mine, reg_word10_shown_wide, reg_word9_chain_out_data) begin: reg_word10_read_chain
     if (reg_word10_mine) begin
-        reg_word10_read_out = (reg_word9_read_out | reg_word10_shown_wide);
+        reg_word10_chain_out_data = (reg_word9_chain_out_data | reg_word10_shown_wide);
     end
     else begin
-        reg_word10_read_out = reg_word9_read_out;
+        reg_word10_chain_out_data = reg_word9_chain_out_data;
     end
 end
 
 
 
-assign reg_word10_shown_wide = {16'h0, reg_word10_value};
+assign reg_word10_shown_wide = {16'h0, reg_word10_shown};
 
 
 
 assign reg_word10_mine_write = (written_addr == 40);
 
 
-always @(reg_word10_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word10_merge_bytes
-    if ((set_strobe && (set_index == 0))) begin
-        reg_word10_written = set_value[32-1:0];
+always @(reg_word10_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word10_merge_bytes
+    if ((reg_word10_set_mine && (reg_word1_set_port_index == 0))) begin
+        reg_word10_written = reg_word1_set_port_value[32-1:0];
     end
     else begin
         reg_word10_written = ((reg_word10_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1027,18 +1039,18 @@ end
 
 
 
-assign reg_word10_clamp_out = (reg_word9_clamp_out || reg_word10_clamped);
+assign reg_word10_chain_out_clamped = (reg_word9_chain_out_clamped || reg_word10_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word10__store5_hold_rw
     if (reset == 0) begin
-        reg_word10_value <= 4096;
+        reg_word10_shown <= 4096;
         reg_word10_clamped <= 0;
     end
     else begin
         reg_word10_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 0)) || (io_written && reg_word10_mine_write))) begin
-            reg_word10_value <= reg_word10_honoured;
+        if (((reg_word10_set_mine && (reg_word1_set_port_index == 0)) || (io_written && reg_word10_mine_write))) begin
+            reg_word10_shown <= reg_word10_honoured;
             reg_word10_clamped <= reg_word10_out_of_range;
         end
     end
@@ -1049,27 +1061,27 @@ end
 assign reg_word11_mine = (local_addr == 44);
 
 
-always @(reg_word11_mine, reg_word11_shown_wide, reg_word10_read_out) begin: reg_word11_read_chain
+always @(reg_word11_mine, reg_word11_shown_wide, reg_word10_chain_out_data) begin: reg_word11_read_chain
     if (reg_word11_mine) begin
-        reg_word11_read_out = (reg_word10_read_out | reg_word11_shown_wide);
+        reg_word11_chain_out_data = (reg_word10_chain_out_data | reg_word11_shown_wide);
     end
     else begin
-        reg_word11_read_out = reg_word10_read_out;
+        reg_word11_chain_out_data = reg_word10_chain_out_data;
     end
 end
 
 
 
-assign reg_word11_shown_wide = {16'h0, reg_word11_value};
+assign reg_word11_shown_wide = {16'h0, reg_word11_shown};
 
 
 
 assign reg_word11_mine_write = (written_addr == 44);
 
 
-always @(reg_word11_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word11_merge_bytes
-    if ((set_strobe && (set_index == 1))) begin
-        reg_word11_written = set_value[32-1:0];
+always @(reg_word11_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word11_merge_bytes
+    if ((reg_word10_set_mine && (reg_word1_set_port_index == 1))) begin
+        reg_word11_written = reg_word1_set_port_value[32-1:0];
     end
     else begin
         reg_word11_written = ((reg_word11_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1093,18 +1105,18 @@ end
 
 
 
-assign reg_word11_clamp_out = (reg_word10_clamp_out || reg_word11_clamped);
+assign reg_word11_chain_out_clamped = (reg_word10_chain_out_clamped || reg_word11_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word11__store6_hold_rw
     if (reset == 0) begin
-        reg_word11_value <= 4096;
+        reg_word11_shown <= 4096;
         reg_word11_clamped <= 0;
     end
     else begin
         reg_word11_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 1)) || (io_written && reg_word11_mine_write))) begin
-            reg_word11_value <= reg_word11_honoured;
+        if (((reg_word10_set_mine && (reg_word1_set_port_index == 1)) || (io_written && reg_word11_mine_write))) begin
+            reg_word11_shown <= reg_word11_honoured;
             reg_word11_clamped <= reg_word11_out_of_range;
         end
     end
@@ -1115,27 +1127,27 @@ end
 assign reg_word12_mine = (local_addr == 48);
 
 
-always @(reg_word12_mine, reg_word12_shown_wide, reg_word11_read_out) begin: reg_word12_read_chain
+always @(reg_word12_mine, reg_word12_shown_wide, reg_word11_chain_out_data) begin: reg_word12_read_chain
     if (reg_word12_mine) begin
-        reg_word12_read_out = (reg_word11_read_out | reg_word12_shown_wide);
+        reg_word12_chain_out_data = (reg_word11_chain_out_data | reg_word12_shown_wide);
     end
     else begin
-        reg_word12_read_out = reg_word11_read_out;
+        reg_word12_chain_out_data = reg_word11_chain_out_data;
     end
 end
 
 
 
-assign reg_word12_shown_wide = {16'h0, reg_word12_value};
+assign reg_word12_shown_wide = {16'h0, reg_word12_shown};
 
 
 
 assign reg_word12_mine_write = (written_addr == 48);
 
 
-always @(reg_word12_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word12_merge_bytes
-    if ((set_strobe && (set_index == 2))) begin
-        reg_word12_written = set_value[16-1:0];
+always @(reg_word12_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word12_merge_bytes
+    if ((reg_word10_set_mine && (reg_word1_set_port_index == 2))) begin
+        reg_word12_written = reg_word1_set_port_value[16-1:0];
     end
     else begin
         reg_word12_written = ((reg_word12_shown_wide[16-1:0] & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
@@ -1148,18 +1160,18 @@ assign reg_word12_honoured = reg_word12_written[16-1:0];
 
 
 
-assign reg_word12_clamp_out = (reg_word11_clamp_out || reg_word12_clamped);
+assign reg_word12_chain_out_clamped = (reg_word11_chain_out_clamped || reg_word12_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word12__store7_hold_rw
     if (reset == 0) begin
-        reg_word12_value <= 0;
+        reg_word12_shown <= 0;
         reg_word12_clamped <= 0;
     end
     else begin
         reg_word12_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 2)) || (io_written && reg_word12_mine_write))) begin
-            reg_word12_value <= reg_word12_honoured;
+        if (((reg_word10_set_mine && (reg_word1_set_port_index == 2)) || (io_written && reg_word12_mine_write))) begin
+            reg_word12_shown <= reg_word12_honoured;
             reg_word12_clamped <= reg_word12_out_of_range;
         end
     end
@@ -1170,27 +1182,27 @@ end
 assign reg_word13_mine = (local_addr == 52);
 
 
-always @(reg_word13_mine, reg_word13_shown_wide, reg_word12_read_out) begin: reg_word13_read_chain
+always @(reg_word13_mine, reg_word13_shown_wide, reg_word12_chain_out_data) begin: reg_word13_read_chain
     if (reg_word13_mine) begin
-        reg_word13_read_out = (reg_word12_read_out | reg_word13_shown_wide);
+        reg_word13_chain_out_data = (reg_word12_chain_out_data | reg_word13_shown_wide);
     end
     else begin
-        reg_word13_read_out = reg_word12_read_out;
+        reg_word13_chain_out_data = reg_word12_chain_out_data;
     end
 end
 
 
 
-assign reg_word13_shown_wide = {24'h0, reg_word13_value};
+assign reg_word13_shown_wide = {24'h0, reg_word13_shown};
 
 
 
 assign reg_word13_mine_write = (written_addr == 52);
 
 
-always @(reg_word13_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word13_merge_bytes
-    if ((set_strobe && (set_index == 3))) begin
-        reg_word13_written = set_value[32-1:0];
+always @(reg_word13_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word13_merge_bytes
+    if ((reg_word10_set_mine && (reg_word1_set_port_index == 3))) begin
+        reg_word13_written = reg_word1_set_port_value[32-1:0];
     end
     else begin
         reg_word13_written = ((reg_word13_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1214,18 +1226,18 @@ end
 
 
 
-assign reg_word13_clamp_out = (reg_word12_clamp_out || reg_word13_clamped);
+assign reg_word13_chain_out_clamped = (reg_word12_chain_out_clamped || reg_word13_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word13__store8_hold_rw
     if (reset == 0) begin
-        reg_word13_value <= 1;
+        reg_word13_shown <= 1;
         reg_word13_clamped <= 0;
     end
     else begin
         reg_word13_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 3)) || (io_written && reg_word13_mine_write))) begin
-            reg_word13_value <= reg_word13_honoured;
+        if (((reg_word10_set_mine && (reg_word1_set_port_index == 3)) || (io_written && reg_word13_mine_write))) begin
+            reg_word13_shown <= reg_word13_honoured;
             reg_word13_clamped <= reg_word13_out_of_range;
         end
     end
@@ -1236,27 +1248,27 @@ end
 assign reg_word14_mine = (local_addr == 56);
 
 
-always @(reg_word14_mine, reg_word14_shown_wide, reg_word13_read_out) begin: reg_word14_read_chain
+always @(reg_word14_mine, reg_word14_shown_wide, reg_word13_chain_out_data) begin: reg_word14_read_chain
     if (reg_word14_mine) begin
-        reg_word14_read_out = (reg_word13_read_out | reg_word14_shown_wide);
+        reg_word14_chain_out_data = (reg_word13_chain_out_data | reg_word14_shown_wide);
     end
     else begin
-        reg_word14_read_out = reg_word13_read_out;
+        reg_word14_chain_out_data = reg_word13_chain_out_data;
     end
 end
 
 
 
-assign reg_word14_shown_wide = {24'h0, reg_word14_value};
+assign reg_word14_shown_wide = {24'h0, reg_word14_shown};
 
 
 
 assign reg_word14_mine_write = (written_addr == 56);
 
 
-always @(reg_word14_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word14_merge_bytes
-    if ((set_strobe && (set_index == 4))) begin
-        reg_word14_written = set_value[32-1:0];
+always @(reg_word14_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word14_merge_bytes
+    if ((reg_word10_set_mine && (reg_word1_set_port_index == 4))) begin
+        reg_word14_written = reg_word1_set_port_value[32-1:0];
     end
     else begin
         reg_word14_written = ((reg_word14_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1280,18 +1292,18 @@ end
 
 
 
-assign reg_word14_clamp_out = (reg_word13_clamp_out || reg_word14_clamped);
+assign reg_word14_chain_out_clamped = (reg_word13_chain_out_clamped || reg_word14_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word14__store9_hold_rw
     if (reset == 0) begin
-        reg_word14_value <= 1;
+        reg_word14_shown <= 1;
         reg_word14_clamped <= 0;
     end
     else begin
         reg_word14_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 4)) || (io_written && reg_word14_mine_write))) begin
-            reg_word14_value <= reg_word14_honoured;
+        if (((reg_word10_set_mine && (reg_word1_set_port_index == 4)) || (io_written && reg_word14_mine_write))) begin
+            reg_word14_shown <= reg_word14_honoured;
             reg_word14_clamped <= reg_word14_out_of_range;
         end
     end
@@ -1302,27 +1314,27 @@ end
 assign reg_word15_mine = (local_addr == 60);
 
 
-always @(reg_word15_mine, reg_word15_shown_wide, reg_word14_read_out) begin: reg_word15_read_chain
+always @(reg_word15_mine, reg_word15_shown_wide, reg_word14_chain_out_data) begin: reg_word15_read_chain
     if (reg_word15_mine) begin
-        reg_word15_read_out = (reg_word14_read_out | reg_word15_shown_wide);
+        reg_word15_chain_out_data = (reg_word14_chain_out_data | reg_word15_shown_wide);
     end
     else begin
-        reg_word15_read_out = reg_word14_read_out;
+        reg_word15_chain_out_data = reg_word14_chain_out_data;
     end
 end
 
 
 
-assign reg_word15_shown_wide = {24'h0, reg_word15_value};
+assign reg_word15_shown_wide = {24'h0, reg_word15_shown};
 
 
 
 assign reg_word15_mine_write = (written_addr == 60);
 
 
-always @(reg_word15_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word15_merge_bytes
-    if ((set_strobe && (set_index == 5))) begin
-        reg_word15_written = set_value[32-1:0];
+always @(reg_word15_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word15_merge_bytes
+    if ((reg_word10_set_mine && (reg_word1_set_port_index == 5))) begin
+        reg_word15_written = reg_word1_set_port_value[32-1:0];
     end
     else begin
         reg_word15_written = ((reg_word15_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1346,18 +1358,18 @@ end
 
 
 
-assign reg_word15_clamp_out = (reg_word14_clamp_out || reg_word15_clamped);
+assign reg_word15_chain_out_clamped = (reg_word14_chain_out_clamped || reg_word15_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word15__store10_hold_rw
     if (reset == 0) begin
-        reg_word15_value <= 1;
+        reg_word15_shown <= 1;
         reg_word15_clamped <= 0;
     end
     else begin
         reg_word15_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 5)) || (io_written && reg_word15_mine_write))) begin
-            reg_word15_value <= reg_word15_honoured;
+        if (((reg_word10_set_mine && (reg_word1_set_port_index == 5)) || (io_written && reg_word15_mine_write))) begin
+            reg_word15_shown <= reg_word15_honoured;
             reg_word15_clamped <= reg_word15_out_of_range;
         end
     end
@@ -1368,27 +1380,27 @@ end
 assign reg_word16_mine = (local_addr == 64);
 
 
-always @(reg_word16_mine, reg_word16_shown_wide, reg_word15_read_out) begin: reg_word16_read_chain
+always @(reg_word16_mine, reg_word16_shown_wide, reg_word15_chain_out_data) begin: reg_word16_read_chain
     if (reg_word16_mine) begin
-        reg_word16_read_out = (reg_word15_read_out | reg_word16_shown_wide);
+        reg_word16_chain_out_data = (reg_word15_chain_out_data | reg_word16_shown_wide);
     end
     else begin
-        reg_word16_read_out = reg_word15_read_out;
+        reg_word16_chain_out_data = reg_word15_chain_out_data;
     end
 end
 
 
 
-assign reg_word16_shown_wide = {30'h0, reg_word16_value};
+assign reg_word16_shown_wide = {30'h0, reg_word16_shown};
 
 
 
 assign reg_word16_mine_write = (written_addr == 64);
 
 
-always @(reg_word16_shown_wide, reg_word16_set_mine, written_mask, set_index, set_value, written_data) begin: reg_word16_merge_bytes
-    if ((reg_word16_set_mine && (set_index == 0))) begin
-        reg_word16_written = set_value[2-1:0];
+always @(reg_word16_shown_wide, reg_word16_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word16_merge_bytes
+    if ((reg_word16_set_mine && (reg_word1_set_port_index == 0))) begin
+        reg_word16_written = reg_word1_set_port_value[2-1:0];
     end
     else begin
         reg_word16_written = ((reg_word16_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
@@ -1401,18 +1413,18 @@ assign reg_word16_honoured = reg_word16_written[2-1:0];
 
 
 
-assign reg_word16_clamp_out = (reg_word15_clamp_out || reg_word16_clamped);
+assign reg_word16_chain_out_clamped = (reg_word15_chain_out_clamped || reg_word16_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word16__store11_hold_rw
     if (reset == 0) begin
-        reg_word16_value <= 0;
+        reg_word16_shown <= 0;
         reg_word16_clamped <= 0;
     end
     else begin
         reg_word16_clamped <= 1'b0;
-        if (((reg_word16_set_mine && (set_index == 0)) || (io_written && reg_word16_mine_write))) begin
-            reg_word16_value <= reg_word16_honoured;
+        if (((reg_word16_set_mine && (reg_word1_set_port_index == 0)) || (io_written && reg_word16_mine_write))) begin
+            reg_word16_shown <= reg_word16_honoured;
             reg_word16_clamped <= reg_word16_out_of_range;
         end
     end
@@ -1423,27 +1435,27 @@ end
 assign reg_word17_mine = (local_addr == 68);
 
 
-always @(reg_word17_mine, reg_word17_shown_wide, reg_word16_read_out) begin: reg_word17_read_chain
+always @(reg_word17_mine, reg_word17_shown_wide, reg_word16_chain_out_data) begin: reg_word17_read_chain
     if (reg_word17_mine) begin
-        reg_word17_read_out = (reg_word16_read_out | reg_word17_shown_wide);
+        reg_word17_chain_out_data = (reg_word16_chain_out_data | reg_word17_shown_wide);
     end
     else begin
-        reg_word17_read_out = reg_word16_read_out;
+        reg_word17_chain_out_data = reg_word16_chain_out_data;
     end
 end
 
 
 
-assign reg_word17_shown_wide = {16'h0, reg_word17_value};
+assign reg_word17_shown_wide = {16'h0, reg_word17_shown};
 
 
 
 assign reg_word17_mine_write = (written_addr == 68);
 
 
-always @(reg_word17_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word17_merge_bytes
-    if ((set_strobe && (set_index == 6))) begin
-        reg_word17_written = set_value[32-1:0];
+always @(reg_word17_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word17_merge_bytes
+    if ((reg_word10_set_mine && (reg_word1_set_port_index == 6))) begin
+        reg_word17_written = reg_word1_set_port_value[32-1:0];
     end
     else begin
         reg_word17_written = ((reg_word17_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1467,18 +1479,18 @@ end
 
 
 
-assign reg_word17_clamp_out = (reg_word16_clamp_out || reg_word17_clamped);
+assign reg_word17_chain_out_clamped = (reg_word16_chain_out_clamped || reg_word17_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word17__store12_hold_rw
     if (reset == 0) begin
-        reg_word17_value <= 2;
+        reg_word17_shown <= 2;
         reg_word17_clamped <= 0;
     end
     else begin
         reg_word17_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 6)) || (io_written && reg_word17_mine_write))) begin
-            reg_word17_value <= reg_word17_honoured;
+        if (((reg_word10_set_mine && (reg_word1_set_port_index == 6)) || (io_written && reg_word17_mine_write))) begin
+            reg_word17_shown <= reg_word17_honoured;
             reg_word17_clamped <= reg_word17_out_of_range;
         end
     end
@@ -1489,27 +1501,27 @@ end
 assign reg_word18_mine = (local_addr == 72);
 
 
-always @(reg_word18_mine, reg_word18_shown_wide, reg_word17_read_out) begin: reg_word18_read_chain
+always @(reg_word18_mine, reg_word18_shown_wide, reg_word17_chain_out_data) begin: reg_word18_read_chain
     if (reg_word18_mine) begin
-        reg_word18_read_out = (reg_word17_read_out | reg_word18_shown_wide);
+        reg_word18_chain_out_data = (reg_word17_chain_out_data | reg_word18_shown_wide);
     end
     else begin
-        reg_word18_read_out = reg_word17_read_out;
+        reg_word18_chain_out_data = reg_word17_chain_out_data;
     end
 end
 
 
 
-assign reg_word18_shown_wide = {16'h0, reg_word18_value};
+assign reg_word18_shown_wide = {16'h0, reg_word18_shown};
 
 
 
 assign reg_word18_mine_write = (written_addr == 72);
 
 
-always @(reg_word18_shown_wide, set_strobe, written_mask, set_index, set_value, written_data) begin: reg_word18_merge_bytes
-    if ((set_strobe && (set_index == 7))) begin
-        reg_word18_written = set_value[32-1:0];
+always @(reg_word18_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word18_merge_bytes
+    if ((reg_word10_set_mine && (reg_word1_set_port_index == 7))) begin
+        reg_word18_written = reg_word1_set_port_value[32-1:0];
     end
     else begin
         reg_word18_written = ((reg_word18_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1533,18 +1545,18 @@ end
 
 
 
-assign reg_word18_clamp_out = (reg_word17_clamp_out || reg_word18_clamped);
+assign reg_word18_chain_out_clamped = (reg_word17_chain_out_clamped || reg_word18_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word18__store13_hold_rw
     if (reset == 0) begin
-        reg_word18_value <= 2;
+        reg_word18_shown <= 2;
         reg_word18_clamped <= 0;
     end
     else begin
         reg_word18_clamped <= 1'b0;
-        if (((set_strobe && (set_index == 7)) || (io_written && reg_word18_mine_write))) begin
-            reg_word18_value <= reg_word18_honoured;
+        if (((reg_word10_set_mine && (reg_word1_set_port_index == 7)) || (io_written && reg_word18_mine_write))) begin
+            reg_word18_shown <= reg_word18_honoured;
             reg_word18_clamped <= reg_word18_out_of_range;
         end
     end
@@ -1555,18 +1567,18 @@ end
 assign reg_word19_mine = (local_addr == 76);
 
 
-always @(reg_word19_mine, reg_word19_shown_wide, reg_word18_read_out) begin: reg_word19_read_chain
+always @(reg_word19_mine, reg_word19_shown_wide, reg_word18_chain_out_data) begin: reg_word19_read_chain
     if (reg_word19_mine) begin
-        reg_word19_read_out = (reg_word18_read_out | reg_word19_shown_wide);
+        reg_word19_chain_out_data = (reg_word18_chain_out_data | reg_word19_shown_wide);
     end
     else begin
-        reg_word19_read_out = reg_word18_read_out;
+        reg_word19_chain_out_data = reg_word18_chain_out_data;
     end
 end
 
 
 
-assign reg_word19_shown_wide = {8'h0, reg_word19_hw_value};
+assign reg_word19_shown_wide = {8'h0, reg_word19_shown};
 
 
 
@@ -1594,21 +1606,21 @@ end
 
 
 
-assign reg_word19_clamp_out = (reg_word18_clamp_out || reg_word19_clamped);
+assign reg_word19_chain_out_clamped = (reg_word18_chain_out_clamped || reg_word19_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word19__store14_pulse_on_write
     if (reset == 0) begin
-        reg_word19_strobe <= 0;
-        reg_word19_value <= 0;
+        reg_word19__store14_word_strobe <= 0;
+        reg_word19__store14_word_value <= 0;
         reg_word19_clamped <= 0;
     end
     else begin
-        reg_word19_strobe <= 1'b0;
+        reg_word19__store14_word_strobe <= 1'b0;
         reg_word19_clamped <= 1'b0;
         if ((io_written && reg_word19_mine_write)) begin
-            reg_word19_value <= reg_word19_honoured;
-            reg_word19_strobe <= 1'b1;
+            reg_word19__store14_word_value <= reg_word19_honoured;
+            reg_word19__store14_word_strobe <= 1'b1;
             reg_word19_clamped <= reg_word19_out_of_range;
         end
     end
@@ -1619,18 +1631,18 @@ end
 assign reg_word20_mine = (local_addr == 80);
 
 
-always @(reg_word20_mine, reg_word20_shown_wide, reg_word19_read_out) begin: reg_word20_read_chain
+always @(reg_word20_mine, reg_word20_shown_wide, reg_word19_chain_out_data) begin: reg_word20_read_chain
     if (reg_word20_mine) begin
-        reg_word20_read_out = (reg_word19_read_out | reg_word20_shown_wide);
+        reg_word20_chain_out_data = (reg_word19_chain_out_data | reg_word20_shown_wide);
     end
     else begin
-        reg_word20_read_out = reg_word19_read_out;
+        reg_word20_chain_out_data = reg_word19_chain_out_data;
     end
 end
 
 
 
-assign reg_word20_shown_wide = {8'h0, reg_word20_hw_value};
+assign reg_word20_shown_wide = {8'h0, reg_word20_shown};
 
 
 
@@ -1658,21 +1670,21 @@ end
 
 
 
-assign reg_word20_clamp_out = (reg_word19_clamp_out || reg_word20_clamped);
+assign reg_word20_chain_out_clamped = (reg_word19_chain_out_clamped || reg_word20_clamped);
 
 
 always @(posedge clock, negedge reset) begin: reg_word20__store15_pulse_on_write
     if (reset == 0) begin
-        reg_word20_strobe <= 0;
-        reg_word20_value <= 0;
+        reg_word20__store15_word_strobe <= 0;
+        reg_word20__store15_word_value <= 0;
         reg_word20_clamped <= 0;
     end
     else begin
-        reg_word20_strobe <= 1'b0;
+        reg_word20__store15_word_strobe <= 1'b0;
         reg_word20_clamped <= 1'b0;
         if ((io_written && reg_word20_mine_write)) begin
-            reg_word20_value <= reg_word20_honoured;
-            reg_word20_strobe <= 1'b1;
+            reg_word20__store15_word_value <= reg_word20_honoured;
+            reg_word20__store15_word_strobe <= 1'b1;
             reg_word20_clamped <= reg_word20_out_of_range;
         end
     end
@@ -1683,66 +1695,66 @@ end
 assign reg_word21_mine = (local_addr == 84);
 
 
-always @(reg_word21_mine, reg_word21_shown_wide, reg_word20_read_out) begin: reg_word21_read_chain
+always @(reg_word21_mine, reg_word21_shown_wide, reg_word20_chain_out_data) begin: reg_word21_read_chain
     if (reg_word21_mine) begin
-        reg_word21_read_out = (reg_word20_read_out | reg_word21_shown_wide);
+        reg_word21_chain_out_data = (reg_word20_chain_out_data | reg_word21_shown_wide);
     end
     else begin
-        reg_word21_read_out = reg_word20_read_out;
+        reg_word21_chain_out_data = reg_word20_chain_out_data;
     end
 end
 
 
 
-assign reg_word21_shown_wide = reg_word21_hw_value;
+assign reg_word21_shown_wide = reg_word21_shown;
 
 
 
-assign reg_word21_clamp_out = reg_word20_clamp_out;
+assign reg_word21_chain_out_clamped = reg_word20_chain_out_clamped;
 
 
 
 assign reg_word22_mine = (local_addr == 88);
 
 
-always @(reg_word22_mine, reg_word22_shown_wide, reg_word21_read_out) begin: reg_word22_read_chain
+always @(reg_word22_mine, reg_word22_shown_wide, reg_word21_chain_out_data) begin: reg_word22_read_chain
     if (reg_word22_mine) begin
-        reg_word22_read_out = (reg_word21_read_out | reg_word22_shown_wide);
+        reg_word22_chain_out_data = (reg_word21_chain_out_data | reg_word22_shown_wide);
     end
     else begin
-        reg_word22_read_out = reg_word21_read_out;
+        reg_word22_chain_out_data = reg_word21_chain_out_data;
     end
 end
 
 
 
-assign reg_word22_shown_wide = {16'h0, reg_word22_hw_value};
+assign reg_word22_shown_wide = {16'h0, reg_word22_shown};
 
 
 
-assign reg_word22_clamp_out = reg_word21_clamp_out;
+assign reg_word22_chain_out_clamped = reg_word21_chain_out_clamped;
 
 
 
 assign reg_word23_mine = (local_addr == 92);
 
 
-always @(reg_word23_mine, reg_word23_shown_wide, reg_word22_read_out) begin: reg_word23_read_chain
+always @(reg_word23_mine, reg_word23_shown_wide, reg_word22_chain_out_data) begin: reg_word23_read_chain
     if (reg_word23_mine) begin
-        read_end = (reg_word22_read_out | reg_word23_shown_wide);
+        read_end = (reg_word22_chain_out_data | reg_word23_shown_wide);
     end
     else begin
-        read_end = reg_word22_read_out;
+        read_end = reg_word22_chain_out_data;
     end
 end
 
 
 
-assign reg_word23_shown_wide = {4'h0, reg_word23_hw_value};
+assign reg_word23_shown_wide = {4'h0, reg_word23_shown};
 
 
 
-assign reg_word23_clamp_out = reg_word22_clamp_out;
+assign reg_word23_chain_out_clamped = reg_word22_chain_out_clamped;
 
 
 
@@ -1751,10 +1763,6 @@ assign sequencer0_arriving_coord_fits = ((fifo_dout[32-1:(24 - 1)] == 0) || (fif
 
 
 assign sequencer0_arriving_count_fits = ((fifo_dout[32-1:(24 - 1)] == 0) || (fifo_dout[32-1:(24 - 1)] == 511));
-
-
-
-assign sequencer0_opcode = sequencer0_header[32-1:28];
 
 
 always @(fifo_dout) begin: sequencer0_lookup_arriving
@@ -1801,8 +1809,8 @@ always @(fifo_dout) begin: sequencer0_lookup_arriving_kind
 end
 
 
-always @(sequencer0_header) begin: sequencer0_lookup_count
-    case (sequencer0_header[32-1:28])
+always @(sequencer0_opcode) begin: sequencer0_lookup_count
+    case (sequencer0_opcode)
         0: sequencer0_next_count = 0;
         1: sequencer0_next_count = 2;
         2: sequencer0_next_count = 4;
@@ -1889,8 +1897,8 @@ always @(fifo_dout) begin: sequencer0_lookup_mask_low
 end
 
 
-always @(sequencer0_header) begin: sequencer0_lookup_coords
-    case (sequencer0_header[32-1:28])
+always @(sequencer0_opcode) begin: sequencer0_lookup_coords
+    case (sequencer0_opcode)
         0: sequencer0_coord_mask = 0;
         1: sequencer0_coord_mask = 3;
         2: sequencer0_coord_mask = 15;
@@ -1911,8 +1919,8 @@ always @(sequencer0_header) begin: sequencer0_lookup_coords
 end
 
 
-always @(sequencer0_header) begin: sequencer0_lookup_counts
-    case (sequencer0_header[32-1:28])
+always @(sequencer0_opcode) begin: sequencer0_lookup_counts
+    case (sequencer0_opcode)
         0: sequencer0_count_mask = 0;
         1: sequencer0_count_mask = 0;
         2: sequencer0_count_mask = 0;
@@ -1955,7 +1963,7 @@ always @(fifo_dout) begin: sequencer0_lookup_set
 end
 
 
-always @(sequencer0_arriving_count, fifo_empty, sequencer0_state, core_clear, sequencer0_word_due, sequencer0_next_valid, sequencer0_next_count, sequencer0_fetched) begin: sequencer0_fetch_request
+always @(sequencer0_arriving_count, fifo_empty, sequencer0_state, sequencer0_word_due, sequencer0_next_valid, core_clear, sequencer0_next_count, sequencer0_fetched) begin: sequencer0_fetch_request
     reg more;
     more = 1'b1;
     if (sequencer0_word_due) begin
@@ -1988,6 +1996,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
         sequencer0_header <= 0;
         sequencer0_operand_1 <= 0;
         sequencer0_bad_header_bits <= 0;
+        sequencer0_opcode <= 0;
         sequencer0_fetched <= 0;
         sequencer0_operand_2 <= 0;
     end
@@ -2004,7 +2013,8 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
             end
             if (sequencer0_word_due) begin
                 if ((sequencer0_fetched == 0)) begin
-                    sequencer0_header <= fifo_dout;
+                    sequencer0_opcode <= fifo_dout[32-1:28];
+                    sequencer0_header <= fifo_dout[17-1:0];
                     sequencer0_next_motion <= sequencer0_arriving_moves;
                     sequencer0_bad_opcode <= (!sequencer0_next_known);
                     sequencer0_bad_header_bits <= (((fifo_dout[32-1:16] & (~sequencer0_mask_high)) != 0) || ((fifo_dout[16-1:0] & (~sequencer0_mask_low)) != 0));
@@ -2023,13 +2033,13 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
                             sequencer0_operand_0 <= fifo_dout;
                         end
                         'h2: begin
-                            sequencer0_operand_1 <= fifo_dout;
+                            sequencer0_operand_1 <= fifo_dout[24-1:0];
                         end
                         'h3: begin
-                            sequencer0_operand_2 <= fifo_dout;
+                            sequencer0_operand_2 <= fifo_dout[24-1:0];
                         end
                         default: begin
-                            sequencer0_operand_3 <= fifo_dout;
+                            sequencer0_operand_3 <= fifo_dout[24-1:0];
                         end
                     endcase
                     if (((sequencer0_coord_mask[($signed({1'b0, sequencer0_fetched}) - 1)] && (!sequencer0_arriving_coord_fits)) || (sequencer0_count_mask[($signed({1'b0, sequencer0_fetched}) - 1)] && (!sequencer0_arriving_count_fits)))) begin
@@ -2070,7 +2080,7 @@ end
 assign sequencer0_motion_done = ((!dda_start) && (!dda_busy) && (!dda_done));
 
 
-always @(outputs_busy, sequencer0_motion_done, pulse_busy, sequencer0_dwell_left, sequencer0_state) begin: sequencer0_completion
+always @(sequencer0_motion_done, outputs_busy, pulse_busy, sequencer0_dwell_left, sequencer0_state) begin: sequencer0_completion
     sequencer0_state_over = 1'b0;
     case (sequencer0_state)
         3'b000: begin
@@ -2092,7 +2102,7 @@ always @(outputs_busy, sequencer0_motion_done, pulse_busy, sequencer0_dwell_left
 end
 
 
-always @(outputs_busy, sequencer0_next_motion, dda_ready, sequencer0_state_over, dda_start, sequencer0_next_error, dda_error, sequencer0_state) begin: sequencer0_readiness
+always @(sequencer0_next_motion, dda_ready, sequencer0_state_over, outputs_busy, dda_start, sequencer0_next_error, dda_error, sequencer0_state) begin: sequencer0_readiness
     if ((sequencer0_next_motion && (sequencer0_next_error == 0))) begin
         if ((sequencer0_state == 3'b001)) begin
             sequencer0_finishing = (dda_ready && (!dda_start) && (!dda_error));
@@ -2113,19 +2123,19 @@ assign sequencer0_issue = (sequencer0_next_valid && enable && sequencer0_finishi
 
 always @(posedge clock, negedge reset) begin: sequencer0_execute
     if (reset == 0) begin
-        set_strobe <= 0;
-        error_code <= 0;
-        mark_strobe <= 0;
-        dda_start <= 0;
         seq_load <= 0;
+        error_code <= 0;
+        sequencer0_mark_strobe <= 0;
+        dda_start <= 0;
+        reg_word10_set_mine <= 0;
         sequencer0_dwell_left <= 0;
         sequencer0_state <= 3'b000;
     end
     else begin
         dda_start <= 0;
         seq_load <= 0;
-        set_strobe <= 0;
-        mark_strobe <= 0;
+        reg_word10_set_mine <= 0;
+        sequencer0_mark_strobe <= 0;
         if (core_clear) begin
             sequencer0_state <= 3'b000;
             error_code <= 0;
@@ -2161,10 +2171,10 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
                 sequencer0_state <= 3'b000;
                 case (sequencer0_opcode)
                     'h4: begin
-                        set_strobe <= 1;
+                        reg_word10_set_mine <= 1;
                     end
                     'h6: begin
-                        mark_strobe <= 1;
+                        sequencer0_mark_strobe <= 1;
                     end
                 endcase
             end
@@ -2198,11 +2208,11 @@ always @(sequencer0_operand_0, sequencer0_operand_3, sequencer0_operand_1, seque
         dda_xe = $signed(sequencer0_operand_2[24-1:0]);
         dda_ye = $signed(sequencer0_operand_3[24-1:0]);
     end
-    sequencer0_pulse_count_x = $signed(sequencer0_operand_0[24-1:0]);
-    sequencer0_pulse_count_y = $signed(sequencer0_operand_1[24-1:0]);
-    set_index = sequencer0_header[4-1:0];
-    set_value = sequencer0_operand_0;
-    mark_tag = sequencer0_header[16-1:0];
+    sequencer0_pulses_count_x = $signed(sequencer0_operand_0[24-1:0]);
+    sequencer0_pulses_count_y = $signed(sequencer0_operand_1[24-1:0]);
+    reg_word1_set_port_index = sequencer0_header[4-1:0];
+    reg_word1_set_port_value = sequencer0_operand_0;
+    sequencer0_mark_tag = sequencer0_header[16-1:0];
 end
 
 
@@ -2211,7 +2221,7 @@ assign seq_busy = ((sequencer0_state == 3'b001) || (sequencer0_state == 3'b010) 
 assign motion_run = (sequencer0_state == 3'b001);
 
 
-always @(posedge clock, negedge reset) begin: feed_rate0_settings
+always @(posedge clock, negedge reset) begin: feed_rate0_register_settings
     if (reset == 0) begin
         feed_rate0_target_s <= 0;
         feed_rate0_step_zero <= 1;
@@ -2222,13 +2232,13 @@ always @(posedge clock, negedge reset) begin: feed_rate0_settings
         feed_rate0_raise_limit <= 0;
     end
     else begin
-        feed_rate0_target_s <= reg_word10_value;
-        feed_rate0_start_s <= reg_word11_value;
-        feed_rate0_step_s <= reg_word12_value;
-        feed_rate0_step_zero <= (reg_word12_value == 0);
-        feed_rate0_raise_limit <= ($signed({1'b0, reg_word10_value}) - $signed({1'b0, reg_word12_value}));
-        feed_rate0_lower_limit <= ({1'b0, reg_word10_value} + {1'b0, reg_word12_value});
-        feed_rate0_floor_limit <= ({1'b0, reg_word11_value} + {1'b0, reg_word12_value});
+        feed_rate0_target_s <= reg_word10_shown;
+        feed_rate0_start_s <= reg_word11_shown;
+        feed_rate0_step_s <= reg_word12_shown;
+        feed_rate0_step_zero <= (reg_word12_shown == 0);
+        feed_rate0_raise_limit <= ($signed({1'b0, reg_word10_shown}) - $signed({1'b0, reg_word12_shown}));
+        feed_rate0_lower_limit <= ({1'b0, reg_word10_shown} + {1'b0, reg_word12_shown});
+        feed_rate0_floor_limit <= ({1'b0, reg_word11_shown} + {1'b0, reg_word12_shown});
     end
 end
 
@@ -2269,8 +2279,8 @@ end
 
 always @(posedge clock, negedge reset) begin: feed_rate0_accumulate
     if (reset == 0) begin
-        tick <= 0;
         feed_rate0_rate <= 0;
+        tick <= 0;
         feed_rate0_count <= 2;
         feed_rate0_phase <= 0;
     end
@@ -2330,48 +2340,73 @@ end
 
 
 
-assign direct_busy_x = (direct_pulse0_load || direct_pulse0_pending);
+assign direct_busy_x = (direct_pulse0_command_load || direct_pulse0_pending);
+
+
+always @(direct_pulse0_command_load, direct_pulse0_command_count, reg_word19_shown) begin: direct_pulse0_count_operands
+    if ((!direct_pulse0_command_load)) begin
+        direct_pulse0_count_operand = reg_word19_shown;
+        direct_pulse0_count_addend = 16777215;
+    end
+    else if ((direct_pulse0_command_count < 0)) begin
+        direct_pulse0_count_operand = (~direct_pulse0_command_count[24-1:0]);
+        direct_pulse0_count_addend = 1;
+    end
+    else begin
+        direct_pulse0_count_operand = direct_pulse0_command_count[24-1:0];
+        direct_pulse0_count_addend = 0;
+    end
+end
+
+
+always @(reg_word17_shown, direct_pulse0_waiting, direct_pulse0_gap) begin: direct_pulse0_gap_operands
+    if (direct_pulse0_waiting) begin
+        direct_pulse0_gap_operand = direct_pulse0_gap;
+    end
+    else begin
+        direct_pulse0_gap_operand = reg_word17_shown;
+    end
+end
+
+
+
+assign direct_pulse0_counted = (direct_pulse0_count_operand + direct_pulse0_count_addend);
+assign direct_pulse0_gap_less = (direct_pulse0_gap_operand - 1);
 
 
 always @(posedge clock, negedge reset) begin: direct_pulse0_emit
     if (reset == 0) begin
-        direct_request_x <= 0;
         direct_dir_x <= 0;
         direct_pulse0_waiting <= 0;
-        reg_word19_hw_value <= 0;
         direct_pulse0_pending <= 0;
+        reg_word19_shown <= 0;
+        direct_request_x <= 0;
         direct_pulse0_gap <= 0;
     end
     else begin
         direct_request_x <= 0;
         if (core_clear) begin
-            reg_word19_hw_value <= 0;
+            reg_word19_shown <= 0;
             direct_pulse0_pending <= 0;
         end
-        else if (direct_pulse0_load) begin
-            if ((direct_pulse0_count < 0)) begin
-                reg_word19_hw_value <= (-direct_pulse0_count);
-                direct_dir_x <= 0;
-            end
-            else begin
-                reg_word19_hw_value <= direct_pulse0_count;
-                direct_dir_x <= 1;
-            end
-            direct_pulse0_pending <= (direct_pulse0_count != 0);
+        else if (direct_pulse0_command_load) begin
+            reg_word19_shown <= direct_pulse0_counted;
+            direct_dir_x <= (direct_pulse0_command_count >= 0);
+            direct_pulse0_pending <= (direct_pulse0_command_count != 0);
             direct_pulse0_gap <= 0;
             direct_pulse0_waiting <= 0;
         end
         else if (direct_pulse0_pending) begin
             if (direct_pulse0_waiting) begin
-                direct_pulse0_gap <= (direct_pulse0_gap - 1);
+                direct_pulse0_gap <= direct_pulse0_gap_less;
                 direct_pulse0_waiting <= (direct_pulse0_gap != 1);
             end
             else if (out_ready) begin
                 direct_request_x <= 1;
-                reg_word19_hw_value <= (reg_word19_hw_value - 1);
-                direct_pulse0_pending <= (reg_word19_hw_value != 1);
-                direct_pulse0_gap <= (reg_word17_value - 1);
-                direct_pulse0_waiting <= (reg_word17_value != 1);
+                reg_word19_shown <= direct_pulse0_counted;
+                direct_pulse0_pending <= (reg_word19_shown != 1);
+                direct_pulse0_gap <= direct_pulse0_gap_less;
+                direct_pulse0_waiting <= (reg_word17_shown != 1);
             end
         end
     end
@@ -2379,48 +2414,73 @@ end
 
 
 
-assign direct_busy_y = (direct_pulse1_load || direct_pulse1_pending);
+assign direct_busy_y = (direct_pulse1_command_load || direct_pulse1_pending);
+
+
+always @(direct_pulse1_command_load, direct_pulse1_command_count, reg_word20_shown) begin: direct_pulse1_count_operands
+    if ((!direct_pulse1_command_load)) begin
+        direct_pulse1_count_operand = reg_word20_shown;
+        direct_pulse1_count_addend = 16777215;
+    end
+    else if ((direct_pulse1_command_count < 0)) begin
+        direct_pulse1_count_operand = (~direct_pulse1_command_count[24-1:0]);
+        direct_pulse1_count_addend = 1;
+    end
+    else begin
+        direct_pulse1_count_operand = direct_pulse1_command_count[24-1:0];
+        direct_pulse1_count_addend = 0;
+    end
+end
+
+
+always @(reg_word18_shown, direct_pulse1_waiting, direct_pulse1_gap) begin: direct_pulse1_gap_operands
+    if (direct_pulse1_waiting) begin
+        direct_pulse1_gap_operand = direct_pulse1_gap;
+    end
+    else begin
+        direct_pulse1_gap_operand = reg_word18_shown;
+    end
+end
+
+
+
+assign direct_pulse1_counted = (direct_pulse1_count_operand + direct_pulse1_count_addend);
+assign direct_pulse1_gap_less = (direct_pulse1_gap_operand - 1);
 
 
 always @(posedge clock, negedge reset) begin: direct_pulse1_emit
     if (reset == 0) begin
-        direct_request_y <= 0;
         direct_dir_y <= 0;
         direct_pulse1_waiting <= 0;
-        reg_word20_hw_value <= 0;
         direct_pulse1_pending <= 0;
+        reg_word20_shown <= 0;
+        direct_request_y <= 0;
         direct_pulse1_gap <= 0;
     end
     else begin
         direct_request_y <= 0;
         if (core_clear) begin
-            reg_word20_hw_value <= 0;
+            reg_word20_shown <= 0;
             direct_pulse1_pending <= 0;
         end
-        else if (direct_pulse1_load) begin
-            if ((direct_pulse1_count < 0)) begin
-                reg_word20_hw_value <= (-direct_pulse1_count);
-                direct_dir_y <= 0;
-            end
-            else begin
-                reg_word20_hw_value <= direct_pulse1_count;
-                direct_dir_y <= 1;
-            end
-            direct_pulse1_pending <= (direct_pulse1_count != 0);
+        else if (direct_pulse1_command_load) begin
+            reg_word20_shown <= direct_pulse1_counted;
+            direct_dir_y <= (direct_pulse1_command_count >= 0);
+            direct_pulse1_pending <= (direct_pulse1_command_count != 0);
             direct_pulse1_gap <= 0;
             direct_pulse1_waiting <= 0;
         end
         else if (direct_pulse1_pending) begin
             if (direct_pulse1_waiting) begin
-                direct_pulse1_gap <= (direct_pulse1_gap - 1);
+                direct_pulse1_gap <= direct_pulse1_gap_less;
                 direct_pulse1_waiting <= (direct_pulse1_gap != 1);
             end
             else if (out_ready) begin
                 direct_request_y <= 1;
-                reg_word20_hw_value <= (reg_word20_hw_value - 1);
-                direct_pulse1_pending <= (reg_word20_hw_value != 1);
-                direct_pulse1_gap <= (reg_word18_value - 1);
-                direct_pulse1_waiting <= (reg_word18_value != 1);
+                reg_word20_shown <= direct_pulse1_counted;
+                direct_pulse1_pending <= (reg_word20_shown != 1);
+                direct_pulse1_gap <= direct_pulse1_gap_less;
+                direct_pulse1_waiting <= (reg_word18_shown != 1);
             end
         end
     end
@@ -2436,12 +2496,12 @@ assign out_active = ((pulse_out0_count != 0) || (pulse_out0_phase != 2'b00) || p
 assign pulse_out0_head = pulse_out0_queue[0];
 
 
-always @(pulse_out0_phase_clocks, pulse_out0_head, pulse_out0_phase, pulse_out0_count, pulse_out0_dir_level_x, pulse_out0_dir_level_y, core_clear, reg_word13_value, reg_word14_value, pulse_out0_low_clocks) begin: pulse_out0_decide
+always @(pulse_out0_phase_clocks, pulse_out0_head, pulse_out0_phase, pulse_out0_count, pulse_out0_dir_level_x, pulse_out0_dir_level_y, reg_word14_shown, pulse_out0_low_clocks, reg_word13_shown, core_clear) begin: pulse_out0_decide
     pulse_out0_turn = ((pulse_out0_count != 0) && ((pulse_out0_head[0] && (pulse_out0_head[2] != pulse_out0_dir_level_x)) || (pulse_out0_head[1] && (pulse_out0_head[3] != pulse_out0_dir_level_y))));
     pulse_out0_take = 1'b0;
-    if (((pulse_out0_phase != 2'b10) && (!core_clear) && (pulse_out0_low_clocks >= reg_word13_value))) begin
+    if (((pulse_out0_phase != 2'b10) && (!core_clear) && (pulse_out0_low_clocks >= reg_word13_shown))) begin
         if ((pulse_out0_phase == 2'b01)) begin
-            pulse_out0_take = (pulse_out0_phase_clocks >= reg_word14_value);
+            pulse_out0_take = (pulse_out0_phase_clocks >= reg_word14_shown);
         end
         else if ((pulse_out0_count != 0)) begin
             pulse_out0_take = (!((pulse_out0_head[0] && (pulse_out0_head[2] != pulse_out0_dir_level_x)) || (pulse_out0_head[1] && (pulse_out0_head[3] != pulse_out0_dir_level_y))));
@@ -2450,9 +2510,9 @@ always @(pulse_out0_phase_clocks, pulse_out0_head, pulse_out0_phase, pulse_out0_
 end
 
 
-always @(pulse_out0_phase_clocks, pulse_out0_phase, core_clear, reg_word13_value, reg_word15_value, pulse_out0_low_clocks, pulse_out0_turn, pulse_out0_take) begin: pulse_out0_restart
-    pulse_out0_starts = (pulse_out0_take || ((pulse_out0_phase == 2'b00) && (!core_clear) && pulse_out0_turn && (pulse_out0_low_clocks >= reg_word15_value)));
-    pulse_out0_high_ends = ((pulse_out0_phase == 2'b10) && (pulse_out0_phase_clocks >= reg_word13_value));
+always @(pulse_out0_phase_clocks, pulse_out0_phase, pulse_out0_low_clocks, pulse_out0_turn, reg_word13_shown, core_clear, pulse_out0_take, reg_word15_shown) begin: pulse_out0_restart
+    pulse_out0_starts = (pulse_out0_take || ((pulse_out0_phase == 2'b00) && (!core_clear) && pulse_out0_turn && (pulse_out0_low_clocks >= reg_word15_shown)));
+    pulse_out0_high_ends = ((pulse_out0_phase == 2'b10) && (pulse_out0_phase_clocks >= reg_word13_shown));
     pulse_out0_phase_step = 0;
     if ((pulse_out0_phase_clocks != 255)) begin
         pulse_out0_phase_step = 1;
@@ -2564,6 +2624,18 @@ assign pulse_out0_last_slot = (pulse_out0_count[2-1:0] - 1);
 assign pulse_out0_free_slot = pulse_out0_count[2-1:0];
 
 
+always @(pulse_out0_dir_level_x, pulse_out0_dir_level_y) begin: pulse_out0_step_sense
+    pulse_out0_delta_x = 1;
+    if ((!pulse_out0_dir_level_x)) begin
+        pulse_out0_delta_x = (-1);
+    end
+    pulse_out0_delta_y = 1;
+    if ((!pulse_out0_dir_level_y)) begin
+        pulse_out0_delta_y = (-1);
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: pulse_out0_drive_pins
     if (reset == 0) begin
         pins_step_x <= 0;
@@ -2576,28 +2648,18 @@ always @(posedge clock, negedge reset) begin: pulse_out0_drive_pins
     else begin
         pins_step_x <= pulse_out0_level_x;
         pins_step_y <= pulse_out0_level_y;
-        pins_dir_x <= (pulse_out0_dir_level_x ^ reg_word16_value[0]);
-        pins_dir_y <= (pulse_out0_dir_level_y ^ reg_word16_value[1]);
+        pins_dir_x <= (pulse_out0_dir_level_x ^ reg_word16_shown[0]);
+        pins_dir_y <= (pulse_out0_dir_level_y ^ reg_word16_shown[1]);
         if (clear_position) begin
             pulse_out0_position_x <= 0;
             position_y <= 0;
         end
         else begin
             if ((pulse_out0_level_x && (!pins_step_x))) begin
-                if (pulse_out0_dir_level_x) begin
-                    pulse_out0_position_x <= (pulse_out0_position_x + 1);
-                end
-                else begin
-                    pulse_out0_position_x <= (pulse_out0_position_x - 1);
-                end
+                pulse_out0_position_x <= (pulse_out0_position_x + pulse_out0_delta_x);
             end
             if ((pulse_out0_level_y && (!pins_step_y))) begin
-                if (pulse_out0_dir_level_y) begin
-                    position_y <= (position_y + 1);
-                end
-                else begin
-                    position_y <= (position_y - 1);
-                end
+                position_y <= (position_y + pulse_out0_delta_y);
             end
         end
     end
@@ -2718,26 +2780,26 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(reg_word19_strobe, reg_word19_value, seq_load, sequencer0_pulse_count_x, direct_mode) begin: _axis_source0_choose_source
+always @(reg_word19__store14_word_strobe, reg_word19__store14_word_value, seq_load, sequencer0_pulses_count_x, direct_mode) begin: _axis_source0_choose_source
     if (direct_mode) begin
-        direct_pulse0_load = reg_word19_strobe;
-        direct_pulse0_count = $signed(reg_word19_value);
+        direct_pulse0_command_load = reg_word19__store14_word_strobe;
+        direct_pulse0_command_count = $signed(reg_word19__store14_word_value);
     end
     else begin
-        direct_pulse0_load = seq_load;
-        direct_pulse0_count = sequencer0_pulse_count_x;
+        direct_pulse0_command_load = seq_load;
+        direct_pulse0_command_count = sequencer0_pulses_count_x;
     end
 end
 
 
-always @(reg_word20_strobe, reg_word20_value, seq_load, sequencer0_pulse_count_y, direct_mode) begin: _axis_source1_choose_source
+always @(reg_word20__store15_word_strobe, reg_word20__store15_word_value, seq_load, sequencer0_pulses_count_y, direct_mode) begin: _axis_source1_choose_source
     if (direct_mode) begin
-        direct_pulse1_load = reg_word20_strobe;
-        direct_pulse1_count = $signed(reg_word20_value);
+        direct_pulse1_command_load = reg_word20__store15_word_strobe;
+        direct_pulse1_command_count = $signed(reg_word20__store15_word_value);
     end
     else begin
-        direct_pulse1_load = seq_load;
-        direct_pulse1_count = sequencer0_pulse_count_y;
+        direct_pulse1_command_load = seq_load;
+        direct_pulse1_command_count = sequencer0_pulses_count_y;
     end
 end
 
@@ -2769,7 +2831,7 @@ always @(fifo_empty, done_flag, error_code, any_busy, dda_quadrant, level_wide, 
     word[8] = fifo_empty;
     word[9] = fifo_full;
     word[32-1:16] = level_wide;
-    reg_word3_hw_value = word;
+    reg_word3_shown = word;
 end
 
 
@@ -2777,36 +2839,36 @@ always @(posedge clock, negedge reset) begin: _interrupts0_remember
     if (reset == 0) begin
         error_before <= 0;
         low_before <= 0;
-        reg_word7_hw_value <= 0;
+        reg_word7_shown <= 0;
     end
     else begin
         error_before <= (error_code != 0);
-        low_before <= (level_wide < reg_word6_value);
-        if (mark_strobe) begin
-            reg_word7_hw_value <= mark_tag;
+        low_before <= (level_wide < reg_word6_shown);
+        if (sequencer0_mark_strobe) begin
+            reg_word7_shown <= sequencer0_mark_tag;
         end
     end
 end
 
 
-always @(reg_word23_clamp_out, error_code, reg_word6_value, mark_strobe, error_before, any_busy, level_wide, busy_before, low_before) begin: _interrupts0_detect
+always @(reg_word23_chain_out_clamped, error_code, reg_word6_shown, sequencer0_mark_strobe, error_before, any_busy, level_wide, busy_before, low_before) begin: _interrupts0_detect
     reg [5-1:0] word;
     word = 5'h0;
     word[0] = (busy_before && (!any_busy));
-    word[1] = ((level_wide < reg_word6_value) && (!low_before));
+    word[1] = ((level_wide < reg_word6_shown) && (!low_before));
     word[2] = ((error_code != 0) && (!error_before));
-    word[3] = mark_strobe;
-    word[4] = reg_word23_clamp_out;
-    reg_word5_hw_value = word;
+    word[3] = sequencer0_mark_strobe;
+    word[4] = reg_word23_chain_out_clamped;
+    reg_word5__store3_word_hw = word;
 end
 
 
 
-assign irq = ((reg_word5_value & reg_word4_value) != 0);
+assign irq = ((reg_word5_shown & reg_word4_shown) != 0);
 
 
 
-assign reg_word8_hw_value = pulse_out0_position_x[32-1:0];
-assign reg_word9_hw_value = pos_y_snapshot[32-1:0];
+assign reg_word8_shown = pulse_out0_position_x[32-1:0];
+assign reg_word9_shown = pos_y_snapshot[32-1:0];
 
 endmodule

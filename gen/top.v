@@ -254,11 +254,6 @@ wire card1_card_core1_dda_reset;
 reg [31:0] card1_card_core1_regs_fifo2_fifo_dout;
 reg card1_card_core1_regs_fifo2_fifo_pop;
 wire card1_card_core1_regs_fifo2_fifo_empty;
-reg card1_card_core1_regs_fifo2_set_strobe;
-reg card1_card_core1_regs_fifo2_mark_strobe;
-reg [3:0] card1_card_core1_regs_fifo2_set_index;
-reg [31:0] card1_card_core1_regs_fifo2_set_value;
-reg [15:0] card1_card_core1_regs_fifo2_mark_tag;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
 reg card1_card_core1_regs_fifo2_busy_before;
@@ -325,15 +320,13 @@ wire card1_card_core1_regs_fifo2_sync_fifo2_last_beyond;
 wire card1_card_core1_regs_fifo2_sync_fifo2_one_word;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_read_addr;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_write_addr;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word48_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word48_clamp_in;
-wire card1_card_core1_regs_fifo2_reg_word48_clamp_out;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word48_read_in;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word48_read_out;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word48_shown;
 wire card1_card_core1_regs_fifo2_reg_word48_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word48_shown_wide;
-wire card1_card_core1_regs_fifo2_reg_word49_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word49_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word48_chain_out_data;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word48_chain_in_data;
+wire card1_card_core1_regs_fifo2_reg_word48_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word48_chain_in_clamped;
 wire [1:0] card1_card_core1_regs_fifo2_reg_word49_honoured;
 wire card1_card_core1_regs_fifo2_reg_word49_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word49_clamped;
@@ -342,198 +335,201 @@ wire card1_card_core1_regs_fifo2_reg_word49_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word49_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word49_shown_wide;
 reg [1:0] card1_card_core1_regs_fifo2_reg_word49_written;
-wire [2:0] card1_card_core1_regs_fifo2_reg_word50_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word50_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word50_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word49_chain_out_data;
+reg [3:0] card1_card_core1_regs_fifo2_reg_word49_set_port_index;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word49_set_port_value;
+wire card1_card_core1_regs_fifo2_reg_word49_chain_out_clamped;
 wire [2:0] card1_card_core1_regs_fifo2_reg_word50_honoured;
 wire card1_card_core1_regs_fifo2_reg_word50_out_of_range;
+wire [2:0] card1_card_core1_regs_fifo2_reg_word50_shown;
 reg card1_card_core1_regs_fifo2_reg_word50_clamped;
 wire card1_card_core1_regs_fifo2_reg_word50_mine;
 wire card1_card_core1_regs_fifo2_reg_word50_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word50_shown_wide;
 wire [2:0] card1_card_core1_regs_fifo2_reg_word50_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word51_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word51_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word51_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word50_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word50_chain_out_clamped;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word51_shown;
 wire card1_card_core1_regs_fifo2_reg_word51_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word51_shown_wide;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word52_value;
-wire card1_card_core1_regs_fifo2_reg_word52_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word52_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word51_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word51_chain_out_clamped;
 wire [4:0] card1_card_core1_regs_fifo2_reg_word52_honoured;
 wire card1_card_core1_regs_fifo2_reg_word52_out_of_range;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word52_shown;
 reg card1_card_core1_regs_fifo2_reg_word52_clamped;
 wire card1_card_core1_regs_fifo2_reg_word52_mine;
 wire card1_card_core1_regs_fifo2_reg_word52_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word52_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word52_shown_wide;
 reg [4:0] card1_card_core1_regs_fifo2_reg_word52_written;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word53_hw_value;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word53_value;
-wire card1_card_core1_regs_fifo2_reg_word53_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word53_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word52_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word52_chain_out_clamped;
 wire [4:0] card1_card_core1_regs_fifo2_reg_word53_honoured;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word53_shown;
 wire card1_card_core1_regs_fifo2_reg_word53_mine;
 wire card1_card_core1_regs_fifo2_reg_word53_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word53_shown_wide;
 wire [4:0] card1_card_core1_regs_fifo2_reg_word53_written;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word54_value;
-wire card1_card_core1_regs_fifo2_reg_word54_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word54_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word53_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word53_chain_out_clamped;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word53__store35_word_hw;
 wire [15:0] card1_card_core1_regs_fifo2_reg_word54_honoured;
 wire card1_card_core1_regs_fifo2_reg_word54_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word54_shown;
 reg card1_card_core1_regs_fifo2_reg_word54_clamped;
 wire card1_card_core1_regs_fifo2_reg_word54_mine;
 wire card1_card_core1_regs_fifo2_reg_word54_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word54_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word54_shown_wide;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word54_written;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word55_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word55_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word55_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word54_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word54_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word55_shown;
 wire card1_card_core1_regs_fifo2_reg_word55_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word55_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word56_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word56_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word56_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word55_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word55_chain_out_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word56_shown;
 wire card1_card_core1_regs_fifo2_reg_word56_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word56_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word57_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word57_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word57_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word56_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word56_chain_out_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word57_shown;
 wire card1_card_core1_regs_fifo2_reg_word57_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word57_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word58_value;
-wire card1_card_core1_regs_fifo2_reg_word58_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word58_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word57_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word57_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word58_honoured;
 reg card1_card_core1_regs_fifo2_reg_word58_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word58_shown;
 reg card1_card_core1_regs_fifo2_reg_word58_clamped;
 wire card1_card_core1_regs_fifo2_reg_word58_mine;
 wire card1_card_core1_regs_fifo2_reg_word58_mine_write;
+reg card1_card_core1_regs_fifo2_reg_word58_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word58_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word58_written;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word59_value;
-wire card1_card_core1_regs_fifo2_reg_word59_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word59_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word58_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word58_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word59_honoured;
 reg card1_card_core1_regs_fifo2_reg_word59_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word59_shown;
 reg card1_card_core1_regs_fifo2_reg_word59_clamped;
 wire card1_card_core1_regs_fifo2_reg_word59_mine;
 wire card1_card_core1_regs_fifo2_reg_word59_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word59_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word59_written;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word60_value;
-wire card1_card_core1_regs_fifo2_reg_word60_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word60_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word59_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word59_chain_out_clamped;
 wire [15:0] card1_card_core1_regs_fifo2_reg_word60_honoured;
 wire card1_card_core1_regs_fifo2_reg_word60_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word60_shown;
 reg card1_card_core1_regs_fifo2_reg_word60_clamped;
 wire card1_card_core1_regs_fifo2_reg_word60_mine;
 wire card1_card_core1_regs_fifo2_reg_word60_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word60_shown_wide;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word60_written;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word61_value;
-wire card1_card_core1_regs_fifo2_reg_word61_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word61_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word60_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word60_chain_out_clamped;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word61_honoured;
 reg card1_card_core1_regs_fifo2_reg_word61_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word61_shown;
 reg card1_card_core1_regs_fifo2_reg_word61_clamped;
 wire card1_card_core1_regs_fifo2_reg_word61_mine;
 wire card1_card_core1_regs_fifo2_reg_word61_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word61_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word61_written;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word62_value;
-wire card1_card_core1_regs_fifo2_reg_word62_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word62_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word61_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word61_chain_out_clamped;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word62_honoured;
 reg card1_card_core1_regs_fifo2_reg_word62_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word62_shown;
 reg card1_card_core1_regs_fifo2_reg_word62_clamped;
 wire card1_card_core1_regs_fifo2_reg_word62_mine;
 wire card1_card_core1_regs_fifo2_reg_word62_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word62_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word62_written;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word63_value;
-wire card1_card_core1_regs_fifo2_reg_word63_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word63_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word62_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word62_chain_out_clamped;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word63_honoured;
 reg card1_card_core1_regs_fifo2_reg_word63_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word63_shown;
 reg card1_card_core1_regs_fifo2_reg_word63_clamped;
 wire card1_card_core1_regs_fifo2_reg_word63_mine;
 wire card1_card_core1_regs_fifo2_reg_word63_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word63_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word63_written;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word64_value;
-wire card1_card_core1_regs_fifo2_reg_word64_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word64_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word63_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word63_chain_out_clamped;
 wire [1:0] card1_card_core1_regs_fifo2_reg_word64_honoured;
 wire card1_card_core1_regs_fifo2_reg_word64_out_of_range;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word64_shown;
 reg card1_card_core1_regs_fifo2_reg_word64_clamped;
 wire card1_card_core1_regs_fifo2_reg_word64_mine;
 wire card1_card_core1_regs_fifo2_reg_word64_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word64_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word64_shown_wide;
 reg [1:0] card1_card_core1_regs_fifo2_reg_word64_written;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word65_value;
-wire card1_card_core1_regs_fifo2_reg_word65_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word65_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word64_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word64_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word65_honoured;
 reg card1_card_core1_regs_fifo2_reg_word65_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word65_shown;
 reg card1_card_core1_regs_fifo2_reg_word65_clamped;
 wire card1_card_core1_regs_fifo2_reg_word65_mine;
 wire card1_card_core1_regs_fifo2_reg_word65_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word65_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word65_written;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word66_value;
-wire card1_card_core1_regs_fifo2_reg_word66_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word66_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word65_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word65_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word66_honoured;
 reg card1_card_core1_regs_fifo2_reg_word66_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word66_shown;
 reg card1_card_core1_regs_fifo2_reg_word66_clamped;
 wire card1_card_core1_regs_fifo2_reg_word66_mine;
 wire card1_card_core1_regs_fifo2_reg_word66_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word66_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word66_written;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word67_hw_value;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word67_value;
-reg card1_card_core1_regs_fifo2_reg_word67_strobe;
-wire card1_card_core1_regs_fifo2_reg_word67_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word67_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word66_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word66_chain_out_clamped;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word67_honoured;
 reg card1_card_core1_regs_fifo2_reg_word67_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word67_shown;
 reg card1_card_core1_regs_fifo2_reg_word67_clamped;
 wire card1_card_core1_regs_fifo2_reg_word67_mine;
 wire card1_card_core1_regs_fifo2_reg_word67_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word67_shown_wide;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word67_written;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word68_hw_value;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word68_value;
-reg card1_card_core1_regs_fifo2_reg_word68_strobe;
-wire card1_card_core1_regs_fifo2_reg_word68_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word68_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word67_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word67_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word67__store46_word_value;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word68_honoured;
 reg card1_card_core1_regs_fifo2_reg_word68_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word68_shown;
 reg card1_card_core1_regs_fifo2_reg_word68_clamped;
 wire card1_card_core1_regs_fifo2_reg_word68_mine;
 wire card1_card_core1_regs_fifo2_reg_word68_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word68_shown_wide;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word68_written;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word69_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word69_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word69_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word68_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word68_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word68__store47_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word68__store47_word_value;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word69_shown;
 wire card1_card_core1_regs_fifo2_reg_word69_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word69_shown_wide;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word70_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word70_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word70_read_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word69_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word69_chain_out_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word70_shown;
 wire card1_card_core1_regs_fifo2_reg_word70_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word70_shown_wide;
-wire [27:0] card1_card_core1_regs_fifo2_reg_word71_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word71_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word70_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word70_chain_out_clamped;
+wire [27:0] card1_card_core1_regs_fifo2_reg_word71_shown;
 wire card1_card_core1_regs_fifo2_reg_word71_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word71_shown_wide;
-reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulse_count_x;
-reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulse_count_y;
+wire card1_card_core1_regs_fifo2_reg_word71_chain_out_clamped;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_arriving_count;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits;
@@ -548,7 +544,7 @@ wire card1_card_core1_regs_fifo2_sequencer2_discard;
 reg [31:0] card1_card_core1_regs_fifo2_sequencer2_dwell_left;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_fetched;
 reg card1_card_core1_regs_fifo2_sequencer2_finishing;
-reg [31:0] card1_card_core1_regs_fifo2_sequencer2_header;
+reg [16:0] card1_card_core1_regs_fifo2_sequencer2_header;
 wire card1_card_core1_regs_fifo2_sequencer2_issue;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mask_high;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mask_low;
@@ -558,11 +554,11 @@ reg [3:0] card1_card_core1_regs_fifo2_sequencer2_next_error;
 reg card1_card_core1_regs_fifo2_sequencer2_next_known;
 reg card1_card_core1_regs_fifo2_sequencer2_next_motion;
 reg card1_card_core1_regs_fifo2_sequencer2_next_valid;
-wire [3:0] card1_card_core1_regs_fifo2_sequencer2_opcode;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_opcode;
 reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_0;
-reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_1;
-reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_2;
-reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_3;
+reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_1;
+reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_2;
+reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_3;
 reg card1_card_core1_regs_fifo2_sequencer2_set_known;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
 reg card1_card_core1_regs_fifo2_sequencer2_state_over;
@@ -571,6 +567,7 @@ reg card1_card_core1_regs_fifo2_sequencer2_dda_start;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_done;
 wire card1_card_core1_regs_fifo2_sequencer2_dda_ready;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_error;
+reg card1_card_core1_regs_fifo2_sequencer2_mark_strobe;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_line;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_blend;
@@ -581,7 +578,9 @@ reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_xs;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ys;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_xe;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ye;
-reg [26:0] card1_card_core1_regs_fifo2_feed_rate2_stop_left;
+reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
+reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
+reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mark_tag;
 wire card1_card_core1_regs_fifo2_feed_rate2_above;
 wire card1_card_core1_regs_fifo2_feed_rate2_above_floor;
 wire card1_card_core1_regs_fifo2_feed_rate2_below;
@@ -605,18 +604,30 @@ reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_step_s;
 reg card1_card_core1_regs_fifo2_feed_rate2_step_zero;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_target_s;
 wire [16:0] card1_card_core1_regs_fifo2_feed_rate2_total;
-reg card1_card_core1_regs_fifo2_direct_pulse4_load;
-reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count;
+reg [26:0] card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left;
+reg [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count_addend;
+reg [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count_operand;
+wire [23:0] card1_card_core1_regs_fifo2_direct_pulse4_counted;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap;
+wire [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
+reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap_operand;
 reg card1_card_core1_regs_fifo2_direct_pulse4_pending;
 reg card1_card_core1_regs_fifo2_direct_pulse4_waiting;
-reg card1_card_core1_regs_fifo2_direct_pulse5_load;
-reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse5_count;
+reg card1_card_core1_regs_fifo2_direct_pulse4_command_load;
+reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse4_command_count;
+reg [23:0] card1_card_core1_regs_fifo2_direct_pulse5_count_addend;
+reg [23:0] card1_card_core1_regs_fifo2_direct_pulse5_count_operand;
+wire [23:0] card1_card_core1_regs_fifo2_direct_pulse5_counted;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap;
+wire [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
+reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap_operand;
 reg card1_card_core1_regs_fifo2_direct_pulse5_pending;
 reg card1_card_core1_regs_fifo2_direct_pulse5_waiting;
-reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_position_x;
+reg card1_card_core1_regs_fifo2_direct_pulse5_command_load;
+reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse5_command_count;
 reg [2:0] card1_card_core1_regs_fifo2_pulse_out2_count;
+reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_delta_x;
+reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_delta_y;
 reg card1_card_core1_regs_fifo2_pulse_out2_dir_level_x;
 reg card1_card_core1_regs_fifo2_pulse_out2_dir_level_y;
 wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_free_slot;
@@ -633,6 +644,7 @@ reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_step;
 reg card1_card_core1_regs_fifo2_pulse_out2_starts;
 reg card1_card_core1_regs_fifo2_pulse_out2_take;
 reg card1_card_core1_regs_fifo2_pulse_out2_turn;
+reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_position_x;
 wire [1:0] card1_card_core1_regs_fifo2__status2_quadrant;
 reg [4:0] card1_card_core1_dda_arc2_acc_bits;
 reg signed [31:0] card1_card_core1_dda_arc2_acc_x;
@@ -781,13 +793,13 @@ reg card1_card_core1_dda_arc2_x_inward;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word48_hw_value = 32'd3719037185;
-assign card1_card_core1_regs_fifo2_reg_word48_clamp_in = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word48_read_in = 32'd0;
+assign card1_card_core1_regs_fifo2_reg_word48_shown = 32'd3719037185;
+assign card1_card_core1_regs_fifo2_reg_word48_chain_in_data = 32'd0;
+assign card1_card_core1_regs_fifo2_reg_word48_chain_in_clamped = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word49_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word49_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word50_hw_value = 3'd0;
 assign card1_card_core1_regs_fifo2_reg_word50_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word50_shown = 3'd0;
 assign card1_card_core1_regs_fifo2_reg_word52_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word52_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word54_out_of_range = 1'd0;
@@ -795,9 +807,9 @@ assign card1_card_core1_regs_fifo2_reg_word54_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word60_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word64_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word64_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word69_hw_value = 32'd33333333;
-assign card1_card_core1_regs_fifo2_reg_word70_hw_value = 16'd512;
-assign card1_card_core1_regs_fifo2_reg_word71_hw_value = 28'd17564184;
+assign card1_card_core1_regs_fifo2_reg_word69_shown = 32'd33333333;
+assign card1_card_core1_regs_fifo2_reg_word70_shown = 16'd512;
+assign card1_card_core1_regs_fifo2_reg_word71_shown = 28'd17564184;
 
 
 
@@ -2686,34 +2698,34 @@ assign card1_pci_slave2_control_case0_0_1_local_room = card1_card_core1_regs_fif
 assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_local_addr == 0);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word48_read_in) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word48_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
     if (card1_card_core1_regs_fifo2_reg_word48_mine) begin
-        card1_card_core1_regs_fifo2_reg_word48_read_out = (card1_card_core1_regs_fifo2_reg_word48_read_in | card1_card_core1_regs_fifo2_reg_word48_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word48_chain_out_data = (card1_card_core1_regs_fifo2_reg_word48_chain_in_data | card1_card_core1_regs_fifo2_reg_word48_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word48_read_out = card1_card_core1_regs_fifo2_reg_word48_read_in;
+        card1_card_core1_regs_fifo2_reg_word48_chain_out_data = card1_card_core1_regs_fifo2_reg_word48_chain_in_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word48_shown_wide = card1_card_core1_regs_fifo2_reg_word48_hw_value;
+assign card1_card_core1_regs_fifo2_reg_word48_shown_wide = card1_card_core1_regs_fifo2_reg_word48_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word48_clamp_out = card1_card_core1_regs_fifo2_reg_word48_clamp_in;
+assign card1_card_core1_regs_fifo2_reg_word48_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word48_chain_in_clamped;
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_local_addr == 4);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word49_mine, card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word48_read_out) begin: card1_card_core1_regs_fifo2_reg_word49_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word49_mine, card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word48_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word49_read_chain
     if (card1_card_core1_regs_fifo2_reg_word49_mine) begin
-        card1_card_core1_regs_fifo2_reg_word49_read_out = (card1_card_core1_regs_fifo2_reg_word48_read_out | card1_card_core1_regs_fifo2_reg_word49_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word49_chain_out_data = (card1_card_core1_regs_fifo2_reg_word48_chain_out_data | card1_card_core1_regs_fifo2_reg_word49_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word49_read_out = card1_card_core1_regs_fifo2_reg_word48_read_out;
+        card1_card_core1_regs_fifo2_reg_word49_chain_out_data = card1_card_core1_regs_fifo2_reg_word48_chain_out_data;
     end
 end
 
@@ -2726,9 +2738,9 @@ assign card1_card_core1_regs_fifo2_reg_word49_shown_wide = {30'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word49_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word49_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word49_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word49_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word49_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word49_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word49_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[2-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word49_written = ((card1_card_core1_regs_fifo2_reg_word49_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
@@ -2741,7 +2753,7 @@ assign card1_card_core1_regs_fifo2_reg_word49_honoured = card1_card_core1_regs_f
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word49_clamp_out = (card1_card_core1_regs_fifo2_reg_word48_clamp_out || card1_card_core1_regs_fifo2_reg_word49_clamped);
+assign card1_card_core1_regs_fifo2_reg_word49_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word48_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word49_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word49__store32_hold_rw
@@ -2751,7 +2763,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word49_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word49_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word49_mine_write))) begin
             card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word49_honoured;
             card1_card_core1_regs_fifo2_reg_word49_clamped <= card1_card_core1_regs_fifo2_reg_word49_out_of_range;
         end
@@ -2763,18 +2775,18 @@ end
 assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_local_addr == 8);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word50_mine, card1_card_core1_regs_fifo2_reg_word50_shown_wide, card1_card_core1_regs_fifo2_reg_word49_read_out) begin: card1_card_core1_regs_fifo2_reg_word50_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word50_mine, card1_card_core1_regs_fifo2_reg_word50_shown_wide, card1_card_core1_regs_fifo2_reg_word49_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word50_read_chain
     if (card1_card_core1_regs_fifo2_reg_word50_mine) begin
-        card1_card_core1_regs_fifo2_reg_word50_read_out = (card1_card_core1_regs_fifo2_reg_word49_read_out | card1_card_core1_regs_fifo2_reg_word50_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word50_chain_out_data = (card1_card_core1_regs_fifo2_reg_word49_chain_out_data | card1_card_core1_regs_fifo2_reg_word50_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word50_read_out = card1_card_core1_regs_fifo2_reg_word49_read_out;
+        card1_card_core1_regs_fifo2_reg_word50_chain_out_data = card1_card_core1_regs_fifo2_reg_word49_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word50_shown_wide = {29'h0, card1_card_core1_regs_fifo2_reg_word50_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word50_shown_wide = {29'h0, card1_card_core1_regs_fifo2_reg_word50_shown};
 
 
 
@@ -2790,7 +2802,7 @@ assign card1_card_core1_regs_fifo2_reg_word50_honoured = card1_card_core1_regs_f
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word50_clamp_out = (card1_card_core1_regs_fifo2_reg_word49_clamp_out || card1_card_core1_regs_fifo2_reg_word50_clamped);
+assign card1_card_core1_regs_fifo2_reg_word50_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word49_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word50_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word50__store33_pulse_on_write
@@ -2815,49 +2827,49 @@ end
 assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_local_addr == 12);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word51_mine, card1_card_core1_regs_fifo2_reg_word51_shown_wide, card1_card_core1_regs_fifo2_reg_word50_read_out) begin: card1_card_core1_regs_fifo2_reg_word51_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word51_mine, card1_card_core1_regs_fifo2_reg_word51_shown_wide, card1_card_core1_regs_fifo2_reg_word50_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word51_read_chain
     if (card1_card_core1_regs_fifo2_reg_word51_mine) begin
-        card1_card_core1_regs_fifo2_reg_word51_read_out = (card1_card_core1_regs_fifo2_reg_word50_read_out | card1_card_core1_regs_fifo2_reg_word51_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word51_chain_out_data = (card1_card_core1_regs_fifo2_reg_word50_chain_out_data | card1_card_core1_regs_fifo2_reg_word51_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word51_read_out = card1_card_core1_regs_fifo2_reg_word50_read_out;
+        card1_card_core1_regs_fifo2_reg_word51_chain_out_data = card1_card_core1_regs_fifo2_reg_word50_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word51_shown_wide = card1_card_core1_regs_fifo2_reg_word51_hw_value;
+assign card1_card_core1_regs_fifo2_reg_word51_shown_wide = card1_card_core1_regs_fifo2_reg_word51_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word51_clamp_out = card1_card_core1_regs_fifo2_reg_word50_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word51_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word50_chain_out_clamped;
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_local_addr == 16);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word52_mine, card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word51_read_out) begin: card1_card_core1_regs_fifo2_reg_word52_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word52_mine, card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word51_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word52_read_chain
     if (card1_card_core1_regs_fifo2_reg_word52_mine) begin
-        card1_card_core1_regs_fifo2_reg_word52_read_out = (card1_card_core1_regs_fifo2_reg_word51_read_out | card1_card_core1_regs_fifo2_reg_word52_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word52_chain_out_data = (card1_card_core1_regs_fifo2_reg_word51_chain_out_data | card1_card_core1_regs_fifo2_reg_word52_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word52_read_out = card1_card_core1_regs_fifo2_reg_word51_read_out;
+        card1_card_core1_regs_fifo2_reg_word52_chain_out_data = card1_card_core1_regs_fifo2_reg_word51_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word52_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word52_value};
+assign card1_card_core1_regs_fifo2_reg_word52_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word52_shown};
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word52_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word52_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word52_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word52_written = card1_card_core1_regs_fifo2_set_value[5-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word52_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word52_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word52_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[5-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word52_written = ((card1_card_core1_regs_fifo2_reg_word52_shown_wide[5-1:0] & (~card1_card_core1_regs_fifo2_written_mask[5-1:0])) | (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]));
@@ -2870,18 +2882,18 @@ assign card1_card_core1_regs_fifo2_reg_word52_honoured = card1_card_core1_regs_f
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word52_clamp_out = (card1_card_core1_regs_fifo2_reg_word51_clamp_out || card1_card_core1_regs_fifo2_reg_word52_clamped);
+assign card1_card_core1_regs_fifo2_reg_word52_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word51_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word52_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word52__store34_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word52_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word52_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word52_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word52_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word52_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word52_value <= card1_card_core1_regs_fifo2_reg_word52_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word52_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word52_shown <= card1_card_core1_regs_fifo2_reg_word52_honoured;
             card1_card_core1_regs_fifo2_reg_word52_clamped <= card1_card_core1_regs_fifo2_reg_word52_out_of_range;
         end
     end
@@ -2892,18 +2904,18 @@ end
 assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_local_addr == 20);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word53_mine, card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_reg_word52_read_out) begin: card1_card_core1_regs_fifo2_reg_word53_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word53_mine, card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_reg_word52_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word53_read_chain
     if (card1_card_core1_regs_fifo2_reg_word53_mine) begin
-        card1_card_core1_regs_fifo2_reg_word53_read_out = (card1_card_core1_regs_fifo2_reg_word52_read_out | card1_card_core1_regs_fifo2_reg_word53_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word53_chain_out_data = (card1_card_core1_regs_fifo2_reg_word52_chain_out_data | card1_card_core1_regs_fifo2_reg_word53_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word53_read_out = card1_card_core1_regs_fifo2_reg_word52_read_out;
+        card1_card_core1_regs_fifo2_reg_word53_chain_out_data = card1_card_core1_regs_fifo2_reg_word52_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word53_value};
+assign card1_card_core1_regs_fifo2_reg_word53_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word53_shown};
 
 
 
@@ -2919,19 +2931,19 @@ assign card1_card_core1_regs_fifo2_reg_word53_honoured = card1_card_core1_regs_f
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_clamp_out = card1_card_core1_regs_fifo2_reg_word52_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word53_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word52_chain_out_clamped;
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word53__store35_clear_on_one
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word53_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word53_shown <= 0;
     end
     else begin
         if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word53_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word53_value <= ((card1_card_core1_regs_fifo2_reg_word53_value & (~card1_card_core1_regs_fifo2_reg_word53_honoured)) | card1_card_core1_regs_fifo2_reg_word53_hw_value);
+            card1_card_core1_regs_fifo2_reg_word53_shown <= ((card1_card_core1_regs_fifo2_reg_word53_shown & (~card1_card_core1_regs_fifo2_reg_word53_honoured)) | card1_card_core1_regs_fifo2_reg_word53__store35_word_hw);
         end
         else begin
-            card1_card_core1_regs_fifo2_reg_word53_value <= (card1_card_core1_regs_fifo2_reg_word53_value | card1_card_core1_regs_fifo2_reg_word53_hw_value);
+            card1_card_core1_regs_fifo2_reg_word53_shown <= (card1_card_core1_regs_fifo2_reg_word53_shown | card1_card_core1_regs_fifo2_reg_word53__store35_word_hw);
         end
     end
 end
@@ -2941,27 +2953,27 @@ end
 assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_local_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word54_mine, card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word53_read_out) begin: card1_card_core1_regs_fifo2_reg_word54_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word54_mine, card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word53_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word54_read_chain
     if (card1_card_core1_regs_fifo2_reg_word54_mine) begin
-        card1_card_core1_regs_fifo2_reg_word54_read_out = (card1_card_core1_regs_fifo2_reg_word53_read_out | card1_card_core1_regs_fifo2_reg_word54_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word54_chain_out_data = (card1_card_core1_regs_fifo2_reg_word53_chain_out_data | card1_card_core1_regs_fifo2_reg_word54_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word54_read_out = card1_card_core1_regs_fifo2_reg_word53_read_out;
+        card1_card_core1_regs_fifo2_reg_word54_chain_out_data = card1_card_core1_regs_fifo2_reg_word53_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word54_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word54_value};
+assign card1_card_core1_regs_fifo2_reg_word54_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word54_shown};
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word54_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word54_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word54_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word54_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word54_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word54_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word54_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[16-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word54_written = ((card1_card_core1_regs_fifo2_reg_word54_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
@@ -2974,18 +2986,18 @@ assign card1_card_core1_regs_fifo2_reg_word54_honoured = card1_card_core1_regs_f
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word54_clamp_out = (card1_card_core1_regs_fifo2_reg_word53_clamp_out || card1_card_core1_regs_fifo2_reg_word54_clamped);
+assign card1_card_core1_regs_fifo2_reg_word54_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word53_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word54_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word54__store36_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word54_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word54_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word54_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word54_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word54_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word54_value <= card1_card_core1_regs_fifo2_reg_word54_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word54_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word54_shown <= card1_card_core1_regs_fifo2_reg_word54_honoured;
             card1_card_core1_regs_fifo2_reg_word54_clamped <= card1_card_core1_regs_fifo2_reg_word54_out_of_range;
         end
     end
@@ -2996,93 +3008,93 @@ end
 assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_local_addr == 28);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word55_mine, card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_reg_word54_read_out) begin: card1_card_core1_regs_fifo2_reg_word55_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word55_mine, card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_reg_word54_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word55_read_chain
     if (card1_card_core1_regs_fifo2_reg_word55_mine) begin
-        card1_card_core1_regs_fifo2_reg_word55_read_out = (card1_card_core1_regs_fifo2_reg_word54_read_out | card1_card_core1_regs_fifo2_reg_word55_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word55_chain_out_data = (card1_card_core1_regs_fifo2_reg_word54_chain_out_data | card1_card_core1_regs_fifo2_reg_word55_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word55_read_out = card1_card_core1_regs_fifo2_reg_word54_read_out;
+        card1_card_core1_regs_fifo2_reg_word55_chain_out_data = card1_card_core1_regs_fifo2_reg_word54_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word55_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word55_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word55_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word55_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word55_clamp_out = card1_card_core1_regs_fifo2_reg_word54_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word55_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word54_chain_out_clamped;
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_local_addr == 32);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word56_mine, card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_reg_word55_read_out) begin: card1_card_core1_regs_fifo2_reg_word56_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word56_mine, card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_reg_word55_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word56_read_chain
     if (card1_card_core1_regs_fifo2_reg_word56_mine) begin
-        card1_card_core1_regs_fifo2_reg_word56_read_out = (card1_card_core1_regs_fifo2_reg_word55_read_out | card1_card_core1_regs_fifo2_reg_word56_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word56_chain_out_data = (card1_card_core1_regs_fifo2_reg_word55_chain_out_data | card1_card_core1_regs_fifo2_reg_word56_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word56_read_out = card1_card_core1_regs_fifo2_reg_word55_read_out;
+        card1_card_core1_regs_fifo2_reg_word56_chain_out_data = card1_card_core1_regs_fifo2_reg_word55_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word56_shown_wide = card1_card_core1_regs_fifo2_reg_word56_hw_value;
+assign card1_card_core1_regs_fifo2_reg_word56_shown_wide = card1_card_core1_regs_fifo2_reg_word56_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word56_clamp_out = card1_card_core1_regs_fifo2_reg_word55_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word56_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word55_chain_out_clamped;
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_local_addr == 36);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word57_mine, card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_reg_word56_read_out) begin: card1_card_core1_regs_fifo2_reg_word57_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word57_mine, card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_reg_word56_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word57_read_chain
     if (card1_card_core1_regs_fifo2_reg_word57_mine) begin
-        card1_card_core1_regs_fifo2_reg_word57_read_out = (card1_card_core1_regs_fifo2_reg_word56_read_out | card1_card_core1_regs_fifo2_reg_word57_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word57_chain_out_data = (card1_card_core1_regs_fifo2_reg_word56_chain_out_data | card1_card_core1_regs_fifo2_reg_word57_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word57_read_out = card1_card_core1_regs_fifo2_reg_word56_read_out;
+        card1_card_core1_regs_fifo2_reg_word57_chain_out_data = card1_card_core1_regs_fifo2_reg_word56_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word57_shown_wide = card1_card_core1_regs_fifo2_reg_word57_hw_value;
+assign card1_card_core1_regs_fifo2_reg_word57_shown_wide = card1_card_core1_regs_fifo2_reg_word57_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word57_clamp_out = card1_card_core1_regs_fifo2_reg_word56_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word57_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word56_chain_out_clamped;
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_local_addr == 40);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word58_mine, card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word57_read_out) begin: card1_card_core1_regs_fifo2_reg_word58_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word58_mine, card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word57_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word58_read_chain
     if (card1_card_core1_regs_fifo2_reg_word58_mine) begin
-        card1_card_core1_regs_fifo2_reg_word58_read_out = (card1_card_core1_regs_fifo2_reg_word57_read_out | card1_card_core1_regs_fifo2_reg_word58_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word58_chain_out_data = (card1_card_core1_regs_fifo2_reg_word57_chain_out_data | card1_card_core1_regs_fifo2_reg_word58_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word58_read_out = card1_card_core1_regs_fifo2_reg_word57_read_out;
+        card1_card_core1_regs_fifo2_reg_word58_chain_out_data = card1_card_core1_regs_fifo2_reg_word57_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word58_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word58_value};
+assign card1_card_core1_regs_fifo2_reg_word58_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word58_shown};
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word58_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word58_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word58_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word58_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word58_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word58_written = ((card1_card_core1_regs_fifo2_reg_word58_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3106,18 +3118,18 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word58_clamp_out = (card1_card_core1_regs_fifo2_reg_word57_clamp_out || card1_card_core1_regs_fifo2_reg_word58_clamped);
+assign card1_card_core1_regs_fifo2_reg_word58_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word57_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word58_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word58__store37_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word58_value <= 4096;
+        card1_card_core1_regs_fifo2_reg_word58_shown <= 4096;
         card1_card_core1_regs_fifo2_reg_word58_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word58_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word58_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word58_value <= card1_card_core1_regs_fifo2_reg_word58_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word58_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word58_shown <= card1_card_core1_regs_fifo2_reg_word58_honoured;
             card1_card_core1_regs_fifo2_reg_word58_clamped <= card1_card_core1_regs_fifo2_reg_word58_out_of_range;
         end
     end
@@ -3128,27 +3140,27 @@ end
 assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_local_addr == 44);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word59_mine, card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_read_out) begin: card1_card_core1_regs_fifo2_reg_word59_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word59_mine, card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word59_read_chain
     if (card1_card_core1_regs_fifo2_reg_word59_mine) begin
-        card1_card_core1_regs_fifo2_reg_word59_read_out = (card1_card_core1_regs_fifo2_reg_word58_read_out | card1_card_core1_regs_fifo2_reg_word59_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word59_chain_out_data = (card1_card_core1_regs_fifo2_reg_word58_chain_out_data | card1_card_core1_regs_fifo2_reg_word59_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word59_read_out = card1_card_core1_regs_fifo2_reg_word58_read_out;
+        card1_card_core1_regs_fifo2_reg_word59_chain_out_data = card1_card_core1_regs_fifo2_reg_word58_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word59_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word59_value};
+assign card1_card_core1_regs_fifo2_reg_word59_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word59_shown};
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word59_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word59_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
-        card1_card_core1_regs_fifo2_reg_word59_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word59_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 1))) begin
+        card1_card_core1_regs_fifo2_reg_word59_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word59_written = ((card1_card_core1_regs_fifo2_reg_word59_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3172,18 +3184,18 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word59_clamp_out = (card1_card_core1_regs_fifo2_reg_word58_clamp_out || card1_card_core1_regs_fifo2_reg_word59_clamped);
+assign card1_card_core1_regs_fifo2_reg_word59_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word58_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word59_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word59__store38_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word59_value <= 4096;
+        card1_card_core1_regs_fifo2_reg_word59_shown <= 4096;
         card1_card_core1_regs_fifo2_reg_word59_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word59_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word59_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word59_value <= card1_card_core1_regs_fifo2_reg_word59_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word59_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word59_shown <= card1_card_core1_regs_fifo2_reg_word59_honoured;
             card1_card_core1_regs_fifo2_reg_word59_clamped <= card1_card_core1_regs_fifo2_reg_word59_out_of_range;
         end
     end
@@ -3194,27 +3206,27 @@ end
 assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_local_addr == 48);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word60_mine, card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word59_read_out) begin: card1_card_core1_regs_fifo2_reg_word60_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word60_mine, card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word59_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word60_read_chain
     if (card1_card_core1_regs_fifo2_reg_word60_mine) begin
-        card1_card_core1_regs_fifo2_reg_word60_read_out = (card1_card_core1_regs_fifo2_reg_word59_read_out | card1_card_core1_regs_fifo2_reg_word60_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word60_chain_out_data = (card1_card_core1_regs_fifo2_reg_word59_chain_out_data | card1_card_core1_regs_fifo2_reg_word60_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word60_read_out = card1_card_core1_regs_fifo2_reg_word59_read_out;
+        card1_card_core1_regs_fifo2_reg_word60_chain_out_data = card1_card_core1_regs_fifo2_reg_word59_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word60_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word60_value};
+assign card1_card_core1_regs_fifo2_reg_word60_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word60_shown};
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word60_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word60_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
-        card1_card_core1_regs_fifo2_reg_word60_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word60_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 2))) begin
+        card1_card_core1_regs_fifo2_reg_word60_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[16-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word60_written = ((card1_card_core1_regs_fifo2_reg_word60_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
@@ -3227,18 +3239,18 @@ assign card1_card_core1_regs_fifo2_reg_word60_honoured = card1_card_core1_regs_f
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word60_clamp_out = (card1_card_core1_regs_fifo2_reg_word59_clamp_out || card1_card_core1_regs_fifo2_reg_word60_clamped);
+assign card1_card_core1_regs_fifo2_reg_word60_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word59_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word60_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word60__store39_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word60_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word60_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word60_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word60_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word60_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word60_value <= card1_card_core1_regs_fifo2_reg_word60_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word60_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word60_shown <= card1_card_core1_regs_fifo2_reg_word60_honoured;
             card1_card_core1_regs_fifo2_reg_word60_clamped <= card1_card_core1_regs_fifo2_reg_word60_out_of_range;
         end
     end
@@ -3249,27 +3261,27 @@ end
 assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_local_addr == 52);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word61_mine, card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word60_read_out) begin: card1_card_core1_regs_fifo2_reg_word61_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word61_mine, card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word60_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word61_read_chain
     if (card1_card_core1_regs_fifo2_reg_word61_mine) begin
-        card1_card_core1_regs_fifo2_reg_word61_read_out = (card1_card_core1_regs_fifo2_reg_word60_read_out | card1_card_core1_regs_fifo2_reg_word61_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word61_chain_out_data = (card1_card_core1_regs_fifo2_reg_word60_chain_out_data | card1_card_core1_regs_fifo2_reg_word61_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word61_read_out = card1_card_core1_regs_fifo2_reg_word60_read_out;
+        card1_card_core1_regs_fifo2_reg_word61_chain_out_data = card1_card_core1_regs_fifo2_reg_word60_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word61_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word61_value};
+assign card1_card_core1_regs_fifo2_reg_word61_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word61_shown};
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word61_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word61_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
-        card1_card_core1_regs_fifo2_reg_word61_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word61_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 3))) begin
+        card1_card_core1_regs_fifo2_reg_word61_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word61_written = ((card1_card_core1_regs_fifo2_reg_word61_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3293,18 +3305,18 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word61_clamp_out = (card1_card_core1_regs_fifo2_reg_word60_clamp_out || card1_card_core1_regs_fifo2_reg_word61_clamped);
+assign card1_card_core1_regs_fifo2_reg_word61_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word60_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word61_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word61__store40_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word61_value <= 1;
+        card1_card_core1_regs_fifo2_reg_word61_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word61_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word61_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word61_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word61_value <= card1_card_core1_regs_fifo2_reg_word61_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word61_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word61_shown <= card1_card_core1_regs_fifo2_reg_word61_honoured;
             card1_card_core1_regs_fifo2_reg_word61_clamped <= card1_card_core1_regs_fifo2_reg_word61_out_of_range;
         end
     end
@@ -3315,27 +3327,27 @@ end
 assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_local_addr == 56);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word61_read_out) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word61_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
     if (card1_card_core1_regs_fifo2_reg_word62_mine) begin
-        card1_card_core1_regs_fifo2_reg_word62_read_out = (card1_card_core1_regs_fifo2_reg_word61_read_out | card1_card_core1_regs_fifo2_reg_word62_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word62_chain_out_data = (card1_card_core1_regs_fifo2_reg_word61_chain_out_data | card1_card_core1_regs_fifo2_reg_word62_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word62_read_out = card1_card_core1_regs_fifo2_reg_word61_read_out;
+        card1_card_core1_regs_fifo2_reg_word62_chain_out_data = card1_card_core1_regs_fifo2_reg_word61_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word62_value};
+assign card1_card_core1_regs_fifo2_reg_word62_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word62_shown};
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word62_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word62_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
-        card1_card_core1_regs_fifo2_reg_word62_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word62_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 4))) begin
+        card1_card_core1_regs_fifo2_reg_word62_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word62_written = ((card1_card_core1_regs_fifo2_reg_word62_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3359,18 +3371,18 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_clamp_out = (card1_card_core1_regs_fifo2_reg_word61_clamp_out || card1_card_core1_regs_fifo2_reg_word62_clamped);
+assign card1_card_core1_regs_fifo2_reg_word62_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word61_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word62_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word62__store41_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word62_value <= 1;
+        card1_card_core1_regs_fifo2_reg_word62_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word62_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word62_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word62_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word62_value <= card1_card_core1_regs_fifo2_reg_word62_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word62_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word62_shown <= card1_card_core1_regs_fifo2_reg_word62_honoured;
             card1_card_core1_regs_fifo2_reg_word62_clamped <= card1_card_core1_regs_fifo2_reg_word62_out_of_range;
         end
     end
@@ -3381,27 +3393,27 @@ end
 assign card1_card_core1_regs_fifo2_reg_word63_mine = (card1_pci_slave2_local_addr == 60);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word63_mine, card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_reg_word62_read_out) begin: card1_card_core1_regs_fifo2_reg_word63_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word63_mine, card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_reg_word62_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word63_read_chain
     if (card1_card_core1_regs_fifo2_reg_word63_mine) begin
-        card1_card_core1_regs_fifo2_reg_word63_read_out = (card1_card_core1_regs_fifo2_reg_word62_read_out | card1_card_core1_regs_fifo2_reg_word63_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word63_chain_out_data = (card1_card_core1_regs_fifo2_reg_word62_chain_out_data | card1_card_core1_regs_fifo2_reg_word63_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word63_read_out = card1_card_core1_regs_fifo2_reg_word62_read_out;
+        card1_card_core1_regs_fifo2_reg_word63_chain_out_data = card1_card_core1_regs_fifo2_reg_word62_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word63_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word63_value};
+assign card1_card_core1_regs_fifo2_reg_word63_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word63_shown};
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word63_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word63_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
-        card1_card_core1_regs_fifo2_reg_word63_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word63_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 5))) begin
+        card1_card_core1_regs_fifo2_reg_word63_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word63_written = ((card1_card_core1_regs_fifo2_reg_word63_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3425,18 +3437,18 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word63_clamp_out = (card1_card_core1_regs_fifo2_reg_word62_clamp_out || card1_card_core1_regs_fifo2_reg_word63_clamped);
+assign card1_card_core1_regs_fifo2_reg_word63_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word62_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word63_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word63__store42_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word63_value <= 1;
+        card1_card_core1_regs_fifo2_reg_word63_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word63_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word63_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word63_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word63_value <= card1_card_core1_regs_fifo2_reg_word63_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word63_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word63_shown <= card1_card_core1_regs_fifo2_reg_word63_honoured;
             card1_card_core1_regs_fifo2_reg_word63_clamped <= card1_card_core1_regs_fifo2_reg_word63_out_of_range;
         end
     end
@@ -3447,27 +3459,27 @@ end
 assign card1_card_core1_regs_fifo2_reg_word64_mine = (card1_pci_slave2_local_addr == 64);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word64_mine, card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word63_read_out) begin: card1_card_core1_regs_fifo2_reg_word64_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word64_mine, card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word63_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word64_read_chain
     if (card1_card_core1_regs_fifo2_reg_word64_mine) begin
-        card1_card_core1_regs_fifo2_reg_word64_read_out = (card1_card_core1_regs_fifo2_reg_word63_read_out | card1_card_core1_regs_fifo2_reg_word64_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word64_chain_out_data = (card1_card_core1_regs_fifo2_reg_word63_chain_out_data | card1_card_core1_regs_fifo2_reg_word64_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word64_read_out = card1_card_core1_regs_fifo2_reg_word63_read_out;
+        card1_card_core1_regs_fifo2_reg_word64_chain_out_data = card1_card_core1_regs_fifo2_reg_word63_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word64_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word64_value};
+assign card1_card_core1_regs_fifo2_reg_word64_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word64_shown};
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word64_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word64_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word64_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word64_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word64_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word64_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word64_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[2-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word64_written = ((card1_card_core1_regs_fifo2_reg_word64_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
@@ -3480,18 +3492,18 @@ assign card1_card_core1_regs_fifo2_reg_word64_honoured = card1_card_core1_regs_f
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word64_clamp_out = (card1_card_core1_regs_fifo2_reg_word63_clamp_out || card1_card_core1_regs_fifo2_reg_word64_clamped);
+assign card1_card_core1_regs_fifo2_reg_word64_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word63_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word64_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word64__store43_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word64_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word64_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word64_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word64_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word64_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word64_value <= card1_card_core1_regs_fifo2_reg_word64_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word64_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word64_shown <= card1_card_core1_regs_fifo2_reg_word64_honoured;
             card1_card_core1_regs_fifo2_reg_word64_clamped <= card1_card_core1_regs_fifo2_reg_word64_out_of_range;
         end
     end
@@ -3502,27 +3514,27 @@ end
 assign card1_card_core1_regs_fifo2_reg_word65_mine = (card1_pci_slave2_local_addr == 68);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word65_mine, card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_reg_word64_read_out) begin: card1_card_core1_regs_fifo2_reg_word65_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word65_mine, card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_reg_word64_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word65_read_chain
     if (card1_card_core1_regs_fifo2_reg_word65_mine) begin
-        card1_card_core1_regs_fifo2_reg_word65_read_out = (card1_card_core1_regs_fifo2_reg_word64_read_out | card1_card_core1_regs_fifo2_reg_word65_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word65_chain_out_data = (card1_card_core1_regs_fifo2_reg_word64_chain_out_data | card1_card_core1_regs_fifo2_reg_word65_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word65_read_out = card1_card_core1_regs_fifo2_reg_word64_read_out;
+        card1_card_core1_regs_fifo2_reg_word65_chain_out_data = card1_card_core1_regs_fifo2_reg_word64_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word65_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word65_value};
+assign card1_card_core1_regs_fifo2_reg_word65_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word65_shown};
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word65_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word65_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
-        card1_card_core1_regs_fifo2_reg_word65_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word65_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 6))) begin
+        card1_card_core1_regs_fifo2_reg_word65_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word65_written = ((card1_card_core1_regs_fifo2_reg_word65_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3546,18 +3558,18 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word65_clamp_out = (card1_card_core1_regs_fifo2_reg_word64_clamp_out || card1_card_core1_regs_fifo2_reg_word65_clamped);
+assign card1_card_core1_regs_fifo2_reg_word65_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word64_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word65_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word65__store44_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word65_value <= 2;
+        card1_card_core1_regs_fifo2_reg_word65_shown <= 2;
         card1_card_core1_regs_fifo2_reg_word65_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word65_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word65_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word65_value <= card1_card_core1_regs_fifo2_reg_word65_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word65_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word65_shown <= card1_card_core1_regs_fifo2_reg_word65_honoured;
             card1_card_core1_regs_fifo2_reg_word65_clamped <= card1_card_core1_regs_fifo2_reg_word65_out_of_range;
         end
     end
@@ -3568,27 +3580,27 @@ end
 assign card1_card_core1_regs_fifo2_reg_word66_mine = (card1_pci_slave2_local_addr == 72);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word66_mine, card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_reg_word65_read_out) begin: card1_card_core1_regs_fifo2_reg_word66_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word66_mine, card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_reg_word65_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word66_read_chain
     if (card1_card_core1_regs_fifo2_reg_word66_mine) begin
-        card1_card_core1_regs_fifo2_reg_word66_read_out = (card1_card_core1_regs_fifo2_reg_word65_read_out | card1_card_core1_regs_fifo2_reg_word66_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word66_chain_out_data = (card1_card_core1_regs_fifo2_reg_word65_chain_out_data | card1_card_core1_regs_fifo2_reg_word66_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word66_read_out = card1_card_core1_regs_fifo2_reg_word65_read_out;
+        card1_card_core1_regs_fifo2_reg_word66_chain_out_data = card1_card_core1_regs_fifo2_reg_word65_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word66_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word66_value};
+assign card1_card_core1_regs_fifo2_reg_word66_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word66_shown};
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word66_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word66_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
-        card1_card_core1_regs_fifo2_reg_word66_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word66_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 7))) begin
+        card1_card_core1_regs_fifo2_reg_word66_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word66_written = ((card1_card_core1_regs_fifo2_reg_word66_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3612,18 +3624,18 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word66_clamp_out = (card1_card_core1_regs_fifo2_reg_word65_clamp_out || card1_card_core1_regs_fifo2_reg_word66_clamped);
+assign card1_card_core1_regs_fifo2_reg_word66_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word65_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word66_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word66__store45_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word66_value <= 2;
+        card1_card_core1_regs_fifo2_reg_word66_shown <= 2;
         card1_card_core1_regs_fifo2_reg_word66_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word66_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word66_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word66_value <= card1_card_core1_regs_fifo2_reg_word66_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word66_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word66_shown <= card1_card_core1_regs_fifo2_reg_word66_honoured;
             card1_card_core1_regs_fifo2_reg_word66_clamped <= card1_card_core1_regs_fifo2_reg_word66_out_of_range;
         end
     end
@@ -3634,18 +3646,18 @@ end
 assign card1_card_core1_regs_fifo2_reg_word67_mine = (card1_pci_slave2_local_addr == 76);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word67_mine, card1_card_core1_regs_fifo2_reg_word67_shown_wide, card1_card_core1_regs_fifo2_reg_word66_read_out) begin: card1_card_core1_regs_fifo2_reg_word67_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word67_mine, card1_card_core1_regs_fifo2_reg_word67_shown_wide, card1_card_core1_regs_fifo2_reg_word66_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word67_read_chain
     if (card1_card_core1_regs_fifo2_reg_word67_mine) begin
-        card1_card_core1_regs_fifo2_reg_word67_read_out = (card1_card_core1_regs_fifo2_reg_word66_read_out | card1_card_core1_regs_fifo2_reg_word67_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word67_chain_out_data = (card1_card_core1_regs_fifo2_reg_word66_chain_out_data | card1_card_core1_regs_fifo2_reg_word67_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word67_read_out = card1_card_core1_regs_fifo2_reg_word66_read_out;
+        card1_card_core1_regs_fifo2_reg_word67_chain_out_data = card1_card_core1_regs_fifo2_reg_word66_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word67_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word67_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word67_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word67_shown};
 
 
 
@@ -3673,21 +3685,21 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word67_clamp_out = (card1_card_core1_regs_fifo2_reg_word66_clamp_out || card1_card_core1_regs_fifo2_reg_word67_clamped);
+assign card1_card_core1_regs_fifo2_reg_word67_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word66_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word67_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word67__store46_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word67_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word67_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word67__store46_word_value <= 0;
         card1_card_core1_regs_fifo2_reg_word67_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word67_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word67_clamped <= 1'b0;
         if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word67_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word67_value <= card1_card_core1_regs_fifo2_reg_word67_honoured;
-            card1_card_core1_regs_fifo2_reg_word67_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word67__store46_word_value <= card1_card_core1_regs_fifo2_reg_word67_honoured;
+            card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word67_clamped <= card1_card_core1_regs_fifo2_reg_word67_out_of_range;
         end
     end
@@ -3698,18 +3710,18 @@ end
 assign card1_card_core1_regs_fifo2_reg_word68_mine = (card1_pci_slave2_local_addr == 80);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word68_mine, card1_card_core1_regs_fifo2_reg_word68_shown_wide, card1_card_core1_regs_fifo2_reg_word67_read_out) begin: card1_card_core1_regs_fifo2_reg_word68_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word68_mine, card1_card_core1_regs_fifo2_reg_word68_shown_wide, card1_card_core1_regs_fifo2_reg_word67_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word68_read_chain
     if (card1_card_core1_regs_fifo2_reg_word68_mine) begin
-        card1_card_core1_regs_fifo2_reg_word68_read_out = (card1_card_core1_regs_fifo2_reg_word67_read_out | card1_card_core1_regs_fifo2_reg_word68_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word68_chain_out_data = (card1_card_core1_regs_fifo2_reg_word67_chain_out_data | card1_card_core1_regs_fifo2_reg_word68_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word68_read_out = card1_card_core1_regs_fifo2_reg_word67_read_out;
+        card1_card_core1_regs_fifo2_reg_word68_chain_out_data = card1_card_core1_regs_fifo2_reg_word67_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word68_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word68_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word68_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word68_shown};
 
 
 
@@ -3737,21 +3749,21 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word68_clamp_out = (card1_card_core1_regs_fifo2_reg_word67_clamp_out || card1_card_core1_regs_fifo2_reg_word68_clamped);
+assign card1_card_core1_regs_fifo2_reg_word68_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word67_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word68_clamped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word68__store47_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word68_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word68_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word68__store47_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word68__store47_word_value <= 0;
         card1_card_core1_regs_fifo2_reg_word68_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word68_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word68__store47_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word68_clamped <= 1'b0;
         if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word68_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word68_value <= card1_card_core1_regs_fifo2_reg_word68_honoured;
-            card1_card_core1_regs_fifo2_reg_word68_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word68__store47_word_value <= card1_card_core1_regs_fifo2_reg_word68_honoured;
+            card1_card_core1_regs_fifo2_reg_word68__store47_word_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word68_clamped <= card1_card_core1_regs_fifo2_reg_word68_out_of_range;
         end
     end
@@ -3762,66 +3774,66 @@ end
 assign card1_card_core1_regs_fifo2_reg_word69_mine = (card1_pci_slave2_local_addr == 84);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word69_mine, card1_card_core1_regs_fifo2_reg_word69_shown_wide, card1_card_core1_regs_fifo2_reg_word68_read_out) begin: card1_card_core1_regs_fifo2_reg_word69_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word69_mine, card1_card_core1_regs_fifo2_reg_word69_shown_wide, card1_card_core1_regs_fifo2_reg_word68_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word69_read_chain
     if (card1_card_core1_regs_fifo2_reg_word69_mine) begin
-        card1_card_core1_regs_fifo2_reg_word69_read_out = (card1_card_core1_regs_fifo2_reg_word68_read_out | card1_card_core1_regs_fifo2_reg_word69_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word69_chain_out_data = (card1_card_core1_regs_fifo2_reg_word68_chain_out_data | card1_card_core1_regs_fifo2_reg_word69_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word69_read_out = card1_card_core1_regs_fifo2_reg_word68_read_out;
+        card1_card_core1_regs_fifo2_reg_word69_chain_out_data = card1_card_core1_regs_fifo2_reg_word68_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word69_shown_wide = card1_card_core1_regs_fifo2_reg_word69_hw_value;
+assign card1_card_core1_regs_fifo2_reg_word69_shown_wide = card1_card_core1_regs_fifo2_reg_word69_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word69_clamp_out = card1_card_core1_regs_fifo2_reg_word68_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word69_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word68_chain_out_clamped;
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word70_mine = (card1_pci_slave2_local_addr == 88);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word70_mine, card1_card_core1_regs_fifo2_reg_word70_shown_wide, card1_card_core1_regs_fifo2_reg_word69_read_out) begin: card1_card_core1_regs_fifo2_reg_word70_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word70_mine, card1_card_core1_regs_fifo2_reg_word70_shown_wide, card1_card_core1_regs_fifo2_reg_word69_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word70_read_chain
     if (card1_card_core1_regs_fifo2_reg_word70_mine) begin
-        card1_card_core1_regs_fifo2_reg_word70_read_out = (card1_card_core1_regs_fifo2_reg_word69_read_out | card1_card_core1_regs_fifo2_reg_word70_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word70_chain_out_data = (card1_card_core1_regs_fifo2_reg_word69_chain_out_data | card1_card_core1_regs_fifo2_reg_word70_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word70_read_out = card1_card_core1_regs_fifo2_reg_word69_read_out;
+        card1_card_core1_regs_fifo2_reg_word70_chain_out_data = card1_card_core1_regs_fifo2_reg_word69_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word70_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word70_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word70_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word70_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word70_clamp_out = card1_card_core1_regs_fifo2_reg_word69_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word70_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word69_chain_out_clamped;
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word71_mine = (card1_pci_slave2_local_addr == 92);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word71_mine, card1_card_core1_regs_fifo2_reg_word71_shown_wide, card1_card_core1_regs_fifo2_reg_word70_read_out) begin: card1_card_core1_regs_fifo2_reg_word71_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word71_mine, card1_card_core1_regs_fifo2_reg_word71_shown_wide, card1_card_core1_regs_fifo2_reg_word70_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word71_read_chain
     if (card1_card_core1_regs_fifo2_reg_word71_mine) begin
-        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word70_read_out | card1_card_core1_regs_fifo2_reg_word71_shown_wide);
+        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word70_chain_out_data | card1_card_core1_regs_fifo2_reg_word71_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word70_read_out;
+        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word70_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word71_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word71_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word71_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word71_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word71_clamp_out = card1_card_core1_regs_fifo2_reg_word70_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word71_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word70_chain_out_clamped;
 
 
 
@@ -3830,10 +3842,6 @@ assign card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits = ((card1_card
 
 
 assign card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits = ((card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 511));
-
-
-
-assign card1_card_core1_regs_fifo2_sequencer2_opcode = card1_card_core1_regs_fifo2_sequencer2_header[32-1:28];
 
 
 always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_arriving
@@ -3880,8 +3888,8 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_count
-    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+always @(card1_card_core1_regs_fifo2_sequencer2_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_count
+    case (card1_card_core1_regs_fifo2_sequencer2_opcode)
         0: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_next_count = 2;
         2: card1_card_core1_regs_fifo2_sequencer2_next_count = 4;
@@ -3968,8 +3976,8 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_coords
-    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+always @(card1_card_core1_regs_fifo2_sequencer2_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_coords
+    case (card1_card_core1_regs_fifo2_sequencer2_opcode)
         0: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 3;
         2: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 15;
@@ -3990,8 +3998,8 @@ always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_header) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_counts
-    case (card1_card_core1_regs_fifo2_sequencer2_header[32-1:28])
+always @(card1_card_core1_regs_fifo2_sequencer2_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_counts
+    case (card1_card_core1_regs_fifo2_sequencer2_opcode)
         0: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
         2: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
@@ -4034,7 +4042,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
+always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
     reg more;
     more = 1'b1;
     if (card1_card_core1_regs_fifo2_sequencer2_word_due) begin
@@ -4067,6 +4075,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
         card1_card_core1_regs_fifo2_sequencer2_header <= 0;
         card1_card_core1_regs_fifo2_sequencer2_operand_1 <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_opcode <= 0;
         card1_card_core1_regs_fifo2_sequencer2_fetched <= 0;
         card1_card_core1_regs_fifo2_sequencer2_operand_2 <= 0;
     end
@@ -4083,7 +4092,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
             end
             if (card1_card_core1_regs_fifo2_sequencer2_word_due) begin
                 if ((card1_card_core1_regs_fifo2_sequencer2_fetched == 0)) begin
-                    card1_card_core1_regs_fifo2_sequencer2_header <= card1_card_core1_regs_fifo2_fifo_dout;
+                    card1_card_core1_regs_fifo2_sequencer2_opcode <= card1_card_core1_regs_fifo2_fifo_dout[32-1:28];
+                    card1_card_core1_regs_fifo2_sequencer2_header <= card1_card_core1_regs_fifo2_fifo_dout[17-1:0];
                     card1_card_core1_regs_fifo2_sequencer2_next_motion <= card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
                     card1_card_core1_regs_fifo2_sequencer2_bad_opcode <= (!card1_card_core1_regs_fifo2_sequencer2_next_known);
                     card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= (((card1_card_core1_regs_fifo2_fifo_dout[32-1:16] & (~card1_card_core1_regs_fifo2_sequencer2_mask_high)) != 0) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:0] & (~card1_card_core1_regs_fifo2_sequencer2_mask_low)) != 0));
@@ -4102,13 +4112,13 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                             card1_card_core1_regs_fifo2_sequencer2_operand_0 <= card1_card_core1_regs_fifo2_fifo_dout;
                         end
                         'h2: begin
-                            card1_card_core1_regs_fifo2_sequencer2_operand_1 <= card1_card_core1_regs_fifo2_fifo_dout;
+                            card1_card_core1_regs_fifo2_sequencer2_operand_1 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
                         end
                         'h3: begin
-                            card1_card_core1_regs_fifo2_sequencer2_operand_2 <= card1_card_core1_regs_fifo2_fifo_dout;
+                            card1_card_core1_regs_fifo2_sequencer2_operand_2 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
                         end
                         default: begin
-                            card1_card_core1_regs_fifo2_sequencer2_operand_3 <= card1_card_core1_regs_fifo2_fifo_dout;
+                            card1_card_core1_regs_fifo2_sequencer2_operand_3 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
                         end
                     endcase
                     if (((card1_card_core1_regs_fifo2_sequencer2_coord_mask[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] && (!card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits)) || (card1_card_core1_regs_fifo2_sequencer2_count_mask[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] && (!card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits)))) begin
@@ -4149,7 +4159,7 @@ end
 assign card1_card_core1_regs_fifo2_sequencer2_motion_done = ((!card1_card_core1_regs_fifo2_sequencer2_dda_start) && (!card1_card_core1_regs_fifo2_dda_busy) && (!card1_card_core1_regs_fifo2_sequencer2_dda_done));
 
 
-always @(card1_card_core1_regs_fifo2_outputs_busy, card1_card_core1_regs_fifo2_sequencer2_motion_done, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_sequencer2_dwell_left, card1_card_core1_regs_fifo2_sequencer2_state) begin: card1_card_core1_regs_fifo2_sequencer2_completion
+always @(card1_card_core1_regs_fifo2_sequencer2_motion_done, card1_card_core1_regs_fifo2_outputs_busy, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_sequencer2_dwell_left, card1_card_core1_regs_fifo2_sequencer2_state) begin: card1_card_core1_regs_fifo2_sequencer2_completion
     card1_card_core1_regs_fifo2_sequencer2_state_over = 1'b0;
     case (card1_card_core1_regs_fifo2_sequencer2_state)
         3'b000: begin
@@ -4171,7 +4181,7 @@ always @(card1_card_core1_regs_fifo2_outputs_busy, card1_card_core1_regs_fifo2_s
 end
 
 
-always @(card1_card_core1_regs_fifo2_outputs_busy, card1_card_core1_regs_fifo2_sequencer2_next_motion, card1_card_core1_regs_fifo2_sequencer2_dda_ready, card1_card_core1_regs_fifo2_sequencer2_state_over, card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_regs_fifo2_sequencer2_next_error, card1_card_core1_regs_fifo2_sequencer2_dda_error, card1_card_core1_regs_fifo2_sequencer2_state) begin: card1_card_core1_regs_fifo2_sequencer2_readiness
+always @(card1_card_core1_regs_fifo2_sequencer2_next_motion, card1_card_core1_regs_fifo2_sequencer2_dda_ready, card1_card_core1_regs_fifo2_sequencer2_state_over, card1_card_core1_regs_fifo2_outputs_busy, card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_regs_fifo2_sequencer2_next_error, card1_card_core1_regs_fifo2_sequencer2_dda_error, card1_card_core1_regs_fifo2_sequencer2_state) begin: card1_card_core1_regs_fifo2_sequencer2_readiness
     if ((card1_card_core1_regs_fifo2_sequencer2_next_motion && (card1_card_core1_regs_fifo2_sequencer2_next_error == 0))) begin
         if ((card1_card_core1_regs_fifo2_sequencer2_state == 3'b001)) begin
             card1_card_core1_regs_fifo2_sequencer2_finishing = (card1_card_core1_regs_fifo2_sequencer2_dda_ready && (!card1_card_core1_regs_fifo2_sequencer2_dda_start) && (!card1_card_core1_regs_fifo2_sequencer2_dda_error));
@@ -4192,19 +4202,19 @@ assign card1_card_core1_regs_fifo2_sequencer2_issue = (card1_card_core1_regs_fif
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_execute
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_set_strobe <= 0;
-        card1_card_core1_regs_fifo2_error_code <= 0;
-        card1_card_core1_regs_fifo2_mark_strobe <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_dda_start <= 0;
         card1_card_core1_regs_fifo2_seq_load <= 0;
+        card1_card_core1_regs_fifo2_error_code <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_mark_strobe <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_dda_start <= 0;
+        card1_card_core1_regs_fifo2_reg_word58_set_mine <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dwell_left <= 0;
         card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
     end
     else begin
         card1_card_core1_regs_fifo2_sequencer2_dda_start <= 0;
         card1_card_core1_regs_fifo2_seq_load <= 0;
-        card1_card_core1_regs_fifo2_set_strobe <= 0;
-        card1_card_core1_regs_fifo2_mark_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word58_set_mine <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_mark_strobe <= 0;
         if (card1_card_core1_core_clear) begin
             card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
             card1_card_core1_regs_fifo2_error_code <= 0;
@@ -4240,10 +4250,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                 card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
                 case (card1_card_core1_regs_fifo2_sequencer2_opcode)
                     'h4: begin
-                        card1_card_core1_regs_fifo2_set_strobe <= 1;
+                        card1_card_core1_regs_fifo2_reg_word58_set_mine <= 1;
                     end
                     'h6: begin
-                        card1_card_core1_regs_fifo2_mark_strobe <= 1;
+                        card1_card_core1_regs_fifo2_sequencer2_mark_strobe <= 1;
                     end
                 endcase
             end
@@ -4277,11 +4287,11 @@ always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs
         card1_card_core1_regs_fifo2_sequencer2_dda_xe = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_2[24-1:0]);
         card1_card_core1_regs_fifo2_sequencer2_dda_ye = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_3[24-1:0]);
     end
-    card1_card_core1_regs_fifo2_sequencer2_pulse_count_x = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
-    card1_card_core1_regs_fifo2_sequencer2_pulse_count_y = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
-    card1_card_core1_regs_fifo2_set_index = card1_card_core1_regs_fifo2_sequencer2_header[4-1:0];
-    card1_card_core1_regs_fifo2_set_value = card1_card_core1_regs_fifo2_sequencer2_operand_0;
-    card1_card_core1_regs_fifo2_mark_tag = card1_card_core1_regs_fifo2_sequencer2_header[16-1:0];
+    card1_card_core1_regs_fifo2_sequencer2_pulses_count_x = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
+    card1_card_core1_regs_fifo2_sequencer2_pulses_count_y = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
+    card1_card_core1_regs_fifo2_reg_word49_set_port_index = card1_card_core1_regs_fifo2_sequencer2_header[4-1:0];
+    card1_card_core1_regs_fifo2_reg_word49_set_port_value = card1_card_core1_regs_fifo2_sequencer2_operand_0;
+    card1_card_core1_regs_fifo2_sequencer2_mark_tag = card1_card_core1_regs_fifo2_sequencer2_header[16-1:0];
 end
 
 
@@ -4290,7 +4300,7 @@ assign card1_card_core1_regs_fifo2_seq_busy = ((card1_card_core1_regs_fifo2_sequ
 assign card1_card_core1_regs_fifo2_motion_run = (card1_card_core1_regs_fifo2_sequencer2_state == 3'b001);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_settings
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_register_settings
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_feed_rate2_target_s <= 0;
         card1_card_core1_regs_fifo2_feed_rate2_step_zero <= 1;
@@ -4301,13 +4311,13 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
         card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word58_value;
-        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word59_value;
-        card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_reg_word60_value;
-        card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_reg_word60_value == 0);
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word58_value}) - $signed({1'b0, card1_card_core1_regs_fifo2_reg_word60_value}));
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word58_value} + {1'b0, card1_card_core1_regs_fifo2_reg_word60_value});
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word59_value} + {1'b0, card1_card_core1_regs_fifo2_reg_word60_value});
+        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word58_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word59_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_reg_word60_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_reg_word60_shown == 0);
+        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word58_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_reg_word60_shown}));
+        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word58_shown} + {1'b0, card1_card_core1_regs_fifo2_reg_word60_shown});
+        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word59_shown} + {1'b0, card1_card_core1_regs_fifo2_reg_word60_shown});
     end
 end
 
@@ -4317,7 +4327,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
         card1_card_core1_regs_fifo2_feed_rate2_decelerate <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_feed_rate2_decelerate <= (card1_card_core1_regs_fifo2_feed_rate2_stop_left <= {11'h0, card1_card_core1_regs_fifo2_feed_rate2_count});
+        card1_card_core1_regs_fifo2_feed_rate2_decelerate <= (card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left <= {11'h0, card1_card_core1_regs_fifo2_feed_rate2_count});
     end
 end
 
@@ -4348,8 +4358,8 @@ end
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_accumulate
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_tick <= 0;
         card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
+        card1_card_core1_regs_fifo2_tick <= 0;
         card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
         card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
     end
@@ -4409,48 +4419,73 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_load || card1_card_core1_regs_fifo2_direct_pulse4_pending);
+assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending);
+
+
+always @(card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count, card1_card_core1_regs_fifo2_reg_word67_shown) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
+    if ((!card1_card_core1_regs_fifo2_direct_pulse4_command_load)) begin
+        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word67_shown;
+        card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
+    end
+    else if ((card1_card_core1_regs_fifo2_direct_pulse4_command_count < 0)) begin
+        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = (~card1_card_core1_regs_fifo2_direct_pulse4_command_count[24-1:0]);
+        card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_direct_pulse4_command_count[24-1:0];
+        card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 0;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word65_shown, card1_card_core1_regs_fifo2_direct_pulse4_waiting, card1_card_core1_regs_fifo2_direct_pulse4_gap) begin: card1_card_core1_regs_fifo2_direct_pulse4_gap_operands
+    if (card1_card_core1_regs_fifo2_direct_pulse4_waiting) begin
+        card1_card_core1_regs_fifo2_direct_pulse4_gap_operand = card1_card_core1_regs_fifo2_direct_pulse4_gap;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_direct_pulse4_gap_operand = card1_card_core1_regs_fifo2_reg_word65_shown;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_direct_pulse4_counted = (card1_card_core1_regs_fifo2_direct_pulse4_count_operand + card1_card_core1_regs_fifo2_direct_pulse4_count_addend);
+assign card1_card_core1_regs_fifo2_direct_pulse4_gap_less = (card1_card_core1_regs_fifo2_direct_pulse4_gap_operand - 1);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct_pulse4_emit
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_direct_request_x <= 0;
         card1_card_core1_regs_fifo2_direct_dir_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
-        card1_card_core1_regs_fifo2_reg_word67_hw_value <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
+        card1_card_core1_regs_fifo2_reg_word67_shown <= 0;
+        card1_card_core1_regs_fifo2_direct_request_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         if (card1_card_core1_core_clear) begin
-            card1_card_core1_regs_fifo2_reg_word67_hw_value <= 0;
+            card1_card_core1_regs_fifo2_reg_word67_shown <= 0;
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         end
-        else if (card1_card_core1_regs_fifo2_direct_pulse4_load) begin
-            if ((card1_card_core1_regs_fifo2_direct_pulse4_count < 0)) begin
-                card1_card_core1_regs_fifo2_reg_word67_hw_value <= (-card1_card_core1_regs_fifo2_direct_pulse4_count);
-                card1_card_core1_regs_fifo2_direct_dir_x <= 0;
-            end
-            else begin
-                card1_card_core1_regs_fifo2_reg_word67_hw_value <= card1_card_core1_regs_fifo2_direct_pulse4_count;
-                card1_card_core1_regs_fifo2_direct_dir_x <= 1;
-            end
-            card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_count != 0);
+        else if (card1_card_core1_regs_fifo2_direct_pulse4_command_load) begin
+            card1_card_core1_regs_fifo2_reg_word67_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+            card1_card_core1_regs_fifo2_direct_dir_x <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count >= 0);
+            card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
             card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_pending) begin
             if (card1_card_core1_regs_fifo2_direct_pulse4_waiting) begin
-                card1_card_core1_regs_fifo2_direct_pulse4_gap <= (card1_card_core1_regs_fifo2_direct_pulse4_gap - 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_direct_pulse4_gap != 1);
             end
             else if (card1_card_core1_regs_fifo2_out_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_x <= 1;
-                card1_card_core1_regs_fifo2_reg_word67_hw_value <= (card1_card_core1_regs_fifo2_reg_word67_hw_value - 1);
-                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word67_hw_value != 1);
-                card1_card_core1_regs_fifo2_direct_pulse4_gap <= (card1_card_core1_regs_fifo2_reg_word65_value - 1);
-                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_reg_word65_value != 1);
+                card1_card_core1_regs_fifo2_reg_word67_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word67_shown != 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
+                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_reg_word65_shown != 1);
             end
         end
     end
@@ -4458,48 +4493,73 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_load || card1_card_core1_regs_fifo2_direct_pulse5_pending);
+assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending);
+
+
+always @(card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count, card1_card_core1_regs_fifo2_reg_word68_shown) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
+    if ((!card1_card_core1_regs_fifo2_direct_pulse5_command_load)) begin
+        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word68_shown;
+        card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
+    end
+    else if ((card1_card_core1_regs_fifo2_direct_pulse5_command_count < 0)) begin
+        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = (~card1_card_core1_regs_fifo2_direct_pulse5_command_count[24-1:0]);
+        card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_direct_pulse5_command_count[24-1:0];
+        card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 0;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word66_shown, card1_card_core1_regs_fifo2_direct_pulse5_waiting, card1_card_core1_regs_fifo2_direct_pulse5_gap) begin: card1_card_core1_regs_fifo2_direct_pulse5_gap_operands
+    if (card1_card_core1_regs_fifo2_direct_pulse5_waiting) begin
+        card1_card_core1_regs_fifo2_direct_pulse5_gap_operand = card1_card_core1_regs_fifo2_direct_pulse5_gap;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_direct_pulse5_gap_operand = card1_card_core1_regs_fifo2_reg_word66_shown;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_direct_pulse5_counted = (card1_card_core1_regs_fifo2_direct_pulse5_count_operand + card1_card_core1_regs_fifo2_direct_pulse5_count_addend);
+assign card1_card_core1_regs_fifo2_direct_pulse5_gap_less = (card1_card_core1_regs_fifo2_direct_pulse5_gap_operand - 1);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct_pulse5_emit
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_direct_request_y <= 0;
         card1_card_core1_regs_fifo2_direct_dir_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
-        card1_card_core1_regs_fifo2_reg_word68_hw_value <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
+        card1_card_core1_regs_fifo2_reg_word68_shown <= 0;
+        card1_card_core1_regs_fifo2_direct_request_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         if (card1_card_core1_core_clear) begin
-            card1_card_core1_regs_fifo2_reg_word68_hw_value <= 0;
+            card1_card_core1_regs_fifo2_reg_word68_shown <= 0;
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         end
-        else if (card1_card_core1_regs_fifo2_direct_pulse5_load) begin
-            if ((card1_card_core1_regs_fifo2_direct_pulse5_count < 0)) begin
-                card1_card_core1_regs_fifo2_reg_word68_hw_value <= (-card1_card_core1_regs_fifo2_direct_pulse5_count);
-                card1_card_core1_regs_fifo2_direct_dir_y <= 0;
-            end
-            else begin
-                card1_card_core1_regs_fifo2_reg_word68_hw_value <= card1_card_core1_regs_fifo2_direct_pulse5_count;
-                card1_card_core1_regs_fifo2_direct_dir_y <= 1;
-            end
-            card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_count != 0);
+        else if (card1_card_core1_regs_fifo2_direct_pulse5_command_load) begin
+            card1_card_core1_regs_fifo2_reg_word68_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+            card1_card_core1_regs_fifo2_direct_dir_y <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count >= 0);
+            card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
             card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_pending) begin
             if (card1_card_core1_regs_fifo2_direct_pulse5_waiting) begin
-                card1_card_core1_regs_fifo2_direct_pulse5_gap <= (card1_card_core1_regs_fifo2_direct_pulse5_gap - 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_gap != 1);
             end
             else if (card1_card_core1_regs_fifo2_out_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_y <= 1;
-                card1_card_core1_regs_fifo2_reg_word68_hw_value <= (card1_card_core1_regs_fifo2_reg_word68_hw_value - 1);
-                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word68_hw_value != 1);
-                card1_card_core1_regs_fifo2_direct_pulse5_gap <= (card1_card_core1_regs_fifo2_reg_word66_value - 1);
-                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_reg_word66_value != 1);
+                card1_card_core1_regs_fifo2_reg_word68_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word68_shown != 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
+                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_reg_word66_shown != 1);
             end
         end
     end
@@ -4515,12 +4575,12 @@ assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pu
 assign card1_card_core1_regs_fifo2_pulse_out2_head = card1_card_core1_regs_fifo2_pulse_out2_queue[0];
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_reg_word61_value, card1_card_core1_regs_fifo2_reg_word62_value, card1_card_core1_regs_fifo2_pulse_out2_low_clocks) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_reg_word62_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_reg_word61_shown, card1_card_core1_core_clear) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
     card1_card_core1_regs_fifo2_pulse_out2_turn = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) && ((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
     card1_card_core1_regs_fifo2_pulse_out2_take = 1'b0;
-    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_core_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word61_value))) begin
+    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_core_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word61_shown))) begin
         if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b01)) begin
-            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word62_value);
+            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word62_shown);
         end
         else if ((card1_card_core1_regs_fifo2_pulse_out2_count != 0)) begin
             card1_card_core1_regs_fifo2_pulse_out2_take = (!((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
@@ -4529,9 +4589,9 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_r
 end
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_reg_word61_value, card1_card_core1_regs_fifo2_reg_word63_value, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_pulse_out2_take) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
-    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_core_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word63_value)));
-    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word61_value));
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_reg_word61_shown, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_pulse_out2_take, card1_card_core1_regs_fifo2_reg_word63_shown) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
+    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_core_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word63_shown)));
+    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word61_shown));
     card1_card_core1_regs_fifo2_pulse_out2_phase_step = 0;
     if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks != 255)) begin
         card1_card_core1_regs_fifo2_pulse_out2_phase_step = 1;
@@ -4643,6 +4703,18 @@ assign card1_card_core1_regs_fifo2_pulse_out2_last_slot = (card1_card_core1_regs
 assign card1_card_core1_regs_fifo2_pulse_out2_free_slot = card1_card_core1_regs_fifo2_pulse_out2_count[2-1:0];
 
 
+always @(card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y) begin: card1_card_core1_regs_fifo2_pulse_out2_step_sense
+    card1_card_core1_regs_fifo2_pulse_out2_delta_x = 1;
+    if ((!card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) begin
+        card1_card_core1_regs_fifo2_pulse_out2_delta_x = (-1);
+    end
+    card1_card_core1_regs_fifo2_pulse_out2_delta_y = 1;
+    if ((!card1_card_core1_regs_fifo2_pulse_out2_dir_level_y)) begin
+        card1_card_core1_regs_fifo2_pulse_out2_delta_y = (-1);
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_drive_pins
     if (reset == 0) begin
         motor_step_x <= 0;
@@ -4655,28 +4727,18 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
     else begin
         motor_step_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
         motor_step_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
-        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word64_value[0]);
-        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word64_value[1]);
+        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word64_shown[0]);
+        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word64_shown[1]);
         if (card1_card_core1_regs_fifo2_clear_position) begin
             card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
             card1_card_core1_regs_fifo2_position_y <= 0;
         end
         else begin
             if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!motor_step_x))) begin
-                if (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x) begin
-                    card1_card_core1_regs_fifo2_pulse_out2_position_x <= (card1_card_core1_regs_fifo2_pulse_out2_position_x + 1);
-                end
-                else begin
-                    card1_card_core1_regs_fifo2_pulse_out2_position_x <= (card1_card_core1_regs_fifo2_pulse_out2_position_x - 1);
-                end
+                card1_card_core1_regs_fifo2_pulse_out2_position_x <= (card1_card_core1_regs_fifo2_pulse_out2_position_x + card1_card_core1_regs_fifo2_pulse_out2_delta_x);
             end
             if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!motor_step_y))) begin
-                if (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y) begin
-                    card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y + 1);
-                end
-                else begin
-                    card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y - 1);
-                end
+                card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y + card1_card_core1_regs_fifo2_pulse_out2_delta_y);
             end
         end
     end
@@ -4797,26 +4859,26 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word67_strobe, card1_card_core1_regs_fifo2_reg_word67_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulse_count_x, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
+always @(card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe, card1_card_core1_regs_fifo2_reg_word67__store46_word_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
     if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_load = card1_card_core1_regs_fifo2_reg_word67_strobe;
-        card1_card_core1_regs_fifo2_direct_pulse4_count = $signed(card1_card_core1_regs_fifo2_reg_word67_value);
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe;
+        card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word67__store46_word_value);
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse4_load = card1_card_core1_regs_fifo2_seq_load;
-        card1_card_core1_regs_fifo2_direct_pulse4_count = card1_card_core1_regs_fifo2_sequencer2_pulse_count_x;
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = card1_card_core1_regs_fifo2_seq_load;
+        card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word68_strobe, card1_card_core1_regs_fifo2_reg_word68_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulse_count_y, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
+always @(card1_card_core1_regs_fifo2_reg_word68__store47_word_strobe, card1_card_core1_regs_fifo2_reg_word68__store47_word_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
     if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_load = card1_card_core1_regs_fifo2_reg_word68_strobe;
-        card1_card_core1_regs_fifo2_direct_pulse5_count = $signed(card1_card_core1_regs_fifo2_reg_word68_value);
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = card1_card_core1_regs_fifo2_reg_word68__store47_word_strobe;
+        card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word68__store47_word_value);
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse5_load = card1_card_core1_regs_fifo2_seq_load;
-        card1_card_core1_regs_fifo2_direct_pulse5_count = card1_card_core1_regs_fifo2_sequencer2_pulse_count_y;
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = card1_card_core1_regs_fifo2_seq_load;
+        card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
     end
 end
 
@@ -4848,7 +4910,7 @@ always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_don
     word[8] = card1_card_core1_regs_fifo2_fifo_empty;
     word[9] = card1_card_core1_regs_fifo2_fifo_full;
     word[32-1:16] = card1_card_core1_regs_fifo2_level_wide;
-    card1_card_core1_regs_fifo2_reg_word51_hw_value = word;
+    card1_card_core1_regs_fifo2_reg_word51_shown = word;
 end
 
 
@@ -4856,37 +4918,37 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2__inter
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_error_before <= 0;
         card1_card_core1_regs_fifo2_low_before <= 0;
-        card1_card_core1_regs_fifo2_reg_word55_hw_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word55_shown <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_error_before <= (card1_card_core1_regs_fifo2_error_code != 0);
-        card1_card_core1_regs_fifo2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word54_value);
-        if (card1_card_core1_regs_fifo2_mark_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word55_hw_value <= card1_card_core1_regs_fifo2_mark_tag;
+        card1_card_core1_regs_fifo2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word54_shown);
+        if (card1_card_core1_regs_fifo2_sequencer2_mark_strobe) begin
+            card1_card_core1_regs_fifo2_reg_word55_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
         end
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word71_clamp_out, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_reg_word54_value, card1_card_core1_regs_fifo2_mark_strobe, card1_card_core1_regs_fifo2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_busy_before, card1_card_core1_regs_fifo2_low_before) begin: card1_card_core1_regs_fifo2__interrupts2_detect
+always @(card1_card_core1_regs_fifo2_reg_word71_chain_out_clamped, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_reg_word54_shown, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_busy_before, card1_card_core1_regs_fifo2_low_before) begin: card1_card_core1_regs_fifo2__interrupts2_detect
     reg [5-1:0] word;
     word = 5'h0;
     word[0] = (card1_card_core1_regs_fifo2_busy_before && (!card1_card_core1_regs_fifo2_any_busy));
-    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word54_value) && (!card1_card_core1_regs_fifo2_low_before));
+    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word54_shown) && (!card1_card_core1_regs_fifo2_low_before));
     word[2] = ((card1_card_core1_regs_fifo2_error_code != 0) && (!card1_card_core1_regs_fifo2_error_before));
-    word[3] = card1_card_core1_regs_fifo2_mark_strobe;
-    word[4] = card1_card_core1_regs_fifo2_reg_word71_clamp_out;
-    card1_card_core1_regs_fifo2_reg_word53_hw_value = word;
+    word[3] = card1_card_core1_regs_fifo2_sequencer2_mark_strobe;
+    word[4] = card1_card_core1_regs_fifo2_reg_word71_chain_out_clamped;
+    card1_card_core1_regs_fifo2_reg_word53__store35_word_hw = word;
 end
 
 
 
-assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word53_value & card1_card_core1_regs_fifo2_reg_word52_value) != 0);
+assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word53_shown & card1_card_core1_regs_fifo2_reg_word52_shown) != 0);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word56_hw_value = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
-assign card1_card_core1_regs_fifo2_reg_word57_hw_value = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word56_shown = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word57_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
 always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_magnitudes
@@ -5975,7 +6037,7 @@ end
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_left_output
     reg signed [27-1:0] larger;
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_regs_fifo2_feed_rate2_stop_left <= 134217727;
+        card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left <= 134217727;
     end
     else begin
         larger = 0;
@@ -5987,14 +6049,14 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         end
         if ((card1_card_core1_dda_arc2_run_active && (!card1_card_core1_dda_arc2_run_blend))) begin
             if ((larger < 0)) begin
-                card1_card_core1_regs_fifo2_feed_rate2_stop_left <= 0;
+                card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left <= 0;
             end
             else begin
-                card1_card_core1_regs_fifo2_feed_rate2_stop_left <= larger[27-1:0];
+                card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left <= larger[27-1:0];
             end
         end
         else begin
-            card1_card_core1_regs_fifo2_feed_rate2_stop_left <= 27'h7ffffff;
+            card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left <= 27'h7ffffff;
         end
     end
 end

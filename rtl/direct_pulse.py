@@ -1,73 +1,97 @@
 """Direct pulses of one axis: a host-given count at a host-given period."""
-from myhdl import Signal, always_comb, always_seq, block, intbv
+from myhdl import Signal, always_comb, always_seq, block, intbv, modbv
 
-from rtl.interfaces import card_reset
-
-COUNT_BITS = 24
-PERIOD_BITS = 16
+from rtl.interfaces import DirectPulseCommand, StepRequest, card_reset
 
 
 @block
-def direct_pulse(clock, reset, load, count, period, ready, clear, request, request_dir, remaining, busy):
+def direct_pulse(clock, reset, command, out):
     """Step requests for the pulses the host distributes itself (no interpolation).
 
-    Ports: ``load`` (one clock) takes ``count`` (signed: the sign is the
-    direction); then one ``request`` (one clock, with ``request_dir``) is made
-    every ``period`` clocks (>= 1) while the pulse output is ``ready``, the
-    first one the clock after ``load``.  ``remaining`` counts what is left,
-    ``busy`` is high from ``load`` until the last request.  ``clear`` stops.
+    Ports (``rtl/interfaces.py``): ``command`` (``DirectPulseCommand``):
+    ``load`` (one clock) takes ``count`` (signed: the sign is the
+    direction); then one request (``out.step``, one clock, with ``out.dir``;
+    ``out``: ``StepRequest``) is made every ``period`` clocks (>= 1) while
+    ``out.ready``, the first one the clock after ``load``.  ``remaining``
+    counts what is left, ``busy`` is high from ``load`` until the last
+    request.  ``clear`` stops.
 
     count 2, period 3:
         clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
         load      _/~~~\\_____________________
-        request   _____/~~~\\_______/~~~\\_____
+        out.step  _____/~~~\\_______/~~~\\_____
         remaining ==0==X=2=X=1=========X=0====
     """
-    gap = Signal(intbv(0)[PERIOD_BITS:])
+    count_bits, period_bits = len(command.remaining), len(command.period)
+    gap = Signal(intbv(0)[period_bits:])
     # remaining != 0 and gap != 0, each kept in a flip-flop next to its
     # counter: ``busy`` and the next decision then start from one register
     # instead of a 24-bit (16-bit) zero test.
     pending = Signal(bool(0))
     waiting = Signal(bool(0))
+    # One adder per counter: remaining takes |count| (count ^ sign + sign) on
+    # a load and remaining - 1 on a request; gap takes period - 1 on a
+    # request and gap - 1 while waiting.
+    count_operand, count_addend = Signal(intbv(0)[count_bits:]), Signal(intbv(0)[count_bits:])
+    counted = Signal(modbv(0)[count_bits:])
+    gap_operand = Signal(intbv(0)[period_bits:])
+    gap_less = Signal(modbv(0)[period_bits:])
+    all_ones = (1 << count_bits) - 1
 
     @always_comb
     def activity():
-        busy.next = load or pending
+        command.busy.next = command.load or pending
+
+    @always_comb
+    def count_operands():
+        if not command.load:
+            count_operand.next = command.remaining
+            count_addend.next = all_ones
+        elif command.count < 0:
+            count_operand.next = ~command.count[count_bits:]
+            count_addend.next = 1
+        else:
+            count_operand.next = command.count[count_bits:]
+            count_addend.next = 0
+
+    @always_comb
+    def gap_operands():
+        if waiting:
+            gap_operand.next = gap
+        else:
+            gap_operand.next = command.period
+
+    @always_comb
+    def sums():
+        counted.next = count_operand + count_addend
+        gap_less.next = gap_operand - 1
 
     @always_seq(clock.posedge, reset=reset)
     def emit():
-        request.next = 0
-        if clear:
-            remaining.next = 0
+        out.step.next = 0
+        if command.clear:
+            command.remaining.next = 0
             pending.next = 0
-        elif load:
-            if count < 0:
-                remaining.next = -count
-                request_dir.next = 0
-            else:
-                remaining.next = count
-                request_dir.next = 1
-            pending.next = count != 0
+        elif command.load:
+            command.remaining.next = counted
+            out.dir.next = command.count >= 0
+            pending.next = command.count != 0
             gap.next = 0
             waiting.next = 0
         elif pending:
             if waiting:
-                gap.next = gap - 1
+                gap.next = gap_less
                 waiting.next = gap != 1
-            elif ready:
-                request.next = 1
-                remaining.next = remaining - 1
-                pending.next = remaining != 1
-                gap.next = period - 1
-                waiting.next = period != 1
+            elif out.ready:
+                out.step.next = 1
+                command.remaining.next = counted
+                pending.next = command.remaining != 1
+                gap.next = gap_less
+                waiting.next = command.period != 1
 
-    return activity, emit
+    return activity, count_operands, gap_operands, sums, emit
 
 
 def direct_pulse_ports():
     """Fresh ports of ``direct_pulse`` for conversion and benches."""
-    return dict(clock=Signal(bool(0)), reset=card_reset(), load=Signal(bool(0)),
-                count=Signal(intbv(0, min=-(1 << (COUNT_BITS - 1)), max=1 << (COUNT_BITS - 1))),
-                period=Signal(intbv(2)[PERIOD_BITS:]), ready=Signal(bool(1)), clear=Signal(bool(0)),
-                request=Signal(bool(0)), request_dir=Signal(bool(0)),
-                remaining=Signal(intbv(0)[COUNT_BITS:]), busy=Signal(bool(0)))
+    return dict(clock=Signal(bool(0)), reset=card_reset(), command=DirectPulseCommand(), out=StepRequest())

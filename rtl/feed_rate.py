@@ -1,29 +1,30 @@
 """Iteration clock enable of the interpolator: a trapezoidal rate ramp."""
 from myhdl import Signal, always_comb, always_seq, block, concat, intbv, modbv
 
-from rtl.interfaces import DdaPort, card_reset
+from rtl.interfaces import FeedPort, RampSettings, card_reset
 from rtl.parameters import COORD_WIDTH
 from rtl.registers import RATE_MAX, RATE_ONE
 
 RATE_BITS = RATE_MAX.bit_length()  # 16: the rate is at most one iteration every other clock
 PHASE_BITS = RATE_ONE.bit_length() - 1
-STEP_BITS = 16
 COUNT_BITS = 16  # ramp ticks: at most one per unit of rate
 DECEL_MARGIN = 2  # iterations: the registered comparison and a stop_left one iteration late
 
 
 @block
-def feed_rate(clock, reset, run, hold, target, ramp_start, ramp_step, stop_left, tick):
+def feed_rate(clock, reset, settings, feed):
     """Phase accumulator giving ``tick`` on ``rate``/65536 of the clocks, with
     a linear ramp up to ``target`` and down again before the path stops.
 
-    Ports: ``run`` (a move is under way; low resets the accumulator and the
-    ramp count and loads the starting rate), ``hold`` (freeze: the pulse
-    outputs are full), ``target`` (rate to reach, 1..32768), ``ramp_start``
-    (rate a move starts and stops with, 1..32768), ``ramp_step`` (rate change
-    per tick; 0: the rate is ``target`` at once), ``stop_left`` (the DDA's
-    lower bound of the iterations before the path stops), ``tick``
-    (registered, one clock per iteration, never two clocks in a row).
+    Ports (``rtl/interfaces.py``): ``settings`` (``RampSettings``:
+    ``target``, the rate to reach, 1..32768; ``ramp_start``, the rate a move
+    starts and stops with, 1..32768; ``ramp_step``, the rate change per
+    tick, 0: the rate is ``target`` at once); ``feed`` (``FeedPort``:
+    ``run``, a move is under way, low resets the accumulator and the ramp
+    count and loads the starting rate; ``hold``, freeze: the pulse outputs
+    are full; ``stop_left``, the DDA's lower bound of the iterations before
+    the path stops; ``tick``, registered, one clock per iteration, never two
+    clocks in a row).
 
     Rules, applied at every tick to the rate of the next iteration:
 
@@ -54,6 +55,7 @@ def feed_rate(clock, reset, run, hold, target, ramp_start, ramp_step, stop_left,
         run    _/~~~~~~~~~~~~~~~~~~~
         tick   _______/~~~\\___/~~~\\_
     """
+    step_bits = len(settings.ramp_step)
     rate = Signal(intbv(0, min=0, max=RATE_MAX + 1))
     phase = Signal(intbv(0)[PHASE_BITS:])
     total = Signal(intbv(0)[PHASE_BITS + 1:])
@@ -63,31 +65,31 @@ def feed_rate(clock, reset, run, hold, target, ramp_start, ramp_step, stop_left,
     decelerate = Signal(bool(0))
     # settings and their sums, registered
     target_s, start_s = (Signal(intbv(0, min=0, max=RATE_MAX + 1)) for _ in range(2))
-    step_s = Signal(intbv(0)[STEP_BITS:])
+    step_s = Signal(intbv(0)[step_bits:])
     step_zero = Signal(bool(1))
-    raise_limit = Signal(intbv(0, min=-(1 << STEP_BITS), max=RATE_MAX + 1))  # target - step
-    lower_limit = Signal(intbv(0)[STEP_BITS + 1:])  # target + step
-    floor_limit = Signal(intbv(0)[STEP_BITS + 1:])  # ramp_start + step
+    raise_limit = Signal(intbv(0, min=-(1 << step_bits), max=RATE_MAX + 1))  # target - step
+    lower_limit = Signal(intbv(0)[step_bits + 1:])  # target + step
+    floor_limit = Signal(intbv(0)[step_bits + 1:])  # ramp_start + step
     # candidates, from the registers; taken only when in range, so they may wrap
     raised, lowered = Signal(modbv(0)[RATE_BITS:]), Signal(modbv(0)[RATE_BITS:])
     can_raise, can_lower, above_floor, below, above = (Signal(bool(0)) for _ in range(5))
-    left_pad = len(stop_left) - COUNT_BITS
+    left_pad = len(feed.stop_left) - COUNT_BITS
     if left_pad < 1:
         raise ValueError(f"stop_left must be wider than {COUNT_BITS} bits")
 
     @always_seq(clock.posedge, reset=reset)
-    def settings():
-        target_s.next = target
-        start_s.next = ramp_start
-        step_s.next = ramp_step
-        step_zero.next = ramp_step == 0
-        raise_limit.next = concat(False, target).signed() - concat(False, ramp_step).signed()
-        lower_limit.next = concat(False, target) + concat(False, ramp_step)
-        floor_limit.next = concat(False, ramp_start) + concat(False, ramp_step)
+    def register_settings():
+        target_s.next = settings.target
+        start_s.next = settings.ramp_start
+        step_s.next = settings.ramp_step
+        step_zero.next = settings.ramp_step == 0
+        raise_limit.next = concat(False, settings.target).signed() - concat(False, settings.ramp_step).signed()
+        lower_limit.next = concat(False, settings.target) + concat(False, settings.ramp_step)
+        floor_limit.next = concat(False, settings.ramp_start) + concat(False, settings.ramp_step)
 
     @always_seq(clock.posedge, reset=reset)
     def end_ahead():
-        decelerate.next = stop_left <= concat(intbv(0)[left_pad:], count)
+        decelerate.next = feed.stop_left <= concat(intbv(0)[left_pad:], count)
 
     @always_comb
     def candidates():
@@ -112,18 +114,18 @@ def feed_rate(clock, reset, run, hold, target, ramp_start, ramp_step, stop_left,
 
     @always_seq(clock.posedge, reset=reset)
     def accumulate():
-        tick.next = 0
-        if not run:
+        feed.tick.next = 0
+        if not feed.run:
             phase.next = 0
             count.next = DECEL_MARGIN
             if step_zero:
                 rate.next = target_s
             else:
                 rate.next = start_s
-        elif not hold:
+        elif not feed.hold:
             phase.next = total[PHASE_BITS:]
             if total[PHASE_BITS]:
-                tick.next = 1
+                feed.tick.next = 1
                 if step_zero:
                     rate.next = target_s
                     count.next = DECEL_MARGIN
@@ -147,13 +149,10 @@ def feed_rate(clock, reset, run, hold, target, ramp_start, ramp_step, stop_left,
                     else:
                         rate.next = target_s
 
-    return settings, end_ahead, candidates, count_steps, accumulate
+    return register_settings, end_ahead, candidates, count_steps, accumulate
 
 
 def feed_rate_ports(coord_width=COORD_WIDTH.default):
-    """Fresh ports of ``feed_rate`` for conversion and benches: ``stop_left``
+    """Fresh ports of ``feed_rate`` for conversion and benches: ``feed.stop_left``
     as the ``DdaPort`` of ``coord_width`` carries it."""
-    return dict(clock=Signal(bool(0)), reset=card_reset(), run=Signal(bool(0)), hold=Signal(bool(0)),
-                target=Signal(intbv(4096)[RATE_BITS:]), ramp_start=Signal(intbv(4096)[RATE_BITS:]),
-                ramp_step=Signal(intbv(0)[STEP_BITS:]),
-                stop_left=DdaPort(coord_width).stop_left, tick=Signal(bool(0)))
+    return dict(clock=Signal(bool(0)), reset=card_reset(), settings=RampSettings(), feed=FeedPort(coord_width))

@@ -1,9 +1,8 @@
 """Registered STEP/DIR outputs of both axes with pulse width, DIR set-up/hold and polarity."""
 from myhdl import Signal, always_comb, always_seq, block, concat, enum, intbv, modbv
 
-from rtl.interfaces import AxisPulses, MotorPins, card_reset
+from rtl.interfaces import AxisPulses, MotorPins, PulseControl, StepPositions, card_reset
 
-TIMING_BITS = 8
 ENTRY_BITS = 4  # step_x, step_y, dir_x, dir_y
 QUEUE_DEPTH, IN_FLIGHT = 4, 2
 
@@ -14,24 +13,23 @@ def _check_queue(queue_depth, in_flight):
 
 
 @block
-def pulse_out(clock, reset, request, ready, active, clear, clear_position, width, setup, hold,
-              polarity_x, polarity_y, pins, position_x, position_y, *, queue_depth=QUEUE_DEPTH,
-              in_flight=IN_FLIGHT):
+def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUEUE_DEPTH, in_flight=IN_FLIGHT):
     """STEP and DIR pins of both axes, driven straight from flip-flops.
 
-    Ports: ``request`` (``AxisPulses``: the steps of one iteration, a
-    diagonal is both at once) goes into a small queue; ``ready`` is high while
-    the queue has room for ``in_flight`` more (the steps already on their way
-    from the interpolator when ``ready`` falls); ``active``: a step is queued
-    or on the pins.  ``clear`` drops the queue (a pulse already high ends
+    Ports (``rtl/interfaces.py``): ``request`` (``AxisPulses``: the steps
+    of one iteration, a diagonal is both at once) goes into a small queue;
+    ``control`` (``PulseControl``): ``ready`` is high while the queue has
+    room for ``in_flight`` more (the steps already on their way from the
+    interpolator when ``ready`` falls); ``active``: a step is queued or on
+    the pins.  ``clear`` drops the queue (a pulse already high ends
     normally); ``clear_position`` zeroes the positions.  Timing, shared by
     both axes so that a diagonal step leaves on both pins in the same clock:
     ``width``: STEP high time and minimum low time in clocks (>= 1);
     ``setup``: clocks DIR is stable before a STEP leading edge (>= 1);
     ``hold``: clocks DIR stays stable after a STEP trailing edge (>= 1);
     ``polarity_*``: 1 inverts that DIR pin.  ``pins``: ``MotorPins``.
-    ``position_*`` (signed) count the steps at the edge where the STEP pin
-    rises, so they tell what left the pins.
+    ``position`` (``StepPositions``: ``x``, ``y``, signed) counts the steps
+    at the edge where the STEP pin rises, so it tells what left the pins.
 
     width 1, setup 1, hold 1; X steps +, then -:
         clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
@@ -49,18 +47,21 @@ def pulse_out(clock, reset, request, ready, active, clear, clear_position, width
     head = Signal(intbv(0)[ENTRY_BITS:])
     level_x, level_y = Signal(bool(0)), Signal(bool(0))
     dir_level_x, dir_level_y = Signal(bool(1)), Signal(bool(1))
-    phase_clocks = Signal(intbv(0)[TIMING_BITS:])
-    low_clocks = Signal(intbv((1 << TIMING_BITS) - 1)[TIMING_BITS:])
+    timing_bits = len(control.width)
+    phase_clocks = Signal(intbv(0)[timing_bits:])
+    low_clocks = Signal(intbv((1 << timing_bits) - 1)[timing_bits:])
     take, turn = Signal(bool(0)), Signal(bool(0))
     starts, high_ends = Signal(bool(0)), Signal(bool(0))
-    phase_step, low_step = Signal(intbv(0)[TIMING_BITS:]), Signal(intbv(0)[TIMING_BITS:])  # 1, or 0 at the limit
+    phase_step, low_step = Signal(intbv(0)[timing_bits:]), Signal(intbv(0)[timing_bits:])  # 1, or 0 at the limit
     last_slot, free_slot = Signal(modbv(0)[index_bits:]), Signal(intbv(0)[index_bits:])
-    limit = (1 << TIMING_BITS) - 1
+    # a step's count, +1 or -1, as wide as the counters
+    delta_x, delta_y = (Signal(intbv(1, min=position.x.min, max=position.x.max)) for _ in range(2))
+    limit = (1 << timing_bits) - 1
 
     @always_comb
     def room():
-        ready.next = count <= queue_depth - in_flight
-        active.next = count != 0 or phase != phase_t.P_IDLE or pins.step_x or pins.step_y
+        control.ready.next = count <= queue_depth - in_flight
+        control.active.next = count != 0 or phase != phase_t.P_IDLE or pins.step_x or pins.step_y
 
     @always_comb
     def peek():
@@ -70,17 +71,17 @@ def pulse_out(clock, reset, request, ready, active, clear, clear_position, width
     def decide():
         turn.next = count != 0 and ((head[0] and head[2] != dir_level_x) or (head[1] and head[3] != dir_level_y))
         take.next = False
-        if phase != phase_t.P_HIGH and not clear and low_clocks >= width:
+        if phase != phase_t.P_HIGH and not control.clear and low_clocks >= control.width:
             if phase == phase_t.P_SETUP:
-                take.next = phase_clocks >= setup
+                take.next = phase_clocks >= control.setup
             elif count != 0:
                 take.next = not ((head[0] and head[2] != dir_level_x) or (head[1] and head[3] != dir_level_y))
 
     @always_comb
     def restart():
         # a phase (STEP high, or DIR set-up) starts: its clock count restarts at 1
-        starts.next = take or (phase == phase_t.P_IDLE and not clear and turn and low_clocks >= hold)
-        high_ends.next = phase == phase_t.P_HIGH and phase_clocks >= width
+        starts.next = take or (phase == phase_t.P_IDLE and not control.clear and turn and low_clocks >= control.hold)
+        high_ends.next = phase == phase_t.P_HIGH and phase_clocks >= control.width
         phase_step.next = 0
         if phase_clocks != limit:
             phase_step.next = 1
@@ -115,7 +116,7 @@ def pulse_out(clock, reset, request, ready, active, clear, clear_position, width
             level_x.next = head[0]
             level_y.next = head[1]
             phase.next = phase_t.P_HIGH
-        elif clear:
+        elif control.clear:
             phase.next = phase_t.P_IDLE
         elif phase == phase_t.P_IDLE and starts:
             if head[0]:
@@ -130,7 +131,7 @@ def pulse_out(clock, reset, request, ready, active, clear, clear_position, width
         # the last one held after that shift: slot count - 1 or count.
         pushed = request.step_x or request.step_y
         entry = concat(request.dir_y, request.dir_x, request.step_y, request.step_x)
-        if clear:
+        if control.clear:
             count.next = 0
         elif take:
             for i in range(queue_depth - 1):
@@ -148,42 +149,37 @@ def pulse_out(clock, reset, request, ready, active, clear, clear_position, width
         last_slot.next = count[index_bits:] - 1   # wraps: only used with count >= 1
         free_slot.next = count[index_bits:]
 
+    @always_comb
+    def step_sense():
+        # one adder per counter, adding +1 or -1, instead of an incrementer and a decrementer
+        delta_x.next = 1
+        if not dir_level_x:
+            delta_x.next = -1
+        delta_y.next = 1
+        if not dir_level_y:
+            delta_y.next = -1
+
     @always_seq(clock.posedge, reset=reset)
     def drive_pins():
         pins.step_x.next = level_x
         pins.step_y.next = level_y
-        pins.dir_x.next = dir_level_x ^ polarity_x
-        pins.dir_y.next = dir_level_y ^ polarity_y
-        if clear_position:
-            position_x.next = 0
-            position_y.next = 0
+        pins.dir_x.next = dir_level_x ^ control.polarity_x
+        pins.dir_y.next = dir_level_y ^ control.polarity_y
+        if control.clear_position:
+            position.x.next = 0
+            position.y.next = 0
         else:
             if level_x and not pins.step_x:
-                if dir_level_x:
-                    position_x.next = position_x + 1
-                else:
-                    position_x.next = position_x - 1
+                position.x.next = position.x + delta_x
             if level_y and not pins.step_y:
-                if dir_level_y:
-                    position_y.next = position_y + 1
-                else:
-                    position_y.next = position_y - 1
+                position.y.next = position.y + delta_y
 
-    return room, peek, decide, restart, count_clocks, step_phases, fill, slots, drive_pins
+    return room, peek, decide, restart, count_clocks, step_phases, fill, slots, step_sense, drive_pins
 
 
 def pulse_out_ports(queue_depth=QUEUE_DEPTH, in_flight=IN_FLIGHT):
     """Fresh ports of ``pulse_out`` for conversion and benches (the parameters
     are checked; they change no port)."""
     _check_queue(queue_depth, in_flight)
-    return dict(clock=Signal(bool(0)), reset=card_reset(), request=AxisPulses(), ready=Signal(bool(1)),
-                active=Signal(bool(0)), clear=Signal(bool(0)), clear_position=Signal(bool(0)),
-                width=Signal(intbv(1)[TIMING_BITS:]), setup=Signal(intbv(1)[TIMING_BITS:]),
-                hold=Signal(intbv(1)[TIMING_BITS:]), polarity_x=Signal(bool(0)),
-                polarity_y=Signal(bool(0)), pins=MotorPins(), position_x=position_signal(),
-                position_y=position_signal())
-
-
-def position_signal():
-    """A signed 32-bit step counter that wraps."""
-    return Signal(modbv(0, min=-(1 << 31), max=1 << 31))
+    return dict(clock=Signal(bool(0)), reset=card_reset(), request=AxisPulses(), control=PulseControl(),
+                pins=MotorPins(), position=StepPositions())

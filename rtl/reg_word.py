@@ -1,33 +1,36 @@
 """One function register, built from its entry in ``rtl/registers.py``."""
 from myhdl import Signal, always_comb, always_seq, block, concat, intbv
 
+from rtl.interfaces import ReadChain, RegisterBus, RegisterWord, SetPort, card_reset
 from rtl.registers import Register
 
 
 @block
-def reg_word(clock, reset, addr, write_addr, write_now, byte_mask, wdata, set_strobe, set_index,
-             set_value, hw_value, value, strobe, clamp_in, clamp_out, read_in, read_out, *, spec):
-    """The register ``spec`` (a ``rtl.registers.Register``) on the I/O bus.
+def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out):
+    """The register ``word.spec`` (a ``rtl.registers.Register``) on the I/O bus.
 
-    Ports: ``addr`` (byte offset of reads), ``write_addr`` (of writes),
-    ``write_now`` (an I/O write happens at this clock edge), ``byte_mask``
-    (byte enables of the write as a bit mask), ``wdata``; ``set_strobe``/``set_index``/``set_value`` (the SET command's
-    write port); ``hw_value`` (RO and WP: what reads return; W1C: bits the
-    hardware sets; W1S: bits the hardware clears); ``value`` (RW/W1C/W1S:
-    the register; WP: the last value written); ``strobe`` (WP: one clock per
-    write); ``clamp_out`` is ``clamp_in`` or'ed with a one-clock flag raised
-    when a write to this register was out of range and was clamped; the read
-    data of the registers before this one comes in on ``read_in`` and leaves,
-    with this register's when ``addr`` is its offset, on ``read_out`` (a
-    chain of ORs, so the decoder is generated from the table; reads have no
-    side effect here, and whether the bus reads at all is decided after the
-    chain's end).
+    Ports (``rtl/interfaces.py``): ``bus`` (``RegisterBus``: ``addr`` of
+    reads; ``write_addr``, ``write``, ``byte_mask`` and ``wdata`` of a
+    write); ``set_port`` (``SetPort``: the SET command's write); ``word``
+    (``RegisterWord``: ``hw`` is what RO and WP registers read, the bits a
+    W1C register sets, the bits a W1S register clears; ``value`` the
+    register, of WP the last value written; ``strobe`` one clock per WP
+    write; its ``spec`` says which register this is); ``chain_in`` and
+    ``chain_out`` (``ReadChain``): ``chain_out.clamped`` is
+    ``chain_in.clamped`` or'ed with a one-clock flag raised when a write to
+    this register was out of range and was clamped; the read data of the
+    registers before this one comes in on ``chain_in.data`` and leaves, with
+    this register's when ``bus.addr`` is its offset, on ``chain_out.data``
+    (a chain of ORs, so the decoder is generated from the table; reads have
+    no side effect here, and whether the bus reads at all is decided after
+    the chain's end).
 
         clock     _/~\\_/~\\_/~\\_
-        write_now _/~~~\\_______     addr = spec.offset
+        bus.write _/~~~\\_______     bus.write_addr = spec.offset
         value     =====X=new====
         strobe    _____/~~~\\___     (WP only)
     """
+    spec = word.spec
     width, offset = spec.width, spec.offset
     checked = spec.minimum is not None or spec.maximum is not None
     mine = Signal(bool(0))
@@ -37,46 +40,46 @@ def reg_word(clock, reset, addr, write_addr, write_now, byte_mask, wdata, set_st
     honoured = Signal(intbv(0)[width:])
     out_of_range = Signal(bool(0))
     clamped = Signal(bool(0))
-    set_mine = set_strobe if spec.set_index is not None else Signal(bool(0))
+    set_mine = set_port.strobe if spec.set_index is not None else Signal(bool(0))
     set_target = spec.set_index if spec.set_index is not None else 0
     stored = spec.access in ("RW", "W1C", "W1S", "WP")
-    shown = value if spec.access in ("RW", "W1C", "W1S") else hw_value
+    shown = word.value if spec.access in ("RW", "W1C", "W1S") else word.hw
 
     @always_comb
     def select():
-        mine.next = addr == offset
+        mine.next = bus.addr == offset
 
     @always_comb
     def select_write():
-        mine_write.next = write_addr == offset
+        mine_write.next = bus.write_addr == offset
 
     @always_comb
     def read_chain():
         if mine:
-            read_out.next = read_in | shown_wide
+            chain_out.data.next = chain_in.data | shown_wide
         else:
-            read_out.next = read_in
+            chain_out.data.next = chain_in.data
 
     @always_comb
     def clamp_chain():
-        clamp_out.next = clamp_in or clamped
+        chain_out.clamped.next = chain_in.clamped or clamped
 
     @always_comb
     def clamp_pass():
-        clamp_out.next = clamp_in
+        chain_out.clamped.next = chain_in.clamped
 
     span = 32 if checked else width
 
     @always_comb
     def merge_bytes():
-        if set_mine and set_index == set_target:
-            written.next = set_value[span:]
+        if set_mine and set_port.index == set_target:
+            written.next = set_port.value[span:]
         else:
-            written.next = (shown_wide[span:] & ~byte_mask[span:]) | (wdata[span:] & byte_mask[span:])
+            written.next = (shown_wide[span:] & ~bus.byte_mask[span:]) | (bus.wdata[span:] & bus.byte_mask[span:])
 
     @always_comb
     def mask_bytes():
-        written.next = wdata[span:] & byte_mask[span:]
+        written.next = bus.wdata[span:] & bus.byte_mask[span:]
 
     merge = merge_bytes if spec.access == "RW" else mask_bytes  # RW: shown_wide is the register
     generators = [select, read_chain, _widen(shown, shown_wide)]
@@ -84,8 +87,8 @@ def reg_word(clock, reset, addr, write_addr, write_now, byte_mask, wdata, set_st
         return generators + [clamp_pass]
     generators += [select_write, merge, _limit(written, honoured, out_of_range, spec)]
     generators.append(clamp_chain if spec.access in ("RW", "WP") else clamp_pass)
-    generators.append(_store(clock, reset, mine_write, write_now, set_mine, set_index, set_target, written,
-                             honoured, out_of_range, hw_value, value, strobe, clamped, spec))
+    generators.append(_store(clock, reset, mine_write, bus, set_mine, set_port, set_target, written, honoured,
+                             out_of_range, word, clamped, spec))
     return generators
 
 
@@ -170,52 +173,47 @@ def _limit(written, honoured, out_of_range, spec):
 
 
 @block
-def _store(clock, reset, mine, write_now, set_mine, set_index, set_target, written, honoured,
-           out_of_range, hw_value, value, strobe, clamped, spec):
+def _store(clock, reset, mine, bus, set_mine, set_port, set_target, written, honoured, out_of_range, word, clamped,
+           spec):
     """The register's flip-flops, by access kind."""
     kind = spec.access
 
     @always_seq(clock.posedge, reset=reset)
     def hold_rw():
         clamped.next = False
-        if (set_mine and set_index == set_target) or (write_now and mine):
-            value.next = honoured
+        if (set_mine and set_port.index == set_target) or (bus.write and mine):
+            word.value.next = honoured
             clamped.next = out_of_range
 
     @always_seq(clock.posedge, reset=reset)
     def clear_on_one():
-        if write_now and mine:
-            value.next = (value & ~honoured) | hw_value
+        if bus.write and mine:
+            word.value.next = (word.value & ~honoured) | word.hw
         else:
-            value.next = value | hw_value
+            word.value.next = word.value | word.hw
 
     @always_seq(clock.posedge, reset=reset)
     def set_on_one():
-        if write_now and mine:
-            value.next = (value & ~hw_value) | honoured
+        if bus.write and mine:
+            word.value.next = (word.value & ~word.hw) | honoured
         else:
-            value.next = value & ~hw_value
+            word.value.next = word.value & ~word.hw
 
     @always_seq(clock.posedge, reset=reset)
     def pulse_on_write():
-        strobe.next = False
+        word.strobe.next = False
         clamped.next = False
-        if write_now and mine:
-            value.next = honoured
-            strobe.next = True
+        if bus.write and mine:
+            word.value.next = honoured
+            word.strobe.next = True
             clamped.next = out_of_range
 
     return {"RW": hold_rw, "W1C": clear_on_one, "W1S": set_on_one, "WP": pulse_on_write}[kind]
 
 
 def reg_word_ports(spec):
-    """Fresh ports of ``reg_word`` for ``spec``."""
+    """Fresh ports of ``reg_word`` for ``spec`` (a ``rtl.registers.Register``)."""
     if not isinstance(spec, Register):
         raise ValueError("spec must be a rtl.registers.Register")
-    width = spec.width
-    return dict(clock=Signal(bool(0)), reset=None, addr=Signal(intbv(0)[16:]), write_addr=Signal(intbv(0)[16:]),
-                write_now=Signal(bool(0)), byte_mask=Signal(intbv(0)[32:]),
-                wdata=Signal(intbv(0)[32:]), set_strobe=Signal(bool(0)), set_index=Signal(intbv(0)[4:]),
-                set_value=Signal(intbv(0)[32:]), hw_value=Signal(intbv(0)[width:]),
-                value=Signal(intbv(spec.reset)[width:]), strobe=Signal(bool(0)),
-                clamp_in=Signal(bool(0)), clamp_out=Signal(bool(0)), read_in=Signal(intbv(0)[32:]), read_out=Signal(intbv(0)[32:]))
+    return dict(clock=Signal(bool(0)), reset=card_reset(), bus=RegisterBus(), set_port=SetPort(),
+                word=RegisterWord(spec), chain_in=ReadChain(), chain_out=ReadChain())

@@ -3,13 +3,15 @@ from myhdl import Signal, always_comb, always_seq, block, concat, intbv
 
 from rtl import parameters
 from rtl import registers as regmap
-from rtl.direct_pulse import COUNT_BITS, direct_pulse
+from rtl.direct_pulse import direct_pulse
 from rtl.feed_rate import feed_rate
-from rtl.interfaces import AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
+from rtl.interfaces import (ERROR_BITS, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, LocalBus,
+                            MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus,
+                            RegisterWord, SequencerControl, SetPort, StepPositions, StepRequest, card_reset)
 from rtl.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, VARIANTS
-from rtl.pulse_out import position_signal, pulse_out
+from rtl.pulse_out import pulse_out
 from rtl.reg_word import reg_word
-from rtl.sequencer import CODE_BITS, ERROR_BITS, sequencer
+from rtl.sequencer import sequencer
 from rtl.sync_fifo import sync_fifo
 
 INT_BITS = len(regmap.register("INT_STATUS").fields)
@@ -68,62 +70,57 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     level_bits = regmap.register("STATUS").field("FIFO_LEVEL").width
     level_wide = Signal(intbv(0)[level_bits:])
 
-    values = {r.name: Signal(intbv(r.reset)[r.width:]) for r in specs}
     # RO registers read the hardware, the capability registers the build
-    hw = {r.name: Signal(intbv(regmap.build_word(r, build) if r.access == "RO" else 0)[r.width:]) for r in specs}
-    strobes = {r.name: Signal(bool(0)) for r in specs}
-    reads = [Signal(intbv(0)[32:]) for _ in range(len(specs) + 1)]
-    clamps = [Signal(bool(0)) for _ in range(len(specs) + 1)]
+    words = {r.name: RegisterWord(r, regmap.build_word(r, build) if r.access == "RO" else 0) for r in specs}
+    values = {name: word.value for name, word in words.items()}
+    hw = {name: word.hw for name, word in words.items()}
+    strobes = {name: word.strobe for name, word in words.items()}
+    chain = [ReadChain() for _ in range(len(specs) + 1)]
+    register_bus = RegisterBus(len(local.addr), addr=local.addr, write_addr=written_addr, write=io_written,
+                               byte_mask=written_mask, wdata=written_data)
 
-    set_strobe, mark_strobe = Signal(bool(0)), Signal(bool(0))
-    set_index = Signal(intbv(0)[CODE_BITS:])
-    set_value = Signal(intbv(0)[32:])
-    mark_tag = Signal(intbv(0)[16:])
-    error_code = Signal(intbv(0)[ERROR_BITS:])
-    seq_busy, motion_run, clear_error, clear_position = (Signal(bool(0)) for _ in range(4))
-    enable, direct_mode = Signal(bool(0)), Signal(bool(0))
-    count_bounds = dict(min=-(1 << (COUNT_BITS - 1)), max=1 << (COUNT_BITS - 1))
-    seq_load = Signal(bool(0))
-    seq_count = [Signal(intbv(0, **count_bounds)) for _ in range(2)]
-    axis_load = [Signal(bool(0)) for _ in range(2)]
-    axis_count = [Signal(intbv(0, **count_bounds)) for _ in range(2)]
-    direct_request = [Signal(bool(0)) for _ in range(2)]
-    direct_dir = [Signal(bool(0)) for _ in range(2)]
-    direct_busy = [Signal(bool(0)) for _ in range(2)]
-    pulse_busy = Signal(bool(0))
+    set_port, mark = SetPort(), MarkPort()
+    seq_control = SequencerControl(clear=core_clear)
+    enable, clear_error, error_code = seq_control.enable, seq_control.clear_error, seq_control.error_code
+    seq_busy, motion_run, discard_on_clear = seq_control.busy, seq_control.motion_run, seq_control.discard_on_clear
+    clear_position, direct_mode = Signal(bool(0)), Signal(bool(0))
+    pulses = PulseCommand()
+    pulse_busy, outputs_busy, seq_load = pulses.busy, pulses.outputs_busy, pulses.load
     requests = AxisPulses()
-    out_ready, out_active = Signal(bool(0)), Signal(bool(0))
-    positions = [position_signal() for _ in range(2)]
-    polarity = [values["DIR_POLARITY"](i) for i in range(2)]
-    tick, hold = Signal(bool(0)), Signal(bool(0))
-    outputs_busy, discard_on_clear, fifo_flush = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    outputs = PulseControl(clear=core_clear, clear_position=clear_position, width=values["STEP_WIDTH"],
+                           setup=values["DIR_SETUP"], hold=values["DIR_HOLD"],
+                           polarity_x=values["DIR_POLARITY"](0), polarity_y=values["DIR_POLARITY"](1))
+    out_ready, out_active = outputs.ready, outputs.active
+    position = StepPositions()
+    direct = [DirectPulseCommand(period=values[f"PULSE_PERIOD_{name}"], clear=core_clear,
+                                 remaining=hw[f"PULSE_COUNT_{name}"]) for name in "XY"]
+    direct_out = [StepRequest(ready=out_ready) for _ in "XY"]
+    axis_load, axis_count, direct_busy = ([d.load for d in direct], [d.count for d in direct],
+                                          [d.busy for d in direct])
+    direct_request, direct_dir = [o.step for o in direct_out], [o.dir for o in direct_out]
+    feed = FeedPort(dda.coord_width, run=motion_run, stop_left=dda.stop_left)
+    tick, hold = feed.tick, feed.hold
+    fifo_flush = Signal(bool(0))
     requested_before, out_active_before = Signal(bool(0)), Signal(bool(0))
     any_busy, busy_before, done_flag, low_before, error_before = (Signal(bool(0)) for _ in range(5))
-    pos_y_snapshot = position_signal()
+    pos_y_snapshot = Signal(position.y.val)
 
     units = [sync_fifo(clock, reset, push, local.wdata, fifo_pop, fifo_dout, fifo_flush, fifo_level,
                        fifo_empty, fifo_full, local.room, depth=fifo_depth)]
     for i, spec in enumerate(specs):
-        units.append(reg_word(clock, reset, local.addr, written_addr, io_written, written_mask, written_data,
-                              set_strobe, set_index, set_value, hw[spec.name], values[spec.name],
-                              strobes[spec.name], clamps[i], clamps[i + 1], reads[i], reads[i + 1],
-                              spec=spec))
-    units.append(sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, core_clear,
-                           clear_error, dda, seq_load, seq_count[0], seq_count[1], pulse_busy, outputs_busy,
-                           set_strobe, set_index, set_value, mark_strobe, mark_tag, error_code,
-                           seq_busy, motion_run, discard_on_clear, set_indices=tuple(regmap.SET_TARGETS)))
-    units.append(feed_rate(clock, reset, motion_run, hold, values["FEED_RATE"], values["RAMP_START"],
-                           values["RAMP_STEP"], dda.stop_left, tick))
-    for axis, name in enumerate("XY"):
-        units.append(direct_pulse(clock, reset, axis_load[axis], axis_count[axis],
-                                  values[f"PULSE_PERIOD_{name}"], out_ready, core_clear,
-                                  direct_request[axis], direct_dir[axis], hw[f"PULSE_COUNT_{name}"],
-                                  direct_busy[axis]))
-    units.append(pulse_out(clock, reset, requests, out_ready, out_active, core_clear, clear_position,
-                           values["STEP_WIDTH"], values["DIR_SETUP"], values["DIR_HOLD"], polarity[0],
-                           polarity[1], pins, positions[0], positions[1]))
+        units.append(reg_word(clock, reset, bus=register_bus, set_port=set_port, word=words[spec.name],
+                              chain_in=chain[i], chain_out=chain[i + 1]))
+    units.append(sequencer(clock, reset, fifo=FifoRead(dout=fifo_dout, empty=fifo_empty, pop=fifo_pop),
+                           control=seq_control, dda=dda, pulses=pulses, set_port=set_port, mark=mark,
+                           set_indices=tuple(regmap.SET_TARGETS)))
+    settings = RampSettings(target=values["FEED_RATE"], ramp_start=values["RAMP_START"],
+                            ramp_step=values["RAMP_STEP"])
+    units.append(feed_rate(clock, reset, settings=settings, feed=feed))
+    for axis in range(2):
+        units.append(direct_pulse(clock, reset, command=direct[axis], out=direct_out[axis]))
+    units.append(pulse_out(clock, reset, request=requests, control=outputs, pins=pins, position=position))
 
-    read_end, clamp_end = reads[-1], clamps[-1]
+    read_end, clamp_end = chain[-1].data, chain[-1].clamped
     control, command, command_strobe = values["CONTROL"], values["COMMAND"], strobes["COMMAND"]
     enable_bit, mode_bit = _bit("CONTROL", "ENABLE"), _bit("CONTROL", "MODE")
     reset_bit, clear_bit, zero_bit = (_bit("COMMAND", f) for f in ("SOFT_RESET", "CLEAR_ERROR", "CLEAR_POSITION"))
@@ -204,7 +201,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     def copy_level():   # a FIFO of 2**15 words: the level fills the field
         level_wide.next = fifo_level
 
-    position_y = positions[1]
+    position_y = position.y
     direct_busy_x, direct_busy_y = direct_busy
     direct_request_x, direct_request_y = direct_request
     direct_dir_x, direct_dir_y = direct_dir
@@ -242,13 +239,14 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
               merge_requests, widen_level if level_pad else copy_level]
     for axis, name in enumerate("XY"):
         units.append(_axis_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"],
-                                  seq_load, seq_count[axis], axis_load[axis], axis_count[axis]))
+                                  seq_load, (pulses.count_x, pulses.count_y)[axis], axis_load[axis],
+                                  axis_count[axis]))
     units.append(_status(clock, reset, any_busy, busy_before, done_flag, dda.quadrant, error_code,
                      fifo_empty, fifo_full, level_wide, hw["STATUS"]))
-    units.append(_interrupts(clock, reset, any_busy, busy_before, error_code, error_before, mark_strobe,
-                         mark_tag, hw["MARK_TAG"], level_wide, values["LOW_WATER"], low_before, clamp_end,
+    units.append(_interrupts(clock, reset, any_busy, busy_before, error_code, error_before, mark.strobe,
+                         mark.tag, hw["MARK_TAG"], level_wide, values["LOW_WATER"], low_before, clamp_end,
                          hw["INT_STATUS"], values["INT_STATUS"], values["INT_ENABLE"], irq))
-    units.append(_positions(positions[0], pos_y_snapshot, hw["POS_X"], hw["POS_Y"]))
+    units.append(_positions(position.x, pos_y_snapshot, hw["POS_X"], hw["POS_Y"]))
     return units
 
 

@@ -2,13 +2,8 @@
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
 from rtl import instructions as isa
-from rtl.direct_pulse import COUNT_BITS
-from rtl.interfaces import DdaPort, card_reset
+from rtl.interfaces import DdaPort, FifoRead, MarkPort, PulseCommand, SequencerControl, SetPort, card_reset
 from rtl.parameters import COORD_WIDTH
-
-CODE_BITS = 4
-ERROR_BITS = 4
-
 
 def _opcode_rom(value_of):
     """A 16-entry tuple, indexed by opcode, converted to a case statement."""
@@ -27,51 +22,62 @@ def _field(op_name, field_name):
 
 
 @block
-def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clear_error,
-              dda, pulse_load, pulse_count_x, pulse_count_y, pulse_busy, outputs_busy,
-              set_strobe, set_index, set_value, mark_strobe, mark_tag,
-              error_code, busy, motion_run, discard_on_clear, *, set_indices=(0,)):
+def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_indices=(0,)):
     """Fetch, check and execute the FIFO's commands (``docs/instructions.md``).
 
-    Fetch: the FIFO is read one word per clock (``fifo_pop``; the word arrives
-    in ``fifo_dout`` the next clock) into the next-instruction register while
-    the current command runs.  Execute: LINE/ARC drive ``dda`` (a one-clock
-    ``start`` with the operands and BLEND) as soon as the DDA is ``ready``,
-    also while the move before still runs, so chained segments leave no gap;
-    PULSE loads both direct pulse generators (``pulse_load``,
-    ``pulse_count_*``) and waits while ``pulse_busy``; DWELL counts clocks
-    once the pulse outputs are quiet (``outputs_busy`` low: no step request
-    pending and the last step has left the pins); SET gives a ``set_strobe``
-    with ``set_index``/``set_value``; MARK a ``mark_strobe`` with
-    ``mark_tag``.  SET, DWELL, MARK, PULSE and a malformed command wait until
-    the motion before them has ended (DDA idle, outputs quiet), so a MARK
-    means "reached" and the moves before a bad command complete.  A malformed
-    command, or a move the DDA rejects, sets ``error_code`` and nothing more
-    executes until ``clear_error``; after BAD_OPCODE the stream cannot be
-    framed any more, so ``discard_on_clear`` tells the FIFO to empty itself on
-    that ``clear_error`` (the fetch restarts at a header).  ``enable`` low
-    holds the queue; ``clear`` (soft reset) drops everything.  ``busy``:
-    something is running or queued; ``motion_run``: a path is under way
-    (feed-rate ramp; high across chained segments).  ARC/LINE operands
-    must fit ``dda.coord_width``.  Parameter: ``set_indices`` (SET indices
-    that exist).
+    Ports (``rtl/interfaces.py``): ``fifo`` (``FifoRead``), ``control``
+    (``SequencerControl``), ``dda`` (``DdaPort``), ``pulses``
+    (``PulseCommand``), ``set_port`` (``SetPort``), ``mark`` (``MarkPort``).
+    Fetch: the FIFO is read one word per clock (``fifo.pop``; the word
+    arrives in ``fifo.dout`` the next clock) into the next-instruction
+    register while the current command runs.  Execute: LINE/ARC drive
+    ``dda`` (a one-clock ``start`` with the operands and BLEND) as soon as
+    the DDA is ``ready``, also while the move before still runs, so chained
+    segments leave no gap; PULSE loads both direct pulse generators
+    (``pulses.load``, ``pulses.count_*``) and waits while ``pulses.busy``;
+    DWELL counts clocks once the pulse outputs are quiet
+    (``pulses.outputs_busy`` low: no step request pending and the last step
+    has left the pins); SET gives a ``set_port.strobe`` with its index and
+    value; MARK a ``mark.strobe`` with its tag.  SET, DWELL, MARK, PULSE and
+    a malformed command wait until the motion before them has ended (DDA
+    idle, outputs quiet), so a MARK means "reached" and the moves before a
+    bad command complete.  A malformed command, or a move the DDA rejects,
+    sets ``control.error_code`` and nothing more executes until
+    ``control.clear_error``; after BAD_OPCODE the stream cannot be framed
+    any more, so ``control.discard_on_clear`` tells the FIFO to empty itself
+    on that clear (the fetch restarts at a header).  ``control.enable`` low
+    holds the queue; ``control.clear`` (soft reset) drops everything.
+    ``control.busy``: something is running or queued;
+    ``control.motion_run``: a path is under way (feed-rate ramp; high across
+    chained segments).  ARC/LINE operands must fit ``dda.coord_width``,
+    PULSE counts ``pulses.count_x``'s width.  Parameter: ``set_indices`` (SET
+    indices that exist).
 
         clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
         fifo_pop  _/~~~~~~~~~~~\\_______________     LINE: 3 words
         next ok   _____________/~~~\\___________
         dda.start _________________/~~~\\_______     (dda.ready high)
     """
-    coord_width = dda.coord_width
+    coord_width, count_bits, error_bits = dda.coord_width, len(pulses.count_x), len(control.error_code)
     seq_t = enum("S_IDLE", "S_MOTION", "S_PULSE", "S_DWELL", "S_ERROR")
     state = Signal(seq_t.S_IDLE)
-    header = Signal(intbv(0)[32:])
+    # the instruction register keeps the bits something reads: the opcode, the
+    # header's fields, SET's and DWELL's 32-bit operand 0, and of the other
+    # operands the coordinate and count bits (their checks read the arriving word)
+    field_bits = max(lsb + width for op in isa.OPCODES for _, lsb, width, _ in op.header_fields)
+    if field_bits > isa.OPCODE_LSB:
+        raise ValueError("the header's fields overlap the opcode")
+    header = Signal(intbv(0)[field_bits:])
     if isa.MAX_OPERANDS != 4:
         raise ValueError("the instruction register holds four operand words")
-    operand_0, operand_1, operand_2, operand_3 = (Signal(intbv(0)[32:]) for _ in range(4))
+    operand_0 = Signal(intbv(0)[32:])
+    operand_1 = Signal(intbv(0)[max(coord_width, count_bits):])
+    operand_2, operand_3 = Signal(intbv(0)[coord_width:]), Signal(intbv(0)[coord_width:])
+    operand_1_bits = len(operand_1)
     fetched = Signal(intbv(0, min=0, max=isa.MAX_OPERANDS + 2))
     word_due = Signal(bool(0))
     next_valid = Signal(bool(0))
-    next_error = Signal(intbv(0)[ERROR_BITS:])
+    next_error = Signal(intbv(0)[len(control.error_code):])
     next_motion, arriving_moves = Signal(bool(0)), Signal(bool(0))
     issue = Signal(bool(0))
     finishing = Signal(bool(0))
@@ -99,7 +105,7 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
     header_mask_low = _opcode_rom(lambda op: op.header_mask & 0xFFFF)
     coord_operands = _opcode_rom(lambda op: _operand_mask(op, ("DX", "DY", "XS", "YS", "XE", "YE")))
     count_operands = _opcode_rom(lambda op: _operand_mask(op, ("COUNT_X", "COUNT_Y")))
-    set_ok = tuple(int(i in set_indices) for i in range(16))
+    set_ok = tuple(int(i in set_indices) for i in range(1 << len(set_port.index)))
     code = {op.name: op.code for op in isa.OPCODES}
     line_op, arc_op, pulse_op, set_op, dwell_op, mark_op = (
         code["LINE"], code["ARC"], code["PULSE"], code["SET"], code["DWELL"], code["MARK"])
@@ -116,44 +122,40 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
     tag_lsb, tag_msb = _field("MARK", "TAG")
 
     @always_comb
-    def split_header():
-        opcode.next = header[32:isa.OPCODE_LSB]
-
-    @always_comb
     def lookup_arriving():
-        arriving_count.next = operand_count[fifo_dout[32:isa.OPCODE_LSB]]
+        arriving_count.next = operand_count[fifo.dout[32:isa.OPCODE_LSB]]
 
     @always_comb
     def lookup_arriving_kind():
-        arriving_moves.next = opcode_moves[fifo_dout[32:isa.OPCODE_LSB]]
+        arriving_moves.next = opcode_moves[fifo.dout[32:isa.OPCODE_LSB]]
 
     @always_comb
     def lookup_count():
-        next_count.next = operand_count[header[32:isa.OPCODE_LSB]]
+        next_count.next = operand_count[opcode]
 
     @always_comb
     def lookup_valid():
-        next_known.next = opcode_known[fifo_dout[32:isa.OPCODE_LSB]]
+        next_known.next = opcode_known[fifo.dout[32:isa.OPCODE_LSB]]
 
     @always_comb
     def lookup_mask_high():
-        mask_high.next = header_mask_high[fifo_dout[32:isa.OPCODE_LSB]]
+        mask_high.next = header_mask_high[fifo.dout[32:isa.OPCODE_LSB]]
 
     @always_comb
     def lookup_mask_low():
-        mask_low.next = header_mask_low[fifo_dout[32:isa.OPCODE_LSB]]
+        mask_low.next = header_mask_low[fifo.dout[32:isa.OPCODE_LSB]]
 
     @always_comb
     def lookup_coords():
-        coord_mask.next = coord_operands[header[32:isa.OPCODE_LSB]]
+        coord_mask.next = coord_operands[opcode]
 
     @always_comb
     def lookup_counts():
-        count_mask.next = count_operands[header[32:isa.OPCODE_LSB]]
+        count_mask.next = count_operands[opcode]
 
     @always_comb
     def lookup_set():
-        set_known.next = set_ok[fifo_dout[index_msb:index_lsb]]
+        set_known.next = set_ok[fifo.dout[index_msb:index_lsb]]
 
     @always_comb
     def fetch_request():
@@ -163,18 +165,18 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
                 more = arriving_count != 0
             else:
                 more = fetched < next_count
-        fifo_pop.next = (not fifo_empty and not next_valid and more and not clear
+        fifo.pop.next = (not fifo.empty and not next_valid and more and not control.clear
                          and state != seq_t.S_ERROR)
 
     @always_comb
     def discarding():
-        discard_on_clear.next = state == seq_t.S_ERROR and error_code == E_BAD_OPCODE
-        discard.next = clear_error and state == seq_t.S_ERROR and error_code == E_BAD_OPCODE
+        control.discard_on_clear.next = state == seq_t.S_ERROR and control.error_code == E_BAD_OPCODE
+        discard.next = control.clear_error and state == seq_t.S_ERROR and control.error_code == E_BAD_OPCODE
 
     @always_seq(clock.posedge, reset=reset)
     def fetch():
-        word_due.next = fifo_pop
-        if clear or discard:
+        word_due.next = fifo.pop
+        if control.clear or discard:
             word_due.next = 0
             fetched.next = 0
             next_valid.next = 0
@@ -183,11 +185,12 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
                 next_valid.next = 0
             if word_due:
                 if fetched == 0:
-                    header.next = fifo_dout
+                    opcode.next = fifo.dout[32:isa.OPCODE_LSB]
+                    header.next = fifo.dout[field_bits:]
                     next_motion.next = arriving_moves
                     bad_opcode.next = not next_known
-                    bad_header_bits.next = (fifo_dout[32:16] & ~mask_high) != 0 or (fifo_dout[16:] & ~mask_low) != 0
-                    bad_set_index.next = fifo_dout[32:isa.OPCODE_LSB] == set_op and not set_known
+                    bad_header_bits.next = (fifo.dout[32:16] & ~mask_high) != 0 or (fifo.dout[16:] & ~mask_low) != 0
+                    bad_set_index.next = fifo.dout[32:isa.OPCODE_LSB] == set_op and not set_known
                     bad_operand.next = 0
                     if arriving_count == 0:
                         next_valid.next = 1
@@ -195,13 +198,13 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
                         fetched.next = 1
                 else:
                     if fetched == 1:
-                        operand_0.next = fifo_dout
+                        operand_0.next = fifo.dout
                     elif fetched == 2:
-                        operand_1.next = fifo_dout
+                        operand_1.next = fifo.dout[operand_1_bits:]
                     elif fetched == 3:
-                        operand_2.next = fifo_dout
+                        operand_2.next = fifo.dout[coord_width:]
                     else:
-                        operand_3.next = fifo_dout
+                        operand_3.next = fifo.dout[coord_width:]
                     if ((coord_mask[fetched - 1] and not arriving_coord_fits)
                             or (count_mask[fetched - 1] and not arriving_count_fits)):
                         bad_operand.next = 1
@@ -213,7 +216,7 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
 
     @always_comb
     def check():
-        result = intbv(0)[ERROR_BITS:]
+        result = intbv(0)[error_bits:]
         result[:] = E_NONE
         if bad_opcode:
             result[:] = E_BAD_OPCODE
@@ -236,9 +239,9 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
         elif state == seq_t.S_MOTION:
             state_over.next = motion_done
         elif state == seq_t.S_PULSE:
-            state_over.next = not pulse_busy
+            state_over.next = not pulses.busy
         elif state == seq_t.S_DWELL:
-            state_over.next = dwell_left <= 1 and not outputs_busy
+            state_over.next = dwell_left <= 1 and not pulses.outputs_busy
         else:
             state_over.next = False
 
@@ -251,50 +254,50 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
             else:
                 finishing.next = state_over
         else:
-            finishing.next = state_over and not outputs_busy
+            finishing.next = state_over and not pulses.outputs_busy
 
     @always_comb
     def issuing():
-        issue.next = next_valid and enable and finishing and not clear
+        issue.next = next_valid and control.enable and finishing and not control.clear
 
     @always_seq(clock.posedge, reset=reset)
     def execute():
         dda.start.next = 0
-        pulse_load.next = 0
-        set_strobe.next = 0
-        mark_strobe.next = 0
-        if clear:
+        pulses.load.next = 0
+        set_port.strobe.next = 0
+        mark.strobe.next = 0
+        if control.clear:
             state.next = seq_t.S_IDLE
-            error_code.next = E_NONE
+            control.error_code.next = E_NONE
         elif state == seq_t.S_ERROR:
-            if clear_error:
+            if control.clear_error:
                 state.next = seq_t.S_IDLE
-                error_code.next = E_NONE
+                control.error_code.next = E_NONE
         elif state == seq_t.S_MOTION and dda.error and not dda.start:
             state.next = seq_t.S_ERROR
-            error_code.next = E_DDA_REJECTED
+            control.error_code.next = E_DDA_REJECTED
         elif issue:
             if next_error != E_NONE:
                 state.next = seq_t.S_ERROR
-                error_code.next = next_error
+                control.error_code.next = next_error
             elif opcode == line_op or opcode == arc_op:
                 state.next = seq_t.S_MOTION
                 dda.start.next = 1
             elif opcode == pulse_op:
                 state.next = seq_t.S_PULSE
-                pulse_load.next = 1
+                pulses.load.next = 1
             elif opcode == dwell_op:
                 state.next = seq_t.S_DWELL
                 dwell_left.next = operand_0
             else:
                 state.next = seq_t.S_IDLE
                 if opcode == set_op:
-                    set_strobe.next = 1
+                    set_port.strobe.next = 1
                 elif opcode == mark_op:
-                    mark_strobe.next = 1
+                    mark.strobe.next = 1
         elif state_over:
             state.next = seq_t.S_IDLE
-        elif state == seq_t.S_DWELL and not outputs_busy and dwell_left != 0:
+        elif state == seq_t.S_DWELL and not pulses.outputs_busy and dwell_left != 0:
             dwell_left.next = dwell_left - 1
 
     @always_comb
@@ -318,20 +321,20 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
             dda.ys.next = operand_1[coord_width:].signed()
             dda.xe.next = operand_2[coord_width:].signed()
             dda.ye.next = operand_3[coord_width:].signed()
-        pulse_count_x.next = operand_0[COUNT_BITS:].signed()
-        pulse_count_y.next = operand_1[COUNT_BITS:].signed()
-        set_index.next = header[index_msb:index_lsb]
-        set_value.next = operand_0
-        mark_tag.next = header[tag_msb:tag_lsb]
+        pulses.count_x.next = operand_0[count_bits:].signed()
+        pulses.count_y.next = operand_1[count_bits:].signed()
+        set_port.index.next = header[index_msb:index_lsb]
+        set_port.value.next = operand_0
+        mark.tag.next = header[tag_msb:tag_lsb]
 
     @always_comb
     def report():
-        busy.next = (state == seq_t.S_MOTION or state == seq_t.S_PULSE or state == seq_t.S_DWELL
-                     or next_valid or word_due or fetched != 0 or not fifo_empty)
-        motion_run.next = state == seq_t.S_MOTION
+        control.busy.next = (state == seq_t.S_MOTION or state == seq_t.S_PULSE or state == seq_t.S_DWELL
+                             or next_valid or word_due or fetched != 0 or not fifo.empty)
+        control.motion_run.next = state == seq_t.S_MOTION
 
-    fits = [_fits(fifo_dout, arriving_coord_fits, coord_width), _fits(fifo_dout, arriving_count_fits, COUNT_BITS)]
-    return (fits, split_header, lookup_arriving, lookup_arriving_kind, lookup_count, lookup_valid, lookup_mask_high, lookup_mask_low,
+    fits = [_fits(fifo.dout, arriving_coord_fits, coord_width), _fits(fifo.dout, arriving_count_fits, count_bits)]
+    return (fits, lookup_arriving, lookup_arriving_kind, lookup_count, lookup_valid, lookup_mask_high, lookup_mask_low,
             lookup_coords, lookup_counts, lookup_set, fetch_request, discarding, fetch, check, motion_status,
             completion, readiness, issuing, execute, present, report)
 
@@ -351,14 +354,5 @@ def _fits(operand, fits, width):
 
 def sequencer_ports(coord_width=COORD_WIDTH.default):
     """Fresh ports of ``sequencer`` for conversion and benches."""
-    count = dict(min=-(1 << (COUNT_BITS - 1)), max=1 << (COUNT_BITS - 1))
-    return dict(clock=Signal(bool(0)), reset=card_reset(), fifo_dout=Signal(intbv(0)[32:]),
-                fifo_empty=Signal(bool(1)), fifo_pop=Signal(bool(0)), enable=Signal(bool(0)),
-                clear=Signal(bool(0)), clear_error=Signal(bool(0)), dda=DdaPort(coord_width),
-                pulse_load=Signal(bool(0)), pulse_count_x=Signal(intbv(0, **count)),
-                pulse_count_y=Signal(intbv(0, **count)), pulse_busy=Signal(bool(0)),
-                outputs_busy=Signal(bool(0)),
-                set_strobe=Signal(bool(0)), set_index=Signal(intbv(0)[CODE_BITS:]),
-                set_value=Signal(intbv(0)[32:]), mark_strobe=Signal(bool(0)),
-                mark_tag=Signal(intbv(0)[16:]), error_code=Signal(intbv(0)[ERROR_BITS:]),
-                busy=Signal(bool(0)), motion_run=Signal(bool(0)), discard_on_clear=Signal(bool(0)))
+    return dict(clock=Signal(bool(0)), reset=card_reset(), fifo=FifoRead(), control=SequencerControl(),
+                dda=DdaPort(coord_width), pulses=PulseCommand(), set_port=SetPort(), mark=MarkPort())

@@ -70,7 +70,7 @@ def _run(name, dut, ports, step, cycles, groups):
 def test_pulse_out_timing(seed, cosim):
     rng = random.Random(seed)
     ports = pulse_out_ports()
-    request, pins = ports["request"], ports["pins"]
+    request, control, pins, position = ports["request"], ports["control"], ports["pins"], ports["position"]
     model = PulseOutModel()
     timing = {}
     rises = []
@@ -80,8 +80,8 @@ def test_pulse_out_timing(seed, cosim):
             model.clock()  # the first edge after reset, inputs idle
         assert (bool(pins.step_x), bool(pins.step_y)) == model.step_pins, f"STEP at clock {index}"
         assert (bool(pins.dir_x), bool(pins.dir_y)) == model.dir_pins, f"DIR at clock {index}"
-        assert [int(ports["position_x"]), int(ports["position_y"])] == model.positions, f"clock {index}"
-        assert bool(ports["ready"]) == model.ready and bool(ports["active"]) == model.active
+        assert [int(position.x), int(position.y)] == model.positions, f"clock {index}"
+        assert bool(control.ready) == model.ready and bool(control.active) == model.active
         if index % 300 == 0:
             timing.update(width=rng.randint(1, 4), setup=rng.randint(1, 4), hold=rng.randint(1, 4))
             timing["polarity"] = (rng.random() < 0.5, rng.random() < 0.5)
@@ -93,9 +93,9 @@ def test_pulse_out_timing(seed, cosim):
         request.dir_x.next, request.dir_y.next = dirs
         for key, value in dict(flags, **timing).items():
             if key == "polarity":
-                ports["polarity_x"].next, ports["polarity_y"].next = value
+                control.polarity_x.next, control.polarity_y.next = value
             else:
-                ports[key].next = value
+                getattr(control, key).next = value
         was_high = model.step_pins[0]
         model.clock(steps, dirs, **flags, **timing)
         if model.step_pins[0] and not was_high:
@@ -103,7 +103,7 @@ def test_pulse_out_timing(seed, cosim):
 
     wave, cosim = _run(f"pulse_out_{seed}_{'icarus' if cosim else 'myhdl'}",
                        _dut(pulse_out, "pulse_out", ports, cosim), ports, step, 1200,
-                       {"request": ["request_step_x", "request_dir_x", "ready"],
+                       {"request": ["request_step_x", "request_dir_x", "control_ready"],
                         "pins": ["pins_step_x", "pins_dir_x", "pins_step_y", "pins_dir_y", "position_x"]})
     assert len(rises) > 100
     if not cosim:
@@ -116,12 +116,13 @@ def test_feed_rate_ramp(cosim):
     like a DDA (sometimes a clock late, sometimes blending: all ones)."""
     rng = random.Random(7)
     ports = feed_rate_ports()
+    ramp, feed = ports["settings"], ports["feed"]
     model = FeedRateModel()
     ticks, left = [], {"count": None, "late": False}
-    all_ones = (1 << len(ports["stop_left"])) - 1
+    all_ones = (1 << len(feed.stop_left)) - 1
 
     def step(index):
-        assert bool(ports["tick"]) == model.tick, f"tick at clock {index}"
+        assert bool(feed.tick) == model.tick, f"tick at clock {index}"
         ticks.append(model.tick)
         if index % 400 == 0:
             settings = dict(target=rng.choice([1, 3000, 20000, RATE_MAX]), ramp_start=rng.randint(1, RATE_MAX),
@@ -131,17 +132,17 @@ def test_feed_rate_ramp(cosim):
             step.settings = settings
             left.update(count=rng.choice([None, rng.randint(20, 300)]), late=rng.random() < 0.5)
         if index % 400 == 200:
-            ports["target"].next = step.settings["target"]
+            ramp.target.next = step.settings["target"]
         if index % 400 < 2:
             for key, value in step.settings.items():
-                ports[key].next = value
+                getattr(ramp, key).next = value
         inputs = dict(run=index % 400 > 5, hold=rng.random() < 0.1,
-                      target=int(ports["target"].next), ramp_start=int(ports["ramp_start"].next),
-                      ramp_step=int(ports["ramp_step"].next),
+                      target=int(ramp.target.next), ramp_start=int(ramp.ramp_start.next),
+                      ramp_step=int(ramp.ramp_step.next),
                       stop_left=all_ones if left["count"] is None else left["count"])
-        ports["run"].next = inputs["run"]
-        ports["hold"].next = inputs["hold"]
-        ports["stop_left"].next = inputs["stop_left"]
+        feed.run.next = inputs["run"]
+        feed.hold.next = inputs["hold"]
+        feed.stop_left.next = inputs["stop_left"]
         model.clock(**inputs)
         if left["count"] and model.tick and not left["late"]:
             left["count"] -= 1
@@ -149,7 +150,7 @@ def test_feed_rate_ramp(cosim):
             left["count"] -= 1
 
     _run(f"feed_rate_{'icarus' if cosim else 'myhdl'}", _dut(feed_rate, "feed_rate", ports, cosim),
-         ports, step, 2400, {"feed": ["run", "hold", "target", "stop_left", "tick"]})
+         ports, step, 2400, {"feed": ["feed_run", "feed_hold", "settings_target", "feed_stop_left", "feed_tick"]})
     assert sum(ticks) > 200
 
 
@@ -205,23 +206,25 @@ def test_feed_rate_model_is_a_trapezoid(iterations, target, ramp_start, ramp_ste
 def test_direct_pulse_counts(cosim):
     rng = random.Random(3)
     ports = direct_pulse_ports()
+    command, out = ports["command"], ports["out"]
     model = DirectPulseModel()
 
     def step(index):
-        assert bool(ports["request"]) == model.request, f"request at clock {index}"
-        assert int(ports["remaining"]) == model.remaining
+        assert bool(out.step) == model.request, f"request at clock {index}"
+        assert int(command.remaining) == model.remaining
         if model.request:
-            assert bool(ports["request_dir"]) == model.direction
+            assert bool(out.dir) == model.direction
         inputs = dict(load=model.remaining == 0 and rng.random() < 0.1,
                       count=rng.randint(-20, 20), period=rng.randint(1, 5),
                       ready=rng.random() < 0.8, clear=rng.random() < 0.003)
-        assert bool(ports["busy"]) == model.busy(bool(ports["load"]))
+        assert bool(command.busy) == model.busy(bool(command.load))
         for key, value in inputs.items():
-            ports[key].next = value
+            getattr(out if key == "ready" else command, key).next = value
         model.clock(**inputs)
 
     _run(f"direct_pulse_{'icarus' if cosim else 'myhdl'}", _dut(direct_pulse, "direct_pulse", ports, cosim),
-         ports, step, 1500, {"direct": ["load", "count", "period", "request", "remaining"]})
+         ports, step, 1500, {"direct": ["command_load", "command_count", "command_period", "out_step",
+                                        "command_remaining"]})
 
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])

@@ -168,7 +168,7 @@ MUST_SHOW = {
     "pci": ["bus_ad_view[31:0]", "bus_cbe[3:0]", "local_addr[11:0]", "local_wdata[31:0]", ".state"],
     "pci_verilog": ["bus_ad_view[31:0]", "bus_cbe[3:0]", "local_rdata[31:0]"],
     "card": ["bus_ad_view[31:0]", "bus_cbe[3:0]", "pins_step_x", "pins_dir_x", "pins_step_y", "pins_dir_y",
-             "position_x[31:0]", "position_y[31:0]", "sequencer.opcode[3:0]", "sequencer.header[31:0]"],
+             "position_x[31:0]", "position_y[31:0]", "sequencer.opcode[3:0]", "sequencer.header[16:0]"],
     "core": ["local_addr[15:0]", "pins_step_x", "pins_dir_y", "position_x[31:0]", "sequencer.state",
              "sequencer.operand_0[31:0]", "feed_rate.rate[15:0]"],
     "dda": ["cmd_xs[23:0]", "cmd_ye[23:0]", "dda_arc.state", "integrand_x[23:0]", "integrand_y[23:0]",

@@ -28,7 +28,7 @@ def test_the_narrowest_coordinates_are_the_narrowest_the_feed_rate_takes():
     """STOP_LEFT (coord_width + 3 bits) must be wider than the ramp's 16-bit count."""
     assert COUNT_BITS == 16 and COORD_WIDTH.minimum == 14
     narrow = feed_rate_ports()
-    narrow["stop_left"] = DdaPort(COORD_WIDTH.minimum - 1).stop_left
+    narrow["feed"].stop_left = DdaPort(COORD_WIDTH.minimum - 1).stop_left
     with pytest.raises(ValueError, match="stop_left must be wider"):
         feed_rate(**narrow)
     feed_rate(**feed_rate_ports(COORD_WIDTH.minimum))
@@ -101,7 +101,7 @@ def test_ports_factories_follow_the_coordinate_width(width):
     for ports in (dda_arc_ports(width), regs_fifo_ports(coord_width=width), sequencer_ports(width)):
         port = ports["dda"] if "dda" in ports else ports["cmd"]
         assert port.coord_width == width and len(port.xs) == width
-    assert len(feed_rate_ports(width)["stop_left"]) == width + 3
+    assert len(feed_rate_ports(width)["feed"].stop_left) == width + 3
 
 
 def test_dda_takes_its_width_from_its_port(tmp_path):
