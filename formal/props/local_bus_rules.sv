@@ -1,0 +1,66 @@
+// The card's back-end bus between the PCI target and the registers/FIFO
+// (`LocalBus`, rtl/interfaces.py; docs/pci.md "The local bus as the target
+// uses it"), as immediate assertions for `read -formal`.
+//
+// CHECK_REQUESTER = 1: the requester's rules (the PCI target) are asserted,
+// the responder's (the back end) assumed; 0: the reverse, for a back end
+// under test behind a free requester.
+`default_nettype none
+
+module local_bus_rules #(
+    parameter CHECK_REQUESTER = 1,
+    parameter ADDR_WIDTH = 12
+) (
+    input wire clock,
+    input wire reset_n,
+    input wire space,
+    input wire [ADDR_WIDTH-1:0] addr,
+    input wire [3:0] be,
+    input wire [31:0] wdata,
+    input wire we,
+    input wire re,
+    input wire write,
+    input wire ready,
+    input wire retry
+);
+`define LB_REQ(label, cond) if (CHECK_REQUESTER) begin label: assert(cond); end else begin label: assume(cond); end
+`define LB_RSP(label, cond) if (CHECK_REQUESTER) begin label: assume(cond); end else begin label: assert(cond); end
+
+    reg p_valid = 0;
+    reg p_waiting = 0;       // a request waited for an answer at the last edge
+    reg p_we = 0, p_re = 0, p_space = 0;
+    reg [ADDR_WIDTH-1:0] p_addr = 0;
+    reg [3:0] p_be = 0;
+    reg [31:0] p_wdata = 0;
+
+    always @(posedge clock) begin
+        p_valid <= reset_n;
+        p_waiting <= reset_n && (we || re) && !ready && !retry;
+        p_we <= we;
+        p_re <= re;
+        p_space <= space;
+        p_addr <= addr;
+        p_be <= be;
+        p_wdata <= wdata;
+    end
+
+    always @(posedge clock) if (reset_n) begin
+        // one request at a time, its direction announced by `write`
+        `LB_REQ(lb_one_request, !(we && re))
+        if (we || re) begin `LB_REQ(lb_write_gives_direction, write == we) end
+        // byte offsets of whole dwords
+        if (we || re) begin `LB_REQ(lb_dword_aligned, addr[1:0] == 2'b00) end
+        // a request is held until answered (it may be withdrawn, not changed)
+        if (p_waiting && (we || re)) begin
+            `LB_REQ(lb_request_held, we == p_we && re == p_re && space == p_space && addr == p_addr
+                                     && be == p_be && (!we || wdata == p_wdata))
+        end
+        // an answer is ready or retry, never both
+        `LB_RSP(lb_one_answer, !(ready && retry))
+    end
+    always @(posedge clock) if (!reset_n) begin
+        `LB_REQ(lb_quiet_in_reset, !we && !re)
+    end
+`undef LB_REQ
+`undef LB_RSP
+endmodule
