@@ -10,11 +10,13 @@ build into the work folder.
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from formal.regs_props import table_properties
 from formal.sby import Task
 
 PROPS = Path(__file__).resolve().parent / "props"
 ROOT = Path(__file__).resolve().parent.parent
 GEN_DIR = ROOT / "gen"
+GENERATED = ROOT / "build" / "formal" / "generated"
 
 # The unit's parameters as `python -m rtl.top --convert` writes gen/ by
 # default (rtl/top.py PARAMETERS; the card sizes BAR0 from its register table).
@@ -45,9 +47,21 @@ class Group:
     defines: dict = field(default_factory=dict)
     fast: bool = True         # in the default test suite
     text: str = ""
+    expose: tuple = ()        # registers of the unit made ports for helper invariants
+    includes: tuple = ()      # files the harness includes
+    generated: dict = field(default_factory=dict)   # included files written from Python
 
     def sources(self, gen_dir):
-        return [Path(gen_dir) / f"{self.unit}.v", *(PROPS / name for name in self.harness)]
+        written = []
+        for name, make in self.generated.items():
+            GENERATED.mkdir(parents=True, exist_ok=True)
+            path = GENERATED / name
+            text = make()
+            if not path.exists() or path.read_text() != text:
+                path.write_text(text)
+            written.append(path)
+        return [Path(gen_dir) / f"{self.unit}.v", *(PROPS / name for name in self.harness),
+                *(PROPS / name for name in self.includes), *written]
 
     def task(self, gen_dir, unit_file=None):
         """The SymbiYosys task of this group on ``gen_dir`` (``unit_file``
@@ -56,6 +70,8 @@ class Group:
         if unit_file is not None:
             sources[0] = Path(unit_file)
         script = []
+        if self.expose:
+            script.append("expose " + " ".join(f"{self.unit}/w:{name}" for name in self.expose))
         if self.parameters:
             settings = " ".join(f"-set {name} {value}" for name, value in self.parameters.items())
             script.append(f"chparam {settings} {self.top}")
@@ -66,26 +82,56 @@ class Group:
             keep = " ".join(f"*/n:{prefix}* %d" for prefix in self.keep)
             script.append(f"chformal -assert -remove */t:$check {keep}")
             script.append("chformal -cover -remove")
+        reads = [path for path in sources if path.suffix in (".v", ".sv")]
         return Task(name=self.name, mode=self.mode, depth=self.depth, top=self.top,
-                    sources=sources, defines=self.defines, script=script)
+                    sources=reads, defines=self.defines, script=script,
+                    files=sources)
 
 
 PCI_FILES = ["pci_rules.sv", "local_bus_rules.sv", "pci_target_harness.sv"]
 PCI_PARAMETERS = pci_harness_parameters(io_bits=6, mem_bits=12)
+# registers of pci_slave the helper invariants (props/pci_slave_invariants.vh) read
+PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "initial_wait_over",
+                       "subsequent_wait_over", "first_phase", "is_read", "is_config", "space_mem",
+                       "io_enable", "mem_enable", "parity_response", "serr_enable",
+                       "interrupt_disable", "bar0", "bar1", "config_write_q", "phase_addr", "at_last",
+                       "before_last", "h_valid", "s_valid", "wq_valid", "b_valid", "fetching",
+                       "first_pending", "req_addr_stale", "single", "frame_q", "signaled_target_abort",
+                       "signaled_system_error", "detected_parity_error", "parity_error_q", "interrupt_line", "h_data", "spare_data", "ad_q", "h_be",
+                       "s_be", "cbe_q", "req_addr")
+REGS_FILES = ["local_bus_rules.sv", "regs_fifo_harness.sv"]
+REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value")
+REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written")
+PCI_HELPERS = dict(expose=PCI_SLAVE_REGISTERS, includes=("pci_slave_invariants.vh",),
+                   defines={"PCI_SLAVE_INVARIANTS": None})
 
 GROUPS = [
-    Group("pci_protocol", "pci_slave", PCI_FILES, "pci_target_harness", ("t_", "lb_"),
-          parameters=PCI_PARAMETERS,
+    Group("pci_protocol", "pci_slave", PCI_FILES, "pci_target_harness", ("t_", "lb_", "inv_"),
+          parameters=PCI_PARAMETERS, **PCI_HELPERS,
           text="PCI 2.3 target rules (pci_rules.sv) and the LocalBus requester rules"),
+    Group("pci_parity", "pci_slave", PCI_FILES, "pci_target_harness", ("tp_", "inv_"),
+          parameters=PCI_PARAMETERS, **PCI_HELPERS,
+          text="PAR, PERR#, SERR# (pci_rules.sv)"),
     Group("pci_config", "pci_slave", PCI_FILES, "pci_target_harness",
-          ("config_", "inta_", "target_abort_"), parameters=PCI_PARAMETERS,
+          ("config_", "inta_", "target_abort_", "inv_"), parameters=PCI_PARAMETERS, **PCI_HELPERS,
           text="configuration space, decode, INTA#, target-abort causes"),
-    Group("pci_local", "pci_slave", PCI_FILES, "pci_target_harness", ("write_", "read_"),
-          parameters=PCI_PARAMETERS,
+    Group("pci_local", "pci_slave", PCI_FILES, "pci_target_harness", ("write_", "read_", "inv_"),
+          parameters=PCI_PARAMETERS, **PCI_HELPERS,
           text="the local side carries exactly the PCI transaction"),
     Group("pci_fifo_path", "pci_slave", PCI_FILES, "pci_target_harness",
-          ("acknowledged_", "io_not_retried"), parameters=PCI_PARAMETERS,
+          ("acknowledged_", "io_not_retried", "inv_"), parameters=PCI_PARAMETERS, **PCI_HELPERS,
           text="nothing acknowledged is dropped; I/O never waits behind the FIFO"),
+    Group("regs_fifo_path", "regs_fifo", REGS_FILES, "regs_fifo_harness",
+          ("lb_", "rf_registers", "rf_level", "rf_push", "rf_full", "rf_status", "inv_"),
+          expose=REGS_FIFO_REGISTERS + REGS_FIFO_HELPERS, includes=("regs_fifo_invariants.vh",),
+          defines={"REGS_FIFO_INVARIANTS": None}, generated={"regs_table.vh": table_properties},
+          text="back end: LocalBus answers, registers never wait, FIFO level, STATUS, nothing lost"),
+    Group("regs_fifo_table", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("reg_",), mode="bmc",
+          depth=12, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          text="every register as rtl/registers.py says (bounded)"),
+    Group("regs_fifo_order", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("rf_fifo_in_order",),
+          mode="bmc", depth=16, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          text="FIFO words reach the sequencer in order, none twice (bounded)"),
     Group("pci_covers", "pci_slave", PCI_FILES, "pci_target_harness", (), mode="cover", depth=24,
           parameters=PCI_PARAMETERS, text="each kind of transaction is reachable"),
 ]

@@ -36,6 +36,7 @@ class Task:
     defines: dict = field(default_factory=dict)
     script: list = field(default_factory=list)
     timeout: int = 1800
+    files: list = None        # every file the run needs (default: the sources)
 
 
 @dataclass
@@ -75,9 +76,7 @@ def sby_text(task):
     engine = f"smtbmc {SOLVER}"
     lines = ["[options]", f"mode {task.mode}", f"depth {task.depth}", "",
              "[engines]", engine, "", "[script]", *reads, *script, "", "[files]",
-             *(str(Path(source).resolve()) for source in task.sources), ""]
-    if task.mode == "prove":
-        lines[3:3] = []
+             *(str(Path(source).resolve()) for source in (task.files or task.sources)), ""]
     return "\n".join(lines)
 
 
@@ -89,7 +88,7 @@ def check_unique_names(sources):
 
 def run(task, work_dir):
     """Run ``task`` in ``work_dir`` (its own sub-folder is replaced)."""
-    check_unique_names(task.sources)
+    check_unique_names(task.files or task.sources)
     work_dir = Path(work_dir)
     work_dir.mkdir(parents=True, exist_ok=True)
     sby_file = work_dir / f"{task.name}.sby"

@@ -32,6 +32,7 @@ module local_bus_rules #(
     reg [ADDR_WIDTH-1:0] p_addr = 0;
     reg [3:0] p_be = 0;
     reg [31:0] p_wdata = 0;
+    reg [2:0] since_register_write = 3'd7;   // edges since a register (space 0) write was taken
 
     always @(posedge clock) begin
         p_valid <= reset_n;
@@ -42,6 +43,12 @@ module local_bus_rules #(
         p_addr <= addr;
         p_be <= be;
         p_wdata <= wdata;
+        if (!reset_n)
+            since_register_write <= 3'd7;
+        else if (we && ready && !space)
+            since_register_write <= 3'd1;
+        else if (since_register_write != 3'd7)
+            since_register_write <= since_register_write + 1;
     end
 
     always @(posedge clock) if (reset_n) begin
@@ -55,6 +62,10 @@ module local_bus_rules #(
             `LB_REQ(lb_request_held, we == p_we && re == p_re && space == p_space && addr == p_addr
                                      && be == p_be && (!we || wdata == p_wdata))
         end
+        // a register write takes effect over the next clocks (COMMAND.SOFT_RESET
+        // empties the FIFO two clocks after it): no FIFO write is taken in the
+        // three clocks after one (the PCI target needs more for a new transaction)
+        if (since_register_write <= 3) begin `LB_REQ(lb_fifo_write_after_register_write_settles, !(we && space)) end
         // an answer is ready or retry, never both
         `LB_RSP(lb_one_answer, !(ready && retry))
     end

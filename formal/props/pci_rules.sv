@@ -48,13 +48,33 @@ module pci_rules #(
     output reg  txn_hit,           // the transaction's address was for the target
     output reg  [3:0] txn_command, // C/BE# of its address phase
     output reg  [31:0] txn_address,
-    output reg  [7:0] txn_transfers, // data moved before this edge
+    output reg  [15:0] txn_transfers, // data moved before this edge (saturates)
     output wire [5:0] clk_now,     // edges since the address edge (saturates at 63)
     output reg  addr_parity_error, // PAR at A + 1 did not cover the address phase
-    output wire target_abort       // the target signals target abort at this edge
+    output wire target_abort,      // the target signals target abort at this edge
+    output wire target_claimed,    // the target's DEVSEL# was sampled before this edge
+    output wire [3:0] since_completion, // edges from the last completion (or address) to the last edge
+    output wire par_wrong          // PAR at this edge does not cover the AD and C/BE# of the last
 );
 `define PCI_T(label, cond) if (CHECK_TARGET) begin label: assert(cond); end else begin label: assume(cond); end
 `define PCI_M(label, cond) if (CHECK_TARGET) begin label: assume(cond); end else begin label: assert(cond); end
+
+    // even parity over AD[31:0] and C/BE#[3:0]: XOR of all 36 bits, folded
+    // in halves (any order gives the same value; a balanced fold keeps the
+    // solver's work small)
+    function parity36(input [31:0] a, input [3:0] c);
+        reg [15:0] f16;
+        reg [7:0] f8;
+        reg [3:0] f4;
+        reg [1:0] f2;
+        begin
+            f16 = a[31:16] ^ a[15:0];
+            f8 = f16[15:8] ^ f16[7:0];
+            f4 = f8[7:4] ^ f8[3:0];
+            f2 = f4[3:2] ^ f4[1:0];
+            parity36 = f2[1] ^ f2[0] ^ c[3] ^ c[2] ^ c[1] ^ c[0];
+        end
+    endfunction
 
     wire frame = !frame_n, irdy = !irdy_n, trdy = !trdy_n, devsel = !devsel_n, stop = !stop_n;
     wire t_trdy = t_trdy_oe && !t_trdy_n;
@@ -95,7 +115,7 @@ module pci_rules #(
     wire last = complete_now && !frame;
     wire [4:0] since_now = since + 1;
     wire write = txn_command[0];
-    wire parity_ok = ^{p_ad, p_cbe_n, par} == 1'b0;
+    wire parity_ok = parity36(p_ad, p_cbe_n) == par;
 
     assign address_edge = address;
     assign data_edge = data;
@@ -104,6 +124,9 @@ module pci_rules #(
     assign last_completion = last;
     assign clk_now = clk;
     assign target_abort = data && t_stop && !t_devsel;
+    assign target_claimed = t_devsel_seen;
+    assign since_completion = since;
+    assign par_wrong = !parity_ok;
 
     always @(posedge clock) begin
         if (!reset_n) begin
@@ -137,7 +160,7 @@ module pci_rules #(
                 t_devsel_seen <= t_devsel_seen || t_devsel;
                 any_completed <= any_completed || complete_now;
                 t_no_data_stop <= t_no_data_stop || (t_stop && !t_trdy);
-                if (transfer)
+                if (transfer && txn_transfers != 16'hffff)
                     txn_transfers <= txn_transfers + 1;
                 if (last)
                     in_txn <= 0;
@@ -263,16 +286,16 @@ module pci_rules #(
         if (data && p_data && !write && p_t_trdy && !p_irdy) begin `PCI_T(t_read_data_held, t_ad == p_ad) end
         // 3.7.1 / 3.2.4: PAR driven one clock after AD, even parity over the AD and
         // C/BE# of the clock before (r14)
-        `PCI_T(t_par_follows_ad, t_par_oe == p_t_ad_oe)
-        if (t_par_oe) begin `PCI_T(t_par_even, ^{p_ad, p_cbe_n, t_par} == 1'b0) end
+        `PCI_T(tp_par_follows_ad, t_par_oe == p_t_ad_oe)
+        if (t_par_oe) begin `PCI_T(tp_par_even, t_par == parity36(p_ad, p_cbe_n)) end
         // 3.7.4.1: PERR# two edges after a write data phase with bad parity when
         // Parity Error Response is set, for one clock, then high one clock (r14)
-        `PCI_T(t_perr_when_due, t_perr == perr_due)
-        if (t_perr_oe) begin `PCI_T(t_perr_driven_briefly, t_perr || p_t_perr) end
+        `PCI_T(tp_perr_when_due, t_perr == perr_due)
+        if (t_perr_oe) begin `PCI_T(tp_perr_driven_briefly, t_perr || p_t_perr) end
         // 3.7.4.2: SERR# (open drain) two edges after an address parity error when
         // SERR# Enable and Parity Error Response are set, for one clock (r14)
-        `PCI_T(t_serr_when_due, t_serr == serr_due)
-        if (t_serr_oe) begin `PCI_T(t_serr_open_drain, !t_serr_n) end
+        `PCI_T(tp_serr_when_due, t_serr == serr_due)
+        if (t_serr_oe) begin `PCI_T(tp_serr_open_drain, !t_serr_n) end
         // 3.5.1.1: the first data phase ends (TRDY# or STOP#) within 16 clocks (r15)
         if (data && t_devsel_seen && !any_completed && clk >= 16) begin `PCI_T(t_initial_latency, t_trdy || t_stop) end
         // 3.5.1.2: later data phases within 8 clocks of the last completion (r15)

@@ -71,7 +71,25 @@ module pci_target_harness #(
         .pci_serr_oe(t_serr_oe), .pci_inta_out(t_inta_n), .pci_inta_oe(t_inta_oe),
         .local_space(l_space), .local_addr(l_addr), .local_be(l_be), .local_wdata(l_wdata),
         .local_we(l_we), .local_re(l_re), .local_write(l_write), .local_rdata(l_rdata),
-        .local_ready(l_ready), .local_retry(l_retry));
+        .local_ready(l_ready), .local_retry(l_retry)
+`ifdef PCI_SLAVE_INVARIANTS
+        , .state(i_state), .trdy_q(i_trdy_q), .stop_q(i_stop_q), .devsel_q(i_devsel_q),
+        .wait_count(i_wait_count), .initial_wait_over(i_initial_wait_over),
+        .subsequent_wait_over(i_subsequent_wait_over), .first_phase(i_first_phase),
+        .is_read(i_is_read), .is_config(i_is_config), .space_mem(i_space_mem),
+        .io_enable(i_io_enable), .mem_enable(i_mem_enable), .parity_response(i_parity_response),
+        .serr_enable(i_serr_enable), .interrupt_disable(i_interrupt_disable), .bar0(i_bar0),
+        .bar1(i_bar1), .config_write_q(i_config_write_q), .phase_addr(i_phase_addr),
+        .at_last(i_at_last), .before_last(i_before_last), .h_valid(i_h_valid), .s_valid(i_s_valid),
+        .wq_valid(i_wq_valid), .b_valid(i_b_valid), .fetching(i_fetching),
+        .first_pending(i_first_pending), .req_addr_stale(i_req_addr_stale), .single(i_single),
+        .frame_q(i_frame_q), .signaled_target_abort(i_signaled_target_abort),
+        .signaled_system_error(i_signaled_system_error),
+        .detected_parity_error(i_detected_parity_error), .parity_error_q(i_parity_error_q),
+        .interrupt_line(i_interrupt_line), .h_data(i_h_data), .spare_data(i_spare_data),
+        .ad_q(i_ad_q), .h_be(i_h_be), .s_be(i_s_be), .cbe_q(i_cbe_q), .req_addr(i_req_addr)
+`endif
+        );
 
     // ------------------------------------------------------------ reset
     reg started = 0;
@@ -100,10 +118,11 @@ module pci_target_harness #(
     wire decoded = config_hit || io_hit || mem_hit;
 
     wire address_edge, data_edge, completion, transfer, last_completion, txn_hit;
-    wire addr_parity_error, target_abort;
+    wire addr_parity_error, target_abort, target_claimed, par_wrong;
+    wire [3:0] since_completion;
     wire [3:0] txn_command;
     wire [31:0] txn_address;
-    wire [7:0] txn_transfers;
+    wire [15:0] txn_transfers;
     wire [5:0] clk_now;
 
     pci_rules #(.CHECK_TARGET(1)) bus (
@@ -119,7 +138,9 @@ module pci_target_harness #(
         .address_edge(address_edge), .data_edge(data_edge), .completion(completion),
         .transfer(transfer), .last_completion(last_completion), .txn_hit(txn_hit),
         .txn_command(txn_command), .txn_address(txn_address), .txn_transfers(txn_transfers),
-        .clk_now(clk_now), .addr_parity_error(addr_parity_error), .target_abort(target_abort));
+        .clk_now(clk_now), .addr_parity_error(addr_parity_error), .target_abort(target_abort),
+        .target_claimed(target_claimed), .since_completion(since_completion),
+        .par_wrong(par_wrong));
 
     local_bus_rules #(.CHECK_REQUESTER(1), .ADDR_WIDTH(LOCAL_WIDTH)) back_end (
         .clock(clock), .reset_n(reset_n), .space(l_space), .addr(l_addr), .be(l_be),
@@ -191,15 +212,11 @@ module pci_target_harness #(
     end
 
     // PAR at this edge against the AD and C/BE# of the edge before
-    reg [31:0] p_ad = 0;
-    reg [3:0] p_cbe_n = 0;
     reg write_phase_before = 0;   // a write data phase to this target completed at the last edge
     always @(posedge clock) begin
-        p_ad <= ad;
-        p_cbe_n <= m_cbe_n;
         write_phase_before <= reset_n && our_transfer && txn_write;
     end
-    wire parity_wrong_now = ^{p_ad, p_cbe_n, par} != 1'b0;
+    wire parity_wrong_now = par_wrong;
 
     // the header as the model says a read returns it
     reg [31:0] expected_config;
@@ -365,7 +382,7 @@ module pci_target_harness #(
     // ------------------------------------------------------------ local side: reads
     reg [31:0] watched_data = 0;
     reg watched_valid = 0;
-    reg [7:0] local_reads = 0;      // back-end reads taken in this transaction
+    reg [15:0] local_reads = 0;      // back-end reads taken in this transaction
     wire local_read = l_re && l_ready;
     wire bus_read = our_transfer && !txn_write && !txn_config;
     wire [LOCAL_WIDTH-3:0] read_dword = txn_io ? io_dword
@@ -414,4 +431,7 @@ module pci_target_harness #(
             io_not_retried_when_registers_answer: assert(!(t_stop_oe && !t_stop_n && (t_trdy_n || !t_trdy_oe)));
         end
     end
+`ifdef PCI_SLAVE_INVARIANTS
+`include "pci_slave_invariants.vh"
+`endif
 endmodule
