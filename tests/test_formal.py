@@ -12,7 +12,8 @@ from formal import groups as catalogue
 from formal import mutation
 from formal.sby import Task, run, tools_available
 
-pytestmark = pytest.mark.skipif(tools_available() is not None, reason=str(tools_available()))
+pytestmark = [pytest.mark.formal,
+              pytest.mark.skipif(tools_available() is not None, reason=str(tools_available()))]
 
 FAST = [group.name for group in catalogue.GROUPS if group.fast]
 SLOW = [group.name for group in catalogue.GROUPS if not group.fast]

@@ -95,6 +95,10 @@
         if (i_first_write_ahead) begin
             inv_ahead_word: assert(ahead_word == {i_space_mem, i_req_addr - 1'b1, 2'b00, ~i_cbe_q, i_ad_q});
         end
+        if ((i_h_valid || i_wq_valid || i_first_write_ahead) && !i_req_addr_stale) begin
+            inv_posted_addresses: assert(i_req_addr + i_h_valid + i_s_valid + i_wq_valid
+                                         == i_phase_addr + i_first_write_ahead);
+        end
         if (tracking) begin
             inv_tracked_in_queue: assert(tracked_position < pending);
             inv_tracked_word: assert(tracked_word == i_queue_word);

@@ -145,7 +145,56 @@ module regs_fifo_harness #(
     always @(posedge clock) if (reset_n) begin
         if (arriving) begin rf_fifo_in_order: assert(fifo_dout == tracked); end
     end
+    // ------------------------------------------------------------ pulse outputs
+    // STEP high for at least STEP_WIDTH clocks and low for at least as long;
+    // DIR stable DIR_SETUP clocks before a STEP leading edge and DIR_HOLD
+    // clocks after its trailing edge (docs/registers.md), judged with the
+    // settings in force when the interval began (a bus write to a timing
+    // register in the interval leaves it unjudged)
+    pulse_axis_rules x_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_x), .dir(pins_dir_x),
+        .width(model_step_width), .setup(model_dir_setup), .hold(model_dir_hold),
+        .settings_written(timing_written));
+    pulse_axis_rules y_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_y), .dir(pins_dir_y),
+        .width(model_step_width), .setup(model_dir_setup), .hold(model_dir_hold),
+        .settings_written(timing_written));
+    wire timing_written = (stage_write && (stage_addr == 16'h0034 || stage_addr == 16'h0038
+                                           || stage_addr == 16'h003C))
+                          || (set_strobe && (set_index == 4'd3 || set_index == 4'd4 || set_index == 4'd5));
 `ifdef REGS_FIFO_INVARIANTS
 `include "regs_fifo_invariants.vh"
 `endif
 endmodule
+
+module pulse_axis_rules (
+    input wire clock, input wire reset_n, input wire step, input wire dir,
+    input wire [7:0] width, input wire [7:0] setup, input wire [7:0] hold,
+    input wire settings_written
+);
+    reg p_step = 0, p_dir = 0, judged = 0;
+    reg [8:0] high = 0, low = 9'h1ff, dir_age = 9'h1ff, since_fall = 9'h1ff;
+    reg [7:0] width_then = 1;
+    always @(posedge clock) begin
+        p_step <= step;
+        p_dir <= dir;
+        if (!reset_n) begin
+            high <= 0; low <= 9'h1ff; dir_age <= 9'h1ff; since_fall <= 9'h1ff; judged <= 0;
+        end else begin
+            high <= step ? (high == 9'h1ff ? high : high + 1) : 0;
+            low <= step ? 0 : (low == 9'h1ff ? low : low + 1);
+            dir_age <= (dir != p_dir) ? 1 : (dir_age == 9'h1ff ? dir_age : dir_age + 1);
+            since_fall <= (p_step && !step) ? 1 : (since_fall == 9'h1ff ? since_fall : since_fall + 1);
+            if (step != p_step) begin
+                width_then <= width;
+                judged <= !settings_written;
+            end else if (settings_written)
+                judged <= 0;
+        end
+    end
+    always @(posedge clock) if (reset_n && judged && !settings_written) begin
+        if (p_step && !step) begin pulse_high_width: assert(high >= width_then); end
+        if (!p_step && step && low != 9'h1ff) begin pulse_low_width: assert(low >= width_then); end
+        if (!p_step && step) begin pulse_dir_setup: assert(dir == p_dir && dir_age >= setup); end
+        if (dir != p_dir && since_fall != 9'h1ff) begin pulse_dir_hold: assert(!p_step && since_fall >= hold); end
+    end
+endmodule
+
