@@ -806,40 +806,35 @@ assign pci_slave1_perr_armed = (pci_slave1_write_done_q && pci_slave1_parity_res
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h9F9F)) pci_slave1_perr_next_lut (.O(pci_slave1_perr_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_perr_armed), .I3(1'b0));
 `else
-wire [7:0] pci_slave1_perr_next_lut_table = 8'h9F;
-assign pci_slave1_perr_next = pci_slave1_perr_next_lut_table[{pci_slave1_perr_armed, pci_slave1_bus_parity, pci_par_in}];
+assign pci_slave1_perr_next = (pci_slave1_perr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h60FF)) pci_slave1_perr_oe_next_lut (.O(pci_slave1_perr_oe_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_perr_armed), .I3(pci_slave1_perr_q));
 `else
-wire [15:0] pci_slave1_perr_oe_next_lut_table = 16'h60FF;
-assign pci_slave1_perr_oe_next = pci_slave1_perr_oe_next_lut_table[{pci_slave1_perr_q, pci_slave1_perr_armed, pci_slave1_bus_parity, pci_par_in}];
+assign pci_slave1_perr_oe_next = (pci_slave1_perr_q ? (pci_slave1_perr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h6060)) pci_slave1_serr_oe_next_lut (.O(pci_slave1_serr_oe_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_serr_armed), .I3(1'b0));
 `else
-wire [7:0] pci_slave1_serr_oe_next_lut_table = 8'h60;
-assign pci_slave1_serr_oe_next = pci_slave1_serr_oe_next_lut_table[{pci_slave1_serr_armed, pci_slave1_bus_parity, pci_par_in}];
+assign pci_slave1_serr_oe_next = (pci_slave1_serr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h6000)) pci_slave1_address_fault_next_lut (.O(pci_slave1_address_fault_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_address_phase), .I3(pci_slave1_parity_response));
 `else
-wire [15:0] pci_slave1_address_fault_next_lut_table = 16'h6000;
-assign pci_slave1_address_fault_next = pci_slave1_address_fault_next_lut_table[{pci_slave1_parity_response, pci_slave1_address_phase, pci_slave1_bus_parity, pci_par_in}];
+assign pci_slave1_address_fault_next = (pci_slave1_parity_response ? (pci_slave1_address_phase ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h6660)) pci_slave1_parity_error_next_lut (.O(pci_slave1_parity_error_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_address_phase), .I3(pci_slave1_write_done_q));
 `else
-wire [15:0] pci_slave1_parity_error_next_lut_table = 16'h6660;
-assign pci_slave1_parity_error_next = pci_slave1_parity_error_next_lut_table[{pci_slave1_write_done_q, pci_slave1_address_phase, pci_slave1_bus_parity, pci_par_in}];
+assign pci_slave1_parity_error_next = (pci_slave1_write_done_q ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (pci_slave1_address_phase ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
@@ -874,48 +869,42 @@ end
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFEF0)) pci_slave1_first_phase_next_lut (.O(pci_slave1_first_phase_next), .I0(pci_irdy_in), .I1(pci_slave1_trdy_q), .I2(pci_slave1_claim), .I3(pci_slave1_first_phase));
 `else
-wire [15:0] pci_slave1_first_phase_next_lut_table = 16'hFEF0;
-assign pci_slave1_first_phase_next = pci_slave1_first_phase_next_lut_table[{pci_slave1_first_phase, pci_slave1_claim, pci_slave1_trdy_q, pci_irdy_in}];
+assign pci_slave1_first_phase_next = (pci_slave1_first_phase ? (pci_slave1_claim ? 1'b1 : (pci_slave1_trdy_q ? 1'b1 : (pci_irdy_in ? 1'b1 : 1'b0))) : (pci_slave1_claim ? 1'b1 : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hF1F0)) pci_slave1_phase_step_lut (.O(pci_slave1_phase_step), .I0(pci_irdy_in), .I1(pci_slave1_trdy_q), .I2(pci_slave1_claim), .I3(pci_slave1_space_mem));
 `else
-wire [15:0] pci_slave1_phase_step_lut_table = 16'hF1F0;
-assign pci_slave1_phase_step = pci_slave1_phase_step_lut_table[{pci_slave1_space_mem, pci_slave1_claim, pci_slave1_trdy_q, pci_irdy_in}];
+assign pci_slave1_phase_step = (pci_slave1_space_mem ? (pci_slave1_claim ? 1'b1 : (pci_slave1_trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1))) : (pci_slave1_claim ? 1'b1 : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h0101)) pci_slave1_write_done_next_lut (.O(pci_slave1_write_done_next), .I0(pci_irdy_in), .I1(pci_slave1_trdy_q), .I2(pci_slave1_is_read), .I3(1'b0));
 `else
-wire [7:0] pci_slave1_write_done_next_lut_table = 8'h01;
-assign pci_slave1_write_done_next = pci_slave1_write_done_next_lut_table[{pci_slave1_is_read, pci_slave1_trdy_q, pci_irdy_in}];
+assign pci_slave1_write_done_next = (pci_slave1_is_read ? 1'b0 : (pci_slave1_trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1)));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h0100)) pci_slave1_config_write_next_lut (.O(pci_slave1_config_write_next), .I0(pci_irdy_in), .I1(pci_slave1_trdy_q), .I2(pci_slave1_is_read), .I3(pci_slave1_is_config));
 `else
-wire [15:0] pci_slave1_config_write_next_lut_table = 16'h0100;
-assign pci_slave1_config_write_next = pci_slave1_config_write_next_lut_table[{pci_slave1_is_config, pci_slave1_is_read, pci_slave1_trdy_q, pci_irdy_in}];
+assign pci_slave1_config_write_next = (pci_slave1_is_config ? (pci_slave1_is_read ? 1'b0 : (pci_slave1_trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1))) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h4444)) pci_slave1_wq_valid_next_lut (.O(pci_slave1_wq_valid_next), .I0(pci_irdy_in), .I1(pci_slave1_posting), .I2(1'b0), .I3(1'b0));
 `else
-wire [3:0] pci_slave1_wq_valid_next_lut_table = 4'h4;
-assign pci_slave1_wq_valid_next = pci_slave1_wq_valid_next_lut_table[{pci_slave1_posting, pci_irdy_in}];
+assign pci_slave1_wq_valid_next = (pci_slave1_posting ? (pci_irdy_in ? 1'b0 : 1'b1) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h8888)) pci_slave1_b_valid_next_lut (.O(pci_slave1_b_valid_next), .I0(pci_irdy_in), .I1(pci_slave1_b_kept), .I2(1'b0), .I3(1'b0));
 `else
-wire [3:0] pci_slave1_b_valid_next_lut_table = 4'h8;
-assign pci_slave1_b_valid_next = pci_slave1_b_valid_next_lut_table[{pci_slave1_b_kept, pci_irdy_in}];
+assign pci_slave1_b_valid_next = (pci_slave1_b_kept ? (pci_irdy_in ? 1'b1 : 1'b0) : 1'b0);
 `endif
 
 
@@ -1429,32 +1418,28 @@ wire pci_slave1_state_next_y0 = pci_slave1_control_case2_0_out_state[0] ^ pci_sl
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) pci_slave1_state_next_lut0 (.O(pci_slave1_state_next[0]), .I0(pci_slave1_state_next_x0), .I1(pci_slave1_state_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
 `else
-wire [15:0] pci_slave1_state_next_lut0_table = 16'h2A2E;
-assign pci_slave1_state_next[0] = pci_slave1_state_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_state_next_y0, pci_slave1_state_next_x0}];
+assign pci_slave1_state_next[0] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y0 ? 1'b0 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y0 ? 1'b0 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y0 ? 1'b1 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0))));
 `endif
 wire pci_slave1_state_next_x1 = pci_slave1_control_case0_0_out_state[1];
 wire pci_slave1_state_next_y1 = pci_slave1_control_case2_0_out_state[1] ^ pci_slave1_control_case1_0_out_state[1];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) pci_slave1_state_next_lut1 (.O(pci_slave1_state_next[1]), .I0(pci_slave1_state_next_x1), .I1(pci_slave1_state_next_y1), .I2(pci_frame_in), .I3(pci_irdy_in));
 `else
-wire [15:0] pci_slave1_state_next_lut1_table = 16'h2A2E;
-assign pci_slave1_state_next[1] = pci_slave1_state_next_lut1_table[{pci_irdy_in, pci_frame_in, pci_slave1_state_next_y1, pci_slave1_state_next_x1}];
+assign pci_slave1_state_next[1] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y1 ? 1'b0 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y1 ? 1'b0 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y1 ? 1'b1 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0))));
 `endif
 wire pci_slave1_state_next_x2 = pci_slave1_control_case0_0_out_state[2];
 wire pci_slave1_state_next_y2 = pci_slave1_control_case2_0_out_state[2] ^ pci_slave1_control_case1_0_out_state[2];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) pci_slave1_state_next_lut2 (.O(pci_slave1_state_next[2]), .I0(pci_slave1_state_next_x2), .I1(pci_slave1_state_next_y2), .I2(pci_frame_in), .I3(pci_irdy_in));
 `else
-wire [15:0] pci_slave1_state_next_lut2_table = 16'h2A2E;
-assign pci_slave1_state_next[2] = pci_slave1_state_next_lut2_table[{pci_irdy_in, pci_frame_in, pci_slave1_state_next_y2, pci_slave1_state_next_x2}];
+assign pci_slave1_state_next[2] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y2 ? 1'b0 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y2 ? 1'b0 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y2 ? 1'b1 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0))));
 `endif
 wire pci_slave1_state_next_x3 = pci_slave1_control_case0_0_out_state[3];
 wire pci_slave1_state_next_y3 = pci_slave1_control_case0_0_out_state[3] ? pci_slave1_control_case2_0_out_state[3] : pci_slave1_control_case1_0_out_state[3];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) pci_slave1_state_next_lut3 (.O(pci_slave1_state_next[3]), .I0(pci_slave1_state_next_x3), .I1(pci_slave1_state_next_y3), .I2(pci_frame_in), .I3(pci_irdy_in));
 `else
-wire [15:0] pci_slave1_state_next_lut3_table = 16'hEAE8;
-assign pci_slave1_state_next[3] = pci_slave1_state_next_lut3_table[{pci_irdy_in, pci_frame_in, pci_slave1_state_next_y3, pci_slave1_state_next_x3}];
+assign pci_slave1_state_next[3] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y3 ? 1'b1 : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y3 ? 1'b1 : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y3 ? (pci_slave1_state_next_x3 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -1463,8 +1448,7 @@ wire pci_slave1_trdy_next_y0 = (pci_slave1_control_case0_0_out_trdy ^ pci_slave1
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hE4EC)) pci_slave1_trdy_next_lut0 (.O(pci_slave1_trdy_next), .I0(pci_slave1_trdy_next_x0), .I1(pci_slave1_trdy_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
 `else
-wire [15:0] pci_slave1_trdy_next_lut0_table = 16'hE4EC;
-assign pci_slave1_trdy_next = pci_slave1_trdy_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_trdy_next_y0, pci_slave1_trdy_next_x0}];
+assign pci_slave1_trdy_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_trdy_next_y0 ? 1'b1 : (pci_slave1_trdy_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_trdy_next_y0 ? (pci_slave1_trdy_next_x0 ? 1'b0 : 1'b1) : 1'b0)) : (pci_frame_in ? (pci_slave1_trdy_next_y0 ? 1'b1 : (pci_slave1_trdy_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_trdy_next_y0 ? 1'b1 : 1'b0)));
 `endif
 
 
@@ -1473,8 +1457,7 @@ wire pci_slave1_stop_next_y0 = pci_slave1_control_case0_0_out_stop ? pci_slave1_
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) pci_slave1_stop_next_lut0 (.O(pci_slave1_stop_next), .I0(pci_slave1_stop_next_x0), .I1(pci_slave1_stop_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
 `else
-wire [15:0] pci_slave1_stop_next_lut0_table = 16'hEAE8;
-assign pci_slave1_stop_next = pci_slave1_stop_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_stop_next_y0, pci_slave1_stop_next_x0}];
+assign pci_slave1_stop_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_stop_next_y0 ? 1'b1 : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_stop_next_y0 ? 1'b1 : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_stop_next_y0 ? (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -1483,8 +1466,7 @@ wire pci_slave1_devsel_next_y0 = pci_slave1_control_case0_0_out_devsel ? pci_sla
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) pci_slave1_devsel_next_lut0 (.O(pci_slave1_devsel_next), .I0(pci_slave1_devsel_next_x0), .I1(pci_slave1_devsel_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
 `else
-wire [15:0] pci_slave1_devsel_next_lut0_table = 16'hEAE8;
-assign pci_slave1_devsel_next = pci_slave1_devsel_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_devsel_next_y0, pci_slave1_devsel_next_x0}];
+assign pci_slave1_devsel_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_devsel_next_y0 ? 1'b1 : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_devsel_next_y0 ? 1'b1 : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_devsel_next_y0 ? (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -1493,8 +1475,7 @@ wire pci_slave1_drive_next_y0 = pci_slave1_control_case0_0_out_drive ? pci_slave
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) pci_slave1_drive_next_lut0 (.O(pci_slave1_drive_next), .I0(pci_slave1_drive_next_x0), .I1(pci_slave1_drive_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
 `else
-wire [15:0] pci_slave1_drive_next_lut0_table = 16'hEAE8;
-assign pci_slave1_drive_next = pci_slave1_drive_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_drive_next_y0, pci_slave1_drive_next_x0}];
+assign pci_slave1_drive_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_drive_next_y0 ? 1'b1 : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_drive_next_y0 ? 1'b1 : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_drive_next_y0 ? (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -1503,8 +1484,7 @@ wire pci_slave1_ad_oe_next_y0 = pci_slave1_control_case2_0_out_ad_oe ^ pci_slave
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) pci_slave1_ad_oe_next_lut0 (.O(pci_slave1_ad_oe_next), .I0(pci_slave1_ad_oe_next_x0), .I1(pci_slave1_ad_oe_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
 `else
-wire [15:0] pci_slave1_ad_oe_next_lut0_table = 16'h2A2E;
-assign pci_slave1_ad_oe_next = pci_slave1_ad_oe_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_ad_oe_next_y0, pci_slave1_ad_oe_next_x0}];
+assign pci_slave1_ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_y0 ? 1'b1 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0))));
 `endif
 
 

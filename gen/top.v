@@ -1345,40 +1345,35 @@ assign card1_pci_slave2_perr_armed = (card1_pci_slave2_write_done_q && card1_pci
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h9F9F)) card1_pci_slave2_perr_next_lut (.O(card1_pci_slave2_perr_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(1'b0));
 `else
-wire [7:0] card1_pci_slave2_perr_next_lut_table = 8'h9F;
-assign card1_pci_slave2_perr_next = card1_pci_slave2_perr_next_lut_table[{card1_pci_slave2_perr_armed, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
+assign card1_pci_slave2_perr_next = (card1_pci_slave2_perr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0) : (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1)) : 1'b1);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h60FF)) card1_pci_slave2_perr_oe_next_lut (.O(card1_pci_slave2_perr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(card1_pci_slave2_perr_q));
 `else
-wire [15:0] card1_pci_slave2_perr_oe_next_lut_table = 16'h60FF;
-assign card1_pci_slave2_perr_oe_next = card1_pci_slave2_perr_oe_next_lut_table[{card1_pci_slave2_perr_q, card1_pci_slave2_perr_armed, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
+assign card1_pci_slave2_perr_oe_next = (card1_pci_slave2_perr_q ? (card1_pci_slave2_perr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h6060)) card1_pci_slave2_serr_oe_next_lut (.O(card1_pci_slave2_serr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_serr_armed), .I3(1'b0));
 `else
-wire [7:0] card1_pci_slave2_serr_oe_next_lut_table = 8'h60;
-assign card1_pci_slave2_serr_oe_next = card1_pci_slave2_serr_oe_next_lut_table[{card1_pci_slave2_serr_armed, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
+assign card1_pci_slave2_serr_oe_next = (card1_pci_slave2_serr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h6000)) card1_pci_slave2_address_fault_next_lut (.O(card1_pci_slave2_address_fault_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_parity_response));
 `else
-wire [15:0] card1_pci_slave2_address_fault_next_lut_table = 16'h6000;
-assign card1_pci_slave2_address_fault_next = card1_pci_slave2_address_fault_next_lut_table[{card1_pci_slave2_parity_response, card1_pci_slave2_address_phase, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
+assign card1_pci_slave2_address_fault_next = (card1_pci_slave2_parity_response ? (card1_pci_slave2_address_phase ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h6660)) card1_pci_slave2_parity_error_next_lut (.O(card1_pci_slave2_parity_error_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_write_done_q));
 `else
-wire [15:0] card1_pci_slave2_parity_error_next_lut_table = 16'h6660;
-assign card1_pci_slave2_parity_error_next = card1_pci_slave2_parity_error_next_lut_table[{card1_pci_slave2_write_done_q, card1_pci_slave2_address_phase, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
+assign card1_pci_slave2_parity_error_next = (card1_pci_slave2_write_done_q ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : (card1_pci_slave2_address_phase ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
@@ -1413,48 +1408,42 @@ end
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFEF0)) card1_pci_slave2_first_phase_next_lut (.O(card1_pci_slave2_first_phase_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_claim), .I3(card1_pci_slave2_first_phase));
 `else
-wire [15:0] card1_pci_slave2_first_phase_next_lut_table = 16'hFEF0;
-assign card1_pci_slave2_first_phase_next = card1_pci_slave2_first_phase_next_lut_table[{card1_pci_slave2_first_phase, card1_pci_slave2_claim, card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_first_phase_next = (card1_pci_slave2_first_phase ? (card1_pci_slave2_claim ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0))) : (card1_pci_slave2_claim ? 1'b1 : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hF1F0)) card1_pci_slave2_phase_step_lut (.O(card1_pci_slave2_phase_step), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_claim), .I3(card1_pci_slave2_space_mem));
 `else
-wire [15:0] card1_pci_slave2_phase_step_lut_table = 16'hF1F0;
-assign card1_pci_slave2_phase_step = card1_pci_slave2_phase_step_lut_table[{card1_pci_slave2_space_mem, card1_pci_slave2_claim, card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_phase_step = (card1_pci_slave2_space_mem ? (card1_pci_slave2_claim ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_claim ? 1'b1 : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h0101)) card1_pci_slave2_write_done_next_lut (.O(card1_pci_slave2_write_done_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_is_read), .I3(1'b0));
 `else
-wire [7:0] card1_pci_slave2_write_done_next_lut_table = 8'h01;
-assign card1_pci_slave2_write_done_next = card1_pci_slave2_write_done_next_lut_table[{card1_pci_slave2_is_read, card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_write_done_next = (card1_pci_slave2_is_read ? 1'b0 : (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1)));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h0100)) card1_pci_slave2_config_write_next_lut (.O(card1_pci_slave2_config_write_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_is_read), .I3(card1_pci_slave2_is_config));
 `else
-wire [15:0] card1_pci_slave2_config_write_next_lut_table = 16'h0100;
-assign card1_pci_slave2_config_write_next = card1_pci_slave2_config_write_next_lut_table[{card1_pci_slave2_is_config, card1_pci_slave2_is_read, card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_config_write_next = (card1_pci_slave2_is_config ? (card1_pci_slave2_is_read ? 1'b0 : (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h4444)) card1_pci_slave2_wq_valid_next_lut (.O(card1_pci_slave2_wq_valid_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_posting), .I2(1'b0), .I3(1'b0));
 `else
-wire [3:0] card1_pci_slave2_wq_valid_next_lut_table = 4'h4;
-assign card1_pci_slave2_wq_valid_next = card1_pci_slave2_wq_valid_next_lut_table[{card1_pci_slave2_posting, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_wq_valid_next = (card1_pci_slave2_posting ? (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h8888)) card1_pci_slave2_b_valid_next_lut (.O(card1_pci_slave2_b_valid_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_b_kept), .I2(1'b0), .I3(1'b0));
 `else
-wire [3:0] card1_pci_slave2_b_valid_next_lut_table = 4'h8;
-assign card1_pci_slave2_b_valid_next = card1_pci_slave2_b_valid_next_lut_table[{card1_pci_slave2_b_kept, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_b_valid_next = (card1_pci_slave2_b_kept ? (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0) : 1'b0);
 `endif
 
 
@@ -1968,32 +1957,28 @@ wire card1_pci_slave2_state_next_y0 = card1_pci_slave2_control_case2_0_1_out_sta
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut0 (.O(card1_pci_slave2_state_next[0]), .I0(card1_pci_slave2_state_next_x0), .I1(card1_pci_slave2_state_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_state_next_lut0_table = 16'h2A2E;
-assign card1_pci_slave2_state_next[0] = card1_pci_slave2_state_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_state_next_y0, card1_pci_slave2_state_next_x0}];
+assign card1_pci_slave2_state_next[0] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y0 ? 1'b0 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y0 ? 1'b0 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y0 ? 1'b1 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0))));
 `endif
 wire card1_pci_slave2_state_next_x1 = card1_pci_slave2_control_case0_0_1_out_state[1];
 wire card1_pci_slave2_state_next_y1 = card1_pci_slave2_control_case2_0_1_out_state[1] ^ card1_pci_slave2_control_case1_0_1_out_state[1];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut1 (.O(card1_pci_slave2_state_next[1]), .I0(card1_pci_slave2_state_next_x1), .I1(card1_pci_slave2_state_next_y1), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_state_next_lut1_table = 16'h2A2E;
-assign card1_pci_slave2_state_next[1] = card1_pci_slave2_state_next_lut1_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_state_next_y1, card1_pci_slave2_state_next_x1}];
+assign card1_pci_slave2_state_next[1] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y1 ? 1'b0 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y1 ? 1'b0 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y1 ? 1'b1 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0))));
 `endif
 wire card1_pci_slave2_state_next_x2 = card1_pci_slave2_control_case0_0_1_out_state[2];
 wire card1_pci_slave2_state_next_y2 = card1_pci_slave2_control_case2_0_1_out_state[2] ^ card1_pci_slave2_control_case1_0_1_out_state[2];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut2 (.O(card1_pci_slave2_state_next[2]), .I0(card1_pci_slave2_state_next_x2), .I1(card1_pci_slave2_state_next_y2), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_state_next_lut2_table = 16'h2A2E;
-assign card1_pci_slave2_state_next[2] = card1_pci_slave2_state_next_lut2_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_state_next_y2, card1_pci_slave2_state_next_x2}];
+assign card1_pci_slave2_state_next[2] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y2 ? 1'b0 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y2 ? 1'b0 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y2 ? 1'b1 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0))));
 `endif
 wire card1_pci_slave2_state_next_x3 = card1_pci_slave2_control_case0_0_1_out_state[3];
 wire card1_pci_slave2_state_next_y3 = card1_pci_slave2_control_case0_0_1_out_state[3] ? card1_pci_slave2_control_case2_0_1_out_state[3] : card1_pci_slave2_control_case1_0_1_out_state[3];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_state_next_lut3 (.O(card1_pci_slave2_state_next[3]), .I0(card1_pci_slave2_state_next_x3), .I1(card1_pci_slave2_state_next_y3), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_state_next_lut3_table = 16'hEAE8;
-assign card1_pci_slave2_state_next[3] = card1_pci_slave2_state_next_lut3_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_state_next_y3, card1_pci_slave2_state_next_x3}];
+assign card1_pci_slave2_state_next[3] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y3 ? 1'b1 : (card1_pci_slave2_state_next_x3 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x3 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y3 ? 1'b1 : (card1_pci_slave2_state_next_x3 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y3 ? (card1_pci_slave2_state_next_x3 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -2002,8 +1987,7 @@ wire card1_pci_slave2_trdy_next_y0 = (card1_pci_slave2_control_case0_0_1_out_trd
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hE4EC)) card1_pci_slave2_trdy_next_lut0 (.O(card1_pci_slave2_trdy_next), .I0(card1_pci_slave2_trdy_next_x0), .I1(card1_pci_slave2_trdy_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_trdy_next_lut0_table = 16'hE4EC;
-assign card1_pci_slave2_trdy_next = card1_pci_slave2_trdy_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_trdy_next_y0, card1_pci_slave2_trdy_next_x0}];
+assign card1_pci_slave2_trdy_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_trdy_next_y0 ? 1'b1 : (card1_pci_slave2_trdy_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_trdy_next_y0 ? (card1_pci_slave2_trdy_next_x0 ? 1'b0 : 1'b1) : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_trdy_next_y0 ? 1'b1 : (card1_pci_slave2_trdy_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_trdy_next_y0 ? 1'b1 : 1'b0)));
 `endif
 
 
@@ -2012,8 +1996,7 @@ wire card1_pci_slave2_stop_next_y0 = card1_pci_slave2_control_case0_0_1_out_stop
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_stop_next_lut0 (.O(card1_pci_slave2_stop_next), .I0(card1_pci_slave2_stop_next_x0), .I1(card1_pci_slave2_stop_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_stop_next_lut0_table = 16'hEAE8;
-assign card1_pci_slave2_stop_next = card1_pci_slave2_stop_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_stop_next_y0, card1_pci_slave2_stop_next_x0}];
+assign card1_pci_slave2_stop_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_stop_next_y0 ? 1'b1 : (card1_pci_slave2_stop_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_stop_next_y0 ? 1'b1 : (card1_pci_slave2_stop_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_stop_next_y0 ? (card1_pci_slave2_stop_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -2022,8 +2005,7 @@ wire card1_pci_slave2_devsel_next_y0 = card1_pci_slave2_control_case0_0_1_out_de
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_devsel_next_lut0 (.O(card1_pci_slave2_devsel_next), .I0(card1_pci_slave2_devsel_next_x0), .I1(card1_pci_slave2_devsel_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_devsel_next_lut0_table = 16'hEAE8;
-assign card1_pci_slave2_devsel_next = card1_pci_slave2_devsel_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_devsel_next_y0, card1_pci_slave2_devsel_next_x0}];
+assign card1_pci_slave2_devsel_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_devsel_next_y0 ? 1'b1 : (card1_pci_slave2_devsel_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_devsel_next_y0 ? 1'b1 : (card1_pci_slave2_devsel_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_devsel_next_y0 ? (card1_pci_slave2_devsel_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -2032,8 +2014,7 @@ wire card1_pci_slave2_drive_next_y0 = card1_pci_slave2_control_case0_0_1_out_dri
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_drive_next_lut0 (.O(card1_pci_slave2_drive_next), .I0(card1_pci_slave2_drive_next_x0), .I1(card1_pci_slave2_drive_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_drive_next_lut0_table = 16'hEAE8;
-assign card1_pci_slave2_drive_next = card1_pci_slave2_drive_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_drive_next_y0, card1_pci_slave2_drive_next_x0}];
+assign card1_pci_slave2_drive_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_drive_next_y0 ? 1'b1 : (card1_pci_slave2_drive_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_drive_next_y0 ? 1'b1 : (card1_pci_slave2_drive_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_drive_next_y0 ? (card1_pci_slave2_drive_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -2042,8 +2023,7 @@ wire card1_pci_slave2_ad_oe_next_y0 = card1_pci_slave2_control_case2_0_1_out_ad_
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_ad_oe_next_lut0 (.O(card1_pci_slave2_ad_oe_next), .I0(card1_pci_slave2_ad_oe_next_x0), .I1(card1_pci_slave2_ad_oe_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_ad_oe_next_lut0_table = 16'h2A2E;
-assign card1_pci_slave2_ad_oe_next = card1_pci_slave2_ad_oe_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_ad_oe_next_y0, card1_pci_slave2_ad_oe_next_x0}];
+assign card1_pci_slave2_ad_oe_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_ad_oe_next_y0 ? 1'b0 : (card1_pci_slave2_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_ad_oe_next_y0 ? 1'b0 : (card1_pci_slave2_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_ad_oe_next_y0 ? 1'b1 : (card1_pci_slave2_ad_oe_next_x0 ? 1'b1 : 1'b0))));
 `endif
 
 
@@ -2137,256 +2117,224 @@ end
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut33_out_lut (.O(card1_pci_slave2_pin_lut33_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[0]), .I3(card1_pci_slave2_read_source[0]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut33_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut33_out = card1_pci_slave2_pin_lut33_out_lut_table[{card1_pci_slave2_read_source[0], card1_pci_slave2_ad_out_q[0], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut33_out = (card1_pci_slave2_read_source[0] ? (card1_pci_slave2_ad_out_q[0] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[0] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut34_out_lut (.O(card1_pci_slave2_pin_lut34_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[1]), .I3(card1_pci_slave2_read_source[1]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut34_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut34_out = card1_pci_slave2_pin_lut34_out_lut_table[{card1_pci_slave2_read_source[1], card1_pci_slave2_ad_out_q[1], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut34_out = (card1_pci_slave2_read_source[1] ? (card1_pci_slave2_ad_out_q[1] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[1] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut35_out_lut (.O(card1_pci_slave2_pin_lut35_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[2]), .I3(card1_pci_slave2_read_source[2]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut35_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut35_out = card1_pci_slave2_pin_lut35_out_lut_table[{card1_pci_slave2_read_source[2], card1_pci_slave2_ad_out_q[2], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut35_out = (card1_pci_slave2_read_source[2] ? (card1_pci_slave2_ad_out_q[2] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[2] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut36_out_lut (.O(card1_pci_slave2_pin_lut36_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[3]), .I3(card1_pci_slave2_read_source[3]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut36_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut36_out = card1_pci_slave2_pin_lut36_out_lut_table[{card1_pci_slave2_read_source[3], card1_pci_slave2_ad_out_q[3], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut36_out = (card1_pci_slave2_read_source[3] ? (card1_pci_slave2_ad_out_q[3] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[3] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut37_out_lut (.O(card1_pci_slave2_pin_lut37_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[4]), .I3(card1_pci_slave2_read_source[4]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut37_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut37_out = card1_pci_slave2_pin_lut37_out_lut_table[{card1_pci_slave2_read_source[4], card1_pci_slave2_ad_out_q[4], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut37_out = (card1_pci_slave2_read_source[4] ? (card1_pci_slave2_ad_out_q[4] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[4] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut38_out_lut (.O(card1_pci_slave2_pin_lut38_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[5]), .I3(card1_pci_slave2_read_source[5]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut38_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut38_out = card1_pci_slave2_pin_lut38_out_lut_table[{card1_pci_slave2_read_source[5], card1_pci_slave2_ad_out_q[5], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut38_out = (card1_pci_slave2_read_source[5] ? (card1_pci_slave2_ad_out_q[5] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[5] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut39_out_lut (.O(card1_pci_slave2_pin_lut39_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[6]), .I3(card1_pci_slave2_read_source[6]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut39_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut39_out = card1_pci_slave2_pin_lut39_out_lut_table[{card1_pci_slave2_read_source[6], card1_pci_slave2_ad_out_q[6], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut39_out = (card1_pci_slave2_read_source[6] ? (card1_pci_slave2_ad_out_q[6] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[6] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut40_out_lut (.O(card1_pci_slave2_pin_lut40_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[7]), .I3(card1_pci_slave2_read_source[7]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut40_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut40_out = card1_pci_slave2_pin_lut40_out_lut_table[{card1_pci_slave2_read_source[7], card1_pci_slave2_ad_out_q[7], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut40_out = (card1_pci_slave2_read_source[7] ? (card1_pci_slave2_ad_out_q[7] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[7] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut41_out_lut (.O(card1_pci_slave2_pin_lut41_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[8]), .I3(card1_pci_slave2_read_source[8]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut41_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut41_out = card1_pci_slave2_pin_lut41_out_lut_table[{card1_pci_slave2_read_source[8], card1_pci_slave2_ad_out_q[8], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut41_out = (card1_pci_slave2_read_source[8] ? (card1_pci_slave2_ad_out_q[8] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[8] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut42_out_lut (.O(card1_pci_slave2_pin_lut42_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[9]), .I3(card1_pci_slave2_read_source[9]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut42_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut42_out = card1_pci_slave2_pin_lut42_out_lut_table[{card1_pci_slave2_read_source[9], card1_pci_slave2_ad_out_q[9], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut42_out = (card1_pci_slave2_read_source[9] ? (card1_pci_slave2_ad_out_q[9] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[9] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut43_out_lut (.O(card1_pci_slave2_pin_lut43_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[10]), .I3(card1_pci_slave2_read_source[10]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut43_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut43_out = card1_pci_slave2_pin_lut43_out_lut_table[{card1_pci_slave2_read_source[10], card1_pci_slave2_ad_out_q[10], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut43_out = (card1_pci_slave2_read_source[10] ? (card1_pci_slave2_ad_out_q[10] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[10] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut44_out_lut (.O(card1_pci_slave2_pin_lut44_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[11]), .I3(card1_pci_slave2_read_source[11]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut44_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut44_out = card1_pci_slave2_pin_lut44_out_lut_table[{card1_pci_slave2_read_source[11], card1_pci_slave2_ad_out_q[11], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut44_out = (card1_pci_slave2_read_source[11] ? (card1_pci_slave2_ad_out_q[11] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[11] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut45_out_lut (.O(card1_pci_slave2_pin_lut45_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[12]), .I3(card1_pci_slave2_read_source[12]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut45_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut45_out = card1_pci_slave2_pin_lut45_out_lut_table[{card1_pci_slave2_read_source[12], card1_pci_slave2_ad_out_q[12], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut45_out = (card1_pci_slave2_read_source[12] ? (card1_pci_slave2_ad_out_q[12] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[12] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut46_out_lut (.O(card1_pci_slave2_pin_lut46_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[13]), .I3(card1_pci_slave2_read_source[13]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut46_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut46_out = card1_pci_slave2_pin_lut46_out_lut_table[{card1_pci_slave2_read_source[13], card1_pci_slave2_ad_out_q[13], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut46_out = (card1_pci_slave2_read_source[13] ? (card1_pci_slave2_ad_out_q[13] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[13] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut47_out_lut (.O(card1_pci_slave2_pin_lut47_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[14]), .I3(card1_pci_slave2_read_source[14]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut47_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut47_out = card1_pci_slave2_pin_lut47_out_lut_table[{card1_pci_slave2_read_source[14], card1_pci_slave2_ad_out_q[14], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut47_out = (card1_pci_slave2_read_source[14] ? (card1_pci_slave2_ad_out_q[14] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[14] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut48_out_lut (.O(card1_pci_slave2_pin_lut48_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[15]), .I3(card1_pci_slave2_read_source[15]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut48_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut48_out = card1_pci_slave2_pin_lut48_out_lut_table[{card1_pci_slave2_read_source[15], card1_pci_slave2_ad_out_q[15], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut48_out = (card1_pci_slave2_read_source[15] ? (card1_pci_slave2_ad_out_q[15] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[15] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut49_out_lut (.O(card1_pci_slave2_pin_lut49_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[16]), .I3(card1_pci_slave2_read_source[16]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut49_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut49_out = card1_pci_slave2_pin_lut49_out_lut_table[{card1_pci_slave2_read_source[16], card1_pci_slave2_ad_out_q[16], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut49_out = (card1_pci_slave2_read_source[16] ? (card1_pci_slave2_ad_out_q[16] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[16] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut50_out_lut (.O(card1_pci_slave2_pin_lut50_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[17]), .I3(card1_pci_slave2_read_source[17]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut50_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut50_out = card1_pci_slave2_pin_lut50_out_lut_table[{card1_pci_slave2_read_source[17], card1_pci_slave2_ad_out_q[17], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut50_out = (card1_pci_slave2_read_source[17] ? (card1_pci_slave2_ad_out_q[17] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[17] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut51_out_lut (.O(card1_pci_slave2_pin_lut51_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[18]), .I3(card1_pci_slave2_read_source[18]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut51_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut51_out = card1_pci_slave2_pin_lut51_out_lut_table[{card1_pci_slave2_read_source[18], card1_pci_slave2_ad_out_q[18], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut51_out = (card1_pci_slave2_read_source[18] ? (card1_pci_slave2_ad_out_q[18] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[18] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut52_out_lut (.O(card1_pci_slave2_pin_lut52_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[19]), .I3(card1_pci_slave2_read_source[19]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut52_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut52_out = card1_pci_slave2_pin_lut52_out_lut_table[{card1_pci_slave2_read_source[19], card1_pci_slave2_ad_out_q[19], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut52_out = (card1_pci_slave2_read_source[19] ? (card1_pci_slave2_ad_out_q[19] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[19] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut53_out_lut (.O(card1_pci_slave2_pin_lut53_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[20]), .I3(card1_pci_slave2_read_source[20]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut53_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut53_out = card1_pci_slave2_pin_lut53_out_lut_table[{card1_pci_slave2_read_source[20], card1_pci_slave2_ad_out_q[20], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut53_out = (card1_pci_slave2_read_source[20] ? (card1_pci_slave2_ad_out_q[20] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[20] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut54_out_lut (.O(card1_pci_slave2_pin_lut54_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[21]), .I3(card1_pci_slave2_read_source[21]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut54_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut54_out = card1_pci_slave2_pin_lut54_out_lut_table[{card1_pci_slave2_read_source[21], card1_pci_slave2_ad_out_q[21], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut54_out = (card1_pci_slave2_read_source[21] ? (card1_pci_slave2_ad_out_q[21] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[21] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut55_out_lut (.O(card1_pci_slave2_pin_lut55_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[22]), .I3(card1_pci_slave2_read_source[22]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut55_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut55_out = card1_pci_slave2_pin_lut55_out_lut_table[{card1_pci_slave2_read_source[22], card1_pci_slave2_ad_out_q[22], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut55_out = (card1_pci_slave2_read_source[22] ? (card1_pci_slave2_ad_out_q[22] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[22] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut56_out_lut (.O(card1_pci_slave2_pin_lut56_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[23]), .I3(card1_pci_slave2_read_source[23]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut56_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut56_out = card1_pci_slave2_pin_lut56_out_lut_table[{card1_pci_slave2_read_source[23], card1_pci_slave2_ad_out_q[23], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut56_out = (card1_pci_slave2_read_source[23] ? (card1_pci_slave2_ad_out_q[23] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[23] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut57_out_lut (.O(card1_pci_slave2_pin_lut57_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[24]), .I3(card1_pci_slave2_read_source[24]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut57_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut57_out = card1_pci_slave2_pin_lut57_out_lut_table[{card1_pci_slave2_read_source[24], card1_pci_slave2_ad_out_q[24], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut57_out = (card1_pci_slave2_read_source[24] ? (card1_pci_slave2_ad_out_q[24] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[24] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut58_out_lut (.O(card1_pci_slave2_pin_lut58_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[25]), .I3(card1_pci_slave2_read_source[25]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut58_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut58_out = card1_pci_slave2_pin_lut58_out_lut_table[{card1_pci_slave2_read_source[25], card1_pci_slave2_ad_out_q[25], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut58_out = (card1_pci_slave2_read_source[25] ? (card1_pci_slave2_ad_out_q[25] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[25] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut59_out_lut (.O(card1_pci_slave2_pin_lut59_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[26]), .I3(card1_pci_slave2_read_source[26]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut59_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut59_out = card1_pci_slave2_pin_lut59_out_lut_table[{card1_pci_slave2_read_source[26], card1_pci_slave2_ad_out_q[26], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut59_out = (card1_pci_slave2_read_source[26] ? (card1_pci_slave2_ad_out_q[26] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[26] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut60_out_lut (.O(card1_pci_slave2_pin_lut60_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[27]), .I3(card1_pci_slave2_read_source[27]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut60_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut60_out = card1_pci_slave2_pin_lut60_out_lut_table[{card1_pci_slave2_read_source[27], card1_pci_slave2_ad_out_q[27], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut60_out = (card1_pci_slave2_read_source[27] ? (card1_pci_slave2_ad_out_q[27] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[27] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut61_out_lut (.O(card1_pci_slave2_pin_lut61_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[28]), .I3(card1_pci_slave2_read_source[28]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut61_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut61_out = card1_pci_slave2_pin_lut61_out_lut_table[{card1_pci_slave2_read_source[28], card1_pci_slave2_ad_out_q[28], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut61_out = (card1_pci_slave2_read_source[28] ? (card1_pci_slave2_ad_out_q[28] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[28] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut62_out_lut (.O(card1_pci_slave2_pin_lut62_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[29]), .I3(card1_pci_slave2_read_source[29]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut62_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut62_out = card1_pci_slave2_pin_lut62_out_lut_table[{card1_pci_slave2_read_source[29], card1_pci_slave2_ad_out_q[29], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut62_out = (card1_pci_slave2_read_source[29] ? (card1_pci_slave2_ad_out_q[29] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[29] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut63_out_lut (.O(card1_pci_slave2_pin_lut63_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[30]), .I3(card1_pci_slave2_read_source[30]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut63_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut63_out = card1_pci_slave2_pin_lut63_out_lut_table[{card1_pci_slave2_read_source[30], card1_pci_slave2_ad_out_q[30], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut63_out = (card1_pci_slave2_read_source[30] ? (card1_pci_slave2_ad_out_q[30] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[30] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut64_out_lut (.O(card1_pci_slave2_pin_lut64_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[31]), .I3(card1_pci_slave2_read_source[31]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut64_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut64_out = card1_pci_slave2_pin_lut64_out_lut_table[{card1_pci_slave2_read_source[31], card1_pci_slave2_ad_out_q[31], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut64_out = (card1_pci_slave2_read_source[31] ? (card1_pci_slave2_ad_out_q[31] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[31] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 

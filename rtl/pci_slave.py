@@ -87,19 +87,29 @@ def lut_verilog(out, name, inputs, function):
     """Verilog lines driving ``out`` by ``function`` of ``inputs`` (1..4 net
     names): an iCE40 ``SB_LUT4`` for synthesis, so that no logic is merged
     into it and a PCI pin among the inputs stays one logic cell from its
-    register; the same truth table, indexed, for simulators."""
+    register; the same truth table for simulators as nested ``? :`` on the
+    inputs, which a four-state simulator merges bit by bit when the
+    condition is X or Z: an input the output does not depend on (a floating
+    PAR or AD line) cannot make it X."""
     count = len(inputs)
     table = lut_table(function, count)
     init = lut_table(lambda *bits: function(*bits[:count]), 4)   # unused inputs tied to 0
     tied = [*inputs, *["1'b0"] * (4 - count)]
     ports = ", ".join(f".I{k}({net})" for k, net in enumerate(tied))
-    index = ", ".join(reversed(inputs))
-    digits = max(1, (1 << count) // 4)
+
+    def select(index, known):
+        """Expression of the output with inputs above ``index`` fixed to ``known``."""
+        if index < 0:
+            return "1'b1" if table >> known & 1 else "1'b0"
+        high, low = select(index - 1, known | 1 << index), select(index - 1, known)
+        if high == low:
+            return high
+        return f"({inputs[index]} ? {high} : {low})"  # a gate passes no Z: even a bare input is muxed
+
     return ["`ifdef SYNTHESIS",
             f"SB_LUT4 #(.LUT_INIT(16'h{init:04X})) {name} (.O({out}), {ports});",
             "`else",
-            f"wire [{(1 << count) - 1}:0] {name}_table = {1 << count}'h{table:0{digits}X};",
-            f"assign {out} = {name}_table[{{{index}}}];",
+            f"assign {out} = {select(count - 1, 0)};",
             "`endif"]
 
 
