@@ -98,7 +98,7 @@ PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "i
                        "before_last", "h_valid", "s_valid", "wq_valid", "b_valid", "fetching",
                        "first_pending", "req_addr_stale", "single", "frame_q", "signaled_target_abort",
                        "signaled_system_error", "detected_parity_error", "parity_error_q", "interrupt_line", "h_data", "spare_data", "ad_q", "h_be",
-                       "s_be", "cbe_q", "req_addr")
+                       "s_be", "cbe_q", "req_addr", "ad_out_q")
 REGS_FILES = ["local_bus_rules.sv", "regs_fifo_harness.sv"]
 REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value")
 REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written")
@@ -131,6 +131,7 @@ GROUPS = [
           text="every register as rtl/registers.py says (bounded)"),
     Group("regs_fifo_pulses", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_",), mode="bmc",
           depth=20, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          defines={"PULSE_TIMING_BY_SET": None},
           text="STEP widths, DIR set-up and hold (bounded)"),
     Group("regs_fifo_order", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("rf_fifo_in_order",),
           mode="bmc", depth=16, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},

@@ -23,6 +23,8 @@
     wire [31:0] i_h_data, i_spare_data, i_ad_q;
     wire [3:0] i_h_be, i_s_be, i_cbe_q;
     wire [LOCAL_WIDTH-3:0] i_req_addr;
+    wire [31:0] i_ad_out_q;
+    wire [LOCAL_WIDTH-3:0] i_read_start = txn_io ? io_dword : txn_address[MEM_BITS-1:2];
     wire [LOCAL_WIDTH-3:0] i_phase_addr;
     wire i_at_last, i_before_last;
     wire i_single, i_frame_q;
@@ -38,6 +40,7 @@
     always @(posedge clock) if (reset_n) begin
         inv_state_code: assert(i_state <= 4'd8);
         inv_drive_follows_state: assert(t_devsel_oe == (i_state != 4'd0));
+        inv_ad_drive_follows_state: assert(t_ad_oe == (i_claimed && i_is_read));
         if (i_state == 4'd0) begin inv_idle_quiet: assert(i_trdy_q && i_stop_q && i_devsel_q); end
         if (i_hold) begin inv_hold_waits: assert(i_trdy_q && i_stop_q && !i_devsel_q); end
         if (i_in_phase) begin inv_phase_claimed: assert(!i_devsel_q); end
@@ -102,6 +105,27 @@
         if (tracking) begin
             inv_tracked_in_queue: assert(tracked_position < pending);
             inv_tracked_word: assert(tracked_word == i_queue_word);
+        end
+        // read-ahead against the read shadow: the AD register holds the current
+        // phase's dword while TRDY# is asserted, B the next one
+        if (i_claimed && i_is_read && i_is_config) begin inv_config_reads_local_none: assert(local_reads == 0); end
+        if (i_claimed && i_is_read && !i_is_config && !i_req_addr_stale && !i_first_pending) begin
+            inv_read_address: assert(i_req_addr == i_read_start + local_reads[LOCAL_WIDTH-3:0]);
+        end
+        if (i_claimed && i_is_read && !i_is_config && i_first_pending) begin inv_read_none_yet: assert(local_reads == 0); end
+        if (i_state == 4'd6 && i_is_read && !i_is_config) begin
+            inv_read_fetched: assert(local_reads == txn_transfers + !i_trdy_q + i_b_valid);
+            if (i_b_valid) begin inv_skid_behind_ad: assert(!i_trdy_q); end
+            if (!i_trdy_q && watch_space == !txn_io && watch_dword == phase_dword) begin
+                inv_ad_holds_watched: assert(watched_valid && i_ad_out_q == watched_data);
+            end
+            if (i_b_valid && watch_space == !txn_io && watch_dword == phase_dword + 1'b1) begin
+                inv_skid_holds_watched: assert(watched_valid && i_spare_data == watched_data);
+            end
+        end
+        if (watched_valid && data_edge) begin
+            inv_watched_fetched: assert(txn_hit && !txn_write && !txn_config && watch_space == !txn_io
+                                        && {6'b0, watch_dword - i_read_start} < local_reads);
         end
         inv_last_flags: assert(i_at_last == (i_phase_addr == MEM_LAST)
                                && i_before_last == (i_phase_addr == MEM_LAST - 1));

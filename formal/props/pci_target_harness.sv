@@ -87,7 +87,7 @@ module pci_target_harness #(
         .signaled_system_error(i_signaled_system_error),
         .detected_parity_error(i_detected_parity_error), .parity_error_q(i_parity_error_q),
         .interrupt_line(i_interrupt_line), .h_data(i_h_data), .spare_data(i_spare_data),
-        .ad_q(i_ad_q), .h_be(i_h_be), .s_be(i_s_be), .cbe_q(i_cbe_q), .req_addr(i_req_addr)
+        .ad_q(i_ad_q), .h_be(i_h_be), .s_be(i_s_be), .cbe_q(i_cbe_q), .req_addr(i_req_addr), .ad_out_q(i_ad_out_q)
 `endif
         );
 

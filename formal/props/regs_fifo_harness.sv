@@ -157,6 +157,13 @@ module regs_fifo_harness #(
     pulse_axis_rules y_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_y), .dir(pins_dir_y),
         .width(model_step_width), .setup(model_dir_setup), .hold(model_dir_hold),
         .settings_written(timing_written));
+`ifdef PULSE_TIMING_BY_SET
+    // the host sets the pulse timing between moves (SET, which waits until the
+    // outputs are idle) and the DIR polarity before: no bus write of
+    // STEP_WIDTH, DIR_SETUP, DIR_HOLD, DIR_POLARITY
+    always @(*) assume(!(l_we && !l_space && (l_addr == 16'h0034 || l_addr == 16'h0038
+                                               || l_addr == 16'h003C || l_addr == 16'h0040)));
+`endif
     wire timing_written = (stage_write && (stage_addr == 16'h0034 || stage_addr == 16'h0038
                                            || stage_addr == 16'h003C))
                           || (set_strobe && (set_index == 4'd3 || set_index == 4'd4 || set_index == 4'd5));
