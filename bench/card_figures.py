@@ -10,8 +10,8 @@ Prints, at PCI's 33 MHz:
 - simulation speed of the end-to-end bench (host + target + card + monitor)
   on MyHDL, on the generated top in Icarus and on the generated card in
   Verilator, in clocks per second (``bench/sim_speed.py`` has more);
-- with ``bench/synth.py`` present and ``gen/top.v`` written: LCs, FFs, block
-  RAMs and fmax of the whole top on iCE40 HX8K.
+- with ``gen/top.v`` written: LCs, FFs, block RAMs and fmax of the whole top
+  on iCE40 HX8K (``fpgaflow``).
 """
 import argparse
 import sys
@@ -114,12 +114,10 @@ def e2e_speed(kind, steps=1500):
 
 
 def synthesis():
-    """The synthesis figures of the whole top, as ``bench/synth.py`` prints them."""
-    try:
-        from bench.synth import SWEEP_SEEDS, format_figures, synthesize_closing
-    except ImportError as error:
-        return f"not available ({error})"
+    """The synthesis figures of the whole top, as ``python -m fpgaflow`` prints them."""
+    from fpgaflow import SWEEP_SEEDS, format_figures, synthesize_closing
     from sim.paths import GEN
+
     if not (GEN / "top.v").exists():
         return "gen/top.v missing: run python -m rtl.top --convert"
     figures = synthesize_closing("top", range(1, 1 + SWEEP_SEEDS))

@@ -1,4 +1,4 @@
-"""Figures of the host planner: ``python bench/host_figures.py``.
+"""Figures of the host planner: ``python -m bench.host_figures``.
 
 * the examples (``examples/part.ngc``, ``examples/drawing.svg``) at the
   default machine (200 steps/mm, 33 MHz, 24-bit coordinates): segments,
@@ -11,21 +11,16 @@
 """
 import math
 import random
-import sys
 import time
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
-
-from host import gcode, svg  # noqa: E402
-from host.check import check  # noqa: E402
-from host.cli import summary  # noqa: E402
-from host.geometry import Arc, Line  # noqa: E402
-from host.machine import Machine  # noqa: E402
-from host.planner import plan  # noqa: E402
-from sim.dda_model import ArcCommand  # noqa: E402
+from host import gcode, svg
+from host.check import check
+from host.cli import summary
+from host.geometry import Arc, Line
+from host.machine import Machine
+from host.planner import plan
+from sim.dda_model import ArcCommand
+from sim.paths import ROOT
 
 ARCS = 400
 

@@ -1,4 +1,4 @@
-"""Verification IP figures: ``python bench/vip_figures.py [--core] [--delayed] [--xz] [--cocotb]``
+"""Verification IP figures: ``python -m bench.vip_figures [--core] [--delayed] [--xz] [--cocotb]``
 (no option: all).
 
 ``--core``: the cost of one ``HostCore.step`` while bursts run, the host
@@ -25,16 +25,12 @@ import argparse
 import random
 import sys
 import time
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
-
-from sim.pci_delayed_target import DelayedTarget  # noqa: E402
-from sim.pci_host_core import MEM_READ, MEM_WRITE, HostCore, Request  # noqa: E402
-from sim.pci_loop import PythonBus  # noqa: E402
-from sim.pci_master import PciMaster, random_waits  # noqa: E402
+from sim.paths import ROOT
+from sim.pci_delayed_target import DelayedTarget
+from sim.pci_host_core import MEM_READ, MEM_WRITE, HostCore, Request
+from sim.pci_loop import PythonBus
+from sim.pci_master import PciMaster, random_waits
 
 BURST = 256
 LENGTHS = (1, 16, 64, 256)
@@ -101,14 +97,16 @@ def print_delayed():
 
 def print_xz():
     from sim.pci_bench import PciBench
-    from sim.test_card_e2e import ARC, DEFAULT_FIFO, motion_scenario, run_card
+    from sim.card_e2e import DEFAULT_FIFO, motion_scenario, run_card
+    from sim.dda_model import ArcCommand
+    from sim.scratch_example import scenario, scratch_target
     from sim.test_pci_random import run_random
-    from sim.test_pci_verilog_target import scenario, scratch_target
 
+    quarter_arc = ArcCommand(40, 0, 0, 40, ccw=True)
     print("X/Z detector in float mode (clocks with a line X or Z while driven / clocks watched):")
     bench, _ = run_random("verilog", 300, seed=7)
     print(f"  gen/pci_slave.v, 300 random transactions: {bench.checker.unknown_clocks} / {bench.checker.edges:,}")
-    _, _, _, bench = run_card("verilog", motion_scenario([ARC]), "figures_xz_top", DEFAULT_FIFO)
+    _, _, _, bench = run_card("icarus", motion_scenario([quarter_arc]), "figures_xz_top", DEFAULT_FIFO)
     print(f"  gen/top.v, enumerate, program, arc:        {bench.checker.unknown_clocks} / {bench.checker.edges:,}")
     bench = PciBench(target=scratch_target())
     bench.run(scenario({}), "figures_xz_scratch", trace=False)
@@ -135,7 +133,7 @@ def print_cocotb():
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python bench/vip_figures.py",
+    parser = argparse.ArgumentParser(prog="python -m bench.vip_figures",
                                      description=__doc__.split("\n\n")[0])
     sections = {"core": print_core, "delayed": print_delayed, "xz": print_xz, "cocotb": print_cocotb}
     for name in sections:

@@ -35,12 +35,11 @@ module dda_arc (
 //     clock, reset  clock and reset (``card_reset()``: async, active low)
 //     cmd           ``DdaPort``: command lines, ``start``, ``blend``, ``advance``
 //                   in; ``ready``, ``busy``, ``done``, ``error``, ``quadrant``,
-//                   ``stop_left`` out
+//                   ``stop_left`` out; its ``coord_width`` is the signed
+//                   coordinate width; accumulators are coord_width + 8
+//                   bits, the radial error term + 6
 //     steps         ``AxisPulses``: ``step_x``/``step_y`` one clock per step,
 //                   ``dir_x``/``dir_y`` valid with them
-// Parameters:
-//     coord_width   signed coordinate width (4..31); accumulators are
-//                   coord_width + 8 bits, the radial error term + 6
 // 
 // Timing (an arc; a line has two setup clocks)::
 // 
@@ -698,8 +697,8 @@ end
 
 always @(left_x, stepped_y, integrand_x, stepped_x, target_y, integrand_y, target_x, run_line, left_y) begin: end_tests
     if (run_line) begin
-        at_x = (left_x[27-1:0] == 134217727);
-        at_y = (left_y[27-1:0] == 134217727);
+        at_x = (left_x[27-1:0] == 27'h7ffffff);
+        at_y = (left_y[27-1:0] == 27'h7ffffff);
         near_x = (left_x == 0);
         near_y = (left_y == 0);
     end
@@ -1359,7 +1358,7 @@ always @(posedge clock, negedge reset) begin: left_output
             end
         end
         else begin
-            cmd_stop_left <= 134217727;
+            cmd_stop_left <= 27'h7ffffff;
         end
     end
 end

@@ -28,10 +28,12 @@ module top (
 // Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci_pins``
 // (``PciPins``: AD, C/BE#, PAR, FRAME#, IRDY#, TRDY#, DEVSEL#, STOP#, IDSEL,
 // PERR#, SERR#, INTA# as on the bus), ``motor`` (``MotorPins``: STEP/DIR).
-// Parameters: ``fifo_depth``, ``coord_width``, the PCI IDs, and
-// ``io_registers`` (True: the PCI boundary flip-flops are the iCE40 I/O
-// cells' registers, ``rtl/pci_pads.py``; the target is told so).
-// ``rtl/card.py`` is the same card with split ports, for benches.
+// Parameters: those of ``card`` (``rtl/parameters.py``).  ``device``
+// ``ice40`` (the top's default): the PCI boundary flip-flops are the iCE40
+// I/O cells' registers (``rtl/pci_pads.py``; the target is told so) and
+// the target's pin paths are iCE40 LUTs; ``generic``: plain tri-states
+// and plain logic.  ``rtl/card.py`` is the same card with split ports, for
+// benches.
 // 
 //     pins <-> pci_pads <-> card (pci_slave, regs_fifo, dda_arc) --> STEP/DIR
 
@@ -323,104 +325,58 @@ wire card1_card_core1_regs_fifo2_sync_fifo2_one_free;
 wire card1_card_core1_regs_fifo2_sync_fifo2_one_word;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_read_addr;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_write_addr;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word42_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word42_clamp_in;
-wire card1_card_core1_regs_fifo2_reg_word42_clamp_out;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word42_read_in;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word42_read_out;
-wire card1_card_core1_regs_fifo2_reg_word42_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word42_shown_wide;
-wire card1_card_core1_regs_fifo2_reg_word43_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word43_read_out;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word43_honoured;
-wire card1_card_core1_regs_fifo2_reg_word43_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word43_clamped;
-wire card1_card_core1_regs_fifo2_reg_word43_mine;
-wire card1_card_core1_regs_fifo2_reg_word43_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word43_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word43_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word43_written;
-wire [2:0] card1_card_core1_regs_fifo2_reg_word44_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word44_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word44_read_out;
-wire [2:0] card1_card_core1_regs_fifo2_reg_word44_honoured;
-wire card1_card_core1_regs_fifo2_reg_word44_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word44_clamped;
-wire card1_card_core1_regs_fifo2_reg_word44_mine;
-wire card1_card_core1_regs_fifo2_reg_word44_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word44_shown_wide;
-wire [2:0] card1_card_core1_regs_fifo2_reg_word44_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word45_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word45_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word45_read_out;
-wire card1_card_core1_regs_fifo2_reg_word45_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word45_shown_wide;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word46_value;
-wire card1_card_core1_regs_fifo2_reg_word46_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word46_read_out;
-wire [4:0] card1_card_core1_regs_fifo2_reg_word46_honoured;
-wire card1_card_core1_regs_fifo2_reg_word46_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word46_clamped;
-wire card1_card_core1_regs_fifo2_reg_word46_mine;
-wire card1_card_core1_regs_fifo2_reg_word46_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word46_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word46_shown_wide;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word46_written;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word47_hw_value;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word47_value;
-wire card1_card_core1_regs_fifo2_reg_word47_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word47_read_out;
-wire [4:0] card1_card_core1_regs_fifo2_reg_word47_honoured;
-wire card1_card_core1_regs_fifo2_reg_word47_mine;
-wire card1_card_core1_regs_fifo2_reg_word47_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word47_shown_wide;
-wire [4:0] card1_card_core1_regs_fifo2_reg_word47_written;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word48_value;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word48_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word48_clamp_in;
 wire card1_card_core1_regs_fifo2_reg_word48_clamp_out;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word48_read_in;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word48_read_out;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word48_honoured;
-wire card1_card_core1_regs_fifo2_reg_word48_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word48_clamped;
 wire card1_card_core1_regs_fifo2_reg_word48_mine;
-wire card1_card_core1_regs_fifo2_reg_word48_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word48_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word48_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word48_written;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word49_hw_value;
 wire card1_card_core1_regs_fifo2_reg_word49_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word49_read_out;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word49_honoured;
+wire card1_card_core1_regs_fifo2_reg_word49_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word49_clamped;
 wire card1_card_core1_regs_fifo2_reg_word49_mine;
+wire card1_card_core1_regs_fifo2_reg_word49_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word49_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word49_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word50_hw_value;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word49_written;
+wire [2:0] card1_card_core1_regs_fifo2_reg_word50_hw_value;
 wire card1_card_core1_regs_fifo2_reg_word50_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word50_read_out;
+wire [2:0] card1_card_core1_regs_fifo2_reg_word50_honoured;
+wire card1_card_core1_regs_fifo2_reg_word50_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word50_clamped;
 wire card1_card_core1_regs_fifo2_reg_word50_mine;
+wire card1_card_core1_regs_fifo2_reg_word50_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word50_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word51_hw_value;
+wire [2:0] card1_card_core1_regs_fifo2_reg_word50_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word51_hw_value;
 wire card1_card_core1_regs_fifo2_reg_word51_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word51_read_out;
 wire card1_card_core1_regs_fifo2_reg_word51_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word51_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word52_value;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word52_value;
 wire card1_card_core1_regs_fifo2_reg_word52_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word52_read_out;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word52_honoured;
-reg card1_card_core1_regs_fifo2_reg_word52_out_of_range;
+wire [4:0] card1_card_core1_regs_fifo2_reg_word52_honoured;
+wire card1_card_core1_regs_fifo2_reg_word52_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word52_clamped;
 wire card1_card_core1_regs_fifo2_reg_word52_mine;
 wire card1_card_core1_regs_fifo2_reg_word52_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word52_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word52_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word52_written;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word53_value;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word52_written;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word53_hw_value;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word53_value;
 wire card1_card_core1_regs_fifo2_reg_word53_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word53_read_out;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word53_honoured;
-reg card1_card_core1_regs_fifo2_reg_word53_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word53_clamped;
+wire [4:0] card1_card_core1_regs_fifo2_reg_word53_honoured;
 wire card1_card_core1_regs_fifo2_reg_word53_mine;
 wire card1_card_core1_regs_fifo2_reg_word53_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word53_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word53_written;
+wire [4:0] card1_card_core1_regs_fifo2_reg_word53_written;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word54_value;
 wire card1_card_core1_regs_fifo2_reg_word54_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word54_read_out;
@@ -429,49 +385,34 @@ wire card1_card_core1_regs_fifo2_reg_word54_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word54_clamped;
 wire card1_card_core1_regs_fifo2_reg_word54_mine;
 wire card1_card_core1_regs_fifo2_reg_word54_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word54_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word54_shown_wide;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word54_written;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word55_value;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word55_hw_value;
 wire card1_card_core1_regs_fifo2_reg_word55_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word55_read_out;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word55_honoured;
-reg card1_card_core1_regs_fifo2_reg_word55_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word55_clamped;
 wire card1_card_core1_regs_fifo2_reg_word55_mine;
-wire card1_card_core1_regs_fifo2_reg_word55_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word55_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word55_written;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word56_value;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word56_hw_value;
 wire card1_card_core1_regs_fifo2_reg_word56_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word56_read_out;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word56_honoured;
-reg card1_card_core1_regs_fifo2_reg_word56_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word56_clamped;
 wire card1_card_core1_regs_fifo2_reg_word56_mine;
-wire card1_card_core1_regs_fifo2_reg_word56_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word56_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word56_written;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word57_value;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word57_hw_value;
 wire card1_card_core1_regs_fifo2_reg_word57_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word57_read_out;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word57_honoured;
-reg card1_card_core1_regs_fifo2_reg_word57_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word57_clamped;
 wire card1_card_core1_regs_fifo2_reg_word57_mine;
-wire card1_card_core1_regs_fifo2_reg_word57_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word57_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word57_written;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word58_value;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word58_value;
 wire card1_card_core1_regs_fifo2_reg_word58_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word58_read_out;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word58_honoured;
-wire card1_card_core1_regs_fifo2_reg_word58_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word58_honoured;
+reg card1_card_core1_regs_fifo2_reg_word58_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word58_clamped;
 wire card1_card_core1_regs_fifo2_reg_word58_mine;
 wire card1_card_core1_regs_fifo2_reg_word58_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word58_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word58_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word58_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word58_written;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word59_value;
 wire card1_card_core1_regs_fifo2_reg_word59_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word59_read_out;
@@ -485,36 +426,112 @@ reg [31:0] card1_card_core1_regs_fifo2_reg_word59_written;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word60_value;
 wire card1_card_core1_regs_fifo2_reg_word60_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word60_read_out;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word60_honoured;
-reg card1_card_core1_regs_fifo2_reg_word60_out_of_range;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word60_honoured;
+wire card1_card_core1_regs_fifo2_reg_word60_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word60_clamped;
 wire card1_card_core1_regs_fifo2_reg_word60_mine;
 wire card1_card_core1_regs_fifo2_reg_word60_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word60_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word60_written;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word61_hw_value;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word61_value;
-reg card1_card_core1_regs_fifo2_reg_word61_strobe;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word60_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word61_value;
 wire card1_card_core1_regs_fifo2_reg_word61_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word61_read_out;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word61_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word61_honoured;
 reg card1_card_core1_regs_fifo2_reg_word61_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word61_clamped;
 wire card1_card_core1_regs_fifo2_reg_word61_mine;
 wire card1_card_core1_regs_fifo2_reg_word61_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word61_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word61_written;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word62_hw_value;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word62_value;
-reg card1_card_core1_regs_fifo2_reg_word62_strobe;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word61_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word62_value;
 wire card1_card_core1_regs_fifo2_reg_word62_clamp_out;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word62_honoured;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word62_read_out;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word62_honoured;
 reg card1_card_core1_regs_fifo2_reg_word62_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word62_clamped;
 wire card1_card_core1_regs_fifo2_reg_word62_mine;
 wire card1_card_core1_regs_fifo2_reg_word62_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word62_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word62_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word62_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word63_value;
+wire card1_card_core1_regs_fifo2_reg_word63_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word63_read_out;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word63_honoured;
+reg card1_card_core1_regs_fifo2_reg_word63_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word63_clamped;
+wire card1_card_core1_regs_fifo2_reg_word63_mine;
+wire card1_card_core1_regs_fifo2_reg_word63_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word63_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word63_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word64_value;
+wire card1_card_core1_regs_fifo2_reg_word64_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word64_read_out;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word64_honoured;
+wire card1_card_core1_regs_fifo2_reg_word64_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word64_clamped;
+wire card1_card_core1_regs_fifo2_reg_word64_mine;
+wire card1_card_core1_regs_fifo2_reg_word64_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word64_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word64_shown_wide;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word64_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word65_value;
+wire card1_card_core1_regs_fifo2_reg_word65_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word65_read_out;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word65_honoured;
+reg card1_card_core1_regs_fifo2_reg_word65_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word65_clamped;
+wire card1_card_core1_regs_fifo2_reg_word65_mine;
+wire card1_card_core1_regs_fifo2_reg_word65_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word65_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word65_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word66_value;
+wire card1_card_core1_regs_fifo2_reg_word66_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word66_read_out;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word66_honoured;
+reg card1_card_core1_regs_fifo2_reg_word66_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word66_clamped;
+wire card1_card_core1_regs_fifo2_reg_word66_mine;
+wire card1_card_core1_regs_fifo2_reg_word66_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word66_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word66_written;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word67_hw_value;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word67_value;
+reg card1_card_core1_regs_fifo2_reg_word67_strobe;
+wire card1_card_core1_regs_fifo2_reg_word67_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word67_read_out;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word67_honoured;
+reg card1_card_core1_regs_fifo2_reg_word67_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word67_clamped;
+wire card1_card_core1_regs_fifo2_reg_word67_mine;
+wire card1_card_core1_regs_fifo2_reg_word67_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word67_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word67_written;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word68_hw_value;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word68_value;
+reg card1_card_core1_regs_fifo2_reg_word68_strobe;
+wire card1_card_core1_regs_fifo2_reg_word68_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word68_read_out;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word68_honoured;
+reg card1_card_core1_regs_fifo2_reg_word68_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word68_clamped;
+wire card1_card_core1_regs_fifo2_reg_word68_mine;
+wire card1_card_core1_regs_fifo2_reg_word68_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word68_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word68_written;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word69_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word69_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word69_read_out;
+wire card1_card_core1_regs_fifo2_reg_word69_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word69_shown_wide;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word70_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word70_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word70_read_out;
+wire card1_card_core1_regs_fifo2_reg_word70_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word70_shown_wide;
+wire [27:0] card1_card_core1_regs_fifo2_reg_word71_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word71_clamp_out;
+wire card1_card_core1_regs_fifo2_reg_word71_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word71_shown_wide;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulse_count_x;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulse_count_y;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
@@ -764,20 +781,23 @@ reg card1_card_core1_dda_arc2_x_inward;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word42_hw_value = 32'd3719037184;
-assign card1_card_core1_regs_fifo2_reg_word42_clamp_in = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word42_read_in = 32'd0;
-assign card1_card_core1_regs_fifo2_reg_word43_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word43_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word44_hw_value = 3'd0;
-assign card1_card_core1_regs_fifo2_reg_word44_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word46_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word46_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word48_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word48_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word48_hw_value = 32'd3719037185;
+assign card1_card_core1_regs_fifo2_reg_word48_clamp_in = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word48_read_in = 32'd0;
+assign card1_card_core1_regs_fifo2_reg_word49_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word49_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word50_hw_value = 3'd0;
+assign card1_card_core1_regs_fifo2_reg_word50_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word52_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word52_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word54_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word58_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word58_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word54_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word60_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word64_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word64_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word69_hw_value = 32'd33333333;
+assign card1_card_core1_regs_fifo2_reg_word70_hw_value = 16'd512;
+assign card1_card_core1_regs_fifo2_reg_word71_hw_value = 28'd17564184;
 
 
 
@@ -2665,317 +2685,29 @@ assign card1_card_core1_regs_fifo2_fifo_full = card1_card_core1_regs_fifo2_sync_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word42_mine = (card1_pci_slave2_local_addr == 0);
+assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_local_addr == 0);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word42_mine, card1_card_core1_regs_fifo2_reg_word42_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_in) begin: card1_card_core1_regs_fifo2_reg_word42_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word42_mine) begin
-        card1_card_core1_regs_fifo2_reg_word42_read_out = (card1_card_core1_regs_fifo2_reg_word42_read_in | card1_card_core1_regs_fifo2_reg_word42_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word42_read_out = card1_card_core1_regs_fifo2_reg_word42_read_in;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word42_shown_wide = card1_card_core1_regs_fifo2_reg_word42_hw_value;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word42_clamp_out = card1_card_core1_regs_fifo2_reg_word42_clamp_in;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word43_mine = (card1_pci_slave2_local_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word43_mine, card1_card_core1_regs_fifo2_reg_word43_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_out) begin: card1_card_core1_regs_fifo2_reg_word43_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word43_mine) begin
-        card1_card_core1_regs_fifo2_reg_word43_read_out = (card1_card_core1_regs_fifo2_reg_word42_read_out | card1_card_core1_regs_fifo2_reg_word43_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word43_read_out = card1_card_core1_regs_fifo2_reg_word42_read_out;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word43_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word43_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word43_shown_wide, card1_card_core1_regs_fifo2_reg_word43_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word43_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word43_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word43_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word43_written = ((card1_card_core1_regs_fifo2_reg_word43_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word43_honoured = card1_card_core1_regs_fifo2_reg_word43_written[2-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word43_clamp_out = (card1_card_core1_regs_fifo2_reg_word42_clamp_out || card1_card_core1_regs_fifo2_reg_word43_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word43__store32_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_control <= 0;
-        card1_card_core1_regs_fifo2_reg_word43_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word43_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word43_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word43_mine_write))) begin
-            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word43_honoured;
-            card1_card_core1_regs_fifo2_reg_word43_clamped <= card1_card_core1_regs_fifo2_reg_word43_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word44_mine = (card1_pci_slave2_local_addr == 8);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word44_mine, card1_card_core1_regs_fifo2_reg_word44_shown_wide, card1_card_core1_regs_fifo2_reg_word43_read_out) begin: card1_card_core1_regs_fifo2_reg_word44_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word44_mine) begin
-        card1_card_core1_regs_fifo2_reg_word44_read_out = (card1_card_core1_regs_fifo2_reg_word43_read_out | card1_card_core1_regs_fifo2_reg_word44_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word44_read_out = card1_card_core1_regs_fifo2_reg_word43_read_out;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word44_shown_wide = {29'h0, card1_card_core1_regs_fifo2_reg_word44_hw_value};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word44_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word44_written = (card1_card_core1_regs_fifo2_written_data[3-1:0] & card1_card_core1_regs_fifo2_written_mask[3-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word44_honoured = card1_card_core1_regs_fifo2_reg_word44_written[3-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word44_clamp_out = (card1_card_core1_regs_fifo2_reg_word43_clamp_out || card1_card_core1_regs_fifo2_reg_word44_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word44__store33_pulse_on_write
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_command_strobe <= 0;
-        card1_card_core1_regs_fifo2_command <= 0;
-        card1_card_core1_regs_fifo2_reg_word44_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word44_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word44_mine_write)) begin
-            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word44_honoured;
-            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word44_clamped <= card1_card_core1_regs_fifo2_reg_word44_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word45_mine = (card1_pci_slave2_local_addr == 12);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word45_mine, card1_card_core1_regs_fifo2_reg_word45_shown_wide, card1_card_core1_regs_fifo2_reg_word44_read_out) begin: card1_card_core1_regs_fifo2_reg_word45_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word45_mine) begin
-        card1_card_core1_regs_fifo2_reg_word45_read_out = (card1_card_core1_regs_fifo2_reg_word44_read_out | card1_card_core1_regs_fifo2_reg_word45_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word45_read_out = card1_card_core1_regs_fifo2_reg_word44_read_out;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word45_shown_wide = card1_card_core1_regs_fifo2_reg_word45_hw_value;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word45_clamp_out = card1_card_core1_regs_fifo2_reg_word44_clamp_out;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word46_mine = (card1_pci_slave2_local_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word46_mine, card1_card_core1_regs_fifo2_reg_word46_shown_wide, card1_card_core1_regs_fifo2_reg_word45_read_out) begin: card1_card_core1_regs_fifo2_reg_word46_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word46_mine) begin
-        card1_card_core1_regs_fifo2_reg_word46_read_out = (card1_card_core1_regs_fifo2_reg_word45_read_out | card1_card_core1_regs_fifo2_reg_word46_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word46_read_out = card1_card_core1_regs_fifo2_reg_word45_read_out;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word46_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word46_value};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word46_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word46_shown_wide, card1_card_core1_regs_fifo2_reg_word46_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word46_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word46_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word46_written = card1_card_core1_regs_fifo2_set_value[5-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word46_written = ((card1_card_core1_regs_fifo2_reg_word46_shown_wide[5-1:0] & (~card1_card_core1_regs_fifo2_written_mask[5-1:0])) | (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word46_honoured = card1_card_core1_regs_fifo2_reg_word46_written[5-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word46_clamp_out = (card1_card_core1_regs_fifo2_reg_word45_clamp_out || card1_card_core1_regs_fifo2_reg_word46_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word46__store34_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word46_value <= 0;
-        card1_card_core1_regs_fifo2_reg_word46_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word46_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word46_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word46_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word46_value <= card1_card_core1_regs_fifo2_reg_word46_honoured;
-            card1_card_core1_regs_fifo2_reg_word46_clamped <= card1_card_core1_regs_fifo2_reg_word46_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word47_mine = (card1_pci_slave2_local_addr == 20);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word47_mine, card1_card_core1_regs_fifo2_reg_word47_shown_wide, card1_card_core1_regs_fifo2_reg_word46_read_out) begin: card1_card_core1_regs_fifo2_reg_word47_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word47_mine) begin
-        card1_card_core1_regs_fifo2_reg_word47_read_out = (card1_card_core1_regs_fifo2_reg_word46_read_out | card1_card_core1_regs_fifo2_reg_word47_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word47_read_out = card1_card_core1_regs_fifo2_reg_word46_read_out;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word47_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word47_value};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word47_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word47_written = (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word47_honoured = card1_card_core1_regs_fifo2_reg_word47_written[5-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word47_clamp_out = card1_card_core1_regs_fifo2_reg_word46_clamp_out;
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word47__store35_clear_on_one
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word47_value <= 0;
-    end
-    else begin
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word47_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word47_value <= ((card1_card_core1_regs_fifo2_reg_word47_value & (~card1_card_core1_regs_fifo2_reg_word47_honoured)) | card1_card_core1_regs_fifo2_reg_word47_hw_value);
-        end
-        else begin
-            card1_card_core1_regs_fifo2_reg_word47_value <= (card1_card_core1_regs_fifo2_reg_word47_value | card1_card_core1_regs_fifo2_reg_word47_hw_value);
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_local_addr == 24);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word47_read_out) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word48_read_in) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
     if (card1_card_core1_regs_fifo2_reg_word48_mine) begin
-        card1_card_core1_regs_fifo2_reg_word48_read_out = (card1_card_core1_regs_fifo2_reg_word47_read_out | card1_card_core1_regs_fifo2_reg_word48_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word48_read_out = (card1_card_core1_regs_fifo2_reg_word48_read_in | card1_card_core1_regs_fifo2_reg_word48_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word48_read_out = card1_card_core1_regs_fifo2_reg_word47_read_out;
+        card1_card_core1_regs_fifo2_reg_word48_read_out = card1_card_core1_regs_fifo2_reg_word48_read_in;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word48_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word48_value};
+assign card1_card_core1_regs_fifo2_reg_word48_shown_wide = card1_card_core1_regs_fifo2_reg_word48_hw_value;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word48_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word48_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word48_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word48_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word48_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word48_written = ((card1_card_core1_regs_fifo2_reg_word48_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word48_clamp_out = card1_card_core1_regs_fifo2_reg_word48_clamp_in;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word48_honoured = card1_card_core1_regs_fifo2_reg_word48_written[16-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word48_clamp_out = (card1_card_core1_regs_fifo2_reg_word47_clamp_out || card1_card_core1_regs_fifo2_reg_word48_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word48__store36_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word48_value <= 0;
-        card1_card_core1_regs_fifo2_reg_word48_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word48_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word48_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word48_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word48_value <= card1_card_core1_regs_fifo2_reg_word48_honoured;
-            card1_card_core1_regs_fifo2_reg_word48_clamped <= card1_card_core1_regs_fifo2_reg_word48_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_local_addr == 28);
+assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_local_addr == 4);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word49_mine, card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word48_read_out) begin: card1_card_core1_regs_fifo2_reg_word49_read_chain
@@ -2989,15 +2721,48 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word49_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word49_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word49_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word49_clamp_out = card1_card_core1_regs_fifo2_reg_word48_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word49_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word49_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word49_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word49_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word49_written = ((card1_card_core1_regs_fifo2_reg_word49_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_local_addr == 32);
+assign card1_card_core1_regs_fifo2_reg_word49_honoured = card1_card_core1_regs_fifo2_reg_word49_written[2-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word49_clamp_out = (card1_card_core1_regs_fifo2_reg_word48_clamp_out || card1_card_core1_regs_fifo2_reg_word49_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word49__store32_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_control <= 0;
+        card1_card_core1_regs_fifo2_reg_word49_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word49_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word49_mine_write))) begin
+            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word49_honoured;
+            card1_card_core1_regs_fifo2_reg_word49_clamped <= card1_card_core1_regs_fifo2_reg_word49_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_local_addr == 8);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word50_mine, card1_card_core1_regs_fifo2_reg_word50_shown_wide, card1_card_core1_regs_fifo2_reg_word49_read_out) begin: card1_card_core1_regs_fifo2_reg_word50_read_chain
@@ -3011,15 +2776,45 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word50_shown_wide = card1_card_core1_regs_fifo2_reg_word50_hw_value;
+assign card1_card_core1_regs_fifo2_reg_word50_shown_wide = {29'h0, card1_card_core1_regs_fifo2_reg_word50_hw_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word50_clamp_out = card1_card_core1_regs_fifo2_reg_word49_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word50_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_local_addr == 36);
+assign card1_card_core1_regs_fifo2_reg_word50_written = (card1_card_core1_regs_fifo2_written_data[3-1:0] & card1_card_core1_regs_fifo2_written_mask[3-1:0]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word50_honoured = card1_card_core1_regs_fifo2_reg_word50_written[3-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word50_clamp_out = (card1_card_core1_regs_fifo2_reg_word49_clamp_out || card1_card_core1_regs_fifo2_reg_word50_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word50__store33_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_command_strobe <= 0;
+        card1_card_core1_regs_fifo2_command <= 0;
+        card1_card_core1_regs_fifo2_reg_word50_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word50_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word50_mine_write)) begin
+            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word50_honoured;
+            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word50_clamped <= card1_card_core1_regs_fifo2_reg_word50_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_local_addr == 12);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word51_mine, card1_card_core1_regs_fifo2_reg_word51_shown_wide, card1_card_core1_regs_fifo2_reg_word50_read_out) begin: card1_card_core1_regs_fifo2_reg_word51_read_chain
@@ -3041,7 +2836,7 @@ assign card1_card_core1_regs_fifo2_reg_word51_clamp_out = card1_card_core1_regs_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_local_addr == 40);
+assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_local_addr == 16);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word52_mine, card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word51_read_out) begin: card1_card_core1_regs_fifo2_reg_word52_read_chain
@@ -3055,50 +2850,39 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word52_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word52_value};
+assign card1_card_core1_regs_fifo2_reg_word52_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word52_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word52_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
+assign card1_card_core1_regs_fifo2_reg_word52_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word52_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word52_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word52_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word52_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word52_written = card1_card_core1_regs_fifo2_set_value[5-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word52_written = ((card1_card_core1_regs_fifo2_reg_word52_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word52_written = ((card1_card_core1_regs_fifo2_reg_word52_shown_wide[5-1:0] & (~card1_card_core1_regs_fifo2_written_mask[5-1:0])) | (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word52_written) begin: card1_card_core1_regs_fifo2_reg_word52__limit37_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word52_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word52_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word52_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word52_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word52_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word52_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word52_honoured = 32768;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word52_honoured = card1_card_core1_regs_fifo2_reg_word52_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word52_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word52_honoured = card1_card_core1_regs_fifo2_reg_word52_written[5-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word52_clamp_out = (card1_card_core1_regs_fifo2_reg_word51_clamp_out || card1_card_core1_regs_fifo2_reg_word52_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word52__store37_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word52__store34_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word52_value <= 4096;
+        card1_card_core1_regs_fifo2_reg_word52_value <= 0;
         card1_card_core1_regs_fifo2_reg_word52_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word52_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word52_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word52_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word52_value <= card1_card_core1_regs_fifo2_reg_word52_honoured;
             card1_card_core1_regs_fifo2_reg_word52_clamped <= card1_card_core1_regs_fifo2_reg_word52_out_of_range;
         end
@@ -3107,7 +2891,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_local_addr == 44);
+assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_local_addr == 20);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word53_mine, card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_reg_word52_read_out) begin: card1_card_core1_regs_fifo2_reg_word53_read_chain
@@ -3121,59 +2905,42 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word53_value};
+assign card1_card_core1_regs_fifo2_reg_word53_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word53_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word53_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
-        card1_card_core1_regs_fifo2_reg_word53_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word53_written = ((card1_card_core1_regs_fifo2_reg_word53_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word53_written) begin: card1_card_core1_regs_fifo2_reg_word53__limit38_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word53_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word53_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word53_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word53_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word53_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word53_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word53_honoured = 32768;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word53_honoured = card1_card_core1_regs_fifo2_reg_word53_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word53_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word53_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_clamp_out = (card1_card_core1_regs_fifo2_reg_word52_clamp_out || card1_card_core1_regs_fifo2_reg_word53_clamped);
+assign card1_card_core1_regs_fifo2_reg_word53_written = (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word53__store38_hold_rw
+
+assign card1_card_core1_regs_fifo2_reg_word53_honoured = card1_card_core1_regs_fifo2_reg_word53_written[5-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word53_clamp_out = card1_card_core1_regs_fifo2_reg_word52_clamp_out;
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word53__store35_clear_on_one
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word53_value <= 4096;
-        card1_card_core1_regs_fifo2_reg_word53_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word53_value <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word53_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word53_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word53_value <= card1_card_core1_regs_fifo2_reg_word53_honoured;
-            card1_card_core1_regs_fifo2_reg_word53_clamped <= card1_card_core1_regs_fifo2_reg_word53_out_of_range;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word53_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word53_value <= ((card1_card_core1_regs_fifo2_reg_word53_value & (~card1_card_core1_regs_fifo2_reg_word53_honoured)) | card1_card_core1_regs_fifo2_reg_word53_hw_value);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_reg_word53_value <= (card1_card_core1_regs_fifo2_reg_word53_value | card1_card_core1_regs_fifo2_reg_word53_hw_value);
         end
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_local_addr == 48);
+assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_local_addr == 24);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word54_mine, card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word53_read_out) begin: card1_card_core1_regs_fifo2_reg_word54_read_chain
@@ -3191,11 +2958,11 @@ assign card1_card_core1_regs_fifo2_reg_word54_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word54_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
+assign card1_card_core1_regs_fifo2_reg_word54_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word54_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
+always @(card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word54_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word54_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word54_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
@@ -3212,14 +2979,14 @@ assign card1_card_core1_regs_fifo2_reg_word54_honoured = card1_card_core1_regs_f
 assign card1_card_core1_regs_fifo2_reg_word54_clamp_out = (card1_card_core1_regs_fifo2_reg_word53_clamp_out || card1_card_core1_regs_fifo2_reg_word54_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word54__store39_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word54__store36_hold_rw
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_reg_word54_value <= 0;
         card1_card_core1_regs_fifo2_reg_word54_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word54_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word54_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word54_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word54_value <= card1_card_core1_regs_fifo2_reg_word54_honoured;
             card1_card_core1_regs_fifo2_reg_word54_clamped <= card1_card_core1_regs_fifo2_reg_word54_out_of_range;
         end
@@ -3228,7 +2995,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_local_addr == 52);
+assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_local_addr == 28);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word55_mine, card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_reg_word54_read_out) begin: card1_card_core1_regs_fifo2_reg_word55_read_chain
@@ -3242,59 +3009,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word55_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word55_value};
+assign card1_card_core1_regs_fifo2_reg_word55_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word55_hw_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word55_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word55_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
-        card1_card_core1_regs_fifo2_reg_word55_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word55_written = ((card1_card_core1_regs_fifo2_reg_word55_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word55_written) begin: card1_card_core1_regs_fifo2_reg_word55__limit40_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word55_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word55_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word55_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word55_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word55_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word55_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word55_honoured = card1_card_core1_regs_fifo2_reg_word55_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word55_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word55_clamp_out = card1_card_core1_regs_fifo2_reg_word54_clamp_out;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word55_clamp_out = (card1_card_core1_regs_fifo2_reg_word54_clamp_out || card1_card_core1_regs_fifo2_reg_word55_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word55__store40_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word55_value <= 1;
-        card1_card_core1_regs_fifo2_reg_word55_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word55_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word55_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word55_value <= card1_card_core1_regs_fifo2_reg_word55_honoured;
-            card1_card_core1_regs_fifo2_reg_word55_clamped <= card1_card_core1_regs_fifo2_reg_word55_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_local_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_local_addr == 32);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word56_mine, card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_reg_word55_read_out) begin: card1_card_core1_regs_fifo2_reg_word56_read_chain
@@ -3308,59 +3031,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word56_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word56_value};
+assign card1_card_core1_regs_fifo2_reg_word56_shown_wide = card1_card_core1_regs_fifo2_reg_word56_hw_value;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word56_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word56_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
-        card1_card_core1_regs_fifo2_reg_word56_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word56_written = ((card1_card_core1_regs_fifo2_reg_word56_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word56_written) begin: card1_card_core1_regs_fifo2_reg_word56__limit41_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word56_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word56_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word56_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word56_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word56_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word56_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word56_honoured = card1_card_core1_regs_fifo2_reg_word56_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word56_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word56_clamp_out = card1_card_core1_regs_fifo2_reg_word55_clamp_out;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word56_clamp_out = (card1_card_core1_regs_fifo2_reg_word55_clamp_out || card1_card_core1_regs_fifo2_reg_word56_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word56__store41_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word56_value <= 1;
-        card1_card_core1_regs_fifo2_reg_word56_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word56_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word56_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word56_value <= card1_card_core1_regs_fifo2_reg_word56_honoured;
-            card1_card_core1_regs_fifo2_reg_word56_clamped <= card1_card_core1_regs_fifo2_reg_word56_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_local_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_local_addr == 36);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word57_mine, card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_reg_word56_read_out) begin: card1_card_core1_regs_fifo2_reg_word57_read_chain
@@ -3374,59 +3053,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word57_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word57_value};
+assign card1_card_core1_regs_fifo2_reg_word57_shown_wide = card1_card_core1_regs_fifo2_reg_word57_hw_value;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word57_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word57_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
-        card1_card_core1_regs_fifo2_reg_word57_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word57_written = ((card1_card_core1_regs_fifo2_reg_word57_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word57_written) begin: card1_card_core1_regs_fifo2_reg_word57__limit42_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word57_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word57_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word57_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word57_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word57_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word57_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word57_honoured = card1_card_core1_regs_fifo2_reg_word57_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word57_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word57_clamp_out = card1_card_core1_regs_fifo2_reg_word56_clamp_out;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word57_clamp_out = (card1_card_core1_regs_fifo2_reg_word56_clamp_out || card1_card_core1_regs_fifo2_reg_word57_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word57__store42_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word57_value <= 1;
-        card1_card_core1_regs_fifo2_reg_word57_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word57_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word57_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word57_value <= card1_card_core1_regs_fifo2_reg_word57_honoured;
-            card1_card_core1_regs_fifo2_reg_word57_clamped <= card1_card_core1_regs_fifo2_reg_word57_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_local_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_local_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word58_mine, card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word57_read_out) begin: card1_card_core1_regs_fifo2_reg_word58_read_chain
@@ -3440,39 +3075,50 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word58_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word58_value};
+assign card1_card_core1_regs_fifo2_reg_word58_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word58_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word58_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word58_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word58_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word58_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word58_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word58_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word58_written = ((card1_card_core1_regs_fifo2_reg_word58_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word58_written = ((card1_card_core1_regs_fifo2_reg_word58_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word58_honoured = card1_card_core1_regs_fifo2_reg_word58_written[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word58_written) begin: card1_card_core1_regs_fifo2_reg_word58__limit37_clamp_unsigned
+    card1_card_core1_regs_fifo2_reg_word58_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word58_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word58_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word58_honoured = 1;
+    end
+    else if (((card1_card_core1_regs_fifo2_reg_word58_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word58_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word58_honoured = 32768;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word58_honoured = card1_card_core1_regs_fifo2_reg_word58_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word58_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word58_clamp_out = (card1_card_core1_regs_fifo2_reg_word57_clamp_out || card1_card_core1_regs_fifo2_reg_word58_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word58__store43_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word58__store37_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word58_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word58_value <= 4096;
         card1_card_core1_regs_fifo2_reg_word58_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word58_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word58_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word58_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word58_value <= card1_card_core1_regs_fifo2_reg_word58_honoured;
             card1_card_core1_regs_fifo2_reg_word58_clamped <= card1_card_core1_regs_fifo2_reg_word58_out_of_range;
         end
@@ -3481,7 +3127,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_local_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_local_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word59_mine, card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_read_out) begin: card1_card_core1_regs_fifo2_reg_word59_read_chain
@@ -3499,11 +3145,11 @@ assign card1_card_core1_regs_fifo2_reg_word59_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word59_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word59_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word59_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
         card1_card_core1_regs_fifo2_reg_word59_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -3512,13 +3158,13 @@ always @(card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word59_written) begin: card1_card_core1_regs_fifo2_reg_word59__limit44_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word59_written) begin: card1_card_core1_regs_fifo2_reg_word59__limit38_clamp_unsigned
     card1_card_core1_regs_fifo2_reg_word59_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word59_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word59_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word59_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word59_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word59_honoured = 65535;
+    else if (((card1_card_core1_regs_fifo2_reg_word59_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word59_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word59_honoured = 32768;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word59_honoured = card1_card_core1_regs_fifo2_reg_word59_written[16-1:0];
@@ -3531,14 +3177,14 @@ end
 assign card1_card_core1_regs_fifo2_reg_word59_clamp_out = (card1_card_core1_regs_fifo2_reg_word58_clamp_out || card1_card_core1_regs_fifo2_reg_word59_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word59__store44_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word59__store38_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word59_value <= 2;
+        card1_card_core1_regs_fifo2_reg_word59_value <= 4096;
         card1_card_core1_regs_fifo2_reg_word59_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word59_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word59_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word59_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word59_value <= card1_card_core1_regs_fifo2_reg_word59_honoured;
             card1_card_core1_regs_fifo2_reg_word59_clamped <= card1_card_core1_regs_fifo2_reg_word59_out_of_range;
         end
@@ -3547,7 +3193,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_local_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_local_addr == 48);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word60_mine, card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word59_read_out) begin: card1_card_core1_regs_fifo2_reg_word60_read_chain
@@ -3565,46 +3211,35 @@ assign card1_card_core1_regs_fifo2_reg_word60_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word60_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word60_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word60_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
-        card1_card_core1_regs_fifo2_reg_word60_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
+        card1_card_core1_regs_fifo2_reg_word60_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word60_written = ((card1_card_core1_regs_fifo2_reg_word60_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word60_written = ((card1_card_core1_regs_fifo2_reg_word60_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word60_written) begin: card1_card_core1_regs_fifo2_reg_word60__limit45_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word60_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word60_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word60_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word60_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word60_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word60_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word60_honoured = card1_card_core1_regs_fifo2_reg_word60_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word60_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word60_honoured = card1_card_core1_regs_fifo2_reg_word60_written[16-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word60_clamp_out = (card1_card_core1_regs_fifo2_reg_word59_clamp_out || card1_card_core1_regs_fifo2_reg_word60_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word60__store45_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word60__store39_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word60_value <= 2;
+        card1_card_core1_regs_fifo2_reg_word60_value <= 0;
         card1_card_core1_regs_fifo2_reg_word60_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word60_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word60_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word60_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word60_value <= card1_card_core1_regs_fifo2_reg_word60_honoured;
             card1_card_core1_regs_fifo2_reg_word60_clamped <= card1_card_core1_regs_fifo2_reg_word60_out_of_range;
         end
@@ -3613,7 +3248,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_local_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_local_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word61_mine, card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word60_read_out) begin: card1_card_core1_regs_fifo2_reg_word61_read_chain
@@ -3627,29 +3262,34 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word61_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word61_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word61_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word61_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word61_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word61_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word61_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word61_written) begin: card1_card_core1_regs_fifo2_reg_word61__limit46_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word61_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word61_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word61_honoured = card1_card_core1_regs_fifo2_reg_word61_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word61_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word61_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b1;
+always @(card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word61_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
+        card1_card_core1_regs_fifo2_reg_word61_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word61_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word61_written = ((card1_card_core1_regs_fifo2_reg_word61_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word61_written) begin: card1_card_core1_regs_fifo2_reg_word61__limit40_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word61_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word61_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word61_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word61_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word61_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word61_honoured = card1_card_core1_regs_fifo2_reg_word61_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b0;
     end
 end
 
@@ -3658,18 +3298,15 @@ end
 assign card1_card_core1_regs_fifo2_reg_word61_clamp_out = (card1_card_core1_regs_fifo2_reg_word60_clamp_out || card1_card_core1_regs_fifo2_reg_word61_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word61__store46_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word61__store40_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word61_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word61_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word61_value <= 1;
         card1_card_core1_regs_fifo2_reg_word61_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word61_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word61_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word61_mine_write)) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word61_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word61_value <= card1_card_core1_regs_fifo2_reg_word61_honoured;
-            card1_card_core1_regs_fifo2_reg_word61_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word61_clamped <= card1_card_core1_regs_fifo2_reg_word61_out_of_range;
         end
     end
@@ -3677,43 +3314,48 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_local_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_local_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word61_read_out) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
     if (card1_card_core1_regs_fifo2_reg_word62_mine) begin
-        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word61_read_out | card1_card_core1_regs_fifo2_reg_word62_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word62_read_out = (card1_card_core1_regs_fifo2_reg_word61_read_out | card1_card_core1_regs_fifo2_reg_word62_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word61_read_out;
+        card1_card_core1_regs_fifo2_reg_word62_read_out = card1_card_core1_regs_fifo2_reg_word61_read_out;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word62_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word62_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word62_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word62_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word62_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word62_written) begin: card1_card_core1_regs_fifo2_reg_word62__limit47_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word62_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word62_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word62_honoured = card1_card_core1_regs_fifo2_reg_word62_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word62_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word62_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b1;
+always @(card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word62_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
+        card1_card_core1_regs_fifo2_reg_word62_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word62_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word62_written = ((card1_card_core1_regs_fifo2_reg_word62_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word62_written) begin: card1_card_core1_regs_fifo2_reg_word62__limit41_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word62_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word62_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word62_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word62_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word62_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word62_honoured = card1_card_core1_regs_fifo2_reg_word62_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b0;
     end
 end
 
@@ -3722,22 +3364,466 @@ end
 assign card1_card_core1_regs_fifo2_reg_word62_clamp_out = (card1_card_core1_regs_fifo2_reg_word61_clamp_out || card1_card_core1_regs_fifo2_reg_word62_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word62__store47_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word62__store41_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word62_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word62_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word62_value <= 1;
         card1_card_core1_regs_fifo2_reg_word62_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word62_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word62_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word62_mine_write)) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word62_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word62_value <= card1_card_core1_regs_fifo2_reg_word62_honoured;
-            card1_card_core1_regs_fifo2_reg_word62_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word62_clamped <= card1_card_core1_regs_fifo2_reg_word62_out_of_range;
         end
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word63_mine = (card1_pci_slave2_local_addr == 60);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word63_mine, card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_reg_word62_read_out) begin: card1_card_core1_regs_fifo2_reg_word63_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word63_mine) begin
+        card1_card_core1_regs_fifo2_reg_word63_read_out = (card1_card_core1_regs_fifo2_reg_word62_read_out | card1_card_core1_regs_fifo2_reg_word63_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word63_read_out = card1_card_core1_regs_fifo2_reg_word62_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word63_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word63_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word63_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word63_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
+        card1_card_core1_regs_fifo2_reg_word63_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word63_written = ((card1_card_core1_regs_fifo2_reg_word63_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word63_written) begin: card1_card_core1_regs_fifo2_reg_word63__limit42_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word63_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word63_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word63_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word63_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word63_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word63_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word63_honoured = card1_card_core1_regs_fifo2_reg_word63_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word63_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word63_clamp_out = (card1_card_core1_regs_fifo2_reg_word62_clamp_out || card1_card_core1_regs_fifo2_reg_word63_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word63__store42_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word63_value <= 1;
+        card1_card_core1_regs_fifo2_reg_word63_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word63_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word63_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word63_value <= card1_card_core1_regs_fifo2_reg_word63_honoured;
+            card1_card_core1_regs_fifo2_reg_word63_clamped <= card1_card_core1_regs_fifo2_reg_word63_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word64_mine = (card1_pci_slave2_local_addr == 64);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word64_mine, card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word63_read_out) begin: card1_card_core1_regs_fifo2_reg_word64_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word64_mine) begin
+        card1_card_core1_regs_fifo2_reg_word64_read_out = (card1_card_core1_regs_fifo2_reg_word63_read_out | card1_card_core1_regs_fifo2_reg_word64_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word64_read_out = card1_card_core1_regs_fifo2_reg_word63_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word64_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word64_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word64_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word64_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word64_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word64_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word64_written = ((card1_card_core1_regs_fifo2_reg_word64_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word64_honoured = card1_card_core1_regs_fifo2_reg_word64_written[2-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word64_clamp_out = (card1_card_core1_regs_fifo2_reg_word63_clamp_out || card1_card_core1_regs_fifo2_reg_word64_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word64__store43_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word64_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word64_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word64_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word64_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word64_value <= card1_card_core1_regs_fifo2_reg_word64_honoured;
+            card1_card_core1_regs_fifo2_reg_word64_clamped <= card1_card_core1_regs_fifo2_reg_word64_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word65_mine = (card1_pci_slave2_local_addr == 68);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word65_mine, card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_reg_word64_read_out) begin: card1_card_core1_regs_fifo2_reg_word65_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word65_mine) begin
+        card1_card_core1_regs_fifo2_reg_word65_read_out = (card1_card_core1_regs_fifo2_reg_word64_read_out | card1_card_core1_regs_fifo2_reg_word65_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word65_read_out = card1_card_core1_regs_fifo2_reg_word64_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word65_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word65_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word65_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word65_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+        card1_card_core1_regs_fifo2_reg_word65_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word65_written = ((card1_card_core1_regs_fifo2_reg_word65_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word65_written) begin: card1_card_core1_regs_fifo2_reg_word65__limit44_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word65_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word65_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word65_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word65_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word65_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word65_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word65_honoured = card1_card_core1_regs_fifo2_reg_word65_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word65_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word65_clamp_out = (card1_card_core1_regs_fifo2_reg_word64_clamp_out || card1_card_core1_regs_fifo2_reg_word65_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word65__store44_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word65_value <= 2;
+        card1_card_core1_regs_fifo2_reg_word65_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word65_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word65_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word65_value <= card1_card_core1_regs_fifo2_reg_word65_honoured;
+            card1_card_core1_regs_fifo2_reg_word65_clamped <= card1_card_core1_regs_fifo2_reg_word65_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word66_mine = (card1_pci_slave2_local_addr == 72);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word66_mine, card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_reg_word65_read_out) begin: card1_card_core1_regs_fifo2_reg_word66_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word66_mine) begin
+        card1_card_core1_regs_fifo2_reg_word66_read_out = (card1_card_core1_regs_fifo2_reg_word65_read_out | card1_card_core1_regs_fifo2_reg_word66_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word66_read_out = card1_card_core1_regs_fifo2_reg_word65_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word66_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word66_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word66_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word66_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
+        card1_card_core1_regs_fifo2_reg_word66_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word66_written = ((card1_card_core1_regs_fifo2_reg_word66_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word66_written) begin: card1_card_core1_regs_fifo2_reg_word66__limit45_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word66_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word66_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word66_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word66_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word66_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word66_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word66_honoured = card1_card_core1_regs_fifo2_reg_word66_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word66_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word66_clamp_out = (card1_card_core1_regs_fifo2_reg_word65_clamp_out || card1_card_core1_regs_fifo2_reg_word66_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word66__store45_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word66_value <= 2;
+        card1_card_core1_regs_fifo2_reg_word66_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word66_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word66_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word66_value <= card1_card_core1_regs_fifo2_reg_word66_honoured;
+            card1_card_core1_regs_fifo2_reg_word66_clamped <= card1_card_core1_regs_fifo2_reg_word66_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word67_mine = (card1_pci_slave2_local_addr == 76);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word67_mine, card1_card_core1_regs_fifo2_reg_word67_shown_wide, card1_card_core1_regs_fifo2_reg_word66_read_out) begin: card1_card_core1_regs_fifo2_reg_word67_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word67_mine) begin
+        card1_card_core1_regs_fifo2_reg_word67_read_out = (card1_card_core1_regs_fifo2_reg_word66_read_out | card1_card_core1_regs_fifo2_reg_word67_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word67_read_out = card1_card_core1_regs_fifo2_reg_word66_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word67_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word67_hw_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word67_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word67_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word67_written) begin: card1_card_core1_regs_fifo2_reg_word67__limit46_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word67_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word67_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word67_honoured = card1_card_core1_regs_fifo2_reg_word67_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word67_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word67_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word67_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word67_out_of_range = 1'b1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word67_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word67_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word67_clamp_out = (card1_card_core1_regs_fifo2_reg_word66_clamp_out || card1_card_core1_regs_fifo2_reg_word67_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word67__store46_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word67_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word67_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word67_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word67_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word67_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word67_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word67_value <= card1_card_core1_regs_fifo2_reg_word67_honoured;
+            card1_card_core1_regs_fifo2_reg_word67_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word67_clamped <= card1_card_core1_regs_fifo2_reg_word67_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word68_mine = (card1_pci_slave2_local_addr == 80);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word68_mine, card1_card_core1_regs_fifo2_reg_word68_shown_wide, card1_card_core1_regs_fifo2_reg_word67_read_out) begin: card1_card_core1_regs_fifo2_reg_word68_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word68_mine) begin
+        card1_card_core1_regs_fifo2_reg_word68_read_out = (card1_card_core1_regs_fifo2_reg_word67_read_out | card1_card_core1_regs_fifo2_reg_word68_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word68_read_out = card1_card_core1_regs_fifo2_reg_word67_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word68_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word68_hw_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word68_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word68_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word68_written) begin: card1_card_core1_regs_fifo2_reg_word68__limit47_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word68_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word68_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word68_honoured = card1_card_core1_regs_fifo2_reg_word68_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word68_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word68_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word68_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word68_out_of_range = 1'b1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word68_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word68_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word68_clamp_out = (card1_card_core1_regs_fifo2_reg_word67_clamp_out || card1_card_core1_regs_fifo2_reg_word68_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word68__store47_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word68_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word68_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word68_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word68_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word68_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word68_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word68_value <= card1_card_core1_regs_fifo2_reg_word68_honoured;
+            card1_card_core1_regs_fifo2_reg_word68_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word68_clamped <= card1_card_core1_regs_fifo2_reg_word68_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word69_mine = (card1_pci_slave2_local_addr == 84);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word69_mine, card1_card_core1_regs_fifo2_reg_word69_shown_wide, card1_card_core1_regs_fifo2_reg_word68_read_out) begin: card1_card_core1_regs_fifo2_reg_word69_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word69_mine) begin
+        card1_card_core1_regs_fifo2_reg_word69_read_out = (card1_card_core1_regs_fifo2_reg_word68_read_out | card1_card_core1_regs_fifo2_reg_word69_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word69_read_out = card1_card_core1_regs_fifo2_reg_word68_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word69_shown_wide = card1_card_core1_regs_fifo2_reg_word69_hw_value;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word69_clamp_out = card1_card_core1_regs_fifo2_reg_word68_clamp_out;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word70_mine = (card1_pci_slave2_local_addr == 88);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word70_mine, card1_card_core1_regs_fifo2_reg_word70_shown_wide, card1_card_core1_regs_fifo2_reg_word69_read_out) begin: card1_card_core1_regs_fifo2_reg_word70_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word70_mine) begin
+        card1_card_core1_regs_fifo2_reg_word70_read_out = (card1_card_core1_regs_fifo2_reg_word69_read_out | card1_card_core1_regs_fifo2_reg_word70_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word70_read_out = card1_card_core1_regs_fifo2_reg_word69_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word70_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word70_hw_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word70_clamp_out = card1_card_core1_regs_fifo2_reg_word69_clamp_out;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word71_mine = (card1_pci_slave2_local_addr == 92);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word71_mine, card1_card_core1_regs_fifo2_reg_word71_shown_wide, card1_card_core1_regs_fifo2_reg_word70_read_out) begin: card1_card_core1_regs_fifo2_reg_word71_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word71_mine) begin
+        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word70_read_out | card1_card_core1_regs_fifo2_reg_word71_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word70_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word71_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word71_hw_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word71_clamp_out = card1_card_core1_regs_fifo2_reg_word70_clamp_out;
 
 
 
@@ -4217,13 +4303,13 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
         card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word52_value;
-        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word53_value;
-        card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_reg_word54_value;
-        card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_reg_word54_value == 0);
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word52_value}) - $signed({1'b0, card1_card_core1_regs_fifo2_reg_word54_value}));
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word52_value} + {1'b0, card1_card_core1_regs_fifo2_reg_word54_value});
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word53_value} + {1'b0, card1_card_core1_regs_fifo2_reg_word54_value});
+        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word58_value;
+        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word59_value;
+        card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_reg_word60_value;
+        card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_reg_word60_value == 0);
+        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word58_value}) - $signed({1'b0, card1_card_core1_regs_fifo2_reg_word60_value}));
+        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word58_value} + {1'b0, card1_card_core1_regs_fifo2_reg_word60_value});
+        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word59_value} + {1'b0, card1_card_core1_regs_fifo2_reg_word60_value});
     end
 end
 
@@ -4333,23 +4419,23 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         card1_card_core1_regs_fifo2_direct_dir_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
-        card1_card_core1_regs_fifo2_reg_word61_hw_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word67_hw_value <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         if (card1_card_core1_core_clear) begin
-            card1_card_core1_regs_fifo2_reg_word61_hw_value <= 0;
+            card1_card_core1_regs_fifo2_reg_word67_hw_value <= 0;
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_load) begin
             if ((card1_card_core1_regs_fifo2_direct_pulse4_count < 0)) begin
-                card1_card_core1_regs_fifo2_reg_word61_hw_value <= (-card1_card_core1_regs_fifo2_direct_pulse4_count);
+                card1_card_core1_regs_fifo2_reg_word67_hw_value <= (-card1_card_core1_regs_fifo2_direct_pulse4_count);
                 card1_card_core1_regs_fifo2_direct_dir_x <= 0;
             end
             else begin
-                card1_card_core1_regs_fifo2_reg_word61_hw_value <= card1_card_core1_regs_fifo2_direct_pulse4_count;
+                card1_card_core1_regs_fifo2_reg_word67_hw_value <= card1_card_core1_regs_fifo2_direct_pulse4_count;
                 card1_card_core1_regs_fifo2_direct_dir_x <= 1;
             end
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_count != 0);
@@ -4363,10 +4449,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             end
             else if (card1_card_core1_regs_fifo2_out_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_x <= 1;
-                card1_card_core1_regs_fifo2_reg_word61_hw_value <= (card1_card_core1_regs_fifo2_reg_word61_hw_value - 1);
-                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word61_hw_value != 1);
-                card1_card_core1_regs_fifo2_direct_pulse4_gap <= (card1_card_core1_regs_fifo2_reg_word59_value - 1);
-                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_reg_word59_value != 1);
+                card1_card_core1_regs_fifo2_reg_word67_hw_value <= (card1_card_core1_regs_fifo2_reg_word67_hw_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word67_hw_value != 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_gap <= (card1_card_core1_regs_fifo2_reg_word65_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_reg_word65_value != 1);
             end
         end
     end
@@ -4382,23 +4468,23 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         card1_card_core1_regs_fifo2_direct_dir_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
-        card1_card_core1_regs_fifo2_reg_word62_hw_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word68_hw_value <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         if (card1_card_core1_core_clear) begin
-            card1_card_core1_regs_fifo2_reg_word62_hw_value <= 0;
+            card1_card_core1_regs_fifo2_reg_word68_hw_value <= 0;
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_load) begin
             if ((card1_card_core1_regs_fifo2_direct_pulse5_count < 0)) begin
-                card1_card_core1_regs_fifo2_reg_word62_hw_value <= (-card1_card_core1_regs_fifo2_direct_pulse5_count);
+                card1_card_core1_regs_fifo2_reg_word68_hw_value <= (-card1_card_core1_regs_fifo2_direct_pulse5_count);
                 card1_card_core1_regs_fifo2_direct_dir_y <= 0;
             end
             else begin
-                card1_card_core1_regs_fifo2_reg_word62_hw_value <= card1_card_core1_regs_fifo2_direct_pulse5_count;
+                card1_card_core1_regs_fifo2_reg_word68_hw_value <= card1_card_core1_regs_fifo2_direct_pulse5_count;
                 card1_card_core1_regs_fifo2_direct_dir_y <= 1;
             end
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_count != 0);
@@ -4412,10 +4498,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             end
             else if (card1_card_core1_regs_fifo2_out_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_y <= 1;
-                card1_card_core1_regs_fifo2_reg_word62_hw_value <= (card1_card_core1_regs_fifo2_reg_word62_hw_value - 1);
-                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word62_hw_value != 1);
-                card1_card_core1_regs_fifo2_direct_pulse5_gap <= (card1_card_core1_regs_fifo2_reg_word60_value - 1);
-                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_reg_word60_value != 1);
+                card1_card_core1_regs_fifo2_reg_word68_hw_value <= (card1_card_core1_regs_fifo2_reg_word68_hw_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word68_hw_value != 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_gap <= (card1_card_core1_regs_fifo2_reg_word66_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_reg_word66_value != 1);
             end
         end
     end
@@ -4431,12 +4517,12 @@ assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pu
 assign card1_card_core1_regs_fifo2_pulse_out2_head = card1_card_core1_regs_fifo2_pulse_out2_queue[0];
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_reg_word55_value, card1_card_core1_regs_fifo2_reg_word56_value, card1_card_core1_regs_fifo2_pulse_out2_low_clocks) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_reg_word61_value, card1_card_core1_regs_fifo2_reg_word62_value, card1_card_core1_regs_fifo2_pulse_out2_low_clocks) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
     card1_card_core1_regs_fifo2_pulse_out2_turn = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) && ((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
     card1_card_core1_regs_fifo2_pulse_out2_take = 1'b0;
-    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_core_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word55_value))) begin
+    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_core_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word61_value))) begin
         if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b01)) begin
-            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word56_value);
+            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word62_value);
         end
         else if ((card1_card_core1_regs_fifo2_pulse_out2_count != 0)) begin
             card1_card_core1_regs_fifo2_pulse_out2_take = (!((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
@@ -4445,9 +4531,9 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_r
 end
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_reg_word55_value, card1_card_core1_regs_fifo2_reg_word57_value, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_pulse_out2_take) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
-    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_core_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word57_value)));
-    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word55_value));
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_reg_word61_value, card1_card_core1_regs_fifo2_reg_word63_value, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_pulse_out2_take) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
+    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_core_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word63_value)));
+    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word61_value));
     card1_card_core1_regs_fifo2_pulse_out2_phase_step = 0;
     if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks != 255)) begin
         card1_card_core1_regs_fifo2_pulse_out2_phase_step = 1;
@@ -4571,8 +4657,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
     else begin
         motor_step_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
         motor_step_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
-        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word58_value[0]);
-        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word58_value[1]);
+        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word64_value[0]);
+        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word64_value[1]);
         if (card1_card_core1_regs_fifo2_clear_position) begin
             card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
             card1_card_core1_regs_fifo2_position_y <= 0;
@@ -4713,10 +4799,10 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word61_strobe, card1_card_core1_regs_fifo2_reg_word61_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulse_count_x, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
+always @(card1_card_core1_regs_fifo2_reg_word67_strobe, card1_card_core1_regs_fifo2_reg_word67_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulse_count_x, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
     if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_load = card1_card_core1_regs_fifo2_reg_word61_strobe;
-        card1_card_core1_regs_fifo2_direct_pulse4_count = $signed(card1_card_core1_regs_fifo2_reg_word61_value);
+        card1_card_core1_regs_fifo2_direct_pulse4_load = card1_card_core1_regs_fifo2_reg_word67_strobe;
+        card1_card_core1_regs_fifo2_direct_pulse4_count = $signed(card1_card_core1_regs_fifo2_reg_word67_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_load = card1_card_core1_regs_fifo2_seq_load;
@@ -4725,10 +4811,10 @@ always @(card1_card_core1_regs_fifo2_reg_word61_strobe, card1_card_core1_regs_fi
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word62_strobe, card1_card_core1_regs_fifo2_reg_word62_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulse_count_y, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
+always @(card1_card_core1_regs_fifo2_reg_word68_strobe, card1_card_core1_regs_fifo2_reg_word68_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulse_count_y, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
     if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_load = card1_card_core1_regs_fifo2_reg_word62_strobe;
-        card1_card_core1_regs_fifo2_direct_pulse5_count = $signed(card1_card_core1_regs_fifo2_reg_word62_value);
+        card1_card_core1_regs_fifo2_direct_pulse5_load = card1_card_core1_regs_fifo2_reg_word68_strobe;
+        card1_card_core1_regs_fifo2_direct_pulse5_count = $signed(card1_card_core1_regs_fifo2_reg_word68_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_load = card1_card_core1_regs_fifo2_seq_load;
@@ -4764,7 +4850,7 @@ always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_don
     word[8] = card1_card_core1_regs_fifo2_fifo_empty;
     word[9] = card1_card_core1_regs_fifo2_fifo_full;
     word[32-1:16] = card1_card_core1_regs_fifo2_level_wide;
-    card1_card_core1_regs_fifo2_reg_word45_hw_value = word;
+    card1_card_core1_regs_fifo2_reg_word51_hw_value = word;
 end
 
 
@@ -4772,37 +4858,37 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2__inter
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_error_before <= 0;
         card1_card_core1_regs_fifo2_low_before <= 0;
-        card1_card_core1_regs_fifo2_reg_word49_hw_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word55_hw_value <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_error_before <= (card1_card_core1_regs_fifo2_error_code != 0);
-        card1_card_core1_regs_fifo2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word48_value);
+        card1_card_core1_regs_fifo2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word54_value);
         if (card1_card_core1_regs_fifo2_mark_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word49_hw_value <= card1_card_core1_regs_fifo2_mark_tag;
+            card1_card_core1_regs_fifo2_reg_word55_hw_value <= card1_card_core1_regs_fifo2_mark_tag;
         end
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word62_clamp_out, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_reg_word48_value, card1_card_core1_regs_fifo2_mark_strobe, card1_card_core1_regs_fifo2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_busy_before, card1_card_core1_regs_fifo2_low_before) begin: card1_card_core1_regs_fifo2__interrupts2_detect
+always @(card1_card_core1_regs_fifo2_reg_word71_clamp_out, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_reg_word54_value, card1_card_core1_regs_fifo2_mark_strobe, card1_card_core1_regs_fifo2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_busy_before, card1_card_core1_regs_fifo2_low_before) begin: card1_card_core1_regs_fifo2__interrupts2_detect
     reg [5-1:0] word;
     word = 5'h0;
     word[0] = (card1_card_core1_regs_fifo2_busy_before && (!card1_card_core1_regs_fifo2_any_busy));
-    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word48_value) && (!card1_card_core1_regs_fifo2_low_before));
+    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word54_value) && (!card1_card_core1_regs_fifo2_low_before));
     word[2] = ((card1_card_core1_regs_fifo2_error_code != 0) && (!card1_card_core1_regs_fifo2_error_before));
     word[3] = card1_card_core1_regs_fifo2_mark_strobe;
-    word[4] = card1_card_core1_regs_fifo2_reg_word62_clamp_out;
-    card1_card_core1_regs_fifo2_reg_word47_hw_value = word;
+    word[4] = card1_card_core1_regs_fifo2_reg_word71_clamp_out;
+    card1_card_core1_regs_fifo2_reg_word53_hw_value = word;
 end
 
 
 
-assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word47_value & card1_card_core1_regs_fifo2_reg_word46_value) != 0);
+assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word53_value & card1_card_core1_regs_fifo2_reg_word52_value) != 0);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word50_hw_value = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
-assign card1_card_core1_regs_fifo2_reg_word51_hw_value = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word56_hw_value = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word57_hw_value = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
 always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_magnitudes
@@ -5249,8 +5335,8 @@ end
 
 always @(card1_card_core1_dda_arc2_left_x, card1_card_core1_dda_arc2_stepped_y, card1_card_core1_dda_arc2_integrand_x, card1_card_core1_dda_arc2_stepped_x, card1_card_core1_dda_arc2_target_y, card1_card_core1_dda_arc2_integrand_y, card1_card_core1_dda_arc2_target_x, card1_card_core1_dda_arc2_run_line, card1_card_core1_dda_arc2_left_y) begin: card1_card_core1_dda_arc2_end_tests
     if (card1_card_core1_dda_arc2_run_line) begin
-        card1_card_core1_dda_arc2_at_x = (card1_card_core1_dda_arc2_left_x[27-1:0] == 134217727);
-        card1_card_core1_dda_arc2_at_y = (card1_card_core1_dda_arc2_left_y[27-1:0] == 134217727);
+        card1_card_core1_dda_arc2_at_x = (card1_card_core1_dda_arc2_left_x[27-1:0] == 27'h7ffffff);
+        card1_card_core1_dda_arc2_at_y = (card1_card_core1_dda_arc2_left_y[27-1:0] == 27'h7ffffff);
         card1_card_core1_dda_arc2_near_x = (card1_card_core1_dda_arc2_left_x == 0);
         card1_card_core1_dda_arc2_near_y = (card1_card_core1_dda_arc2_left_y == 0);
     end
@@ -5910,7 +5996,7 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             end
         end
         else begin
-            card1_card_core1_regs_fifo2_feed_rate2_stop_left <= 134217727;
+            card1_card_core1_regs_fifo2_feed_rate2_stop_left <= 27'h7ffffff;
         end
     end
 end

@@ -63,7 +63,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 def parser():
-    top = _Parser(prog=PROG, description=__doc__.split("\n\n")[0])
+    top = _Parser(prog=PROG, allow_abbrev=False, description=__doc__.split("\n\n")[0])
     commands = top.add_subparsers(dest="command", required=True, parser_class=_Parser)
     plan_cmd = commands.add_parser("plan", help="plan FILE and measure the path against the drawing")
     plan_cmd.add_argument("file", type=Path, help="G-code program, or an .svg drawing")

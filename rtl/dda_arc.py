@@ -32,6 +32,7 @@ The hardware has three parts:
 from myhdl import Signal, always_comb, always_seq, block, concat, enum, intbv, modbv
 
 from rtl.interfaces import AxisPulses, DdaPort, card_reset
+from rtl.parameters import COORD_WIDTH
 
 TRADITIONAL, WEIGHTED, IMPROVED, PRECISE = range(4)
 ACC_EXTRA_BITS = 8
@@ -53,19 +54,18 @@ def _wrapping(width):
 
 
 @block
-def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
+def dda_arc(clock, reset, cmd, steps):
     """Two-axis DDA interpolator (arcs of the paper's section 4, and lines).
 
     Ports:
         clock, reset  clock and reset (``card_reset()``: async, active low)
         cmd           ``DdaPort``: command lines, ``start``, ``blend``, ``advance``
                       in; ``ready``, ``busy``, ``done``, ``error``, ``quadrant``,
-                      ``stop_left`` out
+                      ``stop_left`` out; its ``coord_width`` is the signed
+                      coordinate width; accumulators are coord_width + 8
+                      bits, the radial error term + 6
         steps         ``AxisPulses``: ``step_x``/``step_y`` one clock per step,
                       ``dir_x``/``dir_y`` valid with them
-    Parameters:
-        coord_width   signed coordinate width (4..31); accumulators are
-                      coord_width + 8 bits, the radial error term + 6
 
     Timing (an arc; a line has two setup clocks)::
 
@@ -97,9 +97,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
     register one iteration behind the ``advance`` pulses at the fastest rate,
     it still never exceeds the iterations left.
     """
-    if not 4 <= coord_width <= 31:
-        raise ValueError(f"coord_width must be 4..31, not {coord_width}")
-    width = coord_width
+    width = cmd.coord_width
     acc_width = width + ACC_EXTRA_BITS
     err_width = width + ERROR_EXTRA_BITS
     thr_width = width + MAX_THRESHOLD_EXTRA + 1
@@ -591,8 +589,8 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
         # an arc's axis is at its target, or one step before it; a line's steps left
         # (minus one) are -1 or 0
         if run_line:
-            at_x.next = left_x[left_width:] == left_all_ones
-            at_y.next = left_y[left_width:] == left_all_ones
+            at_x.next = left_x[left_width:] == intbv(left_all_ones)[left_width:]
+            at_y.next = left_y[left_width:] == intbv(left_all_ones)[left_width:]
             near_x.next = left_x == 0
             near_y.next = left_y == 0
         else:
@@ -697,9 +695,9 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             go_x = not at_x
             go_y = not at_y
         if not sum_x[acc_width] and sum_x[acc_width - 1]:
-            sum_x[:] = acc_max
+            sum_x[:] = intbv(acc_max)[acc_width + 1:]
         if not sum_y[acc_width] and sum_y[acc_width - 1]:
-            sum_y[:] = acc_max
+            sum_y[:] = intbv(acc_max)[acc_width + 1:]
         it_sum_x.next = sum_x[acc_width:].signed()
         it_sum_y.next = sum_y[acc_width:].signed()
         it_step_x.next = go_x
@@ -1068,7 +1066,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             else:
                 cmd.stop_left.next = larger[left_width:]
         else:
-            cmd.stop_left.next = left_all_ones
+            cmd.stop_left.next = intbv(left_all_ones)[left_width:]
 
     @always_comb
     def status():
@@ -1081,7 +1079,7 @@ def dda_arc(clock, reset, cmd, steps, *, coord_width=24):
             run_control, left_output, status)
 
 
-def dda_arc_ports(coord_width=24):
+def dda_arc_ports(coord_width=COORD_WIDTH.default):
     """Fresh ports of ``dda_arc`` for conversion or a bench."""
     return dict(clock=Signal(bool(0)), reset=card_reset(),
                 cmd=DdaPort(coord_width), steps=AxisPulses())

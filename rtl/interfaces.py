@@ -11,6 +11,12 @@ lines are 0 when asserted).
 """
 from myhdl import ResetSignal, Signal, TristateSignal, intbv
 
+from rtl.parameters import COORD_WIDTH
+
+# Narrowest coordinates of the interpolator alone (its narrow-width bench runs
+# at 10 bits); the card's range is COORD_WIDTH's (rtl/parameters.py).
+DDA_MIN_WIDTH = 4
+
 
 class PciBus:
     """The target's view of a 32-bit PCI bus.
@@ -109,11 +115,15 @@ class DdaPort:
     the iterations left before the path stops: those of the running move
     when it was started with ``blend`` = 0, the all-ones value while the
     running move blends or none runs; the feed-rate ramp decelerates on it).
+    ``coord_width``: the coordinates' width, which every block on the port
+    takes from it.
     """
 
-    def __init__(self, coord_width=24):
-        if not 4 <= coord_width <= 48:
-            raise ValueError(f"coord_width must be 4..48 bits, got {coord_width}")
+    def __init__(self, coord_width=COORD_WIDTH.default):
+        if (isinstance(coord_width, bool) or not isinstance(coord_width, int)
+                or not DDA_MIN_WIDTH <= coord_width <= COORD_WIDTH.maximum):
+            raise ValueError(f"DdaPort: coord_width must be {DDA_MIN_WIDTH}..{COORD_WIDTH.maximum} "
+                             f"(the card's: {COORD_WIDTH.bounds()}), not {coord_width!r}")
         self.coord_width = coord_width
         low, high = -(1 << (coord_width - 1)), 1 << (coord_width - 1)
         self.start = Signal(bool(0))

@@ -44,7 +44,7 @@ from sim.waves import Waveform, trace_stem
 KINDS = ("myhdl", "icarus", "verilator")
 DEVICE = 0
 SMALL_FIFO = 16
-DEFAULT_FIFO = PARAMETERS["fifo_depth"][1]
+DEFAULT_FIFO = PARAMETERS["fifo_depth"].default
 INTA_LIMIT = 200000
 
 

@@ -54,8 +54,8 @@ async def card_enumerate_registers_fifo_move(dut):
     host = bus.host
 
     (device,) = await bus.run(host.enumerate_bus(devices=[0]))
-    assert (device.vendor_id, device.device_id) == (PARAMETERS["vendor_id"][1], PARAMETERS["device_id"][1])
-    assert device.class_code == PARAMETERS["class_code"][1]
+    assert (device.vendor_id, device.device_id) == (PARAMETERS["vendor_id"].default, PARAMETERS["device_id"].default)
+    assert device.class_code == PARAMETERS["class_code"].default
     bars = {("io" if bar["io"] else "mem"): bar for bar in device.bars}
     io, mem = bars["io"]["base"], bars["mem"]["base"]
     status = await bus.run(host.config_read(0, 0x04))

@@ -124,7 +124,7 @@ def dda_bench(ports, commands, record, *, coord_width=24, verilog=None, seed=1,
         raise StopSimulation()
 
     if verilog is None:
-        device = dda_arc(**ports, coord_width=coord_width)
+        device = dda_arc(**ports)
     else:
         device = cosimulate("dda_arc", ports, verilog)
     return device, clock_driver, stimulus

@@ -162,7 +162,9 @@ def test_after_reset_every_register_reads_as_documented(kind):
     out, _, _, _ = run_card(kind, scenario, "card_e2e_reset", DEFAULT_FIFO)
     for reg in regmap.REGISTERS:
         value = reads.pop(reg.offset)
-        assert value == reg.reset, f"{reg.name} reads {value:#x}, the table says {reg.reset:#x}"
+        # the table's reset is gen/top.v's (Icarus); the card, MyHDL or gen/card.v, is built generic
+        wanted = reg.reset if kind == "icarus" else regmap.build_word(reg, {"device": "generic"})
+        assert value == wanted, f"{reg.name} reads {value:#x}, the table says {wanted:#x}"
     assert set(reads.values()) == {0}, "an unlisted offset does not read 0"
     header, device, bars = header_constants(), out["device"], out["bars"]
     assert {reg.name: header[f"DDA_{reg.name}_RESET"] for reg in regmap.REGISTERS} == {

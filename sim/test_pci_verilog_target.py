@@ -6,38 +6,10 @@ disconnects and first-attempt retries, data checked, monitor quiet; with
 ``X_ON_RETRY`` defined the X/Z detector reports the X it drives on AD."""
 import pytest
 
-from sim.paths import ROOT
 from sim.pci_bench import PciBench
 from sim.pci_checker import ProtocolViolation
-from sim.pci_cosim import VerilogTarget
 from sim.pci_host import Termination
-
-EXAMPLE = ROOT / "docs" / "example"
-PINS = {"ad": "ad", "cbe": "cbe_n", "par": "par", "frame": "frame_n", "irdy": "irdy_n",
-        "trdy": "trdy_n", "devsel": "devsel_n", "stop": "stop_n"}
-VENDOR, DEVICE, CLASS = 0x1234, 0x5C7A, 0x058000
-WORDS = 16
-
-
-def scratch_target(defines=()):
-    return VerilogTarget(files=[EXAMPLE / "scratch_target.v"], top="scratch_target", pins=PINS,
-                         clock="clk", reset="rst_n", idsel="idsel", include_dirs=[EXAMPLE],
-                         defines=defines)
-
-
-def scenario(out):
-    def run(bench):
-        host = bench.host
-        (device,) = yield from host.enumerate_bus(devices=[0])
-        out["device"] = device
-        base = device.bars[0]["base"]
-        values = [0x1000_0001 * (i + 1) & 0xFFFFFFFF for i in range(WORDS)]
-        out["write"] = yield from host.mem_write(base, values)
-        out["read"] = yield from host.mem_read(base, WORDS)
-        out["byte"] = yield from host.mem_write(base + 5, 0xAB, size=1)
-        out["word1"] = yield from host.mem_read(base + 4)
-        out["values"] = values
-    return run
+from sim.scratch_example import CLASS, DEVICE, VENDOR, WORDS, scenario, scratch_target
 
 
 def test_a_foreign_verilog_target_enumerates_and_moves_bursts():

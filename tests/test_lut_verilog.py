@@ -1,5 +1,5 @@
-"""The simulation branch of the hand-placed LUTs (``rtl.pci_slave.lut_verilog``)
-in Icarus: with an input floating (Z) or X, the output is X only where the
+"""The simulation model of the PCI target's pin LUTs (``rtl.pin_lut.lut_verilog``,
+both devices) in Icarus: with an input floating (Z) or X, the output is X only where the
 function depends on that input; elsewhere it is the function's value.  The
 expected values come from the Python function itself, evaluated for both
 values of the floating input."""
@@ -10,15 +10,15 @@ import subprocess
 
 import pytest
 
-from rtl.pci_slave import lut_verilog
+from rtl.pin_lut import lut_verilog
 
 NAMES = ["i0", "i1", "i2", "i3"]
 
 
-def simulate(tmp_path, inputs, function, cases):
+def simulate(tmp_path, inputs, function, cases, device):
     """Output of the LUT (as Icarus prints it: 0, 1, x) for each case (a
     tuple of '0', '1', 'x', 'z' per input)."""
-    lines = lut_verilog("o", "probe", inputs, function)
+    lines = lut_verilog("o", "probe", inputs, function, device=device)
     stimulus = []
     for case in cases:
         stimulus += [f"{net} = 1'b{value};" for net, value in zip(inputs, case)]
@@ -46,8 +46,9 @@ def expected(function, case):
 
 
 @pytest.mark.skipif(shutil.which("iverilog") is None, reason="needs Icarus Verilog")
+@pytest.mark.parametrize("device", ["generic", "ice40"])
 @pytest.mark.parametrize("count, seed", [(1, 1), (2, 2), (3, 3), (4, 4), (4, 5), (4, 6)])
-def test_an_input_the_output_does_not_depend_on_cannot_make_it_x(tmp_path, count, seed):
+def test_an_input_the_output_does_not_depend_on_cannot_make_it_x(tmp_path, count, seed, device):
     rng = random.Random(seed)
     table = rng.getrandbits(1 << count)
 
@@ -55,5 +56,5 @@ def test_an_input_the_output_does_not_depend_on_cannot_make_it_x(tmp_path, count
         return table >> sum(bit << k for k, bit in enumerate(bits)) & 1
 
     cases = list(itertools.product("01xz", repeat=count))
-    seen = simulate(tmp_path, NAMES[:count], function, cases)
+    seen = simulate(tmp_path, NAMES[:count], function, cases, device)
     assert seen == [expected(function, case) for case in cases]
