@@ -7,6 +7,7 @@ run in their own group).  The PCI and card groups read the generated Verilog
 of ``gen_dir`` (what users synthesise); the DDA group converts a small-width
 build into the work folder.
 """
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -30,6 +31,18 @@ def pci_harness_parameters(io_bits, mem_bits, ids=PCI_IDS):
                 ID_WORD=ids["device_id"] << 16 | ids["vendor_id"],
                 CLASS_WORD=ids["class_code"] << 8 | ids["revision_id"],
                 SUBSYSTEM_WORD=ids["subsystem_id"] << 16 | ids["subsystem_vendor_id"])
+
+
+# The LocalBus write credit (`room`): a unit with the port is proved with the
+# promise rules (LOCAL_ROOM), and its FIFO keeps its free places as a
+# thermometer instead of a full flag.
+CREDIT_REPLACES = ("sync_fifo0_is_full",)
+CREDIT_REGISTERS = ("sync_fifo0_free", "sync_fifo0_free_beyond")
+
+
+def has_write_credit(unit_file):
+    """True when the unit's Verilog has the LocalBus ``room`` port."""
+    return re.search(r"\blocal_room\b", Path(unit_file).read_text()) is not None
 
 
 @dataclass
@@ -69,9 +82,15 @@ class Group:
         sources = self.sources(gen_dir)
         if unit_file is not None:
             sources[0] = Path(unit_file)
+        defines = dict(self.defines)
+        expose = self.expose
+        if has_write_credit(sources[0]):
+            defines["LOCAL_ROOM"] = None
+            expose = tuple(name for name in expose if name not in CREDIT_REPLACES) + tuple(
+                name for name in CREDIT_REGISTERS if any(old in expose for old in CREDIT_REPLACES))
         script = []
-        if self.expose:
-            script.append("expose " + " ".join(f"{self.unit}/w:{name}" for name in self.expose))
+        if expose:
+            script.append("expose " + " ".join(f"{self.unit}/w:{name}" for name in expose))
         if self.parameters:
             settings = " ".join(f"-set {name} {value}" for name, value in self.parameters.items())
             script.append(f"chparam {settings} {self.top}")
@@ -84,7 +103,7 @@ class Group:
             script.append("chformal -cover -remove")
         reads = [path for path in sources if path.suffix in (".v", ".sv")]
         return Task(name=self.name, mode=self.mode, depth=self.depth, top=self.top,
-                    sources=reads, defines=self.defines, script=script,
+                    sources=reads, defines=defines, script=script,
                     files=sources)
 
 
@@ -113,13 +132,13 @@ GROUPS = [
           parameters=PCI_PARAMETERS, **PCI_HELPERS,
           text="PAR, PERR#, SERR# (pci_rules.sv)"),
     Group("pci_config", "pci_slave", PCI_FILES, "pci_target_harness",
-          ("config_", "inta_", "target_abort_", "inv_"), parameters=PCI_PARAMETERS, **PCI_HELPERS,
+          ("config_", "inta_", "target_abort_", "inv_"), parameters=PCI_PARAMETERS, **PCI_HELPERS, fast=False,
           text="configuration space, decode, INTA#, target-abort causes"),
     Group("pci_local", "pci_slave", PCI_FILES, "pci_target_harness", ("write_", "read_", "inv_"),
-          parameters=PCI_PARAMETERS, **PCI_HELPERS,
+          parameters=PCI_PARAMETERS, **PCI_HELPERS, fast=False,
           text="the local side carries exactly the PCI transaction"),
     Group("pci_fifo_path", "pci_slave", PCI_FILES, "pci_target_harness",
-          ("acknowledged_", "io_not_retried", "inv_"), parameters=PCI_PARAMETERS, **PCI_HELPERS,
+          ("acknowledged_", "io_not_retried", "inv_"), parameters=PCI_PARAMETERS, **PCI_HELPERS, fast=False,
           text="nothing acknowledged is dropped; I/O never waits behind the FIFO"),
     Group("regs_fifo_path", "regs_fifo", REGS_FILES, "regs_fifo_harness",
           ("lb_", "rf_registers", "rf_level", "rf_push", "rf_full", "rf_status", "inv_"),
@@ -127,17 +146,17 @@ GROUPS = [
           defines={"REGS_FIFO_INVARIANTS": None}, generated={"regs_table.vh": table_properties},
           text="back end: LocalBus answers, registers never wait, FIFO level, STATUS, nothing lost"),
     Group("regs_fifo_table", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("reg_",), mode="bmc",
-          depth=12, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          depth=8, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
           text="every register as rtl/registers.py says (bounded)"),
     Group("regs_fifo_pulses", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_",), mode="bmc",
-          depth=20, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
           defines={"PULSE_TIMING_BY_SET": None},
           text="STEP widths, DIR set-up and hold (bounded)"),
     Group("regs_fifo_order", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("rf_fifo_in_order",),
-          mode="bmc", depth=16, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          mode="bmc", depth=16, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
           text="FIFO words reach the sequencer in order, none twice (bounded)"),
     Group("pci_covers", "pci_slave", PCI_FILES, "pci_target_harness", (), mode="cover", depth=24,
-          parameters=PCI_PARAMETERS, text="each kind of transaction is reachable"),
+          parameters=PCI_PARAMETERS, fast=False, text="each kind of transaction is reachable"),
 ]
 
 

@@ -63,7 +63,6 @@ def read_unit(unit_file):
     return f"read_verilog -formal {Path(unit_file).name}; prep -top {Path(unit_file).stem}"
 
 
-
 def list_mutations(unit_file, work, count, seed):
     """``count`` mutate commands for the unit (its module is named after the file)."""
     work.mkdir(parents=True, exist_ok=True)
@@ -220,6 +219,8 @@ def main(argv=None):
     parser.add_argument("--judge", action="append", default=[],
                         help="group that judges the mutants (repeatable; default: the unit's groups "
                              "that pass on the original)")
+    parser.add_argument("--depth", type=int, default=16,
+                        help="depth of the bounded checks that judge a mutant (default 16)")
     parser.add_argument("--prove", action="store_true",
                         help="give mutants that pass every bounded check to the k-inductions too")
     args = parser.parse_args(argv)
@@ -227,7 +228,7 @@ def main(argv=None):
     for unit in args.units:
         judges = [name for name in args.judge if catalogue.group(name).unit == unit]
         mutants = score_unit(unit, args.count, args.seed, gen_dir=args.gen, judges=judges,
-                             modes=("bmc", "prove") if args.prove else ("bmc",))
+                             bmc_depth=args.depth, modes=("bmc", "prove") if args.prove else ("bmc",))
         reports.append(summary(unit, mutants))
     total_obs = sum(r["observable"] for r in reports)
     total_rej = sum(r["rejected"] for r in reports)

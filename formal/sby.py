@@ -8,6 +8,7 @@ failed assertions or reached covers, the counterexample trace and the time.
 import os
 import re
 import shutil
+import signal
 import subprocess
 import time
 from dataclasses import dataclass, field
@@ -98,13 +99,19 @@ def run(task, work_dir):
         shutil.rmtree(out_dir)
     env = dict(os.environ, **TOOLS)
     start = time.monotonic()
-    try:
-        proc = subprocess.run([SBY, "-f", sby_file.name], cwd=work_dir, env=env, text=True,
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=task.timeout)
-        log = proc.stdout
-    except subprocess.TimeoutExpired as expired:
-        log = (expired.stdout or b"").decode() if isinstance(expired.stdout, bytes) else (expired.stdout or "")
-        return Result(task, "TIMEOUT", time.monotonic() - start, log=log)
+    # its own process group, so that a time-out also ends smtbmc and the solver
+    with subprocess.Popen([SBY, "-f", sby_file.name], cwd=work_dir, env=env, text=True,
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          start_new_session=True) as proc:
+        try:
+            log, _ = proc.communicate(timeout=task.timeout)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGTERM)
+            log, _ = proc.communicate()
+            return Result(task, "TIMEOUT", time.monotonic() - start, log=log)
+        except BaseException:
+            os.killpg(proc.pid, signal.SIGTERM)
+            raise
     seconds = time.monotonic() - start
     return parse(task, log, seconds, out_dir)
 

@@ -5,11 +5,17 @@
 // CHECK_REQUESTER = 1: the requester's rules (the PCI target) are asserted,
 // the responder's (the back end) assumed; 0: the reverse, for a back end
 // under test behind a free requester.
+//
+// With LOCAL_ROOM defined (a LocalBus with the write credit `room`), the
+// back end's promise is a responder rule too: while `room` is high, the
+// next ROOM_PLACES writes to space 1 are answered ready, never retry; a
+// promise is used up only by the writes taken.
 `default_nettype none
 
 module local_bus_rules #(
     parameter CHECK_REQUESTER = 1,
-    parameter ADDR_WIDTH = 12
+    parameter ADDR_WIDTH = 12,
+    parameter ROOM_PLACES = 3      // writes a high `room` promises (LocalBus.ROOM_PLACES)
 ) (
     input wire clock,
     input wire reset_n,
@@ -21,7 +27,9 @@ module local_bus_rules #(
     input wire re,
     input wire write,
     input wire ready,
-    input wire retry
+    input wire retry,
+    input wire room,
+    output wire [2:0] promised      // writes still promised (with LOCAL_ROOM)
 );
 `define LB_REQ(label, cond) if (CHECK_REQUESTER) begin label: assert(cond); end else begin label: assume(cond); end
 `define LB_RSP(label, cond) if (CHECK_REQUESTER) begin label: assume(cond); end else begin label: assert(cond); end
@@ -68,7 +76,37 @@ module local_bus_rules #(
         if (since_register_write <= 3) begin `LB_REQ(lb_fifo_write_after_register_write_settles, !(we && space)) end
         // an answer is ready or retry, never both
         `LB_RSP(lb_one_answer, !(ready && retry))
+        // a FIFO write waits at most one clock for its answer (the card's
+        // back end answers at once, but in the clock after a register write)
+        if (p_waiting && p_we && p_space && we && space) begin `LB_RSP(lb_fifo_write_answered, ready || retry) end
+`ifdef LOCAL_ROOM
+        // the write credit: a promised FIFO write is not refused, and waits
+        // at most one clock; room falls only when the back end takes a write
+        if (we && space && promise_open) begin `LB_RSP(lb_promise_kept, !retry) end
+        if (p_valid && p_room && !room) begin `LB_RSP(lb_room_falls_by_writes, p_took) end
+`endif
     end
+`ifdef LOCAL_ROOM
+    // writes still promised: ROOM_PLACES while room is high (counting the
+    // write taken in that clock), then one fewer for each write taken
+    reg [2:0] promised_left = 0;
+    reg p_room = 0, p_took = 0;
+    localparam [2:0] PLACES = ROOM_PLACES;
+    wire [2:0] promised_now = room ? PLACES : promised_left;
+    wire promise_open = promised_now != 0;
+    wire took = we && space && ready;
+    always @(posedge clock) begin
+        p_room <= room;
+        p_took <= took;
+        if (!reset_n)
+            promised_left <= 0;
+        else
+            promised_left <= promised_now - (took && promise_open);
+    end
+    assign promised = promised_left;
+`else
+    assign promised = 3'd0;
+`endif
     always @(posedge clock) if (!reset_n) begin
         `LB_REQ(lb_quiet_in_reset, !we && !re)
     end

@@ -35,6 +35,7 @@ module pci_target_harness #(
     input wire o_trdy_n, input wire o_devsel_n, input wire o_stop_n,
     // the back end
     input wire [31:0] l_rdata, input wire l_ready, input wire l_retry,
+    input wire l_room,     // the back end's write credit (with LOCAL_ROOM)
     input wire irq,
     // free choice of the write shadow: follow the write data phase at this edge
     input wire choose_write
@@ -72,6 +73,9 @@ module pci_target_harness #(
         .local_space(l_space), .local_addr(l_addr), .local_be(l_be), .local_wdata(l_wdata),
         .local_we(l_we), .local_re(l_re), .local_write(l_write), .local_rdata(l_rdata),
         .local_ready(l_ready), .local_retry(l_retry)
+`ifdef LOCAL_ROOM
+        , .local_room(l_room)
+`endif
 `ifdef PCI_SLAVE_INVARIANTS
         , .state(i_state), .trdy_q(i_trdy_q), .stop_q(i_stop_q), .devsel_q(i_devsel_q),
         .wait_count(i_wait_count), .initial_wait_over(i_initial_wait_over),
@@ -144,7 +148,9 @@ module pci_target_harness #(
 
     local_bus_rules #(.CHECK_REQUESTER(1), .ADDR_WIDTH(LOCAL_WIDTH)) back_end (
         .clock(clock), .reset_n(reset_n), .space(l_space), .addr(l_addr), .be(l_be),
-        .wdata(l_wdata), .we(l_we), .re(l_re), .write(l_write), .ready(l_ready), .retry(l_retry));
+        .wdata(l_wdata), .we(l_we), .re(l_re), .write(l_write), .ready(l_ready), .retry(l_retry),
+        .room(l_room), .promised(promised));
+    wire [2:0] promised;
 
     // other targets answer only transactions that are not this target's
     always @(*) if (!data_edge || txn_hit) assume(o_trdy_n && o_devsel_n && o_stop_n);
@@ -377,6 +383,11 @@ module pci_target_harness #(
         if (!data_edge) begin write_not_taken_for_retried_phase: assert(pending >= 0); end
         // nothing acknowledged is dropped: it reaches the back end in time
         acknowledged_write_drains: assert(oldest_wait < DRAIN_LIMIT);
+`ifdef LOCAL_ROOM
+        // the write credit: every dword acknowledged and not yet taken is
+        // one the back end promised to take
+        acknowledged_within_credit: assert(pending <= $signed({2'b00, promised}));
+`endif
     end
 
     // ------------------------------------------------------------ local side: reads

@@ -34,7 +34,7 @@ module regs_fifo_harness #(
     input wire choose_push
 );
     wire [31:0] l_rdata;
-    wire l_ready, l_retry, irq, core_clear;
+    wire l_ready, l_retry, l_room, irq, core_clear;
     wire dda_start, dda_line, dda_ccw, dda_blend, dda_advance;
     wire [1:0] dda_variant;
     wire [4:0] dda_lambda_shift, dda_acc_bits;
@@ -50,6 +50,9 @@ module regs_fifo_harness #(
         .local_space(l_space), .local_addr(l_addr), .local_be(l_be), .local_wdata(l_wdata),
         .local_we(l_we), .local_re(l_re), .local_write(l_write), .local_rdata(l_rdata),
         .local_ready(l_ready), .local_retry(l_retry),
+`ifdef LOCAL_ROOM
+        .local_room(l_room),
+`endif
         .dda_start(dda_start), .dda_line(dda_line), .dda_variant(dda_variant),
         .dda_lambda_shift(dda_lambda_shift), .dda_acc_bits(dda_acc_bits), .dda_ccw(dda_ccw),
         .dda_blend(dda_blend), .dda_xs(dda_xs), .dda_ys(dda_ys), .dda_xe(dda_xe), .dda_ye(dda_ye),
@@ -62,12 +65,19 @@ module regs_fifo_harness #(
         .set_strobe(set_strobe), .set_index(set_index), .set_value(set_value)
 `ifdef REGS_FIFO_INVARIANTS
         , .sync_fifo0_count(sync_fifo0_count), .sync_fifo0_is_empty(sync_fifo0_is_empty),
-        .sync_fifo0_is_full(sync_fifo0_is_full), .io_written(io_written)
+`ifdef LOCAL_ROOM
+        .sync_fifo0_free(sync_fifo0_free), .sync_fifo0_free_beyond(sync_fifo0_free_beyond),
+`else
+        .sync_fifo0_is_full(sync_fifo0_is_full),
+`endif
+        .io_written(io_written)
 `endif
         );
 `ifdef REGS_FIFO_INVARIANTS
     wire [9:0] sync_fifo0_count;
     wire sync_fifo0_is_empty, sync_fifo0_is_full, io_written;
+    wire [2:0] sync_fifo0_free;
+    wire sync_fifo0_free_beyond;
 `endif
 
     reg started = 0;
@@ -76,7 +86,12 @@ module regs_fifo_harness #(
 
     local_bus_rules #(.CHECK_REQUESTER(0), .ADDR_WIDTH(16)) bus (
         .clock(clock), .reset_n(reset_n), .space(l_space), .addr(l_addr), .be(l_be),
-        .wdata(l_wdata), .we(l_we), .re(l_re), .write(l_write), .ready(l_ready), .retry(l_retry));
+        .wdata(l_wdata), .we(l_we), .re(l_re), .write(l_write), .ready(l_ready), .retry(l_retry),
+        .room(l_room), .promised(promised));
+    wire [2:0] promised;
+`ifndef LOCAL_ROOM
+    assign l_room = 1'b0;
+`endif
 
     // ------------------------------------------------------------ register access
     wire read_now = l_re && l_ready && !l_space;
@@ -145,6 +160,20 @@ module regs_fifo_harness #(
     always @(posedge clock) if (reset_n) begin
         if (arriving) begin rf_fifo_in_order: assert(fifo_dout == tracked); end
     end
+    // ------------------------------------------------------------ the interpolator
+    // rtl/dda_arc.py: busy only from a start until its reset (core_clear
+    // resets it in the next clock), steps only while busy
+    reg dda_started = 0;
+    always @(posedge clock) begin
+        if (!reset_n || core_clear)
+            dda_started <= 0;
+        else if (dda_start)
+            dda_started <= 1;
+    end
+    always @(*) begin
+        if (!dda_started) assume(!dda_busy);
+        if (!dda_busy) assume(!steps_step_x && !steps_step_y);
+    end
     // ------------------------------------------------------------ pulse outputs
     // STEP high for at least STEP_WIDTH clocks and low for at least as long;
     // DIR stable DIR_SETUP clocks before a STEP leading edge and DIR_HOLD
@@ -177,9 +206,9 @@ module pulse_axis_rules (
     input wire [7:0] width, input wire [7:0] setup, input wire [7:0] hold,
     input wire settings_written
 );
-    reg p_step = 0, p_dir = 0, judged = 0;
+    reg p_step = 0, p_dir = 0, judged = 0, setup_judged = 0, hold_judged = 0;
     reg [8:0] high = 0, low = 9'h1ff, dir_age = 9'h1ff, since_fall = 9'h1ff;
-    reg [7:0] width_then = 1;
+    reg [7:0] width_then = 1, setup_then = 1, hold_then = 1;
     always @(posedge clock) begin
         p_step <= step;
         p_dir <= dir;
@@ -195,13 +224,24 @@ module pulse_axis_rules (
                 judged <= !settings_written;
             end else if (settings_written)
                 judged <= 0;
+            // DIR set-up is timed from the DIR change, hold from the trailing edge
+            if (dir != p_dir) begin
+                setup_then <= setup;
+                setup_judged <= !settings_written;
+            end else if (settings_written)
+                setup_judged <= 0;
+            if (p_step && !step) begin
+                hold_then <= hold;
+                hold_judged <= !settings_written;
+            end else if (settings_written)
+                hold_judged <= 0;
         end
     end
     always @(posedge clock) if (reset_n && judged && !settings_written) begin
         if (p_step && !step) begin pulse_high_width: assert(high >= width_then); end
         if (!p_step && step && low != 9'h1ff) begin pulse_low_width: assert(low >= width_then); end
-        if (!p_step && step) begin pulse_dir_setup: assert(dir == p_dir && dir_age >= setup); end
-        if (dir != p_dir && since_fall != 9'h1ff) begin pulse_dir_hold: assert(!p_step && since_fall >= hold); end
+        if (!p_step && step) begin pulse_dir_setup: assert(dir == p_dir && (!setup_judged || dir_age >= setup_then)); end
+        if (dir != p_dir && since_fall != 9'h1ff) begin pulse_dir_hold: assert(!p_step && (!hold_judged || since_fall >= hold_then)); end
     end
 endmodule
 
