@@ -84,7 +84,9 @@ def main(argv=None):
     args = _parser().parse_args(argv)
     if args.list:
         for group in catalogue.GROUPS:
-            print(f"{group.name:16} {group.unit + '.v':14} {group.mode:6} {group.text}")
+            depth = "k-induction" if group.mode == "prove" else f"{group.mode} {group.depth}"
+            suite = "default" if group.fast else "slow"
+            print(f"{group.name:16} {group.unit + '.v':14} {depth:12} {suite:8} {group.text}")
         return 0
     try:
         chosen = [catalogue.group(name) for name in args.group] or list(catalogue.GROUPS)

@@ -119,6 +119,8 @@ def run(task, work_dir):
 _STATUS = re.compile(r"DONE \((\w+), rc=\d+\)")
 _FAILED = re.compile(r"failed assertion (\S+) at .* step (\d+)")
 _REACHED = re.compile(r"reached cover statement (\S+) at .* step (\d+)")
+# the engine's own line for each cover (the summary lists only the first few)
+_REACHED_STEP = re.compile(r"Reached cover statement in step (\d+) at \S+: (\S+)")
 _UNREACHED = re.compile(r"unreached cover statement (\S+) at")
 _TRACE = re.compile(r"counterexample trace(?: \[[^\]]*\])?: (\S+)")
 
@@ -131,7 +133,8 @@ def parse(task, log, seconds, out_dir):
     for name, step in _FAILED.findall(log):
         result.failed.append(short_name(name))
         result.step = int(step) if result.step is None else min(result.step, int(step))
-    result.covered = sorted({short_name(name) for name, _ in _REACHED.findall(log)})
+    result.covered = sorted({short_name(name) for name, _ in _REACHED.findall(log)}
+                            | {short_name(name) for _, name in _REACHED_STEP.findall(log)})
     result.missed = sorted({short_name(name) for name in _UNREACHED.findall(log)})
     traces = _TRACE.findall(log)
     if traces:
