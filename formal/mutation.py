@@ -12,8 +12,9 @@ For a unit (its generated file, e.g. ``gen/pci_slave.v``):
    it is *rejected* when a proof fails on it (a counterexample, or an induction
    that no longer closes), and *survives* when every proof still passes.
 
-Score = rejected / observable.  ``python -m formal.mutation`` prints it;
-``python -m formal --mutation`` runs it after the proofs.
+Score = rejected / observable (a mutant whose miter does not finish in
+``--miter-timeout`` seconds is left out and listed as undecided);
+``python -m formal.mutation`` prints it.
 """
 import argparse
 import json
@@ -120,14 +121,20 @@ endmodule
 """
 
 
-def is_observable(work, unit_file, mutant_file, port_list, depth):
-    """True when some output of the mutant differs within ``depth`` clocks."""
+def is_observable(work, unit_file, mutant_file, port_list, depth, timeout=None):
+    """True when some output of the mutant differs within ``depth`` clocks,
+    False when none does, None when the miter did not finish in ``timeout``
+    seconds (a large unit's equivalent mutants can take long)."""
     module = Path(unit_file).stem
     miter = work / "miter.sv"
     miter.write_text(miter_text(module, port_list))
     task = Task(name=f"miter_{mutant_file.parent.name}", mode="bmc", depth=depth, top="miter",
                 sources=[work / Path(unit_file).name, mutant_file, miter])
+    if timeout:
+        task.timeout = timeout
     result = run(task, work / "miters")
+    if result.status == "TIMEOUT":
+        return None
     if result.status not in ("PASS", "FAIL"):
         raise RuntimeError(f"miter of {mutant_file} ended {result.status}")
     return result.status == "FAIL"
@@ -168,7 +175,7 @@ def judge(mutant, unit_groups_list, gen_dir, mutant_file, work, bmc_depth, modes
 
 
 def score_unit(unit, count, seed, gen_dir=catalogue.GEN_DIR, work=None, miter_depth=12,
-               bmc_depth=16, indices=None, log=print, judges=None, modes=("bmc",)):
+               bmc_depth=16, indices=None, log=print, judges=None, modes=("bmc",), miter_timeout=None):
     """Mutants of ``unit`` and their verdicts (``judges``: group names that
     pass on the original; default: find them by running every group)."""
     work = Path(work or catalogue.ROOT / "build" / "formal" / "mutation" / unit)
@@ -188,11 +195,13 @@ def score_unit(unit, count, seed, gen_dir=catalogue.GEN_DIR, work=None, miter_de
         folder = work / f"m{index:03d}"
         renamed = folder / "renamed" / f"{unit}_mutant.v"
         write_mutant(work, unit_file, command, renamed, module_name=f"{unit}_mutant")
-        mutant.observable = is_observable(work, unit_file, renamed, port_list, miter_depth)
+        mutant.observable = is_observable(work, unit_file, renamed, port_list, miter_depth, miter_timeout)
         if mutant.observable:
             same_name = folder / f"{unit}.v"
             write_mutant(work, unit_file, command, same_name)
             judge(mutant, chosen, gen_dir, same_name, work, bmc_depth, modes)
+        elif mutant.observable is None:
+            mutant.verdict = "undecided"
         else:
             mutant.verdict = "equivalent"
         mutant.seconds = time.monotonic() - start
@@ -207,20 +216,23 @@ def summary(unit, mutants):
     rejected = [m for m in observable if m.verdict == "rejected"]
     share = 100.0 * len(rejected) / len(observable) if observable else 0.0
     return dict(unit=unit, mutants=len(mutants), observable=len(observable), rejected=len(rejected),
-                survived=[m for m in observable if m.verdict == "survived"], score=share)
+                survived=[m for m in observable if m.verdict == "survived"],
+                undecided=[m for m in mutants if m.verdict == "undecided"], score=share)
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m formal.mutation", description=__doc__.split("\n\n")[0])
     parser.add_argument("units", nargs="*", default=["pci_slave"], help="units to mutate (default pci_slave)")
-    parser.add_argument("--count", type=int, default=60, help="mutations per unit (default 60)")
+    parser.add_argument("--count", type=int, default=20, help="mutations per unit (default 20)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--gen", type=Path, default=catalogue.GEN_DIR)
     parser.add_argument("--judge", action="append", default=[],
                         help="group that judges the mutants (repeatable; default: the unit's groups "
                              "that pass on the original)")
-    parser.add_argument("--depth", type=int, default=16,
-                        help="depth of the bounded checks that judge a mutant (default 16)")
+    parser.add_argument("--depth", type=int, default=12,
+                        help="depth of the bounded checks that judge a mutant (default 12)")
+    parser.add_argument("--miter-timeout", type=int, default=600,
+                        help="seconds a miter may take before the mutant is left out as undecided (default 600)")
     parser.add_argument("--prove", action="store_true",
                         help="give mutants that pass every bounded check to the k-inductions too")
     args = parser.parse_args(argv)
@@ -228,13 +240,14 @@ def main(argv=None):
     for unit in args.units:
         judges = [name for name in args.judge if catalogue.group(name).unit == unit]
         mutants = score_unit(unit, args.count, args.seed, gen_dir=args.gen, judges=judges,
-                             bmc_depth=args.depth, modes=("bmc", "prove") if args.prove else ("bmc",))
+                             bmc_depth=args.depth, miter_timeout=args.miter_timeout, modes=("bmc", "prove") if args.prove else ("bmc",))
         reports.append(summary(unit, mutants))
     total_obs = sum(r["observable"] for r in reports)
     total_rej = sum(r["rejected"] for r in reports)
     for report in reports:
         print(f"{report['unit']}: {report['mutants']} mutants, {report['observable']} observable, "
-              f"{report['rejected']} rejected, score {report['score']:.1f} %")
+              f"{report['rejected']} rejected, score {report['score']:.1f} %"
+              + (f"; {len(report['undecided'])} undecided (miter time-out, left out)" if report["undecided"] else ""))
         for mutant in report["survived"]:
             print(f"  survived m{mutant.index:03d}: {mutant.command}")
     share = 100.0 * total_rej / total_obs if total_obs else 0.0

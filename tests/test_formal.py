@@ -72,7 +72,7 @@ endmodule
     assert result.trace is not None and result.trace.exists()
 
 
-# Mutants of gen/pci_slave.v (yosys `mutate -list 40 -seed 1`, the list
+# Mutants of gen/pci_slave.v (yosys `mutate -list 20 -seed 1`, the list
 # `python -m formal.mutation` scores; indices into it) that change the
 # target's outputs; each must be rejected by the protocol group, bounded.
 FIXED_MUTANTS = (0, 2, 3)
@@ -84,7 +84,7 @@ JUDGE_DEPTH = 12
 def pci_mutations(tmp_path_factory):
     work = tmp_path_factory.mktemp("mutants")
     unit_file = catalogue.GEN_DIR / "pci_slave.v"
-    commands = mutation.list_mutations(unit_file, work, 40, 1)
+    commands = mutation.list_mutations(unit_file, work, 20, 1)
     return work, unit_file, commands, mutation.ports(work, unit_file)
 
 

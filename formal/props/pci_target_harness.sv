@@ -417,6 +417,8 @@ module pci_target_harness #(
             read_only_in_read_transaction: assert(data_edge && txn_hit && !txn_write && !txn_config);
             read_of_the_next_dword: assert(l_space == !txn_io && l_addr == {read_dword, 2'b00});
             read_ahead_at_most_two: assert(local_reads <= txn_transfers + (txn_io ? 0 : 1));
+            // docs/pci.md: reads of BAR1 fetch whole dwords
+            if (l_space) begin read_whole_dwords: assert(l_be == 4'hF); end
         end
         if (bus_read && !txn_io == watch_space && phase_dword == watch_dword) begin
             read_data_reach_ad: assert(watched_valid && ad == watched_data);
