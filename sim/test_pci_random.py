@@ -2,9 +2,12 @@
 
 Every command, bursts of 1..64 dwords (some running off the end of the
 BAR), random byte enables, random master wait states, a back end with random
-latency (now and then beyond the 16/8-clock rules) and random retries.  The
-scoreboard is a plain model of the two BARs: reads must return it, the back
-end must hold it at the end (nothing the target acknowledged got lost).
+latency (now and then beyond the 16/8-clock rules), random retries and a
+room for memory writes that comes and goes.  The scoreboard is a plain model
+of the two BARs: reads must return it, the back end must hold it at the end
+(nothing the target acknowledged got lost); the bench's room audit checks
+every clock that the target acknowledged no write the back end had not
+promised to take.
 """
 import random
 from collections import Counter
@@ -33,6 +36,14 @@ def back_end_latency(rng, space, addr, is_write):
     if roll < 0.97:
         return rng.randint(1, 4)
     return rng.randint(9, 20)
+
+
+def write_room(rng, edge, promised):
+    """Places for memory writes free up now and then, at most eight at a
+    time, and for one stretch in five none does."""
+    if (edge // 300) % 5 == 4:
+        return promised
+    return max(promised, min(promised + (rng.random() < 0.4), 8))
 
 
 def byte_mask(be):
@@ -190,7 +201,8 @@ ACCESSES = {"mem write": memory_write, "mem read": memory_read, "io write": io_w
 
 
 def run_random(target, count, seed):
-    memory = LocalMemory(IO_SIZE, MEM_SIZE, latency=back_end_latency, retry_rate=0.03, seed=seed)
+    memory = LocalMemory(IO_SIZE, MEM_SIZE, latency=back_end_latency, retry_rate=0.03, seed=seed,
+                         room=write_room)
     bench = PciBench(target=target, memory=memory,
                      host_options={"irdy_waits": random_waits(seed, 7, 0.2), "max_retries": 1000})
     board = Scoreboard()
