@@ -1,0 +1,168 @@
+"""The proof groups: which harness, which generated files, which properties,
+which engine and depth.
+
+A group keeps the assertions whose names start with one of its prefixes and
+drops the others (each property is proved in exactly one group; the covers
+run in their own group).  The PCI and card groups read the generated Verilog
+of ``gen_dir`` (what users synthesise); the DDA group converts a small-width
+build into the work folder.
+"""
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from formal.regs_props import table_properties
+from formal.sby import Task
+
+PROPS = Path(__file__).resolve().parent / "props"
+ROOT = Path(__file__).resolve().parent.parent
+GEN_DIR = ROOT / "gen"
+GENERATED = ROOT / "build" / "formal" / "generated"
+
+# The unit's parameters as `python -m rtl.top --convert` writes gen/ by
+# default (rtl/top.py PARAMETERS; the card sizes BAR0 from its register table).
+PCI_IDS = dict(vendor_id=0x1234, device_id=0xDDA0, revision_id=0x01, class_code=0x088000,
+               subsystem_vendor_id=0x1234, subsystem_id=0x0001)
+
+
+def pci_harness_parameters(io_bits, mem_bits, ids=PCI_IDS):
+    """`chparam` settings of pci_target_harness for a target with these BARs and IDs."""
+    return dict(IO_BITS=io_bits, MEM_BITS=mem_bits, LOCAL_WIDTH=max(io_bits, mem_bits, 8),
+                ID_WORD=ids["device_id"] << 16 | ids["vendor_id"],
+                CLASS_WORD=ids["class_code"] << 8 | ids["revision_id"],
+                SUBSYSTEM_WORD=ids["subsystem_id"] << 16 | ids["subsystem_vendor_id"])
+
+
+# The LocalBus write credit (`room`): a unit with the port is proved with the
+# promise rules (LOCAL_ROOM), and its FIFO keeps its free places as a
+# thermometer instead of a full flag.
+CREDIT_REPLACES = ("sync_fifo0_is_full",)
+CREDIT_REGISTERS = ("sync_fifo0_free", "sync_fifo0_free_beyond")
+
+
+def has_write_credit(unit_file):
+    """True when the unit's Verilog has the LocalBus ``room`` port."""
+    return re.search(r"\blocal_room\b", Path(unit_file).read_text()) is not None
+
+
+@dataclass
+class Group:
+    """A set of properties proved together."""
+
+    name: str
+    unit: str                 # the generated file (without .v) the proof reads
+    harness: list             # property files, the top harness last
+    top: str
+    keep: tuple               # assertion-name prefixes proved here
+    mode: str = "prove"
+    depth: int = 20
+    parameters: dict = field(default_factory=dict)
+    defines: dict = field(default_factory=dict)
+    fast: bool = True         # in the default test suite
+    text: str = ""
+    expose: tuple = ()        # registers of the unit made ports for helper invariants
+    includes: tuple = ()      # files the harness includes
+    generated: dict = field(default_factory=dict)   # included files written from Python
+
+    def sources(self, gen_dir):
+        written = []
+        for name, make in self.generated.items():
+            GENERATED.mkdir(parents=True, exist_ok=True)
+            path = GENERATED / name
+            text = make()
+            if not path.exists() or path.read_text() != text:
+                path.write_text(text)
+            written.append(path)
+        return [Path(gen_dir) / f"{self.unit}.v", *(PROPS / name for name in self.harness),
+                *(PROPS / name for name in self.includes), *written]
+
+    def task(self, gen_dir, unit_file=None):
+        """The SymbiYosys task of this group on ``gen_dir`` (``unit_file``
+        replaces the unit's file, e.g. a mutant)."""
+        sources = self.sources(gen_dir)
+        if unit_file is not None:
+            sources[0] = Path(unit_file)
+        defines = dict(self.defines)
+        expose = self.expose
+        if has_write_credit(sources[0]):
+            defines["LOCAL_ROOM"] = None
+            expose = tuple(name for name in expose if name not in CREDIT_REPLACES) + tuple(
+                name for name in CREDIT_REGISTERS if any(old in expose for old in CREDIT_REPLACES))
+        script = []
+        if expose:
+            script.append("expose " + " ".join(f"{self.unit}/w:{name}" for name in expose))
+        if self.parameters:
+            settings = " ".join(f"-set {name} {value}" for name, value in self.parameters.items())
+            script.append(f"chparam {settings} {self.top}")
+        script.append(f"prep -top {self.top}")
+        if self.mode == "cover":
+            script.append("chformal -assert -remove")
+        else:
+            keep = " ".join(f"*/n:{prefix}* %d" for prefix in self.keep)
+            script.append(f"chformal -assert -remove */t:$check {keep}")
+            script.append("chformal -cover -remove")
+        reads = [path for path in sources if path.suffix in (".v", ".sv")]
+        return Task(name=self.name, mode=self.mode, depth=self.depth, top=self.top,
+                    sources=reads, defines=defines, script=script,
+                    files=sources)
+
+
+PCI_FILES = ["pci_rules.sv", "local_bus_rules.sv", "pci_target_harness.sv"]
+PCI_PARAMETERS = pci_harness_parameters(io_bits=6, mem_bits=12)
+# registers of pci_slave the helper invariants (props/pci_slave_invariants.vh) read
+PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "initial_wait_over",
+                       "subsequent_wait_over", "first_phase", "is_read", "is_config", "space_mem",
+                       "io_enable", "mem_enable", "parity_response", "serr_enable",
+                       "interrupt_disable", "bar0", "bar1", "config_write_q", "phase_addr", "at_last",
+                       "before_last", "h_valid", "s_valid", "wq_valid", "b_valid", "fetching",
+                       "first_pending", "req_addr_stale", "single", "frame_q", "signaled_target_abort",
+                       "signaled_system_error", "detected_parity_error", "parity_error_q", "interrupt_line", "h_data", "spare_data", "ad_q", "h_be",
+                       "s_be", "cbe_q", "req_addr", "ad_out_q")
+REGS_FILES = ["local_bus_rules.sv", "regs_fifo_harness.sv"]
+REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value")
+REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written")
+PCI_HELPERS = dict(expose=PCI_SLAVE_REGISTERS, includes=("pci_slave_invariants.vh",),
+                   defines={"PCI_SLAVE_INVARIANTS": None})
+
+GROUPS = [
+    Group("pci_protocol", "pci_slave", PCI_FILES, "pci_target_harness", ("t_", "lb_", "inv_"),
+          parameters=PCI_PARAMETERS, **PCI_HELPERS,
+          text="PCI 2.3 target rules (pci_rules.sv) and the LocalBus requester rules"),
+    Group("pci_parity", "pci_slave", PCI_FILES, "pci_target_harness", ("tp_", "inv_"),
+          parameters=PCI_PARAMETERS, **PCI_HELPERS,
+          text="PAR, PERR#, SERR# (pci_rules.sv)"),
+    Group("pci_config", "pci_slave", PCI_FILES, "pci_target_harness",
+          ("config_", "inta_", "target_abort_", "inv_"), parameters=PCI_PARAMETERS, **PCI_HELPERS, fast=False,
+          text="configuration space, decode, INTA#, target-abort causes"),
+    Group("pci_local", "pci_slave", PCI_FILES, "pci_target_harness", ("write_", "read_", "inv_"),
+          parameters=PCI_PARAMETERS, **PCI_HELPERS, fast=False,
+          text="the local side carries exactly the PCI transaction"),
+    Group("pci_fifo_path", "pci_slave", PCI_FILES, "pci_target_harness",
+          ("acknowledged_", "io_not_retried", "inv_"), parameters=PCI_PARAMETERS, **PCI_HELPERS, fast=False,
+          depth=24,   # the basecase reaches the overfill of a target without the write credit (step 19)
+          text="nothing acknowledged is dropped; I/O never waits behind the FIFO"),
+    Group("regs_fifo_path", "regs_fifo", REGS_FILES, "regs_fifo_harness",
+          ("lb_", "rf_registers", "rf_level", "rf_push", "rf_full", "rf_status", "inv_"),
+          expose=REGS_FIFO_REGISTERS + REGS_FIFO_HELPERS, includes=("regs_fifo_invariants.vh",),
+          defines={"REGS_FIFO_INVARIANTS": None}, generated={"regs_table.vh": table_properties},
+          text="back end: LocalBus answers, registers never wait, FIFO level, STATUS, nothing lost"),
+    Group("regs_fifo_table", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("reg_",), mode="bmc",
+          depth=8, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          text="every register as rtl/registers.py says (bounded)"),
+    Group("regs_fifo_pulses", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_",), mode="bmc",
+          depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          defines={"PULSE_TIMING_BY_SET": None},
+          text="STEP widths, DIR set-up and hold (bounded)"),
+    Group("regs_fifo_order", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("rf_fifo_in_order",),
+          mode="bmc", depth=12, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          text="FIFO words reach the sequencer in order, none twice (bounded)"),
+    Group("pci_covers", "pci_slave", PCI_FILES, "pci_target_harness", (), mode="cover", depth=24,
+          parameters=PCI_PARAMETERS, text="each kind of transaction is reachable"),
+]
+
+
+def group(name):
+    for item in GROUPS:
+        if item.name == name:
+            return item
+    raise ValueError(f"no proof group {name!r}; groups: {', '.join(g.name for g in GROUPS)}")

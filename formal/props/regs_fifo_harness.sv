@@ -1,0 +1,247 @@
+// The card's back end (gen/regs_fifo.v: function registers, data FIFO,
+// sequencer, pulse outputs) behind a free requester that keeps the LocalBus
+// rules, with a free interpolator on its DDA port.  Checked here:
+//   * the LocalBus responder rules (local_bus_rules.sv, back-end side);
+//   * register accesses are answered at once (never retry; not ready only in
+//     the clock after an I/O write, as rtl/regs_fifo.py documents);
+//   * the FIFO: a model counts the words the bus pushed (a memory-BAR write
+//     answered ready with a byte enabled) and the sequencer took; STATUS
+//     tells the truth about level, empty and full; no acknowledged word is
+//     lost (a push is answered ready only with room, and not dropped by a
+//     flush in the same clock); words reach the sequencer in order, none
+//     twice (a chosen-one shadow);
+//   * every register as the table says (regs_table.vh, generated from
+//     rtl/registers.py by formal/regs_props.py).
+// The consumer side of the FIFO (the sequencer's pop, the flush) and the SET
+// command's write port are registers inside the unit: yosys `expose` makes
+// them ports, so the generated file is read unchanged.
+`default_nettype none
+
+module regs_fifo_harness #(
+    parameter DEPTH = 512,
+    parameter COORD_WIDTH = 24
+) (
+    input wire clock,
+    input wire reset_n,
+    // the requester (the PCI target)
+    input wire l_space, input wire [15:0] l_addr, input wire [3:0] l_be, input wire [31:0] l_wdata,
+    input wire l_we, input wire l_re, input wire l_write,
+    // the interpolator
+    input wire dda_busy, input wire dda_done, input wire dda_error, input wire [1:0] dda_quadrant,
+    input wire dda_ready, input wire [COORD_WIDTH+2:0] dda_stop_left,
+    input wire steps_step_x, input wire steps_step_y, input wire steps_dir_x, input wire steps_dir_y,
+    // free choice of the order shadow: follow the word pushed at this edge
+    input wire choose_push
+);
+    wire [31:0] l_rdata;
+    wire l_ready, l_retry, l_room, irq, core_clear;
+    wire dda_start, dda_line, dda_ccw, dda_blend, dda_advance;
+    wire [1:0] dda_variant;
+    wire [4:0] dda_lambda_shift, dda_acc_bits;
+    wire [COORD_WIDTH-1:0] dda_xs, dda_ys, dda_xe, dda_ye;
+    wire pins_step_x, pins_dir_x, pins_step_y, pins_dir_y;
+    // exposed registers of the unit
+    wire fifo_pop, fifo_flush, set_strobe;
+    wire [3:0] set_index;
+    wire [31:0] set_value, fifo_dout;
+
+    regs_fifo dut (
+        .clock(clock), .reset(reset_n), .irq(irq), .core_clear(core_clear),
+        .local_space(l_space), .local_addr(l_addr), .local_be(l_be), .local_wdata(l_wdata),
+        .local_we(l_we), .local_re(l_re), .local_write(l_write), .local_rdata(l_rdata),
+        .local_ready(l_ready), .local_retry(l_retry),
+`ifdef LOCAL_ROOM
+        .local_room(l_room),
+`endif
+        .dda_start(dda_start), .dda_line(dda_line), .dda_variant(dda_variant),
+        .dda_lambda_shift(dda_lambda_shift), .dda_acc_bits(dda_acc_bits), .dda_ccw(dda_ccw),
+        .dda_blend(dda_blend), .dda_xs(dda_xs), .dda_ys(dda_ys), .dda_xe(dda_xe), .dda_ye(dda_ye),
+        .dda_advance(dda_advance), .dda_busy(dda_busy), .dda_done(dda_done), .dda_error(dda_error),
+        .dda_quadrant(dda_quadrant), .dda_ready(dda_ready), .dda_stop_left(dda_stop_left),
+        .steps_step_x(steps_step_x), .steps_step_y(steps_step_y), .steps_dir_x(steps_dir_x),
+        .steps_dir_y(steps_dir_y), .pins_step_x(pins_step_x), .pins_dir_x(pins_dir_x),
+        .pins_step_y(pins_step_y), .pins_dir_y(pins_dir_y),
+        .fifo_pop(fifo_pop), .fifo_flush(fifo_flush), .fifo_dout(fifo_dout),
+        .set_strobe(set_strobe), .set_index(set_index), .set_value(set_value)
+`ifdef REGS_FIFO_INVARIANTS
+        , .sync_fifo0_count(sync_fifo0_count), .sync_fifo0_is_empty(sync_fifo0_is_empty),
+`ifdef LOCAL_ROOM
+        .sync_fifo0_free(sync_fifo0_free), .sync_fifo0_free_beyond(sync_fifo0_free_beyond),
+`else
+        .sync_fifo0_is_full(sync_fifo0_is_full),
+`endif
+        .io_written(io_written)
+`endif
+        );
+`ifdef REGS_FIFO_INVARIANTS
+    wire [9:0] sync_fifo0_count;
+    wire sync_fifo0_is_empty, sync_fifo0_is_full, io_written;
+    wire [2:0] sync_fifo0_free;
+    wire sync_fifo0_free_beyond;
+`endif
+
+    reg started = 0;
+    always @(posedge clock) started <= 1;
+    always @(*) if (!started) assume(!reset_n);
+
+    local_bus_rules #(.CHECK_REQUESTER(0), .ADDR_WIDTH(16)) bus (
+        .clock(clock), .reset_n(reset_n), .space(l_space), .addr(l_addr), .be(l_be),
+        .wdata(l_wdata), .we(l_we), .re(l_re), .write(l_write), .ready(l_ready), .retry(l_retry),
+        .room(l_room), .promised(promised));
+    wire [2:0] promised;
+`ifndef LOCAL_ROOM
+    assign l_room = 1'b0;
+`endif
+
+    // ------------------------------------------------------------ register access
+    wire read_now = l_re && l_ready && !l_space;
+    wire io_write_now = l_we && l_ready && !l_space;
+    reg stage_write = 0;
+    reg [15:0] stage_addr = 0;
+    reg [31:0] stage_data = 0, stage_mask = 0;
+    always @(posedge clock) begin
+        stage_write <= reset_n && io_write_now;
+        stage_addr <= l_addr;
+        stage_data <= l_wdata;
+        stage_mask <= {{8{l_be[3]}}, {8{l_be[2]}}, {8{l_be[1]}}, {8{l_be[0]}}};
+    end
+    always @(posedge clock) if (reset_n) begin
+        if ((l_we || l_re) && !l_space) begin
+            rf_registers_never_retry: assert(!l_retry);
+            rf_registers_answer_at_once: assert(l_ready || stage_write);
+        end
+    end
+`include "regs_table.vh"
+
+    // ------------------------------------------------------------ the FIFO
+    wire push = l_we && l_ready && l_space && l_be != 4'h0;
+    reg [10:0] level = 0;       // words the bus pushed and the sequencer has not taken
+    wire pop = fifo_pop && level != 0;
+    always @(posedge clock) begin
+        if (!reset_n || fifo_flush)
+            level <= 0;
+        else
+            level <= level + push - pop;
+    end
+    always @(posedge clock) if (reset_n) begin
+        rf_level_at_most_depth: assert(level <= DEPTH);
+        if (push) begin rf_push_only_with_room: assert(level < DEPTH || pop); end
+        if (push) begin rf_push_not_flushed: assert(!fifo_flush); end
+        if (l_we && l_space && !stage_write) begin rf_full_answers_retry: assert(l_retry == (level == DEPTH) && l_ready == !l_retry); end
+        if (read_now && l_addr == 16'h000C) begin
+            rf_status_level: assert(l_rdata[31:16] == level);
+            rf_status_empty: assert(l_rdata[8] == (level == 0));
+            rf_status_full: assert(l_rdata[9] == (level == DEPTH));
+        end
+    end
+
+    // in order, none twice: the chosen word leaves the FIFO after the ones ahead
+    reg tracking = 0, arriving = 0;
+    reg [10:0] ahead = 0;
+    reg [31:0] tracked = 0;
+    always @(posedge clock) begin
+        arriving <= 0;
+        if (!reset_n || fifo_flush) begin
+            tracking <= 0;
+        end else if (tracking) begin
+            if (pop) begin
+                if (ahead == 0) begin
+                    tracking <= 0;
+                    arriving <= 1;
+                end else
+                    ahead <= ahead - 1;
+            end
+        end else if (push && choose_push) begin
+            tracking <= 1;
+            tracked <= l_wdata;
+            ahead <= level - pop;
+        end
+    end
+    always @(posedge clock) if (reset_n) begin
+        if (arriving) begin rf_fifo_in_order: assert(fifo_dout == tracked); end
+    end
+    // ------------------------------------------------------------ the interpolator
+    // rtl/dda_arc.py: busy only from a start until its reset (core_clear
+    // resets it in the next clock), steps only while busy
+    reg dda_started = 0;
+    always @(posedge clock) begin
+        if (!reset_n || core_clear)
+            dda_started <= 0;
+        else if (dda_start)
+            dda_started <= 1;
+    end
+    always @(*) begin
+        if (!dda_started) assume(!dda_busy);
+        if (!dda_busy) assume(!steps_step_x && !steps_step_y);
+    end
+    // ------------------------------------------------------------ pulse outputs
+    // STEP high for at least STEP_WIDTH clocks and low for at least as long;
+    // DIR stable DIR_SETUP clocks before a STEP leading edge and DIR_HOLD
+    // clocks after its trailing edge (docs/registers.md), judged with the
+    // settings in force when the interval began (a bus write to a timing
+    // register in the interval leaves it unjudged)
+    pulse_axis_rules x_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_x), .dir(pins_dir_x),
+        .width(model_step_width), .setup(model_dir_setup), .hold(model_dir_hold),
+        .settings_written(timing_written));
+    pulse_axis_rules y_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_y), .dir(pins_dir_y),
+        .width(model_step_width), .setup(model_dir_setup), .hold(model_dir_hold),
+        .settings_written(timing_written));
+`ifdef PULSE_TIMING_BY_SET
+    // the host sets the pulse timing between moves (SET, which waits until the
+    // outputs are idle) and the DIR polarity before: no bus write of
+    // STEP_WIDTH, DIR_SETUP, DIR_HOLD, DIR_POLARITY
+    always @(*) assume(!(l_we && !l_space && (l_addr == 16'h0034 || l_addr == 16'h0038
+                                               || l_addr == 16'h003C || l_addr == 16'h0040)));
+`endif
+    wire timing_written = (stage_write && (stage_addr == 16'h0034 || stage_addr == 16'h0038
+                                           || stage_addr == 16'h003C))
+                          || (set_strobe && (set_index == 4'd3 || set_index == 4'd4 || set_index == 4'd5));
+`ifdef REGS_FIFO_INVARIANTS
+`include "regs_fifo_invariants.vh"
+`endif
+endmodule
+
+module pulse_axis_rules (
+    input wire clock, input wire reset_n, input wire step, input wire dir,
+    input wire [7:0] width, input wire [7:0] setup, input wire [7:0] hold,
+    input wire settings_written
+);
+    reg p_step = 0, p_dir = 0, judged = 0, setup_judged = 0, hold_judged = 0;
+    reg [8:0] high = 0, low = 9'h1ff, dir_age = 9'h1ff, since_fall = 9'h1ff;
+    reg [7:0] width_then = 1, setup_then = 1, hold_then = 1;
+    always @(posedge clock) begin
+        p_step <= step;
+        p_dir <= dir;
+        if (!reset_n) begin
+            high <= 0; low <= 9'h1ff; dir_age <= 9'h1ff; since_fall <= 9'h1ff; judged <= 0;
+        end else begin
+            high <= step ? (high == 9'h1ff ? high : high + 1) : 0;
+            low <= step ? 0 : (low == 9'h1ff ? low : low + 1);
+            dir_age <= (dir != p_dir) ? 1 : (dir_age == 9'h1ff ? dir_age : dir_age + 1);
+            since_fall <= (p_step && !step) ? 1 : (since_fall == 9'h1ff ? since_fall : since_fall + 1);
+            if (step != p_step) begin
+                width_then <= width;
+                judged <= !settings_written;
+            end else if (settings_written)
+                judged <= 0;
+            // DIR set-up is timed from the DIR change, hold from the trailing edge
+            if (dir != p_dir) begin
+                setup_then <= setup;
+                setup_judged <= !settings_written;
+            end else if (settings_written)
+                setup_judged <= 0;
+            if (p_step && !step) begin
+                hold_then <= hold;
+                hold_judged <= !settings_written;
+            end else if (settings_written)
+                hold_judged <= 0;
+        end
+    end
+    always @(posedge clock) if (reset_n && judged && !settings_written) begin
+        if (p_step && !step) begin pulse_high_width: assert(high >= width_then); end
+        if (!p_step && step && low != 9'h1ff) begin pulse_low_width: assert(low >= width_then); end
+        if (!p_step && step) begin pulse_dir_setup: assert(dir == p_dir && (!setup_judged || dir_age >= setup_then)); end
+        if (dir != p_dir && since_fall != 9'h1ff) begin pulse_dir_hold: assert(!p_step && (!hold_judged || since_fall >= hold_then)); end
+    end
+endmodule
+

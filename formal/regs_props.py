@@ -1,0 +1,82 @@
+"""Register properties generated from the register table (rtl/registers.py),
+as the RTL decoder, docs/registers.md and the C header are.
+
+``table_properties()`` returns the body that ``props/regs_fifo_harness.sv``
+includes (``regs_table.vh``): for every register, reads return zero in the
+bits outside its fields; ID reads its constant; every RW register has a model
+that takes bus writes (byte enables honoured, the merged value clamped to
+min..max, one clock after the bus transfer as docs/registers.md and
+rtl/regs_fifo.py say) and SET commands (the value clamped), and every read
+of it returns the model; offsets the table does not list read 0.
+"""
+from rtl import registers as regmap
+
+COMMAND_READS_ZERO = ("COMMAND",)   # "one-shot actions (read as 0)"
+
+
+def _mask(reg):
+    mask = 0
+    for item in reg.fields:
+        mask |= item.mask
+    return mask
+
+
+def _clamp_function(reg):
+    """A Verilog function giving the value a 32-bit write leaves in ``reg``."""
+    width = reg.width
+    name = f"clamp_{reg.name.lower()}"
+    lines = [f"    function [{width - 1}:0] {name}(input [31:0] value);"]
+    if reg.minimum is None and reg.maximum is None:
+        lines.append(f"        {name} = value[{width - 1}:0];")
+    else:
+        low = reg.minimum if reg.minimum is not None else 0
+        high = reg.maximum if reg.maximum is not None else (1 << width) - 1
+        lines += [f"        if (value < 32'd{low}) {name} = {width}'d{low};",
+                  f"        else if (value > 32'd{high}) {name} = {width}'d{high};",
+                  f"        else {name} = value[{width - 1}:0];"]
+    lines.append("    endfunction")
+    return lines
+
+
+def table_properties():
+    """The generated include: models and assertions for every register."""
+    lines = ["// Generated from rtl/registers.py by formal/regs_props.py; do not edit.",
+             "// Included into regs_fifo_harness: reads (read_now, l_addr, l_rdata), the",
+             "// bus write of the last clock (stage_*), SET commands (set_strobe, set_index,",
+             "// set_value)."]
+    listed = []
+    for reg in regmap.REGISTERS:
+        listed.append(reg.offset)
+        upper = reg.name.lower()
+        mask = _mask(reg)
+        lines.append(f"    // {reg.name} ({reg.offset:#04x}, {reg.access}): {reg.text}")
+        if reg.access == "RW":
+            width = reg.width
+            lines += _clamp_function(reg)
+            lines.append(f"    reg [{width - 1}:0] model_{upper} = {width}'d{reg.reset};")
+            lines.append("    always @(posedge clock) begin")
+            lines.append(f"        if (!reset_n) model_{upper} <= {width}'d{reg.reset};")
+            if reg.set_index is not None:
+                lines.append(f"        else if (set_strobe && set_index == 4'd{reg.set_index}) "
+                             f"model_{upper} <= clamp_{upper}(set_value);")
+            lines.append(f"        else if (stage_write && stage_addr == 16'h{reg.offset:04X})")
+            lines.append(f"            model_{upper} <= clamp_{upper}(({{{32 - width}'h0, model_{upper}}} & ~stage_mask)"
+                         f" | (stage_data & stage_mask));")
+            lines.append("    end")
+        lines.append(f"    always @(posedge clock) if (reset_n && read_now && l_addr == 16'h{reg.offset:04X}) begin")
+        if mask != 0xFFFFFFFF:
+            lines.append(f"        reg_{upper}_reserved_zero: assert((l_rdata & 32'h{(~mask) & 0xFFFFFFFF:08X}) == 32'h0);")
+        if reg.name == "ID":
+            lines.append(f"        reg_{upper}_constant: assert(l_rdata == 32'h{reg.reset:08X});")
+        if reg.name in COMMAND_READS_ZERO:
+            lines.append(f"        reg_{upper}_reads_zero: assert(l_rdata == 32'h0);")
+        if reg.access == "RW":
+            lines.append(f"        reg_{upper}_reads_model: assert(l_rdata == {{{32 - reg.width}'h0, model_{upper}}});")
+        lines.append("    end")
+    size = 1 << regmap.IO_BAR_BITS
+    unlisted = " && ".join(f"l_addr != 16'h{offset:04X}" for offset in listed)
+    lines += ["    // offsets the table does not list read 0 (docs/registers.md)",
+              f"    always @(posedge clock) if (reset_n && read_now && l_addr < 16'd{size} && {unlisted}) begin",
+              "        reg_unlisted_reads_zero: assert(l_rdata == 32'h0);",
+              "    end"]
+    return "\n".join(lines) + "\n"
