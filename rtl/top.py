@@ -7,6 +7,7 @@ when ``gen/`` is stale.
 """
 import argparse
 import importlib
+import inspect
 import os
 import subprocess
 import sys
@@ -18,6 +19,7 @@ from myhdl import Signal, ToVerilogWarning, block
 
 from rtl import instructions, registers
 from rtl.card import card
+from rtl.dda_build import COORD_WIDTH, DEFAULT_VARIANTS, parse_variants, variants_text
 from rtl.interfaces import MotorPins, PciBus, PciPins, card_reset
 from rtl.pci_pads import pci_pads
 
@@ -30,7 +32,10 @@ def integer(text):
 
 # Parameter name -> (type, default, help).  Each unit takes a subset.
 PARAMETERS = {
-    "coord_width": (int, 24, "signed coordinate width of the DDA (bits)"),
+    "coord_width": (int, COORD_WIDTH, "signed coordinate width of the DDA (bits)"),
+    "variants": (parse_variants, DEFAULT_VARIANTS,
+                 "DDA step rules built in: names joined by '+' (traditional, weighted, improved, precise), "
+                 "or 'all'; lines are always there"),
     "vendor_id": (integer, 0x1234, "PCI Vendor ID (placeholder: use your own)"),
     "device_id": (integer, 0xDDA0, "PCI Device ID"),
     "revision_id": (integer, 0x01, "PCI Revision ID"),
@@ -44,14 +49,14 @@ PARAMETERS = {
 
 # Unit (module in rtl/ and block name) -> the parameters it takes.
 UNITS = {
-    "dda_arc": ("coord_width",),
+    "dda_arc": ("coord_width", "variants"),
     "pci_slave": ("vendor_id", "device_id", "revision_id", "class_code", "subsystem_vendor_id",
                   "subsystem_id", "io_bar_bits", "mem_bar_bits"),
     "regs_fifo": ("fifo_depth", "coord_width"),
     "card": ("vendor_id", "device_id", "revision_id", "class_code", "subsystem_vendor_id",
-             "subsystem_id", "fifo_depth", "coord_width"),
+             "subsystem_id", "fifo_depth", "coord_width", "variants"),
     "top": ("vendor_id", "device_id", "revision_id", "class_code", "subsystem_vendor_id",
-            "subsystem_id", "fifo_depth", "coord_width"),
+            "subsystem_id", "fifo_depth", "coord_width", "variants"),
 }
 
 
@@ -59,13 +64,14 @@ C_HEADER = "dda_card.h"
 
 
 @block
-def top(clock, reset, pci_pins, motor, *, fifo_depth=512, coord_width=24, io_registers=True, **ids):
+def top(clock, reset, pci_pins, motor, *, fifo_depth=512, coord_width=COORD_WIDTH, variants=DEFAULT_VARIANTS,
+        io_registers=True, **ids):
     """The card as synthesised: PCI pads (the only tri-states) around the card.
 
     Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci_pins``
     (``PciPins``: AD, C/BE#, PAR, FRAME#, IRDY#, TRDY#, DEVSEL#, STOP#, IDSEL,
     PERR#, SERR#, INTA# as on the bus), ``motor`` (``MotorPins``: STEP/DIR).
-    Parameters: ``fifo_depth``, ``coord_width``, the PCI IDs, and
+    Parameters: ``fifo_depth``, ``coord_width``, ``variants`` (the DDA's), the PCI IDs, and
     ``io_registers`` (True: the PCI boundary flip-flops are the iCE40 I/O
     cells' registers, ``rtl/pci_pads.py``; the target is told so).
     ``rtl/card.py`` is the same card with split ports, for benches.
@@ -74,12 +80,12 @@ def top(clock, reset, pci_pins, motor, *, fifo_depth=512, coord_width=24, io_reg
     """
     pci = PciBus()
     pads = pci_pads(clock, pci_pins, pci, io_registers=io_registers)
-    core = card(clock, reset, pci, motor, fifo_depth=fifo_depth, coord_width=coord_width,
+    core = card(clock, reset, pci, motor, fifo_depth=fifo_depth, coord_width=coord_width, variants=variants,
                 io_registers=io_registers, **ids)
     return pads, core
 
 
-def top_ports(fifo_depth=512, coord_width=24, io_registers=True, **ids):
+def top_ports(fifo_depth=512, coord_width=COORD_WIDTH, variants=DEFAULT_VARIANTS, io_registers=True, **ids):
     """Fresh ports of ``top`` for conversion and benches."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), pci_pins=PciPins(), motor=MotorPins())
 
@@ -93,10 +99,16 @@ def write_c_header(out_dir=GEN_DIR):
 
 
 def unit_block(unit, params):
-    """The block instance of ``unit`` with fresh ports, ready to convert."""
+    """The block instance of ``unit`` with fresh ports, ready to convert.
+
+    The ports are built from every parameter of the unit; the block gets those
+    its signature names (the DDA reads its own from the port it receives).
+    """
     module = importlib.import_module(f"rtl.{unit}")
     ports = getattr(module, f"{unit}_ports")(**params)
-    return getattr(module, unit)(**ports, **params)
+    block_function = getattr(module, unit)
+    accepted = inspect.signature(block_function.func).parameters
+    return block_function(**ports, **{name: value for name, value in params.items() if name in accepted})
 
 
 def _strip_run_details(text):
@@ -148,8 +160,9 @@ def _parser():
     parser.add_argument("--convert", action="store_true", help="write the Verilog of every unit")
     parser.add_argument("--out", type=Path, default=GEN_DIR, help="output folder (default: gen/)")
     for name, (kind, default, text) in PARAMETERS.items():
+        shown = variants_text(default) if name == "variants" else default
         parser.add_argument(f"--{name.replace('_', '-')}", type=kind, default=default,
-                            help=f"{text} (default: {default})")
+                            help=f"{text} (default: {shown})")
     return parser
 
 

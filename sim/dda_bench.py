@@ -59,8 +59,8 @@ def _observed(cmd, steps):
 
 
 @block
-def dda_bench(ports, commands, record, *, coord_width=24, verilog=None, seed=1,
-              advance_rate=0.7, idle_gap=3, overlap=False, alternate=False):
+def dda_bench(ports, commands, record, *, verilog=None, seed=1, advance_rate=0.7, idle_gap=3,
+              overlap=False, alternate=False):
     """Drive ``commands`` into the device and check it against the model on every clock.
 
     Each command starts when ``ready``; with ``overlap`` at once (set up while
@@ -71,7 +71,7 @@ def dda_bench(ports, commands, record, *, coord_width=24, verilog=None, seed=1,
     """
     clock, reset, cmd, steps = ports["clock"], ports["reset"], ports["cmd"], ports["steps"]
     rng = random.Random(seed)
-    model = DdaMachine(coord_width)
+    model = DdaMachine(cmd.coord_width, cmd.variants)
 
     clock_driver = clock_source(clock, 2 * HALF_PERIOD)
 
@@ -112,7 +112,7 @@ def dda_bench(ports, commands, record, *, coord_width=24, verilog=None, seed=1,
         raise StopSimulation()
 
     if verilog is None:
-        device = dda_arc(**ports, coord_width=coord_width)
+        device = dda_arc(**ports)
     else:
         device = cosimulate("dda_arc", ports, verilog)
     return device, clock_driver, stimulus

@@ -42,17 +42,10 @@ the integer whose square is nearest to ``xs**2 + ys**2``.
 import math
 from dataclasses import dataclass, field
 
-TRADITIONAL, WEIGHTED, IMPROVED, PRECISE = range(4)
-VARIANT_NAMES = {TRADITIONAL: "traditional", WEIGHTED: "weighted",
-                 IMPROVED: "improved", PRECISE: "precise"}
+from rtl.dda_build import (ALL_VARIANTS, IMPROVED, MAX_THRESHOLD_EXTRA, PRECISE, TRADITIONAL,  # noqa: F401
+                           VARIANT_NAMES, WEIGHTED, accumulator_width, left_width)
 
-ACC_EXTRA_BITS = 8     # accumulator width beyond coord_width
 ERROR_EXTRA_BITS = 6   # radial error term width beyond coord_width
-MAX_THRESHOLD_EXTRA = 4  # n + k may reach coord_width + this
-
-
-def accumulator_width(coord_width):
-    return coord_width + ACC_EXTRA_BITS
 
 
 def error_term_width(coord_width):
@@ -60,9 +53,15 @@ def error_term_width(coord_width):
 
 
 def setup_clocks(coord_width, line):
-    """Clocks from the ``start`` edge to the first edge that may hand the move to the run
-    (squares, root, rounding, the registered check)."""
-    return 2 if line else 5 * coord_width + 3
+    """Clocks from the ``start`` edge to the first edge that may hand the move to the run.
+
+    A line: the latch and one clock for its threshold.  An arc: the latch, 7
+    clocks of magnitude compares, the four squares (coord_width clocks each,
+    the square root running beside the last two), 3 clocks for the end-point
+    limits and 12 for the rounded radius, the inward-end test and the two
+    step totals, all on one adder.
+    """
+    return 2 if line else 4 * coord_width + 23
 
 
 def wrap(value, width):
@@ -196,10 +195,14 @@ def arc_threshold(command, radius, coord_width):
     return threshold, threshold // 2 if command.variant == TRADITIONAL else 0
 
 
-def plan_arc(command, coord_width=24):
-    """Check ``command`` as the hardware does and compute its setup; ValueError if rejected."""
+def plan_arc(command, coord_width=24, variants=ALL_VARIANTS):
+    """Check ``command`` as the hardware does and compute its setup; ValueError if rejected.
+
+    ``variants``: the variants the card was built with (the model knows all four)."""
     if command.variant not in VARIANT_NAMES:
         raise ValueError(f"variant must be 0..3, not {command.variant}")
+    if command.variant not in variants:
+        raise ValueError(f"variant {VARIANT_NAMES[command.variant]} is not built into this card")
     xs, ys, xe, ye, ccw = command.xs, command.ys, command.xe, command.ye, command.ccw
     for name in ("xs", "ys", "xe", "ye"):
         _check_width(getattr(command, name), coord_width, name)
@@ -254,10 +257,11 @@ class ArcIterator:
     quadrant only) exist in the model only, to reproduce the paper's table.
     """
 
-    def __init__(self, command, coord_width=24, initial_load=None, end_rule="counters"):
+    def __init__(self, command, coord_width=24, initial_load=None, end_rule="counters",
+                 variants=ALL_VARIANTS):
         self.command = command
         self.coord_width = coord_width
-        plan = plan_arc(command, coord_width)
+        plan = plan_arc(command, coord_width, variants)
         self.plan = plan
         self.threshold = plan.threshold
         load = {None: plan.acc_init, "half": plan.threshold // 2, "zero": 0}
@@ -270,9 +274,12 @@ class ArcIterator:
         self.reach = end_rule == "reach"
         self.acc_x = self.acc_y = load[initial_load]
         # the hardware holds A - bias (bias T, or T + 1 for a strict compare) so that an
-        # overflow is a sign bit; it saturates that register at its maximum
-        bias = plan.threshold + (command.variant in (WEIGHTED, IMPROVED))
-        self.acc_max = (1 << (accumulator_width(coord_width) - 1)) - 1 + bias
+        # overflow is a sign bit; it saturates that register at its maximum (the precise
+        # mode never reaches it: ``_accumulate`` checks), and nothing may go below its minimum
+        self.bias = plan.threshold + (command.variant in (WEIGHTED, IMPROVED))
+        half = 1 << (accumulator_width(coord_width, variants) - 1)
+        self.acc_max = half - 1 + self.bias
+        self.acc_min = self.bias - half
         self.error_width = error_term_width(coord_width)
         self.x, self.y = command.xs, command.ys
         self.error_term = 0
@@ -288,7 +295,14 @@ class ArcIterator:
         return done_x and done_y
 
     def _accumulate(self, acc, integrand):
+        if acc + integrand > self.acc_max and self.command.variant == PRECISE:
+            raise RuntimeError("precise accumulator beyond its register range")
         return min(acc + integrand, self.acc_max)
+
+    def _keep(self, acc_x, acc_y):
+        if min(acc_x, acc_y) < self.acc_min:
+            raise RuntimeError("accumulator below its register range")
+        self.acc_x, self.acc_y = acc_x, acc_y
 
     def _paper_overflows(self, mag_x, mag_y, x_inward):
         """(step_x, step_y, new acc_x, new acc_y) of the paper's variants."""
@@ -314,6 +328,11 @@ class ArcIterator:
     def _precise_choice(self, delta_x, delta_y):
         """X, Y or diagonal, whichever ends closest to the circle (ties: D, X, Y)."""
         error, width = self.error_term, self.error_width
+        # the hardware compares the signs of sums of two candidates (docs/dda.md), in
+        # coord_width + 4 bits: they must fit
+        limit = 1 << (self.coord_width + 3)
+        if max(abs(2 * error + delta_x + delta_y + d) for d in (delta_x, delta_y)) >= limit:
+            raise RuntimeError("radial error term beyond the hardware's range")
         candidates = ((abs(wrap(error + delta_x + delta_y, width)), True, True),
                       (abs(wrap(error + delta_x, width)), True, False),
                       (abs(wrap(error + delta_y, width)), False, True))
@@ -348,7 +367,7 @@ class ArcIterator:
                 step_x, step_y, acc_x, acc_y = self._precise_overflows(mag_x, mag_y, delta_x, delta_y)
             else:
                 step_x, step_y, acc_x, acc_y = self._paper_overflows(mag_x, mag_y, x_inward)
-            self.acc_x, self.acc_y = acc_x, acc_y
+            self._keep(acc_x, acc_y)
         self.error_term = wrap(self.error_term + delta_x * step_x + delta_y * step_y,
                                self.error_width)
         self.x += (1 if dir_x else -1) * step_x
@@ -431,13 +450,13 @@ def iterations_left_bound(iterator):
     return max(iterator.steps_left())
 
 
-def iterator_for(command, coord_width=24, **options):
+def iterator_for(command, coord_width=24, variants=ALL_VARIANTS, **options):
     if isinstance(command, LineCommand):
         if options:
             raise ValueError(f"options {sorted(options)} apply to arcs only")
         return LineIterator(command, coord_width)
     if isinstance(command, ArcCommand):
-        return ArcIterator(command, coord_width, **options)
+        return ArcIterator(command, coord_width, variants=variants, **options)
     raise ValueError(f"not a DDA command: {command!r}")
 
 
@@ -546,11 +565,6 @@ def paper_configuration(variant):
     raise ValueError(f"the paper has no figure for variant {variant}")
 
 
-def stop_left_width(coord_width):
-    """Width of the ``stop_left`` output (``DdaPort.left_width``)."""
-    return coord_width + 3
-
-
 class DdaMachine:
     """Clock-level model of ``rtl/dda_arc.py``: call ``clock()`` once per rising edge.
 
@@ -568,18 +582,21 @@ class DdaMachine:
     next ``advance`` already iterates the new move.  A rejected move
     (``error``) or a line of length 0 (``done``) is handed over at the same
     edges only.  ``stop_left`` after an edge is, for the running move as the
-    last applied iteration (or the handover) before that edge left it,
-    ``iterations_left_bound`` minus one (not below 0): lagging the ``advance``
-    pulses by at most one iteration, it stays a lower bound; the all-ones
-    value while no move runs or the running one blends.  ``busy`` falls with
-    the last ``done``.  Every started move gets a number (0, 1, ...);
-    ``step_move``, ``done_move`` and ``error_move`` say which move the outputs
-    of the last edge belong to.
+    last applied iteration (or the handover) up to that edge left it,
+    ``iterations_left_bound`` minus one (not below 0): in the second clock of
+    an iteration it still counts the iteration under way, so the minus one
+    keeps it a lower bound at every clock; the all-ones value while no move
+    runs or the running one blends.  ``busy`` falls with the last ``done``.
+    Every started move gets a number (0, 1, ...); ``step_move``,
+    ``done_move`` and ``error_move`` say which move the outputs of the last
+    edge belong to.  ``variants``: those the card was built with (a command
+    for another is rejected).
     """
 
-    def __init__(self, coord_width=24):
+    def __init__(self, coord_width=24, variants=ALL_VARIANTS):
         self.coord_width = coord_width
-        self.all_ones = (1 << stop_left_width(coord_width)) - 1
+        self.variants = variants
+        self.all_ones = (1 << left_width(coord_width)) - 1
         self.started = 0
         self.setup = None       # [command, number, setup clocks left]
         self.run = None         # (iterator, command, number)
@@ -600,7 +617,6 @@ class DdaMachine:
 
     def clock(self, start, advance, command):
         out = self.outputs
-        stop_left = self._stop_left()
         out.update(done=False, step_x=False, step_y=False)
         self.step_move = self.done_move = self.error_move = None
         was_running = self.run is not None
@@ -619,7 +635,7 @@ class DdaMachine:
             self.pending = True
         self._setup_edge(start, command, was_running, finishing)
         ending = self.pending and self.run[0].finished
-        out.update(stop_left=stop_left, ready=self.setup is None,
+        out.update(stop_left=self._stop_left(), ready=self.setup is None,
                    busy=self.setup is not None or (self.run is not None and not ending))
         return dict(out)
 
@@ -651,7 +667,7 @@ class DdaMachine:
         command, number, _ = self.setup
         self.setup = None
         try:
-            iterator = iterator_for(command, self.coord_width)
+            iterator = iterator_for(command, self.coord_width, self.variants)
         except ValueError:
             self.error_move = number
             out["error"] = True
