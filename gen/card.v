@@ -595,32 +595,20 @@ reg card_core0_regs_fifo1_pulse_out1_turn;
 wire [1:0] card_core0_regs_fifo1__status1_quadrant;
 reg [4:0] card_core0_dda_arc1_dda_setup1_acc_bits;
 reg card_core0_dda_arc1_dda_setup1_carry;
-reg [23:0] card_core0_dda_arc1_dda_setup1_cmd_mag_xe;
-reg [23:0] card_core0_dda_arc1_dda_setup1_cmd_mag_xs;
-reg [23:0] card_core0_dda_arc1_dda_setup1_cmd_mag_ye;
-reg [23:0] card_core0_dda_arc1_dda_setup1_cmd_mag_ys;
 reg [48:0] card_core0_dda_arc1_dda_setup1_gap;
 reg [1:0] card_core0_dda_arc1_dda_setup1_gap_op;
+reg card_core0_dda_arc1_dda_setup1_grew;
 reg card_core0_dda_arc1_dda_setup1_invert;
 reg card_core0_dda_arc1_dda_setup1_m_is_y;
 reg [27:0] card_core0_dda_arc1_dda_setup1_major;
 reg [23:0] card_core0_dda_arc1_dda_setup1_multiplier;
-reg card_core0_dda_arc1_dda_setup1_neg_xs;
-reg card_core0_dda_arc1_dda_setup1_neg_ys;
+reg [1:0] card_core0_dda_arc1_dda_setup1_next_square;
+reg [2:0] card_core0_dda_arc1_dda_setup1_next_state;
+reg [4:0] card_core0_dda_arc1_dda_setup1_next_step;
 reg [5:0] card_core0_dda_arc1_dda_setup1_ones_left;
 reg [48:0] card_core0_dda_arc1_dda_setup1_operand;
 reg [1:0] card_core0_dda_arc1_dda_setup1_operand_op;
 reg card_core0_dda_arc1_dda_setup1_pick_x;
-reg [47:0] card_core0_dda_arc1_dda_setup1_radicand;
-reg [25:0] card_core0_dda_arc1_dda_setup1_remainder;
-reg [24:0] card_core0_dda_arc1_dda_setup1_root;
-reg card_core0_dda_arc1_dda_setup1_root_all_ones;
-reg card_core0_dda_arc1_dda_setup1_root_started;
-reg [4:0] card_core0_dda_arc1_dda_setup1_root_steps;
-reg card_core0_dda_arc1_dda_setup1_shrink_x_neg;
-reg card_core0_dda_arc1_dda_setup1_shrink_x_zero;
-reg card_core0_dda_arc1_dda_setup1_shrink_y_neg;
-reg card_core0_dda_arc1_dda_setup1_shrink_y_zero;
 reg [2:0] card_core0_dda_arc1_dda_setup1_source;
 reg card_core0_dda_arc1_dda_setup1_source_on;
 reg [24:0] card_core0_dda_arc1_dda_setup1_source_value;
@@ -628,34 +616,53 @@ reg [1:0] card_core0_dda_arc1_dda_setup1_square;
 reg [2:0] card_core0_dda_arc1_dda_setup1_state;
 reg [4:0] card_core0_dda_arc1_dda_setup1_step;
 wire [48:0] card_core0_dda_arc1_dda_setup1_total;
-reg card_core0_dda_arc1_dda_setup1_trial_fits;
-reg [25:0] card_core0_dda_arc1_dda_setup1_trial_keep;
 reg [1:0] card_core0_dda_arc1_dda_setup1_twice;
-reg card_core0_dda_arc1_dda_setup1_x_inward_end;
+wire card_core0_dda_arc1_dda_setup1_plan_taken;
+reg card_core0_dda_arc1_dda_setup1_plan_x_inward_end;
 reg card_core0_dda_arc1_dda_setup1_plan_x_inward;
+reg [24:0] card_core0_dda_arc1_dda_setup1_root_root;
 reg [2:0] card_core0_dda_arc1_dda_setup1_plan_crossings;
-reg card_core0_dda_arc1_dda_setup1_plan_ahead;
 reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_xs;
 reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_ys;
 reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_xe;
 reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_ye;
+wire [47:0] card_core0_dda_arc1_dda_setup1_root_radicand;
+wire card_core0_dda_arc1_dda_setup1_root_load;
+reg card_core0_dda_arc1_dda_setup1_root_grows;
 reg [27:0] card_core0_dda_arc1_dda_setup1_plan_threshold;
 reg card_core0_dda_arc1_dda_setup1_plan_too_wide;
 reg card_core0_dda_arc1_dda_setup1_plan_off_circle;
+reg card_core0_dda_arc1_dda_setup1_plan_start_below_x;
+reg card_core0_dda_arc1_dda_setup1_plan_start_same_x;
+reg card_core0_dda_arc1_dda_setup1_plan_start_below_y;
+reg card_core0_dda_arc1_dda_setup1_plan_start_same_y;
 reg [24:0] card_core0_dda_arc1_dda_setup1_plan_radius;
 reg card_core0_dda_arc1_dda_setup1_plan_beyond;
 reg signed [26:0] card_core0_dda_arc1_dda_setup1_plan_totals_diff;
 reg [26:0] card_core0_dda_arc1_dda_setup1_plan_totals_max;
-reg card_core0_dda_arc1_dda_setup1_plan_line;
-reg [1:0] card_core0_dda_arc1_dda_setup1_plan_variant;
-reg card_core0_dda_arc1_dda_setup1_plan_ccw;
-reg card_core0_dda_arc1_dda_setup1_plan_blend;
-reg card_core0_dda_arc1_dda_setup1_plan_neg_xe;
-reg card_core0_dda_arc1_dda_setup1_plan_neg_ye;
-wire card_core0_dda_arc1_dda_setup1_plan_taken;
-reg [1:0] card_core0_dda_arc1_dda_setup1_plan_quadrant;
-reg card_core0_dda_arc1_dda_setup1_plan_centre;
 wire card_core0_dda_arc1_dda_setup1_plan_done;
+reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
+reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs;
+reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye;
+reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line;
+reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead;
+reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre;
+reg card_core0_dda_arc1_dda_setup1_dda_root1_all_ones;
+reg card_core0_dda_arc1_dda_setup1_dda_root1_fits;
+reg [25:0] card_core0_dda_arc1_dda_setup1_dda_root1_keep;
+reg [47:0] card_core0_dda_arc1_dda_setup1_dda_root1_radicand;
+reg [25:0] card_core0_dda_arc1_dda_setup1_dda_root1_remainder;
+reg card_core0_dda_arc1_dda_setup1_dda_root1_started;
+reg [4:0] card_core0_dda_arc1_dda_setup1_dda_root1_steps;
 reg card_core0_dda_arc1_dda_check1_variant_built;
 wire card_core0_dda_arc1_dda_check1_move_offer;
 wire card_core0_dda_arc1_dda_check1_move_take;
@@ -697,7 +704,11 @@ reg card_core0_dda_arc1_dda_run1_blend;
 reg card_core0_dda_arc1_dda_run1_ccw;
 reg [2:0] card_core0_dda_arc1_dda_run1_crossings;
 reg card_core0_dda_arc1_dda_run1_dec_finished;
+reg card_core0_dda_arc1_dda_run1_dec_in;
 reg card_core0_dda_arc1_dda_run1_dec_next_piece;
+reg card_core0_dda_arc1_dda_run1_dec_out;
+reg [29:0] card_core0_dda_arc1_dda_run1_dec_sum_x;
+reg [29:0] card_core0_dda_arc1_dda_run1_dec_sum_y;
 reg card_core0_dda_arc1_dda_run1_dec_tail;
 reg card_core0_dda_arc1_dda_run1_dec_x;
 reg card_core0_dda_arc1_dda_run1_dec_y;
@@ -711,6 +722,8 @@ reg card_core0_dda_arc1_dda_run1_go_x;
 reg card_core0_dda_arc1_dda_run1_go_y;
 reg card_core0_dda_arc1_dda_run1_inward_near;
 reg [26:0] card_core0_dda_arc1_dda_run1_left_diff;
+reg [29:0] card_core0_dda_arc1_dda_run1_less_x;
+reg [29:0] card_core0_dda_arc1_dda_run1_less_y;
 reg card_core0_dda_arc1_dda_run1_line;
 reg [23:0] card_core0_dda_arc1_dda_run1_mag_x;
 reg [23:0] card_core0_dda_arc1_dda_run1_mag_y;
@@ -719,12 +732,14 @@ reg card_core0_dda_arc1_dda_run1_near_x;
 reg card_core0_dda_arc1_dda_run1_near_y;
 reg card_core0_dda_arc1_dda_run1_next_piece;
 reg card_core0_dda_arc1_dda_run1_outward_near;
-wire card_core0_dda_arc1_dda_run1_over_x;
-wire card_core0_dda_arc1_dda_run1_over_y;
+reg card_core0_dda_arc1_dda_run1_over_x;
+reg card_core0_dda_arc1_dda_run1_over_y;
 reg card_core0_dda_arc1_dda_run1_pending;
 reg [1:0] card_core0_dda_arc1_dda_run1_quadrant;
 reg [23:0] card_core0_dda_arc1_dda_run1_radius;
 reg card_core0_dda_arc1_dda_run1_right;
+reg card_core0_dda_arc1_dda_run1_saturate_x;
+reg card_core0_dda_arc1_dda_run1_saturate_y;
 reg [23:0] card_core0_dda_arc1_dda_run1_stepped_x;
 reg [23:0] card_core0_dda_arc1_dda_run1_stepped_y;
 reg [30:0] card_core0_dda_arc1_dda_run1_sum_x;
@@ -735,7 +750,7 @@ reg [1:0] card_core0_dda_arc1_dda_run1_target_x;
 reg [1:0] card_core0_dda_arc1_dda_run1_target_y;
 reg [27:0] card_core0_dda_arc1_dda_run1_threshold;
 reg card_core0_dda_arc1_dda_run1_threshold_carry;
-wire card_core0_dda_arc1_dda_run1_trad_over_x;
+reg card_core0_dda_arc1_dda_run1_trad_over_x;
 wire [30:0] card_core0_dda_arc1_dda_run1_trad_x;
 reg card_core0_dda_arc1_dda_run1_up;
 reg [1:0] card_core0_dda_arc1_dda_run1_variant;
@@ -4077,7 +4092,7 @@ assign card_core0_regs_fifo1_reg_word29_hw_value = card_core0_regs_fifo1_pulse_o
 assign card_core0_regs_fifo1_reg_word30_hw_value = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
 
 
-always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_arc1_dda_setup1_magnitudes
+always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_magnitudes
     reg [24-1:0] sign_xs;
     reg [24-1:0] sign_ys;
     reg [24-1:0] sign_xe;
@@ -4090,6 +4105,10 @@ always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequence
     sign_ys = 24'h0;
     sign_xe = 24'h0;
     sign_ye = 24'h0;
+    less_xs = 24'h0;
+    less_ys = 24'h0;
+    less_xe = 24'h0;
+    less_ye = 24'h0;
     if (card_core0_regs_fifo1_sequencer1_dda_xs[(24 - 1)]) begin
         sign_xs = 16777215;
     end
@@ -4102,22 +4121,274 @@ always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequence
     if (card_core0_regs_fifo1_sequencer1_dda_ye[(24 - 1)]) begin
         sign_ye = 16777215;
     end
-    less_xs = 24'h0;
-    less_ys = 24'h0;
-    less_xe = 24'h0;
-    less_ye = 24'h0;
     less_xs = (card_core0_regs_fifo1_sequencer1_dda_xs[24-1:0] + sign_xs);
     less_ys = (card_core0_regs_fifo1_sequencer1_dda_ys[24-1:0] + sign_ys);
     less_xe = (card_core0_regs_fifo1_sequencer1_dda_xe[24-1:0] + sign_xe);
     less_ye = (card_core0_regs_fifo1_sequencer1_dda_ye[24-1:0] + sign_ye);
-    card_core0_dda_arc1_dda_setup1_cmd_mag_xs = (less_xs ^ sign_xs);
-    card_core0_dda_arc1_dda_setup1_cmd_mag_ys = (less_ys ^ sign_ys);
-    card_core0_dda_arc1_dda_setup1_cmd_mag_xe = (less_xe ^ sign_xe);
-    card_core0_dda_arc1_dda_setup1_cmd_mag_ye = (less_ye ^ sign_ye);
+    card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs = (less_xs ^ sign_xs);
+    card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys = (less_ys ^ sign_ys);
+    card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe = (less_xe ^ sign_xe);
+    card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye = (less_ye ^ sign_ye);
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_multiplier, card_core0_dda_arc1_dda_setup1_twice, card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_m_is_y, card_core0_dda_arc1_dda_setup1_pick_x, card_core0_dda_arc1_dda_setup1_x_inward_end, card_core0_dda_arc1_dda_setup1_total, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_control
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_latch
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_mag_xs <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_mag_ys <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_mag_xe <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant <= 3;
+        card_core0_dda_arc1_dda_setup1_plan_mag_ye <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_sequencer1_dda_start && card_core0_regs_fifo1_sequencer1_dda_ready)) begin
+            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line <= card_core0_regs_fifo1_sequencer1_dda_line;
+            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant <= card_core0_regs_fifo1_sequencer1_dda_variant;
+            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw <= card_core0_regs_fifo1_sequencer1_dda_ccw;
+            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend <= card_core0_regs_fifo1_sequencer1_dda_blend;
+            card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs <= (card_core0_regs_fifo1_sequencer1_dda_xs < 0);
+            card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys <= (card_core0_regs_fifo1_sequencer1_dda_ys < 0);
+            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe <= (card_core0_regs_fifo1_sequencer1_dda_xe < 0);
+            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye <= (card_core0_regs_fifo1_sequencer1_dda_ye < 0);
+            card_core0_dda_arc1_dda_setup1_plan_mag_xs <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs;
+            card_core0_dda_arc1_dda_setup1_plan_mag_ys <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys;
+            card_core0_dda_arc1_dda_setup1_plan_mag_xe <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
+            card_core0_dda_arc1_dda_setup1_plan_mag_ye <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_geometry
+    reg [2-1:0] q_s;
+    reg [2-1:0] q_e;
+    reg [2-1:0] turn;
+    reg ahead;
+    reg zero_xs;
+    reg zero_ys;
+    reg zero_xe;
+    reg zero_ye;
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_x_inward_end <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_crossings <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_x_inward <= 0;
+    end
+    else begin
+        q_s = 2'h0;
+        q_e = 2'h0;
+        turn = 2'h0;
+        ahead = 1'b0;
+        zero_xs = (card_core0_dda_arc1_dda_setup1_plan_mag_xs == 0);
+        zero_ys = (card_core0_dda_arc1_dda_setup1_plan_mag_ys == 0);
+        zero_xe = (card_core0_dda_arc1_dda_setup1_plan_mag_xe == 0);
+        zero_ye = (card_core0_dda_arc1_dda_setup1_plan_mag_ye == 0);
+        if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw) begin
+            if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
+                q_s = 0;
+            end
+            else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!zero_ys))) begin
+                q_s = 1;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys || zero_ys))) begin
+                q_s = 2;
+            end
+            else begin
+                q_s = 3;
+            end
+            if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!zero_ye))) begin
+                q_e = 0;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
+                q_e = 1;
+            end
+            else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || zero_xe) && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye)) begin
+                q_e = 2;
+            end
+            else begin
+                q_e = 3;
+            end
+            turn = (q_e - q_s);
+        end
+        else begin
+            if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!zero_ys))) begin
+                q_s = 0;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
+                q_s = 1;
+            end
+            else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || zero_xs) && card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys)) begin
+                q_s = 2;
+            end
+            else begin
+                q_s = 3;
+            end
+            if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
+                q_e = 0;
+            end
+            else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!zero_ye))) begin
+                q_e = 1;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye || zero_ye))) begin
+                q_e = 2;
+            end
+            else begin
+                q_e = 3;
+            end
+            turn = (q_s - q_e);
+        end
+        if ((q_s[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw)) begin
+            ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_x) && (card_core0_dda_arc1_dda_setup1_plan_start_below_y || card_core0_dda_arc1_dda_setup1_plan_start_same_y));
+        end
+        else begin
+            ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_y) && (card_core0_dda_arc1_dda_setup1_plan_start_below_x || card_core0_dda_arc1_dda_setup1_plan_start_same_x));
+        end
+        ahead = (ahead && (!(card_core0_dda_arc1_dda_setup1_plan_start_same_x && card_core0_dda_arc1_dda_setup1_plan_start_same_y)) && (turn == 0));
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead <= ahead;
+        card_core0_dda_arc1_dda_setup1_plan_crossings <= {1'b0, turn};
+        if (((turn == 0) && (!ahead))) begin
+            card_core0_dda_arc1_dda_setup1_plan_crossings <= 4;
+        end
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant <= q_s;
+        card_core0_dda_arc1_dda_setup1_plan_x_inward <= (q_s[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
+        card_core0_dda_arc1_dda_setup1_plan_x_inward_end <= (q_e[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
+        if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
+            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= (zero_xe && zero_ye);
+        end
+        else begin
+            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+        end
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_dda_root1_radicand, card_core0_dda_arc1_dda_setup1_dda_root1_remainder, card_core0_dda_arc1_dda_setup1_root_root) begin: card_core0_dda_arc1_dda_setup1_dda_root1_trial
+    reg [28-1:0] value;
+    reg [27-1:0] difference;
+    value = 28'h0;
+    difference = 27'h0;
+    value = {card_core0_dda_arc1_dda_setup1_dda_root1_remainder, card_core0_dda_arc1_dda_setup1_dda_root1_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+    difference = ({1'b0, value[(24 + 2)-1:0]} - {1'b0, card_core0_dda_arc1_dda_setup1_root_root[24-1:0], 2'h1});
+    card_core0_dda_arc1_dda_setup1_dda_root1_fits = ((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
+    card_core0_dda_arc1_dda_setup1_dda_root1_keep = value[(24 + 2)-1:0];
+    if (((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]))) begin
+        card_core0_dda_arc1_dda_setup1_dda_root1_keep = difference[(24 + 2)-1:0];
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_dda_root1_steps, card_core0_dda_arc1_dda_setup1_dda_root1_all_ones, card_core0_dda_arc1_dda_setup1_dda_root1_fits, card_core0_dda_arc1_dda_setup1_dda_root1_started) begin: card_core0_dda_arc1_dda_setup1_dda_root1_length
+    card_core0_dda_arc1_dda_setup1_root_grows = 1'b0;
+    if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps > 1)) begin
+        card_core0_dda_arc1_dda_setup1_root_grows = (card_core0_dda_arc1_dda_setup1_dda_root1_started || card_core0_dda_arc1_dda_setup1_dda_root1_fits);
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps == 1)) begin
+        card_core0_dda_arc1_dda_setup1_root_grows = (card_core0_dda_arc1_dda_setup1_dda_root1_fits && card_core0_dda_arc1_dda_setup1_dda_root1_started && card_core0_dda_arc1_dda_setup1_dda_root1_all_ones);
+    end
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_dda_root1_digits
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_dda_setup1_dda_root1_radicand <= 0;
+        card_core0_dda_arc1_dda_setup1_root_root <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_root1_started <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_root1_steps <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_root1_remainder <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_root1_all_ones <= 0;
+    end
+    else begin
+        if (card_core0_dda_arc1_dda_setup1_root_load) begin
+            card_core0_dda_arc1_dda_setup1_dda_root1_radicand <= card_core0_dda_arc1_dda_setup1_root_radicand;
+            card_core0_dda_arc1_dda_setup1_dda_root1_remainder <= 0;
+            card_core0_dda_arc1_dda_setup1_root_root <= 0;
+            card_core0_dda_arc1_dda_setup1_dda_root1_steps <= (24 + 1);
+            card_core0_dda_arc1_dda_setup1_dda_root1_started <= 1'b0;
+            card_core0_dda_arc1_dda_setup1_dda_root1_all_ones <= 1'b1;
+        end
+        else if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps != 0)) begin
+            card_core0_dda_arc1_dda_setup1_dda_root1_remainder <= card_core0_dda_arc1_dda_setup1_dda_root1_keep;
+            card_core0_dda_arc1_dda_setup1_root_root <= {card_core0_dda_arc1_dda_setup1_root_root[24-1:0], card_core0_dda_arc1_dda_setup1_dda_root1_fits};
+            card_core0_dda_arc1_dda_setup1_dda_root1_radicand <= (card_core0_dda_arc1_dda_setup1_dda_root1_radicand << 2);
+            card_core0_dda_arc1_dda_setup1_dda_root1_steps <= (card_core0_dda_arc1_dda_setup1_dda_root1_steps - 1);
+            if (card_core0_dda_arc1_dda_setup1_dda_root1_fits) begin
+                card_core0_dda_arc1_dda_setup1_dda_root1_started <= 1'b1;
+            end
+            else if (card_core0_dda_arc1_dda_setup1_dda_root1_started) begin
+                card_core0_dda_arc1_dda_setup1_dda_root1_all_ones <= 1'b0;
+            end
+        end
+    end
+end
+
+
+always @(card_core0_regs_fifo1_sequencer1_dda_start, card_core0_dda_arc1_dda_setup1_plan_taken, card_core0_dda_arc1_dda_setup1_step, card_core0_regs_fifo1_sequencer1_dda_line, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_sequence
+    card_core0_dda_arc1_dda_setup1_next_state = card_core0_dda_arc1_dda_setup1_state;
+    card_core0_dda_arc1_dda_setup1_next_step = 0;
+    card_core0_dda_arc1_dda_setup1_next_square = card_core0_dda_arc1_dda_setup1_square;
+    if ((card_core0_dda_arc1_dda_setup1_state == 3'b000)) begin
+        card_core0_dda_arc1_dda_setup1_next_square = 0;
+        if (card_core0_regs_fifo1_sequencer1_dda_start) begin
+            card_core0_dda_arc1_dda_setup1_next_state = 3'b010;
+            if (card_core0_regs_fifo1_sequencer1_dda_line) begin
+                card_core0_dda_arc1_dda_setup1_next_state = 3'b001;
+            end
+        end
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b001)) begin
+        card_core0_dda_arc1_dda_setup1_next_state = 3'b110;
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b010)) begin
+        if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (7 - 1))) begin
+            card_core0_dda_arc1_dda_setup1_next_state = 3'b011;
+        end
+        else begin
+            card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
+        end
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b011)) begin
+        if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
+            card_core0_dda_arc1_dda_setup1_next_square = (card_core0_dda_arc1_dda_setup1_square + 1);
+            if ((card_core0_dda_arc1_dda_setup1_square == 3)) begin
+                card_core0_dda_arc1_dda_setup1_next_state = 3'b100;
+            end
+        end
+        else begin
+            card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
+        end
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b100)) begin
+        if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (5 - 1))) begin
+            card_core0_dda_arc1_dda_setup1_next_state = 3'b101;
+        end
+        else begin
+            card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
+        end
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b101)) begin
+        if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (13 - 1))) begin
+            card_core0_dda_arc1_dda_setup1_next_state = 3'b110;
+        end
+        else begin
+            card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
+        end
+    end
+    else if (card_core0_dda_arc1_dda_setup1_plan_taken) begin
+        card_core0_dda_arc1_dda_setup1_next_state = 3'b000;
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_multiplier, card_core0_dda_arc1_dda_setup1_twice, card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_m_is_y, card_core0_dda_arc1_dda_setup1_pick_x, card_core0_dda_arc1_dda_setup1_plan_x_inward_end, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_control
     reg [2-1:0] g_op;
     reg [2-1:0] o_op;
     reg [3-1:0] src;
@@ -4129,44 +4400,35 @@ always @(card_core0_dda_arc1_dda_setup1_multiplier, card_core0_dda_arc1_dda_setu
     on = 1'b1;
     inv = 1'b0;
     g_op = 0;
-    o_op = 0;
+    o_op = 2;
     src = 0;
     case (card_core0_dda_arc1_dda_setup1_state)
         3'b010: begin
-            o_op = 3;
-            case (card_core0_dda_arc1_dda_setup1_step)
-                'h0: begin
-                    src = 0;
-                end
-                'h1: begin
-                    g_op = 1;
-                    src = 1;
-                    inv = 1'b1;
-                end
-                'h2: begin
-                    g_op = 1;
-                    src = 1;
-                end
-                'h3: begin
-                    g_op = 1;
-                    src = 2;
-                    inv = 1'b1;
-                end
-                'h4: begin
-                    g_op = 2;
-                    src = 1;
-                end
-                'h5: begin
-                    g_op = 1;
-                    src = 3;
-                    inv = 1'b1;
-                end
-                default: begin
-                    g_op = 3;
-                    src = 0;
-                    inv = 1'b1;
-                end
-            endcase
+            if (((card_core0_dda_arc1_dda_setup1_step == 1) || (card_core0_dda_arc1_dda_setup1_step == 3) || (card_core0_dda_arc1_dda_setup1_step == 5))) begin
+                inv = 1'b1;
+            end
+            if (((card_core0_dda_arc1_dda_setup1_step == 0) || (card_core0_dda_arc1_dda_setup1_step == 6))) begin
+                src = 0;
+                inv = (card_core0_dda_arc1_dda_setup1_step == 6);
+            end
+            else if (((card_core0_dda_arc1_dda_setup1_step == 1) || (card_core0_dda_arc1_dda_setup1_step == 2) || (card_core0_dda_arc1_dda_setup1_step == 4))) begin
+                src = 1;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 3)) begin
+                src = 2;
+            end
+            else begin
+                src = 3;
+            end
+            if ((card_core0_dda_arc1_dda_setup1_step == 4)) begin
+                g_op = 2;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 6)) begin
+                g_op = 3;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step != 0)) begin
+                g_op = 1;
+            end
         end
         3'b011: begin
             o_op = 1;
@@ -4175,116 +4437,107 @@ always @(card_core0_dda_arc1_dda_setup1_multiplier, card_core0_dda_arc1_dda_setu
                 g_op = 1;
             end
             if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
-                o_op = 3;
-                case (card_core0_dda_arc1_dda_setup1_square)
-                    'h0: begin
+                o_op = 2;
+                inv = ((card_core0_dda_arc1_dda_setup1_square == 0) || (card_core0_dda_arc1_dda_setup1_square == 3));
+                src = (card_core0_dda_arc1_dda_setup1_square + 1);
+                if ((card_core0_dda_arc1_dda_setup1_square == 3)) begin
+                    src = 0;
+                    if (card_core0_dda_arc1_dda_setup1_m_is_y) begin
                         src = 1;
-                        inv = 1'b1;
                     end
-                    'h1: begin
-                        src = 2;
-                        inv = 1'b0;
-                    end
-                    'h2: begin
-                        src = 3;
-                        inv = 1'b0;
-                    end
-                    default: begin
-                        inv = 1'b0;
-                        src = 0;
-                        if (card_core0_dda_arc1_dda_setup1_m_is_y) begin
-                            src = 1;
-                        end
-                    end
-                endcase
+                end
             end
         end
         3'b100: begin
+            o_op = 1;
             case (card_core0_dda_arc1_dda_setup1_step)
                 'h0: begin
-                    o_op = 1;
+                    inv = 1'b1;
                 end
                 'h1: begin
                     g_op = 1;
                     o_op = 2;
+                    src = 0;
+                    if (card_core0_dda_arc1_dda_setup1_m_is_y) begin
+                        src = 1;
+                    end
                 end
-                default: begin
+                'h4: begin
                     g_op = 2;
-                    o_op = 3;
+                    o_op = 2;
                     src = 4;
                 end
             endcase
         end
         3'b101: begin
             g_op = 1;
-            o_op = 3;
-            case (card_core0_dda_arc1_dda_setup1_step)
-                'h0: begin
-                    src = 3;
-                    if (card_core0_dda_arc1_dda_setup1_x_inward_end) begin
-                        src = 2;
+            if ((card_core0_dda_arc1_dda_setup1_step == 0)) begin
+                src = 3;
+                if (card_core0_dda_arc1_dda_setup1_plan_x_inward_end) begin
+                    src = 2;
+                end
+                inv = 1'b1;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 1)) begin
+                g_op = 0;
+                o_op = 1;
+                inv = 1'b1;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step <= 5)) begin
+                inv = (!card_core0_dda_arc1_dda_setup1_plan_x_inward);
+                case (card_core0_dda_arc1_dda_setup1_step)
+                    'h2: begin
+                        g_op = 2;
+                        src = 0;
                     end
-                    inv = 1'b1;
-                end
-                'h1: begin
-                    g_op = 0;
-                    o_op = 1;
-                    inv = 1'b1;
-                end
-                'h2: begin
-                    g_op = 2;
+                    'h3: begin
+                        src = 1;
+                    end
+                    default: begin
+                        src = 2;
+                        if ((card_core0_dda_arc1_dda_setup1_step == 5)) begin
+                            src = 3;
+                        end
+                        inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward_end == 1);
+                    end
+                endcase
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 6)) begin
+                src = 4;
+                on = (card_core0_dda_arc1_dda_setup1_plan_x_inward != card_core0_dda_arc1_dda_setup1_plan_x_inward_end);
+                inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward == 1);
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 7)) begin
+                g_op = 2;
+                o_op = 0;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 8)) begin
+                g_op = 0;
+                src = 1;
+                inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward == 1);
+                if (card_core0_dda_arc1_dda_setup1_pick_x) begin
                     src = 0;
                     inv = (!card_core0_dda_arc1_dda_setup1_plan_x_inward);
                 end
-                'h3: begin
-                    src = 1;
-                    inv = (!card_core0_dda_arc1_dda_setup1_plan_x_inward);
-                end
-                'h4: begin
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 9)) begin
+                src = 3;
+                inv = (!card_core0_dda_arc1_dda_setup1_plan_x_inward_end);
+                if (card_core0_dda_arc1_dda_setup1_pick_x) begin
                     src = 2;
-                    inv = (card_core0_dda_arc1_dda_setup1_x_inward_end == 1);
+                    inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward_end == 1);
                 end
-                'h5: begin
-                    src = 3;
-                    inv = (card_core0_dda_arc1_dda_setup1_x_inward_end == 1);
-                end
-                'h6: begin
-                    src = 4;
-                    on = (card_core0_dda_arc1_dda_setup1_plan_x_inward != card_core0_dda_arc1_dda_setup1_x_inward_end);
-                    inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward == 1);
-                end
-                'h7: begin
-                    g_op = 2;
-                    src = 1;
-                    inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward == 1);
-                    if ((!card_core0_dda_arc1_dda_setup1_total[(27 - 1)])) begin
-                        src = 0;
-                        inv = (!card_core0_dda_arc1_dda_setup1_plan_x_inward);
-                    end
-                end
-                'h8: begin
-                    src = 3;
-                    inv = (!card_core0_dda_arc1_dda_setup1_x_inward_end);
-                    if (card_core0_dda_arc1_dda_setup1_pick_x) begin
-                        src = 2;
-                        inv = (card_core0_dda_arc1_dda_setup1_x_inward_end == 1);
-                    end
-                end
-                'h9: begin
-                    src = 4;
-                    on = (card_core0_dda_arc1_dda_setup1_twice != 0);
-                end
-                'ha: begin
-                    src = 4;
+            end
+            else begin
+                src = 4;
+                on = (card_core0_dda_arc1_dda_setup1_twice != 0);
+                if ((card_core0_dda_arc1_dda_setup1_step == 11)) begin
                     on = (card_core0_dda_arc1_dda_setup1_twice == 2);
                 end
-                default: begin
-                    o_op = 0;
-                end
-            endcase
+            end
         end
         default: begin
-            g_op = 0;
+            o_op = 0;
         end
     endcase
     card_core0_dda_arc1_dda_setup1_gap_op = g_op;
@@ -4295,75 +4548,79 @@ always @(card_core0_dda_arc1_dda_setup1_multiplier, card_core0_dda_arc1_dda_setu
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_twice, card_core0_dda_arc1_dda_setup1_root, card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_pick_x, card_core0_dda_arc1_dda_setup1_x_inward_end, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_carry_in
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_carry_in
     reg cin;
-    cin = 1'b0;
-    case (card_core0_dda_arc1_dda_setup1_state)
-        3'b010: begin
-            cin = ((card_core0_dda_arc1_dda_setup1_step == 2) || (card_core0_dda_arc1_dda_setup1_step == 4) || (card_core0_dda_arc1_dda_setup1_step == 6));
-        end
-        3'b011: begin
-            cin = (card_core0_dda_arc1_dda_setup1_square < 2);
-        end
-        3'b101: begin
-            if ((card_core0_dda_arc1_dda_setup1_step == 0)) begin
-                cin = 1'b1;
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_dda_setup1_carry <= 0;
+    end
+    else begin
+        cin = 1'b0;
+        case (card_core0_dda_arc1_dda_setup1_next_state)
+            3'b010: begin
+                cin = ((card_core0_dda_arc1_dda_setup1_next_step == 2) || (card_core0_dda_arc1_dda_setup1_next_step == 4) || (card_core0_dda_arc1_dda_setup1_next_step == 6));
             end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 2)) begin
-                cin = (card_core0_dda_arc1_dda_setup1_root[0] == 1);
+            3'b011: begin
+                cin = (card_core0_dda_arc1_dda_setup1_next_square < 2);
             end
-            else if (((card_core0_dda_arc1_dda_setup1_step == 3) || (card_core0_dda_arc1_dda_setup1_step == 4))) begin
-                cin = (!card_core0_dda_arc1_dda_setup1_plan_x_inward);
+            3'b100: begin
+                cin = (card_core0_dda_arc1_dda_setup1_next_step == 4);
             end
-            else if (((card_core0_dda_arc1_dda_setup1_step == 5) || (card_core0_dda_arc1_dda_setup1_step == 6))) begin
-                cin = (card_core0_dda_arc1_dda_setup1_x_inward_end == 1);
+            3'b101: begin
+                if ((card_core0_dda_arc1_dda_setup1_next_step == 0)) begin
+                    cin = 1'b1;
+                end
+                else if ((card_core0_dda_arc1_dda_setup1_next_step == 2)) begin
+                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] == 1);
+                end
+                else if (((card_core0_dda_arc1_dda_setup1_next_step == 3) || (card_core0_dda_arc1_dda_setup1_next_step == 4))) begin
+                    cin = (!card_core0_dda_arc1_dda_setup1_plan_x_inward);
+                end
+                else if (((card_core0_dda_arc1_dda_setup1_next_step == 5) || (card_core0_dda_arc1_dda_setup1_next_step == 6))) begin
+                    cin = (card_core0_dda_arc1_dda_setup1_plan_x_inward_end == 1);
+                end
+                else if ((card_core0_dda_arc1_dda_setup1_next_step == 7)) begin
+                    cin = ((card_core0_dda_arc1_dda_setup1_plan_x_inward != card_core0_dda_arc1_dda_setup1_plan_x_inward_end) && (card_core0_dda_arc1_dda_setup1_root_root[0] != card_core0_dda_arc1_dda_setup1_plan_x_inward));
+                end
+                else if ((card_core0_dda_arc1_dda_setup1_next_step == 9)) begin
+                    cin = (card_core0_dda_arc1_dda_setup1_pick_x != card_core0_dda_arc1_dda_setup1_plan_x_inward);
+                end
+                else if ((card_core0_dda_arc1_dda_setup1_next_step == 10)) begin
+                    cin = (card_core0_dda_arc1_dda_setup1_pick_x == card_core0_dda_arc1_dda_setup1_plan_x_inward_end);
+                end
+                else if ((card_core0_dda_arc1_dda_setup1_next_step == 11)) begin
+                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] && (card_core0_dda_arc1_dda_setup1_twice != 0));
+                end
+                else if ((card_core0_dda_arc1_dda_setup1_next_step == 12)) begin
+                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] && (card_core0_dda_arc1_dda_setup1_twice == 2));
+                end
             end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 7)) begin
-                cin = ((card_core0_dda_arc1_dda_setup1_plan_x_inward != card_core0_dda_arc1_dda_setup1_x_inward_end) && (card_core0_dda_arc1_dda_setup1_root[0] != card_core0_dda_arc1_dda_setup1_plan_x_inward));
+            default: begin
+                cin = 1'b0;
             end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 8)) begin
-                cin = (card_core0_dda_arc1_dda_setup1_pick_x != card_core0_dda_arc1_dda_setup1_plan_x_inward);
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 9)) begin
-                cin = (card_core0_dda_arc1_dda_setup1_pick_x == card_core0_dda_arc1_dda_setup1_x_inward_end);
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 10)) begin
-                cin = (card_core0_dda_arc1_dda_setup1_root[0] && (card_core0_dda_arc1_dda_setup1_twice != 0));
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 11)) begin
-                cin = (card_core0_dda_arc1_dda_setup1_root[0] && (card_core0_dda_arc1_dda_setup1_twice == 2));
-            end
-        end
-        default: begin
-            cin = 1'b0;
-        end
-    endcase
-    card_core0_dda_arc1_dda_setup1_carry = cin;
+        endcase
+        card_core0_dda_arc1_dda_setup1_carry <= cin;
+    end
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_ahead, card_core0_dda_arc1_dda_setup1_pick_x, card_core0_dda_arc1_dda_setup1_x_inward_end, card_core0_dda_arc1_dda_setup1_plan_crossings, card_core0_dda_arc1_dda_setup1_plan_x_inward) begin: card_core0_dda_arc1_dda_setup1_rq_terms
-    reg starts_inward;
-    reg ends_inward;
+always @(card_core0_dda_arc1_dda_setup1_plan_crossings, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_plan_x_inward_end, card_core0_dda_arc1_dda_setup1_pick_x) begin: card_core0_dda_arc1_dda_setup1_rq_terms
     reg [3-1:0] count;
-    starts_inward = (card_core0_dda_arc1_dda_setup1_plan_x_inward == card_core0_dda_arc1_dda_setup1_pick_x);
-    ends_inward = (card_core0_dda_arc1_dda_setup1_x_inward_end == card_core0_dda_arc1_dda_setup1_pick_x);
     count = 3'h0;
     count = (card_core0_dda_arc1_dda_setup1_plan_crossings - 1);
-    if ((!starts_inward)) begin
+    if ((card_core0_dda_arc1_dda_setup1_plan_x_inward != card_core0_dda_arc1_dda_setup1_pick_x)) begin
         count = (count + 1);
     end
-    if (ends_inward) begin
+    if ((card_core0_dda_arc1_dda_setup1_plan_x_inward_end == card_core0_dda_arc1_dda_setup1_pick_x)) begin
         count = (count + 1);
     end
     card_core0_dda_arc1_dda_setup1_twice = count[3-1:1];
-    if ((card_core0_dda_arc1_dda_setup1_plan_ahead || (card_core0_dda_arc1_dda_setup1_plan_crossings == 0))) begin
+    if ((card_core0_dda_arc1_dda_setup1_plan_crossings == 0)) begin
         card_core0_dda_arc1_dda_setup1_twice = 0;
     end
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_root, card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_source, card_core0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_arc1_dda_setup1_plan_mag_ys, card_core0_dda_arc1_dda_setup1_plan_mag_ye, card_core0_dda_arc1_dda_setup1_source_on) begin: card_core0_dda_arc1_dda_setup1_select_source
+always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_source, card_core0_dda_arc1_dda_setup1_root_root, card_core0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_arc1_dda_setup1_plan_mag_ys, card_core0_dda_arc1_dda_setup1_plan_mag_ye, card_core0_dda_arc1_dda_setup1_source_on) begin: card_core0_dda_arc1_dda_setup1_select_source
     reg [25-1:0] value;
     value = 25'h0;
     case (card_core0_dda_arc1_dda_setup1_source)
@@ -4380,7 +4637,7 @@ always @(card_core0_dda_arc1_dda_setup1_root, card_core0_dda_arc1_dda_setup1_pla
             value = {1'b0, card_core0_dda_arc1_dda_setup1_plan_mag_ye};
         end
         default: begin
-            value = card_core0_dda_arc1_dda_setup1_root;
+            value = card_core0_dda_arc1_dda_setup1_root_root;
         end
     endcase
     if ((!card_core0_dda_arc1_dda_setup1_source_on)) begin
@@ -4392,14 +4649,19 @@ end
 
 
 assign card_core0_dda_arc1_dda_setup1_total = ((card_core0_dda_arc1_dda_setup1_gap + card_core0_dda_arc1_dda_setup1_operand) + {48'h0, card_core0_dda_arc1_dda_setup1_carry});
+assign card_core0_dda_arc1_dda_setup1_root_radicand = (~card_core0_dda_arc1_dda_setup1_gap[(2 * 24)-1:0]);
+assign card_core0_dda_arc1_dda_setup1_root_load = ((card_core0_dda_arc1_dda_setup1_state == 3'b011) && (card_core0_dda_arc1_dda_setup1_square == 2) && (card_core0_dda_arc1_dda_setup1_step == 0));
 
 
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_datapath
     reg [49-1:0] loaded;
     if (card_core0_dda_reset == 0) begin
         card_core0_dda_arc1_dda_setup1_multiplier <= 0;
-        card_core0_dda_arc1_dda_setup1_operand <= 0;
         card_core0_dda_arc1_dda_setup1_gap <= 0;
+        card_core0_dda_arc1_dda_setup1_operand <= 0;
+        card_core0_dda_arc1_dda_setup1_step <= 0;
+        card_core0_dda_arc1_dda_setup1_square <= 0;
+        card_core0_dda_arc1_dda_setup1_state <= 3'b000;
     end
     else begin
         loaded = 49'h0;
@@ -4419,9 +4681,6 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
                 card_core0_dda_arc1_dda_setup1_operand <= {card_core0_dda_arc1_dda_setup1_operand[(49 - 1)-1:0], card_core0_dda_arc1_dda_setup1_invert};
             end
             'h2: begin
-                card_core0_dda_arc1_dda_setup1_operand <= (~{card_core0_dda_arc1_dda_setup1_operand[(49 - 1)-1:0], 1'b0});
-            end
-            'h3: begin
                 loaded = {24'h0, card_core0_dda_arc1_dda_setup1_source_value};
                 if ((card_core0_dda_arc1_dda_setup1_invert && card_core0_dda_arc1_dda_setup1_source_on)) begin
                     loaded = (~loaded);
@@ -4429,74 +4688,18 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
                 card_core0_dda_arc1_dda_setup1_operand <= loaded;
             end
         endcase
-        if ((card_core0_dda_arc1_dda_setup1_state == 3'b011)) begin
+        if (((card_core0_dda_arc1_dda_setup1_state == 3'b011) && ($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) != (24 - 1)))) begin
             card_core0_dda_arc1_dda_setup1_multiplier <= (card_core0_dda_arc1_dda_setup1_multiplier >>> 1);
-            if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
-                card_core0_dda_arc1_dda_setup1_multiplier <= card_core0_dda_arc1_dda_setup1_source_value[24-1:0];
-            end
         end
-        else if (((card_core0_dda_arc1_dda_setup1_state == 3'b010) && (card_core0_dda_arc1_dda_setup1_step == 6))) begin
+        else if (((card_core0_dda_arc1_dda_setup1_state == 3'b010) || (card_core0_dda_arc1_dda_setup1_state == 3'b011))) begin
             card_core0_dda_arc1_dda_setup1_multiplier <= card_core0_dda_arc1_dda_setup1_source_value[24-1:0];
         end
-        if (((card_core0_dda_arc1_dda_setup1_state == 3'b000) && card_core0_regs_fifo1_sequencer1_dda_start)) begin
+        if ((card_core0_dda_arc1_dda_setup1_state == 3'b000)) begin
             card_core0_dda_arc1_dda_setup1_gap <= 0;
         end
-    end
-end
-
-
-always @(card_core0_dda_arc1_dda_setup1_radicand, card_core0_dda_arc1_dda_setup1_remainder, card_core0_dda_arc1_dda_setup1_root) begin: card_core0_dda_arc1_dda_setup1_root_trial
-    reg [28-1:0] trial;
-    reg [27-1:0] difference;
-    trial = 28'h0;
-    difference = 27'h0;
-    trial = {card_core0_dda_arc1_dda_setup1_remainder, card_core0_dda_arc1_dda_setup1_radicand[(2 * 24)-1:((2 * 24) - 2)]};
-    difference = ({1'b0, trial[(24 + 2)-1:0]} - {1'b0, card_core0_dda_arc1_dda_setup1_root[24-1:0], 2'h1});
-    card_core0_dda_arc1_dda_setup1_trial_fits = ((trial[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
-    card_core0_dda_arc1_dda_setup1_trial_keep = trial[(24 + 2)-1:0];
-    if (((trial[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]))) begin
-        card_core0_dda_arc1_dda_setup1_trial_keep = difference[(24 + 2)-1:0];
-    end
-end
-
-
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_square_root
-    if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_root_started <= 0;
-        card_core0_dda_arc1_dda_setup1_root <= 0;
-        card_core0_dda_arc1_dda_setup1_root_all_ones <= 0;
-        card_core0_dda_arc1_dda_setup1_radicand <= 0;
-        card_core0_dda_arc1_dda_setup1_remainder <= 0;
-        card_core0_dda_arc1_dda_setup1_root_steps <= 0;
-    end
-    else begin
-        if (((card_core0_dda_arc1_dda_setup1_state == 3'b011) && (card_core0_dda_arc1_dda_setup1_square == 1) && ($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1)))) begin
-            if (card_core0_dda_arc1_dda_setup1_multiplier[0]) begin
-                card_core0_dda_arc1_dda_setup1_radicand <= (~card_core0_dda_arc1_dda_setup1_total[(2 * 24)-1:0]);
-            end
-            else begin
-                card_core0_dda_arc1_dda_setup1_radicand <= (~card_core0_dda_arc1_dda_setup1_gap[(2 * 24)-1:0]);
-            end
-            card_core0_dda_arc1_dda_setup1_remainder <= 0;
-            card_core0_dda_arc1_dda_setup1_root <= 0;
-            card_core0_dda_arc1_dda_setup1_root_steps <= (24 + 1);
-            card_core0_dda_arc1_dda_setup1_root_started <= 1'b0;
-            card_core0_dda_arc1_dda_setup1_root_all_ones <= 1'b1;
-        end
-        else if ((card_core0_dda_arc1_dda_setup1_root_steps != 0)) begin
-            card_core0_dda_arc1_dda_setup1_remainder <= card_core0_dda_arc1_dda_setup1_trial_keep;
-            card_core0_dda_arc1_dda_setup1_root <= {card_core0_dda_arc1_dda_setup1_root[24-1:0], card_core0_dda_arc1_dda_setup1_trial_fits};
-            card_core0_dda_arc1_dda_setup1_radicand <= (card_core0_dda_arc1_dda_setup1_radicand << 2);
-            card_core0_dda_arc1_dda_setup1_root_steps <= (card_core0_dda_arc1_dda_setup1_root_steps - 1);
-            if ((card_core0_dda_arc1_dda_setup1_root_steps != 1)) begin
-                if (card_core0_dda_arc1_dda_setup1_trial_fits) begin
-                    card_core0_dda_arc1_dda_setup1_root_started <= 1'b1;
-                end
-                else if (card_core0_dda_arc1_dda_setup1_root_started) begin
-                    card_core0_dda_arc1_dda_setup1_root_all_ones <= 1'b0;
-                end
-            end
-        end
+        card_core0_dda_arc1_dda_setup1_state <= card_core0_dda_arc1_dda_setup1_next_state;
+        card_core0_dda_arc1_dda_setup1_step <= card_core0_dda_arc1_dda_setup1_next_step;
+        card_core0_dda_arc1_dda_setup1_square <= card_core0_dda_arc1_dda_setup1_next_square;
     end
 end
 
@@ -4512,15 +4715,19 @@ end
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_threshold
     reg shift;
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_plan_threshold <= 0;
         card_core0_dda_arc1_dda_setup1_ones_left <= 0;
+        card_core0_dda_arc1_dda_setup1_grew <= 0;
+        card_core0_dda_arc1_dda_setup1_acc_bits <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_threshold <= 0;
         card_core0_dda_arc1_dda_setup1_plan_too_wide <= 0;
     end
     else begin
         shift = 1'b0;
+        card_core0_dda_arc1_dda_setup1_grew <= card_core0_dda_arc1_dda_setup1_root_grows;
         if (((card_core0_dda_arc1_dda_setup1_state == 3'b000) && card_core0_regs_fifo1_sequencer1_dda_start)) begin
             card_core0_dda_arc1_dda_setup1_plan_threshold <= 0;
             card_core0_dda_arc1_dda_setup1_plan_too_wide <= 1'b0;
+            card_core0_dda_arc1_dda_setup1_acc_bits <= card_core0_regs_fifo1_sequencer1_dda_acc_bits;
             if ((card_core0_regs_fifo1_sequencer1_dda_acc_bits != 0)) begin
                 card_core0_dda_arc1_dda_setup1_ones_left <= ({1'b0, card_core0_regs_fifo1_sequencer1_dda_acc_bits} + {1'b0, card_core0_regs_fifo1_sequencer1_dda_lambda_shift});
             end
@@ -4536,10 +4743,7 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
                 shift = 1'b1;
                 card_core0_dda_arc1_dda_setup1_ones_left <= (card_core0_dda_arc1_dda_setup1_ones_left - 1);
             end
-            else if (((card_core0_dda_arc1_dda_setup1_root_steps > 1) && (card_core0_dda_arc1_dda_setup1_acc_bits == 0) && (card_core0_dda_arc1_dda_setup1_root_started || card_core0_dda_arc1_dda_setup1_trial_fits))) begin
-                shift = 1'b1;
-            end
-            else if (((card_core0_dda_arc1_dda_setup1_root_steps == 1) && (card_core0_dda_arc1_dda_setup1_acc_bits == 0) && card_core0_dda_arc1_dda_setup1_trial_fits && card_core0_dda_arc1_dda_setup1_root_all_ones && card_core0_dda_arc1_dda_setup1_root_started)) begin
+            else if (((card_core0_dda_arc1_dda_setup1_acc_bits == 0) && card_core0_dda_arc1_dda_setup1_grew)) begin
                 shift = 1'b1;
             end
             if (shift) begin
@@ -4554,20 +4758,22 @@ end
 
 
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_captures
+    reg sign;
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_shrink_y_neg <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_start_same_y <= 0;
         card_core0_dda_arc1_dda_setup1_plan_totals_max <= 0;
-        card_core0_dda_arc1_dda_setup1_shrink_x_neg <= 0;
-        card_core0_dda_arc1_dda_setup1_shrink_y_zero <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_radius <= 0;
         card_core0_dda_arc1_dda_setup1_plan_beyond <= 0;
-        card_core0_dda_arc1_dda_setup1_shrink_x_zero <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_radius <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_start_same_x <= 0;
         card_core0_dda_arc1_dda_setup1_pick_x <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_start_below_y <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_start_below_x <= 0;
         card_core0_dda_arc1_dda_setup1_plan_totals_diff <= 0;
         card_core0_dda_arc1_dda_setup1_plan_off_circle <= 0;
         card_core0_dda_arc1_dda_setup1_m_is_y <= 0;
     end
     else begin
+        sign = card_core0_dda_arc1_dda_setup1_total[(49 - 1)];
         case (card_core0_dda_arc1_dda_setup1_state)
             3'b000: begin
                 card_core0_dda_arc1_dda_setup1_plan_off_circle <= 1'b0;
@@ -4575,23 +4781,20 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             3'b010: begin
                 case (card_core0_dda_arc1_dda_setup1_step)
                     'h2: begin
-                        card_core0_dda_arc1_dda_setup1_m_is_y <= card_core0_dda_arc1_dda_setup1_total[(49 - 1)];
+                        card_core0_dda_arc1_dda_setup1_m_is_y <= sign;
                     end
                     'h4: begin
-                        card_core0_dda_arc1_dda_setup1_shrink_x_neg <= card_core0_dda_arc1_dda_setup1_total[(49 - 1)];
-                        card_core0_dda_arc1_dda_setup1_shrink_x_zero <= (card_core0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
+                        card_core0_dda_arc1_dda_setup1_plan_start_below_x <= sign;
+                        card_core0_dda_arc1_dda_setup1_plan_start_same_x <= (card_core0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
                     end
                     'h6: begin
-                        card_core0_dda_arc1_dda_setup1_shrink_y_neg <= card_core0_dda_arc1_dda_setup1_total[(49 - 1)];
-                        card_core0_dda_arc1_dda_setup1_shrink_y_zero <= (card_core0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
+                        card_core0_dda_arc1_dda_setup1_plan_start_below_y <= sign;
+                        card_core0_dda_arc1_dda_setup1_plan_start_same_y <= (card_core0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
                     end
                 endcase
             end
             3'b100: begin
-                if ((card_core0_dda_arc1_dda_setup1_step == 1)) begin
-                    card_core0_dda_arc1_dda_setup1_plan_off_circle <= card_core0_dda_arc1_dda_setup1_total[(49 - 1)];
-                end
-                else if (((card_core0_dda_arc1_dda_setup1_step == 2) && (!card_core0_dda_arc1_dda_setup1_total[(49 - 1)]))) begin
+                if ((((card_core0_dda_arc1_dda_setup1_step == 1) && (!sign)) || ((card_core0_dda_arc1_dda_setup1_step == 4) && sign))) begin
                     card_core0_dda_arc1_dda_setup1_plan_off_circle <= 1'b1;
                 end
             end
@@ -4601,13 +4804,13 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
                         card_core0_dda_arc1_dda_setup1_plan_radius <= card_core0_dda_arc1_dda_setup1_total[(24 + 2)-1:1];
                     end
                     'h2: begin
-                        card_core0_dda_arc1_dda_setup1_plan_beyond <= card_core0_dda_arc1_dda_setup1_total[(49 - 1)];
+                        card_core0_dda_arc1_dda_setup1_plan_beyond <= sign;
                     end
                     'h7: begin
                         card_core0_dda_arc1_dda_setup1_plan_totals_diff <= $signed(card_core0_dda_arc1_dda_setup1_total[27-1:0]);
                         card_core0_dda_arc1_dda_setup1_pick_x <= (!card_core0_dda_arc1_dda_setup1_total[(27 - 1)]);
                     end
-                    'hb: begin
+                    'hc: begin
                         card_core0_dda_arc1_dda_setup1_plan_totals_max <= card_core0_dda_arc1_dda_setup1_total[27-1:0];
                     end
                 endcase
@@ -4624,213 +4827,13 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_sequence
-    if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_plan_neg_ye <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_ccw <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_mag_xs <= 0;
-        card_core0_dda_arc1_dda_setup1_state <= 3'b000;
-        card_core0_dda_arc1_dda_setup1_plan_neg_xe <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_line <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_blend <= 0;
-        card_core0_dda_arc1_dda_setup1_step <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_mag_ys <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_mag_xe <= 0;
-        card_core0_dda_arc1_dda_setup1_acc_bits <= 0;
-        card_core0_dda_arc1_dda_setup1_square <= 0;
-        card_core0_dda_arc1_dda_setup1_neg_xs <= 0;
-        card_core0_dda_arc1_dda_setup1_neg_ys <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_variant <= 3;
-        card_core0_dda_arc1_dda_setup1_plan_mag_ye <= 0;
-    end
-    else begin
-        if ((card_core0_dda_arc1_dda_setup1_state == 3'b000)) begin
-            if (card_core0_regs_fifo1_sequencer1_dda_start) begin
-                card_core0_dda_arc1_dda_setup1_plan_line <= card_core0_regs_fifo1_sequencer1_dda_line;
-                card_core0_dda_arc1_dda_setup1_plan_variant <= card_core0_regs_fifo1_sequencer1_dda_variant;
-                card_core0_dda_arc1_dda_setup1_plan_ccw <= card_core0_regs_fifo1_sequencer1_dda_ccw;
-                card_core0_dda_arc1_dda_setup1_plan_blend <= card_core0_regs_fifo1_sequencer1_dda_blend;
-                card_core0_dda_arc1_dda_setup1_acc_bits <= card_core0_regs_fifo1_sequencer1_dda_acc_bits;
-                card_core0_dda_arc1_dda_setup1_neg_xs <= (card_core0_regs_fifo1_sequencer1_dda_xs < 0);
-                card_core0_dda_arc1_dda_setup1_neg_ys <= (card_core0_regs_fifo1_sequencer1_dda_ys < 0);
-                card_core0_dda_arc1_dda_setup1_plan_neg_xe <= (card_core0_regs_fifo1_sequencer1_dda_xe < 0);
-                card_core0_dda_arc1_dda_setup1_plan_neg_ye <= (card_core0_regs_fifo1_sequencer1_dda_ye < 0);
-                card_core0_dda_arc1_dda_setup1_plan_mag_xs <= card_core0_dda_arc1_dda_setup1_cmd_mag_xs;
-                card_core0_dda_arc1_dda_setup1_plan_mag_ys <= card_core0_dda_arc1_dda_setup1_cmd_mag_ys;
-                card_core0_dda_arc1_dda_setup1_plan_mag_xe <= card_core0_dda_arc1_dda_setup1_cmd_mag_xe;
-                card_core0_dda_arc1_dda_setup1_plan_mag_ye <= card_core0_dda_arc1_dda_setup1_cmd_mag_ye;
-                card_core0_dda_arc1_dda_setup1_step <= 0;
-                card_core0_dda_arc1_dda_setup1_square <= 0;
-                if (card_core0_regs_fifo1_sequencer1_dda_line) begin
-                    card_core0_dda_arc1_dda_setup1_state <= 3'b001;
-                end
-                else begin
-                    card_core0_dda_arc1_dda_setup1_state <= 3'b010;
-                end
-            end
-        end
-        else if ((card_core0_dda_arc1_dda_setup1_state == 3'b001)) begin
-            card_core0_dda_arc1_dda_setup1_state <= 3'b110;
-        end
-        else if ((card_core0_dda_arc1_dda_setup1_state == 3'b010)) begin
-            if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (7 - 1))) begin
-                card_core0_dda_arc1_dda_setup1_step <= 0;
-                card_core0_dda_arc1_dda_setup1_state <= 3'b011;
-            end
-            else begin
-                card_core0_dda_arc1_dda_setup1_step <= (card_core0_dda_arc1_dda_setup1_step + 1);
-            end
-        end
-        else if ((card_core0_dda_arc1_dda_setup1_state == 3'b011)) begin
-            if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
-                card_core0_dda_arc1_dda_setup1_step <= 0;
-                card_core0_dda_arc1_dda_setup1_square <= (card_core0_dda_arc1_dda_setup1_square + 1);
-                if ((card_core0_dda_arc1_dda_setup1_square == 3)) begin
-                    card_core0_dda_arc1_dda_setup1_state <= 3'b100;
-                end
-            end
-            else begin
-                card_core0_dda_arc1_dda_setup1_step <= (card_core0_dda_arc1_dda_setup1_step + 1);
-            end
-        end
-        else if ((card_core0_dda_arc1_dda_setup1_state == 3'b100)) begin
-            if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (3 - 1))) begin
-                card_core0_dda_arc1_dda_setup1_step <= 0;
-                card_core0_dda_arc1_dda_setup1_state <= 3'b101;
-            end
-            else begin
-                card_core0_dda_arc1_dda_setup1_step <= (card_core0_dda_arc1_dda_setup1_step + 1);
-            end
-        end
-        else if ((card_core0_dda_arc1_dda_setup1_state == 3'b101)) begin
-            if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (12 - 1))) begin
-                card_core0_dda_arc1_dda_setup1_step <= 0;
-                card_core0_dda_arc1_dda_setup1_state <= 3'b110;
-            end
-            else begin
-                card_core0_dda_arc1_dda_setup1_step <= (card_core0_dda_arc1_dda_setup1_step + 1);
-            end
-        end
-        else if (card_core0_dda_arc1_dda_setup1_plan_taken) begin
-            card_core0_dda_arc1_dda_setup1_state <= 3'b000;
-        end
-    end
-end
-
-
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_geometry
-    reg [2-1:0] q_s;
-    reg [2-1:0] q_e;
-    reg [2-1:0] turn;
-    reg ahead;
-    reg zero_xs;
-    reg zero_ys;
-    reg zero_xe;
-    reg zero_ye;
-    reg [1-1:0] ccw;
-    if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_plan_ahead <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_quadrant <= 0;
-        card_core0_dda_arc1_dda_setup1_x_inward_end <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_centre <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_crossings <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_x_inward <= 0;
-    end
-    else begin
-        q_s = 2'h0;
-        q_e = 2'h0;
-        turn = 2'h0;
-        ahead = 1'b0;
-        zero_xs = (card_core0_dda_arc1_dda_setup1_plan_mag_xs == 0);
-        zero_ys = (card_core0_dda_arc1_dda_setup1_plan_mag_ys == 0);
-        zero_xe = (card_core0_dda_arc1_dda_setup1_plan_mag_xe == 0);
-        zero_ye = (card_core0_dda_arc1_dda_setup1_plan_mag_ye == 0);
-        ccw = card_core0_dda_arc1_dda_setup1_plan_ccw;
-        if (ccw) begin
-            if (((!card_core0_dda_arc1_dda_setup1_neg_xs) && (!zero_xs) && (!card_core0_dda_arc1_dda_setup1_neg_ys))) begin
-                q_s = 0;
-            end
-            else if (((card_core0_dda_arc1_dda_setup1_neg_xs || zero_xs) && (!card_core0_dda_arc1_dda_setup1_neg_ys) && (!zero_ys))) begin
-                q_s = 1;
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_neg_xs && (card_core0_dda_arc1_dda_setup1_neg_ys || zero_ys))) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!card_core0_dda_arc1_dda_setup1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_plan_neg_ye) && (!zero_ye))) begin
-                q_e = 0;
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_plan_neg_xe && (!card_core0_dda_arc1_dda_setup1_plan_neg_ye))) begin
-                q_e = 1;
-            end
-            else if (((card_core0_dda_arc1_dda_setup1_plan_neg_xe || zero_xe) && card_core0_dda_arc1_dda_setup1_plan_neg_ye)) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_e - q_s);
-        end
-        else begin
-            if (((!card_core0_dda_arc1_dda_setup1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_neg_ys) && (!zero_ys))) begin
-                q_s = 0;
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_neg_xs && (!card_core0_dda_arc1_dda_setup1_neg_ys))) begin
-                q_s = 1;
-            end
-            else if (((card_core0_dda_arc1_dda_setup1_neg_xs || zero_xs) && card_core0_dda_arc1_dda_setup1_neg_ys)) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!card_core0_dda_arc1_dda_setup1_plan_neg_xe) && (!zero_xe) && (!card_core0_dda_arc1_dda_setup1_plan_neg_ye))) begin
-                q_e = 0;
-            end
-            else if (((card_core0_dda_arc1_dda_setup1_plan_neg_xe || zero_xe) && (!card_core0_dda_arc1_dda_setup1_plan_neg_ye) && (!zero_ye))) begin
-                q_e = 1;
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_plan_neg_xe && (card_core0_dda_arc1_dda_setup1_plan_neg_ye || zero_ye))) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_s - q_e);
-        end
-        if ((q_s[0] != ccw)) begin
-            ahead = ((!card_core0_dda_arc1_dda_setup1_shrink_x_neg) && (card_core0_dda_arc1_dda_setup1_shrink_y_neg || card_core0_dda_arc1_dda_setup1_shrink_y_zero));
-        end
-        else begin
-            ahead = ((!card_core0_dda_arc1_dda_setup1_shrink_y_neg) && (card_core0_dda_arc1_dda_setup1_shrink_x_neg || card_core0_dda_arc1_dda_setup1_shrink_x_zero));
-        end
-        card_core0_dda_arc1_dda_setup1_plan_ahead <= ((turn == 0) && ahead && (!(card_core0_dda_arc1_dda_setup1_shrink_x_zero && card_core0_dda_arc1_dda_setup1_shrink_y_zero)));
-        card_core0_dda_arc1_dda_setup1_plan_crossings <= {1'b0, turn};
-        if (((turn == 0) && (!(ahead && (!(card_core0_dda_arc1_dda_setup1_shrink_x_zero && card_core0_dda_arc1_dda_setup1_shrink_y_zero)))))) begin
-            card_core0_dda_arc1_dda_setup1_plan_crossings <= 4;
-        end
-        card_core0_dda_arc1_dda_setup1_plan_quadrant <= q_s;
-        card_core0_dda_arc1_dda_setup1_plan_x_inward <= (q_s[0] != ccw);
-        card_core0_dda_arc1_dda_setup1_x_inward_end <= (q_e[0] != ccw);
-        if (card_core0_dda_arc1_dda_setup1_plan_line) begin
-            card_core0_dda_arc1_dda_setup1_plan_centre <= (zero_xe && zero_ye);
-        end
-        else begin
-            card_core0_dda_arc1_dda_setup1_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
-        end
-    end
-end
-
-
 
 assign card_core0_regs_fifo1_sequencer1_dda_ready = (card_core0_dda_arc1_dda_setup1_state == 3'b000);
 assign card_core0_dda_arc1_dda_setup1_plan_done = (card_core0_dda_arc1_dda_setup1_state == 3'b110);
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_variant) begin: card_core0_dda_arc1_dda_check1_lookup_variant
-    case (card_core0_dda_arc1_dda_setup1_plan_variant)
+always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_lookup_variant
+    case (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant)
         0: card_core0_dda_arc1_dda_check1_variant_built = 0;
         1: card_core0_dda_arc1_dda_check1_variant_built = 0;
         2: card_core0_dda_arc1_dda_check1_variant_built = 1;
@@ -4844,34 +4847,34 @@ assign card_core0_dda_arc1_dda_check1_move_offer = card_core0_dda_arc1_dda_setup
 assign card_core0_dda_arc1_dda_setup1_plan_taken = card_core0_dda_arc1_dda_check1_move_take;
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_ahead, card_core0_dda_arc1_dda_check1_variant_built, card_core0_dda_arc1_dda_setup1_plan_beyond, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_plan_too_wide, card_core0_dda_arc1_dda_setup1_plan_line, card_core0_dda_arc1_dda_setup1_plan_centre, card_core0_dda_arc1_dda_setup1_plan_off_circle, card_core0_dda_arc1_dda_setup1_plan_variant) begin: card_core0_dda_arc1_dda_check1_validate
+always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead, card_core0_dda_arc1_dda_check1_variant_built, card_core0_dda_arc1_dda_setup1_plan_beyond, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_plan_too_wide, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre, card_core0_dda_arc1_dda_setup1_plan_off_circle, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_validate
     reg bad;
-    bad = (card_core0_dda_arc1_dda_setup1_plan_centre || card_core0_dda_arc1_dda_setup1_plan_off_circle || (card_core0_dda_arc1_dda_setup1_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
-    if (((!card_core0_dda_arc1_dda_setup1_plan_ahead) && card_core0_dda_arc1_dda_setup1_plan_beyond)) begin
+    bad = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre || card_core0_dda_arc1_dda_setup1_plan_off_circle || (card_core0_dda_arc1_dda_setup1_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
+    if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead) && card_core0_dda_arc1_dda_setup1_plan_beyond)) begin
         bad = 1'b1;
     end
-    if (((card_core0_dda_arc1_dda_setup1_plan_variant != 3) && card_core0_dda_arc1_dda_setup1_plan_too_wide)) begin
+    if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant != 3) && card_core0_dda_arc1_dda_setup1_plan_too_wide)) begin
         bad = 1'b1;
     end
     if ((!card_core0_dda_arc1_dda_check1_variant_built)) begin
         bad = 1'b1;
     end
-    card_core0_dda_arc1_dda_check1_move_error = (bad && (!card_core0_dda_arc1_dda_setup1_plan_line));
-    card_core0_dda_arc1_dda_check1_move_zero = (card_core0_dda_arc1_dda_setup1_plan_line && card_core0_dda_arc1_dda_setup1_plan_centre);
+    card_core0_dda_arc1_dda_check1_move_error = (bad && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line));
+    card_core0_dda_arc1_dda_check1_move_zero = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre);
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_neg_ye, card_core0_dda_arc1_dda_setup1_plan_quadrant, card_core0_dda_arc1_dda_setup1_plan_ccw, card_core0_dda_arc1_dda_setup1_plan_neg_xe, card_core0_dda_arc1_dda_setup1_plan_line, card_core0_dda_arc1_dda_setup1_plan_blend, card_core0_dda_arc1_dda_setup1_plan_crossings, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_plan_variant) begin: card_core0_dda_arc1_dda_check1_geometry
-    card_core0_dda_arc1_dda_check1_move_line = card_core0_dda_arc1_dda_setup1_plan_line;
-    card_core0_dda_arc1_dda_check1_move_variant = card_core0_dda_arc1_dda_setup1_plan_variant;
-    card_core0_dda_arc1_dda_check1_move_ccw = card_core0_dda_arc1_dda_setup1_plan_ccw;
-    card_core0_dda_arc1_dda_check1_move_blend = card_core0_dda_arc1_dda_setup1_plan_blend;
-    card_core0_dda_arc1_dda_check1_move_right = (!card_core0_dda_arc1_dda_setup1_plan_neg_xe);
-    card_core0_dda_arc1_dda_check1_move_up = (!card_core0_dda_arc1_dda_setup1_plan_neg_ye);
+always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend, card_core0_dda_arc1_dda_setup1_plan_crossings, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_geometry
+    card_core0_dda_arc1_dda_check1_move_line = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line;
+    card_core0_dda_arc1_dda_check1_move_variant = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant;
+    card_core0_dda_arc1_dda_check1_move_ccw = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw;
+    card_core0_dda_arc1_dda_check1_move_blend = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend;
+    card_core0_dda_arc1_dda_check1_move_right = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe);
+    card_core0_dda_arc1_dda_check1_move_up = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye);
     card_core0_dda_arc1_dda_check1_move_x_inward = card_core0_dda_arc1_dda_setup1_plan_x_inward;
-    card_core0_dda_arc1_dda_check1_move_quadrant = card_core0_dda_arc1_dda_setup1_plan_quadrant;
+    card_core0_dda_arc1_dda_check1_move_quadrant = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant;
     card_core0_dda_arc1_dda_check1_move_crossings = card_core0_dda_arc1_dda_setup1_plan_crossings;
-    if (card_core0_dda_arc1_dda_setup1_plan_line) begin
+    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
         card_core0_dda_arc1_dda_check1_move_quadrant = 0;
         card_core0_dda_arc1_dda_check1_move_crossings = 0;
     end
@@ -4890,10 +4893,10 @@ always @(card_core0_dda_arc1_dda_setup1_plan_neg_ye, card_core0_dda_arc1_dda_set
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_totals_max, card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_plan_line, card_core0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_arc1_dda_setup1_plan_mag_ys, card_core0_dda_arc1_dda_setup1_plan_totals_diff, card_core0_dda_arc1_dda_setup1_plan_mag_ye) begin: card_core0_dda_arc1_dda_check1_magnitudes
+always @(card_core0_dda_arc1_dda_setup1_plan_totals_max, card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_arc1_dda_setup1_plan_mag_ys, card_core0_dda_arc1_dda_setup1_plan_totals_diff, card_core0_dda_arc1_dda_setup1_plan_mag_ye) begin: card_core0_dda_arc1_dda_check1_magnitudes
     card_core0_dda_arc1_dda_check1_move_mag_x = card_core0_dda_arc1_dda_setup1_plan_mag_xs;
     card_core0_dda_arc1_dda_check1_move_mag_y = card_core0_dda_arc1_dda_setup1_plan_mag_ys;
-    if (card_core0_dda_arc1_dda_setup1_plan_line) begin
+    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
         card_core0_dda_arc1_dda_check1_move_mag_x = card_core0_dda_arc1_dda_setup1_plan_mag_ye;
         card_core0_dda_arc1_dda_check1_move_mag_y = card_core0_dda_arc1_dda_setup1_plan_mag_xe;
     end
@@ -4905,7 +4908,7 @@ always @(card_core0_dda_arc1_dda_setup1_plan_totals_max, card_core0_dda_arc1_dda
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_threshold, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_plan_line, card_core0_dda_arc1_dda_setup1_plan_variant) begin: card_core0_dda_arc1_dda_check1_thresholds
+always @(card_core0_dda_arc1_dda_setup1_plan_threshold, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_thresholds
     reg [28-1:0] less;
     reg [30-1:0] below;
     reg [29-1:0] ones;
@@ -4913,18 +4916,18 @@ always @(card_core0_dda_arc1_dda_setup1_plan_threshold, card_core0_dda_arc1_dda_
     below = 30'h0;
     ones = 29'h0;
     less = card_core0_dda_arc1_dda_setup1_plan_threshold;
-    if (((!card_core0_dda_arc1_dda_setup1_plan_line) && ((!1'b1) || (card_core0_dda_arc1_dda_setup1_plan_variant == 3)))) begin
+    if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) && ((!1'b1) || (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant == 3)))) begin
         less = 0;
         less[24-1:0] = card_core0_dda_arc1_dda_setup1_plan_radius[24-1:0];
     end
     card_core0_dda_arc1_dda_check1_move_threshold = less;
     below = (~{3'h0, less[28-1:1]});
-    if ((1'b1 && (!card_core0_dda_arc1_dda_setup1_plan_line) && ((card_core0_dda_arc1_dda_setup1_plan_variant == 1) || (card_core0_dda_arc1_dda_setup1_plan_variant == 2)))) begin
+    if ((1'b1 && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) && ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant == 1) || (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant == 2)))) begin
         ones = ({less, 1'b1} & (~{1'b0, less}));
         below = (~{1'h0, ones});
     end
     card_core0_dda_arc1_dda_check1_move_acc_init = $signed(below);
-    card_core0_dda_arc1_dda_check1_move_acc_carry = (card_core0_dda_arc1_dda_setup1_plan_line && (!less[0]));
+    card_core0_dda_arc1_dda_check1_move_acc_carry = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line && (!less[0]));
 end
 
 
@@ -4946,32 +4949,34 @@ always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_set
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_threshold, card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_threshold_carry, card_core0_dda_arc1_dda_run1_first, card_core0_dda_arc1_dda_run1_mag_x, card_core0_dda_arc1_dda_run1_acc_x, card_core0_dda_arc1_dda_run1_acc_y, card_core0_dda_arc1_dda_run1_pending) begin: card_core0_dda_arc1_dda_run1_accumulate
-    reg [31-1:0] operand_x;
-    reg [31-1:0] operand_y;
-    reg [31-1:0] carry;
-    operand_x = 31'h0;
-    operand_y = 31'h0;
-    carry = 31'h0;
-    if (card_core0_dda_arc1_dda_run1_pending) begin
-        operand_x = (~{3'h0, card_core0_dda_arc1_dda_run1_threshold});
-        operand_y = operand_x;
-        carry[0] = card_core0_dda_arc1_dda_run1_threshold_carry;
+always @(card_core0_dda_arc1_dda_run1_threshold, card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_threshold_carry, card_core0_dda_arc1_dda_run1_dec_x, card_core0_dda_arc1_dda_run1_first, card_core0_dda_arc1_dda_run1_dec_sum_y, card_core0_dda_arc1_dda_run1_dec_y, card_core0_dda_arc1_dda_run1_acc_x, card_core0_dda_arc1_dda_run1_mag_x, card_core0_dda_arc1_dda_run1_dec_sum_x, card_core0_dda_arc1_dda_run1_acc_y) begin: card_core0_dda_arc1_dda_run1_accumulate
+    reg [30-1:0] minus_x;
+    reg [30-1:0] minus_y;
+    minus_x = 30'h0;
+    minus_y = 30'h0;
+    card_core0_dda_arc1_dda_run1_sum_x = (({card_core0_dda_arc1_dda_run1_acc_x[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_x} + {7'h0, card_core0_dda_arc1_dda_run1_mag_y}) + {30'h0, card_core0_dda_arc1_dda_run1_first});
+    card_core0_dda_arc1_dda_run1_sum_y = (({card_core0_dda_arc1_dda_run1_acc_y[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_y} + {7'h0, card_core0_dda_arc1_dda_run1_mag_x}) + {30'h0, card_core0_dda_arc1_dda_run1_first});
+    if (card_core0_dda_arc1_dda_run1_dec_x) begin
+        minus_x = (~{2'h0, card_core0_dda_arc1_dda_run1_threshold});
     end
-    else begin
-        operand_x = {7'h0, card_core0_dda_arc1_dda_run1_mag_y};
-        operand_y = {7'h0, card_core0_dda_arc1_dda_run1_mag_x};
-        carry[0] = card_core0_dda_arc1_dda_run1_first;
+    if (card_core0_dda_arc1_dda_run1_dec_y) begin
+        minus_y = (~{2'h0, card_core0_dda_arc1_dda_run1_threshold});
     end
-    card_core0_dda_arc1_dda_run1_sum_x = (({card_core0_dda_arc1_dda_run1_acc_x[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_x} + operand_x) + carry);
-    card_core0_dda_arc1_dda_run1_sum_y = (({card_core0_dda_arc1_dda_run1_acc_y[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_y} + operand_y) + carry);
+    card_core0_dda_arc1_dda_run1_less_x = ((card_core0_dda_arc1_dda_run1_dec_sum_x + minus_x) + {29'h0, (card_core0_dda_arc1_dda_run1_dec_x && card_core0_dda_arc1_dda_run1_threshold_carry)});
+    card_core0_dda_arc1_dda_run1_less_y = ((card_core0_dda_arc1_dda_run1_dec_sum_y + minus_y) + {29'h0, (card_core0_dda_arc1_dda_run1_dec_y && card_core0_dda_arc1_dda_run1_threshold_carry)});
 end
 
 
-
-assign card_core0_dda_arc1_dda_run1_over_x = (!card_core0_dda_arc1_dda_run1_sum_x[30]);
-assign card_core0_dda_arc1_dda_run1_over_y = (!card_core0_dda_arc1_dda_run1_sum_y[30]);
-assign card_core0_dda_arc1_dda_run1_trad_over_x = (!card_core0_dda_arc1_dda_run1_trad_x[30]);
+always @(card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_trad_x, card_core0_dda_arc1_dda_run1_sum_y, card_core0_dda_arc1_dda_run1_sum_x, card_core0_dda_arc1_dda_run1_over_y, card_core0_dda_arc1_dda_run1_line) begin: card_core0_dda_arc1_dda_run1_overflow
+    card_core0_dda_arc1_dda_run1_over_x = (!card_core0_dda_arc1_dda_run1_sum_x[30]);
+    card_core0_dda_arc1_dda_run1_over_y = (!card_core0_dda_arc1_dda_run1_sum_y[30]);
+    card_core0_dda_arc1_dda_run1_trad_over_x = (!card_core0_dda_arc1_dda_run1_trad_x[30]);
+    card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_sum_x[30]) && card_core0_dda_arc1_dda_run1_sum_x[(30 - 1)]);
+    if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_line))) begin
+        card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_trad_x[30]) && card_core0_dda_arc1_dda_run1_trad_x[(30 - 1)]);
+    end
+    card_core0_dda_arc1_dda_run1_saturate_y = ((!card_core0_dda_arc1_dda_run1_sum_y[30]) && card_core0_dda_arc1_dda_run1_sum_y[(30 - 1)]);
+end
 
 
 always @(card_core0_dda_arc1_dda_run1_acc_y, card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_acc_x, card_core0_dda_arc1_dda_run1_mag_x) begin: card_core0_dda_arc1_dda_run1_look_ahead
@@ -4986,54 +4991,43 @@ always @(card_core0_dda_arc1_dda_run1_acc_y, card_core0_dda_arc1_dda_run1_mag_y,
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_bias_y, card_core0_dda_arc1_dda_run1_x_inward, card_core0_dda_arc1_dda_run1_error_term, card_core0_dda_arc1_dda_run1_bias_x) begin: card_core0_dda_arc1_dda_run1_nearest
-    reg [28-1:0] first_bias;
-    reg [28-1:0] second_bias;
-    reg [28-1:0] close;
-    reg [28-1:0] far;
-    first_bias = 28'h0;
-    second_bias = 28'h0;
-    close = 28'h0;
-    far = 28'h0;
+always @(card_core0_dda_arc1_dda_run1_error_term, card_core0_dda_arc1_dda_run1_x_inward, card_core0_dda_arc1_dda_run1_bias_x, card_core0_dda_arc1_dda_run1_bias_y) begin: card_core0_dda_arc1_dda_run1_nearest
+    reg [28-1:0] twice_error;
+    reg [28-1:0] plus_x;
+    reg [28-1:0] plus_y;
+    reg [28-1:0] minus_x;
+    reg [28-1:0] minus_y;
+    twice_error = 28'h0;
+    plus_x = 28'h0;
+    plus_y = 28'h0;
+    minus_x = 28'h0;
+    minus_y = 28'h0;
+    twice_error = {card_core0_dda_arc1_dda_run1_error_term, 1'b0};
+    plus_x = (twice_error + {card_core0_dda_arc1_dda_run1_bias_x[(27 - 1)], card_core0_dda_arc1_dda_run1_bias_x});
+    plus_y = (twice_error + {card_core0_dda_arc1_dda_run1_bias_y[(27 - 1)], card_core0_dda_arc1_dda_run1_bias_y});
+    minus_x = (twice_error - {card_core0_dda_arc1_dda_run1_bias_x[(27 - 1)], card_core0_dda_arc1_dda_run1_bias_x});
+    minus_y = (twice_error - {card_core0_dda_arc1_dda_run1_bias_y[(27 - 1)], card_core0_dda_arc1_dda_run1_bias_y});
     if (card_core0_dda_arc1_dda_run1_x_inward) begin
-        first_bias = {card_core0_dda_arc1_dda_run1_bias_x[(27 - 1)], card_core0_dda_arc1_dda_run1_bias_x};
-        second_bias = {card_core0_dda_arc1_dda_run1_bias_y[(27 - 1)], card_core0_dda_arc1_dda_run1_bias_y};
+        card_core0_dda_arc1_dda_run1_inward_near = ($signed(plus_y) >= 0);
+        card_core0_dda_arc1_dda_run1_outward_near = ($signed(plus_x) < 0);
     end
     else begin
-        first_bias = (~{card_core0_dda_arc1_dda_run1_bias_y[(27 - 1)], card_core0_dda_arc1_dda_run1_bias_y});
-        second_bias = (~{card_core0_dda_arc1_dda_run1_bias_x[(27 - 1)], card_core0_dda_arc1_dda_run1_bias_x});
+        card_core0_dda_arc1_dda_run1_inward_near = ($signed(minus_x) >= 0);
+        card_core0_dda_arc1_dda_run1_outward_near = ($signed(minus_y) < 0);
     end
-    close = (({card_core0_dda_arc1_dda_run1_error_term, 1'b0} + first_bias) + {27'h0, (!card_core0_dda_arc1_dda_run1_x_inward)});
-    far = (({card_core0_dda_arc1_dda_run1_error_term, 1'b0} + second_bias) + {27'h0, (!card_core0_dda_arc1_dda_run1_x_inward)});
-    card_core0_dda_arc1_dda_run1_inward_near = ($signed(far) >= 0);
-    card_core0_dda_arc1_dda_run1_outward_near = ($signed(close) < 0);
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_x_inward, card_core0_dda_arc1_dda_run1_pending, card_core0_dda_arc1_dda_run1_mag_x) begin: card_core0_dda_arc1_dda_run1_magnitude_adders
+always @(card_core0_dda_arc1_dda_run1_x_inward, card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_mag_x) begin: card_core0_dda_arc1_dda_run1_magnitude_adders
     reg [24-1:0] op_x;
     reg [24-1:0] op_y;
     op_x = 24'h0;
     op_y = 24'h0;
-    if (card_core0_dda_arc1_dda_run1_pending) begin
-        op_x = 1;
-        if (card_core0_dda_arc1_dda_run1_x_inward) begin
-            op_x = 16777215;
-        end
-        op_y = 0;
-        if (card_core0_dda_arc1_dda_run1_x_inward) begin
-            op_y = 16777215;
-        end
-    end
-    else begin
-        op_x = 0;
-        if (card_core0_dda_arc1_dda_run1_x_inward) begin
-            op_x = 16777215;
-        end
-        op_y = 16777215;
-        if (card_core0_dda_arc1_dda_run1_x_inward) begin
-            op_y = 1;
-        end
+    op_x = 1;
+    op_y = 16777215;
+    if (card_core0_dda_arc1_dda_run1_x_inward) begin
+        op_x = 16777215;
+        op_y = 1;
     end
     card_core0_dda_arc1_dda_run1_stepped_x = (card_core0_dda_arc1_dda_run1_mag_x + op_x);
     card_core0_dda_arc1_dda_run1_stepped_y = (card_core0_dda_arc1_dda_run1_mag_y + op_y);
@@ -5083,78 +5077,78 @@ end
 always @(card_core0_dda_arc1_dda_run1_trad_over_x, card_core0_dda_arc1_dda_run1_at_x, card_core0_dda_arc1_dda_run1_near_y, card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_ahead_x, card_core0_dda_arc1_dda_run1_left_diff, card_core0_dda_arc1_dda_run1_near_x, card_core0_dda_arc1_dda_run1_at_y, card_core0_dda_arc1_dda_run1_outward_near, card_core0_dda_arc1_dda_run1_x_inward, card_core0_dda_arc1_dda_run1_inward_near, card_core0_dda_arc1_dda_run1_crossings, card_core0_dda_arc1_dda_run1_ahead_y, card_core0_dda_arc1_dda_run1_over_y, card_core0_dda_arc1_dda_run1_line, card_core0_dda_arc1_dda_run1_over_x) begin: card_core0_dda_arc1_dda_run1_decide
     reg step_x;
     reg step_y;
+    reg choose_x;
+    reg choose_y;
+    reg ends;
     step_x = (card_core0_dda_arc1_dda_run1_over_x == 1);
     step_y = (card_core0_dda_arc1_dda_run1_over_y == 1);
-    if ((!card_core0_dda_arc1_dda_run1_line)) begin
-        case (card_core0_dda_arc1_dda_run1_variant)
-            'h0: begin
-                if (card_core0_dda_arc1_dda_run1_over_y) begin
-                    step_x = (card_core0_dda_arc1_dda_run1_trad_over_x == 1);
-                end
-            end
-            'h2: begin
-                if ((card_core0_dda_arc1_dda_run1_over_x && (!card_core0_dda_arc1_dda_run1_over_y) && card_core0_dda_arc1_dda_run1_ahead_y)) begin
-                    step_y = 1'b1;
-                end
-                else if ((card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_over_x) && card_core0_dda_arc1_dda_run1_ahead_x)) begin
-                    step_x = 1'b1;
-                end
-            end
-            'h3: begin
-                step_x = 1'b0;
-                step_y = 1'b0;
-                if ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y)) begin
-                    step_x = (card_core0_dda_arc1_dda_run1_inward_near == 1);
-                    step_y = (card_core0_dda_arc1_dda_run1_outward_near == 1);
-                    if ((!card_core0_dda_arc1_dda_run1_x_inward)) begin
-                        step_x = (card_core0_dda_arc1_dda_run1_outward_near == 1);
-                        step_y = (card_core0_dda_arc1_dda_run1_inward_near == 1);
-                    end
-                end
-            end
-        endcase
-        if ((card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y)) begin
-            step_x = (!card_core0_dda_arc1_dda_run1_at_x);
-            step_y = (!card_core0_dda_arc1_dda_run1_at_y);
+    choose_x = 1'b0;
+    choose_y = 1'b0;
+    ends = 1'b0;
+    if (1'b1) begin
+        choose_x = (card_core0_dda_arc1_dda_run1_outward_near == 1);
+        choose_y = (card_core0_dda_arc1_dda_run1_inward_near == 1);
+        if (card_core0_dda_arc1_dda_run1_x_inward) begin
+            choose_x = (card_core0_dda_arc1_dda_run1_inward_near == 1);
+            choose_y = (card_core0_dda_arc1_dda_run1_outward_near == 1);
         end
     end
-    card_core0_dda_arc1_dda_run1_go_x = step_x;
-    card_core0_dda_arc1_dda_run1_go_y = step_y;
-    card_core0_dda_arc1_dda_run1_tail = ((!card_core0_dda_arc1_dda_run1_line) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y));
-    card_core0_dda_arc1_dda_run1_finished = 1'b0;
-    card_core0_dda_arc1_dda_run1_next_piece = 1'b0;
+    if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0))) begin
+        step_x = ((card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_trad_over_x) || ((!card_core0_dda_arc1_dda_run1_over_y) && card_core0_dda_arc1_dda_run1_over_x));
+    end
+    else if ((1'b1 && (card_core0_dda_arc1_dda_run1_variant == 2))) begin
+        step_x = (card_core0_dda_arc1_dda_run1_over_x || (card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_ahead_x));
+        step_y = (card_core0_dda_arc1_dda_run1_over_y || (card_core0_dda_arc1_dda_run1_over_x && card_core0_dda_arc1_dda_run1_ahead_y));
+    end
+    else if ((1'b1 && (card_core0_dda_arc1_dda_run1_variant == 3))) begin
+        step_x = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && choose_x);
+        step_y = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && choose_y);
+    end
     if (card_core0_dda_arc1_dda_run1_line) begin
-        card_core0_dda_arc1_dda_run1_finished = (card_core0_dda_arc1_dda_run1_left_diff == 0);
+        card_core0_dda_arc1_dda_run1_go_x = card_core0_dda_arc1_dda_run1_over_x;
+        card_core0_dda_arc1_dda_run1_go_y = card_core0_dda_arc1_dda_run1_over_y;
     end
-    else if ((((card_core0_dda_arc1_dda_run1_near_x && step_x) || card_core0_dda_arc1_dda_run1_at_x) && ((card_core0_dda_arc1_dda_run1_near_y && step_y) || card_core0_dda_arc1_dda_run1_at_y))) begin
-        if ((card_core0_dda_arc1_dda_run1_crossings == 0)) begin
-            card_core0_dda_arc1_dda_run1_finished = 1'b1;
-        end
-        else begin
-            card_core0_dda_arc1_dda_run1_next_piece = 1'b1;
-        end
+    else if ((card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y)) begin
+        card_core0_dda_arc1_dda_run1_go_x = (!card_core0_dda_arc1_dda_run1_at_x);
+        card_core0_dda_arc1_dda_run1_go_y = (!card_core0_dda_arc1_dda_run1_at_y);
     end
+    else begin
+        card_core0_dda_arc1_dda_run1_go_x = step_x;
+        card_core0_dda_arc1_dda_run1_go_y = step_y;
+    end
+    card_core0_dda_arc1_dda_run1_tail = ((!card_core0_dda_arc1_dda_run1_line) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y));
+    if ((card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y)) begin
+        ends = ((card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_near_x) && (card_core0_dda_arc1_dda_run1_at_y || card_core0_dda_arc1_dda_run1_near_y));
+    end
+    else begin
+        ends = (card_core0_dda_arc1_dda_run1_near_x && card_core0_dda_arc1_dda_run1_near_y && step_x && step_y);
+    end
+    card_core0_dda_arc1_dda_run1_finished = ((card_core0_dda_arc1_dda_run1_line && (card_core0_dda_arc1_dda_run1_left_diff == 0)) || ((!card_core0_dda_arc1_dda_run1_line) && ends && (card_core0_dda_arc1_dda_run1_crossings == 0)));
+    card_core0_dda_arc1_dda_run1_next_piece = ((!card_core0_dda_arc1_dda_run1_line) && ends && (card_core0_dda_arc1_dda_run1_crossings != 0));
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_stepped_y, card_core0_dda_arc1_dda_run1_error_term, card_core0_dda_arc1_dda_run1_x_inward, card_core0_dda_arc1_dda_run1_pending, card_core0_dda_arc1_dda_run1_stepped_x) begin: card_core0_dda_arc1_dda_run1_precise_step
-    reg [24-1:0] magnitude;
-    reg inward;
-    reg [27-1:0] step_op;
-    magnitude = 24'h0;
-    inward = 1'b0;
-    step_op = 27'h0;
-    magnitude = card_core0_dda_arc1_dda_run1_stepped_x;
-    inward = (card_core0_dda_arc1_dda_run1_x_inward == 1);
-    if (card_core0_dda_arc1_dda_run1_pending) begin
-        magnitude = card_core0_dda_arc1_dda_run1_stepped_y;
-        inward = (!card_core0_dda_arc1_dda_run1_x_inward);
+always @(card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_dec_in, card_core0_dda_arc1_dda_run1_mag_x, card_core0_dda_arc1_dda_run1_error_term, card_core0_dda_arc1_dda_run1_x_inward, card_core0_dda_arc1_dda_run1_dec_out) begin: card_core0_dda_arc1_dda_run1_precise_step
+    reg [27-1:0] outward;
+    reg [27-1:0] inward;
+    reg [27-1:0] first_sum;
+    outward = 27'h0;
+    inward = 27'h0;
+    first_sum = 27'h0;
+    if (card_core0_dda_arc1_dda_run1_dec_out) begin
+        outward = {2'h0, card_core0_dda_arc1_dda_run1_mag_x, 1'b1};
+        if (card_core0_dda_arc1_dda_run1_x_inward) begin
+            outward = {2'h0, card_core0_dda_arc1_dda_run1_mag_y, 1'b1};
+        end
     end
-    step_op = {2'h0, magnitude, 1'b1};
-    if (inward) begin
-        step_op = (~{2'h0, magnitude, 1'b1});
+    if (card_core0_dda_arc1_dda_run1_dec_in) begin
+        inward = (~{2'h0, card_core0_dda_arc1_dda_run1_mag_y, 1'b0});
+        if (card_core0_dda_arc1_dda_run1_x_inward) begin
+            inward = (~{2'h0, card_core0_dda_arc1_dda_run1_mag_x, 1'b0});
+        end
     end
-    card_core0_dda_arc1_dda_run1_error_step = ((card_core0_dda_arc1_dda_run1_error_term + step_op) + {26'h0, inward});
+    first_sum = ((card_core0_dda_arc1_dda_run1_error_term + outward) + {26'h0, card_core0_dda_arc1_dda_run1_dec_in});
+    card_core0_dda_arc1_dda_run1_error_step = ((first_sum + inward) + {26'h0, card_core0_dda_arc1_dda_run1_dec_in});
 end
 
 
@@ -5164,15 +5158,18 @@ assign card_core0_dda_arc1_dda_run1_taking = (card_core0_dda_arc1_dda_run1_activ
 
 
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_iterate
-    reg saturated;
     if (card_core0_dda_reset == 0) begin
         card_core0_dda_arc1_dda_run1_mag_y <= 0;
         card_core0_dda_arc1_dda_run1_threshold_carry <= 0;
+        card_core0_dda_arc1_dda_run1_dec_sum_y <= 0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 0;
+        card_core0_dda_arc1_dda_run1_dec_out <= 0;
         card_core0_dda_arc1_dda_run1_end_x <= 0;
         card_core0_dda_arc1_dda_run1_dec_next_piece <= 0;
         card_core0_dda_arc1_dda_run1_variant <= 3;
         card_core0_regs_fifo1_steps_step_x <= 0;
+        card_core0_dda_arc1_dda_run1_dec_in <= 0;
+        card_core0_dda_arc1_dda_run1_dec_sum_x <= 0;
         card_core0_dda_arc1_dda_run1_target_y <= 0;
         card_core0_dda_arc1_dda_run1_error_term <= 0;
         card_core0_dda_arc1_dda_run1_x_inward <= 0;
@@ -5202,7 +5199,6 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         card_core0_dda_arc1_dda_run1_line <= 0;
     end
     else begin
-        saturated = 1'b0;
         card_core0_regs_fifo1_steps_step_x <= 1'b0;
         card_core0_regs_fifo1_steps_step_y <= 1'b0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 1'b0;
@@ -5222,43 +5218,36 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             card_core0_regs_fifo1_sequencer1_dda_done <= card_core0_dda_arc1_dda_run1_finished;
             card_core0_dda_arc1_dda_run1_dec_x <= card_core0_dda_arc1_dda_run1_go_x;
             card_core0_dda_arc1_dda_run1_dec_y <= card_core0_dda_arc1_dda_run1_go_y;
+            card_core0_dda_arc1_dda_run1_dec_in <= ((card_core0_dda_arc1_dda_run1_go_x && card_core0_dda_arc1_dda_run1_x_inward) || (card_core0_dda_arc1_dda_run1_go_y && (!card_core0_dda_arc1_dda_run1_x_inward)));
+            card_core0_dda_arc1_dda_run1_dec_out <= ((card_core0_dda_arc1_dda_run1_go_x && (!card_core0_dda_arc1_dda_run1_x_inward)) || (card_core0_dda_arc1_dda_run1_go_y && card_core0_dda_arc1_dda_run1_x_inward));
             card_core0_dda_arc1_dda_run1_dec_tail <= card_core0_dda_arc1_dda_run1_tail;
             card_core0_dda_arc1_dda_run1_dec_finished <= card_core0_dda_arc1_dda_run1_finished;
             card_core0_dda_arc1_dda_run1_dec_next_piece <= card_core0_dda_arc1_dda_run1_next_piece;
             card_core0_dda_arc1_dda_run1_first <= 1'b0;
-            if ((!card_core0_dda_arc1_dda_run1_tail)) begin
-                saturated = (1'b1 && (!card_core0_dda_arc1_dda_run1_sum_x[30]) && card_core0_dda_arc1_dda_run1_sum_x[(30 - 1)]);
-                card_core0_dda_arc1_dda_run1_acc_x <= $signed(card_core0_dda_arc1_dda_run1_sum_x[30-1:0]);
-                if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_line))) begin
-                    card_core0_dda_arc1_dda_run1_acc_x <= $signed(card_core0_dda_arc1_dda_run1_trad_x[30-1:0]);
-                    saturated = ((!card_core0_dda_arc1_dda_run1_trad_x[30]) && (card_core0_dda_arc1_dda_run1_trad_x[(30 - 1)] == 1));
-                end
-                if (saturated) begin
-                    card_core0_dda_arc1_dda_run1_acc_x <= 536870911;
-                end
-                card_core0_dda_arc1_dda_run1_acc_y <= $signed(card_core0_dda_arc1_dda_run1_sum_y[30-1:0]);
-                if ((1'b1 && (!card_core0_dda_arc1_dda_run1_sum_y[30]) && card_core0_dda_arc1_dda_run1_sum_y[(30 - 1)])) begin
-                    card_core0_dda_arc1_dda_run1_acc_y <= 536870911;
-                end
+            card_core0_dda_arc1_dda_run1_dec_sum_x <= card_core0_dda_arc1_dda_run1_sum_x[30-1:0];
+            if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_line))) begin
+                card_core0_dda_arc1_dda_run1_dec_sum_x <= card_core0_dda_arc1_dda_run1_trad_x[30-1:0];
             end
-            if ((card_core0_dda_arc1_dda_run1_go_y && (!card_core0_dda_arc1_dda_run1_line))) begin
-                card_core0_dda_arc1_dda_run1_mag_y <= card_core0_dda_arc1_dda_run1_stepped_y;
+            card_core0_dda_arc1_dda_run1_dec_sum_y <= card_core0_dda_arc1_dda_run1_sum_y[30-1:0];
+            if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_x)) begin
+                card_core0_dda_arc1_dda_run1_dec_sum_x <= 536870911;
             end
-            if ((card_core0_dda_arc1_dda_run1_go_x && (!card_core0_dda_arc1_dda_run1_line))) begin
-                card_core0_dda_arc1_dda_run1_error_term <= card_core0_dda_arc1_dda_run1_error_step;
+            if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_y)) begin
+                card_core0_dda_arc1_dda_run1_dec_sum_y <= 536870911;
             end
         end
         else if (card_core0_dda_arc1_dda_run1_pending) begin
-            if ((card_core0_dda_arc1_dda_run1_dec_x && (!card_core0_dda_arc1_dda_run1_dec_tail))) begin
-                card_core0_dda_arc1_dda_run1_acc_x <= $signed(card_core0_dda_arc1_dda_run1_sum_x[30-1:0]);
+            if ((!card_core0_dda_arc1_dda_run1_dec_tail)) begin
+                card_core0_dda_arc1_dda_run1_acc_x <= $signed(card_core0_dda_arc1_dda_run1_less_x);
+                card_core0_dda_arc1_dda_run1_acc_y <= $signed(card_core0_dda_arc1_dda_run1_less_y);
             end
-            if ((card_core0_dda_arc1_dda_run1_dec_y && (!card_core0_dda_arc1_dda_run1_dec_tail))) begin
-                card_core0_dda_arc1_dda_run1_acc_y <= $signed(card_core0_dda_arc1_dda_run1_sum_y[30-1:0]);
-            end
-            if ((card_core0_dda_arc1_dda_run1_dec_x && (!card_core0_dda_arc1_dda_run1_line))) begin
-                card_core0_dda_arc1_dda_run1_mag_x <= card_core0_dda_arc1_dda_run1_stepped_x;
-            end
-            if ((card_core0_dda_arc1_dda_run1_dec_y && (!card_core0_dda_arc1_dda_run1_line))) begin
+            if ((!card_core0_dda_arc1_dda_run1_line)) begin
+                if (card_core0_dda_arc1_dda_run1_dec_x) begin
+                    card_core0_dda_arc1_dda_run1_mag_x <= card_core0_dda_arc1_dda_run1_stepped_x;
+                end
+                if (card_core0_dda_arc1_dda_run1_dec_y) begin
+                    card_core0_dda_arc1_dda_run1_mag_y <= card_core0_dda_arc1_dda_run1_stepped_y;
+                end
                 card_core0_dda_arc1_dda_run1_error_term <= card_core0_dda_arc1_dda_run1_error_step;
             end
             if (card_core0_dda_arc1_dda_run1_dec_finished) begin
@@ -5349,53 +5338,64 @@ end
 
 
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_steps_left
-    reg less;
+    reg [27-1:0] base_diff;
     reg [27-1:0] change;
+    reg [27-1:0] base_most;
+    reg [27-1:0] less;
     if (card_core0_dda_reset == 0) begin
         card_core0_dda_arc1_dda_run1_left_diff <= 0;
         card_core0_dda_arc1_dda_run1_most_left <= 134217727;
     end
     else begin
-        less = 1'b0;
+        base_diff = 27'h0;
         change = 27'h0;
-        if (card_core0_dda_arc1_dda_run1_pending) begin
+        base_most = 27'h0;
+        less = 27'h0;
+        base_diff = card_core0_dda_arc1_dda_run1_left_diff;
+        base_most = card_core0_dda_arc1_dda_run1_most_left;
+        if (card_core0_dda_arc1_dda_check1_move_take) begin
+            base_diff = card_core0_dda_arc1_dda_check1_move_totals_diff;
+            base_most = card_core0_dda_arc1_dda_check1_move_totals_max;
+            less = 134217727;
+            if (card_core0_dda_arc1_dda_check1_move_line) begin
+                change = 134217727;
+            end
+        end
+        else if (card_core0_dda_arc1_dda_run1_pending) begin
             if ((card_core0_dda_arc1_dda_run1_line || (card_core0_dda_arc1_dda_run1_dec_x && (!card_core0_dda_arc1_dda_run1_dec_y)))) begin
                 change = 134217727;
             end
             else if ((card_core0_dda_arc1_dda_run1_dec_y && (!card_core0_dda_arc1_dda_run1_dec_x))) begin
                 change = 1;
             end
-            card_core0_dda_arc1_dda_run1_left_diff <= (card_core0_dda_arc1_dda_run1_left_diff + change);
-            if (card_core0_dda_arc1_dda_run1_line) begin
-                less = 1'b1;
-            end
-            else begin
-                if ((card_core0_dda_arc1_dda_run1_left_diff == 0)) begin
-                    less = (card_core0_dda_arc1_dda_run1_dec_x && card_core0_dda_arc1_dda_run1_dec_y);
+            if ((!card_core0_dda_arc1_dda_run1_blend)) begin
+                if (card_core0_dda_arc1_dda_run1_line) begin
+                    less = 134217727;
+                end
+                else if ((card_core0_dda_arc1_dda_run1_left_diff == 0)) begin
+                    if ((card_core0_dda_arc1_dda_run1_dec_x && card_core0_dda_arc1_dda_run1_dec_y)) begin
+                        less = 134217727;
+                    end
                 end
                 else if (card_core0_dda_arc1_dda_run1_left_diff[(27 - 1)]) begin
-                    less = (card_core0_dda_arc1_dda_run1_dec_y == 1);
+                    if (card_core0_dda_arc1_dda_run1_dec_y) begin
+                        less = 134217727;
+                    end
                 end
-                else begin
-                    less = (card_core0_dda_arc1_dda_run1_dec_x == 1);
+                else if (card_core0_dda_arc1_dda_run1_dec_x) begin
+                    less = 134217727;
                 end
             end
-            if ((less && (!card_core0_dda_arc1_dda_run1_blend))) begin
-                card_core0_dda_arc1_dda_run1_most_left <= (card_core0_dda_arc1_dda_run1_most_left - 1);
-            end
-            if (card_core0_dda_arc1_dda_run1_dec_finished) begin
+        end
+        card_core0_dda_arc1_dda_run1_left_diff <= (base_diff + change);
+        card_core0_dda_arc1_dda_run1_most_left <= (base_most + less);
+        if (card_core0_dda_arc1_dda_check1_move_take) begin
+            if ((card_core0_dda_arc1_dda_check1_move_blend || card_core0_dda_arc1_dda_check1_move_error || card_core0_dda_arc1_dda_check1_move_zero)) begin
                 card_core0_dda_arc1_dda_run1_most_left <= 134217727;
             end
         end
-        if (card_core0_dda_arc1_dda_check1_move_take) begin
-            card_core0_dda_arc1_dda_run1_left_diff <= card_core0_dda_arc1_dda_check1_move_totals_diff;
-            if (card_core0_dda_arc1_dda_check1_move_line) begin
-                card_core0_dda_arc1_dda_run1_left_diff <= (card_core0_dda_arc1_dda_check1_move_totals_diff - 1);
-            end
+        else if ((card_core0_dda_arc1_dda_run1_pending && card_core0_dda_arc1_dda_run1_dec_finished)) begin
             card_core0_dda_arc1_dda_run1_most_left <= 134217727;
-            if (((!card_core0_dda_arc1_dda_check1_move_blend) && (!card_core0_dda_arc1_dda_check1_move_error) && (!card_core0_dda_arc1_dda_check1_move_zero))) begin
-                card_core0_dda_arc1_dda_run1_most_left <= (card_core0_dda_arc1_dda_check1_move_totals_max - 1);
-            end
         end
     end
 end

@@ -54,7 +54,7 @@ module dda_arc (
 //     advance  ____________ ... ______/~~~\___/~~~\___ ... ~~~~~~~~
 //     step_x   ____________ ... __________/~~~\___/~~~ ... ________
 //     done     ____________ ... ___________________________/~~~\___
-//                   |<-- 4*W+23 -->|
+//                   |<-- 4*W+26 -->|
 // 
 // A ``start`` taken while a move runs (``ready`` high) is set up
 // meanwhile; the run takes it at the edge that applies its last iteration,
@@ -98,32 +98,20 @@ reg steps_dir_y;
 
 reg [4:0] dda_setup0_acc_bits;
 reg dda_setup0_carry;
-reg [23:0] dda_setup0_cmd_mag_xe;
-reg [23:0] dda_setup0_cmd_mag_xs;
-reg [23:0] dda_setup0_cmd_mag_ye;
-reg [23:0] dda_setup0_cmd_mag_ys;
 reg [48:0] dda_setup0_gap;
 reg [1:0] dda_setup0_gap_op;
+reg dda_setup0_grew;
 reg dda_setup0_invert;
 reg dda_setup0_m_is_y;
 reg [27:0] dda_setup0_major;
 reg [23:0] dda_setup0_multiplier;
-reg dda_setup0_neg_xs;
-reg dda_setup0_neg_ys;
+reg [1:0] dda_setup0_next_square;
+reg [2:0] dda_setup0_next_state;
+reg [4:0] dda_setup0_next_step;
 reg [5:0] dda_setup0_ones_left;
 reg [48:0] dda_setup0_operand;
 reg [1:0] dda_setup0_operand_op;
 reg dda_setup0_pick_x;
-reg [47:0] dda_setup0_radicand;
-reg [25:0] dda_setup0_remainder;
-reg [24:0] dda_setup0_root;
-reg dda_setup0_root_all_ones;
-reg dda_setup0_root_started;
-reg [4:0] dda_setup0_root_steps;
-reg dda_setup0_shrink_x_neg;
-reg dda_setup0_shrink_x_zero;
-reg dda_setup0_shrink_y_neg;
-reg dda_setup0_shrink_y_zero;
 reg [2:0] dda_setup0_source;
 reg dda_setup0_source_on;
 reg [24:0] dda_setup0_source_value;
@@ -131,34 +119,53 @@ reg [1:0] dda_setup0_square;
 reg [2:0] dda_setup0_state;
 reg [4:0] dda_setup0_step;
 wire [48:0] dda_setup0_total;
-reg dda_setup0_trial_fits;
-reg [25:0] dda_setup0_trial_keep;
 reg [1:0] dda_setup0_twice;
-reg dda_setup0_x_inward_end;
+wire dda_setup0_plan_taken;
+reg dda_setup0_plan_x_inward_end;
 reg dda_setup0_plan_x_inward;
+reg [24:0] dda_setup0_root_root;
 reg [2:0] dda_setup0_plan_crossings;
-reg dda_setup0_plan_ahead;
 reg [23:0] dda_setup0_plan_mag_xs;
 reg [23:0] dda_setup0_plan_mag_ys;
 reg [23:0] dda_setup0_plan_mag_xe;
 reg [23:0] dda_setup0_plan_mag_ye;
+wire [47:0] dda_setup0_root_radicand;
+wire dda_setup0_root_load;
+reg dda_setup0_root_grows;
 reg [27:0] dda_setup0_plan_threshold;
 reg dda_setup0_plan_too_wide;
 reg dda_setup0_plan_off_circle;
+reg dda_setup0_plan_start_below_x;
+reg dda_setup0_plan_start_same_x;
+reg dda_setup0_plan_start_below_y;
+reg dda_setup0_plan_start_same_y;
 reg [24:0] dda_setup0_plan_radius;
 reg dda_setup0_plan_beyond;
 reg signed [26:0] dda_setup0_plan_totals_diff;
 reg [26:0] dda_setup0_plan_totals_max;
-reg dda_setup0_plan_line;
-reg [1:0] dda_setup0_plan_variant;
-reg dda_setup0_plan_ccw;
-reg dda_setup0_plan_blend;
-reg dda_setup0_plan_neg_xe;
-reg dda_setup0_plan_neg_ye;
-wire dda_setup0_plan_taken;
-reg [1:0] dda_setup0_plan_quadrant;
-reg dda_setup0_plan_centre;
 wire dda_setup0_plan_done;
+reg [23:0] dda_setup0_dda_latch0_mag_xe;
+reg [23:0] dda_setup0_dda_latch0_mag_xs;
+reg [23:0] dda_setup0_dda_latch0_mag_ye;
+reg [23:0] dda_setup0_dda_latch0_mag_ys;
+reg dda_setup0_dda_latch0_neg_xs;
+reg dda_setup0_dda_latch0_neg_ys;
+reg dda_setup0_dda_latch0_plan_line;
+reg [1:0] dda_setup0_dda_latch0_plan_variant;
+reg dda_setup0_dda_latch0_plan_ccw;
+reg dda_setup0_dda_latch0_plan_blend;
+reg dda_setup0_dda_latch0_plan_neg_xe;
+reg dda_setup0_dda_latch0_plan_neg_ye;
+reg dda_setup0_dda_latch0_plan_ahead;
+reg [1:0] dda_setup0_dda_latch0_plan_quadrant;
+reg dda_setup0_dda_latch0_plan_centre;
+reg dda_setup0_dda_root0_all_ones;
+reg dda_setup0_dda_root0_fits;
+reg [25:0] dda_setup0_dda_root0_keep;
+reg [47:0] dda_setup0_dda_root0_radicand;
+reg [25:0] dda_setup0_dda_root0_remainder;
+reg dda_setup0_dda_root0_started;
+reg [4:0] dda_setup0_dda_root0_steps;
 reg dda_check0_variant_built;
 wire dda_check0_move_offer;
 wire dda_check0_move_take;
@@ -200,7 +207,11 @@ reg dda_run0_blend;
 reg dda_run0_ccw;
 reg [2:0] dda_run0_crossings;
 reg dda_run0_dec_finished;
+reg dda_run0_dec_in;
 reg dda_run0_dec_next_piece;
+reg dda_run0_dec_out;
+reg [29:0] dda_run0_dec_sum_x;
+reg [29:0] dda_run0_dec_sum_y;
 reg dda_run0_dec_tail;
 reg dda_run0_dec_x;
 reg dda_run0_dec_y;
@@ -214,6 +225,8 @@ reg dda_run0_go_x;
 reg dda_run0_go_y;
 reg dda_run0_inward_near;
 reg [26:0] dda_run0_left_diff;
+reg [29:0] dda_run0_less_x;
+reg [29:0] dda_run0_less_y;
 reg dda_run0_line;
 reg [23:0] dda_run0_mag_x;
 reg [23:0] dda_run0_mag_y;
@@ -222,12 +235,14 @@ reg dda_run0_near_x;
 reg dda_run0_near_y;
 reg dda_run0_next_piece;
 reg dda_run0_outward_near;
-wire dda_run0_over_x;
-wire dda_run0_over_y;
+reg dda_run0_over_x;
+reg dda_run0_over_y;
 reg dda_run0_pending;
 reg [1:0] dda_run0_quadrant;
 reg [23:0] dda_run0_radius;
 reg dda_run0_right;
+reg dda_run0_saturate_x;
+reg dda_run0_saturate_y;
 reg [23:0] dda_run0_stepped_x;
 reg [23:0] dda_run0_stepped_y;
 reg [30:0] dda_run0_sum_x;
@@ -238,7 +253,7 @@ reg [1:0] dda_run0_target_x;
 reg [1:0] dda_run0_target_y;
 reg [27:0] dda_run0_threshold;
 reg dda_run0_threshold_carry;
-wire dda_run0_trad_over_x;
+reg dda_run0_trad_over_x;
 wire [30:0] dda_run0_trad_x;
 reg dda_run0_up;
 reg [1:0] dda_run0_variant;
@@ -247,7 +262,7 @@ reg dda_run0_x_inward;
 assign dda_run0_trad_x = 31'd0;
 
 
-always @(cmd_ys, cmd_ye, cmd_xs, cmd_xe) begin: dda_setup0_magnitudes
+always @(cmd_ys, cmd_ye, cmd_xs, cmd_xe) begin: dda_setup0_dda_latch0_magnitudes
     reg [24-1:0] sign_xs;
     reg [24-1:0] sign_ys;
     reg [24-1:0] sign_xe;
@@ -260,6 +275,10 @@ always @(cmd_ys, cmd_ye, cmd_xs, cmd_xe) begin: dda_setup0_magnitudes
     sign_ys = 24'h0;
     sign_xe = 24'h0;
     sign_ye = 24'h0;
+    less_xs = 24'h0;
+    less_ys = 24'h0;
+    less_xe = 24'h0;
+    less_ye = 24'h0;
     if (cmd_xs[(24 - 1)]) begin
         sign_xs = 16777215;
     end
@@ -272,22 +291,274 @@ always @(cmd_ys, cmd_ye, cmd_xs, cmd_xe) begin: dda_setup0_magnitudes
     if (cmd_ye[(24 - 1)]) begin
         sign_ye = 16777215;
     end
-    less_xs = 24'h0;
-    less_ys = 24'h0;
-    less_xe = 24'h0;
-    less_ye = 24'h0;
     less_xs = (cmd_xs[24-1:0] + sign_xs);
     less_ys = (cmd_ys[24-1:0] + sign_ys);
     less_xe = (cmd_xe[24-1:0] + sign_xe);
     less_ye = (cmd_ye[24-1:0] + sign_ye);
-    dda_setup0_cmd_mag_xs = (less_xs ^ sign_xs);
-    dda_setup0_cmd_mag_ys = (less_ys ^ sign_ys);
-    dda_setup0_cmd_mag_xe = (less_xe ^ sign_xe);
-    dda_setup0_cmd_mag_ye = (less_ye ^ sign_ye);
+    dda_setup0_dda_latch0_mag_xs = (less_xs ^ sign_xs);
+    dda_setup0_dda_latch0_mag_ys = (less_ys ^ sign_ys);
+    dda_setup0_dda_latch0_mag_xe = (less_xe ^ sign_xe);
+    dda_setup0_dda_latch0_mag_ye = (less_ye ^ sign_ye);
 end
 
 
-always @(dda_setup0_multiplier, dda_setup0_twice, dda_setup0_step, dda_setup0_m_is_y, dda_setup0_pick_x, dda_setup0_x_inward_end, dda_setup0_total, dda_setup0_plan_x_inward, dda_setup0_square, dda_setup0_state) begin: dda_setup0_control
+always @(posedge clock, negedge reset) begin: dda_setup0_dda_latch0_latch
+    if (reset == 0) begin
+        dda_setup0_dda_latch0_plan_neg_ye <= 0;
+        dda_setup0_dda_latch0_plan_ccw <= 0;
+        dda_setup0_plan_mag_xs <= 0;
+        dda_setup0_dda_latch0_plan_neg_xe <= 0;
+        dda_setup0_dda_latch0_plan_line <= 0;
+        dda_setup0_dda_latch0_plan_blend <= 0;
+        dda_setup0_plan_mag_ys <= 0;
+        dda_setup0_plan_mag_xe <= 0;
+        dda_setup0_dda_latch0_neg_ys <= 0;
+        dda_setup0_dda_latch0_neg_xs <= 0;
+        dda_setup0_dda_latch0_plan_variant <= 3;
+        dda_setup0_plan_mag_ye <= 0;
+    end
+    else begin
+        if ((cmd_start && cmd_ready)) begin
+            dda_setup0_dda_latch0_plan_line <= cmd_line;
+            dda_setup0_dda_latch0_plan_variant <= cmd_variant;
+            dda_setup0_dda_latch0_plan_ccw <= cmd_ccw;
+            dda_setup0_dda_latch0_plan_blend <= cmd_blend;
+            dda_setup0_dda_latch0_neg_xs <= (cmd_xs < 0);
+            dda_setup0_dda_latch0_neg_ys <= (cmd_ys < 0);
+            dda_setup0_dda_latch0_plan_neg_xe <= (cmd_xe < 0);
+            dda_setup0_dda_latch0_plan_neg_ye <= (cmd_ye < 0);
+            dda_setup0_plan_mag_xs <= dda_setup0_dda_latch0_mag_xs;
+            dda_setup0_plan_mag_ys <= dda_setup0_dda_latch0_mag_ys;
+            dda_setup0_plan_mag_xe <= dda_setup0_dda_latch0_mag_xe;
+            dda_setup0_plan_mag_ye <= dda_setup0_dda_latch0_mag_ye;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: dda_setup0_dda_latch0_geometry
+    reg [2-1:0] q_s;
+    reg [2-1:0] q_e;
+    reg [2-1:0] turn;
+    reg ahead;
+    reg zero_xs;
+    reg zero_ys;
+    reg zero_xe;
+    reg zero_ye;
+    if (reset == 0) begin
+        dda_setup0_dda_latch0_plan_ahead <= 0;
+        dda_setup0_dda_latch0_plan_quadrant <= 0;
+        dda_setup0_plan_x_inward_end <= 0;
+        dda_setup0_dda_latch0_plan_centre <= 0;
+        dda_setup0_plan_crossings <= 0;
+        dda_setup0_plan_x_inward <= 0;
+    end
+    else begin
+        q_s = 2'h0;
+        q_e = 2'h0;
+        turn = 2'h0;
+        ahead = 1'b0;
+        zero_xs = (dda_setup0_plan_mag_xs == 0);
+        zero_ys = (dda_setup0_plan_mag_ys == 0);
+        zero_xe = (dda_setup0_plan_mag_xe == 0);
+        zero_ye = (dda_setup0_plan_mag_ye == 0);
+        if (dda_setup0_dda_latch0_plan_ccw) begin
+            if (((!dda_setup0_dda_latch0_neg_xs) && (!zero_xs) && (!dda_setup0_dda_latch0_neg_ys))) begin
+                q_s = 0;
+            end
+            else if (((dda_setup0_dda_latch0_neg_xs || zero_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!zero_ys))) begin
+                q_s = 1;
+            end
+            else if ((dda_setup0_dda_latch0_neg_xs && (dda_setup0_dda_latch0_neg_ys || zero_ys))) begin
+                q_s = 2;
+            end
+            else begin
+                q_s = 3;
+            end
+            if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!zero_ye))) begin
+                q_e = 0;
+            end
+            else if ((dda_setup0_dda_latch0_plan_neg_xe && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
+                q_e = 1;
+            end
+            else if (((dda_setup0_dda_latch0_plan_neg_xe || zero_xe) && dda_setup0_dda_latch0_plan_neg_ye)) begin
+                q_e = 2;
+            end
+            else begin
+                q_e = 3;
+            end
+            turn = (q_e - q_s);
+        end
+        else begin
+            if (((!dda_setup0_dda_latch0_neg_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!zero_ys))) begin
+                q_s = 0;
+            end
+            else if ((dda_setup0_dda_latch0_neg_xs && (!dda_setup0_dda_latch0_neg_ys))) begin
+                q_s = 1;
+            end
+            else if (((dda_setup0_dda_latch0_neg_xs || zero_xs) && dda_setup0_dda_latch0_neg_ys)) begin
+                q_s = 2;
+            end
+            else begin
+                q_s = 3;
+            end
+            if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
+                q_e = 0;
+            end
+            else if (((dda_setup0_dda_latch0_plan_neg_xe || zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!zero_ye))) begin
+                q_e = 1;
+            end
+            else if ((dda_setup0_dda_latch0_plan_neg_xe && (dda_setup0_dda_latch0_plan_neg_ye || zero_ye))) begin
+                q_e = 2;
+            end
+            else begin
+                q_e = 3;
+            end
+            turn = (q_s - q_e);
+        end
+        if ((q_s[0] != dda_setup0_dda_latch0_plan_ccw)) begin
+            ahead = ((!dda_setup0_plan_start_below_x) && (dda_setup0_plan_start_below_y || dda_setup0_plan_start_same_y));
+        end
+        else begin
+            ahead = ((!dda_setup0_plan_start_below_y) && (dda_setup0_plan_start_below_x || dda_setup0_plan_start_same_x));
+        end
+        ahead = (ahead && (!(dda_setup0_plan_start_same_x && dda_setup0_plan_start_same_y)) && (turn == 0));
+        dda_setup0_dda_latch0_plan_ahead <= ahead;
+        dda_setup0_plan_crossings <= {1'b0, turn};
+        if (((turn == 0) && (!ahead))) begin
+            dda_setup0_plan_crossings <= 4;
+        end
+        dda_setup0_dda_latch0_plan_quadrant <= q_s;
+        dda_setup0_plan_x_inward <= (q_s[0] != dda_setup0_dda_latch0_plan_ccw);
+        dda_setup0_plan_x_inward_end <= (q_e[0] != dda_setup0_dda_latch0_plan_ccw);
+        if (dda_setup0_dda_latch0_plan_line) begin
+            dda_setup0_dda_latch0_plan_centre <= (zero_xe && zero_ye);
+        end
+        else begin
+            dda_setup0_dda_latch0_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+        end
+    end
+end
+
+
+always @(dda_setup0_dda_root0_radicand, dda_setup0_dda_root0_remainder, dda_setup0_root_root) begin: dda_setup0_dda_root0_trial
+    reg [28-1:0] value;
+    reg [27-1:0] difference;
+    value = 28'h0;
+    difference = 27'h0;
+    value = {dda_setup0_dda_root0_remainder, dda_setup0_dda_root0_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+    difference = ({1'b0, value[(24 + 2)-1:0]} - {1'b0, dda_setup0_root_root[24-1:0], 2'h1});
+    dda_setup0_dda_root0_fits = ((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
+    dda_setup0_dda_root0_keep = value[(24 + 2)-1:0];
+    if (((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]))) begin
+        dda_setup0_dda_root0_keep = difference[(24 + 2)-1:0];
+    end
+end
+
+
+always @(dda_setup0_dda_root0_steps, dda_setup0_dda_root0_all_ones, dda_setup0_dda_root0_fits, dda_setup0_dda_root0_started) begin: dda_setup0_dda_root0_length
+    dda_setup0_root_grows = 1'b0;
+    if ((dda_setup0_dda_root0_steps > 1)) begin
+        dda_setup0_root_grows = (dda_setup0_dda_root0_started || dda_setup0_dda_root0_fits);
+    end
+    else if ((dda_setup0_dda_root0_steps == 1)) begin
+        dda_setup0_root_grows = (dda_setup0_dda_root0_fits && dda_setup0_dda_root0_started && dda_setup0_dda_root0_all_ones);
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: dda_setup0_dda_root0_digits
+    if (reset == 0) begin
+        dda_setup0_dda_root0_radicand <= 0;
+        dda_setup0_root_root <= 0;
+        dda_setup0_dda_root0_started <= 0;
+        dda_setup0_dda_root0_steps <= 0;
+        dda_setup0_dda_root0_remainder <= 0;
+        dda_setup0_dda_root0_all_ones <= 0;
+    end
+    else begin
+        if (dda_setup0_root_load) begin
+            dda_setup0_dda_root0_radicand <= dda_setup0_root_radicand;
+            dda_setup0_dda_root0_remainder <= 0;
+            dda_setup0_root_root <= 0;
+            dda_setup0_dda_root0_steps <= (24 + 1);
+            dda_setup0_dda_root0_started <= 1'b0;
+            dda_setup0_dda_root0_all_ones <= 1'b1;
+        end
+        else if ((dda_setup0_dda_root0_steps != 0)) begin
+            dda_setup0_dda_root0_remainder <= dda_setup0_dda_root0_keep;
+            dda_setup0_root_root <= {dda_setup0_root_root[24-1:0], dda_setup0_dda_root0_fits};
+            dda_setup0_dda_root0_radicand <= (dda_setup0_dda_root0_radicand << 2);
+            dda_setup0_dda_root0_steps <= (dda_setup0_dda_root0_steps - 1);
+            if (dda_setup0_dda_root0_fits) begin
+                dda_setup0_dda_root0_started <= 1'b1;
+            end
+            else if (dda_setup0_dda_root0_started) begin
+                dda_setup0_dda_root0_all_ones <= 1'b0;
+            end
+        end
+    end
+end
+
+
+always @(cmd_start, dda_setup0_plan_taken, dda_setup0_step, cmd_line, dda_setup0_square, dda_setup0_state) begin: dda_setup0_sequence
+    dda_setup0_next_state = dda_setup0_state;
+    dda_setup0_next_step = 0;
+    dda_setup0_next_square = dda_setup0_square;
+    if ((dda_setup0_state == 3'b000)) begin
+        dda_setup0_next_square = 0;
+        if (cmd_start) begin
+            dda_setup0_next_state = 3'b010;
+            if (cmd_line) begin
+                dda_setup0_next_state = 3'b001;
+            end
+        end
+    end
+    else if ((dda_setup0_state == 3'b001)) begin
+        dda_setup0_next_state = 3'b110;
+    end
+    else if ((dda_setup0_state == 3'b010)) begin
+        if (($signed({1'b0, dda_setup0_step}) == (7 - 1))) begin
+            dda_setup0_next_state = 3'b011;
+        end
+        else begin
+            dda_setup0_next_step = (dda_setup0_step + 1);
+        end
+    end
+    else if ((dda_setup0_state == 3'b011)) begin
+        if (($signed({1'b0, dda_setup0_step}) == (24 - 1))) begin
+            dda_setup0_next_square = (dda_setup0_square + 1);
+            if ((dda_setup0_square == 3)) begin
+                dda_setup0_next_state = 3'b100;
+            end
+        end
+        else begin
+            dda_setup0_next_step = (dda_setup0_step + 1);
+        end
+    end
+    else if ((dda_setup0_state == 3'b100)) begin
+        if (($signed({1'b0, dda_setup0_step}) == (5 - 1))) begin
+            dda_setup0_next_state = 3'b101;
+        end
+        else begin
+            dda_setup0_next_step = (dda_setup0_step + 1);
+        end
+    end
+    else if ((dda_setup0_state == 3'b101)) begin
+        if (($signed({1'b0, dda_setup0_step}) == (13 - 1))) begin
+            dda_setup0_next_state = 3'b110;
+        end
+        else begin
+            dda_setup0_next_step = (dda_setup0_step + 1);
+        end
+    end
+    else if (dda_setup0_plan_taken) begin
+        dda_setup0_next_state = 3'b000;
+    end
+end
+
+
+always @(dda_setup0_multiplier, dda_setup0_twice, dda_setup0_step, dda_setup0_m_is_y, dda_setup0_pick_x, dda_setup0_plan_x_inward_end, dda_setup0_plan_x_inward, dda_setup0_square, dda_setup0_state) begin: dda_setup0_control
     reg [2-1:0] g_op;
     reg [2-1:0] o_op;
     reg [3-1:0] src;
@@ -299,44 +570,35 @@ always @(dda_setup0_multiplier, dda_setup0_twice, dda_setup0_step, dda_setup0_m_
     on = 1'b1;
     inv = 1'b0;
     g_op = 0;
-    o_op = 0;
+    o_op = 2;
     src = 0;
     case (dda_setup0_state)
         3'b010: begin
-            o_op = 3;
-            case (dda_setup0_step)
-                'h0: begin
-                    src = 0;
-                end
-                'h1: begin
-                    g_op = 1;
-                    src = 1;
-                    inv = 1'b1;
-                end
-                'h2: begin
-                    g_op = 1;
-                    src = 1;
-                end
-                'h3: begin
-                    g_op = 1;
-                    src = 2;
-                    inv = 1'b1;
-                end
-                'h4: begin
-                    g_op = 2;
-                    src = 1;
-                end
-                'h5: begin
-                    g_op = 1;
-                    src = 3;
-                    inv = 1'b1;
-                end
-                default: begin
-                    g_op = 3;
-                    src = 0;
-                    inv = 1'b1;
-                end
-            endcase
+            if (((dda_setup0_step == 1) || (dda_setup0_step == 3) || (dda_setup0_step == 5))) begin
+                inv = 1'b1;
+            end
+            if (((dda_setup0_step == 0) || (dda_setup0_step == 6))) begin
+                src = 0;
+                inv = (dda_setup0_step == 6);
+            end
+            else if (((dda_setup0_step == 1) || (dda_setup0_step == 2) || (dda_setup0_step == 4))) begin
+                src = 1;
+            end
+            else if ((dda_setup0_step == 3)) begin
+                src = 2;
+            end
+            else begin
+                src = 3;
+            end
+            if ((dda_setup0_step == 4)) begin
+                g_op = 2;
+            end
+            else if ((dda_setup0_step == 6)) begin
+                g_op = 3;
+            end
+            else if ((dda_setup0_step != 0)) begin
+                g_op = 1;
+            end
         end
         3'b011: begin
             o_op = 1;
@@ -345,116 +607,107 @@ always @(dda_setup0_multiplier, dda_setup0_twice, dda_setup0_step, dda_setup0_m_
                 g_op = 1;
             end
             if (($signed({1'b0, dda_setup0_step}) == (24 - 1))) begin
-                o_op = 3;
-                case (dda_setup0_square)
-                    'h0: begin
+                o_op = 2;
+                inv = ((dda_setup0_square == 0) || (dda_setup0_square == 3));
+                src = (dda_setup0_square + 1);
+                if ((dda_setup0_square == 3)) begin
+                    src = 0;
+                    if (dda_setup0_m_is_y) begin
                         src = 1;
-                        inv = 1'b1;
                     end
-                    'h1: begin
-                        src = 2;
-                        inv = 1'b0;
-                    end
-                    'h2: begin
-                        src = 3;
-                        inv = 1'b0;
-                    end
-                    default: begin
-                        inv = 1'b0;
-                        src = 0;
-                        if (dda_setup0_m_is_y) begin
-                            src = 1;
-                        end
-                    end
-                endcase
+                end
             end
         end
         3'b100: begin
+            o_op = 1;
             case (dda_setup0_step)
                 'h0: begin
-                    o_op = 1;
+                    inv = 1'b1;
                 end
                 'h1: begin
                     g_op = 1;
                     o_op = 2;
+                    src = 0;
+                    if (dda_setup0_m_is_y) begin
+                        src = 1;
+                    end
                 end
-                default: begin
+                'h4: begin
                     g_op = 2;
-                    o_op = 3;
+                    o_op = 2;
                     src = 4;
                 end
             endcase
         end
         3'b101: begin
             g_op = 1;
-            o_op = 3;
-            case (dda_setup0_step)
-                'h0: begin
-                    src = 3;
-                    if (dda_setup0_x_inward_end) begin
-                        src = 2;
+            if ((dda_setup0_step == 0)) begin
+                src = 3;
+                if (dda_setup0_plan_x_inward_end) begin
+                    src = 2;
+                end
+                inv = 1'b1;
+            end
+            else if ((dda_setup0_step == 1)) begin
+                g_op = 0;
+                o_op = 1;
+                inv = 1'b1;
+            end
+            else if ((dda_setup0_step <= 5)) begin
+                inv = (!dda_setup0_plan_x_inward);
+                case (dda_setup0_step)
+                    'h2: begin
+                        g_op = 2;
+                        src = 0;
                     end
-                    inv = 1'b1;
-                end
-                'h1: begin
-                    g_op = 0;
-                    o_op = 1;
-                    inv = 1'b1;
-                end
-                'h2: begin
-                    g_op = 2;
+                    'h3: begin
+                        src = 1;
+                    end
+                    default: begin
+                        src = 2;
+                        if ((dda_setup0_step == 5)) begin
+                            src = 3;
+                        end
+                        inv = (dda_setup0_plan_x_inward_end == 1);
+                    end
+                endcase
+            end
+            else if ((dda_setup0_step == 6)) begin
+                src = 4;
+                on = (dda_setup0_plan_x_inward != dda_setup0_plan_x_inward_end);
+                inv = (dda_setup0_plan_x_inward == 1);
+            end
+            else if ((dda_setup0_step == 7)) begin
+                g_op = 2;
+                o_op = 0;
+            end
+            else if ((dda_setup0_step == 8)) begin
+                g_op = 0;
+                src = 1;
+                inv = (dda_setup0_plan_x_inward == 1);
+                if (dda_setup0_pick_x) begin
                     src = 0;
                     inv = (!dda_setup0_plan_x_inward);
                 end
-                'h3: begin
-                    src = 1;
-                    inv = (!dda_setup0_plan_x_inward);
-                end
-                'h4: begin
+            end
+            else if ((dda_setup0_step == 9)) begin
+                src = 3;
+                inv = (!dda_setup0_plan_x_inward_end);
+                if (dda_setup0_pick_x) begin
                     src = 2;
-                    inv = (dda_setup0_x_inward_end == 1);
+                    inv = (dda_setup0_plan_x_inward_end == 1);
                 end
-                'h5: begin
-                    src = 3;
-                    inv = (dda_setup0_x_inward_end == 1);
-                end
-                'h6: begin
-                    src = 4;
-                    on = (dda_setup0_plan_x_inward != dda_setup0_x_inward_end);
-                    inv = (dda_setup0_plan_x_inward == 1);
-                end
-                'h7: begin
-                    g_op = 2;
-                    src = 1;
-                    inv = (dda_setup0_plan_x_inward == 1);
-                    if ((!dda_setup0_total[(27 - 1)])) begin
-                        src = 0;
-                        inv = (!dda_setup0_plan_x_inward);
-                    end
-                end
-                'h8: begin
-                    src = 3;
-                    inv = (!dda_setup0_x_inward_end);
-                    if (dda_setup0_pick_x) begin
-                        src = 2;
-                        inv = (dda_setup0_x_inward_end == 1);
-                    end
-                end
-                'h9: begin
-                    src = 4;
-                    on = (dda_setup0_twice != 0);
-                end
-                'ha: begin
-                    src = 4;
+            end
+            else begin
+                src = 4;
+                on = (dda_setup0_twice != 0);
+                if ((dda_setup0_step == 11)) begin
                     on = (dda_setup0_twice == 2);
                 end
-                default: begin
-                    o_op = 0;
-                end
-            endcase
+            end
         end
         default: begin
-            g_op = 0;
+            o_op = 0;
         end
     endcase
     dda_setup0_gap_op = g_op;
@@ -465,75 +718,79 @@ always @(dda_setup0_multiplier, dda_setup0_twice, dda_setup0_step, dda_setup0_m_
 end
 
 
-always @(dda_setup0_twice, dda_setup0_root, dda_setup0_step, dda_setup0_pick_x, dda_setup0_x_inward_end, dda_setup0_plan_x_inward, dda_setup0_square, dda_setup0_state) begin: dda_setup0_carry_in
+always @(posedge clock, negedge reset) begin: dda_setup0_carry_in
     reg cin;
-    cin = 1'b0;
-    case (dda_setup0_state)
-        3'b010: begin
-            cin = ((dda_setup0_step == 2) || (dda_setup0_step == 4) || (dda_setup0_step == 6));
-        end
-        3'b011: begin
-            cin = (dda_setup0_square < 2);
-        end
-        3'b101: begin
-            if ((dda_setup0_step == 0)) begin
-                cin = 1'b1;
+    if (reset == 0) begin
+        dda_setup0_carry <= 0;
+    end
+    else begin
+        cin = 1'b0;
+        case (dda_setup0_next_state)
+            3'b010: begin
+                cin = ((dda_setup0_next_step == 2) || (dda_setup0_next_step == 4) || (dda_setup0_next_step == 6));
             end
-            else if ((dda_setup0_step == 2)) begin
-                cin = (dda_setup0_root[0] == 1);
+            3'b011: begin
+                cin = (dda_setup0_next_square < 2);
             end
-            else if (((dda_setup0_step == 3) || (dda_setup0_step == 4))) begin
-                cin = (!dda_setup0_plan_x_inward);
+            3'b100: begin
+                cin = (dda_setup0_next_step == 4);
             end
-            else if (((dda_setup0_step == 5) || (dda_setup0_step == 6))) begin
-                cin = (dda_setup0_x_inward_end == 1);
+            3'b101: begin
+                if ((dda_setup0_next_step == 0)) begin
+                    cin = 1'b1;
+                end
+                else if ((dda_setup0_next_step == 2)) begin
+                    cin = (dda_setup0_root_root[0] == 1);
+                end
+                else if (((dda_setup0_next_step == 3) || (dda_setup0_next_step == 4))) begin
+                    cin = (!dda_setup0_plan_x_inward);
+                end
+                else if (((dda_setup0_next_step == 5) || (dda_setup0_next_step == 6))) begin
+                    cin = (dda_setup0_plan_x_inward_end == 1);
+                end
+                else if ((dda_setup0_next_step == 7)) begin
+                    cin = ((dda_setup0_plan_x_inward != dda_setup0_plan_x_inward_end) && (dda_setup0_root_root[0] != dda_setup0_plan_x_inward));
+                end
+                else if ((dda_setup0_next_step == 9)) begin
+                    cin = (dda_setup0_pick_x != dda_setup0_plan_x_inward);
+                end
+                else if ((dda_setup0_next_step == 10)) begin
+                    cin = (dda_setup0_pick_x == dda_setup0_plan_x_inward_end);
+                end
+                else if ((dda_setup0_next_step == 11)) begin
+                    cin = (dda_setup0_root_root[0] && (dda_setup0_twice != 0));
+                end
+                else if ((dda_setup0_next_step == 12)) begin
+                    cin = (dda_setup0_root_root[0] && (dda_setup0_twice == 2));
+                end
             end
-            else if ((dda_setup0_step == 7)) begin
-                cin = ((dda_setup0_plan_x_inward != dda_setup0_x_inward_end) && (dda_setup0_root[0] != dda_setup0_plan_x_inward));
+            default: begin
+                cin = 1'b0;
             end
-            else if ((dda_setup0_step == 8)) begin
-                cin = (dda_setup0_pick_x != dda_setup0_plan_x_inward);
-            end
-            else if ((dda_setup0_step == 9)) begin
-                cin = (dda_setup0_pick_x == dda_setup0_x_inward_end);
-            end
-            else if ((dda_setup0_step == 10)) begin
-                cin = (dda_setup0_root[0] && (dda_setup0_twice != 0));
-            end
-            else if ((dda_setup0_step == 11)) begin
-                cin = (dda_setup0_root[0] && (dda_setup0_twice == 2));
-            end
-        end
-        default: begin
-            cin = 1'b0;
-        end
-    endcase
-    dda_setup0_carry = cin;
+        endcase
+        dda_setup0_carry <= cin;
+    end
 end
 
 
-always @(dda_setup0_plan_ahead, dda_setup0_pick_x, dda_setup0_x_inward_end, dda_setup0_plan_crossings, dda_setup0_plan_x_inward) begin: dda_setup0_rq_terms
-    reg starts_inward;
-    reg ends_inward;
+always @(dda_setup0_plan_crossings, dda_setup0_plan_x_inward, dda_setup0_plan_x_inward_end, dda_setup0_pick_x) begin: dda_setup0_rq_terms
     reg [3-1:0] count;
-    starts_inward = (dda_setup0_plan_x_inward == dda_setup0_pick_x);
-    ends_inward = (dda_setup0_x_inward_end == dda_setup0_pick_x);
     count = 3'h0;
     count = (dda_setup0_plan_crossings - 1);
-    if ((!starts_inward)) begin
+    if ((dda_setup0_plan_x_inward != dda_setup0_pick_x)) begin
         count = (count + 1);
     end
-    if (ends_inward) begin
+    if ((dda_setup0_plan_x_inward_end == dda_setup0_pick_x)) begin
         count = (count + 1);
     end
     dda_setup0_twice = count[3-1:1];
-    if ((dda_setup0_plan_ahead || (dda_setup0_plan_crossings == 0))) begin
+    if ((dda_setup0_plan_crossings == 0)) begin
         dda_setup0_twice = 0;
     end
 end
 
 
-always @(dda_setup0_root, dda_setup0_plan_mag_xs, dda_setup0_source, dda_setup0_plan_mag_xe, dda_setup0_plan_mag_ys, dda_setup0_plan_mag_ye, dda_setup0_source_on) begin: dda_setup0_select_source
+always @(dda_setup0_plan_mag_xs, dda_setup0_source, dda_setup0_root_root, dda_setup0_plan_mag_xe, dda_setup0_plan_mag_ys, dda_setup0_plan_mag_ye, dda_setup0_source_on) begin: dda_setup0_select_source
     reg [25-1:0] value;
     value = 25'h0;
     case (dda_setup0_source)
@@ -550,7 +807,7 @@ always @(dda_setup0_root, dda_setup0_plan_mag_xs, dda_setup0_source, dda_setup0_
             value = {1'b0, dda_setup0_plan_mag_ye};
         end
         default: begin
-            value = dda_setup0_root;
+            value = dda_setup0_root_root;
         end
     endcase
     if ((!dda_setup0_source_on)) begin
@@ -562,14 +819,19 @@ end
 
 
 assign dda_setup0_total = ((dda_setup0_gap + dda_setup0_operand) + {48'h0, dda_setup0_carry});
+assign dda_setup0_root_radicand = (~dda_setup0_gap[(2 * 24)-1:0]);
+assign dda_setup0_root_load = ((dda_setup0_state == 3'b011) && (dda_setup0_square == 2) && (dda_setup0_step == 0));
 
 
 always @(posedge clock, negedge reset) begin: dda_setup0_datapath
     reg [49-1:0] loaded;
     if (reset == 0) begin
         dda_setup0_multiplier <= 0;
-        dda_setup0_operand <= 0;
         dda_setup0_gap <= 0;
+        dda_setup0_operand <= 0;
+        dda_setup0_step <= 0;
+        dda_setup0_square <= 0;
+        dda_setup0_state <= 3'b000;
     end
     else begin
         loaded = 49'h0;
@@ -589,9 +851,6 @@ always @(posedge clock, negedge reset) begin: dda_setup0_datapath
                 dda_setup0_operand <= {dda_setup0_operand[(49 - 1)-1:0], dda_setup0_invert};
             end
             'h2: begin
-                dda_setup0_operand <= (~{dda_setup0_operand[(49 - 1)-1:0], 1'b0});
-            end
-            'h3: begin
                 loaded = {24'h0, dda_setup0_source_value};
                 if ((dda_setup0_invert && dda_setup0_source_on)) begin
                     loaded = (~loaded);
@@ -599,74 +858,18 @@ always @(posedge clock, negedge reset) begin: dda_setup0_datapath
                 dda_setup0_operand <= loaded;
             end
         endcase
-        if ((dda_setup0_state == 3'b011)) begin
+        if (((dda_setup0_state == 3'b011) && ($signed({1'b0, dda_setup0_step}) != (24 - 1)))) begin
             dda_setup0_multiplier <= (dda_setup0_multiplier >>> 1);
-            if (($signed({1'b0, dda_setup0_step}) == (24 - 1))) begin
-                dda_setup0_multiplier <= dda_setup0_source_value[24-1:0];
-            end
         end
-        else if (((dda_setup0_state == 3'b010) && (dda_setup0_step == 6))) begin
+        else if (((dda_setup0_state == 3'b010) || (dda_setup0_state == 3'b011))) begin
             dda_setup0_multiplier <= dda_setup0_source_value[24-1:0];
         end
-        if (((dda_setup0_state == 3'b000) && cmd_start)) begin
+        if ((dda_setup0_state == 3'b000)) begin
             dda_setup0_gap <= 0;
         end
-    end
-end
-
-
-always @(dda_setup0_radicand, dda_setup0_remainder, dda_setup0_root) begin: dda_setup0_root_trial
-    reg [28-1:0] trial;
-    reg [27-1:0] difference;
-    trial = 28'h0;
-    difference = 27'h0;
-    trial = {dda_setup0_remainder, dda_setup0_radicand[(2 * 24)-1:((2 * 24) - 2)]};
-    difference = ({1'b0, trial[(24 + 2)-1:0]} - {1'b0, dda_setup0_root[24-1:0], 2'h1});
-    dda_setup0_trial_fits = ((trial[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
-    dda_setup0_trial_keep = trial[(24 + 2)-1:0];
-    if (((trial[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]))) begin
-        dda_setup0_trial_keep = difference[(24 + 2)-1:0];
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: dda_setup0_square_root
-    if (reset == 0) begin
-        dda_setup0_root_started <= 0;
-        dda_setup0_root <= 0;
-        dda_setup0_root_all_ones <= 0;
-        dda_setup0_radicand <= 0;
-        dda_setup0_remainder <= 0;
-        dda_setup0_root_steps <= 0;
-    end
-    else begin
-        if (((dda_setup0_state == 3'b011) && (dda_setup0_square == 1) && ($signed({1'b0, dda_setup0_step}) == (24 - 1)))) begin
-            if (dda_setup0_multiplier[0]) begin
-                dda_setup0_radicand <= (~dda_setup0_total[(2 * 24)-1:0]);
-            end
-            else begin
-                dda_setup0_radicand <= (~dda_setup0_gap[(2 * 24)-1:0]);
-            end
-            dda_setup0_remainder <= 0;
-            dda_setup0_root <= 0;
-            dda_setup0_root_steps <= (24 + 1);
-            dda_setup0_root_started <= 1'b0;
-            dda_setup0_root_all_ones <= 1'b1;
-        end
-        else if ((dda_setup0_root_steps != 0)) begin
-            dda_setup0_remainder <= dda_setup0_trial_keep;
-            dda_setup0_root <= {dda_setup0_root[24-1:0], dda_setup0_trial_fits};
-            dda_setup0_radicand <= (dda_setup0_radicand << 2);
-            dda_setup0_root_steps <= (dda_setup0_root_steps - 1);
-            if ((dda_setup0_root_steps != 1)) begin
-                if (dda_setup0_trial_fits) begin
-                    dda_setup0_root_started <= 1'b1;
-                end
-                else if (dda_setup0_root_started) begin
-                    dda_setup0_root_all_ones <= 1'b0;
-                end
-            end
-        end
+        dda_setup0_state <= dda_setup0_next_state;
+        dda_setup0_step <= dda_setup0_next_step;
+        dda_setup0_square <= dda_setup0_next_square;
     end
 end
 
@@ -682,15 +885,19 @@ end
 always @(posedge clock, negedge reset) begin: dda_setup0_threshold
     reg shift;
     if (reset == 0) begin
-        dda_setup0_plan_threshold <= 0;
         dda_setup0_ones_left <= 0;
+        dda_setup0_grew <= 0;
+        dda_setup0_acc_bits <= 0;
+        dda_setup0_plan_threshold <= 0;
         dda_setup0_plan_too_wide <= 0;
     end
     else begin
         shift = 1'b0;
+        dda_setup0_grew <= dda_setup0_root_grows;
         if (((dda_setup0_state == 3'b000) && cmd_start)) begin
             dda_setup0_plan_threshold <= 0;
             dda_setup0_plan_too_wide <= 1'b0;
+            dda_setup0_acc_bits <= cmd_acc_bits;
             if ((cmd_acc_bits != 0)) begin
                 dda_setup0_ones_left <= ({1'b0, cmd_acc_bits} + {1'b0, cmd_lambda_shift});
             end
@@ -706,10 +913,7 @@ always @(posedge clock, negedge reset) begin: dda_setup0_threshold
                 shift = 1'b1;
                 dda_setup0_ones_left <= (dda_setup0_ones_left - 1);
             end
-            else if (((dda_setup0_root_steps > 1) && (dda_setup0_acc_bits == 0) && (dda_setup0_root_started || dda_setup0_trial_fits))) begin
-                shift = 1'b1;
-            end
-            else if (((dda_setup0_root_steps == 1) && (dda_setup0_acc_bits == 0) && dda_setup0_trial_fits && dda_setup0_root_all_ones && dda_setup0_root_started)) begin
+            else if (((dda_setup0_acc_bits == 0) && dda_setup0_grew)) begin
                 shift = 1'b1;
             end
             if (shift) begin
@@ -724,20 +928,22 @@ end
 
 
 always @(posedge clock, negedge reset) begin: dda_setup0_captures
+    reg sign;
     if (reset == 0) begin
-        dda_setup0_shrink_y_neg <= 0;
+        dda_setup0_plan_start_same_y <= 0;
         dda_setup0_plan_totals_max <= 0;
-        dda_setup0_shrink_x_neg <= 0;
-        dda_setup0_shrink_y_zero <= 0;
-        dda_setup0_plan_radius <= 0;
         dda_setup0_plan_beyond <= 0;
-        dda_setup0_shrink_x_zero <= 0;
+        dda_setup0_plan_radius <= 0;
+        dda_setup0_plan_start_same_x <= 0;
         dda_setup0_pick_x <= 0;
+        dda_setup0_plan_start_below_y <= 0;
+        dda_setup0_plan_start_below_x <= 0;
         dda_setup0_plan_totals_diff <= 0;
         dda_setup0_plan_off_circle <= 0;
         dda_setup0_m_is_y <= 0;
     end
     else begin
+        sign = dda_setup0_total[(49 - 1)];
         case (dda_setup0_state)
             3'b000: begin
                 dda_setup0_plan_off_circle <= 1'b0;
@@ -745,23 +951,20 @@ always @(posedge clock, negedge reset) begin: dda_setup0_captures
             3'b010: begin
                 case (dda_setup0_step)
                     'h2: begin
-                        dda_setup0_m_is_y <= dda_setup0_total[(49 - 1)];
+                        dda_setup0_m_is_y <= sign;
                     end
                     'h4: begin
-                        dda_setup0_shrink_x_neg <= dda_setup0_total[(49 - 1)];
-                        dda_setup0_shrink_x_zero <= (dda_setup0_total[(24 + 1)-1:0] == 0);
+                        dda_setup0_plan_start_below_x <= sign;
+                        dda_setup0_plan_start_same_x <= (dda_setup0_total[(24 + 1)-1:0] == 0);
                     end
                     'h6: begin
-                        dda_setup0_shrink_y_neg <= dda_setup0_total[(49 - 1)];
-                        dda_setup0_shrink_y_zero <= (dda_setup0_total[(24 + 1)-1:0] == 0);
+                        dda_setup0_plan_start_below_y <= sign;
+                        dda_setup0_plan_start_same_y <= (dda_setup0_total[(24 + 1)-1:0] == 0);
                     end
                 endcase
             end
             3'b100: begin
-                if ((dda_setup0_step == 1)) begin
-                    dda_setup0_plan_off_circle <= dda_setup0_total[(49 - 1)];
-                end
-                else if (((dda_setup0_step == 2) && (!dda_setup0_total[(49 - 1)]))) begin
+                if ((((dda_setup0_step == 1) && (!sign)) || ((dda_setup0_step == 4) && sign))) begin
                     dda_setup0_plan_off_circle <= 1'b1;
                 end
             end
@@ -771,13 +974,13 @@ always @(posedge clock, negedge reset) begin: dda_setup0_captures
                         dda_setup0_plan_radius <= dda_setup0_total[(24 + 2)-1:1];
                     end
                     'h2: begin
-                        dda_setup0_plan_beyond <= dda_setup0_total[(49 - 1)];
+                        dda_setup0_plan_beyond <= sign;
                     end
                     'h7: begin
                         dda_setup0_plan_totals_diff <= $signed(dda_setup0_total[27-1:0]);
                         dda_setup0_pick_x <= (!dda_setup0_total[(27 - 1)]);
                     end
-                    'hb: begin
+                    'hc: begin
                         dda_setup0_plan_totals_max <= dda_setup0_total[27-1:0];
                     end
                 endcase
@@ -794,213 +997,13 @@ always @(posedge clock, negedge reset) begin: dda_setup0_captures
 end
 
 
-always @(posedge clock, negedge reset) begin: dda_setup0_sequence
-    if (reset == 0) begin
-        dda_setup0_plan_neg_ye <= 0;
-        dda_setup0_plan_ccw <= 0;
-        dda_setup0_plan_mag_xs <= 0;
-        dda_setup0_state <= 3'b000;
-        dda_setup0_plan_neg_xe <= 0;
-        dda_setup0_plan_line <= 0;
-        dda_setup0_plan_blend <= 0;
-        dda_setup0_step <= 0;
-        dda_setup0_plan_mag_ys <= 0;
-        dda_setup0_plan_mag_xe <= 0;
-        dda_setup0_acc_bits <= 0;
-        dda_setup0_square <= 0;
-        dda_setup0_neg_xs <= 0;
-        dda_setup0_neg_ys <= 0;
-        dda_setup0_plan_variant <= 3;
-        dda_setup0_plan_mag_ye <= 0;
-    end
-    else begin
-        if ((dda_setup0_state == 3'b000)) begin
-            if (cmd_start) begin
-                dda_setup0_plan_line <= cmd_line;
-                dda_setup0_plan_variant <= cmd_variant;
-                dda_setup0_plan_ccw <= cmd_ccw;
-                dda_setup0_plan_blend <= cmd_blend;
-                dda_setup0_acc_bits <= cmd_acc_bits;
-                dda_setup0_neg_xs <= (cmd_xs < 0);
-                dda_setup0_neg_ys <= (cmd_ys < 0);
-                dda_setup0_plan_neg_xe <= (cmd_xe < 0);
-                dda_setup0_plan_neg_ye <= (cmd_ye < 0);
-                dda_setup0_plan_mag_xs <= dda_setup0_cmd_mag_xs;
-                dda_setup0_plan_mag_ys <= dda_setup0_cmd_mag_ys;
-                dda_setup0_plan_mag_xe <= dda_setup0_cmd_mag_xe;
-                dda_setup0_plan_mag_ye <= dda_setup0_cmd_mag_ye;
-                dda_setup0_step <= 0;
-                dda_setup0_square <= 0;
-                if (cmd_line) begin
-                    dda_setup0_state <= 3'b001;
-                end
-                else begin
-                    dda_setup0_state <= 3'b010;
-                end
-            end
-        end
-        else if ((dda_setup0_state == 3'b001)) begin
-            dda_setup0_state <= 3'b110;
-        end
-        else if ((dda_setup0_state == 3'b010)) begin
-            if (($signed({1'b0, dda_setup0_step}) == (7 - 1))) begin
-                dda_setup0_step <= 0;
-                dda_setup0_state <= 3'b011;
-            end
-            else begin
-                dda_setup0_step <= (dda_setup0_step + 1);
-            end
-        end
-        else if ((dda_setup0_state == 3'b011)) begin
-            if (($signed({1'b0, dda_setup0_step}) == (24 - 1))) begin
-                dda_setup0_step <= 0;
-                dda_setup0_square <= (dda_setup0_square + 1);
-                if ((dda_setup0_square == 3)) begin
-                    dda_setup0_state <= 3'b100;
-                end
-            end
-            else begin
-                dda_setup0_step <= (dda_setup0_step + 1);
-            end
-        end
-        else if ((dda_setup0_state == 3'b100)) begin
-            if (($signed({1'b0, dda_setup0_step}) == (3 - 1))) begin
-                dda_setup0_step <= 0;
-                dda_setup0_state <= 3'b101;
-            end
-            else begin
-                dda_setup0_step <= (dda_setup0_step + 1);
-            end
-        end
-        else if ((dda_setup0_state == 3'b101)) begin
-            if (($signed({1'b0, dda_setup0_step}) == (12 - 1))) begin
-                dda_setup0_step <= 0;
-                dda_setup0_state <= 3'b110;
-            end
-            else begin
-                dda_setup0_step <= (dda_setup0_step + 1);
-            end
-        end
-        else if (dda_setup0_plan_taken) begin
-            dda_setup0_state <= 3'b000;
-        end
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: dda_setup0_geometry
-    reg [2-1:0] q_s;
-    reg [2-1:0] q_e;
-    reg [2-1:0] turn;
-    reg ahead;
-    reg zero_xs;
-    reg zero_ys;
-    reg zero_xe;
-    reg zero_ye;
-    reg [1-1:0] ccw;
-    if (reset == 0) begin
-        dda_setup0_plan_ahead <= 0;
-        dda_setup0_plan_quadrant <= 0;
-        dda_setup0_x_inward_end <= 0;
-        dda_setup0_plan_centre <= 0;
-        dda_setup0_plan_crossings <= 0;
-        dda_setup0_plan_x_inward <= 0;
-    end
-    else begin
-        q_s = 2'h0;
-        q_e = 2'h0;
-        turn = 2'h0;
-        ahead = 1'b0;
-        zero_xs = (dda_setup0_plan_mag_xs == 0);
-        zero_ys = (dda_setup0_plan_mag_ys == 0);
-        zero_xe = (dda_setup0_plan_mag_xe == 0);
-        zero_ye = (dda_setup0_plan_mag_ye == 0);
-        ccw = dda_setup0_plan_ccw;
-        if (ccw) begin
-            if (((!dda_setup0_neg_xs) && (!zero_xs) && (!dda_setup0_neg_ys))) begin
-                q_s = 0;
-            end
-            else if (((dda_setup0_neg_xs || zero_xs) && (!dda_setup0_neg_ys) && (!zero_ys))) begin
-                q_s = 1;
-            end
-            else if ((dda_setup0_neg_xs && (dda_setup0_neg_ys || zero_ys))) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!dda_setup0_plan_neg_xe) && (!dda_setup0_plan_neg_ye) && (!zero_ye))) begin
-                q_e = 0;
-            end
-            else if ((dda_setup0_plan_neg_xe && (!dda_setup0_plan_neg_ye))) begin
-                q_e = 1;
-            end
-            else if (((dda_setup0_plan_neg_xe || zero_xe) && dda_setup0_plan_neg_ye)) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_e - q_s);
-        end
-        else begin
-            if (((!dda_setup0_neg_xs) && (!dda_setup0_neg_ys) && (!zero_ys))) begin
-                q_s = 0;
-            end
-            else if ((dda_setup0_neg_xs && (!dda_setup0_neg_ys))) begin
-                q_s = 1;
-            end
-            else if (((dda_setup0_neg_xs || zero_xs) && dda_setup0_neg_ys)) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!dda_setup0_plan_neg_xe) && (!zero_xe) && (!dda_setup0_plan_neg_ye))) begin
-                q_e = 0;
-            end
-            else if (((dda_setup0_plan_neg_xe || zero_xe) && (!dda_setup0_plan_neg_ye) && (!zero_ye))) begin
-                q_e = 1;
-            end
-            else if ((dda_setup0_plan_neg_xe && (dda_setup0_plan_neg_ye || zero_ye))) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_s - q_e);
-        end
-        if ((q_s[0] != ccw)) begin
-            ahead = ((!dda_setup0_shrink_x_neg) && (dda_setup0_shrink_y_neg || dda_setup0_shrink_y_zero));
-        end
-        else begin
-            ahead = ((!dda_setup0_shrink_y_neg) && (dda_setup0_shrink_x_neg || dda_setup0_shrink_x_zero));
-        end
-        dda_setup0_plan_ahead <= ((turn == 0) && ahead && (!(dda_setup0_shrink_x_zero && dda_setup0_shrink_y_zero)));
-        dda_setup0_plan_crossings <= {1'b0, turn};
-        if (((turn == 0) && (!(ahead && (!(dda_setup0_shrink_x_zero && dda_setup0_shrink_y_zero)))))) begin
-            dda_setup0_plan_crossings <= 4;
-        end
-        dda_setup0_plan_quadrant <= q_s;
-        dda_setup0_plan_x_inward <= (q_s[0] != ccw);
-        dda_setup0_x_inward_end <= (q_e[0] != ccw);
-        if (dda_setup0_plan_line) begin
-            dda_setup0_plan_centre <= (zero_xe && zero_ye);
-        end
-        else begin
-            dda_setup0_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
-        end
-    end
-end
-
-
 
 assign cmd_ready = (dda_setup0_state == 3'b000);
 assign dda_setup0_plan_done = (dda_setup0_state == 3'b110);
 
 
-always @(dda_setup0_plan_variant) begin: dda_check0_lookup_variant
-    case (dda_setup0_plan_variant)
+always @(dda_setup0_dda_latch0_plan_variant) begin: dda_check0_lookup_variant
+    case (dda_setup0_dda_latch0_plan_variant)
         0: dda_check0_variant_built = 0;
         1: dda_check0_variant_built = 0;
         2: dda_check0_variant_built = 1;
@@ -1014,34 +1017,34 @@ assign dda_check0_move_offer = dda_setup0_plan_done;
 assign dda_setup0_plan_taken = dda_check0_move_take;
 
 
-always @(dda_setup0_plan_ahead, dda_check0_variant_built, dda_setup0_plan_beyond, dda_setup0_plan_radius, dda_setup0_plan_too_wide, dda_setup0_plan_line, dda_setup0_plan_centre, dda_setup0_plan_off_circle, dda_setup0_plan_variant) begin: dda_check0_validate
+always @(dda_setup0_dda_latch0_plan_ahead, dda_check0_variant_built, dda_setup0_plan_beyond, dda_setup0_plan_radius, dda_setup0_plan_too_wide, dda_setup0_dda_latch0_plan_line, dda_setup0_dda_latch0_plan_centre, dda_setup0_plan_off_circle, dda_setup0_dda_latch0_plan_variant) begin: dda_check0_validate
     reg bad;
-    bad = (dda_setup0_plan_centre || dda_setup0_plan_off_circle || (dda_setup0_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
-    if (((!dda_setup0_plan_ahead) && dda_setup0_plan_beyond)) begin
+    bad = (dda_setup0_dda_latch0_plan_centre || dda_setup0_plan_off_circle || (dda_setup0_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
+    if (((!dda_setup0_dda_latch0_plan_ahead) && dda_setup0_plan_beyond)) begin
         bad = 1'b1;
     end
-    if (((dda_setup0_plan_variant != 3) && dda_setup0_plan_too_wide)) begin
+    if (((dda_setup0_dda_latch0_plan_variant != 3) && dda_setup0_plan_too_wide)) begin
         bad = 1'b1;
     end
     if ((!dda_check0_variant_built)) begin
         bad = 1'b1;
     end
-    dda_check0_move_error = (bad && (!dda_setup0_plan_line));
-    dda_check0_move_zero = (dda_setup0_plan_line && dda_setup0_plan_centre);
+    dda_check0_move_error = (bad && (!dda_setup0_dda_latch0_plan_line));
+    dda_check0_move_zero = (dda_setup0_dda_latch0_plan_line && dda_setup0_dda_latch0_plan_centre);
 end
 
 
-always @(dda_setup0_plan_neg_ye, dda_setup0_plan_quadrant, dda_setup0_plan_ccw, dda_setup0_plan_neg_xe, dda_setup0_plan_line, dda_setup0_plan_blend, dda_setup0_plan_crossings, dda_setup0_plan_x_inward, dda_setup0_plan_variant) begin: dda_check0_geometry
-    dda_check0_move_line = dda_setup0_plan_line;
-    dda_check0_move_variant = dda_setup0_plan_variant;
-    dda_check0_move_ccw = dda_setup0_plan_ccw;
-    dda_check0_move_blend = dda_setup0_plan_blend;
-    dda_check0_move_right = (!dda_setup0_plan_neg_xe);
-    dda_check0_move_up = (!dda_setup0_plan_neg_ye);
+always @(dda_setup0_dda_latch0_plan_neg_ye, dda_setup0_dda_latch0_plan_quadrant, dda_setup0_dda_latch0_plan_ccw, dda_setup0_dda_latch0_plan_neg_xe, dda_setup0_dda_latch0_plan_line, dda_setup0_dda_latch0_plan_blend, dda_setup0_plan_crossings, dda_setup0_plan_x_inward, dda_setup0_dda_latch0_plan_variant) begin: dda_check0_geometry
+    dda_check0_move_line = dda_setup0_dda_latch0_plan_line;
+    dda_check0_move_variant = dda_setup0_dda_latch0_plan_variant;
+    dda_check0_move_ccw = dda_setup0_dda_latch0_plan_ccw;
+    dda_check0_move_blend = dda_setup0_dda_latch0_plan_blend;
+    dda_check0_move_right = (!dda_setup0_dda_latch0_plan_neg_xe);
+    dda_check0_move_up = (!dda_setup0_dda_latch0_plan_neg_ye);
     dda_check0_move_x_inward = dda_setup0_plan_x_inward;
-    dda_check0_move_quadrant = dda_setup0_plan_quadrant;
+    dda_check0_move_quadrant = dda_setup0_dda_latch0_plan_quadrant;
     dda_check0_move_crossings = dda_setup0_plan_crossings;
-    if (dda_setup0_plan_line) begin
+    if (dda_setup0_dda_latch0_plan_line) begin
         dda_check0_move_quadrant = 0;
         dda_check0_move_crossings = 0;
     end
@@ -1060,10 +1063,10 @@ always @(dda_setup0_plan_neg_ye, dda_setup0_plan_quadrant, dda_setup0_plan_ccw, 
 end
 
 
-always @(dda_setup0_plan_totals_max, dda_setup0_plan_mag_xs, dda_setup0_plan_radius, dda_setup0_plan_line, dda_setup0_plan_mag_xe, dda_setup0_plan_mag_ys, dda_setup0_plan_totals_diff, dda_setup0_plan_mag_ye) begin: dda_check0_magnitudes
+always @(dda_setup0_plan_totals_max, dda_setup0_plan_mag_xs, dda_setup0_plan_radius, dda_setup0_dda_latch0_plan_line, dda_setup0_plan_mag_xe, dda_setup0_plan_mag_ys, dda_setup0_plan_totals_diff, dda_setup0_plan_mag_ye) begin: dda_check0_magnitudes
     dda_check0_move_mag_x = dda_setup0_plan_mag_xs;
     dda_check0_move_mag_y = dda_setup0_plan_mag_ys;
-    if (dda_setup0_plan_line) begin
+    if (dda_setup0_dda_latch0_plan_line) begin
         dda_check0_move_mag_x = dda_setup0_plan_mag_ye;
         dda_check0_move_mag_y = dda_setup0_plan_mag_xe;
     end
@@ -1075,7 +1078,7 @@ always @(dda_setup0_plan_totals_max, dda_setup0_plan_mag_xs, dda_setup0_plan_rad
 end
 
 
-always @(dda_setup0_plan_threshold, dda_setup0_plan_radius, dda_setup0_plan_line, dda_setup0_plan_variant) begin: dda_check0_thresholds
+always @(dda_setup0_plan_threshold, dda_setup0_plan_radius, dda_setup0_dda_latch0_plan_line, dda_setup0_dda_latch0_plan_variant) begin: dda_check0_thresholds
     reg [28-1:0] less;
     reg [30-1:0] below;
     reg [29-1:0] ones;
@@ -1083,18 +1086,18 @@ always @(dda_setup0_plan_threshold, dda_setup0_plan_radius, dda_setup0_plan_line
     below = 30'h0;
     ones = 29'h0;
     less = dda_setup0_plan_threshold;
-    if (((!dda_setup0_plan_line) && ((!1'b1) || (dda_setup0_plan_variant == 3)))) begin
+    if (((!dda_setup0_dda_latch0_plan_line) && ((!1'b1) || (dda_setup0_dda_latch0_plan_variant == 3)))) begin
         less = 0;
         less[24-1:0] = dda_setup0_plan_radius[24-1:0];
     end
     dda_check0_move_threshold = less;
     below = (~{3'h0, less[28-1:1]});
-    if ((1'b1 && (!dda_setup0_plan_line) && ((dda_setup0_plan_variant == 1) || (dda_setup0_plan_variant == 2)))) begin
+    if ((1'b1 && (!dda_setup0_dda_latch0_plan_line) && ((dda_setup0_dda_latch0_plan_variant == 1) || (dda_setup0_dda_latch0_plan_variant == 2)))) begin
         ones = ({less, 1'b1} & (~{1'b0, less}));
         below = (~{1'h0, ones});
     end
     dda_check0_move_acc_init = $signed(below);
-    dda_check0_move_acc_carry = (dda_setup0_plan_line && (!less[0]));
+    dda_check0_move_acc_carry = (dda_setup0_dda_latch0_plan_line && (!less[0]));
 end
 
 
@@ -1116,32 +1119,34 @@ always @(dda_setup0_plan_mag_xs, dda_setup0_plan_mag_ys) begin: dda_check0_preci
 end
 
 
-always @(dda_run0_threshold, dda_run0_mag_y, dda_run0_threshold_carry, dda_run0_first, dda_run0_mag_x, dda_run0_acc_x, dda_run0_acc_y, dda_run0_pending) begin: dda_run0_accumulate
-    reg [31-1:0] operand_x;
-    reg [31-1:0] operand_y;
-    reg [31-1:0] carry;
-    operand_x = 31'h0;
-    operand_y = 31'h0;
-    carry = 31'h0;
-    if (dda_run0_pending) begin
-        operand_x = (~{3'h0, dda_run0_threshold});
-        operand_y = operand_x;
-        carry[0] = dda_run0_threshold_carry;
+always @(dda_run0_threshold, dda_run0_mag_y, dda_run0_threshold_carry, dda_run0_dec_x, dda_run0_first, dda_run0_dec_sum_y, dda_run0_dec_y, dda_run0_acc_x, dda_run0_mag_x, dda_run0_dec_sum_x, dda_run0_acc_y) begin: dda_run0_accumulate
+    reg [30-1:0] minus_x;
+    reg [30-1:0] minus_y;
+    minus_x = 30'h0;
+    minus_y = 30'h0;
+    dda_run0_sum_x = (({dda_run0_acc_x[(30 - 1)], dda_run0_acc_x} + {7'h0, dda_run0_mag_y}) + {30'h0, dda_run0_first});
+    dda_run0_sum_y = (({dda_run0_acc_y[(30 - 1)], dda_run0_acc_y} + {7'h0, dda_run0_mag_x}) + {30'h0, dda_run0_first});
+    if (dda_run0_dec_x) begin
+        minus_x = (~{2'h0, dda_run0_threshold});
     end
-    else begin
-        operand_x = {7'h0, dda_run0_mag_y};
-        operand_y = {7'h0, dda_run0_mag_x};
-        carry[0] = dda_run0_first;
+    if (dda_run0_dec_y) begin
+        minus_y = (~{2'h0, dda_run0_threshold});
     end
-    dda_run0_sum_x = (({dda_run0_acc_x[(30 - 1)], dda_run0_acc_x} + operand_x) + carry);
-    dda_run0_sum_y = (({dda_run0_acc_y[(30 - 1)], dda_run0_acc_y} + operand_y) + carry);
+    dda_run0_less_x = ((dda_run0_dec_sum_x + minus_x) + {29'h0, (dda_run0_dec_x && dda_run0_threshold_carry)});
+    dda_run0_less_y = ((dda_run0_dec_sum_y + minus_y) + {29'h0, (dda_run0_dec_y && dda_run0_threshold_carry)});
 end
 
 
-
-assign dda_run0_over_x = (!dda_run0_sum_x[30]);
-assign dda_run0_over_y = (!dda_run0_sum_y[30]);
-assign dda_run0_trad_over_x = (!dda_run0_trad_x[30]);
+always @(dda_run0_variant, dda_run0_trad_x, dda_run0_sum_y, dda_run0_sum_x, dda_run0_over_y, dda_run0_line) begin: dda_run0_overflow
+    dda_run0_over_x = (!dda_run0_sum_x[30]);
+    dda_run0_over_y = (!dda_run0_sum_y[30]);
+    dda_run0_trad_over_x = (!dda_run0_trad_x[30]);
+    dda_run0_saturate_x = ((!dda_run0_sum_x[30]) && dda_run0_sum_x[(30 - 1)]);
+    if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_line))) begin
+        dda_run0_saturate_x = ((!dda_run0_trad_x[30]) && dda_run0_trad_x[(30 - 1)]);
+    end
+    dda_run0_saturate_y = ((!dda_run0_sum_y[30]) && dda_run0_sum_y[(30 - 1)]);
+end
 
 
 always @(dda_run0_acc_y, dda_run0_mag_y, dda_run0_acc_x, dda_run0_mag_x) begin: dda_run0_look_ahead
@@ -1156,54 +1161,43 @@ always @(dda_run0_acc_y, dda_run0_mag_y, dda_run0_acc_x, dda_run0_mag_x) begin: 
 end
 
 
-always @(dda_run0_bias_y, dda_run0_x_inward, dda_run0_error_term, dda_run0_bias_x) begin: dda_run0_nearest
-    reg [28-1:0] first_bias;
-    reg [28-1:0] second_bias;
-    reg [28-1:0] close;
-    reg [28-1:0] far;
-    first_bias = 28'h0;
-    second_bias = 28'h0;
-    close = 28'h0;
-    far = 28'h0;
+always @(dda_run0_error_term, dda_run0_x_inward, dda_run0_bias_x, dda_run0_bias_y) begin: dda_run0_nearest
+    reg [28-1:0] twice_error;
+    reg [28-1:0] plus_x;
+    reg [28-1:0] plus_y;
+    reg [28-1:0] minus_x;
+    reg [28-1:0] minus_y;
+    twice_error = 28'h0;
+    plus_x = 28'h0;
+    plus_y = 28'h0;
+    minus_x = 28'h0;
+    minus_y = 28'h0;
+    twice_error = {dda_run0_error_term, 1'b0};
+    plus_x = (twice_error + {dda_run0_bias_x[(27 - 1)], dda_run0_bias_x});
+    plus_y = (twice_error + {dda_run0_bias_y[(27 - 1)], dda_run0_bias_y});
+    minus_x = (twice_error - {dda_run0_bias_x[(27 - 1)], dda_run0_bias_x});
+    minus_y = (twice_error - {dda_run0_bias_y[(27 - 1)], dda_run0_bias_y});
     if (dda_run0_x_inward) begin
-        first_bias = {dda_run0_bias_x[(27 - 1)], dda_run0_bias_x};
-        second_bias = {dda_run0_bias_y[(27 - 1)], dda_run0_bias_y};
+        dda_run0_inward_near = ($signed(plus_y) >= 0);
+        dda_run0_outward_near = ($signed(plus_x) < 0);
     end
     else begin
-        first_bias = (~{dda_run0_bias_y[(27 - 1)], dda_run0_bias_y});
-        second_bias = (~{dda_run0_bias_x[(27 - 1)], dda_run0_bias_x});
+        dda_run0_inward_near = ($signed(minus_x) >= 0);
+        dda_run0_outward_near = ($signed(minus_y) < 0);
     end
-    close = (({dda_run0_error_term, 1'b0} + first_bias) + {27'h0, (!dda_run0_x_inward)});
-    far = (({dda_run0_error_term, 1'b0} + second_bias) + {27'h0, (!dda_run0_x_inward)});
-    dda_run0_inward_near = ($signed(far) >= 0);
-    dda_run0_outward_near = ($signed(close) < 0);
 end
 
 
-always @(dda_run0_mag_y, dda_run0_x_inward, dda_run0_pending, dda_run0_mag_x) begin: dda_run0_magnitude_adders
+always @(dda_run0_x_inward, dda_run0_mag_y, dda_run0_mag_x) begin: dda_run0_magnitude_adders
     reg [24-1:0] op_x;
     reg [24-1:0] op_y;
     op_x = 24'h0;
     op_y = 24'h0;
-    if (dda_run0_pending) begin
-        op_x = 1;
-        if (dda_run0_x_inward) begin
-            op_x = 16777215;
-        end
-        op_y = 0;
-        if (dda_run0_x_inward) begin
-            op_y = 16777215;
-        end
-    end
-    else begin
-        op_x = 0;
-        if (dda_run0_x_inward) begin
-            op_x = 16777215;
-        end
-        op_y = 16777215;
-        if (dda_run0_x_inward) begin
-            op_y = 1;
-        end
+    op_x = 1;
+    op_y = 16777215;
+    if (dda_run0_x_inward) begin
+        op_x = 16777215;
+        op_y = 1;
     end
     dda_run0_stepped_x = (dda_run0_mag_x + op_x);
     dda_run0_stepped_y = (dda_run0_mag_y + op_y);
@@ -1253,78 +1247,78 @@ end
 always @(dda_run0_trad_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant, dda_run0_ahead_x, dda_run0_left_diff, dda_run0_near_x, dda_run0_at_y, dda_run0_outward_near, dda_run0_x_inward, dda_run0_inward_near, dda_run0_crossings, dda_run0_ahead_y, dda_run0_over_y, dda_run0_line, dda_run0_over_x) begin: dda_run0_decide
     reg step_x;
     reg step_y;
+    reg choose_x;
+    reg choose_y;
+    reg ends;
     step_x = (dda_run0_over_x == 1);
     step_y = (dda_run0_over_y == 1);
-    if ((!dda_run0_line)) begin
-        case (dda_run0_variant)
-            'h0: begin
-                if (dda_run0_over_y) begin
-                    step_x = (dda_run0_trad_over_x == 1);
-                end
-            end
-            'h2: begin
-                if ((dda_run0_over_x && (!dda_run0_over_y) && dda_run0_ahead_y)) begin
-                    step_y = 1'b1;
-                end
-                else if ((dda_run0_over_y && (!dda_run0_over_x) && dda_run0_ahead_x)) begin
-                    step_x = 1'b1;
-                end
-            end
-            'h3: begin
-                step_x = 1'b0;
-                step_y = 1'b0;
-                if ((dda_run0_over_x || dda_run0_over_y)) begin
-                    step_x = (dda_run0_inward_near == 1);
-                    step_y = (dda_run0_outward_near == 1);
-                    if ((!dda_run0_x_inward)) begin
-                        step_x = (dda_run0_outward_near == 1);
-                        step_y = (dda_run0_inward_near == 1);
-                    end
-                end
-            end
-        endcase
-        if ((dda_run0_at_x || dda_run0_at_y)) begin
-            step_x = (!dda_run0_at_x);
-            step_y = (!dda_run0_at_y);
+    choose_x = 1'b0;
+    choose_y = 1'b0;
+    ends = 1'b0;
+    if (1'b1) begin
+        choose_x = (dda_run0_outward_near == 1);
+        choose_y = (dda_run0_inward_near == 1);
+        if (dda_run0_x_inward) begin
+            choose_x = (dda_run0_inward_near == 1);
+            choose_y = (dda_run0_outward_near == 1);
         end
     end
-    dda_run0_go_x = step_x;
-    dda_run0_go_y = step_y;
-    dda_run0_tail = ((!dda_run0_line) && (dda_run0_at_x || dda_run0_at_y));
-    dda_run0_finished = 1'b0;
-    dda_run0_next_piece = 1'b0;
+    if ((1'b0 && (dda_run0_variant == 0))) begin
+        step_x = ((dda_run0_over_y && dda_run0_trad_over_x) || ((!dda_run0_over_y) && dda_run0_over_x));
+    end
+    else if ((1'b1 && (dda_run0_variant == 2))) begin
+        step_x = (dda_run0_over_x || (dda_run0_over_y && dda_run0_ahead_x));
+        step_y = (dda_run0_over_y || (dda_run0_over_x && dda_run0_ahead_y));
+    end
+    else if ((1'b1 && (dda_run0_variant == 3))) begin
+        step_x = ((dda_run0_over_x || dda_run0_over_y) && choose_x);
+        step_y = ((dda_run0_over_x || dda_run0_over_y) && choose_y);
+    end
     if (dda_run0_line) begin
-        dda_run0_finished = (dda_run0_left_diff == 0);
+        dda_run0_go_x = dda_run0_over_x;
+        dda_run0_go_y = dda_run0_over_y;
     end
-    else if ((((dda_run0_near_x && step_x) || dda_run0_at_x) && ((dda_run0_near_y && step_y) || dda_run0_at_y))) begin
-        if ((dda_run0_crossings == 0)) begin
-            dda_run0_finished = 1'b1;
-        end
-        else begin
-            dda_run0_next_piece = 1'b1;
-        end
+    else if ((dda_run0_at_x || dda_run0_at_y)) begin
+        dda_run0_go_x = (!dda_run0_at_x);
+        dda_run0_go_y = (!dda_run0_at_y);
     end
+    else begin
+        dda_run0_go_x = step_x;
+        dda_run0_go_y = step_y;
+    end
+    dda_run0_tail = ((!dda_run0_line) && (dda_run0_at_x || dda_run0_at_y));
+    if ((dda_run0_at_x || dda_run0_at_y)) begin
+        ends = ((dda_run0_at_x || dda_run0_near_x) && (dda_run0_at_y || dda_run0_near_y));
+    end
+    else begin
+        ends = (dda_run0_near_x && dda_run0_near_y && step_x && step_y);
+    end
+    dda_run0_finished = ((dda_run0_line && (dda_run0_left_diff == 0)) || ((!dda_run0_line) && ends && (dda_run0_crossings == 0)));
+    dda_run0_next_piece = ((!dda_run0_line) && ends && (dda_run0_crossings != 0));
 end
 
 
-always @(dda_run0_stepped_y, dda_run0_error_term, dda_run0_x_inward, dda_run0_pending, dda_run0_stepped_x) begin: dda_run0_precise_step
-    reg [24-1:0] magnitude;
-    reg inward;
-    reg [27-1:0] step_op;
-    magnitude = 24'h0;
-    inward = 1'b0;
-    step_op = 27'h0;
-    magnitude = dda_run0_stepped_x;
-    inward = (dda_run0_x_inward == 1);
-    if (dda_run0_pending) begin
-        magnitude = dda_run0_stepped_y;
-        inward = (!dda_run0_x_inward);
+always @(dda_run0_mag_y, dda_run0_dec_in, dda_run0_mag_x, dda_run0_error_term, dda_run0_x_inward, dda_run0_dec_out) begin: dda_run0_precise_step
+    reg [27-1:0] outward;
+    reg [27-1:0] inward;
+    reg [27-1:0] first_sum;
+    outward = 27'h0;
+    inward = 27'h0;
+    first_sum = 27'h0;
+    if (dda_run0_dec_out) begin
+        outward = {2'h0, dda_run0_mag_x, 1'b1};
+        if (dda_run0_x_inward) begin
+            outward = {2'h0, dda_run0_mag_y, 1'b1};
+        end
     end
-    step_op = {2'h0, magnitude, 1'b1};
-    if (inward) begin
-        step_op = (~{2'h0, magnitude, 1'b1});
+    if (dda_run0_dec_in) begin
+        inward = (~{2'h0, dda_run0_mag_y, 1'b0});
+        if (dda_run0_x_inward) begin
+            inward = (~{2'h0, dda_run0_mag_x, 1'b0});
+        end
     end
-    dda_run0_error_step = ((dda_run0_error_term + step_op) + {26'h0, inward});
+    first_sum = ((dda_run0_error_term + outward) + {26'h0, dda_run0_dec_in});
+    dda_run0_error_step = ((first_sum + inward) + {26'h0, dda_run0_dec_in});
 end
 
 
@@ -1334,15 +1328,18 @@ assign dda_run0_taking = (dda_run0_active && cmd_advance && (!dda_run0_pending))
 
 
 always @(posedge clock, negedge reset) begin: dda_run0_iterate
-    reg saturated;
     if (reset == 0) begin
         dda_run0_mag_y <= 0;
         dda_run0_threshold_carry <= 0;
+        dda_run0_dec_sum_y <= 0;
         cmd_done <= 0;
+        dda_run0_dec_out <= 0;
         dda_run0_end_x <= 0;
         dda_run0_dec_next_piece <= 0;
         dda_run0_variant <= 3;
         steps_step_x <= 0;
+        dda_run0_dec_in <= 0;
+        dda_run0_dec_sum_x <= 0;
         dda_run0_target_y <= 0;
         dda_run0_error_term <= 0;
         dda_run0_x_inward <= 0;
@@ -1372,7 +1369,6 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
         dda_run0_line <= 0;
     end
     else begin
-        saturated = 1'b0;
         steps_step_x <= 1'b0;
         steps_step_y <= 1'b0;
         cmd_done <= 1'b0;
@@ -1392,43 +1388,36 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
             cmd_done <= dda_run0_finished;
             dda_run0_dec_x <= dda_run0_go_x;
             dda_run0_dec_y <= dda_run0_go_y;
+            dda_run0_dec_in <= ((dda_run0_go_x && dda_run0_x_inward) || (dda_run0_go_y && (!dda_run0_x_inward)));
+            dda_run0_dec_out <= ((dda_run0_go_x && (!dda_run0_x_inward)) || (dda_run0_go_y && dda_run0_x_inward));
             dda_run0_dec_tail <= dda_run0_tail;
             dda_run0_dec_finished <= dda_run0_finished;
             dda_run0_dec_next_piece <= dda_run0_next_piece;
             dda_run0_first <= 1'b0;
-            if ((!dda_run0_tail)) begin
-                saturated = (1'b1 && (!dda_run0_sum_x[30]) && dda_run0_sum_x[(30 - 1)]);
-                dda_run0_acc_x <= $signed(dda_run0_sum_x[30-1:0]);
-                if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_line))) begin
-                    dda_run0_acc_x <= $signed(dda_run0_trad_x[30-1:0]);
-                    saturated = ((!dda_run0_trad_x[30]) && (dda_run0_trad_x[(30 - 1)] == 1));
-                end
-                if (saturated) begin
-                    dda_run0_acc_x <= 536870911;
-                end
-                dda_run0_acc_y <= $signed(dda_run0_sum_y[30-1:0]);
-                if ((1'b1 && (!dda_run0_sum_y[30]) && dda_run0_sum_y[(30 - 1)])) begin
-                    dda_run0_acc_y <= 536870911;
-                end
+            dda_run0_dec_sum_x <= dda_run0_sum_x[30-1:0];
+            if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_line))) begin
+                dda_run0_dec_sum_x <= dda_run0_trad_x[30-1:0];
             end
-            if ((dda_run0_go_y && (!dda_run0_line))) begin
-                dda_run0_mag_y <= dda_run0_stepped_y;
+            dda_run0_dec_sum_y <= dda_run0_sum_y[30-1:0];
+            if ((1'b1 && dda_run0_saturate_x)) begin
+                dda_run0_dec_sum_x <= 536870911;
             end
-            if ((dda_run0_go_x && (!dda_run0_line))) begin
-                dda_run0_error_term <= dda_run0_error_step;
+            if ((1'b1 && dda_run0_saturate_y)) begin
+                dda_run0_dec_sum_y <= 536870911;
             end
         end
         else if (dda_run0_pending) begin
-            if ((dda_run0_dec_x && (!dda_run0_dec_tail))) begin
-                dda_run0_acc_x <= $signed(dda_run0_sum_x[30-1:0]);
+            if ((!dda_run0_dec_tail)) begin
+                dda_run0_acc_x <= $signed(dda_run0_less_x);
+                dda_run0_acc_y <= $signed(dda_run0_less_y);
             end
-            if ((dda_run0_dec_y && (!dda_run0_dec_tail))) begin
-                dda_run0_acc_y <= $signed(dda_run0_sum_y[30-1:0]);
-            end
-            if ((dda_run0_dec_x && (!dda_run0_line))) begin
-                dda_run0_mag_x <= dda_run0_stepped_x;
-            end
-            if ((dda_run0_dec_y && (!dda_run0_line))) begin
+            if ((!dda_run0_line)) begin
+                if (dda_run0_dec_x) begin
+                    dda_run0_mag_x <= dda_run0_stepped_x;
+                end
+                if (dda_run0_dec_y) begin
+                    dda_run0_mag_y <= dda_run0_stepped_y;
+                end
                 dda_run0_error_term <= dda_run0_error_step;
             end
             if (dda_run0_dec_finished) begin
@@ -1519,53 +1508,64 @@ end
 
 
 always @(posedge clock, negedge reset) begin: dda_run0_steps_left
-    reg less;
+    reg [27-1:0] base_diff;
     reg [27-1:0] change;
+    reg [27-1:0] base_most;
+    reg [27-1:0] less;
     if (reset == 0) begin
         dda_run0_left_diff <= 0;
         dda_run0_most_left <= 134217727;
     end
     else begin
-        less = 1'b0;
+        base_diff = 27'h0;
         change = 27'h0;
-        if (dda_run0_pending) begin
+        base_most = 27'h0;
+        less = 27'h0;
+        base_diff = dda_run0_left_diff;
+        base_most = dda_run0_most_left;
+        if (dda_check0_move_take) begin
+            base_diff = dda_check0_move_totals_diff;
+            base_most = dda_check0_move_totals_max;
+            less = 134217727;
+            if (dda_check0_move_line) begin
+                change = 134217727;
+            end
+        end
+        else if (dda_run0_pending) begin
             if ((dda_run0_line || (dda_run0_dec_x && (!dda_run0_dec_y)))) begin
                 change = 134217727;
             end
             else if ((dda_run0_dec_y && (!dda_run0_dec_x))) begin
                 change = 1;
             end
-            dda_run0_left_diff <= (dda_run0_left_diff + change);
-            if (dda_run0_line) begin
-                less = 1'b1;
-            end
-            else begin
-                if ((dda_run0_left_diff == 0)) begin
-                    less = (dda_run0_dec_x && dda_run0_dec_y);
+            if ((!dda_run0_blend)) begin
+                if (dda_run0_line) begin
+                    less = 134217727;
+                end
+                else if ((dda_run0_left_diff == 0)) begin
+                    if ((dda_run0_dec_x && dda_run0_dec_y)) begin
+                        less = 134217727;
+                    end
                 end
                 else if (dda_run0_left_diff[(27 - 1)]) begin
-                    less = (dda_run0_dec_y == 1);
+                    if (dda_run0_dec_y) begin
+                        less = 134217727;
+                    end
                 end
-                else begin
-                    less = (dda_run0_dec_x == 1);
+                else if (dda_run0_dec_x) begin
+                    less = 134217727;
                 end
             end
-            if ((less && (!dda_run0_blend))) begin
-                dda_run0_most_left <= (dda_run0_most_left - 1);
-            end
-            if (dda_run0_dec_finished) begin
+        end
+        dda_run0_left_diff <= (base_diff + change);
+        dda_run0_most_left <= (base_most + less);
+        if (dda_check0_move_take) begin
+            if ((dda_check0_move_blend || dda_check0_move_error || dda_check0_move_zero)) begin
                 dda_run0_most_left <= 134217727;
             end
         end
-        if (dda_check0_move_take) begin
-            dda_run0_left_diff <= dda_check0_move_totals_diff;
-            if (dda_check0_move_line) begin
-                dda_run0_left_diff <= (dda_check0_move_totals_diff - 1);
-            end
+        else if ((dda_run0_pending && dda_run0_dec_finished)) begin
             dda_run0_most_left <= 134217727;
-            if (((!dda_check0_move_blend) && (!dda_check0_move_error) && (!dda_check0_move_zero))) begin
-                dda_run0_most_left <= (dda_check0_move_totals_max - 1);
-            end
         end
     end
 end

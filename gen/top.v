@@ -619,32 +619,20 @@ reg card1_card_core1_regs_fifo2_pulse_out2_turn;
 wire [1:0] card1_card_core1_regs_fifo2__status2_quadrant;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_acc_bits;
 reg card1_card_core1_dda_arc2_dda_setup2_carry;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_cmd_mag_xe;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_cmd_mag_xs;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_cmd_mag_ye;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_cmd_mag_ys;
 reg [48:0] card1_card_core1_dda_arc2_dda_setup2_gap;
 reg [1:0] card1_card_core1_dda_arc2_dda_setup2_gap_op;
+reg card1_card_core1_dda_arc2_dda_setup2_grew;
 reg card1_card_core1_dda_arc2_dda_setup2_invert;
 reg card1_card_core1_dda_arc2_dda_setup2_m_is_y;
 reg [27:0] card1_card_core1_dda_arc2_dda_setup2_major;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_multiplier;
-reg card1_card_core1_dda_arc2_dda_setup2_neg_xs;
-reg card1_card_core1_dda_arc2_dda_setup2_neg_ys;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_next_square;
+reg [2:0] card1_card_core1_dda_arc2_dda_setup2_next_state;
+reg [4:0] card1_card_core1_dda_arc2_dda_setup2_next_step;
 reg [5:0] card1_card_core1_dda_arc2_dda_setup2_ones_left;
 reg [48:0] card1_card_core1_dda_arc2_dda_setup2_operand;
 reg [1:0] card1_card_core1_dda_arc2_dda_setup2_operand_op;
 reg card1_card_core1_dda_arc2_dda_setup2_pick_x;
-reg [47:0] card1_card_core1_dda_arc2_dda_setup2_radicand;
-reg [25:0] card1_card_core1_dda_arc2_dda_setup2_remainder;
-reg [24:0] card1_card_core1_dda_arc2_dda_setup2_root;
-reg card1_card_core1_dda_arc2_dda_setup2_root_all_ones;
-reg card1_card_core1_dda_arc2_dda_setup2_root_started;
-reg [4:0] card1_card_core1_dda_arc2_dda_setup2_root_steps;
-reg card1_card_core1_dda_arc2_dda_setup2_shrink_x_neg;
-reg card1_card_core1_dda_arc2_dda_setup2_shrink_x_zero;
-reg card1_card_core1_dda_arc2_dda_setup2_shrink_y_neg;
-reg card1_card_core1_dda_arc2_dda_setup2_shrink_y_zero;
 reg [2:0] card1_card_core1_dda_arc2_dda_setup2_source;
 reg card1_card_core1_dda_arc2_dda_setup2_source_on;
 reg [24:0] card1_card_core1_dda_arc2_dda_setup2_source_value;
@@ -652,34 +640,53 @@ reg [1:0] card1_card_core1_dda_arc2_dda_setup2_square;
 reg [2:0] card1_card_core1_dda_arc2_dda_setup2_state;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_step;
 wire [48:0] card1_card_core1_dda_arc2_dda_setup2_total;
-reg card1_card_core1_dda_arc2_dda_setup2_trial_fits;
-reg [25:0] card1_card_core1_dda_arc2_dda_setup2_trial_keep;
 reg [1:0] card1_card_core1_dda_arc2_dda_setup2_twice;
-reg card1_card_core1_dda_arc2_dda_setup2_x_inward_end;
+wire card1_card_core1_dda_arc2_dda_setup2_plan_taken;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end;
 reg card1_card_core1_dda_arc2_dda_setup2_plan_x_inward;
+reg [24:0] card1_card_core1_dda_arc2_dda_setup2_root_root;
 reg [2:0] card1_card_core1_dda_arc2_dda_setup2_plan_crossings;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_ahead;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye;
+wire [47:0] card1_card_core1_dda_arc2_dda_setup2_root_radicand;
+wire card1_card_core1_dda_arc2_dda_setup2_root_load;
+reg card1_card_core1_dda_arc2_dda_setup2_root_grows;
 reg [27:0] card1_card_core1_dda_arc2_dda_setup2_plan_threshold;
 reg card1_card_core1_dda_arc2_dda_setup2_plan_too_wide;
 reg card1_card_core1_dda_arc2_dda_setup2_plan_off_circle;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y;
 reg [24:0] card1_card_core1_dda_arc2_dda_setup2_plan_radius;
 reg card1_card_core1_dda_arc2_dda_setup2_plan_beyond;
 reg signed [26:0] card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff;
 reg [26:0] card1_card_core1_dda_arc2_dda_setup2_plan_totals_max;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_line;
-reg [1:0] card1_card_core1_dda_arc2_dda_setup2_plan_variant;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_ccw;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_blend;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_neg_xe;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_neg_ye;
-wire card1_card_core1_dda_arc2_dda_setup2_plan_taken;
-reg [1:0] card1_card_core1_dda_arc2_dda_setup2_plan_quadrant;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_centre;
 wire card1_card_core1_dda_arc2_dda_setup2_plan_done;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits;
+reg [25:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep;
+reg [47:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand;
+reg [25:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_started;
+reg [4:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps;
 reg card1_card_core1_dda_arc2_dda_check2_variant_built;
 wire card1_card_core1_dda_arc2_dda_check2_move_offer;
 wire card1_card_core1_dda_arc2_dda_check2_move_take;
@@ -721,7 +728,11 @@ reg card1_card_core1_dda_arc2_dda_run2_blend;
 reg card1_card_core1_dda_arc2_dda_run2_ccw;
 reg [2:0] card1_card_core1_dda_arc2_dda_run2_crossings;
 reg card1_card_core1_dda_arc2_dda_run2_dec_finished;
+reg card1_card_core1_dda_arc2_dda_run2_dec_in;
 reg card1_card_core1_dda_arc2_dda_run2_dec_next_piece;
+reg card1_card_core1_dda_arc2_dda_run2_dec_out;
+reg [29:0] card1_card_core1_dda_arc2_dda_run2_dec_sum_x;
+reg [29:0] card1_card_core1_dda_arc2_dda_run2_dec_sum_y;
 reg card1_card_core1_dda_arc2_dda_run2_dec_tail;
 reg card1_card_core1_dda_arc2_dda_run2_dec_x;
 reg card1_card_core1_dda_arc2_dda_run2_dec_y;
@@ -735,6 +746,8 @@ reg card1_card_core1_dda_arc2_dda_run2_go_x;
 reg card1_card_core1_dda_arc2_dda_run2_go_y;
 reg card1_card_core1_dda_arc2_dda_run2_inward_near;
 reg [26:0] card1_card_core1_dda_arc2_dda_run2_left_diff;
+reg [29:0] card1_card_core1_dda_arc2_dda_run2_less_x;
+reg [29:0] card1_card_core1_dda_arc2_dda_run2_less_y;
 reg card1_card_core1_dda_arc2_dda_run2_line;
 reg [23:0] card1_card_core1_dda_arc2_dda_run2_mag_x;
 reg [23:0] card1_card_core1_dda_arc2_dda_run2_mag_y;
@@ -743,12 +756,14 @@ reg card1_card_core1_dda_arc2_dda_run2_near_x;
 reg card1_card_core1_dda_arc2_dda_run2_near_y;
 reg card1_card_core1_dda_arc2_dda_run2_next_piece;
 reg card1_card_core1_dda_arc2_dda_run2_outward_near;
-wire card1_card_core1_dda_arc2_dda_run2_over_x;
-wire card1_card_core1_dda_arc2_dda_run2_over_y;
+reg card1_card_core1_dda_arc2_dda_run2_over_x;
+reg card1_card_core1_dda_arc2_dda_run2_over_y;
 reg card1_card_core1_dda_arc2_dda_run2_pending;
 reg [1:0] card1_card_core1_dda_arc2_dda_run2_quadrant;
 reg [23:0] card1_card_core1_dda_arc2_dda_run2_radius;
 reg card1_card_core1_dda_arc2_dda_run2_right;
+reg card1_card_core1_dda_arc2_dda_run2_saturate_x;
+reg card1_card_core1_dda_arc2_dda_run2_saturate_y;
 reg [23:0] card1_card_core1_dda_arc2_dda_run2_stepped_x;
 reg [23:0] card1_card_core1_dda_arc2_dda_run2_stepped_y;
 reg [30:0] card1_card_core1_dda_arc2_dda_run2_sum_x;
@@ -759,7 +774,7 @@ reg [1:0] card1_card_core1_dda_arc2_dda_run2_target_x;
 reg [1:0] card1_card_core1_dda_arc2_dda_run2_target_y;
 reg [27:0] card1_card_core1_dda_arc2_dda_run2_threshold;
 reg card1_card_core1_dda_arc2_dda_run2_threshold_carry;
-wire card1_card_core1_dda_arc2_dda_run2_trad_over_x;
+reg card1_card_core1_dda_arc2_dda_run2_trad_over_x;
 wire [30:0] card1_card_core1_dda_arc2_dda_run2_trad_x;
 reg card1_card_core1_dda_arc2_dda_run2_up;
 reg [1:0] card1_card_core1_dda_arc2_dda_run2_variant;
@@ -4861,7 +4876,7 @@ assign card1_card_core1_regs_fifo2_reg_word50_hw_value = card1_card_core1_regs_f
 assign card1_card_core1_regs_fifo2_reg_word51_hw_value = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_dda_setup2_magnitudes
+always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_magnitudes
     reg [24-1:0] sign_xs;
     reg [24-1:0] sign_ys;
     reg [24-1:0] sign_xe;
@@ -4874,6 +4889,10 @@ always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fi
     sign_ys = 24'h0;
     sign_xe = 24'h0;
     sign_ye = 24'h0;
+    less_xs = 24'h0;
+    less_ys = 24'h0;
+    less_xe = 24'h0;
+    less_ye = 24'h0;
     if (card1_card_core1_regs_fifo2_sequencer2_dda_xs[(24 - 1)]) begin
         sign_xs = 16777215;
     end
@@ -4886,22 +4905,274 @@ always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fi
     if (card1_card_core1_regs_fifo2_sequencer2_dda_ye[(24 - 1)]) begin
         sign_ye = 16777215;
     end
-    less_xs = 24'h0;
-    less_ys = 24'h0;
-    less_xe = 24'h0;
-    less_ye = 24'h0;
     less_xs = (card1_card_core1_regs_fifo2_sequencer2_dda_xs[24-1:0] + sign_xs);
     less_ys = (card1_card_core1_regs_fifo2_sequencer2_dda_ys[24-1:0] + sign_ys);
     less_xe = (card1_card_core1_regs_fifo2_sequencer2_dda_xe[24-1:0] + sign_xe);
     less_ye = (card1_card_core1_regs_fifo2_sequencer2_dda_ye[24-1:0] + sign_ye);
-    card1_card_core1_dda_arc2_dda_setup2_cmd_mag_xs = (less_xs ^ sign_xs);
-    card1_card_core1_dda_arc2_dda_setup2_cmd_mag_ys = (less_ys ^ sign_ys);
-    card1_card_core1_dda_arc2_dda_setup2_cmd_mag_xe = (less_xe ^ sign_xe);
-    card1_card_core1_dda_arc2_dda_setup2_cmd_mag_ye = (less_ye ^ sign_ye);
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs = (less_xs ^ sign_xs);
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys = (less_ys ^ sign_ys);
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe = (less_xe ^ sign_xe);
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye = (less_ye ^ sign_ye);
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_multiplier, card1_card_core1_dda_arc2_dda_setup2_twice, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dda_setup2_m_is_y, card1_card_core1_dda_arc2_dda_setup2_pick_x, card1_card_core1_dda_arc2_dda_setup2_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_total, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_control
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_latch
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant <= 3;
+        card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye <= 0;
+    end
+    else begin
+        if ((card1_card_core1_regs_fifo2_sequencer2_dda_start && card1_card_core1_regs_fifo2_sequencer2_dda_ready)) begin
+            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
+            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
+            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
+            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend <= card1_card_core1_regs_fifo2_sequencer2_dda_blend;
+            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs <= (card1_card_core1_regs_fifo2_sequencer2_dda_xs < 0);
+            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys <= (card1_card_core1_regs_fifo2_sequencer2_dda_ys < 0);
+            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe <= (card1_card_core1_regs_fifo2_sequencer2_dda_xe < 0);
+            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye <= (card1_card_core1_regs_fifo2_sequencer2_dda_ye < 0);
+            card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs;
+            card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys;
+            card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
+            card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_geometry
+    reg [2-1:0] q_s;
+    reg [2-1:0] q_e;
+    reg [2-1:0] turn;
+    reg ahead;
+    reg zero_xs;
+    reg zero_ys;
+    reg zero_xe;
+    reg zero_ye;
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_x_inward <= 0;
+    end
+    else begin
+        q_s = 2'h0;
+        q_e = 2'h0;
+        turn = 2'h0;
+        ahead = 1'b0;
+        zero_xs = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs == 0);
+        zero_ys = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys == 0);
+        zero_xe = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe == 0);
+        zero_ye = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye == 0);
+        if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw) begin
+            if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
+                q_s = 0;
+            end
+            else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!zero_ys))) begin
+                q_s = 1;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys || zero_ys))) begin
+                q_s = 2;
+            end
+            else begin
+                q_s = 3;
+            end
+            if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!zero_ye))) begin
+                q_e = 0;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
+                q_e = 1;
+            end
+            else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || zero_xe) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye)) begin
+                q_e = 2;
+            end
+            else begin
+                q_e = 3;
+            end
+            turn = (q_e - q_s);
+        end
+        else begin
+            if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!zero_ys))) begin
+                q_s = 0;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
+                q_s = 1;
+            end
+            else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || zero_xs) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys)) begin
+                q_s = 2;
+            end
+            else begin
+                q_s = 3;
+            end
+            if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
+                q_e = 0;
+            end
+            else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!zero_ye))) begin
+                q_e = 1;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye || zero_ye))) begin
+                q_e = 2;
+            end
+            else begin
+                q_e = 3;
+            end
+            turn = (q_s - q_e);
+        end
+        if ((q_s[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw)) begin
+            ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y));
+        end
+        else begin
+            ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x));
+        end
+        ahead = (ahead && (!(card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x && card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y)) && (turn == 0));
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead <= ahead;
+        card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= {1'b0, turn};
+        if (((turn == 0) && (!ahead))) begin
+            card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= 4;
+        end
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant <= q_s;
+        card1_card_core1_dda_arc2_dda_setup2_plan_x_inward <= (q_s[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
+        card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end <= (q_e[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
+        if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
+            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= (zero_xe && zero_ye);
+        end
+        else begin
+            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+        end
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand, card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder, card1_card_core1_dda_arc2_dda_setup2_root_root) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_trial
+    reg [28-1:0] value;
+    reg [27-1:0] difference;
+    value = 28'h0;
+    difference = 27'h0;
+    value = {card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder, card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+    difference = ({1'b0, value[(24 + 2)-1:0]} - {1'b0, card1_card_core1_dda_arc2_dda_setup2_root_root[24-1:0], 2'h1});
+    card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits = ((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
+    card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep = value[(24 + 2)-1:0];
+    if (((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]))) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep = difference[(24 + 2)-1:0];
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps, card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones, card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits, card1_card_core1_dda_arc2_dda_setup2_dda_root2_started) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_length
+    card1_card_core1_dda_arc2_dda_setup2_root_grows = 1'b0;
+    if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps > 1)) begin
+        card1_card_core1_dda_arc2_dda_setup2_root_grows = (card1_card_core1_dda_arc2_dda_setup2_dda_root2_started || card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits);
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps == 1)) begin
+        card1_card_core1_dda_arc2_dda_setup2_root_grows = (card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits && card1_card_core1_dda_arc2_dda_setup2_dda_root2_started && card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones);
+    end
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_digits
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_root_root <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_started <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones <= 0;
+    end
+    else begin
+        if (card1_card_core1_dda_arc2_dda_setup2_root_load) begin
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand <= card1_card_core1_dda_arc2_dda_setup2_root_radicand;
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder <= 0;
+            card1_card_core1_dda_arc2_dda_setup2_root_root <= 0;
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps <= (24 + 1);
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_started <= 1'b0;
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones <= 1'b1;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps != 0)) begin
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder <= card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep;
+            card1_card_core1_dda_arc2_dda_setup2_root_root <= {card1_card_core1_dda_arc2_dda_setup2_root_root[24-1:0], card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits};
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand <= (card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand << 2);
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps <= (card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps - 1);
+            if (card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits) begin
+                card1_card_core1_dda_arc2_dda_setup2_dda_root2_started <= 1'b1;
+            end
+            else if (card1_card_core1_dda_arc2_dda_setup2_dda_root2_started) begin
+                card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones <= 1'b0;
+            end
+        end
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_dda_arc2_dda_setup2_plan_taken, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_regs_fifo2_sequencer2_dda_line, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_sequence
+    card1_card_core1_dda_arc2_dda_setup2_next_state = card1_card_core1_dda_arc2_dda_setup2_state;
+    card1_card_core1_dda_arc2_dda_setup2_next_step = 0;
+    card1_card_core1_dda_arc2_dda_setup2_next_square = card1_card_core1_dda_arc2_dda_setup2_square;
+    if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000)) begin
+        card1_card_core1_dda_arc2_dda_setup2_next_square = 0;
+        if (card1_card_core1_regs_fifo2_sequencer2_dda_start) begin
+            card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b010;
+            if (card1_card_core1_regs_fifo2_sequencer2_dda_line) begin
+                card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b001;
+            end
+        end
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b001)) begin
+        card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b110;
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b010)) begin
+        if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (7 - 1))) begin
+            card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b011;
+        end
+        else begin
+            card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
+        end
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011)) begin
+        if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
+            card1_card_core1_dda_arc2_dda_setup2_next_square = (card1_card_core1_dda_arc2_dda_setup2_square + 1);
+            if ((card1_card_core1_dda_arc2_dda_setup2_square == 3)) begin
+                card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b100;
+            end
+        end
+        else begin
+            card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
+        end
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b100)) begin
+        if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (5 - 1))) begin
+            card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b101;
+        end
+        else begin
+            card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
+        end
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b101)) begin
+        if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (13 - 1))) begin
+            card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b110;
+        end
+        else begin
+            card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
+        end
+    end
+    else if (card1_card_core1_dda_arc2_dda_setup2_plan_taken) begin
+        card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b000;
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_multiplier, card1_card_core1_dda_arc2_dda_setup2_twice, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dda_setup2_m_is_y, card1_card_core1_dda_arc2_dda_setup2_pick_x, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_control
     reg [2-1:0] g_op;
     reg [2-1:0] o_op;
     reg [3-1:0] src;
@@ -4913,44 +5184,35 @@ always @(card1_card_core1_dda_arc2_dda_setup2_multiplier, card1_card_core1_dda_a
     on = 1'b1;
     inv = 1'b0;
     g_op = 0;
-    o_op = 0;
+    o_op = 2;
     src = 0;
     case (card1_card_core1_dda_arc2_dda_setup2_state)
         3'b010: begin
-            o_op = 3;
-            case (card1_card_core1_dda_arc2_dda_setup2_step)
-                'h0: begin
-                    src = 0;
-                end
-                'h1: begin
-                    g_op = 1;
-                    src = 1;
-                    inv = 1'b1;
-                end
-                'h2: begin
-                    g_op = 1;
-                    src = 1;
-                end
-                'h3: begin
-                    g_op = 1;
-                    src = 2;
-                    inv = 1'b1;
-                end
-                'h4: begin
-                    g_op = 2;
-                    src = 1;
-                end
-                'h5: begin
-                    g_op = 1;
-                    src = 3;
-                    inv = 1'b1;
-                end
-                default: begin
-                    g_op = 3;
-                    src = 0;
-                    inv = 1'b1;
-                end
-            endcase
+            if (((card1_card_core1_dda_arc2_dda_setup2_step == 1) || (card1_card_core1_dda_arc2_dda_setup2_step == 3) || (card1_card_core1_dda_arc2_dda_setup2_step == 5))) begin
+                inv = 1'b1;
+            end
+            if (((card1_card_core1_dda_arc2_dda_setup2_step == 0) || (card1_card_core1_dda_arc2_dda_setup2_step == 6))) begin
+                src = 0;
+                inv = (card1_card_core1_dda_arc2_dda_setup2_step == 6);
+            end
+            else if (((card1_card_core1_dda_arc2_dda_setup2_step == 1) || (card1_card_core1_dda_arc2_dda_setup2_step == 2) || (card1_card_core1_dda_arc2_dda_setup2_step == 4))) begin
+                src = 1;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 3)) begin
+                src = 2;
+            end
+            else begin
+                src = 3;
+            end
+            if ((card1_card_core1_dda_arc2_dda_setup2_step == 4)) begin
+                g_op = 2;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 6)) begin
+                g_op = 3;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step != 0)) begin
+                g_op = 1;
+            end
         end
         3'b011: begin
             o_op = 1;
@@ -4959,116 +5221,107 @@ always @(card1_card_core1_dda_arc2_dda_setup2_multiplier, card1_card_core1_dda_a
                 g_op = 1;
             end
             if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
-                o_op = 3;
-                case (card1_card_core1_dda_arc2_dda_setup2_square)
-                    'h0: begin
+                o_op = 2;
+                inv = ((card1_card_core1_dda_arc2_dda_setup2_square == 0) || (card1_card_core1_dda_arc2_dda_setup2_square == 3));
+                src = (card1_card_core1_dda_arc2_dda_setup2_square + 1);
+                if ((card1_card_core1_dda_arc2_dda_setup2_square == 3)) begin
+                    src = 0;
+                    if (card1_card_core1_dda_arc2_dda_setup2_m_is_y) begin
                         src = 1;
-                        inv = 1'b1;
                     end
-                    'h1: begin
-                        src = 2;
-                        inv = 1'b0;
-                    end
-                    'h2: begin
-                        src = 3;
-                        inv = 1'b0;
-                    end
-                    default: begin
-                        inv = 1'b0;
-                        src = 0;
-                        if (card1_card_core1_dda_arc2_dda_setup2_m_is_y) begin
-                            src = 1;
-                        end
-                    end
-                endcase
+                end
             end
         end
         3'b100: begin
+            o_op = 1;
             case (card1_card_core1_dda_arc2_dda_setup2_step)
                 'h0: begin
-                    o_op = 1;
+                    inv = 1'b1;
                 end
                 'h1: begin
                     g_op = 1;
                     o_op = 2;
+                    src = 0;
+                    if (card1_card_core1_dda_arc2_dda_setup2_m_is_y) begin
+                        src = 1;
+                    end
                 end
-                default: begin
+                'h4: begin
                     g_op = 2;
-                    o_op = 3;
+                    o_op = 2;
                     src = 4;
                 end
             endcase
         end
         3'b101: begin
             g_op = 1;
-            o_op = 3;
-            case (card1_card_core1_dda_arc2_dda_setup2_step)
-                'h0: begin
-                    src = 3;
-                    if (card1_card_core1_dda_arc2_dda_setup2_x_inward_end) begin
-                        src = 2;
+            if ((card1_card_core1_dda_arc2_dda_setup2_step == 0)) begin
+                src = 3;
+                if (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end) begin
+                    src = 2;
+                end
+                inv = 1'b1;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 1)) begin
+                g_op = 0;
+                o_op = 1;
+                inv = 1'b1;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step <= 5)) begin
+                inv = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
+                case (card1_card_core1_dda_arc2_dda_setup2_step)
+                    'h2: begin
+                        g_op = 2;
+                        src = 0;
                     end
-                    inv = 1'b1;
-                end
-                'h1: begin
-                    g_op = 0;
-                    o_op = 1;
-                    inv = 1'b1;
-                end
-                'h2: begin
-                    g_op = 2;
+                    'h3: begin
+                        src = 1;
+                    end
+                    default: begin
+                        src = 2;
+                        if ((card1_card_core1_dda_arc2_dda_setup2_step == 5)) begin
+                            src = 3;
+                        end
+                        inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end == 1);
+                    end
+                endcase
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 6)) begin
+                src = 4;
+                on = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end);
+                inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward == 1);
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 7)) begin
+                g_op = 2;
+                o_op = 0;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 8)) begin
+                g_op = 0;
+                src = 1;
+                inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward == 1);
+                if (card1_card_core1_dda_arc2_dda_setup2_pick_x) begin
                     src = 0;
                     inv = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
                 end
-                'h3: begin
-                    src = 1;
-                    inv = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
-                end
-                'h4: begin
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 9)) begin
+                src = 3;
+                inv = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end);
+                if (card1_card_core1_dda_arc2_dda_setup2_pick_x) begin
                     src = 2;
-                    inv = (card1_card_core1_dda_arc2_dda_setup2_x_inward_end == 1);
+                    inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end == 1);
                 end
-                'h5: begin
-                    src = 3;
-                    inv = (card1_card_core1_dda_arc2_dda_setup2_x_inward_end == 1);
-                end
-                'h6: begin
-                    src = 4;
-                    on = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_x_inward_end);
-                    inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward == 1);
-                end
-                'h7: begin
-                    g_op = 2;
-                    src = 1;
-                    inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward == 1);
-                    if ((!card1_card_core1_dda_arc2_dda_setup2_total[(27 - 1)])) begin
-                        src = 0;
-                        inv = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
-                    end
-                end
-                'h8: begin
-                    src = 3;
-                    inv = (!card1_card_core1_dda_arc2_dda_setup2_x_inward_end);
-                    if (card1_card_core1_dda_arc2_dda_setup2_pick_x) begin
-                        src = 2;
-                        inv = (card1_card_core1_dda_arc2_dda_setup2_x_inward_end == 1);
-                    end
-                end
-                'h9: begin
-                    src = 4;
-                    on = (card1_card_core1_dda_arc2_dda_setup2_twice != 0);
-                end
-                'ha: begin
-                    src = 4;
+            end
+            else begin
+                src = 4;
+                on = (card1_card_core1_dda_arc2_dda_setup2_twice != 0);
+                if ((card1_card_core1_dda_arc2_dda_setup2_step == 11)) begin
                     on = (card1_card_core1_dda_arc2_dda_setup2_twice == 2);
                 end
-                default: begin
-                    o_op = 0;
-                end
-            endcase
+            end
         end
         default: begin
-            g_op = 0;
+            o_op = 0;
         end
     endcase
     card1_card_core1_dda_arc2_dda_setup2_gap_op = g_op;
@@ -5079,75 +5332,79 @@ always @(card1_card_core1_dda_arc2_dda_setup2_multiplier, card1_card_core1_dda_a
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_twice, card1_card_core1_dda_arc2_dda_setup2_root, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dda_setup2_pick_x, card1_card_core1_dda_arc2_dda_setup2_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_carry_in
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_carry_in
     reg cin;
-    cin = 1'b0;
-    case (card1_card_core1_dda_arc2_dda_setup2_state)
-        3'b010: begin
-            cin = ((card1_card_core1_dda_arc2_dda_setup2_step == 2) || (card1_card_core1_dda_arc2_dda_setup2_step == 4) || (card1_card_core1_dda_arc2_dda_setup2_step == 6));
-        end
-        3'b011: begin
-            cin = (card1_card_core1_dda_arc2_dda_setup2_square < 2);
-        end
-        3'b101: begin
-            if ((card1_card_core1_dda_arc2_dda_setup2_step == 0)) begin
-                cin = 1'b1;
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_dda_setup2_carry <= 0;
+    end
+    else begin
+        cin = 1'b0;
+        case (card1_card_core1_dda_arc2_dda_setup2_next_state)
+            3'b010: begin
+                cin = ((card1_card_core1_dda_arc2_dda_setup2_next_step == 2) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 4) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 6));
             end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 2)) begin
-                cin = (card1_card_core1_dda_arc2_dda_setup2_root[0] == 1);
+            3'b011: begin
+                cin = (card1_card_core1_dda_arc2_dda_setup2_next_square < 2);
             end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_step == 3) || (card1_card_core1_dda_arc2_dda_setup2_step == 4))) begin
-                cin = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
+            3'b100: begin
+                cin = (card1_card_core1_dda_arc2_dda_setup2_next_step == 4);
             end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_step == 5) || (card1_card_core1_dda_arc2_dda_setup2_step == 6))) begin
-                cin = (card1_card_core1_dda_arc2_dda_setup2_x_inward_end == 1);
+            3'b101: begin
+                if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 0)) begin
+                    cin = 1'b1;
+                end
+                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 2)) begin
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] == 1);
+                end
+                else if (((card1_card_core1_dda_arc2_dda_setup2_next_step == 3) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 4))) begin
+                    cin = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
+                end
+                else if (((card1_card_core1_dda_arc2_dda_setup2_next_step == 5) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 6))) begin
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end == 1);
+                end
+                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 7)) begin
+                    cin = ((card1_card_core1_dda_arc2_dda_setup2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end) && (card1_card_core1_dda_arc2_dda_setup2_root_root[0] != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward));
+                end
+                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 9)) begin
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_pick_x != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
+                end
+                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 10)) begin
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_pick_x == card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end);
+                end
+                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 11)) begin
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] && (card1_card_core1_dda_arc2_dda_setup2_twice != 0));
+                end
+                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 12)) begin
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] && (card1_card_core1_dda_arc2_dda_setup2_twice == 2));
+                end
             end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 7)) begin
-                cin = ((card1_card_core1_dda_arc2_dda_setup2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_x_inward_end) && (card1_card_core1_dda_arc2_dda_setup2_root[0] != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward));
+            default: begin
+                cin = 1'b0;
             end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 8)) begin
-                cin = (card1_card_core1_dda_arc2_dda_setup2_pick_x != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 9)) begin
-                cin = (card1_card_core1_dda_arc2_dda_setup2_pick_x == card1_card_core1_dda_arc2_dda_setup2_x_inward_end);
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 10)) begin
-                cin = (card1_card_core1_dda_arc2_dda_setup2_root[0] && (card1_card_core1_dda_arc2_dda_setup2_twice != 0));
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 11)) begin
-                cin = (card1_card_core1_dda_arc2_dda_setup2_root[0] && (card1_card_core1_dda_arc2_dda_setup2_twice == 2));
-            end
-        end
-        default: begin
-            cin = 1'b0;
-        end
-    endcase
-    card1_card_core1_dda_arc2_dda_setup2_carry = cin;
+        endcase
+        card1_card_core1_dda_arc2_dda_setup2_carry <= cin;
+    end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_ahead, card1_card_core1_dda_arc2_dda_setup2_pick_x, card1_card_core1_dda_arc2_dda_setup2_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_plan_crossings, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward) begin: card1_card_core1_dda_arc2_dda_setup2_rq_terms
-    reg starts_inward;
-    reg ends_inward;
+always @(card1_card_core1_dda_arc2_dda_setup2_plan_crossings, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_pick_x) begin: card1_card_core1_dda_arc2_dda_setup2_rq_terms
     reg [3-1:0] count;
-    starts_inward = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward == card1_card_core1_dda_arc2_dda_setup2_pick_x);
-    ends_inward = (card1_card_core1_dda_arc2_dda_setup2_x_inward_end == card1_card_core1_dda_arc2_dda_setup2_pick_x);
     count = 3'h0;
     count = (card1_card_core1_dda_arc2_dda_setup2_plan_crossings - 1);
-    if ((!starts_inward)) begin
+    if ((card1_card_core1_dda_arc2_dda_setup2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_pick_x)) begin
         count = (count + 1);
     end
-    if (ends_inward) begin
+    if ((card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end == card1_card_core1_dda_arc2_dda_setup2_pick_x)) begin
         count = (count + 1);
     end
     card1_card_core1_dda_arc2_dda_setup2_twice = count[3-1:1];
-    if ((card1_card_core1_dda_arc2_dda_setup2_plan_ahead || (card1_card_core1_dda_arc2_dda_setup2_plan_crossings == 0))) begin
+    if ((card1_card_core1_dda_arc2_dda_setup2_plan_crossings == 0)) begin
         card1_card_core1_dda_arc2_dda_setup2_twice = 0;
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_root, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_source, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye, card1_card_core1_dda_arc2_dda_setup2_source_on) begin: card1_card_core1_dda_arc2_dda_setup2_select_source
+always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_source, card1_card_core1_dda_arc2_dda_setup2_root_root, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye, card1_card_core1_dda_arc2_dda_setup2_source_on) begin: card1_card_core1_dda_arc2_dda_setup2_select_source
     reg [25-1:0] value;
     value = 25'h0;
     case (card1_card_core1_dda_arc2_dda_setup2_source)
@@ -5164,7 +5421,7 @@ always @(card1_card_core1_dda_arc2_dda_setup2_root, card1_card_core1_dda_arc2_dd
             value = {1'b0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye};
         end
         default: begin
-            value = card1_card_core1_dda_arc2_dda_setup2_root;
+            value = card1_card_core1_dda_arc2_dda_setup2_root_root;
         end
     endcase
     if ((!card1_card_core1_dda_arc2_dda_setup2_source_on)) begin
@@ -5176,14 +5433,19 @@ end
 
 
 assign card1_card_core1_dda_arc2_dda_setup2_total = ((card1_card_core1_dda_arc2_dda_setup2_gap + card1_card_core1_dda_arc2_dda_setup2_operand) + {48'h0, card1_card_core1_dda_arc2_dda_setup2_carry});
+assign card1_card_core1_dda_arc2_dda_setup2_root_radicand = (~card1_card_core1_dda_arc2_dda_setup2_gap[(2 * 24)-1:0]);
+assign card1_card_core1_dda_arc2_dda_setup2_root_load = ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && (card1_card_core1_dda_arc2_dda_setup2_square == 2) && (card1_card_core1_dda_arc2_dda_setup2_step == 0));
 
 
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_datapath
     reg [49-1:0] loaded;
     if (card1_card_core1_dda_reset == 0) begin
         card1_card_core1_dda_arc2_dda_setup2_multiplier <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_operand <= 0;
         card1_card_core1_dda_arc2_dda_setup2_gap <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_operand <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_step <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_square <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_state <= 3'b000;
     end
     else begin
         loaded = 49'h0;
@@ -5203,9 +5465,6 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
                 card1_card_core1_dda_arc2_dda_setup2_operand <= {card1_card_core1_dda_arc2_dda_setup2_operand[(49 - 1)-1:0], card1_card_core1_dda_arc2_dda_setup2_invert};
             end
             'h2: begin
-                card1_card_core1_dda_arc2_dda_setup2_operand <= (~{card1_card_core1_dda_arc2_dda_setup2_operand[(49 - 1)-1:0], 1'b0});
-            end
-            'h3: begin
                 loaded = {24'h0, card1_card_core1_dda_arc2_dda_setup2_source_value};
                 if ((card1_card_core1_dda_arc2_dda_setup2_invert && card1_card_core1_dda_arc2_dda_setup2_source_on)) begin
                     loaded = (~loaded);
@@ -5213,74 +5472,18 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
                 card1_card_core1_dda_arc2_dda_setup2_operand <= loaded;
             end
         endcase
-        if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011)) begin
+        if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && ($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) != (24 - 1)))) begin
             card1_card_core1_dda_arc2_dda_setup2_multiplier <= (card1_card_core1_dda_arc2_dda_setup2_multiplier >>> 1);
-            if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
-                card1_card_core1_dda_arc2_dda_setup2_multiplier <= card1_card_core1_dda_arc2_dda_setup2_source_value[24-1:0];
-            end
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b010) && (card1_card_core1_dda_arc2_dda_setup2_step == 6))) begin
+        else if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b010) || (card1_card_core1_dda_arc2_dda_setup2_state == 3'b011))) begin
             card1_card_core1_dda_arc2_dda_setup2_multiplier <= card1_card_core1_dda_arc2_dda_setup2_source_value[24-1:0];
         end
-        if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000) && card1_card_core1_regs_fifo2_sequencer2_dda_start)) begin
+        if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000)) begin
             card1_card_core1_dda_arc2_dda_setup2_gap <= 0;
         end
-    end
-end
-
-
-always @(card1_card_core1_dda_arc2_dda_setup2_radicand, card1_card_core1_dda_arc2_dda_setup2_remainder, card1_card_core1_dda_arc2_dda_setup2_root) begin: card1_card_core1_dda_arc2_dda_setup2_root_trial
-    reg [28-1:0] trial;
-    reg [27-1:0] difference;
-    trial = 28'h0;
-    difference = 27'h0;
-    trial = {card1_card_core1_dda_arc2_dda_setup2_remainder, card1_card_core1_dda_arc2_dda_setup2_radicand[(2 * 24)-1:((2 * 24) - 2)]};
-    difference = ({1'b0, trial[(24 + 2)-1:0]} - {1'b0, card1_card_core1_dda_arc2_dda_setup2_root[24-1:0], 2'h1});
-    card1_card_core1_dda_arc2_dda_setup2_trial_fits = ((trial[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
-    card1_card_core1_dda_arc2_dda_setup2_trial_keep = trial[(24 + 2)-1:0];
-    if (((trial[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]))) begin
-        card1_card_core1_dda_arc2_dda_setup2_trial_keep = difference[(24 + 2)-1:0];
-    end
-end
-
-
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_square_root
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_root_started <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_root <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_root_all_ones <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_radicand <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_remainder <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_root_steps <= 0;
-    end
-    else begin
-        if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && (card1_card_core1_dda_arc2_dda_setup2_square == 1) && ($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1)))) begin
-            if (card1_card_core1_dda_arc2_dda_setup2_multiplier[0]) begin
-                card1_card_core1_dda_arc2_dda_setup2_radicand <= (~card1_card_core1_dda_arc2_dda_setup2_total[(2 * 24)-1:0]);
-            end
-            else begin
-                card1_card_core1_dda_arc2_dda_setup2_radicand <= (~card1_card_core1_dda_arc2_dda_setup2_gap[(2 * 24)-1:0]);
-            end
-            card1_card_core1_dda_arc2_dda_setup2_remainder <= 0;
-            card1_card_core1_dda_arc2_dda_setup2_root <= 0;
-            card1_card_core1_dda_arc2_dda_setup2_root_steps <= (24 + 1);
-            card1_card_core1_dda_arc2_dda_setup2_root_started <= 1'b0;
-            card1_card_core1_dda_arc2_dda_setup2_root_all_ones <= 1'b1;
-        end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_root_steps != 0)) begin
-            card1_card_core1_dda_arc2_dda_setup2_remainder <= card1_card_core1_dda_arc2_dda_setup2_trial_keep;
-            card1_card_core1_dda_arc2_dda_setup2_root <= {card1_card_core1_dda_arc2_dda_setup2_root[24-1:0], card1_card_core1_dda_arc2_dda_setup2_trial_fits};
-            card1_card_core1_dda_arc2_dda_setup2_radicand <= (card1_card_core1_dda_arc2_dda_setup2_radicand << 2);
-            card1_card_core1_dda_arc2_dda_setup2_root_steps <= (card1_card_core1_dda_arc2_dda_setup2_root_steps - 1);
-            if ((card1_card_core1_dda_arc2_dda_setup2_root_steps != 1)) begin
-                if (card1_card_core1_dda_arc2_dda_setup2_trial_fits) begin
-                    card1_card_core1_dda_arc2_dda_setup2_root_started <= 1'b1;
-                end
-                else if (card1_card_core1_dda_arc2_dda_setup2_root_started) begin
-                    card1_card_core1_dda_arc2_dda_setup2_root_all_ones <= 1'b0;
-                end
-            end
-        end
+        card1_card_core1_dda_arc2_dda_setup2_state <= card1_card_core1_dda_arc2_dda_setup2_next_state;
+        card1_card_core1_dda_arc2_dda_setup2_step <= card1_card_core1_dda_arc2_dda_setup2_next_step;
+        card1_card_core1_dda_arc2_dda_setup2_square <= card1_card_core1_dda_arc2_dda_setup2_next_square;
     end
 end
 
@@ -5296,15 +5499,19 @@ end
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_threshold
     reg shift;
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= 0;
         card1_card_core1_dda_arc2_dda_setup2_ones_left <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_grew <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_acc_bits <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= 0;
         card1_card_core1_dda_arc2_dda_setup2_plan_too_wide <= 0;
     end
     else begin
         shift = 1'b0;
+        card1_card_core1_dda_arc2_dda_setup2_grew <= card1_card_core1_dda_arc2_dda_setup2_root_grows;
         if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000) && card1_card_core1_regs_fifo2_sequencer2_dda_start)) begin
             card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= 0;
             card1_card_core1_dda_arc2_dda_setup2_plan_too_wide <= 1'b0;
+            card1_card_core1_dda_arc2_dda_setup2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
             if ((card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits != 0)) begin
                 card1_card_core1_dda_arc2_dda_setup2_ones_left <= ({1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits} + {1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift});
             end
@@ -5320,10 +5527,7 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
                 shift = 1'b1;
                 card1_card_core1_dda_arc2_dda_setup2_ones_left <= (card1_card_core1_dda_arc2_dda_setup2_ones_left - 1);
             end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_root_steps > 1) && (card1_card_core1_dda_arc2_dda_setup2_acc_bits == 0) && (card1_card_core1_dda_arc2_dda_setup2_root_started || card1_card_core1_dda_arc2_dda_setup2_trial_fits))) begin
-                shift = 1'b1;
-            end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_root_steps == 1) && (card1_card_core1_dda_arc2_dda_setup2_acc_bits == 0) && card1_card_core1_dda_arc2_dda_setup2_trial_fits && card1_card_core1_dda_arc2_dda_setup2_root_all_ones && card1_card_core1_dda_arc2_dda_setup2_root_started)) begin
+            else if (((card1_card_core1_dda_arc2_dda_setup2_acc_bits == 0) && card1_card_core1_dda_arc2_dda_setup2_grew)) begin
                 shift = 1'b1;
             end
             if (shift) begin
@@ -5338,20 +5542,22 @@ end
 
 
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_captures
+    reg sign;
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_shrink_y_neg <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y <= 0;
         card1_card_core1_dda_arc2_dda_setup2_plan_totals_max <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_shrink_x_neg <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_shrink_y_zero <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_radius <= 0;
         card1_card_core1_dda_arc2_dda_setup2_plan_beyond <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_shrink_x_zero <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_radius <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x <= 0;
         card1_card_core1_dda_arc2_dda_setup2_pick_x <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x <= 0;
         card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff <= 0;
         card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= 0;
         card1_card_core1_dda_arc2_dda_setup2_m_is_y <= 0;
     end
     else begin
+        sign = card1_card_core1_dda_arc2_dda_setup2_total[(49 - 1)];
         case (card1_card_core1_dda_arc2_dda_setup2_state)
             3'b000: begin
                 card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= 1'b0;
@@ -5359,23 +5565,20 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             3'b010: begin
                 case (card1_card_core1_dda_arc2_dda_setup2_step)
                     'h2: begin
-                        card1_card_core1_dda_arc2_dda_setup2_m_is_y <= card1_card_core1_dda_arc2_dda_setup2_total[(49 - 1)];
+                        card1_card_core1_dda_arc2_dda_setup2_m_is_y <= sign;
                     end
                     'h4: begin
-                        card1_card_core1_dda_arc2_dda_setup2_shrink_x_neg <= card1_card_core1_dda_arc2_dda_setup2_total[(49 - 1)];
-                        card1_card_core1_dda_arc2_dda_setup2_shrink_x_zero <= (card1_card_core1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
+                        card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x <= sign;
+                        card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x <= (card1_card_core1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
                     end
                     'h6: begin
-                        card1_card_core1_dda_arc2_dda_setup2_shrink_y_neg <= card1_card_core1_dda_arc2_dda_setup2_total[(49 - 1)];
-                        card1_card_core1_dda_arc2_dda_setup2_shrink_y_zero <= (card1_card_core1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
+                        card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y <= sign;
+                        card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y <= (card1_card_core1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
                     end
                 endcase
             end
             3'b100: begin
-                if ((card1_card_core1_dda_arc2_dda_setup2_step == 1)) begin
-                    card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= card1_card_core1_dda_arc2_dda_setup2_total[(49 - 1)];
-                end
-                else if (((card1_card_core1_dda_arc2_dda_setup2_step == 2) && (!card1_card_core1_dda_arc2_dda_setup2_total[(49 - 1)]))) begin
+                if ((((card1_card_core1_dda_arc2_dda_setup2_step == 1) && (!sign)) || ((card1_card_core1_dda_arc2_dda_setup2_step == 4) && sign))) begin
                     card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= 1'b1;
                 end
             end
@@ -5385,13 +5588,13 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
                         card1_card_core1_dda_arc2_dda_setup2_plan_radius <= card1_card_core1_dda_arc2_dda_setup2_total[(24 + 2)-1:1];
                     end
                     'h2: begin
-                        card1_card_core1_dda_arc2_dda_setup2_plan_beyond <= card1_card_core1_dda_arc2_dda_setup2_total[(49 - 1)];
+                        card1_card_core1_dda_arc2_dda_setup2_plan_beyond <= sign;
                     end
                     'h7: begin
                         card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff <= $signed(card1_card_core1_dda_arc2_dda_setup2_total[27-1:0]);
                         card1_card_core1_dda_arc2_dda_setup2_pick_x <= (!card1_card_core1_dda_arc2_dda_setup2_total[(27 - 1)]);
                     end
-                    'hb: begin
+                    'hc: begin
                         card1_card_core1_dda_arc2_dda_setup2_plan_totals_max <= card1_card_core1_dda_arc2_dda_setup2_total[27-1:0];
                     end
                 endcase
@@ -5408,213 +5611,13 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_sequence
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_plan_neg_ye <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_ccw <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_state <= 3'b000;
-        card1_card_core1_dda_arc2_dda_setup2_plan_neg_xe <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_line <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_blend <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_step <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_acc_bits <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_square <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_neg_xs <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_neg_ys <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_variant <= 3;
-        card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye <= 0;
-    end
-    else begin
-        if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000)) begin
-            if (card1_card_core1_regs_fifo2_sequencer2_dda_start) begin
-                card1_card_core1_dda_arc2_dda_setup2_plan_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
-                card1_card_core1_dda_arc2_dda_setup2_plan_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
-                card1_card_core1_dda_arc2_dda_setup2_plan_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
-                card1_card_core1_dda_arc2_dda_setup2_plan_blend <= card1_card_core1_regs_fifo2_sequencer2_dda_blend;
-                card1_card_core1_dda_arc2_dda_setup2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
-                card1_card_core1_dda_arc2_dda_setup2_neg_xs <= (card1_card_core1_regs_fifo2_sequencer2_dda_xs < 0);
-                card1_card_core1_dda_arc2_dda_setup2_neg_ys <= (card1_card_core1_regs_fifo2_sequencer2_dda_ys < 0);
-                card1_card_core1_dda_arc2_dda_setup2_plan_neg_xe <= (card1_card_core1_regs_fifo2_sequencer2_dda_xe < 0);
-                card1_card_core1_dda_arc2_dda_setup2_plan_neg_ye <= (card1_card_core1_regs_fifo2_sequencer2_dda_ye < 0);
-                card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs <= card1_card_core1_dda_arc2_dda_setup2_cmd_mag_xs;
-                card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys <= card1_card_core1_dda_arc2_dda_setup2_cmd_mag_ys;
-                card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe <= card1_card_core1_dda_arc2_dda_setup2_cmd_mag_xe;
-                card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye <= card1_card_core1_dda_arc2_dda_setup2_cmd_mag_ye;
-                card1_card_core1_dda_arc2_dda_setup2_step <= 0;
-                card1_card_core1_dda_arc2_dda_setup2_square <= 0;
-                if (card1_card_core1_regs_fifo2_sequencer2_dda_line) begin
-                    card1_card_core1_dda_arc2_dda_setup2_state <= 3'b001;
-                end
-                else begin
-                    card1_card_core1_dda_arc2_dda_setup2_state <= 3'b010;
-                end
-            end
-        end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b001)) begin
-            card1_card_core1_dda_arc2_dda_setup2_state <= 3'b110;
-        end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b010)) begin
-            if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (7 - 1))) begin
-                card1_card_core1_dda_arc2_dda_setup2_step <= 0;
-                card1_card_core1_dda_arc2_dda_setup2_state <= 3'b011;
-            end
-            else begin
-                card1_card_core1_dda_arc2_dda_setup2_step <= (card1_card_core1_dda_arc2_dda_setup2_step + 1);
-            end
-        end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011)) begin
-            if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
-                card1_card_core1_dda_arc2_dda_setup2_step <= 0;
-                card1_card_core1_dda_arc2_dda_setup2_square <= (card1_card_core1_dda_arc2_dda_setup2_square + 1);
-                if ((card1_card_core1_dda_arc2_dda_setup2_square == 3)) begin
-                    card1_card_core1_dda_arc2_dda_setup2_state <= 3'b100;
-                end
-            end
-            else begin
-                card1_card_core1_dda_arc2_dda_setup2_step <= (card1_card_core1_dda_arc2_dda_setup2_step + 1);
-            end
-        end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b100)) begin
-            if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (3 - 1))) begin
-                card1_card_core1_dda_arc2_dda_setup2_step <= 0;
-                card1_card_core1_dda_arc2_dda_setup2_state <= 3'b101;
-            end
-            else begin
-                card1_card_core1_dda_arc2_dda_setup2_step <= (card1_card_core1_dda_arc2_dda_setup2_step + 1);
-            end
-        end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b101)) begin
-            if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (12 - 1))) begin
-                card1_card_core1_dda_arc2_dda_setup2_step <= 0;
-                card1_card_core1_dda_arc2_dda_setup2_state <= 3'b110;
-            end
-            else begin
-                card1_card_core1_dda_arc2_dda_setup2_step <= (card1_card_core1_dda_arc2_dda_setup2_step + 1);
-            end
-        end
-        else if (card1_card_core1_dda_arc2_dda_setup2_plan_taken) begin
-            card1_card_core1_dda_arc2_dda_setup2_state <= 3'b000;
-        end
-    end
-end
-
-
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_geometry
-    reg [2-1:0] q_s;
-    reg [2-1:0] q_e;
-    reg [2-1:0] turn;
-    reg ahead;
-    reg zero_xs;
-    reg zero_ys;
-    reg zero_xe;
-    reg zero_ye;
-    reg [1-1:0] ccw;
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_plan_ahead <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_quadrant <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_x_inward_end <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_centre <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_x_inward <= 0;
-    end
-    else begin
-        q_s = 2'h0;
-        q_e = 2'h0;
-        turn = 2'h0;
-        ahead = 1'b0;
-        zero_xs = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs == 0);
-        zero_ys = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys == 0);
-        zero_xe = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe == 0);
-        zero_ye = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye == 0);
-        ccw = card1_card_core1_dda_arc2_dda_setup2_plan_ccw;
-        if (ccw) begin
-            if (((!card1_card_core1_dda_arc2_dda_setup2_neg_xs) && (!zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_neg_ys))) begin
-                q_s = 0;
-            end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_neg_xs || zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_neg_ys) && (!zero_ys))) begin
-                q_s = 1;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_neg_xs && (card1_card_core1_dda_arc2_dda_setup2_neg_ys || zero_ys))) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!card1_card_core1_dda_arc2_dda_setup2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_plan_neg_ye) && (!zero_ye))) begin
-                q_e = 0;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_plan_neg_xe && (!card1_card_core1_dda_arc2_dda_setup2_plan_neg_ye))) begin
-                q_e = 1;
-            end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_plan_neg_xe || zero_xe) && card1_card_core1_dda_arc2_dda_setup2_plan_neg_ye)) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_e - q_s);
-        end
-        else begin
-            if (((!card1_card_core1_dda_arc2_dda_setup2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_neg_ys) && (!zero_ys))) begin
-                q_s = 0;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_neg_xs && (!card1_card_core1_dda_arc2_dda_setup2_neg_ys))) begin
-                q_s = 1;
-            end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_neg_xs || zero_xs) && card1_card_core1_dda_arc2_dda_setup2_neg_ys)) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!card1_card_core1_dda_arc2_dda_setup2_plan_neg_xe) && (!zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_plan_neg_ye))) begin
-                q_e = 0;
-            end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_plan_neg_xe || zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_plan_neg_ye) && (!zero_ye))) begin
-                q_e = 1;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_plan_neg_xe && (card1_card_core1_dda_arc2_dda_setup2_plan_neg_ye || zero_ye))) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_s - q_e);
-        end
-        if ((q_s[0] != ccw)) begin
-            ahead = ((!card1_card_core1_dda_arc2_dda_setup2_shrink_x_neg) && (card1_card_core1_dda_arc2_dda_setup2_shrink_y_neg || card1_card_core1_dda_arc2_dda_setup2_shrink_y_zero));
-        end
-        else begin
-            ahead = ((!card1_card_core1_dda_arc2_dda_setup2_shrink_y_neg) && (card1_card_core1_dda_arc2_dda_setup2_shrink_x_neg || card1_card_core1_dda_arc2_dda_setup2_shrink_x_zero));
-        end
-        card1_card_core1_dda_arc2_dda_setup2_plan_ahead <= ((turn == 0) && ahead && (!(card1_card_core1_dda_arc2_dda_setup2_shrink_x_zero && card1_card_core1_dda_arc2_dda_setup2_shrink_y_zero)));
-        card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= {1'b0, turn};
-        if (((turn == 0) && (!(ahead && (!(card1_card_core1_dda_arc2_dda_setup2_shrink_x_zero && card1_card_core1_dda_arc2_dda_setup2_shrink_y_zero)))))) begin
-            card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= 4;
-        end
-        card1_card_core1_dda_arc2_dda_setup2_plan_quadrant <= q_s;
-        card1_card_core1_dda_arc2_dda_setup2_plan_x_inward <= (q_s[0] != ccw);
-        card1_card_core1_dda_arc2_dda_setup2_x_inward_end <= (q_e[0] != ccw);
-        if (card1_card_core1_dda_arc2_dda_setup2_plan_line) begin
-            card1_card_core1_dda_arc2_dda_setup2_plan_centre <= (zero_xe && zero_ye);
-        end
-        else begin
-            card1_card_core1_dda_arc2_dda_setup2_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
-        end
-    end
-end
-
-
 
 assign card1_card_core1_regs_fifo2_sequencer2_dda_ready = (card1_card_core1_dda_arc2_dda_setup2_state == 3'b000);
 assign card1_card_core1_dda_arc2_dda_setup2_plan_done = (card1_card_core1_dda_arc2_dda_setup2_state == 3'b110);
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_lookup_variant
-    case (card1_card_core1_dda_arc2_dda_setup2_plan_variant)
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_lookup_variant
+    case (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant)
         0: card1_card_core1_dda_arc2_dda_check2_variant_built = 0;
         1: card1_card_core1_dda_arc2_dda_check2_variant_built = 0;
         2: card1_card_core1_dda_arc2_dda_check2_variant_built = 1;
@@ -5628,34 +5631,34 @@ assign card1_card_core1_dda_arc2_dda_check2_move_offer = card1_card_core1_dda_ar
 assign card1_card_core1_dda_arc2_dda_setup2_plan_taken = card1_card_core1_dda_arc2_dda_check2_move_take;
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_ahead, card1_card_core1_dda_arc2_dda_check2_variant_built, card1_card_core1_dda_arc2_dda_setup2_plan_beyond, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_plan_too_wide, card1_card_core1_dda_arc2_dda_setup2_plan_line, card1_card_core1_dda_arc2_dda_setup2_plan_centre, card1_card_core1_dda_arc2_dda_setup2_plan_off_circle, card1_card_core1_dda_arc2_dda_setup2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_validate
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead, card1_card_core1_dda_arc2_dda_check2_variant_built, card1_card_core1_dda_arc2_dda_setup2_plan_beyond, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_plan_too_wide, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre, card1_card_core1_dda_arc2_dda_setup2_plan_off_circle, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_validate
     reg bad;
-    bad = (card1_card_core1_dda_arc2_dda_setup2_plan_centre || card1_card_core1_dda_arc2_dda_setup2_plan_off_circle || (card1_card_core1_dda_arc2_dda_setup2_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
-    if (((!card1_card_core1_dda_arc2_dda_setup2_plan_ahead) && card1_card_core1_dda_arc2_dda_setup2_plan_beyond)) begin
+    bad = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre || card1_card_core1_dda_arc2_dda_setup2_plan_off_circle || (card1_card_core1_dda_arc2_dda_setup2_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
+    if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead) && card1_card_core1_dda_arc2_dda_setup2_plan_beyond)) begin
         bad = 1'b1;
     end
-    if (((card1_card_core1_dda_arc2_dda_setup2_plan_variant != 3) && card1_card_core1_dda_arc2_dda_setup2_plan_too_wide)) begin
+    if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant != 3) && card1_card_core1_dda_arc2_dda_setup2_plan_too_wide)) begin
         bad = 1'b1;
     end
     if ((!card1_card_core1_dda_arc2_dda_check2_variant_built)) begin
         bad = 1'b1;
     end
-    card1_card_core1_dda_arc2_dda_check2_move_error = (bad && (!card1_card_core1_dda_arc2_dda_setup2_plan_line));
-    card1_card_core1_dda_arc2_dda_check2_move_zero = (card1_card_core1_dda_arc2_dda_setup2_plan_line && card1_card_core1_dda_arc2_dda_setup2_plan_centre);
+    card1_card_core1_dda_arc2_dda_check2_move_error = (bad && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line));
+    card1_card_core1_dda_arc2_dda_check2_move_zero = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre);
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_neg_ye, card1_card_core1_dda_arc2_dda_setup2_plan_quadrant, card1_card_core1_dda_arc2_dda_setup2_plan_ccw, card1_card_core1_dda_arc2_dda_setup2_plan_neg_xe, card1_card_core1_dda_arc2_dda_setup2_plan_line, card1_card_core1_dda_arc2_dda_setup2_plan_blend, card1_card_core1_dda_arc2_dda_setup2_plan_crossings, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_geometry
-    card1_card_core1_dda_arc2_dda_check2_move_line = card1_card_core1_dda_arc2_dda_setup2_plan_line;
-    card1_card_core1_dda_arc2_dda_check2_move_variant = card1_card_core1_dda_arc2_dda_setup2_plan_variant;
-    card1_card_core1_dda_arc2_dda_check2_move_ccw = card1_card_core1_dda_arc2_dda_setup2_plan_ccw;
-    card1_card_core1_dda_arc2_dda_check2_move_blend = card1_card_core1_dda_arc2_dda_setup2_plan_blend;
-    card1_card_core1_dda_arc2_dda_check2_move_right = (!card1_card_core1_dda_arc2_dda_setup2_plan_neg_xe);
-    card1_card_core1_dda_arc2_dda_check2_move_up = (!card1_card_core1_dda_arc2_dda_setup2_plan_neg_ye);
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend, card1_card_core1_dda_arc2_dda_setup2_plan_crossings, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_geometry
+    card1_card_core1_dda_arc2_dda_check2_move_line = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line;
+    card1_card_core1_dda_arc2_dda_check2_move_variant = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant;
+    card1_card_core1_dda_arc2_dda_check2_move_ccw = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw;
+    card1_card_core1_dda_arc2_dda_check2_move_blend = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend;
+    card1_card_core1_dda_arc2_dda_check2_move_right = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe);
+    card1_card_core1_dda_arc2_dda_check2_move_up = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye);
     card1_card_core1_dda_arc2_dda_check2_move_x_inward = card1_card_core1_dda_arc2_dda_setup2_plan_x_inward;
-    card1_card_core1_dda_arc2_dda_check2_move_quadrant = card1_card_core1_dda_arc2_dda_setup2_plan_quadrant;
+    card1_card_core1_dda_arc2_dda_check2_move_quadrant = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant;
     card1_card_core1_dda_arc2_dda_check2_move_crossings = card1_card_core1_dda_arc2_dda_setup2_plan_crossings;
-    if (card1_card_core1_dda_arc2_dda_setup2_plan_line) begin
+    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
         card1_card_core1_dda_arc2_dda_check2_move_quadrant = 0;
         card1_card_core1_dda_arc2_dda_check2_move_crossings = 0;
     end
@@ -5674,10 +5677,10 @@ always @(card1_card_core1_dda_arc2_dda_setup2_plan_neg_ye, card1_card_core1_dda_
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_totals_max, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_plan_line, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys, card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye) begin: card1_card_core1_dda_arc2_dda_check2_magnitudes
+always @(card1_card_core1_dda_arc2_dda_setup2_plan_totals_max, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys, card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye) begin: card1_card_core1_dda_arc2_dda_check2_magnitudes
     card1_card_core1_dda_arc2_dda_check2_move_mag_x = card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs;
     card1_card_core1_dda_arc2_dda_check2_move_mag_y = card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys;
-    if (card1_card_core1_dda_arc2_dda_setup2_plan_line) begin
+    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
         card1_card_core1_dda_arc2_dda_check2_move_mag_x = card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye;
         card1_card_core1_dda_arc2_dda_check2_move_mag_y = card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe;
     end
@@ -5689,7 +5692,7 @@ always @(card1_card_core1_dda_arc2_dda_setup2_plan_totals_max, card1_card_core1_
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_threshold, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_plan_line, card1_card_core1_dda_arc2_dda_setup2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_thresholds
+always @(card1_card_core1_dda_arc2_dda_setup2_plan_threshold, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_thresholds
     reg [28-1:0] less;
     reg [30-1:0] below;
     reg [29-1:0] ones;
@@ -5697,18 +5700,18 @@ always @(card1_card_core1_dda_arc2_dda_setup2_plan_threshold, card1_card_core1_d
     below = 30'h0;
     ones = 29'h0;
     less = card1_card_core1_dda_arc2_dda_setup2_plan_threshold;
-    if (((!card1_card_core1_dda_arc2_dda_setup2_plan_line) && ((!1'b1) || (card1_card_core1_dda_arc2_dda_setup2_plan_variant == 3)))) begin
+    if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) && ((!1'b1) || (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant == 3)))) begin
         less = 0;
         less[24-1:0] = card1_card_core1_dda_arc2_dda_setup2_plan_radius[24-1:0];
     end
     card1_card_core1_dda_arc2_dda_check2_move_threshold = less;
     below = (~{3'h0, less[28-1:1]});
-    if ((1'b1 && (!card1_card_core1_dda_arc2_dda_setup2_plan_line) && ((card1_card_core1_dda_arc2_dda_setup2_plan_variant == 1) || (card1_card_core1_dda_arc2_dda_setup2_plan_variant == 2)))) begin
+    if ((1'b1 && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) && ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant == 1) || (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant == 2)))) begin
         ones = ({less, 1'b1} & (~{1'b0, less}));
         below = (~{1'h0, ones});
     end
     card1_card_core1_dda_arc2_dda_check2_move_acc_init = $signed(below);
-    card1_card_core1_dda_arc2_dda_check2_move_acc_carry = (card1_card_core1_dda_arc2_dda_setup2_plan_line && (!less[0]));
+    card1_card_core1_dda_arc2_dda_check2_move_acc_carry = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line && (!less[0]));
 end
 
 
@@ -5730,32 +5733,34 @@ always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_threshold, card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda_run2_threshold_carry, card1_card_core1_dda_arc2_dda_run2_first, card1_card_core1_dda_arc2_dda_run2_mag_x, card1_card_core1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_arc2_dda_run2_acc_y, card1_card_core1_dda_arc2_dda_run2_pending) begin: card1_card_core1_dda_arc2_dda_run2_accumulate
-    reg [31-1:0] operand_x;
-    reg [31-1:0] operand_y;
-    reg [31-1:0] carry;
-    operand_x = 31'h0;
-    operand_y = 31'h0;
-    carry = 31'h0;
-    if (card1_card_core1_dda_arc2_dda_run2_pending) begin
-        operand_x = (~{3'h0, card1_card_core1_dda_arc2_dda_run2_threshold});
-        operand_y = operand_x;
-        carry[0] = card1_card_core1_dda_arc2_dda_run2_threshold_carry;
+always @(card1_card_core1_dda_arc2_dda_run2_threshold, card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda_run2_threshold_carry, card1_card_core1_dda_arc2_dda_run2_dec_x, card1_card_core1_dda_arc2_dda_run2_first, card1_card_core1_dda_arc2_dda_run2_dec_sum_y, card1_card_core1_dda_arc2_dda_run2_dec_y, card1_card_core1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_arc2_dda_run2_mag_x, card1_card_core1_dda_arc2_dda_run2_dec_sum_x, card1_card_core1_dda_arc2_dda_run2_acc_y) begin: card1_card_core1_dda_arc2_dda_run2_accumulate
+    reg [30-1:0] minus_x;
+    reg [30-1:0] minus_y;
+    minus_x = 30'h0;
+    minus_y = 30'h0;
+    card1_card_core1_dda_arc2_dda_run2_sum_x = (({card1_card_core1_dda_arc2_dda_run2_acc_x[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_x} + {7'h0, card1_card_core1_dda_arc2_dda_run2_mag_y}) + {30'h0, card1_card_core1_dda_arc2_dda_run2_first});
+    card1_card_core1_dda_arc2_dda_run2_sum_y = (({card1_card_core1_dda_arc2_dda_run2_acc_y[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_y} + {7'h0, card1_card_core1_dda_arc2_dda_run2_mag_x}) + {30'h0, card1_card_core1_dda_arc2_dda_run2_first});
+    if (card1_card_core1_dda_arc2_dda_run2_dec_x) begin
+        minus_x = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_threshold});
     end
-    else begin
-        operand_x = {7'h0, card1_card_core1_dda_arc2_dda_run2_mag_y};
-        operand_y = {7'h0, card1_card_core1_dda_arc2_dda_run2_mag_x};
-        carry[0] = card1_card_core1_dda_arc2_dda_run2_first;
+    if (card1_card_core1_dda_arc2_dda_run2_dec_y) begin
+        minus_y = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_threshold});
     end
-    card1_card_core1_dda_arc2_dda_run2_sum_x = (({card1_card_core1_dda_arc2_dda_run2_acc_x[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_x} + operand_x) + carry);
-    card1_card_core1_dda_arc2_dda_run2_sum_y = (({card1_card_core1_dda_arc2_dda_run2_acc_y[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_y} + operand_y) + carry);
+    card1_card_core1_dda_arc2_dda_run2_less_x = ((card1_card_core1_dda_arc2_dda_run2_dec_sum_x + minus_x) + {29'h0, (card1_card_core1_dda_arc2_dda_run2_dec_x && card1_card_core1_dda_arc2_dda_run2_threshold_carry)});
+    card1_card_core1_dda_arc2_dda_run2_less_y = ((card1_card_core1_dda_arc2_dda_run2_dec_sum_y + minus_y) + {29'h0, (card1_card_core1_dda_arc2_dda_run2_dec_y && card1_card_core1_dda_arc2_dda_run2_threshold_carry)});
 end
 
 
-
-assign card1_card_core1_dda_arc2_dda_run2_over_x = (!card1_card_core1_dda_arc2_dda_run2_sum_x[30]);
-assign card1_card_core1_dda_arc2_dda_run2_over_y = (!card1_card_core1_dda_arc2_dda_run2_sum_y[30]);
-assign card1_card_core1_dda_arc2_dda_run2_trad_over_x = (!card1_card_core1_dda_arc2_dda_run2_trad_x[30]);
+always @(card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_trad_x, card1_card_core1_dda_arc2_dda_run2_sum_y, card1_card_core1_dda_arc2_dda_run2_sum_x, card1_card_core1_dda_arc2_dda_run2_over_y, card1_card_core1_dda_arc2_dda_run2_line) begin: card1_card_core1_dda_arc2_dda_run2_overflow
+    card1_card_core1_dda_arc2_dda_run2_over_x = (!card1_card_core1_dda_arc2_dda_run2_sum_x[30]);
+    card1_card_core1_dda_arc2_dda_run2_over_y = (!card1_card_core1_dda_arc2_dda_run2_sum_y[30]);
+    card1_card_core1_dda_arc2_dda_run2_trad_over_x = (!card1_card_core1_dda_arc2_dda_run2_trad_x[30]);
+    card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_sum_x[30]) && card1_card_core1_dda_arc2_dda_run2_sum_x[(30 - 1)]);
+    if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
+        card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_trad_x[30]) && card1_card_core1_dda_arc2_dda_run2_trad_x[(30 - 1)]);
+    end
+    card1_card_core1_dda_arc2_dda_run2_saturate_y = ((!card1_card_core1_dda_arc2_dda_run2_sum_y[30]) && card1_card_core1_dda_arc2_dda_run2_sum_y[(30 - 1)]);
+end
 
 
 always @(card1_card_core1_dda_arc2_dda_run2_acc_y, card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_arc2_dda_run2_mag_x) begin: card1_card_core1_dda_arc2_dda_run2_look_ahead
@@ -5770,54 +5775,43 @@ always @(card1_card_core1_dda_arc2_dda_run2_acc_y, card1_card_core1_dda_arc2_dda
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_bias_y, card1_card_core1_dda_arc2_dda_run2_x_inward, card1_card_core1_dda_arc2_dda_run2_error_term, card1_card_core1_dda_arc2_dda_run2_bias_x) begin: card1_card_core1_dda_arc2_dda_run2_nearest
-    reg [28-1:0] first_bias;
-    reg [28-1:0] second_bias;
-    reg [28-1:0] close;
-    reg [28-1:0] far;
-    first_bias = 28'h0;
-    second_bias = 28'h0;
-    close = 28'h0;
-    far = 28'h0;
+always @(card1_card_core1_dda_arc2_dda_run2_error_term, card1_card_core1_dda_arc2_dda_run2_x_inward, card1_card_core1_dda_arc2_dda_run2_bias_x, card1_card_core1_dda_arc2_dda_run2_bias_y) begin: card1_card_core1_dda_arc2_dda_run2_nearest
+    reg [28-1:0] twice_error;
+    reg [28-1:0] plus_x;
+    reg [28-1:0] plus_y;
+    reg [28-1:0] minus_x;
+    reg [28-1:0] minus_y;
+    twice_error = 28'h0;
+    plus_x = 28'h0;
+    plus_y = 28'h0;
+    minus_x = 28'h0;
+    minus_y = 28'h0;
+    twice_error = {card1_card_core1_dda_arc2_dda_run2_error_term, 1'b0};
+    plus_x = (twice_error + {card1_card_core1_dda_arc2_dda_run2_bias_x[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_bias_x});
+    plus_y = (twice_error + {card1_card_core1_dda_arc2_dda_run2_bias_y[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_bias_y});
+    minus_x = (twice_error - {card1_card_core1_dda_arc2_dda_run2_bias_x[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_bias_x});
+    minus_y = (twice_error - {card1_card_core1_dda_arc2_dda_run2_bias_y[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_bias_y});
     if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
-        first_bias = {card1_card_core1_dda_arc2_dda_run2_bias_x[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_bias_x};
-        second_bias = {card1_card_core1_dda_arc2_dda_run2_bias_y[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_bias_y};
+        card1_card_core1_dda_arc2_dda_run2_inward_near = ($signed(plus_y) >= 0);
+        card1_card_core1_dda_arc2_dda_run2_outward_near = ($signed(plus_x) < 0);
     end
     else begin
-        first_bias = (~{card1_card_core1_dda_arc2_dda_run2_bias_y[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_bias_y});
-        second_bias = (~{card1_card_core1_dda_arc2_dda_run2_bias_x[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_bias_x});
+        card1_card_core1_dda_arc2_dda_run2_inward_near = ($signed(minus_x) >= 0);
+        card1_card_core1_dda_arc2_dda_run2_outward_near = ($signed(minus_y) < 0);
     end
-    close = (({card1_card_core1_dda_arc2_dda_run2_error_term, 1'b0} + first_bias) + {27'h0, (!card1_card_core1_dda_arc2_dda_run2_x_inward)});
-    far = (({card1_card_core1_dda_arc2_dda_run2_error_term, 1'b0} + second_bias) + {27'h0, (!card1_card_core1_dda_arc2_dda_run2_x_inward)});
-    card1_card_core1_dda_arc2_dda_run2_inward_near = ($signed(far) >= 0);
-    card1_card_core1_dda_arc2_dda_run2_outward_near = ($signed(close) < 0);
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda_run2_x_inward, card1_card_core1_dda_arc2_dda_run2_pending, card1_card_core1_dda_arc2_dda_run2_mag_x) begin: card1_card_core1_dda_arc2_dda_run2_magnitude_adders
+always @(card1_card_core1_dda_arc2_dda_run2_x_inward, card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda_run2_mag_x) begin: card1_card_core1_dda_arc2_dda_run2_magnitude_adders
     reg [24-1:0] op_x;
     reg [24-1:0] op_y;
     op_x = 24'h0;
     op_y = 24'h0;
-    if (card1_card_core1_dda_arc2_dda_run2_pending) begin
-        op_x = 1;
-        if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
-            op_x = 16777215;
-        end
-        op_y = 0;
-        if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
-            op_y = 16777215;
-        end
-    end
-    else begin
-        op_x = 0;
-        if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
-            op_x = 16777215;
-        end
-        op_y = 16777215;
-        if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
-            op_y = 1;
-        end
+    op_x = 1;
+    op_y = 16777215;
+    if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
+        op_x = 16777215;
+        op_y = 1;
     end
     card1_card_core1_dda_arc2_dda_run2_stepped_x = (card1_card_core1_dda_arc2_dda_run2_mag_x + op_x);
     card1_card_core1_dda_arc2_dda_run2_stepped_y = (card1_card_core1_dda_arc2_dda_run2_mag_y + op_y);
@@ -5867,78 +5861,78 @@ end
 always @(card1_card_core1_dda_arc2_dda_run2_trad_over_x, card1_card_core1_dda_arc2_dda_run2_at_x, card1_card_core1_dda_arc2_dda_run2_near_y, card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_ahead_x, card1_card_core1_dda_arc2_dda_run2_left_diff, card1_card_core1_dda_arc2_dda_run2_near_x, card1_card_core1_dda_arc2_dda_run2_at_y, card1_card_core1_dda_arc2_dda_run2_outward_near, card1_card_core1_dda_arc2_dda_run2_x_inward, card1_card_core1_dda_arc2_dda_run2_inward_near, card1_card_core1_dda_arc2_dda_run2_crossings, card1_card_core1_dda_arc2_dda_run2_ahead_y, card1_card_core1_dda_arc2_dda_run2_over_y, card1_card_core1_dda_arc2_dda_run2_line, card1_card_core1_dda_arc2_dda_run2_over_x) begin: card1_card_core1_dda_arc2_dda_run2_decide
     reg step_x;
     reg step_y;
+    reg choose_x;
+    reg choose_y;
+    reg ends;
     step_x = (card1_card_core1_dda_arc2_dda_run2_over_x == 1);
     step_y = (card1_card_core1_dda_arc2_dda_run2_over_y == 1);
-    if ((!card1_card_core1_dda_arc2_dda_run2_line)) begin
-        case (card1_card_core1_dda_arc2_dda_run2_variant)
-            'h0: begin
-                if (card1_card_core1_dda_arc2_dda_run2_over_y) begin
-                    step_x = (card1_card_core1_dda_arc2_dda_run2_trad_over_x == 1);
-                end
-            end
-            'h2: begin
-                if ((card1_card_core1_dda_arc2_dda_run2_over_x && (!card1_card_core1_dda_arc2_dda_run2_over_y) && card1_card_core1_dda_arc2_dda_run2_ahead_y)) begin
-                    step_y = 1'b1;
-                end
-                else if ((card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_over_x) && card1_card_core1_dda_arc2_dda_run2_ahead_x)) begin
-                    step_x = 1'b1;
-                end
-            end
-            'h3: begin
-                step_x = 1'b0;
-                step_y = 1'b0;
-                if ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y)) begin
-                    step_x = (card1_card_core1_dda_arc2_dda_run2_inward_near == 1);
-                    step_y = (card1_card_core1_dda_arc2_dda_run2_outward_near == 1);
-                    if ((!card1_card_core1_dda_arc2_dda_run2_x_inward)) begin
-                        step_x = (card1_card_core1_dda_arc2_dda_run2_outward_near == 1);
-                        step_y = (card1_card_core1_dda_arc2_dda_run2_inward_near == 1);
-                    end
-                end
-            end
-        endcase
-        if ((card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y)) begin
-            step_x = (!card1_card_core1_dda_arc2_dda_run2_at_x);
-            step_y = (!card1_card_core1_dda_arc2_dda_run2_at_y);
+    choose_x = 1'b0;
+    choose_y = 1'b0;
+    ends = 1'b0;
+    if (1'b1) begin
+        choose_x = (card1_card_core1_dda_arc2_dda_run2_outward_near == 1);
+        choose_y = (card1_card_core1_dda_arc2_dda_run2_inward_near == 1);
+        if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
+            choose_x = (card1_card_core1_dda_arc2_dda_run2_inward_near == 1);
+            choose_y = (card1_card_core1_dda_arc2_dda_run2_outward_near == 1);
         end
     end
-    card1_card_core1_dda_arc2_dda_run2_go_x = step_x;
-    card1_card_core1_dda_arc2_dda_run2_go_y = step_y;
-    card1_card_core1_dda_arc2_dda_run2_tail = ((!card1_card_core1_dda_arc2_dda_run2_line) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y));
-    card1_card_core1_dda_arc2_dda_run2_finished = 1'b0;
-    card1_card_core1_dda_arc2_dda_run2_next_piece = 1'b0;
+    if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0))) begin
+        step_x = ((card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_trad_over_x) || ((!card1_card_core1_dda_arc2_dda_run2_over_y) && card1_card_core1_dda_arc2_dda_run2_over_x));
+    end
+    else if ((1'b1 && (card1_card_core1_dda_arc2_dda_run2_variant == 2))) begin
+        step_x = (card1_card_core1_dda_arc2_dda_run2_over_x || (card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_ahead_x));
+        step_y = (card1_card_core1_dda_arc2_dda_run2_over_y || (card1_card_core1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_arc2_dda_run2_ahead_y));
+    end
+    else if ((1'b1 && (card1_card_core1_dda_arc2_dda_run2_variant == 3))) begin
+        step_x = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && choose_x);
+        step_y = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && choose_y);
+    end
     if (card1_card_core1_dda_arc2_dda_run2_line) begin
-        card1_card_core1_dda_arc2_dda_run2_finished = (card1_card_core1_dda_arc2_dda_run2_left_diff == 0);
+        card1_card_core1_dda_arc2_dda_run2_go_x = card1_card_core1_dda_arc2_dda_run2_over_x;
+        card1_card_core1_dda_arc2_dda_run2_go_y = card1_card_core1_dda_arc2_dda_run2_over_y;
     end
-    else if ((((card1_card_core1_dda_arc2_dda_run2_near_x && step_x) || card1_card_core1_dda_arc2_dda_run2_at_x) && ((card1_card_core1_dda_arc2_dda_run2_near_y && step_y) || card1_card_core1_dda_arc2_dda_run2_at_y))) begin
-        if ((card1_card_core1_dda_arc2_dda_run2_crossings == 0)) begin
-            card1_card_core1_dda_arc2_dda_run2_finished = 1'b1;
-        end
-        else begin
-            card1_card_core1_dda_arc2_dda_run2_next_piece = 1'b1;
-        end
+    else if ((card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y)) begin
+        card1_card_core1_dda_arc2_dda_run2_go_x = (!card1_card_core1_dda_arc2_dda_run2_at_x);
+        card1_card_core1_dda_arc2_dda_run2_go_y = (!card1_card_core1_dda_arc2_dda_run2_at_y);
     end
+    else begin
+        card1_card_core1_dda_arc2_dda_run2_go_x = step_x;
+        card1_card_core1_dda_arc2_dda_run2_go_y = step_y;
+    end
+    card1_card_core1_dda_arc2_dda_run2_tail = ((!card1_card_core1_dda_arc2_dda_run2_line) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y));
+    if ((card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y)) begin
+        ends = ((card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_near_x) && (card1_card_core1_dda_arc2_dda_run2_at_y || card1_card_core1_dda_arc2_dda_run2_near_y));
+    end
+    else begin
+        ends = (card1_card_core1_dda_arc2_dda_run2_near_x && card1_card_core1_dda_arc2_dda_run2_near_y && step_x && step_y);
+    end
+    card1_card_core1_dda_arc2_dda_run2_finished = ((card1_card_core1_dda_arc2_dda_run2_line && (card1_card_core1_dda_arc2_dda_run2_left_diff == 0)) || ((!card1_card_core1_dda_arc2_dda_run2_line) && ends && (card1_card_core1_dda_arc2_dda_run2_crossings == 0)));
+    card1_card_core1_dda_arc2_dda_run2_next_piece = ((!card1_card_core1_dda_arc2_dda_run2_line) && ends && (card1_card_core1_dda_arc2_dda_run2_crossings != 0));
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_stepped_y, card1_card_core1_dda_arc2_dda_run2_error_term, card1_card_core1_dda_arc2_dda_run2_x_inward, card1_card_core1_dda_arc2_dda_run2_pending, card1_card_core1_dda_arc2_dda_run2_stepped_x) begin: card1_card_core1_dda_arc2_dda_run2_precise_step
-    reg [24-1:0] magnitude;
-    reg inward;
-    reg [27-1:0] step_op;
-    magnitude = 24'h0;
-    inward = 1'b0;
-    step_op = 27'h0;
-    magnitude = card1_card_core1_dda_arc2_dda_run2_stepped_x;
-    inward = (card1_card_core1_dda_arc2_dda_run2_x_inward == 1);
-    if (card1_card_core1_dda_arc2_dda_run2_pending) begin
-        magnitude = card1_card_core1_dda_arc2_dda_run2_stepped_y;
-        inward = (!card1_card_core1_dda_arc2_dda_run2_x_inward);
+always @(card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda_run2_dec_in, card1_card_core1_dda_arc2_dda_run2_mag_x, card1_card_core1_dda_arc2_dda_run2_error_term, card1_card_core1_dda_arc2_dda_run2_x_inward, card1_card_core1_dda_arc2_dda_run2_dec_out) begin: card1_card_core1_dda_arc2_dda_run2_precise_step
+    reg [27-1:0] outward;
+    reg [27-1:0] inward;
+    reg [27-1:0] first_sum;
+    outward = 27'h0;
+    inward = 27'h0;
+    first_sum = 27'h0;
+    if (card1_card_core1_dda_arc2_dda_run2_dec_out) begin
+        outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_mag_x, 1'b1};
+        if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
+            outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_mag_y, 1'b1};
+        end
     end
-    step_op = {2'h0, magnitude, 1'b1};
-    if (inward) begin
-        step_op = (~{2'h0, magnitude, 1'b1});
+    if (card1_card_core1_dda_arc2_dda_run2_dec_in) begin
+        inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_mag_y, 1'b0});
+        if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
+            inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_mag_x, 1'b0});
+        end
     end
-    card1_card_core1_dda_arc2_dda_run2_error_step = ((card1_card_core1_dda_arc2_dda_run2_error_term + step_op) + {26'h0, inward});
+    first_sum = ((card1_card_core1_dda_arc2_dda_run2_error_term + outward) + {26'h0, card1_card_core1_dda_arc2_dda_run2_dec_in});
+    card1_card_core1_dda_arc2_dda_run2_error_step = ((first_sum + inward) + {26'h0, card1_card_core1_dda_arc2_dda_run2_dec_in});
 end
 
 
@@ -5948,15 +5942,18 @@ assign card1_card_core1_dda_arc2_dda_run2_taking = (card1_card_core1_dda_arc2_dd
 
 
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_iterate
-    reg saturated;
     if (card1_card_core1_dda_reset == 0) begin
         card1_card_core1_dda_arc2_dda_run2_mag_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_threshold_carry <= 0;
+        card1_card_core1_dda_arc2_dda_run2_dec_sum_y <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
+        card1_card_core1_dda_arc2_dda_run2_dec_out <= 0;
         card1_card_core1_dda_arc2_dda_run2_end_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_dec_next_piece <= 0;
         card1_card_core1_dda_arc2_dda_run2_variant <= 3;
         card1_card_core1_regs_fifo2_steps_step_x <= 0;
+        card1_card_core1_dda_arc2_dda_run2_dec_in <= 0;
+        card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_error_term <= 0;
         card1_card_core1_dda_arc2_dda_run2_x_inward <= 0;
@@ -5986,7 +5983,6 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_dda_arc2_dda_run2_line <= 0;
     end
     else begin
-        saturated = 1'b0;
         card1_card_core1_regs_fifo2_steps_step_x <= 1'b0;
         card1_card_core1_regs_fifo2_steps_step_y <= 1'b0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b0;
@@ -6006,43 +6002,36 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             card1_card_core1_regs_fifo2_sequencer2_dda_done <= card1_card_core1_dda_arc2_dda_run2_finished;
             card1_card_core1_dda_arc2_dda_run2_dec_x <= card1_card_core1_dda_arc2_dda_run2_go_x;
             card1_card_core1_dda_arc2_dda_run2_dec_y <= card1_card_core1_dda_arc2_dda_run2_go_y;
+            card1_card_core1_dda_arc2_dda_run2_dec_in <= ((card1_card_core1_dda_arc2_dda_run2_go_x && card1_card_core1_dda_arc2_dda_run2_x_inward) || (card1_card_core1_dda_arc2_dda_run2_go_y && (!card1_card_core1_dda_arc2_dda_run2_x_inward)));
+            card1_card_core1_dda_arc2_dda_run2_dec_out <= ((card1_card_core1_dda_arc2_dda_run2_go_x && (!card1_card_core1_dda_arc2_dda_run2_x_inward)) || (card1_card_core1_dda_arc2_dda_run2_go_y && card1_card_core1_dda_arc2_dda_run2_x_inward));
             card1_card_core1_dda_arc2_dda_run2_dec_tail <= card1_card_core1_dda_arc2_dda_run2_tail;
             card1_card_core1_dda_arc2_dda_run2_dec_finished <= card1_card_core1_dda_arc2_dda_run2_finished;
             card1_card_core1_dda_arc2_dda_run2_dec_next_piece <= card1_card_core1_dda_arc2_dda_run2_next_piece;
             card1_card_core1_dda_arc2_dda_run2_first <= 1'b0;
-            if ((!card1_card_core1_dda_arc2_dda_run2_tail)) begin
-                saturated = (1'b1 && (!card1_card_core1_dda_arc2_dda_run2_sum_x[30]) && card1_card_core1_dda_arc2_dda_run2_sum_x[(30 - 1)]);
-                card1_card_core1_dda_arc2_dda_run2_acc_x <= $signed(card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0]);
-                if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
-                    card1_card_core1_dda_arc2_dda_run2_acc_x <= $signed(card1_card_core1_dda_arc2_dda_run2_trad_x[30-1:0]);
-                    saturated = ((!card1_card_core1_dda_arc2_dda_run2_trad_x[30]) && (card1_card_core1_dda_arc2_dda_run2_trad_x[(30 - 1)] == 1));
-                end
-                if (saturated) begin
-                    card1_card_core1_dda_arc2_dda_run2_acc_x <= 536870911;
-                end
-                card1_card_core1_dda_arc2_dda_run2_acc_y <= $signed(card1_card_core1_dda_arc2_dda_run2_sum_y[30-1:0]);
-                if ((1'b1 && (!card1_card_core1_dda_arc2_dda_run2_sum_y[30]) && card1_card_core1_dda_arc2_dda_run2_sum_y[(30 - 1)])) begin
-                    card1_card_core1_dda_arc2_dda_run2_acc_y <= 536870911;
-                end
+            card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0];
+            if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
+                card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= card1_card_core1_dda_arc2_dda_run2_trad_x[30-1:0];
             end
-            if ((card1_card_core1_dda_arc2_dda_run2_go_y && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
-                card1_card_core1_dda_arc2_dda_run2_mag_y <= card1_card_core1_dda_arc2_dda_run2_stepped_y;
+            card1_card_core1_dda_arc2_dda_run2_dec_sum_y <= card1_card_core1_dda_arc2_dda_run2_sum_y[30-1:0];
+            if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_x)) begin
+                card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= 536870911;
             end
-            if ((card1_card_core1_dda_arc2_dda_run2_go_x && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
-                card1_card_core1_dda_arc2_dda_run2_error_term <= card1_card_core1_dda_arc2_dda_run2_error_step;
+            if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_y)) begin
+                card1_card_core1_dda_arc2_dda_run2_dec_sum_y <= 536870911;
             end
         end
         else if (card1_card_core1_dda_arc2_dda_run2_pending) begin
-            if ((card1_card_core1_dda_arc2_dda_run2_dec_x && (!card1_card_core1_dda_arc2_dda_run2_dec_tail))) begin
-                card1_card_core1_dda_arc2_dda_run2_acc_x <= $signed(card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0]);
+            if ((!card1_card_core1_dda_arc2_dda_run2_dec_tail)) begin
+                card1_card_core1_dda_arc2_dda_run2_acc_x <= $signed(card1_card_core1_dda_arc2_dda_run2_less_x);
+                card1_card_core1_dda_arc2_dda_run2_acc_y <= $signed(card1_card_core1_dda_arc2_dda_run2_less_y);
             end
-            if ((card1_card_core1_dda_arc2_dda_run2_dec_y && (!card1_card_core1_dda_arc2_dda_run2_dec_tail))) begin
-                card1_card_core1_dda_arc2_dda_run2_acc_y <= $signed(card1_card_core1_dda_arc2_dda_run2_sum_y[30-1:0]);
-            end
-            if ((card1_card_core1_dda_arc2_dda_run2_dec_x && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
-                card1_card_core1_dda_arc2_dda_run2_mag_x <= card1_card_core1_dda_arc2_dda_run2_stepped_x;
-            end
-            if ((card1_card_core1_dda_arc2_dda_run2_dec_y && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
+            if ((!card1_card_core1_dda_arc2_dda_run2_line)) begin
+                if (card1_card_core1_dda_arc2_dda_run2_dec_x) begin
+                    card1_card_core1_dda_arc2_dda_run2_mag_x <= card1_card_core1_dda_arc2_dda_run2_stepped_x;
+                end
+                if (card1_card_core1_dda_arc2_dda_run2_dec_y) begin
+                    card1_card_core1_dda_arc2_dda_run2_mag_y <= card1_card_core1_dda_arc2_dda_run2_stepped_y;
+                end
                 card1_card_core1_dda_arc2_dda_run2_error_term <= card1_card_core1_dda_arc2_dda_run2_error_step;
             end
             if (card1_card_core1_dda_arc2_dda_run2_dec_finished) begin
@@ -6133,53 +6122,64 @@ end
 
 
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_steps_left
-    reg less;
+    reg [27-1:0] base_diff;
     reg [27-1:0] change;
+    reg [27-1:0] base_most;
+    reg [27-1:0] less;
     if (card1_card_core1_dda_reset == 0) begin
         card1_card_core1_dda_arc2_dda_run2_left_diff <= 0;
         card1_card_core1_dda_arc2_dda_run2_most_left <= 134217727;
     end
     else begin
-        less = 1'b0;
+        base_diff = 27'h0;
         change = 27'h0;
-        if (card1_card_core1_dda_arc2_dda_run2_pending) begin
+        base_most = 27'h0;
+        less = 27'h0;
+        base_diff = card1_card_core1_dda_arc2_dda_run2_left_diff;
+        base_most = card1_card_core1_dda_arc2_dda_run2_most_left;
+        if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+            base_diff = card1_card_core1_dda_arc2_dda_check2_move_totals_diff;
+            base_most = card1_card_core1_dda_arc2_dda_check2_move_totals_max;
+            less = 134217727;
+            if (card1_card_core1_dda_arc2_dda_check2_move_line) begin
+                change = 134217727;
+            end
+        end
+        else if (card1_card_core1_dda_arc2_dda_run2_pending) begin
             if ((card1_card_core1_dda_arc2_dda_run2_line || (card1_card_core1_dda_arc2_dda_run2_dec_x && (!card1_card_core1_dda_arc2_dda_run2_dec_y)))) begin
                 change = 134217727;
             end
             else if ((card1_card_core1_dda_arc2_dda_run2_dec_y && (!card1_card_core1_dda_arc2_dda_run2_dec_x))) begin
                 change = 1;
             end
-            card1_card_core1_dda_arc2_dda_run2_left_diff <= (card1_card_core1_dda_arc2_dda_run2_left_diff + change);
-            if (card1_card_core1_dda_arc2_dda_run2_line) begin
-                less = 1'b1;
-            end
-            else begin
-                if ((card1_card_core1_dda_arc2_dda_run2_left_diff == 0)) begin
-                    less = (card1_card_core1_dda_arc2_dda_run2_dec_x && card1_card_core1_dda_arc2_dda_run2_dec_y);
+            if ((!card1_card_core1_dda_arc2_dda_run2_blend)) begin
+                if (card1_card_core1_dda_arc2_dda_run2_line) begin
+                    less = 134217727;
+                end
+                else if ((card1_card_core1_dda_arc2_dda_run2_left_diff == 0)) begin
+                    if ((card1_card_core1_dda_arc2_dda_run2_dec_x && card1_card_core1_dda_arc2_dda_run2_dec_y)) begin
+                        less = 134217727;
+                    end
                 end
                 else if (card1_card_core1_dda_arc2_dda_run2_left_diff[(27 - 1)]) begin
-                    less = (card1_card_core1_dda_arc2_dda_run2_dec_y == 1);
+                    if (card1_card_core1_dda_arc2_dda_run2_dec_y) begin
+                        less = 134217727;
+                    end
                 end
-                else begin
-                    less = (card1_card_core1_dda_arc2_dda_run2_dec_x == 1);
+                else if (card1_card_core1_dda_arc2_dda_run2_dec_x) begin
+                    less = 134217727;
                 end
             end
-            if ((less && (!card1_card_core1_dda_arc2_dda_run2_blend))) begin
-                card1_card_core1_dda_arc2_dda_run2_most_left <= (card1_card_core1_dda_arc2_dda_run2_most_left - 1);
-            end
-            if (card1_card_core1_dda_arc2_dda_run2_dec_finished) begin
+        end
+        card1_card_core1_dda_arc2_dda_run2_left_diff <= (base_diff + change);
+        card1_card_core1_dda_arc2_dda_run2_most_left <= (base_most + less);
+        if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+            if ((card1_card_core1_dda_arc2_dda_check2_move_blend || card1_card_core1_dda_arc2_dda_check2_move_error || card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
                 card1_card_core1_dda_arc2_dda_run2_most_left <= 134217727;
             end
         end
-        if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-            card1_card_core1_dda_arc2_dda_run2_left_diff <= card1_card_core1_dda_arc2_dda_check2_move_totals_diff;
-            if (card1_card_core1_dda_arc2_dda_check2_move_line) begin
-                card1_card_core1_dda_arc2_dda_run2_left_diff <= (card1_card_core1_dda_arc2_dda_check2_move_totals_diff - 1);
-            end
+        else if ((card1_card_core1_dda_arc2_dda_run2_pending && card1_card_core1_dda_arc2_dda_run2_dec_finished)) begin
             card1_card_core1_dda_arc2_dda_run2_most_left <= 134217727;
-            if (((!card1_card_core1_dda_arc2_dda_check2_move_blend) && (!card1_card_core1_dda_arc2_dda_check2_move_error) && (!card1_card_core1_dda_arc2_dda_check2_move_zero))) begin
-                card1_card_core1_dda_arc2_dda_run2_most_left <= (card1_card_core1_dda_arc2_dda_check2_move_totals_max - 1);
-            end
         end
     end
 end

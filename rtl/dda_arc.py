@@ -38,7 +38,7 @@ def dda_arc(clock, reset, cmd, steps):
         advance  ____________ ... ______/~~~\\___/~~~\\___ ... ~~~~~~~~
         step_x   ____________ ... __________/~~~\\___/~~~ ... ________
         done     ____________ ... ___________________________/~~~\\___
-                      |<-- 4*W+23 -->|
+                      |<-- 4*W+26 -->|
 
     A ``start`` taken while a move runs (``ready`` high) is set up
     meanwhile; the run takes it at the edge that applies its last iteration,

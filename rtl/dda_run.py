@@ -75,12 +75,16 @@ def dda_run(clock, reset, cmd, move, steps):
     most_left = Signal(modbv(left_ones)[left_width:])
     left_diff = Signal(modbv(0)[left_width:])
 
-    # the second clock's registered decision
+    # the second clock's registered decision, and the sums it applies
     dec_x, dec_y, dec_tail, dec_finished, dec_next_piece = (Signal(bool(0)) for _ in range(5))
+    dec_in, dec_out = Signal(bool(0)), Signal(bool(0))
+    dec_sum_x, dec_sum_y = (Signal(modbv(0)[acc_width:]) for _ in range(2))
+    less_x, less_y = Signal(modbv(0)[acc_width:]), Signal(modbv(0)[acc_width:])
 
     # first clock, combinational from registers
     sum_x, sum_y = Signal(modbv(0)[acc_width + 1:]), Signal(modbv(0)[acc_width + 1:])
     over_x, over_y = Signal(bool(0)), Signal(bool(0))
+    saturate_x, saturate_y = Signal(bool(0)), Signal(bool(0))
     stepped_x, stepped_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
     go_x, go_y, tail, finished, next_piece = (Signal(bool(0)) for _ in range(5))
     at_x, at_y, near_x, near_y = (Signal(bool(0)) for _ in range(4))
@@ -92,27 +96,31 @@ def dda_run(clock, reset, cmd, move, steps):
 
     @always_comb
     def accumulate():
-        # A - bias plus the integrand; the first clock keeps the sum, the second subtracts T
-        # (T - 1 inverted, a line's T with a carry)
-        operand_x = modbv(0)[acc_width + 1:]
-        operand_y = modbv(0)[acc_width + 1:]
-        carry = modbv(0)[acc_width + 1:]
-        if pending:
-            operand_x[:] = ~concat(intbv(0)[acc_width + 1 - thr_width:], threshold)
-            operand_y[:] = operand_x
-            carry[0] = threshold_carry
-        else:
-            operand_x[:] = concat(intbv(0)[acc_width + 1 - width:], mag_y)
-            operand_y[:] = concat(intbv(0)[acc_width + 1 - width:], mag_x)
-            carry[0] = first
-        sum_x.next = concat(acc_x[acc_width - 1], acc_x) + operand_x + carry
-        sum_y.next = concat(acc_y[acc_width - 1], acc_y) + operand_y + carry
+        # first clock: A - bias plus the integrand (a line's first sum takes the carry of its
+        # initial load); second clock: the kept sum minus T for an axis that stepped (T - 1
+        # inverted, a line's T inverted with a carry)
+        minus_x = modbv(0)[acc_width:]
+        minus_y = modbv(0)[acc_width:]
+        sum_x.next = concat(acc_x[acc_width - 1], acc_x) + concat(intbv(0)[acc_width + 1 - width:], mag_y) + \
+            concat(intbv(0)[acc_width:], first)
+        sum_y.next = concat(acc_y[acc_width - 1], acc_y) + concat(intbv(0)[acc_width + 1 - width:], mag_x) + \
+            concat(intbv(0)[acc_width:], first)
+        if dec_x:
+            minus_x[:] = ~concat(intbv(0)[acc_width - thr_width:], threshold)
+        if dec_y:
+            minus_y[:] = ~concat(intbv(0)[acc_width - thr_width:], threshold)
+        less_x.next = dec_sum_x + minus_x + concat(intbv(0)[acc_width - 1:], dec_x and threshold_carry)
+        less_y.next = dec_sum_y + minus_y + concat(intbv(0)[acc_width - 1:], dec_y and threshold_carry)
 
     @always_comb
     def overflow():
         over_x.next = not sum_x[acc_width]
         over_y.next = not sum_y[acc_width]
         trad_over_x.next = not trad_x[acc_width]
+        saturate_x.next = not sum_x[acc_width] and sum_x[acc_width - 1]
+        if has_traditional and variant == TRADITIONAL and over_y and not line:
+            saturate_x.next = not trad_x[acc_width] and trad_x[acc_width - 1]
+        saturate_y.next = not sum_y[acc_width] and sum_y[acc_width - 1]
 
     # the variants a build leaves out have no logic: their signals stay at 0
     variant_logic = []
@@ -137,43 +145,36 @@ def dda_run(clock, reset, cmd, move, steps):
     if has_precise:
         @always_comb
         def nearest():
-            # signs of 2E' + B (x inward: B_x, B_y; y inward: ~B_y, ~B_x with a carry)
-            first_bias = modbv(0)[bias_width + 1:]
-            second_bias = modbv(0)[bias_width + 1:]
-            close = modbv(0)[bias_width + 1:]
-            far = modbv(0)[bias_width + 1:]
+            # signs of 2E' + B_x, 2E' + B_y (x inward) and 2E' - B_y, 2E' - B_x (y inward):
+            # four adders, the quadrant picks two signs after them
+            twice_error = modbv(0)[bias_width + 1:]
+            plus_x = modbv(0)[bias_width + 1:]
+            plus_y = modbv(0)[bias_width + 1:]
+            minus_x = modbv(0)[bias_width + 1:]
+            minus_y = modbv(0)[bias_width + 1:]
+            twice_error[:] = concat(error_term, False)
+            plus_x[:] = twice_error + concat(bias_x[bias_width - 1], bias_x)
+            plus_y[:] = twice_error + concat(bias_y[bias_width - 1], bias_y)
+            minus_x[:] = twice_error - concat(bias_x[bias_width - 1], bias_x)
+            minus_y[:] = twice_error - concat(bias_y[bias_width - 1], bias_y)
             if x_inward:
-                first_bias[:] = concat(bias_x[bias_width - 1], bias_x)
-                second_bias[:] = concat(bias_y[bias_width - 1], bias_y)
+                inward_near.next = plus_y.signed() >= 0
+                outward_near.next = plus_x.signed() < 0
             else:
-                first_bias[:] = ~concat(bias_y[bias_width - 1], bias_y)
-                second_bias[:] = ~concat(bias_x[bias_width - 1], bias_x)
-            close[:] = concat(error_term, False) + first_bias + concat(intbv(0)[bias_width:], not x_inward)
-            far[:] = concat(error_term, False) + second_bias + concat(intbv(0)[bias_width:], not x_inward)
-            inward_near.next = far.signed() >= 0
-            outward_near.next = close.signed() < 0
+                inward_near.next = minus_x.signed() >= 0
+                outward_near.next = minus_y.signed() < 0
         variant_logic.append(nearest)
 
     @always_comb
     def magnitude_adders():
-        # |x| and |y| plus 0 or +-1: in the first clock |x| - (inward) for E' and |y| moved
-        # a step towards its target; in the second |x| moved, |y| - (outward) for E'
+        # |x| and |y| moved a step towards their targets (also the traditional variant's new |y|)
         op_x = modbv(0)[width:]
         op_y = modbv(0)[width:]
-        if pending:
-            op_x[:] = 1
-            if x_inward:
-                op_x[:] = width_ones
-            op_y[:] = 0
-            if x_inward:
-                op_y[:] = width_ones
-        else:
-            op_x[:] = 0
-            if x_inward:
-                op_x[:] = width_ones
-            op_y[:] = width_ones
-            if x_inward:
-                op_y[:] = 1
+        op_x[:] = 1
+        op_y[:] = width_ones
+        if x_inward:
+            op_x[:] = width_ones
+            op_y[:] = 1
         stepped_x.next = mag_x + op_x
         stepped_y.next = mag_y + op_y
 
@@ -206,57 +207,65 @@ def dda_run(clock, reset, cmd, move, steps):
 
     @always_comb
     def decide():
+        # the variant's steps (flat, few levels after the adders' signs); at a target an axis
+        # stops and the other steps alone (tail); the move (or the piece) ends when both
+        # axes are at their targets after this step: in a tail the stopped one is, so the
+        # other needs to be at or one step before its target; otherwise both must be one
+        # step before and step
         step_x = over_x == 1
         step_y = over_y == 1
-        if not line:
-            if variant == TRADITIONAL:
-                if over_y:
-                    step_x = trad_over_x == 1
-            elif variant == IMPROVED:
-                if over_x and not over_y and ahead_y:
-                    step_y = True
-                elif over_y and not over_x and ahead_x:
-                    step_x = True
-            elif variant == PRECISE:
-                step_x = False
-                step_y = False
-                if over_x or over_y:
-                    step_x = inward_near == 1
-                    step_y = outward_near == 1
-                    if not x_inward:
-                        step_x = outward_near == 1
-                        step_y = inward_near == 1
-            if at_x or at_y:
-                step_x = not at_x
-                step_y = not at_y
-        go_x.next = step_x
-        go_y.next = step_y
-        tail.next = not line and (at_x or at_y)
-        finished.next = False
-        next_piece.next = False
+        choose_x = False
+        choose_y = False
+        ends = False
+        if has_precise:
+            choose_x = outward_near == 1
+            choose_y = inward_near == 1
+            if x_inward:
+                choose_x = inward_near == 1
+                choose_y = outward_near == 1
+        if has_traditional and variant == TRADITIONAL:
+            step_x = (over_y and trad_over_x) or (not over_y and over_x)
+        elif has_improved and variant == IMPROVED:
+            step_x = over_x or (over_y and ahead_x)
+            step_y = over_y or (over_x and ahead_y)
+        elif has_precise and variant == PRECISE:
+            step_x = (over_x or over_y) and choose_x
+            step_y = (over_x or over_y) and choose_y
         if line:
-            finished.next = left_diff == 0
-        elif (near_x and step_x or at_x) and (near_y and step_y or at_y):
-            if crossings == 0:
-                finished.next = True
-            else:
-                next_piece.next = True
+            go_x.next = over_x
+            go_y.next = over_y
+        elif at_x or at_y:
+            go_x.next = not at_x
+            go_y.next = not at_y
+        else:
+            go_x.next = step_x
+            go_y.next = step_y
+        tail.next = not line and (at_x or at_y)
+        if at_x or at_y:
+            ends = (at_x or near_x) and (at_y or near_y)
+        else:
+            ends = near_x and near_y and step_x and step_y
+        finished.next = (line and left_diff == 0) or (not line and ends and crossings == 0)
+        next_piece.next = not line and ends and crossings != 0
 
     @always_comb
     def precise_step():
-        # E' plus sigma (2 min(|v|, |v'|) + 1): sigma = -1 inward, as ~(2m) + ... with a carry
-        magnitude = modbv(0)[width:]
-        inward = False
-        step_op = modbv(0)[bias_width:]
-        magnitude[:] = stepped_x
-        inward = x_inward == 1
-        if pending:
-            magnitude[:] = stepped_y
-            inward = not x_inward
-        step_op[:] = concat(intbv(0)[bias_width - width - 1:], magnitude, True)
-        if inward:
-            step_op[:] = ~concat(intbv(0)[bias_width - width - 1:], magnitude, True)
-        error_step.next = error_term + step_op + concat(intbv(0)[bias_width - 1:], inward)
+        # E' plus the registered step, both magnitudes still those before it: an outward
+        # step adds 2 m + 1, an inward one -(2 (m - 1) + 1) = ~(2 m) + 2 (two adders, each
+        # with a carry of 1 for it)
+        outward = modbv(0)[bias_width:]
+        inward = modbv(0)[bias_width:]
+        first_sum = modbv(0)[bias_width:]
+        if dec_out:
+            outward[:] = concat(intbv(0)[bias_width - width - 1:], mag_x, True)
+            if x_inward:
+                outward[:] = concat(intbv(0)[bias_width - width - 1:], mag_y, True)
+        if dec_in:
+            inward[:] = ~concat(intbv(0)[bias_width - width - 1:], mag_y, False)
+            if x_inward:
+                inward[:] = ~concat(intbv(0)[bias_width - width - 1:], mag_x, False)
+        first_sum[:] = error_term + outward + concat(intbv(0)[bias_width - 1:], dec_in)
+        error_step.next = first_sum + inward + concat(intbv(0)[bias_width - 1:], dec_in)
 
     @always_comb
     def handover():
@@ -265,12 +274,12 @@ def dda_run(clock, reset, cmd, move, steps):
 
     @always_seq(clock.posedge, reset=reset)
     def iterate():
-        saturated = False
         steps.step_x.next = False
         steps.step_y.next = False
         cmd.done.next = False
         pending.next = False
         if taking:
+            # first clock: the decision, the outputs and the sums, registered
             pending.next = True
             steps.step_x.next = go_x
             steps.step_y.next = go_y
@@ -283,34 +292,31 @@ def dda_run(clock, reset, cmd, move, steps):
             cmd.done.next = finished
             dec_x.next = go_x
             dec_y.next = go_y
+            dec_in.next = (go_x and x_inward) or (go_y and not x_inward)
+            dec_out.next = (go_x and not x_inward) or (go_y and x_inward)
             dec_tail.next = tail
             dec_finished.next = finished
             dec_next_piece.next = next_piece
             first.next = False
-            if not tail:
-                # a sum beyond the register saturates at its maximum (paper variants)
-                saturated = saturates and not sum_x[acc_width] and sum_x[acc_width - 1]
-                acc_x.next = sum_x[acc_width:].signed()
-                if has_traditional and variant == TRADITIONAL and over_y and not line:
-                    acc_x.next = trad_x[acc_width:].signed()
-                    saturated = not trad_x[acc_width] and trad_x[acc_width - 1] == 1
-                if saturated:
-                    acc_x.next = acc_max
-                acc_y.next = sum_y[acc_width:].signed()
-                if saturates and not sum_y[acc_width] and sum_y[acc_width - 1]:
-                    acc_y.next = acc_max
-            if go_y and not line:
-                mag_y.next = stepped_y
-            if go_x and not line:
-                error_term.next = error_step
+            dec_sum_x.next = sum_x[acc_width:]
+            if has_traditional and variant == TRADITIONAL and over_y and not line:
+                dec_sum_x.next = trad_x[acc_width:]
+            dec_sum_y.next = sum_y[acc_width:]
+            # a sum beyond the register saturates at its maximum (paper variants)
+            if saturates and saturate_x:
+                dec_sum_x.next = acc_max
+            if saturates and saturate_y:
+                dec_sum_y.next = acc_max
         elif pending:
-            if dec_x and not dec_tail:
-                acc_x.next = sum_x[acc_width:].signed()
-            if dec_y and not dec_tail:
-                acc_y.next = sum_y[acc_width:].signed()
-            if dec_x and not line:
-                mag_x.next = stepped_x
-            if dec_y and not line:
+            # second clock: the decision applied
+            if not dec_tail:
+                acc_x.next = less_x.signed()
+                acc_y.next = less_y.signed()
+            if not line:
+                if dec_x:
+                    mag_x.next = stepped_x
+                if dec_y:
+                    mag_y.next = stepped_y
                 error_term.next = error_step
             if dec_finished:
                 active.next = False
@@ -360,8 +366,8 @@ def dda_run(clock, reset, cmd, move, steps):
 
     @always_seq(clock.posedge, reset=reset)
     def precise_bias():
-        # B_x = 2|y| - 4|x| and B_y = 4|y| - 2|x| after the steps: x inward, |x| - 1 and
-        # |y| + 1 add 4 dx + 2 dy and 2 dx + 4 dy; y inward, the same subtracted
+        # B_x = 2|y| - 4|x| and B_y = 4|y| - 2|x| after the steps (dx, dy): X inward adds
+        # 4 dx + 2 dy and 2 dx + 4 dy, Y inward subtracts them
         op_x = modbv(0)[bias_width:]
         op_y = modbv(0)[bias_width:]
         op_x[:] = concat(intbv(0)[bias_width - 3:], dec_x, dec_y, False)
@@ -379,36 +385,44 @@ def dda_run(clock, reset, cmd, move, steps):
     @always_seq(clock.posedge, reset=reset)
     def steps_left():
         # each axis' steps over the rest of the move, as their difference and the larger one
-        # minus one (stop_left); a line counts its iterations in the difference
-        less = False
+        # minus one (stop_left; the larger falls when the axis that has more steps steps); a
+        # line counts its iterations in the difference.  A taken move's values go through
+        # the same adders (less one), all ones while no move or a blended one runs.
+        base_diff = modbv(0)[left_width:]
         change = modbv(0)[left_width:]
-        if pending:
-            # a line counts its iterations down; an arc adds -1 for an X step, +1 for a Y step
+        base_most = modbv(0)[left_width:]
+        less = modbv(0)[left_width:]
+        base_diff[:] = left_diff
+        base_most[:] = most_left
+        if move.take:
+            base_diff[:] = move.totals_diff
+            base_most[:] = move.totals_max
+            less[:] = left_ones
+            if move.line:
+                change[:] = left_ones
+        elif pending:
             if line or (dec_x and not dec_y):
                 change[:] = left_ones
             elif dec_y and not dec_x:
                 change[:] = 1
-            left_diff.next = left_diff + change
-            if line:
-                less = True
-            else:
-                if left_diff == 0:
-                    less = dec_x and dec_y
+            if not blend:
+                if line:
+                    less[:] = left_ones
+                elif left_diff == 0:
+                    if dec_x and dec_y:
+                        less[:] = left_ones
                 elif left_diff[left_width - 1]:
-                    less = dec_y == 1
-                else:
-                    less = dec_x == 1
-            if less and not blend:
-                most_left.next = most_left - 1
-            if dec_finished:
-                most_left.next = left_ones
+                    if dec_y:
+                        less[:] = left_ones
+                elif dec_x:
+                    less[:] = left_ones
+        left_diff.next = base_diff + change
+        most_left.next = base_most + less
         if move.take:
-            left_diff.next = move.totals_diff
-            if move.line:
-                left_diff.next = move.totals_diff - 1
+            if move.blend or move.error or move.zero:
+                most_left.next = left_ones
+        elif pending and dec_finished:
             most_left.next = left_ones
-            if not move.blend and not move.error and not move.zero:
-                most_left.next = move.totals_max - 1
 
     @always_seq(clock.posedge, reset=reset)
     def errors():

@@ -166,7 +166,9 @@ class DdaPlan:
     and the larger; a line's both hold its iterations).  Checks, true when
     the move is bad: ``centre``, ``off_circle`` (end not within one step of
     the start radius), ``beyond`` (end beyond Rq on its inward axis),
-    ``too_wide`` (n + k too large).
+    ``too_wide`` (n + k too large).  For the setup stage itself:
+    ``start_below_x`` / ``start_same_x`` (|xs| < |xe|, |xs| == |xe|), the same
+    for y, ``x_inward_end`` (X moves towards its axis in the last piece).
     """
 
     def __init__(self, port):
@@ -194,6 +196,28 @@ class DdaPlan:
         self.off_circle = Signal(bool(0))
         self.beyond = Signal(bool(0))
         self.too_wide = Signal(bool(0))
+        # the setup stage's own: the compares' results and the end's inward axis
+        self.start_below_x, self.start_same_x = Signal(bool(0)), Signal(bool(0))
+        self.start_below_y, self.start_same_y = Signal(bool(0)), Signal(bool(0))
+        self.x_inward_end = Signal(bool(0))
+
+
+class DdaRoot:
+    """The setup stage's square root (``rtl/dda_root.py``).
+
+    ``load``: take ``radicand`` (2W bits) at this edge; the root then forms
+    one bit a clock for W + 1 clocks, and ``root`` holds t = 2 isqrt + r
+    (r = 1 when the radicand lies nearer the next square: Rq = (t + 1) >> 1).
+    ``grows``: in this clock a bit of Rq's length appears (each root bit from
+    the first 1 on, and one more when the rounding carries into a new bit).
+    """
+
+    def __init__(self, coord_width):
+        self.coord_width = coord_width
+        self.load = Signal(bool(0))
+        self.radicand = Signal(intbv(0)[2 * coord_width:])
+        self.root = Signal(intbv(0)[coord_width + 1:])
+        self.grows = Signal(bool(0))
 
 
 class DdaMove:

@@ -57,11 +57,11 @@ def setup_clocks(coord_width, line):
 
     A line: the latch and one clock for its threshold.  An arc: the latch, 7
     clocks of magnitude compares, the four squares (coord_width clocks each,
-    the square root running beside the last two), 3 clocks for the end-point
-    limits and 12 for the rounded radius, the inward-end test and the two
+    the square root running beside the last two), 5 clocks for the end-point
+    limits and 13 for the rounded radius, the inward-end test and the two
     step totals, all on one adder.
     """
-    return 2 if line else 4 * coord_width + 23
+    return 2 if line else 4 * coord_width + 26
 
 
 def wrap(value, width):
