@@ -1,5 +1,5 @@
-/* Function registers of the PCI DDA card (I/O BAR).
- * Generated from rtl/registers.py by python -m rtl.top --convert; do not edit. */
+/* Host interface of the PCI DDA card: function registers (I/O BAR) and more.
+ * Generated from rtl/ by python -m rtl.top --convert; do not edit. */
 #ifndef DDA_REGISTERS_H
 #define DDA_REGISTERS_H
 
@@ -29,7 +29,7 @@
 #define DDA_COMMAND_CLEAR_POSITION_MASK 0x00000004u
 
 #define DDA_STATUS 0x0Cu
-#define DDA_STATUS_RESET 0x00000000u
+#define DDA_STATUS_RESET 0x00000100u
 #define DDA_STATUS_BUSY_SHIFT 0u
 #define DDA_STATUS_BUSY_MASK 0x00000001u
 #define DDA_STATUS_DONE_SHIFT 1u
@@ -156,13 +156,24 @@
 #define DDA_PULSE_COUNT_Y_COUNT_SHIFT 0u
 #define DDA_PULSE_COUNT_Y_COUNT_MASK 0x00FFFFFFu
 
+#define DDA_PCI_VENDOR_ID 0x1234u
+#define DDA_PCI_DEVICE_ID 0xDDA0u
+#define DDA_PCI_REVISION_ID 0x01u
+#define DDA_PCI_CLASS_CODE 0x088000u
+#define DDA_PCI_SUBSYSTEM_VENDOR_ID 0x1234u
+#define DDA_PCI_SUBSYSTEM_ID 0x0001u
+#define DDA_BAR0_SIZE 128u /* I/O: function registers */
+#define DDA_BAR1_SIZE 4096u /* memory: the command FIFO window */
+#define DDA_FIFO_DEPTH 512u /* words */
 #define DDA_OPCODE_SHIFT 28u
 #define DDA_CMD_LINE 0x1u
 #define DDA_CMD_LINE_OPERANDS 2u
+#define DDA_CMD_LINE_WORDS 3u
 #define DDA_CMD_LINE_BLEND_SHIFT 16u
 #define DDA_CMD_LINE_BLEND_MASK 0x00010000u
 #define DDA_CMD_ARC 0x2u
 #define DDA_CMD_ARC_OPERANDS 4u
+#define DDA_CMD_ARC_WORDS 5u
 #define DDA_CMD_ARC_CCW_SHIFT 0u
 #define DDA_CMD_ARC_CCW_MASK 0x00000001u
 #define DDA_CMD_ARC_VARIANT_SHIFT 1u
@@ -175,14 +186,18 @@
 #define DDA_CMD_ARC_BLEND_MASK 0x00010000u
 #define DDA_CMD_PULSE 0x3u
 #define DDA_CMD_PULSE_OPERANDS 2u
+#define DDA_CMD_PULSE_WORDS 3u
 #define DDA_CMD_SET 0x4u
 #define DDA_CMD_SET_OPERANDS 1u
+#define DDA_CMD_SET_WORDS 2u
 #define DDA_CMD_SET_INDEX_SHIFT 0u
 #define DDA_CMD_SET_INDEX_MASK 0x0000000Fu
 #define DDA_CMD_DWELL 0x5u
 #define DDA_CMD_DWELL_OPERANDS 1u
+#define DDA_CMD_DWELL_WORDS 2u
 #define DDA_CMD_MARK 0x6u
 #define DDA_CMD_MARK_OPERANDS 0u
+#define DDA_CMD_MARK_WORDS 1u
 #define DDA_CMD_MARK_TAG_SHIFT 0u
 #define DDA_CMD_MARK_TAG_MASK 0x0000FFFFu
 #define DDA_ERROR_NONE 0u
@@ -190,5 +205,89 @@
 #define DDA_ERROR_RESERVED_BITS 2u
 #define DDA_ERROR_RANGE 3u
 #define DDA_ERROR_DDA_REJECTED 4u
+
+#include <stdint.h>
+
+/* Command builders: each writes a command's words (header, then operands) into
+ * words[] and returns how many; it returns 0 and writes nothing when a header
+ * field does not fit its width.  Signed operands are steps (two's complement). */
+
+/* LINE: straight move by (DX, DY) steps (signed, must fit the coordinate width). */
+static inline unsigned dda_cmd_line(uint32_t words[DDA_CMD_LINE_WORDS],
+    int32_t dx,
+    int32_t dy,
+    uint32_t blend)
+{
+    if (blend > 0x1u)
+        return 0u;
+    words[0] = (DDA_CMD_LINE << DDA_OPCODE_SHIFT) | (blend << DDA_CMD_LINE_BLEND_SHIFT);
+    words[1] = (uint32_t)dx;
+    words[2] = (uint32_t)dy;
+    return DDA_CMD_LINE_WORDS;
+}
+
+/* ARC: arc about the centre from (XS, YS) to (XE, YE), centre-relative signed steps. */
+static inline unsigned dda_cmd_arc(uint32_t words[DDA_CMD_ARC_WORDS],
+    int32_t xs,
+    int32_t ys,
+    int32_t xe,
+    int32_t ye,
+    uint32_t ccw,
+    uint32_t variant,
+    uint32_t lambda,
+    uint32_t acc_bits,
+    uint32_t blend)
+{
+    if (ccw > 0x1u || variant > 0x3u || lambda > 0x1Fu || acc_bits > 0x1Fu || blend > 0x1u)
+        return 0u;
+    words[0] = (DDA_CMD_ARC << DDA_OPCODE_SHIFT) | (ccw << DDA_CMD_ARC_CCW_SHIFT) | (variant << DDA_CMD_ARC_VARIANT_SHIFT) | (lambda << DDA_CMD_ARC_LAMBDA_SHIFT) | (acc_bits << DDA_CMD_ARC_ACC_BITS_SHIFT) | (blend << DDA_CMD_ARC_BLEND_SHIFT);
+    words[1] = (uint32_t)xs;
+    words[2] = (uint32_t)ys;
+    words[3] = (uint32_t)xe;
+    words[4] = (uint32_t)ye;
+    return DDA_CMD_ARC_WORDS;
+}
+
+/* PULSE: direct pulses: signed counts per axis at PULSE_PERIOD_X / _Y, both axes at once. */
+static inline unsigned dda_cmd_pulse(uint32_t words[DDA_CMD_PULSE_WORDS],
+    int32_t count_x,
+    int32_t count_y)
+{
+    words[0] = (DDA_CMD_PULSE << DDA_OPCODE_SHIFT);
+    words[1] = (uint32_t)count_x;
+    words[2] = (uint32_t)count_y;
+    return DDA_CMD_PULSE_WORDS;
+}
+
+/* SET: write VALUE into a register at this point of the stream (clamped like a bus write). */
+static inline unsigned dda_cmd_set(uint32_t words[DDA_CMD_SET_WORDS],
+    uint32_t value,
+    uint32_t index)
+{
+    if (index > 0xFu)
+        return 0u;
+    words[0] = (DDA_CMD_SET << DDA_OPCODE_SHIFT) | (index << DDA_CMD_SET_INDEX_SHIFT);
+    words[1] = (uint32_t)value;
+    return DDA_CMD_SET_WORDS;
+}
+
+/* DWELL: wait CLOCKS clocks (32-bit) before the next command. */
+static inline unsigned dda_cmd_dwell(uint32_t words[DDA_CMD_DWELL_WORDS],
+    uint32_t clocks)
+{
+    words[0] = (DDA_CMD_DWELL << DDA_OPCODE_SHIFT);
+    words[1] = (uint32_t)clocks;
+    return DDA_CMD_DWELL_WORDS;
+}
+
+/* MARK: set INT_STATUS.MARK and MARK_TAG when reached. */
+static inline unsigned dda_cmd_mark(uint32_t words[DDA_CMD_MARK_WORDS],
+    uint32_t tag)
+{
+    if (tag > 0xFFFFu)
+        return 0u;
+    words[0] = (DDA_CMD_MARK << DDA_OPCODE_SHIFT) | (tag << DDA_CMD_MARK_TAG_SHIFT);
+    return DDA_CMD_MARK_WORDS;
+}
 
 #endif /* DDA_REGISTERS_H */

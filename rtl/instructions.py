@@ -49,6 +49,8 @@ OPCODES = (
            "set INT_STATUS.MARK and MARK_TAG when reached"),
 )
 
+# operands that are signed steps (the others, SET's VALUE and DWELL's CLOCKS, are unsigned)
+SIGNED_OPERANDS = ("DX", "DY", "XS", "YS", "XE", "YE", "COUNT_X", "COUNT_Y")
 MAX_OPERANDS = max(len(op.operands) for op in OPCODES)
 BY_NAME = {op.name: op for op in OPCODES}
 BY_CODE = {op.code: op for op in OPCODES}
@@ -110,9 +112,41 @@ def c_defines(prefix="DDA"):
     for op in OPCODES:
         lines.append(f"#define {prefix}_CMD_{op.name} 0x{op.code:X}u")
         lines.append(f"#define {prefix}_CMD_{op.name}_OPERANDS {len(op.operands)}u")
+        lines.append(f"#define {prefix}_CMD_{op.name}_WORDS {1 + len(op.operands)}u")
         for n, lsb, w, _ in op.header_fields:
             lines.append(f"#define {prefix}_CMD_{op.name}_{n}_SHIFT {lsb}u")
             lines.append(f"#define {prefix}_CMD_{op.name}_{n}_MASK 0x{((1 << w) - 1) << lsb:08X}u")
     for code, name, _ in ERRORS:
         lines.append(f"#define {prefix}_ERROR_{name} {code}u")
+    return "\n".join(lines) + "\n"
+
+
+def c_builders(prefix="DDA"):
+    """C ``static inline`` command builders, one per opcode, as ``encode`` builds them.
+
+    ``<prefix>_cmd_<name>(words, operands..., header fields...)`` writes the
+    header and the operand words into ``words`` and returns their number
+    (``<prefix>_CMD_<NAME>_WORDS``), or returns 0 and writes nothing when a
+    header field does not fit its width.
+    """
+    lines = ["#include <stdint.h>", "",
+             "/* Command builders: each writes a command's words (header, then operands) into",
+             " * words[] and returns how many; it returns 0 and writes nothing when a header",
+             " * field does not fit its width.  Signed operands are steps (two's complement). */"]
+    for op in OPCODES:
+        macro = f"{prefix}_CMD_{op.name}"
+        params = [f"uint32_t words[{macro}_WORDS]"]
+        params += [f"{'int32_t' if name in SIGNED_OPERANDS else 'uint32_t'} {name.lower()}" for name in op.operands]
+        params += [f"uint32_t {name.lower()}" for name, _, _, _ in op.header_fields]
+        checks = " || ".join(f"{name.lower()} > 0x{(1 << width) - 1:X}u" for name, _, width, _ in op.header_fields)
+        header = " | ".join([f"({macro} << {prefix}_OPCODE_SHIFT)"] + [
+            f"({name.lower()} << {macro}_{name}_SHIFT)" for name, _, _, _ in op.header_fields])
+        lines += ["", f"/* {op.name}: {op.text}. */",
+                  f"static inline unsigned {prefix.lower()}_cmd_{op.name.lower()}(" + ",\n    ".join(params) + ")",
+                  "{"]
+        if checks:
+            lines.append(f"    if ({checks})\n        return 0u;")
+        lines.append(f"    words[0] = {header};")
+        lines += [f"    words[{index + 1}] = (uint32_t){name.lower()};" for index, name in enumerate(op.operands)]
+        lines += [f"    return {macro}_WORDS;", "}"]
     return "\n".join(lines) + "\n"

@@ -97,7 +97,8 @@ REGISTERS = (
         Field("CLEAR_ERROR", 1, 1, "clear STATUS.ERROR; execution resumes with the next queued word"),
         Field("CLEAR_POSITION", 2, 1, "zero POS_X and POS_Y"),
     )),
-    Register("STATUS", 0x0C, "RO", 0, "what the card is doing", (
+    # after reset: idle, no error, the FIFO empty
+    Register("STATUS", 0x0C, "RO", 1 << 8, "what the card is doing", (
         Field("BUSY", 0, 1, "a command is executing or queued"),
         Field("DONE", 1, 1, "the queue ran empty after motion (cleared when a command starts)"),
         Field("QUADRANT", 2, 2, "quadrant of the arc's moving point, 0..3 for I..IV"),
@@ -254,8 +255,8 @@ def c_header(prefix="DDA", extra=""):
     definitions placed inside the include guard)."""
     guard = f"{prefix}_REGISTERS_H"
     lines = [
-        "/* Function registers of the PCI DDA card (I/O BAR).",
-        " * Generated from rtl/registers.py by python -m rtl.top --convert; do not edit. */",
+        "/* Host interface of the PCI DDA card: function registers (I/O BAR) and more.",
+        " * Generated from rtl/ by python -m rtl.top --convert; do not edit. */",
         f"#ifndef {guard}",
         f"#define {guard}",
         "",

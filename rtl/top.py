@@ -18,7 +18,7 @@ from pathlib import Path
 from myhdl import Signal, ToVerilogWarning, block
 
 from rtl import instructions, registers
-from rtl.card import card
+from rtl.card import card, slave_params
 from rtl.dda_build import COORD_WIDTH, DEFAULT_VARIANTS, parse_variants, variants_text
 from rtl.interfaces import MotorPins, PciBus, PciPins, card_reset
 from rtl.pci_pads import pci_pads
@@ -90,11 +90,22 @@ def top_ports(fifo_depth=512, coord_width=COORD_WIDTH, variants=DEFAULT_VARIANTS
     return dict(clock=Signal(bool(0)), reset=card_reset(), pci_pins=PciPins(), motor=MotorPins())
 
 
-def write_c_header(out_dir=GEN_DIR):
-    """Write the C header of the register map and command set; return its path."""
+def write_c_header(out_dir=GEN_DIR, **values):
+    """Write the C header of the build ``values`` (converter parameters, defaults
+    for the rest) describe: PCI identity and BAR sizes of the card, register
+    map, command set and command builders; return its path."""
+    settings = {name: values.get(name, spec[1]) for name, spec in PARAMETERS.items()}
+    bars = slave_params()
+    digits = {"revision_id": 2, "class_code": 6}
+    identity = [f"#define DDA_PCI_{name.upper()} 0x{settings[name]:0{digits.get(name, 4)}X}u"
+                for name in UNITS["card"] if name.endswith("_id") or name == "class_code"]
+    identity += [f"#define DDA_BAR0_SIZE {1 << bars['io_bar_bits']}u /* I/O: function registers */",
+                 f"#define DDA_BAR1_SIZE {1 << bars['mem_bar_bits']}u /* memory: the command FIFO window */",
+                 f"#define DDA_FIFO_DEPTH {settings['fifo_depth']}u /* words */", ""]
     target = Path(out_dir) / C_HEADER
     target.parent.mkdir(parents=True, exist_ok=True)
-    target.write_text(registers.c_header(extra=instructions.c_defines()))
+    target.write_text(registers.c_header(extra="\n".join(identity) + instructions.c_defines() + "\n"
+                                         + instructions.c_builders()))
     return target
 
 
@@ -192,7 +203,7 @@ def main(argv=None):
         written = convert_all(args.out, **values)
     except ValueError as error:
         parser.exit(2, f"{parser.prog}: error: {error}\n")
-    written.append(write_c_header(args.out))
+    written.append(write_c_header(args.out, **values))
     for path in written:
         print(f"wrote {path}")
     return 0

@@ -9,16 +9,28 @@ from rtl.card_core import card_core, card_core_ports
 from sim.card_model import PulseOutModel
 from sim.cosim import convert_and_cosimulate
 from sim.local_bus_driver import LocalBusDriver
-from sim.waves import Waveform, run_traced, write_gtkw
+from sim.waves import Waveform, find, run_traced, write_gtkw
 from sim.dda_model import ArcCommand, LineCommand, iterate
 from sim.clocking import clock_source
 
 HALF_PERIOD = 5
 FIFO_DEPTH = 16
 TIMING = dict(width=1, setup=1, hold=1)  # the reset values of STEP_WIDTH, DIR_SETUP, DIR_HOLD
-GROUPS = {"bus": ["local_we", "local_re", "local_space", "local_addr", "local_be", "local_ready",
-                  "local_retry", "local_rdata"],
-          "pins": ["pins_step_x", "pins_dir_x", "pins_step_y", "pins_dir_y", "irq"]}
+BUS_GROUPS = {"bus": ["local_we", "local_re", "local_space", "local_addr", "local_be", "local_ready",
+                      "local_retry", "local_wdata", "local_rdata", "irq"]}
+STEP_PINS = ["pin_capture.pins_step_x", "pin_capture.pins_step_y"]
+PINS = [f"pin_capture.pins_{line}" for line in ("step_x", "dir_x", "step_y", "dir_y")]
+OPERANDS = [f"sequencer.operand_{index}" for index in range(isa.MAX_OPERANDS)]
+POSITIONS = ["pulse_out.position_x", "pulse_out.position_y"]
+MOTION_GROUPS = {
+    "STEP/DIR pins": PINS,
+    "position (steps)": POSITIONS,
+    "sequencer: command": ["sequencer.state", "sequencer.opcode", "sequencer.header"] + OPERANDS
+    + ["sequencer.error_code", "regs_fifo.fifo_level"],
+    "feed rate": ["feed_rate.rate", "feed_rate.tick"],
+}
+MOTION_DISPLAY = dict(signed=POSITIONS + OPERANDS,
+                      names={"sequencer.opcode": {op.code: op.name for op in isa.OPCODES}})
 
 
 @dataclass
@@ -154,10 +166,23 @@ def run_core(name, scenario, cosim=False, check_pins=True, fifo_depth=FIFO_DEPTH
     ports = card_core_ports(fifo_depth=fifo_depth)
     log, failures = PinLog(), []
     vcd = run_traced(core_bench(ports, scenario, log, failures, cosim, check_pins, fifo_depth), name)
+    wave = Waveform(vcd)
+    write_motion_view(vcd, BUS_GROUPS, wave)
     assert not failures, failures[0]
-    if not cosim:
-        write_gtkw(vcd, GROUPS)
-    return log, Waveform(vcd)
+    return log, wave
+
+
+def write_motion_view(vcd, groups=None, wave=None):
+    """The save file of a card or motion bench: ``groups`` (e.g. the bus), then
+    STEP/DIR, positions, the sequencer's command and the feed rate, as far as
+    the VCD has them (a co-simulated core shows only its pins); the whole run,
+    the marker on the first STEP pulse."""
+    wave = wave or Waveform(vcd)
+    steps = [find(wave.changes, pin) for pin in STEP_PINS]
+    rises = [wave.edges(full, "1")[:1] for full in steps if full]
+    marker = min((times[0] for times in rises if times), default=None)
+    return write_gtkw(vcd, {**(groups or {}), **MOTION_GROUPS}, optional=True, marker=marker,
+                      **MOTION_DISPLAY)
 
 
 def expected_path(commands, coord_width=24):

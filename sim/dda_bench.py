@@ -5,7 +5,8 @@ the ``DdaPort`` (start pulse when ready, one after the other or overlapped, a
 seeded random or alternating ``advance`` pattern, stray ``start`` pulses while
 not ready) and compares every output with the model after every clock.  The device is the MyHDL block, or with ``verilog`` (a list of
 files) a ``Cosimulation`` of the generated Verilog on the same ``ports``.  The moves the outputs made
-are collected in ``record`` for the tests.
+are collected in ``record`` for the tests.  ``write_view(vcd)`` writes the
+run's GTKWave save file.
 """
 import math
 import random
@@ -16,7 +17,21 @@ from rtl.dda_arc import dda_arc
 from sim.cosim import cosimulate
 from sim.dda_model import ArcCommand, DdaMachine, LineCommand, plan_arc
 from sim.clocking import clock_source
+from sim.waves import Waveform, write_gtkw
 
+VIEW_GROUPS = {
+    "command": ["cmd_start", "cmd_line", "cmd_variant", "cmd_ccw", "cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye"],
+    "status": ["cmd_advance", "cmd_ready", "cmd_busy", "cmd_done", "cmd_error", "cmd_quadrant",
+               "cmd_blend", "cmd_stop_left"],
+    "pulses": ["steps_step_x", "steps_dir_x", "steps_step_y", "steps_dir_y"],
+    "setup (MyHDL only)": ["dda_setup.state", "dda_setup.step", "dda_setup.gap", "dda_setup.operand",
+                           "dda_setup.root_root", "plan_radius", "plan_totals_diff", "plan_totals_max"],
+    "run (MyHDL only)": ["dda_run.quadrant", "dda_run.mag_x", "dda_run.mag_y", "dda_run.target_x",
+                         "dda_run.target_y", "dda_run.acc_x", "dda_run.acc_y", "dda_run.error_term",
+                         "dda_run.bias_x", "dda_run.bias_y", "dda_run.left_diff", "dda_run.crossings"],
+}
+VIEW_SIGNED = ("cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye", "dda_run.acc_x", "dda_run.acc_y", "plan_totals_diff")
+VIEW_DECIMAL = ("dda_run.mag_x", "dda_run.mag_y", "plan_radius", "plan_totals_max")
 OUTPUTS = ("busy", "ready", "done", "error", "quadrant", "stop_left")
 PULSES = ("step_x", "step_y", "dir_x", "dir_y")
 HALF_PERIOD = 5
@@ -175,3 +190,14 @@ def random_arc(rng, coord_width=24, radius=None, span=None, variant=3, ccw=None)
         command = ArcCommand(xs, ys, xe, ye, direction, variant, lam, 0)
         if accepted(command, coord_width):
             return command
+
+
+def write_view(vcd, wave=None):
+    """The save file of a DDA bench: command, status, pulses and (MyHDL) the
+    datapath (the magnitudes each accumulator adds, |y| and |x| on an arc, the
+    accumulators, the radial error term, the steps left); the whole run, the
+    marker on the first command's start."""
+    wave = wave or Waveform(vcd)
+    starts = wave.edges("cmd_start", "1")
+    return write_gtkw(vcd, VIEW_GROUPS, signed=VIEW_SIGNED, decimal=VIEW_DECIMAL, optional=True,
+                      marker=starts[0] if starts else None)

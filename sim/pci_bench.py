@@ -16,7 +16,7 @@ from rtl.interfaces import card_reset
 from sim.local_memory import LocalMemory, local_memory
 from sim.paths import GEN
 from sim.pci_bus import PciSegment, pci_segment
-from sim.pci_host import PciHost, pci_host
+from sim.pci_host import PciHost, pci_host, run_scenario
 from sim.pci_monitor import ProtocolChecker, pci_monitor
 from sim.waves import Waveform, run_traced, write_gtkw
 from sim.clocking import clock_source
@@ -182,7 +182,7 @@ def pci_testbench(bench, scenario, background=None):
         yield from bench.clocks(RESET_CLOCKS)
         reset.next = not reset.active
         yield from bench.clocks(2)
-        yield from scenario(bench)
+        yield from run_scenario(bench.host, scenario(bench))
         yield from bench.clocks(4)
         raise StopSimulation()
 
@@ -190,6 +190,6 @@ def pci_testbench(bench, scenario, background=None):
     def beside():
         yield from bench.clocks(RESET_CLOCKS + 2)
         if background is not None:
-            yield from background(bench)
+            yield from run_scenario(bench.host, background(bench))
 
     return host_driver, segment, monitor, target, clock_driver, stimulus, beside

@@ -19,23 +19,11 @@ line in the clock that just ended (``drivers`` of ``sample()``), which the
 monitor uses for the contention and turnaround rules.
 """
 from collections import deque
-from dataclasses import dataclass
 
 from myhdl import Signal, TristateSignal, always, block, instance, intbv, now
 
-# Line name -> width.  Order is the order of the VCD and of the samples.
-LINE_WIDTHS = {
-    "ad": 32, "cbe": 4, "par": 1, "frame": 1, "irdy": 1, "trdy": 1,
-    "devsel": 1, "stop": 1, "perr": 1, "serr": 1, "inta": 1,
-}
-PULLED_UP = ("frame", "irdy", "trdy", "devsel", "stop", "perr", "serr", "inta")
-OPEN_DRAIN = ("serr", "inta")
-SUSTAINED_TRISTATE = ("frame", "irdy", "trdy", "devsel", "stop", "perr")
-
-
-def even_parity(ad, cbe):
-    """PAR that makes the number of ones over AD[31:0], C/BE#[3:0] and PAR even."""
-    return bin((int(ad) & 0xFFFFFFFF) | ((int(cbe) & 0xF) << 32)).count("1") & 1
+from sim.pci_lines import (LINE_WIDTHS, OPEN_DRAIN, PULLED_UP, SUSTAINED_TRISTATE,  # noqa: F401
+                           BusSample, even_parity)
 
 
 def _line_signal(line, value):
@@ -67,23 +55,6 @@ class PciLines:
         self.cbe_driven = Signal(bool(0))
         self.par_driven = Signal(bool(0))
         self.ad_view = TristateSignal(intbv(0)[32:])
-
-
-@dataclass(frozen=True)
-class BusSample:
-    """The segment as sampled at one rising edge: ``values[line]`` (``None``
-    for a floating AD, C/BE# or PAR) and ``drivers[line]`` (the set of agent
-    names that drove the line in the clock that ended at this edge)."""
-
-    time: int
-    values: dict
-    drivers: dict
-
-    def __getattr__(self, line):
-        try:
-            return self.values[line]
-        except KeyError:
-            raise AttributeError(line) from None
 
 
 class PciSegment:

@@ -14,6 +14,8 @@ yosys's cell model) on the same bus model through ``sim/top_harness.py``.
 The split-port card already has the pads' I/O-register timing, so both show
 the bus the same, clock for clock.
 """
+import re
+
 import pytest
 from myhdl import always, block
 
@@ -22,9 +24,10 @@ from rtl import registers as regmap
 from rtl.card import card, card_ports
 from rtl.interfaces import MotorPins
 from rtl.top import PARAMETERS
-from sim.card_bench import PinLog, command_words, expected_path, pin_capture
+from sim.card_bench import PinLog, command_words, expected_path, pin_capture, write_motion_view
 from sim.dda_model import ArcCommand, LineCommand, iterate, metrics, v_arc
-from sim.pci_bench import TARGET_DEVICE, PciBench
+from sim.pci_bench import TARGET_DEVICE, WAVE_GROUPS, PciBench
+from sim.paths import GEN
 from sim.pci_host import Termination
 from sim.top_harness import TopHarness, convert_top, generated_top, top_on_bus
 from sim.waves import Waveform
@@ -87,7 +90,9 @@ def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO):
         yield from scenario(b, target, out)
 
     vcd = bench.run(wrapped, f"{name}_{kind}")
-    return out, target.log, Waveform(vcd), bench
+    wave = Waveform(vcd)
+    write_motion_view(vcd, WAVE_GROUPS, wave)
+    return out, target.log, wave, bench
 
 
 def io_write(bench, target, name, value):
@@ -160,6 +165,43 @@ def test_enumerate_program_arc(kind):
     assert v_arc(rebuilt, 40) == pytest.approx(model_v_arc, rel=1e-12)
     assert regmap.field_value("STATUS", "BUSY", out["status"]) == 0
     assert regmap.field_value("INT_STATUS", "DONE", out["int_status"]) == 1
+
+
+def header_constants():
+    """Every ``#define NAME 0x...u`` / ``NAME 123u`` of ``gen/dda_card.h``."""
+    text = (GEN / "dda_card.h").read_text()
+    found = re.findall(r"^#define (\w+) (0x[0-9A-F]+|\d+)u\b", text, re.M)
+    return {name: int(value, 0) for name, value in found}
+
+
+@pytest.mark.parametrize("kind", ["myhdl", "verilog"])
+def test_after_reset_every_register_reads_as_documented(kind):
+    """Before any write, every register reads the reset value of the table
+    (``docs/registers.md``, ``DDA_<NAME>_RESET``), the offsets between them
+    read 0, and configuration space holds the identity and BAR sizes that
+    ``gen/dda_card.h`` gives host software."""
+    reads = {}
+
+    def scenario(bench, target, out):
+        for offset in range(0, 1 << regmap.IO_BAR_BITS, regmap.WORD_BYTES):
+            result = yield from bench.host.io_read(target.io + offset)
+            assert result.complete, f"I/O read of {offset:#x} ended {result.termination}"
+            reads[offset] = result.value
+        out["subsystem"] = (yield from bench.host.config_read(DEVICE, 0x2C)).value
+
+    out, _, _, _ = run_card(kind, scenario, "card_e2e_reset", DEFAULT_FIFO)
+    for reg in regmap.REGISTERS:
+        value = reads.pop(reg.offset)
+        assert value == reg.reset, f"{reg.name} reads {value:#x}, the table says {reg.reset:#x}"
+    assert set(reads.values()) == {0}, "an unlisted offset does not read 0"
+    header, device, bars = header_constants(), out["device"], out["bars"]
+    assert {reg.name: header[f"DDA_{reg.name}_RESET"] for reg in regmap.REGISTERS} == {
+        reg.name: reg.reset for reg in regmap.REGISTERS}
+    assert (device.vendor_id, device.device_id, device.revision_id, device.class_code) == (
+        header["DDA_PCI_VENDOR_ID"], header["DDA_PCI_DEVICE_ID"], header["DDA_PCI_REVISION_ID"],
+        header["DDA_PCI_CLASS_CODE"])
+    assert out["subsystem"] == header["DDA_PCI_SUBSYSTEM_ID"] << 16 | header["DDA_PCI_SUBSYSTEM_VENDOR_ID"]
+    assert (bars["io"]["size"], bars["mem"]["size"]) == (header["DDA_BAR0_SIZE"], header["DDA_BAR1_SIZE"])
 
 
 def test_top_level_pins_match_the_split_port_card_clock_for_clock():

@@ -19,8 +19,8 @@ from rtl import registers as regmap
 from rtl.card_core import card_core, card_core_ports
 from rtl.interfaces import AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
 from rtl.regs_fifo import regs_fifo
-from sim.card_bench import (TIMING, PinLog, clock_and_pins, expected_path, pin_model_check, read_position,
-                            scenario_runner, wait_idle)
+from sim.card_bench import (BUS_GROUPS, TIMING, PinLog, clock_and_pins, expected_path, pin_model_check,
+                            read_position, scenario_runner, wait_idle, write_motion_view)
 from sim.card_model import DdaContractModel
 from sim.cosim import convert_and_cosimulate
 from sim.dda_model import ArcCommand, LineCommand, iterate, setup_clocks
@@ -100,7 +100,8 @@ def motion_bench(kind, scenario, log, failures):
 
 def run_motion(name, kind, scenario):
     log, failures = PinLog(), []
-    run_traced(motion_bench(kind, scenario, log, failures), f"motion_{name}_{kind}")
+    vcd = run_traced(motion_bench(kind, scenario, log, failures), f"motion_{name}_{kind}")
+    write_motion_view(vcd, BUS_GROUPS)
     assert not failures, failures[0]
     return log
 

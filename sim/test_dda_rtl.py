@@ -18,23 +18,14 @@ import pytest
 from rtl.dda_arc import dda_arc_ports
 from rtl.dda_build import ALL_VARIANTS, DEFAULT_VARIANTS
 from rtl.top import convert_unit
-from sim.dda_bench import HALF_PERIOD, Record, accepted, dda_bench, end_point, random_arc
+from sim.dda_bench import HALF_PERIOD, Record, accepted, dda_bench, end_point, random_arc, write_view
 from sim.dda_model import (IMPROVED, PAPER_V_ARC, PRECISE, TRADITIONAL, WEIGHTED, ArcCommand,
                            LineCommand, paper_configuration, setup_clocks, v_arc)
 from sim.paths import GEN, build_dir
-from sim.waves import Waveform, run_traced, write_gtkw
+from sim.waves import Waveform, run_traced
 
-GROUPS = {
-    "command": ["cmd_start", "cmd_line", "cmd_variant", "cmd_ccw", "cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye"],
-    "status": ["cmd_advance", "cmd_ready", "cmd_busy", "cmd_done", "cmd_error", "cmd_quadrant",
-               "cmd_blend", "cmd_stop_left"],
-    "pulses": ["steps_step_x", "steps_dir_x", "steps_step_y", "steps_dir_y"],
-    "datapath": ["state", "quadrant", "mag_x", "mag_y", "acc_x", "acc_y", "radial_error",
-                 "count_x", "count_y", "crossings"],
-}
 VERILOG_DIR = Path(os.environ.get("DDA_VERILOG_DIR", GEN))
 BUILDS = {"default": DEFAULT_VARIANTS, "all": ALL_VARIANTS}
-SIGNED = ("cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye", "acc_x", "acc_y", "radial_error")
 
 PAPER_CASES = [ArcCommand(8, 0, 0, 8, variant=v) for v in range(4)] + \
     [paper_configuration(v)[0] for v in (TRADITIONAL, WEIGHTED, IMPROVED)] + \
@@ -114,19 +105,8 @@ def run_bench(name, commands, cosim=False, seed=1, advance_rate=0.7, idle_gap=3,
     bench = dda_bench(ports, commands, record, verilog=verilog, seed=seed, advance_rate=advance_rate,
                       idle_gap=idle_gap, overlap=overlap, alternate=alternate)
     vcd = run_traced(bench, name)
-    wave = Waveform(vcd)
-    groups = {g: [s for s in names if _has(wave, s)] for g, names in GROUPS.items()}
-    write_gtkw(vcd, {g: names for g, names in groups.items() if names},
-               signed=[s for s in SIGNED if _has(wave, s)])
+    write_view(vcd)
     return record, vcd
-
-
-def _has(wave, suffix):
-    try:
-        wave.full_name(suffix)
-    except KeyError:
-        return False
-    return True
 
 
 def check_moves(record, bad=BAD, variants=ALL_VARIANTS):

@@ -7,7 +7,7 @@ from myhdl import Signal, StopSimulation, block, instance
 from rtl.interfaces import card_reset
 from sim.pci_bus import PciAgent, PciSegment, even_parity, pci_segment, scripted_agent
 from sim.pci_monitor import ProtocolChecker, ProtocolViolation, pci_monitor
-from sim.waves import run_traced, waves_dir, write_gtkw
+from sim.waves import run_traced
 from sim.clocking import clock_source
 
 RESET_CLOCKS = 2
@@ -56,12 +56,9 @@ def play(master, target, name, during_reset=False, **checker_options):
     checker = ProtocolChecker(**checker_options)
     idle = [] if during_reset else [{}] * RESET_CLOCKS
     bench = scripted_bench(clock, reset, segment, checker, idle + master, idle + target)
-    vcd = waves_dir() / f"monitor_{name}.vcd"
-    try:
-        run_traced(bench, f"monitor_{name}")
-    finally:
-        write_gtkw(vcd, {"PCI": ["clock", "reset"] + [f"bus_{line}" for line in (
-            "frame", "irdy", "ad_view", "cbe", "par", "devsel", "trdy", "stop", "perr", "serr")]})
+    # the save file is written also when the monitor stops the bench
+    run_traced(bench, f"monitor_{name}", groups={"PCI": ["clock", "reset"] + [f"bus_{line}" for line in (
+        "frame", "irdy", "ad_view", "cbe", "par", "devsel", "trdy", "stop", "perr", "serr")]})
     return checker
 
 

@@ -9,12 +9,14 @@ samples must match on every clock.  The expected values come from the
 stimulus itself (what was driven one clock earlier), not from the pads.
 """
 import random
+import re
 
 import pytest
 from myhdl import Signal, StopSimulation, always, always_seq, block, instance, intbv
 
 from rtl.interfaces import PciBus, PciPins, card_reset
 from rtl.pci_pads import pci_pads, pci_pads_ports
+from rtl.top import convert_block
 from sim.clocking import clock_source
 
 CLOCKS = 200
@@ -160,8 +162,47 @@ def test_lines_follow_the_stimulus():
             assert frame_in == (1 if frame is None else frame), f"clock {index}: FRAME# (pull-up)"
 
 
-def test_ports_are_the_same_for_both_builds():
-    assert set(pci_pads_ports(io_registers=False)) == set(pci_pads_ports(io_registers=True))
+PCI_LINES = {"ad": 32, "cbe": 4, "par": 1, "frame": 1, "irdy": 1, "idsel": 1, "trdy": 1, "devsel": 1,
+             "stop": 1, "perr": 1, "serr": 1, "inta": 1}
+TARGET_DRIVES = ("ad", "par", "trdy", "devsel", "stop", "perr", "serr", "inta")
+TARGET_READS = ("ad", "cbe", "par", "frame", "irdy", "idsel")
+
+
+def expected_ports(io_registers):
+    """(direction, width) of every port of a build, from the PCI lines and
+    ``rtl/pci_pads.py``'s account of them: a pin the target drives is inout; a
+    pin it only reads is an input, except that the registered build samples
+    C/BE# and IDSEL in I/O cells, whose package pin is inout; the core's side
+    is split into ``_in`` (from the pads), ``_out`` and ``_oe`` (to them)."""
+    ports = {"clock": ("input", 1)}
+    for line, width in PCI_LINES.items():
+        in_io_cell = io_registers and line in ("cbe", "idsel")
+        ports[f"pins_{line}"] = ("inout" if line in TARGET_DRIVES or in_io_cell else "input", width)
+        if line in TARGET_READS:
+            ports[f"pci_{line}_in"] = ("output", width)
+        if line in TARGET_DRIVES:
+            ports[f"pci_{line}_out"] = ("input", width)
+            ports[f"pci_{line}_oe"] = ("input", 1)
+    return ports
+
+
+def converted_ports(io_registers, folder):
+    """(direction, width) of every port of the converted build."""
+    ports = pci_pads_ports(io_registers=io_registers)
+    verilog = convert_block("pci_pads", pci_pads(**ports, io_registers=io_registers), folder).read_text()
+    declared = re.findall(r"^\s*(input|output|inout)\s+(?:\[(\d+):0\]\s+)?(\w+);", verilog, re.M)
+    return {name: (direction, int(msb) + 1 if msb else 1) for direction, msb, name in declared}
+
+
+@pytest.mark.parametrize("io_registers", [False, True], ids=["plain", "registered"])
+def test_each_build_has_the_ports_its_pads_need(io_registers, tmp_path):
+    assert converted_ports(io_registers, tmp_path) == expected_ports(io_registers)
+
+
+def test_both_builds_fit_the_same_top(tmp_path):
+    """Same port names and widths: the top swaps one build for the other."""
+    plain, registered = converted_ports(False, tmp_path / "plain"), converted_ports(True, tmp_path / "registered")
+    assert {n: w for n, (_, w) in plain.items()} == {n: w for n, (_, w) in registered.items()}
 
 
 SB_IO_BENCH = """\

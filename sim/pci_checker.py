@@ -1,0 +1,352 @@
+"""Passive PCI protocol checker: plain Python, fed by any simulator.
+
+``ProtocolChecker.step(sample, in_reset)`` takes one ``BusSample`` of the
+segment per rising clock edge (resolved lines and who drove them) and raises
+``ProtocolViolation`` naming the rule and the time at the first violation of
+the rules below (PCI 2.3 chapter 3 and Appendix C).  ``sim.pci_monitor``
+runs it in a MyHDL bench.  The checker also snoops configuration writes to
+the Command register of the watched device (Parity Error Response, SERR# Enable) to
+know when PERR# and SERR# are due, and keeps a summary of every transaction
+(``transactions``) for figures.
+
+Parity errors are violations unless ``allow_parity_errors`` is set (a bench
+that injects them on purpose); then only their reporting is checked.
+Fast back-to-back transactions are reported under rule 4: the benches have
+one master, which always leaves an idle clock between transactions.
+
+Timing the checker holds the target to (edges counted from the one that
+samples the address): DEVSEL# by edge 4, first TRDY#/STOP# by edge 16, later
+ones at most 8 edges after the previous data phase completed; PERR# sampled
+two edges after a data phase that moved data with bad parity (write: when the
+target's Parity Error Response is set; read: when the master's is), SERR#
+two edges after a bad address when the target's SERR# Enable and Parity
+Error Response are set, each for exactly one clock per error.
+"""
+from dataclasses import dataclass, field
+
+from sim.pci_lines import OPEN_DRAIN, SUSTAINED_TRISTATE, even_parity
+
+RULES = {
+    1: "write data held while the target waits",
+    2: "read data held while the master waits",
+    3: "C/BE# held through the data phase",
+    4: "FRAME# asserted while IRDY# is still asserted",
+    5: "IRDY# asserted without FRAME#",
+    6: "FRAME# deasserted without IRDY#",
+    7: "FRAME# held until the data phase completes",
+    8: "IRDY# held until the data phase completes",
+    9: "STOP# held while FRAME# is asserted",
+    10: "STOP# deasserted once FRAME# is gone",
+    11: "DEVSEL#, TRDY#, STOP# held while the master waits",
+    12: "TRDY#/STOP# only with DEVSEL# (target abort excepted)",
+    13: "DEVSEL# held until the last data phase, then deasserted",
+    14: "PAR correct, PERR#/SERR# exactly when due",
+    15: "latency (IRDY# 8, first TRDY#/STOP# 16, later 8, DEVSEL# by clock 5)",
+    16: "no contention, a turnaround clock between drivers",
+    17: "sustained tri-state lines driven high before release",
+    18: "lines released during reset",
+}
+
+CONFIG_WRITE = 0xB
+COMMAND_REGISTER = 0x04
+PARITY_RESPONSE = 1 << 6
+SERR_ENABLE = 1 << 8
+MASTER_ABORT_EDGE = 4
+
+
+class ProtocolViolation(AssertionError):
+    """A PCI rule was broken: ``rule`` (number), ``time``, ``detail``."""
+
+    def __init__(self, rule, time, detail):
+        self.rule, self.time, self.detail = rule, time, detail
+        super().__init__(f"PCI rule {rule} ({RULES[rule]}) broken at t={time}: {detail}")
+
+
+@dataclass
+class TransactionRecord:
+    """What the monitor saw of one transaction (clocks are edge counts
+    after the address edge)."""
+
+    start: int                 # time of the address edge
+    command: int
+    address: int
+    start_edge: int = 0
+    devsel_clock: int = None
+    first_trdy_clock: int = None
+    first_stop_clock: int = None
+    data_phases: int = 0        # data transferred (IRDY# and TRDY#)
+    end: int = None
+    end_edge: int = None
+    target_abort: bool = False
+    last_completion_edge: int = None
+    ended: bool = False
+    phase_start_edge: int = 0
+    completions: list = field(default_factory=list)
+
+    @property
+    def write(self):
+        return bool(self.command & 1)
+
+    @property
+    def master_abort(self):
+        return self.devsel_clock is None
+
+
+def _asserted(value):
+    return value == 0
+
+
+class ProtocolChecker:
+    """The 18 rules over a stream of samples.
+
+    target_device: device number whose IDSEL is AD[16+n] (for Command
+    register snooping); master_parity_response: the master's own Parity
+    Error Response bit (PERR# on read data errors).
+    """
+
+    def __init__(self, target_device=0, master_parity_response=True, allow_parity_errors=False):
+        self.target_device = target_device
+        self.master_parity_response = master_parity_response
+        self.allow_parity_errors = allow_parity_errors
+        self.transactions = []
+        self.parity_errors = []
+        self.edges = 0
+        self._reset_state()
+
+    def _reset_state(self):
+        self.target_command = 0
+        self.current = None
+        self.previous = None
+        self.previous_info = None
+        self.expected_perr = set()
+        self.expected_serr = set()
+
+    def fail(self, rule, detail):
+        raise ProtocolViolation(rule, self.sample.time, detail)
+
+    def step(self, sample, in_reset=False):
+        self.edges += 1
+        self.sample = sample
+        if in_reset:
+            self._check_reset(sample)
+            self._reset_state()
+            self.previous = sample
+            return
+        previous = self.previous
+        if previous is not None:
+            self._check_drivers(previous, sample)
+        info = self._track(previous, sample)
+        if previous is not None and self.previous_info is not None:
+            self._check_master(previous, self.previous_info, sample)
+            self._check_target(previous, self.previous_info, sample, info)
+            self._check_parity(previous, self.previous_info, sample)
+        self._check_latency(sample, info)
+        self._check_reports(sample)
+        self.previous, self.previous_info = sample, info
+
+    # ----- transaction tracking --------------------------------------------------
+    def _track(self, previous, sample):
+        """Update the current transaction with ``sample``; return its view of it."""
+        current = self.current
+        if current is not None and current.ended:
+            current = self.current = None
+        frame_starts = _asserted(sample.frame) and (previous is None or not _asserted(previous.frame))
+        address_phase = frame_starts and current is None
+        if address_phase:
+            if previous is not None and _asserted(previous.irdy):
+                self.fail(4, "FRAME# asserted while IRDY# of the last transaction is asserted")
+            if sample.ad is None or sample.cbe is None:
+                self.fail(14, "address phase with AD or C/BE# floating")
+            current = self.current = TransactionRecord(sample.time, sample.cbe, sample.ad,
+                                                       start_edge=self.edges,
+                                                       phase_start_edge=self.edges)
+            self.transactions.append(current)
+        info = {"transaction": current, "address": address_phase, "data": False,
+                "completion": False, "transfer": False, "ended": False}
+        if current is None or address_phase:
+            return info
+        info["data"] = True
+        clock = self.edges - current.start_edge
+        if _asserted(sample.devsel) and current.devsel_clock is None:
+            current.devsel_clock = clock
+            if clock > MASTER_ABORT_EDGE:
+                self.fail(15, f"DEVSEL# first asserted {clock} clocks after the address phase")
+        master_abort = current.devsel_clock is None and clock >= MASTER_ABORT_EDGE
+        irdy = _asserted(sample.irdy)
+        target_ends = _asserted(sample.trdy) or _asserted(sample.stop)
+        info["completion"] = irdy and (target_ends or master_abort)
+        info["transfer"] = irdy and _asserted(sample.trdy) and _asserted(sample.devsel)
+        if _asserted(sample.stop) and not _asserted(sample.devsel) and current.devsel_clock is not None:
+            current.target_abort = True
+        if info["transfer"]:
+            current.data_phases += 1
+            self._snoop_config_write(current, sample)
+        if info["completion"]:
+            current.last_completion_edge = self.edges
+            current.phase_start_edge = self.edges
+            current.completions.append(self.edges)
+            if not _asserted(sample.frame):
+                current.ended = info["ended"] = True
+                current.end, current.end_edge = sample.time, self.edges
+        return info
+
+    def _snoop_config_write(self, current, sample):
+        address = current.address
+        if current.command != CONFIG_WRITE or address & 0x3 or (address >> 8) & 0x7:
+            return
+        if not address >> (16 + self.target_device) & 1:
+            return
+        if (address & 0xFC) + 4 * (current.data_phases - 1) != COMMAND_REGISTER:
+            return
+        for byte in range(2):
+            if not sample.cbe >> byte & 1:
+                mask = 0xFF << (8 * byte)
+                self.target_command = (self.target_command & ~mask) | (sample.ad & mask)
+
+    # ----- rules 1-8: master ------------------------------------------------------
+    def _check_master(self, previous, before, sample):
+        current = before["transaction"]
+        if not _asserted(previous.irdy) and _asserted(sample.irdy) and not _asserted(previous.frame):
+            self.fail(5, "IRDY# asserted although FRAME# was deasserted in the clock before")
+        if _asserted(previous.frame) and not _asserted(sample.frame) and not _asserted(sample.irdy):
+            self.fail(6, "FRAME# deasserted while IRDY# is deasserted")
+        if not before["data"] or before["completion"]:
+            return
+        if _asserted(previous.irdy):
+            if sample.frame != previous.frame:
+                self.fail(7, "FRAME# changed after IRDY# was asserted, before the data phase completed")
+            if not _asserted(sample.irdy):
+                self.fail(8, "IRDY# deasserted before the data phase completed")
+            if current.write and sample.ad != previous.ad:
+                self.fail(1, f"AD changed from {_hex(previous.ad)} to {_hex(sample.ad)} "
+                             "in a write wait state")
+        if sample.cbe != previous.cbe:
+            self.fail(3, f"C/BE# changed from {_hex(previous.cbe)} to {_hex(sample.cbe)} within a data phase")
+
+    # ----- rules 2, 9-13: target ----------------------------------------------------
+    def _check_target(self, previous, before, sample, now_info):
+        current = before["transaction"]
+        in_transaction = before["data"] and not before["ended"]
+        stop_then, frame_then = _asserted(previous.stop), _asserted(previous.frame)
+        if stop_then and frame_then and in_transaction and not _asserted(sample.stop):
+            self.fail(9, "STOP# deasserted while FRAME# was still asserted")
+        if stop_then and not frame_then and _asserted(sample.stop):
+            self.fail(10, "STOP# still asserted after FRAME# was deasserted and the transaction ended")
+        if in_transaction and not _asserted(previous.irdy) and (
+                _asserted(previous.trdy) or stop_then):
+            for line in ("devsel", "trdy", "stop"):
+                if sample.values[line] != previous.values[line]:
+                    self.fail(11, f"{line.upper()}# changed while TRDY#/STOP# waited for IRDY#")
+            if not current.write and _asserted(previous.trdy) and sample.ad != previous.ad:
+                self.fail(2, f"AD changed from {_hex(previous.ad)} to {_hex(sample.ad)} in a read wait state")
+        self._check_devsel(previous, before, sample, now_info)
+
+    def _check_devsel(self, previous, before, sample, now_info):
+        current = now_info["transaction"]
+        claimed_before = current is not None and current.devsel_clock is not None and \
+            current.devsel_clock < self.edges - current.start_edge
+        if _asserted(sample.trdy) and not _asserted(sample.devsel):
+            self.fail(12, "TRDY# asserted without DEVSEL#")
+        if _asserted(sample.stop) and not _asserted(sample.devsel) and not (
+                now_info["data"] and claimed_before):
+            self.fail(12, "STOP# asserted without DEVSEL# outside a target abort")
+        in_transaction = before["data"] and not before["ended"]
+        if in_transaction and _asserted(previous.devsel) and not _asserted(sample.devsel) and not (
+                _asserted(sample.stop) and not _asserted(sample.trdy)):
+            self.fail(13, "DEVSEL# deasserted before the last data phase (not a target abort)")
+        if not now_info["data"] and not now_info["address"]:
+            for line, rule in (("devsel", 13), ("trdy", 12), ("stop", 10)):
+                if _asserted(sample.values[line]):
+                    self.fail(rule, f"{line.upper()}# asserted after the transaction ended")
+
+    # ----- rule 14: parity and its reports ---------------------------------------------
+    def _check_parity(self, previous, before, sample):
+        current = before["transaction"]
+        if before["address"]:
+            kind = "address"
+        elif before["data"]:
+            if current.write and _asserted(previous.irdy):
+                kind = "write data"
+            elif not current.write and _asserted(previous.trdy):
+                kind = "read data"
+            else:
+                return
+        else:
+            return
+        if previous.ad is None:
+            self.fail(14, f"AD floating in a {kind} phase")
+        if sample.par is None:
+            self.fail(14, f"PAR not driven the clock after a {kind} phase")
+        if sample.par == even_parity(previous.ad, previous.cbe):
+            return
+        self.parity_errors.append((previous.time, kind))
+        if not self.allow_parity_errors:
+            self.fail(14, f"PAR wrong for the {kind} phase at t={previous.time}")
+        due = self.edges + 1
+        if kind == "address":
+            if self.target_command & SERR_ENABLE and self.target_command & PARITY_RESPONSE:
+                self.expected_serr.add(due)
+        elif before["transfer"]:
+            enabled = (self.target_command & PARITY_RESPONSE if kind == "write data"
+                       else self.master_parity_response)
+            if enabled:
+                self.expected_perr.add(due)
+
+    def _check_reports(self, sample):
+        for line, expected in (("perr", self.expected_perr), ("serr", self.expected_serr)):
+            due = self.edges in expected
+            expected.discard(self.edges)
+            asserted = _asserted(sample.values[line])
+            if due and not asserted:
+                self.fail(14, f"{line.upper()}# missing two clocks after a parity error")
+            if asserted and not due:
+                self.fail(14, f"{line.upper()}# asserted but no parity error was due")
+
+    # ----- rule 15: latency ---------------------------------------------------------------
+    def _check_latency(self, sample, info):
+        current = info["transaction"]
+        if not info["data"]:
+            return
+        clock = self.edges - current.start_edge
+        since_phase = self.edges - current.phase_start_edge
+        if info["completion"]:
+            since_phase = 0
+        if not _asserted(sample.irdy) and since_phase >= 8:
+            self.fail(15, f"IRDY# not asserted {since_phase} clocks into a data phase (limit 8)")
+        target_ends = _asserted(sample.trdy) or _asserted(sample.stop)
+        if target_ends:
+            if current.first_trdy_clock is None and _asserted(sample.trdy):
+                current.first_trdy_clock = clock
+            if current.first_stop_clock is None and _asserted(sample.stop):
+                current.first_stop_clock = clock
+        if current.devsel_clock is None:
+            return
+        first = current.last_completion_edge is None
+        limit = 16 if first else 8
+        waited = clock if first else self.edges - current.last_completion_edge
+        if not target_ends and waited >= limit and not current.ended:
+            self.fail(15, f"no TRDY#/STOP# {waited} clocks into the {'first' if first else 'next'}"
+                          f" data phase (limit {limit})")
+
+    # ----- rules 16-18: drivers ------------------------------------------------------------
+    def _check_drivers(self, previous, sample):
+        for line, names in sample.drivers.items():
+            if line in OPEN_DRAIN:
+                continue
+            if len(names) > 1:
+                self.fail(16, f"{line.upper()} driven by {sorted(names)} at once")
+            before = previous.drivers[line]
+            if names and before and names != before:
+                self.fail(16, f"{line.upper()} taken over by {sorted(names)} right after "
+                              f"{sorted(before)} without a turnaround clock")
+            if line in SUSTAINED_TRISTATE and before - names and previous.values[line] != 1:
+                self.fail(17, f"{line.upper()}# released by {sorted(before - names)} while asserted")
+
+    def _check_reset(self, sample):
+        for line, names in sample.drivers.items():
+            if names:
+                self.fail(18, f"{line.upper()} driven by {sorted(names)} during reset")
+
+
+def _hex(value):
+    return "z" if value is None else f"{value:#x}"
