@@ -501,6 +501,7 @@ reg card_core0_regs_fifo1_sequencer1_bad_header_bits;
 reg card_core0_regs_fifo1_sequencer1_bad_opcode;
 reg card_core0_regs_fifo1_sequencer1_bad_operand;
 reg card_core0_regs_fifo1_sequencer1_bad_set_index;
+reg card_core0_regs_fifo1_sequencer1_bad_variant;
 reg [3:0] card_core0_regs_fifo1_sequencer1_coord_mask;
 reg [3:0] card_core0_regs_fifo1_sequencer1_count_mask;
 wire card_core0_regs_fifo1_sequencer1_discard;
@@ -525,6 +526,7 @@ reg [31:0] card_core0_regs_fifo1_sequencer1_operand_3;
 reg card_core0_regs_fifo1_sequencer1_set_known;
 reg [2:0] card_core0_regs_fifo1_sequencer1_state;
 reg card_core0_regs_fifo1_sequencer1_state_over;
+reg card_core0_regs_fifo1_sequencer1_variant_built;
 reg card_core0_regs_fifo1_sequencer1_word_due;
 reg card_core0_regs_fifo1_sequencer1_dda_start;
 reg card_core0_regs_fifo1_sequencer1_dda_done;
@@ -3237,6 +3239,16 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_variant
+    case (card_core0_regs_fifo1_fifo_dout[3-1:1])
+        0: card_core0_regs_fifo1_sequencer1_variant_built = 0;
+        1: card_core0_regs_fifo1_sequencer1_variant_built = 0;
+        2: card_core0_regs_fifo1_sequencer1_variant_built = 1;
+        default: card_core0_regs_fifo1_sequencer1_variant_built = 1;
+    endcase
+end
+
+
 always @(card_core0_regs_fifo1_sequencer1_arriving_count, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_state, card_core0_core_clear, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer1_next_valid, card_core0_regs_fifo1_sequencer1_next_count, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_fetch_request
     reg more;
     more = 1'b1;
@@ -3260,6 +3272,7 @@ assign card_core0_regs_fifo1_sequencer1_discard = (card_core0_regs_fifo1_clear_e
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_fetch
     if (reset == 0) begin
         card_core0_regs_fifo1_sequencer1_operand_0 <= 0;
+        card_core0_regs_fifo1_sequencer1_bad_variant <= 0;
         card_core0_regs_fifo1_sequencer1_next_motion <= 0;
         card_core0_regs_fifo1_sequencer1_bad_set_index <= 0;
         card_core0_regs_fifo1_sequencer1_operand_3 <= 0;
@@ -3291,6 +3304,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
                     card_core0_regs_fifo1_sequencer1_bad_opcode <= (!card_core0_regs_fifo1_sequencer1_next_known);
                     card_core0_regs_fifo1_sequencer1_bad_header_bits <= (((card_core0_regs_fifo1_fifo_dout[32-1:16] & (~card_core0_regs_fifo1_sequencer1_mask_high)) != 0) || ((card_core0_regs_fifo1_fifo_dout[16-1:0] & (~card_core0_regs_fifo1_sequencer1_mask_low)) != 0));
                     card_core0_regs_fifo1_sequencer1_bad_set_index <= ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 4) && (!card_core0_regs_fifo1_sequencer1_set_known));
+                    card_core0_regs_fifo1_sequencer1_bad_variant <= ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 2) && (!card_core0_regs_fifo1_sequencer1_variant_built));
                     card_core0_regs_fifo1_sequencer1_bad_operand <= 0;
                     if ((card_core0_regs_fifo1_sequencer1_arriving_count == 0)) begin
                         card_core0_regs_fifo1_sequencer1_next_valid <= 1;
@@ -3331,7 +3345,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_sequencer1_bad_set_index, card_core0_regs_fifo1_sequencer1_bad_header_bits, card_core0_regs_fifo1_sequencer1_bad_opcode) begin: card_core0_regs_fifo1_sequencer1_check
+always @(card_core0_regs_fifo1_sequencer1_bad_variant, card_core0_regs_fifo1_sequencer1_bad_set_index, card_core0_regs_fifo1_sequencer1_bad_opcode, card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_sequencer1_bad_header_bits) begin: card_core0_regs_fifo1_sequencer1_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -3341,7 +3355,7 @@ always @(card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_seq
     else if (card_core0_regs_fifo1_sequencer1_bad_header_bits) begin
         result = 2;
     end
-    else if ((card_core0_regs_fifo1_sequencer1_bad_set_index || card_core0_regs_fifo1_sequencer1_bad_operand)) begin
+    else if ((card_core0_regs_fifo1_sequencer1_bad_set_index || card_core0_regs_fifo1_sequencer1_bad_operand || card_core0_regs_fifo1_sequencer1_bad_variant)) begin
         result = 3;
     end
     card_core0_regs_fifo1_sequencer1_next_error = result;

@@ -525,6 +525,7 @@ reg card1_card_core1_regs_fifo2_sequencer2_bad_header_bits;
 reg card1_card_core1_regs_fifo2_sequencer2_bad_opcode;
 reg card1_card_core1_regs_fifo2_sequencer2_bad_operand;
 reg card1_card_core1_regs_fifo2_sequencer2_bad_set_index;
+reg card1_card_core1_regs_fifo2_sequencer2_bad_variant;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_coord_mask;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_count_mask;
 wire card1_card_core1_regs_fifo2_sequencer2_discard;
@@ -549,6 +550,7 @@ reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_3;
 reg card1_card_core1_regs_fifo2_sequencer2_set_known;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
 reg card1_card_core1_regs_fifo2_sequencer2_state_over;
+reg card1_card_core1_regs_fifo2_sequencer2_variant_built;
 reg card1_card_core1_regs_fifo2_sequencer2_word_due;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_start;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_done;
@@ -4021,6 +4023,16 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_variant
+    case (card1_card_core1_regs_fifo2_fifo_dout[3-1:1])
+        0: card1_card_core1_regs_fifo2_sequencer2_variant_built = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_variant_built = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_variant_built = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_variant_built = 1;
+    endcase
+end
+
+
 always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
     reg more;
     more = 1'b1;
@@ -4044,6 +4056,7 @@ assign card1_card_core1_regs_fifo2_sequencer2_discard = (card1_card_core1_regs_f
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_fetch
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_sequencer2_operand_0 <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_bad_variant <= 0;
         card1_card_core1_regs_fifo2_sequencer2_next_motion <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_set_index <= 0;
         card1_card_core1_regs_fifo2_sequencer2_operand_3 <= 0;
@@ -4075,6 +4088,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                     card1_card_core1_regs_fifo2_sequencer2_bad_opcode <= (!card1_card_core1_regs_fifo2_sequencer2_next_known);
                     card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= (((card1_card_core1_regs_fifo2_fifo_dout[32-1:16] & (~card1_card_core1_regs_fifo2_sequencer2_mask_high)) != 0) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:0] & (~card1_card_core1_regs_fifo2_sequencer2_mask_low)) != 0));
                     card1_card_core1_regs_fifo2_sequencer2_bad_set_index <= ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 4) && (!card1_card_core1_regs_fifo2_sequencer2_set_known));
+                    card1_card_core1_regs_fifo2_sequencer2_bad_variant <= ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 2) && (!card1_card_core1_regs_fifo2_sequencer2_variant_built));
                     card1_card_core1_regs_fifo2_sequencer2_bad_operand <= 0;
                     if ((card1_card_core1_regs_fifo2_sequencer2_arriving_count == 0)) begin
                         card1_card_core1_regs_fifo2_sequencer2_next_valid <= 1;
@@ -4115,7 +4129,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_regs_fifo2_sequencer2_bad_set_index, card1_card_core1_regs_fifo2_sequencer2_bad_header_bits, card1_card_core1_regs_fifo2_sequencer2_bad_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_check
+always @(card1_card_core1_regs_fifo2_sequencer2_bad_variant, card1_card_core1_regs_fifo2_sequencer2_bad_set_index, card1_card_core1_regs_fifo2_sequencer2_bad_opcode, card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_regs_fifo2_sequencer2_bad_header_bits) begin: card1_card_core1_regs_fifo2_sequencer2_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -4125,7 +4139,7 @@ always @(card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_re
     else if (card1_card_core1_regs_fifo2_sequencer2_bad_header_bits) begin
         result = 2;
     end
-    else if ((card1_card_core1_regs_fifo2_sequencer2_bad_set_index || card1_card_core1_regs_fifo2_sequencer2_bad_operand)) begin
+    else if ((card1_card_core1_regs_fifo2_sequencer2_bad_set_index || card1_card_core1_regs_fifo2_sequencer2_bad_operand || card1_card_core1_regs_fifo2_sequencer2_bad_variant)) begin
         result = 3;
     end
     card1_card_core1_regs_fifo2_sequencer2_next_error = result;
