@@ -4146,41 +4146,25 @@ always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequence
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_latch
-    if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_mag_xs <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_mag_ys <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_mag_xe <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant <= 3;
-        card_core0_dda_arc1_dda_setup1_plan_mag_ye <= 0;
-    end
-    else begin
-        if ((card_core0_regs_fifo1_sequencer1_dda_start && card_core0_regs_fifo1_sequencer1_dda_ready)) begin
-            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line <= card_core0_regs_fifo1_sequencer1_dda_line;
-            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant <= card_core0_regs_fifo1_sequencer1_dda_variant;
-            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw <= card_core0_regs_fifo1_sequencer1_dda_ccw;
-            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend <= card_core0_regs_fifo1_sequencer1_dda_blend;
-            card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs <= (card_core0_regs_fifo1_sequencer1_dda_xs < 0);
-            card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys <= (card_core0_regs_fifo1_sequencer1_dda_ys < 0);
-            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe <= (card_core0_regs_fifo1_sequencer1_dda_xe < 0);
-            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye <= (card_core0_regs_fifo1_sequencer1_dda_ye < 0);
-            card_core0_dda_arc1_dda_setup1_plan_mag_xs <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs;
-            card_core0_dda_arc1_dda_setup1_plan_mag_ys <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys;
-            card_core0_dda_arc1_dda_setup1_plan_mag_xe <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
-            card_core0_dda_arc1_dda_setup1_plan_mag_ye <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye;
-        end
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_latch
+    if ((card_core0_regs_fifo1_sequencer1_dda_start && card_core0_regs_fifo1_sequencer1_dda_ready)) begin
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line <= card_core0_regs_fifo1_sequencer1_dda_line;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant <= card_core0_regs_fifo1_sequencer1_dda_variant;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw <= card_core0_regs_fifo1_sequencer1_dda_ccw;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend <= card_core0_regs_fifo1_sequencer1_dda_blend;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs <= (card_core0_regs_fifo1_sequencer1_dda_xs < 0);
+        card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys <= (card_core0_regs_fifo1_sequencer1_dda_ys < 0);
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe <= (card_core0_regs_fifo1_sequencer1_dda_xe < 0);
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye <= (card_core0_regs_fifo1_sequencer1_dda_ye < 0);
+        card_core0_dda_arc1_dda_setup1_plan_mag_xs <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs;
+        card_core0_dda_arc1_dda_setup1_plan_mag_ys <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys;
+        card_core0_dda_arc1_dda_setup1_plan_mag_xe <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
+        card_core0_dda_arc1_dda_setup1_plan_mag_ye <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye;
     end
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_geometry
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_geometry
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
     reg [2-1:0] turn;
@@ -4189,98 +4173,88 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
     reg zero_ys;
     reg zero_xe;
     reg zero_ye;
-    if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_x_inward_end <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_crossings <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_x_inward <= 0;
+    q_s = 2'h0;
+    q_e = 2'h0;
+    turn = 2'h0;
+    ahead = 1'b0;
+    zero_xs = (card_core0_dda_arc1_dda_setup1_plan_mag_xs == 0);
+    zero_ys = (card_core0_dda_arc1_dda_setup1_plan_mag_ys == 0);
+    zero_xe = (card_core0_dda_arc1_dda_setup1_plan_mag_xe == 0);
+    zero_ye = (card_core0_dda_arc1_dda_setup1_plan_mag_ye == 0);
+    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw) begin
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
+            q_s = 0;
+        end
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!zero_ys))) begin
+            q_s = 1;
+        end
+        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys || zero_ys))) begin
+            q_s = 2;
+        end
+        else begin
+            q_s = 3;
+        end
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!zero_ye))) begin
+            q_e = 0;
+        end
+        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
+            q_e = 1;
+        end
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || zero_xe) && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye)) begin
+            q_e = 2;
+        end
+        else begin
+            q_e = 3;
+        end
+        turn = (q_e - q_s);
     end
     else begin
-        q_s = 2'h0;
-        q_e = 2'h0;
-        turn = 2'h0;
-        ahead = 1'b0;
-        zero_xs = (card_core0_dda_arc1_dda_setup1_plan_mag_xs == 0);
-        zero_ys = (card_core0_dda_arc1_dda_setup1_plan_mag_ys == 0);
-        zero_xe = (card_core0_dda_arc1_dda_setup1_plan_mag_xe == 0);
-        zero_ye = (card_core0_dda_arc1_dda_setup1_plan_mag_ye == 0);
-        if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw) begin
-            if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
-                q_s = 0;
-            end
-            else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!zero_ys))) begin
-                q_s = 1;
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys || zero_ys))) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!zero_ye))) begin
-                q_e = 0;
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
-                q_e = 1;
-            end
-            else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || zero_xe) && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye)) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_e - q_s);
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!zero_ys))) begin
+            q_s = 0;
+        end
+        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
+            q_s = 1;
+        end
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || zero_xs) && card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys)) begin
+            q_s = 2;
         end
         else begin
-            if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!zero_ys))) begin
-                q_s = 0;
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
-                q_s = 1;
-            end
-            else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || zero_xs) && card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys)) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
-                q_e = 0;
-            end
-            else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!zero_ye))) begin
-                q_e = 1;
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye || zero_ye))) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_s - q_e);
+            q_s = 3;
         end
-        if ((q_s[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw)) begin
-            ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_x) && (card_core0_dda_arc1_dda_setup1_plan_start_below_y || card_core0_dda_arc1_dda_setup1_plan_start_same_y));
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
+            q_e = 0;
+        end
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!zero_ye))) begin
+            q_e = 1;
+        end
+        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye || zero_ye))) begin
+            q_e = 2;
         end
         else begin
-            ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_y) && (card_core0_dda_arc1_dda_setup1_plan_start_below_x || card_core0_dda_arc1_dda_setup1_plan_start_same_x));
+            q_e = 3;
         end
-        ahead = (ahead && (!(card_core0_dda_arc1_dda_setup1_plan_start_same_x && card_core0_dda_arc1_dda_setup1_plan_start_same_y)) && (turn == 0));
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead <= ahead;
-        card_core0_dda_arc1_dda_setup1_plan_crossings <= {1'b0, turn};
-        if (((turn == 0) && (!ahead))) begin
-            card_core0_dda_arc1_dda_setup1_plan_crossings <= 4;
-        end
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant <= q_s;
-        card_core0_dda_arc1_dda_setup1_plan_x_inward <= (q_s[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
-        card_core0_dda_arc1_dda_setup1_plan_x_inward_end <= (q_e[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
-        if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
-            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= (zero_xe && zero_ye);
-        end
-        else begin
-            card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
-        end
+        turn = (q_s - q_e);
+    end
+    if ((q_s[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw)) begin
+        ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_x) && (card_core0_dda_arc1_dda_setup1_plan_start_below_y || card_core0_dda_arc1_dda_setup1_plan_start_same_y));
+    end
+    else begin
+        ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_y) && (card_core0_dda_arc1_dda_setup1_plan_start_below_x || card_core0_dda_arc1_dda_setup1_plan_start_same_x));
+    end
+    ahead = (ahead && (!(card_core0_dda_arc1_dda_setup1_plan_start_same_x && card_core0_dda_arc1_dda_setup1_plan_start_same_y)) && (turn == 0));
+    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead <= ahead;
+    card_core0_dda_arc1_dda_setup1_plan_crossings <= {1'b0, turn};
+    if (((turn == 0) && (!ahead))) begin
+        card_core0_dda_arc1_dda_setup1_plan_crossings <= 4;
+    end
+    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant <= q_s;
+    card_core0_dda_arc1_dda_setup1_plan_x_inward <= (q_s[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
+    card_core0_dda_arc1_dda_setup1_plan_x_inward_end <= (q_e[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
+    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= (zero_xe && zero_ye);
+    end
+    else begin
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
     end
 end
 
@@ -4311,35 +4285,38 @@ always @(card_core0_dda_arc1_dda_setup1_dda_root1_steps, card_core0_dda_arc1_dda
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_dda_root1_digits
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_dda_root1_count
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_dda_root1_radicand <= 0;
-        card_core0_dda_arc1_dda_setup1_root_root <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_root1_started <= 0;
         card_core0_dda_arc1_dda_setup1_dda_root1_steps <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_root1_remainder <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_root1_all_ones <= 0;
     end
     else begin
         if (card_core0_dda_arc1_dda_setup1_root_load) begin
-            card_core0_dda_arc1_dda_setup1_dda_root1_radicand <= card_core0_dda_arc1_dda_setup1_root_radicand;
-            card_core0_dda_arc1_dda_setup1_dda_root1_remainder <= 0;
-            card_core0_dda_arc1_dda_setup1_root_root <= 0;
             card_core0_dda_arc1_dda_setup1_dda_root1_steps <= (24 + 1);
-            card_core0_dda_arc1_dda_setup1_dda_root1_started <= 1'b0;
-            card_core0_dda_arc1_dda_setup1_dda_root1_all_ones <= 1'b1;
         end
         else if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps != 0)) begin
-            card_core0_dda_arc1_dda_setup1_dda_root1_remainder <= card_core0_dda_arc1_dda_setup1_dda_root1_keep;
-            card_core0_dda_arc1_dda_setup1_root_root <= {card_core0_dda_arc1_dda_setup1_root_root[24-1:0], card_core0_dda_arc1_dda_setup1_dda_root1_fits};
-            card_core0_dda_arc1_dda_setup1_dda_root1_radicand <= (card_core0_dda_arc1_dda_setup1_dda_root1_radicand << 2);
             card_core0_dda_arc1_dda_setup1_dda_root1_steps <= (card_core0_dda_arc1_dda_setup1_dda_root1_steps - 1);
-            if (card_core0_dda_arc1_dda_setup1_dda_root1_fits) begin
-                card_core0_dda_arc1_dda_setup1_dda_root1_started <= 1'b1;
-            end
-            else if (card_core0_dda_arc1_dda_setup1_dda_root1_started) begin
-                card_core0_dda_arc1_dda_setup1_dda_root1_all_ones <= 1'b0;
-            end
+        end
+    end
+end
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_root1_digits
+    if (card_core0_dda_arc1_dda_setup1_root_load) begin
+        card_core0_dda_arc1_dda_setup1_dda_root1_radicand <= card_core0_dda_arc1_dda_setup1_root_radicand;
+        card_core0_dda_arc1_dda_setup1_dda_root1_remainder <= 0;
+        card_core0_dda_arc1_dda_setup1_root_root <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_root1_started <= 1'b0;
+        card_core0_dda_arc1_dda_setup1_dda_root1_all_ones <= 1'b1;
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps != 0)) begin
+        card_core0_dda_arc1_dda_setup1_dda_root1_remainder <= card_core0_dda_arc1_dda_setup1_dda_root1_keep;
+        card_core0_dda_arc1_dda_setup1_root_root <= {card_core0_dda_arc1_dda_setup1_root_root[24-1:0], card_core0_dda_arc1_dda_setup1_dda_root1_fits};
+        card_core0_dda_arc1_dda_setup1_dda_root1_radicand <= (card_core0_dda_arc1_dda_setup1_dda_root1_radicand << 2);
+        if (card_core0_dda_arc1_dda_setup1_dda_root1_fits) begin
+            card_core0_dda_arc1_dda_setup1_dda_root1_started <= 1'b1;
+        end
+        else if (card_core0_dda_arc1_dda_setup1_dda_root1_started) begin
+            card_core0_dda_arc1_dda_setup1_dda_root1_all_ones <= 1'b0;
         end
     end
 end
@@ -4667,50 +4644,51 @@ assign card_core0_dda_arc1_dda_setup1_root_radicand = (~card_core0_dda_arc1_dda_
 assign card_core0_dda_arc1_dda_setup1_root_load = ((card_core0_dda_arc1_dda_setup1_state == 3'b011) && (card_core0_dda_arc1_dda_setup1_square == 2) && (card_core0_dda_arc1_dda_setup1_step == 0));
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_datapath
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_datapath
     reg [49-1:0] loaded;
-    if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_multiplier <= 0;
+    loaded = 49'h0;
+    case (card_core0_dda_arc1_dda_setup1_gap_op)
+        'h1: begin
+            card_core0_dda_arc1_dda_setup1_gap <= card_core0_dda_arc1_dda_setup1_total;
+        end
+        'h2: begin
+            card_core0_dda_arc1_dda_setup1_gap <= 0;
+        end
+        'h3: begin
+            card_core0_dda_arc1_dda_setup1_gap <= ((1 << 49) - 1);
+        end
+    endcase
+    case (card_core0_dda_arc1_dda_setup1_operand_op)
+        'h1: begin
+            card_core0_dda_arc1_dda_setup1_operand <= {card_core0_dda_arc1_dda_setup1_operand[(49 - 1)-1:0], card_core0_dda_arc1_dda_setup1_invert};
+        end
+        'h2: begin
+            loaded = {24'h0, card_core0_dda_arc1_dda_setup1_source_value};
+            if ((card_core0_dda_arc1_dda_setup1_invert && card_core0_dda_arc1_dda_setup1_source_on)) begin
+                loaded = (~loaded);
+            end
+            card_core0_dda_arc1_dda_setup1_operand <= loaded;
+        end
+    endcase
+    if (((card_core0_dda_arc1_dda_setup1_state == 3'b011) && ($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) != (24 - 1)))) begin
+        card_core0_dda_arc1_dda_setup1_multiplier <= (card_core0_dda_arc1_dda_setup1_multiplier >>> 1);
+    end
+    else if (((card_core0_dda_arc1_dda_setup1_state == 3'b010) || (card_core0_dda_arc1_dda_setup1_state == 3'b011))) begin
+        card_core0_dda_arc1_dda_setup1_multiplier <= card_core0_dda_arc1_dda_setup1_source_value[24-1:0];
+    end
+    if ((card_core0_dda_arc1_dda_setup1_state == 3'b000)) begin
         card_core0_dda_arc1_dda_setup1_gap <= 0;
-        card_core0_dda_arc1_dda_setup1_operand <= 0;
+    end
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_sequencer
+    if (card_core0_dda_reset == 0) begin
         card_core0_dda_arc1_dda_setup1_step <= 0;
         card_core0_dda_arc1_dda_setup1_square <= 0;
         card_core0_dda_arc1_dda_setup1_state <= 3'b000;
     end
     else begin
-        loaded = 49'h0;
-        case (card_core0_dda_arc1_dda_setup1_gap_op)
-            'h1: begin
-                card_core0_dda_arc1_dda_setup1_gap <= card_core0_dda_arc1_dda_setup1_total;
-            end
-            'h2: begin
-                card_core0_dda_arc1_dda_setup1_gap <= 0;
-            end
-            'h3: begin
-                card_core0_dda_arc1_dda_setup1_gap <= ((1 << 49) - 1);
-            end
-        endcase
-        case (card_core0_dda_arc1_dda_setup1_operand_op)
-            'h1: begin
-                card_core0_dda_arc1_dda_setup1_operand <= {card_core0_dda_arc1_dda_setup1_operand[(49 - 1)-1:0], card_core0_dda_arc1_dda_setup1_invert};
-            end
-            'h2: begin
-                loaded = {24'h0, card_core0_dda_arc1_dda_setup1_source_value};
-                if ((card_core0_dda_arc1_dda_setup1_invert && card_core0_dda_arc1_dda_setup1_source_on)) begin
-                    loaded = (~loaded);
-                end
-                card_core0_dda_arc1_dda_setup1_operand <= loaded;
-            end
-        endcase
-        if (((card_core0_dda_arc1_dda_setup1_state == 3'b011) && ($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) != (24 - 1)))) begin
-            card_core0_dda_arc1_dda_setup1_multiplier <= (card_core0_dda_arc1_dda_setup1_multiplier >>> 1);
-        end
-        else if (((card_core0_dda_arc1_dda_setup1_state == 3'b010) || (card_core0_dda_arc1_dda_setup1_state == 3'b011))) begin
-            card_core0_dda_arc1_dda_setup1_multiplier <= card_core0_dda_arc1_dda_setup1_source_value[24-1:0];
-        end
-        if ((card_core0_dda_arc1_dda_setup1_state == 3'b000)) begin
-            card_core0_dda_arc1_dda_setup1_gap <= 0;
-        end
         card_core0_dda_arc1_dda_setup1_state <= card_core0_dda_arc1_dda_setup1_next_state;
         card_core0_dda_arc1_dda_setup1_step <= card_core0_dda_arc1_dda_setup1_next_step;
         card_core0_dda_arc1_dda_setup1_square <= card_core0_dda_arc1_dda_setup1_next_square;
@@ -4726,118 +4704,94 @@ always @(card_core0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_arc1_dda_set
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_threshold
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_threshold
     reg shift;
-    if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_ones_left <= 0;
-        card_core0_dda_arc1_dda_setup1_grew <= 0;
-        card_core0_dda_arc1_dda_setup1_acc_bits <= 0;
+    shift = 1'b0;
+    card_core0_dda_arc1_dda_setup1_grew <= card_core0_dda_arc1_dda_setup1_root_grows;
+    if (((card_core0_dda_arc1_dda_setup1_state == 3'b000) && card_core0_regs_fifo1_sequencer1_dda_start)) begin
         card_core0_dda_arc1_dda_setup1_plan_threshold <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_too_wide <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_too_wide <= 1'b0;
+        card_core0_dda_arc1_dda_setup1_acc_bits <= card_core0_regs_fifo1_sequencer1_dda_acc_bits;
+        if ((card_core0_regs_fifo1_sequencer1_dda_acc_bits != 0)) begin
+            card_core0_dda_arc1_dda_setup1_ones_left <= ({1'b0, card_core0_regs_fifo1_sequencer1_dda_acc_bits} + {1'b0, card_core0_regs_fifo1_sequencer1_dda_lambda_shift});
+        end
+        else begin
+            card_core0_dda_arc1_dda_setup1_ones_left <= {1'b0, card_core0_regs_fifo1_sequencer1_dda_lambda_shift};
+        end
     end
-    else begin
-        shift = 1'b0;
-        card_core0_dda_arc1_dda_setup1_grew <= card_core0_dda_arc1_dda_setup1_root_grows;
-        if (((card_core0_dda_arc1_dda_setup1_state == 3'b000) && card_core0_regs_fifo1_sequencer1_dda_start)) begin
-            card_core0_dda_arc1_dda_setup1_plan_threshold <= 0;
-            card_core0_dda_arc1_dda_setup1_plan_too_wide <= 1'b0;
-            card_core0_dda_arc1_dda_setup1_acc_bits <= card_core0_regs_fifo1_sequencer1_dda_acc_bits;
-            if ((card_core0_regs_fifo1_sequencer1_dda_acc_bits != 0)) begin
-                card_core0_dda_arc1_dda_setup1_ones_left <= ({1'b0, card_core0_regs_fifo1_sequencer1_dda_acc_bits} + {1'b0, card_core0_regs_fifo1_sequencer1_dda_lambda_shift});
-            end
-            else begin
-                card_core0_dda_arc1_dda_setup1_ones_left <= {1'b0, card_core0_regs_fifo1_sequencer1_dda_lambda_shift};
-            end
+    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b001)) begin
+        card_core0_dda_arc1_dda_setup1_plan_threshold <= card_core0_dda_arc1_dda_setup1_major[28-1:0];
+    end
+    else if (1'b1) begin
+        if (((card_core0_dda_arc1_dda_setup1_state == 3'b011) && (card_core0_dda_arc1_dda_setup1_ones_left != 0))) begin
+            shift = 1'b1;
+            card_core0_dda_arc1_dda_setup1_ones_left <= (card_core0_dda_arc1_dda_setup1_ones_left - 1);
         end
-        else if ((card_core0_dda_arc1_dda_setup1_state == 3'b001)) begin
-            card_core0_dda_arc1_dda_setup1_plan_threshold <= card_core0_dda_arc1_dda_setup1_major[28-1:0];
+        else if (((card_core0_dda_arc1_dda_setup1_acc_bits == 0) && card_core0_dda_arc1_dda_setup1_grew)) begin
+            shift = 1'b1;
         end
-        else if (1'b1) begin
-            if (((card_core0_dda_arc1_dda_setup1_state == 3'b011) && (card_core0_dda_arc1_dda_setup1_ones_left != 0))) begin
-                shift = 1'b1;
-                card_core0_dda_arc1_dda_setup1_ones_left <= (card_core0_dda_arc1_dda_setup1_ones_left - 1);
-            end
-            else if (((card_core0_dda_arc1_dda_setup1_acc_bits == 0) && card_core0_dda_arc1_dda_setup1_grew)) begin
-                shift = 1'b1;
-            end
-            if (shift) begin
-                card_core0_dda_arc1_dda_setup1_plan_threshold <= {card_core0_dda_arc1_dda_setup1_plan_threshold[(28 - 1)-1:0], 1'b1};
-                if (card_core0_dda_arc1_dda_setup1_plan_threshold[(28 - 1)]) begin
-                    card_core0_dda_arc1_dda_setup1_plan_too_wide <= 1'b1;
-                end
+        if (shift) begin
+            card_core0_dda_arc1_dda_setup1_plan_threshold <= {card_core0_dda_arc1_dda_setup1_plan_threshold[(28 - 1)-1:0], 1'b1};
+            if (card_core0_dda_arc1_dda_setup1_plan_threshold[(28 - 1)]) begin
+                card_core0_dda_arc1_dda_setup1_plan_too_wide <= 1'b1;
             end
         end
     end
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_captures
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_captures
     reg sign;
-    if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_plan_start_same_y <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_totals_max <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_beyond <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_radius <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_start_same_x <= 0;
-        card_core0_dda_arc1_dda_setup1_pick_x <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_start_below_y <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_start_below_x <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_totals_diff <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_off_circle <= 0;
-        card_core0_dda_arc1_dda_setup1_m_is_y <= 0;
-    end
-    else begin
-        sign = card_core0_dda_arc1_dda_setup1_total[(49 - 1)];
-        case (card_core0_dda_arc1_dda_setup1_state)
-            3'b000: begin
-                card_core0_dda_arc1_dda_setup1_plan_off_circle <= 1'b0;
-            end
-            3'b010: begin
-                case (card_core0_dda_arc1_dda_setup1_step)
-                    'h2: begin
-                        card_core0_dda_arc1_dda_setup1_m_is_y <= sign;
-                    end
-                    'h4: begin
-                        card_core0_dda_arc1_dda_setup1_plan_start_below_x <= sign;
-                        card_core0_dda_arc1_dda_setup1_plan_start_same_x <= (card_core0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
-                    end
-                    'h6: begin
-                        card_core0_dda_arc1_dda_setup1_plan_start_below_y <= sign;
-                        card_core0_dda_arc1_dda_setup1_plan_start_same_y <= (card_core0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
-                    end
-                endcase
-            end
-            3'b100: begin
-                if ((((card_core0_dda_arc1_dda_setup1_step == 1) && (!sign)) || ((card_core0_dda_arc1_dda_setup1_step == 4) && sign))) begin
-                    card_core0_dda_arc1_dda_setup1_plan_off_circle <= 1'b1;
+    sign = card_core0_dda_arc1_dda_setup1_total[(49 - 1)];
+    case (card_core0_dda_arc1_dda_setup1_state)
+        3'b000: begin
+            card_core0_dda_arc1_dda_setup1_plan_off_circle <= 1'b0;
+        end
+        3'b010: begin
+            case (card_core0_dda_arc1_dda_setup1_step)
+                'h2: begin
+                    card_core0_dda_arc1_dda_setup1_m_is_y <= sign;
                 end
+                'h4: begin
+                    card_core0_dda_arc1_dda_setup1_plan_start_below_x <= sign;
+                    card_core0_dda_arc1_dda_setup1_plan_start_same_x <= (card_core0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
+                end
+                'h6: begin
+                    card_core0_dda_arc1_dda_setup1_plan_start_below_y <= sign;
+                    card_core0_dda_arc1_dda_setup1_plan_start_same_y <= (card_core0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
+                end
+            endcase
+        end
+        3'b100: begin
+            if ((((card_core0_dda_arc1_dda_setup1_step == 1) && (!sign)) || ((card_core0_dda_arc1_dda_setup1_step == 4) && sign))) begin
+                card_core0_dda_arc1_dda_setup1_plan_off_circle <= 1'b1;
             end
-            3'b101: begin
-                case (card_core0_dda_arc1_dda_setup1_step)
-                    'h0: begin
-                        card_core0_dda_arc1_dda_setup1_plan_radius <= card_core0_dda_arc1_dda_setup1_total[(24 + 2)-1:1];
-                    end
-                    'h2: begin
-                        card_core0_dda_arc1_dda_setup1_plan_beyond <= sign;
-                    end
-                    'h7: begin
-                        card_core0_dda_arc1_dda_setup1_plan_totals_diff <= $signed(card_core0_dda_arc1_dda_setup1_total[27-1:0]);
-                        card_core0_dda_arc1_dda_setup1_pick_x <= (!card_core0_dda_arc1_dda_setup1_total[(27 - 1)]);
-                    end
-                    'hc: begin
-                        card_core0_dda_arc1_dda_setup1_plan_totals_max <= card_core0_dda_arc1_dda_setup1_total[27-1:0];
-                    end
-                endcase
-            end
-            3'b001: begin
-                card_core0_dda_arc1_dda_setup1_plan_totals_diff <= $signed(card_core0_dda_arc1_dda_setup1_major[27-1:0]);
-                card_core0_dda_arc1_dda_setup1_plan_totals_max <= card_core0_dda_arc1_dda_setup1_major[27-1:0];
-            end
-            default: begin
-                card_core0_dda_arc1_dda_setup1_m_is_y <= card_core0_dda_arc1_dda_setup1_m_is_y;
-            end
-        endcase
-    end
+        end
+        3'b101: begin
+            case (card_core0_dda_arc1_dda_setup1_step)
+                'h0: begin
+                    card_core0_dda_arc1_dda_setup1_plan_radius <= card_core0_dda_arc1_dda_setup1_total[(24 + 2)-1:1];
+                end
+                'h2: begin
+                    card_core0_dda_arc1_dda_setup1_plan_beyond <= sign;
+                end
+                'h7: begin
+                    card_core0_dda_arc1_dda_setup1_plan_totals_diff <= $signed(card_core0_dda_arc1_dda_setup1_total[27-1:0]);
+                    card_core0_dda_arc1_dda_setup1_pick_x <= (!card_core0_dda_arc1_dda_setup1_total[(27 - 1)]);
+                end
+                'hc: begin
+                    card_core0_dda_arc1_dda_setup1_plan_totals_max <= card_core0_dda_arc1_dda_setup1_total[27-1:0];
+                end
+            endcase
+        end
+        3'b001: begin
+            card_core0_dda_arc1_dda_setup1_plan_totals_diff <= $signed(card_core0_dda_arc1_dda_setup1_major[27-1:0]);
+            card_core0_dda_arc1_dda_setup1_plan_totals_max <= card_core0_dda_arc1_dda_setup1_major[27-1:0];
+        end
+        default: begin
+            card_core0_dda_arc1_dda_setup1_m_is_y <= card_core0_dda_arc1_dda_setup1_m_is_y;
+        end
+    endcase
 end
 
 
@@ -5173,26 +5127,20 @@ assign card_core0_dda_arc1_dda_run1_taking = (card_core0_dda_arc1_dda_run1_activ
 
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_iterate
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_run1_mag_y <= 0;
         card_core0_dda_arc1_dda_run1_threshold_carry <= 0;
-        card_core0_dda_arc1_dda_run1_dec_sum_y <= 0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 0;
         card_core0_dda_arc1_dda_run1_dec_out <= 0;
-        card_core0_dda_arc1_dda_run1_end_x <= 0;
         card_core0_dda_arc1_dda_run1_dec_next_piece <= 0;
         card_core0_dda_arc1_dda_run1_variant <= 3;
         card_core0_regs_fifo1_steps_step_x <= 0;
         card_core0_dda_arc1_dda_run1_dec_in <= 0;
-        card_core0_dda_arc1_dda_run1_dec_sum_x <= 0;
         card_core0_dda_arc1_dda_run1_target_y <= 0;
-        card_core0_dda_arc1_dda_run1_error_term <= 0;
         card_core0_dda_arc1_dda_run1_x_inward <= 0;
         card_core0_dda_arc1_dda_run1_crossings <= 0;
         card_core0_dda_arc1_dda_run1_target_x <= 0;
         card_core0_dda_arc1_dda_run1_dec_finished <= 0;
         card_core0_dda_arc1_dda_run1_blend <= 0;
         card_core0_dda_arc1_dda_run1_dec_tail <= 0;
-        card_core0_dda_arc1_dda_run1_radius <= 0;
         card_core0_dda_arc1_dda_run1_dec_x <= 0;
         card_core0_dda_arc1_dda_run1_first <= 0;
         card_core0_regs_fifo1_steps_dir_x <= 0;
@@ -5201,15 +5149,10 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         card_core0_regs_fifo1_steps_step_y <= 0;
         card_core0_dda_arc1_dda_run1_right <= 0;
         card_core0_dda_arc1_dda_run1_pending <= 0;
-        card_core0_dda_arc1_dda_run1_end_y <= 0;
         card_core0_dda_arc1_dda_run1_up <= 0;
         card_core0_dda_arc1_dda_run1_active <= 0;
-        card_core0_dda_arc1_dda_run1_threshold <= 0;
         card_core0_dda_arc1_dda_run1_dec_y <= 0;
-        card_core0_dda_arc1_dda_run1_acc_x <= 0;
-        card_core0_dda_arc1_dda_run1_mag_x <= 0;
         card_core0_dda_arc1_dda_run1_ccw <= 0;
-        card_core0_dda_arc1_dda_run1_acc_y <= 0;
         card_core0_dda_arc1_dda_run1_line <= 0;
     end
     else begin
@@ -5238,32 +5181,8 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             card_core0_dda_arc1_dda_run1_dec_finished <= card_core0_dda_arc1_dda_run1_finished;
             card_core0_dda_arc1_dda_run1_dec_next_piece <= card_core0_dda_arc1_dda_run1_next_piece;
             card_core0_dda_arc1_dda_run1_first <= 1'b0;
-            card_core0_dda_arc1_dda_run1_dec_sum_x <= card_core0_dda_arc1_dda_run1_sum_x[30-1:0];
-            if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_line))) begin
-                card_core0_dda_arc1_dda_run1_dec_sum_x <= card_core0_dda_arc1_dda_run1_trad_x[30-1:0];
-            end
-            card_core0_dda_arc1_dda_run1_dec_sum_y <= card_core0_dda_arc1_dda_run1_sum_y[30-1:0];
-            if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_x)) begin
-                card_core0_dda_arc1_dda_run1_dec_sum_x <= 536870911;
-            end
-            if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_y)) begin
-                card_core0_dda_arc1_dda_run1_dec_sum_y <= 536870911;
-            end
         end
         else if (card_core0_dda_arc1_dda_run1_pending) begin
-            if ((!card_core0_dda_arc1_dda_run1_dec_tail)) begin
-                card_core0_dda_arc1_dda_run1_acc_x <= $signed(card_core0_dda_arc1_dda_run1_less_x);
-                card_core0_dda_arc1_dda_run1_acc_y <= $signed(card_core0_dda_arc1_dda_run1_less_y);
-            end
-            if ((!card_core0_dda_arc1_dda_run1_line)) begin
-                if (card_core0_dda_arc1_dda_run1_dec_x) begin
-                    card_core0_dda_arc1_dda_run1_mag_x <= card_core0_dda_arc1_dda_run1_stepped_x;
-                end
-                if (card_core0_dda_arc1_dda_run1_dec_y) begin
-                    card_core0_dda_arc1_dda_run1_mag_y <= card_core0_dda_arc1_dda_run1_stepped_y;
-                end
-                card_core0_dda_arc1_dda_run1_error_term <= card_core0_dda_arc1_dda_run1_error_step;
-            end
             if (card_core0_dda_arc1_dda_run1_dec_finished) begin
                 card_core0_dda_arc1_dda_run1_active <= 1'b0;
             end
@@ -5304,16 +5223,7 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             card_core0_dda_arc1_dda_run1_crossings <= card_core0_dda_arc1_dda_check1_move_crossings;
             card_core0_dda_arc1_dda_run1_target_x <= card_core0_dda_arc1_dda_check1_move_target_x;
             card_core0_dda_arc1_dda_run1_target_y <= card_core0_dda_arc1_dda_check1_move_target_y;
-            card_core0_dda_arc1_dda_run1_mag_x <= card_core0_dda_arc1_dda_check1_move_mag_x;
-            card_core0_dda_arc1_dda_run1_mag_y <= card_core0_dda_arc1_dda_check1_move_mag_y;
-            card_core0_dda_arc1_dda_run1_end_x <= card_core0_dda_arc1_dda_check1_move_end_x;
-            card_core0_dda_arc1_dda_run1_end_y <= card_core0_dda_arc1_dda_check1_move_end_y;
-            card_core0_dda_arc1_dda_run1_radius <= card_core0_dda_arc1_dda_check1_move_radius;
-            card_core0_dda_arc1_dda_run1_threshold <= card_core0_dda_arc1_dda_check1_move_threshold;
             card_core0_dda_arc1_dda_run1_threshold_carry <= card_core0_dda_arc1_dda_check1_move_line;
-            card_core0_dda_arc1_dda_run1_acc_x <= card_core0_dda_arc1_dda_check1_move_acc_init;
-            card_core0_dda_arc1_dda_run1_acc_y <= card_core0_dda_arc1_dda_check1_move_acc_init;
-            card_core0_dda_arc1_dda_run1_error_term <= 1;
         end
         if ((card_core0_dda_arc1_dda_check1_move_take && card_core0_dda_arc1_dda_check1_move_zero)) begin
             card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
@@ -5323,86 +5233,128 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_precise_bias
-    reg [27-1:0] op_x;
-    reg [27-1:0] op_y;
-    if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_run1_bias_y <= 0;
-        card_core0_dda_arc1_dda_run1_bias_x <= 0;
+always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_datapath
+    if (card_core0_dda_arc1_dda_run1_taking) begin
+        card_core0_dda_arc1_dda_run1_dec_sum_x <= card_core0_dda_arc1_dda_run1_sum_x[30-1:0];
+        if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_line))) begin
+            card_core0_dda_arc1_dda_run1_dec_sum_x <= card_core0_dda_arc1_dda_run1_trad_x[30-1:0];
+        end
+        card_core0_dda_arc1_dda_run1_dec_sum_y <= card_core0_dda_arc1_dda_run1_sum_y[30-1:0];
+        if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_x)) begin
+            card_core0_dda_arc1_dda_run1_dec_sum_x <= 536870911;
+        end
+        if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_y)) begin
+            card_core0_dda_arc1_dda_run1_dec_sum_y <= 536870911;
+        end
     end
-    else begin
-        op_x = 27'h0;
-        op_y = 27'h0;
-        op_x = {24'h0, card_core0_dda_arc1_dda_run1_dec_x, card_core0_dda_arc1_dda_run1_dec_y, 1'b0};
-        op_y = {24'h0, card_core0_dda_arc1_dda_run1_dec_y, card_core0_dda_arc1_dda_run1_dec_x, 1'b0};
-        if ((!card_core0_dda_arc1_dda_run1_x_inward)) begin
-            op_x = (~op_x);
-            op_y = (~op_y);
+    else if (card_core0_dda_arc1_dda_run1_pending) begin
+        if ((!card_core0_dda_arc1_dda_run1_dec_tail)) begin
+            card_core0_dda_arc1_dda_run1_acc_x <= $signed(card_core0_dda_arc1_dda_run1_less_x);
+            card_core0_dda_arc1_dda_run1_acc_y <= $signed(card_core0_dda_arc1_dda_run1_less_y);
         end
-        if ((card_core0_dda_arc1_dda_run1_pending && (!card_core0_dda_arc1_dda_run1_line))) begin
-            card_core0_dda_arc1_dda_run1_bias_x <= ((card_core0_dda_arc1_dda_run1_bias_x + op_x) + {26'h0, (!card_core0_dda_arc1_dda_run1_x_inward)});
-            card_core0_dda_arc1_dda_run1_bias_y <= ((card_core0_dda_arc1_dda_run1_bias_y + op_y) + {26'h0, (!card_core0_dda_arc1_dda_run1_x_inward)});
+        if ((!card_core0_dda_arc1_dda_run1_line)) begin
+            if (card_core0_dda_arc1_dda_run1_dec_x) begin
+                card_core0_dda_arc1_dda_run1_mag_x <= card_core0_dda_arc1_dda_run1_stepped_x;
+            end
+            if (card_core0_dda_arc1_dda_run1_dec_y) begin
+                card_core0_dda_arc1_dda_run1_mag_y <= card_core0_dda_arc1_dda_run1_stepped_y;
+            end
+            card_core0_dda_arc1_dda_run1_error_term <= card_core0_dda_arc1_dda_run1_error_step;
         end
-        if (card_core0_dda_arc1_dda_check1_move_take) begin
-            card_core0_dda_arc1_dda_run1_bias_x <= card_core0_dda_arc1_dda_check1_move_bias_x;
-            card_core0_dda_arc1_dda_run1_bias_y <= card_core0_dda_arc1_dda_check1_move_bias_y;
-        end
+    end
+    if (card_core0_dda_arc1_dda_check1_move_take) begin
+        card_core0_dda_arc1_dda_run1_mag_x <= card_core0_dda_arc1_dda_check1_move_mag_x;
+        card_core0_dda_arc1_dda_run1_mag_y <= card_core0_dda_arc1_dda_check1_move_mag_y;
+        card_core0_dda_arc1_dda_run1_end_x <= card_core0_dda_arc1_dda_check1_move_end_x;
+        card_core0_dda_arc1_dda_run1_end_y <= card_core0_dda_arc1_dda_check1_move_end_y;
+        card_core0_dda_arc1_dda_run1_radius <= card_core0_dda_arc1_dda_check1_move_radius;
+        card_core0_dda_arc1_dda_run1_threshold <= card_core0_dda_arc1_dda_check1_move_threshold;
+        card_core0_dda_arc1_dda_run1_acc_x <= card_core0_dda_arc1_dda_check1_move_acc_init;
+        card_core0_dda_arc1_dda_run1_acc_y <= card_core0_dda_arc1_dda_check1_move_acc_init;
+        card_core0_dda_arc1_dda_run1_error_term <= 1;
     end
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_steps_left
-    reg [27-1:0] base_diff;
+always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_precise_bias
+    reg [27-1:0] op_x;
+    reg [27-1:0] op_y;
+    op_x = 27'h0;
+    op_y = 27'h0;
+    op_x = {24'h0, card_core0_dda_arc1_dda_run1_dec_x, card_core0_dda_arc1_dda_run1_dec_y, 1'b0};
+    op_y = {24'h0, card_core0_dda_arc1_dda_run1_dec_y, card_core0_dda_arc1_dda_run1_dec_x, 1'b0};
+    if ((!card_core0_dda_arc1_dda_run1_x_inward)) begin
+        op_x = (~op_x);
+        op_y = (~op_y);
+    end
+    if ((card_core0_dda_arc1_dda_run1_pending && (!card_core0_dda_arc1_dda_run1_line))) begin
+        card_core0_dda_arc1_dda_run1_bias_x <= ((card_core0_dda_arc1_dda_run1_bias_x + op_x) + {26'h0, (!card_core0_dda_arc1_dda_run1_x_inward)});
+        card_core0_dda_arc1_dda_run1_bias_y <= ((card_core0_dda_arc1_dda_run1_bias_y + op_y) + {26'h0, (!card_core0_dda_arc1_dda_run1_x_inward)});
+    end
+    if (card_core0_dda_arc1_dda_check1_move_take) begin
+        card_core0_dda_arc1_dda_run1_bias_x <= card_core0_dda_arc1_dda_check1_move_bias_x;
+        card_core0_dda_arc1_dda_run1_bias_y <= card_core0_dda_arc1_dda_check1_move_bias_y;
+    end
+end
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_steps_difference
+    reg [27-1:0] base;
     reg [27-1:0] change;
-    reg [27-1:0] base_most;
+    base = 27'h0;
+    change = 27'h0;
+    base = card_core0_dda_arc1_dda_run1_left_diff;
+    if (card_core0_dda_arc1_dda_check1_move_take) begin
+        base = card_core0_dda_arc1_dda_check1_move_totals_diff;
+        if (card_core0_dda_arc1_dda_check1_move_line) begin
+            change = 134217727;
+        end
+    end
+    else if (card_core0_dda_arc1_dda_run1_pending) begin
+        if ((card_core0_dda_arc1_dda_run1_line || (card_core0_dda_arc1_dda_run1_dec_x && (!card_core0_dda_arc1_dda_run1_dec_y)))) begin
+            change = 134217727;
+        end
+        else if ((card_core0_dda_arc1_dda_run1_dec_y && (!card_core0_dda_arc1_dda_run1_dec_x))) begin
+            change = 1;
+        end
+    end
+    card_core0_dda_arc1_dda_run1_left_diff <= (base + change);
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_steps_left
+    reg [27-1:0] base;
     reg [27-1:0] less;
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_run1_left_diff <= 0;
         card_core0_dda_arc1_dda_run1_most_left <= 134217727;
     end
     else begin
-        base_diff = 27'h0;
-        change = 27'h0;
-        base_most = 27'h0;
+        base = 27'h0;
         less = 27'h0;
-        base_diff = card_core0_dda_arc1_dda_run1_left_diff;
-        base_most = card_core0_dda_arc1_dda_run1_most_left;
+        base = card_core0_dda_arc1_dda_run1_most_left;
         if (card_core0_dda_arc1_dda_check1_move_take) begin
-            base_diff = card_core0_dda_arc1_dda_check1_move_totals_diff;
-            base_most = card_core0_dda_arc1_dda_check1_move_totals_max;
+            base = card_core0_dda_arc1_dda_check1_move_totals_max;
             less = 134217727;
-            if (card_core0_dda_arc1_dda_check1_move_line) begin
-                change = 134217727;
-            end
         end
-        else if (card_core0_dda_arc1_dda_run1_pending) begin
-            if ((card_core0_dda_arc1_dda_run1_line || (card_core0_dda_arc1_dda_run1_dec_x && (!card_core0_dda_arc1_dda_run1_dec_y)))) begin
-                change = 134217727;
+        else if ((card_core0_dda_arc1_dda_run1_pending && (!card_core0_dda_arc1_dda_run1_blend))) begin
+            if (card_core0_dda_arc1_dda_run1_line) begin
+                less = 134217727;
             end
-            else if ((card_core0_dda_arc1_dda_run1_dec_y && (!card_core0_dda_arc1_dda_run1_dec_x))) begin
-                change = 1;
-            end
-            if ((!card_core0_dda_arc1_dda_run1_blend)) begin
-                if (card_core0_dda_arc1_dda_run1_line) begin
-                    less = 134217727;
-                end
-                else if ((card_core0_dda_arc1_dda_run1_left_diff == 0)) begin
-                    if ((card_core0_dda_arc1_dda_run1_dec_x && card_core0_dda_arc1_dda_run1_dec_y)) begin
-                        less = 134217727;
-                    end
-                end
-                else if (card_core0_dda_arc1_dda_run1_left_diff[(27 - 1)]) begin
-                    if (card_core0_dda_arc1_dda_run1_dec_y) begin
-                        less = 134217727;
-                    end
-                end
-                else if (card_core0_dda_arc1_dda_run1_dec_x) begin
+            else if ((card_core0_dda_arc1_dda_run1_left_diff == 0)) begin
+                if ((card_core0_dda_arc1_dda_run1_dec_x && card_core0_dda_arc1_dda_run1_dec_y)) begin
                     less = 134217727;
                 end
             end
+            else if (card_core0_dda_arc1_dda_run1_left_diff[(27 - 1)]) begin
+                if (card_core0_dda_arc1_dda_run1_dec_y) begin
+                    less = 134217727;
+                end
+            end
+            else if (card_core0_dda_arc1_dda_run1_dec_x) begin
+                less = 134217727;
+            end
         end
-        card_core0_dda_arc1_dda_run1_left_diff <= (base_diff + change);
-        card_core0_dda_arc1_dda_run1_most_left <= (base_most + less);
+        card_core0_dda_arc1_dda_run1_most_left <= (base + less);
         if (card_core0_dda_arc1_dda_check1_move_take) begin
             if ((card_core0_dda_arc1_dda_check1_move_blend || card_core0_dda_arc1_dda_check1_move_error || card_core0_dda_arc1_dda_check1_move_zero)) begin
                 card_core0_dda_arc1_dda_run1_most_left <= 134217727;

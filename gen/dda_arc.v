@@ -302,41 +302,25 @@ always @(cmd_ys, cmd_ye, cmd_xs, cmd_xe) begin: dda_setup0_dda_latch0_magnitudes
 end
 
 
-always @(posedge clock, negedge reset) begin: dda_setup0_dda_latch0_latch
-    if (reset == 0) begin
-        dda_setup0_dda_latch0_plan_neg_ye <= 0;
-        dda_setup0_dda_latch0_plan_ccw <= 0;
-        dda_setup0_plan_mag_xs <= 0;
-        dda_setup0_dda_latch0_plan_neg_xe <= 0;
-        dda_setup0_dda_latch0_plan_line <= 0;
-        dda_setup0_dda_latch0_plan_blend <= 0;
-        dda_setup0_plan_mag_ys <= 0;
-        dda_setup0_plan_mag_xe <= 0;
-        dda_setup0_dda_latch0_neg_ys <= 0;
-        dda_setup0_dda_latch0_neg_xs <= 0;
-        dda_setup0_dda_latch0_plan_variant <= 3;
-        dda_setup0_plan_mag_ye <= 0;
-    end
-    else begin
-        if ((cmd_start && cmd_ready)) begin
-            dda_setup0_dda_latch0_plan_line <= cmd_line;
-            dda_setup0_dda_latch0_plan_variant <= cmd_variant;
-            dda_setup0_dda_latch0_plan_ccw <= cmd_ccw;
-            dda_setup0_dda_latch0_plan_blend <= cmd_blend;
-            dda_setup0_dda_latch0_neg_xs <= (cmd_xs < 0);
-            dda_setup0_dda_latch0_neg_ys <= (cmd_ys < 0);
-            dda_setup0_dda_latch0_plan_neg_xe <= (cmd_xe < 0);
-            dda_setup0_dda_latch0_plan_neg_ye <= (cmd_ye < 0);
-            dda_setup0_plan_mag_xs <= dda_setup0_dda_latch0_mag_xs;
-            dda_setup0_plan_mag_ys <= dda_setup0_dda_latch0_mag_ys;
-            dda_setup0_plan_mag_xe <= dda_setup0_dda_latch0_mag_xe;
-            dda_setup0_plan_mag_ye <= dda_setup0_dda_latch0_mag_ye;
-        end
+always @(posedge clock) begin: dda_setup0_dda_latch0_latch
+    if ((cmd_start && cmd_ready)) begin
+        dda_setup0_dda_latch0_plan_line <= cmd_line;
+        dda_setup0_dda_latch0_plan_variant <= cmd_variant;
+        dda_setup0_dda_latch0_plan_ccw <= cmd_ccw;
+        dda_setup0_dda_latch0_plan_blend <= cmd_blend;
+        dda_setup0_dda_latch0_neg_xs <= (cmd_xs < 0);
+        dda_setup0_dda_latch0_neg_ys <= (cmd_ys < 0);
+        dda_setup0_dda_latch0_plan_neg_xe <= (cmd_xe < 0);
+        dda_setup0_dda_latch0_plan_neg_ye <= (cmd_ye < 0);
+        dda_setup0_plan_mag_xs <= dda_setup0_dda_latch0_mag_xs;
+        dda_setup0_plan_mag_ys <= dda_setup0_dda_latch0_mag_ys;
+        dda_setup0_plan_mag_xe <= dda_setup0_dda_latch0_mag_xe;
+        dda_setup0_plan_mag_ye <= dda_setup0_dda_latch0_mag_ye;
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: dda_setup0_dda_latch0_geometry
+always @(posedge clock) begin: dda_setup0_dda_latch0_geometry
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
     reg [2-1:0] turn;
@@ -345,98 +329,88 @@ always @(posedge clock, negedge reset) begin: dda_setup0_dda_latch0_geometry
     reg zero_ys;
     reg zero_xe;
     reg zero_ye;
-    if (reset == 0) begin
-        dda_setup0_dda_latch0_plan_ahead <= 0;
-        dda_setup0_dda_latch0_plan_quadrant <= 0;
-        dda_setup0_plan_x_inward_end <= 0;
-        dda_setup0_dda_latch0_plan_centre <= 0;
-        dda_setup0_plan_crossings <= 0;
-        dda_setup0_plan_x_inward <= 0;
+    q_s = 2'h0;
+    q_e = 2'h0;
+    turn = 2'h0;
+    ahead = 1'b0;
+    zero_xs = (dda_setup0_plan_mag_xs == 0);
+    zero_ys = (dda_setup0_plan_mag_ys == 0);
+    zero_xe = (dda_setup0_plan_mag_xe == 0);
+    zero_ye = (dda_setup0_plan_mag_ye == 0);
+    if (dda_setup0_dda_latch0_plan_ccw) begin
+        if (((!dda_setup0_dda_latch0_neg_xs) && (!zero_xs) && (!dda_setup0_dda_latch0_neg_ys))) begin
+            q_s = 0;
+        end
+        else if (((dda_setup0_dda_latch0_neg_xs || zero_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!zero_ys))) begin
+            q_s = 1;
+        end
+        else if ((dda_setup0_dda_latch0_neg_xs && (dda_setup0_dda_latch0_neg_ys || zero_ys))) begin
+            q_s = 2;
+        end
+        else begin
+            q_s = 3;
+        end
+        if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!zero_ye))) begin
+            q_e = 0;
+        end
+        else if ((dda_setup0_dda_latch0_plan_neg_xe && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
+            q_e = 1;
+        end
+        else if (((dda_setup0_dda_latch0_plan_neg_xe || zero_xe) && dda_setup0_dda_latch0_plan_neg_ye)) begin
+            q_e = 2;
+        end
+        else begin
+            q_e = 3;
+        end
+        turn = (q_e - q_s);
     end
     else begin
-        q_s = 2'h0;
-        q_e = 2'h0;
-        turn = 2'h0;
-        ahead = 1'b0;
-        zero_xs = (dda_setup0_plan_mag_xs == 0);
-        zero_ys = (dda_setup0_plan_mag_ys == 0);
-        zero_xe = (dda_setup0_plan_mag_xe == 0);
-        zero_ye = (dda_setup0_plan_mag_ye == 0);
-        if (dda_setup0_dda_latch0_plan_ccw) begin
-            if (((!dda_setup0_dda_latch0_neg_xs) && (!zero_xs) && (!dda_setup0_dda_latch0_neg_ys))) begin
-                q_s = 0;
-            end
-            else if (((dda_setup0_dda_latch0_neg_xs || zero_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!zero_ys))) begin
-                q_s = 1;
-            end
-            else if ((dda_setup0_dda_latch0_neg_xs && (dda_setup0_dda_latch0_neg_ys || zero_ys))) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!zero_ye))) begin
-                q_e = 0;
-            end
-            else if ((dda_setup0_dda_latch0_plan_neg_xe && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
-                q_e = 1;
-            end
-            else if (((dda_setup0_dda_latch0_plan_neg_xe || zero_xe) && dda_setup0_dda_latch0_plan_neg_ye)) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_e - q_s);
+        if (((!dda_setup0_dda_latch0_neg_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!zero_ys))) begin
+            q_s = 0;
+        end
+        else if ((dda_setup0_dda_latch0_neg_xs && (!dda_setup0_dda_latch0_neg_ys))) begin
+            q_s = 1;
+        end
+        else if (((dda_setup0_dda_latch0_neg_xs || zero_xs) && dda_setup0_dda_latch0_neg_ys)) begin
+            q_s = 2;
         end
         else begin
-            if (((!dda_setup0_dda_latch0_neg_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!zero_ys))) begin
-                q_s = 0;
-            end
-            else if ((dda_setup0_dda_latch0_neg_xs && (!dda_setup0_dda_latch0_neg_ys))) begin
-                q_s = 1;
-            end
-            else if (((dda_setup0_dda_latch0_neg_xs || zero_xs) && dda_setup0_dda_latch0_neg_ys)) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
-                q_e = 0;
-            end
-            else if (((dda_setup0_dda_latch0_plan_neg_xe || zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!zero_ye))) begin
-                q_e = 1;
-            end
-            else if ((dda_setup0_dda_latch0_plan_neg_xe && (dda_setup0_dda_latch0_plan_neg_ye || zero_ye))) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_s - q_e);
+            q_s = 3;
         end
-        if ((q_s[0] != dda_setup0_dda_latch0_plan_ccw)) begin
-            ahead = ((!dda_setup0_plan_start_below_x) && (dda_setup0_plan_start_below_y || dda_setup0_plan_start_same_y));
+        if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
+            q_e = 0;
+        end
+        else if (((dda_setup0_dda_latch0_plan_neg_xe || zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!zero_ye))) begin
+            q_e = 1;
+        end
+        else if ((dda_setup0_dda_latch0_plan_neg_xe && (dda_setup0_dda_latch0_plan_neg_ye || zero_ye))) begin
+            q_e = 2;
         end
         else begin
-            ahead = ((!dda_setup0_plan_start_below_y) && (dda_setup0_plan_start_below_x || dda_setup0_plan_start_same_x));
+            q_e = 3;
         end
-        ahead = (ahead && (!(dda_setup0_plan_start_same_x && dda_setup0_plan_start_same_y)) && (turn == 0));
-        dda_setup0_dda_latch0_plan_ahead <= ahead;
-        dda_setup0_plan_crossings <= {1'b0, turn};
-        if (((turn == 0) && (!ahead))) begin
-            dda_setup0_plan_crossings <= 4;
-        end
-        dda_setup0_dda_latch0_plan_quadrant <= q_s;
-        dda_setup0_plan_x_inward <= (q_s[0] != dda_setup0_dda_latch0_plan_ccw);
-        dda_setup0_plan_x_inward_end <= (q_e[0] != dda_setup0_dda_latch0_plan_ccw);
-        if (dda_setup0_dda_latch0_plan_line) begin
-            dda_setup0_dda_latch0_plan_centre <= (zero_xe && zero_ye);
-        end
-        else begin
-            dda_setup0_dda_latch0_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
-        end
+        turn = (q_s - q_e);
+    end
+    if ((q_s[0] != dda_setup0_dda_latch0_plan_ccw)) begin
+        ahead = ((!dda_setup0_plan_start_below_x) && (dda_setup0_plan_start_below_y || dda_setup0_plan_start_same_y));
+    end
+    else begin
+        ahead = ((!dda_setup0_plan_start_below_y) && (dda_setup0_plan_start_below_x || dda_setup0_plan_start_same_x));
+    end
+    ahead = (ahead && (!(dda_setup0_plan_start_same_x && dda_setup0_plan_start_same_y)) && (turn == 0));
+    dda_setup0_dda_latch0_plan_ahead <= ahead;
+    dda_setup0_plan_crossings <= {1'b0, turn};
+    if (((turn == 0) && (!ahead))) begin
+        dda_setup0_plan_crossings <= 4;
+    end
+    dda_setup0_dda_latch0_plan_quadrant <= q_s;
+    dda_setup0_plan_x_inward <= (q_s[0] != dda_setup0_dda_latch0_plan_ccw);
+    dda_setup0_plan_x_inward_end <= (q_e[0] != dda_setup0_dda_latch0_plan_ccw);
+    if (dda_setup0_dda_latch0_plan_line) begin
+        dda_setup0_dda_latch0_plan_centre <= (zero_xe && zero_ye);
+    end
+    else begin
+        dda_setup0_dda_latch0_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
     end
 end
 
@@ -467,35 +441,38 @@ always @(dda_setup0_dda_root0_steps, dda_setup0_dda_root0_all_ones, dda_setup0_d
 end
 
 
-always @(posedge clock, negedge reset) begin: dda_setup0_dda_root0_digits
+always @(posedge clock, negedge reset) begin: dda_setup0_dda_root0_count
     if (reset == 0) begin
-        dda_setup0_dda_root0_radicand <= 0;
-        dda_setup0_root_root <= 0;
-        dda_setup0_dda_root0_started <= 0;
         dda_setup0_dda_root0_steps <= 0;
-        dda_setup0_dda_root0_remainder <= 0;
-        dda_setup0_dda_root0_all_ones <= 0;
     end
     else begin
         if (dda_setup0_root_load) begin
-            dda_setup0_dda_root0_radicand <= dda_setup0_root_radicand;
-            dda_setup0_dda_root0_remainder <= 0;
-            dda_setup0_root_root <= 0;
             dda_setup0_dda_root0_steps <= (24 + 1);
-            dda_setup0_dda_root0_started <= 1'b0;
-            dda_setup0_dda_root0_all_ones <= 1'b1;
         end
         else if ((dda_setup0_dda_root0_steps != 0)) begin
-            dda_setup0_dda_root0_remainder <= dda_setup0_dda_root0_keep;
-            dda_setup0_root_root <= {dda_setup0_root_root[24-1:0], dda_setup0_dda_root0_fits};
-            dda_setup0_dda_root0_radicand <= (dda_setup0_dda_root0_radicand << 2);
             dda_setup0_dda_root0_steps <= (dda_setup0_dda_root0_steps - 1);
-            if (dda_setup0_dda_root0_fits) begin
-                dda_setup0_dda_root0_started <= 1'b1;
-            end
-            else if (dda_setup0_dda_root0_started) begin
-                dda_setup0_dda_root0_all_ones <= 1'b0;
-            end
+        end
+    end
+end
+
+
+always @(posedge clock) begin: dda_setup0_dda_root0_digits
+    if (dda_setup0_root_load) begin
+        dda_setup0_dda_root0_radicand <= dda_setup0_root_radicand;
+        dda_setup0_dda_root0_remainder <= 0;
+        dda_setup0_root_root <= 0;
+        dda_setup0_dda_root0_started <= 1'b0;
+        dda_setup0_dda_root0_all_ones <= 1'b1;
+    end
+    else if ((dda_setup0_dda_root0_steps != 0)) begin
+        dda_setup0_dda_root0_remainder <= dda_setup0_dda_root0_keep;
+        dda_setup0_root_root <= {dda_setup0_root_root[24-1:0], dda_setup0_dda_root0_fits};
+        dda_setup0_dda_root0_radicand <= (dda_setup0_dda_root0_radicand << 2);
+        if (dda_setup0_dda_root0_fits) begin
+            dda_setup0_dda_root0_started <= 1'b1;
+        end
+        else if (dda_setup0_dda_root0_started) begin
+            dda_setup0_dda_root0_all_ones <= 1'b0;
         end
     end
 end
@@ -823,50 +800,51 @@ assign dda_setup0_root_radicand = (~dda_setup0_gap[(2 * 24)-1:0]);
 assign dda_setup0_root_load = ((dda_setup0_state == 3'b011) && (dda_setup0_square == 2) && (dda_setup0_step == 0));
 
 
-always @(posedge clock, negedge reset) begin: dda_setup0_datapath
+always @(posedge clock) begin: dda_setup0_datapath
     reg [49-1:0] loaded;
-    if (reset == 0) begin
-        dda_setup0_multiplier <= 0;
+    loaded = 49'h0;
+    case (dda_setup0_gap_op)
+        'h1: begin
+            dda_setup0_gap <= dda_setup0_total;
+        end
+        'h2: begin
+            dda_setup0_gap <= 0;
+        end
+        'h3: begin
+            dda_setup0_gap <= ((1 << 49) - 1);
+        end
+    endcase
+    case (dda_setup0_operand_op)
+        'h1: begin
+            dda_setup0_operand <= {dda_setup0_operand[(49 - 1)-1:0], dda_setup0_invert};
+        end
+        'h2: begin
+            loaded = {24'h0, dda_setup0_source_value};
+            if ((dda_setup0_invert && dda_setup0_source_on)) begin
+                loaded = (~loaded);
+            end
+            dda_setup0_operand <= loaded;
+        end
+    endcase
+    if (((dda_setup0_state == 3'b011) && ($signed({1'b0, dda_setup0_step}) != (24 - 1)))) begin
+        dda_setup0_multiplier <= (dda_setup0_multiplier >>> 1);
+    end
+    else if (((dda_setup0_state == 3'b010) || (dda_setup0_state == 3'b011))) begin
+        dda_setup0_multiplier <= dda_setup0_source_value[24-1:0];
+    end
+    if ((dda_setup0_state == 3'b000)) begin
         dda_setup0_gap <= 0;
-        dda_setup0_operand <= 0;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: dda_setup0_sequencer
+    if (reset == 0) begin
         dda_setup0_step <= 0;
         dda_setup0_square <= 0;
         dda_setup0_state <= 3'b000;
     end
     else begin
-        loaded = 49'h0;
-        case (dda_setup0_gap_op)
-            'h1: begin
-                dda_setup0_gap <= dda_setup0_total;
-            end
-            'h2: begin
-                dda_setup0_gap <= 0;
-            end
-            'h3: begin
-                dda_setup0_gap <= ((1 << 49) - 1);
-            end
-        endcase
-        case (dda_setup0_operand_op)
-            'h1: begin
-                dda_setup0_operand <= {dda_setup0_operand[(49 - 1)-1:0], dda_setup0_invert};
-            end
-            'h2: begin
-                loaded = {24'h0, dda_setup0_source_value};
-                if ((dda_setup0_invert && dda_setup0_source_on)) begin
-                    loaded = (~loaded);
-                end
-                dda_setup0_operand <= loaded;
-            end
-        endcase
-        if (((dda_setup0_state == 3'b011) && ($signed({1'b0, dda_setup0_step}) != (24 - 1)))) begin
-            dda_setup0_multiplier <= (dda_setup0_multiplier >>> 1);
-        end
-        else if (((dda_setup0_state == 3'b010) || (dda_setup0_state == 3'b011))) begin
-            dda_setup0_multiplier <= dda_setup0_source_value[24-1:0];
-        end
-        if ((dda_setup0_state == 3'b000)) begin
-            dda_setup0_gap <= 0;
-        end
         dda_setup0_state <= dda_setup0_next_state;
         dda_setup0_step <= dda_setup0_next_step;
         dda_setup0_square <= dda_setup0_next_square;
@@ -882,118 +860,94 @@ always @(dda_setup0_plan_mag_xe, dda_setup0_plan_mag_ye) begin: dda_setup0_line_
 end
 
 
-always @(posedge clock, negedge reset) begin: dda_setup0_threshold
+always @(posedge clock) begin: dda_setup0_threshold
     reg shift;
-    if (reset == 0) begin
-        dda_setup0_ones_left <= 0;
-        dda_setup0_grew <= 0;
-        dda_setup0_acc_bits <= 0;
+    shift = 1'b0;
+    dda_setup0_grew <= dda_setup0_root_grows;
+    if (((dda_setup0_state == 3'b000) && cmd_start)) begin
         dda_setup0_plan_threshold <= 0;
-        dda_setup0_plan_too_wide <= 0;
+        dda_setup0_plan_too_wide <= 1'b0;
+        dda_setup0_acc_bits <= cmd_acc_bits;
+        if ((cmd_acc_bits != 0)) begin
+            dda_setup0_ones_left <= ({1'b0, cmd_acc_bits} + {1'b0, cmd_lambda_shift});
+        end
+        else begin
+            dda_setup0_ones_left <= {1'b0, cmd_lambda_shift};
+        end
     end
-    else begin
-        shift = 1'b0;
-        dda_setup0_grew <= dda_setup0_root_grows;
-        if (((dda_setup0_state == 3'b000) && cmd_start)) begin
-            dda_setup0_plan_threshold <= 0;
-            dda_setup0_plan_too_wide <= 1'b0;
-            dda_setup0_acc_bits <= cmd_acc_bits;
-            if ((cmd_acc_bits != 0)) begin
-                dda_setup0_ones_left <= ({1'b0, cmd_acc_bits} + {1'b0, cmd_lambda_shift});
-            end
-            else begin
-                dda_setup0_ones_left <= {1'b0, cmd_lambda_shift};
-            end
+    else if ((dda_setup0_state == 3'b001)) begin
+        dda_setup0_plan_threshold <= dda_setup0_major[28-1:0];
+    end
+    else if (1'b1) begin
+        if (((dda_setup0_state == 3'b011) && (dda_setup0_ones_left != 0))) begin
+            shift = 1'b1;
+            dda_setup0_ones_left <= (dda_setup0_ones_left - 1);
         end
-        else if ((dda_setup0_state == 3'b001)) begin
-            dda_setup0_plan_threshold <= dda_setup0_major[28-1:0];
+        else if (((dda_setup0_acc_bits == 0) && dda_setup0_grew)) begin
+            shift = 1'b1;
         end
-        else if (1'b1) begin
-            if (((dda_setup0_state == 3'b011) && (dda_setup0_ones_left != 0))) begin
-                shift = 1'b1;
-                dda_setup0_ones_left <= (dda_setup0_ones_left - 1);
-            end
-            else if (((dda_setup0_acc_bits == 0) && dda_setup0_grew)) begin
-                shift = 1'b1;
-            end
-            if (shift) begin
-                dda_setup0_plan_threshold <= {dda_setup0_plan_threshold[(28 - 1)-1:0], 1'b1};
-                if (dda_setup0_plan_threshold[(28 - 1)]) begin
-                    dda_setup0_plan_too_wide <= 1'b1;
-                end
+        if (shift) begin
+            dda_setup0_plan_threshold <= {dda_setup0_plan_threshold[(28 - 1)-1:0], 1'b1};
+            if (dda_setup0_plan_threshold[(28 - 1)]) begin
+                dda_setup0_plan_too_wide <= 1'b1;
             end
         end
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: dda_setup0_captures
+always @(posedge clock) begin: dda_setup0_captures
     reg sign;
-    if (reset == 0) begin
-        dda_setup0_plan_start_same_y <= 0;
-        dda_setup0_plan_totals_max <= 0;
-        dda_setup0_plan_beyond <= 0;
-        dda_setup0_plan_radius <= 0;
-        dda_setup0_plan_start_same_x <= 0;
-        dda_setup0_pick_x <= 0;
-        dda_setup0_plan_start_below_y <= 0;
-        dda_setup0_plan_start_below_x <= 0;
-        dda_setup0_plan_totals_diff <= 0;
-        dda_setup0_plan_off_circle <= 0;
-        dda_setup0_m_is_y <= 0;
-    end
-    else begin
-        sign = dda_setup0_total[(49 - 1)];
-        case (dda_setup0_state)
-            3'b000: begin
-                dda_setup0_plan_off_circle <= 1'b0;
-            end
-            3'b010: begin
-                case (dda_setup0_step)
-                    'h2: begin
-                        dda_setup0_m_is_y <= sign;
-                    end
-                    'h4: begin
-                        dda_setup0_plan_start_below_x <= sign;
-                        dda_setup0_plan_start_same_x <= (dda_setup0_total[(24 + 1)-1:0] == 0);
-                    end
-                    'h6: begin
-                        dda_setup0_plan_start_below_y <= sign;
-                        dda_setup0_plan_start_same_y <= (dda_setup0_total[(24 + 1)-1:0] == 0);
-                    end
-                endcase
-            end
-            3'b100: begin
-                if ((((dda_setup0_step == 1) && (!sign)) || ((dda_setup0_step == 4) && sign))) begin
-                    dda_setup0_plan_off_circle <= 1'b1;
+    sign = dda_setup0_total[(49 - 1)];
+    case (dda_setup0_state)
+        3'b000: begin
+            dda_setup0_plan_off_circle <= 1'b0;
+        end
+        3'b010: begin
+            case (dda_setup0_step)
+                'h2: begin
+                    dda_setup0_m_is_y <= sign;
                 end
+                'h4: begin
+                    dda_setup0_plan_start_below_x <= sign;
+                    dda_setup0_plan_start_same_x <= (dda_setup0_total[(24 + 1)-1:0] == 0);
+                end
+                'h6: begin
+                    dda_setup0_plan_start_below_y <= sign;
+                    dda_setup0_plan_start_same_y <= (dda_setup0_total[(24 + 1)-1:0] == 0);
+                end
+            endcase
+        end
+        3'b100: begin
+            if ((((dda_setup0_step == 1) && (!sign)) || ((dda_setup0_step == 4) && sign))) begin
+                dda_setup0_plan_off_circle <= 1'b1;
             end
-            3'b101: begin
-                case (dda_setup0_step)
-                    'h0: begin
-                        dda_setup0_plan_radius <= dda_setup0_total[(24 + 2)-1:1];
-                    end
-                    'h2: begin
-                        dda_setup0_plan_beyond <= sign;
-                    end
-                    'h7: begin
-                        dda_setup0_plan_totals_diff <= $signed(dda_setup0_total[27-1:0]);
-                        dda_setup0_pick_x <= (!dda_setup0_total[(27 - 1)]);
-                    end
-                    'hc: begin
-                        dda_setup0_plan_totals_max <= dda_setup0_total[27-1:0];
-                    end
-                endcase
-            end
-            3'b001: begin
-                dda_setup0_plan_totals_diff <= $signed(dda_setup0_major[27-1:0]);
-                dda_setup0_plan_totals_max <= dda_setup0_major[27-1:0];
-            end
-            default: begin
-                dda_setup0_m_is_y <= dda_setup0_m_is_y;
-            end
-        endcase
-    end
+        end
+        3'b101: begin
+            case (dda_setup0_step)
+                'h0: begin
+                    dda_setup0_plan_radius <= dda_setup0_total[(24 + 2)-1:1];
+                end
+                'h2: begin
+                    dda_setup0_plan_beyond <= sign;
+                end
+                'h7: begin
+                    dda_setup0_plan_totals_diff <= $signed(dda_setup0_total[27-1:0]);
+                    dda_setup0_pick_x <= (!dda_setup0_total[(27 - 1)]);
+                end
+                'hc: begin
+                    dda_setup0_plan_totals_max <= dda_setup0_total[27-1:0];
+                end
+            endcase
+        end
+        3'b001: begin
+            dda_setup0_plan_totals_diff <= $signed(dda_setup0_major[27-1:0]);
+            dda_setup0_plan_totals_max <= dda_setup0_major[27-1:0];
+        end
+        default: begin
+            dda_setup0_m_is_y <= dda_setup0_m_is_y;
+        end
+    endcase
 end
 
 
@@ -1329,26 +1283,20 @@ assign dda_run0_taking = (dda_run0_active && cmd_advance && (!dda_run0_pending))
 
 always @(posedge clock, negedge reset) begin: dda_run0_iterate
     if (reset == 0) begin
-        dda_run0_mag_y <= 0;
         dda_run0_threshold_carry <= 0;
-        dda_run0_dec_sum_y <= 0;
         cmd_done <= 0;
         dda_run0_dec_out <= 0;
-        dda_run0_end_x <= 0;
         dda_run0_dec_next_piece <= 0;
         dda_run0_variant <= 3;
         steps_step_x <= 0;
         dda_run0_dec_in <= 0;
-        dda_run0_dec_sum_x <= 0;
         dda_run0_target_y <= 0;
-        dda_run0_error_term <= 0;
         dda_run0_x_inward <= 0;
         dda_run0_crossings <= 0;
         dda_run0_target_x <= 0;
         dda_run0_dec_finished <= 0;
         dda_run0_blend <= 0;
         dda_run0_dec_tail <= 0;
-        dda_run0_radius <= 0;
         dda_run0_dec_x <= 0;
         dda_run0_first <= 0;
         steps_dir_x <= 0;
@@ -1357,15 +1305,10 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
         steps_step_y <= 0;
         dda_run0_right <= 0;
         dda_run0_pending <= 0;
-        dda_run0_end_y <= 0;
         dda_run0_up <= 0;
         dda_run0_active <= 0;
-        dda_run0_threshold <= 0;
         dda_run0_dec_y <= 0;
-        dda_run0_acc_x <= 0;
-        dda_run0_mag_x <= 0;
         dda_run0_ccw <= 0;
-        dda_run0_acc_y <= 0;
         dda_run0_line <= 0;
     end
     else begin
@@ -1394,32 +1337,8 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
             dda_run0_dec_finished <= dda_run0_finished;
             dda_run0_dec_next_piece <= dda_run0_next_piece;
             dda_run0_first <= 1'b0;
-            dda_run0_dec_sum_x <= dda_run0_sum_x[30-1:0];
-            if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_line))) begin
-                dda_run0_dec_sum_x <= dda_run0_trad_x[30-1:0];
-            end
-            dda_run0_dec_sum_y <= dda_run0_sum_y[30-1:0];
-            if ((1'b1 && dda_run0_saturate_x)) begin
-                dda_run0_dec_sum_x <= 536870911;
-            end
-            if ((1'b1 && dda_run0_saturate_y)) begin
-                dda_run0_dec_sum_y <= 536870911;
-            end
         end
         else if (dda_run0_pending) begin
-            if ((!dda_run0_dec_tail)) begin
-                dda_run0_acc_x <= $signed(dda_run0_less_x);
-                dda_run0_acc_y <= $signed(dda_run0_less_y);
-            end
-            if ((!dda_run0_line)) begin
-                if (dda_run0_dec_x) begin
-                    dda_run0_mag_x <= dda_run0_stepped_x;
-                end
-                if (dda_run0_dec_y) begin
-                    dda_run0_mag_y <= dda_run0_stepped_y;
-                end
-                dda_run0_error_term <= dda_run0_error_step;
-            end
             if (dda_run0_dec_finished) begin
                 dda_run0_active <= 1'b0;
             end
@@ -1460,16 +1379,7 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
             dda_run0_crossings <= dda_check0_move_crossings;
             dda_run0_target_x <= dda_check0_move_target_x;
             dda_run0_target_y <= dda_check0_move_target_y;
-            dda_run0_mag_x <= dda_check0_move_mag_x;
-            dda_run0_mag_y <= dda_check0_move_mag_y;
-            dda_run0_end_x <= dda_check0_move_end_x;
-            dda_run0_end_y <= dda_check0_move_end_y;
-            dda_run0_radius <= dda_check0_move_radius;
-            dda_run0_threshold <= dda_check0_move_threshold;
             dda_run0_threshold_carry <= dda_check0_move_line;
-            dda_run0_acc_x <= dda_check0_move_acc_init;
-            dda_run0_acc_y <= dda_check0_move_acc_init;
-            dda_run0_error_term <= 1;
         end
         if ((dda_check0_move_take && dda_check0_move_zero)) begin
             cmd_done <= 1'b1;
@@ -1479,86 +1389,128 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
 end
 
 
-always @(posedge clock, negedge reset) begin: dda_run0_precise_bias
-    reg [27-1:0] op_x;
-    reg [27-1:0] op_y;
-    if (reset == 0) begin
-        dda_run0_bias_y <= 0;
-        dda_run0_bias_x <= 0;
+always @(posedge clock) begin: dda_run0_datapath
+    if (dda_run0_taking) begin
+        dda_run0_dec_sum_x <= dda_run0_sum_x[30-1:0];
+        if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_line))) begin
+            dda_run0_dec_sum_x <= dda_run0_trad_x[30-1:0];
+        end
+        dda_run0_dec_sum_y <= dda_run0_sum_y[30-1:0];
+        if ((1'b1 && dda_run0_saturate_x)) begin
+            dda_run0_dec_sum_x <= 536870911;
+        end
+        if ((1'b1 && dda_run0_saturate_y)) begin
+            dda_run0_dec_sum_y <= 536870911;
+        end
     end
-    else begin
-        op_x = 27'h0;
-        op_y = 27'h0;
-        op_x = {24'h0, dda_run0_dec_x, dda_run0_dec_y, 1'b0};
-        op_y = {24'h0, dda_run0_dec_y, dda_run0_dec_x, 1'b0};
-        if ((!dda_run0_x_inward)) begin
-            op_x = (~op_x);
-            op_y = (~op_y);
+    else if (dda_run0_pending) begin
+        if ((!dda_run0_dec_tail)) begin
+            dda_run0_acc_x <= $signed(dda_run0_less_x);
+            dda_run0_acc_y <= $signed(dda_run0_less_y);
         end
-        if ((dda_run0_pending && (!dda_run0_line))) begin
-            dda_run0_bias_x <= ((dda_run0_bias_x + op_x) + {26'h0, (!dda_run0_x_inward)});
-            dda_run0_bias_y <= ((dda_run0_bias_y + op_y) + {26'h0, (!dda_run0_x_inward)});
+        if ((!dda_run0_line)) begin
+            if (dda_run0_dec_x) begin
+                dda_run0_mag_x <= dda_run0_stepped_x;
+            end
+            if (dda_run0_dec_y) begin
+                dda_run0_mag_y <= dda_run0_stepped_y;
+            end
+            dda_run0_error_term <= dda_run0_error_step;
         end
-        if (dda_check0_move_take) begin
-            dda_run0_bias_x <= dda_check0_move_bias_x;
-            dda_run0_bias_y <= dda_check0_move_bias_y;
-        end
+    end
+    if (dda_check0_move_take) begin
+        dda_run0_mag_x <= dda_check0_move_mag_x;
+        dda_run0_mag_y <= dda_check0_move_mag_y;
+        dda_run0_end_x <= dda_check0_move_end_x;
+        dda_run0_end_y <= dda_check0_move_end_y;
+        dda_run0_radius <= dda_check0_move_radius;
+        dda_run0_threshold <= dda_check0_move_threshold;
+        dda_run0_acc_x <= dda_check0_move_acc_init;
+        dda_run0_acc_y <= dda_check0_move_acc_init;
+        dda_run0_error_term <= 1;
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: dda_run0_steps_left
-    reg [27-1:0] base_diff;
+always @(posedge clock) begin: dda_run0_precise_bias
+    reg [27-1:0] op_x;
+    reg [27-1:0] op_y;
+    op_x = 27'h0;
+    op_y = 27'h0;
+    op_x = {24'h0, dda_run0_dec_x, dda_run0_dec_y, 1'b0};
+    op_y = {24'h0, dda_run0_dec_y, dda_run0_dec_x, 1'b0};
+    if ((!dda_run0_x_inward)) begin
+        op_x = (~op_x);
+        op_y = (~op_y);
+    end
+    if ((dda_run0_pending && (!dda_run0_line))) begin
+        dda_run0_bias_x <= ((dda_run0_bias_x + op_x) + {26'h0, (!dda_run0_x_inward)});
+        dda_run0_bias_y <= ((dda_run0_bias_y + op_y) + {26'h0, (!dda_run0_x_inward)});
+    end
+    if (dda_check0_move_take) begin
+        dda_run0_bias_x <= dda_check0_move_bias_x;
+        dda_run0_bias_y <= dda_check0_move_bias_y;
+    end
+end
+
+
+always @(posedge clock) begin: dda_run0_steps_difference
+    reg [27-1:0] base;
     reg [27-1:0] change;
-    reg [27-1:0] base_most;
+    base = 27'h0;
+    change = 27'h0;
+    base = dda_run0_left_diff;
+    if (dda_check0_move_take) begin
+        base = dda_check0_move_totals_diff;
+        if (dda_check0_move_line) begin
+            change = 134217727;
+        end
+    end
+    else if (dda_run0_pending) begin
+        if ((dda_run0_line || (dda_run0_dec_x && (!dda_run0_dec_y)))) begin
+            change = 134217727;
+        end
+        else if ((dda_run0_dec_y && (!dda_run0_dec_x))) begin
+            change = 1;
+        end
+    end
+    dda_run0_left_diff <= (base + change);
+end
+
+
+always @(posedge clock, negedge reset) begin: dda_run0_steps_left
+    reg [27-1:0] base;
     reg [27-1:0] less;
     if (reset == 0) begin
-        dda_run0_left_diff <= 0;
         dda_run0_most_left <= 134217727;
     end
     else begin
-        base_diff = 27'h0;
-        change = 27'h0;
-        base_most = 27'h0;
+        base = 27'h0;
         less = 27'h0;
-        base_diff = dda_run0_left_diff;
-        base_most = dda_run0_most_left;
+        base = dda_run0_most_left;
         if (dda_check0_move_take) begin
-            base_diff = dda_check0_move_totals_diff;
-            base_most = dda_check0_move_totals_max;
+            base = dda_check0_move_totals_max;
             less = 134217727;
-            if (dda_check0_move_line) begin
-                change = 134217727;
-            end
         end
-        else if (dda_run0_pending) begin
-            if ((dda_run0_line || (dda_run0_dec_x && (!dda_run0_dec_y)))) begin
-                change = 134217727;
+        else if ((dda_run0_pending && (!dda_run0_blend))) begin
+            if (dda_run0_line) begin
+                less = 134217727;
             end
-            else if ((dda_run0_dec_y && (!dda_run0_dec_x))) begin
-                change = 1;
-            end
-            if ((!dda_run0_blend)) begin
-                if (dda_run0_line) begin
-                    less = 134217727;
-                end
-                else if ((dda_run0_left_diff == 0)) begin
-                    if ((dda_run0_dec_x && dda_run0_dec_y)) begin
-                        less = 134217727;
-                    end
-                end
-                else if (dda_run0_left_diff[(27 - 1)]) begin
-                    if (dda_run0_dec_y) begin
-                        less = 134217727;
-                    end
-                end
-                else if (dda_run0_dec_x) begin
+            else if ((dda_run0_left_diff == 0)) begin
+                if ((dda_run0_dec_x && dda_run0_dec_y)) begin
                     less = 134217727;
                 end
             end
+            else if (dda_run0_left_diff[(27 - 1)]) begin
+                if (dda_run0_dec_y) begin
+                    less = 134217727;
+                end
+            end
+            else if (dda_run0_dec_x) begin
+                less = 134217727;
+            end
         end
-        dda_run0_left_diff <= (base_diff + change);
-        dda_run0_most_left <= (base_most + less);
+        dda_run0_most_left <= (base + less);
         if (dda_check0_move_take) begin
             if ((dda_check0_move_blend || dda_check0_move_error || dda_check0_move_zero)) begin
                 dda_run0_most_left <= 134217727;

@@ -4930,41 +4930,25 @@ always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fi
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_latch
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant <= 3;
-        card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye <= 0;
-    end
-    else begin
-        if ((card1_card_core1_regs_fifo2_sequencer2_dda_start && card1_card_core1_regs_fifo2_sequencer2_dda_ready)) begin
-            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
-            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
-            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
-            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend <= card1_card_core1_regs_fifo2_sequencer2_dda_blend;
-            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs <= (card1_card_core1_regs_fifo2_sequencer2_dda_xs < 0);
-            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys <= (card1_card_core1_regs_fifo2_sequencer2_dda_ys < 0);
-            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe <= (card1_card_core1_regs_fifo2_sequencer2_dda_xe < 0);
-            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye <= (card1_card_core1_regs_fifo2_sequencer2_dda_ye < 0);
-            card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs;
-            card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys;
-            card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
-            card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye;
-        end
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_latch
+    if ((card1_card_core1_regs_fifo2_sequencer2_dda_start && card1_card_core1_regs_fifo2_sequencer2_dda_ready)) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend <= card1_card_core1_regs_fifo2_sequencer2_dda_blend;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs <= (card1_card_core1_regs_fifo2_sequencer2_dda_xs < 0);
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys <= (card1_card_core1_regs_fifo2_sequencer2_dda_ys < 0);
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe <= (card1_card_core1_regs_fifo2_sequencer2_dda_xe < 0);
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye <= (card1_card_core1_regs_fifo2_sequencer2_dda_ye < 0);
+        card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs;
+        card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys;
+        card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
+        card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye;
     end
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_geometry
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_geometry
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
     reg [2-1:0] turn;
@@ -4973,98 +4957,88 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
     reg zero_ys;
     reg zero_xe;
     reg zero_ye;
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_x_inward <= 0;
+    q_s = 2'h0;
+    q_e = 2'h0;
+    turn = 2'h0;
+    ahead = 1'b0;
+    zero_xs = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs == 0);
+    zero_ys = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys == 0);
+    zero_xe = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe == 0);
+    zero_ye = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye == 0);
+    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw) begin
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
+            q_s = 0;
+        end
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!zero_ys))) begin
+            q_s = 1;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys || zero_ys))) begin
+            q_s = 2;
+        end
+        else begin
+            q_s = 3;
+        end
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!zero_ye))) begin
+            q_e = 0;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
+            q_e = 1;
+        end
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || zero_xe) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye)) begin
+            q_e = 2;
+        end
+        else begin
+            q_e = 3;
+        end
+        turn = (q_e - q_s);
     end
     else begin
-        q_s = 2'h0;
-        q_e = 2'h0;
-        turn = 2'h0;
-        ahead = 1'b0;
-        zero_xs = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs == 0);
-        zero_ys = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys == 0);
-        zero_xe = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe == 0);
-        zero_ye = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye == 0);
-        if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw) begin
-            if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
-                q_s = 0;
-            end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!zero_ys))) begin
-                q_s = 1;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys || zero_ys))) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!zero_ye))) begin
-                q_e = 0;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
-                q_e = 1;
-            end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || zero_xe) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye)) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_e - q_s);
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!zero_ys))) begin
+            q_s = 0;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
+            q_s = 1;
+        end
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || zero_xs) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys)) begin
+            q_s = 2;
         end
         else begin
-            if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!zero_ys))) begin
-                q_s = 0;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
-                q_s = 1;
-            end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || zero_xs) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys)) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
-                q_e = 0;
-            end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!zero_ye))) begin
-                q_e = 1;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye || zero_ye))) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_s - q_e);
+            q_s = 3;
         end
-        if ((q_s[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw)) begin
-            ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y));
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
+            q_e = 0;
+        end
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!zero_ye))) begin
+            q_e = 1;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye || zero_ye))) begin
+            q_e = 2;
         end
         else begin
-            ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x));
+            q_e = 3;
         end
-        ahead = (ahead && (!(card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x && card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y)) && (turn == 0));
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead <= ahead;
-        card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= {1'b0, turn};
-        if (((turn == 0) && (!ahead))) begin
-            card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= 4;
-        end
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant <= q_s;
-        card1_card_core1_dda_arc2_dda_setup2_plan_x_inward <= (q_s[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
-        card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end <= (q_e[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
-        if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
-            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= (zero_xe && zero_ye);
-        end
-        else begin
-            card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
-        end
+        turn = (q_s - q_e);
+    end
+    if ((q_s[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw)) begin
+        ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y));
+    end
+    else begin
+        ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x));
+    end
+    ahead = (ahead && (!(card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x && card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y)) && (turn == 0));
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead <= ahead;
+    card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= {1'b0, turn};
+    if (((turn == 0) && (!ahead))) begin
+        card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= 4;
+    end
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant <= q_s;
+    card1_card_core1_dda_arc2_dda_setup2_plan_x_inward <= (q_s[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
+    card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end <= (q_e[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
+    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= (zero_xe && zero_ye);
+    end
+    else begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
     end
 end
 
@@ -5095,35 +5069,38 @@ always @(card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps, card1_card_core1_
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_digits
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_count
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_root_root <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_root2_started <= 0;
         card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones <= 0;
     end
     else begin
         if (card1_card_core1_dda_arc2_dda_setup2_root_load) begin
-            card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand <= card1_card_core1_dda_arc2_dda_setup2_root_radicand;
-            card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder <= 0;
-            card1_card_core1_dda_arc2_dda_setup2_root_root <= 0;
             card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps <= (24 + 1);
-            card1_card_core1_dda_arc2_dda_setup2_dda_root2_started <= 1'b0;
-            card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones <= 1'b1;
         end
         else if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps != 0)) begin
-            card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder <= card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep;
-            card1_card_core1_dda_arc2_dda_setup2_root_root <= {card1_card_core1_dda_arc2_dda_setup2_root_root[24-1:0], card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits};
-            card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand <= (card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand << 2);
             card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps <= (card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps - 1);
-            if (card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits) begin
-                card1_card_core1_dda_arc2_dda_setup2_dda_root2_started <= 1'b1;
-            end
-            else if (card1_card_core1_dda_arc2_dda_setup2_dda_root2_started) begin
-                card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones <= 1'b0;
-            end
+        end
+    end
+end
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_digits
+    if (card1_card_core1_dda_arc2_dda_setup2_root_load) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand <= card1_card_core1_dda_arc2_dda_setup2_root_radicand;
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_root_root <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_started <= 1'b0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones <= 1'b1;
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps != 0)) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder <= card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep;
+        card1_card_core1_dda_arc2_dda_setup2_root_root <= {card1_card_core1_dda_arc2_dda_setup2_root_root[24-1:0], card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits};
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand <= (card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand << 2);
+        if (card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits) begin
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_started <= 1'b1;
+        end
+        else if (card1_card_core1_dda_arc2_dda_setup2_dda_root2_started) begin
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones <= 1'b0;
         end
     end
 end
@@ -5451,50 +5428,51 @@ assign card1_card_core1_dda_arc2_dda_setup2_root_radicand = (~card1_card_core1_d
 assign card1_card_core1_dda_arc2_dda_setup2_root_load = ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && (card1_card_core1_dda_arc2_dda_setup2_square == 2) && (card1_card_core1_dda_arc2_dda_setup2_step == 0));
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_datapath
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_datapath
     reg [49-1:0] loaded;
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_multiplier <= 0;
+    loaded = 49'h0;
+    case (card1_card_core1_dda_arc2_dda_setup2_gap_op)
+        'h1: begin
+            card1_card_core1_dda_arc2_dda_setup2_gap <= card1_card_core1_dda_arc2_dda_setup2_total;
+        end
+        'h2: begin
+            card1_card_core1_dda_arc2_dda_setup2_gap <= 0;
+        end
+        'h3: begin
+            card1_card_core1_dda_arc2_dda_setup2_gap <= ((1 << 49) - 1);
+        end
+    endcase
+    case (card1_card_core1_dda_arc2_dda_setup2_operand_op)
+        'h1: begin
+            card1_card_core1_dda_arc2_dda_setup2_operand <= {card1_card_core1_dda_arc2_dda_setup2_operand[(49 - 1)-1:0], card1_card_core1_dda_arc2_dda_setup2_invert};
+        end
+        'h2: begin
+            loaded = {24'h0, card1_card_core1_dda_arc2_dda_setup2_source_value};
+            if ((card1_card_core1_dda_arc2_dda_setup2_invert && card1_card_core1_dda_arc2_dda_setup2_source_on)) begin
+                loaded = (~loaded);
+            end
+            card1_card_core1_dda_arc2_dda_setup2_operand <= loaded;
+        end
+    endcase
+    if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && ($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) != (24 - 1)))) begin
+        card1_card_core1_dda_arc2_dda_setup2_multiplier <= (card1_card_core1_dda_arc2_dda_setup2_multiplier >>> 1);
+    end
+    else if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b010) || (card1_card_core1_dda_arc2_dda_setup2_state == 3'b011))) begin
+        card1_card_core1_dda_arc2_dda_setup2_multiplier <= card1_card_core1_dda_arc2_dda_setup2_source_value[24-1:0];
+    end
+    if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000)) begin
         card1_card_core1_dda_arc2_dda_setup2_gap <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_operand <= 0;
+    end
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_sequencer
+    if (card1_card_core1_dda_reset == 0) begin
         card1_card_core1_dda_arc2_dda_setup2_step <= 0;
         card1_card_core1_dda_arc2_dda_setup2_square <= 0;
         card1_card_core1_dda_arc2_dda_setup2_state <= 3'b000;
     end
     else begin
-        loaded = 49'h0;
-        case (card1_card_core1_dda_arc2_dda_setup2_gap_op)
-            'h1: begin
-                card1_card_core1_dda_arc2_dda_setup2_gap <= card1_card_core1_dda_arc2_dda_setup2_total;
-            end
-            'h2: begin
-                card1_card_core1_dda_arc2_dda_setup2_gap <= 0;
-            end
-            'h3: begin
-                card1_card_core1_dda_arc2_dda_setup2_gap <= ((1 << 49) - 1);
-            end
-        endcase
-        case (card1_card_core1_dda_arc2_dda_setup2_operand_op)
-            'h1: begin
-                card1_card_core1_dda_arc2_dda_setup2_operand <= {card1_card_core1_dda_arc2_dda_setup2_operand[(49 - 1)-1:0], card1_card_core1_dda_arc2_dda_setup2_invert};
-            end
-            'h2: begin
-                loaded = {24'h0, card1_card_core1_dda_arc2_dda_setup2_source_value};
-                if ((card1_card_core1_dda_arc2_dda_setup2_invert && card1_card_core1_dda_arc2_dda_setup2_source_on)) begin
-                    loaded = (~loaded);
-                end
-                card1_card_core1_dda_arc2_dda_setup2_operand <= loaded;
-            end
-        endcase
-        if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && ($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) != (24 - 1)))) begin
-            card1_card_core1_dda_arc2_dda_setup2_multiplier <= (card1_card_core1_dda_arc2_dda_setup2_multiplier >>> 1);
-        end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b010) || (card1_card_core1_dda_arc2_dda_setup2_state == 3'b011))) begin
-            card1_card_core1_dda_arc2_dda_setup2_multiplier <= card1_card_core1_dda_arc2_dda_setup2_source_value[24-1:0];
-        end
-        if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000)) begin
-            card1_card_core1_dda_arc2_dda_setup2_gap <= 0;
-        end
         card1_card_core1_dda_arc2_dda_setup2_state <= card1_card_core1_dda_arc2_dda_setup2_next_state;
         card1_card_core1_dda_arc2_dda_setup2_step <= card1_card_core1_dda_arc2_dda_setup2_next_step;
         card1_card_core1_dda_arc2_dda_setup2_square <= card1_card_core1_dda_arc2_dda_setup2_next_square;
@@ -5510,118 +5488,94 @@ always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_threshold
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_threshold
     reg shift;
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_ones_left <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_grew <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_acc_bits <= 0;
+    shift = 1'b0;
+    card1_card_core1_dda_arc2_dda_setup2_grew <= card1_card_core1_dda_arc2_dda_setup2_root_grows;
+    if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000) && card1_card_core1_regs_fifo2_sequencer2_dda_start)) begin
         card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_too_wide <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_too_wide <= 1'b0;
+        card1_card_core1_dda_arc2_dda_setup2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
+        if ((card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits != 0)) begin
+            card1_card_core1_dda_arc2_dda_setup2_ones_left <= ({1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits} + {1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift});
+        end
+        else begin
+            card1_card_core1_dda_arc2_dda_setup2_ones_left <= {1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift};
+        end
     end
-    else begin
-        shift = 1'b0;
-        card1_card_core1_dda_arc2_dda_setup2_grew <= card1_card_core1_dda_arc2_dda_setup2_root_grows;
-        if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000) && card1_card_core1_regs_fifo2_sequencer2_dda_start)) begin
-            card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= 0;
-            card1_card_core1_dda_arc2_dda_setup2_plan_too_wide <= 1'b0;
-            card1_card_core1_dda_arc2_dda_setup2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
-            if ((card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits != 0)) begin
-                card1_card_core1_dda_arc2_dda_setup2_ones_left <= ({1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits} + {1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift});
-            end
-            else begin
-                card1_card_core1_dda_arc2_dda_setup2_ones_left <= {1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift};
-            end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b001)) begin
+        card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= card1_card_core1_dda_arc2_dda_setup2_major[28-1:0];
+    end
+    else if (1'b1) begin
+        if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && (card1_card_core1_dda_arc2_dda_setup2_ones_left != 0))) begin
+            shift = 1'b1;
+            card1_card_core1_dda_arc2_dda_setup2_ones_left <= (card1_card_core1_dda_arc2_dda_setup2_ones_left - 1);
         end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b001)) begin
-            card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= card1_card_core1_dda_arc2_dda_setup2_major[28-1:0];
+        else if (((card1_card_core1_dda_arc2_dda_setup2_acc_bits == 0) && card1_card_core1_dda_arc2_dda_setup2_grew)) begin
+            shift = 1'b1;
         end
-        else if (1'b1) begin
-            if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && (card1_card_core1_dda_arc2_dda_setup2_ones_left != 0))) begin
-                shift = 1'b1;
-                card1_card_core1_dda_arc2_dda_setup2_ones_left <= (card1_card_core1_dda_arc2_dda_setup2_ones_left - 1);
-            end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_acc_bits == 0) && card1_card_core1_dda_arc2_dda_setup2_grew)) begin
-                shift = 1'b1;
-            end
-            if (shift) begin
-                card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= {card1_card_core1_dda_arc2_dda_setup2_plan_threshold[(28 - 1)-1:0], 1'b1};
-                if (card1_card_core1_dda_arc2_dda_setup2_plan_threshold[(28 - 1)]) begin
-                    card1_card_core1_dda_arc2_dda_setup2_plan_too_wide <= 1'b1;
-                end
+        if (shift) begin
+            card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= {card1_card_core1_dda_arc2_dda_setup2_plan_threshold[(28 - 1)-1:0], 1'b1};
+            if (card1_card_core1_dda_arc2_dda_setup2_plan_threshold[(28 - 1)]) begin
+                card1_card_core1_dda_arc2_dda_setup2_plan_too_wide <= 1'b1;
             end
         end
     end
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_captures
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_captures
     reg sign;
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_totals_max <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_beyond <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_radius <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_pick_x <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_m_is_y <= 0;
-    end
-    else begin
-        sign = card1_card_core1_dda_arc2_dda_setup2_total[(49 - 1)];
-        case (card1_card_core1_dda_arc2_dda_setup2_state)
-            3'b000: begin
-                card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= 1'b0;
-            end
-            3'b010: begin
-                case (card1_card_core1_dda_arc2_dda_setup2_step)
-                    'h2: begin
-                        card1_card_core1_dda_arc2_dda_setup2_m_is_y <= sign;
-                    end
-                    'h4: begin
-                        card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x <= sign;
-                        card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x <= (card1_card_core1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
-                    end
-                    'h6: begin
-                        card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y <= sign;
-                        card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y <= (card1_card_core1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
-                    end
-                endcase
-            end
-            3'b100: begin
-                if ((((card1_card_core1_dda_arc2_dda_setup2_step == 1) && (!sign)) || ((card1_card_core1_dda_arc2_dda_setup2_step == 4) && sign))) begin
-                    card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= 1'b1;
+    sign = card1_card_core1_dda_arc2_dda_setup2_total[(49 - 1)];
+    case (card1_card_core1_dda_arc2_dda_setup2_state)
+        3'b000: begin
+            card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= 1'b0;
+        end
+        3'b010: begin
+            case (card1_card_core1_dda_arc2_dda_setup2_step)
+                'h2: begin
+                    card1_card_core1_dda_arc2_dda_setup2_m_is_y <= sign;
                 end
+                'h4: begin
+                    card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x <= sign;
+                    card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x <= (card1_card_core1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
+                end
+                'h6: begin
+                    card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y <= sign;
+                    card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y <= (card1_card_core1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
+                end
+            endcase
+        end
+        3'b100: begin
+            if ((((card1_card_core1_dda_arc2_dda_setup2_step == 1) && (!sign)) || ((card1_card_core1_dda_arc2_dda_setup2_step == 4) && sign))) begin
+                card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= 1'b1;
             end
-            3'b101: begin
-                case (card1_card_core1_dda_arc2_dda_setup2_step)
-                    'h0: begin
-                        card1_card_core1_dda_arc2_dda_setup2_plan_radius <= card1_card_core1_dda_arc2_dda_setup2_total[(24 + 2)-1:1];
-                    end
-                    'h2: begin
-                        card1_card_core1_dda_arc2_dda_setup2_plan_beyond <= sign;
-                    end
-                    'h7: begin
-                        card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff <= $signed(card1_card_core1_dda_arc2_dda_setup2_total[27-1:0]);
-                        card1_card_core1_dda_arc2_dda_setup2_pick_x <= (!card1_card_core1_dda_arc2_dda_setup2_total[(27 - 1)]);
-                    end
-                    'hc: begin
-                        card1_card_core1_dda_arc2_dda_setup2_plan_totals_max <= card1_card_core1_dda_arc2_dda_setup2_total[27-1:0];
-                    end
-                endcase
-            end
-            3'b001: begin
-                card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff <= $signed(card1_card_core1_dda_arc2_dda_setup2_major[27-1:0]);
-                card1_card_core1_dda_arc2_dda_setup2_plan_totals_max <= card1_card_core1_dda_arc2_dda_setup2_major[27-1:0];
-            end
-            default: begin
-                card1_card_core1_dda_arc2_dda_setup2_m_is_y <= card1_card_core1_dda_arc2_dda_setup2_m_is_y;
-            end
-        endcase
-    end
+        end
+        3'b101: begin
+            case (card1_card_core1_dda_arc2_dda_setup2_step)
+                'h0: begin
+                    card1_card_core1_dda_arc2_dda_setup2_plan_radius <= card1_card_core1_dda_arc2_dda_setup2_total[(24 + 2)-1:1];
+                end
+                'h2: begin
+                    card1_card_core1_dda_arc2_dda_setup2_plan_beyond <= sign;
+                end
+                'h7: begin
+                    card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff <= $signed(card1_card_core1_dda_arc2_dda_setup2_total[27-1:0]);
+                    card1_card_core1_dda_arc2_dda_setup2_pick_x <= (!card1_card_core1_dda_arc2_dda_setup2_total[(27 - 1)]);
+                end
+                'hc: begin
+                    card1_card_core1_dda_arc2_dda_setup2_plan_totals_max <= card1_card_core1_dda_arc2_dda_setup2_total[27-1:0];
+                end
+            endcase
+        end
+        3'b001: begin
+            card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff <= $signed(card1_card_core1_dda_arc2_dda_setup2_major[27-1:0]);
+            card1_card_core1_dda_arc2_dda_setup2_plan_totals_max <= card1_card_core1_dda_arc2_dda_setup2_major[27-1:0];
+        end
+        default: begin
+            card1_card_core1_dda_arc2_dda_setup2_m_is_y <= card1_card_core1_dda_arc2_dda_setup2_m_is_y;
+        end
+    endcase
 end
 
 
@@ -5957,26 +5911,20 @@ assign card1_card_core1_dda_arc2_dda_run2_taking = (card1_card_core1_dda_arc2_dd
 
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_iterate
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_run2_mag_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_threshold_carry <= 0;
-        card1_card_core1_dda_arc2_dda_run2_dec_sum_y <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
         card1_card_core1_dda_arc2_dda_run2_dec_out <= 0;
-        card1_card_core1_dda_arc2_dda_run2_end_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_dec_next_piece <= 0;
         card1_card_core1_dda_arc2_dda_run2_variant <= 3;
         card1_card_core1_regs_fifo2_steps_step_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_dec_in <= 0;
-        card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_error_term <= 0;
         card1_card_core1_dda_arc2_dda_run2_x_inward <= 0;
         card1_card_core1_dda_arc2_dda_run2_crossings <= 0;
         card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_dec_finished <= 0;
         card1_card_core1_dda_arc2_dda_run2_blend <= 0;
         card1_card_core1_dda_arc2_dda_run2_dec_tail <= 0;
-        card1_card_core1_dda_arc2_dda_run2_radius <= 0;
         card1_card_core1_dda_arc2_dda_run2_dec_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_first <= 0;
         card1_card_core1_regs_fifo2_steps_dir_x <= 0;
@@ -5985,15 +5933,10 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_regs_fifo2_steps_step_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_right <= 0;
         card1_card_core1_dda_arc2_dda_run2_pending <= 0;
-        card1_card_core1_dda_arc2_dda_run2_end_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_up <= 0;
         card1_card_core1_dda_arc2_dda_run2_active <= 0;
-        card1_card_core1_dda_arc2_dda_run2_threshold <= 0;
         card1_card_core1_dda_arc2_dda_run2_dec_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_acc_x <= 0;
-        card1_card_core1_dda_arc2_dda_run2_mag_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_ccw <= 0;
-        card1_card_core1_dda_arc2_dda_run2_acc_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_line <= 0;
     end
     else begin
@@ -6022,32 +5965,8 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             card1_card_core1_dda_arc2_dda_run2_dec_finished <= card1_card_core1_dda_arc2_dda_run2_finished;
             card1_card_core1_dda_arc2_dda_run2_dec_next_piece <= card1_card_core1_dda_arc2_dda_run2_next_piece;
             card1_card_core1_dda_arc2_dda_run2_first <= 1'b0;
-            card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0];
-            if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
-                card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= card1_card_core1_dda_arc2_dda_run2_trad_x[30-1:0];
-            end
-            card1_card_core1_dda_arc2_dda_run2_dec_sum_y <= card1_card_core1_dda_arc2_dda_run2_sum_y[30-1:0];
-            if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_x)) begin
-                card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= 536870911;
-            end
-            if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_y)) begin
-                card1_card_core1_dda_arc2_dda_run2_dec_sum_y <= 536870911;
-            end
         end
         else if (card1_card_core1_dda_arc2_dda_run2_pending) begin
-            if ((!card1_card_core1_dda_arc2_dda_run2_dec_tail)) begin
-                card1_card_core1_dda_arc2_dda_run2_acc_x <= $signed(card1_card_core1_dda_arc2_dda_run2_less_x);
-                card1_card_core1_dda_arc2_dda_run2_acc_y <= $signed(card1_card_core1_dda_arc2_dda_run2_less_y);
-            end
-            if ((!card1_card_core1_dda_arc2_dda_run2_line)) begin
-                if (card1_card_core1_dda_arc2_dda_run2_dec_x) begin
-                    card1_card_core1_dda_arc2_dda_run2_mag_x <= card1_card_core1_dda_arc2_dda_run2_stepped_x;
-                end
-                if (card1_card_core1_dda_arc2_dda_run2_dec_y) begin
-                    card1_card_core1_dda_arc2_dda_run2_mag_y <= card1_card_core1_dda_arc2_dda_run2_stepped_y;
-                end
-                card1_card_core1_dda_arc2_dda_run2_error_term <= card1_card_core1_dda_arc2_dda_run2_error_step;
-            end
             if (card1_card_core1_dda_arc2_dda_run2_dec_finished) begin
                 card1_card_core1_dda_arc2_dda_run2_active <= 1'b0;
             end
@@ -6088,16 +6007,7 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             card1_card_core1_dda_arc2_dda_run2_crossings <= card1_card_core1_dda_arc2_dda_check2_move_crossings;
             card1_card_core1_dda_arc2_dda_run2_target_x <= card1_card_core1_dda_arc2_dda_check2_move_target_x;
             card1_card_core1_dda_arc2_dda_run2_target_y <= card1_card_core1_dda_arc2_dda_check2_move_target_y;
-            card1_card_core1_dda_arc2_dda_run2_mag_x <= card1_card_core1_dda_arc2_dda_check2_move_mag_x;
-            card1_card_core1_dda_arc2_dda_run2_mag_y <= card1_card_core1_dda_arc2_dda_check2_move_mag_y;
-            card1_card_core1_dda_arc2_dda_run2_end_x <= card1_card_core1_dda_arc2_dda_check2_move_end_x;
-            card1_card_core1_dda_arc2_dda_run2_end_y <= card1_card_core1_dda_arc2_dda_check2_move_end_y;
-            card1_card_core1_dda_arc2_dda_run2_radius <= card1_card_core1_dda_arc2_dda_check2_move_radius;
-            card1_card_core1_dda_arc2_dda_run2_threshold <= card1_card_core1_dda_arc2_dda_check2_move_threshold;
             card1_card_core1_dda_arc2_dda_run2_threshold_carry <= card1_card_core1_dda_arc2_dda_check2_move_line;
-            card1_card_core1_dda_arc2_dda_run2_acc_x <= card1_card_core1_dda_arc2_dda_check2_move_acc_init;
-            card1_card_core1_dda_arc2_dda_run2_acc_y <= card1_card_core1_dda_arc2_dda_check2_move_acc_init;
-            card1_card_core1_dda_arc2_dda_run2_error_term <= 1;
         end
         if ((card1_card_core1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
             card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
@@ -6107,86 +6017,128 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_precise_bias
-    reg [27-1:0] op_x;
-    reg [27-1:0] op_y;
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_run2_bias_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_bias_x <= 0;
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_datapath
+    if (card1_card_core1_dda_arc2_dda_run2_taking) begin
+        card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0];
+        if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
+            card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= card1_card_core1_dda_arc2_dda_run2_trad_x[30-1:0];
+        end
+        card1_card_core1_dda_arc2_dda_run2_dec_sum_y <= card1_card_core1_dda_arc2_dda_run2_sum_y[30-1:0];
+        if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_x)) begin
+            card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= 536870911;
+        end
+        if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_y)) begin
+            card1_card_core1_dda_arc2_dda_run2_dec_sum_y <= 536870911;
+        end
     end
-    else begin
-        op_x = 27'h0;
-        op_y = 27'h0;
-        op_x = {24'h0, card1_card_core1_dda_arc2_dda_run2_dec_x, card1_card_core1_dda_arc2_dda_run2_dec_y, 1'b0};
-        op_y = {24'h0, card1_card_core1_dda_arc2_dda_run2_dec_y, card1_card_core1_dda_arc2_dda_run2_dec_x, 1'b0};
-        if ((!card1_card_core1_dda_arc2_dda_run2_x_inward)) begin
-            op_x = (~op_x);
-            op_y = (~op_y);
+    else if (card1_card_core1_dda_arc2_dda_run2_pending) begin
+        if ((!card1_card_core1_dda_arc2_dda_run2_dec_tail)) begin
+            card1_card_core1_dda_arc2_dda_run2_acc_x <= $signed(card1_card_core1_dda_arc2_dda_run2_less_x);
+            card1_card_core1_dda_arc2_dda_run2_acc_y <= $signed(card1_card_core1_dda_arc2_dda_run2_less_y);
         end
-        if ((card1_card_core1_dda_arc2_dda_run2_pending && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
-            card1_card_core1_dda_arc2_dda_run2_bias_x <= ((card1_card_core1_dda_arc2_dda_run2_bias_x + op_x) + {26'h0, (!card1_card_core1_dda_arc2_dda_run2_x_inward)});
-            card1_card_core1_dda_arc2_dda_run2_bias_y <= ((card1_card_core1_dda_arc2_dda_run2_bias_y + op_y) + {26'h0, (!card1_card_core1_dda_arc2_dda_run2_x_inward)});
+        if ((!card1_card_core1_dda_arc2_dda_run2_line)) begin
+            if (card1_card_core1_dda_arc2_dda_run2_dec_x) begin
+                card1_card_core1_dda_arc2_dda_run2_mag_x <= card1_card_core1_dda_arc2_dda_run2_stepped_x;
+            end
+            if (card1_card_core1_dda_arc2_dda_run2_dec_y) begin
+                card1_card_core1_dda_arc2_dda_run2_mag_y <= card1_card_core1_dda_arc2_dda_run2_stepped_y;
+            end
+            card1_card_core1_dda_arc2_dda_run2_error_term <= card1_card_core1_dda_arc2_dda_run2_error_step;
         end
-        if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-            card1_card_core1_dda_arc2_dda_run2_bias_x <= card1_card_core1_dda_arc2_dda_check2_move_bias_x;
-            card1_card_core1_dda_arc2_dda_run2_bias_y <= card1_card_core1_dda_arc2_dda_check2_move_bias_y;
-        end
+    end
+    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+        card1_card_core1_dda_arc2_dda_run2_mag_x <= card1_card_core1_dda_arc2_dda_check2_move_mag_x;
+        card1_card_core1_dda_arc2_dda_run2_mag_y <= card1_card_core1_dda_arc2_dda_check2_move_mag_y;
+        card1_card_core1_dda_arc2_dda_run2_end_x <= card1_card_core1_dda_arc2_dda_check2_move_end_x;
+        card1_card_core1_dda_arc2_dda_run2_end_y <= card1_card_core1_dda_arc2_dda_check2_move_end_y;
+        card1_card_core1_dda_arc2_dda_run2_radius <= card1_card_core1_dda_arc2_dda_check2_move_radius;
+        card1_card_core1_dda_arc2_dda_run2_threshold <= card1_card_core1_dda_arc2_dda_check2_move_threshold;
+        card1_card_core1_dda_arc2_dda_run2_acc_x <= card1_card_core1_dda_arc2_dda_check2_move_acc_init;
+        card1_card_core1_dda_arc2_dda_run2_acc_y <= card1_card_core1_dda_arc2_dda_check2_move_acc_init;
+        card1_card_core1_dda_arc2_dda_run2_error_term <= 1;
     end
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_steps_left
-    reg [27-1:0] base_diff;
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_precise_bias
+    reg [27-1:0] op_x;
+    reg [27-1:0] op_y;
+    op_x = 27'h0;
+    op_y = 27'h0;
+    op_x = {24'h0, card1_card_core1_dda_arc2_dda_run2_dec_x, card1_card_core1_dda_arc2_dda_run2_dec_y, 1'b0};
+    op_y = {24'h0, card1_card_core1_dda_arc2_dda_run2_dec_y, card1_card_core1_dda_arc2_dda_run2_dec_x, 1'b0};
+    if ((!card1_card_core1_dda_arc2_dda_run2_x_inward)) begin
+        op_x = (~op_x);
+        op_y = (~op_y);
+    end
+    if ((card1_card_core1_dda_arc2_dda_run2_pending && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
+        card1_card_core1_dda_arc2_dda_run2_bias_x <= ((card1_card_core1_dda_arc2_dda_run2_bias_x + op_x) + {26'h0, (!card1_card_core1_dda_arc2_dda_run2_x_inward)});
+        card1_card_core1_dda_arc2_dda_run2_bias_y <= ((card1_card_core1_dda_arc2_dda_run2_bias_y + op_y) + {26'h0, (!card1_card_core1_dda_arc2_dda_run2_x_inward)});
+    end
+    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+        card1_card_core1_dda_arc2_dda_run2_bias_x <= card1_card_core1_dda_arc2_dda_check2_move_bias_x;
+        card1_card_core1_dda_arc2_dda_run2_bias_y <= card1_card_core1_dda_arc2_dda_check2_move_bias_y;
+    end
+end
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_steps_difference
+    reg [27-1:0] base;
     reg [27-1:0] change;
-    reg [27-1:0] base_most;
+    base = 27'h0;
+    change = 27'h0;
+    base = card1_card_core1_dda_arc2_dda_run2_left_diff;
+    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+        base = card1_card_core1_dda_arc2_dda_check2_move_totals_diff;
+        if (card1_card_core1_dda_arc2_dda_check2_move_line) begin
+            change = 134217727;
+        end
+    end
+    else if (card1_card_core1_dda_arc2_dda_run2_pending) begin
+        if ((card1_card_core1_dda_arc2_dda_run2_line || (card1_card_core1_dda_arc2_dda_run2_dec_x && (!card1_card_core1_dda_arc2_dda_run2_dec_y)))) begin
+            change = 134217727;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_run2_dec_y && (!card1_card_core1_dda_arc2_dda_run2_dec_x))) begin
+            change = 1;
+        end
+    end
+    card1_card_core1_dda_arc2_dda_run2_left_diff <= (base + change);
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_steps_left
+    reg [27-1:0] base;
     reg [27-1:0] less;
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_run2_left_diff <= 0;
         card1_card_core1_dda_arc2_dda_run2_most_left <= 134217727;
     end
     else begin
-        base_diff = 27'h0;
-        change = 27'h0;
-        base_most = 27'h0;
+        base = 27'h0;
         less = 27'h0;
-        base_diff = card1_card_core1_dda_arc2_dda_run2_left_diff;
-        base_most = card1_card_core1_dda_arc2_dda_run2_most_left;
+        base = card1_card_core1_dda_arc2_dda_run2_most_left;
         if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-            base_diff = card1_card_core1_dda_arc2_dda_check2_move_totals_diff;
-            base_most = card1_card_core1_dda_arc2_dda_check2_move_totals_max;
+            base = card1_card_core1_dda_arc2_dda_check2_move_totals_max;
             less = 134217727;
-            if (card1_card_core1_dda_arc2_dda_check2_move_line) begin
-                change = 134217727;
-            end
         end
-        else if (card1_card_core1_dda_arc2_dda_run2_pending) begin
-            if ((card1_card_core1_dda_arc2_dda_run2_line || (card1_card_core1_dda_arc2_dda_run2_dec_x && (!card1_card_core1_dda_arc2_dda_run2_dec_y)))) begin
-                change = 134217727;
+        else if ((card1_card_core1_dda_arc2_dda_run2_pending && (!card1_card_core1_dda_arc2_dda_run2_blend))) begin
+            if (card1_card_core1_dda_arc2_dda_run2_line) begin
+                less = 134217727;
             end
-            else if ((card1_card_core1_dda_arc2_dda_run2_dec_y && (!card1_card_core1_dda_arc2_dda_run2_dec_x))) begin
-                change = 1;
-            end
-            if ((!card1_card_core1_dda_arc2_dda_run2_blend)) begin
-                if (card1_card_core1_dda_arc2_dda_run2_line) begin
-                    less = 134217727;
-                end
-                else if ((card1_card_core1_dda_arc2_dda_run2_left_diff == 0)) begin
-                    if ((card1_card_core1_dda_arc2_dda_run2_dec_x && card1_card_core1_dda_arc2_dda_run2_dec_y)) begin
-                        less = 134217727;
-                    end
-                end
-                else if (card1_card_core1_dda_arc2_dda_run2_left_diff[(27 - 1)]) begin
-                    if (card1_card_core1_dda_arc2_dda_run2_dec_y) begin
-                        less = 134217727;
-                    end
-                end
-                else if (card1_card_core1_dda_arc2_dda_run2_dec_x) begin
+            else if ((card1_card_core1_dda_arc2_dda_run2_left_diff == 0)) begin
+                if ((card1_card_core1_dda_arc2_dda_run2_dec_x && card1_card_core1_dda_arc2_dda_run2_dec_y)) begin
                     less = 134217727;
                 end
             end
+            else if (card1_card_core1_dda_arc2_dda_run2_left_diff[(27 - 1)]) begin
+                if (card1_card_core1_dda_arc2_dda_run2_dec_y) begin
+                    less = 134217727;
+                end
+            end
+            else if (card1_card_core1_dda_arc2_dda_run2_dec_x) begin
+                less = 134217727;
+            end
         end
-        card1_card_core1_dda_arc2_dda_run2_left_diff <= (base_diff + change);
-        card1_card_core1_dda_arc2_dda_run2_most_left <= (base_most + less);
+        card1_card_core1_dda_arc2_dda_run2_most_left <= (base + less);
         if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
             if ((card1_card_core1_dda_arc2_dda_check2_move_blend || card1_card_core1_dda_arc2_dda_check2_move_error || card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
                 card1_card_core1_dda_arc2_dda_run2_most_left <= 134217727;

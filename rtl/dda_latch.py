@@ -1,5 +1,5 @@
 """Command latch of the DDA's setup stage, and the geometry of the latched move."""
-from myhdl import Signal, always_comb, always_seq, block, concat, intbv, modbv
+from myhdl import Signal, always, always_comb, block, concat, intbv, modbv
 
 
 @block
@@ -65,7 +65,7 @@ def dda_latch(clock, reset, cmd, plan):
         mag_xe.next = less_xe ^ sign_xe
         mag_ye.next = less_ye ^ sign_ye
 
-    @always_seq(clock.posedge, reset=reset)
+    @always(clock.posedge)
     def latch():
         if cmd.start and cmd.ready:
             plan.line.next = cmd.line
@@ -81,7 +81,7 @@ def dda_latch(clock, reset, cmd, plan):
             plan.mag_xe.next = mag_xe
             plan.mag_ye.next = mag_ye
 
-    @always_seq(clock.posedge, reset=reset)
+    @always(clock.posedge)
     def geometry():
         q_s = intbv(0)[2:]
         q_e = intbv(0)[2:]

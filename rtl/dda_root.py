@@ -1,5 +1,5 @@
 """Square root of the DDA's setup stage: the nearest integer root of xs**2 + ys**2."""
-from myhdl import Signal, always_comb, always_seq, block, concat, intbv, modbv
+from myhdl import Signal, always, always_comb, always_seq, block, concat, intbv, modbv
 
 
 @block
@@ -54,22 +54,28 @@ def dda_root(clock, reset, root):
             root.grows.next = fits and started and all_ones
 
     @always_seq(clock.posedge, reset=reset)
+    def count():
+        if root.load:
+            steps.next = width + 1
+        elif steps != 0:
+            steps.next = steps - 1
+
+    @always(clock.posedge)
     def digits():
+        # loaded before they are read: no reset
         if root.load:
             radicand.next = root.radicand
             remainder.next = 0
             root.root.next = 0
-            steps.next = width + 1
             started.next = False
             all_ones.next = True
         elif steps != 0:
             remainder.next = keep
             root.root.next = concat(root.root[width:], fits)
             radicand.next = radicand << 2
-            steps.next = steps - 1
             if fits:
                 started.next = True
             elif started:
                 all_ones.next = False
 
-    return trial, length, digits
+    return trial, length, count, digits

@@ -1,5 +1,5 @@
 """DDA run stage: one iteration of the checked move per ``advance``, in two clocks."""
-from myhdl import Signal, always_comb, always_seq, block, concat, intbv, modbv
+from myhdl import Signal, always, always_comb, always_seq, block, concat, intbv, modbv
 
 from rtl.dda_build import IMPROVED, PRECISE, TRADITIONAL, WEIGHTED
 from rtl.interfaces import TARGET_END, TARGET_RADIUS
@@ -274,12 +274,13 @@ def dda_run(clock, reset, cmd, move, steps):
 
     @always_seq(clock.posedge, reset=reset)
     def iterate():
+        # the control state: the iteration's two clocks, the decision, the quadrant pieces
         steps.step_x.next = False
         steps.step_y.next = False
         cmd.done.next = False
         pending.next = False
         if taking:
-            # first clock: the decision, the outputs and the sums, registered
+            # first clock: the decision and the outputs, registered
             pending.next = True
             steps.step_x.next = go_x
             steps.step_y.next = go_y
@@ -298,26 +299,8 @@ def dda_run(clock, reset, cmd, move, steps):
             dec_finished.next = finished
             dec_next_piece.next = next_piece
             first.next = False
-            dec_sum_x.next = sum_x[acc_width:]
-            if has_traditional and variant == TRADITIONAL and over_y and not line:
-                dec_sum_x.next = trad_x[acc_width:]
-            dec_sum_y.next = sum_y[acc_width:]
-            # a sum beyond the register saturates at its maximum (paper variants)
-            if saturates and saturate_x:
-                dec_sum_x.next = acc_max
-            if saturates and saturate_y:
-                dec_sum_y.next = acc_max
         elif pending:
             # second clock: the decision applied
-            if not dec_tail:
-                acc_x.next = less_x.signed()
-                acc_y.next = less_y.signed()
-            if not line:
-                if dec_x:
-                    mag_x.next = stepped_x
-                if dec_y:
-                    mag_y.next = stepped_y
-                error_term.next = error_step
             if dec_finished:
                 active.next = False
             if dec_next_piece:
@@ -350,21 +333,47 @@ def dda_run(clock, reset, cmd, move, steps):
             crossings.next = move.crossings
             target_x.next = move.target_x
             target_y.next = move.target_y
+            threshold_carry.next = move.line
+        if move.take and move.zero:
+            cmd.done.next = True
+            quadrant.next = 0
+
+    @always(clock.posedge)
+    def datapath():
+        # registers loaded before they are read: no reset, so that a load of a constant
+        # (the saturated sum, E' = 1) is a flip-flop's own synchronous set or reset
+        if taking:
+            dec_sum_x.next = sum_x[acc_width:]
+            if has_traditional and variant == TRADITIONAL and over_y and not line:
+                dec_sum_x.next = trad_x[acc_width:]
+            dec_sum_y.next = sum_y[acc_width:]
+            # a sum beyond the register saturates at its maximum (paper variants)
+            if saturates and saturate_x:
+                dec_sum_x.next = acc_max
+            if saturates and saturate_y:
+                dec_sum_y.next = acc_max
+        elif pending:
+            if not dec_tail:
+                acc_x.next = less_x.signed()
+                acc_y.next = less_y.signed()
+            if not line:
+                if dec_x:
+                    mag_x.next = stepped_x
+                if dec_y:
+                    mag_y.next = stepped_y
+                error_term.next = error_step
+        if move.take:
             mag_x.next = move.mag_x
             mag_y.next = move.mag_y
             end_x.next = move.end_x
             end_y.next = move.end_y
             radius.next = move.radius
             threshold.next = move.threshold
-            threshold_carry.next = move.line
             acc_x.next = move.acc_init
             acc_y.next = move.acc_init
             error_term.next = 1
-        if move.take and move.zero:
-            cmd.done.next = True
-            quadrant.next = 0
 
-    @always_seq(clock.posedge, reset=reset)
+    @always(clock.posedge)
     def precise_bias():
         # B_x = 2|y| - 4|x| and B_y = 4|y| - 2|x| after the steps (dx, dy): X inward adds
         # 4 dx + 2 dy and 2 dx + 4 dy, Y inward subtracts them
@@ -382,22 +391,15 @@ def dda_run(clock, reset, cmd, move, steps):
             bias_x.next = move.bias_x
             bias_y.next = move.bias_y
 
-    @always_seq(clock.posedge, reset=reset)
-    def steps_left():
-        # each axis' steps over the rest of the move, as their difference and the larger one
-        # minus one (stop_left; the larger falls when the axis that has more steps steps); a
-        # line counts its iterations in the difference.  A taken move's values go through
-        # the same adders (less one), all ones while no move or a blended one runs.
-        base_diff = modbv(0)[left_width:]
+    @always(clock.posedge)
+    def steps_difference():
+        # each axis' steps over the rest of the move: their difference (a line: its
+        # iterations left, minus one), taken through the same adder
+        base = modbv(0)[left_width:]
         change = modbv(0)[left_width:]
-        base_most = modbv(0)[left_width:]
-        less = modbv(0)[left_width:]
-        base_diff[:] = left_diff
-        base_most[:] = most_left
+        base[:] = left_diff
         if move.take:
-            base_diff[:] = move.totals_diff
-            base_most[:] = move.totals_max
-            less[:] = left_ones
+            base[:] = move.totals_diff
             if move.line:
                 change[:] = left_ones
         elif pending:
@@ -405,19 +407,31 @@ def dda_run(clock, reset, cmd, move, steps):
                 change[:] = left_ones
             elif dec_y and not dec_x:
                 change[:] = 1
-            if not blend:
-                if line:
+        left_diff.next = base + change
+
+    @always_seq(clock.posedge, reset=reset)
+    def steps_left():
+        # the larger axis' steps left, minus one (stop_left): it falls when the axis that has
+        # more steps left steps (both, when they have as many); all ones while no move or a
+        # blended one runs
+        base = modbv(0)[left_width:]
+        less = modbv(0)[left_width:]
+        base[:] = most_left
+        if move.take:
+            base[:] = move.totals_max
+            less[:] = left_ones
+        elif pending and not blend:
+            if line:
+                less[:] = left_ones
+            elif left_diff == 0:
+                if dec_x and dec_y:
                     less[:] = left_ones
-                elif left_diff == 0:
-                    if dec_x and dec_y:
-                        less[:] = left_ones
-                elif left_diff[left_width - 1]:
-                    if dec_y:
-                        less[:] = left_ones
-                elif dec_x:
+            elif left_diff[left_width - 1]:
+                if dec_y:
                     less[:] = left_ones
-        left_diff.next = base_diff + change
-        most_left.next = base_most + less
+            elif dec_x:
+                less[:] = left_ones
+        most_left.next = base + less
         if move.take:
             if move.blend or move.error or move.zero:
                 most_left.next = left_ones
@@ -438,4 +452,4 @@ def dda_run(clock, reset, cmd, move, steps):
         cmd.busy.next = not cmd.ready or (active and not (pending and dec_finished))
 
     return (accumulate, overflow, variant_logic, magnitude_adders, end_tests, decide, precise_step, handover,
-            iterate, precise_bias, steps_left, errors, status)
+            iterate, datapath, precise_bias, steps_difference, steps_left, errors, status)

@@ -1,5 +1,5 @@
 """DDA setup stage: a taken command worked out on one adder for its check."""
-from myhdl import Signal, always_comb, always_seq, block, concat, enum, intbv, modbv
+from myhdl import Signal, always, always_comb, always_seq, block, concat, enum, intbv, modbv
 
 from rtl.dda_build import PAPER_VARIANTS
 from rtl.dda_latch import dda_latch
@@ -316,8 +316,10 @@ def dda_setup(clock, reset, cmd, plan):
         root.radicand.next = ~gap[2 * width:]
         root.load.next = state == t_state.S_SQUARE and square == 2 and step == 0
 
-    @always_seq(clock.posedge, reset=reset)
+    @always(clock.posedge)
     def datapath():
+        # registers loaded before they are read: no reset (a load of 0 or all ones is then a
+        # flip-flop's own synchronous reset or set)
         loaded = modbv(0)[gap_width:]
         if gap_op == G_ADD:
             gap.next = total
@@ -338,6 +340,9 @@ def dda_setup(clock, reset, cmd, plan):
             multiplier.next = source_value[width:]
         if state == t_state.S_IDLE:
             gap.next = 0
+
+    @always_seq(clock.posedge, reset=reset)
+    def sequencer():
         state.next = next_state
         step.next = next_step
         square.next = next_square
@@ -348,7 +353,7 @@ def dda_setup(clock, reset, cmd, plan):
         if plan.mag_xe >= plan.mag_ye:
             major.next = concat(intbv(0)[major_width - width:], plan.mag_xe)
 
-    @always_seq(clock.posedge, reset=reset)
+    @always(clock.posedge)
     def threshold():
         # 2**(n + k) - 1, shifted together: n + k ones (or k) during the squares, then one
         # a clock as the root's length grows (n = 0); a line's T
@@ -375,7 +380,7 @@ def dda_setup(clock, reset, cmd, plan):
                 if plan.threshold[thr_width - 1]:
                     plan.too_wide.next = True
 
-    @always_seq(clock.posedge, reset=reset)
+    @always(clock.posedge)
     def captures():
         # results read from the adder's total at the edge that forms them
         sign = total[gap_width - 1]
@@ -415,4 +420,4 @@ def dda_setup(clock, reset, cmd, plan):
         plan.done.next = state == t_state.S_DONE
 
     return (latch, square_root, sequence, control, carry_in, rq_terms, select_source, adder, datapath,
-            line_major, threshold, captures, status)
+            sequencer, line_major, threshold, captures, status)

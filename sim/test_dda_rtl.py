@@ -4,13 +4,14 @@ The same bench (``sim/dda_bench.py``) runs on the MyHDL block and on the
 generated Verilog through co-simulation, for both builds of the variants
 option: the card's default (``gen/dda_arc.v``; ``DDA_VERILOG_DIR`` names
 another folder, e.g. a fresh ``python -m rtl.top --convert --out build/x``)
-and ``all`` (converted into ``build/dda_all`` for these tests).  A command
+and ``all`` (converted for these tests into a folder under ``build/cosim``).  A command
 for a variant its build left out must be rejected.  Each run writes a VCD and
 a ``.gtkw`` under ``build/waves``; some checks read the VCD back.
 """
 import math
 import os
 import random
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -85,15 +86,18 @@ def quadrant_crossings():
             ArcCommand(0, 30, 30, 0, variant=WEIGHTED, lambda_shift=1)]
 
 
+_CONVERTED = {}
+
+
 def verilog_of(build):
-    """The generated ``dda_arc.v`` of ``build``: ``gen/`` for the default, else converted once."""
+    """The generated ``dda_arc.v`` of ``build``: ``gen/`` for the default, else converted
+    afresh into a work folder (once per test process)."""
     if BUILDS[build] == DEFAULT_VARIANTS:
         return VERILOG_DIR / "dda_arc.v"
-    folder = build_dir(f"dda_{build}")
-    target = folder / "dda_arc.v"
-    if not target.exists():
-        convert_unit("dda_arc", {"coord_width": 24, "variants": BUILDS[build]}, folder)
-    return target
+    if build not in _CONVERTED:
+        folder = Path(tempfile.mkdtemp(prefix=f"dda_{build}_", dir=build_dir("cosim")))
+        _CONVERTED[build] = convert_unit("dda_arc", {"coord_width": 24, "variants": BUILDS[build]}, folder)
+    return _CONVERTED[build]
 
 
 def run_bench(name, commands, cosim=False, seed=1, advance_rate=0.7, idle_gap=3, coord_width=24,
