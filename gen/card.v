@@ -700,43 +700,24 @@ reg card_core0_dda_arc1_dda_run1_ahead_x;
 reg card_core0_dda_arc1_dda_run1_ahead_y;
 reg card_core0_dda_arc1_dda_run1_at_x;
 reg card_core0_dda_arc1_dda_run1_at_y;
-reg [26:0] card_core0_dda_arc1_dda_run1_bias_x;
-reg [26:0] card_core0_dda_arc1_dda_run1_bias_y;
-reg card_core0_dda_arc1_dda_run1_blend;
 reg card_core0_dda_arc1_dda_run1_ccw;
 reg [2:0] card_core0_dda_arc1_dda_run1_crossings;
-reg card_core0_dda_arc1_dda_run1_dec_finished;
-reg card_core0_dda_arc1_dda_run1_dec_in;
-reg card_core0_dda_arc1_dda_run1_dec_next_piece;
-reg card_core0_dda_arc1_dda_run1_dec_out;
-reg [29:0] card_core0_dda_arc1_dda_run1_dec_sum_x;
-reg [29:0] card_core0_dda_arc1_dda_run1_dec_sum_y;
-reg card_core0_dda_arc1_dda_run1_dec_tail;
-reg card_core0_dda_arc1_dda_run1_dec_x;
-reg card_core0_dda_arc1_dda_run1_dec_y;
 reg [23:0] card_core0_dda_arc1_dda_run1_end_x;
 reg [23:0] card_core0_dda_arc1_dda_run1_end_y;
-reg [26:0] card_core0_dda_arc1_dda_run1_error_step;
-reg [26:0] card_core0_dda_arc1_dda_run1_error_term;
 reg card_core0_dda_arc1_dda_run1_finished;
 reg card_core0_dda_arc1_dda_run1_first;
 reg card_core0_dda_arc1_dda_run1_go_x;
 reg card_core0_dda_arc1_dda_run1_go_y;
-reg card_core0_dda_arc1_dda_run1_inward_near;
-reg [26:0] card_core0_dda_arc1_dda_run1_left_diff;
+reg [29:0] card_core0_dda_arc1_dda_run1_kept_x;
+reg [29:0] card_core0_dda_arc1_dda_run1_kept_y;
 reg [29:0] card_core0_dda_arc1_dda_run1_less_x;
 reg [29:0] card_core0_dda_arc1_dda_run1_less_y;
-reg card_core0_dda_arc1_dda_run1_line;
-reg [23:0] card_core0_dda_arc1_dda_run1_mag_x;
-reg [23:0] card_core0_dda_arc1_dda_run1_mag_y;
-reg [26:0] card_core0_dda_arc1_dda_run1_most_left;
 reg card_core0_dda_arc1_dda_run1_near_x;
 reg card_core0_dda_arc1_dda_run1_near_y;
 reg card_core0_dda_arc1_dda_run1_next_piece;
-reg card_core0_dda_arc1_dda_run1_outward_near;
+reg card_core0_dda_arc1_dda_run1_next_piece_taken;
 reg card_core0_dda_arc1_dda_run1_over_x;
 reg card_core0_dda_arc1_dda_run1_over_y;
-reg card_core0_dda_arc1_dda_run1_pending;
 reg [1:0] card_core0_dda_arc1_dda_run1_quadrant;
 reg [23:0] card_core0_dda_arc1_dda_run1_radius;
 reg card_core0_dda_arc1_dda_run1_right;
@@ -747,6 +728,7 @@ reg [23:0] card_core0_dda_arc1_dda_run1_stepped_y;
 reg [30:0] card_core0_dda_arc1_dda_run1_sum_x;
 reg [30:0] card_core0_dda_arc1_dda_run1_sum_y;
 reg card_core0_dda_arc1_dda_run1_tail;
+reg card_core0_dda_arc1_dda_run1_tail_taken;
 wire card_core0_dda_arc1_dda_run1_taking;
 reg [1:0] card_core0_dda_arc1_dda_run1_target_x;
 reg [1:0] card_core0_dda_arc1_dda_run1_target_y;
@@ -756,7 +738,26 @@ reg card_core0_dda_arc1_dda_run1_trad_over_x;
 wire [30:0] card_core0_dda_arc1_dda_run1_trad_x;
 reg card_core0_dda_arc1_dda_run1_up;
 reg [1:0] card_core0_dda_arc1_dda_run1_variant;
-reg card_core0_dda_arc1_dda_run1_x_inward;
+reg [23:0] card_core0_dda_arc1_dda_run1_step_mag_y;
+reg [23:0] card_core0_dda_arc1_dda_run1_step_mag_x;
+reg card_core0_dda_arc1_dda_run1_step_step_x;
+reg card_core0_dda_arc1_dda_run1_step_step_y;
+reg card_core0_dda_arc1_dda_run1_step_line;
+reg card_core0_dda_arc1_dda_run1_step_x_inward;
+reg card_core0_dda_arc1_dda_run1_step_outward_near;
+reg card_core0_dda_arc1_dda_run1_step_inward_near;
+wire card_core0_dda_arc1_dda_run1_step_last;
+reg card_core0_dda_arc1_dda_run1_step_pending;
+reg card_core0_dda_arc1_dda_run1_step_finished;
+reg card_core0_dda_arc1_dda_run1_step_step_in;
+reg card_core0_dda_arc1_dda_run1_step_step_out;
+reg card_core0_dda_arc1_dda_run1_step_blend;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_left1_difference;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_left1_larger;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_step;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
@@ -4917,49 +4918,81 @@ always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_set
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_threshold, card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_threshold_carry, card_core0_dda_arc1_dda_run1_dec_x, card_core0_dda_arc1_dda_run1_first, card_core0_dda_arc1_dda_run1_dec_sum_y, card_core0_dda_arc1_dda_run1_dec_y, card_core0_dda_arc1_dda_run1_acc_x, card_core0_dda_arc1_dda_run1_mag_x, card_core0_dda_arc1_dda_run1_dec_sum_x, card_core0_dda_arc1_dda_run1_acc_y) begin: card_core0_dda_arc1_dda_run1_accumulate
-    reg [30-1:0] minus_x;
-    reg [30-1:0] minus_y;
-    minus_x = 30'h0;
-    minus_y = 30'h0;
-    card_core0_dda_arc1_dda_run1_sum_x = (({card_core0_dda_arc1_dda_run1_acc_x[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_x} + {7'h0, card_core0_dda_arc1_dda_run1_mag_y}) + {30'h0, card_core0_dda_arc1_dda_run1_first});
-    card_core0_dda_arc1_dda_run1_sum_y = (({card_core0_dda_arc1_dda_run1_acc_y[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_y} + {7'h0, card_core0_dda_arc1_dda_run1_mag_x}) + {30'h0, card_core0_dda_arc1_dda_run1_first});
-    if (card_core0_dda_arc1_dda_run1_dec_x) begin
-        minus_x = (~{2'h0, card_core0_dda_arc1_dda_run1_threshold});
+
+assign card_core0_regs_fifo1_feed_rate1_stop_left = card_core0_dda_arc1_dda_run1_dda_left1_larger;
+assign card_core0_dda_arc1_dda_run1_step_last = (card_core0_dda_arc1_dda_run1_dda_left1_difference == 0);
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_dda_left1_follow
+    reg [27-1:0] base;
+    reg [27-1:0] change;
+    base = 27'h0;
+    change = 27'h0;
+    base = card_core0_dda_arc1_dda_run1_dda_left1_difference;
+    if (card_core0_dda_arc1_dda_check1_move_take) begin
+        base = card_core0_dda_arc1_dda_check1_move_totals_diff;
+        if (card_core0_dda_arc1_dda_check1_move_line) begin
+            change = 134217727;
+        end
     end
-    if (card_core0_dda_arc1_dda_run1_dec_y) begin
-        minus_y = (~{2'h0, card_core0_dda_arc1_dda_run1_threshold});
+    else if (card_core0_dda_arc1_dda_run1_step_pending) begin
+        if ((card_core0_dda_arc1_dda_run1_step_line || (card_core0_dda_arc1_dda_run1_step_step_x && (!card_core0_dda_arc1_dda_run1_step_step_y)))) begin
+            change = 134217727;
+        end
+        else if ((card_core0_dda_arc1_dda_run1_step_step_y && (!card_core0_dda_arc1_dda_run1_step_step_x))) begin
+            change = 1;
+        end
     end
-    card_core0_dda_arc1_dda_run1_less_x = ((card_core0_dda_arc1_dda_run1_dec_sum_x + minus_x) + {29'h0, (card_core0_dda_arc1_dda_run1_dec_x && card_core0_dda_arc1_dda_run1_threshold_carry)});
-    card_core0_dda_arc1_dda_run1_less_y = ((card_core0_dda_arc1_dda_run1_dec_sum_y + minus_y) + {29'h0, (card_core0_dda_arc1_dda_run1_dec_y && card_core0_dda_arc1_dda_run1_threshold_carry)});
+    card_core0_dda_arc1_dda_run1_dda_left1_difference <= (base + change);
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_trad_x, card_core0_dda_arc1_dda_run1_sum_y, card_core0_dda_arc1_dda_run1_sum_x, card_core0_dda_arc1_dda_run1_over_y, card_core0_dda_arc1_dda_run1_line) begin: card_core0_dda_arc1_dda_run1_overflow
-    card_core0_dda_arc1_dda_run1_over_x = (!card_core0_dda_arc1_dda_run1_sum_x[30]);
-    card_core0_dda_arc1_dda_run1_over_y = (!card_core0_dda_arc1_dda_run1_sum_y[30]);
-    card_core0_dda_arc1_dda_run1_trad_over_x = (!card_core0_dda_arc1_dda_run1_trad_x[30]);
-    card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_sum_x[30]) && card_core0_dda_arc1_dda_run1_sum_x[(30 - 1)]);
-    if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_line))) begin
-        card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_trad_x[30]) && card_core0_dda_arc1_dda_run1_trad_x[(30 - 1)]);
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_dda_left1_count_down
+    reg [27-1:0] base;
+    reg [27-1:0] less;
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_dda_run1_dda_left1_larger <= 134217727;
     end
-    card_core0_dda_arc1_dda_run1_saturate_y = ((!card_core0_dda_arc1_dda_run1_sum_y[30]) && card_core0_dda_arc1_dda_run1_sum_y[(30 - 1)]);
+    else begin
+        base = 27'h0;
+        less = 27'h0;
+        base = card_core0_dda_arc1_dda_run1_dda_left1_larger;
+        if (card_core0_dda_arc1_dda_check1_move_take) begin
+            base = card_core0_dda_arc1_dda_check1_move_totals_max;
+            less = 134217727;
+        end
+        else if ((card_core0_dda_arc1_dda_run1_step_pending && (!card_core0_dda_arc1_dda_run1_step_blend))) begin
+            if (card_core0_dda_arc1_dda_run1_step_line) begin
+                less = 134217727;
+            end
+            else if ((card_core0_dda_arc1_dda_run1_dda_left1_difference == 0)) begin
+                if ((card_core0_dda_arc1_dda_run1_step_step_x && card_core0_dda_arc1_dda_run1_step_step_y)) begin
+                    less = 134217727;
+                end
+            end
+            else if (card_core0_dda_arc1_dda_run1_dda_left1_difference[(27 - 1)]) begin
+                if (card_core0_dda_arc1_dda_run1_step_step_y) begin
+                    less = 134217727;
+                end
+            end
+            else if (card_core0_dda_arc1_dda_run1_step_step_x) begin
+                less = 134217727;
+            end
+        end
+        card_core0_dda_arc1_dda_run1_dda_left1_larger <= (base + less);
+        if (card_core0_dda_arc1_dda_check1_move_take) begin
+            if ((card_core0_dda_arc1_dda_check1_move_blend || card_core0_dda_arc1_dda_check1_move_error || card_core0_dda_arc1_dda_check1_move_zero)) begin
+                card_core0_dda_arc1_dda_run1_dda_left1_larger <= 134217727;
+            end
+        end
+        else if ((card_core0_dda_arc1_dda_run1_step_pending && card_core0_dda_arc1_dda_run1_step_finished)) begin
+            card_core0_dda_arc1_dda_run1_dda_left1_larger <= 134217727;
+        end
+    end
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_acc_y, card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_acc_x, card_core0_dda_arc1_dda_run1_mag_x) begin: card_core0_dda_arc1_dda_run1_look_ahead
-    reg [31-1:0] twice_x;
-    reg [31-1:0] twice_y;
-    twice_x = 31'h0;
-    twice_y = 31'h0;
-    twice_x = ({card_core0_dda_arc1_dda_run1_acc_x[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_x} + {6'h0, card_core0_dda_arc1_dda_run1_mag_y, 1'b0});
-    twice_y = ({card_core0_dda_arc1_dda_run1_acc_y[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_y} + {6'h0, card_core0_dda_arc1_dda_run1_mag_x, 1'b0});
-    card_core0_dda_arc1_dda_run1_ahead_x = ($signed(twice_x) >= 0);
-    card_core0_dda_arc1_dda_run1_ahead_y = ($signed(twice_y) >= 0);
-end
-
-
-always @(card_core0_dda_arc1_dda_run1_error_term, card_core0_dda_arc1_dda_run1_x_inward, card_core0_dda_arc1_dda_run1_bias_x, card_core0_dda_arc1_dda_run1_bias_y) begin: card_core0_dda_arc1_dda_run1_nearest
+always @(card_core0_dda_arc1_dda_run1_dda_nearest1_error_term, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x, card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_signs
     reg [28-1:0] twice_error;
     reg [28-1:0] plus_x;
     reg [28-1:0] plus_y;
@@ -4970,45 +5003,131 @@ always @(card_core0_dda_arc1_dda_run1_error_term, card_core0_dda_arc1_dda_run1_x
     plus_y = 28'h0;
     minus_x = 28'h0;
     minus_y = 28'h0;
-    twice_error = {card_core0_dda_arc1_dda_run1_error_term, 1'b0};
-    plus_x = (twice_error + {card_core0_dda_arc1_dda_run1_bias_x[(27 - 1)], card_core0_dda_arc1_dda_run1_bias_x});
-    plus_y = (twice_error + {card_core0_dda_arc1_dda_run1_bias_y[(27 - 1)], card_core0_dda_arc1_dda_run1_bias_y});
-    minus_x = (twice_error - {card_core0_dda_arc1_dda_run1_bias_x[(27 - 1)], card_core0_dda_arc1_dda_run1_bias_x});
-    minus_y = (twice_error - {card_core0_dda_arc1_dda_run1_bias_y[(27 - 1)], card_core0_dda_arc1_dda_run1_bias_y});
-    if (card_core0_dda_arc1_dda_run1_x_inward) begin
-        card_core0_dda_arc1_dda_run1_inward_near = ($signed(plus_y) >= 0);
-        card_core0_dda_arc1_dda_run1_outward_near = ($signed(plus_x) < 0);
+    twice_error = {card_core0_dda_arc1_dda_run1_dda_nearest1_error_term, 1'b0};
+    plus_x = (twice_error + {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x});
+    plus_y = (twice_error + {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y});
+    minus_x = (twice_error - {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x});
+    minus_y = (twice_error - {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y});
+    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+        card_core0_dda_arc1_dda_run1_step_inward_near = ($signed(plus_y) >= 0);
+        card_core0_dda_arc1_dda_run1_step_outward_near = ($signed(plus_x) < 0);
     end
     else begin
-        card_core0_dda_arc1_dda_run1_inward_near = ($signed(minus_x) >= 0);
-        card_core0_dda_arc1_dda_run1_outward_near = ($signed(minus_y) < 0);
+        card_core0_dda_arc1_dda_run1_step_inward_near = ($signed(minus_x) >= 0);
+        card_core0_dda_arc1_dda_run1_step_outward_near = ($signed(minus_y) < 0);
     end
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_x_inward, card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_mag_x) begin: card_core0_dda_arc1_dda_run1_magnitude_adders
+always @(card_core0_dda_arc1_dda_run1_step_step_out, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_dda_nearest1_error_term, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_step_step_in) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_error_change
+    reg [27-1:0] outward;
+    reg [27-1:0] inward;
+    reg [27-1:0] first_sum;
+    outward = 27'h0;
+    inward = 27'h0;
+    first_sum = 27'h0;
+    if (card_core0_dda_arc1_dda_run1_step_step_out) begin
+        outward = {2'h0, card_core0_dda_arc1_dda_run1_step_mag_x, 1'b1};
+        if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+            outward = {2'h0, card_core0_dda_arc1_dda_run1_step_mag_y, 1'b1};
+        end
+    end
+    if (card_core0_dda_arc1_dda_run1_step_step_in) begin
+        inward = (~{2'h0, card_core0_dda_arc1_dda_run1_step_mag_y, 1'b0});
+        if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+            inward = (~{2'h0, card_core0_dda_arc1_dda_run1_step_mag_x, 1'b0});
+        end
+    end
+    first_sum = ((card_core0_dda_arc1_dda_run1_dda_nearest1_error_term + outward) + {26'h0, card_core0_dda_arc1_dda_run1_step_step_in});
+    card_core0_dda_arc1_dda_run1_dda_nearest1_error_step = ((first_sum + inward) + {26'h0, card_core0_dda_arc1_dda_run1_step_step_in});
+end
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_update
+    reg [27-1:0] op_x;
+    reg [27-1:0] op_y;
+    op_x = 27'h0;
+    op_y = 27'h0;
+    op_x = {24'h0, card_core0_dda_arc1_dda_run1_step_step_x, card_core0_dda_arc1_dda_run1_step_step_y, 1'b0};
+    op_y = {24'h0, card_core0_dda_arc1_dda_run1_step_step_y, card_core0_dda_arc1_dda_run1_step_step_x, 1'b0};
+    if ((!card_core0_dda_arc1_dda_run1_step_x_inward)) begin
+        op_x = (~op_x);
+        op_y = (~op_y);
+    end
+    if ((card_core0_dda_arc1_dda_run1_step_pending && (!card_core0_dda_arc1_dda_run1_step_line))) begin
+        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x <= ((card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x + op_x) + {26'h0, (!card_core0_dda_arc1_dda_run1_step_x_inward)});
+        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y <= ((card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y + op_y) + {26'h0, (!card_core0_dda_arc1_dda_run1_step_x_inward)});
+        card_core0_dda_arc1_dda_run1_dda_nearest1_error_term <= card_core0_dda_arc1_dda_run1_dda_nearest1_error_step;
+    end
+    if (card_core0_dda_arc1_dda_check1_move_take) begin
+        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x <= card_core0_dda_arc1_dda_check1_move_bias_x;
+        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y <= card_core0_dda_arc1_dda_check1_move_bias_y;
+        card_core0_dda_arc1_dda_run1_dda_nearest1_error_term <= 1;
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_acc_y, card_core0_dda_arc1_dda_run1_acc_x, card_core0_dda_arc1_dda_run1_step_mag_x) begin: card_core0_dda_arc1_dda_run1_look_ahead
+    reg [31-1:0] twice_x;
+    reg [31-1:0] twice_y;
+    twice_x = 31'h0;
+    twice_y = 31'h0;
+    twice_x = ({card_core0_dda_arc1_dda_run1_acc_x[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_x} + {6'h0, card_core0_dda_arc1_dda_run1_step_mag_y, 1'b0});
+    twice_y = ({card_core0_dda_arc1_dda_run1_acc_y[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_y} + {6'h0, card_core0_dda_arc1_dda_run1_step_mag_x, 1'b0});
+    card_core0_dda_arc1_dda_run1_ahead_x = ($signed(twice_x) >= 0);
+    card_core0_dda_arc1_dda_run1_ahead_y = ($signed(twice_y) >= 0);
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_kept_x, card_core0_dda_arc1_dda_run1_threshold, card_core0_dda_arc1_dda_run1_threshold_carry, card_core0_dda_arc1_dda_run1_kept_y, card_core0_dda_arc1_dda_run1_first, card_core0_dda_arc1_dda_run1_acc_x, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_acc_y, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_step_step_y, card_core0_dda_arc1_dda_run1_step_step_x) begin: card_core0_dda_arc1_dda_run1_accumulate
+    reg [30-1:0] minus_x;
+    reg [30-1:0] minus_y;
+    minus_x = 30'h0;
+    minus_y = 30'h0;
+    card_core0_dda_arc1_dda_run1_sum_x = (({card_core0_dda_arc1_dda_run1_acc_x[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_x} + {7'h0, card_core0_dda_arc1_dda_run1_step_mag_y}) + {30'h0, card_core0_dda_arc1_dda_run1_first});
+    card_core0_dda_arc1_dda_run1_sum_y = (({card_core0_dda_arc1_dda_run1_acc_y[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_y} + {7'h0, card_core0_dda_arc1_dda_run1_step_mag_x}) + {30'h0, card_core0_dda_arc1_dda_run1_first});
+    if (card_core0_dda_arc1_dda_run1_step_step_x) begin
+        minus_x = (~{2'h0, card_core0_dda_arc1_dda_run1_threshold});
+    end
+    if (card_core0_dda_arc1_dda_run1_step_step_y) begin
+        minus_y = (~{2'h0, card_core0_dda_arc1_dda_run1_threshold});
+    end
+    card_core0_dda_arc1_dda_run1_less_x = ((card_core0_dda_arc1_dda_run1_kept_x + minus_x) + {29'h0, (card_core0_dda_arc1_dda_run1_step_step_x && card_core0_dda_arc1_dda_run1_threshold_carry)});
+    card_core0_dda_arc1_dda_run1_less_y = ((card_core0_dda_arc1_dda_run1_kept_y + minus_y) + {29'h0, (card_core0_dda_arc1_dda_run1_step_step_y && card_core0_dda_arc1_dda_run1_threshold_carry)});
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_trad_x, card_core0_dda_arc1_dda_run1_sum_y, card_core0_dda_arc1_dda_run1_sum_x, card_core0_dda_arc1_dda_run1_step_line, card_core0_dda_arc1_dda_run1_over_y) begin: card_core0_dda_arc1_dda_run1_overflow
+    card_core0_dda_arc1_dda_run1_over_x = (!card_core0_dda_arc1_dda_run1_sum_x[30]);
+    card_core0_dda_arc1_dda_run1_over_y = (!card_core0_dda_arc1_dda_run1_sum_y[30]);
+    card_core0_dda_arc1_dda_run1_trad_over_x = (!card_core0_dda_arc1_dda_run1_trad_x[30]);
+    card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_sum_x[30]) && card_core0_dda_arc1_dda_run1_sum_x[(30 - 1)]);
+    if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_step_line))) begin
+        card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_trad_x[30]) && card_core0_dda_arc1_dda_run1_trad_x[(30 - 1)]);
+    end
+    card_core0_dda_arc1_dda_run1_saturate_y = ((!card_core0_dda_arc1_dda_run1_sum_y[30]) && card_core0_dda_arc1_dda_run1_sum_y[(30 - 1)]);
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_radius, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_target_y, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_target_x, card_core0_dda_arc1_dda_run1_end_y, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_end_x) begin: card_core0_dda_arc1_dda_run1_magnitudes
     reg [24-1:0] op_x;
     reg [24-1:0] op_y;
-    op_x = 24'h0;
-    op_y = 24'h0;
-    op_x = 1;
-    op_y = 16777215;
-    if (card_core0_dda_arc1_dda_run1_x_inward) begin
-        op_x = 16777215;
-        op_y = 1;
-    end
-    card_core0_dda_arc1_dda_run1_stepped_x = (card_core0_dda_arc1_dda_run1_mag_x + op_x);
-    card_core0_dda_arc1_dda_run1_stepped_y = (card_core0_dda_arc1_dda_run1_mag_y + op_y);
-end
-
-
-always @(card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_radius, card_core0_dda_arc1_dda_run1_mag_x, card_core0_dda_arc1_dda_run1_target_y, card_core0_dda_arc1_dda_run1_x_inward, card_core0_dda_arc1_dda_run1_target_x, card_core0_dda_arc1_dda_run1_end_y, card_core0_dda_arc1_dda_run1_end_x) begin: card_core0_dda_arc1_dda_run1_end_tests
     reg [24-1:0] target;
     reg [24-1:0] dx;
     reg [24-1:0] dy;
+    op_x = 24'h0;
+    op_y = 24'h0;
     target = 24'h0;
     dx = 24'h0;
     dy = 24'h0;
+    op_x = 1;
+    op_y = 16777215;
+    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+        op_x = 16777215;
+        op_y = 1;
+    end
+    card_core0_dda_arc1_dda_run1_stepped_x = (card_core0_dda_arc1_dda_run1_step_mag_x + op_x);
+    card_core0_dda_arc1_dda_run1_stepped_y = (card_core0_dda_arc1_dda_run1_step_mag_y + op_y);
     target = 0;
     case (card_core0_dda_arc1_dda_run1_target_x)
         'h1: begin
@@ -5018,7 +5137,7 @@ always @(card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_radius
             target = card_core0_dda_arc1_dda_run1_end_x;
         end
     endcase
-    dx = (card_core0_dda_arc1_dda_run1_mag_x - target);
+    dx = (card_core0_dda_arc1_dda_run1_step_mag_x - target);
     target = 0;
     case (card_core0_dda_arc1_dda_run1_target_y)
         'h1: begin
@@ -5028,10 +5147,10 @@ always @(card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_radius
             target = card_core0_dda_arc1_dda_run1_end_y;
         end
     endcase
-    dy = (card_core0_dda_arc1_dda_run1_mag_y - target);
+    dy = (card_core0_dda_arc1_dda_run1_step_mag_y - target);
     card_core0_dda_arc1_dda_run1_at_x = (dx == 0);
     card_core0_dda_arc1_dda_run1_at_y = (dy == 0);
-    if (card_core0_dda_arc1_dda_run1_x_inward) begin
+    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
         card_core0_dda_arc1_dda_run1_near_x = (dx == 1);
         card_core0_dda_arc1_dda_run1_near_y = (dy == 16777215);
     end
@@ -5042,7 +5161,7 @@ always @(card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_radius
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_trad_over_x, card_core0_dda_arc1_dda_run1_at_x, card_core0_dda_arc1_dda_run1_near_y, card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_ahead_x, card_core0_dda_arc1_dda_run1_left_diff, card_core0_dda_arc1_dda_run1_near_x, card_core0_dda_arc1_dda_run1_at_y, card_core0_dda_arc1_dda_run1_outward_near, card_core0_dda_arc1_dda_run1_x_inward, card_core0_dda_arc1_dda_run1_inward_near, card_core0_dda_arc1_dda_run1_crossings, card_core0_dda_arc1_dda_run1_ahead_y, card_core0_dda_arc1_dda_run1_over_y, card_core0_dda_arc1_dda_run1_line, card_core0_dda_arc1_dda_run1_over_x) begin: card_core0_dda_arc1_dda_run1_decide
+always @(card_core0_dda_arc1_dda_run1_trad_over_x, card_core0_dda_arc1_dda_run1_at_x, card_core0_dda_arc1_dda_run1_near_y, card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_step_outward_near, card_core0_dda_arc1_dda_run1_ahead_x, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_near_x, card_core0_dda_arc1_dda_run1_at_y, card_core0_dda_arc1_dda_run1_step_last, card_core0_dda_arc1_dda_run1_step_line, card_core0_dda_arc1_dda_run1_crossings, card_core0_dda_arc1_dda_run1_ahead_y, card_core0_dda_arc1_dda_run1_step_inward_near, card_core0_dda_arc1_dda_run1_over_y, card_core0_dda_arc1_dda_run1_over_x) begin: card_core0_dda_arc1_dda_run1_decide
     reg step_x;
     reg step_y;
     reg choose_x;
@@ -5054,11 +5173,11 @@ always @(card_core0_dda_arc1_dda_run1_trad_over_x, card_core0_dda_arc1_dda_run1_
     choose_y = 1'b0;
     ends = 1'b0;
     if (1'b1) begin
-        choose_x = (card_core0_dda_arc1_dda_run1_outward_near == 1);
-        choose_y = (card_core0_dda_arc1_dda_run1_inward_near == 1);
-        if (card_core0_dda_arc1_dda_run1_x_inward) begin
-            choose_x = (card_core0_dda_arc1_dda_run1_inward_near == 1);
-            choose_y = (card_core0_dda_arc1_dda_run1_outward_near == 1);
+        choose_x = (card_core0_dda_arc1_dda_run1_step_outward_near == 1);
+        choose_y = (card_core0_dda_arc1_dda_run1_step_inward_near == 1);
+        if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+            choose_x = (card_core0_dda_arc1_dda_run1_step_inward_near == 1);
+            choose_y = (card_core0_dda_arc1_dda_run1_step_outward_near == 1);
         end
     end
     if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0))) begin
@@ -5072,7 +5191,7 @@ always @(card_core0_dda_arc1_dda_run1_trad_over_x, card_core0_dda_arc1_dda_run1_
         step_x = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && choose_x);
         step_y = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && choose_y);
     end
-    if (card_core0_dda_arc1_dda_run1_line) begin
+    if (card_core0_dda_arc1_dda_run1_step_line) begin
         card_core0_dda_arc1_dda_run1_go_x = card_core0_dda_arc1_dda_run1_over_x;
         card_core0_dda_arc1_dda_run1_go_y = card_core0_dda_arc1_dda_run1_over_y;
     end
@@ -5084,110 +5203,86 @@ always @(card_core0_dda_arc1_dda_run1_trad_over_x, card_core0_dda_arc1_dda_run1_
         card_core0_dda_arc1_dda_run1_go_x = step_x;
         card_core0_dda_arc1_dda_run1_go_y = step_y;
     end
-    card_core0_dda_arc1_dda_run1_tail = ((!card_core0_dda_arc1_dda_run1_line) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y));
+    card_core0_dda_arc1_dda_run1_tail = ((!card_core0_dda_arc1_dda_run1_step_line) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y));
     if ((card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y)) begin
         ends = ((card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_near_x) && (card_core0_dda_arc1_dda_run1_at_y || card_core0_dda_arc1_dda_run1_near_y));
     end
     else begin
         ends = (card_core0_dda_arc1_dda_run1_near_x && card_core0_dda_arc1_dda_run1_near_y && step_x && step_y);
     end
-    card_core0_dda_arc1_dda_run1_finished = ((card_core0_dda_arc1_dda_run1_line && (card_core0_dda_arc1_dda_run1_left_diff == 0)) || ((!card_core0_dda_arc1_dda_run1_line) && ends && (card_core0_dda_arc1_dda_run1_crossings == 0)));
-    card_core0_dda_arc1_dda_run1_next_piece = ((!card_core0_dda_arc1_dda_run1_line) && ends && (card_core0_dda_arc1_dda_run1_crossings != 0));
-end
-
-
-always @(card_core0_dda_arc1_dda_run1_mag_y, card_core0_dda_arc1_dda_run1_dec_in, card_core0_dda_arc1_dda_run1_mag_x, card_core0_dda_arc1_dda_run1_error_term, card_core0_dda_arc1_dda_run1_x_inward, card_core0_dda_arc1_dda_run1_dec_out) begin: card_core0_dda_arc1_dda_run1_precise_step
-    reg [27-1:0] outward;
-    reg [27-1:0] inward;
-    reg [27-1:0] first_sum;
-    outward = 27'h0;
-    inward = 27'h0;
-    first_sum = 27'h0;
-    if (card_core0_dda_arc1_dda_run1_dec_out) begin
-        outward = {2'h0, card_core0_dda_arc1_dda_run1_mag_x, 1'b1};
-        if (card_core0_dda_arc1_dda_run1_x_inward) begin
-            outward = {2'h0, card_core0_dda_arc1_dda_run1_mag_y, 1'b1};
-        end
-    end
-    if (card_core0_dda_arc1_dda_run1_dec_in) begin
-        inward = (~{2'h0, card_core0_dda_arc1_dda_run1_mag_y, 1'b0});
-        if (card_core0_dda_arc1_dda_run1_x_inward) begin
-            inward = (~{2'h0, card_core0_dda_arc1_dda_run1_mag_x, 1'b0});
-        end
-    end
-    first_sum = ((card_core0_dda_arc1_dda_run1_error_term + outward) + {26'h0, card_core0_dda_arc1_dda_run1_dec_in});
-    card_core0_dda_arc1_dda_run1_error_step = ((first_sum + inward) + {26'h0, card_core0_dda_arc1_dda_run1_dec_in});
+    card_core0_dda_arc1_dda_run1_finished = ((card_core0_dda_arc1_dda_run1_step_line && card_core0_dda_arc1_dda_run1_step_last) || ((!card_core0_dda_arc1_dda_run1_step_line) && ends && (card_core0_dda_arc1_dda_run1_crossings == 0)));
+    card_core0_dda_arc1_dda_run1_next_piece = ((!card_core0_dda_arc1_dda_run1_step_line) && ends && (card_core0_dda_arc1_dda_run1_crossings != 0));
 end
 
 
 
-assign card_core0_dda_arc1_dda_check1_move_take = (card_core0_dda_arc1_dda_check1_move_offer && ((!card_core0_dda_arc1_dda_run1_active) || (card_core0_dda_arc1_dda_run1_pending && card_core0_dda_arc1_dda_run1_dec_finished)));
-assign card_core0_dda_arc1_dda_run1_taking = (card_core0_dda_arc1_dda_run1_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_arc1_dda_run1_pending));
+assign card_core0_dda_arc1_dda_check1_move_take = (card_core0_dda_arc1_dda_check1_move_offer && ((!card_core0_dda_arc1_dda_run1_active) || (card_core0_dda_arc1_dda_run1_step_pending && card_core0_dda_arc1_dda_run1_step_finished)));
+assign card_core0_dda_arc1_dda_run1_taking = (card_core0_dda_arc1_dda_run1_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_arc1_dda_run1_step_pending));
 
 
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_iterate
     if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_dda_run1_step_step_out <= 0;
         card_core0_dda_arc1_dda_run1_threshold_carry <= 0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 0;
-        card_core0_dda_arc1_dda_run1_dec_out <= 0;
-        card_core0_dda_arc1_dda_run1_dec_next_piece <= 0;
+        card_core0_dda_arc1_dda_run1_step_blend <= 0;
+        card_core0_dda_arc1_dda_run1_step_step_y <= 0;
+        card_core0_dda_arc1_dda_run1_step_pending <= 0;
         card_core0_dda_arc1_dda_run1_variant <= 3;
         card_core0_regs_fifo1_steps_step_x <= 0;
-        card_core0_dda_arc1_dda_run1_dec_in <= 0;
         card_core0_dda_arc1_dda_run1_target_y <= 0;
-        card_core0_dda_arc1_dda_run1_x_inward <= 0;
         card_core0_dda_arc1_dda_run1_crossings <= 0;
         card_core0_dda_arc1_dda_run1_target_x <= 0;
-        card_core0_dda_arc1_dda_run1_dec_finished <= 0;
-        card_core0_dda_arc1_dda_run1_blend <= 0;
-        card_core0_dda_arc1_dda_run1_dec_tail <= 0;
-        card_core0_dda_arc1_dda_run1_dec_x <= 0;
+        card_core0_dda_arc1_dda_run1_next_piece_taken <= 0;
         card_core0_dda_arc1_dda_run1_first <= 0;
         card_core0_regs_fifo1_steps_dir_x <= 0;
         card_core0_regs_fifo1_steps_dir_y <= 0;
         card_core0_dda_arc1_dda_run1_quadrant <= 0;
         card_core0_regs_fifo1_steps_step_y <= 0;
         card_core0_dda_arc1_dda_run1_right <= 0;
-        card_core0_dda_arc1_dda_run1_pending <= 0;
+        card_core0_dda_arc1_dda_run1_step_step_in <= 0;
         card_core0_dda_arc1_dda_run1_up <= 0;
         card_core0_dda_arc1_dda_run1_active <= 0;
-        card_core0_dda_arc1_dda_run1_dec_y <= 0;
+        card_core0_dda_arc1_dda_run1_tail_taken <= 0;
+        card_core0_dda_arc1_dda_run1_step_x_inward <= 0;
+        card_core0_dda_arc1_dda_run1_step_line <= 0;
         card_core0_dda_arc1_dda_run1_ccw <= 0;
-        card_core0_dda_arc1_dda_run1_line <= 0;
+        card_core0_dda_arc1_dda_run1_step_step_x <= 0;
+        card_core0_dda_arc1_dda_run1_step_finished <= 0;
     end
     else begin
         card_core0_regs_fifo1_steps_step_x <= 1'b0;
         card_core0_regs_fifo1_steps_step_y <= 1'b0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 1'b0;
-        card_core0_dda_arc1_dda_run1_pending <= 1'b0;
+        card_core0_dda_arc1_dda_run1_step_pending <= 1'b0;
         if (card_core0_dda_arc1_dda_run1_taking) begin
-            card_core0_dda_arc1_dda_run1_pending <= 1'b1;
+            card_core0_dda_arc1_dda_run1_step_pending <= 1'b1;
             card_core0_regs_fifo1_steps_step_x <= card_core0_dda_arc1_dda_run1_go_x;
             card_core0_regs_fifo1_steps_step_y <= card_core0_dda_arc1_dda_run1_go_y;
-            if (card_core0_dda_arc1_dda_run1_line) begin
+            if (card_core0_dda_arc1_dda_run1_step_line) begin
                 card_core0_regs_fifo1_steps_dir_x <= card_core0_dda_arc1_dda_run1_right;
                 card_core0_regs_fifo1_steps_dir_y <= card_core0_dda_arc1_dda_run1_up;
             end
             else begin
-                card_core0_regs_fifo1_steps_dir_x <= ((card_core0_dda_arc1_dda_run1_quadrant[0] == card_core0_dda_arc1_dda_run1_quadrant[1]) != card_core0_dda_arc1_dda_run1_x_inward);
-                card_core0_regs_fifo1_steps_dir_y <= ((!card_core0_dda_arc1_dda_run1_quadrant[1]) == card_core0_dda_arc1_dda_run1_x_inward);
+                card_core0_regs_fifo1_steps_dir_x <= ((card_core0_dda_arc1_dda_run1_quadrant[0] == card_core0_dda_arc1_dda_run1_quadrant[1]) != card_core0_dda_arc1_dda_run1_step_x_inward);
+                card_core0_regs_fifo1_steps_dir_y <= ((!card_core0_dda_arc1_dda_run1_quadrant[1]) == card_core0_dda_arc1_dda_run1_step_x_inward);
             end
             card_core0_regs_fifo1_sequencer1_dda_done <= card_core0_dda_arc1_dda_run1_finished;
-            card_core0_dda_arc1_dda_run1_dec_x <= card_core0_dda_arc1_dda_run1_go_x;
-            card_core0_dda_arc1_dda_run1_dec_y <= card_core0_dda_arc1_dda_run1_go_y;
-            card_core0_dda_arc1_dda_run1_dec_in <= ((card_core0_dda_arc1_dda_run1_go_x && card_core0_dda_arc1_dda_run1_x_inward) || (card_core0_dda_arc1_dda_run1_go_y && (!card_core0_dda_arc1_dda_run1_x_inward)));
-            card_core0_dda_arc1_dda_run1_dec_out <= ((card_core0_dda_arc1_dda_run1_go_x && (!card_core0_dda_arc1_dda_run1_x_inward)) || (card_core0_dda_arc1_dda_run1_go_y && card_core0_dda_arc1_dda_run1_x_inward));
-            card_core0_dda_arc1_dda_run1_dec_tail <= card_core0_dda_arc1_dda_run1_tail;
-            card_core0_dda_arc1_dda_run1_dec_finished <= card_core0_dda_arc1_dda_run1_finished;
-            card_core0_dda_arc1_dda_run1_dec_next_piece <= card_core0_dda_arc1_dda_run1_next_piece;
+            card_core0_dda_arc1_dda_run1_step_step_x <= card_core0_dda_arc1_dda_run1_go_x;
+            card_core0_dda_arc1_dda_run1_step_step_y <= card_core0_dda_arc1_dda_run1_go_y;
+            card_core0_dda_arc1_dda_run1_step_step_in <= ((card_core0_dda_arc1_dda_run1_go_x && card_core0_dda_arc1_dda_run1_step_x_inward) || (card_core0_dda_arc1_dda_run1_go_y && (!card_core0_dda_arc1_dda_run1_step_x_inward)));
+            card_core0_dda_arc1_dda_run1_step_step_out <= ((card_core0_dda_arc1_dda_run1_go_x && (!card_core0_dda_arc1_dda_run1_step_x_inward)) || (card_core0_dda_arc1_dda_run1_go_y && card_core0_dda_arc1_dda_run1_step_x_inward));
+            card_core0_dda_arc1_dda_run1_step_finished <= card_core0_dda_arc1_dda_run1_finished;
+            card_core0_dda_arc1_dda_run1_tail_taken <= card_core0_dda_arc1_dda_run1_tail;
+            card_core0_dda_arc1_dda_run1_next_piece_taken <= card_core0_dda_arc1_dda_run1_next_piece;
             card_core0_dda_arc1_dda_run1_first <= 1'b0;
         end
-        else if (card_core0_dda_arc1_dda_run1_pending) begin
-            if (card_core0_dda_arc1_dda_run1_dec_finished) begin
+        else if (card_core0_dda_arc1_dda_run1_step_pending) begin
+            if (card_core0_dda_arc1_dda_run1_step_finished) begin
                 card_core0_dda_arc1_dda_run1_active <= 1'b0;
             end
-            if (card_core0_dda_arc1_dda_run1_dec_next_piece) begin
-                card_core0_dda_arc1_dda_run1_x_inward <= (!card_core0_dda_arc1_dda_run1_x_inward);
+            if (card_core0_dda_arc1_dda_run1_next_piece_taken) begin
+                card_core0_dda_arc1_dda_run1_step_x_inward <= (!card_core0_dda_arc1_dda_run1_step_x_inward);
                 card_core0_dda_arc1_dda_run1_crossings <= (card_core0_dda_arc1_dda_run1_crossings - 1);
                 if (card_core0_dda_arc1_dda_run1_ccw) begin
                     card_core0_dda_arc1_dda_run1_quadrant <= (card_core0_dda_arc1_dda_run1_quadrant + 1);
@@ -5199,7 +5294,7 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
                     card_core0_dda_arc1_dda_run1_target_x <= 2;
                     card_core0_dda_arc1_dda_run1_target_y <= 2;
                 end
-                else if (card_core0_dda_arc1_dda_run1_x_inward) begin
+                else if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
                     card_core0_dda_arc1_dda_run1_target_x <= 1;
                     card_core0_dda_arc1_dda_run1_target_y <= 0;
                 end
@@ -5212,14 +5307,14 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         if ((card_core0_dda_arc1_dda_check1_move_take && (!card_core0_dda_arc1_dda_check1_move_error) && (!card_core0_dda_arc1_dda_check1_move_zero))) begin
             card_core0_dda_arc1_dda_run1_active <= 1'b1;
             card_core0_dda_arc1_dda_run1_first <= card_core0_dda_arc1_dda_check1_move_acc_carry;
-            card_core0_dda_arc1_dda_run1_line <= card_core0_dda_arc1_dda_check1_move_line;
+            card_core0_dda_arc1_dda_run1_step_line <= card_core0_dda_arc1_dda_check1_move_line;
             card_core0_dda_arc1_dda_run1_variant <= card_core0_dda_arc1_dda_check1_move_variant;
             card_core0_dda_arc1_dda_run1_ccw <= card_core0_dda_arc1_dda_check1_move_ccw;
-            card_core0_dda_arc1_dda_run1_blend <= card_core0_dda_arc1_dda_check1_move_blend;
+            card_core0_dda_arc1_dda_run1_step_blend <= card_core0_dda_arc1_dda_check1_move_blend;
             card_core0_dda_arc1_dda_run1_right <= card_core0_dda_arc1_dda_check1_move_right;
             card_core0_dda_arc1_dda_run1_up <= card_core0_dda_arc1_dda_check1_move_up;
             card_core0_dda_arc1_dda_run1_quadrant <= card_core0_dda_arc1_dda_check1_move_quadrant;
-            card_core0_dda_arc1_dda_run1_x_inward <= card_core0_dda_arc1_dda_check1_move_x_inward;
+            card_core0_dda_arc1_dda_run1_step_x_inward <= card_core0_dda_arc1_dda_check1_move_x_inward;
             card_core0_dda_arc1_dda_run1_crossings <= card_core0_dda_arc1_dda_check1_move_crossings;
             card_core0_dda_arc1_dda_run1_target_x <= card_core0_dda_arc1_dda_check1_move_target_x;
             card_core0_dda_arc1_dda_run1_target_y <= card_core0_dda_arc1_dda_check1_move_target_y;
@@ -5235,134 +5330,41 @@ end
 
 always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_datapath
     if (card_core0_dda_arc1_dda_run1_taking) begin
-        card_core0_dda_arc1_dda_run1_dec_sum_x <= card_core0_dda_arc1_dda_run1_sum_x[30-1:0];
-        if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_line))) begin
-            card_core0_dda_arc1_dda_run1_dec_sum_x <= card_core0_dda_arc1_dda_run1_trad_x[30-1:0];
+        card_core0_dda_arc1_dda_run1_kept_x <= card_core0_dda_arc1_dda_run1_sum_x[30-1:0];
+        if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_step_line))) begin
+            card_core0_dda_arc1_dda_run1_kept_x <= card_core0_dda_arc1_dda_run1_trad_x[30-1:0];
         end
-        card_core0_dda_arc1_dda_run1_dec_sum_y <= card_core0_dda_arc1_dda_run1_sum_y[30-1:0];
+        card_core0_dda_arc1_dda_run1_kept_y <= card_core0_dda_arc1_dda_run1_sum_y[30-1:0];
         if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_x)) begin
-            card_core0_dda_arc1_dda_run1_dec_sum_x <= 536870911;
+            card_core0_dda_arc1_dda_run1_kept_x <= 536870911;
         end
         if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_y)) begin
-            card_core0_dda_arc1_dda_run1_dec_sum_y <= 536870911;
+            card_core0_dda_arc1_dda_run1_kept_y <= 536870911;
         end
     end
-    else if (card_core0_dda_arc1_dda_run1_pending) begin
-        if ((!card_core0_dda_arc1_dda_run1_dec_tail)) begin
+    else if (card_core0_dda_arc1_dda_run1_step_pending) begin
+        if ((!card_core0_dda_arc1_dda_run1_tail_taken)) begin
             card_core0_dda_arc1_dda_run1_acc_x <= $signed(card_core0_dda_arc1_dda_run1_less_x);
             card_core0_dda_arc1_dda_run1_acc_y <= $signed(card_core0_dda_arc1_dda_run1_less_y);
         end
-        if ((!card_core0_dda_arc1_dda_run1_line)) begin
-            if (card_core0_dda_arc1_dda_run1_dec_x) begin
-                card_core0_dda_arc1_dda_run1_mag_x <= card_core0_dda_arc1_dda_run1_stepped_x;
+        if ((!card_core0_dda_arc1_dda_run1_step_line)) begin
+            if (card_core0_dda_arc1_dda_run1_step_step_x) begin
+                card_core0_dda_arc1_dda_run1_step_mag_x <= card_core0_dda_arc1_dda_run1_stepped_x;
             end
-            if (card_core0_dda_arc1_dda_run1_dec_y) begin
-                card_core0_dda_arc1_dda_run1_mag_y <= card_core0_dda_arc1_dda_run1_stepped_y;
+            if (card_core0_dda_arc1_dda_run1_step_step_y) begin
+                card_core0_dda_arc1_dda_run1_step_mag_y <= card_core0_dda_arc1_dda_run1_stepped_y;
             end
-            card_core0_dda_arc1_dda_run1_error_term <= card_core0_dda_arc1_dda_run1_error_step;
         end
     end
     if (card_core0_dda_arc1_dda_check1_move_take) begin
-        card_core0_dda_arc1_dda_run1_mag_x <= card_core0_dda_arc1_dda_check1_move_mag_x;
-        card_core0_dda_arc1_dda_run1_mag_y <= card_core0_dda_arc1_dda_check1_move_mag_y;
+        card_core0_dda_arc1_dda_run1_step_mag_x <= card_core0_dda_arc1_dda_check1_move_mag_x;
+        card_core0_dda_arc1_dda_run1_step_mag_y <= card_core0_dda_arc1_dda_check1_move_mag_y;
         card_core0_dda_arc1_dda_run1_end_x <= card_core0_dda_arc1_dda_check1_move_end_x;
         card_core0_dda_arc1_dda_run1_end_y <= card_core0_dda_arc1_dda_check1_move_end_y;
         card_core0_dda_arc1_dda_run1_radius <= card_core0_dda_arc1_dda_check1_move_radius;
         card_core0_dda_arc1_dda_run1_threshold <= card_core0_dda_arc1_dda_check1_move_threshold;
         card_core0_dda_arc1_dda_run1_acc_x <= card_core0_dda_arc1_dda_check1_move_acc_init;
         card_core0_dda_arc1_dda_run1_acc_y <= card_core0_dda_arc1_dda_check1_move_acc_init;
-        card_core0_dda_arc1_dda_run1_error_term <= 1;
-    end
-end
-
-
-always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_precise_bias
-    reg [27-1:0] op_x;
-    reg [27-1:0] op_y;
-    op_x = 27'h0;
-    op_y = 27'h0;
-    op_x = {24'h0, card_core0_dda_arc1_dda_run1_dec_x, card_core0_dda_arc1_dda_run1_dec_y, 1'b0};
-    op_y = {24'h0, card_core0_dda_arc1_dda_run1_dec_y, card_core0_dda_arc1_dda_run1_dec_x, 1'b0};
-    if ((!card_core0_dda_arc1_dda_run1_x_inward)) begin
-        op_x = (~op_x);
-        op_y = (~op_y);
-    end
-    if ((card_core0_dda_arc1_dda_run1_pending && (!card_core0_dda_arc1_dda_run1_line))) begin
-        card_core0_dda_arc1_dda_run1_bias_x <= ((card_core0_dda_arc1_dda_run1_bias_x + op_x) + {26'h0, (!card_core0_dda_arc1_dda_run1_x_inward)});
-        card_core0_dda_arc1_dda_run1_bias_y <= ((card_core0_dda_arc1_dda_run1_bias_y + op_y) + {26'h0, (!card_core0_dda_arc1_dda_run1_x_inward)});
-    end
-    if (card_core0_dda_arc1_dda_check1_move_take) begin
-        card_core0_dda_arc1_dda_run1_bias_x <= card_core0_dda_arc1_dda_check1_move_bias_x;
-        card_core0_dda_arc1_dda_run1_bias_y <= card_core0_dda_arc1_dda_check1_move_bias_y;
-    end
-end
-
-
-always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_steps_difference
-    reg [27-1:0] base;
-    reg [27-1:0] change;
-    base = 27'h0;
-    change = 27'h0;
-    base = card_core0_dda_arc1_dda_run1_left_diff;
-    if (card_core0_dda_arc1_dda_check1_move_take) begin
-        base = card_core0_dda_arc1_dda_check1_move_totals_diff;
-        if (card_core0_dda_arc1_dda_check1_move_line) begin
-            change = 134217727;
-        end
-    end
-    else if (card_core0_dda_arc1_dda_run1_pending) begin
-        if ((card_core0_dda_arc1_dda_run1_line || (card_core0_dda_arc1_dda_run1_dec_x && (!card_core0_dda_arc1_dda_run1_dec_y)))) begin
-            change = 134217727;
-        end
-        else if ((card_core0_dda_arc1_dda_run1_dec_y && (!card_core0_dda_arc1_dda_run1_dec_x))) begin
-            change = 1;
-        end
-    end
-    card_core0_dda_arc1_dda_run1_left_diff <= (base + change);
-end
-
-
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_steps_left
-    reg [27-1:0] base;
-    reg [27-1:0] less;
-    if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_run1_most_left <= 134217727;
-    end
-    else begin
-        base = 27'h0;
-        less = 27'h0;
-        base = card_core0_dda_arc1_dda_run1_most_left;
-        if (card_core0_dda_arc1_dda_check1_move_take) begin
-            base = card_core0_dda_arc1_dda_check1_move_totals_max;
-            less = 134217727;
-        end
-        else if ((card_core0_dda_arc1_dda_run1_pending && (!card_core0_dda_arc1_dda_run1_blend))) begin
-            if (card_core0_dda_arc1_dda_run1_line) begin
-                less = 134217727;
-            end
-            else if ((card_core0_dda_arc1_dda_run1_left_diff == 0)) begin
-                if ((card_core0_dda_arc1_dda_run1_dec_x && card_core0_dda_arc1_dda_run1_dec_y)) begin
-                    less = 134217727;
-                end
-            end
-            else if (card_core0_dda_arc1_dda_run1_left_diff[(27 - 1)]) begin
-                if (card_core0_dda_arc1_dda_run1_dec_y) begin
-                    less = 134217727;
-                end
-            end
-            else if (card_core0_dda_arc1_dda_run1_dec_x) begin
-                less = 134217727;
-            end
-        end
-        card_core0_dda_arc1_dda_run1_most_left <= (base + less);
-        if (card_core0_dda_arc1_dda_check1_move_take) begin
-            if ((card_core0_dda_arc1_dda_check1_move_blend || card_core0_dda_arc1_dda_check1_move_error || card_core0_dda_arc1_dda_check1_move_zero)) begin
-                card_core0_dda_arc1_dda_run1_most_left <= 134217727;
-            end
-        end
-        else if ((card_core0_dda_arc1_dda_run1_pending && card_core0_dda_arc1_dda_run1_dec_finished)) begin
-            card_core0_dda_arc1_dda_run1_most_left <= 134217727;
-        end
     end
 end
 
@@ -5384,7 +5386,6 @@ end
 
 
 assign card_core0_regs_fifo1__status1_quadrant = card_core0_dda_arc1_dda_run1_quadrant;
-assign card_core0_regs_fifo1_feed_rate1_stop_left = card_core0_dda_arc1_dda_run1_most_left;
-assign card_core0_regs_fifo1_dda_busy = ((!card_core0_regs_fifo1_sequencer1_dda_ready) || (card_core0_dda_arc1_dda_run1_active && (!(card_core0_dda_arc1_dda_run1_pending && card_core0_dda_arc1_dda_run1_dec_finished))));
+assign card_core0_regs_fifo1_dda_busy = ((!card_core0_regs_fifo1_sequencer1_dda_ready) || (card_core0_dda_arc1_dda_run1_active && (!(card_core0_dda_arc1_dda_run1_step_pending && card_core0_dda_arc1_dda_run1_step_finished))));
 
 endmodule

@@ -201,43 +201,24 @@ reg dda_run0_ahead_x;
 reg dda_run0_ahead_y;
 reg dda_run0_at_x;
 reg dda_run0_at_y;
-reg [26:0] dda_run0_bias_x;
-reg [26:0] dda_run0_bias_y;
-reg dda_run0_blend;
 reg dda_run0_ccw;
 reg [2:0] dda_run0_crossings;
-reg dda_run0_dec_finished;
-reg dda_run0_dec_in;
-reg dda_run0_dec_next_piece;
-reg dda_run0_dec_out;
-reg [29:0] dda_run0_dec_sum_x;
-reg [29:0] dda_run0_dec_sum_y;
-reg dda_run0_dec_tail;
-reg dda_run0_dec_x;
-reg dda_run0_dec_y;
 reg [23:0] dda_run0_end_x;
 reg [23:0] dda_run0_end_y;
-reg [26:0] dda_run0_error_step;
-reg [26:0] dda_run0_error_term;
 reg dda_run0_finished;
 reg dda_run0_first;
 reg dda_run0_go_x;
 reg dda_run0_go_y;
-reg dda_run0_inward_near;
-reg [26:0] dda_run0_left_diff;
+reg [29:0] dda_run0_kept_x;
+reg [29:0] dda_run0_kept_y;
 reg [29:0] dda_run0_less_x;
 reg [29:0] dda_run0_less_y;
-reg dda_run0_line;
-reg [23:0] dda_run0_mag_x;
-reg [23:0] dda_run0_mag_y;
-reg [26:0] dda_run0_most_left;
 reg dda_run0_near_x;
 reg dda_run0_near_y;
 reg dda_run0_next_piece;
-reg dda_run0_outward_near;
+reg dda_run0_next_piece_taken;
 reg dda_run0_over_x;
 reg dda_run0_over_y;
-reg dda_run0_pending;
 reg [1:0] dda_run0_quadrant;
 reg [23:0] dda_run0_radius;
 reg dda_run0_right;
@@ -248,6 +229,7 @@ reg [23:0] dda_run0_stepped_y;
 reg [30:0] dda_run0_sum_x;
 reg [30:0] dda_run0_sum_y;
 reg dda_run0_tail;
+reg dda_run0_tail_taken;
 wire dda_run0_taking;
 reg [1:0] dda_run0_target_x;
 reg [1:0] dda_run0_target_y;
@@ -257,7 +239,26 @@ reg dda_run0_trad_over_x;
 wire [30:0] dda_run0_trad_x;
 reg dda_run0_up;
 reg [1:0] dda_run0_variant;
-reg dda_run0_x_inward;
+reg [23:0] dda_run0_step_mag_y;
+reg [23:0] dda_run0_step_mag_x;
+reg dda_run0_step_step_x;
+reg dda_run0_step_step_y;
+reg dda_run0_step_line;
+reg dda_run0_step_x_inward;
+reg dda_run0_step_outward_near;
+reg dda_run0_step_inward_near;
+wire dda_run0_step_last;
+reg dda_run0_step_pending;
+reg dda_run0_step_finished;
+reg dda_run0_step_step_in;
+reg dda_run0_step_step_out;
+reg dda_run0_step_blend;
+reg [26:0] dda_run0_dda_left0_difference;
+reg [26:0] dda_run0_dda_left0_larger;
+reg [26:0] dda_run0_dda_nearest0_bias_x;
+reg [26:0] dda_run0_dda_nearest0_bias_y;
+reg [26:0] dda_run0_dda_nearest0_error_step;
+reg [26:0] dda_run0_dda_nearest0_error_term;
 
 assign dda_run0_trad_x = 31'd0;
 
@@ -1073,49 +1074,81 @@ always @(dda_setup0_plan_mag_xs, dda_setup0_plan_mag_ys) begin: dda_check0_preci
 end
 
 
-always @(dda_run0_threshold, dda_run0_mag_y, dda_run0_threshold_carry, dda_run0_dec_x, dda_run0_first, dda_run0_dec_sum_y, dda_run0_dec_y, dda_run0_acc_x, dda_run0_mag_x, dda_run0_dec_sum_x, dda_run0_acc_y) begin: dda_run0_accumulate
-    reg [30-1:0] minus_x;
-    reg [30-1:0] minus_y;
-    minus_x = 30'h0;
-    minus_y = 30'h0;
-    dda_run0_sum_x = (({dda_run0_acc_x[(30 - 1)], dda_run0_acc_x} + {7'h0, dda_run0_mag_y}) + {30'h0, dda_run0_first});
-    dda_run0_sum_y = (({dda_run0_acc_y[(30 - 1)], dda_run0_acc_y} + {7'h0, dda_run0_mag_x}) + {30'h0, dda_run0_first});
-    if (dda_run0_dec_x) begin
-        minus_x = (~{2'h0, dda_run0_threshold});
+
+assign cmd_stop_left = dda_run0_dda_left0_larger;
+assign dda_run0_step_last = (dda_run0_dda_left0_difference == 0);
+
+
+always @(posedge clock) begin: dda_run0_dda_left0_follow
+    reg [27-1:0] base;
+    reg [27-1:0] change;
+    base = 27'h0;
+    change = 27'h0;
+    base = dda_run0_dda_left0_difference;
+    if (dda_check0_move_take) begin
+        base = dda_check0_move_totals_diff;
+        if (dda_check0_move_line) begin
+            change = 134217727;
+        end
     end
-    if (dda_run0_dec_y) begin
-        minus_y = (~{2'h0, dda_run0_threshold});
+    else if (dda_run0_step_pending) begin
+        if ((dda_run0_step_line || (dda_run0_step_step_x && (!dda_run0_step_step_y)))) begin
+            change = 134217727;
+        end
+        else if ((dda_run0_step_step_y && (!dda_run0_step_step_x))) begin
+            change = 1;
+        end
     end
-    dda_run0_less_x = ((dda_run0_dec_sum_x + minus_x) + {29'h0, (dda_run0_dec_x && dda_run0_threshold_carry)});
-    dda_run0_less_y = ((dda_run0_dec_sum_y + minus_y) + {29'h0, (dda_run0_dec_y && dda_run0_threshold_carry)});
+    dda_run0_dda_left0_difference <= (base + change);
 end
 
 
-always @(dda_run0_variant, dda_run0_trad_x, dda_run0_sum_y, dda_run0_sum_x, dda_run0_over_y, dda_run0_line) begin: dda_run0_overflow
-    dda_run0_over_x = (!dda_run0_sum_x[30]);
-    dda_run0_over_y = (!dda_run0_sum_y[30]);
-    dda_run0_trad_over_x = (!dda_run0_trad_x[30]);
-    dda_run0_saturate_x = ((!dda_run0_sum_x[30]) && dda_run0_sum_x[(30 - 1)]);
-    if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_line))) begin
-        dda_run0_saturate_x = ((!dda_run0_trad_x[30]) && dda_run0_trad_x[(30 - 1)]);
+always @(posedge clock, negedge reset) begin: dda_run0_dda_left0_count_down
+    reg [27-1:0] base;
+    reg [27-1:0] less;
+    if (reset == 0) begin
+        dda_run0_dda_left0_larger <= 134217727;
     end
-    dda_run0_saturate_y = ((!dda_run0_sum_y[30]) && dda_run0_sum_y[(30 - 1)]);
+    else begin
+        base = 27'h0;
+        less = 27'h0;
+        base = dda_run0_dda_left0_larger;
+        if (dda_check0_move_take) begin
+            base = dda_check0_move_totals_max;
+            less = 134217727;
+        end
+        else if ((dda_run0_step_pending && (!dda_run0_step_blend))) begin
+            if (dda_run0_step_line) begin
+                less = 134217727;
+            end
+            else if ((dda_run0_dda_left0_difference == 0)) begin
+                if ((dda_run0_step_step_x && dda_run0_step_step_y)) begin
+                    less = 134217727;
+                end
+            end
+            else if (dda_run0_dda_left0_difference[(27 - 1)]) begin
+                if (dda_run0_step_step_y) begin
+                    less = 134217727;
+                end
+            end
+            else if (dda_run0_step_step_x) begin
+                less = 134217727;
+            end
+        end
+        dda_run0_dda_left0_larger <= (base + less);
+        if (dda_check0_move_take) begin
+            if ((dda_check0_move_blend || dda_check0_move_error || dda_check0_move_zero)) begin
+                dda_run0_dda_left0_larger <= 134217727;
+            end
+        end
+        else if ((dda_run0_step_pending && dda_run0_step_finished)) begin
+            dda_run0_dda_left0_larger <= 134217727;
+        end
+    end
 end
 
 
-always @(dda_run0_acc_y, dda_run0_mag_y, dda_run0_acc_x, dda_run0_mag_x) begin: dda_run0_look_ahead
-    reg [31-1:0] twice_x;
-    reg [31-1:0] twice_y;
-    twice_x = 31'h0;
-    twice_y = 31'h0;
-    twice_x = ({dda_run0_acc_x[(30 - 1)], dda_run0_acc_x} + {6'h0, dda_run0_mag_y, 1'b0});
-    twice_y = ({dda_run0_acc_y[(30 - 1)], dda_run0_acc_y} + {6'h0, dda_run0_mag_x, 1'b0});
-    dda_run0_ahead_x = ($signed(twice_x) >= 0);
-    dda_run0_ahead_y = ($signed(twice_y) >= 0);
-end
-
-
-always @(dda_run0_error_term, dda_run0_x_inward, dda_run0_bias_x, dda_run0_bias_y) begin: dda_run0_nearest
+always @(dda_run0_dda_nearest0_error_term, dda_run0_step_x_inward, dda_run0_dda_nearest0_bias_x, dda_run0_dda_nearest0_bias_y) begin: dda_run0_dda_nearest0_signs
     reg [28-1:0] twice_error;
     reg [28-1:0] plus_x;
     reg [28-1:0] plus_y;
@@ -1126,45 +1159,131 @@ always @(dda_run0_error_term, dda_run0_x_inward, dda_run0_bias_x, dda_run0_bias_
     plus_y = 28'h0;
     minus_x = 28'h0;
     minus_y = 28'h0;
-    twice_error = {dda_run0_error_term, 1'b0};
-    plus_x = (twice_error + {dda_run0_bias_x[(27 - 1)], dda_run0_bias_x});
-    plus_y = (twice_error + {dda_run0_bias_y[(27 - 1)], dda_run0_bias_y});
-    minus_x = (twice_error - {dda_run0_bias_x[(27 - 1)], dda_run0_bias_x});
-    minus_y = (twice_error - {dda_run0_bias_y[(27 - 1)], dda_run0_bias_y});
-    if (dda_run0_x_inward) begin
-        dda_run0_inward_near = ($signed(plus_y) >= 0);
-        dda_run0_outward_near = ($signed(plus_x) < 0);
+    twice_error = {dda_run0_dda_nearest0_error_term, 1'b0};
+    plus_x = (twice_error + {dda_run0_dda_nearest0_bias_x[(27 - 1)], dda_run0_dda_nearest0_bias_x});
+    plus_y = (twice_error + {dda_run0_dda_nearest0_bias_y[(27 - 1)], dda_run0_dda_nearest0_bias_y});
+    minus_x = (twice_error - {dda_run0_dda_nearest0_bias_x[(27 - 1)], dda_run0_dda_nearest0_bias_x});
+    minus_y = (twice_error - {dda_run0_dda_nearest0_bias_y[(27 - 1)], dda_run0_dda_nearest0_bias_y});
+    if (dda_run0_step_x_inward) begin
+        dda_run0_step_inward_near = ($signed(plus_y) >= 0);
+        dda_run0_step_outward_near = ($signed(plus_x) < 0);
     end
     else begin
-        dda_run0_inward_near = ($signed(minus_x) >= 0);
-        dda_run0_outward_near = ($signed(minus_y) < 0);
+        dda_run0_step_inward_near = ($signed(minus_x) >= 0);
+        dda_run0_step_outward_near = ($signed(minus_y) < 0);
     end
 end
 
 
-always @(dda_run0_x_inward, dda_run0_mag_y, dda_run0_mag_x) begin: dda_run0_magnitude_adders
+always @(dda_run0_step_step_out, dda_run0_step_x_inward, dda_run0_step_mag_y, dda_run0_dda_nearest0_error_term, dda_run0_step_mag_x, dda_run0_step_step_in) begin: dda_run0_dda_nearest0_error_change
+    reg [27-1:0] outward;
+    reg [27-1:0] inward;
+    reg [27-1:0] first_sum;
+    outward = 27'h0;
+    inward = 27'h0;
+    first_sum = 27'h0;
+    if (dda_run0_step_step_out) begin
+        outward = {2'h0, dda_run0_step_mag_x, 1'b1};
+        if (dda_run0_step_x_inward) begin
+            outward = {2'h0, dda_run0_step_mag_y, 1'b1};
+        end
+    end
+    if (dda_run0_step_step_in) begin
+        inward = (~{2'h0, dda_run0_step_mag_y, 1'b0});
+        if (dda_run0_step_x_inward) begin
+            inward = (~{2'h0, dda_run0_step_mag_x, 1'b0});
+        end
+    end
+    first_sum = ((dda_run0_dda_nearest0_error_term + outward) + {26'h0, dda_run0_step_step_in});
+    dda_run0_dda_nearest0_error_step = ((first_sum + inward) + {26'h0, dda_run0_step_step_in});
+end
+
+
+always @(posedge clock) begin: dda_run0_dda_nearest0_update
+    reg [27-1:0] op_x;
+    reg [27-1:0] op_y;
+    op_x = 27'h0;
+    op_y = 27'h0;
+    op_x = {24'h0, dda_run0_step_step_x, dda_run0_step_step_y, 1'b0};
+    op_y = {24'h0, dda_run0_step_step_y, dda_run0_step_step_x, 1'b0};
+    if ((!dda_run0_step_x_inward)) begin
+        op_x = (~op_x);
+        op_y = (~op_y);
+    end
+    if ((dda_run0_step_pending && (!dda_run0_step_line))) begin
+        dda_run0_dda_nearest0_bias_x <= ((dda_run0_dda_nearest0_bias_x + op_x) + {26'h0, (!dda_run0_step_x_inward)});
+        dda_run0_dda_nearest0_bias_y <= ((dda_run0_dda_nearest0_bias_y + op_y) + {26'h0, (!dda_run0_step_x_inward)});
+        dda_run0_dda_nearest0_error_term <= dda_run0_dda_nearest0_error_step;
+    end
+    if (dda_check0_move_take) begin
+        dda_run0_dda_nearest0_bias_x <= dda_check0_move_bias_x;
+        dda_run0_dda_nearest0_bias_y <= dda_check0_move_bias_y;
+        dda_run0_dda_nearest0_error_term <= 1;
+    end
+end
+
+
+always @(dda_run0_step_mag_y, dda_run0_acc_y, dda_run0_acc_x, dda_run0_step_mag_x) begin: dda_run0_look_ahead
+    reg [31-1:0] twice_x;
+    reg [31-1:0] twice_y;
+    twice_x = 31'h0;
+    twice_y = 31'h0;
+    twice_x = ({dda_run0_acc_x[(30 - 1)], dda_run0_acc_x} + {6'h0, dda_run0_step_mag_y, 1'b0});
+    twice_y = ({dda_run0_acc_y[(30 - 1)], dda_run0_acc_y} + {6'h0, dda_run0_step_mag_x, 1'b0});
+    dda_run0_ahead_x = ($signed(twice_x) >= 0);
+    dda_run0_ahead_y = ($signed(twice_y) >= 0);
+end
+
+
+always @(dda_run0_kept_x, dda_run0_threshold, dda_run0_threshold_carry, dda_run0_kept_y, dda_run0_first, dda_run0_acc_x, dda_run0_step_mag_y, dda_run0_acc_y, dda_run0_step_mag_x, dda_run0_step_step_y, dda_run0_step_step_x) begin: dda_run0_accumulate
+    reg [30-1:0] minus_x;
+    reg [30-1:0] minus_y;
+    minus_x = 30'h0;
+    minus_y = 30'h0;
+    dda_run0_sum_x = (({dda_run0_acc_x[(30 - 1)], dda_run0_acc_x} + {7'h0, dda_run0_step_mag_y}) + {30'h0, dda_run0_first});
+    dda_run0_sum_y = (({dda_run0_acc_y[(30 - 1)], dda_run0_acc_y} + {7'h0, dda_run0_step_mag_x}) + {30'h0, dda_run0_first});
+    if (dda_run0_step_step_x) begin
+        minus_x = (~{2'h0, dda_run0_threshold});
+    end
+    if (dda_run0_step_step_y) begin
+        minus_y = (~{2'h0, dda_run0_threshold});
+    end
+    dda_run0_less_x = ((dda_run0_kept_x + minus_x) + {29'h0, (dda_run0_step_step_x && dda_run0_threshold_carry)});
+    dda_run0_less_y = ((dda_run0_kept_y + minus_y) + {29'h0, (dda_run0_step_step_y && dda_run0_threshold_carry)});
+end
+
+
+always @(dda_run0_variant, dda_run0_trad_x, dda_run0_sum_y, dda_run0_sum_x, dda_run0_step_line, dda_run0_over_y) begin: dda_run0_overflow
+    dda_run0_over_x = (!dda_run0_sum_x[30]);
+    dda_run0_over_y = (!dda_run0_sum_y[30]);
+    dda_run0_trad_over_x = (!dda_run0_trad_x[30]);
+    dda_run0_saturate_x = ((!dda_run0_sum_x[30]) && dda_run0_sum_x[(30 - 1)]);
+    if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_step_line))) begin
+        dda_run0_saturate_x = ((!dda_run0_trad_x[30]) && dda_run0_trad_x[(30 - 1)]);
+    end
+    dda_run0_saturate_y = ((!dda_run0_sum_y[30]) && dda_run0_sum_y[(30 - 1)]);
+end
+
+
+always @(dda_run0_radius, dda_run0_step_x_inward, dda_run0_target_y, dda_run0_step_mag_y, dda_run0_target_x, dda_run0_end_y, dda_run0_step_mag_x, dda_run0_end_x) begin: dda_run0_magnitudes
     reg [24-1:0] op_x;
     reg [24-1:0] op_y;
-    op_x = 24'h0;
-    op_y = 24'h0;
-    op_x = 1;
-    op_y = 16777215;
-    if (dda_run0_x_inward) begin
-        op_x = 16777215;
-        op_y = 1;
-    end
-    dda_run0_stepped_x = (dda_run0_mag_x + op_x);
-    dda_run0_stepped_y = (dda_run0_mag_y + op_y);
-end
-
-
-always @(dda_run0_mag_y, dda_run0_radius, dda_run0_mag_x, dda_run0_target_y, dda_run0_x_inward, dda_run0_target_x, dda_run0_end_y, dda_run0_end_x) begin: dda_run0_end_tests
     reg [24-1:0] target;
     reg [24-1:0] dx;
     reg [24-1:0] dy;
+    op_x = 24'h0;
+    op_y = 24'h0;
     target = 24'h0;
     dx = 24'h0;
     dy = 24'h0;
+    op_x = 1;
+    op_y = 16777215;
+    if (dda_run0_step_x_inward) begin
+        op_x = 16777215;
+        op_y = 1;
+    end
+    dda_run0_stepped_x = (dda_run0_step_mag_x + op_x);
+    dda_run0_stepped_y = (dda_run0_step_mag_y + op_y);
     target = 0;
     case (dda_run0_target_x)
         'h1: begin
@@ -1174,7 +1293,7 @@ always @(dda_run0_mag_y, dda_run0_radius, dda_run0_mag_x, dda_run0_target_y, dda
             target = dda_run0_end_x;
         end
     endcase
-    dx = (dda_run0_mag_x - target);
+    dx = (dda_run0_step_mag_x - target);
     target = 0;
     case (dda_run0_target_y)
         'h1: begin
@@ -1184,10 +1303,10 @@ always @(dda_run0_mag_y, dda_run0_radius, dda_run0_mag_x, dda_run0_target_y, dda
             target = dda_run0_end_y;
         end
     endcase
-    dy = (dda_run0_mag_y - target);
+    dy = (dda_run0_step_mag_y - target);
     dda_run0_at_x = (dx == 0);
     dda_run0_at_y = (dy == 0);
-    if (dda_run0_x_inward) begin
+    if (dda_run0_step_x_inward) begin
         dda_run0_near_x = (dx == 1);
         dda_run0_near_y = (dy == 16777215);
     end
@@ -1198,7 +1317,7 @@ always @(dda_run0_mag_y, dda_run0_radius, dda_run0_mag_x, dda_run0_target_y, dda
 end
 
 
-always @(dda_run0_trad_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant, dda_run0_ahead_x, dda_run0_left_diff, dda_run0_near_x, dda_run0_at_y, dda_run0_outward_near, dda_run0_x_inward, dda_run0_inward_near, dda_run0_crossings, dda_run0_ahead_y, dda_run0_over_y, dda_run0_line, dda_run0_over_x) begin: dda_run0_decide
+always @(dda_run0_trad_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant, dda_run0_step_outward_near, dda_run0_ahead_x, dda_run0_step_x_inward, dda_run0_near_x, dda_run0_at_y, dda_run0_step_last, dda_run0_step_line, dda_run0_crossings, dda_run0_ahead_y, dda_run0_step_inward_near, dda_run0_over_y, dda_run0_over_x) begin: dda_run0_decide
     reg step_x;
     reg step_y;
     reg choose_x;
@@ -1210,11 +1329,11 @@ always @(dda_run0_trad_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant,
     choose_y = 1'b0;
     ends = 1'b0;
     if (1'b1) begin
-        choose_x = (dda_run0_outward_near == 1);
-        choose_y = (dda_run0_inward_near == 1);
-        if (dda_run0_x_inward) begin
-            choose_x = (dda_run0_inward_near == 1);
-            choose_y = (dda_run0_outward_near == 1);
+        choose_x = (dda_run0_step_outward_near == 1);
+        choose_y = (dda_run0_step_inward_near == 1);
+        if (dda_run0_step_x_inward) begin
+            choose_x = (dda_run0_step_inward_near == 1);
+            choose_y = (dda_run0_step_outward_near == 1);
         end
     end
     if ((1'b0 && (dda_run0_variant == 0))) begin
@@ -1228,7 +1347,7 @@ always @(dda_run0_trad_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant,
         step_x = ((dda_run0_over_x || dda_run0_over_y) && choose_x);
         step_y = ((dda_run0_over_x || dda_run0_over_y) && choose_y);
     end
-    if (dda_run0_line) begin
+    if (dda_run0_step_line) begin
         dda_run0_go_x = dda_run0_over_x;
         dda_run0_go_y = dda_run0_over_y;
     end
@@ -1240,110 +1359,86 @@ always @(dda_run0_trad_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant,
         dda_run0_go_x = step_x;
         dda_run0_go_y = step_y;
     end
-    dda_run0_tail = ((!dda_run0_line) && (dda_run0_at_x || dda_run0_at_y));
+    dda_run0_tail = ((!dda_run0_step_line) && (dda_run0_at_x || dda_run0_at_y));
     if ((dda_run0_at_x || dda_run0_at_y)) begin
         ends = ((dda_run0_at_x || dda_run0_near_x) && (dda_run0_at_y || dda_run0_near_y));
     end
     else begin
         ends = (dda_run0_near_x && dda_run0_near_y && step_x && step_y);
     end
-    dda_run0_finished = ((dda_run0_line && (dda_run0_left_diff == 0)) || ((!dda_run0_line) && ends && (dda_run0_crossings == 0)));
-    dda_run0_next_piece = ((!dda_run0_line) && ends && (dda_run0_crossings != 0));
-end
-
-
-always @(dda_run0_mag_y, dda_run0_dec_in, dda_run0_mag_x, dda_run0_error_term, dda_run0_x_inward, dda_run0_dec_out) begin: dda_run0_precise_step
-    reg [27-1:0] outward;
-    reg [27-1:0] inward;
-    reg [27-1:0] first_sum;
-    outward = 27'h0;
-    inward = 27'h0;
-    first_sum = 27'h0;
-    if (dda_run0_dec_out) begin
-        outward = {2'h0, dda_run0_mag_x, 1'b1};
-        if (dda_run0_x_inward) begin
-            outward = {2'h0, dda_run0_mag_y, 1'b1};
-        end
-    end
-    if (dda_run0_dec_in) begin
-        inward = (~{2'h0, dda_run0_mag_y, 1'b0});
-        if (dda_run0_x_inward) begin
-            inward = (~{2'h0, dda_run0_mag_x, 1'b0});
-        end
-    end
-    first_sum = ((dda_run0_error_term + outward) + {26'h0, dda_run0_dec_in});
-    dda_run0_error_step = ((first_sum + inward) + {26'h0, dda_run0_dec_in});
+    dda_run0_finished = ((dda_run0_step_line && dda_run0_step_last) || ((!dda_run0_step_line) && ends && (dda_run0_crossings == 0)));
+    dda_run0_next_piece = ((!dda_run0_step_line) && ends && (dda_run0_crossings != 0));
 end
 
 
 
-assign dda_check0_move_take = (dda_check0_move_offer && ((!dda_run0_active) || (dda_run0_pending && dda_run0_dec_finished)));
-assign dda_run0_taking = (dda_run0_active && cmd_advance && (!dda_run0_pending));
+assign dda_check0_move_take = (dda_check0_move_offer && ((!dda_run0_active) || (dda_run0_step_pending && dda_run0_step_finished)));
+assign dda_run0_taking = (dda_run0_active && cmd_advance && (!dda_run0_step_pending));
 
 
 always @(posedge clock, negedge reset) begin: dda_run0_iterate
     if (reset == 0) begin
+        dda_run0_step_step_out <= 0;
         dda_run0_threshold_carry <= 0;
         cmd_done <= 0;
-        dda_run0_dec_out <= 0;
-        dda_run0_dec_next_piece <= 0;
+        dda_run0_step_blend <= 0;
+        dda_run0_step_step_y <= 0;
+        dda_run0_step_pending <= 0;
         dda_run0_variant <= 3;
         steps_step_x <= 0;
-        dda_run0_dec_in <= 0;
         dda_run0_target_y <= 0;
-        dda_run0_x_inward <= 0;
         dda_run0_crossings <= 0;
         dda_run0_target_x <= 0;
-        dda_run0_dec_finished <= 0;
-        dda_run0_blend <= 0;
-        dda_run0_dec_tail <= 0;
-        dda_run0_dec_x <= 0;
+        dda_run0_next_piece_taken <= 0;
         dda_run0_first <= 0;
         steps_dir_x <= 0;
         steps_dir_y <= 0;
         dda_run0_quadrant <= 0;
         steps_step_y <= 0;
         dda_run0_right <= 0;
-        dda_run0_pending <= 0;
+        dda_run0_step_step_in <= 0;
         dda_run0_up <= 0;
         dda_run0_active <= 0;
-        dda_run0_dec_y <= 0;
+        dda_run0_tail_taken <= 0;
+        dda_run0_step_x_inward <= 0;
+        dda_run0_step_line <= 0;
         dda_run0_ccw <= 0;
-        dda_run0_line <= 0;
+        dda_run0_step_step_x <= 0;
+        dda_run0_step_finished <= 0;
     end
     else begin
         steps_step_x <= 1'b0;
         steps_step_y <= 1'b0;
         cmd_done <= 1'b0;
-        dda_run0_pending <= 1'b0;
+        dda_run0_step_pending <= 1'b0;
         if (dda_run0_taking) begin
-            dda_run0_pending <= 1'b1;
+            dda_run0_step_pending <= 1'b1;
             steps_step_x <= dda_run0_go_x;
             steps_step_y <= dda_run0_go_y;
-            if (dda_run0_line) begin
+            if (dda_run0_step_line) begin
                 steps_dir_x <= dda_run0_right;
                 steps_dir_y <= dda_run0_up;
             end
             else begin
-                steps_dir_x <= ((dda_run0_quadrant[0] == dda_run0_quadrant[1]) != dda_run0_x_inward);
-                steps_dir_y <= ((!dda_run0_quadrant[1]) == dda_run0_x_inward);
+                steps_dir_x <= ((dda_run0_quadrant[0] == dda_run0_quadrant[1]) != dda_run0_step_x_inward);
+                steps_dir_y <= ((!dda_run0_quadrant[1]) == dda_run0_step_x_inward);
             end
             cmd_done <= dda_run0_finished;
-            dda_run0_dec_x <= dda_run0_go_x;
-            dda_run0_dec_y <= dda_run0_go_y;
-            dda_run0_dec_in <= ((dda_run0_go_x && dda_run0_x_inward) || (dda_run0_go_y && (!dda_run0_x_inward)));
-            dda_run0_dec_out <= ((dda_run0_go_x && (!dda_run0_x_inward)) || (dda_run0_go_y && dda_run0_x_inward));
-            dda_run0_dec_tail <= dda_run0_tail;
-            dda_run0_dec_finished <= dda_run0_finished;
-            dda_run0_dec_next_piece <= dda_run0_next_piece;
+            dda_run0_step_step_x <= dda_run0_go_x;
+            dda_run0_step_step_y <= dda_run0_go_y;
+            dda_run0_step_step_in <= ((dda_run0_go_x && dda_run0_step_x_inward) || (dda_run0_go_y && (!dda_run0_step_x_inward)));
+            dda_run0_step_step_out <= ((dda_run0_go_x && (!dda_run0_step_x_inward)) || (dda_run0_go_y && dda_run0_step_x_inward));
+            dda_run0_step_finished <= dda_run0_finished;
+            dda_run0_tail_taken <= dda_run0_tail;
+            dda_run0_next_piece_taken <= dda_run0_next_piece;
             dda_run0_first <= 1'b0;
         end
-        else if (dda_run0_pending) begin
-            if (dda_run0_dec_finished) begin
+        else if (dda_run0_step_pending) begin
+            if (dda_run0_step_finished) begin
                 dda_run0_active <= 1'b0;
             end
-            if (dda_run0_dec_next_piece) begin
-                dda_run0_x_inward <= (!dda_run0_x_inward);
+            if (dda_run0_next_piece_taken) begin
+                dda_run0_step_x_inward <= (!dda_run0_step_x_inward);
                 dda_run0_crossings <= (dda_run0_crossings - 1);
                 if (dda_run0_ccw) begin
                     dda_run0_quadrant <= (dda_run0_quadrant + 1);
@@ -1355,7 +1450,7 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
                     dda_run0_target_x <= 2;
                     dda_run0_target_y <= 2;
                 end
-                else if (dda_run0_x_inward) begin
+                else if (dda_run0_step_x_inward) begin
                     dda_run0_target_x <= 1;
                     dda_run0_target_y <= 0;
                 end
@@ -1368,14 +1463,14 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
         if ((dda_check0_move_take && (!dda_check0_move_error) && (!dda_check0_move_zero))) begin
             dda_run0_active <= 1'b1;
             dda_run0_first <= dda_check0_move_acc_carry;
-            dda_run0_line <= dda_check0_move_line;
+            dda_run0_step_line <= dda_check0_move_line;
             dda_run0_variant <= dda_check0_move_variant;
             dda_run0_ccw <= dda_check0_move_ccw;
-            dda_run0_blend <= dda_check0_move_blend;
+            dda_run0_step_blend <= dda_check0_move_blend;
             dda_run0_right <= dda_check0_move_right;
             dda_run0_up <= dda_check0_move_up;
             dda_run0_quadrant <= dda_check0_move_quadrant;
-            dda_run0_x_inward <= dda_check0_move_x_inward;
+            dda_run0_step_x_inward <= dda_check0_move_x_inward;
             dda_run0_crossings <= dda_check0_move_crossings;
             dda_run0_target_x <= dda_check0_move_target_x;
             dda_run0_target_y <= dda_check0_move_target_y;
@@ -1391,134 +1486,41 @@ end
 
 always @(posedge clock) begin: dda_run0_datapath
     if (dda_run0_taking) begin
-        dda_run0_dec_sum_x <= dda_run0_sum_x[30-1:0];
-        if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_line))) begin
-            dda_run0_dec_sum_x <= dda_run0_trad_x[30-1:0];
+        dda_run0_kept_x <= dda_run0_sum_x[30-1:0];
+        if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_step_line))) begin
+            dda_run0_kept_x <= dda_run0_trad_x[30-1:0];
         end
-        dda_run0_dec_sum_y <= dda_run0_sum_y[30-1:0];
+        dda_run0_kept_y <= dda_run0_sum_y[30-1:0];
         if ((1'b1 && dda_run0_saturate_x)) begin
-            dda_run0_dec_sum_x <= 536870911;
+            dda_run0_kept_x <= 536870911;
         end
         if ((1'b1 && dda_run0_saturate_y)) begin
-            dda_run0_dec_sum_y <= 536870911;
+            dda_run0_kept_y <= 536870911;
         end
     end
-    else if (dda_run0_pending) begin
-        if ((!dda_run0_dec_tail)) begin
+    else if (dda_run0_step_pending) begin
+        if ((!dda_run0_tail_taken)) begin
             dda_run0_acc_x <= $signed(dda_run0_less_x);
             dda_run0_acc_y <= $signed(dda_run0_less_y);
         end
-        if ((!dda_run0_line)) begin
-            if (dda_run0_dec_x) begin
-                dda_run0_mag_x <= dda_run0_stepped_x;
+        if ((!dda_run0_step_line)) begin
+            if (dda_run0_step_step_x) begin
+                dda_run0_step_mag_x <= dda_run0_stepped_x;
             end
-            if (dda_run0_dec_y) begin
-                dda_run0_mag_y <= dda_run0_stepped_y;
+            if (dda_run0_step_step_y) begin
+                dda_run0_step_mag_y <= dda_run0_stepped_y;
             end
-            dda_run0_error_term <= dda_run0_error_step;
         end
     end
     if (dda_check0_move_take) begin
-        dda_run0_mag_x <= dda_check0_move_mag_x;
-        dda_run0_mag_y <= dda_check0_move_mag_y;
+        dda_run0_step_mag_x <= dda_check0_move_mag_x;
+        dda_run0_step_mag_y <= dda_check0_move_mag_y;
         dda_run0_end_x <= dda_check0_move_end_x;
         dda_run0_end_y <= dda_check0_move_end_y;
         dda_run0_radius <= dda_check0_move_radius;
         dda_run0_threshold <= dda_check0_move_threshold;
         dda_run0_acc_x <= dda_check0_move_acc_init;
         dda_run0_acc_y <= dda_check0_move_acc_init;
-        dda_run0_error_term <= 1;
-    end
-end
-
-
-always @(posedge clock) begin: dda_run0_precise_bias
-    reg [27-1:0] op_x;
-    reg [27-1:0] op_y;
-    op_x = 27'h0;
-    op_y = 27'h0;
-    op_x = {24'h0, dda_run0_dec_x, dda_run0_dec_y, 1'b0};
-    op_y = {24'h0, dda_run0_dec_y, dda_run0_dec_x, 1'b0};
-    if ((!dda_run0_x_inward)) begin
-        op_x = (~op_x);
-        op_y = (~op_y);
-    end
-    if ((dda_run0_pending && (!dda_run0_line))) begin
-        dda_run0_bias_x <= ((dda_run0_bias_x + op_x) + {26'h0, (!dda_run0_x_inward)});
-        dda_run0_bias_y <= ((dda_run0_bias_y + op_y) + {26'h0, (!dda_run0_x_inward)});
-    end
-    if (dda_check0_move_take) begin
-        dda_run0_bias_x <= dda_check0_move_bias_x;
-        dda_run0_bias_y <= dda_check0_move_bias_y;
-    end
-end
-
-
-always @(posedge clock) begin: dda_run0_steps_difference
-    reg [27-1:0] base;
-    reg [27-1:0] change;
-    base = 27'h0;
-    change = 27'h0;
-    base = dda_run0_left_diff;
-    if (dda_check0_move_take) begin
-        base = dda_check0_move_totals_diff;
-        if (dda_check0_move_line) begin
-            change = 134217727;
-        end
-    end
-    else if (dda_run0_pending) begin
-        if ((dda_run0_line || (dda_run0_dec_x && (!dda_run0_dec_y)))) begin
-            change = 134217727;
-        end
-        else if ((dda_run0_dec_y && (!dda_run0_dec_x))) begin
-            change = 1;
-        end
-    end
-    dda_run0_left_diff <= (base + change);
-end
-
-
-always @(posedge clock, negedge reset) begin: dda_run0_steps_left
-    reg [27-1:0] base;
-    reg [27-1:0] less;
-    if (reset == 0) begin
-        dda_run0_most_left <= 134217727;
-    end
-    else begin
-        base = 27'h0;
-        less = 27'h0;
-        base = dda_run0_most_left;
-        if (dda_check0_move_take) begin
-            base = dda_check0_move_totals_max;
-            less = 134217727;
-        end
-        else if ((dda_run0_pending && (!dda_run0_blend))) begin
-            if (dda_run0_line) begin
-                less = 134217727;
-            end
-            else if ((dda_run0_left_diff == 0)) begin
-                if ((dda_run0_dec_x && dda_run0_dec_y)) begin
-                    less = 134217727;
-                end
-            end
-            else if (dda_run0_left_diff[(27 - 1)]) begin
-                if (dda_run0_dec_y) begin
-                    less = 134217727;
-                end
-            end
-            else if (dda_run0_dec_x) begin
-                less = 134217727;
-            end
-        end
-        dda_run0_most_left <= (base + less);
-        if (dda_check0_move_take) begin
-            if ((dda_check0_move_blend || dda_check0_move_error || dda_check0_move_zero)) begin
-                dda_run0_most_left <= 134217727;
-            end
-        end
-        else if ((dda_run0_pending && dda_run0_dec_finished)) begin
-            dda_run0_most_left <= 134217727;
-        end
     end
 end
 
@@ -1540,7 +1542,6 @@ end
 
 
 assign cmd_quadrant = dda_run0_quadrant;
-assign cmd_stop_left = dda_run0_most_left;
-assign cmd_busy = ((!cmd_ready) || (dda_run0_active && (!(dda_run0_pending && dda_run0_dec_finished))));
+assign cmd_busy = ((!cmd_ready) || (dda_run0_active && (!(dda_run0_step_pending && dda_run0_step_finished))));
 
 endmodule

@@ -724,43 +724,24 @@ reg card1_card_core1_dda_arc2_dda_run2_ahead_x;
 reg card1_card_core1_dda_arc2_dda_run2_ahead_y;
 reg card1_card_core1_dda_arc2_dda_run2_at_x;
 reg card1_card_core1_dda_arc2_dda_run2_at_y;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_bias_x;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_bias_y;
-reg card1_card_core1_dda_arc2_dda_run2_blend;
 reg card1_card_core1_dda_arc2_dda_run2_ccw;
 reg [2:0] card1_card_core1_dda_arc2_dda_run2_crossings;
-reg card1_card_core1_dda_arc2_dda_run2_dec_finished;
-reg card1_card_core1_dda_arc2_dda_run2_dec_in;
-reg card1_card_core1_dda_arc2_dda_run2_dec_next_piece;
-reg card1_card_core1_dda_arc2_dda_run2_dec_out;
-reg [29:0] card1_card_core1_dda_arc2_dda_run2_dec_sum_x;
-reg [29:0] card1_card_core1_dda_arc2_dda_run2_dec_sum_y;
-reg card1_card_core1_dda_arc2_dda_run2_dec_tail;
-reg card1_card_core1_dda_arc2_dda_run2_dec_x;
-reg card1_card_core1_dda_arc2_dda_run2_dec_y;
 reg [23:0] card1_card_core1_dda_arc2_dda_run2_end_x;
 reg [23:0] card1_card_core1_dda_arc2_dda_run2_end_y;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_error_step;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_error_term;
 reg card1_card_core1_dda_arc2_dda_run2_finished;
 reg card1_card_core1_dda_arc2_dda_run2_first;
 reg card1_card_core1_dda_arc2_dda_run2_go_x;
 reg card1_card_core1_dda_arc2_dda_run2_go_y;
-reg card1_card_core1_dda_arc2_dda_run2_inward_near;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_left_diff;
+reg [29:0] card1_card_core1_dda_arc2_dda_run2_kept_x;
+reg [29:0] card1_card_core1_dda_arc2_dda_run2_kept_y;
 reg [29:0] card1_card_core1_dda_arc2_dda_run2_less_x;
 reg [29:0] card1_card_core1_dda_arc2_dda_run2_less_y;
-reg card1_card_core1_dda_arc2_dda_run2_line;
-reg [23:0] card1_card_core1_dda_arc2_dda_run2_mag_x;
-reg [23:0] card1_card_core1_dda_arc2_dda_run2_mag_y;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_most_left;
 reg card1_card_core1_dda_arc2_dda_run2_near_x;
 reg card1_card_core1_dda_arc2_dda_run2_near_y;
 reg card1_card_core1_dda_arc2_dda_run2_next_piece;
-reg card1_card_core1_dda_arc2_dda_run2_outward_near;
+reg card1_card_core1_dda_arc2_dda_run2_next_piece_taken;
 reg card1_card_core1_dda_arc2_dda_run2_over_x;
 reg card1_card_core1_dda_arc2_dda_run2_over_y;
-reg card1_card_core1_dda_arc2_dda_run2_pending;
 reg [1:0] card1_card_core1_dda_arc2_dda_run2_quadrant;
 reg [23:0] card1_card_core1_dda_arc2_dda_run2_radius;
 reg card1_card_core1_dda_arc2_dda_run2_right;
@@ -771,6 +752,7 @@ reg [23:0] card1_card_core1_dda_arc2_dda_run2_stepped_y;
 reg [30:0] card1_card_core1_dda_arc2_dda_run2_sum_x;
 reg [30:0] card1_card_core1_dda_arc2_dda_run2_sum_y;
 reg card1_card_core1_dda_arc2_dda_run2_tail;
+reg card1_card_core1_dda_arc2_dda_run2_tail_taken;
 wire card1_card_core1_dda_arc2_dda_run2_taking;
 reg [1:0] card1_card_core1_dda_arc2_dda_run2_target_x;
 reg [1:0] card1_card_core1_dda_arc2_dda_run2_target_y;
@@ -780,7 +762,26 @@ reg card1_card_core1_dda_arc2_dda_run2_trad_over_x;
 wire [30:0] card1_card_core1_dda_arc2_dda_run2_trad_x;
 reg card1_card_core1_dda_arc2_dda_run2_up;
 reg [1:0] card1_card_core1_dda_arc2_dda_run2_variant;
-reg card1_card_core1_dda_arc2_dda_run2_x_inward;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_step_mag_y;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_step_mag_x;
+reg card1_card_core1_dda_arc2_dda_run2_step_step_x;
+reg card1_card_core1_dda_arc2_dda_run2_step_step_y;
+reg card1_card_core1_dda_arc2_dda_run2_step_line;
+reg card1_card_core1_dda_arc2_dda_run2_step_x_inward;
+reg card1_card_core1_dda_arc2_dda_run2_step_outward_near;
+reg card1_card_core1_dda_arc2_dda_run2_step_inward_near;
+wire card1_card_core1_dda_arc2_dda_run2_step_last;
+reg card1_card_core1_dda_arc2_dda_run2_step_pending;
+reg card1_card_core1_dda_arc2_dda_run2_step_finished;
+reg card1_card_core1_dda_arc2_dda_run2_step_step_in;
+reg card1_card_core1_dda_arc2_dda_run2_step_step_out;
+reg card1_card_core1_dda_arc2_dda_run2_step_blend;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_left2_difference;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_left2_larger;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
@@ -5701,49 +5702,81 @@ always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_threshold, card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda_run2_threshold_carry, card1_card_core1_dda_arc2_dda_run2_dec_x, card1_card_core1_dda_arc2_dda_run2_first, card1_card_core1_dda_arc2_dda_run2_dec_sum_y, card1_card_core1_dda_arc2_dda_run2_dec_y, card1_card_core1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_arc2_dda_run2_mag_x, card1_card_core1_dda_arc2_dda_run2_dec_sum_x, card1_card_core1_dda_arc2_dda_run2_acc_y) begin: card1_card_core1_dda_arc2_dda_run2_accumulate
-    reg [30-1:0] minus_x;
-    reg [30-1:0] minus_y;
-    minus_x = 30'h0;
-    minus_y = 30'h0;
-    card1_card_core1_dda_arc2_dda_run2_sum_x = (({card1_card_core1_dda_arc2_dda_run2_acc_x[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_x} + {7'h0, card1_card_core1_dda_arc2_dda_run2_mag_y}) + {30'h0, card1_card_core1_dda_arc2_dda_run2_first});
-    card1_card_core1_dda_arc2_dda_run2_sum_y = (({card1_card_core1_dda_arc2_dda_run2_acc_y[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_y} + {7'h0, card1_card_core1_dda_arc2_dda_run2_mag_x}) + {30'h0, card1_card_core1_dda_arc2_dda_run2_first});
-    if (card1_card_core1_dda_arc2_dda_run2_dec_x) begin
-        minus_x = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_threshold});
+
+assign card1_card_core1_regs_fifo2_feed_rate2_stop_left = card1_card_core1_dda_arc2_dda_run2_dda_left2_larger;
+assign card1_card_core1_dda_arc2_dda_run2_step_last = (card1_card_core1_dda_arc2_dda_run2_dda_left2_difference == 0);
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_dda_left2_follow
+    reg [27-1:0] base;
+    reg [27-1:0] change;
+    base = 27'h0;
+    change = 27'h0;
+    base = card1_card_core1_dda_arc2_dda_run2_dda_left2_difference;
+    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+        base = card1_card_core1_dda_arc2_dda_check2_move_totals_diff;
+        if (card1_card_core1_dda_arc2_dda_check2_move_line) begin
+            change = 134217727;
+        end
     end
-    if (card1_card_core1_dda_arc2_dda_run2_dec_y) begin
-        minus_y = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_threshold});
+    else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
+        if ((card1_card_core1_dda_arc2_dda_run2_step_line || (card1_card_core1_dda_arc2_dda_run2_step_step_x && (!card1_card_core1_dda_arc2_dda_run2_step_step_y)))) begin
+            change = 134217727;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_run2_step_step_y && (!card1_card_core1_dda_arc2_dda_run2_step_step_x))) begin
+            change = 1;
+        end
     end
-    card1_card_core1_dda_arc2_dda_run2_less_x = ((card1_card_core1_dda_arc2_dda_run2_dec_sum_x + minus_x) + {29'h0, (card1_card_core1_dda_arc2_dda_run2_dec_x && card1_card_core1_dda_arc2_dda_run2_threshold_carry)});
-    card1_card_core1_dda_arc2_dda_run2_less_y = ((card1_card_core1_dda_arc2_dda_run2_dec_sum_y + minus_y) + {29'h0, (card1_card_core1_dda_arc2_dda_run2_dec_y && card1_card_core1_dda_arc2_dda_run2_threshold_carry)});
+    card1_card_core1_dda_arc2_dda_run2_dda_left2_difference <= (base + change);
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_trad_x, card1_card_core1_dda_arc2_dda_run2_sum_y, card1_card_core1_dda_arc2_dda_run2_sum_x, card1_card_core1_dda_arc2_dda_run2_over_y, card1_card_core1_dda_arc2_dda_run2_line) begin: card1_card_core1_dda_arc2_dda_run2_overflow
-    card1_card_core1_dda_arc2_dda_run2_over_x = (!card1_card_core1_dda_arc2_dda_run2_sum_x[30]);
-    card1_card_core1_dda_arc2_dda_run2_over_y = (!card1_card_core1_dda_arc2_dda_run2_sum_y[30]);
-    card1_card_core1_dda_arc2_dda_run2_trad_over_x = (!card1_card_core1_dda_arc2_dda_run2_trad_x[30]);
-    card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_sum_x[30]) && card1_card_core1_dda_arc2_dda_run2_sum_x[(30 - 1)]);
-    if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
-        card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_trad_x[30]) && card1_card_core1_dda_arc2_dda_run2_trad_x[(30 - 1)]);
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_dda_left2_count_down
+    reg [27-1:0] base;
+    reg [27-1:0] less;
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 134217727;
     end
-    card1_card_core1_dda_arc2_dda_run2_saturate_y = ((!card1_card_core1_dda_arc2_dda_run2_sum_y[30]) && card1_card_core1_dda_arc2_dda_run2_sum_y[(30 - 1)]);
+    else begin
+        base = 27'h0;
+        less = 27'h0;
+        base = card1_card_core1_dda_arc2_dda_run2_dda_left2_larger;
+        if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+            base = card1_card_core1_dda_arc2_dda_check2_move_totals_max;
+            less = 134217727;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_run2_step_pending && (!card1_card_core1_dda_arc2_dda_run2_step_blend))) begin
+            if (card1_card_core1_dda_arc2_dda_run2_step_line) begin
+                less = 134217727;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_run2_dda_left2_difference == 0)) begin
+                if ((card1_card_core1_dda_arc2_dda_run2_step_step_x && card1_card_core1_dda_arc2_dda_run2_step_step_y)) begin
+                    less = 134217727;
+                end
+            end
+            else if (card1_card_core1_dda_arc2_dda_run2_dda_left2_difference[(27 - 1)]) begin
+                if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
+                    less = 134217727;
+                end
+            end
+            else if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
+                less = 134217727;
+            end
+        end
+        card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= (base + less);
+        if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+            if ((card1_card_core1_dda_arc2_dda_check2_move_blend || card1_card_core1_dda_arc2_dda_check2_move_error || card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
+                card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 134217727;
+            end
+        end
+        else if ((card1_card_core1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_arc2_dda_run2_step_finished)) begin
+            card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 134217727;
+        end
+    end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_acc_y, card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_arc2_dda_run2_mag_x) begin: card1_card_core1_dda_arc2_dda_run2_look_ahead
-    reg [31-1:0] twice_x;
-    reg [31-1:0] twice_y;
-    twice_x = 31'h0;
-    twice_y = 31'h0;
-    twice_x = ({card1_card_core1_dda_arc2_dda_run2_acc_x[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_x} + {6'h0, card1_card_core1_dda_arc2_dda_run2_mag_y, 1'b0});
-    twice_y = ({card1_card_core1_dda_arc2_dda_run2_acc_y[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_y} + {6'h0, card1_card_core1_dda_arc2_dda_run2_mag_x, 1'b0});
-    card1_card_core1_dda_arc2_dda_run2_ahead_x = ($signed(twice_x) >= 0);
-    card1_card_core1_dda_arc2_dda_run2_ahead_y = ($signed(twice_y) >= 0);
-end
-
-
-always @(card1_card_core1_dda_arc2_dda_run2_error_term, card1_card_core1_dda_arc2_dda_run2_x_inward, card1_card_core1_dda_arc2_dda_run2_bias_x, card1_card_core1_dda_arc2_dda_run2_bias_y) begin: card1_card_core1_dda_arc2_dda_run2_nearest
+always @(card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_signs
     reg [28-1:0] twice_error;
     reg [28-1:0] plus_x;
     reg [28-1:0] plus_y;
@@ -5754,45 +5787,131 @@ always @(card1_card_core1_dda_arc2_dda_run2_error_term, card1_card_core1_dda_arc
     plus_y = 28'h0;
     minus_x = 28'h0;
     minus_y = 28'h0;
-    twice_error = {card1_card_core1_dda_arc2_dda_run2_error_term, 1'b0};
-    plus_x = (twice_error + {card1_card_core1_dda_arc2_dda_run2_bias_x[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_bias_x});
-    plus_y = (twice_error + {card1_card_core1_dda_arc2_dda_run2_bias_y[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_bias_y});
-    minus_x = (twice_error - {card1_card_core1_dda_arc2_dda_run2_bias_x[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_bias_x});
-    minus_y = (twice_error - {card1_card_core1_dda_arc2_dda_run2_bias_y[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_bias_y});
-    if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
-        card1_card_core1_dda_arc2_dda_run2_inward_near = ($signed(plus_y) >= 0);
-        card1_card_core1_dda_arc2_dda_run2_outward_near = ($signed(plus_x) < 0);
+    twice_error = {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term, 1'b0};
+    plus_x = (twice_error + {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x});
+    plus_y = (twice_error + {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y});
+    minus_x = (twice_error - {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x});
+    minus_y = (twice_error - {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y});
+    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+        card1_card_core1_dda_arc2_dda_run2_step_inward_near = ($signed(plus_y) >= 0);
+        card1_card_core1_dda_arc2_dda_run2_step_outward_near = ($signed(plus_x) < 0);
     end
     else begin
-        card1_card_core1_dda_arc2_dda_run2_inward_near = ($signed(minus_x) >= 0);
-        card1_card_core1_dda_arc2_dda_run2_outward_near = ($signed(minus_y) < 0);
+        card1_card_core1_dda_arc2_dda_run2_step_inward_near = ($signed(minus_x) >= 0);
+        card1_card_core1_dda_arc2_dda_run2_step_outward_near = ($signed(minus_y) < 0);
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_x_inward, card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda_run2_mag_x) begin: card1_card_core1_dda_arc2_dda_run2_magnitude_adders
+always @(card1_card_core1_dda_arc2_dda_run2_step_step_out, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_step_step_in) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_change
+    reg [27-1:0] outward;
+    reg [27-1:0] inward;
+    reg [27-1:0] first_sum;
+    outward = 27'h0;
+    inward = 27'h0;
+    first_sum = 27'h0;
+    if (card1_card_core1_dda_arc2_dda_run2_step_step_out) begin
+        outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x, 1'b1};
+        if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+            outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y, 1'b1};
+        end
+    end
+    if (card1_card_core1_dda_arc2_dda_run2_step_step_in) begin
+        inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y, 1'b0});
+        if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+            inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x, 1'b0});
+        end
+    end
+    first_sum = ((card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term + outward) + {26'h0, card1_card_core1_dda_arc2_dda_run2_step_step_in});
+    card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step = ((first_sum + inward) + {26'h0, card1_card_core1_dda_arc2_dda_run2_step_step_in});
+end
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_update
+    reg [27-1:0] op_x;
+    reg [27-1:0] op_y;
+    op_x = 27'h0;
+    op_y = 27'h0;
+    op_x = {24'h0, card1_card_core1_dda_arc2_dda_run2_step_step_x, card1_card_core1_dda_arc2_dda_run2_step_step_y, 1'b0};
+    op_y = {24'h0, card1_card_core1_dda_arc2_dda_run2_step_step_y, card1_card_core1_dda_arc2_dda_run2_step_step_x, 1'b0};
+    if ((!card1_card_core1_dda_arc2_dda_run2_step_x_inward)) begin
+        op_x = (~op_x);
+        op_y = (~op_y);
+    end
+    if ((card1_card_core1_dda_arc2_dda_run2_step_pending && (!card1_card_core1_dda_arc2_dda_run2_step_line))) begin
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x <= ((card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x + op_x) + {26'h0, (!card1_card_core1_dda_arc2_dda_run2_step_x_inward)});
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y <= ((card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y + op_y) + {26'h0, (!card1_card_core1_dda_arc2_dda_run2_step_x_inward)});
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term <= card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step;
+    end
+    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x <= card1_card_core1_dda_arc2_dda_check2_move_bias_x;
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y <= card1_card_core1_dda_arc2_dda_check2_move_bias_y;
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term <= 1;
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_acc_y, card1_card_core1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_arc2_dda_run2_step_mag_x) begin: card1_card_core1_dda_arc2_dda_run2_look_ahead
+    reg [31-1:0] twice_x;
+    reg [31-1:0] twice_y;
+    twice_x = 31'h0;
+    twice_y = 31'h0;
+    twice_x = ({card1_card_core1_dda_arc2_dda_run2_acc_x[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_x} + {6'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y, 1'b0});
+    twice_y = ({card1_card_core1_dda_arc2_dda_run2_acc_y[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_y} + {6'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x, 1'b0});
+    card1_card_core1_dda_arc2_dda_run2_ahead_x = ($signed(twice_x) >= 0);
+    card1_card_core1_dda_arc2_dda_run2_ahead_y = ($signed(twice_y) >= 0);
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_kept_x, card1_card_core1_dda_arc2_dda_run2_threshold, card1_card_core1_dda_arc2_dda_run2_threshold_carry, card1_card_core1_dda_arc2_dda_run2_kept_y, card1_card_core1_dda_arc2_dda_run2_first, card1_card_core1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_acc_y, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_step_step_y, card1_card_core1_dda_arc2_dda_run2_step_step_x) begin: card1_card_core1_dda_arc2_dda_run2_accumulate
+    reg [30-1:0] minus_x;
+    reg [30-1:0] minus_y;
+    minus_x = 30'h0;
+    minus_y = 30'h0;
+    card1_card_core1_dda_arc2_dda_run2_sum_x = (({card1_card_core1_dda_arc2_dda_run2_acc_x[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_x} + {7'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y}) + {30'h0, card1_card_core1_dda_arc2_dda_run2_first});
+    card1_card_core1_dda_arc2_dda_run2_sum_y = (({card1_card_core1_dda_arc2_dda_run2_acc_y[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_y} + {7'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x}) + {30'h0, card1_card_core1_dda_arc2_dda_run2_first});
+    if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
+        minus_x = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_threshold});
+    end
+    if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
+        minus_y = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_threshold});
+    end
+    card1_card_core1_dda_arc2_dda_run2_less_x = ((card1_card_core1_dda_arc2_dda_run2_kept_x + minus_x) + {29'h0, (card1_card_core1_dda_arc2_dda_run2_step_step_x && card1_card_core1_dda_arc2_dda_run2_threshold_carry)});
+    card1_card_core1_dda_arc2_dda_run2_less_y = ((card1_card_core1_dda_arc2_dda_run2_kept_y + minus_y) + {29'h0, (card1_card_core1_dda_arc2_dda_run2_step_step_y && card1_card_core1_dda_arc2_dda_run2_threshold_carry)});
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_trad_x, card1_card_core1_dda_arc2_dda_run2_sum_y, card1_card_core1_dda_arc2_dda_run2_sum_x, card1_card_core1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_arc2_dda_run2_over_y) begin: card1_card_core1_dda_arc2_dda_run2_overflow
+    card1_card_core1_dda_arc2_dda_run2_over_x = (!card1_card_core1_dda_arc2_dda_run2_sum_x[30]);
+    card1_card_core1_dda_arc2_dda_run2_over_y = (!card1_card_core1_dda_arc2_dda_run2_sum_y[30]);
+    card1_card_core1_dda_arc2_dda_run2_trad_over_x = (!card1_card_core1_dda_arc2_dda_run2_trad_x[30]);
+    card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_sum_x[30]) && card1_card_core1_dda_arc2_dda_run2_sum_x[(30 - 1)]);
+    if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_step_line))) begin
+        card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_trad_x[30]) && card1_card_core1_dda_arc2_dda_run2_trad_x[(30 - 1)]);
+    end
+    card1_card_core1_dda_arc2_dda_run2_saturate_y = ((!card1_card_core1_dda_arc2_dda_run2_sum_y[30]) && card1_card_core1_dda_arc2_dda_run2_sum_y[(30 - 1)]);
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_radius, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_target_y, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_target_x, card1_card_core1_dda_arc2_dda_run2_end_y, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_end_x) begin: card1_card_core1_dda_arc2_dda_run2_magnitudes
     reg [24-1:0] op_x;
     reg [24-1:0] op_y;
-    op_x = 24'h0;
-    op_y = 24'h0;
-    op_x = 1;
-    op_y = 16777215;
-    if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
-        op_x = 16777215;
-        op_y = 1;
-    end
-    card1_card_core1_dda_arc2_dda_run2_stepped_x = (card1_card_core1_dda_arc2_dda_run2_mag_x + op_x);
-    card1_card_core1_dda_arc2_dda_run2_stepped_y = (card1_card_core1_dda_arc2_dda_run2_mag_y + op_y);
-end
-
-
-always @(card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda_run2_radius, card1_card_core1_dda_arc2_dda_run2_mag_x, card1_card_core1_dda_arc2_dda_run2_target_y, card1_card_core1_dda_arc2_dda_run2_x_inward, card1_card_core1_dda_arc2_dda_run2_target_x, card1_card_core1_dda_arc2_dda_run2_end_y, card1_card_core1_dda_arc2_dda_run2_end_x) begin: card1_card_core1_dda_arc2_dda_run2_end_tests
     reg [24-1:0] target;
     reg [24-1:0] dx;
     reg [24-1:0] dy;
+    op_x = 24'h0;
+    op_y = 24'h0;
     target = 24'h0;
     dx = 24'h0;
     dy = 24'h0;
+    op_x = 1;
+    op_y = 16777215;
+    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+        op_x = 16777215;
+        op_y = 1;
+    end
+    card1_card_core1_dda_arc2_dda_run2_stepped_x = (card1_card_core1_dda_arc2_dda_run2_step_mag_x + op_x);
+    card1_card_core1_dda_arc2_dda_run2_stepped_y = (card1_card_core1_dda_arc2_dda_run2_step_mag_y + op_y);
     target = 0;
     case (card1_card_core1_dda_arc2_dda_run2_target_x)
         'h1: begin
@@ -5802,7 +5921,7 @@ always @(card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda
             target = card1_card_core1_dda_arc2_dda_run2_end_x;
         end
     endcase
-    dx = (card1_card_core1_dda_arc2_dda_run2_mag_x - target);
+    dx = (card1_card_core1_dda_arc2_dda_run2_step_mag_x - target);
     target = 0;
     case (card1_card_core1_dda_arc2_dda_run2_target_y)
         'h1: begin
@@ -5812,10 +5931,10 @@ always @(card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda
             target = card1_card_core1_dda_arc2_dda_run2_end_y;
         end
     endcase
-    dy = (card1_card_core1_dda_arc2_dda_run2_mag_y - target);
+    dy = (card1_card_core1_dda_arc2_dda_run2_step_mag_y - target);
     card1_card_core1_dda_arc2_dda_run2_at_x = (dx == 0);
     card1_card_core1_dda_arc2_dda_run2_at_y = (dy == 0);
-    if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
+    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
         card1_card_core1_dda_arc2_dda_run2_near_x = (dx == 1);
         card1_card_core1_dda_arc2_dda_run2_near_y = (dy == 16777215);
     end
@@ -5826,7 +5945,7 @@ always @(card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_trad_over_x, card1_card_core1_dda_arc2_dda_run2_at_x, card1_card_core1_dda_arc2_dda_run2_near_y, card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_ahead_x, card1_card_core1_dda_arc2_dda_run2_left_diff, card1_card_core1_dda_arc2_dda_run2_near_x, card1_card_core1_dda_arc2_dda_run2_at_y, card1_card_core1_dda_arc2_dda_run2_outward_near, card1_card_core1_dda_arc2_dda_run2_x_inward, card1_card_core1_dda_arc2_dda_run2_inward_near, card1_card_core1_dda_arc2_dda_run2_crossings, card1_card_core1_dda_arc2_dda_run2_ahead_y, card1_card_core1_dda_arc2_dda_run2_over_y, card1_card_core1_dda_arc2_dda_run2_line, card1_card_core1_dda_arc2_dda_run2_over_x) begin: card1_card_core1_dda_arc2_dda_run2_decide
+always @(card1_card_core1_dda_arc2_dda_run2_trad_over_x, card1_card_core1_dda_arc2_dda_run2_at_x, card1_card_core1_dda_arc2_dda_run2_near_y, card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_step_outward_near, card1_card_core1_dda_arc2_dda_run2_ahead_x, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_near_x, card1_card_core1_dda_arc2_dda_run2_at_y, card1_card_core1_dda_arc2_dda_run2_step_last, card1_card_core1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_arc2_dda_run2_crossings, card1_card_core1_dda_arc2_dda_run2_ahead_y, card1_card_core1_dda_arc2_dda_run2_step_inward_near, card1_card_core1_dda_arc2_dda_run2_over_y, card1_card_core1_dda_arc2_dda_run2_over_x) begin: card1_card_core1_dda_arc2_dda_run2_decide
     reg step_x;
     reg step_y;
     reg choose_x;
@@ -5838,11 +5957,11 @@ always @(card1_card_core1_dda_arc2_dda_run2_trad_over_x, card1_card_core1_dda_ar
     choose_y = 1'b0;
     ends = 1'b0;
     if (1'b1) begin
-        choose_x = (card1_card_core1_dda_arc2_dda_run2_outward_near == 1);
-        choose_y = (card1_card_core1_dda_arc2_dda_run2_inward_near == 1);
-        if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
-            choose_x = (card1_card_core1_dda_arc2_dda_run2_inward_near == 1);
-            choose_y = (card1_card_core1_dda_arc2_dda_run2_outward_near == 1);
+        choose_x = (card1_card_core1_dda_arc2_dda_run2_step_outward_near == 1);
+        choose_y = (card1_card_core1_dda_arc2_dda_run2_step_inward_near == 1);
+        if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+            choose_x = (card1_card_core1_dda_arc2_dda_run2_step_inward_near == 1);
+            choose_y = (card1_card_core1_dda_arc2_dda_run2_step_outward_near == 1);
         end
     end
     if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0))) begin
@@ -5856,7 +5975,7 @@ always @(card1_card_core1_dda_arc2_dda_run2_trad_over_x, card1_card_core1_dda_ar
         step_x = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && choose_x);
         step_y = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && choose_y);
     end
-    if (card1_card_core1_dda_arc2_dda_run2_line) begin
+    if (card1_card_core1_dda_arc2_dda_run2_step_line) begin
         card1_card_core1_dda_arc2_dda_run2_go_x = card1_card_core1_dda_arc2_dda_run2_over_x;
         card1_card_core1_dda_arc2_dda_run2_go_y = card1_card_core1_dda_arc2_dda_run2_over_y;
     end
@@ -5868,110 +5987,86 @@ always @(card1_card_core1_dda_arc2_dda_run2_trad_over_x, card1_card_core1_dda_ar
         card1_card_core1_dda_arc2_dda_run2_go_x = step_x;
         card1_card_core1_dda_arc2_dda_run2_go_y = step_y;
     end
-    card1_card_core1_dda_arc2_dda_run2_tail = ((!card1_card_core1_dda_arc2_dda_run2_line) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y));
+    card1_card_core1_dda_arc2_dda_run2_tail = ((!card1_card_core1_dda_arc2_dda_run2_step_line) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y));
     if ((card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y)) begin
         ends = ((card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_near_x) && (card1_card_core1_dda_arc2_dda_run2_at_y || card1_card_core1_dda_arc2_dda_run2_near_y));
     end
     else begin
         ends = (card1_card_core1_dda_arc2_dda_run2_near_x && card1_card_core1_dda_arc2_dda_run2_near_y && step_x && step_y);
     end
-    card1_card_core1_dda_arc2_dda_run2_finished = ((card1_card_core1_dda_arc2_dda_run2_line && (card1_card_core1_dda_arc2_dda_run2_left_diff == 0)) || ((!card1_card_core1_dda_arc2_dda_run2_line) && ends && (card1_card_core1_dda_arc2_dda_run2_crossings == 0)));
-    card1_card_core1_dda_arc2_dda_run2_next_piece = ((!card1_card_core1_dda_arc2_dda_run2_line) && ends && (card1_card_core1_dda_arc2_dda_run2_crossings != 0));
-end
-
-
-always @(card1_card_core1_dda_arc2_dda_run2_mag_y, card1_card_core1_dda_arc2_dda_run2_dec_in, card1_card_core1_dda_arc2_dda_run2_mag_x, card1_card_core1_dda_arc2_dda_run2_error_term, card1_card_core1_dda_arc2_dda_run2_x_inward, card1_card_core1_dda_arc2_dda_run2_dec_out) begin: card1_card_core1_dda_arc2_dda_run2_precise_step
-    reg [27-1:0] outward;
-    reg [27-1:0] inward;
-    reg [27-1:0] first_sum;
-    outward = 27'h0;
-    inward = 27'h0;
-    first_sum = 27'h0;
-    if (card1_card_core1_dda_arc2_dda_run2_dec_out) begin
-        outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_mag_x, 1'b1};
-        if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
-            outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_mag_y, 1'b1};
-        end
-    end
-    if (card1_card_core1_dda_arc2_dda_run2_dec_in) begin
-        inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_mag_y, 1'b0});
-        if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
-            inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_mag_x, 1'b0});
-        end
-    end
-    first_sum = ((card1_card_core1_dda_arc2_dda_run2_error_term + outward) + {26'h0, card1_card_core1_dda_arc2_dda_run2_dec_in});
-    card1_card_core1_dda_arc2_dda_run2_error_step = ((first_sum + inward) + {26'h0, card1_card_core1_dda_arc2_dda_run2_dec_in});
+    card1_card_core1_dda_arc2_dda_run2_finished = ((card1_card_core1_dda_arc2_dda_run2_step_line && card1_card_core1_dda_arc2_dda_run2_step_last) || ((!card1_card_core1_dda_arc2_dda_run2_step_line) && ends && (card1_card_core1_dda_arc2_dda_run2_crossings == 0)));
+    card1_card_core1_dda_arc2_dda_run2_next_piece = ((!card1_card_core1_dda_arc2_dda_run2_step_line) && ends && (card1_card_core1_dda_arc2_dda_run2_crossings != 0));
 end
 
 
 
-assign card1_card_core1_dda_arc2_dda_check2_move_take = (card1_card_core1_dda_arc2_dda_check2_move_offer && ((!card1_card_core1_dda_arc2_dda_run2_active) || (card1_card_core1_dda_arc2_dda_run2_pending && card1_card_core1_dda_arc2_dda_run2_dec_finished)));
-assign card1_card_core1_dda_arc2_dda_run2_taking = (card1_card_core1_dda_arc2_dda_run2_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_arc2_dda_run2_pending));
+assign card1_card_core1_dda_arc2_dda_check2_move_take = (card1_card_core1_dda_arc2_dda_check2_move_offer && ((!card1_card_core1_dda_arc2_dda_run2_active) || (card1_card_core1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_arc2_dda_run2_step_finished)));
+assign card1_card_core1_dda_arc2_dda_run2_taking = (card1_card_core1_dda_arc2_dda_run2_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_arc2_dda_run2_step_pending));
 
 
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_iterate
     if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_dda_run2_step_step_out <= 0;
         card1_card_core1_dda_arc2_dda_run2_threshold_carry <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
-        card1_card_core1_dda_arc2_dda_run2_dec_out <= 0;
-        card1_card_core1_dda_arc2_dda_run2_dec_next_piece <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_blend <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_step_y <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_pending <= 0;
         card1_card_core1_dda_arc2_dda_run2_variant <= 3;
         card1_card_core1_regs_fifo2_steps_step_x <= 0;
-        card1_card_core1_dda_arc2_dda_run2_dec_in <= 0;
         card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_x_inward <= 0;
         card1_card_core1_dda_arc2_dda_run2_crossings <= 0;
         card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
-        card1_card_core1_dda_arc2_dda_run2_dec_finished <= 0;
-        card1_card_core1_dda_arc2_dda_run2_blend <= 0;
-        card1_card_core1_dda_arc2_dda_run2_dec_tail <= 0;
-        card1_card_core1_dda_arc2_dda_run2_dec_x <= 0;
+        card1_card_core1_dda_arc2_dda_run2_next_piece_taken <= 0;
         card1_card_core1_dda_arc2_dda_run2_first <= 0;
         card1_card_core1_regs_fifo2_steps_dir_x <= 0;
         card1_card_core1_regs_fifo2_steps_dir_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_quadrant <= 0;
         card1_card_core1_regs_fifo2_steps_step_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_right <= 0;
-        card1_card_core1_dda_arc2_dda_run2_pending <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_step_in <= 0;
         card1_card_core1_dda_arc2_dda_run2_up <= 0;
         card1_card_core1_dda_arc2_dda_run2_active <= 0;
-        card1_card_core1_dda_arc2_dda_run2_dec_y <= 0;
+        card1_card_core1_dda_arc2_dda_run2_tail_taken <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_x_inward <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_line <= 0;
         card1_card_core1_dda_arc2_dda_run2_ccw <= 0;
-        card1_card_core1_dda_arc2_dda_run2_line <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_step_x <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_finished <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_steps_step_x <= 1'b0;
         card1_card_core1_regs_fifo2_steps_step_y <= 1'b0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b0;
-        card1_card_core1_dda_arc2_dda_run2_pending <= 1'b0;
+        card1_card_core1_dda_arc2_dda_run2_step_pending <= 1'b0;
         if (card1_card_core1_dda_arc2_dda_run2_taking) begin
-            card1_card_core1_dda_arc2_dda_run2_pending <= 1'b1;
+            card1_card_core1_dda_arc2_dda_run2_step_pending <= 1'b1;
             card1_card_core1_regs_fifo2_steps_step_x <= card1_card_core1_dda_arc2_dda_run2_go_x;
             card1_card_core1_regs_fifo2_steps_step_y <= card1_card_core1_dda_arc2_dda_run2_go_y;
-            if (card1_card_core1_dda_arc2_dda_run2_line) begin
+            if (card1_card_core1_dda_arc2_dda_run2_step_line) begin
                 card1_card_core1_regs_fifo2_steps_dir_x <= card1_card_core1_dda_arc2_dda_run2_right;
                 card1_card_core1_regs_fifo2_steps_dir_y <= card1_card_core1_dda_arc2_dda_run2_up;
             end
             else begin
-                card1_card_core1_regs_fifo2_steps_dir_x <= ((card1_card_core1_dda_arc2_dda_run2_quadrant[0] == card1_card_core1_dda_arc2_dda_run2_quadrant[1]) != card1_card_core1_dda_arc2_dda_run2_x_inward);
-                card1_card_core1_regs_fifo2_steps_dir_y <= ((!card1_card_core1_dda_arc2_dda_run2_quadrant[1]) == card1_card_core1_dda_arc2_dda_run2_x_inward);
+                card1_card_core1_regs_fifo2_steps_dir_x <= ((card1_card_core1_dda_arc2_dda_run2_quadrant[0] == card1_card_core1_dda_arc2_dda_run2_quadrant[1]) != card1_card_core1_dda_arc2_dda_run2_step_x_inward);
+                card1_card_core1_regs_fifo2_steps_dir_y <= ((!card1_card_core1_dda_arc2_dda_run2_quadrant[1]) == card1_card_core1_dda_arc2_dda_run2_step_x_inward);
             end
             card1_card_core1_regs_fifo2_sequencer2_dda_done <= card1_card_core1_dda_arc2_dda_run2_finished;
-            card1_card_core1_dda_arc2_dda_run2_dec_x <= card1_card_core1_dda_arc2_dda_run2_go_x;
-            card1_card_core1_dda_arc2_dda_run2_dec_y <= card1_card_core1_dda_arc2_dda_run2_go_y;
-            card1_card_core1_dda_arc2_dda_run2_dec_in <= ((card1_card_core1_dda_arc2_dda_run2_go_x && card1_card_core1_dda_arc2_dda_run2_x_inward) || (card1_card_core1_dda_arc2_dda_run2_go_y && (!card1_card_core1_dda_arc2_dda_run2_x_inward)));
-            card1_card_core1_dda_arc2_dda_run2_dec_out <= ((card1_card_core1_dda_arc2_dda_run2_go_x && (!card1_card_core1_dda_arc2_dda_run2_x_inward)) || (card1_card_core1_dda_arc2_dda_run2_go_y && card1_card_core1_dda_arc2_dda_run2_x_inward));
-            card1_card_core1_dda_arc2_dda_run2_dec_tail <= card1_card_core1_dda_arc2_dda_run2_tail;
-            card1_card_core1_dda_arc2_dda_run2_dec_finished <= card1_card_core1_dda_arc2_dda_run2_finished;
-            card1_card_core1_dda_arc2_dda_run2_dec_next_piece <= card1_card_core1_dda_arc2_dda_run2_next_piece;
+            card1_card_core1_dda_arc2_dda_run2_step_step_x <= card1_card_core1_dda_arc2_dda_run2_go_x;
+            card1_card_core1_dda_arc2_dda_run2_step_step_y <= card1_card_core1_dda_arc2_dda_run2_go_y;
+            card1_card_core1_dda_arc2_dda_run2_step_step_in <= ((card1_card_core1_dda_arc2_dda_run2_go_x && card1_card_core1_dda_arc2_dda_run2_step_x_inward) || (card1_card_core1_dda_arc2_dda_run2_go_y && (!card1_card_core1_dda_arc2_dda_run2_step_x_inward)));
+            card1_card_core1_dda_arc2_dda_run2_step_step_out <= ((card1_card_core1_dda_arc2_dda_run2_go_x && (!card1_card_core1_dda_arc2_dda_run2_step_x_inward)) || (card1_card_core1_dda_arc2_dda_run2_go_y && card1_card_core1_dda_arc2_dda_run2_step_x_inward));
+            card1_card_core1_dda_arc2_dda_run2_step_finished <= card1_card_core1_dda_arc2_dda_run2_finished;
+            card1_card_core1_dda_arc2_dda_run2_tail_taken <= card1_card_core1_dda_arc2_dda_run2_tail;
+            card1_card_core1_dda_arc2_dda_run2_next_piece_taken <= card1_card_core1_dda_arc2_dda_run2_next_piece;
             card1_card_core1_dda_arc2_dda_run2_first <= 1'b0;
         end
-        else if (card1_card_core1_dda_arc2_dda_run2_pending) begin
-            if (card1_card_core1_dda_arc2_dda_run2_dec_finished) begin
+        else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
+            if (card1_card_core1_dda_arc2_dda_run2_step_finished) begin
                 card1_card_core1_dda_arc2_dda_run2_active <= 1'b0;
             end
-            if (card1_card_core1_dda_arc2_dda_run2_dec_next_piece) begin
-                card1_card_core1_dda_arc2_dda_run2_x_inward <= (!card1_card_core1_dda_arc2_dda_run2_x_inward);
+            if (card1_card_core1_dda_arc2_dda_run2_next_piece_taken) begin
+                card1_card_core1_dda_arc2_dda_run2_step_x_inward <= (!card1_card_core1_dda_arc2_dda_run2_step_x_inward);
                 card1_card_core1_dda_arc2_dda_run2_crossings <= (card1_card_core1_dda_arc2_dda_run2_crossings - 1);
                 if (card1_card_core1_dda_arc2_dda_run2_ccw) begin
                     card1_card_core1_dda_arc2_dda_run2_quadrant <= (card1_card_core1_dda_arc2_dda_run2_quadrant + 1);
@@ -5983,7 +6078,7 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
                     card1_card_core1_dda_arc2_dda_run2_target_x <= 2;
                     card1_card_core1_dda_arc2_dda_run2_target_y <= 2;
                 end
-                else if (card1_card_core1_dda_arc2_dda_run2_x_inward) begin
+                else if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
                     card1_card_core1_dda_arc2_dda_run2_target_x <= 1;
                     card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
                 end
@@ -5996,14 +6091,14 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         if ((card1_card_core1_dda_arc2_dda_check2_move_take && (!card1_card_core1_dda_arc2_dda_check2_move_error) && (!card1_card_core1_dda_arc2_dda_check2_move_zero))) begin
             card1_card_core1_dda_arc2_dda_run2_active <= 1'b1;
             card1_card_core1_dda_arc2_dda_run2_first <= card1_card_core1_dda_arc2_dda_check2_move_acc_carry;
-            card1_card_core1_dda_arc2_dda_run2_line <= card1_card_core1_dda_arc2_dda_check2_move_line;
+            card1_card_core1_dda_arc2_dda_run2_step_line <= card1_card_core1_dda_arc2_dda_check2_move_line;
             card1_card_core1_dda_arc2_dda_run2_variant <= card1_card_core1_dda_arc2_dda_check2_move_variant;
             card1_card_core1_dda_arc2_dda_run2_ccw <= card1_card_core1_dda_arc2_dda_check2_move_ccw;
-            card1_card_core1_dda_arc2_dda_run2_blend <= card1_card_core1_dda_arc2_dda_check2_move_blend;
+            card1_card_core1_dda_arc2_dda_run2_step_blend <= card1_card_core1_dda_arc2_dda_check2_move_blend;
             card1_card_core1_dda_arc2_dda_run2_right <= card1_card_core1_dda_arc2_dda_check2_move_right;
             card1_card_core1_dda_arc2_dda_run2_up <= card1_card_core1_dda_arc2_dda_check2_move_up;
             card1_card_core1_dda_arc2_dda_run2_quadrant <= card1_card_core1_dda_arc2_dda_check2_move_quadrant;
-            card1_card_core1_dda_arc2_dda_run2_x_inward <= card1_card_core1_dda_arc2_dda_check2_move_x_inward;
+            card1_card_core1_dda_arc2_dda_run2_step_x_inward <= card1_card_core1_dda_arc2_dda_check2_move_x_inward;
             card1_card_core1_dda_arc2_dda_run2_crossings <= card1_card_core1_dda_arc2_dda_check2_move_crossings;
             card1_card_core1_dda_arc2_dda_run2_target_x <= card1_card_core1_dda_arc2_dda_check2_move_target_x;
             card1_card_core1_dda_arc2_dda_run2_target_y <= card1_card_core1_dda_arc2_dda_check2_move_target_y;
@@ -6019,134 +6114,41 @@ end
 
 always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_datapath
     if (card1_card_core1_dda_arc2_dda_run2_taking) begin
-        card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0];
-        if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
-            card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= card1_card_core1_dda_arc2_dda_run2_trad_x[30-1:0];
+        card1_card_core1_dda_arc2_dda_run2_kept_x <= card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0];
+        if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_step_line))) begin
+            card1_card_core1_dda_arc2_dda_run2_kept_x <= card1_card_core1_dda_arc2_dda_run2_trad_x[30-1:0];
         end
-        card1_card_core1_dda_arc2_dda_run2_dec_sum_y <= card1_card_core1_dda_arc2_dda_run2_sum_y[30-1:0];
+        card1_card_core1_dda_arc2_dda_run2_kept_y <= card1_card_core1_dda_arc2_dda_run2_sum_y[30-1:0];
         if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_x)) begin
-            card1_card_core1_dda_arc2_dda_run2_dec_sum_x <= 536870911;
+            card1_card_core1_dda_arc2_dda_run2_kept_x <= 536870911;
         end
         if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_y)) begin
-            card1_card_core1_dda_arc2_dda_run2_dec_sum_y <= 536870911;
+            card1_card_core1_dda_arc2_dda_run2_kept_y <= 536870911;
         end
     end
-    else if (card1_card_core1_dda_arc2_dda_run2_pending) begin
-        if ((!card1_card_core1_dda_arc2_dda_run2_dec_tail)) begin
+    else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
+        if ((!card1_card_core1_dda_arc2_dda_run2_tail_taken)) begin
             card1_card_core1_dda_arc2_dda_run2_acc_x <= $signed(card1_card_core1_dda_arc2_dda_run2_less_x);
             card1_card_core1_dda_arc2_dda_run2_acc_y <= $signed(card1_card_core1_dda_arc2_dda_run2_less_y);
         end
-        if ((!card1_card_core1_dda_arc2_dda_run2_line)) begin
-            if (card1_card_core1_dda_arc2_dda_run2_dec_x) begin
-                card1_card_core1_dda_arc2_dda_run2_mag_x <= card1_card_core1_dda_arc2_dda_run2_stepped_x;
+        if ((!card1_card_core1_dda_arc2_dda_run2_step_line)) begin
+            if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
+                card1_card_core1_dda_arc2_dda_run2_step_mag_x <= card1_card_core1_dda_arc2_dda_run2_stepped_x;
             end
-            if (card1_card_core1_dda_arc2_dda_run2_dec_y) begin
-                card1_card_core1_dda_arc2_dda_run2_mag_y <= card1_card_core1_dda_arc2_dda_run2_stepped_y;
+            if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
+                card1_card_core1_dda_arc2_dda_run2_step_mag_y <= card1_card_core1_dda_arc2_dda_run2_stepped_y;
             end
-            card1_card_core1_dda_arc2_dda_run2_error_term <= card1_card_core1_dda_arc2_dda_run2_error_step;
         end
     end
     if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-        card1_card_core1_dda_arc2_dda_run2_mag_x <= card1_card_core1_dda_arc2_dda_check2_move_mag_x;
-        card1_card_core1_dda_arc2_dda_run2_mag_y <= card1_card_core1_dda_arc2_dda_check2_move_mag_y;
+        card1_card_core1_dda_arc2_dda_run2_step_mag_x <= card1_card_core1_dda_arc2_dda_check2_move_mag_x;
+        card1_card_core1_dda_arc2_dda_run2_step_mag_y <= card1_card_core1_dda_arc2_dda_check2_move_mag_y;
         card1_card_core1_dda_arc2_dda_run2_end_x <= card1_card_core1_dda_arc2_dda_check2_move_end_x;
         card1_card_core1_dda_arc2_dda_run2_end_y <= card1_card_core1_dda_arc2_dda_check2_move_end_y;
         card1_card_core1_dda_arc2_dda_run2_radius <= card1_card_core1_dda_arc2_dda_check2_move_radius;
         card1_card_core1_dda_arc2_dda_run2_threshold <= card1_card_core1_dda_arc2_dda_check2_move_threshold;
         card1_card_core1_dda_arc2_dda_run2_acc_x <= card1_card_core1_dda_arc2_dda_check2_move_acc_init;
         card1_card_core1_dda_arc2_dda_run2_acc_y <= card1_card_core1_dda_arc2_dda_check2_move_acc_init;
-        card1_card_core1_dda_arc2_dda_run2_error_term <= 1;
-    end
-end
-
-
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_precise_bias
-    reg [27-1:0] op_x;
-    reg [27-1:0] op_y;
-    op_x = 27'h0;
-    op_y = 27'h0;
-    op_x = {24'h0, card1_card_core1_dda_arc2_dda_run2_dec_x, card1_card_core1_dda_arc2_dda_run2_dec_y, 1'b0};
-    op_y = {24'h0, card1_card_core1_dda_arc2_dda_run2_dec_y, card1_card_core1_dda_arc2_dda_run2_dec_x, 1'b0};
-    if ((!card1_card_core1_dda_arc2_dda_run2_x_inward)) begin
-        op_x = (~op_x);
-        op_y = (~op_y);
-    end
-    if ((card1_card_core1_dda_arc2_dda_run2_pending && (!card1_card_core1_dda_arc2_dda_run2_line))) begin
-        card1_card_core1_dda_arc2_dda_run2_bias_x <= ((card1_card_core1_dda_arc2_dda_run2_bias_x + op_x) + {26'h0, (!card1_card_core1_dda_arc2_dda_run2_x_inward)});
-        card1_card_core1_dda_arc2_dda_run2_bias_y <= ((card1_card_core1_dda_arc2_dda_run2_bias_y + op_y) + {26'h0, (!card1_card_core1_dda_arc2_dda_run2_x_inward)});
-    end
-    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-        card1_card_core1_dda_arc2_dda_run2_bias_x <= card1_card_core1_dda_arc2_dda_check2_move_bias_x;
-        card1_card_core1_dda_arc2_dda_run2_bias_y <= card1_card_core1_dda_arc2_dda_check2_move_bias_y;
-    end
-end
-
-
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_steps_difference
-    reg [27-1:0] base;
-    reg [27-1:0] change;
-    base = 27'h0;
-    change = 27'h0;
-    base = card1_card_core1_dda_arc2_dda_run2_left_diff;
-    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-        base = card1_card_core1_dda_arc2_dda_check2_move_totals_diff;
-        if (card1_card_core1_dda_arc2_dda_check2_move_line) begin
-            change = 134217727;
-        end
-    end
-    else if (card1_card_core1_dda_arc2_dda_run2_pending) begin
-        if ((card1_card_core1_dda_arc2_dda_run2_line || (card1_card_core1_dda_arc2_dda_run2_dec_x && (!card1_card_core1_dda_arc2_dda_run2_dec_y)))) begin
-            change = 134217727;
-        end
-        else if ((card1_card_core1_dda_arc2_dda_run2_dec_y && (!card1_card_core1_dda_arc2_dda_run2_dec_x))) begin
-            change = 1;
-        end
-    end
-    card1_card_core1_dda_arc2_dda_run2_left_diff <= (base + change);
-end
-
-
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_steps_left
-    reg [27-1:0] base;
-    reg [27-1:0] less;
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_run2_most_left <= 134217727;
-    end
-    else begin
-        base = 27'h0;
-        less = 27'h0;
-        base = card1_card_core1_dda_arc2_dda_run2_most_left;
-        if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-            base = card1_card_core1_dda_arc2_dda_check2_move_totals_max;
-            less = 134217727;
-        end
-        else if ((card1_card_core1_dda_arc2_dda_run2_pending && (!card1_card_core1_dda_arc2_dda_run2_blend))) begin
-            if (card1_card_core1_dda_arc2_dda_run2_line) begin
-                less = 134217727;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_run2_left_diff == 0)) begin
-                if ((card1_card_core1_dda_arc2_dda_run2_dec_x && card1_card_core1_dda_arc2_dda_run2_dec_y)) begin
-                    less = 134217727;
-                end
-            end
-            else if (card1_card_core1_dda_arc2_dda_run2_left_diff[(27 - 1)]) begin
-                if (card1_card_core1_dda_arc2_dda_run2_dec_y) begin
-                    less = 134217727;
-                end
-            end
-            else if (card1_card_core1_dda_arc2_dda_run2_dec_x) begin
-                less = 134217727;
-            end
-        end
-        card1_card_core1_dda_arc2_dda_run2_most_left <= (base + less);
-        if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-            if ((card1_card_core1_dda_arc2_dda_check2_move_blend || card1_card_core1_dda_arc2_dda_check2_move_error || card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
-                card1_card_core1_dda_arc2_dda_run2_most_left <= 134217727;
-            end
-        end
-        else if ((card1_card_core1_dda_arc2_dda_run2_pending && card1_card_core1_dda_arc2_dda_run2_dec_finished)) begin
-            card1_card_core1_dda_arc2_dda_run2_most_left <= 134217727;
-        end
     end
 end
 
@@ -6168,7 +6170,6 @@ end
 
 
 assign card1_card_core1_regs_fifo2__status2_quadrant = card1_card_core1_dda_arc2_dda_run2_quadrant;
-assign card1_card_core1_regs_fifo2_feed_rate2_stop_left = card1_card_core1_dda_arc2_dda_run2_most_left;
-assign card1_card_core1_regs_fifo2_dda_busy = ((!card1_card_core1_regs_fifo2_sequencer2_dda_ready) || (card1_card_core1_dda_arc2_dda_run2_active && (!(card1_card_core1_dda_arc2_dda_run2_pending && card1_card_core1_dda_arc2_dda_run2_dec_finished))));
+assign card1_card_core1_regs_fifo2_dda_busy = ((!card1_card_core1_regs_fifo2_sequencer2_dda_ready) || (card1_card_core1_dda_arc2_dda_run2_active && (!(card1_card_core1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_arc2_dda_run2_step_finished))));
 
 endmodule

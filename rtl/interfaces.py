@@ -9,7 +9,7 @@ cores co-simulate and convert cleanly; only the pad wrapper at the top level
 has tri-states.  All PCI ``*_out`` values keep the bus polarity (active-low
 lines are 0 when asserted).
 """
-from myhdl import ResetSignal, Signal, TristateSignal, intbv
+from myhdl import ResetSignal, Signal, TristateSignal, intbv, modbv
 
 from rtl.dda_build import (COORD_WIDTH, DEFAULT_VARIANTS, PRECISE, accumulator_width, check_coord_width,
                             left_width, parse_variants, threshold_width)
@@ -271,6 +271,34 @@ class DdaMove:
 
 
 TARGET_ZERO, TARGET_RADIUS, TARGET_END = range(3)
+
+
+class DdaStep:
+    """The run's iteration as its units share it (``rtl/dda_run.py`` drives it).
+
+    From the run: ``pending`` (the second clock of an iteration: the
+    registered decision is applied at its end), the decision ``step_x``,
+    ``step_y``, ``step_in``, ``step_out`` (by axis, and by inward / outward
+    axis of the quadrant), ``finished``, the move's ``line`` and ``blend``,
+    ``x_inward`` and the magnitudes ``mag_x``, ``mag_y``, all registers.
+    To the run: ``inward_near`` and ``outward_near`` (the precise mode's
+    choice, ``rtl/dda_nearest.py``) and ``last`` (a line's last iteration,
+    ``rtl/dda_left.py``).
+    """
+
+    def __init__(self, move):
+        width = move.coord_width
+        self.coord_width = width
+        self.left_width = move.left_width
+        self.bias_width = move.bias_width
+        self.pending = Signal(bool(0))
+        self.step_x, self.step_y = Signal(bool(0)), Signal(bool(0))
+        self.step_in, self.step_out = Signal(bool(0)), Signal(bool(0))
+        self.finished = Signal(bool(0))
+        self.line, self.blend, self.x_inward = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+        self.mag_x, self.mag_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
+        self.inward_near, self.outward_near = Signal(bool(0)), Signal(bool(0))
+        self.last = Signal(bool(0))
 
 
 class AxisPulses:
