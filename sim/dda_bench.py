@@ -1,4 +1,4 @@
-"""Clock-by-clock bench of ``rtl/dda_arc.py`` against ``sim.dda_model.DdaMachine``.
+"""Clock-by-clock bench of ``rtl/dda_arc.py`` against ``sim.dda_machine.DdaMachine``.
 
 ``dda_bench(ports, commands, record, ...)`` drives a list of commands through
 the ``DdaPort`` (start pulse when ready, one after the other or overlapped, a
@@ -15,7 +15,8 @@ from myhdl import StopSimulation, block, instance
 
 from rtl.dda_arc import dda_arc
 from sim.cosim import cosimulate
-from sim.dda_model import ArcCommand, DdaMachine, LineCommand, plan_arc
+from sim.dda_machine import DdaMachine
+from sim.dda_model import ArcCommand, LineCommand, plan_arc
 from sim.clocking import clock_source
 from sim.waves import Waveform, write_gtkw
 
