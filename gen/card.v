@@ -691,8 +691,8 @@ reg [26:0] card_core0_dda_arc1_dda_check1_move_totals_max;
 reg [27:0] card_core0_dda_arc1_dda_check1_move_threshold;
 reg signed [29:0] card_core0_dda_arc1_dda_check1_move_acc_init;
 reg card_core0_dda_arc1_dda_check1_move_acc_carry;
-reg signed [26:0] card_core0_dda_arc1_dda_check1_move_bias_x;
-reg signed [26:0] card_core0_dda_arc1_dda_check1_move_bias_y;
+reg signed [26:0] card_core0_dda_arc1_dda_check1_move_bias_in;
+reg signed [26:0] card_core0_dda_arc1_dda_check1_move_bias_out;
 reg signed [29:0] card_core0_dda_arc1_dda_run1_acc_x;
 reg signed [29:0] card_core0_dda_arc1_dda_run1_acc_y;
 reg card_core0_dda_arc1_dda_run1_active;
@@ -715,7 +715,6 @@ reg [29:0] card_core0_dda_arc1_dda_run1_less_y;
 reg card_core0_dda_arc1_dda_run1_near_x;
 reg card_core0_dda_arc1_dda_run1_near_y;
 reg card_core0_dda_arc1_dda_run1_next_piece;
-reg card_core0_dda_arc1_dda_run1_next_piece_taken;
 reg card_core0_dda_arc1_dda_run1_over_x;
 reg card_core0_dda_arc1_dda_run1_over_y;
 reg [1:0] card_core0_dda_arc1_dda_run1_quadrant;
@@ -734,8 +733,6 @@ reg [1:0] card_core0_dda_arc1_dda_run1_target_x;
 reg [1:0] card_core0_dda_arc1_dda_run1_target_y;
 reg [27:0] card_core0_dda_arc1_dda_run1_threshold;
 reg card_core0_dda_arc1_dda_run1_threshold_carry;
-reg card_core0_dda_arc1_dda_run1_trad_over_x;
-wire [30:0] card_core0_dda_arc1_dda_run1_trad_x;
 reg card_core0_dda_arc1_dda_run1_up;
 reg [1:0] card_core0_dda_arc1_dda_run1_variant;
 reg [23:0] card_core0_dda_arc1_dda_run1_step_mag_y;
@@ -749,13 +746,12 @@ reg card_core0_dda_arc1_dda_run1_step_inward_near;
 wire card_core0_dda_arc1_dda_run1_step_last;
 reg card_core0_dda_arc1_dda_run1_step_pending;
 reg card_core0_dda_arc1_dda_run1_step_finished;
-reg card_core0_dda_arc1_dda_run1_step_step_in;
-reg card_core0_dda_arc1_dda_run1_step_step_out;
+reg card_core0_dda_arc1_dda_run1_step_new_piece;
 reg card_core0_dda_arc1_dda_run1_step_blend;
 reg [26:0] card_core0_dda_arc1_dda_run1_dda_left1_difference;
 reg [26:0] card_core0_dda_arc1_dda_run1_dda_left1_larger;
-reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x;
-reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out;
 reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_step;
 reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
@@ -775,7 +771,6 @@ assign card_core0_regs_fifo1_reg_word27_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word33_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word37_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word37_set_mine = 1'd0;
-assign card_core0_dda_arc1_dda_run1_trad_x = 31'd0;
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_input_register
@@ -4900,21 +4895,25 @@ always @(card_core0_dda_arc1_dda_setup1_plan_threshold, card_core0_dda_arc1_dda_
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_plan_mag_ys) begin: card_core0_dda_arc1_dda_check1_precise_terms
-    reg [27-1:0] twice_y;
-    reg [27-1:0] twice_x;
-    reg [27-1:0] bias_x;
-    reg [27-1:0] bias_y;
-    twice_y = 27'h0;
-    twice_x = 27'h0;
-    bias_x = 27'h0;
-    bias_y = 27'h0;
-    twice_y = {2'h0, card_core0_dda_arc1_dda_setup1_plan_mag_ys, 1'b0};
-    twice_x = {2'h0, card_core0_dda_arc1_dda_setup1_plan_mag_xs, 1'b0};
-    bias_x = (twice_y - {1'b0, card_core0_dda_arc1_dda_setup1_plan_mag_xs, 2'h0});
-    bias_y = ({1'b0, card_core0_dda_arc1_dda_setup1_plan_mag_ys, 2'h0} - twice_x);
-    card_core0_dda_arc1_dda_check1_move_bias_x = $signed(bias_x);
-    card_core0_dda_arc1_dda_check1_move_bias_y = $signed(bias_y);
+always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_plan_mag_ys) begin: card_core0_dda_arc1_dda_check1_precise_terms
+    reg [27-1:0] inward;
+    reg [27-1:0] outward;
+    reg [27-1:0] bias_in;
+    reg [27-1:0] bias_out;
+    inward = 27'h0;
+    outward = 27'h0;
+    bias_in = 27'h0;
+    bias_out = 27'h0;
+    inward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_ys};
+    outward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_xs};
+    if (card_core0_dda_arc1_dda_setup1_plan_x_inward) begin
+        inward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_xs};
+        outward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_ys};
+    end
+    bias_in = ({outward[(27 - 1)-1:0], 1'b0} - inward);
+    bias_out = (outward - {inward[(27 - 1)-1:0], 1'b0});
+    card_core0_dda_arc1_dda_check1_move_bias_in = $signed(bias_in);
+    card_core0_dda_arc1_dda_check1_move_bias_out = $signed(bias_out);
 end
 
 
@@ -4992,76 +4991,101 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_dda_nearest1_error_term, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x, card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_signs
-    reg [28-1:0] twice_error;
-    reg [28-1:0] plus_x;
-    reg [28-1:0] plus_y;
-    reg [28-1:0] minus_x;
-    reg [28-1:0] minus_y;
-    twice_error = 28'h0;
-    plus_x = 28'h0;
-    plus_y = 28'h0;
-    minus_x = 28'h0;
-    minus_y = 28'h0;
-    twice_error = {card_core0_dda_arc1_dda_run1_dda_nearest1_error_term, 1'b0};
-    plus_x = (twice_error + {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x});
-    plus_y = (twice_error + {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y});
-    minus_x = (twice_error - {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x});
-    minus_y = (twice_error - {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y});
-    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
-        card_core0_dda_arc1_dda_run1_step_inward_near = ($signed(plus_y) >= 0);
-        card_core0_dda_arc1_dda_run1_step_outward_near = ($signed(plus_x) < 0);
-    end
-    else begin
-        card_core0_dda_arc1_dda_run1_step_inward_near = ($signed(minus_x) >= 0);
-        card_core0_dda_arc1_dda_run1_step_outward_near = ($signed(minus_y) < 0);
-    end
+always @(card_core0_dda_arc1_dda_run1_dda_nearest1_error_term, card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out, card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_signs
+    reg [28-1:0] inward;
+    reg [28-1:0] outward;
+    inward = 28'h0;
+    outward = 28'h0;
+    inward = ({card_core0_dda_arc1_dda_run1_dda_nearest1_error_term[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_error_term} + {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in});
+    outward = ({card_core0_dda_arc1_dda_run1_dda_nearest1_error_term[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_error_term} + {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out});
+    card_core0_dda_arc1_dda_run1_step_inward_near = ($signed(inward) >= 0);
+    card_core0_dda_arc1_dda_run1_step_outward_near = ($signed(outward) < 0);
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_step_step_out, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_dda_nearest1_error_term, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_step_step_in) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_error_change
+always @(card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_dda_nearest1_error_term, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_step_step_y, card_core0_dda_arc1_dda_run1_step_step_x) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_error_change
     reg [27-1:0] outward;
     reg [27-1:0] inward;
     reg [27-1:0] first_sum;
+    reg stepped_in;
     outward = 27'h0;
     inward = 27'h0;
     first_sum = 27'h0;
-    if (card_core0_dda_arc1_dda_run1_step_step_out) begin
-        outward = {2'h0, card_core0_dda_arc1_dda_run1_step_mag_x, 1'b1};
-        if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+    stepped_in = 1'b0;
+    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+        stepped_in = (card_core0_dda_arc1_dda_run1_step_step_x == 1);
+        if (card_core0_dda_arc1_dda_run1_step_step_y) begin
             outward = {2'h0, card_core0_dda_arc1_dda_run1_step_mag_y, 1'b1};
         end
-    end
-    if (card_core0_dda_arc1_dda_run1_step_step_in) begin
-        inward = (~{2'h0, card_core0_dda_arc1_dda_run1_step_mag_y, 1'b0});
-        if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+        if (card_core0_dda_arc1_dda_run1_step_step_x) begin
             inward = (~{2'h0, card_core0_dda_arc1_dda_run1_step_mag_x, 1'b0});
         end
     end
-    first_sum = ((card_core0_dda_arc1_dda_run1_dda_nearest1_error_term + outward) + {26'h0, card_core0_dda_arc1_dda_run1_step_step_in});
-    card_core0_dda_arc1_dda_run1_dda_nearest1_error_step = ((first_sum + inward) + {26'h0, card_core0_dda_arc1_dda_run1_step_step_in});
+    else begin
+        stepped_in = (card_core0_dda_arc1_dda_run1_step_step_y == 1);
+        if (card_core0_dda_arc1_dda_run1_step_step_x) begin
+            outward = {2'h0, card_core0_dda_arc1_dda_run1_step_mag_x, 1'b1};
+        end
+        if (card_core0_dda_arc1_dda_run1_step_step_y) begin
+            inward = (~{2'h0, card_core0_dda_arc1_dda_run1_step_mag_y, 1'b0});
+        end
+    end
+    first_sum = ((card_core0_dda_arc1_dda_run1_dda_nearest1_error_term + outward) + {26'h0, stepped_in});
+    card_core0_dda_arc1_dda_run1_dda_nearest1_error_step = ((first_sum + inward) + {26'h0, stepped_in});
 end
 
 
 always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_update
-    reg [27-1:0] op_x;
-    reg [27-1:0] op_y;
-    op_x = 27'h0;
-    op_y = 27'h0;
-    op_x = {24'h0, card_core0_dda_arc1_dda_run1_step_step_x, card_core0_dda_arc1_dda_run1_step_step_y, 1'b0};
-    op_y = {24'h0, card_core0_dda_arc1_dda_run1_step_step_y, card_core0_dda_arc1_dda_run1_step_step_x, 1'b0};
-    if ((!card_core0_dda_arc1_dda_run1_step_x_inward)) begin
-        op_x = (~op_x);
-        op_y = (~op_y);
+    reg [27-1:0] base_in;
+    reg [27-1:0] base_out;
+    reg [27-1:0] op_in;
+    reg [27-1:0] op_out;
+    reg stepped_in;
+    reg stepped_out;
+    reg turn;
+    base_in = 27'h0;
+    base_out = 27'h0;
+    op_in = 27'h0;
+    op_out = 27'h0;
+    stepped_in = (card_core0_dda_arc1_dda_run1_step_step_y == 1);
+    stepped_out = (card_core0_dda_arc1_dda_run1_step_step_x == 1);
+    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+        stepped_in = (card_core0_dda_arc1_dda_run1_step_step_x == 1);
+        stepped_out = (card_core0_dda_arc1_dda_run1_step_step_y == 1);
+    end
+    base_in = card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in;
+    base_out = card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out;
+    op_in = {25'h0, stepped_out, stepped_in};
+    op_out = {25'h0, stepped_in, stepped_out};
+    turn = (card_core0_dda_arc1_dda_run1_step_new_piece == 1);
+    if (turn) begin
+        base_in = (~card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out);
+        base_out = (~card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in);
+        if ((stepped_in && stepped_out)) begin
+            op_in = (134217727 - 2);
+            op_out = (134217727 - 2);
+        end
+        else if (stepped_in) begin
+            op_in = (134217727 - 1);
+            op_out = 134217727;
+        end
+        else if (stepped_out) begin
+            op_in = 134217727;
+            op_out = (134217727 - 1);
+        end
+        else begin
+            op_in = 0;
+            op_out = 0;
+        end
     end
     if ((card_core0_dda_arc1_dda_run1_step_pending && (!card_core0_dda_arc1_dda_run1_step_line))) begin
-        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x <= ((card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x + op_x) + {26'h0, (!card_core0_dda_arc1_dda_run1_step_x_inward)});
-        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y <= ((card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y + op_y) + {26'h0, (!card_core0_dda_arc1_dda_run1_step_x_inward)});
+        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in <= ((base_in + op_in) + {26'h0, turn});
+        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out <= ((base_out + op_out) + {26'h0, turn});
         card_core0_dda_arc1_dda_run1_dda_nearest1_error_term <= card_core0_dda_arc1_dda_run1_dda_nearest1_error_step;
     end
     if (card_core0_dda_arc1_dda_check1_move_take) begin
-        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_x <= card_core0_dda_arc1_dda_check1_move_bias_x;
-        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_y <= card_core0_dda_arc1_dda_check1_move_bias_y;
+        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in <= card_core0_dda_arc1_dda_check1_move_bias_in;
+        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out <= card_core0_dda_arc1_dda_check1_move_bias_out;
         card_core0_dda_arc1_dda_run1_dda_nearest1_error_term <= 1;
     end
 end
@@ -5097,13 +5121,12 @@ always @(card_core0_dda_arc1_dda_run1_kept_x, card_core0_dda_arc1_dda_run1_thres
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_trad_x, card_core0_dda_arc1_dda_run1_sum_y, card_core0_dda_arc1_dda_run1_sum_x, card_core0_dda_arc1_dda_run1_step_line, card_core0_dda_arc1_dda_run1_over_y) begin: card_core0_dda_arc1_dda_run1_overflow
+always @(card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_sum_y, card_core0_dda_arc1_dda_run1_sum_x, card_core0_dda_arc1_dda_run1_sum_x, card_core0_dda_arc1_dda_run1_step_line, card_core0_dda_arc1_dda_run1_over_y) begin: card_core0_dda_arc1_dda_run1_overflow
     card_core0_dda_arc1_dda_run1_over_x = (!card_core0_dda_arc1_dda_run1_sum_x[30]);
     card_core0_dda_arc1_dda_run1_over_y = (!card_core0_dda_arc1_dda_run1_sum_y[30]);
-    card_core0_dda_arc1_dda_run1_trad_over_x = (!card_core0_dda_arc1_dda_run1_trad_x[30]);
     card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_sum_x[30]) && card_core0_dda_arc1_dda_run1_sum_x[(30 - 1)]);
     if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_step_line))) begin
-        card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_trad_x[30]) && card_core0_dda_arc1_dda_run1_trad_x[(30 - 1)]);
+        card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_sum_x[30]) && card_core0_dda_arc1_dda_run1_sum_x[(30 - 1)]);
     end
     card_core0_dda_arc1_dda_run1_saturate_y = ((!card_core0_dda_arc1_dda_run1_sum_y[30]) && card_core0_dda_arc1_dda_run1_sum_y[(30 - 1)]);
 end
@@ -5161,7 +5184,7 @@ always @(card_core0_dda_arc1_dda_run1_radius, card_core0_dda_arc1_dda_run1_step_
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_trad_over_x, card_core0_dda_arc1_dda_run1_at_x, card_core0_dda_arc1_dda_run1_near_y, card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_step_outward_near, card_core0_dda_arc1_dda_run1_ahead_x, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_near_x, card_core0_dda_arc1_dda_run1_at_y, card_core0_dda_arc1_dda_run1_step_last, card_core0_dda_arc1_dda_run1_step_line, card_core0_dda_arc1_dda_run1_crossings, card_core0_dda_arc1_dda_run1_ahead_y, card_core0_dda_arc1_dda_run1_step_inward_near, card_core0_dda_arc1_dda_run1_over_y, card_core0_dda_arc1_dda_run1_over_x) begin: card_core0_dda_arc1_dda_run1_decide
+always @(card_core0_dda_arc1_dda_run1_over_x, card_core0_dda_arc1_dda_run1_at_x, card_core0_dda_arc1_dda_run1_near_y, card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_step_outward_near, card_core0_dda_arc1_dda_run1_ahead_x, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_near_x, card_core0_dda_arc1_dda_run1_at_y, card_core0_dda_arc1_dda_run1_step_last, card_core0_dda_arc1_dda_run1_step_line, card_core0_dda_arc1_dda_run1_crossings, card_core0_dda_arc1_dda_run1_ahead_y, card_core0_dda_arc1_dda_run1_step_inward_near, card_core0_dda_arc1_dda_run1_over_y, card_core0_dda_arc1_dda_run1_over_x) begin: card_core0_dda_arc1_dda_run1_decide
     reg step_x;
     reg step_y;
     reg choose_x;
@@ -5181,7 +5204,7 @@ always @(card_core0_dda_arc1_dda_run1_trad_over_x, card_core0_dda_arc1_dda_run1_
         end
     end
     if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0))) begin
-        step_x = ((card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_trad_over_x) || ((!card_core0_dda_arc1_dda_run1_over_y) && card_core0_dda_arc1_dda_run1_over_x));
+        step_x = ((card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_over_x) || ((!card_core0_dda_arc1_dda_run1_over_y) && card_core0_dda_arc1_dda_run1_over_x));
     end
     else if ((1'b1 && (card_core0_dda_arc1_dda_run1_variant == 2))) begin
         step_x = (card_core0_dda_arc1_dda_run1_over_x || (card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_ahead_x));
@@ -5222,7 +5245,6 @@ assign card_core0_dda_arc1_dda_run1_taking = (card_core0_dda_arc1_dda_run1_activ
 
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_iterate
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_run1_step_step_out <= 0;
         card_core0_dda_arc1_dda_run1_threshold_carry <= 0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 0;
         card_core0_dda_arc1_dda_run1_step_blend <= 0;
@@ -5233,14 +5255,13 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         card_core0_dda_arc1_dda_run1_target_y <= 0;
         card_core0_dda_arc1_dda_run1_crossings <= 0;
         card_core0_dda_arc1_dda_run1_target_x <= 0;
-        card_core0_dda_arc1_dda_run1_next_piece_taken <= 0;
+        card_core0_dda_arc1_dda_run1_step_new_piece <= 0;
         card_core0_dda_arc1_dda_run1_first <= 0;
         card_core0_regs_fifo1_steps_dir_x <= 0;
         card_core0_regs_fifo1_steps_dir_y <= 0;
         card_core0_dda_arc1_dda_run1_quadrant <= 0;
         card_core0_regs_fifo1_steps_step_y <= 0;
         card_core0_dda_arc1_dda_run1_right <= 0;
-        card_core0_dda_arc1_dda_run1_step_step_in <= 0;
         card_core0_dda_arc1_dda_run1_up <= 0;
         card_core0_dda_arc1_dda_run1_active <= 0;
         card_core0_dda_arc1_dda_run1_tail_taken <= 0;
@@ -5270,18 +5291,16 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             card_core0_regs_fifo1_sequencer1_dda_done <= card_core0_dda_arc1_dda_run1_finished;
             card_core0_dda_arc1_dda_run1_step_step_x <= card_core0_dda_arc1_dda_run1_go_x;
             card_core0_dda_arc1_dda_run1_step_step_y <= card_core0_dda_arc1_dda_run1_go_y;
-            card_core0_dda_arc1_dda_run1_step_step_in <= ((card_core0_dda_arc1_dda_run1_go_x && card_core0_dda_arc1_dda_run1_step_x_inward) || (card_core0_dda_arc1_dda_run1_go_y && (!card_core0_dda_arc1_dda_run1_step_x_inward)));
-            card_core0_dda_arc1_dda_run1_step_step_out <= ((card_core0_dda_arc1_dda_run1_go_x && (!card_core0_dda_arc1_dda_run1_step_x_inward)) || (card_core0_dda_arc1_dda_run1_go_y && card_core0_dda_arc1_dda_run1_step_x_inward));
             card_core0_dda_arc1_dda_run1_step_finished <= card_core0_dda_arc1_dda_run1_finished;
             card_core0_dda_arc1_dda_run1_tail_taken <= card_core0_dda_arc1_dda_run1_tail;
-            card_core0_dda_arc1_dda_run1_next_piece_taken <= card_core0_dda_arc1_dda_run1_next_piece;
+            card_core0_dda_arc1_dda_run1_step_new_piece <= card_core0_dda_arc1_dda_run1_next_piece;
             card_core0_dda_arc1_dda_run1_first <= 1'b0;
         end
         else if (card_core0_dda_arc1_dda_run1_step_pending) begin
             if (card_core0_dda_arc1_dda_run1_step_finished) begin
                 card_core0_dda_arc1_dda_run1_active <= 1'b0;
             end
-            if (card_core0_dda_arc1_dda_run1_next_piece_taken) begin
+            if (card_core0_dda_arc1_dda_run1_step_new_piece) begin
                 card_core0_dda_arc1_dda_run1_step_x_inward <= (!card_core0_dda_arc1_dda_run1_step_x_inward);
                 card_core0_dda_arc1_dda_run1_crossings <= (card_core0_dda_arc1_dda_run1_crossings - 1);
                 if (card_core0_dda_arc1_dda_run1_ccw) begin
@@ -5332,7 +5351,7 @@ always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_datapath
     if (card_core0_dda_arc1_dda_run1_taking) begin
         card_core0_dda_arc1_dda_run1_kept_x <= card_core0_dda_arc1_dda_run1_sum_x[30-1:0];
         if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_step_line))) begin
-            card_core0_dda_arc1_dda_run1_kept_x <= card_core0_dda_arc1_dda_run1_trad_x[30-1:0];
+            card_core0_dda_arc1_dda_run1_kept_x <= card_core0_dda_arc1_dda_run1_sum_x[30-1:0];
         end
         card_core0_dda_arc1_dda_run1_kept_y <= card_core0_dda_arc1_dda_run1_sum_y[30-1:0];
         if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_x)) begin

@@ -192,8 +192,8 @@ reg [26:0] dda_check0_move_totals_max;
 reg [27:0] dda_check0_move_threshold;
 reg signed [29:0] dda_check0_move_acc_init;
 reg dda_check0_move_acc_carry;
-reg signed [26:0] dda_check0_move_bias_x;
-reg signed [26:0] dda_check0_move_bias_y;
+reg signed [26:0] dda_check0_move_bias_in;
+reg signed [26:0] dda_check0_move_bias_out;
 reg signed [29:0] dda_run0_acc_x;
 reg signed [29:0] dda_run0_acc_y;
 reg dda_run0_active;
@@ -216,7 +216,6 @@ reg [29:0] dda_run0_less_y;
 reg dda_run0_near_x;
 reg dda_run0_near_y;
 reg dda_run0_next_piece;
-reg dda_run0_next_piece_taken;
 reg dda_run0_over_x;
 reg dda_run0_over_y;
 reg [1:0] dda_run0_quadrant;
@@ -235,8 +234,6 @@ reg [1:0] dda_run0_target_x;
 reg [1:0] dda_run0_target_y;
 reg [27:0] dda_run0_threshold;
 reg dda_run0_threshold_carry;
-reg dda_run0_trad_over_x;
-wire [30:0] dda_run0_trad_x;
 reg dda_run0_up;
 reg [1:0] dda_run0_variant;
 reg [23:0] dda_run0_step_mag_y;
@@ -250,17 +247,15 @@ reg dda_run0_step_inward_near;
 wire dda_run0_step_last;
 reg dda_run0_step_pending;
 reg dda_run0_step_finished;
-reg dda_run0_step_step_in;
-reg dda_run0_step_step_out;
+reg dda_run0_step_new_piece;
 reg dda_run0_step_blend;
 reg [26:0] dda_run0_dda_left0_difference;
 reg [26:0] dda_run0_dda_left0_larger;
-reg [26:0] dda_run0_dda_nearest0_bias_x;
-reg [26:0] dda_run0_dda_nearest0_bias_y;
+reg [26:0] dda_run0_dda_nearest0_bias_in;
+reg [26:0] dda_run0_dda_nearest0_bias_out;
 reg [26:0] dda_run0_dda_nearest0_error_step;
 reg [26:0] dda_run0_dda_nearest0_error_term;
 
-assign dda_run0_trad_x = 31'd0;
 
 
 always @(cmd_ys, cmd_ye, cmd_xs, cmd_xe) begin: dda_setup0_dda_latch0_magnitudes
@@ -1056,21 +1051,25 @@ always @(dda_setup0_plan_threshold, dda_setup0_plan_radius, dda_setup0_dda_latch
 end
 
 
-always @(dda_setup0_plan_mag_xs, dda_setup0_plan_mag_ys) begin: dda_check0_precise_terms
-    reg [27-1:0] twice_y;
-    reg [27-1:0] twice_x;
-    reg [27-1:0] bias_x;
-    reg [27-1:0] bias_y;
-    twice_y = 27'h0;
-    twice_x = 27'h0;
-    bias_x = 27'h0;
-    bias_y = 27'h0;
-    twice_y = {2'h0, dda_setup0_plan_mag_ys, 1'b0};
-    twice_x = {2'h0, dda_setup0_plan_mag_xs, 1'b0};
-    bias_x = (twice_y - {1'b0, dda_setup0_plan_mag_xs, 2'h0});
-    bias_y = ({1'b0, dda_setup0_plan_mag_ys, 2'h0} - twice_x);
-    dda_check0_move_bias_x = $signed(bias_x);
-    dda_check0_move_bias_y = $signed(bias_y);
+always @(dda_setup0_plan_mag_xs, dda_setup0_plan_x_inward, dda_setup0_plan_mag_ys) begin: dda_check0_precise_terms
+    reg [27-1:0] inward;
+    reg [27-1:0] outward;
+    reg [27-1:0] bias_in;
+    reg [27-1:0] bias_out;
+    inward = 27'h0;
+    outward = 27'h0;
+    bias_in = 27'h0;
+    bias_out = 27'h0;
+    inward = {3'h0, dda_setup0_plan_mag_ys};
+    outward = {3'h0, dda_setup0_plan_mag_xs};
+    if (dda_setup0_plan_x_inward) begin
+        inward = {3'h0, dda_setup0_plan_mag_xs};
+        outward = {3'h0, dda_setup0_plan_mag_ys};
+    end
+    bias_in = ({outward[(27 - 1)-1:0], 1'b0} - inward);
+    bias_out = (outward - {inward[(27 - 1)-1:0], 1'b0});
+    dda_check0_move_bias_in = $signed(bias_in);
+    dda_check0_move_bias_out = $signed(bias_out);
 end
 
 
@@ -1148,76 +1147,101 @@ always @(posedge clock, negedge reset) begin: dda_run0_dda_left0_count_down
 end
 
 
-always @(dda_run0_dda_nearest0_error_term, dda_run0_step_x_inward, dda_run0_dda_nearest0_bias_x, dda_run0_dda_nearest0_bias_y) begin: dda_run0_dda_nearest0_signs
-    reg [28-1:0] twice_error;
-    reg [28-1:0] plus_x;
-    reg [28-1:0] plus_y;
-    reg [28-1:0] minus_x;
-    reg [28-1:0] minus_y;
-    twice_error = 28'h0;
-    plus_x = 28'h0;
-    plus_y = 28'h0;
-    minus_x = 28'h0;
-    minus_y = 28'h0;
-    twice_error = {dda_run0_dda_nearest0_error_term, 1'b0};
-    plus_x = (twice_error + {dda_run0_dda_nearest0_bias_x[(27 - 1)], dda_run0_dda_nearest0_bias_x});
-    plus_y = (twice_error + {dda_run0_dda_nearest0_bias_y[(27 - 1)], dda_run0_dda_nearest0_bias_y});
-    minus_x = (twice_error - {dda_run0_dda_nearest0_bias_x[(27 - 1)], dda_run0_dda_nearest0_bias_x});
-    minus_y = (twice_error - {dda_run0_dda_nearest0_bias_y[(27 - 1)], dda_run0_dda_nearest0_bias_y});
-    if (dda_run0_step_x_inward) begin
-        dda_run0_step_inward_near = ($signed(plus_y) >= 0);
-        dda_run0_step_outward_near = ($signed(plus_x) < 0);
-    end
-    else begin
-        dda_run0_step_inward_near = ($signed(minus_x) >= 0);
-        dda_run0_step_outward_near = ($signed(minus_y) < 0);
-    end
+always @(dda_run0_dda_nearest0_error_term, dda_run0_dda_nearest0_bias_out, dda_run0_dda_nearest0_bias_in) begin: dda_run0_dda_nearest0_signs
+    reg [28-1:0] inward;
+    reg [28-1:0] outward;
+    inward = 28'h0;
+    outward = 28'h0;
+    inward = ({dda_run0_dda_nearest0_error_term[(27 - 1)], dda_run0_dda_nearest0_error_term} + {dda_run0_dda_nearest0_bias_in[(27 - 1)], dda_run0_dda_nearest0_bias_in});
+    outward = ({dda_run0_dda_nearest0_error_term[(27 - 1)], dda_run0_dda_nearest0_error_term} + {dda_run0_dda_nearest0_bias_out[(27 - 1)], dda_run0_dda_nearest0_bias_out});
+    dda_run0_step_inward_near = ($signed(inward) >= 0);
+    dda_run0_step_outward_near = ($signed(outward) < 0);
 end
 
 
-always @(dda_run0_step_step_out, dda_run0_step_x_inward, dda_run0_step_mag_y, dda_run0_dda_nearest0_error_term, dda_run0_step_mag_x, dda_run0_step_step_in) begin: dda_run0_dda_nearest0_error_change
+always @(dda_run0_step_x_inward, dda_run0_step_mag_y, dda_run0_dda_nearest0_error_term, dda_run0_step_mag_x, dda_run0_step_step_y, dda_run0_step_step_x) begin: dda_run0_dda_nearest0_error_change
     reg [27-1:0] outward;
     reg [27-1:0] inward;
     reg [27-1:0] first_sum;
+    reg stepped_in;
     outward = 27'h0;
     inward = 27'h0;
     first_sum = 27'h0;
-    if (dda_run0_step_step_out) begin
-        outward = {2'h0, dda_run0_step_mag_x, 1'b1};
-        if (dda_run0_step_x_inward) begin
+    stepped_in = 1'b0;
+    if (dda_run0_step_x_inward) begin
+        stepped_in = (dda_run0_step_step_x == 1);
+        if (dda_run0_step_step_y) begin
             outward = {2'h0, dda_run0_step_mag_y, 1'b1};
         end
-    end
-    if (dda_run0_step_step_in) begin
-        inward = (~{2'h0, dda_run0_step_mag_y, 1'b0});
-        if (dda_run0_step_x_inward) begin
+        if (dda_run0_step_step_x) begin
             inward = (~{2'h0, dda_run0_step_mag_x, 1'b0});
         end
     end
-    first_sum = ((dda_run0_dda_nearest0_error_term + outward) + {26'h0, dda_run0_step_step_in});
-    dda_run0_dda_nearest0_error_step = ((first_sum + inward) + {26'h0, dda_run0_step_step_in});
+    else begin
+        stepped_in = (dda_run0_step_step_y == 1);
+        if (dda_run0_step_step_x) begin
+            outward = {2'h0, dda_run0_step_mag_x, 1'b1};
+        end
+        if (dda_run0_step_step_y) begin
+            inward = (~{2'h0, dda_run0_step_mag_y, 1'b0});
+        end
+    end
+    first_sum = ((dda_run0_dda_nearest0_error_term + outward) + {26'h0, stepped_in});
+    dda_run0_dda_nearest0_error_step = ((first_sum + inward) + {26'h0, stepped_in});
 end
 
 
 always @(posedge clock) begin: dda_run0_dda_nearest0_update
-    reg [27-1:0] op_x;
-    reg [27-1:0] op_y;
-    op_x = 27'h0;
-    op_y = 27'h0;
-    op_x = {24'h0, dda_run0_step_step_x, dda_run0_step_step_y, 1'b0};
-    op_y = {24'h0, dda_run0_step_step_y, dda_run0_step_step_x, 1'b0};
-    if ((!dda_run0_step_x_inward)) begin
-        op_x = (~op_x);
-        op_y = (~op_y);
+    reg [27-1:0] base_in;
+    reg [27-1:0] base_out;
+    reg [27-1:0] op_in;
+    reg [27-1:0] op_out;
+    reg stepped_in;
+    reg stepped_out;
+    reg turn;
+    base_in = 27'h0;
+    base_out = 27'h0;
+    op_in = 27'h0;
+    op_out = 27'h0;
+    stepped_in = (dda_run0_step_step_y == 1);
+    stepped_out = (dda_run0_step_step_x == 1);
+    if (dda_run0_step_x_inward) begin
+        stepped_in = (dda_run0_step_step_x == 1);
+        stepped_out = (dda_run0_step_step_y == 1);
+    end
+    base_in = dda_run0_dda_nearest0_bias_in;
+    base_out = dda_run0_dda_nearest0_bias_out;
+    op_in = {25'h0, stepped_out, stepped_in};
+    op_out = {25'h0, stepped_in, stepped_out};
+    turn = (dda_run0_step_new_piece == 1);
+    if (turn) begin
+        base_in = (~dda_run0_dda_nearest0_bias_out);
+        base_out = (~dda_run0_dda_nearest0_bias_in);
+        if ((stepped_in && stepped_out)) begin
+            op_in = (134217727 - 2);
+            op_out = (134217727 - 2);
+        end
+        else if (stepped_in) begin
+            op_in = (134217727 - 1);
+            op_out = 134217727;
+        end
+        else if (stepped_out) begin
+            op_in = 134217727;
+            op_out = (134217727 - 1);
+        end
+        else begin
+            op_in = 0;
+            op_out = 0;
+        end
     end
     if ((dda_run0_step_pending && (!dda_run0_step_line))) begin
-        dda_run0_dda_nearest0_bias_x <= ((dda_run0_dda_nearest0_bias_x + op_x) + {26'h0, (!dda_run0_step_x_inward)});
-        dda_run0_dda_nearest0_bias_y <= ((dda_run0_dda_nearest0_bias_y + op_y) + {26'h0, (!dda_run0_step_x_inward)});
+        dda_run0_dda_nearest0_bias_in <= ((base_in + op_in) + {26'h0, turn});
+        dda_run0_dda_nearest0_bias_out <= ((base_out + op_out) + {26'h0, turn});
         dda_run0_dda_nearest0_error_term <= dda_run0_dda_nearest0_error_step;
     end
     if (dda_check0_move_take) begin
-        dda_run0_dda_nearest0_bias_x <= dda_check0_move_bias_x;
-        dda_run0_dda_nearest0_bias_y <= dda_check0_move_bias_y;
+        dda_run0_dda_nearest0_bias_in <= dda_check0_move_bias_in;
+        dda_run0_dda_nearest0_bias_out <= dda_check0_move_bias_out;
         dda_run0_dda_nearest0_error_term <= 1;
     end
 end
@@ -1253,13 +1277,12 @@ always @(dda_run0_kept_x, dda_run0_threshold, dda_run0_threshold_carry, dda_run0
 end
 
 
-always @(dda_run0_variant, dda_run0_trad_x, dda_run0_sum_y, dda_run0_sum_x, dda_run0_step_line, dda_run0_over_y) begin: dda_run0_overflow
+always @(dda_run0_variant, dda_run0_sum_y, dda_run0_sum_x, dda_run0_sum_x, dda_run0_step_line, dda_run0_over_y) begin: dda_run0_overflow
     dda_run0_over_x = (!dda_run0_sum_x[30]);
     dda_run0_over_y = (!dda_run0_sum_y[30]);
-    dda_run0_trad_over_x = (!dda_run0_trad_x[30]);
     dda_run0_saturate_x = ((!dda_run0_sum_x[30]) && dda_run0_sum_x[(30 - 1)]);
     if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_step_line))) begin
-        dda_run0_saturate_x = ((!dda_run0_trad_x[30]) && dda_run0_trad_x[(30 - 1)]);
+        dda_run0_saturate_x = ((!dda_run0_sum_x[30]) && dda_run0_sum_x[(30 - 1)]);
     end
     dda_run0_saturate_y = ((!dda_run0_sum_y[30]) && dda_run0_sum_y[(30 - 1)]);
 end
@@ -1317,7 +1340,7 @@ always @(dda_run0_radius, dda_run0_step_x_inward, dda_run0_target_y, dda_run0_st
 end
 
 
-always @(dda_run0_trad_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant, dda_run0_step_outward_near, dda_run0_ahead_x, dda_run0_step_x_inward, dda_run0_near_x, dda_run0_at_y, dda_run0_step_last, dda_run0_step_line, dda_run0_crossings, dda_run0_ahead_y, dda_run0_step_inward_near, dda_run0_over_y, dda_run0_over_x) begin: dda_run0_decide
+always @(dda_run0_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant, dda_run0_step_outward_near, dda_run0_ahead_x, dda_run0_step_x_inward, dda_run0_near_x, dda_run0_at_y, dda_run0_step_last, dda_run0_step_line, dda_run0_crossings, dda_run0_ahead_y, dda_run0_step_inward_near, dda_run0_over_y, dda_run0_over_x) begin: dda_run0_decide
     reg step_x;
     reg step_y;
     reg choose_x;
@@ -1337,7 +1360,7 @@ always @(dda_run0_trad_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant,
         end
     end
     if ((1'b0 && (dda_run0_variant == 0))) begin
-        step_x = ((dda_run0_over_y && dda_run0_trad_over_x) || ((!dda_run0_over_y) && dda_run0_over_x));
+        step_x = ((dda_run0_over_y && dda_run0_over_x) || ((!dda_run0_over_y) && dda_run0_over_x));
     end
     else if ((1'b1 && (dda_run0_variant == 2))) begin
         step_x = (dda_run0_over_x || (dda_run0_over_y && dda_run0_ahead_x));
@@ -1378,7 +1401,6 @@ assign dda_run0_taking = (dda_run0_active && cmd_advance && (!dda_run0_step_pend
 
 always @(posedge clock, negedge reset) begin: dda_run0_iterate
     if (reset == 0) begin
-        dda_run0_step_step_out <= 0;
         dda_run0_threshold_carry <= 0;
         cmd_done <= 0;
         dda_run0_step_blend <= 0;
@@ -1389,14 +1411,13 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
         dda_run0_target_y <= 0;
         dda_run0_crossings <= 0;
         dda_run0_target_x <= 0;
-        dda_run0_next_piece_taken <= 0;
+        dda_run0_step_new_piece <= 0;
         dda_run0_first <= 0;
         steps_dir_x <= 0;
         steps_dir_y <= 0;
         dda_run0_quadrant <= 0;
         steps_step_y <= 0;
         dda_run0_right <= 0;
-        dda_run0_step_step_in <= 0;
         dda_run0_up <= 0;
         dda_run0_active <= 0;
         dda_run0_tail_taken <= 0;
@@ -1426,18 +1447,16 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
             cmd_done <= dda_run0_finished;
             dda_run0_step_step_x <= dda_run0_go_x;
             dda_run0_step_step_y <= dda_run0_go_y;
-            dda_run0_step_step_in <= ((dda_run0_go_x && dda_run0_step_x_inward) || (dda_run0_go_y && (!dda_run0_step_x_inward)));
-            dda_run0_step_step_out <= ((dda_run0_go_x && (!dda_run0_step_x_inward)) || (dda_run0_go_y && dda_run0_step_x_inward));
             dda_run0_step_finished <= dda_run0_finished;
             dda_run0_tail_taken <= dda_run0_tail;
-            dda_run0_next_piece_taken <= dda_run0_next_piece;
+            dda_run0_step_new_piece <= dda_run0_next_piece;
             dda_run0_first <= 1'b0;
         end
         else if (dda_run0_step_pending) begin
             if (dda_run0_step_finished) begin
                 dda_run0_active <= 1'b0;
             end
-            if (dda_run0_next_piece_taken) begin
+            if (dda_run0_step_new_piece) begin
                 dda_run0_step_x_inward <= (!dda_run0_step_x_inward);
                 dda_run0_crossings <= (dda_run0_crossings - 1);
                 if (dda_run0_ccw) begin
@@ -1488,7 +1507,7 @@ always @(posedge clock) begin: dda_run0_datapath
     if (dda_run0_taking) begin
         dda_run0_kept_x <= dda_run0_sum_x[30-1:0];
         if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_step_line))) begin
-            dda_run0_kept_x <= dda_run0_trad_x[30-1:0];
+            dda_run0_kept_x <= dda_run0_sum_x[30-1:0];
         end
         dda_run0_kept_y <= dda_run0_sum_y[30-1:0];
         if ((1'b1 && dda_run0_saturate_x)) begin

@@ -715,8 +715,8 @@ reg [26:0] card1_card_core1_dda_arc2_dda_check2_move_totals_max;
 reg [27:0] card1_card_core1_dda_arc2_dda_check2_move_threshold;
 reg signed [29:0] card1_card_core1_dda_arc2_dda_check2_move_acc_init;
 reg card1_card_core1_dda_arc2_dda_check2_move_acc_carry;
-reg signed [26:0] card1_card_core1_dda_arc2_dda_check2_move_bias_x;
-reg signed [26:0] card1_card_core1_dda_arc2_dda_check2_move_bias_y;
+reg signed [26:0] card1_card_core1_dda_arc2_dda_check2_move_bias_in;
+reg signed [26:0] card1_card_core1_dda_arc2_dda_check2_move_bias_out;
 reg signed [29:0] card1_card_core1_dda_arc2_dda_run2_acc_x;
 reg signed [29:0] card1_card_core1_dda_arc2_dda_run2_acc_y;
 reg card1_card_core1_dda_arc2_dda_run2_active;
@@ -739,7 +739,6 @@ reg [29:0] card1_card_core1_dda_arc2_dda_run2_less_y;
 reg card1_card_core1_dda_arc2_dda_run2_near_x;
 reg card1_card_core1_dda_arc2_dda_run2_near_y;
 reg card1_card_core1_dda_arc2_dda_run2_next_piece;
-reg card1_card_core1_dda_arc2_dda_run2_next_piece_taken;
 reg card1_card_core1_dda_arc2_dda_run2_over_x;
 reg card1_card_core1_dda_arc2_dda_run2_over_y;
 reg [1:0] card1_card_core1_dda_arc2_dda_run2_quadrant;
@@ -758,8 +757,6 @@ reg [1:0] card1_card_core1_dda_arc2_dda_run2_target_x;
 reg [1:0] card1_card_core1_dda_arc2_dda_run2_target_y;
 reg [27:0] card1_card_core1_dda_arc2_dda_run2_threshold;
 reg card1_card_core1_dda_arc2_dda_run2_threshold_carry;
-reg card1_card_core1_dda_arc2_dda_run2_trad_over_x;
-wire [30:0] card1_card_core1_dda_arc2_dda_run2_trad_x;
 reg card1_card_core1_dda_arc2_dda_run2_up;
 reg [1:0] card1_card_core1_dda_arc2_dda_run2_variant;
 reg [23:0] card1_card_core1_dda_arc2_dda_run2_step_mag_y;
@@ -773,13 +770,12 @@ reg card1_card_core1_dda_arc2_dda_run2_step_inward_near;
 wire card1_card_core1_dda_arc2_dda_run2_step_last;
 reg card1_card_core1_dda_arc2_dda_run2_step_pending;
 reg card1_card_core1_dda_arc2_dda_run2_step_finished;
-reg card1_card_core1_dda_arc2_dda_run2_step_step_in;
-reg card1_card_core1_dda_arc2_dda_run2_step_step_out;
+reg card1_card_core1_dda_arc2_dda_run2_step_new_piece;
 reg card1_card_core1_dda_arc2_dda_run2_step_blend;
 reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_left2_difference;
 reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_left2_larger;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out;
 reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step;
 reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
@@ -799,7 +795,6 @@ assign card1_card_core1_regs_fifo2_reg_word48_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word54_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word58_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word58_set_mine = 1'd0;
-assign card1_card_core1_dda_arc2_dda_run2_trad_x = 31'd0;
 
 
 
@@ -5684,21 +5679,25 @@ always @(card1_card_core1_dda_arc2_dda_setup2_plan_threshold, card1_card_core1_d
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys) begin: card1_card_core1_dda_arc2_dda_check2_precise_terms
-    reg [27-1:0] twice_y;
-    reg [27-1:0] twice_x;
-    reg [27-1:0] bias_x;
-    reg [27-1:0] bias_y;
-    twice_y = 27'h0;
-    twice_x = 27'h0;
-    bias_x = 27'h0;
-    bias_y = 27'h0;
-    twice_y = {2'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys, 1'b0};
-    twice_x = {2'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, 1'b0};
-    bias_x = (twice_y - {1'b0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, 2'h0});
-    bias_y = ({1'b0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys, 2'h0} - twice_x);
-    card1_card_core1_dda_arc2_dda_check2_move_bias_x = $signed(bias_x);
-    card1_card_core1_dda_arc2_dda_check2_move_bias_y = $signed(bias_y);
+always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys) begin: card1_card_core1_dda_arc2_dda_check2_precise_terms
+    reg [27-1:0] inward;
+    reg [27-1:0] outward;
+    reg [27-1:0] bias_in;
+    reg [27-1:0] bias_out;
+    inward = 27'h0;
+    outward = 27'h0;
+    bias_in = 27'h0;
+    bias_out = 27'h0;
+    inward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys};
+    outward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs};
+    if (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward) begin
+        inward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs};
+        outward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys};
+    end
+    bias_in = ({outward[(27 - 1)-1:0], 1'b0} - inward);
+    bias_out = (outward - {inward[(27 - 1)-1:0], 1'b0});
+    card1_card_core1_dda_arc2_dda_check2_move_bias_in = $signed(bias_in);
+    card1_card_core1_dda_arc2_dda_check2_move_bias_out = $signed(bias_out);
 end
 
 
@@ -5776,76 +5775,101 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_signs
-    reg [28-1:0] twice_error;
-    reg [28-1:0] plus_x;
-    reg [28-1:0] plus_y;
-    reg [28-1:0] minus_x;
-    reg [28-1:0] minus_y;
-    twice_error = 28'h0;
-    plus_x = 28'h0;
-    plus_y = 28'h0;
-    minus_x = 28'h0;
-    minus_y = 28'h0;
-    twice_error = {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term, 1'b0};
-    plus_x = (twice_error + {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x});
-    plus_y = (twice_error + {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y});
-    minus_x = (twice_error - {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x});
-    minus_y = (twice_error - {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y});
-    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
-        card1_card_core1_dda_arc2_dda_run2_step_inward_near = ($signed(plus_y) >= 0);
-        card1_card_core1_dda_arc2_dda_run2_step_outward_near = ($signed(plus_x) < 0);
-    end
-    else begin
-        card1_card_core1_dda_arc2_dda_run2_step_inward_near = ($signed(minus_x) >= 0);
-        card1_card_core1_dda_arc2_dda_run2_step_outward_near = ($signed(minus_y) < 0);
-    end
+always @(card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_signs
+    reg [28-1:0] inward;
+    reg [28-1:0] outward;
+    inward = 28'h0;
+    outward = 28'h0;
+    inward = ({card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term} + {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in});
+    outward = ({card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term} + {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out});
+    card1_card_core1_dda_arc2_dda_run2_step_inward_near = ($signed(inward) >= 0);
+    card1_card_core1_dda_arc2_dda_run2_step_outward_near = ($signed(outward) < 0);
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_step_step_out, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_step_step_in) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_change
+always @(card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_step_step_y, card1_card_core1_dda_arc2_dda_run2_step_step_x) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_change
     reg [27-1:0] outward;
     reg [27-1:0] inward;
     reg [27-1:0] first_sum;
+    reg stepped_in;
     outward = 27'h0;
     inward = 27'h0;
     first_sum = 27'h0;
-    if (card1_card_core1_dda_arc2_dda_run2_step_step_out) begin
-        outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x, 1'b1};
-        if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+    stepped_in = 1'b0;
+    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+        stepped_in = (card1_card_core1_dda_arc2_dda_run2_step_step_x == 1);
+        if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
             outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y, 1'b1};
         end
-    end
-    if (card1_card_core1_dda_arc2_dda_run2_step_step_in) begin
-        inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y, 1'b0});
-        if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+        if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
             inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x, 1'b0});
         end
     end
-    first_sum = ((card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term + outward) + {26'h0, card1_card_core1_dda_arc2_dda_run2_step_step_in});
-    card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step = ((first_sum + inward) + {26'h0, card1_card_core1_dda_arc2_dda_run2_step_step_in});
+    else begin
+        stepped_in = (card1_card_core1_dda_arc2_dda_run2_step_step_y == 1);
+        if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
+            outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x, 1'b1};
+        end
+        if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
+            inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y, 1'b0});
+        end
+    end
+    first_sum = ((card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term + outward) + {26'h0, stepped_in});
+    card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step = ((first_sum + inward) + {26'h0, stepped_in});
 end
 
 
 always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_update
-    reg [27-1:0] op_x;
-    reg [27-1:0] op_y;
-    op_x = 27'h0;
-    op_y = 27'h0;
-    op_x = {24'h0, card1_card_core1_dda_arc2_dda_run2_step_step_x, card1_card_core1_dda_arc2_dda_run2_step_step_y, 1'b0};
-    op_y = {24'h0, card1_card_core1_dda_arc2_dda_run2_step_step_y, card1_card_core1_dda_arc2_dda_run2_step_step_x, 1'b0};
-    if ((!card1_card_core1_dda_arc2_dda_run2_step_x_inward)) begin
-        op_x = (~op_x);
-        op_y = (~op_y);
+    reg [27-1:0] base_in;
+    reg [27-1:0] base_out;
+    reg [27-1:0] op_in;
+    reg [27-1:0] op_out;
+    reg stepped_in;
+    reg stepped_out;
+    reg turn;
+    base_in = 27'h0;
+    base_out = 27'h0;
+    op_in = 27'h0;
+    op_out = 27'h0;
+    stepped_in = (card1_card_core1_dda_arc2_dda_run2_step_step_y == 1);
+    stepped_out = (card1_card_core1_dda_arc2_dda_run2_step_step_x == 1);
+    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+        stepped_in = (card1_card_core1_dda_arc2_dda_run2_step_step_x == 1);
+        stepped_out = (card1_card_core1_dda_arc2_dda_run2_step_step_y == 1);
+    end
+    base_in = card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in;
+    base_out = card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out;
+    op_in = {25'h0, stepped_out, stepped_in};
+    op_out = {25'h0, stepped_in, stepped_out};
+    turn = (card1_card_core1_dda_arc2_dda_run2_step_new_piece == 1);
+    if (turn) begin
+        base_in = (~card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out);
+        base_out = (~card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in);
+        if ((stepped_in && stepped_out)) begin
+            op_in = (134217727 - 2);
+            op_out = (134217727 - 2);
+        end
+        else if (stepped_in) begin
+            op_in = (134217727 - 1);
+            op_out = 134217727;
+        end
+        else if (stepped_out) begin
+            op_in = 134217727;
+            op_out = (134217727 - 1);
+        end
+        else begin
+            op_in = 0;
+            op_out = 0;
+        end
     end
     if ((card1_card_core1_dda_arc2_dda_run2_step_pending && (!card1_card_core1_dda_arc2_dda_run2_step_line))) begin
-        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x <= ((card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x + op_x) + {26'h0, (!card1_card_core1_dda_arc2_dda_run2_step_x_inward)});
-        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y <= ((card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y + op_y) + {26'h0, (!card1_card_core1_dda_arc2_dda_run2_step_x_inward)});
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in <= ((base_in + op_in) + {26'h0, turn});
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out <= ((base_out + op_out) + {26'h0, turn});
         card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term <= card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step;
     end
     if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_x <= card1_card_core1_dda_arc2_dda_check2_move_bias_x;
-        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_y <= card1_card_core1_dda_arc2_dda_check2_move_bias_y;
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in <= card1_card_core1_dda_arc2_dda_check2_move_bias_in;
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out <= card1_card_core1_dda_arc2_dda_check2_move_bias_out;
         card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term <= 1;
     end
 end
@@ -5881,13 +5905,12 @@ always @(card1_card_core1_dda_arc2_dda_run2_kept_x, card1_card_core1_dda_arc2_dd
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_trad_x, card1_card_core1_dda_arc2_dda_run2_sum_y, card1_card_core1_dda_arc2_dda_run2_sum_x, card1_card_core1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_arc2_dda_run2_over_y) begin: card1_card_core1_dda_arc2_dda_run2_overflow
+always @(card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_sum_y, card1_card_core1_dda_arc2_dda_run2_sum_x, card1_card_core1_dda_arc2_dda_run2_sum_x, card1_card_core1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_arc2_dda_run2_over_y) begin: card1_card_core1_dda_arc2_dda_run2_overflow
     card1_card_core1_dda_arc2_dda_run2_over_x = (!card1_card_core1_dda_arc2_dda_run2_sum_x[30]);
     card1_card_core1_dda_arc2_dda_run2_over_y = (!card1_card_core1_dda_arc2_dda_run2_sum_y[30]);
-    card1_card_core1_dda_arc2_dda_run2_trad_over_x = (!card1_card_core1_dda_arc2_dda_run2_trad_x[30]);
     card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_sum_x[30]) && card1_card_core1_dda_arc2_dda_run2_sum_x[(30 - 1)]);
     if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_step_line))) begin
-        card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_trad_x[30]) && card1_card_core1_dda_arc2_dda_run2_trad_x[(30 - 1)]);
+        card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_sum_x[30]) && card1_card_core1_dda_arc2_dda_run2_sum_x[(30 - 1)]);
     end
     card1_card_core1_dda_arc2_dda_run2_saturate_y = ((!card1_card_core1_dda_arc2_dda_run2_sum_y[30]) && card1_card_core1_dda_arc2_dda_run2_sum_y[(30 - 1)]);
 end
@@ -5945,7 +5968,7 @@ always @(card1_card_core1_dda_arc2_dda_run2_radius, card1_card_core1_dda_arc2_dd
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_trad_over_x, card1_card_core1_dda_arc2_dda_run2_at_x, card1_card_core1_dda_arc2_dda_run2_near_y, card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_step_outward_near, card1_card_core1_dda_arc2_dda_run2_ahead_x, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_near_x, card1_card_core1_dda_arc2_dda_run2_at_y, card1_card_core1_dda_arc2_dda_run2_step_last, card1_card_core1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_arc2_dda_run2_crossings, card1_card_core1_dda_arc2_dda_run2_ahead_y, card1_card_core1_dda_arc2_dda_run2_step_inward_near, card1_card_core1_dda_arc2_dda_run2_over_y, card1_card_core1_dda_arc2_dda_run2_over_x) begin: card1_card_core1_dda_arc2_dda_run2_decide
+always @(card1_card_core1_dda_arc2_dda_run2_over_x, card1_card_core1_dda_arc2_dda_run2_at_x, card1_card_core1_dda_arc2_dda_run2_near_y, card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_step_outward_near, card1_card_core1_dda_arc2_dda_run2_ahead_x, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_near_x, card1_card_core1_dda_arc2_dda_run2_at_y, card1_card_core1_dda_arc2_dda_run2_step_last, card1_card_core1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_arc2_dda_run2_crossings, card1_card_core1_dda_arc2_dda_run2_ahead_y, card1_card_core1_dda_arc2_dda_run2_step_inward_near, card1_card_core1_dda_arc2_dda_run2_over_y, card1_card_core1_dda_arc2_dda_run2_over_x) begin: card1_card_core1_dda_arc2_dda_run2_decide
     reg step_x;
     reg step_y;
     reg choose_x;
@@ -5965,7 +5988,7 @@ always @(card1_card_core1_dda_arc2_dda_run2_trad_over_x, card1_card_core1_dda_ar
         end
     end
     if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0))) begin
-        step_x = ((card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_trad_over_x) || ((!card1_card_core1_dda_arc2_dda_run2_over_y) && card1_card_core1_dda_arc2_dda_run2_over_x));
+        step_x = ((card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_over_x) || ((!card1_card_core1_dda_arc2_dda_run2_over_y) && card1_card_core1_dda_arc2_dda_run2_over_x));
     end
     else if ((1'b1 && (card1_card_core1_dda_arc2_dda_run2_variant == 2))) begin
         step_x = (card1_card_core1_dda_arc2_dda_run2_over_x || (card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_ahead_x));
@@ -6006,7 +6029,6 @@ assign card1_card_core1_dda_arc2_dda_run2_taking = (card1_card_core1_dda_arc2_dd
 
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_iterate
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_run2_step_step_out <= 0;
         card1_card_core1_dda_arc2_dda_run2_threshold_carry <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_blend <= 0;
@@ -6017,14 +6039,13 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_crossings <= 0;
         card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
-        card1_card_core1_dda_arc2_dda_run2_next_piece_taken <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_new_piece <= 0;
         card1_card_core1_dda_arc2_dda_run2_first <= 0;
         card1_card_core1_regs_fifo2_steps_dir_x <= 0;
         card1_card_core1_regs_fifo2_steps_dir_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_quadrant <= 0;
         card1_card_core1_regs_fifo2_steps_step_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_right <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_step_in <= 0;
         card1_card_core1_dda_arc2_dda_run2_up <= 0;
         card1_card_core1_dda_arc2_dda_run2_active <= 0;
         card1_card_core1_dda_arc2_dda_run2_tail_taken <= 0;
@@ -6054,18 +6075,16 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             card1_card_core1_regs_fifo2_sequencer2_dda_done <= card1_card_core1_dda_arc2_dda_run2_finished;
             card1_card_core1_dda_arc2_dda_run2_step_step_x <= card1_card_core1_dda_arc2_dda_run2_go_x;
             card1_card_core1_dda_arc2_dda_run2_step_step_y <= card1_card_core1_dda_arc2_dda_run2_go_y;
-            card1_card_core1_dda_arc2_dda_run2_step_step_in <= ((card1_card_core1_dda_arc2_dda_run2_go_x && card1_card_core1_dda_arc2_dda_run2_step_x_inward) || (card1_card_core1_dda_arc2_dda_run2_go_y && (!card1_card_core1_dda_arc2_dda_run2_step_x_inward)));
-            card1_card_core1_dda_arc2_dda_run2_step_step_out <= ((card1_card_core1_dda_arc2_dda_run2_go_x && (!card1_card_core1_dda_arc2_dda_run2_step_x_inward)) || (card1_card_core1_dda_arc2_dda_run2_go_y && card1_card_core1_dda_arc2_dda_run2_step_x_inward));
             card1_card_core1_dda_arc2_dda_run2_step_finished <= card1_card_core1_dda_arc2_dda_run2_finished;
             card1_card_core1_dda_arc2_dda_run2_tail_taken <= card1_card_core1_dda_arc2_dda_run2_tail;
-            card1_card_core1_dda_arc2_dda_run2_next_piece_taken <= card1_card_core1_dda_arc2_dda_run2_next_piece;
+            card1_card_core1_dda_arc2_dda_run2_step_new_piece <= card1_card_core1_dda_arc2_dda_run2_next_piece;
             card1_card_core1_dda_arc2_dda_run2_first <= 1'b0;
         end
         else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
             if (card1_card_core1_dda_arc2_dda_run2_step_finished) begin
                 card1_card_core1_dda_arc2_dda_run2_active <= 1'b0;
             end
-            if (card1_card_core1_dda_arc2_dda_run2_next_piece_taken) begin
+            if (card1_card_core1_dda_arc2_dda_run2_step_new_piece) begin
                 card1_card_core1_dda_arc2_dda_run2_step_x_inward <= (!card1_card_core1_dda_arc2_dda_run2_step_x_inward);
                 card1_card_core1_dda_arc2_dda_run2_crossings <= (card1_card_core1_dda_arc2_dda_run2_crossings - 1);
                 if (card1_card_core1_dda_arc2_dda_run2_ccw) begin
@@ -6116,7 +6135,7 @@ always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_datapath
     if (card1_card_core1_dda_arc2_dda_run2_taking) begin
         card1_card_core1_dda_arc2_dda_run2_kept_x <= card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0];
         if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_step_line))) begin
-            card1_card_core1_dda_arc2_dda_run2_kept_x <= card1_card_core1_dda_arc2_dda_run2_trad_x[30-1:0];
+            card1_card_core1_dda_arc2_dda_run2_kept_x <= card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0];
         end
         card1_card_core1_dda_arc2_dda_run2_kept_y <= card1_card_core1_dda_arc2_dda_run2_sum_y[30-1:0];
         if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_x)) begin

@@ -122,16 +122,23 @@ def dda_check(plan, move):
 
     @always_comb
     def precise_terms():
-        # 2|y| - 4|x| and 4|y| - 2|x| at the start point
-        twice_y = modbv(0)[bias_width:]
-        twice_x = modbv(0)[bias_width:]
-        bias_x = modbv(0)[bias_width:]
-        bias_y = modbv(0)[bias_width:]
-        twice_y[:] = concat(intbv(0)[2:], plan.mag_ys, False)
-        twice_x[:] = concat(intbv(0)[2:], plan.mag_xs, False)
-        bias_x[:] = twice_y - concat(False, plan.mag_xs, intbv(0)[2:])
-        bias_y[:] = concat(False, plan.mag_ys, intbv(0)[2:]) - twice_x
-        move.bias_x.next = bias_x.signed()
-        move.bias_y.next = bias_y.signed()
+        # P = 2b - a and Q = b - 2a at the start point (a inward, b outward)
+        inward = modbv(0)[bias_width:]
+        outward = modbv(0)[bias_width:]
+        bias_in = modbv(0)[bias_width:]
+        bias_out = modbv(0)[bias_width:]
+        inward[:] = concat(intbv(0)[bias_width - width:], plan.mag_ys)
+        outward[:] = concat(intbv(0)[bias_width - width:], plan.mag_xs)
+        if plan.x_inward:
+            inward[:] = concat(intbv(0)[bias_width - width:], plan.mag_xs)
+            outward[:] = concat(intbv(0)[bias_width - width:], plan.mag_ys)
+        bias_in[:] = concat(outward[bias_width - 1:], False) - inward
+        bias_out[:] = outward - concat(inward[bias_width - 1:], False)
+        move.bias_in.next = bias_in.signed()
+        move.bias_out.next = bias_out.signed()
 
-    return lookup_variant, handshake, validate, geometry, magnitudes, thresholds, precise_terms
+    processes = [lookup_variant, handshake, validate, geometry, magnitudes, thresholds]
+    if PRECISE in plan.variants:
+        # P and Q: only the precise mode reads them
+        processes.append(precise_terms)
+    return processes

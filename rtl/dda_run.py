@@ -50,6 +50,7 @@ def dda_run(clock, reset, cmd, move, steps):
     has_precise = PRECISE in variants
     saturates = bool(variants - {PRECISE})
     acc_max = (1 << (acc_width - 1)) - 1
+    acc_ones = (1 << acc_width) - 1
     width_ones = (1 << width) - 1
 
     step = DdaStep(move)
@@ -66,7 +67,7 @@ def dda_run(clock, reset, cmd, move, steps):
     threshold_carry = Signal(bool(0))
     acc_x, acc_y = (Signal(intbv(0, min=-(1 << (acc_width - 1)), max=1 << (acc_width - 1))) for _ in range(2))
     # the registered decision's own: the stopped-axis tail, a new piece, the sums to apply
-    tail_taken, next_piece_taken = Signal(bool(0)), Signal(bool(0))
+    tail_taken = Signal(bool(0))
     kept_x, kept_y = (Signal(modbv(0)[acc_width:]) for _ in range(2))
     less_x, less_y = Signal(modbv(0)[acc_width:]), Signal(modbv(0)[acc_width:])
     # first clock, combinational from registers
@@ -77,7 +78,9 @@ def dda_run(clock, reset, cmd, move, steps):
     go_x, go_y, tail, finished, next_piece = (Signal(bool(0)) for _ in range(5))
     at_x, at_y, near_x, near_y = (Signal(bool(0)) for _ in range(4))
     ahead_x, ahead_y = Signal(bool(0)), Signal(bool(0))
-    trad_x, trad_over_x = Signal(modbv(0)[acc_width + 1:]), Signal(bool(0))
+    # without the traditional variant its branches are never taken: its sum is the plain one
+    trad_x = Signal(modbv(0)[acc_width + 1:]) if has_traditional else sum_x
+    trad_over_x = Signal(bool(0)) if has_traditional else over_x
     taking = Signal(bool(0))
 
     left = dda_left(clock, reset, step, move, cmd)
@@ -108,7 +111,6 @@ def dda_run(clock, reset, cmd, move, steps):
     def overflow():
         over_x.next = not sum_x[acc_width]
         over_y.next = not sum_y[acc_width]
-        trad_over_x.next = not trad_x[acc_width]
         saturate_x.next = not sum_x[acc_width] and sum_x[acc_width - 1]
         if has_traditional and variant == TRADITIONAL and over_y and not step.line:
             saturate_x.next = not trad_x[acc_width] and trad_x[acc_width - 1]
@@ -119,7 +121,23 @@ def dda_run(clock, reset, cmd, move, steps):
         def traditional():
             # Y first: X integrates |y| after Y's step, which |y|'s adder forms
             trad_x.next = concat(acc_x[acc_width - 1], acc_x) + concat(intbv(0)[acc_width + 1 - width:], stepped_y)
-        variant_logic.append(traditional)
+
+        @always_comb
+        def traditional_overflow():
+            # X's overflow with the new |y| = |y| +- 1 from the sum S with the old |y| and an
+            # equality beside its adder: S + 1 >= 0 is S >= 0 or S = -1 (acc = ~|y|), S - 1 >= 0
+            # is S >= 0 and S != 0 (S = 0: every bit's a ^ b is the carry a | b of the one below)
+            acc = modbv(0)[acc_width:]
+            mag = modbv(0)[acc_width:]
+            either = modbv(0)[acc_width - 1:]
+            acc[:] = acc_x[acc_width:]
+            mag[:] = concat(intbv(0)[acc_width - width:], step.mag_y)
+            either[:] = acc[acc_width - 1:] | mag[acc_width - 1:]
+            if step.x_inward:
+                trad_over_x.next = over_x or (acc ^ mag) == acc_ones
+            else:
+                trad_over_x.next = over_x and (acc ^ mag) != concat(either, False)
+        variant_logic.extend((traditional, traditional_overflow))
 
     if has_improved:
         @always_comb
@@ -239,17 +257,15 @@ def dda_run(clock, reset, cmd, move, steps):
             cmd.done.next = finished
             step.step_x.next = go_x
             step.step_y.next = go_y
-            step.step_in.next = (go_x and step.x_inward) or (go_y and not step.x_inward)
-            step.step_out.next = (go_x and not step.x_inward) or (go_y and step.x_inward)
             step.finished.next = finished
             tail_taken.next = tail
-            next_piece_taken.next = next_piece
+            step.new_piece.next = next_piece
             first.next = False
         elif step.pending:
             # second clock: the decision applied
             if step.finished:
                 active.next = False
-            if next_piece_taken:
+            if step.new_piece:
                 step.x_inward.next = not step.x_inward
                 crossings.next = crossings - 1
                 if ccw:

@@ -236,8 +236,9 @@ class DdaMove:
     ``end_x``, ``end_y``, ``radius``, ``threshold`` (T - 1; T for a line, whose
     subtraction then takes a carry), ``acc_init`` (both accumulators' first
     value, A - T or A - T - 1), ``acc_carry`` (a line's first sum takes a
-    carry: the initial load -ceil(T/2)), ``bias_x``, ``bias_y`` (the precise
-    mode's 2|y| - 4|x| and 4|y| - 2|x|), ``totals_diff``, ``totals_max``.
+    carry: the initial load -ceil(T/2)), ``bias_in``, ``bias_out`` (the
+    precise mode's P = 2b - a and Q = b - 2a, a and b the start's inward and
+    outward magnitudes), ``totals_diff``, ``totals_max``.
     """
 
     def __init__(self, plan):
@@ -265,7 +266,7 @@ class DdaMove:
         self.acc_init = Signal(intbv(0, min=-(1 << (self.acc_width - 1)), max=1 << (self.acc_width - 1)))
         self.acc_carry = Signal(bool(0))
         bias = dict(min=-(1 << (self.bias_width - 1)), max=1 << (self.bias_width - 1))
-        self.bias_x, self.bias_y = Signal(intbv(0, **bias)), Signal(intbv(0, **bias))
+        self.bias_in, self.bias_out = Signal(intbv(0, **bias)), Signal(intbv(0, **bias))
         self.totals_diff = Signal(intbv(0, min=-(1 << (self.left_width - 1)), max=1 << (self.left_width - 1)))
         self.totals_max = Signal(intbv(0)[self.left_width:])
 
@@ -278,8 +279,8 @@ class DdaStep:
 
     From the run: ``pending`` (the second clock of an iteration: the
     registered decision is applied at its end), the decision ``step_x``,
-    ``step_y``, ``step_in``, ``step_out`` (by axis, and by inward / outward
-    axis of the quadrant), ``finished``, the move's ``line`` and ``blend``,
+    ``step_y``, ``finished``, ``new_piece`` (the step ends a quadrant
+    piece: the next begins when it is applied), the move's ``line`` and ``blend``,
     ``x_inward`` and the magnitudes ``mag_x``, ``mag_y``, all registers.
     To the run: ``inward_near`` and ``outward_near`` (the precise mode's
     choice, ``rtl/dda_nearest.py``) and ``last`` (a line's last iteration,
@@ -293,8 +294,7 @@ class DdaStep:
         self.bias_width = move.bias_width
         self.pending = Signal(bool(0))
         self.step_x, self.step_y = Signal(bool(0)), Signal(bool(0))
-        self.step_in, self.step_out = Signal(bool(0)), Signal(bool(0))
-        self.finished = Signal(bool(0))
+        self.finished, self.new_piece = Signal(bool(0)), Signal(bool(0))
         self.line, self.blend, self.x_inward = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
         self.mag_x, self.mag_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
         self.inward_near, self.outward_near = Signal(bool(0)), Signal(bool(0))

@@ -29,7 +29,7 @@ VIEW_GROUPS = {
                            "dda_setup.root_root", "plan_radius", "plan_totals_diff", "plan_totals_max"],
     "run (MyHDL only)": ["dda_run.quadrant", "dda_run.mag_x", "dda_run.mag_y", "dda_run.target_x",
                          "dda_run.target_y", "dda_run.acc_x", "dda_run.acc_y", "dda_run.error_term",
-                         "dda_run.bias_x", "dda_run.bias_y", "dda_run.left_diff", "dda_run.crossings"],
+                         "dda_run.bias_in", "dda_run.bias_out", "dda_run.left_diff", "dda_run.crossings"],
 }
 VIEW_SIGNED = ("cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye", "dda_run.acc_x", "dda_run.acc_y", "plan_totals_diff")
 VIEW_DECIMAL = ("dda_run.mag_x", "dda_run.mag_y", "plan_radius", "plan_totals_max")
