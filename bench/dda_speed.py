@@ -1,4 +1,4 @@
-"""Simulation speed of the DDA interpolator: ``python bench/dda_speed.py [--radius R]``.
+"""Simulation speed of the DDA interpolator: ``python -m bench.dda_speed [--radius R]``.
 
 Runs one precise quarter arc (R, 0) -> (0, R) with ``advance`` always high
 and prints clocks per second of wall time for
@@ -17,19 +17,14 @@ import argparse
 import os
 import sys
 import time
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
+from myhdl import StopSimulation, block, instance
 
-from myhdl import StopSimulation, block, instance  # noqa: E402
-
-from rtl.dda_arc import dda_arc, dda_arc_ports  # noqa: E402
-from sim.cosim import cosimulate  # noqa: E402
-from sim.dda_bench import Record, dda_bench  # noqa: E402
-from sim.dda_model import ArcCommand  # noqa: E402
-from sim.paths import GEN  # noqa: E402
+from rtl.dda_arc import dda_arc, dda_arc_ports
+from sim.cosim import cosimulate
+from sim.dda_bench import Record, dda_bench
+from sim.dda_model import ArcCommand
+from sim.paths import GEN
 from sim.clocking import clock_source
 
 
@@ -80,7 +75,7 @@ def measure(command, verilog, checked):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python bench/dda_speed.py", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="python -m bench.dda_speed", description=__doc__.split("\n")[0])
     parser.add_argument("--radius", type=int, default=2000, help="arc radius in steps (default 2000)")
     args = parser.parse_args(argv)
     if not 1 <= args.radius < 1 << 23:

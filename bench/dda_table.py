@@ -1,4 +1,4 @@
-"""Accuracy table of the DDA interpolator: ``python bench/dda_table.py``.
+"""Accuracy table of the DDA interpolator: ``python -m bench.dda_table``.
 
 Quarter arc (R, 0) -> (0, R), counter-clockwise, step 1, from the golden
 model (``sim/dda_model.py``; the RTL equals it clock for clock):
@@ -16,13 +16,8 @@ diagonal steps, iterations (``advance`` pulses) and clocks from ``start`` to
 the setup.
 """
 import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
-
-from sim.dda_model import (IMPROVED, PAPER_V_ARC, PRECISE, TRADITIONAL,  # noqa: E402
+from sim.dda_model import (IMPROVED, PAPER_V_ARC, PRECISE, TRADITIONAL,
                            VARIANT_NAMES, WEIGHTED, ArcCommand, iterate, metrics,
                            paper_configuration, setup_clocks)
 

@@ -1,4 +1,4 @@
-"""PCI target figures: ``python bench/pci_figures.py [--target verilog] [--no-synth]``.
+"""PCI target figures: ``python -m bench.pci_figures [--target verilog] [--no-synth]``.
 
 Runs the standard bench (host, bus model, monitor, zero-latency back end, no
 master wait states) and prints
@@ -10,20 +10,15 @@ master wait states) and prints
 * for configuration, I/O and memory reads and writes: the edges from the one
   that samples the address (FRAME# asserted) to the ones that sample DEVSEL#
   and the first TRDY#;
-* when ``bench/synth.py`` is there, ``pci_slave`` alone on iCE40 HX8K: logic
-  cells, flip-flops and fmax (from ``gen/pci_slave.v``).
+* ``pci_slave`` alone on iCE40 HX8K (``fpgaflow``): logic cells, flip-flops
+  and fmax (from ``gen/pci_slave.v``).
 """
 import argparse
-import importlib.util
 import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
-
-from sim.pci_bench import PciBench  # noqa: E402
-from sim.pci_host import (COMMAND_IO, COMMAND_MEMORY, MEM_READ,  # noqa: E402
+from fpgaflow import synthesize
+from sim.pci_bench import PciBench
+from sim.pci_host import (COMMAND_IO, COMMAND_MEMORY, MEM_READ,
                           MEM_READ_MULTIPLE)
 
 PCI_MHZ = 33
@@ -88,21 +83,14 @@ def print_latencies(latencies):
 
 
 def print_synthesis(freq):
-    script = ROOT / "bench" / "synth.py"
-    if not script.exists():
-        print("bench/synth.py not found: no synthesis figures")
-        return
-    spec = importlib.util.spec_from_file_location("synth", script)
-    synth = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(synth)
-    figures = synth.synthesize("pci_slave", freq=freq)
+    figures = synthesize("pci_slave", freq=freq)
     print(f"pci_slave alone on iCE40 HX8K (placed for {freq:g} MHz): "
           f"{figures['lcs']} logic cells, {figures['fabric_ffs']} flip-flops in fabric "
           f"+ {figures['io_ffs']} in I/O cells, fmax {figures['fmax_mhz']} MHz")
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python bench/pci_figures.py",
+    parser = argparse.ArgumentParser(prog="python -m bench.pci_figures",
                                      description=__doc__.split("\n\n")[0])
     parser.add_argument("--target", choices=("myhdl", "verilog"), default="myhdl",
                         help="simulate the MyHDL design or gen/pci_slave.v (default: myhdl)")

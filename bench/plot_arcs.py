@@ -1,4 +1,4 @@
-"""Paths of the DDA variants over the ideal arc: ``python bench/plot_arcs.py [--out DIR]``.
+"""Paths of the DDA variants over the ideal arc: ``python -m bench.plot_arcs [--out DIR]``.
 
 Writes PNGs like the paper's figures (into ``build/plots/`` by default):
 
@@ -16,13 +16,9 @@ import math
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
+import matplotlib
 
-import matplotlib  # noqa: E402
-
-matplotlib.use("Agg")
+matplotlib.use("Agg")  # before pyplot: no display needed
 import matplotlib.pyplot as plt  # noqa: E402
 
 from sim.dda_model import (IMPROVED, PRECISE, TRADITIONAL, VARIANT_NAMES, WEIGHTED,  # noqa: E402
@@ -89,7 +85,7 @@ def comparison_figure(out):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python bench/plot_arcs.py", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="python -m bench.plot_arcs", description=__doc__.split("\n")[0])
     parser.add_argument("--out", type=Path, default=None, help="output folder (default build/plots)")
     args = parser.parse_args(argv)
     out = args.out or build_dir("plots")

@@ -1,5 +1,5 @@
 # Timing constraints of the PCI DDA card for vendor flows (SDC).
-# Port names are those of gen/top.v.  The open flow (bench/synth.py) does not
+# Port names are those of gen/top.v.  The open flow (fpgaflow) does not
 # read this file: nextpnr-ice40 takes its 33 MHz target from --freq, and the
 # script checks the PCI pin budgets itself.
 

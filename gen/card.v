@@ -36,10 +36,12 @@ module card (
 // The paper's figure 1 in the FPGA, PCI lines still split in / out / enable.
 // 
 // Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci``
-// (``PciBus``), ``pins`` (``MotorPins``).  Parameters: ``fifo_depth``,
-// ``coord_width``, ``variants`` (the DDA's build) and those of ``pci_slave``
-// but the BAR sizes (``vendor_id``,
-// ``device_id``, ..., ``io_registers``).  BAR0 (I/O) is ``2**IO_BAR_BITS`` bytes, the size the
+// (``PciBus``), ``pins`` (``MotorPins``).  Parameters
+// (``rtl/parameters.py``): ``fifo_depth``, ``coord_width``, ``clock_hz``,
+// ``variants``, ``device`` (the PCI target's one-LUT paths: plain logic or
+// iCE40 cells) and the PCI IDs (``vendor_id``, ``device_id``, ...);
+// ``io_registers`` (``pci_slave``'s: True when the top's pads hold the PCI
+// registers).  BAR0 (I/O) is ``2**IO_BAR_BITS`` bytes, the size the
 // register table needs; BAR1 (memory, the FIFO window) is 4 KiB.
 // 
 //     PCI --> pci_slave --LocalBus--> card_core --> STEP/DIR
@@ -299,198 +301,213 @@ wire card_core0_regs_fifo1_sync_fifo1_one_free;
 wire card_core0_regs_fifo1_sync_fifo1_one_word;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_read_addr;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_write_addr;
-wire [31:0] card_core0_regs_fifo1_reg_word21_hw_value;
-wire card_core0_regs_fifo1_reg_word21_clamp_in;
-wire card_core0_regs_fifo1_reg_word21_clamp_out;
-wire [31:0] card_core0_regs_fifo1_reg_word21_read_in;
-reg [31:0] card_core0_regs_fifo1_reg_word21_read_out;
-wire card_core0_regs_fifo1_reg_word21_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word21_shown_wide;
-wire card_core0_regs_fifo1_reg_word22_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word22_read_out;
-wire [1:0] card_core0_regs_fifo1_reg_word22_honoured;
-wire card_core0_regs_fifo1_reg_word22_out_of_range;
-reg card_core0_regs_fifo1_reg_word22_clamped;
-wire card_core0_regs_fifo1_reg_word22_mine;
-wire card_core0_regs_fifo1_reg_word22_mine_write;
-wire card_core0_regs_fifo1_reg_word22_set_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word22_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word22_written;
-wire [2:0] card_core0_regs_fifo1_reg_word23_hw_value;
-wire card_core0_regs_fifo1_reg_word23_clamp_out;
-reg [31:0] card_core0_regs_fifo1_reg_word23_read_out;
-wire [2:0] card_core0_regs_fifo1_reg_word23_honoured;
-wire card_core0_regs_fifo1_reg_word23_out_of_range;
-reg card_core0_regs_fifo1_reg_word23_clamped;
-wire card_core0_regs_fifo1_reg_word23_mine;
-wire card_core0_regs_fifo1_reg_word23_mine_write;
-wire [31:0] card_core0_regs_fifo1_reg_word23_shown_wide;
-wire [2:0] card_core0_regs_fifo1_reg_word23_written;
-reg [31:0] card_core0_regs_fifo1_reg_word24_hw_value;
+wire [31:0] card_core0_regs_fifo1_reg_word24_hw_value;
+wire card_core0_regs_fifo1_reg_word24_clamp_in;
 wire card_core0_regs_fifo1_reg_word24_clamp_out;
+wire [31:0] card_core0_regs_fifo1_reg_word24_read_in;
 reg [31:0] card_core0_regs_fifo1_reg_word24_read_out;
 wire card_core0_regs_fifo1_reg_word24_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word24_shown_wide;
-reg [4:0] card_core0_regs_fifo1_reg_word25_value;
 wire card_core0_regs_fifo1_reg_word25_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word25_read_out;
-wire [4:0] card_core0_regs_fifo1_reg_word25_honoured;
+wire [1:0] card_core0_regs_fifo1_reg_word25_honoured;
 wire card_core0_regs_fifo1_reg_word25_out_of_range;
 reg card_core0_regs_fifo1_reg_word25_clamped;
 wire card_core0_regs_fifo1_reg_word25_mine;
 wire card_core0_regs_fifo1_reg_word25_mine_write;
 wire card_core0_regs_fifo1_reg_word25_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word25_shown_wide;
-reg [4:0] card_core0_regs_fifo1_reg_word25_written;
-reg [4:0] card_core0_regs_fifo1_reg_word26_hw_value;
-reg [4:0] card_core0_regs_fifo1_reg_word26_value;
+reg [1:0] card_core0_regs_fifo1_reg_word25_written;
+wire [2:0] card_core0_regs_fifo1_reg_word26_hw_value;
 wire card_core0_regs_fifo1_reg_word26_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word26_read_out;
-wire [4:0] card_core0_regs_fifo1_reg_word26_honoured;
+wire [2:0] card_core0_regs_fifo1_reg_word26_honoured;
+wire card_core0_regs_fifo1_reg_word26_out_of_range;
+reg card_core0_regs_fifo1_reg_word26_clamped;
 wire card_core0_regs_fifo1_reg_word26_mine;
 wire card_core0_regs_fifo1_reg_word26_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word26_shown_wide;
-wire [4:0] card_core0_regs_fifo1_reg_word26_written;
-reg [15:0] card_core0_regs_fifo1_reg_word27_value;
+wire [2:0] card_core0_regs_fifo1_reg_word26_written;
+reg [31:0] card_core0_regs_fifo1_reg_word27_hw_value;
 wire card_core0_regs_fifo1_reg_word27_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word27_read_out;
-wire [15:0] card_core0_regs_fifo1_reg_word27_honoured;
-wire card_core0_regs_fifo1_reg_word27_out_of_range;
-reg card_core0_regs_fifo1_reg_word27_clamped;
 wire card_core0_regs_fifo1_reg_word27_mine;
-wire card_core0_regs_fifo1_reg_word27_mine_write;
-wire card_core0_regs_fifo1_reg_word27_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word27_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word27_written;
-reg [15:0] card_core0_regs_fifo1_reg_word28_hw_value;
+reg [4:0] card_core0_regs_fifo1_reg_word28_value;
 wire card_core0_regs_fifo1_reg_word28_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word28_read_out;
+wire [4:0] card_core0_regs_fifo1_reg_word28_honoured;
+wire card_core0_regs_fifo1_reg_word28_out_of_range;
+reg card_core0_regs_fifo1_reg_word28_clamped;
 wire card_core0_regs_fifo1_reg_word28_mine;
+wire card_core0_regs_fifo1_reg_word28_mine_write;
+wire card_core0_regs_fifo1_reg_word28_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word28_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word29_hw_value;
+reg [4:0] card_core0_regs_fifo1_reg_word28_written;
+reg [4:0] card_core0_regs_fifo1_reg_word29_hw_value;
+reg [4:0] card_core0_regs_fifo1_reg_word29_value;
 wire card_core0_regs_fifo1_reg_word29_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word29_read_out;
+wire [4:0] card_core0_regs_fifo1_reg_word29_honoured;
 wire card_core0_regs_fifo1_reg_word29_mine;
+wire card_core0_regs_fifo1_reg_word29_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word29_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word30_hw_value;
+wire [4:0] card_core0_regs_fifo1_reg_word29_written;
+reg [15:0] card_core0_regs_fifo1_reg_word30_value;
 wire card_core0_regs_fifo1_reg_word30_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word30_read_out;
+wire [15:0] card_core0_regs_fifo1_reg_word30_honoured;
+wire card_core0_regs_fifo1_reg_word30_out_of_range;
+reg card_core0_regs_fifo1_reg_word30_clamped;
 wire card_core0_regs_fifo1_reg_word30_mine;
+wire card_core0_regs_fifo1_reg_word30_mine_write;
+wire card_core0_regs_fifo1_reg_word30_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word30_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word31_value;
+reg [15:0] card_core0_regs_fifo1_reg_word30_written;
+reg [15:0] card_core0_regs_fifo1_reg_word31_hw_value;
 wire card_core0_regs_fifo1_reg_word31_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word31_read_out;
-reg [15:0] card_core0_regs_fifo1_reg_word31_honoured;
-reg card_core0_regs_fifo1_reg_word31_out_of_range;
-reg card_core0_regs_fifo1_reg_word31_clamped;
 wire card_core0_regs_fifo1_reg_word31_mine;
-wire card_core0_regs_fifo1_reg_word31_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word31_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word31_written;
-reg [15:0] card_core0_regs_fifo1_reg_word32_value;
+wire [31:0] card_core0_regs_fifo1_reg_word32_hw_value;
 wire card_core0_regs_fifo1_reg_word32_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word32_read_out;
-reg [15:0] card_core0_regs_fifo1_reg_word32_honoured;
-reg card_core0_regs_fifo1_reg_word32_out_of_range;
-reg card_core0_regs_fifo1_reg_word32_clamped;
 wire card_core0_regs_fifo1_reg_word32_mine;
-wire card_core0_regs_fifo1_reg_word32_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word32_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word32_written;
-reg [15:0] card_core0_regs_fifo1_reg_word33_value;
+wire [31:0] card_core0_regs_fifo1_reg_word33_hw_value;
 wire card_core0_regs_fifo1_reg_word33_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word33_read_out;
-wire [15:0] card_core0_regs_fifo1_reg_word33_honoured;
-wire card_core0_regs_fifo1_reg_word33_out_of_range;
-reg card_core0_regs_fifo1_reg_word33_clamped;
 wire card_core0_regs_fifo1_reg_word33_mine;
-wire card_core0_regs_fifo1_reg_word33_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word33_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word33_written;
-reg [7:0] card_core0_regs_fifo1_reg_word34_value;
+reg [15:0] card_core0_regs_fifo1_reg_word34_value;
 wire card_core0_regs_fifo1_reg_word34_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word34_read_out;
-reg [7:0] card_core0_regs_fifo1_reg_word34_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word34_honoured;
 reg card_core0_regs_fifo1_reg_word34_out_of_range;
 reg card_core0_regs_fifo1_reg_word34_clamped;
 wire card_core0_regs_fifo1_reg_word34_mine;
 wire card_core0_regs_fifo1_reg_word34_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word34_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word34_written;
-reg [7:0] card_core0_regs_fifo1_reg_word35_value;
+reg [15:0] card_core0_regs_fifo1_reg_word35_value;
 wire card_core0_regs_fifo1_reg_word35_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word35_read_out;
-reg [7:0] card_core0_regs_fifo1_reg_word35_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word35_honoured;
 reg card_core0_regs_fifo1_reg_word35_out_of_range;
 reg card_core0_regs_fifo1_reg_word35_clamped;
 wire card_core0_regs_fifo1_reg_word35_mine;
 wire card_core0_regs_fifo1_reg_word35_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word35_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word35_written;
-reg [7:0] card_core0_regs_fifo1_reg_word36_value;
+reg [15:0] card_core0_regs_fifo1_reg_word36_value;
 wire card_core0_regs_fifo1_reg_word36_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word36_read_out;
-reg [7:0] card_core0_regs_fifo1_reg_word36_honoured;
-reg card_core0_regs_fifo1_reg_word36_out_of_range;
+wire [15:0] card_core0_regs_fifo1_reg_word36_honoured;
+wire card_core0_regs_fifo1_reg_word36_out_of_range;
 reg card_core0_regs_fifo1_reg_word36_clamped;
 wire card_core0_regs_fifo1_reg_word36_mine;
 wire card_core0_regs_fifo1_reg_word36_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word36_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word36_written;
-reg [1:0] card_core0_regs_fifo1_reg_word37_value;
+reg [15:0] card_core0_regs_fifo1_reg_word36_written;
+reg [7:0] card_core0_regs_fifo1_reg_word37_value;
 wire card_core0_regs_fifo1_reg_word37_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word37_read_out;
-wire [1:0] card_core0_regs_fifo1_reg_word37_honoured;
-wire card_core0_regs_fifo1_reg_word37_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word37_honoured;
+reg card_core0_regs_fifo1_reg_word37_out_of_range;
 reg card_core0_regs_fifo1_reg_word37_clamped;
 wire card_core0_regs_fifo1_reg_word37_mine;
 wire card_core0_regs_fifo1_reg_word37_mine_write;
-wire card_core0_regs_fifo1_reg_word37_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word37_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word37_written;
-reg [15:0] card_core0_regs_fifo1_reg_word38_value;
+reg [31:0] card_core0_regs_fifo1_reg_word37_written;
+reg [7:0] card_core0_regs_fifo1_reg_word38_value;
 wire card_core0_regs_fifo1_reg_word38_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word38_read_out;
-reg [15:0] card_core0_regs_fifo1_reg_word38_honoured;
+reg [7:0] card_core0_regs_fifo1_reg_word38_honoured;
 reg card_core0_regs_fifo1_reg_word38_out_of_range;
 reg card_core0_regs_fifo1_reg_word38_clamped;
 wire card_core0_regs_fifo1_reg_word38_mine;
 wire card_core0_regs_fifo1_reg_word38_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word38_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word38_written;
-reg [15:0] card_core0_regs_fifo1_reg_word39_value;
+reg [7:0] card_core0_regs_fifo1_reg_word39_value;
 wire card_core0_regs_fifo1_reg_word39_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word39_read_out;
-reg [15:0] card_core0_regs_fifo1_reg_word39_honoured;
+reg [7:0] card_core0_regs_fifo1_reg_word39_honoured;
 reg card_core0_regs_fifo1_reg_word39_out_of_range;
 reg card_core0_regs_fifo1_reg_word39_clamped;
 wire card_core0_regs_fifo1_reg_word39_mine;
 wire card_core0_regs_fifo1_reg_word39_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word39_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word39_written;
-reg [23:0] card_core0_regs_fifo1_reg_word40_hw_value;
-reg [23:0] card_core0_regs_fifo1_reg_word40_value;
-reg card_core0_regs_fifo1_reg_word40_strobe;
+reg [1:0] card_core0_regs_fifo1_reg_word40_value;
 wire card_core0_regs_fifo1_reg_word40_clamp_out;
 reg [31:0] card_core0_regs_fifo1_reg_word40_read_out;
-reg [23:0] card_core0_regs_fifo1_reg_word40_honoured;
-reg card_core0_regs_fifo1_reg_word40_out_of_range;
+wire [1:0] card_core0_regs_fifo1_reg_word40_honoured;
+wire card_core0_regs_fifo1_reg_word40_out_of_range;
 reg card_core0_regs_fifo1_reg_word40_clamped;
 wire card_core0_regs_fifo1_reg_word40_mine;
 wire card_core0_regs_fifo1_reg_word40_mine_write;
+wire card_core0_regs_fifo1_reg_word40_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word40_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word40_written;
-reg [23:0] card_core0_regs_fifo1_reg_word41_hw_value;
-reg [23:0] card_core0_regs_fifo1_reg_word41_value;
-reg card_core0_regs_fifo1_reg_word41_strobe;
+reg [1:0] card_core0_regs_fifo1_reg_word40_written;
+reg [15:0] card_core0_regs_fifo1_reg_word41_value;
 wire card_core0_regs_fifo1_reg_word41_clamp_out;
-reg [23:0] card_core0_regs_fifo1_reg_word41_honoured;
+reg [31:0] card_core0_regs_fifo1_reg_word41_read_out;
+reg [15:0] card_core0_regs_fifo1_reg_word41_honoured;
 reg card_core0_regs_fifo1_reg_word41_out_of_range;
 reg card_core0_regs_fifo1_reg_word41_clamped;
 wire card_core0_regs_fifo1_reg_word41_mine;
 wire card_core0_regs_fifo1_reg_word41_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word41_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word41_written;
+reg [31:0] card_core0_regs_fifo1_reg_word41_written;
+reg [15:0] card_core0_regs_fifo1_reg_word42_value;
+wire card_core0_regs_fifo1_reg_word42_clamp_out;
+reg [31:0] card_core0_regs_fifo1_reg_word42_read_out;
+reg [15:0] card_core0_regs_fifo1_reg_word42_honoured;
+reg card_core0_regs_fifo1_reg_word42_out_of_range;
+reg card_core0_regs_fifo1_reg_word42_clamped;
+wire card_core0_regs_fifo1_reg_word42_mine;
+wire card_core0_regs_fifo1_reg_word42_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word42_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word42_written;
+reg [23:0] card_core0_regs_fifo1_reg_word43_hw_value;
+reg [23:0] card_core0_regs_fifo1_reg_word43_value;
+reg card_core0_regs_fifo1_reg_word43_strobe;
+wire card_core0_regs_fifo1_reg_word43_clamp_out;
+reg [31:0] card_core0_regs_fifo1_reg_word43_read_out;
+reg [23:0] card_core0_regs_fifo1_reg_word43_honoured;
+reg card_core0_regs_fifo1_reg_word43_out_of_range;
+reg card_core0_regs_fifo1_reg_word43_clamped;
+wire card_core0_regs_fifo1_reg_word43_mine;
+wire card_core0_regs_fifo1_reg_word43_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word43_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word43_written;
+reg [23:0] card_core0_regs_fifo1_reg_word44_hw_value;
+reg [23:0] card_core0_regs_fifo1_reg_word44_value;
+reg card_core0_regs_fifo1_reg_word44_strobe;
+wire card_core0_regs_fifo1_reg_word44_clamp_out;
+reg [31:0] card_core0_regs_fifo1_reg_word44_read_out;
+reg [23:0] card_core0_regs_fifo1_reg_word44_honoured;
+reg card_core0_regs_fifo1_reg_word44_out_of_range;
+reg card_core0_regs_fifo1_reg_word44_clamped;
+wire card_core0_regs_fifo1_reg_word44_mine;
+wire card_core0_regs_fifo1_reg_word44_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word44_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word44_written;
+wire [31:0] card_core0_regs_fifo1_reg_word45_hw_value;
+wire card_core0_regs_fifo1_reg_word45_clamp_out;
+reg [31:0] card_core0_regs_fifo1_reg_word45_read_out;
+wire card_core0_regs_fifo1_reg_word45_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word45_shown_wide;
+wire [15:0] card_core0_regs_fifo1_reg_word46_hw_value;
+wire card_core0_regs_fifo1_reg_word46_clamp_out;
+reg [31:0] card_core0_regs_fifo1_reg_word46_read_out;
+wire card_core0_regs_fifo1_reg_word46_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word46_shown_wide;
+wire [27:0] card_core0_regs_fifo1_reg_word47_hw_value;
+wire card_core0_regs_fifo1_reg_word47_clamp_out;
+wire card_core0_regs_fifo1_reg_word47_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word47_shown_wide;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulse_count_x;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulse_count_y;
 wire card_core0_regs_fifo1_sequencer1_arriving_coord_fits;
@@ -757,20 +774,23 @@ reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word21_hw_value = 32'd3719037184;
-assign card_core0_regs_fifo1_reg_word21_clamp_in = 1'd0;
-assign card_core0_regs_fifo1_reg_word21_read_in = 32'd0;
-assign card_core0_regs_fifo1_reg_word22_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word22_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word23_hw_value = 3'd0;
-assign card_core0_regs_fifo1_reg_word23_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word24_hw_value = 32'd3719037185;
+assign card_core0_regs_fifo1_reg_word24_clamp_in = 1'd0;
+assign card_core0_regs_fifo1_reg_word24_read_in = 32'd0;
 assign card_core0_regs_fifo1_reg_word25_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word25_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word27_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word27_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word33_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word37_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word37_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word26_hw_value = 3'd0;
+assign card_core0_regs_fifo1_reg_word26_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word28_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word28_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word30_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word30_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word36_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word40_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word40_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word45_hw_value = 32'd33333333;
+assign card_core0_regs_fifo1_reg_word46_hw_value = 16'd512;
+assign card_core0_regs_fifo1_reg_word47_hw_value = 28'd786968;
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_input_register
@@ -821,44 +841,19 @@ assign pci_slave1_serr_armed = (pci_slave1_frame_qq && (!pci_slave1_frame_q) && 
 assign pci_slave1_perr_armed = (pci_slave1_write_done_q && pci_slave1_parity_response);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h9F9F)) pci_slave1_perr_next_lut (.O(pci_slave1_perr_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_perr_armed), .I3(1'b0));
-`else
-wire [7:0] pci_slave1_perr_next_lut_table = 8'h9F;
-assign pci_slave1_perr_next = pci_slave1_perr_next_lut_table[{pci_slave1_perr_armed, pci_slave1_bus_parity, pci_par_in}];
-`endif
+assign pci_slave1_perr_next = (pci_slave1_perr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h60FF)) pci_slave1_perr_oe_next_lut (.O(pci_slave1_perr_oe_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_perr_armed), .I3(pci_slave1_perr_q));
-`else
-wire [15:0] pci_slave1_perr_oe_next_lut_table = 16'h60FF;
-assign pci_slave1_perr_oe_next = pci_slave1_perr_oe_next_lut_table[{pci_slave1_perr_q, pci_slave1_perr_armed, pci_slave1_bus_parity, pci_par_in}];
-`endif
+assign pci_slave1_perr_oe_next = (pci_slave1_perr_q ? (pci_slave1_perr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6060)) pci_slave1_serr_oe_next_lut (.O(pci_slave1_serr_oe_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_serr_armed), .I3(1'b0));
-`else
-wire [7:0] pci_slave1_serr_oe_next_lut_table = 8'h60;
-assign pci_slave1_serr_oe_next = pci_slave1_serr_oe_next_lut_table[{pci_slave1_serr_armed, pci_slave1_bus_parity, pci_par_in}];
-`endif
+assign pci_slave1_serr_oe_next = (pci_slave1_serr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6000)) pci_slave1_address_fault_next_lut (.O(pci_slave1_address_fault_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_address_phase), .I3(pci_slave1_parity_response));
-`else
-wire [15:0] pci_slave1_address_fault_next_lut_table = 16'h6000;
-assign pci_slave1_address_fault_next = pci_slave1_address_fault_next_lut_table[{pci_slave1_parity_response, pci_slave1_address_phase, pci_slave1_bus_parity, pci_par_in}];
-`endif
+assign pci_slave1_address_fault_next = (pci_slave1_parity_response ? (pci_slave1_address_phase ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6660)) pci_slave1_parity_error_next_lut (.O(pci_slave1_parity_error_next), .I0(pci_par_in), .I1(pci_slave1_bus_parity), .I2(pci_slave1_address_phase), .I3(pci_slave1_write_done_q));
-`else
-wire [15:0] pci_slave1_parity_error_next_lut_table = 16'h6660;
-assign pci_slave1_parity_error_next = pci_slave1_parity_error_next_lut_table[{pci_slave1_write_done_q, pci_slave1_address_phase, pci_slave1_bus_parity, pci_par_in}];
-`endif
+assign pci_slave1_parity_error_next = (pci_slave1_write_done_q ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (pci_slave1_address_phase ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
 
 
 always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_io_enable, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_mem_enable, pci_slave1_state) begin: pci_slave1_decode
@@ -889,52 +884,22 @@ always @(pci_slave1_ad_q, pci_slave1_claim_config, pci_slave1_claim_io) begin: p
 end
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFEF0)) pci_slave1_first_phase_next_lut (.O(pci_slave1_first_phase_next), .I0(pci_irdy_in), .I1(pci_slave1_trdy_q), .I2(pci_slave1_claim), .I3(pci_slave1_first_phase));
-`else
-wire [15:0] pci_slave1_first_phase_next_lut_table = 16'hFEF0;
-assign pci_slave1_first_phase_next = pci_slave1_first_phase_next_lut_table[{pci_slave1_first_phase, pci_slave1_claim, pci_slave1_trdy_q, pci_irdy_in}];
-`endif
+assign pci_slave1_first_phase_next = (pci_slave1_first_phase ? (pci_slave1_claim ? 1'b1 : (pci_slave1_trdy_q ? 1'b1 : (pci_irdy_in ? 1'b1 : 1'b0))) : (pci_slave1_claim ? 1'b1 : 1'b0));
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hF1F0)) pci_slave1_phase_step_lut (.O(pci_slave1_phase_step), .I0(pci_irdy_in), .I1(pci_slave1_trdy_q), .I2(pci_slave1_claim), .I3(pci_slave1_space_mem));
-`else
-wire [15:0] pci_slave1_phase_step_lut_table = 16'hF1F0;
-assign pci_slave1_phase_step = pci_slave1_phase_step_lut_table[{pci_slave1_space_mem, pci_slave1_claim, pci_slave1_trdy_q, pci_irdy_in}];
-`endif
+assign pci_slave1_phase_step = (pci_slave1_space_mem ? (pci_slave1_claim ? 1'b1 : (pci_slave1_trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1))) : (pci_slave1_claim ? 1'b1 : 1'b0));
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h0101)) pci_slave1_write_done_next_lut (.O(pci_slave1_write_done_next), .I0(pci_irdy_in), .I1(pci_slave1_trdy_q), .I2(pci_slave1_is_read), .I3(1'b0));
-`else
-wire [7:0] pci_slave1_write_done_next_lut_table = 8'h01;
-assign pci_slave1_write_done_next = pci_slave1_write_done_next_lut_table[{pci_slave1_is_read, pci_slave1_trdy_q, pci_irdy_in}];
-`endif
+assign pci_slave1_write_done_next = (pci_slave1_is_read ? 1'b0 : (pci_slave1_trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1)));
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h0100)) pci_slave1_config_write_next_lut (.O(pci_slave1_config_write_next), .I0(pci_irdy_in), .I1(pci_slave1_trdy_q), .I2(pci_slave1_is_read), .I3(pci_slave1_is_config));
-`else
-wire [15:0] pci_slave1_config_write_next_lut_table = 16'h0100;
-assign pci_slave1_config_write_next = pci_slave1_config_write_next_lut_table[{pci_slave1_is_config, pci_slave1_is_read, pci_slave1_trdy_q, pci_irdy_in}];
-`endif
+assign pci_slave1_config_write_next = (pci_slave1_is_config ? (pci_slave1_is_read ? 1'b0 : (pci_slave1_trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1))) : 1'b0);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h4444)) pci_slave1_wq_valid_next_lut (.O(pci_slave1_wq_valid_next), .I0(pci_irdy_in), .I1(pci_slave1_posting), .I2(1'b0), .I3(1'b0));
-`else
-wire [3:0] pci_slave1_wq_valid_next_lut_table = 4'h4;
-assign pci_slave1_wq_valid_next = pci_slave1_wq_valid_next_lut_table[{pci_slave1_posting, pci_irdy_in}];
-`endif
+assign pci_slave1_wq_valid_next = (pci_slave1_posting ? (pci_irdy_in ? 1'b0 : 1'b1) : 1'b0);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h8888)) pci_slave1_b_valid_next_lut (.O(pci_slave1_b_valid_next), .I0(pci_irdy_in), .I1(pci_slave1_b_kept), .I2(1'b0), .I3(1'b0));
-`else
-wire [3:0] pci_slave1_b_valid_next_lut_table = 4'h8;
-assign pci_slave1_b_valid_next = pci_slave1_b_valid_next_lut_table[{pci_slave1_b_kept, pci_irdy_in}];
-`endif
+assign pci_slave1_b_valid_next = (pci_slave1_b_kept ? (pci_irdy_in ? 1'b1 : 1'b0) : 1'b0);
 
 
 always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_slave1_io_byte, pci_slave1_b_valid, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_wq_valid, pci_slave1_space_mem, pci_slave1_h_be, pci_slave1_h_data, pci_slave1_is_config, pci_slave1_irdy_q, pci_slave1_req_addr_stale, pci_slave1_address_fault, pci_slave1_frame_q, pci_slave1_h_valid, pci_slave1_cbe_q) begin: pci_slave1_local_request
@@ -1444,86 +1409,41 @@ end
 
 wire pci_slave1_state_next_x0 = pci_slave1_control_case0_0_out_state[0];
 wire pci_slave1_state_next_y0 = pci_slave1_control_case2_0_out_state[0] ^ pci_slave1_control_case1_0_out_state[0];
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h2A2E)) pci_slave1_state_next_lut0 (.O(pci_slave1_state_next[0]), .I0(pci_slave1_state_next_x0), .I1(pci_slave1_state_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] pci_slave1_state_next_lut0_table = 16'h2A2E;
-assign pci_slave1_state_next[0] = pci_slave1_state_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_state_next_y0, pci_slave1_state_next_x0}];
-`endif
+assign pci_slave1_state_next[0] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y0 ? 1'b0 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y0 ? 1'b0 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y0 ? 1'b1 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0))));
 wire pci_slave1_state_next_x1 = pci_slave1_control_case0_0_out_state[1];
 wire pci_slave1_state_next_y1 = pci_slave1_control_case2_0_out_state[1] ^ pci_slave1_control_case1_0_out_state[1];
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h2A2E)) pci_slave1_state_next_lut1 (.O(pci_slave1_state_next[1]), .I0(pci_slave1_state_next_x1), .I1(pci_slave1_state_next_y1), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] pci_slave1_state_next_lut1_table = 16'h2A2E;
-assign pci_slave1_state_next[1] = pci_slave1_state_next_lut1_table[{pci_irdy_in, pci_frame_in, pci_slave1_state_next_y1, pci_slave1_state_next_x1}];
-`endif
+assign pci_slave1_state_next[1] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y1 ? 1'b0 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y1 ? 1'b0 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y1 ? 1'b1 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0))));
 wire pci_slave1_state_next_x2 = pci_slave1_control_case0_0_out_state[2];
 wire pci_slave1_state_next_y2 = pci_slave1_control_case2_0_out_state[2] ^ pci_slave1_control_case1_0_out_state[2];
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h2A2E)) pci_slave1_state_next_lut2 (.O(pci_slave1_state_next[2]), .I0(pci_slave1_state_next_x2), .I1(pci_slave1_state_next_y2), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] pci_slave1_state_next_lut2_table = 16'h2A2E;
-assign pci_slave1_state_next[2] = pci_slave1_state_next_lut2_table[{pci_irdy_in, pci_frame_in, pci_slave1_state_next_y2, pci_slave1_state_next_x2}];
-`endif
+assign pci_slave1_state_next[2] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y2 ? 1'b0 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y2 ? 1'b0 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y2 ? 1'b1 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0))));
 wire pci_slave1_state_next_x3 = pci_slave1_control_case0_0_out_state[3];
 wire pci_slave1_state_next_y3 = pci_slave1_control_case0_0_out_state[3] ? pci_slave1_control_case2_0_out_state[3] : pci_slave1_control_case1_0_out_state[3];
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hEAE8)) pci_slave1_state_next_lut3 (.O(pci_slave1_state_next[3]), .I0(pci_slave1_state_next_x3), .I1(pci_slave1_state_next_y3), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] pci_slave1_state_next_lut3_table = 16'hEAE8;
-assign pci_slave1_state_next[3] = pci_slave1_state_next_lut3_table[{pci_irdy_in, pci_frame_in, pci_slave1_state_next_y3, pci_slave1_state_next_x3}];
-`endif
+assign pci_slave1_state_next[3] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y3 ? 1'b1 : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y3 ? 1'b1 : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y3 ? (pci_slave1_state_next_x3 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire pci_slave1_trdy_next_x0 = pci_slave1_control_case0_0_out_trdy ^ pci_slave1_control_case1_0_out_trdy;
 wire pci_slave1_trdy_next_y0 = (pci_slave1_control_case0_0_out_trdy ^ pci_slave1_control_case1_0_out_trdy) ? pci_slave1_control_case2_0_out_trdy : pci_slave1_control_case0_0_out_trdy;
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hE4EC)) pci_slave1_trdy_next_lut0 (.O(pci_slave1_trdy_next), .I0(pci_slave1_trdy_next_x0), .I1(pci_slave1_trdy_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] pci_slave1_trdy_next_lut0_table = 16'hE4EC;
-assign pci_slave1_trdy_next = pci_slave1_trdy_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_trdy_next_y0, pci_slave1_trdy_next_x0}];
-`endif
+assign pci_slave1_trdy_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_trdy_next_y0 ? 1'b1 : (pci_slave1_trdy_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_trdy_next_y0 ? (pci_slave1_trdy_next_x0 ? 1'b0 : 1'b1) : 1'b0)) : (pci_frame_in ? (pci_slave1_trdy_next_y0 ? 1'b1 : (pci_slave1_trdy_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_trdy_next_y0 ? 1'b1 : 1'b0)));
 
 
 wire pci_slave1_stop_next_x0 = pci_slave1_control_case0_0_out_stop;
 wire pci_slave1_stop_next_y0 = pci_slave1_control_case0_0_out_stop ? pci_slave1_control_case2_0_out_stop : pci_slave1_control_case1_0_out_stop;
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hEAE8)) pci_slave1_stop_next_lut0 (.O(pci_slave1_stop_next), .I0(pci_slave1_stop_next_x0), .I1(pci_slave1_stop_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] pci_slave1_stop_next_lut0_table = 16'hEAE8;
-assign pci_slave1_stop_next = pci_slave1_stop_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_stop_next_y0, pci_slave1_stop_next_x0}];
-`endif
+assign pci_slave1_stop_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_stop_next_y0 ? 1'b1 : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_stop_next_y0 ? 1'b1 : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_stop_next_y0 ? (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire pci_slave1_devsel_next_x0 = pci_slave1_control_case0_0_out_devsel;
 wire pci_slave1_devsel_next_y0 = pci_slave1_control_case0_0_out_devsel ? pci_slave1_control_case2_0_out_devsel : pci_slave1_control_case1_0_out_devsel;
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hEAE8)) pci_slave1_devsel_next_lut0 (.O(pci_slave1_devsel_next), .I0(pci_slave1_devsel_next_x0), .I1(pci_slave1_devsel_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] pci_slave1_devsel_next_lut0_table = 16'hEAE8;
-assign pci_slave1_devsel_next = pci_slave1_devsel_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_devsel_next_y0, pci_slave1_devsel_next_x0}];
-`endif
+assign pci_slave1_devsel_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_devsel_next_y0 ? 1'b1 : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_devsel_next_y0 ? 1'b1 : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_devsel_next_y0 ? (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire pci_slave1_drive_next_x0 = pci_slave1_control_case0_0_out_drive;
 wire pci_slave1_drive_next_y0 = pci_slave1_control_case0_0_out_drive ? pci_slave1_control_case2_0_out_drive : pci_slave1_control_case1_0_out_drive;
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hEAE8)) pci_slave1_drive_next_lut0 (.O(pci_slave1_drive_next), .I0(pci_slave1_drive_next_x0), .I1(pci_slave1_drive_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] pci_slave1_drive_next_lut0_table = 16'hEAE8;
-assign pci_slave1_drive_next = pci_slave1_drive_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_drive_next_y0, pci_slave1_drive_next_x0}];
-`endif
+assign pci_slave1_drive_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_drive_next_y0 ? 1'b1 : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_drive_next_y0 ? 1'b1 : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_drive_next_y0 ? (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire pci_slave1_ad_oe_next_x0 = pci_slave1_control_case0_0_out_ad_oe;
 wire pci_slave1_ad_oe_next_y0 = pci_slave1_control_case2_0_out_ad_oe ^ pci_slave1_control_case1_0_out_ad_oe;
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h2A2E)) pci_slave1_ad_oe_next_lut0 (.O(pci_slave1_ad_oe_next), .I0(pci_slave1_ad_oe_next_x0), .I1(pci_slave1_ad_oe_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] pci_slave1_ad_oe_next_lut0_table = 16'h2A2E;
-assign pci_slave1_ad_oe_next = pci_slave1_ad_oe_next_lut0_table[{pci_irdy_in, pci_frame_in, pci_slave1_ad_oe_next_y0, pci_slave1_ad_oe_next_x0}];
-`endif
+assign pci_slave1_ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_y0 ? 1'b1 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_transaction
@@ -1950,144 +1870,15 @@ assign card_core0_regs_fifo1_fifo_full = card_core0_regs_fifo1_sync_fifo1_is_ful
 
 
 
-assign card_core0_regs_fifo1_reg_word21_mine = (pci_slave1_local_addr == 0);
+assign card_core0_regs_fifo1_reg_word24_mine = (pci_slave1_local_addr == 0);
 
 
-always @(card_core0_regs_fifo1_reg_word21_mine, card_core0_regs_fifo1_reg_word21_shown_wide, card_core0_regs_fifo1_reg_word21_read_in) begin: card_core0_regs_fifo1_reg_word21_read_chain
-    if (card_core0_regs_fifo1_reg_word21_mine) begin
-        card_core0_regs_fifo1_reg_word21_read_out = (card_core0_regs_fifo1_reg_word21_read_in | card_core0_regs_fifo1_reg_word21_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word21_read_out = card_core0_regs_fifo1_reg_word21_read_in;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word21_shown_wide = card_core0_regs_fifo1_reg_word21_hw_value;
-
-
-
-assign card_core0_regs_fifo1_reg_word21_clamp_out = card_core0_regs_fifo1_reg_word21_clamp_in;
-
-
-
-assign card_core0_regs_fifo1_reg_word22_mine = (pci_slave1_local_addr == 4);
-
-
-always @(card_core0_regs_fifo1_reg_word22_mine, card_core0_regs_fifo1_reg_word22_shown_wide, card_core0_regs_fifo1_reg_word21_read_out) begin: card_core0_regs_fifo1_reg_word22_read_chain
-    if (card_core0_regs_fifo1_reg_word22_mine) begin
-        card_core0_regs_fifo1_reg_word22_read_out = (card_core0_regs_fifo1_reg_word21_read_out | card_core0_regs_fifo1_reg_word22_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word22_read_out = card_core0_regs_fifo1_reg_word21_read_out;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word22_shown_wide = {30'h0, card_core0_regs_fifo1_control};
-
-
-
-assign card_core0_regs_fifo1_reg_word22_mine_write = (card_core0_regs_fifo1_written_addr == 4);
-
-
-always @(card_core0_regs_fifo1_reg_word22_shown_wide, card_core0_regs_fifo1_reg_word22_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word22_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word22_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word22_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word22_written = ((card_core0_regs_fifo1_reg_word22_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word22_honoured = card_core0_regs_fifo1_reg_word22_written[2-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word22_clamp_out = (card_core0_regs_fifo1_reg_word21_clamp_out || card_core0_regs_fifo1_reg_word22_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word22__store16_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_control <= 0;
-        card_core0_regs_fifo1_reg_word22_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word22_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word22_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word22_mine_write))) begin
-            card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word22_honoured;
-            card_core0_regs_fifo1_reg_word22_clamped <= card_core0_regs_fifo1_reg_word22_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word23_mine = (pci_slave1_local_addr == 8);
-
-
-always @(card_core0_regs_fifo1_reg_word23_mine, card_core0_regs_fifo1_reg_word23_shown_wide, card_core0_regs_fifo1_reg_word22_read_out) begin: card_core0_regs_fifo1_reg_word23_read_chain
-    if (card_core0_regs_fifo1_reg_word23_mine) begin
-        card_core0_regs_fifo1_reg_word23_read_out = (card_core0_regs_fifo1_reg_word22_read_out | card_core0_regs_fifo1_reg_word23_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word23_read_out = card_core0_regs_fifo1_reg_word22_read_out;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word23_shown_wide = {29'h0, card_core0_regs_fifo1_reg_word23_hw_value};
-
-
-
-assign card_core0_regs_fifo1_reg_word23_mine_write = (card_core0_regs_fifo1_written_addr == 8);
-
-
-
-assign card_core0_regs_fifo1_reg_word23_written = (card_core0_regs_fifo1_written_data[3-1:0] & card_core0_regs_fifo1_written_mask[3-1:0]);
-
-
-
-assign card_core0_regs_fifo1_reg_word23_honoured = card_core0_regs_fifo1_reg_word23_written[3-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word23_clamp_out = (card_core0_regs_fifo1_reg_word22_clamp_out || card_core0_regs_fifo1_reg_word23_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word23__store17_pulse_on_write
-    if (reset == 0) begin
-        card_core0_regs_fifo1_command_strobe <= 0;
-        card_core0_regs_fifo1_command <= 0;
-        card_core0_regs_fifo1_reg_word23_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_command_strobe <= 1'b0;
-        card_core0_regs_fifo1_reg_word23_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word23_mine_write)) begin
-            card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word23_honoured;
-            card_core0_regs_fifo1_command_strobe <= 1'b1;
-            card_core0_regs_fifo1_reg_word23_clamped <= card_core0_regs_fifo1_reg_word23_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word24_mine = (pci_slave1_local_addr == 12);
-
-
-always @(card_core0_regs_fifo1_reg_word24_mine, card_core0_regs_fifo1_reg_word24_shown_wide, card_core0_regs_fifo1_reg_word23_read_out) begin: card_core0_regs_fifo1_reg_word24_read_chain
+always @(card_core0_regs_fifo1_reg_word24_mine, card_core0_regs_fifo1_reg_word24_shown_wide, card_core0_regs_fifo1_reg_word24_read_in) begin: card_core0_regs_fifo1_reg_word24_read_chain
     if (card_core0_regs_fifo1_reg_word24_mine) begin
-        card_core0_regs_fifo1_reg_word24_read_out = (card_core0_regs_fifo1_reg_word23_read_out | card_core0_regs_fifo1_reg_word24_shown_wide);
+        card_core0_regs_fifo1_reg_word24_read_out = (card_core0_regs_fifo1_reg_word24_read_in | card_core0_regs_fifo1_reg_word24_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word24_read_out = card_core0_regs_fifo1_reg_word23_read_out;
+        card_core0_regs_fifo1_reg_word24_read_out = card_core0_regs_fifo1_reg_word24_read_in;
     end
 end
 
@@ -2097,11 +1888,11 @@ assign card_core0_regs_fifo1_reg_word24_shown_wide = card_core0_regs_fifo1_reg_w
 
 
 
-assign card_core0_regs_fifo1_reg_word24_clamp_out = card_core0_regs_fifo1_reg_word23_clamp_out;
+assign card_core0_regs_fifo1_reg_word24_clamp_out = card_core0_regs_fifo1_reg_word24_clamp_in;
 
 
 
-assign card_core0_regs_fifo1_reg_word25_mine = (pci_slave1_local_addr == 16);
+assign card_core0_regs_fifo1_reg_word25_mine = (pci_slave1_local_addr == 4);
 
 
 always @(card_core0_regs_fifo1_reg_word25_mine, card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word24_read_out) begin: card_core0_regs_fifo1_reg_word25_read_chain
@@ -2115,40 +1906,40 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word25_shown_wide = {27'h0, card_core0_regs_fifo1_reg_word25_value};
+assign card_core0_regs_fifo1_reg_word25_shown_wide = {30'h0, card_core0_regs_fifo1_control};
 
 
 
-assign card_core0_regs_fifo1_reg_word25_mine_write = (card_core0_regs_fifo1_written_addr == 16);
+assign card_core0_regs_fifo1_reg_word25_mine_write = (card_core0_regs_fifo1_written_addr == 4);
 
 
 always @(card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word25_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word25_merge_bytes
     if ((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word25_written = card_core0_regs_fifo1_set_value[5-1:0];
+        card_core0_regs_fifo1_reg_word25_written = card_core0_regs_fifo1_set_value[2-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word25_written = ((card_core0_regs_fifo1_reg_word25_shown_wide[5-1:0] & (~card_core0_regs_fifo1_written_mask[5-1:0])) | (card_core0_regs_fifo1_written_data[5-1:0] & card_core0_regs_fifo1_written_mask[5-1:0]));
+        card_core0_regs_fifo1_reg_word25_written = ((card_core0_regs_fifo1_reg_word25_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word25_honoured = card_core0_regs_fifo1_reg_word25_written[5-1:0];
+assign card_core0_regs_fifo1_reg_word25_honoured = card_core0_regs_fifo1_reg_word25_written[2-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word25_clamp_out = (card_core0_regs_fifo1_reg_word24_clamp_out || card_core0_regs_fifo1_reg_word25_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word25__store18_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word25__store16_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word25_value <= 0;
+        card_core0_regs_fifo1_control <= 0;
         card_core0_regs_fifo1_reg_word25_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word25_clamped <= 1'b0;
         if (((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word25_mine_write))) begin
-            card_core0_regs_fifo1_reg_word25_value <= card_core0_regs_fifo1_reg_word25_honoured;
+            card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word25_honoured;
             card_core0_regs_fifo1_reg_word25_clamped <= card_core0_regs_fifo1_reg_word25_out_of_range;
         end
     end
@@ -2156,7 +1947,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word26_mine = (pci_slave1_local_addr == 20);
+assign card_core0_regs_fifo1_reg_word26_mine = (pci_slave1_local_addr == 8);
 
 
 always @(card_core0_regs_fifo1_reg_word26_mine, card_core0_regs_fifo1_reg_word26_shown_wide, card_core0_regs_fifo1_reg_word25_read_out) begin: card_core0_regs_fifo1_reg_word26_read_chain
@@ -2170,42 +1961,45 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word26_shown_wide = {27'h0, card_core0_regs_fifo1_reg_word26_value};
+assign card_core0_regs_fifo1_reg_word26_shown_wide = {29'h0, card_core0_regs_fifo1_reg_word26_hw_value};
 
 
 
-assign card_core0_regs_fifo1_reg_word26_mine_write = (card_core0_regs_fifo1_written_addr == 20);
+assign card_core0_regs_fifo1_reg_word26_mine_write = (card_core0_regs_fifo1_written_addr == 8);
 
 
 
-assign card_core0_regs_fifo1_reg_word26_written = (card_core0_regs_fifo1_written_data[5-1:0] & card_core0_regs_fifo1_written_mask[5-1:0]);
+assign card_core0_regs_fifo1_reg_word26_written = (card_core0_regs_fifo1_written_data[3-1:0] & card_core0_regs_fifo1_written_mask[3-1:0]);
 
 
 
-assign card_core0_regs_fifo1_reg_word26_honoured = card_core0_regs_fifo1_reg_word26_written[5-1:0];
+assign card_core0_regs_fifo1_reg_word26_honoured = card_core0_regs_fifo1_reg_word26_written[3-1:0];
 
 
 
-assign card_core0_regs_fifo1_reg_word26_clamp_out = card_core0_regs_fifo1_reg_word25_clamp_out;
+assign card_core0_regs_fifo1_reg_word26_clamp_out = (card_core0_regs_fifo1_reg_word25_clamp_out || card_core0_regs_fifo1_reg_word26_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word26__store19_clear_on_one
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word26__store17_pulse_on_write
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word26_value <= 0;
+        card_core0_regs_fifo1_command_strobe <= 0;
+        card_core0_regs_fifo1_command <= 0;
+        card_core0_regs_fifo1_reg_word26_clamped <= 0;
     end
     else begin
+        card_core0_regs_fifo1_command_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word26_clamped <= 1'b0;
         if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word26_mine_write)) begin
-            card_core0_regs_fifo1_reg_word26_value <= ((card_core0_regs_fifo1_reg_word26_value & (~card_core0_regs_fifo1_reg_word26_honoured)) | card_core0_regs_fifo1_reg_word26_hw_value);
-        end
-        else begin
-            card_core0_regs_fifo1_reg_word26_value <= (card_core0_regs_fifo1_reg_word26_value | card_core0_regs_fifo1_reg_word26_hw_value);
+            card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word26_honoured;
+            card_core0_regs_fifo1_command_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word26_clamped <= card_core0_regs_fifo1_reg_word26_out_of_range;
         end
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word27_mine = (pci_slave1_local_addr == 24);
+assign card_core0_regs_fifo1_reg_word27_mine = (pci_slave1_local_addr == 12);
 
 
 always @(card_core0_regs_fifo1_reg_word27_mine, card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word26_read_out) begin: card_core0_regs_fifo1_reg_word27_read_chain
@@ -2219,48 +2013,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word27_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word27_value};
+assign card_core0_regs_fifo1_reg_word27_shown_wide = card_core0_regs_fifo1_reg_word27_hw_value;
 
 
 
-assign card_core0_regs_fifo1_reg_word27_mine_write = (card_core0_regs_fifo1_written_addr == 24);
-
-
-always @(card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word27_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word27_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word27_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word27_written = card_core0_regs_fifo1_set_value[16-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word27_written = ((card_core0_regs_fifo1_reg_word27_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word27_clamp_out = card_core0_regs_fifo1_reg_word26_clamp_out;
 
 
 
-assign card_core0_regs_fifo1_reg_word27_honoured = card_core0_regs_fifo1_reg_word27_written[16-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word27_clamp_out = (card_core0_regs_fifo1_reg_word26_clamp_out || card_core0_regs_fifo1_reg_word27_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word27__store20_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word27_value <= 0;
-        card_core0_regs_fifo1_reg_word27_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word27_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word27_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word27_mine_write))) begin
-            card_core0_regs_fifo1_reg_word27_value <= card_core0_regs_fifo1_reg_word27_honoured;
-            card_core0_regs_fifo1_reg_word27_clamped <= card_core0_regs_fifo1_reg_word27_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word28_mine = (pci_slave1_local_addr == 28);
+assign card_core0_regs_fifo1_reg_word28_mine = (pci_slave1_local_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word28_mine, card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word27_read_out) begin: card_core0_regs_fifo1_reg_word28_read_chain
@@ -2274,15 +2035,48 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word28_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word28_hw_value};
+assign card_core0_regs_fifo1_reg_word28_shown_wide = {27'h0, card_core0_regs_fifo1_reg_word28_value};
 
 
 
-assign card_core0_regs_fifo1_reg_word28_clamp_out = card_core0_regs_fifo1_reg_word27_clamp_out;
+assign card_core0_regs_fifo1_reg_word28_mine_write = (card_core0_regs_fifo1_written_addr == 16);
+
+
+always @(card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word28_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word28_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word28_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word28_written = card_core0_regs_fifo1_set_value[5-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word28_written = ((card_core0_regs_fifo1_reg_word28_shown_wide[5-1:0] & (~card_core0_regs_fifo1_written_mask[5-1:0])) | (card_core0_regs_fifo1_written_data[5-1:0] & card_core0_regs_fifo1_written_mask[5-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word29_mine = (pci_slave1_local_addr == 32);
+assign card_core0_regs_fifo1_reg_word28_honoured = card_core0_regs_fifo1_reg_word28_written[5-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word28_clamp_out = (card_core0_regs_fifo1_reg_word27_clamp_out || card_core0_regs_fifo1_reg_word28_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word28__store18_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word28_value <= 0;
+        card_core0_regs_fifo1_reg_word28_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word28_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word28_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word28_mine_write))) begin
+            card_core0_regs_fifo1_reg_word28_value <= card_core0_regs_fifo1_reg_word28_honoured;
+            card_core0_regs_fifo1_reg_word28_clamped <= card_core0_regs_fifo1_reg_word28_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word29_mine = (pci_slave1_local_addr == 20);
 
 
 always @(card_core0_regs_fifo1_reg_word29_mine, card_core0_regs_fifo1_reg_word29_shown_wide, card_core0_regs_fifo1_reg_word28_read_out) begin: card_core0_regs_fifo1_reg_word29_read_chain
@@ -2296,15 +2090,42 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word29_shown_wide = card_core0_regs_fifo1_reg_word29_hw_value;
+assign card_core0_regs_fifo1_reg_word29_shown_wide = {27'h0, card_core0_regs_fifo1_reg_word29_value};
+
+
+
+assign card_core0_regs_fifo1_reg_word29_mine_write = (card_core0_regs_fifo1_written_addr == 20);
+
+
+
+assign card_core0_regs_fifo1_reg_word29_written = (card_core0_regs_fifo1_written_data[5-1:0] & card_core0_regs_fifo1_written_mask[5-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word29_honoured = card_core0_regs_fifo1_reg_word29_written[5-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word29_clamp_out = card_core0_regs_fifo1_reg_word28_clamp_out;
 
 
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word29__store19_clear_on_one
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word29_value <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word29_mine_write)) begin
+            card_core0_regs_fifo1_reg_word29_value <= ((card_core0_regs_fifo1_reg_word29_value & (~card_core0_regs_fifo1_reg_word29_honoured)) | card_core0_regs_fifo1_reg_word29_hw_value);
+        end
+        else begin
+            card_core0_regs_fifo1_reg_word29_value <= (card_core0_regs_fifo1_reg_word29_value | card_core0_regs_fifo1_reg_word29_hw_value);
+        end
+    end
+end
 
-assign card_core0_regs_fifo1_reg_word30_mine = (pci_slave1_local_addr == 36);
+
+
+assign card_core0_regs_fifo1_reg_word30_mine = (pci_slave1_local_addr == 24);
 
 
 always @(card_core0_regs_fifo1_reg_word30_mine, card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word29_read_out) begin: card_core0_regs_fifo1_reg_word30_read_chain
@@ -2318,15 +2139,48 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word30_shown_wide = card_core0_regs_fifo1_reg_word30_hw_value;
+assign card_core0_regs_fifo1_reg_word30_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word30_value};
 
 
 
-assign card_core0_regs_fifo1_reg_word30_clamp_out = card_core0_regs_fifo1_reg_word29_clamp_out;
+assign card_core0_regs_fifo1_reg_word30_mine_write = (card_core0_regs_fifo1_written_addr == 24);
+
+
+always @(card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word30_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word30_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word30_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word30_written = card_core0_regs_fifo1_set_value[16-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word30_written = ((card_core0_regs_fifo1_reg_word30_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word31_mine = (pci_slave1_local_addr == 40);
+assign card_core0_regs_fifo1_reg_word30_honoured = card_core0_regs_fifo1_reg_word30_written[16-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word30_clamp_out = (card_core0_regs_fifo1_reg_word29_clamp_out || card_core0_regs_fifo1_reg_word30_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word30__store20_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word30_value <= 0;
+        card_core0_regs_fifo1_reg_word30_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word30_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word30_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word30_mine_write))) begin
+            card_core0_regs_fifo1_reg_word30_value <= card_core0_regs_fifo1_reg_word30_honoured;
+            card_core0_regs_fifo1_reg_word30_clamped <= card_core0_regs_fifo1_reg_word30_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word31_mine = (pci_slave1_local_addr == 28);
 
 
 always @(card_core0_regs_fifo1_reg_word31_mine, card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_reg_word30_read_out) begin: card_core0_regs_fifo1_reg_word31_read_chain
@@ -2340,59 +2194,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word31_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word31_value};
+assign card_core0_regs_fifo1_reg_word31_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word31_hw_value};
 
 
 
-assign card_core0_regs_fifo1_reg_word31_mine_write = (card_core0_regs_fifo1_written_addr == 40);
-
-
-always @(card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word31_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word31_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word31_written = ((card_core0_regs_fifo1_reg_word31_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word31_written) begin: card_core0_regs_fifo1_reg_word31__limit21_clamp_unsigned
-    card_core0_regs_fifo1_reg_word31_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word31_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word31_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word31_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word31_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word31_written[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word31_honoured = 32768;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word31_honoured = card_core0_regs_fifo1_reg_word31_written[16-1:0];
-        card_core0_regs_fifo1_reg_word31_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word31_clamp_out = card_core0_regs_fifo1_reg_word30_clamp_out;
 
 
 
-assign card_core0_regs_fifo1_reg_word31_clamp_out = (card_core0_regs_fifo1_reg_word30_clamp_out || card_core0_regs_fifo1_reg_word31_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word31__store21_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word31_value <= 4096;
-        card_core0_regs_fifo1_reg_word31_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word31_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word31_mine_write))) begin
-            card_core0_regs_fifo1_reg_word31_value <= card_core0_regs_fifo1_reg_word31_honoured;
-            card_core0_regs_fifo1_reg_word31_clamped <= card_core0_regs_fifo1_reg_word31_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word32_mine = (pci_slave1_local_addr == 44);
+assign card_core0_regs_fifo1_reg_word32_mine = (pci_slave1_local_addr == 32);
 
 
 always @(card_core0_regs_fifo1_reg_word32_mine, card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word31_read_out) begin: card_core0_regs_fifo1_reg_word32_read_chain
@@ -2406,59 +2216,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word32_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word32_value};
+assign card_core0_regs_fifo1_reg_word32_shown_wide = card_core0_regs_fifo1_reg_word32_hw_value;
 
 
 
-assign card_core0_regs_fifo1_reg_word32_mine_write = (card_core0_regs_fifo1_written_addr == 44);
-
-
-always @(card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word32_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
-        card_core0_regs_fifo1_reg_word32_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word32_written = ((card_core0_regs_fifo1_reg_word32_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word32_written) begin: card_core0_regs_fifo1_reg_word32__limit22_clamp_unsigned
-    card_core0_regs_fifo1_reg_word32_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word32_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word32_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word32_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word32_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word32_written[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word32_honoured = 32768;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word32_honoured = card_core0_regs_fifo1_reg_word32_written[16-1:0];
-        card_core0_regs_fifo1_reg_word32_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word32_clamp_out = card_core0_regs_fifo1_reg_word31_clamp_out;
 
 
 
-assign card_core0_regs_fifo1_reg_word32_clamp_out = (card_core0_regs_fifo1_reg_word31_clamp_out || card_core0_regs_fifo1_reg_word32_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word32__store22_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word32_value <= 4096;
-        card_core0_regs_fifo1_reg_word32_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word32_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word32_mine_write))) begin
-            card_core0_regs_fifo1_reg_word32_value <= card_core0_regs_fifo1_reg_word32_honoured;
-            card_core0_regs_fifo1_reg_word32_clamped <= card_core0_regs_fifo1_reg_word32_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word33_mine = (pci_slave1_local_addr == 48);
+assign card_core0_regs_fifo1_reg_word33_mine = (pci_slave1_local_addr == 36);
 
 
 always @(card_core0_regs_fifo1_reg_word33_mine, card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_reg_word32_read_out) begin: card_core0_regs_fifo1_reg_word33_read_chain
@@ -2472,48 +2238,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word33_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word33_value};
+assign card_core0_regs_fifo1_reg_word33_shown_wide = card_core0_regs_fifo1_reg_word33_hw_value;
 
 
 
-assign card_core0_regs_fifo1_reg_word33_mine_write = (card_core0_regs_fifo1_written_addr == 48);
-
-
-always @(card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word33_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
-        card_core0_regs_fifo1_reg_word33_written = card_core0_regs_fifo1_set_value[16-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word33_written = ((card_core0_regs_fifo1_reg_word33_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word33_clamp_out = card_core0_regs_fifo1_reg_word32_clamp_out;
 
 
 
-assign card_core0_regs_fifo1_reg_word33_honoured = card_core0_regs_fifo1_reg_word33_written[16-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word33_clamp_out = (card_core0_regs_fifo1_reg_word32_clamp_out || card_core0_regs_fifo1_reg_word33_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word33__store23_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word33_value <= 0;
-        card_core0_regs_fifo1_reg_word33_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word33_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word33_mine_write))) begin
-            card_core0_regs_fifo1_reg_word33_value <= card_core0_regs_fifo1_reg_word33_honoured;
-            card_core0_regs_fifo1_reg_word33_clamped <= card_core0_regs_fifo1_reg_word33_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word34_mine = (pci_slave1_local_addr == 52);
+assign card_core0_regs_fifo1_reg_word34_mine = (pci_slave1_local_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word34_mine, card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word33_read_out) begin: card_core0_regs_fifo1_reg_word34_read_chain
@@ -2527,15 +2260,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word34_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word34_value};
+assign card_core0_regs_fifo1_reg_word34_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word34_value};
 
 
 
-assign card_core0_regs_fifo1_reg_word34_mine_write = (card_core0_regs_fifo1_written_addr == 52);
+assign card_core0_regs_fifo1_reg_word34_mine_write = (card_core0_regs_fifo1_written_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word34_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
         card_core0_regs_fifo1_reg_word34_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -2544,16 +2277,16 @@ always @(card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word34_written) begin: card_core0_regs_fifo1_reg_word34__limit24_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word34_written) begin: card_core0_regs_fifo1_reg_word34__limit21_clamp_unsigned
     card_core0_regs_fifo1_reg_word34_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word34_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word34_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word34_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word34_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word34_honoured = 255;
+    else if (((card_core0_regs_fifo1_reg_word34_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word34_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word34_honoured = 32768;
     end
     else begin
-        card_core0_regs_fifo1_reg_word34_honoured = card_core0_regs_fifo1_reg_word34_written[8-1:0];
+        card_core0_regs_fifo1_reg_word34_honoured = card_core0_regs_fifo1_reg_word34_written[16-1:0];
         card_core0_regs_fifo1_reg_word34_out_of_range = 1'b0;
     end
 end
@@ -2563,14 +2296,14 @@ end
 assign card_core0_regs_fifo1_reg_word34_clamp_out = (card_core0_regs_fifo1_reg_word33_clamp_out || card_core0_regs_fifo1_reg_word34_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word34__store24_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word34__store21_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word34_value <= 1;
+        card_core0_regs_fifo1_reg_word34_value <= 4096;
         card_core0_regs_fifo1_reg_word34_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word34_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word34_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word34_mine_write))) begin
             card_core0_regs_fifo1_reg_word34_value <= card_core0_regs_fifo1_reg_word34_honoured;
             card_core0_regs_fifo1_reg_word34_clamped <= card_core0_regs_fifo1_reg_word34_out_of_range;
         end
@@ -2579,7 +2312,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word35_mine = (pci_slave1_local_addr == 56);
+assign card_core0_regs_fifo1_reg_word35_mine = (pci_slave1_local_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word35_mine, card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_read_out) begin: card_core0_regs_fifo1_reg_word35_read_chain
@@ -2593,15 +2326,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word35_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word35_value};
+assign card_core0_regs_fifo1_reg_word35_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word35_value};
 
 
 
-assign card_core0_regs_fifo1_reg_word35_mine_write = (card_core0_regs_fifo1_written_addr == 56);
+assign card_core0_regs_fifo1_reg_word35_mine_write = (card_core0_regs_fifo1_written_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word35_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
         card_core0_regs_fifo1_reg_word35_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -2610,16 +2343,16 @@ always @(card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word35_written) begin: card_core0_regs_fifo1_reg_word35__limit25_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word35_written) begin: card_core0_regs_fifo1_reg_word35__limit22_clamp_unsigned
     card_core0_regs_fifo1_reg_word35_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word35_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word35_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word35_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word35_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word35_honoured = 255;
+    else if (((card_core0_regs_fifo1_reg_word35_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word35_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word35_honoured = 32768;
     end
     else begin
-        card_core0_regs_fifo1_reg_word35_honoured = card_core0_regs_fifo1_reg_word35_written[8-1:0];
+        card_core0_regs_fifo1_reg_word35_honoured = card_core0_regs_fifo1_reg_word35_written[16-1:0];
         card_core0_regs_fifo1_reg_word35_out_of_range = 1'b0;
     end
 end
@@ -2629,14 +2362,14 @@ end
 assign card_core0_regs_fifo1_reg_word35_clamp_out = (card_core0_regs_fifo1_reg_word34_clamp_out || card_core0_regs_fifo1_reg_word35_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word35__store25_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word35__store22_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word35_value <= 1;
+        card_core0_regs_fifo1_reg_word35_value <= 4096;
         card_core0_regs_fifo1_reg_word35_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word35_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word35_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word35_mine_write))) begin
             card_core0_regs_fifo1_reg_word35_value <= card_core0_regs_fifo1_reg_word35_honoured;
             card_core0_regs_fifo1_reg_word35_clamped <= card_core0_regs_fifo1_reg_word35_out_of_range;
         end
@@ -2645,7 +2378,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word36_mine = (pci_slave1_local_addr == 60);
+assign card_core0_regs_fifo1_reg_word36_mine = (pci_slave1_local_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word36_mine, card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word35_read_out) begin: card_core0_regs_fifo1_reg_word36_read_chain
@@ -2659,50 +2392,39 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word36_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word36_value};
+assign card_core0_regs_fifo1_reg_word36_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word36_value};
 
 
 
-assign card_core0_regs_fifo1_reg_word36_mine_write = (card_core0_regs_fifo1_written_addr == 60);
+assign card_core0_regs_fifo1_reg_word36_mine_write = (card_core0_regs_fifo1_written_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word36_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
-        card_core0_regs_fifo1_reg_word36_written = card_core0_regs_fifo1_set_value[32-1:0];
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
+        card_core0_regs_fifo1_reg_word36_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word36_written = ((card_core0_regs_fifo1_reg_word36_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word36_written = ((card_core0_regs_fifo1_reg_word36_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word36_written) begin: card_core0_regs_fifo1_reg_word36__limit26_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word36_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word36_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word36_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word36_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word36_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word36_honoured = 255;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word36_honoured = card_core0_regs_fifo1_reg_word36_written[8-1:0];
-        card_core0_regs_fifo1_reg_word36_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word36_honoured = card_core0_regs_fifo1_reg_word36_written[16-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word36_clamp_out = (card_core0_regs_fifo1_reg_word35_clamp_out || card_core0_regs_fifo1_reg_word36_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word36__store26_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word36__store23_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word36_value <= 1;
+        card_core0_regs_fifo1_reg_word36_value <= 0;
         card_core0_regs_fifo1_reg_word36_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word36_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word36_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word36_mine_write))) begin
             card_core0_regs_fifo1_reg_word36_value <= card_core0_regs_fifo1_reg_word36_honoured;
             card_core0_regs_fifo1_reg_word36_clamped <= card_core0_regs_fifo1_reg_word36_out_of_range;
         end
@@ -2711,7 +2433,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_local_addr == 64);
+assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_local_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word36_read_out) begin: card_core0_regs_fifo1_reg_word37_read_chain
@@ -2725,39 +2447,50 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word37_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word37_value};
+assign card_core0_regs_fifo1_reg_word37_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word37_value};
 
 
 
-assign card_core0_regs_fifo1_reg_word37_mine_write = (card_core0_regs_fifo1_written_addr == 64);
+assign card_core0_regs_fifo1_reg_word37_mine_write = (card_core0_regs_fifo1_written_addr == 52);
 
 
-always @(card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word37_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word37_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word37_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word37_written = card_core0_regs_fifo1_set_value[2-1:0];
+always @(card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word37_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
+        card_core0_regs_fifo1_reg_word37_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word37_written = ((card_core0_regs_fifo1_reg_word37_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+        card_core0_regs_fifo1_reg_word37_written = ((card_core0_regs_fifo1_reg_word37_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card_core0_regs_fifo1_reg_word37_honoured = card_core0_regs_fifo1_reg_word37_written[2-1:0];
+always @(card_core0_regs_fifo1_reg_word37_written) begin: card_core0_regs_fifo1_reg_word37__limit24_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word37_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word37_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word37_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word37_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word37_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word37_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word37_honoured = card_core0_regs_fifo1_reg_word37_written[8-1:0];
+        card_core0_regs_fifo1_reg_word37_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card_core0_regs_fifo1_reg_word37_clamp_out = (card_core0_regs_fifo1_reg_word36_clamp_out || card_core0_regs_fifo1_reg_word37_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word37__store27_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word37__store24_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word37_value <= 0;
+        card_core0_regs_fifo1_reg_word37_value <= 1;
         card_core0_regs_fifo1_reg_word37_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word37_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word37_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word37_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word37_mine_write))) begin
             card_core0_regs_fifo1_reg_word37_value <= card_core0_regs_fifo1_reg_word37_honoured;
             card_core0_regs_fifo1_reg_word37_clamped <= card_core0_regs_fifo1_reg_word37_out_of_range;
         end
@@ -2766,7 +2499,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_local_addr == 68);
+assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_local_addr == 56);
 
 
 always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_read_out) begin: card_core0_regs_fifo1_reg_word38_read_chain
@@ -2780,15 +2513,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word38_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word38_value};
+assign card_core0_regs_fifo1_reg_word38_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word38_value};
 
 
 
-assign card_core0_regs_fifo1_reg_word38_mine_write = (card_core0_regs_fifo1_written_addr == 68);
+assign card_core0_regs_fifo1_reg_word38_mine_write = (card_core0_regs_fifo1_written_addr == 56);
 
 
 always @(card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word38_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
         card_core0_regs_fifo1_reg_word38_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -2797,16 +2530,16 @@ always @(card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word38_written) begin: card_core0_regs_fifo1_reg_word38__limit28_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word38_written) begin: card_core0_regs_fifo1_reg_word38__limit25_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word38_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word38_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word38_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word38_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word38_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word38_honoured = 65535;
+    else if ((card_core0_regs_fifo1_reg_word38_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word38_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word38_honoured = card_core0_regs_fifo1_reg_word38_written[16-1:0];
+        card_core0_regs_fifo1_reg_word38_honoured = card_core0_regs_fifo1_reg_word38_written[8-1:0];
         card_core0_regs_fifo1_reg_word38_out_of_range = 1'b0;
     end
 end
@@ -2816,14 +2549,14 @@ end
 assign card_core0_regs_fifo1_reg_word38_clamp_out = (card_core0_regs_fifo1_reg_word37_clamp_out || card_core0_regs_fifo1_reg_word38_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word38__store28_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word38__store25_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word38_value <= 2;
+        card_core0_regs_fifo1_reg_word38_value <= 1;
         card_core0_regs_fifo1_reg_word38_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word38_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word38_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word38_mine_write))) begin
             card_core0_regs_fifo1_reg_word38_value <= card_core0_regs_fifo1_reg_word38_honoured;
             card_core0_regs_fifo1_reg_word38_clamped <= card_core0_regs_fifo1_reg_word38_out_of_range;
         end
@@ -2832,7 +2565,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_local_addr == 72);
+assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_local_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_read_out) begin: card_core0_regs_fifo1_reg_word39_read_chain
@@ -2846,15 +2579,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word39_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word39_value};
+assign card_core0_regs_fifo1_reg_word39_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word39_value};
 
 
 
-assign card_core0_regs_fifo1_reg_word39_mine_write = (card_core0_regs_fifo1_written_addr == 72);
+assign card_core0_regs_fifo1_reg_word39_mine_write = (card_core0_regs_fifo1_written_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word39_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
         card_core0_regs_fifo1_reg_word39_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -2863,16 +2596,16 @@ always @(card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word39_written) begin: card_core0_regs_fifo1_reg_word39__limit29_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word39_written) begin: card_core0_regs_fifo1_reg_word39__limit26_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word39_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word39_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word39_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word39_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word39_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word39_honoured = 65535;
+    else if ((card_core0_regs_fifo1_reg_word39_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word39_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word39_honoured = card_core0_regs_fifo1_reg_word39_written[16-1:0];
+        card_core0_regs_fifo1_reg_word39_honoured = card_core0_regs_fifo1_reg_word39_written[8-1:0];
         card_core0_regs_fifo1_reg_word39_out_of_range = 1'b0;
     end
 end
@@ -2882,14 +2615,14 @@ end
 assign card_core0_regs_fifo1_reg_word39_clamp_out = (card_core0_regs_fifo1_reg_word38_clamp_out || card_core0_regs_fifo1_reg_word39_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word39__store29_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word39__store26_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word39_value <= 2;
+        card_core0_regs_fifo1_reg_word39_value <= 1;
         card_core0_regs_fifo1_reg_word39_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word39_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word39_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word39_mine_write))) begin
             card_core0_regs_fifo1_reg_word39_value <= card_core0_regs_fifo1_reg_word39_honoured;
             card_core0_regs_fifo1_reg_word39_clamped <= card_core0_regs_fifo1_reg_word39_out_of_range;
         end
@@ -2898,7 +2631,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_local_addr == 76);
+assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_local_addr == 64);
 
 
 always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_read_out) begin: card_core0_regs_fifo1_reg_word40_read_chain
@@ -2912,49 +2645,40 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word40_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word40_hw_value};
+assign card_core0_regs_fifo1_reg_word40_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word40_value};
 
 
 
-assign card_core0_regs_fifo1_reg_word40_mine_write = (card_core0_regs_fifo1_written_addr == 76);
+assign card_core0_regs_fifo1_reg_word40_mine_write = (card_core0_regs_fifo1_written_addr == 64);
 
 
-
-assign card_core0_regs_fifo1_reg_word40_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word40_written) begin: card_core0_regs_fifo1_reg_word40__limit30_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word40_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word40_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word40_honoured = card_core0_regs_fifo1_reg_word40_written[24-1:0];
-        card_core0_regs_fifo1_reg_word40_out_of_range = 1'b0;
-    end
-    else if (card_core0_regs_fifo1_reg_word40_written[31]) begin
-        card_core0_regs_fifo1_reg_word40_honoured = 8388608;
-        card_core0_regs_fifo1_reg_word40_out_of_range = 1'b1;
+always @(card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word40_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word40_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word40_written = card_core0_regs_fifo1_set_value[2-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word40_honoured = 8388607;
-        card_core0_regs_fifo1_reg_word40_out_of_range = 1'b1;
+        card_core0_regs_fifo1_reg_word40_written = ((card_core0_regs_fifo1_reg_word40_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word40_honoured = card_core0_regs_fifo1_reg_word40_written[2-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word40_clamp_out = (card_core0_regs_fifo1_reg_word39_clamp_out || card_core0_regs_fifo1_reg_word40_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word40__store30_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word40__store27_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word40_strobe <= 0;
         card_core0_regs_fifo1_reg_word40_value <= 0;
         card_core0_regs_fifo1_reg_word40_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word40_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word40_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word40_mine_write)) begin
+        if (((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word40_mine_write))) begin
             card_core0_regs_fifo1_reg_word40_value <= card_core0_regs_fifo1_reg_word40_honoured;
-            card_core0_regs_fifo1_reg_word40_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word40_clamped <= card_core0_regs_fifo1_reg_word40_out_of_range;
         end
     end
@@ -2962,43 +2686,48 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_local_addr == 80);
+assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_local_addr == 68);
 
 
 always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_read_out) begin: card_core0_regs_fifo1_reg_word41_read_chain
     if (card_core0_regs_fifo1_reg_word41_mine) begin
-        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word40_read_out | card_core0_regs_fifo1_reg_word41_shown_wide);
+        card_core0_regs_fifo1_reg_word41_read_out = (card_core0_regs_fifo1_reg_word40_read_out | card_core0_regs_fifo1_reg_word41_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word40_read_out;
+        card_core0_regs_fifo1_reg_word41_read_out = card_core0_regs_fifo1_reg_word40_read_out;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word41_hw_value};
+assign card_core0_regs_fifo1_reg_word41_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word41_value};
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 80);
+assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 68);
 
 
-
-assign card_core0_regs_fifo1_reg_word41_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word41_written) begin: card_core0_regs_fifo1_reg_word41__limit31_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word41_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word41_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word41_honoured = card_core0_regs_fifo1_reg_word41_written[24-1:0];
-        card_core0_regs_fifo1_reg_word41_out_of_range = 1'b0;
-    end
-    else if (card_core0_regs_fifo1_reg_word41_written[31]) begin
-        card_core0_regs_fifo1_reg_word41_honoured = 8388608;
-        card_core0_regs_fifo1_reg_word41_out_of_range = 1'b1;
+always @(card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word41_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+        card_core0_regs_fifo1_reg_word41_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word41_honoured = 8388607;
-        card_core0_regs_fifo1_reg_word41_out_of_range = 1'b1;
+        card_core0_regs_fifo1_reg_word41_written = ((card_core0_regs_fifo1_reg_word41_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word41_written) begin: card_core0_regs_fifo1_reg_word41__limit28_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word41_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word41_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word41_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word41_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word41_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word41_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word41_honoured = card_core0_regs_fifo1_reg_word41_written[16-1:0];
+        card_core0_regs_fifo1_reg_word41_out_of_range = 1'b0;
     end
 end
 
@@ -3007,22 +2736,279 @@ end
 assign card_core0_regs_fifo1_reg_word41_clamp_out = (card_core0_regs_fifo1_reg_word40_clamp_out || card_core0_regs_fifo1_reg_word41_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__store31_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__store28_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word41_strobe <= 0;
-        card_core0_regs_fifo1_reg_word41_value <= 0;
+        card_core0_regs_fifo1_reg_word41_value <= 2;
         card_core0_regs_fifo1_reg_word41_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word41_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word41_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write)) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write))) begin
             card_core0_regs_fifo1_reg_word41_value <= card_core0_regs_fifo1_reg_word41_honoured;
-            card_core0_regs_fifo1_reg_word41_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word41_clamped <= card_core0_regs_fifo1_reg_word41_out_of_range;
         end
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_local_addr == 72);
+
+
+always @(card_core0_regs_fifo1_reg_word42_mine, card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word41_read_out) begin: card_core0_regs_fifo1_reg_word42_read_chain
+    if (card_core0_regs_fifo1_reg_word42_mine) begin
+        card_core0_regs_fifo1_reg_word42_read_out = (card_core0_regs_fifo1_reg_word41_read_out | card_core0_regs_fifo1_reg_word42_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word42_read_out = card_core0_regs_fifo1_reg_word41_read_out;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word42_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word42_value};
+
+
+
+assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_written_addr == 72);
+
+
+always @(card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_set_value, card_core0_regs_fifo1_written_data) begin: card_core0_regs_fifo1_reg_word42_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
+        card_core0_regs_fifo1_reg_word42_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word42_written = ((card_core0_regs_fifo1_reg_word42_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word42_written) begin: card_core0_regs_fifo1_reg_word42__limit29_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word42_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word42_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word42_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word42_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word42_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word42_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_written[16-1:0];
+        card_core0_regs_fifo1_reg_word42_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word42_clamp_out = (card_core0_regs_fifo1_reg_word41_clamp_out || card_core0_regs_fifo1_reg_word42_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word42__store29_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word42_value <= 2;
+        card_core0_regs_fifo1_reg_word42_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word42_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word42_mine_write))) begin
+            card_core0_regs_fifo1_reg_word42_value <= card_core0_regs_fifo1_reg_word42_honoured;
+            card_core0_regs_fifo1_reg_word42_clamped <= card_core0_regs_fifo1_reg_word42_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_local_addr == 76);
+
+
+always @(card_core0_regs_fifo1_reg_word43_mine, card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word42_read_out) begin: card_core0_regs_fifo1_reg_word43_read_chain
+    if (card_core0_regs_fifo1_reg_word43_mine) begin
+        card_core0_regs_fifo1_reg_word43_read_out = (card_core0_regs_fifo1_reg_word42_read_out | card_core0_regs_fifo1_reg_word43_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word43_read_out = card_core0_regs_fifo1_reg_word42_read_out;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word43_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word43_hw_value};
+
+
+
+assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_written_addr == 76);
+
+
+
+assign card_core0_regs_fifo1_reg_word43_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word43_written) begin: card_core0_regs_fifo1_reg_word43__limit30_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word43_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word43_written[32-1:(24 - 1)] == 511))) begin
+        card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[24-1:0];
+        card_core0_regs_fifo1_reg_word43_out_of_range = 1'b0;
+    end
+    else if (card_core0_regs_fifo1_reg_word43_written[31]) begin
+        card_core0_regs_fifo1_reg_word43_honoured = 8388608;
+        card_core0_regs_fifo1_reg_word43_out_of_range = 1'b1;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word43_honoured = 8388607;
+        card_core0_regs_fifo1_reg_word43_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word43_clamp_out = (card_core0_regs_fifo1_reg_word42_clamp_out || card_core0_regs_fifo1_reg_word43_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word43__store30_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word43_strobe <= 0;
+        card_core0_regs_fifo1_reg_word43_value <= 0;
+        card_core0_regs_fifo1_reg_word43_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word43_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word43_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word43_mine_write)) begin
+            card_core0_regs_fifo1_reg_word43_value <= card_core0_regs_fifo1_reg_word43_honoured;
+            card_core0_regs_fifo1_reg_word43_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word43_clamped <= card_core0_regs_fifo1_reg_word43_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_local_addr == 80);
+
+
+always @(card_core0_regs_fifo1_reg_word44_mine, card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_reg_word43_read_out) begin: card_core0_regs_fifo1_reg_word44_read_chain
+    if (card_core0_regs_fifo1_reg_word44_mine) begin
+        card_core0_regs_fifo1_reg_word44_read_out = (card_core0_regs_fifo1_reg_word43_read_out | card_core0_regs_fifo1_reg_word44_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word44_read_out = card_core0_regs_fifo1_reg_word43_read_out;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word44_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word44_hw_value};
+
+
+
+assign card_core0_regs_fifo1_reg_word44_mine_write = (card_core0_regs_fifo1_written_addr == 80);
+
+
+
+assign card_core0_regs_fifo1_reg_word44_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word44_written) begin: card_core0_regs_fifo1_reg_word44__limit31_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word44_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word44_written[32-1:(24 - 1)] == 511))) begin
+        card_core0_regs_fifo1_reg_word44_honoured = card_core0_regs_fifo1_reg_word44_written[24-1:0];
+        card_core0_regs_fifo1_reg_word44_out_of_range = 1'b0;
+    end
+    else if (card_core0_regs_fifo1_reg_word44_written[31]) begin
+        card_core0_regs_fifo1_reg_word44_honoured = 8388608;
+        card_core0_regs_fifo1_reg_word44_out_of_range = 1'b1;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word44_honoured = 8388607;
+        card_core0_regs_fifo1_reg_word44_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word44_clamp_out = (card_core0_regs_fifo1_reg_word43_clamp_out || card_core0_regs_fifo1_reg_word44_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word44__store31_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word44_strobe <= 0;
+        card_core0_regs_fifo1_reg_word44_value <= 0;
+        card_core0_regs_fifo1_reg_word44_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word44_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word44_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word44_mine_write)) begin
+            card_core0_regs_fifo1_reg_word44_value <= card_core0_regs_fifo1_reg_word44_honoured;
+            card_core0_regs_fifo1_reg_word44_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word44_clamped <= card_core0_regs_fifo1_reg_word44_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_local_addr == 84);
+
+
+always @(card_core0_regs_fifo1_reg_word45_mine, card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word44_read_out) begin: card_core0_regs_fifo1_reg_word45_read_chain
+    if (card_core0_regs_fifo1_reg_word45_mine) begin
+        card_core0_regs_fifo1_reg_word45_read_out = (card_core0_regs_fifo1_reg_word44_read_out | card_core0_regs_fifo1_reg_word45_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word45_read_out = card_core0_regs_fifo1_reg_word44_read_out;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word45_shown_wide = card_core0_regs_fifo1_reg_word45_hw_value;
+
+
+
+assign card_core0_regs_fifo1_reg_word45_clamp_out = card_core0_regs_fifo1_reg_word44_clamp_out;
+
+
+
+assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_local_addr == 88);
+
+
+always @(card_core0_regs_fifo1_reg_word46_mine, card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_reg_word45_read_out) begin: card_core0_regs_fifo1_reg_word46_read_chain
+    if (card_core0_regs_fifo1_reg_word46_mine) begin
+        card_core0_regs_fifo1_reg_word46_read_out = (card_core0_regs_fifo1_reg_word45_read_out | card_core0_regs_fifo1_reg_word46_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word46_read_out = card_core0_regs_fifo1_reg_word45_read_out;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word46_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word46_hw_value};
+
+
+
+assign card_core0_regs_fifo1_reg_word46_clamp_out = card_core0_regs_fifo1_reg_word45_clamp_out;
+
+
+
+assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_local_addr == 92);
+
+
+always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_read_out) begin: card_core0_regs_fifo1_reg_word47_read_chain
+    if (card_core0_regs_fifo1_reg_word47_mine) begin
+        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word46_read_out | card_core0_regs_fifo1_reg_word47_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word46_read_out;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word47_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word47_hw_value};
+
+
+
+assign card_core0_regs_fifo1_reg_word47_clamp_out = card_core0_regs_fifo1_reg_word46_clamp_out;
 
 
 
@@ -3514,13 +3500,13 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_s
         card_core0_regs_fifo1_feed_rate1_raise_limit <= 0;
     end
     else begin
-        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word31_value;
-        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word32_value;
-        card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_reg_word33_value;
-        card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_reg_word33_value == 0);
-        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word31_value}) - $signed({1'b0, card_core0_regs_fifo1_reg_word33_value}));
-        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word31_value} + {1'b0, card_core0_regs_fifo1_reg_word33_value});
-        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word32_value} + {1'b0, card_core0_regs_fifo1_reg_word33_value});
+        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word34_value;
+        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word35_value;
+        card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_reg_word36_value;
+        card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_reg_word36_value == 0);
+        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word34_value}) - $signed({1'b0, card_core0_regs_fifo1_reg_word36_value}));
+        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word34_value} + {1'b0, card_core0_regs_fifo1_reg_word36_value});
+        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word35_value} + {1'b0, card_core0_regs_fifo1_reg_word36_value});
     end
 end
 
@@ -3630,23 +3616,23 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         card_core0_regs_fifo1_direct_request_x <= 0;
         card_core0_regs_fifo1_direct_dir_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_waiting <= 0;
-        card_core0_regs_fifo1_reg_word40_hw_value <= 0;
+        card_core0_regs_fifo1_reg_word43_hw_value <= 0;
         card_core0_regs_fifo1_direct_pulse2_pending <= 0;
         card_core0_regs_fifo1_direct_pulse2_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_x <= 0;
         if (card_core0_core_clear) begin
-            card_core0_regs_fifo1_reg_word40_hw_value <= 0;
+            card_core0_regs_fifo1_reg_word43_hw_value <= 0;
             card_core0_regs_fifo1_direct_pulse2_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse2_load) begin
             if ((card_core0_regs_fifo1_direct_pulse2_count < 0)) begin
-                card_core0_regs_fifo1_reg_word40_hw_value <= (-card_core0_regs_fifo1_direct_pulse2_count);
+                card_core0_regs_fifo1_reg_word43_hw_value <= (-card_core0_regs_fifo1_direct_pulse2_count);
                 card_core0_regs_fifo1_direct_dir_x <= 0;
             end
             else begin
-                card_core0_regs_fifo1_reg_word40_hw_value <= card_core0_regs_fifo1_direct_pulse2_count;
+                card_core0_regs_fifo1_reg_word43_hw_value <= card_core0_regs_fifo1_direct_pulse2_count;
                 card_core0_regs_fifo1_direct_dir_x <= 1;
             end
             card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_count != 0);
@@ -3660,10 +3646,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             end
             else if (card_core0_regs_fifo1_out_ready) begin
                 card_core0_regs_fifo1_direct_request_x <= 1;
-                card_core0_regs_fifo1_reg_word40_hw_value <= (card_core0_regs_fifo1_reg_word40_hw_value - 1);
-                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word40_hw_value != 1);
-                card_core0_regs_fifo1_direct_pulse2_gap <= (card_core0_regs_fifo1_reg_word38_value - 1);
-                card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_reg_word38_value != 1);
+                card_core0_regs_fifo1_reg_word43_hw_value <= (card_core0_regs_fifo1_reg_word43_hw_value - 1);
+                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word43_hw_value != 1);
+                card_core0_regs_fifo1_direct_pulse2_gap <= (card_core0_regs_fifo1_reg_word41_value - 1);
+                card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_reg_word41_value != 1);
             end
         end
     end
@@ -3679,23 +3665,23 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         card_core0_regs_fifo1_direct_request_y <= 0;
         card_core0_regs_fifo1_direct_dir_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_waiting <= 0;
-        card_core0_regs_fifo1_reg_word41_hw_value <= 0;
+        card_core0_regs_fifo1_reg_word44_hw_value <= 0;
         card_core0_regs_fifo1_direct_pulse3_pending <= 0;
         card_core0_regs_fifo1_direct_pulse3_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_y <= 0;
         if (card_core0_core_clear) begin
-            card_core0_regs_fifo1_reg_word41_hw_value <= 0;
+            card_core0_regs_fifo1_reg_word44_hw_value <= 0;
             card_core0_regs_fifo1_direct_pulse3_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse3_load) begin
             if ((card_core0_regs_fifo1_direct_pulse3_count < 0)) begin
-                card_core0_regs_fifo1_reg_word41_hw_value <= (-card_core0_regs_fifo1_direct_pulse3_count);
+                card_core0_regs_fifo1_reg_word44_hw_value <= (-card_core0_regs_fifo1_direct_pulse3_count);
                 card_core0_regs_fifo1_direct_dir_y <= 0;
             end
             else begin
-                card_core0_regs_fifo1_reg_word41_hw_value <= card_core0_regs_fifo1_direct_pulse3_count;
+                card_core0_regs_fifo1_reg_word44_hw_value <= card_core0_regs_fifo1_direct_pulse3_count;
                 card_core0_regs_fifo1_direct_dir_y <= 1;
             end
             card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_count != 0);
@@ -3709,10 +3695,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             end
             else if (card_core0_regs_fifo1_out_ready) begin
                 card_core0_regs_fifo1_direct_request_y <= 1;
-                card_core0_regs_fifo1_reg_word41_hw_value <= (card_core0_regs_fifo1_reg_word41_hw_value - 1);
-                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word41_hw_value != 1);
-                card_core0_regs_fifo1_direct_pulse3_gap <= (card_core0_regs_fifo1_reg_word39_value - 1);
-                card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_reg_word39_value != 1);
+                card_core0_regs_fifo1_reg_word44_hw_value <= (card_core0_regs_fifo1_reg_word44_hw_value - 1);
+                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word44_hw_value != 1);
+                card_core0_regs_fifo1_direct_pulse3_gap <= (card_core0_regs_fifo1_reg_word42_value - 1);
+                card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_reg_word42_value != 1);
             end
         end
     end
@@ -3728,12 +3714,12 @@ assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_cou
 assign card_core0_regs_fifo1_pulse_out1_head = card_core0_regs_fifo1_pulse_out1_queue[0];
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_core_clear, card_core0_regs_fifo1_reg_word34_value, card_core0_regs_fifo1_reg_word35_value, card_core0_regs_fifo1_pulse_out1_low_clocks) begin: card_core0_regs_fifo1_pulse_out1_decide
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_core_clear, card_core0_regs_fifo1_reg_word37_value, card_core0_regs_fifo1_reg_word38_value, card_core0_regs_fifo1_pulse_out1_low_clocks) begin: card_core0_regs_fifo1_pulse_out1_decide
     card_core0_regs_fifo1_pulse_out1_turn = ((card_core0_regs_fifo1_pulse_out1_count != 0) && ((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
     card_core0_regs_fifo1_pulse_out1_take = 1'b0;
-    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_core_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word34_value))) begin
+    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_core_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word37_value))) begin
         if ((card_core0_regs_fifo1_pulse_out1_phase == 2'b01)) begin
-            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word35_value);
+            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word38_value);
         end
         else if ((card_core0_regs_fifo1_pulse_out1_count != 0)) begin
             card_core0_regs_fifo1_pulse_out1_take = (!((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
@@ -3742,9 +3728,9 @@ always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pu
 end
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_core_clear, card_core0_regs_fifo1_reg_word34_value, card_core0_regs_fifo1_reg_word36_value, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_pulse_out1_take) begin: card_core0_regs_fifo1_pulse_out1_restart
-    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_core_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word36_value)));
-    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word34_value));
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_core_clear, card_core0_regs_fifo1_reg_word37_value, card_core0_regs_fifo1_reg_word39_value, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_pulse_out1_take) begin: card_core0_regs_fifo1_pulse_out1_restart
+    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_core_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word39_value)));
+    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word37_value));
     card_core0_regs_fifo1_pulse_out1_phase_step = 0;
     if ((card_core0_regs_fifo1_pulse_out1_phase_clocks != 255)) begin
         card_core0_regs_fifo1_pulse_out1_phase_step = 1;
@@ -3868,8 +3854,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_d
     else begin
         pins_step_x <= card_core0_regs_fifo1_pulse_out1_level_x;
         pins_step_y <= card_core0_regs_fifo1_pulse_out1_level_y;
-        pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word37_value[0]);
-        pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word37_value[1]);
+        pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word40_value[0]);
+        pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word40_value[1]);
         if (card_core0_regs_fifo1_clear_position) begin
             card_core0_regs_fifo1_pulse_out1_position_x <= 0;
             card_core0_regs_fifo1_position_y <= 0;
@@ -4010,10 +3996,10 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_reg_word40_strobe, card_core0_regs_fifo1_reg_word40_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulse_count_x, card_core0_regs_fifo1_direct_mode) begin: card_core0_regs_fifo1__axis_source2_choose_source
+always @(card_core0_regs_fifo1_reg_word43_strobe, card_core0_regs_fifo1_reg_word43_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulse_count_x, card_core0_regs_fifo1_direct_mode) begin: card_core0_regs_fifo1__axis_source2_choose_source
     if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse2_load = card_core0_regs_fifo1_reg_word40_strobe;
-        card_core0_regs_fifo1_direct_pulse2_count = $signed(card_core0_regs_fifo1_reg_word40_value);
+        card_core0_regs_fifo1_direct_pulse2_load = card_core0_regs_fifo1_reg_word43_strobe;
+        card_core0_regs_fifo1_direct_pulse2_count = $signed(card_core0_regs_fifo1_reg_word43_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse2_load = card_core0_regs_fifo1_seq_load;
@@ -4022,10 +4008,10 @@ always @(card_core0_regs_fifo1_reg_word40_strobe, card_core0_regs_fifo1_reg_word
 end
 
 
-always @(card_core0_regs_fifo1_reg_word41_strobe, card_core0_regs_fifo1_reg_word41_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulse_count_y, card_core0_regs_fifo1_direct_mode) begin: card_core0_regs_fifo1__axis_source3_choose_source
+always @(card_core0_regs_fifo1_reg_word44_strobe, card_core0_regs_fifo1_reg_word44_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulse_count_y, card_core0_regs_fifo1_direct_mode) begin: card_core0_regs_fifo1__axis_source3_choose_source
     if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse3_load = card_core0_regs_fifo1_reg_word41_strobe;
-        card_core0_regs_fifo1_direct_pulse3_count = $signed(card_core0_regs_fifo1_reg_word41_value);
+        card_core0_regs_fifo1_direct_pulse3_load = card_core0_regs_fifo1_reg_word44_strobe;
+        card_core0_regs_fifo1_direct_pulse3_count = $signed(card_core0_regs_fifo1_reg_word44_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse3_load = card_core0_regs_fifo1_seq_load;
@@ -4061,7 +4047,7 @@ always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_done_flag, card
     word[8] = card_core0_regs_fifo1_fifo_empty;
     word[9] = card_core0_regs_fifo1_fifo_full;
     word[32-1:16] = card_core0_regs_fifo1_level_wide;
-    card_core0_regs_fifo1_reg_word24_hw_value = word;
+    card_core0_regs_fifo1_reg_word27_hw_value = word;
 end
 
 
@@ -4069,37 +4055,37 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1__interrupts1
     if (reset == 0) begin
         card_core0_regs_fifo1_error_before <= 0;
         card_core0_regs_fifo1_low_before <= 0;
-        card_core0_regs_fifo1_reg_word28_hw_value <= 0;
+        card_core0_regs_fifo1_reg_word31_hw_value <= 0;
     end
     else begin
         card_core0_regs_fifo1_error_before <= (card_core0_regs_fifo1_error_code != 0);
-        card_core0_regs_fifo1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word27_value);
+        card_core0_regs_fifo1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word30_value);
         if (card_core0_regs_fifo1_mark_strobe) begin
-            card_core0_regs_fifo1_reg_word28_hw_value <= card_core0_regs_fifo1_mark_tag;
+            card_core0_regs_fifo1_reg_word31_hw_value <= card_core0_regs_fifo1_mark_tag;
         end
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word41_clamp_out, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_reg_word27_value, card_core0_regs_fifo1_mark_strobe, card_core0_regs_fifo1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_busy_before, card_core0_regs_fifo1_low_before) begin: card_core0_regs_fifo1__interrupts1_detect
+always @(card_core0_regs_fifo1_reg_word47_clamp_out, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_reg_word30_value, card_core0_regs_fifo1_mark_strobe, card_core0_regs_fifo1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_busy_before, card_core0_regs_fifo1_low_before) begin: card_core0_regs_fifo1__interrupts1_detect
     reg [5-1:0] word;
     word = 5'h0;
     word[0] = (card_core0_regs_fifo1_busy_before && (!card_core0_regs_fifo1_any_busy));
-    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word27_value) && (!card_core0_regs_fifo1_low_before));
+    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word30_value) && (!card_core0_regs_fifo1_low_before));
     word[2] = ((card_core0_regs_fifo1_error_code != 0) && (!card_core0_regs_fifo1_error_before));
     word[3] = card_core0_regs_fifo1_mark_strobe;
-    word[4] = card_core0_regs_fifo1_reg_word41_clamp_out;
-    card_core0_regs_fifo1_reg_word26_hw_value = word;
+    word[4] = card_core0_regs_fifo1_reg_word47_clamp_out;
+    card_core0_regs_fifo1_reg_word29_hw_value = word;
 end
 
 
 
-assign irq = ((card_core0_regs_fifo1_reg_word26_value & card_core0_regs_fifo1_reg_word25_value) != 0);
+assign irq = ((card_core0_regs_fifo1_reg_word29_value & card_core0_regs_fifo1_reg_word28_value) != 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word29_hw_value = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
-assign card_core0_regs_fifo1_reg_word30_hw_value = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
+assign card_core0_regs_fifo1_reg_word32_hw_value = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
+assign card_core0_regs_fifo1_reg_word33_hw_value = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
 
 
 always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_magnitudes
@@ -4931,12 +4917,12 @@ always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_dda_left1_follow
     if (card_core0_dda_arc1_dda_check1_move_take) begin
         base = card_core0_dda_arc1_dda_check1_move_totals_diff;
         if (card_core0_dda_arc1_dda_check1_move_line) begin
-            change = 134217727;
+            change = 27'h7ffffff;
         end
     end
     else if (card_core0_dda_arc1_dda_run1_step_pending) begin
         if ((card_core0_dda_arc1_dda_run1_step_line || (card_core0_dda_arc1_dda_run1_step_step_x && (!card_core0_dda_arc1_dda_run1_step_step_y)))) begin
-            change = 134217727;
+            change = 27'h7ffffff;
         end
         else if ((card_core0_dda_arc1_dda_run1_step_step_y && (!card_core0_dda_arc1_dda_run1_step_step_x))) begin
             change = 1;
@@ -4958,34 +4944,34 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         base = card_core0_dda_arc1_dda_run1_dda_left1_larger;
         if (card_core0_dda_arc1_dda_check1_move_take) begin
             base = card_core0_dda_arc1_dda_check1_move_totals_max;
-            less = 134217727;
+            less = 27'h7ffffff;
         end
         else if ((card_core0_dda_arc1_dda_run1_step_pending && (!card_core0_dda_arc1_dda_run1_step_blend))) begin
             if (card_core0_dda_arc1_dda_run1_step_line) begin
-                less = 134217727;
+                less = 27'h7ffffff;
             end
             else if ((card_core0_dda_arc1_dda_run1_dda_left1_difference == 0)) begin
                 if ((card_core0_dda_arc1_dda_run1_step_step_x && card_core0_dda_arc1_dda_run1_step_step_y)) begin
-                    less = 134217727;
+                    less = 27'h7ffffff;
                 end
             end
             else if (card_core0_dda_arc1_dda_run1_dda_left1_difference[(27 - 1)]) begin
                 if (card_core0_dda_arc1_dda_run1_step_step_y) begin
-                    less = 134217727;
+                    less = 27'h7ffffff;
                 end
             end
             else if (card_core0_dda_arc1_dda_run1_step_step_x) begin
-                less = 134217727;
+                less = 27'h7ffffff;
             end
         end
         card_core0_dda_arc1_dda_run1_dda_left1_larger <= (base + less);
         if (card_core0_dda_arc1_dda_check1_move_take) begin
             if ((card_core0_dda_arc1_dda_check1_move_blend || card_core0_dda_arc1_dda_check1_move_error || card_core0_dda_arc1_dda_check1_move_zero)) begin
-                card_core0_dda_arc1_dda_run1_dda_left1_larger <= 134217727;
+                card_core0_dda_arc1_dda_run1_dda_left1_larger <= 27'h7ffffff;
             end
         end
         else if ((card_core0_dda_arc1_dda_run1_step_pending && card_core0_dda_arc1_dda_run1_step_finished)) begin
-            card_core0_dda_arc1_dda_run1_dda_left1_larger <= 134217727;
+            card_core0_dda_arc1_dda_run1_dda_left1_larger <= 27'h7ffffff;
         end
     end
 end
@@ -5062,16 +5048,16 @@ always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_update
         base_in = (~card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out);
         base_out = (~card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in);
         if ((stepped_in && stepped_out)) begin
-            op_in = (134217727 - 2);
-            op_out = (134217727 - 2);
+            op_in = 27'h7fffffd;
+            op_out = 27'h7fffffd;
         end
         else if (stepped_in) begin
-            op_in = (134217727 - 1);
-            op_out = 134217727;
+            op_in = 27'h7fffffe;
+            op_out = 27'h7ffffff;
         end
         else if (stepped_out) begin
-            op_in = 134217727;
-            op_out = (134217727 - 1);
+            op_in = 27'h7ffffff;
+            op_out = 27'h7fffffe;
         end
         else begin
             op_in = 0;

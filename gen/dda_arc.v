@@ -1087,12 +1087,12 @@ always @(posedge clock) begin: dda_run0_dda_left0_follow
     if (dda_check0_move_take) begin
         base = dda_check0_move_totals_diff;
         if (dda_check0_move_line) begin
-            change = 134217727;
+            change = 27'h7ffffff;
         end
     end
     else if (dda_run0_step_pending) begin
         if ((dda_run0_step_line || (dda_run0_step_step_x && (!dda_run0_step_step_y)))) begin
-            change = 134217727;
+            change = 27'h7ffffff;
         end
         else if ((dda_run0_step_step_y && (!dda_run0_step_step_x))) begin
             change = 1;
@@ -1114,34 +1114,34 @@ always @(posedge clock, negedge reset) begin: dda_run0_dda_left0_count_down
         base = dda_run0_dda_left0_larger;
         if (dda_check0_move_take) begin
             base = dda_check0_move_totals_max;
-            less = 134217727;
+            less = 27'h7ffffff;
         end
         else if ((dda_run0_step_pending && (!dda_run0_step_blend))) begin
             if (dda_run0_step_line) begin
-                less = 134217727;
+                less = 27'h7ffffff;
             end
             else if ((dda_run0_dda_left0_difference == 0)) begin
                 if ((dda_run0_step_step_x && dda_run0_step_step_y)) begin
-                    less = 134217727;
+                    less = 27'h7ffffff;
                 end
             end
             else if (dda_run0_dda_left0_difference[(27 - 1)]) begin
                 if (dda_run0_step_step_y) begin
-                    less = 134217727;
+                    less = 27'h7ffffff;
                 end
             end
             else if (dda_run0_step_step_x) begin
-                less = 134217727;
+                less = 27'h7ffffff;
             end
         end
         dda_run0_dda_left0_larger <= (base + less);
         if (dda_check0_move_take) begin
             if ((dda_check0_move_blend || dda_check0_move_error || dda_check0_move_zero)) begin
-                dda_run0_dda_left0_larger <= 134217727;
+                dda_run0_dda_left0_larger <= 27'h7ffffff;
             end
         end
         else if ((dda_run0_step_pending && dda_run0_step_finished)) begin
-            dda_run0_dda_left0_larger <= 134217727;
+            dda_run0_dda_left0_larger <= 27'h7ffffff;
         end
     end
 end
@@ -1218,16 +1218,16 @@ always @(posedge clock) begin: dda_run0_dda_nearest0_update
         base_in = (~dda_run0_dda_nearest0_bias_out);
         base_out = (~dda_run0_dda_nearest0_bias_in);
         if ((stepped_in && stepped_out)) begin
-            op_in = (134217727 - 2);
-            op_out = (134217727 - 2);
+            op_in = 27'h7fffffd;
+            op_out = 27'h7fffffd;
         end
         else if (stepped_in) begin
-            op_in = (134217727 - 1);
-            op_out = 134217727;
+            op_in = 27'h7fffffe;
+            op_out = 27'h7ffffff;
         end
         else if (stepped_out) begin
-            op_in = 134217727;
-            op_out = (134217727 - 1);
+            op_in = 27'h7ffffff;
+            op_out = 27'h7fffffe;
         end
         else begin
             op_in = 0;

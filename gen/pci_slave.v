@@ -49,7 +49,9 @@ module pci_slave (
 // 
 // Parameters: vendor_id, device_id, revision_id, class_code (24 bits),
 // subsystem_vendor_id, subsystem_id; io_bar_bits (BAR0 is 2**io_bar_bits
-// bytes, 2..8), mem_bar_bits (BAR1 is 2**mem_bar_bits bytes, 4..24);
+// bytes), mem_bar_bits (BAR1 is 2**mem_bar_bits bytes); device (how the
+// one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pin_lut.py``);
+// defaults and ranges in ``rtl/parameters.py``;
 // io_registers (False: the core's own flip-flops sample AD and IDSEL and
 // drive AD, PAR, TRDY#, DEVSEL#, STOP#, PERR#; True: the I/O cells of
 // ``rtl.pci_pads`` hold those registers, so ``pci.ad_in``/``idsel_in``
@@ -295,44 +297,19 @@ assign serr_armed = (frame_qq && (!frame_q) && serr_enable && parity_response);
 assign perr_armed = (write_done_q && parity_response);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h9F9F)) perr_next_lut (.O(perr_next), .I0(pci_par_in), .I1(bus_parity), .I2(perr_armed), .I3(1'b0));
-`else
-wire [7:0] perr_next_lut_table = 8'h9F;
-assign perr_next = perr_next_lut_table[{perr_armed, bus_parity, pci_par_in}];
-`endif
+assign perr_next = (perr_armed ? (bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h60FF)) perr_oe_next_lut (.O(perr_oe_next), .I0(pci_par_in), .I1(bus_parity), .I2(perr_armed), .I3(perr_q));
-`else
-wire [15:0] perr_oe_next_lut_table = 16'h60FF;
-assign perr_oe_next = perr_oe_next_lut_table[{perr_q, perr_armed, bus_parity, pci_par_in}];
-`endif
+assign perr_oe_next = (perr_q ? (perr_armed ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6060)) serr_oe_next_lut (.O(serr_oe_next), .I0(pci_par_in), .I1(bus_parity), .I2(serr_armed), .I3(1'b0));
-`else
-wire [7:0] serr_oe_next_lut_table = 8'h60;
-assign serr_oe_next = serr_oe_next_lut_table[{serr_armed, bus_parity, pci_par_in}];
-`endif
+assign serr_oe_next = (serr_armed ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6000)) address_fault_next_lut (.O(address_fault_next), .I0(pci_par_in), .I1(bus_parity), .I2(address_phase), .I3(parity_response));
-`else
-wire [15:0] address_fault_next_lut_table = 16'h6000;
-assign address_fault_next = address_fault_next_lut_table[{parity_response, address_phase, bus_parity, pci_par_in}];
-`endif
+assign address_fault_next = (parity_response ? (address_phase ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6660)) parity_error_next_lut (.O(parity_error_next), .I0(pci_par_in), .I1(bus_parity), .I2(address_phase), .I3(write_done_q));
-`else
-wire [15:0] parity_error_next_lut_table = 16'h6660;
-assign parity_error_next = parity_error_next_lut_table[{write_done_q, address_phase, bus_parity, pci_par_in}];
-`endif
+assign parity_error_next = (write_done_q ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (address_phase ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
 
 
 always @(bar1, ad_q, address_phase, io_enable, bar0, cbe_q, idsel_q, mem_enable, state) begin: decode
@@ -363,52 +340,22 @@ always @(ad_q, claim_config, claim_io) begin: start_offset
 end
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFEF0)) first_phase_next_lut (.O(first_phase_next), .I0(pci_irdy_in), .I1(trdy_q), .I2(claim), .I3(first_phase));
-`else
-wire [15:0] first_phase_next_lut_table = 16'hFEF0;
-assign first_phase_next = first_phase_next_lut_table[{first_phase, claim, trdy_q, pci_irdy_in}];
-`endif
+assign first_phase_next = (first_phase ? (claim ? 1'b1 : (trdy_q ? 1'b1 : (pci_irdy_in ? 1'b1 : 1'b0))) : (claim ? 1'b1 : 1'b0));
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hF1F0)) phase_step_lut (.O(phase_step), .I0(pci_irdy_in), .I1(trdy_q), .I2(claim), .I3(space_mem));
-`else
-wire [15:0] phase_step_lut_table = 16'hF1F0;
-assign phase_step = phase_step_lut_table[{space_mem, claim, trdy_q, pci_irdy_in}];
-`endif
+assign phase_step = (space_mem ? (claim ? 1'b1 : (trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1))) : (claim ? 1'b1 : 1'b0));
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h0101)) write_done_next_lut (.O(write_done_next), .I0(pci_irdy_in), .I1(trdy_q), .I2(is_read), .I3(1'b0));
-`else
-wire [7:0] write_done_next_lut_table = 8'h01;
-assign write_done_next = write_done_next_lut_table[{is_read, trdy_q, pci_irdy_in}];
-`endif
+assign write_done_next = (is_read ? 1'b0 : (trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1)));
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h0100)) config_write_next_lut (.O(config_write_next), .I0(pci_irdy_in), .I1(trdy_q), .I2(is_read), .I3(is_config));
-`else
-wire [15:0] config_write_next_lut_table = 16'h0100;
-assign config_write_next = config_write_next_lut_table[{is_config, is_read, trdy_q, pci_irdy_in}];
-`endif
+assign config_write_next = (is_config ? (is_read ? 1'b0 : (trdy_q ? 1'b0 : (pci_irdy_in ? 1'b0 : 1'b1))) : 1'b0);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h4444)) wq_valid_next_lut (.O(wq_valid_next), .I0(pci_irdy_in), .I1(posting), .I2(1'b0), .I3(1'b0));
-`else
-wire [3:0] wq_valid_next_lut_table = 4'h4;
-assign wq_valid_next = wq_valid_next_lut_table[{posting, pci_irdy_in}];
-`endif
+assign wq_valid_next = (posting ? (pci_irdy_in ? 1'b0 : 1'b1) : 1'b0);
 
 
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h8888)) b_valid_next_lut (.O(b_valid_next), .I0(pci_irdy_in), .I1(b_kept), .I2(1'b0), .I3(1'b0));
-`else
-wire [3:0] b_valid_next_lut_table = 4'h8;
-assign b_valid_next = b_valid_next_lut_table[{b_kept, pci_irdy_in}];
-`endif
+assign b_valid_next = (b_kept ? (pci_irdy_in ? 1'b1 : 1'b0) : 1'b0);
 
 
 always @(ad_q, req_addr, first_pending, io_byte, b_valid, is_read, fetching, state, trdy_q, wq_valid, space_mem, h_be, h_data, is_config, irdy_q, req_addr_stale, address_fault, frame_q, h_valid, cbe_q) begin: local_request
@@ -918,86 +865,41 @@ end
 
 wire state_next_x0 = control_case0_out_state[0];
 wire state_next_y0 = control_case2_out_state[0] ^ control_case1_out_state[0];
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h2A2E)) state_next_lut0 (.O(state_next[0]), .I0(state_next_x0), .I1(state_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] state_next_lut0_table = 16'h2A2E;
-assign state_next[0] = state_next_lut0_table[{pci_irdy_in, pci_frame_in, state_next_y0, state_next_x0}];
-`endif
+assign state_next[0] = (pci_irdy_in ? (pci_frame_in ? (state_next_y0 ? 1'b0 : (state_next_x0 ? 1'b1 : 1'b0)) : (state_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (state_next_y0 ? 1'b0 : (state_next_x0 ? 1'b1 : 1'b0)) : (state_next_y0 ? 1'b1 : (state_next_x0 ? 1'b1 : 1'b0))));
 wire state_next_x1 = control_case0_out_state[1];
 wire state_next_y1 = control_case2_out_state[1] ^ control_case1_out_state[1];
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h2A2E)) state_next_lut1 (.O(state_next[1]), .I0(state_next_x1), .I1(state_next_y1), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] state_next_lut1_table = 16'h2A2E;
-assign state_next[1] = state_next_lut1_table[{pci_irdy_in, pci_frame_in, state_next_y1, state_next_x1}];
-`endif
+assign state_next[1] = (pci_irdy_in ? (pci_frame_in ? (state_next_y1 ? 1'b0 : (state_next_x1 ? 1'b1 : 1'b0)) : (state_next_x1 ? 1'b1 : 1'b0)) : (pci_frame_in ? (state_next_y1 ? 1'b0 : (state_next_x1 ? 1'b1 : 1'b0)) : (state_next_y1 ? 1'b1 : (state_next_x1 ? 1'b1 : 1'b0))));
 wire state_next_x2 = control_case0_out_state[2];
 wire state_next_y2 = control_case2_out_state[2] ^ control_case1_out_state[2];
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h2A2E)) state_next_lut2 (.O(state_next[2]), .I0(state_next_x2), .I1(state_next_y2), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] state_next_lut2_table = 16'h2A2E;
-assign state_next[2] = state_next_lut2_table[{pci_irdy_in, pci_frame_in, state_next_y2, state_next_x2}];
-`endif
+assign state_next[2] = (pci_irdy_in ? (pci_frame_in ? (state_next_y2 ? 1'b0 : (state_next_x2 ? 1'b1 : 1'b0)) : (state_next_x2 ? 1'b1 : 1'b0)) : (pci_frame_in ? (state_next_y2 ? 1'b0 : (state_next_x2 ? 1'b1 : 1'b0)) : (state_next_y2 ? 1'b1 : (state_next_x2 ? 1'b1 : 1'b0))));
 wire state_next_x3 = control_case0_out_state[3];
 wire state_next_y3 = control_case0_out_state[3] ? control_case2_out_state[3] : control_case1_out_state[3];
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hEAE8)) state_next_lut3 (.O(state_next[3]), .I0(state_next_x3), .I1(state_next_y3), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] state_next_lut3_table = 16'hEAE8;
-assign state_next[3] = state_next_lut3_table[{pci_irdy_in, pci_frame_in, state_next_y3, state_next_x3}];
-`endif
+assign state_next[3] = (pci_irdy_in ? (pci_frame_in ? (state_next_y3 ? 1'b1 : (state_next_x3 ? 1'b1 : 1'b0)) : (state_next_x3 ? 1'b1 : 1'b0)) : (pci_frame_in ? (state_next_y3 ? 1'b1 : (state_next_x3 ? 1'b1 : 1'b0)) : (state_next_y3 ? (state_next_x3 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire trdy_next_x0 = control_case0_out_trdy ^ control_case1_out_trdy;
 wire trdy_next_y0 = (control_case0_out_trdy ^ control_case1_out_trdy) ? control_case2_out_trdy : control_case0_out_trdy;
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hE4EC)) trdy_next_lut0 (.O(trdy_next), .I0(trdy_next_x0), .I1(trdy_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] trdy_next_lut0_table = 16'hE4EC;
-assign trdy_next = trdy_next_lut0_table[{pci_irdy_in, pci_frame_in, trdy_next_y0, trdy_next_x0}];
-`endif
+assign trdy_next = (pci_irdy_in ? (pci_frame_in ? (trdy_next_y0 ? 1'b1 : (trdy_next_x0 ? 1'b1 : 1'b0)) : (trdy_next_y0 ? (trdy_next_x0 ? 1'b0 : 1'b1) : 1'b0)) : (pci_frame_in ? (trdy_next_y0 ? 1'b1 : (trdy_next_x0 ? 1'b1 : 1'b0)) : (trdy_next_y0 ? 1'b1 : 1'b0)));
 
 
 wire stop_next_x0 = control_case0_out_stop;
 wire stop_next_y0 = control_case0_out_stop ? control_case2_out_stop : control_case1_out_stop;
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hEAE8)) stop_next_lut0 (.O(stop_next), .I0(stop_next_x0), .I1(stop_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] stop_next_lut0_table = 16'hEAE8;
-assign stop_next = stop_next_lut0_table[{pci_irdy_in, pci_frame_in, stop_next_y0, stop_next_x0}];
-`endif
+assign stop_next = (pci_irdy_in ? (pci_frame_in ? (stop_next_y0 ? 1'b1 : (stop_next_x0 ? 1'b1 : 1'b0)) : (stop_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (stop_next_y0 ? 1'b1 : (stop_next_x0 ? 1'b1 : 1'b0)) : (stop_next_y0 ? (stop_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire devsel_next_x0 = control_case0_out_devsel;
 wire devsel_next_y0 = control_case0_out_devsel ? control_case2_out_devsel : control_case1_out_devsel;
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hEAE8)) devsel_next_lut0 (.O(devsel_next), .I0(devsel_next_x0), .I1(devsel_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] devsel_next_lut0_table = 16'hEAE8;
-assign devsel_next = devsel_next_lut0_table[{pci_irdy_in, pci_frame_in, devsel_next_y0, devsel_next_x0}];
-`endif
+assign devsel_next = (pci_irdy_in ? (pci_frame_in ? (devsel_next_y0 ? 1'b1 : (devsel_next_x0 ? 1'b1 : 1'b0)) : (devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (devsel_next_y0 ? 1'b1 : (devsel_next_x0 ? 1'b1 : 1'b0)) : (devsel_next_y0 ? (devsel_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire drive_next_x0 = control_case0_out_drive;
 wire drive_next_y0 = control_case0_out_drive ? control_case2_out_drive : control_case1_out_drive;
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hEAE8)) drive_next_lut0 (.O(drive_next), .I0(drive_next_x0), .I1(drive_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] drive_next_lut0_table = 16'hEAE8;
-assign drive_next = drive_next_lut0_table[{pci_irdy_in, pci_frame_in, drive_next_y0, drive_next_x0}];
-`endif
+assign drive_next = (pci_irdy_in ? (pci_frame_in ? (drive_next_y0 ? 1'b1 : (drive_next_x0 ? 1'b1 : 1'b0)) : (drive_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (drive_next_y0 ? 1'b1 : (drive_next_x0 ? 1'b1 : 1'b0)) : (drive_next_y0 ? (drive_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
 wire ad_oe_next_x0 = control_case0_out_ad_oe;
 wire ad_oe_next_y0 = control_case2_out_ad_oe ^ control_case1_out_ad_oe;
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h2A2E)) ad_oe_next_lut0 (.O(ad_oe_next), .I0(ad_oe_next_x0), .I1(ad_oe_next_y0), .I2(pci_frame_in), .I3(pci_irdy_in));
-`else
-wire [15:0] ad_oe_next_lut0_table = 16'h2A2E;
-assign ad_oe_next = ad_oe_next_lut0_table[{pci_irdy_in, pci_frame_in, ad_oe_next_y0, ad_oe_next_x0}];
-`endif
+assign ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (ad_oe_next_y0 ? 1'b1 : (ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
 always @(posedge clock, negedge reset) begin: transaction

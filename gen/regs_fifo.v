@@ -55,8 +55,12 @@ module regs_fifo (
 // step requests); ``pins`` (STEP/DIR out); ``irq`` (level, to INTA#:
 // INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
 // COMMAND.SOFT_RESET: the top resets the DDA with it).
-// Parameters: ``fifo_depth`` (words, a power of two; 512 words of 32 bits
-// are four iCE40 4-Kbit block RAMs), ``coord_width`` (the DDA's).
+// Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
+// two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
+// ``clock_hz`` and ``device`` only set capability registers (CLOCK_HZ,
+// BUILD; FIFO_SIZE, BUILD.COORD_WIDTH and BUILD.DDA_VARIANTS come from
+// ``fifo_depth``, ``dda.coord_width`` and ``dda.variants``: the
+// sequencer refuses an ARC that names a variant the DDA lacks).
 // 
 // Local bus: I/O and FIFO writes complete in the clock they are requested,
 // a full FIFO answers retry; an I/O write reaches the registers one clock
@@ -382,6 +386,7 @@ reg [23:0] reg_word20_hw_value;
 reg [23:0] reg_word20_value;
 reg reg_word20_strobe;
 wire reg_word20_clamp_out;
+reg [31:0] reg_word20_read_out;
 reg [23:0] reg_word20_honoured;
 reg reg_word20_out_of_range;
 reg reg_word20_clamped;
@@ -389,6 +394,20 @@ wire reg_word20_mine;
 wire reg_word20_mine_write;
 wire [31:0] reg_word20_shown_wide;
 wire [31:0] reg_word20_written;
+wire [31:0] reg_word21_hw_value;
+wire reg_word21_clamp_out;
+reg [31:0] reg_word21_read_out;
+wire reg_word21_mine;
+wire [31:0] reg_word21_shown_wide;
+wire [15:0] reg_word22_hw_value;
+wire reg_word22_clamp_out;
+reg [31:0] reg_word22_read_out;
+wire reg_word22_mine;
+wire [31:0] reg_word22_shown_wide;
+wire [27:0] reg_word23_hw_value;
+wire reg_word23_clamp_out;
+wire reg_word23_mine;
+wire [31:0] reg_word23_shown_wide;
 reg signed [23:0] sequencer0_pulse_count_x;
 reg signed [23:0] sequencer0_pulse_count_y;
 wire sequencer0_arriving_coord_fits;
@@ -480,7 +499,7 @@ reg pulse_out0_turn;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_hw_value = 32'd3719037184;
+assign reg_word0_hw_value = 32'd3719037185;
 assign reg_word0_clamp_in = 1'd0;
 assign reg_word0_read_in = 32'd0;
 assign reg_word1_out_of_range = 1'd0;
@@ -494,6 +513,9 @@ assign reg_word6_set_mine = 1'd0;
 assign reg_word12_out_of_range = 1'd0;
 assign reg_word16_out_of_range = 1'd0;
 assign reg_word16_set_mine = 1'd0;
+assign reg_word21_hw_value = 32'd33333333;
+assign reg_word22_hw_value = 16'd512;
+assign reg_word23_hw_value = 28'd786968;
 
 
 
@@ -1582,10 +1604,10 @@ assign reg_word20_mine = (local_addr == 80);
 
 always @(reg_word20_mine, reg_word20_shown_wide, reg_word19_read_out) begin: reg_word20_read_chain
     if (reg_word20_mine) begin
-        read_end = (reg_word19_read_out | reg_word20_shown_wide);
+        reg_word20_read_out = (reg_word19_read_out | reg_word20_shown_wide);
     end
     else begin
-        read_end = reg_word19_read_out;
+        reg_word20_read_out = reg_word19_read_out;
     end
 end
 
@@ -1638,6 +1660,72 @@ always @(posedge clock, negedge reset) begin: reg_word20__store15_pulse_on_write
         end
     end
 end
+
+
+
+assign reg_word21_mine = (local_addr == 84);
+
+
+always @(reg_word21_mine, reg_word21_shown_wide, reg_word20_read_out) begin: reg_word21_read_chain
+    if (reg_word21_mine) begin
+        reg_word21_read_out = (reg_word20_read_out | reg_word21_shown_wide);
+    end
+    else begin
+        reg_word21_read_out = reg_word20_read_out;
+    end
+end
+
+
+
+assign reg_word21_shown_wide = reg_word21_hw_value;
+
+
+
+assign reg_word21_clamp_out = reg_word20_clamp_out;
+
+
+
+assign reg_word22_mine = (local_addr == 88);
+
+
+always @(reg_word22_mine, reg_word22_shown_wide, reg_word21_read_out) begin: reg_word22_read_chain
+    if (reg_word22_mine) begin
+        reg_word22_read_out = (reg_word21_read_out | reg_word22_shown_wide);
+    end
+    else begin
+        reg_word22_read_out = reg_word21_read_out;
+    end
+end
+
+
+
+assign reg_word22_shown_wide = {16'h0, reg_word22_hw_value};
+
+
+
+assign reg_word22_clamp_out = reg_word21_clamp_out;
+
+
+
+assign reg_word23_mine = (local_addr == 92);
+
+
+always @(reg_word23_mine, reg_word23_shown_wide, reg_word22_read_out) begin: reg_word23_read_chain
+    if (reg_word23_mine) begin
+        read_end = (reg_word22_read_out | reg_word23_shown_wide);
+    end
+    else begin
+        read_end = reg_word22_read_out;
+    end
+end
+
+
+
+assign reg_word23_shown_wide = {4'h0, reg_word23_hw_value};
+
+
+
+assign reg_word23_clamp_out = reg_word22_clamp_out;
 
 
 
@@ -2696,14 +2784,14 @@ always @(posedge clock, negedge reset) begin: _interrupts0_remember
 end
 
 
-always @(reg_word20_clamp_out, error_code, reg_word6_value, mark_strobe, error_before, any_busy, level_wide, busy_before, low_before) begin: _interrupts0_detect
+always @(reg_word23_clamp_out, error_code, reg_word6_value, mark_strobe, error_before, any_busy, level_wide, busy_before, low_before) begin: _interrupts0_detect
     reg [5-1:0] word;
     word = 5'h0;
     word[0] = (busy_before && (!any_busy));
     word[1] = ((level_wide < reg_word6_value) && (!low_before));
     word[2] = ((error_code != 0) && (!error_before));
     word[3] = mark_strobe;
-    word[4] = reg_word20_clamp_out;
+    word[4] = reg_word23_clamp_out;
     reg_word5_hw_value = word;
 end
 

@@ -28,10 +28,12 @@ module top (
 // Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci_pins``
 // (``PciPins``: AD, C/BE#, PAR, FRAME#, IRDY#, TRDY#, DEVSEL#, STOP#, IDSEL,
 // PERR#, SERR#, INTA# as on the bus), ``motor`` (``MotorPins``: STEP/DIR).
-// Parameters: ``fifo_depth``, ``coord_width``, ``variants`` (the DDA's), the PCI IDs, and
-// ``io_registers`` (True: the PCI boundary flip-flops are the iCE40 I/O
-// cells' registers, ``rtl/pci_pads.py``; the target is told so).
-// ``rtl/card.py`` is the same card with split ports, for benches.
+// Parameters: those of ``card`` (``rtl/parameters.py``).  ``device``
+// ``ice40`` (the top's default): the PCI boundary flip-flops are the iCE40
+// I/O cells' registers (``rtl/pci_pads.py``; the target is told so) and
+// the target's pin paths are iCE40 LUTs; ``generic``: plain tri-states
+// and plain logic.  ``rtl/card.py`` is the same card with split ports, for
+// benches.
 // 
 //     pins <-> pci_pads <-> card (pci_slave, regs_fifo, dda_arc) --> STEP/DIR
 
@@ -323,104 +325,58 @@ wire card1_card_core1_regs_fifo2_sync_fifo2_one_free;
 wire card1_card_core1_regs_fifo2_sync_fifo2_one_word;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_read_addr;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_write_addr;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word42_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word42_clamp_in;
-wire card1_card_core1_regs_fifo2_reg_word42_clamp_out;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word42_read_in;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word42_read_out;
-wire card1_card_core1_regs_fifo2_reg_word42_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word42_shown_wide;
-wire card1_card_core1_regs_fifo2_reg_word43_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word43_read_out;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word43_honoured;
-wire card1_card_core1_regs_fifo2_reg_word43_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word43_clamped;
-wire card1_card_core1_regs_fifo2_reg_word43_mine;
-wire card1_card_core1_regs_fifo2_reg_word43_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word43_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word43_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word43_written;
-wire [2:0] card1_card_core1_regs_fifo2_reg_word44_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word44_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word44_read_out;
-wire [2:0] card1_card_core1_regs_fifo2_reg_word44_honoured;
-wire card1_card_core1_regs_fifo2_reg_word44_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word44_clamped;
-wire card1_card_core1_regs_fifo2_reg_word44_mine;
-wire card1_card_core1_regs_fifo2_reg_word44_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word44_shown_wide;
-wire [2:0] card1_card_core1_regs_fifo2_reg_word44_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word45_hw_value;
-wire card1_card_core1_regs_fifo2_reg_word45_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word45_read_out;
-wire card1_card_core1_regs_fifo2_reg_word45_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word45_shown_wide;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word46_value;
-wire card1_card_core1_regs_fifo2_reg_word46_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word46_read_out;
-wire [4:0] card1_card_core1_regs_fifo2_reg_word46_honoured;
-wire card1_card_core1_regs_fifo2_reg_word46_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word46_clamped;
-wire card1_card_core1_regs_fifo2_reg_word46_mine;
-wire card1_card_core1_regs_fifo2_reg_word46_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word46_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word46_shown_wide;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word46_written;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word47_hw_value;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word47_value;
-wire card1_card_core1_regs_fifo2_reg_word47_clamp_out;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word47_read_out;
-wire [4:0] card1_card_core1_regs_fifo2_reg_word47_honoured;
-wire card1_card_core1_regs_fifo2_reg_word47_mine;
-wire card1_card_core1_regs_fifo2_reg_word47_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word47_shown_wide;
-wire [4:0] card1_card_core1_regs_fifo2_reg_word47_written;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word48_value;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word48_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word48_clamp_in;
 wire card1_card_core1_regs_fifo2_reg_word48_clamp_out;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word48_read_in;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word48_read_out;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word48_honoured;
-wire card1_card_core1_regs_fifo2_reg_word48_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word48_clamped;
 wire card1_card_core1_regs_fifo2_reg_word48_mine;
-wire card1_card_core1_regs_fifo2_reg_word48_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word48_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word48_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word48_written;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word49_hw_value;
 wire card1_card_core1_regs_fifo2_reg_word49_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word49_read_out;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word49_honoured;
+wire card1_card_core1_regs_fifo2_reg_word49_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word49_clamped;
 wire card1_card_core1_regs_fifo2_reg_word49_mine;
+wire card1_card_core1_regs_fifo2_reg_word49_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word49_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word49_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word50_hw_value;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word49_written;
+wire [2:0] card1_card_core1_regs_fifo2_reg_word50_hw_value;
 wire card1_card_core1_regs_fifo2_reg_word50_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word50_read_out;
+wire [2:0] card1_card_core1_regs_fifo2_reg_word50_honoured;
+wire card1_card_core1_regs_fifo2_reg_word50_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word50_clamped;
 wire card1_card_core1_regs_fifo2_reg_word50_mine;
+wire card1_card_core1_regs_fifo2_reg_word50_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word50_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word51_hw_value;
+wire [2:0] card1_card_core1_regs_fifo2_reg_word50_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word51_hw_value;
 wire card1_card_core1_regs_fifo2_reg_word51_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word51_read_out;
 wire card1_card_core1_regs_fifo2_reg_word51_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word51_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word52_value;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word52_value;
 wire card1_card_core1_regs_fifo2_reg_word52_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word52_read_out;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word52_honoured;
-reg card1_card_core1_regs_fifo2_reg_word52_out_of_range;
+wire [4:0] card1_card_core1_regs_fifo2_reg_word52_honoured;
+wire card1_card_core1_regs_fifo2_reg_word52_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word52_clamped;
 wire card1_card_core1_regs_fifo2_reg_word52_mine;
 wire card1_card_core1_regs_fifo2_reg_word52_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word52_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word52_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word52_written;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word53_value;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word52_written;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word53_hw_value;
+reg [4:0] card1_card_core1_regs_fifo2_reg_word53_value;
 wire card1_card_core1_regs_fifo2_reg_word53_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word53_read_out;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word53_honoured;
-reg card1_card_core1_regs_fifo2_reg_word53_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word53_clamped;
+wire [4:0] card1_card_core1_regs_fifo2_reg_word53_honoured;
 wire card1_card_core1_regs_fifo2_reg_word53_mine;
 wire card1_card_core1_regs_fifo2_reg_word53_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word53_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word53_written;
+wire [4:0] card1_card_core1_regs_fifo2_reg_word53_written;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word54_value;
 wire card1_card_core1_regs_fifo2_reg_word54_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word54_read_out;
@@ -429,49 +385,34 @@ wire card1_card_core1_regs_fifo2_reg_word54_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word54_clamped;
 wire card1_card_core1_regs_fifo2_reg_word54_mine;
 wire card1_card_core1_regs_fifo2_reg_word54_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word54_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word54_shown_wide;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word54_written;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word55_value;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word55_hw_value;
 wire card1_card_core1_regs_fifo2_reg_word55_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word55_read_out;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word55_honoured;
-reg card1_card_core1_regs_fifo2_reg_word55_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word55_clamped;
 wire card1_card_core1_regs_fifo2_reg_word55_mine;
-wire card1_card_core1_regs_fifo2_reg_word55_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word55_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word55_written;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word56_value;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word56_hw_value;
 wire card1_card_core1_regs_fifo2_reg_word56_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word56_read_out;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word56_honoured;
-reg card1_card_core1_regs_fifo2_reg_word56_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word56_clamped;
 wire card1_card_core1_regs_fifo2_reg_word56_mine;
-wire card1_card_core1_regs_fifo2_reg_word56_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word56_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word56_written;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word57_value;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word57_hw_value;
 wire card1_card_core1_regs_fifo2_reg_word57_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word57_read_out;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word57_honoured;
-reg card1_card_core1_regs_fifo2_reg_word57_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word57_clamped;
 wire card1_card_core1_regs_fifo2_reg_word57_mine;
-wire card1_card_core1_regs_fifo2_reg_word57_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word57_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word57_written;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word58_value;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word58_value;
 wire card1_card_core1_regs_fifo2_reg_word58_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word58_read_out;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word58_honoured;
-wire card1_card_core1_regs_fifo2_reg_word58_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word58_honoured;
+reg card1_card_core1_regs_fifo2_reg_word58_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word58_clamped;
 wire card1_card_core1_regs_fifo2_reg_word58_mine;
 wire card1_card_core1_regs_fifo2_reg_word58_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word58_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word58_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word58_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word58_written;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word59_value;
 wire card1_card_core1_regs_fifo2_reg_word59_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word59_read_out;
@@ -485,36 +426,112 @@ reg [31:0] card1_card_core1_regs_fifo2_reg_word59_written;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word60_value;
 wire card1_card_core1_regs_fifo2_reg_word60_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word60_read_out;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word60_honoured;
-reg card1_card_core1_regs_fifo2_reg_word60_out_of_range;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word60_honoured;
+wire card1_card_core1_regs_fifo2_reg_word60_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word60_clamped;
 wire card1_card_core1_regs_fifo2_reg_word60_mine;
 wire card1_card_core1_regs_fifo2_reg_word60_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word60_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word60_written;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word61_hw_value;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word61_value;
-reg card1_card_core1_regs_fifo2_reg_word61_strobe;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word60_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word61_value;
 wire card1_card_core1_regs_fifo2_reg_word61_clamp_out;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word61_read_out;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word61_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word61_honoured;
 reg card1_card_core1_regs_fifo2_reg_word61_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word61_clamped;
 wire card1_card_core1_regs_fifo2_reg_word61_mine;
 wire card1_card_core1_regs_fifo2_reg_word61_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word61_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word61_written;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word62_hw_value;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word62_value;
-reg card1_card_core1_regs_fifo2_reg_word62_strobe;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word61_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word62_value;
 wire card1_card_core1_regs_fifo2_reg_word62_clamp_out;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word62_honoured;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word62_read_out;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word62_honoured;
 reg card1_card_core1_regs_fifo2_reg_word62_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word62_clamped;
 wire card1_card_core1_regs_fifo2_reg_word62_mine;
 wire card1_card_core1_regs_fifo2_reg_word62_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word62_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word62_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word62_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word63_value;
+wire card1_card_core1_regs_fifo2_reg_word63_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word63_read_out;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word63_honoured;
+reg card1_card_core1_regs_fifo2_reg_word63_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word63_clamped;
+wire card1_card_core1_regs_fifo2_reg_word63_mine;
+wire card1_card_core1_regs_fifo2_reg_word63_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word63_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word63_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word64_value;
+wire card1_card_core1_regs_fifo2_reg_word64_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word64_read_out;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word64_honoured;
+wire card1_card_core1_regs_fifo2_reg_word64_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word64_clamped;
+wire card1_card_core1_regs_fifo2_reg_word64_mine;
+wire card1_card_core1_regs_fifo2_reg_word64_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word64_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word64_shown_wide;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word64_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word65_value;
+wire card1_card_core1_regs_fifo2_reg_word65_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word65_read_out;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word65_honoured;
+reg card1_card_core1_regs_fifo2_reg_word65_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word65_clamped;
+wire card1_card_core1_regs_fifo2_reg_word65_mine;
+wire card1_card_core1_regs_fifo2_reg_word65_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word65_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word65_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word66_value;
+wire card1_card_core1_regs_fifo2_reg_word66_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word66_read_out;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word66_honoured;
+reg card1_card_core1_regs_fifo2_reg_word66_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word66_clamped;
+wire card1_card_core1_regs_fifo2_reg_word66_mine;
+wire card1_card_core1_regs_fifo2_reg_word66_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word66_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word66_written;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word67_hw_value;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word67_value;
+reg card1_card_core1_regs_fifo2_reg_word67_strobe;
+wire card1_card_core1_regs_fifo2_reg_word67_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word67_read_out;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word67_honoured;
+reg card1_card_core1_regs_fifo2_reg_word67_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word67_clamped;
+wire card1_card_core1_regs_fifo2_reg_word67_mine;
+wire card1_card_core1_regs_fifo2_reg_word67_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word67_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word67_written;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word68_hw_value;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word68_value;
+reg card1_card_core1_regs_fifo2_reg_word68_strobe;
+wire card1_card_core1_regs_fifo2_reg_word68_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word68_read_out;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word68_honoured;
+reg card1_card_core1_regs_fifo2_reg_word68_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word68_clamped;
+wire card1_card_core1_regs_fifo2_reg_word68_mine;
+wire card1_card_core1_regs_fifo2_reg_word68_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word68_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word68_written;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word69_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word69_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word69_read_out;
+wire card1_card_core1_regs_fifo2_reg_word69_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word69_shown_wide;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word70_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word70_clamp_out;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word70_read_out;
+wire card1_card_core1_regs_fifo2_reg_word70_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word70_shown_wide;
+wire [27:0] card1_card_core1_regs_fifo2_reg_word71_hw_value;
+wire card1_card_core1_regs_fifo2_reg_word71_clamp_out;
+wire card1_card_core1_regs_fifo2_reg_word71_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word71_shown_wide;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulse_count_x;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulse_count_y;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
@@ -781,20 +798,23 @@ reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word42_hw_value = 32'd3719037184;
-assign card1_card_core1_regs_fifo2_reg_word42_clamp_in = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word42_read_in = 32'd0;
-assign card1_card_core1_regs_fifo2_reg_word43_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word43_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word44_hw_value = 3'd0;
-assign card1_card_core1_regs_fifo2_reg_word44_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word46_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word46_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word48_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word48_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word48_hw_value = 32'd3719037185;
+assign card1_card_core1_regs_fifo2_reg_word48_clamp_in = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word48_read_in = 32'd0;
+assign card1_card_core1_regs_fifo2_reg_word49_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word49_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word50_hw_value = 3'd0;
+assign card1_card_core1_regs_fifo2_reg_word50_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word52_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word52_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word54_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word58_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word58_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word54_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word60_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word64_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word64_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word69_hw_value = 32'd33333333;
+assign card1_card_core1_regs_fifo2_reg_word70_hw_value = 16'd512;
+assign card1_card_core1_regs_fifo2_reg_word71_hw_value = 28'd17564184;
 
 
 
@@ -1362,40 +1382,35 @@ assign card1_pci_slave2_perr_armed = (card1_pci_slave2_write_done_q && card1_pci
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h9F9F)) card1_pci_slave2_perr_next_lut (.O(card1_pci_slave2_perr_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(1'b0));
 `else
-wire [7:0] card1_pci_slave2_perr_next_lut_table = 8'h9F;
-assign card1_pci_slave2_perr_next = card1_pci_slave2_perr_next_lut_table[{card1_pci_slave2_perr_armed, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
+assign card1_pci_slave2_perr_next = (card1_pci_slave2_perr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0) : (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1)) : 1'b1);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h60FF)) card1_pci_slave2_perr_oe_next_lut (.O(card1_pci_slave2_perr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(card1_pci_slave2_perr_q));
 `else
-wire [15:0] card1_pci_slave2_perr_oe_next_lut_table = 16'h60FF;
-assign card1_pci_slave2_perr_oe_next = card1_pci_slave2_perr_oe_next_lut_table[{card1_pci_slave2_perr_q, card1_pci_slave2_perr_armed, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
+assign card1_pci_slave2_perr_oe_next = (card1_pci_slave2_perr_q ? (card1_pci_slave2_perr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h6060)) card1_pci_slave2_serr_oe_next_lut (.O(card1_pci_slave2_serr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_serr_armed), .I3(1'b0));
 `else
-wire [7:0] card1_pci_slave2_serr_oe_next_lut_table = 8'h60;
-assign card1_pci_slave2_serr_oe_next = card1_pci_slave2_serr_oe_next_lut_table[{card1_pci_slave2_serr_armed, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
+assign card1_pci_slave2_serr_oe_next = (card1_pci_slave2_serr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h6000)) card1_pci_slave2_address_fault_next_lut (.O(card1_pci_slave2_address_fault_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_parity_response));
 `else
-wire [15:0] card1_pci_slave2_address_fault_next_lut_table = 16'h6000;
-assign card1_pci_slave2_address_fault_next = card1_pci_slave2_address_fault_next_lut_table[{card1_pci_slave2_parity_response, card1_pci_slave2_address_phase, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
+assign card1_pci_slave2_address_fault_next = (card1_pci_slave2_parity_response ? (card1_pci_slave2_address_phase ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h6660)) card1_pci_slave2_parity_error_next_lut (.O(card1_pci_slave2_parity_error_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_write_done_q));
 `else
-wire [15:0] card1_pci_slave2_parity_error_next_lut_table = 16'h6660;
-assign card1_pci_slave2_parity_error_next = card1_pci_slave2_parity_error_next_lut_table[{card1_pci_slave2_write_done_q, card1_pci_slave2_address_phase, card1_pci_slave2_bus_parity, pci_pads0_tristate_pad2_from_pin}];
+assign card1_pci_slave2_parity_error_next = (card1_pci_slave2_write_done_q ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : (card1_pci_slave2_address_phase ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
@@ -1430,48 +1445,42 @@ end
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFEF0)) card1_pci_slave2_first_phase_next_lut (.O(card1_pci_slave2_first_phase_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_claim), .I3(card1_pci_slave2_first_phase));
 `else
-wire [15:0] card1_pci_slave2_first_phase_next_lut_table = 16'hFEF0;
-assign card1_pci_slave2_first_phase_next = card1_pci_slave2_first_phase_next_lut_table[{card1_pci_slave2_first_phase, card1_pci_slave2_claim, card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_first_phase_next = (card1_pci_slave2_first_phase ? (card1_pci_slave2_claim ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0))) : (card1_pci_slave2_claim ? 1'b1 : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hF1F0)) card1_pci_slave2_phase_step_lut (.O(card1_pci_slave2_phase_step), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_claim), .I3(card1_pci_slave2_space_mem));
 `else
-wire [15:0] card1_pci_slave2_phase_step_lut_table = 16'hF1F0;
-assign card1_pci_slave2_phase_step = card1_pci_slave2_phase_step_lut_table[{card1_pci_slave2_space_mem, card1_pci_slave2_claim, card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_phase_step = (card1_pci_slave2_space_mem ? (card1_pci_slave2_claim ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_claim ? 1'b1 : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h0101)) card1_pci_slave2_write_done_next_lut (.O(card1_pci_slave2_write_done_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_is_read), .I3(1'b0));
 `else
-wire [7:0] card1_pci_slave2_write_done_next_lut_table = 8'h01;
-assign card1_pci_slave2_write_done_next = card1_pci_slave2_write_done_next_lut_table[{card1_pci_slave2_is_read, card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_write_done_next = (card1_pci_slave2_is_read ? 1'b0 : (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1)));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h0100)) card1_pci_slave2_config_write_next_lut (.O(card1_pci_slave2_config_write_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_is_read), .I3(card1_pci_slave2_is_config));
 `else
-wire [15:0] card1_pci_slave2_config_write_next_lut_table = 16'h0100;
-assign card1_pci_slave2_config_write_next = card1_pci_slave2_config_write_next_lut_table[{card1_pci_slave2_is_config, card1_pci_slave2_is_read, card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_config_write_next = (card1_pci_slave2_is_config ? (card1_pci_slave2_is_read ? 1'b0 : (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h4444)) card1_pci_slave2_wq_valid_next_lut (.O(card1_pci_slave2_wq_valid_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_posting), .I2(1'b0), .I3(1'b0));
 `else
-wire [3:0] card1_pci_slave2_wq_valid_next_lut_table = 4'h4;
-assign card1_pci_slave2_wq_valid_next = card1_pci_slave2_wq_valid_next_lut_table[{card1_pci_slave2_posting, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_wq_valid_next = (card1_pci_slave2_posting ? (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h8888)) card1_pci_slave2_b_valid_next_lut (.O(card1_pci_slave2_b_valid_next), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_b_kept), .I2(1'b0), .I3(1'b0));
 `else
-wire [3:0] card1_pci_slave2_b_valid_next_lut_table = 4'h8;
-assign card1_pci_slave2_b_valid_next = card1_pci_slave2_b_valid_next_lut_table[{card1_pci_slave2_b_kept, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_b_valid_next = (card1_pci_slave2_b_kept ? (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0) : 1'b0);
 `endif
 
 
@@ -1985,32 +1994,28 @@ wire card1_pci_slave2_state_next_y0 = card1_pci_slave2_control_case2_0_1_out_sta
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut0 (.O(card1_pci_slave2_state_next[0]), .I0(card1_pci_slave2_state_next_x0), .I1(card1_pci_slave2_state_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_state_next_lut0_table = 16'h2A2E;
-assign card1_pci_slave2_state_next[0] = card1_pci_slave2_state_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_state_next_y0, card1_pci_slave2_state_next_x0}];
+assign card1_pci_slave2_state_next[0] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y0 ? 1'b0 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y0 ? 1'b0 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y0 ? 1'b1 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0))));
 `endif
 wire card1_pci_slave2_state_next_x1 = card1_pci_slave2_control_case0_0_1_out_state[1];
 wire card1_pci_slave2_state_next_y1 = card1_pci_slave2_control_case2_0_1_out_state[1] ^ card1_pci_slave2_control_case1_0_1_out_state[1];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut1 (.O(card1_pci_slave2_state_next[1]), .I0(card1_pci_slave2_state_next_x1), .I1(card1_pci_slave2_state_next_y1), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_state_next_lut1_table = 16'h2A2E;
-assign card1_pci_slave2_state_next[1] = card1_pci_slave2_state_next_lut1_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_state_next_y1, card1_pci_slave2_state_next_x1}];
+assign card1_pci_slave2_state_next[1] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y1 ? 1'b0 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y1 ? 1'b0 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y1 ? 1'b1 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0))));
 `endif
 wire card1_pci_slave2_state_next_x2 = card1_pci_slave2_control_case0_0_1_out_state[2];
 wire card1_pci_slave2_state_next_y2 = card1_pci_slave2_control_case2_0_1_out_state[2] ^ card1_pci_slave2_control_case1_0_1_out_state[2];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut2 (.O(card1_pci_slave2_state_next[2]), .I0(card1_pci_slave2_state_next_x2), .I1(card1_pci_slave2_state_next_y2), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_state_next_lut2_table = 16'h2A2E;
-assign card1_pci_slave2_state_next[2] = card1_pci_slave2_state_next_lut2_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_state_next_y2, card1_pci_slave2_state_next_x2}];
+assign card1_pci_slave2_state_next[2] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y2 ? 1'b0 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y2 ? 1'b0 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y2 ? 1'b1 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0))));
 `endif
 wire card1_pci_slave2_state_next_x3 = card1_pci_slave2_control_case0_0_1_out_state[3];
 wire card1_pci_slave2_state_next_y3 = card1_pci_slave2_control_case0_0_1_out_state[3] ? card1_pci_slave2_control_case2_0_1_out_state[3] : card1_pci_slave2_control_case1_0_1_out_state[3];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_state_next_lut3 (.O(card1_pci_slave2_state_next[3]), .I0(card1_pci_slave2_state_next_x3), .I1(card1_pci_slave2_state_next_y3), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_state_next_lut3_table = 16'hEAE8;
-assign card1_pci_slave2_state_next[3] = card1_pci_slave2_state_next_lut3_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_state_next_y3, card1_pci_slave2_state_next_x3}];
+assign card1_pci_slave2_state_next[3] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y3 ? 1'b1 : (card1_pci_slave2_state_next_x3 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x3 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y3 ? 1'b1 : (card1_pci_slave2_state_next_x3 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y3 ? (card1_pci_slave2_state_next_x3 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -2019,8 +2024,7 @@ wire card1_pci_slave2_trdy_next_y0 = (card1_pci_slave2_control_case0_0_1_out_trd
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hE4EC)) card1_pci_slave2_trdy_next_lut0 (.O(card1_pci_slave2_trdy_next), .I0(card1_pci_slave2_trdy_next_x0), .I1(card1_pci_slave2_trdy_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_trdy_next_lut0_table = 16'hE4EC;
-assign card1_pci_slave2_trdy_next = card1_pci_slave2_trdy_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_trdy_next_y0, card1_pci_slave2_trdy_next_x0}];
+assign card1_pci_slave2_trdy_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_trdy_next_y0 ? 1'b1 : (card1_pci_slave2_trdy_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_trdy_next_y0 ? (card1_pci_slave2_trdy_next_x0 ? 1'b0 : 1'b1) : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_trdy_next_y0 ? 1'b1 : (card1_pci_slave2_trdy_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_trdy_next_y0 ? 1'b1 : 1'b0)));
 `endif
 
 
@@ -2029,8 +2033,7 @@ wire card1_pci_slave2_stop_next_y0 = card1_pci_slave2_control_case0_0_1_out_stop
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_stop_next_lut0 (.O(card1_pci_slave2_stop_next), .I0(card1_pci_slave2_stop_next_x0), .I1(card1_pci_slave2_stop_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_stop_next_lut0_table = 16'hEAE8;
-assign card1_pci_slave2_stop_next = card1_pci_slave2_stop_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_stop_next_y0, card1_pci_slave2_stop_next_x0}];
+assign card1_pci_slave2_stop_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_stop_next_y0 ? 1'b1 : (card1_pci_slave2_stop_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_stop_next_y0 ? 1'b1 : (card1_pci_slave2_stop_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_stop_next_y0 ? (card1_pci_slave2_stop_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -2039,8 +2042,7 @@ wire card1_pci_slave2_devsel_next_y0 = card1_pci_slave2_control_case0_0_1_out_de
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_devsel_next_lut0 (.O(card1_pci_slave2_devsel_next), .I0(card1_pci_slave2_devsel_next_x0), .I1(card1_pci_slave2_devsel_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_devsel_next_lut0_table = 16'hEAE8;
-assign card1_pci_slave2_devsel_next = card1_pci_slave2_devsel_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_devsel_next_y0, card1_pci_slave2_devsel_next_x0}];
+assign card1_pci_slave2_devsel_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_devsel_next_y0 ? 1'b1 : (card1_pci_slave2_devsel_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_devsel_next_y0 ? 1'b1 : (card1_pci_slave2_devsel_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_devsel_next_y0 ? (card1_pci_slave2_devsel_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -2049,8 +2051,7 @@ wire card1_pci_slave2_drive_next_y0 = card1_pci_slave2_control_case0_0_1_out_dri
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_drive_next_lut0 (.O(card1_pci_slave2_drive_next), .I0(card1_pci_slave2_drive_next_x0), .I1(card1_pci_slave2_drive_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_drive_next_lut0_table = 16'hEAE8;
-assign card1_pci_slave2_drive_next = card1_pci_slave2_drive_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_drive_next_y0, card1_pci_slave2_drive_next_x0}];
+assign card1_pci_slave2_drive_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_drive_next_y0 ? 1'b1 : (card1_pci_slave2_drive_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_drive_next_y0 ? 1'b1 : (card1_pci_slave2_drive_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_drive_next_y0 ? (card1_pci_slave2_drive_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 `endif
 
 
@@ -2059,8 +2060,7 @@ wire card1_pci_slave2_ad_oe_next_y0 = card1_pci_slave2_control_case2_0_1_out_ad_
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_ad_oe_next_lut0 (.O(card1_pci_slave2_ad_oe_next), .I0(card1_pci_slave2_ad_oe_next_x0), .I1(card1_pci_slave2_ad_oe_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
-wire [15:0] card1_pci_slave2_ad_oe_next_lut0_table = 16'h2A2E;
-assign card1_pci_slave2_ad_oe_next = card1_pci_slave2_ad_oe_next_lut0_table[{pci_pads0_input_pad1_from_pin, pci_pads0_input_pad0_from_pin, card1_pci_slave2_ad_oe_next_y0, card1_pci_slave2_ad_oe_next_x0}];
+assign card1_pci_slave2_ad_oe_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_ad_oe_next_y0 ? 1'b0 : (card1_pci_slave2_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_ad_oe_next_y0 ? 1'b0 : (card1_pci_slave2_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_ad_oe_next_y0 ? 1'b1 : (card1_pci_slave2_ad_oe_next_x0 ? 1'b1 : 1'b0))));
 `endif
 
 
@@ -2154,256 +2154,224 @@ end
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut33_out_lut (.O(card1_pci_slave2_pin_lut33_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[0]), .I3(card1_pci_slave2_read_source[0]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut33_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut33_out = card1_pci_slave2_pin_lut33_out_lut_table[{card1_pci_slave2_read_source[0], card1_pci_slave2_ad_out_q[0], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut33_out = (card1_pci_slave2_read_source[0] ? (card1_pci_slave2_ad_out_q[0] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[0] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut34_out_lut (.O(card1_pci_slave2_pin_lut34_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[1]), .I3(card1_pci_slave2_read_source[1]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut34_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut34_out = card1_pci_slave2_pin_lut34_out_lut_table[{card1_pci_slave2_read_source[1], card1_pci_slave2_ad_out_q[1], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut34_out = (card1_pci_slave2_read_source[1] ? (card1_pci_slave2_ad_out_q[1] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[1] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut35_out_lut (.O(card1_pci_slave2_pin_lut35_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[2]), .I3(card1_pci_slave2_read_source[2]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut35_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut35_out = card1_pci_slave2_pin_lut35_out_lut_table[{card1_pci_slave2_read_source[2], card1_pci_slave2_ad_out_q[2], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut35_out = (card1_pci_slave2_read_source[2] ? (card1_pci_slave2_ad_out_q[2] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[2] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut36_out_lut (.O(card1_pci_slave2_pin_lut36_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[3]), .I3(card1_pci_slave2_read_source[3]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut36_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut36_out = card1_pci_slave2_pin_lut36_out_lut_table[{card1_pci_slave2_read_source[3], card1_pci_slave2_ad_out_q[3], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut36_out = (card1_pci_slave2_read_source[3] ? (card1_pci_slave2_ad_out_q[3] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[3] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut37_out_lut (.O(card1_pci_slave2_pin_lut37_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[4]), .I3(card1_pci_slave2_read_source[4]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut37_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut37_out = card1_pci_slave2_pin_lut37_out_lut_table[{card1_pci_slave2_read_source[4], card1_pci_slave2_ad_out_q[4], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut37_out = (card1_pci_slave2_read_source[4] ? (card1_pci_slave2_ad_out_q[4] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[4] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut38_out_lut (.O(card1_pci_slave2_pin_lut38_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[5]), .I3(card1_pci_slave2_read_source[5]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut38_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut38_out = card1_pci_slave2_pin_lut38_out_lut_table[{card1_pci_slave2_read_source[5], card1_pci_slave2_ad_out_q[5], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut38_out = (card1_pci_slave2_read_source[5] ? (card1_pci_slave2_ad_out_q[5] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[5] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut39_out_lut (.O(card1_pci_slave2_pin_lut39_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[6]), .I3(card1_pci_slave2_read_source[6]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut39_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut39_out = card1_pci_slave2_pin_lut39_out_lut_table[{card1_pci_slave2_read_source[6], card1_pci_slave2_ad_out_q[6], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut39_out = (card1_pci_slave2_read_source[6] ? (card1_pci_slave2_ad_out_q[6] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[6] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut40_out_lut (.O(card1_pci_slave2_pin_lut40_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[7]), .I3(card1_pci_slave2_read_source[7]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut40_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut40_out = card1_pci_slave2_pin_lut40_out_lut_table[{card1_pci_slave2_read_source[7], card1_pci_slave2_ad_out_q[7], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut40_out = (card1_pci_slave2_read_source[7] ? (card1_pci_slave2_ad_out_q[7] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[7] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut41_out_lut (.O(card1_pci_slave2_pin_lut41_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[8]), .I3(card1_pci_slave2_read_source[8]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut41_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut41_out = card1_pci_slave2_pin_lut41_out_lut_table[{card1_pci_slave2_read_source[8], card1_pci_slave2_ad_out_q[8], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut41_out = (card1_pci_slave2_read_source[8] ? (card1_pci_slave2_ad_out_q[8] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[8] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut42_out_lut (.O(card1_pci_slave2_pin_lut42_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[9]), .I3(card1_pci_slave2_read_source[9]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut42_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut42_out = card1_pci_slave2_pin_lut42_out_lut_table[{card1_pci_slave2_read_source[9], card1_pci_slave2_ad_out_q[9], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut42_out = (card1_pci_slave2_read_source[9] ? (card1_pci_slave2_ad_out_q[9] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[9] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut43_out_lut (.O(card1_pci_slave2_pin_lut43_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[10]), .I3(card1_pci_slave2_read_source[10]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut43_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut43_out = card1_pci_slave2_pin_lut43_out_lut_table[{card1_pci_slave2_read_source[10], card1_pci_slave2_ad_out_q[10], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut43_out = (card1_pci_slave2_read_source[10] ? (card1_pci_slave2_ad_out_q[10] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[10] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut44_out_lut (.O(card1_pci_slave2_pin_lut44_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[11]), .I3(card1_pci_slave2_read_source[11]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut44_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut44_out = card1_pci_slave2_pin_lut44_out_lut_table[{card1_pci_slave2_read_source[11], card1_pci_slave2_ad_out_q[11], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut44_out = (card1_pci_slave2_read_source[11] ? (card1_pci_slave2_ad_out_q[11] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[11] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut45_out_lut (.O(card1_pci_slave2_pin_lut45_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[12]), .I3(card1_pci_slave2_read_source[12]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut45_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut45_out = card1_pci_slave2_pin_lut45_out_lut_table[{card1_pci_slave2_read_source[12], card1_pci_slave2_ad_out_q[12], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut45_out = (card1_pci_slave2_read_source[12] ? (card1_pci_slave2_ad_out_q[12] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[12] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut46_out_lut (.O(card1_pci_slave2_pin_lut46_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[13]), .I3(card1_pci_slave2_read_source[13]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut46_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut46_out = card1_pci_slave2_pin_lut46_out_lut_table[{card1_pci_slave2_read_source[13], card1_pci_slave2_ad_out_q[13], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut46_out = (card1_pci_slave2_read_source[13] ? (card1_pci_slave2_ad_out_q[13] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[13] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut47_out_lut (.O(card1_pci_slave2_pin_lut47_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[14]), .I3(card1_pci_slave2_read_source[14]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut47_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut47_out = card1_pci_slave2_pin_lut47_out_lut_table[{card1_pci_slave2_read_source[14], card1_pci_slave2_ad_out_q[14], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut47_out = (card1_pci_slave2_read_source[14] ? (card1_pci_slave2_ad_out_q[14] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[14] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut48_out_lut (.O(card1_pci_slave2_pin_lut48_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[15]), .I3(card1_pci_slave2_read_source[15]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut48_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut48_out = card1_pci_slave2_pin_lut48_out_lut_table[{card1_pci_slave2_read_source[15], card1_pci_slave2_ad_out_q[15], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut48_out = (card1_pci_slave2_read_source[15] ? (card1_pci_slave2_ad_out_q[15] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[15] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut49_out_lut (.O(card1_pci_slave2_pin_lut49_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[16]), .I3(card1_pci_slave2_read_source[16]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut49_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut49_out = card1_pci_slave2_pin_lut49_out_lut_table[{card1_pci_slave2_read_source[16], card1_pci_slave2_ad_out_q[16], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut49_out = (card1_pci_slave2_read_source[16] ? (card1_pci_slave2_ad_out_q[16] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[16] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut50_out_lut (.O(card1_pci_slave2_pin_lut50_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[17]), .I3(card1_pci_slave2_read_source[17]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut50_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut50_out = card1_pci_slave2_pin_lut50_out_lut_table[{card1_pci_slave2_read_source[17], card1_pci_slave2_ad_out_q[17], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut50_out = (card1_pci_slave2_read_source[17] ? (card1_pci_slave2_ad_out_q[17] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[17] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut51_out_lut (.O(card1_pci_slave2_pin_lut51_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[18]), .I3(card1_pci_slave2_read_source[18]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut51_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut51_out = card1_pci_slave2_pin_lut51_out_lut_table[{card1_pci_slave2_read_source[18], card1_pci_slave2_ad_out_q[18], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut51_out = (card1_pci_slave2_read_source[18] ? (card1_pci_slave2_ad_out_q[18] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[18] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut52_out_lut (.O(card1_pci_slave2_pin_lut52_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[19]), .I3(card1_pci_slave2_read_source[19]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut52_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut52_out = card1_pci_slave2_pin_lut52_out_lut_table[{card1_pci_slave2_read_source[19], card1_pci_slave2_ad_out_q[19], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut52_out = (card1_pci_slave2_read_source[19] ? (card1_pci_slave2_ad_out_q[19] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[19] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut53_out_lut (.O(card1_pci_slave2_pin_lut53_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[20]), .I3(card1_pci_slave2_read_source[20]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut53_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut53_out = card1_pci_slave2_pin_lut53_out_lut_table[{card1_pci_slave2_read_source[20], card1_pci_slave2_ad_out_q[20], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut53_out = (card1_pci_slave2_read_source[20] ? (card1_pci_slave2_ad_out_q[20] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[20] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut54_out_lut (.O(card1_pci_slave2_pin_lut54_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[21]), .I3(card1_pci_slave2_read_source[21]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut54_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut54_out = card1_pci_slave2_pin_lut54_out_lut_table[{card1_pci_slave2_read_source[21], card1_pci_slave2_ad_out_q[21], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut54_out = (card1_pci_slave2_read_source[21] ? (card1_pci_slave2_ad_out_q[21] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[21] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut55_out_lut (.O(card1_pci_slave2_pin_lut55_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[22]), .I3(card1_pci_slave2_read_source[22]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut55_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut55_out = card1_pci_slave2_pin_lut55_out_lut_table[{card1_pci_slave2_read_source[22], card1_pci_slave2_ad_out_q[22], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut55_out = (card1_pci_slave2_read_source[22] ? (card1_pci_slave2_ad_out_q[22] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[22] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut56_out_lut (.O(card1_pci_slave2_pin_lut56_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[23]), .I3(card1_pci_slave2_read_source[23]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut56_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut56_out = card1_pci_slave2_pin_lut56_out_lut_table[{card1_pci_slave2_read_source[23], card1_pci_slave2_ad_out_q[23], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut56_out = (card1_pci_slave2_read_source[23] ? (card1_pci_slave2_ad_out_q[23] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[23] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut57_out_lut (.O(card1_pci_slave2_pin_lut57_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[24]), .I3(card1_pci_slave2_read_source[24]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut57_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut57_out = card1_pci_slave2_pin_lut57_out_lut_table[{card1_pci_slave2_read_source[24], card1_pci_slave2_ad_out_q[24], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut57_out = (card1_pci_slave2_read_source[24] ? (card1_pci_slave2_ad_out_q[24] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[24] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut58_out_lut (.O(card1_pci_slave2_pin_lut58_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[25]), .I3(card1_pci_slave2_read_source[25]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut58_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut58_out = card1_pci_slave2_pin_lut58_out_lut_table[{card1_pci_slave2_read_source[25], card1_pci_slave2_ad_out_q[25], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut58_out = (card1_pci_slave2_read_source[25] ? (card1_pci_slave2_ad_out_q[25] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[25] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut59_out_lut (.O(card1_pci_slave2_pin_lut59_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[26]), .I3(card1_pci_slave2_read_source[26]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut59_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut59_out = card1_pci_slave2_pin_lut59_out_lut_table[{card1_pci_slave2_read_source[26], card1_pci_slave2_ad_out_q[26], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut59_out = (card1_pci_slave2_read_source[26] ? (card1_pci_slave2_ad_out_q[26] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[26] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut60_out_lut (.O(card1_pci_slave2_pin_lut60_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[27]), .I3(card1_pci_slave2_read_source[27]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut60_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut60_out = card1_pci_slave2_pin_lut60_out_lut_table[{card1_pci_slave2_read_source[27], card1_pci_slave2_ad_out_q[27], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut60_out = (card1_pci_slave2_read_source[27] ? (card1_pci_slave2_ad_out_q[27] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[27] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut61_out_lut (.O(card1_pci_slave2_pin_lut61_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[28]), .I3(card1_pci_slave2_read_source[28]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut61_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut61_out = card1_pci_slave2_pin_lut61_out_lut_table[{card1_pci_slave2_read_source[28], card1_pci_slave2_ad_out_q[28], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut61_out = (card1_pci_slave2_read_source[28] ? (card1_pci_slave2_ad_out_q[28] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[28] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut62_out_lut (.O(card1_pci_slave2_pin_lut62_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[29]), .I3(card1_pci_slave2_read_source[29]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut62_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut62_out = card1_pci_slave2_pin_lut62_out_lut_table[{card1_pci_slave2_read_source[29], card1_pci_slave2_ad_out_q[29], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut62_out = (card1_pci_slave2_read_source[29] ? (card1_pci_slave2_ad_out_q[29] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[29] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut63_out_lut (.O(card1_pci_slave2_pin_lut63_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[30]), .I3(card1_pci_slave2_read_source[30]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut63_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut63_out = card1_pci_slave2_pin_lut63_out_lut_table[{card1_pci_slave2_read_source[30], card1_pci_slave2_ad_out_q[30], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut63_out = (card1_pci_slave2_read_source[30] ? (card1_pci_slave2_ad_out_q[30] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[30] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut64_out_lut (.O(card1_pci_slave2_pin_lut64_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[31]), .I3(card1_pci_slave2_read_source[31]));
 `else
-wire [15:0] card1_pci_slave2_pin_lut64_out_lut_table = 16'hFD20;
-assign card1_pci_slave2_pin_lut64_out = card1_pci_slave2_pin_lut64_out_lut_table[{card1_pci_slave2_read_source[31], card1_pci_slave2_ad_out_q[31], card1_pci_slave2_trdy_q, pci_pads0_input_pad1_from_pin}];
+assign card1_pci_slave2_pin_lut64_out = (card1_pci_slave2_read_source[31] ? (card1_pci_slave2_ad_out_q[31] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[31] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
 
 
@@ -2734,317 +2702,29 @@ assign card1_card_core1_regs_fifo2_fifo_full = card1_card_core1_regs_fifo2_sync_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word42_mine = (card1_pci_slave2_local_addr == 0);
+assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_local_addr == 0);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word42_mine, card1_card_core1_regs_fifo2_reg_word42_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_in) begin: card1_card_core1_regs_fifo2_reg_word42_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word42_mine) begin
-        card1_card_core1_regs_fifo2_reg_word42_read_out = (card1_card_core1_regs_fifo2_reg_word42_read_in | card1_card_core1_regs_fifo2_reg_word42_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word42_read_out = card1_card_core1_regs_fifo2_reg_word42_read_in;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word42_shown_wide = card1_card_core1_regs_fifo2_reg_word42_hw_value;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word42_clamp_out = card1_card_core1_regs_fifo2_reg_word42_clamp_in;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word43_mine = (card1_pci_slave2_local_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word43_mine, card1_card_core1_regs_fifo2_reg_word43_shown_wide, card1_card_core1_regs_fifo2_reg_word42_read_out) begin: card1_card_core1_regs_fifo2_reg_word43_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word43_mine) begin
-        card1_card_core1_regs_fifo2_reg_word43_read_out = (card1_card_core1_regs_fifo2_reg_word42_read_out | card1_card_core1_regs_fifo2_reg_word43_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word43_read_out = card1_card_core1_regs_fifo2_reg_word42_read_out;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word43_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word43_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word43_shown_wide, card1_card_core1_regs_fifo2_reg_word43_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word43_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word43_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word43_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word43_written = ((card1_card_core1_regs_fifo2_reg_word43_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word43_honoured = card1_card_core1_regs_fifo2_reg_word43_written[2-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word43_clamp_out = (card1_card_core1_regs_fifo2_reg_word42_clamp_out || card1_card_core1_regs_fifo2_reg_word43_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word43__store32_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_control <= 0;
-        card1_card_core1_regs_fifo2_reg_word43_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word43_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word43_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word43_mine_write))) begin
-            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word43_honoured;
-            card1_card_core1_regs_fifo2_reg_word43_clamped <= card1_card_core1_regs_fifo2_reg_word43_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word44_mine = (card1_pci_slave2_local_addr == 8);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word44_mine, card1_card_core1_regs_fifo2_reg_word44_shown_wide, card1_card_core1_regs_fifo2_reg_word43_read_out) begin: card1_card_core1_regs_fifo2_reg_word44_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word44_mine) begin
-        card1_card_core1_regs_fifo2_reg_word44_read_out = (card1_card_core1_regs_fifo2_reg_word43_read_out | card1_card_core1_regs_fifo2_reg_word44_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word44_read_out = card1_card_core1_regs_fifo2_reg_word43_read_out;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word44_shown_wide = {29'h0, card1_card_core1_regs_fifo2_reg_word44_hw_value};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word44_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word44_written = (card1_card_core1_regs_fifo2_written_data[3-1:0] & card1_card_core1_regs_fifo2_written_mask[3-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word44_honoured = card1_card_core1_regs_fifo2_reg_word44_written[3-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word44_clamp_out = (card1_card_core1_regs_fifo2_reg_word43_clamp_out || card1_card_core1_regs_fifo2_reg_word44_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word44__store33_pulse_on_write
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_command_strobe <= 0;
-        card1_card_core1_regs_fifo2_command <= 0;
-        card1_card_core1_regs_fifo2_reg_word44_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word44_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word44_mine_write)) begin
-            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word44_honoured;
-            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word44_clamped <= card1_card_core1_regs_fifo2_reg_word44_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word45_mine = (card1_pci_slave2_local_addr == 12);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word45_mine, card1_card_core1_regs_fifo2_reg_word45_shown_wide, card1_card_core1_regs_fifo2_reg_word44_read_out) begin: card1_card_core1_regs_fifo2_reg_word45_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word45_mine) begin
-        card1_card_core1_regs_fifo2_reg_word45_read_out = (card1_card_core1_regs_fifo2_reg_word44_read_out | card1_card_core1_regs_fifo2_reg_word45_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word45_read_out = card1_card_core1_regs_fifo2_reg_word44_read_out;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word45_shown_wide = card1_card_core1_regs_fifo2_reg_word45_hw_value;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word45_clamp_out = card1_card_core1_regs_fifo2_reg_word44_clamp_out;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word46_mine = (card1_pci_slave2_local_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word46_mine, card1_card_core1_regs_fifo2_reg_word46_shown_wide, card1_card_core1_regs_fifo2_reg_word45_read_out) begin: card1_card_core1_regs_fifo2_reg_word46_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word46_mine) begin
-        card1_card_core1_regs_fifo2_reg_word46_read_out = (card1_card_core1_regs_fifo2_reg_word45_read_out | card1_card_core1_regs_fifo2_reg_word46_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word46_read_out = card1_card_core1_regs_fifo2_reg_word45_read_out;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word46_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word46_value};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word46_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word46_shown_wide, card1_card_core1_regs_fifo2_reg_word46_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word46_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word46_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word46_written = card1_card_core1_regs_fifo2_set_value[5-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word46_written = ((card1_card_core1_regs_fifo2_reg_word46_shown_wide[5-1:0] & (~card1_card_core1_regs_fifo2_written_mask[5-1:0])) | (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word46_honoured = card1_card_core1_regs_fifo2_reg_word46_written[5-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word46_clamp_out = (card1_card_core1_regs_fifo2_reg_word45_clamp_out || card1_card_core1_regs_fifo2_reg_word46_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word46__store34_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word46_value <= 0;
-        card1_card_core1_regs_fifo2_reg_word46_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word46_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word46_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word46_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word46_value <= card1_card_core1_regs_fifo2_reg_word46_honoured;
-            card1_card_core1_regs_fifo2_reg_word46_clamped <= card1_card_core1_regs_fifo2_reg_word46_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word47_mine = (card1_pci_slave2_local_addr == 20);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word47_mine, card1_card_core1_regs_fifo2_reg_word47_shown_wide, card1_card_core1_regs_fifo2_reg_word46_read_out) begin: card1_card_core1_regs_fifo2_reg_word47_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word47_mine) begin
-        card1_card_core1_regs_fifo2_reg_word47_read_out = (card1_card_core1_regs_fifo2_reg_word46_read_out | card1_card_core1_regs_fifo2_reg_word47_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word47_read_out = card1_card_core1_regs_fifo2_reg_word46_read_out;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word47_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word47_value};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word47_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word47_written = (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word47_honoured = card1_card_core1_regs_fifo2_reg_word47_written[5-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word47_clamp_out = card1_card_core1_regs_fifo2_reg_word46_clamp_out;
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word47__store35_clear_on_one
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word47_value <= 0;
-    end
-    else begin
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word47_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word47_value <= ((card1_card_core1_regs_fifo2_reg_word47_value & (~card1_card_core1_regs_fifo2_reg_word47_honoured)) | card1_card_core1_regs_fifo2_reg_word47_hw_value);
-        end
-        else begin
-            card1_card_core1_regs_fifo2_reg_word47_value <= (card1_card_core1_regs_fifo2_reg_word47_value | card1_card_core1_regs_fifo2_reg_word47_hw_value);
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_local_addr == 24);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word47_read_out) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word48_read_in) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
     if (card1_card_core1_regs_fifo2_reg_word48_mine) begin
-        card1_card_core1_regs_fifo2_reg_word48_read_out = (card1_card_core1_regs_fifo2_reg_word47_read_out | card1_card_core1_regs_fifo2_reg_word48_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word48_read_out = (card1_card_core1_regs_fifo2_reg_word48_read_in | card1_card_core1_regs_fifo2_reg_word48_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word48_read_out = card1_card_core1_regs_fifo2_reg_word47_read_out;
+        card1_card_core1_regs_fifo2_reg_word48_read_out = card1_card_core1_regs_fifo2_reg_word48_read_in;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word48_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word48_value};
+assign card1_card_core1_regs_fifo2_reg_word48_shown_wide = card1_card_core1_regs_fifo2_reg_word48_hw_value;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word48_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word48_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word48_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word48_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word48_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word48_written = ((card1_card_core1_regs_fifo2_reg_word48_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word48_clamp_out = card1_card_core1_regs_fifo2_reg_word48_clamp_in;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word48_honoured = card1_card_core1_regs_fifo2_reg_word48_written[16-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word48_clamp_out = (card1_card_core1_regs_fifo2_reg_word47_clamp_out || card1_card_core1_regs_fifo2_reg_word48_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word48__store36_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word48_value <= 0;
-        card1_card_core1_regs_fifo2_reg_word48_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word48_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word48_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word48_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word48_value <= card1_card_core1_regs_fifo2_reg_word48_honoured;
-            card1_card_core1_regs_fifo2_reg_word48_clamped <= card1_card_core1_regs_fifo2_reg_word48_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_local_addr == 28);
+assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_local_addr == 4);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word49_mine, card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word48_read_out) begin: card1_card_core1_regs_fifo2_reg_word49_read_chain
@@ -3058,15 +2738,48 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word49_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word49_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word49_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word49_clamp_out = card1_card_core1_regs_fifo2_reg_word48_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word49_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word49_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word49_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word49_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word49_written = ((card1_card_core1_regs_fifo2_reg_word49_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_local_addr == 32);
+assign card1_card_core1_regs_fifo2_reg_word49_honoured = card1_card_core1_regs_fifo2_reg_word49_written[2-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word49_clamp_out = (card1_card_core1_regs_fifo2_reg_word48_clamp_out || card1_card_core1_regs_fifo2_reg_word49_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word49__store32_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_control <= 0;
+        card1_card_core1_regs_fifo2_reg_word49_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word49_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word49_mine_write))) begin
+            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word49_honoured;
+            card1_card_core1_regs_fifo2_reg_word49_clamped <= card1_card_core1_regs_fifo2_reg_word49_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_local_addr == 8);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word50_mine, card1_card_core1_regs_fifo2_reg_word50_shown_wide, card1_card_core1_regs_fifo2_reg_word49_read_out) begin: card1_card_core1_regs_fifo2_reg_word50_read_chain
@@ -3080,15 +2793,45 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word50_shown_wide = card1_card_core1_regs_fifo2_reg_word50_hw_value;
+assign card1_card_core1_regs_fifo2_reg_word50_shown_wide = {29'h0, card1_card_core1_regs_fifo2_reg_word50_hw_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word50_clamp_out = card1_card_core1_regs_fifo2_reg_word49_clamp_out;
+assign card1_card_core1_regs_fifo2_reg_word50_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_local_addr == 36);
+assign card1_card_core1_regs_fifo2_reg_word50_written = (card1_card_core1_regs_fifo2_written_data[3-1:0] & card1_card_core1_regs_fifo2_written_mask[3-1:0]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word50_honoured = card1_card_core1_regs_fifo2_reg_word50_written[3-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word50_clamp_out = (card1_card_core1_regs_fifo2_reg_word49_clamp_out || card1_card_core1_regs_fifo2_reg_word50_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word50__store33_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_command_strobe <= 0;
+        card1_card_core1_regs_fifo2_command <= 0;
+        card1_card_core1_regs_fifo2_reg_word50_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word50_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word50_mine_write)) begin
+            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word50_honoured;
+            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word50_clamped <= card1_card_core1_regs_fifo2_reg_word50_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_local_addr == 12);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word51_mine, card1_card_core1_regs_fifo2_reg_word51_shown_wide, card1_card_core1_regs_fifo2_reg_word50_read_out) begin: card1_card_core1_regs_fifo2_reg_word51_read_chain
@@ -3110,7 +2853,7 @@ assign card1_card_core1_regs_fifo2_reg_word51_clamp_out = card1_card_core1_regs_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_local_addr == 40);
+assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_local_addr == 16);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word52_mine, card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word51_read_out) begin: card1_card_core1_regs_fifo2_reg_word52_read_chain
@@ -3124,50 +2867,39 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word52_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word52_value};
+assign card1_card_core1_regs_fifo2_reg_word52_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word52_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word52_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
+assign card1_card_core1_regs_fifo2_reg_word52_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word52_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word52_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word52_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word52_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word52_written = card1_card_core1_regs_fifo2_set_value[5-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word52_written = ((card1_card_core1_regs_fifo2_reg_word52_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word52_written = ((card1_card_core1_regs_fifo2_reg_word52_shown_wide[5-1:0] & (~card1_card_core1_regs_fifo2_written_mask[5-1:0])) | (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word52_written) begin: card1_card_core1_regs_fifo2_reg_word52__limit37_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word52_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word52_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word52_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word52_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word52_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word52_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word52_honoured = 32768;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word52_honoured = card1_card_core1_regs_fifo2_reg_word52_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word52_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word52_honoured = card1_card_core1_regs_fifo2_reg_word52_written[5-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word52_clamp_out = (card1_card_core1_regs_fifo2_reg_word51_clamp_out || card1_card_core1_regs_fifo2_reg_word52_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word52__store37_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word52__store34_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word52_value <= 4096;
+        card1_card_core1_regs_fifo2_reg_word52_value <= 0;
         card1_card_core1_regs_fifo2_reg_word52_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word52_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word52_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word52_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word52_value <= card1_card_core1_regs_fifo2_reg_word52_honoured;
             card1_card_core1_regs_fifo2_reg_word52_clamped <= card1_card_core1_regs_fifo2_reg_word52_out_of_range;
         end
@@ -3176,7 +2908,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_local_addr == 44);
+assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_local_addr == 20);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word53_mine, card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_reg_word52_read_out) begin: card1_card_core1_regs_fifo2_reg_word53_read_chain
@@ -3190,59 +2922,42 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word53_value};
+assign card1_card_core1_regs_fifo2_reg_word53_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word53_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word53_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
-        card1_card_core1_regs_fifo2_reg_word53_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word53_written = ((card1_card_core1_regs_fifo2_reg_word53_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word53_written) begin: card1_card_core1_regs_fifo2_reg_word53__limit38_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word53_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word53_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word53_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word53_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word53_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word53_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word53_honoured = 32768;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word53_honoured = card1_card_core1_regs_fifo2_reg_word53_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word53_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word53_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_clamp_out = (card1_card_core1_regs_fifo2_reg_word52_clamp_out || card1_card_core1_regs_fifo2_reg_word53_clamped);
+assign card1_card_core1_regs_fifo2_reg_word53_written = (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word53__store38_hold_rw
+
+assign card1_card_core1_regs_fifo2_reg_word53_honoured = card1_card_core1_regs_fifo2_reg_word53_written[5-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word53_clamp_out = card1_card_core1_regs_fifo2_reg_word52_clamp_out;
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word53__store35_clear_on_one
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word53_value <= 4096;
-        card1_card_core1_regs_fifo2_reg_word53_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word53_value <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word53_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word53_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word53_value <= card1_card_core1_regs_fifo2_reg_word53_honoured;
-            card1_card_core1_regs_fifo2_reg_word53_clamped <= card1_card_core1_regs_fifo2_reg_word53_out_of_range;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word53_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word53_value <= ((card1_card_core1_regs_fifo2_reg_word53_value & (~card1_card_core1_regs_fifo2_reg_word53_honoured)) | card1_card_core1_regs_fifo2_reg_word53_hw_value);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_reg_word53_value <= (card1_card_core1_regs_fifo2_reg_word53_value | card1_card_core1_regs_fifo2_reg_word53_hw_value);
         end
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_local_addr == 48);
+assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_local_addr == 24);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word54_mine, card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word53_read_out) begin: card1_card_core1_regs_fifo2_reg_word54_read_chain
@@ -3260,11 +2975,11 @@ assign card1_card_core1_regs_fifo2_reg_word54_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word54_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
+assign card1_card_core1_regs_fifo2_reg_word54_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word54_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
+always @(card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word54_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word54_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word54_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
@@ -3281,14 +2996,14 @@ assign card1_card_core1_regs_fifo2_reg_word54_honoured = card1_card_core1_regs_f
 assign card1_card_core1_regs_fifo2_reg_word54_clamp_out = (card1_card_core1_regs_fifo2_reg_word53_clamp_out || card1_card_core1_regs_fifo2_reg_word54_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word54__store39_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word54__store36_hold_rw
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_reg_word54_value <= 0;
         card1_card_core1_regs_fifo2_reg_word54_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word54_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word54_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word54_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word54_value <= card1_card_core1_regs_fifo2_reg_word54_honoured;
             card1_card_core1_regs_fifo2_reg_word54_clamped <= card1_card_core1_regs_fifo2_reg_word54_out_of_range;
         end
@@ -3297,7 +3012,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_local_addr == 52);
+assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_local_addr == 28);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word55_mine, card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_reg_word54_read_out) begin: card1_card_core1_regs_fifo2_reg_word55_read_chain
@@ -3311,59 +3026,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word55_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word55_value};
+assign card1_card_core1_regs_fifo2_reg_word55_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word55_hw_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word55_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word55_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
-        card1_card_core1_regs_fifo2_reg_word55_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word55_written = ((card1_card_core1_regs_fifo2_reg_word55_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word55_written) begin: card1_card_core1_regs_fifo2_reg_word55__limit40_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word55_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word55_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word55_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word55_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word55_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word55_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word55_honoured = card1_card_core1_regs_fifo2_reg_word55_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word55_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word55_clamp_out = card1_card_core1_regs_fifo2_reg_word54_clamp_out;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word55_clamp_out = (card1_card_core1_regs_fifo2_reg_word54_clamp_out || card1_card_core1_regs_fifo2_reg_word55_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word55__store40_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word55_value <= 1;
-        card1_card_core1_regs_fifo2_reg_word55_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word55_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word55_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word55_value <= card1_card_core1_regs_fifo2_reg_word55_honoured;
-            card1_card_core1_regs_fifo2_reg_word55_clamped <= card1_card_core1_regs_fifo2_reg_word55_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_local_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_local_addr == 32);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word56_mine, card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_reg_word55_read_out) begin: card1_card_core1_regs_fifo2_reg_word56_read_chain
@@ -3377,59 +3048,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word56_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word56_value};
+assign card1_card_core1_regs_fifo2_reg_word56_shown_wide = card1_card_core1_regs_fifo2_reg_word56_hw_value;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word56_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word56_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
-        card1_card_core1_regs_fifo2_reg_word56_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word56_written = ((card1_card_core1_regs_fifo2_reg_word56_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word56_written) begin: card1_card_core1_regs_fifo2_reg_word56__limit41_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word56_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word56_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word56_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word56_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word56_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word56_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word56_honoured = card1_card_core1_regs_fifo2_reg_word56_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word56_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word56_clamp_out = card1_card_core1_regs_fifo2_reg_word55_clamp_out;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word56_clamp_out = (card1_card_core1_regs_fifo2_reg_word55_clamp_out || card1_card_core1_regs_fifo2_reg_word56_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word56__store41_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word56_value <= 1;
-        card1_card_core1_regs_fifo2_reg_word56_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word56_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word56_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word56_value <= card1_card_core1_regs_fifo2_reg_word56_honoured;
-            card1_card_core1_regs_fifo2_reg_word56_clamped <= card1_card_core1_regs_fifo2_reg_word56_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_local_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_local_addr == 36);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word57_mine, card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_reg_word56_read_out) begin: card1_card_core1_regs_fifo2_reg_word57_read_chain
@@ -3443,59 +3070,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word57_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word57_value};
+assign card1_card_core1_regs_fifo2_reg_word57_shown_wide = card1_card_core1_regs_fifo2_reg_word57_hw_value;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word57_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word57_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
-        card1_card_core1_regs_fifo2_reg_word57_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word57_written = ((card1_card_core1_regs_fifo2_reg_word57_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word57_written) begin: card1_card_core1_regs_fifo2_reg_word57__limit42_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word57_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word57_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word57_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word57_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word57_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word57_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word57_honoured = card1_card_core1_regs_fifo2_reg_word57_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word57_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word57_clamp_out = card1_card_core1_regs_fifo2_reg_word56_clamp_out;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word57_clamp_out = (card1_card_core1_regs_fifo2_reg_word56_clamp_out || card1_card_core1_regs_fifo2_reg_word57_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word57__store42_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word57_value <= 1;
-        card1_card_core1_regs_fifo2_reg_word57_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word57_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word57_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word57_value <= card1_card_core1_regs_fifo2_reg_word57_honoured;
-            card1_card_core1_regs_fifo2_reg_word57_clamped <= card1_card_core1_regs_fifo2_reg_word57_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_local_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_local_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word58_mine, card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word57_read_out) begin: card1_card_core1_regs_fifo2_reg_word58_read_chain
@@ -3509,39 +3092,50 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word58_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word58_value};
+assign card1_card_core1_regs_fifo2_reg_word58_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word58_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word58_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word58_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word58_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word58_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word58_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word58_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word58_written = ((card1_card_core1_regs_fifo2_reg_word58_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word58_written = ((card1_card_core1_regs_fifo2_reg_word58_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word58_honoured = card1_card_core1_regs_fifo2_reg_word58_written[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word58_written) begin: card1_card_core1_regs_fifo2_reg_word58__limit37_clamp_unsigned
+    card1_card_core1_regs_fifo2_reg_word58_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word58_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word58_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word58_honoured = 1;
+    end
+    else if (((card1_card_core1_regs_fifo2_reg_word58_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word58_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word58_honoured = 32768;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word58_honoured = card1_card_core1_regs_fifo2_reg_word58_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word58_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word58_clamp_out = (card1_card_core1_regs_fifo2_reg_word57_clamp_out || card1_card_core1_regs_fifo2_reg_word58_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word58__store43_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word58__store37_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word58_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word58_value <= 4096;
         card1_card_core1_regs_fifo2_reg_word58_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word58_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word58_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word58_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word58_value <= card1_card_core1_regs_fifo2_reg_word58_honoured;
             card1_card_core1_regs_fifo2_reg_word58_clamped <= card1_card_core1_regs_fifo2_reg_word58_out_of_range;
         end
@@ -3550,7 +3144,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_local_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_local_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word59_mine, card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_read_out) begin: card1_card_core1_regs_fifo2_reg_word59_read_chain
@@ -3568,11 +3162,11 @@ assign card1_card_core1_regs_fifo2_reg_word59_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word59_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word59_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word59_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
         card1_card_core1_regs_fifo2_reg_word59_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -3581,13 +3175,13 @@ always @(card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word59_written) begin: card1_card_core1_regs_fifo2_reg_word59__limit44_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word59_written) begin: card1_card_core1_regs_fifo2_reg_word59__limit38_clamp_unsigned
     card1_card_core1_regs_fifo2_reg_word59_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word59_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word59_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word59_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word59_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word59_honoured = 65535;
+    else if (((card1_card_core1_regs_fifo2_reg_word59_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word59_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word59_honoured = 32768;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word59_honoured = card1_card_core1_regs_fifo2_reg_word59_written[16-1:0];
@@ -3600,14 +3194,14 @@ end
 assign card1_card_core1_regs_fifo2_reg_word59_clamp_out = (card1_card_core1_regs_fifo2_reg_word58_clamp_out || card1_card_core1_regs_fifo2_reg_word59_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word59__store44_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word59__store38_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word59_value <= 2;
+        card1_card_core1_regs_fifo2_reg_word59_value <= 4096;
         card1_card_core1_regs_fifo2_reg_word59_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word59_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word59_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word59_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word59_value <= card1_card_core1_regs_fifo2_reg_word59_honoured;
             card1_card_core1_regs_fifo2_reg_word59_clamped <= card1_card_core1_regs_fifo2_reg_word59_out_of_range;
         end
@@ -3616,7 +3210,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_local_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_local_addr == 48);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word60_mine, card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word59_read_out) begin: card1_card_core1_regs_fifo2_reg_word60_read_chain
@@ -3634,46 +3228,35 @@ assign card1_card_core1_regs_fifo2_reg_word60_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word60_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word60_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word60_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
-        card1_card_core1_regs_fifo2_reg_word60_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
+        card1_card_core1_regs_fifo2_reg_word60_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word60_written = ((card1_card_core1_regs_fifo2_reg_word60_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word60_written = ((card1_card_core1_regs_fifo2_reg_word60_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word60_written) begin: card1_card_core1_regs_fifo2_reg_word60__limit45_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word60_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word60_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word60_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word60_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word60_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word60_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word60_honoured = card1_card_core1_regs_fifo2_reg_word60_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word60_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word60_honoured = card1_card_core1_regs_fifo2_reg_word60_written[16-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word60_clamp_out = (card1_card_core1_regs_fifo2_reg_word59_clamp_out || card1_card_core1_regs_fifo2_reg_word60_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word60__store45_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word60__store39_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word60_value <= 2;
+        card1_card_core1_regs_fifo2_reg_word60_value <= 0;
         card1_card_core1_regs_fifo2_reg_word60_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word60_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word60_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word60_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word60_value <= card1_card_core1_regs_fifo2_reg_word60_honoured;
             card1_card_core1_regs_fifo2_reg_word60_clamped <= card1_card_core1_regs_fifo2_reg_word60_out_of_range;
         end
@@ -3682,7 +3265,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_local_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_local_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word61_mine, card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word60_read_out) begin: card1_card_core1_regs_fifo2_reg_word61_read_chain
@@ -3696,29 +3279,34 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word61_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word61_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word61_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word61_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word61_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word61_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word61_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word61_written) begin: card1_card_core1_regs_fifo2_reg_word61__limit46_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word61_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word61_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word61_honoured = card1_card_core1_regs_fifo2_reg_word61_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word61_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word61_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b1;
+always @(card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word61_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
+        card1_card_core1_regs_fifo2_reg_word61_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word61_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word61_written = ((card1_card_core1_regs_fifo2_reg_word61_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word61_written) begin: card1_card_core1_regs_fifo2_reg_word61__limit40_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word61_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word61_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word61_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word61_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word61_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word61_honoured = card1_card_core1_regs_fifo2_reg_word61_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b0;
     end
 end
 
@@ -3727,18 +3315,15 @@ end
 assign card1_card_core1_regs_fifo2_reg_word61_clamp_out = (card1_card_core1_regs_fifo2_reg_word60_clamp_out || card1_card_core1_regs_fifo2_reg_word61_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word61__store46_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word61__store40_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word61_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word61_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word61_value <= 1;
         card1_card_core1_regs_fifo2_reg_word61_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word61_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word61_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word61_mine_write)) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word61_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word61_value <= card1_card_core1_regs_fifo2_reg_word61_honoured;
-            card1_card_core1_regs_fifo2_reg_word61_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word61_clamped <= card1_card_core1_regs_fifo2_reg_word61_out_of_range;
         end
     end
@@ -3746,43 +3331,48 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_local_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_local_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word61_read_out) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
     if (card1_card_core1_regs_fifo2_reg_word62_mine) begin
-        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word61_read_out | card1_card_core1_regs_fifo2_reg_word62_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word62_read_out = (card1_card_core1_regs_fifo2_reg_word61_read_out | card1_card_core1_regs_fifo2_reg_word62_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word61_read_out;
+        card1_card_core1_regs_fifo2_reg_word62_read_out = card1_card_core1_regs_fifo2_reg_word61_read_out;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word62_hw_value};
+assign card1_card_core1_regs_fifo2_reg_word62_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word62_value};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word62_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word62_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word62_written) begin: card1_card_core1_regs_fifo2_reg_word62__limit47_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word62_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word62_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word62_honoured = card1_card_core1_regs_fifo2_reg_word62_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word62_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word62_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b1;
+always @(card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word62_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
+        card1_card_core1_regs_fifo2_reg_word62_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word62_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word62_written = ((card1_card_core1_regs_fifo2_reg_word62_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word62_written) begin: card1_card_core1_regs_fifo2_reg_word62__limit41_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word62_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word62_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word62_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word62_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word62_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word62_honoured = card1_card_core1_regs_fifo2_reg_word62_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b0;
     end
 end
 
@@ -3791,22 +3381,466 @@ end
 assign card1_card_core1_regs_fifo2_reg_word62_clamp_out = (card1_card_core1_regs_fifo2_reg_word61_clamp_out || card1_card_core1_regs_fifo2_reg_word62_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word62__store47_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word62__store41_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word62_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word62_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word62_value <= 1;
         card1_card_core1_regs_fifo2_reg_word62_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word62_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word62_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word62_mine_write)) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word62_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word62_value <= card1_card_core1_regs_fifo2_reg_word62_honoured;
-            card1_card_core1_regs_fifo2_reg_word62_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word62_clamped <= card1_card_core1_regs_fifo2_reg_word62_out_of_range;
         end
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word63_mine = (card1_pci_slave2_local_addr == 60);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word63_mine, card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_reg_word62_read_out) begin: card1_card_core1_regs_fifo2_reg_word63_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word63_mine) begin
+        card1_card_core1_regs_fifo2_reg_word63_read_out = (card1_card_core1_regs_fifo2_reg_word62_read_out | card1_card_core1_regs_fifo2_reg_word63_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word63_read_out = card1_card_core1_regs_fifo2_reg_word62_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word63_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word63_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word63_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word63_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
+        card1_card_core1_regs_fifo2_reg_word63_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word63_written = ((card1_card_core1_regs_fifo2_reg_word63_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word63_written) begin: card1_card_core1_regs_fifo2_reg_word63__limit42_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word63_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word63_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word63_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word63_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word63_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word63_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word63_honoured = card1_card_core1_regs_fifo2_reg_word63_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word63_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word63_clamp_out = (card1_card_core1_regs_fifo2_reg_word62_clamp_out || card1_card_core1_regs_fifo2_reg_word63_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word63__store42_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word63_value <= 1;
+        card1_card_core1_regs_fifo2_reg_word63_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word63_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word63_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word63_value <= card1_card_core1_regs_fifo2_reg_word63_honoured;
+            card1_card_core1_regs_fifo2_reg_word63_clamped <= card1_card_core1_regs_fifo2_reg_word63_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word64_mine = (card1_pci_slave2_local_addr == 64);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word64_mine, card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word63_read_out) begin: card1_card_core1_regs_fifo2_reg_word64_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word64_mine) begin
+        card1_card_core1_regs_fifo2_reg_word64_read_out = (card1_card_core1_regs_fifo2_reg_word63_read_out | card1_card_core1_regs_fifo2_reg_word64_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word64_read_out = card1_card_core1_regs_fifo2_reg_word63_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word64_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word64_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word64_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word64_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word64_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word64_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word64_written = ((card1_card_core1_regs_fifo2_reg_word64_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word64_honoured = card1_card_core1_regs_fifo2_reg_word64_written[2-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word64_clamp_out = (card1_card_core1_regs_fifo2_reg_word63_clamp_out || card1_card_core1_regs_fifo2_reg_word64_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word64__store43_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word64_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word64_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word64_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word64_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word64_value <= card1_card_core1_regs_fifo2_reg_word64_honoured;
+            card1_card_core1_regs_fifo2_reg_word64_clamped <= card1_card_core1_regs_fifo2_reg_word64_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word65_mine = (card1_pci_slave2_local_addr == 68);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word65_mine, card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_reg_word64_read_out) begin: card1_card_core1_regs_fifo2_reg_word65_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word65_mine) begin
+        card1_card_core1_regs_fifo2_reg_word65_read_out = (card1_card_core1_regs_fifo2_reg_word64_read_out | card1_card_core1_regs_fifo2_reg_word65_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word65_read_out = card1_card_core1_regs_fifo2_reg_word64_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word65_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word65_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word65_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word65_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+        card1_card_core1_regs_fifo2_reg_word65_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word65_written = ((card1_card_core1_regs_fifo2_reg_word65_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word65_written) begin: card1_card_core1_regs_fifo2_reg_word65__limit44_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word65_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word65_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word65_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word65_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word65_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word65_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word65_honoured = card1_card_core1_regs_fifo2_reg_word65_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word65_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word65_clamp_out = (card1_card_core1_regs_fifo2_reg_word64_clamp_out || card1_card_core1_regs_fifo2_reg_word65_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word65__store44_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word65_value <= 2;
+        card1_card_core1_regs_fifo2_reg_word65_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word65_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word65_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word65_value <= card1_card_core1_regs_fifo2_reg_word65_honoured;
+            card1_card_core1_regs_fifo2_reg_word65_clamped <= card1_card_core1_regs_fifo2_reg_word65_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word66_mine = (card1_pci_slave2_local_addr == 72);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word66_mine, card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_reg_word65_read_out) begin: card1_card_core1_regs_fifo2_reg_word66_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word66_mine) begin
+        card1_card_core1_regs_fifo2_reg_word66_read_out = (card1_card_core1_regs_fifo2_reg_word65_read_out | card1_card_core1_regs_fifo2_reg_word66_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word66_read_out = card1_card_core1_regs_fifo2_reg_word65_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word66_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word66_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word66_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_set_value, card1_card_core1_regs_fifo2_written_data) begin: card1_card_core1_regs_fifo2_reg_word66_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
+        card1_card_core1_regs_fifo2_reg_word66_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word66_written = ((card1_card_core1_regs_fifo2_reg_word66_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word66_written) begin: card1_card_core1_regs_fifo2_reg_word66__limit45_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word66_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word66_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word66_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word66_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word66_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word66_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word66_honoured = card1_card_core1_regs_fifo2_reg_word66_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word66_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word66_clamp_out = (card1_card_core1_regs_fifo2_reg_word65_clamp_out || card1_card_core1_regs_fifo2_reg_word66_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word66__store45_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word66_value <= 2;
+        card1_card_core1_regs_fifo2_reg_word66_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word66_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word66_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word66_value <= card1_card_core1_regs_fifo2_reg_word66_honoured;
+            card1_card_core1_regs_fifo2_reg_word66_clamped <= card1_card_core1_regs_fifo2_reg_word66_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word67_mine = (card1_pci_slave2_local_addr == 76);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word67_mine, card1_card_core1_regs_fifo2_reg_word67_shown_wide, card1_card_core1_regs_fifo2_reg_word66_read_out) begin: card1_card_core1_regs_fifo2_reg_word67_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word67_mine) begin
+        card1_card_core1_regs_fifo2_reg_word67_read_out = (card1_card_core1_regs_fifo2_reg_word66_read_out | card1_card_core1_regs_fifo2_reg_word67_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word67_read_out = card1_card_core1_regs_fifo2_reg_word66_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word67_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word67_hw_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word67_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word67_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word67_written) begin: card1_card_core1_regs_fifo2_reg_word67__limit46_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word67_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word67_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word67_honoured = card1_card_core1_regs_fifo2_reg_word67_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word67_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word67_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word67_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word67_out_of_range = 1'b1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word67_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word67_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word67_clamp_out = (card1_card_core1_regs_fifo2_reg_word66_clamp_out || card1_card_core1_regs_fifo2_reg_word67_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word67__store46_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word67_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word67_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word67_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word67_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word67_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word67_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word67_value <= card1_card_core1_regs_fifo2_reg_word67_honoured;
+            card1_card_core1_regs_fifo2_reg_word67_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word67_clamped <= card1_card_core1_regs_fifo2_reg_word67_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word68_mine = (card1_pci_slave2_local_addr == 80);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word68_mine, card1_card_core1_regs_fifo2_reg_word68_shown_wide, card1_card_core1_regs_fifo2_reg_word67_read_out) begin: card1_card_core1_regs_fifo2_reg_word68_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word68_mine) begin
+        card1_card_core1_regs_fifo2_reg_word68_read_out = (card1_card_core1_regs_fifo2_reg_word67_read_out | card1_card_core1_regs_fifo2_reg_word68_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word68_read_out = card1_card_core1_regs_fifo2_reg_word67_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word68_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word68_hw_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word68_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word68_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word68_written) begin: card1_card_core1_regs_fifo2_reg_word68__limit47_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word68_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word68_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word68_honoured = card1_card_core1_regs_fifo2_reg_word68_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word68_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word68_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word68_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word68_out_of_range = 1'b1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word68_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word68_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word68_clamp_out = (card1_card_core1_regs_fifo2_reg_word67_clamp_out || card1_card_core1_regs_fifo2_reg_word68_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word68__store47_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word68_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word68_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word68_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word68_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word68_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word68_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word68_value <= card1_card_core1_regs_fifo2_reg_word68_honoured;
+            card1_card_core1_regs_fifo2_reg_word68_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word68_clamped <= card1_card_core1_regs_fifo2_reg_word68_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word69_mine = (card1_pci_slave2_local_addr == 84);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word69_mine, card1_card_core1_regs_fifo2_reg_word69_shown_wide, card1_card_core1_regs_fifo2_reg_word68_read_out) begin: card1_card_core1_regs_fifo2_reg_word69_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word69_mine) begin
+        card1_card_core1_regs_fifo2_reg_word69_read_out = (card1_card_core1_regs_fifo2_reg_word68_read_out | card1_card_core1_regs_fifo2_reg_word69_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word69_read_out = card1_card_core1_regs_fifo2_reg_word68_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word69_shown_wide = card1_card_core1_regs_fifo2_reg_word69_hw_value;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word69_clamp_out = card1_card_core1_regs_fifo2_reg_word68_clamp_out;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word70_mine = (card1_pci_slave2_local_addr == 88);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word70_mine, card1_card_core1_regs_fifo2_reg_word70_shown_wide, card1_card_core1_regs_fifo2_reg_word69_read_out) begin: card1_card_core1_regs_fifo2_reg_word70_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word70_mine) begin
+        card1_card_core1_regs_fifo2_reg_word70_read_out = (card1_card_core1_regs_fifo2_reg_word69_read_out | card1_card_core1_regs_fifo2_reg_word70_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word70_read_out = card1_card_core1_regs_fifo2_reg_word69_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word70_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word70_hw_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word70_clamp_out = card1_card_core1_regs_fifo2_reg_word69_clamp_out;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word71_mine = (card1_pci_slave2_local_addr == 92);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word71_mine, card1_card_core1_regs_fifo2_reg_word71_shown_wide, card1_card_core1_regs_fifo2_reg_word70_read_out) begin: card1_card_core1_regs_fifo2_reg_word71_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word71_mine) begin
+        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word70_read_out | card1_card_core1_regs_fifo2_reg_word71_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word70_read_out;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word71_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word71_hw_value};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word71_clamp_out = card1_card_core1_regs_fifo2_reg_word70_clamp_out;
 
 
 
@@ -4298,13 +4332,13 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
         card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word52_value;
-        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word53_value;
-        card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_reg_word54_value;
-        card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_reg_word54_value == 0);
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word52_value}) - $signed({1'b0, card1_card_core1_regs_fifo2_reg_word54_value}));
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word52_value} + {1'b0, card1_card_core1_regs_fifo2_reg_word54_value});
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word53_value} + {1'b0, card1_card_core1_regs_fifo2_reg_word54_value});
+        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word58_value;
+        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word59_value;
+        card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_reg_word60_value;
+        card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_reg_word60_value == 0);
+        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word58_value}) - $signed({1'b0, card1_card_core1_regs_fifo2_reg_word60_value}));
+        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word58_value} + {1'b0, card1_card_core1_regs_fifo2_reg_word60_value});
+        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word59_value} + {1'b0, card1_card_core1_regs_fifo2_reg_word60_value});
     end
 end
 
@@ -4414,23 +4448,23 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         card1_card_core1_regs_fifo2_direct_dir_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
-        card1_card_core1_regs_fifo2_reg_word61_hw_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word67_hw_value <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         if (card1_card_core1_core_clear) begin
-            card1_card_core1_regs_fifo2_reg_word61_hw_value <= 0;
+            card1_card_core1_regs_fifo2_reg_word67_hw_value <= 0;
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_load) begin
             if ((card1_card_core1_regs_fifo2_direct_pulse4_count < 0)) begin
-                card1_card_core1_regs_fifo2_reg_word61_hw_value <= (-card1_card_core1_regs_fifo2_direct_pulse4_count);
+                card1_card_core1_regs_fifo2_reg_word67_hw_value <= (-card1_card_core1_regs_fifo2_direct_pulse4_count);
                 card1_card_core1_regs_fifo2_direct_dir_x <= 0;
             end
             else begin
-                card1_card_core1_regs_fifo2_reg_word61_hw_value <= card1_card_core1_regs_fifo2_direct_pulse4_count;
+                card1_card_core1_regs_fifo2_reg_word67_hw_value <= card1_card_core1_regs_fifo2_direct_pulse4_count;
                 card1_card_core1_regs_fifo2_direct_dir_x <= 1;
             end
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_count != 0);
@@ -4444,10 +4478,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             end
             else if (card1_card_core1_regs_fifo2_out_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_x <= 1;
-                card1_card_core1_regs_fifo2_reg_word61_hw_value <= (card1_card_core1_regs_fifo2_reg_word61_hw_value - 1);
-                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word61_hw_value != 1);
-                card1_card_core1_regs_fifo2_direct_pulse4_gap <= (card1_card_core1_regs_fifo2_reg_word59_value - 1);
-                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_reg_word59_value != 1);
+                card1_card_core1_regs_fifo2_reg_word67_hw_value <= (card1_card_core1_regs_fifo2_reg_word67_hw_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word67_hw_value != 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_gap <= (card1_card_core1_regs_fifo2_reg_word65_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_reg_word65_value != 1);
             end
         end
     end
@@ -4463,23 +4497,23 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         card1_card_core1_regs_fifo2_direct_dir_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
-        card1_card_core1_regs_fifo2_reg_word62_hw_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word68_hw_value <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         if (card1_card_core1_core_clear) begin
-            card1_card_core1_regs_fifo2_reg_word62_hw_value <= 0;
+            card1_card_core1_regs_fifo2_reg_word68_hw_value <= 0;
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_load) begin
             if ((card1_card_core1_regs_fifo2_direct_pulse5_count < 0)) begin
-                card1_card_core1_regs_fifo2_reg_word62_hw_value <= (-card1_card_core1_regs_fifo2_direct_pulse5_count);
+                card1_card_core1_regs_fifo2_reg_word68_hw_value <= (-card1_card_core1_regs_fifo2_direct_pulse5_count);
                 card1_card_core1_regs_fifo2_direct_dir_y <= 0;
             end
             else begin
-                card1_card_core1_regs_fifo2_reg_word62_hw_value <= card1_card_core1_regs_fifo2_direct_pulse5_count;
+                card1_card_core1_regs_fifo2_reg_word68_hw_value <= card1_card_core1_regs_fifo2_direct_pulse5_count;
                 card1_card_core1_regs_fifo2_direct_dir_y <= 1;
             end
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_count != 0);
@@ -4493,10 +4527,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             end
             else if (card1_card_core1_regs_fifo2_out_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_y <= 1;
-                card1_card_core1_regs_fifo2_reg_word62_hw_value <= (card1_card_core1_regs_fifo2_reg_word62_hw_value - 1);
-                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word62_hw_value != 1);
-                card1_card_core1_regs_fifo2_direct_pulse5_gap <= (card1_card_core1_regs_fifo2_reg_word60_value - 1);
-                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_reg_word60_value != 1);
+                card1_card_core1_regs_fifo2_reg_word68_hw_value <= (card1_card_core1_regs_fifo2_reg_word68_hw_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word68_hw_value != 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_gap <= (card1_card_core1_regs_fifo2_reg_word66_value - 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_reg_word66_value != 1);
             end
         end
     end
@@ -4512,12 +4546,12 @@ assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pu
 assign card1_card_core1_regs_fifo2_pulse_out2_head = card1_card_core1_regs_fifo2_pulse_out2_queue[0];
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_reg_word55_value, card1_card_core1_regs_fifo2_reg_word56_value, card1_card_core1_regs_fifo2_pulse_out2_low_clocks) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_reg_word61_value, card1_card_core1_regs_fifo2_reg_word62_value, card1_card_core1_regs_fifo2_pulse_out2_low_clocks) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
     card1_card_core1_regs_fifo2_pulse_out2_turn = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) && ((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
     card1_card_core1_regs_fifo2_pulse_out2_take = 1'b0;
-    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_core_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word55_value))) begin
+    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_core_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word61_value))) begin
         if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b01)) begin
-            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word56_value);
+            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word62_value);
         end
         else if ((card1_card_core1_regs_fifo2_pulse_out2_count != 0)) begin
             card1_card_core1_regs_fifo2_pulse_out2_take = (!((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
@@ -4526,9 +4560,9 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_r
 end
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_reg_word55_value, card1_card_core1_regs_fifo2_reg_word57_value, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_pulse_out2_take) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
-    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_core_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word57_value)));
-    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word55_value));
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_reg_word61_value, card1_card_core1_regs_fifo2_reg_word63_value, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_pulse_out2_take) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
+    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_core_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word63_value)));
+    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word61_value));
     card1_card_core1_regs_fifo2_pulse_out2_phase_step = 0;
     if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks != 255)) begin
         card1_card_core1_regs_fifo2_pulse_out2_phase_step = 1;
@@ -4652,8 +4686,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
     else begin
         motor_step_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
         motor_step_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
-        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word58_value[0]);
-        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word58_value[1]);
+        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word64_value[0]);
+        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word64_value[1]);
         if (card1_card_core1_regs_fifo2_clear_position) begin
             card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
             card1_card_core1_regs_fifo2_position_y <= 0;
@@ -4794,10 +4828,10 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word61_strobe, card1_card_core1_regs_fifo2_reg_word61_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulse_count_x, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
+always @(card1_card_core1_regs_fifo2_reg_word67_strobe, card1_card_core1_regs_fifo2_reg_word67_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulse_count_x, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
     if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_load = card1_card_core1_regs_fifo2_reg_word61_strobe;
-        card1_card_core1_regs_fifo2_direct_pulse4_count = $signed(card1_card_core1_regs_fifo2_reg_word61_value);
+        card1_card_core1_regs_fifo2_direct_pulse4_load = card1_card_core1_regs_fifo2_reg_word67_strobe;
+        card1_card_core1_regs_fifo2_direct_pulse4_count = $signed(card1_card_core1_regs_fifo2_reg_word67_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_load = card1_card_core1_regs_fifo2_seq_load;
@@ -4806,10 +4840,10 @@ always @(card1_card_core1_regs_fifo2_reg_word61_strobe, card1_card_core1_regs_fi
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word62_strobe, card1_card_core1_regs_fifo2_reg_word62_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulse_count_y, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
+always @(card1_card_core1_regs_fifo2_reg_word68_strobe, card1_card_core1_regs_fifo2_reg_word68_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulse_count_y, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
     if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_load = card1_card_core1_regs_fifo2_reg_word62_strobe;
-        card1_card_core1_regs_fifo2_direct_pulse5_count = $signed(card1_card_core1_regs_fifo2_reg_word62_value);
+        card1_card_core1_regs_fifo2_direct_pulse5_load = card1_card_core1_regs_fifo2_reg_word68_strobe;
+        card1_card_core1_regs_fifo2_direct_pulse5_count = $signed(card1_card_core1_regs_fifo2_reg_word68_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_load = card1_card_core1_regs_fifo2_seq_load;
@@ -4845,7 +4879,7 @@ always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_don
     word[8] = card1_card_core1_regs_fifo2_fifo_empty;
     word[9] = card1_card_core1_regs_fifo2_fifo_full;
     word[32-1:16] = card1_card_core1_regs_fifo2_level_wide;
-    card1_card_core1_regs_fifo2_reg_word45_hw_value = word;
+    card1_card_core1_regs_fifo2_reg_word51_hw_value = word;
 end
 
 
@@ -4853,37 +4887,37 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2__inter
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_error_before <= 0;
         card1_card_core1_regs_fifo2_low_before <= 0;
-        card1_card_core1_regs_fifo2_reg_word49_hw_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word55_hw_value <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_error_before <= (card1_card_core1_regs_fifo2_error_code != 0);
-        card1_card_core1_regs_fifo2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word48_value);
+        card1_card_core1_regs_fifo2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word54_value);
         if (card1_card_core1_regs_fifo2_mark_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word49_hw_value <= card1_card_core1_regs_fifo2_mark_tag;
+            card1_card_core1_regs_fifo2_reg_word55_hw_value <= card1_card_core1_regs_fifo2_mark_tag;
         end
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word62_clamp_out, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_reg_word48_value, card1_card_core1_regs_fifo2_mark_strobe, card1_card_core1_regs_fifo2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_busy_before, card1_card_core1_regs_fifo2_low_before) begin: card1_card_core1_regs_fifo2__interrupts2_detect
+always @(card1_card_core1_regs_fifo2_reg_word71_clamp_out, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_reg_word54_value, card1_card_core1_regs_fifo2_mark_strobe, card1_card_core1_regs_fifo2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_busy_before, card1_card_core1_regs_fifo2_low_before) begin: card1_card_core1_regs_fifo2__interrupts2_detect
     reg [5-1:0] word;
     word = 5'h0;
     word[0] = (card1_card_core1_regs_fifo2_busy_before && (!card1_card_core1_regs_fifo2_any_busy));
-    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word48_value) && (!card1_card_core1_regs_fifo2_low_before));
+    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word54_value) && (!card1_card_core1_regs_fifo2_low_before));
     word[2] = ((card1_card_core1_regs_fifo2_error_code != 0) && (!card1_card_core1_regs_fifo2_error_before));
     word[3] = card1_card_core1_regs_fifo2_mark_strobe;
-    word[4] = card1_card_core1_regs_fifo2_reg_word62_clamp_out;
-    card1_card_core1_regs_fifo2_reg_word47_hw_value = word;
+    word[4] = card1_card_core1_regs_fifo2_reg_word71_clamp_out;
+    card1_card_core1_regs_fifo2_reg_word53_hw_value = word;
 end
 
 
 
-assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word47_value & card1_card_core1_regs_fifo2_reg_word46_value) != 0);
+assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word53_value & card1_card_core1_regs_fifo2_reg_word52_value) != 0);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word50_hw_value = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
-assign card1_card_core1_regs_fifo2_reg_word51_hw_value = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word56_hw_value = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word57_hw_value = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
 always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_magnitudes
@@ -5715,12 +5749,12 @@ always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_dda_left2_foll
     if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
         base = card1_card_core1_dda_arc2_dda_check2_move_totals_diff;
         if (card1_card_core1_dda_arc2_dda_check2_move_line) begin
-            change = 134217727;
+            change = 27'h7ffffff;
         end
     end
     else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
         if ((card1_card_core1_dda_arc2_dda_run2_step_line || (card1_card_core1_dda_arc2_dda_run2_step_step_x && (!card1_card_core1_dda_arc2_dda_run2_step_step_y)))) begin
-            change = 134217727;
+            change = 27'h7ffffff;
         end
         else if ((card1_card_core1_dda_arc2_dda_run2_step_step_y && (!card1_card_core1_dda_arc2_dda_run2_step_step_x))) begin
             change = 1;
@@ -5742,34 +5776,34 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         base = card1_card_core1_dda_arc2_dda_run2_dda_left2_larger;
         if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
             base = card1_card_core1_dda_arc2_dda_check2_move_totals_max;
-            less = 134217727;
+            less = 27'h7ffffff;
         end
         else if ((card1_card_core1_dda_arc2_dda_run2_step_pending && (!card1_card_core1_dda_arc2_dda_run2_step_blend))) begin
             if (card1_card_core1_dda_arc2_dda_run2_step_line) begin
-                less = 134217727;
+                less = 27'h7ffffff;
             end
             else if ((card1_card_core1_dda_arc2_dda_run2_dda_left2_difference == 0)) begin
                 if ((card1_card_core1_dda_arc2_dda_run2_step_step_x && card1_card_core1_dda_arc2_dda_run2_step_step_y)) begin
-                    less = 134217727;
+                    less = 27'h7ffffff;
                 end
             end
             else if (card1_card_core1_dda_arc2_dda_run2_dda_left2_difference[(27 - 1)]) begin
                 if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
-                    less = 134217727;
+                    less = 27'h7ffffff;
                 end
             end
             else if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
-                less = 134217727;
+                less = 27'h7ffffff;
             end
         end
         card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= (base + less);
         if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
             if ((card1_card_core1_dda_arc2_dda_check2_move_blend || card1_card_core1_dda_arc2_dda_check2_move_error || card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
-                card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 134217727;
+                card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 27'h7ffffff;
             end
         end
         else if ((card1_card_core1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_arc2_dda_run2_step_finished)) begin
-            card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 134217727;
+            card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 27'h7ffffff;
         end
     end
 end
@@ -5846,16 +5880,16 @@ always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_u
         base_in = (~card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out);
         base_out = (~card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in);
         if ((stepped_in && stepped_out)) begin
-            op_in = (134217727 - 2);
-            op_out = (134217727 - 2);
+            op_in = 27'h7fffffd;
+            op_out = 27'h7fffffd;
         end
         else if (stepped_in) begin
-            op_in = (134217727 - 1);
-            op_out = 134217727;
+            op_in = 27'h7fffffe;
+            op_out = 27'h7ffffff;
         end
         else if (stepped_out) begin
-            op_in = 134217727;
-            op_out = (134217727 - 1);
+            op_in = 27'h7ffffff;
+            op_out = 27'h7fffffe;
         end
         else begin
             op_in = 0;

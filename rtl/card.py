@@ -1,13 +1,15 @@
 """The whole card with split PCI ports: PCI target + registers, FIFO, sequencer, pulses, DDA."""
 from myhdl import Signal, block
 
+from rtl import parameters
 from rtl import registers as regmap
-from rtl.card_core import card_core
-from rtl.dda_build import COORD_WIDTH, DEFAULT_VARIANTS
+from rtl.card_core import CORE_PARAMETERS, card_core
 from rtl.interfaces import LocalBus, MotorPins, PciBus, card_reset
+from rtl.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, PCI_IDS, VARIANTS
 from rtl.pci_slave import local_addr_width, pci_slave
 
 MEM_BAR_BITS = 12  # 4 KiB FIFO window: a host burst of up to 1024 words
+CARD_PARAMETERS = (*CORE_PARAMETERS, *PCI_IDS)
 
 
 def slave_params(**slave):
@@ -16,29 +18,39 @@ def slave_params(**slave):
 
 
 @block
-def card(clock, reset, pci, pins, *, fifo_depth=512, coord_width=COORD_WIDTH, variants=DEFAULT_VARIANTS, **slave):
+def card(clock, reset, pci, pins, *, fifo_depth=FIFO_DEPTH.default, coord_width=COORD_WIDTH.default,
+         clock_hz=CLOCK_HZ.default, variants=VARIANTS.default, device=DEVICE.default, io_registers=False,
+         **ids):
     """The paper's figure 1 in the FPGA, PCI lines still split in / out / enable.
 
     Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci``
-    (``PciBus``), ``pins`` (``MotorPins``).  Parameters: ``fifo_depth``,
-    ``coord_width``, ``variants`` (the DDA's build) and those of ``pci_slave``
-    but the BAR sizes (``vendor_id``,
-    ``device_id``, ..., ``io_registers``).  BAR0 (I/O) is ``2**IO_BAR_BITS`` bytes, the size the
+    (``PciBus``), ``pins`` (``MotorPins``).  Parameters
+    (``rtl/parameters.py``): ``fifo_depth``, ``coord_width``, ``clock_hz``,
+    ``variants``, ``device`` (the PCI target's one-LUT paths: plain logic or
+    iCE40 cells) and the PCI IDs (``vendor_id``, ``device_id``, ...);
+    ``io_registers`` (``pci_slave``'s: True when the top's pads hold the PCI
+    registers).  BAR0 (I/O) is ``2**IO_BAR_BITS`` bytes, the size the
     register table needs; BAR1 (memory, the FIFO window) is 4 KiB.
 
         PCI --> pci_slave --LocalBus--> card_core --> STEP/DIR
                     ^                       |
                     +---------- irq --------+
     """
-    params = slave_params(**slave)
+    core = dict(fifo_depth=fifo_depth, coord_width=coord_width, clock_hz=clock_hz, variants=variants,
+                device=device)
+    parameters.check_unit("card", CARD_PARAMETERS, dict(core, **ids))
+    params = slave_params(**ids, device=device, io_registers=io_registers)
     local = LocalBus(local_addr_width(params["io_bar_bits"], params["mem_bar_bits"]))
     irq = Signal(bool(0))
     target = pci_slave(clock, reset, pci, local, irq, **params)
-    core = card_core(clock, reset, local, irq, pins, fifo_depth=fifo_depth, coord_width=coord_width,
-                     variants=variants)
-    return target, core
+    interior = card_core(clock, reset, local, irq, pins, **core)
+    return target, interior
 
 
-def card_ports(fifo_depth=512, coord_width=COORD_WIDTH, variants=DEFAULT_VARIANTS, **slave):
-    """Fresh ports of ``card`` for conversion and benches."""
+def card_ports(io_registers=False, **build):
+    """Fresh ports of ``card`` for conversion and benches (``build``: its
+    parameters, checked; none of them changes a port)."""
+    parameters.check_unit("card", CARD_PARAMETERS, build)
+    if not isinstance(io_registers, bool):
+        raise ValueError(f"card: io_registers must be True or False, not {io_registers!r}")
     return dict(clock=Signal(bool(0)), reset=card_reset(), pci=PciBus(), pins=MotorPins())

@@ -1,75 +1,60 @@
-"""Build options of the DDA interpolator, defined once: coordinate width, variants, widths.
+"""Build options of the DDA interpolator: coordinate width, variants, widths.
 
-The RTL (``rtl/dda_*.py``), the converter's parameter table (``rtl/top.py``),
-the sequencer's check of the ARC header and the golden model
-(``sim/dda_model.py``) all take these from here.
+The build parameters themselves (default, range, choices) are defined once,
+in ``rtl/parameters.py`` (``coord_width``, ``variants``); this module turns
+them into what the RTL (``rtl/dda_*.py``), the sequencer's check of the ARC
+header and the golden model (``sim/dda_model.py``) use: variant codes and
+the datapath widths that follow from them.
 
-* ``coord_width``: signed width of the coordinates, ``COORD_WIDTH`` by
-  default, ``COORD_WIDTH_RANGE`` allowed.
-* ``variants``: which step rules a card is built with.  Lines are always
-  there.  ``DEFAULT_VARIANTS`` (improved + precise) is the card's; ``"all"``
-  adds the paper's traditional and weighted variants (to reproduce its
-  figures).  On the command line and in the parameter table a set is
-  written as names joined by ``+`` (``improved+precise``) or ``all``.
+* ``coord_width``: signed width of the coordinates.  The card's range is
+  the parameter's; the interpolator alone also runs narrower, down to
+  ``DDA_MIN_WIDTH`` (its narrow-width bench runs at 10 bits).
+* ``variants``: the parameter's choices, ``improved,precise`` (the default:
+  the paper's improved DDA and the precise mode) or ``all`` (the paper's
+  traditional and weighted DDA as well, to reproduce its figures), here as
+  sets of ARC.VARIANT codes.  Lines are always there.
 """
-TRADITIONAL, WEIGHTED, IMPROVED, PRECISE = range(4)
-VARIANT_NAMES = {TRADITIONAL: "traditional", WEIGHTED: "weighted", IMPROVED: "improved",
-                 PRECISE: "precise"}
-PAPER_VARIANTS = frozenset({TRADITIONAL, WEIGHTED, IMPROVED})
-ALL_VARIANTS = frozenset(VARIANT_NAMES)
-DEFAULT_VARIANTS = frozenset({IMPROVED, PRECISE})
+from rtl import parameters
 
-COORD_WIDTH = 24
-COORD_WIDTH_RANGE = range(8, 32)
+TRADITIONAL, WEIGHTED, IMPROVED, PRECISE = (parameters.VARIANT_NAMES.index(name) for name in
+                                            ("traditional", "weighted", "improved", "precise"))
+VARIANT_NAMES = dict(enumerate(parameters.VARIANT_NAMES))
+PAPER_VARIANTS = frozenset({TRADITIONAL, WEIGHTED, IMPROVED})
+VARIANT_SETS = {name: frozenset(parameters.variant_codes(name)) for name in parameters.VARIANTS.choices}
+ALL_VARIANTS = VARIANT_SETS["all"]
+DEFAULT_VARIANTS = VARIANT_SETS[parameters.VARIANTS.default]
+
+COORD_WIDTH = parameters.COORD_WIDTH.default
+DDA_MIN_WIDTH = 8
 
 # n + k of the paper's variants may reach coord_width + this (threshold 2**(n + k))
 MAX_THRESHOLD_EXTRA = 4
 
 
-def parse_variants(text):
-    """A variant set from ``all``, ``default`` or names joined by ``+``; ValueError if bad."""
-    if isinstance(text, (set, frozenset, tuple, list)):
-        return check_variants(text)
-    words = str(text).strip().lower()
-    if words == "all":
-        return ALL_VARIANTS
-    if words == "default":
-        return DEFAULT_VARIANTS
-    codes = {name: code for code, name in VARIANT_NAMES.items()}
-    chosen = set()
-    for word in words.split("+"):
-        if word not in codes:
-            raise ValueError(f"variants: '{word}' is not a variant ({', '.join(codes)}; join them with '+', "
-                             f"or 'all')")
-        chosen.add(codes[word])
-    return check_variants(chosen)
-
-
-def check_variants(variants):
-    """``variants`` as a frozenset of codes; ValueError when empty or unknown."""
+def variant_set(variants):
+    """The codes of ``variants``: a choice of the ``variants`` parameter
+    (``improved,precise``, ``all``) or one of their code sets; ValueError else."""
+    if isinstance(variants, str):
+        return VARIANT_SETS[parameters.VARIANTS.check(variants)]
     chosen = frozenset(variants)
-    if not chosen or not chosen <= ALL_VARIANTS:
-        raise ValueError(f"variants must be a non-empty subset of {sorted(ALL_VARIANTS)}, not {sorted(chosen)}")
+    if chosen not in VARIANT_SETS.values():
+        raise ValueError(f"variants must be one of {', '.join(VARIANT_SETS)}, not the codes {sorted(chosen)}")
     return chosen
 
 
-def variants_text(variants):
-    """The option's spelling of a variant set (``improved+precise``, ``all``)."""
-    chosen = check_variants(variants)
-    if chosen == ALL_VARIANTS:
-        return "all"
-    return "+".join(VARIANT_NAMES[code] for code in sorted(chosen))
-
-
-def variants_mask(variants):
-    """A bit per built variant (bit ``code``), as the register map reports it."""
-    return sum(1 << code for code in check_variants(variants))
+def variants_choice(variants):
+    """The ``variants`` parameter's choice that builds ``variants`` (codes)."""
+    chosen = variant_set(variants)
+    return next(name for name, codes in VARIANT_SETS.items() if codes == chosen)
 
 
 def check_coord_width(coord_width):
-    if coord_width not in COORD_WIDTH_RANGE:
-        raise ValueError(f"coord_width must be {COORD_WIDTH_RANGE.start}..{COORD_WIDTH_RANGE.stop - 1}, "
-                         f"not {coord_width}")
+    """``coord_width`` if the interpolator can be built with it."""
+    maximum = parameters.COORD_WIDTH.maximum
+    if isinstance(coord_width, bool) or not isinstance(coord_width, int) \
+            or not DDA_MIN_WIDTH <= coord_width <= maximum:
+        raise ValueError(f"coord_width of the DDA must be {DDA_MIN_WIDTH}..{maximum} "
+                         f"(the card's: {parameters.COORD_WIDTH.bounds()}), not {coord_width!r}")
     return coord_width
 
 

@@ -1,5 +1,5 @@
 """Steps left of the running move: the lower bound ``stop_left`` and a line's last iteration."""
-from myhdl import Signal, always, always_comb, always_seq, block, modbv
+from myhdl import Signal, always, always_comb, always_seq, block, intbv, modbv
 
 
 @block
@@ -46,10 +46,10 @@ def dda_left(clock, reset, step, move, cmd):
         if move.take:
             base[:] = move.totals_diff
             if move.line:
-                change[:] = ones
+                change[:] = intbv(ones)[width:]
         elif step.pending:
             if step.line or (step.step_x and not step.step_y):
-                change[:] = ones
+                change[:] = intbv(ones)[width:]
             elif step.step_y and not step.step_x:
                 change[:] = 1
         difference.next = base + change
@@ -61,23 +61,23 @@ def dda_left(clock, reset, step, move, cmd):
         base[:] = larger
         if move.take:
             base[:] = move.totals_max
-            less[:] = ones
+            less[:] = intbv(ones)[width:]
         elif step.pending and not step.blend:
             if step.line:
-                less[:] = ones
+                less[:] = intbv(ones)[width:]
             elif difference == 0:
                 if step.step_x and step.step_y:
-                    less[:] = ones
+                    less[:] = intbv(ones)[width:]
             elif difference[width - 1]:
                 if step.step_y:
-                    less[:] = ones
+                    less[:] = intbv(ones)[width:]
             elif step.step_x:
-                less[:] = ones
+                less[:] = intbv(ones)[width:]
         larger.next = base + less
         if move.take:
             if move.blend or move.error or move.zero:
-                larger.next = ones
+                larger.next = intbv(ones)[width:]
         elif step.pending and step.finished:
-            larger.next = ones
+            larger.next = intbv(ones)[width:]
 
     return outputs, follow, count_down

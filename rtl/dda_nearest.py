@@ -93,14 +93,14 @@ def dda_nearest(clock, step, move):
             base_in[:] = ~bias_out
             base_out[:] = ~bias_in
             if stepped_in and stepped_out:
-                op_in[:] = ones - 2
-                op_out[:] = ones - 2
+                op_in[:] = intbv(ones - 2)[bias_width:]
+                op_out[:] = intbv(ones - 2)[bias_width:]
             elif stepped_in:
-                op_in[:] = ones - 1
-                op_out[:] = ones
+                op_in[:] = intbv(ones - 1)[bias_width:]
+                op_out[:] = intbv(ones)[bias_width:]
             elif stepped_out:
-                op_in[:] = ones
-                op_out[:] = ones - 1
+                op_in[:] = intbv(ones)[bias_width:]
+                op_out[:] = intbv(ones - 1)[bias_width:]
             else:
                 op_in[:] = 0
                 op_out[:] = 0

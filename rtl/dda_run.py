@@ -134,7 +134,7 @@ def dda_run(clock, reset, cmd, move, steps):
             mag[:] = concat(intbv(0)[acc_width - width:], step.mag_y)
             either[:] = acc[acc_width - 1:] | mag[acc_width - 1:]
             if step.x_inward:
-                trad_over_x.next = over_x or (acc ^ mag) == acc_ones
+                trad_over_x.next = over_x or (acc ^ mag) == intbv(acc_ones)[acc_width:]
             else:
                 trad_over_x.next = over_x and (acc ^ mag) != concat(either, False)
         variant_logic.extend((traditional, traditional_overflow))

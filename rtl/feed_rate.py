@@ -1,7 +1,8 @@
 """Iteration clock enable of the interpolator: a trapezoidal rate ramp."""
 from myhdl import Signal, always_comb, always_seq, block, concat, intbv, modbv
 
-from rtl.interfaces import card_reset
+from rtl.interfaces import DdaPort, card_reset
+from rtl.parameters import COORD_WIDTH
 from rtl.registers import RATE_MAX, RATE_ONE
 
 RATE_BITS = RATE_MAX.bit_length()  # 16: the rate is at most one iteration every other clock
@@ -149,10 +150,10 @@ def feed_rate(clock, reset, run, hold, target, ramp_start, ramp_step, stop_left,
     return settings, end_ahead, candidates, count_steps, accumulate
 
 
-def feed_rate_ports(left_width=27):
-    """Fresh ports of ``feed_rate`` for conversion and benches (``left_width``:
-    the DDA's ``stop_left`` width)."""
+def feed_rate_ports(coord_width=COORD_WIDTH.default):
+    """Fresh ports of ``feed_rate`` for conversion and benches: ``stop_left``
+    as the ``DdaPort`` of ``coord_width`` carries it."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), run=Signal(bool(0)), hold=Signal(bool(0)),
                 target=Signal(intbv(4096)[RATE_BITS:]), ramp_start=Signal(intbv(4096)[RATE_BITS:]),
                 ramp_step=Signal(intbv(0)[STEP_BITS:]),
-                stop_left=Signal(intbv((1 << left_width) - 1)[left_width:]), tick=Signal(bool(0)))
+                stop_left=DdaPort(coord_width).stop_left, tick=Signal(bool(0)))

@@ -12,7 +12,7 @@ lines are 0 when asserted).
 from myhdl import ResetSignal, Signal, TristateSignal, intbv, modbv
 
 from rtl.dda_build import (COORD_WIDTH, DEFAULT_VARIANTS, PRECISE, accumulator_width, check_coord_width,
-                            left_width, parse_variants, threshold_width)
+                            left_width, threshold_width, variant_set)
 
 
 class PciBus:
@@ -115,14 +115,16 @@ class DdaPort:
     ``blend`` = 0, the all-ones value while the running move blends or none
     runs; the feed-rate ramp decelerates on it).
 
-    Build parameters, read by every block that takes the port:
-    ``coord_width`` (``rtl.dda_build.COORD_WIDTH_RANGE``) and ``variants``
-    (a set of variant codes, ``rtl.dda_build.DEFAULT_VARIANTS`` unless said).
+    Build parameters (``rtl/parameters.py``), read by every block that takes
+    the port: ``coord_width`` (``rtl.dda_build.check_coord_width``: the
+    card's range, or narrower for the interpolator alone) and ``variants``
+    (a set of variant codes; given as the parameter's choice,
+    ``improved,precise`` or ``all``, or as its codes).
     """
 
     def __init__(self, coord_width=COORD_WIDTH, variants=DEFAULT_VARIANTS):
         self.coord_width = check_coord_width(coord_width)
-        self.variants = parse_variants(variants)
+        self.variants = variant_set(variants)
         low, high = -(1 << (coord_width - 1)), 1 << (coord_width - 1)
         self.start = Signal(bool(0))
         self.line = Signal(bool(0))

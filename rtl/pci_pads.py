@@ -1,11 +1,13 @@
 """PCI pads: the card's only tri-states, joining ``PciPins`` to the core's ``PciBus``.
 
 Two builds, chosen by ``io_registers`` (the top passes the same value to
-``pci_slave``):
+``pci_slave``; it is the top's ``device``: ``rtl/parameters.py``):
 
-- ``False``: plain tri-state buffers.  The core's boundary flip-flops are
-  logic-cell flops; any vendor flow infers the I/O buffers.
-- ``True``: iCE40 ``SB_IO`` cells whose input and output registers ARE the
+- ``False`` (``generic``): plain tri-state buffers.  The core's
+  boundary flip-flops are logic-cell flops; any vendor flow infers the I/O
+  buffers.
+- ``True`` (``ice40``): iCE40 ``SB_IO`` cells (``rtl/ice40.py``) whose input
+  and output registers ARE the
   core's boundary flip-flops, so those PCI set-up and clock-to-output paths
   never cross the fabric.  AD, C/BE# and IDSEL are sampled in the I/O cell;
   AD, TRDY#, DEVSEL#, STOP# and PERR# leave from the I/O cell's output
@@ -26,13 +28,8 @@ A line nobody drives reads as its pull-up value (FRAME#, IRDY#: 1) or 0.
 """
 from myhdl import Signal, always, block
 
+from rtl.ice40 import PIN_PLAIN_IO, PIN_REGISTERED_INPUT, PIN_REGISTERED_IO, PIN_REGISTERED_OUTPUT, sb_io
 from rtl.interfaces import PciBus, PciPins
-
-# SB_IO PIN_TYPE: output mode in bits 5:2, input mode in bits 1:0.
-PIN_REGISTERED_IO = "100100"      # registered output, direct enable, registered input
-PIN_REGISTERED_OUTPUT = "100101"  # registered output, direct enable (input unused)
-PIN_REGISTERED_INPUT = "000000"   # input register only
-PIN_PLAIN_IO = "101001"           # plain output, direct enable, plain input: no register
 
 
 def _line_value(pin, undriven):
@@ -73,7 +70,7 @@ def tristate_pad(pin, from_pin, to_pin, enable, *, label=None, clock=None):
         code += "assign $from_pin = $pin;\n"
         from_pin.driven = "wire"
     if label is not None:
-        code = "".join(_sb_io(label, index, len(pin), PIN_PLAIN_IO, from_pin is not None, True)
+        code = "".join(sb_io(label, index, len(pin), PIN_PLAIN_IO, from_pin is not None, True)
                        for index in range(len(pin)))
         pin.read = True
         clock.read = True
@@ -151,24 +148,9 @@ def registered_pad(clock, pin, from_pin, to_pin, enable, *, label):
     else:
         pin_type = PIN_REGISTERED_IO if from_pin is not None else PIN_REGISTERED_OUTPUT
     registered_pad.verilog_code = "".join(
-        _sb_io(label, index, width, pin_type, from_pin is not None, to_pin is not None)
+        sb_io(label, index, width, pin_type, from_pin is not None, to_pin is not None)
         for index in range(width))
     return instances
-
-
-def _sb_io(label, index, width, pin_type, has_input, has_output):
-    """Verilog of one ``SB_IO`` (bit ``index`` of a ``width``-bit pin)."""
-    bit = f"[{index}]" if width > 1 else ""
-    # Every input of the cell is tied: the DDR and latch inputs are unused.
-    ports = [f".PACKAGE_PIN($pin{bit})", ".LATCH_INPUT_VALUE(1'b0)", ".CLOCK_ENABLE(1'b1)",
-             ".INPUT_CLK($clock)", ".OUTPUT_CLK($clock)", ".D_OUT_1(1'b0)"]
-    if has_output:
-        ports += [".OUTPUT_ENABLE($enable)", f".D_OUT_0($to_pin{bit})"]
-    else:
-        ports += [".OUTPUT_ENABLE(1'b0)", ".D_OUT_0(1'b0)"]
-    if has_input:
-        ports.append(f".D_IN_0($from_pin{bit})")
-    return f"SB_IO #(.PIN_TYPE(6'b{pin_type})) {label}_{index} (\n    " + ",\n    ".join(ports) + "\n);\n"
 
 
 @block
@@ -192,6 +174,7 @@ def pci_pads(clock, pins, pci, *, io_registers=False):
         pins.idsel    --< I >-------      (likewise AD, C/BE#)
         pci.idsel_in  -------< I >--
     """
+    _check_io_registers(io_registers)
     unregistered = [
         tristate_pad(pins.serr, None, pci.serr_out, pci.serr_oe),
         tristate_pad(pins.inta, None, pci.inta_out, pci.inta_oe),
@@ -221,6 +204,13 @@ def pci_pads(clock, pins, pci, *, io_registers=False):
     ]
 
 
+def _check_io_registers(io_registers):
+    if not isinstance(io_registers, bool):
+        raise ValueError(f"pci_pads: io_registers must be True or False, not {io_registers!r}")
+
+
 def pci_pads_ports(io_registers=False):
-    """Fresh ports of ``pci_pads`` (the same for both builds)."""
+    """Fresh ports of ``pci_pads`` (the same for both builds, so that the top
+    takes either; ``io_registers`` is checked)."""
+    _check_io_registers(io_registers)
     return {"clock": Signal(bool(0)), "pins": PciPins(), "pci": PciBus()}

@@ -20,10 +20,13 @@ registered parity and the C/BE# input register, one LUT level after
 flip-flops on the way out, where PCI's 11 ns leave room (the 7 ns of
 set-up do not).  The registered address makes DEVSEL# timing MEDIUM.
 """
-from myhdl import (ConcatSignal, Signal, always_comb, always_seq, block, concat, enum, instance, instances, intbv,
+from myhdl import (ConcatSignal, Signal, always_comb, always_seq, block, concat, enum, instances, intbv,
                    modbv)
 
+from rtl import parameters
 from rtl.interfaces import LocalBus, PciBus, TargetControlNext, card_reset
+from rtl.parameters import PCI_IDS, ParameterError
+from rtl.pin_lut import lut_verilog, pin_lut
 
 t_state = enum("S_IDLE", "S_CON_HOLD", "S_IO_HOLD", "S_MEM_HOLD", "S_READ_HOLD",
                "S_CONFIGURING", "S_RWING", "S_BACKOFF", "S_ENDING")
@@ -48,59 +51,25 @@ BAR_IO_SPACE = 1              # BAR bit 0: I/O space (BAR1: 0, memory, 32-bit, n
 INITIAL_WAIT_LIMIT = 11
 SUBSEQUENT_WAIT_LIMIT = 5
 
-DEFAULTS = dict(vendor_id=0x1234, device_id=0xDDA0, revision_id=0x01, class_code=0x088000,
-                subsystem_vendor_id=0x1234, subsystem_id=0x0001, io_bar_bits=6,
-                mem_bar_bits=12, io_registers=False)
-ID_WIDTHS = dict(vendor_id=16, device_id=16, revision_id=8, class_code=24,
-                 subsystem_vendor_id=16, subsystem_id=16)
-IO_BAR_BITS = range(2, 9)      # 4..256 bytes: the I/O BAR sizes PCI allows
-MEM_BAR_BITS = range(4, 25)    # 16 bytes..16 MiB
+# Build parameters of the stand-alone unit (defaults and ranges: rtl/parameters.py);
+# ``io_registers`` says where the boundary flip-flops are (see ``pci_slave``).
+SLAVE_PARAMETERS = (*PCI_IDS, "io_bar_bits", "mem_bar_bits", "device")
 
 
 def check_params(params):
     """``params`` completed with the defaults; ValueError on a bad one."""
-    unknown = set(params) - set(DEFAULTS)
+    unknown = set(params) - {*SLAVE_PARAMETERS, "io_registers"}
     if unknown:
         raise ValueError(f"pci_slave: unknown parameters {sorted(unknown)}")
-    values = dict(DEFAULTS, **params)
-    for name, width in ID_WIDTHS.items():
-        value = values[name]
-        if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < 1 << width:
-            raise ValueError(f"pci_slave: {name} must be an integer of {width} bits, not {value!r}")
-    for name, allowed in (("io_bar_bits", IO_BAR_BITS), ("mem_bar_bits", MEM_BAR_BITS)):
-        if values[name] not in allowed:
-            raise ValueError(f"pci_slave: {name} must be within {allowed.start}.."
-                             f"{allowed.stop - 1}, not {values[name]!r}")
-    if not isinstance(values["io_registers"], bool):
-        raise ValueError(f"pci_slave: io_registers must be True or False, "
-                         f"not {values['io_registers']!r}")
-    return values
-
-
-def lut_table(function, inputs):
-    """Truth table of ``function`` (of ``inputs`` bits, 0/1) as an integer:
-    bit n is the value for the inputs' bits n[0], n[1], ... (LUT order)."""
-    return sum(function(*(n >> k & 1 for k in range(inputs))) << n for n in range(1 << inputs))
-
-
-def lut_verilog(out, name, inputs, function):
-    """Verilog lines driving ``out`` by ``function`` of ``inputs`` (1..4 net
-    names): an iCE40 ``SB_LUT4`` for synthesis, so that no logic is merged
-    into it and a PCI pin among the inputs stays one logic cell from its
-    register; the same truth table, indexed, for simulators."""
-    count = len(inputs)
-    table = lut_table(function, count)
-    init = lut_table(lambda *bits: function(*bits[:count]), 4)   # unused inputs tied to 0
-    tied = [*inputs, *["1'b0"] * (4 - count)]
-    ports = ", ".join(f".I{k}({net})" for k, net in enumerate(tied))
-    index = ", ".join(reversed(inputs))
-    digits = max(1, (1 << count) // 4)
-    return ["`ifdef SYNTHESIS",
-            f"SB_LUT4 #(.LUT_INIT(16'h{init:04X})) {name} (.O({out}), {ports});",
-            "`else",
-            f"wire [{(1 << count) - 1}:0] {name}_table = {1 << count}'h{table:0{digits}X};",
-            f"assign {out} = {name}_table[{{{index}}}];",
-            "`endif"]
+    io_registers = params.get("io_registers", False)
+    if not isinstance(io_registers, bool):
+        raise ValueError(f"pci_slave: io_registers must be True or False, not {io_registers!r}")
+    builds = {name: value for name, value in params.items() if name != "io_registers"}
+    try:
+        values = parameters.check(dict(parameters.defaults(SLAVE_PARAMETERS), **builds))
+    except ParameterError as error:
+        raise ValueError(f"pci_slave: {error}") from None
+    return dict(values, io_registers=io_registers)
 
 
 # One-LUT fast path.  Each bit of the state machine's next value has three
@@ -163,12 +132,13 @@ CONTROL_TRIPLES = dict(
 
 
 @block
-def pin_pick(frame_pin, irdy_pin, if_frame, if_irdy, if_both, picked, codings):
+def pin_pick(frame_pin, irdy_pin, if_frame, if_irdy, if_both, picked, codings, *, device):
     """``picked`` is ``if_frame``, ``if_irdy`` or ``if_both`` as the FRAME#
     and IRDY# pins (bus polarity) say (IRDY# deasserted: ``if_frame``), one
     LUT per bit after the pins: each bit's candidates are coded into two
-    nets by ``codings`` (a ``PIN_CODINGS`` name per bit, LSB first).
-    Works on bools and on the state enum.
+    nets by ``codings`` (a ``PIN_CODINGS`` name per bit, LSB first), the
+    LUT written for ``device`` (``rtl/pin_lut.py``).  Works on bools and on
+    the state enum.
 
         pins     --< sampled at edge k >--
         picked   --< value the register takes at k >--
@@ -201,35 +171,13 @@ def pin_pick(frame_pin, irdy_pin, if_frame, if_irdy, if_both, picked, codings):
                   *lut_verilog(f"$picked{sel}", f"${{picked}}_lut{bit}",
                                [x, y, "$frame_pin", "$irdy_pin"],
                                lambda x_bit, y_bit, frame, irdy, pick=pick:
-                               pick(frame, irdy, x_bit, y_bit))]
+                               pick(frame, irdy, x_bit, y_bit), device=device)]
     pin_pick.verilog_code = "\n".join(lines) + "\n"
     return choose
 
 
-@block
-def pin_lut(out, function, in0, in1, in2=None, in3=None):
-    """``out`` = ``function`` of the inputs (0/1 each, ``in0`` first) in one
-    LUT that synthesis cannot merge (``lut_verilog``): for registers whose
-    next value depends on a PCI pin.
-
-        in0..in3  --< A >< B >--
-        out       --< f(A) >< f(B) >--
-    """
-    inputs = tuple(sig for sig in (in0, in1, in2, in3) if sig is not None)
-
-    @instance
-    def follow():   # combinational: at the start and on every input change
-        while True:
-            out.next = bool(function(*(int(sig) for sig in inputs)))
-            yield inputs
-
-    out.driven = "wire"
-    names = [f"$in{k}" for k in range(len(inputs))]
-    pin_lut.verilog_code = "\n".join(lut_verilog("$out", "${out}_lut", names, function)) + "\n"
-    return follow
-
-
-def local_addr_width(io_bar_bits=6, mem_bar_bits=12):
+def local_addr_width(io_bar_bits=parameters.PARAMETERS["io_bar_bits"].default,
+                     mem_bar_bits=parameters.PARAMETERS["mem_bar_bits"].default):
     """Address bits of ``LocalBus`` the target drives: the larger BAR, and at
     least the 256 bytes of configuration space (one counter serves all)."""
     return max(io_bar_bits, mem_bar_bits, 8)
@@ -254,7 +202,9 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     Parameters: vendor_id, device_id, revision_id, class_code (24 bits),
     subsystem_vendor_id, subsystem_id; io_bar_bits (BAR0 is 2**io_bar_bits
-    bytes, 2..8), mem_bar_bits (BAR1 is 2**mem_bar_bits bytes, 4..24);
+    bytes), mem_bar_bits (BAR1 is 2**mem_bar_bits bytes); device (how the
+    one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pin_lut.py``);
+    defaults and ranges in ``rtl/parameters.py``;
     io_registers (False: the core's own flip-flops sample AD and IDSEL and
     drive AD, PAR, TRDY#, DEVSEL#, STOP#, PERR#; True: the I/O cells of
     ``rtl.pci_pads`` hold those registers, so ``pci.ad_in``/``idsel_in``
@@ -274,7 +224,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     """
     values = check_params(params)
     io_bits, mem_bits = values["io_bar_bits"], values["mem_bar_bits"]
-    io_registers = values["io_registers"]
+    io_registers, device = values["io_registers"], values["device"]
     width = local_addr_width(io_bits, mem_bits) - 2   # dword address counters
     if len(local.addr) != width + 2:
         raise ValueError(f"pci_slave: local.addr must have {width + 2} bits, has {len(local.addr)}")
@@ -427,18 +377,18 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     # needs it in this clock (PERR#, SERR#, the claim's abort, the status).
     parity_luts = [
         pin_lut(perr_next, lambda par, parity, armed: int(not (armed and par != parity)),
-                pci.par_in, bus_parity, perr_armed),
+                pci.par_in, bus_parity, perr_armed, device=device),
         pin_lut(perr_oe_next, lambda par, parity, armed, perr: int(
             (armed and par != parity) or not perr),   # asserted, then high one clock
-            pci.par_in, bus_parity, perr_armed, perr_q),
+            pci.par_in, bus_parity, perr_armed, perr_q, device=device),
         pin_lut(serr_oe_next, lambda par, parity, armed: int(armed and par != parity),
-                pci.par_in, bus_parity, serr_armed),
+                pci.par_in, bus_parity, serr_armed, device=device),
         pin_lut(address_fault_next, lambda par, parity, phase, response: int(
             phase and response and par != parity),
-            pci.par_in, bus_parity, address_phase, parity_response),
+            pci.par_in, bus_parity, address_phase, parity_response, device=device),
         pin_lut(parity_error_next, lambda par, parity, phase, written: int(
             (phase or written) and par != parity),
-            pci.par_in, bus_parity, address_phase, write_done_q)]
+            pci.par_in, bus_parity, address_phase, write_done_q, device=device)]
 
     # ------------------------------------------------------------ decoding
     @always_comb
@@ -472,17 +422,18 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     phase_luts = [
         pin_lut(first_phase_next, lambda irdy, trdy, claimed, first: int(
             claimed or (first and not (not irdy and not trdy))),
-            pci.irdy_in, trdy_q, claim, first_phase),
+            pci.irdy_in, trdy_q, claim, first_phase, device=device),
         pin_lut(phase_step, lambda irdy, trdy, claimed, mem: int(
             claimed or (not irdy and not trdy and mem)),
-            pci.irdy_in, trdy_q, claim, space_mem),
+            pci.irdy_in, trdy_q, claim, space_mem, device=device),
         pin_lut(write_done_next, lambda irdy, trdy, read: int(not irdy and not trdy and not read),
-                pci.irdy_in, trdy_q, is_read),
+                pci.irdy_in, trdy_q, is_read, device=device),
         pin_lut(config_write_next, lambda irdy, trdy, read, config: int(
             not irdy and not trdy and not read and config),
-            pci.irdy_in, trdy_q, is_read, is_config),
-        pin_lut(wq_valid_next, lambda irdy, posted: int(not irdy and posted), pci.irdy_in, posting),
-        pin_lut(b_valid_next, lambda irdy, kept: int(irdy and kept), pci.irdy_in, b_kept)]
+            pci.irdy_in, trdy_q, is_read, is_config, device=device),
+        pin_lut(wq_valid_next, lambda irdy, posted: int(not irdy and posted), pci.irdy_in, posting,
+                device=device),
+        pin_lut(b_valid_next, lambda irdy, kept: int(irdy and kept), pci.irdy_in, b_kept, device=device)]
 
     # ------------------------------------------------------------ back end
     @always_comb
@@ -702,9 +653,9 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     control_cases = [control_case(False, True, if_frame), control_case(True, False, if_irdy),
                      control_case(True, True, if_both)]
     picks = [pin_pick(pci.frame_in, pci.irdy_in, if_frame.state, if_irdy.state, if_both.state,
-                      state_next, [pin_coding(state_triples(bit)) for bit in range(len(state))])]
+                      state_next, [pin_coding(state_triples(bit)) for bit in range(len(state))], device=device)]
     picks += [pin_pick(pci.frame_in, pci.irdy_in, getattr(if_frame, field), getattr(if_irdy, field),
-                       getattr(if_both, field), picked, [pin_coding(CONTROL_TRIPLES[field])])
+                       getattr(if_both, field), picked, [pin_coding(CONTROL_TRIPLES[field])], device=device)
               for field, picked in (("trdy", trdy_next), ("stop", stop_next),
                                     ("devsel", devsel_next), ("drive", drive_next),
                                     ("ad_oe", ad_oe_next))]
@@ -766,7 +717,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         ad_output_luts = [
             pin_lut(ad_out_bits[bit], lambda irdy, trdy, held, fresh: int(
                 held if irdy and not trdy else fresh),
-                pci.irdy_in, trdy_q, ad_out_q(bit), read_source(bit)) for bit in range(32)]
+                pci.irdy_in, trdy_q, ad_out_q(bit), read_source(bit), device=device) for bit in range(32)]
     else:
         @always_comb
         def ad_output():

@@ -5,11 +5,18 @@ from rtl.interfaces import AxisPulses, MotorPins, card_reset
 
 TIMING_BITS = 8
 ENTRY_BITS = 4  # step_x, step_y, dir_x, dir_y
+QUEUE_DEPTH, IN_FLIGHT = 4, 2
+
+
+def _check_queue(queue_depth, in_flight):
+    if in_flight < 1 or queue_depth < in_flight + 1 or queue_depth & (queue_depth - 1):
+        raise ValueError(f"queue_depth {queue_depth} must be a power of two above in_flight {in_flight}")
 
 
 @block
 def pulse_out(clock, reset, request, ready, active, clear, clear_position, width, setup, hold,
-              polarity_x, polarity_y, pins, position_x, position_y, *, queue_depth=4, in_flight=2):
+              polarity_x, polarity_y, pins, position_x, position_y, *, queue_depth=QUEUE_DEPTH,
+              in_flight=IN_FLIGHT):
     """STEP and DIR pins of both axes, driven straight from flip-flops.
 
     Ports: ``request`` (``AxisPulses``: the steps of one iteration, a
@@ -33,8 +40,7 @@ def pulse_out(clock, reset, request, ready, active, clear, clear_position, width
         dir_x     ~~~~~~~~~~~~~~~~~~~\\_________
         position  ==0====X=1=============X=0==
     """
-    if in_flight < 1 or queue_depth < in_flight + 1 or queue_depth & (queue_depth - 1):
-        raise ValueError(f"queue_depth {queue_depth} must be a power of two above in_flight {in_flight}")
+    _check_queue(queue_depth, in_flight)
     index_bits = queue_depth.bit_length() - 1
     phase_t = enum("P_IDLE", "P_SETUP", "P_HIGH")
     phase = Signal(phase_t.P_IDLE)
@@ -166,8 +172,10 @@ def pulse_out(clock, reset, request, ready, active, clear, clear_position, width
     return room, peek, decide, restart, count_clocks, step_phases, fill, slots, drive_pins
 
 
-def pulse_out_ports(queue_depth=4, in_flight=2):
-    """Fresh ports of ``pulse_out`` for conversion and benches."""
+def pulse_out_ports(queue_depth=QUEUE_DEPTH, in_flight=IN_FLIGHT):
+    """Fresh ports of ``pulse_out`` for conversion and benches (the parameters
+    are checked; they change no port)."""
+    _check_queue(queue_depth, in_flight)
     return dict(clock=Signal(bool(0)), reset=card_reset(), request=AxisPulses(), ready=Signal(bool(1)),
                 active=Signal(bool(0)), clear=Signal(bool(0)), clear_position=Signal(bool(0)),
                 width=Signal(intbv(1)[TIMING_BITS:]), setup=Signal(intbv(1)[TIMING_BITS:]),

@@ -19,13 +19,25 @@ Access kinds:
 
 Registers with a ``set_index`` can also be written from the command stream by
 the ``SET`` instruction (``docs/instructions.md``).
+
+The capability registers (CLOCK_HZ, FIFO_SIZE, BUILD) are RO fields whose
+``build`` names the build parameter (``rtl/parameters.py``) they hold, so a
+host reads what it needs instead of knowing the build; ``build_word`` gives
+their value for a build, and the ``reset`` of the table is the default
+build's top.
+
+ID.VERSION: the major version (bits 15:8) changes when a register or field
+moves or changes meaning, the minor version (bits 7:0) when registers or
+fields are added.  1.1 added CLOCK_HZ, FIFO_SIZE and BUILD.
 """
 from dataclasses import dataclass, field
+
+from rtl import parameters
 
 ACCESS_KINDS = ("RO", "RW", "W1C", "W1S", "WP")
 WORD_BYTES = 4
 ID_MAGIC = 0xDDAC
-VERSION = 0x0100  # major 1, minor 0
+VERSION = 0x0101  # major 1, minor 1
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock
 RATE_MAX = RATE_ONE // 2  # the DDA takes an iteration at most every other clock
 
@@ -37,6 +49,7 @@ class Field:
     width: int
     text: str
     signed: bool = False
+    build: str = None  # the build parameter whose value the field holds (RO only)
 
     @property
     def mask(self):
@@ -73,6 +86,35 @@ class Register:
 def _one(name, width, text, signed=False):
     """A register that holds one value in its low bits."""
     return (Field(name, 0, width, text, signed),)
+
+
+def build_word(reg, values):
+    """The value of ``reg`` in a card built with ``values`` ({build parameter:
+    value}; the defaults of ``rtl/parameters.py`` for the rest): its reset
+    value with every ``build`` field holding its parameter's code."""
+    word = reg.reset
+    for item in reg.fields:
+        if item.build is None:
+            continue
+        value = values.get(item.build, parameters.PARAMETERS[item.build].default)
+        code = parameters.encode(item.build, value)
+        if not 0 <= code < 1 << item.width:
+            raise ValueError(f"{reg.name}.{item.name}: {item.build} = {value} does not fit {item.width} bits")
+        word = (word & ~item.mask) | code << item.lsb
+    return word
+
+
+def _capability(name, offset, text, fields):
+    """A read-only register of build facts; its reset value is that of the
+    default build's top (``gen/top.v``, built for iCE40)."""
+    constants = sum(value << item.lsb for item, value in fields)
+    reg = Register(name, offset, "RO", constants, text, tuple(item for item, _ in fields))
+    top = {item.build: parameters.PARAMETERS[item.build].default_for("top") for item in reg.fields if item.build}
+    return Register(name, offset, "RO", build_word(reg, top), text, reg.fields)
+
+
+_VARIANT_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(parameters.VARIANT_NAMES))
+_DEVICE_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(parameters.DEVICES))
 
 
 _INT_FIELDS = (
@@ -149,6 +191,22 @@ REGISTERS = (
     Register("PULSE_COUNT_Y", 0x50, "WP", 0, "direct mode: write a signed count of Y pulses; read what is left",
              _one("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
                   signed=True), minimum=-(1 << 23), maximum=(1 << 23) - 1),
+    _capability("CLOCK_HZ", 0x54, "clock the card was built for (build parameter clock_hz)", (
+        (Field("HZ", 0, 32, "PCI clock in Hz: the host converts times (DWELL, STEP_WIDTH, DIR_*, "
+               "rates) with it", build="clock_hz"), 0),
+    )),
+    _capability("FIFO_SIZE", 0x58, "size of the data FIFO (build parameter fifo_depth)", (
+        (Field("WORDS", 0, 16, "32-bit words the FIFO holds", build="fifo_depth"), 0),
+    )),
+    _capability("BUILD", 0x5C, "options the card was built with", (
+        (Field("COORD_WIDTH", 0, 8, "signed coordinate width of LINE and ARC operands, in bits "
+               "(build parameter coord_width)", build="coord_width"), 0),
+        (Field("AXES", 8, 4, "axes with STEP/DIR pins (2: X, Y)"), parameters.AXES),
+        (Field("DDA_VARIANTS", 16, 4, f"bit n set: ARC.VARIANT n is built ({_VARIANT_CODES}; "
+               "build parameter variants)", build="variants"), 0),
+        (Field("DEVICE", 24, 4, f"FPGA family of the Verilog ({_DEVICE_CODES}; build parameter device)",
+               build="device"), 0),
+    )),
 )
 
 IO_BAR_BITS = max(2, (max(r.offset for r in REGISTERS) + WORD_BYTES - 1).bit_length())
@@ -210,6 +268,10 @@ def check_table(registers=REGISTERS):
             set_indices.add(reg.set_index)
         if (reg.minimum is not None or reg.maximum is not None) and len(reg.fields) != 1:
             raise ValueError(f"{reg.name}: only one-field registers can clamp")
+        for item in reg.fields:
+            if item.build is not None and (reg.access != "RO" or item.build not in parameters.PARAMETERS):
+                raise ValueError(f"{reg.name}.{item.name}: a build field is read-only and names a "
+                                 f"build parameter, not {item.build!r}")
 
 
 def markdown():
@@ -221,6 +283,14 @@ def markdown():
         "",
         f"The I/O BAR is {1 << IO_BAR_BITS} bytes (`io_bar_bits` = {IO_BAR_BITS}); registers are",
         "32-bit, dword aligned.  Unlisted offsets read 0 and ignore writes.",
+        "",
+        "CLOCK_HZ, FIFO_SIZE and BUILD hold the parameters the card was built with",
+        "(`python -m rtl.top --help` lists them); their reset column shows the default build's",
+        "top, `gen/top.v`, built for iCE40 (the generic `gen/card.v` reads BUILD.DEVICE = 0).",
+        "",
+        f"ID.VERSION is {VERSION >> 8}.{VERSION & 0xFF}: the major version (bits 15:8) changes when a",
+        "register or field moves or changes meaning, the minor version (bits 7:0) when",
+        "registers or fields are added.  1.1 added CLOCK_HZ, FIFO_SIZE and BUILD.",
         "",
         "Access: RO read only; RW read/write (byte enables honoured; a value outside",
         "min..max is clamped to the nearest bound, reads back clamped, and sets",
@@ -250,9 +320,11 @@ def _blank(value):
     return "" if value is None else str(value)
 
 
-def c_header(prefix="DDA", extra=""):
+def c_header(prefix="DDA", extra="", values=None):
     """The C header with offsets, field masks and shifts (``extra``: more
-    definitions placed inside the include guard)."""
+    definitions placed inside the include guard); the ``_RESET`` values are
+    those of a card built with ``values`` (build parameters; default: the
+    defaults)."""
     guard = f"{prefix}_REGISTERS_H"
     lines = [
         "/* Host interface of the PCI DDA card: function registers (I/O BAR) and more.",
@@ -266,7 +338,7 @@ def c_header(prefix="DDA", extra=""):
     for reg in REGISTERS:
         name = f"{prefix}_{reg.name}"
         lines.append(f"#define {name} 0x{reg.offset:02X}u")
-        lines.append(f"#define {name}_RESET 0x{reg.reset:08X}u")
+        lines.append(f"#define {name}_RESET 0x{build_word(reg, values or {}):08X}u")
         for item in reg.fields:
             lines.append(f"#define {name}_{item.name}_SHIFT {item.lsb}u")
             lines.append(f"#define {name}_{item.name}_MASK 0x{item.mask:08X}u")

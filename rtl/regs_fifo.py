@@ -1,16 +1,20 @@
 """Function registers, data FIFO, instruction register and pulse outputs of the card."""
 from myhdl import Signal, always_comb, always_seq, block, concat, intbv
 
+from rtl import parameters
 from rtl import registers as regmap
 from rtl.direct_pulse import COUNT_BITS, direct_pulse
 from rtl.feed_rate import feed_rate
 from rtl.interfaces import AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
+from rtl.dda_build import variants_choice
+from rtl.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, VARIANTS
 from rtl.pulse_out import position_signal, pulse_out
 from rtl.reg_word import reg_word
 from rtl.sequencer import CODE_BITS, ERROR_BITS, sequencer
 from rtl.sync_fifo import sync_fifo
 
 INT_BITS = len(regmap.register("INT_STATUS").fields)
+REGS_FIFO_PARAMETERS = ("fifo_depth", "clock_hz", "device", "coord_width", "variants")  # the last two: of dda
 
 
 def _bit(name, field_name):
@@ -18,7 +22,8 @@ def _bit(name, field_name):
 
 
 @block
-def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_depth=512, coord_width=24):
+def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_depth=FIFO_DEPTH.default,
+              clock_hz=CLOCK_HZ.default, device=DEVICE.default):
     """The card behind the PCI target: everything of the paper's figure 1 but the DDA.
 
     Ports: ``local`` (the target's back end; I/O BAR = the registers of
@@ -29,8 +34,12 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     step requests); ``pins`` (STEP/DIR out); ``irq`` (level, to INTA#:
     INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
     COMMAND.SOFT_RESET: the top resets the DDA with it).
-    Parameters: ``fifo_depth`` (words, a power of two; 512 words of 32 bits
-    are four iCE40 4-Kbit block RAMs), ``coord_width`` (the DDA's).
+    Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
+    two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
+    ``clock_hz`` and ``device`` only set capability registers (CLOCK_HZ,
+    BUILD; FIFO_SIZE, BUILD.COORD_WIDTH and BUILD.DDA_VARIANTS come from
+    ``fifo_depth``, ``dda.coord_width`` and ``dda.variants``: the
+    sequencer refuses an ARC that names a variant the DDA lacks).
 
     Local bus: I/O and FIFO writes complete in the clock they are requested,
     a full FIFO answers retry; an I/O write reaches the registers one clock
@@ -42,6 +51,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         ready    _/~~~~~~~\\_______
         retry    _________/~~~\\___     FIFO full
     """
+    build = parameters.check(dict(fifo_depth=fifo_depth, clock_hz=clock_hz, device=device,
+                                  coord_width=dda.coord_width, variants=variants_choice(dda.variants)))
     specs = regmap.REGISTERS
     io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
     byte_mask = Signal(intbv(0)[32:])
@@ -54,12 +65,11 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     fifo_pop, fifo_empty, fifo_full = Signal(bool(0)), Signal(bool(1)), Signal(bool(0))
     fifo_level = Signal(intbv(0, min=0, max=fifo_depth + 1))
     level_bits = regmap.register("STATUS").field("FIFO_LEVEL").width
-    if fifo_depth >= 1 << level_bits:
-        raise ValueError(f"fifo_depth {fifo_depth} does not fit STATUS.FIFO_LEVEL")
     level_wide = Signal(intbv(0)[level_bits:])
 
     values = {r.name: Signal(intbv(r.reset)[r.width:]) for r in specs}
-    hw = {r.name: Signal(intbv(r.reset if r.access == "RO" else 0)[r.width:]) for r in specs}
+    # RO registers read the hardware, the capability registers the build
+    hw = {r.name: Signal(intbv(regmap.build_word(r, build) if r.access == "RO" else 0)[r.width:]) for r in specs}
     strobes = {r.name: Signal(bool(0)) for r in specs}
     reads = [Signal(intbv(0)[32:]) for _ in range(len(specs) + 1)]
     clamps = [Signal(bool(0)) for _ in range(len(specs) + 1)]
@@ -91,7 +101,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     pos_y_snapshot = position_signal()
 
     units = [sync_fifo(clock, reset, push, local.wdata, fifo_pop, fifo_dout, fifo_flush, fifo_level,
-                       fifo_empty, fifo_full, depth=fifo_depth, width=32)]
+                       fifo_empty, fifo_full, depth=fifo_depth)]
     for i, spec in enumerate(specs):
         units.append(reg_word(clock, reset, local.addr, written_addr, io_written, written_mask, written_data,
                               set_strobe, set_index, set_value, hw[spec.name], values[spec.name],
@@ -100,8 +110,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     units.append(sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, core_clear,
                            clear_error, dda, seq_load, seq_count[0], seq_count[1], pulse_busy, outputs_busy,
                            set_strobe, set_index, set_value, mark_strobe, mark_tag, error_code,
-                           seq_busy, motion_run, discard_on_clear, coord_width=coord_width,
-                           set_indices=tuple(regmap.SET_TARGETS)))
+                           seq_busy, motion_run, discard_on_clear, set_indices=tuple(regmap.SET_TARGETS)))
     units.append(feed_rate(clock, reset, motion_run, hold, values["FEED_RATE"], values["RAMP_START"],
                            values["RAMP_STEP"], dda.stop_left, tick))
     for axis, name in enumerate("XY"):
@@ -185,6 +194,10 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     def widen_level():
         level_wide.next = concat(intbv(0)[level_pad:], fifo_level)
 
+    @always_comb
+    def copy_level():   # a FIFO of 2**15 words: the level fills the field
+        level_wide.next = fifo_level
+
     position_y = positions[1]
     direct_busy_x, direct_busy_y = direct_busy
     direct_request_x, direct_request_y = direct_request
@@ -220,7 +233,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
 
     units += [decode_bus, answer_bus, write_stage, control_bits, soft_reset, fifo_emptying, outputs_before, snapshot,
               pulse_activity,
-              merge_requests, widen_level]
+              merge_requests, widen_level if level_pad else copy_level]
     for axis, name in enumerate("XY"):
         units.append(_axis_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"],
                                   seq_load, seq_count[axis], axis_load[axis], axis_count[axis]))
@@ -324,8 +337,10 @@ def _positions(position_x, snapshot_y, pos_x, pos_y):
     return show
 
 
-def regs_fifo_ports(fifo_depth=512, coord_width=24):
-    """Fresh ports of ``regs_fifo`` for conversion and benches."""
+def regs_fifo_ports(coord_width=COORD_WIDTH.default, variants=VARIANTS.default, **build):
+    """Fresh ports of ``regs_fifo`` for conversion and benches: ``dda`` of
+    ``coord_width`` bits and ``variants``; ``build``: the block's parameters, checked."""
+    parameters.check_unit("regs_fifo", REGS_FIFO_PARAMETERS, dict(build, coord_width=coord_width, variants=variants))
     return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(),
-                dda=DdaPort(coord_width), steps=AxisPulses(), pins=MotorPins(), irq=Signal(bool(0)),
+                dda=DdaPort(coord_width, variants), steps=AxisPulses(), pins=MotorPins(), irq=Signal(bool(0)),
                 core_clear=Signal(bool(0)))

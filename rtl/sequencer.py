@@ -4,6 +4,7 @@ from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 from rtl import instructions as isa
 from rtl.direct_pulse import COUNT_BITS
 from rtl.interfaces import DdaPort, card_reset
+from rtl.parameters import COORD_WIDTH
 
 CODE_BITS = 4
 ERROR_BITS = 4
@@ -29,7 +30,7 @@ def _field(op_name, field_name):
 def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clear_error,
               dda, pulse_load, pulse_count_x, pulse_count_y, pulse_busy, outputs_busy,
               set_strobe, set_index, set_value, mark_strobe, mark_tag,
-              error_code, busy, motion_run, discard_on_clear, *, coord_width=24, set_indices=(0,)):
+              error_code, busy, motion_run, discard_on_clear, *, set_indices=(0,)):
     """Fetch, check and execute the FIFO's commands (``docs/instructions.md``).
 
     Fetch: the FIFO is read one word per clock (``fifo_pop``; the word arrives
@@ -53,15 +54,16 @@ def sequencer(clock, reset, fifo_dout, fifo_empty, fifo_pop, enable, clear, clea
     that ``clear_error`` (the fetch restarts at a header).  ``enable`` low
     holds the queue; ``clear`` (soft reset) drops everything.  ``busy``:
     something is running or queued; ``motion_run``: a path is under way
-    (feed-rate ramp; high across chained segments).  Parameters:
-    ``coord_width`` (range of ARC/LINE operands), ``set_indices`` (SET
-    indices that exist).
+    (feed-rate ramp; high across chained segments).  ARC/LINE operands
+    must fit ``dda.coord_width``.  Parameter: ``set_indices`` (SET indices
+    that exist).
 
         clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
         fifo_pop  _/~~~~~~~~~~~\\_______________     LINE: 3 words
         next ok   _____________/~~~\\___________
         dda.start _________________/~~~\\_______     (dda.ready high)
     """
+    coord_width = dda.coord_width
     seq_t = enum("S_IDLE", "S_MOTION", "S_PULSE", "S_DWELL", "S_ERROR")
     state = Signal(seq_t.S_IDLE)
     header = Signal(intbv(0)[32:])
@@ -356,7 +358,7 @@ def _fits(operand, fits, width):
     return sign_extension
 
 
-def sequencer_ports(coord_width=24):
+def sequencer_ports(coord_width=COORD_WIDTH.default):
     """Fresh ports of ``sequencer`` for conversion and benches."""
     count = dict(min=-(1 << (COUNT_BITS - 1)), max=1 << (COUNT_BITS - 1))
     return dict(clock=Signal(bool(0)), reset=card_reset(), fifo_dout=Signal(intbv(0)[32:]),

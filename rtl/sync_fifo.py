@@ -5,8 +5,8 @@ from rtl.interfaces import card_reset
 
 
 @block
-def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, depth=512, width=32):
-    """First-in first-out buffer of ``depth`` words of ``width`` bits.
+def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, depth):
+    """First-in first-out buffer of ``depth`` words as wide as ``din``.
 
     Ports: ``push`` writes ``din`` (ignored when ``full``); ``pop`` reads the
     oldest word into ``dout`` at the clock edge (ignored when ``empty``), so
@@ -14,7 +14,7 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, 
     it; ``level`` counts the words held, ``empty``/``full`` follow it.
     Push and pop in the same clock keep the level.  The storage and the read
     register sit in a process without reset so that they become block RAM.
-    Parameters: ``depth`` (a power of two), ``width``.
+    Parameter: ``depth`` (a power of two; ``level`` counts 0..depth).
 
         clock  _/~\\_/~\\_/~\\_/~\\_
         push   _/~~~\\__________
@@ -24,6 +24,9 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, 
     """
     if depth < 2 or depth & (depth - 1):
         raise ValueError(f"FIFO depth must be a power of two >= 2, got {depth}")
+    if len(dout) != len(din) or level.max != depth + 1:
+        raise ValueError(f"sync_fifo: dout must be as wide as din and level count 0..{depth}")
+    width = len(din)
     addr_bits = depth.bit_length() - 1
     storage = [Signal(intbv(0)[width:]) for _ in range(depth)]
     write_addr = Signal(modbv(0)[addr_bits:])
@@ -89,7 +92,7 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, 
     return enables, near_ends, memory, pointers, flags
 
 
-def sync_fifo_ports(depth=512, width=32):
+def sync_fifo_ports(depth, width=32):
     """Fresh ports of ``sync_fifo`` for conversion and benches."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), push=Signal(bool(0)),
                 din=Signal(intbv(0)[width:]), pop=Signal(bool(0)), dout=Signal(intbv(0)[width:]),

@@ -33,10 +33,17 @@ MOTION_DISPLAY = dict(signed=POSITIONS + OPERANDS,
                       names={"sequencer.opcode": {op.code: op.name for op in isa.OPCODES}})
 
 
+PIN_BITS = {"step_x": 1, "dir_x": 2, "step_y": 4, "dir_y": 8}  # the pins' state as one number
+
+
 @dataclass
 class PinLog:
-    """Rises of the STEP pins: (clock, x stepped, y stepped, x dir pin, y dir pin)."""
+    """Rises of the STEP pins: (clock, x stepped, y stepped, x dir pin, y dir pin);
+    ``edges``: every change of the four pins, (clock, state by ``PIN_BITS``).
+    A clock is numbered by the rising edges before it: pins that change after
+    edge n are recorded with clock n."""
     rises: list = field(default_factory=list)
+    edges: list = field(default_factory=list)
     clock: int = 0
 
     def path(self, start=(0, 0), polarity=(0, 0)):
@@ -69,7 +76,7 @@ def pin_capture(clock, pins, log):
 
     @instance
     def capture():
-        before = (False, False)
+        before, state_before = (False, False), 0
         while True:
             yield clock.negedge
             log.clock += 1
@@ -78,6 +85,10 @@ def pin_capture(clock, pins, log):
             if sx or sy:
                 log.rises.append((log.clock, sx, sy, bool(pins.dir_x), bool(pins.dir_y)))
             before = now
+            state = sum(bit for name, bit in PIN_BITS.items() if getattr(pins, name))
+            if state != state_before:
+                log.edges.append((log.clock, state))
+            state_before = state
 
     return capture
 

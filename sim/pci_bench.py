@@ -6,16 +6,27 @@ generator that calls the host's transactions) with a VCD trace and a GTKWave
 save file, the monitor watching every clock.
 
 Targets: ``target="myhdl"`` (``rtl.pci_slave``), ``"verilog"`` (the
-generated ``gen/pci_slave.v`` in Icarus), or a function ``bench -> (agent,
-[(block factory, args[, keyword args])])`` for any other target (the
-behavioural one of the host tests, the whole card).
+generated ``gen/pci_slave.v`` in Icarus), a ``VerilogTarget`` (any Verilog
+PCI target, ``sim.pci_cosim``), or a function ``bench -> (agent, blocks)``
+for any other target (the behavioural ones of the host tests, the whole
+card), ``blocks`` a list of ``(block factory, args[, keyword args])`` or a
+function ``bench -> list`` called once the bus model exists.
+
+Verilog targets run in float mode (``floating=True``): an AD, C/BE# or PAR
+line nobody drives reaches them as ``z``, and an X/Z detector on every line
+they drive reports to the monitor (rule 19).  The monitor stops at the
+first violation (``monitor="stop"``) or records every one and fails the run
+at its end with a summary (``monitor="record"``).
 """
 from myhdl import Signal, StopSimulation, block, instance
 
 from rtl.interfaces import card_reset
 from sim.local_memory import LocalMemory, local_memory
 from sim.paths import GEN
+from sim.cosim import flatten_ports
 from sim.pci_bus import PciSegment, pci_segment
+from sim.pci_cosim import TargetAgent, VerilogTarget, pci_target_cosimulation, split_pins
+from sim.pci_lines import LINE_WIDTHS
 from sim.pci_host import PciHost, pci_host, run_scenario
 from sim.pci_monitor import ProtocolChecker, pci_monitor
 from sim.waves import Waveform, run_traced, write_gtkw
@@ -23,6 +34,7 @@ from sim.clocking import clock_source
 
 CLOCK_PERIOD = 30  # time units per PCI clock; 30 ns is 33.3 MHz
 RESET_CLOCKS = 3
+SETTLE_CLOCKS = 2  # idle clocks after RST# rises before the scenario starts
 TARGET_DEVICE = 0  # IDSEL of the target on AD[16]
 
 WAVE_GROUPS = {
@@ -41,12 +53,23 @@ class PciBench:
     """One bench.  ``slave_params``: parameters of ``pci_slave``;
     ``memory``: the back end (a LocalMemory sized to the BARs by default);
     ``host_options``: PciHost keyword arguments; ``allow_parity_errors``:
-    passed to the monitor."""
+    passed to the monitor; ``monitor``: "stop" or "record";
+    ``settle_clocks``: idle clocks between the end of RST# and the
+    scenario (default ``SETTLE_CLOCKS``, 2: enough for this card; PCI allows
+    a device 2^25 clocks before its first configuration access, Trhfa, so
+    a slow target may need more, or an ``enumerate_bus(settle_clocks=...)``
+    that retries master-aborted reads); ``floating``: float mode of
+    Verilog targets."""
 
     def __init__(self, target="myhdl", slave_params=None, memory=None, host_options=None,
-                 allow_parity_errors=False):
+                 allow_parity_errors=False, monitor="stop", settle_clocks=SETTLE_CLOCKS,
+                 floating=True):
+        if settle_clocks < 1:
+            raise ValueError(f"settle_clocks must be >= 1, not {settle_clocks}")
         self.slave_params = dict(slave_params or {})
         self.target = target
+        self.settle_clocks = settle_clocks
+        self.floating = floating
         self.clock = Signal(bool(0))
         self.reset = card_reset()
         self.irq = Signal(bool(0))
@@ -54,13 +77,17 @@ class PciBench:
         self.ports = None
         self.memory = memory
         self.other_blocks = []
-        if callable(target):
+        if isinstance(target, VerilogTarget):
+            agent = TargetAgent([line for line in LINE_WIDTHS if target.drives(line)])
+        elif callable(target):
             agent, self.other_blocks = target(self)
         else:
             agent = self._slave_ports()
+        self.agent = agent
         self.segment = PciSegment({"host": self.host.agent, "target": agent},
                                   idsel={"target": 16 + TARGET_DEVICE})
-        self.checker = ProtocolChecker(TARGET_DEVICE, self.host.parity_response, allow_parity_errors)
+        self.checker = ProtocolChecker(TARGET_DEVICE, self.host.parity_response, allow_parity_errors,
+                                       mode=monitor)
 
     def _slave_ports(self):
         from rtl.pci_slave import pci_slave_ports  # here: other targets need no RTL
@@ -77,8 +104,11 @@ class PciBench:
     def target_blocks(self):
         """[(block factory, args)] of the target side, or a ready Cosimulation
         in place of a factory (MyHDL wants blocks created in the bench body)."""
+        if isinstance(self.target, VerilogTarget):
+            return [(self._target_cosimulation(self.target), None)]
         if callable(self.target):
-            return self.other_blocks
+            blocks = self.other_blocks
+            return blocks(self) if callable(blocks) else blocks
         blocks = [(local_memory, (self.clock, self.reset, self.ports["local"], self.memory))]
         if self.target == "myhdl":
             from rtl.pci_slave import pci_slave
@@ -89,16 +119,25 @@ class PciBench:
         raise ValueError(f"unknown target {self.target!r}: use 'myhdl', 'verilog' or a function")
 
     def _cosimulation(self):
-        from sim.cosim import convert_and_cosimulate, cosimulate
+        from sim.cosim import convert_module
 
         if self.slave_params:
             from rtl.pci_slave import pci_slave
 
-            return convert_and_cosimulate(pci_slave, "pci_slave", self.ports, **self.slave_params)
-        verilog = GEN / "pci_slave.v"
-        if not verilog.exists():
-            raise FileNotFoundError(f"{verilog} missing: run python -m rtl.top --convert")
-        return cosimulate("pci_slave", self.ports, [verilog])
+            verilog = convert_module(pci_slave, "pci_slave", self.ports, **self.slave_params)
+        else:
+            verilog = GEN / "pci_slave.v"
+            if not verilog.exists():
+                raise FileNotFoundError(f"{verilog} missing: run python -m rtl.top --convert")
+        target = VerilogTarget([verilog], "pci_slave", split_pins([verilog], "pci_slave"), clock="clock",
+                               reset="reset", idsel="pci_idsel_in")
+        others = {name: signal for name, signal in flatten_ports(self.ports).items()
+                  if not name.startswith("pci_") and name not in ("clock", "reset")}
+        return self._target_cosimulation(target, others)
+
+    def _target_cosimulation(self, target, others=None):
+        return pci_target_cosimulation(target, self.clock, self.reset, self.agent, self.segment,
+                                       self.host.agent, 16 + TARGET_DEVICE, self.floating, others)
 
     def run(self, scenario, name, trace=True, background=None):
         """Run ``scenario(bench)`` to its end, ``background(bench)`` (a
@@ -111,9 +150,11 @@ class PciBench:
             finally:
                 if top.sim is not None and not top.sim._finished:
                     top.quit_sim()
+            self.checker.raise_recorded()
             return None
         vcd = run_traced(top, name)
         write_gtkw(vcd, self._wave_groups(vcd))
+        self.checker.raise_recorded()
         return vcd
 
     def _wave_groups(self, vcd):
@@ -181,14 +222,14 @@ def pci_testbench(bench, scenario, background=None):
         # waiter from a plain ``yield`` and break the scenario's signal waits
         yield from bench.clocks(RESET_CLOCKS)
         reset.next = not reset.active
-        yield from bench.clocks(2)
+        yield from bench.clocks(bench.settle_clocks)
         yield from run_scenario(bench.host, scenario(bench))
         yield from bench.clocks(4)
         raise StopSimulation()
 
     @instance
     def beside():
-        yield from bench.clocks(RESET_CLOCKS + 2)
+        yield from bench.clocks(RESET_CLOCKS + bench.settle_clocks)
         if background is not None:
             yield from run_scenario(bench.host, background(bench))
 

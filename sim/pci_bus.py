@@ -81,6 +81,7 @@ class PciSegment:
         self._ports = {line: self._drive_ports(line) for line in LINE_WIDTHS}
         self.values, self.drivers = {}, {}
         self._seen = {}
+        self._unknown = []          # [(Signal, lines)] of X/Z detectors
         for line in LINE_WIDTHS:
             self.update(line)
 
@@ -120,9 +121,20 @@ class PciSegment:
         self.values[line], self.drivers[line] = value, names
         return True
 
+    def watch_unknown(self, report, lines):
+        """Take X/Z reports into every sample: bit i of the Signal ``report``
+        high means ``lines[i]`` was X or Z while driven (a four-state
+        simulator's detector, e.g. the wrapper of ``sim.pci_cosim``)."""
+        self._unknown.append((report, tuple(lines)))
+
     def sample(self):
         """The segment as it is now (at a rising edge: the clock that ended)."""
-        return BusSample(now(), dict(self.values), dict(self.drivers))
+        unknown = frozenset()
+        for report, lines in self._unknown:
+            bits = int(report.val)
+            if bits:
+                unknown |= {line for bit, line in enumerate(lines) if bits >> bit & 1}
+        return BusSample(now(), dict(self.values), dict(self.drivers), unknown)
 
 
 @block
@@ -213,3 +225,37 @@ def scripted_agent(clock, agent, script, done=None):
             done.next = True
 
     return player
+
+
+@block
+def edge_agent(clock, reset, agent, model):
+    """A per-edge Python agent (``model.step(sample)``, ``model.drive``; e.g.
+    ``sim.pci_delayed_target.DelayedTarget``) on ``agent``'s Signals (a
+    ``PciAgent`` on a ``PciSegment``).  While RST# (``reset``, or None) is
+    asserted the agent is released and not stepped.
+
+        clock        _/~\\_/~\\_/~\\_
+        agent *_in     ^   ^   ^       sampled: model.step(sample)
+        agent out/oe   --< d >< d >    model.drive for the next clock
+    """
+    drive = model.drive
+    names = [line for line in LINE_WIDTHS if hasattr(drive, f"{line}_oe")]
+    ports = [(getattr(agent, f"{line}_out"), getattr(agent, f"{line}_oe"), f"{line}_out", f"{line}_oe")
+             for line in names]
+    inputs = [(line, getattr(agent, f"{line}_in")) for line in LINE_WIDTHS]
+
+    @instance
+    def run():
+        while True:
+            yield clock.posedge
+            if reset is not None and reset.val == reset.active:
+                for _, enable, _, _ in ports:
+                    enable.next = False
+                continue
+            values = {line: int(port.val) for line, port in inputs}
+            model.step(BusSample(now(), values, {}))
+            for out, enable, out_name, enable_name in ports:
+                out.next = getattr(drive, out_name)
+                enable.next = getattr(drive, enable_name)
+
+    return run

@@ -1,13 +1,21 @@
 """Passive PCI protocol checker: plain Python, fed by any simulator.
 
 ``ProtocolChecker.step(sample, in_reset)`` takes one ``BusSample`` of the
-segment per rising clock edge (resolved lines and who drove them) and raises
-``ProtocolViolation`` naming the rule and the time at the first violation of
+segment per rising clock edge (resolved lines and who drove them) and checks
 the rules below (PCI 2.3 chapter 3 and Appendix C).  ``sim.pci_monitor``
-runs it in a MyHDL bench.  The checker also snoops configuration writes to
-the Command register of the watched device (Parity Error Response, SERR# Enable) to
-know when PERR# and SERR# are due, and keeps a summary of every transaction
-(``transactions``) for figures.
+runs it in a MyHDL bench.  Two modes:
+
+* ``mode="stop"`` (default): raise ``ProtocolViolation`` naming the rule, the
+  time and the clock at the first violation;
+* ``mode="record"``: keep going; every violation is kept in ``violations``
+  (``Violation``: rule, time, clock, detail and the bus lines and their
+  drivers at that edge); ``summary()`` counts them by rule and
+  ``raise_recorded()`` raises one ``ProtocolViolation`` for them all.
+
+The checker also snoops configuration writes to the Command register of the
+watched device (Parity Error Response, SERR# Enable) to know when PERR# and
+SERR# are due, and keeps a summary of every transaction (``transactions``)
+for figures.
 
 Parity errors are violations unless ``allow_parity_errors`` is set (a bench
 that injects them on purpose); then only their reporting is checked.
@@ -45,6 +53,7 @@ RULES = {
     16: "no contention, a turnaround clock between drivers",
     17: "sustained tri-state lines driven high before release",
     18: "lines released during reset",
+    19: "no X or Z on a line while it is driven",
 }
 
 CONFIG_WRITE = 0xB
@@ -55,11 +64,31 @@ MASTER_ABORT_EDGE = 4
 
 
 class ProtocolViolation(AssertionError):
-    """A PCI rule was broken: ``rule`` (number), ``time``, ``detail``."""
+    """A PCI rule was broken: ``rule`` (number), ``time``, ``detail``;
+    ``clock``: the checker's edge count; ``violations``: every recorded one
+    (record mode)."""
 
-    def __init__(self, rule, time, detail):
-        self.rule, self.time, self.detail = rule, time, detail
-        super().__init__(f"PCI rule {rule} ({RULES[rule]}) broken at t={time}: {detail}")
+    def __init__(self, rule, time, detail, clock=None, violations=()):
+        self.rule, self.time, self.detail, self.clock = rule, time, detail, clock
+        self.violations = list(violations)
+        at = f"t={time}" if clock is None else f"t={time} (clock {clock})"
+        super().__init__(f"PCI rule {rule} ({RULES[rule]}) broken at {at}: {detail}")
+
+
+@dataclass(frozen=True)
+class Violation:
+    """One recorded violation: the bus as sampled at that edge."""
+
+    rule: int
+    time: int
+    clock: int
+    detail: str
+    values: dict
+    drivers: dict
+
+    def __str__(self):
+        lines = " ".join(f"{line}={_hex(value)}" for line, value in self.values.items())
+        return f"clock {self.clock} t={self.time} rule {self.rule} ({RULES[self.rule]}): {self.detail} [{lines}]"
 
 
 @dataclass
@@ -104,7 +133,13 @@ class ProtocolChecker:
     Error Response bit (PERR# on read data errors).
     """
 
-    def __init__(self, target_device=0, master_parity_response=True, allow_parity_errors=False):
+    def __init__(self, target_device=0, master_parity_response=True, allow_parity_errors=False,
+                 mode="stop"):
+        if mode not in ("stop", "record"):
+            raise ValueError(f"monitor mode must be 'stop' or 'record', not {mode!r}")
+        self.mode = mode
+        self.violations = []
+        self.unknown_clocks = 0   # edges with an X/Z report (rule 19)
         self.target_device = target_device
         self.master_parity_response = master_parity_response
         self.allow_parity_errors = allow_parity_errors
@@ -122,11 +157,39 @@ class ProtocolChecker:
         self.expected_serr = set()
 
     def fail(self, rule, detail):
-        raise ProtocolViolation(rule, self.sample.time, detail)
+        """Report a violation: raise (stop mode) or record it and go on."""
+        sample = self.sample
+        if self.mode == "stop":
+            raise ProtocolViolation(rule, sample.time, detail, self.edges)
+        self.violations.append(Violation(rule, sample.time, self.edges, detail, dict(sample.values),
+                                         dict(sample.drivers)))
+
+    def summary(self):
+        """Recorded violations by rule: one line per rule (count, first and
+        last clock), or a line saying there were none."""
+        if not self.violations:
+            return f"PCI monitor: no violation in {self.edges} clocks"
+        lines = [f"PCI monitor: {len(self.violations)} violations in {self.edges} clocks"]
+        for rule in sorted({v.rule for v in self.violations}):
+            seen = [v for v in self.violations if v.rule == rule]
+            lines.append(f"  rule {rule} ({RULES[rule]}): {len(seen)}, clocks {seen[0].clock}"
+                         f"..{seen[-1].clock}; first: {seen[0].detail}")
+        return "\n".join(lines)
+
+    def raise_recorded(self):
+        """Raise one ``ProtocolViolation`` (the first, with the summary) if any were recorded."""
+        if self.violations:
+            first = self.violations[0]
+            raise ProtocolViolation(first.rule, first.time, f"{first.detail}\n{self.summary()}",
+                                    first.clock, self.violations)
 
     def step(self, sample, in_reset=False):
         self.edges += 1
         self.sample = sample
+        if sample.unknown:
+            self.unknown_clocks += 1
+            self.fail(19, f"{', '.join(sorted(line.upper() for line in sample.unknown))} X or Z "
+                          "while driven")
         if in_reset:
             self._check_reset(sample)
             self._reset_state()
@@ -157,6 +220,8 @@ class ProtocolChecker:
                 self.fail(4, "FRAME# asserted while IRDY# of the last transaction is asserted")
             if sample.ad is None or sample.cbe is None:
                 self.fail(14, "address phase with AD or C/BE# floating")
+                return {"transaction": None, "address": False, "data": False, "completion": False,
+                        "transfer": False, "ended": False}
             current = self.current = TransactionRecord(sample.time, sample.cbe, sample.ad,
                                                        start_edge=self.edges,
                                                        phase_start_edge=self.edges)
@@ -191,6 +256,8 @@ class ProtocolChecker:
         return info
 
     def _snoop_config_write(self, current, sample):
+        if sample.ad is None or sample.cbe is None:
+            return
         address = current.address
         if current.command != CONFIG_WRITE or address & 0x3 or (address >> 8) & 0x7:
             return
@@ -273,10 +340,12 @@ class ProtocolChecker:
                 return
         else:
             return
-        if previous.ad is None:
-            self.fail(14, f"AD floating in a {kind} phase")
+        if previous.ad is None or previous.cbe is None:
+            self.fail(14, f"AD or C/BE# floating in a {kind} phase")
+            return
         if sample.par is None:
             self.fail(14, f"PAR not driven the clock after a {kind} phase")
+            return
         if sample.par == even_parity(previous.ad, previous.cbe):
             return
         self.parity_errors.append((previous.time, kind))

@@ -27,13 +27,15 @@ import random
 from dataclasses import dataclass, field
 
 from sim.pci_host_core import (CONFIG_READ, CONFIG_WRITE, IO_READ, IO_WRITE, MEM_READ, MEM_WRITE,
-                               MEMORY_READS, MEMORY_WRITES, Clocks, HostCore, Request, Termination)
+                               MEMORY_READS, MEMORY_WRITES, Clocks, HostCore, HostError, Request,
+                               Termination)
 
 COMMAND_IO = 1 << 0
 COMMAND_MEMORY = 1 << 1
 COMMAND_PARITY_RESPONSE = 1 << 6
 COMMAND_SERR_ENABLE = 1 << 8
 COMMAND_INTERRUPT_DISABLE = 1 << 10
+SETTLE_RETRY_CLOCKS = 8
 
 
 @dataclass
@@ -144,15 +146,22 @@ class PciMaster:
 
     ``irdy_waits``: default master wait states (int or function of the data
     phase index).  ``parity_response``: the master's own Parity Error
-    Response (PERR# on bad read data).  ``max_retries``: retries of one
-    access before the host gives up and reports RETRY.
+    Response (PERR# on bad read data).  ``max_retries``: retries in a row
+    (per resumption point of an access) before the host gives up;
+    ``max_clocks``: clocks one access may take (None: no limit); both raise
+    ``HostError``.  ``finish_abandoned``: before the next access, complete a
+    read given up on (a delayed transaction the target still holds).
     """
 
-    def __init__(self, core=None, irdy_waits=0, parity_response=True, max_retries=64):
+    def __init__(self, core=None, irdy_waits=0, parity_response=True, max_retries=64,
+                 max_clocks=None, finish_abandoned=False):
         self.core = core or HostCore(parity_response)
         self.core.parity_response = parity_response
         self.irdy_waits = irdy_waits
         self.max_retries = max_retries
+        self.max_clocks = max_clocks
+        self.finish_abandoned_first = finish_abandoned
+        self.abandoned = []
 
     @property
     def parity_response(self):
@@ -174,20 +183,33 @@ class PciMaster:
 
     # ----- layer 2: transactions --------------------------------------------------
     def transfer(self, command, address, phases, *, resume=True, irdy_waits=None,
-                 bad_address_parity=False, bad_data_parity=(), max_retries=None,
+                 bad_address_parity=False, bad_data_parity=(), max_retries=None, max_clocks=None,
                  increment=True, size=4, offset=None):
         """Run ``phases`` ([(be, data or None)]) as one access; a generator
         returning a ``Result``.  ``increment``: a resumed burst restarts at
-        the next dword (False: same address, for configuration and I/O)."""
+        the next dword (False: same address, for configuration and I/O).
+
+        A retried transaction is repeated exactly (command, address, byte
+        enables: what a delayed transaction needs to complete), at most
+        ``max_retries`` times in a row: the count starts afresh whenever data
+        move.  ``max_clocks`` bounds the whole access.  Either budget spent
+        raises ``HostError`` with the bus transactions so far; a read given
+        up that way is kept in ``abandoned`` (see ``finish_abandoned``).
+        Clocks are the edges the core was stepped.
+        Both default to the host's own settings."""
         if not phases:
             raise ValueError("an access needs at least one data phase")
         if not 0 <= command <= 0xF:
             raise ValueError(f"PCI command must be 0..15, not {command}")
+        if self.abandoned and self.finish_abandoned_first:
+            yield from self.finish_abandoned()
         waits = self.irdy_waits if irdy_waits is None else irdy_waits
-        retries_left = self.max_retries if max_retries is None else max_retries
+        retry_budget = self.max_retries if max_retries is None else max_retries
+        clock_budget = self.max_clocks if max_clocks is None else max_clocks
         offset = address & 3 if offset is None else offset
         result = Result(command, address, len(phases), offset=offset, size=size)
-        done = 0
+        first_edge = self.core.edge
+        done = retries = 0
         while done < len(phases):
             start = self._resume_address(command, address, phases, done, increment)
             request = self.core.submit(Request(
@@ -200,13 +222,36 @@ class PciMaster:
             done += len(transaction.data)
             if transaction.termination is Termination.MASTER_ABORT and not command & 1:
                 result.data.extend([0xFFFFFFFF] * (len(phases) - done))
-            if result.aborted or not resume:
+            if result.aborted or not resume or done == len(phases):
                 break
-            if transaction.termination is Termination.RETRY:
-                retries_left -= 1
-                if retries_left < 0:
-                    break
+            retries = retries + 1 if transaction.termination is Termination.RETRY else 0
+            spent = self.core.edge - first_edge
+            if retries > retry_budget or (clock_budget is not None and spent > clock_budget):
+                self._give_up(request, result, retries if retries > retry_budget else 0, spent)
         return result
+
+    def _give_up(self, request, result, retries, clocks):
+        """Raise ``HostError`` (``retries`` in a row, or else ``clocks``, spent)."""
+        if not request.command & 1:
+            self.abandoned.append(request)
+        budget = f"{retries} retries in a row" if retries else f"{clocks} clocks"
+        transaction = result.transactions[-1]
+        raise HostError(f"{transaction.command:#x} at {transaction.address:#x} gave up after {budget}"
+                        f" ({len(result.data)} of {result.requested} data phases done, "
+                        f"{len(result.transactions)} bus transactions)", result.transactions)
+
+    def finish_abandoned(self, max_retries=None, max_clocks=None):
+        """Repeat the reads given up on (``abandoned``, oldest first) until
+        each completes its first data phase, so that a target holding one as
+        a delayed transaction lets it go; the data are dropped.  Returns the
+        ``Result`` of each."""
+        results = []
+        while self.abandoned:
+            request = self.abandoned.pop(0)
+            results.append((yield from self.transfer(
+                request.command, request.address, request.phases[:1], irdy_waits=request.waits,
+                max_retries=max_retries, max_clocks=max_clocks)))
+        return results
 
     @staticmethod
     def _shifted(waits, done):
@@ -282,13 +327,23 @@ class PciMaster:
 
     # ----- layer 3: enumeration -------------------------------------------------
     def enumerate_bus(self, devices=range(16), io_base=0x1000, mem_base=0x80000000,
-                      command_bits=COMMAND_PARITY_RESPONSE | COMMAND_SERR_ENABLE):
+                      command_bits=COMMAND_PARITY_RESPONSE | COMMAND_SERR_ENABLE, settle_clocks=0):
         """Find every function 0 on ``devices``, size and place its BARs,
-        enable its spaces (plus ``command_bits``); return ``[PciDevice]``."""
+        enable its spaces (plus ``command_bits``); return ``[PciDevice]``.
+
+        ``settle_clocks``: a device still waking up from reset may not claim
+        its first configuration reads (PCI gives it up to 2^25 clocks after
+        RST#); a read of the IDs that master-aborts within this many clocks of
+        the start of the enumeration is tried again every
+        ``SETTLE_RETRY_CLOCKS`` clocks."""
         found = []
         bases = {"io": io_base, "mem": mem_base}
+        start = self.core.edge
         for device in devices:
             ids = yield from self.config_read(device, 0x00)
+            while ids.termination is Termination.MASTER_ABORT and self.core.edge - start < settle_clocks:
+                yield Clocks(SETTLE_RETRY_CLOCKS)
+                ids = yield from self.config_read(device, 0x00)
             if ids.aborted or ids.value & 0xFFFF == 0xFFFF:
                 continue
             found.append((yield from self._configure(device, ids.value, bases, command_bits)))

@@ -79,8 +79,7 @@ def motion_bench(kind, scenario, log, failures):
         clock, reset = Signal(bool(0)), card_reset()
         local, pins, irq = LocalBus(), MotorPins(), Signal(bool(0))
         dda, steps, core_clear = DdaPort(COORD_WIDTH), AxisPulses(), Signal(bool(0))
-        regs = regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, fifo_depth=FIFO_DEPTH,
-                         coord_width=COORD_WIDTH)
+        regs = regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, fifo_depth=FIFO_DEPTH)
         parts = [regs, contract_dda(clock, core_clear, dda, steps)]
     else:
         ports = card_core_ports(fifo_depth=FIFO_DEPTH, coord_width=COORD_WIDTH)

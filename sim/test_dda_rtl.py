@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from rtl.dda_arc import dda_arc_ports
-from rtl.dda_build import ALL_VARIANTS, DEFAULT_VARIANTS
+from rtl.dda_build import ALL_VARIANTS, DEFAULT_VARIANTS, variants_choice
 from rtl.top import convert_unit
 from sim.dda_bench import HALF_PERIOD, Record, accepted, dda_bench, end_point, random_arc, write_view
 from sim.dda_model import (IMPROVED, PAPER_V_ARC, PRECISE, TRADITIONAL, WEIGHTED, ArcCommand,
@@ -96,7 +96,7 @@ def verilog_of(build):
         return VERILOG_DIR / "dda_arc.v"
     if build not in _CONVERTED:
         folder = Path(tempfile.mkdtemp(prefix=f"dda_{build}_", dir=build_dir("cosim")))
-        _CONVERTED[build] = convert_unit("dda_arc", {"coord_width": 24, "variants": BUILDS[build]}, folder)
+        _CONVERTED[build] = convert_unit("dda_arc", {"coord_width": 24, "variants": variants_choice(BUILDS[build])}, folder)
     return _CONVERTED[build]
 
 

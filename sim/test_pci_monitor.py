@@ -225,3 +225,32 @@ def test_each_rule_fires(case):
         play(master, target, f"rule_{str(case).replace(' ', '_').replace('#', '')}", **options)
     assert caught.value.rule == rule, str(caught.value)
     assert f"rule {rule} " in str(caught.value) and "t=" in str(caught.value)
+
+
+@pytest.mark.parametrize("case", list(CASES), ids=str)
+def test_record_mode_keeps_going_and_reports_the_same_first_rule(case):
+    master, target, options = CASES[case]
+    rule = case if isinstance(case, int) else int(case.split()[0])
+    checker = play(master, target, f"record_{str(case).replace(' ', '_').replace('#', '')}",
+                   mode="record", **options)
+    first = checker.violations[0]
+    assert first.rule == rule and first.clock > 0 and set(first.values) >= {"ad", "frame", "trdy"}
+    assert f"rule {rule} " in checker.summary()
+    with pytest.raises(ProtocolViolation) as caught:
+        checker.raise_recorded()
+    assert caught.value.rule == rule and caught.value.violations == checker.violations
+
+
+def test_record_mode_records_every_clock_of_a_lasting_violation():
+    read_m, read_t = read_single()
+    master = with_step(with_step(read_m, 4, perr=0), 6, perr=1)   # PERR# low for two clocks, no error
+    checker = play(master, read_t, "record_lasting", mode="record")
+    clocks = [v.clock for v in checker.violations if v.rule == 14]
+    assert len(clocks) == 2 and clocks[1] == clocks[0] + 1
+    assert checker.summary().startswith("PCI monitor: 2 violations")
+
+
+def test_a_quiet_run_records_nothing():
+    checker = play(*read_single(), "record_quiet", mode="record")
+    assert checker.violations == [] and "no violation" in checker.summary()
+    checker.raise_recorded()

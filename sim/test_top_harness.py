@@ -23,7 +23,8 @@ def test_lines_of_the_generated_top():
     assert harness.driven == ["ad", "par", "trdy", "devsel", "stop", "perr", "serr", "inta"]
     assert harness.card.lines == tuple(harness.driven)
     text = harness.verilog()
-    assert "tri1 bus_frame;" in text and "tri0 [31:0] bus_ad;" in text  # as the bus model reads them
+    assert "tri1 bus_frame;" in text and "tri [31:0] bus_ad;" in text  # pull-ups; AD floats
+    assert "tri0 [31:0] bus_ad;" in TopHarness(generated_top(), IDSEL_BIT, floating=False).verilog()
     assert f"wire bus_idsel = bus_ad[{IDSEL_BIT}];" in text
     assert all(f"dut.pad_ad_{bit}.OUTPUT_ENABLE" in text for bit in range(32))
 

@@ -7,9 +7,10 @@ segment's wires around it:
 * every line the card reads (AD, C/BE#, PAR, FRAME#, IRDY#) and every line
   whose pad is an ``SB_IO`` cell is a net driven by the rest of the bus (the
   ``host_<line>_out`` / ``host_<line>_oe`` ports, from MyHDL) and by the
-  card's pads.  Undriven, it reads as the bus model reads it (``tri1`` where
-  PCI has a pull-up, else ``tri0``), so the card samples what the MyHDL card
-  samples.  IDSEL is wired to one AD line, as on a mother board;
+  card's pads.  Undriven, a control line reads 1 (``tri1``: PCI's pull-up);
+  AD, C/BE# and PAR float (``tri``: ``z``, as on a real bus) in float mode,
+  the default, or read 0 (``tri0``, as the MyHDL bus model reads them)
+  without it.  IDSEL is wired to one AD line, as on a mother board;
 * the card's own drive of such a line is read from its ``SB_IO`` cells
   (hierarchical references into yosys's cell model: the data the cell puts
   on its pin and the enable its ``PIN_TYPE`` uses), one bit per cell;
@@ -23,8 +24,9 @@ with them the Python bus model (``sim/pci_bus.py``) and the protocol monitor
 see the card's pad enables exactly, as they see the split-port card's.
 ``card_drive_unknown`` (one bit per line) is high while a line's drive
 cannot be told as out/oe (an enable is X or Z, a multi-bit line is enabled
-in part, or an enabled pin carries X); ``top_on_bus`` raises then, once
-reset is over.
+in part, or an enabled pin carries X or Z): the X/Z detector.  On a bench's
+bus model (``top_on_bus(..., segment=...)``) it goes into every sample and
+the monitor reports it (rule 19); without one ``top_on_bus`` raises.
 
     host out/oe --> [bus_<line> net] <--> top.v pads --> card_<line>_out/oe
                       ^ tri1 / tri0           (from the SB_IO cells)
@@ -106,9 +108,10 @@ class TopHarness:
     told exactly is refused with a ``CosimError``.
     """
 
-    def __init__(self, top_verilog, idsel_bit):
+    def __init__(self, top_verilog, idsel_bit, floating=True):
         self.top_verilog = Path(top_verilog)
         self.idsel_bit = idsel_bit
+        self.floating = floating
         body = _module_body(self.top_verilog.read_text(), TOP)
         self.ports = {name: (direction, int(msb or 0) + 1) for direction, msb, name in _PORT.findall(body)}
         self.cells = _pad_cells(body)
@@ -151,7 +154,7 @@ class TopHarness:
             width = LINE_WIDTHS[line]
             ports += [f"host_{line}_out", f"host_{line}_oe"]
             declarations += [f"input {_range(width)}host_{line}_out;", f"input host_{line}_oe;"]
-            net = "tri1" if line in PULLED_UP else "tri0"
+            net = "tri1" if line in PULLED_UP else ("tri" if self.floating else "tri0")
             body.append(f"{net} {_range(width)}bus_{line};")
             if line in OPEN_DRAIN:
                 body.append(f"assign bus_{line} = host_{line}_oe && !host_{line}_out ? 1'b0 : 1'bz;")
@@ -269,13 +272,14 @@ def _range(width):
 
 
 @block
-def top_on_bus(clock, reset, host, harness, motor):
+def top_on_bus(clock, reset, host, harness, motor, segment=None):
     """``top.v`` in Icarus through ``harness`` (a ``TopHarness``), on the bus
     of ``host`` (the agent for the rest of the bus); STEP/DIR on ``motor``.
 
     The card's drive (``harness.card``) is traced under ``target_<line>_out``
-    / ``target_<line>_oe``.  Raises at the first rising edge after reset at
-    which the drive of the clock that ended could not be told exactly.
+    / ``target_<line>_oe``.  A drive that cannot be told exactly (X, Z, in
+    part) goes to ``segment`` (a ``PciSegment``: its monitor reports it) or,
+    without one, raises at the first rising edge after reset that saw it.
 
         clock          _/~\\_/~\\_/~\\_
         host oe/out    --< H >-------      (MyHDL, to the harness)
@@ -292,6 +296,9 @@ def top_on_bus(clock, reset, host, harness, motor):
     target_perr_out, target_perr_oe = getattr(card, "perr_out", None), getattr(card, "perr_oe", None)
     target_serr_oe, target_inta_oe = getattr(card, "serr_oe", None), getattr(card, "inta_oe", None)
     cosim = harness.cosimulation(clock, reset, host, motor)
+    if segment is not None:
+        segment.watch_unknown(drive_unknown, card.lines)
+        return cosim
 
     @always(clock.posedge)
     def exact_drive():

@@ -1,0 +1,353 @@
+// Compiled harness around a Verilated card: the clock loop, the PCI segment
+// resolution and the STEP/DIR capture, behind a C interface for ctypes.
+//
+// The model's ports come from vc_ports.h, written by sim/vlt/build.py from
+// the model's own header (name, width, direction, address).  Nothing here
+// knows the card's internals: Python binds ports to roles by index (clock,
+// each PCI line's in / out / oe, IDSEL, the four motor pins).
+//
+// One clock (vc_tick): clock high, eval (the rising edge), pins sampled,
+// clock low, eval.  The clock count is the number of rising edges so far; an
+// edge record (clock, pins) is kept whenever the pins differ after an edge.
+//
+//     clock  _/~~\__/~~\__/~~\_
+//     count    1     2     3
+//     pins     <p1 ><p2  ><p3   (sampled after each rising edge)
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "verilated.h"
+#include "vc_ports.h"
+#if VC_TRACE == 1
+#include "verilated_vcd_c.h"
+typedef VerilatedVcdC TraceFile;
+#elif VC_TRACE == 2
+#include "verilated_fst_c.h"
+typedef VerilatedFstC TraceFile;
+#endif
+
+namespace {
+
+struct Port {
+    const char* name;
+    int width;
+    int direction;  // 0 input, 1 output
+    void* address;
+};
+
+// PCI lines, in the order of sim/pci_bus.py's LINE_WIDTHS.
+enum Line { AD, CBE, PAR, FRAME, IRDY, TRDY, DEVSEL, STOP, PERR, SERR, INTA, LINES };
+const int kLineWidth[LINES] = {32, 4, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+const bool kPulledUp[LINES] = {false, false, false, true, true, true, true, true, true, true, true};
+const bool kOpenDrain[LINES] = {false, false, false, false, false, false, false, false, false, true, true};
+
+enum Pin { STEP_X, DIR_X, STEP_Y, DIR_Y, PINS };
+
+// Why vc_run returned.
+enum Reason { LIMIT = 0, INTERRUPT = 1, STEPS = 2, BUS = 3 };
+
+uint64_t mask(int width) { return width >= 64 ? ~0ULL : (1ULL << width) - 1; }
+
+uint64_t read_port(const Port& port) {
+    if (port.width <= 8) return *static_cast<uint8_t*>(port.address);
+    if (port.width <= 16) return *static_cast<uint16_t*>(port.address);
+    if (port.width <= 32) return *static_cast<uint32_t*>(port.address);
+    return *static_cast<uint64_t*>(port.address);
+}
+
+void write_port(const Port& port, uint64_t value) {
+    value &= mask(port.width);
+    if (port.width <= 8) *static_cast<uint8_t*>(port.address) = static_cast<uint8_t>(value);
+    else if (port.width <= 16) *static_cast<uint16_t*>(port.address) = static_cast<uint16_t>(value);
+    else if (port.width <= 32) *static_cast<uint32_t*>(port.address) = static_cast<uint32_t>(value);
+    else *static_cast<uint64_t*>(port.address) = value;
+}
+
+struct Card {
+    std::unique_ptr<VerilatedContext> context;
+    std::unique_ptr<VC_MODEL> model;
+    std::vector<Port> ports;
+    int clock = -1;
+    int line_in[LINES], line_out[LINES], line_oe[LINES];
+    int idsel = -1, idsel_bit = 0;
+    int pins[PINS] = {-1, -1, -1, -1};
+    uint64_t clocks = 0;
+    uint64_t step_rises = 0;
+    unsigned pin_state = 0;
+    std::vector<uint64_t> edge_clocks;
+    std::vector<uint8_t> edge_states;
+#if VC_TRACE
+    std::unique_ptr<TraceFile> trace;
+    uint64_t trace_from = 0, trace_to = 0, half_period = 15;
+#endif
+
+    Card() {
+        for (int line = 0; line < LINES; ++line) line_in[line] = line_out[line] = line_oe[line] = -1;
+    }
+
+    uint64_t get(int index) const { return read_port(ports[index]); }
+    void set(int index, uint64_t value) { write_port(ports[index], value); }
+
+    void dump(uint64_t time) {
+#if VC_TRACE
+        if (trace && clocks >= trace_from && clocks < trace_to) trace->dump(time);
+#else
+        (void)time;
+#endif
+    }
+
+    unsigned sample_pins() const {
+        unsigned state = 0;
+        for (int pin = 0; pin < PINS; ++pin)
+            if (pins[pin] >= 0 && get(pins[pin])) state |= 1u << pin;
+        return state;
+    }
+
+    void tick() {
+        set(clock, 1);
+        model->eval();
+        ++clocks;
+#if VC_TRACE
+        dump(2 * half_period * (clocks - 1) + half_period);
+#endif
+        unsigned state = sample_pins();
+        if (state != pin_state) {
+            unsigned rose = state & ~pin_state;
+            step_rises += ((rose >> STEP_X) & 1) + ((rose >> STEP_Y) & 1);
+            edge_clocks.push_back(clocks);
+            edge_states.push_back(static_cast<uint8_t>(state));
+            pin_state = state;
+        }
+        set(clock, 0);
+        model->eval();
+#if VC_TRACE
+        dump(2 * half_period * clocks);
+#endif
+    }
+
+    // The card's drive of a line: true when enabled, its value in *value.
+    bool card_drive(int line, uint64_t* value) const {
+        if (line_out[line] < 0 || line_oe[line] < 0 || !get(line_oe[line])) return false;
+        *value = get(line_out[line]);
+        return true;
+    }
+
+    bool interrupt_asserted() const {
+        uint64_t value = 1;
+        return card_drive(INTA, &value) && value == 0;
+    }
+
+    // Whether the card drives any line but INTA# (nothing may move on a quiet bus).
+    bool drives_bus() const {
+        uint64_t value;
+        for (int line = 0; line < LINES; ++line)
+            if (line != INTA && card_drive(line, &value)) return true;
+        return false;
+    }
+
+    // Resolve the segment from the host's drive and the card's (the rules of
+    // sim/pci_bus.py); feed the card's inputs.  values[l], driven[l] (bit 0
+    // host, bit 1 card), floating[l].
+    void resolve(const uint64_t* host_out, const uint64_t* host_oe, uint64_t* values, uint64_t* drivers,
+                 uint64_t* floating) {
+        for (int line = 0; line < LINES; ++line) {
+            uint64_t card_value = 0;
+            bool card = card_drive(line, &card_value);
+            bool host = host_oe[line] != 0;
+            uint64_t host_value = host_out[line] & mask(kLineWidth[line]);
+            drivers[line] = (host ? 1 : 0) | (card ? 2 : 0);
+            floating[line] = 0;
+            if (kOpenDrain[line]) {
+                values[line] = ((host && host_value == 0) || (card && card_value == 0)) ? 0 : 1;
+            } else if (host || card) {
+                values[line] = (host ? host_value : 0) | (card ? card_value : 0);
+            } else if (kPulledUp[line]) {
+                values[line] = 1;
+            } else {
+                values[line] = 0;
+                floating[line] = 1;
+            }
+            if (line_in[line] >= 0) set(line_in[line], values[line]);
+        }
+        if (idsel >= 0) set(idsel, (values[AD] >> idsel_bit) & 1);
+    }
+};
+
+}  // namespace
+
+extern "C" {
+
+void* vc_new() {
+    Card* card = new Card;
+    card->context.reset(new VerilatedContext);
+#if VC_TRACE
+    card->context->traceEverOn(true);
+#endif
+    card->model.reset(new VC_MODEL{card->context.get(), VC_TOP_NAME});
+#define VC_ADD_PORT(name, width, direction) \
+    card->ports.push_back(Port{#name, width, direction, static_cast<void*>(&card->model->name)});
+    VC_PORTS(VC_ADD_PORT)
+#undef VC_ADD_PORT
+    // Settle once with every input at 0: the first rising edge is then an edge
+    // (the model's first eval only records the clock's level).
+    card->model->eval();
+    return card;
+}
+
+void vc_free(void* handle) {
+    Card* card = static_cast<Card*>(handle);
+#if VC_TRACE
+    if (card->trace) card->trace->close();
+#endif
+    card->model->final();
+    delete card;
+}
+
+int vc_trace_kind() { return VC_TRACE; }
+
+int vc_port_count(void* handle) { return static_cast<int>(static_cast<Card*>(handle)->ports.size()); }
+
+const char* vc_port_name(void* handle, int index) { return static_cast<Card*>(handle)->ports[index].name; }
+
+int vc_port_width(void* handle, int index) { return static_cast<Card*>(handle)->ports[index].width; }
+
+int vc_port_direction(void* handle, int index) { return static_cast<Card*>(handle)->ports[index].direction; }
+
+uint64_t vc_get(void* handle, int index) { return static_cast<Card*>(handle)->get(index); }
+
+void vc_set(void* handle, int index, uint64_t value) { static_cast<Card*>(handle)->set(index, value); }
+
+void vc_eval(void* handle) { static_cast<Card*>(handle)->model->eval(); }
+
+uint64_t vc_clocks(void* handle) { return static_cast<Card*>(handle)->clocks; }
+
+uint64_t vc_step_rises(void* handle) { return static_cast<Card*>(handle)->step_rises; }
+
+void vc_bind_clock(void* handle, int clock) { static_cast<Card*>(handle)->clock = clock; }
+
+void vc_bind_pins(void* handle, const int* pins) {
+    Card* card = static_cast<Card*>(handle);
+    for (int pin = 0; pin < PINS; ++pin) card->pins[pin] = pins[pin];
+    card->pin_state = card->sample_pins();
+}
+
+void vc_bind_bus(void* handle, const int* line_in, const int* line_out, const int* line_oe, int idsel, int idsel_bit) {
+    Card* card = static_cast<Card*>(handle);
+    for (int line = 0; line < LINES; ++line) {
+        card->line_in[line] = line_in[line];
+        card->line_out[line] = line_out[line];
+        card->line_oe[line] = line_oe[line];
+    }
+    card->idsel = idsel;
+    card->idsel_bit = idsel_bit;
+}
+
+// Set every input in `inputs` (port indices, count of them) to `values`,
+// then tick once (tick != 0) or only settle; read `outputs` into `out`.
+void vc_io(void* handle, int count, const int* inputs, const uint64_t* values, int tick, int out_count,
+           const int* outputs, uint64_t* out) {
+    Card* card = static_cast<Card*>(handle);
+    for (int i = 0; i < count; ++i) card->set(inputs[i], values[i]);
+    if (tick) card->tick();
+    else card->model->eval();
+    for (int i = 0; i < out_count; ++i) out[i] = card->get(outputs[i]);
+}
+
+// One bus clock: the host's drive of the clock now ending (host_out/host_oe,
+// per line) meets the card's; the card's inputs settle (its outputs may
+// follow its inputs within the clock, so resolve until nothing changes), the
+// segment as sampled at the rising edge goes to values/drivers/floating, then
+// the edge.  Returns the rounds the resolution took, or -1 if it never settled.
+int vc_step_bus(void* handle, const uint64_t* host_out, const uint64_t* host_oe, uint64_t* values,
+                uint64_t* drivers, uint64_t* floating) {
+    Card* card = static_cast<Card*>(handle);
+    card->resolve(host_out, host_oe, values, drivers, floating);
+    card->model->eval();
+    for (int rounds = 1; rounds <= 8; ++rounds) {
+        uint64_t again[LINES], again_drivers[LINES], again_floating[LINES];
+        card->resolve(host_out, host_oe, again, again_drivers, again_floating);
+        bool settled = std::memcmp(again, values, sizeof again) == 0 &&
+                       std::memcmp(again_drivers, drivers, sizeof again_drivers) == 0;
+        std::memcpy(values, again, sizeof again);
+        std::memcpy(drivers, again_drivers, sizeof again_drivers);
+        std::memcpy(floating, again_floating, sizeof again_floating);
+        if (settled) {
+            card->tick();
+            return rounds;
+        }
+        card->model->eval();
+    }
+    return -1;
+}
+
+// `count` clocks with the inputs as they are, whatever happens.
+void vc_tick(void* handle, uint64_t count) {
+    Card* card = static_cast<Card*>(handle);
+    for (uint64_t i = 0; i < count; ++i) card->tick();
+}
+
+// Run with the inputs as they are (a quiet bus) until an event; `done` gets
+// the clocks run.  Each condition is judged on the state before an edge and
+// the run stops after that edge, as a per-clock waiter sampling at the edge
+// does: INTA# driven low in the clock before the edge, `steps` STEP rises
+// (0: no such condition) recorded before it, or the card driving a line other
+// than INTA# (BUS: leave it to the per-clock bus path and its monitor).
+int vc_run(void* handle, uint64_t limit, int until_interrupt, uint64_t steps, uint64_t* done) {
+    Card* card = static_cast<Card*>(handle);
+    uint64_t start_rises = card->step_rises;
+    int reason = LIMIT;
+    uint64_t count = 0;
+    while (count < limit) {
+        bool interrupt = until_interrupt && card->interrupt_asserted();
+        bool enough = steps && card->step_rises - start_rises >= steps;
+        card->tick();
+        ++count;
+        if (interrupt) { reason = INTERRUPT; break; }
+        if (enough) { reason = STEPS; break; }
+        if (card->drives_bus()) { reason = BUS; break; }
+    }
+    *done = count;
+    return reason;
+}
+
+uint64_t vc_edge_count(void* handle) { return static_cast<Card*>(handle)->edge_clocks.size(); }
+
+// Move the recorded edges into the caller's arrays (room for vc_edge_count()).
+void vc_take_edges(void* handle, uint64_t* clocks, uint8_t* states) {
+    Card* card = static_cast<Card*>(handle);
+    std::memcpy(clocks, card->edge_clocks.data(), card->edge_clocks.size() * sizeof(uint64_t));
+    std::memcpy(states, card->edge_states.data(), card->edge_states.size());
+    card->edge_clocks.clear();
+    card->edge_states.clear();
+}
+
+// Trace the clocks from `first` (a count of rising edges) up to `last` into `path`.
+int vc_trace_open(void* handle, const char* path, uint64_t first, uint64_t last, uint64_t half_period) {
+#if VC_TRACE
+    Card* card = static_cast<Card*>(handle);
+    card->trace.reset(new TraceFile);
+    card->model->trace(card->trace.get(), 99);
+    card->trace->open(path);
+    card->trace_from = first;
+    card->trace_to = last;
+    card->half_period = half_period;
+    return 0;
+#else
+    (void)handle; (void)path; (void)first; (void)last; (void)half_period;
+    return -1;
+#endif
+}
+
+void vc_trace_close(void* handle) {
+#if VC_TRACE
+    Card* card = static_cast<Card*>(handle);
+    if (card->trace) card->trace->close();
+    card->trace.reset();
+#else
+    (void)handle;
+#endif
+}
+
+}  // extern "C"
