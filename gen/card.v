@@ -725,6 +725,8 @@ reg card_core0_dda_arc1_dda_run1_finished;
 reg card_core0_dda_arc1_dda_run1_first;
 reg card_core0_dda_arc1_dda_run1_go_x;
 reg card_core0_dda_arc1_dda_run1_go_y;
+reg [23:0] card_core0_dda_arc1_dda_run1_goal_x;
+reg [23:0] card_core0_dda_arc1_dda_run1_goal_y;
 reg [29:0] card_core0_dda_arc1_dda_run1_kept_x;
 reg [29:0] card_core0_dda_arc1_dda_run1_kept_y;
 reg [29:0] card_core0_dda_arc1_dda_run1_less_x;
@@ -5118,17 +5120,11 @@ always @(card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_sum_
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_radius, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_target_y, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_target_x, card_core0_dda_arc1_dda_run1_end_y, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_end_x) begin: card_core0_dda_arc1_dda_run1_magnitudes
+always @(card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_step_mag_x) begin: card_core0_dda_arc1_dda_run1_magnitudes
     reg [24-1:0] op_x;
     reg [24-1:0] op_y;
-    reg [24-1:0] target;
-    reg [24-1:0] dx;
-    reg [24-1:0] dy;
     op_x = 24'h0;
     op_y = 24'h0;
-    target = 24'h0;
-    dx = 24'h0;
-    dy = 24'h0;
     op_x = 1;
     op_y = 16777215;
     if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
@@ -5137,35 +5133,59 @@ always @(card_core0_dda_arc1_dda_run1_radius, card_core0_dda_arc1_dda_run1_step_
     end
     card_core0_dda_arc1_dda_run1_stepped_x = (card_core0_dda_arc1_dda_run1_step_mag_x + op_x);
     card_core0_dda_arc1_dda_run1_stepped_y = (card_core0_dda_arc1_dda_run1_step_mag_y + op_y);
-    target = 0;
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_radius, card_core0_dda_arc1_dda_run1_target_y, card_core0_dda_arc1_dda_run1_end_y, card_core0_dda_arc1_dda_run1_target_x, card_core0_dda_arc1_dda_run1_end_x) begin: card_core0_dda_arc1_dda_run1_goals
+    card_core0_dda_arc1_dda_run1_goal_x = 0;
     case (card_core0_dda_arc1_dda_run1_target_x)
         'h1: begin
-            target = card_core0_dda_arc1_dda_run1_radius;
+            card_core0_dda_arc1_dda_run1_goal_x = card_core0_dda_arc1_dda_run1_radius;
         end
         'h2: begin
-            target = card_core0_dda_arc1_dda_run1_end_x;
+            card_core0_dda_arc1_dda_run1_goal_x = card_core0_dda_arc1_dda_run1_end_x;
         end
     endcase
-    dx = (card_core0_dda_arc1_dda_run1_step_mag_x - target);
-    target = 0;
+    card_core0_dda_arc1_dda_run1_goal_y = 0;
     case (card_core0_dda_arc1_dda_run1_target_y)
         'h1: begin
-            target = card_core0_dda_arc1_dda_run1_radius;
+            card_core0_dda_arc1_dda_run1_goal_y = card_core0_dda_arc1_dda_run1_radius;
         end
         'h2: begin
-            target = card_core0_dda_arc1_dda_run1_end_y;
+            card_core0_dda_arc1_dda_run1_goal_y = card_core0_dda_arc1_dda_run1_end_y;
         end
     endcase
-    dy = (card_core0_dda_arc1_dda_run1_step_mag_y - target);
-    card_core0_dda_arc1_dda_run1_at_x = (dx == 0);
-    card_core0_dda_arc1_dda_run1_at_y = (dy == 0);
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_goal_x, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_goal_y) begin: card_core0_dda_arc1_dda_run1_end_tests
+    reg [24-1:0] diff_x;
+    reg [24-1:0] diff_y;
+    reg [23-1:0] up_x;
+    reg [23-1:0] up_y;
+    reg [23-1:0] down_x;
+    reg [23-1:0] down_y;
+    diff_x = 24'h0;
+    diff_y = 24'h0;
+    up_x = 23'h0;
+    up_y = 23'h0;
+    down_x = 23'h0;
+    down_y = 23'h0;
+    diff_x = (card_core0_dda_arc1_dda_run1_step_mag_x ^ card_core0_dda_arc1_dda_run1_goal_x);
+    diff_y = (card_core0_dda_arc1_dda_run1_step_mag_y ^ card_core0_dda_arc1_dda_run1_goal_y);
+    up_x = (card_core0_dda_arc1_dda_run1_step_mag_x[(24 - 1)-1:0] & (~card_core0_dda_arc1_dda_run1_goal_x[(24 - 1)-1:0]));
+    up_y = (card_core0_dda_arc1_dda_run1_step_mag_y[(24 - 1)-1:0] & (~card_core0_dda_arc1_dda_run1_goal_y[(24 - 1)-1:0]));
+    down_x = (card_core0_dda_arc1_dda_run1_goal_x[(24 - 1)-1:0] & (~card_core0_dda_arc1_dda_run1_step_mag_x[(24 - 1)-1:0]));
+    down_y = (card_core0_dda_arc1_dda_run1_goal_y[(24 - 1)-1:0] & (~card_core0_dda_arc1_dda_run1_step_mag_y[(24 - 1)-1:0]));
+    card_core0_dda_arc1_dda_run1_at_x = (diff_x == 0);
+    card_core0_dda_arc1_dda_run1_at_y = (diff_y == 0);
     if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
-        card_core0_dda_arc1_dda_run1_near_x = (dx == 1);
-        card_core0_dda_arc1_dda_run1_near_y = (dy == 16777215);
+        card_core0_dda_arc1_dda_run1_near_x = (diff_x == {down_x, 1'b1});
+        card_core0_dda_arc1_dda_run1_near_y = (diff_y == {up_y, 1'b1});
     end
     else begin
-        card_core0_dda_arc1_dda_run1_near_x = (dx == 16777215);
-        card_core0_dda_arc1_dda_run1_near_y = (dy == 1);
+        card_core0_dda_arc1_dda_run1_near_x = (diff_x == {up_x, 1'b1});
+        card_core0_dda_arc1_dda_run1_near_y = (diff_y == {down_y, 1'b1});
     end
 end
 

@@ -209,6 +209,8 @@ reg dda_run0_finished;
 reg dda_run0_first;
 reg dda_run0_go_x;
 reg dda_run0_go_y;
+reg [23:0] dda_run0_goal_x;
+reg [23:0] dda_run0_goal_y;
 reg [29:0] dda_run0_kept_x;
 reg [29:0] dda_run0_kept_y;
 reg [29:0] dda_run0_less_x;
@@ -1288,17 +1290,11 @@ always @(dda_run0_variant, dda_run0_sum_y, dda_run0_sum_x, dda_run0_sum_x, dda_r
 end
 
 
-always @(dda_run0_radius, dda_run0_step_x_inward, dda_run0_target_y, dda_run0_step_mag_y, dda_run0_target_x, dda_run0_end_y, dda_run0_step_mag_x, dda_run0_end_x) begin: dda_run0_magnitudes
+always @(dda_run0_step_mag_y, dda_run0_step_x_inward, dda_run0_step_mag_x) begin: dda_run0_magnitudes
     reg [24-1:0] op_x;
     reg [24-1:0] op_y;
-    reg [24-1:0] target;
-    reg [24-1:0] dx;
-    reg [24-1:0] dy;
     op_x = 24'h0;
     op_y = 24'h0;
-    target = 24'h0;
-    dx = 24'h0;
-    dy = 24'h0;
     op_x = 1;
     op_y = 16777215;
     if (dda_run0_step_x_inward) begin
@@ -1307,35 +1303,59 @@ always @(dda_run0_radius, dda_run0_step_x_inward, dda_run0_target_y, dda_run0_st
     end
     dda_run0_stepped_x = (dda_run0_step_mag_x + op_x);
     dda_run0_stepped_y = (dda_run0_step_mag_y + op_y);
-    target = 0;
+end
+
+
+always @(dda_run0_radius, dda_run0_target_y, dda_run0_end_y, dda_run0_target_x, dda_run0_end_x) begin: dda_run0_goals
+    dda_run0_goal_x = 0;
     case (dda_run0_target_x)
         'h1: begin
-            target = dda_run0_radius;
+            dda_run0_goal_x = dda_run0_radius;
         end
         'h2: begin
-            target = dda_run0_end_x;
+            dda_run0_goal_x = dda_run0_end_x;
         end
     endcase
-    dx = (dda_run0_step_mag_x - target);
-    target = 0;
+    dda_run0_goal_y = 0;
     case (dda_run0_target_y)
         'h1: begin
-            target = dda_run0_radius;
+            dda_run0_goal_y = dda_run0_radius;
         end
         'h2: begin
-            target = dda_run0_end_y;
+            dda_run0_goal_y = dda_run0_end_y;
         end
     endcase
-    dy = (dda_run0_step_mag_y - target);
-    dda_run0_at_x = (dx == 0);
-    dda_run0_at_y = (dy == 0);
+end
+
+
+always @(dda_run0_step_x_inward, dda_run0_step_mag_y, dda_run0_goal_x, dda_run0_step_mag_x, dda_run0_goal_y) begin: dda_run0_end_tests
+    reg [24-1:0] diff_x;
+    reg [24-1:0] diff_y;
+    reg [23-1:0] up_x;
+    reg [23-1:0] up_y;
+    reg [23-1:0] down_x;
+    reg [23-1:0] down_y;
+    diff_x = 24'h0;
+    diff_y = 24'h0;
+    up_x = 23'h0;
+    up_y = 23'h0;
+    down_x = 23'h0;
+    down_y = 23'h0;
+    diff_x = (dda_run0_step_mag_x ^ dda_run0_goal_x);
+    diff_y = (dda_run0_step_mag_y ^ dda_run0_goal_y);
+    up_x = (dda_run0_step_mag_x[(24 - 1)-1:0] & (~dda_run0_goal_x[(24 - 1)-1:0]));
+    up_y = (dda_run0_step_mag_y[(24 - 1)-1:0] & (~dda_run0_goal_y[(24 - 1)-1:0]));
+    down_x = (dda_run0_goal_x[(24 - 1)-1:0] & (~dda_run0_step_mag_x[(24 - 1)-1:0]));
+    down_y = (dda_run0_goal_y[(24 - 1)-1:0] & (~dda_run0_step_mag_y[(24 - 1)-1:0]));
+    dda_run0_at_x = (diff_x == 0);
+    dda_run0_at_y = (diff_y == 0);
     if (dda_run0_step_x_inward) begin
-        dda_run0_near_x = (dx == 1);
-        dda_run0_near_y = (dy == 16777215);
+        dda_run0_near_x = (diff_x == {down_x, 1'b1});
+        dda_run0_near_y = (diff_y == {up_y, 1'b1});
     end
     else begin
-        dda_run0_near_x = (dx == 16777215);
-        dda_run0_near_y = (dy == 1);
+        dda_run0_near_x = (diff_x == {up_x, 1'b1});
+        dda_run0_near_y = (diff_y == {down_y, 1'b1});
     end
 end
 

@@ -749,6 +749,8 @@ reg card1_card_core1_dda_arc2_dda_run2_finished;
 reg card1_card_core1_dda_arc2_dda_run2_first;
 reg card1_card_core1_dda_arc2_dda_run2_go_x;
 reg card1_card_core1_dda_arc2_dda_run2_go_y;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_goal_x;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_goal_y;
 reg [29:0] card1_card_core1_dda_arc2_dda_run2_kept_x;
 reg [29:0] card1_card_core1_dda_arc2_dda_run2_kept_y;
 reg [29:0] card1_card_core1_dda_arc2_dda_run2_less_x;
@@ -5950,17 +5952,11 @@ always @(card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_d
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_radius, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_target_y, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_target_x, card1_card_core1_dda_arc2_dda_run2_end_y, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_end_x) begin: card1_card_core1_dda_arc2_dda_run2_magnitudes
+always @(card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_step_mag_x) begin: card1_card_core1_dda_arc2_dda_run2_magnitudes
     reg [24-1:0] op_x;
     reg [24-1:0] op_y;
-    reg [24-1:0] target;
-    reg [24-1:0] dx;
-    reg [24-1:0] dy;
     op_x = 24'h0;
     op_y = 24'h0;
-    target = 24'h0;
-    dx = 24'h0;
-    dy = 24'h0;
     op_x = 1;
     op_y = 16777215;
     if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
@@ -5969,35 +5965,59 @@ always @(card1_card_core1_dda_arc2_dda_run2_radius, card1_card_core1_dda_arc2_dd
     end
     card1_card_core1_dda_arc2_dda_run2_stepped_x = (card1_card_core1_dda_arc2_dda_run2_step_mag_x + op_x);
     card1_card_core1_dda_arc2_dda_run2_stepped_y = (card1_card_core1_dda_arc2_dda_run2_step_mag_y + op_y);
-    target = 0;
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_radius, card1_card_core1_dda_arc2_dda_run2_target_y, card1_card_core1_dda_arc2_dda_run2_end_y, card1_card_core1_dda_arc2_dda_run2_target_x, card1_card_core1_dda_arc2_dda_run2_end_x) begin: card1_card_core1_dda_arc2_dda_run2_goals
+    card1_card_core1_dda_arc2_dda_run2_goal_x = 0;
     case (card1_card_core1_dda_arc2_dda_run2_target_x)
         'h1: begin
-            target = card1_card_core1_dda_arc2_dda_run2_radius;
+            card1_card_core1_dda_arc2_dda_run2_goal_x = card1_card_core1_dda_arc2_dda_run2_radius;
         end
         'h2: begin
-            target = card1_card_core1_dda_arc2_dda_run2_end_x;
+            card1_card_core1_dda_arc2_dda_run2_goal_x = card1_card_core1_dda_arc2_dda_run2_end_x;
         end
     endcase
-    dx = (card1_card_core1_dda_arc2_dda_run2_step_mag_x - target);
-    target = 0;
+    card1_card_core1_dda_arc2_dda_run2_goal_y = 0;
     case (card1_card_core1_dda_arc2_dda_run2_target_y)
         'h1: begin
-            target = card1_card_core1_dda_arc2_dda_run2_radius;
+            card1_card_core1_dda_arc2_dda_run2_goal_y = card1_card_core1_dda_arc2_dda_run2_radius;
         end
         'h2: begin
-            target = card1_card_core1_dda_arc2_dda_run2_end_y;
+            card1_card_core1_dda_arc2_dda_run2_goal_y = card1_card_core1_dda_arc2_dda_run2_end_y;
         end
     endcase
-    dy = (card1_card_core1_dda_arc2_dda_run2_step_mag_y - target);
-    card1_card_core1_dda_arc2_dda_run2_at_x = (dx == 0);
-    card1_card_core1_dda_arc2_dda_run2_at_y = (dy == 0);
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_goal_x, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_goal_y) begin: card1_card_core1_dda_arc2_dda_run2_end_tests
+    reg [24-1:0] diff_x;
+    reg [24-1:0] diff_y;
+    reg [23-1:0] up_x;
+    reg [23-1:0] up_y;
+    reg [23-1:0] down_x;
+    reg [23-1:0] down_y;
+    diff_x = 24'h0;
+    diff_y = 24'h0;
+    up_x = 23'h0;
+    up_y = 23'h0;
+    down_x = 23'h0;
+    down_y = 23'h0;
+    diff_x = (card1_card_core1_dda_arc2_dda_run2_step_mag_x ^ card1_card_core1_dda_arc2_dda_run2_goal_x);
+    diff_y = (card1_card_core1_dda_arc2_dda_run2_step_mag_y ^ card1_card_core1_dda_arc2_dda_run2_goal_y);
+    up_x = (card1_card_core1_dda_arc2_dda_run2_step_mag_x[(24 - 1)-1:0] & (~card1_card_core1_dda_arc2_dda_run2_goal_x[(24 - 1)-1:0]));
+    up_y = (card1_card_core1_dda_arc2_dda_run2_step_mag_y[(24 - 1)-1:0] & (~card1_card_core1_dda_arc2_dda_run2_goal_y[(24 - 1)-1:0]));
+    down_x = (card1_card_core1_dda_arc2_dda_run2_goal_x[(24 - 1)-1:0] & (~card1_card_core1_dda_arc2_dda_run2_step_mag_x[(24 - 1)-1:0]));
+    down_y = (card1_card_core1_dda_arc2_dda_run2_goal_y[(24 - 1)-1:0] & (~card1_card_core1_dda_arc2_dda_run2_step_mag_y[(24 - 1)-1:0]));
+    card1_card_core1_dda_arc2_dda_run2_at_x = (diff_x == 0);
+    card1_card_core1_dda_arc2_dda_run2_at_y = (diff_y == 0);
     if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
-        card1_card_core1_dda_arc2_dda_run2_near_x = (dx == 1);
-        card1_card_core1_dda_arc2_dda_run2_near_y = (dy == 16777215);
+        card1_card_core1_dda_arc2_dda_run2_near_x = (diff_x == {down_x, 1'b1});
+        card1_card_core1_dda_arc2_dda_run2_near_y = (diff_y == {up_y, 1'b1});
     end
     else begin
-        card1_card_core1_dda_arc2_dda_run2_near_x = (dx == 16777215);
-        card1_card_core1_dda_arc2_dda_run2_near_y = (dy == 1);
+        card1_card_core1_dda_arc2_dda_run2_near_x = (diff_x == {up_x, 1'b1});
+        card1_card_core1_dda_arc2_dda_run2_near_y = (diff_y == {down_y, 1'b1});
     end
 end
 

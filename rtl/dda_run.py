@@ -77,6 +77,7 @@ def dda_run(clock, reset, cmd, move, steps):
     stepped_x, stepped_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
     go_x, go_y, tail, finished, next_piece = (Signal(bool(0)) for _ in range(5))
     at_x, at_y, near_x, near_y = (Signal(bool(0)) for _ in range(4))
+    goal_x, goal_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
     ahead_x, ahead_y = Signal(bool(0)), Signal(bool(0))
     # without the traditional variant its branches are never taken: its sum is the plain one
     trad_x = Signal(modbv(0)[acc_width + 1:]) if has_traditional else sum_x
@@ -153,13 +154,9 @@ def dda_run(clock, reset, cmd, move, steps):
 
     @always_comb
     def magnitudes():
-        # |x| and |y| moved a step towards their targets (also the traditional variant's new
-        # |y|), and |v| - target: 0 at the target, +1 (inward) or -1 (outward) one step before
+        # |x| and |y| moved a step towards their targets (also the traditional variant's new |y|)
         op_x = modbv(0)[width:]
         op_y = modbv(0)[width:]
-        target = modbv(0)[width:]
-        dx = modbv(0)[width:]
-        dy = modbv(0)[width:]
         op_x[:] = 1
         op_y[:] = width_ones
         if step.x_inward:
@@ -167,26 +164,45 @@ def dda_run(clock, reset, cmd, move, steps):
             op_y[:] = 1
         stepped_x.next = step.mag_x + op_x
         stepped_y.next = step.mag_y + op_y
-        target[:] = 0
+
+    @always_comb
+    def goals():
+        goal_x.next = 0
         if target_x == TARGET_RADIUS:
-            target[:] = radius
+            goal_x.next = radius
         elif target_x == TARGET_END:
-            target[:] = end_x
-        dx[:] = step.mag_x - target
-        target[:] = 0
+            goal_x.next = end_x
+        goal_y.next = 0
         if target_y == TARGET_RADIUS:
-            target[:] = radius
+            goal_y.next = radius
         elif target_y == TARGET_END:
-            target[:] = end_y
-        dy[:] = step.mag_y - target
-        at_x.next = dx == 0
-        at_y.next = dy == 0
+            goal_y.next = end_y
+
+    @always_comb
+    def end_tests():
+        # |v| at its target, or one step before it (inward: target + 1 = |v|, outward:
+        # |v| + 1 = target), without a carry chain: a + 1 = b when bit 0 differs and every
+        # other bit differs exactly where the bit below carries (a and not b)
+        diff_x = modbv(0)[width:]
+        diff_y = modbv(0)[width:]
+        up_x = modbv(0)[width - 1:]
+        up_y = modbv(0)[width - 1:]
+        down_x = modbv(0)[width - 1:]
+        down_y = modbv(0)[width - 1:]
+        diff_x[:] = step.mag_x ^ goal_x
+        diff_y[:] = step.mag_y ^ goal_y
+        up_x[:] = step.mag_x[width - 1:] & ~goal_x[width - 1:]
+        up_y[:] = step.mag_y[width - 1:] & ~goal_y[width - 1:]
+        down_x[:] = goal_x[width - 1:] & ~step.mag_x[width - 1:]
+        down_y[:] = goal_y[width - 1:] & ~step.mag_y[width - 1:]
+        at_x.next = diff_x == 0
+        at_y.next = diff_y == 0
         if step.x_inward:
-            near_x.next = dx == 1
-            near_y.next = dy == width_ones
+            near_x.next = diff_x == concat(down_x, True)
+            near_y.next = diff_y == concat(up_y, True)
         else:
-            near_x.next = dx == width_ones
-            near_y.next = dy == 1
+            near_x.next = diff_x == concat(up_x, True)
+            near_y.next = diff_y == concat(down_y, True)
 
     @always_comb
     def decide():
@@ -345,5 +361,5 @@ def dda_run(clock, reset, cmd, move, steps):
         cmd.quadrant.next = quadrant
         cmd.busy.next = not cmd.ready or (active and not (step.pending and step.finished))
 
-    return (variant_logic, accumulate, overflow, magnitudes, decide, handover, iterate, datapath, errors,
-            status)
+    return (variant_logic, accumulate, overflow, magnitudes, goals, end_tests, decide, handover, iterate, datapath,
+            errors, status)
