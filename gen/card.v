@@ -5193,14 +5193,17 @@ end
 always @(card_core0_dda_arc1_dda_run1_over_x, card_core0_dda_arc1_dda_run1_at_x, card_core0_dda_arc1_dda_run1_near_y, card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_step_outward_near, card_core0_dda_arc1_dda_run1_ahead_x, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_near_x, card_core0_dda_arc1_dda_run1_at_y, card_core0_dda_arc1_dda_run1_step_last, card_core0_dda_arc1_dda_run1_step_line, card_core0_dda_arc1_dda_run1_crossings, card_core0_dda_arc1_dda_run1_ahead_y, card_core0_dda_arc1_dda_run1_step_inward_near, card_core0_dda_arc1_dda_run1_over_y, card_core0_dda_arc1_dda_run1_over_x) begin: card_core0_dda_arc1_dda_run1_decide
     reg step_x;
     reg step_y;
+    reg diagonal;
     reg choose_x;
     reg choose_y;
-    reg ends;
+    reg tail_ends;
+    reg both_near;
+    reg last_piece;
     step_x = (card_core0_dda_arc1_dda_run1_over_x == 1);
     step_y = (card_core0_dda_arc1_dda_run1_over_y == 1);
+    diagonal = (card_core0_dda_arc1_dda_run1_over_x && card_core0_dda_arc1_dda_run1_over_y);
     choose_x = 1'b0;
     choose_y = 1'b0;
-    ends = 1'b0;
     if (1'b1) begin
         choose_x = (card_core0_dda_arc1_dda_run1_step_outward_near == 1);
         choose_y = (card_core0_dda_arc1_dda_run1_step_inward_near == 1);
@@ -5211,14 +5214,17 @@ always @(card_core0_dda_arc1_dda_run1_over_x, card_core0_dda_arc1_dda_run1_at_x,
     end
     if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0))) begin
         step_x = ((card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_over_x) || ((!card_core0_dda_arc1_dda_run1_over_y) && card_core0_dda_arc1_dda_run1_over_x));
+        diagonal = (card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_over_x);
     end
     else if ((1'b1 && (card_core0_dda_arc1_dda_run1_variant == 2))) begin
         step_x = (card_core0_dda_arc1_dda_run1_over_x || (card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_ahead_x));
         step_y = (card_core0_dda_arc1_dda_run1_over_y || (card_core0_dda_arc1_dda_run1_over_x && card_core0_dda_arc1_dda_run1_ahead_y));
+        diagonal = ((card_core0_dda_arc1_dda_run1_over_x || (card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_ahead_x)) && (card_core0_dda_arc1_dda_run1_over_y || (card_core0_dda_arc1_dda_run1_over_x && card_core0_dda_arc1_dda_run1_ahead_y)));
     end
     else if ((1'b1 && (card_core0_dda_arc1_dda_run1_variant == 3))) begin
         step_x = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && choose_x);
         step_y = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && choose_y);
+        diagonal = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && card_core0_dda_arc1_dda_run1_step_inward_near && card_core0_dda_arc1_dda_run1_step_outward_near);
     end
     if (card_core0_dda_arc1_dda_run1_step_line) begin
         card_core0_dda_arc1_dda_run1_go_x = card_core0_dda_arc1_dda_run1_over_x;
@@ -5233,14 +5239,11 @@ always @(card_core0_dda_arc1_dda_run1_over_x, card_core0_dda_arc1_dda_run1_at_x,
         card_core0_dda_arc1_dda_run1_go_y = step_y;
     end
     card_core0_dda_arc1_dda_run1_tail = ((!card_core0_dda_arc1_dda_run1_step_line) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y));
-    if ((card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y)) begin
-        ends = ((card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_near_x) && (card_core0_dda_arc1_dda_run1_at_y || card_core0_dda_arc1_dda_run1_near_y));
-    end
-    else begin
-        ends = (card_core0_dda_arc1_dda_run1_near_x && card_core0_dda_arc1_dda_run1_near_y && step_x && step_y);
-    end
-    card_core0_dda_arc1_dda_run1_finished = ((card_core0_dda_arc1_dda_run1_step_line && card_core0_dda_arc1_dda_run1_step_last) || ((!card_core0_dda_arc1_dda_run1_step_line) && ends && (card_core0_dda_arc1_dda_run1_crossings == 0)));
-    card_core0_dda_arc1_dda_run1_next_piece = ((!card_core0_dda_arc1_dda_run1_step_line) && ends && (card_core0_dda_arc1_dda_run1_crossings != 0));
+    tail_ends = ((!card_core0_dda_arc1_dda_run1_step_line) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_near_x) && (card_core0_dda_arc1_dda_run1_at_y || card_core0_dda_arc1_dda_run1_near_y));
+    both_near = ((!card_core0_dda_arc1_dda_run1_step_line) && (!card_core0_dda_arc1_dda_run1_at_x) && (!card_core0_dda_arc1_dda_run1_at_y) && card_core0_dda_arc1_dda_run1_near_x && card_core0_dda_arc1_dda_run1_near_y);
+    last_piece = (card_core0_dda_arc1_dda_run1_crossings == 0);
+    card_core0_dda_arc1_dda_run1_finished = ((card_core0_dda_arc1_dda_run1_step_line && card_core0_dda_arc1_dda_run1_step_last) || (last_piece && (tail_ends || (both_near && diagonal))));
+    card_core0_dda_arc1_dda_run1_next_piece = ((!last_piece) && (tail_ends || (both_near && diagonal)));
 end
 
 

@@ -1363,14 +1363,17 @@ end
 always @(dda_run0_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant, dda_run0_step_outward_near, dda_run0_ahead_x, dda_run0_step_x_inward, dda_run0_near_x, dda_run0_at_y, dda_run0_step_last, dda_run0_step_line, dda_run0_crossings, dda_run0_ahead_y, dda_run0_step_inward_near, dda_run0_over_y, dda_run0_over_x) begin: dda_run0_decide
     reg step_x;
     reg step_y;
+    reg diagonal;
     reg choose_x;
     reg choose_y;
-    reg ends;
+    reg tail_ends;
+    reg both_near;
+    reg last_piece;
     step_x = (dda_run0_over_x == 1);
     step_y = (dda_run0_over_y == 1);
+    diagonal = (dda_run0_over_x && dda_run0_over_y);
     choose_x = 1'b0;
     choose_y = 1'b0;
-    ends = 1'b0;
     if (1'b1) begin
         choose_x = (dda_run0_step_outward_near == 1);
         choose_y = (dda_run0_step_inward_near == 1);
@@ -1381,14 +1384,17 @@ always @(dda_run0_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant, dda_
     end
     if ((1'b0 && (dda_run0_variant == 0))) begin
         step_x = ((dda_run0_over_y && dda_run0_over_x) || ((!dda_run0_over_y) && dda_run0_over_x));
+        diagonal = (dda_run0_over_y && dda_run0_over_x);
     end
     else if ((1'b1 && (dda_run0_variant == 2))) begin
         step_x = (dda_run0_over_x || (dda_run0_over_y && dda_run0_ahead_x));
         step_y = (dda_run0_over_y || (dda_run0_over_x && dda_run0_ahead_y));
+        diagonal = ((dda_run0_over_x || (dda_run0_over_y && dda_run0_ahead_x)) && (dda_run0_over_y || (dda_run0_over_x && dda_run0_ahead_y)));
     end
     else if ((1'b1 && (dda_run0_variant == 3))) begin
         step_x = ((dda_run0_over_x || dda_run0_over_y) && choose_x);
         step_y = ((dda_run0_over_x || dda_run0_over_y) && choose_y);
+        diagonal = ((dda_run0_over_x || dda_run0_over_y) && dda_run0_step_inward_near && dda_run0_step_outward_near);
     end
     if (dda_run0_step_line) begin
         dda_run0_go_x = dda_run0_over_x;
@@ -1403,14 +1409,11 @@ always @(dda_run0_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant, dda_
         dda_run0_go_y = step_y;
     end
     dda_run0_tail = ((!dda_run0_step_line) && (dda_run0_at_x || dda_run0_at_y));
-    if ((dda_run0_at_x || dda_run0_at_y)) begin
-        ends = ((dda_run0_at_x || dda_run0_near_x) && (dda_run0_at_y || dda_run0_near_y));
-    end
-    else begin
-        ends = (dda_run0_near_x && dda_run0_near_y && step_x && step_y);
-    end
-    dda_run0_finished = ((dda_run0_step_line && dda_run0_step_last) || ((!dda_run0_step_line) && ends && (dda_run0_crossings == 0)));
-    dda_run0_next_piece = ((!dda_run0_step_line) && ends && (dda_run0_crossings != 0));
+    tail_ends = ((!dda_run0_step_line) && (dda_run0_at_x || dda_run0_at_y) && (dda_run0_at_x || dda_run0_near_x) && (dda_run0_at_y || dda_run0_near_y));
+    both_near = ((!dda_run0_step_line) && (!dda_run0_at_x) && (!dda_run0_at_y) && dda_run0_near_x && dda_run0_near_y);
+    last_piece = (dda_run0_crossings == 0);
+    dda_run0_finished = ((dda_run0_step_line && dda_run0_step_last) || (last_piece && (tail_ends || (both_near && diagonal))));
+    dda_run0_next_piece = ((!last_piece) && (tail_ends || (both_near && diagonal)));
 end
 
 

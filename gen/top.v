@@ -6025,14 +6025,17 @@ end
 always @(card1_card_core1_dda_arc2_dda_run2_over_x, card1_card_core1_dda_arc2_dda_run2_at_x, card1_card_core1_dda_arc2_dda_run2_near_y, card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_step_outward_near, card1_card_core1_dda_arc2_dda_run2_ahead_x, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_near_x, card1_card_core1_dda_arc2_dda_run2_at_y, card1_card_core1_dda_arc2_dda_run2_step_last, card1_card_core1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_arc2_dda_run2_crossings, card1_card_core1_dda_arc2_dda_run2_ahead_y, card1_card_core1_dda_arc2_dda_run2_step_inward_near, card1_card_core1_dda_arc2_dda_run2_over_y, card1_card_core1_dda_arc2_dda_run2_over_x) begin: card1_card_core1_dda_arc2_dda_run2_decide
     reg step_x;
     reg step_y;
+    reg diagonal;
     reg choose_x;
     reg choose_y;
-    reg ends;
+    reg tail_ends;
+    reg both_near;
+    reg last_piece;
     step_x = (card1_card_core1_dda_arc2_dda_run2_over_x == 1);
     step_y = (card1_card_core1_dda_arc2_dda_run2_over_y == 1);
+    diagonal = (card1_card_core1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_arc2_dda_run2_over_y);
     choose_x = 1'b0;
     choose_y = 1'b0;
-    ends = 1'b0;
     if (1'b1) begin
         choose_x = (card1_card_core1_dda_arc2_dda_run2_step_outward_near == 1);
         choose_y = (card1_card_core1_dda_arc2_dda_run2_step_inward_near == 1);
@@ -6043,14 +6046,17 @@ always @(card1_card_core1_dda_arc2_dda_run2_over_x, card1_card_core1_dda_arc2_dd
     end
     if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0))) begin
         step_x = ((card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_over_x) || ((!card1_card_core1_dda_arc2_dda_run2_over_y) && card1_card_core1_dda_arc2_dda_run2_over_x));
+        diagonal = (card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_over_x);
     end
     else if ((1'b1 && (card1_card_core1_dda_arc2_dda_run2_variant == 2))) begin
         step_x = (card1_card_core1_dda_arc2_dda_run2_over_x || (card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_ahead_x));
         step_y = (card1_card_core1_dda_arc2_dda_run2_over_y || (card1_card_core1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_arc2_dda_run2_ahead_y));
+        diagonal = ((card1_card_core1_dda_arc2_dda_run2_over_x || (card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_ahead_x)) && (card1_card_core1_dda_arc2_dda_run2_over_y || (card1_card_core1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_arc2_dda_run2_ahead_y)));
     end
     else if ((1'b1 && (card1_card_core1_dda_arc2_dda_run2_variant == 3))) begin
         step_x = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && choose_x);
         step_y = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && choose_y);
+        diagonal = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && card1_card_core1_dda_arc2_dda_run2_step_inward_near && card1_card_core1_dda_arc2_dda_run2_step_outward_near);
     end
     if (card1_card_core1_dda_arc2_dda_run2_step_line) begin
         card1_card_core1_dda_arc2_dda_run2_go_x = card1_card_core1_dda_arc2_dda_run2_over_x;
@@ -6065,14 +6071,11 @@ always @(card1_card_core1_dda_arc2_dda_run2_over_x, card1_card_core1_dda_arc2_dd
         card1_card_core1_dda_arc2_dda_run2_go_y = step_y;
     end
     card1_card_core1_dda_arc2_dda_run2_tail = ((!card1_card_core1_dda_arc2_dda_run2_step_line) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y));
-    if ((card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y)) begin
-        ends = ((card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_near_x) && (card1_card_core1_dda_arc2_dda_run2_at_y || card1_card_core1_dda_arc2_dda_run2_near_y));
-    end
-    else begin
-        ends = (card1_card_core1_dda_arc2_dda_run2_near_x && card1_card_core1_dda_arc2_dda_run2_near_y && step_x && step_y);
-    end
-    card1_card_core1_dda_arc2_dda_run2_finished = ((card1_card_core1_dda_arc2_dda_run2_step_line && card1_card_core1_dda_arc2_dda_run2_step_last) || ((!card1_card_core1_dda_arc2_dda_run2_step_line) && ends && (card1_card_core1_dda_arc2_dda_run2_crossings == 0)));
-    card1_card_core1_dda_arc2_dda_run2_next_piece = ((!card1_card_core1_dda_arc2_dda_run2_step_line) && ends && (card1_card_core1_dda_arc2_dda_run2_crossings != 0));
+    tail_ends = ((!card1_card_core1_dda_arc2_dda_run2_step_line) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_near_x) && (card1_card_core1_dda_arc2_dda_run2_at_y || card1_card_core1_dda_arc2_dda_run2_near_y));
+    both_near = ((!card1_card_core1_dda_arc2_dda_run2_step_line) && (!card1_card_core1_dda_arc2_dda_run2_at_x) && (!card1_card_core1_dda_arc2_dda_run2_at_y) && card1_card_core1_dda_arc2_dda_run2_near_x && card1_card_core1_dda_arc2_dda_run2_near_y);
+    last_piece = (card1_card_core1_dda_arc2_dda_run2_crossings == 0);
+    card1_card_core1_dda_arc2_dda_run2_finished = ((card1_card_core1_dda_arc2_dda_run2_step_line && card1_card_core1_dda_arc2_dda_run2_step_last) || (last_piece && (tail_ends || (both_near && diagonal))));
+    card1_card_core1_dda_arc2_dda_run2_next_piece = ((!last_piece) && (tail_ends || (both_near && diagonal)));
 end
 
 

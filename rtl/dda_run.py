@@ -210,12 +210,12 @@ def dda_run(clock, reset, cmd, move, steps):
         # axis stops and the other steps alone (tail); the move (or the piece) ends when both
         # axes are at their targets after this step: in a tail the stopped one is, so the
         # other needs to be at or one step before its target; otherwise both must be one
-        # step before and step
+        # step before and the step a diagonal, which the precise signs decide last
         step_x = over_x == 1
         step_y = over_y == 1
+        diagonal = over_x and over_y
         choose_x = False
         choose_y = False
-        ends = False
         if has_precise:
             choose_x = step.outward_near == 1
             choose_y = step.inward_near == 1
@@ -224,12 +224,15 @@ def dda_run(clock, reset, cmd, move, steps):
                 choose_y = step.outward_near == 1
         if has_traditional and variant == TRADITIONAL:
             step_x = (over_y and trad_over_x) or (not over_y and over_x)
+            diagonal = over_y and trad_over_x
         elif has_improved and variant == IMPROVED:
             step_x = over_x or (over_y and ahead_x)
             step_y = over_y or (over_x and ahead_y)
+            diagonal = (over_x or (over_y and ahead_x)) and (over_y or (over_x and ahead_y))
         elif has_precise and variant == PRECISE:
             step_x = (over_x or over_y) and choose_x
             step_y = (over_x or over_y) and choose_y
+            diagonal = (over_x or over_y) and step.inward_near and step.outward_near
         if step.line:
             go_x.next = over_x
             go_y.next = over_y
@@ -240,12 +243,11 @@ def dda_run(clock, reset, cmd, move, steps):
             go_x.next = step_x
             go_y.next = step_y
         tail.next = not step.line and (at_x or at_y)
-        if at_x or at_y:
-            ends = (at_x or near_x) and (at_y or near_y)
-        else:
-            ends = near_x and near_y and step_x and step_y
-        finished.next = (step.line and step.last) or (not step.line and ends and crossings == 0)
-        next_piece.next = not step.line and ends and crossings != 0
+        tail_ends = not step.line and (at_x or at_y) and (at_x or near_x) and (at_y or near_y)
+        both_near = not step.line and not at_x and not at_y and near_x and near_y
+        last_piece = crossings == 0
+        finished.next = (step.line and step.last) or (last_piece and (tail_ends or (both_near and diagonal)))
+        next_piece.next = not last_piece and (tail_ends or (both_near and diagonal))
 
     @always_comb
     def handover():
