@@ -15,7 +15,7 @@ host saw, data errors, clocks, wall time.
 ``--xz``: clocks the X/Z detector watched and reported on the generated
 Verilog in float mode: ``gen/pci_slave.v`` under 300 random transactions,
 ``gen/top.v`` enumerated, programmed and running an arc (the benches of
-``sim/test_pci_random.py`` and ``sim/test_card_e2e.py``), and the example
+``sim/pci_random_traffic.py`` and ``sim/card_e2e.py``), and the example
 target of ``docs/verification.md``.
 
 ``--cocotb``: the cocotb test of ``gen/card.v`` (``sim/cocotb_card.py``):
@@ -100,7 +100,7 @@ def print_xz():
     from sim.card_e2e import DEFAULT_FIFO, motion_scenario, run_card
     from sim.dda_model import ArcCommand
     from sim.scratch_example import scenario, scratch_target
-    from sim.test_pci_random import run_random
+    from sim.pci_random_traffic import run_random
 
     quarter_arc = ArcCommand(40, 0, 0, 40, ccw=True)
     print("X/Z detector in float mode (clocks with a line X or Z while driven / clocks watched):")

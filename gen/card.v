@@ -112,7 +112,6 @@ reg pci_slave1_at_last;
 reg pci_slave1_b_kept;
 reg pci_slave1_b_valid;
 wire pci_slave1_b_valid_next;
-wire pci_slave1_back_end_retry;
 reg [15:0] pci_slave1_bar0;
 wire [15:0] pci_slave1_bar0_read;
 reg [31:0] pci_slave1_bar1;
@@ -170,7 +169,6 @@ reg [9:0] pci_slave1_phase_addr;
 wire pci_slave1_phase_step;
 wire pci_slave1_posting;
 reg [31:0] pci_slave1_read_source;
-reg pci_slave1_refused;
 reg [9:0] pci_slave1_req_addr;
 reg pci_slave1_req_addr_stale;
 reg [3:0] pci_slave1_s_be;
@@ -209,6 +207,7 @@ reg pci_slave1_local_ready;
 reg pci_slave1_local_retry;
 reg [31:0] pci_slave1_local_rdata;
 reg [3:0] pci_slave1_control_case0_0_out_state;
+wire pci_slave1_control_case0_0_local_room;
 reg pci_slave1_control_case0_0_out_trdy;
 reg pci_slave1_control_case0_0_out_stop;
 reg pci_slave1_control_case0_0_out_devsel;
@@ -295,9 +294,10 @@ reg card_core0_regs_fifo1_direct_dir_y;
 reg [9:0] card_core0_regs_fifo1_sync_fifo1_count;
 wire card_core0_regs_fifo1_sync_fifo1_do_read;
 wire card_core0_regs_fifo1_sync_fifo1_do_write;
+reg [2:0] card_core0_regs_fifo1_sync_fifo1_free;
+reg card_core0_regs_fifo1_sync_fifo1_free_beyond;
 reg card_core0_regs_fifo1_sync_fifo1_is_empty;
-reg card_core0_regs_fifo1_sync_fifo1_is_full;
-wire card_core0_regs_fifo1_sync_fifo1_one_free;
+wire card_core0_regs_fifo1_sync_fifo1_last_beyond;
 wire card_core0_regs_fifo1_sync_fifo1_one_word;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_read_addr;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_write_addr;
@@ -960,7 +960,6 @@ end
 assign pci_slave1_draining = (pci_slave1_h_valid || pci_slave1_wq_valid);
 assign pci_slave1_got = ((pci_slave1_local_re && pci_slave1_local_ready) || ((pci_slave1_state == 4'b0001) && pci_slave1_is_read));
 assign pci_slave1_accepted = (pci_slave1_local_we && pci_slave1_local_ready);
-assign pci_slave1_back_end_retry = ((pci_slave1_local_re || pci_slave1_local_we) && pci_slave1_local_retry);
 assign pci_slave1_hold_got = (pci_slave1_first_ready && pci_slave1_is_read && pci_slave1_local_ready);
 assign pci_slave1_hold_accepted = (pci_slave1_first_ready && (!pci_slave1_is_read) && (!pci_slave1_irdy_q) && pci_slave1_local_ready);
 assign pci_slave1_hold_retry = (pci_slave1_first_ready && (pci_slave1_is_read || (!pci_slave1_irdy_q)) && pci_slave1_local_retry);
@@ -1010,7 +1009,7 @@ always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_first_ph
 end
 
 
-always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case0_0_control
+always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_control_case0_0_local_room, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q) begin: pci_slave1_control_case0_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1021,7 +1020,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     reg last_data;
     reg ready_for_phase;
     reg exhausted;
-    reg room;
+    reg buffer_room;
     done = (1'b0 && (!pci_slave1_trdy_q));
     hold = ((!1'b0) && (!pci_slave1_trdy_q));
     trdy = (pci_slave1_trdy_q != 0);
@@ -1036,18 +1035,17 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     end
     ready_for_phase = 1'b0;
     exhausted = 1'b0;
-    room = 1'b0;
+    buffer_room = 1'b0;
     if (pci_slave1_is_read) begin
         ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
         exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
     end
     else begin
-        room = (pci_slave1_buffered_next <= 1);
+        buffer_room = (pci_slave1_buffered_next <= 1);
         if ((done && (!pci_slave1_first_phase))) begin
-            room = (pci_slave1_buffered_next == 0);
+            buffer_room = (pci_slave1_buffered_next == 0);
         end
-        ready_for_phase = (pci_slave1_is_config || (room && (!pci_slave1_refused)));
-        exhausted = (pci_slave1_refused != 0);
+        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_control_case0_0_local_room));
     end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1055,8 +1053,6 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if (pci_slave1_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            trdy = 1'b1;
-            stop = 1'b1;
             ad_oe = (!pci_slave1_cbe_q[0]);
             if (pci_slave1_claim_config) begin
                 pci_slave1_control_case0_0_out_state = 4'b0001;
@@ -1143,7 +1139,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
 end
 
 
-always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case1_0_control
+always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_control_case0_0_local_room, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q) begin: pci_slave1_control_case1_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1154,7 +1150,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     reg last_data;
     reg ready_for_phase;
     reg exhausted;
-    reg room;
+    reg buffer_room;
     done = (1'b1 && (!pci_slave1_trdy_q));
     hold = ((!1'b1) && (!pci_slave1_trdy_q));
     trdy = (pci_slave1_trdy_q != 0);
@@ -1169,18 +1165,17 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     end
     ready_for_phase = 1'b0;
     exhausted = 1'b0;
-    room = 1'b0;
+    buffer_room = 1'b0;
     if (pci_slave1_is_read) begin
         ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
         exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
     end
     else begin
-        room = (pci_slave1_buffered_next <= 1);
+        buffer_room = (pci_slave1_buffered_next <= 1);
         if ((done && (!pci_slave1_first_phase))) begin
-            room = (pci_slave1_buffered_next == 0);
+            buffer_room = (pci_slave1_buffered_next == 0);
         end
-        ready_for_phase = (pci_slave1_is_config || (room && (!pci_slave1_refused)));
-        exhausted = (pci_slave1_refused != 0);
+        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_control_case0_0_local_room));
     end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1188,8 +1183,6 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if (pci_slave1_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            trdy = 1'b1;
-            stop = 1'b1;
             ad_oe = (!pci_slave1_cbe_q[0]);
             if (pci_slave1_claim_config) begin
                 pci_slave1_control_case1_0_out_state = 4'b0001;
@@ -1276,7 +1269,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
 end
 
 
-always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q, pci_slave1_refused) begin: pci_slave1_control_case2_0_control
+always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_control_case0_0_local_room, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q) begin: pci_slave1_control_case2_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1287,7 +1280,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     reg last_data;
     reg ready_for_phase;
     reg exhausted;
-    reg room;
+    reg buffer_room;
     done = (1'b1 && (!pci_slave1_trdy_q));
     hold = ((!1'b1) && (!pci_slave1_trdy_q));
     trdy = (pci_slave1_trdy_q != 0);
@@ -1302,18 +1295,17 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     end
     ready_for_phase = 1'b0;
     exhausted = 1'b0;
-    room = 1'b0;
+    buffer_room = 1'b0;
     if (pci_slave1_is_read) begin
         ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
         exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
     end
     else begin
-        room = (pci_slave1_buffered_next <= 1);
+        buffer_room = (pci_slave1_buffered_next <= 1);
         if ((done && (!pci_slave1_first_phase))) begin
-            room = (pci_slave1_buffered_next == 0);
+            buffer_room = (pci_slave1_buffered_next == 0);
         end
-        ready_for_phase = (pci_slave1_is_config || (room && (!pci_slave1_refused)));
-        exhausted = (pci_slave1_refused != 0);
+        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_control_case0_0_local_room));
     end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1321,8 +1313,6 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if (pci_slave1_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            trdy = 1'b1;
-            stop = 1'b1;
             ad_oe = (!pci_slave1_cbe_q[0]);
             if (pci_slave1_claim_config) begin
                 pci_slave1_control_case2_0_out_state = 4'b0001;
@@ -1450,24 +1440,23 @@ assign pci_slave1_ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_ad_oe_
 
 always @(posedge clock, negedge reset) begin: pci_slave1_transaction
     if (reset == 0) begin
-        pci_slave1_wait_count <= 0;
-        pci_slave1_initial_wait_over <= 0;
         pci_slave1_req_addr <= 0;
+        pci_slave1_is_config <= 0;
+        pci_slave1_space_mem <= 0;
         pci_slave1_first_pending <= 0;
+        pci_slave1_initial_wait_over <= 0;
         pci_slave1_before_last <= 0;
         pci_slave1_io_byte <= 0;
-        pci_slave1_is_read <= 0;
-        pci_slave1_fetching <= 0;
-        pci_slave1_state <= 4'b0000;
-        pci_slave1_space_mem <= 0;
-        pci_slave1_at_last <= 0;
-        pci_slave1_first_phase <= 0;
-        pci_slave1_subsequent_wait_over <= 0;
-        pci_slave1_is_config <= 0;
         pci_slave1_single <= 0;
         pci_slave1_req_addr_stale <= 0;
         pci_slave1_address_fault <= 0;
-        pci_slave1_refused <= 0;
+        pci_slave1_at_last <= 0;
+        pci_slave1_subsequent_wait_over <= 0;
+        pci_slave1_is_read <= 0;
+        pci_slave1_first_phase <= 0;
+        pci_slave1_wait_count <= 0;
+        pci_slave1_fetching <= 0;
+        pci_slave1_state <= 4'b0000;
         pci_slave1_phase_addr <= 0;
     end
     else begin
@@ -1493,7 +1482,6 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
             pci_slave1_single <= (pci_slave1_claim_config || pci_slave1_claim_io || pci_slave1_ad_q[0] || pci_slave1_ad_q[1]);
             pci_slave1_first_pending <= 1'b1;
             pci_slave1_fetching <= ((!pci_slave1_cbe_q[0]) && (!pci_slave1_claim_config));
-            pci_slave1_refused <= 1'b0;
             pci_slave1_io_byte <= pci_slave1_ad_q[2-1:0];
             pci_slave1_req_addr_stale <= pci_slave1_draining;
         end
@@ -1506,9 +1494,6 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
             end
             if ((pci_slave1_local_re && pci_slave1_local_retry && (!pci_slave1_first_pending))) begin
                 pci_slave1_fetching <= 1'b0;
-            end
-            if ((pci_slave1_back_end_retry && pci_slave1_draining && (pci_slave1_state == 4'b0110))) begin
-                pci_slave1_refused <= 1'b1;
             end
         end
         if (((pci_slave1_local_re || pci_slave1_local_we) && pci_slave1_local_ready)) begin
@@ -1804,13 +1789,13 @@ assign card_core0_dda_reset = (reset && (!card_core0_core_clear));
 
 
 
-assign card_core0_regs_fifo1_sync_fifo1_do_write = (card_core0_regs_fifo1_push && (!card_core0_regs_fifo1_sync_fifo1_is_full));
+assign card_core0_regs_fifo1_sync_fifo1_do_write = (card_core0_regs_fifo1_push && card_core0_regs_fifo1_sync_fifo1_free[0]);
 assign card_core0_regs_fifo1_sync_fifo1_do_read = (card_core0_regs_fifo1_fifo_pop && (!card_core0_regs_fifo1_sync_fifo1_is_empty));
 
 
 
 assign card_core0_regs_fifo1_sync_fifo1_one_word = (card_core0_regs_fifo1_sync_fifo1_count == 1);
-assign card_core0_regs_fifo1_sync_fifo1_one_free = ($signed({1'b0, card_core0_regs_fifo1_sync_fifo1_count}) == (512 - 1));
+assign card_core0_regs_fifo1_sync_fifo1_last_beyond = ($signed({1'b0, card_core0_regs_fifo1_sync_fifo1_count}) == ((512 - 3) - 1));
 
 
 always @(posedge clock) begin: card_core0_regs_fifo1_sync_fifo1_memory
@@ -1830,8 +1815,9 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sync_fifo1_p
     if (reset == 0) begin
         card_core0_regs_fifo1_sync_fifo1_read_addr <= 0;
         card_core0_regs_fifo1_sync_fifo1_is_empty <= 1;
-        card_core0_regs_fifo1_sync_fifo1_is_full <= 0;
+        card_core0_regs_fifo1_sync_fifo1_free <= 7;
         card_core0_regs_fifo1_sync_fifo1_count <= 0;
+        card_core0_regs_fifo1_sync_fifo1_free_beyond <= 1;
         card_core0_regs_fifo1_sync_fifo1_write_addr <= 0;
     end
     else begin
@@ -1860,7 +1846,18 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sync_fifo1_p
         only_read = (card_core0_regs_fifo1_sync_fifo1_do_read && (!card_core0_regs_fifo1_sync_fifo1_do_write));
         only_write = (card_core0_regs_fifo1_sync_fifo1_do_write && (!card_core0_regs_fifo1_sync_fifo1_do_read));
         card_core0_regs_fifo1_sync_fifo1_is_empty <= (card_core0_regs_fifo1_fifo_flush || (card_core0_regs_fifo1_sync_fifo1_is_empty && (!card_core0_regs_fifo1_sync_fifo1_do_write)) || (card_core0_regs_fifo1_sync_fifo1_one_word && only_read));
-        card_core0_regs_fifo1_sync_fifo1_is_full <= ((!card_core0_regs_fifo1_fifo_flush) && ((card_core0_regs_fifo1_sync_fifo1_is_full && (!card_core0_regs_fifo1_sync_fifo1_do_read)) || (card_core0_regs_fifo1_sync_fifo1_one_free && only_write)));
+        if (card_core0_regs_fifo1_fifo_flush) begin
+            card_core0_regs_fifo1_sync_fifo1_free <= 7;
+            card_core0_regs_fifo1_sync_fifo1_free_beyond <= 1'b1;
+        end
+        else if (only_write) begin
+            card_core0_regs_fifo1_sync_fifo1_free <= {card_core0_regs_fifo1_sync_fifo1_free_beyond, card_core0_regs_fifo1_sync_fifo1_free[3-1:1]};
+            card_core0_regs_fifo1_sync_fifo1_free_beyond <= (card_core0_regs_fifo1_sync_fifo1_free_beyond && (!card_core0_regs_fifo1_sync_fifo1_last_beyond));
+        end
+        else if (only_read) begin
+            card_core0_regs_fifo1_sync_fifo1_free <= {card_core0_regs_fifo1_sync_fifo1_free[(3 - 1)-1:0], 1'b1};
+            card_core0_regs_fifo1_sync_fifo1_free_beyond <= card_core0_regs_fifo1_sync_fifo1_free[(3 - 1)];
+        end
     end
 end
 
@@ -1868,7 +1865,8 @@ end
 
 assign card_core0_regs_fifo1_fifo_level = card_core0_regs_fifo1_sync_fifo1_count;
 assign card_core0_regs_fifo1_fifo_empty = card_core0_regs_fifo1_sync_fifo1_is_empty;
-assign card_core0_regs_fifo1_fifo_full = card_core0_regs_fifo1_sync_fifo1_is_full;
+assign card_core0_regs_fifo1_fifo_full = (!card_core0_regs_fifo1_sync_fifo1_free[0]);
+assign pci_slave1_control_case0_0_local_room = card_core0_regs_fifo1_sync_fifo1_free[(3 - 1)];
 
 
 

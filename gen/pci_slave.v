@@ -38,7 +38,8 @@ module pci_slave (
     local_write,
     local_rdata,
     local_ready,
-    local_retry
+    local_retry,
+    local_room
 );
 // The PCI target.
 // 
@@ -68,6 +69,21 @@ module pci_slave (
 //     DEVSEL# ~~~~~~~~~~\_____________________/~~~
 //     TRDY#   ~~~~~~~~~~~~~~~~\_______________/~~~   data sampled at A+3..A+5
 //     state     IDLE  MEM_HOLD RWING ...      ENDING
+// 
+// Memory write burst into a back end with four free places: D0 goes to
+// the back end from the input register before its TRDY# (``we`` at A+2; a
+// refusal would be a Retry); D1, D2, D3 are posted, each acknowledged only
+// while ``local.room`` promises the next three writes; then it does not:
+// TRDY# waits and the latency rule ends the burst (STOP# sampled at A+13,
+// Disconnect without data)::
+// 
+//     edge           A  +1  +2  +3  +4  +5  +6  +7
+//     FRAME#  ~~~~\_______________________________ ...
+//     IRDY#   ~~~~~~~~\___________________________ ...
+//     DEVSEL# ~~~~~~~~~~~~\_______________________ ...
+//     TRDY#   ~~~~~~~~~~~~~~~~\_______________/~~~ ...   D0 +3, D1 +4, D2 +5, D3 +6
+//     we      ____________/~~~\_______/~~~~~~~~~~~ ...   D0, then D1, D2, D3 drain
+//     room    ~~~~~~~~~~~~~~~~~~~~~~~~~~~~\_______ ...
 
 input clock;
 input reset;
@@ -127,6 +143,7 @@ reg local_write;
 input [31:0] local_rdata;
 input local_ready;
 input local_retry;
+input local_room;
 
 wire accepted;
 wire ad_oe_next;
@@ -142,7 +159,6 @@ reg at_last;
 reg b_kept;
 reg b_valid;
 wire b_valid_next;
-wire back_end_retry;
 reg [15:0] bar0;
 wire [15:0] bar0_read;
 reg [31:0] bar1;
@@ -200,7 +216,6 @@ reg [9:0] phase_addr;
 wire phase_step;
 wire posting;
 reg [31:0] read_source;
-reg refused;
 reg [9:0] req_addr;
 reg req_addr_stale;
 reg [3:0] s_be;
@@ -414,7 +429,6 @@ end
 assign draining = (h_valid || wq_valid);
 assign got = ((local_re && local_ready) || ((state == 4'b0001) && is_read));
 assign accepted = (local_we && local_ready);
-assign back_end_retry = ((local_re || local_we) && local_retry);
 assign hold_got = (first_ready && is_read && local_ready);
 assign hold_accepted = (first_ready && (!is_read) && (!irdy_q) && local_ready);
 assign hold_retry = (first_ready && (is_read || (!irdy_q)) && local_retry);
@@ -464,7 +478,7 @@ always @(subsequent_wait_over, stop_q, first_phase, initial_wait_over, state, tr
 end
 
 
-always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, burst_got, fetching, state, trdy_q, hold_got, claim, at_last, first_phase, timeout, is_config, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q, refused) begin: control_case0_control
+always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, burst_got, fetching, state, trdy_q, hold_got, claim, at_last, first_phase, local_room, timeout, is_config, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q) begin: control_case0_control
     reg done;
     reg hold;
     reg trdy;
@@ -475,7 +489,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
     reg last_data;
     reg ready_for_phase;
     reg exhausted;
-    reg room;
+    reg buffer_room;
     done = (1'b0 && (!trdy_q));
     hold = ((!1'b0) && (!trdy_q));
     trdy = (trdy_q != 0);
@@ -490,18 +504,17 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
     end
     ready_for_phase = 1'b0;
     exhausted = 1'b0;
-    room = 1'b0;
+    buffer_room = 1'b0;
     if (is_read) begin
         ready_for_phase = (b_valid || burst_got);
         exhausted = ((!b_valid) && (!burst_got) && (!fetching));
     end
     else begin
-        room = (buffered_next <= 1);
+        buffer_room = (buffered_next <= 1);
         if ((done && (!first_phase))) begin
-            room = (buffered_next == 0);
+            buffer_room = (buffered_next == 0);
         end
-        ready_for_phase = (is_config || (room && (!refused)));
-        exhausted = (refused != 0);
+        ready_for_phase = (is_config || (buffer_room && local_room));
     end
     if ((state == 4'b0000)) begin
         drive = 1'b0;
@@ -509,8 +522,6 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
         if (claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            trdy = 1'b1;
-            stop = 1'b1;
             ad_oe = (!cbe_q[0]);
             if (claim_config) begin
                 control_case0_out_state = 4'b0001;
@@ -597,7 +608,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
 end
 
 
-always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, burst_got, fetching, state, trdy_q, hold_got, claim, at_last, first_phase, timeout, is_config, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q, refused) begin: control_case1_control
+always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, burst_got, fetching, state, trdy_q, hold_got, claim, at_last, first_phase, local_room, timeout, is_config, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q) begin: control_case1_control
     reg done;
     reg hold;
     reg trdy;
@@ -608,7 +619,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
     reg last_data;
     reg ready_for_phase;
     reg exhausted;
-    reg room;
+    reg buffer_room;
     done = (1'b1 && (!trdy_q));
     hold = ((!1'b1) && (!trdy_q));
     trdy = (trdy_q != 0);
@@ -623,18 +634,17 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
     end
     ready_for_phase = 1'b0;
     exhausted = 1'b0;
-    room = 1'b0;
+    buffer_room = 1'b0;
     if (is_read) begin
         ready_for_phase = (b_valid || burst_got);
         exhausted = ((!b_valid) && (!burst_got) && (!fetching));
     end
     else begin
-        room = (buffered_next <= 1);
+        buffer_room = (buffered_next <= 1);
         if ((done && (!first_phase))) begin
-            room = (buffered_next == 0);
+            buffer_room = (buffered_next == 0);
         end
-        ready_for_phase = (is_config || (room && (!refused)));
-        exhausted = (refused != 0);
+        ready_for_phase = (is_config || (buffer_room && local_room));
     end
     if ((state == 4'b0000)) begin
         drive = 1'b0;
@@ -642,8 +652,6 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
         if (claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            trdy = 1'b1;
-            stop = 1'b1;
             ad_oe = (!cbe_q[0]);
             if (claim_config) begin
                 control_case1_out_state = 4'b0001;
@@ -730,7 +738,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
 end
 
 
-always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, burst_got, fetching, state, trdy_q, hold_got, claim, at_last, first_phase, timeout, is_config, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q, refused) begin: control_case2_control
+always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, burst_got, fetching, state, trdy_q, hold_got, claim, at_last, first_phase, local_room, timeout, is_config, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q) begin: control_case2_control
     reg done;
     reg hold;
     reg trdy;
@@ -741,7 +749,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
     reg last_data;
     reg ready_for_phase;
     reg exhausted;
-    reg room;
+    reg buffer_room;
     done = (1'b1 && (!trdy_q));
     hold = ((!1'b1) && (!trdy_q));
     trdy = (trdy_q != 0);
@@ -756,18 +764,17 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
     end
     ready_for_phase = 1'b0;
     exhausted = 1'b0;
-    room = 1'b0;
+    buffer_room = 1'b0;
     if (is_read) begin
         ready_for_phase = (b_valid || burst_got);
         exhausted = ((!b_valid) && (!burst_got) && (!fetching));
     end
     else begin
-        room = (buffered_next <= 1);
+        buffer_room = (buffered_next <= 1);
         if ((done && (!first_phase))) begin
-            room = (buffered_next == 0);
+            buffer_room = (buffered_next == 0);
         end
-        ready_for_phase = (is_config || (room && (!refused)));
-        exhausted = (refused != 0);
+        ready_for_phase = (is_config || (buffer_room && local_room));
     end
     if ((state == 4'b0000)) begin
         drive = 1'b0;
@@ -775,8 +782,6 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
         if (claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            trdy = 1'b1;
-            stop = 1'b1;
             ad_oe = (!cbe_q[0]);
             if (claim_config) begin
                 control_case2_out_state = 4'b0001;
@@ -904,24 +909,23 @@ assign ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_o
 
 always @(posedge clock, negedge reset) begin: transaction
     if (reset == 0) begin
-        wait_count <= 0;
-        initial_wait_over <= 0;
         req_addr <= 0;
+        is_config <= 0;
+        space_mem <= 0;
         first_pending <= 0;
+        initial_wait_over <= 0;
         before_last <= 0;
         io_byte <= 0;
-        is_read <= 0;
-        fetching <= 0;
-        state <= 4'b0000;
-        space_mem <= 0;
-        at_last <= 0;
-        first_phase <= 0;
-        subsequent_wait_over <= 0;
-        is_config <= 0;
         single <= 0;
         req_addr_stale <= 0;
         address_fault <= 0;
-        refused <= 0;
+        at_last <= 0;
+        subsequent_wait_over <= 0;
+        is_read <= 0;
+        first_phase <= 0;
+        wait_count <= 0;
+        fetching <= 0;
+        state <= 4'b0000;
         phase_addr <= 0;
     end
     else begin
@@ -947,7 +951,6 @@ always @(posedge clock, negedge reset) begin: transaction
             single <= (claim_config || claim_io || ad_q[0] || ad_q[1]);
             first_pending <= 1'b1;
             fetching <= ((!cbe_q[0]) && (!claim_config));
-            refused <= 1'b0;
             io_byte <= ad_q[2-1:0];
             req_addr_stale <= draining;
         end
@@ -960,9 +963,6 @@ always @(posedge clock, negedge reset) begin: transaction
             end
             if ((local_re && local_retry && (!first_pending))) begin
                 fetching <= 1'b0;
-            end
-            if ((back_end_retry && draining && (state == 4'b0110))) begin
-                refused <= 1'b1;
             end
         end
         if (((local_re || local_we) && local_ready)) begin

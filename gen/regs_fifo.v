@@ -18,6 +18,7 @@ module regs_fifo (
     local_rdata,
     local_ready,
     local_retry,
+    local_room,
     dda_start,
     dda_line,
     dda_variant,
@@ -49,7 +50,9 @@ module regs_fifo (
 // 
 // Ports: ``local`` (the target's back end; I/O BAR = the registers of
 // ``rtl/registers.py``, memory BAR = the FIFO: every data phase with a byte
-// enabled pushes one word; a write to a full FIFO answers ``retry``, so the
+// enabled pushes one word; ``local.room`` is high while the FIFO has
+// three free places, the promise the target needs before it acknowledges
+// a posted dword, and a write to a full FIFO answers ``retry``, so the
 // target retries or disconnects and no word is lost); ``dda`` (drives the
 // interpolator's command, reads its status); ``steps`` (the interpolator's
 // step requests); ``pins`` (STEP/DIR out); ``irq`` (level, to INTA#:
@@ -65,12 +68,13 @@ module regs_fifo (
 // Local bus: I/O and FIFO writes complete in the clock they are requested,
 // a full FIFO answers retry; an I/O write reaches the registers one clock
 // later, and a request in that clock waits one clock (PCI never asks that
-// soon):
+// soon); ``room`` is the FIFO's own flag (three places free or more):
 //     clock    _/~\_/~\_/~\_/~\_
 //     we       _/~~~~~~~~~~~\___
 //     space    _/~~~~~~~~~~~\___     memory BAR
 //     ready    _/~~~~~~~\_______
 //     retry    _________/~~~\___     FIFO full
+//     room     ~~~~~\___________     three places free at first
 
 input clock;
 input reset;
@@ -91,6 +95,8 @@ output local_ready;
 reg local_ready;
 output local_retry;
 reg local_retry;
+output local_room;
+wire local_room;
 output dda_start;
 reg dda_start;
 output dda_line;
@@ -195,9 +201,10 @@ reg direct_dir_y;
 reg [9:0] sync_fifo0_count;
 wire sync_fifo0_do_read;
 wire sync_fifo0_do_write;
+reg [2:0] sync_fifo0_free;
+reg sync_fifo0_free_beyond;
 reg sync_fifo0_is_empty;
-reg sync_fifo0_is_full;
-wire sync_fifo0_one_free;
+wire sync_fifo0_last_beyond;
 wire sync_fifo0_one_word;
 reg [8:0] sync_fifo0_read_addr;
 reg [8:0] sync_fifo0_write_addr;
@@ -519,13 +526,13 @@ assign reg_word23_hw_value = 28'd786968;
 
 
 
-assign sync_fifo0_do_write = (push && (!sync_fifo0_is_full));
+assign sync_fifo0_do_write = (push && sync_fifo0_free[0]);
 assign sync_fifo0_do_read = (fifo_pop && (!sync_fifo0_is_empty));
 
 
 
 assign sync_fifo0_one_word = (sync_fifo0_count == 1);
-assign sync_fifo0_one_free = ($signed({1'b0, sync_fifo0_count}) == (512 - 1));
+assign sync_fifo0_last_beyond = ($signed({1'b0, sync_fifo0_count}) == ((512 - 3) - 1));
 
 
 always @(posedge clock) begin: sync_fifo0_memory
@@ -545,8 +552,9 @@ always @(posedge clock, negedge reset) begin: sync_fifo0_pointers
     if (reset == 0) begin
         sync_fifo0_read_addr <= 0;
         sync_fifo0_is_empty <= 1;
-        sync_fifo0_is_full <= 0;
+        sync_fifo0_free <= 7;
         sync_fifo0_count <= 0;
+        sync_fifo0_free_beyond <= 1;
         sync_fifo0_write_addr <= 0;
     end
     else begin
@@ -575,7 +583,18 @@ always @(posedge clock, negedge reset) begin: sync_fifo0_pointers
         only_read = (sync_fifo0_do_read && (!sync_fifo0_do_write));
         only_write = (sync_fifo0_do_write && (!sync_fifo0_do_read));
         sync_fifo0_is_empty <= (fifo_flush || (sync_fifo0_is_empty && (!sync_fifo0_do_write)) || (sync_fifo0_one_word && only_read));
-        sync_fifo0_is_full <= ((!fifo_flush) && ((sync_fifo0_is_full && (!sync_fifo0_do_read)) || (sync_fifo0_one_free && only_write)));
+        if (fifo_flush) begin
+            sync_fifo0_free <= 7;
+            sync_fifo0_free_beyond <= 1'b1;
+        end
+        else if (only_write) begin
+            sync_fifo0_free <= {sync_fifo0_free_beyond, sync_fifo0_free[3-1:1]};
+            sync_fifo0_free_beyond <= (sync_fifo0_free_beyond && (!sync_fifo0_last_beyond));
+        end
+        else if (only_read) begin
+            sync_fifo0_free <= {sync_fifo0_free[(3 - 1)-1:0], 1'b1};
+            sync_fifo0_free_beyond <= sync_fifo0_free[(3 - 1)];
+        end
     end
 end
 
@@ -583,7 +602,8 @@ end
 
 assign fifo_level = sync_fifo0_count;
 assign fifo_empty = sync_fifo0_is_empty;
-assign fifo_full = sync_fifo0_is_full;
+assign fifo_full = (!sync_fifo0_free[0]);
+assign local_room = sync_fifo0_free[(3 - 1)];
 
 
 

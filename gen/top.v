@@ -106,7 +106,6 @@ reg card1_pci_slave2_at_last;
 reg card1_pci_slave2_b_kept;
 reg card1_pci_slave2_b_valid;
 wire card1_pci_slave2_b_valid_next;
-wire card1_pci_slave2_back_end_retry;
 reg [15:0] card1_pci_slave2_bar0;
 wire [15:0] card1_pci_slave2_bar0_read;
 reg [31:0] card1_pci_slave2_bar1;
@@ -162,7 +161,6 @@ reg [9:0] card1_pci_slave2_phase_addr;
 wire card1_pci_slave2_phase_step;
 wire card1_pci_slave2_posting;
 reg [31:0] card1_pci_slave2_read_source;
-reg card1_pci_slave2_refused;
 reg [9:0] card1_pci_slave2_req_addr;
 reg card1_pci_slave2_req_addr_stale;
 reg [3:0] card1_pci_slave2_s_be;
@@ -201,6 +199,7 @@ reg card1_pci_slave2_local_ready;
 reg card1_pci_slave2_local_retry;
 reg [31:0] card1_pci_slave2_local_rdata;
 reg [3:0] card1_pci_slave2_control_case0_0_1_out_state;
+wire card1_pci_slave2_control_case0_0_1_local_room;
 reg card1_pci_slave2_control_case0_0_1_out_trdy;
 reg card1_pci_slave2_control_case0_0_1_out_stop;
 reg card1_pci_slave2_control_case0_0_1_out_devsel;
@@ -319,9 +318,10 @@ reg card1_card_core1_regs_fifo2_direct_dir_y;
 reg [9:0] card1_card_core1_regs_fifo2_sync_fifo2_count;
 wire card1_card_core1_regs_fifo2_sync_fifo2_do_read;
 wire card1_card_core1_regs_fifo2_sync_fifo2_do_write;
+reg [2:0] card1_card_core1_regs_fifo2_sync_fifo2_free;
+reg card1_card_core1_regs_fifo2_sync_fifo2_free_beyond;
 reg card1_card_core1_regs_fifo2_sync_fifo2_is_empty;
-reg card1_card_core1_regs_fifo2_sync_fifo2_is_full;
-wire card1_card_core1_regs_fifo2_sync_fifo2_one_free;
+wire card1_card_core1_regs_fifo2_sync_fifo2_last_beyond;
 wire card1_card_core1_regs_fifo2_sync_fifo2_one_word;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_read_addr;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_write_addr;
@@ -1542,7 +1542,6 @@ end
 assign card1_pci_slave2_draining = (card1_pci_slave2_h_valid || card1_pci_slave2_wq_valid);
 assign card1_pci_slave2_got = ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready) || ((card1_pci_slave2_state == 4'b0001) && card1_pci_slave2_is_read));
 assign card1_pci_slave2_accepted = (card1_pci_slave2_local_we && card1_pci_slave2_local_ready);
-assign card1_pci_slave2_back_end_retry = ((card1_pci_slave2_local_re || card1_pci_slave2_local_we) && card1_pci_slave2_local_retry);
 assign card1_pci_slave2_hold_got = (card1_pci_slave2_first_ready && card1_pci_slave2_is_read && card1_pci_slave2_local_ready);
 assign card1_pci_slave2_hold_accepted = (card1_pci_slave2_first_ready && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q) && card1_pci_slave2_local_ready);
 assign card1_pci_slave2_hold_retry = (card1_pci_slave2_first_ready && (card1_pci_slave2_is_read || (!card1_pci_slave2_irdy_q)) && card1_pci_slave2_local_retry);
@@ -1592,7 +1591,7 @@ always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_p
 end
 
 
-always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case0_0_1_control
+always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_control_case0_0_1_local_room, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q) begin: card1_pci_slave2_control_case0_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1603,7 +1602,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     reg last_data;
     reg ready_for_phase;
     reg exhausted;
-    reg room;
+    reg buffer_room;
     done = (1'b0 && (!card1_pci_slave2_trdy_q));
     hold = ((!1'b0) && (!card1_pci_slave2_trdy_q));
     trdy = (card1_pci_slave2_trdy_q != 0);
@@ -1618,18 +1617,17 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     end
     ready_for_phase = 1'b0;
     exhausted = 1'b0;
-    room = 1'b0;
+    buffer_room = 1'b0;
     if (card1_pci_slave2_is_read) begin
         ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
         exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
     end
     else begin
-        room = (card1_pci_slave2_buffered_next <= 1);
+        buffer_room = (card1_pci_slave2_buffered_next <= 1);
         if ((done && (!card1_pci_slave2_first_phase))) begin
-            room = (card1_pci_slave2_buffered_next == 0);
+            buffer_room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card1_pci_slave2_is_config || (room && (!card1_pci_slave2_refused)));
-        exhausted = (card1_pci_slave2_refused != 0);
+        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_control_case0_0_1_local_room));
     end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1637,8 +1635,6 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if (card1_pci_slave2_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            trdy = 1'b1;
-            stop = 1'b1;
             ad_oe = (!pci_pads0_registered_pad5_from_pin[0]);
             if (card1_pci_slave2_claim_config) begin
                 card1_pci_slave2_control_case0_0_1_out_state = 4'b0001;
@@ -1725,7 +1721,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
 end
 
 
-always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case1_0_1_control
+always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_control_case0_0_1_local_room, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q) begin: card1_pci_slave2_control_case1_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1736,7 +1732,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     reg last_data;
     reg ready_for_phase;
     reg exhausted;
-    reg room;
+    reg buffer_room;
     done = (1'b1 && (!card1_pci_slave2_trdy_q));
     hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
     trdy = (card1_pci_slave2_trdy_q != 0);
@@ -1751,18 +1747,17 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     end
     ready_for_phase = 1'b0;
     exhausted = 1'b0;
-    room = 1'b0;
+    buffer_room = 1'b0;
     if (card1_pci_slave2_is_read) begin
         ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
         exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
     end
     else begin
-        room = (card1_pci_slave2_buffered_next <= 1);
+        buffer_room = (card1_pci_slave2_buffered_next <= 1);
         if ((done && (!card1_pci_slave2_first_phase))) begin
-            room = (card1_pci_slave2_buffered_next == 0);
+            buffer_room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card1_pci_slave2_is_config || (room && (!card1_pci_slave2_refused)));
-        exhausted = (card1_pci_slave2_refused != 0);
+        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_control_case0_0_1_local_room));
     end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1770,8 +1765,6 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if (card1_pci_slave2_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            trdy = 1'b1;
-            stop = 1'b1;
             ad_oe = (!pci_pads0_registered_pad5_from_pin[0]);
             if (card1_pci_slave2_claim_config) begin
                 card1_pci_slave2_control_case1_0_1_out_state = 4'b0001;
@@ -1858,7 +1851,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
 end
 
 
-always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q, card1_pci_slave2_refused) begin: card1_pci_slave2_control_case2_0_1_control
+always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_control_case0_0_1_local_room, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q) begin: card1_pci_slave2_control_case2_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1869,7 +1862,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     reg last_data;
     reg ready_for_phase;
     reg exhausted;
-    reg room;
+    reg buffer_room;
     done = (1'b1 && (!card1_pci_slave2_trdy_q));
     hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
     trdy = (card1_pci_slave2_trdy_q != 0);
@@ -1884,18 +1877,17 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     end
     ready_for_phase = 1'b0;
     exhausted = 1'b0;
-    room = 1'b0;
+    buffer_room = 1'b0;
     if (card1_pci_slave2_is_read) begin
         ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
         exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
     end
     else begin
-        room = (card1_pci_slave2_buffered_next <= 1);
+        buffer_room = (card1_pci_slave2_buffered_next <= 1);
         if ((done && (!card1_pci_slave2_first_phase))) begin
-            room = (card1_pci_slave2_buffered_next == 0);
+            buffer_room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card1_pci_slave2_is_config || (room && (!card1_pci_slave2_refused)));
-        exhausted = (card1_pci_slave2_refused != 0);
+        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_control_case0_0_1_local_room));
     end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1903,8 +1895,6 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if (card1_pci_slave2_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            trdy = 1'b1;
-            stop = 1'b1;
             ad_oe = (!pci_pads0_registered_pad5_from_pin[0]);
             if (card1_pci_slave2_claim_config) begin
                 card1_pci_slave2_control_case2_0_1_out_state = 4'b0001;
@@ -2068,24 +2058,23 @@ assign card1_pci_slave2_ad_oe_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0
 
 always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
     if (reset == 0) begin
-        card1_pci_slave2_wait_count <= 0;
-        card1_pci_slave2_initial_wait_over <= 0;
         card1_pci_slave2_req_addr <= 0;
+        card1_pci_slave2_is_config <= 0;
+        card1_pci_slave2_space_mem <= 0;
         card1_pci_slave2_first_pending <= 0;
+        card1_pci_slave2_initial_wait_over <= 0;
         card1_pci_slave2_before_last <= 0;
         card1_pci_slave2_io_byte <= 0;
-        card1_pci_slave2_is_read <= 0;
-        card1_pci_slave2_fetching <= 0;
-        card1_pci_slave2_state <= 4'b0000;
-        card1_pci_slave2_space_mem <= 0;
-        card1_pci_slave2_at_last <= 0;
-        card1_pci_slave2_first_phase <= 0;
-        card1_pci_slave2_subsequent_wait_over <= 0;
-        card1_pci_slave2_is_config <= 0;
         card1_pci_slave2_single <= 0;
         card1_pci_slave2_req_addr_stale <= 0;
         card1_pci_slave2_address_fault <= 0;
-        card1_pci_slave2_refused <= 0;
+        card1_pci_slave2_at_last <= 0;
+        card1_pci_slave2_subsequent_wait_over <= 0;
+        card1_pci_slave2_is_read <= 0;
+        card1_pci_slave2_first_phase <= 0;
+        card1_pci_slave2_wait_count <= 0;
+        card1_pci_slave2_fetching <= 0;
+        card1_pci_slave2_state <= 4'b0000;
         card1_pci_slave2_phase_addr <= 0;
     end
     else begin
@@ -2111,7 +2100,6 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
             card1_pci_slave2_single <= (card1_pci_slave2_claim_config || card1_pci_slave2_claim_io || pci_pads0_registered_pad0_from_pin[0] || pci_pads0_registered_pad0_from_pin[1]);
             card1_pci_slave2_first_pending <= 1'b1;
             card1_pci_slave2_fetching <= ((!pci_pads0_registered_pad5_from_pin[0]) && (!card1_pci_slave2_claim_config));
-            card1_pci_slave2_refused <= 1'b0;
             card1_pci_slave2_io_byte <= pci_pads0_registered_pad0_from_pin[2-1:0];
             card1_pci_slave2_req_addr_stale <= card1_pci_slave2_draining;
         end
@@ -2124,9 +2112,6 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
             end
             if ((card1_pci_slave2_local_re && card1_pci_slave2_local_retry && (!card1_pci_slave2_first_pending))) begin
                 card1_pci_slave2_fetching <= 1'b0;
-            end
-            if ((card1_pci_slave2_back_end_retry && card1_pci_slave2_draining && (card1_pci_slave2_state == 4'b0110))) begin
-                card1_pci_slave2_refused <= 1'b1;
             end
         end
         if (((card1_pci_slave2_local_re || card1_pci_slave2_local_we) && card1_pci_slave2_local_ready)) begin
@@ -2636,13 +2621,13 @@ assign card1_card_core1_dda_reset = (reset && (!card1_card_core1_core_clear));
 
 
 
-assign card1_card_core1_regs_fifo2_sync_fifo2_do_write = (card1_card_core1_regs_fifo2_push && (!card1_card_core1_regs_fifo2_sync_fifo2_is_full));
+assign card1_card_core1_regs_fifo2_sync_fifo2_do_write = (card1_card_core1_regs_fifo2_push && card1_card_core1_regs_fifo2_sync_fifo2_free[0]);
 assign card1_card_core1_regs_fifo2_sync_fifo2_do_read = (card1_card_core1_regs_fifo2_fifo_pop && (!card1_card_core1_regs_fifo2_sync_fifo2_is_empty));
 
 
 
 assign card1_card_core1_regs_fifo2_sync_fifo2_one_word = (card1_card_core1_regs_fifo2_sync_fifo2_count == 1);
-assign card1_card_core1_regs_fifo2_sync_fifo2_one_free = ($signed({1'b0, card1_card_core1_regs_fifo2_sync_fifo2_count}) == (512 - 1));
+assign card1_card_core1_regs_fifo2_sync_fifo2_last_beyond = ($signed({1'b0, card1_card_core1_regs_fifo2_sync_fifo2_count}) == ((512 - 3) - 1));
 
 
 always @(posedge clock) begin: card1_card_core1_regs_fifo2_sync_fifo2_memory
@@ -2662,8 +2647,9 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sync_f
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_sync_fifo2_read_addr <= 0;
         card1_card_core1_regs_fifo2_sync_fifo2_is_empty <= 1;
-        card1_card_core1_regs_fifo2_sync_fifo2_is_full <= 0;
+        card1_card_core1_regs_fifo2_sync_fifo2_free <= 7;
         card1_card_core1_regs_fifo2_sync_fifo2_count <= 0;
+        card1_card_core1_regs_fifo2_sync_fifo2_free_beyond <= 1;
         card1_card_core1_regs_fifo2_sync_fifo2_write_addr <= 0;
     end
     else begin
@@ -2692,7 +2678,18 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sync_f
         only_read = (card1_card_core1_regs_fifo2_sync_fifo2_do_read && (!card1_card_core1_regs_fifo2_sync_fifo2_do_write));
         only_write = (card1_card_core1_regs_fifo2_sync_fifo2_do_write && (!card1_card_core1_regs_fifo2_sync_fifo2_do_read));
         card1_card_core1_regs_fifo2_sync_fifo2_is_empty <= (card1_card_core1_regs_fifo2_fifo_flush || (card1_card_core1_regs_fifo2_sync_fifo2_is_empty && (!card1_card_core1_regs_fifo2_sync_fifo2_do_write)) || (card1_card_core1_regs_fifo2_sync_fifo2_one_word && only_read));
-        card1_card_core1_regs_fifo2_sync_fifo2_is_full <= ((!card1_card_core1_regs_fifo2_fifo_flush) && ((card1_card_core1_regs_fifo2_sync_fifo2_is_full && (!card1_card_core1_regs_fifo2_sync_fifo2_do_read)) || (card1_card_core1_regs_fifo2_sync_fifo2_one_free && only_write)));
+        if (card1_card_core1_regs_fifo2_fifo_flush) begin
+            card1_card_core1_regs_fifo2_sync_fifo2_free <= 7;
+            card1_card_core1_regs_fifo2_sync_fifo2_free_beyond <= 1'b1;
+        end
+        else if (only_write) begin
+            card1_card_core1_regs_fifo2_sync_fifo2_free <= {card1_card_core1_regs_fifo2_sync_fifo2_free_beyond, card1_card_core1_regs_fifo2_sync_fifo2_free[3-1:1]};
+            card1_card_core1_regs_fifo2_sync_fifo2_free_beyond <= (card1_card_core1_regs_fifo2_sync_fifo2_free_beyond && (!card1_card_core1_regs_fifo2_sync_fifo2_last_beyond));
+        end
+        else if (only_read) begin
+            card1_card_core1_regs_fifo2_sync_fifo2_free <= {card1_card_core1_regs_fifo2_sync_fifo2_free[(3 - 1)-1:0], 1'b1};
+            card1_card_core1_regs_fifo2_sync_fifo2_free_beyond <= card1_card_core1_regs_fifo2_sync_fifo2_free[(3 - 1)];
+        end
     end
 end
 
@@ -2700,7 +2697,8 @@ end
 
 assign card1_card_core1_regs_fifo2_fifo_level = card1_card_core1_regs_fifo2_sync_fifo2_count;
 assign card1_card_core1_regs_fifo2_fifo_empty = card1_card_core1_regs_fifo2_sync_fifo2_is_empty;
-assign card1_card_core1_regs_fifo2_fifo_full = card1_card_core1_regs_fifo2_sync_fifo2_is_full;
+assign card1_card_core1_regs_fifo2_fifo_full = (!card1_card_core1_regs_fifo2_sync_fifo2_free[0]);
+assign card1_pci_slave2_control_case0_0_1_local_room = card1_card_core1_regs_fifo2_sync_fifo2_free[(3 - 1)];
 
 
 

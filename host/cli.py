@@ -1,4 +1,4 @@
-"""``python -m host``: plan a G-code program or an SVG drawing for the card.
+"""``python -m host``: plan a G-code program or an SVG drawing for the card, run it.
 
 ``python -m host plan FILE [options]`` reads FILE (``.svg``: the SVG front end,
 anything else: G-code), plans it, runs the commands through the DDA's golden
@@ -7,6 +7,8 @@ the drawing and the job time; ``--preview out.png`` draws the path over the
 drawing, ``--list`` prints every command, ``--words out.txt`` writes the FIFO
 words (hex, one a line).  Bad options are refused before anything is read or
 written; a bad program line is one error line naming it.
+
+``run``, ``info`` and ``selftest`` talk to a card (``host/cli_card.py``).
 """
 import argparse
 import collections
@@ -15,11 +17,13 @@ import math
 import sys
 from pathlib import Path
 
-from host import gcode, svg
+from host import cli_card, gcode, svg
+from host.card import CardError, IdentityError
 from host.check import check
 from host.errors import ProgramError
 from host.machine import DEFAULT_CLOCK_HZ, DEFAULT_COORD_WIDTH, Machine
 from host.planner import encode_command, plan
+from host.transport import TransportError
 from rtl.registers import RATE_MAX
 
 PROG = "python -m host"
@@ -85,16 +89,23 @@ def parser():
     plan_cmd.add_argument("--list", action="store_true", help="print every command")
     plan_cmd.add_argument("--words", type=Path, help="write the FIFO words here (hex, one a line)")
     plan_cmd.add_argument("--preview", type=Path, help="draw the path over the drawing into this PNG")
+    cli_card.add_commands(commands, positive, scales, count)
     return top
 
 
 def main(argv=None):
     options = parser().parse_args(argv)
+    command = {"plan": _plan, "run": lambda o: cli_card.run_command(o, _refuse),
+               "info": lambda o: cli_card.info_command(o, _refuse),
+               "selftest": lambda o: cli_card.selftest_command(o, _refuse)}[options.command]
     try:
-        return _plan(options)
-    except (ProgramError, ValueError) as error:
+        return command(options)
+    except (ProgramError, ValueError, CardError, IdentityError, TransportError, TimeoutError) as error:
         print(f"{PROG}: error: {error}", file=sys.stderr)
         return 1
+    except KeyboardInterrupt:  # before the card runs anything (the streamer handles SIGINT itself)
+        print(f"{PROG}: interrupted", file=sys.stderr)
+        return 130
 
 
 def _refuse(message):

@@ -1,8 +1,9 @@
 """What the planner needs to know about the machine and the card.
 
 Lengths in millimetres, feeds in mm/min, acceleration in mm/s^2.  The card's
-clock frequency and coordinate width are build parameters; a later card API
-reads them from the capability registers, here they are inputs.
+clock frequency and coordinate width are build parameters: the card API
+reads them from the capability registers (``Card.configure`` returns the
+``Machine``); ``python -m host plan`` takes them as options.
 """
 import math
 from dataclasses import dataclass

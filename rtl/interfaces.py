@@ -65,11 +65,24 @@ class LocalBus:
     target's request logic and its reaction to the answer do not form one
     combinational loop through the back end.
 
+    ``room`` (from the back end's flip-flops) is the back end's promise for
+    space 1: while it is high, the next ``ROOM_PLACES`` writes to space 1
+    will be answered ``ready``, not ``retry`` (possibly after wait clocks),
+    whatever else happens.  A promise is never taken back: only the writes
+    the back end takes use it up (``room`` may fall then), and a back end
+    answers ``retry`` to a space-1 write only when no promise is open.  The
+    target acknowledges a posted memory-write data phase on the bus only
+    while ``room`` is high: the dwords it may still hold and the one it
+    acknowledges are never more than ``ROOM_PLACES``.
+
         clock    _/~\\_/~\\_/~\\_/~\\_
         we       __/~~~~~~~~~~~\\___
         addr     --<  A0 >< A1 >---
         ready    ________/~~~~~\\___     A0 waits one clock, A1 none
+        room     ~~~~~~~~~~~~~\\____     space 1 with four places at first: two left
     """
+
+    ROOM_PLACES = 3   # writes a high ``room`` promises: what the target may have in flight
 
     def __init__(self, addr_width=16):
         self.addr_width = addr_width
@@ -83,6 +96,7 @@ class LocalBus:
         self.rdata = Signal(intbv(0)[32:])
         self.ready = Signal(bool(0))
         self.retry = Signal(bool(0))
+        self.room = Signal(bool(0))
 
 
 class DdaPort:

@@ -135,8 +135,9 @@ _TABLE = (
               reason="14: STOP_LEFT, coord_width + 3 bits, must be wider than the feed-rate ramp's "
               "16-bit count; 29: wider coordinates give STOP_LEFT a reset value above 32 bits, which "
               "MyHDL writes as an unsized Verilog number"),
-    Parameter("fifo_depth", 512, "data FIFO depth in 32-bit words", 2, 32768, power_of_two=True,
-              reason="STATUS.FIFO_LEVEL, 16 bits, counts 0..depth",
+    Parameter("fifo_depth", 512, "data FIFO depth in 32-bit words", 4, 32768, power_of_two=True,
+              reason="4: the FIFO promises the PCI target three free places (LocalBus.room) before it "
+              "acknowledges a posted dword; STATUS.FIFO_LEVEL, 16 bits, counts 0..depth",
               device_maximum={"ice40": (4096, "the iCE40 HX8K has 32 block RAMs of 4 Kbit, "
                                                 "4,096 32-bit words in all")}),
     Parameter("clock_hz", 33_333_333, "PCI clock the card runs at, in Hz, reported in CLOCK_HZ "

@@ -221,6 +221,21 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         DEVSEL# ~~~~~~~~~~\\_____________________/~~~
         TRDY#   ~~~~~~~~~~~~~~~~\\_______________/~~~   data sampled at A+3..A+5
         state     IDLE  MEM_HOLD RWING ...      ENDING
+
+    Memory write burst into a back end with four free places: D0 goes to
+    the back end from the input register before its TRDY# (``we`` at A+2; a
+    refusal would be a Retry); D1, D2, D3 are posted, each acknowledged only
+    while ``local.room`` promises the next three writes; then it does not:
+    TRDY# waits and the latency rule ends the burst (STOP# sampled at A+13,
+    Disconnect without data)::
+
+        edge           A  +1  +2  +3  +4  +5  +6  +7
+        FRAME#  ~~~~\\_______________________________ ...
+        IRDY#   ~~~~~~~~\\___________________________ ...
+        DEVSEL# ~~~~~~~~~~~~\\_______________________ ...
+        TRDY#   ~~~~~~~~~~~~~~~~\\_______________/~~~ ...   D0 +3, D1 +4, D2 +5, D3 +6
+        we      ____________/~~~\\_______/~~~~~~~~~~~ ...   D0, then D1, D2, D3 drain
+        room    ~~~~~~~~~~~~~~~~~~~~~~~~~~~~\\_______ ...
     """
     values = check_params(params)
     io_bits, mem_bits = values["io_bar_bits"], values["mem_bar_bits"]
@@ -267,7 +282,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     first_phase = Signal(bool(0))     # no data phase completed yet
     first_pending = Signal(bool(0))   # first back-end request not answered yet
     fetching = Signal(bool(0))        # reads: more dwords may be requested
-    refused = Signal(bool(0))         # writes: the back end answered retry mid-burst
     address_fault = Signal(bool(0))   # address parity error, Parity Error Response set
     wait_count = Signal(intbv(0, min=0, max=16))
     # wait_count at its limits, registered with it (no compare before the timeout)
@@ -323,7 +337,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     start_addr = Signal(modbv(0)[width:])  # dword offset the address phase names
     got = Signal(bool(0))             # read data arrives at this edge
     accepted = Signal(bool(0))        # the back end takes a write at this edge
-    back_end_retry = Signal(bool(0))
     # the request's conditions without the state, and the answers to them
     # as the state machine reads them in its hold and in its burst states
     # (see local_answer)
@@ -483,7 +496,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         draining.next = h_valid or wq_valid
         got.next = (local.re and local.ready) or (state == t_state.S_CON_HOLD and is_read)
         accepted.next = local.we and local.ready
-        back_end_retry.next = (local.re or local.we) and local.retry
         # The answers as the state machine reads them: each takes what the
         # state already says about the request, so that no state test lies
         # between the registers and the answer.  In I/O_Hold, Mem_Hold and
@@ -566,24 +578,31 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 last_data = single or before_last
             ready_for_phase = False
             exhausted = False
-            room = False
+            buffer_room = False
             if is_read:
                 ready_for_phase = b_valid or burst_got
                 exhausted = not b_valid and not burst_got and not fetching
             else:
-                room = buffered_next <= 1
+                # The write credit: TRDY# for a posted phase needs a place
+                # here and the back end's promise (``local.room``) to take
+                # its next three writes.  This target asserts it only while
+                # it holds at most two posted dwords (one when a phase
+                # completes at the same edge), so at most three acknowledged
+                # dwords ever wait for the back end, all promised; only its
+                # own writes use the promise.  Without it the phase waits,
+                # and the latency rules end the burst.
+                buffer_room = buffered_next <= 1
                 if done and not first_phase:
-                    room = buffered_next == 0
-                ready_for_phase = is_config or (room and not refused)
-                exhausted = bool(refused)
+                    buffer_room = buffered_next == 0
+                ready_for_phase = is_config or (buffer_room and local.room)
             if state == t_state.S_IDLE:
                 drive = False
                 ad_oe = False
                 if claim:
+                    # TRDY# and STOP# stay as they are: deasserted, as Ending
+                    # left them; so the address decode stays out of their logic
                     drive = True
                     devsel = False
-                    trdy = True
-                    stop = True
                     ad_oe = not cbe_q[0]
                     if claim_config:
                         out.state.next = t_state.S_CON_HOLD
@@ -681,7 +700,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             single.next = claim_config or claim_io or ad_q[0] or ad_q[1]
             first_pending.next = True
             fetching.next = not cbe_q[0] and not claim_config
-            refused.next = False
             io_byte.next = ad_q[2:0]
             req_addr_stale.next = draining
         else:
@@ -691,8 +709,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 fetching.next = False
             if local.re and local.retry and not first_pending:
                 fetching.next = False
-            if back_end_retry and draining and state == t_state.S_RWING:
-                refused.next = True
         if (local.re or local.we) and local.ready:
             req_addr.next = req_addr + 1
         elif claim and not draining:

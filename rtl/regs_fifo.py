@@ -28,7 +28,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
 
     Ports: ``local`` (the target's back end; I/O BAR = the registers of
     ``rtl/registers.py``, memory BAR = the FIFO: every data phase with a byte
-    enabled pushes one word; a write to a full FIFO answers ``retry``, so the
+    enabled pushes one word; ``local.room`` is high while the FIFO has
+    three free places, the promise the target needs before it acknowledges
+    a posted dword, and a write to a full FIFO answers ``retry``, so the
     target retries or disconnects and no word is lost); ``dda`` (drives the
     interpolator's command, reads its status); ``steps`` (the interpolator's
     step requests); ``pins`` (STEP/DIR out); ``irq`` (level, to INTA#:
@@ -44,12 +46,13 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     Local bus: I/O and FIFO writes complete in the clock they are requested,
     a full FIFO answers retry; an I/O write reaches the registers one clock
     later, and a request in that clock waits one clock (PCI never asks that
-    soon):
+    soon); ``room`` is the FIFO's own flag (three places free or more):
         clock    _/~\\_/~\\_/~\\_/~\\_
         we       _/~~~~~~~~~~~\\___
         space    _/~~~~~~~~~~~\\___     memory BAR
         ready    _/~~~~~~~\\_______
         retry    _________/~~~\\___     FIFO full
+        room     ~~~~~\\___________     three places free at first
     """
     build = parameters.check(dict(fifo_depth=fifo_depth, clock_hz=clock_hz, device=device,
                                   coord_width=dda.coord_width, variants=variants_choice(dda.variants)))
@@ -101,7 +104,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     pos_y_snapshot = position_signal()
 
     units = [sync_fifo(clock, reset, push, local.wdata, fifo_pop, fifo_dout, fifo_flush, fifo_level,
-                       fifo_empty, fifo_full, depth=fifo_depth)]
+                       fifo_empty, fifo_full, local.room, depth=fifo_depth)]
     for i, spec in enumerate(specs):
         units.append(reg_word(clock, reset, local.addr, written_addr, io_written, written_mask, written_data,
                               set_strobe, set_index, set_value, hw[spec.name], values[spec.name],
@@ -184,7 +187,12 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     def fifo_emptying():
         # after BAD_OPCODE, CLEAR_ERROR empties the FIFO when the registers take it,
         # the clock after its bus write; a request in that clock waits (answer_bus),
-        # so every word written before the clear is dropped, every later one kept
+        # so every word written before the clear is dropped, every later one kept.
+        # SOFT_RESET empties it with core_clear, three clocks after the edge e
+        # that takes its bus write (then the strobe, then core_clear): no word
+        # arrives in between, as the target holds no posted dword when it starts
+        # a register access, and the next transaction's address phase comes at
+        # e + 2 at the earliest, its first dword two clocks later
         fifo_flush.next = core_clear or (discard_on_clear and io_written and written_addr == command_offset
                                          and written_data[clear_bit] and written_mask[clear_bit])
 

@@ -1,57 +1,69 @@
 """Synchronous FIFO whose storage maps to block RAM (the card's data FIFO)."""
-from myhdl import Signal, always, always_comb, always_seq, block, intbv, modbv
+from myhdl import Signal, always, always_comb, always_seq, block, concat, intbv, modbv
 
-from rtl.interfaces import card_reset
+from rtl.interfaces import LocalBus, card_reset
 
 
 @block
-def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, depth):
+def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, room, *, depth,
+              room_places=LocalBus.ROOM_PLACES):
     """First-in first-out buffer of ``depth`` words as wide as ``din``.
 
     Ports: ``push`` writes ``din`` (ignored when ``full``); ``pop`` reads the
     oldest word into ``dout`` at the clock edge (ignored when ``empty``), so
     ``dout`` is valid the clock after ``pop``; ``flush`` (synchronous) empties
-    it; ``level`` counts the words held, ``empty``/``full`` follow it.
-    Push and pop in the same clock keep the level.  The storage and the read
-    register sit in a process without reset so that they become block RAM.
-    Parameter: ``depth`` (a power of two; ``level`` counts 0..depth).
+    it; ``level`` counts the words held, ``empty``/``full`` follow it;
+    ``room`` (from a flip-flop) is high while at least ``room_places`` places
+    are free.  Push and pop in the same clock keep the level.  The storage
+    and the read register sit in a process without reset so that they
+    become block RAM.
+    Parameters: ``depth`` (a power of two above ``room_places``; ``level``
+    counts 0..depth), ``room_places`` (2 or more).
 
         clock  _/~\\_/~\\_/~\\_/~\\_
         push   _/~~~\\__________
         pop    _______/~~~\\____
         level  ==0==X=1=X==0===
+        room   ~~~~~\\___/~~~~~~     (three places free at first)
         dout   ==========X=W0==
     """
-    if depth < 2 or depth & (depth - 1):
-        raise ValueError(f"FIFO depth must be a power of two >= 2, got {depth}")
+    levels = room_places
+    if levels < 2:
+        raise ValueError(f"FIFO room_places must be 2 or more, got {levels}")
+    if depth <= levels or depth & (depth - 1):
+        raise ValueError(f"FIFO depth must be a power of two above room_places ({levels}), got {depth}")
     if len(dout) != len(din) or level.max != depth + 1:
         raise ValueError(f"sync_fifo: dout must be as wide as din and level count 0..{depth}")
     width = len(din)
     addr_bits = depth.bit_length() - 1
+    all_free = (1 << levels) - 1   # ``free`` of the empty FIFO
     storage = [Signal(intbv(0)[width:]) for _ in range(depth)]
     write_addr = Signal(modbv(0)[addr_bits:])
     read_addr = Signal(modbv(0)[addr_bits:])
     count = Signal(intbv(0, min=0, max=depth + 1))
-    # count == 0 and count == depth as flip-flops, so that the back end's answer
-    # to the PCI target starts at a register, not at a compare; they are set
-    # from the compares of the present count (one word from empty or full),
-    # which do not wait for push and pop
+    # count == 0 and the free places as flip-flops (a thermometer: bit k set
+    # while more than k places are free), so that the back end's answers to
+    # the PCI target start at registers, not at compares; they follow push
+    # and pop by shifting, and only the compares of the present count (one
+    # word from empty, exactly levels + 1 places free) feed them, which do
+    # not wait for push and pop
     is_empty = Signal(bool(1))
-    is_full = Signal(bool(0))
+    free = Signal(intbv(all_free)[levels:])
+    free_beyond = Signal(bool(1))   # more than ``levels`` places free
     one_word = Signal(bool(0))
-    one_free = Signal(bool(0))
+    last_beyond = Signal(bool(0))   # exactly levels + 1 places free
     do_write = Signal(bool(0))
     do_read = Signal(bool(0))
 
     @always_comb
     def enables():
-        do_write.next = push and not is_full
+        do_write.next = push and free[0]
         do_read.next = pop and not is_empty
 
     @always_comb
     def near_ends():
         one_word.next = count == 1
-        one_free.next = count == depth - 1
+        last_beyond.next = count == depth - levels - 1
 
     @always(clock.posedge)
     def memory():
@@ -81,13 +93,22 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, *, 
         only_read = do_read and not do_write
         only_write = do_write and not do_read
         is_empty.next = flush or (is_empty and not do_write) or (one_word and only_read)
-        is_full.next = not flush and ((is_full and not do_read) or (one_free and only_write))
+        if flush:
+            free.next = all_free
+            free_beyond.next = True
+        elif only_write:   # one place fewer: each bit takes the one above
+            free.next = concat(free_beyond, free[levels:1])
+            free_beyond.next = free_beyond and not last_beyond
+        elif only_read:    # one place more
+            free.next = concat(free[levels - 1:0], True)
+            free_beyond.next = free[levels - 1]
 
     @always_comb
     def flags():
         level.next = count
         empty.next = is_empty
-        full.next = is_full
+        full.next = not free[0]
+        room.next = free[levels - 1]
 
     return enables, near_ends, memory, pointers, flags
 
@@ -97,4 +118,4 @@ def sync_fifo_ports(depth, width=32):
     return dict(clock=Signal(bool(0)), reset=card_reset(), push=Signal(bool(0)),
                 din=Signal(intbv(0)[width:]), pop=Signal(bool(0)), dout=Signal(intbv(0)[width:]),
                 flush=Signal(bool(0)), level=Signal(intbv(0, min=0, max=depth + 1)),
-                empty=Signal(bool(1)), full=Signal(bool(0)))
+                empty=Signal(bool(1)), full=Signal(bool(0)), room=Signal(bool(0)))

@@ -35,6 +35,10 @@ class FifoModel:
     def full(self):
         return len(self.words) == self.depth
 
+    def room(self, places):
+        """At least ``places`` places are free."""
+        return self.depth - self.level >= places
+
     def clock(self, push=False, din=0, pop=False, flush=False):
         can_push = push and not self.full
         can_pop = pop and self.words

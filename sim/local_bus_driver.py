@@ -2,6 +2,9 @@
 
 Requests are driven after the falling edge and held until ``ready`` or
 ``retry`` is seen at a rising edge, as ``rtl.interfaces.LocalBus`` says.
+Every write is a handshake (like the target's first data phase), so the
+driver needs no room; it checks the back end's promise instead: a memory
+write refused while ``room`` was high raises ``AssertionError``.
 Every method is a generator to be delegated to with ``yield from``.
 """
 from myhdl import delay
@@ -27,6 +30,11 @@ class LocalBusDriver:
         local.re.next = not write
         local.write.next = write
 
+    def _check_promise(self, space, write):
+        local = self.local
+        if write and space == MEMORY_SPACE and bool(local.retry) and bool(local.room):
+            raise AssertionError("the back end refused a memory write while it showed room")
+
     def _idle(self):
         self.local.we.next = 0
         self.local.re.next = 0
@@ -38,6 +46,7 @@ class LocalBusDriver:
             self._request(space, addr, be, data, write)
             yield delay(SETTLE)
             ready, retry, rdata = bool(self.local.ready), bool(self.local.retry), int(self.local.rdata)
+            self._check_promise(space, write)
             yield self.clock.negedge
             if ready:
                 self._idle()
@@ -65,6 +74,7 @@ class LocalBusDriver:
             self._request(MEMORY_SPACE, (4 * index) & 0xFFF, 0xF, word, True)
             while True:  # a wait state holds the word
                 yield delay(SETTLE)
+                self._check_promise(MEMORY_SPACE, True)
                 if bool(local.retry):
                     self.retries += 1
                     self._idle()

@@ -6,6 +6,12 @@ answered with ``ready`` (the transfer happens at that clock edge) or, with
 probability ``retry_rate``, with ``retry`` (nothing happens).  All random
 choices come from one seeded generator, so a bench is reproducible.
 
+Writes to space 1 follow ``LocalBus.room``: the memory promises to take a
+number of them (``room``: always, or as a policy grants), raises ``room``
+while it has promised ``LocalBus.ROOM_PLACES`` or more, and never answers
+``retry`` to a promised write; only a write that comes while nothing is
+promised can be refused.
+
 A request that the target withdraws before it is answered (for instance
 after it stopped the PCI transaction on the latency rules) is counted in
 ``abandoned`` and has no effect.  Misuse of the bus (read and write at once,
@@ -14,6 +20,10 @@ an unaligned or out-of-range address) raises ``ValueError``.
 import random
 
 from myhdl import Signal, always, block, instance, now
+
+from rtl.interfaces import LocalBus
+
+ROOM_PLACES = LocalBus.ROOM_PLACES
 
 NOT_READY_DATA = 0xBAD0BAD0  # rdata while not ready: a target that samples it shows up
 
@@ -27,12 +37,19 @@ class LocalMemory:
     probability that a request is answered with retry; seed: of the
     generator; schedule: optional function ``(number, space, addr,
     is_write) -> (latency, retry)`` that overrides both for request
-    ``number`` (0, 1, ... in order of appearance).  ``log`` lists every transfer as (time, space, addr, be,
-    'r'/'w', data).
+    ``number`` (0, 1, ... in order of appearance).  room: the writes to
+    space 1 the memory promises to take: None, every one (``retry`` and the
+    retry of a schedule then only reach reads and space 0); or a function
+    ``(rng, clock, promised) -> promised`` called at every rising edge (after
+    that edge's transfer) with its own seeded generator, the edge count and
+    the writes still promised, returning the new promise, which may not be
+    smaller.  ``promised`` is that count (None: unbounded), ``space1_writes``
+    counts the space-1 writes taken.  ``log`` lists every transfer as (time,
+    space, addr, be, 'r'/'w', data).
     """
 
     def __init__(self, io_bytes=64, mem_bytes=4096, latency=0, retry_rate=0.0, seed=1,
-                 schedule=None):
+                 schedule=None, room=None):
         if io_bytes % 4 or mem_bytes % 4 or io_bytes <= 0 or mem_bytes <= 0:
             raise ValueError("space sizes must be positive multiples of 4 bytes")
         if not 0.0 <= retry_rate <= 1.0:
@@ -46,6 +63,11 @@ class LocalMemory:
         self.requests = 0
         self.retries = 0
         self.abandoned = 0
+        self.room = room
+        self.room_rng = random.Random(f"room {seed}")
+        self.promised = None if room is None else 0
+        self.space1_writes = 0
+        self.edges = 0
 
     def read(self, space, addr):
         """Dword at byte offset ``addr`` of ``space`` (no bus traffic)."""
@@ -69,15 +91,41 @@ class LocalMemory:
         number = self.requests
         self.requests += 1
         if self.schedule is not None:
-            return self.schedule(number, space, addr, is_write)
-        if callable(self.latency):
-            wait = self.latency(self.rng, space, addr, is_write)
-        elif isinstance(self.latency, tuple):
-            wait = self.rng.randint(*self.latency)
+            wait, retry = self.schedule(number, space, addr, is_write)
         else:
-            wait = self.latency
-        retry = self.retry_rate > 0 and self.rng.random() < self.retry_rate
-        return wait, retry
+            if callable(self.latency):
+                wait = self.latency(self.rng, space, addr, is_write)
+            elif isinstance(self.latency, tuple):
+                wait = self.rng.randint(*self.latency)
+            else:
+                wait = self.latency
+            retry = self.retry_rate > 0 and self.rng.random() < self.retry_rate
+        return wait, retry and not self.promises(space, is_write)
+
+    def promises(self, space, is_write):
+        """Whether a write to ``space`` is promised (so it must be taken)."""
+        return is_write and space == 1 and (self.promised is None or self.promised > 0)
+
+    def took(self, space, is_write):
+        """Account for a transfer: a space-1 write uses one promised place."""
+        if is_write and space == 1:
+            self.space1_writes += 1
+            if self.promised:
+                self.promised -= 1
+
+    def grant(self):
+        """The promise after a rising edge out of reset: the policy's choice."""
+        self.edges += 1
+        if self.room is not None:
+            promised = self.room(self.room_rng, self.edges, self.promised)
+            if promised < self.promised:
+                raise ValueError(f"local memory: room policy took back a promise "
+                                 f"({self.promised} -> {promised}) at edge {self.edges}")
+            self.promised = promised
+
+    def shows_room(self):
+        """``LocalBus.room`` for the present promise."""
+        return self.promised is None or self.promised >= ROOM_PLACES
 
 
 @block
@@ -136,6 +184,7 @@ def local_memory(clock, reset, local, memory):
             local.retry.next = due and retry
             readable = due and not retry and not key[3] and _in_range(memory, key)
             local.rdata.next = memory.read(key[0], key[1]) if readable else NOT_READY_DATA
+            local.room.next = memory.shows_room()   # changes only at the edges (step)
             yield request_signals
 
     @always(clock.posedge, reset.negedge)
@@ -150,6 +199,10 @@ def local_memory(clock, reset, local, memory):
         else:
             check(key)
             current["waited"] += 1
+        if reset.val != reset.active:
+            memory.grant()
+            if key is not None and current["plan"] is not None and memory.promises(key[0], key[3]):
+                current["plan"] = (current["plan"][0], False)   # promised now: it will be taken
         tick.next = not tick
 
     def check(key):
@@ -157,6 +210,8 @@ def local_memory(clock, reset, local, memory):
             raise ValueError(f"local bus: read and write requested together at {now()}")
         if bool(local.write.val) != bool(local.we.val):
             raise ValueError(f"local bus: write = {int(local.write.val)} disagrees with the request at {now()}")
+        if local.retry.val and key[3] and key[0] == 1 and local.room.val:
+            raise ValueError(f"local memory: a space-1 write refused while room was shown at {now()}")
         memory._index(key[0], key[1])
 
     def transfer(key):
@@ -168,6 +223,7 @@ def local_memory(clock, reset, local, memory):
             memory.write(space, addr, data, be)
         else:
             data = memory.read(space, addr)
+        memory.took(space, is_write)
         memory.log.append((now(), space, addr, be, "w" if is_write else "r", data))
 
     return answer, step

@@ -18,7 +18,7 @@ they drive reports to the monitor (rule 19).  The monitor stops at the
 first violation (``monitor="stop"``) or records every one and fails the run
 at its end with a summary (``monitor="record"``).
 """
-from myhdl import Signal, StopSimulation, block, instance
+from myhdl import Signal, StopSimulation, block, instance, now
 
 from rtl.interfaces import card_reset
 from sim.local_memory import LocalMemory, local_memory
@@ -27,7 +27,7 @@ from sim.cosim import flatten_ports
 from sim.pci_bus import PciSegment, pci_segment
 from sim.pci_cosim import TargetAgent, VerilogTarget, pci_target_cosimulation, split_pins
 from sim.pci_lines import LINE_WIDTHS
-from sim.pci_host import PciHost, pci_host, run_scenario
+from sim.pci_host import MEMORY_WRITES, PciHost, pci_host, run_scenario
 from sim.pci_monitor import ProtocolChecker, pci_monitor
 from sim.waves import Waveform, run_traced, write_gtkw
 from sim.clocking import clock_source
@@ -45,7 +45,7 @@ WAVE_GROUPS = {
         "ad", "par", "devsel", "trdy", "stop", "perr", "serr", "inta")] + ["irq"],
     "target state (MyHDL only: the paper's states)": ["state"],
     "local bus": ["local_space", "local_addr", "local_be", "local_we", "local_re",
-                  "local_wdata", "local_rdata", "local_ready", "local_retry"],
+                  "local_wdata", "local_rdata", "local_ready", "local_retry", "local_room"],
 }
 
 
@@ -202,12 +202,12 @@ def pci_testbench(bench, scenario, background=None):
         target_perr_oe, target_serr_oe, target_inta_oe = pci.perr_oe, pci.serr_oe, pci.inta_oe
         local_space, local_addr, local_be, local_wdata, local_we, local_re = (
             local.space, local.addr, local.be, local.wdata, local.we, local.re)
-        local_rdata, local_ready, local_retry = local.rdata, local.ready, local.retry
+        local_rdata, local_ready, local_retry, local_room = local.rdata, local.ready, local.retry, local.room
 
     host_driver = pci_host(clock, reset, bench.host)
     segment = pci_segment(clock, bench.segment)
     monitor = pci_monitor(clock, reset, bench.segment, bench.checker)
-    target = []
+    target = [] if bench.ports is None else [room_audit(clock, lines, bench.memory)]
     for entry in bench.target_blocks():
         factory, args = entry[0], entry[1]
         options = entry[2] if len(entry) > 2 else {}
@@ -234,3 +234,39 @@ def pci_testbench(bench, scenario, background=None):
             yield from run_scenario(bench.host, background(bench))
 
     return host_driver, segment, monitor, target, clock_driver, stimulus, beside
+
+
+@block
+def room_audit(clock, lines, memory):
+    """The target acknowledges a memory-write dword only if the back end
+    (``memory``, a LocalMemory) will take it: after every rising edge, the
+    dwords completed on the bus and not yet written to space 1 are no more
+    than the writes the memory still promises.  (The first dword of a burst
+    reaches the memory a clock before it completes on the bus.)
+
+        clock    _/~\\_/~\\_/~\\_
+        count      ^       ^         phases completed (IRDY#, TRDY#, DEVSEL#)
+        check        ^       ^       at the falling edge: held <= promised
+    """
+
+    @instance
+    def audit():
+        completed = 0
+        writing = False
+        frame_before = True
+        while True:
+            yield clock.posedge
+            frame, irdy, trdy, devsel = (bool(line) for line in (lines.frame, lines.irdy, lines.trdy,
+                                                                 lines.devsel))
+            if not frame and frame_before:   # address phase
+                writing = int(lines.cbe) in MEMORY_WRITES
+            elif writing and not (irdy or trdy or devsel):
+                completed += 1
+            frame_before = frame
+            yield clock.negedge
+            held = completed - memory.space1_writes
+            if memory.promised is not None and held > memory.promised:
+                raise AssertionError(f"at {now()} the target holds {held} acknowledged dwords, "
+                                     f"the back end promised {memory.promised}")
+
+    return audit

@@ -24,7 +24,7 @@ from sim.top_harness import TopHarness, convert_top, top_on_bus
 DEVICE = 0
 DEFAULT = dict(clock_hz=33_333_333, fifo_depth=512, coord_width=24, variants="improved,precise")
 CHOSEN = dict(clock_hz=25_000_000, fifo_depth=16, coord_width=20, variants="all")
-SMALLEST = dict(clock_hz=1, fifo_depth=2, coord_width=14, variants="improved,precise")
+SMALLEST = dict(clock_hz=1, fifo_depth=4, coord_width=14, variants="improved,precise")
 MOVE = (5, -3)
 VARIANT_BITS = {"improved,precise": 0b1100, "all": 0b1111}   # bit n: ARC.VARIANT n
 DEVICE_CODES = {"generic": 0, "ice40": 1}

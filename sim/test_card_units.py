@@ -13,6 +13,7 @@ from rtl.direct_pulse import direct_pulse, direct_pulse_ports
 from rtl.feed_rate import feed_rate, feed_rate_ports
 from rtl.pulse_out import pulse_out, pulse_out_ports
 from rtl.registers import RATE_MAX, RATE_ONE
+from rtl.interfaces import LocalBus
 from rtl.sync_fifo import sync_fifo, sync_fifo_ports
 from sim.card_model import DirectPulseModel, FeedRateModel, FifoModel, PulseOutModel
 from sim.cosim import convert_and_cosimulate
@@ -20,6 +21,7 @@ from sim.waves import Waveform, run_traced, write_gtkw
 from sim.clocking import clock_source
 
 HALF_PERIOD = 5
+ROOM_PLACES = LocalBus.ROOM_PLACES
 
 
 def _dut(factory, module, ports, cosim, **params):
@@ -232,6 +234,7 @@ def test_sync_fifo_against_queue(cosim):
     def step(index):
         assert int(ports["level"]) == model.level, f"level at clock {index}"
         assert bool(ports["full"]) == model.full and bool(ports["empty"]) == (model.level == 0)
+        assert bool(ports["room"]) == model.room(ROOM_PLACES), f"room at clock {index}"
         assert int(ports["dout"]) == model.dout, f"dout at clock {index}"
         burst = (index // 100) % 2
         inputs = dict(push=rng.random() < (0.8 if burst else 0.3), din=rng.getrandbits(32),
@@ -242,4 +245,4 @@ def test_sync_fifo_against_queue(cosim):
 
     _run(f"sync_fifo_{'icarus' if cosim else 'myhdl'}",
          _dut(sync_fifo, "sync_fifo", ports, cosim, depth=depth), ports, step, 1000,
-         {"fifo": ["push", "din", "pop", "dout", "level", "full", "empty"]})
+         {"fifo": ["push", "din", "pop", "dout", "level", "full", "empty", "room"]})

@@ -1,5 +1,5 @@
 """The bench's own building blocks: the bus model's resolution and driver
-record, and the memory back end's latency, retry and errors."""
+record, and the memory back end's latency, retry, room promise and errors."""
 import pytest
 from myhdl import Signal, StopSimulation, block, instance
 
@@ -74,7 +74,8 @@ def test_even_parity():
 @block
 def local_requests(clock, reset, local, memory, requests, log, misdirect=False):
     """Present each (kind, space, addr, data, be) request until it is answered
-    (``misdirect``: announce the opposite direction on ``local.write``)."""
+    (``misdirect``: announce the opposite direction on ``local.write``); log
+    (kind, clocks waited, retry, rdata, room shown while it was answered)."""
     back_end = local_memory(clock, reset, local, memory)
 
     clock_driver = clock_source(clock, 2 * 15)
@@ -93,7 +94,7 @@ def local_requests(clock, reset, local, memory, requests, log, misdirect=False):
             while True:
                 yield clock.posedge
                 if local.ready or local.retry:
-                    log.append((kind, waited, bool(local.retry), int(local.rdata)))
+                    log.append((kind, waited, bool(local.retry), int(local.rdata), bool(local.room)))
                     break
                 waited += 1
             local.we.next = local.re.next = False
@@ -129,11 +130,44 @@ def test_retry_injection_is_seeded():
     assert all(entry[3] == NOT_READY_DATA for entry in first if entry[2])
 
 
+def no_promise(rng, edge, promised):
+    return promised
+
+
 def test_schedule_overrides_latency_and_retry():
-    memory = LocalMemory(schedule=lambda n, space, addr, write: (n, n == 1))
+    memory = LocalMemory(schedule=lambda n, space, addr, write: (n, n == 1), room=no_promise)
     log = serve(memory, [("w", 1, 0, 5, 0xF), ("w", 1, 4, 6, 0xF), ("w", 1, 8, 7, 0xF)])
     assert [(entry[1], entry[2]) for entry in log] == [(0, False), (1, True), (2, False)]
     assert memory.read(1, 4) == 0 and memory.read(1, 8) == 7
+
+
+def test_promised_writes_are_taken_whatever_the_plan():
+    """Four writes promised at the first edge (which answers the read), none
+    later; the plan refuses everything: room is high while three or more
+    are promised, the four promised space-1 writes are taken, the fifth and
+    the write to space 0 are refused."""
+    memory = LocalMemory(schedule=lambda n, space, addr, write: (0, True),
+                         room=lambda rng, edge, promised: 4 if edge == 1 else promised)
+    writes = [("w", 1, 4 * i, 5 + i, 0xF) for i in range(5)]
+    log = serve(memory, [("r", 1, 0, 0, 0xF), *writes, ("w", 0, 0, 8, 0xF)])
+    assert [(entry[2], entry[4]) for entry in log] == [(True, False), (False, True), (False, True),
+                                                       (False, False), (False, False), (True, False),
+                                                       (True, False)]
+    assert [memory.read(1, 4 * i) for i in range(5)] == [5, 6, 7, 8, 0] and memory.read(0, 0) == 0
+    assert memory.promised == 0 and memory.space1_writes == 4
+
+
+def test_unbounded_room_refuses_only_reads_and_space_0():
+    memory = LocalMemory(retry_rate=1.0)
+    log = serve(memory, [("w", 1, 0, 5, 0xF), ("r", 1, 0, 0, 0xF), ("w", 0, 0, 1, 0xF)])
+    assert [(entry[2], entry[4]) for entry in log] == [(False, True), (True, True), (True, True)]
+    assert memory.promised is None and memory.read(1, 0) == 5
+
+
+def test_a_promise_cannot_be_taken_back():
+    memory = LocalMemory(room=lambda rng, edge, promised: 3 if edge < 4 else 1)
+    with pytest.raises(ValueError, match="took back a promise"):
+        serve(memory, [("r", 1, 0, 0, 0xF)] * 6)
 
 
 def test_misuse_is_reported():

@@ -396,9 +396,15 @@ def schedule_of(plans):
     return lambda number, space, addr, is_write: plans.get(number, (0, False))
 
 
+def no_promise(rng, edge, promised):
+    """A LocalMemory room policy: no write promised, each one may be refused."""
+    return promised
+
+
 @pytest.mark.parametrize("target", TARGETS)
 def test_back_end_retry_on_the_first_request_retries_the_transaction(target):
-    memory = LocalMemory(IO_SIZE, MEM_SIZE, schedule=schedule_of({0: (0, True), 1: (2, True)}))
+    memory = LocalMemory(IO_SIZE, MEM_SIZE, schedule=schedule_of({0: (0, True), 1: (2, True)}),
+                         room=no_promise)
 
     def scenario(b, out):
         yield from setup(b.host)
@@ -411,20 +417,35 @@ def test_back_end_retry_on_the_first_request_retries_the_transaction(target):
 
 
 @pytest.mark.parametrize("target", TARGETS)
-def test_back_end_retry_later_in_a_burst_disconnects_without_data(target):
-    memory = LocalMemory(IO_SIZE, MEM_SIZE, schedule=schedule_of({2: (0, True)}))
-    values = [0x100 + i for i in range(6)]
+@pytest.mark.parametrize("promise", [1, 3, 4, 6])
+def test_a_burst_takes_only_what_the_back_end_promised(target, promise):
+    """The back end promises ``promise`` writes at first, then none until
+    edge 150, then every one: the first burst moves no more than promised
+    (at least its first dword, a handshake) and disconnects, later ones a
+    dword each (the handshake only) until the promise comes; the room audit
+    of the bench checks every clock."""
+    def room(rng, edge, promised):
+        if edge == 1:
+            return promise
+        return promised if edge < 150 else max(promised, 1 << 20)
+
+    memory = LocalMemory(IO_SIZE, MEM_SIZE, room=room)
+    values = [0x100 + i for i in range(12)]
 
     def scenario(b, out):
         yield from setup(b.host)
         out["write"] = yield from b.host.mem_write(MEM_BASE + 0x40, values)
 
-    out, bench, _ = run(target, scenario, "pci_backend_disconnect", memory=memory)
-    first = out["write"].transactions[0]
-    # a posting target may have taken more than two before the retry came back
-    assert first.termination is Termination.DISCONNECT and first.data[:2] == values[:2]
+    out, bench, _ = run(target, scenario, f"pci_backend_room_{promise}", memory=memory)
+    transactions = out["write"].transactions
+    first = transactions[0]
+    assert first.termination is Termination.DISCONNECT
+    assert 1 <= len(first.data) <= promise and first.data == values[:len(first.data)]
+    early = [t for t in transactions[1:] if t.end < 150 * CLOCK_PERIOD]
+    assert early and all(len(t.data) == 1 for t in early)
+    assert transactions[-1].termination is Termination.NORMAL
     assert out["write"].complete
-    assert [bench.memory.read(1, 0x40 + 4 * i) for i in range(6)] == values
+    assert [bench.memory.read(1, 0x40 + 4 * i) for i in range(12)] == values
 
 
 @pytest.mark.parametrize("target", TARGETS)

@@ -24,7 +24,7 @@ PROG = "python -m rtl.top"
 # option -> (words --help must show, values just inside the range)
 RANGES = {
     "--coord-width": ("14..29", ["14", "29"]),
-    "--fifo-depth": ("a power of two, 2..32,768", ["2", "4096"]),
+    "--fifo-depth": ("a power of two, 4..32,768", ["4", "4096"]),
     "--clock-hz": ("1..33,333,333", ["1", "33333333"]),
     "--vendor-id": ("0x0000..0xFFFE", ["0", "0xFFFE"]),
     "--device-id": ("0x0000..0xFFFF", ["0", "0xFFFF"]),
@@ -41,7 +41,7 @@ RANGES = {
 # option -> values outside the range (edges on both sides, wrong types)
 BAD_VALUES = {
     "--coord-width": ["13", "30", "4", "48", "24.0", "abc", ""],
-    "--fifo-depth": ["1", "0", "-4", "3", "48", "65536", "32768.0", "x200"],
+    "--fifo-depth": ["2", "1", "0", "-4", "3", "48", "65536", "32768.0", "x200"],
     "--clock-hz": ["0", "33333334", "-1", "33.3e6"],
     "--vendor-id": ["0xFFFF", "-1", "0x10000", "0xG"],
     "--device-id": ["-1", "0x10000"],

@@ -23,7 +23,7 @@ TIMEOUT_S = 300
 
 def expected_id():
     """Configuration dword 0: Device ID in the upper half, Vendor ID in the lower (PCI 2.3, 6.2.1)."""
-    return PARAMETERS["device_id"][1] << 16 | PARAMETERS["vendor_id"][1]
+    return PARAMETERS["device_id"].default << 16 | PARAMETERS["vendor_id"].default
 
 
 def fusesoc(cores_root, build_root, target, *arguments):

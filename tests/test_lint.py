@@ -25,7 +25,7 @@ BUILDS = {
     "gen": None,
     "generic": ["--device", "generic", "--coord-width", "29", "--fifo-depth", "32768", "--variants", "all",
                 "--clock-hz", "1", "--vendor-id", "0xFFFE"],
-    "ice40": ["--device", "ice40", "--coord-width", "14", "--fifo-depth", "2", "--clock-hz", "33333333"],
+    "ice40": ["--device", "ice40", "--coord-width", "14", "--fifo-depth", "4", "--clock-hz", "33333333"],
 }
 SOURCES = [(build, unit) for build in BUILDS for unit in UNITS]
 

@@ -77,6 +77,14 @@ class VerilatorBench:
         """RST# for ``RESET_CLOCKS`` clocks, two more, ``scenario(bench)``, four
         more.  ``name``/``trace``: accepted for ``PciBench``'s call; the card's
         own waves are the model's (``VerilatedModel.trace``).  Returns None."""
+        self.start()
+        self.call(scenario(self))
+        self.finish()
+        return None
+
+    def start(self):
+        """RST# for ``RESET_CLOCKS`` clocks, then two idle clocks: the card is
+        ready for ``call``."""
         model = self.model
         model["reset"] = 0
         self.core.reset(0)
@@ -85,11 +93,18 @@ class VerilatorBench:
         model["reset"] = 1
         for _ in range(2):
             self.clock_edge()
-        self._trampoline(scenario(self))
+
+    def call(self, scenario):
+        """Run the generator ``scenario`` (the host's transactions, ``Clocks``,
+        ``CardWait``) to its end now, and return its value: one piece of a
+        session that the caller drives step by step (``sim.card_session``)."""
+        return self._trampoline(scenario)
+
+    def finish(self):
+        """Four more clocks, as ``PciBench`` runs after a scenario; the pins into the log."""
         for _ in range(AFTER_CLOCKS):
             self.clock_edge()
         self.card.collect_pins(self.target.log)
-        return None
 
     def _trampoline(self, scenario):
         value = None

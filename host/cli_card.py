@@ -1,0 +1,197 @@
+"""``python -m host run / info / selftest``: the commands that talk to a card.
+
+``--card`` names it: ``verilator``, ``myhdl`` or ``icarus`` (the simulated
+card; ``--sim KIND`` says the same), ``pci`` (the one real card in this
+machine) or ``pci:DDDD:BB:DD.F`` (that one).  Every option is checked before
+the card is opened or anything is written.
+"""
+import dataclasses
+import importlib.util
+import signal
+import sys
+import time
+from pathlib import Path
+
+from host import gcode, svg
+from host.card import Card
+from host.check import check
+from host.pins import deviation, junction_gaps, pin_moves
+from host.planner import plan
+from host.selftest import selftest
+from host.stream import Stopped, stream
+from host.transport import SIM_KINDS, open_transport
+
+STOP_EXIT = 130  # the shell's code for a job ended by SIGINT
+
+
+def add_commands(commands, positive, scales, count):
+    """The ``run``, ``info`` and ``selftest`` sub-commands on ``commands`` (argparse sub-parsers)."""
+    def card_options(sub):
+        sub.add_argument("--card", default="verilator",
+                         help=f"{', '.join(SIM_KINDS)} (simulated), pci or pci:DDDD:BB:DD.F (default verilator)")
+        sub.add_argument("--sim", choices=SIM_KINDS, help="the simulated card of this kind (same as --card KIND)")
+
+    run = commands.add_parser("run", help="run FILE on a card, streaming it through the FIFO")
+    run.add_argument("file", help="G-code program, or an .svg drawing")
+    card_options(run)
+    run.add_argument("--steps-per-mm", type=scales, default=(200.0, 200.0), metavar="X[,Y]",
+                     help="steps per mm of each axis (default 200)")
+    run.add_argument("--rapid", type=positive, default=3000.0, help="rapid feed, mm/min (default 3000)")
+    run.add_argument("--acceleration", type=positive, default=500.0, help="mm/s^2 (default 500)")
+    run.add_argument("--start-feed", type=positive, default=60.0,
+                     help="mm/min a move starts and stops with (default 60)")
+    run.add_argument("--feed", type=positive, default=1200.0, help="SVG: feed of the drawn moves, mm/min")
+    run.add_argument("--tolerance", type=positive, default=0.01, help="SVG: curves as arcs within this many mm")
+    run.add_argument("--feed-override", type=positive, default=100.0, metavar="PERCENT",
+                     help="scale every feed, rapid included (default 100)")
+    run.add_argument("--mark-interval", type=count, default=256, help="words between MARKs (default 256)")
+    run.add_argument("--step-width-ns", type=positive, default=1000.0, help="STEP high time (default 1000)")
+    run.add_argument("--dir-setup-ns", type=positive, default=1000.0, help="DIR set-up time (default 1000)")
+    run.add_argument("--dir-hold-ns", type=positive, default=1000.0, help="DIR hold time (default 1000)")
+    run.add_argument("--low-water", type=count, help="refill when the FIFO falls below this (default: half)")
+    run.add_argument("--preview", help="simulated card: draw the pins' path over the drawing into this PNG")
+    for name, text in (("info", "identify the card and print what it reports"),
+                       ("selftest", "register walk, FIFO loop and a short move checked on position")):
+        card_options(commands.add_parser(name, help=text))
+
+
+def card_spec(options, refuse):
+    spec = options.sim or options.card
+    if spec not in SIM_KINDS and spec != "pci" and not spec.startswith("pci:"):
+        refuse(f"--card {spec}: use one of {', '.join(SIM_KINDS)}, pci or pci:DDDD:BB:DD.F")
+    return spec
+
+
+def run_command(options, refuse):
+    """``run``; the exit code."""
+    spec = card_spec(options, refuse)
+    path = Path(options.file)
+    if not path.is_file():
+        refuse(f"{path}: no such file")
+    if options.preview:
+        if spec not in SIM_KINDS:
+            refuse("--preview needs a simulated card: the path is rebuilt from its pins")
+        if not Path(options.preview).parent.is_dir():
+            refuse(f"{options.preview}: its folder does not exist")
+        if importlib.util.find_spec("matplotlib") is None:
+            refuse("--preview needs matplotlib: pip install -e '.[plot]'")
+    if path.suffix.lower() == ".svg":
+        drawing = svg.parse(str(path), options.tolerance, options.feed, path.name)
+    else:
+        drawing = gcode.parse(path.read_text(), path.name)
+    scale = options.feed_override / 100
+    drawing = [dataclasses.replace(item, feed=item.feed * scale) if getattr(item, "feed", None) else item
+               for item in drawing]
+    wall = time.monotonic()
+    with open_transport(spec) as transport:
+        card = Card(transport)
+        machine = card.configure(steps_per_mm=options.steps_per_mm, step_width_ns=options.step_width_ns,
+                                 dir_setup_ns=options.dir_setup_ns, dir_hold_ns=options.dir_hold_ns,
+                                 rapid=options.rapid * scale, acceleration=options.acceleration,
+                                 start_feed=options.start_feed, mark_interval=options.mark_interval)
+        planned = plan(drawing, machine)
+        model = check(planned)
+        print(f"card:       {transport.name}, {card.identity.clock_hz} Hz, FIFO {card.identity.fifo_words} words")
+        print(f"job:        {len(drawing)} segments, {len(planned.entries)} commands, "
+              f"{len(planned.words())} words, {len(planned.runs)} runs")
+        first_clock = transport.clocks
+        first_rise = len(transport.pins.rises) if transport.pins is not None else 0
+        stop = _StopRequest()
+        try:
+            result = stream(card, planned, options.low_water, _progress_bar(), stop)
+        except Stopped:
+            position = card.stop()
+            status = card.status()
+            idle = not card.field("STATUS", "BUSY", status) and card.field("STATUS", "FIFO_EMPTY", status)
+            sys.stderr.write("\n")
+            print(f"stopped:    card stopped (soft reset; {'idle, FIFO empty' if idle else 'STILL BUSY'}) at "
+                  f"{position} steps = ({', '.join(f'{v:.4f}' for v in machine.mm(position))}) mm")
+            return STOP_EXIT
+        finally:
+            stop.restore()
+        print(f"streamed:   {result.words} words in {result.bursts} bursts, {result.interrupts} interrupts, "
+              f"{len(result.marks)} MARKs read back")
+        print(f"position:   {result.position} steps (plan: {planned.end})")
+        print(f"job time:   {model.job_seconds:.4f} s planned; {result.seconds:.4f} s of card time")
+        if transport.clocks is not None:
+            _pins_report(planned, model, transport, first_rise, options.preview, card.timing["DIR_SETUP"])
+            print(f"simulated:  {transport.clocks - first_clock} clocks, wall time {time.monotonic() - wall:.1f} s")
+    return 0 if result.position == planned.end else 1
+
+
+def _pins_report(planned, model, transport, first_rise, preview, dir_setup):
+    rises = transport.pins.rises[first_rise:]
+    moves = pin_moves(planned, model, rises)
+    ideal = [p for _, points in model.points for p in points[1:]]
+    got = [p for _, points in moves for p in points[1:]]
+    mm, steps, where = deviation(planned, moves)
+    measured, over = junction_gaps(planned, model, rises, dir_setup)
+    print(f"pins:       {len(rises)} STEP rises; the path {'is' if got == ideal else 'is NOT'} the golden "
+          f"model's; max deviation {mm:.5f} mm = {steps:.3f} steps (at {where})")
+    print(f"gaps:       {len(over)} of {measured} blended junctions slower than the move before them")
+    if preview:
+        from host.preview import draw
+
+        draw(planned, dataclasses.replace(model, points=moves), preview,
+             title=f"the card's STEP/DIR pins (blue: fed, orange: rapid) over the drawing (grey); "
+                   f"max deviation {steps:.2f} steps")
+        print(f"preview:    {preview}")
+
+
+class _StopRequest:
+    """SIGINT sets a flag the streamer asks for (the card is stopped between two accesses)."""
+
+    def __init__(self):
+        self.requested = False
+        self.previous = signal.signal(signal.SIGINT, self._handle)
+
+    def _handle(self, *_):
+        self.requested = True
+
+    def __call__(self):
+        return self.requested
+
+    def restore(self):
+        signal.signal(signal.SIGINT, self.previous)
+
+
+def _progress_bar():
+    if not sys.stderr.isatty():
+        return None
+
+    def show(done, total):
+        filled = 40 * done // max(total, 1)
+        sys.stderr.write(f"\r[{'#' * filled}{' ' * (40 - filled)}] {done}/{total} words")
+        if done >= total:
+            sys.stderr.write("\n")
+        sys.stderr.flush()
+
+    return show
+
+
+def info_command(options, refuse):
+    spec = card_spec(options, refuse)
+    with open_transport(spec) as transport:
+        card = Card(transport)
+        ident = card.identity
+        print(f"card:        {transport.name}")
+        print(f"PCI IDs:     {ident.vendor_id:04x}:{ident.device_id:04x}")
+        print(f"registers:   version {ident.version[0]}.{ident.version[1]}")
+        print(f"clock:       {ident.clock_hz} Hz")
+        print(f"FIFO:        {ident.fifo_words} words")
+        print(f"coordinates: {ident.coord_width} bits; axes {ident.axes}; DDA variants {list(ident.variants)}; "
+              f"device {ident.device}")
+        print(f"status:      {card.status():#010x}; position {card.position()}; last MARK {card.last_mark()}")
+    return 0
+
+
+def selftest_command(options, refuse):
+    spec = card_spec(options, refuse)
+    with open_transport(spec) as transport:
+        card = Card(transport)
+        failures = 0
+        for name, problem in selftest(card):
+            print(f"{name:28} {'ok' if problem is None else 'FAILED: ' + problem}")
+            failures += problem is not None
+    print(f"selftest:    {'passed' if not failures else f'{failures} FAILED'}")
+    return 1 if failures else 0

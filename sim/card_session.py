@@ -1,0 +1,160 @@
+"""The whole card on one back end, driven by plain calls: "do this access now".
+
+The end-to-end benches (``sim/card_e2e.py``) hand the simulator one scenario
+and let it run to the end.  Host software works the other way round: it
+calls, one access at a time, and decides what to do next from the answer.
+``CardSession`` gives it that shape on every back end, with the same host
+engine, the same protocol checker on every bus clock and the same pin log:
+
+    session = CardSession("verilator")            # reset, enumeration
+    status = session.call(session.host.io_read(session.io + 0x0C)).value
+    waited, reason = session.wait(100_000, inta=True)
+    session.close()
+
+``call(scenario)`` runs a generator of the host's wait objects (any
+``PciMaster`` transaction, ``card_e2e``'s ``wait``) to its end and returns
+its value; simulated time moves only inside calls.
+
+* ``verilator``: ``VerilatorBench`` is stepped from Python anyway; a call is
+  its trampoline (``VerilatorBench.call``), waits run in compiled code.
+* ``myhdl`` and ``icarus``: the ``PciBench`` runs a server scenario that
+  waits one clock at a time for work; a call hands it the generator and
+  resumes the simulation (``run_sim`` for one clock at a time) until the
+  server has finished it.  MyHDL allows one simulation at a time, so one
+  such session at a time.
+"""
+from myhdl import now
+
+from sim.card_e2e import DEFAULT_FIFO, DEVICE, CardUnderTest, card_verilog, wait
+from sim.pci_bench import CLOCK_PERIOD, TARGET_DEVICE, PciBench, pci_testbench
+from sim.pci_host_core import Clocks
+from sim.vlt.bench import VerilatorBench
+from sim.vlt.card import VerilatedCard
+from sim.waves import trace_stem
+
+RETRIES = 4096  # retries in a row before an access gives up (a FIFO that stays full)
+
+
+class CardSession:
+    """The card of ``kind`` (``sim.card_e2e.KINDS``) with ``fifo_depth`` words of
+    FIFO, reset and enumerated.  ``host_options``: ``PciMaster`` keyword
+    arguments (default: ``max_retries`` = ``RETRIES``); ``trace``: the bench's
+    VCD (MyHDL, Icarus; ``name`` names it); ``monitor``: the protocol checker
+    on Verilator (always on for the others).
+
+    ``host`` (a ``PciMaster``), ``target`` (a ``CardUnderTest``: ``log``,
+    ``io``, ``mem``), ``device`` (``PciDevice``), ``io`` / ``mem`` (BAR
+    bases), ``clocks`` (card clocks so far).
+    """
+
+    def __init__(self, kind, fifo_depth=DEFAULT_FIFO, host_options=None, trace=False, name="card_session",
+                 monitor=True):
+        self.kind = kind
+        self.target = CardUnderTest(kind, fifo_depth)
+        options = dict(max_retries=RETRIES)
+        options.update(host_options or {})
+        if kind == "verilator":
+            self._runner = _VerilatorRunner(self.target, fifo_depth, options, monitor)
+        else:
+            self._runner = _MyhdlRunner(self.target, options, trace, f"{name}_{kind}")
+        self.host = self._runner.bench.host
+        self.bench = self._runner.bench
+        self.closed = False
+        try:
+            (self.device,) = self.call(self.host.enumerate_bus(devices=[DEVICE]))
+        except BaseException:
+            self.close()
+            raise
+        bars = {("io" if bar["io"] else "mem"): bar for bar in self.device.bars}
+        self.bars = bars
+        self.io = self.target.io = bars["io"]["base"]
+        self.mem = self.target.mem = bars["mem"]["base"]
+
+    @property
+    def log(self):
+        """The STEP/DIR pins so far (a ``PinLog``)."""
+        return self.target.log
+
+    @property
+    def clocks(self):
+        """Rising edges of the card clock so far."""
+        return self._runner.clocks()
+
+    def call(self, scenario):
+        """Run ``scenario`` (a generator of the host's wait objects) to its end now."""
+        if self.closed:
+            raise RuntimeError("the session is closed")
+        return self._runner.call(scenario)
+
+    def wait(self, clocks, inta=False, steps=0):
+        """Up to ``clocks`` clocks, fewer when INTA# is sampled low (``inta``)
+        or ``steps`` more STEP rises came; (clocks waited, ``Stop``)."""
+        return self.call(wait(self.bench, self.target, clocks, inta, steps))
+
+    def close(self):
+        """End the simulation (and its trace); the session is unusable afterwards."""
+        if not self.closed:
+            self.closed = True
+            self._runner.close()
+
+
+class _VerilatorRunner:
+    def __init__(self, target, fifo_depth, host_options, monitor):
+        self.card = VerilatedCard(card_verilog(fifo_depth), idsel_bit=16 + TARGET_DEVICE)
+        self.bench = VerilatorBench(self.card, target, host_options=host_options, monitor=monitor)
+        self.bench.start()
+
+    def clocks(self):
+        return self.card.model.clocks
+
+    def call(self, scenario):
+        return self.bench.call(scenario)
+
+    def close(self):
+        try:
+            self.bench.finish()
+        finally:
+            self.card.model.close()
+
+
+class _MyhdlRunner:
+    """A ``PciBench`` whose scenario serves calls: it waits a clock at a time
+    until ``call`` leaves it a generator, runs it, and keeps the outcome."""
+
+    def __init__(self, target, host_options, trace, name):
+        self.bench = PciBench(target=target, host_options=host_options)
+        self._job = self._outcome = None
+        self.top = pci_testbench(self.bench, self._serve)
+        if trace:
+            folder, stem = trace_stem(name)
+            self.top.config_sim(trace=True, directory=str(folder), name=name, filename=stem, tracebackup=False)
+
+    def _serve(self, bench):
+        while True:
+            job = self._job
+            if job is None:
+                yield Clocks(1)
+                continue
+            try:
+                value = yield from job
+            except Exception as error:  # handed back to the caller, the simulation goes on
+                self._outcome = (False, error)
+            else:
+                self._outcome = (True, value)
+            self._job = None
+
+    def clocks(self):
+        return now() // CLOCK_PERIOD
+
+    def call(self, scenario):
+        self._job, self._outcome = scenario, None
+        while self._outcome is None:
+            self.top.run_sim(CLOCK_PERIOD, quiet=1)
+        ok, value = self._outcome
+        if not ok:
+            raise value
+        return value
+
+    def close(self):
+        if self.top.sim is not None and not self.top.sim._finished:
+            self.top.quit_sim()
