@@ -514,6 +514,7 @@ reg card_core0_regs_fifo1_sequencer1_bad_header_bits;
 reg card_core0_regs_fifo1_sequencer1_bad_opcode;
 reg card_core0_regs_fifo1_sequencer1_bad_operand;
 reg card_core0_regs_fifo1_sequencer1_bad_set_index;
+reg card_core0_regs_fifo1_sequencer1_bad_variant;
 reg [3:0] card_core0_regs_fifo1_sequencer1_coord_mask;
 reg [3:0] card_core0_regs_fifo1_sequencer1_count_mask;
 wire card_core0_regs_fifo1_sequencer1_discard;
@@ -538,6 +539,7 @@ reg [23:0] card_core0_regs_fifo1_sequencer1_operand_3;
 reg card_core0_regs_fifo1_sequencer1_set_known;
 reg [2:0] card_core0_regs_fifo1_sequencer1_state;
 reg card_core0_regs_fifo1_sequencer1_state_over;
+reg card_core0_regs_fifo1_sequencer1_variant_built;
 reg card_core0_regs_fifo1_sequencer1_word_due;
 reg card_core0_regs_fifo1_sequencer1_dda_start;
 reg card_core0_regs_fifo1_sequencer1_dda_done;
@@ -580,7 +582,7 @@ reg [15:0] card_core0_regs_fifo1_feed_rate1_step_s;
 reg card_core0_regs_fifo1_feed_rate1_step_zero;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_target_s;
 wire [16:0] card_core0_regs_fifo1_feed_rate1_total;
-reg [26:0] card_core0_regs_fifo1_feed_rate1_feed_stop_left;
+wire [26:0] card_core0_regs_fifo1_feed_rate1_feed_stop_left;
 reg [23:0] card_core0_regs_fifo1_direct_pulse2_count_addend;
 reg [23:0] card_core0_regs_fifo1_direct_pulse2_count_operand;
 wire [23:0] card_core0_regs_fifo1_direct_pulse2_counted;
@@ -622,150 +624,167 @@ reg card_core0_regs_fifo1_pulse_out1_take;
 reg card_core0_regs_fifo1_pulse_out1_turn;
 reg signed [31:0] card_core0_regs_fifo1_pulse_out1_position_x;
 wire [1:0] card_core0_regs_fifo1__status1_quadrant;
-reg [4:0] card_core0_dda_arc1_acc_bits;
-reg signed [31:0] card_core0_dda_arc1_acc_x;
-reg signed [31:0] card_core0_dda_arc1_acc_y;
-reg card_core0_dda_arc1_at_x;
-reg card_core0_dda_arc1_at_y;
-reg card_core0_dda_arc1_blend;
-reg card_core0_dda_arc1_ccw;
-reg signed [31:0] card_core0_dda_arc1_check_acc_init;
-reg [2:0] card_core0_dda_arc1_check_crossings;
-reg card_core0_dda_arc1_check_error;
-reg signed [26:0] card_core0_dda_arc1_check_left_x;
-reg signed [26:0] card_core0_dda_arc1_check_left_y;
-reg signed [28:0] card_core0_dda_arc1_check_neg_in;
-reg [1:0] card_core0_dda_arc1_check_quadrant;
-reg [23:0] card_core0_dda_arc1_check_target_x;
-reg [23:0] card_core0_dda_arc1_check_target_y;
-reg [28:0] card_core0_dda_arc1_check_threshold;
-reg card_core0_dda_arc1_check_zero;
-reg signed [31:0] card_core0_dda_arc1_chk_acc_init;
-reg [2:0] card_core0_dda_arc1_chk_crossings;
-reg card_core0_dda_arc1_chk_error;
-reg signed [26:0] card_core0_dda_arc1_chk_left_x;
-reg signed [26:0] card_core0_dda_arc1_chk_left_y;
-reg signed [28:0] card_core0_dda_arc1_chk_neg_in;
-reg [1:0] card_core0_dda_arc1_chk_quadrant;
-reg [23:0] card_core0_dda_arc1_chk_target_x;
-reg [23:0] card_core0_dda_arc1_chk_target_y;
-reg [28:0] card_core0_dda_arc1_chk_threshold;
-reg card_core0_dda_arc1_chk_zero;
-reg [23:0] card_core0_dda_arc1_cmd_mag_xe;
-reg [23:0] card_core0_dda_arc1_cmd_mag_xs;
-reg [23:0] card_core0_dda_arc1_cmd_mag_ye;
-reg [23:0] card_core0_dda_arc1_cmd_mag_ys;
-reg [2:0] card_core0_dda_arc1_crossings;
-reg card_core0_dda_arc1_dec_finished;
-reg card_core0_dda_arc1_dec_in;
-reg card_core0_dda_arc1_dec_next_piece;
-reg card_core0_dda_arc1_dec_out;
-reg card_core0_dda_arc1_dec_step_x;
-reg card_core0_dda_arc1_dec_step_y;
-reg signed [31:0] card_core0_dda_arc1_dec_sum_x;
-reg signed [31:0] card_core0_dda_arc1_dec_sum_y;
-reg card_core0_dda_arc1_dec_tail;
-reg card_core0_dda_arc1_end_beyond_high;
-reg card_core0_dda_arc1_end_reaches_low;
-reg signed [30:0] card_core0_dda_arc1_first_half;
-reg [23:0] card_core0_dda_arc1_first_integrand_x;
-reg [23:0] card_core0_dda_arc1_first_integrand_y;
-reg [23:0] card_core0_dda_arc1_first_out;
-reg signed [31:0] card_core0_dda_arc1_first_q_in;
-reg signed [31:0] card_core0_dda_arc1_first_q_out;
-reg [23:0] card_core0_dda_arc1_first_stepped_x;
-reg [23:0] card_core0_dda_arc1_first_stepped_y;
-reg card_core0_dda_arc1_gap_carry;
-reg [24:0] card_core0_dda_arc1_gap_high;
-reg [24:0] card_core0_dda_arc1_gap_low;
-reg card_core0_dda_arc1_gap_sum_carry;
-reg [24:0] card_core0_dda_arc1_gap_sum_high;
-reg [24:0] card_core0_dda_arc1_gap_sum_low;
-reg [24:0] card_core0_dda_arc1_gap_top;
-reg card_core0_dda_arc1_geo_ahead;
-reg card_core0_dda_arc1_geo_centre;
-reg [2:0] card_core0_dda_arc1_geo_crossings;
-reg [23:0] card_core0_dda_arc1_geo_end_inward;
-reg [1:0] card_core0_dda_arc1_geo_quadrant;
-reg card_core0_dda_arc1_geo_x_in_end;
-reg card_core0_dda_arc1_geo_x_in_start;
-reg signed [30:0] card_core0_dda_arc1_half_sum;
-reg card_core0_dda_arc1_hand_end;
-reg card_core0_dda_arc1_hand_load;
-reg [23:0] card_core0_dda_arc1_integrand_x;
-reg [23:0] card_core0_dda_arc1_integrand_y;
-reg card_core0_dda_arc1_is_line;
-reg card_core0_dda_arc1_it_dir_x;
-reg card_core0_dda_arc1_it_dir_y;
-reg card_core0_dda_arc1_it_finished;
-reg card_core0_dda_arc1_it_next_piece;
-reg card_core0_dda_arc1_it_step_x;
-reg card_core0_dda_arc1_it_step_y;
-reg signed [31:0] card_core0_dda_arc1_it_sum_x;
-reg signed [31:0] card_core0_dda_arc1_it_sum_y;
-reg card_core0_dda_arc1_it_tail;
-reg [4:0] card_core0_dda_arc1_lambda_shift;
-reg signed [26:0] card_core0_dda_arc1_left_x;
-reg signed [26:0] card_core0_dda_arc1_left_y;
-reg [4:0] card_core0_dda_arc1_mac_bit;
-reg [1:0] card_core0_dda_arc1_mac_op;
-reg [23:0] card_core0_dda_arc1_mag_xe;
-reg [23:0] card_core0_dda_arc1_mag_xs;
-reg [23:0] card_core0_dda_arc1_mag_ye;
-reg [23:0] card_core0_dda_arc1_mag_ys;
-reg [47:0] card_core0_dda_arc1_multiplicand;
-reg [23:0] card_core0_dda_arc1_multiplier;
-reg card_core0_dda_arc1_near_x;
-reg card_core0_dda_arc1_near_y;
-reg signed [28:0] card_core0_dda_arc1_neg_in;
-reg card_core0_dda_arc1_neg_xe;
-reg card_core0_dda_arc1_neg_xs;
-reg card_core0_dda_arc1_neg_ye;
-reg card_core0_dda_arc1_neg_ys;
-reg card_core0_dda_arc1_pending;
-reg [23:0] card_core0_dda_arc1_pos_out;
-reg signed [31:0] card_core0_dda_arc1_q_in;
-reg signed [31:0] card_core0_dda_arc1_q_out;
-reg [1:0] card_core0_dda_arc1_quadrant;
-reg signed [29:0] card_core0_dda_arc1_radial_error;
-reg [47:0] card_core0_dda_arc1_radicand;
-reg [23:0] card_core0_dda_arc1_radius;
-reg [5:0] card_core0_dda_arc1_radius_length;
-reg [24:0] card_core0_dda_arc1_radius_q;
-reg [26:0] card_core0_dda_arc1_remainder;
-reg [23:0] card_core0_dda_arc1_root;
-reg card_core0_dda_arc1_root_all_ones;
-reg [4:0] card_core0_dda_arc1_root_bit;
-reg [5:0] card_core0_dda_arc1_root_length;
-reg [26:0] card_core0_dda_arc1_root_trial_diff;
-reg card_core0_dda_arc1_root_trial_fits;
-reg [26:0] card_core0_dda_arc1_root_trial_rem;
-reg [24:0] card_core0_dda_arc1_root_up;
-reg card_core0_dda_arc1_run_active;
-reg card_core0_dda_arc1_run_blend;
-reg card_core0_dda_arc1_run_ccw;
-reg [23:0] card_core0_dda_arc1_run_end_x;
-reg [23:0] card_core0_dda_arc1_run_end_y;
-reg card_core0_dda_arc1_run_line;
-reg card_core0_dda_arc1_run_right;
-reg card_core0_dda_arc1_run_up;
-reg [1:0] card_core0_dda_arc1_run_variant;
-reg [2:0] card_core0_dda_arc1_state;
-reg [23:0] card_core0_dda_arc1_stepped_x;
-reg [23:0] card_core0_dda_arc1_stepped_y;
-reg [23:0] card_core0_dda_arc1_target_x;
-reg [23:0] card_core0_dda_arc1_target_y;
-reg [28:0] card_core0_dda_arc1_threshold;
-reg card_core0_dda_arc1_tot_k2_x;
-reg card_core0_dda_arc1_tot_k2_y;
-reg card_core0_dda_arc1_tot_k4_x;
-reg card_core0_dda_arc1_tot_k4_y;
-reg signed [27:0] card_core0_dda_arc1_tot_sum_x;
-reg signed [27:0] card_core0_dda_arc1_tot_sum_y;
-reg signed [27:0] card_core0_dda_arc1_tot_x;
-reg signed [27:0] card_core0_dda_arc1_tot_y;
-reg [1:0] card_core0_dda_arc1_variant;
-reg card_core0_dda_arc1_x_inward;
+reg [4:0] card_core0_dda_arc1_dda_setup1_acc_bits;
+reg card_core0_dda_arc1_dda_setup1_carry;
+reg [48:0] card_core0_dda_arc1_dda_setup1_gap;
+reg [1:0] card_core0_dda_arc1_dda_setup1_gap_op;
+reg card_core0_dda_arc1_dda_setup1_grew;
+reg card_core0_dda_arc1_dda_setup1_invert;
+reg card_core0_dda_arc1_dda_setup1_m_is_y;
+reg [27:0] card_core0_dda_arc1_dda_setup1_major;
+reg [23:0] card_core0_dda_arc1_dda_setup1_multiplier;
+reg [1:0] card_core0_dda_arc1_dda_setup1_next_square;
+reg [2:0] card_core0_dda_arc1_dda_setup1_next_state;
+reg [4:0] card_core0_dda_arc1_dda_setup1_next_step;
+reg [5:0] card_core0_dda_arc1_dda_setup1_ones_left;
+reg [48:0] card_core0_dda_arc1_dda_setup1_operand;
+reg [1:0] card_core0_dda_arc1_dda_setup1_operand_op;
+reg card_core0_dda_arc1_dda_setup1_pick_x;
+reg [2:0] card_core0_dda_arc1_dda_setup1_source;
+reg card_core0_dda_arc1_dda_setup1_source_on;
+reg [24:0] card_core0_dda_arc1_dda_setup1_source_value;
+reg [1:0] card_core0_dda_arc1_dda_setup1_square;
+reg [2:0] card_core0_dda_arc1_dda_setup1_state;
+reg [4:0] card_core0_dda_arc1_dda_setup1_step;
+wire [48:0] card_core0_dda_arc1_dda_setup1_total;
+reg [1:0] card_core0_dda_arc1_dda_setup1_twice;
+wire card_core0_dda_arc1_dda_setup1_plan_taken;
+reg card_core0_dda_arc1_dda_setup1_plan_x_inward_end;
+reg card_core0_dda_arc1_dda_setup1_plan_x_inward;
+reg [24:0] card_core0_dda_arc1_dda_setup1_root_root;
+reg [2:0] card_core0_dda_arc1_dda_setup1_plan_crossings;
+reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_xs;
+reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_ys;
+reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_xe;
+reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_ye;
+wire [47:0] card_core0_dda_arc1_dda_setup1_root_radicand;
+wire card_core0_dda_arc1_dda_setup1_root_load;
+reg card_core0_dda_arc1_dda_setup1_root_grows;
+reg [27:0] card_core0_dda_arc1_dda_setup1_plan_threshold;
+reg card_core0_dda_arc1_dda_setup1_plan_too_wide;
+reg card_core0_dda_arc1_dda_setup1_plan_off_circle;
+reg card_core0_dda_arc1_dda_setup1_plan_start_below_x;
+reg card_core0_dda_arc1_dda_setup1_plan_start_same_x;
+reg card_core0_dda_arc1_dda_setup1_plan_start_below_y;
+reg card_core0_dda_arc1_dda_setup1_plan_start_same_y;
+reg [24:0] card_core0_dda_arc1_dda_setup1_plan_radius;
+reg card_core0_dda_arc1_dda_setup1_plan_beyond;
+reg signed [26:0] card_core0_dda_arc1_dda_setup1_plan_totals_diff;
+reg [26:0] card_core0_dda_arc1_dda_setup1_plan_totals_max;
+wire card_core0_dda_arc1_dda_setup1_plan_done;
+reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
+reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs;
+reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye;
+reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line;
+reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead;
+reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre;
+reg card_core0_dda_arc1_dda_setup1_dda_root1_all_ones;
+reg card_core0_dda_arc1_dda_setup1_dda_root1_fits;
+reg [25:0] card_core0_dda_arc1_dda_setup1_dda_root1_keep;
+reg [47:0] card_core0_dda_arc1_dda_setup1_dda_root1_radicand;
+reg [25:0] card_core0_dda_arc1_dda_setup1_dda_root1_remainder;
+reg card_core0_dda_arc1_dda_setup1_dda_root1_started;
+reg [4:0] card_core0_dda_arc1_dda_setup1_dda_root1_steps;
+reg card_core0_dda_arc1_dda_check1_variant_built;
+wire card_core0_dda_arc1_dda_check1_move_offer;
+wire card_core0_dda_arc1_dda_check1_move_take;
+reg card_core0_dda_arc1_dda_check1_move_error;
+reg card_core0_dda_arc1_dda_check1_move_zero;
+reg card_core0_dda_arc1_dda_check1_move_line;
+reg [1:0] card_core0_dda_arc1_dda_check1_move_variant;
+reg card_core0_dda_arc1_dda_check1_move_ccw;
+reg card_core0_dda_arc1_dda_check1_move_blend;
+reg card_core0_dda_arc1_dda_check1_move_right;
+reg card_core0_dda_arc1_dda_check1_move_up;
+reg card_core0_dda_arc1_dda_check1_move_x_inward;
+reg [1:0] card_core0_dda_arc1_dda_check1_move_quadrant;
+reg [2:0] card_core0_dda_arc1_dda_check1_move_crossings;
+reg [1:0] card_core0_dda_arc1_dda_check1_move_target_x;
+reg [1:0] card_core0_dda_arc1_dda_check1_move_target_y;
+reg [23:0] card_core0_dda_arc1_dda_check1_move_mag_x;
+reg [23:0] card_core0_dda_arc1_dda_check1_move_mag_y;
+reg [23:0] card_core0_dda_arc1_dda_check1_move_end_x;
+reg [23:0] card_core0_dda_arc1_dda_check1_move_end_y;
+reg [23:0] card_core0_dda_arc1_dda_check1_move_radius;
+reg signed [26:0] card_core0_dda_arc1_dda_check1_move_totals_diff;
+reg [26:0] card_core0_dda_arc1_dda_check1_move_totals_max;
+reg [27:0] card_core0_dda_arc1_dda_check1_move_threshold;
+reg signed [29:0] card_core0_dda_arc1_dda_check1_move_acc_init;
+reg card_core0_dda_arc1_dda_check1_move_acc_carry;
+reg signed [26:0] card_core0_dda_arc1_dda_check1_move_bias_in;
+reg signed [26:0] card_core0_dda_arc1_dda_check1_move_bias_out;
+reg signed [29:0] card_core0_dda_arc1_dda_run1_acc_x;
+reg signed [29:0] card_core0_dda_arc1_dda_run1_acc_y;
+reg card_core0_dda_arc1_dda_run1_active;
+reg card_core0_dda_arc1_dda_run1_ahead_x;
+reg card_core0_dda_arc1_dda_run1_ahead_y;
+reg card_core0_dda_arc1_dda_run1_at_x;
+reg card_core0_dda_arc1_dda_run1_at_y;
+reg card_core0_dda_arc1_dda_run1_ccw;
+reg [2:0] card_core0_dda_arc1_dda_run1_crossings;
+reg [23:0] card_core0_dda_arc1_dda_run1_end_x;
+reg [23:0] card_core0_dda_arc1_dda_run1_end_y;
+reg card_core0_dda_arc1_dda_run1_finished;
+reg card_core0_dda_arc1_dda_run1_first;
+reg card_core0_dda_arc1_dda_run1_go_x;
+reg card_core0_dda_arc1_dda_run1_go_y;
+reg [23:0] card_core0_dda_arc1_dda_run1_goal_x;
+reg [23:0] card_core0_dda_arc1_dda_run1_goal_y;
+reg [29:0] card_core0_dda_arc1_dda_run1_kept_x;
+reg [29:0] card_core0_dda_arc1_dda_run1_kept_y;
+reg [29:0] card_core0_dda_arc1_dda_run1_less_x;
+reg [29:0] card_core0_dda_arc1_dda_run1_less_y;
+reg card_core0_dda_arc1_dda_run1_near_x;
+reg card_core0_dda_arc1_dda_run1_near_y;
+reg card_core0_dda_arc1_dda_run1_next_piece;
+reg card_core0_dda_arc1_dda_run1_over_x;
+reg card_core0_dda_arc1_dda_run1_over_y;
+reg [1:0] card_core0_dda_arc1_dda_run1_quadrant;
+reg [23:0] card_core0_dda_arc1_dda_run1_radius;
+reg card_core0_dda_arc1_dda_run1_right;
+reg card_core0_dda_arc1_dda_run1_saturate_x;
+reg card_core0_dda_arc1_dda_run1_saturate_y;
+reg [23:0] card_core0_dda_arc1_dda_run1_stepped_x;
+reg [23:0] card_core0_dda_arc1_dda_run1_stepped_y;
+reg [30:0] card_core0_dda_arc1_dda_run1_sum_x;
+reg [30:0] card_core0_dda_arc1_dda_run1_sum_y;
+reg card_core0_dda_arc1_dda_run1_tail;
+reg card_core0_dda_arc1_dda_run1_tail_taken;
+wire card_core0_dda_arc1_dda_run1_taking;
+reg [1:0] card_core0_dda_arc1_dda_run1_target_x;
+reg [1:0] card_core0_dda_arc1_dda_run1_target_y;
+reg [27:0] card_core0_dda_arc1_dda_run1_threshold;
+reg card_core0_dda_arc1_dda_run1_threshold_carry;
+reg card_core0_dda_arc1_dda_run1_up;
+reg [1:0] card_core0_dda_arc1_dda_run1_variant;
+reg [23:0] card_core0_dda_arc1_dda_run1_step_mag_y;
+reg [23:0] card_core0_dda_arc1_dda_run1_step_mag_x;
+reg card_core0_dda_arc1_dda_run1_step_step_x;
+reg card_core0_dda_arc1_dda_run1_step_step_y;
+reg card_core0_dda_arc1_dda_run1_step_line;
+reg card_core0_dda_arc1_dda_run1_step_x_inward;
+reg card_core0_dda_arc1_dda_run1_step_outward_near;
+reg card_core0_dda_arc1_dda_run1_step_inward_near;
+wire card_core0_dda_arc1_dda_run1_step_last;
+reg card_core0_dda_arc1_dda_run1_step_pending;
+reg card_core0_dda_arc1_dda_run1_step_finished;
+reg card_core0_dda_arc1_dda_run1_step_new_piece;
+reg card_core0_dda_arc1_dda_run1_step_blend;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_left1_difference;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_left1_larger;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_step;
+reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
@@ -3210,6 +3229,16 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_variant
+    case (card_core0_regs_fifo1_fifo_dout[3-1:1])
+        0: card_core0_regs_fifo1_sequencer1_variant_built = 0;
+        1: card_core0_regs_fifo1_sequencer1_variant_built = 0;
+        2: card_core0_regs_fifo1_sequencer1_variant_built = 1;
+        default: card_core0_regs_fifo1_sequencer1_variant_built = 1;
+    endcase
+end
+
+
 always @(card_core0_regs_fifo1_sequencer1_arriving_count, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_state, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer1_next_valid, card_core0_core_clear, card_core0_regs_fifo1_sequencer1_next_count, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_fetch_request
     reg more;
     more = 1'b1;
@@ -3233,6 +3262,7 @@ assign card_core0_regs_fifo1_sequencer1_discard = (card_core0_regs_fifo1_clear_e
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_fetch
     if (reset == 0) begin
         card_core0_regs_fifo1_sequencer1_operand_0 <= 0;
+        card_core0_regs_fifo1_sequencer1_bad_variant <= 0;
         card_core0_regs_fifo1_sequencer1_next_motion <= 0;
         card_core0_regs_fifo1_sequencer1_bad_set_index <= 0;
         card_core0_regs_fifo1_sequencer1_operand_3 <= 0;
@@ -3266,6 +3296,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
                     card_core0_regs_fifo1_sequencer1_bad_opcode <= (!card_core0_regs_fifo1_sequencer1_next_known);
                     card_core0_regs_fifo1_sequencer1_bad_header_bits <= (((card_core0_regs_fifo1_fifo_dout[32-1:16] & (~card_core0_regs_fifo1_sequencer1_mask_high)) != 0) || ((card_core0_regs_fifo1_fifo_dout[16-1:0] & (~card_core0_regs_fifo1_sequencer1_mask_low)) != 0));
                     card_core0_regs_fifo1_sequencer1_bad_set_index <= ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 4) && (!card_core0_regs_fifo1_sequencer1_set_known));
+                    card_core0_regs_fifo1_sequencer1_bad_variant <= ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 2) && (!card_core0_regs_fifo1_sequencer1_variant_built));
                     card_core0_regs_fifo1_sequencer1_bad_operand <= 0;
                     if ((card_core0_regs_fifo1_sequencer1_arriving_count == 0)) begin
                         card_core0_regs_fifo1_sequencer1_next_valid <= 1;
@@ -3306,7 +3337,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_sequencer1_bad_set_index, card_core0_regs_fifo1_sequencer1_bad_header_bits, card_core0_regs_fifo1_sequencer1_bad_opcode) begin: card_core0_regs_fifo1_sequencer1_check
+always @(card_core0_regs_fifo1_sequencer1_bad_variant, card_core0_regs_fifo1_sequencer1_bad_set_index, card_core0_regs_fifo1_sequencer1_bad_opcode, card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_sequencer1_bad_header_bits) begin: card_core0_regs_fifo1_sequencer1_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -3316,7 +3347,7 @@ always @(card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_seq
     else if (card_core0_regs_fifo1_sequencer1_bad_header_bits) begin
         result = 2;
     end
-    else if ((card_core0_regs_fifo1_sequencer1_bad_set_index || card_core0_regs_fifo1_sequencer1_bad_operand)) begin
+    else if ((card_core0_regs_fifo1_sequencer1_bad_set_index || card_core0_regs_fifo1_sequencer1_bad_operand || card_core0_regs_fifo1_sequencer1_bad_variant)) begin
         result = 3;
     end
     card_core0_regs_fifo1_sequencer1_next_error = result;
@@ -4119,7 +4150,7 @@ assign card_core0_regs_fifo1_reg_word32_shown = card_core0_regs_fifo1_pulse_out1
 assign card_core0_regs_fifo1_reg_word33_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
 
 
-always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_arc1_magnitudes
+always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_magnitudes
     reg [24-1:0] sign_xs;
     reg [24-1:0] sign_ys;
     reg [24-1:0] sign_xe;
@@ -4152,1087 +4183,1297 @@ always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequence
     less_ys = (card_core0_regs_fifo1_sequencer1_dda_ys[24-1:0] + sign_ys);
     less_xe = (card_core0_regs_fifo1_sequencer1_dda_xe[24-1:0] + sign_xe);
     less_ye = (card_core0_regs_fifo1_sequencer1_dda_ye[24-1:0] + sign_ye);
-    card_core0_dda_arc1_cmd_mag_xs = (less_xs ^ sign_xs);
-    card_core0_dda_arc1_cmd_mag_ys = (less_ys ^ sign_ys);
-    card_core0_dda_arc1_cmd_mag_xe = (less_xe ^ sign_xe);
-    card_core0_dda_arc1_cmd_mag_ye = (less_ye ^ sign_ye);
+    card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs = (less_xs ^ sign_xs);
+    card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys = (less_ys ^ sign_ys);
+    card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe = (less_xe ^ sign_xe);
+    card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye = (less_ye ^ sign_ye);
 end
 
 
-always @(card_core0_dda_arc1_gap_low, card_core0_dda_arc1_root_bit, card_core0_dda_arc1_state, card_core0_dda_arc1_multiplicand, card_core0_dda_arc1_gap_carry, card_core0_dda_arc1_gap_high, card_core0_dda_arc1_mac_op) begin: card_core0_dda_arc1_setup_adder
-    reg subtract;
-    reg carry;
-    reg [50-1:0] operand;
-    reg [26-1:0] total_low;
-    reg [25-1:0] total_high;
-    subtract = (0 != 0);
-    carry = (0 != 0);
-    operand = 50'h0;
-    total_low = 26'h0;
-    total_high = 25'h0;
-    if ((card_core0_dda_arc1_state == 3'b001)) begin
-        subtract = (card_core0_dda_arc1_mac_op < 2);
-        carry = (card_core0_dda_arc1_mac_op < 2);
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_latch
+    if ((card_core0_regs_fifo1_sequencer1_dda_start && card_core0_regs_fifo1_sequencer1_dda_ready)) begin
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line <= card_core0_regs_fifo1_sequencer1_dda_line;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant <= card_core0_regs_fifo1_sequencer1_dda_variant;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw <= card_core0_regs_fifo1_sequencer1_dda_ccw;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend <= card_core0_regs_fifo1_sequencer1_dda_blend;
+        card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs <= (card_core0_regs_fifo1_sequencer1_dda_xs < 0);
+        card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys <= (card_core0_regs_fifo1_sequencer1_dda_ys < 0);
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe <= (card_core0_regs_fifo1_sequencer1_dda_xe < 0);
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye <= (card_core0_regs_fifo1_sequencer1_dda_ye < 0);
+        card_core0_dda_arc1_dda_setup1_plan_mag_xs <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs;
+        card_core0_dda_arc1_dda_setup1_plan_mag_ys <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys;
+        card_core0_dda_arc1_dda_setup1_plan_mag_xe <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
+        card_core0_dda_arc1_dda_setup1_plan_mag_ye <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye;
     end
-    else begin
-        subtract = (card_core0_dda_arc1_root_bit == 2);
-    end
-    operand = {2'h0, card_core0_dda_arc1_multiplicand};
-    if (subtract) begin
-        operand = (~operand);
-    end
-    total_low = (({1'b0, card_core0_dda_arc1_gap_low} + {1'b0, operand[25-1:0]}) + {25'h0, carry});
-    total_high = ((card_core0_dda_arc1_gap_high + operand[50-1:25]) + {24'h0, card_core0_dda_arc1_gap_carry});
-    card_core0_dda_arc1_gap_sum_low = total_low[25-1:0];
-    card_core0_dda_arc1_gap_sum_carry = total_low[25];
-    card_core0_dda_arc1_gap_sum_high = total_high;
-    card_core0_dda_arc1_gap_top = (card_core0_dda_arc1_gap_high + {24'h0, card_core0_dda_arc1_gap_carry});
 end
 
 
-always @(card_core0_dda_arc1_radicand, card_core0_dda_arc1_remainder, card_core0_dda_arc1_root) begin: card_core0_dda_arc1_root_trial
-    reg [27-1:0] trial_rem;
-    reg [28-1:0] trial_diff;
-    trial_rem = 27'h0;
-    trial_diff = 28'h0;
-    trial_rem = {card_core0_dda_arc1_remainder[(24 + 1)-1:0], card_core0_dda_arc1_radicand[(2 * 24)-1:((2 * 24) - 2)]};
-    trial_diff = ({1'b0, trial_rem} - {2'h0, card_core0_dda_arc1_root, 2'h1});
-    card_core0_dda_arc1_root_trial_rem = trial_rem;
-    card_core0_dda_arc1_root_trial_diff = trial_diff[(24 + 3)-1:0];
-    card_core0_dda_arc1_root_trial_fits = (!trial_diff[(24 + 3)]);
-end
-
-
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_geometry
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_geometry
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
-    reg [3-1:0] turns;
     reg [2-1:0] turn;
-    reg [25-1:0] shrink_x;
-    reg [25-1:0] shrink_y;
     reg ahead;
     reg zero_xs;
     reg zero_ys;
     reg zero_xe;
     reg zero_ye;
+    q_s = 2'h0;
+    q_e = 2'h0;
+    turn = 2'h0;
+    ahead = 1'b0;
+    zero_xs = (card_core0_dda_arc1_dda_setup1_plan_mag_xs == 0);
+    zero_ys = (card_core0_dda_arc1_dda_setup1_plan_mag_ys == 0);
+    zero_xe = (card_core0_dda_arc1_dda_setup1_plan_mag_xe == 0);
+    zero_ye = (card_core0_dda_arc1_dda_setup1_plan_mag_ye == 0);
+    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw) begin
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
+            q_s = 0;
+        end
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!zero_ys))) begin
+            q_s = 1;
+        end
+        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys || zero_ys))) begin
+            q_s = 2;
+        end
+        else begin
+            q_s = 3;
+        end
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!zero_ye))) begin
+            q_e = 0;
+        end
+        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
+            q_e = 1;
+        end
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || zero_xe) && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye)) begin
+            q_e = 2;
+        end
+        else begin
+            q_e = 3;
+        end
+        turn = (q_e - q_s);
+    end
+    else begin
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!zero_ys))) begin
+            q_s = 0;
+        end
+        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
+            q_s = 1;
+        end
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || zero_xs) && card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys)) begin
+            q_s = 2;
+        end
+        else begin
+            q_s = 3;
+        end
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
+            q_e = 0;
+        end
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!zero_ye))) begin
+            q_e = 1;
+        end
+        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye || zero_ye))) begin
+            q_e = 2;
+        end
+        else begin
+            q_e = 3;
+        end
+        turn = (q_s - q_e);
+    end
+    if ((q_s[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw)) begin
+        ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_x) && (card_core0_dda_arc1_dda_setup1_plan_start_below_y || card_core0_dda_arc1_dda_setup1_plan_start_same_y));
+    end
+    else begin
+        ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_y) && (card_core0_dda_arc1_dda_setup1_plan_start_below_x || card_core0_dda_arc1_dda_setup1_plan_start_same_x));
+    end
+    ahead = (ahead && (!(card_core0_dda_arc1_dda_setup1_plan_start_same_x && card_core0_dda_arc1_dda_setup1_plan_start_same_y)) && (turn == 0));
+    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead <= ahead;
+    card_core0_dda_arc1_dda_setup1_plan_crossings <= {1'b0, turn};
+    if (((turn == 0) && (!ahead))) begin
+        card_core0_dda_arc1_dda_setup1_plan_crossings <= 4;
+    end
+    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant <= q_s;
+    card_core0_dda_arc1_dda_setup1_plan_x_inward <= (q_s[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
+    card_core0_dda_arc1_dda_setup1_plan_x_inward_end <= (q_e[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
+    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= (zero_xe && zero_ye);
+    end
+    else begin
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_dda_root1_radicand, card_core0_dda_arc1_dda_setup1_dda_root1_remainder, card_core0_dda_arc1_dda_setup1_root_root) begin: card_core0_dda_arc1_dda_setup1_dda_root1_trial
+    reg [28-1:0] value;
+    reg [27-1:0] difference;
+    value = 28'h0;
+    difference = 27'h0;
+    value = {card_core0_dda_arc1_dda_setup1_dda_root1_remainder, card_core0_dda_arc1_dda_setup1_dda_root1_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+    difference = ({1'b0, value[(24 + 2)-1:0]} - {1'b0, card_core0_dda_arc1_dda_setup1_root_root[24-1:0], 2'h1});
+    card_core0_dda_arc1_dda_setup1_dda_root1_fits = ((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
+    card_core0_dda_arc1_dda_setup1_dda_root1_keep = value[(24 + 2)-1:0];
+    if (((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]))) begin
+        card_core0_dda_arc1_dda_setup1_dda_root1_keep = difference[(24 + 2)-1:0];
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_dda_root1_steps, card_core0_dda_arc1_dda_setup1_dda_root1_all_ones, card_core0_dda_arc1_dda_setup1_dda_root1_fits, card_core0_dda_arc1_dda_setup1_dda_root1_started) begin: card_core0_dda_arc1_dda_setup1_dda_root1_length
+    card_core0_dda_arc1_dda_setup1_root_grows = 1'b0;
+    if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps > 1)) begin
+        card_core0_dda_arc1_dda_setup1_root_grows = (card_core0_dda_arc1_dda_setup1_dda_root1_started || card_core0_dda_arc1_dda_setup1_dda_root1_fits);
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps == 1)) begin
+        card_core0_dda_arc1_dda_setup1_root_grows = (card_core0_dda_arc1_dda_setup1_dda_root1_fits && card_core0_dda_arc1_dda_setup1_dda_root1_started && card_core0_dda_arc1_dda_setup1_dda_root1_all_ones);
+    end
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_dda_root1_count
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_geo_quadrant <= 0;
-        card_core0_dda_arc1_geo_ahead <= 0;
-        card_core0_dda_arc1_geo_x_in_start <= 0;
-        card_core0_dda_arc1_geo_centre <= 0;
-        card_core0_dda_arc1_geo_end_inward <= 0;
-        card_core0_dda_arc1_geo_x_in_end <= 0;
-        card_core0_dda_arc1_geo_crossings <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_root1_steps <= 0;
     end
     else begin
-        q_s = 2'h0;
-        q_e = 2'h0;
-        turns = 3'h0;
-        turn = 2'h0;
-        shrink_x = 25'h0;
-        shrink_y = 25'h0;
-        ahead = (0 != 0);
-        zero_xs = (0 != 0);
-        zero_ys = (0 != 0);
-        zero_xe = (0 != 0);
-        zero_ye = (0 != 0);
-        zero_xs = (card_core0_dda_arc1_mag_xs == 0);
-        zero_ys = (card_core0_dda_arc1_mag_ys == 0);
-        zero_xe = (card_core0_dda_arc1_mag_xe == 0);
-        zero_ye = (card_core0_dda_arc1_mag_ye == 0);
-        if (card_core0_dda_arc1_ccw) begin
-            if (((!card_core0_dda_arc1_neg_xs) && (!zero_xs) && (!card_core0_dda_arc1_neg_ys))) begin
-                q_s = 0;
+        if (card_core0_dda_arc1_dda_setup1_root_load) begin
+            card_core0_dda_arc1_dda_setup1_dda_root1_steps <= (24 + 1);
+        end
+        else if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps != 0)) begin
+            card_core0_dda_arc1_dda_setup1_dda_root1_steps <= (card_core0_dda_arc1_dda_setup1_dda_root1_steps - 1);
+        end
+    end
+end
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_root1_digits
+    if (card_core0_dda_arc1_dda_setup1_root_load) begin
+        card_core0_dda_arc1_dda_setup1_dda_root1_radicand <= card_core0_dda_arc1_dda_setup1_root_radicand;
+        card_core0_dda_arc1_dda_setup1_dda_root1_remainder <= 0;
+        card_core0_dda_arc1_dda_setup1_root_root <= 0;
+        card_core0_dda_arc1_dda_setup1_dda_root1_started <= 1'b0;
+        card_core0_dda_arc1_dda_setup1_dda_root1_all_ones <= 1'b1;
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps != 0)) begin
+        card_core0_dda_arc1_dda_setup1_dda_root1_remainder <= card_core0_dda_arc1_dda_setup1_dda_root1_keep;
+        card_core0_dda_arc1_dda_setup1_root_root <= {card_core0_dda_arc1_dda_setup1_root_root[24-1:0], card_core0_dda_arc1_dda_setup1_dda_root1_fits};
+        card_core0_dda_arc1_dda_setup1_dda_root1_radicand <= (card_core0_dda_arc1_dda_setup1_dda_root1_radicand << 2);
+        if (card_core0_dda_arc1_dda_setup1_dda_root1_fits) begin
+            card_core0_dda_arc1_dda_setup1_dda_root1_started <= 1'b1;
+        end
+        else if (card_core0_dda_arc1_dda_setup1_dda_root1_started) begin
+            card_core0_dda_arc1_dda_setup1_dda_root1_all_ones <= 1'b0;
+        end
+    end
+end
+
+
+always @(card_core0_regs_fifo1_sequencer1_dda_start, card_core0_dda_arc1_dda_setup1_plan_taken, card_core0_dda_arc1_dda_setup1_step, card_core0_regs_fifo1_sequencer1_dda_line, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_sequence
+    card_core0_dda_arc1_dda_setup1_next_state = card_core0_dda_arc1_dda_setup1_state;
+    card_core0_dda_arc1_dda_setup1_next_step = 0;
+    card_core0_dda_arc1_dda_setup1_next_square = card_core0_dda_arc1_dda_setup1_square;
+    if ((card_core0_dda_arc1_dda_setup1_state == 3'b000)) begin
+        card_core0_dda_arc1_dda_setup1_next_square = 0;
+        if (card_core0_regs_fifo1_sequencer1_dda_start) begin
+            card_core0_dda_arc1_dda_setup1_next_state = 3'b010;
+            if (card_core0_regs_fifo1_sequencer1_dda_line) begin
+                card_core0_dda_arc1_dda_setup1_next_state = 3'b001;
             end
-            else if (((card_core0_dda_arc1_neg_xs || zero_xs) && (!card_core0_dda_arc1_neg_ys) && (!zero_ys))) begin
-                q_s = 1;
+        end
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b001)) begin
+        card_core0_dda_arc1_dda_setup1_next_state = 3'b110;
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b010)) begin
+        if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (7 - 1))) begin
+            card_core0_dda_arc1_dda_setup1_next_state = 3'b011;
+        end
+        else begin
+            card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
+        end
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b011)) begin
+        if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
+            card_core0_dda_arc1_dda_setup1_next_square = (card_core0_dda_arc1_dda_setup1_square + 1);
+            if ((card_core0_dda_arc1_dda_setup1_square == 3)) begin
+                card_core0_dda_arc1_dda_setup1_next_state = 3'b100;
             end
-            else if ((card_core0_dda_arc1_neg_xs && (card_core0_dda_arc1_neg_ys || zero_ys))) begin
-                q_s = 2;
+        end
+        else begin
+            card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
+        end
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b100)) begin
+        if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (5 - 1))) begin
+            card_core0_dda_arc1_dda_setup1_next_state = 3'b101;
+        end
+        else begin
+            card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
+        end
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b101)) begin
+        if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (13 - 1))) begin
+            card_core0_dda_arc1_dda_setup1_next_state = 3'b110;
+        end
+        else begin
+            card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
+        end
+    end
+    else if (card_core0_dda_arc1_dda_setup1_plan_taken) begin
+        card_core0_dda_arc1_dda_setup1_next_state = 3'b000;
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_multiplier, card_core0_dda_arc1_dda_setup1_twice, card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_m_is_y, card_core0_dda_arc1_dda_setup1_pick_x, card_core0_dda_arc1_dda_setup1_plan_x_inward_end, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_control
+    reg [2-1:0] g_op;
+    reg [2-1:0] o_op;
+    reg [3-1:0] src;
+    reg on;
+    reg inv;
+    g_op = 2'h0;
+    o_op = 2'h0;
+    src = 3'h0;
+    on = 1'b1;
+    inv = 1'b0;
+    g_op = 0;
+    o_op = 2;
+    src = 0;
+    case (card_core0_dda_arc1_dda_setup1_state)
+        3'b010: begin
+            if (((card_core0_dda_arc1_dda_setup1_step == 1) || (card_core0_dda_arc1_dda_setup1_step == 3) || (card_core0_dda_arc1_dda_setup1_step == 5))) begin
+                inv = 1'b1;
+            end
+            if (((card_core0_dda_arc1_dda_setup1_step == 0) || (card_core0_dda_arc1_dda_setup1_step == 6))) begin
+                src = 0;
+                inv = (card_core0_dda_arc1_dda_setup1_step == 6);
+            end
+            else if (((card_core0_dda_arc1_dda_setup1_step == 1) || (card_core0_dda_arc1_dda_setup1_step == 2) || (card_core0_dda_arc1_dda_setup1_step == 4))) begin
+                src = 1;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 3)) begin
+                src = 2;
             end
             else begin
-                q_s = 3;
+                src = 3;
             end
-            if (((!card_core0_dda_arc1_neg_xe) && (!card_core0_dda_arc1_neg_ye) && (!zero_ye))) begin
-                q_e = 0;
+            if ((card_core0_dda_arc1_dda_setup1_step == 4)) begin
+                g_op = 2;
             end
-            else if ((card_core0_dda_arc1_neg_xe && (!card_core0_dda_arc1_neg_ye))) begin
-                q_e = 1;
+            else if ((card_core0_dda_arc1_dda_setup1_step == 6)) begin
+                g_op = 3;
             end
-            else if (((card_core0_dda_arc1_neg_xe || zero_xe) && card_core0_dda_arc1_neg_ye)) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_e - q_s);
-        end
-        else begin
-            if (((!card_core0_dda_arc1_neg_xs) && (!card_core0_dda_arc1_neg_ys) && (!zero_ys))) begin
-                q_s = 0;
-            end
-            else if ((card_core0_dda_arc1_neg_xs && (!card_core0_dda_arc1_neg_ys))) begin
-                q_s = 1;
-            end
-            else if (((card_core0_dda_arc1_neg_xs || zero_xs) && card_core0_dda_arc1_neg_ys)) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!card_core0_dda_arc1_neg_xe) && (!zero_xe) && (!card_core0_dda_arc1_neg_ye))) begin
-                q_e = 0;
-            end
-            else if (((card_core0_dda_arc1_neg_xe || zero_xe) && (!card_core0_dda_arc1_neg_ye) && (!zero_ye))) begin
-                q_e = 1;
-            end
-            else if ((card_core0_dda_arc1_neg_xe && (card_core0_dda_arc1_neg_ye || zero_ye))) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_s - q_e);
-        end
-        turns = {1'b0, turn};
-        shrink_x = ({1'b0, card_core0_dda_arc1_mag_xs} - {1'b0, card_core0_dda_arc1_mag_xe});
-        shrink_y = ({1'b0, card_core0_dda_arc1_mag_ys} - {1'b0, card_core0_dda_arc1_mag_ye});
-        if ((q_s[0] != card_core0_dda_arc1_ccw)) begin
-            ahead = ((!shrink_x[24]) && (shrink_y[24] || (shrink_y == 0)));
-        end
-        else begin
-            ahead = ((!shrink_y[24]) && (shrink_x[24] || (shrink_x == 0)));
-        end
-        card_core0_dda_arc1_geo_ahead <= 1'b0;
-        if (((turns == 0) && ahead && (!((shrink_x == 0) && (shrink_y == 0))))) begin
-            card_core0_dda_arc1_geo_ahead <= 1'b1;
-        end
-        else if ((turns == 0)) begin
-            turns = 4;
-        end
-        card_core0_dda_arc1_geo_quadrant <= q_s;
-        card_core0_dda_arc1_geo_crossings <= turns;
-        if ((q_e[0] != card_core0_dda_arc1_ccw)) begin
-            card_core0_dda_arc1_geo_end_inward <= card_core0_dda_arc1_mag_xe;
-        end
-        else begin
-            card_core0_dda_arc1_geo_end_inward <= card_core0_dda_arc1_mag_ye;
-        end
-        card_core0_dda_arc1_geo_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
-        card_core0_dda_arc1_geo_x_in_start <= (q_s[0] != card_core0_dda_arc1_ccw);
-        card_core0_dda_arc1_geo_x_in_end <= (q_e[0] != card_core0_dda_arc1_ccw);
-    end
-end
-
-
-always @(card_core0_dda_arc1_geo_crossings, card_core0_dda_arc1_geo_x_in_end, card_core0_dda_arc1_geo_x_in_start) begin: card_core0_dda_arc1_totals_k
-    reg out_in;
-    reg in_out;
-    out_in = ((!card_core0_dda_arc1_geo_x_in_start) && card_core0_dda_arc1_geo_x_in_end);
-    in_out = (card_core0_dda_arc1_geo_x_in_start && (!card_core0_dda_arc1_geo_x_in_end));
-    card_core0_dda_arc1_tot_k4_x = ((card_core0_dda_arc1_geo_crossings == 4) || ((card_core0_dda_arc1_geo_crossings == 3) && out_in));
-    card_core0_dda_arc1_tot_k4_y = ((card_core0_dda_arc1_geo_crossings == 4) || ((card_core0_dda_arc1_geo_crossings == 3) && in_out));
-    card_core0_dda_arc1_tot_k2_x = ((card_core0_dda_arc1_geo_crossings == 2) || ((card_core0_dda_arc1_geo_crossings == 1) && out_in) || ((card_core0_dda_arc1_geo_crossings == 3) && in_out));
-    card_core0_dda_arc1_tot_k2_y = ((card_core0_dda_arc1_geo_crossings == 2) || ((card_core0_dda_arc1_geo_crossings == 1) && in_out) || ((card_core0_dda_arc1_geo_crossings == 3) && out_in));
-end
-
-
-always @(card_core0_dda_arc1_mag_ys, card_core0_dda_arc1_tot_x, card_core0_dda_arc1_mag_xs, card_core0_dda_arc1_state, card_core0_dda_arc1_tot_y, card_core0_dda_arc1_mag_ye, card_core0_dda_arc1_mag_xe, card_core0_dda_arc1_mac_bit, card_core0_dda_arc1_geo_x_in_end, card_core0_dda_arc1_mac_op, card_core0_dda_arc1_geo_x_in_start) begin: card_core0_dda_arc1_totals_adder
-    reg [28-1:0] operand_x;
-    reg [28-1:0] operand_y;
-    reg invert_x;
-    reg invert_y;
-    reg carry_x;
-    reg carry_y;
-    reg [28-1:0] total_x;
-    reg [28-1:0] total_y;
-    operand_x = 28'h0;
-    operand_y = 28'h0;
-    invert_x = (0 != 0);
-    invert_y = (0 != 0);
-    carry_x = (0 != 0);
-    carry_y = (0 != 0);
-    total_x = 28'h0;
-    total_y = 28'h0;
-    if (((card_core0_dda_arc1_state == 3'b001) && (card_core0_dda_arc1_mac_op == 0) && (card_core0_dda_arc1_mac_bit == 1))) begin
-        operand_x = {4'h0, card_core0_dda_arc1_mag_xs};
-        operand_y = {4'h0, card_core0_dda_arc1_mag_ys};
-        invert_x = (!card_core0_dda_arc1_geo_x_in_start);
-        invert_y = (card_core0_dda_arc1_geo_x_in_start == 1);
-    end
-    else if (((card_core0_dda_arc1_state == 3'b001) && (card_core0_dda_arc1_mac_op == 0) && (card_core0_dda_arc1_mac_bit == 2))) begin
-        operand_x = {4'h0, card_core0_dda_arc1_mag_xe};
-        operand_y = {4'h0, card_core0_dda_arc1_mag_ye};
-        invert_x = (card_core0_dda_arc1_geo_x_in_end == 1);
-        invert_y = (!card_core0_dda_arc1_geo_x_in_end);
-    end
-    if (invert_x) begin
-        operand_x = (~operand_x);
-        carry_x = 1'b1;
-    end
-    if (invert_y) begin
-        operand_y = (~operand_y);
-        carry_y = 1'b1;
-    end
-    total_x = ((card_core0_dda_arc1_tot_x[28-1:0] + operand_x) + {27'h0, carry_x});
-    total_y = ((card_core0_dda_arc1_tot_y[28-1:0] + operand_y) + {27'h0, carry_y});
-    card_core0_dda_arc1_tot_sum_x = $signed(total_x);
-    card_core0_dda_arc1_tot_sum_y = $signed(total_y);
-end
-
-
-always @(card_core0_dda_arc1_tot_x, card_core0_dda_arc1_tot_k2_y, card_core0_dda_arc1_tot_k4_y, card_core0_dda_arc1_tot_k4_x, card_core0_dda_arc1_radius_q, card_core0_dda_arc1_tot_k2_x, card_core0_dda_arc1_mag_ye, card_core0_dda_arc1_mag_xe, card_core0_dda_arc1_is_line, card_core0_dda_arc1_tot_y) begin: card_core0_dda_arc1_totals_check
-    reg [27-1:0] operand_x;
-    reg [27-1:0] operand_y;
-    reg [27-1:0] total_x;
-    reg [27-1:0] total_y;
-    operand_x = 27'h0;
-    operand_y = 27'h0;
-    total_x = 27'h0;
-    total_y = 27'h0;
-    if (card_core0_dda_arc1_is_line) begin
-        operand_x = {3'h0, card_core0_dda_arc1_mag_xe};
-        operand_y = {3'h0, card_core0_dda_arc1_mag_ye};
-    end
-    else begin
-        if (card_core0_dda_arc1_tot_k2_x) begin
-            operand_x = {1'h0, card_core0_dda_arc1_radius_q, 1'b0};
-        end
-        else if (card_core0_dda_arc1_tot_k4_x) begin
-            operand_x = {card_core0_dda_arc1_radius_q, 2'h0};
-        end
-        if (card_core0_dda_arc1_tot_k2_y) begin
-            operand_y = {1'h0, card_core0_dda_arc1_radius_q, 1'b0};
-        end
-        else if (card_core0_dda_arc1_tot_k4_y) begin
-            operand_y = {card_core0_dda_arc1_radius_q, 2'h0};
-        end
-    end
-    total_x = (card_core0_dda_arc1_tot_x[27-1:0] + operand_x);
-    total_y = (card_core0_dda_arc1_tot_y[27-1:0] + operand_y);
-    card_core0_dda_arc1_check_left_x = $signed(total_x[27-1:0]);
-    card_core0_dda_arc1_check_left_y = $signed(total_y[27-1:0]);
-end
-
-
-always @(card_core0_dda_arc1_radius_length, card_core0_dda_arc1_acc_bits, card_core0_dda_arc1_geo_crossings, card_core0_dda_arc1_mag_ys, card_core0_dda_arc1_variant, card_core0_dda_arc1_geo_quadrant, card_core0_dda_arc1_mag_xs, card_core0_dda_arc1_radius_q, card_core0_dda_arc1_end_reaches_low, card_core0_dda_arc1_mag_ye, card_core0_dda_arc1_geo_centre, card_core0_dda_arc1_lambda_shift, card_core0_dda_arc1_geo_ahead, card_core0_dda_arc1_mag_xe, card_core0_dda_arc1_is_line, card_core0_dda_arc1_geo_x_in_start, card_core0_dda_arc1_end_beyond_high, card_core0_dda_arc1_ccw, card_core0_dda_arc1_geo_end_inward) begin: card_core0_dda_arc1_check_logic
-    reg [25-1:0] rq;
-    reg [6-1:0] exponent;
-    reg [29-1:0] thr;
-    reg [29-1:0] thr_less;
-    reg [29-1:0] mask;
-    reg [32-1:0] below;
-    reg [32-1:0] half;
-    reg [24-1:0] major;
-    reg [24-1:0] major_less;
-    reg [24-1:0] inward;
-    reg bad;
-    rq = 25'h0;
-    exponent = 6'h0;
-    thr = 29'h0;
-    thr_less = 29'h0;
-    mask = 29'h0;
-    below = 32'h0;
-    half = 32'h0;
-    major = 24'h0;
-    major_less = 24'h0;
-    inward = 24'h0;
-    bad = 1'b0;
-    rq = card_core0_dda_arc1_radius_q;
-    if (card_core0_dda_arc1_geo_centre) begin
-        bad = 1'b1;
-    end
-    if (($signed({1'b0, rq}) >= (1 << (24 - 1)))) begin
-        bad = 1'b1;
-    end
-    if (((!card_core0_dda_arc1_end_reaches_low) || card_core0_dda_arc1_end_beyond_high)) begin
-        bad = 1'b1;
-    end
-    if ((card_core0_dda_arc1_acc_bits != 0)) begin
-        exponent = ({1'b0, card_core0_dda_arc1_acc_bits} + {1'b0, card_core0_dda_arc1_lambda_shift});
-    end
-    else begin
-        exponent = (card_core0_dda_arc1_radius_length + {1'b0, card_core0_dda_arc1_lambda_shift});
-    end
-    mask = ((1 << 29) - 1);
-    mask = (mask << exponent);
-    thr_less = (~mask);
-    thr = ({thr_less[(29 - 1)-1:0], 1'b1} & mask);
-    if (((card_core0_dda_arc1_variant != 3) && ($signed({1'b0, exponent}) > (29 - 1)))) begin
-        bad = 1'b1;
-    end
-    if ((card_core0_dda_arc1_variant == 3)) begin
-        thr = ({4'h0, rq} + 1);
-        thr_less = {4'h0, rq};
-    end
-    if ((card_core0_dda_arc1_mag_xe > card_core0_dda_arc1_mag_ye)) begin
-        major = card_core0_dda_arc1_mag_xe;
-        major_less = (card_core0_dda_arc1_mag_xe + 16777215);
-    end
-    else begin
-        major = card_core0_dda_arc1_mag_ye;
-        major_less = (card_core0_dda_arc1_mag_ye + 16777215);
-    end
-    if (card_core0_dda_arc1_is_line) begin
-        thr = {5'h0, major};
-        thr_less = {5'h0, major_less};
-    end
-    below = {3'h0, thr_less};
-    half = (~(below >>> 1));
-    if (((!card_core0_dda_arc1_is_line) && ((card_core0_dda_arc1_variant == 1) || (card_core0_dda_arc1_variant == 2)))) begin
-        half = (~{3'h0, thr});
-    end
-    if ((card_core0_dda_arc1_is_line || card_core0_dda_arc1_geo_ahead)) begin
-        card_core0_dda_arc1_check_target_x = card_core0_dda_arc1_mag_xe;
-        card_core0_dda_arc1_check_target_y = card_core0_dda_arc1_mag_ye;
-    end
-    else begin
-        if (({1'b0, card_core0_dda_arc1_geo_end_inward} > rq)) begin
-            bad = 1'b1;
-        end
-        if ((card_core0_dda_arc1_geo_quadrant[0] != card_core0_dda_arc1_ccw)) begin
-            card_core0_dda_arc1_check_target_x = 0;
-            card_core0_dda_arc1_check_target_y = rq[24-1:0];
-        end
-        else begin
-            card_core0_dda_arc1_check_target_x = rq[24-1:0];
-            card_core0_dda_arc1_check_target_y = 0;
-        end
-    end
-    card_core0_dda_arc1_check_error = (bad && (!card_core0_dda_arc1_is_line));
-    card_core0_dda_arc1_check_zero = (card_core0_dda_arc1_is_line && (card_core0_dda_arc1_mag_xe == 0) && (card_core0_dda_arc1_mag_ye == 0));
-    card_core0_dda_arc1_check_quadrant = card_core0_dda_arc1_geo_quadrant;
-    card_core0_dda_arc1_check_crossings = card_core0_dda_arc1_geo_crossings;
-    if (card_core0_dda_arc1_is_line) begin
-        card_core0_dda_arc1_check_quadrant = 0;
-        card_core0_dda_arc1_check_crossings = 0;
-    end
-    card_core0_dda_arc1_check_threshold = thr;
-    card_core0_dda_arc1_check_acc_init = $signed(half);
-    inward = card_core0_dda_arc1_mag_ys;
-    if (card_core0_dda_arc1_geo_x_in_start) begin
-        inward = card_core0_dda_arc1_mag_xs;
-    end
-    card_core0_dda_arc1_check_neg_in = (-$signed({5'h0, inward}));
-end
-
-
-always @(card_core0_dda_arc1_mag_ys, card_core0_dda_arc1_mag_xs, card_core0_dda_arc1_chk_neg_in, card_core0_dda_arc1_mag_ye, card_core0_dda_arc1_mag_xe, card_core0_dda_arc1_is_line, card_core0_dda_arc1_geo_x_in_start) begin: card_core0_dda_arc1_first_iteration
-    reg [2-1:0] fill;
-    reg [31-1:0] half;
-    reg [32-1:0] twice_in;
-    reg [32-1:0] twice_out;
-    reg [24-1:0] out;
-    reg [24-1:0] step_in;
-    reg [24-1:0] step_out;
-    fill = 2'h0;
-    half = 31'h0;
-    twice_in = 32'h0;
-    twice_out = 32'h0;
-    out = 24'h0;
-    card_core0_dda_arc1_first_integrand_x = card_core0_dda_arc1_mag_ys;
-    card_core0_dda_arc1_first_integrand_y = card_core0_dda_arc1_mag_xs;
-    if (card_core0_dda_arc1_is_line) begin
-        card_core0_dda_arc1_first_integrand_x = card_core0_dda_arc1_mag_xe;
-        card_core0_dda_arc1_first_integrand_y = card_core0_dda_arc1_mag_ye;
-    end
-    step_in = 24'h1;
-    step_out = 24'h1;
-    if (card_core0_dda_arc1_geo_x_in_start) begin
-        step_out = 16777215;
-        out = card_core0_dda_arc1_mag_ys;
-    end
-    else begin
-        step_in = 16777215;
-        out = card_core0_dda_arc1_mag_xs;
-    end
-    card_core0_dda_arc1_first_stepped_x = (card_core0_dda_arc1_mag_ys + step_in);
-    card_core0_dda_arc1_first_stepped_y = (card_core0_dda_arc1_mag_xs + step_out);
-    card_core0_dda_arc1_first_out = out;
-    if (card_core0_dda_arc1_chk_neg_in[(30 - 2)]) begin
-        fill = 3;
-    end
-    half = ({7'h0, out} + {fill, card_core0_dda_arc1_chk_neg_in[(30 - 1)-1:0]});
-    twice_in = ({fill[0], card_core0_dda_arc1_chk_neg_in[(30 - 1)-1:0], 2'h3} + {7'h0, out, 1'b0});
-    twice_out = ({6'h0, out, 2'h3} + {fill, card_core0_dda_arc1_chk_neg_in[(30 - 1)-1:0], 1'b0});
-    card_core0_dda_arc1_first_half = $signed(half);
-    card_core0_dda_arc1_first_q_in = $signed(twice_in);
-    card_core0_dda_arc1_first_q_out = $signed(twice_out);
-end
-
-
-always @(card_core0_dda_arc1_left_x, card_core0_dda_arc1_stepped_y, card_core0_dda_arc1_integrand_x, card_core0_dda_arc1_stepped_x, card_core0_dda_arc1_target_y, card_core0_dda_arc1_integrand_y, card_core0_dda_arc1_target_x, card_core0_dda_arc1_run_line, card_core0_dda_arc1_left_y) begin: card_core0_dda_arc1_end_tests
-    if (card_core0_dda_arc1_run_line) begin
-        card_core0_dda_arc1_at_x = (card_core0_dda_arc1_left_x[27-1:0] == 27'h7ffffff);
-        card_core0_dda_arc1_at_y = (card_core0_dda_arc1_left_y[27-1:0] == 27'h7ffffff);
-        card_core0_dda_arc1_near_x = (card_core0_dda_arc1_left_x == 0);
-        card_core0_dda_arc1_near_y = (card_core0_dda_arc1_left_y == 0);
-    end
-    else begin
-        card_core0_dda_arc1_at_x = (card_core0_dda_arc1_integrand_y == card_core0_dda_arc1_target_x);
-        card_core0_dda_arc1_at_y = (card_core0_dda_arc1_integrand_x == card_core0_dda_arc1_target_y);
-        card_core0_dda_arc1_near_x = (card_core0_dda_arc1_stepped_y == card_core0_dda_arc1_target_x);
-        card_core0_dda_arc1_near_y = (card_core0_dda_arc1_stepped_x == card_core0_dda_arc1_target_y);
-    end
-end
-
-
-always @(card_core0_dda_arc1_q_out, card_core0_dda_arc1_half_sum, card_core0_dda_arc1_neg_in, card_core0_dda_arc1_run_variant, card_core0_dda_arc1_run_up, card_core0_dda_arc1_x_inward, card_core0_dda_arc1_crossings, card_core0_dda_arc1_at_x, card_core0_dda_arc1_near_y, card_core0_dda_arc1_integrand_x, card_core0_dda_arc1_near_x, card_core0_dda_arc1_quadrant, card_core0_dda_arc1_integrand_y, card_core0_dda_arc1_stepped_x, card_core0_dda_arc1_radial_error, card_core0_dda_arc1_acc_x, card_core0_dda_arc1_at_y, card_core0_dda_arc1_acc_y, card_core0_dda_arc1_run_right, card_core0_dda_arc1_q_in, card_core0_dda_arc1_run_line) begin: card_core0_dda_arc1_iteration_logic
-    reg x_right;
-    reg y_up;
-    reg signed [33-1:0] sum_x;
-    reg signed [33-1:0] sum_x_step;
-    reg signed [33-1:0] sum_y;
-    reg signed [33-1:0] ahead_x;
-    reg signed [33-1:0] ahead_y;
-    reg signed [32-1:0] twice_in;
-    reg signed [32-1:0] twice_out;
-    reg [31-1:0] error_half;
-    reg d_le_in;
-    reg d_le_out;
-    reg x_le_y;
-    reg over_x;
-    reg over_x_step;
-    reg over_y;
-    reg go_x;
-    reg go_y;
-    x_right = (0 != 0);
-    y_up = (0 != 0);
-    sum_x = 0;
-    sum_x_step = 0;
-    sum_y = 0;
-    ahead_x = 0;
-    ahead_y = 0;
-    twice_in = 0;
-    twice_out = 0;
-    error_half = 31'h0;
-    d_le_in = (0 != 0);
-    d_le_out = (0 != 0);
-    x_le_y = (0 != 0);
-    over_x = (0 != 0);
-    over_x_step = (0 != 0);
-    over_y = (0 != 0);
-    go_x = (0 != 0);
-    go_y = (0 != 0);
-    x_right = (card_core0_dda_arc1_quadrant[0] == card_core0_dda_arc1_quadrant[1]);
-    y_up = (!card_core0_dda_arc1_quadrant[1]);
-    if (card_core0_dda_arc1_run_line) begin
-        card_core0_dda_arc1_it_dir_x = card_core0_dda_arc1_run_right;
-        card_core0_dda_arc1_it_dir_y = card_core0_dda_arc1_run_up;
-    end
-    else begin
-        card_core0_dda_arc1_it_dir_x = (x_right != card_core0_dda_arc1_x_inward);
-        card_core0_dda_arc1_it_dir_y = (y_up == card_core0_dda_arc1_x_inward);
-    end
-    sum_y = ($signed({card_core0_dda_arc1_acc_y[(32 - 1)], card_core0_dda_arc1_acc_y}) + $signed({9'h0, card_core0_dda_arc1_integrand_y}));
-    sum_x = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({9'h0, card_core0_dda_arc1_integrand_x}));
-    sum_x_step = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({9'h0, card_core0_dda_arc1_stepped_x}));
-    over_x = (!sum_x[32]);
-    over_x_step = (!sum_x_step[32]);
-    over_y = (!sum_y[32]);
-    if (((!card_core0_dda_arc1_run_line) && (card_core0_dda_arc1_run_variant == 0) && over_y)) begin
-        sum_x = sum_x_step;
-        over_x = over_x_step;
-    end
-    twice_in = ($signed({card_core0_dda_arc1_radial_error[(30 - 1)], card_core0_dda_arc1_radial_error, 1'b0}) + card_core0_dda_arc1_q_in);
-    twice_out = ($signed({card_core0_dda_arc1_radial_error[(30 - 1)], card_core0_dda_arc1_radial_error, 1'b0}) + card_core0_dda_arc1_q_out);
-    error_half = (({card_core0_dda_arc1_radial_error[(30 - 1)], card_core0_dda_arc1_radial_error} + card_core0_dda_arc1_half_sum[(30 + 1)-1:0]) + {30'h0, card_core0_dda_arc1_x_inward});
-    d_le_in = (twice_in < 0);
-    d_le_out = ((card_core0_dda_arc1_neg_in < 0) != (twice_out < 0));
-    x_le_y = (($signed(error_half) < 0) != card_core0_dda_arc1_x_inward);
-    go_x = over_x;
-    go_y = over_y;
-    if (card_core0_dda_arc1_run_line) begin
-        go_x = (over_x && (!card_core0_dda_arc1_at_x));
-        go_y = (over_y && (!card_core0_dda_arc1_at_y));
-    end
-    else if ((card_core0_dda_arc1_run_variant == 2)) begin
-        ahead_x = ($signed({card_core0_dda_arc1_acc_x[(32 - 1)], card_core0_dda_arc1_acc_x}) + $signed({8'h0, card_core0_dda_arc1_integrand_x, 1'b0}));
-        ahead_y = ($signed({card_core0_dda_arc1_acc_y[(32 - 1)], card_core0_dda_arc1_acc_y}) + $signed({8'h0, card_core0_dda_arc1_integrand_y, 1'b0}));
-        if ((over_x && (!over_y) && (ahead_y >= 0))) begin
-            go_y = 1'b1;
-        end
-        else if ((over_y && (!over_x) && (ahead_x >= 0))) begin
-            go_x = 1'b1;
-        end
-    end
-    else if ((card_core0_dda_arc1_run_variant == 3)) begin
-        go_x = 1'b0;
-        go_y = 1'b0;
-        if ((over_x || over_y)) begin
-            if ((d_le_in && d_le_out)) begin
-                go_x = 1'b1;
-                go_y = 1'b1;
-            end
-            else if (x_le_y) begin
-                go_x = 1'b1;
-            end
-            else begin
-                go_y = 1'b1;
+            else if ((card_core0_dda_arc1_dda_setup1_step != 0)) begin
+                g_op = 1;
             end
         end
-    end
-    card_core0_dda_arc1_it_tail = ((!card_core0_dda_arc1_run_line) && (card_core0_dda_arc1_at_x || card_core0_dda_arc1_at_y));
-    if (((!card_core0_dda_arc1_run_line) && (card_core0_dda_arc1_at_x || card_core0_dda_arc1_at_y))) begin
-        go_x = (!card_core0_dda_arc1_at_x);
-        go_y = (!card_core0_dda_arc1_at_y);
-    end
-    if (((!sum_x[32]) && sum_x[(32 - 1)])) begin
-        sum_x = 33'h7fffffff;
-    end
-    if (((!sum_y[32]) && sum_y[(32 - 1)])) begin
-        sum_y = 33'h7fffffff;
-    end
-    card_core0_dda_arc1_it_sum_x = $signed(sum_x[32-1:0]);
-    card_core0_dda_arc1_it_sum_y = $signed(sum_y[32-1:0]);
-    card_core0_dda_arc1_it_step_x = go_x;
-    card_core0_dda_arc1_it_step_y = go_y;
-    card_core0_dda_arc1_it_finished = 1'b0;
-    card_core0_dda_arc1_it_next_piece = 1'b0;
-    if ((((card_core0_dda_arc1_near_x && go_x) || card_core0_dda_arc1_at_x) && ((card_core0_dda_arc1_near_y && go_y) || card_core0_dda_arc1_at_y))) begin
-        if ((card_core0_dda_arc1_run_line || (card_core0_dda_arc1_crossings == 0))) begin
-            card_core0_dda_arc1_it_finished = 1'b1;
-        end
-        else begin
-            card_core0_dda_arc1_it_next_piece = 1'b1;
-        end
-    end
-end
-
-
-always @(card_core0_dda_arc1_dec_finished, card_core0_dda_arc1_run_active, card_core0_dda_arc1_pending, card_core0_dda_arc1_chk_error, card_core0_dda_arc1_chk_zero, card_core0_dda_arc1_state) begin: card_core0_dda_arc1_handover_logic
-    reg free;
-    free = ((!card_core0_dda_arc1_run_active) || (card_core0_dda_arc1_pending && card_core0_dda_arc1_dec_finished));
-    card_core0_dda_arc1_hand_load = 1'b0;
-    card_core0_dda_arc1_hand_end = 1'b0;
-    if ((card_core0_dda_arc1_state == 3'b101)) begin
-        if ((card_core0_dda_arc1_chk_zero || card_core0_dda_arc1_chk_error)) begin
-            card_core0_dda_arc1_hand_end = free;
-        end
-        else begin
-            card_core0_dda_arc1_hand_load = free;
-        end
-    end
-end
-
-
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_setup_control
-    if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_radius_length <= 0;
-        card_core0_dda_arc1_neg_ye <= 0;
-        card_core0_dda_arc1_chk_quadrant <= 0;
-        card_core0_dda_arc1_chk_target_y <= 0;
-        card_core0_dda_arc1_acc_bits <= 0;
-        card_core0_dda_arc1_neg_ys <= 0;
-        card_core0_dda_arc1_chk_zero <= 0;
-        card_core0_dda_arc1_tot_y <= 0;
-        card_core0_dda_arc1_mag_ys <= 0;
-        card_core0_dda_arc1_gap_low <= 0;
-        card_core0_dda_arc1_variant <= 0;
-        card_core0_dda_arc1_root_all_ones <= 0;
-        card_core0_dda_arc1_mag_xs <= 0;
-        card_core0_dda_arc1_multiplicand <= 0;
-        card_core0_dda_arc1_chk_target_x <= 0;
-        card_core0_dda_arc1_radius_q <= 0;
-        card_core0_dda_arc1_end_reaches_low <= 0;
-        card_core0_dda_arc1_mag_ye <= 0;
-        card_core0_dda_arc1_root_length <= 0;
-        card_core0_dda_arc1_mac_op <= 0;
-        card_core0_dda_arc1_state <= 3'b000;
-        card_core0_dda_arc1_chk_threshold <= 0;
-        card_core0_dda_arc1_chk_crossings <= 0;
-        card_core0_dda_arc1_blend <= 0;
-        card_core0_dda_arc1_tot_x <= 0;
-        card_core0_dda_arc1_multiplier <= 0;
-        card_core0_regs_fifo1_sequencer1_dda_error <= 0;
-        card_core0_dda_arc1_root <= 0;
-        card_core0_dda_arc1_root_bit <= 0;
-        card_core0_dda_arc1_lambda_shift <= 0;
-        card_core0_dda_arc1_radicand <= 0;
-        card_core0_dda_arc1_gap_carry <= 0;
-        card_core0_dda_arc1_chk_left_y <= 0;
-        card_core0_dda_arc1_chk_neg_in <= 0;
-        card_core0_dda_arc1_gap_high <= 0;
-        card_core0_dda_arc1_root_up <= 0;
-        card_core0_dda_arc1_mag_xe <= 0;
-        card_core0_dda_arc1_neg_xs <= 0;
-        card_core0_dda_arc1_mac_bit <= 0;
-        card_core0_dda_arc1_remainder <= 0;
-        card_core0_dda_arc1_is_line <= 0;
-        card_core0_dda_arc1_chk_error <= 0;
-        card_core0_dda_arc1_chk_acc_init <= 0;
-        card_core0_dda_arc1_end_beyond_high <= 0;
-        card_core0_dda_arc1_ccw <= 0;
-        card_core0_dda_arc1_neg_xe <= 0;
-        card_core0_dda_arc1_chk_left_x <= 0;
-    end
-    else begin
-        case (card_core0_dda_arc1_state)
-            3'b000: begin
-                if (card_core0_regs_fifo1_sequencer1_dda_start) begin
-                    card_core0_regs_fifo1_sequencer1_dda_error <= 1'b0;
-                    card_core0_dda_arc1_is_line <= card_core0_regs_fifo1_sequencer1_dda_line;
-                    card_core0_dda_arc1_variant <= card_core0_regs_fifo1_sequencer1_dda_variant;
-                    card_core0_dda_arc1_lambda_shift <= card_core0_regs_fifo1_sequencer1_dda_lambda_shift;
-                    card_core0_dda_arc1_acc_bits <= card_core0_regs_fifo1_sequencer1_dda_acc_bits;
-                    card_core0_dda_arc1_ccw <= card_core0_regs_fifo1_sequencer1_dda_ccw;
-                    card_core0_dda_arc1_blend <= card_core0_regs_fifo1_sequencer1_dda_blend;
-                    card_core0_dda_arc1_tot_x <= (-1);
-                    card_core0_dda_arc1_tot_y <= (-1);
-                    card_core0_dda_arc1_neg_xs <= (card_core0_regs_fifo1_sequencer1_dda_xs < 0);
-                    card_core0_dda_arc1_neg_ys <= (card_core0_regs_fifo1_sequencer1_dda_ys < 0);
-                    card_core0_dda_arc1_neg_xe <= (card_core0_regs_fifo1_sequencer1_dda_xe < 0);
-                    card_core0_dda_arc1_neg_ye <= (card_core0_regs_fifo1_sequencer1_dda_ye < 0);
-                    card_core0_dda_arc1_mag_xs <= card_core0_dda_arc1_cmd_mag_xs;
-                    card_core0_dda_arc1_mag_ys <= card_core0_dda_arc1_cmd_mag_ys;
-                    card_core0_dda_arc1_mag_xe <= card_core0_dda_arc1_cmd_mag_xe;
-                    card_core0_dda_arc1_mag_ye <= card_core0_dda_arc1_cmd_mag_ye;
-                    card_core0_dda_arc1_gap_low <= ((1 << 25) - 1);
-                    card_core0_dda_arc1_gap_high <= ((1 << (50 - 25)) - 1);
-                    card_core0_dda_arc1_gap_carry <= 1'b0;
-                    card_core0_dda_arc1_mac_op <= 0;
-                    card_core0_dda_arc1_mac_bit <= 0;
-                    card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_cmd_mag_xs};
-                    card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_cmd_mag_xs;
-                    if (card_core0_regs_fifo1_sequencer1_dda_line) begin
-                        card_core0_dda_arc1_state <= 3'b100;
-                    end
-                    else begin
-                        card_core0_dda_arc1_state <= 3'b001;
+        3'b011: begin
+            o_op = 1;
+            inv = (card_core0_dda_arc1_dda_setup1_square < 2);
+            if (card_core0_dda_arc1_dda_setup1_multiplier[0]) begin
+                g_op = 1;
+            end
+            if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
+                o_op = 2;
+                inv = ((card_core0_dda_arc1_dda_setup1_square == 0) || (card_core0_dda_arc1_dda_setup1_square == 3));
+                src = (card_core0_dda_arc1_dda_setup1_square + 1);
+                if ((card_core0_dda_arc1_dda_setup1_square == 3)) begin
+                    src = 0;
+                    if (card_core0_dda_arc1_dda_setup1_m_is_y) begin
+                        src = 1;
                     end
                 end
             end
-            3'b001: begin
-                card_core0_dda_arc1_tot_x <= card_core0_dda_arc1_tot_sum_x;
-                card_core0_dda_arc1_tot_y <= card_core0_dda_arc1_tot_sum_y;
-                card_core0_dda_arc1_gap_high <= card_core0_dda_arc1_gap_top;
-                card_core0_dda_arc1_gap_carry <= 1'b0;
-                if (card_core0_dda_arc1_multiplier[0]) begin
-                    card_core0_dda_arc1_gap_low <= card_core0_dda_arc1_gap_sum_low;
-                    card_core0_dda_arc1_gap_high <= card_core0_dda_arc1_gap_sum_high;
-                    card_core0_dda_arc1_gap_carry <= card_core0_dda_arc1_gap_sum_carry;
+        end
+        3'b100: begin
+            o_op = 1;
+            case (card_core0_dda_arc1_dda_setup1_step)
+                'h0: begin
+                    inv = 1'b1;
                 end
-                if (((card_core0_dda_arc1_mac_op == 2) && (card_core0_dda_arc1_mac_bit == 0))) begin
-                    card_core0_dda_arc1_radicand <= (~{card_core0_dda_arc1_gap_top[((2 * 24) - 25)-1:0], card_core0_dda_arc1_gap_low});
+                'h1: begin
+                    g_op = 1;
+                    o_op = 2;
+                    src = 0;
+                    if (card_core0_dda_arc1_dda_setup1_m_is_y) begin
+                        src = 1;
+                    end
                 end
-                if (($signed({1'b0, card_core0_dda_arc1_mac_bit}) == (24 - 1))) begin
-                    card_core0_dda_arc1_mac_bit <= 0;
-                    card_core0_dda_arc1_mac_op <= (card_core0_dda_arc1_mac_op + 1);
-                    case (card_core0_dda_arc1_mac_op)
-                        'h0: begin
-                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ys};
-                            card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_ys;
-                        end
-                        'h1: begin
-                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_xe};
-                            card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_xe;
-                        end
-                        'h2: begin
-                            card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ye};
-                            card_core0_dda_arc1_multiplier <= card_core0_dda_arc1_mag_ye;
-                        end
-                        default: begin
-                            if ((card_core0_dda_arc1_mag_xs > card_core0_dda_arc1_mag_ys)) begin
-                                card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_xs};
-                            end
-                            else begin
-                                card_core0_dda_arc1_multiplicand <= {24'h0, card_core0_dda_arc1_mag_ys};
-                            end
-                            card_core0_dda_arc1_remainder <= 0;
-                            card_core0_dda_arc1_root <= 0;
-                            card_core0_dda_arc1_root_up <= 1;
-                            card_core0_dda_arc1_root_bit <= 0;
-                            card_core0_dda_arc1_root_length <= 0;
-                            card_core0_dda_arc1_root_all_ones <= 1'b1;
-                            card_core0_dda_arc1_state <= 3'b010;
-                        end
-                    endcase
+                'h4: begin
+                    g_op = 2;
+                    o_op = 2;
+                    src = 4;
                 end
-                else begin
-                    card_core0_dda_arc1_mac_bit <= (card_core0_dda_arc1_mac_bit + 1);
-                    card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
-                    card_core0_dda_arc1_multiplier <= (card_core0_dda_arc1_multiplier >>> 1);
+            endcase
+        end
+        3'b101: begin
+            g_op = 1;
+            if ((card_core0_dda_arc1_dda_setup1_step == 0)) begin
+                src = 3;
+                if (card_core0_dda_arc1_dda_setup1_plan_x_inward_end) begin
+                    src = 2;
                 end
+                inv = 1'b1;
             end
-            3'b010: begin
-                if (card_core0_dda_arc1_root_trial_fits) begin
-                    card_core0_dda_arc1_remainder <= card_core0_dda_arc1_root_trial_diff;
-                    card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b1};
-                    card_core0_dda_arc1_root_up <= {card_core0_dda_arc1_root_up[24-1:0], 1'b0};
-                end
-                else begin
-                    card_core0_dda_arc1_remainder <= card_core0_dda_arc1_root_trial_rem;
-                    card_core0_dda_arc1_root <= {card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b0};
-                    card_core0_dda_arc1_root_up <= {1'b0, card_core0_dda_arc1_root[(24 - 1)-1:0], 1'b1};
-                    if ((card_core0_dda_arc1_root != 0)) begin
-                        card_core0_dda_arc1_root_all_ones <= 1'b0;
-                    end
-                end
-                if (((card_core0_dda_arc1_root != 0) || card_core0_dda_arc1_root_trial_fits)) begin
-                    card_core0_dda_arc1_root_length <= (card_core0_dda_arc1_root_length + 1);
-                end
-                card_core0_dda_arc1_radicand <= (card_core0_dda_arc1_radicand << 2);
-                card_core0_dda_arc1_gap_high <= card_core0_dda_arc1_gap_top;
-                card_core0_dda_arc1_gap_carry <= 1'b0;
-                case (card_core0_dda_arc1_root_bit)
-                    'h0: begin
-                        card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
-                    end
-                    'h1: begin
-                        card_core0_dda_arc1_gap_low <= card_core0_dda_arc1_gap_sum_low;
-                        card_core0_dda_arc1_gap_high <= card_core0_dda_arc1_gap_sum_high;
-                        card_core0_dda_arc1_gap_carry <= card_core0_dda_arc1_gap_sum_carry;
-                        card_core0_dda_arc1_multiplicand <= (card_core0_dda_arc1_multiplicand << 1);
-                    end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 1)) begin
+                g_op = 0;
+                o_op = 1;
+                inv = 1'b1;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step <= 5)) begin
+                inv = (!card_core0_dda_arc1_dda_setup1_plan_x_inward);
+                case (card_core0_dda_arc1_dda_setup1_step)
                     'h2: begin
-                        card_core0_dda_arc1_end_reaches_low <= (!card_core0_dda_arc1_gap_top[((50 - 25) - 1)]);
-                        card_core0_dda_arc1_gap_low <= card_core0_dda_arc1_gap_sum_low;
-                        card_core0_dda_arc1_gap_high <= card_core0_dda_arc1_gap_sum_high;
-                        card_core0_dda_arc1_gap_carry <= card_core0_dda_arc1_gap_sum_carry;
+                        g_op = 2;
+                        src = 0;
                     end
                     'h3: begin
-                        card_core0_dda_arc1_end_beyond_high <= (!card_core0_dda_arc1_gap_top[((50 - 25) - 1)]);
+                        src = 1;
+                    end
+                    default: begin
+                        src = 2;
+                        if ((card_core0_dda_arc1_dda_setup1_step == 5)) begin
+                            src = 3;
+                        end
+                        inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward_end == 1);
                     end
                 endcase
-                if (($signed({1'b0, card_core0_dda_arc1_root_bit}) == (24 - 1))) begin
-                    card_core0_dda_arc1_state <= 3'b011;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 6)) begin
+                src = 4;
+                on = (card_core0_dda_arc1_dda_setup1_plan_x_inward != card_core0_dda_arc1_dda_setup1_plan_x_inward_end);
+                inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward == 1);
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 7)) begin
+                g_op = 2;
+                o_op = 0;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 8)) begin
+                g_op = 0;
+                src = 1;
+                inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward == 1);
+                if (card_core0_dda_arc1_dda_setup1_pick_x) begin
+                    src = 0;
+                    inv = (!card_core0_dda_arc1_dda_setup1_plan_x_inward);
                 end
-                else begin
-                    card_core0_dda_arc1_root_bit <= (card_core0_dda_arc1_root_bit + 1);
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 9)) begin
+                src = 3;
+                inv = (!card_core0_dda_arc1_dda_setup1_plan_x_inward_end);
+                if (card_core0_dda_arc1_dda_setup1_pick_x) begin
+                    src = 2;
+                    inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward_end == 1);
                 end
+            end
+            else begin
+                src = 4;
+                on = (card_core0_dda_arc1_dda_setup1_twice != 0);
+                if ((card_core0_dda_arc1_dda_setup1_step == 11)) begin
+                    on = (card_core0_dda_arc1_dda_setup1_twice == 2);
+                end
+            end
+        end
+        default: begin
+            o_op = 0;
+        end
+    endcase
+    card_core0_dda_arc1_dda_setup1_gap_op = g_op;
+    card_core0_dda_arc1_dda_setup1_operand_op = o_op;
+    card_core0_dda_arc1_dda_setup1_source = src;
+    card_core0_dda_arc1_dda_setup1_source_on = on;
+    card_core0_dda_arc1_dda_setup1_invert = inv;
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_carry_in
+    reg cin;
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_dda_setup1_carry <= 0;
+    end
+    else begin
+        cin = 1'b0;
+        case (card_core0_dda_arc1_dda_setup1_next_state)
+            3'b010: begin
+                cin = ((card_core0_dda_arc1_dda_setup1_next_step == 2) || (card_core0_dda_arc1_dda_setup1_next_step == 4) || (card_core0_dda_arc1_dda_setup1_next_step == 6));
             end
             3'b011: begin
-                if (card_core0_dda_arc1_root_trial_fits) begin
-                    card_core0_dda_arc1_radius_q <= card_core0_dda_arc1_root_up;
-                end
-                else begin
-                    card_core0_dda_arc1_radius_q <= {1'b0, card_core0_dda_arc1_root};
-                end
-                if ((card_core0_dda_arc1_root_trial_fits && card_core0_dda_arc1_root_all_ones)) begin
-                    card_core0_dda_arc1_radius_length <= (card_core0_dda_arc1_root_length + 1);
-                end
-                else begin
-                    card_core0_dda_arc1_radius_length <= card_core0_dda_arc1_root_length;
-                end
-                card_core0_dda_arc1_state <= 3'b100;
+                cin = (card_core0_dda_arc1_dda_setup1_next_square < 2);
             end
             3'b100: begin
-                card_core0_dda_arc1_chk_error <= card_core0_dda_arc1_check_error;
-                card_core0_dda_arc1_chk_zero <= card_core0_dda_arc1_check_zero;
-                card_core0_dda_arc1_chk_threshold <= card_core0_dda_arc1_check_threshold;
-                card_core0_dda_arc1_chk_acc_init <= card_core0_dda_arc1_check_acc_init;
-                card_core0_dda_arc1_chk_quadrant <= card_core0_dda_arc1_check_quadrant;
-                card_core0_dda_arc1_chk_crossings <= card_core0_dda_arc1_check_crossings;
-                card_core0_dda_arc1_chk_target_x <= card_core0_dda_arc1_check_target_x;
-                card_core0_dda_arc1_chk_target_y <= card_core0_dda_arc1_check_target_y;
-                card_core0_dda_arc1_chk_left_x <= card_core0_dda_arc1_check_left_x;
-                card_core0_dda_arc1_chk_left_y <= card_core0_dda_arc1_check_left_y;
-                card_core0_dda_arc1_chk_neg_in <= card_core0_dda_arc1_check_neg_in;
-                card_core0_dda_arc1_state <= 3'b101;
+                cin = (card_core0_dda_arc1_dda_setup1_next_step == 4);
+            end
+            3'b101: begin
+                if ((card_core0_dda_arc1_dda_setup1_next_step == 0)) begin
+                    cin = 1'b1;
+                end
+                else if ((card_core0_dda_arc1_dda_setup1_next_step == 2)) begin
+                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] == 1);
+                end
+                else if (((card_core0_dda_arc1_dda_setup1_next_step == 3) || (card_core0_dda_arc1_dda_setup1_next_step == 4))) begin
+                    cin = (!card_core0_dda_arc1_dda_setup1_plan_x_inward);
+                end
+                else if (((card_core0_dda_arc1_dda_setup1_next_step == 5) || (card_core0_dda_arc1_dda_setup1_next_step == 6))) begin
+                    cin = (card_core0_dda_arc1_dda_setup1_plan_x_inward_end == 1);
+                end
+                else if ((card_core0_dda_arc1_dda_setup1_next_step == 7)) begin
+                    cin = ((card_core0_dda_arc1_dda_setup1_plan_x_inward != card_core0_dda_arc1_dda_setup1_plan_x_inward_end) && (card_core0_dda_arc1_dda_setup1_root_root[0] != card_core0_dda_arc1_dda_setup1_plan_x_inward));
+                end
+                else if ((card_core0_dda_arc1_dda_setup1_next_step == 9)) begin
+                    cin = (card_core0_dda_arc1_dda_setup1_pick_x != card_core0_dda_arc1_dda_setup1_plan_x_inward);
+                end
+                else if ((card_core0_dda_arc1_dda_setup1_next_step == 10)) begin
+                    cin = (card_core0_dda_arc1_dda_setup1_pick_x == card_core0_dda_arc1_dda_setup1_plan_x_inward_end);
+                end
+                else if ((card_core0_dda_arc1_dda_setup1_next_step == 11)) begin
+                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] && (card_core0_dda_arc1_dda_setup1_twice != 0));
+                end
+                else if ((card_core0_dda_arc1_dda_setup1_next_step == 12)) begin
+                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] && (card_core0_dda_arc1_dda_setup1_twice == 2));
+                end
             end
             default: begin
-                if ((card_core0_dda_arc1_hand_load || card_core0_dda_arc1_hand_end)) begin
-                    card_core0_dda_arc1_state <= 3'b000;
-                end
-                if ((card_core0_dda_arc1_hand_end && (!card_core0_dda_arc1_chk_zero))) begin
-                    card_core0_regs_fifo1_sequencer1_dda_error <= 1'b1;
-                end
+                cin = 1'b0;
             end
         endcase
+        card_core0_dda_arc1_dda_setup1_carry <= cin;
     end
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_run_control
-    reg [24-1:0] step_op_x;
-    reg [24-1:0] step_op_y;
-    reg [24-1:0] base_x;
-    reg [24-1:0] base_y;
-    reg [24-1:0] base_op_x;
-    reg [24-1:0] base_op_y;
-    reg [32-1:0] less_x;
-    reg [32-1:0] less_y;
-    reg [31-1:0] inverse;
-    reg [29-1:0] neg_base;
-    reg [31-1:0] half_base;
-    reg [32-1:0] q_in_base;
-    reg [32-1:0] q_out_base;
-    reg [2-1:0] in_out;
-    reg [3-1:0] q_in_op;
-    reg [3-1:0] q_out_op;
-    reg [30-1:0] error_op;
-    reg [30-1:0] error_sum;
+always @(card_core0_dda_arc1_dda_setup1_plan_crossings, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_plan_x_inward_end, card_core0_dda_arc1_dda_setup1_pick_x) begin: card_core0_dda_arc1_dda_setup1_rq_terms
+    reg [3-1:0] count;
+    count = 3'h0;
+    count = (card_core0_dda_arc1_dda_setup1_plan_crossings - 1);
+    if ((card_core0_dda_arc1_dda_setup1_plan_x_inward != card_core0_dda_arc1_dda_setup1_pick_x)) begin
+        count = (count + 1);
+    end
+    if ((card_core0_dda_arc1_dda_setup1_plan_x_inward_end == card_core0_dda_arc1_dda_setup1_pick_x)) begin
+        count = (count + 1);
+    end
+    card_core0_dda_arc1_dda_setup1_twice = count[3-1:1];
+    if ((card_core0_dda_arc1_dda_setup1_plan_crossings == 0)) begin
+        card_core0_dda_arc1_dda_setup1_twice = 0;
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_source, card_core0_dda_arc1_dda_setup1_root_root, card_core0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_arc1_dda_setup1_plan_mag_ys, card_core0_dda_arc1_dda_setup1_plan_mag_ye, card_core0_dda_arc1_dda_setup1_source_on) begin: card_core0_dda_arc1_dda_setup1_select_source
+    reg [25-1:0] value;
+    value = 25'h0;
+    case (card_core0_dda_arc1_dda_setup1_source)
+        'h0: begin
+            value = {1'b0, card_core0_dda_arc1_dda_setup1_plan_mag_xs};
+        end
+        'h1: begin
+            value = {1'b0, card_core0_dda_arc1_dda_setup1_plan_mag_ys};
+        end
+        'h2: begin
+            value = {1'b0, card_core0_dda_arc1_dda_setup1_plan_mag_xe};
+        end
+        'h3: begin
+            value = {1'b0, card_core0_dda_arc1_dda_setup1_plan_mag_ye};
+        end
+        default: begin
+            value = card_core0_dda_arc1_dda_setup1_root_root;
+        end
+    endcase
+    if ((!card_core0_dda_arc1_dda_setup1_source_on)) begin
+        value = 0;
+    end
+    card_core0_dda_arc1_dda_setup1_source_value = value;
+end
+
+
+
+assign card_core0_dda_arc1_dda_setup1_total = ((card_core0_dda_arc1_dda_setup1_gap + card_core0_dda_arc1_dda_setup1_operand) + {48'h0, card_core0_dda_arc1_dda_setup1_carry});
+assign card_core0_dda_arc1_dda_setup1_root_radicand = (~card_core0_dda_arc1_dda_setup1_gap[(2 * 24)-1:0]);
+assign card_core0_dda_arc1_dda_setup1_root_load = ((card_core0_dda_arc1_dda_setup1_state == 3'b011) && (card_core0_dda_arc1_dda_setup1_square == 2) && (card_core0_dda_arc1_dda_setup1_step == 0));
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_datapath
+    reg [49-1:0] loaded;
+    loaded = 49'h0;
+    case (card_core0_dda_arc1_dda_setup1_gap_op)
+        'h1: begin
+            card_core0_dda_arc1_dda_setup1_gap <= card_core0_dda_arc1_dda_setup1_total;
+        end
+        'h2: begin
+            card_core0_dda_arc1_dda_setup1_gap <= 0;
+        end
+        'h3: begin
+            card_core0_dda_arc1_dda_setup1_gap <= ((1 << 49) - 1);
+        end
+    endcase
+    case (card_core0_dda_arc1_dda_setup1_operand_op)
+        'h1: begin
+            card_core0_dda_arc1_dda_setup1_operand <= {card_core0_dda_arc1_dda_setup1_operand[(49 - 1)-1:0], card_core0_dda_arc1_dda_setup1_invert};
+        end
+        'h2: begin
+            loaded = {24'h0, card_core0_dda_arc1_dda_setup1_source_value};
+            if ((card_core0_dda_arc1_dda_setup1_invert && card_core0_dda_arc1_dda_setup1_source_on)) begin
+                loaded = (~loaded);
+            end
+            card_core0_dda_arc1_dda_setup1_operand <= loaded;
+        end
+    endcase
+    if (((card_core0_dda_arc1_dda_setup1_state == 3'b011) && ($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) != (24 - 1)))) begin
+        card_core0_dda_arc1_dda_setup1_multiplier <= (card_core0_dda_arc1_dda_setup1_multiplier >>> 1);
+    end
+    else if (((card_core0_dda_arc1_dda_setup1_state == 3'b010) || (card_core0_dda_arc1_dda_setup1_state == 3'b011))) begin
+        card_core0_dda_arc1_dda_setup1_multiplier <= card_core0_dda_arc1_dda_setup1_source_value[24-1:0];
+    end
+    if ((card_core0_dda_arc1_dda_setup1_state == 3'b000)) begin
+        card_core0_dda_arc1_dda_setup1_gap <= 0;
+    end
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_sequencer
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_q_out <= 0;
-        card_core0_dda_arc1_run_end_y <= 0;
-        card_core0_dda_arc1_stepped_y <= 0;
-        card_core0_dda_arc1_dec_sum_y <= 0;
-        card_core0_regs_fifo1_sequencer1_dda_done <= 0;
-        card_core0_dda_arc1_half_sum <= 0;
-        card_core0_dda_arc1_pos_out <= 0;
-        card_core0_dda_arc1_dec_out <= 0;
-        card_core0_dda_arc1_left_y <= 0;
-        card_core0_dda_arc1_neg_in <= 0;
-        card_core0_dda_arc1_dec_next_piece <= 0;
-        card_core0_regs_fifo1_steps_step_x <= 0;
-        card_core0_dda_arc1_dec_in <= 0;
-        card_core0_dda_arc1_run_variant <= 0;
-        card_core0_dda_arc1_dec_step_y <= 0;
-        card_core0_dda_arc1_run_end_x <= 0;
-        card_core0_dda_arc1_run_up <= 0;
-        card_core0_dda_arc1_dec_sum_x <= 0;
-        card_core0_dda_arc1_target_y <= 0;
-        card_core0_dda_arc1_x_inward <= 0;
-        card_core0_dda_arc1_target_x <= 0;
-        card_core0_dda_arc1_crossings <= 0;
-        card_core0_dda_arc1_dec_step_x <= 0;
-        card_core0_dda_arc1_left_x <= 0;
-        card_core0_dda_arc1_dec_finished <= 0;
-        card_core0_dda_arc1_dec_tail <= 0;
-        card_core0_dda_arc1_radius <= 0;
-        card_core0_dda_arc1_integrand_x <= 0;
-        card_core0_dda_arc1_run_active <= 0;
-        card_core0_regs_fifo1_steps_dir_x <= 0;
-        card_core0_regs_fifo1_steps_dir_y <= 0;
-        card_core0_dda_arc1_quadrant <= 0;
-        card_core0_dda_arc1_integrand_y <= 0;
-        card_core0_regs_fifo1_steps_step_y <= 0;
-        card_core0_dda_arc1_pending <= 0;
-        card_core0_dda_arc1_stepped_x <= 0;
-        card_core0_dda_arc1_radial_error <= 0;
-        card_core0_dda_arc1_run_ccw <= 0;
-        card_core0_dda_arc1_threshold <= 0;
-        card_core0_dda_arc1_run_blend <= 0;
-        card_core0_dda_arc1_acc_x <= 0;
-        card_core0_dda_arc1_acc_y <= 0;
-        card_core0_dda_arc1_q_in <= 0;
-        card_core0_dda_arc1_run_right <= 0;
-        card_core0_dda_arc1_run_line <= 0;
+        card_core0_dda_arc1_dda_setup1_step <= 0;
+        card_core0_dda_arc1_dda_setup1_square <= 0;
+        card_core0_dda_arc1_dda_setup1_state <= 3'b000;
     end
     else begin
-        step_op_x = 24'h0;
-        step_op_y = 24'h0;
-        base_x = 24'h0;
-        base_y = 24'h0;
-        base_op_x = 24'h0;
-        base_op_y = 24'h0;
-        less_x = 32'h0;
-        less_y = 32'h0;
-        inverse = 31'h0;
-        neg_base = 29'h0;
-        half_base = 31'h0;
-        q_in_base = 32'h0;
-        q_out_base = 32'h0;
-        in_out = 2'h0;
-        q_in_op = 3'h0;
-        q_out_op = 3'h0;
-        error_op = 30'h0;
-        error_sum = 30'h0;
+        card_core0_dda_arc1_dda_setup1_state <= card_core0_dda_arc1_dda_setup1_next_state;
+        card_core0_dda_arc1_dda_setup1_step <= card_core0_dda_arc1_dda_setup1_next_step;
+        card_core0_dda_arc1_dda_setup1_square <= card_core0_dda_arc1_dda_setup1_next_square;
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_arc1_dda_setup1_plan_mag_ye) begin: card_core0_dda_arc1_dda_setup1_line_major
+    card_core0_dda_arc1_dda_setup1_major = {4'h0, card_core0_dda_arc1_dda_setup1_plan_mag_ye};
+    if ((card_core0_dda_arc1_dda_setup1_plan_mag_xe >= card_core0_dda_arc1_dda_setup1_plan_mag_ye)) begin
+        card_core0_dda_arc1_dda_setup1_major = {4'h0, card_core0_dda_arc1_dda_setup1_plan_mag_xe};
+    end
+end
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_threshold
+    reg shift;
+    shift = 1'b0;
+    card_core0_dda_arc1_dda_setup1_grew <= card_core0_dda_arc1_dda_setup1_root_grows;
+    if (((card_core0_dda_arc1_dda_setup1_state == 3'b000) && card_core0_regs_fifo1_sequencer1_dda_start)) begin
+        card_core0_dda_arc1_dda_setup1_plan_threshold <= 0;
+        card_core0_dda_arc1_dda_setup1_plan_too_wide <= 1'b0;
+        card_core0_dda_arc1_dda_setup1_acc_bits <= card_core0_regs_fifo1_sequencer1_dda_acc_bits;
+        if ((card_core0_regs_fifo1_sequencer1_dda_acc_bits != 0)) begin
+            card_core0_dda_arc1_dda_setup1_ones_left <= ({1'b0, card_core0_regs_fifo1_sequencer1_dda_acc_bits} + {1'b0, card_core0_regs_fifo1_sequencer1_dda_lambda_shift});
+        end
+        else begin
+            card_core0_dda_arc1_dda_setup1_ones_left <= {1'b0, card_core0_regs_fifo1_sequencer1_dda_lambda_shift};
+        end
+    end
+    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b001)) begin
+        card_core0_dda_arc1_dda_setup1_plan_threshold <= card_core0_dda_arc1_dda_setup1_major[28-1:0];
+    end
+    else if (1'b1) begin
+        if (((card_core0_dda_arc1_dda_setup1_state == 3'b011) && (card_core0_dda_arc1_dda_setup1_ones_left != 0))) begin
+            shift = 1'b1;
+            card_core0_dda_arc1_dda_setup1_ones_left <= (card_core0_dda_arc1_dda_setup1_ones_left - 1);
+        end
+        else if (((card_core0_dda_arc1_dda_setup1_acc_bits == 0) && card_core0_dda_arc1_dda_setup1_grew)) begin
+            shift = 1'b1;
+        end
+        if (shift) begin
+            card_core0_dda_arc1_dda_setup1_plan_threshold <= {card_core0_dda_arc1_dda_setup1_plan_threshold[(28 - 1)-1:0], 1'b1};
+            if (card_core0_dda_arc1_dda_setup1_plan_threshold[(28 - 1)]) begin
+                card_core0_dda_arc1_dda_setup1_plan_too_wide <= 1'b1;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_captures
+    reg sign;
+    sign = card_core0_dda_arc1_dda_setup1_total[(49 - 1)];
+    case (card_core0_dda_arc1_dda_setup1_state)
+        3'b000: begin
+            card_core0_dda_arc1_dda_setup1_plan_off_circle <= 1'b0;
+        end
+        3'b010: begin
+            case (card_core0_dda_arc1_dda_setup1_step)
+                'h2: begin
+                    card_core0_dda_arc1_dda_setup1_m_is_y <= sign;
+                end
+                'h4: begin
+                    card_core0_dda_arc1_dda_setup1_plan_start_below_x <= sign;
+                    card_core0_dda_arc1_dda_setup1_plan_start_same_x <= (card_core0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
+                end
+                'h6: begin
+                    card_core0_dda_arc1_dda_setup1_plan_start_below_y <= sign;
+                    card_core0_dda_arc1_dda_setup1_plan_start_same_y <= (card_core0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
+                end
+            endcase
+        end
+        3'b100: begin
+            if ((((card_core0_dda_arc1_dda_setup1_step == 1) && (!sign)) || ((card_core0_dda_arc1_dda_setup1_step == 4) && sign))) begin
+                card_core0_dda_arc1_dda_setup1_plan_off_circle <= 1'b1;
+            end
+        end
+        3'b101: begin
+            case (card_core0_dda_arc1_dda_setup1_step)
+                'h0: begin
+                    card_core0_dda_arc1_dda_setup1_plan_radius <= card_core0_dda_arc1_dda_setup1_total[(24 + 2)-1:1];
+                end
+                'h2: begin
+                    card_core0_dda_arc1_dda_setup1_plan_beyond <= sign;
+                end
+                'h7: begin
+                    card_core0_dda_arc1_dda_setup1_plan_totals_diff <= $signed(card_core0_dda_arc1_dda_setup1_total[27-1:0]);
+                    card_core0_dda_arc1_dda_setup1_pick_x <= (!card_core0_dda_arc1_dda_setup1_total[(27 - 1)]);
+                end
+                'hc: begin
+                    card_core0_dda_arc1_dda_setup1_plan_totals_max <= card_core0_dda_arc1_dda_setup1_total[27-1:0];
+                end
+            endcase
+        end
+        3'b001: begin
+            card_core0_dda_arc1_dda_setup1_plan_totals_diff <= $signed(card_core0_dda_arc1_dda_setup1_major[27-1:0]);
+            card_core0_dda_arc1_dda_setup1_plan_totals_max <= card_core0_dda_arc1_dda_setup1_major[27-1:0];
+        end
+        default: begin
+            card_core0_dda_arc1_dda_setup1_m_is_y <= card_core0_dda_arc1_dda_setup1_m_is_y;
+        end
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_dda_ready = (card_core0_dda_arc1_dda_setup1_state == 3'b000);
+assign card_core0_dda_arc1_dda_setup1_plan_done = (card_core0_dda_arc1_dda_setup1_state == 3'b110);
+
+
+always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_lookup_variant
+    case (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant)
+        0: card_core0_dda_arc1_dda_check1_variant_built = 0;
+        1: card_core0_dda_arc1_dda_check1_variant_built = 0;
+        2: card_core0_dda_arc1_dda_check1_variant_built = 1;
+        default: card_core0_dda_arc1_dda_check1_variant_built = 1;
+    endcase
+end
+
+
+
+assign card_core0_dda_arc1_dda_check1_move_offer = card_core0_dda_arc1_dda_setup1_plan_done;
+assign card_core0_dda_arc1_dda_setup1_plan_taken = card_core0_dda_arc1_dda_check1_move_take;
+
+
+always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead, card_core0_dda_arc1_dda_check1_variant_built, card_core0_dda_arc1_dda_setup1_plan_beyond, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_plan_too_wide, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre, card_core0_dda_arc1_dda_setup1_plan_off_circle, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_validate
+    reg bad;
+    bad = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre || card_core0_dda_arc1_dda_setup1_plan_off_circle || (card_core0_dda_arc1_dda_setup1_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
+    if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead) && card_core0_dda_arc1_dda_setup1_plan_beyond)) begin
+        bad = 1'b1;
+    end
+    if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant != 3) && card_core0_dda_arc1_dda_setup1_plan_too_wide)) begin
+        bad = 1'b1;
+    end
+    if ((!card_core0_dda_arc1_dda_check1_variant_built)) begin
+        bad = 1'b1;
+    end
+    card_core0_dda_arc1_dda_check1_move_error = (bad && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line));
+    card_core0_dda_arc1_dda_check1_move_zero = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre);
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend, card_core0_dda_arc1_dda_setup1_plan_crossings, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_geometry
+    card_core0_dda_arc1_dda_check1_move_line = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line;
+    card_core0_dda_arc1_dda_check1_move_variant = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant;
+    card_core0_dda_arc1_dda_check1_move_ccw = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw;
+    card_core0_dda_arc1_dda_check1_move_blend = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend;
+    card_core0_dda_arc1_dda_check1_move_right = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe);
+    card_core0_dda_arc1_dda_check1_move_up = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye);
+    card_core0_dda_arc1_dda_check1_move_x_inward = card_core0_dda_arc1_dda_setup1_plan_x_inward;
+    card_core0_dda_arc1_dda_check1_move_quadrant = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant;
+    card_core0_dda_arc1_dda_check1_move_crossings = card_core0_dda_arc1_dda_setup1_plan_crossings;
+    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
+        card_core0_dda_arc1_dda_check1_move_quadrant = 0;
+        card_core0_dda_arc1_dda_check1_move_crossings = 0;
+    end
+    if ((card_core0_dda_arc1_dda_setup1_plan_crossings == 0)) begin
+        card_core0_dda_arc1_dda_check1_move_target_x = 2;
+        card_core0_dda_arc1_dda_check1_move_target_y = 2;
+    end
+    else if (card_core0_dda_arc1_dda_setup1_plan_x_inward) begin
+        card_core0_dda_arc1_dda_check1_move_target_x = 0;
+        card_core0_dda_arc1_dda_check1_move_target_y = 1;
+    end
+    else begin
+        card_core0_dda_arc1_dda_check1_move_target_x = 1;
+        card_core0_dda_arc1_dda_check1_move_target_y = 0;
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_plan_totals_max, card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_arc1_dda_setup1_plan_mag_ys, card_core0_dda_arc1_dda_setup1_plan_totals_diff, card_core0_dda_arc1_dda_setup1_plan_mag_ye) begin: card_core0_dda_arc1_dda_check1_magnitudes
+    card_core0_dda_arc1_dda_check1_move_mag_x = card_core0_dda_arc1_dda_setup1_plan_mag_xs;
+    card_core0_dda_arc1_dda_check1_move_mag_y = card_core0_dda_arc1_dda_setup1_plan_mag_ys;
+    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
+        card_core0_dda_arc1_dda_check1_move_mag_x = card_core0_dda_arc1_dda_setup1_plan_mag_ye;
+        card_core0_dda_arc1_dda_check1_move_mag_y = card_core0_dda_arc1_dda_setup1_plan_mag_xe;
+    end
+    card_core0_dda_arc1_dda_check1_move_end_x = card_core0_dda_arc1_dda_setup1_plan_mag_xe;
+    card_core0_dda_arc1_dda_check1_move_end_y = card_core0_dda_arc1_dda_setup1_plan_mag_ye;
+    card_core0_dda_arc1_dda_check1_move_radius = card_core0_dda_arc1_dda_setup1_plan_radius[24-1:0];
+    card_core0_dda_arc1_dda_check1_move_totals_diff = card_core0_dda_arc1_dda_setup1_plan_totals_diff;
+    card_core0_dda_arc1_dda_check1_move_totals_max = card_core0_dda_arc1_dda_setup1_plan_totals_max;
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_plan_threshold, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_thresholds
+    reg [28-1:0] less;
+    reg [30-1:0] below;
+    reg [29-1:0] ones;
+    less = 28'h0;
+    below = 30'h0;
+    ones = 29'h0;
+    less = card_core0_dda_arc1_dda_setup1_plan_threshold;
+    if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) && ((!1'b1) || (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant == 3)))) begin
+        less = 0;
+        less[24-1:0] = card_core0_dda_arc1_dda_setup1_plan_radius[24-1:0];
+    end
+    card_core0_dda_arc1_dda_check1_move_threshold = less;
+    below = (~{3'h0, less[28-1:1]});
+    if ((1'b1 && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) && ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant == 1) || (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant == 2)))) begin
+        ones = ({less, 1'b1} & (~{1'b0, less}));
+        below = (~{1'h0, ones});
+    end
+    card_core0_dda_arc1_dda_check1_move_acc_init = $signed(below);
+    card_core0_dda_arc1_dda_check1_move_acc_carry = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line && (!less[0]));
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_plan_mag_ys) begin: card_core0_dda_arc1_dda_check1_precise_terms
+    reg [27-1:0] inward;
+    reg [27-1:0] outward;
+    reg [27-1:0] bias_in;
+    reg [27-1:0] bias_out;
+    inward = 27'h0;
+    outward = 27'h0;
+    bias_in = 27'h0;
+    bias_out = 27'h0;
+    inward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_ys};
+    outward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_xs};
+    if (card_core0_dda_arc1_dda_setup1_plan_x_inward) begin
+        inward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_xs};
+        outward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_ys};
+    end
+    bias_in = ({outward[(27 - 1)-1:0], 1'b0} - inward);
+    bias_out = (outward - {inward[(27 - 1)-1:0], 1'b0});
+    card_core0_dda_arc1_dda_check1_move_bias_in = $signed(bias_in);
+    card_core0_dda_arc1_dda_check1_move_bias_out = $signed(bias_out);
+end
+
+
+
+assign card_core0_regs_fifo1_feed_rate1_feed_stop_left = card_core0_dda_arc1_dda_run1_dda_left1_larger;
+assign card_core0_dda_arc1_dda_run1_step_last = (card_core0_dda_arc1_dda_run1_dda_left1_difference == 0);
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_dda_left1_follow
+    reg [27-1:0] base;
+    reg [27-1:0] change;
+    base = 27'h0;
+    change = 27'h0;
+    base = card_core0_dda_arc1_dda_run1_dda_left1_difference;
+    if (card_core0_dda_arc1_dda_check1_move_take) begin
+        base = card_core0_dda_arc1_dda_check1_move_totals_diff;
+        if (card_core0_dda_arc1_dda_check1_move_line) begin
+            change = 27'h7ffffff;
+        end
+    end
+    else if (card_core0_dda_arc1_dda_run1_step_pending) begin
+        if ((card_core0_dda_arc1_dda_run1_step_line || (card_core0_dda_arc1_dda_run1_step_step_x && (!card_core0_dda_arc1_dda_run1_step_step_y)))) begin
+            change = 27'h7ffffff;
+        end
+        else if ((card_core0_dda_arc1_dda_run1_step_step_y && (!card_core0_dda_arc1_dda_run1_step_step_x))) begin
+            change = 1;
+        end
+    end
+    card_core0_dda_arc1_dda_run1_dda_left1_difference <= (base + change);
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_dda_left1_count_down
+    reg [27-1:0] base;
+    reg [27-1:0] less;
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_dda_run1_dda_left1_larger <= 134217727;
+    end
+    else begin
+        base = 27'h0;
+        less = 27'h0;
+        base = card_core0_dda_arc1_dda_run1_dda_left1_larger;
+        if (card_core0_dda_arc1_dda_check1_move_take) begin
+            base = card_core0_dda_arc1_dda_check1_move_totals_max;
+            less = 27'h7ffffff;
+        end
+        else if ((card_core0_dda_arc1_dda_run1_step_pending && (!card_core0_dda_arc1_dda_run1_step_blend))) begin
+            if (card_core0_dda_arc1_dda_run1_step_line) begin
+                less = 27'h7ffffff;
+            end
+            else if ((card_core0_dda_arc1_dda_run1_dda_left1_difference == 0)) begin
+                if ((card_core0_dda_arc1_dda_run1_step_step_x && card_core0_dda_arc1_dda_run1_step_step_y)) begin
+                    less = 27'h7ffffff;
+                end
+            end
+            else if (card_core0_dda_arc1_dda_run1_dda_left1_difference[(27 - 1)]) begin
+                if (card_core0_dda_arc1_dda_run1_step_step_y) begin
+                    less = 27'h7ffffff;
+                end
+            end
+            else if (card_core0_dda_arc1_dda_run1_step_step_x) begin
+                less = 27'h7ffffff;
+            end
+        end
+        card_core0_dda_arc1_dda_run1_dda_left1_larger <= (base + less);
+        if (card_core0_dda_arc1_dda_check1_move_take) begin
+            if ((card_core0_dda_arc1_dda_check1_move_blend || card_core0_dda_arc1_dda_check1_move_error || card_core0_dda_arc1_dda_check1_move_zero)) begin
+                card_core0_dda_arc1_dda_run1_dda_left1_larger <= 27'h7ffffff;
+            end
+        end
+        else if ((card_core0_dda_arc1_dda_run1_step_pending && card_core0_dda_arc1_dda_run1_step_finished)) begin
+            card_core0_dda_arc1_dda_run1_dda_left1_larger <= 27'h7ffffff;
+        end
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_dda_nearest1_error_term, card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out, card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_signs
+    reg [28-1:0] inward;
+    reg [28-1:0] outward;
+    inward = 28'h0;
+    outward = 28'h0;
+    inward = ({card_core0_dda_arc1_dda_run1_dda_nearest1_error_term[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_error_term} + {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in});
+    outward = ({card_core0_dda_arc1_dda_run1_dda_nearest1_error_term[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_error_term} + {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out});
+    card_core0_dda_arc1_dda_run1_step_inward_near = ($signed(inward) >= 0);
+    card_core0_dda_arc1_dda_run1_step_outward_near = ($signed(outward) < 0);
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_dda_nearest1_error_term, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_step_step_y, card_core0_dda_arc1_dda_run1_step_step_x) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_error_change
+    reg [27-1:0] outward;
+    reg [27-1:0] inward;
+    reg [27-1:0] first_sum;
+    reg stepped_in;
+    outward = 27'h0;
+    inward = 27'h0;
+    first_sum = 27'h0;
+    stepped_in = 1'b0;
+    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+        stepped_in = (card_core0_dda_arc1_dda_run1_step_step_x == 1);
+        if (card_core0_dda_arc1_dda_run1_step_step_y) begin
+            outward = {2'h0, card_core0_dda_arc1_dda_run1_step_mag_y, 1'b1};
+        end
+        if (card_core0_dda_arc1_dda_run1_step_step_x) begin
+            inward = (~{2'h0, card_core0_dda_arc1_dda_run1_step_mag_x, 1'b0});
+        end
+    end
+    else begin
+        stepped_in = (card_core0_dda_arc1_dda_run1_step_step_y == 1);
+        if (card_core0_dda_arc1_dda_run1_step_step_x) begin
+            outward = {2'h0, card_core0_dda_arc1_dda_run1_step_mag_x, 1'b1};
+        end
+        if (card_core0_dda_arc1_dda_run1_step_step_y) begin
+            inward = (~{2'h0, card_core0_dda_arc1_dda_run1_step_mag_y, 1'b0});
+        end
+    end
+    first_sum = ((card_core0_dda_arc1_dda_run1_dda_nearest1_error_term + outward) + {26'h0, stepped_in});
+    card_core0_dda_arc1_dda_run1_dda_nearest1_error_step = ((first_sum + inward) + {26'h0, stepped_in});
+end
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_update
+    reg [27-1:0] base_in;
+    reg [27-1:0] base_out;
+    reg [27-1:0] op_in;
+    reg [27-1:0] op_out;
+    reg stepped_in;
+    reg stepped_out;
+    reg turn;
+    base_in = 27'h0;
+    base_out = 27'h0;
+    op_in = 27'h0;
+    op_out = 27'h0;
+    stepped_in = (card_core0_dda_arc1_dda_run1_step_step_y == 1);
+    stepped_out = (card_core0_dda_arc1_dda_run1_step_step_x == 1);
+    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+        stepped_in = (card_core0_dda_arc1_dda_run1_step_step_x == 1);
+        stepped_out = (card_core0_dda_arc1_dda_run1_step_step_y == 1);
+    end
+    base_in = card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in;
+    base_out = card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out;
+    op_in = {25'h0, stepped_out, stepped_in};
+    op_out = {25'h0, stepped_in, stepped_out};
+    turn = (card_core0_dda_arc1_dda_run1_step_new_piece == 1);
+    if (turn) begin
+        base_in = (~card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out);
+        base_out = (~card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in);
+        if ((stepped_in && stepped_out)) begin
+            op_in = 27'h7fffffd;
+            op_out = 27'h7fffffd;
+        end
+        else if (stepped_in) begin
+            op_in = 27'h7fffffe;
+            op_out = 27'h7ffffff;
+        end
+        else if (stepped_out) begin
+            op_in = 27'h7ffffff;
+            op_out = 27'h7fffffe;
+        end
+        else begin
+            op_in = 0;
+            op_out = 0;
+        end
+    end
+    if ((card_core0_dda_arc1_dda_run1_step_pending && (!card_core0_dda_arc1_dda_run1_step_line))) begin
+        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in <= ((base_in + op_in) + {26'h0, turn});
+        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out <= ((base_out + op_out) + {26'h0, turn});
+        card_core0_dda_arc1_dda_run1_dda_nearest1_error_term <= card_core0_dda_arc1_dda_run1_dda_nearest1_error_step;
+    end
+    if (card_core0_dda_arc1_dda_check1_move_take) begin
+        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in <= card_core0_dda_arc1_dda_check1_move_bias_in;
+        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out <= card_core0_dda_arc1_dda_check1_move_bias_out;
+        card_core0_dda_arc1_dda_run1_dda_nearest1_error_term <= 1;
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_acc_y, card_core0_dda_arc1_dda_run1_acc_x, card_core0_dda_arc1_dda_run1_step_mag_x) begin: card_core0_dda_arc1_dda_run1_look_ahead
+    reg [31-1:0] twice_x;
+    reg [31-1:0] twice_y;
+    twice_x = 31'h0;
+    twice_y = 31'h0;
+    twice_x = ({card_core0_dda_arc1_dda_run1_acc_x[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_x} + {6'h0, card_core0_dda_arc1_dda_run1_step_mag_y, 1'b0});
+    twice_y = ({card_core0_dda_arc1_dda_run1_acc_y[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_y} + {6'h0, card_core0_dda_arc1_dda_run1_step_mag_x, 1'b0});
+    card_core0_dda_arc1_dda_run1_ahead_x = ($signed(twice_x) >= 0);
+    card_core0_dda_arc1_dda_run1_ahead_y = ($signed(twice_y) >= 0);
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_kept_x, card_core0_dda_arc1_dda_run1_threshold, card_core0_dda_arc1_dda_run1_threshold_carry, card_core0_dda_arc1_dda_run1_kept_y, card_core0_dda_arc1_dda_run1_first, card_core0_dda_arc1_dda_run1_acc_x, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_acc_y, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_step_step_y, card_core0_dda_arc1_dda_run1_step_step_x) begin: card_core0_dda_arc1_dda_run1_accumulate
+    reg [30-1:0] minus_x;
+    reg [30-1:0] minus_y;
+    minus_x = 30'h0;
+    minus_y = 30'h0;
+    card_core0_dda_arc1_dda_run1_sum_x = (({card_core0_dda_arc1_dda_run1_acc_x[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_x} + {7'h0, card_core0_dda_arc1_dda_run1_step_mag_y}) + {30'h0, card_core0_dda_arc1_dda_run1_first});
+    card_core0_dda_arc1_dda_run1_sum_y = (({card_core0_dda_arc1_dda_run1_acc_y[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_y} + {7'h0, card_core0_dda_arc1_dda_run1_step_mag_x}) + {30'h0, card_core0_dda_arc1_dda_run1_first});
+    if (card_core0_dda_arc1_dda_run1_step_step_x) begin
+        minus_x = (~{2'h0, card_core0_dda_arc1_dda_run1_threshold});
+    end
+    if (card_core0_dda_arc1_dda_run1_step_step_y) begin
+        minus_y = (~{2'h0, card_core0_dda_arc1_dda_run1_threshold});
+    end
+    card_core0_dda_arc1_dda_run1_less_x = ((card_core0_dda_arc1_dda_run1_kept_x + minus_x) + {29'h0, (card_core0_dda_arc1_dda_run1_step_step_x && card_core0_dda_arc1_dda_run1_threshold_carry)});
+    card_core0_dda_arc1_dda_run1_less_y = ((card_core0_dda_arc1_dda_run1_kept_y + minus_y) + {29'h0, (card_core0_dda_arc1_dda_run1_step_step_y && card_core0_dda_arc1_dda_run1_threshold_carry)});
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_sum_y, card_core0_dda_arc1_dda_run1_sum_x, card_core0_dda_arc1_dda_run1_sum_x, card_core0_dda_arc1_dda_run1_step_line, card_core0_dda_arc1_dda_run1_over_y) begin: card_core0_dda_arc1_dda_run1_overflow
+    card_core0_dda_arc1_dda_run1_over_x = (!card_core0_dda_arc1_dda_run1_sum_x[30]);
+    card_core0_dda_arc1_dda_run1_over_y = (!card_core0_dda_arc1_dda_run1_sum_y[30]);
+    card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_sum_x[30]) && card_core0_dda_arc1_dda_run1_sum_x[(30 - 1)]);
+    if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_step_line))) begin
+        card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_sum_x[30]) && card_core0_dda_arc1_dda_run1_sum_x[(30 - 1)]);
+    end
+    card_core0_dda_arc1_dda_run1_saturate_y = ((!card_core0_dda_arc1_dda_run1_sum_y[30]) && card_core0_dda_arc1_dda_run1_sum_y[(30 - 1)]);
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_step_mag_x) begin: card_core0_dda_arc1_dda_run1_magnitudes
+    reg [24-1:0] op_x;
+    reg [24-1:0] op_y;
+    op_x = 24'h0;
+    op_y = 24'h0;
+    op_x = 1;
+    op_y = 16777215;
+    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+        op_x = 16777215;
+        op_y = 1;
+    end
+    card_core0_dda_arc1_dda_run1_stepped_x = (card_core0_dda_arc1_dda_run1_step_mag_x + op_x);
+    card_core0_dda_arc1_dda_run1_stepped_y = (card_core0_dda_arc1_dda_run1_step_mag_y + op_y);
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_radius, card_core0_dda_arc1_dda_run1_target_y, card_core0_dda_arc1_dda_run1_end_y, card_core0_dda_arc1_dda_run1_target_x, card_core0_dda_arc1_dda_run1_end_x) begin: card_core0_dda_arc1_dda_run1_goals
+    card_core0_dda_arc1_dda_run1_goal_x = 0;
+    case (card_core0_dda_arc1_dda_run1_target_x)
+        'h1: begin
+            card_core0_dda_arc1_dda_run1_goal_x = card_core0_dda_arc1_dda_run1_radius;
+        end
+        'h2: begin
+            card_core0_dda_arc1_dda_run1_goal_x = card_core0_dda_arc1_dda_run1_end_x;
+        end
+    endcase
+    card_core0_dda_arc1_dda_run1_goal_y = 0;
+    case (card_core0_dda_arc1_dda_run1_target_y)
+        'h1: begin
+            card_core0_dda_arc1_dda_run1_goal_y = card_core0_dda_arc1_dda_run1_radius;
+        end
+        'h2: begin
+            card_core0_dda_arc1_dda_run1_goal_y = card_core0_dda_arc1_dda_run1_end_y;
+        end
+    endcase
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_goal_x, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_goal_y) begin: card_core0_dda_arc1_dda_run1_end_tests
+    reg [24-1:0] diff_x;
+    reg [24-1:0] diff_y;
+    reg [23-1:0] up_x;
+    reg [23-1:0] up_y;
+    reg [23-1:0] down_x;
+    reg [23-1:0] down_y;
+    diff_x = 24'h0;
+    diff_y = 24'h0;
+    up_x = 23'h0;
+    up_y = 23'h0;
+    down_x = 23'h0;
+    down_y = 23'h0;
+    diff_x = (card_core0_dda_arc1_dda_run1_step_mag_x ^ card_core0_dda_arc1_dda_run1_goal_x);
+    diff_y = (card_core0_dda_arc1_dda_run1_step_mag_y ^ card_core0_dda_arc1_dda_run1_goal_y);
+    up_x = (card_core0_dda_arc1_dda_run1_step_mag_x[(24 - 1)-1:0] & (~card_core0_dda_arc1_dda_run1_goal_x[(24 - 1)-1:0]));
+    up_y = (card_core0_dda_arc1_dda_run1_step_mag_y[(24 - 1)-1:0] & (~card_core0_dda_arc1_dda_run1_goal_y[(24 - 1)-1:0]));
+    down_x = (card_core0_dda_arc1_dda_run1_goal_x[(24 - 1)-1:0] & (~card_core0_dda_arc1_dda_run1_step_mag_x[(24 - 1)-1:0]));
+    down_y = (card_core0_dda_arc1_dda_run1_goal_y[(24 - 1)-1:0] & (~card_core0_dda_arc1_dda_run1_step_mag_y[(24 - 1)-1:0]));
+    card_core0_dda_arc1_dda_run1_at_x = (diff_x == 0);
+    card_core0_dda_arc1_dda_run1_at_y = (diff_y == 0);
+    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+        card_core0_dda_arc1_dda_run1_near_x = (diff_x == {down_x, 1'b1});
+        card_core0_dda_arc1_dda_run1_near_y = (diff_y == {up_y, 1'b1});
+    end
+    else begin
+        card_core0_dda_arc1_dda_run1_near_x = (diff_x == {up_x, 1'b1});
+        card_core0_dda_arc1_dda_run1_near_y = (diff_y == {down_y, 1'b1});
+    end
+end
+
+
+always @(card_core0_dda_arc1_dda_run1_over_x, card_core0_dda_arc1_dda_run1_at_x, card_core0_dda_arc1_dda_run1_near_y, card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_step_outward_near, card_core0_dda_arc1_dda_run1_ahead_x, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_near_x, card_core0_dda_arc1_dda_run1_at_y, card_core0_dda_arc1_dda_run1_step_last, card_core0_dda_arc1_dda_run1_step_line, card_core0_dda_arc1_dda_run1_crossings, card_core0_dda_arc1_dda_run1_ahead_y, card_core0_dda_arc1_dda_run1_step_inward_near, card_core0_dda_arc1_dda_run1_over_y, card_core0_dda_arc1_dda_run1_over_x) begin: card_core0_dda_arc1_dda_run1_decide
+    reg step_x;
+    reg step_y;
+    reg diagonal;
+    reg choose_x;
+    reg choose_y;
+    reg tail_ends;
+    reg both_near;
+    reg last_piece;
+    step_x = (card_core0_dda_arc1_dda_run1_over_x == 1);
+    step_y = (card_core0_dda_arc1_dda_run1_over_y == 1);
+    diagonal = (card_core0_dda_arc1_dda_run1_over_x && card_core0_dda_arc1_dda_run1_over_y);
+    choose_x = 1'b0;
+    choose_y = 1'b0;
+    if (1'b1) begin
+        choose_x = (card_core0_dda_arc1_dda_run1_step_outward_near == 1);
+        choose_y = (card_core0_dda_arc1_dda_run1_step_inward_near == 1);
+        if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+            choose_x = (card_core0_dda_arc1_dda_run1_step_inward_near == 1);
+            choose_y = (card_core0_dda_arc1_dda_run1_step_outward_near == 1);
+        end
+    end
+    if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0))) begin
+        step_x = ((card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_over_x) || ((!card_core0_dda_arc1_dda_run1_over_y) && card_core0_dda_arc1_dda_run1_over_x));
+        diagonal = (card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_over_x);
+    end
+    else if ((1'b1 && (card_core0_dda_arc1_dda_run1_variant == 2))) begin
+        step_x = (card_core0_dda_arc1_dda_run1_over_x || (card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_ahead_x));
+        step_y = (card_core0_dda_arc1_dda_run1_over_y || (card_core0_dda_arc1_dda_run1_over_x && card_core0_dda_arc1_dda_run1_ahead_y));
+        diagonal = ((card_core0_dda_arc1_dda_run1_over_x || (card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_ahead_x)) && (card_core0_dda_arc1_dda_run1_over_y || (card_core0_dda_arc1_dda_run1_over_x && card_core0_dda_arc1_dda_run1_ahead_y)));
+    end
+    else if ((1'b1 && (card_core0_dda_arc1_dda_run1_variant == 3))) begin
+        step_x = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && choose_x);
+        step_y = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && choose_y);
+        diagonal = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && card_core0_dda_arc1_dda_run1_step_inward_near && card_core0_dda_arc1_dda_run1_step_outward_near);
+    end
+    if (card_core0_dda_arc1_dda_run1_step_line) begin
+        card_core0_dda_arc1_dda_run1_go_x = card_core0_dda_arc1_dda_run1_over_x;
+        card_core0_dda_arc1_dda_run1_go_y = card_core0_dda_arc1_dda_run1_over_y;
+    end
+    else if ((card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y)) begin
+        card_core0_dda_arc1_dda_run1_go_x = (!card_core0_dda_arc1_dda_run1_at_x);
+        card_core0_dda_arc1_dda_run1_go_y = (!card_core0_dda_arc1_dda_run1_at_y);
+    end
+    else begin
+        card_core0_dda_arc1_dda_run1_go_x = step_x;
+        card_core0_dda_arc1_dda_run1_go_y = step_y;
+    end
+    card_core0_dda_arc1_dda_run1_tail = ((!card_core0_dda_arc1_dda_run1_step_line) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y));
+    tail_ends = ((!card_core0_dda_arc1_dda_run1_step_line) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_near_x) && (card_core0_dda_arc1_dda_run1_at_y || card_core0_dda_arc1_dda_run1_near_y));
+    both_near = ((!card_core0_dda_arc1_dda_run1_step_line) && (!card_core0_dda_arc1_dda_run1_at_x) && (!card_core0_dda_arc1_dda_run1_at_y) && card_core0_dda_arc1_dda_run1_near_x && card_core0_dda_arc1_dda_run1_near_y);
+    last_piece = (card_core0_dda_arc1_dda_run1_crossings == 0);
+    card_core0_dda_arc1_dda_run1_finished = ((card_core0_dda_arc1_dda_run1_step_line && card_core0_dda_arc1_dda_run1_step_last) || (last_piece && (tail_ends || (both_near && diagonal))));
+    card_core0_dda_arc1_dda_run1_next_piece = ((!last_piece) && (tail_ends || (both_near && diagonal)));
+end
+
+
+
+assign card_core0_dda_arc1_dda_check1_move_take = (card_core0_dda_arc1_dda_check1_move_offer && ((!card_core0_dda_arc1_dda_run1_active) || (card_core0_dda_arc1_dda_run1_step_pending && card_core0_dda_arc1_dda_run1_step_finished)));
+assign card_core0_dda_arc1_dda_run1_taking = (card_core0_dda_arc1_dda_run1_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_arc1_dda_run1_step_pending));
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_iterate
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_dda_run1_threshold_carry <= 0;
+        card_core0_regs_fifo1_sequencer1_dda_done <= 0;
+        card_core0_dda_arc1_dda_run1_step_blend <= 0;
+        card_core0_dda_arc1_dda_run1_step_step_y <= 0;
+        card_core0_dda_arc1_dda_run1_step_pending <= 0;
+        card_core0_dda_arc1_dda_run1_variant <= 3;
+        card_core0_regs_fifo1_steps_step_x <= 0;
+        card_core0_dda_arc1_dda_run1_target_y <= 0;
+        card_core0_dda_arc1_dda_run1_crossings <= 0;
+        card_core0_dda_arc1_dda_run1_target_x <= 0;
+        card_core0_dda_arc1_dda_run1_step_new_piece <= 0;
+        card_core0_dda_arc1_dda_run1_first <= 0;
+        card_core0_regs_fifo1_steps_dir_x <= 0;
+        card_core0_regs_fifo1_steps_dir_y <= 0;
+        card_core0_dda_arc1_dda_run1_quadrant <= 0;
+        card_core0_regs_fifo1_steps_step_y <= 0;
+        card_core0_dda_arc1_dda_run1_right <= 0;
+        card_core0_dda_arc1_dda_run1_up <= 0;
+        card_core0_dda_arc1_dda_run1_active <= 0;
+        card_core0_dda_arc1_dda_run1_tail_taken <= 0;
+        card_core0_dda_arc1_dda_run1_step_x_inward <= 0;
+        card_core0_dda_arc1_dda_run1_step_line <= 0;
+        card_core0_dda_arc1_dda_run1_ccw <= 0;
+        card_core0_dda_arc1_dda_run1_step_step_x <= 0;
+        card_core0_dda_arc1_dda_run1_step_finished <= 0;
+    end
+    else begin
         card_core0_regs_fifo1_steps_step_x <= 1'b0;
         card_core0_regs_fifo1_steps_step_y <= 1'b0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 1'b0;
-        card_core0_dda_arc1_pending <= 1'b0;
-        card_core0_dda_arc1_dec_step_x <= card_core0_dda_arc1_it_step_x;
-        card_core0_dda_arc1_dec_step_y <= card_core0_dda_arc1_it_step_y;
-        card_core0_dda_arc1_dec_tail <= card_core0_dda_arc1_it_tail;
-        card_core0_dda_arc1_dec_finished <= card_core0_dda_arc1_it_finished;
-        card_core0_dda_arc1_dec_next_piece <= card_core0_dda_arc1_it_next_piece;
-        card_core0_dda_arc1_dec_in <= (((card_core0_dda_arc1_it_step_x && card_core0_dda_arc1_x_inward) || (card_core0_dda_arc1_it_step_y && (!card_core0_dda_arc1_x_inward))) && (!card_core0_dda_arc1_run_line));
-        card_core0_dda_arc1_dec_out <= (((card_core0_dda_arc1_it_step_x && (!card_core0_dda_arc1_x_inward)) || (card_core0_dda_arc1_it_step_y && card_core0_dda_arc1_x_inward)) && (!card_core0_dda_arc1_run_line));
-        card_core0_dda_arc1_dec_sum_x <= card_core0_dda_arc1_it_sum_x;
-        card_core0_dda_arc1_dec_sum_y <= card_core0_dda_arc1_it_sum_y;
-        if ((card_core0_dda_arc1_run_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_arc1_pending))) begin
-            card_core0_dda_arc1_pending <= 1'b1;
-            card_core0_regs_fifo1_steps_step_x <= card_core0_dda_arc1_it_step_x;
-            card_core0_regs_fifo1_steps_step_y <= card_core0_dda_arc1_it_step_y;
-            card_core0_regs_fifo1_steps_dir_x <= card_core0_dda_arc1_it_dir_x;
-            card_core0_regs_fifo1_steps_dir_y <= card_core0_dda_arc1_it_dir_y;
-            card_core0_regs_fifo1_sequencer1_dda_done <= card_core0_dda_arc1_it_finished;
-        end
-        else if (card_core0_dda_arc1_pending) begin
-            if ((!card_core0_dda_arc1_dec_tail)) begin
-                less_x = card_core0_dda_arc1_dec_sum_x[32-1:0];
-                if (card_core0_dda_arc1_dec_step_x) begin
-                    less_x = (card_core0_dda_arc1_dec_sum_x[32-1:0] - {3'h0, card_core0_dda_arc1_threshold});
-                end
-                less_y = card_core0_dda_arc1_dec_sum_y[32-1:0];
-                if (card_core0_dda_arc1_dec_step_y) begin
-                    less_y = (card_core0_dda_arc1_dec_sum_y[32-1:0] - {3'h0, card_core0_dda_arc1_threshold});
-                end
-                card_core0_dda_arc1_acc_x <= $signed(less_x);
-                card_core0_dda_arc1_acc_y <= $signed(less_y);
-            end
-            error_op = {5'h0, card_core0_dda_arc1_pos_out, 1'b1};
-            if ((card_core0_dda_arc1_dec_in && card_core0_dda_arc1_dec_out)) begin
-                error_op = {card_core0_dda_arc1_half_sum[(30 - 1)-1:0], 1'b1};
-            end
-            else if (card_core0_dda_arc1_dec_in) begin
-                error_op = {card_core0_dda_arc1_neg_in[(30 - 1)-1:0], 1'b1};
-            end
-            error_sum = ((card_core0_dda_arc1_radial_error[30-1:0] + error_op) + {29'h0, (card_core0_dda_arc1_dec_in && card_core0_dda_arc1_dec_out)});
-            if ((card_core0_dda_arc1_dec_in || card_core0_dda_arc1_dec_out)) begin
-                card_core0_dda_arc1_radial_error <= $signed(error_sum);
-            end
-            card_core0_dda_arc1_left_x <= (card_core0_dda_arc1_left_x - $signed({26'h0, card_core0_dda_arc1_dec_step_x}));
-            card_core0_dda_arc1_left_y <= (card_core0_dda_arc1_left_y - $signed({26'h0, card_core0_dda_arc1_dec_step_y}));
-            if ((card_core0_dda_arc1_dec_step_x && (!card_core0_dda_arc1_run_line))) begin
-                step_op_y = 1;
-                if (card_core0_dda_arc1_x_inward) begin
-                    step_op_y = 16777215;
-                end
-            end
-            if ((card_core0_dda_arc1_dec_step_y && (!card_core0_dda_arc1_run_line))) begin
-                step_op_x = 16777215;
-                if (card_core0_dda_arc1_x_inward) begin
-                    step_op_x = 1;
-                end
-            end
-            card_core0_dda_arc1_integrand_y <= (card_core0_dda_arc1_integrand_y + step_op_y);
-            card_core0_dda_arc1_integrand_x <= (card_core0_dda_arc1_integrand_x + step_op_x);
-            base_y = card_core0_dda_arc1_stepped_y;
-            base_op_y = step_op_y;
-            base_x = card_core0_dda_arc1_stepped_x;
-            base_op_x = step_op_x;
-            if (card_core0_dda_arc1_dec_next_piece) begin
-                base_op_y = 1;
-                base_y = 0;
-                base_op_x = 1;
-                base_x = 0;
-                if (card_core0_dda_arc1_x_inward) begin
-                    base_op_x = 16777215;
-                    base_x = card_core0_dda_arc1_radius;
-                end
-                else begin
-                    base_op_y = 16777215;
-                    base_y = card_core0_dda_arc1_radius;
-                end
-            end
-            card_core0_dda_arc1_stepped_y <= (base_y + base_op_y);
-            card_core0_dda_arc1_stepped_x <= (base_x + base_op_x);
-            in_out = {card_core0_dda_arc1_dec_in, card_core0_dda_arc1_dec_out};
-            neg_base = card_core0_dda_arc1_neg_in;
-            half_base = card_core0_dda_arc1_half_sum;
-            q_in_base = card_core0_dda_arc1_q_in;
-            q_out_base = card_core0_dda_arc1_q_out;
-            q_in_op = {card_core0_dda_arc1_dec_in, card_core0_dda_arc1_dec_out, 1'b0};
-            q_out_op = {card_core0_dda_arc1_dec_out, card_core0_dda_arc1_dec_in, 1'b0};
-            card_core0_dda_arc1_pos_out <= (card_core0_dda_arc1_pos_out + {23'h0, card_core0_dda_arc1_dec_out});
-            if (card_core0_dda_arc1_dec_next_piece) begin
-                inverse = (~{7'h0, card_core0_dda_arc1_radius});
-                neg_base = inverse[(30 - 1)-1:0];
-                half_base = inverse[(30 + 1)-1:0];
-                q_in_base = {inverse[30-1:0], 2'h3};
-                q_out_base = {inverse[(30 + 1)-1:0], 1'b1};
-                in_out = 1;
-                q_in_op = 4;
-                q_out_op = 4;
-                card_core0_dda_arc1_pos_out <= 0;
-            end
-            neg_base = (neg_base + {28'h0, (card_core0_dda_arc1_dec_in || card_core0_dda_arc1_dec_next_piece)});
-            half_base = ((half_base + {30'h0, in_out[1]}) + {30'h0, in_out[0]});
-            q_in_base = (q_in_base + {29'h0, q_in_op});
-            q_out_base = (q_out_base + {29'h0, q_out_op});
-            card_core0_dda_arc1_neg_in <= $signed(neg_base);
-            card_core0_dda_arc1_half_sum <= $signed(half_base);
-            card_core0_dda_arc1_q_in <= $signed(q_in_base);
-            card_core0_dda_arc1_q_out <= $signed(q_out_base);
-            if (card_core0_dda_arc1_dec_finished) begin
-                card_core0_dda_arc1_run_active <= 1'b0;
-            end
-            if (card_core0_dda_arc1_dec_next_piece) begin
-                card_core0_dda_arc1_x_inward <= (!card_core0_dda_arc1_x_inward);
-                if (card_core0_dda_arc1_x_inward) begin
-                    card_core0_dda_arc1_target_x <= card_core0_dda_arc1_radius;
-                    card_core0_dda_arc1_target_y <= 0;
-                end
-                else begin
-                    card_core0_dda_arc1_target_x <= 0;
-                    card_core0_dda_arc1_target_y <= card_core0_dda_arc1_radius;
-                end
-                if ((card_core0_dda_arc1_crossings == 1)) begin
-                    card_core0_dda_arc1_target_x <= card_core0_dda_arc1_run_end_x;
-                    card_core0_dda_arc1_target_y <= card_core0_dda_arc1_run_end_y;
-                end
-                if (card_core0_dda_arc1_run_ccw) begin
-                    card_core0_dda_arc1_quadrant <= (card_core0_dda_arc1_quadrant + 1);
-                end
-                else begin
-                    card_core0_dda_arc1_quadrant <= (card_core0_dda_arc1_quadrant - 1);
-                end
-                card_core0_dda_arc1_crossings <= (card_core0_dda_arc1_crossings - 1);
-            end
-        end
-        if ((card_core0_dda_arc1_hand_end && card_core0_dda_arc1_chk_zero)) begin
-            card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
-            card_core0_dda_arc1_quadrant <= 0;
-        end
-        if (card_core0_dda_arc1_hand_load) begin
-            card_core0_dda_arc1_run_active <= 1'b1;
-            card_core0_dda_arc1_run_line <= card_core0_dda_arc1_is_line;
-            card_core0_dda_arc1_run_variant <= card_core0_dda_arc1_variant;
-            card_core0_dda_arc1_run_ccw <= card_core0_dda_arc1_ccw;
-            card_core0_dda_arc1_run_blend <= card_core0_dda_arc1_blend;
-            card_core0_dda_arc1_run_end_x <= card_core0_dda_arc1_mag_xe;
-            card_core0_dda_arc1_run_end_y <= card_core0_dda_arc1_mag_ye;
-            card_core0_dda_arc1_run_right <= (!card_core0_dda_arc1_neg_xe);
-            card_core0_dda_arc1_run_up <= (!card_core0_dda_arc1_neg_ye);
-            card_core0_dda_arc1_acc_x <= card_core0_dda_arc1_chk_acc_init;
-            card_core0_dda_arc1_acc_y <= card_core0_dda_arc1_chk_acc_init;
-            card_core0_dda_arc1_threshold <= card_core0_dda_arc1_chk_threshold;
-            card_core0_dda_arc1_radial_error <= 0;
-            card_core0_dda_arc1_quadrant <= card_core0_dda_arc1_chk_quadrant;
-            card_core0_dda_arc1_x_inward <= (card_core0_dda_arc1_chk_quadrant[0] != card_core0_dda_arc1_ccw);
-            card_core0_dda_arc1_crossings <= card_core0_dda_arc1_chk_crossings;
-            card_core0_dda_arc1_target_x <= card_core0_dda_arc1_chk_target_x;
-            card_core0_dda_arc1_target_y <= card_core0_dda_arc1_chk_target_y;
-            card_core0_dda_arc1_radius <= card_core0_dda_arc1_radius_q[24-1:0];
-            card_core0_dda_arc1_left_x <= card_core0_dda_arc1_chk_left_x;
-            card_core0_dda_arc1_left_y <= card_core0_dda_arc1_chk_left_y;
-            card_core0_dda_arc1_integrand_x <= card_core0_dda_arc1_first_integrand_x;
-            card_core0_dda_arc1_integrand_y <= card_core0_dda_arc1_first_integrand_y;
-            card_core0_dda_arc1_stepped_x <= card_core0_dda_arc1_first_stepped_x;
-            card_core0_dda_arc1_stepped_y <= card_core0_dda_arc1_first_stepped_y;
-            card_core0_dda_arc1_neg_in <= card_core0_dda_arc1_chk_neg_in;
-            card_core0_dda_arc1_pos_out <= card_core0_dda_arc1_first_out;
-            card_core0_dda_arc1_half_sum <= card_core0_dda_arc1_first_half;
-            card_core0_dda_arc1_q_in <= card_core0_dda_arc1_first_q_in;
-            card_core0_dda_arc1_q_out <= card_core0_dda_arc1_first_q_out;
-        end
-    end
-end
-
-
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_left_output
-    reg signed [27-1:0] larger;
-    if (card_core0_dda_reset == 0) begin
-        card_core0_regs_fifo1_feed_rate1_feed_stop_left <= 134217727;
-    end
-    else begin
-        larger = 0;
-        if ((card_core0_dda_arc1_left_x >= card_core0_dda_arc1_left_y)) begin
-            larger = card_core0_dda_arc1_left_x;
-        end
-        else begin
-            larger = card_core0_dda_arc1_left_y;
-        end
-        if ((card_core0_dda_arc1_run_active && (!card_core0_dda_arc1_run_blend))) begin
-            if ((larger < 0)) begin
-                card_core0_regs_fifo1_feed_rate1_feed_stop_left <= 0;
+        card_core0_dda_arc1_dda_run1_step_pending <= 1'b0;
+        if (card_core0_dda_arc1_dda_run1_taking) begin
+            card_core0_dda_arc1_dda_run1_step_pending <= 1'b1;
+            card_core0_regs_fifo1_steps_step_x <= card_core0_dda_arc1_dda_run1_go_x;
+            card_core0_regs_fifo1_steps_step_y <= card_core0_dda_arc1_dda_run1_go_y;
+            if (card_core0_dda_arc1_dda_run1_step_line) begin
+                card_core0_regs_fifo1_steps_dir_x <= card_core0_dda_arc1_dda_run1_right;
+                card_core0_regs_fifo1_steps_dir_y <= card_core0_dda_arc1_dda_run1_up;
             end
             else begin
-                card_core0_regs_fifo1_feed_rate1_feed_stop_left <= larger[27-1:0];
+                card_core0_regs_fifo1_steps_dir_x <= ((card_core0_dda_arc1_dda_run1_quadrant[0] == card_core0_dda_arc1_dda_run1_quadrant[1]) != card_core0_dda_arc1_dda_run1_step_x_inward);
+                card_core0_regs_fifo1_steps_dir_y <= ((!card_core0_dda_arc1_dda_run1_quadrant[1]) == card_core0_dda_arc1_dda_run1_step_x_inward);
+            end
+            card_core0_regs_fifo1_sequencer1_dda_done <= card_core0_dda_arc1_dda_run1_finished;
+            card_core0_dda_arc1_dda_run1_step_step_x <= card_core0_dda_arc1_dda_run1_go_x;
+            card_core0_dda_arc1_dda_run1_step_step_y <= card_core0_dda_arc1_dda_run1_go_y;
+            card_core0_dda_arc1_dda_run1_step_finished <= card_core0_dda_arc1_dda_run1_finished;
+            card_core0_dda_arc1_dda_run1_tail_taken <= card_core0_dda_arc1_dda_run1_tail;
+            card_core0_dda_arc1_dda_run1_step_new_piece <= card_core0_dda_arc1_dda_run1_next_piece;
+            card_core0_dda_arc1_dda_run1_first <= 1'b0;
+        end
+        else if (card_core0_dda_arc1_dda_run1_step_pending) begin
+            if (card_core0_dda_arc1_dda_run1_step_finished) begin
+                card_core0_dda_arc1_dda_run1_active <= 1'b0;
+            end
+            if (card_core0_dda_arc1_dda_run1_step_new_piece) begin
+                card_core0_dda_arc1_dda_run1_step_x_inward <= (!card_core0_dda_arc1_dda_run1_step_x_inward);
+                card_core0_dda_arc1_dda_run1_crossings <= (card_core0_dda_arc1_dda_run1_crossings - 1);
+                if (card_core0_dda_arc1_dda_run1_ccw) begin
+                    card_core0_dda_arc1_dda_run1_quadrant <= (card_core0_dda_arc1_dda_run1_quadrant + 1);
+                end
+                else begin
+                    card_core0_dda_arc1_dda_run1_quadrant <= (card_core0_dda_arc1_dda_run1_quadrant - 1);
+                end
+                if ((card_core0_dda_arc1_dda_run1_crossings == 1)) begin
+                    card_core0_dda_arc1_dda_run1_target_x <= 2;
+                    card_core0_dda_arc1_dda_run1_target_y <= 2;
+                end
+                else if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+                    card_core0_dda_arc1_dda_run1_target_x <= 1;
+                    card_core0_dda_arc1_dda_run1_target_y <= 0;
+                end
+                else begin
+                    card_core0_dda_arc1_dda_run1_target_x <= 0;
+                    card_core0_dda_arc1_dda_run1_target_y <= 1;
+                end
             end
         end
-        else begin
-            card_core0_regs_fifo1_feed_rate1_feed_stop_left <= 27'h7ffffff;
+        if ((card_core0_dda_arc1_dda_check1_move_take && (!card_core0_dda_arc1_dda_check1_move_error) && (!card_core0_dda_arc1_dda_check1_move_zero))) begin
+            card_core0_dda_arc1_dda_run1_active <= 1'b1;
+            card_core0_dda_arc1_dda_run1_first <= card_core0_dda_arc1_dda_check1_move_acc_carry;
+            card_core0_dda_arc1_dda_run1_step_line <= card_core0_dda_arc1_dda_check1_move_line;
+            card_core0_dda_arc1_dda_run1_variant <= card_core0_dda_arc1_dda_check1_move_variant;
+            card_core0_dda_arc1_dda_run1_ccw <= card_core0_dda_arc1_dda_check1_move_ccw;
+            card_core0_dda_arc1_dda_run1_step_blend <= card_core0_dda_arc1_dda_check1_move_blend;
+            card_core0_dda_arc1_dda_run1_right <= card_core0_dda_arc1_dda_check1_move_right;
+            card_core0_dda_arc1_dda_run1_up <= card_core0_dda_arc1_dda_check1_move_up;
+            card_core0_dda_arc1_dda_run1_quadrant <= card_core0_dda_arc1_dda_check1_move_quadrant;
+            card_core0_dda_arc1_dda_run1_step_x_inward <= card_core0_dda_arc1_dda_check1_move_x_inward;
+            card_core0_dda_arc1_dda_run1_crossings <= card_core0_dda_arc1_dda_check1_move_crossings;
+            card_core0_dda_arc1_dda_run1_target_x <= card_core0_dda_arc1_dda_check1_move_target_x;
+            card_core0_dda_arc1_dda_run1_target_y <= card_core0_dda_arc1_dda_check1_move_target_y;
+            card_core0_dda_arc1_dda_run1_threshold_carry <= card_core0_dda_arc1_dda_check1_move_line;
+        end
+        if ((card_core0_dda_arc1_dda_check1_move_take && card_core0_dda_arc1_dda_check1_move_zero)) begin
+            card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
+            card_core0_dda_arc1_dda_run1_quadrant <= 0;
+        end
+    end
+end
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_datapath
+    if (card_core0_dda_arc1_dda_run1_taking) begin
+        card_core0_dda_arc1_dda_run1_kept_x <= card_core0_dda_arc1_dda_run1_sum_x[30-1:0];
+        if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_step_line))) begin
+            card_core0_dda_arc1_dda_run1_kept_x <= card_core0_dda_arc1_dda_run1_sum_x[30-1:0];
+        end
+        card_core0_dda_arc1_dda_run1_kept_y <= card_core0_dda_arc1_dda_run1_sum_y[30-1:0];
+        if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_x)) begin
+            card_core0_dda_arc1_dda_run1_kept_x <= 536870911;
+        end
+        if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_y)) begin
+            card_core0_dda_arc1_dda_run1_kept_y <= 536870911;
+        end
+    end
+    else if (card_core0_dda_arc1_dda_run1_step_pending) begin
+        if ((!card_core0_dda_arc1_dda_run1_tail_taken)) begin
+            card_core0_dda_arc1_dda_run1_acc_x <= $signed(card_core0_dda_arc1_dda_run1_less_x);
+            card_core0_dda_arc1_dda_run1_acc_y <= $signed(card_core0_dda_arc1_dda_run1_less_y);
+        end
+        if ((!card_core0_dda_arc1_dda_run1_step_line)) begin
+            if (card_core0_dda_arc1_dda_run1_step_step_x) begin
+                card_core0_dda_arc1_dda_run1_step_mag_x <= card_core0_dda_arc1_dda_run1_stepped_x;
+            end
+            if (card_core0_dda_arc1_dda_run1_step_step_y) begin
+                card_core0_dda_arc1_dda_run1_step_mag_y <= card_core0_dda_arc1_dda_run1_stepped_y;
+            end
+        end
+    end
+    if (card_core0_dda_arc1_dda_check1_move_take) begin
+        card_core0_dda_arc1_dda_run1_step_mag_x <= card_core0_dda_arc1_dda_check1_move_mag_x;
+        card_core0_dda_arc1_dda_run1_step_mag_y <= card_core0_dda_arc1_dda_check1_move_mag_y;
+        card_core0_dda_arc1_dda_run1_end_x <= card_core0_dda_arc1_dda_check1_move_end_x;
+        card_core0_dda_arc1_dda_run1_end_y <= card_core0_dda_arc1_dda_check1_move_end_y;
+        card_core0_dda_arc1_dda_run1_radius <= card_core0_dda_arc1_dda_check1_move_radius;
+        card_core0_dda_arc1_dda_run1_threshold <= card_core0_dda_arc1_dda_check1_move_threshold;
+        card_core0_dda_arc1_dda_run1_acc_x <= card_core0_dda_arc1_dda_check1_move_acc_init;
+        card_core0_dda_arc1_dda_run1_acc_y <= card_core0_dda_arc1_dda_check1_move_acc_init;
+    end
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_errors
+    if (card_core0_dda_reset == 0) begin
+        card_core0_regs_fifo1_sequencer1_dda_error <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_sequencer1_dda_start && card_core0_regs_fifo1_sequencer1_dda_ready)) begin
+            card_core0_regs_fifo1_sequencer1_dda_error <= 1'b0;
+        end
+        if ((card_core0_dda_arc1_dda_check1_move_take && card_core0_dda_arc1_dda_check1_move_error)) begin
+            card_core0_regs_fifo1_sequencer1_dda_error <= 1'b1;
         end
     end
 end
 
 
 
-assign card_core0_regs_fifo1__status1_quadrant = card_core0_dda_arc1_quadrant;
-assign card_core0_regs_fifo1_sequencer1_dda_ready = (card_core0_dda_arc1_state == 3'b000);
-assign card_core0_regs_fifo1_dda_busy = ((card_core0_dda_arc1_state != 3'b000) || (card_core0_dda_arc1_run_active && (!(card_core0_dda_arc1_pending && card_core0_dda_arc1_dec_finished))));
+assign card_core0_regs_fifo1__status1_quadrant = card_core0_dda_arc1_dda_run1_quadrant;
+assign card_core0_regs_fifo1_dda_busy = ((!card_core0_regs_fifo1_sequencer1_dda_ready) || (card_core0_dda_arc1_dda_run1_active && (!(card_core0_dda_arc1_dda_run1_step_pending && card_core0_dda_arc1_dda_run1_step_finished))));
 
 endmodule

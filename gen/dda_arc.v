@@ -29,17 +29,21 @@ module dda_arc (
     steps_dir_x,
     steps_dir_y
 );
-// Two-axis DDA interpolator (arcs of the paper's section 4, and lines).
+// Two-axis DDA interpolator (arcs of the paper's section 4 and the precise mode, lines).
 // 
 // Ports:
 //     clock, reset  clock and reset (``card_reset()``: async, active low)
 //     cmd           ``DdaPort``: command lines, ``start``, ``blend``, ``advance``
 //                   in; ``ready``, ``busy``, ``done``, ``error``, ``quadrant``,
-//                   ``stop_left`` out; its ``coord_width`` is the signed
-//                   coordinate width; accumulators are coord_width + 8
-//                   bits, the radial error term + 6
+//                   ``stop_left`` out
 //     steps         ``AxisPulses``: ``step_x``/``step_y`` one clock per step,
 //                   ``dir_x``/``dir_y`` valid with them
+// Parameters: none; ``cmd.coord_width`` and ``cmd.variants`` (the build) say
+// what is built.
+// 
+//     cmd --> dda_setup --DdaPlan--> dda_check --DdaMove--> dda_run --> steps
+//               (latch, one adder,       (validation,         (two clocks
+//                square root)             start values)        an iteration)
 // 
 // Timing (an arc; a line has two setup clocks)::
 // 
@@ -50,26 +54,12 @@ module dda_arc (
 //     advance  ____________ ... ______/~~~\___/~~~\___ ... ~~~~~~~~
 //     step_x   ____________ ... __________/~~~\___/~~~ ... ________
 //     done     ____________ ... ___________________________/~~~\___
-//                   |<- 5*coord_width+3 ->|
+//                   |<-- 4*W+26 -->|
 // 
-// An iteration takes the clock of its ``advance`` and the next one: an
-// ``advance`` in the clock after a taken one is ignored (the card sends at
-// most one every other clock).  ``step_*`` follows the clock edge of the
-// iteration that made the step; ``done`` comes with the last step.  A
-// ``start`` taken while a move runs (``ready`` high) is set up meanwhile;
-// the run takes it in the clock after its last iteration, so the next
-// ``advance`` iterates the new move::
-// 
-//     advance  _/~\_/~\_/~\_/~\_      every other clock
-//     step_x   _____/~\_/~\_/~\_/~\_  last of move n, then move n + 1
-//     done     _____/~\________
-// 
-// ``error`` (a rejected move) and the ``done`` of a line of length 0 come
-// once no move runs.  ``quadrant`` changes in the clock after the
-// iteration.  ``stop_left`` is registered from the steps left as the
-// second clock of the iterations leaves them, minus one: with its own
-// register one iteration behind the ``advance`` pulses at the fastest rate,
-// it still never exceeds the iterations left.
+// A ``start`` taken while a move runs (``ready`` high) is set up
+// meanwhile; the run takes it at the edge that applies its last iteration,
+// so the next ``advance`` iterates the new move.  ``error`` (a rejected
+// move) and the ``done`` of a line of length 0 come once no move runs.
 
 input clock;
 input reset;
@@ -96,7 +86,7 @@ wire [1:0] cmd_quadrant;
 output cmd_ready;
 wire cmd_ready;
 output [26:0] cmd_stop_left;
-reg [26:0] cmd_stop_left;
+wire [26:0] cmd_stop_left;
 output steps_step_x;
 reg steps_step_x;
 output steps_step_y;
@@ -106,154 +96,171 @@ reg steps_dir_x;
 output steps_dir_y;
 reg steps_dir_y;
 
-reg [4:0] acc_bits;
-reg signed [31:0] acc_x;
-reg signed [31:0] acc_y;
-reg at_x;
-reg at_y;
-reg blend;
-reg ccw;
-reg signed [31:0] check_acc_init;
-reg [2:0] check_crossings;
-reg check_error;
-reg signed [26:0] check_left_x;
-reg signed [26:0] check_left_y;
-reg signed [28:0] check_neg_in;
-reg [1:0] check_quadrant;
-reg [23:0] check_target_x;
-reg [23:0] check_target_y;
-reg [28:0] check_threshold;
-reg check_zero;
-reg signed [31:0] chk_acc_init;
-reg [2:0] chk_crossings;
-reg chk_error;
-reg signed [26:0] chk_left_x;
-reg signed [26:0] chk_left_y;
-reg signed [28:0] chk_neg_in;
-reg [1:0] chk_quadrant;
-reg [23:0] chk_target_x;
-reg [23:0] chk_target_y;
-reg [28:0] chk_threshold;
-reg chk_zero;
-reg [23:0] cmd_mag_xe;
-reg [23:0] cmd_mag_xs;
-reg [23:0] cmd_mag_ye;
-reg [23:0] cmd_mag_ys;
-reg [2:0] crossings;
-reg dec_finished;
-reg dec_in;
-reg dec_next_piece;
-reg dec_out;
-reg dec_step_x;
-reg dec_step_y;
-reg signed [31:0] dec_sum_x;
-reg signed [31:0] dec_sum_y;
-reg dec_tail;
-reg end_beyond_high;
-reg end_reaches_low;
-reg signed [30:0] first_half;
-reg [23:0] first_integrand_x;
-reg [23:0] first_integrand_y;
-reg [23:0] first_out;
-reg signed [31:0] first_q_in;
-reg signed [31:0] first_q_out;
-reg [23:0] first_stepped_x;
-reg [23:0] first_stepped_y;
-reg gap_carry;
-reg [24:0] gap_high;
-reg [24:0] gap_low;
-reg gap_sum_carry;
-reg [24:0] gap_sum_high;
-reg [24:0] gap_sum_low;
-reg [24:0] gap_top;
-reg geo_ahead;
-reg geo_centre;
-reg [2:0] geo_crossings;
-reg [23:0] geo_end_inward;
-reg [1:0] geo_quadrant;
-reg geo_x_in_end;
-reg geo_x_in_start;
-reg signed [30:0] half_sum;
-reg hand_end;
-reg hand_load;
-reg [23:0] integrand_x;
-reg [23:0] integrand_y;
-reg is_line;
-reg it_dir_x;
-reg it_dir_y;
-reg it_finished;
-reg it_next_piece;
-reg it_step_x;
-reg it_step_y;
-reg signed [31:0] it_sum_x;
-reg signed [31:0] it_sum_y;
-reg it_tail;
-reg [4:0] lambda_shift;
-reg signed [26:0] left_x;
-reg signed [26:0] left_y;
-reg [4:0] mac_bit;
-reg [1:0] mac_op;
-reg [23:0] mag_xe;
-reg [23:0] mag_xs;
-reg [23:0] mag_ye;
-reg [23:0] mag_ys;
-reg [47:0] multiplicand;
-reg [23:0] multiplier;
-reg near_x;
-reg near_y;
-reg signed [28:0] neg_in;
-reg neg_xe;
-reg neg_xs;
-reg neg_ye;
-reg neg_ys;
-reg pending;
-reg [23:0] pos_out;
-reg signed [31:0] q_in;
-reg signed [31:0] q_out;
-reg [1:0] quadrant;
-reg signed [29:0] radial_error;
-reg [47:0] radicand;
-reg [23:0] radius;
-reg [5:0] radius_length;
-reg [24:0] radius_q;
-reg [26:0] remainder;
-reg [23:0] root;
-reg root_all_ones;
-reg [4:0] root_bit;
-reg [5:0] root_length;
-reg [26:0] root_trial_diff;
-reg root_trial_fits;
-reg [26:0] root_trial_rem;
-reg [24:0] root_up;
-reg run_active;
-reg run_blend;
-reg run_ccw;
-reg [23:0] run_end_x;
-reg [23:0] run_end_y;
-reg run_line;
-reg run_right;
-reg run_up;
-reg [1:0] run_variant;
-reg [2:0] state;
-reg [23:0] stepped_x;
-reg [23:0] stepped_y;
-reg [23:0] target_x;
-reg [23:0] target_y;
-reg [28:0] threshold;
-reg tot_k2_x;
-reg tot_k2_y;
-reg tot_k4_x;
-reg tot_k4_y;
-reg signed [27:0] tot_sum_x;
-reg signed [27:0] tot_sum_y;
-reg signed [27:0] tot_x;
-reg signed [27:0] tot_y;
-reg [1:0] variant;
-reg x_inward;
+reg [4:0] dda_setup0_acc_bits;
+reg dda_setup0_carry;
+reg [48:0] dda_setup0_gap;
+reg [1:0] dda_setup0_gap_op;
+reg dda_setup0_grew;
+reg dda_setup0_invert;
+reg dda_setup0_m_is_y;
+reg [27:0] dda_setup0_major;
+reg [23:0] dda_setup0_multiplier;
+reg [1:0] dda_setup0_next_square;
+reg [2:0] dda_setup0_next_state;
+reg [4:0] dda_setup0_next_step;
+reg [5:0] dda_setup0_ones_left;
+reg [48:0] dda_setup0_operand;
+reg [1:0] dda_setup0_operand_op;
+reg dda_setup0_pick_x;
+reg [2:0] dda_setup0_source;
+reg dda_setup0_source_on;
+reg [24:0] dda_setup0_source_value;
+reg [1:0] dda_setup0_square;
+reg [2:0] dda_setup0_state;
+reg [4:0] dda_setup0_step;
+wire [48:0] dda_setup0_total;
+reg [1:0] dda_setup0_twice;
+wire dda_setup0_plan_taken;
+reg dda_setup0_plan_x_inward_end;
+reg dda_setup0_plan_x_inward;
+reg [24:0] dda_setup0_root_root;
+reg [2:0] dda_setup0_plan_crossings;
+reg [23:0] dda_setup0_plan_mag_xs;
+reg [23:0] dda_setup0_plan_mag_ys;
+reg [23:0] dda_setup0_plan_mag_xe;
+reg [23:0] dda_setup0_plan_mag_ye;
+wire [47:0] dda_setup0_root_radicand;
+wire dda_setup0_root_load;
+reg dda_setup0_root_grows;
+reg [27:0] dda_setup0_plan_threshold;
+reg dda_setup0_plan_too_wide;
+reg dda_setup0_plan_off_circle;
+reg dda_setup0_plan_start_below_x;
+reg dda_setup0_plan_start_same_x;
+reg dda_setup0_plan_start_below_y;
+reg dda_setup0_plan_start_same_y;
+reg [24:0] dda_setup0_plan_radius;
+reg dda_setup0_plan_beyond;
+reg signed [26:0] dda_setup0_plan_totals_diff;
+reg [26:0] dda_setup0_plan_totals_max;
+wire dda_setup0_plan_done;
+reg [23:0] dda_setup0_dda_latch0_mag_xe;
+reg [23:0] dda_setup0_dda_latch0_mag_xs;
+reg [23:0] dda_setup0_dda_latch0_mag_ye;
+reg [23:0] dda_setup0_dda_latch0_mag_ys;
+reg dda_setup0_dda_latch0_neg_xs;
+reg dda_setup0_dda_latch0_neg_ys;
+reg dda_setup0_dda_latch0_plan_line;
+reg [1:0] dda_setup0_dda_latch0_plan_variant;
+reg dda_setup0_dda_latch0_plan_ccw;
+reg dda_setup0_dda_latch0_plan_blend;
+reg dda_setup0_dda_latch0_plan_neg_xe;
+reg dda_setup0_dda_latch0_plan_neg_ye;
+reg dda_setup0_dda_latch0_plan_ahead;
+reg [1:0] dda_setup0_dda_latch0_plan_quadrant;
+reg dda_setup0_dda_latch0_plan_centre;
+reg dda_setup0_dda_root0_all_ones;
+reg dda_setup0_dda_root0_fits;
+reg [25:0] dda_setup0_dda_root0_keep;
+reg [47:0] dda_setup0_dda_root0_radicand;
+reg [25:0] dda_setup0_dda_root0_remainder;
+reg dda_setup0_dda_root0_started;
+reg [4:0] dda_setup0_dda_root0_steps;
+reg dda_check0_variant_built;
+wire dda_check0_move_offer;
+wire dda_check0_move_take;
+reg dda_check0_move_error;
+reg dda_check0_move_zero;
+reg dda_check0_move_line;
+reg [1:0] dda_check0_move_variant;
+reg dda_check0_move_ccw;
+reg dda_check0_move_blend;
+reg dda_check0_move_right;
+reg dda_check0_move_up;
+reg dda_check0_move_x_inward;
+reg [1:0] dda_check0_move_quadrant;
+reg [2:0] dda_check0_move_crossings;
+reg [1:0] dda_check0_move_target_x;
+reg [1:0] dda_check0_move_target_y;
+reg [23:0] dda_check0_move_mag_x;
+reg [23:0] dda_check0_move_mag_y;
+reg [23:0] dda_check0_move_end_x;
+reg [23:0] dda_check0_move_end_y;
+reg [23:0] dda_check0_move_radius;
+reg signed [26:0] dda_check0_move_totals_diff;
+reg [26:0] dda_check0_move_totals_max;
+reg [27:0] dda_check0_move_threshold;
+reg signed [29:0] dda_check0_move_acc_init;
+reg dda_check0_move_acc_carry;
+reg signed [26:0] dda_check0_move_bias_in;
+reg signed [26:0] dda_check0_move_bias_out;
+reg signed [29:0] dda_run0_acc_x;
+reg signed [29:0] dda_run0_acc_y;
+reg dda_run0_active;
+reg dda_run0_ahead_x;
+reg dda_run0_ahead_y;
+reg dda_run0_at_x;
+reg dda_run0_at_y;
+reg dda_run0_ccw;
+reg [2:0] dda_run0_crossings;
+reg [23:0] dda_run0_end_x;
+reg [23:0] dda_run0_end_y;
+reg dda_run0_finished;
+reg dda_run0_first;
+reg dda_run0_go_x;
+reg dda_run0_go_y;
+reg [23:0] dda_run0_goal_x;
+reg [23:0] dda_run0_goal_y;
+reg [29:0] dda_run0_kept_x;
+reg [29:0] dda_run0_kept_y;
+reg [29:0] dda_run0_less_x;
+reg [29:0] dda_run0_less_y;
+reg dda_run0_near_x;
+reg dda_run0_near_y;
+reg dda_run0_next_piece;
+reg dda_run0_over_x;
+reg dda_run0_over_y;
+reg [1:0] dda_run0_quadrant;
+reg [23:0] dda_run0_radius;
+reg dda_run0_right;
+reg dda_run0_saturate_x;
+reg dda_run0_saturate_y;
+reg [23:0] dda_run0_stepped_x;
+reg [23:0] dda_run0_stepped_y;
+reg [30:0] dda_run0_sum_x;
+reg [30:0] dda_run0_sum_y;
+reg dda_run0_tail;
+reg dda_run0_tail_taken;
+wire dda_run0_taking;
+reg [1:0] dda_run0_target_x;
+reg [1:0] dda_run0_target_y;
+reg [27:0] dda_run0_threshold;
+reg dda_run0_threshold_carry;
+reg dda_run0_up;
+reg [1:0] dda_run0_variant;
+reg [23:0] dda_run0_step_mag_y;
+reg [23:0] dda_run0_step_mag_x;
+reg dda_run0_step_step_x;
+reg dda_run0_step_step_y;
+reg dda_run0_step_line;
+reg dda_run0_step_x_inward;
+reg dda_run0_step_outward_near;
+reg dda_run0_step_inward_near;
+wire dda_run0_step_last;
+reg dda_run0_step_pending;
+reg dda_run0_step_finished;
+reg dda_run0_step_new_piece;
+reg dda_run0_step_blend;
+reg [26:0] dda_run0_dda_left0_difference;
+reg [26:0] dda_run0_dda_left0_larger;
+reg [26:0] dda_run0_dda_nearest0_bias_in;
+reg [26:0] dda_run0_dda_nearest0_bias_out;
+reg [26:0] dda_run0_dda_nearest0_error_step;
+reg [26:0] dda_run0_dda_nearest0_error_term;
 
 
 
-always @(cmd_ys, cmd_ye, cmd_xs, cmd_xe) begin: magnitudes
+always @(cmd_ys, cmd_ye, cmd_xs, cmd_xe) begin: dda_setup0_dda_latch0_magnitudes
     reg [24-1:0] sign_xs;
     reg [24-1:0] sign_ys;
     reg [24-1:0] sign_xe;
@@ -286,1087 +293,1297 @@ always @(cmd_ys, cmd_ye, cmd_xs, cmd_xe) begin: magnitudes
     less_ys = (cmd_ys[24-1:0] + sign_ys);
     less_xe = (cmd_xe[24-1:0] + sign_xe);
     less_ye = (cmd_ye[24-1:0] + sign_ye);
-    cmd_mag_xs = (less_xs ^ sign_xs);
-    cmd_mag_ys = (less_ys ^ sign_ys);
-    cmd_mag_xe = (less_xe ^ sign_xe);
-    cmd_mag_ye = (less_ye ^ sign_ye);
+    dda_setup0_dda_latch0_mag_xs = (less_xs ^ sign_xs);
+    dda_setup0_dda_latch0_mag_ys = (less_ys ^ sign_ys);
+    dda_setup0_dda_latch0_mag_xe = (less_xe ^ sign_xe);
+    dda_setup0_dda_latch0_mag_ye = (less_ye ^ sign_ye);
 end
 
 
-always @(gap_low, root_bit, state, multiplicand, gap_carry, gap_high, mac_op) begin: setup_adder
-    reg subtract;
-    reg carry;
-    reg [50-1:0] operand;
-    reg [26-1:0] total_low;
-    reg [25-1:0] total_high;
-    subtract = (0 != 0);
-    carry = (0 != 0);
-    operand = 50'h0;
-    total_low = 26'h0;
-    total_high = 25'h0;
-    if ((state == 3'b001)) begin
-        subtract = (mac_op < 2);
-        carry = (mac_op < 2);
+always @(posedge clock) begin: dda_setup0_dda_latch0_latch
+    if ((cmd_start && cmd_ready)) begin
+        dda_setup0_dda_latch0_plan_line <= cmd_line;
+        dda_setup0_dda_latch0_plan_variant <= cmd_variant;
+        dda_setup0_dda_latch0_plan_ccw <= cmd_ccw;
+        dda_setup0_dda_latch0_plan_blend <= cmd_blend;
+        dda_setup0_dda_latch0_neg_xs <= (cmd_xs < 0);
+        dda_setup0_dda_latch0_neg_ys <= (cmd_ys < 0);
+        dda_setup0_dda_latch0_plan_neg_xe <= (cmd_xe < 0);
+        dda_setup0_dda_latch0_plan_neg_ye <= (cmd_ye < 0);
+        dda_setup0_plan_mag_xs <= dda_setup0_dda_latch0_mag_xs;
+        dda_setup0_plan_mag_ys <= dda_setup0_dda_latch0_mag_ys;
+        dda_setup0_plan_mag_xe <= dda_setup0_dda_latch0_mag_xe;
+        dda_setup0_plan_mag_ye <= dda_setup0_dda_latch0_mag_ye;
     end
-    else begin
-        subtract = (root_bit == 2);
-    end
-    operand = {2'h0, multiplicand};
-    if (subtract) begin
-        operand = (~operand);
-    end
-    total_low = (({1'b0, gap_low} + {1'b0, operand[25-1:0]}) + {25'h0, carry});
-    total_high = ((gap_high + operand[50-1:25]) + {24'h0, gap_carry});
-    gap_sum_low = total_low[25-1:0];
-    gap_sum_carry = total_low[25];
-    gap_sum_high = total_high;
-    gap_top = (gap_high + {24'h0, gap_carry});
 end
 
 
-always @(radicand, remainder, root) begin: root_trial
-    reg [27-1:0] trial_rem;
-    reg [28-1:0] trial_diff;
-    trial_rem = 27'h0;
-    trial_diff = 28'h0;
-    trial_rem = {remainder[(24 + 1)-1:0], radicand[(2 * 24)-1:((2 * 24) - 2)]};
-    trial_diff = ({1'b0, trial_rem} - {2'h0, root, 2'h1});
-    root_trial_rem = trial_rem;
-    root_trial_diff = trial_diff[(24 + 3)-1:0];
-    root_trial_fits = (!trial_diff[(24 + 3)]);
-end
-
-
-always @(posedge clock, negedge reset) begin: geometry
+always @(posedge clock) begin: dda_setup0_dda_latch0_geometry
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
-    reg [3-1:0] turns;
     reg [2-1:0] turn;
-    reg [25-1:0] shrink_x;
-    reg [25-1:0] shrink_y;
     reg ahead;
     reg zero_xs;
     reg zero_ys;
     reg zero_xe;
     reg zero_ye;
+    q_s = 2'h0;
+    q_e = 2'h0;
+    turn = 2'h0;
+    ahead = 1'b0;
+    zero_xs = (dda_setup0_plan_mag_xs == 0);
+    zero_ys = (dda_setup0_plan_mag_ys == 0);
+    zero_xe = (dda_setup0_plan_mag_xe == 0);
+    zero_ye = (dda_setup0_plan_mag_ye == 0);
+    if (dda_setup0_dda_latch0_plan_ccw) begin
+        if (((!dda_setup0_dda_latch0_neg_xs) && (!zero_xs) && (!dda_setup0_dda_latch0_neg_ys))) begin
+            q_s = 0;
+        end
+        else if (((dda_setup0_dda_latch0_neg_xs || zero_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!zero_ys))) begin
+            q_s = 1;
+        end
+        else if ((dda_setup0_dda_latch0_neg_xs && (dda_setup0_dda_latch0_neg_ys || zero_ys))) begin
+            q_s = 2;
+        end
+        else begin
+            q_s = 3;
+        end
+        if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!zero_ye))) begin
+            q_e = 0;
+        end
+        else if ((dda_setup0_dda_latch0_plan_neg_xe && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
+            q_e = 1;
+        end
+        else if (((dda_setup0_dda_latch0_plan_neg_xe || zero_xe) && dda_setup0_dda_latch0_plan_neg_ye)) begin
+            q_e = 2;
+        end
+        else begin
+            q_e = 3;
+        end
+        turn = (q_e - q_s);
+    end
+    else begin
+        if (((!dda_setup0_dda_latch0_neg_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!zero_ys))) begin
+            q_s = 0;
+        end
+        else if ((dda_setup0_dda_latch0_neg_xs && (!dda_setup0_dda_latch0_neg_ys))) begin
+            q_s = 1;
+        end
+        else if (((dda_setup0_dda_latch0_neg_xs || zero_xs) && dda_setup0_dda_latch0_neg_ys)) begin
+            q_s = 2;
+        end
+        else begin
+            q_s = 3;
+        end
+        if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
+            q_e = 0;
+        end
+        else if (((dda_setup0_dda_latch0_plan_neg_xe || zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!zero_ye))) begin
+            q_e = 1;
+        end
+        else if ((dda_setup0_dda_latch0_plan_neg_xe && (dda_setup0_dda_latch0_plan_neg_ye || zero_ye))) begin
+            q_e = 2;
+        end
+        else begin
+            q_e = 3;
+        end
+        turn = (q_s - q_e);
+    end
+    if ((q_s[0] != dda_setup0_dda_latch0_plan_ccw)) begin
+        ahead = ((!dda_setup0_plan_start_below_x) && (dda_setup0_plan_start_below_y || dda_setup0_plan_start_same_y));
+    end
+    else begin
+        ahead = ((!dda_setup0_plan_start_below_y) && (dda_setup0_plan_start_below_x || dda_setup0_plan_start_same_x));
+    end
+    ahead = (ahead && (!(dda_setup0_plan_start_same_x && dda_setup0_plan_start_same_y)) && (turn == 0));
+    dda_setup0_dda_latch0_plan_ahead <= ahead;
+    dda_setup0_plan_crossings <= {1'b0, turn};
+    if (((turn == 0) && (!ahead))) begin
+        dda_setup0_plan_crossings <= 4;
+    end
+    dda_setup0_dda_latch0_plan_quadrant <= q_s;
+    dda_setup0_plan_x_inward <= (q_s[0] != dda_setup0_dda_latch0_plan_ccw);
+    dda_setup0_plan_x_inward_end <= (q_e[0] != dda_setup0_dda_latch0_plan_ccw);
+    if (dda_setup0_dda_latch0_plan_line) begin
+        dda_setup0_dda_latch0_plan_centre <= (zero_xe && zero_ye);
+    end
+    else begin
+        dda_setup0_dda_latch0_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+    end
+end
+
+
+always @(dda_setup0_dda_root0_radicand, dda_setup0_dda_root0_remainder, dda_setup0_root_root) begin: dda_setup0_dda_root0_trial
+    reg [28-1:0] value;
+    reg [27-1:0] difference;
+    value = 28'h0;
+    difference = 27'h0;
+    value = {dda_setup0_dda_root0_remainder, dda_setup0_dda_root0_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+    difference = ({1'b0, value[(24 + 2)-1:0]} - {1'b0, dda_setup0_root_root[24-1:0], 2'h1});
+    dda_setup0_dda_root0_fits = ((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
+    dda_setup0_dda_root0_keep = value[(24 + 2)-1:0];
+    if (((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]))) begin
+        dda_setup0_dda_root0_keep = difference[(24 + 2)-1:0];
+    end
+end
+
+
+always @(dda_setup0_dda_root0_steps, dda_setup0_dda_root0_all_ones, dda_setup0_dda_root0_fits, dda_setup0_dda_root0_started) begin: dda_setup0_dda_root0_length
+    dda_setup0_root_grows = 1'b0;
+    if ((dda_setup0_dda_root0_steps > 1)) begin
+        dda_setup0_root_grows = (dda_setup0_dda_root0_started || dda_setup0_dda_root0_fits);
+    end
+    else if ((dda_setup0_dda_root0_steps == 1)) begin
+        dda_setup0_root_grows = (dda_setup0_dda_root0_fits && dda_setup0_dda_root0_started && dda_setup0_dda_root0_all_ones);
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: dda_setup0_dda_root0_count
     if (reset == 0) begin
-        geo_quadrant <= 0;
-        geo_ahead <= 0;
-        geo_x_in_start <= 0;
-        geo_centre <= 0;
-        geo_end_inward <= 0;
-        geo_x_in_end <= 0;
-        geo_crossings <= 0;
+        dda_setup0_dda_root0_steps <= 0;
     end
     else begin
-        q_s = 2'h0;
-        q_e = 2'h0;
-        turns = 3'h0;
-        turn = 2'h0;
-        shrink_x = 25'h0;
-        shrink_y = 25'h0;
-        ahead = (0 != 0);
-        zero_xs = (0 != 0);
-        zero_ys = (0 != 0);
-        zero_xe = (0 != 0);
-        zero_ye = (0 != 0);
-        zero_xs = (mag_xs == 0);
-        zero_ys = (mag_ys == 0);
-        zero_xe = (mag_xe == 0);
-        zero_ye = (mag_ye == 0);
-        if (ccw) begin
-            if (((!neg_xs) && (!zero_xs) && (!neg_ys))) begin
-                q_s = 0;
+        if (dda_setup0_root_load) begin
+            dda_setup0_dda_root0_steps <= (24 + 1);
+        end
+        else if ((dda_setup0_dda_root0_steps != 0)) begin
+            dda_setup0_dda_root0_steps <= (dda_setup0_dda_root0_steps - 1);
+        end
+    end
+end
+
+
+always @(posedge clock) begin: dda_setup0_dda_root0_digits
+    if (dda_setup0_root_load) begin
+        dda_setup0_dda_root0_radicand <= dda_setup0_root_radicand;
+        dda_setup0_dda_root0_remainder <= 0;
+        dda_setup0_root_root <= 0;
+        dda_setup0_dda_root0_started <= 1'b0;
+        dda_setup0_dda_root0_all_ones <= 1'b1;
+    end
+    else if ((dda_setup0_dda_root0_steps != 0)) begin
+        dda_setup0_dda_root0_remainder <= dda_setup0_dda_root0_keep;
+        dda_setup0_root_root <= {dda_setup0_root_root[24-1:0], dda_setup0_dda_root0_fits};
+        dda_setup0_dda_root0_radicand <= (dda_setup0_dda_root0_radicand << 2);
+        if (dda_setup0_dda_root0_fits) begin
+            dda_setup0_dda_root0_started <= 1'b1;
+        end
+        else if (dda_setup0_dda_root0_started) begin
+            dda_setup0_dda_root0_all_ones <= 1'b0;
+        end
+    end
+end
+
+
+always @(cmd_start, dda_setup0_plan_taken, dda_setup0_step, cmd_line, dda_setup0_square, dda_setup0_state) begin: dda_setup0_sequence
+    dda_setup0_next_state = dda_setup0_state;
+    dda_setup0_next_step = 0;
+    dda_setup0_next_square = dda_setup0_square;
+    if ((dda_setup0_state == 3'b000)) begin
+        dda_setup0_next_square = 0;
+        if (cmd_start) begin
+            dda_setup0_next_state = 3'b010;
+            if (cmd_line) begin
+                dda_setup0_next_state = 3'b001;
             end
-            else if (((neg_xs || zero_xs) && (!neg_ys) && (!zero_ys))) begin
-                q_s = 1;
+        end
+    end
+    else if ((dda_setup0_state == 3'b001)) begin
+        dda_setup0_next_state = 3'b110;
+    end
+    else if ((dda_setup0_state == 3'b010)) begin
+        if (($signed({1'b0, dda_setup0_step}) == (7 - 1))) begin
+            dda_setup0_next_state = 3'b011;
+        end
+        else begin
+            dda_setup0_next_step = (dda_setup0_step + 1);
+        end
+    end
+    else if ((dda_setup0_state == 3'b011)) begin
+        if (($signed({1'b0, dda_setup0_step}) == (24 - 1))) begin
+            dda_setup0_next_square = (dda_setup0_square + 1);
+            if ((dda_setup0_square == 3)) begin
+                dda_setup0_next_state = 3'b100;
             end
-            else if ((neg_xs && (neg_ys || zero_ys))) begin
-                q_s = 2;
+        end
+        else begin
+            dda_setup0_next_step = (dda_setup0_step + 1);
+        end
+    end
+    else if ((dda_setup0_state == 3'b100)) begin
+        if (($signed({1'b0, dda_setup0_step}) == (5 - 1))) begin
+            dda_setup0_next_state = 3'b101;
+        end
+        else begin
+            dda_setup0_next_step = (dda_setup0_step + 1);
+        end
+    end
+    else if ((dda_setup0_state == 3'b101)) begin
+        if (($signed({1'b0, dda_setup0_step}) == (13 - 1))) begin
+            dda_setup0_next_state = 3'b110;
+        end
+        else begin
+            dda_setup0_next_step = (dda_setup0_step + 1);
+        end
+    end
+    else if (dda_setup0_plan_taken) begin
+        dda_setup0_next_state = 3'b000;
+    end
+end
+
+
+always @(dda_setup0_multiplier, dda_setup0_twice, dda_setup0_step, dda_setup0_m_is_y, dda_setup0_pick_x, dda_setup0_plan_x_inward_end, dda_setup0_plan_x_inward, dda_setup0_square, dda_setup0_state) begin: dda_setup0_control
+    reg [2-1:0] g_op;
+    reg [2-1:0] o_op;
+    reg [3-1:0] src;
+    reg on;
+    reg inv;
+    g_op = 2'h0;
+    o_op = 2'h0;
+    src = 3'h0;
+    on = 1'b1;
+    inv = 1'b0;
+    g_op = 0;
+    o_op = 2;
+    src = 0;
+    case (dda_setup0_state)
+        3'b010: begin
+            if (((dda_setup0_step == 1) || (dda_setup0_step == 3) || (dda_setup0_step == 5))) begin
+                inv = 1'b1;
+            end
+            if (((dda_setup0_step == 0) || (dda_setup0_step == 6))) begin
+                src = 0;
+                inv = (dda_setup0_step == 6);
+            end
+            else if (((dda_setup0_step == 1) || (dda_setup0_step == 2) || (dda_setup0_step == 4))) begin
+                src = 1;
+            end
+            else if ((dda_setup0_step == 3)) begin
+                src = 2;
             end
             else begin
-                q_s = 3;
+                src = 3;
             end
-            if (((!neg_xe) && (!neg_ye) && (!zero_ye))) begin
-                q_e = 0;
+            if ((dda_setup0_step == 4)) begin
+                g_op = 2;
             end
-            else if ((neg_xe && (!neg_ye))) begin
-                q_e = 1;
+            else if ((dda_setup0_step == 6)) begin
+                g_op = 3;
             end
-            else if (((neg_xe || zero_xe) && neg_ye)) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_e - q_s);
-        end
-        else begin
-            if (((!neg_xs) && (!neg_ys) && (!zero_ys))) begin
-                q_s = 0;
-            end
-            else if ((neg_xs && (!neg_ys))) begin
-                q_s = 1;
-            end
-            else if (((neg_xs || zero_xs) && neg_ys)) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!neg_xe) && (!zero_xe) && (!neg_ye))) begin
-                q_e = 0;
-            end
-            else if (((neg_xe || zero_xe) && (!neg_ye) && (!zero_ye))) begin
-                q_e = 1;
-            end
-            else if ((neg_xe && (neg_ye || zero_ye))) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_s - q_e);
-        end
-        turns = {1'b0, turn};
-        shrink_x = ({1'b0, mag_xs} - {1'b0, mag_xe});
-        shrink_y = ({1'b0, mag_ys} - {1'b0, mag_ye});
-        if ((q_s[0] != ccw)) begin
-            ahead = ((!shrink_x[24]) && (shrink_y[24] || (shrink_y == 0)));
-        end
-        else begin
-            ahead = ((!shrink_y[24]) && (shrink_x[24] || (shrink_x == 0)));
-        end
-        geo_ahead <= 1'b0;
-        if (((turns == 0) && ahead && (!((shrink_x == 0) && (shrink_y == 0))))) begin
-            geo_ahead <= 1'b1;
-        end
-        else if ((turns == 0)) begin
-            turns = 4;
-        end
-        geo_quadrant <= q_s;
-        geo_crossings <= turns;
-        if ((q_e[0] != ccw)) begin
-            geo_end_inward <= mag_xe;
-        end
-        else begin
-            geo_end_inward <= mag_ye;
-        end
-        geo_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
-        geo_x_in_start <= (q_s[0] != ccw);
-        geo_x_in_end <= (q_e[0] != ccw);
-    end
-end
-
-
-always @(geo_crossings, geo_x_in_end, geo_x_in_start) begin: totals_k
-    reg out_in;
-    reg in_out;
-    out_in = ((!geo_x_in_start) && geo_x_in_end);
-    in_out = (geo_x_in_start && (!geo_x_in_end));
-    tot_k4_x = ((geo_crossings == 4) || ((geo_crossings == 3) && out_in));
-    tot_k4_y = ((geo_crossings == 4) || ((geo_crossings == 3) && in_out));
-    tot_k2_x = ((geo_crossings == 2) || ((geo_crossings == 1) && out_in) || ((geo_crossings == 3) && in_out));
-    tot_k2_y = ((geo_crossings == 2) || ((geo_crossings == 1) && in_out) || ((geo_crossings == 3) && out_in));
-end
-
-
-always @(mag_ys, tot_x, mag_xs, state, tot_y, mag_ye, mag_xe, mac_bit, geo_x_in_end, mac_op, geo_x_in_start) begin: totals_adder
-    reg [28-1:0] operand_x;
-    reg [28-1:0] operand_y;
-    reg invert_x;
-    reg invert_y;
-    reg carry_x;
-    reg carry_y;
-    reg [28-1:0] total_x;
-    reg [28-1:0] total_y;
-    operand_x = 28'h0;
-    operand_y = 28'h0;
-    invert_x = (0 != 0);
-    invert_y = (0 != 0);
-    carry_x = (0 != 0);
-    carry_y = (0 != 0);
-    total_x = 28'h0;
-    total_y = 28'h0;
-    if (((state == 3'b001) && (mac_op == 0) && (mac_bit == 1))) begin
-        operand_x = {4'h0, mag_xs};
-        operand_y = {4'h0, mag_ys};
-        invert_x = (!geo_x_in_start);
-        invert_y = (geo_x_in_start == 1);
-    end
-    else if (((state == 3'b001) && (mac_op == 0) && (mac_bit == 2))) begin
-        operand_x = {4'h0, mag_xe};
-        operand_y = {4'h0, mag_ye};
-        invert_x = (geo_x_in_end == 1);
-        invert_y = (!geo_x_in_end);
-    end
-    if (invert_x) begin
-        operand_x = (~operand_x);
-        carry_x = 1'b1;
-    end
-    if (invert_y) begin
-        operand_y = (~operand_y);
-        carry_y = 1'b1;
-    end
-    total_x = ((tot_x[28-1:0] + operand_x) + {27'h0, carry_x});
-    total_y = ((tot_y[28-1:0] + operand_y) + {27'h0, carry_y});
-    tot_sum_x = $signed(total_x);
-    tot_sum_y = $signed(total_y);
-end
-
-
-always @(tot_x, tot_k2_y, tot_k4_y, tot_k4_x, radius_q, tot_k2_x, mag_ye, mag_xe, is_line, tot_y) begin: totals_check
-    reg [27-1:0] operand_x;
-    reg [27-1:0] operand_y;
-    reg [27-1:0] total_x;
-    reg [27-1:0] total_y;
-    operand_x = 27'h0;
-    operand_y = 27'h0;
-    total_x = 27'h0;
-    total_y = 27'h0;
-    if (is_line) begin
-        operand_x = {3'h0, mag_xe};
-        operand_y = {3'h0, mag_ye};
-    end
-    else begin
-        if (tot_k2_x) begin
-            operand_x = {1'h0, radius_q, 1'b0};
-        end
-        else if (tot_k4_x) begin
-            operand_x = {radius_q, 2'h0};
-        end
-        if (tot_k2_y) begin
-            operand_y = {1'h0, radius_q, 1'b0};
-        end
-        else if (tot_k4_y) begin
-            operand_y = {radius_q, 2'h0};
-        end
-    end
-    total_x = (tot_x[27-1:0] + operand_x);
-    total_y = (tot_y[27-1:0] + operand_y);
-    check_left_x = $signed(total_x[27-1:0]);
-    check_left_y = $signed(total_y[27-1:0]);
-end
-
-
-always @(radius_length, acc_bits, geo_crossings, mag_ys, variant, geo_quadrant, mag_xs, radius_q, end_reaches_low, mag_ye, geo_centre, lambda_shift, geo_ahead, mag_xe, is_line, geo_x_in_start, end_beyond_high, ccw, geo_end_inward) begin: check_logic
-    reg [25-1:0] rq;
-    reg [6-1:0] exponent;
-    reg [29-1:0] thr;
-    reg [29-1:0] thr_less;
-    reg [29-1:0] mask;
-    reg [32-1:0] below;
-    reg [32-1:0] half;
-    reg [24-1:0] major;
-    reg [24-1:0] major_less;
-    reg [24-1:0] inward;
-    reg bad;
-    rq = 25'h0;
-    exponent = 6'h0;
-    thr = 29'h0;
-    thr_less = 29'h0;
-    mask = 29'h0;
-    below = 32'h0;
-    half = 32'h0;
-    major = 24'h0;
-    major_less = 24'h0;
-    inward = 24'h0;
-    bad = 1'b0;
-    rq = radius_q;
-    if (geo_centre) begin
-        bad = 1'b1;
-    end
-    if (($signed({1'b0, rq}) >= (1 << (24 - 1)))) begin
-        bad = 1'b1;
-    end
-    if (((!end_reaches_low) || end_beyond_high)) begin
-        bad = 1'b1;
-    end
-    if ((acc_bits != 0)) begin
-        exponent = ({1'b0, acc_bits} + {1'b0, lambda_shift});
-    end
-    else begin
-        exponent = (radius_length + {1'b0, lambda_shift});
-    end
-    mask = ((1 << 29) - 1);
-    mask = (mask << exponent);
-    thr_less = (~mask);
-    thr = ({thr_less[(29 - 1)-1:0], 1'b1} & mask);
-    if (((variant != 3) && ($signed({1'b0, exponent}) > (29 - 1)))) begin
-        bad = 1'b1;
-    end
-    if ((variant == 3)) begin
-        thr = ({4'h0, rq} + 1);
-        thr_less = {4'h0, rq};
-    end
-    if ((mag_xe > mag_ye)) begin
-        major = mag_xe;
-        major_less = (mag_xe + 16777215);
-    end
-    else begin
-        major = mag_ye;
-        major_less = (mag_ye + 16777215);
-    end
-    if (is_line) begin
-        thr = {5'h0, major};
-        thr_less = {5'h0, major_less};
-    end
-    below = {3'h0, thr_less};
-    half = (~(below >>> 1));
-    if (((!is_line) && ((variant == 1) || (variant == 2)))) begin
-        half = (~{3'h0, thr});
-    end
-    if ((is_line || geo_ahead)) begin
-        check_target_x = mag_xe;
-        check_target_y = mag_ye;
-    end
-    else begin
-        if (({1'b0, geo_end_inward} > rq)) begin
-            bad = 1'b1;
-        end
-        if ((geo_quadrant[0] != ccw)) begin
-            check_target_x = 0;
-            check_target_y = rq[24-1:0];
-        end
-        else begin
-            check_target_x = rq[24-1:0];
-            check_target_y = 0;
-        end
-    end
-    check_error = (bad && (!is_line));
-    check_zero = (is_line && (mag_xe == 0) && (mag_ye == 0));
-    check_quadrant = geo_quadrant;
-    check_crossings = geo_crossings;
-    if (is_line) begin
-        check_quadrant = 0;
-        check_crossings = 0;
-    end
-    check_threshold = thr;
-    check_acc_init = $signed(half);
-    inward = mag_ys;
-    if (geo_x_in_start) begin
-        inward = mag_xs;
-    end
-    check_neg_in = (-$signed({5'h0, inward}));
-end
-
-
-always @(mag_ys, mag_xs, chk_neg_in, mag_ye, mag_xe, is_line, geo_x_in_start) begin: first_iteration
-    reg [2-1:0] fill;
-    reg [31-1:0] half;
-    reg [32-1:0] twice_in;
-    reg [32-1:0] twice_out;
-    reg [24-1:0] out;
-    reg [24-1:0] step_in;
-    reg [24-1:0] step_out;
-    fill = 2'h0;
-    half = 31'h0;
-    twice_in = 32'h0;
-    twice_out = 32'h0;
-    out = 24'h0;
-    first_integrand_x = mag_ys;
-    first_integrand_y = mag_xs;
-    if (is_line) begin
-        first_integrand_x = mag_xe;
-        first_integrand_y = mag_ye;
-    end
-    step_in = 24'h1;
-    step_out = 24'h1;
-    if (geo_x_in_start) begin
-        step_out = 16777215;
-        out = mag_ys;
-    end
-    else begin
-        step_in = 16777215;
-        out = mag_xs;
-    end
-    first_stepped_x = (mag_ys + step_in);
-    first_stepped_y = (mag_xs + step_out);
-    first_out = out;
-    if (chk_neg_in[(30 - 2)]) begin
-        fill = 3;
-    end
-    half = ({7'h0, out} + {fill, chk_neg_in[(30 - 1)-1:0]});
-    twice_in = ({fill[0], chk_neg_in[(30 - 1)-1:0], 2'h3} + {7'h0, out, 1'b0});
-    twice_out = ({6'h0, out, 2'h3} + {fill, chk_neg_in[(30 - 1)-1:0], 1'b0});
-    first_half = $signed(half);
-    first_q_in = $signed(twice_in);
-    first_q_out = $signed(twice_out);
-end
-
-
-always @(left_x, stepped_y, integrand_x, stepped_x, target_y, integrand_y, target_x, run_line, left_y) begin: end_tests
-    if (run_line) begin
-        at_x = (left_x[27-1:0] == 27'h7ffffff);
-        at_y = (left_y[27-1:0] == 27'h7ffffff);
-        near_x = (left_x == 0);
-        near_y = (left_y == 0);
-    end
-    else begin
-        at_x = (integrand_y == target_x);
-        at_y = (integrand_x == target_y);
-        near_x = (stepped_y == target_x);
-        near_y = (stepped_x == target_y);
-    end
-end
-
-
-always @(q_out, half_sum, neg_in, run_variant, run_up, x_inward, crossings, at_x, near_y, integrand_x, near_x, quadrant, integrand_y, stepped_x, radial_error, acc_x, at_y, acc_y, run_right, q_in, run_line) begin: iteration_logic
-    reg x_right;
-    reg y_up;
-    reg signed [33-1:0] sum_x;
-    reg signed [33-1:0] sum_x_step;
-    reg signed [33-1:0] sum_y;
-    reg signed [33-1:0] ahead_x;
-    reg signed [33-1:0] ahead_y;
-    reg signed [32-1:0] twice_in;
-    reg signed [32-1:0] twice_out;
-    reg [31-1:0] error_half;
-    reg d_le_in;
-    reg d_le_out;
-    reg x_le_y;
-    reg over_x;
-    reg over_x_step;
-    reg over_y;
-    reg go_x;
-    reg go_y;
-    x_right = (0 != 0);
-    y_up = (0 != 0);
-    sum_x = 0;
-    sum_x_step = 0;
-    sum_y = 0;
-    ahead_x = 0;
-    ahead_y = 0;
-    twice_in = 0;
-    twice_out = 0;
-    error_half = 31'h0;
-    d_le_in = (0 != 0);
-    d_le_out = (0 != 0);
-    x_le_y = (0 != 0);
-    over_x = (0 != 0);
-    over_x_step = (0 != 0);
-    over_y = (0 != 0);
-    go_x = (0 != 0);
-    go_y = (0 != 0);
-    x_right = (quadrant[0] == quadrant[1]);
-    y_up = (!quadrant[1]);
-    if (run_line) begin
-        it_dir_x = run_right;
-        it_dir_y = run_up;
-    end
-    else begin
-        it_dir_x = (x_right != x_inward);
-        it_dir_y = (y_up == x_inward);
-    end
-    sum_y = ($signed({acc_y[(32 - 1)], acc_y}) + $signed({9'h0, integrand_y}));
-    sum_x = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({9'h0, integrand_x}));
-    sum_x_step = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({9'h0, stepped_x}));
-    over_x = (!sum_x[32]);
-    over_x_step = (!sum_x_step[32]);
-    over_y = (!sum_y[32]);
-    if (((!run_line) && (run_variant == 0) && over_y)) begin
-        sum_x = sum_x_step;
-        over_x = over_x_step;
-    end
-    twice_in = ($signed({radial_error[(30 - 1)], radial_error, 1'b0}) + q_in);
-    twice_out = ($signed({radial_error[(30 - 1)], radial_error, 1'b0}) + q_out);
-    error_half = (({radial_error[(30 - 1)], radial_error} + half_sum[(30 + 1)-1:0]) + {30'h0, x_inward});
-    d_le_in = (twice_in < 0);
-    d_le_out = ((neg_in < 0) != (twice_out < 0));
-    x_le_y = (($signed(error_half) < 0) != x_inward);
-    go_x = over_x;
-    go_y = over_y;
-    if (run_line) begin
-        go_x = (over_x && (!at_x));
-        go_y = (over_y && (!at_y));
-    end
-    else if ((run_variant == 2)) begin
-        ahead_x = ($signed({acc_x[(32 - 1)], acc_x}) + $signed({8'h0, integrand_x, 1'b0}));
-        ahead_y = ($signed({acc_y[(32 - 1)], acc_y}) + $signed({8'h0, integrand_y, 1'b0}));
-        if ((over_x && (!over_y) && (ahead_y >= 0))) begin
-            go_y = 1'b1;
-        end
-        else if ((over_y && (!over_x) && (ahead_x >= 0))) begin
-            go_x = 1'b1;
-        end
-    end
-    else if ((run_variant == 3)) begin
-        go_x = 1'b0;
-        go_y = 1'b0;
-        if ((over_x || over_y)) begin
-            if ((d_le_in && d_le_out)) begin
-                go_x = 1'b1;
-                go_y = 1'b1;
-            end
-            else if (x_le_y) begin
-                go_x = 1'b1;
-            end
-            else begin
-                go_y = 1'b1;
+            else if ((dda_setup0_step != 0)) begin
+                g_op = 1;
             end
         end
-    end
-    it_tail = ((!run_line) && (at_x || at_y));
-    if (((!run_line) && (at_x || at_y))) begin
-        go_x = (!at_x);
-        go_y = (!at_y);
-    end
-    if (((!sum_x[32]) && sum_x[(32 - 1)])) begin
-        sum_x = 33'h7fffffff;
-    end
-    if (((!sum_y[32]) && sum_y[(32 - 1)])) begin
-        sum_y = 33'h7fffffff;
-    end
-    it_sum_x = $signed(sum_x[32-1:0]);
-    it_sum_y = $signed(sum_y[32-1:0]);
-    it_step_x = go_x;
-    it_step_y = go_y;
-    it_finished = 1'b0;
-    it_next_piece = 1'b0;
-    if ((((near_x && go_x) || at_x) && ((near_y && go_y) || at_y))) begin
-        if ((run_line || (crossings == 0))) begin
-            it_finished = 1'b1;
-        end
-        else begin
-            it_next_piece = 1'b1;
-        end
-    end
-end
-
-
-always @(dec_finished, run_active, pending, chk_error, chk_zero, state) begin: handover_logic
-    reg free;
-    free = ((!run_active) || (pending && dec_finished));
-    hand_load = 1'b0;
-    hand_end = 1'b0;
-    if ((state == 3'b101)) begin
-        if ((chk_zero || chk_error)) begin
-            hand_end = free;
-        end
-        else begin
-            hand_load = free;
-        end
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: setup_control
-    if (reset == 0) begin
-        radius_length <= 0;
-        neg_ye <= 0;
-        chk_quadrant <= 0;
-        chk_target_y <= 0;
-        acc_bits <= 0;
-        neg_ys <= 0;
-        chk_zero <= 0;
-        tot_y <= 0;
-        mag_ys <= 0;
-        gap_low <= 0;
-        variant <= 0;
-        root_all_ones <= 0;
-        mag_xs <= 0;
-        multiplicand <= 0;
-        chk_target_x <= 0;
-        radius_q <= 0;
-        end_reaches_low <= 0;
-        mag_ye <= 0;
-        root_length <= 0;
-        mac_op <= 0;
-        state <= 3'b000;
-        chk_threshold <= 0;
-        chk_crossings <= 0;
-        blend <= 0;
-        tot_x <= 0;
-        multiplier <= 0;
-        cmd_error <= 0;
-        root <= 0;
-        root_bit <= 0;
-        lambda_shift <= 0;
-        radicand <= 0;
-        gap_carry <= 0;
-        chk_left_y <= 0;
-        chk_neg_in <= 0;
-        gap_high <= 0;
-        root_up <= 0;
-        mag_xe <= 0;
-        neg_xs <= 0;
-        mac_bit <= 0;
-        remainder <= 0;
-        is_line <= 0;
-        chk_error <= 0;
-        chk_acc_init <= 0;
-        end_beyond_high <= 0;
-        ccw <= 0;
-        neg_xe <= 0;
-        chk_left_x <= 0;
-    end
-    else begin
-        case (state)
-            3'b000: begin
-                if (cmd_start) begin
-                    cmd_error <= 1'b0;
-                    is_line <= cmd_line;
-                    variant <= cmd_variant;
-                    lambda_shift <= cmd_lambda_shift;
-                    acc_bits <= cmd_acc_bits;
-                    ccw <= cmd_ccw;
-                    blend <= cmd_blend;
-                    tot_x <= (-1);
-                    tot_y <= (-1);
-                    neg_xs <= (cmd_xs < 0);
-                    neg_ys <= (cmd_ys < 0);
-                    neg_xe <= (cmd_xe < 0);
-                    neg_ye <= (cmd_ye < 0);
-                    mag_xs <= cmd_mag_xs;
-                    mag_ys <= cmd_mag_ys;
-                    mag_xe <= cmd_mag_xe;
-                    mag_ye <= cmd_mag_ye;
-                    gap_low <= ((1 << 25) - 1);
-                    gap_high <= ((1 << (50 - 25)) - 1);
-                    gap_carry <= 1'b0;
-                    mac_op <= 0;
-                    mac_bit <= 0;
-                    multiplicand <= {24'h0, cmd_mag_xs};
-                    multiplier <= cmd_mag_xs;
-                    if (cmd_line) begin
-                        state <= 3'b100;
-                    end
-                    else begin
-                        state <= 3'b001;
+        3'b011: begin
+            o_op = 1;
+            inv = (dda_setup0_square < 2);
+            if (dda_setup0_multiplier[0]) begin
+                g_op = 1;
+            end
+            if (($signed({1'b0, dda_setup0_step}) == (24 - 1))) begin
+                o_op = 2;
+                inv = ((dda_setup0_square == 0) || (dda_setup0_square == 3));
+                src = (dda_setup0_square + 1);
+                if ((dda_setup0_square == 3)) begin
+                    src = 0;
+                    if (dda_setup0_m_is_y) begin
+                        src = 1;
                     end
                 end
             end
-            3'b001: begin
-                tot_x <= tot_sum_x;
-                tot_y <= tot_sum_y;
-                gap_high <= gap_top;
-                gap_carry <= 1'b0;
-                if (multiplier[0]) begin
-                    gap_low <= gap_sum_low;
-                    gap_high <= gap_sum_high;
-                    gap_carry <= gap_sum_carry;
+        end
+        3'b100: begin
+            o_op = 1;
+            case (dda_setup0_step)
+                'h0: begin
+                    inv = 1'b1;
                 end
-                if (((mac_op == 2) && (mac_bit == 0))) begin
-                    radicand <= (~{gap_top[((2 * 24) - 25)-1:0], gap_low});
+                'h1: begin
+                    g_op = 1;
+                    o_op = 2;
+                    src = 0;
+                    if (dda_setup0_m_is_y) begin
+                        src = 1;
+                    end
                 end
-                if (($signed({1'b0, mac_bit}) == (24 - 1))) begin
-                    mac_bit <= 0;
-                    mac_op <= (mac_op + 1);
-                    case (mac_op)
-                        'h0: begin
-                            multiplicand <= {24'h0, mag_ys};
-                            multiplier <= mag_ys;
-                        end
-                        'h1: begin
-                            multiplicand <= {24'h0, mag_xe};
-                            multiplier <= mag_xe;
-                        end
-                        'h2: begin
-                            multiplicand <= {24'h0, mag_ye};
-                            multiplier <= mag_ye;
-                        end
-                        default: begin
-                            if ((mag_xs > mag_ys)) begin
-                                multiplicand <= {24'h0, mag_xs};
-                            end
-                            else begin
-                                multiplicand <= {24'h0, mag_ys};
-                            end
-                            remainder <= 0;
-                            root <= 0;
-                            root_up <= 1;
-                            root_bit <= 0;
-                            root_length <= 0;
-                            root_all_ones <= 1'b1;
-                            state <= 3'b010;
-                        end
-                    endcase
+                'h4: begin
+                    g_op = 2;
+                    o_op = 2;
+                    src = 4;
                 end
-                else begin
-                    mac_bit <= (mac_bit + 1);
-                    multiplicand <= (multiplicand << 1);
-                    multiplier <= (multiplier >>> 1);
+            endcase
+        end
+        3'b101: begin
+            g_op = 1;
+            if ((dda_setup0_step == 0)) begin
+                src = 3;
+                if (dda_setup0_plan_x_inward_end) begin
+                    src = 2;
                 end
+                inv = 1'b1;
             end
-            3'b010: begin
-                if (root_trial_fits) begin
-                    remainder <= root_trial_diff;
-                    root <= {root[(24 - 1)-1:0], 1'b1};
-                    root_up <= {root_up[24-1:0], 1'b0};
-                end
-                else begin
-                    remainder <= root_trial_rem;
-                    root <= {root[(24 - 1)-1:0], 1'b0};
-                    root_up <= {1'b0, root[(24 - 1)-1:0], 1'b1};
-                    if ((root != 0)) begin
-                        root_all_ones <= 1'b0;
-                    end
-                end
-                if (((root != 0) || root_trial_fits)) begin
-                    root_length <= (root_length + 1);
-                end
-                radicand <= (radicand << 2);
-                gap_high <= gap_top;
-                gap_carry <= 1'b0;
-                case (root_bit)
-                    'h0: begin
-                        multiplicand <= (multiplicand << 1);
-                    end
-                    'h1: begin
-                        gap_low <= gap_sum_low;
-                        gap_high <= gap_sum_high;
-                        gap_carry <= gap_sum_carry;
-                        multiplicand <= (multiplicand << 1);
-                    end
+            else if ((dda_setup0_step == 1)) begin
+                g_op = 0;
+                o_op = 1;
+                inv = 1'b1;
+            end
+            else if ((dda_setup0_step <= 5)) begin
+                inv = (!dda_setup0_plan_x_inward);
+                case (dda_setup0_step)
                     'h2: begin
-                        end_reaches_low <= (!gap_top[((50 - 25) - 1)]);
-                        gap_low <= gap_sum_low;
-                        gap_high <= gap_sum_high;
-                        gap_carry <= gap_sum_carry;
+                        g_op = 2;
+                        src = 0;
                     end
                     'h3: begin
-                        end_beyond_high <= (!gap_top[((50 - 25) - 1)]);
+                        src = 1;
+                    end
+                    default: begin
+                        src = 2;
+                        if ((dda_setup0_step == 5)) begin
+                            src = 3;
+                        end
+                        inv = (dda_setup0_plan_x_inward_end == 1);
                     end
                 endcase
-                if (($signed({1'b0, root_bit}) == (24 - 1))) begin
-                    state <= 3'b011;
+            end
+            else if ((dda_setup0_step == 6)) begin
+                src = 4;
+                on = (dda_setup0_plan_x_inward != dda_setup0_plan_x_inward_end);
+                inv = (dda_setup0_plan_x_inward == 1);
+            end
+            else if ((dda_setup0_step == 7)) begin
+                g_op = 2;
+                o_op = 0;
+            end
+            else if ((dda_setup0_step == 8)) begin
+                g_op = 0;
+                src = 1;
+                inv = (dda_setup0_plan_x_inward == 1);
+                if (dda_setup0_pick_x) begin
+                    src = 0;
+                    inv = (!dda_setup0_plan_x_inward);
                 end
-                else begin
-                    root_bit <= (root_bit + 1);
+            end
+            else if ((dda_setup0_step == 9)) begin
+                src = 3;
+                inv = (!dda_setup0_plan_x_inward_end);
+                if (dda_setup0_pick_x) begin
+                    src = 2;
+                    inv = (dda_setup0_plan_x_inward_end == 1);
                 end
+            end
+            else begin
+                src = 4;
+                on = (dda_setup0_twice != 0);
+                if ((dda_setup0_step == 11)) begin
+                    on = (dda_setup0_twice == 2);
+                end
+            end
+        end
+        default: begin
+            o_op = 0;
+        end
+    endcase
+    dda_setup0_gap_op = g_op;
+    dda_setup0_operand_op = o_op;
+    dda_setup0_source = src;
+    dda_setup0_source_on = on;
+    dda_setup0_invert = inv;
+end
+
+
+always @(posedge clock, negedge reset) begin: dda_setup0_carry_in
+    reg cin;
+    if (reset == 0) begin
+        dda_setup0_carry <= 0;
+    end
+    else begin
+        cin = 1'b0;
+        case (dda_setup0_next_state)
+            3'b010: begin
+                cin = ((dda_setup0_next_step == 2) || (dda_setup0_next_step == 4) || (dda_setup0_next_step == 6));
             end
             3'b011: begin
-                if (root_trial_fits) begin
-                    radius_q <= root_up;
-                end
-                else begin
-                    radius_q <= {1'b0, root};
-                end
-                if ((root_trial_fits && root_all_ones)) begin
-                    radius_length <= (root_length + 1);
-                end
-                else begin
-                    radius_length <= root_length;
-                end
-                state <= 3'b100;
+                cin = (dda_setup0_next_square < 2);
             end
             3'b100: begin
-                chk_error <= check_error;
-                chk_zero <= check_zero;
-                chk_threshold <= check_threshold;
-                chk_acc_init <= check_acc_init;
-                chk_quadrant <= check_quadrant;
-                chk_crossings <= check_crossings;
-                chk_target_x <= check_target_x;
-                chk_target_y <= check_target_y;
-                chk_left_x <= check_left_x;
-                chk_left_y <= check_left_y;
-                chk_neg_in <= check_neg_in;
-                state <= 3'b101;
+                cin = (dda_setup0_next_step == 4);
+            end
+            3'b101: begin
+                if ((dda_setup0_next_step == 0)) begin
+                    cin = 1'b1;
+                end
+                else if ((dda_setup0_next_step == 2)) begin
+                    cin = (dda_setup0_root_root[0] == 1);
+                end
+                else if (((dda_setup0_next_step == 3) || (dda_setup0_next_step == 4))) begin
+                    cin = (!dda_setup0_plan_x_inward);
+                end
+                else if (((dda_setup0_next_step == 5) || (dda_setup0_next_step == 6))) begin
+                    cin = (dda_setup0_plan_x_inward_end == 1);
+                end
+                else if ((dda_setup0_next_step == 7)) begin
+                    cin = ((dda_setup0_plan_x_inward != dda_setup0_plan_x_inward_end) && (dda_setup0_root_root[0] != dda_setup0_plan_x_inward));
+                end
+                else if ((dda_setup0_next_step == 9)) begin
+                    cin = (dda_setup0_pick_x != dda_setup0_plan_x_inward);
+                end
+                else if ((dda_setup0_next_step == 10)) begin
+                    cin = (dda_setup0_pick_x == dda_setup0_plan_x_inward_end);
+                end
+                else if ((dda_setup0_next_step == 11)) begin
+                    cin = (dda_setup0_root_root[0] && (dda_setup0_twice != 0));
+                end
+                else if ((dda_setup0_next_step == 12)) begin
+                    cin = (dda_setup0_root_root[0] && (dda_setup0_twice == 2));
+                end
             end
             default: begin
-                if ((hand_load || hand_end)) begin
-                    state <= 3'b000;
-                end
-                if ((hand_end && (!chk_zero))) begin
-                    cmd_error <= 1'b1;
-                end
+                cin = 1'b0;
             end
         endcase
+        dda_setup0_carry <= cin;
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: run_control
-    reg [24-1:0] step_op_x;
-    reg [24-1:0] step_op_y;
-    reg [24-1:0] base_x;
-    reg [24-1:0] base_y;
-    reg [24-1:0] base_op_x;
-    reg [24-1:0] base_op_y;
-    reg [32-1:0] less_x;
-    reg [32-1:0] less_y;
-    reg [31-1:0] inverse;
-    reg [29-1:0] neg_base;
-    reg [31-1:0] half_base;
-    reg [32-1:0] q_in_base;
-    reg [32-1:0] q_out_base;
-    reg [2-1:0] in_out;
-    reg [3-1:0] q_in_op;
-    reg [3-1:0] q_out_op;
-    reg [30-1:0] error_op;
-    reg [30-1:0] error_sum;
+always @(dda_setup0_plan_crossings, dda_setup0_plan_x_inward, dda_setup0_plan_x_inward_end, dda_setup0_pick_x) begin: dda_setup0_rq_terms
+    reg [3-1:0] count;
+    count = 3'h0;
+    count = (dda_setup0_plan_crossings - 1);
+    if ((dda_setup0_plan_x_inward != dda_setup0_pick_x)) begin
+        count = (count + 1);
+    end
+    if ((dda_setup0_plan_x_inward_end == dda_setup0_pick_x)) begin
+        count = (count + 1);
+    end
+    dda_setup0_twice = count[3-1:1];
+    if ((dda_setup0_plan_crossings == 0)) begin
+        dda_setup0_twice = 0;
+    end
+end
+
+
+always @(dda_setup0_plan_mag_xs, dda_setup0_source, dda_setup0_root_root, dda_setup0_plan_mag_xe, dda_setup0_plan_mag_ys, dda_setup0_plan_mag_ye, dda_setup0_source_on) begin: dda_setup0_select_source
+    reg [25-1:0] value;
+    value = 25'h0;
+    case (dda_setup0_source)
+        'h0: begin
+            value = {1'b0, dda_setup0_plan_mag_xs};
+        end
+        'h1: begin
+            value = {1'b0, dda_setup0_plan_mag_ys};
+        end
+        'h2: begin
+            value = {1'b0, dda_setup0_plan_mag_xe};
+        end
+        'h3: begin
+            value = {1'b0, dda_setup0_plan_mag_ye};
+        end
+        default: begin
+            value = dda_setup0_root_root;
+        end
+    endcase
+    if ((!dda_setup0_source_on)) begin
+        value = 0;
+    end
+    dda_setup0_source_value = value;
+end
+
+
+
+assign dda_setup0_total = ((dda_setup0_gap + dda_setup0_operand) + {48'h0, dda_setup0_carry});
+assign dda_setup0_root_radicand = (~dda_setup0_gap[(2 * 24)-1:0]);
+assign dda_setup0_root_load = ((dda_setup0_state == 3'b011) && (dda_setup0_square == 2) && (dda_setup0_step == 0));
+
+
+always @(posedge clock) begin: dda_setup0_datapath
+    reg [49-1:0] loaded;
+    loaded = 49'h0;
+    case (dda_setup0_gap_op)
+        'h1: begin
+            dda_setup0_gap <= dda_setup0_total;
+        end
+        'h2: begin
+            dda_setup0_gap <= 0;
+        end
+        'h3: begin
+            dda_setup0_gap <= ((1 << 49) - 1);
+        end
+    endcase
+    case (dda_setup0_operand_op)
+        'h1: begin
+            dda_setup0_operand <= {dda_setup0_operand[(49 - 1)-1:0], dda_setup0_invert};
+        end
+        'h2: begin
+            loaded = {24'h0, dda_setup0_source_value};
+            if ((dda_setup0_invert && dda_setup0_source_on)) begin
+                loaded = (~loaded);
+            end
+            dda_setup0_operand <= loaded;
+        end
+    endcase
+    if (((dda_setup0_state == 3'b011) && ($signed({1'b0, dda_setup0_step}) != (24 - 1)))) begin
+        dda_setup0_multiplier <= (dda_setup0_multiplier >>> 1);
+    end
+    else if (((dda_setup0_state == 3'b010) || (dda_setup0_state == 3'b011))) begin
+        dda_setup0_multiplier <= dda_setup0_source_value[24-1:0];
+    end
+    if ((dda_setup0_state == 3'b000)) begin
+        dda_setup0_gap <= 0;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: dda_setup0_sequencer
     if (reset == 0) begin
-        q_out <= 0;
-        run_end_y <= 0;
-        stepped_y <= 0;
-        dec_sum_y <= 0;
-        cmd_done <= 0;
-        half_sum <= 0;
-        pos_out <= 0;
-        dec_out <= 0;
-        left_y <= 0;
-        neg_in <= 0;
-        dec_next_piece <= 0;
-        steps_step_x <= 0;
-        dec_in <= 0;
-        run_variant <= 0;
-        dec_step_y <= 0;
-        run_end_x <= 0;
-        run_up <= 0;
-        dec_sum_x <= 0;
-        target_y <= 0;
-        x_inward <= 0;
-        target_x <= 0;
-        crossings <= 0;
-        dec_step_x <= 0;
-        left_x <= 0;
-        dec_finished <= 0;
-        dec_tail <= 0;
-        radius <= 0;
-        integrand_x <= 0;
-        run_active <= 0;
-        steps_dir_x <= 0;
-        steps_dir_y <= 0;
-        quadrant <= 0;
-        integrand_y <= 0;
-        steps_step_y <= 0;
-        pending <= 0;
-        stepped_x <= 0;
-        radial_error <= 0;
-        run_ccw <= 0;
-        threshold <= 0;
-        run_blend <= 0;
-        acc_x <= 0;
-        acc_y <= 0;
-        q_in <= 0;
-        run_right <= 0;
-        run_line <= 0;
+        dda_setup0_step <= 0;
+        dda_setup0_square <= 0;
+        dda_setup0_state <= 3'b000;
     end
     else begin
-        step_op_x = 24'h0;
-        step_op_y = 24'h0;
-        base_x = 24'h0;
-        base_y = 24'h0;
-        base_op_x = 24'h0;
-        base_op_y = 24'h0;
-        less_x = 32'h0;
-        less_y = 32'h0;
-        inverse = 31'h0;
-        neg_base = 29'h0;
-        half_base = 31'h0;
-        q_in_base = 32'h0;
-        q_out_base = 32'h0;
-        in_out = 2'h0;
-        q_in_op = 3'h0;
-        q_out_op = 3'h0;
-        error_op = 30'h0;
-        error_sum = 30'h0;
+        dda_setup0_state <= dda_setup0_next_state;
+        dda_setup0_step <= dda_setup0_next_step;
+        dda_setup0_square <= dda_setup0_next_square;
+    end
+end
+
+
+always @(dda_setup0_plan_mag_xe, dda_setup0_plan_mag_ye) begin: dda_setup0_line_major
+    dda_setup0_major = {4'h0, dda_setup0_plan_mag_ye};
+    if ((dda_setup0_plan_mag_xe >= dda_setup0_plan_mag_ye)) begin
+        dda_setup0_major = {4'h0, dda_setup0_plan_mag_xe};
+    end
+end
+
+
+always @(posedge clock) begin: dda_setup0_threshold
+    reg shift;
+    shift = 1'b0;
+    dda_setup0_grew <= dda_setup0_root_grows;
+    if (((dda_setup0_state == 3'b000) && cmd_start)) begin
+        dda_setup0_plan_threshold <= 0;
+        dda_setup0_plan_too_wide <= 1'b0;
+        dda_setup0_acc_bits <= cmd_acc_bits;
+        if ((cmd_acc_bits != 0)) begin
+            dda_setup0_ones_left <= ({1'b0, cmd_acc_bits} + {1'b0, cmd_lambda_shift});
+        end
+        else begin
+            dda_setup0_ones_left <= {1'b0, cmd_lambda_shift};
+        end
+    end
+    else if ((dda_setup0_state == 3'b001)) begin
+        dda_setup0_plan_threshold <= dda_setup0_major[28-1:0];
+    end
+    else if (1'b1) begin
+        if (((dda_setup0_state == 3'b011) && (dda_setup0_ones_left != 0))) begin
+            shift = 1'b1;
+            dda_setup0_ones_left <= (dda_setup0_ones_left - 1);
+        end
+        else if (((dda_setup0_acc_bits == 0) && dda_setup0_grew)) begin
+            shift = 1'b1;
+        end
+        if (shift) begin
+            dda_setup0_plan_threshold <= {dda_setup0_plan_threshold[(28 - 1)-1:0], 1'b1};
+            if (dda_setup0_plan_threshold[(28 - 1)]) begin
+                dda_setup0_plan_too_wide <= 1'b1;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock) begin: dda_setup0_captures
+    reg sign;
+    sign = dda_setup0_total[(49 - 1)];
+    case (dda_setup0_state)
+        3'b000: begin
+            dda_setup0_plan_off_circle <= 1'b0;
+        end
+        3'b010: begin
+            case (dda_setup0_step)
+                'h2: begin
+                    dda_setup0_m_is_y <= sign;
+                end
+                'h4: begin
+                    dda_setup0_plan_start_below_x <= sign;
+                    dda_setup0_plan_start_same_x <= (dda_setup0_total[(24 + 1)-1:0] == 0);
+                end
+                'h6: begin
+                    dda_setup0_plan_start_below_y <= sign;
+                    dda_setup0_plan_start_same_y <= (dda_setup0_total[(24 + 1)-1:0] == 0);
+                end
+            endcase
+        end
+        3'b100: begin
+            if ((((dda_setup0_step == 1) && (!sign)) || ((dda_setup0_step == 4) && sign))) begin
+                dda_setup0_plan_off_circle <= 1'b1;
+            end
+        end
+        3'b101: begin
+            case (dda_setup0_step)
+                'h0: begin
+                    dda_setup0_plan_radius <= dda_setup0_total[(24 + 2)-1:1];
+                end
+                'h2: begin
+                    dda_setup0_plan_beyond <= sign;
+                end
+                'h7: begin
+                    dda_setup0_plan_totals_diff <= $signed(dda_setup0_total[27-1:0]);
+                    dda_setup0_pick_x <= (!dda_setup0_total[(27 - 1)]);
+                end
+                'hc: begin
+                    dda_setup0_plan_totals_max <= dda_setup0_total[27-1:0];
+                end
+            endcase
+        end
+        3'b001: begin
+            dda_setup0_plan_totals_diff <= $signed(dda_setup0_major[27-1:0]);
+            dda_setup0_plan_totals_max <= dda_setup0_major[27-1:0];
+        end
+        default: begin
+            dda_setup0_m_is_y <= dda_setup0_m_is_y;
+        end
+    endcase
+end
+
+
+
+assign cmd_ready = (dda_setup0_state == 3'b000);
+assign dda_setup0_plan_done = (dda_setup0_state == 3'b110);
+
+
+always @(dda_setup0_dda_latch0_plan_variant) begin: dda_check0_lookup_variant
+    case (dda_setup0_dda_latch0_plan_variant)
+        0: dda_check0_variant_built = 0;
+        1: dda_check0_variant_built = 0;
+        2: dda_check0_variant_built = 1;
+        default: dda_check0_variant_built = 1;
+    endcase
+end
+
+
+
+assign dda_check0_move_offer = dda_setup0_plan_done;
+assign dda_setup0_plan_taken = dda_check0_move_take;
+
+
+always @(dda_setup0_dda_latch0_plan_ahead, dda_check0_variant_built, dda_setup0_plan_beyond, dda_setup0_plan_radius, dda_setup0_plan_too_wide, dda_setup0_dda_latch0_plan_line, dda_setup0_dda_latch0_plan_centre, dda_setup0_plan_off_circle, dda_setup0_dda_latch0_plan_variant) begin: dda_check0_validate
+    reg bad;
+    bad = (dda_setup0_dda_latch0_plan_centre || dda_setup0_plan_off_circle || (dda_setup0_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
+    if (((!dda_setup0_dda_latch0_plan_ahead) && dda_setup0_plan_beyond)) begin
+        bad = 1'b1;
+    end
+    if (((dda_setup0_dda_latch0_plan_variant != 3) && dda_setup0_plan_too_wide)) begin
+        bad = 1'b1;
+    end
+    if ((!dda_check0_variant_built)) begin
+        bad = 1'b1;
+    end
+    dda_check0_move_error = (bad && (!dda_setup0_dda_latch0_plan_line));
+    dda_check0_move_zero = (dda_setup0_dda_latch0_plan_line && dda_setup0_dda_latch0_plan_centre);
+end
+
+
+always @(dda_setup0_dda_latch0_plan_neg_ye, dda_setup0_dda_latch0_plan_quadrant, dda_setup0_dda_latch0_plan_ccw, dda_setup0_dda_latch0_plan_neg_xe, dda_setup0_dda_latch0_plan_line, dda_setup0_dda_latch0_plan_blend, dda_setup0_plan_crossings, dda_setup0_plan_x_inward, dda_setup0_dda_latch0_plan_variant) begin: dda_check0_geometry
+    dda_check0_move_line = dda_setup0_dda_latch0_plan_line;
+    dda_check0_move_variant = dda_setup0_dda_latch0_plan_variant;
+    dda_check0_move_ccw = dda_setup0_dda_latch0_plan_ccw;
+    dda_check0_move_blend = dda_setup0_dda_latch0_plan_blend;
+    dda_check0_move_right = (!dda_setup0_dda_latch0_plan_neg_xe);
+    dda_check0_move_up = (!dda_setup0_dda_latch0_plan_neg_ye);
+    dda_check0_move_x_inward = dda_setup0_plan_x_inward;
+    dda_check0_move_quadrant = dda_setup0_dda_latch0_plan_quadrant;
+    dda_check0_move_crossings = dda_setup0_plan_crossings;
+    if (dda_setup0_dda_latch0_plan_line) begin
+        dda_check0_move_quadrant = 0;
+        dda_check0_move_crossings = 0;
+    end
+    if ((dda_setup0_plan_crossings == 0)) begin
+        dda_check0_move_target_x = 2;
+        dda_check0_move_target_y = 2;
+    end
+    else if (dda_setup0_plan_x_inward) begin
+        dda_check0_move_target_x = 0;
+        dda_check0_move_target_y = 1;
+    end
+    else begin
+        dda_check0_move_target_x = 1;
+        dda_check0_move_target_y = 0;
+    end
+end
+
+
+always @(dda_setup0_plan_totals_max, dda_setup0_plan_mag_xs, dda_setup0_plan_radius, dda_setup0_dda_latch0_plan_line, dda_setup0_plan_mag_xe, dda_setup0_plan_mag_ys, dda_setup0_plan_totals_diff, dda_setup0_plan_mag_ye) begin: dda_check0_magnitudes
+    dda_check0_move_mag_x = dda_setup0_plan_mag_xs;
+    dda_check0_move_mag_y = dda_setup0_plan_mag_ys;
+    if (dda_setup0_dda_latch0_plan_line) begin
+        dda_check0_move_mag_x = dda_setup0_plan_mag_ye;
+        dda_check0_move_mag_y = dda_setup0_plan_mag_xe;
+    end
+    dda_check0_move_end_x = dda_setup0_plan_mag_xe;
+    dda_check0_move_end_y = dda_setup0_plan_mag_ye;
+    dda_check0_move_radius = dda_setup0_plan_radius[24-1:0];
+    dda_check0_move_totals_diff = dda_setup0_plan_totals_diff;
+    dda_check0_move_totals_max = dda_setup0_plan_totals_max;
+end
+
+
+always @(dda_setup0_plan_threshold, dda_setup0_plan_radius, dda_setup0_dda_latch0_plan_line, dda_setup0_dda_latch0_plan_variant) begin: dda_check0_thresholds
+    reg [28-1:0] less;
+    reg [30-1:0] below;
+    reg [29-1:0] ones;
+    less = 28'h0;
+    below = 30'h0;
+    ones = 29'h0;
+    less = dda_setup0_plan_threshold;
+    if (((!dda_setup0_dda_latch0_plan_line) && ((!1'b1) || (dda_setup0_dda_latch0_plan_variant == 3)))) begin
+        less = 0;
+        less[24-1:0] = dda_setup0_plan_radius[24-1:0];
+    end
+    dda_check0_move_threshold = less;
+    below = (~{3'h0, less[28-1:1]});
+    if ((1'b1 && (!dda_setup0_dda_latch0_plan_line) && ((dda_setup0_dda_latch0_plan_variant == 1) || (dda_setup0_dda_latch0_plan_variant == 2)))) begin
+        ones = ({less, 1'b1} & (~{1'b0, less}));
+        below = (~{1'h0, ones});
+    end
+    dda_check0_move_acc_init = $signed(below);
+    dda_check0_move_acc_carry = (dda_setup0_dda_latch0_plan_line && (!less[0]));
+end
+
+
+always @(dda_setup0_plan_mag_xs, dda_setup0_plan_x_inward, dda_setup0_plan_mag_ys) begin: dda_check0_precise_terms
+    reg [27-1:0] inward;
+    reg [27-1:0] outward;
+    reg [27-1:0] bias_in;
+    reg [27-1:0] bias_out;
+    inward = 27'h0;
+    outward = 27'h0;
+    bias_in = 27'h0;
+    bias_out = 27'h0;
+    inward = {3'h0, dda_setup0_plan_mag_ys};
+    outward = {3'h0, dda_setup0_plan_mag_xs};
+    if (dda_setup0_plan_x_inward) begin
+        inward = {3'h0, dda_setup0_plan_mag_xs};
+        outward = {3'h0, dda_setup0_plan_mag_ys};
+    end
+    bias_in = ({outward[(27 - 1)-1:0], 1'b0} - inward);
+    bias_out = (outward - {inward[(27 - 1)-1:0], 1'b0});
+    dda_check0_move_bias_in = $signed(bias_in);
+    dda_check0_move_bias_out = $signed(bias_out);
+end
+
+
+
+assign cmd_stop_left = dda_run0_dda_left0_larger;
+assign dda_run0_step_last = (dda_run0_dda_left0_difference == 0);
+
+
+always @(posedge clock) begin: dda_run0_dda_left0_follow
+    reg [27-1:0] base;
+    reg [27-1:0] change;
+    base = 27'h0;
+    change = 27'h0;
+    base = dda_run0_dda_left0_difference;
+    if (dda_check0_move_take) begin
+        base = dda_check0_move_totals_diff;
+        if (dda_check0_move_line) begin
+            change = 27'h7ffffff;
+        end
+    end
+    else if (dda_run0_step_pending) begin
+        if ((dda_run0_step_line || (dda_run0_step_step_x && (!dda_run0_step_step_y)))) begin
+            change = 27'h7ffffff;
+        end
+        else if ((dda_run0_step_step_y && (!dda_run0_step_step_x))) begin
+            change = 1;
+        end
+    end
+    dda_run0_dda_left0_difference <= (base + change);
+end
+
+
+always @(posedge clock, negedge reset) begin: dda_run0_dda_left0_count_down
+    reg [27-1:0] base;
+    reg [27-1:0] less;
+    if (reset == 0) begin
+        dda_run0_dda_left0_larger <= 134217727;
+    end
+    else begin
+        base = 27'h0;
+        less = 27'h0;
+        base = dda_run0_dda_left0_larger;
+        if (dda_check0_move_take) begin
+            base = dda_check0_move_totals_max;
+            less = 27'h7ffffff;
+        end
+        else if ((dda_run0_step_pending && (!dda_run0_step_blend))) begin
+            if (dda_run0_step_line) begin
+                less = 27'h7ffffff;
+            end
+            else if ((dda_run0_dda_left0_difference == 0)) begin
+                if ((dda_run0_step_step_x && dda_run0_step_step_y)) begin
+                    less = 27'h7ffffff;
+                end
+            end
+            else if (dda_run0_dda_left0_difference[(27 - 1)]) begin
+                if (dda_run0_step_step_y) begin
+                    less = 27'h7ffffff;
+                end
+            end
+            else if (dda_run0_step_step_x) begin
+                less = 27'h7ffffff;
+            end
+        end
+        dda_run0_dda_left0_larger <= (base + less);
+        if (dda_check0_move_take) begin
+            if ((dda_check0_move_blend || dda_check0_move_error || dda_check0_move_zero)) begin
+                dda_run0_dda_left0_larger <= 27'h7ffffff;
+            end
+        end
+        else if ((dda_run0_step_pending && dda_run0_step_finished)) begin
+            dda_run0_dda_left0_larger <= 27'h7ffffff;
+        end
+    end
+end
+
+
+always @(dda_run0_dda_nearest0_error_term, dda_run0_dda_nearest0_bias_out, dda_run0_dda_nearest0_bias_in) begin: dda_run0_dda_nearest0_signs
+    reg [28-1:0] inward;
+    reg [28-1:0] outward;
+    inward = 28'h0;
+    outward = 28'h0;
+    inward = ({dda_run0_dda_nearest0_error_term[(27 - 1)], dda_run0_dda_nearest0_error_term} + {dda_run0_dda_nearest0_bias_in[(27 - 1)], dda_run0_dda_nearest0_bias_in});
+    outward = ({dda_run0_dda_nearest0_error_term[(27 - 1)], dda_run0_dda_nearest0_error_term} + {dda_run0_dda_nearest0_bias_out[(27 - 1)], dda_run0_dda_nearest0_bias_out});
+    dda_run0_step_inward_near = ($signed(inward) >= 0);
+    dda_run0_step_outward_near = ($signed(outward) < 0);
+end
+
+
+always @(dda_run0_step_x_inward, dda_run0_step_mag_y, dda_run0_dda_nearest0_error_term, dda_run0_step_mag_x, dda_run0_step_step_y, dda_run0_step_step_x) begin: dda_run0_dda_nearest0_error_change
+    reg [27-1:0] outward;
+    reg [27-1:0] inward;
+    reg [27-1:0] first_sum;
+    reg stepped_in;
+    outward = 27'h0;
+    inward = 27'h0;
+    first_sum = 27'h0;
+    stepped_in = 1'b0;
+    if (dda_run0_step_x_inward) begin
+        stepped_in = (dda_run0_step_step_x == 1);
+        if (dda_run0_step_step_y) begin
+            outward = {2'h0, dda_run0_step_mag_y, 1'b1};
+        end
+        if (dda_run0_step_step_x) begin
+            inward = (~{2'h0, dda_run0_step_mag_x, 1'b0});
+        end
+    end
+    else begin
+        stepped_in = (dda_run0_step_step_y == 1);
+        if (dda_run0_step_step_x) begin
+            outward = {2'h0, dda_run0_step_mag_x, 1'b1};
+        end
+        if (dda_run0_step_step_y) begin
+            inward = (~{2'h0, dda_run0_step_mag_y, 1'b0});
+        end
+    end
+    first_sum = ((dda_run0_dda_nearest0_error_term + outward) + {26'h0, stepped_in});
+    dda_run0_dda_nearest0_error_step = ((first_sum + inward) + {26'h0, stepped_in});
+end
+
+
+always @(posedge clock) begin: dda_run0_dda_nearest0_update
+    reg [27-1:0] base_in;
+    reg [27-1:0] base_out;
+    reg [27-1:0] op_in;
+    reg [27-1:0] op_out;
+    reg stepped_in;
+    reg stepped_out;
+    reg turn;
+    base_in = 27'h0;
+    base_out = 27'h0;
+    op_in = 27'h0;
+    op_out = 27'h0;
+    stepped_in = (dda_run0_step_step_y == 1);
+    stepped_out = (dda_run0_step_step_x == 1);
+    if (dda_run0_step_x_inward) begin
+        stepped_in = (dda_run0_step_step_x == 1);
+        stepped_out = (dda_run0_step_step_y == 1);
+    end
+    base_in = dda_run0_dda_nearest0_bias_in;
+    base_out = dda_run0_dda_nearest0_bias_out;
+    op_in = {25'h0, stepped_out, stepped_in};
+    op_out = {25'h0, stepped_in, stepped_out};
+    turn = (dda_run0_step_new_piece == 1);
+    if (turn) begin
+        base_in = (~dda_run0_dda_nearest0_bias_out);
+        base_out = (~dda_run0_dda_nearest0_bias_in);
+        if ((stepped_in && stepped_out)) begin
+            op_in = 27'h7fffffd;
+            op_out = 27'h7fffffd;
+        end
+        else if (stepped_in) begin
+            op_in = 27'h7fffffe;
+            op_out = 27'h7ffffff;
+        end
+        else if (stepped_out) begin
+            op_in = 27'h7ffffff;
+            op_out = 27'h7fffffe;
+        end
+        else begin
+            op_in = 0;
+            op_out = 0;
+        end
+    end
+    if ((dda_run0_step_pending && (!dda_run0_step_line))) begin
+        dda_run0_dda_nearest0_bias_in <= ((base_in + op_in) + {26'h0, turn});
+        dda_run0_dda_nearest0_bias_out <= ((base_out + op_out) + {26'h0, turn});
+        dda_run0_dda_nearest0_error_term <= dda_run0_dda_nearest0_error_step;
+    end
+    if (dda_check0_move_take) begin
+        dda_run0_dda_nearest0_bias_in <= dda_check0_move_bias_in;
+        dda_run0_dda_nearest0_bias_out <= dda_check0_move_bias_out;
+        dda_run0_dda_nearest0_error_term <= 1;
+    end
+end
+
+
+always @(dda_run0_step_mag_y, dda_run0_acc_y, dda_run0_acc_x, dda_run0_step_mag_x) begin: dda_run0_look_ahead
+    reg [31-1:0] twice_x;
+    reg [31-1:0] twice_y;
+    twice_x = 31'h0;
+    twice_y = 31'h0;
+    twice_x = ({dda_run0_acc_x[(30 - 1)], dda_run0_acc_x} + {6'h0, dda_run0_step_mag_y, 1'b0});
+    twice_y = ({dda_run0_acc_y[(30 - 1)], dda_run0_acc_y} + {6'h0, dda_run0_step_mag_x, 1'b0});
+    dda_run0_ahead_x = ($signed(twice_x) >= 0);
+    dda_run0_ahead_y = ($signed(twice_y) >= 0);
+end
+
+
+always @(dda_run0_kept_x, dda_run0_threshold, dda_run0_threshold_carry, dda_run0_kept_y, dda_run0_first, dda_run0_acc_x, dda_run0_step_mag_y, dda_run0_acc_y, dda_run0_step_mag_x, dda_run0_step_step_y, dda_run0_step_step_x) begin: dda_run0_accumulate
+    reg [30-1:0] minus_x;
+    reg [30-1:0] minus_y;
+    minus_x = 30'h0;
+    minus_y = 30'h0;
+    dda_run0_sum_x = (({dda_run0_acc_x[(30 - 1)], dda_run0_acc_x} + {7'h0, dda_run0_step_mag_y}) + {30'h0, dda_run0_first});
+    dda_run0_sum_y = (({dda_run0_acc_y[(30 - 1)], dda_run0_acc_y} + {7'h0, dda_run0_step_mag_x}) + {30'h0, dda_run0_first});
+    if (dda_run0_step_step_x) begin
+        minus_x = (~{2'h0, dda_run0_threshold});
+    end
+    if (dda_run0_step_step_y) begin
+        minus_y = (~{2'h0, dda_run0_threshold});
+    end
+    dda_run0_less_x = ((dda_run0_kept_x + minus_x) + {29'h0, (dda_run0_step_step_x && dda_run0_threshold_carry)});
+    dda_run0_less_y = ((dda_run0_kept_y + minus_y) + {29'h0, (dda_run0_step_step_y && dda_run0_threshold_carry)});
+end
+
+
+always @(dda_run0_variant, dda_run0_sum_y, dda_run0_sum_x, dda_run0_sum_x, dda_run0_step_line, dda_run0_over_y) begin: dda_run0_overflow
+    dda_run0_over_x = (!dda_run0_sum_x[30]);
+    dda_run0_over_y = (!dda_run0_sum_y[30]);
+    dda_run0_saturate_x = ((!dda_run0_sum_x[30]) && dda_run0_sum_x[(30 - 1)]);
+    if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_step_line))) begin
+        dda_run0_saturate_x = ((!dda_run0_sum_x[30]) && dda_run0_sum_x[(30 - 1)]);
+    end
+    dda_run0_saturate_y = ((!dda_run0_sum_y[30]) && dda_run0_sum_y[(30 - 1)]);
+end
+
+
+always @(dda_run0_step_mag_y, dda_run0_step_x_inward, dda_run0_step_mag_x) begin: dda_run0_magnitudes
+    reg [24-1:0] op_x;
+    reg [24-1:0] op_y;
+    op_x = 24'h0;
+    op_y = 24'h0;
+    op_x = 1;
+    op_y = 16777215;
+    if (dda_run0_step_x_inward) begin
+        op_x = 16777215;
+        op_y = 1;
+    end
+    dda_run0_stepped_x = (dda_run0_step_mag_x + op_x);
+    dda_run0_stepped_y = (dda_run0_step_mag_y + op_y);
+end
+
+
+always @(dda_run0_radius, dda_run0_target_y, dda_run0_end_y, dda_run0_target_x, dda_run0_end_x) begin: dda_run0_goals
+    dda_run0_goal_x = 0;
+    case (dda_run0_target_x)
+        'h1: begin
+            dda_run0_goal_x = dda_run0_radius;
+        end
+        'h2: begin
+            dda_run0_goal_x = dda_run0_end_x;
+        end
+    endcase
+    dda_run0_goal_y = 0;
+    case (dda_run0_target_y)
+        'h1: begin
+            dda_run0_goal_y = dda_run0_radius;
+        end
+        'h2: begin
+            dda_run0_goal_y = dda_run0_end_y;
+        end
+    endcase
+end
+
+
+always @(dda_run0_step_x_inward, dda_run0_step_mag_y, dda_run0_goal_x, dda_run0_step_mag_x, dda_run0_goal_y) begin: dda_run0_end_tests
+    reg [24-1:0] diff_x;
+    reg [24-1:0] diff_y;
+    reg [23-1:0] up_x;
+    reg [23-1:0] up_y;
+    reg [23-1:0] down_x;
+    reg [23-1:0] down_y;
+    diff_x = 24'h0;
+    diff_y = 24'h0;
+    up_x = 23'h0;
+    up_y = 23'h0;
+    down_x = 23'h0;
+    down_y = 23'h0;
+    diff_x = (dda_run0_step_mag_x ^ dda_run0_goal_x);
+    diff_y = (dda_run0_step_mag_y ^ dda_run0_goal_y);
+    up_x = (dda_run0_step_mag_x[(24 - 1)-1:0] & (~dda_run0_goal_x[(24 - 1)-1:0]));
+    up_y = (dda_run0_step_mag_y[(24 - 1)-1:0] & (~dda_run0_goal_y[(24 - 1)-1:0]));
+    down_x = (dda_run0_goal_x[(24 - 1)-1:0] & (~dda_run0_step_mag_x[(24 - 1)-1:0]));
+    down_y = (dda_run0_goal_y[(24 - 1)-1:0] & (~dda_run0_step_mag_y[(24 - 1)-1:0]));
+    dda_run0_at_x = (diff_x == 0);
+    dda_run0_at_y = (diff_y == 0);
+    if (dda_run0_step_x_inward) begin
+        dda_run0_near_x = (diff_x == {down_x, 1'b1});
+        dda_run0_near_y = (diff_y == {up_y, 1'b1});
+    end
+    else begin
+        dda_run0_near_x = (diff_x == {up_x, 1'b1});
+        dda_run0_near_y = (diff_y == {down_y, 1'b1});
+    end
+end
+
+
+always @(dda_run0_over_x, dda_run0_at_x, dda_run0_near_y, dda_run0_variant, dda_run0_step_outward_near, dda_run0_ahead_x, dda_run0_step_x_inward, dda_run0_near_x, dda_run0_at_y, dda_run0_step_last, dda_run0_step_line, dda_run0_crossings, dda_run0_ahead_y, dda_run0_step_inward_near, dda_run0_over_y, dda_run0_over_x) begin: dda_run0_decide
+    reg step_x;
+    reg step_y;
+    reg diagonal;
+    reg choose_x;
+    reg choose_y;
+    reg tail_ends;
+    reg both_near;
+    reg last_piece;
+    step_x = (dda_run0_over_x == 1);
+    step_y = (dda_run0_over_y == 1);
+    diagonal = (dda_run0_over_x && dda_run0_over_y);
+    choose_x = 1'b0;
+    choose_y = 1'b0;
+    if (1'b1) begin
+        choose_x = (dda_run0_step_outward_near == 1);
+        choose_y = (dda_run0_step_inward_near == 1);
+        if (dda_run0_step_x_inward) begin
+            choose_x = (dda_run0_step_inward_near == 1);
+            choose_y = (dda_run0_step_outward_near == 1);
+        end
+    end
+    if ((1'b0 && (dda_run0_variant == 0))) begin
+        step_x = ((dda_run0_over_y && dda_run0_over_x) || ((!dda_run0_over_y) && dda_run0_over_x));
+        diagonal = (dda_run0_over_y && dda_run0_over_x);
+    end
+    else if ((1'b1 && (dda_run0_variant == 2))) begin
+        step_x = (dda_run0_over_x || (dda_run0_over_y && dda_run0_ahead_x));
+        step_y = (dda_run0_over_y || (dda_run0_over_x && dda_run0_ahead_y));
+        diagonal = ((dda_run0_over_x || (dda_run0_over_y && dda_run0_ahead_x)) && (dda_run0_over_y || (dda_run0_over_x && dda_run0_ahead_y)));
+    end
+    else if ((1'b1 && (dda_run0_variant == 3))) begin
+        step_x = ((dda_run0_over_x || dda_run0_over_y) && choose_x);
+        step_y = ((dda_run0_over_x || dda_run0_over_y) && choose_y);
+        diagonal = ((dda_run0_over_x || dda_run0_over_y) && dda_run0_step_inward_near && dda_run0_step_outward_near);
+    end
+    if (dda_run0_step_line) begin
+        dda_run0_go_x = dda_run0_over_x;
+        dda_run0_go_y = dda_run0_over_y;
+    end
+    else if ((dda_run0_at_x || dda_run0_at_y)) begin
+        dda_run0_go_x = (!dda_run0_at_x);
+        dda_run0_go_y = (!dda_run0_at_y);
+    end
+    else begin
+        dda_run0_go_x = step_x;
+        dda_run0_go_y = step_y;
+    end
+    dda_run0_tail = ((!dda_run0_step_line) && (dda_run0_at_x || dda_run0_at_y));
+    tail_ends = ((!dda_run0_step_line) && (dda_run0_at_x || dda_run0_at_y) && (dda_run0_at_x || dda_run0_near_x) && (dda_run0_at_y || dda_run0_near_y));
+    both_near = ((!dda_run0_step_line) && (!dda_run0_at_x) && (!dda_run0_at_y) && dda_run0_near_x && dda_run0_near_y);
+    last_piece = (dda_run0_crossings == 0);
+    dda_run0_finished = ((dda_run0_step_line && dda_run0_step_last) || (last_piece && (tail_ends || (both_near && diagonal))));
+    dda_run0_next_piece = ((!last_piece) && (tail_ends || (both_near && diagonal)));
+end
+
+
+
+assign dda_check0_move_take = (dda_check0_move_offer && ((!dda_run0_active) || (dda_run0_step_pending && dda_run0_step_finished)));
+assign dda_run0_taking = (dda_run0_active && cmd_advance && (!dda_run0_step_pending));
+
+
+always @(posedge clock, negedge reset) begin: dda_run0_iterate
+    if (reset == 0) begin
+        dda_run0_threshold_carry <= 0;
+        cmd_done <= 0;
+        dda_run0_step_blend <= 0;
+        dda_run0_step_step_y <= 0;
+        dda_run0_step_pending <= 0;
+        dda_run0_variant <= 3;
+        steps_step_x <= 0;
+        dda_run0_target_y <= 0;
+        dda_run0_crossings <= 0;
+        dda_run0_target_x <= 0;
+        dda_run0_step_new_piece <= 0;
+        dda_run0_first <= 0;
+        steps_dir_x <= 0;
+        steps_dir_y <= 0;
+        dda_run0_quadrant <= 0;
+        steps_step_y <= 0;
+        dda_run0_right <= 0;
+        dda_run0_up <= 0;
+        dda_run0_active <= 0;
+        dda_run0_tail_taken <= 0;
+        dda_run0_step_x_inward <= 0;
+        dda_run0_step_line <= 0;
+        dda_run0_ccw <= 0;
+        dda_run0_step_step_x <= 0;
+        dda_run0_step_finished <= 0;
+    end
+    else begin
         steps_step_x <= 1'b0;
         steps_step_y <= 1'b0;
         cmd_done <= 1'b0;
-        pending <= 1'b0;
-        dec_step_x <= it_step_x;
-        dec_step_y <= it_step_y;
-        dec_tail <= it_tail;
-        dec_finished <= it_finished;
-        dec_next_piece <= it_next_piece;
-        dec_in <= (((it_step_x && x_inward) || (it_step_y && (!x_inward))) && (!run_line));
-        dec_out <= (((it_step_x && (!x_inward)) || (it_step_y && x_inward)) && (!run_line));
-        dec_sum_x <= it_sum_x;
-        dec_sum_y <= it_sum_y;
-        if ((run_active && cmd_advance && (!pending))) begin
-            pending <= 1'b1;
-            steps_step_x <= it_step_x;
-            steps_step_y <= it_step_y;
-            steps_dir_x <= it_dir_x;
-            steps_dir_y <= it_dir_y;
-            cmd_done <= it_finished;
-        end
-        else if (pending) begin
-            if ((!dec_tail)) begin
-                less_x = dec_sum_x[32-1:0];
-                if (dec_step_x) begin
-                    less_x = (dec_sum_x[32-1:0] - {3'h0, threshold});
-                end
-                less_y = dec_sum_y[32-1:0];
-                if (dec_step_y) begin
-                    less_y = (dec_sum_y[32-1:0] - {3'h0, threshold});
-                end
-                acc_x <= $signed(less_x);
-                acc_y <= $signed(less_y);
-            end
-            error_op = {5'h0, pos_out, 1'b1};
-            if ((dec_in && dec_out)) begin
-                error_op = {half_sum[(30 - 1)-1:0], 1'b1};
-            end
-            else if (dec_in) begin
-                error_op = {neg_in[(30 - 1)-1:0], 1'b1};
-            end
-            error_sum = ((radial_error[30-1:0] + error_op) + {29'h0, (dec_in && dec_out)});
-            if ((dec_in || dec_out)) begin
-                radial_error <= $signed(error_sum);
-            end
-            left_x <= (left_x - $signed({26'h0, dec_step_x}));
-            left_y <= (left_y - $signed({26'h0, dec_step_y}));
-            if ((dec_step_x && (!run_line))) begin
-                step_op_y = 1;
-                if (x_inward) begin
-                    step_op_y = 16777215;
-                end
-            end
-            if ((dec_step_y && (!run_line))) begin
-                step_op_x = 16777215;
-                if (x_inward) begin
-                    step_op_x = 1;
-                end
-            end
-            integrand_y <= (integrand_y + step_op_y);
-            integrand_x <= (integrand_x + step_op_x);
-            base_y = stepped_y;
-            base_op_y = step_op_y;
-            base_x = stepped_x;
-            base_op_x = step_op_x;
-            if (dec_next_piece) begin
-                base_op_y = 1;
-                base_y = 0;
-                base_op_x = 1;
-                base_x = 0;
-                if (x_inward) begin
-                    base_op_x = 16777215;
-                    base_x = radius;
-                end
-                else begin
-                    base_op_y = 16777215;
-                    base_y = radius;
-                end
-            end
-            stepped_y <= (base_y + base_op_y);
-            stepped_x <= (base_x + base_op_x);
-            in_out = {dec_in, dec_out};
-            neg_base = neg_in;
-            half_base = half_sum;
-            q_in_base = q_in;
-            q_out_base = q_out;
-            q_in_op = {dec_in, dec_out, 1'b0};
-            q_out_op = {dec_out, dec_in, 1'b0};
-            pos_out <= (pos_out + {23'h0, dec_out});
-            if (dec_next_piece) begin
-                inverse = (~{7'h0, radius});
-                neg_base = inverse[(30 - 1)-1:0];
-                half_base = inverse[(30 + 1)-1:0];
-                q_in_base = {inverse[30-1:0], 2'h3};
-                q_out_base = {inverse[(30 + 1)-1:0], 1'b1};
-                in_out = 1;
-                q_in_op = 4;
-                q_out_op = 4;
-                pos_out <= 0;
-            end
-            neg_base = (neg_base + {28'h0, (dec_in || dec_next_piece)});
-            half_base = ((half_base + {30'h0, in_out[1]}) + {30'h0, in_out[0]});
-            q_in_base = (q_in_base + {29'h0, q_in_op});
-            q_out_base = (q_out_base + {29'h0, q_out_op});
-            neg_in <= $signed(neg_base);
-            half_sum <= $signed(half_base);
-            q_in <= $signed(q_in_base);
-            q_out <= $signed(q_out_base);
-            if (dec_finished) begin
-                run_active <= 1'b0;
-            end
-            if (dec_next_piece) begin
-                x_inward <= (!x_inward);
-                if (x_inward) begin
-                    target_x <= radius;
-                    target_y <= 0;
-                end
-                else begin
-                    target_x <= 0;
-                    target_y <= radius;
-                end
-                if ((crossings == 1)) begin
-                    target_x <= run_end_x;
-                    target_y <= run_end_y;
-                end
-                if (run_ccw) begin
-                    quadrant <= (quadrant + 1);
-                end
-                else begin
-                    quadrant <= (quadrant - 1);
-                end
-                crossings <= (crossings - 1);
-            end
-        end
-        if ((hand_end && chk_zero)) begin
-            cmd_done <= 1'b1;
-            quadrant <= 0;
-        end
-        if (hand_load) begin
-            run_active <= 1'b1;
-            run_line <= is_line;
-            run_variant <= variant;
-            run_ccw <= ccw;
-            run_blend <= blend;
-            run_end_x <= mag_xe;
-            run_end_y <= mag_ye;
-            run_right <= (!neg_xe);
-            run_up <= (!neg_ye);
-            acc_x <= chk_acc_init;
-            acc_y <= chk_acc_init;
-            threshold <= chk_threshold;
-            radial_error <= 0;
-            quadrant <= chk_quadrant;
-            x_inward <= (chk_quadrant[0] != ccw);
-            crossings <= chk_crossings;
-            target_x <= chk_target_x;
-            target_y <= chk_target_y;
-            radius <= radius_q[24-1:0];
-            left_x <= chk_left_x;
-            left_y <= chk_left_y;
-            integrand_x <= first_integrand_x;
-            integrand_y <= first_integrand_y;
-            stepped_x <= first_stepped_x;
-            stepped_y <= first_stepped_y;
-            neg_in <= chk_neg_in;
-            pos_out <= first_out;
-            half_sum <= first_half;
-            q_in <= first_q_in;
-            q_out <= first_q_out;
-        end
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: left_output
-    reg signed [27-1:0] larger;
-    if (reset == 0) begin
-        cmd_stop_left <= 134217727;
-    end
-    else begin
-        larger = 0;
-        if ((left_x >= left_y)) begin
-            larger = left_x;
-        end
-        else begin
-            larger = left_y;
-        end
-        if ((run_active && (!run_blend))) begin
-            if ((larger < 0)) begin
-                cmd_stop_left <= 0;
+        dda_run0_step_pending <= 1'b0;
+        if (dda_run0_taking) begin
+            dda_run0_step_pending <= 1'b1;
+            steps_step_x <= dda_run0_go_x;
+            steps_step_y <= dda_run0_go_y;
+            if (dda_run0_step_line) begin
+                steps_dir_x <= dda_run0_right;
+                steps_dir_y <= dda_run0_up;
             end
             else begin
-                cmd_stop_left <= larger[27-1:0];
+                steps_dir_x <= ((dda_run0_quadrant[0] == dda_run0_quadrant[1]) != dda_run0_step_x_inward);
+                steps_dir_y <= ((!dda_run0_quadrant[1]) == dda_run0_step_x_inward);
+            end
+            cmd_done <= dda_run0_finished;
+            dda_run0_step_step_x <= dda_run0_go_x;
+            dda_run0_step_step_y <= dda_run0_go_y;
+            dda_run0_step_finished <= dda_run0_finished;
+            dda_run0_tail_taken <= dda_run0_tail;
+            dda_run0_step_new_piece <= dda_run0_next_piece;
+            dda_run0_first <= 1'b0;
+        end
+        else if (dda_run0_step_pending) begin
+            if (dda_run0_step_finished) begin
+                dda_run0_active <= 1'b0;
+            end
+            if (dda_run0_step_new_piece) begin
+                dda_run0_step_x_inward <= (!dda_run0_step_x_inward);
+                dda_run0_crossings <= (dda_run0_crossings - 1);
+                if (dda_run0_ccw) begin
+                    dda_run0_quadrant <= (dda_run0_quadrant + 1);
+                end
+                else begin
+                    dda_run0_quadrant <= (dda_run0_quadrant - 1);
+                end
+                if ((dda_run0_crossings == 1)) begin
+                    dda_run0_target_x <= 2;
+                    dda_run0_target_y <= 2;
+                end
+                else if (dda_run0_step_x_inward) begin
+                    dda_run0_target_x <= 1;
+                    dda_run0_target_y <= 0;
+                end
+                else begin
+                    dda_run0_target_x <= 0;
+                    dda_run0_target_y <= 1;
+                end
             end
         end
-        else begin
-            cmd_stop_left <= 27'h7ffffff;
+        if ((dda_check0_move_take && (!dda_check0_move_error) && (!dda_check0_move_zero))) begin
+            dda_run0_active <= 1'b1;
+            dda_run0_first <= dda_check0_move_acc_carry;
+            dda_run0_step_line <= dda_check0_move_line;
+            dda_run0_variant <= dda_check0_move_variant;
+            dda_run0_ccw <= dda_check0_move_ccw;
+            dda_run0_step_blend <= dda_check0_move_blend;
+            dda_run0_right <= dda_check0_move_right;
+            dda_run0_up <= dda_check0_move_up;
+            dda_run0_quadrant <= dda_check0_move_quadrant;
+            dda_run0_step_x_inward <= dda_check0_move_x_inward;
+            dda_run0_crossings <= dda_check0_move_crossings;
+            dda_run0_target_x <= dda_check0_move_target_x;
+            dda_run0_target_y <= dda_check0_move_target_y;
+            dda_run0_threshold_carry <= dda_check0_move_line;
+        end
+        if ((dda_check0_move_take && dda_check0_move_zero)) begin
+            cmd_done <= 1'b1;
+            dda_run0_quadrant <= 0;
+        end
+    end
+end
+
+
+always @(posedge clock) begin: dda_run0_datapath
+    if (dda_run0_taking) begin
+        dda_run0_kept_x <= dda_run0_sum_x[30-1:0];
+        if ((1'b0 && (dda_run0_variant == 0) && dda_run0_over_y && (!dda_run0_step_line))) begin
+            dda_run0_kept_x <= dda_run0_sum_x[30-1:0];
+        end
+        dda_run0_kept_y <= dda_run0_sum_y[30-1:0];
+        if ((1'b1 && dda_run0_saturate_x)) begin
+            dda_run0_kept_x <= 536870911;
+        end
+        if ((1'b1 && dda_run0_saturate_y)) begin
+            dda_run0_kept_y <= 536870911;
+        end
+    end
+    else if (dda_run0_step_pending) begin
+        if ((!dda_run0_tail_taken)) begin
+            dda_run0_acc_x <= $signed(dda_run0_less_x);
+            dda_run0_acc_y <= $signed(dda_run0_less_y);
+        end
+        if ((!dda_run0_step_line)) begin
+            if (dda_run0_step_step_x) begin
+                dda_run0_step_mag_x <= dda_run0_stepped_x;
+            end
+            if (dda_run0_step_step_y) begin
+                dda_run0_step_mag_y <= dda_run0_stepped_y;
+            end
+        end
+    end
+    if (dda_check0_move_take) begin
+        dda_run0_step_mag_x <= dda_check0_move_mag_x;
+        dda_run0_step_mag_y <= dda_check0_move_mag_y;
+        dda_run0_end_x <= dda_check0_move_end_x;
+        dda_run0_end_y <= dda_check0_move_end_y;
+        dda_run0_radius <= dda_check0_move_radius;
+        dda_run0_threshold <= dda_check0_move_threshold;
+        dda_run0_acc_x <= dda_check0_move_acc_init;
+        dda_run0_acc_y <= dda_check0_move_acc_init;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: dda_run0_errors
+    if (reset == 0) begin
+        cmd_error <= 0;
+    end
+    else begin
+        if ((cmd_start && cmd_ready)) begin
+            cmd_error <= 1'b0;
+        end
+        if ((dda_check0_move_take && dda_check0_move_error)) begin
+            cmd_error <= 1'b1;
         end
     end
 end
 
 
 
-assign cmd_quadrant = quadrant;
-assign cmd_ready = (state == 3'b000);
-assign cmd_busy = ((state != 3'b000) || (run_active && (!(pending && dec_finished))));
+assign cmd_quadrant = dda_run0_quadrant;
+assign cmd_busy = ((!cmd_ready) || (dda_run0_active && (!(dda_run0_step_pending && dda_run0_step_finished))));
 
 endmodule

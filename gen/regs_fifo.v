@@ -60,9 +60,10 @@ module regs_fifo (
 // COMMAND.SOFT_RESET: the top resets the DDA with it).
 // Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
 // two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
-// ``clock_hz``, ``variants`` and ``device`` only set capability registers
-// (CLOCK_HZ, BUILD; FIFO_SIZE and BUILD.COORD_WIDTH come from
-// ``fifo_depth`` and ``dda.coord_width``).
+// ``clock_hz`` and ``device`` only set capability registers (CLOCK_HZ,
+// BUILD; FIFO_SIZE, BUILD.COORD_WIDTH and BUILD.DDA_VARIANTS come from
+// ``fifo_depth``, ``dda.coord_width`` and ``dda.variants``: the
+// sequencer refuses an ARC that names a variant the DDA lacks).
 // 
 // Local bus: I/O and FIFO writes complete in the clock they are requested,
 // a full FIFO answers retry; an I/O write reaches the registers one clock
@@ -420,6 +421,7 @@ reg sequencer0_bad_header_bits;
 reg sequencer0_bad_opcode;
 reg sequencer0_bad_operand;
 reg sequencer0_bad_set_index;
+reg sequencer0_bad_variant;
 reg [3:0] sequencer0_coord_mask;
 reg [3:0] sequencer0_count_mask;
 wire sequencer0_discard;
@@ -444,6 +446,7 @@ reg [23:0] sequencer0_operand_3;
 reg sequencer0_set_known;
 reg [2:0] sequencer0_state;
 reg sequencer0_state_over;
+reg sequencer0_variant_built;
 reg sequencer0_word_due;
 reg sequencer0_mark_strobe;
 reg signed [23:0] sequencer0_pulses_count_x;
@@ -1963,6 +1966,16 @@ always @(fifo_dout) begin: sequencer0_lookup_set
 end
 
 
+always @(fifo_dout) begin: sequencer0_lookup_variant
+    case (fifo_dout[3-1:1])
+        0: sequencer0_variant_built = 0;
+        1: sequencer0_variant_built = 0;
+        2: sequencer0_variant_built = 1;
+        default: sequencer0_variant_built = 1;
+    endcase
+end
+
+
 always @(sequencer0_arriving_count, fifo_empty, sequencer0_state, sequencer0_word_due, sequencer0_next_valid, core_clear, sequencer0_next_count, sequencer0_fetched) begin: sequencer0_fetch_request
     reg more;
     more = 1'b1;
@@ -1986,6 +1999,7 @@ assign sequencer0_discard = (clear_error && (sequencer0_state == 3'b100) && (err
 always @(posedge clock, negedge reset) begin: sequencer0_fetch
     if (reset == 0) begin
         sequencer0_operand_0 <= 0;
+        sequencer0_bad_variant <= 0;
         sequencer0_next_motion <= 0;
         sequencer0_bad_set_index <= 0;
         sequencer0_operand_3 <= 0;
@@ -2019,6 +2033,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
                     sequencer0_bad_opcode <= (!sequencer0_next_known);
                     sequencer0_bad_header_bits <= (((fifo_dout[32-1:16] & (~sequencer0_mask_high)) != 0) || ((fifo_dout[16-1:0] & (~sequencer0_mask_low)) != 0));
                     sequencer0_bad_set_index <= ((fifo_dout[32-1:28] == 4) && (!sequencer0_set_known));
+                    sequencer0_bad_variant <= ((fifo_dout[32-1:28] == 2) && (!sequencer0_variant_built));
                     sequencer0_bad_operand <= 0;
                     if ((sequencer0_arriving_count == 0)) begin
                         sequencer0_next_valid <= 1;
@@ -2059,7 +2074,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
 end
 
 
-always @(sequencer0_bad_operand, sequencer0_bad_set_index, sequencer0_bad_header_bits, sequencer0_bad_opcode) begin: sequencer0_check
+always @(sequencer0_bad_variant, sequencer0_bad_set_index, sequencer0_bad_opcode, sequencer0_bad_operand, sequencer0_bad_header_bits) begin: sequencer0_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -2069,7 +2084,7 @@ always @(sequencer0_bad_operand, sequencer0_bad_set_index, sequencer0_bad_header
     else if (sequencer0_bad_header_bits) begin
         result = 2;
     end
-    else if ((sequencer0_bad_set_index || sequencer0_bad_operand)) begin
+    else if ((sequencer0_bad_set_index || sequencer0_bad_operand || sequencer0_bad_variant)) begin
         result = 3;
     end
     sequencer0_next_error = result;

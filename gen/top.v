@@ -538,6 +538,7 @@ reg card1_card_core1_regs_fifo2_sequencer2_bad_header_bits;
 reg card1_card_core1_regs_fifo2_sequencer2_bad_opcode;
 reg card1_card_core1_regs_fifo2_sequencer2_bad_operand;
 reg card1_card_core1_regs_fifo2_sequencer2_bad_set_index;
+reg card1_card_core1_regs_fifo2_sequencer2_bad_variant;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_coord_mask;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_count_mask;
 wire card1_card_core1_regs_fifo2_sequencer2_discard;
@@ -562,6 +563,7 @@ reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_3;
 reg card1_card_core1_regs_fifo2_sequencer2_set_known;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
 reg card1_card_core1_regs_fifo2_sequencer2_state_over;
+reg card1_card_core1_regs_fifo2_sequencer2_variant_built;
 reg card1_card_core1_regs_fifo2_sequencer2_word_due;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_start;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_done;
@@ -604,7 +606,7 @@ reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_step_s;
 reg card1_card_core1_regs_fifo2_feed_rate2_step_zero;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_target_s;
 wire [16:0] card1_card_core1_regs_fifo2_feed_rate2_total;
-reg [26:0] card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left;
+wire [26:0] card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left;
 reg [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count_addend;
 reg [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count_operand;
 wire [23:0] card1_card_core1_regs_fifo2_direct_pulse4_counted;
@@ -646,150 +648,167 @@ reg card1_card_core1_regs_fifo2_pulse_out2_take;
 reg card1_card_core1_regs_fifo2_pulse_out2_turn;
 reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_position_x;
 wire [1:0] card1_card_core1_regs_fifo2__status2_quadrant;
-reg [4:0] card1_card_core1_dda_arc2_acc_bits;
-reg signed [31:0] card1_card_core1_dda_arc2_acc_x;
-reg signed [31:0] card1_card_core1_dda_arc2_acc_y;
-reg card1_card_core1_dda_arc2_at_x;
-reg card1_card_core1_dda_arc2_at_y;
-reg card1_card_core1_dda_arc2_blend;
-reg card1_card_core1_dda_arc2_ccw;
-reg signed [31:0] card1_card_core1_dda_arc2_check_acc_init;
-reg [2:0] card1_card_core1_dda_arc2_check_crossings;
-reg card1_card_core1_dda_arc2_check_error;
-reg signed [26:0] card1_card_core1_dda_arc2_check_left_x;
-reg signed [26:0] card1_card_core1_dda_arc2_check_left_y;
-reg signed [28:0] card1_card_core1_dda_arc2_check_neg_in;
-reg [1:0] card1_card_core1_dda_arc2_check_quadrant;
-reg [23:0] card1_card_core1_dda_arc2_check_target_x;
-reg [23:0] card1_card_core1_dda_arc2_check_target_y;
-reg [28:0] card1_card_core1_dda_arc2_check_threshold;
-reg card1_card_core1_dda_arc2_check_zero;
-reg signed [31:0] card1_card_core1_dda_arc2_chk_acc_init;
-reg [2:0] card1_card_core1_dda_arc2_chk_crossings;
-reg card1_card_core1_dda_arc2_chk_error;
-reg signed [26:0] card1_card_core1_dda_arc2_chk_left_x;
-reg signed [26:0] card1_card_core1_dda_arc2_chk_left_y;
-reg signed [28:0] card1_card_core1_dda_arc2_chk_neg_in;
-reg [1:0] card1_card_core1_dda_arc2_chk_quadrant;
-reg [23:0] card1_card_core1_dda_arc2_chk_target_x;
-reg [23:0] card1_card_core1_dda_arc2_chk_target_y;
-reg [28:0] card1_card_core1_dda_arc2_chk_threshold;
-reg card1_card_core1_dda_arc2_chk_zero;
-reg [23:0] card1_card_core1_dda_arc2_cmd_mag_xe;
-reg [23:0] card1_card_core1_dda_arc2_cmd_mag_xs;
-reg [23:0] card1_card_core1_dda_arc2_cmd_mag_ye;
-reg [23:0] card1_card_core1_dda_arc2_cmd_mag_ys;
-reg [2:0] card1_card_core1_dda_arc2_crossings;
-reg card1_card_core1_dda_arc2_dec_finished;
-reg card1_card_core1_dda_arc2_dec_in;
-reg card1_card_core1_dda_arc2_dec_next_piece;
-reg card1_card_core1_dda_arc2_dec_out;
-reg card1_card_core1_dda_arc2_dec_step_x;
-reg card1_card_core1_dda_arc2_dec_step_y;
-reg signed [31:0] card1_card_core1_dda_arc2_dec_sum_x;
-reg signed [31:0] card1_card_core1_dda_arc2_dec_sum_y;
-reg card1_card_core1_dda_arc2_dec_tail;
-reg card1_card_core1_dda_arc2_end_beyond_high;
-reg card1_card_core1_dda_arc2_end_reaches_low;
-reg signed [30:0] card1_card_core1_dda_arc2_first_half;
-reg [23:0] card1_card_core1_dda_arc2_first_integrand_x;
-reg [23:0] card1_card_core1_dda_arc2_first_integrand_y;
-reg [23:0] card1_card_core1_dda_arc2_first_out;
-reg signed [31:0] card1_card_core1_dda_arc2_first_q_in;
-reg signed [31:0] card1_card_core1_dda_arc2_first_q_out;
-reg [23:0] card1_card_core1_dda_arc2_first_stepped_x;
-reg [23:0] card1_card_core1_dda_arc2_first_stepped_y;
-reg card1_card_core1_dda_arc2_gap_carry;
-reg [24:0] card1_card_core1_dda_arc2_gap_high;
-reg [24:0] card1_card_core1_dda_arc2_gap_low;
-reg card1_card_core1_dda_arc2_gap_sum_carry;
-reg [24:0] card1_card_core1_dda_arc2_gap_sum_high;
-reg [24:0] card1_card_core1_dda_arc2_gap_sum_low;
-reg [24:0] card1_card_core1_dda_arc2_gap_top;
-reg card1_card_core1_dda_arc2_geo_ahead;
-reg card1_card_core1_dda_arc2_geo_centre;
-reg [2:0] card1_card_core1_dda_arc2_geo_crossings;
-reg [23:0] card1_card_core1_dda_arc2_geo_end_inward;
-reg [1:0] card1_card_core1_dda_arc2_geo_quadrant;
-reg card1_card_core1_dda_arc2_geo_x_in_end;
-reg card1_card_core1_dda_arc2_geo_x_in_start;
-reg signed [30:0] card1_card_core1_dda_arc2_half_sum;
-reg card1_card_core1_dda_arc2_hand_end;
-reg card1_card_core1_dda_arc2_hand_load;
-reg [23:0] card1_card_core1_dda_arc2_integrand_x;
-reg [23:0] card1_card_core1_dda_arc2_integrand_y;
-reg card1_card_core1_dda_arc2_is_line;
-reg card1_card_core1_dda_arc2_it_dir_x;
-reg card1_card_core1_dda_arc2_it_dir_y;
-reg card1_card_core1_dda_arc2_it_finished;
-reg card1_card_core1_dda_arc2_it_next_piece;
-reg card1_card_core1_dda_arc2_it_step_x;
-reg card1_card_core1_dda_arc2_it_step_y;
-reg signed [31:0] card1_card_core1_dda_arc2_it_sum_x;
-reg signed [31:0] card1_card_core1_dda_arc2_it_sum_y;
-reg card1_card_core1_dda_arc2_it_tail;
-reg [4:0] card1_card_core1_dda_arc2_lambda_shift;
-reg signed [26:0] card1_card_core1_dda_arc2_left_x;
-reg signed [26:0] card1_card_core1_dda_arc2_left_y;
-reg [4:0] card1_card_core1_dda_arc2_mac_bit;
-reg [1:0] card1_card_core1_dda_arc2_mac_op;
-reg [23:0] card1_card_core1_dda_arc2_mag_xe;
-reg [23:0] card1_card_core1_dda_arc2_mag_xs;
-reg [23:0] card1_card_core1_dda_arc2_mag_ye;
-reg [23:0] card1_card_core1_dda_arc2_mag_ys;
-reg [47:0] card1_card_core1_dda_arc2_multiplicand;
-reg [23:0] card1_card_core1_dda_arc2_multiplier;
-reg card1_card_core1_dda_arc2_near_x;
-reg card1_card_core1_dda_arc2_near_y;
-reg signed [28:0] card1_card_core1_dda_arc2_neg_in;
-reg card1_card_core1_dda_arc2_neg_xe;
-reg card1_card_core1_dda_arc2_neg_xs;
-reg card1_card_core1_dda_arc2_neg_ye;
-reg card1_card_core1_dda_arc2_neg_ys;
-reg card1_card_core1_dda_arc2_pending;
-reg [23:0] card1_card_core1_dda_arc2_pos_out;
-reg signed [31:0] card1_card_core1_dda_arc2_q_in;
-reg signed [31:0] card1_card_core1_dda_arc2_q_out;
-reg [1:0] card1_card_core1_dda_arc2_quadrant;
-reg signed [29:0] card1_card_core1_dda_arc2_radial_error;
-reg [47:0] card1_card_core1_dda_arc2_radicand;
-reg [23:0] card1_card_core1_dda_arc2_radius;
-reg [5:0] card1_card_core1_dda_arc2_radius_length;
-reg [24:0] card1_card_core1_dda_arc2_radius_q;
-reg [26:0] card1_card_core1_dda_arc2_remainder;
-reg [23:0] card1_card_core1_dda_arc2_root;
-reg card1_card_core1_dda_arc2_root_all_ones;
-reg [4:0] card1_card_core1_dda_arc2_root_bit;
-reg [5:0] card1_card_core1_dda_arc2_root_length;
-reg [26:0] card1_card_core1_dda_arc2_root_trial_diff;
-reg card1_card_core1_dda_arc2_root_trial_fits;
-reg [26:0] card1_card_core1_dda_arc2_root_trial_rem;
-reg [24:0] card1_card_core1_dda_arc2_root_up;
-reg card1_card_core1_dda_arc2_run_active;
-reg card1_card_core1_dda_arc2_run_blend;
-reg card1_card_core1_dda_arc2_run_ccw;
-reg [23:0] card1_card_core1_dda_arc2_run_end_x;
-reg [23:0] card1_card_core1_dda_arc2_run_end_y;
-reg card1_card_core1_dda_arc2_run_line;
-reg card1_card_core1_dda_arc2_run_right;
-reg card1_card_core1_dda_arc2_run_up;
-reg [1:0] card1_card_core1_dda_arc2_run_variant;
-reg [2:0] card1_card_core1_dda_arc2_state;
-reg [23:0] card1_card_core1_dda_arc2_stepped_x;
-reg [23:0] card1_card_core1_dda_arc2_stepped_y;
-reg [23:0] card1_card_core1_dda_arc2_target_x;
-reg [23:0] card1_card_core1_dda_arc2_target_y;
-reg [28:0] card1_card_core1_dda_arc2_threshold;
-reg card1_card_core1_dda_arc2_tot_k2_x;
-reg card1_card_core1_dda_arc2_tot_k2_y;
-reg card1_card_core1_dda_arc2_tot_k4_x;
-reg card1_card_core1_dda_arc2_tot_k4_y;
-reg signed [27:0] card1_card_core1_dda_arc2_tot_sum_x;
-reg signed [27:0] card1_card_core1_dda_arc2_tot_sum_y;
-reg signed [27:0] card1_card_core1_dda_arc2_tot_x;
-reg signed [27:0] card1_card_core1_dda_arc2_tot_y;
-reg [1:0] card1_card_core1_dda_arc2_variant;
-reg card1_card_core1_dda_arc2_x_inward;
+reg [4:0] card1_card_core1_dda_arc2_dda_setup2_acc_bits;
+reg card1_card_core1_dda_arc2_dda_setup2_carry;
+reg [48:0] card1_card_core1_dda_arc2_dda_setup2_gap;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_gap_op;
+reg card1_card_core1_dda_arc2_dda_setup2_grew;
+reg card1_card_core1_dda_arc2_dda_setup2_invert;
+reg card1_card_core1_dda_arc2_dda_setup2_m_is_y;
+reg [27:0] card1_card_core1_dda_arc2_dda_setup2_major;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_multiplier;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_next_square;
+reg [2:0] card1_card_core1_dda_arc2_dda_setup2_next_state;
+reg [4:0] card1_card_core1_dda_arc2_dda_setup2_next_step;
+reg [5:0] card1_card_core1_dda_arc2_dda_setup2_ones_left;
+reg [48:0] card1_card_core1_dda_arc2_dda_setup2_operand;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_operand_op;
+reg card1_card_core1_dda_arc2_dda_setup2_pick_x;
+reg [2:0] card1_card_core1_dda_arc2_dda_setup2_source;
+reg card1_card_core1_dda_arc2_dda_setup2_source_on;
+reg [24:0] card1_card_core1_dda_arc2_dda_setup2_source_value;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_square;
+reg [2:0] card1_card_core1_dda_arc2_dda_setup2_state;
+reg [4:0] card1_card_core1_dda_arc2_dda_setup2_step;
+wire [48:0] card1_card_core1_dda_arc2_dda_setup2_total;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_twice;
+wire card1_card_core1_dda_arc2_dda_setup2_plan_taken;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_x_inward;
+reg [24:0] card1_card_core1_dda_arc2_dda_setup2_root_root;
+reg [2:0] card1_card_core1_dda_arc2_dda_setup2_plan_crossings;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye;
+wire [47:0] card1_card_core1_dda_arc2_dda_setup2_root_radicand;
+wire card1_card_core1_dda_arc2_dda_setup2_root_load;
+reg card1_card_core1_dda_arc2_dda_setup2_root_grows;
+reg [27:0] card1_card_core1_dda_arc2_dda_setup2_plan_threshold;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_too_wide;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_off_circle;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y;
+reg [24:0] card1_card_core1_dda_arc2_dda_setup2_plan_radius;
+reg card1_card_core1_dda_arc2_dda_setup2_plan_beyond;
+reg signed [26:0] card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff;
+reg [26:0] card1_card_core1_dda_arc2_dda_setup2_plan_totals_max;
+wire card1_card_core1_dda_arc2_dda_setup2_plan_done;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye;
+reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits;
+reg [25:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep;
+reg [47:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand;
+reg [25:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_started;
+reg [4:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps;
+reg card1_card_core1_dda_arc2_dda_check2_variant_built;
+wire card1_card_core1_dda_arc2_dda_check2_move_offer;
+wire card1_card_core1_dda_arc2_dda_check2_move_take;
+reg card1_card_core1_dda_arc2_dda_check2_move_error;
+reg card1_card_core1_dda_arc2_dda_check2_move_zero;
+reg card1_card_core1_dda_arc2_dda_check2_move_line;
+reg [1:0] card1_card_core1_dda_arc2_dda_check2_move_variant;
+reg card1_card_core1_dda_arc2_dda_check2_move_ccw;
+reg card1_card_core1_dda_arc2_dda_check2_move_blend;
+reg card1_card_core1_dda_arc2_dda_check2_move_right;
+reg card1_card_core1_dda_arc2_dda_check2_move_up;
+reg card1_card_core1_dda_arc2_dda_check2_move_x_inward;
+reg [1:0] card1_card_core1_dda_arc2_dda_check2_move_quadrant;
+reg [2:0] card1_card_core1_dda_arc2_dda_check2_move_crossings;
+reg [1:0] card1_card_core1_dda_arc2_dda_check2_move_target_x;
+reg [1:0] card1_card_core1_dda_arc2_dda_check2_move_target_y;
+reg [23:0] card1_card_core1_dda_arc2_dda_check2_move_mag_x;
+reg [23:0] card1_card_core1_dda_arc2_dda_check2_move_mag_y;
+reg [23:0] card1_card_core1_dda_arc2_dda_check2_move_end_x;
+reg [23:0] card1_card_core1_dda_arc2_dda_check2_move_end_y;
+reg [23:0] card1_card_core1_dda_arc2_dda_check2_move_radius;
+reg signed [26:0] card1_card_core1_dda_arc2_dda_check2_move_totals_diff;
+reg [26:0] card1_card_core1_dda_arc2_dda_check2_move_totals_max;
+reg [27:0] card1_card_core1_dda_arc2_dda_check2_move_threshold;
+reg signed [29:0] card1_card_core1_dda_arc2_dda_check2_move_acc_init;
+reg card1_card_core1_dda_arc2_dda_check2_move_acc_carry;
+reg signed [26:0] card1_card_core1_dda_arc2_dda_check2_move_bias_in;
+reg signed [26:0] card1_card_core1_dda_arc2_dda_check2_move_bias_out;
+reg signed [29:0] card1_card_core1_dda_arc2_dda_run2_acc_x;
+reg signed [29:0] card1_card_core1_dda_arc2_dda_run2_acc_y;
+reg card1_card_core1_dda_arc2_dda_run2_active;
+reg card1_card_core1_dda_arc2_dda_run2_ahead_x;
+reg card1_card_core1_dda_arc2_dda_run2_ahead_y;
+reg card1_card_core1_dda_arc2_dda_run2_at_x;
+reg card1_card_core1_dda_arc2_dda_run2_at_y;
+reg card1_card_core1_dda_arc2_dda_run2_ccw;
+reg [2:0] card1_card_core1_dda_arc2_dda_run2_crossings;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_end_x;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_end_y;
+reg card1_card_core1_dda_arc2_dda_run2_finished;
+reg card1_card_core1_dda_arc2_dda_run2_first;
+reg card1_card_core1_dda_arc2_dda_run2_go_x;
+reg card1_card_core1_dda_arc2_dda_run2_go_y;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_goal_x;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_goal_y;
+reg [29:0] card1_card_core1_dda_arc2_dda_run2_kept_x;
+reg [29:0] card1_card_core1_dda_arc2_dda_run2_kept_y;
+reg [29:0] card1_card_core1_dda_arc2_dda_run2_less_x;
+reg [29:0] card1_card_core1_dda_arc2_dda_run2_less_y;
+reg card1_card_core1_dda_arc2_dda_run2_near_x;
+reg card1_card_core1_dda_arc2_dda_run2_near_y;
+reg card1_card_core1_dda_arc2_dda_run2_next_piece;
+reg card1_card_core1_dda_arc2_dda_run2_over_x;
+reg card1_card_core1_dda_arc2_dda_run2_over_y;
+reg [1:0] card1_card_core1_dda_arc2_dda_run2_quadrant;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_radius;
+reg card1_card_core1_dda_arc2_dda_run2_right;
+reg card1_card_core1_dda_arc2_dda_run2_saturate_x;
+reg card1_card_core1_dda_arc2_dda_run2_saturate_y;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_stepped_x;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_stepped_y;
+reg [30:0] card1_card_core1_dda_arc2_dda_run2_sum_x;
+reg [30:0] card1_card_core1_dda_arc2_dda_run2_sum_y;
+reg card1_card_core1_dda_arc2_dda_run2_tail;
+reg card1_card_core1_dda_arc2_dda_run2_tail_taken;
+wire card1_card_core1_dda_arc2_dda_run2_taking;
+reg [1:0] card1_card_core1_dda_arc2_dda_run2_target_x;
+reg [1:0] card1_card_core1_dda_arc2_dda_run2_target_y;
+reg [27:0] card1_card_core1_dda_arc2_dda_run2_threshold;
+reg card1_card_core1_dda_arc2_dda_run2_threshold_carry;
+reg card1_card_core1_dda_arc2_dda_run2_up;
+reg [1:0] card1_card_core1_dda_arc2_dda_run2_variant;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_step_mag_y;
+reg [23:0] card1_card_core1_dda_arc2_dda_run2_step_mag_x;
+reg card1_card_core1_dda_arc2_dda_run2_step_step_x;
+reg card1_card_core1_dda_arc2_dda_run2_step_step_y;
+reg card1_card_core1_dda_arc2_dda_run2_step_line;
+reg card1_card_core1_dda_arc2_dda_run2_step_x_inward;
+reg card1_card_core1_dda_arc2_dda_run2_step_outward_near;
+reg card1_card_core1_dda_arc2_dda_run2_step_inward_near;
+wire card1_card_core1_dda_arc2_dda_run2_step_last;
+reg card1_card_core1_dda_arc2_dda_run2_step_pending;
+reg card1_card_core1_dda_arc2_dda_run2_step_finished;
+reg card1_card_core1_dda_arc2_dda_run2_step_new_piece;
+reg card1_card_core1_dda_arc2_dda_run2_step_blend;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_left2_difference;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_left2_larger;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step;
+reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
@@ -4042,6 +4061,16 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_variant
+    case (card1_card_core1_regs_fifo2_fifo_dout[3-1:1])
+        0: card1_card_core1_regs_fifo2_sequencer2_variant_built = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_variant_built = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_variant_built = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_variant_built = 1;
+    endcase
+end
+
+
 always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
     reg more;
     more = 1'b1;
@@ -4065,6 +4094,7 @@ assign card1_card_core1_regs_fifo2_sequencer2_discard = (card1_card_core1_regs_f
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_fetch
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_sequencer2_operand_0 <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_bad_variant <= 0;
         card1_card_core1_regs_fifo2_sequencer2_next_motion <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_set_index <= 0;
         card1_card_core1_regs_fifo2_sequencer2_operand_3 <= 0;
@@ -4098,6 +4128,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                     card1_card_core1_regs_fifo2_sequencer2_bad_opcode <= (!card1_card_core1_regs_fifo2_sequencer2_next_known);
                     card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= (((card1_card_core1_regs_fifo2_fifo_dout[32-1:16] & (~card1_card_core1_regs_fifo2_sequencer2_mask_high)) != 0) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:0] & (~card1_card_core1_regs_fifo2_sequencer2_mask_low)) != 0));
                     card1_card_core1_regs_fifo2_sequencer2_bad_set_index <= ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 4) && (!card1_card_core1_regs_fifo2_sequencer2_set_known));
+                    card1_card_core1_regs_fifo2_sequencer2_bad_variant <= ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 2) && (!card1_card_core1_regs_fifo2_sequencer2_variant_built));
                     card1_card_core1_regs_fifo2_sequencer2_bad_operand <= 0;
                     if ((card1_card_core1_regs_fifo2_sequencer2_arriving_count == 0)) begin
                         card1_card_core1_regs_fifo2_sequencer2_next_valid <= 1;
@@ -4138,7 +4169,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_regs_fifo2_sequencer2_bad_set_index, card1_card_core1_regs_fifo2_sequencer2_bad_header_bits, card1_card_core1_regs_fifo2_sequencer2_bad_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_check
+always @(card1_card_core1_regs_fifo2_sequencer2_bad_variant, card1_card_core1_regs_fifo2_sequencer2_bad_set_index, card1_card_core1_regs_fifo2_sequencer2_bad_opcode, card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_regs_fifo2_sequencer2_bad_header_bits) begin: card1_card_core1_regs_fifo2_sequencer2_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -4148,7 +4179,7 @@ always @(card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_re
     else if (card1_card_core1_regs_fifo2_sequencer2_bad_header_bits) begin
         result = 2;
     end
-    else if ((card1_card_core1_regs_fifo2_sequencer2_bad_set_index || card1_card_core1_regs_fifo2_sequencer2_bad_operand)) begin
+    else if ((card1_card_core1_regs_fifo2_sequencer2_bad_set_index || card1_card_core1_regs_fifo2_sequencer2_bad_operand || card1_card_core1_regs_fifo2_sequencer2_bad_variant)) begin
         result = 3;
     end
     card1_card_core1_regs_fifo2_sequencer2_next_error = result;
@@ -4951,7 +4982,7 @@ assign card1_card_core1_regs_fifo2_reg_word56_shown = card1_card_core1_regs_fifo
 assign card1_card_core1_regs_fifo2_reg_word57_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_magnitudes
+always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_magnitudes
     reg [24-1:0] sign_xs;
     reg [24-1:0] sign_ys;
     reg [24-1:0] sign_xe;
@@ -4984,1087 +5015,1297 @@ always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fi
     less_ys = (card1_card_core1_regs_fifo2_sequencer2_dda_ys[24-1:0] + sign_ys);
     less_xe = (card1_card_core1_regs_fifo2_sequencer2_dda_xe[24-1:0] + sign_xe);
     less_ye = (card1_card_core1_regs_fifo2_sequencer2_dda_ye[24-1:0] + sign_ye);
-    card1_card_core1_dda_arc2_cmd_mag_xs = (less_xs ^ sign_xs);
-    card1_card_core1_dda_arc2_cmd_mag_ys = (less_ys ^ sign_ys);
-    card1_card_core1_dda_arc2_cmd_mag_xe = (less_xe ^ sign_xe);
-    card1_card_core1_dda_arc2_cmd_mag_ye = (less_ye ^ sign_ye);
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs = (less_xs ^ sign_xs);
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys = (less_ys ^ sign_ys);
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe = (less_xe ^ sign_xe);
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye = (less_ye ^ sign_ye);
 end
 
 
-always @(card1_card_core1_dda_arc2_gap_low, card1_card_core1_dda_arc2_root_bit, card1_card_core1_dda_arc2_state, card1_card_core1_dda_arc2_multiplicand, card1_card_core1_dda_arc2_gap_carry, card1_card_core1_dda_arc2_gap_high, card1_card_core1_dda_arc2_mac_op) begin: card1_card_core1_dda_arc2_setup_adder
-    reg subtract;
-    reg carry;
-    reg [50-1:0] operand;
-    reg [26-1:0] total_low;
-    reg [25-1:0] total_high;
-    subtract = (0 != 0);
-    carry = (0 != 0);
-    operand = 50'h0;
-    total_low = 26'h0;
-    total_high = 25'h0;
-    if ((card1_card_core1_dda_arc2_state == 3'b001)) begin
-        subtract = (card1_card_core1_dda_arc2_mac_op < 2);
-        carry = (card1_card_core1_dda_arc2_mac_op < 2);
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_latch
+    if ((card1_card_core1_regs_fifo2_sequencer2_dda_start && card1_card_core1_regs_fifo2_sequencer2_dda_ready)) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend <= card1_card_core1_regs_fifo2_sequencer2_dda_blend;
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs <= (card1_card_core1_regs_fifo2_sequencer2_dda_xs < 0);
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys <= (card1_card_core1_regs_fifo2_sequencer2_dda_ys < 0);
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe <= (card1_card_core1_regs_fifo2_sequencer2_dda_xe < 0);
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye <= (card1_card_core1_regs_fifo2_sequencer2_dda_ye < 0);
+        card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs;
+        card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys;
+        card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
+        card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye;
     end
-    else begin
-        subtract = (card1_card_core1_dda_arc2_root_bit == 2);
-    end
-    operand = {2'h0, card1_card_core1_dda_arc2_multiplicand};
-    if (subtract) begin
-        operand = (~operand);
-    end
-    total_low = (({1'b0, card1_card_core1_dda_arc2_gap_low} + {1'b0, operand[25-1:0]}) + {25'h0, carry});
-    total_high = ((card1_card_core1_dda_arc2_gap_high + operand[50-1:25]) + {24'h0, card1_card_core1_dda_arc2_gap_carry});
-    card1_card_core1_dda_arc2_gap_sum_low = total_low[25-1:0];
-    card1_card_core1_dda_arc2_gap_sum_carry = total_low[25];
-    card1_card_core1_dda_arc2_gap_sum_high = total_high;
-    card1_card_core1_dda_arc2_gap_top = (card1_card_core1_dda_arc2_gap_high + {24'h0, card1_card_core1_dda_arc2_gap_carry});
 end
 
 
-always @(card1_card_core1_dda_arc2_radicand, card1_card_core1_dda_arc2_remainder, card1_card_core1_dda_arc2_root) begin: card1_card_core1_dda_arc2_root_trial
-    reg [27-1:0] trial_rem;
-    reg [28-1:0] trial_diff;
-    trial_rem = 27'h0;
-    trial_diff = 28'h0;
-    trial_rem = {card1_card_core1_dda_arc2_remainder[(24 + 1)-1:0], card1_card_core1_dda_arc2_radicand[(2 * 24)-1:((2 * 24) - 2)]};
-    trial_diff = ({1'b0, trial_rem} - {2'h0, card1_card_core1_dda_arc2_root, 2'h1});
-    card1_card_core1_dda_arc2_root_trial_rem = trial_rem;
-    card1_card_core1_dda_arc2_root_trial_diff = trial_diff[(24 + 3)-1:0];
-    card1_card_core1_dda_arc2_root_trial_fits = (!trial_diff[(24 + 3)]);
-end
-
-
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_geometry
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_geometry
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
-    reg [3-1:0] turns;
     reg [2-1:0] turn;
-    reg [25-1:0] shrink_x;
-    reg [25-1:0] shrink_y;
     reg ahead;
     reg zero_xs;
     reg zero_ys;
     reg zero_xe;
     reg zero_ye;
+    q_s = 2'h0;
+    q_e = 2'h0;
+    turn = 2'h0;
+    ahead = 1'b0;
+    zero_xs = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs == 0);
+    zero_ys = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys == 0);
+    zero_xe = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe == 0);
+    zero_ye = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye == 0);
+    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw) begin
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
+            q_s = 0;
+        end
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!zero_ys))) begin
+            q_s = 1;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys || zero_ys))) begin
+            q_s = 2;
+        end
+        else begin
+            q_s = 3;
+        end
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!zero_ye))) begin
+            q_e = 0;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
+            q_e = 1;
+        end
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || zero_xe) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye)) begin
+            q_e = 2;
+        end
+        else begin
+            q_e = 3;
+        end
+        turn = (q_e - q_s);
+    end
+    else begin
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!zero_ys))) begin
+            q_s = 0;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
+            q_s = 1;
+        end
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || zero_xs) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys)) begin
+            q_s = 2;
+        end
+        else begin
+            q_s = 3;
+        end
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
+            q_e = 0;
+        end
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!zero_ye))) begin
+            q_e = 1;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye || zero_ye))) begin
+            q_e = 2;
+        end
+        else begin
+            q_e = 3;
+        end
+        turn = (q_s - q_e);
+    end
+    if ((q_s[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw)) begin
+        ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y));
+    end
+    else begin
+        ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x));
+    end
+    ahead = (ahead && (!(card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x && card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y)) && (turn == 0));
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead <= ahead;
+    card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= {1'b0, turn};
+    if (((turn == 0) && (!ahead))) begin
+        card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= 4;
+    end
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant <= q_s;
+    card1_card_core1_dda_arc2_dda_setup2_plan_x_inward <= (q_s[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
+    card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end <= (q_e[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
+    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= (zero_xe && zero_ye);
+    end
+    else begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand, card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder, card1_card_core1_dda_arc2_dda_setup2_root_root) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_trial
+    reg [28-1:0] value;
+    reg [27-1:0] difference;
+    value = 28'h0;
+    difference = 27'h0;
+    value = {card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder, card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+    difference = ({1'b0, value[(24 + 2)-1:0]} - {1'b0, card1_card_core1_dda_arc2_dda_setup2_root_root[24-1:0], 2'h1});
+    card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits = ((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
+    card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep = value[(24 + 2)-1:0];
+    if (((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]))) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep = difference[(24 + 2)-1:0];
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps, card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones, card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits, card1_card_core1_dda_arc2_dda_setup2_dda_root2_started) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_length
+    card1_card_core1_dda_arc2_dda_setup2_root_grows = 1'b0;
+    if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps > 1)) begin
+        card1_card_core1_dda_arc2_dda_setup2_root_grows = (card1_card_core1_dda_arc2_dda_setup2_dda_root2_started || card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits);
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps == 1)) begin
+        card1_card_core1_dda_arc2_dda_setup2_root_grows = (card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits && card1_card_core1_dda_arc2_dda_setup2_dda_root2_started && card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones);
+    end
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_count
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_geo_quadrant <= 0;
-        card1_card_core1_dda_arc2_geo_ahead <= 0;
-        card1_card_core1_dda_arc2_geo_x_in_start <= 0;
-        card1_card_core1_dda_arc2_geo_centre <= 0;
-        card1_card_core1_dda_arc2_geo_end_inward <= 0;
-        card1_card_core1_dda_arc2_geo_x_in_end <= 0;
-        card1_card_core1_dda_arc2_geo_crossings <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps <= 0;
     end
     else begin
-        q_s = 2'h0;
-        q_e = 2'h0;
-        turns = 3'h0;
-        turn = 2'h0;
-        shrink_x = 25'h0;
-        shrink_y = 25'h0;
-        ahead = (0 != 0);
-        zero_xs = (0 != 0);
-        zero_ys = (0 != 0);
-        zero_xe = (0 != 0);
-        zero_ye = (0 != 0);
-        zero_xs = (card1_card_core1_dda_arc2_mag_xs == 0);
-        zero_ys = (card1_card_core1_dda_arc2_mag_ys == 0);
-        zero_xe = (card1_card_core1_dda_arc2_mag_xe == 0);
-        zero_ye = (card1_card_core1_dda_arc2_mag_ye == 0);
-        if (card1_card_core1_dda_arc2_ccw) begin
-            if (((!card1_card_core1_dda_arc2_neg_xs) && (!zero_xs) && (!card1_card_core1_dda_arc2_neg_ys))) begin
-                q_s = 0;
+        if (card1_card_core1_dda_arc2_dda_setup2_root_load) begin
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps <= (24 + 1);
+        end
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps != 0)) begin
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps <= (card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps - 1);
+        end
+    end
+end
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_digits
+    if (card1_card_core1_dda_arc2_dda_setup2_root_load) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand <= card1_card_core1_dda_arc2_dda_setup2_root_radicand;
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_root_root <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_started <= 1'b0;
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones <= 1'b1;
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps != 0)) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder <= card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep;
+        card1_card_core1_dda_arc2_dda_setup2_root_root <= {card1_card_core1_dda_arc2_dda_setup2_root_root[24-1:0], card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits};
+        card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand <= (card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand << 2);
+        if (card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits) begin
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_started <= 1'b1;
+        end
+        else if (card1_card_core1_dda_arc2_dda_setup2_dda_root2_started) begin
+            card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones <= 1'b0;
+        end
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_dda_arc2_dda_setup2_plan_taken, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_regs_fifo2_sequencer2_dda_line, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_sequence
+    card1_card_core1_dda_arc2_dda_setup2_next_state = card1_card_core1_dda_arc2_dda_setup2_state;
+    card1_card_core1_dda_arc2_dda_setup2_next_step = 0;
+    card1_card_core1_dda_arc2_dda_setup2_next_square = card1_card_core1_dda_arc2_dda_setup2_square;
+    if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000)) begin
+        card1_card_core1_dda_arc2_dda_setup2_next_square = 0;
+        if (card1_card_core1_regs_fifo2_sequencer2_dda_start) begin
+            card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b010;
+            if (card1_card_core1_regs_fifo2_sequencer2_dda_line) begin
+                card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b001;
             end
-            else if (((card1_card_core1_dda_arc2_neg_xs || zero_xs) && (!card1_card_core1_dda_arc2_neg_ys) && (!zero_ys))) begin
-                q_s = 1;
+        end
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b001)) begin
+        card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b110;
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b010)) begin
+        if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (7 - 1))) begin
+            card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b011;
+        end
+        else begin
+            card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
+        end
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011)) begin
+        if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
+            card1_card_core1_dda_arc2_dda_setup2_next_square = (card1_card_core1_dda_arc2_dda_setup2_square + 1);
+            if ((card1_card_core1_dda_arc2_dda_setup2_square == 3)) begin
+                card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b100;
             end
-            else if ((card1_card_core1_dda_arc2_neg_xs && (card1_card_core1_dda_arc2_neg_ys || zero_ys))) begin
-                q_s = 2;
+        end
+        else begin
+            card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
+        end
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b100)) begin
+        if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (5 - 1))) begin
+            card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b101;
+        end
+        else begin
+            card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
+        end
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b101)) begin
+        if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (13 - 1))) begin
+            card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b110;
+        end
+        else begin
+            card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
+        end
+    end
+    else if (card1_card_core1_dda_arc2_dda_setup2_plan_taken) begin
+        card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b000;
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_multiplier, card1_card_core1_dda_arc2_dda_setup2_twice, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dda_setup2_m_is_y, card1_card_core1_dda_arc2_dda_setup2_pick_x, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_control
+    reg [2-1:0] g_op;
+    reg [2-1:0] o_op;
+    reg [3-1:0] src;
+    reg on;
+    reg inv;
+    g_op = 2'h0;
+    o_op = 2'h0;
+    src = 3'h0;
+    on = 1'b1;
+    inv = 1'b0;
+    g_op = 0;
+    o_op = 2;
+    src = 0;
+    case (card1_card_core1_dda_arc2_dda_setup2_state)
+        3'b010: begin
+            if (((card1_card_core1_dda_arc2_dda_setup2_step == 1) || (card1_card_core1_dda_arc2_dda_setup2_step == 3) || (card1_card_core1_dda_arc2_dda_setup2_step == 5))) begin
+                inv = 1'b1;
+            end
+            if (((card1_card_core1_dda_arc2_dda_setup2_step == 0) || (card1_card_core1_dda_arc2_dda_setup2_step == 6))) begin
+                src = 0;
+                inv = (card1_card_core1_dda_arc2_dda_setup2_step == 6);
+            end
+            else if (((card1_card_core1_dda_arc2_dda_setup2_step == 1) || (card1_card_core1_dda_arc2_dda_setup2_step == 2) || (card1_card_core1_dda_arc2_dda_setup2_step == 4))) begin
+                src = 1;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 3)) begin
+                src = 2;
             end
             else begin
-                q_s = 3;
+                src = 3;
             end
-            if (((!card1_card_core1_dda_arc2_neg_xe) && (!card1_card_core1_dda_arc2_neg_ye) && (!zero_ye))) begin
-                q_e = 0;
+            if ((card1_card_core1_dda_arc2_dda_setup2_step == 4)) begin
+                g_op = 2;
             end
-            else if ((card1_card_core1_dda_arc2_neg_xe && (!card1_card_core1_dda_arc2_neg_ye))) begin
-                q_e = 1;
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 6)) begin
+                g_op = 3;
             end
-            else if (((card1_card_core1_dda_arc2_neg_xe || zero_xe) && card1_card_core1_dda_arc2_neg_ye)) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_e - q_s);
-        end
-        else begin
-            if (((!card1_card_core1_dda_arc2_neg_xs) && (!card1_card_core1_dda_arc2_neg_ys) && (!zero_ys))) begin
-                q_s = 0;
-            end
-            else if ((card1_card_core1_dda_arc2_neg_xs && (!card1_card_core1_dda_arc2_neg_ys))) begin
-                q_s = 1;
-            end
-            else if (((card1_card_core1_dda_arc2_neg_xs || zero_xs) && card1_card_core1_dda_arc2_neg_ys)) begin
-                q_s = 2;
-            end
-            else begin
-                q_s = 3;
-            end
-            if (((!card1_card_core1_dda_arc2_neg_xe) && (!zero_xe) && (!card1_card_core1_dda_arc2_neg_ye))) begin
-                q_e = 0;
-            end
-            else if (((card1_card_core1_dda_arc2_neg_xe || zero_xe) && (!card1_card_core1_dda_arc2_neg_ye) && (!zero_ye))) begin
-                q_e = 1;
-            end
-            else if ((card1_card_core1_dda_arc2_neg_xe && (card1_card_core1_dda_arc2_neg_ye || zero_ye))) begin
-                q_e = 2;
-            end
-            else begin
-                q_e = 3;
-            end
-            turn = (q_s - q_e);
-        end
-        turns = {1'b0, turn};
-        shrink_x = ({1'b0, card1_card_core1_dda_arc2_mag_xs} - {1'b0, card1_card_core1_dda_arc2_mag_xe});
-        shrink_y = ({1'b0, card1_card_core1_dda_arc2_mag_ys} - {1'b0, card1_card_core1_dda_arc2_mag_ye});
-        if ((q_s[0] != card1_card_core1_dda_arc2_ccw)) begin
-            ahead = ((!shrink_x[24]) && (shrink_y[24] || (shrink_y == 0)));
-        end
-        else begin
-            ahead = ((!shrink_y[24]) && (shrink_x[24] || (shrink_x == 0)));
-        end
-        card1_card_core1_dda_arc2_geo_ahead <= 1'b0;
-        if (((turns == 0) && ahead && (!((shrink_x == 0) && (shrink_y == 0))))) begin
-            card1_card_core1_dda_arc2_geo_ahead <= 1'b1;
-        end
-        else if ((turns == 0)) begin
-            turns = 4;
-        end
-        card1_card_core1_dda_arc2_geo_quadrant <= q_s;
-        card1_card_core1_dda_arc2_geo_crossings <= turns;
-        if ((q_e[0] != card1_card_core1_dda_arc2_ccw)) begin
-            card1_card_core1_dda_arc2_geo_end_inward <= card1_card_core1_dda_arc2_mag_xe;
-        end
-        else begin
-            card1_card_core1_dda_arc2_geo_end_inward <= card1_card_core1_dda_arc2_mag_ye;
-        end
-        card1_card_core1_dda_arc2_geo_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
-        card1_card_core1_dda_arc2_geo_x_in_start <= (q_s[0] != card1_card_core1_dda_arc2_ccw);
-        card1_card_core1_dda_arc2_geo_x_in_end <= (q_e[0] != card1_card_core1_dda_arc2_ccw);
-    end
-end
-
-
-always @(card1_card_core1_dda_arc2_geo_crossings, card1_card_core1_dda_arc2_geo_x_in_end, card1_card_core1_dda_arc2_geo_x_in_start) begin: card1_card_core1_dda_arc2_totals_k
-    reg out_in;
-    reg in_out;
-    out_in = ((!card1_card_core1_dda_arc2_geo_x_in_start) && card1_card_core1_dda_arc2_geo_x_in_end);
-    in_out = (card1_card_core1_dda_arc2_geo_x_in_start && (!card1_card_core1_dda_arc2_geo_x_in_end));
-    card1_card_core1_dda_arc2_tot_k4_x = ((card1_card_core1_dda_arc2_geo_crossings == 4) || ((card1_card_core1_dda_arc2_geo_crossings == 3) && out_in));
-    card1_card_core1_dda_arc2_tot_k4_y = ((card1_card_core1_dda_arc2_geo_crossings == 4) || ((card1_card_core1_dda_arc2_geo_crossings == 3) && in_out));
-    card1_card_core1_dda_arc2_tot_k2_x = ((card1_card_core1_dda_arc2_geo_crossings == 2) || ((card1_card_core1_dda_arc2_geo_crossings == 1) && out_in) || ((card1_card_core1_dda_arc2_geo_crossings == 3) && in_out));
-    card1_card_core1_dda_arc2_tot_k2_y = ((card1_card_core1_dda_arc2_geo_crossings == 2) || ((card1_card_core1_dda_arc2_geo_crossings == 1) && in_out) || ((card1_card_core1_dda_arc2_geo_crossings == 3) && out_in));
-end
-
-
-always @(card1_card_core1_dda_arc2_mag_ys, card1_card_core1_dda_arc2_tot_x, card1_card_core1_dda_arc2_mag_xs, card1_card_core1_dda_arc2_state, card1_card_core1_dda_arc2_tot_y, card1_card_core1_dda_arc2_mag_ye, card1_card_core1_dda_arc2_mag_xe, card1_card_core1_dda_arc2_mac_bit, card1_card_core1_dda_arc2_geo_x_in_end, card1_card_core1_dda_arc2_mac_op, card1_card_core1_dda_arc2_geo_x_in_start) begin: card1_card_core1_dda_arc2_totals_adder
-    reg [28-1:0] operand_x;
-    reg [28-1:0] operand_y;
-    reg invert_x;
-    reg invert_y;
-    reg carry_x;
-    reg carry_y;
-    reg [28-1:0] total_x;
-    reg [28-1:0] total_y;
-    operand_x = 28'h0;
-    operand_y = 28'h0;
-    invert_x = (0 != 0);
-    invert_y = (0 != 0);
-    carry_x = (0 != 0);
-    carry_y = (0 != 0);
-    total_x = 28'h0;
-    total_y = 28'h0;
-    if (((card1_card_core1_dda_arc2_state == 3'b001) && (card1_card_core1_dda_arc2_mac_op == 0) && (card1_card_core1_dda_arc2_mac_bit == 1))) begin
-        operand_x = {4'h0, card1_card_core1_dda_arc2_mag_xs};
-        operand_y = {4'h0, card1_card_core1_dda_arc2_mag_ys};
-        invert_x = (!card1_card_core1_dda_arc2_geo_x_in_start);
-        invert_y = (card1_card_core1_dda_arc2_geo_x_in_start == 1);
-    end
-    else if (((card1_card_core1_dda_arc2_state == 3'b001) && (card1_card_core1_dda_arc2_mac_op == 0) && (card1_card_core1_dda_arc2_mac_bit == 2))) begin
-        operand_x = {4'h0, card1_card_core1_dda_arc2_mag_xe};
-        operand_y = {4'h0, card1_card_core1_dda_arc2_mag_ye};
-        invert_x = (card1_card_core1_dda_arc2_geo_x_in_end == 1);
-        invert_y = (!card1_card_core1_dda_arc2_geo_x_in_end);
-    end
-    if (invert_x) begin
-        operand_x = (~operand_x);
-        carry_x = 1'b1;
-    end
-    if (invert_y) begin
-        operand_y = (~operand_y);
-        carry_y = 1'b1;
-    end
-    total_x = ((card1_card_core1_dda_arc2_tot_x[28-1:0] + operand_x) + {27'h0, carry_x});
-    total_y = ((card1_card_core1_dda_arc2_tot_y[28-1:0] + operand_y) + {27'h0, carry_y});
-    card1_card_core1_dda_arc2_tot_sum_x = $signed(total_x);
-    card1_card_core1_dda_arc2_tot_sum_y = $signed(total_y);
-end
-
-
-always @(card1_card_core1_dda_arc2_tot_x, card1_card_core1_dda_arc2_tot_k2_y, card1_card_core1_dda_arc2_tot_k4_y, card1_card_core1_dda_arc2_tot_k4_x, card1_card_core1_dda_arc2_radius_q, card1_card_core1_dda_arc2_tot_k2_x, card1_card_core1_dda_arc2_mag_ye, card1_card_core1_dda_arc2_mag_xe, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_tot_y) begin: card1_card_core1_dda_arc2_totals_check
-    reg [27-1:0] operand_x;
-    reg [27-1:0] operand_y;
-    reg [27-1:0] total_x;
-    reg [27-1:0] total_y;
-    operand_x = 27'h0;
-    operand_y = 27'h0;
-    total_x = 27'h0;
-    total_y = 27'h0;
-    if (card1_card_core1_dda_arc2_is_line) begin
-        operand_x = {3'h0, card1_card_core1_dda_arc2_mag_xe};
-        operand_y = {3'h0, card1_card_core1_dda_arc2_mag_ye};
-    end
-    else begin
-        if (card1_card_core1_dda_arc2_tot_k2_x) begin
-            operand_x = {1'h0, card1_card_core1_dda_arc2_radius_q, 1'b0};
-        end
-        else if (card1_card_core1_dda_arc2_tot_k4_x) begin
-            operand_x = {card1_card_core1_dda_arc2_radius_q, 2'h0};
-        end
-        if (card1_card_core1_dda_arc2_tot_k2_y) begin
-            operand_y = {1'h0, card1_card_core1_dda_arc2_radius_q, 1'b0};
-        end
-        else if (card1_card_core1_dda_arc2_tot_k4_y) begin
-            operand_y = {card1_card_core1_dda_arc2_radius_q, 2'h0};
-        end
-    end
-    total_x = (card1_card_core1_dda_arc2_tot_x[27-1:0] + operand_x);
-    total_y = (card1_card_core1_dda_arc2_tot_y[27-1:0] + operand_y);
-    card1_card_core1_dda_arc2_check_left_x = $signed(total_x[27-1:0]);
-    card1_card_core1_dda_arc2_check_left_y = $signed(total_y[27-1:0]);
-end
-
-
-always @(card1_card_core1_dda_arc2_radius_length, card1_card_core1_dda_arc2_acc_bits, card1_card_core1_dda_arc2_geo_crossings, card1_card_core1_dda_arc2_mag_ys, card1_card_core1_dda_arc2_variant, card1_card_core1_dda_arc2_geo_quadrant, card1_card_core1_dda_arc2_mag_xs, card1_card_core1_dda_arc2_radius_q, card1_card_core1_dda_arc2_end_reaches_low, card1_card_core1_dda_arc2_mag_ye, card1_card_core1_dda_arc2_geo_centre, card1_card_core1_dda_arc2_lambda_shift, card1_card_core1_dda_arc2_geo_ahead, card1_card_core1_dda_arc2_mag_xe, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_geo_x_in_start, card1_card_core1_dda_arc2_end_beyond_high, card1_card_core1_dda_arc2_ccw, card1_card_core1_dda_arc2_geo_end_inward) begin: card1_card_core1_dda_arc2_check_logic
-    reg [25-1:0] rq;
-    reg [6-1:0] exponent;
-    reg [29-1:0] thr;
-    reg [29-1:0] thr_less;
-    reg [29-1:0] mask;
-    reg [32-1:0] below;
-    reg [32-1:0] half;
-    reg [24-1:0] major;
-    reg [24-1:0] major_less;
-    reg [24-1:0] inward;
-    reg bad;
-    rq = 25'h0;
-    exponent = 6'h0;
-    thr = 29'h0;
-    thr_less = 29'h0;
-    mask = 29'h0;
-    below = 32'h0;
-    half = 32'h0;
-    major = 24'h0;
-    major_less = 24'h0;
-    inward = 24'h0;
-    bad = 1'b0;
-    rq = card1_card_core1_dda_arc2_radius_q;
-    if (card1_card_core1_dda_arc2_geo_centre) begin
-        bad = 1'b1;
-    end
-    if (($signed({1'b0, rq}) >= (1 << (24 - 1)))) begin
-        bad = 1'b1;
-    end
-    if (((!card1_card_core1_dda_arc2_end_reaches_low) || card1_card_core1_dda_arc2_end_beyond_high)) begin
-        bad = 1'b1;
-    end
-    if ((card1_card_core1_dda_arc2_acc_bits != 0)) begin
-        exponent = ({1'b0, card1_card_core1_dda_arc2_acc_bits} + {1'b0, card1_card_core1_dda_arc2_lambda_shift});
-    end
-    else begin
-        exponent = (card1_card_core1_dda_arc2_radius_length + {1'b0, card1_card_core1_dda_arc2_lambda_shift});
-    end
-    mask = ((1 << 29) - 1);
-    mask = (mask << exponent);
-    thr_less = (~mask);
-    thr = ({thr_less[(29 - 1)-1:0], 1'b1} & mask);
-    if (((card1_card_core1_dda_arc2_variant != 3) && ($signed({1'b0, exponent}) > (29 - 1)))) begin
-        bad = 1'b1;
-    end
-    if ((card1_card_core1_dda_arc2_variant == 3)) begin
-        thr = ({4'h0, rq} + 1);
-        thr_less = {4'h0, rq};
-    end
-    if ((card1_card_core1_dda_arc2_mag_xe > card1_card_core1_dda_arc2_mag_ye)) begin
-        major = card1_card_core1_dda_arc2_mag_xe;
-        major_less = (card1_card_core1_dda_arc2_mag_xe + 16777215);
-    end
-    else begin
-        major = card1_card_core1_dda_arc2_mag_ye;
-        major_less = (card1_card_core1_dda_arc2_mag_ye + 16777215);
-    end
-    if (card1_card_core1_dda_arc2_is_line) begin
-        thr = {5'h0, major};
-        thr_less = {5'h0, major_less};
-    end
-    below = {3'h0, thr_less};
-    half = (~(below >>> 1));
-    if (((!card1_card_core1_dda_arc2_is_line) && ((card1_card_core1_dda_arc2_variant == 1) || (card1_card_core1_dda_arc2_variant == 2)))) begin
-        half = (~{3'h0, thr});
-    end
-    if ((card1_card_core1_dda_arc2_is_line || card1_card_core1_dda_arc2_geo_ahead)) begin
-        card1_card_core1_dda_arc2_check_target_x = card1_card_core1_dda_arc2_mag_xe;
-        card1_card_core1_dda_arc2_check_target_y = card1_card_core1_dda_arc2_mag_ye;
-    end
-    else begin
-        if (({1'b0, card1_card_core1_dda_arc2_geo_end_inward} > rq)) begin
-            bad = 1'b1;
-        end
-        if ((card1_card_core1_dda_arc2_geo_quadrant[0] != card1_card_core1_dda_arc2_ccw)) begin
-            card1_card_core1_dda_arc2_check_target_x = 0;
-            card1_card_core1_dda_arc2_check_target_y = rq[24-1:0];
-        end
-        else begin
-            card1_card_core1_dda_arc2_check_target_x = rq[24-1:0];
-            card1_card_core1_dda_arc2_check_target_y = 0;
-        end
-    end
-    card1_card_core1_dda_arc2_check_error = (bad && (!card1_card_core1_dda_arc2_is_line));
-    card1_card_core1_dda_arc2_check_zero = (card1_card_core1_dda_arc2_is_line && (card1_card_core1_dda_arc2_mag_xe == 0) && (card1_card_core1_dda_arc2_mag_ye == 0));
-    card1_card_core1_dda_arc2_check_quadrant = card1_card_core1_dda_arc2_geo_quadrant;
-    card1_card_core1_dda_arc2_check_crossings = card1_card_core1_dda_arc2_geo_crossings;
-    if (card1_card_core1_dda_arc2_is_line) begin
-        card1_card_core1_dda_arc2_check_quadrant = 0;
-        card1_card_core1_dda_arc2_check_crossings = 0;
-    end
-    card1_card_core1_dda_arc2_check_threshold = thr;
-    card1_card_core1_dda_arc2_check_acc_init = $signed(half);
-    inward = card1_card_core1_dda_arc2_mag_ys;
-    if (card1_card_core1_dda_arc2_geo_x_in_start) begin
-        inward = card1_card_core1_dda_arc2_mag_xs;
-    end
-    card1_card_core1_dda_arc2_check_neg_in = (-$signed({5'h0, inward}));
-end
-
-
-always @(card1_card_core1_dda_arc2_mag_ys, card1_card_core1_dda_arc2_mag_xs, card1_card_core1_dda_arc2_chk_neg_in, card1_card_core1_dda_arc2_mag_ye, card1_card_core1_dda_arc2_mag_xe, card1_card_core1_dda_arc2_is_line, card1_card_core1_dda_arc2_geo_x_in_start) begin: card1_card_core1_dda_arc2_first_iteration
-    reg [2-1:0] fill;
-    reg [31-1:0] half;
-    reg [32-1:0] twice_in;
-    reg [32-1:0] twice_out;
-    reg [24-1:0] out;
-    reg [24-1:0] step_in;
-    reg [24-1:0] step_out;
-    fill = 2'h0;
-    half = 31'h0;
-    twice_in = 32'h0;
-    twice_out = 32'h0;
-    out = 24'h0;
-    card1_card_core1_dda_arc2_first_integrand_x = card1_card_core1_dda_arc2_mag_ys;
-    card1_card_core1_dda_arc2_first_integrand_y = card1_card_core1_dda_arc2_mag_xs;
-    if (card1_card_core1_dda_arc2_is_line) begin
-        card1_card_core1_dda_arc2_first_integrand_x = card1_card_core1_dda_arc2_mag_xe;
-        card1_card_core1_dda_arc2_first_integrand_y = card1_card_core1_dda_arc2_mag_ye;
-    end
-    step_in = 24'h1;
-    step_out = 24'h1;
-    if (card1_card_core1_dda_arc2_geo_x_in_start) begin
-        step_out = 16777215;
-        out = card1_card_core1_dda_arc2_mag_ys;
-    end
-    else begin
-        step_in = 16777215;
-        out = card1_card_core1_dda_arc2_mag_xs;
-    end
-    card1_card_core1_dda_arc2_first_stepped_x = (card1_card_core1_dda_arc2_mag_ys + step_in);
-    card1_card_core1_dda_arc2_first_stepped_y = (card1_card_core1_dda_arc2_mag_xs + step_out);
-    card1_card_core1_dda_arc2_first_out = out;
-    if (card1_card_core1_dda_arc2_chk_neg_in[(30 - 2)]) begin
-        fill = 3;
-    end
-    half = ({7'h0, out} + {fill, card1_card_core1_dda_arc2_chk_neg_in[(30 - 1)-1:0]});
-    twice_in = ({fill[0], card1_card_core1_dda_arc2_chk_neg_in[(30 - 1)-1:0], 2'h3} + {7'h0, out, 1'b0});
-    twice_out = ({6'h0, out, 2'h3} + {fill, card1_card_core1_dda_arc2_chk_neg_in[(30 - 1)-1:0], 1'b0});
-    card1_card_core1_dda_arc2_first_half = $signed(half);
-    card1_card_core1_dda_arc2_first_q_in = $signed(twice_in);
-    card1_card_core1_dda_arc2_first_q_out = $signed(twice_out);
-end
-
-
-always @(card1_card_core1_dda_arc2_left_x, card1_card_core1_dda_arc2_stepped_y, card1_card_core1_dda_arc2_integrand_x, card1_card_core1_dda_arc2_stepped_x, card1_card_core1_dda_arc2_target_y, card1_card_core1_dda_arc2_integrand_y, card1_card_core1_dda_arc2_target_x, card1_card_core1_dda_arc2_run_line, card1_card_core1_dda_arc2_left_y) begin: card1_card_core1_dda_arc2_end_tests
-    if (card1_card_core1_dda_arc2_run_line) begin
-        card1_card_core1_dda_arc2_at_x = (card1_card_core1_dda_arc2_left_x[27-1:0] == 27'h7ffffff);
-        card1_card_core1_dda_arc2_at_y = (card1_card_core1_dda_arc2_left_y[27-1:0] == 27'h7ffffff);
-        card1_card_core1_dda_arc2_near_x = (card1_card_core1_dda_arc2_left_x == 0);
-        card1_card_core1_dda_arc2_near_y = (card1_card_core1_dda_arc2_left_y == 0);
-    end
-    else begin
-        card1_card_core1_dda_arc2_at_x = (card1_card_core1_dda_arc2_integrand_y == card1_card_core1_dda_arc2_target_x);
-        card1_card_core1_dda_arc2_at_y = (card1_card_core1_dda_arc2_integrand_x == card1_card_core1_dda_arc2_target_y);
-        card1_card_core1_dda_arc2_near_x = (card1_card_core1_dda_arc2_stepped_y == card1_card_core1_dda_arc2_target_x);
-        card1_card_core1_dda_arc2_near_y = (card1_card_core1_dda_arc2_stepped_x == card1_card_core1_dda_arc2_target_y);
-    end
-end
-
-
-always @(card1_card_core1_dda_arc2_q_out, card1_card_core1_dda_arc2_half_sum, card1_card_core1_dda_arc2_neg_in, card1_card_core1_dda_arc2_run_variant, card1_card_core1_dda_arc2_run_up, card1_card_core1_dda_arc2_x_inward, card1_card_core1_dda_arc2_crossings, card1_card_core1_dda_arc2_at_x, card1_card_core1_dda_arc2_near_y, card1_card_core1_dda_arc2_integrand_x, card1_card_core1_dda_arc2_near_x, card1_card_core1_dda_arc2_quadrant, card1_card_core1_dda_arc2_integrand_y, card1_card_core1_dda_arc2_stepped_x, card1_card_core1_dda_arc2_radial_error, card1_card_core1_dda_arc2_acc_x, card1_card_core1_dda_arc2_at_y, card1_card_core1_dda_arc2_acc_y, card1_card_core1_dda_arc2_run_right, card1_card_core1_dda_arc2_q_in, card1_card_core1_dda_arc2_run_line) begin: card1_card_core1_dda_arc2_iteration_logic
-    reg x_right;
-    reg y_up;
-    reg signed [33-1:0] sum_x;
-    reg signed [33-1:0] sum_x_step;
-    reg signed [33-1:0] sum_y;
-    reg signed [33-1:0] ahead_x;
-    reg signed [33-1:0] ahead_y;
-    reg signed [32-1:0] twice_in;
-    reg signed [32-1:0] twice_out;
-    reg [31-1:0] error_half;
-    reg d_le_in;
-    reg d_le_out;
-    reg x_le_y;
-    reg over_x;
-    reg over_x_step;
-    reg over_y;
-    reg go_x;
-    reg go_y;
-    x_right = (0 != 0);
-    y_up = (0 != 0);
-    sum_x = 0;
-    sum_x_step = 0;
-    sum_y = 0;
-    ahead_x = 0;
-    ahead_y = 0;
-    twice_in = 0;
-    twice_out = 0;
-    error_half = 31'h0;
-    d_le_in = (0 != 0);
-    d_le_out = (0 != 0);
-    x_le_y = (0 != 0);
-    over_x = (0 != 0);
-    over_x_step = (0 != 0);
-    over_y = (0 != 0);
-    go_x = (0 != 0);
-    go_y = (0 != 0);
-    x_right = (card1_card_core1_dda_arc2_quadrant[0] == card1_card_core1_dda_arc2_quadrant[1]);
-    y_up = (!card1_card_core1_dda_arc2_quadrant[1]);
-    if (card1_card_core1_dda_arc2_run_line) begin
-        card1_card_core1_dda_arc2_it_dir_x = card1_card_core1_dda_arc2_run_right;
-        card1_card_core1_dda_arc2_it_dir_y = card1_card_core1_dda_arc2_run_up;
-    end
-    else begin
-        card1_card_core1_dda_arc2_it_dir_x = (x_right != card1_card_core1_dda_arc2_x_inward);
-        card1_card_core1_dda_arc2_it_dir_y = (y_up == card1_card_core1_dda_arc2_x_inward);
-    end
-    sum_y = ($signed({card1_card_core1_dda_arc2_acc_y[(32 - 1)], card1_card_core1_dda_arc2_acc_y}) + $signed({9'h0, card1_card_core1_dda_arc2_integrand_y}));
-    sum_x = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({9'h0, card1_card_core1_dda_arc2_integrand_x}));
-    sum_x_step = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({9'h0, card1_card_core1_dda_arc2_stepped_x}));
-    over_x = (!sum_x[32]);
-    over_x_step = (!sum_x_step[32]);
-    over_y = (!sum_y[32]);
-    if (((!card1_card_core1_dda_arc2_run_line) && (card1_card_core1_dda_arc2_run_variant == 0) && over_y)) begin
-        sum_x = sum_x_step;
-        over_x = over_x_step;
-    end
-    twice_in = ($signed({card1_card_core1_dda_arc2_radial_error[(30 - 1)], card1_card_core1_dda_arc2_radial_error, 1'b0}) + card1_card_core1_dda_arc2_q_in);
-    twice_out = ($signed({card1_card_core1_dda_arc2_radial_error[(30 - 1)], card1_card_core1_dda_arc2_radial_error, 1'b0}) + card1_card_core1_dda_arc2_q_out);
-    error_half = (({card1_card_core1_dda_arc2_radial_error[(30 - 1)], card1_card_core1_dda_arc2_radial_error} + card1_card_core1_dda_arc2_half_sum[(30 + 1)-1:0]) + {30'h0, card1_card_core1_dda_arc2_x_inward});
-    d_le_in = (twice_in < 0);
-    d_le_out = ((card1_card_core1_dda_arc2_neg_in < 0) != (twice_out < 0));
-    x_le_y = (($signed(error_half) < 0) != card1_card_core1_dda_arc2_x_inward);
-    go_x = over_x;
-    go_y = over_y;
-    if (card1_card_core1_dda_arc2_run_line) begin
-        go_x = (over_x && (!card1_card_core1_dda_arc2_at_x));
-        go_y = (over_y && (!card1_card_core1_dda_arc2_at_y));
-    end
-    else if ((card1_card_core1_dda_arc2_run_variant == 2)) begin
-        ahead_x = ($signed({card1_card_core1_dda_arc2_acc_x[(32 - 1)], card1_card_core1_dda_arc2_acc_x}) + $signed({8'h0, card1_card_core1_dda_arc2_integrand_x, 1'b0}));
-        ahead_y = ($signed({card1_card_core1_dda_arc2_acc_y[(32 - 1)], card1_card_core1_dda_arc2_acc_y}) + $signed({8'h0, card1_card_core1_dda_arc2_integrand_y, 1'b0}));
-        if ((over_x && (!over_y) && (ahead_y >= 0))) begin
-            go_y = 1'b1;
-        end
-        else if ((over_y && (!over_x) && (ahead_x >= 0))) begin
-            go_x = 1'b1;
-        end
-    end
-    else if ((card1_card_core1_dda_arc2_run_variant == 3)) begin
-        go_x = 1'b0;
-        go_y = 1'b0;
-        if ((over_x || over_y)) begin
-            if ((d_le_in && d_le_out)) begin
-                go_x = 1'b1;
-                go_y = 1'b1;
-            end
-            else if (x_le_y) begin
-                go_x = 1'b1;
-            end
-            else begin
-                go_y = 1'b1;
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step != 0)) begin
+                g_op = 1;
             end
         end
-    end
-    card1_card_core1_dda_arc2_it_tail = ((!card1_card_core1_dda_arc2_run_line) && (card1_card_core1_dda_arc2_at_x || card1_card_core1_dda_arc2_at_y));
-    if (((!card1_card_core1_dda_arc2_run_line) && (card1_card_core1_dda_arc2_at_x || card1_card_core1_dda_arc2_at_y))) begin
-        go_x = (!card1_card_core1_dda_arc2_at_x);
-        go_y = (!card1_card_core1_dda_arc2_at_y);
-    end
-    if (((!sum_x[32]) && sum_x[(32 - 1)])) begin
-        sum_x = 33'h7fffffff;
-    end
-    if (((!sum_y[32]) && sum_y[(32 - 1)])) begin
-        sum_y = 33'h7fffffff;
-    end
-    card1_card_core1_dda_arc2_it_sum_x = $signed(sum_x[32-1:0]);
-    card1_card_core1_dda_arc2_it_sum_y = $signed(sum_y[32-1:0]);
-    card1_card_core1_dda_arc2_it_step_x = go_x;
-    card1_card_core1_dda_arc2_it_step_y = go_y;
-    card1_card_core1_dda_arc2_it_finished = 1'b0;
-    card1_card_core1_dda_arc2_it_next_piece = 1'b0;
-    if ((((card1_card_core1_dda_arc2_near_x && go_x) || card1_card_core1_dda_arc2_at_x) && ((card1_card_core1_dda_arc2_near_y && go_y) || card1_card_core1_dda_arc2_at_y))) begin
-        if ((card1_card_core1_dda_arc2_run_line || (card1_card_core1_dda_arc2_crossings == 0))) begin
-            card1_card_core1_dda_arc2_it_finished = 1'b1;
-        end
-        else begin
-            card1_card_core1_dda_arc2_it_next_piece = 1'b1;
-        end
-    end
-end
-
-
-always @(card1_card_core1_dda_arc2_dec_finished, card1_card_core1_dda_arc2_run_active, card1_card_core1_dda_arc2_pending, card1_card_core1_dda_arc2_chk_error, card1_card_core1_dda_arc2_chk_zero, card1_card_core1_dda_arc2_state) begin: card1_card_core1_dda_arc2_handover_logic
-    reg free;
-    free = ((!card1_card_core1_dda_arc2_run_active) || (card1_card_core1_dda_arc2_pending && card1_card_core1_dda_arc2_dec_finished));
-    card1_card_core1_dda_arc2_hand_load = 1'b0;
-    card1_card_core1_dda_arc2_hand_end = 1'b0;
-    if ((card1_card_core1_dda_arc2_state == 3'b101)) begin
-        if ((card1_card_core1_dda_arc2_chk_zero || card1_card_core1_dda_arc2_chk_error)) begin
-            card1_card_core1_dda_arc2_hand_end = free;
-        end
-        else begin
-            card1_card_core1_dda_arc2_hand_load = free;
-        end
-    end
-end
-
-
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_setup_control
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_radius_length <= 0;
-        card1_card_core1_dda_arc2_neg_ye <= 0;
-        card1_card_core1_dda_arc2_chk_quadrant <= 0;
-        card1_card_core1_dda_arc2_chk_target_y <= 0;
-        card1_card_core1_dda_arc2_acc_bits <= 0;
-        card1_card_core1_dda_arc2_neg_ys <= 0;
-        card1_card_core1_dda_arc2_chk_zero <= 0;
-        card1_card_core1_dda_arc2_tot_y <= 0;
-        card1_card_core1_dda_arc2_mag_ys <= 0;
-        card1_card_core1_dda_arc2_gap_low <= 0;
-        card1_card_core1_dda_arc2_variant <= 0;
-        card1_card_core1_dda_arc2_root_all_ones <= 0;
-        card1_card_core1_dda_arc2_mag_xs <= 0;
-        card1_card_core1_dda_arc2_multiplicand <= 0;
-        card1_card_core1_dda_arc2_chk_target_x <= 0;
-        card1_card_core1_dda_arc2_radius_q <= 0;
-        card1_card_core1_dda_arc2_end_reaches_low <= 0;
-        card1_card_core1_dda_arc2_mag_ye <= 0;
-        card1_card_core1_dda_arc2_root_length <= 0;
-        card1_card_core1_dda_arc2_mac_op <= 0;
-        card1_card_core1_dda_arc2_state <= 3'b000;
-        card1_card_core1_dda_arc2_chk_threshold <= 0;
-        card1_card_core1_dda_arc2_chk_crossings <= 0;
-        card1_card_core1_dda_arc2_blend <= 0;
-        card1_card_core1_dda_arc2_tot_x <= 0;
-        card1_card_core1_dda_arc2_multiplier <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_dda_error <= 0;
-        card1_card_core1_dda_arc2_root <= 0;
-        card1_card_core1_dda_arc2_root_bit <= 0;
-        card1_card_core1_dda_arc2_lambda_shift <= 0;
-        card1_card_core1_dda_arc2_radicand <= 0;
-        card1_card_core1_dda_arc2_gap_carry <= 0;
-        card1_card_core1_dda_arc2_chk_left_y <= 0;
-        card1_card_core1_dda_arc2_chk_neg_in <= 0;
-        card1_card_core1_dda_arc2_gap_high <= 0;
-        card1_card_core1_dda_arc2_root_up <= 0;
-        card1_card_core1_dda_arc2_mag_xe <= 0;
-        card1_card_core1_dda_arc2_neg_xs <= 0;
-        card1_card_core1_dda_arc2_mac_bit <= 0;
-        card1_card_core1_dda_arc2_remainder <= 0;
-        card1_card_core1_dda_arc2_is_line <= 0;
-        card1_card_core1_dda_arc2_chk_error <= 0;
-        card1_card_core1_dda_arc2_chk_acc_init <= 0;
-        card1_card_core1_dda_arc2_end_beyond_high <= 0;
-        card1_card_core1_dda_arc2_ccw <= 0;
-        card1_card_core1_dda_arc2_neg_xe <= 0;
-        card1_card_core1_dda_arc2_chk_left_x <= 0;
-    end
-    else begin
-        case (card1_card_core1_dda_arc2_state)
-            3'b000: begin
-                if (card1_card_core1_regs_fifo2_sequencer2_dda_start) begin
-                    card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b0;
-                    card1_card_core1_dda_arc2_is_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
-                    card1_card_core1_dda_arc2_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
-                    card1_card_core1_dda_arc2_lambda_shift <= card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift;
-                    card1_card_core1_dda_arc2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
-                    card1_card_core1_dda_arc2_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
-                    card1_card_core1_dda_arc2_blend <= card1_card_core1_regs_fifo2_sequencer2_dda_blend;
-                    card1_card_core1_dda_arc2_tot_x <= (-1);
-                    card1_card_core1_dda_arc2_tot_y <= (-1);
-                    card1_card_core1_dda_arc2_neg_xs <= (card1_card_core1_regs_fifo2_sequencer2_dda_xs < 0);
-                    card1_card_core1_dda_arc2_neg_ys <= (card1_card_core1_regs_fifo2_sequencer2_dda_ys < 0);
-                    card1_card_core1_dda_arc2_neg_xe <= (card1_card_core1_regs_fifo2_sequencer2_dda_xe < 0);
-                    card1_card_core1_dda_arc2_neg_ye <= (card1_card_core1_regs_fifo2_sequencer2_dda_ye < 0);
-                    card1_card_core1_dda_arc2_mag_xs <= card1_card_core1_dda_arc2_cmd_mag_xs;
-                    card1_card_core1_dda_arc2_mag_ys <= card1_card_core1_dda_arc2_cmd_mag_ys;
-                    card1_card_core1_dda_arc2_mag_xe <= card1_card_core1_dda_arc2_cmd_mag_xe;
-                    card1_card_core1_dda_arc2_mag_ye <= card1_card_core1_dda_arc2_cmd_mag_ye;
-                    card1_card_core1_dda_arc2_gap_low <= ((1 << 25) - 1);
-                    card1_card_core1_dda_arc2_gap_high <= ((1 << (50 - 25)) - 1);
-                    card1_card_core1_dda_arc2_gap_carry <= 1'b0;
-                    card1_card_core1_dda_arc2_mac_op <= 0;
-                    card1_card_core1_dda_arc2_mac_bit <= 0;
-                    card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_cmd_mag_xs};
-                    card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_cmd_mag_xs;
-                    if (card1_card_core1_regs_fifo2_sequencer2_dda_line) begin
-                        card1_card_core1_dda_arc2_state <= 3'b100;
-                    end
-                    else begin
-                        card1_card_core1_dda_arc2_state <= 3'b001;
+        3'b011: begin
+            o_op = 1;
+            inv = (card1_card_core1_dda_arc2_dda_setup2_square < 2);
+            if (card1_card_core1_dda_arc2_dda_setup2_multiplier[0]) begin
+                g_op = 1;
+            end
+            if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
+                o_op = 2;
+                inv = ((card1_card_core1_dda_arc2_dda_setup2_square == 0) || (card1_card_core1_dda_arc2_dda_setup2_square == 3));
+                src = (card1_card_core1_dda_arc2_dda_setup2_square + 1);
+                if ((card1_card_core1_dda_arc2_dda_setup2_square == 3)) begin
+                    src = 0;
+                    if (card1_card_core1_dda_arc2_dda_setup2_m_is_y) begin
+                        src = 1;
                     end
                 end
             end
-            3'b001: begin
-                card1_card_core1_dda_arc2_tot_x <= card1_card_core1_dda_arc2_tot_sum_x;
-                card1_card_core1_dda_arc2_tot_y <= card1_card_core1_dda_arc2_tot_sum_y;
-                card1_card_core1_dda_arc2_gap_high <= card1_card_core1_dda_arc2_gap_top;
-                card1_card_core1_dda_arc2_gap_carry <= 1'b0;
-                if (card1_card_core1_dda_arc2_multiplier[0]) begin
-                    card1_card_core1_dda_arc2_gap_low <= card1_card_core1_dda_arc2_gap_sum_low;
-                    card1_card_core1_dda_arc2_gap_high <= card1_card_core1_dda_arc2_gap_sum_high;
-                    card1_card_core1_dda_arc2_gap_carry <= card1_card_core1_dda_arc2_gap_sum_carry;
+        end
+        3'b100: begin
+            o_op = 1;
+            case (card1_card_core1_dda_arc2_dda_setup2_step)
+                'h0: begin
+                    inv = 1'b1;
                 end
-                if (((card1_card_core1_dda_arc2_mac_op == 2) && (card1_card_core1_dda_arc2_mac_bit == 0))) begin
-                    card1_card_core1_dda_arc2_radicand <= (~{card1_card_core1_dda_arc2_gap_top[((2 * 24) - 25)-1:0], card1_card_core1_dda_arc2_gap_low});
+                'h1: begin
+                    g_op = 1;
+                    o_op = 2;
+                    src = 0;
+                    if (card1_card_core1_dda_arc2_dda_setup2_m_is_y) begin
+                        src = 1;
+                    end
                 end
-                if (($signed({1'b0, card1_card_core1_dda_arc2_mac_bit}) == (24 - 1))) begin
-                    card1_card_core1_dda_arc2_mac_bit <= 0;
-                    card1_card_core1_dda_arc2_mac_op <= (card1_card_core1_dda_arc2_mac_op + 1);
-                    case (card1_card_core1_dda_arc2_mac_op)
-                        'h0: begin
-                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ys};
-                            card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_ys;
-                        end
-                        'h1: begin
-                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_xe};
-                            card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_xe;
-                        end
-                        'h2: begin
-                            card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ye};
-                            card1_card_core1_dda_arc2_multiplier <= card1_card_core1_dda_arc2_mag_ye;
-                        end
-                        default: begin
-                            if ((card1_card_core1_dda_arc2_mag_xs > card1_card_core1_dda_arc2_mag_ys)) begin
-                                card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_xs};
-                            end
-                            else begin
-                                card1_card_core1_dda_arc2_multiplicand <= {24'h0, card1_card_core1_dda_arc2_mag_ys};
-                            end
-                            card1_card_core1_dda_arc2_remainder <= 0;
-                            card1_card_core1_dda_arc2_root <= 0;
-                            card1_card_core1_dda_arc2_root_up <= 1;
-                            card1_card_core1_dda_arc2_root_bit <= 0;
-                            card1_card_core1_dda_arc2_root_length <= 0;
-                            card1_card_core1_dda_arc2_root_all_ones <= 1'b1;
-                            card1_card_core1_dda_arc2_state <= 3'b010;
-                        end
-                    endcase
+                'h4: begin
+                    g_op = 2;
+                    o_op = 2;
+                    src = 4;
                 end
-                else begin
-                    card1_card_core1_dda_arc2_mac_bit <= (card1_card_core1_dda_arc2_mac_bit + 1);
-                    card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
-                    card1_card_core1_dda_arc2_multiplier <= (card1_card_core1_dda_arc2_multiplier >>> 1);
+            endcase
+        end
+        3'b101: begin
+            g_op = 1;
+            if ((card1_card_core1_dda_arc2_dda_setup2_step == 0)) begin
+                src = 3;
+                if (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end) begin
+                    src = 2;
                 end
+                inv = 1'b1;
             end
-            3'b010: begin
-                if (card1_card_core1_dda_arc2_root_trial_fits) begin
-                    card1_card_core1_dda_arc2_remainder <= card1_card_core1_dda_arc2_root_trial_diff;
-                    card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b1};
-                    card1_card_core1_dda_arc2_root_up <= {card1_card_core1_dda_arc2_root_up[24-1:0], 1'b0};
-                end
-                else begin
-                    card1_card_core1_dda_arc2_remainder <= card1_card_core1_dda_arc2_root_trial_rem;
-                    card1_card_core1_dda_arc2_root <= {card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b0};
-                    card1_card_core1_dda_arc2_root_up <= {1'b0, card1_card_core1_dda_arc2_root[(24 - 1)-1:0], 1'b1};
-                    if ((card1_card_core1_dda_arc2_root != 0)) begin
-                        card1_card_core1_dda_arc2_root_all_ones <= 1'b0;
-                    end
-                end
-                if (((card1_card_core1_dda_arc2_root != 0) || card1_card_core1_dda_arc2_root_trial_fits)) begin
-                    card1_card_core1_dda_arc2_root_length <= (card1_card_core1_dda_arc2_root_length + 1);
-                end
-                card1_card_core1_dda_arc2_radicand <= (card1_card_core1_dda_arc2_radicand << 2);
-                card1_card_core1_dda_arc2_gap_high <= card1_card_core1_dda_arc2_gap_top;
-                card1_card_core1_dda_arc2_gap_carry <= 1'b0;
-                case (card1_card_core1_dda_arc2_root_bit)
-                    'h0: begin
-                        card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
-                    end
-                    'h1: begin
-                        card1_card_core1_dda_arc2_gap_low <= card1_card_core1_dda_arc2_gap_sum_low;
-                        card1_card_core1_dda_arc2_gap_high <= card1_card_core1_dda_arc2_gap_sum_high;
-                        card1_card_core1_dda_arc2_gap_carry <= card1_card_core1_dda_arc2_gap_sum_carry;
-                        card1_card_core1_dda_arc2_multiplicand <= (card1_card_core1_dda_arc2_multiplicand << 1);
-                    end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 1)) begin
+                g_op = 0;
+                o_op = 1;
+                inv = 1'b1;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step <= 5)) begin
+                inv = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
+                case (card1_card_core1_dda_arc2_dda_setup2_step)
                     'h2: begin
-                        card1_card_core1_dda_arc2_end_reaches_low <= (!card1_card_core1_dda_arc2_gap_top[((50 - 25) - 1)]);
-                        card1_card_core1_dda_arc2_gap_low <= card1_card_core1_dda_arc2_gap_sum_low;
-                        card1_card_core1_dda_arc2_gap_high <= card1_card_core1_dda_arc2_gap_sum_high;
-                        card1_card_core1_dda_arc2_gap_carry <= card1_card_core1_dda_arc2_gap_sum_carry;
+                        g_op = 2;
+                        src = 0;
                     end
                     'h3: begin
-                        card1_card_core1_dda_arc2_end_beyond_high <= (!card1_card_core1_dda_arc2_gap_top[((50 - 25) - 1)]);
+                        src = 1;
+                    end
+                    default: begin
+                        src = 2;
+                        if ((card1_card_core1_dda_arc2_dda_setup2_step == 5)) begin
+                            src = 3;
+                        end
+                        inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end == 1);
                     end
                 endcase
-                if (($signed({1'b0, card1_card_core1_dda_arc2_root_bit}) == (24 - 1))) begin
-                    card1_card_core1_dda_arc2_state <= 3'b011;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 6)) begin
+                src = 4;
+                on = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end);
+                inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward == 1);
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 7)) begin
+                g_op = 2;
+                o_op = 0;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 8)) begin
+                g_op = 0;
+                src = 1;
+                inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward == 1);
+                if (card1_card_core1_dda_arc2_dda_setup2_pick_x) begin
+                    src = 0;
+                    inv = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
                 end
-                else begin
-                    card1_card_core1_dda_arc2_root_bit <= (card1_card_core1_dda_arc2_root_bit + 1);
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 9)) begin
+                src = 3;
+                inv = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end);
+                if (card1_card_core1_dda_arc2_dda_setup2_pick_x) begin
+                    src = 2;
+                    inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end == 1);
                 end
+            end
+            else begin
+                src = 4;
+                on = (card1_card_core1_dda_arc2_dda_setup2_twice != 0);
+                if ((card1_card_core1_dda_arc2_dda_setup2_step == 11)) begin
+                    on = (card1_card_core1_dda_arc2_dda_setup2_twice == 2);
+                end
+            end
+        end
+        default: begin
+            o_op = 0;
+        end
+    endcase
+    card1_card_core1_dda_arc2_dda_setup2_gap_op = g_op;
+    card1_card_core1_dda_arc2_dda_setup2_operand_op = o_op;
+    card1_card_core1_dda_arc2_dda_setup2_source = src;
+    card1_card_core1_dda_arc2_dda_setup2_source_on = on;
+    card1_card_core1_dda_arc2_dda_setup2_invert = inv;
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_carry_in
+    reg cin;
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_dda_setup2_carry <= 0;
+    end
+    else begin
+        cin = 1'b0;
+        case (card1_card_core1_dda_arc2_dda_setup2_next_state)
+            3'b010: begin
+                cin = ((card1_card_core1_dda_arc2_dda_setup2_next_step == 2) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 4) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 6));
             end
             3'b011: begin
-                if (card1_card_core1_dda_arc2_root_trial_fits) begin
-                    card1_card_core1_dda_arc2_radius_q <= card1_card_core1_dda_arc2_root_up;
-                end
-                else begin
-                    card1_card_core1_dda_arc2_radius_q <= {1'b0, card1_card_core1_dda_arc2_root};
-                end
-                if ((card1_card_core1_dda_arc2_root_trial_fits && card1_card_core1_dda_arc2_root_all_ones)) begin
-                    card1_card_core1_dda_arc2_radius_length <= (card1_card_core1_dda_arc2_root_length + 1);
-                end
-                else begin
-                    card1_card_core1_dda_arc2_radius_length <= card1_card_core1_dda_arc2_root_length;
-                end
-                card1_card_core1_dda_arc2_state <= 3'b100;
+                cin = (card1_card_core1_dda_arc2_dda_setup2_next_square < 2);
             end
             3'b100: begin
-                card1_card_core1_dda_arc2_chk_error <= card1_card_core1_dda_arc2_check_error;
-                card1_card_core1_dda_arc2_chk_zero <= card1_card_core1_dda_arc2_check_zero;
-                card1_card_core1_dda_arc2_chk_threshold <= card1_card_core1_dda_arc2_check_threshold;
-                card1_card_core1_dda_arc2_chk_acc_init <= card1_card_core1_dda_arc2_check_acc_init;
-                card1_card_core1_dda_arc2_chk_quadrant <= card1_card_core1_dda_arc2_check_quadrant;
-                card1_card_core1_dda_arc2_chk_crossings <= card1_card_core1_dda_arc2_check_crossings;
-                card1_card_core1_dda_arc2_chk_target_x <= card1_card_core1_dda_arc2_check_target_x;
-                card1_card_core1_dda_arc2_chk_target_y <= card1_card_core1_dda_arc2_check_target_y;
-                card1_card_core1_dda_arc2_chk_left_x <= card1_card_core1_dda_arc2_check_left_x;
-                card1_card_core1_dda_arc2_chk_left_y <= card1_card_core1_dda_arc2_check_left_y;
-                card1_card_core1_dda_arc2_chk_neg_in <= card1_card_core1_dda_arc2_check_neg_in;
-                card1_card_core1_dda_arc2_state <= 3'b101;
+                cin = (card1_card_core1_dda_arc2_dda_setup2_next_step == 4);
+            end
+            3'b101: begin
+                if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 0)) begin
+                    cin = 1'b1;
+                end
+                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 2)) begin
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] == 1);
+                end
+                else if (((card1_card_core1_dda_arc2_dda_setup2_next_step == 3) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 4))) begin
+                    cin = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
+                end
+                else if (((card1_card_core1_dda_arc2_dda_setup2_next_step == 5) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 6))) begin
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end == 1);
+                end
+                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 7)) begin
+                    cin = ((card1_card_core1_dda_arc2_dda_setup2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end) && (card1_card_core1_dda_arc2_dda_setup2_root_root[0] != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward));
+                end
+                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 9)) begin
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_pick_x != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
+                end
+                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 10)) begin
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_pick_x == card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end);
+                end
+                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 11)) begin
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] && (card1_card_core1_dda_arc2_dda_setup2_twice != 0));
+                end
+                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 12)) begin
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] && (card1_card_core1_dda_arc2_dda_setup2_twice == 2));
+                end
             end
             default: begin
-                if ((card1_card_core1_dda_arc2_hand_load || card1_card_core1_dda_arc2_hand_end)) begin
-                    card1_card_core1_dda_arc2_state <= 3'b000;
-                end
-                if ((card1_card_core1_dda_arc2_hand_end && (!card1_card_core1_dda_arc2_chk_zero))) begin
-                    card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b1;
-                end
+                cin = 1'b0;
             end
         endcase
+        card1_card_core1_dda_arc2_dda_setup2_carry <= cin;
     end
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_run_control
-    reg [24-1:0] step_op_x;
-    reg [24-1:0] step_op_y;
-    reg [24-1:0] base_x;
-    reg [24-1:0] base_y;
-    reg [24-1:0] base_op_x;
-    reg [24-1:0] base_op_y;
-    reg [32-1:0] less_x;
-    reg [32-1:0] less_y;
-    reg [31-1:0] inverse;
-    reg [29-1:0] neg_base;
-    reg [31-1:0] half_base;
-    reg [32-1:0] q_in_base;
-    reg [32-1:0] q_out_base;
-    reg [2-1:0] in_out;
-    reg [3-1:0] q_in_op;
-    reg [3-1:0] q_out_op;
-    reg [30-1:0] error_op;
-    reg [30-1:0] error_sum;
+always @(card1_card_core1_dda_arc2_dda_setup2_plan_crossings, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_pick_x) begin: card1_card_core1_dda_arc2_dda_setup2_rq_terms
+    reg [3-1:0] count;
+    count = 3'h0;
+    count = (card1_card_core1_dda_arc2_dda_setup2_plan_crossings - 1);
+    if ((card1_card_core1_dda_arc2_dda_setup2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_pick_x)) begin
+        count = (count + 1);
+    end
+    if ((card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end == card1_card_core1_dda_arc2_dda_setup2_pick_x)) begin
+        count = (count + 1);
+    end
+    card1_card_core1_dda_arc2_dda_setup2_twice = count[3-1:1];
+    if ((card1_card_core1_dda_arc2_dda_setup2_plan_crossings == 0)) begin
+        card1_card_core1_dda_arc2_dda_setup2_twice = 0;
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_source, card1_card_core1_dda_arc2_dda_setup2_root_root, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye, card1_card_core1_dda_arc2_dda_setup2_source_on) begin: card1_card_core1_dda_arc2_dda_setup2_select_source
+    reg [25-1:0] value;
+    value = 25'h0;
+    case (card1_card_core1_dda_arc2_dda_setup2_source)
+        'h0: begin
+            value = {1'b0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs};
+        end
+        'h1: begin
+            value = {1'b0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys};
+        end
+        'h2: begin
+            value = {1'b0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe};
+        end
+        'h3: begin
+            value = {1'b0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye};
+        end
+        default: begin
+            value = card1_card_core1_dda_arc2_dda_setup2_root_root;
+        end
+    endcase
+    if ((!card1_card_core1_dda_arc2_dda_setup2_source_on)) begin
+        value = 0;
+    end
+    card1_card_core1_dda_arc2_dda_setup2_source_value = value;
+end
+
+
+
+assign card1_card_core1_dda_arc2_dda_setup2_total = ((card1_card_core1_dda_arc2_dda_setup2_gap + card1_card_core1_dda_arc2_dda_setup2_operand) + {48'h0, card1_card_core1_dda_arc2_dda_setup2_carry});
+assign card1_card_core1_dda_arc2_dda_setup2_root_radicand = (~card1_card_core1_dda_arc2_dda_setup2_gap[(2 * 24)-1:0]);
+assign card1_card_core1_dda_arc2_dda_setup2_root_load = ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && (card1_card_core1_dda_arc2_dda_setup2_square == 2) && (card1_card_core1_dda_arc2_dda_setup2_step == 0));
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_datapath
+    reg [49-1:0] loaded;
+    loaded = 49'h0;
+    case (card1_card_core1_dda_arc2_dda_setup2_gap_op)
+        'h1: begin
+            card1_card_core1_dda_arc2_dda_setup2_gap <= card1_card_core1_dda_arc2_dda_setup2_total;
+        end
+        'h2: begin
+            card1_card_core1_dda_arc2_dda_setup2_gap <= 0;
+        end
+        'h3: begin
+            card1_card_core1_dda_arc2_dda_setup2_gap <= ((1 << 49) - 1);
+        end
+    endcase
+    case (card1_card_core1_dda_arc2_dda_setup2_operand_op)
+        'h1: begin
+            card1_card_core1_dda_arc2_dda_setup2_operand <= {card1_card_core1_dda_arc2_dda_setup2_operand[(49 - 1)-1:0], card1_card_core1_dda_arc2_dda_setup2_invert};
+        end
+        'h2: begin
+            loaded = {24'h0, card1_card_core1_dda_arc2_dda_setup2_source_value};
+            if ((card1_card_core1_dda_arc2_dda_setup2_invert && card1_card_core1_dda_arc2_dda_setup2_source_on)) begin
+                loaded = (~loaded);
+            end
+            card1_card_core1_dda_arc2_dda_setup2_operand <= loaded;
+        end
+    endcase
+    if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && ($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) != (24 - 1)))) begin
+        card1_card_core1_dda_arc2_dda_setup2_multiplier <= (card1_card_core1_dda_arc2_dda_setup2_multiplier >>> 1);
+    end
+    else if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b010) || (card1_card_core1_dda_arc2_dda_setup2_state == 3'b011))) begin
+        card1_card_core1_dda_arc2_dda_setup2_multiplier <= card1_card_core1_dda_arc2_dda_setup2_source_value[24-1:0];
+    end
+    if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000)) begin
+        card1_card_core1_dda_arc2_dda_setup2_gap <= 0;
+    end
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_sequencer
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_q_out <= 0;
-        card1_card_core1_dda_arc2_run_end_y <= 0;
-        card1_card_core1_dda_arc2_stepped_y <= 0;
-        card1_card_core1_dda_arc2_dec_sum_y <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
-        card1_card_core1_dda_arc2_half_sum <= 0;
-        card1_card_core1_dda_arc2_pos_out <= 0;
-        card1_card_core1_dda_arc2_dec_out <= 0;
-        card1_card_core1_dda_arc2_left_y <= 0;
-        card1_card_core1_dda_arc2_neg_in <= 0;
-        card1_card_core1_dda_arc2_dec_next_piece <= 0;
-        card1_card_core1_regs_fifo2_steps_step_x <= 0;
-        card1_card_core1_dda_arc2_dec_in <= 0;
-        card1_card_core1_dda_arc2_run_variant <= 0;
-        card1_card_core1_dda_arc2_dec_step_y <= 0;
-        card1_card_core1_dda_arc2_run_end_x <= 0;
-        card1_card_core1_dda_arc2_run_up <= 0;
-        card1_card_core1_dda_arc2_dec_sum_x <= 0;
-        card1_card_core1_dda_arc2_target_y <= 0;
-        card1_card_core1_dda_arc2_x_inward <= 0;
-        card1_card_core1_dda_arc2_target_x <= 0;
-        card1_card_core1_dda_arc2_crossings <= 0;
-        card1_card_core1_dda_arc2_dec_step_x <= 0;
-        card1_card_core1_dda_arc2_left_x <= 0;
-        card1_card_core1_dda_arc2_dec_finished <= 0;
-        card1_card_core1_dda_arc2_dec_tail <= 0;
-        card1_card_core1_dda_arc2_radius <= 0;
-        card1_card_core1_dda_arc2_integrand_x <= 0;
-        card1_card_core1_dda_arc2_run_active <= 0;
-        card1_card_core1_regs_fifo2_steps_dir_x <= 0;
-        card1_card_core1_regs_fifo2_steps_dir_y <= 0;
-        card1_card_core1_dda_arc2_quadrant <= 0;
-        card1_card_core1_dda_arc2_integrand_y <= 0;
-        card1_card_core1_regs_fifo2_steps_step_y <= 0;
-        card1_card_core1_dda_arc2_pending <= 0;
-        card1_card_core1_dda_arc2_stepped_x <= 0;
-        card1_card_core1_dda_arc2_radial_error <= 0;
-        card1_card_core1_dda_arc2_run_ccw <= 0;
-        card1_card_core1_dda_arc2_threshold <= 0;
-        card1_card_core1_dda_arc2_run_blend <= 0;
-        card1_card_core1_dda_arc2_acc_x <= 0;
-        card1_card_core1_dda_arc2_acc_y <= 0;
-        card1_card_core1_dda_arc2_q_in <= 0;
-        card1_card_core1_dda_arc2_run_right <= 0;
-        card1_card_core1_dda_arc2_run_line <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_step <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_square <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_state <= 3'b000;
     end
     else begin
-        step_op_x = 24'h0;
-        step_op_y = 24'h0;
-        base_x = 24'h0;
-        base_y = 24'h0;
-        base_op_x = 24'h0;
-        base_op_y = 24'h0;
-        less_x = 32'h0;
-        less_y = 32'h0;
-        inverse = 31'h0;
-        neg_base = 29'h0;
-        half_base = 31'h0;
-        q_in_base = 32'h0;
-        q_out_base = 32'h0;
-        in_out = 2'h0;
-        q_in_op = 3'h0;
-        q_out_op = 3'h0;
-        error_op = 30'h0;
-        error_sum = 30'h0;
+        card1_card_core1_dda_arc2_dda_setup2_state <= card1_card_core1_dda_arc2_dda_setup2_next_state;
+        card1_card_core1_dda_arc2_dda_setup2_step <= card1_card_core1_dda_arc2_dda_setup2_next_step;
+        card1_card_core1_dda_arc2_dda_setup2_square <= card1_card_core1_dda_arc2_dda_setup2_next_square;
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye) begin: card1_card_core1_dda_arc2_dda_setup2_line_major
+    card1_card_core1_dda_arc2_dda_setup2_major = {4'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye};
+    if ((card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe >= card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye)) begin
+        card1_card_core1_dda_arc2_dda_setup2_major = {4'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe};
+    end
+end
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_threshold
+    reg shift;
+    shift = 1'b0;
+    card1_card_core1_dda_arc2_dda_setup2_grew <= card1_card_core1_dda_arc2_dda_setup2_root_grows;
+    if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000) && card1_card_core1_regs_fifo2_sequencer2_dda_start)) begin
+        card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= 0;
+        card1_card_core1_dda_arc2_dda_setup2_plan_too_wide <= 1'b0;
+        card1_card_core1_dda_arc2_dda_setup2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
+        if ((card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits != 0)) begin
+            card1_card_core1_dda_arc2_dda_setup2_ones_left <= ({1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits} + {1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift});
+        end
+        else begin
+            card1_card_core1_dda_arc2_dda_setup2_ones_left <= {1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift};
+        end
+    end
+    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b001)) begin
+        card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= card1_card_core1_dda_arc2_dda_setup2_major[28-1:0];
+    end
+    else if (1'b1) begin
+        if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && (card1_card_core1_dda_arc2_dda_setup2_ones_left != 0))) begin
+            shift = 1'b1;
+            card1_card_core1_dda_arc2_dda_setup2_ones_left <= (card1_card_core1_dda_arc2_dda_setup2_ones_left - 1);
+        end
+        else if (((card1_card_core1_dda_arc2_dda_setup2_acc_bits == 0) && card1_card_core1_dda_arc2_dda_setup2_grew)) begin
+            shift = 1'b1;
+        end
+        if (shift) begin
+            card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= {card1_card_core1_dda_arc2_dda_setup2_plan_threshold[(28 - 1)-1:0], 1'b1};
+            if (card1_card_core1_dda_arc2_dda_setup2_plan_threshold[(28 - 1)]) begin
+                card1_card_core1_dda_arc2_dda_setup2_plan_too_wide <= 1'b1;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_captures
+    reg sign;
+    sign = card1_card_core1_dda_arc2_dda_setup2_total[(49 - 1)];
+    case (card1_card_core1_dda_arc2_dda_setup2_state)
+        3'b000: begin
+            card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= 1'b0;
+        end
+        3'b010: begin
+            case (card1_card_core1_dda_arc2_dda_setup2_step)
+                'h2: begin
+                    card1_card_core1_dda_arc2_dda_setup2_m_is_y <= sign;
+                end
+                'h4: begin
+                    card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x <= sign;
+                    card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x <= (card1_card_core1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
+                end
+                'h6: begin
+                    card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y <= sign;
+                    card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y <= (card1_card_core1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
+                end
+            endcase
+        end
+        3'b100: begin
+            if ((((card1_card_core1_dda_arc2_dda_setup2_step == 1) && (!sign)) || ((card1_card_core1_dda_arc2_dda_setup2_step == 4) && sign))) begin
+                card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= 1'b1;
+            end
+        end
+        3'b101: begin
+            case (card1_card_core1_dda_arc2_dda_setup2_step)
+                'h0: begin
+                    card1_card_core1_dda_arc2_dda_setup2_plan_radius <= card1_card_core1_dda_arc2_dda_setup2_total[(24 + 2)-1:1];
+                end
+                'h2: begin
+                    card1_card_core1_dda_arc2_dda_setup2_plan_beyond <= sign;
+                end
+                'h7: begin
+                    card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff <= $signed(card1_card_core1_dda_arc2_dda_setup2_total[27-1:0]);
+                    card1_card_core1_dda_arc2_dda_setup2_pick_x <= (!card1_card_core1_dda_arc2_dda_setup2_total[(27 - 1)]);
+                end
+                'hc: begin
+                    card1_card_core1_dda_arc2_dda_setup2_plan_totals_max <= card1_card_core1_dda_arc2_dda_setup2_total[27-1:0];
+                end
+            endcase
+        end
+        3'b001: begin
+            card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff <= $signed(card1_card_core1_dda_arc2_dda_setup2_major[27-1:0]);
+            card1_card_core1_dda_arc2_dda_setup2_plan_totals_max <= card1_card_core1_dda_arc2_dda_setup2_major[27-1:0];
+        end
+        default: begin
+            card1_card_core1_dda_arc2_dda_setup2_m_is_y <= card1_card_core1_dda_arc2_dda_setup2_m_is_y;
+        end
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_dda_ready = (card1_card_core1_dda_arc2_dda_setup2_state == 3'b000);
+assign card1_card_core1_dda_arc2_dda_setup2_plan_done = (card1_card_core1_dda_arc2_dda_setup2_state == 3'b110);
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_lookup_variant
+    case (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant)
+        0: card1_card_core1_dda_arc2_dda_check2_variant_built = 0;
+        1: card1_card_core1_dda_arc2_dda_check2_variant_built = 0;
+        2: card1_card_core1_dda_arc2_dda_check2_variant_built = 1;
+        default: card1_card_core1_dda_arc2_dda_check2_variant_built = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_dda_arc2_dda_check2_move_offer = card1_card_core1_dda_arc2_dda_setup2_plan_done;
+assign card1_card_core1_dda_arc2_dda_setup2_plan_taken = card1_card_core1_dda_arc2_dda_check2_move_take;
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead, card1_card_core1_dda_arc2_dda_check2_variant_built, card1_card_core1_dda_arc2_dda_setup2_plan_beyond, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_plan_too_wide, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre, card1_card_core1_dda_arc2_dda_setup2_plan_off_circle, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_validate
+    reg bad;
+    bad = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre || card1_card_core1_dda_arc2_dda_setup2_plan_off_circle || (card1_card_core1_dda_arc2_dda_setup2_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
+    if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead) && card1_card_core1_dda_arc2_dda_setup2_plan_beyond)) begin
+        bad = 1'b1;
+    end
+    if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant != 3) && card1_card_core1_dda_arc2_dda_setup2_plan_too_wide)) begin
+        bad = 1'b1;
+    end
+    if ((!card1_card_core1_dda_arc2_dda_check2_variant_built)) begin
+        bad = 1'b1;
+    end
+    card1_card_core1_dda_arc2_dda_check2_move_error = (bad && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line));
+    card1_card_core1_dda_arc2_dda_check2_move_zero = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre);
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend, card1_card_core1_dda_arc2_dda_setup2_plan_crossings, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_geometry
+    card1_card_core1_dda_arc2_dda_check2_move_line = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line;
+    card1_card_core1_dda_arc2_dda_check2_move_variant = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant;
+    card1_card_core1_dda_arc2_dda_check2_move_ccw = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw;
+    card1_card_core1_dda_arc2_dda_check2_move_blend = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend;
+    card1_card_core1_dda_arc2_dda_check2_move_right = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe);
+    card1_card_core1_dda_arc2_dda_check2_move_up = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye);
+    card1_card_core1_dda_arc2_dda_check2_move_x_inward = card1_card_core1_dda_arc2_dda_setup2_plan_x_inward;
+    card1_card_core1_dda_arc2_dda_check2_move_quadrant = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant;
+    card1_card_core1_dda_arc2_dda_check2_move_crossings = card1_card_core1_dda_arc2_dda_setup2_plan_crossings;
+    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
+        card1_card_core1_dda_arc2_dda_check2_move_quadrant = 0;
+        card1_card_core1_dda_arc2_dda_check2_move_crossings = 0;
+    end
+    if ((card1_card_core1_dda_arc2_dda_setup2_plan_crossings == 0)) begin
+        card1_card_core1_dda_arc2_dda_check2_move_target_x = 2;
+        card1_card_core1_dda_arc2_dda_check2_move_target_y = 2;
+    end
+    else if (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward) begin
+        card1_card_core1_dda_arc2_dda_check2_move_target_x = 0;
+        card1_card_core1_dda_arc2_dda_check2_move_target_y = 1;
+    end
+    else begin
+        card1_card_core1_dda_arc2_dda_check2_move_target_x = 1;
+        card1_card_core1_dda_arc2_dda_check2_move_target_y = 0;
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_plan_totals_max, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys, card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye) begin: card1_card_core1_dda_arc2_dda_check2_magnitudes
+    card1_card_core1_dda_arc2_dda_check2_move_mag_x = card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs;
+    card1_card_core1_dda_arc2_dda_check2_move_mag_y = card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys;
+    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
+        card1_card_core1_dda_arc2_dda_check2_move_mag_x = card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye;
+        card1_card_core1_dda_arc2_dda_check2_move_mag_y = card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe;
+    end
+    card1_card_core1_dda_arc2_dda_check2_move_end_x = card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe;
+    card1_card_core1_dda_arc2_dda_check2_move_end_y = card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye;
+    card1_card_core1_dda_arc2_dda_check2_move_radius = card1_card_core1_dda_arc2_dda_setup2_plan_radius[24-1:0];
+    card1_card_core1_dda_arc2_dda_check2_move_totals_diff = card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff;
+    card1_card_core1_dda_arc2_dda_check2_move_totals_max = card1_card_core1_dda_arc2_dda_setup2_plan_totals_max;
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_plan_threshold, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_thresholds
+    reg [28-1:0] less;
+    reg [30-1:0] below;
+    reg [29-1:0] ones;
+    less = 28'h0;
+    below = 30'h0;
+    ones = 29'h0;
+    less = card1_card_core1_dda_arc2_dda_setup2_plan_threshold;
+    if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) && ((!1'b1) || (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant == 3)))) begin
+        less = 0;
+        less[24-1:0] = card1_card_core1_dda_arc2_dda_setup2_plan_radius[24-1:0];
+    end
+    card1_card_core1_dda_arc2_dda_check2_move_threshold = less;
+    below = (~{3'h0, less[28-1:1]});
+    if ((1'b1 && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) && ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant == 1) || (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant == 2)))) begin
+        ones = ({less, 1'b1} & (~{1'b0, less}));
+        below = (~{1'h0, ones});
+    end
+    card1_card_core1_dda_arc2_dda_check2_move_acc_init = $signed(below);
+    card1_card_core1_dda_arc2_dda_check2_move_acc_carry = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line && (!less[0]));
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys) begin: card1_card_core1_dda_arc2_dda_check2_precise_terms
+    reg [27-1:0] inward;
+    reg [27-1:0] outward;
+    reg [27-1:0] bias_in;
+    reg [27-1:0] bias_out;
+    inward = 27'h0;
+    outward = 27'h0;
+    bias_in = 27'h0;
+    bias_out = 27'h0;
+    inward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys};
+    outward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs};
+    if (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward) begin
+        inward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs};
+        outward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys};
+    end
+    bias_in = ({outward[(27 - 1)-1:0], 1'b0} - inward);
+    bias_out = (outward - {inward[(27 - 1)-1:0], 1'b0});
+    card1_card_core1_dda_arc2_dda_check2_move_bias_in = $signed(bias_in);
+    card1_card_core1_dda_arc2_dda_check2_move_bias_out = $signed(bias_out);
+end
+
+
+
+assign card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left = card1_card_core1_dda_arc2_dda_run2_dda_left2_larger;
+assign card1_card_core1_dda_arc2_dda_run2_step_last = (card1_card_core1_dda_arc2_dda_run2_dda_left2_difference == 0);
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_dda_left2_follow
+    reg [27-1:0] base;
+    reg [27-1:0] change;
+    base = 27'h0;
+    change = 27'h0;
+    base = card1_card_core1_dda_arc2_dda_run2_dda_left2_difference;
+    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+        base = card1_card_core1_dda_arc2_dda_check2_move_totals_diff;
+        if (card1_card_core1_dda_arc2_dda_check2_move_line) begin
+            change = 27'h7ffffff;
+        end
+    end
+    else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
+        if ((card1_card_core1_dda_arc2_dda_run2_step_line || (card1_card_core1_dda_arc2_dda_run2_step_step_x && (!card1_card_core1_dda_arc2_dda_run2_step_step_y)))) begin
+            change = 27'h7ffffff;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_run2_step_step_y && (!card1_card_core1_dda_arc2_dda_run2_step_step_x))) begin
+            change = 1;
+        end
+    end
+    card1_card_core1_dda_arc2_dda_run2_dda_left2_difference <= (base + change);
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_dda_left2_count_down
+    reg [27-1:0] base;
+    reg [27-1:0] less;
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 134217727;
+    end
+    else begin
+        base = 27'h0;
+        less = 27'h0;
+        base = card1_card_core1_dda_arc2_dda_run2_dda_left2_larger;
+        if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+            base = card1_card_core1_dda_arc2_dda_check2_move_totals_max;
+            less = 27'h7ffffff;
+        end
+        else if ((card1_card_core1_dda_arc2_dda_run2_step_pending && (!card1_card_core1_dda_arc2_dda_run2_step_blend))) begin
+            if (card1_card_core1_dda_arc2_dda_run2_step_line) begin
+                less = 27'h7ffffff;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_run2_dda_left2_difference == 0)) begin
+                if ((card1_card_core1_dda_arc2_dda_run2_step_step_x && card1_card_core1_dda_arc2_dda_run2_step_step_y)) begin
+                    less = 27'h7ffffff;
+                end
+            end
+            else if (card1_card_core1_dda_arc2_dda_run2_dda_left2_difference[(27 - 1)]) begin
+                if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
+                    less = 27'h7ffffff;
+                end
+            end
+            else if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
+                less = 27'h7ffffff;
+            end
+        end
+        card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= (base + less);
+        if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+            if ((card1_card_core1_dda_arc2_dda_check2_move_blend || card1_card_core1_dda_arc2_dda_check2_move_error || card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
+                card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 27'h7ffffff;
+            end
+        end
+        else if ((card1_card_core1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_arc2_dda_run2_step_finished)) begin
+            card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 27'h7ffffff;
+        end
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_signs
+    reg [28-1:0] inward;
+    reg [28-1:0] outward;
+    inward = 28'h0;
+    outward = 28'h0;
+    inward = ({card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term} + {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in});
+    outward = ({card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term} + {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out});
+    card1_card_core1_dda_arc2_dda_run2_step_inward_near = ($signed(inward) >= 0);
+    card1_card_core1_dda_arc2_dda_run2_step_outward_near = ($signed(outward) < 0);
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_step_step_y, card1_card_core1_dda_arc2_dda_run2_step_step_x) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_change
+    reg [27-1:0] outward;
+    reg [27-1:0] inward;
+    reg [27-1:0] first_sum;
+    reg stepped_in;
+    outward = 27'h0;
+    inward = 27'h0;
+    first_sum = 27'h0;
+    stepped_in = 1'b0;
+    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+        stepped_in = (card1_card_core1_dda_arc2_dda_run2_step_step_x == 1);
+        if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
+            outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y, 1'b1};
+        end
+        if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
+            inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x, 1'b0});
+        end
+    end
+    else begin
+        stepped_in = (card1_card_core1_dda_arc2_dda_run2_step_step_y == 1);
+        if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
+            outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x, 1'b1};
+        end
+        if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
+            inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y, 1'b0});
+        end
+    end
+    first_sum = ((card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term + outward) + {26'h0, stepped_in});
+    card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step = ((first_sum + inward) + {26'h0, stepped_in});
+end
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_update
+    reg [27-1:0] base_in;
+    reg [27-1:0] base_out;
+    reg [27-1:0] op_in;
+    reg [27-1:0] op_out;
+    reg stepped_in;
+    reg stepped_out;
+    reg turn;
+    base_in = 27'h0;
+    base_out = 27'h0;
+    op_in = 27'h0;
+    op_out = 27'h0;
+    stepped_in = (card1_card_core1_dda_arc2_dda_run2_step_step_y == 1);
+    stepped_out = (card1_card_core1_dda_arc2_dda_run2_step_step_x == 1);
+    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+        stepped_in = (card1_card_core1_dda_arc2_dda_run2_step_step_x == 1);
+        stepped_out = (card1_card_core1_dda_arc2_dda_run2_step_step_y == 1);
+    end
+    base_in = card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in;
+    base_out = card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out;
+    op_in = {25'h0, stepped_out, stepped_in};
+    op_out = {25'h0, stepped_in, stepped_out};
+    turn = (card1_card_core1_dda_arc2_dda_run2_step_new_piece == 1);
+    if (turn) begin
+        base_in = (~card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out);
+        base_out = (~card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in);
+        if ((stepped_in && stepped_out)) begin
+            op_in = 27'h7fffffd;
+            op_out = 27'h7fffffd;
+        end
+        else if (stepped_in) begin
+            op_in = 27'h7fffffe;
+            op_out = 27'h7ffffff;
+        end
+        else if (stepped_out) begin
+            op_in = 27'h7ffffff;
+            op_out = 27'h7fffffe;
+        end
+        else begin
+            op_in = 0;
+            op_out = 0;
+        end
+    end
+    if ((card1_card_core1_dda_arc2_dda_run2_step_pending && (!card1_card_core1_dda_arc2_dda_run2_step_line))) begin
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in <= ((base_in + op_in) + {26'h0, turn});
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out <= ((base_out + op_out) + {26'h0, turn});
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term <= card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step;
+    end
+    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in <= card1_card_core1_dda_arc2_dda_check2_move_bias_in;
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out <= card1_card_core1_dda_arc2_dda_check2_move_bias_out;
+        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term <= 1;
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_acc_y, card1_card_core1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_arc2_dda_run2_step_mag_x) begin: card1_card_core1_dda_arc2_dda_run2_look_ahead
+    reg [31-1:0] twice_x;
+    reg [31-1:0] twice_y;
+    twice_x = 31'h0;
+    twice_y = 31'h0;
+    twice_x = ({card1_card_core1_dda_arc2_dda_run2_acc_x[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_x} + {6'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y, 1'b0});
+    twice_y = ({card1_card_core1_dda_arc2_dda_run2_acc_y[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_y} + {6'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x, 1'b0});
+    card1_card_core1_dda_arc2_dda_run2_ahead_x = ($signed(twice_x) >= 0);
+    card1_card_core1_dda_arc2_dda_run2_ahead_y = ($signed(twice_y) >= 0);
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_kept_x, card1_card_core1_dda_arc2_dda_run2_threshold, card1_card_core1_dda_arc2_dda_run2_threshold_carry, card1_card_core1_dda_arc2_dda_run2_kept_y, card1_card_core1_dda_arc2_dda_run2_first, card1_card_core1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_acc_y, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_step_step_y, card1_card_core1_dda_arc2_dda_run2_step_step_x) begin: card1_card_core1_dda_arc2_dda_run2_accumulate
+    reg [30-1:0] minus_x;
+    reg [30-1:0] minus_y;
+    minus_x = 30'h0;
+    minus_y = 30'h0;
+    card1_card_core1_dda_arc2_dda_run2_sum_x = (({card1_card_core1_dda_arc2_dda_run2_acc_x[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_x} + {7'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y}) + {30'h0, card1_card_core1_dda_arc2_dda_run2_first});
+    card1_card_core1_dda_arc2_dda_run2_sum_y = (({card1_card_core1_dda_arc2_dda_run2_acc_y[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_y} + {7'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x}) + {30'h0, card1_card_core1_dda_arc2_dda_run2_first});
+    if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
+        minus_x = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_threshold});
+    end
+    if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
+        minus_y = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_threshold});
+    end
+    card1_card_core1_dda_arc2_dda_run2_less_x = ((card1_card_core1_dda_arc2_dda_run2_kept_x + minus_x) + {29'h0, (card1_card_core1_dda_arc2_dda_run2_step_step_x && card1_card_core1_dda_arc2_dda_run2_threshold_carry)});
+    card1_card_core1_dda_arc2_dda_run2_less_y = ((card1_card_core1_dda_arc2_dda_run2_kept_y + minus_y) + {29'h0, (card1_card_core1_dda_arc2_dda_run2_step_step_y && card1_card_core1_dda_arc2_dda_run2_threshold_carry)});
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_sum_y, card1_card_core1_dda_arc2_dda_run2_sum_x, card1_card_core1_dda_arc2_dda_run2_sum_x, card1_card_core1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_arc2_dda_run2_over_y) begin: card1_card_core1_dda_arc2_dda_run2_overflow
+    card1_card_core1_dda_arc2_dda_run2_over_x = (!card1_card_core1_dda_arc2_dda_run2_sum_x[30]);
+    card1_card_core1_dda_arc2_dda_run2_over_y = (!card1_card_core1_dda_arc2_dda_run2_sum_y[30]);
+    card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_sum_x[30]) && card1_card_core1_dda_arc2_dda_run2_sum_x[(30 - 1)]);
+    if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_step_line))) begin
+        card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_sum_x[30]) && card1_card_core1_dda_arc2_dda_run2_sum_x[(30 - 1)]);
+    end
+    card1_card_core1_dda_arc2_dda_run2_saturate_y = ((!card1_card_core1_dda_arc2_dda_run2_sum_y[30]) && card1_card_core1_dda_arc2_dda_run2_sum_y[(30 - 1)]);
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_step_mag_x) begin: card1_card_core1_dda_arc2_dda_run2_magnitudes
+    reg [24-1:0] op_x;
+    reg [24-1:0] op_y;
+    op_x = 24'h0;
+    op_y = 24'h0;
+    op_x = 1;
+    op_y = 16777215;
+    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+        op_x = 16777215;
+        op_y = 1;
+    end
+    card1_card_core1_dda_arc2_dda_run2_stepped_x = (card1_card_core1_dda_arc2_dda_run2_step_mag_x + op_x);
+    card1_card_core1_dda_arc2_dda_run2_stepped_y = (card1_card_core1_dda_arc2_dda_run2_step_mag_y + op_y);
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_radius, card1_card_core1_dda_arc2_dda_run2_target_y, card1_card_core1_dda_arc2_dda_run2_end_y, card1_card_core1_dda_arc2_dda_run2_target_x, card1_card_core1_dda_arc2_dda_run2_end_x) begin: card1_card_core1_dda_arc2_dda_run2_goals
+    card1_card_core1_dda_arc2_dda_run2_goal_x = 0;
+    case (card1_card_core1_dda_arc2_dda_run2_target_x)
+        'h1: begin
+            card1_card_core1_dda_arc2_dda_run2_goal_x = card1_card_core1_dda_arc2_dda_run2_radius;
+        end
+        'h2: begin
+            card1_card_core1_dda_arc2_dda_run2_goal_x = card1_card_core1_dda_arc2_dda_run2_end_x;
+        end
+    endcase
+    card1_card_core1_dda_arc2_dda_run2_goal_y = 0;
+    case (card1_card_core1_dda_arc2_dda_run2_target_y)
+        'h1: begin
+            card1_card_core1_dda_arc2_dda_run2_goal_y = card1_card_core1_dda_arc2_dda_run2_radius;
+        end
+        'h2: begin
+            card1_card_core1_dda_arc2_dda_run2_goal_y = card1_card_core1_dda_arc2_dda_run2_end_y;
+        end
+    endcase
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_goal_x, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_goal_y) begin: card1_card_core1_dda_arc2_dda_run2_end_tests
+    reg [24-1:0] diff_x;
+    reg [24-1:0] diff_y;
+    reg [23-1:0] up_x;
+    reg [23-1:0] up_y;
+    reg [23-1:0] down_x;
+    reg [23-1:0] down_y;
+    diff_x = 24'h0;
+    diff_y = 24'h0;
+    up_x = 23'h0;
+    up_y = 23'h0;
+    down_x = 23'h0;
+    down_y = 23'h0;
+    diff_x = (card1_card_core1_dda_arc2_dda_run2_step_mag_x ^ card1_card_core1_dda_arc2_dda_run2_goal_x);
+    diff_y = (card1_card_core1_dda_arc2_dda_run2_step_mag_y ^ card1_card_core1_dda_arc2_dda_run2_goal_y);
+    up_x = (card1_card_core1_dda_arc2_dda_run2_step_mag_x[(24 - 1)-1:0] & (~card1_card_core1_dda_arc2_dda_run2_goal_x[(24 - 1)-1:0]));
+    up_y = (card1_card_core1_dda_arc2_dda_run2_step_mag_y[(24 - 1)-1:0] & (~card1_card_core1_dda_arc2_dda_run2_goal_y[(24 - 1)-1:0]));
+    down_x = (card1_card_core1_dda_arc2_dda_run2_goal_x[(24 - 1)-1:0] & (~card1_card_core1_dda_arc2_dda_run2_step_mag_x[(24 - 1)-1:0]));
+    down_y = (card1_card_core1_dda_arc2_dda_run2_goal_y[(24 - 1)-1:0] & (~card1_card_core1_dda_arc2_dda_run2_step_mag_y[(24 - 1)-1:0]));
+    card1_card_core1_dda_arc2_dda_run2_at_x = (diff_x == 0);
+    card1_card_core1_dda_arc2_dda_run2_at_y = (diff_y == 0);
+    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+        card1_card_core1_dda_arc2_dda_run2_near_x = (diff_x == {down_x, 1'b1});
+        card1_card_core1_dda_arc2_dda_run2_near_y = (diff_y == {up_y, 1'b1});
+    end
+    else begin
+        card1_card_core1_dda_arc2_dda_run2_near_x = (diff_x == {up_x, 1'b1});
+        card1_card_core1_dda_arc2_dda_run2_near_y = (diff_y == {down_y, 1'b1});
+    end
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_run2_over_x, card1_card_core1_dda_arc2_dda_run2_at_x, card1_card_core1_dda_arc2_dda_run2_near_y, card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_step_outward_near, card1_card_core1_dda_arc2_dda_run2_ahead_x, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_near_x, card1_card_core1_dda_arc2_dda_run2_at_y, card1_card_core1_dda_arc2_dda_run2_step_last, card1_card_core1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_arc2_dda_run2_crossings, card1_card_core1_dda_arc2_dda_run2_ahead_y, card1_card_core1_dda_arc2_dda_run2_step_inward_near, card1_card_core1_dda_arc2_dda_run2_over_y, card1_card_core1_dda_arc2_dda_run2_over_x) begin: card1_card_core1_dda_arc2_dda_run2_decide
+    reg step_x;
+    reg step_y;
+    reg diagonal;
+    reg choose_x;
+    reg choose_y;
+    reg tail_ends;
+    reg both_near;
+    reg last_piece;
+    step_x = (card1_card_core1_dda_arc2_dda_run2_over_x == 1);
+    step_y = (card1_card_core1_dda_arc2_dda_run2_over_y == 1);
+    diagonal = (card1_card_core1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_arc2_dda_run2_over_y);
+    choose_x = 1'b0;
+    choose_y = 1'b0;
+    if (1'b1) begin
+        choose_x = (card1_card_core1_dda_arc2_dda_run2_step_outward_near == 1);
+        choose_y = (card1_card_core1_dda_arc2_dda_run2_step_inward_near == 1);
+        if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+            choose_x = (card1_card_core1_dda_arc2_dda_run2_step_inward_near == 1);
+            choose_y = (card1_card_core1_dda_arc2_dda_run2_step_outward_near == 1);
+        end
+    end
+    if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0))) begin
+        step_x = ((card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_over_x) || ((!card1_card_core1_dda_arc2_dda_run2_over_y) && card1_card_core1_dda_arc2_dda_run2_over_x));
+        diagonal = (card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_over_x);
+    end
+    else if ((1'b1 && (card1_card_core1_dda_arc2_dda_run2_variant == 2))) begin
+        step_x = (card1_card_core1_dda_arc2_dda_run2_over_x || (card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_ahead_x));
+        step_y = (card1_card_core1_dda_arc2_dda_run2_over_y || (card1_card_core1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_arc2_dda_run2_ahead_y));
+        diagonal = ((card1_card_core1_dda_arc2_dda_run2_over_x || (card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_ahead_x)) && (card1_card_core1_dda_arc2_dda_run2_over_y || (card1_card_core1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_arc2_dda_run2_ahead_y)));
+    end
+    else if ((1'b1 && (card1_card_core1_dda_arc2_dda_run2_variant == 3))) begin
+        step_x = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && choose_x);
+        step_y = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && choose_y);
+        diagonal = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && card1_card_core1_dda_arc2_dda_run2_step_inward_near && card1_card_core1_dda_arc2_dda_run2_step_outward_near);
+    end
+    if (card1_card_core1_dda_arc2_dda_run2_step_line) begin
+        card1_card_core1_dda_arc2_dda_run2_go_x = card1_card_core1_dda_arc2_dda_run2_over_x;
+        card1_card_core1_dda_arc2_dda_run2_go_y = card1_card_core1_dda_arc2_dda_run2_over_y;
+    end
+    else if ((card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y)) begin
+        card1_card_core1_dda_arc2_dda_run2_go_x = (!card1_card_core1_dda_arc2_dda_run2_at_x);
+        card1_card_core1_dda_arc2_dda_run2_go_y = (!card1_card_core1_dda_arc2_dda_run2_at_y);
+    end
+    else begin
+        card1_card_core1_dda_arc2_dda_run2_go_x = step_x;
+        card1_card_core1_dda_arc2_dda_run2_go_y = step_y;
+    end
+    card1_card_core1_dda_arc2_dda_run2_tail = ((!card1_card_core1_dda_arc2_dda_run2_step_line) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y));
+    tail_ends = ((!card1_card_core1_dda_arc2_dda_run2_step_line) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_near_x) && (card1_card_core1_dda_arc2_dda_run2_at_y || card1_card_core1_dda_arc2_dda_run2_near_y));
+    both_near = ((!card1_card_core1_dda_arc2_dda_run2_step_line) && (!card1_card_core1_dda_arc2_dda_run2_at_x) && (!card1_card_core1_dda_arc2_dda_run2_at_y) && card1_card_core1_dda_arc2_dda_run2_near_x && card1_card_core1_dda_arc2_dda_run2_near_y);
+    last_piece = (card1_card_core1_dda_arc2_dda_run2_crossings == 0);
+    card1_card_core1_dda_arc2_dda_run2_finished = ((card1_card_core1_dda_arc2_dda_run2_step_line && card1_card_core1_dda_arc2_dda_run2_step_last) || (last_piece && (tail_ends || (both_near && diagonal))));
+    card1_card_core1_dda_arc2_dda_run2_next_piece = ((!last_piece) && (tail_ends || (both_near && diagonal)));
+end
+
+
+
+assign card1_card_core1_dda_arc2_dda_check2_move_take = (card1_card_core1_dda_arc2_dda_check2_move_offer && ((!card1_card_core1_dda_arc2_dda_run2_active) || (card1_card_core1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_arc2_dda_run2_step_finished)));
+assign card1_card_core1_dda_arc2_dda_run2_taking = (card1_card_core1_dda_arc2_dda_run2_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_arc2_dda_run2_step_pending));
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_iterate
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_dda_run2_threshold_carry <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_blend <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_step_y <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_pending <= 0;
+        card1_card_core1_dda_arc2_dda_run2_variant <= 3;
+        card1_card_core1_regs_fifo2_steps_step_x <= 0;
+        card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
+        card1_card_core1_dda_arc2_dda_run2_crossings <= 0;
+        card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_new_piece <= 0;
+        card1_card_core1_dda_arc2_dda_run2_first <= 0;
+        card1_card_core1_regs_fifo2_steps_dir_x <= 0;
+        card1_card_core1_regs_fifo2_steps_dir_y <= 0;
+        card1_card_core1_dda_arc2_dda_run2_quadrant <= 0;
+        card1_card_core1_regs_fifo2_steps_step_y <= 0;
+        card1_card_core1_dda_arc2_dda_run2_right <= 0;
+        card1_card_core1_dda_arc2_dda_run2_up <= 0;
+        card1_card_core1_dda_arc2_dda_run2_active <= 0;
+        card1_card_core1_dda_arc2_dda_run2_tail_taken <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_x_inward <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_line <= 0;
+        card1_card_core1_dda_arc2_dda_run2_ccw <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_step_x <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_finished <= 0;
+    end
+    else begin
         card1_card_core1_regs_fifo2_steps_step_x <= 1'b0;
         card1_card_core1_regs_fifo2_steps_step_y <= 1'b0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b0;
-        card1_card_core1_dda_arc2_pending <= 1'b0;
-        card1_card_core1_dda_arc2_dec_step_x <= card1_card_core1_dda_arc2_it_step_x;
-        card1_card_core1_dda_arc2_dec_step_y <= card1_card_core1_dda_arc2_it_step_y;
-        card1_card_core1_dda_arc2_dec_tail <= card1_card_core1_dda_arc2_it_tail;
-        card1_card_core1_dda_arc2_dec_finished <= card1_card_core1_dda_arc2_it_finished;
-        card1_card_core1_dda_arc2_dec_next_piece <= card1_card_core1_dda_arc2_it_next_piece;
-        card1_card_core1_dda_arc2_dec_in <= (((card1_card_core1_dda_arc2_it_step_x && card1_card_core1_dda_arc2_x_inward) || (card1_card_core1_dda_arc2_it_step_y && (!card1_card_core1_dda_arc2_x_inward))) && (!card1_card_core1_dda_arc2_run_line));
-        card1_card_core1_dda_arc2_dec_out <= (((card1_card_core1_dda_arc2_it_step_x && (!card1_card_core1_dda_arc2_x_inward)) || (card1_card_core1_dda_arc2_it_step_y && card1_card_core1_dda_arc2_x_inward)) && (!card1_card_core1_dda_arc2_run_line));
-        card1_card_core1_dda_arc2_dec_sum_x <= card1_card_core1_dda_arc2_it_sum_x;
-        card1_card_core1_dda_arc2_dec_sum_y <= card1_card_core1_dda_arc2_it_sum_y;
-        if ((card1_card_core1_dda_arc2_run_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_arc2_pending))) begin
-            card1_card_core1_dda_arc2_pending <= 1'b1;
-            card1_card_core1_regs_fifo2_steps_step_x <= card1_card_core1_dda_arc2_it_step_x;
-            card1_card_core1_regs_fifo2_steps_step_y <= card1_card_core1_dda_arc2_it_step_y;
-            card1_card_core1_regs_fifo2_steps_dir_x <= card1_card_core1_dda_arc2_it_dir_x;
-            card1_card_core1_regs_fifo2_steps_dir_y <= card1_card_core1_dda_arc2_it_dir_y;
-            card1_card_core1_regs_fifo2_sequencer2_dda_done <= card1_card_core1_dda_arc2_it_finished;
-        end
-        else if (card1_card_core1_dda_arc2_pending) begin
-            if ((!card1_card_core1_dda_arc2_dec_tail)) begin
-                less_x = card1_card_core1_dda_arc2_dec_sum_x[32-1:0];
-                if (card1_card_core1_dda_arc2_dec_step_x) begin
-                    less_x = (card1_card_core1_dda_arc2_dec_sum_x[32-1:0] - {3'h0, card1_card_core1_dda_arc2_threshold});
-                end
-                less_y = card1_card_core1_dda_arc2_dec_sum_y[32-1:0];
-                if (card1_card_core1_dda_arc2_dec_step_y) begin
-                    less_y = (card1_card_core1_dda_arc2_dec_sum_y[32-1:0] - {3'h0, card1_card_core1_dda_arc2_threshold});
-                end
-                card1_card_core1_dda_arc2_acc_x <= $signed(less_x);
-                card1_card_core1_dda_arc2_acc_y <= $signed(less_y);
-            end
-            error_op = {5'h0, card1_card_core1_dda_arc2_pos_out, 1'b1};
-            if ((card1_card_core1_dda_arc2_dec_in && card1_card_core1_dda_arc2_dec_out)) begin
-                error_op = {card1_card_core1_dda_arc2_half_sum[(30 - 1)-1:0], 1'b1};
-            end
-            else if (card1_card_core1_dda_arc2_dec_in) begin
-                error_op = {card1_card_core1_dda_arc2_neg_in[(30 - 1)-1:0], 1'b1};
-            end
-            error_sum = ((card1_card_core1_dda_arc2_radial_error[30-1:0] + error_op) + {29'h0, (card1_card_core1_dda_arc2_dec_in && card1_card_core1_dda_arc2_dec_out)});
-            if ((card1_card_core1_dda_arc2_dec_in || card1_card_core1_dda_arc2_dec_out)) begin
-                card1_card_core1_dda_arc2_radial_error <= $signed(error_sum);
-            end
-            card1_card_core1_dda_arc2_left_x <= (card1_card_core1_dda_arc2_left_x - $signed({26'h0, card1_card_core1_dda_arc2_dec_step_x}));
-            card1_card_core1_dda_arc2_left_y <= (card1_card_core1_dda_arc2_left_y - $signed({26'h0, card1_card_core1_dda_arc2_dec_step_y}));
-            if ((card1_card_core1_dda_arc2_dec_step_x && (!card1_card_core1_dda_arc2_run_line))) begin
-                step_op_y = 1;
-                if (card1_card_core1_dda_arc2_x_inward) begin
-                    step_op_y = 16777215;
-                end
-            end
-            if ((card1_card_core1_dda_arc2_dec_step_y && (!card1_card_core1_dda_arc2_run_line))) begin
-                step_op_x = 16777215;
-                if (card1_card_core1_dda_arc2_x_inward) begin
-                    step_op_x = 1;
-                end
-            end
-            card1_card_core1_dda_arc2_integrand_y <= (card1_card_core1_dda_arc2_integrand_y + step_op_y);
-            card1_card_core1_dda_arc2_integrand_x <= (card1_card_core1_dda_arc2_integrand_x + step_op_x);
-            base_y = card1_card_core1_dda_arc2_stepped_y;
-            base_op_y = step_op_y;
-            base_x = card1_card_core1_dda_arc2_stepped_x;
-            base_op_x = step_op_x;
-            if (card1_card_core1_dda_arc2_dec_next_piece) begin
-                base_op_y = 1;
-                base_y = 0;
-                base_op_x = 1;
-                base_x = 0;
-                if (card1_card_core1_dda_arc2_x_inward) begin
-                    base_op_x = 16777215;
-                    base_x = card1_card_core1_dda_arc2_radius;
-                end
-                else begin
-                    base_op_y = 16777215;
-                    base_y = card1_card_core1_dda_arc2_radius;
-                end
-            end
-            card1_card_core1_dda_arc2_stepped_y <= (base_y + base_op_y);
-            card1_card_core1_dda_arc2_stepped_x <= (base_x + base_op_x);
-            in_out = {card1_card_core1_dda_arc2_dec_in, card1_card_core1_dda_arc2_dec_out};
-            neg_base = card1_card_core1_dda_arc2_neg_in;
-            half_base = card1_card_core1_dda_arc2_half_sum;
-            q_in_base = card1_card_core1_dda_arc2_q_in;
-            q_out_base = card1_card_core1_dda_arc2_q_out;
-            q_in_op = {card1_card_core1_dda_arc2_dec_in, card1_card_core1_dda_arc2_dec_out, 1'b0};
-            q_out_op = {card1_card_core1_dda_arc2_dec_out, card1_card_core1_dda_arc2_dec_in, 1'b0};
-            card1_card_core1_dda_arc2_pos_out <= (card1_card_core1_dda_arc2_pos_out + {23'h0, card1_card_core1_dda_arc2_dec_out});
-            if (card1_card_core1_dda_arc2_dec_next_piece) begin
-                inverse = (~{7'h0, card1_card_core1_dda_arc2_radius});
-                neg_base = inverse[(30 - 1)-1:0];
-                half_base = inverse[(30 + 1)-1:0];
-                q_in_base = {inverse[30-1:0], 2'h3};
-                q_out_base = {inverse[(30 + 1)-1:0], 1'b1};
-                in_out = 1;
-                q_in_op = 4;
-                q_out_op = 4;
-                card1_card_core1_dda_arc2_pos_out <= 0;
-            end
-            neg_base = (neg_base + {28'h0, (card1_card_core1_dda_arc2_dec_in || card1_card_core1_dda_arc2_dec_next_piece)});
-            half_base = ((half_base + {30'h0, in_out[1]}) + {30'h0, in_out[0]});
-            q_in_base = (q_in_base + {29'h0, q_in_op});
-            q_out_base = (q_out_base + {29'h0, q_out_op});
-            card1_card_core1_dda_arc2_neg_in <= $signed(neg_base);
-            card1_card_core1_dda_arc2_half_sum <= $signed(half_base);
-            card1_card_core1_dda_arc2_q_in <= $signed(q_in_base);
-            card1_card_core1_dda_arc2_q_out <= $signed(q_out_base);
-            if (card1_card_core1_dda_arc2_dec_finished) begin
-                card1_card_core1_dda_arc2_run_active <= 1'b0;
-            end
-            if (card1_card_core1_dda_arc2_dec_next_piece) begin
-                card1_card_core1_dda_arc2_x_inward <= (!card1_card_core1_dda_arc2_x_inward);
-                if (card1_card_core1_dda_arc2_x_inward) begin
-                    card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_radius;
-                    card1_card_core1_dda_arc2_target_y <= 0;
-                end
-                else begin
-                    card1_card_core1_dda_arc2_target_x <= 0;
-                    card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_radius;
-                end
-                if ((card1_card_core1_dda_arc2_crossings == 1)) begin
-                    card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_run_end_x;
-                    card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_run_end_y;
-                end
-                if (card1_card_core1_dda_arc2_run_ccw) begin
-                    card1_card_core1_dda_arc2_quadrant <= (card1_card_core1_dda_arc2_quadrant + 1);
-                end
-                else begin
-                    card1_card_core1_dda_arc2_quadrant <= (card1_card_core1_dda_arc2_quadrant - 1);
-                end
-                card1_card_core1_dda_arc2_crossings <= (card1_card_core1_dda_arc2_crossings - 1);
-            end
-        end
-        if ((card1_card_core1_dda_arc2_hand_end && card1_card_core1_dda_arc2_chk_zero)) begin
-            card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
-            card1_card_core1_dda_arc2_quadrant <= 0;
-        end
-        if (card1_card_core1_dda_arc2_hand_load) begin
-            card1_card_core1_dda_arc2_run_active <= 1'b1;
-            card1_card_core1_dda_arc2_run_line <= card1_card_core1_dda_arc2_is_line;
-            card1_card_core1_dda_arc2_run_variant <= card1_card_core1_dda_arc2_variant;
-            card1_card_core1_dda_arc2_run_ccw <= card1_card_core1_dda_arc2_ccw;
-            card1_card_core1_dda_arc2_run_blend <= card1_card_core1_dda_arc2_blend;
-            card1_card_core1_dda_arc2_run_end_x <= card1_card_core1_dda_arc2_mag_xe;
-            card1_card_core1_dda_arc2_run_end_y <= card1_card_core1_dda_arc2_mag_ye;
-            card1_card_core1_dda_arc2_run_right <= (!card1_card_core1_dda_arc2_neg_xe);
-            card1_card_core1_dda_arc2_run_up <= (!card1_card_core1_dda_arc2_neg_ye);
-            card1_card_core1_dda_arc2_acc_x <= card1_card_core1_dda_arc2_chk_acc_init;
-            card1_card_core1_dda_arc2_acc_y <= card1_card_core1_dda_arc2_chk_acc_init;
-            card1_card_core1_dda_arc2_threshold <= card1_card_core1_dda_arc2_chk_threshold;
-            card1_card_core1_dda_arc2_radial_error <= 0;
-            card1_card_core1_dda_arc2_quadrant <= card1_card_core1_dda_arc2_chk_quadrant;
-            card1_card_core1_dda_arc2_x_inward <= (card1_card_core1_dda_arc2_chk_quadrant[0] != card1_card_core1_dda_arc2_ccw);
-            card1_card_core1_dda_arc2_crossings <= card1_card_core1_dda_arc2_chk_crossings;
-            card1_card_core1_dda_arc2_target_x <= card1_card_core1_dda_arc2_chk_target_x;
-            card1_card_core1_dda_arc2_target_y <= card1_card_core1_dda_arc2_chk_target_y;
-            card1_card_core1_dda_arc2_radius <= card1_card_core1_dda_arc2_radius_q[24-1:0];
-            card1_card_core1_dda_arc2_left_x <= card1_card_core1_dda_arc2_chk_left_x;
-            card1_card_core1_dda_arc2_left_y <= card1_card_core1_dda_arc2_chk_left_y;
-            card1_card_core1_dda_arc2_integrand_x <= card1_card_core1_dda_arc2_first_integrand_x;
-            card1_card_core1_dda_arc2_integrand_y <= card1_card_core1_dda_arc2_first_integrand_y;
-            card1_card_core1_dda_arc2_stepped_x <= card1_card_core1_dda_arc2_first_stepped_x;
-            card1_card_core1_dda_arc2_stepped_y <= card1_card_core1_dda_arc2_first_stepped_y;
-            card1_card_core1_dda_arc2_neg_in <= card1_card_core1_dda_arc2_chk_neg_in;
-            card1_card_core1_dda_arc2_pos_out <= card1_card_core1_dda_arc2_first_out;
-            card1_card_core1_dda_arc2_half_sum <= card1_card_core1_dda_arc2_first_half;
-            card1_card_core1_dda_arc2_q_in <= card1_card_core1_dda_arc2_first_q_in;
-            card1_card_core1_dda_arc2_q_out <= card1_card_core1_dda_arc2_first_q_out;
-        end
-    end
-end
-
-
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_left_output
-    reg signed [27-1:0] larger;
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left <= 134217727;
-    end
-    else begin
-        larger = 0;
-        if ((card1_card_core1_dda_arc2_left_x >= card1_card_core1_dda_arc2_left_y)) begin
-            larger = card1_card_core1_dda_arc2_left_x;
-        end
-        else begin
-            larger = card1_card_core1_dda_arc2_left_y;
-        end
-        if ((card1_card_core1_dda_arc2_run_active && (!card1_card_core1_dda_arc2_run_blend))) begin
-            if ((larger < 0)) begin
-                card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_pending <= 1'b0;
+        if (card1_card_core1_dda_arc2_dda_run2_taking) begin
+            card1_card_core1_dda_arc2_dda_run2_step_pending <= 1'b1;
+            card1_card_core1_regs_fifo2_steps_step_x <= card1_card_core1_dda_arc2_dda_run2_go_x;
+            card1_card_core1_regs_fifo2_steps_step_y <= card1_card_core1_dda_arc2_dda_run2_go_y;
+            if (card1_card_core1_dda_arc2_dda_run2_step_line) begin
+                card1_card_core1_regs_fifo2_steps_dir_x <= card1_card_core1_dda_arc2_dda_run2_right;
+                card1_card_core1_regs_fifo2_steps_dir_y <= card1_card_core1_dda_arc2_dda_run2_up;
             end
             else begin
-                card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left <= larger[27-1:0];
+                card1_card_core1_regs_fifo2_steps_dir_x <= ((card1_card_core1_dda_arc2_dda_run2_quadrant[0] == card1_card_core1_dda_arc2_dda_run2_quadrant[1]) != card1_card_core1_dda_arc2_dda_run2_step_x_inward);
+                card1_card_core1_regs_fifo2_steps_dir_y <= ((!card1_card_core1_dda_arc2_dda_run2_quadrant[1]) == card1_card_core1_dda_arc2_dda_run2_step_x_inward);
+            end
+            card1_card_core1_regs_fifo2_sequencer2_dda_done <= card1_card_core1_dda_arc2_dda_run2_finished;
+            card1_card_core1_dda_arc2_dda_run2_step_step_x <= card1_card_core1_dda_arc2_dda_run2_go_x;
+            card1_card_core1_dda_arc2_dda_run2_step_step_y <= card1_card_core1_dda_arc2_dda_run2_go_y;
+            card1_card_core1_dda_arc2_dda_run2_step_finished <= card1_card_core1_dda_arc2_dda_run2_finished;
+            card1_card_core1_dda_arc2_dda_run2_tail_taken <= card1_card_core1_dda_arc2_dda_run2_tail;
+            card1_card_core1_dda_arc2_dda_run2_step_new_piece <= card1_card_core1_dda_arc2_dda_run2_next_piece;
+            card1_card_core1_dda_arc2_dda_run2_first <= 1'b0;
+        end
+        else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
+            if (card1_card_core1_dda_arc2_dda_run2_step_finished) begin
+                card1_card_core1_dda_arc2_dda_run2_active <= 1'b0;
+            end
+            if (card1_card_core1_dda_arc2_dda_run2_step_new_piece) begin
+                card1_card_core1_dda_arc2_dda_run2_step_x_inward <= (!card1_card_core1_dda_arc2_dda_run2_step_x_inward);
+                card1_card_core1_dda_arc2_dda_run2_crossings <= (card1_card_core1_dda_arc2_dda_run2_crossings - 1);
+                if (card1_card_core1_dda_arc2_dda_run2_ccw) begin
+                    card1_card_core1_dda_arc2_dda_run2_quadrant <= (card1_card_core1_dda_arc2_dda_run2_quadrant + 1);
+                end
+                else begin
+                    card1_card_core1_dda_arc2_dda_run2_quadrant <= (card1_card_core1_dda_arc2_dda_run2_quadrant - 1);
+                end
+                if ((card1_card_core1_dda_arc2_dda_run2_crossings == 1)) begin
+                    card1_card_core1_dda_arc2_dda_run2_target_x <= 2;
+                    card1_card_core1_dda_arc2_dda_run2_target_y <= 2;
+                end
+                else if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+                    card1_card_core1_dda_arc2_dda_run2_target_x <= 1;
+                    card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
+                end
+                else begin
+                    card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
+                    card1_card_core1_dda_arc2_dda_run2_target_y <= 1;
+                end
             end
         end
-        else begin
-            card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left <= 27'h7ffffff;
+        if ((card1_card_core1_dda_arc2_dda_check2_move_take && (!card1_card_core1_dda_arc2_dda_check2_move_error) && (!card1_card_core1_dda_arc2_dda_check2_move_zero))) begin
+            card1_card_core1_dda_arc2_dda_run2_active <= 1'b1;
+            card1_card_core1_dda_arc2_dda_run2_first <= card1_card_core1_dda_arc2_dda_check2_move_acc_carry;
+            card1_card_core1_dda_arc2_dda_run2_step_line <= card1_card_core1_dda_arc2_dda_check2_move_line;
+            card1_card_core1_dda_arc2_dda_run2_variant <= card1_card_core1_dda_arc2_dda_check2_move_variant;
+            card1_card_core1_dda_arc2_dda_run2_ccw <= card1_card_core1_dda_arc2_dda_check2_move_ccw;
+            card1_card_core1_dda_arc2_dda_run2_step_blend <= card1_card_core1_dda_arc2_dda_check2_move_blend;
+            card1_card_core1_dda_arc2_dda_run2_right <= card1_card_core1_dda_arc2_dda_check2_move_right;
+            card1_card_core1_dda_arc2_dda_run2_up <= card1_card_core1_dda_arc2_dda_check2_move_up;
+            card1_card_core1_dda_arc2_dda_run2_quadrant <= card1_card_core1_dda_arc2_dda_check2_move_quadrant;
+            card1_card_core1_dda_arc2_dda_run2_step_x_inward <= card1_card_core1_dda_arc2_dda_check2_move_x_inward;
+            card1_card_core1_dda_arc2_dda_run2_crossings <= card1_card_core1_dda_arc2_dda_check2_move_crossings;
+            card1_card_core1_dda_arc2_dda_run2_target_x <= card1_card_core1_dda_arc2_dda_check2_move_target_x;
+            card1_card_core1_dda_arc2_dda_run2_target_y <= card1_card_core1_dda_arc2_dda_check2_move_target_y;
+            card1_card_core1_dda_arc2_dda_run2_threshold_carry <= card1_card_core1_dda_arc2_dda_check2_move_line;
+        end
+        if ((card1_card_core1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
+            card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
+            card1_card_core1_dda_arc2_dda_run2_quadrant <= 0;
+        end
+    end
+end
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_datapath
+    if (card1_card_core1_dda_arc2_dda_run2_taking) begin
+        card1_card_core1_dda_arc2_dda_run2_kept_x <= card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0];
+        if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_step_line))) begin
+            card1_card_core1_dda_arc2_dda_run2_kept_x <= card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0];
+        end
+        card1_card_core1_dda_arc2_dda_run2_kept_y <= card1_card_core1_dda_arc2_dda_run2_sum_y[30-1:0];
+        if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_x)) begin
+            card1_card_core1_dda_arc2_dda_run2_kept_x <= 536870911;
+        end
+        if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_y)) begin
+            card1_card_core1_dda_arc2_dda_run2_kept_y <= 536870911;
+        end
+    end
+    else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
+        if ((!card1_card_core1_dda_arc2_dda_run2_tail_taken)) begin
+            card1_card_core1_dda_arc2_dda_run2_acc_x <= $signed(card1_card_core1_dda_arc2_dda_run2_less_x);
+            card1_card_core1_dda_arc2_dda_run2_acc_y <= $signed(card1_card_core1_dda_arc2_dda_run2_less_y);
+        end
+        if ((!card1_card_core1_dda_arc2_dda_run2_step_line)) begin
+            if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
+                card1_card_core1_dda_arc2_dda_run2_step_mag_x <= card1_card_core1_dda_arc2_dda_run2_stepped_x;
+            end
+            if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
+                card1_card_core1_dda_arc2_dda_run2_step_mag_y <= card1_card_core1_dda_arc2_dda_run2_stepped_y;
+            end
+        end
+    end
+    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
+        card1_card_core1_dda_arc2_dda_run2_step_mag_x <= card1_card_core1_dda_arc2_dda_check2_move_mag_x;
+        card1_card_core1_dda_arc2_dda_run2_step_mag_y <= card1_card_core1_dda_arc2_dda_check2_move_mag_y;
+        card1_card_core1_dda_arc2_dda_run2_end_x <= card1_card_core1_dda_arc2_dda_check2_move_end_x;
+        card1_card_core1_dda_arc2_dda_run2_end_y <= card1_card_core1_dda_arc2_dda_check2_move_end_y;
+        card1_card_core1_dda_arc2_dda_run2_radius <= card1_card_core1_dda_arc2_dda_check2_move_radius;
+        card1_card_core1_dda_arc2_dda_run2_threshold <= card1_card_core1_dda_arc2_dda_check2_move_threshold;
+        card1_card_core1_dda_arc2_dda_run2_acc_x <= card1_card_core1_dda_arc2_dda_check2_move_acc_init;
+        card1_card_core1_dda_arc2_dda_run2_acc_y <= card1_card_core1_dda_arc2_dda_check2_move_acc_init;
+    end
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_errors
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_regs_fifo2_sequencer2_dda_error <= 0;
+    end
+    else begin
+        if ((card1_card_core1_regs_fifo2_sequencer2_dda_start && card1_card_core1_regs_fifo2_sequencer2_dda_ready)) begin
+            card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b0;
+        end
+        if ((card1_card_core1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_arc2_dda_check2_move_error)) begin
+            card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b1;
         end
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2__status2_quadrant = card1_card_core1_dda_arc2_quadrant;
-assign card1_card_core1_regs_fifo2_sequencer2_dda_ready = (card1_card_core1_dda_arc2_state == 3'b000);
-assign card1_card_core1_regs_fifo2_dda_busy = ((card1_card_core1_dda_arc2_state != 3'b000) || (card1_card_core1_dda_arc2_run_active && (!(card1_card_core1_dda_arc2_pending && card1_card_core1_dda_arc2_dec_finished))));
+assign card1_card_core1_regs_fifo2__status2_quadrant = card1_card_core1_dda_arc2_dda_run2_quadrant;
+assign card1_card_core1_regs_fifo2_dda_busy = ((!card1_card_core1_regs_fifo2_sequencer2_dda_ready) || (card1_card_core1_dda_arc2_dda_run2_active && (!(card1_card_core1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_arc2_dda_run2_step_finished))));
 
 endmodule

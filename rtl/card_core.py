@@ -19,16 +19,17 @@ def card_core(clock, reset, local, irq, pins, *, fifo_depth=FIFO_DEPTH.default, 
     ``pins`` (STEP/DIR).  COMMAND.SOFT_RESET resets the DDA through its
     asynchronous reset, driven from a flip-flop of ``regs_fifo`` (no glitch)
     and combined with RST#.  Parameters (``rtl/parameters.py``):
-    ``fifo_depth``, ``coord_width`` (the width of the ``DdaPort`` made
-    here); ``clock_hz``, ``variants`` and ``device`` go to the capability
-    registers (the interpolator has all four variants in every build).
+    ``fifo_depth``, ``coord_width`` and ``variants`` (the build of the
+    ``DdaPort`` made here: the interpolator has only the variants named, the
+    sequencer refuses an ARC for another, BUILD reports them); ``clock_hz``
+    and ``device`` go to the capability registers.
 
         clock       _/~\\_/~\\_/~\\_/~\\_
         local.we    _/~~~\\__________     COMMAND <- SOFT_RESET
         core_clear  _____/~~~\\______
         dda reset   ~~~~~\\___/~~~~~~
     """
-    dda = DdaPort(coord_width)
+    dda = DdaPort(coord_width, variants)
     steps = AxisPulses()
     core_clear = Signal(bool(0))
     dda_reset = ResetSignal(1, active=0, isasync=True)
@@ -38,7 +39,7 @@ def card_core(clock, reset, local, irq, pins, *, fifo_depth=FIFO_DEPTH.default, 
         dda_reset.next = reset and not core_clear
 
     registers = regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, fifo_depth=fifo_depth,
-                          clock_hz=clock_hz, variants=variants, device=device)
+                          clock_hz=clock_hz, device=device)
     interpolator = dda_arc(clock, dda_reset, dda, steps)
     return combine_resets, registers, interpolator
 

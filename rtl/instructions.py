@@ -35,7 +35,8 @@ OPCODES = (
            "straight move by (DX, DY) steps (signed, must fit the coordinate width)"),
     Opcode("ARC", 0x2, ("XS", "YS", "XE", "YE"),
            (("CCW", 0, 1, "1: counter-clockwise"),
-            ("VARIANT", 1, 2, "0 traditional, 1 weighted, 2 improved, 3 precise"),
+            ("VARIANT", 1, 2, "0 traditional, 1 weighted, 2 improved, 3 precise (a card has the variants it "
+                              "was built with, by default improved and precise; another is refused: RANGE)"),
             ("LAMBDA", 3, 5, "weighting factor 2**-LAMBDA"),
             ("ACC_BITS", 8, 5, "paper variants: accumulator width n (0: normalised to the radius)"),
             BLEND_FIELD),
@@ -60,7 +61,8 @@ ERRORS = (
     (0, "NONE", "no error"),
     (1, "BAD_OPCODE", "the header's opcode is not in the table (CLEAR_ERROR then empties the FIFO)"),
     (2, "RESERVED_BITS", "a header bit outside the opcode's fields is set"),
-    (3, "RANGE", "an operand does not fit (coordinate outside the DDA's width, SET index unknown)"),
+    (3, "RANGE", "an operand does not fit (coordinate outside the DDA's width, SET index unknown), "
+                 "or an ARC's VARIANT is not built into this card"),
     (4, "DDA_REJECTED", "the DDA refused the arc (end not on the circle, radius too large)"),
 )
 ERROR_CODE = {name: code for code, name, _ in ERRORS}

@@ -8,6 +8,7 @@ from rtl.feed_rate import feed_rate
 from rtl.interfaces import (ERROR_BITS, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, LocalBus,
                             MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus,
                             RegisterWord, SequencerControl, SetPort, StepPositions, StepRequest, card_reset)
+from rtl.dda_build import variants_choice
 from rtl.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, VARIANTS
 from rtl.pulse_out import pulse_out
 from rtl.reg_word import reg_word
@@ -15,7 +16,7 @@ from rtl.sequencer import sequencer
 from rtl.sync_fifo import sync_fifo
 
 INT_BITS = len(regmap.register("INT_STATUS").fields)
-REGS_FIFO_PARAMETERS = ("fifo_depth", "clock_hz", "variants", "device", "coord_width")  # coord_width: of dda
+REGS_FIFO_PARAMETERS = ("fifo_depth", "clock_hz", "device", "coord_width", "variants")  # the last two: of dda
 
 
 def _bit(name, field_name):
@@ -24,7 +25,7 @@ def _bit(name, field_name):
 
 @block
 def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_depth=FIFO_DEPTH.default,
-              clock_hz=CLOCK_HZ.default, variants=VARIANTS.default, device=DEVICE.default):
+              clock_hz=CLOCK_HZ.default, device=DEVICE.default):
     """The card behind the PCI target: everything of the paper's figure 1 but the DDA.
 
     Ports: ``local`` (the target's back end; I/O BAR = the registers of
@@ -39,9 +40,10 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     COMMAND.SOFT_RESET: the top resets the DDA with it).
     Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
     two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
-    ``clock_hz``, ``variants`` and ``device`` only set capability registers
-    (CLOCK_HZ, BUILD; FIFO_SIZE and BUILD.COORD_WIDTH come from
-    ``fifo_depth`` and ``dda.coord_width``).
+    ``clock_hz`` and ``device`` only set capability registers (CLOCK_HZ,
+    BUILD; FIFO_SIZE, BUILD.COORD_WIDTH and BUILD.DDA_VARIANTS come from
+    ``fifo_depth``, ``dda.coord_width`` and ``dda.variants``: the
+    sequencer refuses an ARC that names a variant the DDA lacks).
 
     Local bus: I/O and FIFO writes complete in the clock they are requested,
     a full FIFO answers retry; an I/O write reaches the registers one clock
@@ -54,8 +56,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         retry    _________/~~~\\___     FIFO full
         room     ~~~~~\\___________     three places free at first
     """
-    build = parameters.check(dict(fifo_depth=fifo_depth, clock_hz=clock_hz, variants=variants, device=device,
-                                  coord_width=dda.coord_width))
+    build = parameters.check(dict(fifo_depth=fifo_depth, clock_hz=clock_hz, device=device,
+                                  coord_width=dda.coord_width, variants=variants_choice(dda.variants)))
     specs = regmap.REGISTERS
     io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
     byte_mask = Signal(intbv(0)[32:])
@@ -341,10 +343,10 @@ def _positions(position_x, snapshot_y, pos_x, pos_y):
     return show
 
 
-def regs_fifo_ports(coord_width=COORD_WIDTH.default, **build):
+def regs_fifo_ports(coord_width=COORD_WIDTH.default, variants=VARIANTS.default, **build):
     """Fresh ports of ``regs_fifo`` for conversion and benches: ``dda`` of
-    ``coord_width`` bits; ``build``: the block's parameters, checked."""
-    parameters.check_unit("regs_fifo", REGS_FIFO_PARAMETERS, dict(build, coord_width=coord_width))
+    ``coord_width`` bits and ``variants``; ``build``: the block's parameters, checked."""
+    parameters.check_unit("regs_fifo", REGS_FIFO_PARAMETERS, dict(build, coord_width=coord_width, variants=variants))
     return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(),
-                dda=DdaPort(coord_width), steps=AxisPulses(), pins=MotorPins(), irq=Signal(bool(0)),
+                dda=DdaPort(coord_width, variants), steps=AxisPulses(), pins=MotorPins(), irq=Signal(bool(0)),
                 core_clear=Signal(bool(0)))

@@ -38,7 +38,8 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
     DWELL counts clocks once the pulse outputs are quiet
     (``pulses.outputs_busy`` low: no step request pending and the last step
     has left the pins); SET gives a ``set_port.strobe`` with its index and
-    value; MARK a ``mark.strobe`` with its tag.  SET, DWELL, MARK, PULSE and
+    value; MARK a ``mark.strobe`` with its tag.  An ARC whose VARIANT the DDA
+    was not built with (``dda.variants``) is malformed (RANGE).  SET, DWELL, MARK, PULSE and
     a malformed command wait until the motion before them has ended (DDA
     idle, outputs quiet), so a MARK means "reached" and the moves before a
     bad command complete.  A malformed command, or a move the DDA rejects,
@@ -95,8 +96,9 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
     coord_mask = Signal(intbv(0)[isa.MAX_OPERANDS:])
     count_mask = Signal(intbv(0)[isa.MAX_OPERANDS:])
     set_known = Signal(bool(0))
+    variant_built = Signal(bool(0))  # the arriving header's ARC.VARIANT is one the DDA has
     # the checks, made as the words arrive and kept beside them (no deep logic before the issue)
-    bad_opcode, bad_header_bits, bad_set_index, bad_operand = (Signal(bool(0)) for _ in range(4))
+    bad_opcode, bad_header_bits, bad_set_index, bad_operand, bad_variant = (Signal(bool(0)) for _ in range(5))
     arriving_coord_fits, arriving_count_fits = Signal(bool(0)), Signal(bool(0))
     opcode_known = _opcode_rom(lambda op: 1)
     opcode_moves = _opcode_rom(lambda op: int(op.name in ("LINE", "ARC")))
@@ -106,6 +108,7 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
     coord_operands = _opcode_rom(lambda op: _operand_mask(op, ("DX", "DY", "XS", "YS", "XE", "YE")))
     count_operands = _opcode_rom(lambda op: _operand_mask(op, ("COUNT_X", "COUNT_Y")))
     set_ok = tuple(int(i in set_indices) for i in range(1 << len(set_port.index)))
+    built = tuple(int(code in dda.variants) for code in range(1 << len(dda.variant)))
     code = {op.name: op.code for op in isa.OPCODES}
     line_op, arc_op, pulse_op, set_op, dwell_op, mark_op = (
         code["LINE"], code["ARC"], code["PULSE"], code["SET"], code["DWELL"], code["MARK"])
@@ -158,6 +161,10 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
         set_known.next = set_ok[fifo.dout[index_msb:index_lsb]]
 
     @always_comb
+    def lookup_variant():
+        variant_built.next = built[fifo.dout[variant_msb:variant_lsb]]
+
+    @always_comb
     def fetch_request():
         more = True
         if word_due:
@@ -191,6 +198,7 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
                     bad_opcode.next = not next_known
                     bad_header_bits.next = (fifo.dout[32:16] & ~mask_high) != 0 or (fifo.dout[16:] & ~mask_low) != 0
                     bad_set_index.next = fifo.dout[32:isa.OPCODE_LSB] == set_op and not set_known
+                    bad_variant.next = fifo.dout[32:isa.OPCODE_LSB] == arc_op and not variant_built
                     bad_operand.next = 0
                     if arriving_count == 0:
                         next_valid.next = 1
@@ -222,7 +230,7 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
             result[:] = E_BAD_OPCODE
         elif bad_header_bits:
             result[:] = E_RESERVED_BITS
-        elif bad_set_index or bad_operand:
+        elif bad_set_index or bad_operand or bad_variant:
             result[:] = E_RANGE
         next_error.next = result
 
@@ -335,7 +343,7 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
 
     fits = [_fits(fifo.dout, arriving_coord_fits, coord_width), _fits(fifo.dout, arriving_count_fits, count_bits)]
     return (fits, lookup_arriving, lookup_arriving_kind, lookup_count, lookup_valid, lookup_mask_high, lookup_mask_low,
-            lookup_coords, lookup_counts, lookup_set, fetch_request, discarding, fetch, check, motion_status,
+            lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request, discarding, fetch, check, motion_status,
             completion, readiness, issuing, execute, present, report)
 
 

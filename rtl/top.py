@@ -41,9 +41,9 @@ PROG = "python -m rtl.top"
 # ports factory takes (the block reads them from the interfaces it receives).
 Unit = namedtuple("Unit", "names port_names")
 UNITS = {
-    "dda_arc": Unit(("coord_width",), ("coord_width",)),
+    "dda_arc": Unit(("coord_width", "variants"), ("coord_width", "variants")),
     "pci_slave": Unit(SLAVE_PARAMETERS, ()),
-    "regs_fifo": Unit(REGS_FIFO_PARAMETERS, ("coord_width",)),
+    "regs_fifo": Unit(REGS_FIFO_PARAMETERS, ("coord_width", "variants")),
     "card": Unit(CARD_PARAMETERS, ()),
     "top": Unit(CARD_PARAMETERS, ()),
 }

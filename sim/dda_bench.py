@@ -1,4 +1,4 @@
-"""Clock-by-clock bench of ``rtl/dda_arc.py`` against ``sim.dda_model.DdaMachine``.
+"""Clock-by-clock bench of ``rtl/dda_arc.py`` against ``sim.dda_machine.DdaMachine``.
 
 ``dda_bench(ports, commands, record, ...)`` drives a list of commands through
 the ``DdaPort`` (start pulse when ready, one after the other or overlapped, a
@@ -15,7 +15,8 @@ from myhdl import StopSimulation, block, instance
 
 from rtl.dda_arc import dda_arc
 from sim.cosim import cosimulate
-from sim.dda_model import ArcCommand, DdaMachine, LineCommand, plan_arc
+from sim.dda_machine import DdaMachine
+from sim.dda_model import ArcCommand, LineCommand, plan_arc
 from sim.clocking import clock_source
 from sim.waves import Waveform, write_gtkw
 
@@ -24,11 +25,14 @@ VIEW_GROUPS = {
     "status": ["cmd_advance", "cmd_ready", "cmd_busy", "cmd_done", "cmd_error", "cmd_quadrant",
                "cmd_blend", "cmd_stop_left"],
     "pulses": ["steps_step_x", "steps_dir_x", "steps_step_y", "steps_dir_y"],
-    "datapath (MyHDL only)": ["dda_arc.state", "dda_arc.quadrant", "integrand_x", "integrand_y", "target_x",
-                              "target_y", "acc_x", "acc_y", "radial_error", "left_x", "left_y", "crossings"],
+    "setup (MyHDL only)": ["dda_setup.state", "dda_setup.step", "dda_setup.gap", "dda_setup.operand",
+                           "dda_setup.root_root", "plan_radius", "plan_totals_diff", "plan_totals_max"],
+    "run (MyHDL only)": ["dda_run.quadrant", "dda_run.mag_x", "dda_run.mag_y", "dda_run.target_x",
+                         "dda_run.target_y", "dda_run.acc_x", "dda_run.acc_y", "dda_run.error_term",
+                         "dda_run.bias_in", "dda_run.bias_out", "dda_run.left_diff", "dda_run.crossings"],
 }
-VIEW_SIGNED = ("cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye", "acc_x", "acc_y", "radial_error", "left_x", "left_y")
-VIEW_DECIMAL = ("integrand_x", "integrand_y", "target_x", "target_y")
+VIEW_SIGNED = ("cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye", "dda_run.acc_x", "dda_run.acc_y", "plan_totals_diff")
+VIEW_DECIMAL = ("dda_run.mag_x", "dda_run.mag_y", "plan_radius", "plan_totals_max")
 OUTPUTS = ("busy", "ready", "done", "error", "quadrant", "stop_left")
 PULSES = ("step_x", "step_y", "dir_x", "dir_y")
 HALF_PERIOD = 5
@@ -71,8 +75,8 @@ def _observed(cmd, steps):
 
 
 @block
-def dda_bench(ports, commands, record, *, coord_width=24, verilog=None, seed=1,
-              advance_rate=0.7, idle_gap=3, overlap=False, alternate=False):
+def dda_bench(ports, commands, record, *, verilog=None, seed=1, advance_rate=0.7, idle_gap=3,
+              overlap=False, alternate=False):
     """Drive ``commands`` into the device and check it against the model on every clock.
 
     Each command starts when ``ready``; with ``overlap`` at once (set up while
@@ -83,7 +87,7 @@ def dda_bench(ports, commands, record, *, coord_width=24, verilog=None, seed=1,
     """
     clock, reset, cmd, steps = ports["clock"], ports["reset"], ports["cmd"], ports["steps"]
     rng = random.Random(seed)
-    model = DdaMachine(coord_width)
+    model = DdaMachine(cmd.coord_width, cmd.variants)
 
     clock_driver = clock_source(clock, 2 * HALF_PERIOD)
 

@@ -17,13 +17,14 @@ from myhdl import Signal, block, instance
 from rtl import instructions as isa
 from rtl import registers as regmap
 from rtl.card_core import card_core, card_core_ports
+from rtl.dda_build import DEFAULT_VARIANTS
 from rtl.interfaces import AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
 from rtl.regs_fifo import regs_fifo
 from sim.card_bench import (BUS_GROUPS, TIMING, PinLog, clock_and_pins, expected_path, pin_model_check,
                             read_position, scenario_runner, wait_idle, write_motion_view)
 from sim.card_model import DdaContractModel
 from sim.cosim import convert_and_cosimulate
-from sim.dda_model import ArcCommand, LineCommand, iterate, setup_clocks
+from sim.dda_model import TRADITIONAL, ArcCommand, LineCommand, iterate, setup_clocks
 from sim.local_bus_driver import LocalBusDriver
 from sim.waves import run_traced
 
@@ -257,6 +258,36 @@ def test_rejected_arc_in_a_chain(kind):
     assert results["error"] == isa.ERROR_CODE["DDA_REJECTED"]
     assert results["held"] == (90, 10)
     assert results["after"] == (93, 14)
+
+
+@pytest.mark.parametrize("kind", DDAS)
+def test_arc_of_a_variant_not_built_is_refused(kind):
+    """The default build has the improved and precise variants: an ARC asking for the
+    traditional one is RANGE, nothing of it moves, the line after it runs once
+    CLEAR_ERROR is written."""
+    results = {}
+    refused = words(ArcCommand(40, 0, 0, 40, variant=TRADITIONAL))
+
+    def scenario(driver):
+        yield from program(driver, STEADY)
+        yield from driver.push_all(words(LineCommand(3, 0)) + refused + words(LineCommand(0, 2)))
+        for _ in range(500):
+            status = yield from driver.io_read(regmap.offset("STATUS"))
+            if field("STATUS", "ERROR", status):
+                break
+        results["error"] = field("STATUS", "ERROR", status)
+        for _ in range(50):
+            yield driver.clock.negedge
+        results["held"] = yield from read_position(driver)
+        yield from driver.io_write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", CLEAR_ERROR=1))
+        yield from wait_idle(driver)
+        results["after"] = yield from read_position(driver)
+
+    run_motion("unbuilt_variant", kind, scenario)
+    assert TRADITIONAL not in DEFAULT_VARIANTS
+    assert results["error"] == isa.ERROR_CODE["RANGE"]
+    assert results["held"] == (3, 0)
+    assert results["after"] == (3, 2)
 
 
 @pytest.mark.parametrize("kind", DDAS)

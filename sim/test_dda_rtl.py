@@ -1,25 +1,32 @@
 """``rtl/dda_arc.py`` against the golden model on every clock, in MyHDL and in Icarus.
 
-The same bench (``sim/dda_bench.py``) runs on the MyHDL block and on
-``gen/dda_arc.v`` through co-simulation (``DDA_VERILOG_DIR`` names another
-folder, e.g. a fresh ``python -m rtl.top --convert --out build/x``).  Each run
-writes a VCD and a ``.gtkw`` under ``build/waves``; some checks read the VCD back.
+The same bench (``sim/dda_bench.py``) runs on the MyHDL block and on the
+generated Verilog through co-simulation, for both builds of the variants
+option: the card's default (``gen/dda_arc.v``; ``DDA_VERILOG_DIR`` names
+another folder, e.g. a fresh ``python -m rtl.top --convert --out build/x``)
+and ``all`` (converted for these tests into a folder under ``build/cosim``).  A command
+for a variant its build left out must be rejected.  Each run writes a VCD and
+a ``.gtkw`` under ``build/waves``; some checks read the VCD back.
 """
 import math
 import os
 import random
+import tempfile
 from pathlib import Path
 
 import pytest
 
 from rtl.dda_arc import dda_arc_ports
+from rtl.dda_build import ALL_VARIANTS, DEFAULT_VARIANTS, variants_choice
+from rtl.top import convert_unit
 from sim.dda_bench import HALF_PERIOD, Record, accepted, dda_bench, end_point, random_arc, write_view
 from sim.dda_model import (IMPROVED, PAPER_V_ARC, PRECISE, TRADITIONAL, WEIGHTED, ArcCommand,
                            LineCommand, paper_configuration, setup_clocks, v_arc)
-from sim.paths import GEN
+from sim.paths import GEN, build_dir
 from sim.waves import Waveform, run_traced
 
 VERILOG_DIR = Path(os.environ.get("DDA_VERILOG_DIR", GEN))
+BUILDS = {"default": DEFAULT_VARIANTS, "all": ALL_VARIANTS}
 
 PAPER_CASES = [ArcCommand(8, 0, 0, 8, variant=v) for v in range(4)] + \
     [paper_configuration(v)[0] for v in (TRADITIONAL, WEIGHTED, IMPROVED)] + \
@@ -79,26 +86,41 @@ def quadrant_crossings():
             ArcCommand(0, 30, 30, 0, variant=WEIGHTED, lambda_shift=1)]
 
 
+_CONVERTED = {}
+
+
+def verilog_of(build):
+    """The generated ``dda_arc.v`` of ``build``: ``gen/`` for the default, else converted
+    afresh into a work folder (once per test process)."""
+    if BUILDS[build] == DEFAULT_VARIANTS:
+        return VERILOG_DIR / "dda_arc.v"
+    if build not in _CONVERTED:
+        folder = Path(tempfile.mkdtemp(prefix=f"dda_{build}_", dir=build_dir("cosim")))
+        _CONVERTED[build] = convert_unit("dda_arc", {"coord_width": 24, "variants": variants_choice(BUILDS[build])}, folder)
+    return _CONVERTED[build]
+
+
 def run_bench(name, commands, cosim=False, seed=1, advance_rate=0.7, idle_gap=3, coord_width=24,
-              overlap=False, alternate=False):
+              overlap=False, alternate=False, build="default"):
     """Run the bench traced; return the record and the VCD path."""
-    ports = dda_arc_ports(coord_width=coord_width)
+    ports = dda_arc_ports(coord_width=coord_width, variants=BUILDS[build])
     record = Record()
-    verilog = [VERILOG_DIR / "dda_arc.v"] if cosim else None
-    bench = dda_bench(ports, commands, record, coord_width=coord_width, verilog=verilog, seed=seed,
-                      advance_rate=advance_rate, idle_gap=idle_gap, overlap=overlap, alternate=alternate)
+    verilog = [verilog_of(build)] if cosim else None
+    bench = dda_bench(ports, commands, record, verilog=verilog, seed=seed, advance_rate=advance_rate,
+                      idle_gap=idle_gap, overlap=overlap, alternate=alternate)
     vcd = run_traced(bench, name)
     write_view(vcd)
     return record, vcd
 
 
-def check_moves(record, bad=BAD):
-    """Independent of the model: accepted moves end on their end point, bad ones raise error."""
+def check_moves(record, bad=BAD, variants=ALL_VARIANTS):
+    """Independent of the model: accepted moves end on their end point, bad ones (and those
+    for a variant the build left out) raise error."""
     for move in record.moves:
         command = move["command"]
         if isinstance(command, LineCommand):
             assert move["done"] and end_point(move) == (command.dx, command.dy)
-        elif command in bad:
+        elif command in bad or command.variant not in variants:
             assert move["error"] and not move["steps"]
         else:
             assert move["done"] and not move["error"], command
@@ -120,21 +142,23 @@ BENCHES = {
 }
 
 
+@pytest.mark.parametrize("build", sorted(BUILDS))
 @pytest.mark.parametrize("name", sorted(BENCHES))
-def test_rtl_equals_model_on_every_clock(name):
-    # overlapped commands (each started as soon as the setup stage is free) in two benches
+def test_rtl_equals_model_on_every_clock(name, build):
+    # overlapped commands (each started as soon as the setup stage is free) in two benches;
+    # the default build rejects the commands for the paper's traditional and weighted variants
     overlap = name in ("lines_and_bad", "circles_crossings")
-    record, _ = run_bench(f"dda_{name}", BENCHES[name](), overlap=overlap)
-    check_moves(record)
+    record, _ = run_bench(f"dda_{name}_{build}", BENCHES[name](), overlap=overlap, build=build)
+    check_moves(record, variants=BUILDS[build])
 
 
-@pytest.mark.parametrize("name", ["paper", "lines_and_bad", "circles_crossings", "wide"])
-def test_generated_verilog_equals_model_on_every_clock(name):
-    commands = BENCHES[name]()
-    if name == "paper":
-        commands = [c for c in commands if c.variant in (PRECISE, TRADITIONAL)]
-    record, _ = run_bench(f"dda_{name}_cosim", commands, cosim=True, overlap=name == "lines_and_bad")
-    check_moves(record)
+@pytest.mark.parametrize("build, name", [("default", "paper"), ("default", "lines_and_bad"),
+                                         ("default", "circles_crossings"), ("default", "wide"),
+                                         ("all", "paper"), ("all", "octants")])
+def test_generated_verilog_equals_model_on_every_clock(name, build):
+    record, _ = run_bench(f"dda_{name}_{build}_cosim", BENCHES[name](), cosim=True,
+                          overlap=name == "lines_and_bad", build=build)
+    check_moves(record, variants=BUILDS[build])
 
 
 CHAIN = [ArcCommand(100, 0, 0, 100, blend=True), ArcCommand(0, 100, -100, 0), LineCommand(120, -50),
@@ -175,9 +199,11 @@ def device_points(move):
 
 
 def test_device_reproduces_the_paper_and_the_accuracy_target():
-    """V_arc of the device's own step pulses: the paper's figure 6 (eq. 13) and the precise target."""
+    """V_arc of the device's own step pulses (the ``all`` build): the paper's figure 6 (eq. 13)
+    and the precise target."""
     traditional = paper_configuration(TRADITIONAL)[0]
-    record, _ = run_bench("dda_accuracy", [traditional, ArcCommand(100, 0, 0, 100)], advance_rate=0.5)
+    record, _ = run_bench("dda_accuracy", [traditional, ArcCommand(100, 0, 0, 100)], advance_rate=0.5,
+                          build="all")
     paper_move, precise_move = record.moves
     assert v_arc(device_points(paper_move), 100) == pytest.approx(PAPER_V_ARC[TRADITIONAL], rel=0.01)
     points = device_points(precise_move)
@@ -222,7 +248,7 @@ def test_arc_setup_time_and_steps_read_back_from_the_vcd():
     step_y = sampled(wave, "steps_step_y", record.clocks + 2)
     first_busy = busy.index("1")
     first_step = min(i for i, v in enumerate(step_y) if v == "1")
-    # the first iteration comes one clock after the setup of 5 * 24 + 1 clocks
+    # the first iteration comes one clock after the setup (setup_clocks from the start edge)
     assert first_step - first_busy == setup_clocks(24, line=False) + 1
     assert sum(v == "1" for v in step_y) == 8
     assert wave.at("cmd_quadrant", record.clocks * 2 * HALF_PERIOD) == 0
@@ -234,13 +260,15 @@ def test_rtl_random_arcs_long(seed):
     rng = random.Random(seed)
     commands = octant_arcs(seed + 100, radius_limit=400) + wide_arcs(seed + 200, 20)
     commands += [random_arc(rng, radius=rng.uniform(1, 200), variant=rng.randrange(4)) for _ in range(20)]
-    record, _ = run_bench(f"dda_random_{seed}", commands, seed=seed)
-    check_moves(record)
+    build = sorted(BUILDS)[seed % 2]
+    record, _ = run_bench(f"dda_random_{seed}", commands, seed=seed, build=build)
+    check_moves(record, variants=BUILDS[build])
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("seed", range(2))
-def test_generated_verilog_random_arcs_long(seed):
+@pytest.mark.parametrize("build", sorted(BUILDS))
+def test_generated_verilog_random_arcs_long(build):
+    seed = sorted(BUILDS).index(build)
     commands = octant_arcs(seed + 300) + wide_arcs(seed + 400, 10) + BENCHES["paper"]()
-    record, _ = run_bench(f"dda_random_cosim_{seed}", commands, cosim=True, seed=seed)
-    check_moves(record)
+    record, _ = run_bench(f"dda_random_cosim_{build}", commands, cosim=True, seed=seed, build=build)
+    check_moves(record, variants=BUILDS[build])

@@ -8,7 +8,6 @@ import subprocess
 import pytest
 from myhdl import intbv
 
-import rtl.interfaces
 from rtl import parameters
 from rtl.card import card_ports
 from rtl.card_core import card_core_ports
@@ -44,13 +43,14 @@ def _lint(path, top):
 def test_one_bit_wider_coordinates_than_the_widest_give_verilog_verilator_refuses(tmp_path, monkeypatch):
     """The reason for COORD_WIDTH.maximum: STOP_LEFT's reset value above 32 bits."""
     wider = dataclasses.replace(COORD_WIDTH, maximum=COORD_WIDTH.maximum + 1)
-    monkeypatch.setattr(rtl.interfaces, "COORD_WIDTH", wider)
+    monkeypatch.setattr(parameters, "COORD_WIDTH", wider)  # the DDA reads its limit from the table
     widest = _lint(convert_unit("dda_arc", {"coord_width": COORD_WIDTH.maximum}, tmp_path / "widest"), "dda_arc")
     assert widest.returncode == 0, widest.stderr
     beyond = dda_arc(**dda_arc_ports(COORD_WIDTH.maximum + 1))
     beyond.convert(hdl="Verilog", path=str(tmp_path), name="dda_arc")
     result = _lint(tmp_path / "dda_arc.v", "dda_arc")
-    assert result.returncode != 0 and "stop_left" in result.stderr
+    # the all-ones reset value of STOP_LEFT's count (dda_left's larger), 2**33 - 1
+    assert result.returncode != 0 and "Too many digits" in result.stderr and str((1 << 33) - 1) in result.stderr
 
 
 def test_the_fifo_depth_fills_status_fifo_level_at_the_top_of_its_range():
@@ -108,7 +108,8 @@ def test_dda_takes_its_width_from_its_port(tmp_path):
     path = convert_unit("dda_arc", {"coord_width": 17}, tmp_path)
     text = path.read_text()
     assert "input signed [16:0] cmd_xs;" in text
-    assert "reg signed [24:0] dec_sum_x;" in text   # accumulators: coord_width + 8 bits
+    # accumulators: coord_width + 6 bits (improved); the instance prefix varies
+    assert re.search(r"reg signed \[22:0\] dda_run\w*_acc_x;", text)
 
 
 def test_pad_ports_factory_checks_its_build():
