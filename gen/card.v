@@ -230,6 +230,9 @@ wire card_core0_dda_reset;
 reg [31:0] card_core0_regs_fifo1_fifo_dout;
 reg card_core0_regs_fifo1_fifo_pop;
 wire card_core0_regs_fifo1_fifo_empty;
+reg card_core0_regs_fifo1_set_strobe;
+reg [3:0] card_core0_regs_fifo1_set_index;
+reg [31:0] card_core0_regs_fifo1_set_value;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
 reg card_core0_regs_fifo1_busy_before;
@@ -312,8 +315,6 @@ wire card_core0_regs_fifo1_reg_word25_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word25_shown_wide;
 reg [1:0] card_core0_regs_fifo1_reg_word25_written;
 reg [31:0] card_core0_regs_fifo1_reg_word25_chain_out_data;
-reg [3:0] card_core0_regs_fifo1_reg_word25_set_port_index;
-reg [31:0] card_core0_regs_fifo1_reg_word25_set_port_value;
 wire card_core0_regs_fifo1_reg_word25_chain_out_clamped;
 wire [2:0] card_core0_regs_fifo1_reg_word26_honoured;
 wire card_core0_regs_fifo1_reg_word26_out_of_range;
@@ -382,7 +383,6 @@ reg [15:0] card_core0_regs_fifo1_reg_word34_shown;
 reg card_core0_regs_fifo1_reg_word34_clamped;
 wire card_core0_regs_fifo1_reg_word34_mine;
 wire card_core0_regs_fifo1_reg_word34_mine_write;
-reg card_core0_regs_fifo1_reg_word34_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word34_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word34_written;
 reg [31:0] card_core0_regs_fifo1_reg_word34_chain_out_data;
@@ -1925,9 +1925,9 @@ assign card_core0_regs_fifo1_reg_word25_shown_wide = {30'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word25_mine_write = (card_core0_regs_fifo1_written_addr == 4);
 
 
-always @(card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word25_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word25_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0))) begin
-        card_core0_regs_fifo1_reg_word25_written = card_core0_regs_fifo1_reg_word25_set_port_value[2-1:0];
+always @(card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word25_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word25_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word25_written = card_core0_regs_fifo1_set_value[2-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word25_written = ((card_core0_regs_fifo1_reg_word25_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
@@ -1950,7 +1950,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word25__
     end
     else begin
         card_core0_regs_fifo1_reg_word25_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word25_mine_write))) begin
+        if (((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word25_mine_write))) begin
             card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word25_honoured;
             card_core0_regs_fifo1_reg_word25_clamped <= card_core0_regs_fifo1_reg_word25_out_of_range;
         end
@@ -2054,9 +2054,9 @@ assign card_core0_regs_fifo1_reg_word28_shown_wide = {27'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word28_mine_write = (card_core0_regs_fifo1_written_addr == 16);
 
 
-always @(card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word28_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word28_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word28_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0))) begin
-        card_core0_regs_fifo1_reg_word28_written = card_core0_regs_fifo1_reg_word25_set_port_value[5-1:0];
+always @(card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word28_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word28_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word28_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word28_written = card_core0_regs_fifo1_set_value[5-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word28_written = ((card_core0_regs_fifo1_reg_word28_shown_wide[5-1:0] & (~card_core0_regs_fifo1_written_mask[5-1:0])) | (card_core0_regs_fifo1_written_data[5-1:0] & card_core0_regs_fifo1_written_mask[5-1:0]));
@@ -2079,7 +2079,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word28__
     end
     else begin
         card_core0_regs_fifo1_reg_word28_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word28_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word28_mine_write))) begin
+        if (((card_core0_regs_fifo1_reg_word28_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word28_mine_write))) begin
             card_core0_regs_fifo1_reg_word28_shown <= card_core0_regs_fifo1_reg_word28_honoured;
             card_core0_regs_fifo1_reg_word28_clamped <= card_core0_regs_fifo1_reg_word28_out_of_range;
         end
@@ -2158,9 +2158,9 @@ assign card_core0_regs_fifo1_reg_word30_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word30_mine_write = (card_core0_regs_fifo1_written_addr == 24);
 
 
-always @(card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word30_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word30_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word30_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0))) begin
-        card_core0_regs_fifo1_reg_word30_written = card_core0_regs_fifo1_reg_word25_set_port_value[16-1:0];
+always @(card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word30_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word30_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word30_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word30_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word30_written = ((card_core0_regs_fifo1_reg_word30_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
@@ -2183,7 +2183,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word30__
     end
     else begin
         card_core0_regs_fifo1_reg_word30_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word30_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word30_mine_write))) begin
+        if (((card_core0_regs_fifo1_reg_word30_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word30_mine_write))) begin
             card_core0_regs_fifo1_reg_word30_shown <= card_core0_regs_fifo1_reg_word30_honoured;
             card_core0_regs_fifo1_reg_word30_clamped <= card_core0_regs_fifo1_reg_word30_out_of_range;
         end
@@ -2279,9 +2279,9 @@ assign card_core0_regs_fifo1_reg_word34_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word34_mine_write = (card_core0_regs_fifo1_written_addr == 40);
 
 
-always @(card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word34_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0))) begin
-        card_core0_regs_fifo1_reg_word34_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word34_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word34_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word34_written = ((card_core0_regs_fifo1_reg_word34_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2315,7 +2315,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word34__
     end
     else begin
         card_core0_regs_fifo1_reg_word34_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word34_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word34_mine_write))) begin
             card_core0_regs_fifo1_reg_word34_shown <= card_core0_regs_fifo1_reg_word34_honoured;
             card_core0_regs_fifo1_reg_word34_clamped <= card_core0_regs_fifo1_reg_word34_out_of_range;
         end
@@ -2345,9 +2345,9 @@ assign card_core0_regs_fifo1_reg_word35_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word35_mine_write = (card_core0_regs_fifo1_written_addr == 44);
 
 
-always @(card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word35_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 1))) begin
-        card_core0_regs_fifo1_reg_word35_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word35_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
+        card_core0_regs_fifo1_reg_word35_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word35_written = ((card_core0_regs_fifo1_reg_word35_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2381,7 +2381,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word35__
     end
     else begin
         card_core0_regs_fifo1_reg_word35_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word35_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word35_mine_write))) begin
             card_core0_regs_fifo1_reg_word35_shown <= card_core0_regs_fifo1_reg_word35_honoured;
             card_core0_regs_fifo1_reg_word35_clamped <= card_core0_regs_fifo1_reg_word35_out_of_range;
         end
@@ -2411,9 +2411,9 @@ assign card_core0_regs_fifo1_reg_word36_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word36_mine_write = (card_core0_regs_fifo1_written_addr == 48);
 
 
-always @(card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word36_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 2))) begin
-        card_core0_regs_fifo1_reg_word36_written = card_core0_regs_fifo1_reg_word25_set_port_value[16-1:0];
+always @(card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word36_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
+        card_core0_regs_fifo1_reg_word36_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word36_written = ((card_core0_regs_fifo1_reg_word36_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
@@ -2436,7 +2436,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word36__
     end
     else begin
         card_core0_regs_fifo1_reg_word36_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word36_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word36_mine_write))) begin
             card_core0_regs_fifo1_reg_word36_shown <= card_core0_regs_fifo1_reg_word36_honoured;
             card_core0_regs_fifo1_reg_word36_clamped <= card_core0_regs_fifo1_reg_word36_out_of_range;
         end
@@ -2466,9 +2466,9 @@ assign card_core0_regs_fifo1_reg_word37_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word37_mine_write = (card_core0_regs_fifo1_written_addr == 52);
 
 
-always @(card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word37_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 3))) begin
-        card_core0_regs_fifo1_reg_word37_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word37_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
+        card_core0_regs_fifo1_reg_word37_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word37_written = ((card_core0_regs_fifo1_reg_word37_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2502,7 +2502,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word37__
     end
     else begin
         card_core0_regs_fifo1_reg_word37_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word37_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word37_mine_write))) begin
             card_core0_regs_fifo1_reg_word37_shown <= card_core0_regs_fifo1_reg_word37_honoured;
             card_core0_regs_fifo1_reg_word37_clamped <= card_core0_regs_fifo1_reg_word37_out_of_range;
         end
@@ -2532,9 +2532,9 @@ assign card_core0_regs_fifo1_reg_word38_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word38_mine_write = (card_core0_regs_fifo1_written_addr == 56);
 
 
-always @(card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word38_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 4))) begin
-        card_core0_regs_fifo1_reg_word38_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word38_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
+        card_core0_regs_fifo1_reg_word38_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word38_written = ((card_core0_regs_fifo1_reg_word38_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2568,7 +2568,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word38__
     end
     else begin
         card_core0_regs_fifo1_reg_word38_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word38_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word38_mine_write))) begin
             card_core0_regs_fifo1_reg_word38_shown <= card_core0_regs_fifo1_reg_word38_honoured;
             card_core0_regs_fifo1_reg_word38_clamped <= card_core0_regs_fifo1_reg_word38_out_of_range;
         end
@@ -2598,9 +2598,9 @@ assign card_core0_regs_fifo1_reg_word39_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word39_mine_write = (card_core0_regs_fifo1_written_addr == 60);
 
 
-always @(card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word39_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 5))) begin
-        card_core0_regs_fifo1_reg_word39_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word39_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
+        card_core0_regs_fifo1_reg_word39_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word39_written = ((card_core0_regs_fifo1_reg_word39_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2634,7 +2634,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word39__
     end
     else begin
         card_core0_regs_fifo1_reg_word39_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word39_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word39_mine_write))) begin
             card_core0_regs_fifo1_reg_word39_shown <= card_core0_regs_fifo1_reg_word39_honoured;
             card_core0_regs_fifo1_reg_word39_clamped <= card_core0_regs_fifo1_reg_word39_out_of_range;
         end
@@ -2664,9 +2664,9 @@ assign card_core0_regs_fifo1_reg_word40_shown_wide = {30'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word40_mine_write = (card_core0_regs_fifo1_written_addr == 64);
 
 
-always @(card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word40_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word40_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0))) begin
-        card_core0_regs_fifo1_reg_word40_written = card_core0_regs_fifo1_reg_word25_set_port_value[2-1:0];
+always @(card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word40_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word40_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word40_written = card_core0_regs_fifo1_set_value[2-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word40_written = ((card_core0_regs_fifo1_reg_word40_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
@@ -2689,7 +2689,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word40__
     end
     else begin
         card_core0_regs_fifo1_reg_word40_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word40_mine_write))) begin
+        if (((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word40_mine_write))) begin
             card_core0_regs_fifo1_reg_word40_shown <= card_core0_regs_fifo1_reg_word40_honoured;
             card_core0_regs_fifo1_reg_word40_clamped <= card_core0_regs_fifo1_reg_word40_out_of_range;
         end
@@ -2719,9 +2719,9 @@ assign card_core0_regs_fifo1_reg_word41_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 68);
 
 
-always @(card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word41_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 6))) begin
-        card_core0_regs_fifo1_reg_word41_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word41_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+        card_core0_regs_fifo1_reg_word41_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word41_written = ((card_core0_regs_fifo1_reg_word41_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2755,7 +2755,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__
     end
     else begin
         card_core0_regs_fifo1_reg_word41_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write))) begin
             card_core0_regs_fifo1_reg_word41_shown <= card_core0_regs_fifo1_reg_word41_honoured;
             card_core0_regs_fifo1_reg_word41_clamped <= card_core0_regs_fifo1_reg_word41_out_of_range;
         end
@@ -2785,9 +2785,9 @@ assign card_core0_regs_fifo1_reg_word42_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_written_addr == 72);
 
 
-always @(card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word34_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_reg_word25_set_port_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word25_set_port_value) begin: card_core0_regs_fifo1_reg_word42_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 7))) begin
-        card_core0_regs_fifo1_reg_word42_written = card_core0_regs_fifo1_reg_word25_set_port_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word42_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
+        card_core0_regs_fifo1_reg_word42_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
         card_core0_regs_fifo1_reg_word42_written = ((card_core0_regs_fifo1_reg_word42_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
@@ -2821,7 +2821,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word42__
     end
     else begin
         card_core0_regs_fifo1_reg_word42_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word34_set_mine && (card_core0_regs_fifo1_reg_word25_set_port_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word42_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word42_mine_write))) begin
             card_core0_regs_fifo1_reg_word42_shown <= card_core0_regs_fifo1_reg_word42_honoured;
             card_core0_regs_fifo1_reg_word42_clamped <= card_core0_regs_fifo1_reg_word42_out_of_range;
         end
@@ -3405,14 +3405,14 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
         card_core0_regs_fifo1_error_code <= 0;
         card_core0_regs_fifo1_sequencer1_mark_strobe <= 0;
         card_core0_regs_fifo1_sequencer1_dda_start <= 0;
-        card_core0_regs_fifo1_reg_word34_set_mine <= 0;
+        card_core0_regs_fifo1_set_strobe <= 0;
         card_core0_regs_fifo1_sequencer1_dwell_left <= 0;
         card_core0_regs_fifo1_sequencer1_state <= 3'b000;
     end
     else begin
         card_core0_regs_fifo1_sequencer1_dda_start <= 0;
         card_core0_regs_fifo1_seq_load <= 0;
-        card_core0_regs_fifo1_reg_word34_set_mine <= 0;
+        card_core0_regs_fifo1_set_strobe <= 0;
         card_core0_regs_fifo1_sequencer1_mark_strobe <= 0;
         if (card_core0_core_clear) begin
             card_core0_regs_fifo1_sequencer1_state <= 3'b000;
@@ -3449,7 +3449,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
                 card_core0_regs_fifo1_sequencer1_state <= 3'b000;
                 case (card_core0_regs_fifo1_sequencer1_opcode)
                     'h4: begin
-                        card_core0_regs_fifo1_reg_word34_set_mine <= 1;
+                        card_core0_regs_fifo1_set_strobe <= 1;
                     end
                     'h6: begin
                         card_core0_regs_fifo1_sequencer1_mark_strobe <= 1;
@@ -3488,8 +3488,8 @@ always @(card_core0_regs_fifo1_sequencer1_operand_0, card_core0_regs_fifo1_seque
     end
     card_core0_regs_fifo1_sequencer1_pulses_count_x = $signed(card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
     card_core0_regs_fifo1_sequencer1_pulses_count_y = $signed(card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
-    card_core0_regs_fifo1_reg_word25_set_port_index = card_core0_regs_fifo1_sequencer1_header[4-1:0];
-    card_core0_regs_fifo1_reg_word25_set_port_value = card_core0_regs_fifo1_sequencer1_operand_0;
+    card_core0_regs_fifo1_set_index = card_core0_regs_fifo1_sequencer1_header[4-1:0];
+    card_core0_regs_fifo1_set_value = card_core0_regs_fifo1_sequencer1_operand_0;
     card_core0_regs_fifo1_sequencer1_mark_tag = card_core0_regs_fifo1_sequencer1_header[16-1:0];
 end
 

@@ -143,6 +143,9 @@ reg pins_dir_y;
 reg [31:0] fifo_dout;
 reg fifo_pop;
 wire fifo_empty;
+reg set_strobe;
+reg [3:0] set_index;
+reg [31:0] set_value;
 reg [3:0] error_code;
 reg seq_load;
 reg busy_before;
@@ -219,8 +222,6 @@ wire reg_word1_set_mine;
 wire [31:0] reg_word1_shown_wide;
 reg [1:0] reg_word1_written;
 reg [31:0] reg_word1_chain_out_data;
-reg [3:0] reg_word1_set_port_index;
-reg [31:0] reg_word1_set_port_value;
 wire reg_word1_chain_out_clamped;
 wire [2:0] reg_word2_honoured;
 wire reg_word2_out_of_range;
@@ -289,7 +290,6 @@ reg [15:0] reg_word10_shown;
 reg reg_word10_clamped;
 wire reg_word10_mine;
 wire reg_word10_mine_write;
-reg reg_word10_set_mine;
 wire [31:0] reg_word10_shown_wide;
 reg [31:0] reg_word10_written;
 reg [31:0] reg_word10_chain_out_data;
@@ -662,9 +662,9 @@ assign reg_word1_shown_wide = {30'h0, control};
 assign reg_word1_mine_write = (written_addr == 4);
 
 
-always @(reg_word1_shown_wide, reg_word1_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word1_merge_bytes
-    if ((reg_word1_set_mine && (reg_word1_set_port_index == 0))) begin
-        reg_word1_written = reg_word1_set_port_value[2-1:0];
+always @(reg_word1_shown_wide, reg_word1_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word1_merge_bytes
+    if ((reg_word1_set_mine && (set_index == 0))) begin
+        reg_word1_written = set_value[2-1:0];
     end
     else begin
         reg_word1_written = ((reg_word1_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
@@ -687,7 +687,7 @@ always @(posedge clock, negedge reset) begin: reg_word1__store0_hold_rw
     end
     else begin
         reg_word1_clamped <= 1'b0;
-        if (((reg_word1_set_mine && (reg_word1_set_port_index == 0)) || (io_written && reg_word1_mine_write))) begin
+        if (((reg_word1_set_mine && (set_index == 0)) || (io_written && reg_word1_mine_write))) begin
             control <= reg_word1_honoured;
             reg_word1_clamped <= reg_word1_out_of_range;
         end
@@ -791,9 +791,9 @@ assign reg_word4_shown_wide = {27'h0, reg_word4_shown};
 assign reg_word4_mine_write = (written_addr == 16);
 
 
-always @(reg_word4_shown_wide, reg_word4_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word4_merge_bytes
-    if ((reg_word4_set_mine && (reg_word1_set_port_index == 0))) begin
-        reg_word4_written = reg_word1_set_port_value[5-1:0];
+always @(reg_word4_shown_wide, reg_word4_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word4_merge_bytes
+    if ((reg_word4_set_mine && (set_index == 0))) begin
+        reg_word4_written = set_value[5-1:0];
     end
     else begin
         reg_word4_written = ((reg_word4_shown_wide[5-1:0] & (~written_mask[5-1:0])) | (written_data[5-1:0] & written_mask[5-1:0]));
@@ -816,7 +816,7 @@ always @(posedge clock, negedge reset) begin: reg_word4__store2_hold_rw
     end
     else begin
         reg_word4_clamped <= 1'b0;
-        if (((reg_word4_set_mine && (reg_word1_set_port_index == 0)) || (io_written && reg_word4_mine_write))) begin
+        if (((reg_word4_set_mine && (set_index == 0)) || (io_written && reg_word4_mine_write))) begin
             reg_word4_shown <= reg_word4_honoured;
             reg_word4_clamped <= reg_word4_out_of_range;
         end
@@ -895,9 +895,9 @@ assign reg_word6_shown_wide = {16'h0, reg_word6_shown};
 assign reg_word6_mine_write = (written_addr == 24);
 
 
-always @(reg_word6_shown_wide, reg_word6_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word6_merge_bytes
-    if ((reg_word6_set_mine && (reg_word1_set_port_index == 0))) begin
-        reg_word6_written = reg_word1_set_port_value[16-1:0];
+always @(reg_word6_shown_wide, reg_word6_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word6_merge_bytes
+    if ((reg_word6_set_mine && (set_index == 0))) begin
+        reg_word6_written = set_value[16-1:0];
     end
     else begin
         reg_word6_written = ((reg_word6_shown_wide[16-1:0] & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
@@ -920,7 +920,7 @@ always @(posedge clock, negedge reset) begin: reg_word6__store4_hold_rw
     end
     else begin
         reg_word6_clamped <= 1'b0;
-        if (((reg_word6_set_mine && (reg_word1_set_port_index == 0)) || (io_written && reg_word6_mine_write))) begin
+        if (((reg_word6_set_mine && (set_index == 0)) || (io_written && reg_word6_mine_write))) begin
             reg_word6_shown <= reg_word6_honoured;
             reg_word6_clamped <= reg_word6_out_of_range;
         end
@@ -1016,9 +1016,9 @@ assign reg_word10_shown_wide = {16'h0, reg_word10_shown};
 assign reg_word10_mine_write = (written_addr == 40);
 
 
-always @(reg_word10_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word10_merge_bytes
-    if ((reg_word10_set_mine && (reg_word1_set_port_index == 0))) begin
-        reg_word10_written = reg_word1_set_port_value[32-1:0];
+always @(reg_word10_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word10_merge_bytes
+    if ((set_strobe && (set_index == 0))) begin
+        reg_word10_written = set_value[32-1:0];
     end
     else begin
         reg_word10_written = ((reg_word10_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1052,7 +1052,7 @@ always @(posedge clock, negedge reset) begin: reg_word10__store5_hold_rw
     end
     else begin
         reg_word10_clamped <= 1'b0;
-        if (((reg_word10_set_mine && (reg_word1_set_port_index == 0)) || (io_written && reg_word10_mine_write))) begin
+        if (((set_strobe && (set_index == 0)) || (io_written && reg_word10_mine_write))) begin
             reg_word10_shown <= reg_word10_honoured;
             reg_word10_clamped <= reg_word10_out_of_range;
         end
@@ -1082,9 +1082,9 @@ assign reg_word11_shown_wide = {16'h0, reg_word11_shown};
 assign reg_word11_mine_write = (written_addr == 44);
 
 
-always @(reg_word11_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word11_merge_bytes
-    if ((reg_word10_set_mine && (reg_word1_set_port_index == 1))) begin
-        reg_word11_written = reg_word1_set_port_value[32-1:0];
+always @(reg_word11_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word11_merge_bytes
+    if ((set_strobe && (set_index == 1))) begin
+        reg_word11_written = set_value[32-1:0];
     end
     else begin
         reg_word11_written = ((reg_word11_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1118,7 +1118,7 @@ always @(posedge clock, negedge reset) begin: reg_word11__store6_hold_rw
     end
     else begin
         reg_word11_clamped <= 1'b0;
-        if (((reg_word10_set_mine && (reg_word1_set_port_index == 1)) || (io_written && reg_word11_mine_write))) begin
+        if (((set_strobe && (set_index == 1)) || (io_written && reg_word11_mine_write))) begin
             reg_word11_shown <= reg_word11_honoured;
             reg_word11_clamped <= reg_word11_out_of_range;
         end
@@ -1148,9 +1148,9 @@ assign reg_word12_shown_wide = {16'h0, reg_word12_shown};
 assign reg_word12_mine_write = (written_addr == 48);
 
 
-always @(reg_word12_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word12_merge_bytes
-    if ((reg_word10_set_mine && (reg_word1_set_port_index == 2))) begin
-        reg_word12_written = reg_word1_set_port_value[16-1:0];
+always @(reg_word12_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word12_merge_bytes
+    if ((set_strobe && (set_index == 2))) begin
+        reg_word12_written = set_value[16-1:0];
     end
     else begin
         reg_word12_written = ((reg_word12_shown_wide[16-1:0] & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
@@ -1173,7 +1173,7 @@ always @(posedge clock, negedge reset) begin: reg_word12__store7_hold_rw
     end
     else begin
         reg_word12_clamped <= 1'b0;
-        if (((reg_word10_set_mine && (reg_word1_set_port_index == 2)) || (io_written && reg_word12_mine_write))) begin
+        if (((set_strobe && (set_index == 2)) || (io_written && reg_word12_mine_write))) begin
             reg_word12_shown <= reg_word12_honoured;
             reg_word12_clamped <= reg_word12_out_of_range;
         end
@@ -1203,9 +1203,9 @@ assign reg_word13_shown_wide = {24'h0, reg_word13_shown};
 assign reg_word13_mine_write = (written_addr == 52);
 
 
-always @(reg_word13_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word13_merge_bytes
-    if ((reg_word10_set_mine && (reg_word1_set_port_index == 3))) begin
-        reg_word13_written = reg_word1_set_port_value[32-1:0];
+always @(reg_word13_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word13_merge_bytes
+    if ((set_strobe && (set_index == 3))) begin
+        reg_word13_written = set_value[32-1:0];
     end
     else begin
         reg_word13_written = ((reg_word13_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1239,7 +1239,7 @@ always @(posedge clock, negedge reset) begin: reg_word13__store8_hold_rw
     end
     else begin
         reg_word13_clamped <= 1'b0;
-        if (((reg_word10_set_mine && (reg_word1_set_port_index == 3)) || (io_written && reg_word13_mine_write))) begin
+        if (((set_strobe && (set_index == 3)) || (io_written && reg_word13_mine_write))) begin
             reg_word13_shown <= reg_word13_honoured;
             reg_word13_clamped <= reg_word13_out_of_range;
         end
@@ -1269,9 +1269,9 @@ assign reg_word14_shown_wide = {24'h0, reg_word14_shown};
 assign reg_word14_mine_write = (written_addr == 56);
 
 
-always @(reg_word14_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word14_merge_bytes
-    if ((reg_word10_set_mine && (reg_word1_set_port_index == 4))) begin
-        reg_word14_written = reg_word1_set_port_value[32-1:0];
+always @(reg_word14_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word14_merge_bytes
+    if ((set_strobe && (set_index == 4))) begin
+        reg_word14_written = set_value[32-1:0];
     end
     else begin
         reg_word14_written = ((reg_word14_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1305,7 +1305,7 @@ always @(posedge clock, negedge reset) begin: reg_word14__store9_hold_rw
     end
     else begin
         reg_word14_clamped <= 1'b0;
-        if (((reg_word10_set_mine && (reg_word1_set_port_index == 4)) || (io_written && reg_word14_mine_write))) begin
+        if (((set_strobe && (set_index == 4)) || (io_written && reg_word14_mine_write))) begin
             reg_word14_shown <= reg_word14_honoured;
             reg_word14_clamped <= reg_word14_out_of_range;
         end
@@ -1335,9 +1335,9 @@ assign reg_word15_shown_wide = {24'h0, reg_word15_shown};
 assign reg_word15_mine_write = (written_addr == 60);
 
 
-always @(reg_word15_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word15_merge_bytes
-    if ((reg_word10_set_mine && (reg_word1_set_port_index == 5))) begin
-        reg_word15_written = reg_word1_set_port_value[32-1:0];
+always @(reg_word15_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word15_merge_bytes
+    if ((set_strobe && (set_index == 5))) begin
+        reg_word15_written = set_value[32-1:0];
     end
     else begin
         reg_word15_written = ((reg_word15_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1371,7 +1371,7 @@ always @(posedge clock, negedge reset) begin: reg_word15__store10_hold_rw
     end
     else begin
         reg_word15_clamped <= 1'b0;
-        if (((reg_word10_set_mine && (reg_word1_set_port_index == 5)) || (io_written && reg_word15_mine_write))) begin
+        if (((set_strobe && (set_index == 5)) || (io_written && reg_word15_mine_write))) begin
             reg_word15_shown <= reg_word15_honoured;
             reg_word15_clamped <= reg_word15_out_of_range;
         end
@@ -1401,9 +1401,9 @@ assign reg_word16_shown_wide = {30'h0, reg_word16_shown};
 assign reg_word16_mine_write = (written_addr == 64);
 
 
-always @(reg_word16_shown_wide, reg_word16_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word16_merge_bytes
-    if ((reg_word16_set_mine && (reg_word1_set_port_index == 0))) begin
-        reg_word16_written = reg_word1_set_port_value[2-1:0];
+always @(reg_word16_shown_wide, reg_word16_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word16_merge_bytes
+    if ((reg_word16_set_mine && (set_index == 0))) begin
+        reg_word16_written = set_value[2-1:0];
     end
     else begin
         reg_word16_written = ((reg_word16_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
@@ -1426,7 +1426,7 @@ always @(posedge clock, negedge reset) begin: reg_word16__store11_hold_rw
     end
     else begin
         reg_word16_clamped <= 1'b0;
-        if (((reg_word16_set_mine && (reg_word1_set_port_index == 0)) || (io_written && reg_word16_mine_write))) begin
+        if (((reg_word16_set_mine && (set_index == 0)) || (io_written && reg_word16_mine_write))) begin
             reg_word16_shown <= reg_word16_honoured;
             reg_word16_clamped <= reg_word16_out_of_range;
         end
@@ -1456,9 +1456,9 @@ assign reg_word17_shown_wide = {16'h0, reg_word17_shown};
 assign reg_word17_mine_write = (written_addr == 68);
 
 
-always @(reg_word17_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word17_merge_bytes
-    if ((reg_word10_set_mine && (reg_word1_set_port_index == 6))) begin
-        reg_word17_written = reg_word1_set_port_value[32-1:0];
+always @(reg_word17_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word17_merge_bytes
+    if ((set_strobe && (set_index == 6))) begin
+        reg_word17_written = set_value[32-1:0];
     end
     else begin
         reg_word17_written = ((reg_word17_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1492,7 +1492,7 @@ always @(posedge clock, negedge reset) begin: reg_word17__store12_hold_rw
     end
     else begin
         reg_word17_clamped <= 1'b0;
-        if (((reg_word10_set_mine && (reg_word1_set_port_index == 6)) || (io_written && reg_word17_mine_write))) begin
+        if (((set_strobe && (set_index == 6)) || (io_written && reg_word17_mine_write))) begin
             reg_word17_shown <= reg_word17_honoured;
             reg_word17_clamped <= reg_word17_out_of_range;
         end
@@ -1522,9 +1522,9 @@ assign reg_word18_shown_wide = {16'h0, reg_word18_shown};
 assign reg_word18_mine_write = (written_addr == 72);
 
 
-always @(reg_word18_shown_wide, reg_word10_set_mine, written_mask, reg_word1_set_port_index, written_data, reg_word1_set_port_value) begin: reg_word18_merge_bytes
-    if ((reg_word10_set_mine && (reg_word1_set_port_index == 7))) begin
-        reg_word18_written = reg_word1_set_port_value[32-1:0];
+always @(reg_word18_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word18_merge_bytes
+    if ((set_strobe && (set_index == 7))) begin
+        reg_word18_written = set_value[32-1:0];
     end
     else begin
         reg_word18_written = ((reg_word18_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
@@ -1558,7 +1558,7 @@ always @(posedge clock, negedge reset) begin: reg_word18__store13_hold_rw
     end
     else begin
         reg_word18_clamped <= 1'b0;
-        if (((reg_word10_set_mine && (reg_word1_set_port_index == 7)) || (io_written && reg_word18_mine_write))) begin
+        if (((set_strobe && (set_index == 7)) || (io_written && reg_word18_mine_write))) begin
             reg_word18_shown <= reg_word18_honoured;
             reg_word18_clamped <= reg_word18_out_of_range;
         end
@@ -2142,14 +2142,14 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
         error_code <= 0;
         sequencer0_mark_strobe <= 0;
         dda_start <= 0;
-        reg_word10_set_mine <= 0;
+        set_strobe <= 0;
         sequencer0_dwell_left <= 0;
         sequencer0_state <= 3'b000;
     end
     else begin
         dda_start <= 0;
         seq_load <= 0;
-        reg_word10_set_mine <= 0;
+        set_strobe <= 0;
         sequencer0_mark_strobe <= 0;
         if (core_clear) begin
             sequencer0_state <= 3'b000;
@@ -2186,7 +2186,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
                 sequencer0_state <= 3'b000;
                 case (sequencer0_opcode)
                     'h4: begin
-                        reg_word10_set_mine <= 1;
+                        set_strobe <= 1;
                     end
                     'h6: begin
                         sequencer0_mark_strobe <= 1;
@@ -2225,8 +2225,8 @@ always @(sequencer0_operand_0, sequencer0_operand_3, sequencer0_operand_1, seque
     end
     sequencer0_pulses_count_x = $signed(sequencer0_operand_0[24-1:0]);
     sequencer0_pulses_count_y = $signed(sequencer0_operand_1[24-1:0]);
-    reg_word1_set_port_index = sequencer0_header[4-1:0];
-    reg_word1_set_port_value = sequencer0_operand_0;
+    set_index = sequencer0_header[4-1:0];
+    set_value = sequencer0_operand_0;
     sequencer0_mark_tag = sequencer0_header[16-1:0];
 end
 

@@ -254,6 +254,9 @@ wire card1_card_core1_dda_reset;
 reg [31:0] card1_card_core1_regs_fifo2_fifo_dout;
 reg card1_card_core1_regs_fifo2_fifo_pop;
 wire card1_card_core1_regs_fifo2_fifo_empty;
+reg card1_card_core1_regs_fifo2_set_strobe;
+reg [3:0] card1_card_core1_regs_fifo2_set_index;
+reg [31:0] card1_card_core1_regs_fifo2_set_value;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
 reg card1_card_core1_regs_fifo2_busy_before;
@@ -336,8 +339,6 @@ wire card1_card_core1_regs_fifo2_reg_word49_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word49_shown_wide;
 reg [1:0] card1_card_core1_regs_fifo2_reg_word49_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word49_chain_out_data;
-reg [3:0] card1_card_core1_regs_fifo2_reg_word49_set_port_index;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word49_set_port_value;
 wire card1_card_core1_regs_fifo2_reg_word49_chain_out_clamped;
 wire [2:0] card1_card_core1_regs_fifo2_reg_word50_honoured;
 wire card1_card_core1_regs_fifo2_reg_word50_out_of_range;
@@ -406,7 +407,6 @@ reg [15:0] card1_card_core1_regs_fifo2_reg_word58_shown;
 reg card1_card_core1_regs_fifo2_reg_word58_clamped;
 wire card1_card_core1_regs_fifo2_reg_word58_mine;
 wire card1_card_core1_regs_fifo2_reg_word58_mine_write;
-reg card1_card_core1_regs_fifo2_reg_word58_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word58_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word58_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word58_chain_out_data;
@@ -2757,9 +2757,9 @@ assign card1_card_core1_regs_fifo2_reg_word49_shown_wide = {30'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word49_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word49_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word49_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word49_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word49_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word49_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word49_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word49_written = ((card1_card_core1_regs_fifo2_reg_word49_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
@@ -2782,7 +2782,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word49_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word49_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word49_mine_write))) begin
             card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word49_honoured;
             card1_card_core1_regs_fifo2_reg_word49_clamped <= card1_card_core1_regs_fifo2_reg_word49_out_of_range;
         end
@@ -2886,9 +2886,9 @@ assign card1_card_core1_regs_fifo2_reg_word52_shown_wide = {27'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word52_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word52_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word52_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word52_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[5-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word52_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word52_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word52_written = card1_card_core1_regs_fifo2_set_value[5-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word52_written = ((card1_card_core1_regs_fifo2_reg_word52_shown_wide[5-1:0] & (~card1_card_core1_regs_fifo2_written_mask[5-1:0])) | (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]));
@@ -2911,7 +2911,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word52_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word52_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word52_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word52_shown <= card1_card_core1_regs_fifo2_reg_word52_honoured;
             card1_card_core1_regs_fifo2_reg_word52_clamped <= card1_card_core1_regs_fifo2_reg_word52_out_of_range;
         end
@@ -2990,9 +2990,9 @@ assign card1_card_core1_regs_fifo2_reg_word54_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word54_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word54_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word54_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word54_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[16-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word54_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word54_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word54_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word54_written = ((card1_card_core1_regs_fifo2_reg_word54_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
@@ -3015,7 +3015,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word54_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word54_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word54_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word54_shown <= card1_card_core1_regs_fifo2_reg_word54_honoured;
             card1_card_core1_regs_fifo2_reg_word54_clamped <= card1_card_core1_regs_fifo2_reg_word54_out_of_range;
         end
@@ -3111,9 +3111,9 @@ assign card1_card_core1_regs_fifo2_reg_word58_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word58_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word58_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word58_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word58_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word58_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word58_written = ((card1_card_core1_regs_fifo2_reg_word58_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3147,7 +3147,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word58_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word58_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word58_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word58_shown <= card1_card_core1_regs_fifo2_reg_word58_honoured;
             card1_card_core1_regs_fifo2_reg_word58_clamped <= card1_card_core1_regs_fifo2_reg_word58_out_of_range;
         end
@@ -3177,9 +3177,9 @@ assign card1_card_core1_regs_fifo2_reg_word59_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word59_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word59_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 1))) begin
-        card1_card_core1_regs_fifo2_reg_word59_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word59_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
+        card1_card_core1_regs_fifo2_reg_word59_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word59_written = ((card1_card_core1_regs_fifo2_reg_word59_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3213,7 +3213,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word59_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word59_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word59_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word59_shown <= card1_card_core1_regs_fifo2_reg_word59_honoured;
             card1_card_core1_regs_fifo2_reg_word59_clamped <= card1_card_core1_regs_fifo2_reg_word59_out_of_range;
         end
@@ -3243,9 +3243,9 @@ assign card1_card_core1_regs_fifo2_reg_word60_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word60_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word60_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 2))) begin
-        card1_card_core1_regs_fifo2_reg_word60_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[16-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word60_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
+        card1_card_core1_regs_fifo2_reg_word60_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word60_written = ((card1_card_core1_regs_fifo2_reg_word60_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
@@ -3268,7 +3268,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word60_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word60_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word60_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word60_shown <= card1_card_core1_regs_fifo2_reg_word60_honoured;
             card1_card_core1_regs_fifo2_reg_word60_clamped <= card1_card_core1_regs_fifo2_reg_word60_out_of_range;
         end
@@ -3298,9 +3298,9 @@ assign card1_card_core1_regs_fifo2_reg_word61_shown_wide = {24'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word61_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word61_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 3))) begin
-        card1_card_core1_regs_fifo2_reg_word61_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word61_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
+        card1_card_core1_regs_fifo2_reg_word61_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word61_written = ((card1_card_core1_regs_fifo2_reg_word61_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3334,7 +3334,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word61_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word61_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word61_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word61_shown <= card1_card_core1_regs_fifo2_reg_word61_honoured;
             card1_card_core1_regs_fifo2_reg_word61_clamped <= card1_card_core1_regs_fifo2_reg_word61_out_of_range;
         end
@@ -3364,9 +3364,9 @@ assign card1_card_core1_regs_fifo2_reg_word62_shown_wide = {24'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word62_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word62_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 4))) begin
-        card1_card_core1_regs_fifo2_reg_word62_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word62_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
+        card1_card_core1_regs_fifo2_reg_word62_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word62_written = ((card1_card_core1_regs_fifo2_reg_word62_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3400,7 +3400,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word62_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word62_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word62_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word62_shown <= card1_card_core1_regs_fifo2_reg_word62_honoured;
             card1_card_core1_regs_fifo2_reg_word62_clamped <= card1_card_core1_regs_fifo2_reg_word62_out_of_range;
         end
@@ -3430,9 +3430,9 @@ assign card1_card_core1_regs_fifo2_reg_word63_shown_wide = {24'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word63_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word63_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 5))) begin
-        card1_card_core1_regs_fifo2_reg_word63_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word63_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
+        card1_card_core1_regs_fifo2_reg_word63_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word63_written = ((card1_card_core1_regs_fifo2_reg_word63_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3466,7 +3466,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word63_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word63_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word63_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word63_shown <= card1_card_core1_regs_fifo2_reg_word63_honoured;
             card1_card_core1_regs_fifo2_reg_word63_clamped <= card1_card_core1_regs_fifo2_reg_word63_out_of_range;
         end
@@ -3496,9 +3496,9 @@ assign card1_card_core1_regs_fifo2_reg_word64_shown_wide = {30'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word64_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word64_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word64_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word64_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word64_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word64_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word64_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word64_written = ((card1_card_core1_regs_fifo2_reg_word64_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
@@ -3521,7 +3521,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word64_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word64_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word64_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word64_shown <= card1_card_core1_regs_fifo2_reg_word64_honoured;
             card1_card_core1_regs_fifo2_reg_word64_clamped <= card1_card_core1_regs_fifo2_reg_word64_out_of_range;
         end
@@ -3551,9 +3551,9 @@ assign card1_card_core1_regs_fifo2_reg_word65_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word65_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word65_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 6))) begin
-        card1_card_core1_regs_fifo2_reg_word65_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word65_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+        card1_card_core1_regs_fifo2_reg_word65_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word65_written = ((card1_card_core1_regs_fifo2_reg_word65_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3587,7 +3587,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word65_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word65_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word65_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word65_shown <= card1_card_core1_regs_fifo2_reg_word65_honoured;
             card1_card_core1_regs_fifo2_reg_word65_clamped <= card1_card_core1_regs_fifo2_reg_word65_out_of_range;
         end
@@ -3617,9 +3617,9 @@ assign card1_card_core1_regs_fifo2_reg_word66_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word66_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_reg_word58_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_reg_word49_set_port_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word49_set_port_value) begin: card1_card_core1_regs_fifo2_reg_word66_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 7))) begin
-        card1_card_core1_regs_fifo2_reg_word66_written = card1_card_core1_regs_fifo2_reg_word49_set_port_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word66_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
+        card1_card_core1_regs_fifo2_reg_word66_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word66_written = ((card1_card_core1_regs_fifo2_reg_word66_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
@@ -3653,7 +3653,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word66_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word58_set_mine && (card1_card_core1_regs_fifo2_reg_word49_set_port_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word66_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word66_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word66_shown <= card1_card_core1_regs_fifo2_reg_word66_honoured;
             card1_card_core1_regs_fifo2_reg_word66_clamped <= card1_card_core1_regs_fifo2_reg_word66_out_of_range;
         end
@@ -4237,14 +4237,14 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
         card1_card_core1_regs_fifo2_error_code <= 0;
         card1_card_core1_regs_fifo2_sequencer2_mark_strobe <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dda_start <= 0;
-        card1_card_core1_regs_fifo2_reg_word58_set_mine <= 0;
+        card1_card_core1_regs_fifo2_set_strobe <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dwell_left <= 0;
         card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
     end
     else begin
         card1_card_core1_regs_fifo2_sequencer2_dda_start <= 0;
         card1_card_core1_regs_fifo2_seq_load <= 0;
-        card1_card_core1_regs_fifo2_reg_word58_set_mine <= 0;
+        card1_card_core1_regs_fifo2_set_strobe <= 0;
         card1_card_core1_regs_fifo2_sequencer2_mark_strobe <= 0;
         if (card1_card_core1_core_clear) begin
             card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
@@ -4281,7 +4281,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                 card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
                 case (card1_card_core1_regs_fifo2_sequencer2_opcode)
                     'h4: begin
-                        card1_card_core1_regs_fifo2_reg_word58_set_mine <= 1;
+                        card1_card_core1_regs_fifo2_set_strobe <= 1;
                     end
                     'h6: begin
                         card1_card_core1_regs_fifo2_sequencer2_mark_strobe <= 1;
@@ -4320,8 +4320,8 @@ always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs
     end
     card1_card_core1_regs_fifo2_sequencer2_pulses_count_x = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
     card1_card_core1_regs_fifo2_sequencer2_pulses_count_y = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
-    card1_card_core1_regs_fifo2_reg_word49_set_port_index = card1_card_core1_regs_fifo2_sequencer2_header[4-1:0];
-    card1_card_core1_regs_fifo2_reg_word49_set_port_value = card1_card_core1_regs_fifo2_sequencer2_operand_0;
+    card1_card_core1_regs_fifo2_set_index = card1_card_core1_regs_fifo2_sequencer2_header[4-1:0];
+    card1_card_core1_regs_fifo2_set_value = card1_card_core1_regs_fifo2_sequencer2_operand_0;
     card1_card_core1_regs_fifo2_sequencer2_mark_tag = card1_card_core1_regs_fifo2_sequencer2_header[16-1:0];
 end
 

@@ -82,6 +82,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
                                byte_mask=written_mask, wdata=written_data)
 
     set_port, mark = SetPort(), MarkPort()
+    # named at this level, as the formal harness (formal/props) and the waves know them
+    set_strobe, set_index, set_value = set_port.strobe, set_port.index, set_port.value
     seq_control = SequencerControl(clear=core_clear)
     enable, clear_error, error_code = seq_control.enable, seq_control.clear_error, seq_control.error_code
     seq_busy, motion_run, discard_on_clear = seq_control.busy, seq_control.motion_run, seq_control.discard_on_clear
