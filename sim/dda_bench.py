@@ -27,12 +27,13 @@ VIEW_GROUPS = {
     "pulses": ["steps_step_x", "steps_dir_x", "steps_step_y", "steps_dir_y"],
     "setup (MyHDL only)": ["dda_setup.state", "dda_setup.step", "dda_setup.gap", "dda_setup.operand",
                            "dda_setup.root_root", "plan_radius", "plan_totals_diff", "plan_totals_max"],
-    "run (MyHDL only)": ["dda_run.quadrant", "dda_run.mag_x", "dda_run.mag_y", "dda_run.target_x",
-                         "dda_run.target_y", "dda_run.acc_x", "dda_run.acc_y", "dda_run.error_term",
-                         "dda_run.bias_in", "dda_run.bias_out", "dda_run.left_diff", "dda_run.crossings"],
+    "run (MyHDL only)": ["dda_run.quadrant", "dda_run.step_mag_x", "dda_run.step_mag_y", "dda_run.target_x",
+                         "dda_run.target_y", "dda_run.acc_x", "dda_run.acc_y", "dda_nearest.error_term",
+                         "dda_nearest.bias_in", "dda_nearest.bias_out", "dda_left.difference",
+                         "dda_run.crossings"],
 }
 VIEW_SIGNED = ("cmd_xs", "cmd_ys", "cmd_xe", "cmd_ye", "dda_run.acc_x", "dda_run.acc_y", "plan_totals_diff")
-VIEW_DECIMAL = ("dda_run.mag_x", "dda_run.mag_y", "plan_radius", "plan_totals_max")
+VIEW_DECIMAL = ("dda_run.step_mag_x", "dda_run.step_mag_y", "plan_radius", "plan_totals_max")
 OUTPUTS = ("busy", "ready", "done", "error", "quadrant", "stop_left")
 PULSES = ("step_x", "step_y", "dir_x", "dir_y")
 HALF_PERIOD = 5

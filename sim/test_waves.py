@@ -171,8 +171,8 @@ MUST_SHOW = {
              "position_x[31:0]", "position_y[31:0]", "sequencer.opcode[3:0]", "sequencer.header[16:0]"],
     "core": ["local_addr[15:0]", "pins_step_x", "pins_dir_y", "position_x[31:0]", "sequencer.state",
              "sequencer.operand_0[31:0]", "feed_rate.rate[15:0]"],
-    "dda": ["cmd_xs[23:0]", "cmd_ye[23:0]", "dda_arc.state", "integrand_x[23:0]", "integrand_y[23:0]",
-            "acc_x[31:0]", "radial_error[29:0]", "steps_step_x"],
+    "dda": ["cmd_xs[23:0]", "cmd_ye[23:0]", "dda_setup.state", "step_mag_x[23:0]", "step_mag_y[23:0]",
+            "acc_x[29:0]", "error_term[26:0]", "steps_step_x"],
     "default": ["clock", "count[5:0]"],
 }
 VAR = re.compile(r"^\s*\$var\s+(\S+)\s+(\d+)\s+\S+\s+(\S+)(?:\s+\[(-?\d+)(?::(-?\d+))?\])?\s+\$end", re.M)
