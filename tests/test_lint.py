@@ -29,16 +29,9 @@ BUILDS = {
 }
 SOURCES = [(build, unit) for build in BUILDS for unit in UNITS]
 
-ICE40_BLACKBOXES = """\
-`timescale 1ns/10ps
-module SB_IO (inout PACKAGE_PIN, input LATCH_INPUT_VALUE, input CLOCK_ENABLE,
-              input INPUT_CLK, input OUTPUT_CLK, input OUTPUT_ENABLE,
-              input D_OUT_0, input D_OUT_1, output D_IN_0, output D_IN_1);
-  parameter [5:0] PIN_TYPE = 6'b000000;
-  parameter [0:0] PULLUP = 1'b0;
-  parameter [0:0] NEG_TRIGGER = 1'b0;
-  parameter IO_STANDARD = "SB_LVCMOS";
-endmodule
+# the SB_IO black box of the FuseSoC lint target, and the LUT cell of the ice40 build
+SB_IO_BLACKBOX = ROOT / "tests" / "verilog" / "sb_io_blackbox.v"
+SB_LUT4_BLACKBOX = """\
 module SB_LUT4 (output O, input I0, input I1, input I2, input I3);
   parameter [15:0] LUT_INIT = 16'h0000;
 endmodule
@@ -48,7 +41,7 @@ endmodule
 @pytest.fixture(scope="module")
 def blackbox(tmp_path_factory):
     path = tmp_path_factory.mktemp("cells") / "sb_io_blackbox.v"
-    path.write_text(ICE40_BLACKBOXES)
+    path.write_text(SB_IO_BLACKBOX.read_text() + SB_LUT4_BLACKBOX)
     return path
 
 
