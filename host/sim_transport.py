@@ -21,7 +21,8 @@ from host.transport import SIM_KINDS, Transport, TransportError, check_access, c
 class SimTransport(Transport):
     """The card of ``kind`` (``myhdl``, ``icarus``, ``verilator``) with
     ``fifo_depth`` words of FIFO; ``monitor``: the protocol checker on
-    Verilator (always on for the others)."""
+    Verilator (always on for the others); ``clock_hz``: the Verilator card is
+    built for it (its CLOCK_HZ reads it), the others for the default."""
 
     def __init__(self, kind, fifo_depth=DEFAULT_FIFO, clock_hz=PARAMETERS["clock_hz"].default, monitor=True):
         if kind not in SIM_KINDS:
@@ -29,7 +30,8 @@ class SimTransport(Transport):
         self.name = f"simulated card ({kind})"
         self.kind = kind
         self.clock_hz = clock_hz
-        self.session = CardSession(kind, fifo_depth, monitor=monitor)
+        clock = dict(clock_hz=clock_hz) if kind == "verilator" else {}
+        self.session = CardSession(kind, fifo_depth, monitor=monitor, **clock)
         self.device = self.session.device
         self.io_size = self.session.bars["io"]["size"]
         self.mem_size = self.session.bars["mem"]["size"]

@@ -31,6 +31,7 @@ from myhdl import always, block
 from rtl import registers as regmap
 from rtl.card import card, card_ports
 from rtl.interfaces import MotorPins
+from rtl.parameters import CLOCK_HZ
 from rtl.top import PARAMETERS, convert_unit
 from sim.card_bench import PinLog, command_words, pin_capture, write_motion_view
 from sim.paths import GEN, ROOT, build_dir
@@ -48,19 +49,20 @@ DEFAULT_FIFO = PARAMETERS["fifo_depth"].default
 INTA_LIMIT = 200000
 
 
-def card_verilog(fifo_depth):
-    """``card.v`` for ``fifo_depth``: ``gen/card.v`` for the default, else a
-    conversion kept in ``build/vlt/conv`` under a hash of the RTL sources."""
-    if fifo_depth == DEFAULT_FIFO:
+def card_verilog(fifo_depth, clock_hz=CLOCK_HZ.default):
+    """``card.v`` for ``fifo_depth`` and ``clock_hz`` (what CLOCK_HZ reports):
+    ``gen/card.v`` for the defaults, else a conversion kept in
+    ``build/vlt/conv`` under a hash of the RTL sources."""
+    if fifo_depth == DEFAULT_FIFO and clock_hz == CLOCK_HZ.default:
         return GEN / "card.v"
-    digest = hashlib.sha256(f"{myhdl_version} fifo_depth={fifo_depth}".encode())
+    digest = hashlib.sha256(f"{myhdl_version} fifo_depth={fifo_depth} clock_hz={clock_hz}".encode())
     for source in sorted((ROOT / "rtl").glob("*.py")):
         digest.update(source.name.encode() + source.read_bytes())
     folder = build_dir("vlt", "conv", f"card-{digest.hexdigest()[:20]}")
     verilog = folder / "card.v"
     if not verilog.exists():
         staging = tempfile.mkdtemp(prefix=".card-", dir=build_dir("vlt", "conv"))
-        written = convert_unit("card", {"fifo_depth": fifo_depth}, staging)
+        written = convert_unit("card", {"fifo_depth": fifo_depth, "clock_hz": clock_hz}, staging)
         os.replace(written, verilog)  # whole: a parallel worker finds the file complete or not at all
         shutil.rmtree(staging, ignore_errors=True)
     return verilog

@@ -25,6 +25,8 @@ its value; simulated time moves only inside calls.
 """
 from myhdl import now
 
+from rtl.parameters import CLOCK_HZ
+
 from sim.card_e2e import DEFAULT_FIFO, DEVICE, CardUnderTest, card_verilog, wait
 from sim.pci_bench import CLOCK_PERIOD, TARGET_DEVICE, PciBench, pci_testbench
 from sim.pci_host_core import Clocks
@@ -40,7 +42,8 @@ class CardSession:
     FIFO, reset and enumerated.  ``host_options``: ``PciMaster`` keyword
     arguments (default: ``max_retries`` = ``RETRIES``); ``trace``: the bench's
     VCD (MyHDL, Icarus; ``name`` names it); ``monitor``: the protocol checker
-    on Verilator (always on for the others).
+    on Verilator (always on for the others); ``clock_hz``: what the card's
+    CLOCK_HZ reports (Verilator; the others build the default).
 
     ``host`` (a ``PciMaster``), ``target`` (a ``CardUnderTest``: ``log``,
     ``io``, ``mem``), ``device`` (``PciDevice``), ``io`` / ``mem`` (BAR
@@ -48,13 +51,13 @@ class CardSession:
     """
 
     def __init__(self, kind, fifo_depth=DEFAULT_FIFO, host_options=None, trace=False, name="card_session",
-                 monitor=True):
+                 monitor=True, clock_hz=CLOCK_HZ.default):
         self.kind = kind
         self.target = CardUnderTest(kind, fifo_depth)
         options = dict(max_retries=RETRIES)
         options.update(host_options or {})
         if kind == "verilator":
-            self._runner = _VerilatorRunner(self.target, fifo_depth, options, monitor)
+            self._runner = _VerilatorRunner(self.target, fifo_depth, options, monitor, clock_hz)
         else:
             self._runner = _MyhdlRunner(self.target, options, trace, f"{name}_{kind}")
         self.host = self._runner.bench.host
@@ -99,8 +102,8 @@ class CardSession:
 
 
 class _VerilatorRunner:
-    def __init__(self, target, fifo_depth, host_options, monitor):
-        self.card = VerilatedCard(card_verilog(fifo_depth), idsel_bit=16 + TARGET_DEVICE)
+    def __init__(self, target, fifo_depth, host_options, monitor, clock_hz):
+        self.card = VerilatedCard(card_verilog(fifo_depth, clock_hz), idsel_bit=16 + TARGET_DEVICE)
         self.bench = VerilatorBench(self.card, target, host_options=host_options, monitor=monitor)
         self.bench.start()
 

@@ -1,0 +1,140 @@
+"""The simulated card served on a Unix socket, for the LinuxCNC driver's tests.
+
+``python -m host.cardserver --socket PATH --log FILE [--clock-hz N]`` opens
+``SimTransport("verilator", clock_hz=N)`` (a card built to report N in
+CLOCK_HZ), listens on PATH, serves one client and, when the client goes,
+writes FILE: the card clock of every ADVANCE and the STEP/DIR pin rises.
+
+The protocol is lock-step: simulated time moves only inside requests, and
+the driver asks for one servo period of card clocks (ADVANCE) in each of its
+periods, so card time and servo time agree whatever the wall clock does.
+Every request is three little-endian 32-bit words, ``op, a, b``; FIFO is
+followed by ``a`` data words.  Every answer is two words, ``status, value``
+(status 0: done; else ``value`` is the length of a UTF-8 message that follows).
+
+    op 1 READ    a = BAR0 offset           value = the register
+    op 2 WRITE   a = BAR0 offset, b = value
+    op 3 FIFO    a = word count, words     (one burst into BAR1)
+    op 4 ADVANCE a = card clocks           value = card clocks since reset, low 32 bits
+"""
+import argparse
+import json
+import os
+import socket
+import struct
+import sys
+
+from rtl.parameters import CLOCK_HZ
+
+from host.sim_transport import SimTransport
+from host.transport import TransportError
+
+READ, WRITE, FIFO, ADVANCE = 1, 2, 3, 4
+WORD = struct.Struct("<I")
+REQUEST = struct.Struct("<III")
+ANSWER = struct.Struct("<II")
+MAX_BURST = 4096  # words in one FIFO request
+
+
+class ProtocolError(RuntimeError):
+    """A request the server cannot take."""
+
+
+def receive(connection, size):
+    """Exactly ``size`` bytes, or None when the client closed the socket first."""
+    chunks = bytearray()
+    while len(chunks) < size:
+        chunk = connection.recv(size - len(chunks))
+        if not chunk:
+            return None
+        chunks += chunk
+    return bytes(chunks)
+
+
+class CardServer:
+    """One client's requests on ``transport``; ``advances``: (clocks asked, card clock after)."""
+
+    def __init__(self, transport):
+        self.transport = transport
+        self.start = transport.clocks
+        self.advances = []
+
+    def handle(self, op, a, b, payload):
+        transport = self.transport
+        if op == READ:
+            return transport.read(a)
+        if op == WRITE:
+            transport.write(a, b)
+            return 0
+        if op == FIFO:
+            transport.fifo_write(payload)
+            return 0
+        if op == ADVANCE:
+            before = transport.clocks
+            transport.session.wait(a)
+            after = transport.clocks - self.start
+            self.advances.append((before - self.start, after))
+            return after & 0xFFFFFFFF
+        raise ProtocolError(f"unknown request {op}")
+
+    def serve(self, connection):
+        """Answer requests until the client closes the socket."""
+        while True:
+            header = receive(connection, REQUEST.size)
+            if header is None:
+                return
+            op, a, b = REQUEST.unpack(header)
+            payload = []
+            if op == FIFO:
+                if a > MAX_BURST:
+                    raise ProtocolError(f"a FIFO burst of {a} words is more than {MAX_BURST}")
+                data = receive(connection, 4 * a)
+                if data is None:
+                    return
+                payload = list(struct.unpack(f"<{a}I", data))
+            try:
+                value = self.handle(op, a, b, payload)
+            except (TransportError, ValueError, ProtocolError) as error:
+                message = str(error).encode()
+                connection.sendall(ANSWER.pack(1, len(message)) + message)
+                continue
+            connection.sendall(ANSWER.pack(0, value))
+
+    def record(self):
+        """What the test compares: clocks are card clocks since the server opened the card."""
+        rises = [(int(r[0]) - self.start, *map(int, r[1:])) for r in self.transport.pins.rises]
+        return dict(clock_hz=self.transport.clock_hz, advances=self.advances, rises=rises)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python -m host.cardserver", description=__doc__.splitlines()[0])
+    parser.add_argument("--socket", required=True, help="Unix socket to listen on (must not exist)")
+    parser.add_argument("--log", required=True, help="JSON file written when the client has gone")
+    parser.add_argument("--clock-hz", type=int, default=CLOCK_HZ.default,
+                        help=f"clock the simulated card reports in CLOCK_HZ (default {CLOCK_HZ.default})")
+    args = parser.parse_args(argv)
+    if not 1 <= args.clock_hz <= 0xFFFFFFFF:
+        parser.error(f"--clock-hz must be 1..{0xFFFFFFFF}, not {args.clock_hz}")
+    if os.path.exists(args.socket):
+        parser.error(f"{args.socket} exists: remove it or choose another path")
+    with SimTransport("verilator", clock_hz=args.clock_hz) as transport:
+        server = CardServer(transport)
+        listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        listener.bind(args.socket)
+        os.chmod(args.socket, 0o666)  # the driver runs as LinuxCNC's (ordinary) user
+        listener.listen(1)
+        print(f"card server listening on {args.socket}", flush=True)
+        connection, _ = listener.accept()
+        try:
+            server.serve(connection)
+        finally:
+            connection.close()
+            listener.close()
+            os.unlink(args.socket)
+            with open(args.log, "w") as log:
+                json.dump(server.record(), log)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

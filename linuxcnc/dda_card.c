@@ -1,0 +1,300 @@
+/* dda_card: LinuxCNC HAL driver of the PCI DDA card, position mode.
+ *
+ * Copyright the PCI DDA card authors.  GPL-2.0-or-later (see COPYING here).
+ *
+ *   loadrt dda_card [sim=/path/to/socket] [keep_ahead=4] [period_overhead=9]
+ *   addf dda-card.0.read servo-thread      (first in the thread)
+ *   addf dda-card.0.write servo-thread     (after motion)
+ *
+ * Each servo period `write` turns the change of every axis's position-cmd
+ * (in steps: round(position-cmd * position-scale), so rounding is never
+ * carried as error) into one LINE by (dx, dy) steps at one iteration per
+ * `iteration` clocks followed by a DWELL that fills the rest of the period,
+ * so the card's motion for a period takes exactly that period's card
+ * clocks: 2 * N + dwell + period_overhead, N = max(|dx|, |dy|).  The queue
+ * is kept `keep_ahead` periods ahead: the position asked for in period k
+ * is reached keep_ahead + 1 periods later.  `read` gives position-fb from
+ * the card's step counters and STATUS's FIFO level and error.  A FIFO found
+ * empty while running, or a card error, sets `error`, stops the queue and
+ * needs enable to fall and rise again.  See docs/linuxcnc.md.
+ */
+#include "rtapi.h"
+#include "rtapi_app.h"
+#include "rtapi_math.h"
+#include "hal.h"
+#include "dda_transport.h"
+
+MODULE_AUTHOR("PCI DDA card authors");
+MODULE_DESCRIPTION("HAL driver of the PCI DDA card");
+MODULE_LICENSE("GPL");
+
+static char *sim = "";
+RTAPI_MP_STRING(sim, "Unix socket of python -m host.cardserver (empty: the real card on PCI)");
+static int keep_ahead = 4;
+RTAPI_MP_INT(keep_ahead, "servo periods queued ahead in the card's FIFO");
+static int period_overhead = 9;
+RTAPI_MP_INT(period_overhead, "card clocks a period's LINE and DWELL take beyond their own");
+
+#define AXES 2
+#define ITERATION_CLOCKS 2  /* one DDA iteration every other clock: FEED_RATE 32768 */
+static const uint32_t POS_REGS[AXES] = {DDA_POS_X, DDA_POS_Y};
+
+struct stepgen {
+    hal_float_t *position_cmd, *velocity_cmd, *position_fb, *velocity_fb;
+    hal_s32_t *counts;
+    hal_bit_t *enable;
+    hal_float_t position_scale, maxvel, maxaccel;
+    hal_u32_t steplen, stepspace, dirsetup, dirhold;
+    int32_t sent;          /* steps queued so far (driver's coordinates) */
+    int32_t offset;        /* driver's steps minus the card's counter */
+    int32_t last_counts;
+};
+
+struct card {
+    struct stepgen axis[AXES];
+    hal_s32_t *fifo_level;
+    hal_u32_t *underruns;
+    hal_bit_t *error;
+    hal_s32_t *error_code;
+    hal_u32_t *clock;              /* simulation: card clocks at the end of this period */
+    hal_bit_t *estop_in;           /* machine I/O: act once the card has those registers */
+    hal_bit_t *drive_enable;
+    hal_bit_t *watchdog_has_bit;
+    hal_u32_t watchdog_timeout_ns;
+    uint32_t clock_hz;
+    uint64_t fraction;             /* ns x Hz carried between periods (below 1e9) */
+    int running;
+    struct dda_transport transport;
+};
+
+static int comp_id;
+static struct card *card;
+
+static int clocks_of_ns(uint32_t ns)
+{
+    return (int)(((uint64_t)ns * card->clock_hz + 999999999u) / 1000000000u);
+}
+
+/* The nearest step: the rounding of each period is made afresh from the absolute position. */
+static int32_t steps_of(double position)
+{
+    return (int32_t)floor(position + 0.5);
+}
+
+static void stop(struct card *c, int code)
+{
+    *c->error = 1;
+    *c->error_code = code;
+    c->running = 0;
+    dda_write32(&c->transport, DDA_CONTROL, 0);
+    dda_write32(&c->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK);
+}
+
+static void read_card(void *arg, long period)
+{
+    struct card *c = arg;
+    uint32_t status, pos;
+    int i;
+    (void)period;
+    if (dda_read32(&c->transport, DDA_STATUS, &status) < 0) {
+        *c->error = 1;
+        return;
+    }
+    *c->fifo_level = (int32_t)((status & DDA_STATUS_FIFO_LEVEL_MASK) >> DDA_STATUS_FIFO_LEVEL_SHIFT);
+    if (c->running && (status & DDA_STATUS_ERROR_MASK)) {
+        stop(c, (int)((status & DDA_STATUS_ERROR_MASK) >> DDA_STATUS_ERROR_SHIFT));
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: the card stopped with error %d\n", *c->error_code);
+    } else if (c->running && !(status & DDA_STATUS_BUSY_MASK)) {
+        (*c->underruns)++;
+        stop(c, -1);
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: the FIFO ran dry: the servo thread fell behind\n");
+    }
+    for (i = 0; i < AXES; i++) {
+        struct stepgen *s = &c->axis[i];
+        double scale = s->position_scale != 0.0 ? s->position_scale : 1.0;
+        int32_t counts;
+        if (dda_read32(&c->transport, POS_REGS[i], &pos) < 0) {
+            *c->error = 1;
+            return;
+        }
+        counts = (int32_t)pos + s->offset;
+        *s->counts = counts;
+        *s->position_fb = counts / scale;
+        *s->velocity_fb = (counts - s->last_counts) / scale / (period * 1e-9);
+        s->last_counts = counts;
+    }
+}
+
+static int start(struct card *c)
+{
+    uint32_t words[DDA_CMD_SET_WORDS * 4];
+    unsigned n = 0;
+    int i;
+    if (*c->error)
+        return -1;
+    n += dda_cmd_set(&words[n], 65536 / ITERATION_CLOCKS, DDA_FEED_RATE_SET_INDEX);
+    n += dda_cmd_set(&words[n], clocks_of_ns(c->axis[0].steplen), DDA_STEP_WIDTH_SET_INDEX);
+    n += dda_cmd_set(&words[n], clocks_of_ns(c->axis[0].dirsetup), DDA_DIR_SETUP_SET_INDEX);
+    n += dda_cmd_set(&words[n], clocks_of_ns(c->axis[0].dirhold), DDA_DIR_HOLD_SET_INDEX);
+    for (i = 0; i < AXES; i++) {
+        struct stepgen *s = &c->axis[i];
+        s->sent = steps_of(*s->position_cmd * s->position_scale);
+        s->offset = s->sent - (*s->counts - s->offset);
+    }
+    if (dda_write32(&c->transport, DDA_RAMP_STEP, 0) < 0 || dda_fifo_write(&c->transport, words, n) < 0)
+        return -1;
+    c->running = 1;
+    return 0;
+}
+
+/* One period of motion: LINE by the change in steps, DWELL for the rest of `clocks`. */
+static int queue_period(struct card *c, uint32_t clocks)
+{
+    uint32_t words[DDA_CMD_LINE_WORDS + DDA_CMD_DWELL_WORDS];
+    int32_t delta[AXES];
+    int32_t longest = 0;
+    int64_t dwell;
+    unsigned n;
+    int i;
+    for (i = 0; i < AXES; i++) {
+        struct stepgen *s = &c->axis[i];
+        int32_t target = steps_of(*s->position_cmd * s->position_scale);
+        delta[i] = target - s->sent;
+        if ((delta[i] < 0 ? -delta[i] : delta[i]) > longest)
+            longest = (delta[i] < 0 ? -delta[i] : delta[i]);
+    }
+    dwell = (int64_t)clocks - (int64_t)ITERATION_CLOCKS * longest - period_overhead;
+    if (dwell < 0) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %d steps in one period is more than the card makes in "
+                        "%u clocks: lower maxvel or position-scale\n", longest, clocks);
+        return -1;
+    }
+    n = dda_cmd_line(words, delta[0], delta[1], 0);
+    n += dda_cmd_dwell(&words[n], (uint32_t)dwell);
+    if (dda_fifo_write(&c->transport, words, n) < 0)
+        return -1;
+    for (i = 0; i < AXES; i++)
+        c->axis[i].sent += delta[i];
+    return 0;
+}
+
+static void write_card(void *arg, long period)
+{
+    struct card *c = arg;
+    uint64_t ticks = c->fraction + (uint64_t)period * c->clock_hz;
+    uint32_t clocks = (uint32_t)(ticks / 1000000000u);
+    uint32_t now = 0;
+    int enabled = *c->axis[0].enable && *c->axis[1].enable && *c->estop_in;
+    int i;
+    c->fraction = ticks % 1000000000u;
+    if (!enabled) {
+        if (c->running) {
+            c->running = 0;
+            dda_write32(&c->transport, DDA_CONTROL, 0);
+            dda_write32(&c->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK);
+        }
+        *c->error = 0;
+        *c->error_code = 0;
+    } else if (!c->running) {
+        if (start(c) < 0) {
+            stop(c, -2);
+        } else {
+            for (i = 0; i < keep_ahead; i++)
+                if (queue_period(c, clocks) < 0)
+                    stop(c, -2);
+            dda_write32(&c->transport, DDA_CONTROL, DDA_CONTROL_ENABLE_MASK);
+        }
+    } else if (queue_period(c, clocks) < 0) {
+        stop(c, -2);
+    }
+    if (dda_advance(&c->transport, clocks, &now) < 0)
+        *c->error = 1;
+    *c->clock = now;
+}
+
+static int export_axis(struct stepgen *s, int i)
+{
+    const char *p = "dda-card.0.stepgen";
+    int r = 0;
+    r |= hal_pin_float_newf(HAL_IN, &s->position_cmd, comp_id, "%s.%02d.position-cmd", p, i);
+    r |= hal_pin_float_newf(HAL_IN, &s->velocity_cmd, comp_id, "%s.%02d.velocity-cmd", p, i);
+    r |= hal_pin_float_newf(HAL_OUT, &s->position_fb, comp_id, "%s.%02d.position-fb", p, i);
+    r |= hal_pin_float_newf(HAL_OUT, &s->velocity_fb, comp_id, "%s.%02d.velocity-fb", p, i);
+    r |= hal_pin_s32_newf(HAL_OUT, &s->counts, comp_id, "%s.%02d.counts", p, i);
+    r |= hal_pin_bit_newf(HAL_IN, &s->enable, comp_id, "%s.%02d.enable", p, i);
+    r |= hal_param_float_newf(HAL_RW, &s->position_scale, comp_id, "%s.%02d.position-scale", p, i);
+    r |= hal_param_float_newf(HAL_RW, &s->maxvel, comp_id, "%s.%02d.maxvel", p, i);
+    r |= hal_param_float_newf(HAL_RW, &s->maxaccel, comp_id, "%s.%02d.maxaccel", p, i);
+    r |= hal_param_u32_newf(HAL_RW, &s->steplen, comp_id, "%s.%02d.steplen", p, i);
+    r |= hal_param_u32_newf(HAL_RW, &s->stepspace, comp_id, "%s.%02d.stepspace", p, i);
+    r |= hal_param_u32_newf(HAL_RW, &s->dirsetup, comp_id, "%s.%02d.dirsetup", p, i);
+    r |= hal_param_u32_newf(HAL_RW, &s->dirhold, comp_id, "%s.%02d.dirhold", p, i);
+    s->position_scale = 1.0;
+    s->steplen = s->stepspace = s->dirsetup = s->dirhold = 1000;
+    return r;
+}
+
+static int export_card(struct card *c)
+{
+    const char *p = "dda-card.0";
+    int r = 0, i;
+    for (i = 0; i < AXES; i++)
+        r |= export_axis(&c->axis[i], i);
+    r |= hal_pin_s32_newf(HAL_OUT, &c->fifo_level, comp_id, "%s.fifo-level", p);
+    r |= hal_pin_u32_newf(HAL_OUT, &c->underruns, comp_id, "%s.underruns", p);
+    r |= hal_pin_bit_newf(HAL_OUT, &c->error, comp_id, "%s.error", p);
+    r |= hal_pin_s32_newf(HAL_OUT, &c->error_code, comp_id, "%s.error-code", p);
+    r |= hal_pin_u32_newf(HAL_OUT, &c->clock, comp_id, "%s.clock", p);
+    r |= hal_pin_bit_newf(HAL_IN, &c->estop_in, comp_id, "%s.estop-in", p);
+    r |= hal_pin_bit_newf(HAL_IN, &c->drive_enable, comp_id, "%s.drive-enable", p);
+    r |= hal_pin_bit_newf(HAL_OUT, &c->watchdog_has_bit, comp_id, "%s.watchdog.has-bit", p);
+    r |= hal_param_u32_newf(HAL_RW, &c->watchdog_timeout_ns, comp_id, "%s.watchdog.timeout-ns", p);
+    c->watchdog_timeout_ns = 5000000;
+    *c->estop_in = 1;
+    r |= hal_export_funct("dda-card.0.read", read_card, c, 1, 0, comp_id);
+    r |= hal_export_funct("dda-card.0.write", write_card, c, 1, 0, comp_id);
+    return r;
+}
+
+int rtapi_app_main(void)
+{
+    uint32_t id;
+    comp_id = hal_init("dda_card");
+    if (comp_id < 0)
+        return comp_id;
+    card = hal_malloc(sizeof *card);
+    if (!card) {
+        hal_exit(comp_id);
+        return -ENOMEM;
+    }
+    memset(card, 0, sizeof *card);
+    if ((sim[0] ? dda_sim_open(&card->transport, sim) : dda_pci_open(&card->transport)) < 0) {
+        hal_exit(comp_id);
+        return -ENODEV;
+    }
+    if (dda_read32(&card->transport, DDA_ID, &id) < 0
+        || (id & DDA_ID_MAGIC_MASK) != (DDA_ID_RESET & DDA_ID_MAGIC_MASK)
+        || dda_read32(&card->transport, DDA_CLOCK_HZ, &card->clock_hz) < 0 || card->clock_hz == 0) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s does not identify as the DDA card (ID %08x)\n",
+                        card->transport.name, id);
+        dda_transport_close(&card->transport);
+        hal_exit(comp_id);
+        return -ENODEV;
+    }
+    if (export_card(card) < 0) {
+        dda_transport_close(&card->transport);
+        hal_exit(comp_id);
+        return -EINVAL;
+    }
+    rtapi_print_msg(RTAPI_MSG_INFO, "dda_card: %s, %u Hz\n", card->transport.name, card->clock_hz);
+    hal_ready(comp_id);
+    return 0;
+}
+
+void rtapi_app_exit(void)
+{
+    dda_write32(&card->transport, DDA_CONTROL, 0);
+    dda_write32(&card->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK);
+    dda_transport_close(&card->transport);
+    hal_exit(comp_id);
+}
