@@ -15,7 +15,10 @@ followed by ``a`` data words.  Every answer is two words, ``status, value``
     op 1 READ    a = BAR0 offset           value = the register
     op 2 WRITE   a = BAR0 offset, b = value
     op 3 FIFO    a = word count, words     (one burst into BAR1)
-    op 4 ADVANCE a = card clocks           value = card clocks since reset, low 32 bits
+    op 4 ADVANCE a = card clocks           value = card clocks since the server opened
+                                           the card, low 32 bits: the card runs until
+                                           they equal the sum of all ADVANCEs (the bus
+                                           accesses of the period count in it)
 """
 import argparse
 import json
@@ -58,6 +61,7 @@ class CardServer:
         self.transport = transport
         self.start = transport.clocks
         self.advances = []
+        self.deadline = 0  # card clocks the ADVANCEs so far add up to
 
     def handle(self, op, a, b, payload):
         transport = self.transport
@@ -70,10 +74,13 @@ class CardServer:
             transport.fifo_write(payload)
             return 0
         if op == ADVANCE:
-            before = transport.clocks
-            transport.session.wait(a)
+            # The period's bus accesses took card clocks too: run to the period's end, not a more.
+            self.deadline += a
+            before = transport.clocks - self.start
+            if self.deadline > before:
+                transport.session.wait(self.deadline - before)
             after = transport.clocks - self.start
-            self.advances.append((before - self.start, after))
+            self.advances.append((before, after))
             return after & 0xFFFFFFFF
         raise ProtocolError(f"unknown request {op}")
 

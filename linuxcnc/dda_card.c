@@ -13,7 +13,7 @@
  * so the card's motion for a period takes exactly that period's card
  * clocks: 2 * N + dwell + period_overhead, N = max(|dx|, |dy|).  The queue
  * is kept `keep_ahead` periods ahead: the position asked for in period k
- * is reached keep_ahead + 1 periods later.  `read` gives position-fb from
+ * is reached at the end of period k + keep_ahead - 1.  `read` gives position-fb from
  * the card's step counters and STATUS's FIFO level and error.  A FIFO found
  * empty while running, or a card error, sets `error`, stops the queue and
  * needs enable to fall and rise again.  See docs/linuxcnc.md.
@@ -48,6 +48,7 @@ struct stepgen {
     int32_t sent;          /* steps queued so far (driver's coordinates) */
     int32_t offset;        /* driver's steps minus the card's counter */
     int32_t last_counts;
+    int forward;           /* the DIR pin's side: the last move's direction (reset: backward) */
 };
 
 struct card {
@@ -139,6 +140,7 @@ static int start(struct card *c)
     for (i = 0; i < AXES; i++) {
         struct stepgen *s = &c->axis[i];
         s->sent = steps_of(*s->position_cmd * s->position_scale);
+        s->forward = 0;  /* the soft reset before start put the DIR pins back */
         s->offset = s->sent - (*s->counts - s->offset);
     }
     if (dda_write32(&c->transport, DDA_RAMP_STEP, 0) < 0 || dda_fifo_write(&c->transport, words, n) < 0)
@@ -147,34 +149,47 @@ static int start(struct card *c)
     return 0;
 }
 
-/* One period of motion: LINE by the change in steps, DWELL for the rest of `clocks`. */
+/* One period of motion: LINE by the change in steps and a DWELL for the rest of
+ * `clocks`, or a DWELL of `clocks` alone when nothing moves.  What the card's
+ * sequencer spends around them (measured on the generated card, see
+ * docs/linuxcnc.md): a LINE of N iterations and its DWELL d take
+ * ITERATION_CLOCKS * N + d + period_overhead clocks, plus DIR_SETUP when a
+ * direction pin changes; a DWELL alone takes d. */
 static int queue_period(struct card *c, uint32_t clocks)
 {
     uint32_t words[DDA_CMD_LINE_WORDS + DDA_CMD_DWELL_WORDS];
     int32_t delta[AXES];
     int32_t longest = 0;
-    int64_t dwell;
-    unsigned n;
+    int64_t dwell = clocks;
+    int reversal = 0;
+    unsigned n = 0;
     int i;
     for (i = 0; i < AXES; i++) {
         struct stepgen *s = &c->axis[i];
-        int32_t target = steps_of(*s->position_cmd * s->position_scale);
-        delta[i] = target - s->sent;
+        delta[i] = steps_of(*s->position_cmd * s->position_scale) - s->sent;
         if ((delta[i] < 0 ? -delta[i] : delta[i]) > longest)
-            longest = (delta[i] < 0 ? -delta[i] : delta[i]);
+            longest = delta[i] < 0 ? -delta[i] : delta[i];
+        if (delta[i] != 0 && (delta[i] > 0) != s->forward)
+            reversal = 1;
     }
-    dwell = (int64_t)clocks - (int64_t)ITERATION_CLOCKS * longest - period_overhead;
+    if (longest > 0) {
+        dwell -= (int64_t)ITERATION_CLOCKS * longest + period_overhead
+                 + (reversal ? clocks_of_ns(c->axis[0].dirsetup) : 0);
+        n = dda_cmd_line(words, delta[0], delta[1], 0);
+    }
     if (dwell < 0) {
         rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %d steps in one period is more than the card makes in "
                         "%u clocks: lower maxvel or position-scale\n", longest, clocks);
         return -1;
     }
-    n = dda_cmd_line(words, delta[0], delta[1], 0);
     n += dda_cmd_dwell(&words[n], (uint32_t)dwell);
     if (dda_fifo_write(&c->transport, words, n) < 0)
         return -1;
-    for (i = 0; i < AXES; i++)
+    for (i = 0; i < AXES; i++) {
         c->axis[i].sent += delta[i];
+        if (delta[i] != 0)
+            c->axis[i].forward = delta[i] > 0;
+    }
     return 0;
 }
 
