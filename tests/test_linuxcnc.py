@@ -9,6 +9,7 @@ The pins' position keep_ahead - 1 periods after a period's end (the
 queue's delay, docs/linuxcnc.md) must be within one step of that period's command, and
 equal to it wherever the command stands still.
 """
+import fcntl
 import os
 import pwd
 import shutil
@@ -20,6 +21,8 @@ from pathlib import Path
 
 import pytest
 
+from host.sysfs import find_card
+from host.transport import TransportError
 from tests.linuxcnc_compare import deviations, pin_positions, read_samples
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -44,6 +47,29 @@ def _missing():
 
 
 pytestmark = [pytest.mark.linuxcnc, pytest.mark.skipif(_missing() is not None, reason=str(_missing()))]
+
+LOCK = "/tmp/dda-card-linuxcnc.lock"
+
+
+@pytest.fixture
+def linuxcnc_alone():
+    """LinuxCNC runs once per host (fixed lock file and shared memory): one test at a time."""
+    with open(LOCK, "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        yield
+
+
+def _as_user(command, cwd, timeout):
+    home = pwd.getpwnam(USER).pw_dir
+    return subprocess.run(["runuser", "-u", USER, "--", "env", "-i", f"HOME={home}", "PATH=/usr/bin:/bin",
+                           "LANG=C.UTF-8", *command], cwd=cwd, capture_output=True, text=True, timeout=timeout)
+
+
+def _run_folder():
+    run = Path(tempfile.mkdtemp(prefix="dda-lcnc-"))
+    run.chmod(0o777)  # LinuxCNC's user writes here
+    return run
+
 
 RECORD_HAL = """loadrt sampler depth=16384 cfg=ffussu
 addf sampler.0 servo-thread
@@ -74,12 +100,30 @@ def _configure(run):
     (run / "record.sh").chmod(0o755)
     for program in (ROOT / "tests" / "gcode").glob("lcnc_*.ngc"):
         shutil.copy(program, run / program.name)
-    for path in [run, *run.iterdir()]:
-        path.chmod(0o777 if path.is_dir() or path.suffix == ".sh" else 0o666)
+    for path in run.iterdir():
+        path.chmod(0o777 if path.suffix == ".sh" else 0o666)
 
 
-def test_gcode_path_from_the_pins(request):
-    run = Path(tempfile.mkdtemp(prefix="dda-lcnc-"))
+def test_without_a_card_the_driver_says_what_the_host_software_says(linuxcnc_alone):
+    """The real-card path on a machine without the card: rtapi_pci finds none, and the
+    driver refuses to load with the words of host/sysfs.py."""
+    try:
+        find_card()
+    except TransportError as error:
+        expected = str(error)
+    else:
+        pytest.skip("a DDA card is in this machine")
+    run = _run_folder()
+    (run / "card.hal").write_text("loadrt dda_card\n")
+    (run / "card.hal").chmod(0o666)
+    result = _as_user(["halrun", "-f", str(run / "card.hal")], run, 120)
+    assert result.returncode != 0
+    assert f"dda_card: {expected}" in result.stdout + result.stderr
+    shutil.rmtree(run, ignore_errors=True)
+
+
+def test_gcode_path_from_the_pins(linuxcnc_alone):
+    run = _run_folder()
     _configure(run)
     started = time.monotonic()
     server = subprocess.Popen([sys.executable, "-m", "host.cardserver", "--socket", str(run / "card.sock"),
@@ -87,10 +131,8 @@ def test_gcode_path_from_the_pins(request):
                               cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     try:
         assert "listening" in server.stdout.readline()
-        lcnc = subprocess.run(["runuser", "-u", USER, "--", "env", "-i", f"HOME={pwd.getpwnam(USER).pw_dir}",
-                               "PATH=/usr/bin:/bin", "LANG=C.UTF-8", "linuxcnc", "-r", str(run / "dda_xy.ini"),
-                               str(run / "lcnc_path.ngc"), f"{run / 'lcnc_stop.ngc'}@1.5"],
-                              cwd=run, capture_output=True, text=True, timeout=1200)
+        lcnc = _as_user(["linuxcnc", "-r", str(run / "dda_xy.ini"), str(run / "lcnc_path.ngc"),
+                         f"{run / 'lcnc_stop.ngc'}@1.5"], run, 1200)
         assert lcnc.returncode == 0, lcnc.stdout[-3000:] + lcnc.stderr[-3000:]
         server.wait(timeout=60)
     finally:
