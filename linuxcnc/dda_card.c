@@ -2,16 +2,16 @@
  *
  * Copyright the PCI DDA card authors.  GPL-2.0-or-later (see COPYING here).
  *
- *   loadrt dda_card [sim=/path/to/socket] [keep_ahead=4] [period_overhead=9]
+ *   loadrt dda_card [sim=/path/to/socket] [keep_ahead=4] [period_overhead=8]
  *   addf dda-card.0.read servo-thread      (first in the thread)
  *   addf dda-card.0.write servo-thread     (after motion)
  *
  * Each servo period `write` turns the change of every axis's position-cmd
  * (in steps: round(position-cmd * position-scale), so rounding is never
  * carried as error) into one LINE by (dx, dy) steps at one iteration per
- * `iteration` clocks followed by a DWELL that fills the rest of the period,
- * so the card's motion for a period takes exactly that period's card
- * clocks: 2 * N + dwell + period_overhead, N = max(|dx|, |dy|).  The queue
+ * p clocks (the power of two that covers steplen + stepspace, at least 2)
+ * followed by a DWELL that fills the rest of the period, so the card's
+ * motion for a period takes exactly that period's card clocks.  The queue
  * is kept `keep_ahead` periods ahead: the position asked for in period k
  * is reached at the end of period k + keep_ahead - 1.  `read` gives position-fb from
  * the card's step counters and STATUS's FIFO level and error.  A FIFO found
@@ -32,11 +32,11 @@ static char *sim = "";
 RTAPI_MP_STRING(sim, "Unix socket of python -m host.cardserver (empty: the real card on PCI)");
 static int keep_ahead = 4;
 RTAPI_MP_INT(keep_ahead, "servo periods queued ahead in the card's FIFO");
-static int period_overhead = 9;
+static int period_overhead = 8;
 RTAPI_MP_INT(period_overhead, "card clocks a period's LINE and DWELL take beyond their own");
 
 #define AXES 2
-#define ITERATION_CLOCKS 2  /* one DDA iteration every other clock: FEED_RATE 32768 */
+#define FASTEST_ITERATION 2  /* clocks: the DDA iterates at most every other clock */
 static const uint32_t POS_REGS[AXES] = {DDA_POS_X, DDA_POS_Y};
 
 struct stepgen {
@@ -63,6 +63,7 @@ struct card {
     hal_bit_t *watchdog_has_bit;
     hal_u32_t watchdog_timeout_ns;
     uint32_t clock_hz;
+    uint32_t iteration;            /* clocks per DDA iteration, a power of two: FEED_RATE 65536 / it */
     uint64_t fraction;             /* ns x Hz carried between periods (below 1e9) */
     int running;
     struct dda_transport transport;
@@ -133,7 +134,11 @@ static int start(struct card *c)
     int i;
     if (*c->error)
         return -1;
-    n += dda_cmd_set(&words[n], 65536 / ITERATION_CLOCKS, DDA_FEED_RATE_SET_INDEX);
+    c->iteration = FASTEST_ITERATION;
+    while (c->iteration < 65536u
+           && c->iteration < (uint32_t)(clocks_of_ns(c->axis[0].steplen) + clocks_of_ns(c->axis[0].stepspace)))
+        c->iteration *= 2;
+    n += dda_cmd_set(&words[n], 65536 / c->iteration, DDA_FEED_RATE_SET_INDEX);
     n += dda_cmd_set(&words[n], clocks_of_ns(c->axis[0].steplen), DDA_STEP_WIDTH_SET_INDEX);
     n += dda_cmd_set(&words[n], clocks_of_ns(c->axis[0].dirsetup), DDA_DIR_SETUP_SET_INDEX);
     n += dda_cmd_set(&words[n], clocks_of_ns(c->axis[0].dirhold), DDA_DIR_HOLD_SET_INDEX);
@@ -152,9 +157,9 @@ static int start(struct card *c)
 /* One period of motion: LINE by the change in steps and a DWELL for the rest of
  * `clocks`, or a DWELL of `clocks` alone when nothing moves.  What the card's
  * sequencer spends around them (measured on the generated card, see
- * docs/linuxcnc.md): a LINE of N iterations and its DWELL d take
- * ITERATION_CLOCKS * N + d + period_overhead clocks, plus DIR_SETUP when a
- * direction pin changes; a DWELL alone takes d. */
+ * docs/linuxcnc.md): a LINE of N iterations of p clocks and its DWELL d take
+ * p * N + d + period_overhead clocks, one more at the fastest rate (p = 2),
+ * plus DIR_SETUP when a direction pin changes; a DWELL alone takes d. */
 static int queue_period(struct card *c, uint32_t clocks)
 {
     uint32_t words[DDA_CMD_LINE_WORDS + DDA_CMD_DWELL_WORDS];
@@ -173,7 +178,7 @@ static int queue_period(struct card *c, uint32_t clocks)
             reversal = 1;
     }
     if (longest > 0) {
-        dwell -= (int64_t)ITERATION_CLOCKS * longest + period_overhead
+        dwell -= (int64_t)c->iteration * longest + period_overhead + (c->iteration == FASTEST_ITERATION)
                  + (reversal ? clocks_of_ns(c->axis[0].dirsetup) : 0);
         n = dda_cmd_line(words, delta[0], delta[1], 0);
     }

@@ -10,6 +10,7 @@ queue's delay, docs/linuxcnc.md) must be within one step of that period's comman
 equal to it wherever the command stands still.
 """
 import fcntl
+import json
 import os
 import pwd
 import shutil
@@ -32,6 +33,7 @@ SCALE = 100.0
 KEEP_AHEAD = 4
 DELAY_PERIODS = KEEP_AHEAD - 1  # the period's command is done at the end of period k + keep_ahead - 1
 PERIOD_CLOCKS = CLOCK_HZ // 1000
+STEP_CYCLE_CLOCKS = 4  # STEPLEN + STEPSPACE of the sample configuration (2000 + 2000 ns) at CLOCK_HZ
 
 
 def _missing():
@@ -151,6 +153,11 @@ def test_gcode_path_from_the_pins(linuxcnc_alone):
             assert abs(dx) <= 0.5 and abs(dy) <= 0.5, f"at rest at period {k} the pins are off by ({dx}, {dy})"
             standstills += 1
     assert standstills > 100
+    rises = json.loads((run / "card.json").read_text())["rises"]
+    for axis in (1, 2):
+        clocks = [r[0] for r in rises if r[axis]]
+        closest = min(b - a for a, b in zip(clocks, clocks[1:]))
+        assert closest >= STEP_CYCLE_CLOCKS, f"steps {closest} clocks apart, under steplen + stepspace"
     assert samples[-1][:2] != (0.0, 0.0), "the second program was to be stopped before its end at (0, 0)"
     running = [s for s in samples if s[3] > 0]
     levels = [s[3] for s in running[1:]]
