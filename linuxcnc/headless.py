@@ -1,11 +1,11 @@
 #!/usr/bin/python3
 """Headless LinuxCNC front end for the driver's tests ([DISPLAY] DISPLAY = this file).
 
-    linuxcnc -r INI PROGRAM[@SECONDS] ... [estop]
+    linuxcnc -r INI PROGRAM[@SECONDS[:estop]] ...
 
 Resets E-stop, turns the machine on, homes (the INI homes at once), then
 runs each G-code PROGRAM to its end, or aborts it after SECONDS (a stop in
-mid-program); ``estop`` at the end presses E-stop.  Between programs it
+mid-program), or presses E-stop after SECONDS (``:estop``, the last job).  Between programs it
 waits until motion has stopped.  Exit code 0 when everything ran.
 """
 import sys
@@ -53,13 +53,8 @@ def main(argv):
     command.home(-1)
     wait_for(stat, lambda s: all(s.homed[:2]), "homing")
     for job in jobs:
-        if job == "estop":
-            settle(stat)
-            command.state(linuxcnc.STATE_ESTOP)
-            wait_for(stat, lambda s: s.task_state == linuxcnc.STATE_ESTOP, "E-stop")
-            time.sleep(0.5)
-            continue
         program, _, seconds = job.partition("@")
+        seconds, _, estop = seconds.partition(":")
         command.mode(linuxcnc.MODE_AUTO)
         wait_for(stat, lambda s: s.task_mode == linuxcnc.MODE_AUTO, "auto mode")
         command.program_open(program)
@@ -67,6 +62,13 @@ def main(argv):
         wait_for(stat, lambda s: s.interp_state != linuxcnc.INTERP_IDLE, f"{program} to start")
         if seconds:
             time.sleep(float(seconds))
+            if estop:
+                print(f"headless: E-stop in {program}", flush=True)
+                command.state(linuxcnc.STATE_ESTOP)
+                command.wait_complete(5)
+                time.sleep(1.0)
+                print(f"headless: {job} done", flush=True)
+                return 0
             command.abort()
         wait_for(stat, lambda s: s.interp_state == linuxcnc.INTERP_IDLE, f"{program} to end")
         stat.poll()

@@ -4,11 +4,12 @@ import json
 
 
 def read_samples(path):
-    """[(x_cmd, y_cmd, card clock at the period's end, fifo level, underruns)] from ``halsampler -t``."""
+    """[(x_cmd, y_cmd, card clock at the period's end, fifo level, underruns, X enabled)]
+    from ``halsampler -t``."""
     samples = []
     for line in open(path):
         fields = line.split()
-        samples.append((float(fields[1]), float(fields[2]), int(fields[3]), int(fields[5]), int(fields[6])))
+        samples.append((float(fields[1]), float(fields[2]), int(fields[3]), int(fields[5]), int(fields[6]), int(fields[7])))
     return samples
 
 

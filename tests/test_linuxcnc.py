@@ -73,7 +73,7 @@ def _run_folder():
     return run
 
 
-RECORD_HAL = """loadrt sampler depth=16384 cfg=ffussu
+RECORD_HAL = """loadrt sampler depth=16384 cfg=ffussub
 addf sampler.0 servo-thread
 net x-pos-cmd => sampler.0.pin.0
 net y-pos-cmd => sampler.0.pin.1
@@ -81,6 +81,7 @@ net card-clock dda-card.0.clock => sampler.0.pin.2
 net x-counts dda-card.0.stepgen.00.counts => sampler.0.pin.3
 net fifo-level dda-card.0.fifo-level => sampler.0.pin.4
 net underruns dda-card.0.underruns => sampler.0.pin.5
+net x-enable => sampler.0.pin.6
 loadusr ./record.sh {samples}
 """
 
@@ -124,23 +125,27 @@ def test_without_a_card_the_driver_says_what_the_host_software_says(linuxcnc_alo
     shutil.rmtree(run, ignore_errors=True)
 
 
-def test_gcode_path_from_the_pins(linuxcnc_alone):
-    run = _run_folder()
-    _configure(run)
-    started = time.monotonic()
+def _run(run, jobs):
+    """LinuxCNC on the card server for ``jobs`` (headless.py's arguments); (samples, pins, rises)."""
     server = subprocess.Popen([sys.executable, "-m", "host.cardserver", "--socket", str(run / "card.sock"),
                                "--log", str(run / "card.json"), "--clock-hz", str(CLOCK_HZ)],
                               cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     try:
         assert "listening" in server.stdout.readline()
-        lcnc = _as_user(["linuxcnc", "-r", str(run / "dda_xy.ini"), str(run / "lcnc_path.ngc"),
-                         f"{run / 'lcnc_stop.ngc'}@1.5"], run, 1200)
+        lcnc = _as_user(["linuxcnc", "-r", str(run / "dda_xy.ini"), *jobs], run, 1200)
         assert lcnc.returncode == 0, lcnc.stdout[-3000:] + lcnc.stderr[-3000:]
         server.wait(timeout=60)
     finally:
         server.kill()
-    samples = read_samples(run / "samples.txt")
-    pins = pin_positions(run / "card.json")
+    rises = json.loads((run / "card.json").read_text())["rises"]
+    return read_samples(run / "samples.txt"), pin_positions(run / "card.json"), rises
+
+
+def test_gcode_path_from_the_pins(linuxcnc_alone):
+    run = _run_folder()
+    _configure(run)
+    started = time.monotonic()
+    samples, pins, rises = _run(run, [str(run / "lcnc_path.ngc"), f"{run / 'lcnc_stop.ngc'}@1.5"])
     assert len(samples) > 1000 and len(pins[0]) > 1000
     deviation = deviations(samples, pins, SCALE, DELAY_PERIODS * PERIOD_CLOCKS)
     worst = max(max(abs(dx), abs(dy)) for dx, dy in deviation)
@@ -153,7 +158,6 @@ def test_gcode_path_from_the_pins(linuxcnc_alone):
             assert abs(dx) <= 0.5 and abs(dy) <= 0.5, f"at rest at period {k} the pins are off by ({dx}, {dy})"
             standstills += 1
     assert standstills > 100
-    rises = json.loads((run / "card.json").read_text())["rises"]
     for axis in (1, 2):
         clocks = [r[0] for r in rises if r[axis]]
         closest = min(b - a for a, b in zip(clocks, clocks[1:]))
@@ -166,4 +170,21 @@ def test_gcode_path_from_the_pins(linuxcnc_alone):
     print(f"\nLinuxCNC: {len(samples)} servo periods recorded, {len(pins[0])} steps, largest deviation "
           f"{worst:.3f} steps, FIFO level {min(levels)}..{max(levels)} words, {underruns} underruns, "
           f"{time.monotonic() - started:.0f} s")
+    shutil.rmtree(run, ignore_errors=True)
+
+
+def test_estop_from_linuxcnc_stops_the_card_at_once(linuxcnc_alone):
+    """E-stop mid-move: the driver sees enable fall in that period and soft-resets the
+    card, so no step comes after it, though the queue held more."""
+    run = _run_folder()
+    _configure(run)
+    samples, pins, rises = _run(run, [f"{run / 'lcnc_stop.ngc'}@1.5:estop"])
+    enabled = [k for k, sample in enumerate(samples) if sample[5]]
+    assert enabled and enabled[-1] < len(samples) - 1, "the machine was never on, or never stopped"
+    stop = enabled[-1] + 1  # the first period with enable low
+    moving = [s[0] for s in samples[stop - 20:stop]]
+    assert len(set(moving)) > 1, "E-stop came when the machine was not moving"
+    assert rises[-1][0] <= samples[stop][2], "steps came after the period E-stop reached the driver"
+    queued = abs(samples[stop - 1][0] * SCALE - pins[1][-1])
+    print(f"\nE-stop: the card stopped in the period it was pressed, {queued:.1f} steps short of the command")
     shutil.rmtree(run, ignore_errors=True)
