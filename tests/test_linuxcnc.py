@@ -132,7 +132,7 @@ def _run(run, jobs):
                               cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     try:
         assert "listening" in server.stdout.readline()
-        lcnc = _as_user(["linuxcnc", "-r", str(run / "dda_xy.ini"), *jobs], run, 1200)
+        lcnc = _as_user(["linuxcnc", "-r", str(run / "dda_xy.ini"), *jobs], run, 300)
         assert lcnc.returncode == 0, lcnc.stdout[-3000:] + lcnc.stderr[-3000:]
         server.wait(timeout=60)
     finally:
