@@ -132,8 +132,6 @@ static int start(struct card *c)
     uint32_t words[DDA_CMD_SET_WORDS * 4];
     unsigned n = 0;
     int i;
-    if (*c->error)
-        return -1;
     c->iteration = FASTEST_ITERATION;
     while (c->iteration < 65536u
            && c->iteration < (uint32_t)(clocks_of_ns(c->axis[0].steplen) + clocks_of_ns(c->axis[0].stepspace)))
@@ -215,7 +213,7 @@ static void write_card(void *arg, long period)
         }
         *c->error = 0;
         *c->error_code = 0;
-    } else if (!c->running) {
+    } else if (!c->running && !*c->error) {
         if (start(c) < 0) {
             stop(c, -2);
         } else {
@@ -301,7 +299,10 @@ int rtapi_app_main(void)
         hal_exit(comp_id);
         return -ENODEV;
     }
-    if (export_card(card) < 0) {
+    /* whatever a previous session left queued stops here */
+    if (dda_write32(&card->transport, DDA_CONTROL, 0) < 0
+        || dda_write32(&card->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK) < 0
+        || export_card(card) < 0) {
         dda_transport_close(&card->transport);
         hal_exit(comp_id);
         return -EINVAL;
