@@ -113,7 +113,6 @@ reg pci_slave1_b_kept;
 reg pci_slave1_b_valid;
 wire pci_slave1_b_valid_next;
 reg [15:0] pci_slave1_bar0;
-wire [15:0] pci_slave1_bar0_read;
 reg [31:0] pci_slave1_bar1;
 reg pci_slave1_before_last;
 reg [1:0] pci_slave1_buffered_next;
@@ -123,11 +122,8 @@ reg [3:0] pci_slave1_cbe_q;
 reg pci_slave1_claim;
 reg pci_slave1_claim_config;
 reg pci_slave1_claim_io;
-reg [31:0] pci_slave1_config_data;
-wire [5:0] pci_slave1_config_index;
 wire pci_slave1_config_write_next;
 reg pci_slave1_config_write_q;
-reg pci_slave1_detected_parity_error;
 wire pci_slave1_devsel_next;
 reg pci_slave1_devsel_q;
 wire pci_slave1_draining;
@@ -151,7 +147,6 @@ wire pci_slave1_hold_retry;
 reg pci_slave1_idsel_q;
 reg pci_slave1_initial_wait_over;
 reg pci_slave1_interrupt_disable;
-reg [7:0] pci_slave1_interrupt_line;
 reg [1:0] pci_slave1_io_byte;
 reg pci_slave1_io_enable;
 reg pci_slave1_irdy_q;
@@ -168,6 +163,7 @@ reg pci_slave1_perr_q;
 reg [9:0] pci_slave1_phase_addr;
 wire pci_slave1_phase_step;
 wire pci_slave1_posting;
+reg pci_slave1_read_command;
 reg [31:0] pci_slave1_read_source;
 reg [9:0] pci_slave1_req_addr;
 reg pci_slave1_req_addr_stale;
@@ -176,8 +172,6 @@ reg pci_slave1_s_valid;
 wire pci_slave1_serr_armed;
 reg pci_slave1_serr_enable;
 wire pci_slave1_serr_oe_next;
-reg pci_slave1_signaled_system_error;
-reg pci_slave1_signaled_target_abort;
 reg pci_slave1_single;
 reg pci_slave1_space_mem;
 reg [31:0] pci_slave1_spare_data;
@@ -205,26 +199,37 @@ reg [3:0] pci_slave1_local_be;
 reg [11:0] pci_slave1_local_addr;
 reg pci_slave1_local_ready;
 reg pci_slave1_local_retry;
+reg [31:0] pci_slave1_config_rdata;
 reg [31:0] pci_slave1_local_rdata;
-reg [3:0] pci_slave1_control_case0_0_out_state;
-wire pci_slave1_control_case0_0_local_room;
-reg pci_slave1_control_case0_0_out_trdy;
-reg pci_slave1_control_case0_0_out_stop;
-reg pci_slave1_control_case0_0_out_devsel;
-reg pci_slave1_control_case0_0_out_drive;
-reg pci_slave1_control_case0_0_out_ad_oe;
-reg [3:0] pci_slave1_control_case1_0_out_state;
-reg pci_slave1_control_case1_0_out_trdy;
-reg pci_slave1_control_case1_0_out_stop;
-reg pci_slave1_control_case1_0_out_devsel;
-reg pci_slave1_control_case1_0_out_drive;
-reg pci_slave1_control_case1_0_out_ad_oe;
-reg [3:0] pci_slave1_control_case2_0_out_state;
-reg pci_slave1_control_case2_0_out_trdy;
-reg pci_slave1_control_case2_0_out_stop;
-reg pci_slave1_control_case2_0_out_devsel;
-reg pci_slave1_control_case2_0_out_drive;
-reg pci_slave1_control_case2_0_out_ad_oe;
+wire [5:0] pci_slave1_config_index;
+wire [31:0] pci_slave1_config_data;
+wire [3:0] pci_slave1_config_cbe_n;
+wire pci_slave1_config_system_error;
+wire pci_slave1_config_irq;
+reg [3:0] pci_slave1_pci_control1_control_case0_0_out_state;
+wire pci_slave1_pci_control1_control_case0_0_target_room;
+reg pci_slave1_pci_control1_control_case0_0_out_trdy;
+reg pci_slave1_pci_control1_control_case0_0_out_stop;
+reg pci_slave1_pci_control1_control_case0_0_out_devsel;
+reg pci_slave1_pci_control1_control_case0_0_out_drive;
+reg pci_slave1_pci_control1_control_case0_0_out_ad_oe;
+reg [3:0] pci_slave1_pci_control1_control_case1_0_out_state;
+reg pci_slave1_pci_control1_control_case1_0_out_trdy;
+reg pci_slave1_pci_control1_control_case1_0_out_stop;
+reg pci_slave1_pci_control1_control_case1_0_out_devsel;
+reg pci_slave1_pci_control1_control_case1_0_out_drive;
+reg pci_slave1_pci_control1_control_case1_0_out_ad_oe;
+reg [3:0] pci_slave1_pci_control1_control_case2_0_out_state;
+reg pci_slave1_pci_control1_control_case2_0_out_trdy;
+reg pci_slave1_pci_control1_control_case2_0_out_stop;
+reg pci_slave1_pci_control1_control_case2_0_out_devsel;
+reg pci_slave1_pci_control1_control_case2_0_out_drive;
+reg pci_slave1_pci_control1_control_case2_0_out_ad_oe;
+wire [15:0] pci_slave1_pci_config1_bar0_read;
+reg pci_slave1_pci_config1_detected_parity_error;
+reg [7:0] pci_slave1_pci_config1_interrupt_line;
+reg pci_slave1_pci_config1_signaled_system_error;
+reg pci_slave1_pci_config1_signaled_target_abort;
 reg card_core0_core_clear;
 wire card_core0_dda_reset;
 reg [31:0] card_core0_regs_fifo1_fifo_dout;
@@ -882,6 +887,7 @@ always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_
     pci_slave1_claim = ((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (config_hit || io_hit || mem_hit));
     pci_slave1_claim_config = config_hit;
     pci_slave1_claim_io = io_hit;
+    pci_slave1_read_command = (!pci_slave1_cbe_q[0]);
 end
 
 
@@ -978,12 +984,12 @@ assign pci_slave1_hold_retry = (pci_slave1_first_ready && (pci_slave1_is_read ||
 assign pci_slave1_burst_got = (pci_slave1_fetch_more && pci_slave1_local_ready);
 
 
-always @(pci_slave1_is_config, pci_slave1_b_valid, pci_slave1_config_data, pci_slave1_spare_data, pci_slave1_local_rdata) begin: pci_slave1_read_path
+always @(pci_slave1_is_config, pci_slave1_b_valid, pci_slave1_config_rdata, pci_slave1_spare_data, pci_slave1_local_rdata) begin: pci_slave1_read_path
     if (pci_slave1_b_valid) begin
         pci_slave1_read_source = pci_slave1_spare_data;
     end
     else if (pci_slave1_is_config) begin
-        pci_slave1_read_source = pci_slave1_config_data;
+        pci_slave1_read_source = pci_slave1_config_rdata;
     end
     else begin
         pci_slave1_read_source = pci_slave1_local_rdata;
@@ -1021,7 +1027,7 @@ always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_first_ph
 end
 
 
-always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_control_case0_0_local_room, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q) begin: pci_slave1_control_case0_0_control
+always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_read_command, pci_slave1_b_valid, pci_slave1_stop_q, pci_slave1_single, pci_slave1_state, pci_slave1_hold_retry, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_burst_got, pci_slave1_claim_config, pci_slave1_fatal, pci_slave1_devsel_q, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_claim, pci_ad_oe, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_is_read, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case0_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1040,7 +1046,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     devsel = (pci_slave1_devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_slave1_control_case0_0_out_state = pci_slave1_state;
+    pci_slave1_pci_control1_control_case0_0_out_state = pci_slave1_state;
     last_data = (pci_slave1_single || pci_slave1_at_last);
     if (done) begin
         last_data = (pci_slave1_single || pci_slave1_before_last);
@@ -1057,7 +1063,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if ((done && (!pci_slave1_first_phase))) begin
             buffer_room = (pci_slave1_buffered_next == 0);
         end
-        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_control_case0_0_local_room));
+        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
     end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1065,40 +1071,40 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if (pci_slave1_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!pci_slave1_cbe_q[0]);
+            ad_oe = (pci_slave1_read_command != 0);
             if (pci_slave1_claim_config) begin
-                pci_slave1_control_case0_0_out_state = 4'b0001;
+                pci_slave1_pci_control1_control_case0_0_out_state = 4'b0001;
             end
             else if (pci_slave1_claim_io) begin
-                pci_slave1_control_case0_0_out_state = 4'b0010;
+                pci_slave1_pci_control1_control_case0_0_out_state = 4'b0010;
             end
             else begin
-                pci_slave1_control_case0_0_out_state = 4'b0011;
+                pci_slave1_pci_control1_control_case0_0_out_state = 4'b0011;
             end
         end
     end
     else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
         if (pci_slave1_fatal) begin
-            pci_slave1_control_case0_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((pci_slave1_state == 4'b0001)) begin
-            pci_slave1_control_case0_0_out_state = 4'b0101;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b1);
         end
         else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
-            pci_slave1_control_case0_0_out_state = 4'b0110;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
         else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
-            pci_slave1_control_case0_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (pci_slave1_is_read) begin
-            pci_slave1_control_case0_0_out_state = 4'b0100;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b0100;
         end
     end
     else if (((pci_slave1_state == 4'b0101) || (pci_slave1_state == 4'b0110))) begin
@@ -1108,10 +1114,10 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         else if ((done && ((!1'b1) || (!pci_slave1_stop_q)))) begin
             trdy = 1'b1;
             if (1'b1) begin
-                pci_slave1_control_case0_0_out_state = 4'b0111;
+                pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
             end
             else begin
-                pci_slave1_control_case0_0_out_state = 4'b1000;
+                pci_slave1_pci_control1_control_case0_0_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1122,7 +1128,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
             stop = (!(last_data && 1'b1));
         end
         else if ((exhausted || pci_slave1_timeout)) begin
-            pci_slave1_control_case0_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1132,7 +1138,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     end
     else if ((pci_slave1_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            pci_slave1_control_case0_0_out_state = 4'b1000;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1140,18 +1146,18 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         end
     end
     else begin
-        pci_slave1_control_case0_0_out_state = 4'b0000;
+        pci_slave1_pci_control1_control_case0_0_out_state = 4'b0000;
         drive = 1'b0;
     end
-    pci_slave1_control_case0_0_out_trdy = trdy;
-    pci_slave1_control_case0_0_out_stop = stop;
-    pci_slave1_control_case0_0_out_devsel = devsel;
-    pci_slave1_control_case0_0_out_drive = drive;
-    pci_slave1_control_case0_0_out_ad_oe = ad_oe;
+    pci_slave1_pci_control1_control_case0_0_out_trdy = trdy;
+    pci_slave1_pci_control1_control_case0_0_out_stop = stop;
+    pci_slave1_pci_control1_control_case0_0_out_devsel = devsel;
+    pci_slave1_pci_control1_control_case0_0_out_drive = drive;
+    pci_slave1_pci_control1_control_case0_0_out_ad_oe = ad_oe;
 end
 
 
-always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_control_case0_0_local_room, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q) begin: pci_slave1_control_case1_0_control
+always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_read_command, pci_slave1_b_valid, pci_slave1_stop_q, pci_slave1_single, pci_slave1_state, pci_slave1_hold_retry, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_burst_got, pci_slave1_claim_config, pci_slave1_fatal, pci_slave1_devsel_q, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_claim, pci_ad_oe, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_is_read, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case1_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1170,7 +1176,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     devsel = (pci_slave1_devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_slave1_control_case1_0_out_state = pci_slave1_state;
+    pci_slave1_pci_control1_control_case1_0_out_state = pci_slave1_state;
     last_data = (pci_slave1_single || pci_slave1_at_last);
     if (done) begin
         last_data = (pci_slave1_single || pci_slave1_before_last);
@@ -1187,7 +1193,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if ((done && (!pci_slave1_first_phase))) begin
             buffer_room = (pci_slave1_buffered_next == 0);
         end
-        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_control_case0_0_local_room));
+        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
     end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1195,40 +1201,40 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if (pci_slave1_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!pci_slave1_cbe_q[0]);
+            ad_oe = (pci_slave1_read_command != 0);
             if (pci_slave1_claim_config) begin
-                pci_slave1_control_case1_0_out_state = 4'b0001;
+                pci_slave1_pci_control1_control_case1_0_out_state = 4'b0001;
             end
             else if (pci_slave1_claim_io) begin
-                pci_slave1_control_case1_0_out_state = 4'b0010;
+                pci_slave1_pci_control1_control_case1_0_out_state = 4'b0010;
             end
             else begin
-                pci_slave1_control_case1_0_out_state = 4'b0011;
+                pci_slave1_pci_control1_control_case1_0_out_state = 4'b0011;
             end
         end
     end
     else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
         if (pci_slave1_fatal) begin
-            pci_slave1_control_case1_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((pci_slave1_state == 4'b0001)) begin
-            pci_slave1_control_case1_0_out_state = 4'b0101;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b0);
         end
         else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
-            pci_slave1_control_case1_0_out_state = 4'b0110;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
         else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
-            pci_slave1_control_case1_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (pci_slave1_is_read) begin
-            pci_slave1_control_case1_0_out_state = 4'b0100;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b0100;
         end
     end
     else if (((pci_slave1_state == 4'b0101) || (pci_slave1_state == 4'b0110))) begin
@@ -1238,10 +1244,10 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         else if ((done && ((!1'b0) || (!pci_slave1_stop_q)))) begin
             trdy = 1'b1;
             if (1'b0) begin
-                pci_slave1_control_case1_0_out_state = 4'b0111;
+                pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
             end
             else begin
-                pci_slave1_control_case1_0_out_state = 4'b1000;
+                pci_slave1_pci_control1_control_case1_0_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1252,7 +1258,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
             stop = (!(last_data && 1'b0));
         end
         else if ((exhausted || pci_slave1_timeout)) begin
-            pci_slave1_control_case1_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1262,7 +1268,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     end
     else if ((pci_slave1_state == 4'b0111)) begin
         if ((!1'b0)) begin
-            pci_slave1_control_case1_0_out_state = 4'b1000;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1270,18 +1276,18 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         end
     end
     else begin
-        pci_slave1_control_case1_0_out_state = 4'b0000;
+        pci_slave1_pci_control1_control_case1_0_out_state = 4'b0000;
         drive = 1'b0;
     end
-    pci_slave1_control_case1_0_out_trdy = trdy;
-    pci_slave1_control_case1_0_out_stop = stop;
-    pci_slave1_control_case1_0_out_devsel = devsel;
-    pci_slave1_control_case1_0_out_drive = drive;
-    pci_slave1_control_case1_0_out_ad_oe = ad_oe;
+    pci_slave1_pci_control1_control_case1_0_out_trdy = trdy;
+    pci_slave1_pci_control1_control_case1_0_out_stop = stop;
+    pci_slave1_pci_control1_control_case1_0_out_devsel = devsel;
+    pci_slave1_pci_control1_control_case1_0_out_drive = drive;
+    pci_slave1_pci_control1_control_case1_0_out_ad_oe = ad_oe;
 end
 
 
-always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_control_case0_0_local_room, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q) begin: pci_slave1_control_case2_0_control
+always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_read_command, pci_slave1_b_valid, pci_slave1_stop_q, pci_slave1_single, pci_slave1_state, pci_slave1_hold_retry, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_burst_got, pci_slave1_claim_config, pci_slave1_fatal, pci_slave1_devsel_q, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_claim, pci_ad_oe, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_is_read, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case2_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1300,7 +1306,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     devsel = (pci_slave1_devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_slave1_control_case2_0_out_state = pci_slave1_state;
+    pci_slave1_pci_control1_control_case2_0_out_state = pci_slave1_state;
     last_data = (pci_slave1_single || pci_slave1_at_last);
     if (done) begin
         last_data = (pci_slave1_single || pci_slave1_before_last);
@@ -1317,7 +1323,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if ((done && (!pci_slave1_first_phase))) begin
             buffer_room = (pci_slave1_buffered_next == 0);
         end
-        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_control_case0_0_local_room));
+        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
     end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1325,40 +1331,40 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if (pci_slave1_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!pci_slave1_cbe_q[0]);
+            ad_oe = (pci_slave1_read_command != 0);
             if (pci_slave1_claim_config) begin
-                pci_slave1_control_case2_0_out_state = 4'b0001;
+                pci_slave1_pci_control1_control_case2_0_out_state = 4'b0001;
             end
             else if (pci_slave1_claim_io) begin
-                pci_slave1_control_case2_0_out_state = 4'b0010;
+                pci_slave1_pci_control1_control_case2_0_out_state = 4'b0010;
             end
             else begin
-                pci_slave1_control_case2_0_out_state = 4'b0011;
+                pci_slave1_pci_control1_control_case2_0_out_state = 4'b0011;
             end
         end
     end
     else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
         if (pci_slave1_fatal) begin
-            pci_slave1_control_case2_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((pci_slave1_state == 4'b0001)) begin
-            pci_slave1_control_case2_0_out_state = 4'b0101;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b1);
         end
         else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
-            pci_slave1_control_case2_0_out_state = 4'b0110;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
         else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
-            pci_slave1_control_case2_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (pci_slave1_is_read) begin
-            pci_slave1_control_case2_0_out_state = 4'b0100;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b0100;
         end
     end
     else if (((pci_slave1_state == 4'b0101) || (pci_slave1_state == 4'b0110))) begin
@@ -1368,10 +1374,10 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         else if ((done && ((!1'b1) || (!pci_slave1_stop_q)))) begin
             trdy = 1'b1;
             if (1'b1) begin
-                pci_slave1_control_case2_0_out_state = 4'b0111;
+                pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
             end
             else begin
-                pci_slave1_control_case2_0_out_state = 4'b1000;
+                pci_slave1_pci_control1_control_case2_0_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1382,7 +1388,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
             stop = (!(last_data && 1'b1));
         end
         else if ((exhausted || pci_slave1_timeout)) begin
-            pci_slave1_control_case2_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1392,7 +1398,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     end
     else if ((pci_slave1_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            pci_slave1_control_case2_0_out_state = 4'b1000;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1400,53 +1406,53 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         end
     end
     else begin
-        pci_slave1_control_case2_0_out_state = 4'b0000;
+        pci_slave1_pci_control1_control_case2_0_out_state = 4'b0000;
         drive = 1'b0;
     end
-    pci_slave1_control_case2_0_out_trdy = trdy;
-    pci_slave1_control_case2_0_out_stop = stop;
-    pci_slave1_control_case2_0_out_devsel = devsel;
-    pci_slave1_control_case2_0_out_drive = drive;
-    pci_slave1_control_case2_0_out_ad_oe = ad_oe;
+    pci_slave1_pci_control1_control_case2_0_out_trdy = trdy;
+    pci_slave1_pci_control1_control_case2_0_out_stop = stop;
+    pci_slave1_pci_control1_control_case2_0_out_devsel = devsel;
+    pci_slave1_pci_control1_control_case2_0_out_drive = drive;
+    pci_slave1_pci_control1_control_case2_0_out_ad_oe = ad_oe;
 end
 
 
-wire pci_slave1_state_next_x0 = pci_slave1_control_case0_0_out_state[0];
-wire pci_slave1_state_next_y0 = pci_slave1_control_case2_0_out_state[0] ^ pci_slave1_control_case1_0_out_state[0];
+wire pci_slave1_state_next_x0 = pci_slave1_pci_control1_control_case0_0_out_state[0];
+wire pci_slave1_state_next_y0 = pci_slave1_pci_control1_control_case2_0_out_state[0] ^ pci_slave1_pci_control1_control_case1_0_out_state[0];
 assign pci_slave1_state_next[0] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y0 ? 1'b0 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y0 ? 1'b0 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y0 ? 1'b1 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0))));
-wire pci_slave1_state_next_x1 = pci_slave1_control_case0_0_out_state[1];
-wire pci_slave1_state_next_y1 = pci_slave1_control_case2_0_out_state[1] ^ pci_slave1_control_case1_0_out_state[1];
+wire pci_slave1_state_next_x1 = pci_slave1_pci_control1_control_case0_0_out_state[1];
+wire pci_slave1_state_next_y1 = pci_slave1_pci_control1_control_case2_0_out_state[1] ^ pci_slave1_pci_control1_control_case1_0_out_state[1];
 assign pci_slave1_state_next[1] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y1 ? 1'b0 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y1 ? 1'b0 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y1 ? 1'b1 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0))));
-wire pci_slave1_state_next_x2 = pci_slave1_control_case0_0_out_state[2];
-wire pci_slave1_state_next_y2 = pci_slave1_control_case2_0_out_state[2] ^ pci_slave1_control_case1_0_out_state[2];
+wire pci_slave1_state_next_x2 = pci_slave1_pci_control1_control_case0_0_out_state[2];
+wire pci_slave1_state_next_y2 = pci_slave1_pci_control1_control_case2_0_out_state[2] ^ pci_slave1_pci_control1_control_case1_0_out_state[2];
 assign pci_slave1_state_next[2] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y2 ? 1'b0 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y2 ? 1'b0 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y2 ? 1'b1 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0))));
-wire pci_slave1_state_next_x3 = pci_slave1_control_case0_0_out_state[3];
-wire pci_slave1_state_next_y3 = pci_slave1_control_case0_0_out_state[3] ? pci_slave1_control_case2_0_out_state[3] : pci_slave1_control_case1_0_out_state[3];
+wire pci_slave1_state_next_x3 = pci_slave1_pci_control1_control_case0_0_out_state[3];
+wire pci_slave1_state_next_y3 = pci_slave1_pci_control1_control_case0_0_out_state[3] ? pci_slave1_pci_control1_control_case2_0_out_state[3] : pci_slave1_pci_control1_control_case1_0_out_state[3];
 assign pci_slave1_state_next[3] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y3 ? 1'b1 : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y3 ? 1'b1 : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y3 ? (pci_slave1_state_next_x3 ? 1'b1 : 1'b0) : 1'b0)));
 
 
-wire pci_slave1_trdy_next_x0 = pci_slave1_control_case0_0_out_trdy ^ pci_slave1_control_case1_0_out_trdy;
-wire pci_slave1_trdy_next_y0 = (pci_slave1_control_case0_0_out_trdy ^ pci_slave1_control_case1_0_out_trdy) ? pci_slave1_control_case2_0_out_trdy : pci_slave1_control_case0_0_out_trdy;
+wire pci_slave1_trdy_next_x0 = pci_slave1_pci_control1_control_case0_0_out_trdy ^ pci_slave1_pci_control1_control_case1_0_out_trdy;
+wire pci_slave1_trdy_next_y0 = (pci_slave1_pci_control1_control_case0_0_out_trdy ^ pci_slave1_pci_control1_control_case1_0_out_trdy) ? pci_slave1_pci_control1_control_case2_0_out_trdy : pci_slave1_pci_control1_control_case0_0_out_trdy;
 assign pci_slave1_trdy_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_trdy_next_y0 ? 1'b1 : (pci_slave1_trdy_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_trdy_next_y0 ? (pci_slave1_trdy_next_x0 ? 1'b0 : 1'b1) : 1'b0)) : (pci_frame_in ? (pci_slave1_trdy_next_y0 ? 1'b1 : (pci_slave1_trdy_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_trdy_next_y0 ? 1'b1 : 1'b0)));
 
 
-wire pci_slave1_stop_next_x0 = pci_slave1_control_case0_0_out_stop;
-wire pci_slave1_stop_next_y0 = pci_slave1_control_case0_0_out_stop ? pci_slave1_control_case2_0_out_stop : pci_slave1_control_case1_0_out_stop;
+wire pci_slave1_stop_next_x0 = pci_slave1_pci_control1_control_case0_0_out_stop;
+wire pci_slave1_stop_next_y0 = pci_slave1_pci_control1_control_case0_0_out_stop ? pci_slave1_pci_control1_control_case2_0_out_stop : pci_slave1_pci_control1_control_case1_0_out_stop;
 assign pci_slave1_stop_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_stop_next_y0 ? 1'b1 : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_stop_next_y0 ? 1'b1 : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_stop_next_y0 ? (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
-wire pci_slave1_devsel_next_x0 = pci_slave1_control_case0_0_out_devsel;
-wire pci_slave1_devsel_next_y0 = pci_slave1_control_case0_0_out_devsel ? pci_slave1_control_case2_0_out_devsel : pci_slave1_control_case1_0_out_devsel;
+wire pci_slave1_devsel_next_x0 = pci_slave1_pci_control1_control_case0_0_out_devsel;
+wire pci_slave1_devsel_next_y0 = pci_slave1_pci_control1_control_case0_0_out_devsel ? pci_slave1_pci_control1_control_case2_0_out_devsel : pci_slave1_pci_control1_control_case1_0_out_devsel;
 assign pci_slave1_devsel_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_devsel_next_y0 ? 1'b1 : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_devsel_next_y0 ? 1'b1 : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_devsel_next_y0 ? (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
-wire pci_slave1_drive_next_x0 = pci_slave1_control_case0_0_out_drive;
-wire pci_slave1_drive_next_y0 = pci_slave1_control_case0_0_out_drive ? pci_slave1_control_case2_0_out_drive : pci_slave1_control_case1_0_out_drive;
+wire pci_slave1_drive_next_x0 = pci_slave1_pci_control1_control_case0_0_out_drive;
+wire pci_slave1_drive_next_y0 = pci_slave1_pci_control1_control_case0_0_out_drive ? pci_slave1_pci_control1_control_case2_0_out_drive : pci_slave1_pci_control1_control_case1_0_out_drive;
 assign pci_slave1_drive_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_drive_next_y0 ? 1'b1 : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_drive_next_y0 ? 1'b1 : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_drive_next_y0 ? (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
-wire pci_slave1_ad_oe_next_x0 = pci_slave1_control_case0_0_out_ad_oe;
-wire pci_slave1_ad_oe_next_y0 = pci_slave1_control_case2_0_out_ad_oe ^ pci_slave1_control_case1_0_out_ad_oe;
+wire pci_slave1_ad_oe_next_x0 = pci_slave1_pci_control1_control_case0_0_out_ad_oe;
+wire pci_slave1_ad_oe_next_y0 = pci_slave1_pci_control1_control_case2_0_out_ad_oe ^ pci_slave1_pci_control1_control_case1_0_out_ad_oe;
 assign pci_slave1_ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_y0 ? 1'b1 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
@@ -1683,26 +1689,22 @@ always @(posedge clock, negedge reset) begin: pci_slave1_write_buffer
 end
 
 
-
-assign pci_slave1_config_index = pci_slave1_phase_addr[6-1:0];
-
-
-always @(posedge clock, negedge reset) begin: pci_slave1_config_registers
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_config1_config_registers
     reg clear_target_abort;
     reg clear_system_error;
     reg clear_parity_error;
     if (reset == 0) begin
+        pci_slave1_parity_response <= 0;
+        pci_slave1_pci_config1_signaled_system_error <= 0;
+        pci_slave1_pci_config1_interrupt_line <= 0;
+        pci_slave1_interrupt_disable <= 0;
+        pci_slave1_pci_config1_signaled_target_abort <= 0;
+        pci_slave1_bar0 <= 0;
+        pci_slave1_pci_config1_detected_parity_error <= 0;
+        pci_slave1_io_enable <= 0;
         pci_slave1_serr_enable <= 0;
         pci_slave1_bar1 <= 0;
-        pci_slave1_signaled_system_error <= 0;
-        pci_slave1_interrupt_disable <= 0;
-        pci_slave1_io_enable <= 0;
-        pci_slave1_bar0 <= 0;
-        pci_slave1_signaled_target_abort <= 0;
-        pci_slave1_detected_parity_error <= 0;
-        pci_slave1_interrupt_line <= 0;
         pci_slave1_mem_enable <= 0;
-        pci_slave1_parity_response <= 0;
     end
     else begin
         clear_target_abort = 1'b0;
@@ -1711,89 +1713,97 @@ always @(posedge clock, negedge reset) begin: pci_slave1_config_registers
         if (pci_slave1_config_write_q) begin
             case (pci_slave1_config_index)
                 'h1: begin
-                    if ((!pci_slave1_cbe_q[0])) begin
-                        pci_slave1_io_enable <= pci_slave1_ad_q[0];
-                        pci_slave1_mem_enable <= pci_slave1_ad_q[1];
-                        pci_slave1_parity_response <= pci_slave1_ad_q[6];
+                    if ((!pci_slave1_config_cbe_n[0])) begin
+                        pci_slave1_io_enable <= pci_slave1_config_data[0];
+                        pci_slave1_mem_enable <= pci_slave1_config_data[1];
+                        pci_slave1_parity_response <= pci_slave1_config_data[6];
                     end
-                    if ((!pci_slave1_cbe_q[1])) begin
-                        pci_slave1_serr_enable <= pci_slave1_ad_q[8];
-                        pci_slave1_interrupt_disable <= pci_slave1_ad_q[10];
+                    if ((!pci_slave1_config_cbe_n[1])) begin
+                        pci_slave1_serr_enable <= pci_slave1_config_data[8];
+                        pci_slave1_interrupt_disable <= pci_slave1_config_data[10];
                     end
-                    if ((!pci_slave1_cbe_q[3])) begin
-                        clear_target_abort = pci_slave1_ad_q[27];
-                        clear_system_error = pci_slave1_ad_q[30];
-                        clear_parity_error = pci_slave1_ad_q[31];
+                    if ((!pci_slave1_config_cbe_n[3])) begin
+                        clear_target_abort = pci_slave1_config_data[27];
+                        clear_system_error = pci_slave1_config_data[30];
+                        clear_parity_error = pci_slave1_config_data[31];
                     end
                 end
                 'h4: begin
-                    if ((!pci_slave1_cbe_q[0])) begin
-                        pci_slave1_bar0[8-1:0] <= pci_slave1_ad_q[8-1:0];
+                    if ((!pci_slave1_config_cbe_n[0])) begin
+                        pci_slave1_bar0[8-1:0] <= pci_slave1_config_data[8-1:0];
                     end
-                    if ((!pci_slave1_cbe_q[1])) begin
-                        pci_slave1_bar0[16-1:8] <= pci_slave1_ad_q[16-1:8];
+                    if ((!pci_slave1_config_cbe_n[1])) begin
+                        pci_slave1_bar0[16-1:8] <= pci_slave1_config_data[16-1:8];
                     end
                 end
                 'h5: begin
-                    if ((!pci_slave1_cbe_q[0])) begin
-                        pci_slave1_bar1[8-1:0] <= pci_slave1_ad_q[8-1:0];
+                    if ((!pci_slave1_config_cbe_n[0])) begin
+                        pci_slave1_bar1[8-1:0] <= pci_slave1_config_data[8-1:0];
                     end
-                    if ((!pci_slave1_cbe_q[1])) begin
-                        pci_slave1_bar1[16-1:8] <= pci_slave1_ad_q[16-1:8];
+                    if ((!pci_slave1_config_cbe_n[1])) begin
+                        pci_slave1_bar1[16-1:8] <= pci_slave1_config_data[16-1:8];
                     end
-                    if ((!pci_slave1_cbe_q[2])) begin
-                        pci_slave1_bar1[24-1:16] <= pci_slave1_ad_q[24-1:16];
+                    if ((!pci_slave1_config_cbe_n[2])) begin
+                        pci_slave1_bar1[24-1:16] <= pci_slave1_config_data[24-1:16];
                     end
-                    if ((!pci_slave1_cbe_q[3])) begin
-                        pci_slave1_bar1[32-1:24] <= pci_slave1_ad_q[32-1:24];
+                    if ((!pci_slave1_config_cbe_n[3])) begin
+                        pci_slave1_bar1[32-1:24] <= pci_slave1_config_data[32-1:24];
                     end
                 end
                 'hf: begin
-                    if ((!pci_slave1_cbe_q[0])) begin
-                        pci_slave1_interrupt_line <= pci_slave1_ad_q[8-1:0];
+                    if ((!pci_slave1_config_cbe_n[0])) begin
+                        pci_slave1_pci_config1_interrupt_line <= pci_slave1_config_data[8-1:0];
                     end
                 end
             endcase
         end
-        pci_slave1_signaled_target_abort <= (pci_slave1_fatal || (pci_slave1_signaled_target_abort && (!clear_target_abort)));
-        pci_slave1_signaled_system_error <= (pci_serr_oe || (pci_slave1_signaled_system_error && (!clear_system_error)));
-        pci_slave1_detected_parity_error <= (pci_slave1_parity_error_q || (pci_slave1_detected_parity_error && (!clear_parity_error)));
+        pci_slave1_pci_config1_signaled_target_abort <= (pci_slave1_fatal || (pci_slave1_pci_config1_signaled_target_abort && (!clear_target_abort)));
+        pci_slave1_pci_config1_signaled_system_error <= (pci_slave1_config_system_error || (pci_slave1_pci_config1_signaled_system_error && (!clear_system_error)));
+        pci_slave1_pci_config1_detected_parity_error <= (pci_slave1_parity_error_q || (pci_slave1_pci_config1_detected_parity_error && (!clear_parity_error)));
     end
 end
 
 
 
-assign pci_slave1_bar0_read = ((pci_slave1_bar0 & 16'hff80) | 16'h1);
+assign pci_slave1_pci_config1_bar0_read = ((pci_slave1_bar0 & 16'hff80) | 16'h1);
 
 
-always @(pci_slave1_signaled_system_error, pci_slave1_serr_enable, pci_slave1_bar1, pci_slave1_config_index, pci_slave1_interrupt_disable, irq, pci_slave1_bar0_read, pci_slave1_io_enable, pci_slave1_signaled_target_abort, pci_slave1_detected_parity_error, pci_slave1_interrupt_line, pci_slave1_mem_enable, pci_slave1_parity_response) begin: pci_slave1_config_read
+always @(pci_slave1_pci_config1_signaled_system_error, pci_slave1_parity_response, pci_slave1_config_irq, pci_slave1_config_index, pci_slave1_pci_config1_bar0_read, pci_slave1_pci_config1_interrupt_line, pci_slave1_interrupt_disable, pci_slave1_pci_config1_signaled_target_abort, pci_slave1_pci_config1_detected_parity_error, pci_slave1_io_enable, pci_slave1_serr_enable, pci_slave1_bar1, pci_slave1_mem_enable) begin: pci_slave1_pci_config1_config_read
     case (pci_slave1_config_index)
         'h0: begin
-            pci_slave1_config_data = 32'hdda01234;
+            pci_slave1_config_rdata = 32'hdda01234;
         end
         'h1: begin
-            pci_slave1_config_data = {pci_slave1_detected_parity_error, pci_slave1_signaled_system_error, 2'h0, pci_slave1_signaled_target_abort, 2'h1, 5'h0, irq, 8'h0, pci_slave1_interrupt_disable, 1'b0, pci_slave1_serr_enable, 1'b0, pci_slave1_parity_response, 4'h0, pci_slave1_mem_enable, pci_slave1_io_enable};
+            pci_slave1_config_rdata = {pci_slave1_pci_config1_detected_parity_error, pci_slave1_pci_config1_signaled_system_error, 2'h0, pci_slave1_pci_config1_signaled_target_abort, 2'h1, 5'h0, pci_slave1_config_irq, 8'h0, pci_slave1_interrupt_disable, 1'b0, pci_slave1_serr_enable, 1'b0, pci_slave1_parity_response, 4'h0, pci_slave1_mem_enable, pci_slave1_io_enable};
         end
         'h2: begin
-            pci_slave1_config_data = 32'h8800001;
+            pci_slave1_config_rdata = 32'h8800001;
         end
         'h4: begin
-            pci_slave1_config_data = {16'h0, pci_slave1_bar0_read};
+            pci_slave1_config_rdata = {16'h0, pci_slave1_pci_config1_bar0_read};
         end
         'h5: begin
-            pci_slave1_config_data = (pci_slave1_bar1 & 32'hfffff000);
+            pci_slave1_config_rdata = (pci_slave1_bar1 & 32'hfffff000);
         end
         'hb: begin
-            pci_slave1_config_data = 32'h11234;
+            pci_slave1_config_rdata = 32'h11234;
         end
         'hf: begin
-            pci_slave1_config_data = {16'h0, 8'h1, pci_slave1_interrupt_line};
+            pci_slave1_config_rdata = {16'h0, 8'h1, pci_slave1_pci_config1_interrupt_line};
         end
         default: begin
-            pci_slave1_config_data = 0;
+            pci_slave1_config_rdata = 0;
         end
     endcase
 end
+
+
+
+assign pci_slave1_config_index = pci_slave1_phase_addr[6-1:0];
+assign pci_slave1_config_data = pci_slave1_ad_q;
+assign pci_slave1_config_cbe_n = pci_slave1_cbe_q;
+assign pci_slave1_config_system_error = pci_serr_oe;
+assign pci_slave1_config_irq = irq;
 
 
 
@@ -1878,7 +1888,7 @@ end
 assign card_core0_regs_fifo1_fifo_level = card_core0_regs_fifo1_sync_fifo1_count;
 assign card_core0_regs_fifo1_fifo_empty = card_core0_regs_fifo1_sync_fifo1_is_empty;
 assign card_core0_regs_fifo1_fifo_full = (!card_core0_regs_fifo1_sync_fifo1_free[0]);
-assign pci_slave1_control_case0_0_local_room = card_core0_regs_fifo1_sync_fifo1_free[(3 - 1)];
+assign pci_slave1_pci_control1_control_case0_0_target_room = card_core0_regs_fifo1_sync_fifo1_free[(3 - 1)];
 
 
 

@@ -107,7 +107,6 @@ reg card1_pci_slave2_b_kept;
 reg card1_pci_slave2_b_valid;
 wire card1_pci_slave2_b_valid_next;
 reg [15:0] card1_pci_slave2_bar0;
-wire [15:0] card1_pci_slave2_bar0_read;
 reg [31:0] card1_pci_slave2_bar1;
 reg card1_pci_slave2_before_last;
 reg [1:0] card1_pci_slave2_buffered_next;
@@ -116,11 +115,8 @@ reg card1_pci_slave2_bus_parity;
 reg card1_pci_slave2_claim;
 reg card1_pci_slave2_claim_config;
 reg card1_pci_slave2_claim_io;
-reg [31:0] card1_pci_slave2_config_data;
-wire [5:0] card1_pci_slave2_config_index;
 wire card1_pci_slave2_config_write_next;
 reg card1_pci_slave2_config_write_q;
-reg card1_pci_slave2_detected_parity_error;
 wire card1_pci_slave2_devsel_next;
 reg card1_pci_slave2_devsel_q;
 wire card1_pci_slave2_draining;
@@ -143,7 +139,6 @@ wire card1_pci_slave2_hold_got;
 wire card1_pci_slave2_hold_retry;
 reg card1_pci_slave2_initial_wait_over;
 reg card1_pci_slave2_interrupt_disable;
-reg [7:0] card1_pci_slave2_interrupt_line;
 reg [1:0] card1_pci_slave2_io_byte;
 reg card1_pci_slave2_io_enable;
 reg card1_pci_slave2_irdy_q;
@@ -160,6 +155,7 @@ reg card1_pci_slave2_perr_q;
 reg [9:0] card1_pci_slave2_phase_addr;
 wire card1_pci_slave2_phase_step;
 wire card1_pci_slave2_posting;
+reg card1_pci_slave2_read_command;
 reg [31:0] card1_pci_slave2_read_source;
 reg [9:0] card1_pci_slave2_req_addr;
 reg card1_pci_slave2_req_addr_stale;
@@ -168,8 +164,6 @@ reg card1_pci_slave2_s_valid;
 wire card1_pci_slave2_serr_armed;
 reg card1_pci_slave2_serr_enable;
 wire card1_pci_slave2_serr_oe_next;
-reg card1_pci_slave2_signaled_system_error;
-reg card1_pci_slave2_signaled_target_abort;
 reg card1_pci_slave2_single;
 reg card1_pci_slave2_space_mem;
 reg [31:0] card1_pci_slave2_spare_data;
@@ -197,26 +191,32 @@ reg [3:0] card1_pci_slave2_local_be;
 reg [11:0] card1_pci_slave2_local_addr;
 reg card1_pci_slave2_local_ready;
 reg card1_pci_slave2_local_retry;
+reg [31:0] card1_pci_slave2_config_rdata;
 reg [31:0] card1_pci_slave2_local_rdata;
-reg [3:0] card1_pci_slave2_control_case0_0_1_out_state;
-wire card1_pci_slave2_control_case0_0_1_local_room;
-reg card1_pci_slave2_control_case0_0_1_out_trdy;
-reg card1_pci_slave2_control_case0_0_1_out_stop;
-reg card1_pci_slave2_control_case0_0_1_out_devsel;
-reg card1_pci_slave2_control_case0_0_1_out_drive;
-reg card1_pci_slave2_control_case0_0_1_out_ad_oe;
-reg [3:0] card1_pci_slave2_control_case1_0_1_out_state;
-reg card1_pci_slave2_control_case1_0_1_out_trdy;
-reg card1_pci_slave2_control_case1_0_1_out_stop;
-reg card1_pci_slave2_control_case1_0_1_out_devsel;
-reg card1_pci_slave2_control_case1_0_1_out_drive;
-reg card1_pci_slave2_control_case1_0_1_out_ad_oe;
-reg [3:0] card1_pci_slave2_control_case2_0_1_out_state;
-reg card1_pci_slave2_control_case2_0_1_out_trdy;
-reg card1_pci_slave2_control_case2_0_1_out_stop;
-reg card1_pci_slave2_control_case2_0_1_out_devsel;
-reg card1_pci_slave2_control_case2_0_1_out_drive;
-reg card1_pci_slave2_control_case2_0_1_out_ad_oe;
+wire [5:0] card1_pci_slave2_config_index;
+wire [31:0] card1_pci_slave2_config_data;
+wire [3:0] card1_pci_slave2_config_cbe_n;
+wire card1_pci_slave2_config_system_error;
+wire card1_pci_slave2_config_irq;
+reg [3:0] card1_pci_slave2_pci_control2_control_case0_0_1_out_state;
+wire card1_pci_slave2_pci_control2_control_case0_0_1_target_room;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_out_stop;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_out_drive;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_out_ad_oe;
+reg [3:0] card1_pci_slave2_pci_control2_control_case1_0_1_out_state;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_out_trdy;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_out_stop;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_out_devsel;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_out_drive;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_out_ad_oe;
+reg [3:0] card1_pci_slave2_pci_control2_control_case2_0_1_out_state;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_out_trdy;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_out_stop;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_out_devsel;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_out_drive;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_out_ad_oe;
 wire card1_pci_slave2_pin_lut33_out;
 wire card1_pci_slave2_pin_lut34_out;
 wire card1_pci_slave2_pin_lut35_out;
@@ -249,6 +249,11 @@ wire card1_pci_slave2_pin_lut61_out;
 wire card1_pci_slave2_pin_lut62_out;
 wire card1_pci_slave2_pin_lut63_out;
 wire card1_pci_slave2_pin_lut64_out;
+wire [15:0] card1_pci_slave2_pci_config2_bar0_read;
+reg card1_pci_slave2_pci_config2_detected_parity_error;
+reg [7:0] card1_pci_slave2_pci_config2_interrupt_line;
+reg card1_pci_slave2_pci_config2_signaled_system_error;
+reg card1_pci_slave2_pci_config2_signaled_target_abort;
 reg card1_card_core1_core_clear;
 wire card1_card_core1_dda_reset;
 reg [31:0] card1_card_core1_regs_fifo2_fifo_dout;
@@ -1440,6 +1445,7 @@ always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_sl
     card1_pci_slave2_claim = ((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (config_hit || io_hit || mem_hit));
     card1_pci_slave2_claim_config = config_hit;
     card1_pci_slave2_claim_io = io_hit;
+    card1_pci_slave2_read_command = (!pci_pads0_registered_pad5_from_pin[0]);
 end
 
 
@@ -1560,12 +1566,12 @@ assign card1_pci_slave2_hold_retry = (card1_pci_slave2_first_ready && (card1_pci
 assign card1_pci_slave2_burst_got = (card1_pci_slave2_fetch_more && card1_pci_slave2_local_ready);
 
 
-always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_config_data, card1_pci_slave2_spare_data, card1_pci_slave2_local_rdata) begin: card1_pci_slave2_read_path
+always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_config_rdata, card1_pci_slave2_spare_data, card1_pci_slave2_local_rdata) begin: card1_pci_slave2_read_path
     if (card1_pci_slave2_b_valid) begin
         card1_pci_slave2_read_source = card1_pci_slave2_spare_data;
     end
     else if (card1_pci_slave2_is_config) begin
-        card1_pci_slave2_read_source = card1_pci_slave2_config_data;
+        card1_pci_slave2_read_source = card1_pci_slave2_config_rdata;
     end
     else begin
         card1_pci_slave2_read_source = card1_pci_slave2_local_rdata;
@@ -1603,7 +1609,7 @@ always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_p
 end
 
 
-always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_control_case0_0_1_local_room, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q) begin: card1_pci_slave2_control_case0_0_1_control
+always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_read_command, card1_pci_slave2_b_valid, card1_pci_slave2_stop_q, card1_pci_slave2_single, card1_pci_slave2_state, card1_pci_slave2_hold_retry, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_burst_got, card1_pci_slave2_claim_config, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_is_read, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case0_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1622,7 +1628,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card1_pci_slave2_control_case0_0_1_out_state = card1_pci_slave2_state;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_state = card1_pci_slave2_state;
     last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     if (done) begin
         last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
@@ -1639,7 +1645,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if ((done && (!card1_pci_slave2_first_phase))) begin
             buffer_room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_control_case0_0_1_local_room));
+        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
     end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1647,40 +1653,40 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if (card1_pci_slave2_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!pci_pads0_registered_pad5_from_pin[0]);
+            ad_oe = (card1_pci_slave2_read_command != 0);
             if (card1_pci_slave2_claim_config) begin
-                card1_pci_slave2_control_case0_0_1_out_state = 4'b0001;
+                card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0001;
             end
             else if (card1_pci_slave2_claim_io) begin
-                card1_pci_slave2_control_case0_0_1_out_state = 4'b0010;
+                card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0010;
             end
             else begin
-                card1_pci_slave2_control_case0_0_1_out_state = 4'b0011;
+                card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0011;
             end
         end
     end
     else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
         if (card1_pci_slave2_fatal) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((card1_pci_slave2_state == 4'b0001)) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b0101;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b1);
         end
         else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b0110;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
         else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (card1_pci_slave2_is_read) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b0100;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0100;
         end
     end
     else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
@@ -1690,10 +1696,10 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
             trdy = 1'b1;
             if (1'b1) begin
-                card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
+                card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
             end
             else begin
-                card1_pci_slave2_control_case0_0_1_out_state = 4'b1000;
+                card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1704,7 +1710,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
             stop = (!(last_data && 1'b1));
         end
         else if ((exhausted || card1_pci_slave2_timeout)) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1714,7 +1720,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     end
     else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b1000;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1722,18 +1728,18 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         end
     end
     else begin
-        card1_pci_slave2_control_case0_0_1_out_state = 4'b0000;
+        card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0000;
         drive = 1'b0;
     end
-    card1_pci_slave2_control_case0_0_1_out_trdy = trdy;
-    card1_pci_slave2_control_case0_0_1_out_stop = stop;
-    card1_pci_slave2_control_case0_0_1_out_devsel = devsel;
-    card1_pci_slave2_control_case0_0_1_out_drive = drive;
-    card1_pci_slave2_control_case0_0_1_out_ad_oe = ad_oe;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy = trdy;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_stop = stop;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel = devsel;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_drive = drive;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_ad_oe = ad_oe;
 end
 
 
-always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_control_case0_0_1_local_room, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q) begin: card1_pci_slave2_control_case1_0_1_control
+always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_read_command, card1_pci_slave2_b_valid, card1_pci_slave2_stop_q, card1_pci_slave2_single, card1_pci_slave2_state, card1_pci_slave2_hold_retry, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_burst_got, card1_pci_slave2_claim_config, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_is_read, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case1_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1752,7 +1758,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card1_pci_slave2_control_case1_0_1_out_state = card1_pci_slave2_state;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_state = card1_pci_slave2_state;
     last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     if (done) begin
         last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
@@ -1769,7 +1775,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if ((done && (!card1_pci_slave2_first_phase))) begin
             buffer_room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_control_case0_0_1_local_room));
+        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
     end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1777,40 +1783,40 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if (card1_pci_slave2_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!pci_pads0_registered_pad5_from_pin[0]);
+            ad_oe = (card1_pci_slave2_read_command != 0);
             if (card1_pci_slave2_claim_config) begin
-                card1_pci_slave2_control_case1_0_1_out_state = 4'b0001;
+                card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0001;
             end
             else if (card1_pci_slave2_claim_io) begin
-                card1_pci_slave2_control_case1_0_1_out_state = 4'b0010;
+                card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0010;
             end
             else begin
-                card1_pci_slave2_control_case1_0_1_out_state = 4'b0011;
+                card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0011;
             end
         end
     end
     else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
         if (card1_pci_slave2_fatal) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((card1_pci_slave2_state == 4'b0001)) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b0101;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b0);
         end
         else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b0110;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
         else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (card1_pci_slave2_is_read) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b0100;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0100;
         end
     end
     else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
@@ -1820,10 +1826,10 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         else if ((done && ((!1'b0) || (!card1_pci_slave2_stop_q)))) begin
             trdy = 1'b1;
             if (1'b0) begin
-                card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
+                card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
             end
             else begin
-                card1_pci_slave2_control_case1_0_1_out_state = 4'b1000;
+                card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1834,7 +1840,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
             stop = (!(last_data && 1'b0));
         end
         else if ((exhausted || card1_pci_slave2_timeout)) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1844,7 +1850,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     end
     else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b0)) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b1000;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1852,18 +1858,18 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         end
     end
     else begin
-        card1_pci_slave2_control_case1_0_1_out_state = 4'b0000;
+        card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0000;
         drive = 1'b0;
     end
-    card1_pci_slave2_control_case1_0_1_out_trdy = trdy;
-    card1_pci_slave2_control_case1_0_1_out_stop = stop;
-    card1_pci_slave2_control_case1_0_1_out_devsel = devsel;
-    card1_pci_slave2_control_case1_0_1_out_drive = drive;
-    card1_pci_slave2_control_case1_0_1_out_ad_oe = ad_oe;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_trdy = trdy;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_stop = stop;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_devsel = devsel;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_drive = drive;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_ad_oe = ad_oe;
 end
 
 
-always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_control_case0_0_1_local_room, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q) begin: card1_pci_slave2_control_case2_0_1_control
+always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_read_command, card1_pci_slave2_b_valid, card1_pci_slave2_stop_q, card1_pci_slave2_single, card1_pci_slave2_state, card1_pci_slave2_hold_retry, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_burst_got, card1_pci_slave2_claim_config, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_is_read, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case2_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1882,7 +1888,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card1_pci_slave2_control_case2_0_1_out_state = card1_pci_slave2_state;
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_state = card1_pci_slave2_state;
     last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     if (done) begin
         last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
@@ -1899,7 +1905,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if ((done && (!card1_pci_slave2_first_phase))) begin
             buffer_room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_control_case0_0_1_local_room));
+        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
     end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1907,40 +1913,40 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if (card1_pci_slave2_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!pci_pads0_registered_pad5_from_pin[0]);
+            ad_oe = (card1_pci_slave2_read_command != 0);
             if (card1_pci_slave2_claim_config) begin
-                card1_pci_slave2_control_case2_0_1_out_state = 4'b0001;
+                card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0001;
             end
             else if (card1_pci_slave2_claim_io) begin
-                card1_pci_slave2_control_case2_0_1_out_state = 4'b0010;
+                card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0010;
             end
             else begin
-                card1_pci_slave2_control_case2_0_1_out_state = 4'b0011;
+                card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0011;
             end
         end
     end
     else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
         if (card1_pci_slave2_fatal) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((card1_pci_slave2_state == 4'b0001)) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b0101;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b1);
         end
         else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b0110;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
         else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (card1_pci_slave2_is_read) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b0100;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0100;
         end
     end
     else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
@@ -1950,10 +1956,10 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
             trdy = 1'b1;
             if (1'b1) begin
-                card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
+                card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
             end
             else begin
-                card1_pci_slave2_control_case2_0_1_out_state = 4'b1000;
+                card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1964,7 +1970,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
             stop = (!(last_data && 1'b1));
         end
         else if ((exhausted || card1_pci_slave2_timeout)) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1974,7 +1980,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     end
     else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b1000;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1982,40 +1988,40 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         end
     end
     else begin
-        card1_pci_slave2_control_case2_0_1_out_state = 4'b0000;
+        card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0000;
         drive = 1'b0;
     end
-    card1_pci_slave2_control_case2_0_1_out_trdy = trdy;
-    card1_pci_slave2_control_case2_0_1_out_stop = stop;
-    card1_pci_slave2_control_case2_0_1_out_devsel = devsel;
-    card1_pci_slave2_control_case2_0_1_out_drive = drive;
-    card1_pci_slave2_control_case2_0_1_out_ad_oe = ad_oe;
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_trdy = trdy;
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_stop = stop;
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_devsel = devsel;
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_drive = drive;
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_ad_oe = ad_oe;
 end
 
 
-wire card1_pci_slave2_state_next_x0 = card1_pci_slave2_control_case0_0_1_out_state[0];
-wire card1_pci_slave2_state_next_y0 = card1_pci_slave2_control_case2_0_1_out_state[0] ^ card1_pci_slave2_control_case1_0_1_out_state[0];
+wire card1_pci_slave2_state_next_x0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_state[0];
+wire card1_pci_slave2_state_next_y0 = card1_pci_slave2_pci_control2_control_case2_0_1_out_state[0] ^ card1_pci_slave2_pci_control2_control_case1_0_1_out_state[0];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut0 (.O(card1_pci_slave2_state_next[0]), .I0(card1_pci_slave2_state_next_x0), .I1(card1_pci_slave2_state_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
 assign card1_pci_slave2_state_next[0] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y0 ? 1'b0 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y0 ? 1'b0 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y0 ? 1'b1 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0))));
 `endif
-wire card1_pci_slave2_state_next_x1 = card1_pci_slave2_control_case0_0_1_out_state[1];
-wire card1_pci_slave2_state_next_y1 = card1_pci_slave2_control_case2_0_1_out_state[1] ^ card1_pci_slave2_control_case1_0_1_out_state[1];
+wire card1_pci_slave2_state_next_x1 = card1_pci_slave2_pci_control2_control_case0_0_1_out_state[1];
+wire card1_pci_slave2_state_next_y1 = card1_pci_slave2_pci_control2_control_case2_0_1_out_state[1] ^ card1_pci_slave2_pci_control2_control_case1_0_1_out_state[1];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut1 (.O(card1_pci_slave2_state_next[1]), .I0(card1_pci_slave2_state_next_x1), .I1(card1_pci_slave2_state_next_y1), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
 assign card1_pci_slave2_state_next[1] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y1 ? 1'b0 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y1 ? 1'b0 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y1 ? 1'b1 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0))));
 `endif
-wire card1_pci_slave2_state_next_x2 = card1_pci_slave2_control_case0_0_1_out_state[2];
-wire card1_pci_slave2_state_next_y2 = card1_pci_slave2_control_case2_0_1_out_state[2] ^ card1_pci_slave2_control_case1_0_1_out_state[2];
+wire card1_pci_slave2_state_next_x2 = card1_pci_slave2_pci_control2_control_case0_0_1_out_state[2];
+wire card1_pci_slave2_state_next_y2 = card1_pci_slave2_pci_control2_control_case2_0_1_out_state[2] ^ card1_pci_slave2_pci_control2_control_case1_0_1_out_state[2];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut2 (.O(card1_pci_slave2_state_next[2]), .I0(card1_pci_slave2_state_next_x2), .I1(card1_pci_slave2_state_next_y2), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
 assign card1_pci_slave2_state_next[2] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y2 ? 1'b0 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y2 ? 1'b0 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y2 ? 1'b1 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0))));
 `endif
-wire card1_pci_slave2_state_next_x3 = card1_pci_slave2_control_case0_0_1_out_state[3];
-wire card1_pci_slave2_state_next_y3 = card1_pci_slave2_control_case0_0_1_out_state[3] ? card1_pci_slave2_control_case2_0_1_out_state[3] : card1_pci_slave2_control_case1_0_1_out_state[3];
+wire card1_pci_slave2_state_next_x3 = card1_pci_slave2_pci_control2_control_case0_0_1_out_state[3];
+wire card1_pci_slave2_state_next_y3 = card1_pci_slave2_pci_control2_control_case0_0_1_out_state[3] ? card1_pci_slave2_pci_control2_control_case2_0_1_out_state[3] : card1_pci_slave2_pci_control2_control_case1_0_1_out_state[3];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_state_next_lut3 (.O(card1_pci_slave2_state_next[3]), .I0(card1_pci_slave2_state_next_x3), .I1(card1_pci_slave2_state_next_y3), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
@@ -2023,8 +2029,8 @@ assign card1_pci_slave2_state_next[3] = (pci_pads0_input_pad1_from_pin ? (pci_pa
 `endif
 
 
-wire card1_pci_slave2_trdy_next_x0 = card1_pci_slave2_control_case0_0_1_out_trdy ^ card1_pci_slave2_control_case1_0_1_out_trdy;
-wire card1_pci_slave2_trdy_next_y0 = (card1_pci_slave2_control_case0_0_1_out_trdy ^ card1_pci_slave2_control_case1_0_1_out_trdy) ? card1_pci_slave2_control_case2_0_1_out_trdy : card1_pci_slave2_control_case0_0_1_out_trdy;
+wire card1_pci_slave2_trdy_next_x0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy ^ card1_pci_slave2_pci_control2_control_case1_0_1_out_trdy;
+wire card1_pci_slave2_trdy_next_y0 = (card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy ^ card1_pci_slave2_pci_control2_control_case1_0_1_out_trdy) ? card1_pci_slave2_pci_control2_control_case2_0_1_out_trdy : card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy;
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hE4EC)) card1_pci_slave2_trdy_next_lut0 (.O(card1_pci_slave2_trdy_next), .I0(card1_pci_slave2_trdy_next_x0), .I1(card1_pci_slave2_trdy_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
@@ -2032,8 +2038,8 @@ assign card1_pci_slave2_trdy_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_
 `endif
 
 
-wire card1_pci_slave2_stop_next_x0 = card1_pci_slave2_control_case0_0_1_out_stop;
-wire card1_pci_slave2_stop_next_y0 = card1_pci_slave2_control_case0_0_1_out_stop ? card1_pci_slave2_control_case2_0_1_out_stop : card1_pci_slave2_control_case1_0_1_out_stop;
+wire card1_pci_slave2_stop_next_x0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_stop;
+wire card1_pci_slave2_stop_next_y0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_stop ? card1_pci_slave2_pci_control2_control_case2_0_1_out_stop : card1_pci_slave2_pci_control2_control_case1_0_1_out_stop;
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_stop_next_lut0 (.O(card1_pci_slave2_stop_next), .I0(card1_pci_slave2_stop_next_x0), .I1(card1_pci_slave2_stop_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
@@ -2041,8 +2047,8 @@ assign card1_pci_slave2_stop_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_
 `endif
 
 
-wire card1_pci_slave2_devsel_next_x0 = card1_pci_slave2_control_case0_0_1_out_devsel;
-wire card1_pci_slave2_devsel_next_y0 = card1_pci_slave2_control_case0_0_1_out_devsel ? card1_pci_slave2_control_case2_0_1_out_devsel : card1_pci_slave2_control_case1_0_1_out_devsel;
+wire card1_pci_slave2_devsel_next_x0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel;
+wire card1_pci_slave2_devsel_next_y0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel ? card1_pci_slave2_pci_control2_control_case2_0_1_out_devsel : card1_pci_slave2_pci_control2_control_case1_0_1_out_devsel;
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_devsel_next_lut0 (.O(card1_pci_slave2_devsel_next), .I0(card1_pci_slave2_devsel_next_x0), .I1(card1_pci_slave2_devsel_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
@@ -2050,8 +2056,8 @@ assign card1_pci_slave2_devsel_next = (pci_pads0_input_pad1_from_pin ? (pci_pads
 `endif
 
 
-wire card1_pci_slave2_drive_next_x0 = card1_pci_slave2_control_case0_0_1_out_drive;
-wire card1_pci_slave2_drive_next_y0 = card1_pci_slave2_control_case0_0_1_out_drive ? card1_pci_slave2_control_case2_0_1_out_drive : card1_pci_slave2_control_case1_0_1_out_drive;
+wire card1_pci_slave2_drive_next_x0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_drive;
+wire card1_pci_slave2_drive_next_y0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_drive ? card1_pci_slave2_pci_control2_control_case2_0_1_out_drive : card1_pci_slave2_pci_control2_control_case1_0_1_out_drive;
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_drive_next_lut0 (.O(card1_pci_slave2_drive_next), .I0(card1_pci_slave2_drive_next_x0), .I1(card1_pci_slave2_drive_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
@@ -2059,8 +2065,8 @@ assign card1_pci_slave2_drive_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0
 `endif
 
 
-wire card1_pci_slave2_ad_oe_next_x0 = card1_pci_slave2_control_case0_0_1_out_ad_oe;
-wire card1_pci_slave2_ad_oe_next_y0 = card1_pci_slave2_control_case2_0_1_out_ad_oe ^ card1_pci_slave2_control_case1_0_1_out_ad_oe;
+wire card1_pci_slave2_ad_oe_next_x0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_ad_oe;
+wire card1_pci_slave2_ad_oe_next_y0 = card1_pci_slave2_pci_control2_control_case2_0_1_out_ad_oe ^ card1_pci_slave2_pci_control2_control_case1_0_1_out_ad_oe;
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_ad_oe_next_lut0 (.O(card1_pci_slave2_ad_oe_next), .I0(card1_pci_slave2_ad_oe_next_x0), .I1(card1_pci_slave2_ad_oe_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
@@ -2515,26 +2521,22 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_write_buffer
 end
 
 
-
-assign card1_pci_slave2_config_index = card1_pci_slave2_phase_addr[6-1:0];
-
-
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_config_registers
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_config2_config_registers
     reg clear_target_abort;
     reg clear_system_error;
     reg clear_parity_error;
     if (reset == 0) begin
+        card1_pci_slave2_parity_response <= 0;
+        card1_pci_slave2_pci_config2_signaled_system_error <= 0;
+        card1_pci_slave2_pci_config2_interrupt_line <= 0;
+        card1_pci_slave2_interrupt_disable <= 0;
+        card1_pci_slave2_pci_config2_signaled_target_abort <= 0;
+        card1_pci_slave2_bar0 <= 0;
+        card1_pci_slave2_pci_config2_detected_parity_error <= 0;
+        card1_pci_slave2_io_enable <= 0;
         card1_pci_slave2_serr_enable <= 0;
         card1_pci_slave2_bar1 <= 0;
-        card1_pci_slave2_signaled_system_error <= 0;
-        card1_pci_slave2_interrupt_disable <= 0;
-        card1_pci_slave2_io_enable <= 0;
-        card1_pci_slave2_bar0 <= 0;
-        card1_pci_slave2_signaled_target_abort <= 0;
-        card1_pci_slave2_detected_parity_error <= 0;
-        card1_pci_slave2_interrupt_line <= 0;
         card1_pci_slave2_mem_enable <= 0;
-        card1_pci_slave2_parity_response <= 0;
     end
     else begin
         clear_target_abort = 1'b0;
@@ -2543,89 +2545,97 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_config_registers
         if (card1_pci_slave2_config_write_q) begin
             case (card1_pci_slave2_config_index)
                 'h1: begin
-                    if ((!pci_pads0_registered_pad5_from_pin[0])) begin
-                        card1_pci_slave2_io_enable <= pci_pads0_registered_pad0_from_pin[0];
-                        card1_pci_slave2_mem_enable <= pci_pads0_registered_pad0_from_pin[1];
-                        card1_pci_slave2_parity_response <= pci_pads0_registered_pad0_from_pin[6];
+                    if ((!card1_pci_slave2_config_cbe_n[0])) begin
+                        card1_pci_slave2_io_enable <= card1_pci_slave2_config_data[0];
+                        card1_pci_slave2_mem_enable <= card1_pci_slave2_config_data[1];
+                        card1_pci_slave2_parity_response <= card1_pci_slave2_config_data[6];
                     end
-                    if ((!pci_pads0_registered_pad5_from_pin[1])) begin
-                        card1_pci_slave2_serr_enable <= pci_pads0_registered_pad0_from_pin[8];
-                        card1_pci_slave2_interrupt_disable <= pci_pads0_registered_pad0_from_pin[10];
+                    if ((!card1_pci_slave2_config_cbe_n[1])) begin
+                        card1_pci_slave2_serr_enable <= card1_pci_slave2_config_data[8];
+                        card1_pci_slave2_interrupt_disable <= card1_pci_slave2_config_data[10];
                     end
-                    if ((!pci_pads0_registered_pad5_from_pin[3])) begin
-                        clear_target_abort = pci_pads0_registered_pad0_from_pin[27];
-                        clear_system_error = pci_pads0_registered_pad0_from_pin[30];
-                        clear_parity_error = pci_pads0_registered_pad0_from_pin[31];
+                    if ((!card1_pci_slave2_config_cbe_n[3])) begin
+                        clear_target_abort = card1_pci_slave2_config_data[27];
+                        clear_system_error = card1_pci_slave2_config_data[30];
+                        clear_parity_error = card1_pci_slave2_config_data[31];
                     end
                 end
                 'h4: begin
-                    if ((!pci_pads0_registered_pad5_from_pin[0])) begin
-                        card1_pci_slave2_bar0[8-1:0] <= pci_pads0_registered_pad0_from_pin[8-1:0];
+                    if ((!card1_pci_slave2_config_cbe_n[0])) begin
+                        card1_pci_slave2_bar0[8-1:0] <= card1_pci_slave2_config_data[8-1:0];
                     end
-                    if ((!pci_pads0_registered_pad5_from_pin[1])) begin
-                        card1_pci_slave2_bar0[16-1:8] <= pci_pads0_registered_pad0_from_pin[16-1:8];
+                    if ((!card1_pci_slave2_config_cbe_n[1])) begin
+                        card1_pci_slave2_bar0[16-1:8] <= card1_pci_slave2_config_data[16-1:8];
                     end
                 end
                 'h5: begin
-                    if ((!pci_pads0_registered_pad5_from_pin[0])) begin
-                        card1_pci_slave2_bar1[8-1:0] <= pci_pads0_registered_pad0_from_pin[8-1:0];
+                    if ((!card1_pci_slave2_config_cbe_n[0])) begin
+                        card1_pci_slave2_bar1[8-1:0] <= card1_pci_slave2_config_data[8-1:0];
                     end
-                    if ((!pci_pads0_registered_pad5_from_pin[1])) begin
-                        card1_pci_slave2_bar1[16-1:8] <= pci_pads0_registered_pad0_from_pin[16-1:8];
+                    if ((!card1_pci_slave2_config_cbe_n[1])) begin
+                        card1_pci_slave2_bar1[16-1:8] <= card1_pci_slave2_config_data[16-1:8];
                     end
-                    if ((!pci_pads0_registered_pad5_from_pin[2])) begin
-                        card1_pci_slave2_bar1[24-1:16] <= pci_pads0_registered_pad0_from_pin[24-1:16];
+                    if ((!card1_pci_slave2_config_cbe_n[2])) begin
+                        card1_pci_slave2_bar1[24-1:16] <= card1_pci_slave2_config_data[24-1:16];
                     end
-                    if ((!pci_pads0_registered_pad5_from_pin[3])) begin
-                        card1_pci_slave2_bar1[32-1:24] <= pci_pads0_registered_pad0_from_pin[32-1:24];
+                    if ((!card1_pci_slave2_config_cbe_n[3])) begin
+                        card1_pci_slave2_bar1[32-1:24] <= card1_pci_slave2_config_data[32-1:24];
                     end
                 end
                 'hf: begin
-                    if ((!pci_pads0_registered_pad5_from_pin[0])) begin
-                        card1_pci_slave2_interrupt_line <= pci_pads0_registered_pad0_from_pin[8-1:0];
+                    if ((!card1_pci_slave2_config_cbe_n[0])) begin
+                        card1_pci_slave2_pci_config2_interrupt_line <= card1_pci_slave2_config_data[8-1:0];
                     end
                 end
             endcase
         end
-        card1_pci_slave2_signaled_target_abort <= (card1_pci_slave2_fatal || (card1_pci_slave2_signaled_target_abort && (!clear_target_abort)));
-        card1_pci_slave2_signaled_system_error <= (pci_pads0_tristate_pad0_enable || (card1_pci_slave2_signaled_system_error && (!clear_system_error)));
-        card1_pci_slave2_detected_parity_error <= (card1_pci_slave2_parity_error_q || (card1_pci_slave2_detected_parity_error && (!clear_parity_error)));
+        card1_pci_slave2_pci_config2_signaled_target_abort <= (card1_pci_slave2_fatal || (card1_pci_slave2_pci_config2_signaled_target_abort && (!clear_target_abort)));
+        card1_pci_slave2_pci_config2_signaled_system_error <= (card1_pci_slave2_config_system_error || (card1_pci_slave2_pci_config2_signaled_system_error && (!clear_system_error)));
+        card1_pci_slave2_pci_config2_detected_parity_error <= (card1_pci_slave2_parity_error_q || (card1_pci_slave2_pci_config2_detected_parity_error && (!clear_parity_error)));
     end
 end
 
 
 
-assign card1_pci_slave2_bar0_read = ((card1_pci_slave2_bar0 & 16'hff80) | 16'h1);
+assign card1_pci_slave2_pci_config2_bar0_read = ((card1_pci_slave2_bar0 & 16'hff80) | 16'h1);
 
 
-always @(card1_pci_slave2_signaled_system_error, card1_pci_slave2_serr_enable, card1_pci_slave2_bar1, card1_pci_slave2_config_index, card1_pci_slave2_interrupt_disable, card1_irq, card1_pci_slave2_bar0_read, card1_pci_slave2_io_enable, card1_pci_slave2_signaled_target_abort, card1_pci_slave2_detected_parity_error, card1_pci_slave2_interrupt_line, card1_pci_slave2_mem_enable, card1_pci_slave2_parity_response) begin: card1_pci_slave2_config_read
+always @(card1_pci_slave2_pci_config2_signaled_system_error, card1_pci_slave2_parity_response, card1_pci_slave2_config_irq, card1_pci_slave2_config_index, card1_pci_slave2_pci_config2_bar0_read, card1_pci_slave2_pci_config2_interrupt_line, card1_pci_slave2_interrupt_disable, card1_pci_slave2_pci_config2_signaled_target_abort, card1_pci_slave2_pci_config2_detected_parity_error, card1_pci_slave2_io_enable, card1_pci_slave2_serr_enable, card1_pci_slave2_bar1, card1_pci_slave2_mem_enable) begin: card1_pci_slave2_pci_config2_config_read
     case (card1_pci_slave2_config_index)
         'h0: begin
-            card1_pci_slave2_config_data = 32'hdda01234;
+            card1_pci_slave2_config_rdata = 32'hdda01234;
         end
         'h1: begin
-            card1_pci_slave2_config_data = {card1_pci_slave2_detected_parity_error, card1_pci_slave2_signaled_system_error, 2'h0, card1_pci_slave2_signaled_target_abort, 2'h1, 5'h0, card1_irq, 8'h0, card1_pci_slave2_interrupt_disable, 1'b0, card1_pci_slave2_serr_enable, 1'b0, card1_pci_slave2_parity_response, 4'h0, card1_pci_slave2_mem_enable, card1_pci_slave2_io_enable};
+            card1_pci_slave2_config_rdata = {card1_pci_slave2_pci_config2_detected_parity_error, card1_pci_slave2_pci_config2_signaled_system_error, 2'h0, card1_pci_slave2_pci_config2_signaled_target_abort, 2'h1, 5'h0, card1_pci_slave2_config_irq, 8'h0, card1_pci_slave2_interrupt_disable, 1'b0, card1_pci_slave2_serr_enable, 1'b0, card1_pci_slave2_parity_response, 4'h0, card1_pci_slave2_mem_enable, card1_pci_slave2_io_enable};
         end
         'h2: begin
-            card1_pci_slave2_config_data = 32'h8800001;
+            card1_pci_slave2_config_rdata = 32'h8800001;
         end
         'h4: begin
-            card1_pci_slave2_config_data = {16'h0, card1_pci_slave2_bar0_read};
+            card1_pci_slave2_config_rdata = {16'h0, card1_pci_slave2_pci_config2_bar0_read};
         end
         'h5: begin
-            card1_pci_slave2_config_data = (card1_pci_slave2_bar1 & 32'hfffff000);
+            card1_pci_slave2_config_rdata = (card1_pci_slave2_bar1 & 32'hfffff000);
         end
         'hb: begin
-            card1_pci_slave2_config_data = 32'h11234;
+            card1_pci_slave2_config_rdata = 32'h11234;
         end
         'hf: begin
-            card1_pci_slave2_config_data = {16'h0, 8'h1, card1_pci_slave2_interrupt_line};
+            card1_pci_slave2_config_rdata = {16'h0, 8'h1, card1_pci_slave2_pci_config2_interrupt_line};
         end
         default: begin
-            card1_pci_slave2_config_data = 0;
+            card1_pci_slave2_config_rdata = 0;
         end
     endcase
 end
+
+
+
+assign card1_pci_slave2_config_index = card1_pci_slave2_phase_addr[6-1:0];
+assign card1_pci_slave2_config_data = pci_pads0_registered_pad0_from_pin;
+assign card1_pci_slave2_config_cbe_n = pci_pads0_registered_pad5_from_pin;
+assign card1_pci_slave2_config_system_error = pci_pads0_tristate_pad0_enable;
+assign card1_pci_slave2_config_irq = card1_irq;
 
 
 
@@ -2710,7 +2720,7 @@ end
 assign card1_card_core1_regs_fifo2_fifo_level = card1_card_core1_regs_fifo2_sync_fifo2_count;
 assign card1_card_core1_regs_fifo2_fifo_empty = card1_card_core1_regs_fifo2_sync_fifo2_is_empty;
 assign card1_card_core1_regs_fifo2_fifo_full = (!card1_card_core1_regs_fifo2_sync_fifo2_free[0]);
-assign card1_pci_slave2_control_case0_0_1_local_room = card1_card_core1_regs_fifo2_sync_fifo2_free[(3 - 1)];
+assign card1_pci_slave2_pci_control2_control_case0_0_1_target_room = card1_card_core1_regs_fifo2_sync_fifo2_free[(3 - 1)];
 
 
 

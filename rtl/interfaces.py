@@ -389,6 +389,40 @@ class TargetControlNext:
         self.ad_oe = Signal(bool(0))
 
 
+
+class ConfigSpace:
+    """The PCI target's configuration header (``rtl/pci_config.py``) and the
+    transaction logic around it (``rtl/pci_slave.py``).
+
+    To the header: ``write`` (a configuration write data phase completed at
+    the last edge), ``index`` (its dword, 0..63), ``data`` and ``cbe_n`` (AD
+    and C/BE# of that phase, bus polarity), the Status events
+    ``target_abort`` (the target signals one now), ``system_error`` (SERR#
+    driven) and ``parity_error`` (a parity error was detected at the last
+    edge), and ``irq`` (Status.Interrupt Status).  From it: the Command bits
+    the target obeys, the BARs as written (``bar0`` 16 bits of PC I/O space,
+    ``bar1`` 32), and ``rdata``, the dword ``index`` names as a configuration
+    read returns it."""
+
+    def __init__(self):
+        self.write = Signal(bool(0))
+        self.index = Signal(intbv(0)[6:])
+        self.data = Signal(intbv(0)[32:])
+        self.cbe_n = Signal(intbv(0xF)[4:])
+        self.target_abort = Signal(bool(0))
+        self.system_error = Signal(bool(0))
+        self.parity_error = Signal(bool(0))
+        self.irq = Signal(bool(0))
+        self.io_enable = Signal(bool(0))
+        self.mem_enable = Signal(bool(0))
+        self.parity_response = Signal(bool(0))
+        self.serr_enable = Signal(bool(0))
+        self.interrupt_disable = Signal(bool(0))
+        self.bar0 = Signal(intbv(0)[16:])
+        self.bar1 = Signal(intbv(0)[32:])
+        self.rdata = Signal(intbv(0)[32:])
+
+
 # Widths of the bundles below, each from the table that defines it.
 def _header_width(op_name, field_name):
     return {name: width for name, _, width, _ in isa.BY_NAME[op_name].header_fields}[field_name]
@@ -584,3 +618,33 @@ class StepRequest:
 
     def __init__(self, **given):
         _adopt(self, given, step=Signal(bool(0)), dir=Signal(bool(0)), ready=Signal(bool(1)))
+
+
+class TargetState:
+    """What the PCI target's next-state logic (``rtl/pci_control.py``) reads:
+    the target's registers and its back end's answer, all settled before the
+    FRAME# and IRDY# pins arrive.  ``state`` is the state enum (``idle`` its
+    idle item); the target wires in the signals it has (``given``).
+
+    Transaction: ``state``, ``single`` (one data phase only), ``at_last`` /
+    ``before_last`` (the data phase is at / one before BAR1's last dword),
+    ``is_read``, ``is_config``, ``first_phase``, ``fetching`` (reads: more
+    dwords may be requested), ``timeout`` (the latency budget is spent),
+    ``fatal`` (target abort now).  Its lines as driven: ``trdy_q``,
+    ``stop_q``, ``devsel_q``, ``drive`` (DEVSEL#, TRDY#, STOP# driven),
+    ``ad_oe``.  Claim: ``claim``, ``claim_config``, ``claim_io``,
+    ``read_command`` (C/BE#[0] low in the address phase).  Data: ``b_valid``
+    (the skid register holds a dword), ``burst_got`` (read data arrive in a
+    burst), ``buffered`` (posted dwords held after this edge), ``room`` (the
+    back end's write credit), ``hold_got``, ``hold_accepted``, ``hold_retry``
+    (the first request answered read data, write taken, retry)."""
+
+    BOOLS = ("single", "at_last", "before_last", "is_read", "is_config", "first_phase", "fetching",
+             "timeout", "fatal", "trdy_q", "stop_q", "devsel_q", "drive", "ad_oe", "claim",
+             "claim_config", "claim_io", "read_command", "b_valid", "burst_got", "room", "hold_got",
+             "hold_accepted", "hold_retry")
+
+    def __init__(self, idle, **given):
+        _adopt(self, given, state=Signal(idle), buffered=Signal(intbv(0, min=0, max=4)),
+               **{name: Signal(bool(0)) for name in self.BOOLS})
+
