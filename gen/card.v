@@ -58,7 +58,7 @@ reg pci_ad_oe;
 input [3:0] pci_cbe_in;
 input pci_par_in;
 output pci_par_out;
-wire pci_par_out;
+reg pci_par_out;
 output pci_par_oe;
 reg pci_par_oe;
 input pci_frame_in;
@@ -98,6 +98,8 @@ output pins_dir_y;
 reg pins_dir_y;
 
 wire irq;
+reg pci_slave1_parity_response;
+reg pci_slave1_serr_enable;
 wire pci_slave1_accepted;
 wire pci_slave1_ad_oe_next;
 reg [31:0] pci_slave1_ad_out_next;
@@ -117,7 +119,6 @@ reg [31:0] pci_slave1_bar1;
 reg pci_slave1_before_last;
 reg [1:0] pci_slave1_buffered_next;
 wire pci_slave1_burst_got;
-reg pci_slave1_bus_parity;
 reg [3:0] pci_slave1_cbe_q;
 reg pci_slave1_claim;
 reg pci_slave1_claim_config;
@@ -155,8 +156,6 @@ reg pci_slave1_is_read;
 reg pci_slave1_mem_enable;
 wire pci_slave1_parity_error_next;
 reg pci_slave1_parity_error_q;
-reg pci_slave1_parity_response;
-wire pci_slave1_perr_armed;
 wire pci_slave1_perr_next;
 wire pci_slave1_perr_oe_next;
 reg pci_slave1_perr_q;
@@ -169,8 +168,6 @@ reg [9:0] pci_slave1_req_addr;
 reg pci_slave1_req_addr_stale;
 reg [3:0] pci_slave1_s_be;
 reg pci_slave1_s_valid;
-wire pci_slave1_serr_armed;
-reg pci_slave1_serr_enable;
 wire pci_slave1_serr_oe_next;
 reg pci_slave1_single;
 reg pci_slave1_space_mem;
@@ -206,6 +203,9 @@ wire [31:0] pci_slave1_config_data;
 wire [3:0] pci_slave1_config_cbe_n;
 wire pci_slave1_config_system_error;
 wire pci_slave1_config_irq;
+reg pci_slave1_pci_parity1_bus_parity;
+wire pci_slave1_pci_parity1_perr_armed;
+wire pci_slave1_pci_parity1_serr_armed;
 reg [3:0] pci_slave1_pci_control1_control_case0_0_out_state;
 wire pci_slave1_pci_control1_control_case0_0_target_room;
 reg pci_slave1_pci_control1_control_case0_0_out_trdy;
@@ -840,7 +840,7 @@ always @(posedge clock, negedge reset) begin: pci_slave1_control_input_register
 end
 
 
-always @(pci_slave1_ad_q, pci_slave1_cbe_q) begin: pci_slave1_parity_check
+always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_pci_parity1_parity_check
     reg [32-1:0] fold;
     fold = 32'h0;
     fold = pci_slave1_ad_q;
@@ -850,29 +850,49 @@ always @(pci_slave1_ad_q, pci_slave1_cbe_q) begin: pci_slave1_parity_check
     fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
     fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
     fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    pci_slave1_bus_parity = fold[0];
+    pci_slave1_pci_parity1_bus_parity = fold[0];
 end
 
 
 
 assign pci_slave1_address_phase = (pci_slave1_frame_qq && (!pci_slave1_frame_q));
-assign pci_slave1_serr_armed = (pci_slave1_frame_qq && (!pci_slave1_frame_q) && pci_slave1_serr_enable && pci_slave1_parity_response);
-assign pci_slave1_perr_armed = (pci_slave1_write_done_q && pci_slave1_parity_response);
+assign pci_slave1_pci_parity1_serr_armed = (pci_slave1_frame_qq && (!pci_slave1_frame_q) && pci_slave1_serr_enable && pci_slave1_parity_response);
+assign pci_slave1_pci_parity1_perr_armed = (pci_slave1_write_done_q && pci_slave1_parity_response);
 
 
-assign pci_slave1_perr_next = (pci_slave1_perr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
+assign pci_slave1_perr_next = (pci_slave1_pci_parity1_perr_armed ? (pci_slave1_pci_parity1_bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
 
 
-assign pci_slave1_perr_oe_next = (pci_slave1_perr_q ? (pci_slave1_perr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
+assign pci_slave1_perr_oe_next = (pci_slave1_perr_q ? (pci_slave1_pci_parity1_perr_armed ? (pci_slave1_pci_parity1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 
 
-assign pci_slave1_serr_oe_next = (pci_slave1_serr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
+assign pci_slave1_serr_oe_next = (pci_slave1_pci_parity1_serr_armed ? (pci_slave1_pci_parity1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
 
 
-assign pci_slave1_address_fault_next = (pci_slave1_parity_response ? (pci_slave1_address_phase ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
+assign pci_slave1_address_fault_next = (pci_slave1_parity_response ? (pci_slave1_address_phase ? (pci_slave1_pci_parity1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 
 
-assign pci_slave1_parity_error_next = (pci_slave1_write_done_q ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (pci_slave1_address_phase ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
+assign pci_slave1_parity_error_next = (pci_slave1_write_done_q ? (pci_slave1_pci_parity1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (pci_slave1_address_phase ? (pci_slave1_pci_parity1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
+
+
+always @(pci_slave1_ad_parity_q, pci_slave1_cbe_q) begin: pci_slave1_pci_parity1_parity_output
+    reg [4-1:0] cbe;
+    cbe = pci_slave1_cbe_q;
+    pci_par_out = ((((pci_slave1_ad_parity_q ^ cbe[0]) ^ cbe[1]) ^ cbe[2]) ^ cbe[3]);
+end
+
+
+always @(pci_slave1_ad_out_q) begin: pci_slave1_pci_parity1_ad_out_parity_tree
+    reg [32-1:0] fold;
+    fold = 32'h0;
+    fold = pci_slave1_ad_out_q;
+    fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
+    fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
+    fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
+    fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
+    fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
+    pci_slave1_ad_out_parity = fold[0];
+end
 
 
 always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_io_enable, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_mem_enable, pci_slave1_state) begin: pci_slave1_decode
@@ -1545,23 +1565,6 @@ always @(pci_slave1_read_source, pci_slave1_ad_out_q, pci_irdy_in, pci_slave1_tr
     else begin
         pci_slave1_ad_out_next = pci_slave1_read_source;
     end
-end
-
-
-
-assign pci_par_out = ((((pci_slave1_ad_parity_q ^ pci_slave1_cbe_q[0]) ^ pci_slave1_cbe_q[1]) ^ pci_slave1_cbe_q[2]) ^ pci_slave1_cbe_q[3]);
-
-
-always @(pci_slave1_ad_out_q) begin: pci_slave1_ad_out_parity_tree
-    reg [32-1:0] fold;
-    fold = 32'h0;
-    fold = pci_slave1_ad_out_q;
-    fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
-    fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
-    fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
-    fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
-    fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    pci_slave1_ad_out_parity = fold[0];
 end
 
 

@@ -96,7 +96,7 @@ reg pci_ad_oe;
 input [3:0] pci_cbe_in;
 input pci_par_in;
 output pci_par_out;
-wire pci_par_out;
+reg pci_par_out;
 output pci_par_oe;
 reg pci_par_oe;
 input pci_frame_in;
@@ -145,6 +145,8 @@ input local_ready;
 input local_retry;
 input local_room;
 
+reg parity_response;
+reg serr_enable;
 wire accepted;
 wire ad_oe_next;
 reg [31:0] ad_out_next;
@@ -164,7 +166,6 @@ reg [31:0] bar1;
 reg before_last;
 reg [1:0] buffered_next;
 wire burst_got;
-reg bus_parity;
 reg [3:0] cbe_q;
 reg claim;
 reg claim_config;
@@ -202,8 +203,6 @@ reg is_read;
 reg mem_enable;
 wire parity_error_next;
 reg parity_error_q;
-reg parity_response;
-wire perr_armed;
 wire perr_next;
 wire perr_oe_next;
 reg perr_q;
@@ -216,8 +215,6 @@ reg [9:0] req_addr;
 reg req_addr_stale;
 reg [3:0] s_be;
 reg s_valid;
-wire serr_armed;
-reg serr_enable;
 wire serr_oe_next;
 reg single;
 reg space_mem;
@@ -243,6 +240,9 @@ wire [31:0] config_data;
 wire [3:0] config_cbe_n;
 wire config_system_error;
 wire config_irq;
+reg pci_parity0_bus_parity;
+wire pci_parity0_perr_armed;
+wire pci_parity0_serr_armed;
 reg [3:0] pci_control0_control_case0_out_state;
 reg pci_control0_control_case0_out_trdy;
 reg pci_control0_control_case0_out_stop;
@@ -297,7 +297,7 @@ always @(posedge clock, negedge reset) begin: control_input_register
 end
 
 
-always @(ad_q, cbe_q) begin: parity_check
+always @(cbe_q, ad_q) begin: pci_parity0_parity_check
     reg [32-1:0] fold;
     fold = 32'h0;
     fold = ad_q;
@@ -307,29 +307,49 @@ always @(ad_q, cbe_q) begin: parity_check
     fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
     fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
     fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    bus_parity = fold[0];
+    pci_parity0_bus_parity = fold[0];
 end
 
 
 
 assign address_phase = (frame_qq && (!frame_q));
-assign serr_armed = (frame_qq && (!frame_q) && serr_enable && parity_response);
-assign perr_armed = (write_done_q && parity_response);
+assign pci_parity0_serr_armed = (frame_qq && (!frame_q) && serr_enable && parity_response);
+assign pci_parity0_perr_armed = (write_done_q && parity_response);
 
 
-assign perr_next = (perr_armed ? (bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
+assign perr_next = (pci_parity0_perr_armed ? (pci_parity0_bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
 
 
-assign perr_oe_next = (perr_q ? (perr_armed ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
+assign perr_oe_next = (perr_q ? (pci_parity0_perr_armed ? (pci_parity0_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 
 
-assign serr_oe_next = (serr_armed ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
+assign serr_oe_next = (pci_parity0_serr_armed ? (pci_parity0_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
 
 
-assign address_fault_next = (parity_response ? (address_phase ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
+assign address_fault_next = (parity_response ? (address_phase ? (pci_parity0_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 
 
-assign parity_error_next = (write_done_q ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (address_phase ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
+assign parity_error_next = (write_done_q ? (pci_parity0_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (address_phase ? (pci_parity0_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
+
+
+always @(ad_parity_q, cbe_q) begin: pci_parity0_parity_output
+    reg [4-1:0] cbe;
+    cbe = cbe_q;
+    pci_par_out = ((((ad_parity_q ^ cbe[0]) ^ cbe[1]) ^ cbe[2]) ^ cbe[3]);
+end
+
+
+always @(ad_out_q) begin: pci_parity0_ad_out_parity_tree
+    reg [32-1:0] fold;
+    fold = 32'h0;
+    fold = ad_out_q;
+    fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
+    fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
+    fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
+    fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
+    fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
+    ad_out_parity = fold[0];
+end
 
 
 always @(bar1, ad_q, address_phase, io_enable, bar0, cbe_q, idsel_q, mem_enable, state) begin: decode
@@ -1002,23 +1022,6 @@ always @(read_source, ad_out_q, pci_irdy_in, trdy_q) begin: ad_output
     else begin
         ad_out_next = read_source;
     end
-end
-
-
-
-assign pci_par_out = ((((ad_parity_q ^ cbe_q[0]) ^ cbe_q[1]) ^ cbe_q[2]) ^ cbe_q[3]);
-
-
-always @(ad_out_q) begin: ad_out_parity_tree
-    reg [32-1:0] fold;
-    fold = 32'h0;
-    fold = ad_out_q;
-    fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
-    fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
-    fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
-    fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
-    fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    ad_out_parity = fold[0];
 end
 
 

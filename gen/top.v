@@ -80,7 +80,7 @@ wire [31:0] pci_pads0_registered_pad0_from_pin;
 wire [31:0] pci_pads0_registered_pad0_to_pin;
 reg pci_pads0_registered_pad0_enable;
 wire pci_pads0_tristate_pad2_from_pin;
-wire pci_pads0_tristate_pad2_to_pin;
+reg pci_pads0_tristate_pad2_to_pin;
 reg pci_pads0_tristate_pad2_enable;
 wire pci_pads0_registered_pad1_to_pin;
 reg pci_pads0_registered_pad1_enable;
@@ -93,6 +93,8 @@ reg pci_pads0_registered_pad4_enable;
 wire [3:0] pci_pads0_registered_pad5_from_pin;
 wire pci_pads0_registered_pad6_from_pin;
 wire card1_irq;
+reg card1_pci_slave2_parity_response;
+reg card1_pci_slave2_serr_enable;
 wire card1_pci_slave2_accepted;
 wire card1_pci_slave2_ad_oe_next;
 wire [31:0] card1_pci_slave2_ad_out_next;
@@ -111,7 +113,6 @@ reg [31:0] card1_pci_slave2_bar1;
 reg card1_pci_slave2_before_last;
 reg [1:0] card1_pci_slave2_buffered_next;
 wire card1_pci_slave2_burst_got;
-reg card1_pci_slave2_bus_parity;
 reg card1_pci_slave2_claim;
 reg card1_pci_slave2_claim_config;
 reg card1_pci_slave2_claim_io;
@@ -147,8 +148,6 @@ reg card1_pci_slave2_is_read;
 reg card1_pci_slave2_mem_enable;
 wire card1_pci_slave2_parity_error_next;
 reg card1_pci_slave2_parity_error_q;
-reg card1_pci_slave2_parity_response;
-wire card1_pci_slave2_perr_armed;
 wire card1_pci_slave2_perr_next;
 wire card1_pci_slave2_perr_oe_next;
 reg card1_pci_slave2_perr_q;
@@ -161,8 +160,6 @@ reg [9:0] card1_pci_slave2_req_addr;
 reg card1_pci_slave2_req_addr_stale;
 reg [3:0] card1_pci_slave2_s_be;
 reg card1_pci_slave2_s_valid;
-wire card1_pci_slave2_serr_armed;
-reg card1_pci_slave2_serr_enable;
 wire card1_pci_slave2_serr_oe_next;
 reg card1_pci_slave2_single;
 reg card1_pci_slave2_space_mem;
@@ -198,6 +195,9 @@ wire [31:0] card1_pci_slave2_config_data;
 wire [3:0] card1_pci_slave2_config_cbe_n;
 wire card1_pci_slave2_config_system_error;
 wire card1_pci_slave2_config_irq;
+reg card1_pci_slave2_pci_parity2_bus_parity;
+wire card1_pci_slave2_pci_parity2_perr_armed;
+wire card1_pci_slave2_pci_parity2_serr_armed;
 reg [3:0] card1_pci_slave2_pci_control2_control_case0_0_1_out_state;
 wire card1_pci_slave2_pci_control2_control_case0_0_1_target_room;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy;
@@ -1378,7 +1378,7 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_control_input_reg
 end
 
 
-always @(pci_pads0_registered_pad0_from_pin, pci_pads0_registered_pad5_from_pin) begin: card1_pci_slave2_parity_check
+always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_parity2_parity_check
     reg [32-1:0] fold;
     fold = 32'h0;
     fold = pci_pads0_registered_pad0_from_pin;
@@ -1388,49 +1388,69 @@ always @(pci_pads0_registered_pad0_from_pin, pci_pads0_registered_pad5_from_pin)
     fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
     fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
     fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    card1_pci_slave2_bus_parity = fold[0];
+    card1_pci_slave2_pci_parity2_bus_parity = fold[0];
 end
 
 
 
 assign card1_pci_slave2_address_phase = (card1_pci_slave2_frame_qq && (!card1_pci_slave2_frame_q));
-assign card1_pci_slave2_serr_armed = (card1_pci_slave2_frame_qq && (!card1_pci_slave2_frame_q) && card1_pci_slave2_serr_enable && card1_pci_slave2_parity_response);
-assign card1_pci_slave2_perr_armed = (card1_pci_slave2_write_done_q && card1_pci_slave2_parity_response);
+assign card1_pci_slave2_pci_parity2_serr_armed = (card1_pci_slave2_frame_qq && (!card1_pci_slave2_frame_q) && card1_pci_slave2_serr_enable && card1_pci_slave2_parity_response);
+assign card1_pci_slave2_pci_parity2_perr_armed = (card1_pci_slave2_write_done_q && card1_pci_slave2_parity_response);
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h9F9F)) card1_pci_slave2_perr_next_lut (.O(card1_pci_slave2_perr_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(1'b0));
+SB_LUT4 #(.LUT_INIT(16'h9F9F)) card1_pci_slave2_perr_next_lut (.O(card1_pci_slave2_perr_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_pci_parity2_bus_parity), .I2(card1_pci_slave2_pci_parity2_perr_armed), .I3(1'b0));
 `else
-assign card1_pci_slave2_perr_next = (card1_pci_slave2_perr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0) : (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1)) : 1'b1);
+assign card1_pci_slave2_perr_next = (card1_pci_slave2_pci_parity2_perr_armed ? (card1_pci_slave2_pci_parity2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0) : (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1)) : 1'b1);
 `endif
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h60FF)) card1_pci_slave2_perr_oe_next_lut (.O(card1_pci_slave2_perr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(card1_pci_slave2_perr_q));
+SB_LUT4 #(.LUT_INIT(16'h60FF)) card1_pci_slave2_perr_oe_next_lut (.O(card1_pci_slave2_perr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_pci_parity2_bus_parity), .I2(card1_pci_slave2_pci_parity2_perr_armed), .I3(card1_pci_slave2_perr_q));
 `else
-assign card1_pci_slave2_perr_oe_next = (card1_pci_slave2_perr_q ? (card1_pci_slave2_perr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
+assign card1_pci_slave2_perr_oe_next = (card1_pci_slave2_perr_q ? (card1_pci_slave2_pci_parity2_perr_armed ? (card1_pci_slave2_pci_parity2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 `endif
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6060)) card1_pci_slave2_serr_oe_next_lut (.O(card1_pci_slave2_serr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_serr_armed), .I3(1'b0));
+SB_LUT4 #(.LUT_INIT(16'h6060)) card1_pci_slave2_serr_oe_next_lut (.O(card1_pci_slave2_serr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_pci_parity2_bus_parity), .I2(card1_pci_slave2_pci_parity2_serr_armed), .I3(1'b0));
 `else
-assign card1_pci_slave2_serr_oe_next = (card1_pci_slave2_serr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0);
+assign card1_pci_slave2_serr_oe_next = (card1_pci_slave2_pci_parity2_serr_armed ? (card1_pci_slave2_pci_parity2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6000)) card1_pci_slave2_address_fault_next_lut (.O(card1_pci_slave2_address_fault_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_parity_response));
+SB_LUT4 #(.LUT_INIT(16'h6000)) card1_pci_slave2_address_fault_next_lut (.O(card1_pci_slave2_address_fault_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_pci_parity2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_parity_response));
 `else
-assign card1_pci_slave2_address_fault_next = (card1_pci_slave2_parity_response ? (card1_pci_slave2_address_phase ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
+assign card1_pci_slave2_address_fault_next = (card1_pci_slave2_parity_response ? (card1_pci_slave2_address_phase ? (card1_pci_slave2_pci_parity2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6660)) card1_pci_slave2_parity_error_next_lut (.O(card1_pci_slave2_parity_error_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_write_done_q));
+SB_LUT4 #(.LUT_INIT(16'h6660)) card1_pci_slave2_parity_error_next_lut (.O(card1_pci_slave2_parity_error_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_pci_parity2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_write_done_q));
 `else
-assign card1_pci_slave2_parity_error_next = (card1_pci_slave2_write_done_q ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : (card1_pci_slave2_address_phase ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+assign card1_pci_slave2_parity_error_next = (card1_pci_slave2_write_done_q ? (card1_pci_slave2_pci_parity2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : (card1_pci_slave2_address_phase ? (card1_pci_slave2_pci_parity2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
+
+
+always @(card1_pci_slave2_ad_parity_q, pci_pads0_registered_pad5_from_pin) begin: card1_pci_slave2_pci_parity2_parity_output
+    reg [4-1:0] cbe;
+    cbe = pci_pads0_registered_pad5_from_pin;
+    pci_pads0_tristate_pad2_to_pin = ((((card1_pci_slave2_ad_parity_q ^ cbe[0]) ^ cbe[1]) ^ cbe[2]) ^ cbe[3]);
+end
+
+
+always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_pci_parity2_ad_out_parity_tree
+    reg [32-1:0] fold;
+    fold = 32'h0;
+    fold = card1_pci_slave2_ad_out_q;
+    fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
+    fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
+    fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
+    fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
+    fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
+    card1_pci_slave2_ad_out_parity = fold[0];
+end
 
 
 always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_slave2_address_phase, card1_pci_slave2_io_enable, card1_pci_slave2_bar0, pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_mem_enable, card1_pci_slave2_state) begin: card1_pci_slave2_decode
@@ -2378,23 +2398,6 @@ SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut64_out_lut (.O(card1_pci_
 `else
 assign card1_pci_slave2_pin_lut64_out = (card1_pci_slave2_read_source[31] ? (card1_pci_slave2_ad_out_q[31] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[31] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
-
-
-
-assign pci_pads0_tristate_pad2_to_pin = ((((card1_pci_slave2_ad_parity_q ^ pci_pads0_registered_pad5_from_pin[0]) ^ pci_pads0_registered_pad5_from_pin[1]) ^ pci_pads0_registered_pad5_from_pin[2]) ^ pci_pads0_registered_pad5_from_pin[3]);
-
-
-always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_ad_out_parity_tree
-    reg [32-1:0] fold;
-    fold = 32'h0;
-    fold = card1_pci_slave2_ad_out_q;
-    fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
-    fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
-    fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
-    fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
-    fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    card1_pci_slave2_ad_out_parity = fold[0];
-end
 
 
 always @(posedge clock, negedge reset) begin: card1_pci_slave2_bus_registers

@@ -648,3 +648,28 @@ class TargetState:
         _adopt(self, given, state=Signal(idle), buffered=Signal(intbv(0, min=0, max=4)),
                **{name: Signal(bool(0)) for name in self.BOOLS})
 
+
+
+class TargetParity:
+    """The PCI target's parity (``rtl/pci_parity.py``).
+
+    From the target's registers: ``ad``, ``cbe`` (the input registers, bus
+    polarity), ``frame_q`` / ``frame_qq`` (FRAME# one and two edges back),
+    ``serr_enable``, ``parity_response`` (Command bits), ``write_done`` (the
+    input register holds a completed write data phase), ``perr_q`` (PERR# as
+    driven), ``ad_out`` and ``ad_out_parity_q`` (the AD output register and
+    the parity it had one clock before).  To them: ``address_phase`` (the
+    input register holds an address), ``ad_out_parity``, ``par_out`` (PAR as
+    driven), and the next values the PAR pin decides: ``perr_next``,
+    ``perr_oe_next``, ``serr_oe_next``, ``address_fault_next`` (address
+    parity error, Parity Error Response set), ``parity_error_next`` (Status:
+    a parity error was detected)."""
+
+    def __init__(self, **given):
+        _adopt(self, given, ad=Signal(intbv(0)[32:]), cbe=Signal(intbv(0xF)[4:]),
+               frame_q=Signal(bool(1)), frame_qq=Signal(bool(1)), serr_enable=Signal(bool(0)),
+               parity_response=Signal(bool(0)), write_done=Signal(bool(0)), perr_q=Signal(bool(1)),
+               ad_out=Signal(intbv(0)[32:]), ad_out_parity_q=Signal(bool(0)),
+               address_phase=Signal(bool(0)), ad_out_parity=Signal(bool(0)), par_out=Signal(bool(0)),
+               perr_next=Signal(bool(1)), perr_oe_next=Signal(bool(0)), serr_oe_next=Signal(bool(0)),
+               address_fault_next=Signal(bool(0)), parity_error_next=Signal(bool(0)))

@@ -183,7 +183,8 @@ def pci_control(frame_pin, irdy_pin, target, chosen, *, device):
     control_cases = [control_case(False, True, if_frame), control_case(True, False, if_irdy),
                      control_case(True, True, if_both)]
     picks = [pin_pick(frame_pin, irdy_pin, if_frame.state, if_irdy.state, if_both.state,
-                      chosen.state, [pin_coding(state_triples(bit)) for bit in range(len(target.state))], device=device)]
+                      chosen.state, [pin_coding(state_triples(bit)) for bit in range(len(target.state))],
+                      device=device)]
     picks += [pin_pick(frame_pin, irdy_pin, getattr(if_frame, field), getattr(if_irdy, field),
                        getattr(if_both, field), picked, [pin_coding(CONTROL_TRIPLES[field])], device=device)
               for field, picked in (("trdy", chosen.trdy), ("stop", chosen.stop),

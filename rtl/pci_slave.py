@@ -24,11 +24,13 @@ from myhdl import (ConcatSignal, Signal, always_comb, always_seq, block, concat,
                    modbv)
 
 from rtl import parameters
-from rtl.interfaces import ConfigSpace, LocalBus, PciBus, TargetControlNext, TargetState, card_reset
+from rtl.interfaces import (ConfigSpace, LocalBus, PciBus, TargetControlNext, TargetParity, TargetState,
+                            card_reset)
 from rtl.pci_config import CONFIG_PARAMETERS, pci_config
 from rtl.parameters import PCI_IDS, ParameterError
 from rtl.pin_lut import pin_lut
 from rtl.pci_control import pci_control, t_state
+from rtl.pci_parity import pci_parity
 
 # Commands (C/BE# in the address phase) the target claims.
 CMD_IO_READ, CMD_IO_WRITE = 0x2, 0x3
@@ -154,7 +156,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     ad_out_bits = [Signal(bool(0)) for _ in range(32)] if io_registers else []
     ad_out_next = ConcatSignal(*reversed(ad_out_bits)) if io_registers else Signal(intbv(0)[32:])
     ad_parity_q = Signal(bool(0))     # parity of the AD driven in the clock before
-    perr_next, perr_q = Signal(bool(1)), Signal(bool(1))
+    perr_q = Signal(bool(1))
 
     # --- transaction state ---
     state = Signal(t_state.S_IDLE)
@@ -194,14 +196,13 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     parity_error_q = config.parity_error  # a parity error was detected at the last edge
 
     # --- combinational ---
-    bus_parity = Signal(bool(0))      # parity of the AD and C/BE# input registers
-    ad_out_parity = Signal(bool(0))   # of ad_out_q
-    address_phase = Signal(bool(0))
-    # next values that the PAR pin decides
-    perr_oe_next, serr_oe_next = Signal(bool(0)), Signal(bool(0))
-    address_fault_next, parity_error_next = Signal(bool(0)), Signal(bool(0))
-    serr_armed = Signal(bool(0))      # SERR# follows an address parity error
-    perr_armed = Signal(bool(0))      # PERR# follows a write data parity error
+    # parity (``rtl/pci_parity.py``): PAR out, and the next values the PAR pin decides
+    parity = TargetParity(ad=ad_q, cbe=cbe_q, frame_q=frame_q, frame_qq=frame_qq, serr_enable=serr_enable,
+                          parity_response=parity_response, write_done=write_done_q, perr_q=perr_q,
+                          ad_out=ad_out_q, ad_out_parity_q=ad_parity_q, par_out=pci.par_out)
+    address_phase, ad_out_parity = parity.address_phase, parity.ad_out_parity
+    perr_next, perr_oe_next, serr_oe_next = parity.perr_next, parity.perr_oe_next, parity.serr_oe_next
+    address_fault_next, parity_error_next = parity.address_fault_next, parity.parity_error_next
     claim = Signal(bool(0))
     claim_config, claim_io = Signal(bool(0)), Signal(bool(0))
     read_command = Signal(bool(0))    # C/BE#[0] low in the address phase
@@ -242,42 +243,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         frame_qq.next = frame_q
         irdy_q.next = pci.irdy_in
 
-    @always_comb
-    def parity_check():
-        # PAR sampled now covers the AD and C/BE# in the input register.
-        fold = intbv(0)[32:]
-        fold[:] = ad_q
-        fold[4:] = fold[4:] ^ cbe_q
-        fold[16:] = fold[16:] ^ fold[32:16]
-        fold[8:] = fold[8:] ^ fold[16:8]
-        fold[4:] = fold[4:] ^ fold[8:4]
-        fold[2:] = fold[2:] ^ fold[4:2]
-        fold[1:] = fold[1:] ^ fold[2:1]
-        bus_parity.next = fold[0]
-
-    @always_comb
-    def parity_errors():
-        # what a wrong PAR at this edge would report (``parity_luts``)
-        address_phase.next = frame_qq and not frame_q
-        serr_armed.next = frame_qq and not frame_q and serr_enable and parity_response
-        perr_armed.next = write_done_q and parity_response
-
-    # PAR comes straight from its pin: one LUT from it to each register that
-    # needs it in this clock (PERR#, SERR#, the claim's abort, the status).
-    parity_luts = [
-        pin_lut(perr_next, lambda par, parity, armed: int(not (armed and par != parity)),
-                pci.par_in, bus_parity, perr_armed, device=device),
-        pin_lut(perr_oe_next, lambda par, parity, armed, perr: int(
-            (armed and par != parity) or not perr),   # asserted, then high one clock
-            pci.par_in, bus_parity, perr_armed, perr_q, device=device),
-        pin_lut(serr_oe_next, lambda par, parity, armed: int(armed and par != parity),
-                pci.par_in, bus_parity, serr_armed, device=device),
-        pin_lut(address_fault_next, lambda par, parity, phase, response: int(
-            phase and response and par != parity),
-            pci.par_in, bus_parity, address_phase, parity_response, device=device),
-        pin_lut(parity_error_next, lambda par, parity, phase, written: int(
-            (phase or written) and par != parity),
-            pci.par_in, bus_parity, address_phase, write_done_q, device=device)]
+    parity_unit = pci_parity(pci.par_in, parity, device=device)
 
     # ------------------------------------------------------------ decoding
     @always_comb
@@ -495,22 +461,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 ad_out_next.next = ad_out_q
             else:
                 ad_out_next.next = read_source
-
-    @always_comb
-    def parity_output():
-        # PAR covers the AD and C/BE# of the clock before (both now registered)
-        pci.par_out.next = ad_parity_q ^ cbe_q[0] ^ cbe_q[1] ^ cbe_q[2] ^ cbe_q[3]
-
-    @always_comb
-    def ad_out_parity_tree():
-        fold = intbv(0)[32:]
-        fold[:] = ad_out_q
-        fold[16:] = fold[16:] ^ fold[32:16]
-        fold[8:] = fold[8:] ^ fold[16:8]
-        fold[4:] = fold[4:] ^ fold[8:4]
-        fold[2:] = fold[2:] ^ fold[4:2]
-        fold[1:] = fold[1:] ^ fold[2:1]
-        ad_out_parity.next = fold[0]
 
     @always_seq(clock.posedge, reset=reset)
     def bus_registers():
