@@ -98,8 +98,19 @@ output pins_dir_y;
 reg pins_dir_y;
 
 wire irq;
+reg pci_slave1_s_valid;
+reg [3:0] pci_slave1_s_be;
+reg pci_slave1_write_done_q;
+reg pci_slave1_config_write_q;
 reg pci_slave1_parity_response;
 reg pci_slave1_serr_enable;
+wire pci_slave1_write_done_next;
+wire pci_slave1_config_write_next;
+wire pci_slave1_posting;
+wire pci_slave1_wq_valid_next;
+reg pci_slave1_b_kept;
+wire pci_slave1_b_valid_next;
+reg [1:0] pci_slave1_buffered_next;
 wire pci_slave1_accepted;
 wire pci_slave1_ad_oe_next;
 reg [31:0] pci_slave1_ad_out_next;
@@ -111,20 +122,15 @@ reg pci_slave1_address_fault;
 wire pci_slave1_address_fault_next;
 wire pci_slave1_address_phase;
 reg pci_slave1_at_last;
-reg pci_slave1_b_kept;
 reg pci_slave1_b_valid;
-wire pci_slave1_b_valid_next;
 reg [15:0] pci_slave1_bar0;
 reg [31:0] pci_slave1_bar1;
 reg pci_slave1_before_last;
-reg [1:0] pci_slave1_buffered_next;
 wire pci_slave1_burst_got;
 reg [3:0] pci_slave1_cbe_q;
 reg pci_slave1_claim;
 reg pci_slave1_claim_config;
 reg pci_slave1_claim_io;
-wire pci_slave1_config_write_next;
-reg pci_slave1_config_write_q;
 wire pci_slave1_devsel_next;
 reg pci_slave1_devsel_q;
 wire pci_slave1_draining;
@@ -161,13 +167,10 @@ wire pci_slave1_perr_oe_next;
 reg pci_slave1_perr_q;
 reg [9:0] pci_slave1_phase_addr;
 wire pci_slave1_phase_step;
-wire pci_slave1_posting;
 reg pci_slave1_read_command;
 reg [31:0] pci_slave1_read_source;
 reg [9:0] pci_slave1_req_addr;
 reg pci_slave1_req_addr_stale;
-reg [3:0] pci_slave1_s_be;
-reg pci_slave1_s_valid;
 wire pci_slave1_serr_oe_next;
 reg pci_slave1_single;
 reg pci_slave1_space_mem;
@@ -184,9 +187,6 @@ reg pci_slave1_trdy_q;
 reg [3:0] pci_slave1_wait_count;
 reg pci_slave1_waiting;
 reg pci_slave1_wq_valid;
-wire pci_slave1_wq_valid_next;
-wire pci_slave1_write_done_next;
-reg pci_slave1_write_done_q;
 reg pci_slave1_local_re;
 reg pci_slave1_local_we;
 reg pci_slave1_local_space;
@@ -1017,28 +1017,6 @@ always @(pci_slave1_is_config, pci_slave1_b_valid, pci_slave1_config_rdata, pci_
 end
 
 
-always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_local_ready, pci_slave1_s_valid) begin: pci_slave1_write_path
-    reg [2-1:0] held;
-    held = 0;
-    if (pci_slave1_h_valid) begin
-        held = 1;
-        if (pci_slave1_s_valid) begin
-            held = 2;
-        end
-        if (pci_slave1_local_ready) begin
-            held = (held - 1);
-        end
-        if (pci_slave1_wq_valid) begin
-            held = (held + 1);
-        end
-    end
-    else if ((pci_slave1_wq_valid && (!pci_slave1_local_ready))) begin
-        held = 1;
-    end
-    pci_slave1_buffered_next = held;
-end
-
-
 always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_first_phase, pci_slave1_initial_wait_over, pci_slave1_state, pci_slave1_trdy_q) begin: pci_slave1_latency
     reg target_waits;
     target_waits = (pci_slave1_trdy_q && pci_slave1_stop_q && (pci_slave1_state != 4'b0000) && (pci_slave1_state != 4'b0111) && (pci_slave1_state != 4'b1000));
@@ -1618,7 +1596,7 @@ assign pci_ad_out = pci_slave1_ad_out_q;
 assign pci_perr_out = pci_slave1_perr_q;
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_read_buffer
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_buffers1_read_buffer
     if (reset == 0) begin
         pci_slave1_b_valid <= 0;
     end
@@ -1628,7 +1606,7 @@ always @(posedge clock, negedge reset) begin: pci_slave1_read_buffer
 end
 
 
-always @(pci_slave1_got, pci_slave1_b_valid, pci_slave1_is_read, pci_slave1_state, pci_slave1_trdy_q) begin: pci_slave1_read_buffer_hold
+always @(pci_slave1_got, pci_slave1_b_valid, pci_slave1_is_read, pci_slave1_state, pci_slave1_trdy_q) begin: pci_slave1_pci_buffers1_read_buffer_hold
     reg in_read;
     in_read = (pci_slave1_is_read && ((pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0100) || (pci_slave1_state == 4'b0110)));
     pci_slave1_b_kept = (in_read && (pci_slave1_b_valid || pci_slave1_got) && (!pci_slave1_trdy_q));
@@ -1639,7 +1617,7 @@ end
 assign pci_slave1_posting = ((!pci_slave1_trdy_q) && (!pci_slave1_is_read) && (!pci_slave1_first_phase) && pci_slave1_space_mem);
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_write_buffer
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_buffers1_write_buffer
     if (reset == 0) begin
         pci_slave1_wq_valid <= 0;
         pci_slave1_config_write_q <= 0;
@@ -1689,6 +1667,28 @@ always @(posedge clock, negedge reset) begin: pci_slave1_write_buffer
             pci_slave1_spare_data <= pci_slave1_local_rdata;
         end
     end
+end
+
+
+always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_local_ready, pci_slave1_s_valid) begin: pci_slave1_pci_buffers1_posted_count
+    reg [2-1:0] held;
+    held = 0;
+    if (pci_slave1_h_valid) begin
+        held = 1;
+        if (pci_slave1_s_valid) begin
+            held = 2;
+        end
+        if (pci_slave1_local_ready) begin
+            held = (held - 1);
+        end
+        if (pci_slave1_wq_valid) begin
+            held = (held + 1);
+        end
+    end
+    else if ((pci_slave1_wq_valid && (!pci_slave1_local_ready))) begin
+        held = 1;
+    end
+    pci_slave1_buffered_next = held;
 end
 
 

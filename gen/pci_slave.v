@@ -145,8 +145,19 @@ input local_ready;
 input local_retry;
 input local_room;
 
+reg s_valid;
+reg [3:0] s_be;
+reg write_done_q;
+reg config_write_q;
 reg parity_response;
 reg serr_enable;
+wire write_done_next;
+wire config_write_next;
+wire posting;
+wire wq_valid_next;
+reg b_kept;
+wire b_valid_next;
+reg [1:0] buffered_next;
 wire accepted;
 wire ad_oe_next;
 reg [31:0] ad_out_next;
@@ -158,20 +169,15 @@ reg address_fault;
 wire address_fault_next;
 wire address_phase;
 reg at_last;
-reg b_kept;
 reg b_valid;
-wire b_valid_next;
 reg [15:0] bar0;
 reg [31:0] bar1;
 reg before_last;
-reg [1:0] buffered_next;
 wire burst_got;
 reg [3:0] cbe_q;
 reg claim;
 reg claim_config;
 reg claim_io;
-wire config_write_next;
-reg config_write_q;
 wire devsel_next;
 reg devsel_q;
 wire draining;
@@ -208,13 +214,10 @@ wire perr_oe_next;
 reg perr_q;
 reg [9:0] phase_addr;
 wire phase_step;
-wire posting;
 reg read_command;
 reg [31:0] read_source;
 reg [9:0] req_addr;
 reg req_addr_stale;
-reg [3:0] s_be;
-reg s_valid;
 wire serr_oe_next;
 reg single;
 reg space_mem;
@@ -231,9 +234,6 @@ reg trdy_q;
 reg [3:0] wait_count;
 reg waiting;
 reg wq_valid;
-wire wq_valid_next;
-wire write_done_next;
-reg write_done_q;
 reg [31:0] config_rdata;
 wire [5:0] config_index;
 wire [31:0] config_data;
@@ -471,28 +471,6 @@ always @(is_config, b_valid, config_rdata, spare_data, local_rdata) begin: read_
     else begin
         read_source = local_rdata;
     end
-end
-
-
-always @(h_valid, wq_valid, local_ready, s_valid) begin: write_path
-    reg [2-1:0] held;
-    held = 0;
-    if (h_valid) begin
-        held = 1;
-        if (s_valid) begin
-            held = 2;
-        end
-        if (local_ready) begin
-            held = (held - 1);
-        end
-        if (wq_valid) begin
-            held = (held + 1);
-        end
-    end
-    else if ((wq_valid && (!local_ready))) begin
-        held = 1;
-    end
-    buffered_next = held;
 end
 
 
@@ -1075,7 +1053,7 @@ assign pci_ad_out = ad_out_q;
 assign pci_perr_out = perr_q;
 
 
-always @(posedge clock, negedge reset) begin: read_buffer
+always @(posedge clock, negedge reset) begin: pci_buffers0_read_buffer
     if (reset == 0) begin
         b_valid <= 0;
     end
@@ -1085,7 +1063,7 @@ always @(posedge clock, negedge reset) begin: read_buffer
 end
 
 
-always @(got, b_valid, is_read, state, trdy_q) begin: read_buffer_hold
+always @(got, b_valid, is_read, state, trdy_q) begin: pci_buffers0_read_buffer_hold
     reg in_read;
     in_read = (is_read && ((state == 4'b0011) || (state == 4'b0010) || (state == 4'b0100) || (state == 4'b0110)));
     b_kept = (in_read && (b_valid || got) && (!trdy_q));
@@ -1096,7 +1074,7 @@ end
 assign posting = ((!trdy_q) && (!is_read) && (!first_phase) && space_mem);
 
 
-always @(posedge clock, negedge reset) begin: write_buffer
+always @(posedge clock, negedge reset) begin: pci_buffers0_write_buffer
     if (reset == 0) begin
         wq_valid <= 0;
         config_write_q <= 0;
@@ -1146,6 +1124,28 @@ always @(posedge clock, negedge reset) begin: write_buffer
             spare_data <= local_rdata;
         end
     end
+end
+
+
+always @(h_valid, wq_valid, local_ready, s_valid) begin: pci_buffers0_posted_count
+    reg [2-1:0] held;
+    held = 0;
+    if (h_valid) begin
+        held = 1;
+        if (s_valid) begin
+            held = 2;
+        end
+        if (local_ready) begin
+            held = (held - 1);
+        end
+        if (wq_valid) begin
+            held = (held + 1);
+        end
+    end
+    else if ((wq_valid && (!local_ready))) begin
+        held = 1;
+    end
+    buffered_next = held;
 end
 
 

@@ -93,8 +93,19 @@ reg pci_pads0_registered_pad4_enable;
 wire [3:0] pci_pads0_registered_pad5_from_pin;
 wire pci_pads0_registered_pad6_from_pin;
 wire card1_irq;
+reg card1_pci_slave2_s_valid;
+reg [3:0] card1_pci_slave2_s_be;
+reg card1_pci_slave2_write_done_q;
+reg card1_pci_slave2_config_write_q;
 reg card1_pci_slave2_parity_response;
 reg card1_pci_slave2_serr_enable;
+wire card1_pci_slave2_write_done_next;
+wire card1_pci_slave2_config_write_next;
+wire card1_pci_slave2_posting;
+wire card1_pci_slave2_wq_valid_next;
+reg card1_pci_slave2_b_kept;
+wire card1_pci_slave2_b_valid_next;
+reg [1:0] card1_pci_slave2_buffered_next;
 wire card1_pci_slave2_accepted;
 wire card1_pci_slave2_ad_oe_next;
 wire [31:0] card1_pci_slave2_ad_out_next;
@@ -105,19 +116,14 @@ reg card1_pci_slave2_address_fault;
 wire card1_pci_slave2_address_fault_next;
 wire card1_pci_slave2_address_phase;
 reg card1_pci_slave2_at_last;
-reg card1_pci_slave2_b_kept;
 reg card1_pci_slave2_b_valid;
-wire card1_pci_slave2_b_valid_next;
 reg [15:0] card1_pci_slave2_bar0;
 reg [31:0] card1_pci_slave2_bar1;
 reg card1_pci_slave2_before_last;
-reg [1:0] card1_pci_slave2_buffered_next;
 wire card1_pci_slave2_burst_got;
 reg card1_pci_slave2_claim;
 reg card1_pci_slave2_claim_config;
 reg card1_pci_slave2_claim_io;
-wire card1_pci_slave2_config_write_next;
-reg card1_pci_slave2_config_write_q;
 wire card1_pci_slave2_devsel_next;
 reg card1_pci_slave2_devsel_q;
 wire card1_pci_slave2_draining;
@@ -153,13 +159,10 @@ wire card1_pci_slave2_perr_oe_next;
 reg card1_pci_slave2_perr_q;
 reg [9:0] card1_pci_slave2_phase_addr;
 wire card1_pci_slave2_phase_step;
-wire card1_pci_slave2_posting;
 reg card1_pci_slave2_read_command;
 reg [31:0] card1_pci_slave2_read_source;
 reg [9:0] card1_pci_slave2_req_addr;
 reg card1_pci_slave2_req_addr_stale;
-reg [3:0] card1_pci_slave2_s_be;
-reg card1_pci_slave2_s_valid;
 wire card1_pci_slave2_serr_oe_next;
 reg card1_pci_slave2_single;
 reg card1_pci_slave2_space_mem;
@@ -176,9 +179,6 @@ reg card1_pci_slave2_trdy_q;
 reg [3:0] card1_pci_slave2_wait_count;
 reg card1_pci_slave2_waiting;
 reg card1_pci_slave2_wq_valid;
-wire card1_pci_slave2_wq_valid_next;
-wire card1_pci_slave2_write_done_next;
-reg card1_pci_slave2_write_done_q;
 reg card1_pci_slave2_local_re;
 reg card1_pci_slave2_local_we;
 reg card1_pci_slave2_local_space;
@@ -1599,28 +1599,6 @@ always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_
 end
 
 
-always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_local_ready, card1_pci_slave2_s_valid) begin: card1_pci_slave2_write_path
-    reg [2-1:0] held;
-    held = 0;
-    if (card1_pci_slave2_h_valid) begin
-        held = 1;
-        if (card1_pci_slave2_s_valid) begin
-            held = 2;
-        end
-        if (card1_pci_slave2_local_ready) begin
-            held = (held - 1);
-        end
-        if (card1_pci_slave2_wq_valid) begin
-            held = (held + 1);
-        end
-    end
-    else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_local_ready))) begin
-        held = 1;
-    end
-    card1_pci_slave2_buffered_next = held;
-end
-
-
 always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_pci_slave2_first_phase, card1_pci_slave2_initial_wait_over, card1_pci_slave2_state, card1_pci_slave2_trdy_q) begin: card1_pci_slave2_latency
     reg target_waits;
     target_waits = (card1_pci_slave2_trdy_q && card1_pci_slave2_stop_q && (card1_pci_slave2_state != 4'b0000) && (card1_pci_slave2_state != 4'b0111) && (card1_pci_slave2_state != 4'b1000));
@@ -2450,7 +2428,7 @@ assign pci_pads0_registered_pad0_to_pin = card1_pci_slave2_ad_out_next;
 assign pci_pads0_registered_pad4_to_pin = card1_pci_slave2_perr_next;
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_read_buffer
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_buffers2_read_buffer
     if (reset == 0) begin
         card1_pci_slave2_b_valid <= 0;
     end
@@ -2460,7 +2438,7 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_read_buffer
 end
 
 
-always @(card1_pci_slave2_got, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_state, card1_pci_slave2_trdy_q) begin: card1_pci_slave2_read_buffer_hold
+always @(card1_pci_slave2_got, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_state, card1_pci_slave2_trdy_q) begin: card1_pci_slave2_pci_buffers2_read_buffer_hold
     reg in_read;
     in_read = (card1_pci_slave2_is_read && ((card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0100) || (card1_pci_slave2_state == 4'b0110)));
     card1_pci_slave2_b_kept = (in_read && (card1_pci_slave2_b_valid || card1_pci_slave2_got) && (!card1_pci_slave2_trdy_q));
@@ -2471,7 +2449,7 @@ end
 assign card1_pci_slave2_posting = ((!card1_pci_slave2_trdy_q) && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_first_phase) && card1_pci_slave2_space_mem);
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_write_buffer
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_buffers2_write_buffer
     if (reset == 0) begin
         card1_pci_slave2_wq_valid <= 0;
         card1_pci_slave2_config_write_q <= 0;
@@ -2521,6 +2499,28 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_write_buffer
             card1_pci_slave2_spare_data <= card1_pci_slave2_local_rdata;
         end
     end
+end
+
+
+always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_local_ready, card1_pci_slave2_s_valid) begin: card1_pci_slave2_pci_buffers2_posted_count
+    reg [2-1:0] held;
+    held = 0;
+    if (card1_pci_slave2_h_valid) begin
+        held = 1;
+        if (card1_pci_slave2_s_valid) begin
+            held = 2;
+        end
+        if (card1_pci_slave2_local_ready) begin
+            held = (held - 1);
+        end
+        if (card1_pci_slave2_wq_valid) begin
+            held = (held + 1);
+        end
+    end
+    else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_local_ready))) begin
+        held = 1;
+    end
+    card1_pci_slave2_buffered_next = held;
 end
 
 

@@ -673,3 +673,31 @@ class TargetParity:
                address_phase=Signal(bool(0)), ad_out_parity=Signal(bool(0)), par_out=Signal(bool(0)),
                perr_next=Signal(bool(1)), perr_oe_next=Signal(bool(0)), serr_oe_next=Signal(bool(0)),
                address_fault_next=Signal(bool(0)), parity_error_next=Signal(bool(0)))
+
+
+class TargetBuffers:
+    """The PCI target's data buffers (``rtl/pci_buffers.py``); ``idle`` is
+    the state enum's idle item, the target wires in the signals it has.
+
+    From the target: ``ad``, ``cbe`` (input registers, bus polarity),
+    ``state``, ``is_read``, ``trdy_q``, ``first_phase``, ``space_mem``, ``got``
+    (read data arrive at this edge), ``accepted`` (the back end takes a
+    write at this edge), the back end's ``re``, ``ready``, ``rdata``, and the
+    next values the IRDY# pin decides: ``b_valid_next``, ``wq_valid_next``,
+    ``write_done_next``, ``config_write_next``.  The buffers' registers:
+    ``b_valid`` (the skid register holds a dword), ``wq_valid`` (``ad``
+    holds a posted dword), ``h_valid``/``h_data``/``h_be`` (head entry),
+    ``s_valid``/``spare_data``/``s_be`` (second entry; ``spare_data`` is also
+    the skid register), ``write_done_q``, ``config_write_q`` (``ad`` holds
+    the data of a completed write / configuration write phase).  To the
+    target: ``b_kept``, ``posting`` (conditions for the IRDY# pin's LUTs) and
+    ``buffered`` (posted dwords held after this edge)."""
+
+    def __init__(self, idle, **given):
+        bools = ("is_read", "trdy_q", "first_phase", "space_mem", "got", "accepted", "re", "ready",
+                 "b_valid_next", "wq_valid_next", "write_done_next", "config_write_next", "b_valid",
+                 "wq_valid", "h_valid", "s_valid", "write_done_q", "config_write_q", "b_kept", "posting")
+        _adopt(self, given, ad=Signal(intbv(0)[32:]), cbe=Signal(intbv(0xF)[4:]), state=Signal(idle),
+               rdata=Signal(intbv(0)[32:]), h_data=Signal(intbv(0)[32:]), spare_data=Signal(intbv(0)[32:]),
+               h_be=Signal(intbv(0)[4:]), s_be=Signal(intbv(0)[4:]), buffered=Signal(intbv(0, min=0, max=4)),
+               **{name: Signal(bool(0)) for name in bools})

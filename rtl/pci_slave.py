@@ -24,11 +24,12 @@ from myhdl import (ConcatSignal, Signal, always_comb, always_seq, block, concat,
                    modbv)
 
 from rtl import parameters
-from rtl.interfaces import (ConfigSpace, LocalBus, PciBus, TargetControlNext, TargetParity, TargetState,
-                            card_reset)
+from rtl.interfaces import (ConfigSpace, LocalBus, PciBus, TargetBuffers, TargetControlNext, TargetParity,
+                            TargetState, card_reset)
 from rtl.pci_config import CONFIG_PARAMETERS, pci_config
 from rtl.parameters import PCI_IDS, ParameterError
 from rtl.pin_lut import pin_lut
+from rtl.pci_buffers import pci_buffers
 from rtl.pci_control import pci_control, t_state
 from rtl.pci_parity import pci_parity
 
@@ -179,6 +180,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     # --- read data: the AD register, fed by a one-dword skid register B;
     # --- posted write data: ad_q, then the head (h) and second (s) entries.
     # B and s share one register: reads and writes never use it at once.
+    # (``rtl/pci_buffers.py``)
     b_valid = Signal(bool(0))
     wq_valid = Signal(bool(0))        # ad_q holds a posted dword
     h_valid, s_valid = Signal(bool(0)), Signal(bool(0))
@@ -361,25 +363,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         else:
             read_source.next = local.rdata
 
-    @always_comb
-    def write_path():
-        # Posted dwords held after this edge (head and second entry), as the
-        # state machine reads it in Configuring and Rwing: there the only
-        # write request drains posted data, so a held dword goes when the
-        # back end answers ready (``accepted``, without the request logic).
-        held = intbv(0, min=0, max=4)
-        if h_valid:
-            held[:] = 1
-            if s_valid:
-                held[:] = 2
-            if local.ready:
-                held[:] = held - 1
-            if wq_valid:
-                held[:] = held + 1
-        elif wq_valid and not local.ready:
-            held[:] = 1
-        buffered_next.next = held
-
     # ------------------------------------------------------------ state machine
     @always_comb
     def latency():
@@ -499,53 +482,16 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             pci.ad_out.next = ad_out_q
             pci.perr_out.next = perr_q
 
-    @always_seq(clock.posedge, reset=reset)
-    def read_buffer():
-        b_valid.next = b_valid_next
-
-    @always_comb
-    def read_buffer_hold():
-        # B keeps a dword if the AD register holds (IRDY# pin: ``b_valid_next``)
-        in_read = is_read and (state == t_state.S_MEM_HOLD or state == t_state.S_IO_HOLD
-                               or state == t_state.S_READ_HOLD or state == t_state.S_RWING)
-        b_kept.next = in_read and (b_valid or got) and not trdy_q
-
-    @always_comb
-    def write_posting():
-        # a completed phase now (IRDY# pin: ``wq_valid_next``) is posted
-        posting.next = not trdy_q and not is_read and not first_phase and space_mem
-
-    @always_seq(clock.posedge, reset=reset)
-    def write_buffer():
-        write_done_q.next = write_done_next
-        config_write_q.next = config_write_next
-        wq_valid.next = wq_valid_next
-        if h_valid:
-            if accepted:
-                if s_valid:
-                    h_data.next = spare_data
-                    h_be.next = s_be
-                    s_valid.next = wq_valid
-                    if wq_valid:
-                        spare_data.next = ad_q
-                        s_be.next = ~cbe_q
-                elif wq_valid:
-                    h_data.next = ad_q
-                    h_be.next = ~cbe_q
-                else:
-                    h_valid.next = False
-            elif wq_valid:
-                s_valid.next = True
-                spare_data.next = ad_q
-                s_be.next = ~cbe_q
-        elif wq_valid and not accepted:
-            h_valid.next = True
-            h_data.next = ad_q
-            h_be.next = ~cbe_q
-        if local.re and local.ready:
-            # B takes every dword read; it counts only if the AD register
-            # is holding (b_valid), which keeps IRDY# out of this path
-            spare_data.next = local.rdata
+    # ------------------------------------------------------------ data buffers
+    buffers = TargetBuffers(
+        t_state.S_IDLE, ad=ad_q, cbe=cbe_q, state=state, is_read=is_read, trdy_q=trdy_q,
+        first_phase=first_phase, space_mem=space_mem, got=got, accepted=accepted, re=local.re,
+        ready=local.ready, rdata=local.rdata, b_valid_next=b_valid_next, wq_valid_next=wq_valid_next,
+        write_done_next=write_done_next, config_write_next=config_write_next, b_valid=b_valid,
+        wq_valid=wq_valid, h_valid=h_valid, s_valid=s_valid, h_data=h_data, spare_data=spare_data,
+        h_be=h_be, s_be=s_be, write_done_q=write_done_q, config_write_q=config_write_q, b_kept=b_kept,
+        posting=posting, buffered=buffered_next)
+    buffer_unit = pci_buffers(clock, reset, buffers)
 
     # ------------------------------------------------------------ configuration space
     header = pci_config(clock, reset, config, **{name: values[name] for name in CONFIG_PARAMETERS})
