@@ -98,18 +98,29 @@ output pins_dir_y;
 reg pins_dir_y;
 
 wire irq;
+reg pci_slave1_wq_valid;
+reg pci_slave1_h_valid;
 reg pci_slave1_s_valid;
+reg [31:0] pci_slave1_h_data;
+reg [3:0] pci_slave1_h_be;
 reg [3:0] pci_slave1_s_be;
 reg pci_slave1_write_done_q;
 reg pci_slave1_config_write_q;
 reg pci_slave1_parity_response;
 reg pci_slave1_serr_enable;
+reg pci_slave1_fatal;
 wire pci_slave1_write_done_next;
 wire pci_slave1_config_write_next;
 wire pci_slave1_posting;
 wire pci_slave1_wq_valid_next;
 reg pci_slave1_b_kept;
 wire pci_slave1_b_valid_next;
+reg pci_slave1_first_ready;
+reg pci_slave1_fetch_more;
+wire pci_slave1_hold_got;
+wire pci_slave1_hold_accepted;
+wire pci_slave1_hold_retry;
+wire pci_slave1_burst_got;
 reg [1:0] pci_slave1_buffered_next;
 wire pci_slave1_accepted;
 wire pci_slave1_ad_oe_next;
@@ -126,7 +137,6 @@ reg pci_slave1_b_valid;
 reg [15:0] pci_slave1_bar0;
 reg [31:0] pci_slave1_bar1;
 reg pci_slave1_before_last;
-wire pci_slave1_burst_got;
 reg [3:0] pci_slave1_cbe_q;
 reg pci_slave1_claim;
 reg pci_slave1_claim_config;
@@ -135,22 +145,13 @@ wire pci_slave1_devsel_next;
 reg pci_slave1_devsel_q;
 wire pci_slave1_draining;
 wire pci_slave1_drive_next;
-reg pci_slave1_fatal;
-reg pci_slave1_fetch_more;
 reg pci_slave1_fetching;
 reg pci_slave1_first_pending;
 reg pci_slave1_first_phase;
 wire pci_slave1_first_phase_next;
-reg pci_slave1_first_ready;
 reg pci_slave1_frame_q;
 reg pci_slave1_frame_qq;
 wire pci_slave1_got;
-reg [3:0] pci_slave1_h_be;
-reg [31:0] pci_slave1_h_data;
-reg pci_slave1_h_valid;
-wire pci_slave1_hold_accepted;
-wire pci_slave1_hold_got;
-wire pci_slave1_hold_retry;
 reg pci_slave1_idsel_q;
 reg pci_slave1_initial_wait_over;
 reg pci_slave1_interrupt_disable;
@@ -186,18 +187,12 @@ wire pci_slave1_trdy_next;
 reg pci_slave1_trdy_q;
 reg [3:0] pci_slave1_wait_count;
 reg pci_slave1_waiting;
-reg pci_slave1_wq_valid;
-reg pci_slave1_local_re;
-reg pci_slave1_local_we;
-reg pci_slave1_local_space;
-reg pci_slave1_local_write;
-reg [31:0] pci_slave1_local_wdata;
-reg [3:0] pci_slave1_local_be;
-reg [11:0] pci_slave1_local_addr;
-reg pci_slave1_local_ready;
-reg pci_slave1_local_retry;
 reg [31:0] pci_slave1_config_rdata;
 reg [31:0] pci_slave1_local_rdata;
+reg pci_slave1_local_re;
+reg pci_slave1_local_ready;
+reg pci_slave1_local_retry;
+reg pci_slave1_local_we;
 wire [5:0] pci_slave1_config_index;
 wire [31:0] pci_slave1_config_data;
 wire [3:0] pci_slave1_config_cbe_n;
@@ -206,6 +201,11 @@ wire pci_slave1_config_irq;
 reg pci_slave1_pci_parity1_bus_parity;
 wire pci_slave1_pci_parity1_perr_armed;
 wire pci_slave1_pci_parity1_serr_armed;
+reg pci_slave1_pci_requests1_local_space;
+reg pci_slave1_pci_requests1_local_write;
+reg [31:0] pci_slave1_pci_requests1_local_wdata;
+reg [3:0] pci_slave1_pci_requests1_local_be;
+reg [11:0] pci_slave1_pci_requests1_local_addr;
 reg [3:0] pci_slave1_pci_control1_control_case0_0_out_state;
 wire pci_slave1_pci_control1_control_case0_0_target_room;
 reg pci_slave1_pci_control1_control_case0_0_out_trdy;
@@ -942,7 +942,7 @@ assign pci_slave1_wq_valid_next = (pci_slave1_posting ? (pci_irdy_in ? 1'b0 : 1'
 assign pci_slave1_b_valid_next = (pci_slave1_b_kept ? (pci_irdy_in ? 1'b1 : 1'b0) : 1'b0);
 
 
-always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_slave1_io_byte, pci_slave1_b_valid, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_wq_valid, pci_slave1_space_mem, pci_slave1_h_be, pci_slave1_h_data, pci_slave1_is_config, pci_slave1_irdy_q, pci_slave1_req_addr_stale, pci_slave1_address_fault, pci_slave1_frame_q, pci_slave1_h_valid, pci_slave1_cbe_q) begin: pci_slave1_local_request
+always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_slave1_io_byte, pci_slave1_b_valid, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_wq_valid, pci_slave1_space_mem, pci_slave1_h_be, pci_slave1_h_data, pci_slave1_is_config, pci_slave1_irdy_q, pci_slave1_req_addr_stale, pci_slave1_address_fault, pci_slave1_frame_q, pci_slave1_h_valid, pci_slave1_cbe_q) begin: pci_slave1_pci_requests1_local_request
     reg drain;
     reg hold_state;
     reg bad;
@@ -976,21 +976,21 @@ always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_sla
     pci_slave1_local_we = (drain || (first && (!pci_slave1_is_read) && (!pci_slave1_irdy_q)));
     pci_slave1_first_ready = (pci_slave1_first_pending && (!pci_slave1_is_config) && (!drain) && (!pci_slave1_req_addr_stale));
     pci_slave1_fetch_more = (pci_slave1_is_read && pci_slave1_fetching && (!pci_slave1_b_valid) && (pci_slave1_trdy_q || (!pci_slave1_frame_q)));
-    pci_slave1_local_space = (drain || pci_slave1_space_mem);
-    pci_slave1_local_write = (drain || (!pci_slave1_is_read));
+    pci_slave1_pci_requests1_local_space = (drain || pci_slave1_space_mem);
+    pci_slave1_pci_requests1_local_write = (drain || (!pci_slave1_is_read));
     if (pci_slave1_h_valid) begin
-        pci_slave1_local_wdata = pci_slave1_h_data;
-        pci_slave1_local_be = pci_slave1_h_be;
+        pci_slave1_pci_requests1_local_wdata = pci_slave1_h_data;
+        pci_slave1_pci_requests1_local_be = pci_slave1_h_be;
     end
     else if ((pci_slave1_is_read && pci_slave1_space_mem && (!drain))) begin
-        pci_slave1_local_wdata = pci_slave1_ad_q;
-        pci_slave1_local_be = 15;
+        pci_slave1_pci_requests1_local_wdata = pci_slave1_ad_q;
+        pci_slave1_pci_requests1_local_be = 15;
     end
     else begin
-        pci_slave1_local_wdata = pci_slave1_ad_q;
-        pci_slave1_local_be = (~pci_slave1_cbe_q);
+        pci_slave1_pci_requests1_local_wdata = pci_slave1_ad_q;
+        pci_slave1_pci_requests1_local_be = (~pci_slave1_cbe_q);
     end
-    pci_slave1_local_addr = {pci_slave1_req_addr, 2'h0};
+    pci_slave1_pci_requests1_local_addr = {pci_slave1_req_addr, 2'h0};
 end
 
 
@@ -1825,7 +1825,7 @@ assign card_core0_regs_fifo1_sync_fifo1_last_beyond = ($signed({1'b0, card_core0
 
 always @(posedge clock) begin: card_core0_regs_fifo1_sync_fifo1_memory
     if (card_core0_regs_fifo1_sync_fifo1_do_write) begin
-        card_core0_regs_fifo1_sync_fifo1_storage[card_core0_regs_fifo1_sync_fifo1_write_addr] <= pci_slave1_local_wdata;
+        card_core0_regs_fifo1_sync_fifo1_storage[card_core0_regs_fifo1_sync_fifo1_write_addr] <= pci_slave1_pci_requests1_local_wdata;
     end
     if (card_core0_regs_fifo1_sync_fifo1_do_read) begin
         card_core0_regs_fifo1_fifo_dout <= card_core0_regs_fifo1_sync_fifo1_storage[card_core0_regs_fifo1_sync_fifo1_read_addr];
@@ -1895,7 +1895,7 @@ assign pci_slave1_pci_control1_control_case0_0_target_room = card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word24_mine = (pci_slave1_local_addr == 0);
+assign card_core0_regs_fifo1_reg_word24_mine = (pci_slave1_pci_requests1_local_addr == 0);
 
 
 always @(card_core0_regs_fifo1_reg_word24_mine, card_core0_regs_fifo1_reg_word24_shown_wide, card_core0_regs_fifo1_reg_word24_chain_in_data) begin: card_core0_regs_fifo1_reg_word24_read_chain
@@ -1917,7 +1917,7 @@ assign card_core0_regs_fifo1_reg_word24_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word25_mine = (pci_slave1_local_addr == 4);
+assign card_core0_regs_fifo1_reg_word25_mine = (pci_slave1_pci_requests1_local_addr == 4);
 
 
 always @(card_core0_regs_fifo1_reg_word25_mine, card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word24_chain_out_data) begin: card_core0_regs_fifo1_reg_word25_read_chain
@@ -1972,7 +1972,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word26_mine = (pci_slave1_local_addr == 8);
+assign card_core0_regs_fifo1_reg_word26_mine = (pci_slave1_pci_requests1_local_addr == 8);
 
 
 always @(card_core0_regs_fifo1_reg_word26_mine, card_core0_regs_fifo1_reg_word26_shown_wide, card_core0_regs_fifo1_reg_word25_chain_out_data) begin: card_core0_regs_fifo1_reg_word26_read_chain
@@ -2024,7 +2024,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word27_mine = (pci_slave1_local_addr == 12);
+assign card_core0_regs_fifo1_reg_word27_mine = (pci_slave1_pci_requests1_local_addr == 12);
 
 
 always @(card_core0_regs_fifo1_reg_word27_mine, card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word26_chain_out_data) begin: card_core0_regs_fifo1_reg_word27_read_chain
@@ -2046,7 +2046,7 @@ assign card_core0_regs_fifo1_reg_word27_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word28_mine = (pci_slave1_local_addr == 16);
+assign card_core0_regs_fifo1_reg_word28_mine = (pci_slave1_pci_requests1_local_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word28_mine, card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word27_chain_out_data) begin: card_core0_regs_fifo1_reg_word28_read_chain
@@ -2101,7 +2101,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word29_mine = (pci_slave1_local_addr == 20);
+assign card_core0_regs_fifo1_reg_word29_mine = (pci_slave1_pci_requests1_local_addr == 20);
 
 
 always @(card_core0_regs_fifo1_reg_word29_mine, card_core0_regs_fifo1_reg_word29_shown_wide, card_core0_regs_fifo1_reg_word28_chain_out_data) begin: card_core0_regs_fifo1_reg_word29_read_chain
@@ -2150,7 +2150,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word30_mine = (pci_slave1_local_addr == 24);
+assign card_core0_regs_fifo1_reg_word30_mine = (pci_slave1_pci_requests1_local_addr == 24);
 
 
 always @(card_core0_regs_fifo1_reg_word30_mine, card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word29_chain_out_data) begin: card_core0_regs_fifo1_reg_word30_read_chain
@@ -2205,7 +2205,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word31_mine = (pci_slave1_local_addr == 28);
+assign card_core0_regs_fifo1_reg_word31_mine = (pci_slave1_pci_requests1_local_addr == 28);
 
 
 always @(card_core0_regs_fifo1_reg_word31_mine, card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_reg_word30_chain_out_data) begin: card_core0_regs_fifo1_reg_word31_read_chain
@@ -2227,7 +2227,7 @@ assign card_core0_regs_fifo1_reg_word31_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word32_mine = (pci_slave1_local_addr == 32);
+assign card_core0_regs_fifo1_reg_word32_mine = (pci_slave1_pci_requests1_local_addr == 32);
 
 
 always @(card_core0_regs_fifo1_reg_word32_mine, card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word31_chain_out_data) begin: card_core0_regs_fifo1_reg_word32_read_chain
@@ -2249,7 +2249,7 @@ assign card_core0_regs_fifo1_reg_word32_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word33_mine = (pci_slave1_local_addr == 36);
+assign card_core0_regs_fifo1_reg_word33_mine = (pci_slave1_pci_requests1_local_addr == 36);
 
 
 always @(card_core0_regs_fifo1_reg_word33_mine, card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_reg_word32_chain_out_data) begin: card_core0_regs_fifo1_reg_word33_read_chain
@@ -2271,7 +2271,7 @@ assign card_core0_regs_fifo1_reg_word33_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word34_mine = (pci_slave1_local_addr == 40);
+assign card_core0_regs_fifo1_reg_word34_mine = (pci_slave1_pci_requests1_local_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word34_mine, card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word33_chain_out_data) begin: card_core0_regs_fifo1_reg_word34_read_chain
@@ -2337,7 +2337,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word35_mine = (pci_slave1_local_addr == 44);
+assign card_core0_regs_fifo1_reg_word35_mine = (pci_slave1_pci_requests1_local_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word35_mine, card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_chain_out_data) begin: card_core0_regs_fifo1_reg_word35_read_chain
@@ -2403,7 +2403,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word36_mine = (pci_slave1_local_addr == 48);
+assign card_core0_regs_fifo1_reg_word36_mine = (pci_slave1_pci_requests1_local_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word36_mine, card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word35_chain_out_data) begin: card_core0_regs_fifo1_reg_word36_read_chain
@@ -2458,7 +2458,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_local_addr == 52);
+assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_pci_requests1_local_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word36_chain_out_data) begin: card_core0_regs_fifo1_reg_word37_read_chain
@@ -2524,7 +2524,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_local_addr == 56);
+assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_pci_requests1_local_addr == 56);
 
 
 always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_chain_out_data) begin: card_core0_regs_fifo1_reg_word38_read_chain
@@ -2590,7 +2590,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_local_addr == 60);
+assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_chain_out_data) begin: card_core0_regs_fifo1_reg_word39_read_chain
@@ -2656,7 +2656,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_local_addr == 64);
+assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 64);
 
 
 always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_chain_out_data) begin: card_core0_regs_fifo1_reg_word40_read_chain
@@ -2711,7 +2711,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_local_addr == 68);
+assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 68);
 
 
 always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_chain_out_data) begin: card_core0_regs_fifo1_reg_word41_read_chain
@@ -2777,7 +2777,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_local_addr == 72);
+assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 72);
 
 
 always @(card_core0_regs_fifo1_reg_word42_mine, card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word41_chain_out_data) begin: card_core0_regs_fifo1_reg_word42_read_chain
@@ -2843,7 +2843,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_local_addr == 76);
+assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 76);
 
 
 always @(card_core0_regs_fifo1_reg_word43_mine, card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word42_chain_out_data) begin: card_core0_regs_fifo1_reg_word43_read_chain
@@ -2907,7 +2907,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_local_addr == 80);
+assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 80);
 
 
 always @(card_core0_regs_fifo1_reg_word44_mine, card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_reg_word43_chain_out_data) begin: card_core0_regs_fifo1_reg_word44_read_chain
@@ -2971,7 +2971,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_local_addr == 84);
+assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 84);
 
 
 always @(card_core0_regs_fifo1_reg_word45_mine, card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word44_chain_out_data) begin: card_core0_regs_fifo1_reg_word45_read_chain
@@ -2993,7 +2993,7 @@ assign card_core0_regs_fifo1_reg_word45_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_local_addr == 88);
+assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 88);
 
 
 always @(card_core0_regs_fifo1_reg_word46_mine, card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_reg_word45_chain_out_data) begin: card_core0_regs_fifo1_reg_word46_read_chain
@@ -3015,7 +3015,7 @@ assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_local_addr == 92);
+assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 92);
 
 
 always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_chain_out_data) begin: card_core0_regs_fifo1_reg_word47_read_chain
@@ -3957,32 +3957,32 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_d
 end
 
 
-always @(pci_slave1_local_re, card_core0_regs_fifo1_io_written, pci_slave1_local_be, pci_slave1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
+always @(pci_slave1_local_re, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_be, pci_slave1_pci_requests1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
-    if (pci_slave1_local_be[0]) begin
+    if (pci_slave1_pci_requests1_local_be[0]) begin
         mask[8-1:0] = 255;
     end
-    if (pci_slave1_local_be[1]) begin
+    if (pci_slave1_pci_requests1_local_be[1]) begin
         mask[16-1:8] = 255;
     end
-    if (pci_slave1_local_be[2]) begin
+    if (pci_slave1_pci_requests1_local_be[2]) begin
         mask[24-1:16] = 255;
     end
-    if (pci_slave1_local_be[3]) begin
+    if (pci_slave1_pci_requests1_local_be[3]) begin
         mask[32-1:24] = 255;
     end
     card_core0_regs_fifo1_byte_mask = mask;
-    card_core0_regs_fifo1_io_write = (pci_slave1_local_we && (!pci_slave1_local_space) && (!card_core0_regs_fifo1_io_written));
-    card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_local_space) && (!card_core0_regs_fifo1_io_written));
-    card_core0_regs_fifo1_push = (pci_slave1_local_we && pci_slave1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_local_be != 0) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_io_write = (pci_slave1_local_we && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_push = (pci_slave1_local_we && pci_slave1_pci_requests1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_pci_requests1_local_be != 0) && (!card_core0_regs_fifo1_io_written));
 end
 
 
-always @(card_core0_regs_fifo1_io_written, pci_slave1_local_write, pci_slave1_local_space, card_core0_regs_fifo1_read_end, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_answer_bus
-    pci_slave1_local_ready = ((!(pci_slave1_local_write && pci_slave1_local_space && card_core0_regs_fifo1_fifo_full)) && (!card_core0_regs_fifo1_io_written));
-    pci_slave1_local_retry = (pci_slave1_local_write && pci_slave1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
-    if (pci_slave1_local_space) begin
+always @(card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_write, pci_slave1_pci_requests1_local_space, card_core0_regs_fifo1_read_end, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_answer_bus
+    pci_slave1_local_ready = ((!(pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full)) && (!card_core0_regs_fifo1_io_written));
+    pci_slave1_local_retry = (pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
+    if (pci_slave1_pci_requests1_local_space) begin
         pci_slave1_local_rdata = 0;
     end
     else begin
@@ -4000,8 +4000,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_write_stage
     end
     else begin
         card_core0_regs_fifo1_io_written <= card_core0_regs_fifo1_io_write;
-        card_core0_regs_fifo1_written_addr <= pci_slave1_local_addr;
-        card_core0_regs_fifo1_written_data <= pci_slave1_local_wdata;
+        card_core0_regs_fifo1_written_addr <= pci_slave1_pci_requests1_local_addr;
+        card_core0_regs_fifo1_written_data <= pci_slave1_pci_requests1_local_wdata;
         card_core0_regs_fifo1_written_mask <= card_core0_regs_fifo1_byte_mask;
     end
 end
@@ -4045,7 +4045,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_snapshot
         card_core0_regs_fifo1_pos_y_snapshot <= 0;
     end
     else begin
-        if ((card_core0_regs_fifo1_io_read && (pci_slave1_local_addr == 32))) begin
+        if ((card_core0_regs_fifo1_io_read && (pci_slave1_pci_requests1_local_addr == 32))) begin
             card_core0_regs_fifo1_pos_y_snapshot <= card_core0_regs_fifo1_position_y;
         end
     end

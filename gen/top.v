@@ -93,18 +93,29 @@ reg pci_pads0_registered_pad4_enable;
 wire [3:0] pci_pads0_registered_pad5_from_pin;
 wire pci_pads0_registered_pad6_from_pin;
 wire card1_irq;
+reg card1_pci_slave2_wq_valid;
+reg card1_pci_slave2_h_valid;
 reg card1_pci_slave2_s_valid;
+reg [31:0] card1_pci_slave2_h_data;
+reg [3:0] card1_pci_slave2_h_be;
 reg [3:0] card1_pci_slave2_s_be;
 reg card1_pci_slave2_write_done_q;
 reg card1_pci_slave2_config_write_q;
 reg card1_pci_slave2_parity_response;
 reg card1_pci_slave2_serr_enable;
+reg card1_pci_slave2_fatal;
 wire card1_pci_slave2_write_done_next;
 wire card1_pci_slave2_config_write_next;
 wire card1_pci_slave2_posting;
 wire card1_pci_slave2_wq_valid_next;
 reg card1_pci_slave2_b_kept;
 wire card1_pci_slave2_b_valid_next;
+reg card1_pci_slave2_first_ready;
+reg card1_pci_slave2_fetch_more;
+wire card1_pci_slave2_hold_got;
+wire card1_pci_slave2_hold_accepted;
+wire card1_pci_slave2_hold_retry;
+wire card1_pci_slave2_burst_got;
 reg [1:0] card1_pci_slave2_buffered_next;
 wire card1_pci_slave2_accepted;
 wire card1_pci_slave2_ad_oe_next;
@@ -120,7 +131,6 @@ reg card1_pci_slave2_b_valid;
 reg [15:0] card1_pci_slave2_bar0;
 reg [31:0] card1_pci_slave2_bar1;
 reg card1_pci_slave2_before_last;
-wire card1_pci_slave2_burst_got;
 reg card1_pci_slave2_claim;
 reg card1_pci_slave2_claim_config;
 reg card1_pci_slave2_claim_io;
@@ -128,22 +138,13 @@ wire card1_pci_slave2_devsel_next;
 reg card1_pci_slave2_devsel_q;
 wire card1_pci_slave2_draining;
 wire card1_pci_slave2_drive_next;
-reg card1_pci_slave2_fatal;
-reg card1_pci_slave2_fetch_more;
 reg card1_pci_slave2_fetching;
 reg card1_pci_slave2_first_pending;
 reg card1_pci_slave2_first_phase;
 wire card1_pci_slave2_first_phase_next;
-reg card1_pci_slave2_first_ready;
 reg card1_pci_slave2_frame_q;
 reg card1_pci_slave2_frame_qq;
 wire card1_pci_slave2_got;
-reg [3:0] card1_pci_slave2_h_be;
-reg [31:0] card1_pci_slave2_h_data;
-reg card1_pci_slave2_h_valid;
-wire card1_pci_slave2_hold_accepted;
-wire card1_pci_slave2_hold_got;
-wire card1_pci_slave2_hold_retry;
 reg card1_pci_slave2_initial_wait_over;
 reg card1_pci_slave2_interrupt_disable;
 reg [1:0] card1_pci_slave2_io_byte;
@@ -178,18 +179,12 @@ wire card1_pci_slave2_trdy_next;
 reg card1_pci_slave2_trdy_q;
 reg [3:0] card1_pci_slave2_wait_count;
 reg card1_pci_slave2_waiting;
-reg card1_pci_slave2_wq_valid;
-reg card1_pci_slave2_local_re;
-reg card1_pci_slave2_local_we;
-reg card1_pci_slave2_local_space;
-reg card1_pci_slave2_local_write;
-reg [31:0] card1_pci_slave2_local_wdata;
-reg [3:0] card1_pci_slave2_local_be;
-reg [11:0] card1_pci_slave2_local_addr;
-reg card1_pci_slave2_local_ready;
-reg card1_pci_slave2_local_retry;
 reg [31:0] card1_pci_slave2_config_rdata;
 reg [31:0] card1_pci_slave2_local_rdata;
+reg card1_pci_slave2_local_re;
+reg card1_pci_slave2_local_ready;
+reg card1_pci_slave2_local_retry;
+reg card1_pci_slave2_local_we;
 wire [5:0] card1_pci_slave2_config_index;
 wire [31:0] card1_pci_slave2_config_data;
 wire [3:0] card1_pci_slave2_config_cbe_n;
@@ -198,6 +193,11 @@ wire card1_pci_slave2_config_irq;
 reg card1_pci_slave2_pci_parity2_bus_parity;
 wire card1_pci_slave2_pci_parity2_perr_armed;
 wire card1_pci_slave2_pci_parity2_serr_armed;
+reg card1_pci_slave2_pci_requests2_local_space;
+reg card1_pci_slave2_pci_requests2_local_write;
+reg [31:0] card1_pci_slave2_pci_requests2_local_wdata;
+reg [3:0] card1_pci_slave2_pci_requests2_local_be;
+reg [11:0] card1_pci_slave2_pci_requests2_local_addr;
 reg [3:0] card1_pci_slave2_pci_control2_control_case0_0_1_out_state;
 wire card1_pci_slave2_pci_control2_control_case0_0_1_target_room;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy;
@@ -1524,7 +1524,7 @@ assign card1_pci_slave2_b_valid_next = (card1_pci_slave2_b_kept ? (pci_pads0_inp
 `endif
 
 
-always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pci_slave2_first_pending, card1_pci_slave2_io_byte, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_wq_valid, card1_pci_slave2_space_mem, card1_pci_slave2_h_be, card1_pci_slave2_h_data, card1_pci_slave2_is_config, card1_pci_slave2_irdy_q, card1_pci_slave2_req_addr_stale, card1_pci_slave2_address_fault, card1_pci_slave2_frame_q, card1_pci_slave2_h_valid, pci_pads0_registered_pad5_from_pin) begin: card1_pci_slave2_local_request
+always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pci_slave2_first_pending, card1_pci_slave2_io_byte, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_wq_valid, card1_pci_slave2_space_mem, card1_pci_slave2_h_be, card1_pci_slave2_h_data, card1_pci_slave2_is_config, card1_pci_slave2_irdy_q, card1_pci_slave2_req_addr_stale, card1_pci_slave2_address_fault, card1_pci_slave2_frame_q, card1_pci_slave2_h_valid, pci_pads0_registered_pad5_from_pin) begin: card1_pci_slave2_pci_requests2_local_request
     reg drain;
     reg hold_state;
     reg bad;
@@ -1558,21 +1558,21 @@ always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pc
     card1_pci_slave2_local_we = (drain || (first && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q)));
     card1_pci_slave2_first_ready = (card1_pci_slave2_first_pending && (!card1_pci_slave2_is_config) && (!drain) && (!card1_pci_slave2_req_addr_stale));
     card1_pci_slave2_fetch_more = (card1_pci_slave2_is_read && card1_pci_slave2_fetching && (!card1_pci_slave2_b_valid) && (card1_pci_slave2_trdy_q || (!card1_pci_slave2_frame_q)));
-    card1_pci_slave2_local_space = (drain || card1_pci_slave2_space_mem);
-    card1_pci_slave2_local_write = (drain || (!card1_pci_slave2_is_read));
+    card1_pci_slave2_pci_requests2_local_space = (drain || card1_pci_slave2_space_mem);
+    card1_pci_slave2_pci_requests2_local_write = (drain || (!card1_pci_slave2_is_read));
     if (card1_pci_slave2_h_valid) begin
-        card1_pci_slave2_local_wdata = card1_pci_slave2_h_data;
-        card1_pci_slave2_local_be = card1_pci_slave2_h_be;
+        card1_pci_slave2_pci_requests2_local_wdata = card1_pci_slave2_h_data;
+        card1_pci_slave2_pci_requests2_local_be = card1_pci_slave2_h_be;
     end
     else if ((card1_pci_slave2_is_read && card1_pci_slave2_space_mem && (!drain))) begin
-        card1_pci_slave2_local_wdata = pci_pads0_registered_pad0_from_pin;
-        card1_pci_slave2_local_be = 15;
+        card1_pci_slave2_pci_requests2_local_wdata = pci_pads0_registered_pad0_from_pin;
+        card1_pci_slave2_pci_requests2_local_be = 15;
     end
     else begin
-        card1_pci_slave2_local_wdata = pci_pads0_registered_pad0_from_pin;
-        card1_pci_slave2_local_be = (~pci_pads0_registered_pad5_from_pin);
+        card1_pci_slave2_pci_requests2_local_wdata = pci_pads0_registered_pad0_from_pin;
+        card1_pci_slave2_pci_requests2_local_be = (~pci_pads0_registered_pad5_from_pin);
     end
-    card1_pci_slave2_local_addr = {card1_pci_slave2_req_addr, 2'h0};
+    card1_pci_slave2_pci_requests2_local_addr = {card1_pci_slave2_req_addr, 2'h0};
 end
 
 
@@ -2657,7 +2657,7 @@ assign card1_card_core1_regs_fifo2_sync_fifo2_last_beyond = ($signed({1'b0, card
 
 always @(posedge clock) begin: card1_card_core1_regs_fifo2_sync_fifo2_memory
     if (card1_card_core1_regs_fifo2_sync_fifo2_do_write) begin
-        card1_card_core1_regs_fifo2_sync_fifo2_storage[card1_card_core1_regs_fifo2_sync_fifo2_write_addr] <= card1_pci_slave2_local_wdata;
+        card1_card_core1_regs_fifo2_sync_fifo2_storage[card1_card_core1_regs_fifo2_sync_fifo2_write_addr] <= card1_pci_slave2_pci_requests2_local_wdata;
     end
     if (card1_card_core1_regs_fifo2_sync_fifo2_do_read) begin
         card1_card_core1_regs_fifo2_fifo_dout <= card1_card_core1_regs_fifo2_sync_fifo2_storage[card1_card_core1_regs_fifo2_sync_fifo2_read_addr];
@@ -2727,7 +2727,7 @@ assign card1_pci_slave2_pci_control2_control_case0_0_1_target_room = card1_card_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_local_addr == 0);
+assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word48_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
@@ -2749,7 +2749,7 @@ assign card1_card_core1_regs_fifo2_reg_word48_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_local_addr == 4);
+assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word49_mine, card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word48_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word49_read_chain
@@ -2804,7 +2804,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_local_addr == 8);
+assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word50_mine, card1_card_core1_regs_fifo2_reg_word50_shown_wide, card1_card_core1_regs_fifo2_reg_word49_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word50_read_chain
@@ -2856,7 +2856,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_local_addr == 12);
+assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word51_mine, card1_card_core1_regs_fifo2_reg_word51_shown_wide, card1_card_core1_regs_fifo2_reg_word50_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word51_read_chain
@@ -2878,7 +2878,7 @@ assign card1_card_core1_regs_fifo2_reg_word51_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_local_addr == 16);
+assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word52_mine, card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word51_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word52_read_chain
@@ -2933,7 +2933,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_local_addr == 20);
+assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word53_mine, card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_reg_word52_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word53_read_chain
@@ -2982,7 +2982,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_local_addr == 24);
+assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word54_mine, card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word53_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word54_read_chain
@@ -3037,7 +3037,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_local_addr == 28);
+assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word55_mine, card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_reg_word54_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word55_read_chain
@@ -3059,7 +3059,7 @@ assign card1_card_core1_regs_fifo2_reg_word55_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_local_addr == 32);
+assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_pci_requests2_local_addr == 32);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word56_mine, card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_reg_word55_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word56_read_chain
@@ -3081,7 +3081,7 @@ assign card1_card_core1_regs_fifo2_reg_word56_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_local_addr == 36);
+assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_pci_requests2_local_addr == 36);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word57_mine, card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_reg_word56_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word57_read_chain
@@ -3103,7 +3103,7 @@ assign card1_card_core1_regs_fifo2_reg_word57_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_local_addr == 40);
+assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word58_mine, card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word57_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word58_read_chain
@@ -3169,7 +3169,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_local_addr == 44);
+assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word59_mine, card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word59_read_chain
@@ -3235,7 +3235,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_local_addr == 48);
+assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word60_mine, card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word59_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word60_read_chain
@@ -3290,7 +3290,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_local_addr == 52);
+assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word61_mine, card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word60_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word61_read_chain
@@ -3356,7 +3356,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_local_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word61_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
@@ -3422,7 +3422,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word63_mine = (card1_pci_slave2_local_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word63_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word63_mine, card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_reg_word62_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word63_read_chain
@@ -3488,7 +3488,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word64_mine = (card1_pci_slave2_local_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word64_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word64_mine, card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word63_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word64_read_chain
@@ -3543,7 +3543,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word65_mine = (card1_pci_slave2_local_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word65_mine = (card1_pci_slave2_pci_requests2_local_addr == 68);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word65_mine, card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_reg_word64_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word65_read_chain
@@ -3609,7 +3609,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word66_mine = (card1_pci_slave2_local_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word66_mine = (card1_pci_slave2_pci_requests2_local_addr == 72);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word66_mine, card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_reg_word65_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word66_read_chain
@@ -3675,7 +3675,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word67_mine = (card1_pci_slave2_local_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word67_mine = (card1_pci_slave2_pci_requests2_local_addr == 76);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word67_mine, card1_card_core1_regs_fifo2_reg_word67_shown_wide, card1_card_core1_regs_fifo2_reg_word66_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word67_read_chain
@@ -3739,7 +3739,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word68_mine = (card1_pci_slave2_local_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word68_mine = (card1_pci_slave2_pci_requests2_local_addr == 80);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word68_mine, card1_card_core1_regs_fifo2_reg_word68_shown_wide, card1_card_core1_regs_fifo2_reg_word67_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word68_read_chain
@@ -3803,7 +3803,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word69_mine = (card1_pci_slave2_local_addr == 84);
+assign card1_card_core1_regs_fifo2_reg_word69_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word69_mine, card1_card_core1_regs_fifo2_reg_word69_shown_wide, card1_card_core1_regs_fifo2_reg_word68_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word69_read_chain
@@ -3825,7 +3825,7 @@ assign card1_card_core1_regs_fifo2_reg_word69_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word70_mine = (card1_pci_slave2_local_addr == 88);
+assign card1_card_core1_regs_fifo2_reg_word70_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word70_mine, card1_card_core1_regs_fifo2_reg_word70_shown_wide, card1_card_core1_regs_fifo2_reg_word69_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word70_read_chain
@@ -3847,7 +3847,7 @@ assign card1_card_core1_regs_fifo2_reg_word70_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word71_mine = (card1_pci_slave2_local_addr == 92);
+assign card1_card_core1_regs_fifo2_reg_word71_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word71_mine, card1_card_core1_regs_fifo2_reg_word71_shown_wide, card1_card_core1_regs_fifo2_reg_word70_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word71_read_chain
@@ -4789,32 +4789,32 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
 end
 
 
-always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_local_be, card1_pci_slave2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
+always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_be, card1_pci_slave2_pci_requests2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
-    if (card1_pci_slave2_local_be[0]) begin
+    if (card1_pci_slave2_pci_requests2_local_be[0]) begin
         mask[8-1:0] = 255;
     end
-    if (card1_pci_slave2_local_be[1]) begin
+    if (card1_pci_slave2_pci_requests2_local_be[1]) begin
         mask[16-1:8] = 255;
     end
-    if (card1_pci_slave2_local_be[2]) begin
+    if (card1_pci_slave2_pci_requests2_local_be[2]) begin
         mask[24-1:16] = 255;
     end
-    if (card1_pci_slave2_local_be[3]) begin
+    if (card1_pci_slave2_pci_requests2_local_be[3]) begin
         mask[32-1:24] = 255;
     end
     card1_card_core1_regs_fifo2_byte_mask = mask;
-    card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_local_we && (!card1_pci_slave2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
-    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
-    card1_card_core1_regs_fifo2_push = (card1_pci_slave2_local_we && card1_pci_slave2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_local_be != 0) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_local_we && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_push = (card1_pci_slave2_local_we && card1_pci_slave2_pci_requests2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_pci_requests2_local_be != 0) && (!card1_card_core1_regs_fifo2_io_written));
 end
 
 
-always @(card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_local_write, card1_pci_slave2_local_space, card1_card_core1_regs_fifo2_read_end, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_answer_bus
-    card1_pci_slave2_local_ready = ((!(card1_pci_slave2_local_write && card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full)) && (!card1_card_core1_regs_fifo2_io_written));
-    card1_pci_slave2_local_retry = (card1_pci_slave2_local_write && card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
-    if (card1_pci_slave2_local_space) begin
+always @(card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_write, card1_pci_slave2_pci_requests2_local_space, card1_card_core1_regs_fifo2_read_end, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_answer_bus
+    card1_pci_slave2_local_ready = ((!(card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full)) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_pci_slave2_local_retry = (card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
+    if (card1_pci_slave2_pci_requests2_local_space) begin
         card1_pci_slave2_local_rdata = 0;
     end
     else begin
@@ -4832,8 +4832,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_write_
     end
     else begin
         card1_card_core1_regs_fifo2_io_written <= card1_card_core1_regs_fifo2_io_write;
-        card1_card_core1_regs_fifo2_written_addr <= card1_pci_slave2_local_addr;
-        card1_card_core1_regs_fifo2_written_data <= card1_pci_slave2_local_wdata;
+        card1_card_core1_regs_fifo2_written_addr <= card1_pci_slave2_pci_requests2_local_addr;
+        card1_card_core1_regs_fifo2_written_data <= card1_pci_slave2_pci_requests2_local_wdata;
         card1_card_core1_regs_fifo2_written_mask <= card1_card_core1_regs_fifo2_byte_mask;
     end
 end
@@ -4877,7 +4877,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_snapsh
         card1_card_core1_regs_fifo2_pos_y_snapshot <= 0;
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_io_read && (card1_pci_slave2_local_addr == 32))) begin
+        if ((card1_card_core1_regs_fifo2_io_read && (card1_pci_slave2_pci_requests2_local_addr == 32))) begin
             card1_card_core1_regs_fifo2_pos_y_snapshot <= card1_card_core1_regs_fifo2_position_y;
         end
     end

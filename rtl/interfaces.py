@@ -701,3 +701,31 @@ class TargetBuffers:
                rdata=Signal(intbv(0)[32:]), h_data=Signal(intbv(0)[32:]), spare_data=Signal(intbv(0)[32:]),
                h_be=Signal(intbv(0)[4:]), s_be=Signal(intbv(0)[4:]), buffered=Signal(intbv(0, min=0, max=4)),
                **{name: Signal(bool(0)) for name in bools})
+
+
+class TargetRequests:
+    """The PCI target's request logic (``rtl/pci_requests.py``); ``idle`` is
+    the state enum's idle item, ``width`` the bits of a dword address; the
+    target wires in the signals it has.
+
+    From the target's registers: ``req_addr`` (dword of the next request),
+    ``state``, ``address_fault``, ``io_byte`` (AD[1:0] of an I/O access),
+    ``cbe``, ``ad`` (input registers), ``first_pending``, ``is_config``,
+    ``req_addr_stale``, ``is_read``, ``fetching``, ``b_valid``, ``trdy_q``,
+    ``frame_q``, ``irdy_q``, ``h_valid``, ``wq_valid``, ``space_mem``,
+    ``h_data``, ``h_be`` (as in ``TargetState`` and ``TargetBuffers``).  To
+    the target: ``fatal`` (target abort now), ``first_ready``,
+    ``fetch_more`` (the request's conditions without the state),
+    ``draining`` (posted data wait for the back end), ``got``, ``accepted``,
+    and the answers ``hold_got``, ``hold_accepted``, ``hold_retry``,
+    ``burst_got``."""
+
+    def __init__(self, idle, width, **given):
+        bools = ("address_fault", "first_pending", "is_config", "req_addr_stale", "is_read", "fetching",
+                 "b_valid", "trdy_q", "frame_q", "irdy_q", "h_valid", "wq_valid", "space_mem", "fatal",
+                 "first_ready", "fetch_more", "draining", "got", "accepted", "hold_got", "hold_accepted",
+                 "hold_retry", "burst_got")
+        _adopt(self, given, req_addr=Signal(intbv(0)[width:]), state=Signal(idle),
+               io_byte=Signal(intbv(0)[2:]), cbe=Signal(intbv(0xF)[4:]), ad=Signal(intbv(0)[32:]),
+               h_data=Signal(intbv(0)[32:]), h_be=Signal(intbv(0)[4:]),
+               **{name: Signal(bool(0)) for name in bools})

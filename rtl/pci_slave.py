@@ -20,18 +20,19 @@ registered parity and the C/BE# input register, one LUT level after
 flip-flops on the way out, where PCI's 11 ns leave room (the 7 ns of
 set-up do not).  The registered address makes DEVSEL# timing MEDIUM.
 """
-from myhdl import (ConcatSignal, Signal, always_comb, always_seq, block, concat, instances, intbv,
+from myhdl import (ConcatSignal, Signal, always_comb, always_seq, block, instances, intbv,
                    modbv)
 
 from rtl import parameters
 from rtl.interfaces import (ConfigSpace, LocalBus, PciBus, TargetBuffers, TargetControlNext, TargetParity,
-                            TargetState, card_reset)
+                            TargetRequests, TargetState, card_reset)
 from rtl.pci_config import CONFIG_PARAMETERS, pci_config
 from rtl.parameters import PCI_IDS, ParameterError
 from rtl.pin_lut import pin_lut
 from rtl.pci_buffers import pci_buffers
 from rtl.pci_control import pci_control, t_state
 from rtl.pci_parity import pci_parity
+from rtl.pci_requests import pci_requests
 
 # Commands (C/BE# in the address phase) the target claims.
 CMD_IO_READ, CMD_IO_WRITE = 0x2, 0x3
@@ -294,65 +295,15 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         pin_lut(b_valid_next, lambda irdy, kept: int(irdy and kept), pci.irdy_in, b_kept, device=device)]
 
     # ------------------------------------------------------------ back end
-    @always_comb
-    def local_request():
-        # From flip-flops only, in one process, so that a request never shows
-        # a half-updated address or data.
-        drain = h_valid or wq_valid
-        hold_state = (state == t_state.S_CON_HOLD or state == t_state.S_IO_HOLD
-                      or state == t_state.S_MEM_HOLD or state == t_state.S_READ_HOLD)
-        # PCI: an I/O access that enables a byte below the one AD[1:0]
-        # addresses is fatal, and so is a corrupt address.
-        bad = False
-        if address_fault:
-            bad = True
-        elif state == t_state.S_IO_HOLD:
-            if io_byte == 1:
-                bad = not cbe_q[0]
-            elif io_byte == 2:
-                bad = not (cbe_q[0] and cbe_q[1])
-            elif io_byte == 3:
-                bad = not (cbe_q[0] and cbe_q[1] and cbe_q[2])
-        fatal.next = hold_state and bad
-        first_open = (first_pending and hold_state and not is_config and not drain
-                      and not req_addr_stale)
-        first = first_open and not bad
-        prefetch = (state == t_state.S_RWING and is_read and fetching and not b_valid
-                    and (trdy_q or not frame_q))
-        local.re.next = (first and is_read) or prefetch
-        local.we.next = drain or (first and not is_read and not irdy_q)
-        first_ready.next = first_pending and not is_config and not drain and not req_addr_stale
-        fetch_more.next = is_read and fetching and not b_valid and (trdy_q or not frame_q)
-        local.space.next = drain or space_mem
-        local.write.next = drain or not is_read
-        if h_valid:
-            local.wdata.next = h_data
-            local.be.next = h_be
-        elif is_read and space_mem and not drain:
-            local.wdata.next = ad_q
-            local.be.next = 0xF
-        else:
-            local.wdata.next = ad_q
-            local.be.next = ~cbe_q
-        local.addr.next = concat(req_addr, intbv(0)[2:])
-
-    @always_comb
-    def local_answer():
-        draining.next = h_valid or wq_valid
-        got.next = (local.re and local.ready) or (state == t_state.S_CON_HOLD and is_read)
-        accepted.next = local.we and local.ready
-        # The answers as the state machine reads them: each takes what the
-        # state already says about the request, so that no state test lies
-        # between the registers and the answer.  In I/O_Hold, Mem_Hold and
-        # Read_Hold the request is the first one, once posted data has
-        # drained; the abort check is left out, as ``fatal`` decides first
-        # there (which keeps C/BE# of the first data phase off the path).
-        # In Configuring and Rwing the request is a prefetch, or posted data
-        # (see write_path).
-        hold_got.next = first_ready and is_read and local.ready
-        hold_accepted.next = first_ready and not is_read and not irdy_q and local.ready
-        hold_retry.next = first_ready and (is_read or not irdy_q) and local.retry
-        burst_got.next = fetch_more and local.ready
+    requests = TargetRequests(
+        t_state.S_IDLE, width, req_addr=req_addr, state=state, address_fault=address_fault, io_byte=io_byte,
+        cbe=cbe_q, ad=ad_q, first_pending=first_pending, is_config=is_config,
+        req_addr_stale=req_addr_stale, is_read=is_read, fetching=fetching, b_valid=b_valid,
+        trdy_q=trdy_q, frame_q=frame_q, irdy_q=irdy_q, h_valid=h_valid, wq_valid=wq_valid,
+        space_mem=space_mem, h_data=h_data, h_be=h_be, fatal=fatal, first_ready=first_ready,
+        fetch_more=fetch_more, draining=draining, got=got, accepted=accepted, hold_got=hold_got,
+        hold_accepted=hold_accepted, hold_retry=hold_retry, burst_got=burst_got)
+    request_unit = pci_requests(requests, local)
 
     @always_comb
     def read_path():
