@@ -911,11 +911,13 @@ always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_
 end
 
 
-always @(pci_slave1_ad_q, pci_slave1_claim_config, pci_slave1_claim_io) begin: pci_slave1_start_offset
-    if (pci_slave1_claim_config) begin
+always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_start_offset
+    reg [4-1:0] code;
+    code = pci_slave1_cbe_q;
+    if (((code == 10) || (code == 11))) begin
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
     end
-    else if (pci_slave1_claim_io) begin
+    else if (((code == 2) || (code == 3))) begin
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h1f);
     end
     else begin

@@ -368,11 +368,13 @@ always @(bar1, ad_q, address_phase, io_enable, bar0, cbe_q, idsel_q, mem_enable,
 end
 
 
-always @(ad_q, claim_config, claim_io) begin: start_offset
-    if (claim_config) begin
+always @(cbe_q, ad_q) begin: start_offset
+    reg [4-1:0] code;
+    code = cbe_q;
+    if (((code == 10) || (code == 11))) begin
         start_addr = (ad_q[(10 + 2)-1:2] & 10'h3f);
     end
-    else if (claim_io) begin
+    else if (((code == 2) || (code == 3))) begin
         start_addr = (ad_q[(10 + 2)-1:2] & 10'hf);
     end
     else begin

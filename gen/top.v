@@ -1469,11 +1469,13 @@ always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_sl
 end
 
 
-always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_claim_config, card1_pci_slave2_claim_io) begin: card1_pci_slave2_start_offset
-    if (card1_pci_slave2_claim_config) begin
+always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_start_offset
+    reg [4-1:0] code;
+    code = pci_pads0_registered_pad5_from_pin;
+    if (((code == 10) || (code == 11))) begin
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
     end
-    else if (card1_pci_slave2_claim_io) begin
+    else if (((code == 2) || (code == 3))) begin
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h1f);
     end
     else begin

@@ -268,10 +268,13 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     @always_comb
     def start_offset():
-        # the dword inside the BAR, or of the configuration header
-        if claim_config:
+        # the dword inside the BAR, or of the configuration header; chosen by
+        # the command alone: it counts only with a claim, which has the same
+        # command, and the BAR compares stay off the path to the counters
+        code = cbe_q
+        if code == CMD_CONFIG_READ or code == CMD_CONFIG_WRITE:
             start_addr.next = ad_q[width + 2:2] & intbv(config_mask)[width:]
-        elif claim_io:
+        elif code == CMD_IO_READ or code == CMD_IO_WRITE:
             start_addr.next = ad_q[width + 2:2] & intbv(io_mask)[width:]
         else:
             start_addr.next = ad_q[width + 2:2] & intbv(mem_last)[width:]
