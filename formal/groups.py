@@ -110,14 +110,18 @@ class Group:
 PCI_FILES = ["pci_rules.sv", "local_bus_rules.sv", "pci_target_harness.sv"]
 PCI_PARAMETERS = pci_harness_parameters(io_bits=6, mem_bits=12)
 # registers of pci_slave the helper invariants (props/pci_slave_invariants.vh) read
+# the configuration header's own registers carry the instance name the
+# converter gives them (``pci_config0_``, rtl/pci_config.py)
 PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "initial_wait_over",
                        "subsequent_wait_over", "first_phase", "is_read", "is_config", "space_mem",
                        "io_enable", "mem_enable", "parity_response", "serr_enable",
-                       "interrupt_disable", "bar0", "bar1", "config_write_q", "phase_addr", "at_last",
-                       "before_last", "h_valid", "s_valid", "wq_valid", "b_valid", "fetching",
-                       "first_pending", "req_addr_stale", "single", "frame_q", "signaled_target_abort",
-                       "signaled_system_error", "detected_parity_error", "parity_error_q", "interrupt_line", "h_data", "spare_data", "ad_q", "h_be",
-                       "s_be", "cbe_q", "req_addr", "ad_out_q")
+                       "interrupt_disable", "bar0", "bar1", "config_write_q", "phase_addr",
+                       "at_last", "before_last", "h_valid", "s_valid", "wq_valid", "b_valid",
+                       "fetching", "first_pending", "req_addr_stale", "single", "frame_q",
+                       "pci_config0_signaled_target_abort", "pci_config0_signaled_system_error",
+                       "pci_config0_detected_parity_error", "parity_error_q",
+                       "pci_config0_interrupt_line", "h_data", "spare_data", "ad_q", "h_be", "s_be",
+                       "cbe_q", "req_addr", "ad_out_q")
 REGS_FILES = ["local_bus_rules.sv", "regs_fifo_harness.sv"]
 REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value")
 REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written")

@@ -58,7 +58,7 @@ reg pci_ad_oe;
 input [3:0] pci_cbe_in;
 input pci_par_in;
 output pci_par_out;
-wire pci_par_out;
+reg pci_par_out;
 output pci_par_oe;
 reg pci_par_oe;
 input pci_frame_in;
@@ -98,6 +98,30 @@ output pins_dir_y;
 reg pins_dir_y;
 
 wire irq;
+reg pci_slave1_wq_valid;
+reg pci_slave1_h_valid;
+reg pci_slave1_s_valid;
+reg [31:0] pci_slave1_h_data;
+reg [3:0] pci_slave1_h_be;
+reg [3:0] pci_slave1_s_be;
+reg pci_slave1_write_done_q;
+reg pci_slave1_config_write_q;
+reg pci_slave1_parity_response;
+reg pci_slave1_serr_enable;
+reg pci_slave1_fatal;
+wire pci_slave1_write_done_next;
+wire pci_slave1_config_write_next;
+wire pci_slave1_posting;
+wire pci_slave1_wq_valid_next;
+reg pci_slave1_b_kept;
+wire pci_slave1_b_valid_next;
+reg pci_slave1_first_ready;
+reg pci_slave1_fetch_more;
+wire pci_slave1_hold_got;
+wire pci_slave1_hold_accepted;
+wire pci_slave1_hold_retry;
+wire pci_slave1_burst_got;
+reg [1:0] pci_slave1_buffered_next;
 wire pci_slave1_accepted;
 wire pci_slave1_ad_oe_next;
 reg [31:0] pci_slave1_ad_out_next;
@@ -109,49 +133,28 @@ reg pci_slave1_address_fault;
 wire pci_slave1_address_fault_next;
 wire pci_slave1_address_phase;
 reg pci_slave1_at_last;
-reg pci_slave1_b_kept;
 reg pci_slave1_b_valid;
-wire pci_slave1_b_valid_next;
 reg [15:0] pci_slave1_bar0;
-wire [15:0] pci_slave1_bar0_read;
 reg [31:0] pci_slave1_bar1;
 reg pci_slave1_before_last;
-reg [1:0] pci_slave1_buffered_next;
-wire pci_slave1_burst_got;
-reg pci_slave1_bus_parity;
 reg [3:0] pci_slave1_cbe_q;
 reg pci_slave1_claim;
 reg pci_slave1_claim_config;
 reg pci_slave1_claim_io;
-reg [31:0] pci_slave1_config_data;
-wire [5:0] pci_slave1_config_index;
-wire pci_slave1_config_write_next;
-reg pci_slave1_config_write_q;
-reg pci_slave1_detected_parity_error;
 wire pci_slave1_devsel_next;
 reg pci_slave1_devsel_q;
 wire pci_slave1_draining;
 wire pci_slave1_drive_next;
-reg pci_slave1_fatal;
-reg pci_slave1_fetch_more;
 reg pci_slave1_fetching;
 reg pci_slave1_first_pending;
 reg pci_slave1_first_phase;
 wire pci_slave1_first_phase_next;
-reg pci_slave1_first_ready;
 reg pci_slave1_frame_q;
 reg pci_slave1_frame_qq;
 wire pci_slave1_got;
-reg [3:0] pci_slave1_h_be;
-reg [31:0] pci_slave1_h_data;
-reg pci_slave1_h_valid;
-wire pci_slave1_hold_accepted;
-wire pci_slave1_hold_got;
-wire pci_slave1_hold_retry;
 reg pci_slave1_idsel_q;
 reg pci_slave1_initial_wait_over;
 reg pci_slave1_interrupt_disable;
-reg [7:0] pci_slave1_interrupt_line;
 reg [1:0] pci_slave1_io_byte;
 reg pci_slave1_io_enable;
 reg pci_slave1_irdy_q;
@@ -160,24 +163,16 @@ reg pci_slave1_is_read;
 reg pci_slave1_mem_enable;
 wire pci_slave1_parity_error_next;
 reg pci_slave1_parity_error_q;
-reg pci_slave1_parity_response;
-wire pci_slave1_perr_armed;
 wire pci_slave1_perr_next;
 wire pci_slave1_perr_oe_next;
 reg pci_slave1_perr_q;
 reg [9:0] pci_slave1_phase_addr;
 wire pci_slave1_phase_step;
-wire pci_slave1_posting;
+reg pci_slave1_read_command;
 reg [31:0] pci_slave1_read_source;
 reg [9:0] pci_slave1_req_addr;
 reg pci_slave1_req_addr_stale;
-reg [3:0] pci_slave1_s_be;
-reg pci_slave1_s_valid;
-wire pci_slave1_serr_armed;
-reg pci_slave1_serr_enable;
 wire pci_slave1_serr_oe_next;
-reg pci_slave1_signaled_system_error;
-reg pci_slave1_signaled_target_abort;
 reg pci_slave1_single;
 reg pci_slave1_space_mem;
 reg [31:0] pci_slave1_spare_data;
@@ -192,39 +187,49 @@ wire pci_slave1_trdy_next;
 reg pci_slave1_trdy_q;
 reg [3:0] pci_slave1_wait_count;
 reg pci_slave1_waiting;
-reg pci_slave1_wq_valid;
-wire pci_slave1_wq_valid_next;
-wire pci_slave1_write_done_next;
-reg pci_slave1_write_done_q;
+reg [31:0] pci_slave1_config_rdata;
+reg [31:0] pci_slave1_local_rdata;
 reg pci_slave1_local_re;
-reg pci_slave1_local_we;
-reg pci_slave1_local_space;
-reg pci_slave1_local_write;
-reg [31:0] pci_slave1_local_wdata;
-reg [3:0] pci_slave1_local_be;
-reg [11:0] pci_slave1_local_addr;
 reg pci_slave1_local_ready;
 reg pci_slave1_local_retry;
-reg [31:0] pci_slave1_local_rdata;
-reg [3:0] pci_slave1_control_case0_0_out_state;
-wire pci_slave1_control_case0_0_local_room;
-reg pci_slave1_control_case0_0_out_trdy;
-reg pci_slave1_control_case0_0_out_stop;
-reg pci_slave1_control_case0_0_out_devsel;
-reg pci_slave1_control_case0_0_out_drive;
-reg pci_slave1_control_case0_0_out_ad_oe;
-reg [3:0] pci_slave1_control_case1_0_out_state;
-reg pci_slave1_control_case1_0_out_trdy;
-reg pci_slave1_control_case1_0_out_stop;
-reg pci_slave1_control_case1_0_out_devsel;
-reg pci_slave1_control_case1_0_out_drive;
-reg pci_slave1_control_case1_0_out_ad_oe;
-reg [3:0] pci_slave1_control_case2_0_out_state;
-reg pci_slave1_control_case2_0_out_trdy;
-reg pci_slave1_control_case2_0_out_stop;
-reg pci_slave1_control_case2_0_out_devsel;
-reg pci_slave1_control_case2_0_out_drive;
-reg pci_slave1_control_case2_0_out_ad_oe;
+reg pci_slave1_local_we;
+wire [5:0] pci_slave1_config_index;
+wire [31:0] pci_slave1_config_data;
+wire [3:0] pci_slave1_config_cbe_n;
+wire pci_slave1_config_system_error;
+wire pci_slave1_config_irq;
+reg pci_slave1_pci_parity1_bus_parity;
+wire pci_slave1_pci_parity1_perr_armed;
+wire pci_slave1_pci_parity1_serr_armed;
+reg pci_slave1_pci_requests1_local_space;
+reg pci_slave1_pci_requests1_local_write;
+reg [31:0] pci_slave1_pci_requests1_local_wdata;
+reg [3:0] pci_slave1_pci_requests1_local_be;
+reg [11:0] pci_slave1_pci_requests1_local_addr;
+reg [3:0] pci_slave1_pci_control1_control_case0_0_out_state;
+wire pci_slave1_pci_control1_control_case0_0_target_room;
+reg pci_slave1_pci_control1_control_case0_0_out_trdy;
+reg pci_slave1_pci_control1_control_case0_0_out_stop;
+reg pci_slave1_pci_control1_control_case0_0_out_devsel;
+reg pci_slave1_pci_control1_control_case0_0_out_drive;
+reg pci_slave1_pci_control1_control_case0_0_out_ad_oe;
+reg [3:0] pci_slave1_pci_control1_control_case1_0_out_state;
+reg pci_slave1_pci_control1_control_case1_0_out_trdy;
+reg pci_slave1_pci_control1_control_case1_0_out_stop;
+reg pci_slave1_pci_control1_control_case1_0_out_devsel;
+reg pci_slave1_pci_control1_control_case1_0_out_drive;
+reg pci_slave1_pci_control1_control_case1_0_out_ad_oe;
+reg [3:0] pci_slave1_pci_control1_control_case2_0_out_state;
+reg pci_slave1_pci_control1_control_case2_0_out_trdy;
+reg pci_slave1_pci_control1_control_case2_0_out_stop;
+reg pci_slave1_pci_control1_control_case2_0_out_devsel;
+reg pci_slave1_pci_control1_control_case2_0_out_drive;
+reg pci_slave1_pci_control1_control_case2_0_out_ad_oe;
+wire [15:0] pci_slave1_pci_config1_bar0_read;
+reg pci_slave1_pci_config1_detected_parity_error;
+reg [7:0] pci_slave1_pci_config1_interrupt_line;
+reg pci_slave1_pci_config1_signaled_system_error;
+reg pci_slave1_pci_config1_signaled_target_abort;
 reg card_core0_core_clear;
 wire card_core0_dda_reset;
 reg [31:0] card_core0_regs_fifo1_fifo_dout;
@@ -835,7 +840,7 @@ always @(posedge clock, negedge reset) begin: pci_slave1_control_input_register
 end
 
 
-always @(pci_slave1_ad_q, pci_slave1_cbe_q) begin: pci_slave1_parity_check
+always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_pci_parity1_parity_check
     reg [32-1:0] fold;
     fold = 32'h0;
     fold = pci_slave1_ad_q;
@@ -845,29 +850,49 @@ always @(pci_slave1_ad_q, pci_slave1_cbe_q) begin: pci_slave1_parity_check
     fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
     fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
     fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    pci_slave1_bus_parity = fold[0];
+    pci_slave1_pci_parity1_bus_parity = fold[0];
 end
 
 
 
 assign pci_slave1_address_phase = (pci_slave1_frame_qq && (!pci_slave1_frame_q));
-assign pci_slave1_serr_armed = (pci_slave1_frame_qq && (!pci_slave1_frame_q) && pci_slave1_serr_enable && pci_slave1_parity_response);
-assign pci_slave1_perr_armed = (pci_slave1_write_done_q && pci_slave1_parity_response);
+assign pci_slave1_pci_parity1_serr_armed = (pci_slave1_frame_qq && (!pci_slave1_frame_q) && pci_slave1_serr_enable && pci_slave1_parity_response);
+assign pci_slave1_pci_parity1_perr_armed = (pci_slave1_write_done_q && pci_slave1_parity_response);
 
 
-assign pci_slave1_perr_next = (pci_slave1_perr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
+assign pci_slave1_perr_next = (pci_slave1_pci_parity1_perr_armed ? (pci_slave1_pci_parity1_bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
 
 
-assign pci_slave1_perr_oe_next = (pci_slave1_perr_q ? (pci_slave1_perr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
+assign pci_slave1_perr_oe_next = (pci_slave1_perr_q ? (pci_slave1_pci_parity1_perr_armed ? (pci_slave1_pci_parity1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 
 
-assign pci_slave1_serr_oe_next = (pci_slave1_serr_armed ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
+assign pci_slave1_serr_oe_next = (pci_slave1_pci_parity1_serr_armed ? (pci_slave1_pci_parity1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
 
 
-assign pci_slave1_address_fault_next = (pci_slave1_parity_response ? (pci_slave1_address_phase ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
+assign pci_slave1_address_fault_next = (pci_slave1_parity_response ? (pci_slave1_address_phase ? (pci_slave1_pci_parity1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 
 
-assign pci_slave1_parity_error_next = (pci_slave1_write_done_q ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (pci_slave1_address_phase ? (pci_slave1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
+assign pci_slave1_parity_error_next = (pci_slave1_write_done_q ? (pci_slave1_pci_parity1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (pci_slave1_address_phase ? (pci_slave1_pci_parity1_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
+
+
+always @(pci_slave1_ad_parity_q, pci_slave1_cbe_q) begin: pci_slave1_pci_parity1_parity_output
+    reg [4-1:0] cbe;
+    cbe = pci_slave1_cbe_q;
+    pci_par_out = ((((pci_slave1_ad_parity_q ^ cbe[0]) ^ cbe[1]) ^ cbe[2]) ^ cbe[3]);
+end
+
+
+always @(pci_slave1_ad_out_q) begin: pci_slave1_pci_parity1_ad_out_parity_tree
+    reg [32-1:0] fold;
+    fold = 32'h0;
+    fold = pci_slave1_ad_out_q;
+    fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
+    fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
+    fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
+    fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
+    fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
+    pci_slave1_ad_out_parity = fold[0];
+end
 
 
 always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_io_enable, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_mem_enable, pci_slave1_state) begin: pci_slave1_decode
@@ -882,14 +907,17 @@ always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_
     pci_slave1_claim = ((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (config_hit || io_hit || mem_hit));
     pci_slave1_claim_config = config_hit;
     pci_slave1_claim_io = io_hit;
+    pci_slave1_read_command = (!pci_slave1_cbe_q[0]);
 end
 
 
-always @(pci_slave1_ad_q, pci_slave1_claim_config, pci_slave1_claim_io) begin: pci_slave1_start_offset
-    if (pci_slave1_claim_config) begin
+always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_start_offset
+    reg [4-1:0] code;
+    code = pci_slave1_cbe_q;
+    if (((code == 10) || (code == 11))) begin
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
     end
-    else if (pci_slave1_claim_io) begin
+    else if (((code == 2) || (code == 3))) begin
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h1f);
     end
     else begin
@@ -916,7 +944,7 @@ assign pci_slave1_wq_valid_next = (pci_slave1_posting ? (pci_irdy_in ? 1'b0 : 1'
 assign pci_slave1_b_valid_next = (pci_slave1_b_kept ? (pci_irdy_in ? 1'b1 : 1'b0) : 1'b0);
 
 
-always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_slave1_io_byte, pci_slave1_b_valid, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_wq_valid, pci_slave1_space_mem, pci_slave1_h_be, pci_slave1_h_data, pci_slave1_is_config, pci_slave1_irdy_q, pci_slave1_req_addr_stale, pci_slave1_address_fault, pci_slave1_frame_q, pci_slave1_h_valid, pci_slave1_cbe_q) begin: pci_slave1_local_request
+always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_slave1_io_byte, pci_slave1_b_valid, pci_slave1_is_read, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_wq_valid, pci_slave1_space_mem, pci_slave1_h_be, pci_slave1_h_data, pci_slave1_is_config, pci_slave1_irdy_q, pci_slave1_req_addr_stale, pci_slave1_address_fault, pci_slave1_frame_q, pci_slave1_h_valid, pci_slave1_cbe_q) begin: pci_slave1_pci_requests1_local_request
     reg drain;
     reg hold_state;
     reg bad;
@@ -950,21 +978,21 @@ always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_sla
     pci_slave1_local_we = (drain || (first && (!pci_slave1_is_read) && (!pci_slave1_irdy_q)));
     pci_slave1_first_ready = (pci_slave1_first_pending && (!pci_slave1_is_config) && (!drain) && (!pci_slave1_req_addr_stale));
     pci_slave1_fetch_more = (pci_slave1_is_read && pci_slave1_fetching && (!pci_slave1_b_valid) && (pci_slave1_trdy_q || (!pci_slave1_frame_q)));
-    pci_slave1_local_space = (drain || pci_slave1_space_mem);
-    pci_slave1_local_write = (drain || (!pci_slave1_is_read));
+    pci_slave1_pci_requests1_local_space = (drain || pci_slave1_space_mem);
+    pci_slave1_pci_requests1_local_write = (drain || (!pci_slave1_is_read));
     if (pci_slave1_h_valid) begin
-        pci_slave1_local_wdata = pci_slave1_h_data;
-        pci_slave1_local_be = pci_slave1_h_be;
+        pci_slave1_pci_requests1_local_wdata = pci_slave1_h_data;
+        pci_slave1_pci_requests1_local_be = pci_slave1_h_be;
     end
     else if ((pci_slave1_is_read && pci_slave1_space_mem && (!drain))) begin
-        pci_slave1_local_wdata = pci_slave1_ad_q;
-        pci_slave1_local_be = 15;
+        pci_slave1_pci_requests1_local_wdata = pci_slave1_ad_q;
+        pci_slave1_pci_requests1_local_be = 15;
     end
     else begin
-        pci_slave1_local_wdata = pci_slave1_ad_q;
-        pci_slave1_local_be = (~pci_slave1_cbe_q);
+        pci_slave1_pci_requests1_local_wdata = pci_slave1_ad_q;
+        pci_slave1_pci_requests1_local_be = (~pci_slave1_cbe_q);
     end
-    pci_slave1_local_addr = {pci_slave1_req_addr, 2'h0};
+    pci_slave1_pci_requests1_local_addr = {pci_slave1_req_addr, 2'h0};
 end
 
 
@@ -978,38 +1006,16 @@ assign pci_slave1_hold_retry = (pci_slave1_first_ready && (pci_slave1_is_read ||
 assign pci_slave1_burst_got = (pci_slave1_fetch_more && pci_slave1_local_ready);
 
 
-always @(pci_slave1_is_config, pci_slave1_b_valid, pci_slave1_config_data, pci_slave1_spare_data, pci_slave1_local_rdata) begin: pci_slave1_read_path
+always @(pci_slave1_is_config, pci_slave1_b_valid, pci_slave1_config_rdata, pci_slave1_spare_data, pci_slave1_local_rdata) begin: pci_slave1_read_path
     if (pci_slave1_b_valid) begin
         pci_slave1_read_source = pci_slave1_spare_data;
     end
     else if (pci_slave1_is_config) begin
-        pci_slave1_read_source = pci_slave1_config_data;
+        pci_slave1_read_source = pci_slave1_config_rdata;
     end
     else begin
         pci_slave1_read_source = pci_slave1_local_rdata;
     end
-end
-
-
-always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_local_ready, pci_slave1_s_valid) begin: pci_slave1_write_path
-    reg [2-1:0] held;
-    held = 0;
-    if (pci_slave1_h_valid) begin
-        held = 1;
-        if (pci_slave1_s_valid) begin
-            held = 2;
-        end
-        if (pci_slave1_local_ready) begin
-            held = (held - 1);
-        end
-        if (pci_slave1_wq_valid) begin
-            held = (held + 1);
-        end
-    end
-    else if ((pci_slave1_wq_valid && (!pci_slave1_local_ready))) begin
-        held = 1;
-    end
-    pci_slave1_buffered_next = held;
 end
 
 
@@ -1021,7 +1027,7 @@ always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_first_ph
 end
 
 
-always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_control_case0_0_local_room, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q) begin: pci_slave1_control_case0_0_control
+always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_read_command, pci_slave1_b_valid, pci_slave1_stop_q, pci_slave1_single, pci_slave1_state, pci_slave1_hold_retry, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_burst_got, pci_slave1_claim_config, pci_slave1_fatal, pci_slave1_devsel_q, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_claim, pci_ad_oe, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_is_read, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case0_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1040,7 +1046,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     devsel = (pci_slave1_devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_slave1_control_case0_0_out_state = pci_slave1_state;
+    pci_slave1_pci_control1_control_case0_0_out_state = pci_slave1_state;
     last_data = (pci_slave1_single || pci_slave1_at_last);
     if (done) begin
         last_data = (pci_slave1_single || pci_slave1_before_last);
@@ -1057,7 +1063,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if ((done && (!pci_slave1_first_phase))) begin
             buffer_room = (pci_slave1_buffered_next == 0);
         end
-        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_control_case0_0_local_room));
+        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
     end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1065,40 +1071,40 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if (pci_slave1_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!pci_slave1_cbe_q[0]);
+            ad_oe = (pci_slave1_read_command != 0);
             if (pci_slave1_claim_config) begin
-                pci_slave1_control_case0_0_out_state = 4'b0001;
+                pci_slave1_pci_control1_control_case0_0_out_state = 4'b0001;
             end
             else if (pci_slave1_claim_io) begin
-                pci_slave1_control_case0_0_out_state = 4'b0010;
+                pci_slave1_pci_control1_control_case0_0_out_state = 4'b0010;
             end
             else begin
-                pci_slave1_control_case0_0_out_state = 4'b0011;
+                pci_slave1_pci_control1_control_case0_0_out_state = 4'b0011;
             end
         end
     end
     else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
         if (pci_slave1_fatal) begin
-            pci_slave1_control_case0_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((pci_slave1_state == 4'b0001)) begin
-            pci_slave1_control_case0_0_out_state = 4'b0101;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b1);
         end
         else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
-            pci_slave1_control_case0_0_out_state = 4'b0110;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
         else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
-            pci_slave1_control_case0_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (pci_slave1_is_read) begin
-            pci_slave1_control_case0_0_out_state = 4'b0100;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b0100;
         end
     end
     else if (((pci_slave1_state == 4'b0101) || (pci_slave1_state == 4'b0110))) begin
@@ -1108,10 +1114,10 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         else if ((done && ((!1'b1) || (!pci_slave1_stop_q)))) begin
             trdy = 1'b1;
             if (1'b1) begin
-                pci_slave1_control_case0_0_out_state = 4'b0111;
+                pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
             end
             else begin
-                pci_slave1_control_case0_0_out_state = 4'b1000;
+                pci_slave1_pci_control1_control_case0_0_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1122,7 +1128,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
             stop = (!(last_data && 1'b1));
         end
         else if ((exhausted || pci_slave1_timeout)) begin
-            pci_slave1_control_case0_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1132,7 +1138,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     end
     else if ((pci_slave1_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            pci_slave1_control_case0_0_out_state = 4'b1000;
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1140,18 +1146,18 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         end
     end
     else begin
-        pci_slave1_control_case0_0_out_state = 4'b0000;
+        pci_slave1_pci_control1_control_case0_0_out_state = 4'b0000;
         drive = 1'b0;
     end
-    pci_slave1_control_case0_0_out_trdy = trdy;
-    pci_slave1_control_case0_0_out_stop = stop;
-    pci_slave1_control_case0_0_out_devsel = devsel;
-    pci_slave1_control_case0_0_out_drive = drive;
-    pci_slave1_control_case0_0_out_ad_oe = ad_oe;
+    pci_slave1_pci_control1_control_case0_0_out_trdy = trdy;
+    pci_slave1_pci_control1_control_case0_0_out_stop = stop;
+    pci_slave1_pci_control1_control_case0_0_out_devsel = devsel;
+    pci_slave1_pci_control1_control_case0_0_out_drive = drive;
+    pci_slave1_pci_control1_control_case0_0_out_ad_oe = ad_oe;
 end
 
 
-always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_control_case0_0_local_room, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q) begin: pci_slave1_control_case1_0_control
+always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_read_command, pci_slave1_b_valid, pci_slave1_stop_q, pci_slave1_single, pci_slave1_state, pci_slave1_hold_retry, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_burst_got, pci_slave1_claim_config, pci_slave1_fatal, pci_slave1_devsel_q, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_claim, pci_ad_oe, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_is_read, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case1_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1170,7 +1176,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     devsel = (pci_slave1_devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_slave1_control_case1_0_out_state = pci_slave1_state;
+    pci_slave1_pci_control1_control_case1_0_out_state = pci_slave1_state;
     last_data = (pci_slave1_single || pci_slave1_at_last);
     if (done) begin
         last_data = (pci_slave1_single || pci_slave1_before_last);
@@ -1187,7 +1193,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if ((done && (!pci_slave1_first_phase))) begin
             buffer_room = (pci_slave1_buffered_next == 0);
         end
-        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_control_case0_0_local_room));
+        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
     end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1195,40 +1201,40 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if (pci_slave1_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!pci_slave1_cbe_q[0]);
+            ad_oe = (pci_slave1_read_command != 0);
             if (pci_slave1_claim_config) begin
-                pci_slave1_control_case1_0_out_state = 4'b0001;
+                pci_slave1_pci_control1_control_case1_0_out_state = 4'b0001;
             end
             else if (pci_slave1_claim_io) begin
-                pci_slave1_control_case1_0_out_state = 4'b0010;
+                pci_slave1_pci_control1_control_case1_0_out_state = 4'b0010;
             end
             else begin
-                pci_slave1_control_case1_0_out_state = 4'b0011;
+                pci_slave1_pci_control1_control_case1_0_out_state = 4'b0011;
             end
         end
     end
     else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
         if (pci_slave1_fatal) begin
-            pci_slave1_control_case1_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((pci_slave1_state == 4'b0001)) begin
-            pci_slave1_control_case1_0_out_state = 4'b0101;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b0);
         end
         else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
-            pci_slave1_control_case1_0_out_state = 4'b0110;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
         else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
-            pci_slave1_control_case1_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (pci_slave1_is_read) begin
-            pci_slave1_control_case1_0_out_state = 4'b0100;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b0100;
         end
     end
     else if (((pci_slave1_state == 4'b0101) || (pci_slave1_state == 4'b0110))) begin
@@ -1238,10 +1244,10 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         else if ((done && ((!1'b0) || (!pci_slave1_stop_q)))) begin
             trdy = 1'b1;
             if (1'b0) begin
-                pci_slave1_control_case1_0_out_state = 4'b0111;
+                pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
             end
             else begin
-                pci_slave1_control_case1_0_out_state = 4'b1000;
+                pci_slave1_pci_control1_control_case1_0_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1252,7 +1258,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
             stop = (!(last_data && 1'b0));
         end
         else if ((exhausted || pci_slave1_timeout)) begin
-            pci_slave1_control_case1_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1262,7 +1268,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     end
     else if ((pci_slave1_state == 4'b0111)) begin
         if ((!1'b0)) begin
-            pci_slave1_control_case1_0_out_state = 4'b1000;
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1270,18 +1276,18 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         end
     end
     else begin
-        pci_slave1_control_case1_0_out_state = 4'b0000;
+        pci_slave1_pci_control1_control_case1_0_out_state = 4'b0000;
         drive = 1'b0;
     end
-    pci_slave1_control_case1_0_out_trdy = trdy;
-    pci_slave1_control_case1_0_out_stop = stop;
-    pci_slave1_control_case1_0_out_devsel = devsel;
-    pci_slave1_control_case1_0_out_drive = drive;
-    pci_slave1_control_case1_0_out_ad_oe = ad_oe;
+    pci_slave1_pci_control1_control_case1_0_out_trdy = trdy;
+    pci_slave1_pci_control1_control_case1_0_out_stop = stop;
+    pci_slave1_pci_control1_control_case1_0_out_devsel = devsel;
+    pci_slave1_pci_control1_control_case1_0_out_drive = drive;
+    pci_slave1_pci_control1_control_case1_0_out_ad_oe = ad_oe;
 end
 
 
-always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_config, pci_slave1_before_last, pci_slave1_fatal, pci_slave1_b_valid, pci_devsel_oe, pci_slave1_stop_q, pci_slave1_is_read, pci_slave1_burst_got, pci_slave1_fetching, pci_slave1_state, pci_slave1_trdy_q, pci_slave1_hold_got, pci_slave1_claim, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_control_case0_0_local_room, pci_slave1_timeout, pci_slave1_is_config, pci_slave1_claim_io, pci_slave1_buffered_next, pci_slave1_single, pci_ad_oe, pci_slave1_cbe_q, pci_slave1_devsel_q) begin: pci_slave1_control_case2_0_control
+always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_read_command, pci_slave1_b_valid, pci_slave1_stop_q, pci_slave1_single, pci_slave1_state, pci_slave1_hold_retry, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_burst_got, pci_slave1_claim_config, pci_slave1_fatal, pci_slave1_devsel_q, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_claim, pci_ad_oe, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_is_read, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case2_0_control
     reg done;
     reg hold;
     reg trdy;
@@ -1300,7 +1306,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     devsel = (pci_slave1_devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_slave1_control_case2_0_out_state = pci_slave1_state;
+    pci_slave1_pci_control1_control_case2_0_out_state = pci_slave1_state;
     last_data = (pci_slave1_single || pci_slave1_at_last);
     if (done) begin
         last_data = (pci_slave1_single || pci_slave1_before_last);
@@ -1317,7 +1323,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if ((done && (!pci_slave1_first_phase))) begin
             buffer_room = (pci_slave1_buffered_next == 0);
         end
-        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_control_case0_0_local_room));
+        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
     end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1325,40 +1331,40 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         if (pci_slave1_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!pci_slave1_cbe_q[0]);
+            ad_oe = (pci_slave1_read_command != 0);
             if (pci_slave1_claim_config) begin
-                pci_slave1_control_case2_0_out_state = 4'b0001;
+                pci_slave1_pci_control1_control_case2_0_out_state = 4'b0001;
             end
             else if (pci_slave1_claim_io) begin
-                pci_slave1_control_case2_0_out_state = 4'b0010;
+                pci_slave1_pci_control1_control_case2_0_out_state = 4'b0010;
             end
             else begin
-                pci_slave1_control_case2_0_out_state = 4'b0011;
+                pci_slave1_pci_control1_control_case2_0_out_state = 4'b0011;
             end
         end
     end
     else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
         if (pci_slave1_fatal) begin
-            pci_slave1_control_case2_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((pci_slave1_state == 4'b0001)) begin
-            pci_slave1_control_case2_0_out_state = 4'b0101;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b1);
         end
         else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
-            pci_slave1_control_case2_0_out_state = 4'b0110;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
         else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
-            pci_slave1_control_case2_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (pci_slave1_is_read) begin
-            pci_slave1_control_case2_0_out_state = 4'b0100;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b0100;
         end
     end
     else if (((pci_slave1_state == 4'b0101) || (pci_slave1_state == 4'b0110))) begin
@@ -1368,10 +1374,10 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         else if ((done && ((!1'b1) || (!pci_slave1_stop_q)))) begin
             trdy = 1'b1;
             if (1'b1) begin
-                pci_slave1_control_case2_0_out_state = 4'b0111;
+                pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
             end
             else begin
-                pci_slave1_control_case2_0_out_state = 4'b1000;
+                pci_slave1_pci_control1_control_case2_0_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1382,7 +1388,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
             stop = (!(last_data && 1'b1));
         end
         else if ((exhausted || pci_slave1_timeout)) begin
-            pci_slave1_control_case2_0_out_state = 4'b0111;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1392,7 +1398,7 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
     end
     else if ((pci_slave1_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            pci_slave1_control_case2_0_out_state = 4'b1000;
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1400,53 +1406,53 @@ always @(pci_slave1_hold_retry, pci_slave1_hold_accepted, pci_slave1_claim_confi
         end
     end
     else begin
-        pci_slave1_control_case2_0_out_state = 4'b0000;
+        pci_slave1_pci_control1_control_case2_0_out_state = 4'b0000;
         drive = 1'b0;
     end
-    pci_slave1_control_case2_0_out_trdy = trdy;
-    pci_slave1_control_case2_0_out_stop = stop;
-    pci_slave1_control_case2_0_out_devsel = devsel;
-    pci_slave1_control_case2_0_out_drive = drive;
-    pci_slave1_control_case2_0_out_ad_oe = ad_oe;
+    pci_slave1_pci_control1_control_case2_0_out_trdy = trdy;
+    pci_slave1_pci_control1_control_case2_0_out_stop = stop;
+    pci_slave1_pci_control1_control_case2_0_out_devsel = devsel;
+    pci_slave1_pci_control1_control_case2_0_out_drive = drive;
+    pci_slave1_pci_control1_control_case2_0_out_ad_oe = ad_oe;
 end
 
 
-wire pci_slave1_state_next_x0 = pci_slave1_control_case0_0_out_state[0];
-wire pci_slave1_state_next_y0 = pci_slave1_control_case2_0_out_state[0] ^ pci_slave1_control_case1_0_out_state[0];
+wire pci_slave1_state_next_x0 = pci_slave1_pci_control1_control_case0_0_out_state[0];
+wire pci_slave1_state_next_y0 = pci_slave1_pci_control1_control_case2_0_out_state[0] ^ pci_slave1_pci_control1_control_case1_0_out_state[0];
 assign pci_slave1_state_next[0] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y0 ? 1'b0 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y0 ? 1'b0 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y0 ? 1'b1 : (pci_slave1_state_next_x0 ? 1'b1 : 1'b0))));
-wire pci_slave1_state_next_x1 = pci_slave1_control_case0_0_out_state[1];
-wire pci_slave1_state_next_y1 = pci_slave1_control_case2_0_out_state[1] ^ pci_slave1_control_case1_0_out_state[1];
+wire pci_slave1_state_next_x1 = pci_slave1_pci_control1_control_case0_0_out_state[1];
+wire pci_slave1_state_next_y1 = pci_slave1_pci_control1_control_case2_0_out_state[1] ^ pci_slave1_pci_control1_control_case1_0_out_state[1];
 assign pci_slave1_state_next[1] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y1 ? 1'b0 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y1 ? 1'b0 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y1 ? 1'b1 : (pci_slave1_state_next_x1 ? 1'b1 : 1'b0))));
-wire pci_slave1_state_next_x2 = pci_slave1_control_case0_0_out_state[2];
-wire pci_slave1_state_next_y2 = pci_slave1_control_case2_0_out_state[2] ^ pci_slave1_control_case1_0_out_state[2];
+wire pci_slave1_state_next_x2 = pci_slave1_pci_control1_control_case0_0_out_state[2];
+wire pci_slave1_state_next_y2 = pci_slave1_pci_control1_control_case2_0_out_state[2] ^ pci_slave1_pci_control1_control_case1_0_out_state[2];
 assign pci_slave1_state_next[2] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y2 ? 1'b0 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y2 ? 1'b0 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y2 ? 1'b1 : (pci_slave1_state_next_x2 ? 1'b1 : 1'b0))));
-wire pci_slave1_state_next_x3 = pci_slave1_control_case0_0_out_state[3];
-wire pci_slave1_state_next_y3 = pci_slave1_control_case0_0_out_state[3] ? pci_slave1_control_case2_0_out_state[3] : pci_slave1_control_case1_0_out_state[3];
+wire pci_slave1_state_next_x3 = pci_slave1_pci_control1_control_case0_0_out_state[3];
+wire pci_slave1_state_next_y3 = pci_slave1_pci_control1_control_case0_0_out_state[3] ? pci_slave1_pci_control1_control_case2_0_out_state[3] : pci_slave1_pci_control1_control_case1_0_out_state[3];
 assign pci_slave1_state_next[3] = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_state_next_y3 ? 1'b1 : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_state_next_y3 ? 1'b1 : (pci_slave1_state_next_x3 ? 1'b1 : 1'b0)) : (pci_slave1_state_next_y3 ? (pci_slave1_state_next_x3 ? 1'b1 : 1'b0) : 1'b0)));
 
 
-wire pci_slave1_trdy_next_x0 = pci_slave1_control_case0_0_out_trdy ^ pci_slave1_control_case1_0_out_trdy;
-wire pci_slave1_trdy_next_y0 = (pci_slave1_control_case0_0_out_trdy ^ pci_slave1_control_case1_0_out_trdy) ? pci_slave1_control_case2_0_out_trdy : pci_slave1_control_case0_0_out_trdy;
+wire pci_slave1_trdy_next_x0 = pci_slave1_pci_control1_control_case0_0_out_trdy ^ pci_slave1_pci_control1_control_case1_0_out_trdy;
+wire pci_slave1_trdy_next_y0 = (pci_slave1_pci_control1_control_case0_0_out_trdy ^ pci_slave1_pci_control1_control_case1_0_out_trdy) ? pci_slave1_pci_control1_control_case2_0_out_trdy : pci_slave1_pci_control1_control_case0_0_out_trdy;
 assign pci_slave1_trdy_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_trdy_next_y0 ? 1'b1 : (pci_slave1_trdy_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_trdy_next_y0 ? (pci_slave1_trdy_next_x0 ? 1'b0 : 1'b1) : 1'b0)) : (pci_frame_in ? (pci_slave1_trdy_next_y0 ? 1'b1 : (pci_slave1_trdy_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_trdy_next_y0 ? 1'b1 : 1'b0)));
 
 
-wire pci_slave1_stop_next_x0 = pci_slave1_control_case0_0_out_stop;
-wire pci_slave1_stop_next_y0 = pci_slave1_control_case0_0_out_stop ? pci_slave1_control_case2_0_out_stop : pci_slave1_control_case1_0_out_stop;
+wire pci_slave1_stop_next_x0 = pci_slave1_pci_control1_control_case0_0_out_stop;
+wire pci_slave1_stop_next_y0 = pci_slave1_pci_control1_control_case0_0_out_stop ? pci_slave1_pci_control1_control_case2_0_out_stop : pci_slave1_pci_control1_control_case1_0_out_stop;
 assign pci_slave1_stop_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_stop_next_y0 ? 1'b1 : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_stop_next_y0 ? 1'b1 : (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_stop_next_y0 ? (pci_slave1_stop_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
-wire pci_slave1_devsel_next_x0 = pci_slave1_control_case0_0_out_devsel;
-wire pci_slave1_devsel_next_y0 = pci_slave1_control_case0_0_out_devsel ? pci_slave1_control_case2_0_out_devsel : pci_slave1_control_case1_0_out_devsel;
+wire pci_slave1_devsel_next_x0 = pci_slave1_pci_control1_control_case0_0_out_devsel;
+wire pci_slave1_devsel_next_y0 = pci_slave1_pci_control1_control_case0_0_out_devsel ? pci_slave1_pci_control1_control_case2_0_out_devsel : pci_slave1_pci_control1_control_case1_0_out_devsel;
 assign pci_slave1_devsel_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_devsel_next_y0 ? 1'b1 : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_devsel_next_y0 ? 1'b1 : (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_devsel_next_y0 ? (pci_slave1_devsel_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
-wire pci_slave1_drive_next_x0 = pci_slave1_control_case0_0_out_drive;
-wire pci_slave1_drive_next_y0 = pci_slave1_control_case0_0_out_drive ? pci_slave1_control_case2_0_out_drive : pci_slave1_control_case1_0_out_drive;
+wire pci_slave1_drive_next_x0 = pci_slave1_pci_control1_control_case0_0_out_drive;
+wire pci_slave1_drive_next_y0 = pci_slave1_pci_control1_control_case0_0_out_drive ? pci_slave1_pci_control1_control_case2_0_out_drive : pci_slave1_pci_control1_control_case1_0_out_drive;
 assign pci_slave1_drive_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_drive_next_y0 ? 1'b1 : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_drive_next_y0 ? 1'b1 : (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_drive_next_y0 ? (pci_slave1_drive_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
-wire pci_slave1_ad_oe_next_x0 = pci_slave1_control_case0_0_out_ad_oe;
-wire pci_slave1_ad_oe_next_y0 = pci_slave1_control_case2_0_out_ad_oe ^ pci_slave1_control_case1_0_out_ad_oe;
+wire pci_slave1_ad_oe_next_x0 = pci_slave1_pci_control1_control_case0_0_out_ad_oe;
+wire pci_slave1_ad_oe_next_y0 = pci_slave1_pci_control1_control_case2_0_out_ad_oe ^ pci_slave1_pci_control1_control_case1_0_out_ad_oe;
 assign pci_slave1_ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_y0 ? 1'b1 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
@@ -1542,23 +1548,6 @@ always @(pci_slave1_read_source, pci_slave1_ad_out_q, pci_irdy_in, pci_slave1_tr
 end
 
 
-
-assign pci_par_out = ((((pci_slave1_ad_parity_q ^ pci_slave1_cbe_q[0]) ^ pci_slave1_cbe_q[1]) ^ pci_slave1_cbe_q[2]) ^ pci_slave1_cbe_q[3]);
-
-
-always @(pci_slave1_ad_out_q) begin: pci_slave1_ad_out_parity_tree
-    reg [32-1:0] fold;
-    fold = 32'h0;
-    fold = pci_slave1_ad_out_q;
-    fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
-    fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
-    fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
-    fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
-    fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    pci_slave1_ad_out_parity = fold[0];
-end
-
-
 always @(posedge clock, negedge reset) begin: pci_slave1_bus_registers
     if (reset == 0) begin
         pci_trdy_oe <= 0;
@@ -1609,7 +1598,7 @@ assign pci_ad_out = pci_slave1_ad_out_q;
 assign pci_perr_out = pci_slave1_perr_q;
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_read_buffer
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_buffers1_read_buffer
     if (reset == 0) begin
         pci_slave1_b_valid <= 0;
     end
@@ -1619,7 +1608,7 @@ always @(posedge clock, negedge reset) begin: pci_slave1_read_buffer
 end
 
 
-always @(pci_slave1_got, pci_slave1_b_valid, pci_slave1_is_read, pci_slave1_state, pci_slave1_trdy_q) begin: pci_slave1_read_buffer_hold
+always @(pci_slave1_got, pci_slave1_b_valid, pci_slave1_is_read, pci_slave1_state, pci_slave1_trdy_q) begin: pci_slave1_pci_buffers1_read_buffer_hold
     reg in_read;
     in_read = (pci_slave1_is_read && ((pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0100) || (pci_slave1_state == 4'b0110)));
     pci_slave1_b_kept = (in_read && (pci_slave1_b_valid || pci_slave1_got) && (!pci_slave1_trdy_q));
@@ -1630,7 +1619,7 @@ end
 assign pci_slave1_posting = ((!pci_slave1_trdy_q) && (!pci_slave1_is_read) && (!pci_slave1_first_phase) && pci_slave1_space_mem);
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_write_buffer
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_buffers1_write_buffer
     if (reset == 0) begin
         pci_slave1_wq_valid <= 0;
         pci_slave1_config_write_q <= 0;
@@ -1683,26 +1672,44 @@ always @(posedge clock, negedge reset) begin: pci_slave1_write_buffer
 end
 
 
+always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_local_ready, pci_slave1_s_valid) begin: pci_slave1_pci_buffers1_posted_count
+    reg [2-1:0] held;
+    held = 0;
+    if (pci_slave1_h_valid) begin
+        held = 1;
+        if (pci_slave1_s_valid) begin
+            held = 2;
+        end
+        if (pci_slave1_local_ready) begin
+            held = (held - 1);
+        end
+        if (pci_slave1_wq_valid) begin
+            held = (held + 1);
+        end
+    end
+    else if ((pci_slave1_wq_valid && (!pci_slave1_local_ready))) begin
+        held = 1;
+    end
+    pci_slave1_buffered_next = held;
+end
 
-assign pci_slave1_config_index = pci_slave1_phase_addr[6-1:0];
 
-
-always @(posedge clock, negedge reset) begin: pci_slave1_config_registers
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_config1_config_registers
     reg clear_target_abort;
     reg clear_system_error;
     reg clear_parity_error;
     if (reset == 0) begin
+        pci_slave1_parity_response <= 0;
+        pci_slave1_pci_config1_signaled_system_error <= 0;
+        pci_slave1_pci_config1_interrupt_line <= 0;
+        pci_slave1_interrupt_disable <= 0;
+        pci_slave1_pci_config1_signaled_target_abort <= 0;
+        pci_slave1_bar0 <= 0;
+        pci_slave1_pci_config1_detected_parity_error <= 0;
+        pci_slave1_io_enable <= 0;
         pci_slave1_serr_enable <= 0;
         pci_slave1_bar1 <= 0;
-        pci_slave1_signaled_system_error <= 0;
-        pci_slave1_interrupt_disable <= 0;
-        pci_slave1_io_enable <= 0;
-        pci_slave1_bar0 <= 0;
-        pci_slave1_signaled_target_abort <= 0;
-        pci_slave1_detected_parity_error <= 0;
-        pci_slave1_interrupt_line <= 0;
         pci_slave1_mem_enable <= 0;
-        pci_slave1_parity_response <= 0;
     end
     else begin
         clear_target_abort = 1'b0;
@@ -1711,89 +1718,97 @@ always @(posedge clock, negedge reset) begin: pci_slave1_config_registers
         if (pci_slave1_config_write_q) begin
             case (pci_slave1_config_index)
                 'h1: begin
-                    if ((!pci_slave1_cbe_q[0])) begin
-                        pci_slave1_io_enable <= pci_slave1_ad_q[0];
-                        pci_slave1_mem_enable <= pci_slave1_ad_q[1];
-                        pci_slave1_parity_response <= pci_slave1_ad_q[6];
+                    if ((!pci_slave1_config_cbe_n[0])) begin
+                        pci_slave1_io_enable <= pci_slave1_config_data[0];
+                        pci_slave1_mem_enable <= pci_slave1_config_data[1];
+                        pci_slave1_parity_response <= pci_slave1_config_data[6];
                     end
-                    if ((!pci_slave1_cbe_q[1])) begin
-                        pci_slave1_serr_enable <= pci_slave1_ad_q[8];
-                        pci_slave1_interrupt_disable <= pci_slave1_ad_q[10];
+                    if ((!pci_slave1_config_cbe_n[1])) begin
+                        pci_slave1_serr_enable <= pci_slave1_config_data[8];
+                        pci_slave1_interrupt_disable <= pci_slave1_config_data[10];
                     end
-                    if ((!pci_slave1_cbe_q[3])) begin
-                        clear_target_abort = pci_slave1_ad_q[27];
-                        clear_system_error = pci_slave1_ad_q[30];
-                        clear_parity_error = pci_slave1_ad_q[31];
+                    if ((!pci_slave1_config_cbe_n[3])) begin
+                        clear_target_abort = pci_slave1_config_data[27];
+                        clear_system_error = pci_slave1_config_data[30];
+                        clear_parity_error = pci_slave1_config_data[31];
                     end
                 end
                 'h4: begin
-                    if ((!pci_slave1_cbe_q[0])) begin
-                        pci_slave1_bar0[8-1:0] <= pci_slave1_ad_q[8-1:0];
+                    if ((!pci_slave1_config_cbe_n[0])) begin
+                        pci_slave1_bar0[8-1:0] <= pci_slave1_config_data[8-1:0];
                     end
-                    if ((!pci_slave1_cbe_q[1])) begin
-                        pci_slave1_bar0[16-1:8] <= pci_slave1_ad_q[16-1:8];
+                    if ((!pci_slave1_config_cbe_n[1])) begin
+                        pci_slave1_bar0[16-1:8] <= pci_slave1_config_data[16-1:8];
                     end
                 end
                 'h5: begin
-                    if ((!pci_slave1_cbe_q[0])) begin
-                        pci_slave1_bar1[8-1:0] <= pci_slave1_ad_q[8-1:0];
+                    if ((!pci_slave1_config_cbe_n[0])) begin
+                        pci_slave1_bar1[8-1:0] <= pci_slave1_config_data[8-1:0];
                     end
-                    if ((!pci_slave1_cbe_q[1])) begin
-                        pci_slave1_bar1[16-1:8] <= pci_slave1_ad_q[16-1:8];
+                    if ((!pci_slave1_config_cbe_n[1])) begin
+                        pci_slave1_bar1[16-1:8] <= pci_slave1_config_data[16-1:8];
                     end
-                    if ((!pci_slave1_cbe_q[2])) begin
-                        pci_slave1_bar1[24-1:16] <= pci_slave1_ad_q[24-1:16];
+                    if ((!pci_slave1_config_cbe_n[2])) begin
+                        pci_slave1_bar1[24-1:16] <= pci_slave1_config_data[24-1:16];
                     end
-                    if ((!pci_slave1_cbe_q[3])) begin
-                        pci_slave1_bar1[32-1:24] <= pci_slave1_ad_q[32-1:24];
+                    if ((!pci_slave1_config_cbe_n[3])) begin
+                        pci_slave1_bar1[32-1:24] <= pci_slave1_config_data[32-1:24];
                     end
                 end
                 'hf: begin
-                    if ((!pci_slave1_cbe_q[0])) begin
-                        pci_slave1_interrupt_line <= pci_slave1_ad_q[8-1:0];
+                    if ((!pci_slave1_config_cbe_n[0])) begin
+                        pci_slave1_pci_config1_interrupt_line <= pci_slave1_config_data[8-1:0];
                     end
                 end
             endcase
         end
-        pci_slave1_signaled_target_abort <= (pci_slave1_fatal || (pci_slave1_signaled_target_abort && (!clear_target_abort)));
-        pci_slave1_signaled_system_error <= (pci_serr_oe || (pci_slave1_signaled_system_error && (!clear_system_error)));
-        pci_slave1_detected_parity_error <= (pci_slave1_parity_error_q || (pci_slave1_detected_parity_error && (!clear_parity_error)));
+        pci_slave1_pci_config1_signaled_target_abort <= (pci_slave1_fatal || (pci_slave1_pci_config1_signaled_target_abort && (!clear_target_abort)));
+        pci_slave1_pci_config1_signaled_system_error <= (pci_slave1_config_system_error || (pci_slave1_pci_config1_signaled_system_error && (!clear_system_error)));
+        pci_slave1_pci_config1_detected_parity_error <= (pci_slave1_parity_error_q || (pci_slave1_pci_config1_detected_parity_error && (!clear_parity_error)));
     end
 end
 
 
 
-assign pci_slave1_bar0_read = ((pci_slave1_bar0 & 16'hff80) | 16'h1);
+assign pci_slave1_pci_config1_bar0_read = ((pci_slave1_bar0 & 16'hff80) | 16'h1);
 
 
-always @(pci_slave1_signaled_system_error, pci_slave1_serr_enable, pci_slave1_bar1, pci_slave1_config_index, pci_slave1_interrupt_disable, irq, pci_slave1_bar0_read, pci_slave1_io_enable, pci_slave1_signaled_target_abort, pci_slave1_detected_parity_error, pci_slave1_interrupt_line, pci_slave1_mem_enable, pci_slave1_parity_response) begin: pci_slave1_config_read
+always @(pci_slave1_pci_config1_signaled_system_error, pci_slave1_parity_response, pci_slave1_config_irq, pci_slave1_config_index, pci_slave1_pci_config1_bar0_read, pci_slave1_pci_config1_interrupt_line, pci_slave1_interrupt_disable, pci_slave1_pci_config1_signaled_target_abort, pci_slave1_pci_config1_detected_parity_error, pci_slave1_io_enable, pci_slave1_serr_enable, pci_slave1_bar1, pci_slave1_mem_enable) begin: pci_slave1_pci_config1_config_read
     case (pci_slave1_config_index)
         'h0: begin
-            pci_slave1_config_data = 32'hdda01234;
+            pci_slave1_config_rdata = 32'hdda01234;
         end
         'h1: begin
-            pci_slave1_config_data = {pci_slave1_detected_parity_error, pci_slave1_signaled_system_error, 2'h0, pci_slave1_signaled_target_abort, 2'h1, 5'h0, irq, 8'h0, pci_slave1_interrupt_disable, 1'b0, pci_slave1_serr_enable, 1'b0, pci_slave1_parity_response, 4'h0, pci_slave1_mem_enable, pci_slave1_io_enable};
+            pci_slave1_config_rdata = {pci_slave1_pci_config1_detected_parity_error, pci_slave1_pci_config1_signaled_system_error, 2'h0, pci_slave1_pci_config1_signaled_target_abort, 2'h1, 5'h0, pci_slave1_config_irq, 8'h0, pci_slave1_interrupt_disable, 1'b0, pci_slave1_serr_enable, 1'b0, pci_slave1_parity_response, 4'h0, pci_slave1_mem_enable, pci_slave1_io_enable};
         end
         'h2: begin
-            pci_slave1_config_data = 32'h8800001;
+            pci_slave1_config_rdata = 32'h8800001;
         end
         'h4: begin
-            pci_slave1_config_data = {16'h0, pci_slave1_bar0_read};
+            pci_slave1_config_rdata = {16'h0, pci_slave1_pci_config1_bar0_read};
         end
         'h5: begin
-            pci_slave1_config_data = (pci_slave1_bar1 & 32'hfffff000);
+            pci_slave1_config_rdata = (pci_slave1_bar1 & 32'hfffff000);
         end
         'hb: begin
-            pci_slave1_config_data = 32'h11234;
+            pci_slave1_config_rdata = 32'h11234;
         end
         'hf: begin
-            pci_slave1_config_data = {16'h0, 8'h1, pci_slave1_interrupt_line};
+            pci_slave1_config_rdata = {16'h0, 8'h1, pci_slave1_pci_config1_interrupt_line};
         end
         default: begin
-            pci_slave1_config_data = 0;
+            pci_slave1_config_rdata = 0;
         end
     endcase
 end
+
+
+
+assign pci_slave1_config_index = pci_slave1_phase_addr[6-1:0];
+assign pci_slave1_config_data = pci_slave1_ad_q;
+assign pci_slave1_config_cbe_n = pci_slave1_cbe_q;
+assign pci_slave1_config_system_error = pci_serr_oe;
+assign pci_slave1_config_irq = irq;
 
 
 
@@ -1812,7 +1827,7 @@ assign card_core0_regs_fifo1_sync_fifo1_last_beyond = ($signed({1'b0, card_core0
 
 always @(posedge clock) begin: card_core0_regs_fifo1_sync_fifo1_memory
     if (card_core0_regs_fifo1_sync_fifo1_do_write) begin
-        card_core0_regs_fifo1_sync_fifo1_storage[card_core0_regs_fifo1_sync_fifo1_write_addr] <= pci_slave1_local_wdata;
+        card_core0_regs_fifo1_sync_fifo1_storage[card_core0_regs_fifo1_sync_fifo1_write_addr] <= pci_slave1_pci_requests1_local_wdata;
     end
     if (card_core0_regs_fifo1_sync_fifo1_do_read) begin
         card_core0_regs_fifo1_fifo_dout <= card_core0_regs_fifo1_sync_fifo1_storage[card_core0_regs_fifo1_sync_fifo1_read_addr];
@@ -1878,11 +1893,11 @@ end
 assign card_core0_regs_fifo1_fifo_level = card_core0_regs_fifo1_sync_fifo1_count;
 assign card_core0_regs_fifo1_fifo_empty = card_core0_regs_fifo1_sync_fifo1_is_empty;
 assign card_core0_regs_fifo1_fifo_full = (!card_core0_regs_fifo1_sync_fifo1_free[0]);
-assign pci_slave1_control_case0_0_local_room = card_core0_regs_fifo1_sync_fifo1_free[(3 - 1)];
+assign pci_slave1_pci_control1_control_case0_0_target_room = card_core0_regs_fifo1_sync_fifo1_free[(3 - 1)];
 
 
 
-assign card_core0_regs_fifo1_reg_word24_mine = (pci_slave1_local_addr == 0);
+assign card_core0_regs_fifo1_reg_word24_mine = (pci_slave1_pci_requests1_local_addr == 0);
 
 
 always @(card_core0_regs_fifo1_reg_word24_mine, card_core0_regs_fifo1_reg_word24_shown_wide, card_core0_regs_fifo1_reg_word24_chain_in_data) begin: card_core0_regs_fifo1_reg_word24_read_chain
@@ -1904,7 +1919,7 @@ assign card_core0_regs_fifo1_reg_word24_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word25_mine = (pci_slave1_local_addr == 4);
+assign card_core0_regs_fifo1_reg_word25_mine = (pci_slave1_pci_requests1_local_addr == 4);
 
 
 always @(card_core0_regs_fifo1_reg_word25_mine, card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word24_chain_out_data) begin: card_core0_regs_fifo1_reg_word25_read_chain
@@ -1959,7 +1974,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word26_mine = (pci_slave1_local_addr == 8);
+assign card_core0_regs_fifo1_reg_word26_mine = (pci_slave1_pci_requests1_local_addr == 8);
 
 
 always @(card_core0_regs_fifo1_reg_word26_mine, card_core0_regs_fifo1_reg_word26_shown_wide, card_core0_regs_fifo1_reg_word25_chain_out_data) begin: card_core0_regs_fifo1_reg_word26_read_chain
@@ -2011,7 +2026,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word27_mine = (pci_slave1_local_addr == 12);
+assign card_core0_regs_fifo1_reg_word27_mine = (pci_slave1_pci_requests1_local_addr == 12);
 
 
 always @(card_core0_regs_fifo1_reg_word27_mine, card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word26_chain_out_data) begin: card_core0_regs_fifo1_reg_word27_read_chain
@@ -2033,7 +2048,7 @@ assign card_core0_regs_fifo1_reg_word27_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word28_mine = (pci_slave1_local_addr == 16);
+assign card_core0_regs_fifo1_reg_word28_mine = (pci_slave1_pci_requests1_local_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word28_mine, card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word27_chain_out_data) begin: card_core0_regs_fifo1_reg_word28_read_chain
@@ -2088,7 +2103,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word29_mine = (pci_slave1_local_addr == 20);
+assign card_core0_regs_fifo1_reg_word29_mine = (pci_slave1_pci_requests1_local_addr == 20);
 
 
 always @(card_core0_regs_fifo1_reg_word29_mine, card_core0_regs_fifo1_reg_word29_shown_wide, card_core0_regs_fifo1_reg_word28_chain_out_data) begin: card_core0_regs_fifo1_reg_word29_read_chain
@@ -2137,7 +2152,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word30_mine = (pci_slave1_local_addr == 24);
+assign card_core0_regs_fifo1_reg_word30_mine = (pci_slave1_pci_requests1_local_addr == 24);
 
 
 always @(card_core0_regs_fifo1_reg_word30_mine, card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word29_chain_out_data) begin: card_core0_regs_fifo1_reg_word30_read_chain
@@ -2192,7 +2207,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word31_mine = (pci_slave1_local_addr == 28);
+assign card_core0_regs_fifo1_reg_word31_mine = (pci_slave1_pci_requests1_local_addr == 28);
 
 
 always @(card_core0_regs_fifo1_reg_word31_mine, card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_reg_word30_chain_out_data) begin: card_core0_regs_fifo1_reg_word31_read_chain
@@ -2214,7 +2229,7 @@ assign card_core0_regs_fifo1_reg_word31_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word32_mine = (pci_slave1_local_addr == 32);
+assign card_core0_regs_fifo1_reg_word32_mine = (pci_slave1_pci_requests1_local_addr == 32);
 
 
 always @(card_core0_regs_fifo1_reg_word32_mine, card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word31_chain_out_data) begin: card_core0_regs_fifo1_reg_word32_read_chain
@@ -2236,7 +2251,7 @@ assign card_core0_regs_fifo1_reg_word32_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word33_mine = (pci_slave1_local_addr == 36);
+assign card_core0_regs_fifo1_reg_word33_mine = (pci_slave1_pci_requests1_local_addr == 36);
 
 
 always @(card_core0_regs_fifo1_reg_word33_mine, card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_reg_word32_chain_out_data) begin: card_core0_regs_fifo1_reg_word33_read_chain
@@ -2258,7 +2273,7 @@ assign card_core0_regs_fifo1_reg_word33_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word34_mine = (pci_slave1_local_addr == 40);
+assign card_core0_regs_fifo1_reg_word34_mine = (pci_slave1_pci_requests1_local_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word34_mine, card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word33_chain_out_data) begin: card_core0_regs_fifo1_reg_word34_read_chain
@@ -2324,7 +2339,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word35_mine = (pci_slave1_local_addr == 44);
+assign card_core0_regs_fifo1_reg_word35_mine = (pci_slave1_pci_requests1_local_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word35_mine, card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_chain_out_data) begin: card_core0_regs_fifo1_reg_word35_read_chain
@@ -2390,7 +2405,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word36_mine = (pci_slave1_local_addr == 48);
+assign card_core0_regs_fifo1_reg_word36_mine = (pci_slave1_pci_requests1_local_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word36_mine, card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word35_chain_out_data) begin: card_core0_regs_fifo1_reg_word36_read_chain
@@ -2445,7 +2460,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_local_addr == 52);
+assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_pci_requests1_local_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word36_chain_out_data) begin: card_core0_regs_fifo1_reg_word37_read_chain
@@ -2511,7 +2526,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_local_addr == 56);
+assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_pci_requests1_local_addr == 56);
 
 
 always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_chain_out_data) begin: card_core0_regs_fifo1_reg_word38_read_chain
@@ -2577,7 +2592,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_local_addr == 60);
+assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_chain_out_data) begin: card_core0_regs_fifo1_reg_word39_read_chain
@@ -2643,7 +2658,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_local_addr == 64);
+assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 64);
 
 
 always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_chain_out_data) begin: card_core0_regs_fifo1_reg_word40_read_chain
@@ -2698,7 +2713,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_local_addr == 68);
+assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 68);
 
 
 always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_chain_out_data) begin: card_core0_regs_fifo1_reg_word41_read_chain
@@ -2764,7 +2779,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_local_addr == 72);
+assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 72);
 
 
 always @(card_core0_regs_fifo1_reg_word42_mine, card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word41_chain_out_data) begin: card_core0_regs_fifo1_reg_word42_read_chain
@@ -2830,7 +2845,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_local_addr == 76);
+assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 76);
 
 
 always @(card_core0_regs_fifo1_reg_word43_mine, card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word42_chain_out_data) begin: card_core0_regs_fifo1_reg_word43_read_chain
@@ -2894,7 +2909,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_local_addr == 80);
+assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 80);
 
 
 always @(card_core0_regs_fifo1_reg_word44_mine, card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_reg_word43_chain_out_data) begin: card_core0_regs_fifo1_reg_word44_read_chain
@@ -2958,7 +2973,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_local_addr == 84);
+assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 84);
 
 
 always @(card_core0_regs_fifo1_reg_word45_mine, card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word44_chain_out_data) begin: card_core0_regs_fifo1_reg_word45_read_chain
@@ -2980,7 +2995,7 @@ assign card_core0_regs_fifo1_reg_word45_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_local_addr == 88);
+assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 88);
 
 
 always @(card_core0_regs_fifo1_reg_word46_mine, card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_reg_word45_chain_out_data) begin: card_core0_regs_fifo1_reg_word46_read_chain
@@ -3002,7 +3017,7 @@ assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_local_addr == 92);
+assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 92);
 
 
 always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_chain_out_data) begin: card_core0_regs_fifo1_reg_word47_read_chain
@@ -3944,32 +3959,32 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_d
 end
 
 
-always @(pci_slave1_local_re, card_core0_regs_fifo1_io_written, pci_slave1_local_be, pci_slave1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
+always @(pci_slave1_local_re, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_be, pci_slave1_pci_requests1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
-    if (pci_slave1_local_be[0]) begin
+    if (pci_slave1_pci_requests1_local_be[0]) begin
         mask[8-1:0] = 255;
     end
-    if (pci_slave1_local_be[1]) begin
+    if (pci_slave1_pci_requests1_local_be[1]) begin
         mask[16-1:8] = 255;
     end
-    if (pci_slave1_local_be[2]) begin
+    if (pci_slave1_pci_requests1_local_be[2]) begin
         mask[24-1:16] = 255;
     end
-    if (pci_slave1_local_be[3]) begin
+    if (pci_slave1_pci_requests1_local_be[3]) begin
         mask[32-1:24] = 255;
     end
     card_core0_regs_fifo1_byte_mask = mask;
-    card_core0_regs_fifo1_io_write = (pci_slave1_local_we && (!pci_slave1_local_space) && (!card_core0_regs_fifo1_io_written));
-    card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_local_space) && (!card_core0_regs_fifo1_io_written));
-    card_core0_regs_fifo1_push = (pci_slave1_local_we && pci_slave1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_local_be != 0) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_io_write = (pci_slave1_local_we && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_push = (pci_slave1_local_we && pci_slave1_pci_requests1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_pci_requests1_local_be != 0) && (!card_core0_regs_fifo1_io_written));
 end
 
 
-always @(card_core0_regs_fifo1_io_written, pci_slave1_local_write, pci_slave1_local_space, card_core0_regs_fifo1_read_end, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_answer_bus
-    pci_slave1_local_ready = ((!(pci_slave1_local_write && pci_slave1_local_space && card_core0_regs_fifo1_fifo_full)) && (!card_core0_regs_fifo1_io_written));
-    pci_slave1_local_retry = (pci_slave1_local_write && pci_slave1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
-    if (pci_slave1_local_space) begin
+always @(card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_write, pci_slave1_pci_requests1_local_space, card_core0_regs_fifo1_read_end, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_answer_bus
+    pci_slave1_local_ready = ((!(pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full)) && (!card_core0_regs_fifo1_io_written));
+    pci_slave1_local_retry = (pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
+    if (pci_slave1_pci_requests1_local_space) begin
         pci_slave1_local_rdata = 0;
     end
     else begin
@@ -3987,8 +4002,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_write_stage
     end
     else begin
         card_core0_regs_fifo1_io_written <= card_core0_regs_fifo1_io_write;
-        card_core0_regs_fifo1_written_addr <= pci_slave1_local_addr;
-        card_core0_regs_fifo1_written_data <= pci_slave1_local_wdata;
+        card_core0_regs_fifo1_written_addr <= pci_slave1_pci_requests1_local_addr;
+        card_core0_regs_fifo1_written_data <= pci_slave1_pci_requests1_local_wdata;
         card_core0_regs_fifo1_written_mask <= card_core0_regs_fifo1_byte_mask;
     end
 end
@@ -4032,7 +4047,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_snapshot
         card_core0_regs_fifo1_pos_y_snapshot <= 0;
     end
     else begin
-        if ((card_core0_regs_fifo1_io_read && (pci_slave1_local_addr == 32))) begin
+        if ((card_core0_regs_fifo1_io_read && (pci_slave1_pci_requests1_local_addr == 32))) begin
             card_core0_regs_fifo1_pos_y_snapshot <= card_core0_regs_fifo1_position_y;
         end
     end

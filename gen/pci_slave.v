@@ -96,7 +96,7 @@ reg pci_ad_oe;
 input [3:0] pci_cbe_in;
 input pci_par_in;
 output pci_par_out;
-wire pci_par_out;
+reg pci_par_out;
 output pci_par_oe;
 reg pci_par_oe;
 input pci_frame_in;
@@ -145,6 +145,30 @@ input local_ready;
 input local_retry;
 input local_room;
 
+reg wq_valid;
+reg h_valid;
+reg s_valid;
+reg [31:0] h_data;
+reg [3:0] h_be;
+reg [3:0] s_be;
+reg write_done_q;
+reg config_write_q;
+reg parity_response;
+reg serr_enable;
+reg fatal;
+wire write_done_next;
+wire config_write_next;
+wire posting;
+wire wq_valid_next;
+reg b_kept;
+wire b_valid_next;
+reg first_ready;
+reg fetch_more;
+wire hold_got;
+wire hold_accepted;
+wire hold_retry;
+wire burst_got;
+reg [1:0] buffered_next;
 wire accepted;
 wire ad_oe_next;
 reg [31:0] ad_out_next;
@@ -156,49 +180,28 @@ reg address_fault;
 wire address_fault_next;
 wire address_phase;
 reg at_last;
-reg b_kept;
 reg b_valid;
-wire b_valid_next;
 reg [15:0] bar0;
-wire [15:0] bar0_read;
 reg [31:0] bar1;
 reg before_last;
-reg [1:0] buffered_next;
-wire burst_got;
-reg bus_parity;
 reg [3:0] cbe_q;
 reg claim;
 reg claim_config;
 reg claim_io;
-reg [31:0] config_data;
-wire [5:0] config_index;
-wire config_write_next;
-reg config_write_q;
-reg detected_parity_error;
 wire devsel_next;
 reg devsel_q;
 wire draining;
 wire drive_next;
-reg fatal;
-reg fetch_more;
 reg fetching;
 reg first_pending;
 reg first_phase;
 wire first_phase_next;
-reg first_ready;
 reg frame_q;
 reg frame_qq;
 wire got;
-reg [3:0] h_be;
-reg [31:0] h_data;
-reg h_valid;
-wire hold_accepted;
-wire hold_got;
-wire hold_retry;
 reg idsel_q;
 reg initial_wait_over;
 reg interrupt_disable;
-reg [7:0] interrupt_line;
 reg [1:0] io_byte;
 reg io_enable;
 reg irdy_q;
@@ -207,24 +210,16 @@ reg is_read;
 reg mem_enable;
 wire parity_error_next;
 reg parity_error_q;
-reg parity_response;
-wire perr_armed;
 wire perr_next;
 wire perr_oe_next;
 reg perr_q;
 reg [9:0] phase_addr;
 wire phase_step;
-wire posting;
+reg read_command;
 reg [31:0] read_source;
 reg [9:0] req_addr;
 reg req_addr_stale;
-reg [3:0] s_be;
-reg s_valid;
-wire serr_armed;
-reg serr_enable;
 wire serr_oe_next;
-reg signaled_system_error;
-reg signaled_target_abort;
 reg single;
 reg space_mem;
 reg [31:0] spare_data;
@@ -239,28 +234,38 @@ wire trdy_next;
 reg trdy_q;
 reg [3:0] wait_count;
 reg waiting;
-reg wq_valid;
-wire wq_valid_next;
-wire write_done_next;
-reg write_done_q;
-reg [3:0] control_case0_out_state;
-reg control_case0_out_trdy;
-reg control_case0_out_stop;
-reg control_case0_out_devsel;
-reg control_case0_out_drive;
-reg control_case0_out_ad_oe;
-reg [3:0] control_case1_out_state;
-reg control_case1_out_trdy;
-reg control_case1_out_stop;
-reg control_case1_out_devsel;
-reg control_case1_out_drive;
-reg control_case1_out_ad_oe;
-reg [3:0] control_case2_out_state;
-reg control_case2_out_trdy;
-reg control_case2_out_stop;
-reg control_case2_out_devsel;
-reg control_case2_out_drive;
-reg control_case2_out_ad_oe;
+reg [31:0] config_rdata;
+wire [5:0] config_index;
+wire [31:0] config_data;
+wire [3:0] config_cbe_n;
+wire config_system_error;
+wire config_irq;
+reg pci_parity0_bus_parity;
+wire pci_parity0_perr_armed;
+wire pci_parity0_serr_armed;
+reg [3:0] pci_control0_control_case0_out_state;
+reg pci_control0_control_case0_out_trdy;
+reg pci_control0_control_case0_out_stop;
+reg pci_control0_control_case0_out_devsel;
+reg pci_control0_control_case0_out_drive;
+reg pci_control0_control_case0_out_ad_oe;
+reg [3:0] pci_control0_control_case1_out_state;
+reg pci_control0_control_case1_out_trdy;
+reg pci_control0_control_case1_out_stop;
+reg pci_control0_control_case1_out_devsel;
+reg pci_control0_control_case1_out_drive;
+reg pci_control0_control_case1_out_ad_oe;
+reg [3:0] pci_control0_control_case2_out_state;
+reg pci_control0_control_case2_out_trdy;
+reg pci_control0_control_case2_out_stop;
+reg pci_control0_control_case2_out_devsel;
+reg pci_control0_control_case2_out_drive;
+reg pci_control0_control_case2_out_ad_oe;
+wire [15:0] pci_config0_bar0_read;
+reg pci_config0_detected_parity_error;
+reg [7:0] pci_config0_interrupt_line;
+reg pci_config0_signaled_system_error;
+reg pci_config0_signaled_target_abort;
 
 
 
@@ -292,7 +297,7 @@ always @(posedge clock, negedge reset) begin: control_input_register
 end
 
 
-always @(ad_q, cbe_q) begin: parity_check
+always @(cbe_q, ad_q) begin: pci_parity0_parity_check
     reg [32-1:0] fold;
     fold = 32'h0;
     fold = ad_q;
@@ -302,29 +307,49 @@ always @(ad_q, cbe_q) begin: parity_check
     fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
     fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
     fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    bus_parity = fold[0];
+    pci_parity0_bus_parity = fold[0];
 end
 
 
 
 assign address_phase = (frame_qq && (!frame_q));
-assign serr_armed = (frame_qq && (!frame_q) && serr_enable && parity_response);
-assign perr_armed = (write_done_q && parity_response);
+assign pci_parity0_serr_armed = (frame_qq && (!frame_q) && serr_enable && parity_response);
+assign pci_parity0_perr_armed = (write_done_q && parity_response);
 
 
-assign perr_next = (perr_armed ? (bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
+assign perr_next = (pci_parity0_perr_armed ? (pci_parity0_bus_parity ? (pci_par_in ? 1'b1 : 1'b0) : (pci_par_in ? 1'b0 : 1'b1)) : 1'b1);
 
 
-assign perr_oe_next = (perr_q ? (perr_armed ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
+assign perr_oe_next = (perr_q ? (pci_parity0_perr_armed ? (pci_parity0_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 
 
-assign serr_oe_next = (serr_armed ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
+assign serr_oe_next = (pci_parity0_serr_armed ? (pci_parity0_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0);
 
 
-assign address_fault_next = (parity_response ? (address_phase ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
+assign address_fault_next = (parity_response ? (address_phase ? (pci_parity0_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 
 
-assign parity_error_next = (write_done_q ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (address_phase ? (bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
+assign parity_error_next = (write_done_q ? (pci_parity0_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : (address_phase ? (pci_parity0_bus_parity ? (pci_par_in ? 1'b0 : 1'b1) : (pci_par_in ? 1'b1 : 1'b0)) : 1'b0));
+
+
+always @(ad_parity_q, cbe_q) begin: pci_parity0_parity_output
+    reg [4-1:0] cbe;
+    cbe = cbe_q;
+    pci_par_out = ((((ad_parity_q ^ cbe[0]) ^ cbe[1]) ^ cbe[2]) ^ cbe[3]);
+end
+
+
+always @(ad_out_q) begin: pci_parity0_ad_out_parity_tree
+    reg [32-1:0] fold;
+    fold = 32'h0;
+    fold = ad_out_q;
+    fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
+    fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
+    fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
+    fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
+    fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
+    ad_out_parity = fold[0];
+end
 
 
 always @(bar1, ad_q, address_phase, io_enable, bar0, cbe_q, idsel_q, mem_enable, state) begin: decode
@@ -339,14 +364,17 @@ always @(bar1, ad_q, address_phase, io_enable, bar0, cbe_q, idsel_q, mem_enable,
     claim = ((state == 4'b0000) && address_phase && (config_hit || io_hit || mem_hit));
     claim_config = config_hit;
     claim_io = io_hit;
+    read_command = (!cbe_q[0]);
 end
 
 
-always @(ad_q, claim_config, claim_io) begin: start_offset
-    if (claim_config) begin
+always @(cbe_q, ad_q) begin: start_offset
+    reg [4-1:0] code;
+    code = cbe_q;
+    if (((code == 10) || (code == 11))) begin
         start_addr = (ad_q[(10 + 2)-1:2] & 10'h3f);
     end
-    else if (claim_io) begin
+    else if (((code == 2) || (code == 3))) begin
         start_addr = (ad_q[(10 + 2)-1:2] & 10'hf);
     end
     else begin
@@ -373,7 +401,7 @@ assign wq_valid_next = (posting ? (pci_irdy_in ? 1'b0 : 1'b1) : 1'b0);
 assign b_valid_next = (b_kept ? (pci_irdy_in ? 1'b1 : 1'b0) : 1'b0);
 
 
-always @(ad_q, req_addr, first_pending, io_byte, b_valid, is_read, fetching, state, trdy_q, wq_valid, space_mem, h_be, h_data, is_config, irdy_q, req_addr_stale, address_fault, frame_q, h_valid, cbe_q) begin: local_request
+always @(ad_q, req_addr, first_pending, io_byte, b_valid, is_read, fetching, state, trdy_q, wq_valid, space_mem, h_be, h_data, is_config, irdy_q, req_addr_stale, address_fault, frame_q, h_valid, cbe_q) begin: pci_requests0_local_request
     reg drain;
     reg hold_state;
     reg bad;
@@ -435,38 +463,16 @@ assign hold_retry = (first_ready && (is_read || (!irdy_q)) && local_retry);
 assign burst_got = (fetch_more && local_ready);
 
 
-always @(is_config, b_valid, config_data, spare_data, local_rdata) begin: read_path
+always @(is_config, b_valid, config_rdata, spare_data, local_rdata) begin: read_path
     if (b_valid) begin
         read_source = spare_data;
     end
     else if (is_config) begin
-        read_source = config_data;
+        read_source = config_rdata;
     end
     else begin
         read_source = local_rdata;
     end
-end
-
-
-always @(h_valid, wq_valid, local_ready, s_valid) begin: write_path
-    reg [2-1:0] held;
-    held = 0;
-    if (h_valid) begin
-        held = 1;
-        if (s_valid) begin
-            held = 2;
-        end
-        if (local_ready) begin
-            held = (held - 1);
-        end
-        if (wq_valid) begin
-            held = (held + 1);
-        end
-    end
-    else if ((wq_valid && (!local_ready))) begin
-        held = 1;
-    end
-    buffered_next = held;
 end
 
 
@@ -478,7 +484,7 @@ always @(subsequent_wait_over, stop_q, first_phase, initial_wait_over, state, tr
 end
 
 
-always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, burst_got, fetching, state, trdy_q, hold_got, claim, at_last, first_phase, local_room, timeout, is_config, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q) begin: control_case0_control
+always @(fetching, is_config, before_last, buffered_next, read_command, b_valid, stop_q, single, state, hold_retry, pci_devsel_oe, trdy_q, at_last, first_phase, burst_got, claim_config, fatal, devsel_q, hold_got, claim_io, claim, pci_ad_oe, local_room, is_read, timeout, hold_accepted) begin: pci_control0_control_case0_control
     reg done;
     reg hold;
     reg trdy;
@@ -497,7 +503,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
     devsel = (devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    control_case0_out_state = state;
+    pci_control0_control_case0_out_state = state;
     last_data = (single || at_last);
     if (done) begin
         last_data = (single || before_last);
@@ -522,40 +528,40 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
         if (claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!cbe_q[0]);
+            ad_oe = (read_command != 0);
             if (claim_config) begin
-                control_case0_out_state = 4'b0001;
+                pci_control0_control_case0_out_state = 4'b0001;
             end
             else if (claim_io) begin
-                control_case0_out_state = 4'b0010;
+                pci_control0_control_case0_out_state = 4'b0010;
             end
             else begin
-                control_case0_out_state = 4'b0011;
+                pci_control0_control_case0_out_state = 4'b0011;
             end
         end
     end
     else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
         if (fatal) begin
-            control_case0_out_state = 4'b0111;
+            pci_control0_control_case0_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((state == 4'b0001)) begin
-            control_case0_out_state = 4'b0101;
+            pci_control0_control_case0_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b1);
         end
         else if ((hold_got || hold_accepted)) begin
-            control_case0_out_state = 4'b0110;
+            pci_control0_control_case0_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
         else if ((hold_retry || timeout)) begin
-            control_case0_out_state = 4'b0111;
+            pci_control0_control_case0_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (is_read) begin
-            control_case0_out_state = 4'b0100;
+            pci_control0_control_case0_out_state = 4'b0100;
         end
     end
     else if (((state == 4'b0101) || (state == 4'b0110))) begin
@@ -565,10 +571,10 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
         else if ((done && ((!1'b1) || (!stop_q)))) begin
             trdy = 1'b1;
             if (1'b1) begin
-                control_case0_out_state = 4'b0111;
+                pci_control0_control_case0_out_state = 4'b0111;
             end
             else begin
-                control_case0_out_state = 4'b1000;
+                pci_control0_control_case0_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -579,7 +585,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
             stop = (!(last_data && 1'b1));
         end
         else if ((exhausted || timeout)) begin
-            control_case0_out_state = 4'b0111;
+            pci_control0_control_case0_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -589,7 +595,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
     end
     else if ((state == 4'b0111)) begin
         if ((!1'b1)) begin
-            control_case0_out_state = 4'b1000;
+            pci_control0_control_case0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -597,18 +603,18 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
         end
     end
     else begin
-        control_case0_out_state = 4'b0000;
+        pci_control0_control_case0_out_state = 4'b0000;
         drive = 1'b0;
     end
-    control_case0_out_trdy = trdy;
-    control_case0_out_stop = stop;
-    control_case0_out_devsel = devsel;
-    control_case0_out_drive = drive;
-    control_case0_out_ad_oe = ad_oe;
+    pci_control0_control_case0_out_trdy = trdy;
+    pci_control0_control_case0_out_stop = stop;
+    pci_control0_control_case0_out_devsel = devsel;
+    pci_control0_control_case0_out_drive = drive;
+    pci_control0_control_case0_out_ad_oe = ad_oe;
 end
 
 
-always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, burst_got, fetching, state, trdy_q, hold_got, claim, at_last, first_phase, local_room, timeout, is_config, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q) begin: control_case1_control
+always @(fetching, is_config, before_last, buffered_next, read_command, b_valid, stop_q, single, state, hold_retry, pci_devsel_oe, trdy_q, at_last, first_phase, burst_got, claim_config, fatal, devsel_q, hold_got, claim_io, claim, pci_ad_oe, local_room, is_read, timeout, hold_accepted) begin: pci_control0_control_case1_control
     reg done;
     reg hold;
     reg trdy;
@@ -627,7 +633,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
     devsel = (devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    control_case1_out_state = state;
+    pci_control0_control_case1_out_state = state;
     last_data = (single || at_last);
     if (done) begin
         last_data = (single || before_last);
@@ -652,40 +658,40 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
         if (claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!cbe_q[0]);
+            ad_oe = (read_command != 0);
             if (claim_config) begin
-                control_case1_out_state = 4'b0001;
+                pci_control0_control_case1_out_state = 4'b0001;
             end
             else if (claim_io) begin
-                control_case1_out_state = 4'b0010;
+                pci_control0_control_case1_out_state = 4'b0010;
             end
             else begin
-                control_case1_out_state = 4'b0011;
+                pci_control0_control_case1_out_state = 4'b0011;
             end
         end
     end
     else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
         if (fatal) begin
-            control_case1_out_state = 4'b0111;
+            pci_control0_control_case1_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((state == 4'b0001)) begin
-            control_case1_out_state = 4'b0101;
+            pci_control0_control_case1_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b0);
         end
         else if ((hold_got || hold_accepted)) begin
-            control_case1_out_state = 4'b0110;
+            pci_control0_control_case1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
         else if ((hold_retry || timeout)) begin
-            control_case1_out_state = 4'b0111;
+            pci_control0_control_case1_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (is_read) begin
-            control_case1_out_state = 4'b0100;
+            pci_control0_control_case1_out_state = 4'b0100;
         end
     end
     else if (((state == 4'b0101) || (state == 4'b0110))) begin
@@ -695,10 +701,10 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
         else if ((done && ((!1'b0) || (!stop_q)))) begin
             trdy = 1'b1;
             if (1'b0) begin
-                control_case1_out_state = 4'b0111;
+                pci_control0_control_case1_out_state = 4'b0111;
             end
             else begin
-                control_case1_out_state = 4'b1000;
+                pci_control0_control_case1_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -709,7 +715,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
             stop = (!(last_data && 1'b0));
         end
         else if ((exhausted || timeout)) begin
-            control_case1_out_state = 4'b0111;
+            pci_control0_control_case1_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -719,7 +725,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
     end
     else if ((state == 4'b0111)) begin
         if ((!1'b0)) begin
-            control_case1_out_state = 4'b1000;
+            pci_control0_control_case1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -727,18 +733,18 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
         end
     end
     else begin
-        control_case1_out_state = 4'b0000;
+        pci_control0_control_case1_out_state = 4'b0000;
         drive = 1'b0;
     end
-    control_case1_out_trdy = trdy;
-    control_case1_out_stop = stop;
-    control_case1_out_devsel = devsel;
-    control_case1_out_drive = drive;
-    control_case1_out_ad_oe = ad_oe;
+    pci_control0_control_case1_out_trdy = trdy;
+    pci_control0_control_case1_out_stop = stop;
+    pci_control0_control_case1_out_devsel = devsel;
+    pci_control0_control_case1_out_drive = drive;
+    pci_control0_control_case1_out_ad_oe = ad_oe;
 end
 
 
-always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, pci_devsel_oe, stop_q, is_read, burst_got, fetching, state, trdy_q, hold_got, claim, at_last, first_phase, local_room, timeout, is_config, claim_io, buffered_next, single, pci_ad_oe, cbe_q, devsel_q) begin: control_case2_control
+always @(fetching, is_config, before_last, buffered_next, read_command, b_valid, stop_q, single, state, hold_retry, pci_devsel_oe, trdy_q, at_last, first_phase, burst_got, claim_config, fatal, devsel_q, hold_got, claim_io, claim, pci_ad_oe, local_room, is_read, timeout, hold_accepted) begin: pci_control0_control_case2_control
     reg done;
     reg hold;
     reg trdy;
@@ -757,7 +763,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
     devsel = (devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    control_case2_out_state = state;
+    pci_control0_control_case2_out_state = state;
     last_data = (single || at_last);
     if (done) begin
         last_data = (single || before_last);
@@ -782,40 +788,40 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
         if (claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!cbe_q[0]);
+            ad_oe = (read_command != 0);
             if (claim_config) begin
-                control_case2_out_state = 4'b0001;
+                pci_control0_control_case2_out_state = 4'b0001;
             end
             else if (claim_io) begin
-                control_case2_out_state = 4'b0010;
+                pci_control0_control_case2_out_state = 4'b0010;
             end
             else begin
-                control_case2_out_state = 4'b0011;
+                pci_control0_control_case2_out_state = 4'b0011;
             end
         end
     end
     else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
         if (fatal) begin
-            control_case2_out_state = 4'b0111;
+            pci_control0_control_case2_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((state == 4'b0001)) begin
-            control_case2_out_state = 4'b0101;
+            pci_control0_control_case2_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b1);
         end
         else if ((hold_got || hold_accepted)) begin
-            control_case2_out_state = 4'b0110;
+            pci_control0_control_case2_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
         else if ((hold_retry || timeout)) begin
-            control_case2_out_state = 4'b0111;
+            pci_control0_control_case2_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (is_read) begin
-            control_case2_out_state = 4'b0100;
+            pci_control0_control_case2_out_state = 4'b0100;
         end
     end
     else if (((state == 4'b0101) || (state == 4'b0110))) begin
@@ -825,10 +831,10 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
         else if ((done && ((!1'b1) || (!stop_q)))) begin
             trdy = 1'b1;
             if (1'b1) begin
-                control_case2_out_state = 4'b0111;
+                pci_control0_control_case2_out_state = 4'b0111;
             end
             else begin
-                control_case2_out_state = 4'b1000;
+                pci_control0_control_case2_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -839,7 +845,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
             stop = (!(last_data && 1'b1));
         end
         else if ((exhausted || timeout)) begin
-            control_case2_out_state = 4'b0111;
+            pci_control0_control_case2_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -849,7 +855,7 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
     end
     else if ((state == 4'b0111)) begin
         if ((!1'b1)) begin
-            control_case2_out_state = 4'b1000;
+            pci_control0_control_case2_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -857,53 +863,53 @@ always @(hold_retry, hold_accepted, claim_config, before_last, fatal, b_valid, p
         end
     end
     else begin
-        control_case2_out_state = 4'b0000;
+        pci_control0_control_case2_out_state = 4'b0000;
         drive = 1'b0;
     end
-    control_case2_out_trdy = trdy;
-    control_case2_out_stop = stop;
-    control_case2_out_devsel = devsel;
-    control_case2_out_drive = drive;
-    control_case2_out_ad_oe = ad_oe;
+    pci_control0_control_case2_out_trdy = trdy;
+    pci_control0_control_case2_out_stop = stop;
+    pci_control0_control_case2_out_devsel = devsel;
+    pci_control0_control_case2_out_drive = drive;
+    pci_control0_control_case2_out_ad_oe = ad_oe;
 end
 
 
-wire state_next_x0 = control_case0_out_state[0];
-wire state_next_y0 = control_case2_out_state[0] ^ control_case1_out_state[0];
+wire state_next_x0 = pci_control0_control_case0_out_state[0];
+wire state_next_y0 = pci_control0_control_case2_out_state[0] ^ pci_control0_control_case1_out_state[0];
 assign state_next[0] = (pci_irdy_in ? (pci_frame_in ? (state_next_y0 ? 1'b0 : (state_next_x0 ? 1'b1 : 1'b0)) : (state_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (state_next_y0 ? 1'b0 : (state_next_x0 ? 1'b1 : 1'b0)) : (state_next_y0 ? 1'b1 : (state_next_x0 ? 1'b1 : 1'b0))));
-wire state_next_x1 = control_case0_out_state[1];
-wire state_next_y1 = control_case2_out_state[1] ^ control_case1_out_state[1];
+wire state_next_x1 = pci_control0_control_case0_out_state[1];
+wire state_next_y1 = pci_control0_control_case2_out_state[1] ^ pci_control0_control_case1_out_state[1];
 assign state_next[1] = (pci_irdy_in ? (pci_frame_in ? (state_next_y1 ? 1'b0 : (state_next_x1 ? 1'b1 : 1'b0)) : (state_next_x1 ? 1'b1 : 1'b0)) : (pci_frame_in ? (state_next_y1 ? 1'b0 : (state_next_x1 ? 1'b1 : 1'b0)) : (state_next_y1 ? 1'b1 : (state_next_x1 ? 1'b1 : 1'b0))));
-wire state_next_x2 = control_case0_out_state[2];
-wire state_next_y2 = control_case2_out_state[2] ^ control_case1_out_state[2];
+wire state_next_x2 = pci_control0_control_case0_out_state[2];
+wire state_next_y2 = pci_control0_control_case2_out_state[2] ^ pci_control0_control_case1_out_state[2];
 assign state_next[2] = (pci_irdy_in ? (pci_frame_in ? (state_next_y2 ? 1'b0 : (state_next_x2 ? 1'b1 : 1'b0)) : (state_next_x2 ? 1'b1 : 1'b0)) : (pci_frame_in ? (state_next_y2 ? 1'b0 : (state_next_x2 ? 1'b1 : 1'b0)) : (state_next_y2 ? 1'b1 : (state_next_x2 ? 1'b1 : 1'b0))));
-wire state_next_x3 = control_case0_out_state[3];
-wire state_next_y3 = control_case0_out_state[3] ? control_case2_out_state[3] : control_case1_out_state[3];
+wire state_next_x3 = pci_control0_control_case0_out_state[3];
+wire state_next_y3 = pci_control0_control_case0_out_state[3] ? pci_control0_control_case2_out_state[3] : pci_control0_control_case1_out_state[3];
 assign state_next[3] = (pci_irdy_in ? (pci_frame_in ? (state_next_y3 ? 1'b1 : (state_next_x3 ? 1'b1 : 1'b0)) : (state_next_x3 ? 1'b1 : 1'b0)) : (pci_frame_in ? (state_next_y3 ? 1'b1 : (state_next_x3 ? 1'b1 : 1'b0)) : (state_next_y3 ? (state_next_x3 ? 1'b1 : 1'b0) : 1'b0)));
 
 
-wire trdy_next_x0 = control_case0_out_trdy ^ control_case1_out_trdy;
-wire trdy_next_y0 = (control_case0_out_trdy ^ control_case1_out_trdy) ? control_case2_out_trdy : control_case0_out_trdy;
+wire trdy_next_x0 = pci_control0_control_case0_out_trdy ^ pci_control0_control_case1_out_trdy;
+wire trdy_next_y0 = (pci_control0_control_case0_out_trdy ^ pci_control0_control_case1_out_trdy) ? pci_control0_control_case2_out_trdy : pci_control0_control_case0_out_trdy;
 assign trdy_next = (pci_irdy_in ? (pci_frame_in ? (trdy_next_y0 ? 1'b1 : (trdy_next_x0 ? 1'b1 : 1'b0)) : (trdy_next_y0 ? (trdy_next_x0 ? 1'b0 : 1'b1) : 1'b0)) : (pci_frame_in ? (trdy_next_y0 ? 1'b1 : (trdy_next_x0 ? 1'b1 : 1'b0)) : (trdy_next_y0 ? 1'b1 : 1'b0)));
 
 
-wire stop_next_x0 = control_case0_out_stop;
-wire stop_next_y0 = control_case0_out_stop ? control_case2_out_stop : control_case1_out_stop;
+wire stop_next_x0 = pci_control0_control_case0_out_stop;
+wire stop_next_y0 = pci_control0_control_case0_out_stop ? pci_control0_control_case2_out_stop : pci_control0_control_case1_out_stop;
 assign stop_next = (pci_irdy_in ? (pci_frame_in ? (stop_next_y0 ? 1'b1 : (stop_next_x0 ? 1'b1 : 1'b0)) : (stop_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (stop_next_y0 ? 1'b1 : (stop_next_x0 ? 1'b1 : 1'b0)) : (stop_next_y0 ? (stop_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
-wire devsel_next_x0 = control_case0_out_devsel;
-wire devsel_next_y0 = control_case0_out_devsel ? control_case2_out_devsel : control_case1_out_devsel;
+wire devsel_next_x0 = pci_control0_control_case0_out_devsel;
+wire devsel_next_y0 = pci_control0_control_case0_out_devsel ? pci_control0_control_case2_out_devsel : pci_control0_control_case1_out_devsel;
 assign devsel_next = (pci_irdy_in ? (pci_frame_in ? (devsel_next_y0 ? 1'b1 : (devsel_next_x0 ? 1'b1 : 1'b0)) : (devsel_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (devsel_next_y0 ? 1'b1 : (devsel_next_x0 ? 1'b1 : 1'b0)) : (devsel_next_y0 ? (devsel_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
-wire drive_next_x0 = control_case0_out_drive;
-wire drive_next_y0 = control_case0_out_drive ? control_case2_out_drive : control_case1_out_drive;
+wire drive_next_x0 = pci_control0_control_case0_out_drive;
+wire drive_next_y0 = pci_control0_control_case0_out_drive ? pci_control0_control_case2_out_drive : pci_control0_control_case1_out_drive;
 assign drive_next = (pci_irdy_in ? (pci_frame_in ? (drive_next_y0 ? 1'b1 : (drive_next_x0 ? 1'b1 : 1'b0)) : (drive_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (drive_next_y0 ? 1'b1 : (drive_next_x0 ? 1'b1 : 1'b0)) : (drive_next_y0 ? (drive_next_x0 ? 1'b1 : 1'b0) : 1'b0)));
 
 
-wire ad_oe_next_x0 = control_case0_out_ad_oe;
-wire ad_oe_next_y0 = control_case2_out_ad_oe ^ control_case1_out_ad_oe;
+wire ad_oe_next_x0 = pci_control0_control_case0_out_ad_oe;
+wire ad_oe_next_y0 = pci_control0_control_case2_out_ad_oe ^ pci_control0_control_case1_out_ad_oe;
 assign ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (ad_oe_next_y0 ? 1'b1 : (ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
@@ -999,23 +1005,6 @@ always @(read_source, ad_out_q, pci_irdy_in, trdy_q) begin: ad_output
 end
 
 
-
-assign pci_par_out = ((((ad_parity_q ^ cbe_q[0]) ^ cbe_q[1]) ^ cbe_q[2]) ^ cbe_q[3]);
-
-
-always @(ad_out_q) begin: ad_out_parity_tree
-    reg [32-1:0] fold;
-    fold = 32'h0;
-    fold = ad_out_q;
-    fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
-    fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
-    fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
-    fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
-    fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    ad_out_parity = fold[0];
-end
-
-
 always @(posedge clock, negedge reset) begin: bus_registers
     if (reset == 0) begin
         pci_trdy_oe <= 0;
@@ -1066,7 +1055,7 @@ assign pci_ad_out = ad_out_q;
 assign pci_perr_out = perr_q;
 
 
-always @(posedge clock, negedge reset) begin: read_buffer
+always @(posedge clock, negedge reset) begin: pci_buffers0_read_buffer
     if (reset == 0) begin
         b_valid <= 0;
     end
@@ -1076,7 +1065,7 @@ always @(posedge clock, negedge reset) begin: read_buffer
 end
 
 
-always @(got, b_valid, is_read, state, trdy_q) begin: read_buffer_hold
+always @(got, b_valid, is_read, state, trdy_q) begin: pci_buffers0_read_buffer_hold
     reg in_read;
     in_read = (is_read && ((state == 4'b0011) || (state == 4'b0010) || (state == 4'b0100) || (state == 4'b0110)));
     b_kept = (in_read && (b_valid || got) && (!trdy_q));
@@ -1087,7 +1076,7 @@ end
 assign posting = ((!trdy_q) && (!is_read) && (!first_phase) && space_mem);
 
 
-always @(posedge clock, negedge reset) begin: write_buffer
+always @(posedge clock, negedge reset) begin: pci_buffers0_write_buffer
     if (reset == 0) begin
         wq_valid <= 0;
         config_write_q <= 0;
@@ -1140,26 +1129,44 @@ always @(posedge clock, negedge reset) begin: write_buffer
 end
 
 
+always @(h_valid, wq_valid, local_ready, s_valid) begin: pci_buffers0_posted_count
+    reg [2-1:0] held;
+    held = 0;
+    if (h_valid) begin
+        held = 1;
+        if (s_valid) begin
+            held = 2;
+        end
+        if (local_ready) begin
+            held = (held - 1);
+        end
+        if (wq_valid) begin
+            held = (held + 1);
+        end
+    end
+    else if ((wq_valid && (!local_ready))) begin
+        held = 1;
+    end
+    buffered_next = held;
+end
 
-assign config_index = phase_addr[6-1:0];
 
-
-always @(posedge clock, negedge reset) begin: config_registers
+always @(posedge clock, negedge reset) begin: pci_config0_config_registers
     reg clear_target_abort;
     reg clear_system_error;
     reg clear_parity_error;
     if (reset == 0) begin
+        parity_response <= 0;
+        pci_config0_signaled_system_error <= 0;
+        pci_config0_interrupt_line <= 0;
+        interrupt_disable <= 0;
+        pci_config0_signaled_target_abort <= 0;
+        bar0 <= 0;
+        pci_config0_detected_parity_error <= 0;
+        io_enable <= 0;
         serr_enable <= 0;
         bar1 <= 0;
-        signaled_system_error <= 0;
-        interrupt_disable <= 0;
-        io_enable <= 0;
-        bar0 <= 0;
-        signaled_target_abort <= 0;
-        detected_parity_error <= 0;
-        interrupt_line <= 0;
         mem_enable <= 0;
-        parity_response <= 0;
     end
     else begin
         clear_target_abort = 1'b0;
@@ -1168,88 +1175,96 @@ always @(posedge clock, negedge reset) begin: config_registers
         if (config_write_q) begin
             case (config_index)
                 'h1: begin
-                    if ((!cbe_q[0])) begin
-                        io_enable <= ad_q[0];
-                        mem_enable <= ad_q[1];
-                        parity_response <= ad_q[6];
+                    if ((!config_cbe_n[0])) begin
+                        io_enable <= config_data[0];
+                        mem_enable <= config_data[1];
+                        parity_response <= config_data[6];
                     end
-                    if ((!cbe_q[1])) begin
-                        serr_enable <= ad_q[8];
-                        interrupt_disable <= ad_q[10];
+                    if ((!config_cbe_n[1])) begin
+                        serr_enable <= config_data[8];
+                        interrupt_disable <= config_data[10];
                     end
-                    if ((!cbe_q[3])) begin
-                        clear_target_abort = ad_q[27];
-                        clear_system_error = ad_q[30];
-                        clear_parity_error = ad_q[31];
+                    if ((!config_cbe_n[3])) begin
+                        clear_target_abort = config_data[27];
+                        clear_system_error = config_data[30];
+                        clear_parity_error = config_data[31];
                     end
                 end
                 'h4: begin
-                    if ((!cbe_q[0])) begin
-                        bar0[8-1:0] <= ad_q[8-1:0];
+                    if ((!config_cbe_n[0])) begin
+                        bar0[8-1:0] <= config_data[8-1:0];
                     end
-                    if ((!cbe_q[1])) begin
-                        bar0[16-1:8] <= ad_q[16-1:8];
+                    if ((!config_cbe_n[1])) begin
+                        bar0[16-1:8] <= config_data[16-1:8];
                     end
                 end
                 'h5: begin
-                    if ((!cbe_q[0])) begin
-                        bar1[8-1:0] <= ad_q[8-1:0];
+                    if ((!config_cbe_n[0])) begin
+                        bar1[8-1:0] <= config_data[8-1:0];
                     end
-                    if ((!cbe_q[1])) begin
-                        bar1[16-1:8] <= ad_q[16-1:8];
+                    if ((!config_cbe_n[1])) begin
+                        bar1[16-1:8] <= config_data[16-1:8];
                     end
-                    if ((!cbe_q[2])) begin
-                        bar1[24-1:16] <= ad_q[24-1:16];
+                    if ((!config_cbe_n[2])) begin
+                        bar1[24-1:16] <= config_data[24-1:16];
                     end
-                    if ((!cbe_q[3])) begin
-                        bar1[32-1:24] <= ad_q[32-1:24];
+                    if ((!config_cbe_n[3])) begin
+                        bar1[32-1:24] <= config_data[32-1:24];
                     end
                 end
                 'hf: begin
-                    if ((!cbe_q[0])) begin
-                        interrupt_line <= ad_q[8-1:0];
+                    if ((!config_cbe_n[0])) begin
+                        pci_config0_interrupt_line <= config_data[8-1:0];
                     end
                 end
             endcase
         end
-        signaled_target_abort <= (fatal || (signaled_target_abort && (!clear_target_abort)));
-        signaled_system_error <= (pci_serr_oe || (signaled_system_error && (!clear_system_error)));
-        detected_parity_error <= (parity_error_q || (detected_parity_error && (!clear_parity_error)));
+        pci_config0_signaled_target_abort <= (fatal || (pci_config0_signaled_target_abort && (!clear_target_abort)));
+        pci_config0_signaled_system_error <= (config_system_error || (pci_config0_signaled_system_error && (!clear_system_error)));
+        pci_config0_detected_parity_error <= (parity_error_q || (pci_config0_detected_parity_error && (!clear_parity_error)));
     end
 end
 
 
 
-assign bar0_read = ((bar0 & 16'hffc0) | 16'h1);
+assign pci_config0_bar0_read = ((bar0 & 16'hffc0) | 16'h1);
 
 
-always @(signaled_system_error, serr_enable, bar1, config_index, interrupt_disable, irq, bar0_read, io_enable, signaled_target_abort, detected_parity_error, interrupt_line, mem_enable, parity_response) begin: config_read
+always @(pci_config0_signaled_system_error, parity_response, config_irq, config_index, pci_config0_bar0_read, pci_config0_interrupt_line, interrupt_disable, pci_config0_signaled_target_abort, pci_config0_detected_parity_error, io_enable, serr_enable, bar1, mem_enable) begin: pci_config0_config_read
     case (config_index)
         'h0: begin
-            config_data = 32'hdda01234;
+            config_rdata = 32'hdda01234;
         end
         'h1: begin
-            config_data = {detected_parity_error, signaled_system_error, 2'h0, signaled_target_abort, 2'h1, 5'h0, irq, 8'h0, interrupt_disable, 1'b0, serr_enable, 1'b0, parity_response, 4'h0, mem_enable, io_enable};
+            config_rdata = {pci_config0_detected_parity_error, pci_config0_signaled_system_error, 2'h0, pci_config0_signaled_target_abort, 2'h1, 5'h0, config_irq, 8'h0, interrupt_disable, 1'b0, serr_enable, 1'b0, parity_response, 4'h0, mem_enable, io_enable};
         end
         'h2: begin
-            config_data = 32'h8800001;
+            config_rdata = 32'h8800001;
         end
         'h4: begin
-            config_data = {16'h0, bar0_read};
+            config_rdata = {16'h0, pci_config0_bar0_read};
         end
         'h5: begin
-            config_data = (bar1 & 32'hfffff000);
+            config_rdata = (bar1 & 32'hfffff000);
         end
         'hb: begin
-            config_data = 32'h11234;
+            config_rdata = 32'h11234;
         end
         'hf: begin
-            config_data = {16'h0, 8'h1, interrupt_line};
+            config_rdata = {16'h0, 8'h1, pci_config0_interrupt_line};
         end
         default: begin
-            config_data = 0;
+            config_rdata = 0;
         end
     endcase
 end
+
+
+
+assign config_index = phase_addr[6-1:0];
+assign config_data = ad_q;
+assign config_cbe_n = cbe_q;
+assign config_system_error = pci_serr_oe;
+assign config_irq = irq;
 
 endmodule

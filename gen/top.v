@@ -80,7 +80,7 @@ wire [31:0] pci_pads0_registered_pad0_from_pin;
 wire [31:0] pci_pads0_registered_pad0_to_pin;
 reg pci_pads0_registered_pad0_enable;
 wire pci_pads0_tristate_pad2_from_pin;
-wire pci_pads0_tristate_pad2_to_pin;
+reg pci_pads0_tristate_pad2_to_pin;
 reg pci_pads0_tristate_pad2_enable;
 wire pci_pads0_registered_pad1_to_pin;
 reg pci_pads0_registered_pad1_enable;
@@ -93,6 +93,30 @@ reg pci_pads0_registered_pad4_enable;
 wire [3:0] pci_pads0_registered_pad5_from_pin;
 wire pci_pads0_registered_pad6_from_pin;
 wire card1_irq;
+reg card1_pci_slave2_wq_valid;
+reg card1_pci_slave2_h_valid;
+reg card1_pci_slave2_s_valid;
+reg [31:0] card1_pci_slave2_h_data;
+reg [3:0] card1_pci_slave2_h_be;
+reg [3:0] card1_pci_slave2_s_be;
+reg card1_pci_slave2_write_done_q;
+reg card1_pci_slave2_config_write_q;
+reg card1_pci_slave2_parity_response;
+reg card1_pci_slave2_serr_enable;
+reg card1_pci_slave2_fatal;
+wire card1_pci_slave2_write_done_next;
+wire card1_pci_slave2_config_write_next;
+wire card1_pci_slave2_posting;
+wire card1_pci_slave2_wq_valid_next;
+reg card1_pci_slave2_b_kept;
+wire card1_pci_slave2_b_valid_next;
+reg card1_pci_slave2_first_ready;
+reg card1_pci_slave2_fetch_more;
+wire card1_pci_slave2_hold_got;
+wire card1_pci_slave2_hold_accepted;
+wire card1_pci_slave2_hold_retry;
+wire card1_pci_slave2_burst_got;
+reg [1:0] card1_pci_slave2_buffered_next;
 wire card1_pci_slave2_accepted;
 wire card1_pci_slave2_ad_oe_next;
 wire [31:0] card1_pci_slave2_ad_out_next;
@@ -103,47 +127,26 @@ reg card1_pci_slave2_address_fault;
 wire card1_pci_slave2_address_fault_next;
 wire card1_pci_slave2_address_phase;
 reg card1_pci_slave2_at_last;
-reg card1_pci_slave2_b_kept;
 reg card1_pci_slave2_b_valid;
-wire card1_pci_slave2_b_valid_next;
 reg [15:0] card1_pci_slave2_bar0;
-wire [15:0] card1_pci_slave2_bar0_read;
 reg [31:0] card1_pci_slave2_bar1;
 reg card1_pci_slave2_before_last;
-reg [1:0] card1_pci_slave2_buffered_next;
-wire card1_pci_slave2_burst_got;
-reg card1_pci_slave2_bus_parity;
 reg card1_pci_slave2_claim;
 reg card1_pci_slave2_claim_config;
 reg card1_pci_slave2_claim_io;
-reg [31:0] card1_pci_slave2_config_data;
-wire [5:0] card1_pci_slave2_config_index;
-wire card1_pci_slave2_config_write_next;
-reg card1_pci_slave2_config_write_q;
-reg card1_pci_slave2_detected_parity_error;
 wire card1_pci_slave2_devsel_next;
 reg card1_pci_slave2_devsel_q;
 wire card1_pci_slave2_draining;
 wire card1_pci_slave2_drive_next;
-reg card1_pci_slave2_fatal;
-reg card1_pci_slave2_fetch_more;
 reg card1_pci_slave2_fetching;
 reg card1_pci_slave2_first_pending;
 reg card1_pci_slave2_first_phase;
 wire card1_pci_slave2_first_phase_next;
-reg card1_pci_slave2_first_ready;
 reg card1_pci_slave2_frame_q;
 reg card1_pci_slave2_frame_qq;
 wire card1_pci_slave2_got;
-reg [3:0] card1_pci_slave2_h_be;
-reg [31:0] card1_pci_slave2_h_data;
-reg card1_pci_slave2_h_valid;
-wire card1_pci_slave2_hold_accepted;
-wire card1_pci_slave2_hold_got;
-wire card1_pci_slave2_hold_retry;
 reg card1_pci_slave2_initial_wait_over;
 reg card1_pci_slave2_interrupt_disable;
-reg [7:0] card1_pci_slave2_interrupt_line;
 reg [1:0] card1_pci_slave2_io_byte;
 reg card1_pci_slave2_io_enable;
 reg card1_pci_slave2_irdy_q;
@@ -152,24 +155,16 @@ reg card1_pci_slave2_is_read;
 reg card1_pci_slave2_mem_enable;
 wire card1_pci_slave2_parity_error_next;
 reg card1_pci_slave2_parity_error_q;
-reg card1_pci_slave2_parity_response;
-wire card1_pci_slave2_perr_armed;
 wire card1_pci_slave2_perr_next;
 wire card1_pci_slave2_perr_oe_next;
 reg card1_pci_slave2_perr_q;
 reg [9:0] card1_pci_slave2_phase_addr;
 wire card1_pci_slave2_phase_step;
-wire card1_pci_slave2_posting;
+reg card1_pci_slave2_read_command;
 reg [31:0] card1_pci_slave2_read_source;
 reg [9:0] card1_pci_slave2_req_addr;
 reg card1_pci_slave2_req_addr_stale;
-reg [3:0] card1_pci_slave2_s_be;
-reg card1_pci_slave2_s_valid;
-wire card1_pci_slave2_serr_armed;
-reg card1_pci_slave2_serr_enable;
 wire card1_pci_slave2_serr_oe_next;
-reg card1_pci_slave2_signaled_system_error;
-reg card1_pci_slave2_signaled_target_abort;
 reg card1_pci_slave2_single;
 reg card1_pci_slave2_space_mem;
 reg [31:0] card1_pci_slave2_spare_data;
@@ -184,39 +179,44 @@ wire card1_pci_slave2_trdy_next;
 reg card1_pci_slave2_trdy_q;
 reg [3:0] card1_pci_slave2_wait_count;
 reg card1_pci_slave2_waiting;
-reg card1_pci_slave2_wq_valid;
-wire card1_pci_slave2_wq_valid_next;
-wire card1_pci_slave2_write_done_next;
-reg card1_pci_slave2_write_done_q;
+reg [31:0] card1_pci_slave2_config_rdata;
+reg [31:0] card1_pci_slave2_local_rdata;
 reg card1_pci_slave2_local_re;
-reg card1_pci_slave2_local_we;
-reg card1_pci_slave2_local_space;
-reg card1_pci_slave2_local_write;
-reg [31:0] card1_pci_slave2_local_wdata;
-reg [3:0] card1_pci_slave2_local_be;
-reg [11:0] card1_pci_slave2_local_addr;
 reg card1_pci_slave2_local_ready;
 reg card1_pci_slave2_local_retry;
-reg [31:0] card1_pci_slave2_local_rdata;
-reg [3:0] card1_pci_slave2_control_case0_0_1_out_state;
-wire card1_pci_slave2_control_case0_0_1_local_room;
-reg card1_pci_slave2_control_case0_0_1_out_trdy;
-reg card1_pci_slave2_control_case0_0_1_out_stop;
-reg card1_pci_slave2_control_case0_0_1_out_devsel;
-reg card1_pci_slave2_control_case0_0_1_out_drive;
-reg card1_pci_slave2_control_case0_0_1_out_ad_oe;
-reg [3:0] card1_pci_slave2_control_case1_0_1_out_state;
-reg card1_pci_slave2_control_case1_0_1_out_trdy;
-reg card1_pci_slave2_control_case1_0_1_out_stop;
-reg card1_pci_slave2_control_case1_0_1_out_devsel;
-reg card1_pci_slave2_control_case1_0_1_out_drive;
-reg card1_pci_slave2_control_case1_0_1_out_ad_oe;
-reg [3:0] card1_pci_slave2_control_case2_0_1_out_state;
-reg card1_pci_slave2_control_case2_0_1_out_trdy;
-reg card1_pci_slave2_control_case2_0_1_out_stop;
-reg card1_pci_slave2_control_case2_0_1_out_devsel;
-reg card1_pci_slave2_control_case2_0_1_out_drive;
-reg card1_pci_slave2_control_case2_0_1_out_ad_oe;
+reg card1_pci_slave2_local_we;
+wire [5:0] card1_pci_slave2_config_index;
+wire [31:0] card1_pci_slave2_config_data;
+wire [3:0] card1_pci_slave2_config_cbe_n;
+wire card1_pci_slave2_config_system_error;
+wire card1_pci_slave2_config_irq;
+reg card1_pci_slave2_pci_parity2_bus_parity;
+wire card1_pci_slave2_pci_parity2_perr_armed;
+wire card1_pci_slave2_pci_parity2_serr_armed;
+reg card1_pci_slave2_pci_requests2_local_space;
+reg card1_pci_slave2_pci_requests2_local_write;
+reg [31:0] card1_pci_slave2_pci_requests2_local_wdata;
+reg [3:0] card1_pci_slave2_pci_requests2_local_be;
+reg [11:0] card1_pci_slave2_pci_requests2_local_addr;
+reg [3:0] card1_pci_slave2_pci_control2_control_case0_0_1_out_state;
+wire card1_pci_slave2_pci_control2_control_case0_0_1_target_room;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_out_stop;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_out_drive;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_out_ad_oe;
+reg [3:0] card1_pci_slave2_pci_control2_control_case1_0_1_out_state;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_out_trdy;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_out_stop;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_out_devsel;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_out_drive;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_out_ad_oe;
+reg [3:0] card1_pci_slave2_pci_control2_control_case2_0_1_out_state;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_out_trdy;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_out_stop;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_out_devsel;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_out_drive;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_out_ad_oe;
 wire card1_pci_slave2_pin_lut33_out;
 wire card1_pci_slave2_pin_lut34_out;
 wire card1_pci_slave2_pin_lut35_out;
@@ -249,6 +249,11 @@ wire card1_pci_slave2_pin_lut61_out;
 wire card1_pci_slave2_pin_lut62_out;
 wire card1_pci_slave2_pin_lut63_out;
 wire card1_pci_slave2_pin_lut64_out;
+wire [15:0] card1_pci_slave2_pci_config2_bar0_read;
+reg card1_pci_slave2_pci_config2_detected_parity_error;
+reg [7:0] card1_pci_slave2_pci_config2_interrupt_line;
+reg card1_pci_slave2_pci_config2_signaled_system_error;
+reg card1_pci_slave2_pci_config2_signaled_target_abort;
 reg card1_card_core1_core_clear;
 wire card1_card_core1_dda_reset;
 reg [31:0] card1_card_core1_regs_fifo2_fifo_dout;
@@ -1373,7 +1378,7 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_control_input_reg
 end
 
 
-always @(pci_pads0_registered_pad0_from_pin, pci_pads0_registered_pad5_from_pin) begin: card1_pci_slave2_parity_check
+always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_parity2_parity_check
     reg [32-1:0] fold;
     fold = 32'h0;
     fold = pci_pads0_registered_pad0_from_pin;
@@ -1383,49 +1388,69 @@ always @(pci_pads0_registered_pad0_from_pin, pci_pads0_registered_pad5_from_pin)
     fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
     fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
     fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    card1_pci_slave2_bus_parity = fold[0];
+    card1_pci_slave2_pci_parity2_bus_parity = fold[0];
 end
 
 
 
 assign card1_pci_slave2_address_phase = (card1_pci_slave2_frame_qq && (!card1_pci_slave2_frame_q));
-assign card1_pci_slave2_serr_armed = (card1_pci_slave2_frame_qq && (!card1_pci_slave2_frame_q) && card1_pci_slave2_serr_enable && card1_pci_slave2_parity_response);
-assign card1_pci_slave2_perr_armed = (card1_pci_slave2_write_done_q && card1_pci_slave2_parity_response);
+assign card1_pci_slave2_pci_parity2_serr_armed = (card1_pci_slave2_frame_qq && (!card1_pci_slave2_frame_q) && card1_pci_slave2_serr_enable && card1_pci_slave2_parity_response);
+assign card1_pci_slave2_pci_parity2_perr_armed = (card1_pci_slave2_write_done_q && card1_pci_slave2_parity_response);
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h9F9F)) card1_pci_slave2_perr_next_lut (.O(card1_pci_slave2_perr_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(1'b0));
+SB_LUT4 #(.LUT_INIT(16'h9F9F)) card1_pci_slave2_perr_next_lut (.O(card1_pci_slave2_perr_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_pci_parity2_bus_parity), .I2(card1_pci_slave2_pci_parity2_perr_armed), .I3(1'b0));
 `else
-assign card1_pci_slave2_perr_next = (card1_pci_slave2_perr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0) : (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1)) : 1'b1);
+assign card1_pci_slave2_perr_next = (card1_pci_slave2_pci_parity2_perr_armed ? (card1_pci_slave2_pci_parity2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0) : (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1)) : 1'b1);
 `endif
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h60FF)) card1_pci_slave2_perr_oe_next_lut (.O(card1_pci_slave2_perr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_perr_armed), .I3(card1_pci_slave2_perr_q));
+SB_LUT4 #(.LUT_INIT(16'h60FF)) card1_pci_slave2_perr_oe_next_lut (.O(card1_pci_slave2_perr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_pci_parity2_bus_parity), .I2(card1_pci_slave2_pci_parity2_perr_armed), .I3(card1_pci_slave2_perr_q));
 `else
-assign card1_pci_slave2_perr_oe_next = (card1_pci_slave2_perr_q ? (card1_pci_slave2_perr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
+assign card1_pci_slave2_perr_oe_next = (card1_pci_slave2_perr_q ? (card1_pci_slave2_pci_parity2_perr_armed ? (card1_pci_slave2_pci_parity2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b1);
 `endif
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6060)) card1_pci_slave2_serr_oe_next_lut (.O(card1_pci_slave2_serr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_serr_armed), .I3(1'b0));
+SB_LUT4 #(.LUT_INIT(16'h6060)) card1_pci_slave2_serr_oe_next_lut (.O(card1_pci_slave2_serr_oe_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_pci_parity2_bus_parity), .I2(card1_pci_slave2_pci_parity2_serr_armed), .I3(1'b0));
 `else
-assign card1_pci_slave2_serr_oe_next = (card1_pci_slave2_serr_armed ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0);
+assign card1_pci_slave2_serr_oe_next = (card1_pci_slave2_pci_parity2_serr_armed ? (card1_pci_slave2_pci_parity2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6000)) card1_pci_slave2_address_fault_next_lut (.O(card1_pci_slave2_address_fault_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_parity_response));
+SB_LUT4 #(.LUT_INIT(16'h6000)) card1_pci_slave2_address_fault_next_lut (.O(card1_pci_slave2_address_fault_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_pci_parity2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_parity_response));
 `else
-assign card1_pci_slave2_address_fault_next = (card1_pci_slave2_parity_response ? (card1_pci_slave2_address_phase ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
+assign card1_pci_slave2_address_fault_next = (card1_pci_slave2_parity_response ? (card1_pci_slave2_address_phase ? (card1_pci_slave2_pci_parity2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0) : 1'b0);
 `endif
 
 
 `ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'h6660)) card1_pci_slave2_parity_error_next_lut (.O(card1_pci_slave2_parity_error_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_write_done_q));
+SB_LUT4 #(.LUT_INIT(16'h6660)) card1_pci_slave2_parity_error_next_lut (.O(card1_pci_slave2_parity_error_next), .I0(pci_pads0_tristate_pad2_from_pin), .I1(card1_pci_slave2_pci_parity2_bus_parity), .I2(card1_pci_slave2_address_phase), .I3(card1_pci_slave2_write_done_q));
 `else
-assign card1_pci_slave2_parity_error_next = (card1_pci_slave2_write_done_q ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : (card1_pci_slave2_address_phase ? (card1_pci_slave2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+assign card1_pci_slave2_parity_error_next = (card1_pci_slave2_write_done_q ? (card1_pci_slave2_pci_parity2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : (card1_pci_slave2_address_phase ? (card1_pci_slave2_pci_parity2_bus_parity ? (pci_pads0_tristate_pad2_from_pin ? 1'b0 : 1'b1) : (pci_pads0_tristate_pad2_from_pin ? 1'b1 : 1'b0)) : 1'b0));
 `endif
+
+
+always @(card1_pci_slave2_ad_parity_q, pci_pads0_registered_pad5_from_pin) begin: card1_pci_slave2_pci_parity2_parity_output
+    reg [4-1:0] cbe;
+    cbe = pci_pads0_registered_pad5_from_pin;
+    pci_pads0_tristate_pad2_to_pin = ((((card1_pci_slave2_ad_parity_q ^ cbe[0]) ^ cbe[1]) ^ cbe[2]) ^ cbe[3]);
+end
+
+
+always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_pci_parity2_ad_out_parity_tree
+    reg [32-1:0] fold;
+    fold = 32'h0;
+    fold = card1_pci_slave2_ad_out_q;
+    fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
+    fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
+    fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
+    fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
+    fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
+    card1_pci_slave2_ad_out_parity = fold[0];
+end
 
 
 always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_slave2_address_phase, card1_pci_slave2_io_enable, card1_pci_slave2_bar0, pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_mem_enable, card1_pci_slave2_state) begin: card1_pci_slave2_decode
@@ -1440,14 +1465,17 @@ always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_sl
     card1_pci_slave2_claim = ((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (config_hit || io_hit || mem_hit));
     card1_pci_slave2_claim_config = config_hit;
     card1_pci_slave2_claim_io = io_hit;
+    card1_pci_slave2_read_command = (!pci_pads0_registered_pad5_from_pin[0]);
 end
 
 
-always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_claim_config, card1_pci_slave2_claim_io) begin: card1_pci_slave2_start_offset
-    if (card1_pci_slave2_claim_config) begin
+always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_start_offset
+    reg [4-1:0] code;
+    code = pci_pads0_registered_pad5_from_pin;
+    if (((code == 10) || (code == 11))) begin
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
     end
-    else if (card1_pci_slave2_claim_io) begin
+    else if (((code == 2) || (code == 3))) begin
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h1f);
     end
     else begin
@@ -1498,7 +1526,7 @@ assign card1_pci_slave2_b_valid_next = (card1_pci_slave2_b_kept ? (pci_pads0_inp
 `endif
 
 
-always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pci_slave2_first_pending, card1_pci_slave2_io_byte, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_wq_valid, card1_pci_slave2_space_mem, card1_pci_slave2_h_be, card1_pci_slave2_h_data, card1_pci_slave2_is_config, card1_pci_slave2_irdy_q, card1_pci_slave2_req_addr_stale, card1_pci_slave2_address_fault, card1_pci_slave2_frame_q, card1_pci_slave2_h_valid, pci_pads0_registered_pad5_from_pin) begin: card1_pci_slave2_local_request
+always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pci_slave2_first_pending, card1_pci_slave2_io_byte, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_wq_valid, card1_pci_slave2_space_mem, card1_pci_slave2_h_be, card1_pci_slave2_h_data, card1_pci_slave2_is_config, card1_pci_slave2_irdy_q, card1_pci_slave2_req_addr_stale, card1_pci_slave2_address_fault, card1_pci_slave2_frame_q, card1_pci_slave2_h_valid, pci_pads0_registered_pad5_from_pin) begin: card1_pci_slave2_pci_requests2_local_request
     reg drain;
     reg hold_state;
     reg bad;
@@ -1532,21 +1560,21 @@ always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pc
     card1_pci_slave2_local_we = (drain || (first && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q)));
     card1_pci_slave2_first_ready = (card1_pci_slave2_first_pending && (!card1_pci_slave2_is_config) && (!drain) && (!card1_pci_slave2_req_addr_stale));
     card1_pci_slave2_fetch_more = (card1_pci_slave2_is_read && card1_pci_slave2_fetching && (!card1_pci_slave2_b_valid) && (card1_pci_slave2_trdy_q || (!card1_pci_slave2_frame_q)));
-    card1_pci_slave2_local_space = (drain || card1_pci_slave2_space_mem);
-    card1_pci_slave2_local_write = (drain || (!card1_pci_slave2_is_read));
+    card1_pci_slave2_pci_requests2_local_space = (drain || card1_pci_slave2_space_mem);
+    card1_pci_slave2_pci_requests2_local_write = (drain || (!card1_pci_slave2_is_read));
     if (card1_pci_slave2_h_valid) begin
-        card1_pci_slave2_local_wdata = card1_pci_slave2_h_data;
-        card1_pci_slave2_local_be = card1_pci_slave2_h_be;
+        card1_pci_slave2_pci_requests2_local_wdata = card1_pci_slave2_h_data;
+        card1_pci_slave2_pci_requests2_local_be = card1_pci_slave2_h_be;
     end
     else if ((card1_pci_slave2_is_read && card1_pci_slave2_space_mem && (!drain))) begin
-        card1_pci_slave2_local_wdata = pci_pads0_registered_pad0_from_pin;
-        card1_pci_slave2_local_be = 15;
+        card1_pci_slave2_pci_requests2_local_wdata = pci_pads0_registered_pad0_from_pin;
+        card1_pci_slave2_pci_requests2_local_be = 15;
     end
     else begin
-        card1_pci_slave2_local_wdata = pci_pads0_registered_pad0_from_pin;
-        card1_pci_slave2_local_be = (~pci_pads0_registered_pad5_from_pin);
+        card1_pci_slave2_pci_requests2_local_wdata = pci_pads0_registered_pad0_from_pin;
+        card1_pci_slave2_pci_requests2_local_be = (~pci_pads0_registered_pad5_from_pin);
     end
-    card1_pci_slave2_local_addr = {card1_pci_slave2_req_addr, 2'h0};
+    card1_pci_slave2_pci_requests2_local_addr = {card1_pci_slave2_req_addr, 2'h0};
 end
 
 
@@ -1560,38 +1588,16 @@ assign card1_pci_slave2_hold_retry = (card1_pci_slave2_first_ready && (card1_pci
 assign card1_pci_slave2_burst_got = (card1_pci_slave2_fetch_more && card1_pci_slave2_local_ready);
 
 
-always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_config_data, card1_pci_slave2_spare_data, card1_pci_slave2_local_rdata) begin: card1_pci_slave2_read_path
+always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_config_rdata, card1_pci_slave2_spare_data, card1_pci_slave2_local_rdata) begin: card1_pci_slave2_read_path
     if (card1_pci_slave2_b_valid) begin
         card1_pci_slave2_read_source = card1_pci_slave2_spare_data;
     end
     else if (card1_pci_slave2_is_config) begin
-        card1_pci_slave2_read_source = card1_pci_slave2_config_data;
+        card1_pci_slave2_read_source = card1_pci_slave2_config_rdata;
     end
     else begin
         card1_pci_slave2_read_source = card1_pci_slave2_local_rdata;
     end
-end
-
-
-always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_local_ready, card1_pci_slave2_s_valid) begin: card1_pci_slave2_write_path
-    reg [2-1:0] held;
-    held = 0;
-    if (card1_pci_slave2_h_valid) begin
-        held = 1;
-        if (card1_pci_slave2_s_valid) begin
-            held = 2;
-        end
-        if (card1_pci_slave2_local_ready) begin
-            held = (held - 1);
-        end
-        if (card1_pci_slave2_wq_valid) begin
-            held = (held + 1);
-        end
-    end
-    else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_local_ready))) begin
-        held = 1;
-    end
-    card1_pci_slave2_buffered_next = held;
 end
 
 
@@ -1603,7 +1609,7 @@ always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_p
 end
 
 
-always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_control_case0_0_1_local_room, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q) begin: card1_pci_slave2_control_case0_0_1_control
+always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_read_command, card1_pci_slave2_b_valid, card1_pci_slave2_stop_q, card1_pci_slave2_single, card1_pci_slave2_state, card1_pci_slave2_hold_retry, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_burst_got, card1_pci_slave2_claim_config, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_is_read, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case0_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1622,7 +1628,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card1_pci_slave2_control_case0_0_1_out_state = card1_pci_slave2_state;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_state = card1_pci_slave2_state;
     last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     if (done) begin
         last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
@@ -1639,7 +1645,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if ((done && (!card1_pci_slave2_first_phase))) begin
             buffer_room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_control_case0_0_1_local_room));
+        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
     end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1647,40 +1653,40 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if (card1_pci_slave2_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!pci_pads0_registered_pad5_from_pin[0]);
+            ad_oe = (card1_pci_slave2_read_command != 0);
             if (card1_pci_slave2_claim_config) begin
-                card1_pci_slave2_control_case0_0_1_out_state = 4'b0001;
+                card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0001;
             end
             else if (card1_pci_slave2_claim_io) begin
-                card1_pci_slave2_control_case0_0_1_out_state = 4'b0010;
+                card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0010;
             end
             else begin
-                card1_pci_slave2_control_case0_0_1_out_state = 4'b0011;
+                card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0011;
             end
         end
     end
     else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
         if (card1_pci_slave2_fatal) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((card1_pci_slave2_state == 4'b0001)) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b0101;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b1);
         end
         else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b0110;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
         else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (card1_pci_slave2_is_read) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b0100;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0100;
         end
     end
     else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
@@ -1690,10 +1696,10 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
             trdy = 1'b1;
             if (1'b1) begin
-                card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
+                card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
             end
             else begin
-                card1_pci_slave2_control_case0_0_1_out_state = 4'b1000;
+                card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1704,7 +1710,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
             stop = (!(last_data && 1'b1));
         end
         else if ((exhausted || card1_pci_slave2_timeout)) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1714,7 +1720,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     end
     else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            card1_pci_slave2_control_case0_0_1_out_state = 4'b1000;
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1722,18 +1728,18 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         end
     end
     else begin
-        card1_pci_slave2_control_case0_0_1_out_state = 4'b0000;
+        card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0000;
         drive = 1'b0;
     end
-    card1_pci_slave2_control_case0_0_1_out_trdy = trdy;
-    card1_pci_slave2_control_case0_0_1_out_stop = stop;
-    card1_pci_slave2_control_case0_0_1_out_devsel = devsel;
-    card1_pci_slave2_control_case0_0_1_out_drive = drive;
-    card1_pci_slave2_control_case0_0_1_out_ad_oe = ad_oe;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy = trdy;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_stop = stop;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel = devsel;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_drive = drive;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_ad_oe = ad_oe;
 end
 
 
-always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_control_case0_0_1_local_room, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q) begin: card1_pci_slave2_control_case1_0_1_control
+always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_read_command, card1_pci_slave2_b_valid, card1_pci_slave2_stop_q, card1_pci_slave2_single, card1_pci_slave2_state, card1_pci_slave2_hold_retry, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_burst_got, card1_pci_slave2_claim_config, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_is_read, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case1_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1752,7 +1758,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card1_pci_slave2_control_case1_0_1_out_state = card1_pci_slave2_state;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_state = card1_pci_slave2_state;
     last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     if (done) begin
         last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
@@ -1769,7 +1775,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if ((done && (!card1_pci_slave2_first_phase))) begin
             buffer_room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_control_case0_0_1_local_room));
+        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
     end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1777,40 +1783,40 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if (card1_pci_slave2_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!pci_pads0_registered_pad5_from_pin[0]);
+            ad_oe = (card1_pci_slave2_read_command != 0);
             if (card1_pci_slave2_claim_config) begin
-                card1_pci_slave2_control_case1_0_1_out_state = 4'b0001;
+                card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0001;
             end
             else if (card1_pci_slave2_claim_io) begin
-                card1_pci_slave2_control_case1_0_1_out_state = 4'b0010;
+                card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0010;
             end
             else begin
-                card1_pci_slave2_control_case1_0_1_out_state = 4'b0011;
+                card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0011;
             end
         end
     end
     else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
         if (card1_pci_slave2_fatal) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((card1_pci_slave2_state == 4'b0001)) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b0101;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b0);
         end
         else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b0110;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b0));
         end
         else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (card1_pci_slave2_is_read) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b0100;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0100;
         end
     end
     else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
@@ -1820,10 +1826,10 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         else if ((done && ((!1'b0) || (!card1_pci_slave2_stop_q)))) begin
             trdy = 1'b1;
             if (1'b0) begin
-                card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
+                card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
             end
             else begin
-                card1_pci_slave2_control_case1_0_1_out_state = 4'b1000;
+                card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1834,7 +1840,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
             stop = (!(last_data && 1'b0));
         end
         else if ((exhausted || card1_pci_slave2_timeout)) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1844,7 +1850,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     end
     else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b0)) begin
-            card1_pci_slave2_control_case1_0_1_out_state = 4'b1000;
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1852,18 +1858,18 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         end
     end
     else begin
-        card1_pci_slave2_control_case1_0_1_out_state = 4'b0000;
+        card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0000;
         drive = 1'b0;
     end
-    card1_pci_slave2_control_case1_0_1_out_trdy = trdy;
-    card1_pci_slave2_control_case1_0_1_out_stop = stop;
-    card1_pci_slave2_control_case1_0_1_out_devsel = devsel;
-    card1_pci_slave2_control_case1_0_1_out_drive = drive;
-    card1_pci_slave2_control_case1_0_1_out_ad_oe = ad_oe;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_trdy = trdy;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_stop = stop;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_devsel = devsel;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_drive = drive;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_ad_oe = ad_oe;
 end
 
 
-always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_slave2_claim_config, card1_pci_slave2_before_last, card1_pci_slave2_fatal, card1_pci_slave2_b_valid, pci_pads0_registered_pad2_enable, card1_pci_slave2_stop_q, card1_pci_slave2_is_read, card1_pci_slave2_burst_got, card1_pci_slave2_fetching, card1_pci_slave2_state, card1_pci_slave2_trdy_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_control_case0_0_1_local_room, card1_pci_slave2_timeout, card1_pci_slave2_is_config, card1_pci_slave2_claim_io, card1_pci_slave2_buffered_next, card1_pci_slave2_single, pci_pads0_registered_pad0_enable, pci_pads0_registered_pad5_from_pin, card1_pci_slave2_devsel_q) begin: card1_pci_slave2_control_case2_0_1_control
+always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_read_command, card1_pci_slave2_b_valid, card1_pci_slave2_stop_q, card1_pci_slave2_single, card1_pci_slave2_state, card1_pci_slave2_hold_retry, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_burst_got, card1_pci_slave2_claim_config, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_is_read, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case2_0_1_control
     reg done;
     reg hold;
     reg trdy;
@@ -1882,7 +1888,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card1_pci_slave2_control_case2_0_1_out_state = card1_pci_slave2_state;
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_state = card1_pci_slave2_state;
     last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     if (done) begin
         last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
@@ -1899,7 +1905,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if ((done && (!card1_pci_slave2_first_phase))) begin
             buffer_room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_control_case0_0_1_local_room));
+        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
     end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
@@ -1907,40 +1913,40 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         if (card1_pci_slave2_claim) begin
             drive = 1'b1;
             devsel = 1'b0;
-            ad_oe = (!pci_pads0_registered_pad5_from_pin[0]);
+            ad_oe = (card1_pci_slave2_read_command != 0);
             if (card1_pci_slave2_claim_config) begin
-                card1_pci_slave2_control_case2_0_1_out_state = 4'b0001;
+                card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0001;
             end
             else if (card1_pci_slave2_claim_io) begin
-                card1_pci_slave2_control_case2_0_1_out_state = 4'b0010;
+                card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0010;
             end
             else begin
-                card1_pci_slave2_control_case2_0_1_out_state = 4'b0011;
+                card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0011;
             end
         end
     end
     else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
         if (card1_pci_slave2_fatal) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
             devsel = 1'b1;
             stop = 1'b0;
         end
         else if ((card1_pci_slave2_state == 4'b0001)) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b0101;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0101;
             trdy = 1'b0;
             stop = (!1'b1);
         end
         else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b0110;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0110;
             trdy = 1'b0;
             stop = (!(last_data && 1'b1));
         end
         else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
             stop = 1'b0;
         end
         else if (card1_pci_slave2_is_read) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b0100;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0100;
         end
     end
     else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
@@ -1950,10 +1956,10 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
             trdy = 1'b1;
             if (1'b1) begin
-                card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
+                card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
             end
             else begin
-                card1_pci_slave2_control_case2_0_1_out_state = 4'b1000;
+                card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b1000;
                 stop = 1'b1;
                 devsel = 1'b1;
                 ad_oe = 1'b0;
@@ -1964,7 +1970,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
             stop = (!(last_data && 1'b1));
         end
         else if ((exhausted || card1_pci_slave2_timeout)) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b0111;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1974,7 +1980,7 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
     end
     else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            card1_pci_slave2_control_case2_0_1_out_state = 4'b1000;
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
             devsel = 1'b1;
@@ -1982,40 +1988,40 @@ always @(card1_pci_slave2_hold_retry, card1_pci_slave2_hold_accepted, card1_pci_
         end
     end
     else begin
-        card1_pci_slave2_control_case2_0_1_out_state = 4'b0000;
+        card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0000;
         drive = 1'b0;
     end
-    card1_pci_slave2_control_case2_0_1_out_trdy = trdy;
-    card1_pci_slave2_control_case2_0_1_out_stop = stop;
-    card1_pci_slave2_control_case2_0_1_out_devsel = devsel;
-    card1_pci_slave2_control_case2_0_1_out_drive = drive;
-    card1_pci_slave2_control_case2_0_1_out_ad_oe = ad_oe;
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_trdy = trdy;
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_stop = stop;
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_devsel = devsel;
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_drive = drive;
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_ad_oe = ad_oe;
 end
 
 
-wire card1_pci_slave2_state_next_x0 = card1_pci_slave2_control_case0_0_1_out_state[0];
-wire card1_pci_slave2_state_next_y0 = card1_pci_slave2_control_case2_0_1_out_state[0] ^ card1_pci_slave2_control_case1_0_1_out_state[0];
+wire card1_pci_slave2_state_next_x0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_state[0];
+wire card1_pci_slave2_state_next_y0 = card1_pci_slave2_pci_control2_control_case2_0_1_out_state[0] ^ card1_pci_slave2_pci_control2_control_case1_0_1_out_state[0];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut0 (.O(card1_pci_slave2_state_next[0]), .I0(card1_pci_slave2_state_next_x0), .I1(card1_pci_slave2_state_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
 assign card1_pci_slave2_state_next[0] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y0 ? 1'b0 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y0 ? 1'b0 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y0 ? 1'b1 : (card1_pci_slave2_state_next_x0 ? 1'b1 : 1'b0))));
 `endif
-wire card1_pci_slave2_state_next_x1 = card1_pci_slave2_control_case0_0_1_out_state[1];
-wire card1_pci_slave2_state_next_y1 = card1_pci_slave2_control_case2_0_1_out_state[1] ^ card1_pci_slave2_control_case1_0_1_out_state[1];
+wire card1_pci_slave2_state_next_x1 = card1_pci_slave2_pci_control2_control_case0_0_1_out_state[1];
+wire card1_pci_slave2_state_next_y1 = card1_pci_slave2_pci_control2_control_case2_0_1_out_state[1] ^ card1_pci_slave2_pci_control2_control_case1_0_1_out_state[1];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut1 (.O(card1_pci_slave2_state_next[1]), .I0(card1_pci_slave2_state_next_x1), .I1(card1_pci_slave2_state_next_y1), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
 assign card1_pci_slave2_state_next[1] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y1 ? 1'b0 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y1 ? 1'b0 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y1 ? 1'b1 : (card1_pci_slave2_state_next_x1 ? 1'b1 : 1'b0))));
 `endif
-wire card1_pci_slave2_state_next_x2 = card1_pci_slave2_control_case0_0_1_out_state[2];
-wire card1_pci_slave2_state_next_y2 = card1_pci_slave2_control_case2_0_1_out_state[2] ^ card1_pci_slave2_control_case1_0_1_out_state[2];
+wire card1_pci_slave2_state_next_x2 = card1_pci_slave2_pci_control2_control_case0_0_1_out_state[2];
+wire card1_pci_slave2_state_next_y2 = card1_pci_slave2_pci_control2_control_case2_0_1_out_state[2] ^ card1_pci_slave2_pci_control2_control_case1_0_1_out_state[2];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_state_next_lut2 (.O(card1_pci_slave2_state_next[2]), .I0(card1_pci_slave2_state_next_x2), .I1(card1_pci_slave2_state_next_y2), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
 assign card1_pci_slave2_state_next[2] = (pci_pads0_input_pad1_from_pin ? (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y2 ? 1'b0 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (pci_pads0_input_pad0_from_pin ? (card1_pci_slave2_state_next_y2 ? 1'b0 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0)) : (card1_pci_slave2_state_next_y2 ? 1'b1 : (card1_pci_slave2_state_next_x2 ? 1'b1 : 1'b0))));
 `endif
-wire card1_pci_slave2_state_next_x3 = card1_pci_slave2_control_case0_0_1_out_state[3];
-wire card1_pci_slave2_state_next_y3 = card1_pci_slave2_control_case0_0_1_out_state[3] ? card1_pci_slave2_control_case2_0_1_out_state[3] : card1_pci_slave2_control_case1_0_1_out_state[3];
+wire card1_pci_slave2_state_next_x3 = card1_pci_slave2_pci_control2_control_case0_0_1_out_state[3];
+wire card1_pci_slave2_state_next_y3 = card1_pci_slave2_pci_control2_control_case0_0_1_out_state[3] ? card1_pci_slave2_pci_control2_control_case2_0_1_out_state[3] : card1_pci_slave2_pci_control2_control_case1_0_1_out_state[3];
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_state_next_lut3 (.O(card1_pci_slave2_state_next[3]), .I0(card1_pci_slave2_state_next_x3), .I1(card1_pci_slave2_state_next_y3), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
@@ -2023,8 +2029,8 @@ assign card1_pci_slave2_state_next[3] = (pci_pads0_input_pad1_from_pin ? (pci_pa
 `endif
 
 
-wire card1_pci_slave2_trdy_next_x0 = card1_pci_slave2_control_case0_0_1_out_trdy ^ card1_pci_slave2_control_case1_0_1_out_trdy;
-wire card1_pci_slave2_trdy_next_y0 = (card1_pci_slave2_control_case0_0_1_out_trdy ^ card1_pci_slave2_control_case1_0_1_out_trdy) ? card1_pci_slave2_control_case2_0_1_out_trdy : card1_pci_slave2_control_case0_0_1_out_trdy;
+wire card1_pci_slave2_trdy_next_x0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy ^ card1_pci_slave2_pci_control2_control_case1_0_1_out_trdy;
+wire card1_pci_slave2_trdy_next_y0 = (card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy ^ card1_pci_slave2_pci_control2_control_case1_0_1_out_trdy) ? card1_pci_slave2_pci_control2_control_case2_0_1_out_trdy : card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy;
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hE4EC)) card1_pci_slave2_trdy_next_lut0 (.O(card1_pci_slave2_trdy_next), .I0(card1_pci_slave2_trdy_next_x0), .I1(card1_pci_slave2_trdy_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
@@ -2032,8 +2038,8 @@ assign card1_pci_slave2_trdy_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_
 `endif
 
 
-wire card1_pci_slave2_stop_next_x0 = card1_pci_slave2_control_case0_0_1_out_stop;
-wire card1_pci_slave2_stop_next_y0 = card1_pci_slave2_control_case0_0_1_out_stop ? card1_pci_slave2_control_case2_0_1_out_stop : card1_pci_slave2_control_case1_0_1_out_stop;
+wire card1_pci_slave2_stop_next_x0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_stop;
+wire card1_pci_slave2_stop_next_y0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_stop ? card1_pci_slave2_pci_control2_control_case2_0_1_out_stop : card1_pci_slave2_pci_control2_control_case1_0_1_out_stop;
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_stop_next_lut0 (.O(card1_pci_slave2_stop_next), .I0(card1_pci_slave2_stop_next_x0), .I1(card1_pci_slave2_stop_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
@@ -2041,8 +2047,8 @@ assign card1_pci_slave2_stop_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0_
 `endif
 
 
-wire card1_pci_slave2_devsel_next_x0 = card1_pci_slave2_control_case0_0_1_out_devsel;
-wire card1_pci_slave2_devsel_next_y0 = card1_pci_slave2_control_case0_0_1_out_devsel ? card1_pci_slave2_control_case2_0_1_out_devsel : card1_pci_slave2_control_case1_0_1_out_devsel;
+wire card1_pci_slave2_devsel_next_x0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel;
+wire card1_pci_slave2_devsel_next_y0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel ? card1_pci_slave2_pci_control2_control_case2_0_1_out_devsel : card1_pci_slave2_pci_control2_control_case1_0_1_out_devsel;
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_devsel_next_lut0 (.O(card1_pci_slave2_devsel_next), .I0(card1_pci_slave2_devsel_next_x0), .I1(card1_pci_slave2_devsel_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
@@ -2050,8 +2056,8 @@ assign card1_pci_slave2_devsel_next = (pci_pads0_input_pad1_from_pin ? (pci_pads
 `endif
 
 
-wire card1_pci_slave2_drive_next_x0 = card1_pci_slave2_control_case0_0_1_out_drive;
-wire card1_pci_slave2_drive_next_y0 = card1_pci_slave2_control_case0_0_1_out_drive ? card1_pci_slave2_control_case2_0_1_out_drive : card1_pci_slave2_control_case1_0_1_out_drive;
+wire card1_pci_slave2_drive_next_x0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_drive;
+wire card1_pci_slave2_drive_next_y0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_drive ? card1_pci_slave2_pci_control2_control_case2_0_1_out_drive : card1_pci_slave2_pci_control2_control_case1_0_1_out_drive;
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'hEAE8)) card1_pci_slave2_drive_next_lut0 (.O(card1_pci_slave2_drive_next), .I0(card1_pci_slave2_drive_next_x0), .I1(card1_pci_slave2_drive_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
@@ -2059,8 +2065,8 @@ assign card1_pci_slave2_drive_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0
 `endif
 
 
-wire card1_pci_slave2_ad_oe_next_x0 = card1_pci_slave2_control_case0_0_1_out_ad_oe;
-wire card1_pci_slave2_ad_oe_next_y0 = card1_pci_slave2_control_case2_0_1_out_ad_oe ^ card1_pci_slave2_control_case1_0_1_out_ad_oe;
+wire card1_pci_slave2_ad_oe_next_x0 = card1_pci_slave2_pci_control2_control_case0_0_1_out_ad_oe;
+wire card1_pci_slave2_ad_oe_next_y0 = card1_pci_slave2_pci_control2_control_case2_0_1_out_ad_oe ^ card1_pci_slave2_pci_control2_control_case1_0_1_out_ad_oe;
 `ifdef SYNTHESIS
 SB_LUT4 #(.LUT_INIT(16'h2A2E)) card1_pci_slave2_ad_oe_next_lut0 (.O(card1_pci_slave2_ad_oe_next), .I0(card1_pci_slave2_ad_oe_next_x0), .I1(card1_pci_slave2_ad_oe_next_y0), .I2(pci_pads0_input_pad0_from_pin), .I3(pci_pads0_input_pad1_from_pin));
 `else
@@ -2374,23 +2380,6 @@ assign card1_pci_slave2_pin_lut64_out = (card1_pci_slave2_read_source[31] ? (car
 `endif
 
 
-
-assign pci_pads0_tristate_pad2_to_pin = ((((card1_pci_slave2_ad_parity_q ^ pci_pads0_registered_pad5_from_pin[0]) ^ pci_pads0_registered_pad5_from_pin[1]) ^ pci_pads0_registered_pad5_from_pin[2]) ^ pci_pads0_registered_pad5_from_pin[3]);
-
-
-always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_ad_out_parity_tree
-    reg [32-1:0] fold;
-    fold = 32'h0;
-    fold = card1_pci_slave2_ad_out_q;
-    fold[16-1:0] = (fold[16-1:0] ^ fold[32-1:16]);
-    fold[8-1:0] = (fold[8-1:0] ^ fold[16-1:8]);
-    fold[4-1:0] = (fold[4-1:0] ^ fold[8-1:4]);
-    fold[2-1:0] = (fold[2-1:0] ^ fold[4-1:2]);
-    fold[1-1:0] = (fold[1-1:0] ^ fold[2-1:1]);
-    card1_pci_slave2_ad_out_parity = fold[0];
-end
-
-
 always @(posedge clock, negedge reset) begin: card1_pci_slave2_bus_registers
     if (reset == 0) begin
         pci_pads0_registered_pad1_enable <= 0;
@@ -2441,7 +2430,7 @@ assign pci_pads0_registered_pad0_to_pin = card1_pci_slave2_ad_out_next;
 assign pci_pads0_registered_pad4_to_pin = card1_pci_slave2_perr_next;
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_read_buffer
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_buffers2_read_buffer
     if (reset == 0) begin
         card1_pci_slave2_b_valid <= 0;
     end
@@ -2451,7 +2440,7 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_read_buffer
 end
 
 
-always @(card1_pci_slave2_got, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_state, card1_pci_slave2_trdy_q) begin: card1_pci_slave2_read_buffer_hold
+always @(card1_pci_slave2_got, card1_pci_slave2_b_valid, card1_pci_slave2_is_read, card1_pci_slave2_state, card1_pci_slave2_trdy_q) begin: card1_pci_slave2_pci_buffers2_read_buffer_hold
     reg in_read;
     in_read = (card1_pci_slave2_is_read && ((card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0100) || (card1_pci_slave2_state == 4'b0110)));
     card1_pci_slave2_b_kept = (in_read && (card1_pci_slave2_b_valid || card1_pci_slave2_got) && (!card1_pci_slave2_trdy_q));
@@ -2462,7 +2451,7 @@ end
 assign card1_pci_slave2_posting = ((!card1_pci_slave2_trdy_q) && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_first_phase) && card1_pci_slave2_space_mem);
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_write_buffer
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_buffers2_write_buffer
     if (reset == 0) begin
         card1_pci_slave2_wq_valid <= 0;
         card1_pci_slave2_config_write_q <= 0;
@@ -2515,26 +2504,44 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_write_buffer
 end
 
 
+always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_local_ready, card1_pci_slave2_s_valid) begin: card1_pci_slave2_pci_buffers2_posted_count
+    reg [2-1:0] held;
+    held = 0;
+    if (card1_pci_slave2_h_valid) begin
+        held = 1;
+        if (card1_pci_slave2_s_valid) begin
+            held = 2;
+        end
+        if (card1_pci_slave2_local_ready) begin
+            held = (held - 1);
+        end
+        if (card1_pci_slave2_wq_valid) begin
+            held = (held + 1);
+        end
+    end
+    else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_local_ready))) begin
+        held = 1;
+    end
+    card1_pci_slave2_buffered_next = held;
+end
 
-assign card1_pci_slave2_config_index = card1_pci_slave2_phase_addr[6-1:0];
 
-
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_config_registers
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_config2_config_registers
     reg clear_target_abort;
     reg clear_system_error;
     reg clear_parity_error;
     if (reset == 0) begin
+        card1_pci_slave2_parity_response <= 0;
+        card1_pci_slave2_pci_config2_signaled_system_error <= 0;
+        card1_pci_slave2_pci_config2_interrupt_line <= 0;
+        card1_pci_slave2_interrupt_disable <= 0;
+        card1_pci_slave2_pci_config2_signaled_target_abort <= 0;
+        card1_pci_slave2_bar0 <= 0;
+        card1_pci_slave2_pci_config2_detected_parity_error <= 0;
+        card1_pci_slave2_io_enable <= 0;
         card1_pci_slave2_serr_enable <= 0;
         card1_pci_slave2_bar1 <= 0;
-        card1_pci_slave2_signaled_system_error <= 0;
-        card1_pci_slave2_interrupt_disable <= 0;
-        card1_pci_slave2_io_enable <= 0;
-        card1_pci_slave2_bar0 <= 0;
-        card1_pci_slave2_signaled_target_abort <= 0;
-        card1_pci_slave2_detected_parity_error <= 0;
-        card1_pci_slave2_interrupt_line <= 0;
         card1_pci_slave2_mem_enable <= 0;
-        card1_pci_slave2_parity_response <= 0;
     end
     else begin
         clear_target_abort = 1'b0;
@@ -2543,89 +2550,97 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_config_registers
         if (card1_pci_slave2_config_write_q) begin
             case (card1_pci_slave2_config_index)
                 'h1: begin
-                    if ((!pci_pads0_registered_pad5_from_pin[0])) begin
-                        card1_pci_slave2_io_enable <= pci_pads0_registered_pad0_from_pin[0];
-                        card1_pci_slave2_mem_enable <= pci_pads0_registered_pad0_from_pin[1];
-                        card1_pci_slave2_parity_response <= pci_pads0_registered_pad0_from_pin[6];
+                    if ((!card1_pci_slave2_config_cbe_n[0])) begin
+                        card1_pci_slave2_io_enable <= card1_pci_slave2_config_data[0];
+                        card1_pci_slave2_mem_enable <= card1_pci_slave2_config_data[1];
+                        card1_pci_slave2_parity_response <= card1_pci_slave2_config_data[6];
                     end
-                    if ((!pci_pads0_registered_pad5_from_pin[1])) begin
-                        card1_pci_slave2_serr_enable <= pci_pads0_registered_pad0_from_pin[8];
-                        card1_pci_slave2_interrupt_disable <= pci_pads0_registered_pad0_from_pin[10];
+                    if ((!card1_pci_slave2_config_cbe_n[1])) begin
+                        card1_pci_slave2_serr_enable <= card1_pci_slave2_config_data[8];
+                        card1_pci_slave2_interrupt_disable <= card1_pci_slave2_config_data[10];
                     end
-                    if ((!pci_pads0_registered_pad5_from_pin[3])) begin
-                        clear_target_abort = pci_pads0_registered_pad0_from_pin[27];
-                        clear_system_error = pci_pads0_registered_pad0_from_pin[30];
-                        clear_parity_error = pci_pads0_registered_pad0_from_pin[31];
+                    if ((!card1_pci_slave2_config_cbe_n[3])) begin
+                        clear_target_abort = card1_pci_slave2_config_data[27];
+                        clear_system_error = card1_pci_slave2_config_data[30];
+                        clear_parity_error = card1_pci_slave2_config_data[31];
                     end
                 end
                 'h4: begin
-                    if ((!pci_pads0_registered_pad5_from_pin[0])) begin
-                        card1_pci_slave2_bar0[8-1:0] <= pci_pads0_registered_pad0_from_pin[8-1:0];
+                    if ((!card1_pci_slave2_config_cbe_n[0])) begin
+                        card1_pci_slave2_bar0[8-1:0] <= card1_pci_slave2_config_data[8-1:0];
                     end
-                    if ((!pci_pads0_registered_pad5_from_pin[1])) begin
-                        card1_pci_slave2_bar0[16-1:8] <= pci_pads0_registered_pad0_from_pin[16-1:8];
+                    if ((!card1_pci_slave2_config_cbe_n[1])) begin
+                        card1_pci_slave2_bar0[16-1:8] <= card1_pci_slave2_config_data[16-1:8];
                     end
                 end
                 'h5: begin
-                    if ((!pci_pads0_registered_pad5_from_pin[0])) begin
-                        card1_pci_slave2_bar1[8-1:0] <= pci_pads0_registered_pad0_from_pin[8-1:0];
+                    if ((!card1_pci_slave2_config_cbe_n[0])) begin
+                        card1_pci_slave2_bar1[8-1:0] <= card1_pci_slave2_config_data[8-1:0];
                     end
-                    if ((!pci_pads0_registered_pad5_from_pin[1])) begin
-                        card1_pci_slave2_bar1[16-1:8] <= pci_pads0_registered_pad0_from_pin[16-1:8];
+                    if ((!card1_pci_slave2_config_cbe_n[1])) begin
+                        card1_pci_slave2_bar1[16-1:8] <= card1_pci_slave2_config_data[16-1:8];
                     end
-                    if ((!pci_pads0_registered_pad5_from_pin[2])) begin
-                        card1_pci_slave2_bar1[24-1:16] <= pci_pads0_registered_pad0_from_pin[24-1:16];
+                    if ((!card1_pci_slave2_config_cbe_n[2])) begin
+                        card1_pci_slave2_bar1[24-1:16] <= card1_pci_slave2_config_data[24-1:16];
                     end
-                    if ((!pci_pads0_registered_pad5_from_pin[3])) begin
-                        card1_pci_slave2_bar1[32-1:24] <= pci_pads0_registered_pad0_from_pin[32-1:24];
+                    if ((!card1_pci_slave2_config_cbe_n[3])) begin
+                        card1_pci_slave2_bar1[32-1:24] <= card1_pci_slave2_config_data[32-1:24];
                     end
                 end
                 'hf: begin
-                    if ((!pci_pads0_registered_pad5_from_pin[0])) begin
-                        card1_pci_slave2_interrupt_line <= pci_pads0_registered_pad0_from_pin[8-1:0];
+                    if ((!card1_pci_slave2_config_cbe_n[0])) begin
+                        card1_pci_slave2_pci_config2_interrupt_line <= card1_pci_slave2_config_data[8-1:0];
                     end
                 end
             endcase
         end
-        card1_pci_slave2_signaled_target_abort <= (card1_pci_slave2_fatal || (card1_pci_slave2_signaled_target_abort && (!clear_target_abort)));
-        card1_pci_slave2_signaled_system_error <= (pci_pads0_tristate_pad0_enable || (card1_pci_slave2_signaled_system_error && (!clear_system_error)));
-        card1_pci_slave2_detected_parity_error <= (card1_pci_slave2_parity_error_q || (card1_pci_slave2_detected_parity_error && (!clear_parity_error)));
+        card1_pci_slave2_pci_config2_signaled_target_abort <= (card1_pci_slave2_fatal || (card1_pci_slave2_pci_config2_signaled_target_abort && (!clear_target_abort)));
+        card1_pci_slave2_pci_config2_signaled_system_error <= (card1_pci_slave2_config_system_error || (card1_pci_slave2_pci_config2_signaled_system_error && (!clear_system_error)));
+        card1_pci_slave2_pci_config2_detected_parity_error <= (card1_pci_slave2_parity_error_q || (card1_pci_slave2_pci_config2_detected_parity_error && (!clear_parity_error)));
     end
 end
 
 
 
-assign card1_pci_slave2_bar0_read = ((card1_pci_slave2_bar0 & 16'hff80) | 16'h1);
+assign card1_pci_slave2_pci_config2_bar0_read = ((card1_pci_slave2_bar0 & 16'hff80) | 16'h1);
 
 
-always @(card1_pci_slave2_signaled_system_error, card1_pci_slave2_serr_enable, card1_pci_slave2_bar1, card1_pci_slave2_config_index, card1_pci_slave2_interrupt_disable, card1_irq, card1_pci_slave2_bar0_read, card1_pci_slave2_io_enable, card1_pci_slave2_signaled_target_abort, card1_pci_slave2_detected_parity_error, card1_pci_slave2_interrupt_line, card1_pci_slave2_mem_enable, card1_pci_slave2_parity_response) begin: card1_pci_slave2_config_read
+always @(card1_pci_slave2_pci_config2_signaled_system_error, card1_pci_slave2_parity_response, card1_pci_slave2_config_irq, card1_pci_slave2_config_index, card1_pci_slave2_pci_config2_bar0_read, card1_pci_slave2_pci_config2_interrupt_line, card1_pci_slave2_interrupt_disable, card1_pci_slave2_pci_config2_signaled_target_abort, card1_pci_slave2_pci_config2_detected_parity_error, card1_pci_slave2_io_enable, card1_pci_slave2_serr_enable, card1_pci_slave2_bar1, card1_pci_slave2_mem_enable) begin: card1_pci_slave2_pci_config2_config_read
     case (card1_pci_slave2_config_index)
         'h0: begin
-            card1_pci_slave2_config_data = 32'hdda01234;
+            card1_pci_slave2_config_rdata = 32'hdda01234;
         end
         'h1: begin
-            card1_pci_slave2_config_data = {card1_pci_slave2_detected_parity_error, card1_pci_slave2_signaled_system_error, 2'h0, card1_pci_slave2_signaled_target_abort, 2'h1, 5'h0, card1_irq, 8'h0, card1_pci_slave2_interrupt_disable, 1'b0, card1_pci_slave2_serr_enable, 1'b0, card1_pci_slave2_parity_response, 4'h0, card1_pci_slave2_mem_enable, card1_pci_slave2_io_enable};
+            card1_pci_slave2_config_rdata = {card1_pci_slave2_pci_config2_detected_parity_error, card1_pci_slave2_pci_config2_signaled_system_error, 2'h0, card1_pci_slave2_pci_config2_signaled_target_abort, 2'h1, 5'h0, card1_pci_slave2_config_irq, 8'h0, card1_pci_slave2_interrupt_disable, 1'b0, card1_pci_slave2_serr_enable, 1'b0, card1_pci_slave2_parity_response, 4'h0, card1_pci_slave2_mem_enable, card1_pci_slave2_io_enable};
         end
         'h2: begin
-            card1_pci_slave2_config_data = 32'h8800001;
+            card1_pci_slave2_config_rdata = 32'h8800001;
         end
         'h4: begin
-            card1_pci_slave2_config_data = {16'h0, card1_pci_slave2_bar0_read};
+            card1_pci_slave2_config_rdata = {16'h0, card1_pci_slave2_pci_config2_bar0_read};
         end
         'h5: begin
-            card1_pci_slave2_config_data = (card1_pci_slave2_bar1 & 32'hfffff000);
+            card1_pci_slave2_config_rdata = (card1_pci_slave2_bar1 & 32'hfffff000);
         end
         'hb: begin
-            card1_pci_slave2_config_data = 32'h11234;
+            card1_pci_slave2_config_rdata = 32'h11234;
         end
         'hf: begin
-            card1_pci_slave2_config_data = {16'h0, 8'h1, card1_pci_slave2_interrupt_line};
+            card1_pci_slave2_config_rdata = {16'h0, 8'h1, card1_pci_slave2_pci_config2_interrupt_line};
         end
         default: begin
-            card1_pci_slave2_config_data = 0;
+            card1_pci_slave2_config_rdata = 0;
         end
     endcase
 end
+
+
+
+assign card1_pci_slave2_config_index = card1_pci_slave2_phase_addr[6-1:0];
+assign card1_pci_slave2_config_data = pci_pads0_registered_pad0_from_pin;
+assign card1_pci_slave2_config_cbe_n = pci_pads0_registered_pad5_from_pin;
+assign card1_pci_slave2_config_system_error = pci_pads0_tristate_pad0_enable;
+assign card1_pci_slave2_config_irq = card1_irq;
 
 
 
@@ -2644,7 +2659,7 @@ assign card1_card_core1_regs_fifo2_sync_fifo2_last_beyond = ($signed({1'b0, card
 
 always @(posedge clock) begin: card1_card_core1_regs_fifo2_sync_fifo2_memory
     if (card1_card_core1_regs_fifo2_sync_fifo2_do_write) begin
-        card1_card_core1_regs_fifo2_sync_fifo2_storage[card1_card_core1_regs_fifo2_sync_fifo2_write_addr] <= card1_pci_slave2_local_wdata;
+        card1_card_core1_regs_fifo2_sync_fifo2_storage[card1_card_core1_regs_fifo2_sync_fifo2_write_addr] <= card1_pci_slave2_pci_requests2_local_wdata;
     end
     if (card1_card_core1_regs_fifo2_sync_fifo2_do_read) begin
         card1_card_core1_regs_fifo2_fifo_dout <= card1_card_core1_regs_fifo2_sync_fifo2_storage[card1_card_core1_regs_fifo2_sync_fifo2_read_addr];
@@ -2710,11 +2725,11 @@ end
 assign card1_card_core1_regs_fifo2_fifo_level = card1_card_core1_regs_fifo2_sync_fifo2_count;
 assign card1_card_core1_regs_fifo2_fifo_empty = card1_card_core1_regs_fifo2_sync_fifo2_is_empty;
 assign card1_card_core1_regs_fifo2_fifo_full = (!card1_card_core1_regs_fifo2_sync_fifo2_free[0]);
-assign card1_pci_slave2_control_case0_0_1_local_room = card1_card_core1_regs_fifo2_sync_fifo2_free[(3 - 1)];
+assign card1_pci_slave2_pci_control2_control_case0_0_1_target_room = card1_card_core1_regs_fifo2_sync_fifo2_free[(3 - 1)];
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_local_addr == 0);
+assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word48_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
@@ -2736,7 +2751,7 @@ assign card1_card_core1_regs_fifo2_reg_word48_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_local_addr == 4);
+assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word49_mine, card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word48_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word49_read_chain
@@ -2791,7 +2806,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_local_addr == 8);
+assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word50_mine, card1_card_core1_regs_fifo2_reg_word50_shown_wide, card1_card_core1_regs_fifo2_reg_word49_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word50_read_chain
@@ -2843,7 +2858,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_local_addr == 12);
+assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word51_mine, card1_card_core1_regs_fifo2_reg_word51_shown_wide, card1_card_core1_regs_fifo2_reg_word50_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word51_read_chain
@@ -2865,7 +2880,7 @@ assign card1_card_core1_regs_fifo2_reg_word51_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_local_addr == 16);
+assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word52_mine, card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word51_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word52_read_chain
@@ -2920,7 +2935,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_local_addr == 20);
+assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word53_mine, card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_reg_word52_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word53_read_chain
@@ -2969,7 +2984,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_local_addr == 24);
+assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word54_mine, card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word53_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word54_read_chain
@@ -3024,7 +3039,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_local_addr == 28);
+assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word55_mine, card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_reg_word54_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word55_read_chain
@@ -3046,7 +3061,7 @@ assign card1_card_core1_regs_fifo2_reg_word55_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_local_addr == 32);
+assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_pci_requests2_local_addr == 32);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word56_mine, card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_reg_word55_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word56_read_chain
@@ -3068,7 +3083,7 @@ assign card1_card_core1_regs_fifo2_reg_word56_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_local_addr == 36);
+assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_pci_requests2_local_addr == 36);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word57_mine, card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_reg_word56_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word57_read_chain
@@ -3090,7 +3105,7 @@ assign card1_card_core1_regs_fifo2_reg_word57_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_local_addr == 40);
+assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word58_mine, card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word57_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word58_read_chain
@@ -3156,7 +3171,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_local_addr == 44);
+assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word59_mine, card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word59_read_chain
@@ -3222,7 +3237,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_local_addr == 48);
+assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word60_mine, card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word59_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word60_read_chain
@@ -3277,7 +3292,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_local_addr == 52);
+assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word61_mine, card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word60_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word61_read_chain
@@ -3343,7 +3358,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_local_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word61_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
@@ -3409,7 +3424,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word63_mine = (card1_pci_slave2_local_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word63_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word63_mine, card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_reg_word62_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word63_read_chain
@@ -3475,7 +3490,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word64_mine = (card1_pci_slave2_local_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word64_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word64_mine, card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word63_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word64_read_chain
@@ -3530,7 +3545,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word65_mine = (card1_pci_slave2_local_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word65_mine = (card1_pci_slave2_pci_requests2_local_addr == 68);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word65_mine, card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_reg_word64_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word65_read_chain
@@ -3596,7 +3611,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word66_mine = (card1_pci_slave2_local_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word66_mine = (card1_pci_slave2_pci_requests2_local_addr == 72);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word66_mine, card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_reg_word65_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word66_read_chain
@@ -3662,7 +3677,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word67_mine = (card1_pci_slave2_local_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word67_mine = (card1_pci_slave2_pci_requests2_local_addr == 76);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word67_mine, card1_card_core1_regs_fifo2_reg_word67_shown_wide, card1_card_core1_regs_fifo2_reg_word66_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word67_read_chain
@@ -3726,7 +3741,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word68_mine = (card1_pci_slave2_local_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word68_mine = (card1_pci_slave2_pci_requests2_local_addr == 80);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word68_mine, card1_card_core1_regs_fifo2_reg_word68_shown_wide, card1_card_core1_regs_fifo2_reg_word67_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word68_read_chain
@@ -3790,7 +3805,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word69_mine = (card1_pci_slave2_local_addr == 84);
+assign card1_card_core1_regs_fifo2_reg_word69_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word69_mine, card1_card_core1_regs_fifo2_reg_word69_shown_wide, card1_card_core1_regs_fifo2_reg_word68_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word69_read_chain
@@ -3812,7 +3827,7 @@ assign card1_card_core1_regs_fifo2_reg_word69_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word70_mine = (card1_pci_slave2_local_addr == 88);
+assign card1_card_core1_regs_fifo2_reg_word70_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word70_mine, card1_card_core1_regs_fifo2_reg_word70_shown_wide, card1_card_core1_regs_fifo2_reg_word69_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word70_read_chain
@@ -3834,7 +3849,7 @@ assign card1_card_core1_regs_fifo2_reg_word70_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word71_mine = (card1_pci_slave2_local_addr == 92);
+assign card1_card_core1_regs_fifo2_reg_word71_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word71_mine, card1_card_core1_regs_fifo2_reg_word71_shown_wide, card1_card_core1_regs_fifo2_reg_word70_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word71_read_chain
@@ -4776,32 +4791,32 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
 end
 
 
-always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_local_be, card1_pci_slave2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
+always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_be, card1_pci_slave2_pci_requests2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
-    if (card1_pci_slave2_local_be[0]) begin
+    if (card1_pci_slave2_pci_requests2_local_be[0]) begin
         mask[8-1:0] = 255;
     end
-    if (card1_pci_slave2_local_be[1]) begin
+    if (card1_pci_slave2_pci_requests2_local_be[1]) begin
         mask[16-1:8] = 255;
     end
-    if (card1_pci_slave2_local_be[2]) begin
+    if (card1_pci_slave2_pci_requests2_local_be[2]) begin
         mask[24-1:16] = 255;
     end
-    if (card1_pci_slave2_local_be[3]) begin
+    if (card1_pci_slave2_pci_requests2_local_be[3]) begin
         mask[32-1:24] = 255;
     end
     card1_card_core1_regs_fifo2_byte_mask = mask;
-    card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_local_we && (!card1_pci_slave2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
-    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
-    card1_card_core1_regs_fifo2_push = (card1_pci_slave2_local_we && card1_pci_slave2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_local_be != 0) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_local_we && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_push = (card1_pci_slave2_local_we && card1_pci_slave2_pci_requests2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_pci_requests2_local_be != 0) && (!card1_card_core1_regs_fifo2_io_written));
 end
 
 
-always @(card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_local_write, card1_pci_slave2_local_space, card1_card_core1_regs_fifo2_read_end, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_answer_bus
-    card1_pci_slave2_local_ready = ((!(card1_pci_slave2_local_write && card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full)) && (!card1_card_core1_regs_fifo2_io_written));
-    card1_pci_slave2_local_retry = (card1_pci_slave2_local_write && card1_pci_slave2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
-    if (card1_pci_slave2_local_space) begin
+always @(card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_write, card1_pci_slave2_pci_requests2_local_space, card1_card_core1_regs_fifo2_read_end, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_answer_bus
+    card1_pci_slave2_local_ready = ((!(card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full)) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_pci_slave2_local_retry = (card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
+    if (card1_pci_slave2_pci_requests2_local_space) begin
         card1_pci_slave2_local_rdata = 0;
     end
     else begin
@@ -4819,8 +4834,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_write_
     end
     else begin
         card1_card_core1_regs_fifo2_io_written <= card1_card_core1_regs_fifo2_io_write;
-        card1_card_core1_regs_fifo2_written_addr <= card1_pci_slave2_local_addr;
-        card1_card_core1_regs_fifo2_written_data <= card1_pci_slave2_local_wdata;
+        card1_card_core1_regs_fifo2_written_addr <= card1_pci_slave2_pci_requests2_local_addr;
+        card1_card_core1_regs_fifo2_written_data <= card1_pci_slave2_pci_requests2_local_wdata;
         card1_card_core1_regs_fifo2_written_mask <= card1_card_core1_regs_fifo2_byte_mask;
     end
 end
@@ -4864,7 +4879,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_snapsh
         card1_card_core1_regs_fifo2_pos_y_snapshot <= 0;
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_io_read && (card1_pci_slave2_local_addr == 32))) begin
+        if ((card1_card_core1_regs_fifo2_io_read && (card1_pci_slave2_pci_requests2_local_addr == 32))) begin
             card1_card_core1_regs_fifo2_pos_y_snapshot <= card1_card_core1_regs_fifo2_position_y;
         end
     end

@@ -20,29 +20,25 @@ registered parity and the C/BE# input register, one LUT level after
 flip-flops on the way out, where PCI's 11 ns leave room (the 7 ns of
 set-up do not).  The registered address makes DEVSEL# timing MEDIUM.
 """
-from myhdl import (ConcatSignal, Signal, always_comb, always_seq, block, concat, enum, instances, intbv,
+from myhdl import (ConcatSignal, Signal, always_comb, always_seq, block, instances, intbv,
                    modbv)
 
 from rtl import parameters
-from rtl.interfaces import LocalBus, PciBus, TargetControlNext, card_reset
+from rtl.interfaces import (ConfigSpace, LocalBus, PciBus, TargetBuffers, TargetControlNext, TargetParity,
+                            TargetRequests, TargetState, card_reset)
+from rtl.pci_config import CONFIG_PARAMETERS, pci_config
 from rtl.parameters import PCI_IDS, ParameterError
-from rtl.pin_lut import lut_verilog, pin_lut
-
-t_state = enum("S_IDLE", "S_CON_HOLD", "S_IO_HOLD", "S_MEM_HOLD", "S_READ_HOLD",
-               "S_CONFIGURING", "S_RWING", "S_BACKOFF", "S_ENDING")
+from rtl.pin_lut import pin_lut
+from rtl.pci_buffers import pci_buffers
+from rtl.pci_control import pci_control, t_state
+from rtl.pci_parity import pci_parity
+from rtl.pci_requests import pci_requests
 
 # Commands (C/BE# in the address phase) the target claims.
 CMD_IO_READ, CMD_IO_WRITE = 0x2, 0x3
 CMD_MEM_READ, CMD_MEM_WRITE = 0x6, 0x7
 CMD_CONFIG_READ, CMD_CONFIG_WRITE = 0xA, 0xB
 CMD_MEM_READ_MULTIPLE, CMD_MEM_READ_LINE, CMD_MEM_WRITE_INVALIDATE = 0xC, 0xE, 0xF
-
-# Configuration header: dword indices and the fields that exist.
-CONFIG_ID, CONFIG_COMMAND_STATUS, CONFIG_CLASS, CONFIG_BAR0, CONFIG_BAR1 = 0, 1, 2, 4, 5
-CONFIG_SUBSYSTEM, CONFIG_INTERRUPT = 11, 15
-STATUS_DEVSEL_MEDIUM = 0b01   # Status[10:9]
-INTERRUPT_PIN_INTA = 1
-BAR_IO_SPACE = 1              # BAR bit 0: I/O space (BAR1: 0, memory, 32-bit, non-prefetchable)
 
 # Latency budget: clocks a data phase may wait for TRDY#, counted from the
 # claim (first phase) or from the last completion.  STOP# then comes out so
@@ -70,110 +66,6 @@ def check_params(params):
     except ParameterError as error:
         raise ValueError(f"pci_slave: {error}") from None
     return dict(values, io_registers=io_registers)
-
-
-# One-LUT fast path.  Each bit of the state machine's next value has three
-# candidates computed from registers: F (IRDY# deasserted, so FRAME# is
-# asserted), I (IRDY# asserted, FRAME# deasserted: the last data phase) and
-# B (both asserted); FRAME# and IRDY# both deasserted only happens idle or
-# ending, where the three are equal.  A 4-input LUT takes the two pins and
-# two encoded values x, y, so a coding maps (F, I, B) to (x, y) and back; it
-# fits a bit if that bit's triples are among the four it can tell apart.
-# coding: (x from F, I, B; y from F, I, B; out from FRAME#, IRDY#, x, y;
-# x and y in Verilog, {f}, {i}, {b} standing for the bits).
-PIN_CODINGS = {
-    "stop": ((lambda f, i, b: f), (lambda f, i, b: b if f else i),
-             (lambda frame, irdy, x, y: x | y if frame else (x if irdy else x & y)),
-             ("{f}", "{f} ? {b} : {i}")),
-    "trdy": ((lambda f, i, b: f ^ i), (lambda f, i, b: b if f ^ i else f),
-             (lambda frame, irdy, x, y: x | y if frame else ((1 - x) & y if irdy else y)),
-             ("{f} ^ {i}", "({f} ^ {i}) ? {b} : {f}")),
-    "hold": ((lambda f, i, b: f), (lambda f, i, b: b ^ i),
-             (lambda frame, irdy, x, y: x & (1 - y) if frame else (x if irdy else x | y)),
-             ("{f}", "{b} ^ {i}")),
-}
-
-
-def pin_coding(triples):
-    """Name of the first coding in ``PIN_CODINGS`` that gives back every
-    (F, I, B) of ``triples`` for its pin case; ValueError if none does."""
-    for name, (to_x, to_y, pick, _) in PIN_CODINGS.items():
-        if all(pick(0, 1, to_x(*t), to_y(*t)) == t[0] and pick(1, 0, to_x(*t), to_y(*t)) == t[1]
-               and pick(0, 0, to_x(*t), to_y(*t)) == t[2] for t in triples):
-            return name
-    raise ValueError(f"pci_slave: no one-LUT coding for the pin cases {sorted(triples)}")
-
-
-def state_triples(bit):
-    """(F, I, B) of one bit of the state code: the pins change the state only
-    when a data phase can end (Rwing, Configuring -> Ending or Backoff) and
-    in Backoff (-> Ending)."""
-    code = {item: int(getattr(t_state, item)._val, 2) >> bit & 1
-            for item in ("S_RWING", "S_CONFIGURING", "S_BACKOFF", "S_ENDING")}
-    ending, backoff = code["S_ENDING"], code["S_BACKOFF"]
-    triples = {(0, 0, 0), (1, 1, 1), (backoff, ending, backoff)}
-    for phase in (code["S_RWING"], code["S_CONFIGURING"]):
-        triples |= {(phase, ending, phase), (phase, ending, backoff)}
-    return triples
-
-
-# (F, I, B) of the control lines (1 = deasserted); see ``control_case``:
-# TRDY# ends high after the last phase, stays low while the master waits,
-# and goes high or stays low after a completed phase; STOP# likewise, but
-# it stays low while the master waits on a disconnect; DEVSEL# and the AD
-# drive only change at the last phase (FRAME# deasserted); the drivers of
-# DEVSEL#, TRDY#, STOP# only idle and ending, whatever the pins.
-CONTROL_TRIPLES = dict(
-    trdy={(0, 0, 0), (1, 1, 1), (0, 1, 0), (0, 1, 1)},
-    stop={(0, 0, 0), (1, 1, 1), (0, 1, 0), (1, 1, 0)},
-    devsel={(0, 0, 0), (1, 1, 1), (0, 1, 0)},
-    drive={(0, 0, 0), (1, 1, 1)},
-    ad_oe={(0, 0, 0), (1, 1, 1), (1, 0, 1)})
-
-
-@block
-def pin_pick(frame_pin, irdy_pin, if_frame, if_irdy, if_both, picked, codings, *, device):
-    """``picked`` is ``if_frame``, ``if_irdy`` or ``if_both`` as the FRAME#
-    and IRDY# pins (bus polarity) say (IRDY# deasserted: ``if_frame``), one
-    LUT per bit after the pins: each bit's candidates are coded into two
-    nets by ``codings`` (a ``PIN_CODINGS`` name per bit, LSB first), the
-    LUT written for ``device`` (``rtl/pin_lut.py``).  Works on bools and on
-    the state enum.
-
-        pins     --< sampled at edge k >--
-        picked   --< value the register takes at k >--
-    """
-    width = len(codings)
-    items = {int(getattr(t_state, name)._val, 2): getattr(t_state, name) for name in t_state._names}
-
-    def code_of(value):
-        return int(bool(value)) if width == 1 else int(value.val._val, 2)
-
-    @always_comb
-    def choose():
-        f, i, b = code_of(if_frame), code_of(if_irdy), code_of(if_both)
-        out = 0
-        for bit, name in enumerate(codings):
-            to_x, to_y, pick, _ = PIN_CODINGS[name]
-            fib = (f >> bit & 1, i >> bit & 1, b >> bit & 1)
-            out |= pick(int(frame_pin), int(irdy_pin), to_x(*fib), to_y(*fib)) << bit
-        picked.next = bool(out) if width == 1 else items[out]
-
-    picked.driven = "wire"
-    lines = []
-    for bit, name in enumerate(codings):
-        sel = f"[{bit}]" if width > 1 else ""
-        pick, (x_text, y_text) = PIN_CODINGS[name][2:]
-        names = dict(f=f"$if_frame{sel}", i=f"$if_irdy{sel}", b=f"$if_both{sel}")
-        x, y = f"${{picked}}_x{bit}", f"${{picked}}_y{bit}"
-        lines += [f"wire {x} = {x_text.format(**names)};",
-                  f"wire {y} = {y_text.format(**names)};",
-                  *lut_verilog(f"$picked{sel}", f"${{picked}}_lut{bit}",
-                               [x, y, "$frame_pin", "$irdy_pin"],
-                               lambda x_bit, y_bit, frame, irdy, pick=pick:
-                               pick(frame, irdy, x_bit, y_bit), device=device)]
-    pin_pick.verilog_code = "\n".join(lines) + "\n"
-    return choose
 
 
 def local_addr_width(io_bar_bits=parameters.PARAMETERS["io_bar_bits"].default,
@@ -245,11 +137,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         raise ValueError(f"pci_slave: local.addr must have {width + 2} bits, has {len(local.addr)}")
     mem_last = (1 << (mem_bits - 2)) - 1               # last dword of BAR1
     config_mask, io_mask = 0x3F, (1 << (io_bits - 2)) - 1
-    id_word = values["device_id"] << 16 | values["vendor_id"]
-    class_word = values["class_code"] << 8 | values["revision_id"]
-    subsystem_word = values["subsystem_id"] << 16 | values["subsystem_vendor_id"]
-    io_bar_writable = (0xFFFF << io_bits) & 0xFFFF   # BAR0[31:16] hardwired to 0 (PC I/O)
-    mem_bar_writable = (0xFFFFFFFF << mem_bits) & 0xFFFFFFFF
 
     # --- input register: the bus as sampled at the last edge ---
     ad_q = pci.ad_in if io_registers else Signal(intbv(0)[32:])
@@ -260,21 +147,21 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     irdy_q = Signal(bool(1))
 
     # --- bus outputs: next value and register (the pads may hold the latter) ---
-    trdy_next, trdy_q = Signal(bool(1)), Signal(bool(1))
-    stop_next, stop_q = Signal(bool(1)), Signal(bool(1))
-    devsel_next, devsel_q = Signal(bool(1)), Signal(bool(1))
+    # next values: for each case of the pins (``rtl/pci_control.py``), chosen by them
+    chosen = TargetControlNext(t_state.S_IDLE)
+    state_next, trdy_next, stop_next = chosen.state, chosen.trdy, chosen.stop
+    devsel_next, drive_next, ad_oe_next = chosen.devsel, chosen.drive, chosen.ad_oe
+    trdy_q, stop_q, devsel_q = Signal(bool(1)), Signal(bool(1)), Signal(bool(1))
     ad_out_q = Signal(intbv(0)[32:])
     # with io_registers the I/O cells register ad_out_next and have no enable:
     # one LUT per bit after IRDY# (``ad_output_luts``)
     ad_out_bits = [Signal(bool(0)) for _ in range(32)] if io_registers else []
     ad_out_next = ConcatSignal(*reversed(ad_out_bits)) if io_registers else Signal(intbv(0)[32:])
     ad_parity_q = Signal(bool(0))     # parity of the AD driven in the clock before
-    perr_next, perr_q = Signal(bool(1)), Signal(bool(1))
-    drive_next = Signal(bool(0))      # DEVSEL#, TRDY#, STOP# driven
-    ad_oe_next = Signal(bool(0))
+    perr_q = Signal(bool(1))
 
     # --- transaction state ---
-    state, state_next = Signal(t_state.S_IDLE), Signal(t_state.S_IDLE)
+    state = Signal(t_state.S_IDLE)
     is_read = Signal(bool(0))
     is_config = Signal(bool(0))
     space_mem = Signal(bool(0))
@@ -294,41 +181,34 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     # --- read data: the AD register, fed by a one-dword skid register B;
     # --- posted write data: ad_q, then the head (h) and second (s) entries.
     # B and s share one register: reads and writes never use it at once.
+    # (``rtl/pci_buffers.py``)
     b_valid = Signal(bool(0))
     wq_valid = Signal(bool(0))        # ad_q holds a posted dword
     h_valid, s_valid = Signal(bool(0)), Signal(bool(0))
     h_data, spare_data = Signal(intbv(0)[32:]), Signal(intbv(0)[32:])
     h_be, s_be = Signal(intbv(0)[4:]), Signal(intbv(0)[4:])
     write_done_q = Signal(bool(0))    # ad_q holds data of a completed write phase
-    config_write_q = Signal(bool(0))
 
-    # --- configuration registers ---
-    io_enable, mem_enable = Signal(bool(0)), Signal(bool(0))
-    parity_response, serr_enable = Signal(bool(0)), Signal(bool(0))
-    interrupt_disable = Signal(bool(0))
-    bar0 = Signal(intbv(0)[16:])
-    bar1 = Signal(intbv(0)[32:])
-    interrupt_line = Signal(intbv(0)[8:])
-    signaled_target_abort = Signal(bool(0))
-    signaled_system_error = Signal(bool(0))
-    detected_parity_error = Signal(bool(0))
+    # --- configuration header (``rtl/pci_config.py``), its lines named here ---
+    config = ConfigSpace()
+    config_write_q = config.write
+    io_enable, mem_enable = config.io_enable, config.mem_enable
+    parity_response, serr_enable = config.parity_response, config.serr_enable
+    interrupt_disable, bar0, bar1 = config.interrupt_disable, config.bar0, config.bar1
+    fatal = config.target_abort       # target abort now
+    parity_error_q = config.parity_error  # a parity error was detected at the last edge
 
     # --- combinational ---
-    bus_parity = Signal(bool(0))      # parity of the AD and C/BE# input registers
-    ad_out_parity = Signal(bool(0))   # of ad_out_q
-    address_phase = Signal(bool(0))
-    # next values that the PAR pin decides
-    perr_oe_next, serr_oe_next = Signal(bool(0)), Signal(bool(0))
-    address_fault_next, parity_error_next = Signal(bool(0)), Signal(bool(0))
-    serr_armed = Signal(bool(0))      # SERR# follows an address parity error
-    perr_armed = Signal(bool(0))      # PERR# follows a write data parity error
-    parity_error_q = Signal(bool(0))  # a parity error was detected at the last edge
+    # parity (``rtl/pci_parity.py``): PAR out, and the next values the PAR pin decides
+    parity = TargetParity(ad=ad_q, cbe=cbe_q, frame_q=frame_q, frame_qq=frame_qq, serr_enable=serr_enable,
+                          parity_response=parity_response, write_done=write_done_q, perr_q=perr_q,
+                          ad_out=ad_out_q, ad_out_parity_q=ad_parity_q, par_out=pci.par_out)
+    address_phase, ad_out_parity = parity.address_phase, parity.ad_out_parity
+    perr_next, perr_oe_next, serr_oe_next = parity.perr_next, parity.perr_oe_next, parity.serr_oe_next
+    address_fault_next, parity_error_next = parity.address_fault_next, parity.parity_error_next
     claim = Signal(bool(0))
     claim_config, claim_io = Signal(bool(0)), Signal(bool(0))
-    fatal = Signal(bool(0))           # target abort now
-    config_index = Signal(intbv(0)[6:])
-    config_data = Signal(intbv(0)[32:])
-    bar0_read = Signal(intbv(0)[16:])  # BAR0 as read: base bits and the I/O flag
+    read_command = Signal(bool(0))    # C/BE#[0] low in the address phase
     # next values of registers that a data phase (IRDY# pin) changes
     first_phase_next, phase_step = Signal(bool(0)), Signal(bool(0))
     write_done_next, config_write_next = Signal(bool(0)), Signal(bool(0))
@@ -366,42 +246,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         frame_qq.next = frame_q
         irdy_q.next = pci.irdy_in
 
-    @always_comb
-    def parity_check():
-        # PAR sampled now covers the AD and C/BE# in the input register.
-        fold = intbv(0)[32:]
-        fold[:] = ad_q
-        fold[4:] = fold[4:] ^ cbe_q
-        fold[16:] = fold[16:] ^ fold[32:16]
-        fold[8:] = fold[8:] ^ fold[16:8]
-        fold[4:] = fold[4:] ^ fold[8:4]
-        fold[2:] = fold[2:] ^ fold[4:2]
-        fold[1:] = fold[1:] ^ fold[2:1]
-        bus_parity.next = fold[0]
-
-    @always_comb
-    def parity_errors():
-        # what a wrong PAR at this edge would report (``parity_luts``)
-        address_phase.next = frame_qq and not frame_q
-        serr_armed.next = frame_qq and not frame_q and serr_enable and parity_response
-        perr_armed.next = write_done_q and parity_response
-
-    # PAR comes straight from its pin: one LUT from it to each register that
-    # needs it in this clock (PERR#, SERR#, the claim's abort, the status).
-    parity_luts = [
-        pin_lut(perr_next, lambda par, parity, armed: int(not (armed and par != parity)),
-                pci.par_in, bus_parity, perr_armed, device=device),
-        pin_lut(perr_oe_next, lambda par, parity, armed, perr: int(
-            (armed and par != parity) or not perr),   # asserted, then high one clock
-            pci.par_in, bus_parity, perr_armed, perr_q, device=device),
-        pin_lut(serr_oe_next, lambda par, parity, armed: int(armed and par != parity),
-                pci.par_in, bus_parity, serr_armed, device=device),
-        pin_lut(address_fault_next, lambda par, parity, phase, response: int(
-            phase and response and par != parity),
-            pci.par_in, bus_parity, address_phase, parity_response, device=device),
-        pin_lut(parity_error_next, lambda par, parity, phase, written: int(
-            (phase or written) and par != parity),
-            pci.par_in, bus_parity, address_phase, write_done_q, device=device)]
+    parity_unit = pci_parity(pci.par_in, parity, device=device)
 
     # ------------------------------------------------------------ decoding
     @always_comb
@@ -419,13 +264,17 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         claim.next = state == t_state.S_IDLE and address_phase and (config_hit or io_hit or mem_hit)
         claim_config.next = config_hit
         claim_io.next = io_hit
+        read_command.next = not cbe_q[0]
 
     @always_comb
     def start_offset():
-        # the dword inside the BAR, or of the configuration header
-        if claim_config:
+        # the dword inside the BAR, or of the configuration header; chosen by
+        # the command alone: it counts only with a claim, which has the same
+        # command, and the BAR compares stay off the path to the counters
+        code = cbe_q
+        if code == CMD_CONFIG_READ or code == CMD_CONFIG_WRITE:
             start_addr.next = ad_q[width + 2:2] & intbv(config_mask)[width:]
-        elif claim_io:
+        elif code == CMD_IO_READ or code == CMD_IO_WRITE:
             start_addr.next = ad_q[width + 2:2] & intbv(io_mask)[width:]
         else:
             start_addr.next = ad_q[width + 2:2] & intbv(mem_last)[width:]
@@ -449,93 +298,24 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         pin_lut(b_valid_next, lambda irdy, kept: int(irdy and kept), pci.irdy_in, b_kept, device=device)]
 
     # ------------------------------------------------------------ back end
-    @always_comb
-    def local_request():
-        # From flip-flops only, in one process, so that a request never shows
-        # a half-updated address or data.
-        drain = h_valid or wq_valid
-        hold_state = (state == t_state.S_CON_HOLD or state == t_state.S_IO_HOLD
-                      or state == t_state.S_MEM_HOLD or state == t_state.S_READ_HOLD)
-        # PCI: an I/O access that enables a byte below the one AD[1:0]
-        # addresses is fatal, and so is a corrupt address.
-        bad = False
-        if address_fault:
-            bad = True
-        elif state == t_state.S_IO_HOLD:
-            if io_byte == 1:
-                bad = not cbe_q[0]
-            elif io_byte == 2:
-                bad = not (cbe_q[0] and cbe_q[1])
-            elif io_byte == 3:
-                bad = not (cbe_q[0] and cbe_q[1] and cbe_q[2])
-        fatal.next = hold_state and bad
-        first_open = (first_pending and hold_state and not is_config and not drain
-                      and not req_addr_stale)
-        first = first_open and not bad
-        prefetch = (state == t_state.S_RWING and is_read and fetching and not b_valid
-                    and (trdy_q or not frame_q))
-        local.re.next = (first and is_read) or prefetch
-        local.we.next = drain or (first and not is_read and not irdy_q)
-        first_ready.next = first_pending and not is_config and not drain and not req_addr_stale
-        fetch_more.next = is_read and fetching and not b_valid and (trdy_q or not frame_q)
-        local.space.next = drain or space_mem
-        local.write.next = drain or not is_read
-        if h_valid:
-            local.wdata.next = h_data
-            local.be.next = h_be
-        elif is_read and space_mem and not drain:
-            local.wdata.next = ad_q
-            local.be.next = 0xF
-        else:
-            local.wdata.next = ad_q
-            local.be.next = ~cbe_q
-        local.addr.next = concat(req_addr, intbv(0)[2:])
-
-    @always_comb
-    def local_answer():
-        draining.next = h_valid or wq_valid
-        got.next = (local.re and local.ready) or (state == t_state.S_CON_HOLD and is_read)
-        accepted.next = local.we and local.ready
-        # The answers as the state machine reads them: each takes what the
-        # state already says about the request, so that no state test lies
-        # between the registers and the answer.  In I/O_Hold, Mem_Hold and
-        # Read_Hold the request is the first one, once posted data has
-        # drained; the abort check is left out, as ``fatal`` decides first
-        # there (which keeps C/BE# of the first data phase off the path).
-        # In Configuring and Rwing the request is a prefetch, or posted data
-        # (see write_path).
-        hold_got.next = first_ready and is_read and local.ready
-        hold_accepted.next = first_ready and not is_read and not irdy_q and local.ready
-        hold_retry.next = first_ready and (is_read or not irdy_q) and local.retry
-        burst_got.next = fetch_more and local.ready
+    requests = TargetRequests(
+        t_state.S_IDLE, width, req_addr=req_addr, state=state, address_fault=address_fault, io_byte=io_byte,
+        cbe=cbe_q, ad=ad_q, first_pending=first_pending, is_config=is_config,
+        req_addr_stale=req_addr_stale, is_read=is_read, fetching=fetching, b_valid=b_valid,
+        trdy_q=trdy_q, frame_q=frame_q, irdy_q=irdy_q, h_valid=h_valid, wq_valid=wq_valid,
+        space_mem=space_mem, h_data=h_data, h_be=h_be, fatal=fatal, first_ready=first_ready,
+        fetch_more=fetch_more, draining=draining, got=got, accepted=accepted, hold_got=hold_got,
+        hold_accepted=hold_accepted, hold_retry=hold_retry, burst_got=burst_got)
+    request_unit = pci_requests(requests, local)
 
     @always_comb
     def read_path():
         if b_valid:
             read_source.next = spare_data
         elif is_config:
-            read_source.next = config_data
+            read_source.next = config.rdata
         else:
             read_source.next = local.rdata
-
-    @always_comb
-    def write_path():
-        # Posted dwords held after this edge (head and second entry), as the
-        # state machine reads it in Configuring and Rwing: there the only
-        # write request drains posted data, so a held dword goes when the
-        # back end answers ready (``accepted``, without the request logic).
-        held = intbv(0, min=0, max=4)
-        if h_valid:
-            held[:] = 1
-            if s_valid:
-                held[:] = 2
-            if local.ready:
-                held[:] = held - 1
-            if wq_valid:
-                held[:] = held + 1
-        elif wq_valid and not local.ready:
-            held[:] = 1
-        buffered_next.next = held
 
     # ------------------------------------------------------------ state machine
     @always_comb
@@ -546,138 +326,15 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         timeout.next = target_waits and (
             (first_phase and initial_wait_over) or (not first_phase and subsequent_wait_over))
 
-    # Shannon expansion on the pins of the fast path: the next values are
-    # computed from flip-flops for each case of IRDY# and FRAME# that can
-    # occur in a transaction, the pins only choose among them.
-    @block
-    def control_case(irdy_asserted, frame_asserted, out):
-        """Next values of the state and the target's control lines, should
-        IRDY# and FRAME# be as given at this edge (``irdy_asserted``,
-        ``frame_asserted``: Python bools).  Combinational, from registers and
-        the back end's answer only; ``pin_pick`` chooses one for the registers.
-
-            edge      k           k+1
-            pins      IRDY#, FRAME# sampled at k choose
-            out       --<next values for k>--
-        """
-
-        @always_comb
-        def control():
-            done = irdy_asserted and not trdy_q      # a data phase completes
-            hold = not irdy_asserted and not trdy_q  # TRDY# waits for the master
-            trdy = bool(trdy_q)
-            stop = bool(stop_q)
-            devsel = bool(devsel_q)
-            drive = bool(pci.devsel_oe)
-            ad_oe = bool(pci.ad_oe)
-            out.state.next = state
-            # Can the next data phase carry data, is it the last one, or will no
-            # data come any more?
-            last_data = single or at_last
-            if done:
-                last_data = single or before_last
-            ready_for_phase = False
-            exhausted = False
-            buffer_room = False
-            if is_read:
-                ready_for_phase = b_valid or burst_got
-                exhausted = not b_valid and not burst_got and not fetching
-            else:
-                # The write credit: TRDY# for a posted phase needs a place
-                # here and the back end's promise (``local.room``) to take
-                # its next three writes.  This target asserts it only while
-                # it holds at most two posted dwords (one when a phase
-                # completes at the same edge), so at most three acknowledged
-                # dwords ever wait for the back end, all promised; only its
-                # own writes use the promise.  Without it the phase waits,
-                # and the latency rules end the burst.
-                buffer_room = buffered_next <= 1
-                if done and not first_phase:
-                    buffer_room = buffered_next == 0
-                ready_for_phase = is_config or (buffer_room and local.room)
-            if state == t_state.S_IDLE:
-                drive = False
-                ad_oe = False
-                if claim:
-                    # TRDY# and STOP# stay as they are: deasserted, as Ending
-                    # left them; so the address decode stays out of their logic
-                    drive = True
-                    devsel = False
-                    ad_oe = not cbe_q[0]
-                    if claim_config:
-                        out.state.next = t_state.S_CON_HOLD
-                    elif claim_io:
-                        out.state.next = t_state.S_IO_HOLD
-                    else:
-                        out.state.next = t_state.S_MEM_HOLD
-            elif (state == t_state.S_CON_HOLD or state == t_state.S_IO_HOLD
-                  or state == t_state.S_MEM_HOLD or state == t_state.S_READ_HOLD):
-                if fatal:
-                    out.state.next = t_state.S_BACKOFF
-                    devsel = True
-                    stop = False
-                elif state == t_state.S_CON_HOLD:
-                    out.state.next = t_state.S_CONFIGURING
-                    trdy = False
-                    stop = not frame_asserted
-                elif hold_got or hold_accepted:
-                    out.state.next = t_state.S_RWING
-                    trdy = False
-                    stop = not (last_data and frame_asserted)
-                elif hold_retry or timeout:
-                    out.state.next = t_state.S_BACKOFF
-                    stop = False
-                elif is_read:
-                    out.state.next = t_state.S_READ_HOLD
-            elif state == t_state.S_CONFIGURING or state == t_state.S_RWING:
-                if hold:
-                    pass
-                elif done and (not frame_asserted or not stop_q):
-                    trdy = True
-                    if frame_asserted:
-                        out.state.next = t_state.S_BACKOFF
-                    else:
-                        out.state.next = t_state.S_ENDING
-                        stop = True
-                        devsel = True
-                        ad_oe = False
-                elif ready_for_phase:
-                    trdy = False
-                    stop = not (last_data and frame_asserted)
-                elif exhausted or timeout:
-                    out.state.next = t_state.S_BACKOFF
-                    trdy = True
-                    stop = False
-                else:
-                    trdy = True
-            elif state == t_state.S_BACKOFF:
-                if not frame_asserted:
-                    out.state.next = t_state.S_ENDING
-                    trdy = True
-                    stop = True
-                    devsel = True
-                    ad_oe = False
-            else:
-                out.state.next = t_state.S_IDLE
-                drive = False
-            out.trdy.next = trdy
-            out.stop.next = stop
-            out.devsel.next = devsel
-            out.drive.next = drive
-            out.ad_oe.next = ad_oe
-
-        return control
-
-    if_frame, if_irdy, if_both = (TargetControlNext(t_state.S_IDLE) for _ in range(3))
-    control_cases = [control_case(False, True, if_frame), control_case(True, False, if_irdy),
-                     control_case(True, True, if_both)]
-    picks = [pin_pick(pci.frame_in, pci.irdy_in, if_frame.state, if_irdy.state, if_both.state,
-                      state_next, [pin_coding(state_triples(bit)) for bit in range(len(state))], device=device)]
-    picks += [pin_pick(pci.frame_in, pci.irdy_in, getattr(if_frame, field), getattr(if_irdy, field),
-                       getattr(if_both, field), picked, [pin_coding(CONTROL_TRIPLES[field])], device=device)
-              for field, picked in (("trdy", trdy_next), ("stop", stop_next),
-                                    ("devsel", devsel_next), ("drive", drive_next),
-                                    ("ad_oe", ad_oe_next))]
+    target = TargetState(
+        t_state.S_IDLE, state=state, single=single, at_last=at_last, before_last=before_last,
+        is_read=is_read, is_config=is_config, first_phase=first_phase, fetching=fetching,
+        timeout=timeout, fatal=fatal, trdy_q=trdy_q, stop_q=stop_q, devsel_q=devsel_q,
+        drive=pci.devsel_oe, ad_oe=pci.ad_oe, claim=claim, claim_config=claim_config,
+        claim_io=claim_io, read_command=read_command, b_valid=b_valid, burst_got=burst_got,
+        buffered=buffered_next, room=local.room, hold_got=hold_got, hold_accepted=hold_accepted,
+        hold_retry=hold_retry)
+    next_state = pci_control(pci.frame_in, pci.irdy_in, target, chosen, device=device)
 
     @always_seq(clock.posedge, reset=reset)
     def transaction():
@@ -742,22 +399,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             else:
                 ad_out_next.next = read_source
 
-    @always_comb
-    def parity_output():
-        # PAR covers the AD and C/BE# of the clock before (both now registered)
-        pci.par_out.next = ad_parity_q ^ cbe_q[0] ^ cbe_q[1] ^ cbe_q[2] ^ cbe_q[3]
-
-    @always_comb
-    def ad_out_parity_tree():
-        fold = intbv(0)[32:]
-        fold[:] = ad_out_q
-        fold[16:] = fold[16:] ^ fold[32:16]
-        fold[8:] = fold[8:] ^ fold[16:8]
-        fold[4:] = fold[4:] ^ fold[8:4]
-        fold[2:] = fold[2:] ^ fold[4:2]
-        fold[1:] = fold[1:] ^ fold[2:1]
-        ad_out_parity.next = fold[0]
-
     @always_seq(clock.posedge, reset=reset)
     def bus_registers():
         trdy_q.next = trdy_next
@@ -795,127 +436,26 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             pci.ad_out.next = ad_out_q
             pci.perr_out.next = perr_q
 
-    @always_seq(clock.posedge, reset=reset)
-    def read_buffer():
-        b_valid.next = b_valid_next
-
-    @always_comb
-    def read_buffer_hold():
-        # B keeps a dword if the AD register holds (IRDY# pin: ``b_valid_next``)
-        in_read = is_read and (state == t_state.S_MEM_HOLD or state == t_state.S_IO_HOLD
-                               or state == t_state.S_READ_HOLD or state == t_state.S_RWING)
-        b_kept.next = in_read and (b_valid or got) and not trdy_q
-
-    @always_comb
-    def write_posting():
-        # a completed phase now (IRDY# pin: ``wq_valid_next``) is posted
-        posting.next = not trdy_q and not is_read and not first_phase and space_mem
-
-    @always_seq(clock.posedge, reset=reset)
-    def write_buffer():
-        write_done_q.next = write_done_next
-        config_write_q.next = config_write_next
-        wq_valid.next = wq_valid_next
-        if h_valid:
-            if accepted:
-                if s_valid:
-                    h_data.next = spare_data
-                    h_be.next = s_be
-                    s_valid.next = wq_valid
-                    if wq_valid:
-                        spare_data.next = ad_q
-                        s_be.next = ~cbe_q
-                elif wq_valid:
-                    h_data.next = ad_q
-                    h_be.next = ~cbe_q
-                else:
-                    h_valid.next = False
-            elif wq_valid:
-                s_valid.next = True
-                spare_data.next = ad_q
-                s_be.next = ~cbe_q
-        elif wq_valid and not accepted:
-            h_valid.next = True
-            h_data.next = ad_q
-            h_be.next = ~cbe_q
-        if local.re and local.ready:
-            # B takes every dword read; it counts only if the AD register
-            # is holding (b_valid), which keeps IRDY# out of this path
-            spare_data.next = local.rdata
+    # ------------------------------------------------------------ data buffers
+    buffers = TargetBuffers(
+        t_state.S_IDLE, ad=ad_q, cbe=cbe_q, state=state, is_read=is_read, trdy_q=trdy_q,
+        first_phase=first_phase, space_mem=space_mem, got=got, accepted=accepted, re=local.re,
+        ready=local.ready, rdata=local.rdata, b_valid_next=b_valid_next, wq_valid_next=wq_valid_next,
+        write_done_next=write_done_next, config_write_next=config_write_next, b_valid=b_valid,
+        wq_valid=wq_valid, h_valid=h_valid, s_valid=s_valid, h_data=h_data, spare_data=spare_data,
+        h_be=h_be, s_be=s_be, write_done_q=write_done_q, config_write_q=config_write_q, b_kept=b_kept,
+        posting=posting, buffered=buffered_next)
+    buffer_unit = pci_buffers(clock, reset, buffers)
 
     # ------------------------------------------------------------ configuration space
-    @always_comb
-    def config_register_index():
-        config_index.next = phase_addr[6:0]
-
-    @always_seq(clock.posedge, reset=reset)
-    def config_registers():
-        clear_target_abort = False
-        clear_system_error = False
-        clear_parity_error = False
-        if config_write_q:
-            if config_index == CONFIG_COMMAND_STATUS:
-                if not cbe_q[0]:
-                    io_enable.next = ad_q[0]
-                    mem_enable.next = ad_q[1]
-                    parity_response.next = ad_q[6]
-                if not cbe_q[1]:
-                    serr_enable.next = ad_q[8]
-                    interrupt_disable.next = ad_q[10]
-                if not cbe_q[3]:   # Status: write 1 to clear
-                    clear_target_abort = ad_q[27]
-                    clear_system_error = ad_q[30]
-                    clear_parity_error = ad_q[31]
-            elif config_index == CONFIG_BAR0:
-                # all lanes stored; the read-only bits are masked where read
-                if not cbe_q[0]:
-                    bar0.next[8:0] = ad_q[8:0]
-                if not cbe_q[1]:
-                    bar0.next[16:8] = ad_q[16:8]
-            elif config_index == CONFIG_BAR1:
-                if not cbe_q[0]:
-                    bar1.next[8:0] = ad_q[8:0]
-                if not cbe_q[1]:
-                    bar1.next[16:8] = ad_q[16:8]
-                if not cbe_q[2]:
-                    bar1.next[24:16] = ad_q[24:16]
-                if not cbe_q[3]:
-                    bar1.next[32:24] = ad_q[32:24]
-            elif config_index == CONFIG_INTERRUPT:
-                if not cbe_q[0]:
-                    interrupt_line.next = ad_q[8:0]
-        signaled_target_abort.next = fatal or (signaled_target_abort and not clear_target_abort)
-        # set one clock after the event: status only
-        signaled_system_error.next = (pci.serr_oe
-                                      or (signaled_system_error and not clear_system_error))
-        detected_parity_error.next = (parity_error_q
-                                      or (detected_parity_error and not clear_parity_error))
+    header = pci_config(clock, reset, config, **{name: values[name] for name in CONFIG_PARAMETERS})
 
     @always_comb
-    def io_bar_read():
-        bar0_read.next = (bar0 & intbv(io_bar_writable)[16:]) | intbv(BAR_IO_SPACE)[16:]
-
-    @always_comb
-    def config_read():
-        if config_index == CONFIG_ID:
-            config_data.next = intbv(id_word)[32:]
-        elif config_index == CONFIG_COMMAND_STATUS:
-            config_data.next = concat(
-                detected_parity_error, signaled_system_error, intbv(0)[2:],
-                signaled_target_abort, intbv(STATUS_DEVSEL_MEDIUM)[2:], intbv(0)[5:], irq,
-                intbv(0)[8:], interrupt_disable, False, serr_enable, False, parity_response,
-                intbv(0)[4:], mem_enable, io_enable)
-        elif config_index == CONFIG_CLASS:
-            config_data.next = intbv(class_word)[32:]
-        elif config_index == CONFIG_BAR0:
-            config_data.next = concat(intbv(0)[16:], bar0_read)
-        elif config_index == CONFIG_BAR1:
-            config_data.next = bar1 & intbv(mem_bar_writable)[32:]
-        elif config_index == CONFIG_SUBSYSTEM:
-            config_data.next = intbv(subsystem_word)[32:]
-        elif config_index == CONFIG_INTERRUPT:
-            config_data.next = concat(intbv(0)[16:], intbv(INTERRUPT_PIN_INTA)[8:], interrupt_line)
-        else:
-            config_data.next = 0
+    def config_lines():
+        config.index.next = phase_addr[6:0]
+        config.data.next = ad_q
+        config.cbe_n.next = cbe_q
+        config.system_error.next = pci.serr_oe
+        config.irq.next = irq
 
     return instances()

@@ -165,6 +165,19 @@ def wait_idle(driver, limit=50000):
     raise AssertionError("card still busy")
 
 
+def wait_error(driver, limit, settle=50):
+    """Read STATUS until ERROR is set (at most ``limit`` reads), then let
+    ``settle`` clocks pass (the stopped card must stay stopped); returns
+    STATUS.ERROR, 0 if no error came."""
+    for _ in range(limit):
+        status = yield from driver.io_read(regmap.offset("STATUS"))
+        if regmap.field_value("STATUS", "ERROR", status):
+            break
+    for _ in range(settle):
+        yield driver.clock.negedge
+    return regmap.field_value("STATUS", "ERROR", status)
+
+
 def read_position(driver):
     """(POS_X, POS_Y) in steps."""
     x = yield from driver.io_read(regmap.offset("POS_X"))

@@ -20,8 +20,8 @@ from rtl.card_core import card_core, card_core_ports
 from rtl.dda_build import DEFAULT_VARIANTS
 from rtl.interfaces import AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
 from rtl.regs_fifo import regs_fifo
-from sim.card_bench import (BUS_GROUPS, TIMING, PinLog, clock_and_pins, expected_path, pin_model_check,
-                            read_position, scenario_runner, wait_idle, write_motion_view)
+from sim.card_bench import (BUS_GROUPS, PinLog, TIMING, clock_and_pins, expected_path, pin_model_check,
+                            read_position, scenario_runner, wait_error, wait_idle, write_motion_view)
 from sim.card_model import DdaContractModel
 from sim.cosim import convert_and_cosimulate
 from sim.dda_model import TRADITIONAL, ArcCommand, LineCommand, iterate, setup_clocks
@@ -271,13 +271,7 @@ def test_arc_of_a_variant_not_built_is_refused(kind):
     def scenario(driver):
         yield from program(driver, STEADY)
         yield from driver.push_all(words(LineCommand(3, 0)) + refused + words(LineCommand(0, 2)))
-        for _ in range(500):
-            status = yield from driver.io_read(regmap.offset("STATUS"))
-            if field("STATUS", "ERROR", status):
-                break
-        results["error"] = field("STATUS", "ERROR", status)
-        for _ in range(50):
-            yield driver.clock.negedge
+        results["error"] = yield from wait_error(driver, 500)
         results["held"] = yield from read_position(driver)
         yield from driver.io_write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", CLEAR_ERROR=1))
         yield from wait_idle(driver)

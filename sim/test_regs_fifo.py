@@ -9,7 +9,7 @@ import random
 import pytest
 from rtl import instructions as isa
 from rtl import registers as regmap
-from sim.card_bench import command_words, expected_path, read_position, run_core, wait_idle
+from sim.card_bench import command_words, expected_path, read_position, run_core, wait_error, wait_idle
 from sim.card_model import RegisterModel
 from sim.dda_model import ArcCommand, LineCommand
 
@@ -133,13 +133,7 @@ def test_malformed_command_stops_until_cleared(case):
         yield from setup_motion(driver)
         yield from driver.io_write(regmap.offset("INT_ENABLE"), regmap.field_of("INT_ENABLE", ERROR=1))
         yield from driver.push_all(good + bad + good)
-        for _ in range(200):
-            status = yield from driver.io_read(regmap.offset("STATUS"))
-            if field("STATUS", "ERROR", status):
-                break
-        results["error"] = field("STATUS", "ERROR", status)
-        for _ in range(50):
-            yield driver.clock.negedge
+        results["error"] = yield from wait_error(driver, 200)
         results["held"] = yield from read_position(driver)
         yield from driver.io_write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", CLEAR_ERROR=1))
         yield from driver.push_all(good)

@@ -17,7 +17,7 @@ import subprocess
 
 import pytest
 
-from rtl.pci_slave import PIN_CODINGS
+from rtl.pin_pick import PIN_CODINGS
 from rtl.pin_lut import lut_expression, lut_verilog
 
 LEVELS = "01xz"

@@ -87,10 +87,10 @@ module pci_target_harness #(
         .at_last(i_at_last), .before_last(i_before_last), .h_valid(i_h_valid), .s_valid(i_s_valid),
         .wq_valid(i_wq_valid), .b_valid(i_b_valid), .fetching(i_fetching),
         .first_pending(i_first_pending), .req_addr_stale(i_req_addr_stale), .single(i_single),
-        .frame_q(i_frame_q), .signaled_target_abort(i_signaled_target_abort),
-        .signaled_system_error(i_signaled_system_error),
-        .detected_parity_error(i_detected_parity_error), .parity_error_q(i_parity_error_q),
-        .interrupt_line(i_interrupt_line), .h_data(i_h_data), .spare_data(i_spare_data),
+        .frame_q(i_frame_q), .pci_config0_signaled_target_abort(i_signaled_target_abort),
+        .pci_config0_signaled_system_error(i_signaled_system_error),
+        .pci_config0_detected_parity_error(i_detected_parity_error), .parity_error_q(i_parity_error_q),
+        .pci_config0_interrupt_line(i_interrupt_line), .h_data(i_h_data), .spare_data(i_spare_data),
         .ad_q(i_ad_q), .h_be(i_h_be), .s_be(i_s_be), .cbe_q(i_cbe_q), .req_addr(i_req_addr), .ad_out_q(i_ad_out_q)
 `endif
         );
