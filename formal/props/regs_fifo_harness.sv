@@ -280,6 +280,24 @@ module regs_fifo_harness #(
         .step(pins_step_x));
     pulse_requests y_requests (.clock(clock), .reset_n(reset_n), .request(steps_step_y || direct_request_y),
         .step(pins_step_y));
+    // POS_X counts the STEP pulses that left the X pin, +1 where DIR (without
+    // DIR_POLARITY) is high, -1 where low, at the edge the pin rises;
+    // COMMAND.CLEAR_POSITION zeroes it (docs/registers.md, rtl/pulse_out.py)
+    reg p_pins_step_x = 0, cleared_position = 0, clear_position_due = 0;
+    reg [1:0] p_polarity = 0;
+    reg [31:0] position_x = 0;
+    wire step_x_rose = pins_step_x && !p_pins_step_x && !cleared_position;
+    wire [31:0] position_x_now = position_x + (step_x_rose ? ((pins_dir_x ^ p_polarity[0]) ? 32'd1 : 32'hffffffff) : 32'd0);
+    always @(posedge clock) begin
+        p_pins_step_x <= pins_step_x;
+        p_polarity <= model_dir_polarity;
+        clear_position_due <= reset_n && stage_write && stage_addr == 16'h0008 && stage_data[2] && stage_mask[2];
+        cleared_position <= !reset_n || clear_position_due;
+        position_x <= (!reset_n || clear_position_due) ? 32'd0 : position_x_now;
+    end
+    always @(posedge clock) if (reset_n && read_now && l_addr == 16'h0020) begin
+        pulse_position_x: assert(l_rdata == position_x_now);
+    end
 `ifdef PULSE_TIMING_BY_SET
     // the host sets the pulse timing between moves (SET, which waits until the
     // outputs are idle) and the DIR polarity before: no bus write of
