@@ -298,6 +298,27 @@ module regs_fifo_harness #(
     always @(posedge clock) if (reset_n && read_now && l_addr == 16'h0020) begin
         pulse_position_x: assert(l_rdata == position_x_now);
     end
+`ifdef PULSE_PACED
+    // every step request leaves on its pin: while one waits, a STEP edge
+    // follows within one step period of the timing in force (DIR hold, DIR
+    // set-up, STEP high and low) and a few clocks of the queue.  The
+    // interpolator steps only after an `advance` (the feed rate, given only
+    // while the queue has room: rtl/dda_arc.py), the timing stays as reset
+    // (no SET of STEP_WIDTH, DIR_SETUP, DIR_HOLD), nothing drops the queue
+    // (no COMMAND write)
+    reg p_advance = 0;
+    always @(posedge clock) p_advance <= dda_advance;
+    always @(*) begin
+        if (!p_advance) assume(!steps_step_x && !steps_step_y);
+        assume(!(set_strobe && (set_index == 4'd3 || set_index == 4'd4 || set_index == 4'd5)));
+        assume(!(l_we && !l_space && l_addr == 16'h0008));
+    end
+    wire [9:0] step_period = 2 * model_step_width + model_dir_setup + model_dir_hold + `PULSE_QUEUE_CLOCKS;
+    pulse_progress x_progress (.clock(clock), .reset_n(reset_n), .request(steps_step_x || direct_request_x),
+        .step(pins_step_x), .period(step_period));
+    pulse_progress y_progress (.clock(clock), .reset_n(reset_n), .request(steps_step_y || direct_request_y),
+        .step(pins_step_y), .period(step_period));
+`endif
 `ifdef PULSE_TIMING_BY_SET
     // the host sets the pulse timing between moves (SET, which waits until the
     // outputs are idle) and the DIR polarity before: no bus write of
@@ -376,5 +397,26 @@ module pulse_requests (
     end
     always @(posedge clock) if (reset_n && requested != 8'hff) begin
         pulse_only_when_requested: assert(emitted <= requested);
+    end
+endmodule
+
+module pulse_progress (
+    input wire clock, input wire reset_n, input wire request, input wire step, input wire [9:0] period
+);
+    reg p_step = 0;
+    reg [7:0] waiting = 0;      // requests not yet on the pin
+    reg [9:0] quiet = 0;        // clocks without a leading edge while some wait
+    wire rose = step && !p_step;
+    always @(posedge clock) begin
+        p_step <= step;
+        if (!reset_n) begin
+            waiting <= 0; quiet <= 0;
+        end else begin
+            waiting <= waiting + request - (rose && waiting != 0);
+            quiet <= (rose || waiting == 0) ? 0 : quiet + 1;
+        end
+    end
+    always @(posedge clock) if (reset_n) begin
+        pulse_request_leaves: assert(quiet <= period);
     end
 endmodule
