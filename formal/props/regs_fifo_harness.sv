@@ -167,7 +167,8 @@ module regs_fifo_harness #(
     // they frame (docs/instructions.md: a header, opcode in bits 31:28, then
     // its operand words) are followed to where the sequencer executes them:
     // the n-th LINE/ARC gives the n-th DDA start with its operands and header
-    // fields, the n-th SET the n-th SET strobe with its index and value.  A
+    // fields, the n-th SET the n-th SET strobe with its index and value; no
+    // command after a DWELL n executes within n clocks of its operand.  A
     // malformed command stops execution (STATUS.ERROR), so the commands after
     // it never execute and need no check of their own.  A chosen-index shadow
     // keeps the words of one command.
@@ -180,13 +181,15 @@ module regs_fifo_harness #(
     reg [4:0] picked_number = 0;
     reg [2:0] picked_words = 0;
     reg [31:0] picked_header = 0, picked_0 = 0, picked_1 = 0, picked_2 = 0, picked_3 = 0;
+    reg [4:0] moves_before_dwell = 0, sets_before_dwell = 0;
+    reg [31:0] dwell_elapsed = 0;       // clocks since the picked command's last word arrived
     wire [3:0] arriving_opcode = fifo_dout[31:28];
     wire header_in = word_in && words_left == 0 && !framing_lost;
     wire is_move = arriving_opcode == 4'h1 || arriving_opcode == 4'h2;
     always @(posedge clock) begin
         word_in <= reset_n && !fifo_flush && pop;
         if (!reset_n || fifo_flush) begin
-            words_left <= 0; framing_lost <= 0; picked <= 0; picked_whole <= 0;
+            words_left <= 0; framing_lost <= 0; picked <= 0; picked_whole <= 0; dwell_elapsed <= 0;
             moves_seen <= 0; moves_started <= 0; sets_seen <= 0; sets_done <= 0;
         end else begin
             if (header_in) begin
@@ -199,8 +202,10 @@ module regs_fifo_harness #(
                 endcase
                 if (is_move) moves_seen <= moves_seen + 1;
                 if (arriving_opcode == 4'h4) sets_seen <= sets_seen + 1;
-                if (choose_command && !picked && (is_move || arriving_opcode == 4'h4)) begin
+                if (choose_command && !picked && (is_move || arriving_opcode == 4'h4 || arriving_opcode == 4'h5)) begin
                     picked <= 1;
+                    moves_before_dwell <= moves_seen;
+                    sets_before_dwell <= sets_seen;
                     picked_opcode <= arriving_opcode;
                     picked_header <= fifo_dout;
                     picked_number <= is_move ? moves_seen : sets_seen;
@@ -219,6 +224,7 @@ module regs_fifo_harness #(
                     picked_whole <= words_left == 1;
                 end
             end
+            if (picked_whole && dwell_elapsed != 32'hffffffff) dwell_elapsed <= dwell_elapsed + 1;
             if (dda_start) moves_started <= moves_started + 1;
             if (set_strobe) sets_done <= sets_done + 1;
         end
@@ -238,6 +244,11 @@ module regs_fifo_harness #(
                       && dda_lambda_shift == picked_header[7:3] && dda_acc_bits == picked_header[12:8]
                       && dda_xs == picked_0[COORD_WIDTH-1:0] && dda_ys == picked_1[COORD_WIDTH-1:0]
                       && dda_xe == picked_2[COORD_WIDTH-1:0] && dda_ye == picked_3[COORD_WIDTH-1:0]));
+        end
+        // DWELL n: nothing after it executes within n clocks of its operand
+        if (picked && picked_opcode == 4'h5 && ((dda_start && moves_started >= moves_before_dwell)
+                                                || (set_strobe && sets_done >= sets_before_dwell))) begin
+            cmd_dwell_waits: assert(picked_whole && dwell_elapsed >= picked_0);
         end
         if (picked_sets) begin
             cmd_set_as_written: assert(picked_whole && set_index == picked_header[3:0] && set_value == picked_0);
