@@ -163,7 +163,7 @@ GROUPS = [
           mode="bmc", depth=12, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
           text="FIFO words reach the sequencer in order, none twice (bounded)"),
     Group("regs_fifo_commands", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("cmd_",), mode="bmc",
-          depth=14, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          depth=14, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
           defines={"COMMANDS_WITHOUT_CLEAR": None},
           text="LINE, ARC, SET and DWELL executed as the FIFO words say, in order (bounded)"),
     Group("pci_covers", "pci_slave", PCI_FILES, "pci_target_harness", (), mode="cover", depth=24,
