@@ -148,7 +148,7 @@ GROUPS = [
           defines={"REGS_FIFO_INVARIANTS": None}, generated={"regs_table.vh": table_properties},
           text="back end: LocalBus answers, registers never wait, FIFO level, STATUS, nothing lost"),
     Group("regs_fifo_table", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("reg_",), mode="bmc",
-          depth=8, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          depth=10, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
           text="every register as rtl/registers.py says (bounded)"),
     Group("regs_fifo_pulses", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_",), mode="bmc",
           depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
