@@ -123,7 +123,8 @@ PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "i
                        "pci_config0_interrupt_line", "h_data", "spare_data", "ad_q", "h_be", "s_be",
                        "cbe_q", "req_addr", "ad_out_q")
 REGS_FILES = ["local_bus_rules.sv", "regs_fifo_harness.sv"]
-REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value")
+REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value",
+                       "direct_request_x", "direct_request_y")
 REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written")
 PCI_HELPERS = dict(expose=PCI_SLAVE_REGISTERS, includes=("pci_slave_invariants.vh",),
                    defines={"PCI_SLAVE_INVARIANTS": None})
@@ -151,15 +152,24 @@ GROUPS = [
           defines={"REGS_FIFO_INVARIANTS": None}, generated={"regs_table.vh": table_properties},
           text="back end: LocalBus answers, registers never wait, FIFO level, STATUS, nothing lost"),
     Group("regs_fifo_table", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("reg_",), mode="bmc",
-          depth=8, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          depth=10, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
           text="every register as rtl/registers.py says (bounded)"),
     Group("regs_fifo_pulses", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_",), mode="bmc",
           depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
           defines={"PULSE_TIMING_BY_SET": None},
           text="STEP widths, DIR set-up and hold (bounded)"),
+    Group("regs_fifo_pulse_progress", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_request_leaves",),
+          mode="bmc", depth=20, fast=False, expose=REGS_FIFO_REGISTERS,
+          generated={"regs_table.vh": table_properties},
+          defines={"PULSE_TIMING_BY_SET": None, "PULSE_PACED": None, "PULSE_QUEUE_CLOCKS": 4},
+          text="every step request leaves on its pin within a step period (bounded)"),
     Group("regs_fifo_order", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("rf_fifo_in_order",),
           mode="bmc", depth=12, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
           text="FIFO words reach the sequencer in order, none twice (bounded)"),
+    Group("regs_fifo_commands", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("cmd_",), mode="bmc",
+          depth=14, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          defines={"COMMANDS_WITHOUT_CLEAR": None},
+          text="LINE, ARC, SET and DWELL executed as the FIFO words say, in order (bounded)"),
     Group("pci_covers", "pci_slave", PCI_FILES, "pci_target_harness", (), mode="cover", depth=24,
           parameters=PCI_PARAMETERS, text="each kind of transaction is reachable"),
 ]

@@ -7,7 +7,8 @@ bits outside its fields; ID reads its constant; every RW register has a model
 that takes bus writes (byte enables honoured, the merged value clamped to
 min..max, one clock after the bus transfer as docs/registers.md and
 rtl/regs_fifo.py say) and SET commands (the value clamped), and every read
-of it returns the model; offsets the table does not list read 0.
+of it returns the model; a bit of a write-one-to-clear register read as 1
+reads 1 until a write of 1 to it; offsets the table does not list read 0.
 """
 from rtl import registers as regmap
 
@@ -63,6 +64,16 @@ def table_properties():
             lines.append(f"            model_{upper} <= clamp_{upper}(({{{32 - width}'h0, model_{upper}}} & ~stage_mask)"
                          f" | (stage_data & stage_mask));")
             lines.append("    end")
+        if reg.access == "W1C":
+            lines += [f"    reg [31:0] {upper}_before = 0, {upper}_cleared = 0;   // last read, bits written 1 since",
+                      f"    wire [31:0] {upper}_clearing = (stage_write && stage_addr == 16'h{reg.offset:04X})"
+                      f" ? stage_data & stage_mask : 32'h0;",
+                      "    always @(posedge clock) begin",
+                      f"        {upper}_cleared <= (read_now && l_addr == 16'h{reg.offset:04X} ? 32'h0 : {upper}_cleared)"
+                      f" | {upper}_clearing;",
+                      f"        if (!reset_n) {upper}_before <= 0;",
+                      f"        else if (read_now && l_addr == 16'h{reg.offset:04X}) {upper}_before <= l_rdata;",
+                      "    end"]
         lines.append(f"    always @(posedge clock) if (reset_n && read_now && l_addr == 16'h{reg.offset:04X}) begin")
         if mask != 0xFFFFFFFF:
             lines.append(f"        reg_{upper}_reserved_zero: assert((l_rdata & 32'h{(~mask) & 0xFFFFFFFF:08X}) == 32'h0);")
@@ -70,6 +81,8 @@ def table_properties():
             lines.append(f"        reg_{upper}_constant: assert(l_rdata == 32'h{reg.reset:08X});")
         if reg.name in COMMAND_READS_ZERO:
             lines.append(f"        reg_{upper}_reads_zero: assert(l_rdata == 32'h0);")
+        if reg.access == "W1C":
+            lines.append(f"        reg_{upper}_set_until_cleared: assert(({upper}_before & ~{upper}_cleared & ~l_rdata) == 32'h0);")
         if reg.access == "RW":
             lines.append(f"        reg_{upper}_reads_model: assert(l_rdata == {{{32 - reg.width}'h0, model_{upper}}});")
         lines.append("    end")

@@ -2,8 +2,8 @@
 
 The fast groups run by default (each a k-induction or a bounded check of
 one unit's generated Verilog); the rest, and the mutation campaign, carry
-the ``slow`` marker.  A few fixed mutants of the PCI target check that the
-proofs can fail: each one changes the target's outputs (a miter says so)
+the ``slow`` marker.  A few fixed mutants of the PCI target and the back end check that the
+proofs can fail: each one changes the unit's outputs (a miter says so)
 and each must be rejected by a proof.
 """
 import pytest
@@ -72,32 +72,44 @@ endmodule
     assert result.trace is not None and result.trace.exists()
 
 
-# Mutants of gen/pci_slave.v (yosys `mutate -list 20 -seed 1`, the list
-# `python -m formal.mutation` scores; indices into it) that change the
-# target's outputs; each must be rejected by the protocol group, bounded.
-FIXED_MUTANTS = (1, 2, 4)
-JUDGES = ("pci_protocol",)
-JUDGE_DEPTH = 12
+# Mutants of the generated files (yosys `mutate -list N -seed 1`, the lists
+# `python -m formal.mutation` scores; indices into them) that change the
+# unit's outputs; each must be rejected by the group named, bounded to its
+# depth.  pci_slave (20 mutants): m001, m002, m004 by the protocol rules.
+# regs_fifo (16 mutants): m000 (a LINE's operands reach the DDA port as an
+# ARC's) by the command shadow, m004 (the step request inverted) and m006
+# (`out_active` stuck at 0, so a SET may change a pulse under way) by the
+# pulse rules, m011 (the pulse queue never taken) by the progress rule,
+# m015 (every I/O write elsewhere clears INT_STATUS bits) by the table.
+MUTANT_LISTS = {"pci_slave": 20, "regs_fifo": 16}
+FIXED_MUTANTS = (("pci_slave", 1, "pci_protocol", 12), ("pci_slave", 2, "pci_protocol", 12),
+                 ("pci_slave", 4, "pci_protocol", 12), ("regs_fifo", 0, "regs_fifo_commands", 12),
+                 ("regs_fifo", 4, "regs_fifo_pulses", 20), ("regs_fifo", 6, "regs_fifo_pulses", 20),
+                 ("regs_fifo", 11, "regs_fifo_pulse_progress", 20), ("regs_fifo", 15, "regs_fifo_table", 10))
+MITER_DEPTH = 12
 
 
 @pytest.fixture(scope="module")
-def pci_mutations(tmp_path_factory):
-    work = tmp_path_factory.mktemp("mutants")
-    unit_file = catalogue.GEN_DIR / "pci_slave.v"
-    commands = mutation.list_mutations(unit_file, work, 20, 1)
-    return work, unit_file, commands, mutation.ports(work, unit_file)
+def mutation_lists(tmp_path_factory):
+    lists = {}
+    for unit, count in MUTANT_LISTS.items():
+        work = tmp_path_factory.mktemp(f"mutants_{unit}")
+        unit_file = catalogue.GEN_DIR / f"{unit}.v"
+        commands = mutation.list_mutations(unit_file, work, count, 1)
+        lists[unit] = (work, unit_file, commands, mutation.ports(work, unit_file))
+    return lists
 
 
-@pytest.mark.parametrize("index", FIXED_MUTANTS)
-def test_fixed_mutant_is_rejected(index, pci_mutations):
-    work, unit_file, commands, port_list = pci_mutations
+@pytest.mark.parametrize("unit, index, judge, depth", FIXED_MUTANTS,
+                         ids=[f"{unit}-m{index:03d}" for unit, index, _, _ in FIXED_MUTANTS])
+def test_fixed_mutant_is_rejected(unit, index, judge, depth, mutation_lists):
+    work, unit_file, commands, port_list = mutation_lists[unit]
     mutant = mutation.Mutant(index, commands[index])
     folder = work / f"m{index:03d}"
-    renamed = folder / "renamed" / "pci_slave_mutant.v"
-    mutation.write_mutant(work, unit_file, mutant.command, renamed, module_name="pci_slave_mutant")
-    assert mutation.is_observable(work, unit_file, renamed, port_list, 12), mutant.command
-    same_name = folder / "pci_slave.v"
+    renamed = folder / "renamed" / f"{unit}_mutant.v"
+    mutation.write_mutant(work, unit_file, mutant.command, renamed, module_name=f"{unit}_mutant")
+    assert mutation.is_observable(work, unit_file, renamed, port_list, MITER_DEPTH), mutant.command
+    same_name = folder / f"{unit}.v"
     mutation.write_mutant(work, unit_file, mutant.command, same_name)
-    judges = [catalogue.group(name) for name in JUDGES]
-    mutation.judge(mutant, judges, catalogue.GEN_DIR, same_name, work, JUDGE_DEPTH)
+    mutation.judge(mutant, [catalogue.group(judge)], catalogue.GEN_DIR, same_name, work, depth)
     assert mutant.verdict == "rejected", mutant.command

@@ -30,8 +30,9 @@ module regs_fifo_harness #(
     input wire dda_busy, input wire dda_done, input wire dda_error, input wire [1:0] dda_quadrant,
     input wire dda_ready, input wire [COORD_WIDTH+2:0] dda_stop_left,
     input wire steps_step_x, input wire steps_step_y, input wire steps_dir_x, input wire steps_dir_y,
-    // free choice of the order shadow: follow the word pushed at this edge
-    input wire choose_push
+    // free choice of the order shadow: follow the word pushed at this edge;
+    // of the command shadow: follow the command whose header arrives now
+    input wire choose_push, input wire choose_command
 );
     wire [31:0] l_rdata;
     wire l_ready, l_retry, l_room, irq, core_clear;
@@ -41,7 +42,7 @@ module regs_fifo_harness #(
     wire [COORD_WIDTH-1:0] dda_xs, dda_ys, dda_xe, dda_ye;
     wire pins_step_x, pins_dir_x, pins_step_y, pins_dir_y;
     // exposed registers of the unit
-    wire fifo_pop, fifo_flush, set_strobe;
+    wire fifo_pop, fifo_flush, set_strobe, direct_request_x, direct_request_y;
     wire [3:0] set_index;
     wire [31:0] set_value, fifo_dout;
 
@@ -62,7 +63,8 @@ module regs_fifo_harness #(
         .steps_dir_y(steps_dir_y), .pins_step_x(pins_step_x), .pins_dir_x(pins_dir_x),
         .pins_step_y(pins_step_y), .pins_dir_y(pins_dir_y),
         .fifo_pop(fifo_pop), .fifo_flush(fifo_flush), .fifo_dout(fifo_dout),
-        .set_strobe(set_strobe), .set_index(set_index), .set_value(set_value)
+        .set_strobe(set_strobe), .set_index(set_index), .set_value(set_value),
+        .direct_request_x(direct_request_x), .direct_request_y(direct_request_y)
 `ifdef REGS_FIFO_INVARIANTS
         , .sync_fifo0_count(sync_fifo0_count), .sync_fifo0_is_empty(sync_fifo0_is_empty),
 `ifdef LOCAL_ROOM
@@ -160,6 +162,103 @@ module regs_fifo_harness #(
     always @(posedge clock) if (reset_n) begin
         if (arriving) begin rf_fifo_in_order: assert(fifo_dout == tracked); end
     end
+    // ------------------------------------------------------------ commands as written
+    // The words leave the FIFO in order (rf_fifo_in_order); here the commands
+    // they frame (docs/instructions.md: a header, opcode in bits 31:28, then
+    // its operand words) are followed to where the sequencer executes them:
+    // the n-th LINE/ARC gives the n-th DDA start with its operands and header
+    // fields, the n-th SET the n-th SET strobe with its index and value; no
+    // command after a DWELL n executes within n clocks of its operand.  A
+    // malformed command stops execution (STATUS.ERROR), so the commands after
+    // it never execute and need no check of their own.  A chosen-index shadow
+    // keeps the words of one command.
+    reg word_in = 0;                    // fifo_dout: a word popped in the last clock
+    reg [2:0] words_left = 0;           // operand words still to come
+    reg framing_lost = 0;               // an unknown opcode: no framing until a flush
+    reg [4:0] moves_seen = 0, moves_started = 0, sets_seen = 0, sets_done = 0;
+    reg picked = 0, picked_whole = 0;
+    reg [3:0] picked_opcode = 0;
+    reg [4:0] picked_number = 0;
+    reg [2:0] picked_words = 0;
+    reg [31:0] picked_header = 0, picked_0 = 0, picked_1 = 0, picked_2 = 0, picked_3 = 0;
+    reg [4:0] moves_before_dwell = 0, sets_before_dwell = 0;
+    reg [31:0] dwell_elapsed = 0;       // clocks since the picked command's last word arrived
+    wire [3:0] arriving_opcode = fifo_dout[31:28];
+    wire header_in = word_in && words_left == 0 && !framing_lost;
+    wire is_move = arriving_opcode == 4'h1 || arriving_opcode == 4'h2;
+    always @(posedge clock) begin
+        word_in <= reset_n && !fifo_flush && pop;
+        if (!reset_n || fifo_flush) begin
+            words_left <= 0; framing_lost <= 0; picked <= 0; picked_whole <= 0; dwell_elapsed <= 0;
+            moves_seen <= 0; moves_started <= 0; sets_seen <= 0; sets_done <= 0;
+        end else begin
+            if (header_in) begin
+                case (arriving_opcode)
+                    4'h1, 4'h3: words_left <= 2;       // LINE, PULSE
+                    4'h2: words_left <= 4;             // ARC
+                    4'h4, 4'h5: words_left <= 1;       // SET, DWELL
+                    4'h6: words_left <= 0;             // MARK
+                    default: framing_lost <= 1;
+                endcase
+                if (is_move) moves_seen <= moves_seen + 1;
+                if (arriving_opcode == 4'h4) sets_seen <= sets_seen + 1;
+                if (choose_command && !picked && (is_move || arriving_opcode == 4'h4 || arriving_opcode == 4'h5)) begin
+                    picked <= 1;
+                    moves_before_dwell <= moves_seen;
+                    sets_before_dwell <= sets_seen;
+                    picked_opcode <= arriving_opcode;
+                    picked_header <= fifo_dout;
+                    picked_number <= is_move ? moves_seen : sets_seen;
+                    picked_words <= 0;
+                end
+            end else if (word_in && words_left != 0) begin
+                words_left <= words_left - 1;
+                if (picked && !picked_whole) begin
+                    case (picked_words)
+                        0: picked_0 <= fifo_dout;
+                        1: picked_1 <= fifo_dout;
+                        2: picked_2 <= fifo_dout;
+                        default: picked_3 <= fifo_dout;
+                    endcase
+                    picked_words <= picked_words + 1;
+                    picked_whole <= words_left == 1;
+                end
+            end
+            if (picked_whole && dwell_elapsed != 32'hffffffff) dwell_elapsed <= dwell_elapsed + 1;
+            if (dda_start) moves_started <= moves_started + 1;
+            if (set_strobe) sets_done <= sets_done + 1;
+        end
+    end
+    wire picked_starts = picked && picked_opcode != 4'h4 && dda_start && moves_started == picked_number;
+    wire picked_sets = picked && picked_opcode == 4'h4 && set_strobe && sets_done == picked_number;
+    always @(posedge clock) if (reset_n) begin
+        if (dda_start) begin cmd_start_for_a_move: assert(moves_started < moves_seen); end
+        if (set_strobe) begin cmd_set_for_a_set: assert(sets_done < sets_seen); end
+        if (picked_starts) begin
+            cmd_move_as_written: assert(picked_whole && dda_line == (picked_opcode == 4'h1)
+                && dda_blend == picked_header[16]
+                && (picked_opcode == 4'h1
+                    ? dda_xs == 0 && dda_ys == 0 && dda_xe == picked_0[COORD_WIDTH-1:0]
+                      && dda_ye == picked_1[COORD_WIDTH-1:0]
+                    : dda_ccw == picked_header[0] && dda_variant == picked_header[2:1]
+                      && dda_lambda_shift == picked_header[7:3] && dda_acc_bits == picked_header[12:8]
+                      && dda_xs == picked_0[COORD_WIDTH-1:0] && dda_ys == picked_1[COORD_WIDTH-1:0]
+                      && dda_xe == picked_2[COORD_WIDTH-1:0] && dda_ye == picked_3[COORD_WIDTH-1:0]));
+        end
+        // DWELL n: nothing after it executes within n clocks of its operand
+        if (picked && picked_opcode == 4'h5 && ((dda_start && moves_started >= moves_before_dwell)
+                                                || (set_strobe && sets_done >= sets_before_dwell))) begin
+            cmd_dwell_waits: assert(picked_whole && dwell_elapsed >= picked_0);
+        end
+        if (picked_sets) begin
+            cmd_set_as_written: assert(picked_whole && set_index == picked_header[3:0] && set_value == picked_0);
+        end
+    end
+`ifdef COMMANDS_WITHOUT_CLEAR
+    // execution resumes after CLEAR_ERROR with the command after the bad one:
+    // the counts above assume no COMMAND write (soft reset, clear error)
+    always @(*) assume(!(l_we && !l_space && l_addr == 16'h0008));
+`endif
     // ------------------------------------------------------------ the interpolator
     // rtl/dda_arc.py: busy only from a start until its reset (core_clear
     // resets it in the next clock), steps only while busy
@@ -179,13 +278,58 @@ module regs_fifo_harness #(
     // DIR stable DIR_SETUP clocks before a STEP leading edge and DIR_HOLD
     // clocks after its trailing edge (docs/registers.md), judged with the
     // settings in force when the interval began (a bus write to a timing
-    // register in the interval leaves it unjudged)
+    // register in the interval leaves it unjudged; a SET does not)
     pulse_axis_rules x_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_x), .dir(pins_dir_x),
         .width(model_step_width), .setup(model_dir_setup), .hold(model_dir_hold),
         .settings_written(timing_written));
     pulse_axis_rules y_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_y), .dir(pins_dir_y),
         .width(model_step_width), .setup(model_dir_setup), .hold(model_dir_hold),
         .settings_written(timing_written));
+    // every STEP pulse on a pin answers a step request: of the interpolator
+    // (steps_step_*) or of the direct pulse generator (PULSE, PULSE_COUNT_*)
+    pulse_requests x_requests (.clock(clock), .reset_n(reset_n), .request(steps_step_x || direct_request_x),
+        .step(pins_step_x));
+    pulse_requests y_requests (.clock(clock), .reset_n(reset_n), .request(steps_step_y || direct_request_y),
+        .step(pins_step_y));
+    // POS_X counts the STEP pulses that left the X pin, +1 where DIR (without
+    // DIR_POLARITY) is high, -1 where low, at the edge the pin rises;
+    // COMMAND.CLEAR_POSITION zeroes it (docs/registers.md, rtl/pulse_out.py)
+    reg p_pins_step_x = 0, cleared_position = 0, clear_position_due = 0;
+    reg [1:0] p_polarity = 0;
+    reg [31:0] position_x = 0;
+    wire step_x_rose = pins_step_x && !p_pins_step_x && !cleared_position;
+    wire [31:0] position_x_now = position_x + (step_x_rose ? ((pins_dir_x ^ p_polarity[0]) ? 32'd1 : 32'hffffffff) : 32'd0);
+    always @(posedge clock) begin
+        p_pins_step_x <= pins_step_x;
+        p_polarity <= model_dir_polarity;
+        clear_position_due <= reset_n && stage_write && stage_addr == 16'h0008 && stage_data[2] && stage_mask[2];
+        cleared_position <= !reset_n || clear_position_due;
+        position_x <= (!reset_n || clear_position_due) ? 32'd0 : position_x_now;
+    end
+    always @(posedge clock) if (reset_n && read_now && l_addr == 16'h0020) begin
+        pulse_position_x: assert(l_rdata == position_x_now);
+    end
+`ifdef PULSE_PACED
+    // every step request leaves on its pin: while one waits, a STEP edge
+    // follows within one step period of the timing in force (DIR hold, DIR
+    // set-up, STEP high and low) and a few clocks of the queue.  The
+    // interpolator steps only after an `advance` (the feed rate, given only
+    // while the queue has room: rtl/dda_arc.py), the timing stays as reset
+    // (no SET of STEP_WIDTH, DIR_SETUP, DIR_HOLD), nothing drops the queue
+    // (no COMMAND write)
+    reg p_advance = 0;
+    always @(posedge clock) p_advance <= dda_advance;
+    always @(*) begin
+        if (!p_advance) assume(!steps_step_x && !steps_step_y);
+        assume(!(set_strobe && (set_index == 4'd3 || set_index == 4'd4 || set_index == 4'd5)));
+        assume(!(l_we && !l_space && l_addr == 16'h0008));
+    end
+    wire [9:0] step_period = 2 * model_step_width + model_dir_setup + model_dir_hold + `PULSE_QUEUE_CLOCKS;
+    pulse_progress x_progress (.clock(clock), .reset_n(reset_n), .request(steps_step_x || direct_request_x),
+        .step(pins_step_x), .period(step_period));
+    pulse_progress y_progress (.clock(clock), .reset_n(reset_n), .request(steps_step_y || direct_request_y),
+        .step(pins_step_y), .period(step_period));
+`endif
 `ifdef PULSE_TIMING_BY_SET
     // the host sets the pulse timing between moves (SET, which waits until the
     // outputs are idle) and the DIR polarity before: no bus write of
@@ -193,9 +337,11 @@ module regs_fifo_harness #(
     always @(*) assume(!(l_we && !l_space && (l_addr == 16'h0034 || l_addr == 16'h0038
                                                || l_addr == 16'h003C || l_addr == 16'h0040)));
 `endif
-    wire timing_written = (stage_write && (stage_addr == 16'h0034 || stage_addr == 16'h0038
-                                           || stage_addr == 16'h003C))
-                          || (set_strobe && (set_index == 4'd3 || set_index == 4'd4 || set_index == 4'd5));
+    // a SET of a timing register waits until the outputs are quiet and never
+    // changes a pulse under way (docs/instructions.md): it leaves nothing
+    // unjudged, each interval keeps the setting in force when it began
+    wire timing_written = stage_write && (stage_addr == 16'h0034 || stage_addr == 16'h0038
+                                          || stage_addr == 16'h003C);
 `ifdef REGS_FIFO_INVARIANTS
 `include "regs_fifo_invariants.vh"
 `endif
@@ -245,3 +391,43 @@ module pulse_axis_rules (
     end
 endmodule
 
+
+module pulse_requests (
+    input wire clock, input wire reset_n, input wire request, input wire step
+);
+    reg p_step = 0;
+    reg [7:0] requested = 0, emitted = 0;
+    always @(posedge clock) begin
+        p_step <= step;
+        if (!reset_n) begin
+            requested <= 0; emitted <= 0;
+        end else begin
+            if (request && requested != 8'hff) requested <= requested + 1;
+            if (step && !p_step && emitted != 8'hff) emitted <= emitted + 1;
+        end
+    end
+    always @(posedge clock) if (reset_n && requested != 8'hff) begin
+        pulse_only_when_requested: assert(emitted <= requested);
+    end
+endmodule
+
+module pulse_progress (
+    input wire clock, input wire reset_n, input wire request, input wire step, input wire [9:0] period
+);
+    reg p_step = 0;
+    reg [7:0] waiting = 0;      // requests not yet on the pin
+    reg [9:0] quiet = 0;        // clocks without a leading edge while some wait
+    wire rose = step && !p_step;
+    always @(posedge clock) begin
+        p_step <= step;
+        if (!reset_n) begin
+            waiting <= 0; quiet <= 0;
+        end else begin
+            waiting <= waiting + request - (rose && waiting != 0);
+            quiet <= (rose || waiting == 0) ? 0 : quiet + 1;
+        end
+    end
+    always @(posedge clock) if (reset_n) begin
+        pulse_request_leaves: assert(quiet <= period);
+    end
+endmodule
