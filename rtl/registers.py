@@ -135,6 +135,7 @@ _INPUT_TEXT = (("ESTOP", "emergency stop"), ("LIMIT_POS_X", "X limit, positive e
                ("LIMIT_NEG_X", "X limit, negative end"), ("LIMIT_POS_Y", "Y limit, positive end"),
                ("LIMIT_NEG_Y", "Y limit, negative end"), ("HOME_X", "X home switch"), ("HOME_Y", "Y home switch"))
 INPUT_NAMES = tuple(name for name, _ in _INPUT_TEXT)
+LIMIT_NAMES = INPUT_NAMES[1:5]  # STOP_REASON.LIMITS bit n: LIMIT_NAMES[n]
 STOP_REASONS = ("NONE", "ESTOP", "WATCHDOG", "LIMIT")  # STOP_REASON.REASON codes
 _REASON_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(STOP_REASONS))
 WATCHDOG_BITS = 24
@@ -235,7 +236,8 @@ REGISTERS = (
     )),
     Register("STOP_REASON", 0x68, "RO", 0, "why the guard stopped the card (0 when not stopped)", (
         Field("REASON", 0, 2, f"{_REASON_CODES}"),
-        Field("LIMITS", 4, 4, "LIMIT: the limits stepped towards (bit 0 X+, 1 X-, 2 Y+, 3 Y-)"),
+        Field("LIMITS", 4, 4, "LIMIT: the limits stepped towards (bit n: " + ", ".join(
+            f"{bit} {name}" for bit, name in enumerate(LIMIT_NAMES)) + ")"),
     )),
     Register("INPUT_POLARITY", 0x6C, "RW", 0, "input polarity: 1 makes that input active low",
              tuple(Field(name, bit, 1, f"1: the {text} input is active low")
