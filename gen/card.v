@@ -284,6 +284,8 @@ wire card_core0_regs_fifo1_pulse_clear;
 reg card_core0_regs_fifo1_push;
 reg card_core0_regs_fifo1_requested_before;
 wire card_core0_regs_fifo1_seq_busy;
+wire card_core0_regs_fifo1_sequencer_clear;
+reg card_core0_regs_fifo1_soft_reset_taken;
 reg card_core0_regs_fifo1_tick;
 reg [11:0] card_core0_regs_fifo1_written_addr;
 reg [31:0] card_core0_regs_fifo1_written_data;
@@ -292,8 +294,8 @@ reg [31:0] card_core0_regs_fifo1_read_end;
 reg [1:0] card_core0_regs_fifo1_control;
 reg card_core0_regs_fifo1_command_strobe;
 reg [3:0] card_core0_regs_fifo1_command;
-reg card_core0_regs_fifo1_guard_stop_event;
 reg card_core0_regs_fifo1_guard_stopped;
+reg card_core0_regs_fifo1_guard_stop_event;
 wire card_core0_regs_fifo1_requests_step_x;
 wire card_core0_regs_fifo1_requests_step_y;
 reg signed [31:0] card_core0_regs_fifo1_position_y;
@@ -3718,7 +3720,7 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_arriving_count, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_state, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer1_next_valid, card_core0_core_clear, card_core0_regs_fifo1_sequencer1_next_count, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_fetch_request
+always @(card_core0_regs_fifo1_sequencer1_arriving_count, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_state, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer1_next_valid, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_next_count, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_fetch_request
     reg more;
     more = 1'b1;
     if (card_core0_regs_fifo1_sequencer1_word_due) begin
@@ -3729,7 +3731,7 @@ always @(card_core0_regs_fifo1_sequencer1_arriving_count, card_core0_regs_fifo1_
             more = (card_core0_regs_fifo1_sequencer1_fetched < card_core0_regs_fifo1_sequencer1_next_count);
         end
     end
-    card_core0_regs_fifo1_fifo_pop = ((!card_core0_regs_fifo1_fifo_empty) && (!card_core0_regs_fifo1_sequencer1_next_valid) && more && (!card_core0_core_clear) && (card_core0_regs_fifo1_sequencer1_state != 3'b100));
+    card_core0_regs_fifo1_fifo_pop = ((!card_core0_regs_fifo1_fifo_empty) && (!card_core0_regs_fifo1_sequencer1_next_valid) && more && (!card_core0_regs_fifo1_sequencer_clear) && (card_core0_regs_fifo1_sequencer1_state != 3'b100));
 end
 
 
@@ -3758,7 +3760,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
     end
     else begin
         card_core0_regs_fifo1_sequencer1_word_due <= card_core0_regs_fifo1_fifo_pop;
-        if ((card_core0_core_clear || card_core0_regs_fifo1_sequencer1_discard)) begin
+        if ((card_core0_regs_fifo1_sequencer_clear || card_core0_regs_fifo1_sequencer1_discard)) begin
             card_core0_regs_fifo1_sequencer1_word_due <= 0;
             card_core0_regs_fifo1_sequencer1_fetched <= 0;
             card_core0_regs_fifo1_sequencer1_next_valid <= 0;
@@ -3875,7 +3877,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_sequencer1_issue = (card_core0_regs_fifo1_sequencer1_next_valid && card_core0_regs_fifo1_enable && card_core0_regs_fifo1_sequencer1_finishing && (!card_core0_core_clear));
+assign card_core0_regs_fifo1_sequencer1_issue = (card_core0_regs_fifo1_sequencer1_next_valid && card_core0_regs_fifo1_enable && card_core0_regs_fifo1_sequencer1_finishing && (!card_core0_regs_fifo1_sequencer_clear));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_execute
@@ -3893,7 +3895,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
         card_core0_regs_fifo1_seq_load <= 0;
         card_core0_regs_fifo1_set_strobe <= 0;
         card_core0_regs_fifo1_sequencer1_mark_strobe <= 0;
-        if (card_core0_core_clear) begin
+        if (card_core0_regs_fifo1_sequencer_clear) begin
             card_core0_regs_fifo1_sequencer1_state <= 3'b000;
             card_core0_regs_fifo1_error_code <= 0;
         end
@@ -4780,20 +4782,23 @@ assign card_core0_regs_fifo1_clear_error = (card_core0_regs_fifo1_command_strobe
 assign card_core0_regs_fifo1_clear_position = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[2]);
 assign card_core0_regs_fifo1_clear_stop = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[3]);
 assign card_core0_regs_fifo1_pulse_clear = (card_core0_core_clear || card_core0_regs_fifo1_halt);
+assign card_core0_regs_fifo1_sequencer_clear = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_soft_reset
     if (reset == 0) begin
+        card_core0_regs_fifo1_soft_reset_taken <= 0;
         card_core0_core_clear <= 0;
     end
     else begin
+        card_core0_regs_fifo1_soft_reset_taken <= (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[0]);
         card_core0_core_clear <= ((card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[0]) || card_core0_regs_fifo1_guard_stop_event);
     end
 end
 
 
 
-assign card_core0_regs_fifo1_fifo_flush = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped || (card_core0_regs_fifo1_discard_on_clear && card_core0_regs_fifo1_io_written && (card_core0_regs_fifo1_written_addr == 8) && card_core0_regs_fifo1_written_data[1] && card_core0_regs_fifo1_written_mask[1]));
+assign card_core0_regs_fifo1_fifo_flush = (card_core0_regs_fifo1_soft_reset_taken || (card_core0_regs_fifo1_io_written && (card_core0_regs_fifo1_written_addr == 8) && ((card_core0_regs_fifo1_discard_on_clear && card_core0_regs_fifo1_written_data[1] && card_core0_regs_fifo1_written_mask[1]) || (card_core0_regs_fifo1_guard_stopped && card_core0_regs_fifo1_written_data[3] && card_core0_regs_fifo1_written_mask[3]))));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_outputs_before

@@ -65,10 +65,11 @@ module regs_fifo (
 // interpolator's command, reads its status); ``steps`` (the interpolator's
 // step requests); ``pins`` (STEP/DIR and DRIVE_ENABLE out, the machine
 // inputs in: ``input_filter`` and ``machine_guard`` watch them, and a
-// stop holds the sequencer, the direct pulses and the pulse outputs,
-// empties the FIFO and resets the DDA, docs/machine.md); ``irq`` (level, to INTA#:
-// INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
-// COMMAND.SOFT_RESET: the top resets the DDA with it).
+// stop resets and holds the sequencer, the direct pulses and the pulse
+// outputs and resets the DDA; the FIFO keeps its words until
+// COMMAND.CLEAR_STOP empties it, docs/machine.md); ``irq`` (level, to
+// INTA#: INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
+// COMMAND.SOFT_RESET or a stop: the top resets the DDA with it).
 // Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
 // two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
 // ``clock_hz`` and ``device`` only set capability registers (CLOCK_HZ,
@@ -200,6 +201,8 @@ wire pulse_clear;
 reg push;
 reg requested_before;
 wire seq_busy;
+wire sequencer_clear;
+reg soft_reset_taken;
 reg tick;
 reg [15:0] written_addr;
 reg [31:0] written_data;
@@ -208,8 +211,8 @@ reg [31:0] read_end;
 reg [1:0] control;
 reg command_strobe;
 reg [3:0] command;
-reg guard_stop_event;
 reg guard_stopped;
+reg guard_stop_event;
 wire requests_step_x;
 wire requests_step_y;
 reg signed [31:0] position_y;
@@ -2458,7 +2461,7 @@ always @(fifo_dout) begin: sequencer0_lookup_variant
 end
 
 
-always @(sequencer0_arriving_count, fifo_empty, sequencer0_state, sequencer0_word_due, sequencer0_next_valid, core_clear, sequencer0_next_count, sequencer0_fetched) begin: sequencer0_fetch_request
+always @(sequencer0_arriving_count, fifo_empty, sequencer0_state, sequencer0_word_due, sequencer0_next_valid, sequencer_clear, sequencer0_next_count, sequencer0_fetched) begin: sequencer0_fetch_request
     reg more;
     more = 1'b1;
     if (sequencer0_word_due) begin
@@ -2469,7 +2472,7 @@ always @(sequencer0_arriving_count, fifo_empty, sequencer0_state, sequencer0_wor
             more = (sequencer0_fetched < sequencer0_next_count);
         end
     end
-    fifo_pop = ((!fifo_empty) && (!sequencer0_next_valid) && more && (!core_clear) && (sequencer0_state != 3'b100));
+    fifo_pop = ((!fifo_empty) && (!sequencer0_next_valid) && more && (!sequencer_clear) && (sequencer0_state != 3'b100));
 end
 
 
@@ -2498,7 +2501,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
     end
     else begin
         sequencer0_word_due <= fifo_pop;
-        if ((core_clear || sequencer0_discard)) begin
+        if ((sequencer_clear || sequencer0_discard)) begin
             sequencer0_word_due <= 0;
             sequencer0_fetched <= 0;
             sequencer0_next_valid <= 0;
@@ -2615,7 +2618,7 @@ end
 
 
 
-assign sequencer0_issue = (sequencer0_next_valid && enable && sequencer0_finishing && (!core_clear));
+assign sequencer0_issue = (sequencer0_next_valid && enable && sequencer0_finishing && (!sequencer_clear));
 
 
 always @(posedge clock, negedge reset) begin: sequencer0_execute
@@ -2633,7 +2636,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
         seq_load <= 0;
         set_strobe <= 0;
         sequencer0_mark_strobe <= 0;
-        if (core_clear) begin
+        if (sequencer_clear) begin
             sequencer0_state <= 3'b000;
             error_code <= 0;
         end
@@ -3520,20 +3523,23 @@ assign clear_error = (command_strobe && command[1]);
 assign clear_position = (command_strobe && command[2]);
 assign clear_stop = (command_strobe && command[3]);
 assign pulse_clear = (core_clear || halt);
+assign sequencer_clear = (core_clear || guard_stopped);
 
 
 always @(posedge clock, negedge reset) begin: soft_reset
     if (reset == 0) begin
+        soft_reset_taken <= 0;
         core_clear <= 0;
     end
     else begin
+        soft_reset_taken <= (command_strobe && command[0]);
         core_clear <= ((command_strobe && command[0]) || guard_stop_event);
     end
 end
 
 
 
-assign fifo_flush = (core_clear || guard_stopped || (discard_on_clear && io_written && (written_addr == 8) && written_data[1] && written_mask[1]));
+assign fifo_flush = (soft_reset_taken || (io_written && (written_addr == 8) && ((discard_on_clear && written_data[1] && written_mask[1]) || (guard_stopped && written_data[3] && written_mask[3]))));
 
 
 always @(posedge clock, negedge reset) begin: outputs_before

@@ -308,6 +308,8 @@ wire card1_card_core1_regs_fifo2_pulse_clear;
 reg card1_card_core1_regs_fifo2_push;
 reg card1_card_core1_regs_fifo2_requested_before;
 wire card1_card_core1_regs_fifo2_seq_busy;
+wire card1_card_core1_regs_fifo2_sequencer_clear;
+reg card1_card_core1_regs_fifo2_soft_reset_taken;
 reg card1_card_core1_regs_fifo2_tick;
 reg [11:0] card1_card_core1_regs_fifo2_written_addr;
 reg [31:0] card1_card_core1_regs_fifo2_written_data;
@@ -316,8 +318,8 @@ reg [31:0] card1_card_core1_regs_fifo2_read_end;
 reg [1:0] card1_card_core1_regs_fifo2_control;
 reg card1_card_core1_regs_fifo2_command_strobe;
 reg [3:0] card1_card_core1_regs_fifo2_command;
-reg card1_card_core1_regs_fifo2_guard_stop_event;
 reg card1_card_core1_regs_fifo2_guard_stopped;
+reg card1_card_core1_regs_fifo2_guard_stop_event;
 wire card1_card_core1_regs_fifo2_requests_step_x;
 wire card1_card_core1_regs_fifo2_requests_step_y;
 reg signed [31:0] card1_card_core1_regs_fifo2_position_y;
@@ -4550,7 +4552,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
+always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
     reg more;
     more = 1'b1;
     if (card1_card_core1_regs_fifo2_sequencer2_word_due) begin
@@ -4561,7 +4563,7 @@ always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1
             more = (card1_card_core1_regs_fifo2_sequencer2_fetched < card1_card_core1_regs_fifo2_sequencer2_next_count);
         end
     end
-    card1_card_core1_regs_fifo2_fifo_pop = ((!card1_card_core1_regs_fifo2_fifo_empty) && (!card1_card_core1_regs_fifo2_sequencer2_next_valid) && more && (!card1_card_core1_core_clear) && (card1_card_core1_regs_fifo2_sequencer2_state != 3'b100));
+    card1_card_core1_regs_fifo2_fifo_pop = ((!card1_card_core1_regs_fifo2_fifo_empty) && (!card1_card_core1_regs_fifo2_sequencer2_next_valid) && more && (!card1_card_core1_regs_fifo2_sequencer_clear) && (card1_card_core1_regs_fifo2_sequencer2_state != 3'b100));
 end
 
 
@@ -4590,7 +4592,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
     end
     else begin
         card1_card_core1_regs_fifo2_sequencer2_word_due <= card1_card_core1_regs_fifo2_fifo_pop;
-        if ((card1_card_core1_core_clear || card1_card_core1_regs_fifo2_sequencer2_discard)) begin
+        if ((card1_card_core1_regs_fifo2_sequencer_clear || card1_card_core1_regs_fifo2_sequencer2_discard)) begin
             card1_card_core1_regs_fifo2_sequencer2_word_due <= 0;
             card1_card_core1_regs_fifo2_sequencer2_fetched <= 0;
             card1_card_core1_regs_fifo2_sequencer2_next_valid <= 0;
@@ -4707,7 +4709,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_sequencer2_issue = (card1_card_core1_regs_fifo2_sequencer2_next_valid && card1_card_core1_regs_fifo2_enable && card1_card_core1_regs_fifo2_sequencer2_finishing && (!card1_card_core1_core_clear));
+assign card1_card_core1_regs_fifo2_sequencer2_issue = (card1_card_core1_regs_fifo2_sequencer2_next_valid && card1_card_core1_regs_fifo2_enable && card1_card_core1_regs_fifo2_sequencer2_finishing && (!card1_card_core1_regs_fifo2_sequencer_clear));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_execute
@@ -4725,7 +4727,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
         card1_card_core1_regs_fifo2_seq_load <= 0;
         card1_card_core1_regs_fifo2_set_strobe <= 0;
         card1_card_core1_regs_fifo2_sequencer2_mark_strobe <= 0;
-        if (card1_card_core1_core_clear) begin
+        if (card1_card_core1_regs_fifo2_sequencer_clear) begin
             card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
             card1_card_core1_regs_fifo2_error_code <= 0;
         end
@@ -5612,20 +5614,23 @@ assign card1_card_core1_regs_fifo2_clear_error = (card1_card_core1_regs_fifo2_co
 assign card1_card_core1_regs_fifo2_clear_position = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[2]);
 assign card1_card_core1_regs_fifo2_clear_stop = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[3]);
 assign card1_card_core1_regs_fifo2_pulse_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_halt);
+assign card1_card_core1_regs_fifo2_sequencer_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_soft_reset
     if (reset == 0) begin
+        card1_card_core1_regs_fifo2_soft_reset_taken <= 0;
         card1_card_core1_core_clear <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_soft_reset_taken <= (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[0]);
         card1_card_core1_core_clear <= ((card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[0]) || card1_card_core1_regs_fifo2_guard_stop_event);
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_fifo_flush = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped || (card1_card_core1_regs_fifo2_discard_on_clear && card1_card_core1_regs_fifo2_io_written && (card1_card_core1_regs_fifo2_written_addr == 8) && card1_card_core1_regs_fifo2_written_data[1] && card1_card_core1_regs_fifo2_written_mask[1]));
+assign card1_card_core1_regs_fifo2_fifo_flush = (card1_card_core1_regs_fifo2_soft_reset_taken || (card1_card_core1_regs_fifo2_io_written && (card1_card_core1_regs_fifo2_written_addr == 8) && ((card1_card_core1_regs_fifo2_discard_on_clear && card1_card_core1_regs_fifo2_written_data[1] && card1_card_core1_regs_fifo2_written_mask[1]) || (card1_card_core1_regs_fifo2_guard_stopped && card1_card_core1_regs_fifo2_written_data[3] && card1_card_core1_regs_fifo2_written_mask[3]))));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_outputs_before

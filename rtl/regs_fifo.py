@@ -39,10 +39,11 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     interpolator's command, reads its status); ``steps`` (the interpolator's
     step requests); ``pins`` (STEP/DIR and DRIVE_ENABLE out, the machine
     inputs in: ``input_filter`` and ``machine_guard`` watch them, and a
-    stop holds the sequencer, the direct pulses and the pulse outputs,
-    empties the FIFO and resets the DDA, docs/machine.md); ``irq`` (level, to INTA#:
-    INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
-    COMMAND.SOFT_RESET: the top resets the DDA with it).
+    stop resets and holds the sequencer, the direct pulses and the pulse
+    outputs and resets the DDA; the FIFO keeps its words until
+    COMMAND.CLEAR_STOP empties it, docs/machine.md); ``irq`` (level, to
+    INTA#: INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
+    COMMAND.SOFT_RESET or a stop: the top resets the DDA with it).
     Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
     two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
     ``clock_hz`` and ``device`` only set capability registers (CLOCK_HZ,
@@ -89,7 +90,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     set_port, mark = SetPort(), MarkPort()
     # named at this level, as the formal harness (formal/props) and the waves know them
     set_strobe, set_index, set_value = set_port.strobe, set_port.index, set_port.value
-    seq_control = SequencerControl(clear=core_clear)
+    sequencer_clear = Signal(bool(0))
+    seq_control = SequencerControl(clear=sequencer_clear)
     enable, clear_error, error_code = seq_control.enable, seq_control.clear_error, seq_control.error_code
     seq_busy, motion_run, discard_on_clear = seq_control.busy, seq_control.motion_run, seq_control.discard_on_clear
     clear_position, direct_mode = Signal(bool(0)), Signal(bool(0))
@@ -110,7 +112,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     direct_request, direct_dir = [o.step for o in direct_out], [o.dir for o in direct_out]
     feed = FeedPort(dda.coord_width, run=motion_run, stop_left=dda.stop_left)
     tick, hold = feed.tick, feed.hold
-    fifo_flush = Signal(bool(0))
+    fifo_flush, soft_reset_taken = Signal(bool(0)), Signal(bool(0))
     requested_before, out_active_before = Signal(bool(0)), Signal(bool(0))
     any_busy, busy_before, done_flag, low_before, error_before = (Signal(bool(0)) for _ in range(5))
     pos_y_snapshot = Signal(position.y.val)
@@ -194,10 +196,14 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         clear_stop.next = command_strobe and command[release_bit]
         # no new STEP edge while the guard halts (a pulse already high ends normally)
         pulse_clear.next = core_clear or halt
+        # held while stopped: the sequencer takes no word from the FIFO
+        sequencer_clear.next = core_clear or guard.stopped
 
     @always_seq(clock.posedge, reset=reset)
     def soft_reset():
-        # a stop of the guard resets the queue, the DDA and the sequencer as SOFT_RESET does
+        # a stop of the guard resets the DDA, the sequencer and the pulses as SOFT_RESET does;
+        # only SOFT_RESET empties the FIFO with it (see fifo_emptying)
+        soft_reset_taken.next = command_strobe and command[reset_bit]
         core_clear.next = (command_strobe and command[reset_bit]) or guard.stop_event
 
     @always_comb
@@ -209,10 +215,12 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         # that takes its bus write (then the strobe, then core_clear): no word
         # arrives in between, as the target holds no posted dword when it starts
         # a register access, and the next transaction's address phase comes at
-        # e + 2 at the earliest, its first dword two clocks later
-        # while the guard holds the card stopped, words written to the FIFO are dropped
-        fifo_flush.next = core_clear or guard.stopped or (discard_on_clear and io_written and written_addr == command_offset
-                                         and written_data[clear_bit] and written_mask[clear_bit])
+        # e + 2 at the earliest, its first dword two clocks later.  CLEAR_STOP,
+        # while stopped, empties it as CLEAR_ERROR does: the stop may have cut a
+        # command in two, and words written since are dropped with it
+        fifo_flush.next = soft_reset_taken or (io_written and written_addr == command_offset and (
+            (discard_on_clear and written_data[clear_bit] and written_mask[clear_bit])
+            or (guard.stopped and written_data[release_bit] and written_mask[release_bit])))
 
     level_pad = level_bits - len(fifo_level)
 

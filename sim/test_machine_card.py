@@ -69,7 +69,7 @@ def assert_stopped(words, reason):
     assert field("MACHINE_STATUS", "STOPPED", words["MACHINE_STATUS"]) == 1
     assert field("MACHINE_STATUS", "DRIVE_ENABLE", words["MACHINE_STATUS"]) == 0
     assert field("INT_STATUS", "STOPPED", words["INT_STATUS"]) == 1
-    assert field("STATUS", "FIFO_LEVEL", words["STATUS"]) == 0, "the queue is flushed"
+    assert not field("STATUS", "BUSY", words["STATUS"]), "the queue is held"
 
 
 def assert_exact(pin_log, position, commands):
@@ -97,7 +97,9 @@ def test_estop_mid_arc(cosim, seed):
         results["stopped"] = yield from snapshot(driver)
         yield from clear_stop(driver)   # refused: the E-stop input is still active
         results["held"] = yield from read(driver, "STOP_REASON")
-        yield from driver.push_all(command_words(after))   # dropped while stopped
+        yield from driver.push_all(command_words(after))   # held while stopped, dropped by CLEAR_STOP
+        yield from wait_clocks(driver, 100)
+        results["still"] = yield from read_position(driver)
         yield delay(1)
         pins.estop.next = 0
         yield from wait_clocks(driver, 20)
@@ -121,6 +123,8 @@ def test_estop_mid_arc(cosim, seed):
     assert_exact(partial, stopped["position"], [arc])
     assert 0 < len(interrupted) < len(expected_path([arc])) - 1, "the E-stop came mid-arc"
     released = results["released"]
+    assert results["still"] == released["position"] == stopped["position"], "nothing moved while stopped"
+    assert field("STATUS", "FIFO_LEVEL", released["STATUS"]) == 0, "CLEAR_STOP empties the queue"
     assert field("STATUS", "STOPPED", released["STATUS"]) == 0 and released["STOP_REASON"] == 0
     assert field("MACHINE_STATUS", "DRIVE_ENABLE", released["MACHINE_STATUS"]) == 1
     x, y = stopped["position"]
