@@ -19,6 +19,9 @@ set_output_delay -clock pci_clk -max 19.000 [get_ports {pci_pins_ad[*] pci_pins_
 set_output_delay -clock pci_clk -min -2.000 [get_ports {pci_pins_ad[*] pci_pins_par pci_pins_trdy pci_pins_devsel pci_pins_stop pci_pins_perr pci_pins_serr pci_pins_inta}]
 
 # RST# is asynchronous (asserted and released with CLK running but no timing
-# relation); STEP/DIR drive motor power stages micro-seconds apart.
+# relation); STEP/DIR and DRIVE_ENABLE drive motor power stages micro-seconds
+# apart; the machine inputs are asynchronous switches, each through a
+# two-flip-flop synchroniser.
 set_false_path -from [get_ports reset]
-set_false_path -to [get_ports {motor_step_x motor_dir_x motor_step_y motor_dir_y}]
+set_false_path -to [get_ports {motor_step_x motor_dir_x motor_step_y motor_dir_y motor_drive_enable}]
+set_false_path -from [get_ports {motor_estop motor_limit_* motor_home_*}]

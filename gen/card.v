@@ -31,7 +31,15 @@ module card (
     pins_step_x,
     pins_dir_x,
     pins_step_y,
-    pins_dir_y
+    pins_dir_y,
+    pins_drive_enable,
+    pins_estop,
+    pins_limit_pos_x,
+    pins_limit_neg_x,
+    pins_limit_pos_y,
+    pins_limit_neg_y,
+    pins_home_x,
+    pins_home_y
 );
 // The paper's figure 1 in the FPGA, PCI lines still split in / out / enable.
 // 
@@ -96,6 +104,15 @@ output pins_step_y;
 reg pins_step_y;
 output pins_dir_y;
 reg pins_dir_y;
+output pins_drive_enable;
+reg pins_drive_enable;
+input pins_estop;
+input pins_limit_pos_x;
+input pins_limit_neg_x;
+input pins_limit_pos_y;
+input pins_limit_neg_y;
+input pins_home_x;
+input pins_home_y;
 
 wire irq;
 reg pci_slave1_wq_valid;
@@ -248,12 +265,14 @@ wire card_core0_regs_fifo1_any_busy;
 reg [31:0] card_core0_regs_fifo1_byte_mask;
 wire card_core0_regs_fifo1_clear_error;
 wire card_core0_regs_fifo1_clear_position;
+wire card_core0_regs_fifo1_clear_stop;
 wire card_core0_regs_fifo1_direct_mode;
 wire card_core0_regs_fifo1_discard_on_clear;
 wire card_core0_regs_fifo1_enable;
 wire card_core0_regs_fifo1_fifo_flush;
 wire card_core0_regs_fifo1_fifo_full;
 wire [9:0] card_core0_regs_fifo1_fifo_level;
+reg card_core0_regs_fifo1_halt;
 wire card_core0_regs_fifo1_hold;
 reg card_core0_regs_fifo1_io_read;
 reg card_core0_regs_fifo1_io_write;
@@ -266,9 +285,12 @@ wire card_core0_regs_fifo1_out_ready;
 wire card_core0_regs_fifo1_outputs_busy;
 reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 wire card_core0_regs_fifo1_pulse_busy;
+wire card_core0_regs_fifo1_pulse_clear;
 reg card_core0_regs_fifo1_push;
 reg card_core0_regs_fifo1_requested_before;
 wire card_core0_regs_fifo1_seq_busy;
+wire card_core0_regs_fifo1_sequencer_clear;
+reg card_core0_regs_fifo1_soft_reset_taken;
 reg card_core0_regs_fifo1_tick;
 reg [11:0] card_core0_regs_fifo1_written_addr;
 reg [31:0] card_core0_regs_fifo1_written_data;
@@ -276,7 +298,9 @@ reg [31:0] card_core0_regs_fifo1_written_mask;
 reg [31:0] card_core0_regs_fifo1_read_end;
 reg [1:0] card_core0_regs_fifo1_control;
 reg card_core0_regs_fifo1_command_strobe;
-reg [2:0] card_core0_regs_fifo1_command;
+reg [3:0] card_core0_regs_fifo1_command;
+reg card_core0_regs_fifo1_guard_stopped;
+reg card_core0_regs_fifo1_guard_stop_event;
 wire card_core0_regs_fifo1_requests_step_x;
 wire card_core0_regs_fifo1_requests_step_y;
 reg signed [31:0] card_core0_regs_fifo1_position_y;
@@ -304,153 +328,82 @@ wire card_core0_regs_fifo1_sync_fifo1_last_beyond;
 wire card_core0_regs_fifo1_sync_fifo1_one_word;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_read_addr;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_write_addr;
-wire [31:0] card_core0_regs_fifo1_reg_word24_shown;
-wire card_core0_regs_fifo1_reg_word24_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word24_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word24_chain_out_data;
-wire [31:0] card_core0_regs_fifo1_reg_word24_chain_in_data;
-wire card_core0_regs_fifo1_reg_word24_chain_out_clamped;
-wire card_core0_regs_fifo1_reg_word24_chain_in_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word25_honoured;
-wire card_core0_regs_fifo1_reg_word25_out_of_range;
-reg card_core0_regs_fifo1_reg_word25_clamped;
-wire card_core0_regs_fifo1_reg_word25_mine;
-wire card_core0_regs_fifo1_reg_word25_mine_write;
-wire card_core0_regs_fifo1_reg_word25_set_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word25_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word25_written;
-reg [31:0] card_core0_regs_fifo1_reg_word25_chain_out_data;
-wire card_core0_regs_fifo1_reg_word25_chain_out_clamped;
-wire [2:0] card_core0_regs_fifo1_reg_word26_honoured;
-wire card_core0_regs_fifo1_reg_word26_out_of_range;
-wire [2:0] card_core0_regs_fifo1_reg_word26_shown;
-reg card_core0_regs_fifo1_reg_word26_clamped;
-wire card_core0_regs_fifo1_reg_word26_mine;
-wire card_core0_regs_fifo1_reg_word26_mine_write;
-wire [31:0] card_core0_regs_fifo1_reg_word26_shown_wide;
-wire [2:0] card_core0_regs_fifo1_reg_word26_written;
-reg [31:0] card_core0_regs_fifo1_reg_word26_chain_out_data;
-wire card_core0_regs_fifo1_reg_word26_chain_out_clamped;
-reg [31:0] card_core0_regs_fifo1_reg_word27_shown;
-wire card_core0_regs_fifo1_reg_word27_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word27_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word27_chain_out_data;
-wire card_core0_regs_fifo1_reg_word27_chain_out_clamped;
-wire [4:0] card_core0_regs_fifo1_reg_word28_honoured;
-wire card_core0_regs_fifo1_reg_word28_out_of_range;
-reg [4:0] card_core0_regs_fifo1_reg_word28_shown;
-reg card_core0_regs_fifo1_reg_word28_clamped;
-wire card_core0_regs_fifo1_reg_word28_mine;
-wire card_core0_regs_fifo1_reg_word28_mine_write;
-wire card_core0_regs_fifo1_reg_word28_set_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word28_shown_wide;
-reg [4:0] card_core0_regs_fifo1_reg_word28_written;
-reg [31:0] card_core0_regs_fifo1_reg_word28_chain_out_data;
-wire card_core0_regs_fifo1_reg_word28_chain_out_clamped;
-wire [4:0] card_core0_regs_fifo1_reg_word29_honoured;
-reg [4:0] card_core0_regs_fifo1_reg_word29_shown;
-wire card_core0_regs_fifo1_reg_word29_mine;
-wire card_core0_regs_fifo1_reg_word29_mine_write;
-wire [31:0] card_core0_regs_fifo1_reg_word29_shown_wide;
-wire [4:0] card_core0_regs_fifo1_reg_word29_written;
-reg [31:0] card_core0_regs_fifo1_reg_word29_chain_out_data;
-wire card_core0_regs_fifo1_reg_word29_chain_out_clamped;
-reg [4:0] card_core0_regs_fifo1_reg_word29__store19_word_hw;
-wire [15:0] card_core0_regs_fifo1_reg_word30_honoured;
-wire card_core0_regs_fifo1_reg_word30_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word30_shown;
-reg card_core0_regs_fifo1_reg_word30_clamped;
-wire card_core0_regs_fifo1_reg_word30_mine;
-wire card_core0_regs_fifo1_reg_word30_mine_write;
-wire card_core0_regs_fifo1_reg_word30_set_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word30_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word30_written;
-reg [31:0] card_core0_regs_fifo1_reg_word30_chain_out_data;
-wire card_core0_regs_fifo1_reg_word30_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word31_shown;
+wire [31:0] card_core0_regs_fifo1_reg_word31_shown;
 wire card_core0_regs_fifo1_reg_word31_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word31_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word31_chain_out_data;
+wire [31:0] card_core0_regs_fifo1_reg_word31_chain_in_data;
 wire card_core0_regs_fifo1_reg_word31_chain_out_clamped;
-wire [31:0] card_core0_regs_fifo1_reg_word32_shown;
+wire card_core0_regs_fifo1_reg_word31_chain_in_clamped;
+wire [1:0] card_core0_regs_fifo1_reg_word32_honoured;
+wire card_core0_regs_fifo1_reg_word32_out_of_range;
+reg card_core0_regs_fifo1_reg_word32_clamped;
 wire card_core0_regs_fifo1_reg_word32_mine;
+wire card_core0_regs_fifo1_reg_word32_mine_write;
+wire card_core0_regs_fifo1_reg_word32_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word32_shown_wide;
+reg [1:0] card_core0_regs_fifo1_reg_word32_written;
 reg [31:0] card_core0_regs_fifo1_reg_word32_chain_out_data;
 wire card_core0_regs_fifo1_reg_word32_chain_out_clamped;
-wire [31:0] card_core0_regs_fifo1_reg_word33_shown;
+wire [3:0] card_core0_regs_fifo1_reg_word33_honoured;
+wire card_core0_regs_fifo1_reg_word33_out_of_range;
+wire [3:0] card_core0_regs_fifo1_reg_word33_shown;
+reg card_core0_regs_fifo1_reg_word33_clamped;
 wire card_core0_regs_fifo1_reg_word33_mine;
+wire card_core0_regs_fifo1_reg_word33_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word33_shown_wide;
+wire [3:0] card_core0_regs_fifo1_reg_word33_written;
 reg [31:0] card_core0_regs_fifo1_reg_word33_chain_out_data;
 wire card_core0_regs_fifo1_reg_word33_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word34_honoured;
-reg card_core0_regs_fifo1_reg_word34_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word34_shown;
-reg card_core0_regs_fifo1_reg_word34_clamped;
+reg [31:0] card_core0_regs_fifo1_reg_word34_shown;
 wire card_core0_regs_fifo1_reg_word34_mine;
-wire card_core0_regs_fifo1_reg_word34_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word34_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word34_written;
 reg [31:0] card_core0_regs_fifo1_reg_word34_chain_out_data;
 wire card_core0_regs_fifo1_reg_word34_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word35_honoured;
-reg card_core0_regs_fifo1_reg_word35_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word35_shown;
+wire [6:0] card_core0_regs_fifo1_reg_word35_honoured;
+wire card_core0_regs_fifo1_reg_word35_out_of_range;
+reg [6:0] card_core0_regs_fifo1_reg_word35_shown;
 reg card_core0_regs_fifo1_reg_word35_clamped;
 wire card_core0_regs_fifo1_reg_word35_mine;
 wire card_core0_regs_fifo1_reg_word35_mine_write;
+wire card_core0_regs_fifo1_reg_word35_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word35_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word35_written;
+reg [6:0] card_core0_regs_fifo1_reg_word35_written;
 reg [31:0] card_core0_regs_fifo1_reg_word35_chain_out_data;
 wire card_core0_regs_fifo1_reg_word35_chain_out_clamped;
-wire [15:0] card_core0_regs_fifo1_reg_word36_honoured;
-wire card_core0_regs_fifo1_reg_word36_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word36_shown;
-reg card_core0_regs_fifo1_reg_word36_clamped;
+wire [6:0] card_core0_regs_fifo1_reg_word36_honoured;
+reg [6:0] card_core0_regs_fifo1_reg_word36_shown;
 wire card_core0_regs_fifo1_reg_word36_mine;
 wire card_core0_regs_fifo1_reg_word36_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word36_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word36_written;
+wire [6:0] card_core0_regs_fifo1_reg_word36_written;
 reg [31:0] card_core0_regs_fifo1_reg_word36_chain_out_data;
 wire card_core0_regs_fifo1_reg_word36_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word37_honoured;
-reg card_core0_regs_fifo1_reg_word37_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word37_shown;
+reg [6:0] card_core0_regs_fifo1_reg_word36__store24_word_hw;
+wire [15:0] card_core0_regs_fifo1_reg_word37_honoured;
+wire card_core0_regs_fifo1_reg_word37_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word37_shown;
 reg card_core0_regs_fifo1_reg_word37_clamped;
 wire card_core0_regs_fifo1_reg_word37_mine;
 wire card_core0_regs_fifo1_reg_word37_mine_write;
+wire card_core0_regs_fifo1_reg_word37_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word37_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word37_written;
+reg [15:0] card_core0_regs_fifo1_reg_word37_written;
 reg [31:0] card_core0_regs_fifo1_reg_word37_chain_out_data;
 wire card_core0_regs_fifo1_reg_word37_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word38_honoured;
-reg card_core0_regs_fifo1_reg_word38_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word38_shown;
-reg card_core0_regs_fifo1_reg_word38_clamped;
+reg [15:0] card_core0_regs_fifo1_reg_word38_shown;
 wire card_core0_regs_fifo1_reg_word38_mine;
-wire card_core0_regs_fifo1_reg_word38_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word38_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word38_written;
 reg [31:0] card_core0_regs_fifo1_reg_word38_chain_out_data;
 wire card_core0_regs_fifo1_reg_word38_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word39_honoured;
-reg card_core0_regs_fifo1_reg_word39_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word39_shown;
-reg card_core0_regs_fifo1_reg_word39_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word39_shown;
 wire card_core0_regs_fifo1_reg_word39_mine;
-wire card_core0_regs_fifo1_reg_word39_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word39_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word39_written;
 reg [31:0] card_core0_regs_fifo1_reg_word39_chain_out_data;
 wire card_core0_regs_fifo1_reg_word39_chain_out_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word40_honoured;
-wire card_core0_regs_fifo1_reg_word40_out_of_range;
-reg [1:0] card_core0_regs_fifo1_reg_word40_shown;
-reg card_core0_regs_fifo1_reg_word40_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word40_shown;
 wire card_core0_regs_fifo1_reg_word40_mine;
-wire card_core0_regs_fifo1_reg_word40_mine_write;
-wire card_core0_regs_fifo1_reg_word40_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word40_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word40_written;
 reg [31:0] card_core0_regs_fifo1_reg_word40_chain_out_data;
 wire card_core0_regs_fifo1_reg_word40_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word41_honoured;
@@ -473,44 +426,181 @@ wire [31:0] card_core0_regs_fifo1_reg_word42_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word42_written;
 reg [31:0] card_core0_regs_fifo1_reg_word42_chain_out_data;
 wire card_core0_regs_fifo1_reg_word42_chain_out_clamped;
-reg [23:0] card_core0_regs_fifo1_reg_word43_honoured;
-reg card_core0_regs_fifo1_reg_word43_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word43_shown;
+wire [15:0] card_core0_regs_fifo1_reg_word43_honoured;
+wire card_core0_regs_fifo1_reg_word43_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word43_shown;
 reg card_core0_regs_fifo1_reg_word43_clamped;
 wire card_core0_regs_fifo1_reg_word43_mine;
 wire card_core0_regs_fifo1_reg_word43_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word43_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word43_written;
+reg [15:0] card_core0_regs_fifo1_reg_word43_written;
 reg [31:0] card_core0_regs_fifo1_reg_word43_chain_out_data;
 wire card_core0_regs_fifo1_reg_word43_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word43__store30_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word43__store30_word_value;
-reg [23:0] card_core0_regs_fifo1_reg_word44_honoured;
+reg [7:0] card_core0_regs_fifo1_reg_word44_honoured;
 reg card_core0_regs_fifo1_reg_word44_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word44_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word44_shown;
 reg card_core0_regs_fifo1_reg_word44_clamped;
 wire card_core0_regs_fifo1_reg_word44_mine;
 wire card_core0_regs_fifo1_reg_word44_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word44_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word44_written;
+reg [31:0] card_core0_regs_fifo1_reg_word44_written;
 reg [31:0] card_core0_regs_fifo1_reg_word44_chain_out_data;
 wire card_core0_regs_fifo1_reg_word44_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word44__store31_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word44__store31_word_value;
-wire [31:0] card_core0_regs_fifo1_reg_word45_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word45_honoured;
+reg card_core0_regs_fifo1_reg_word45_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word45_shown;
+reg card_core0_regs_fifo1_reg_word45_clamped;
 wire card_core0_regs_fifo1_reg_word45_mine;
+wire card_core0_regs_fifo1_reg_word45_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word45_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word45_written;
 reg [31:0] card_core0_regs_fifo1_reg_word45_chain_out_data;
 wire card_core0_regs_fifo1_reg_word45_chain_out_clamped;
-wire [15:0] card_core0_regs_fifo1_reg_word46_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word46_honoured;
+reg card_core0_regs_fifo1_reg_word46_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word46_shown;
+reg card_core0_regs_fifo1_reg_word46_clamped;
 wire card_core0_regs_fifo1_reg_word46_mine;
+wire card_core0_regs_fifo1_reg_word46_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word46_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word46_written;
 reg [31:0] card_core0_regs_fifo1_reg_word46_chain_out_data;
 wire card_core0_regs_fifo1_reg_word46_chain_out_clamped;
-wire [27:0] card_core0_regs_fifo1_reg_word47_shown;
+wire [1:0] card_core0_regs_fifo1_reg_word47_honoured;
+wire card_core0_regs_fifo1_reg_word47_out_of_range;
+reg [1:0] card_core0_regs_fifo1_reg_word47_shown;
+reg card_core0_regs_fifo1_reg_word47_clamped;
 wire card_core0_regs_fifo1_reg_word47_mine;
+wire card_core0_regs_fifo1_reg_word47_mine_write;
+wire card_core0_regs_fifo1_reg_word47_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word47_shown_wide;
+reg [1:0] card_core0_regs_fifo1_reg_word47_written;
+reg [31:0] card_core0_regs_fifo1_reg_word47_chain_out_data;
 wire card_core0_regs_fifo1_reg_word47_chain_out_clamped;
+reg [15:0] card_core0_regs_fifo1_reg_word48_honoured;
+reg card_core0_regs_fifo1_reg_word48_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word48_shown;
+reg card_core0_regs_fifo1_reg_word48_clamped;
+wire card_core0_regs_fifo1_reg_word48_mine;
+wire card_core0_regs_fifo1_reg_word48_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word48_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word48_written;
+reg [31:0] card_core0_regs_fifo1_reg_word48_chain_out_data;
+wire card_core0_regs_fifo1_reg_word48_chain_out_clamped;
+reg [15:0] card_core0_regs_fifo1_reg_word49_honoured;
+reg card_core0_regs_fifo1_reg_word49_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word49_shown;
+reg card_core0_regs_fifo1_reg_word49_clamped;
+wire card_core0_regs_fifo1_reg_word49_mine;
+wire card_core0_regs_fifo1_reg_word49_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word49_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word49_written;
+reg [31:0] card_core0_regs_fifo1_reg_word49_chain_out_data;
+wire card_core0_regs_fifo1_reg_word49_chain_out_clamped;
+reg [23:0] card_core0_regs_fifo1_reg_word50_honoured;
+reg card_core0_regs_fifo1_reg_word50_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word50_shown;
+reg card_core0_regs_fifo1_reg_word50_clamped;
+wire card_core0_regs_fifo1_reg_word50_mine;
+wire card_core0_regs_fifo1_reg_word50_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word50_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word50_written;
+reg [31:0] card_core0_regs_fifo1_reg_word50_chain_out_data;
+wire card_core0_regs_fifo1_reg_word50_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word50__store35_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word50__store35_word_value;
+reg [23:0] card_core0_regs_fifo1_reg_word51_honoured;
+reg card_core0_regs_fifo1_reg_word51_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word51_shown;
+reg card_core0_regs_fifo1_reg_word51_clamped;
+wire card_core0_regs_fifo1_reg_word51_mine;
+wire card_core0_regs_fifo1_reg_word51_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word51_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word51_written;
+reg [31:0] card_core0_regs_fifo1_reg_word51_chain_out_data;
+wire card_core0_regs_fifo1_reg_word51_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word51__store36_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word51__store36_word_value;
+wire [31:0] card_core0_regs_fifo1_reg_word52_shown;
+wire card_core0_regs_fifo1_reg_word52_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word52_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word52_chain_out_data;
+wire card_core0_regs_fifo1_reg_word52_chain_out_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word53_shown;
+wire card_core0_regs_fifo1_reg_word53_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word53_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word53_chain_out_data;
+wire card_core0_regs_fifo1_reg_word53_chain_out_clamped;
+wire [27:0] card_core0_regs_fifo1_reg_word54_shown;
+wire card_core0_regs_fifo1_reg_word54_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word54_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word54_chain_out_data;
+wire card_core0_regs_fifo1_reg_word54_chain_out_clamped;
+wire [0:0] card_core0_regs_fifo1_reg_word55_honoured;
+wire card_core0_regs_fifo1_reg_word55_out_of_range;
+reg [0:0] card_core0_regs_fifo1_reg_word55_shown;
+reg card_core0_regs_fifo1_reg_word55_clamped;
+wire card_core0_regs_fifo1_reg_word55_mine;
+wire card_core0_regs_fifo1_reg_word55_mine_write;
+wire card_core0_regs_fifo1_reg_word55_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word55_shown_wide;
+reg [0:0] card_core0_regs_fifo1_reg_word55_written;
+reg [31:0] card_core0_regs_fifo1_reg_word55_chain_out_data;
+wire card_core0_regs_fifo1_reg_word55_chain_out_clamped;
+reg [17:0] card_core0_regs_fifo1_reg_word56_shown;
+wire card_core0_regs_fifo1_reg_word56_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word56_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word56_chain_out_data;
+wire card_core0_regs_fifo1_reg_word56_chain_out_clamped;
+reg [7:0] card_core0_regs_fifo1_reg_word57_shown;
+wire card_core0_regs_fifo1_reg_word57_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word57_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word57_chain_out_data;
+wire card_core0_regs_fifo1_reg_word57_chain_out_clamped;
+wire [6:0] card_core0_regs_fifo1_reg_word58_honoured;
+wire card_core0_regs_fifo1_reg_word58_out_of_range;
+reg [6:0] card_core0_regs_fifo1_reg_word58_shown;
+reg card_core0_regs_fifo1_reg_word58_clamped;
+wire card_core0_regs_fifo1_reg_word58_mine;
+wire card_core0_regs_fifo1_reg_word58_mine_write;
+wire card_core0_regs_fifo1_reg_word58_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word58_shown_wide;
+reg [6:0] card_core0_regs_fifo1_reg_word58_written;
+reg [31:0] card_core0_regs_fifo1_reg_word58_chain_out_data;
+wire card_core0_regs_fifo1_reg_word58_chain_out_clamped;
+reg [3:0] card_core0_regs_fifo1_reg_word59_honoured;
+reg card_core0_regs_fifo1_reg_word59_out_of_range;
+reg [3:0] card_core0_regs_fifo1_reg_word59_shown;
+reg card_core0_regs_fifo1_reg_word59_clamped;
+wire card_core0_regs_fifo1_reg_word59_mine;
+wire card_core0_regs_fifo1_reg_word59_mine_write;
+wire card_core0_regs_fifo1_reg_word59_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word59_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word59_written;
+reg [31:0] card_core0_regs_fifo1_reg_word59_chain_out_data;
+wire card_core0_regs_fifo1_reg_word59_chain_out_clamped;
+reg [15:0] card_core0_regs_fifo1_reg_word60_honoured;
+reg card_core0_regs_fifo1_reg_word60_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word60_shown;
+reg card_core0_regs_fifo1_reg_word60_clamped;
+wire card_core0_regs_fifo1_reg_word60_mine;
+wire card_core0_regs_fifo1_reg_word60_mine_write;
+wire card_core0_regs_fifo1_reg_word60_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word60_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word60_written;
+reg [31:0] card_core0_regs_fifo1_reg_word60_chain_out_data;
+wire card_core0_regs_fifo1_reg_word60_chain_out_clamped;
+wire [23:0] card_core0_regs_fifo1_reg_word61_honoured;
+wire card_core0_regs_fifo1_reg_word61_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word61_shown;
+reg card_core0_regs_fifo1_reg_word61_clamped;
+wire card_core0_regs_fifo1_reg_word61_mine;
+wire card_core0_regs_fifo1_reg_word61_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word61_shown_wide;
+wire [23:0] card_core0_regs_fifo1_reg_word61_written;
+wire card_core0_regs_fifo1_reg_word61_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word61__store41_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word61__store41_word_value;
 wire card_core0_regs_fifo1_sequencer1_arriving_coord_fits;
 reg [2:0] card_core0_regs_fifo1_sequencer1_arriving_count;
 wire card_core0_regs_fifo1_sequencer1_arriving_count_fits;
@@ -627,7 +717,39 @@ reg [7:0] card_core0_regs_fifo1_pulse_out1_phase_step;
 reg card_core0_regs_fifo1_pulse_out1_starts;
 reg card_core0_regs_fifo1_pulse_out1_take;
 reg card_core0_regs_fifo1_pulse_out1_turn;
+reg card_core0_regs_fifo1_pulse_out1_request_step_x;
+reg card_core0_regs_fifo1_pulse_out1_request_step_y;
+reg card_core0_regs_fifo1_pulse_out1_request_dir_y;
+reg card_core0_regs_fifo1_pulse_out1_request_dir_x;
 reg signed [31:0] card_core0_regs_fifo1_pulse_out1_position_x;
+wire [6:0] card_core0_regs_fifo1_input_filter1_level;
+reg [15:0] card_core0_regs_fifo1_input_filter1_prescale;
+wire card_core0_regs_fifo1_input_filter1_sample;
+reg [6:0] card_core0_regs_fifo1_input_filter1_sync;
+wire [6:0] card_core0_regs_fifo1_input_filter1_taken;
+wire [6:0] card_core0_regs_fifo1_input_filter1_inputs_pins;
+reg [6:0] card_core0_regs_fifo1_input_filter1_inputs_raw;
+reg [6:0] card_core0_regs_fifo1_input_filter1_inputs_active;
+reg card_core0_regs_fifo1_input_filter1_inputs_changed;
+reg [3:0] card_core0_regs_fifo1_input_filter1__input_count7_held;
+wire card_core0_regs_fifo1_input_filter1__input_count7_taken;
+reg [3:0] card_core0_regs_fifo1_input_filter1__input_count8_held;
+wire card_core0_regs_fifo1_input_filter1__input_count8_taken;
+reg [3:0] card_core0_regs_fifo1_input_filter1__input_count9_held;
+wire card_core0_regs_fifo1_input_filter1__input_count9_taken;
+reg [3:0] card_core0_regs_fifo1_input_filter1__input_count10_held;
+wire card_core0_regs_fifo1_input_filter1__input_count10_taken;
+reg [3:0] card_core0_regs_fifo1_input_filter1__input_count11_held;
+wire card_core0_regs_fifo1_input_filter1__input_count11_taken;
+reg [3:0] card_core0_regs_fifo1_input_filter1__input_count12_held;
+wire card_core0_regs_fifo1_input_filter1__input_count12_taken;
+reg [3:0] card_core0_regs_fifo1_input_filter1__input_count13_held;
+wire card_core0_regs_fifo1_input_filter1__input_count13_taken;
+wire card_core0_regs_fifo1_machine_guard1_estop;
+wire card_core0_regs_fifo1_machine_guard1_expired;
+wire [3:0] card_core0_regs_fifo1_machine_guard1_hits;
+reg [3:0] card_core0_regs_fifo1_machine_guard1_guard_limits;
+reg [1:0] card_core0_regs_fifo1_machine_guard1_guard_reason;
 wire [1:0] card_core0_regs_fifo1__status1_quadrant;
 reg [4:0] card_core0_dda_arc1_dda_setup1_acc_bits;
 reg card_core0_dda_arc1_dda_setup1_carry;
@@ -793,23 +915,44 @@ reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word24_shown = 32'd3719037185;
-assign card_core0_regs_fifo1_reg_word24_chain_in_data = 32'd0;
-assign card_core0_regs_fifo1_reg_word24_chain_in_clamped = 1'd0;
-assign card_core0_regs_fifo1_reg_word25_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word25_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word26_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word26_shown = 3'd0;
-assign card_core0_regs_fifo1_reg_word28_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word28_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word30_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word30_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word36_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word40_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word40_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word45_shown = 32'd33333333;
-assign card_core0_regs_fifo1_reg_word46_shown = 16'd512;
-assign card_core0_regs_fifo1_reg_word47_shown = 28'd786968;
+assign card_core0_regs_fifo1_reg_word31_shown = 32'd3719037186;
+assign card_core0_regs_fifo1_reg_word31_chain_in_data = 32'd0;
+assign card_core0_regs_fifo1_reg_word31_chain_in_clamped = 1'd0;
+assign card_core0_regs_fifo1_reg_word32_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word32_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word33_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word33_shown = 4'd0;
+assign card_core0_regs_fifo1_reg_word35_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word35_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word37_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word37_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word43_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word47_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word47_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word52_shown = 32'd33333333;
+assign card_core0_regs_fifo1_reg_word53_shown = 16'd512;
+assign card_core0_regs_fifo1_reg_word54_shown = 28'd786968;
+assign card_core0_regs_fifo1_reg_word55_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word55_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word58_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word58_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word59_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word60_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word61_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_input_filter1_taken[6] = card_core0_regs_fifo1_input_filter1__input_count13_taken;
+assign card_core0_regs_fifo1_input_filter1_taken[5] = card_core0_regs_fifo1_input_filter1__input_count12_taken;
+assign card_core0_regs_fifo1_input_filter1_taken[4] = card_core0_regs_fifo1_input_filter1__input_count11_taken;
+assign card_core0_regs_fifo1_input_filter1_taken[3] = card_core0_regs_fifo1_input_filter1__input_count10_taken;
+assign card_core0_regs_fifo1_input_filter1_taken[2] = card_core0_regs_fifo1_input_filter1__input_count9_taken;
+assign card_core0_regs_fifo1_input_filter1_taken[1] = card_core0_regs_fifo1_input_filter1__input_count8_taken;
+assign card_core0_regs_fifo1_input_filter1_taken[0] = card_core0_regs_fifo1_input_filter1__input_count7_taken;
+assign card_core0_regs_fifo1_input_filter1_inputs_pins[6] = pins_home_y;
+assign card_core0_regs_fifo1_input_filter1_inputs_pins[5] = pins_home_x;
+assign card_core0_regs_fifo1_input_filter1_inputs_pins[4] = pins_limit_neg_y;
+assign card_core0_regs_fifo1_input_filter1_inputs_pins[3] = pins_limit_pos_y;
+assign card_core0_regs_fifo1_input_filter1_inputs_pins[2] = pins_limit_neg_x;
+assign card_core0_regs_fifo1_input_filter1_inputs_pins[1] = pins_limit_pos_x;
+assign card_core0_regs_fifo1_input_filter1_inputs_pins[0] = pins_estop;
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_input_register
@@ -1897,339 +2040,29 @@ assign pci_slave1_pci_control1_control_case0_0_target_room = card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word24_mine = (pci_slave1_pci_requests1_local_addr == 0);
+assign card_core0_regs_fifo1_reg_word31_mine = (pci_slave1_pci_requests1_local_addr == 0);
 
 
-always @(card_core0_regs_fifo1_reg_word24_mine, card_core0_regs_fifo1_reg_word24_shown_wide, card_core0_regs_fifo1_reg_word24_chain_in_data) begin: card_core0_regs_fifo1_reg_word24_read_chain
-    if (card_core0_regs_fifo1_reg_word24_mine) begin
-        card_core0_regs_fifo1_reg_word24_chain_out_data = (card_core0_regs_fifo1_reg_word24_chain_in_data | card_core0_regs_fifo1_reg_word24_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word24_chain_out_data = card_core0_regs_fifo1_reg_word24_chain_in_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word24_shown_wide = card_core0_regs_fifo1_reg_word24_shown;
-
-
-
-assign card_core0_regs_fifo1_reg_word24_chain_out_clamped = card_core0_regs_fifo1_reg_word24_chain_in_clamped;
-
-
-
-assign card_core0_regs_fifo1_reg_word25_mine = (pci_slave1_pci_requests1_local_addr == 4);
-
-
-always @(card_core0_regs_fifo1_reg_word25_mine, card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word24_chain_out_data) begin: card_core0_regs_fifo1_reg_word25_read_chain
-    if (card_core0_regs_fifo1_reg_word25_mine) begin
-        card_core0_regs_fifo1_reg_word25_chain_out_data = (card_core0_regs_fifo1_reg_word24_chain_out_data | card_core0_regs_fifo1_reg_word25_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word25_chain_out_data = card_core0_regs_fifo1_reg_word24_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word25_shown_wide = {30'h0, card_core0_regs_fifo1_control};
-
-
-
-assign card_core0_regs_fifo1_reg_word25_mine_write = (card_core0_regs_fifo1_written_addr == 4);
-
-
-always @(card_core0_regs_fifo1_reg_word25_shown_wide, card_core0_regs_fifo1_reg_word25_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word25_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word25_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word25_written = ((card_core0_regs_fifo1_reg_word25_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word25_honoured = card_core0_regs_fifo1_reg_word25_written[2-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word25_chain_out_clamped = (card_core0_regs_fifo1_reg_word24_chain_out_clamped || card_core0_regs_fifo1_reg_word25_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word25__store16_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_control <= 0;
-        card_core0_regs_fifo1_reg_word25_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word25_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word25_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word25_mine_write))) begin
-            card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word25_honoured;
-            card_core0_regs_fifo1_reg_word25_clamped <= card_core0_regs_fifo1_reg_word25_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word26_mine = (pci_slave1_pci_requests1_local_addr == 8);
-
-
-always @(card_core0_regs_fifo1_reg_word26_mine, card_core0_regs_fifo1_reg_word26_shown_wide, card_core0_regs_fifo1_reg_word25_chain_out_data) begin: card_core0_regs_fifo1_reg_word26_read_chain
-    if (card_core0_regs_fifo1_reg_word26_mine) begin
-        card_core0_regs_fifo1_reg_word26_chain_out_data = (card_core0_regs_fifo1_reg_word25_chain_out_data | card_core0_regs_fifo1_reg_word26_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word26_chain_out_data = card_core0_regs_fifo1_reg_word25_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word26_shown_wide = {29'h0, card_core0_regs_fifo1_reg_word26_shown};
-
-
-
-assign card_core0_regs_fifo1_reg_word26_mine_write = (card_core0_regs_fifo1_written_addr == 8);
-
-
-
-assign card_core0_regs_fifo1_reg_word26_written = (card_core0_regs_fifo1_written_data[3-1:0] & card_core0_regs_fifo1_written_mask[3-1:0]);
-
-
-
-assign card_core0_regs_fifo1_reg_word26_honoured = card_core0_regs_fifo1_reg_word26_written[3-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word26_chain_out_clamped = (card_core0_regs_fifo1_reg_word25_chain_out_clamped || card_core0_regs_fifo1_reg_word26_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word26__store17_pulse_on_write
-    if (reset == 0) begin
-        card_core0_regs_fifo1_command_strobe <= 0;
-        card_core0_regs_fifo1_command <= 0;
-        card_core0_regs_fifo1_reg_word26_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_command_strobe <= 1'b0;
-        card_core0_regs_fifo1_reg_word26_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word26_mine_write)) begin
-            card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word26_honoured;
-            card_core0_regs_fifo1_command_strobe <= 1'b1;
-            card_core0_regs_fifo1_reg_word26_clamped <= card_core0_regs_fifo1_reg_word26_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word27_mine = (pci_slave1_pci_requests1_local_addr == 12);
-
-
-always @(card_core0_regs_fifo1_reg_word27_mine, card_core0_regs_fifo1_reg_word27_shown_wide, card_core0_regs_fifo1_reg_word26_chain_out_data) begin: card_core0_regs_fifo1_reg_word27_read_chain
-    if (card_core0_regs_fifo1_reg_word27_mine) begin
-        card_core0_regs_fifo1_reg_word27_chain_out_data = (card_core0_regs_fifo1_reg_word26_chain_out_data | card_core0_regs_fifo1_reg_word27_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word27_chain_out_data = card_core0_regs_fifo1_reg_word26_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word27_shown_wide = card_core0_regs_fifo1_reg_word27_shown;
-
-
-
-assign card_core0_regs_fifo1_reg_word27_chain_out_clamped = card_core0_regs_fifo1_reg_word26_chain_out_clamped;
-
-
-
-assign card_core0_regs_fifo1_reg_word28_mine = (pci_slave1_pci_requests1_local_addr == 16);
-
-
-always @(card_core0_regs_fifo1_reg_word28_mine, card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word27_chain_out_data) begin: card_core0_regs_fifo1_reg_word28_read_chain
-    if (card_core0_regs_fifo1_reg_word28_mine) begin
-        card_core0_regs_fifo1_reg_word28_chain_out_data = (card_core0_regs_fifo1_reg_word27_chain_out_data | card_core0_regs_fifo1_reg_word28_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word28_chain_out_data = card_core0_regs_fifo1_reg_word27_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word28_shown_wide = {27'h0, card_core0_regs_fifo1_reg_word28_shown};
-
-
-
-assign card_core0_regs_fifo1_reg_word28_mine_write = (card_core0_regs_fifo1_written_addr == 16);
-
-
-always @(card_core0_regs_fifo1_reg_word28_shown_wide, card_core0_regs_fifo1_reg_word28_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word28_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word28_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word28_written = card_core0_regs_fifo1_set_value[5-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word28_written = ((card_core0_regs_fifo1_reg_word28_shown_wide[5-1:0] & (~card_core0_regs_fifo1_written_mask[5-1:0])) | (card_core0_regs_fifo1_written_data[5-1:0] & card_core0_regs_fifo1_written_mask[5-1:0]));
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word28_honoured = card_core0_regs_fifo1_reg_word28_written[5-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word28_chain_out_clamped = (card_core0_regs_fifo1_reg_word27_chain_out_clamped || card_core0_regs_fifo1_reg_word28_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word28__store18_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word28_shown <= 0;
-        card_core0_regs_fifo1_reg_word28_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word28_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word28_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word28_mine_write))) begin
-            card_core0_regs_fifo1_reg_word28_shown <= card_core0_regs_fifo1_reg_word28_honoured;
-            card_core0_regs_fifo1_reg_word28_clamped <= card_core0_regs_fifo1_reg_word28_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word29_mine = (pci_slave1_pci_requests1_local_addr == 20);
-
-
-always @(card_core0_regs_fifo1_reg_word29_mine, card_core0_regs_fifo1_reg_word29_shown_wide, card_core0_regs_fifo1_reg_word28_chain_out_data) begin: card_core0_regs_fifo1_reg_word29_read_chain
-    if (card_core0_regs_fifo1_reg_word29_mine) begin
-        card_core0_regs_fifo1_reg_word29_chain_out_data = (card_core0_regs_fifo1_reg_word28_chain_out_data | card_core0_regs_fifo1_reg_word29_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word29_chain_out_data = card_core0_regs_fifo1_reg_word28_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word29_shown_wide = {27'h0, card_core0_regs_fifo1_reg_word29_shown};
-
-
-
-assign card_core0_regs_fifo1_reg_word29_mine_write = (card_core0_regs_fifo1_written_addr == 20);
-
-
-
-assign card_core0_regs_fifo1_reg_word29_written = (card_core0_regs_fifo1_written_data[5-1:0] & card_core0_regs_fifo1_written_mask[5-1:0]);
-
-
-
-assign card_core0_regs_fifo1_reg_word29_honoured = card_core0_regs_fifo1_reg_word29_written[5-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word29_chain_out_clamped = card_core0_regs_fifo1_reg_word28_chain_out_clamped;
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word29__store19_clear_on_one
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word29_shown <= 0;
-    end
-    else begin
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word29_mine_write)) begin
-            card_core0_regs_fifo1_reg_word29_shown <= ((card_core0_regs_fifo1_reg_word29_shown & (~card_core0_regs_fifo1_reg_word29_honoured)) | card_core0_regs_fifo1_reg_word29__store19_word_hw);
-        end
-        else begin
-            card_core0_regs_fifo1_reg_word29_shown <= (card_core0_regs_fifo1_reg_word29_shown | card_core0_regs_fifo1_reg_word29__store19_word_hw);
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word30_mine = (pci_slave1_pci_requests1_local_addr == 24);
-
-
-always @(card_core0_regs_fifo1_reg_word30_mine, card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word29_chain_out_data) begin: card_core0_regs_fifo1_reg_word30_read_chain
-    if (card_core0_regs_fifo1_reg_word30_mine) begin
-        card_core0_regs_fifo1_reg_word30_chain_out_data = (card_core0_regs_fifo1_reg_word29_chain_out_data | card_core0_regs_fifo1_reg_word30_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word30_chain_out_data = card_core0_regs_fifo1_reg_word29_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word30_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word30_shown};
-
-
-
-assign card_core0_regs_fifo1_reg_word30_mine_write = (card_core0_regs_fifo1_written_addr == 24);
-
-
-always @(card_core0_regs_fifo1_reg_word30_shown_wide, card_core0_regs_fifo1_reg_word30_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word30_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word30_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word30_written = card_core0_regs_fifo1_set_value[16-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word30_written = ((card_core0_regs_fifo1_reg_word30_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word30_honoured = card_core0_regs_fifo1_reg_word30_written[16-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word30_chain_out_clamped = (card_core0_regs_fifo1_reg_word29_chain_out_clamped || card_core0_regs_fifo1_reg_word30_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word30__store20_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word30_shown <= 0;
-        card_core0_regs_fifo1_reg_word30_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word30_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word30_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word30_mine_write))) begin
-            card_core0_regs_fifo1_reg_word30_shown <= card_core0_regs_fifo1_reg_word30_honoured;
-            card_core0_regs_fifo1_reg_word30_clamped <= card_core0_regs_fifo1_reg_word30_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word31_mine = (pci_slave1_pci_requests1_local_addr == 28);
-
-
-always @(card_core0_regs_fifo1_reg_word31_mine, card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_reg_word30_chain_out_data) begin: card_core0_regs_fifo1_reg_word31_read_chain
+always @(card_core0_regs_fifo1_reg_word31_mine, card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_reg_word31_chain_in_data) begin: card_core0_regs_fifo1_reg_word31_read_chain
     if (card_core0_regs_fifo1_reg_word31_mine) begin
-        card_core0_regs_fifo1_reg_word31_chain_out_data = (card_core0_regs_fifo1_reg_word30_chain_out_data | card_core0_regs_fifo1_reg_word31_shown_wide);
+        card_core0_regs_fifo1_reg_word31_chain_out_data = (card_core0_regs_fifo1_reg_word31_chain_in_data | card_core0_regs_fifo1_reg_word31_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word31_chain_out_data = card_core0_regs_fifo1_reg_word30_chain_out_data;
+        card_core0_regs_fifo1_reg_word31_chain_out_data = card_core0_regs_fifo1_reg_word31_chain_in_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word31_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word31_shown};
+assign card_core0_regs_fifo1_reg_word31_shown_wide = card_core0_regs_fifo1_reg_word31_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word31_chain_out_clamped = card_core0_regs_fifo1_reg_word30_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word31_chain_out_clamped = card_core0_regs_fifo1_reg_word31_chain_in_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word32_mine = (pci_slave1_pci_requests1_local_addr == 32);
+assign card_core0_regs_fifo1_reg_word32_mine = (pci_slave1_pci_requests1_local_addr == 4);
 
 
 always @(card_core0_regs_fifo1_reg_word32_mine, card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word31_chain_out_data) begin: card_core0_regs_fifo1_reg_word32_read_chain
@@ -2243,15 +2076,48 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word32_shown_wide = card_core0_regs_fifo1_reg_word32_shown;
+assign card_core0_regs_fifo1_reg_word32_shown_wide = {30'h0, card_core0_regs_fifo1_control};
 
 
 
-assign card_core0_regs_fifo1_reg_word32_chain_out_clamped = card_core0_regs_fifo1_reg_word31_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word32_mine_write = (card_core0_regs_fifo1_written_addr == 4);
+
+
+always @(card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word32_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word32_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word32_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word32_written = card_core0_regs_fifo1_set_value[2-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word32_written = ((card_core0_regs_fifo1_reg_word32_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word33_mine = (pci_slave1_pci_requests1_local_addr == 36);
+assign card_core0_regs_fifo1_reg_word32_honoured = card_core0_regs_fifo1_reg_word32_written[2-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word32_chain_out_clamped = (card_core0_regs_fifo1_reg_word31_chain_out_clamped || card_core0_regs_fifo1_reg_word32_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word32__store21_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_control <= 0;
+        card_core0_regs_fifo1_reg_word32_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word32_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word32_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word32_mine_write))) begin
+            card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word32_honoured;
+            card_core0_regs_fifo1_reg_word32_clamped <= card_core0_regs_fifo1_reg_word32_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word33_mine = (pci_slave1_pci_requests1_local_addr == 8);
 
 
 always @(card_core0_regs_fifo1_reg_word33_mine, card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_reg_word32_chain_out_data) begin: card_core0_regs_fifo1_reg_word33_read_chain
@@ -2265,15 +2131,45 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word33_shown_wide = card_core0_regs_fifo1_reg_word33_shown;
+assign card_core0_regs_fifo1_reg_word33_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word33_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word33_chain_out_clamped = card_core0_regs_fifo1_reg_word32_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word33_mine_write = (card_core0_regs_fifo1_written_addr == 8);
 
 
 
-assign card_core0_regs_fifo1_reg_word34_mine = (pci_slave1_pci_requests1_local_addr == 40);
+assign card_core0_regs_fifo1_reg_word33_written = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word33_honoured = card_core0_regs_fifo1_reg_word33_written[4-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word33_chain_out_clamped = (card_core0_regs_fifo1_reg_word32_chain_out_clamped || card_core0_regs_fifo1_reg_word33_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word33__store22_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_command_strobe <= 0;
+        card_core0_regs_fifo1_command <= 0;
+        card_core0_regs_fifo1_reg_word33_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_command_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word33_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word33_mine_write)) begin
+            card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word33_honoured;
+            card_core0_regs_fifo1_command_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word33_clamped <= card_core0_regs_fifo1_reg_word33_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word34_mine = (pci_slave1_pci_requests1_local_addr == 12);
 
 
 always @(card_core0_regs_fifo1_reg_word34_mine, card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word33_chain_out_data) begin: card_core0_regs_fifo1_reg_word34_read_chain
@@ -2287,59 +2183,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word34_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word34_shown};
+assign card_core0_regs_fifo1_reg_word34_shown_wide = card_core0_regs_fifo1_reg_word34_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word34_mine_write = (card_core0_regs_fifo1_written_addr == 40);
-
-
-always @(card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word34_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word34_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word34_written = ((card_core0_regs_fifo1_reg_word34_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word34_written) begin: card_core0_regs_fifo1_reg_word34__limit21_clamp_unsigned
-    card_core0_regs_fifo1_reg_word34_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word34_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word34_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word34_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word34_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word34_written[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word34_honoured = 32768;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word34_honoured = card_core0_regs_fifo1_reg_word34_written[16-1:0];
-        card_core0_regs_fifo1_reg_word34_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word34_chain_out_clamped = card_core0_regs_fifo1_reg_word33_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word34_chain_out_clamped = (card_core0_regs_fifo1_reg_word33_chain_out_clamped || card_core0_regs_fifo1_reg_word34_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word34__store21_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word34_shown <= 4096;
-        card_core0_regs_fifo1_reg_word34_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word34_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word34_mine_write))) begin
-            card_core0_regs_fifo1_reg_word34_shown <= card_core0_regs_fifo1_reg_word34_honoured;
-            card_core0_regs_fifo1_reg_word34_clamped <= card_core0_regs_fifo1_reg_word34_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word35_mine = (pci_slave1_pci_requests1_local_addr == 44);
+assign card_core0_regs_fifo1_reg_word35_mine = (pci_slave1_pci_requests1_local_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word35_mine, card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_chain_out_data) begin: card_core0_regs_fifo1_reg_word35_read_chain
@@ -2353,50 +2205,39 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word35_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word35_shown};
+assign card_core0_regs_fifo1_reg_word35_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word35_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word35_mine_write = (card_core0_regs_fifo1_written_addr == 44);
+assign card_core0_regs_fifo1_reg_word35_mine_write = (card_core0_regs_fifo1_written_addr == 16);
 
 
-always @(card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word35_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
-        card_core0_regs_fifo1_reg_word35_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word35_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word35_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word35_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word35_written = card_core0_regs_fifo1_set_value[7-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word35_written = ((card_core0_regs_fifo1_reg_word35_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word35_written = ((card_core0_regs_fifo1_reg_word35_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word35_written) begin: card_core0_regs_fifo1_reg_word35__limit22_clamp_unsigned
-    card_core0_regs_fifo1_reg_word35_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word35_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word35_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word35_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word35_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word35_written[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word35_honoured = 32768;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word35_honoured = card_core0_regs_fifo1_reg_word35_written[16-1:0];
-        card_core0_regs_fifo1_reg_word35_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word35_honoured = card_core0_regs_fifo1_reg_word35_written[7-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word35_chain_out_clamped = (card_core0_regs_fifo1_reg_word34_chain_out_clamped || card_core0_regs_fifo1_reg_word35_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word35__store22_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word35__store23_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word35_shown <= 4096;
+        card_core0_regs_fifo1_reg_word35_shown <= 0;
         card_core0_regs_fifo1_reg_word35_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word35_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word35_mine_write))) begin
+        if (((card_core0_regs_fifo1_reg_word35_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word35_mine_write))) begin
             card_core0_regs_fifo1_reg_word35_shown <= card_core0_regs_fifo1_reg_word35_honoured;
             card_core0_regs_fifo1_reg_word35_clamped <= card_core0_regs_fifo1_reg_word35_out_of_range;
         end
@@ -2405,7 +2246,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word36_mine = (pci_slave1_pci_requests1_local_addr == 48);
+assign card_core0_regs_fifo1_reg_word36_mine = (pci_slave1_pci_requests1_local_addr == 20);
 
 
 always @(card_core0_regs_fifo1_reg_word36_mine, card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word35_chain_out_data) begin: card_core0_regs_fifo1_reg_word36_read_chain
@@ -2419,48 +2260,42 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word36_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word36_shown};
+assign card_core0_regs_fifo1_reg_word36_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word36_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word36_mine_write = (card_core0_regs_fifo1_written_addr == 48);
-
-
-always @(card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word36_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
-        card_core0_regs_fifo1_reg_word36_written = card_core0_regs_fifo1_set_value[16-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word36_written = ((card_core0_regs_fifo1_reg_word36_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word36_mine_write = (card_core0_regs_fifo1_written_addr == 20);
 
 
 
-assign card_core0_regs_fifo1_reg_word36_honoured = card_core0_regs_fifo1_reg_word36_written[16-1:0];
+assign card_core0_regs_fifo1_reg_word36_written = (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]);
 
 
 
-assign card_core0_regs_fifo1_reg_word36_chain_out_clamped = (card_core0_regs_fifo1_reg_word35_chain_out_clamped || card_core0_regs_fifo1_reg_word36_clamped);
+assign card_core0_regs_fifo1_reg_word36_honoured = card_core0_regs_fifo1_reg_word36_written[7-1:0];
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word36__store23_hold_rw
+
+assign card_core0_regs_fifo1_reg_word36_chain_out_clamped = card_core0_regs_fifo1_reg_word35_chain_out_clamped;
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word36__store24_clear_on_one
     if (reset == 0) begin
         card_core0_regs_fifo1_reg_word36_shown <= 0;
-        card_core0_regs_fifo1_reg_word36_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word36_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word36_mine_write))) begin
-            card_core0_regs_fifo1_reg_word36_shown <= card_core0_regs_fifo1_reg_word36_honoured;
-            card_core0_regs_fifo1_reg_word36_clamped <= card_core0_regs_fifo1_reg_word36_out_of_range;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word36_mine_write)) begin
+            card_core0_regs_fifo1_reg_word36_shown <= ((card_core0_regs_fifo1_reg_word36_shown & (~card_core0_regs_fifo1_reg_word36_honoured)) | card_core0_regs_fifo1_reg_word36__store24_word_hw);
+        end
+        else begin
+            card_core0_regs_fifo1_reg_word36_shown <= (card_core0_regs_fifo1_reg_word36_shown | card_core0_regs_fifo1_reg_word36__store24_word_hw);
         end
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_pci_requests1_local_addr == 52);
+assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_pci_requests1_local_addr == 24);
 
 
 always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word36_chain_out_data) begin: card_core0_regs_fifo1_reg_word37_read_chain
@@ -2474,50 +2309,39 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word37_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word37_shown};
+assign card_core0_regs_fifo1_reg_word37_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word37_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word37_mine_write = (card_core0_regs_fifo1_written_addr == 52);
+assign card_core0_regs_fifo1_reg_word37_mine_write = (card_core0_regs_fifo1_written_addr == 24);
 
 
-always @(card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word37_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
-        card_core0_regs_fifo1_reg_word37_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word37_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word37_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word37_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word37_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word37_written = ((card_core0_regs_fifo1_reg_word37_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word37_written = ((card_core0_regs_fifo1_reg_word37_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word37_written) begin: card_core0_regs_fifo1_reg_word37__limit24_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word37_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word37_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word37_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word37_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word37_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word37_honoured = 255;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word37_honoured = card_core0_regs_fifo1_reg_word37_written[8-1:0];
-        card_core0_regs_fifo1_reg_word37_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word37_honoured = card_core0_regs_fifo1_reg_word37_written[16-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word37_chain_out_clamped = (card_core0_regs_fifo1_reg_word36_chain_out_clamped || card_core0_regs_fifo1_reg_word37_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word37__store24_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word37__store25_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word37_shown <= 1;
+        card_core0_regs_fifo1_reg_word37_shown <= 0;
         card_core0_regs_fifo1_reg_word37_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word37_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word37_mine_write))) begin
+        if (((card_core0_regs_fifo1_reg_word37_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word37_mine_write))) begin
             card_core0_regs_fifo1_reg_word37_shown <= card_core0_regs_fifo1_reg_word37_honoured;
             card_core0_regs_fifo1_reg_word37_clamped <= card_core0_regs_fifo1_reg_word37_out_of_range;
         end
@@ -2526,7 +2350,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_pci_requests1_local_addr == 56);
+assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_pci_requests1_local_addr == 28);
 
 
 always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_chain_out_data) begin: card_core0_regs_fifo1_reg_word38_read_chain
@@ -2540,59 +2364,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word38_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word38_shown};
+assign card_core0_regs_fifo1_reg_word38_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word38_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word38_mine_write = (card_core0_regs_fifo1_written_addr == 56);
-
-
-always @(card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word38_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
-        card_core0_regs_fifo1_reg_word38_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word38_written = ((card_core0_regs_fifo1_reg_word38_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word38_written) begin: card_core0_regs_fifo1_reg_word38__limit25_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word38_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word38_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word38_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word38_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word38_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word38_honoured = 255;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word38_honoured = card_core0_regs_fifo1_reg_word38_written[8-1:0];
-        card_core0_regs_fifo1_reg_word38_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word38_chain_out_clamped = card_core0_regs_fifo1_reg_word37_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word38_chain_out_clamped = (card_core0_regs_fifo1_reg_word37_chain_out_clamped || card_core0_regs_fifo1_reg_word38_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word38__store25_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word38_shown <= 1;
-        card_core0_regs_fifo1_reg_word38_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word38_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word38_mine_write))) begin
-            card_core0_regs_fifo1_reg_word38_shown <= card_core0_regs_fifo1_reg_word38_honoured;
-            card_core0_regs_fifo1_reg_word38_clamped <= card_core0_regs_fifo1_reg_word38_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 60);
+assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 32);
 
 
 always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_chain_out_data) begin: card_core0_regs_fifo1_reg_word39_read_chain
@@ -2606,59 +2386,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word39_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word39_shown};
+assign card_core0_regs_fifo1_reg_word39_shown_wide = card_core0_regs_fifo1_reg_word39_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word39_mine_write = (card_core0_regs_fifo1_written_addr == 60);
-
-
-always @(card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word39_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
-        card_core0_regs_fifo1_reg_word39_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word39_written = ((card_core0_regs_fifo1_reg_word39_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word39_written) begin: card_core0_regs_fifo1_reg_word39__limit26_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word39_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word39_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word39_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word39_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word39_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word39_honoured = 255;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word39_honoured = card_core0_regs_fifo1_reg_word39_written[8-1:0];
-        card_core0_regs_fifo1_reg_word39_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word39_chain_out_clamped = card_core0_regs_fifo1_reg_word38_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word39_chain_out_clamped = (card_core0_regs_fifo1_reg_word38_chain_out_clamped || card_core0_regs_fifo1_reg_word39_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word39__store26_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word39_shown <= 1;
-        card_core0_regs_fifo1_reg_word39_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word39_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word39_mine_write))) begin
-            card_core0_regs_fifo1_reg_word39_shown <= card_core0_regs_fifo1_reg_word39_honoured;
-            card_core0_regs_fifo1_reg_word39_clamped <= card_core0_regs_fifo1_reg_word39_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 64);
+assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 36);
 
 
 always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_chain_out_data) begin: card_core0_regs_fifo1_reg_word40_read_chain
@@ -2672,48 +2408,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word40_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word40_shown};
+assign card_core0_regs_fifo1_reg_word40_shown_wide = card_core0_regs_fifo1_reg_word40_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word40_mine_write = (card_core0_regs_fifo1_written_addr == 64);
-
-
-always @(card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word40_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word40_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word40_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word40_written = ((card_core0_regs_fifo1_reg_word40_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word40_chain_out_clamped = card_core0_regs_fifo1_reg_word39_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word40_honoured = card_core0_regs_fifo1_reg_word40_written[2-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word40_chain_out_clamped = (card_core0_regs_fifo1_reg_word39_chain_out_clamped || card_core0_regs_fifo1_reg_word40_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word40__store27_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word40_shown <= 0;
-        card_core0_regs_fifo1_reg_word40_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word40_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word40_mine_write))) begin
-            card_core0_regs_fifo1_reg_word40_shown <= card_core0_regs_fifo1_reg_word40_honoured;
-            card_core0_regs_fifo1_reg_word40_clamped <= card_core0_regs_fifo1_reg_word40_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 68);
+assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_chain_out_data) begin: card_core0_regs_fifo1_reg_word41_read_chain
@@ -2731,11 +2434,11 @@ assign card_core0_regs_fifo1_reg_word41_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 68);
+assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word41_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
         card_core0_regs_fifo1_reg_word41_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -2744,13 +2447,13 @@ always @(card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word41_written) begin: card_core0_regs_fifo1_reg_word41__limit28_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word41_written) begin: card_core0_regs_fifo1_reg_word41__limit26_clamp_unsigned
     card_core0_regs_fifo1_reg_word41_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word41_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word41_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word41_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word41_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word41_honoured = 65535;
+    else if (((card_core0_regs_fifo1_reg_word41_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word41_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word41_honoured = 32768;
     end
     else begin
         card_core0_regs_fifo1_reg_word41_honoured = card_core0_regs_fifo1_reg_word41_written[16-1:0];
@@ -2763,14 +2466,14 @@ end
 assign card_core0_regs_fifo1_reg_word41_chain_out_clamped = (card_core0_regs_fifo1_reg_word40_chain_out_clamped || card_core0_regs_fifo1_reg_word41_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__store28_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__store26_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word41_shown <= 2;
+        card_core0_regs_fifo1_reg_word41_shown <= 4096;
         card_core0_regs_fifo1_reg_word41_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word41_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write))) begin
             card_core0_regs_fifo1_reg_word41_shown <= card_core0_regs_fifo1_reg_word41_honoured;
             card_core0_regs_fifo1_reg_word41_clamped <= card_core0_regs_fifo1_reg_word41_out_of_range;
         end
@@ -2779,7 +2482,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 72);
+assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word42_mine, card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word41_chain_out_data) begin: card_core0_regs_fifo1_reg_word42_read_chain
@@ -2797,11 +2500,11 @@ assign card_core0_regs_fifo1_reg_word42_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_written_addr == 72);
+assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_written_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word42_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
         card_core0_regs_fifo1_reg_word42_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -2810,13 +2513,13 @@ always @(card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word42_written) begin: card_core0_regs_fifo1_reg_word42__limit29_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word42_written) begin: card_core0_regs_fifo1_reg_word42__limit27_clamp_unsigned
     card_core0_regs_fifo1_reg_word42_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word42_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word42_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word42_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word42_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word42_honoured = 65535;
+    else if (((card_core0_regs_fifo1_reg_word42_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word42_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word42_honoured = 32768;
     end
     else begin
         card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_written[16-1:0];
@@ -2829,14 +2532,14 @@ end
 assign card_core0_regs_fifo1_reg_word42_chain_out_clamped = (card_core0_regs_fifo1_reg_word41_chain_out_clamped || card_core0_regs_fifo1_reg_word42_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word42__store29_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word42__store27_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word42_shown <= 2;
+        card_core0_regs_fifo1_reg_word42_shown <= 4096;
         card_core0_regs_fifo1_reg_word42_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word42_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word42_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word42_mine_write))) begin
             card_core0_regs_fifo1_reg_word42_shown <= card_core0_regs_fifo1_reg_word42_honoured;
             card_core0_regs_fifo1_reg_word42_clamped <= card_core0_regs_fifo1_reg_word42_out_of_range;
         end
@@ -2845,7 +2548,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 76);
+assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word43_mine, card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word42_chain_out_data) begin: card_core0_regs_fifo1_reg_word43_read_chain
@@ -2859,49 +2562,40 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word43_shown};
+assign card_core0_regs_fifo1_reg_word43_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word43_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_written_addr == 76);
+assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_written_addr == 48);
 
 
-
-assign card_core0_regs_fifo1_reg_word43_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word43_written) begin: card_core0_regs_fifo1_reg_word43__limit30_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word43_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word43_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[24-1:0];
-        card_core0_regs_fifo1_reg_word43_out_of_range = 1'b0;
-    end
-    else if (card_core0_regs_fifo1_reg_word43_written[31]) begin
-        card_core0_regs_fifo1_reg_word43_honoured = 8388608;
-        card_core0_regs_fifo1_reg_word43_out_of_range = 1'b1;
+always @(card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word43_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
+        card_core0_regs_fifo1_reg_word43_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word43_honoured = 8388607;
-        card_core0_regs_fifo1_reg_word43_out_of_range = 1'b1;
+        card_core0_regs_fifo1_reg_word43_written = ((card_core0_regs_fifo1_reg_word43_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[16-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word43_chain_out_clamped = (card_core0_regs_fifo1_reg_word42_chain_out_clamped || card_core0_regs_fifo1_reg_word43_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word43__store30_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word43__store28_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word43__store30_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word43__store30_word_value <= 0;
+        card_core0_regs_fifo1_reg_word43_shown <= 0;
         card_core0_regs_fifo1_reg_word43_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word43__store30_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word43_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word43_mine_write)) begin
-            card_core0_regs_fifo1_reg_word43__store30_word_value <= card_core0_regs_fifo1_reg_word43_honoured;
-            card_core0_regs_fifo1_reg_word43__store30_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word43_mine_write))) begin
+            card_core0_regs_fifo1_reg_word43_shown <= card_core0_regs_fifo1_reg_word43_honoured;
             card_core0_regs_fifo1_reg_word43_clamped <= card_core0_regs_fifo1_reg_word43_out_of_range;
         end
     end
@@ -2909,7 +2603,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 80);
+assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word44_mine, card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_reg_word43_chain_out_data) begin: card_core0_regs_fifo1_reg_word44_read_chain
@@ -2923,29 +2617,34 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word44_shown};
+assign card_core0_regs_fifo1_reg_word44_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word44_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word44_mine_write = (card_core0_regs_fifo1_written_addr == 80);
+assign card_core0_regs_fifo1_reg_word44_mine_write = (card_core0_regs_fifo1_written_addr == 52);
 
 
-
-assign card_core0_regs_fifo1_reg_word44_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word44_written) begin: card_core0_regs_fifo1_reg_word44__limit31_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word44_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word44_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word44_honoured = card_core0_regs_fifo1_reg_word44_written[24-1:0];
-        card_core0_regs_fifo1_reg_word44_out_of_range = 1'b0;
-    end
-    else if (card_core0_regs_fifo1_reg_word44_written[31]) begin
-        card_core0_regs_fifo1_reg_word44_honoured = 8388608;
-        card_core0_regs_fifo1_reg_word44_out_of_range = 1'b1;
+always @(card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word44_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
+        card_core0_regs_fifo1_reg_word44_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word44_honoured = 8388607;
-        card_core0_regs_fifo1_reg_word44_out_of_range = 1'b1;
+        card_core0_regs_fifo1_reg_word44_written = ((card_core0_regs_fifo1_reg_word44_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word44_written) begin: card_core0_regs_fifo1_reg_word44__limit29_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word44_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word44_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word44_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word44_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word44_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word44_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word44_honoured = card_core0_regs_fifo1_reg_word44_written[8-1:0];
+        card_core0_regs_fifo1_reg_word44_out_of_range = 1'b0;
     end
 end
 
@@ -2954,18 +2653,15 @@ end
 assign card_core0_regs_fifo1_reg_word44_chain_out_clamped = (card_core0_regs_fifo1_reg_word43_chain_out_clamped || card_core0_regs_fifo1_reg_word44_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word44__store31_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word44__store29_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word44__store31_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word44__store31_word_value <= 0;
+        card_core0_regs_fifo1_reg_word44_shown <= 1;
         card_core0_regs_fifo1_reg_word44_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word44__store31_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word44_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word44_mine_write)) begin
-            card_core0_regs_fifo1_reg_word44__store31_word_value <= card_core0_regs_fifo1_reg_word44_honoured;
-            card_core0_regs_fifo1_reg_word44__store31_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word44_mine_write))) begin
+            card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_reg_word44_honoured;
             card_core0_regs_fifo1_reg_word44_clamped <= card_core0_regs_fifo1_reg_word44_out_of_range;
         end
     end
@@ -2973,7 +2669,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 84);
+assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 56);
 
 
 always @(card_core0_regs_fifo1_reg_word45_mine, card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word44_chain_out_data) begin: card_core0_regs_fifo1_reg_word45_read_chain
@@ -2987,15 +2683,59 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_shown_wide = card_core0_regs_fifo1_reg_word45_shown;
+assign card_core0_regs_fifo1_reg_word45_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word45_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word45_chain_out_clamped = card_core0_regs_fifo1_reg_word44_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word45_mine_write = (card_core0_regs_fifo1_written_addr == 56);
+
+
+always @(card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word45_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
+        card_core0_regs_fifo1_reg_word45_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word45_written = ((card_core0_regs_fifo1_reg_word45_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word45_written) begin: card_core0_regs_fifo1_reg_word45__limit30_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word45_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word45_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word45_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word45_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word45_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word45_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_written[8-1:0];
+        card_core0_regs_fifo1_reg_word45_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 88);
+assign card_core0_regs_fifo1_reg_word45_chain_out_clamped = (card_core0_regs_fifo1_reg_word44_chain_out_clamped || card_core0_regs_fifo1_reg_word45_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word45__store30_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word45_shown <= 1;
+        card_core0_regs_fifo1_reg_word45_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word45_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word45_mine_write))) begin
+            card_core0_regs_fifo1_reg_word45_shown <= card_core0_regs_fifo1_reg_word45_honoured;
+            card_core0_regs_fifo1_reg_word45_clamped <= card_core0_regs_fifo1_reg_word45_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word46_mine, card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_reg_word45_chain_out_data) begin: card_core0_regs_fifo1_reg_word46_read_chain
@@ -3009,33 +2749,774 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word46_shown};
+assign card_core0_regs_fifo1_reg_word46_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word46_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = card_core0_regs_fifo1_reg_word45_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word46_mine_write = (card_core0_regs_fifo1_written_addr == 60);
 
 
-
-assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 92);
-
-
-always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_chain_out_data) begin: card_core0_regs_fifo1_reg_word47_read_chain
-    if (card_core0_regs_fifo1_reg_word47_mine) begin
-        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word46_chain_out_data | card_core0_regs_fifo1_reg_word47_shown_wide);
+always @(card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word46_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
+        card_core0_regs_fifo1_reg_word46_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word46_chain_out_data;
+        card_core0_regs_fifo1_reg_word46_written = ((card_core0_regs_fifo1_reg_word46_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word46_written) begin: card_core0_regs_fifo1_reg_word46__limit31_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word46_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word46_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word46_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word46_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word46_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word46_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word46_honoured = card_core0_regs_fifo1_reg_word46_written[8-1:0];
+        card_core0_regs_fifo1_reg_word46_out_of_range = 1'b0;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word47_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word47_shown};
+assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = (card_core0_regs_fifo1_reg_word45_chain_out_clamped || card_core0_regs_fifo1_reg_word46_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word46__store31_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word46_shown <= 1;
+        card_core0_regs_fifo1_reg_word46_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word46_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word46_mine_write))) begin
+            card_core0_regs_fifo1_reg_word46_shown <= card_core0_regs_fifo1_reg_word46_honoured;
+            card_core0_regs_fifo1_reg_word46_clamped <= card_core0_regs_fifo1_reg_word46_out_of_range;
+        end
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = card_core0_regs_fifo1_reg_word46_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 64);
+
+
+always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_chain_out_data) begin: card_core0_regs_fifo1_reg_word47_read_chain
+    if (card_core0_regs_fifo1_reg_word47_mine) begin
+        card_core0_regs_fifo1_reg_word47_chain_out_data = (card_core0_regs_fifo1_reg_word46_chain_out_data | card_core0_regs_fifo1_reg_word47_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word47_chain_out_data = card_core0_regs_fifo1_reg_word46_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word47_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word47_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word47_mine_write = (card_core0_regs_fifo1_written_addr == 64);
+
+
+always @(card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word47_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word47_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word47_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word47_written = card_core0_regs_fifo1_set_value[2-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word47_written = ((card_core0_regs_fifo1_reg_word47_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word47_honoured = card_core0_regs_fifo1_reg_word47_written[2-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = (card_core0_regs_fifo1_reg_word46_chain_out_clamped || card_core0_regs_fifo1_reg_word47_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word47__store32_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word47_shown <= 0;
+        card_core0_regs_fifo1_reg_word47_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word47_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word47_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word47_mine_write))) begin
+            card_core0_regs_fifo1_reg_word47_shown <= card_core0_regs_fifo1_reg_word47_honoured;
+            card_core0_regs_fifo1_reg_word47_clamped <= card_core0_regs_fifo1_reg_word47_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word48_mine = (pci_slave1_pci_requests1_local_addr == 68);
+
+
+always @(card_core0_regs_fifo1_reg_word48_mine, card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_reg_word47_chain_out_data) begin: card_core0_regs_fifo1_reg_word48_read_chain
+    if (card_core0_regs_fifo1_reg_word48_mine) begin
+        card_core0_regs_fifo1_reg_word48_chain_out_data = (card_core0_regs_fifo1_reg_word47_chain_out_data | card_core0_regs_fifo1_reg_word48_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word48_chain_out_data = card_core0_regs_fifo1_reg_word47_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word48_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word48_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word48_mine_write = (card_core0_regs_fifo1_written_addr == 68);
+
+
+always @(card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word48_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+        card_core0_regs_fifo1_reg_word48_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word48_written = ((card_core0_regs_fifo1_reg_word48_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word48_written) begin: card_core0_regs_fifo1_reg_word48__limit33_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word48_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word48_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word48_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word48_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word48_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word48_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word48_honoured = card_core0_regs_fifo1_reg_word48_written[16-1:0];
+        card_core0_regs_fifo1_reg_word48_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word48_chain_out_clamped = (card_core0_regs_fifo1_reg_word47_chain_out_clamped || card_core0_regs_fifo1_reg_word48_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word48__store33_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word48_shown <= 2;
+        card_core0_regs_fifo1_reg_word48_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word48_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word48_mine_write))) begin
+            card_core0_regs_fifo1_reg_word48_shown <= card_core0_regs_fifo1_reg_word48_honoured;
+            card_core0_regs_fifo1_reg_word48_clamped <= card_core0_regs_fifo1_reg_word48_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word49_mine = (pci_slave1_pci_requests1_local_addr == 72);
+
+
+always @(card_core0_regs_fifo1_reg_word49_mine, card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_reg_word48_chain_out_data) begin: card_core0_regs_fifo1_reg_word49_read_chain
+    if (card_core0_regs_fifo1_reg_word49_mine) begin
+        card_core0_regs_fifo1_reg_word49_chain_out_data = (card_core0_regs_fifo1_reg_word48_chain_out_data | card_core0_regs_fifo1_reg_word49_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word49_chain_out_data = card_core0_regs_fifo1_reg_word48_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word49_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word49_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word49_mine_write = (card_core0_regs_fifo1_written_addr == 72);
+
+
+always @(card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word49_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
+        card_core0_regs_fifo1_reg_word49_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word49_written = ((card_core0_regs_fifo1_reg_word49_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word49_written) begin: card_core0_regs_fifo1_reg_word49__limit34_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word49_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word49_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word49_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word49_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word49_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word49_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word49_honoured = card_core0_regs_fifo1_reg_word49_written[16-1:0];
+        card_core0_regs_fifo1_reg_word49_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word49_chain_out_clamped = (card_core0_regs_fifo1_reg_word48_chain_out_clamped || card_core0_regs_fifo1_reg_word49_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word49__store34_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word49_shown <= 2;
+        card_core0_regs_fifo1_reg_word49_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word49_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word49_mine_write))) begin
+            card_core0_regs_fifo1_reg_word49_shown <= card_core0_regs_fifo1_reg_word49_honoured;
+            card_core0_regs_fifo1_reg_word49_clamped <= card_core0_regs_fifo1_reg_word49_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word50_mine = (pci_slave1_pci_requests1_local_addr == 76);
+
+
+always @(card_core0_regs_fifo1_reg_word50_mine, card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_reg_word49_chain_out_data) begin: card_core0_regs_fifo1_reg_word50_read_chain
+    if (card_core0_regs_fifo1_reg_word50_mine) begin
+        card_core0_regs_fifo1_reg_word50_chain_out_data = (card_core0_regs_fifo1_reg_word49_chain_out_data | card_core0_regs_fifo1_reg_word50_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word50_chain_out_data = card_core0_regs_fifo1_reg_word49_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word50_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word50_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word50_mine_write = (card_core0_regs_fifo1_written_addr == 76);
+
+
+
+assign card_core0_regs_fifo1_reg_word50_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word50_written) begin: card_core0_regs_fifo1_reg_word50__limit35_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word50_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word50_written[32-1:(24 - 1)] == 511))) begin
+        card_core0_regs_fifo1_reg_word50_honoured = card_core0_regs_fifo1_reg_word50_written[24-1:0];
+        card_core0_regs_fifo1_reg_word50_out_of_range = 1'b0;
+    end
+    else if (card_core0_regs_fifo1_reg_word50_written[31]) begin
+        card_core0_regs_fifo1_reg_word50_honoured = 8388608;
+        card_core0_regs_fifo1_reg_word50_out_of_range = 1'b1;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word50_honoured = 8388607;
+        card_core0_regs_fifo1_reg_word50_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word50_chain_out_clamped = (card_core0_regs_fifo1_reg_word49_chain_out_clamped || card_core0_regs_fifo1_reg_word50_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word50__store35_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word50__store35_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word50__store35_word_value <= 0;
+        card_core0_regs_fifo1_reg_word50_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word50__store35_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word50_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word50_mine_write)) begin
+            card_core0_regs_fifo1_reg_word50__store35_word_value <= card_core0_regs_fifo1_reg_word50_honoured;
+            card_core0_regs_fifo1_reg_word50__store35_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word50_clamped <= card_core0_regs_fifo1_reg_word50_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word51_mine = (pci_slave1_pci_requests1_local_addr == 80);
+
+
+always @(card_core0_regs_fifo1_reg_word51_mine, card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_reg_word50_chain_out_data) begin: card_core0_regs_fifo1_reg_word51_read_chain
+    if (card_core0_regs_fifo1_reg_word51_mine) begin
+        card_core0_regs_fifo1_reg_word51_chain_out_data = (card_core0_regs_fifo1_reg_word50_chain_out_data | card_core0_regs_fifo1_reg_word51_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word51_chain_out_data = card_core0_regs_fifo1_reg_word50_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word51_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word51_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_written_addr == 80);
+
+
+
+assign card_core0_regs_fifo1_reg_word51_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit36_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word51_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word51_written[32-1:(24 - 1)] == 511))) begin
+        card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written[24-1:0];
+        card_core0_regs_fifo1_reg_word51_out_of_range = 1'b0;
+    end
+    else if (card_core0_regs_fifo1_reg_word51_written[31]) begin
+        card_core0_regs_fifo1_reg_word51_honoured = 8388608;
+        card_core0_regs_fifo1_reg_word51_out_of_range = 1'b1;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word51_honoured = 8388607;
+        card_core0_regs_fifo1_reg_word51_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word51_chain_out_clamped = (card_core0_regs_fifo1_reg_word50_chain_out_clamped || card_core0_regs_fifo1_reg_word51_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word51__store36_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word51__store36_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word51__store36_word_value <= 0;
+        card_core0_regs_fifo1_reg_word51_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word51__store36_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word51_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word51_mine_write)) begin
+            card_core0_regs_fifo1_reg_word51__store36_word_value <= card_core0_regs_fifo1_reg_word51_honoured;
+            card_core0_regs_fifo1_reg_word51__store36_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word51_clamped <= card_core0_regs_fifo1_reg_word51_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word52_mine = (pci_slave1_pci_requests1_local_addr == 84);
+
+
+always @(card_core0_regs_fifo1_reg_word52_mine, card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_reg_word51_chain_out_data) begin: card_core0_regs_fifo1_reg_word52_read_chain
+    if (card_core0_regs_fifo1_reg_word52_mine) begin
+        card_core0_regs_fifo1_reg_word52_chain_out_data = (card_core0_regs_fifo1_reg_word51_chain_out_data | card_core0_regs_fifo1_reg_word52_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word52_chain_out_data = card_core0_regs_fifo1_reg_word51_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word52_shown_wide = card_core0_regs_fifo1_reg_word52_shown;
+
+
+
+assign card_core0_regs_fifo1_reg_word52_chain_out_clamped = card_core0_regs_fifo1_reg_word51_chain_out_clamped;
+
+
+
+assign card_core0_regs_fifo1_reg_word53_mine = (pci_slave1_pci_requests1_local_addr == 88);
+
+
+always @(card_core0_regs_fifo1_reg_word53_mine, card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_reg_word52_chain_out_data) begin: card_core0_regs_fifo1_reg_word53_read_chain
+    if (card_core0_regs_fifo1_reg_word53_mine) begin
+        card_core0_regs_fifo1_reg_word53_chain_out_data = (card_core0_regs_fifo1_reg_word52_chain_out_data | card_core0_regs_fifo1_reg_word53_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word53_chain_out_data = card_core0_regs_fifo1_reg_word52_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word53_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word53_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word53_chain_out_clamped = card_core0_regs_fifo1_reg_word52_chain_out_clamped;
+
+
+
+assign card_core0_regs_fifo1_reg_word54_mine = (pci_slave1_pci_requests1_local_addr == 92);
+
+
+always @(card_core0_regs_fifo1_reg_word54_mine, card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_reg_word53_chain_out_data) begin: card_core0_regs_fifo1_reg_word54_read_chain
+    if (card_core0_regs_fifo1_reg_word54_mine) begin
+        card_core0_regs_fifo1_reg_word54_chain_out_data = (card_core0_regs_fifo1_reg_word53_chain_out_data | card_core0_regs_fifo1_reg_word54_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word54_chain_out_data = card_core0_regs_fifo1_reg_word53_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word54_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word54_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word54_chain_out_clamped = card_core0_regs_fifo1_reg_word53_chain_out_clamped;
+
+
+
+assign card_core0_regs_fifo1_reg_word55_mine = (pci_slave1_pci_requests1_local_addr == 96);
+
+
+always @(card_core0_regs_fifo1_reg_word55_mine, card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word54_chain_out_data) begin: card_core0_regs_fifo1_reg_word55_read_chain
+    if (card_core0_regs_fifo1_reg_word55_mine) begin
+        card_core0_regs_fifo1_reg_word55_chain_out_data = (card_core0_regs_fifo1_reg_word54_chain_out_data | card_core0_regs_fifo1_reg_word55_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word55_chain_out_data = card_core0_regs_fifo1_reg_word54_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word55_shown_wide = {31'h0, card_core0_regs_fifo1_reg_word55_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_written_addr == 96);
+
+
+always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word55_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[1-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[1-1:0] & (~card_core0_regs_fifo1_written_mask[1-1:0])) | (card_core0_regs_fifo1_written_data[1-1:0] & card_core0_regs_fifo1_written_mask[1-1:0]));
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[1-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word55_chain_out_clamped = (card_core0_regs_fifo1_reg_word54_chain_out_clamped || card_core0_regs_fifo1_reg_word55_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word55__store37_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word55_shown <= 0;
+        card_core0_regs_fifo1_reg_word55_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word55_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word55_mine_write))) begin
+            card_core0_regs_fifo1_reg_word55_shown <= card_core0_regs_fifo1_reg_word55_honoured;
+            card_core0_regs_fifo1_reg_word55_clamped <= card_core0_regs_fifo1_reg_word55_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word56_mine = (pci_slave1_pci_requests1_local_addr == 100);
+
+
+always @(card_core0_regs_fifo1_reg_word56_mine, card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_reg_word55_chain_out_data) begin: card_core0_regs_fifo1_reg_word56_read_chain
+    if (card_core0_regs_fifo1_reg_word56_mine) begin
+        card_core0_regs_fifo1_reg_word56_chain_out_data = (card_core0_regs_fifo1_reg_word55_chain_out_data | card_core0_regs_fifo1_reg_word56_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word56_chain_out_data = card_core0_regs_fifo1_reg_word55_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word56_shown_wide = {14'h0, card_core0_regs_fifo1_reg_word56_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word56_chain_out_clamped = card_core0_regs_fifo1_reg_word55_chain_out_clamped;
+
+
+
+assign card_core0_regs_fifo1_reg_word57_mine = (pci_slave1_pci_requests1_local_addr == 104);
+
+
+always @(card_core0_regs_fifo1_reg_word57_mine, card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_reg_word56_chain_out_data) begin: card_core0_regs_fifo1_reg_word57_read_chain
+    if (card_core0_regs_fifo1_reg_word57_mine) begin
+        card_core0_regs_fifo1_reg_word57_chain_out_data = (card_core0_regs_fifo1_reg_word56_chain_out_data | card_core0_regs_fifo1_reg_word57_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word57_chain_out_data = card_core0_regs_fifo1_reg_word56_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word57_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word57_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word57_chain_out_clamped = card_core0_regs_fifo1_reg_word56_chain_out_clamped;
+
+
+
+assign card_core0_regs_fifo1_reg_word58_mine = (pci_slave1_pci_requests1_local_addr == 108);
+
+
+always @(card_core0_regs_fifo1_reg_word58_mine, card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_reg_word57_chain_out_data) begin: card_core0_regs_fifo1_reg_word58_read_chain
+    if (card_core0_regs_fifo1_reg_word58_mine) begin
+        card_core0_regs_fifo1_reg_word58_chain_out_data = (card_core0_regs_fifo1_reg_word57_chain_out_data | card_core0_regs_fifo1_reg_word58_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word58_chain_out_data = card_core0_regs_fifo1_reg_word57_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word58_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word58_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word58_mine_write = (card_core0_regs_fifo1_written_addr == 108);
+
+
+always @(card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_reg_word58_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word58_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word58_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word58_written = card_core0_regs_fifo1_set_value[7-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word58_written = ((card_core0_regs_fifo1_reg_word58_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word58_honoured = card_core0_regs_fifo1_reg_word58_written[7-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word58_chain_out_clamped = (card_core0_regs_fifo1_reg_word57_chain_out_clamped || card_core0_regs_fifo1_reg_word58_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word58__store38_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word58_shown <= 0;
+        card_core0_regs_fifo1_reg_word58_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word58_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word58_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word58_mine_write))) begin
+            card_core0_regs_fifo1_reg_word58_shown <= card_core0_regs_fifo1_reg_word58_honoured;
+            card_core0_regs_fifo1_reg_word58_clamped <= card_core0_regs_fifo1_reg_word58_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word59_mine = (pci_slave1_pci_requests1_local_addr == 112);
+
+
+always @(card_core0_regs_fifo1_reg_word59_mine, card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_reg_word58_chain_out_data) begin: card_core0_regs_fifo1_reg_word59_read_chain
+    if (card_core0_regs_fifo1_reg_word59_mine) begin
+        card_core0_regs_fifo1_reg_word59_chain_out_data = (card_core0_regs_fifo1_reg_word58_chain_out_data | card_core0_regs_fifo1_reg_word59_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word59_chain_out_data = card_core0_regs_fifo1_reg_word58_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word59_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word59_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word59_mine_write = (card_core0_regs_fifo1_written_addr == 112);
+
+
+always @(card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_reg_word59_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word59_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word59_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word59_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word59_written = ((card_core0_regs_fifo1_reg_word59_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word59_written) begin: card_core0_regs_fifo1_reg_word59__limit39_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word59_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word59_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word59_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word59_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word59_written[32-1:4] != 0)) begin
+        card_core0_regs_fifo1_reg_word59_honoured = 15;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word59_honoured = card_core0_regs_fifo1_reg_word59_written[4-1:0];
+        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word59_chain_out_clamped = (card_core0_regs_fifo1_reg_word58_chain_out_clamped || card_core0_regs_fifo1_reg_word59_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word59__store39_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word59_shown <= 3;
+        card_core0_regs_fifo1_reg_word59_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word59_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word59_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word59_mine_write))) begin
+            card_core0_regs_fifo1_reg_word59_shown <= card_core0_regs_fifo1_reg_word59_honoured;
+            card_core0_regs_fifo1_reg_word59_clamped <= card_core0_regs_fifo1_reg_word59_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word60_mine = (pci_slave1_pci_requests1_local_addr == 116);
+
+
+always @(card_core0_regs_fifo1_reg_word60_mine, card_core0_regs_fifo1_reg_word60_shown_wide, card_core0_regs_fifo1_reg_word59_chain_out_data) begin: card_core0_regs_fifo1_reg_word60_read_chain
+    if (card_core0_regs_fifo1_reg_word60_mine) begin
+        card_core0_regs_fifo1_reg_word60_chain_out_data = (card_core0_regs_fifo1_reg_word59_chain_out_data | card_core0_regs_fifo1_reg_word60_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word60_chain_out_data = card_core0_regs_fifo1_reg_word59_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word60_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word60_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word60_mine_write = (card_core0_regs_fifo1_written_addr == 116);
+
+
+always @(card_core0_regs_fifo1_reg_word60_shown_wide, card_core0_regs_fifo1_reg_word60_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word60_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word60_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word60_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word60_written = ((card_core0_regs_fifo1_reg_word60_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word60_written) begin: card_core0_regs_fifo1_reg_word60__limit40_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word60_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word60_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word60_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word60_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word60_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word60_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word60_honoured = card_core0_regs_fifo1_reg_word60_written[16-1:0];
+        card_core0_regs_fifo1_reg_word60_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word60_chain_out_clamped = (card_core0_regs_fifo1_reg_word59_chain_out_clamped || card_core0_regs_fifo1_reg_word60_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word60__store40_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word60_shown <= 1;
+        card_core0_regs_fifo1_reg_word60_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word60_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word60_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word60_mine_write))) begin
+            card_core0_regs_fifo1_reg_word60_shown <= card_core0_regs_fifo1_reg_word60_honoured;
+            card_core0_regs_fifo1_reg_word60_clamped <= card_core0_regs_fifo1_reg_word60_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word61_mine = (pci_slave1_pci_requests1_local_addr == 120);
+
+
+always @(card_core0_regs_fifo1_reg_word61_mine, card_core0_regs_fifo1_reg_word61_shown_wide, card_core0_regs_fifo1_reg_word60_chain_out_data) begin: card_core0_regs_fifo1_reg_word61_read_chain
+    if (card_core0_regs_fifo1_reg_word61_mine) begin
+        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word60_chain_out_data | card_core0_regs_fifo1_reg_word61_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word60_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word61_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word61_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word61_mine_write = (card_core0_regs_fifo1_written_addr == 120);
+
+
+
+assign card_core0_regs_fifo1_reg_word61_written = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_word61_written[24-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word61_chain_out_clamped = (card_core0_regs_fifo1_reg_word60_chain_out_clamped || card_core0_regs_fifo1_reg_word61_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word61__store41_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word61__store41_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word61__store41_word_value <= 0;
+        card_core0_regs_fifo1_reg_word61_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word61__store41_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word61_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word61_mine_write)) begin
+            card_core0_regs_fifo1_reg_word61__store41_word_value <= card_core0_regs_fifo1_reg_word61_honoured;
+            card_core0_regs_fifo1_reg_word61__store41_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word61_clamped <= card_core0_regs_fifo1_reg_word61_out_of_range;
+        end
+    end
+end
 
 
 
@@ -3254,7 +3735,7 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_arriving_count, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_state, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer1_next_valid, card_core0_core_clear, card_core0_regs_fifo1_sequencer1_next_count, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_fetch_request
+always @(card_core0_regs_fifo1_sequencer1_arriving_count, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_state, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer1_next_valid, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_next_count, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_fetch_request
     reg more;
     more = 1'b1;
     if (card_core0_regs_fifo1_sequencer1_word_due) begin
@@ -3265,7 +3746,7 @@ always @(card_core0_regs_fifo1_sequencer1_arriving_count, card_core0_regs_fifo1_
             more = (card_core0_regs_fifo1_sequencer1_fetched < card_core0_regs_fifo1_sequencer1_next_count);
         end
     end
-    card_core0_regs_fifo1_fifo_pop = ((!card_core0_regs_fifo1_fifo_empty) && (!card_core0_regs_fifo1_sequencer1_next_valid) && more && (!card_core0_core_clear) && (card_core0_regs_fifo1_sequencer1_state != 3'b100));
+    card_core0_regs_fifo1_fifo_pop = ((!card_core0_regs_fifo1_fifo_empty) && (!card_core0_regs_fifo1_sequencer1_next_valid) && more && (!card_core0_regs_fifo1_sequencer_clear) && (card_core0_regs_fifo1_sequencer1_state != 3'b100));
 end
 
 
@@ -3294,7 +3775,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
     end
     else begin
         card_core0_regs_fifo1_sequencer1_word_due <= card_core0_regs_fifo1_fifo_pop;
-        if ((card_core0_core_clear || card_core0_regs_fifo1_sequencer1_discard)) begin
+        if ((card_core0_regs_fifo1_sequencer_clear || card_core0_regs_fifo1_sequencer1_discard)) begin
             card_core0_regs_fifo1_sequencer1_word_due <= 0;
             card_core0_regs_fifo1_sequencer1_fetched <= 0;
             card_core0_regs_fifo1_sequencer1_next_valid <= 0;
@@ -3411,7 +3892,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_sequencer1_issue = (card_core0_regs_fifo1_sequencer1_next_valid && card_core0_regs_fifo1_enable && card_core0_regs_fifo1_sequencer1_finishing && (!card_core0_core_clear));
+assign card_core0_regs_fifo1_sequencer1_issue = (card_core0_regs_fifo1_sequencer1_next_valid && card_core0_regs_fifo1_enable && card_core0_regs_fifo1_sequencer1_finishing && (!card_core0_regs_fifo1_sequencer_clear));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_execute
@@ -3429,7 +3910,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
         card_core0_regs_fifo1_seq_load <= 0;
         card_core0_regs_fifo1_set_strobe <= 0;
         card_core0_regs_fifo1_sequencer1_mark_strobe <= 0;
-        if (card_core0_core_clear) begin
+        if (card_core0_regs_fifo1_sequencer_clear) begin
             card_core0_regs_fifo1_sequencer1_state <= 3'b000;
             card_core0_regs_fifo1_error_code <= 0;
         end
@@ -3525,13 +4006,13 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_r
         card_core0_regs_fifo1_feed_rate1_raise_limit <= 0;
     end
     else begin
-        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word34_shown;
-        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word35_shown;
-        card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_reg_word36_shown;
-        card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_reg_word36_shown == 0);
-        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word34_shown}) - $signed({1'b0, card_core0_regs_fifo1_reg_word36_shown}));
-        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word34_shown} + {1'b0, card_core0_regs_fifo1_reg_word36_shown});
-        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word35_shown} + {1'b0, card_core0_regs_fifo1_reg_word36_shown});
+        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word41_shown;
+        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word42_shown;
+        card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_reg_word43_shown;
+        card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_reg_word43_shown == 0);
+        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word41_shown}) - $signed({1'b0, card_core0_regs_fifo1_reg_word43_shown}));
+        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word41_shown} + {1'b0, card_core0_regs_fifo1_reg_word43_shown});
+        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word42_shown} + {1'b0, card_core0_regs_fifo1_reg_word43_shown});
     end
 end
 
@@ -3636,9 +4117,9 @@ end
 assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending);
 
 
-always @(card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count, card_core0_regs_fifo1_reg_word43_shown) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
+always @(card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count, card_core0_regs_fifo1_reg_word50_shown) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
     if ((!card_core0_regs_fifo1_direct_pulse2_command_load)) begin
-        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word43_shown;
+        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word50_shown;
         card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
     end
     else if ((card_core0_regs_fifo1_direct_pulse2_command_count < 0)) begin
@@ -3652,12 +4133,12 @@ always @(card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1
 end
 
 
-always @(card_core0_regs_fifo1_reg_word41_shown, card_core0_regs_fifo1_direct_pulse2_waiting, card_core0_regs_fifo1_direct_pulse2_gap) begin: card_core0_regs_fifo1_direct_pulse2_gap_operands
+always @(card_core0_regs_fifo1_reg_word48_shown, card_core0_regs_fifo1_direct_pulse2_waiting, card_core0_regs_fifo1_direct_pulse2_gap) begin: card_core0_regs_fifo1_direct_pulse2_gap_operands
     if (card_core0_regs_fifo1_direct_pulse2_waiting) begin
         card_core0_regs_fifo1_direct_pulse2_gap_operand = card_core0_regs_fifo1_direct_pulse2_gap;
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse2_gap_operand = card_core0_regs_fifo1_reg_word41_shown;
+        card_core0_regs_fifo1_direct_pulse2_gap_operand = card_core0_regs_fifo1_reg_word48_shown;
     end
 end
 
@@ -3672,18 +4153,18 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         card_core0_regs_fifo1_direct_dir_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_waiting <= 0;
         card_core0_regs_fifo1_direct_pulse2_pending <= 0;
-        card_core0_regs_fifo1_reg_word43_shown <= 0;
+        card_core0_regs_fifo1_reg_word50_shown <= 0;
         card_core0_regs_fifo1_direct_request_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_x <= 0;
         if (card_core0_core_clear) begin
-            card_core0_regs_fifo1_reg_word43_shown <= 0;
+            card_core0_regs_fifo1_reg_word50_shown <= 0;
             card_core0_regs_fifo1_direct_pulse2_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse2_command_load) begin
-            card_core0_regs_fifo1_reg_word43_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+            card_core0_regs_fifo1_reg_word50_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
             card_core0_regs_fifo1_direct_dir_x <= (card_core0_regs_fifo1_direct_pulse2_command_count >= 0);
             card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_command_count != 0);
             card_core0_regs_fifo1_direct_pulse2_gap <= 0;
@@ -3696,10 +4177,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             end
             else if (card_core0_regs_fifo1_out_ready) begin
                 card_core0_regs_fifo1_direct_request_x <= 1;
-                card_core0_regs_fifo1_reg_word43_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
-                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word43_shown != 1);
+                card_core0_regs_fifo1_reg_word50_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word50_shown != 1);
                 card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
-                card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_reg_word41_shown != 1);
+                card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_reg_word48_shown != 1);
             end
         end
     end
@@ -3710,9 +4191,9 @@ end
 assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending);
 
 
-always @(card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count, card_core0_regs_fifo1_reg_word44_shown) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
+always @(card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count, card_core0_regs_fifo1_reg_word51_shown) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
     if ((!card_core0_regs_fifo1_direct_pulse3_command_load)) begin
-        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word44_shown;
+        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word51_shown;
         card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
     end
     else if ((card_core0_regs_fifo1_direct_pulse3_command_count < 0)) begin
@@ -3726,12 +4207,12 @@ always @(card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1
 end
 
 
-always @(card_core0_regs_fifo1_reg_word42_shown, card_core0_regs_fifo1_direct_pulse3_waiting, card_core0_regs_fifo1_direct_pulse3_gap) begin: card_core0_regs_fifo1_direct_pulse3_gap_operands
+always @(card_core0_regs_fifo1_reg_word49_shown, card_core0_regs_fifo1_direct_pulse3_waiting, card_core0_regs_fifo1_direct_pulse3_gap) begin: card_core0_regs_fifo1_direct_pulse3_gap_operands
     if (card_core0_regs_fifo1_direct_pulse3_waiting) begin
         card_core0_regs_fifo1_direct_pulse3_gap_operand = card_core0_regs_fifo1_direct_pulse3_gap;
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse3_gap_operand = card_core0_regs_fifo1_reg_word42_shown;
+        card_core0_regs_fifo1_direct_pulse3_gap_operand = card_core0_regs_fifo1_reg_word49_shown;
     end
 end
 
@@ -3746,18 +4227,18 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         card_core0_regs_fifo1_direct_dir_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_waiting <= 0;
         card_core0_regs_fifo1_direct_pulse3_pending <= 0;
-        card_core0_regs_fifo1_reg_word44_shown <= 0;
+        card_core0_regs_fifo1_reg_word51_shown <= 0;
         card_core0_regs_fifo1_direct_request_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_y <= 0;
         if (card_core0_core_clear) begin
-            card_core0_regs_fifo1_reg_word44_shown <= 0;
+            card_core0_regs_fifo1_reg_word51_shown <= 0;
             card_core0_regs_fifo1_direct_pulse3_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse3_command_load) begin
-            card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+            card_core0_regs_fifo1_reg_word51_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
             card_core0_regs_fifo1_direct_dir_y <= (card_core0_regs_fifo1_direct_pulse3_command_count >= 0);
             card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_command_count != 0);
             card_core0_regs_fifo1_direct_pulse3_gap <= 0;
@@ -3770,10 +4251,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             end
             else if (card_core0_regs_fifo1_out_ready) begin
                 card_core0_regs_fifo1_direct_request_y <= 1;
-                card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
-                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word44_shown != 1);
+                card_core0_regs_fifo1_reg_word51_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word51_shown != 1);
                 card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
-                card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_reg_word42_shown != 1);
+                card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_reg_word49_shown != 1);
             end
         end
     end
@@ -3789,12 +4270,12 @@ assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_cou
 assign card_core0_regs_fifo1_pulse_out1_head = card_core0_regs_fifo1_pulse_out1_queue[0];
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_reg_word38_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_reg_word37_shown, card_core0_core_clear) begin: card_core0_regs_fifo1_pulse_out1_decide
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_reg_word45_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_reg_word44_shown, card_core0_regs_fifo1_pulse_clear) begin: card_core0_regs_fifo1_pulse_out1_decide
     card_core0_regs_fifo1_pulse_out1_turn = ((card_core0_regs_fifo1_pulse_out1_count != 0) && ((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
     card_core0_regs_fifo1_pulse_out1_take = 1'b0;
-    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_core_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word37_shown))) begin
+    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_regs_fifo1_pulse_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word44_shown))) begin
         if ((card_core0_regs_fifo1_pulse_out1_phase == 2'b01)) begin
-            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word38_shown);
+            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word45_shown);
         end
         else if ((card_core0_regs_fifo1_pulse_out1_count != 0)) begin
             card_core0_regs_fifo1_pulse_out1_take = (!((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
@@ -3803,9 +4284,9 @@ always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pu
 end
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_reg_word37_shown, card_core0_core_clear, card_core0_regs_fifo1_pulse_out1_take, card_core0_regs_fifo1_reg_word39_shown) begin: card_core0_regs_fifo1_pulse_out1_restart
-    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_core_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word39_shown)));
-    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word37_shown));
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_reg_word44_shown, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_take, card_core0_regs_fifo1_reg_word46_shown) begin: card_core0_regs_fifo1_pulse_out1_restart
+    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word46_shown)));
+    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word44_shown));
     card_core0_regs_fifo1_pulse_out1_phase_step = 0;
     if ((card_core0_regs_fifo1_pulse_out1_phase_clocks != 255)) begin
         card_core0_regs_fifo1_pulse_out1_phase_step = 1;
@@ -3860,7 +4341,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_s
             card_core0_regs_fifo1_pulse_out1_level_y <= card_core0_regs_fifo1_pulse_out1_head[1];
             card_core0_regs_fifo1_pulse_out1_phase <= 2'b10;
         end
-        else if (card_core0_core_clear) begin
+        else if (card_core0_regs_fifo1_pulse_clear) begin
             card_core0_regs_fifo1_pulse_out1_phase <= 2'b00;
         end
         else if (((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && card_core0_regs_fifo1_pulse_out1_starts)) begin
@@ -3888,9 +4369,9 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_f
         card_core0_regs_fifo1_pulse_out1_queue[3] <= 0;
     end
     else begin
-        pushed = (card_core0_regs_fifo1_requests_step_x || card_core0_regs_fifo1_requests_step_y);
-        entry = {card_core0_regs_fifo1_requests_dir_y, card_core0_regs_fifo1_requests_dir_x, card_core0_regs_fifo1_requests_step_y, card_core0_regs_fifo1_requests_step_x};
-        if (card_core0_core_clear) begin
+        pushed = (card_core0_regs_fifo1_pulse_out1_request_step_x || card_core0_regs_fifo1_pulse_out1_request_step_y);
+        entry = {card_core0_regs_fifo1_pulse_out1_request_dir_y, card_core0_regs_fifo1_pulse_out1_request_dir_x, card_core0_regs_fifo1_pulse_out1_request_step_y, card_core0_regs_fifo1_pulse_out1_request_step_x};
+        if (card_core0_regs_fifo1_pulse_clear) begin
             card_core0_regs_fifo1_pulse_out1_count <= 0;
         end
         else if (card_core0_regs_fifo1_pulse_out1_take) begin
@@ -3941,8 +4422,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_d
     else begin
         pins_step_x <= card_core0_regs_fifo1_pulse_out1_level_x;
         pins_step_y <= card_core0_regs_fifo1_pulse_out1_level_y;
-        pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word40_shown[0]);
-        pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word40_shown[1]);
+        pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word47_shown[0]);
+        pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word47_shown[1]);
         if (card_core0_regs_fifo1_clear_position) begin
             card_core0_regs_fifo1_pulse_out1_position_x <= 0;
             card_core0_regs_fifo1_position_y <= 0;
@@ -3956,6 +4437,306 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_d
             end
         end
     end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1_synchronise
+    if (reset == 0) begin
+        card_core0_regs_fifo1_input_filter1_inputs_raw <= 0;
+        card_core0_regs_fifo1_input_filter1_sync <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_input_filter1_sync <= card_core0_regs_fifo1_input_filter1_inputs_pins;
+        card_core0_regs_fifo1_input_filter1_inputs_raw <= card_core0_regs_fifo1_input_filter1_sync;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_input_filter1_level = (card_core0_regs_fifo1_input_filter1_inputs_raw ^ card_core0_regs_fifo1_reg_word58_shown);
+assign card_core0_regs_fifo1_input_filter1_sample = (card_core0_regs_fifo1_input_filter1_prescale == 0);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1_prescaler
+    if (reset == 0) begin
+        card_core0_regs_fifo1_input_filter1_prescale <= 0;
+    end
+    else begin
+        if (card_core0_regs_fifo1_input_filter1_sample) begin
+            card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_reg_word60_shown - 1);
+        end
+        else begin
+            card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_input_filter1_prescale - 1);
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1_follow
+    if (reset == 0) begin
+        card_core0_regs_fifo1_input_filter1_inputs_changed <= 0;
+        card_core0_regs_fifo1_input_filter1_inputs_active <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_input_filter1_inputs_active <= (card_core0_regs_fifo1_input_filter1_inputs_active ^ card_core0_regs_fifo1_input_filter1_taken);
+        card_core0_regs_fifo1_input_filter1_inputs_changed <= (card_core0_regs_fifo1_input_filter1_taken != 0);
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count7_count_samples
+    if (reset == 0) begin
+        card_core0_regs_fifo1_input_filter1__input_count7_held <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_input_filter1_level[0] == card_core0_regs_fifo1_input_filter1_inputs_active[0])) begin
+            card_core0_regs_fifo1_input_filter1__input_count7_held <= 0;
+        end
+        else if (card_core0_regs_fifo1_input_filter1_sample) begin
+            if (card_core0_regs_fifo1_input_filter1__input_count7_taken) begin
+                card_core0_regs_fifo1_input_filter1__input_count7_held <= 0;
+            end
+            else begin
+                card_core0_regs_fifo1_input_filter1__input_count7_held <= (card_core0_regs_fifo1_input_filter1__input_count7_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_input_filter1__input_count7_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[0] != card_core0_regs_fifo1_input_filter1_inputs_active[0]) && ((card_core0_regs_fifo1_input_filter1__input_count7_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count8_count_samples
+    if (reset == 0) begin
+        card_core0_regs_fifo1_input_filter1__input_count8_held <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_input_filter1_level[1] == card_core0_regs_fifo1_input_filter1_inputs_active[1])) begin
+            card_core0_regs_fifo1_input_filter1__input_count8_held <= 0;
+        end
+        else if (card_core0_regs_fifo1_input_filter1_sample) begin
+            if (card_core0_regs_fifo1_input_filter1__input_count8_taken) begin
+                card_core0_regs_fifo1_input_filter1__input_count8_held <= 0;
+            end
+            else begin
+                card_core0_regs_fifo1_input_filter1__input_count8_held <= (card_core0_regs_fifo1_input_filter1__input_count8_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_input_filter1__input_count8_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[1] != card_core0_regs_fifo1_input_filter1_inputs_active[1]) && ((card_core0_regs_fifo1_input_filter1__input_count8_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count9_count_samples
+    if (reset == 0) begin
+        card_core0_regs_fifo1_input_filter1__input_count9_held <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_input_filter1_level[2] == card_core0_regs_fifo1_input_filter1_inputs_active[2])) begin
+            card_core0_regs_fifo1_input_filter1__input_count9_held <= 0;
+        end
+        else if (card_core0_regs_fifo1_input_filter1_sample) begin
+            if (card_core0_regs_fifo1_input_filter1__input_count9_taken) begin
+                card_core0_regs_fifo1_input_filter1__input_count9_held <= 0;
+            end
+            else begin
+                card_core0_regs_fifo1_input_filter1__input_count9_held <= (card_core0_regs_fifo1_input_filter1__input_count9_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_input_filter1__input_count9_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[2] != card_core0_regs_fifo1_input_filter1_inputs_active[2]) && ((card_core0_regs_fifo1_input_filter1__input_count9_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count10_count_samples
+    if (reset == 0) begin
+        card_core0_regs_fifo1_input_filter1__input_count10_held <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_input_filter1_level[3] == card_core0_regs_fifo1_input_filter1_inputs_active[3])) begin
+            card_core0_regs_fifo1_input_filter1__input_count10_held <= 0;
+        end
+        else if (card_core0_regs_fifo1_input_filter1_sample) begin
+            if (card_core0_regs_fifo1_input_filter1__input_count10_taken) begin
+                card_core0_regs_fifo1_input_filter1__input_count10_held <= 0;
+            end
+            else begin
+                card_core0_regs_fifo1_input_filter1__input_count10_held <= (card_core0_regs_fifo1_input_filter1__input_count10_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_input_filter1__input_count10_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[3] != card_core0_regs_fifo1_input_filter1_inputs_active[3]) && ((card_core0_regs_fifo1_input_filter1__input_count10_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count11_count_samples
+    if (reset == 0) begin
+        card_core0_regs_fifo1_input_filter1__input_count11_held <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_input_filter1_level[4] == card_core0_regs_fifo1_input_filter1_inputs_active[4])) begin
+            card_core0_regs_fifo1_input_filter1__input_count11_held <= 0;
+        end
+        else if (card_core0_regs_fifo1_input_filter1_sample) begin
+            if (card_core0_regs_fifo1_input_filter1__input_count11_taken) begin
+                card_core0_regs_fifo1_input_filter1__input_count11_held <= 0;
+            end
+            else begin
+                card_core0_regs_fifo1_input_filter1__input_count11_held <= (card_core0_regs_fifo1_input_filter1__input_count11_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_input_filter1__input_count11_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[4] != card_core0_regs_fifo1_input_filter1_inputs_active[4]) && ((card_core0_regs_fifo1_input_filter1__input_count11_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count12_count_samples
+    if (reset == 0) begin
+        card_core0_regs_fifo1_input_filter1__input_count12_held <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_input_filter1_level[5] == card_core0_regs_fifo1_input_filter1_inputs_active[5])) begin
+            card_core0_regs_fifo1_input_filter1__input_count12_held <= 0;
+        end
+        else if (card_core0_regs_fifo1_input_filter1_sample) begin
+            if (card_core0_regs_fifo1_input_filter1__input_count12_taken) begin
+                card_core0_regs_fifo1_input_filter1__input_count12_held <= 0;
+            end
+            else begin
+                card_core0_regs_fifo1_input_filter1__input_count12_held <= (card_core0_regs_fifo1_input_filter1__input_count12_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_input_filter1__input_count12_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[5] != card_core0_regs_fifo1_input_filter1_inputs_active[5]) && ((card_core0_regs_fifo1_input_filter1__input_count12_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count13_count_samples
+    if (reset == 0) begin
+        card_core0_regs_fifo1_input_filter1__input_count13_held <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_input_filter1_level[6] == card_core0_regs_fifo1_input_filter1_inputs_active[6])) begin
+            card_core0_regs_fifo1_input_filter1__input_count13_held <= 0;
+        end
+        else if (card_core0_regs_fifo1_input_filter1_sample) begin
+            if (card_core0_regs_fifo1_input_filter1__input_count13_taken) begin
+                card_core0_regs_fifo1_input_filter1__input_count13_held <= 0;
+            end
+            else begin
+                card_core0_regs_fifo1_input_filter1__input_count13_held <= (card_core0_regs_fifo1_input_filter1__input_count13_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_input_filter1__input_count13_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[6] != card_core0_regs_fifo1_input_filter1_inputs_active[6]) && ((card_core0_regs_fifo1_input_filter1__input_count13_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+
+
+
+assign card_core0_regs_fifo1_machine_guard1_estop = card_core0_regs_fifo1_input_filter1_inputs_active[0];
+assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_reg_word61_shown == 1) && (!card_core0_regs_fifo1_reg_word61__store41_word_strobe));
+assign card_core0_regs_fifo1_machine_guard1_hits = {(card_core0_regs_fifo1_requests_step_y && (!card_core0_regs_fifo1_requests_dir_y) && card_core0_regs_fifo1_input_filter1_inputs_active[4]), (card_core0_regs_fifo1_requests_step_y && card_core0_regs_fifo1_requests_dir_y && card_core0_regs_fifo1_input_filter1_inputs_active[3]), (card_core0_regs_fifo1_requests_step_x && (!card_core0_regs_fifo1_requests_dir_x) && card_core0_regs_fifo1_input_filter1_inputs_active[2]), (card_core0_regs_fifo1_requests_step_x && card_core0_regs_fifo1_requests_dir_x && card_core0_regs_fifo1_input_filter1_inputs_active[1])};
+
+
+always @(card_core0_regs_fifo1_machine_guard1_hits, card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_requests_step_x, card_core0_regs_fifo1_requests_dir_y, card_core0_regs_fifo1_requests_step_y, card_core0_regs_fifo1_requests_dir_x, card_core0_regs_fifo1_machine_guard1_estop) begin: card_core0_regs_fifo1_machine_guard1_gate
+    reg passes;
+    card_core0_regs_fifo1_halt = (card_core0_regs_fifo1_guard_stopped || card_core0_regs_fifo1_machine_guard1_estop);
+    passes = ((!(card_core0_regs_fifo1_guard_stopped || card_core0_regs_fifo1_machine_guard1_estop)) && (card_core0_regs_fifo1_machine_guard1_hits == 0));
+    card_core0_regs_fifo1_pulse_out1_request_step_x = (card_core0_regs_fifo1_requests_step_x && passes);
+    card_core0_regs_fifo1_pulse_out1_request_step_y = (card_core0_regs_fifo1_requests_step_y && passes);
+    card_core0_regs_fifo1_pulse_out1_request_dir_x = card_core0_regs_fifo1_requests_dir_x;
+    card_core0_regs_fifo1_pulse_out1_request_dir_y = card_core0_regs_fifo1_requests_dir_y;
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guard1_latch
+    reg stopped;
+    if (reset == 0) begin
+        card_core0_regs_fifo1_guard_stopped <= 0;
+        card_core0_regs_fifo1_guard_stop_event <= 0;
+        pins_drive_enable <= 0;
+        card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
+        card_core0_regs_fifo1_machine_guard1_guard_reason <= 0;
+    end
+    else begin
+        stopped = (card_core0_regs_fifo1_guard_stopped != 0);
+        card_core0_regs_fifo1_guard_stop_event <= 0;
+        if ((!card_core0_regs_fifo1_guard_stopped)) begin
+            if ((card_core0_regs_fifo1_machine_guard1_estop || card_core0_regs_fifo1_machine_guard1_expired || (card_core0_regs_fifo1_machine_guard1_hits != 0))) begin
+                stopped = 1'b1;
+                card_core0_regs_fifo1_guard_stop_event <= 1;
+                card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
+                if (card_core0_regs_fifo1_machine_guard1_estop) begin
+                    card_core0_regs_fifo1_machine_guard1_guard_reason <= 1;
+                end
+                else if (card_core0_regs_fifo1_machine_guard1_expired) begin
+                    card_core0_regs_fifo1_machine_guard1_guard_reason <= 2;
+                end
+                else begin
+                    card_core0_regs_fifo1_machine_guard1_guard_reason <= 3;
+                    card_core0_regs_fifo1_machine_guard1_guard_limits <= card_core0_regs_fifo1_machine_guard1_hits;
+                end
+            end
+        end
+        else if ((card_core0_regs_fifo1_clear_stop && (!card_core0_regs_fifo1_machine_guard1_estop))) begin
+            stopped = 1'b0;
+            card_core0_regs_fifo1_machine_guard1_guard_reason <= 0;
+            card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
+        end
+        card_core0_regs_fifo1_guard_stopped <= stopped;
+        pins_drive_enable <= ((card_core0_regs_fifo1_reg_word55_shown != 0) && (!stopped) && (!card_core0_regs_fifo1_machine_guard1_estop));
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guard1_watchdog
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word61_shown <= 0;
+    end
+    else begin
+        if (card_core0_regs_fifo1_reg_word61__store41_word_strobe) begin
+            card_core0_regs_fifo1_reg_word61_shown <= card_core0_regs_fifo1_reg_word61__store41_word_value;
+        end
+        else if ((card_core0_regs_fifo1_reg_word61_shown != 0)) begin
+            card_core0_regs_fifo1_reg_word61_shown <= (card_core0_regs_fifo1_reg_word61_shown - 1);
+        end
+    end
+end
+
+
+always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_input_filter1_inputs_active, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1__machine_words1_assemble
+    reg [18-1:0] word;
+    reg [8-1:0] why;
+    word = 18'h0;
+    word[0+:7] = card_core0_regs_fifo1_input_filter1_inputs_raw;
+    word[8+:7] = card_core0_regs_fifo1_input_filter1_inputs_active;
+    word[16] = card_core0_regs_fifo1_guard_stopped;
+    word[17] = pins_drive_enable;
+    card_core0_regs_fifo1_reg_word56_shown = word;
+    why = 8'h0;
+    why[0+:2] = card_core0_regs_fifo1_machine_guard1_guard_reason;
+    why[4+:4] = card_core0_regs_fifo1_machine_guard1_guard_limits;
+    card_core0_regs_fifo1_reg_word57_shown = why;
 end
 
 
@@ -4010,24 +4791,29 @@ end
 
 
 
-assign card_core0_regs_fifo1_enable = (card_core0_regs_fifo1_control[0] && (!card_core0_regs_fifo1_control[1]));
+assign card_core0_regs_fifo1_enable = (card_core0_regs_fifo1_control[0] && (!card_core0_regs_fifo1_control[1]) && (!card_core0_regs_fifo1_halt));
 assign card_core0_regs_fifo1_direct_mode = card_core0_regs_fifo1_control[1];
 assign card_core0_regs_fifo1_clear_error = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[1]);
 assign card_core0_regs_fifo1_clear_position = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[2]);
+assign card_core0_regs_fifo1_clear_stop = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[3]);
+assign card_core0_regs_fifo1_pulse_clear = (card_core0_core_clear || card_core0_regs_fifo1_halt);
+assign card_core0_regs_fifo1_sequencer_clear = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_soft_reset
     if (reset == 0) begin
+        card_core0_regs_fifo1_soft_reset_taken <= 0;
         card_core0_core_clear <= 0;
     end
     else begin
-        card_core0_core_clear <= (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[0]);
+        card_core0_regs_fifo1_soft_reset_taken <= (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[0]);
+        card_core0_core_clear <= ((card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[0]) || card_core0_regs_fifo1_guard_stop_event);
     end
 end
 
 
 
-assign card_core0_regs_fifo1_fifo_flush = (card_core0_core_clear || (card_core0_regs_fifo1_discard_on_clear && card_core0_regs_fifo1_io_written && (card_core0_regs_fifo1_written_addr == 8) && card_core0_regs_fifo1_written_data[1] && card_core0_regs_fifo1_written_mask[1]));
+assign card_core0_regs_fifo1_fifo_flush = (card_core0_regs_fifo1_soft_reset_taken || (card_core0_regs_fifo1_io_written && (card_core0_regs_fifo1_written_addr == 8) && ((card_core0_regs_fifo1_discard_on_clear && card_core0_regs_fifo1_written_data[1] && card_core0_regs_fifo1_written_mask[1]) || (card_core0_regs_fifo1_guard_stopped && card_core0_regs_fifo1_written_data[3] && card_core0_regs_fifo1_written_mask[3]))));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_outputs_before
@@ -4073,10 +4859,10 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_reg_word43__store30_word_strobe, card_core0_regs_fifo1_reg_word43__store30_word_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode) begin: card_core0_regs_fifo1__axis_source2_choose_source
+always @(card_core0_regs_fifo1_reg_word50__store35_word_strobe, card_core0_regs_fifo1_reg_word50__store35_word_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source2_choose_source
     if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = card_core0_regs_fifo1_reg_word43__store30_word_strobe;
-        card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word43__store30_word_value);
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_reg_word50__store35_word_strobe && (!card_core0_regs_fifo1_halt));
+        card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word50__store35_word_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse2_command_load = card_core0_regs_fifo1_seq_load;
@@ -4085,10 +4871,10 @@ always @(card_core0_regs_fifo1_reg_word43__store30_word_strobe, card_core0_regs_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word44__store31_word_strobe, card_core0_regs_fifo1_reg_word44__store31_word_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode) begin: card_core0_regs_fifo1__axis_source3_choose_source
+always @(card_core0_regs_fifo1_reg_word51__store36_word_strobe, card_core0_regs_fifo1_reg_word51__store36_word_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source3_choose_source
     if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = card_core0_regs_fifo1_reg_word44__store31_word_strobe;
-        card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word44__store31_word_value);
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_reg_word51__store36_word_strobe && (!card_core0_regs_fifo1_halt));
+        card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word51__store36_word_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse3_command_load = card_core0_regs_fifo1_seq_load;
@@ -4114,7 +4900,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1__status1_tra
 end
 
 
-always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_done_flag, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1__status1_quadrant, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1__status1_assemble
+always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_done_flag, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1__status1_quadrant, card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1__status1_assemble
     reg [32-1:0] word;
     word = 32'h0;
     word[0] = card_core0_regs_fifo1_any_busy;
@@ -4123,8 +4909,9 @@ always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_done_flag, card
     word[4+:4] = card_core0_regs_fifo1_error_code;
     word[8] = card_core0_regs_fifo1_fifo_empty;
     word[9] = card_core0_regs_fifo1_fifo_full;
+    word[10] = card_core0_regs_fifo1_guard_stopped;
     word[32-1:16] = card_core0_regs_fifo1_level_wide;
-    card_core0_regs_fifo1_reg_word27_shown = word;
+    card_core0_regs_fifo1_reg_word34_shown = word;
 end
 
 
@@ -4132,37 +4919,39 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1__interrupts1
     if (reset == 0) begin
         card_core0_regs_fifo1_error_before <= 0;
         card_core0_regs_fifo1_low_before <= 0;
-        card_core0_regs_fifo1_reg_word31_shown <= 0;
+        card_core0_regs_fifo1_reg_word38_shown <= 0;
     end
     else begin
         card_core0_regs_fifo1_error_before <= (card_core0_regs_fifo1_error_code != 0);
-        card_core0_regs_fifo1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word30_shown);
+        card_core0_regs_fifo1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word37_shown);
         if (card_core0_regs_fifo1_sequencer1_mark_strobe) begin
-            card_core0_regs_fifo1_reg_word31_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
+            card_core0_regs_fifo1_reg_word38_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
         end
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word47_chain_out_clamped, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_reg_word30_shown, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_busy_before, card_core0_regs_fifo1_low_before) begin: card_core0_regs_fifo1__interrupts1_detect
-    reg [5-1:0] word;
-    word = 5'h0;
+always @(card_core0_regs_fifo1_reg_word61_chain_out_clamped, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_reg_word37_shown, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_input_filter1_inputs_changed, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_busy_before, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_low_before) begin: card_core0_regs_fifo1__interrupts1_detect
+    reg [7-1:0] word;
+    word = 7'h0;
     word[0] = (card_core0_regs_fifo1_busy_before && (!card_core0_regs_fifo1_any_busy));
-    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word30_shown) && (!card_core0_regs_fifo1_low_before));
+    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word37_shown) && (!card_core0_regs_fifo1_low_before));
     word[2] = ((card_core0_regs_fifo1_error_code != 0) && (!card_core0_regs_fifo1_error_before));
     word[3] = card_core0_regs_fifo1_sequencer1_mark_strobe;
-    word[4] = card_core0_regs_fifo1_reg_word47_chain_out_clamped;
-    card_core0_regs_fifo1_reg_word29__store19_word_hw = word;
+    word[4] = card_core0_regs_fifo1_reg_word61_chain_out_clamped;
+    word[5] = card_core0_regs_fifo1_guard_stop_event;
+    word[6] = card_core0_regs_fifo1_input_filter1_inputs_changed;
+    card_core0_regs_fifo1_reg_word36__store24_word_hw = word;
 end
 
 
 
-assign irq = ((card_core0_regs_fifo1_reg_word29_shown & card_core0_regs_fifo1_reg_word28_shown) != 0);
+assign irq = ((card_core0_regs_fifo1_reg_word36_shown & card_core0_regs_fifo1_reg_word35_shown) != 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word32_shown = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
-assign card_core0_regs_fifo1_reg_word33_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
+assign card_core0_regs_fifo1_reg_word39_shown = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
+assign card_core0_regs_fifo1_reg_word40_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
 
 
 always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_magnitudes

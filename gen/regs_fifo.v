@@ -44,7 +44,15 @@ module regs_fifo (
     pins_step_x,
     pins_dir_x,
     pins_step_y,
-    pins_dir_y
+    pins_dir_y,
+    pins_drive_enable,
+    pins_estop,
+    pins_limit_pos_x,
+    pins_limit_neg_x,
+    pins_limit_pos_y,
+    pins_limit_neg_y,
+    pins_home_x,
+    pins_home_y
 );
 // The card behind the PCI target: everything of the paper's figure 1 but the DDA.
 // 
@@ -55,9 +63,13 @@ module regs_fifo (
 // a posted dword, and a write to a full FIFO answers ``retry``, so the
 // target retries or disconnects and no word is lost); ``dda`` (drives the
 // interpolator's command, reads its status); ``steps`` (the interpolator's
-// step requests); ``pins`` (STEP/DIR out); ``irq`` (level, to INTA#:
-// INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
-// COMMAND.SOFT_RESET: the top resets the DDA with it).
+// step requests); ``pins`` (STEP/DIR and DRIVE_ENABLE out, the machine
+// inputs in: ``input_filter`` and ``machine_guard`` watch them, and a
+// stop resets and holds the sequencer, the direct pulses and the pulse
+// outputs and resets the DDA; the FIFO keeps its words until
+// COMMAND.CLEAR_STOP empties it, docs/machine.md); ``irq`` (level, to
+// INTA#: INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
+// COMMAND.SOFT_RESET or a stop: the top resets the DDA with it).
 // Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
 // two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
 // ``clock_hz`` and ``device`` only set capability registers (CLOCK_HZ,
@@ -139,6 +151,15 @@ output pins_step_y;
 reg pins_step_y;
 output pins_dir_y;
 reg pins_dir_y;
+output pins_drive_enable;
+reg pins_drive_enable;
+input pins_estop;
+input pins_limit_pos_x;
+input pins_limit_neg_x;
+input pins_limit_pos_y;
+input pins_limit_neg_y;
+input pins_home_x;
+input pins_home_y;
 
 reg [31:0] fifo_dout;
 reg fifo_pop;
@@ -156,12 +177,14 @@ wire any_busy;
 reg [31:0] byte_mask;
 wire clear_error;
 wire clear_position;
+wire clear_stop;
 wire direct_mode;
 wire discard_on_clear;
 wire enable;
 wire fifo_flush;
 wire fifo_full;
 wire [9:0] fifo_level;
+reg halt;
 wire hold;
 reg io_read;
 reg io_write;
@@ -174,9 +197,12 @@ wire out_ready;
 wire outputs_busy;
 reg signed [31:0] pos_y_snapshot;
 wire pulse_busy;
+wire pulse_clear;
 reg push;
 reg requested_before;
 wire seq_busy;
+wire sequencer_clear;
+reg soft_reset_taken;
 reg tick;
 reg [15:0] written_addr;
 reg [31:0] written_data;
@@ -184,7 +210,9 @@ reg [31:0] written_mask;
 reg [31:0] read_end;
 reg [1:0] control;
 reg command_strobe;
-reg [2:0] command;
+reg [3:0] command;
+reg guard_stopped;
+reg guard_stop_event;
 wire requests_step_x;
 wire requests_step_y;
 reg signed [31:0] position_y;
@@ -223,14 +251,14 @@ wire [31:0] reg_word1_shown_wide;
 reg [1:0] reg_word1_written;
 reg [31:0] reg_word1_chain_out_data;
 wire reg_word1_chain_out_clamped;
-wire [2:0] reg_word2_honoured;
+wire [3:0] reg_word2_honoured;
 wire reg_word2_out_of_range;
-wire [2:0] reg_word2_shown;
+wire [3:0] reg_word2_shown;
 reg reg_word2_clamped;
 wire reg_word2_mine;
 wire reg_word2_mine_write;
 wire [31:0] reg_word2_shown_wide;
-wire [2:0] reg_word2_written;
+wire [3:0] reg_word2_written;
 reg [31:0] reg_word2_chain_out_data;
 wire reg_word2_chain_out_clamped;
 reg [31:0] reg_word3_shown;
@@ -238,26 +266,26 @@ wire reg_word3_mine;
 wire [31:0] reg_word3_shown_wide;
 reg [31:0] reg_word3_chain_out_data;
 wire reg_word3_chain_out_clamped;
-wire [4:0] reg_word4_honoured;
+wire [6:0] reg_word4_honoured;
 wire reg_word4_out_of_range;
-reg [4:0] reg_word4_shown;
+reg [6:0] reg_word4_shown;
 reg reg_word4_clamped;
 wire reg_word4_mine;
 wire reg_word4_mine_write;
 wire reg_word4_set_mine;
 wire [31:0] reg_word4_shown_wide;
-reg [4:0] reg_word4_written;
+reg [6:0] reg_word4_written;
 reg [31:0] reg_word4_chain_out_data;
 wire reg_word4_chain_out_clamped;
-wire [4:0] reg_word5_honoured;
-reg [4:0] reg_word5_shown;
+wire [6:0] reg_word5_honoured;
+reg [6:0] reg_word5_shown;
 wire reg_word5_mine;
 wire reg_word5_mine_write;
 wire [31:0] reg_word5_shown_wide;
-wire [4:0] reg_word5_written;
+wire [6:0] reg_word5_written;
 reg [31:0] reg_word5_chain_out_data;
 wire reg_word5_chain_out_clamped;
-reg [4:0] reg_word5__store3_word_hw;
+reg [6:0] reg_word5__store3_word_hw;
 wire [15:0] reg_word6_honoured;
 wire reg_word6_out_of_range;
 reg [15:0] reg_word6_shown;
@@ -412,7 +440,73 @@ wire reg_word22_chain_out_clamped;
 wire [27:0] reg_word23_shown;
 wire reg_word23_mine;
 wire [31:0] reg_word23_shown_wide;
+reg [31:0] reg_word23_chain_out_data;
 wire reg_word23_chain_out_clamped;
+wire [0:0] reg_word24_honoured;
+wire reg_word24_out_of_range;
+reg [0:0] reg_word24_shown;
+reg reg_word24_clamped;
+wire reg_word24_mine;
+wire reg_word24_mine_write;
+wire reg_word24_set_mine;
+wire [31:0] reg_word24_shown_wide;
+reg [0:0] reg_word24_written;
+reg [31:0] reg_word24_chain_out_data;
+wire reg_word24_chain_out_clamped;
+reg [17:0] reg_word25_shown;
+wire reg_word25_mine;
+wire [31:0] reg_word25_shown_wide;
+reg [31:0] reg_word25_chain_out_data;
+wire reg_word25_chain_out_clamped;
+reg [7:0] reg_word26_shown;
+wire reg_word26_mine;
+wire [31:0] reg_word26_shown_wide;
+reg [31:0] reg_word26_chain_out_data;
+wire reg_word26_chain_out_clamped;
+wire [6:0] reg_word27_honoured;
+wire reg_word27_out_of_range;
+reg [6:0] reg_word27_shown;
+reg reg_word27_clamped;
+wire reg_word27_mine;
+wire reg_word27_mine_write;
+wire reg_word27_set_mine;
+wire [31:0] reg_word27_shown_wide;
+reg [6:0] reg_word27_written;
+reg [31:0] reg_word27_chain_out_data;
+wire reg_word27_chain_out_clamped;
+reg [3:0] reg_word28_honoured;
+reg reg_word28_out_of_range;
+reg [3:0] reg_word28_shown;
+reg reg_word28_clamped;
+wire reg_word28_mine;
+wire reg_word28_mine_write;
+wire reg_word28_set_mine;
+wire [31:0] reg_word28_shown_wide;
+reg [31:0] reg_word28_written;
+reg [31:0] reg_word28_chain_out_data;
+wire reg_word28_chain_out_clamped;
+reg [15:0] reg_word29_honoured;
+reg reg_word29_out_of_range;
+reg [15:0] reg_word29_shown;
+reg reg_word29_clamped;
+wire reg_word29_mine;
+wire reg_word29_mine_write;
+wire reg_word29_set_mine;
+wire [31:0] reg_word29_shown_wide;
+reg [31:0] reg_word29_written;
+reg [31:0] reg_word29_chain_out_data;
+wire reg_word29_chain_out_clamped;
+wire [23:0] reg_word30_honoured;
+wire reg_word30_out_of_range;
+reg [23:0] reg_word30_shown;
+reg reg_word30_clamped;
+wire reg_word30_mine;
+wire reg_word30_mine_write;
+wire [31:0] reg_word30_shown_wide;
+wire [23:0] reg_word30_written;
+wire reg_word30_chain_out_clamped;
+reg reg_word30__store20_word_strobe;
+reg [23:0] reg_word30__store20_word_value;
 wire sequencer0_arriving_coord_fits;
 reg [2:0] sequencer0_arriving_count;
 wire sequencer0_arriving_count_fits;
@@ -514,17 +608,49 @@ reg [7:0] pulse_out0_phase_step;
 reg pulse_out0_starts;
 reg pulse_out0_take;
 reg pulse_out0_turn;
+reg pulse_out0_request_step_x;
+reg pulse_out0_request_step_y;
+reg pulse_out0_request_dir_y;
+reg pulse_out0_request_dir_x;
 reg signed [31:0] pulse_out0_position_x;
+wire [6:0] input_filter0_level;
+reg [15:0] input_filter0_prescale;
+wire input_filter0_sample;
+reg [6:0] input_filter0_sync;
+wire [6:0] input_filter0_taken;
+wire [6:0] input_filter0_inputs_pins;
+reg [6:0] input_filter0_inputs_raw;
+reg [6:0] input_filter0_inputs_active;
+reg input_filter0_inputs_changed;
+reg [3:0] input_filter0__input_count0_held;
+wire input_filter0__input_count0_taken;
+reg [3:0] input_filter0__input_count1_held;
+wire input_filter0__input_count1_taken;
+reg [3:0] input_filter0__input_count2_held;
+wire input_filter0__input_count2_taken;
+reg [3:0] input_filter0__input_count3_held;
+wire input_filter0__input_count3_taken;
+reg [3:0] input_filter0__input_count4_held;
+wire input_filter0__input_count4_taken;
+reg [3:0] input_filter0__input_count5_held;
+wire input_filter0__input_count5_taken;
+reg [3:0] input_filter0__input_count6_held;
+wire input_filter0__input_count6_taken;
+wire machine_guard0_estop;
+wire machine_guard0_expired;
+wire [3:0] machine_guard0_hits;
+reg [3:0] machine_guard0_guard_limits;
+reg [1:0] machine_guard0_guard_reason;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_shown = 32'd3719037185;
+assign reg_word0_shown = 32'd3719037186;
 assign reg_word0_chain_in_data = 32'd0;
 assign reg_word0_chain_in_clamped = 1'd0;
 assign reg_word1_out_of_range = 1'd0;
 assign reg_word1_set_mine = 1'd0;
 assign reg_word2_out_of_range = 1'd0;
-assign reg_word2_shown = 3'd0;
+assign reg_word2_shown = 4'd0;
 assign reg_word4_out_of_range = 1'd0;
 assign reg_word4_set_mine = 1'd0;
 assign reg_word6_out_of_range = 1'd0;
@@ -535,6 +661,27 @@ assign reg_word16_set_mine = 1'd0;
 assign reg_word21_shown = 32'd33333333;
 assign reg_word22_shown = 16'd512;
 assign reg_word23_shown = 28'd786968;
+assign reg_word24_out_of_range = 1'd0;
+assign reg_word24_set_mine = 1'd0;
+assign reg_word27_out_of_range = 1'd0;
+assign reg_word27_set_mine = 1'd0;
+assign reg_word28_set_mine = 1'd0;
+assign reg_word29_set_mine = 1'd0;
+assign reg_word30_out_of_range = 1'd0;
+assign input_filter0_taken[6] = input_filter0__input_count6_taken;
+assign input_filter0_taken[5] = input_filter0__input_count5_taken;
+assign input_filter0_taken[4] = input_filter0__input_count4_taken;
+assign input_filter0_taken[3] = input_filter0__input_count3_taken;
+assign input_filter0_taken[2] = input_filter0__input_count2_taken;
+assign input_filter0_taken[1] = input_filter0__input_count1_taken;
+assign input_filter0_taken[0] = input_filter0__input_count0_taken;
+assign input_filter0_inputs_pins[6] = pins_home_y;
+assign input_filter0_inputs_pins[5] = pins_home_x;
+assign input_filter0_inputs_pins[4] = pins_limit_neg_y;
+assign input_filter0_inputs_pins[3] = pins_limit_pos_y;
+assign input_filter0_inputs_pins[2] = pins_limit_neg_x;
+assign input_filter0_inputs_pins[1] = pins_limit_pos_x;
+assign input_filter0_inputs_pins[0] = pins_estop;
 
 
 
@@ -710,7 +857,7 @@ end
 
 
 
-assign reg_word2_shown_wide = {29'h0, reg_word2_shown};
+assign reg_word2_shown_wide = {28'h0, reg_word2_shown};
 
 
 
@@ -718,11 +865,11 @@ assign reg_word2_mine_write = (written_addr == 8);
 
 
 
-assign reg_word2_written = (written_data[3-1:0] & written_mask[3-1:0]);
+assign reg_word2_written = (written_data[4-1:0] & written_mask[4-1:0]);
 
 
 
-assign reg_word2_honoured = reg_word2_written[3-1:0];
+assign reg_word2_honoured = reg_word2_written[4-1:0];
 
 
 
@@ -784,7 +931,7 @@ end
 
 
 
-assign reg_word4_shown_wide = {27'h0, reg_word4_shown};
+assign reg_word4_shown_wide = {25'h0, reg_word4_shown};
 
 
 
@@ -793,16 +940,16 @@ assign reg_word4_mine_write = (written_addr == 16);
 
 always @(reg_word4_shown_wide, reg_word4_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word4_merge_bytes
     if ((reg_word4_set_mine && (set_index == 0))) begin
-        reg_word4_written = set_value[5-1:0];
+        reg_word4_written = set_value[7-1:0];
     end
     else begin
-        reg_word4_written = ((reg_word4_shown_wide[5-1:0] & (~written_mask[5-1:0])) | (written_data[5-1:0] & written_mask[5-1:0]));
+        reg_word4_written = ((reg_word4_shown_wide[7-1:0] & (~written_mask[7-1:0])) | (written_data[7-1:0] & written_mask[7-1:0]));
     end
 end
 
 
 
-assign reg_word4_honoured = reg_word4_written[5-1:0];
+assign reg_word4_honoured = reg_word4_written[7-1:0];
 
 
 
@@ -839,7 +986,7 @@ end
 
 
 
-assign reg_word5_shown_wide = {27'h0, reg_word5_shown};
+assign reg_word5_shown_wide = {25'h0, reg_word5_shown};
 
 
 
@@ -847,11 +994,11 @@ assign reg_word5_mine_write = (written_addr == 20);
 
 
 
-assign reg_word5_written = (written_data[5-1:0] & written_mask[5-1:0]);
+assign reg_word5_written = (written_data[7-1:0] & written_mask[7-1:0]);
 
 
 
-assign reg_word5_honoured = reg_word5_written[5-1:0];
+assign reg_word5_honoured = reg_word5_written[7-1:0];
 
 
 
@@ -1744,10 +1891,10 @@ assign reg_word23_mine = (local_addr == 92);
 
 always @(reg_word23_mine, reg_word23_shown_wide, reg_word22_chain_out_data) begin: reg_word23_read_chain
     if (reg_word23_mine) begin
-        read_end = (reg_word22_chain_out_data | reg_word23_shown_wide);
+        reg_word23_chain_out_data = (reg_word22_chain_out_data | reg_word23_shown_wide);
     end
     else begin
-        read_end = reg_word22_chain_out_data;
+        reg_word23_chain_out_data = reg_word22_chain_out_data;
     end
 end
 
@@ -1758,6 +1905,344 @@ assign reg_word23_shown_wide = {4'h0, reg_word23_shown};
 
 
 assign reg_word23_chain_out_clamped = reg_word22_chain_out_clamped;
+
+
+
+assign reg_word24_mine = (local_addr == 96);
+
+
+always @(reg_word24_mine, reg_word24_shown_wide, reg_word23_chain_out_data) begin: reg_word24_read_chain
+    if (reg_word24_mine) begin
+        reg_word24_chain_out_data = (reg_word23_chain_out_data | reg_word24_shown_wide);
+    end
+    else begin
+        reg_word24_chain_out_data = reg_word23_chain_out_data;
+    end
+end
+
+
+
+assign reg_word24_shown_wide = {31'h0, reg_word24_shown};
+
+
+
+assign reg_word24_mine_write = (written_addr == 96);
+
+
+always @(reg_word24_shown_wide, reg_word24_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word24_merge_bytes
+    if ((reg_word24_set_mine && (set_index == 0))) begin
+        reg_word24_written = set_value[1-1:0];
+    end
+    else begin
+        reg_word24_written = ((reg_word24_shown_wide[1-1:0] & (~written_mask[1-1:0])) | (written_data[1-1:0] & written_mask[1-1:0]));
+    end
+end
+
+
+
+assign reg_word24_honoured = reg_word24_written[1-1:0];
+
+
+
+assign reg_word24_chain_out_clamped = (reg_word23_chain_out_clamped || reg_word24_clamped);
+
+
+always @(posedge clock, negedge reset) begin: reg_word24__store16_hold_rw
+    if (reset == 0) begin
+        reg_word24_shown <= 0;
+        reg_word24_clamped <= 0;
+    end
+    else begin
+        reg_word24_clamped <= 1'b0;
+        if (((reg_word24_set_mine && (set_index == 0)) || (io_written && reg_word24_mine_write))) begin
+            reg_word24_shown <= reg_word24_honoured;
+            reg_word24_clamped <= reg_word24_out_of_range;
+        end
+    end
+end
+
+
+
+assign reg_word25_mine = (local_addr == 100);
+
+
+always @(reg_word25_mine, reg_word25_shown_wide, reg_word24_chain_out_data) begin: reg_word25_read_chain
+    if (reg_word25_mine) begin
+        reg_word25_chain_out_data = (reg_word24_chain_out_data | reg_word25_shown_wide);
+    end
+    else begin
+        reg_word25_chain_out_data = reg_word24_chain_out_data;
+    end
+end
+
+
+
+assign reg_word25_shown_wide = {14'h0, reg_word25_shown};
+
+
+
+assign reg_word25_chain_out_clamped = reg_word24_chain_out_clamped;
+
+
+
+assign reg_word26_mine = (local_addr == 104);
+
+
+always @(reg_word26_mine, reg_word26_shown_wide, reg_word25_chain_out_data) begin: reg_word26_read_chain
+    if (reg_word26_mine) begin
+        reg_word26_chain_out_data = (reg_word25_chain_out_data | reg_word26_shown_wide);
+    end
+    else begin
+        reg_word26_chain_out_data = reg_word25_chain_out_data;
+    end
+end
+
+
+
+assign reg_word26_shown_wide = {24'h0, reg_word26_shown};
+
+
+
+assign reg_word26_chain_out_clamped = reg_word25_chain_out_clamped;
+
+
+
+assign reg_word27_mine = (local_addr == 108);
+
+
+always @(reg_word27_mine, reg_word27_shown_wide, reg_word26_chain_out_data) begin: reg_word27_read_chain
+    if (reg_word27_mine) begin
+        reg_word27_chain_out_data = (reg_word26_chain_out_data | reg_word27_shown_wide);
+    end
+    else begin
+        reg_word27_chain_out_data = reg_word26_chain_out_data;
+    end
+end
+
+
+
+assign reg_word27_shown_wide = {25'h0, reg_word27_shown};
+
+
+
+assign reg_word27_mine_write = (written_addr == 108);
+
+
+always @(reg_word27_shown_wide, reg_word27_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word27_merge_bytes
+    if ((reg_word27_set_mine && (set_index == 0))) begin
+        reg_word27_written = set_value[7-1:0];
+    end
+    else begin
+        reg_word27_written = ((reg_word27_shown_wide[7-1:0] & (~written_mask[7-1:0])) | (written_data[7-1:0] & written_mask[7-1:0]));
+    end
+end
+
+
+
+assign reg_word27_honoured = reg_word27_written[7-1:0];
+
+
+
+assign reg_word27_chain_out_clamped = (reg_word26_chain_out_clamped || reg_word27_clamped);
+
+
+always @(posedge clock, negedge reset) begin: reg_word27__store17_hold_rw
+    if (reset == 0) begin
+        reg_word27_shown <= 0;
+        reg_word27_clamped <= 0;
+    end
+    else begin
+        reg_word27_clamped <= 1'b0;
+        if (((reg_word27_set_mine && (set_index == 0)) || (io_written && reg_word27_mine_write))) begin
+            reg_word27_shown <= reg_word27_honoured;
+            reg_word27_clamped <= reg_word27_out_of_range;
+        end
+    end
+end
+
+
+
+assign reg_word28_mine = (local_addr == 112);
+
+
+always @(reg_word28_mine, reg_word28_shown_wide, reg_word27_chain_out_data) begin: reg_word28_read_chain
+    if (reg_word28_mine) begin
+        reg_word28_chain_out_data = (reg_word27_chain_out_data | reg_word28_shown_wide);
+    end
+    else begin
+        reg_word28_chain_out_data = reg_word27_chain_out_data;
+    end
+end
+
+
+
+assign reg_word28_shown_wide = {28'h0, reg_word28_shown};
+
+
+
+assign reg_word28_mine_write = (written_addr == 112);
+
+
+always @(reg_word28_shown_wide, reg_word28_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word28_merge_bytes
+    if ((reg_word28_set_mine && (set_index == 0))) begin
+        reg_word28_written = set_value[32-1:0];
+    end
+    else begin
+        reg_word28_written = ((reg_word28_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+    end
+end
+
+
+always @(reg_word28_written) begin: reg_word28__limit18_clamp_unsigned_power_of_two
+    reg_word28_out_of_range = 1'b1;
+    if (((reg_word28_written[32-1:1] == 0) && (reg_word28_written[1-1:0] < 1))) begin
+        reg_word28_honoured = 1;
+    end
+    else if ((reg_word28_written[32-1:4] != 0)) begin
+        reg_word28_honoured = 15;
+    end
+    else begin
+        reg_word28_honoured = reg_word28_written[4-1:0];
+        reg_word28_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign reg_word28_chain_out_clamped = (reg_word27_chain_out_clamped || reg_word28_clamped);
+
+
+always @(posedge clock, negedge reset) begin: reg_word28__store18_hold_rw
+    if (reset == 0) begin
+        reg_word28_shown <= 3;
+        reg_word28_clamped <= 0;
+    end
+    else begin
+        reg_word28_clamped <= 1'b0;
+        if (((reg_word28_set_mine && (set_index == 0)) || (io_written && reg_word28_mine_write))) begin
+            reg_word28_shown <= reg_word28_honoured;
+            reg_word28_clamped <= reg_word28_out_of_range;
+        end
+    end
+end
+
+
+
+assign reg_word29_mine = (local_addr == 116);
+
+
+always @(reg_word29_mine, reg_word29_shown_wide, reg_word28_chain_out_data) begin: reg_word29_read_chain
+    if (reg_word29_mine) begin
+        reg_word29_chain_out_data = (reg_word28_chain_out_data | reg_word29_shown_wide);
+    end
+    else begin
+        reg_word29_chain_out_data = reg_word28_chain_out_data;
+    end
+end
+
+
+
+assign reg_word29_shown_wide = {16'h0, reg_word29_shown};
+
+
+
+assign reg_word29_mine_write = (written_addr == 116);
+
+
+always @(reg_word29_shown_wide, reg_word29_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word29_merge_bytes
+    if ((reg_word29_set_mine && (set_index == 0))) begin
+        reg_word29_written = set_value[32-1:0];
+    end
+    else begin
+        reg_word29_written = ((reg_word29_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+    end
+end
+
+
+always @(reg_word29_written) begin: reg_word29__limit19_clamp_unsigned_power_of_two
+    reg_word29_out_of_range = 1'b1;
+    if (((reg_word29_written[32-1:1] == 0) && (reg_word29_written[1-1:0] < 1))) begin
+        reg_word29_honoured = 1;
+    end
+    else if ((reg_word29_written[32-1:16] != 0)) begin
+        reg_word29_honoured = 65535;
+    end
+    else begin
+        reg_word29_honoured = reg_word29_written[16-1:0];
+        reg_word29_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign reg_word29_chain_out_clamped = (reg_word28_chain_out_clamped || reg_word29_clamped);
+
+
+always @(posedge clock, negedge reset) begin: reg_word29__store19_hold_rw
+    if (reset == 0) begin
+        reg_word29_shown <= 1;
+        reg_word29_clamped <= 0;
+    end
+    else begin
+        reg_word29_clamped <= 1'b0;
+        if (((reg_word29_set_mine && (set_index == 0)) || (io_written && reg_word29_mine_write))) begin
+            reg_word29_shown <= reg_word29_honoured;
+            reg_word29_clamped <= reg_word29_out_of_range;
+        end
+    end
+end
+
+
+
+assign reg_word30_mine = (local_addr == 120);
+
+
+always @(reg_word30_mine, reg_word30_shown_wide, reg_word29_chain_out_data) begin: reg_word30_read_chain
+    if (reg_word30_mine) begin
+        read_end = (reg_word29_chain_out_data | reg_word30_shown_wide);
+    end
+    else begin
+        read_end = reg_word29_chain_out_data;
+    end
+end
+
+
+
+assign reg_word30_shown_wide = {8'h0, reg_word30_shown};
+
+
+
+assign reg_word30_mine_write = (written_addr == 120);
+
+
+
+assign reg_word30_written = (written_data[24-1:0] & written_mask[24-1:0]);
+
+
+
+assign reg_word30_honoured = reg_word30_written[24-1:0];
+
+
+
+assign reg_word30_chain_out_clamped = (reg_word29_chain_out_clamped || reg_word30_clamped);
+
+
+always @(posedge clock, negedge reset) begin: reg_word30__store20_pulse_on_write
+    if (reset == 0) begin
+        reg_word30__store20_word_strobe <= 0;
+        reg_word30__store20_word_value <= 0;
+        reg_word30_clamped <= 0;
+    end
+    else begin
+        reg_word30__store20_word_strobe <= 1'b0;
+        reg_word30_clamped <= 1'b0;
+        if ((io_written && reg_word30_mine_write)) begin
+            reg_word30__store20_word_value <= reg_word30_honoured;
+            reg_word30__store20_word_strobe <= 1'b1;
+            reg_word30_clamped <= reg_word30_out_of_range;
+        end
+    end
+end
 
 
 
@@ -1976,7 +2461,7 @@ always @(fifo_dout) begin: sequencer0_lookup_variant
 end
 
 
-always @(sequencer0_arriving_count, fifo_empty, sequencer0_state, sequencer0_word_due, sequencer0_next_valid, core_clear, sequencer0_next_count, sequencer0_fetched) begin: sequencer0_fetch_request
+always @(sequencer0_arriving_count, fifo_empty, sequencer0_state, sequencer0_word_due, sequencer0_next_valid, sequencer_clear, sequencer0_next_count, sequencer0_fetched) begin: sequencer0_fetch_request
     reg more;
     more = 1'b1;
     if (sequencer0_word_due) begin
@@ -1987,7 +2472,7 @@ always @(sequencer0_arriving_count, fifo_empty, sequencer0_state, sequencer0_wor
             more = (sequencer0_fetched < sequencer0_next_count);
         end
     end
-    fifo_pop = ((!fifo_empty) && (!sequencer0_next_valid) && more && (!core_clear) && (sequencer0_state != 3'b100));
+    fifo_pop = ((!fifo_empty) && (!sequencer0_next_valid) && more && (!sequencer_clear) && (sequencer0_state != 3'b100));
 end
 
 
@@ -2016,7 +2501,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
     end
     else begin
         sequencer0_word_due <= fifo_pop;
-        if ((core_clear || sequencer0_discard)) begin
+        if ((sequencer_clear || sequencer0_discard)) begin
             sequencer0_word_due <= 0;
             sequencer0_fetched <= 0;
             sequencer0_next_valid <= 0;
@@ -2133,7 +2618,7 @@ end
 
 
 
-assign sequencer0_issue = (sequencer0_next_valid && enable && sequencer0_finishing && (!core_clear));
+assign sequencer0_issue = (sequencer0_next_valid && enable && sequencer0_finishing && (!sequencer_clear));
 
 
 always @(posedge clock, negedge reset) begin: sequencer0_execute
@@ -2151,7 +2636,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
         seq_load <= 0;
         set_strobe <= 0;
         sequencer0_mark_strobe <= 0;
-        if (core_clear) begin
+        if (sequencer_clear) begin
             sequencer0_state <= 3'b000;
             error_code <= 0;
         end
@@ -2511,10 +2996,10 @@ assign out_active = ((pulse_out0_count != 0) || (pulse_out0_phase != 2'b00) || p
 assign pulse_out0_head = pulse_out0_queue[0];
 
 
-always @(pulse_out0_phase_clocks, pulse_out0_head, pulse_out0_phase, pulse_out0_count, pulse_out0_dir_level_x, pulse_out0_dir_level_y, reg_word14_shown, pulse_out0_low_clocks, reg_word13_shown, core_clear) begin: pulse_out0_decide
+always @(pulse_out0_phase_clocks, pulse_out0_head, pulse_out0_phase, pulse_out0_count, pulse_out0_dir_level_x, pulse_out0_dir_level_y, reg_word14_shown, pulse_out0_low_clocks, reg_word13_shown, pulse_clear) begin: pulse_out0_decide
     pulse_out0_turn = ((pulse_out0_count != 0) && ((pulse_out0_head[0] && (pulse_out0_head[2] != pulse_out0_dir_level_x)) || (pulse_out0_head[1] && (pulse_out0_head[3] != pulse_out0_dir_level_y))));
     pulse_out0_take = 1'b0;
-    if (((pulse_out0_phase != 2'b10) && (!core_clear) && (pulse_out0_low_clocks >= reg_word13_shown))) begin
+    if (((pulse_out0_phase != 2'b10) && (!pulse_clear) && (pulse_out0_low_clocks >= reg_word13_shown))) begin
         if ((pulse_out0_phase == 2'b01)) begin
             pulse_out0_take = (pulse_out0_phase_clocks >= reg_word14_shown);
         end
@@ -2525,8 +3010,8 @@ always @(pulse_out0_phase_clocks, pulse_out0_head, pulse_out0_phase, pulse_out0_
 end
 
 
-always @(pulse_out0_phase_clocks, pulse_out0_phase, pulse_out0_low_clocks, pulse_out0_turn, reg_word13_shown, core_clear, pulse_out0_take, reg_word15_shown) begin: pulse_out0_restart
-    pulse_out0_starts = (pulse_out0_take || ((pulse_out0_phase == 2'b00) && (!core_clear) && pulse_out0_turn && (pulse_out0_low_clocks >= reg_word15_shown)));
+always @(pulse_out0_phase_clocks, pulse_out0_phase, pulse_out0_low_clocks, pulse_out0_turn, reg_word13_shown, pulse_clear, pulse_out0_take, reg_word15_shown) begin: pulse_out0_restart
+    pulse_out0_starts = (pulse_out0_take || ((pulse_out0_phase == 2'b00) && (!pulse_clear) && pulse_out0_turn && (pulse_out0_low_clocks >= reg_word15_shown)));
     pulse_out0_high_ends = ((pulse_out0_phase == 2'b10) && (pulse_out0_phase_clocks >= reg_word13_shown));
     pulse_out0_phase_step = 0;
     if ((pulse_out0_phase_clocks != 255)) begin
@@ -2582,7 +3067,7 @@ always @(posedge clock, negedge reset) begin: pulse_out0_step_phases
             pulse_out0_level_y <= pulse_out0_head[1];
             pulse_out0_phase <= 2'b10;
         end
-        else if (core_clear) begin
+        else if (pulse_clear) begin
             pulse_out0_phase <= 2'b00;
         end
         else if (((pulse_out0_phase == 2'b00) && pulse_out0_starts)) begin
@@ -2610,9 +3095,9 @@ always @(posedge clock, negedge reset) begin: pulse_out0_fill
         pulse_out0_queue[3] <= 0;
     end
     else begin
-        pushed = (requests_step_x || requests_step_y);
-        entry = {requests_dir_y, requests_dir_x, requests_step_y, requests_step_x};
-        if (core_clear) begin
+        pushed = (pulse_out0_request_step_x || pulse_out0_request_step_y);
+        entry = {pulse_out0_request_dir_y, pulse_out0_request_dir_x, pulse_out0_request_step_y, pulse_out0_request_step_x};
+        if (pulse_clear) begin
             pulse_out0_count <= 0;
         end
         else if (pulse_out0_take) begin
@@ -2681,6 +3166,306 @@ always @(posedge clock, negedge reset) begin: pulse_out0_drive_pins
 end
 
 
+always @(posedge clock, negedge reset) begin: input_filter0_synchronise
+    if (reset == 0) begin
+        input_filter0_inputs_raw <= 0;
+        input_filter0_sync <= 0;
+    end
+    else begin
+        input_filter0_sync <= input_filter0_inputs_pins;
+        input_filter0_inputs_raw <= input_filter0_sync;
+    end
+end
+
+
+
+assign input_filter0_level = (input_filter0_inputs_raw ^ reg_word27_shown);
+assign input_filter0_sample = (input_filter0_prescale == 0);
+
+
+always @(posedge clock, negedge reset) begin: input_filter0_prescaler
+    if (reset == 0) begin
+        input_filter0_prescale <= 0;
+    end
+    else begin
+        if (input_filter0_sample) begin
+            input_filter0_prescale <= (reg_word29_shown - 1);
+        end
+        else begin
+            input_filter0_prescale <= (input_filter0_prescale - 1);
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: input_filter0_follow
+    if (reset == 0) begin
+        input_filter0_inputs_changed <= 0;
+        input_filter0_inputs_active <= 0;
+    end
+    else begin
+        input_filter0_inputs_active <= (input_filter0_inputs_active ^ input_filter0_taken);
+        input_filter0_inputs_changed <= (input_filter0_taken != 0);
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: input_filter0__input_count0_count_samples
+    if (reset == 0) begin
+        input_filter0__input_count0_held <= 0;
+    end
+    else begin
+        if ((input_filter0_level[0] == input_filter0_inputs_active[0])) begin
+            input_filter0__input_count0_held <= 0;
+        end
+        else if (input_filter0_sample) begin
+            if (input_filter0__input_count0_taken) begin
+                input_filter0__input_count0_held <= 0;
+            end
+            else begin
+                input_filter0__input_count0_held <= (input_filter0__input_count0_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign input_filter0__input_count0_taken = (input_filter0_sample && (input_filter0_level[0] != input_filter0_inputs_active[0]) && ((input_filter0__input_count0_held + 1) >= reg_word28_shown));
+
+
+always @(posedge clock, negedge reset) begin: input_filter0__input_count1_count_samples
+    if (reset == 0) begin
+        input_filter0__input_count1_held <= 0;
+    end
+    else begin
+        if ((input_filter0_level[1] == input_filter0_inputs_active[1])) begin
+            input_filter0__input_count1_held <= 0;
+        end
+        else if (input_filter0_sample) begin
+            if (input_filter0__input_count1_taken) begin
+                input_filter0__input_count1_held <= 0;
+            end
+            else begin
+                input_filter0__input_count1_held <= (input_filter0__input_count1_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign input_filter0__input_count1_taken = (input_filter0_sample && (input_filter0_level[1] != input_filter0_inputs_active[1]) && ((input_filter0__input_count1_held + 1) >= reg_word28_shown));
+
+
+always @(posedge clock, negedge reset) begin: input_filter0__input_count2_count_samples
+    if (reset == 0) begin
+        input_filter0__input_count2_held <= 0;
+    end
+    else begin
+        if ((input_filter0_level[2] == input_filter0_inputs_active[2])) begin
+            input_filter0__input_count2_held <= 0;
+        end
+        else if (input_filter0_sample) begin
+            if (input_filter0__input_count2_taken) begin
+                input_filter0__input_count2_held <= 0;
+            end
+            else begin
+                input_filter0__input_count2_held <= (input_filter0__input_count2_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign input_filter0__input_count2_taken = (input_filter0_sample && (input_filter0_level[2] != input_filter0_inputs_active[2]) && ((input_filter0__input_count2_held + 1) >= reg_word28_shown));
+
+
+always @(posedge clock, negedge reset) begin: input_filter0__input_count3_count_samples
+    if (reset == 0) begin
+        input_filter0__input_count3_held <= 0;
+    end
+    else begin
+        if ((input_filter0_level[3] == input_filter0_inputs_active[3])) begin
+            input_filter0__input_count3_held <= 0;
+        end
+        else if (input_filter0_sample) begin
+            if (input_filter0__input_count3_taken) begin
+                input_filter0__input_count3_held <= 0;
+            end
+            else begin
+                input_filter0__input_count3_held <= (input_filter0__input_count3_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign input_filter0__input_count3_taken = (input_filter0_sample && (input_filter0_level[3] != input_filter0_inputs_active[3]) && ((input_filter0__input_count3_held + 1) >= reg_word28_shown));
+
+
+always @(posedge clock, negedge reset) begin: input_filter0__input_count4_count_samples
+    if (reset == 0) begin
+        input_filter0__input_count4_held <= 0;
+    end
+    else begin
+        if ((input_filter0_level[4] == input_filter0_inputs_active[4])) begin
+            input_filter0__input_count4_held <= 0;
+        end
+        else if (input_filter0_sample) begin
+            if (input_filter0__input_count4_taken) begin
+                input_filter0__input_count4_held <= 0;
+            end
+            else begin
+                input_filter0__input_count4_held <= (input_filter0__input_count4_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign input_filter0__input_count4_taken = (input_filter0_sample && (input_filter0_level[4] != input_filter0_inputs_active[4]) && ((input_filter0__input_count4_held + 1) >= reg_word28_shown));
+
+
+always @(posedge clock, negedge reset) begin: input_filter0__input_count5_count_samples
+    if (reset == 0) begin
+        input_filter0__input_count5_held <= 0;
+    end
+    else begin
+        if ((input_filter0_level[5] == input_filter0_inputs_active[5])) begin
+            input_filter0__input_count5_held <= 0;
+        end
+        else if (input_filter0_sample) begin
+            if (input_filter0__input_count5_taken) begin
+                input_filter0__input_count5_held <= 0;
+            end
+            else begin
+                input_filter0__input_count5_held <= (input_filter0__input_count5_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign input_filter0__input_count5_taken = (input_filter0_sample && (input_filter0_level[5] != input_filter0_inputs_active[5]) && ((input_filter0__input_count5_held + 1) >= reg_word28_shown));
+
+
+always @(posedge clock, negedge reset) begin: input_filter0__input_count6_count_samples
+    if (reset == 0) begin
+        input_filter0__input_count6_held <= 0;
+    end
+    else begin
+        if ((input_filter0_level[6] == input_filter0_inputs_active[6])) begin
+            input_filter0__input_count6_held <= 0;
+        end
+        else if (input_filter0_sample) begin
+            if (input_filter0__input_count6_taken) begin
+                input_filter0__input_count6_held <= 0;
+            end
+            else begin
+                input_filter0__input_count6_held <= (input_filter0__input_count6_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign input_filter0__input_count6_taken = (input_filter0_sample && (input_filter0_level[6] != input_filter0_inputs_active[6]) && ((input_filter0__input_count6_held + 1) >= reg_word28_shown));
+
+
+
+assign machine_guard0_estop = input_filter0_inputs_active[0];
+assign machine_guard0_expired = ((reg_word30_shown == 1) && (!reg_word30__store20_word_strobe));
+assign machine_guard0_hits = {(requests_step_y && (!requests_dir_y) && input_filter0_inputs_active[4]), (requests_step_y && requests_dir_y && input_filter0_inputs_active[3]), (requests_step_x && (!requests_dir_x) && input_filter0_inputs_active[2]), (requests_step_x && requests_dir_x && input_filter0_inputs_active[1])};
+
+
+always @(machine_guard0_hits, guard_stopped, requests_step_x, requests_dir_y, requests_step_y, requests_dir_x, machine_guard0_estop) begin: machine_guard0_gate
+    reg passes;
+    halt = (guard_stopped || machine_guard0_estop);
+    passes = ((!(guard_stopped || machine_guard0_estop)) && (machine_guard0_hits == 0));
+    pulse_out0_request_step_x = (requests_step_x && passes);
+    pulse_out0_request_step_y = (requests_step_y && passes);
+    pulse_out0_request_dir_x = requests_dir_x;
+    pulse_out0_request_dir_y = requests_dir_y;
+end
+
+
+always @(posedge clock, negedge reset) begin: machine_guard0_latch
+    reg stopped;
+    if (reset == 0) begin
+        guard_stopped <= 0;
+        guard_stop_event <= 0;
+        pins_drive_enable <= 0;
+        machine_guard0_guard_limits <= 0;
+        machine_guard0_guard_reason <= 0;
+    end
+    else begin
+        stopped = (guard_stopped != 0);
+        guard_stop_event <= 0;
+        if ((!guard_stopped)) begin
+            if ((machine_guard0_estop || machine_guard0_expired || (machine_guard0_hits != 0))) begin
+                stopped = 1'b1;
+                guard_stop_event <= 1;
+                machine_guard0_guard_limits <= 0;
+                if (machine_guard0_estop) begin
+                    machine_guard0_guard_reason <= 1;
+                end
+                else if (machine_guard0_expired) begin
+                    machine_guard0_guard_reason <= 2;
+                end
+                else begin
+                    machine_guard0_guard_reason <= 3;
+                    machine_guard0_guard_limits <= machine_guard0_hits;
+                end
+            end
+        end
+        else if ((clear_stop && (!machine_guard0_estop))) begin
+            stopped = 1'b0;
+            machine_guard0_guard_reason <= 0;
+            machine_guard0_guard_limits <= 0;
+        end
+        guard_stopped <= stopped;
+        pins_drive_enable <= ((reg_word24_shown != 0) && (!stopped) && (!machine_guard0_estop));
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: machine_guard0_watchdog
+    if (reset == 0) begin
+        reg_word30_shown <= 0;
+    end
+    else begin
+        if (reg_word30__store20_word_strobe) begin
+            reg_word30_shown <= reg_word30__store20_word_value;
+        end
+        else if ((reg_word30_shown != 0)) begin
+            reg_word30_shown <= (reg_word30_shown - 1);
+        end
+    end
+end
+
+
+always @(guard_stopped, input_filter0_inputs_raw, pins_drive_enable, input_filter0_inputs_active, machine_guard0_guard_limits, machine_guard0_guard_reason) begin: _machine_words0_assemble
+    reg [18-1:0] word;
+    reg [8-1:0] why;
+    word = 18'h0;
+    word[0+:7] = input_filter0_inputs_raw;
+    word[8+:7] = input_filter0_inputs_active;
+    word[16] = guard_stopped;
+    word[17] = pins_drive_enable;
+    reg_word25_shown = word;
+    why = 8'h0;
+    why[0+:2] = machine_guard0_guard_reason;
+    why[4+:4] = machine_guard0_guard_limits;
+    reg_word26_shown = why;
+end
+
+
 always @(local_re, io_written, local_be, local_space, local_we, fifo_full) begin: decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
@@ -2732,24 +3517,29 @@ end
 
 
 
-assign enable = (control[0] && (!control[1]));
+assign enable = (control[0] && (!control[1]) && (!halt));
 assign direct_mode = control[1];
 assign clear_error = (command_strobe && command[1]);
 assign clear_position = (command_strobe && command[2]);
+assign clear_stop = (command_strobe && command[3]);
+assign pulse_clear = (core_clear || halt);
+assign sequencer_clear = (core_clear || guard_stopped);
 
 
 always @(posedge clock, negedge reset) begin: soft_reset
     if (reset == 0) begin
+        soft_reset_taken <= 0;
         core_clear <= 0;
     end
     else begin
-        core_clear <= (command_strobe && command[0]);
+        soft_reset_taken <= (command_strobe && command[0]);
+        core_clear <= ((command_strobe && command[0]) || guard_stop_event);
     end
 end
 
 
 
-assign fifo_flush = (core_clear || (discard_on_clear && io_written && (written_addr == 8) && written_data[1] && written_mask[1]));
+assign fifo_flush = (soft_reset_taken || (io_written && (written_addr == 8) && ((discard_on_clear && written_data[1] && written_mask[1]) || (guard_stopped && written_data[3] && written_mask[3]))));
 
 
 always @(posedge clock, negedge reset) begin: outputs_before
@@ -2795,9 +3585,9 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(reg_word19__store14_word_strobe, reg_word19__store14_word_value, seq_load, sequencer0_pulses_count_x, direct_mode) begin: _axis_source0_choose_source
+always @(reg_word19__store14_word_strobe, reg_word19__store14_word_value, seq_load, sequencer0_pulses_count_x, direct_mode, halt) begin: _axis_source0_choose_source
     if (direct_mode) begin
-        direct_pulse0_command_load = reg_word19__store14_word_strobe;
+        direct_pulse0_command_load = (reg_word19__store14_word_strobe && (!halt));
         direct_pulse0_command_count = $signed(reg_word19__store14_word_value);
     end
     else begin
@@ -2807,9 +3597,9 @@ always @(reg_word19__store14_word_strobe, reg_word19__store14_word_value, seq_lo
 end
 
 
-always @(reg_word20__store15_word_strobe, reg_word20__store15_word_value, seq_load, sequencer0_pulses_count_y, direct_mode) begin: _axis_source1_choose_source
+always @(reg_word20__store15_word_strobe, reg_word20__store15_word_value, seq_load, sequencer0_pulses_count_y, direct_mode, halt) begin: _axis_source1_choose_source
     if (direct_mode) begin
-        direct_pulse1_command_load = reg_word20__store15_word_strobe;
+        direct_pulse1_command_load = (reg_word20__store15_word_strobe && (!halt));
         direct_pulse1_command_count = $signed(reg_word20__store15_word_value);
     end
     else begin
@@ -2836,7 +3626,7 @@ always @(posedge clock, negedge reset) begin: _status0_track_done
 end
 
 
-always @(fifo_empty, done_flag, error_code, any_busy, dda_quadrant, level_wide, fifo_full) begin: _status0_assemble
+always @(fifo_empty, done_flag, error_code, any_busy, dda_quadrant, guard_stopped, level_wide, fifo_full) begin: _status0_assemble
     reg [32-1:0] word;
     word = 32'h0;
     word[0] = any_busy;
@@ -2845,6 +3635,7 @@ always @(fifo_empty, done_flag, error_code, any_busy, dda_quadrant, level_wide, 
     word[4+:4] = error_code;
     word[8] = fifo_empty;
     word[9] = fifo_full;
+    word[10] = guard_stopped;
     word[32-1:16] = level_wide;
     reg_word3_shown = word;
 end
@@ -2866,14 +3657,16 @@ always @(posedge clock, negedge reset) begin: _interrupts0_remember
 end
 
 
-always @(reg_word23_chain_out_clamped, error_code, reg_word6_shown, sequencer0_mark_strobe, error_before, any_busy, level_wide, busy_before, low_before) begin: _interrupts0_detect
-    reg [5-1:0] word;
-    word = 5'h0;
+always @(reg_word30_chain_out_clamped, error_code, reg_word6_shown, sequencer0_mark_strobe, error_before, any_busy, input_filter0_inputs_changed, level_wide, busy_before, guard_stop_event, low_before) begin: _interrupts0_detect
+    reg [7-1:0] word;
+    word = 7'h0;
     word[0] = (busy_before && (!any_busy));
     word[1] = ((level_wide < reg_word6_shown) && (!low_before));
     word[2] = ((error_code != 0) && (!error_before));
     word[3] = sequencer0_mark_strobe;
-    word[4] = reg_word23_chain_out_clamped;
+    word[4] = reg_word30_chain_out_clamped;
+    word[5] = guard_stop_event;
+    word[6] = input_filter0_inputs_changed;
     reg_word5__store3_word_hw = word;
 end
 

@@ -21,7 +21,15 @@ module top (
     motor_step_x,
     motor_dir_x,
     motor_step_y,
-    motor_dir_y
+    motor_dir_y,
+    motor_drive_enable,
+    motor_estop,
+    motor_limit_pos_x,
+    motor_limit_neg_x,
+    motor_limit_pos_y,
+    motor_limit_neg_y,
+    motor_home_x,
+    motor_home_y
 );
 // The card as synthesised: PCI pads (the only tri-states) around the card.
 // 
@@ -69,6 +77,15 @@ output motor_step_y;
 reg motor_step_y;
 output motor_dir_y;
 reg motor_dir_y;
+output motor_drive_enable;
+reg motor_drive_enable;
+input motor_estop;
+input motor_limit_pos_x;
+input motor_limit_neg_x;
+input motor_limit_pos_y;
+input motor_limit_neg_y;
+input motor_home_x;
+input motor_home_y;
 
 reg pci_pads0_tristate_pad0_to_pin;
 reg pci_pads0_tristate_pad0_enable;
@@ -272,12 +289,14 @@ wire card1_card_core1_regs_fifo2_any_busy;
 reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
 wire card1_card_core1_regs_fifo2_clear_error;
 wire card1_card_core1_regs_fifo2_clear_position;
+wire card1_card_core1_regs_fifo2_clear_stop;
 wire card1_card_core1_regs_fifo2_direct_mode;
 wire card1_card_core1_regs_fifo2_discard_on_clear;
 wire card1_card_core1_regs_fifo2_enable;
 wire card1_card_core1_regs_fifo2_fifo_flush;
 wire card1_card_core1_regs_fifo2_fifo_full;
 wire [9:0] card1_card_core1_regs_fifo2_fifo_level;
+reg card1_card_core1_regs_fifo2_halt;
 wire card1_card_core1_regs_fifo2_hold;
 reg card1_card_core1_regs_fifo2_io_read;
 reg card1_card_core1_regs_fifo2_io_write;
@@ -290,9 +309,12 @@ wire card1_card_core1_regs_fifo2_out_ready;
 wire card1_card_core1_regs_fifo2_outputs_busy;
 reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 wire card1_card_core1_regs_fifo2_pulse_busy;
+wire card1_card_core1_regs_fifo2_pulse_clear;
 reg card1_card_core1_regs_fifo2_push;
 reg card1_card_core1_regs_fifo2_requested_before;
 wire card1_card_core1_regs_fifo2_seq_busy;
+wire card1_card_core1_regs_fifo2_sequencer_clear;
+reg card1_card_core1_regs_fifo2_soft_reset_taken;
 reg card1_card_core1_regs_fifo2_tick;
 reg [11:0] card1_card_core1_regs_fifo2_written_addr;
 reg [31:0] card1_card_core1_regs_fifo2_written_data;
@@ -300,7 +322,9 @@ reg [31:0] card1_card_core1_regs_fifo2_written_mask;
 reg [31:0] card1_card_core1_regs_fifo2_read_end;
 reg [1:0] card1_card_core1_regs_fifo2_control;
 reg card1_card_core1_regs_fifo2_command_strobe;
-reg [2:0] card1_card_core1_regs_fifo2_command;
+reg [3:0] card1_card_core1_regs_fifo2_command;
+reg card1_card_core1_regs_fifo2_guard_stopped;
+reg card1_card_core1_regs_fifo2_guard_stop_event;
 wire card1_card_core1_regs_fifo2_requests_step_x;
 wire card1_card_core1_regs_fifo2_requests_step_y;
 reg signed [31:0] card1_card_core1_regs_fifo2_position_y;
@@ -328,213 +352,279 @@ wire card1_card_core1_regs_fifo2_sync_fifo2_last_beyond;
 wire card1_card_core1_regs_fifo2_sync_fifo2_one_word;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_read_addr;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_write_addr;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word48_shown;
-wire card1_card_core1_regs_fifo2_reg_word48_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word48_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word48_chain_out_data;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word48_chain_in_data;
-wire card1_card_core1_regs_fifo2_reg_word48_chain_out_clamped;
-wire card1_card_core1_regs_fifo2_reg_word48_chain_in_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word49_honoured;
-wire card1_card_core1_regs_fifo2_reg_word49_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word49_clamped;
-wire card1_card_core1_regs_fifo2_reg_word49_mine;
-wire card1_card_core1_regs_fifo2_reg_word49_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word49_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word49_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word49_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word49_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word49_chain_out_clamped;
-wire [2:0] card1_card_core1_regs_fifo2_reg_word50_honoured;
-wire card1_card_core1_regs_fifo2_reg_word50_out_of_range;
-wire [2:0] card1_card_core1_regs_fifo2_reg_word50_shown;
-reg card1_card_core1_regs_fifo2_reg_word50_clamped;
-wire card1_card_core1_regs_fifo2_reg_word50_mine;
-wire card1_card_core1_regs_fifo2_reg_word50_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word50_shown_wide;
-wire [2:0] card1_card_core1_regs_fifo2_reg_word50_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word50_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word50_chain_out_clamped;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word51_shown;
-wire card1_card_core1_regs_fifo2_reg_word51_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word51_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word51_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word51_chain_out_clamped;
-wire [4:0] card1_card_core1_regs_fifo2_reg_word52_honoured;
-wire card1_card_core1_regs_fifo2_reg_word52_out_of_range;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word52_shown;
-reg card1_card_core1_regs_fifo2_reg_word52_clamped;
-wire card1_card_core1_regs_fifo2_reg_word52_mine;
-wire card1_card_core1_regs_fifo2_reg_word52_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word52_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word52_shown_wide;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word52_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word52_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word52_chain_out_clamped;
-wire [4:0] card1_card_core1_regs_fifo2_reg_word53_honoured;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word53_shown;
-wire card1_card_core1_regs_fifo2_reg_word53_mine;
-wire card1_card_core1_regs_fifo2_reg_word53_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word53_shown_wide;
-wire [4:0] card1_card_core1_regs_fifo2_reg_word53_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word53_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word53_chain_out_clamped;
-reg [4:0] card1_card_core1_regs_fifo2_reg_word53__store35_word_hw;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word54_honoured;
-wire card1_card_core1_regs_fifo2_reg_word54_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word54_shown;
-reg card1_card_core1_regs_fifo2_reg_word54_clamped;
-wire card1_card_core1_regs_fifo2_reg_word54_mine;
-wire card1_card_core1_regs_fifo2_reg_word54_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word54_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word54_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word54_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word54_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word54_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word55_shown;
-wire card1_card_core1_regs_fifo2_reg_word55_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word55_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word55_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word55_chain_out_clamped;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word56_shown;
-wire card1_card_core1_regs_fifo2_reg_word56_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word56_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word56_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word56_chain_out_clamped;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word57_shown;
-wire card1_card_core1_regs_fifo2_reg_word57_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word57_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word57_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word57_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word58_honoured;
-reg card1_card_core1_regs_fifo2_reg_word58_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word58_shown;
-reg card1_card_core1_regs_fifo2_reg_word58_clamped;
-wire card1_card_core1_regs_fifo2_reg_word58_mine;
-wire card1_card_core1_regs_fifo2_reg_word58_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word58_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word58_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word58_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word58_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word59_honoured;
-reg card1_card_core1_regs_fifo2_reg_word59_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word59_shown;
-reg card1_card_core1_regs_fifo2_reg_word59_clamped;
-wire card1_card_core1_regs_fifo2_reg_word59_mine;
-wire card1_card_core1_regs_fifo2_reg_word59_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word59_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word59_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word59_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word59_chain_out_clamped;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word60_honoured;
-wire card1_card_core1_regs_fifo2_reg_word60_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word60_shown;
-reg card1_card_core1_regs_fifo2_reg_word60_clamped;
-wire card1_card_core1_regs_fifo2_reg_word60_mine;
-wire card1_card_core1_regs_fifo2_reg_word60_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word60_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word60_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word60_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word60_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word61_honoured;
-reg card1_card_core1_regs_fifo2_reg_word61_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word61_shown;
-reg card1_card_core1_regs_fifo2_reg_word61_clamped;
-wire card1_card_core1_regs_fifo2_reg_word61_mine;
-wire card1_card_core1_regs_fifo2_reg_word61_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word61_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word61_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word61_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word61_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word62_honoured;
-reg card1_card_core1_regs_fifo2_reg_word62_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word62_shown;
-reg card1_card_core1_regs_fifo2_reg_word62_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word62_shown;
 wire card1_card_core1_regs_fifo2_reg_word62_mine;
-wire card1_card_core1_regs_fifo2_reg_word62_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word62_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word62_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word62_chain_out_data;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word62_chain_in_data;
 wire card1_card_core1_regs_fifo2_reg_word62_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word63_honoured;
-reg card1_card_core1_regs_fifo2_reg_word63_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word63_shown;
+wire card1_card_core1_regs_fifo2_reg_word62_chain_in_clamped;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word63_honoured;
+wire card1_card_core1_regs_fifo2_reg_word63_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word63_clamped;
 wire card1_card_core1_regs_fifo2_reg_word63_mine;
 wire card1_card_core1_regs_fifo2_reg_word63_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word63_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word63_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word63_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word63_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word63_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word63_chain_out_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word64_honoured;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word64_honoured;
 wire card1_card_core1_regs_fifo2_reg_word64_out_of_range;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word64_shown;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word64_shown;
 reg card1_card_core1_regs_fifo2_reg_word64_clamped;
 wire card1_card_core1_regs_fifo2_reg_word64_mine;
 wire card1_card_core1_regs_fifo2_reg_word64_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word64_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word64_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word64_written;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word64_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word64_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word64_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word65_honoured;
-reg card1_card_core1_regs_fifo2_reg_word65_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word65_shown;
-reg card1_card_core1_regs_fifo2_reg_word65_clamped;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word65_shown;
 wire card1_card_core1_regs_fifo2_reg_word65_mine;
-wire card1_card_core1_regs_fifo2_reg_word65_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word65_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word65_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word65_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word65_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word66_honoured;
-reg card1_card_core1_regs_fifo2_reg_word66_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word66_shown;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word66_honoured;
+wire card1_card_core1_regs_fifo2_reg_word66_out_of_range;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word66_shown;
 reg card1_card_core1_regs_fifo2_reg_word66_clamped;
 wire card1_card_core1_regs_fifo2_reg_word66_mine;
 wire card1_card_core1_regs_fifo2_reg_word66_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word66_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word66_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word66_written;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word66_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word66_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word66_chain_out_clamped;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word67_honoured;
-reg card1_card_core1_regs_fifo2_reg_word67_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word67_shown;
-reg card1_card_core1_regs_fifo2_reg_word67_clamped;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word67_honoured;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word67_shown;
 wire card1_card_core1_regs_fifo2_reg_word67_mine;
 wire card1_card_core1_regs_fifo2_reg_word67_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word67_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word67_written;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word67_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word67_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word67_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word67__store46_word_value;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word68_honoured;
-reg card1_card_core1_regs_fifo2_reg_word68_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word68_shown;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word67__store45_word_hw;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word68_honoured;
+wire card1_card_core1_regs_fifo2_reg_word68_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word68_shown;
 reg card1_card_core1_regs_fifo2_reg_word68_clamped;
 wire card1_card_core1_regs_fifo2_reg_word68_mine;
 wire card1_card_core1_regs_fifo2_reg_word68_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word68_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word68_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word68_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word68_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word68_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word68_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word68__store47_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word68__store47_word_value;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word69_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word69_shown;
 wire card1_card_core1_regs_fifo2_reg_word69_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word69_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word69_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word69_chain_out_clamped;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word70_shown;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word70_shown;
 wire card1_card_core1_regs_fifo2_reg_word70_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word70_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word70_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word70_chain_out_clamped;
-wire [27:0] card1_card_core1_regs_fifo2_reg_word71_shown;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word71_shown;
 wire card1_card_core1_regs_fifo2_reg_word71_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word71_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word71_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word71_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word72_honoured;
+reg card1_card_core1_regs_fifo2_reg_word72_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word72_shown;
+reg card1_card_core1_regs_fifo2_reg_word72_clamped;
+wire card1_card_core1_regs_fifo2_reg_word72_mine;
+wire card1_card_core1_regs_fifo2_reg_word72_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word72_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word72_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word72_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word72_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word73_honoured;
+reg card1_card_core1_regs_fifo2_reg_word73_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word73_shown;
+reg card1_card_core1_regs_fifo2_reg_word73_clamped;
+wire card1_card_core1_regs_fifo2_reg_word73_mine;
+wire card1_card_core1_regs_fifo2_reg_word73_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word73_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word73_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word73_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word73_chain_out_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word74_honoured;
+wire card1_card_core1_regs_fifo2_reg_word74_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word74_shown;
+reg card1_card_core1_regs_fifo2_reg_word74_clamped;
+wire card1_card_core1_regs_fifo2_reg_word74_mine;
+wire card1_card_core1_regs_fifo2_reg_word74_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word74_shown_wide;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word74_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word74_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word75_honoured;
+reg card1_card_core1_regs_fifo2_reg_word75_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word75_shown;
+reg card1_card_core1_regs_fifo2_reg_word75_clamped;
+wire card1_card_core1_regs_fifo2_reg_word75_mine;
+wire card1_card_core1_regs_fifo2_reg_word75_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word75_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word75_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word75_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word75_chain_out_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word76_honoured;
+reg card1_card_core1_regs_fifo2_reg_word76_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word76_shown;
+reg card1_card_core1_regs_fifo2_reg_word76_clamped;
+wire card1_card_core1_regs_fifo2_reg_word76_mine;
+wire card1_card_core1_regs_fifo2_reg_word76_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word76_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word76_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word76_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word77_honoured;
+reg card1_card_core1_regs_fifo2_reg_word77_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word77_shown;
+reg card1_card_core1_regs_fifo2_reg_word77_clamped;
+wire card1_card_core1_regs_fifo2_reg_word77_mine;
+wire card1_card_core1_regs_fifo2_reg_word77_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word77_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word77_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word77_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word78_honoured;
+wire card1_card_core1_regs_fifo2_reg_word78_out_of_range;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word78_shown;
+reg card1_card_core1_regs_fifo2_reg_word78_clamped;
+wire card1_card_core1_regs_fifo2_reg_word78_mine;
+wire card1_card_core1_regs_fifo2_reg_word78_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word78_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word78_shown_wide;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word78_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word78_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word79_honoured;
+reg card1_card_core1_regs_fifo2_reg_word79_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word79_shown;
+reg card1_card_core1_regs_fifo2_reg_word79_clamped;
+wire card1_card_core1_regs_fifo2_reg_word79_mine;
+wire card1_card_core1_regs_fifo2_reg_word79_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word79_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word79_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word79_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word80_honoured;
+reg card1_card_core1_regs_fifo2_reg_word80_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word80_shown;
+reg card1_card_core1_regs_fifo2_reg_word80_clamped;
+wire card1_card_core1_regs_fifo2_reg_word80_mine;
+wire card1_card_core1_regs_fifo2_reg_word80_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word80_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word80_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word80_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word81_honoured;
+reg card1_card_core1_regs_fifo2_reg_word81_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word81_shown;
+reg card1_card_core1_regs_fifo2_reg_word81_clamped;
+wire card1_card_core1_regs_fifo2_reg_word81_mine;
+wire card1_card_core1_regs_fifo2_reg_word81_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word81_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word81_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word81_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word81__store56_word_value;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word82_honoured;
+reg card1_card_core1_regs_fifo2_reg_word82_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word82_shown;
+reg card1_card_core1_regs_fifo2_reg_word82_clamped;
+wire card1_card_core1_regs_fifo2_reg_word82_mine;
+wire card1_card_core1_regs_fifo2_reg_word82_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word82_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word82_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word82_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word82__store57_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word82__store57_word_value;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word83_shown;
+wire card1_card_core1_regs_fifo2_reg_word83_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word83_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word83_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word84_shown;
+wire card1_card_core1_regs_fifo2_reg_word84_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word84_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word84_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped;
+wire [27:0] card1_card_core1_regs_fifo2_reg_word85_shown;
+wire card1_card_core1_regs_fifo2_reg_word85_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word85_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word85_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped;
+wire [0:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
+wire card1_card_core1_regs_fifo2_reg_word86_out_of_range;
+reg [0:0] card1_card_core1_regs_fifo2_reg_word86_shown;
+reg card1_card_core1_regs_fifo2_reg_word86_clamped;
+wire card1_card_core1_regs_fifo2_reg_word86_mine;
+wire card1_card_core1_regs_fifo2_reg_word86_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word86_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown_wide;
+reg [0:0] card1_card_core1_regs_fifo2_reg_word86_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word86_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
+reg [17:0] card1_card_core1_regs_fifo2_reg_word87_shown;
+wire card1_card_core1_regs_fifo2_reg_word87_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word87_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word87_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word88_shown;
+wire card1_card_core1_regs_fifo2_reg_word88_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word88_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word88_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word89_honoured;
+wire card1_card_core1_regs_fifo2_reg_word89_out_of_range;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word89_shown;
+reg card1_card_core1_regs_fifo2_reg_word89_clamped;
+wire card1_card_core1_regs_fifo2_reg_word89_mine;
+wire card1_card_core1_regs_fifo2_reg_word89_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word89_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word89_shown_wide;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word89_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word89_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped;
+reg [3:0] card1_card_core1_regs_fifo2_reg_word90_honoured;
+reg card1_card_core1_regs_fifo2_reg_word90_out_of_range;
+reg [3:0] card1_card_core1_regs_fifo2_reg_word90_shown;
+reg card1_card_core1_regs_fifo2_reg_word90_clamped;
+wire card1_card_core1_regs_fifo2_reg_word90_mine;
+wire card1_card_core1_regs_fifo2_reg_word90_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word90_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word90_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word90_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word90_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word91_honoured;
+reg card1_card_core1_regs_fifo2_reg_word91_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word91_shown;
+reg card1_card_core1_regs_fifo2_reg_word91_clamped;
+wire card1_card_core1_regs_fifo2_reg_word91_mine;
+wire card1_card_core1_regs_fifo2_reg_word91_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word91_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word91_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word91_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word91_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word92_honoured;
+wire card1_card_core1_regs_fifo2_reg_word92_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word92_shown;
+reg card1_card_core1_regs_fifo2_reg_word92_clamped;
+wire card1_card_core1_regs_fifo2_reg_word92_mine;
+wire card1_card_core1_regs_fifo2_reg_word92_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word92_shown_wide;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word92_written;
+wire card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word92__store62_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word92__store62_word_value;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_arriving_count;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits;
@@ -651,7 +741,39 @@ reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_step;
 reg card1_card_core1_regs_fifo2_pulse_out2_starts;
 reg card1_card_core1_regs_fifo2_pulse_out2_take;
 reg card1_card_core1_regs_fifo2_pulse_out2_turn;
+reg card1_card_core1_regs_fifo2_pulse_out2_request_step_x;
+reg card1_card_core1_regs_fifo2_pulse_out2_request_step_y;
+reg card1_card_core1_regs_fifo2_pulse_out2_request_dir_y;
+reg card1_card_core1_regs_fifo2_pulse_out2_request_dir_x;
 reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_position_x;
+wire [6:0] card1_card_core1_regs_fifo2_input_filter2_level;
+reg [15:0] card1_card_core1_regs_fifo2_input_filter2_prescale;
+wire card1_card_core1_regs_fifo2_input_filter2_sample;
+reg [6:0] card1_card_core1_regs_fifo2_input_filter2_sync;
+wire [6:0] card1_card_core1_regs_fifo2_input_filter2_taken;
+wire [6:0] card1_card_core1_regs_fifo2_input_filter2_inputs_pins;
+reg [6:0] card1_card_core1_regs_fifo2_input_filter2_inputs_raw;
+reg [6:0] card1_card_core1_regs_fifo2_input_filter2_inputs_active;
+reg card1_card_core1_regs_fifo2_input_filter2_inputs_changed;
+reg [3:0] card1_card_core1_regs_fifo2_input_filter2__input_count14_held;
+wire card1_card_core1_regs_fifo2_input_filter2__input_count14_taken;
+reg [3:0] card1_card_core1_regs_fifo2_input_filter2__input_count15_held;
+wire card1_card_core1_regs_fifo2_input_filter2__input_count15_taken;
+reg [3:0] card1_card_core1_regs_fifo2_input_filter2__input_count16_held;
+wire card1_card_core1_regs_fifo2_input_filter2__input_count16_taken;
+reg [3:0] card1_card_core1_regs_fifo2_input_filter2__input_count17_held;
+wire card1_card_core1_regs_fifo2_input_filter2__input_count17_taken;
+reg [3:0] card1_card_core1_regs_fifo2_input_filter2__input_count18_held;
+wire card1_card_core1_regs_fifo2_input_filter2__input_count18_taken;
+reg [3:0] card1_card_core1_regs_fifo2_input_filter2__input_count19_held;
+wire card1_card_core1_regs_fifo2_input_filter2__input_count19_taken;
+reg [3:0] card1_card_core1_regs_fifo2_input_filter2__input_count20_held;
+wire card1_card_core1_regs_fifo2_input_filter2__input_count20_taken;
+wire card1_card_core1_regs_fifo2_machine_guard2_estop;
+wire card1_card_core1_regs_fifo2_machine_guard2_expired;
+wire [3:0] card1_card_core1_regs_fifo2_machine_guard2_hits;
+reg [3:0] card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
+reg [1:0] card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
 wire [1:0] card1_card_core1_regs_fifo2__status2_quadrant;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_acc_bits;
 reg card1_card_core1_dda_arc2_dda_setup2_carry;
@@ -817,23 +939,30 @@ reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word48_shown = 32'd3719037185;
-assign card1_card_core1_regs_fifo2_reg_word48_chain_in_data = 32'd0;
-assign card1_card_core1_regs_fifo2_reg_word48_chain_in_clamped = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word49_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word49_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word50_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word50_shown = 3'd0;
-assign card1_card_core1_regs_fifo2_reg_word52_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word52_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word54_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word54_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word60_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word62_shown = 32'd3719037186;
+assign card1_card_core1_regs_fifo2_reg_word62_chain_in_data = 32'd0;
+assign card1_card_core1_regs_fifo2_reg_word62_chain_in_clamped = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word63_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word63_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word64_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word64_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word69_shown = 32'd33333333;
-assign card1_card_core1_regs_fifo2_reg_word70_shown = 16'd512;
-assign card1_card_core1_regs_fifo2_reg_word71_shown = 28'd17564184;
+assign card1_card_core1_regs_fifo2_reg_word64_shown = 4'd0;
+assign card1_card_core1_regs_fifo2_reg_word66_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word66_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word68_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word68_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word74_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word78_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word78_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word83_shown = 32'd33333333;
+assign card1_card_core1_regs_fifo2_reg_word84_shown = 16'd512;
+assign card1_card_core1_regs_fifo2_reg_word85_shown = 28'd17564184;
+assign card1_card_core1_regs_fifo2_reg_word86_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word86_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word89_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word89_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word90_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word91_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word92_out_of_range = 1'd0;
 
 
 
@@ -876,6 +1005,20 @@ assign card1_pci_slave2_ad_out_next[3] = card1_pci_slave2_pin_lut36_out;
 assign card1_pci_slave2_ad_out_next[2] = card1_pci_slave2_pin_lut35_out;
 assign card1_pci_slave2_ad_out_next[1] = card1_pci_slave2_pin_lut34_out;
 assign card1_pci_slave2_ad_out_next[0] = card1_pci_slave2_pin_lut33_out;
+assign card1_card_core1_regs_fifo2_input_filter2_taken[6] = card1_card_core1_regs_fifo2_input_filter2__input_count20_taken;
+assign card1_card_core1_regs_fifo2_input_filter2_taken[5] = card1_card_core1_regs_fifo2_input_filter2__input_count19_taken;
+assign card1_card_core1_regs_fifo2_input_filter2_taken[4] = card1_card_core1_regs_fifo2_input_filter2__input_count18_taken;
+assign card1_card_core1_regs_fifo2_input_filter2_taken[3] = card1_card_core1_regs_fifo2_input_filter2__input_count17_taken;
+assign card1_card_core1_regs_fifo2_input_filter2_taken[2] = card1_card_core1_regs_fifo2_input_filter2__input_count16_taken;
+assign card1_card_core1_regs_fifo2_input_filter2_taken[1] = card1_card_core1_regs_fifo2_input_filter2__input_count15_taken;
+assign card1_card_core1_regs_fifo2_input_filter2_taken[0] = card1_card_core1_regs_fifo2_input_filter2__input_count14_taken;
+assign card1_card_core1_regs_fifo2_input_filter2_inputs_pins[6] = motor_home_y;
+assign card1_card_core1_regs_fifo2_input_filter2_inputs_pins[5] = motor_home_x;
+assign card1_card_core1_regs_fifo2_input_filter2_inputs_pins[4] = motor_limit_neg_y;
+assign card1_card_core1_regs_fifo2_input_filter2_inputs_pins[3] = motor_limit_pos_y;
+assign card1_card_core1_regs_fifo2_input_filter2_inputs_pins[2] = motor_limit_neg_x;
+assign card1_card_core1_regs_fifo2_input_filter2_inputs_pins[1] = motor_limit_pos_x;
+assign card1_card_core1_regs_fifo2_input_filter2_inputs_pins[0] = motor_estop;
 
 
 assign pci_pins_serr = pci_pads0_tristate_pad0_enable ? pci_pads0_tristate_pad0_to_pin : {1{1'bz}};
@@ -2729,702 +2872,29 @@ assign card1_pci_slave2_pci_control2_control_case0_0_1_target_room = card1_card_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word48_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
+assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word48_mine, card1_card_core1_regs_fifo2_reg_word48_shown_wide, card1_card_core1_regs_fifo2_reg_word48_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word48_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word48_mine) begin
-        card1_card_core1_regs_fifo2_reg_word48_chain_out_data = (card1_card_core1_regs_fifo2_reg_word48_chain_in_data | card1_card_core1_regs_fifo2_reg_word48_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word48_chain_out_data = card1_card_core1_regs_fifo2_reg_word48_chain_in_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word48_shown_wide = card1_card_core1_regs_fifo2_reg_word48_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word48_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word48_chain_in_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word49_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word49_mine, card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word48_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word49_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word49_mine) begin
-        card1_card_core1_regs_fifo2_reg_word49_chain_out_data = (card1_card_core1_regs_fifo2_reg_word48_chain_out_data | card1_card_core1_regs_fifo2_reg_word49_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word49_chain_out_data = card1_card_core1_regs_fifo2_reg_word48_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word49_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word49_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word49_shown_wide, card1_card_core1_regs_fifo2_reg_word49_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word49_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word49_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word49_written = ((card1_card_core1_regs_fifo2_reg_word49_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word49_honoured = card1_card_core1_regs_fifo2_reg_word49_written[2-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word49_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word48_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word49_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word49__store32_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_control <= 0;
-        card1_card_core1_regs_fifo2_reg_word49_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word49_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word49_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word49_mine_write))) begin
-            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word49_honoured;
-            card1_card_core1_regs_fifo2_reg_word49_clamped <= card1_card_core1_regs_fifo2_reg_word49_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word50_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word50_mine, card1_card_core1_regs_fifo2_reg_word50_shown_wide, card1_card_core1_regs_fifo2_reg_word49_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word50_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word50_mine) begin
-        card1_card_core1_regs_fifo2_reg_word50_chain_out_data = (card1_card_core1_regs_fifo2_reg_word49_chain_out_data | card1_card_core1_regs_fifo2_reg_word50_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word50_chain_out_data = card1_card_core1_regs_fifo2_reg_word49_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word50_shown_wide = {29'h0, card1_card_core1_regs_fifo2_reg_word50_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word50_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word50_written = (card1_card_core1_regs_fifo2_written_data[3-1:0] & card1_card_core1_regs_fifo2_written_mask[3-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word50_honoured = card1_card_core1_regs_fifo2_reg_word50_written[3-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word50_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word49_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word50_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word50__store33_pulse_on_write
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_command_strobe <= 0;
-        card1_card_core1_regs_fifo2_command <= 0;
-        card1_card_core1_regs_fifo2_reg_word50_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word50_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word50_mine_write)) begin
-            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word50_honoured;
-            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word50_clamped <= card1_card_core1_regs_fifo2_reg_word50_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word51_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word51_mine, card1_card_core1_regs_fifo2_reg_word51_shown_wide, card1_card_core1_regs_fifo2_reg_word50_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word51_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word51_mine) begin
-        card1_card_core1_regs_fifo2_reg_word51_chain_out_data = (card1_card_core1_regs_fifo2_reg_word50_chain_out_data | card1_card_core1_regs_fifo2_reg_word51_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word51_chain_out_data = card1_card_core1_regs_fifo2_reg_word50_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word51_shown_wide = card1_card_core1_regs_fifo2_reg_word51_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word51_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word50_chain_out_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word52_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word52_mine, card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word51_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word52_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word52_mine) begin
-        card1_card_core1_regs_fifo2_reg_word52_chain_out_data = (card1_card_core1_regs_fifo2_reg_word51_chain_out_data | card1_card_core1_regs_fifo2_reg_word52_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word52_chain_out_data = card1_card_core1_regs_fifo2_reg_word51_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word52_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word52_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word52_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word52_shown_wide, card1_card_core1_regs_fifo2_reg_word52_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word52_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word52_written = card1_card_core1_regs_fifo2_set_value[5-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word52_written = ((card1_card_core1_regs_fifo2_reg_word52_shown_wide[5-1:0] & (~card1_card_core1_regs_fifo2_written_mask[5-1:0])) | (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word52_honoured = card1_card_core1_regs_fifo2_reg_word52_written[5-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word52_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word51_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word52_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word52__store34_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word52_shown <= 0;
-        card1_card_core1_regs_fifo2_reg_word52_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word52_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word52_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word52_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word52_shown <= card1_card_core1_regs_fifo2_reg_word52_honoured;
-            card1_card_core1_regs_fifo2_reg_word52_clamped <= card1_card_core1_regs_fifo2_reg_word52_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word53_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word53_mine, card1_card_core1_regs_fifo2_reg_word53_shown_wide, card1_card_core1_regs_fifo2_reg_word52_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word53_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word53_mine) begin
-        card1_card_core1_regs_fifo2_reg_word53_chain_out_data = (card1_card_core1_regs_fifo2_reg_word52_chain_out_data | card1_card_core1_regs_fifo2_reg_word53_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word53_chain_out_data = card1_card_core1_regs_fifo2_reg_word52_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word53_shown_wide = {27'h0, card1_card_core1_regs_fifo2_reg_word53_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word53_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word53_written = (card1_card_core1_regs_fifo2_written_data[5-1:0] & card1_card_core1_regs_fifo2_written_mask[5-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word53_honoured = card1_card_core1_regs_fifo2_reg_word53_written[5-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word53_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word52_chain_out_clamped;
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word53__store35_clear_on_one
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word53_shown <= 0;
-    end
-    else begin
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word53_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word53_shown <= ((card1_card_core1_regs_fifo2_reg_word53_shown & (~card1_card_core1_regs_fifo2_reg_word53_honoured)) | card1_card_core1_regs_fifo2_reg_word53__store35_word_hw);
-        end
-        else begin
-            card1_card_core1_regs_fifo2_reg_word53_shown <= (card1_card_core1_regs_fifo2_reg_word53_shown | card1_card_core1_regs_fifo2_reg_word53__store35_word_hw);
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word54_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word54_mine, card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word53_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word54_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word54_mine) begin
-        card1_card_core1_regs_fifo2_reg_word54_chain_out_data = (card1_card_core1_regs_fifo2_reg_word53_chain_out_data | card1_card_core1_regs_fifo2_reg_word54_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word54_chain_out_data = card1_card_core1_regs_fifo2_reg_word53_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word54_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word54_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word54_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word54_shown_wide, card1_card_core1_regs_fifo2_reg_word54_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word54_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word54_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word54_written = ((card1_card_core1_regs_fifo2_reg_word54_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word54_honoured = card1_card_core1_regs_fifo2_reg_word54_written[16-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word54_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word53_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word54_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word54__store36_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word54_shown <= 0;
-        card1_card_core1_regs_fifo2_reg_word54_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word54_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word54_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word54_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word54_shown <= card1_card_core1_regs_fifo2_reg_word54_honoured;
-            card1_card_core1_regs_fifo2_reg_word54_clamped <= card1_card_core1_regs_fifo2_reg_word54_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word55_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word55_mine, card1_card_core1_regs_fifo2_reg_word55_shown_wide, card1_card_core1_regs_fifo2_reg_word54_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word55_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word55_mine) begin
-        card1_card_core1_regs_fifo2_reg_word55_chain_out_data = (card1_card_core1_regs_fifo2_reg_word54_chain_out_data | card1_card_core1_regs_fifo2_reg_word55_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word55_chain_out_data = card1_card_core1_regs_fifo2_reg_word54_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word55_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word55_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word55_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word54_chain_out_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word56_mine = (card1_pci_slave2_pci_requests2_local_addr == 32);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word56_mine, card1_card_core1_regs_fifo2_reg_word56_shown_wide, card1_card_core1_regs_fifo2_reg_word55_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word56_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word56_mine) begin
-        card1_card_core1_regs_fifo2_reg_word56_chain_out_data = (card1_card_core1_regs_fifo2_reg_word55_chain_out_data | card1_card_core1_regs_fifo2_reg_word56_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word56_chain_out_data = card1_card_core1_regs_fifo2_reg_word55_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word56_shown_wide = card1_card_core1_regs_fifo2_reg_word56_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word56_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word55_chain_out_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word57_mine = (card1_pci_slave2_pci_requests2_local_addr == 36);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word57_mine, card1_card_core1_regs_fifo2_reg_word57_shown_wide, card1_card_core1_regs_fifo2_reg_word56_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word57_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word57_mine) begin
-        card1_card_core1_regs_fifo2_reg_word57_chain_out_data = (card1_card_core1_regs_fifo2_reg_word56_chain_out_data | card1_card_core1_regs_fifo2_reg_word57_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word57_chain_out_data = card1_card_core1_regs_fifo2_reg_word56_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word57_shown_wide = card1_card_core1_regs_fifo2_reg_word57_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word57_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word56_chain_out_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word58_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word58_mine, card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_reg_word57_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word58_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word58_mine) begin
-        card1_card_core1_regs_fifo2_reg_word58_chain_out_data = (card1_card_core1_regs_fifo2_reg_word57_chain_out_data | card1_card_core1_regs_fifo2_reg_word58_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word58_chain_out_data = card1_card_core1_regs_fifo2_reg_word57_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word58_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word58_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word58_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word58_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word58_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word58_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word58_written = ((card1_card_core1_regs_fifo2_reg_word58_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word58_written) begin: card1_card_core1_regs_fifo2_reg_word58__limit37_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word58_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word58_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word58_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word58_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word58_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word58_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word58_honoured = 32768;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word58_honoured = card1_card_core1_regs_fifo2_reg_word58_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word58_out_of_range = 1'b0;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word58_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word57_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word58_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word58__store37_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word58_shown <= 4096;
-        card1_card_core1_regs_fifo2_reg_word58_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word58_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word58_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word58_shown <= card1_card_core1_regs_fifo2_reg_word58_honoured;
-            card1_card_core1_regs_fifo2_reg_word58_clamped <= card1_card_core1_regs_fifo2_reg_word58_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word59_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word59_mine, card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_reg_word58_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word59_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word59_mine) begin
-        card1_card_core1_regs_fifo2_reg_word59_chain_out_data = (card1_card_core1_regs_fifo2_reg_word58_chain_out_data | card1_card_core1_regs_fifo2_reg_word59_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word59_chain_out_data = card1_card_core1_regs_fifo2_reg_word58_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word59_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word59_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word59_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word59_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word59_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
-        card1_card_core1_regs_fifo2_reg_word59_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word59_written = ((card1_card_core1_regs_fifo2_reg_word59_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word59_written) begin: card1_card_core1_regs_fifo2_reg_word59__limit38_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word59_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word59_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word59_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word59_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word59_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word59_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word59_honoured = 32768;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word59_honoured = card1_card_core1_regs_fifo2_reg_word59_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word59_out_of_range = 1'b0;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word59_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word58_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word59_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word59__store38_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word59_shown <= 4096;
-        card1_card_core1_regs_fifo2_reg_word59_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word59_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word59_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word59_shown <= card1_card_core1_regs_fifo2_reg_word59_honoured;
-            card1_card_core1_regs_fifo2_reg_word59_clamped <= card1_card_core1_regs_fifo2_reg_word59_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word60_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word60_mine, card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_reg_word59_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word60_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word60_mine) begin
-        card1_card_core1_regs_fifo2_reg_word60_chain_out_data = (card1_card_core1_regs_fifo2_reg_word59_chain_out_data | card1_card_core1_regs_fifo2_reg_word60_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word60_chain_out_data = card1_card_core1_regs_fifo2_reg_word59_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word60_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word60_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word60_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word60_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word60_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
-        card1_card_core1_regs_fifo2_reg_word60_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word60_written = ((card1_card_core1_regs_fifo2_reg_word60_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word60_honoured = card1_card_core1_regs_fifo2_reg_word60_written[16-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word60_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word59_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word60_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word60__store39_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word60_shown <= 0;
-        card1_card_core1_regs_fifo2_reg_word60_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word60_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word60_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word60_shown <= card1_card_core1_regs_fifo2_reg_word60_honoured;
-            card1_card_core1_regs_fifo2_reg_word60_clamped <= card1_card_core1_regs_fifo2_reg_word60_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word61_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word61_mine, card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_reg_word60_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word61_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word61_mine) begin
-        card1_card_core1_regs_fifo2_reg_word61_chain_out_data = (card1_card_core1_regs_fifo2_reg_word60_chain_out_data | card1_card_core1_regs_fifo2_reg_word61_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word61_chain_out_data = card1_card_core1_regs_fifo2_reg_word60_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word61_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word61_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word61_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word61_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word61_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
-        card1_card_core1_regs_fifo2_reg_word61_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word61_written = ((card1_card_core1_regs_fifo2_reg_word61_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word61_written) begin: card1_card_core1_regs_fifo2_reg_word61__limit40_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word61_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word61_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word61_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word61_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word61_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word61_honoured = card1_card_core1_regs_fifo2_reg_word61_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word61_out_of_range = 1'b0;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word61_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word60_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word61_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word61__store40_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word61_shown <= 1;
-        card1_card_core1_regs_fifo2_reg_word61_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word61_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word61_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word61_shown <= card1_card_core1_regs_fifo2_reg_word61_honoured;
-            card1_card_core1_regs_fifo2_reg_word61_clamped <= card1_card_core1_regs_fifo2_reg_word61_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word61_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word62_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
     if (card1_card_core1_regs_fifo2_reg_word62_mine) begin
-        card1_card_core1_regs_fifo2_reg_word62_chain_out_data = (card1_card_core1_regs_fifo2_reg_word61_chain_out_data | card1_card_core1_regs_fifo2_reg_word62_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word62_chain_out_data = (card1_card_core1_regs_fifo2_reg_word62_chain_in_data | card1_card_core1_regs_fifo2_reg_word62_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word62_chain_out_data = card1_card_core1_regs_fifo2_reg_word61_chain_out_data;
+        card1_card_core1_regs_fifo2_reg_word62_chain_out_data = card1_card_core1_regs_fifo2_reg_word62_chain_in_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word62_shown};
+assign card1_card_core1_regs_fifo2_reg_word62_shown_wide = card1_card_core1_regs_fifo2_reg_word62_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word62_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
-        card1_card_core1_regs_fifo2_reg_word62_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word62_written = ((card1_card_core1_regs_fifo2_reg_word62_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word62_written) begin: card1_card_core1_regs_fifo2_reg_word62__limit41_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word62_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word62_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word62_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word62_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word62_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word62_honoured = card1_card_core1_regs_fifo2_reg_word62_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word62_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word62_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word62_chain_in_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word61_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word62_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word62__store41_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word62_shown <= 1;
-        card1_card_core1_regs_fifo2_reg_word62_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word62_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word62_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word62_shown <= card1_card_core1_regs_fifo2_reg_word62_honoured;
-            card1_card_core1_regs_fifo2_reg_word62_clamped <= card1_card_core1_regs_fifo2_reg_word62_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word63_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word63_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word63_mine, card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_reg_word62_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word63_read_chain
@@ -3438,36 +2908,25 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word63_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word63_shown};
+assign card1_card_core1_regs_fifo2_reg_word63_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word63_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word63_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word63_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
-        card1_card_core1_regs_fifo2_reg_word63_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_reg_word63_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word63_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word63_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word63_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word63_written = ((card1_card_core1_regs_fifo2_reg_word63_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word63_written = ((card1_card_core1_regs_fifo2_reg_word63_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word63_written) begin: card1_card_core1_regs_fifo2_reg_word63__limit42_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word63_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word63_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word63_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word63_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word63_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word63_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word63_honoured = card1_card_core1_regs_fifo2_reg_word63_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word63_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word63_honoured = card1_card_core1_regs_fifo2_reg_word63_written[2-1:0];
 
 
 
@@ -3476,13 +2935,13 @@ assign card1_card_core1_regs_fifo2_reg_word63_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word63__store42_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word63_shown <= 1;
+        card1_card_core1_regs_fifo2_control <= 0;
         card1_card_core1_regs_fifo2_reg_word63_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word63_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word63_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word63_shown <= card1_card_core1_regs_fifo2_reg_word63_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word63_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word63_mine_write))) begin
+            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word63_honoured;
             card1_card_core1_regs_fifo2_reg_word63_clamped <= card1_card_core1_regs_fifo2_reg_word63_out_of_range;
         end
     end
@@ -3490,7 +2949,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word64_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word64_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word64_mine, card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word63_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word64_read_chain
@@ -3504,40 +2963,37 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word64_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word64_shown};
+assign card1_card_core1_regs_fifo2_reg_word64_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word64_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word64_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word64_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word64_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word64_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word64_written = ((card1_card_core1_regs_fifo2_reg_word64_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word64_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word64_honoured = card1_card_core1_regs_fifo2_reg_word64_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word64_written = (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word64_honoured = card1_card_core1_regs_fifo2_reg_word64_written[4-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word64_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word63_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word64_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word64__store43_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word64__store43_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word64_shown <= 0;
+        card1_card_core1_regs_fifo2_command_strobe <= 0;
+        card1_card_core1_regs_fifo2_command <= 0;
         card1_card_core1_regs_fifo2_reg_word64_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word64_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word64_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word64_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word64_shown <= card1_card_core1_regs_fifo2_reg_word64_honoured;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word64_mine_write)) begin
+            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word64_honoured;
+            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word64_clamped <= card1_card_core1_regs_fifo2_reg_word64_out_of_range;
         end
     end
@@ -3545,7 +3001,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word65_mine = (card1_pci_slave2_pci_requests2_local_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word65_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word65_mine, card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_reg_word64_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word65_read_chain
@@ -3559,59 +3015,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word65_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word65_shown};
+assign card1_card_core1_regs_fifo2_reg_word65_shown_wide = card1_card_core1_regs_fifo2_reg_word65_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word65_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word65_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
-        card1_card_core1_regs_fifo2_reg_word65_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word65_written = ((card1_card_core1_regs_fifo2_reg_word65_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word65_written) begin: card1_card_core1_regs_fifo2_reg_word65__limit44_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word65_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word65_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word65_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word65_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word65_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word65_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word65_honoured = card1_card_core1_regs_fifo2_reg_word65_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word65_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word65_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word64_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word65_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word64_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word65_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word65__store44_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word65_shown <= 2;
-        card1_card_core1_regs_fifo2_reg_word65_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word65_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word65_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word65_shown <= card1_card_core1_regs_fifo2_reg_word65_honoured;
-            card1_card_core1_regs_fifo2_reg_word65_clamped <= card1_card_core1_regs_fifo2_reg_word65_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word66_mine = (card1_pci_slave2_pci_requests2_local_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word66_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word66_mine, card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_reg_word65_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word66_read_chain
@@ -3625,50 +3037,39 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word66_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word66_shown};
+assign card1_card_core1_regs_fifo2_reg_word66_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word66_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word66_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word66_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word66_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
-        card1_card_core1_regs_fifo2_reg_word66_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_reg_word66_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word66_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word66_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word66_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word66_written = ((card1_card_core1_regs_fifo2_reg_word66_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word66_written = ((card1_card_core1_regs_fifo2_reg_word66_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word66_written) begin: card1_card_core1_regs_fifo2_reg_word66__limit45_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word66_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word66_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word66_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word66_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word66_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word66_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word66_honoured = card1_card_core1_regs_fifo2_reg_word66_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word66_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word66_honoured = card1_card_core1_regs_fifo2_reg_word66_written[7-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word66_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word65_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word66_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word66__store45_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word66__store44_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word66_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word66_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word66_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word66_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word66_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word66_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word66_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word66_shown <= card1_card_core1_regs_fifo2_reg_word66_honoured;
             card1_card_core1_regs_fifo2_reg_word66_clamped <= card1_card_core1_regs_fifo2_reg_word66_out_of_range;
         end
@@ -3677,7 +3078,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word67_mine = (card1_pci_slave2_pci_requests2_local_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word67_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word67_mine, card1_card_core1_regs_fifo2_reg_word67_shown_wide, card1_card_core1_regs_fifo2_reg_word66_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word67_read_chain
@@ -3691,57 +3092,42 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word67_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word67_shown};
+assign card1_card_core1_regs_fifo2_reg_word67_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word67_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word67_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word67_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word67_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word67_written) begin: card1_card_core1_regs_fifo2_reg_word67__limit46_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word67_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word67_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word67_honoured = card1_card_core1_regs_fifo2_reg_word67_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word67_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word67_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word67_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word67_out_of_range = 1'b1;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word67_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word67_out_of_range = 1'b1;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word67_written = (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word67_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word66_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word67_clamped);
+assign card1_card_core1_regs_fifo2_reg_word67_honoured = card1_card_core1_regs_fifo2_reg_word67_written[7-1:0];
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word67__store46_pulse_on_write
+
+assign card1_card_core1_regs_fifo2_reg_word67_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word66_chain_out_clamped;
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word67__store45_clear_on_one
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word67__store46_word_value <= 0;
-        card1_card_core1_regs_fifo2_reg_word67_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word67_shown <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word67_clamped <= 1'b0;
         if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word67_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word67__store46_word_value <= card1_card_core1_regs_fifo2_reg_word67_honoured;
-            card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word67_clamped <= card1_card_core1_regs_fifo2_reg_word67_out_of_range;
+            card1_card_core1_regs_fifo2_reg_word67_shown <= ((card1_card_core1_regs_fifo2_reg_word67_shown & (~card1_card_core1_regs_fifo2_reg_word67_honoured)) | card1_card_core1_regs_fifo2_reg_word67__store45_word_hw);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_reg_word67_shown <= (card1_card_core1_regs_fifo2_reg_word67_shown | card1_card_core1_regs_fifo2_reg_word67__store45_word_hw);
         end
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word68_mine = (card1_pci_slave2_pci_requests2_local_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word68_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word68_mine, card1_card_core1_regs_fifo2_reg_word68_shown_wide, card1_card_core1_regs_fifo2_reg_word67_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word68_read_chain
@@ -3755,49 +3141,40 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word68_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word68_shown};
+assign card1_card_core1_regs_fifo2_reg_word68_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word68_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word68_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word68_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word68_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word68_written) begin: card1_card_core1_regs_fifo2_reg_word68__limit47_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word68_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word68_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word68_honoured = card1_card_core1_regs_fifo2_reg_word68_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word68_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word68_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word68_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word68_out_of_range = 1'b1;
+always @(card1_card_core1_regs_fifo2_reg_word68_shown_wide, card1_card_core1_regs_fifo2_reg_word68_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word68_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word68_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word68_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word68_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word68_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word68_written = ((card1_card_core1_regs_fifo2_reg_word68_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word68_honoured = card1_card_core1_regs_fifo2_reg_word68_written[16-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word68_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word67_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word68_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word68__store47_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word68__store46_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word68__store47_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word68__store47_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word68_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word68_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word68__store47_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word68_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word68_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word68__store47_word_value <= card1_card_core1_regs_fifo2_reg_word68_honoured;
-            card1_card_core1_regs_fifo2_reg_word68__store47_word_strobe <= 1'b1;
+        if (((card1_card_core1_regs_fifo2_reg_word68_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word68_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word68_shown <= card1_card_core1_regs_fifo2_reg_word68_honoured;
             card1_card_core1_regs_fifo2_reg_word68_clamped <= card1_card_core1_regs_fifo2_reg_word68_out_of_range;
         end
     end
@@ -3805,7 +3182,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word69_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
+assign card1_card_core1_regs_fifo2_reg_word69_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word69_mine, card1_card_core1_regs_fifo2_reg_word69_shown_wide, card1_card_core1_regs_fifo2_reg_word68_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word69_read_chain
@@ -3819,7 +3196,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word69_shown_wide = card1_card_core1_regs_fifo2_reg_word69_shown;
+assign card1_card_core1_regs_fifo2_reg_word69_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word69_shown};
 
 
 
@@ -3827,7 +3204,7 @@ assign card1_card_core1_regs_fifo2_reg_word69_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word70_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
+assign card1_card_core1_regs_fifo2_reg_word70_mine = (card1_pci_slave2_pci_requests2_local_addr == 32);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word70_mine, card1_card_core1_regs_fifo2_reg_word70_shown_wide, card1_card_core1_regs_fifo2_reg_word69_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word70_read_chain
@@ -3841,7 +3218,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word70_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word70_shown};
+assign card1_card_core1_regs_fifo2_reg_word70_shown_wide = card1_card_core1_regs_fifo2_reg_word70_shown;
 
 
 
@@ -3849,25 +3226,1129 @@ assign card1_card_core1_regs_fifo2_reg_word70_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word71_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
+assign card1_card_core1_regs_fifo2_reg_word71_mine = (card1_pci_slave2_pci_requests2_local_addr == 36);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word71_mine, card1_card_core1_regs_fifo2_reg_word71_shown_wide, card1_card_core1_regs_fifo2_reg_word70_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word71_read_chain
     if (card1_card_core1_regs_fifo2_reg_word71_mine) begin
-        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word70_chain_out_data | card1_card_core1_regs_fifo2_reg_word71_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word71_chain_out_data = (card1_card_core1_regs_fifo2_reg_word70_chain_out_data | card1_card_core1_regs_fifo2_reg_word71_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word70_chain_out_data;
+        card1_card_core1_regs_fifo2_reg_word71_chain_out_data = card1_card_core1_regs_fifo2_reg_word70_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word71_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word71_shown};
+assign card1_card_core1_regs_fifo2_reg_word71_shown_wide = card1_card_core1_regs_fifo2_reg_word71_shown;
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word71_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word70_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word72_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word72_mine, card1_card_core1_regs_fifo2_reg_word72_shown_wide, card1_card_core1_regs_fifo2_reg_word71_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word72_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word72_mine) begin
+        card1_card_core1_regs_fifo2_reg_word72_chain_out_data = (card1_card_core1_regs_fifo2_reg_word71_chain_out_data | card1_card_core1_regs_fifo2_reg_word72_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word72_chain_out_data = card1_card_core1_regs_fifo2_reg_word71_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word72_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word72_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word72_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word72_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word72_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word72_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word72_written = ((card1_card_core1_regs_fifo2_reg_word72_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word72_written) begin: card1_card_core1_regs_fifo2_reg_word72__limit47_clamp_unsigned
+    card1_card_core1_regs_fifo2_reg_word72_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word72_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word72_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word72_honoured = 1;
+    end
+    else if (((card1_card_core1_regs_fifo2_reg_word72_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word72_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word72_honoured = 32768;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word72_honoured = card1_card_core1_regs_fifo2_reg_word72_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word72_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word72_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word71_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word72_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word72__store47_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word72_shown <= 4096;
+        card1_card_core1_regs_fifo2_reg_word72_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word72_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word72_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word72_shown <= card1_card_core1_regs_fifo2_reg_word72_honoured;
+            card1_card_core1_regs_fifo2_reg_word72_clamped <= card1_card_core1_regs_fifo2_reg_word72_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word73_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word73_mine, card1_card_core1_regs_fifo2_reg_word73_shown_wide, card1_card_core1_regs_fifo2_reg_word72_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word73_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word73_mine) begin
+        card1_card_core1_regs_fifo2_reg_word73_chain_out_data = (card1_card_core1_regs_fifo2_reg_word72_chain_out_data | card1_card_core1_regs_fifo2_reg_word73_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word73_chain_out_data = card1_card_core1_regs_fifo2_reg_word72_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word73_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word73_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word73_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word73_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word73_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
+        card1_card_core1_regs_fifo2_reg_word73_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word73_written = ((card1_card_core1_regs_fifo2_reg_word73_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word73_written) begin: card1_card_core1_regs_fifo2_reg_word73__limit48_clamp_unsigned
+    card1_card_core1_regs_fifo2_reg_word73_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word73_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word73_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word73_honoured = 1;
+    end
+    else if (((card1_card_core1_regs_fifo2_reg_word73_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word73_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word73_honoured = 32768;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word73_honoured = card1_card_core1_regs_fifo2_reg_word73_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word73_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word73_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word72_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word73_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word73__store48_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word73_shown <= 4096;
+        card1_card_core1_regs_fifo2_reg_word73_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word73_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word73_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word73_shown <= card1_card_core1_regs_fifo2_reg_word73_honoured;
+            card1_card_core1_regs_fifo2_reg_word73_clamped <= card1_card_core1_regs_fifo2_reg_word73_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word74_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word74_mine, card1_card_core1_regs_fifo2_reg_word74_shown_wide, card1_card_core1_regs_fifo2_reg_word73_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word74_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word74_mine) begin
+        card1_card_core1_regs_fifo2_reg_word74_chain_out_data = (card1_card_core1_regs_fifo2_reg_word73_chain_out_data | card1_card_core1_regs_fifo2_reg_word74_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word74_chain_out_data = card1_card_core1_regs_fifo2_reg_word73_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word74_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word74_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word74_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word74_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word74_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
+        card1_card_core1_regs_fifo2_reg_word74_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word74_written = ((card1_card_core1_regs_fifo2_reg_word74_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word74_honoured = card1_card_core1_regs_fifo2_reg_word74_written[16-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word73_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word74_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word74__store49_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word74_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word74_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word74_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word74_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word74_shown <= card1_card_core1_regs_fifo2_reg_word74_honoured;
+            card1_card_core1_regs_fifo2_reg_word74_clamped <= card1_card_core1_regs_fifo2_reg_word74_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word75_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word75_mine, card1_card_core1_regs_fifo2_reg_word75_shown_wide, card1_card_core1_regs_fifo2_reg_word74_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word75_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word75_mine) begin
+        card1_card_core1_regs_fifo2_reg_word75_chain_out_data = (card1_card_core1_regs_fifo2_reg_word74_chain_out_data | card1_card_core1_regs_fifo2_reg_word75_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word75_chain_out_data = card1_card_core1_regs_fifo2_reg_word74_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word75_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word75_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word75_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word75_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word75_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
+        card1_card_core1_regs_fifo2_reg_word75_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word75_written = ((card1_card_core1_regs_fifo2_reg_word75_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word75_written) begin: card1_card_core1_regs_fifo2_reg_word75__limit50_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word75_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word75_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word75_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word75_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word75_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word75_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word75_honoured = card1_card_core1_regs_fifo2_reg_word75_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word75_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word75_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word75_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word75__store50_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word75_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word75_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word75_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word75_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word75_shown <= card1_card_core1_regs_fifo2_reg_word75_honoured;
+            card1_card_core1_regs_fifo2_reg_word75_clamped <= card1_card_core1_regs_fifo2_reg_word75_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word76_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word76_mine, card1_card_core1_regs_fifo2_reg_word76_shown_wide, card1_card_core1_regs_fifo2_reg_word75_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word76_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word76_mine) begin
+        card1_card_core1_regs_fifo2_reg_word76_chain_out_data = (card1_card_core1_regs_fifo2_reg_word75_chain_out_data | card1_card_core1_regs_fifo2_reg_word76_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word76_chain_out_data = card1_card_core1_regs_fifo2_reg_word75_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word76_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word76_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word76_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word76_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word76_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
+        card1_card_core1_regs_fifo2_reg_word76_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word76_written = ((card1_card_core1_regs_fifo2_reg_word76_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word76_written) begin: card1_card_core1_regs_fifo2_reg_word76__limit51_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word76_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word76_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word76_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word76_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word76_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word76_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word76_honoured = card1_card_core1_regs_fifo2_reg_word76_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word76_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word75_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word76_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word76__store51_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word76_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word76_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word76_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word76_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word76_shown <= card1_card_core1_regs_fifo2_reg_word76_honoured;
+            card1_card_core1_regs_fifo2_reg_word76_clamped <= card1_card_core1_regs_fifo2_reg_word76_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word77_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word77_mine, card1_card_core1_regs_fifo2_reg_word77_shown_wide, card1_card_core1_regs_fifo2_reg_word76_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word77_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word77_mine) begin
+        card1_card_core1_regs_fifo2_reg_word77_chain_out_data = (card1_card_core1_regs_fifo2_reg_word76_chain_out_data | card1_card_core1_regs_fifo2_reg_word77_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word77_chain_out_data = card1_card_core1_regs_fifo2_reg_word76_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word77_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word77_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word77_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word77_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word77_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
+        card1_card_core1_regs_fifo2_reg_word77_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word77_written = ((card1_card_core1_regs_fifo2_reg_word77_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word77_written) begin: card1_card_core1_regs_fifo2_reg_word77__limit52_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word77_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word77_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word77_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word77_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word77_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word77_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word77_honoured = card1_card_core1_regs_fifo2_reg_word77_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word77_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word77_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word77__store52_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word77_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word77_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word77_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word77_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word77_shown <= card1_card_core1_regs_fifo2_reg_word77_honoured;
+            card1_card_core1_regs_fifo2_reg_word77_clamped <= card1_card_core1_regs_fifo2_reg_word77_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word78_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word78_mine, card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word77_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word78_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word78_mine) begin
+        card1_card_core1_regs_fifo2_reg_word78_chain_out_data = (card1_card_core1_regs_fifo2_reg_word77_chain_out_data | card1_card_core1_regs_fifo2_reg_word78_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word78_chain_out_data = card1_card_core1_regs_fifo2_reg_word77_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word78_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word78_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word78_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word78_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word78_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word78_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word78_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word78_written = ((card1_card_core1_regs_fifo2_reg_word78_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word78_honoured = card1_card_core1_regs_fifo2_reg_word78_written[2-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word78_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word78__store53_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word78_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word78_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word78_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word78_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word78_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word78_shown <= card1_card_core1_regs_fifo2_reg_word78_honoured;
+            card1_card_core1_regs_fifo2_reg_word78_clamped <= card1_card_core1_regs_fifo2_reg_word78_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word79_mine = (card1_pci_slave2_pci_requests2_local_addr == 68);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word79_mine, card1_card_core1_regs_fifo2_reg_word79_shown_wide, card1_card_core1_regs_fifo2_reg_word78_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word79_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word79_mine) begin
+        card1_card_core1_regs_fifo2_reg_word79_chain_out_data = (card1_card_core1_regs_fifo2_reg_word78_chain_out_data | card1_card_core1_regs_fifo2_reg_word79_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word79_chain_out_data = card1_card_core1_regs_fifo2_reg_word78_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word79_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word79_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word79_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word79_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word79_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+        card1_card_core1_regs_fifo2_reg_word79_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word79_written = ((card1_card_core1_regs_fifo2_reg_word79_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word79_written) begin: card1_card_core1_regs_fifo2_reg_word79__limit54_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word79_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word79_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word79_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word79_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word79_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word79_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word79_honoured = card1_card_core1_regs_fifo2_reg_word79_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word79_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word79_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word79__store54_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word79_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word79_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word79_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word79_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word79_shown <= card1_card_core1_regs_fifo2_reg_word79_honoured;
+            card1_card_core1_regs_fifo2_reg_word79_clamped <= card1_card_core1_regs_fifo2_reg_word79_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word80_mine = (card1_pci_slave2_pci_requests2_local_addr == 72);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word80_mine, card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_reg_word79_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word80_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word80_mine) begin
+        card1_card_core1_regs_fifo2_reg_word80_chain_out_data = (card1_card_core1_regs_fifo2_reg_word79_chain_out_data | card1_card_core1_regs_fifo2_reg_word80_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word80_chain_out_data = card1_card_core1_regs_fifo2_reg_word79_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word80_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word80_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word80_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word80_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
+        card1_card_core1_regs_fifo2_reg_word80_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word80_written = ((card1_card_core1_regs_fifo2_reg_word80_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word80_written) begin: card1_card_core1_regs_fifo2_reg_word80__limit55_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word80_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word80_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word80_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word80_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word80_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word80_honoured = card1_card_core1_regs_fifo2_reg_word80_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word80_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word80__store55_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word80_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word80_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word80_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word80_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word80_shown <= card1_card_core1_regs_fifo2_reg_word80_honoured;
+            card1_card_core1_regs_fifo2_reg_word80_clamped <= card1_card_core1_regs_fifo2_reg_word80_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word81_mine = (card1_pci_slave2_pci_requests2_local_addr == 76);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word81_mine, card1_card_core1_regs_fifo2_reg_word81_shown_wide, card1_card_core1_regs_fifo2_reg_word80_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word81_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word81_mine) begin
+        card1_card_core1_regs_fifo2_reg_word81_chain_out_data = (card1_card_core1_regs_fifo2_reg_word80_chain_out_data | card1_card_core1_regs_fifo2_reg_word81_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word81_chain_out_data = card1_card_core1_regs_fifo2_reg_word80_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word81_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word81_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word81_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word81_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word81_written) begin: card1_card_core1_regs_fifo2_reg_word81__limit56_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word81_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word81_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word81_honoured = card1_card_core1_regs_fifo2_reg_word81_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word81_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word81_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word81_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word81_out_of_range = 1'b1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word81_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word81_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word81_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word81__store56_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word81__store56_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word81_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word81_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word81_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word81__store56_word_value <= card1_card_core1_regs_fifo2_reg_word81_honoured;
+            card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word81_clamped <= card1_card_core1_regs_fifo2_reg_word81_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_pci_slave2_pci_requests2_local_addr == 80);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word82_mine, card1_card_core1_regs_fifo2_reg_word82_shown_wide, card1_card_core1_regs_fifo2_reg_word81_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word82_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word82_mine) begin
+        card1_card_core1_regs_fifo2_reg_word82_chain_out_data = (card1_card_core1_regs_fifo2_reg_word81_chain_out_data | card1_card_core1_regs_fifo2_reg_word82_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word82_chain_out_data = card1_card_core1_regs_fifo2_reg_word81_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word82_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word82_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word82_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word82_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word82_written) begin: card1_card_core1_regs_fifo2_reg_word82__limit57_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word82_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word82_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word82_honoured = card1_card_core1_regs_fifo2_reg_word82_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word82_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word82_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word82_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word82_out_of_range = 1'b1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word82_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word82_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word82_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word82__store57_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word82__store57_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word82__store57_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word82_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word82__store57_word_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word82_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word82_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word82__store57_word_value <= card1_card_core1_regs_fifo2_reg_word82_honoured;
+            card1_card_core1_regs_fifo2_reg_word82__store57_word_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word82_clamped <= card1_card_core1_regs_fifo2_reg_word82_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word83_mine, card1_card_core1_regs_fifo2_reg_word83_shown_wide, card1_card_core1_regs_fifo2_reg_word82_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word83_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word83_mine) begin
+        card1_card_core1_regs_fifo2_reg_word83_chain_out_data = (card1_card_core1_regs_fifo2_reg_word82_chain_out_data | card1_card_core1_regs_fifo2_reg_word83_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word83_chain_out_data = card1_card_core1_regs_fifo2_reg_word82_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_shown_wide = card1_card_core1_regs_fifo2_reg_word83_shown;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word84_mine, card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_reg_word83_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word84_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word84_mine) begin
+        card1_card_core1_regs_fifo2_reg_word84_chain_out_data = (card1_card_core1_regs_fifo2_reg_word83_chain_out_data | card1_card_core1_regs_fifo2_reg_word84_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word84_chain_out_data = card1_card_core1_regs_fifo2_reg_word83_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word84_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word84_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word85_mine, card1_card_core1_regs_fifo2_reg_word85_shown_wide, card1_card_core1_regs_fifo2_reg_word84_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word85_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word85_mine) begin
+        card1_card_core1_regs_fifo2_reg_word85_chain_out_data = (card1_card_core1_regs_fifo2_reg_word84_chain_out_data | card1_card_core1_regs_fifo2_reg_word85_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word85_chain_out_data = card1_card_core1_regs_fifo2_reg_word84_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word85_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word85_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word86_mine = (card1_pci_slave2_pci_requests2_local_addr == 96);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word86_mine, card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word85_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word86_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word86_mine) begin
+        card1_card_core1_regs_fifo2_reg_word86_chain_out_data = (card1_card_core1_regs_fifo2_reg_word85_chain_out_data | card1_card_core1_regs_fifo2_reg_word86_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word86_chain_out_data = card1_card_core1_regs_fifo2_reg_word85_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = {31'h0, card1_card_core1_regs_fifo2_reg_word86_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word86_mine_write = (card1_card_core1_regs_fifo2_written_addr == 96);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word86_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word86_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word86_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[1-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[1-1:0] & (~card1_card_core1_regs_fifo2_written_mask[1-1:0])) | (card1_card_core1_regs_fifo2_written_data[1-1:0] & card1_card_core1_regs_fifo2_written_mask[1-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[1-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word86_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word86__store58_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word86_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word86_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word86_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word86_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word86_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word86_shown <= card1_card_core1_regs_fifo2_reg_word86_honoured;
+            card1_card_core1_regs_fifo2_reg_word86_clamped <= card1_card_core1_regs_fifo2_reg_word86_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word87_mine = (card1_pci_slave2_pci_requests2_local_addr == 100);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word87_mine, card1_card_core1_regs_fifo2_reg_word87_shown_wide, card1_card_core1_regs_fifo2_reg_word86_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word87_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word87_mine) begin
+        card1_card_core1_regs_fifo2_reg_word87_chain_out_data = (card1_card_core1_regs_fifo2_reg_word86_chain_out_data | card1_card_core1_regs_fifo2_reg_word87_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word87_chain_out_data = card1_card_core1_regs_fifo2_reg_word86_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = {14'h0, card1_card_core1_regs_fifo2_reg_word87_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_pci_slave2_pci_requests2_local_addr == 104);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word88_mine, card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_reg_word87_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word88_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word88_mine) begin
+        card1_card_core1_regs_fifo2_reg_word88_chain_out_data = (card1_card_core1_regs_fifo2_reg_word87_chain_out_data | card1_card_core1_regs_fifo2_reg_word88_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word88_chain_out_data = card1_card_core1_regs_fifo2_reg_word87_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word88_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word88_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_pci_slave2_pci_requests2_local_addr == 108);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word89_mine, card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_reg_word88_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word89_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word89_mine) begin
+        card1_card_core1_regs_fifo2_reg_word89_chain_out_data = (card1_card_core1_regs_fifo2_reg_word88_chain_out_data | card1_card_core1_regs_fifo2_reg_word89_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word89_chain_out_data = card1_card_core1_regs_fifo2_reg_word88_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word89_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word89_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word89_mine_write = (card1_card_core1_regs_fifo2_written_addr == 108);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_reg_word89_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word89_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word89_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word89_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word89_written = ((card1_card_core1_regs_fifo2_reg_word89_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word89_honoured = card1_card_core1_regs_fifo2_reg_word89_written[7-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word89_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word89__store59_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word89_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word89_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word89_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word89_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word89_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word89_shown <= card1_card_core1_regs_fifo2_reg_word89_honoured;
+            card1_card_core1_regs_fifo2_reg_word89_clamped <= card1_card_core1_regs_fifo2_reg_word89_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word90_mine = (card1_pci_slave2_pci_requests2_local_addr == 112);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word90_mine, card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word89_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word90_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word90_mine) begin
+        card1_card_core1_regs_fifo2_reg_word90_chain_out_data = (card1_card_core1_regs_fifo2_reg_word89_chain_out_data | card1_card_core1_regs_fifo2_reg_word90_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word90_chain_out_data = card1_card_core1_regs_fifo2_reg_word89_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word90_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word90_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word90_mine_write = (card1_card_core1_regs_fifo2_written_addr == 112);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word90_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word90_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word90_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word90_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word90_written = ((card1_card_core1_regs_fifo2_reg_word90_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word90_written) begin: card1_card_core1_regs_fifo2_reg_word90__limit60_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word90_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word90_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word90_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word90_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word90_written[32-1:4] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word90_honoured = 15;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word90_honoured = card1_card_core1_regs_fifo2_reg_word90_written[4-1:0];
+        card1_card_core1_regs_fifo2_reg_word90_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word90_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word90__store60_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word90_shown <= 3;
+        card1_card_core1_regs_fifo2_reg_word90_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word90_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word90_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word90_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word90_shown <= card1_card_core1_regs_fifo2_reg_word90_honoured;
+            card1_card_core1_regs_fifo2_reg_word90_clamped <= card1_card_core1_regs_fifo2_reg_word90_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word91_mine = (card1_pci_slave2_pci_requests2_local_addr == 116);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word91_mine, card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_reg_word90_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word91_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word91_mine) begin
+        card1_card_core1_regs_fifo2_reg_word91_chain_out_data = (card1_card_core1_regs_fifo2_reg_word90_chain_out_data | card1_card_core1_regs_fifo2_reg_word91_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word91_chain_out_data = card1_card_core1_regs_fifo2_reg_word90_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word91_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word91_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word91_mine_write = (card1_card_core1_regs_fifo2_written_addr == 116);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_reg_word91_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word91_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word91_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word91_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word91_written = ((card1_card_core1_regs_fifo2_reg_word91_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word91_written) begin: card1_card_core1_regs_fifo2_reg_word91__limit61_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word91_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word91_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word91_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word91_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word91_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word91_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word91_honoured = card1_card_core1_regs_fifo2_reg_word91_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word91_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word91_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word91__store61_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word91_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word91_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word91_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word91_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word91_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word91_shown <= card1_card_core1_regs_fifo2_reg_word91_honoured;
+            card1_card_core1_regs_fifo2_reg_word91_clamped <= card1_card_core1_regs_fifo2_reg_word91_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_pci_slave2_pci_requests2_local_addr == 120);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word92_mine, card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_reg_word91_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word92_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word92_mine) begin
+        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word91_chain_out_data | card1_card_core1_regs_fifo2_reg_word92_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word91_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word92_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92_mine_write = (card1_card_core1_regs_fifo2_written_addr == 120);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92_written = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written[24-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word92_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word92__store62_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word92__store62_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word92__store62_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word92_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word92__store62_word_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word92_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word92_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word92__store62_word_value <= card1_card_core1_regs_fifo2_reg_word92_honoured;
+            card1_card_core1_regs_fifo2_reg_word92__store62_word_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word92_clamped <= card1_card_core1_regs_fifo2_reg_word92_out_of_range;
+        end
+    end
+end
 
 
 
@@ -4086,7 +4567,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
+always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
     reg more;
     more = 1'b1;
     if (card1_card_core1_regs_fifo2_sequencer2_word_due) begin
@@ -4097,7 +4578,7 @@ always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1
             more = (card1_card_core1_regs_fifo2_sequencer2_fetched < card1_card_core1_regs_fifo2_sequencer2_next_count);
         end
     end
-    card1_card_core1_regs_fifo2_fifo_pop = ((!card1_card_core1_regs_fifo2_fifo_empty) && (!card1_card_core1_regs_fifo2_sequencer2_next_valid) && more && (!card1_card_core1_core_clear) && (card1_card_core1_regs_fifo2_sequencer2_state != 3'b100));
+    card1_card_core1_regs_fifo2_fifo_pop = ((!card1_card_core1_regs_fifo2_fifo_empty) && (!card1_card_core1_regs_fifo2_sequencer2_next_valid) && more && (!card1_card_core1_regs_fifo2_sequencer_clear) && (card1_card_core1_regs_fifo2_sequencer2_state != 3'b100));
 end
 
 
@@ -4126,7 +4607,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
     end
     else begin
         card1_card_core1_regs_fifo2_sequencer2_word_due <= card1_card_core1_regs_fifo2_fifo_pop;
-        if ((card1_card_core1_core_clear || card1_card_core1_regs_fifo2_sequencer2_discard)) begin
+        if ((card1_card_core1_regs_fifo2_sequencer_clear || card1_card_core1_regs_fifo2_sequencer2_discard)) begin
             card1_card_core1_regs_fifo2_sequencer2_word_due <= 0;
             card1_card_core1_regs_fifo2_sequencer2_fetched <= 0;
             card1_card_core1_regs_fifo2_sequencer2_next_valid <= 0;
@@ -4243,7 +4724,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_sequencer2_issue = (card1_card_core1_regs_fifo2_sequencer2_next_valid && card1_card_core1_regs_fifo2_enable && card1_card_core1_regs_fifo2_sequencer2_finishing && (!card1_card_core1_core_clear));
+assign card1_card_core1_regs_fifo2_sequencer2_issue = (card1_card_core1_regs_fifo2_sequencer2_next_valid && card1_card_core1_regs_fifo2_enable && card1_card_core1_regs_fifo2_sequencer2_finishing && (!card1_card_core1_regs_fifo2_sequencer_clear));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_execute
@@ -4261,7 +4742,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
         card1_card_core1_regs_fifo2_seq_load <= 0;
         card1_card_core1_regs_fifo2_set_strobe <= 0;
         card1_card_core1_regs_fifo2_sequencer2_mark_strobe <= 0;
-        if (card1_card_core1_core_clear) begin
+        if (card1_card_core1_regs_fifo2_sequencer_clear) begin
             card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
             card1_card_core1_regs_fifo2_error_code <= 0;
         end
@@ -4357,13 +4838,13 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
         card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word58_shown;
-        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word59_shown;
-        card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_reg_word60_shown;
-        card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_reg_word60_shown == 0);
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word58_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_reg_word60_shown}));
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word58_shown} + {1'b0, card1_card_core1_regs_fifo2_reg_word60_shown});
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word59_shown} + {1'b0, card1_card_core1_regs_fifo2_reg_word60_shown});
+        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word72_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word73_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_reg_word74_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_reg_word74_shown == 0);
+        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word72_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_reg_word74_shown}));
+        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word72_shown} + {1'b0, card1_card_core1_regs_fifo2_reg_word74_shown});
+        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word73_shown} + {1'b0, card1_card_core1_regs_fifo2_reg_word74_shown});
     end
 end
 
@@ -4468,9 +4949,9 @@ end
 assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending);
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count, card1_card_core1_regs_fifo2_reg_word67_shown) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count, card1_card_core1_regs_fifo2_reg_word81_shown) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
     if ((!card1_card_core1_regs_fifo2_direct_pulse4_command_load)) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word67_shown;
+        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word81_shown;
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
     end
     else if ((card1_card_core1_regs_fifo2_direct_pulse4_command_count < 0)) begin
@@ -4484,12 +4965,12 @@ always @(card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word65_shown, card1_card_core1_regs_fifo2_direct_pulse4_waiting, card1_card_core1_regs_fifo2_direct_pulse4_gap) begin: card1_card_core1_regs_fifo2_direct_pulse4_gap_operands
+always @(card1_card_core1_regs_fifo2_reg_word79_shown, card1_card_core1_regs_fifo2_direct_pulse4_waiting, card1_card_core1_regs_fifo2_direct_pulse4_gap) begin: card1_card_core1_regs_fifo2_direct_pulse4_gap_operands
     if (card1_card_core1_regs_fifo2_direct_pulse4_waiting) begin
         card1_card_core1_regs_fifo2_direct_pulse4_gap_operand = card1_card_core1_regs_fifo2_direct_pulse4_gap;
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse4_gap_operand = card1_card_core1_regs_fifo2_reg_word65_shown;
+        card1_card_core1_regs_fifo2_direct_pulse4_gap_operand = card1_card_core1_regs_fifo2_reg_word79_shown;
     end
 end
 
@@ -4504,18 +4985,18 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_dir_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
-        card1_card_core1_regs_fifo2_reg_word67_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word81_shown <= 0;
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         if (card1_card_core1_core_clear) begin
-            card1_card_core1_regs_fifo2_reg_word67_shown <= 0;
+            card1_card_core1_regs_fifo2_reg_word81_shown <= 0;
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_command_load) begin
-            card1_card_core1_regs_fifo2_reg_word67_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+            card1_card_core1_regs_fifo2_reg_word81_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
             card1_card_core1_regs_fifo2_direct_dir_x <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count >= 0);
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
@@ -4528,10 +5009,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             end
             else if (card1_card_core1_regs_fifo2_out_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_x <= 1;
-                card1_card_core1_regs_fifo2_reg_word67_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
-                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word67_shown != 1);
+                card1_card_core1_regs_fifo2_reg_word81_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word81_shown != 1);
                 card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
-                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_reg_word65_shown != 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_reg_word79_shown != 1);
             end
         end
     end
@@ -4542,9 +5023,9 @@ end
 assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending);
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count, card1_card_core1_regs_fifo2_reg_word68_shown) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count, card1_card_core1_regs_fifo2_reg_word82_shown) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
     if ((!card1_card_core1_regs_fifo2_direct_pulse5_command_load)) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word68_shown;
+        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word82_shown;
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
     end
     else if ((card1_card_core1_regs_fifo2_direct_pulse5_command_count < 0)) begin
@@ -4558,12 +5039,12 @@ always @(card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word66_shown, card1_card_core1_regs_fifo2_direct_pulse5_waiting, card1_card_core1_regs_fifo2_direct_pulse5_gap) begin: card1_card_core1_regs_fifo2_direct_pulse5_gap_operands
+always @(card1_card_core1_regs_fifo2_reg_word80_shown, card1_card_core1_regs_fifo2_direct_pulse5_waiting, card1_card_core1_regs_fifo2_direct_pulse5_gap) begin: card1_card_core1_regs_fifo2_direct_pulse5_gap_operands
     if (card1_card_core1_regs_fifo2_direct_pulse5_waiting) begin
         card1_card_core1_regs_fifo2_direct_pulse5_gap_operand = card1_card_core1_regs_fifo2_direct_pulse5_gap;
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse5_gap_operand = card1_card_core1_regs_fifo2_reg_word66_shown;
+        card1_card_core1_regs_fifo2_direct_pulse5_gap_operand = card1_card_core1_regs_fifo2_reg_word80_shown;
     end
 end
 
@@ -4578,18 +5059,18 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_dir_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
-        card1_card_core1_regs_fifo2_reg_word68_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word82_shown <= 0;
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         if (card1_card_core1_core_clear) begin
-            card1_card_core1_regs_fifo2_reg_word68_shown <= 0;
+            card1_card_core1_regs_fifo2_reg_word82_shown <= 0;
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_command_load) begin
-            card1_card_core1_regs_fifo2_reg_word68_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+            card1_card_core1_regs_fifo2_reg_word82_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
             card1_card_core1_regs_fifo2_direct_dir_y <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count >= 0);
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
@@ -4602,10 +5083,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             end
             else if (card1_card_core1_regs_fifo2_out_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_y <= 1;
-                card1_card_core1_regs_fifo2_reg_word68_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
-                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word68_shown != 1);
+                card1_card_core1_regs_fifo2_reg_word82_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word82_shown != 1);
                 card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
-                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_reg_word66_shown != 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_reg_word80_shown != 1);
             end
         end
     end
@@ -4621,12 +5102,12 @@ assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pu
 assign card1_card_core1_regs_fifo2_pulse_out2_head = card1_card_core1_regs_fifo2_pulse_out2_queue[0];
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_reg_word62_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_reg_word61_shown, card1_card_core1_core_clear) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_reg_word76_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_reg_word75_shown, card1_card_core1_regs_fifo2_pulse_clear) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
     card1_card_core1_regs_fifo2_pulse_out2_turn = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) && ((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
     card1_card_core1_regs_fifo2_pulse_out2_take = 1'b0;
-    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_core_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word61_shown))) begin
+    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_regs_fifo2_pulse_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word75_shown))) begin
         if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b01)) begin
-            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word62_shown);
+            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word76_shown);
         end
         else if ((card1_card_core1_regs_fifo2_pulse_out2_count != 0)) begin
             card1_card_core1_regs_fifo2_pulse_out2_take = (!((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
@@ -4635,9 +5116,9 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_r
 end
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_reg_word61_shown, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_pulse_out2_take, card1_card_core1_regs_fifo2_reg_word63_shown) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
-    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_core_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word63_shown)));
-    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word61_shown));
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_reg_word75_shown, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_take, card1_card_core1_regs_fifo2_reg_word77_shown) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
+    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word77_shown)));
+    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word75_shown));
     card1_card_core1_regs_fifo2_pulse_out2_phase_step = 0;
     if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks != 255)) begin
         card1_card_core1_regs_fifo2_pulse_out2_phase_step = 1;
@@ -4692,7 +5173,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
             card1_card_core1_regs_fifo2_pulse_out2_level_y <= card1_card_core1_regs_fifo2_pulse_out2_head[1];
             card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b10;
         end
-        else if (card1_card_core1_core_clear) begin
+        else if (card1_card_core1_regs_fifo2_pulse_clear) begin
             card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b00;
         end
         else if (((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && card1_card_core1_regs_fifo2_pulse_out2_starts)) begin
@@ -4720,9 +5201,9 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
         card1_card_core1_regs_fifo2_pulse_out2_queue[3] <= 0;
     end
     else begin
-        pushed = (card1_card_core1_regs_fifo2_requests_step_x || card1_card_core1_regs_fifo2_requests_step_y);
-        entry = {card1_card_core1_regs_fifo2_requests_dir_y, card1_card_core1_regs_fifo2_requests_dir_x, card1_card_core1_regs_fifo2_requests_step_y, card1_card_core1_regs_fifo2_requests_step_x};
-        if (card1_card_core1_core_clear) begin
+        pushed = (card1_card_core1_regs_fifo2_pulse_out2_request_step_x || card1_card_core1_regs_fifo2_pulse_out2_request_step_y);
+        entry = {card1_card_core1_regs_fifo2_pulse_out2_request_dir_y, card1_card_core1_regs_fifo2_pulse_out2_request_dir_x, card1_card_core1_regs_fifo2_pulse_out2_request_step_y, card1_card_core1_regs_fifo2_pulse_out2_request_step_x};
+        if (card1_card_core1_regs_fifo2_pulse_clear) begin
             card1_card_core1_regs_fifo2_pulse_out2_count <= 0;
         end
         else if (card1_card_core1_regs_fifo2_pulse_out2_take) begin
@@ -4773,8 +5254,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
     else begin
         motor_step_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
         motor_step_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
-        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word64_shown[0]);
-        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word64_shown[1]);
+        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word78_shown[0]);
+        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word78_shown[1]);
         if (card1_card_core1_regs_fifo2_clear_position) begin
             card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
             card1_card_core1_regs_fifo2_position_y <= 0;
@@ -4788,6 +5269,306 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
             end
         end
     end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2_synchronise
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_input_filter2_inputs_raw <= 0;
+        card1_card_core1_regs_fifo2_input_filter2_sync <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_input_filter2_sync <= card1_card_core1_regs_fifo2_input_filter2_inputs_pins;
+        card1_card_core1_regs_fifo2_input_filter2_inputs_raw <= card1_card_core1_regs_fifo2_input_filter2_sync;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_input_filter2_level = (card1_card_core1_regs_fifo2_input_filter2_inputs_raw ^ card1_card_core1_regs_fifo2_reg_word89_shown);
+assign card1_card_core1_regs_fifo2_input_filter2_sample = (card1_card_core1_regs_fifo2_input_filter2_prescale == 0);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2_prescaler
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_input_filter2_prescale <= 0;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
+            card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_reg_word91_shown - 1);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_input_filter2_prescale - 1);
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2_follow
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_input_filter2_inputs_changed <= 0;
+        card1_card_core1_regs_fifo2_input_filter2_inputs_active <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_input_filter2_inputs_active <= (card1_card_core1_regs_fifo2_input_filter2_inputs_active ^ card1_card_core1_regs_fifo2_input_filter2_taken);
+        card1_card_core1_regs_fifo2_input_filter2_inputs_changed <= (card1_card_core1_regs_fifo2_input_filter2_taken != 0);
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count14_count_samples
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_input_filter2__input_count14_held <= 0;
+    end
+    else begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[0] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[0])) begin
+            card1_card_core1_regs_fifo2_input_filter2__input_count14_held <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
+            if (card1_card_core1_regs_fifo2_input_filter2__input_count14_taken) begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count14_held <= 0;
+            end
+            else begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count14_held <= (card1_card_core1_regs_fifo2_input_filter2__input_count14_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_input_filter2__input_count14_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[0] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[0]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count14_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count15_count_samples
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_input_filter2__input_count15_held <= 0;
+    end
+    else begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[1] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[1])) begin
+            card1_card_core1_regs_fifo2_input_filter2__input_count15_held <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
+            if (card1_card_core1_regs_fifo2_input_filter2__input_count15_taken) begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count15_held <= 0;
+            end
+            else begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count15_held <= (card1_card_core1_regs_fifo2_input_filter2__input_count15_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_input_filter2__input_count15_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[1] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[1]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count15_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count16_count_samples
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_input_filter2__input_count16_held <= 0;
+    end
+    else begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[2] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[2])) begin
+            card1_card_core1_regs_fifo2_input_filter2__input_count16_held <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
+            if (card1_card_core1_regs_fifo2_input_filter2__input_count16_taken) begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count16_held <= 0;
+            end
+            else begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count16_held <= (card1_card_core1_regs_fifo2_input_filter2__input_count16_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_input_filter2__input_count16_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[2] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[2]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count16_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count17_count_samples
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_input_filter2__input_count17_held <= 0;
+    end
+    else begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[3] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[3])) begin
+            card1_card_core1_regs_fifo2_input_filter2__input_count17_held <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
+            if (card1_card_core1_regs_fifo2_input_filter2__input_count17_taken) begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count17_held <= 0;
+            end
+            else begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count17_held <= (card1_card_core1_regs_fifo2_input_filter2__input_count17_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_input_filter2__input_count17_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[3] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[3]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count17_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count18_count_samples
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_input_filter2__input_count18_held <= 0;
+    end
+    else begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[4] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[4])) begin
+            card1_card_core1_regs_fifo2_input_filter2__input_count18_held <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
+            if (card1_card_core1_regs_fifo2_input_filter2__input_count18_taken) begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count18_held <= 0;
+            end
+            else begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count18_held <= (card1_card_core1_regs_fifo2_input_filter2__input_count18_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_input_filter2__input_count18_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[4] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[4]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count18_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count19_count_samples
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_input_filter2__input_count19_held <= 0;
+    end
+    else begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[5] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[5])) begin
+            card1_card_core1_regs_fifo2_input_filter2__input_count19_held <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
+            if (card1_card_core1_regs_fifo2_input_filter2__input_count19_taken) begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count19_held <= 0;
+            end
+            else begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count19_held <= (card1_card_core1_regs_fifo2_input_filter2__input_count19_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_input_filter2__input_count19_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[5] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[5]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count19_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count20_count_samples
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_input_filter2__input_count20_held <= 0;
+    end
+    else begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[6] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[6])) begin
+            card1_card_core1_regs_fifo2_input_filter2__input_count20_held <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
+            if (card1_card_core1_regs_fifo2_input_filter2__input_count20_taken) begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count20_held <= 0;
+            end
+            else begin
+                card1_card_core1_regs_fifo2_input_filter2__input_count20_held <= (card1_card_core1_regs_fifo2_input_filter2__input_count20_held + 1);
+            end
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_input_filter2__input_count20_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[6] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[6]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count20_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+
+
+
+assign card1_card_core1_regs_fifo2_machine_guard2_estop = card1_card_core1_regs_fifo2_input_filter2_inputs_active[0];
+assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_reg_word92_shown == 1) && (!card1_card_core1_regs_fifo2_reg_word92__store62_word_strobe));
+assign card1_card_core1_regs_fifo2_machine_guard2_hits = {(card1_card_core1_regs_fifo2_requests_step_y && (!card1_card_core1_regs_fifo2_requests_dir_y) && card1_card_core1_regs_fifo2_input_filter2_inputs_active[4]), (card1_card_core1_regs_fifo2_requests_step_y && card1_card_core1_regs_fifo2_requests_dir_y && card1_card_core1_regs_fifo2_input_filter2_inputs_active[3]), (card1_card_core1_regs_fifo2_requests_step_x && (!card1_card_core1_regs_fifo2_requests_dir_x) && card1_card_core1_regs_fifo2_input_filter2_inputs_active[2]), (card1_card_core1_regs_fifo2_requests_step_x && card1_card_core1_regs_fifo2_requests_dir_x && card1_card_core1_regs_fifo2_input_filter2_inputs_active[1])};
+
+
+always @(card1_card_core1_regs_fifo2_machine_guard2_hits, card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_requests_step_x, card1_card_core1_regs_fifo2_requests_dir_y, card1_card_core1_regs_fifo2_requests_step_y, card1_card_core1_regs_fifo2_requests_dir_x, card1_card_core1_regs_fifo2_machine_guard2_estop) begin: card1_card_core1_regs_fifo2_machine_guard2_gate
+    reg passes;
+    card1_card_core1_regs_fifo2_halt = (card1_card_core1_regs_fifo2_guard_stopped || card1_card_core1_regs_fifo2_machine_guard2_estop);
+    passes = ((!(card1_card_core1_regs_fifo2_guard_stopped || card1_card_core1_regs_fifo2_machine_guard2_estop)) && (card1_card_core1_regs_fifo2_machine_guard2_hits == 0));
+    card1_card_core1_regs_fifo2_pulse_out2_request_step_x = (card1_card_core1_regs_fifo2_requests_step_x && passes);
+    card1_card_core1_regs_fifo2_pulse_out2_request_step_y = (card1_card_core1_regs_fifo2_requests_step_y && passes);
+    card1_card_core1_regs_fifo2_pulse_out2_request_dir_x = card1_card_core1_regs_fifo2_requests_dir_x;
+    card1_card_core1_regs_fifo2_pulse_out2_request_dir_y = card1_card_core1_regs_fifo2_requests_dir_y;
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machine_guard2_latch
+    reg stopped;
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_guard_stopped <= 0;
+        card1_card_core1_regs_fifo2_guard_stop_event <= 0;
+        motor_drive_enable <= 0;
+        card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
+        card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 0;
+    end
+    else begin
+        stopped = (card1_card_core1_regs_fifo2_guard_stopped != 0);
+        card1_card_core1_regs_fifo2_guard_stop_event <= 0;
+        if ((!card1_card_core1_regs_fifo2_guard_stopped)) begin
+            if ((card1_card_core1_regs_fifo2_machine_guard2_estop || card1_card_core1_regs_fifo2_machine_guard2_expired || (card1_card_core1_regs_fifo2_machine_guard2_hits != 0))) begin
+                stopped = 1'b1;
+                card1_card_core1_regs_fifo2_guard_stop_event <= 1;
+                card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
+                if (card1_card_core1_regs_fifo2_machine_guard2_estop) begin
+                    card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 1;
+                end
+                else if (card1_card_core1_regs_fifo2_machine_guard2_expired) begin
+                    card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 2;
+                end
+                else begin
+                    card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 3;
+                    card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= card1_card_core1_regs_fifo2_machine_guard2_hits;
+                end
+            end
+        end
+        else if ((card1_card_core1_regs_fifo2_clear_stop && (!card1_card_core1_regs_fifo2_machine_guard2_estop))) begin
+            stopped = 1'b0;
+            card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 0;
+            card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
+        end
+        card1_card_core1_regs_fifo2_guard_stopped <= stopped;
+        motor_drive_enable <= ((card1_card_core1_regs_fifo2_reg_word86_shown != 0) && (!stopped) && (!card1_card_core1_regs_fifo2_machine_guard2_estop));
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machine_guard2_watchdog
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word92_shown <= 0;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_reg_word92__store62_word_strobe) begin
+            card1_card_core1_regs_fifo2_reg_word92_shown <= card1_card_core1_regs_fifo2_reg_word92__store62_word_value;
+        end
+        else if ((card1_card_core1_regs_fifo2_reg_word92_shown != 0)) begin
+            card1_card_core1_regs_fifo2_reg_word92_shown <= (card1_card_core1_regs_fifo2_reg_word92_shown - 1);
+        end
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_input_filter2_inputs_active, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2__machine_words2_assemble
+    reg [18-1:0] word;
+    reg [8-1:0] why;
+    word = 18'h0;
+    word[0+:7] = card1_card_core1_regs_fifo2_input_filter2_inputs_raw;
+    word[8+:7] = card1_card_core1_regs_fifo2_input_filter2_inputs_active;
+    word[16] = card1_card_core1_regs_fifo2_guard_stopped;
+    word[17] = motor_drive_enable;
+    card1_card_core1_regs_fifo2_reg_word87_shown = word;
+    why = 8'h0;
+    why[0+:2] = card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
+    why[4+:4] = card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
+    card1_card_core1_regs_fifo2_reg_word88_shown = why;
 end
 
 
@@ -4842,24 +5623,29 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_enable = (card1_card_core1_regs_fifo2_control[0] && (!card1_card_core1_regs_fifo2_control[1]));
+assign card1_card_core1_regs_fifo2_enable = (card1_card_core1_regs_fifo2_control[0] && (!card1_card_core1_regs_fifo2_control[1]) && (!card1_card_core1_regs_fifo2_halt));
 assign card1_card_core1_regs_fifo2_direct_mode = card1_card_core1_regs_fifo2_control[1];
 assign card1_card_core1_regs_fifo2_clear_error = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[1]);
 assign card1_card_core1_regs_fifo2_clear_position = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[2]);
+assign card1_card_core1_regs_fifo2_clear_stop = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[3]);
+assign card1_card_core1_regs_fifo2_pulse_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_halt);
+assign card1_card_core1_regs_fifo2_sequencer_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_soft_reset
     if (reset == 0) begin
+        card1_card_core1_regs_fifo2_soft_reset_taken <= 0;
         card1_card_core1_core_clear <= 0;
     end
     else begin
-        card1_card_core1_core_clear <= (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[0]);
+        card1_card_core1_regs_fifo2_soft_reset_taken <= (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[0]);
+        card1_card_core1_core_clear <= ((card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[0]) || card1_card_core1_regs_fifo2_guard_stop_event);
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_fifo_flush = (card1_card_core1_core_clear || (card1_card_core1_regs_fifo2_discard_on_clear && card1_card_core1_regs_fifo2_io_written && (card1_card_core1_regs_fifo2_written_addr == 8) && card1_card_core1_regs_fifo2_written_data[1] && card1_card_core1_regs_fifo2_written_mask[1]));
+assign card1_card_core1_regs_fifo2_fifo_flush = (card1_card_core1_regs_fifo2_soft_reset_taken || (card1_card_core1_regs_fifo2_io_written && (card1_card_core1_regs_fifo2_written_addr == 8) && ((card1_card_core1_regs_fifo2_discard_on_clear && card1_card_core1_regs_fifo2_written_data[1] && card1_card_core1_regs_fifo2_written_mask[1]) || (card1_card_core1_regs_fifo2_guard_stopped && card1_card_core1_regs_fifo2_written_data[3] && card1_card_core1_regs_fifo2_written_mask[3]))));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_outputs_before
@@ -4905,10 +5691,10 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe, card1_card_core1_regs_fifo2_reg_word67__store46_word_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
+always @(card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe, card1_card_core1_regs_fifo2_reg_word81__store56_word_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
     if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe;
-        card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word67__store46_word_value);
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe && (!card1_card_core1_regs_fifo2_halt));
+        card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word81__store56_word_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_command_load = card1_card_core1_regs_fifo2_seq_load;
@@ -4917,10 +5703,10 @@ always @(card1_card_core1_regs_fifo2_reg_word67__store46_word_strobe, card1_card
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word68__store47_word_strobe, card1_card_core1_regs_fifo2_reg_word68__store47_word_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
+always @(card1_card_core1_regs_fifo2_reg_word82__store57_word_strobe, card1_card_core1_regs_fifo2_reg_word82__store57_word_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
     if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = card1_card_core1_regs_fifo2_reg_word68__store47_word_strobe;
-        card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word68__store47_word_value);
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_reg_word82__store57_word_strobe && (!card1_card_core1_regs_fifo2_halt));
+        card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word82__store57_word_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_command_load = card1_card_core1_regs_fifo2_seq_load;
@@ -4946,7 +5732,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2__statu
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_done_flag, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2__status2_quadrant, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2__status2_assemble
+always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_done_flag, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2__status2_quadrant, card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2__status2_assemble
     reg [32-1:0] word;
     word = 32'h0;
     word[0] = card1_card_core1_regs_fifo2_any_busy;
@@ -4955,8 +5741,9 @@ always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_don
     word[4+:4] = card1_card_core1_regs_fifo2_error_code;
     word[8] = card1_card_core1_regs_fifo2_fifo_empty;
     word[9] = card1_card_core1_regs_fifo2_fifo_full;
+    word[10] = card1_card_core1_regs_fifo2_guard_stopped;
     word[32-1:16] = card1_card_core1_regs_fifo2_level_wide;
-    card1_card_core1_regs_fifo2_reg_word51_shown = word;
+    card1_card_core1_regs_fifo2_reg_word65_shown = word;
 end
 
 
@@ -4964,37 +5751,39 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2__inter
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_error_before <= 0;
         card1_card_core1_regs_fifo2_low_before <= 0;
-        card1_card_core1_regs_fifo2_reg_word55_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word69_shown <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_error_before <= (card1_card_core1_regs_fifo2_error_code != 0);
-        card1_card_core1_regs_fifo2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word54_shown);
+        card1_card_core1_regs_fifo2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word68_shown);
         if (card1_card_core1_regs_fifo2_sequencer2_mark_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word55_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
+            card1_card_core1_regs_fifo2_reg_word69_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
         end
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word71_chain_out_clamped, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_reg_word54_shown, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_busy_before, card1_card_core1_regs_fifo2_low_before) begin: card1_card_core1_regs_fifo2__interrupts2_detect
-    reg [5-1:0] word;
-    word = 5'h0;
+always @(card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_reg_word68_shown, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_input_filter2_inputs_changed, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_busy_before, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_low_before) begin: card1_card_core1_regs_fifo2__interrupts2_detect
+    reg [7-1:0] word;
+    word = 7'h0;
     word[0] = (card1_card_core1_regs_fifo2_busy_before && (!card1_card_core1_regs_fifo2_any_busy));
-    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word54_shown) && (!card1_card_core1_regs_fifo2_low_before));
+    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word68_shown) && (!card1_card_core1_regs_fifo2_low_before));
     word[2] = ((card1_card_core1_regs_fifo2_error_code != 0) && (!card1_card_core1_regs_fifo2_error_before));
     word[3] = card1_card_core1_regs_fifo2_sequencer2_mark_strobe;
-    word[4] = card1_card_core1_regs_fifo2_reg_word71_chain_out_clamped;
-    card1_card_core1_regs_fifo2_reg_word53__store35_word_hw = word;
+    word[4] = card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped;
+    word[5] = card1_card_core1_regs_fifo2_guard_stop_event;
+    word[6] = card1_card_core1_regs_fifo2_input_filter2_inputs_changed;
+    card1_card_core1_regs_fifo2_reg_word67__store45_word_hw = word;
 end
 
 
 
-assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word53_shown & card1_card_core1_regs_fifo2_reg_word52_shown) != 0);
+assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word67_shown & card1_card_core1_regs_fifo2_reg_word66_shown) != 0);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word56_shown = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
-assign card1_card_core1_regs_fifo2_reg_word57_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word70_shown = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word71_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
 always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_magnitudes

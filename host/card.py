@@ -19,6 +19,10 @@ command it refused (for DDA_REJECTED, the ARC among the last two: the
 instruction register fetches the next command while the DDA checks an arc,
 docs/instructions.md).  Times are converted with the card's CLOCK_HZ, sizes
 come from FIFO_SIZE and BUILD: the host needs no knowledge of the build.
+
+The machine side (docs/machine.md): ``drive``, ``inputs``, ``watchdog``,
+``estop_state``, ``limits``, ``stop_reason``, ``clear_stop``.  A card the
+guard has stopped raises ``MachineStopped`` from ``check`` and ``wait_done``.
 """
 import bisect
 import math
@@ -44,6 +48,16 @@ class CardError(RuntimeError):
     def __init__(self, name, code, command):
         super().__init__(f"the card refused {command}: {name}" if command else f"card error {name}")
         self.name, self.code, self.command = name, code, command
+
+
+class MachineStopped(RuntimeError):
+    """The card's guard stopped the machine: ``reason`` (``ESTOP``,
+    ``WATCHDOG`` or ``LIMIT``) and ``limits`` (the limits stepped towards)."""
+
+    def __init__(self, reason, limits=()):
+        which = f" ({', '.join(limits)})" if limits else ""
+        super().__init__(f"the card stopped the machine: {reason}{which}")
+        self.reason, self.limits = reason, tuple(limits)
 
 
 class IdentityError(RuntimeError):
@@ -106,9 +120,12 @@ class Card:
         major, minor = version >> 8, version & 0xFF
         if major != MAJOR:
             raise IdentityError(f"{where}: register map {major}.{minor}; this host software speaks {MAJOR}.x")
-        if minor < MINOR:
+        if minor < 1:
             raise IdentityError(f"{where}: register map {major}.{minor} has no capability registers "
-                                f"(1.{MINOR} added them): load a newer bitstream")
+                                "(1.1 added them): load a newer bitstream")
+        if minor < MINOR:
+            raise IdentityError(f"{where}: register map {major}.{minor} has no machine guard "
+                                f"(1.{MINOR} added it): load a newer bitstream")
         build = self.read("BUILD")
         ids = self.transport.config_read(0)
         variants = regmap.field_value("BUILD", "DDA_VARIANTS", build)
@@ -262,8 +279,10 @@ class Card:
         return x, self.field("POS_Y", "STEPS")
 
     def check(self, status=None):
-        """CardError if the card has stopped on an error."""
+        """MachineStopped if the guard has stopped the card, CardError if it stopped on an error."""
         status = self.status() if status is None else status
+        if regmap.field_value("STATUS", "STOPPED", status):
+            raise MachineStopped(*self.stop_reason())
         code = regmap.field_value("STATUS", "ERROR", status)
         if code:
             raise CardError(error_name(code), code, self.refused_command(code, self.consumed(status)))
@@ -317,6 +336,59 @@ class Card:
         self.transport.write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", SOFT_RESET=1))
         self._forget()
         return self.position()
+
+    # ----- the machine side (docs/machine.md) -------------------------------------
+    def drive(self, enable=True):
+        """MACHINE_CONTROL.DRIVE_ENABLE: the DRIVE_ENABLE pin follows it while the card is not stopped."""
+        self.write("MACHINE_CONTROL", regmap.field_of("MACHINE_CONTROL", DRIVE_ENABLE=int(enable)))
+
+    def inputs(self, active_low=(), filter_ns=100, sample_ns=None):
+        """Input conditioning: ``active_low`` names the inputs wired active low
+        (``ESTOP``, ``LIMIT_POS_X`` ..., as in INPUT_POLARITY); an input's new
+        level counts once it held for ``filter_ns`` (INPUT_FILTER samples
+        ``sample_ns`` apart, default: the shortest spacing that needs at most
+        15); the filter time honoured, in ns."""
+        polarity = regmap.field_of("INPUT_POLARITY", **{name: 1 for name in active_low})
+        clocks = max(self.clocks(filter_ns), 1)
+        tick = self.clocks(sample_ns) if sample_ns else math.ceil(clocks / 15)
+        samples = min(max(math.ceil(clocks / max(tick, 1)), 1), 15)
+        self.write("INPUT_POLARITY", polarity)
+        self.write("INPUT_TICK", tick)
+        self.write("INPUT_FILTER", samples)
+        return samples * tick * 1e9 / self.identity.clock_hz
+
+    def watchdog(self, seconds):
+        """WATCHDOG: the card stops (reason WATCHDOG) unless this is called
+        again within ``seconds``; 0 turns it off.  Returns the clocks written."""
+        clocks = self.clocks(seconds * 1e9) if seconds else 0
+        self.write("WATCHDOG", clocks)
+        return clocks
+
+    def estop_state(self):
+        """True while the (filtered) E-stop input is active."""
+        return bool(self.field("MACHINE_STATUS", "ACTIVE") & 1 << regmap.INPUT_NAMES.index("ESTOP"))
+
+    def limits(self):
+        """The names of the limit inputs active now (filtered), e.g. ``("LIMIT_POS_X",)``."""
+        active = self.field("MACHINE_STATUS", "ACTIVE")
+        return tuple(name for bit, name in enumerate(regmap.INPUT_NAMES)
+                     if name.startswith("LIMIT") and active >> bit & 1)
+
+    def stop_reason(self):
+        """(reason, limits): STOP_REASON as names, ``("NONE", ())`` while not stopped."""
+        word = self.read("STOP_REASON")
+        reason = regmap.STOP_REASONS[regmap.field_value("STOP_REASON", "REASON", word)]
+        hit = regmap.field_value("STOP_REASON", "LIMITS", word)
+        return reason, tuple(name for bit, name in enumerate(regmap.LIMIT_NAMES) if hit >> bit & 1)
+
+    def clear_stop(self):
+        """COMMAND.CLEAR_STOP; MachineStopped if the card stays stopped (the
+        E-stop input still active).  The FIFO was emptied at the stop: the
+        record of queued words starts afresh."""
+        self.transport.write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", CLEAR_STOP=1))
+        self._forget()
+        if self.field("STATUS", "STOPPED"):
+            raise MachineStopped(*self.stop_reason())
 
     def _forget(self):
         self._written = 0

@@ -336,14 +336,30 @@ def card_reset():
 
 
 class MotorPins:
-    """STEP and DIR pins of the two axes, as they leave the card (levels,
-    straight from flip-flops; ``dir_*`` already carries the polarity)."""
+    """The machine's pins: STEP and DIR of the two axes as they leave the
+    card (levels, straight from flip-flops; ``dir_*`` already carries the
+    polarity), ``drive_enable`` (out, from a flip-flop: the drives may
+    run), and the machine's inputs, in the order of ``MACHINE_INPUTS``
+    (E-stop, the limit switches, the home switches: pin levels as wired,
+    asynchronous; ``rtl/input_filter.py`` conditions them)."""
 
     def __init__(self):
         self.step_x = Signal(bool(0))
         self.dir_x = Signal(bool(0))
         self.step_y = Signal(bool(0))
         self.dir_y = Signal(bool(0))
+        self.drive_enable = Signal(bool(0))
+        for name in MACHINE_INPUTS:
+            setattr(self, name, Signal(bool(0)))
+
+    def inputs(self):
+        """The input pins, in the order of ``MACHINE_INPUTS``."""
+        return [getattr(self, name) for name in MACHINE_INPUTS]
+
+
+# The machine's inputs, bit n of INPUT_POLARITY and MACHINE_STATUS is input n.
+MACHINE_INPUTS = tuple(f.name.lower() for f in regmap.register("INPUT_POLARITY").fields)
+INPUT_ESTOP, INPUT_LIMIT_POS_X, INPUT_LIMIT_NEG_X, INPUT_LIMIT_POS_Y, INPUT_LIMIT_NEG_Y = range(5)
 
 
 class PciPins:
@@ -729,3 +745,46 @@ class TargetRequests:
                io_byte=Signal(intbv(0)[2:]), cbe=Signal(intbv(0xF)[4:]), ad=Signal(intbv(0)[32:]),
                h_data=Signal(intbv(0)[32:]), h_be=Signal(intbv(0)[4:]),
                **{name: Signal(bool(0)) for name in bools})
+
+
+class InputConditioning:
+    """The machine inputs' conditioning (``rtl/input_filter.py``).
+
+    The card drives ``pins`` (the input pins as one vector, bit n the input
+    n of ``MACHINE_INPUTS``), ``polarity`` (INPUT_POLARITY: 1 inverts that
+    input, for switches active low), ``samples`` (INPUT_FILTER) and
+    ``tick`` (INPUT_TICK, clocks per sample, >= 1); the filter drives
+    ``raw`` (the pins after the two-flip-flop synchroniser, as wired),
+    ``active`` (filtered, polarity applied: 1 active) and ``changed`` (one
+    clock after an ``active`` bit changed)."""
+
+    def __init__(self, **given):
+        count = len(MACHINE_INPUTS)
+        samples, tick = regmap.register("INPUT_FILTER"), regmap.register("INPUT_TICK")
+        _adopt(self, given, pins=Signal(intbv(0)[count:]), polarity=Signal(intbv(0)[count:]),
+               samples=Signal(intbv(samples.reset)[samples.width:]), tick=Signal(intbv(tick.reset)[tick.width:]),
+               raw=Signal(intbv(0)[count:]), active=Signal(intbv(0)[count:]), changed=Signal(bool(0)))
+
+
+class MachineGuard:
+    """The machine guard's seam with the registers (``rtl/machine_guard.py``).
+
+    The card drives ``active`` (the filtered inputs, ``InputConditioning``),
+    ``drive_request`` (MACHINE_CONTROL.DRIVE_ENABLE), ``clear_stop``
+    (COMMAND.CLEAR_STOP, one clock), ``watchdog_load`` (one clock per
+    WATCHDOG write) with ``watchdog_timeout`` (its value, clocks; 0: off).
+    The guard drives ``halt`` (no new STEP edge, no command, no direct
+    pulse: stopped, or the E-stop input active), ``stopped`` (the latch),
+    ``stop_event`` (one clock, as the latch sets), ``reason`` and ``limits``
+    (STOP_REASON), ``drive_enable`` (the pin, from a flip-flop) and
+    ``watchdog_left`` (clocks before the watchdog expires)."""
+
+    def __init__(self, **given):
+        reason, watchdog = regmap.register("STOP_REASON"), regmap.register("WATCHDOG")
+        _adopt(self, given, active=Signal(intbv(0)[len(MACHINE_INPUTS):]), drive_request=Signal(bool(0)),
+               clear_stop=Signal(bool(0)), watchdog_load=Signal(bool(0)),
+               watchdog_timeout=Signal(intbv(0)[watchdog.width:]), halt=Signal(bool(0)),
+               stopped=Signal(bool(0)), stop_event=Signal(bool(0)),
+               reason=Signal(intbv(0)[reason.field("REASON").width:]),
+               limits=Signal(intbv(0)[reason.field("LIMITS").width:]), drive_enable=Signal(bool(0)),
+               watchdog_left=Signal(intbv(0)[watchdog.width:]))

@@ -28,7 +28,10 @@ build's top.
 
 ID.VERSION: the major version (bits 15:8) changes when a register or field
 moves or changes meaning, the minor version (bits 7:0) when registers or
-fields are added.  1.1 added CLOCK_HZ, FIFO_SIZE and BUILD.
+fields are added.  1.1 added CLOCK_HZ, FIFO_SIZE and BUILD; 1.2 the machine
+inputs and the guard (MACHINE_CONTROL, MACHINE_STATUS, STOP_REASON,
+INPUT_POLARITY, INPUT_FILTER, INPUT_TICK, WATCHDOG, COMMAND.CLEAR_STOP,
+STATUS.STOPPED, INT_STATUS.STOPPED and INPUT).
 """
 from dataclasses import dataclass, field
 
@@ -37,7 +40,7 @@ from rtl import parameters
 ACCESS_KINDS = ("RO", "RW", "W1C", "W1S", "WP")
 WORD_BYTES = 4
 ID_MAGIC = 0xDDAC
-VERSION = 0x0101  # major 1, minor 1
+VERSION = 0x0102  # major 1, minor 2
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock
 RATE_MAX = RATE_ONE // 2  # the DDA takes an iteration at most every other clock
 
@@ -123,7 +126,19 @@ _INT_FIELDS = (
     Field("ERROR", 2, 1, "a command was rejected (STATUS.ERROR says why)"),
     Field("MARK", 3, 1, "a MARK command was reached (MARK_TAG says which)"),
     Field("CLAMPED", 4, 1, "a register write was out of range and was clamped"),
+    Field("STOPPED", 5, 1, "the machine guard stopped the card (STOP_REASON says why)"),
+    Field("INPUT", 6, 1, "a filtered machine input changed (MACHINE_STATUS.ACTIVE)"),
 )
+
+# The machine inputs, bit n of INPUT_POLARITY and of MACHINE_STATUS's RAW and ACTIVE.
+_INPUT_TEXT = (("ESTOP", "emergency stop"), ("LIMIT_POS_X", "X limit, positive end"),
+               ("LIMIT_NEG_X", "X limit, negative end"), ("LIMIT_POS_Y", "Y limit, positive end"),
+               ("LIMIT_NEG_Y", "Y limit, negative end"), ("HOME_X", "X home switch"), ("HOME_Y", "Y home switch"))
+INPUT_NAMES = tuple(name for name, _ in _INPUT_TEXT)
+LIMIT_NAMES = INPUT_NAMES[1:5]  # STOP_REASON.LIMITS bit n: LIMIT_NAMES[n]
+STOP_REASONS = ("NONE", "ESTOP", "WATCHDOG", "LIMIT")  # STOP_REASON.REASON codes
+_REASON_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(STOP_REASONS))
+WATCHDOG_BITS = 24
 
 REGISTERS = (
     Register("ID", 0x00, "RO", (ID_MAGIC << 16) | VERSION, "identity and version", (
@@ -138,6 +153,8 @@ REGISTERS = (
         Field("SOFT_RESET", 0, 1, "stop motion at once, empty the FIFO, reset the DDA, clear the error"),
         Field("CLEAR_ERROR", 1, 1, "clear STATUS.ERROR; execution resumes with the next queued word"),
         Field("CLEAR_POSITION", 2, 1, "zero POS_X and POS_Y"),
+        Field("CLEAR_STOP", 3, 1, "release the machine guard's stop (ignored while the E-stop input "
+              "is active)"),
     )),
     # after reset: idle, no error, the FIFO empty
     Register("STATUS", 0x0C, "RO", 1 << 8, "what the card is doing", (
@@ -147,6 +164,7 @@ REGISTERS = (
         Field("ERROR", 4, 4, "error code, 0: none (docs/instructions.md lists them)"),
         Field("FIFO_EMPTY", 8, 1, "the FIFO holds no word"),
         Field("FIFO_FULL", 9, 1, "the FIFO is full: memory writes are retried"),
+        Field("STOPPED", 10, 1, "the machine guard holds the card stopped (STOP_REASON says why)"),
         Field("FIFO_LEVEL", 16, 16, "words in the FIFO"),
     )),
     Register("INT_ENABLE", 0x10, "RW", 0, "interrupt enables (INTA# = any enabled status bit)", _INT_FIELDS),
@@ -207,6 +225,32 @@ REGISTERS = (
         (Field("DEVICE", 24, 4, f"FPGA family of the Verilog ({_DEVICE_CODES}; build parameter device)",
                build="device"), 0),
     )),
+    Register("MACHINE_CONTROL", 0x60, "RW", 0, "the machine's outputs", (
+        Field("DRIVE_ENABLE", 0, 1, "1: raise the DRIVE_ENABLE pin while the card is not stopped"),
+    )),
+    Register("MACHINE_STATUS", 0x64, "RO", 0, "the machine's inputs and the guard", (
+        Field("RAW", 0, 7, "input pins after the synchroniser, as wired (bit n: input n of INPUT_POLARITY)"),
+        Field("ACTIVE", 8, 7, "inputs filtered, polarity applied: 1 active (bit n: input n)"),
+        Field("STOPPED", 16, 1, "the guard holds the card stopped (STOP_REASON says why)"),
+        Field("DRIVE_ENABLE", 17, 1, "the DRIVE_ENABLE pin"),
+    )),
+    Register("STOP_REASON", 0x68, "RO", 0, "why the guard stopped the card (0 when not stopped)", (
+        Field("REASON", 0, 2, f"{_REASON_CODES}"),
+        Field("LIMITS", 4, 4, "LIMIT: the limits stepped towards (bit n: " + ", ".join(
+            f"{bit} {name}" for bit, name in enumerate(LIMIT_NAMES)) + ")"),
+    )),
+    Register("INPUT_POLARITY", 0x6C, "RW", 0, "input polarity: 1 makes that input active low",
+             tuple(Field(name, bit, 1, f"1: the {text} input is active low")
+                   for bit, (name, text) in enumerate(_INPUT_TEXT))),
+    Register("INPUT_FILTER", 0x70, "RW", 3,
+             "glitch filter: an input's new level counts once it held for this many samples",
+             _one("SAMPLES", 4, "1..15 samples, INPUT_TICK clocks apart (1: the first sample takes it)"),
+             minimum=1, maximum=15),
+    Register("INPUT_TICK", 0x74, "RW", 1, "clocks between the input filter's samples",
+             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
+    Register("WATCHDOG", 0x78, "WP", 0,
+             "host watchdog: write the timeout in clocks (0: off) at least that often; reads the clocks left",
+             _one("CLOCKS", WATCHDOG_BITS, "clocks until the guard stops the card (reason WATCHDOG)")),
 )
 
 IO_BAR_BITS = max(2, (max(r.offset for r in REGISTERS) + WORD_BYTES - 1).bit_length())
@@ -290,7 +334,9 @@ def markdown():
         "",
         f"ID.VERSION is {VERSION >> 8}.{VERSION & 0xFF}: the major version (bits 15:8) changes when a",
         "register or field moves or changes meaning, the minor version (bits 7:0) when",
-        "registers or fields are added.  1.1 added CLOCK_HZ, FIFO_SIZE and BUILD.",
+        "registers or fields are added.  1.1 added CLOCK_HZ, FIFO_SIZE and BUILD; 1.2 the",
+        "machine inputs and the guard (MACHINE_CONTROL .. WATCHDOG, COMMAND.CLEAR_STOP,",
+        "STATUS.STOPPED, INT_STATUS.STOPPED and INPUT; docs/machine.md).",
         "",
         "Access: RO read only; RW read/write (byte enables honoured; a value outside",
         "min..max is clamped to the nearest bound, reads back clamped, and sets",

@@ -1,14 +1,16 @@
 """Function registers, data FIFO, instruction register and pulse outputs of the card."""
-from myhdl import Signal, always_comb, always_seq, block, concat, intbv
+from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, concat, intbv
 
 from rtl import parameters
 from rtl import registers as regmap
 from rtl.direct_pulse import direct_pulse
 from rtl.feed_rate import feed_rate
-from rtl.interfaces import (ERROR_BITS, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, LocalBus,
-                            MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus,
+from rtl.input_filter import input_filter
+from rtl.interfaces import (ERROR_BITS, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead,
+                            InputConditioning, LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus,
                             RegisterWord, SequencerControl, SetPort, StepPositions, StepRequest, card_reset)
 from rtl.dda_build import variants_choice
+from rtl.machine_guard import machine_guard
 from rtl.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, VARIANTS
 from rtl.pulse_out import pulse_out
 from rtl.reg_word import reg_word
@@ -35,9 +37,13 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     a posted dword, and a write to a full FIFO answers ``retry``, so the
     target retries or disconnects and no word is lost); ``dda`` (drives the
     interpolator's command, reads its status); ``steps`` (the interpolator's
-    step requests); ``pins`` (STEP/DIR out); ``irq`` (level, to INTA#:
-    INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
-    COMMAND.SOFT_RESET: the top resets the DDA with it).
+    step requests); ``pins`` (STEP/DIR and DRIVE_ENABLE out, the machine
+    inputs in: ``input_filter`` and ``machine_guard`` watch them, and a
+    stop resets and holds the sequencer, the direct pulses and the pulse
+    outputs and resets the DDA; the FIFO keeps its words until
+    COMMAND.CLEAR_STOP empties it, docs/machine.md); ``irq`` (level, to
+    INTA#: INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
+    COMMAND.SOFT_RESET or a stop: the top resets the DDA with it).
     Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
     two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
     ``clock_hz`` and ``device`` only set capability registers (CLOCK_HZ,
@@ -84,14 +90,16 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     set_port, mark = SetPort(), MarkPort()
     # named at this level, as the formal harness (formal/props) and the waves know them
     set_strobe, set_index, set_value = set_port.strobe, set_port.index, set_port.value
-    seq_control = SequencerControl(clear=core_clear)
+    sequencer_clear = Signal(bool(0))
+    seq_control = SequencerControl(clear=sequencer_clear)
     enable, clear_error, error_code = seq_control.enable, seq_control.clear_error, seq_control.error_code
     seq_busy, motion_run, discard_on_clear = seq_control.busy, seq_control.motion_run, seq_control.discard_on_clear
     clear_position, direct_mode = Signal(bool(0)), Signal(bool(0))
     pulses = PulseCommand()
     pulse_busy, outputs_busy, seq_load = pulses.busy, pulses.outputs_busy, pulses.load
-    requests = AxisPulses()
-    outputs = PulseControl(clear=core_clear, clear_position=clear_position, width=values["STEP_WIDTH"],
+    requests, granted = AxisPulses(), AxisPulses()
+    halt, pulse_clear, clear_stop = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    outputs = PulseControl(clear=pulse_clear, clear_position=clear_position, width=values["STEP_WIDTH"],
                            setup=values["DIR_SETUP"], hold=values["DIR_HOLD"],
                            polarity_x=values["DIR_POLARITY"](0), polarity_y=values["DIR_POLARITY"](1))
     out_ready, out_active = outputs.ready, outputs.active
@@ -104,7 +112,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     direct_request, direct_dir = [o.step for o in direct_out], [o.dir for o in direct_out]
     feed = FeedPort(dda.coord_width, run=motion_run, stop_left=dda.stop_left)
     tick, hold = feed.tick, feed.hold
-    fifo_flush = Signal(bool(0))
+    fifo_flush, soft_reset_taken = Signal(bool(0)), Signal(bool(0))
     requested_before, out_active_before = Signal(bool(0)), Signal(bool(0))
     any_busy, busy_before, done_flag, low_before, error_before = (Signal(bool(0)) for _ in range(5))
     pos_y_snapshot = Signal(position.y.val)
@@ -122,12 +130,20 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     units.append(feed_rate(clock, reset, settings=settings, feed=feed))
     for axis in range(2):
         units.append(direct_pulse(clock, reset, command=direct[axis], out=direct_out[axis]))
-    units.append(pulse_out(clock, reset, request=requests, control=outputs, pins=pins, position=position))
+    units.append(pulse_out(clock, reset, request=granted, control=outputs, pins=pins, position=position))
+    conditioning = InputConditioning(pins=ConcatSignal(*reversed(pins.inputs())), polarity=values["INPUT_POLARITY"],
+                                     samples=values["INPUT_FILTER"], tick=values["INPUT_TICK"])
+    guard = MachineGuard(active=conditioning.active, drive_request=values["MACHINE_CONTROL"], clear_stop=clear_stop,
+                         watchdog_load=strobes["WATCHDOG"], watchdog_timeout=values["WATCHDOG"], halt=halt,
+                         drive_enable=pins.drive_enable, watchdog_left=hw["WATCHDOG"])
+    units += [input_filter(clock, reset, conditioning), machine_guard(clock, reset, guard, requests, granted),
+              _machine_words(conditioning, guard, hw["MACHINE_STATUS"], hw["STOP_REASON"])]
 
     read_end, clamp_end = chain[-1].data, chain[-1].clamped
     control, command, command_strobe = values["CONTROL"], values["COMMAND"], strobes["COMMAND"]
     enable_bit, mode_bit = _bit("CONTROL", "ENABLE"), _bit("CONTROL", "MODE")
-    reset_bit, clear_bit, zero_bit = (_bit("COMMAND", f) for f in ("SOFT_RESET", "CLEAR_ERROR", "CLEAR_POSITION"))
+    reset_bit, clear_bit, zero_bit, release_bit = (_bit("COMMAND", f) for f in ("SOFT_RESET", "CLEAR_ERROR",
+                                                                                "CLEAR_POSITION", "CLEAR_STOP"))
     pos_x_offset = regmap.offset("POS_X")
     command_offset = regmap.offset("COMMAND")
 
@@ -173,14 +189,22 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
 
     @always_comb
     def control_bits():
-        enable.next = control[enable_bit] and not control[mode_bit]
+        enable.next = control[enable_bit] and not control[mode_bit] and not halt
         direct_mode.next = control[mode_bit]
         clear_error.next = command_strobe and command[clear_bit]
         clear_position.next = command_strobe and command[zero_bit]
+        clear_stop.next = command_strobe and command[release_bit]
+        # no new STEP edge while the guard halts (a pulse already high ends normally)
+        pulse_clear.next = core_clear or halt
+        # held while stopped: the sequencer takes no word from the FIFO
+        sequencer_clear.next = core_clear or guard.stopped
 
     @always_seq(clock.posedge, reset=reset)
     def soft_reset():
-        core_clear.next = command_strobe and command[reset_bit]
+        # a stop of the guard resets the DDA, the sequencer and the pulses as SOFT_RESET does;
+        # only SOFT_RESET empties the FIFO with it (see fifo_emptying)
+        soft_reset_taken.next = command_strobe and command[reset_bit]
+        core_clear.next = (command_strobe and command[reset_bit]) or guard.stop_event
 
     @always_comb
     def fifo_emptying():
@@ -191,9 +215,12 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         # that takes its bus write (then the strobe, then core_clear): no word
         # arrives in between, as the target holds no posted dword when it starts
         # a register access, and the next transaction's address phase comes at
-        # e + 2 at the earliest, its first dword two clocks later
-        fifo_flush.next = core_clear or (discard_on_clear and io_written and written_addr == command_offset
-                                         and written_data[clear_bit] and written_mask[clear_bit])
+        # e + 2 at the earliest, its first dword two clocks later.  CLEAR_STOP,
+        # while stopped, empties it as CLEAR_ERROR does: the stop may have cut a
+        # command in two, and words written since are dropped with it
+        fifo_flush.next = soft_reset_taken or (io_written and written_addr == command_offset and (
+            (discard_on_clear and written_data[clear_bit] and written_mask[clear_bit])
+            or (guard.stopped and written_data[release_bit] and written_mask[release_bit])))
 
     level_pad = level_bits - len(fifo_level)
 
@@ -243,25 +270,27 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
               merge_requests, widen_level if level_pad else copy_level]
     for axis, name in enumerate("XY"):
         units.append(_axis_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"],
-                                  seq_load, (pulses.count_x, pulses.count_y)[axis], axis_load[axis],
+                                  seq_load, (pulses.count_x, pulses.count_y)[axis], halt, axis_load[axis],
                                   axis_count[axis]))
     units.append(_status(clock, reset, any_busy, busy_before, done_flag, dda.quadrant, error_code,
-                     fifo_empty, fifo_full, level_wide, hw["STATUS"]))
+                         fifo_empty, fifo_full, level_wide, guard.stopped, hw["STATUS"]))
     units.append(_interrupts(clock, reset, any_busy, busy_before, error_code, error_before, mark.strobe,
                          mark.tag, hw["MARK_TAG"], level_wide, values["LOW_WATER"], low_before, clamp_end,
-                         hw["INT_STATUS"], values["INT_STATUS"], values["INT_ENABLE"], irq))
+                         guard.stop_event, conditioning.changed, hw["INT_STATUS"], values["INT_STATUS"],
+                         values["INT_ENABLE"], irq))
     units.append(_positions(position.x, pos_y_snapshot, hw["POS_X"], hw["POS_Y"]))
     return units
 
 
 @block
-def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, load, count):
-    """Direct pulses come from PULSE_COUNT_* in direct mode, from PULSE commands otherwise."""
+def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, halt, load, count):
+    """Direct pulses come from PULSE_COUNT_* in direct mode, from PULSE commands
+    otherwise; none start while the guard halts."""
 
     @always_comb
     def choose_source():
         if direct_mode:
-            load.next = count_strobe
+            load.next = count_strobe and not halt
             count.next = count_value.signed()
         else:
             load.next = seq_load
@@ -272,11 +301,12 @@ def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, lo
 
 @block
 def _status(clock, reset, any_busy, busy_before, done_flag, quadrant, error_code, fifo_empty,
-            fifo_full, fifo_level, status):
+            fifo_full, fifo_level, stopped, status):
     """STATUS: DONE is set when the card goes idle and cleared when it gets busy."""
     busy_bit, done_bit = _bit("STATUS", "BUSY"), _bit("STATUS", "DONE")
     quadrant_lsb, error_lsb = _bit("STATUS", "QUADRANT"), _bit("STATUS", "ERROR")
     empty_bit, full_bit, level_lsb = _bit("STATUS", "FIFO_EMPTY"), _bit("STATUS", "FIFO_FULL"), _bit("STATUS", "FIFO_LEVEL")
+    stopped_bit = _bit("STATUS", "STOPPED")
 
     @always_seq(clock.posedge, reset=reset)
     def track_done():
@@ -295,6 +325,7 @@ def _status(clock, reset, any_busy, busy_before, done_flag, quadrant, error_code
         word[error_lsb + ERROR_BITS:error_lsb] = error_code
         word[empty_bit] = fifo_empty
         word[full_bit] = fifo_full
+        word[stopped_bit] = stopped
         word[32:level_lsb] = fifo_level
         status.next = word
 
@@ -303,11 +334,12 @@ def _status(clock, reset, any_busy, busy_before, done_flag, quadrant, error_code
 
 @block
 def _interrupts(clock, reset, any_busy, busy_before, error_code, error_before, mark_strobe, mark_tag,
-                mark_register, fifo_level, low_water, low_before, clamp_end, set_bits,
-                int_status, int_enable, irq):
+                mark_register, fifo_level, low_water, low_before, clamp_end, stop_event, input_changed,
+                set_bits, int_status, int_enable, irq):
     """INT_STATUS events (one clock each) and the INTA# level."""
     done_bit, low_bit, error_bit = _bit("INT_STATUS", "DONE"), _bit("INT_STATUS", "LOW_WATER"), _bit("INT_STATUS", "ERROR")
     mark_bit, clamp_bit = _bit("INT_STATUS", "MARK"), _bit("INT_STATUS", "CLAMPED")
+    stopped_bit, input_bit = _bit("INT_STATUS", "STOPPED"), _bit("INT_STATUS", "INPUT")
 
     @always_seq(clock.posedge, reset=reset)
     def remember():
@@ -324,6 +356,8 @@ def _interrupts(clock, reset, any_busy, busy_before, error_code, error_before, m
         word[error_bit] = error_code != 0 and not error_before
         word[mark_bit] = mark_strobe
         word[clamp_bit] = clamp_end
+        word[stopped_bit] = stop_event
+        word[input_bit] = input_changed
         set_bits.next = word
 
     @always_comb
@@ -331,6 +365,30 @@ def _interrupts(clock, reset, any_busy, busy_before, error_code, error_before, m
         irq.next = (int_status & int_enable) != 0
 
     return [remember, detect, request]
+
+
+@block
+def _machine_words(conditioning, guard, machine_status, stop_reason):
+    """MACHINE_STATUS and STOP_REASON from the input filter and the guard."""
+    raw_lsb, active_lsb = _bit("MACHINE_STATUS", "RAW"), _bit("MACHINE_STATUS", "ACTIVE")
+    stopped_bit, drive_bit = _bit("MACHINE_STATUS", "STOPPED"), _bit("MACHINE_STATUS", "DRIVE_ENABLE")
+    reason_lsb, limits_lsb = _bit("STOP_REASON", "REASON"), _bit("STOP_REASON", "LIMITS")
+    inputs, reason_bits, limit_bits = len(conditioning.raw), len(guard.reason), len(guard.limits)
+
+    @always_comb
+    def assemble():
+        word = intbv(0)[len(machine_status):]
+        word[raw_lsb + inputs:raw_lsb] = conditioning.raw
+        word[active_lsb + inputs:active_lsb] = conditioning.active
+        word[stopped_bit] = guard.stopped
+        word[drive_bit] = guard.drive_enable
+        machine_status.next = word
+        why = intbv(0)[len(stop_reason):]
+        why[reason_lsb + reason_bits:reason_lsb] = guard.reason
+        why[limits_lsb + limit_bits:limits_lsb] = guard.limits
+        stop_reason.next = why
+
+    return assemble
 
 
 @block

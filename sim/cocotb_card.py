@@ -17,6 +17,7 @@ from cocotb.triggers import ClockCycles, FallingEdge
 
 from rtl import instructions as isa
 from rtl import registers as regmap
+from rtl.interfaces import MACHINE_INPUTS
 from rtl.top import PARAMETERS
 from sim.cocotb_pci import CocotbPciBus, split_pins
 from sim.paths import GEN
@@ -43,6 +44,8 @@ async def count_steps(dut, counts):
 async def card_enumerate_registers_fifo_move(dut):
     Clock(dut.clock, CLOCK_NS, unit="ns").start()
     dut.reset.value = 0
+    for name in MACHINE_INPUTS:   # switches at rest: nothing stops the card
+        getattr(dut, f"pins_{name}").value = 0
     bus = CocotbPciBus(dut, split_pins([GEN / "card.v"], "card"), dut.clock, dut.reset,
                        idsel="pci_idsel_in", host=PciMaster(max_retries=1 << 20))
     bus.start()

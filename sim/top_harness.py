@@ -42,6 +42,7 @@ from pathlib import Path
 
 from myhdl import Signal, always, block, intbv, now
 
+from rtl.interfaces import MACHINE_INPUTS
 from sim.cosim import CosimError, cosimulate
 from sim.paths import GEN, build_dir
 from sim.pci_bus import LINE_WIDTHS, OPEN_DRAIN, PULLED_UP
@@ -51,7 +52,9 @@ TOP = "top"
 GEN_ENVIRONMENT = "DDA_CARD_GEN"
 ICE40_DEFINES = ("NO_ICE40_DEFAULT_ASSIGNMENTS",)  # Icarus has no default values on input ports
 PIN_PREFIX = "pci_pins_"
-DIRECT_PORTS = ("clock", "reset", "motor_step_x", "motor_dir_x", "motor_step_y", "motor_dir_y")
+MOTOR_OUTPUTS = ("motor_step_x", "motor_dir_x", "motor_step_y", "motor_dir_y", "motor_drive_enable")
+MOTOR_INPUTS = tuple(f"motor_{name}" for name in MACHINE_INPUTS)
+DIRECT_PORTS = ("clock", "reset", *MOTOR_OUTPUTS, *MOTOR_INPUTS)
 
 _PORT = re.compile(r"^\s*(input|output|inout)\s+(?:wire\s+|reg\s+)?(?:\[(\d+):0\]\s*)?(\w+)\s*;",
                    re.MULTILINE)
@@ -188,9 +191,9 @@ class TopHarness:
         ports.append("card_drive_unknown")
         declarations.append(f"output {_range(len(unknown))}card_drive_unknown;")
         body.append("assign card_drive_unknown = {\n    " + ",\n    ".join(reversed(unknown)) + "};")
-        motor = [n for n in DIRECT_PORTS if n.startswith("motor_")]
+        motor = [*MOTOR_OUTPUTS, *MOTOR_INPUTS]
         ports += motor
-        declarations += [f"output {n};" for n in motor]
+        declarations += [f"output {n};" for n in MOTOR_OUTPUTS] + [f"input {n};" for n in MOTOR_INPUTS]
         connections = [".clock(clock)", ".reset(reset)"] + [f".{n}({n})" for n in motor]
         connections += [f".{PIN_PREFIX}{line}(bus_{line})" for line in LINE_WIDTHS]
         connections.append(f".{PIN_PREFIX}idsel(bus_idsel)")

@@ -14,7 +14,7 @@ from rtl.parameters import PARAMETERS, VARIANT_NAMES, VARIANT_SETS
 from sim.card_bench import expected_path
 from sim.card_jobs import check_pin_timing
 from sim.dda_model import ArcCommand, LineCommand
-from host.card import Card, CardError, IdentityError
+from host.card import Card, CardError, IdentityError, MachineStopped
 from host.sim_transport import SimTransport
 from host.transport import Transport
 
@@ -31,6 +31,7 @@ def transport():
 def card(transport):
     card = Card(transport)
     card.stop()
+    card.clear_stop()
     card.configure()
     card.write("COMMAND", regmap.field_of("COMMAND", CLEAR_POSITION=1))
     card.start(interrupts=("ERROR", "DONE"))
@@ -70,6 +71,7 @@ class FakeRegisters(Transport):
     (0x12340101, "not a DDA card"),
     (regmap.ID_MAGIC << 16 | 0x0201, "register map 2.1; this host software speaks 1.x"),
     (regmap.ID_MAGIC << 16 | 0x0100, "no capability registers"),
+    (regmap.ID_MAGIC << 16 | 0x0101, "no machine guard"),
 ])
 def test_identification_refuses_other_cards_and_versions(id_word, text):
     with pytest.raises(IdentityError, match=text):
@@ -221,3 +223,44 @@ def test_a_short_job_on_myhdl():
         card.wait_done()
         assert card.position() == expected_path([LineCommand(4, -3), ArcCommand(4, -3, 0, 5, ccw=True,
                                                                                variant=3)])[-1]
+
+
+def test_machine_at_rest_and_drive_enable(card, transport):
+    assert not card.estop_state() and card.limits() == () and card.stop_reason() == ("NONE", ())
+    card.drive(True)
+    transport.sleep(1e-6)
+    assert regmap.field_value("MACHINE_STATUS", "DRIVE_ENABLE", card.read("MACHINE_STATUS")) == 1
+    card.drive(False)
+    transport.sleep(1e-6)
+    assert regmap.field_value("MACHINE_STATUS", "DRIVE_ENABLE", card.read("MACHINE_STATUS")) == 0
+
+
+def test_filter_setting_is_what_the_registers_hold(card):
+    honoured = card.inputs(active_low=("HOME_X", "HOME_Y"), filter_ns=2000)
+    samples, tick = card.read("INPUT_FILTER"), card.read("INPUT_TICK")
+    assert card.read("INPUT_POLARITY") == 1 << 5 | 1 << 6
+    assert samples <= 15 and samples * tick >= 2000e-9 * CLOCK_HZ
+    assert honoured == pytest.approx(samples * tick * 1e9 / CLOCK_HZ)
+    card.inputs()
+
+
+def test_watchdog_stops_a_move_the_host_forgets(card, transport):
+    """The host writes the watchdog once and then only waits: the card stops
+    the move about that long after the write and says why."""
+    first = len(transport.pins.rises)
+    card.set("FEED_RATE", 2000)
+    card.drive(True)
+    written = transport.clocks
+    clocks = card.watchdog(200e-6)
+    card.line(5000, 1000)
+    with pytest.raises(MachineStopped, match="WATCHDOG") as stopped:
+        card.wait_done(timeout=5e-3)
+    assert stopped.value.reason == "WATCHDOG"
+    rises = transport.pins.rises[first:]
+    assert rises and rises[-1][0] <= written + clocks + 50
+    position = card.position()
+    assert position == (sum(r[1] for r in rises), sum(r[2] for r in rises)) and 0 < position[0] < 5000
+    assert regmap.field_value("MACHINE_STATUS", "DRIVE_ENABLE", card.read("MACHINE_STATUS")) == 0
+    card.watchdog(0)
+    card.clear_stop()
+    assert card.stop_reason() == ("NONE", ())

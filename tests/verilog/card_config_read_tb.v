@@ -38,7 +38,7 @@ wire [31:0] card_ad_out;
 wire card_ad_oe, card_par_out, card_par_oe;
 wire card_trdy_out, card_trdy_oe, card_devsel_out, card_devsel_oe, card_stop_out, card_stop_oe;
 wire card_perr_out, card_perr_oe, card_serr_out, card_serr_oe, card_inta_out, card_inta_oe;
-wire step_x, dir_x, step_y, dir_y;
+wire step_x, dir_x, step_y, dir_y, drive_enable;
 
 // the bus: whoever enables a line drives it; TRDY#, DEVSEL#, STOP# are pulled up
 wire [31:0] ad = card_ad_oe ? card_ad_out : host_ad_oe ? host_ad : 32'h0;
@@ -58,7 +58,9 @@ card dut (
     .pci_perr_out(card_perr_out), .pci_perr_oe(card_perr_oe),
     .pci_serr_out(card_serr_out), .pci_serr_oe(card_serr_oe),
     .pci_inta_out(card_inta_out), .pci_inta_oe(card_inta_oe),
-    .pins_step_x(step_x), .pins_dir_x(dir_x), .pins_step_y(step_y), .pins_dir_y(dir_y)
+    .pins_step_x(step_x), .pins_dir_x(dir_x), .pins_step_y(step_y), .pins_dir_y(dir_y), .pins_drive_enable(drive_enable),
+    .pins_estop(1'b0), .pins_limit_pos_x(1'b0), .pins_limit_neg_x(1'b0), .pins_limit_pos_y(1'b0),
+    .pins_limit_neg_y(1'b0), .pins_home_x(1'b0), .pins_home_y(1'b0)
 );
 
 // PAR covers AD and C/BE# of the clock before: the master drives it the clock after it drove AD
@@ -78,6 +80,8 @@ always @(posedge clock) begin
         $fatal(1, "FAIL: PERR# %b, SERR# %b, INTA# %b", perr, serr, inta);
     if (watching && {step_x, dir_x, step_y, dir_y} !== motor_idle)
         $fatal(1, "FAIL: STEP/DIR moved from %b to %b", motor_idle, {step_x, dir_x, step_y, dir_y});
+    if (watching && drive_enable !== 1'b0)
+        $fatal(1, "FAIL: DRIVE_ENABLE %b without a MACHINE_CONTROL write", drive_enable);
 end
 
 integer waited;

@@ -1,0 +1,90 @@
+"""Bench pieces for the machine side of the card: input pins, DRIVE_ENABLE capture, pulse checks.
+
+``run_machine`` runs a scenario on ``card_core`` (MyHDL, or its Verilog in
+Icarus) like ``sim.card_bench.run_core``, and hands the scenario the
+machine's pins as well as the bus driver, so that it can press the E-stop
+or trip a limit at a chosen clock (``set_input``).
+"""
+from dataclasses import dataclass, field
+
+from myhdl import block, delay, instance
+
+from rtl import registers as regmap
+from rtl.card_core import card_core_ports
+from sim.card_bench import PinLog, core_bench
+from sim.waves import run_traced
+
+FIFO_DEPTH = 16
+
+
+@dataclass
+class MachineLog:
+    """DRIVE_ENABLE per clock (numbered as ``PinLog``) and the clocks inputs were set at."""
+    drive: list = field(default_factory=list)
+    inputs: list = field(default_factory=list)   # (clock, name, level)
+
+
+@block
+def drive_capture(clock, pins, log):
+    @instance
+    def capture():
+        while True:
+            yield clock.negedge
+            log.drive.append(bool(pins.drive_enable))
+
+    return capture
+
+
+def set_input(pins, pin_log, machine_log, name, level):
+    """Set input pin ``name`` one time unit after a falling edge; the rising
+    edge that follows takes it into the synchroniser.  Returns its clock
+    number (``PinLog`` numbering: that of the falling edge before)."""
+    yield delay(1)
+    getattr(pins, name).next = level
+    machine_log.inputs.append((pin_log.clock, name, level))
+    return pin_log.clock
+
+
+def run_machine(name, scenario, cosim=False, fifo_depth=FIFO_DEPTH):
+    """Run ``scenario(driver, pins, pin_log, machine_log)``; (pin log, machine log)."""
+    ports = card_core_ports(fifo_depth=fifo_depth)
+    pin_log, machine_log, failures = PinLog(), MachineLog(), []
+    pins = ports["pins"]
+
+    def with_pins(driver):
+        yield from scenario(driver, pins, pin_log, machine_log)
+
+    run_traced(_machine_bench(ports, with_pins, pin_log, machine_log, failures, cosim, fifo_depth),
+               f"machine_{name}_{'icarus' if cosim else 'myhdl'}")
+    return pin_log, machine_log
+
+
+@block
+def _machine_bench(ports, scenario, pin_log, machine_log, failures, cosim, fifo_depth):
+    """``core_bench`` (its pin-model check off: the guard holds steps back) and the DRIVE_ENABLE capture."""
+    return (core_bench(ports, scenario, pin_log, failures, cosim, False, fifo_depth),
+            drive_capture(ports["clock"], ports["pins"], machine_log))
+
+
+def pulse_widths(pin_log, pin="step_x"):
+    """High times of a STEP pin in clocks, from the pin log's edges (a pulse
+    still high at the end is left out)."""
+    bit = {"step_x": 1, "step_y": 4}[pin]
+    widths, rose = [], None
+    for clock, state in pin_log.edges:
+        high = bool(state & bit)
+        if high and rose is None:
+            rose = clock
+        elif not high and rose is not None:
+            widths.append(clock - rose)
+            rose = None
+    return widths
+
+
+def read(driver, name):
+    word = yield from driver.io_read(regmap.offset(name))
+    return word
+
+
+def write(driver, name, value):
+    yield from driver.io_write(regmap.offset(name), value)
