@@ -8,7 +8,7 @@ from rtl.interfaces import DirectPulseCommand, StepRequest, card_reset
 def direct_pulse(clock, reset, command, out):
     """Step requests for the pulses the host distributes itself (no interpolation).
 
-    Ports (``rtl/interfaces.py``): ``command`` (``DirectPulseCommand``):
+    Ports (``rtl/interfaces/``): ``command`` (``DirectPulseCommand``):
     ``load`` (one clock) takes ``count`` (signed: the sign is the
     direction); then one request (``out.step``, one clock, with ``out.dir``;
     ``out``: ``StepRequest``) is made every ``period`` clocks (>= 1) while

@@ -16,7 +16,7 @@ def feed_rate(clock, reset, settings, feed):
     """Phase accumulator giving ``tick`` on ``rate``/65536 of the clocks, with
     a linear ramp up to ``target`` and down again before the path stops.
 
-    Ports (``rtl/interfaces.py``): ``settings`` (``RampSettings``:
+    Ports (``rtl/interfaces/``): ``settings`` (``RampSettings``:
     ``target``, the rate to reach, 1..32768; ``ramp_start``, the rate a move
     starts and stops with, 1..32768; ``ramp_step``, the rate change per
     tick, 0: the rate is ``target`` at once); ``feed`` (``FeedPort``:

@@ -8,7 +8,7 @@ from rtl.interfaces import InputConditioning, card_reset
 def input_filter(clock, reset, inputs):
     """Every machine input through two flip-flops, its polarity and a glitch filter.
 
-    Ports (``rtl/interfaces.py``): ``inputs`` (``InputConditioning``):
+    Ports (``rtl/interfaces/``): ``inputs`` (``InputConditioning``):
     ``pins`` in, asynchronous; ``raw`` the pins after the two-flip-flop
     synchroniser; ``active`` the filtered inputs, ``raw ^ polarity``, 1
     active; ``changed`` one clock after an ``active`` bit changed.

@@ -13,7 +13,7 @@ REASON_ESTOP, REASON_WATCHDOG, REASON_LIMIT = (regmap.STOP_REASONS.index(name)
 def machine_guard(clock, reset, guard, request, granted):
     """Stops the card, in hardware, when the machine or the host says so.
 
-    Ports (``rtl/interfaces.py``): ``guard`` (``MachineGuard``); ``request``
+    Ports (``rtl/interfaces/``): ``guard`` (``MachineGuard``); ``request``
     (``AxisPulses``: the step requests of the DDA and the direct pulses);
     ``granted`` (``AxisPulses``: those that may go to the pulse outputs).
 

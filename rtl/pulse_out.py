@@ -16,7 +16,7 @@ def _check_queue(queue_depth, in_flight):
 def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUEUE_DEPTH, in_flight=IN_FLIGHT):
     """STEP and DIR pins of both axes, driven straight from flip-flops.
 
-    Ports (``rtl/interfaces.py``): ``request`` (``AxisPulses``: the steps
+    Ports (``rtl/interfaces/``): ``request`` (``AxisPulses``: the steps
     of one iteration, a diagonal is both at once) goes into a small queue;
     ``control`` (``PulseControl``): ``ready`` is high while the queue has
     room for ``in_flight`` more (the steps already on their way from the

@@ -9,7 +9,7 @@ from rtl.registers import Register
 def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out):
     """The register ``word.spec`` (a ``rtl.registers.Register``) on the I/O bus.
 
-    Ports (``rtl/interfaces.py``): ``bus`` (``RegisterBus``: ``addr`` of
+    Ports (``rtl/interfaces/``): ``bus`` (``RegisterBus``: ``addr`` of
     reads; ``write_addr``, ``write``, ``byte_mask`` and ``wdata`` of a
     write); ``set_port`` (``SetPort``: the SET command's write); ``word``
     (``RegisterWord``: ``hw`` is what RO and WP registers read, the bits a

@@ -25,7 +25,7 @@ def _field(op_name, field_name):
 def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_indices=(0,)):
     """Fetch, check and execute the FIFO's commands (``docs/instructions.md``).
 
-    Ports (``rtl/interfaces.py``): ``fifo`` (``FifoRead``), ``control``
+    Ports (``rtl/interfaces/``): ``fifo`` (``FifoRead``), ``control``
     (``SequencerControl``), ``dda`` (``DdaPort``), ``pulses``
     (``PulseCommand``), ``set_port`` (``SetPort``), ``mark`` (``MarkPort``).
     Fetch: the FIFO is read one word per clock (``fifo.pop``; the word

@@ -1,5 +1,5 @@
 // The card's back-end bus between the PCI target and the registers/FIFO
-// (`LocalBus`, rtl/interfaces.py; docs/pci.md "The local bus as the target
+// (`LocalBus`, rtl/interfaces/; docs/pci.md "The local bus as the target
 // uses it"), as immediate assertions for `read -formal`.
 //
 // CHECK_REQUESTER = 1: the requester's rules (the PCI target) are asserted,

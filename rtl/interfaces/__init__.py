@@ -1,0 +1,36 @@
+"""Signal bundles shared between the card's blocks, one module per side
+(``pci``, ``dda``, ``card``, ``machine``; ``bundle`` for what they share);
+import them from here.
+
+Every interface is a plain class whose attributes are MyHDL ``Signal``s.
+Widths are constructor arguments.  When a block with an interface argument is
+the top of a conversion, MyHDL names each port ``<argument>_<attribute>``.
+
+Shared PCI lines are split into ``*_in`` / ``*_out`` / ``*_oe`` so that the
+cores co-simulate and convert cleanly; only the pad wrapper at the top level
+has tri-states.  All PCI ``*_out`` values keep the bus polarity (active-low
+lines are 0 when asserted).
+"""
+from rtl.interfaces.bundle import card_reset
+from rtl.interfaces.pci import (PciBus, LocalBus, PciPins, TargetControlNext, ConfigSpace, TargetState,
+                                TargetParity, TargetBuffers, TargetRequests)
+from rtl.interfaces.dda import (DdaPort, DdaPlan, DdaRoot, DdaMove, DdaStep, AxisPulses, TARGET_ZERO,
+                                TARGET_RADIUS, TARGET_END)
+from rtl.interfaces.machine import InputConditioning, MachineGuard
+from rtl.interfaces.card import (MotorPins, MACHINE_INPUTS, SET_INDEX_BITS, MARK_TAG_BITS, ERROR_BITS,
+                                 PULSE_COUNT_BITS, TIMING_BITS, FifoRead, SequencerControl, PulseCommand,
+                                 SetPort, MarkPort, RegisterBus, RegisterWord, ReadChain, PulseControl,
+                                 StepPositions, RampSettings, FeedPort, DirectPulseCommand, StepRequest,
+                                 INPUT_ESTOP, INPUT_LIMIT_POS_X, INPUT_LIMIT_NEG_X, INPUT_LIMIT_POS_Y,
+                                 INPUT_LIMIT_NEG_Y)
+
+__all__ = [
+    "card_reset", "PciBus", "LocalBus", "PciPins", "TargetControlNext", "ConfigSpace", "TargetState",
+    "TargetParity", "TargetBuffers", "TargetRequests", "DdaPort", "DdaPlan", "DdaRoot", "DdaMove",
+    "DdaStep", "AxisPulses", "TARGET_ZERO", "TARGET_RADIUS", "TARGET_END", "InputConditioning",
+    "MachineGuard", "MotorPins", "MACHINE_INPUTS", "SET_INDEX_BITS", "MARK_TAG_BITS", "ERROR_BITS",
+    "PULSE_COUNT_BITS", "TIMING_BITS", "FifoRead", "SequencerControl", "PulseCommand", "SetPort",
+    "MarkPort", "RegisterBus", "RegisterWord", "ReadChain", "PulseControl", "StepPositions",
+    "RampSettings", "FeedPort", "DirectPulseCommand", "StepRequest", "INPUT_ESTOP", "INPUT_LIMIT_POS_X",
+    "INPUT_LIMIT_NEG_X", "INPUT_LIMIT_POS_Y", "INPUT_LIMIT_NEG_Y"
+]

@@ -1,0 +1,225 @@
+"""The card's units behind the registers: FIFO, sequencer, register words, feed rate, pulse outputs."""
+from myhdl import Signal, intbv, modbv
+
+from rtl import instructions as isa
+from rtl import registers as regmap
+from rtl.dda_build import COORD_WIDTH
+from rtl.interfaces.bundle import adopt
+from rtl.interfaces.dda import DdaPort
+
+
+class MotorPins:
+    """The machine's pins: STEP and DIR of the two axes as they leave the
+    card (levels, straight from flip-flops; ``dir_*`` already carries the
+    polarity), ``drive_enable`` (out, from a flip-flop: the drives may
+    run), and the machine's inputs, in the order of ``MACHINE_INPUTS``
+    (E-stop, the limit switches, the home switches: pin levels as wired,
+    asynchronous; ``rtl/input_filter.py`` conditions them)."""
+
+    def __init__(self):
+        self.step_x = Signal(bool(0))
+        self.dir_x = Signal(bool(0))
+        self.step_y = Signal(bool(0))
+        self.dir_y = Signal(bool(0))
+        self.drive_enable = Signal(bool(0))
+        for name in MACHINE_INPUTS:
+            setattr(self, name, Signal(bool(0)))
+
+    def inputs(self):
+        """The input pins, in the order of ``MACHINE_INPUTS``."""
+        return [getattr(self, name) for name in MACHINE_INPUTS]
+
+
+# The machine's inputs, bit n of INPUT_POLARITY and MACHINE_STATUS is input n.
+MACHINE_INPUTS = tuple(f.name.lower() for f in regmap.register("INPUT_POLARITY").fields)
+INPUT_ESTOP, INPUT_LIMIT_POS_X, INPUT_LIMIT_NEG_X, INPUT_LIMIT_POS_Y, INPUT_LIMIT_NEG_Y = range(5)
+
+
+# Widths of the bundles below, each from the table that defines it.
+def _header_width(op_name, field_name):
+    return {name: width for name, _, width, _ in isa.BY_NAME[op_name].header_fields}[field_name]
+
+
+SET_INDEX_BITS = _header_width("SET", "INDEX")
+
+
+MARK_TAG_BITS = _header_width("MARK", "TAG")
+
+
+ERROR_BITS = regmap.register("STATUS").field("ERROR").width
+
+
+PULSE_COUNT_BITS = regmap.register("PULSE_COUNT_X").width
+
+
+TIMING_BITS = regmap.register("STEP_WIDTH").width
+
+
+class FifoRead:
+    """The read side of the data FIFO: the FIFO drives ``dout`` (the word
+    popped the clock before) and ``empty``; the reader (the sequencer) drives
+    ``pop`` (one word per clock while high)."""
+
+    def __init__(self, **given):
+        adopt(self, given, dout=Signal(intbv(0)[32:]), empty=Signal(bool(1)), pop=Signal(bool(0)))
+
+
+class SequencerControl:
+    """The sequencer's controls and status, seen from the registers.
+
+    The registers drive ``enable`` (CONTROL.ENABLE outside direct mode),
+    ``clear`` (COMMAND.SOFT_RESET, one clock) and ``clear_error`` (COMMAND.CLEAR_ERROR,
+    one clock); the sequencer drives ``error_code`` (STATUS.ERROR), ``busy``
+    (a command runs or is queued), ``motion_run`` (a path is under way: the
+    feed-rate ramp runs) and ``discard_on_clear`` (the FIFO empties itself on
+    the next CLEAR_ERROR).
+    """
+
+    def __init__(self, **given):
+        adopt(self, given, enable=Signal(bool(0)), clear=Signal(bool(0)), clear_error=Signal(bool(0)),
+               error_code=Signal(intbv(0)[ERROR_BITS:]), busy=Signal(bool(0)), motion_run=Signal(bool(0)),
+               discard_on_clear=Signal(bool(0)))
+
+
+class PulseCommand:
+    """The PULSE command's seam: the sequencer drives ``load`` (one clock) with
+    the signed counts ``count_x``/``count_y``; the direct pulse generators
+    drive ``busy`` (pulses still to go) and the pulse outputs ``outputs_busy``
+    (a step request is pending or the last step has not yet left the pins)."""
+
+    def __init__(self, **given):
+        bounds = dict(min=-(1 << (PULSE_COUNT_BITS - 1)), max=1 << (PULSE_COUNT_BITS - 1))
+        adopt(self, given, load=Signal(bool(0)), count_x=Signal(intbv(0, **bounds)),
+               count_y=Signal(intbv(0, **bounds)), busy=Signal(bool(0)), outputs_busy=Signal(bool(0)))
+
+
+class SetPort:
+    """The SET command's write port into the registers: the sequencer drives
+    ``strobe`` (one clock) with ``index`` (the register's SET index) and
+    ``value``; the register of that index takes ``value`` like a bus write."""
+
+    def __init__(self, **given):
+        adopt(self, given, strobe=Signal(bool(0)), index=Signal(intbv(0)[SET_INDEX_BITS:]),
+               value=Signal(intbv(0)[32:]))
+
+
+class MarkPort:
+    """The MARK command's report: the sequencer drives ``strobe`` (one clock,
+    when the MARK is reached) with ``tag``; the registers latch it in
+    MARK_TAG and raise INT_STATUS.MARK."""
+
+    def __init__(self, **given):
+        adopt(self, given, strobe=Signal(bool(0)), tag=Signal(intbv(0)[MARK_TAG_BITS:]))
+
+
+class RegisterBus:
+    """The function registers' side of the I/O BAR, driven by ``regs_fifo``:
+    ``addr`` (byte offset of reads, straight from the local bus),
+    ``write_addr`` (byte offset of the write), ``write`` (an I/O write
+    happens at this clock edge), ``byte_mask`` (the write's byte enables as
+    a bit mask) and ``wdata``; every ``reg_word`` reads them."""
+
+    def __init__(self, addr_width=16, **given):
+        adopt(self, given, addr=Signal(intbv(0)[addr_width:]), write_addr=Signal(intbv(0)[addr_width:]),
+               write=Signal(bool(0)), byte_mask=Signal(intbv(0)[32:]), wdata=Signal(intbv(0)[32:]))
+
+
+class RegisterWord:
+    """One function register's signals to the hardware, as wide as the
+    register ``spec`` (a ``rtl.registers.Register``): the hardware drives
+    ``hw`` (RO and WP: what reads return; W1C: bits it sets; W1S: bits it
+    clears; ``hw_reset``: its value before the hardware drives it, the build
+    word of a capability register); the register drives ``value``
+    (RW/W1C/W1S: the register; WP: the last value written) and ``strobe``
+    (WP: one clock per write)."""
+
+    def __init__(self, spec, hw_reset=0):
+        self.spec = spec
+        self.hw = Signal(intbv(hw_reset)[spec.width:])
+        self.value = Signal(intbv(spec.reset)[spec.width:])
+        self.strobe = Signal(bool(0))
+
+
+class ReadChain:
+    """One link of the registers' read and clamp chain: each ``reg_word``
+    drives the link after it with the link before it, its read data OR'ed
+    into ``data`` when the bus reads it, and its one-clock flag into
+    ``clamped`` when a write to it was out of range."""
+
+    def __init__(self):
+        self.data = Signal(intbv(0)[32:])
+        self.clamped = Signal(bool(0))
+
+
+class PulseControl:
+    """Settings and status of the pulse outputs (``rtl/pulse_out.py``).
+
+    The registers drive ``clear`` (drop the queue), ``clear_position``
+    (zero the positions), ``width``, ``setup`` and ``hold`` (STEP_WIDTH,
+    DIR_SETUP, DIR_HOLD, in clocks) and ``polarity_x``/``polarity_y``
+    (DIR_POLARITY); the pulse outputs drive ``ready`` (the queue takes the
+    steps on their way) and ``active`` (a step is queued or on the pins).
+    """
+
+    def __init__(self, **given):
+        adopt(self, given, clear=Signal(bool(0)), clear_position=Signal(bool(0)),
+               width=Signal(intbv(1)[TIMING_BITS:]), setup=Signal(intbv(1)[TIMING_BITS:]),
+               hold=Signal(intbv(1)[TIMING_BITS:]), polarity_x=Signal(bool(0)), polarity_y=Signal(bool(0)),
+               ready=Signal(bool(1)), active=Signal(bool(0)))
+
+
+class StepPositions:
+    """The step counters of the two axes, driven by the pulse outputs:
+    ``x``, ``y`` (signed 32 bits, wrapping), counted at the edge where a
+    STEP pin rises."""
+
+    def __init__(self):
+        self.x = Signal(modbv(0, min=-(1 << 31), max=1 << 31))
+        self.y = Signal(modbv(0, min=-(1 << 31), max=1 << 31))
+
+
+class RampSettings:
+    """The feed rate's settings, driven by the registers FEED_RATE
+    (``target``), RAMP_START (``ramp_start``) and RAMP_STEP (``ramp_step``);
+    the feed rate (``rtl/feed_rate.py``) reads them."""
+
+    def __init__(self, **given):
+        def rate(name):
+            spec = regmap.register(name)
+            return Signal(intbv(spec.reset)[spec.width:])
+        adopt(self, given, target=rate("FEED_RATE"), ramp_start=rate("RAMP_START"), ramp_step=rate("RAMP_STEP"))
+
+
+class FeedPort:
+    """The feed rate's seam with the motion: the card drives ``run`` (a path
+    is under way) and ``hold`` (the pulse outputs are full), the DDA
+    ``stop_left`` (``DdaPort.stop_left`` of ``coord_width``); the feed rate
+    drives ``tick`` (one clock per iteration)."""
+
+    def __init__(self, coord_width=COORD_WIDTH, **given):
+        adopt(self, given, run=Signal(bool(0)), hold=Signal(bool(0)), stop_left=DdaPort(coord_width).stop_left,
+               tick=Signal(bool(0)))
+
+
+class DirectPulseCommand:
+    """One axis's direct pulses, seen from the card: it drives ``load`` (one
+    clock) with ``count`` (signed pulses, the sign their direction),
+    ``period`` (clocks between pulses, PULSE_PERIOD_*) and ``clear`` (soft
+    reset); the generator drives ``remaining`` (pulses still to go) and
+    ``busy`` (from ``load`` until the last request)."""
+
+    def __init__(self, **given):
+        bounds = dict(min=-(1 << (PULSE_COUNT_BITS - 1)), max=1 << (PULSE_COUNT_BITS - 1))
+        period = regmap.register("PULSE_PERIOD_X")
+        adopt(self, given, load=Signal(bool(0)), count=Signal(intbv(0, **bounds)),
+               period=Signal(intbv(period.reset)[period.width:]), clear=Signal(bool(0)),
+               remaining=Signal(intbv(0)[PULSE_COUNT_BITS:]), busy=Signal(bool(0)))
+
+
+class StepRequest:
+    """One axis's step requests into the pulse outputs: the source drives
+    ``step`` (one clock per step) with ``dir`` (1: positive); the pulse
+    outputs drive ``ready`` (they take a step now)."""
+
+    def __init__(self, **given):
+        adopt(self, given, step=Signal(bool(0)), dir=Signal(bool(0)), ready=Signal(bool(1)))

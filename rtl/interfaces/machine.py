@@ -1,0 +1,49 @@
+"""The machine side: input conditioning, E-stop, limits, watchdog, drive enable."""
+from myhdl import Signal, intbv
+
+from rtl import registers as regmap
+from rtl.interfaces.bundle import adopt
+from rtl.interfaces.card import MACHINE_INPUTS
+
+
+class InputConditioning:
+    """The machine inputs' conditioning (``rtl/input_filter.py``).
+
+    The card drives ``pins`` (the input pins as one vector, bit n the input
+    n of ``MACHINE_INPUTS``), ``polarity`` (INPUT_POLARITY: 1 inverts that
+    input, for switches active low), ``samples`` (INPUT_FILTER) and
+    ``tick`` (INPUT_TICK, clocks per sample, >= 1); the filter drives
+    ``raw`` (the pins after the two-flip-flop synchroniser, as wired),
+    ``active`` (filtered, polarity applied: 1 active) and ``changed`` (one
+    clock after an ``active`` bit changed)."""
+
+    def __init__(self, **given):
+        count = len(MACHINE_INPUTS)
+        samples, tick = regmap.register("INPUT_FILTER"), regmap.register("INPUT_TICK")
+        adopt(self, given, pins=Signal(intbv(0)[count:]), polarity=Signal(intbv(0)[count:]),
+               samples=Signal(intbv(samples.reset)[samples.width:]), tick=Signal(intbv(tick.reset)[tick.width:]),
+               raw=Signal(intbv(0)[count:]), active=Signal(intbv(0)[count:]), changed=Signal(bool(0)))
+
+
+class MachineGuard:
+    """The machine guard's seam with the registers (``rtl/machine_guard.py``).
+
+    The card drives ``active`` (the filtered inputs, ``InputConditioning``),
+    ``drive_request`` (MACHINE_CONTROL.DRIVE_ENABLE), ``clear_stop``
+    (COMMAND.CLEAR_STOP, one clock), ``watchdog_load`` (one clock per
+    WATCHDOG write) with ``watchdog_timeout`` (its value, clocks; 0: off).
+    The guard drives ``halt`` (no new STEP edge, no command, no direct
+    pulse: stopped, or the E-stop input active), ``stopped`` (the latch),
+    ``stop_event`` (one clock, as the latch sets), ``reason`` and ``limits``
+    (STOP_REASON), ``drive_enable`` (the pin, from a flip-flop) and
+    ``watchdog_left`` (clocks before the watchdog expires)."""
+
+    def __init__(self, **given):
+        reason, watchdog = regmap.register("STOP_REASON"), regmap.register("WATCHDOG")
+        adopt(self, given, active=Signal(intbv(0)[len(MACHINE_INPUTS):]), drive_request=Signal(bool(0)),
+               clear_stop=Signal(bool(0)), watchdog_load=Signal(bool(0)),
+               watchdog_timeout=Signal(intbv(0)[watchdog.width:]), halt=Signal(bool(0)),
+               stopped=Signal(bool(0)), stop_event=Signal(bool(0)),
+               reason=Signal(intbv(0)[reason.field("REASON").width:]),
+               limits=Signal(intbv(0)[reason.field("LIMITS").width:]), drive_enable=Signal(bool(0)),
+               watchdog_left=Signal(intbv(0)[watchdog.width:]))
