@@ -46,6 +46,18 @@ module regs_fifo_harness #(
     wire [3:0] set_index;
     wire [31:0] set_value, fifo_dout;
 
+    // The machine inputs (E-STOP, limits, home): free, or with
+    // MACHINE_RUNNING at rest, with their polarity and the watchdog left as
+    // reset (no write to INPUT_POLARITY or WATCHDOG), so the guard never
+    // stops the card: the groups that follow every command or every step
+    // to its end judge a running machine (docs/machine.md for the stops).
+`ifdef MACHINE_RUNNING
+    wire [6:0] machine_in = 7'd0;
+    always @(*) assume(!(l_we && !l_space && (l_addr == 16'h006C || l_addr == 16'h0078)));
+`else
+    (* anyseq *) wire [6:0] machine_in;
+`endif
+
     regs_fifo dut (
         .clock(clock), .reset(reset_n), .irq(irq), .core_clear(core_clear),
         .local_space(l_space), .local_addr(l_addr), .local_be(l_be), .local_wdata(l_wdata),
@@ -61,7 +73,9 @@ module regs_fifo_harness #(
         .dda_quadrant(dda_quadrant), .dda_ready(dda_ready), .dda_stop_left(dda_stop_left),
         .steps_step_x(steps_step_x), .steps_step_y(steps_step_y), .steps_dir_x(steps_dir_x),
         .steps_dir_y(steps_dir_y), .pins_step_x(pins_step_x), .pins_dir_x(pins_dir_x),
-        .pins_step_y(pins_step_y), .pins_dir_y(pins_dir_y),
+        .pins_step_y(pins_step_y), .pins_dir_y(pins_dir_y), .pins_estop(machine_in[0]),
+        .pins_limit_pos_x(machine_in[1]), .pins_limit_neg_x(machine_in[2]), .pins_limit_pos_y(machine_in[3]),
+        .pins_limit_neg_y(machine_in[4]), .pins_home_x(machine_in[5]), .pins_home_y(machine_in[6]),
         .fifo_pop(fifo_pop), .fifo_flush(fifo_flush), .fifo_dout(fifo_dout),
         .set_strobe(set_strobe), .set_index(set_index), .set_value(set_value),
         .direct_request_x(direct_request_x), .direct_request_y(direct_request_y)
