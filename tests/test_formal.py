@@ -76,16 +76,12 @@ endmodule
 # `python -m formal.mutation` scores; indices into them) that change the
 # unit's outputs; each must be rejected by the group named, bounded to its
 # depth.  pci_slave (20 mutants): m002, m005, m007 by the protocol rules.
-# regs_fifo (16 mutants): m000 (a LINE's operands reach the DDA port as an
-# ARC's) by the command shadow, m004 (the step request inverted) and m006
-# (`out_active` stuck at 0, so a SET may change a pulse under way) by the
-# pulse rules, m011 (the pulse queue never taken) by the progress rule,
-# m015 (every I/O write elsewhere clears INT_STATUS bits) by the table.
+# regs_fifo (16 mutants of the card with the machine side): m005, m006, m007
+# by the register table's rules.
 MUTANT_LISTS = {"pci_slave": 20, "regs_fifo": 16}
 FIXED_MUTANTS = (("pci_slave", 2, "pci_protocol", 12), ("pci_slave", 5, "pci_protocol", 12),
-                 ("pci_slave", 7, "pci_protocol", 12), ("regs_fifo", 0, "regs_fifo_commands", 12),
-                 ("regs_fifo", 4, "regs_fifo_pulses", 20), ("regs_fifo", 6, "regs_fifo_pulses", 20),
-                 ("regs_fifo", 11, "regs_fifo_pulse_progress", 20), ("regs_fifo", 15, "regs_fifo_table", 10))
+                 ("pci_slave", 7, "pci_protocol", 12), ("regs_fifo", 5, "regs_fifo_table", 10),
+                 ("regs_fifo", 6, "regs_fifo_table", 10), ("regs_fifo", 7, "regs_fifo_table", 10))
 MITER_DEPTH = 12
 
 

@@ -49,7 +49,7 @@ def client(tmp_path):
 
 
 def test_registers_fifo_and_lock_step_time(client):
-    assert client.ask(READ, regmap.offset("ID")) == (0xDDAC0101, None)
+    assert client.ask(READ, regmap.offset("ID")) == (regmap.register("ID").reset, None)
     assert client.ask(READ, regmap.offset("CLOCK_HZ")) == (CLOCK_HZ, None)
     assert client.ask(WRITE, regmap.offset("CONTROL"), 1) == (0, None)
     assert client.ask(FIFO, len(LINE_5_M3), words=LINE_5_M3) == (0, None)
@@ -70,7 +70,7 @@ def test_bad_requests_are_answered_with_the_reason(client):
     assert value is None and "0x200" in error
     value, error = client.ask(9)
     assert value is None and "unknown request 9" in error
-    assert client.ask(READ, regmap.offset("ID")) == (0xDDAC0101, None)  # still serving
+    assert client.ask(READ, regmap.offset("ID")) == (regmap.register("ID").reset, None)  # still serving
     client.finish()
 
 
