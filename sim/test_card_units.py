@@ -7,7 +7,7 @@ The same bench runs on the MyHDL block and on its Verilog in Icarus.
 import random
 
 import pytest
-from myhdl import StopSimulation, block, instance
+from myhdl import block
 
 from rtl.direct_pulse import direct_pulse, direct_pulse_ports
 from rtl.feed_rate import feed_rate, feed_rate_ports
@@ -18,7 +18,7 @@ from rtl.sync_fifo import sync_fifo, sync_fifo_ports
 from sim.card_model import DirectPulseModel, FeedRateModel, FifoModel, PulseOutModel
 from sim.cosim import convert_and_cosimulate
 from sim.waves import Waveform, run_traced, write_gtkw
-from sim.clocking import clock_source
+from sim.clocking import clock_source, reset_then_step
 
 HALF_PERIOD = 5
 ROOM_PLACES = LocalBus.ROOM_PLACES
@@ -41,16 +41,7 @@ def _bench(dut_spec, ports, step, cycles):
 
     clock_gen = clock_source(clock, 2 * HALF_PERIOD)
 
-    @instance
-    def stimulus():
-        reset.next = 0
-        yield clock.negedge
-        yield clock.negedge
-        reset.next = 1
-        for index in range(cycles):
-            yield clock.negedge
-            step(index)
-        raise StopSimulation
+    stimulus = reset_then_step(clock, reset, cycles, step)
 
     return dut, clock_gen, stimulus
 

@@ -7,12 +7,12 @@ edge; the same bench runs on the MyHDL block and on its Verilog in Icarus.
 import random
 
 import pytest
-from myhdl import StopSimulation, block, delay, instance
+from myhdl import block
 
 from rtl import registers as regmap
 from rtl.input_filter import input_filter, input_filter_ports
 from rtl.machine_guard import machine_guard, machine_guard_ports
-from sim.clocking import clock_source
+from sim.clocking import clock_source, reset_then_step
 from sim.cosim import convert_and_cosimulate
 from sim.machine_model import INPUT, REASON, InputFilterModel, MachineGuardModel
 from sim.waves import run_traced
@@ -30,19 +30,7 @@ def _bench(factory, module, ports, cosim, step, cycles, after):
     dut = convert_and_cosimulate(factory, module, ports) if cosim else factory(**ports)
     clock_gen = clock_source(clock, 2 * HALF_PERIOD)
 
-    @instance
-    def stimulus():
-        reset.next = 0
-        yield clock.negedge
-        yield clock.negedge
-        reset.next = 1
-        for index in range(cycles):
-            yield clock.negedge
-            step(index)
-            if after:
-                yield delay(1)
-                after(index)
-        raise StopSimulation
+    stimulus = reset_then_step(clock, reset, cycles, step, after)
 
     return dut, clock_gen, stimulus
 
