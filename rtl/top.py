@@ -111,6 +111,8 @@ def write_c_header(out_dir=GEN_DIR, **values):
     identity += [f"#define DDA_BAR0_SIZE {1 << bars['io_bar_bits']}u /* I/O: function registers */",
                  f"#define DDA_BAR1_SIZE {1 << bars['mem_bar_bits']}u /* memory: the command FIFO window */",
                  f"#define DDA_FIFO_DEPTH {settings['fifo_depth']}u /* words */", ""]
+    identity += [f"#define DDA_STOP_{name} {code}u /* STOP_REASON.REASON */"
+                 for code, name in enumerate(registers.STOP_REASONS) if code] + [""]
     target = Path(out_dir) / C_HEADER
     target.parent.mkdir(parents=True, exist_ok=True)
     target.write_text(registers.c_header(extra="\n".join(identity) + instructions.c_defines() + "\n"

@@ -14,6 +14,7 @@ import json
 import os
 import pwd
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -24,7 +25,8 @@ import pytest
 
 from host.sysfs import find_card
 from host.transport import TransportError
-from tests.linuxcnc_compare import deviations, pin_positions, read_samples
+from rtl import registers as regmap
+from tests.linuxcnc_compare import deviations, pin_positions, queued_position, read_samples
 
 ROOT = Path(__file__).resolve().parent.parent
 USER = "dda-cnc"
@@ -34,6 +36,11 @@ KEEP_AHEAD = 4
 DELAY_PERIODS = KEEP_AHEAD - 1  # the period's command is done at the end of period k + keep_ahead - 1
 PERIOD_CLOCKS = CLOCK_HZ // 1000
 STEP_CYCLE_CLOCKS = 4  # STEPLEN + STEPSPACE of the sample configuration (2000 + 2000 ns) at CLOCK_HZ
+WATCHDOG_NS = 2_500_000  # the kill test's: shorter than the queue (keep_ahead periods), so it cuts the queue
+WATCHDOG_CLOCKS = WATCHDOG_NS * CLOCK_HZ // 1_000_000_000
+WATCHDOG_SLACK = 3  # docs/machine.md: the stop comes TIMEOUT clocks after the write reaches WATCHDOG, within 3
+FREE_RUN = 20 * PERIOD_CLOCKS  # clocks the card runs on its own once LinuxCNC is gone
+KILL_AFTER = 1.5  # s into lcnc_kill.ngc (a 3.4 s rapid)
 
 
 def _missing():
@@ -73,7 +80,7 @@ def _run_folder():
     return run
 
 
-RECORD_HAL = """loadrt sampler depth=16384 cfg=ffussub
+RECORD_HAL = """loadrt sampler depth=16384 cfg=ffussubb
 addf sampler.0 servo-thread
 net x-pos-cmd => sampler.0.pin.0
 net y-pos-cmd => sampler.0.pin.1
@@ -82,6 +89,7 @@ net x-counts dda-card.0.stepgen.00.counts => sampler.0.pin.3
 net fifo-level dda-card.0.fifo-level => sampler.0.pin.4
 net underruns dda-card.0.underruns => sampler.0.pin.5
 net x-enable => sampler.0.pin.6
+net drive-enable => sampler.0.pin.7
 loadusr ./record.sh {samples}
 """
 
@@ -125,27 +133,98 @@ def test_without_a_card_the_driver_says_what_the_host_software_says(linuxcnc_alo
     shutil.rmtree(run, ignore_errors=True)
 
 
-def _run(run, jobs):
-    """LinuxCNC on the card server for ``jobs`` (headless.py's arguments); (samples, pins, rises)."""
+def _server(run, *options):
     server = subprocess.Popen([sys.executable, "-m", "host.cardserver", "--socket", str(run / "card.sock"),
-                               "--log", str(run / "card.json"), "--clock-hz", str(CLOCK_HZ)],
-                              cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+                               "--log", str(run / "card.json"), "--clock-hz", str(CLOCK_HZ), *options],
+                              cwd=ROOT, stdout=subprocess.PIPE, stderr=open(run / "server.err", "w"), text=True)
+    assert "listening" in server.stdout.readline()
+    return server
+
+
+def _run(run, jobs):
+    """LinuxCNC on the card server for ``jobs`` (headless.py's arguments); (samples, pins, record)."""
+    server = _server(run)
     try:
-        assert "listening" in server.stdout.readline()
         lcnc = _as_user(["linuxcnc", "-r", str(run / "dda_xy.ini"), *jobs], run, 300)
         assert lcnc.returncode == 0, lcnc.stdout[-3000:] + lcnc.stderr[-3000:]
         server.wait(timeout=60)
     finally:
         server.kill()
-    rises = json.loads((run / "card.json").read_text())["rises"]
-    return read_samples(run / "samples.txt"), pin_positions(run / "card.json"), rises
+    record = json.loads((run / "card.json").read_text())
+    return read_samples(run / "samples.txt"), pin_positions(run / "card.json"), record
+
+
+def _run_and_kill(run, program, seconds):
+    """LinuxCNC on ``program``, SIGKILLed (its whole process group: launcher, realtime,
+    task, display) ``seconds`` after the program started; the card server runs the card
+    on its own for FREE_RUN clocks once the driver's socket closes.  The card's record."""
+    server = _server(run, "--free-run", str(FREE_RUN))
+    home = pwd.getpwnam(USER).pw_dir
+    lcnc = subprocess.Popen(["runuser", "-u", USER, "--", "env", "-i", f"HOME={home}", "PATH=/usr/bin:/bin",
+                             "LANG=C.UTF-8", "linuxcnc", "-r", str(run / "dda_xy.ini"), str(program)],
+                            cwd=run, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                            start_new_session=True)
+    try:
+        output = []
+        for line in lcnc.stdout:  # the launcher's and headless.py's output
+            output.append(line)
+            if "headless:" in line and "running" in line:
+                break
+        else:
+            pytest.fail("the program never ran:\n" + "".join(output[-40:]))
+        time.sleep(seconds)
+        _kill_linuxcnc(lcnc)
+        lcnc.wait(timeout=30)
+        assert server.wait(timeout=60) == 0, "the card server did not see the driver go"
+    finally:
+        server.kill()
+        _clean_up_after_kill(lcnc)
+    return json.loads((run / "card.json").read_text())
+
+
+def _linuxcnc_processes():
+    """{pid: name} of LinuxCNC's user and rtapi_app (setuid root, it runs as root): this
+    test's LinuxCNC (the lock runs one LinuxCNC at a time)."""
+    listing = subprocess.run(["ps", "-U", USER, "-C", "rtapi_app", "-o", "pid=,comm="],
+                             capture_output=True, text=True).stdout
+    return {int(pid): name for pid, name in (line.split(None, 1) for line in listing.splitlines())}
+
+
+def _kill_linuxcnc(lcnc):
+    """SIGKILL the realtime process first (it runs the driver), then the launcher's process
+    group and what left it (rtapi_app and the NML server start sessions of their own)."""
+    realtime = [pid for pid, name in _linuxcnc_processes().items() if name == "rtapi_app"]
+    for pid in realtime:
+        _sigkill(os.kill, pid)
+    _sigkill(os.killpg, lcnc.pid)
+    for pid in _linuxcnc_processes():
+        _sigkill(os.kill, pid)
+
+
+def _sigkill(kill, pid):
+    try:
+        kill(pid, signal.SIGKILL)
+    except ProcessLookupError:  # gone meanwhile
+        pass
+
+
+def _clean_up_after_kill(lcnc):
+    """What the killed LinuxCNC left: processes, the launcher's lock, shared memory
+    (the realtime's by halrun -U, the NML segments of its user, unattached)."""
+    if lcnc.poll() is None:
+        _kill_linuxcnc(lcnc)
+    _as_user(["halrun", "-U"], "/", 60)
+    _as_user(["sh", "-c", "ipcs -m | awk '$3 == \"%s\" && $6 == 0 {print $2}' | xargs -r -n1 ipcrm -m" % USER],
+             "/", 60)
+    Path("/tmp/linuxcnc.lock").unlink(missing_ok=True)
 
 
 def test_gcode_path_from_the_pins(linuxcnc_alone):
     run = _run_folder()
     _configure(run)
     started = time.monotonic()
-    samples, pins, rises = _run(run, [str(run / "lcnc_path.ngc"), f"{run / 'lcnc_stop.ngc'}@1.5"])
+    samples, pins, record = _run(run, [str(run / "lcnc_path.ngc"), f"{run / 'lcnc_stop.ngc'}@1.5"])
+    rises = record["rises"]
     assert len(samples) > 1000 and len(pins[0]) > 1000
     deviation = deviations(samples, pins, SCALE, DELAY_PERIODS * PERIOD_CLOCKS)
     worst = max(max(abs(dx), abs(dy)) for dx, dy in deviation)
@@ -174,17 +253,79 @@ def test_gcode_path_from_the_pins(linuxcnc_alone):
 
 
 def test_estop_from_linuxcnc_stops_the_card_at_once(linuxcnc_alone):
-    """E-stop mid-move: the driver sees enable fall in that period and soft-resets the
-    card, so no step comes after it, though the queue held more."""
+    """E-stop mid-move: the driver sees enable and drive-enable fall (LinuxCNC's E-stop
+    chain, the sample HAL) and soft-resets the card and clears MACHINE_CONTROL.DRIVE_ENABLE:
+    the card's DRIVE_ENABLE pin, high while the program ran, is low from within the period
+    after the one E-stop reached the HAL, and no step comes after it, though the queue held more."""
     run = _run_folder()
     _configure(run)
-    samples, pins, rises = _run(run, [f"{run / 'lcnc_stop.ngc'}@1.5:estop"])
-    enabled = [k for k, sample in enumerate(samples) if sample[5]]
-    assert enabled and enabled[-1] < len(samples) - 1, "the machine was never on, or never stopped"
-    stop = enabled[-1] + 1  # the first period with enable low
+    samples, pins, record = _run(run, [f"{run / 'lcnc_stop.ngc'}@1.5:estop"])
+    rises = record["rises"]
+    on = [k for k, sample in enumerate(samples) if sample[5] and sample[6]]
+    assert on and on[-1] < len(samples) - 1, "the machine was never on, or never stopped"
+    stop = on[-1] + 1  # the first period with enable or drive-enable low
     moving = [s[0] for s in samples[stop - 20:stop]]
     assert len(set(moving)) > 1, "E-stop came when the machine was not moving"
     assert rises[-1][0] <= samples[stop][2], "steps came after the period E-stop reached the driver"
+    drive = record["drive"]
+    assert [level for _, level in drive][-2:] == [1, 0], f"DRIVE_ENABLE did not go high, then low: {drive}"
+    raised, fell = drive[-2][0], drive[-1][0]
+    assert raised < rises[0][0], "steps before DRIVE_ENABLE rose"
+    # amp-enable and motion-enabled (drive-enable) fall in the same period, which the driver acts on
+    assert samples[stop - 1][2] < fell <= samples[stop][2]
+    assert rises[-1][0] <= fell, "a step after DRIVE_ENABLE fell"
     queued = abs(samples[stop - 1][0] * SCALE - pins[1][-1])
-    print(f"\nE-stop: the card stopped in the period it was pressed, {queued:.1f} steps short of the command")
+    print(f"\nE-stop: DRIVE_ENABLE low {fell - samples[stop - 1][2]} clocks after the start of the period "
+          f"E-stop reached the HAL, last step {fell - rises[-1][0]} clocks before; the card stopped "
+          f"{queued:.1f} steps short of the command")
+    shutil.rmtree(run, ignore_errors=True)
+
+
+def _field(register, name, value):
+    item = regmap.register(register).field(name)
+    return (value & item.mask) >> item.lsb
+
+
+def test_killed_linuxcnc_is_stopped_by_the_card_watchdog(linuxcnc_alone):
+    """LinuxCNC SIGKILLed mid-move: nothing advances or writes the card any more; the
+    card, running on its own, makes the steps it has queued until its watchdog (last
+    written in the last period the driver ran) stops it: the last STEP rise and
+    DRIVE_ENABLE's fall within the watchdog's timeout (+ the documented 3 clocks) of that
+    write, STOP_REASON WATCHDOG, and the pins short of what was queued.  The driver sets
+    RAMP_STEP 0, so the stop has no deceleration."""
+    run = _run_folder()
+    _configure(run)
+    with open(run / "record.hal", "a") as hal:
+        hal.write(f"setp dda-card.0.watchdog.timeout-ns {WATCHDOG_NS}\n")
+    started = time.monotonic()
+    record = _run_and_kill(run, run / "lcnc_kill.ngc", KILL_AFTER)
+    last = record["advances"][-1][1]  # the end of the last period the driver advanced the card
+    gone = record["free_run"]["start"]  # the card's clock when the driver's socket closed
+    assert record["free_run"]["end"] >= gone + FREE_RUN
+    rises = [r[0] for r in record["rises"]]
+    assert any(last - PERIOD_CLOCKS < r <= last for r in rises), "LinuxCNC was not killed mid-move"
+    drive = record["drive"]
+    assert drive[-1][1] == 0 and drive[-2][1] == 1, f"DRIVE_ENABLE did not stay high, then fall: {drive}"
+    fell = drive[-1][0]
+    # WATCHDOG is written in every period before its ADVANCE: the last write lies in
+    # (last - PERIOD_CLOCKS, gone]
+    assert last - PERIOD_CLOCKS + WATCHDOG_CLOCKS - WATCHDOG_SLACK <= fell <= gone + WATCHDOG_CLOCKS + WATCHDOG_SLACK
+    assert rises[-1] <= fell, "a step after the watchdog stopped the card"
+    after = [r for r in rises if r > last]
+    assert after, "the card made none of its queued steps on its own"
+    final = record["final"]
+    assert _field("STOP_REASON", "REASON", final["STOP_REASON"]) == regmap.STOP_REASONS.index("WATCHDOG")
+    assert _field("STATUS", "STOPPED", final["STATUS"]) == 1
+    assert _field("MACHINE_STATUS", "DRIVE_ENABLE", final["MACHINE_STATUS"]) == 0
+    clocks, xs, ys = pin_positions(run / "card.json")
+    at_last = next((i for i in range(len(clocks) - 1, -1, -1) if clocks[i] <= last), -1)
+    before = (xs[at_last], ys[at_last]) if at_last >= 0 else (0, 0)
+    queued, end = queued_position(record["fifo"]), (xs[-1], ys[-1])
+    for axis in (0, 1):  # a straight rapid: the pins between where they were and where the queue led
+        assert min(before[axis], queued[axis]) <= end[axis] <= max(before[axis], queued[axis])
+    assert end != queued, "the queue ran out before the watchdog stopped the card"
+    print(f"\nwatchdog {WATCHDOG_CLOCKS} clocks: after the last advance the card made {len(after)} steps on its own, "
+          f"the last {rises[-1] - last} clocks and DRIVE_ENABLE low {fell - last} clocks after it; "
+          f"{abs(queued[0] - end[0])}, {abs(queued[1] - end[1])} steps of the queue not made; "
+          f"{time.monotonic() - started:.0f} s")
     shutil.rmtree(run, ignore_errors=True)
