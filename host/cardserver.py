@@ -3,7 +3,7 @@
 ``python -m host.cardserver --socket PATH --log FILE [--clock-hz N] [--free-run CLOCKS]``
 opens ``SimTransport("verilator", clock_hz=N)`` (a card built to report N in
 CLOCK_HZ), listens on PATH, serves one client and, when the client goes,
-writes FILE: the card clock of every ADVANCE, the words of every FIFO burst,
+writes FILE: the card clock of every ADVANCE, register write and FIFO burst,
 the STEP/DIR pin rises, the changes of the DRIVE_ENABLE pin and the card's
 final state (STATUS, MACHINE_STATUS, STOP_REASON, POS_X, POS_Y read after
 the end).
@@ -72,7 +72,8 @@ def receive(connection, size):
 class CardServer:
     """One client's requests on ``transport`` (a Verilator ``SimTransport``).
     Clocks are card clocks since the server opened the card: ``advances``
-    (clock before, clock after), ``fifo`` (clock, words), ``drive``
+    (clock before, clock after), ``fifo`` (clock, words), ``writes`` (clock
+    at the end of the access, offset, value), ``drive``
     (clock, DRIVE_ENABLE level) at every change, ``free_run`` and ``final``
     once ``finish`` has run."""
 
@@ -82,6 +83,7 @@ class CardServer:
         self.start = transport.clocks
         self.advances = []
         self.fifo = []
+        self.writes = []
         self.drive = []
         self.free_run = None
         self.final = None
@@ -102,6 +104,7 @@ class CardServer:
             return transport.read(a)
         if op == WRITE:
             transport.write(a, b)
+            self.writes.append((self.now(), a, b))
             return 0
         if op == FIFO:
             self.fifo.append((self.now(), payload))
@@ -170,7 +173,7 @@ class CardServer:
         """What the test compares: clocks are card clocks since the server opened the card."""
         rises = [(int(r[0]) - self.start, *map(int, r[1:])) for r in self.transport.pins.rises]
         return dict(clock_hz=self.transport.clock_hz, advances=self.advances, rises=rises, fifo=self.fifo,
-                    drive=self.drive, free_run=self.free_run, final=self.final)
+                    writes=self.writes, drive=self.drive, free_run=self.free_run, final=self.final)
 
 
 def main(argv=None):

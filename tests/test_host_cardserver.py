@@ -102,6 +102,7 @@ def test_a_card_left_alone_is_stopped_by_its_watchdog(tmp_path, gone):
     record = client.finish()
     written = record["free_run"]["start"]  # the watchdog write was the last request
     assert started <= written < started + 100
+    assert record["writes"][-1] == [written, regmap.offset("WATCHDOG"), WATCHDOG_CLOCKS]
     assert record["free_run"]["end"] >= written + FREE_RUN
     assert record["drive"][0][1] == 0 and record["drive"][1][1] == 1 and record["drive"][1][0] < started
     assert len(record["drive"]) == 3, f"DRIVE_ENABLE changed more than once after it rose: {record['drive']}"

@@ -36,7 +36,10 @@ KEEP_AHEAD = 4
 DELAY_PERIODS = KEEP_AHEAD - 1  # the period's command is done at the end of period k + keep_ahead - 1
 PERIOD_CLOCKS = CLOCK_HZ // 1000
 STEP_CYCLE_CLOCKS = 4  # STEPLEN + STEPSPACE of the sample configuration (2000 + 2000 ns) at CLOCK_HZ
-WATCHDOG_NS = 2_500_000  # the kill test's: shorter than the queue (keep_ahead periods), so it cuts the queue
+# The kill test's watchdog: the card's queue (keep_ahead - 1 periods of steps left after the
+# last ADVANCE, each period's steps at its start) outlasts it by more than a period, wherever
+# in its period the driver died (its last WATCHDOG write before or after that ADVANCE).
+WATCHDOG_NS = 1_500_000
 WATCHDOG_CLOCKS = WATCHDOG_NS * CLOCK_HZ // 1_000_000_000
 WATCHDOG_SLACK = 3  # docs/machine.md: the stop comes TIMEOUT clocks after the write reaches WATCHDOG, within 3
 FREE_RUN = 20 * PERIOD_CLOCKS  # clocks the card runs on its own once LinuxCNC is gone
@@ -307,9 +310,10 @@ def test_killed_linuxcnc_is_stopped_by_the_card_watchdog(linuxcnc_alone):
     drive = record["drive"]
     assert drive[-1][1] == 0 and drive[-2][1] == 1, f"DRIVE_ENABLE did not stay high, then fall: {drive}"
     fell = drive[-1][0]
-    # WATCHDOG is written in every period before its ADVANCE: the last write lies in
-    # (last - PERIOD_CLOCKS, gone]
-    assert last - PERIOD_CLOCKS + WATCHDOG_CLOCKS - WATCHDOG_SLACK <= fell <= gone + WATCHDOG_CLOCKS + WATCHDOG_SLACK
+    watchdog = [(clock, value) for clock, offset, value in record["writes"] if offset == regmap.offset("WATCHDOG")]
+    written, value = watchdog[-1]
+    assert value == WATCHDOG_CLOCKS and last - PERIOD_CLOCKS < written <= gone, "not rewritten every period"
+    assert abs(fell - (written + WATCHDOG_CLOCKS)) <= WATCHDOG_SLACK
     assert rises[-1] <= fell, "a step after the watchdog stopped the card"
     after = [r for r in rises if r > last]
     assert after, "the card made none of its queued steps on its own"
@@ -325,7 +329,8 @@ def test_killed_linuxcnc_is_stopped_by_the_card_watchdog(linuxcnc_alone):
         assert min(before[axis], queued[axis]) <= end[axis] <= max(before[axis], queued[axis])
     assert end != queued, "the queue ran out before the watchdog stopped the card"
     print(f"\nwatchdog {WATCHDOG_CLOCKS} clocks: after the last advance the card made {len(after)} steps on its own, "
-          f"the last {rises[-1] - last} clocks and DRIVE_ENABLE low {fell - last} clocks after it; "
+          f"the last {rises[-1] - last} clocks and DRIVE_ENABLE low {fell - last} clocks after it "
+          f"({fell - written} after the last WATCHDOG write); "
           f"{abs(queued[0] - end[0])}, {abs(queued[1] - end[1])} steps of the queue not made; "
           f"{time.monotonic() - started:.0f} s")
     shutil.rmtree(run, ignore_errors=True)
