@@ -334,3 +334,58 @@ def test_killed_linuxcnc_is_stopped_by_the_card_watchdog(linuxcnc_alone):
           f"{abs(queued[0] - end[0])}, {abs(queued[1] - end[1])} steps of the queue not made; "
           f"{time.monotonic() - started:.0f} s")
     shutil.rmtree(run, ignore_errors=True)
+
+
+HAS_BIT_HAL = """loadrt threads name1=servo-thread period1=1000000
+loadrt dda_card sim={socket}
+addf dda-card.0.read servo-thread
+addf dda-card.0.write servo-thread
+setp dda-card.0.watchdog.timeout-ns 500000
+setp dda-card.0.stepgen.00.enable 1
+setp dda-card.0.stepgen.01.enable 1
+setp dda-card.0.drive-enable 1
+start
+loadusr -w sleep 0.3
+{show}
+setp dda-card.0.watchdog.timeout-ns 5000000
+setp dda-card.0.watchdog.has-bit 0
+loadusr -w sleep 0.2
+getp dda-card.0.error
+setp dda-card.0.stepgen.00.enable 0
+loadusr -w sleep 0.2
+setp dda-card.0.stepgen.00.enable 1
+loadusr -w sleep 0.3
+{show}
+"""
+SHOWN = ("watchdog.has-bit", "error", "error-code", "stop-reason")
+
+
+def test_watchdog_has_bit_holds_the_card_until_written_false(linuxcnc_alone):
+    """A watchdog shorter than the servo period bites in the first period (lock-step: the
+    card runs a whole period after each write): has-bit, error -3, stop-reason 2, the
+    card's DRIVE_ENABLE low.  Writing has-bit false alone does not restart (error stays
+    until enable falls); after enable falls and rises with a 5 ms watchdog the queue runs,
+    the card released (COMMAND.CLEAR_STOP) and DRIVE_ENABLE high again."""
+    run = _run_folder()
+    show = "\n".join(f"getp dda-card.0.{pin}" for pin in SHOWN)
+    (run / "has_bit.hal").write_text(HAS_BIT_HAL.format(socket=run / "card.sock", show=show))
+    (run / "has_bit.hal").chmod(0o666)
+    server = _server(run)
+    try:
+        result = _as_user(["halrun", "-f", str(run / "has_bit.hal")], run, 120)
+        assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
+        server.wait(timeout=60)
+    finally:
+        server.kill()
+    values = [line for line in result.stdout.split() if line in ("TRUE", "FALSE") or line.lstrip("-").isdigit()]
+    stopped, held, running = dict(zip(SHOWN, values[:4])), values[4], dict(zip(SHOWN, values[5:]))
+    assert stopped == {"watchdog.has-bit": "TRUE", "error": "TRUE", "error-code": "-3", "stop-reason": "2"}
+    assert "the card stopped the machine: its watchdog" in result.stdout + result.stderr
+    assert held == "TRUE", "has-bit written false restarted the card without enable falling"
+    assert running == {"watchdog.has-bit": "FALSE", "error": "FALSE", "error-code": "0", "stop-reason": "0"}
+    record = json.loads((run / "card.json").read_text())
+    levels = [level for _, level in record["drive"]]
+    assert levels == [0, 1, 0, 1, 0], f"DRIVE_ENABLE: on, the watchdog's stop, on again, unload: {record['drive']}"
+    first_stop = record["drive"][2][0]
+    assert first_stop <= PERIOD_CLOCKS + 100, "the 0.5 ms watchdog did not stop the card in its first period"
+    shutil.rmtree(run, ignore_errors=True)
