@@ -25,7 +25,7 @@ from pathlib import Path
 
 from myhdl import Signal, ToVerilogWarning, block
 
-from rtl import instructions, parameters, registers
+from rtl import instructions, parameters, register_docs
 from rtl.card import CARD_PARAMETERS, card, slave_params
 from rtl.interfaces import MotorPins, PciBus, PciPins, card_reset
 from rtl.parameters import DEVICE, PARAMETERS, PCI_IDS, ParameterError
@@ -115,7 +115,7 @@ def write_c_header(out_dir=GEN_DIR, **values):
                  for code, name in enumerate(registers.STOP_REASONS) if code] + [""]
     target = Path(out_dir) / C_HEADER
     target.parent.mkdir(parents=True, exist_ok=True)
-    target.write_text(registers.c_header(extra="\n".join(identity) + instructions.c_defines() + "\n"
+    target.write_text(register_docs.c_header(extra="\n".join(identity) + instructions.c_defines() + "\n"
                                          + instructions.c_builders(), values=settings))
     return target
 
