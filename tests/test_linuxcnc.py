@@ -245,6 +245,9 @@ def test_gcode_path_from_the_pins(linuxcnc_alone):
         closest = min(b - a for a, b in zip(clocks, clocks[1:]))
         assert closest >= STEP_CYCLE_CLOCKS, f"steps {closest} clocks apart, under steplen + stepspace"
     assert samples[-1][:2] != (0.0, 0.0), "the second program was to be stopped before its end at (0, 0)"
+    drive = record["drive"]  # on with the machine, off at its end; every step in between
+    assert [level for _, level in drive] == [0, 1, 0], drive
+    assert drive[1][0] < rises[0][0] and rises[-1][0] < drive[2][0]
     running = [s for s in samples if s[3] > 0]
     levels = [s[3] for s in running[1:]]
     underruns = samples[-1][4]
