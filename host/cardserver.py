@@ -8,6 +8,10 @@ the STEP/DIR pin rises, the changes of the DRIVE_ENABLE pin and the card's
 final state (STATUS, MACHINE_STATUS, STOP_REASON, POS_X, POS_Y read after
 the end).
 
+``--ppm N`` runs the card's clock N ppm fast (negative: slow) against the
+ADVANCEs, as a real card's crystal differs from the PC's timer: each ADVANCE
+of a clocks runs a (1 + N / 1e6) clocks, the fractions carried.
+
 A real card goes on without its PC: with ``--free-run CLOCKS`` the server,
 once the client has gone (socket closed, however it died), runs the card on
 its own for CLOCKS more clocks before it reads the final state, so a test
@@ -50,6 +54,8 @@ REQUEST = struct.Struct("<III")
 ANSWER = struct.Struct("<II")
 MAX_BURST = 4096  # words in one FIFO request
 MAX_FREE_RUN = 1 << 30  # clocks
+PPM_ONE = 1_000_000
+MAX_PPM = 100_000
 DRIVE_PIN = "pins_drive_enable"  # the card's DRIVE_ENABLE output, as MyHDL names the top's port
 FINAL_REGISTERS = ("STATUS", "MACHINE_STATUS", "STOP_REASON", "POS_X", "POS_Y")
 
@@ -77,8 +83,9 @@ class CardServer:
     (clock, DRIVE_ENABLE level) at every change, ``free_run`` and ``final``
     once ``finish`` has run."""
 
-    def __init__(self, transport):
+    def __init__(self, transport, ppm=0):
         self.transport = transport
+        self.ppm, self.ppm_fraction = ppm, 0
         self.model = transport.session.bench.model
         self.start = transport.clocks
         self.advances = []
@@ -112,7 +119,10 @@ class CardServer:
             return 0
         if op == ADVANCE:
             # The period's bus accesses took card clocks too: run to the period's end, not a more.
-            self.deadline += a
+            # A card clock ppm fast runs a(1 + ppm / 1e6) clocks, the fraction carried.
+            scaled = a * (PPM_ONE + self.ppm) + self.ppm_fraction
+            self.deadline += scaled // PPM_ONE
+            self.ppm_fraction = scaled % PPM_ONE
             before = transport.clocks - self.start
             if self.deadline > before:
                 transport.session.wait(self.deadline - before)
@@ -184,15 +194,20 @@ def main(argv=None):
                         help=f"clock the simulated card reports in CLOCK_HZ (default {CLOCK_HZ.default})")
     parser.add_argument("--free-run", type=int, default=0, metavar="CLOCKS",
                         help="clocks the card runs on its own after the client has gone (default 0)")
+    parser.add_argument("--ppm", type=int, default=0,
+                        help="the card's clock this many ppm fast (negative: slow) against the ADVANCEs "
+                             "(a real card's crystal against the PC's timer; default 0)")
     args = parser.parse_args(argv)
     if not 1 <= args.clock_hz <= 0xFFFFFFFF:
         parser.error(f"--clock-hz must be 1..{0xFFFFFFFF}, not {args.clock_hz}")
     if not 0 <= args.free_run <= MAX_FREE_RUN:
         parser.error(f"--free-run must be 0..{MAX_FREE_RUN} clocks, not {args.free_run}")
+    if not -MAX_PPM <= args.ppm <= MAX_PPM:
+        parser.error(f"--ppm must be {-MAX_PPM}..{MAX_PPM}, not {args.ppm}")
     if os.path.exists(args.socket):
         parser.error(f"{args.socket} exists: remove it or choose another path")
     with SimTransport("verilator", clock_hz=args.clock_hz) as transport:
-        server = CardServer(transport)
+        server = CardServer(transport, args.ppm)
         listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
         listener.bind(args.socket)
         os.chmod(args.socket, 0o666)  # the driver runs as LinuxCNC's (ordinary) user

@@ -46,6 +46,8 @@ RTAPI_MP_INT(period_overhead, "card clocks a period's LINE and DWELL take beyond
 
 #define AXES 2
 #define FASTEST_ITERATION 2  /* clocks: the DDA iterates at most every other clock */
+#define TRIM_RING 64         /* periods of FIFO words remembered: more than keep_ahead can be */
+#define TRIM_SHIFT 8         /* the drift loop's step: a period's clocks / 256 (at least 1) */
 static const uint32_t POS_REGS[AXES] = {DDA_POS_X, DDA_POS_Y};
 
 struct stepgen {
@@ -77,6 +79,11 @@ struct card {
     uint32_t clock_hz;
     uint32_t iteration;            /* clocks per DDA iteration, a power of two: FEED_RATE 65536 / it */
     uint64_t fraction;             /* ns x Hz carried between periods (below 1e9) */
+    hal_s32_t *drift_trim;         /* clocks added to this period's DWELL (the clock-drift loop) */
+    uint8_t period_words[TRIM_RING]; /* FIFO words of the last periods queued, by period number */
+    uint32_t periods_queued;
+    int depth_start;               /* whole periods in the FIFO at the first read after start, -1 before */
+    int trim_sign;                 /* +1 lengthen, -1 shorten, 0 keep this period's DWELL */
     int running;
     struct dda_transport transport;
 };
@@ -143,6 +150,28 @@ static void card_stopped(struct card *c, int stopping)
     rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: the card stopped the machine: %s\n", reason_name(*c->stop_reason));
 }
 
+/* The card's crystal and the PC's timer differ (~100 ppm): left alone the queue
+ * would slowly drain or fill.  The whole periods still in the FIFO at the read
+ * (its level against the words of each period queued, newest first) are held
+ * where they stood at the first read after start: fewer, the card runs fast and
+ * each DWELL is lengthened by a step; more, it runs slow and each is shortened.
+ * The count moves only when the card's period boundary crosses the read, so the
+ * queue stays within a period of where it started.  */
+static void trim_drift(struct card *c, int32_t level)
+{
+    int32_t words = 0;
+    int depth = 0;
+    while (depth < TRIM_RING && (uint32_t)depth < c->periods_queued) {
+        words += c->period_words[(c->periods_queued - 1 - depth) % TRIM_RING];
+        if (words > level)
+            break;
+        depth++;
+    }
+    if (c->depth_start < 0)
+        c->depth_start = depth;
+    c->trim_sign = depth < c->depth_start ? 1 : depth > c->depth_start ? -1 : 0;
+}
+
 static void read_card(void *arg, long period)
 {
     struct card *c = arg;
@@ -157,6 +186,8 @@ static void read_card(void *arg, long period)
     *c->fifo_level = (int32_t)((status & DDA_STATUS_FIFO_LEVEL_MASK) >> DDA_STATUS_FIFO_LEVEL_SHIFT);
     *c->estop_active = ((machine & DDA_MACHINE_STATUS_ACTIVE_MASK) >> DDA_MACHINE_STATUS_ACTIVE_SHIFT
                         & DDA_INPUT_POLARITY_ESTOP_MASK) != 0;
+    if (c->running)
+        trim_drift(c, *c->fifo_level);
     if (status & DDA_STATUS_STOPPED_MASK)
         card_stopped(c, c->running);
     else
@@ -215,6 +246,8 @@ static int start(struct card *c)
         s->forward = 0;  /* the soft reset before start put the DIR pins back */
         s->offset = s->sent - (*s->counts - s->offset);
     }
+    c->depth_start = -1;
+    c->trim_sign = 0;
     /* no ramp: the trajectory planner has shaped the motion, and a stop is immediate */
     if (dda_write32(&c->transport, DDA_RAMP_STEP, 0) < 0 || dda_fifo_write(&c->transport, words, n) < 0
         || dda_write32(&c->transport, DDA_WATCHDOG, watchdog_clocks(c)) < 0)
@@ -235,6 +268,7 @@ static int queue_period(struct card *c, uint32_t clocks)
     int32_t delta[AXES];
     int32_t longest = 0;
     int64_t dwell = clocks;
+    int32_t step = (int32_t)(clocks >> TRIM_SHIFT) > 1 ? (int32_t)(clocks >> TRIM_SHIFT) : 1;
     int reversal = 0;
     unsigned n = 0;
     int i;
@@ -251,6 +285,8 @@ static int queue_period(struct card *c, uint32_t clocks)
                  + (reversal ? clocks_of_ns(c->axis[0].dirsetup) : 0);
         n = dda_cmd_line(words, delta[0], delta[1], 0);
     }
+    *c->drift_trim = c->trim_sign * step;
+    dwell += *c->drift_trim;
     if (dwell < 0) {
         rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %d steps in one period is more than the card makes in "
                         "%u clocks: lower maxvel or position-scale\n", longest, clocks);
@@ -259,6 +295,7 @@ static int queue_period(struct card *c, uint32_t clocks)
     n += dda_cmd_dwell(&words[n], (uint32_t)dwell);
     if (dda_fifo_write(&c->transport, words, n) < 0)
         return -1;
+    c->period_words[c->periods_queued++ % TRIM_RING] = (uint8_t)n;
     for (i = 0; i < AXES; i++) {
         c->axis[i].sent += delta[i];
         if (delta[i] != 0)
@@ -341,6 +378,7 @@ static int export_card(struct card *c)
     r |= hal_pin_bit_newf(HAL_OUT, &c->error, comp_id, "%s.error", p);
     r |= hal_pin_s32_newf(HAL_OUT, &c->error_code, comp_id, "%s.error-code", p);
     r |= hal_pin_u32_newf(HAL_OUT, &c->clock, comp_id, "%s.clock", p);
+    r |= hal_pin_s32_newf(HAL_OUT, &c->drift_trim, comp_id, "%s.drift-trim", p);
     r |= hal_pin_bit_newf(HAL_IN, &c->estop_in, comp_id, "%s.estop-in", p);
     r |= hal_pin_bit_newf(HAL_IN, &c->drive_enable, comp_id, "%s.drive-enable", p);
     r |= hal_pin_bit_newf(HAL_OUT, &c->estop_active, comp_id, "%s.estop-active", p);

@@ -7,12 +7,12 @@ from rtl import instructions as isa
 
 def read_samples(path):
     """[(x_cmd, y_cmd, card clock at the period's end, fifo level, underruns, X enabled,
-    drive-enable)] from ``halsampler -t``."""
+    drive-enable, drift-trim)] from ``halsampler -t``."""
     samples = []
     for line in open(path):
         fields = line.split()
         samples.append((float(fields[1]), float(fields[2]), int(fields[3]), int(fields[5]), int(fields[6]),
-                        int(fields[7]), int(fields[8])))
+                        int(fields[7]), int(fields[8]), int(fields[9])))
     return samples
 
 

@@ -78,6 +78,14 @@ def test_bad_requests_are_answered_with_the_reason(client):
     client.finish()
 
 
+@pytest.mark.parametrize("ppm, ends", [(1500, [1001, 2003, 3004]), (-1500, [998, 1997, 2995])])
+def test_a_card_clock_ppm_fast_or_slow_runs_more_or_fewer_clocks_per_advance(tmp_path, ppm, ends):
+    """--ppm: each ADVANCE of 1000 clocks runs 1000 (1 + ppm / 1e6) card clocks, the fractions carried."""
+    client = Client(tmp_path, "--ppm", str(ppm))
+    assert [client.ask(ADVANCE, 1000)[0] for _ in ends] == ends
+    client.finish()
+
+
 def field(name, register, value):
     item = next(f for f in regmap.register(register).fields if f.name == name)
     return (value & item.mask) >> item.lsb
@@ -134,7 +142,8 @@ def test_without_free_run_the_card_stays_where_the_client_left_it(client):
 
 @pytest.mark.parametrize("argv, message", [
     (["--clock-hz", "0"], "--clock-hz must be"), (["--clock-hz", str(1 << 32)], "--clock-hz must be"),
-    (["--free-run", "-1"], "--free-run must be"), (["--free-run", str((1 << 30) + 1)], "--free-run must be")])
+    (["--free-run", "-1"], "--free-run must be"), (["--free-run", str((1 << 30) + 1)], "--free-run must be"),
+    (["--ppm", "100001"], "--ppm must be"), (["--ppm", "-100001"], "--ppm must be")])
 def test_bad_options_are_refused_before_anything_is_written(tmp_path, capsys, argv, message):
     with pytest.raises(SystemExit):
         main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), *argv])

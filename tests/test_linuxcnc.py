@@ -83,7 +83,7 @@ def _run_folder():
     return run
 
 
-RECORD_HAL = """loadrt sampler depth=16384 cfg=ffussubb
+RECORD_HAL = """loadrt sampler depth=16384 cfg=ffussubbs
 addf sampler.0 servo-thread
 net x-pos-cmd => sampler.0.pin.0
 net y-pos-cmd => sampler.0.pin.1
@@ -93,6 +93,7 @@ net fifo-level dda-card.0.fifo-level => sampler.0.pin.4
 net underruns dda-card.0.underruns => sampler.0.pin.5
 net x-enable => sampler.0.pin.6
 net drive-enable => sampler.0.pin.7
+net drift-trim dda-card.0.drift-trim => sampler.0.pin.8
 loadusr ./record.sh {samples}
 """
 
@@ -144,9 +145,9 @@ def _server(run, *options):
     return server
 
 
-def _run(run, jobs):
+def _run(run, jobs, *server_options):
     """LinuxCNC on the card server for ``jobs`` (headless.py's arguments); (samples, pins, record)."""
-    server = _server(run)
+    server = _server(run, *server_options)
     try:
         lcnc = _as_user(["linuxcnc", "-r", str(run / "dda_xy.ini"), *jobs], run, 300)
         assert lcnc.returncode == 0, lcnc.stdout[-3000:] + lcnc.stderr[-3000:]
@@ -245,6 +246,7 @@ def test_gcode_path_from_the_pins(linuxcnc_alone):
         closest = min(b - a for a, b in zip(clocks, clocks[1:]))
         assert closest >= STEP_CYCLE_CLOCKS, f"steps {closest} clocks apart, under steplen + stepspace"
     assert samples[-1][:2] != (0.0, 0.0), "the second program was to be stopped before its end at (0, 0)"
+    assert not any(s[7] for s in samples), "the drift loop trimmed a card that does not drift"
     drive = record["drive"]  # on with the machine, off at its end; every step in between
     assert [level for _, level in drive] == [0, 1, 0], drive
     assert drive[1][0] < rises[0][0] and rises[-1][0] < drive[2][0]
@@ -391,4 +393,30 @@ def test_watchdog_has_bit_holds_the_card_until_written_false(linuxcnc_alone):
     assert levels == [0, 1, 0, 1, 0], f"DRIVE_ENABLE: on, the watchdog's stop, on again, unload: {record['drive']}"
     first_stop = record["drive"][2][0]
     assert first_stop <= PERIOD_CLOCKS + 100, "the 0.5 ms watchdog did not stop the card in its first period"
+    shutil.rmtree(run, ignore_errors=True)
+
+
+@pytest.mark.parametrize("ppm", [2000, -2000])
+def test_clock_drift_is_trimmed_from_the_fifo_level(linuxcnc_alone, ppm):
+    """The card's clock ``ppm`` fast or slow against the servo periods (card server
+    --ppm; 2000 ppm drains or fills the queue by a period in half a second): the
+    driver's DWELL trims (drift-trim) keep the card clocks queued within a period and
+    a half of where they started, the FIFO level bounded, no underrun, the pins at
+    the command at the end."""
+    run = _run_folder()
+    _configure(run)
+    samples, pins, record = _run(run, [str(run / "lcnc_path.ngc")], "--ppm", str(ppm))
+    on = [k for k, sample in enumerate(samples) if sample[5]]
+    first, last = on[0] + 1, on[-1]
+    worst = trimmed = 0
+    for k in range(first, last + 1):
+        trimmed += samples[k][7]
+        drift = samples[k][2] - samples[first - 1][2] - PERIOD_CLOCKS * (k - first + 1)
+        worst = max(worst, abs(trimmed - drift))
+    assert worst <= 1.5 * PERIOD_CLOCKS, f"the queue moved {worst} clocks from where it started"
+    levels = [s[3] for s in samples[first + 1:last + 1]]
+    assert max(levels) <= 20 and samples[-1][4] == 0
+    assert (pins[1][-1], pins[2][-1]) == (round(samples[-1][0] * SCALE), round(samples[-1][1] * SCALE))
+    print(f"\n{ppm:+} ppm: {last - first + 1} periods, drift {drift} clocks, trimmed {trimmed}, the queue "
+          f"within {worst} clocks of its start, FIFO {min(levels)}..{max(levels)} words, no underrun")
     shutil.rmtree(run, ignore_errors=True)
