@@ -25,13 +25,16 @@
  * `watchdog.timeout-ns` in card clocks, so a PC that stops driving the card
  * has it stop on its own within that time.  A watchdog stop sets
  * `watchdog.has-bit`, which holds the card stopped (and `error` high) until
- * it is written false.  See docs/linuxcnc.md.
+ * it is written false.  Each period's DWELL is trimmed from the FIFO level
+ * so that the card's crystal, some ppm off the PC's timer, neither drains
+ * nor fills the queue.  See docs/linuxcnc.md.
  */
 #include "rtapi.h"
 #include "rtapi_app.h"
 #include "rtapi_math.h"
 #include "hal.h"
 #include "dda_transport.h"
+#include "dda_state.h"
 
 MODULE_AUTHOR("PCI DDA card authors");
 MODULE_DESCRIPTION("HAL driver of the PCI DDA card");
@@ -44,50 +47,7 @@ RTAPI_MP_INT(keep_ahead, "servo periods queued ahead in the card's FIFO");
 static int period_overhead = 8;
 RTAPI_MP_INT(period_overhead, "card clocks a period's LINE and DWELL take beyond their own");
 
-#define AXES 2
-#define FASTEST_ITERATION 2  /* clocks: the DDA iterates at most every other clock */
-#define TRIM_RING 64         /* periods of FIFO words remembered: more than keep_ahead can be */
-#define TRIM_SHIFT 8         /* the drift loop's step: a period's clocks / 256 (at least 1) */
 static const uint32_t POS_REGS[AXES] = {DDA_POS_X, DDA_POS_Y};
-
-struct stepgen {
-    hal_float_t *position_cmd, *velocity_cmd, *position_fb, *velocity_fb;
-    hal_s32_t *counts;
-    hal_bit_t *enable;
-    hal_float_t position_scale, maxvel, maxaccel;
-    hal_u32_t steplen, stepspace, dirsetup, dirhold;
-    int32_t sent;          /* steps queued so far (driver's coordinates) */
-    int32_t offset;        /* driver's steps minus the card's counter */
-    int32_t last_counts;
-    int forward;           /* the DIR pin's side: the last move's direction (reset: backward) */
-};
-
-struct card {
-    struct stepgen axis[AXES];
-    hal_s32_t *fifo_level;
-    hal_u32_t *underruns;
-    hal_bit_t *error;
-    hal_s32_t *error_code;
-    hal_u32_t *clock;              /* simulation: card clocks at the end of this period */
-    hal_bit_t *estop_in;           /* low: the queue stops (LinuxCNC's E-stop chain) */
-    hal_bit_t *drive_enable;       /* MACHINE_CONTROL.DRIVE_ENABLE */
-    hal_bit_t *estop_active;       /* the card's E-stop input (MACHINE_STATUS.ACTIVE) */
-    hal_s32_t *stop_reason;        /* STOP_REASON.REASON: why the card holds itself stopped */
-    hal_bit_t *watchdog_has_bit;   /* the card's watchdog stopped it; written false to go on */
-    hal_u32_t watchdog_timeout_ns;
-    int drive_written;             /* DRIVE_ENABLE as last written */
-    uint32_t clock_hz;
-    uint32_t iteration;            /* clocks per DDA iteration, a power of two: FEED_RATE 65536 / it */
-    uint64_t fraction;             /* ns x Hz carried between periods (below 1e9) */
-    hal_s32_t *drift_trim;         /* clocks added to this period's DWELL (the clock-drift loop) */
-    uint8_t period_words[TRIM_RING]; /* FIFO words of the last periods queued, by period number */
-    uint32_t periods_queued;
-    int depth_start;               /* whole periods in the FIFO at the first read after start, -1 before */
-    int trim_sign;                 /* +1 lengthen, -1 shorten, 0 keep this period's DWELL */
-    int running;
-    struct dda_transport transport;
-};
-
 static int comp_id;
 static struct card *card;
 
