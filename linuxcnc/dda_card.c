@@ -67,6 +67,7 @@ static uint32_t watchdog_clocks(struct card *c)
 static void halt_card(struct card *c)
 {
     c->running = 0;
+    *c->drift_trim = 0;
     dda_write32(&c->transport, DDA_CONTROL, 0);
     dda_write32(&c->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK);
     dda_write32(&c->transport, DDA_WATCHDOG, 0);
