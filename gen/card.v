@@ -267,6 +267,7 @@ wire card_core0_regs_fifo1_clear_error;
 wire card_core0_regs_fifo1_clear_position;
 wire card_core0_regs_fifo1_clear_stop;
 wire card_core0_regs_fifo1_direct_mode;
+wire card_core0_regs_fifo1_direct_ready;
 wire card_core0_regs_fifo1_discard_on_clear;
 wire card_core0_regs_fifo1_enable;
 wire card_core0_regs_fifo1_fifo_flush;
@@ -290,6 +291,7 @@ reg card_core0_regs_fifo1_push;
 reg card_core0_regs_fifo1_requested_before;
 wire card_core0_regs_fifo1_seq_busy;
 wire card_core0_regs_fifo1_sequencer_clear;
+wire card_core0_regs_fifo1_settled;
 reg card_core0_regs_fifo1_soft_reset_taken;
 reg card_core0_regs_fifo1_tick;
 reg [11:0] card_core0_regs_fifo1_written_addr;
@@ -304,6 +306,7 @@ reg [1:0] card_core0_regs_fifo1_machine_control;
 reg card_core0_regs_fifo1_guard_stopping;
 wire card_core0_regs_fifo1_guard_ramp;
 reg [15:0] card_core0_regs_fifo1_ramp_step;
+reg card_core0_regs_fifo1_feed_held;
 reg card_core0_regs_fifo1_guard_stopped;
 reg card_core0_regs_fifo1_guard_stop_event;
 wire card_core0_regs_fifo1_requests_step_x;
@@ -681,7 +684,6 @@ reg card_core0_regs_fifo1_feed_rate1_step_zero;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_target_s;
 wire [16:0] card_core0_regs_fifo1_feed_rate1_total;
 wire [26:0] card_core0_regs_fifo1_feed_rate1_feed_stop_left;
-reg card_core0_regs_fifo1_feed_rate1_feed_held;
 reg [23:0] card_core0_regs_fifo1_direct_pulse2_count_addend;
 reg [23:0] card_core0_regs_fifo1_direct_pulse2_count_operand;
 wire [23:0] card_core0_regs_fifo1_direct_pulse2_counted;
@@ -4061,14 +4063,14 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_a
         card_core0_regs_fifo1_feed_rate1_phase <= 0;
         card_core0_regs_fifo1_feed_rate1_rate <= 0;
         card_core0_regs_fifo1_feed_rate1_count <= 2;
-        card_core0_regs_fifo1_feed_rate1_feed_held <= 0;
+        card_core0_regs_fifo1_feed_held <= 0;
     end
     else begin
         card_core0_regs_fifo1_tick <= 0;
         if ((!card_core0_regs_fifo1_motion_run)) begin
             card_core0_regs_fifo1_feed_rate1_phase <= 0;
             card_core0_regs_fifo1_feed_rate1_count <= 2;
-            card_core0_regs_fifo1_feed_rate1_feed_held <= card_core0_regs_fifo1_feed_pause;
+            card_core0_regs_fifo1_feed_held <= card_core0_regs_fifo1_feed_pause;
             if (card_core0_regs_fifo1_feed_pause) begin
                 card_core0_regs_fifo1_feed_rate1_rate <= 0;
             end
@@ -4079,9 +4081,9 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_a
                 card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_start_s;
             end
         end
-        else if (card_core0_regs_fifo1_feed_rate1_feed_held) begin
+        else if (card_core0_regs_fifo1_feed_held) begin
             if ((!card_core0_regs_fifo1_feed_pause)) begin
-                card_core0_regs_fifo1_feed_rate1_feed_held <= 0;
+                card_core0_regs_fifo1_feed_held <= 0;
                 if (card_core0_regs_fifo1_feed_rate1_step_zero) begin
                     card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
                 end
@@ -4092,7 +4094,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_a
         end
         else if ((card_core0_regs_fifo1_feed_rate1_step_zero && card_core0_regs_fifo1_feed_pause)) begin
             card_core0_regs_fifo1_feed_rate1_rate <= 0;
-            card_core0_regs_fifo1_feed_rate1_feed_held <= 1;
+            card_core0_regs_fifo1_feed_held <= 1;
         end
         else if ((!card_core0_regs_fifo1_hold)) begin
             card_core0_regs_fifo1_feed_rate1_phase <= card_core0_regs_fifo1_feed_rate1_total[16-1:0];
@@ -4114,7 +4116,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_a
                     end
                     else if (card_core0_regs_fifo1_feed_pause) begin
                         card_core0_regs_fifo1_feed_rate1_rate <= 0;
-                        card_core0_regs_fifo1_feed_rate1_feed_held <= 1;
+                        card_core0_regs_fifo1_feed_held <= 1;
                     end
                 end
                 else if (card_core0_regs_fifo1_feed_rate1_below) begin
@@ -4203,7 +4205,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
                 card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
                 card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_direct_pulse2_gap != 1);
             end
-            else if (card_core0_regs_fifo1_out_ready) begin
+            else if (card_core0_regs_fifo1_direct_ready) begin
                 card_core0_regs_fifo1_direct_request_x <= 1;
                 card_core0_regs_fifo1_reg_word50_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
                 card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word50_shown != 1);
@@ -4277,7 +4279,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
                 card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
                 card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_gap != 1);
             end
-            else if (card_core0_regs_fifo1_out_ready) begin
+            else if (card_core0_regs_fifo1_direct_ready) begin
                 card_core0_regs_fifo1_direct_request_y <= 1;
                 card_core0_regs_fifo1_reg_word51_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
                 card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word51_shown != 1);
@@ -4718,7 +4720,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
                 card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
             end
             else if (card_core0_regs_fifo1_guard_stopping) begin
-                stopped = (card_core0_regs_fifo1_feed_rate1_feed_held != 0);
+                stopped = (card_core0_regs_fifo1_settled != 0);
             end
             else if ((card_core0_regs_fifo1_machine_guard1_expired || (card_core0_regs_fifo1_machine_guard1_hits != 0))) begin
                 stopped = (!card_core0_regs_fifo1_guard_ramp);
@@ -4763,7 +4765,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
 end
 
 
-always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_input_filter1_inputs_active, card_core0_regs_fifo1_feed_rate1_feed_held, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1__machine_words1_assemble
+always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_input_filter1_inputs_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1__machine_words1_assemble
     reg [20-1:0] word;
     reg [8-1:0] why;
     word = 20'h0;
@@ -4771,7 +4773,7 @@ always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stoppi
     word[8+:7] = card_core0_regs_fifo1_input_filter1_inputs_active;
     word[16] = card_core0_regs_fifo1_guard_stopped;
     word[17] = pins_drive_enable;
-    word[18] = card_core0_regs_fifo1_feed_rate1_feed_held;
+    word[18] = card_core0_regs_fifo1_settled;
     word[19] = card_core0_regs_fifo1_guard_stopping;
     card_core0_regs_fifo1_reg_word56_shown = word;
     why = 8'h0;
@@ -4839,6 +4841,8 @@ assign card_core0_regs_fifo1_clear_position = (card_core0_regs_fifo1_command_str
 assign card_core0_regs_fifo1_clear_stop = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[3]);
 assign card_core0_regs_fifo1_feed_pause = (card_core0_regs_fifo1_machine_control[1] || card_core0_regs_fifo1_guard_stopping);
 assign card_core0_regs_fifo1_guard_ramp = (card_core0_regs_fifo1_ramp_step != 0);
+assign card_core0_regs_fifo1_settled = (card_core0_regs_fifo1_feed_held && (!card_core0_regs_fifo1_tick) && (!card_core0_regs_fifo1_outputs_busy));
+assign card_core0_regs_fifo1_direct_ready = (card_core0_regs_fifo1_out_ready && (!card_core0_regs_fifo1_guard_stopping));
 assign card_core0_regs_fifo1_pulse_clear = (card_core0_core_clear || card_core0_regs_fifo1_halt);
 assign card_core0_regs_fifo1_sequencer_clear = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped);
 

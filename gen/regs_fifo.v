@@ -179,6 +179,7 @@ wire clear_error;
 wire clear_position;
 wire clear_stop;
 wire direct_mode;
+wire direct_ready;
 wire discard_on_clear;
 wire enable;
 wire fifo_flush;
@@ -202,6 +203,7 @@ reg push;
 reg requested_before;
 wire seq_busy;
 wire sequencer_clear;
+wire settled;
 reg soft_reset_taken;
 reg tick;
 reg [15:0] written_addr;
@@ -216,6 +218,7 @@ reg [1:0] machine_control;
 reg guard_stopping;
 wire guard_ramp;
 reg [15:0] ramp_step;
+reg feed_held;
 reg guard_stopped;
 reg guard_stop_event;
 wire requests_step_x;
@@ -572,7 +575,6 @@ reg [15:0] feed_rate0_step_s;
 reg feed_rate0_step_zero;
 reg [15:0] feed_rate0_target_s;
 wire [16:0] feed_rate0_total;
-reg feed_rate0_feed_held;
 reg [23:0] direct_pulse0_count_addend;
 reg [23:0] direct_pulse0_count_operand;
 wire [23:0] direct_pulse0_counted;
@@ -2787,14 +2789,14 @@ always @(posedge clock, negedge reset) begin: feed_rate0_accumulate
         feed_rate0_phase <= 0;
         feed_rate0_rate <= 0;
         feed_rate0_count <= 2;
-        feed_rate0_feed_held <= 0;
+        feed_held <= 0;
     end
     else begin
         tick <= 0;
         if ((!motion_run)) begin
             feed_rate0_phase <= 0;
             feed_rate0_count <= 2;
-            feed_rate0_feed_held <= feed_pause;
+            feed_held <= feed_pause;
             if (feed_pause) begin
                 feed_rate0_rate <= 0;
             end
@@ -2805,9 +2807,9 @@ always @(posedge clock, negedge reset) begin: feed_rate0_accumulate
                 feed_rate0_rate <= feed_rate0_start_s;
             end
         end
-        else if (feed_rate0_feed_held) begin
+        else if (feed_held) begin
             if ((!feed_pause)) begin
-                feed_rate0_feed_held <= 0;
+                feed_held <= 0;
                 if (feed_rate0_step_zero) begin
                     feed_rate0_rate <= feed_rate0_target_s;
                 end
@@ -2818,7 +2820,7 @@ always @(posedge clock, negedge reset) begin: feed_rate0_accumulate
         end
         else if ((feed_rate0_step_zero && feed_pause)) begin
             feed_rate0_rate <= 0;
-            feed_rate0_feed_held <= 1;
+            feed_held <= 1;
         end
         else if ((!hold)) begin
             feed_rate0_phase <= feed_rate0_total[16-1:0];
@@ -2840,7 +2842,7 @@ always @(posedge clock, negedge reset) begin: feed_rate0_accumulate
                     end
                     else if (feed_pause) begin
                         feed_rate0_rate <= 0;
-                        feed_rate0_feed_held <= 1;
+                        feed_held <= 1;
                     end
                 end
                 else if (feed_rate0_below) begin
@@ -2929,7 +2931,7 @@ always @(posedge clock, negedge reset) begin: direct_pulse0_emit
                 direct_pulse0_gap <= direct_pulse0_gap_less;
                 direct_pulse0_waiting <= (direct_pulse0_gap != 1);
             end
-            else if (out_ready) begin
+            else if (direct_ready) begin
                 direct_request_x <= 1;
                 reg_word19_shown <= direct_pulse0_counted;
                 direct_pulse0_pending <= (reg_word19_shown != 1);
@@ -3003,7 +3005,7 @@ always @(posedge clock, negedge reset) begin: direct_pulse1_emit
                 direct_pulse1_gap <= direct_pulse1_gap_less;
                 direct_pulse1_waiting <= (direct_pulse1_gap != 1);
             end
-            else if (out_ready) begin
+            else if (direct_ready) begin
                 direct_request_y <= 1;
                 reg_word20_shown <= direct_pulse1_counted;
                 direct_pulse1_pending <= (reg_word20_shown != 1);
@@ -3444,7 +3446,7 @@ always @(posedge clock, negedge reset) begin: machine_guard0_latch
                 machine_guard0_guard_limits <= 0;
             end
             else if (guard_stopping) begin
-                stopped = (feed_rate0_feed_held != 0);
+                stopped = (settled != 0);
             end
             else if ((machine_guard0_expired || (machine_guard0_hits != 0))) begin
                 stopped = (!guard_ramp);
@@ -3489,7 +3491,7 @@ always @(posedge clock, negedge reset) begin: machine_guard0_watchdog
 end
 
 
-always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_enable, input_filter0_inputs_active, feed_rate0_feed_held, machine_guard0_guard_limits, machine_guard0_guard_reason) begin: _machine_words0_assemble
+always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_enable, input_filter0_inputs_active, settled, machine_guard0_guard_limits, machine_guard0_guard_reason) begin: _machine_words0_assemble
     reg [20-1:0] word;
     reg [8-1:0] why;
     word = 20'h0;
@@ -3497,7 +3499,7 @@ always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_ena
     word[8+:7] = input_filter0_inputs_active;
     word[16] = guard_stopped;
     word[17] = pins_drive_enable;
-    word[18] = feed_rate0_feed_held;
+    word[18] = settled;
     word[19] = guard_stopping;
     reg_word25_shown = word;
     why = 8'h0;
@@ -3565,6 +3567,8 @@ assign clear_position = (command_strobe && command[2]);
 assign clear_stop = (command_strobe && command[3]);
 assign feed_pause = (machine_control[1] || guard_stopping);
 assign guard_ramp = (ramp_step != 0);
+assign settled = (feed_held && (!tick) && (!outputs_busy));
+assign direct_ready = (out_ready && (!guard_stopping));
 assign pulse_clear = (core_clear || halt);
 assign sequencer_clear = (core_clear || guard_stopped);
 

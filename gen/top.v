@@ -291,6 +291,7 @@ wire card1_card_core1_regs_fifo2_clear_error;
 wire card1_card_core1_regs_fifo2_clear_position;
 wire card1_card_core1_regs_fifo2_clear_stop;
 wire card1_card_core1_regs_fifo2_direct_mode;
+wire card1_card_core1_regs_fifo2_direct_ready;
 wire card1_card_core1_regs_fifo2_discard_on_clear;
 wire card1_card_core1_regs_fifo2_enable;
 wire card1_card_core1_regs_fifo2_fifo_flush;
@@ -314,6 +315,7 @@ reg card1_card_core1_regs_fifo2_push;
 reg card1_card_core1_regs_fifo2_requested_before;
 wire card1_card_core1_regs_fifo2_seq_busy;
 wire card1_card_core1_regs_fifo2_sequencer_clear;
+wire card1_card_core1_regs_fifo2_settled;
 reg card1_card_core1_regs_fifo2_soft_reset_taken;
 reg card1_card_core1_regs_fifo2_tick;
 reg [11:0] card1_card_core1_regs_fifo2_written_addr;
@@ -328,6 +330,7 @@ reg [1:0] card1_card_core1_regs_fifo2_machine_control;
 reg card1_card_core1_regs_fifo2_guard_stopping;
 wire card1_card_core1_regs_fifo2_guard_ramp;
 reg [15:0] card1_card_core1_regs_fifo2_ramp_step;
+reg card1_card_core1_regs_fifo2_feed_held;
 reg card1_card_core1_regs_fifo2_guard_stopped;
 reg card1_card_core1_regs_fifo2_guard_stop_event;
 wire card1_card_core1_regs_fifo2_requests_step_x;
@@ -705,7 +708,6 @@ reg card1_card_core1_regs_fifo2_feed_rate2_step_zero;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_target_s;
 wire [16:0] card1_card_core1_regs_fifo2_feed_rate2_total;
 wire [26:0] card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left;
-reg card1_card_core1_regs_fifo2_feed_rate2_feed_held;
 reg [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count_addend;
 reg [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count_operand;
 wire [23:0] card1_card_core1_regs_fifo2_direct_pulse4_counted;
@@ -4893,14 +4895,14 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
         card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
         card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
         card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
-        card1_card_core1_regs_fifo2_feed_rate2_feed_held <= 0;
+        card1_card_core1_regs_fifo2_feed_held <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_tick <= 0;
         if ((!card1_card_core1_regs_fifo2_motion_run)) begin
             card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
             card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
-            card1_card_core1_regs_fifo2_feed_rate2_feed_held <= card1_card_core1_regs_fifo2_feed_pause;
+            card1_card_core1_regs_fifo2_feed_held <= card1_card_core1_regs_fifo2_feed_pause;
             if (card1_card_core1_regs_fifo2_feed_pause) begin
                 card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
             end
@@ -4911,9 +4913,9 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
                 card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_start_s;
             end
         end
-        else if (card1_card_core1_regs_fifo2_feed_rate2_feed_held) begin
+        else if (card1_card_core1_regs_fifo2_feed_held) begin
             if ((!card1_card_core1_regs_fifo2_feed_pause)) begin
-                card1_card_core1_regs_fifo2_feed_rate2_feed_held <= 0;
+                card1_card_core1_regs_fifo2_feed_held <= 0;
                 if (card1_card_core1_regs_fifo2_feed_rate2_step_zero) begin
                     card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
                 end
@@ -4924,7 +4926,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
         end
         else if ((card1_card_core1_regs_fifo2_feed_rate2_step_zero && card1_card_core1_regs_fifo2_feed_pause)) begin
             card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
-            card1_card_core1_regs_fifo2_feed_rate2_feed_held <= 1;
+            card1_card_core1_regs_fifo2_feed_held <= 1;
         end
         else if ((!card1_card_core1_regs_fifo2_hold)) begin
             card1_card_core1_regs_fifo2_feed_rate2_phase <= card1_card_core1_regs_fifo2_feed_rate2_total[16-1:0];
@@ -4946,7 +4948,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
                     end
                     else if (card1_card_core1_regs_fifo2_feed_pause) begin
                         card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
-                        card1_card_core1_regs_fifo2_feed_rate2_feed_held <= 1;
+                        card1_card_core1_regs_fifo2_feed_held <= 1;
                     end
                 end
                 else if (card1_card_core1_regs_fifo2_feed_rate2_below) begin
@@ -5035,7 +5037,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
                 card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_direct_pulse4_gap != 1);
             end
-            else if (card1_card_core1_regs_fifo2_out_ready) begin
+            else if (card1_card_core1_regs_fifo2_direct_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_x <= 1;
                 card1_card_core1_regs_fifo2_reg_word81_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
                 card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word81_shown != 1);
@@ -5109,7 +5111,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
                 card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_gap != 1);
             end
-            else if (card1_card_core1_regs_fifo2_out_ready) begin
+            else if (card1_card_core1_regs_fifo2_direct_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_y <= 1;
                 card1_card_core1_regs_fifo2_reg_word82_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
                 card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word82_shown != 1);
@@ -5550,7 +5552,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
                 card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
             end
             else if (card1_card_core1_regs_fifo2_guard_stopping) begin
-                stopped = (card1_card_core1_regs_fifo2_feed_rate2_feed_held != 0);
+                stopped = (card1_card_core1_regs_fifo2_settled != 0);
             end
             else if ((card1_card_core1_regs_fifo2_machine_guard2_expired || (card1_card_core1_regs_fifo2_machine_guard2_hits != 0))) begin
                 stopped = (!card1_card_core1_regs_fifo2_guard_ramp);
@@ -5595,7 +5597,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
 end
 
 
-always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_input_filter2_inputs_active, card1_card_core1_regs_fifo2_feed_rate2_feed_held, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2__machine_words2_assemble
+always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_input_filter2_inputs_active, card1_card_core1_regs_fifo2_settled, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2__machine_words2_assemble
     reg [20-1:0] word;
     reg [8-1:0] why;
     word = 20'h0;
@@ -5603,7 +5605,7 @@ always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_
     word[8+:7] = card1_card_core1_regs_fifo2_input_filter2_inputs_active;
     word[16] = card1_card_core1_regs_fifo2_guard_stopped;
     word[17] = motor_drive_enable;
-    word[18] = card1_card_core1_regs_fifo2_feed_rate2_feed_held;
+    word[18] = card1_card_core1_regs_fifo2_settled;
     word[19] = card1_card_core1_regs_fifo2_guard_stopping;
     card1_card_core1_regs_fifo2_reg_word87_shown = word;
     why = 8'h0;
@@ -5671,6 +5673,8 @@ assign card1_card_core1_regs_fifo2_clear_position = (card1_card_core1_regs_fifo2
 assign card1_card_core1_regs_fifo2_clear_stop = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[3]);
 assign card1_card_core1_regs_fifo2_feed_pause = (card1_card_core1_regs_fifo2_machine_control[1] || card1_card_core1_regs_fifo2_guard_stopping);
 assign card1_card_core1_regs_fifo2_guard_ramp = (card1_card_core1_regs_fifo2_ramp_step != 0);
+assign card1_card_core1_regs_fifo2_settled = (card1_card_core1_regs_fifo2_feed_held && (!card1_card_core1_regs_fifo2_tick) && (!card1_card_core1_regs_fifo2_outputs_busy));
+assign card1_card_core1_regs_fifo2_direct_ready = (card1_card_core1_regs_fifo2_out_ready && (!card1_card_core1_regs_fifo2_guard_stopping));
 assign card1_card_core1_regs_fifo2_pulse_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_halt);
 assign card1_card_core1_regs_fifo2_sequencer_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped);
 

@@ -28,8 +28,8 @@ def machine_guard(clock, reset, guard, request, granted):
     A WATCHDOG or LIMIT cause while ``ramp`` is high (RAMP_STEP not 0)
     starts a decelerated stop instead: ``stopping`` rises at the edge after
     it (``reason`` and ``limits`` with it), the feed rate ramps down on it,
-    and ``stopped`` latches at the edge after ``held`` (the rate is zero)
-    is seen.  Until then every step request passes, those towards an
+    and ``stopped`` latches at the edge after ``held`` (the rate is zero
+    and the last step has left the pins) is seen.  Until then every step request passes, those towards an
     active limit included, so the path slows down on itself; an E-stop
     still latches at once.
 

@@ -236,7 +236,8 @@ REGISTERS = (
         Field("ACTIVE", 8, 7, "inputs filtered, polarity applied: 1 active (bit n: input n)"),
         Field("STOPPED", 16, 1, "the guard holds the card stopped (STOP_REASON says why)"),
         Field("DRIVE_ENABLE", 17, 1, "the DRIVE_ENABLE pin"),
-        Field("HELD", 18, 1, "the path's rate is zero on a feed hold or a decelerated stop: no step comes"),
+        Field("HELD", 18, 1, "the path's rate is zero on a feed hold or a decelerated stop and its last "
+              "step has left the pins"),
         Field("STOPPING", 19, 1, "a decelerated stop (WATCHDOG or LIMIT with RAMP_STEP not 0) ramps down; "
               "STOPPED follows once HELD"),
     )),

@@ -106,7 +106,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     position = StepPositions()
     direct = [DirectPulseCommand(period=values[f"PULSE_PERIOD_{name}"], clear=core_clear,
                                  remaining=hw[f"PULSE_COUNT_{name}"]) for name in "XY"]
-    direct_out = [StepRequest(ready=out_ready) for _ in "XY"]
+    settled, direct_ready = Signal(bool(0)), Signal(bool(1))   # guard.held; direct pulses wait while stopping
+    direct_out = [StepRequest(ready=direct_ready) for _ in "XY"]
     axis_load, axis_count, direct_busy = ([d.load for d in direct], [d.count for d in direct],
                                           [d.busy for d in direct])
     direct_request, direct_dir = [o.step for o in direct_out], [o.dir for o in direct_out]
@@ -135,7 +136,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     conditioning = InputConditioning(pins=ConcatSignal(*reversed(pins.inputs())), polarity=values["INPUT_POLARITY"],
                                      samples=values["INPUT_FILTER"], tick=values["INPUT_TICK"])
     guard = MachineGuard(active=conditioning.active, drive_request=values["MACHINE_CONTROL"](drive_bit),
-                         clear_stop=clear_stop, held=feed.held,
+                         clear_stop=clear_stop, held=settled,
                          watchdog_load=strobes["WATCHDOG"], watchdog_timeout=values["WATCHDOG"], halt=halt,
                          drive_enable=pins.drive_enable, watchdog_left=hw["WATCHDOG"])
     units += [input_filter(clock, reset, conditioning), machine_guard(clock, reset, guard, requests, granted),
@@ -197,9 +198,12 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         clear_error.next = command_strobe and command[clear_bit]
         clear_position.next = command_strobe and command[zero_bit]
         clear_stop.next = command_strobe and command[release_bit]
-        # feed hold: the host's HOLD bit or the guard's decelerated stop
+        # feed hold: the host's HOLD bit or the guard's decelerated stop, which latches
+        # once the rate is zero and the last step has left the pins
         feed.pause.next = machine_control[hold_bit] or guard.stopping
         guard.ramp.next = ramp_step != 0
+        settled.next = feed.held and not tick and not pulses.outputs_busy   # the last tick steps a clock later
+        direct_ready.next = out_ready and not guard.stopping
         # no new STEP edge while the guard halts (a pulse already high ends normally)
         pulse_clear.next = core_clear or halt
         # held while stopped: the sequencer takes no word from the FIFO

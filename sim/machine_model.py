@@ -5,8 +5,10 @@ Written from the rules in the blocks' docstrings and ``docs/machine.md``
 
 * ``InputFilterModel``: synchroniser, polarity and glitch filter (``rtl/input_filter.py``).
 * ``MachineGuardModel``: E-stop latch, watchdog, limits, drive enable (``rtl/machine_guard.py``).
+* ``paused_ticks``: the iterations of a long move on a feed hold (``FeedRateModel``).
 """
 from rtl import registers as regmap
+from sim.card_model import FeedRateModel
 
 REASON = {name: code for code, name in enumerate(regmap.STOP_REASONS)}
 INPUT = {name: bit for bit, name in enumerate(regmap.INPUT_NAMES)}
@@ -116,3 +118,20 @@ class MachineGuardModel:
             self.watchdog_left = watchdog_timeout
         elif self.watchdog_left:
             self.watchdog_left -= 1
+
+
+def paused_ticks(target, ramp_start, ramp_step, pause_at, limit=1 << 20):
+    """Clocks of the iterations of a move far from its end (clock 0: the
+    first with ``run``) whose feed holds from clock ``pause_at`` on, up to
+    the rate's stop (``FeedRateModel``, the registers' rules)."""
+    settings = dict(target=target, ramp_start=ramp_start, ramp_step=ramp_step)
+    model, ticks = FeedRateModel(), []
+    for _ in range(2):
+        model.clock(run=False, hold=False, **settings)
+    for clock in range(limit):
+        model.clock(run=True, hold=False, pause=clock >= pause_at, **settings)
+        if model.tick:
+            ticks.append(clock)
+        if model.held:
+            return ticks
+    raise AssertionError(f"the rate did not reach zero in {limit} clocks")

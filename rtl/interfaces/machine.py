@@ -33,7 +33,7 @@ class MachineGuard:
     (COMMAND.CLEAR_STOP, one clock), ``watchdog_load`` (one clock per
     WATCHDOG write) with ``watchdog_timeout`` (its value, clocks; 0: off),
     ``ramp`` (RAMP_STEP is not 0: a watchdog or limit stop decelerates) and
-    ``held`` (``FeedPort.held``: the feed rate is zero on a pause).
+    ``held`` (``FeedPort.held``, and no step on its way to the pins).
     The guard drives ``halt`` (no new STEP edge, no command, no direct
     pulse: stopped, or the E-stop input active), ``stopping`` (a
     decelerated stop is under way: the feed rate pauses), ``stopped`` (the
