@@ -267,6 +267,7 @@ wire card_core0_regs_fifo1_clear_error;
 wire card_core0_regs_fifo1_clear_position;
 wire card_core0_regs_fifo1_clear_stop;
 wire card_core0_regs_fifo1_direct_mode;
+wire card_core0_regs_fifo1_direct_ready;
 wire card_core0_regs_fifo1_discard_on_clear;
 wire card_core0_regs_fifo1_enable;
 wire card_core0_regs_fifo1_fifo_flush;
@@ -290,6 +291,7 @@ reg card_core0_regs_fifo1_push;
 reg card_core0_regs_fifo1_requested_before;
 wire card_core0_regs_fifo1_seq_busy;
 wire card_core0_regs_fifo1_sequencer_clear;
+wire card_core0_regs_fifo1_settled;
 reg card_core0_regs_fifo1_soft_reset_taken;
 reg card_core0_regs_fifo1_tick;
 reg [11:0] card_core0_regs_fifo1_written_addr;
@@ -299,6 +301,12 @@ reg [31:0] card_core0_regs_fifo1_read_end;
 reg [1:0] card_core0_regs_fifo1_control;
 reg card_core0_regs_fifo1_command_strobe;
 reg [3:0] card_core0_regs_fifo1_command;
+wire card_core0_regs_fifo1_feed_pause;
+reg [1:0] card_core0_regs_fifo1_machine_control;
+reg card_core0_regs_fifo1_guard_stopping;
+wire card_core0_regs_fifo1_guard_ramp;
+reg [15:0] card_core0_regs_fifo1_ramp_step;
+reg card_core0_regs_fifo1_feed_held;
 reg card_core0_regs_fifo1_guard_stopped;
 reg card_core0_regs_fifo1_guard_stop_event;
 wire card_core0_regs_fifo1_requests_step_x;
@@ -428,7 +436,6 @@ reg [31:0] card_core0_regs_fifo1_reg_word42_chain_out_data;
 wire card_core0_regs_fifo1_reg_word42_chain_out_clamped;
 wire [15:0] card_core0_regs_fifo1_reg_word43_honoured;
 wire card_core0_regs_fifo1_reg_word43_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word43_shown;
 reg card_core0_regs_fifo1_reg_word43_clamped;
 wire card_core0_regs_fifo1_reg_word43_mine;
 wire card_core0_regs_fifo1_reg_word43_mine_write;
@@ -536,18 +543,17 @@ wire card_core0_regs_fifo1_reg_word54_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word54_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word54_chain_out_data;
 wire card_core0_regs_fifo1_reg_word54_chain_out_clamped;
-wire [0:0] card_core0_regs_fifo1_reg_word55_honoured;
+wire [1:0] card_core0_regs_fifo1_reg_word55_honoured;
 wire card_core0_regs_fifo1_reg_word55_out_of_range;
-reg [0:0] card_core0_regs_fifo1_reg_word55_shown;
 reg card_core0_regs_fifo1_reg_word55_clamped;
 wire card_core0_regs_fifo1_reg_word55_mine;
 wire card_core0_regs_fifo1_reg_word55_mine_write;
 wire card_core0_regs_fifo1_reg_word55_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word55_shown_wide;
-reg [0:0] card_core0_regs_fifo1_reg_word55_written;
+reg [1:0] card_core0_regs_fifo1_reg_word55_written;
 reg [31:0] card_core0_regs_fifo1_reg_word55_chain_out_data;
 wire card_core0_regs_fifo1_reg_word55_chain_out_clamped;
-reg [17:0] card_core0_regs_fifo1_reg_word56_shown;
+reg [19:0] card_core0_regs_fifo1_reg_word56_shown;
 wire card_core0_regs_fifo1_reg_word56_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word56_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word56_chain_out_data;
@@ -748,8 +754,8 @@ wire card_core0_regs_fifo1_input_filter1__input_count13_taken;
 wire card_core0_regs_fifo1_machine_guard1_estop;
 wire card_core0_regs_fifo1_machine_guard1_expired;
 wire [3:0] card_core0_regs_fifo1_machine_guard1_hits;
-reg [3:0] card_core0_regs_fifo1_machine_guard1_guard_limits;
 reg [1:0] card_core0_regs_fifo1_machine_guard1_guard_reason;
+reg [3:0] card_core0_regs_fifo1_machine_guard1_guard_limits;
 wire [1:0] card_core0_regs_fifo1__status1_quadrant;
 reg [4:0] card_core0_dda_arc1_dda_setup1_acc_bits;
 reg card_core0_dda_arc1_dda_setup1_carry;
@@ -915,7 +921,7 @@ reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word31_shown = 32'd3719037186;
+assign card_core0_regs_fifo1_reg_word31_shown = 32'd3719037187;
 assign card_core0_regs_fifo1_reg_word31_chain_in_data = 32'd0;
 assign card_core0_regs_fifo1_reg_word31_chain_in_clamped = 1'd0;
 assign card_core0_regs_fifo1_reg_word32_out_of_range = 1'd0;
@@ -2562,7 +2568,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word43_shown};
+assign card_core0_regs_fifo1_reg_word43_shown_wide = {16'h0, card_core0_regs_fifo1_ramp_step};
 
 
 
@@ -2589,13 +2595,13 @@ assign card_core0_regs_fifo1_reg_word43_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word43__store28_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word43_shown <= 0;
+        card_core0_regs_fifo1_ramp_step <= 0;
         card_core0_regs_fifo1_reg_word43_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word43_clamped <= 1'b0;
         if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word43_mine_write))) begin
-            card_core0_regs_fifo1_reg_word43_shown <= card_core0_regs_fifo1_reg_word43_honoured;
+            card_core0_regs_fifo1_ramp_step <= card_core0_regs_fifo1_reg_word43_honoured;
             card_core0_regs_fifo1_reg_word43_clamped <= card_core0_regs_fifo1_reg_word43_out_of_range;
         end
     end
@@ -3196,7 +3202,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_shown_wide = {31'h0, card_core0_regs_fifo1_reg_word55_shown};
+assign card_core0_regs_fifo1_reg_word55_shown_wide = {30'h0, card_core0_regs_fifo1_machine_control};
 
 
 
@@ -3205,16 +3211,16 @@ assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_writ
 
 always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word55_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
     if ((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[1-1:0];
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[2-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[1-1:0] & (~card_core0_regs_fifo1_written_mask[1-1:0])) | (card_core0_regs_fifo1_written_data[1-1:0] & card_core0_regs_fifo1_written_mask[1-1:0]));
+        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[1-1:0];
+assign card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[2-1:0];
 
 
 
@@ -3223,13 +3229,13 @@ assign card_core0_regs_fifo1_reg_word55_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word55__store37_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word55_shown <= 0;
+        card_core0_regs_fifo1_machine_control <= 0;
         card_core0_regs_fifo1_reg_word55_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word55_clamped <= 1'b0;
         if (((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word55_mine_write))) begin
-            card_core0_regs_fifo1_reg_word55_shown <= card_core0_regs_fifo1_reg_word55_honoured;
+            card_core0_regs_fifo1_machine_control <= card_core0_regs_fifo1_reg_word55_honoured;
             card_core0_regs_fifo1_reg_word55_clamped <= card_core0_regs_fifo1_reg_word55_out_of_range;
         end
     end
@@ -3251,7 +3257,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word56_shown_wide = {14'h0, card_core0_regs_fifo1_reg_word56_shown};
+assign card_core0_regs_fifo1_reg_word56_shown_wide = {12'h0, card_core0_regs_fifo1_reg_word56_shown};
 
 
 
@@ -4008,11 +4014,11 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_r
     else begin
         card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word41_shown;
         card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word42_shown;
-        card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_reg_word43_shown;
-        card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_reg_word43_shown == 0);
-        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word41_shown}) - $signed({1'b0, card_core0_regs_fifo1_reg_word43_shown}));
-        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word41_shown} + {1'b0, card_core0_regs_fifo1_reg_word43_shown});
-        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word42_shown} + {1'b0, card_core0_regs_fifo1_reg_word43_shown});
+        card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_ramp_step;
+        card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_ramp_step == 0);
+        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word41_shown}) - $signed({1'b0, card_core0_regs_fifo1_ramp_step}));
+        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word41_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
+        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word42_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
     end
 end
 
@@ -4053,22 +4059,42 @@ end
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_accumulate
     if (reset == 0) begin
-        card_core0_regs_fifo1_feed_rate1_rate <= 0;
         card_core0_regs_fifo1_tick <= 0;
-        card_core0_regs_fifo1_feed_rate1_count <= 2;
         card_core0_regs_fifo1_feed_rate1_phase <= 0;
+        card_core0_regs_fifo1_feed_rate1_rate <= 0;
+        card_core0_regs_fifo1_feed_rate1_count <= 2;
+        card_core0_regs_fifo1_feed_held <= 0;
     end
     else begin
         card_core0_regs_fifo1_tick <= 0;
         if ((!card_core0_regs_fifo1_motion_run)) begin
             card_core0_regs_fifo1_feed_rate1_phase <= 0;
             card_core0_regs_fifo1_feed_rate1_count <= 2;
-            if (card_core0_regs_fifo1_feed_rate1_step_zero) begin
+            card_core0_regs_fifo1_feed_held <= card_core0_regs_fifo1_feed_pause;
+            if (card_core0_regs_fifo1_feed_pause) begin
+                card_core0_regs_fifo1_feed_rate1_rate <= 0;
+            end
+            else if (card_core0_regs_fifo1_feed_rate1_step_zero) begin
                 card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
             end
             else begin
                 card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_start_s;
             end
+        end
+        else if (card_core0_regs_fifo1_feed_held) begin
+            if ((!card_core0_regs_fifo1_feed_pause)) begin
+                card_core0_regs_fifo1_feed_held <= 0;
+                if (card_core0_regs_fifo1_feed_rate1_step_zero) begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
+                end
+                else begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_start_s;
+                end
+            end
+        end
+        else if ((card_core0_regs_fifo1_feed_rate1_step_zero && card_core0_regs_fifo1_feed_pause)) begin
+            card_core0_regs_fifo1_feed_rate1_rate <= 0;
+            card_core0_regs_fifo1_feed_held <= 1;
         end
         else if ((!card_core0_regs_fifo1_hold)) begin
             card_core0_regs_fifo1_feed_rate1_phase <= card_core0_regs_fifo1_feed_rate1_total[16-1:0];
@@ -4078,7 +4104,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_a
                     card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
                     card_core0_regs_fifo1_feed_rate1_count <= 2;
                 end
-                else if (card_core0_regs_fifo1_feed_rate1_decelerate) begin
+                else if ((card_core0_regs_fifo1_feed_rate1_decelerate || card_core0_regs_fifo1_feed_pause)) begin
                     if ((!card_core0_regs_fifo1_feed_rate1_count_empty)) begin
                         card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
                         if ((card_core0_regs_fifo1_feed_rate1_count_last || (!card_core0_regs_fifo1_feed_rate1_above_floor))) begin
@@ -4087,6 +4113,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_a
                         else begin
                             card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_lowered;
                         end
+                    end
+                    else if (card_core0_regs_fifo1_feed_pause) begin
+                        card_core0_regs_fifo1_feed_rate1_rate <= 0;
+                        card_core0_regs_fifo1_feed_held <= 1;
                     end
                 end
                 else if (card_core0_regs_fifo1_feed_rate1_below) begin
@@ -4175,7 +4205,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
                 card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
                 card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_direct_pulse2_gap != 1);
             end
-            else if (card_core0_regs_fifo1_out_ready) begin
+            else if (card_core0_regs_fifo1_direct_ready) begin
                 card_core0_regs_fifo1_direct_request_x <= 1;
                 card_core0_regs_fifo1_reg_word50_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
                 card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word50_shown != 1);
@@ -4249,7 +4279,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
                 card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
                 card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_gap != 1);
             end
-            else if (card_core0_regs_fifo1_out_ready) begin
+            else if (card_core0_regs_fifo1_direct_ready) begin
                 card_core0_regs_fifo1_direct_request_y <= 1;
                 card_core0_regs_fifo1_reg_word51_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
                 card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word51_shown != 1);
@@ -4658,10 +4688,10 @@ assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_re
 assign card_core0_regs_fifo1_machine_guard1_hits = {(card_core0_regs_fifo1_requests_step_y && (!card_core0_regs_fifo1_requests_dir_y) && card_core0_regs_fifo1_input_filter1_inputs_active[4]), (card_core0_regs_fifo1_requests_step_y && card_core0_regs_fifo1_requests_dir_y && card_core0_regs_fifo1_input_filter1_inputs_active[3]), (card_core0_regs_fifo1_requests_step_x && (!card_core0_regs_fifo1_requests_dir_x) && card_core0_regs_fifo1_input_filter1_inputs_active[2]), (card_core0_regs_fifo1_requests_step_x && card_core0_regs_fifo1_requests_dir_x && card_core0_regs_fifo1_input_filter1_inputs_active[1])};
 
 
-always @(card_core0_regs_fifo1_machine_guard1_hits, card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_requests_step_x, card_core0_regs_fifo1_requests_dir_y, card_core0_regs_fifo1_requests_step_y, card_core0_regs_fifo1_requests_dir_x, card_core0_regs_fifo1_machine_guard1_estop) begin: card_core0_regs_fifo1_machine_guard1_gate
+always @(card_core0_regs_fifo1_machine_guard1_hits, card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_requests_step_x, card_core0_regs_fifo1_requests_dir_y, card_core0_regs_fifo1_guard_ramp, card_core0_regs_fifo1_requests_step_y, card_core0_regs_fifo1_requests_dir_x, card_core0_regs_fifo1_machine_guard1_estop) begin: card_core0_regs_fifo1_machine_guard1_gate
     reg passes;
     card_core0_regs_fifo1_halt = (card_core0_regs_fifo1_guard_stopped || card_core0_regs_fifo1_machine_guard1_estop);
-    passes = ((!(card_core0_regs_fifo1_guard_stopped || card_core0_regs_fifo1_machine_guard1_estop)) && (card_core0_regs_fifo1_machine_guard1_hits == 0));
+    passes = ((!(card_core0_regs_fifo1_guard_stopped || card_core0_regs_fifo1_machine_guard1_estop)) && ((card_core0_regs_fifo1_machine_guard1_hits == 0) || card_core0_regs_fifo1_guard_ramp));
     card_core0_regs_fifo1_pulse_out1_request_step_x = (card_core0_regs_fifo1_requests_step_x && passes);
     card_core0_regs_fifo1_pulse_out1_request_step_y = (card_core0_regs_fifo1_requests_step_y && passes);
     card_core0_regs_fifo1_pulse_out1_request_dir_x = card_core0_regs_fifo1_requests_dir_x;
@@ -4673,6 +4703,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
     reg stopped;
     if (reset == 0) begin
         card_core0_regs_fifo1_guard_stopped <= 0;
+        card_core0_regs_fifo1_guard_stopping <= 0;
         card_core0_regs_fifo1_guard_stop_event <= 0;
         pins_drive_enable <= 0;
         card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
@@ -4682,20 +4713,30 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
         stopped = (card_core0_regs_fifo1_guard_stopped != 0);
         card_core0_regs_fifo1_guard_stop_event <= 0;
         if ((!card_core0_regs_fifo1_guard_stopped)) begin
-            if ((card_core0_regs_fifo1_machine_guard1_estop || card_core0_regs_fifo1_machine_guard1_expired || (card_core0_regs_fifo1_machine_guard1_hits != 0))) begin
+            if (card_core0_regs_fifo1_machine_guard1_estop) begin
                 stopped = 1'b1;
-                card_core0_regs_fifo1_guard_stop_event <= 1;
+                card_core0_regs_fifo1_guard_stopping <= 0;
+                card_core0_regs_fifo1_machine_guard1_guard_reason <= 1;
                 card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
-                if (card_core0_regs_fifo1_machine_guard1_estop) begin
-                    card_core0_regs_fifo1_machine_guard1_guard_reason <= 1;
-                end
-                else if (card_core0_regs_fifo1_machine_guard1_expired) begin
+            end
+            else if (card_core0_regs_fifo1_guard_stopping) begin
+                stopped = (card_core0_regs_fifo1_settled != 0);
+            end
+            else if ((card_core0_regs_fifo1_machine_guard1_expired || (card_core0_regs_fifo1_machine_guard1_hits != 0))) begin
+                stopped = (!card_core0_regs_fifo1_guard_ramp);
+                card_core0_regs_fifo1_guard_stopping <= card_core0_regs_fifo1_guard_ramp;
+                card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
+                if (card_core0_regs_fifo1_machine_guard1_expired) begin
                     card_core0_regs_fifo1_machine_guard1_guard_reason <= 2;
                 end
                 else begin
                     card_core0_regs_fifo1_machine_guard1_guard_reason <= 3;
                     card_core0_regs_fifo1_machine_guard1_guard_limits <= card_core0_regs_fifo1_machine_guard1_hits;
                 end
+            end
+            if (stopped) begin
+                card_core0_regs_fifo1_guard_stopping <= 0;
+                card_core0_regs_fifo1_guard_stop_event <= 1;
             end
         end
         else if ((card_core0_regs_fifo1_clear_stop && (!card_core0_regs_fifo1_machine_guard1_estop))) begin
@@ -4704,7 +4745,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
             card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
         end
         card_core0_regs_fifo1_guard_stopped <= stopped;
-        pins_drive_enable <= ((card_core0_regs_fifo1_reg_word55_shown != 0) && (!stopped) && (!card_core0_regs_fifo1_machine_guard1_estop));
+        pins_drive_enable <= ((card_core0_regs_fifo1_machine_control[0] != 0) && (!stopped) && (!card_core0_regs_fifo1_machine_guard1_estop));
     end
 end
 
@@ -4724,14 +4765,16 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
 end
 
 
-always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_input_filter1_inputs_active, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1__machine_words1_assemble
-    reg [18-1:0] word;
+always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_input_filter1_inputs_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1__machine_words1_assemble
+    reg [20-1:0] word;
     reg [8-1:0] why;
-    word = 18'h0;
+    word = 20'h0;
     word[0+:7] = card_core0_regs_fifo1_input_filter1_inputs_raw;
     word[8+:7] = card_core0_regs_fifo1_input_filter1_inputs_active;
     word[16] = card_core0_regs_fifo1_guard_stopped;
     word[17] = pins_drive_enable;
+    word[18] = card_core0_regs_fifo1_settled;
+    word[19] = card_core0_regs_fifo1_guard_stopping;
     card_core0_regs_fifo1_reg_word56_shown = word;
     why = 8'h0;
     why[0+:2] = card_core0_regs_fifo1_machine_guard1_guard_reason;
@@ -4796,6 +4839,10 @@ assign card_core0_regs_fifo1_direct_mode = card_core0_regs_fifo1_control[1];
 assign card_core0_regs_fifo1_clear_error = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[1]);
 assign card_core0_regs_fifo1_clear_position = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[2]);
 assign card_core0_regs_fifo1_clear_stop = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[3]);
+assign card_core0_regs_fifo1_feed_pause = (card_core0_regs_fifo1_machine_control[1] || card_core0_regs_fifo1_guard_stopping);
+assign card_core0_regs_fifo1_guard_ramp = (card_core0_regs_fifo1_ramp_step != 0);
+assign card_core0_regs_fifo1_settled = (card_core0_regs_fifo1_feed_held && (!card_core0_regs_fifo1_tick) && (!card_core0_regs_fifo1_outputs_busy));
+assign card_core0_regs_fifo1_direct_ready = (card_core0_regs_fifo1_out_ready && (!card_core0_regs_fifo1_guard_stopping));
 assign card_core0_regs_fifo1_pulse_clear = (card_core0_core_clear || card_core0_regs_fifo1_halt);
 assign card_core0_regs_fifo1_sequencer_clear = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped);
 

@@ -179,6 +179,7 @@ wire clear_error;
 wire clear_position;
 wire clear_stop;
 wire direct_mode;
+wire direct_ready;
 wire discard_on_clear;
 wire enable;
 wire fifo_flush;
@@ -202,6 +203,7 @@ reg push;
 reg requested_before;
 wire seq_busy;
 wire sequencer_clear;
+wire settled;
 reg soft_reset_taken;
 reg tick;
 reg [15:0] written_addr;
@@ -211,6 +213,12 @@ reg [31:0] read_end;
 reg [1:0] control;
 reg command_strobe;
 reg [3:0] command;
+wire feed_pause;
+reg [1:0] machine_control;
+reg guard_stopping;
+wire guard_ramp;
+reg [15:0] ramp_step;
+reg feed_held;
 reg guard_stopped;
 reg guard_stop_event;
 wire requests_step_x;
@@ -334,7 +342,6 @@ reg [31:0] reg_word11_chain_out_data;
 wire reg_word11_chain_out_clamped;
 wire [15:0] reg_word12_honoured;
 wire reg_word12_out_of_range;
-reg [15:0] reg_word12_shown;
 reg reg_word12_clamped;
 wire reg_word12_mine;
 wire reg_word12_mine_write;
@@ -442,18 +449,17 @@ wire reg_word23_mine;
 wire [31:0] reg_word23_shown_wide;
 reg [31:0] reg_word23_chain_out_data;
 wire reg_word23_chain_out_clamped;
-wire [0:0] reg_word24_honoured;
+wire [1:0] reg_word24_honoured;
 wire reg_word24_out_of_range;
-reg [0:0] reg_word24_shown;
 reg reg_word24_clamped;
 wire reg_word24_mine;
 wire reg_word24_mine_write;
 wire reg_word24_set_mine;
 wire [31:0] reg_word24_shown_wide;
-reg [0:0] reg_word24_written;
+reg [1:0] reg_word24_written;
 reg [31:0] reg_word24_chain_out_data;
 wire reg_word24_chain_out_clamped;
-reg [17:0] reg_word25_shown;
+reg [19:0] reg_word25_shown;
 wire reg_word25_mine;
 wire [31:0] reg_word25_shown_wide;
 reg [31:0] reg_word25_chain_out_data;
@@ -639,12 +645,12 @@ wire input_filter0__input_count6_taken;
 wire machine_guard0_estop;
 wire machine_guard0_expired;
 wire [3:0] machine_guard0_hits;
-reg [3:0] machine_guard0_guard_limits;
 reg [1:0] machine_guard0_guard_reason;
+reg [3:0] machine_guard0_guard_limits;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_shown = 32'd3719037186;
+assign reg_word0_shown = 32'd3719037187;
 assign reg_word0_chain_in_data = 32'd0;
 assign reg_word0_chain_in_clamped = 1'd0;
 assign reg_word1_out_of_range = 1'd0;
@@ -1288,7 +1294,7 @@ end
 
 
 
-assign reg_word12_shown_wide = {16'h0, reg_word12_shown};
+assign reg_word12_shown_wide = {16'h0, ramp_step};
 
 
 
@@ -1315,13 +1321,13 @@ assign reg_word12_chain_out_clamped = (reg_word11_chain_out_clamped || reg_word1
 
 always @(posedge clock, negedge reset) begin: reg_word12__store7_hold_rw
     if (reset == 0) begin
-        reg_word12_shown <= 0;
+        ramp_step <= 0;
         reg_word12_clamped <= 0;
     end
     else begin
         reg_word12_clamped <= 1'b0;
         if (((set_strobe && (set_index == 2)) || (io_written && reg_word12_mine_write))) begin
-            reg_word12_shown <= reg_word12_honoured;
+            ramp_step <= reg_word12_honoured;
             reg_word12_clamped <= reg_word12_out_of_range;
         end
     end
@@ -1922,7 +1928,7 @@ end
 
 
 
-assign reg_word24_shown_wide = {31'h0, reg_word24_shown};
+assign reg_word24_shown_wide = {30'h0, machine_control};
 
 
 
@@ -1931,16 +1937,16 @@ assign reg_word24_mine_write = (written_addr == 96);
 
 always @(reg_word24_shown_wide, reg_word24_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word24_merge_bytes
     if ((reg_word24_set_mine && (set_index == 0))) begin
-        reg_word24_written = set_value[1-1:0];
+        reg_word24_written = set_value[2-1:0];
     end
     else begin
-        reg_word24_written = ((reg_word24_shown_wide[1-1:0] & (~written_mask[1-1:0])) | (written_data[1-1:0] & written_mask[1-1:0]));
+        reg_word24_written = ((reg_word24_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
     end
 end
 
 
 
-assign reg_word24_honoured = reg_word24_written[1-1:0];
+assign reg_word24_honoured = reg_word24_written[2-1:0];
 
 
 
@@ -1949,13 +1955,13 @@ assign reg_word24_chain_out_clamped = (reg_word23_chain_out_clamped || reg_word2
 
 always @(posedge clock, negedge reset) begin: reg_word24__store16_hold_rw
     if (reset == 0) begin
-        reg_word24_shown <= 0;
+        machine_control <= 0;
         reg_word24_clamped <= 0;
     end
     else begin
         reg_word24_clamped <= 1'b0;
         if (((reg_word24_set_mine && (set_index == 0)) || (io_written && reg_word24_mine_write))) begin
-            reg_word24_shown <= reg_word24_honoured;
+            machine_control <= reg_word24_honoured;
             reg_word24_clamped <= reg_word24_out_of_range;
         end
     end
@@ -1977,7 +1983,7 @@ end
 
 
 
-assign reg_word25_shown_wide = {14'h0, reg_word25_shown};
+assign reg_word25_shown_wide = {12'h0, reg_word25_shown};
 
 
 
@@ -2734,11 +2740,11 @@ always @(posedge clock, negedge reset) begin: feed_rate0_register_settings
     else begin
         feed_rate0_target_s <= reg_word10_shown;
         feed_rate0_start_s <= reg_word11_shown;
-        feed_rate0_step_s <= reg_word12_shown;
-        feed_rate0_step_zero <= (reg_word12_shown == 0);
-        feed_rate0_raise_limit <= ($signed({1'b0, reg_word10_shown}) - $signed({1'b0, reg_word12_shown}));
-        feed_rate0_lower_limit <= ({1'b0, reg_word10_shown} + {1'b0, reg_word12_shown});
-        feed_rate0_floor_limit <= ({1'b0, reg_word11_shown} + {1'b0, reg_word12_shown});
+        feed_rate0_step_s <= ramp_step;
+        feed_rate0_step_zero <= (ramp_step == 0);
+        feed_rate0_raise_limit <= ($signed({1'b0, reg_word10_shown}) - $signed({1'b0, ramp_step}));
+        feed_rate0_lower_limit <= ({1'b0, reg_word10_shown} + {1'b0, ramp_step});
+        feed_rate0_floor_limit <= ({1'b0, reg_word11_shown} + {1'b0, ramp_step});
     end
 end
 
@@ -2779,22 +2785,42 @@ end
 
 always @(posedge clock, negedge reset) begin: feed_rate0_accumulate
     if (reset == 0) begin
-        feed_rate0_rate <= 0;
         tick <= 0;
-        feed_rate0_count <= 2;
         feed_rate0_phase <= 0;
+        feed_rate0_rate <= 0;
+        feed_rate0_count <= 2;
+        feed_held <= 0;
     end
     else begin
         tick <= 0;
         if ((!motion_run)) begin
             feed_rate0_phase <= 0;
             feed_rate0_count <= 2;
-            if (feed_rate0_step_zero) begin
+            feed_held <= feed_pause;
+            if (feed_pause) begin
+                feed_rate0_rate <= 0;
+            end
+            else if (feed_rate0_step_zero) begin
                 feed_rate0_rate <= feed_rate0_target_s;
             end
             else begin
                 feed_rate0_rate <= feed_rate0_start_s;
             end
+        end
+        else if (feed_held) begin
+            if ((!feed_pause)) begin
+                feed_held <= 0;
+                if (feed_rate0_step_zero) begin
+                    feed_rate0_rate <= feed_rate0_target_s;
+                end
+                else begin
+                    feed_rate0_rate <= feed_rate0_start_s;
+                end
+            end
+        end
+        else if ((feed_rate0_step_zero && feed_pause)) begin
+            feed_rate0_rate <= 0;
+            feed_held <= 1;
         end
         else if ((!hold)) begin
             feed_rate0_phase <= feed_rate0_total[16-1:0];
@@ -2804,7 +2830,7 @@ always @(posedge clock, negedge reset) begin: feed_rate0_accumulate
                     feed_rate0_rate <= feed_rate0_target_s;
                     feed_rate0_count <= 2;
                 end
-                else if (feed_rate0_decelerate) begin
+                else if ((feed_rate0_decelerate || feed_pause)) begin
                     if ((!feed_rate0_count_empty)) begin
                         feed_rate0_count <= feed_rate0_count_down;
                         if ((feed_rate0_count_last || (!feed_rate0_above_floor))) begin
@@ -2813,6 +2839,10 @@ always @(posedge clock, negedge reset) begin: feed_rate0_accumulate
                         else begin
                             feed_rate0_rate <= feed_rate0_lowered;
                         end
+                    end
+                    else if (feed_pause) begin
+                        feed_rate0_rate <= 0;
+                        feed_held <= 1;
                     end
                 end
                 else if (feed_rate0_below) begin
@@ -2901,7 +2931,7 @@ always @(posedge clock, negedge reset) begin: direct_pulse0_emit
                 direct_pulse0_gap <= direct_pulse0_gap_less;
                 direct_pulse0_waiting <= (direct_pulse0_gap != 1);
             end
-            else if (out_ready) begin
+            else if (direct_ready) begin
                 direct_request_x <= 1;
                 reg_word19_shown <= direct_pulse0_counted;
                 direct_pulse0_pending <= (reg_word19_shown != 1);
@@ -2975,7 +3005,7 @@ always @(posedge clock, negedge reset) begin: direct_pulse1_emit
                 direct_pulse1_gap <= direct_pulse1_gap_less;
                 direct_pulse1_waiting <= (direct_pulse1_gap != 1);
             end
-            else if (out_ready) begin
+            else if (direct_ready) begin
                 direct_request_y <= 1;
                 reg_word20_shown <= direct_pulse1_counted;
                 direct_pulse1_pending <= (reg_word20_shown != 1);
@@ -3384,10 +3414,10 @@ assign machine_guard0_expired = ((reg_word30_shown == 1) && (!reg_word30__store2
 assign machine_guard0_hits = {(requests_step_y && (!requests_dir_y) && input_filter0_inputs_active[4]), (requests_step_y && requests_dir_y && input_filter0_inputs_active[3]), (requests_step_x && (!requests_dir_x) && input_filter0_inputs_active[2]), (requests_step_x && requests_dir_x && input_filter0_inputs_active[1])};
 
 
-always @(machine_guard0_hits, guard_stopped, requests_step_x, requests_dir_y, requests_step_y, requests_dir_x, machine_guard0_estop) begin: machine_guard0_gate
+always @(machine_guard0_hits, guard_stopped, requests_step_x, requests_dir_y, guard_ramp, requests_step_y, requests_dir_x, machine_guard0_estop) begin: machine_guard0_gate
     reg passes;
     halt = (guard_stopped || machine_guard0_estop);
-    passes = ((!(guard_stopped || machine_guard0_estop)) && (machine_guard0_hits == 0));
+    passes = ((!(guard_stopped || machine_guard0_estop)) && ((machine_guard0_hits == 0) || guard_ramp));
     pulse_out0_request_step_x = (requests_step_x && passes);
     pulse_out0_request_step_y = (requests_step_y && passes);
     pulse_out0_request_dir_x = requests_dir_x;
@@ -3399,6 +3429,7 @@ always @(posedge clock, negedge reset) begin: machine_guard0_latch
     reg stopped;
     if (reset == 0) begin
         guard_stopped <= 0;
+        guard_stopping <= 0;
         guard_stop_event <= 0;
         pins_drive_enable <= 0;
         machine_guard0_guard_limits <= 0;
@@ -3408,20 +3439,30 @@ always @(posedge clock, negedge reset) begin: machine_guard0_latch
         stopped = (guard_stopped != 0);
         guard_stop_event <= 0;
         if ((!guard_stopped)) begin
-            if ((machine_guard0_estop || machine_guard0_expired || (machine_guard0_hits != 0))) begin
+            if (machine_guard0_estop) begin
                 stopped = 1'b1;
-                guard_stop_event <= 1;
+                guard_stopping <= 0;
+                machine_guard0_guard_reason <= 1;
                 machine_guard0_guard_limits <= 0;
-                if (machine_guard0_estop) begin
-                    machine_guard0_guard_reason <= 1;
-                end
-                else if (machine_guard0_expired) begin
+            end
+            else if (guard_stopping) begin
+                stopped = (settled != 0);
+            end
+            else if ((machine_guard0_expired || (machine_guard0_hits != 0))) begin
+                stopped = (!guard_ramp);
+                guard_stopping <= guard_ramp;
+                machine_guard0_guard_limits <= 0;
+                if (machine_guard0_expired) begin
                     machine_guard0_guard_reason <= 2;
                 end
                 else begin
                     machine_guard0_guard_reason <= 3;
                     machine_guard0_guard_limits <= machine_guard0_hits;
                 end
+            end
+            if (stopped) begin
+                guard_stopping <= 0;
+                guard_stop_event <= 1;
             end
         end
         else if ((clear_stop && (!machine_guard0_estop))) begin
@@ -3430,7 +3471,7 @@ always @(posedge clock, negedge reset) begin: machine_guard0_latch
             machine_guard0_guard_limits <= 0;
         end
         guard_stopped <= stopped;
-        pins_drive_enable <= ((reg_word24_shown != 0) && (!stopped) && (!machine_guard0_estop));
+        pins_drive_enable <= ((machine_control[0] != 0) && (!stopped) && (!machine_guard0_estop));
     end
 end
 
@@ -3450,14 +3491,16 @@ always @(posedge clock, negedge reset) begin: machine_guard0_watchdog
 end
 
 
-always @(guard_stopped, input_filter0_inputs_raw, pins_drive_enable, input_filter0_inputs_active, machine_guard0_guard_limits, machine_guard0_guard_reason) begin: _machine_words0_assemble
-    reg [18-1:0] word;
+always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_enable, input_filter0_inputs_active, settled, machine_guard0_guard_limits, machine_guard0_guard_reason) begin: _machine_words0_assemble
+    reg [20-1:0] word;
     reg [8-1:0] why;
-    word = 18'h0;
+    word = 20'h0;
     word[0+:7] = input_filter0_inputs_raw;
     word[8+:7] = input_filter0_inputs_active;
     word[16] = guard_stopped;
     word[17] = pins_drive_enable;
+    word[18] = settled;
+    word[19] = guard_stopping;
     reg_word25_shown = word;
     why = 8'h0;
     why[0+:2] = machine_guard0_guard_reason;
@@ -3522,6 +3565,10 @@ assign direct_mode = control[1];
 assign clear_error = (command_strobe && command[1]);
 assign clear_position = (command_strobe && command[2]);
 assign clear_stop = (command_strobe && command[3]);
+assign feed_pause = (machine_control[1] || guard_stopping);
+assign guard_ramp = (ramp_step != 0);
+assign settled = (feed_held && (!tick) && (!outputs_busy));
+assign direct_ready = (out_ready && (!guard_stopping));
 assign pulse_clear = (core_clear || halt);
 assign sequencer_clear = (core_clear || guard_stopped);
 

@@ -291,6 +291,7 @@ wire card1_card_core1_regs_fifo2_clear_error;
 wire card1_card_core1_regs_fifo2_clear_position;
 wire card1_card_core1_regs_fifo2_clear_stop;
 wire card1_card_core1_regs_fifo2_direct_mode;
+wire card1_card_core1_regs_fifo2_direct_ready;
 wire card1_card_core1_regs_fifo2_discard_on_clear;
 wire card1_card_core1_regs_fifo2_enable;
 wire card1_card_core1_regs_fifo2_fifo_flush;
@@ -314,6 +315,7 @@ reg card1_card_core1_regs_fifo2_push;
 reg card1_card_core1_regs_fifo2_requested_before;
 wire card1_card_core1_regs_fifo2_seq_busy;
 wire card1_card_core1_regs_fifo2_sequencer_clear;
+wire card1_card_core1_regs_fifo2_settled;
 reg card1_card_core1_regs_fifo2_soft_reset_taken;
 reg card1_card_core1_regs_fifo2_tick;
 reg [11:0] card1_card_core1_regs_fifo2_written_addr;
@@ -323,6 +325,12 @@ reg [31:0] card1_card_core1_regs_fifo2_read_end;
 reg [1:0] card1_card_core1_regs_fifo2_control;
 reg card1_card_core1_regs_fifo2_command_strobe;
 reg [3:0] card1_card_core1_regs_fifo2_command;
+wire card1_card_core1_regs_fifo2_feed_pause;
+reg [1:0] card1_card_core1_regs_fifo2_machine_control;
+reg card1_card_core1_regs_fifo2_guard_stopping;
+wire card1_card_core1_regs_fifo2_guard_ramp;
+reg [15:0] card1_card_core1_regs_fifo2_ramp_step;
+reg card1_card_core1_regs_fifo2_feed_held;
 reg card1_card_core1_regs_fifo2_guard_stopped;
 reg card1_card_core1_regs_fifo2_guard_stop_event;
 wire card1_card_core1_regs_fifo2_requests_step_x;
@@ -452,7 +460,6 @@ reg [31:0] card1_card_core1_regs_fifo2_reg_word73_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word73_chain_out_clamped;
 wire [15:0] card1_card_core1_regs_fifo2_reg_word74_honoured;
 wire card1_card_core1_regs_fifo2_reg_word74_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word74_shown;
 reg card1_card_core1_regs_fifo2_reg_word74_clamped;
 wire card1_card_core1_regs_fifo2_reg_word74_mine;
 wire card1_card_core1_regs_fifo2_reg_word74_mine_write;
@@ -560,18 +567,17 @@ wire card1_card_core1_regs_fifo2_reg_word85_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word85_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word85_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped;
-wire [0:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
 wire card1_card_core1_regs_fifo2_reg_word86_out_of_range;
-reg [0:0] card1_card_core1_regs_fifo2_reg_word86_shown;
 reg card1_card_core1_regs_fifo2_reg_word86_clamped;
 wire card1_card_core1_regs_fifo2_reg_word86_mine;
 wire card1_card_core1_regs_fifo2_reg_word86_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word86_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown_wide;
-reg [0:0] card1_card_core1_regs_fifo2_reg_word86_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word86_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word86_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
-reg [17:0] card1_card_core1_regs_fifo2_reg_word87_shown;
+reg [19:0] card1_card_core1_regs_fifo2_reg_word87_shown;
 wire card1_card_core1_regs_fifo2_reg_word87_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word87_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word87_chain_out_data;
@@ -772,8 +778,8 @@ wire card1_card_core1_regs_fifo2_input_filter2__input_count20_taken;
 wire card1_card_core1_regs_fifo2_machine_guard2_estop;
 wire card1_card_core1_regs_fifo2_machine_guard2_expired;
 wire [3:0] card1_card_core1_regs_fifo2_machine_guard2_hits;
-reg [3:0] card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
 reg [1:0] card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
+reg [3:0] card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
 wire [1:0] card1_card_core1_regs_fifo2__status2_quadrant;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_acc_bits;
 reg card1_card_core1_dda_arc2_dda_setup2_carry;
@@ -939,7 +945,7 @@ reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word62_shown = 32'd3719037186;
+assign card1_card_core1_regs_fifo2_reg_word62_shown = 32'd3719037187;
 assign card1_card_core1_regs_fifo2_reg_word62_chain_in_data = 32'd0;
 assign card1_card_core1_regs_fifo2_reg_word62_chain_in_clamped = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word63_out_of_range = 1'd0;
@@ -3394,7 +3400,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word74_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word74_shown};
+assign card1_card_core1_regs_fifo2_reg_word74_shown_wide = {16'h0, card1_card_core1_regs_fifo2_ramp_step};
 
 
 
@@ -3421,13 +3427,13 @@ assign card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word74__store49_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word74_shown <= 0;
+        card1_card_core1_regs_fifo2_ramp_step <= 0;
         card1_card_core1_regs_fifo2_reg_word74_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word74_clamped <= 1'b0;
         if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word74_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word74_shown <= card1_card_core1_regs_fifo2_reg_word74_honoured;
+            card1_card_core1_regs_fifo2_ramp_step <= card1_card_core1_regs_fifo2_reg_word74_honoured;
             card1_card_core1_regs_fifo2_reg_word74_clamped <= card1_card_core1_regs_fifo2_reg_word74_out_of_range;
         end
     end
@@ -4028,7 +4034,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = {31'h0, card1_card_core1_regs_fifo2_reg_word86_shown};
+assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = {30'h0, card1_card_core1_regs_fifo2_machine_control};
 
 
 
@@ -4037,16 +4043,16 @@ assign card1_card_core1_regs_fifo2_reg_word86_mine_write = (card1_card_core1_reg
 
 always @(card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word86_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word86_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word86_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[1-1:0];
+        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[1-1:0] & (~card1_card_core1_regs_fifo2_written_mask[1-1:0])) | (card1_card_core1_regs_fifo2_written_data[1-1:0] & card1_card_core1_regs_fifo2_written_mask[1-1:0]));
+        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[1-1:0];
+assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[2-1:0];
 
 
 
@@ -4055,13 +4061,13 @@ assign card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word86__store58_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word86_shown <= 0;
+        card1_card_core1_regs_fifo2_machine_control <= 0;
         card1_card_core1_regs_fifo2_reg_word86_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word86_clamped <= 1'b0;
         if (((card1_card_core1_regs_fifo2_reg_word86_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word86_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word86_shown <= card1_card_core1_regs_fifo2_reg_word86_honoured;
+            card1_card_core1_regs_fifo2_machine_control <= card1_card_core1_regs_fifo2_reg_word86_honoured;
             card1_card_core1_regs_fifo2_reg_word86_clamped <= card1_card_core1_regs_fifo2_reg_word86_out_of_range;
         end
     end
@@ -4083,7 +4089,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = {14'h0, card1_card_core1_regs_fifo2_reg_word87_shown};
+assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = {12'h0, card1_card_core1_regs_fifo2_reg_word87_shown};
 
 
 
@@ -4840,11 +4846,11 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
     else begin
         card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word72_shown;
         card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word73_shown;
-        card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_reg_word74_shown;
-        card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_reg_word74_shown == 0);
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word72_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_reg_word74_shown}));
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word72_shown} + {1'b0, card1_card_core1_regs_fifo2_reg_word74_shown});
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word73_shown} + {1'b0, card1_card_core1_regs_fifo2_reg_word74_shown});
+        card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_ramp_step;
+        card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_ramp_step == 0);
+        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word72_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_ramp_step}));
+        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word72_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
+        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word73_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
     end
 end
 
@@ -4885,22 +4891,42 @@ end
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_accumulate
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
         card1_card_core1_regs_fifo2_tick <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
         card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
+        card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
+        card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
+        card1_card_core1_regs_fifo2_feed_held <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_tick <= 0;
         if ((!card1_card_core1_regs_fifo2_motion_run)) begin
             card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
             card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
-            if (card1_card_core1_regs_fifo2_feed_rate2_step_zero) begin
+            card1_card_core1_regs_fifo2_feed_held <= card1_card_core1_regs_fifo2_feed_pause;
+            if (card1_card_core1_regs_fifo2_feed_pause) begin
+                card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
+            end
+            else if (card1_card_core1_regs_fifo2_feed_rate2_step_zero) begin
                 card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
             end
             else begin
                 card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_start_s;
             end
+        end
+        else if (card1_card_core1_regs_fifo2_feed_held) begin
+            if ((!card1_card_core1_regs_fifo2_feed_pause)) begin
+                card1_card_core1_regs_fifo2_feed_held <= 0;
+                if (card1_card_core1_regs_fifo2_feed_rate2_step_zero) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
+                end
+                else begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_start_s;
+                end
+            end
+        end
+        else if ((card1_card_core1_regs_fifo2_feed_rate2_step_zero && card1_card_core1_regs_fifo2_feed_pause)) begin
+            card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
+            card1_card_core1_regs_fifo2_feed_held <= 1;
         end
         else if ((!card1_card_core1_regs_fifo2_hold)) begin
             card1_card_core1_regs_fifo2_feed_rate2_phase <= card1_card_core1_regs_fifo2_feed_rate2_total[16-1:0];
@@ -4910,7 +4936,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
                     card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
                     card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
                 end
-                else if (card1_card_core1_regs_fifo2_feed_rate2_decelerate) begin
+                else if ((card1_card_core1_regs_fifo2_feed_rate2_decelerate || card1_card_core1_regs_fifo2_feed_pause)) begin
                     if ((!card1_card_core1_regs_fifo2_feed_rate2_count_empty)) begin
                         card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
                         if ((card1_card_core1_regs_fifo2_feed_rate2_count_last || (!card1_card_core1_regs_fifo2_feed_rate2_above_floor))) begin
@@ -4919,6 +4945,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
                         else begin
                             card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_lowered;
                         end
+                    end
+                    else if (card1_card_core1_regs_fifo2_feed_pause) begin
+                        card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
+                        card1_card_core1_regs_fifo2_feed_held <= 1;
                     end
                 end
                 else if (card1_card_core1_regs_fifo2_feed_rate2_below) begin
@@ -5007,7 +5037,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
                 card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_direct_pulse4_gap != 1);
             end
-            else if (card1_card_core1_regs_fifo2_out_ready) begin
+            else if (card1_card_core1_regs_fifo2_direct_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_x <= 1;
                 card1_card_core1_regs_fifo2_reg_word81_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
                 card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word81_shown != 1);
@@ -5081,7 +5111,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
                 card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_gap != 1);
             end
-            else if (card1_card_core1_regs_fifo2_out_ready) begin
+            else if (card1_card_core1_regs_fifo2_direct_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_y <= 1;
                 card1_card_core1_regs_fifo2_reg_word82_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
                 card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word82_shown != 1);
@@ -5490,10 +5520,10 @@ assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_r
 assign card1_card_core1_regs_fifo2_machine_guard2_hits = {(card1_card_core1_regs_fifo2_requests_step_y && (!card1_card_core1_regs_fifo2_requests_dir_y) && card1_card_core1_regs_fifo2_input_filter2_inputs_active[4]), (card1_card_core1_regs_fifo2_requests_step_y && card1_card_core1_regs_fifo2_requests_dir_y && card1_card_core1_regs_fifo2_input_filter2_inputs_active[3]), (card1_card_core1_regs_fifo2_requests_step_x && (!card1_card_core1_regs_fifo2_requests_dir_x) && card1_card_core1_regs_fifo2_input_filter2_inputs_active[2]), (card1_card_core1_regs_fifo2_requests_step_x && card1_card_core1_regs_fifo2_requests_dir_x && card1_card_core1_regs_fifo2_input_filter2_inputs_active[1])};
 
 
-always @(card1_card_core1_regs_fifo2_machine_guard2_hits, card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_requests_step_x, card1_card_core1_regs_fifo2_requests_dir_y, card1_card_core1_regs_fifo2_requests_step_y, card1_card_core1_regs_fifo2_requests_dir_x, card1_card_core1_regs_fifo2_machine_guard2_estop) begin: card1_card_core1_regs_fifo2_machine_guard2_gate
+always @(card1_card_core1_regs_fifo2_machine_guard2_hits, card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_requests_step_x, card1_card_core1_regs_fifo2_requests_dir_y, card1_card_core1_regs_fifo2_guard_ramp, card1_card_core1_regs_fifo2_requests_step_y, card1_card_core1_regs_fifo2_requests_dir_x, card1_card_core1_regs_fifo2_machine_guard2_estop) begin: card1_card_core1_regs_fifo2_machine_guard2_gate
     reg passes;
     card1_card_core1_regs_fifo2_halt = (card1_card_core1_regs_fifo2_guard_stopped || card1_card_core1_regs_fifo2_machine_guard2_estop);
-    passes = ((!(card1_card_core1_regs_fifo2_guard_stopped || card1_card_core1_regs_fifo2_machine_guard2_estop)) && (card1_card_core1_regs_fifo2_machine_guard2_hits == 0));
+    passes = ((!(card1_card_core1_regs_fifo2_guard_stopped || card1_card_core1_regs_fifo2_machine_guard2_estop)) && ((card1_card_core1_regs_fifo2_machine_guard2_hits == 0) || card1_card_core1_regs_fifo2_guard_ramp));
     card1_card_core1_regs_fifo2_pulse_out2_request_step_x = (card1_card_core1_regs_fifo2_requests_step_x && passes);
     card1_card_core1_regs_fifo2_pulse_out2_request_step_y = (card1_card_core1_regs_fifo2_requests_step_y && passes);
     card1_card_core1_regs_fifo2_pulse_out2_request_dir_x = card1_card_core1_regs_fifo2_requests_dir_x;
@@ -5505,6 +5535,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
     reg stopped;
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_guard_stopped <= 0;
+        card1_card_core1_regs_fifo2_guard_stopping <= 0;
         card1_card_core1_regs_fifo2_guard_stop_event <= 0;
         motor_drive_enable <= 0;
         card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
@@ -5514,20 +5545,30 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
         stopped = (card1_card_core1_regs_fifo2_guard_stopped != 0);
         card1_card_core1_regs_fifo2_guard_stop_event <= 0;
         if ((!card1_card_core1_regs_fifo2_guard_stopped)) begin
-            if ((card1_card_core1_regs_fifo2_machine_guard2_estop || card1_card_core1_regs_fifo2_machine_guard2_expired || (card1_card_core1_regs_fifo2_machine_guard2_hits != 0))) begin
+            if (card1_card_core1_regs_fifo2_machine_guard2_estop) begin
                 stopped = 1'b1;
-                card1_card_core1_regs_fifo2_guard_stop_event <= 1;
+                card1_card_core1_regs_fifo2_guard_stopping <= 0;
+                card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 1;
                 card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
-                if (card1_card_core1_regs_fifo2_machine_guard2_estop) begin
-                    card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 1;
-                end
-                else if (card1_card_core1_regs_fifo2_machine_guard2_expired) begin
+            end
+            else if (card1_card_core1_regs_fifo2_guard_stopping) begin
+                stopped = (card1_card_core1_regs_fifo2_settled != 0);
+            end
+            else if ((card1_card_core1_regs_fifo2_machine_guard2_expired || (card1_card_core1_regs_fifo2_machine_guard2_hits != 0))) begin
+                stopped = (!card1_card_core1_regs_fifo2_guard_ramp);
+                card1_card_core1_regs_fifo2_guard_stopping <= card1_card_core1_regs_fifo2_guard_ramp;
+                card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
+                if (card1_card_core1_regs_fifo2_machine_guard2_expired) begin
                     card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 2;
                 end
                 else begin
                     card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 3;
                     card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= card1_card_core1_regs_fifo2_machine_guard2_hits;
                 end
+            end
+            if (stopped) begin
+                card1_card_core1_regs_fifo2_guard_stopping <= 0;
+                card1_card_core1_regs_fifo2_guard_stop_event <= 1;
             end
         end
         else if ((card1_card_core1_regs_fifo2_clear_stop && (!card1_card_core1_regs_fifo2_machine_guard2_estop))) begin
@@ -5536,7 +5577,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
             card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
         end
         card1_card_core1_regs_fifo2_guard_stopped <= stopped;
-        motor_drive_enable <= ((card1_card_core1_regs_fifo2_reg_word86_shown != 0) && (!stopped) && (!card1_card_core1_regs_fifo2_machine_guard2_estop));
+        motor_drive_enable <= ((card1_card_core1_regs_fifo2_machine_control[0] != 0) && (!stopped) && (!card1_card_core1_regs_fifo2_machine_guard2_estop));
     end
 end
 
@@ -5556,14 +5597,16 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
 end
 
 
-always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_input_filter2_inputs_active, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2__machine_words2_assemble
-    reg [18-1:0] word;
+always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_input_filter2_inputs_active, card1_card_core1_regs_fifo2_settled, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2__machine_words2_assemble
+    reg [20-1:0] word;
     reg [8-1:0] why;
-    word = 18'h0;
+    word = 20'h0;
     word[0+:7] = card1_card_core1_regs_fifo2_input_filter2_inputs_raw;
     word[8+:7] = card1_card_core1_regs_fifo2_input_filter2_inputs_active;
     word[16] = card1_card_core1_regs_fifo2_guard_stopped;
     word[17] = motor_drive_enable;
+    word[18] = card1_card_core1_regs_fifo2_settled;
+    word[19] = card1_card_core1_regs_fifo2_guard_stopping;
     card1_card_core1_regs_fifo2_reg_word87_shown = word;
     why = 8'h0;
     why[0+:2] = card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
@@ -5628,6 +5671,10 @@ assign card1_card_core1_regs_fifo2_direct_mode = card1_card_core1_regs_fifo2_con
 assign card1_card_core1_regs_fifo2_clear_error = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[1]);
 assign card1_card_core1_regs_fifo2_clear_position = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[2]);
 assign card1_card_core1_regs_fifo2_clear_stop = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[3]);
+assign card1_card_core1_regs_fifo2_feed_pause = (card1_card_core1_regs_fifo2_machine_control[1] || card1_card_core1_regs_fifo2_guard_stopping);
+assign card1_card_core1_regs_fifo2_guard_ramp = (card1_card_core1_regs_fifo2_ramp_step != 0);
+assign card1_card_core1_regs_fifo2_settled = (card1_card_core1_regs_fifo2_feed_held && (!card1_card_core1_regs_fifo2_tick) && (!card1_card_core1_regs_fifo2_outputs_busy));
+assign card1_card_core1_regs_fifo2_direct_ready = (card1_card_core1_regs_fifo2_out_ready && (!card1_card_core1_regs_fifo2_guard_stopping));
 assign card1_card_core1_regs_fifo2_pulse_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_halt);
 assign card1_card_core1_regs_fifo2_sequencer_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped);
 

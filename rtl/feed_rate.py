@@ -39,6 +39,15 @@ def feed_rate(clock, reset, settings, feed):
     4. rate above ``target``: down by ``ramp_step``, at least to ``target``;
        the count goes down by one (not below 0).
 
+    Feed hold (``pause``): while it is high every tick decelerates as in
+    rule 2, and the tick that finds the count at 0 sets the rate to 0
+    (``held``): the path waits where it is, the phase kept.  With
+    ``ramp_step`` = 0 the rate is 0 in the clock after ``pause`` rises,
+    without a tick in that clock.  A held rate comes back, in the clock after
+    ``pause`` falls, at ``ramp_start`` (``target`` with ``ramp_step`` = 0)
+    and ramps up again from a count of 0.  ``pause`` while ``run`` is low
+    loads 0, so a move that starts on hold waits.
+
     The count is the number of ticks the rate needs to come back down to
     ``ramp_start``; deceleration begins when the iterations left are no more
     than that (plus the margin), so a path ends at ``ramp_start``: the speed
@@ -54,6 +63,12 @@ def feed_rate(clock, reset, settings, feed):
         clock  _/~\\_/~\\_/~\\_/~\\_/~\\_
         run    _/~~~~~~~~~~~~~~~~~~~
         tick   _______/~~~\\___/~~~\\_
+
+    feed hold, ramp_step = 0:
+        clock  _/~\\_/~\\_/~\\_/~\\_/~\\_
+        pause  _/~~~~~~~~~~~\\_______
+        held   _____/~~~~~~~~~~~\\___
+        rate   =X===X=0=========X===
     """
     step_bits = len(settings.ramp_step)
     rate = Signal(intbv(0, min=0, max=RATE_MAX + 1))
@@ -118,10 +133,23 @@ def feed_rate(clock, reset, settings, feed):
         if not feed.run:
             phase.next = 0
             count.next = DECEL_MARGIN
-            if step_zero:
+            feed.held.next = feed.pause
+            if feed.pause:
+                rate.next = 0
+            elif step_zero:
                 rate.next = target_s
             else:
                 rate.next = start_s
+        elif feed.held:
+            if not feed.pause:
+                feed.held.next = 0
+                if step_zero:
+                    rate.next = target_s
+                else:
+                    rate.next = start_s
+        elif step_zero and feed.pause:
+            rate.next = 0
+            feed.held.next = 1
         elif not feed.hold:
             phase.next = total[PHASE_BITS:]
             if total[PHASE_BITS]:
@@ -129,13 +157,16 @@ def feed_rate(clock, reset, settings, feed):
                 if step_zero:
                     rate.next = target_s
                     count.next = DECEL_MARGIN
-                elif decelerate:
+                elif decelerate or feed.pause:
                     if not count_empty:
                         count.next = count_down
                         if count_last or not above_floor:
                             rate.next = start_s
                         else:
                             rate.next = lowered
+                    elif feed.pause:
+                        rate.next = 0
+                        feed.held.next = 1
                 elif below:
                     count.next = count_up
                     if can_raise:

@@ -25,10 +25,18 @@ def machine_guard(clock, reset, guard, request, granted):
        to ``watchdog_timeout`` (0: off); it counts down by one every clock.
     3. LIMIT: a step request towards an active limit (``limits``: which).
 
+    A WATCHDOG or LIMIT cause while ``ramp`` is high (RAMP_STEP not 0)
+    starts a decelerated stop instead: ``stopping`` rises at the edge after
+    it (``reason`` and ``limits`` with it), the feed rate ramps down on it,
+    and ``stopped`` latches at the edge after ``held`` (the rate is zero
+    and the last step has left the pins) is seen.  Until then every step request passes, those towards an
+    active limit included, so the path slows down on itself; an E-stop
+    still latches at once.
+
     ``halt`` (stopped, or the E-stop input active: a register's output,
-    so at once) holds back every step request; a request towards an active
-    limit is dropped too, whole, so the step that would hit the limit
-    never reaches the pins, while requests away from it pass.
+    so at once) holds back every step request; without a ramp a request
+    towards an active limit is dropped too, whole, so the step that would
+    hit the limit never reaches the pins, while requests away from it pass.
     ``clear_stop`` releases the latch (``reason`` and ``limits`` read 0
     again) unless the E-stop input is active.  ``drive_enable`` (the pin,
     from a flip-flop) is ``drive_request`` while not stopped, low from the
@@ -41,6 +49,14 @@ def machine_guard(clock, reset, guard, request, granted):
         stopped       _____/~~~~~~~~~~~
         stop_event    _____/~~~\\_______
         drive_enable  ~~~~~\\___________
+
+    Watchdog expiry with a ramp (``held`` after the feed rate's ramp):
+        clock         _/~\\_/~\\_/~\\_ .. _/~\\_/~\\_/~\\_
+        expired       _/~~~\\_______ .. _____________
+        stopping      _____/~~~~~~~ .. ~~~~~~~\\_____
+        held          _____________ .. _/~~~~~~~~~~~
+        stopped       _____________ .. _______/~~~~~
+        drive_enable  ~~~~~~~~~~~~~ .. ~~~~~~~\\_____
     """
     limit_bits = len(guard.limits)
     hits = Signal(intbv(0)[limit_bits:])
@@ -59,7 +75,7 @@ def machine_guard(clock, reset, guard, request, granted):
     @always_comb
     def gate():
         guard.halt.next = guard.stopped or estop
-        passes = not (guard.stopped or estop) and hits == 0
+        passes = not (guard.stopped or estop) and (hits == 0 or guard.ramp)
         granted.step_x.next = request.step_x and passes
         granted.step_y.next = request.step_y and passes
         granted.dir_x.next = request.dir_x
@@ -70,17 +86,25 @@ def machine_guard(clock, reset, guard, request, granted):
         stopped = bool(guard.stopped)
         guard.stop_event.next = 0
         if not guard.stopped:
-            if estop or expired or hits != 0:
+            if estop:
                 stopped = True
-                guard.stop_event.next = 1
+                guard.stopping.next = 0
+                guard.reason.next = REASON_ESTOP
                 guard.limits.next = 0
-                if estop:
-                    guard.reason.next = REASON_ESTOP
-                elif expired:
+            elif guard.stopping:
+                stopped = bool(guard.held)
+            elif expired or hits != 0:
+                stopped = not guard.ramp
+                guard.stopping.next = guard.ramp
+                guard.limits.next = 0
+                if expired:
                     guard.reason.next = REASON_WATCHDOG
                 else:
                     guard.reason.next = REASON_LIMIT
                     guard.limits.next = hits
+            if stopped:
+                guard.stopping.next = 0
+                guard.stop_event.next = 1
         elif guard.clear_stop and not estop:
             stopped = False
             guard.reason.next = 0

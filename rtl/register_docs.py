@@ -4,7 +4,7 @@ rewrites the docs."""
 from pathlib import Path
 
 from rtl import instructions
-from rtl.registers import IO_BAR_BITS, REGISTERS, VERSION, build_word
+from rtl.registers import IO_BAR_BITS, REGISTERS, VERSION, VERSIONS, build_word
 
 
 def markdown():
@@ -21,11 +21,11 @@ def markdown():
         "(`python -m rtl.top --help` lists them); their reset column shows the default build's",
         "top, `gen/top.v`, built for iCE40 (the generic `gen/card.v` reads BUILD.DEVICE = 0).",
         "",
-        f"ID.VERSION is {VERSION >> 8}.{VERSION & 0xFF}: the major version (bits 15:8) changes when a",
+        f"ID.VERSION is {_version(VERSION)}: the major version (bits 15:8) changes when a",
         "register or field moves or changes meaning, the minor version (bits 7:0) when",
-        "registers or fields are added.  1.1 added CLOCK_HZ, FIFO_SIZE and BUILD; 1.2 the",
-        "machine inputs and the guard (MACHINE_CONTROL .. WATCHDOG, COMMAND.CLEAR_STOP,",
-        "STATUS.STOPPED, INT_STATUS.STOPPED and INPUT; docs/machine.md).",
+        "registers or fields are added:",
+        "",
+        *(f"- {_version(number)}: {text}" for number, text in VERSIONS),
         "",
         "Access: RO read only; RW read/write (byte enables honoured; a value outside",
         "min..max is clamped to the nearest bound, reads back clamped, and sets",
@@ -49,6 +49,10 @@ def markdown():
             lines.append(f"| {bits} | {item.name} | {item.text}{kind} |")
         lines.append("")
     return "\n".join(lines)
+
+
+def _version(number):
+    return f"{number >> 8}.{number & 0xFF}"
 
 
 def _blank(value):

@@ -28,10 +28,7 @@ build's top.
 
 ID.VERSION: the major version (bits 15:8) changes when a register or field
 moves or changes meaning, the minor version (bits 7:0) when registers or
-fields are added.  1.1 added CLOCK_HZ, FIFO_SIZE and BUILD; 1.2 the machine
-inputs and the guard (MACHINE_CONTROL, MACHINE_STATUS, STOP_REASON,
-INPUT_POLARITY, INPUT_FILTER, INPUT_TICK, WATCHDOG, COMMAND.CLEAR_STOP,
-STATUS.STOPPED, INT_STATUS.STOPPED and INPUT).
+fields are added; ``VERSIONS`` says what each version added.
 """
 from dataclasses import dataclass, field
 
@@ -40,7 +37,16 @@ from rtl import parameters
 ACCESS_KINDS = ("RO", "RW", "W1C", "W1S", "WP")
 WORD_BYTES = 4
 ID_MAGIC = 0xDDAC
-VERSION = 0x0102  # major 1, minor 2
+# What each register-map version added (docs/registers.md lists it).
+VERSIONS = (
+    (0x0100, "the register map"),
+    (0x0101, "CLOCK_HZ, FIFO_SIZE and BUILD"),
+    (0x0102, "the machine inputs and the guard (MACHINE_CONTROL .. WATCHDOG, COMMAND.CLEAR_STOP, "
+             "STATUS.STOPPED, INT_STATUS.STOPPED and INPUT; docs/machine.md)"),
+    (0x0103, "feed hold and the decelerated stop (MACHINE_CONTROL.HOLD, MACHINE_STATUS.HELD and "
+             "STOPPING)"),
+)
+VERSION = VERSIONS[-1][0]
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock
 RATE_MAX = RATE_ONE // 2  # the DDA takes an iteration at most every other clock
 
@@ -227,14 +233,21 @@ REGISTERS = (
     )),
     Register("MACHINE_CONTROL", 0x60, "RW", 0, "the machine's outputs", (
         Field("DRIVE_ENABLE", 0, 1, "1: raise the DRIVE_ENABLE pin while the card is not stopped"),
+        Field("HOLD", 1, 1, "feed hold: 1 ramps the path's rate down to zero (RAMP_STEP) and waits, "
+              "0 ramps it up again; the path continues exactly"),
     )),
     Register("MACHINE_STATUS", 0x64, "RO", 0, "the machine's inputs and the guard", (
         Field("RAW", 0, 7, "input pins after the synchroniser, as wired (bit n: input n of INPUT_POLARITY)"),
         Field("ACTIVE", 8, 7, "inputs filtered, polarity applied: 1 active (bit n: input n)"),
         Field("STOPPED", 16, 1, "the guard holds the card stopped (STOP_REASON says why)"),
         Field("DRIVE_ENABLE", 17, 1, "the DRIVE_ENABLE pin"),
+        Field("HELD", 18, 1, "the path's rate is zero on a feed hold or a decelerated stop and its last "
+              "step has left the pins"),
+        Field("STOPPING", 19, 1, "a decelerated stop (WATCHDOG or LIMIT with RAMP_STEP not 0) ramps down; "
+              "STOPPED follows once HELD"),
     )),
-    Register("STOP_REASON", 0x68, "RO", 0, "why the guard stopped the card (0 when not stopped)", (
+    Register("STOP_REASON", 0x68, "RO", 0,
+             "why the guard stops or stopped the card (0 when neither STOPPING nor STOPPED)", (
         Field("REASON", 0, 2, f"{_REASON_CODES}"),
         Field("LIMITS", 4, 4, "LIMIT: the limits stepped towards (bit n: " + ", ".join(
             f"{bit} {name}" for bit, name in enumerate(LIMIT_NAMES)) + ")"),

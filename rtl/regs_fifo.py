@@ -106,7 +106,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     position = StepPositions()
     direct = [DirectPulseCommand(period=values[f"PULSE_PERIOD_{name}"], clear=core_clear,
                                  remaining=hw[f"PULSE_COUNT_{name}"]) for name in "XY"]
-    direct_out = [StepRequest(ready=out_ready) for _ in "XY"]
+    settled, direct_ready = Signal(bool(0)), Signal(bool(1))   # guard.held; direct pulses wait while stopping
+    direct_out = [StepRequest(ready=direct_ready) for _ in "XY"]
     axis_load, axis_count, direct_busy = ([d.load for d in direct], [d.count for d in direct],
                                           [d.busy for d in direct])
     direct_request, direct_dir = [o.step for o in direct_out], [o.dir for o in direct_out]
@@ -117,6 +118,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     any_busy, busy_before, done_flag, low_before, error_before = (Signal(bool(0)) for _ in range(5))
     pos_y_snapshot = Signal(position.y.val)
 
+    drive_bit, hold_bit = _bit("MACHINE_CONTROL", "DRIVE_ENABLE"), _bit("MACHINE_CONTROL", "HOLD")
     units = [sync_fifo(clock, reset, push, local.wdata, fifo_pop, fifo_dout, fifo_flush, fifo_level,
                        fifo_empty, fifo_full, local.room, depth=fifo_depth)]
     for i, spec in enumerate(specs):
@@ -133,7 +135,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     units.append(pulse_out(clock, reset, request=granted, control=outputs, pins=pins, position=position))
     conditioning = InputConditioning(pins=ConcatSignal(*reversed(pins.inputs())), polarity=values["INPUT_POLARITY"],
                                      samples=values["INPUT_FILTER"], tick=values["INPUT_TICK"])
-    guard = MachineGuard(active=conditioning.active, drive_request=values["MACHINE_CONTROL"], clear_stop=clear_stop,
+    guard = MachineGuard(active=conditioning.active, drive_request=values["MACHINE_CONTROL"](drive_bit),
+                         clear_stop=clear_stop, held=settled,
                          watchdog_load=strobes["WATCHDOG"], watchdog_timeout=values["WATCHDOG"], halt=halt,
                          drive_enable=pins.drive_enable, watchdog_left=hw["WATCHDOG"])
     units += [input_filter(clock, reset, conditioning), machine_guard(clock, reset, guard, requests, granted),
@@ -141,6 +144,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
 
     read_end, clamp_end = chain[-1].data, chain[-1].clamped
     control, command, command_strobe = values["CONTROL"], values["COMMAND"], strobes["COMMAND"]
+    machine_control, ramp_step = values["MACHINE_CONTROL"], values["RAMP_STEP"]
     enable_bit, mode_bit = _bit("CONTROL", "ENABLE"), _bit("CONTROL", "MODE")
     reset_bit, clear_bit, zero_bit, release_bit = (_bit("COMMAND", f) for f in ("SOFT_RESET", "CLEAR_ERROR",
                                                                                 "CLEAR_POSITION", "CLEAR_STOP"))
@@ -194,6 +198,12 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         clear_error.next = command_strobe and command[clear_bit]
         clear_position.next = command_strobe and command[zero_bit]
         clear_stop.next = command_strobe and command[release_bit]
+        # feed hold: the host's HOLD bit or the guard's decelerated stop, which latches
+        # once the rate is zero and the last step has left the pins
+        feed.pause.next = machine_control[hold_bit] or guard.stopping
+        guard.ramp.next = ramp_step != 0
+        settled.next = feed.held and not tick and not pulses.outputs_busy   # the last tick steps a clock later
+        direct_ready.next = out_ready and not guard.stopping
         # no new STEP edge while the guard halts (a pulse already high ends normally)
         pulse_clear.next = core_clear or halt
         # held while stopped: the sequencer takes no word from the FIFO
@@ -372,6 +382,7 @@ def _machine_words(conditioning, guard, machine_status, stop_reason):
     """MACHINE_STATUS and STOP_REASON from the input filter and the guard."""
     raw_lsb, active_lsb = _bit("MACHINE_STATUS", "RAW"), _bit("MACHINE_STATUS", "ACTIVE")
     stopped_bit, drive_bit = _bit("MACHINE_STATUS", "STOPPED"), _bit("MACHINE_STATUS", "DRIVE_ENABLE")
+    held_bit, stopping_bit = _bit("MACHINE_STATUS", "HELD"), _bit("MACHINE_STATUS", "STOPPING")
     reason_lsb, limits_lsb = _bit("STOP_REASON", "REASON"), _bit("STOP_REASON", "LIMITS")
     inputs, reason_bits, limit_bits = len(conditioning.raw), len(guard.reason), len(guard.limits)
 
@@ -382,6 +393,8 @@ def _machine_words(conditioning, guard, machine_status, stop_reason):
         word[active_lsb + inputs:active_lsb] = conditioning.active
         word[stopped_bit] = guard.stopped
         word[drive_bit] = guard.drive_enable
+        word[held_bit] = guard.held
+        word[stopping_bit] = guard.stopping
         machine_status.next = word
         why = intbv(0)[len(stop_reason):]
         why[reason_lsb + reason_bits:reason_lsb] = guard.reason

@@ -138,6 +138,12 @@ class FeedRateModel:
     one per decrement.  Deceleration is due when ``stop_left`` is at most the
     count plus ``margin`` iterations.  Timing: the settings and ``stop_left``
     act one clock after they are presented (the unit registers them).
+
+    Feed hold (``pause``): each tick decelerates as at the end of a path; the
+    tick that finds the count at 0 leaves the rate at 0 (``held``), and no
+    tick comes until ``pause`` falls: the rate is then ``ramp_start`` again
+    (the target without a ramp).  Without a ramp the rate is 0 at once, the
+    clock ``pause`` is presented bringing no tick.
     """
 
     def __init__(self, margin=2):
@@ -146,19 +152,28 @@ class FeedRateModel:
         self.phase = 0
         self.count = 0
         self.tick = False
+        self.held = False
         self.decelerate = False
         self.settings = (0, 0, 0)  # target, ramp_start, ramp_step, as after reset
 
-    def clock(self, run, hold, target, ramp_start, ramp_step, stop_left=(1 << 27) - 1):
+    def clock(self, run, hold, target, ramp_start, ramp_step, stop_left=(1 << 27) - 1, pause=False):
         if not 1 <= target <= regmap.RATE_MAX or not 1 <= ramp_start <= regmap.RATE_MAX:
             raise ValueError(f"rates must be 1..{regmap.RATE_MAX}, got {target} and {ramp_start}")
         due, (goal, floor, step) = self.decelerate, self.settings
         self.decelerate = stop_left <= self.count + self.margin
         self.settings = (target, ramp_start, ramp_step)
         self.tick = False
+        resume_rate = goal if step == 0 else floor
         if not run:
-            self.phase, self.count = 0, 0
-            self.rate = goal if step == 0 else floor
+            self.phase, self.count, self.held = 0, 0, pause
+            self.rate = 0 if pause else resume_rate
+            return
+        if self.held:
+            if not pause:
+                self.held, self.rate = False, resume_rate
+            return
+        if pause and step == 0:
+            self.held, self.rate = True, 0
             return
         if hold:
             return
@@ -169,10 +184,12 @@ class FeedRateModel:
         self.tick = True
         if step == 0:
             self.rate, self.count = goal, 0
-        elif due:
+        elif due or pause:
             if self.count:
                 self.rate = floor if self.count == 1 else max(self.rate - step, floor)
                 self.count -= 1
+            elif pause:
+                self.held, self.rate = True, 0
         elif self.rate < goal:
             self.rate = min(self.rate + step, goal)
             self.count += 1

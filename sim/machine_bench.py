@@ -11,10 +11,18 @@ from myhdl import block, delay, instance
 
 from rtl import registers as regmap
 from rtl.card_core import card_core_ports
-from sim.card_bench import PinLog, core_bench
+from sim.card_bench import PinLog, core_bench, expected_path, read_position
+from sim.machine_model import REASON
 from sim.waves import run_traced
 
 FIFO_DEPTH = 16
+WIDTH = 3   # STEP_WIDTH of the machine benches: a pulse cut short would show
+SAMPLES = regmap.register("INPUT_FILTER").reset
+# From a pin's change after falling edge N: the synchroniser (2 edges) and the
+# filter (SAMPLES edges) make the input active after edge N + SAMPLES + 2;
+# a STEP taken in the clock before rises on the pin one edge later, and
+# DRIVE_ENABLE falls at that edge: clock N + SAMPLES + 3 in the pin log.
+REACTION = SAMPLES + 3
 
 
 @dataclass
@@ -88,3 +96,48 @@ def read(driver, name):
 
 def write(driver, name, value):
     yield from driver.io_write(regmap.offset(name), value)
+
+
+def field(name, field_name, word):
+    return regmap.field_value(name, field_name, word)
+
+
+def wait_clocks(driver, count):
+    for _ in range(count):
+        yield driver.clock.negedge
+
+
+def snapshot(driver):
+    """The registers that tell why the card stopped."""
+    words = {}
+    for name in ("STATUS", "STOP_REASON", "MACHINE_STATUS", "INT_STATUS"):
+        words[name] = yield from read(driver, name)
+    words["position"] = yield from read_position(driver)
+    return words
+
+
+def clear_stop(driver):
+    """COMMAND.CLEAR_STOP, and the clocks it takes to reach the latch (bus write, register, strobe)."""
+    yield from write(driver, "COMMAND", regmap.field_of("COMMAND", CLEAR_STOP=1))
+    yield from wait_clocks(driver, 3)
+
+
+def drive_at(machine_log, clock):
+    return machine_log.drive[clock - 1]   # the first falling edge is clock 1
+
+
+def assert_stopped(words, reason):
+    assert field("STATUS", "STOPPED", words["STATUS"]) == 1
+    assert field("STOP_REASON", "REASON", words["STOP_REASON"]) == REASON[reason]
+    assert field("MACHINE_STATUS", "STOPPED", words["MACHINE_STATUS"]) == 1
+    assert field("MACHINE_STATUS", "DRIVE_ENABLE", words["MACHINE_STATUS"]) == 0
+    assert field("INT_STATUS", "STOPPED", words["INT_STATUS"]) == 1
+    assert not field("STATUS", "BUSY", words["STATUS"]), "the queue is held"
+
+
+def assert_exact(pin_log, position, commands, width=WIDTH):
+    """The pins' path is a prefix of the uninterrupted one and ends at POS_X/POS_Y."""
+    path = pin_log.path()
+    assert path == expected_path(commands)[:len(path)]
+    assert path[-1] == position
+    assert set(pulse_widths(pin_log, "step_x") + pulse_widths(pin_log, "step_y")) <= {width}, "a partial pulse"

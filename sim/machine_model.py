@@ -5,8 +5,10 @@ Written from the rules in the blocks' docstrings and ``docs/machine.md``
 
 * ``InputFilterModel``: synchroniser, polarity and glitch filter (``rtl/input_filter.py``).
 * ``MachineGuardModel``: E-stop latch, watchdog, limits, drive enable (``rtl/machine_guard.py``).
+* ``paused_ticks``: the iterations of a long move on a feed hold (``FeedRateModel``).
 """
 from rtl import registers as regmap
+from sim.card_model import FeedRateModel
 
 REASON = {name: code for code, name in enumerate(regmap.STOP_REASONS)}
 INPUT = {name: bit for bit, name in enumerate(regmap.INPUT_NAMES)}
@@ -57,10 +59,16 @@ class MachineGuardModel:
     input is active, no step request passes (``halt``).  ``clear_stop``
     releases the latch unless the E-stop input is active.  DRIVE_ENABLE
     follows ``drive_request`` one clock late, low while stopped or E-stop.
+
+    With ``ramp`` (RAMP_STEP not 0) a watchdog or limit cause does not stop
+    at once: ``stopping`` is set (the feed rate decelerates), every step
+    request passes, and the stop latches at the edge after the feed rate
+    reports ``held``; the E-stop latches at once still.
     """
 
     def __init__(self):
         self.stopped = False
+        self.stopping = False
         self.stop_event = False
         self.reason = 0
         self.limits = 0
@@ -79,23 +87,30 @@ class MachineGuardModel:
                 hits |= 1 << LIMIT_BITS[(axis, positive)]
         return hits
 
-    def granted(self, active, steps, dirs):
+    def granted(self, active, steps, dirs, ramp=False):
         """The step requests that pass to the pulse outputs in this clock."""
-        if self.halt(active) or self.limit_hits(active, steps, dirs):
+        if self.halt(active) or (self.limit_hits(active, steps, dirs) and not ramp):
             return (False, False)
         return tuple(steps)
 
     def clock(self, active=0, steps=(False, False), dirs=(False, False), drive_request=False,
-              clear_stop=False, watchdog_load=False, watchdog_timeout=0):
+              clear_stop=False, watchdog_load=False, watchdog_timeout=0, ramp=False, held=False):
         estop = bool(active >> INPUT["ESTOP"] & 1)
         expired = self.watchdog_left == 1 and not watchdog_load
         hits = self.limit_hits(active, steps, dirs)
         self.stop_event = False
         if not self.stopped:
-            cause = "ESTOP" if estop else "WATCHDOG" if expired else "LIMIT" if hits else None
-            if cause:
-                self.stopped, self.stop_event, self.reason = True, True, REASON[cause]
-                self.limits = hits if cause == "LIMIT" else 0
+            if estop:
+                self.reason, self.limits = REASON["ESTOP"], 0
+                self.stopped = True
+            elif self.stopping:
+                self.stopped = held
+            elif expired or hits:
+                self.reason = REASON["WATCHDOG" if expired else "LIMIT"]
+                self.limits = 0 if expired else hits
+                self.stopped, self.stopping = not ramp, ramp
+            if self.stopped:
+                self.stopping, self.stop_event = False, True
         elif clear_stop and not estop:
             self.stopped, self.reason, self.limits = False, 0, 0
         self.drive_enable = drive_request and not self.stopped and not estop
@@ -103,3 +118,20 @@ class MachineGuardModel:
             self.watchdog_left = watchdog_timeout
         elif self.watchdog_left:
             self.watchdog_left -= 1
+
+
+def paused_ticks(target, ramp_start, ramp_step, pause_at, limit=1 << 20):
+    """Clocks of the iterations of a move far from its end (clock 0: the
+    first with ``run``) whose feed holds from clock ``pause_at`` on, up to
+    the rate's stop (``FeedRateModel``, the registers' rules)."""
+    settings = dict(target=target, ramp_start=ramp_start, ramp_step=ramp_step)
+    model, ticks = FeedRateModel(), []
+    for _ in range(2):
+        model.clock(run=False, hold=False, **settings)
+    for clock in range(limit):
+        model.clock(run=True, hold=False, pause=clock >= pause_at, **settings)
+        if model.tick:
+            ticks.append(clock)
+        if model.held:
+            return ticks
+    raise AssertionError(f"the rate did not reach zero in {limit} clocks")

@@ -103,18 +103,22 @@ def test_pulse_out_timing(seed, cosim):
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
 def test_feed_rate_ramp(cosim):
-    """Random settings, holds and moves; ``stop_left`` counts the ticks down
-    like a DDA (sometimes a clock late, sometimes blending: all ones)."""
+    """Random settings, holds, feed holds and moves; ``stop_left`` counts the
+    ticks down like a DDA (sometimes a clock late, sometimes blending: all ones)."""
     rng = random.Random(7)
     ports = feed_rate_ports()
     ramp, feed = ports["settings"], ports["feed"]
     model = FeedRateModel()
-    ticks, left = [], {"count": None, "late": False}
+    ticks, paused, left = [], [], {"count": None, "late": False, "pause": False}
     all_ones = (1 << len(feed.stop_left)) - 1
 
     def step(index):
         assert bool(feed.tick) == model.tick, f"tick at clock {index}"
+        assert bool(feed.held) == model.held, f"held at clock {index}"
         ticks.append(model.tick)
+        paused.append(model.held)
+        if rng.random() < 0.01:
+            left["pause"] = not left["pause"]
         if index % 400 == 0:
             settings = dict(target=rng.choice([1, 3000, 20000, RATE_MAX]), ramp_start=rng.randint(1, RATE_MAX),
                             ramp_step=rng.choice([0, 1, 500, 9000]))
@@ -130,8 +134,9 @@ def test_feed_rate_ramp(cosim):
         inputs = dict(run=index % 400 > 5, hold=rng.random() < 0.1,
                       target=int(ramp.target.next), ramp_start=int(ramp.ramp_start.next),
                       ramp_step=int(ramp.ramp_step.next),
-                      stop_left=all_ones if left["count"] is None else left["count"])
+                      stop_left=all_ones if left["count"] is None else left["count"], pause=left["pause"])
         feed.run.next = inputs["run"]
+        feed.pause.next = inputs["pause"]
         feed.hold.next = inputs["hold"]
         feed.stop_left.next = inputs["stop_left"]
         model.clock(**inputs)
@@ -141,8 +146,10 @@ def test_feed_rate_ramp(cosim):
             left["count"] -= 1
 
     _run(f"feed_rate_{'icarus' if cosim else 'myhdl'}", _dut(feed_rate, "feed_rate", ports, cosim),
-         ports, step, 2400, {"feed": ["feed_run", "feed_hold", "settings_target", "feed_stop_left", "feed_tick"]})
-    assert sum(ticks) > 200
+         ports, step, 4800, {"feed": ["feed_run", "feed_hold", "feed_pause", "settings_target", "feed_stop_left",
+                                      "feed_tick", "feed_held"]})
+    assert sum(ticks) > 400
+    assert 0.1 < sum(paused) / len(paused) < 0.6, "the feed holds and resumes often"
 
 
 def _model_intervals(iterations, target, ramp_start, ramp_step, late):

@@ -15,69 +15,18 @@ from rtl import registers as regmap
 from rtl.pulse_out import QUEUE_DEPTH
 from sim.card_bench import command_words, expected_path, read_position, wait_idle
 from sim.dda_model import ArcCommand, LineCommand
-from sim.machine_bench import pulse_widths, read, run_machine, set_input, write
+from sim.machine_bench import (REACTION, WIDTH, assert_exact, assert_stopped, clear_stop, drive_at, field, read,
+                               run_machine, set_input, snapshot, wait_clocks, write)
 from sim.machine_model import REASON
 
-WIDTH = 3   # STEP_WIDTH: a pulse cut short would show
-SAMPLES = regmap.register("INPUT_FILTER").reset
-# From a pin's change after falling edge N: the synchroniser (2 edges) and the
-# filter (SAMPLES edges) make the input active after edge N + SAMPLES + 2;
-# a STEP taken in the clock before rises on the pin one edge later, and
-# DRIVE_ENABLE falls at that edge: clock N + SAMPLES + 3 in the pin log.
-REACTION = SAMPLES + 3
 MODES = [False, True]
 MODE_IDS = ["myhdl", "icarus"]
-
-
-def field(name, field_name, word):
-    return regmap.field_value(name, field_name, word)
 
 
 def arm(driver, feed=regmap.RATE_MAX // 2):
     for name, value in (("FEED_RATE", feed), ("RAMP_STEP", 0), ("STEP_WIDTH", WIDTH), ("CONTROL", 1),
                         ("MACHINE_CONTROL", 1), ("INT_ENABLE", regmap.field_of("INT_ENABLE", STOPPED=1))):
         yield from write(driver, name, value)
-
-
-def wait_clocks(driver, count):
-    for _ in range(count):
-        yield driver.clock.negedge
-
-
-def snapshot(driver):
-    """The registers that tell why the card stopped."""
-    words = {}
-    for name in ("STATUS", "STOP_REASON", "MACHINE_STATUS", "INT_STATUS"):
-        words[name] = yield from read(driver, name)
-    words["position"] = yield from read_position(driver)
-    return words
-
-
-def clear_stop(driver):
-    """COMMAND.CLEAR_STOP, and the clocks it takes to reach the latch (bus write, register, strobe)."""
-    yield from write(driver, "COMMAND", regmap.field_of("COMMAND", CLEAR_STOP=1))
-    yield from wait_clocks(driver, 3)
-
-
-def drive_at(machine_log, clock):
-    return machine_log.drive[clock - 1]   # the first falling edge is clock 1
-
-
-def assert_stopped(words, reason):
-    assert field("STATUS", "STOPPED", words["STATUS"]) == 1
-    assert field("STOP_REASON", "REASON", words["STOP_REASON"]) == REASON[reason]
-    assert field("MACHINE_STATUS", "STOPPED", words["MACHINE_STATUS"]) == 1
-    assert field("MACHINE_STATUS", "DRIVE_ENABLE", words["MACHINE_STATUS"]) == 0
-    assert field("INT_STATUS", "STOPPED", words["INT_STATUS"]) == 1
-    assert not field("STATUS", "BUSY", words["STATUS"]), "the queue is held"
-
-
-def assert_exact(pin_log, position, commands):
-    """The pins' path is a prefix of the uninterrupted one and ends at POS_X/POS_Y."""
-    path = pin_log.path()
-    assert path == expected_path(commands)[:len(path)]
-    assert path[-1] == position
-    assert set(pulse_widths(pin_log, "step_x") + pulse_widths(pin_log, "step_y")) <= {WIDTH}, "a partial pulse"
 
 
 @pytest.mark.parametrize("cosim,seed", [(False, 1), (False, 2), (False, 3), (True, 4)],

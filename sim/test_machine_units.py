@@ -114,9 +114,12 @@ def _guard_inputs(rng, model, index, state):
     steps = (rng.random() < 0.3, rng.random() < 0.3)
     dirs = (rng.random() < 0.5, rng.random() < 0.5)
     load = rng.random() < 0.01
+    if index % 300 == 0:
+        state["ramp"] = rng.random() < 0.5
     return dict(active=state["active"], steps=steps, dirs=dirs, drive_request=rng.random() < 0.9,
                 clear_stop=model.stopped and rng.random() < 0.05, watchdog_load=load,
-                watchdog_timeout=rng.choice([0, 3, 40, 150]) if load else state.get("timeout", 0))
+                watchdog_timeout=rng.choice([0, 3, 40, 150]) if load else state.get("timeout", 0),
+                ramp=state["ramp"], held=model.stopping and rng.random() < 0.1)
 
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
@@ -126,13 +129,13 @@ def test_machine_guard_against_model(seed, cosim):
     ports = machine_guard_ports()
     guard, request, granted = ports["guard"], ports["request"], ports["granted"]
     model = MachineGuardModel()
-    reasons = set()
+    reasons, decelerated = set(), set()
     state = {"active": 0}
 
     def step(index):
         if index == 0:
             model.clock()
-        for name in ("stopped", "stop_event", "drive_enable"):
+        for name in ("stopped", "stopping", "stop_event", "drive_enable"):
             assert bool(getattr(guard, name)) == getattr(model, name), f"{name} at clock {index}"
         for name in ("reason", "limits", "watchdog_left"):
             assert int(getattr(guard, name)) == getattr(model, name), f"{name} at clock {index}"
@@ -142,10 +145,14 @@ def test_machine_guard_against_model(seed, cosim):
         guard.active.next = given["active"]
         request.step_x.next, request.step_y.next = given["steps"]
         request.dir_x.next, request.dir_y.next = given["dirs"]
-        for name in ("drive_request", "clear_stop", "watchdog_load", "watchdog_timeout"):
+        for name in ("drive_request", "clear_stop", "watchdog_load", "watchdog_timeout", "ramp", "held"):
             getattr(guard, name).next = given[name]
-        pending[:] = [model.granted(given["active"], given["steps"], given["dirs"]), model.halt(given["active"])]
+        pending[:] = [model.granted(given["active"], given["steps"], given["dirs"], given["ramp"]),
+                      model.halt(given["active"])]
+        was_stopping = model.stopping
         model.clock(**given)
+        if was_stopping and model.stop_event:
+            decelerated.add(model.reason)
 
     def check(index):
         wanted, halt = pending
@@ -153,5 +160,6 @@ def test_machine_guard_against_model(seed, cosim):
         assert bool(guard.halt) == halt, f"halt at clock {index}"
 
     pending = []
-    _run(f"machine_guard_{seed}", machine_guard, "machine_guard", ports, cosim, step, 4000, check)
+    _run(f"machine_guard_{seed}", machine_guard, "machine_guard", ports, cosim, step, 6000, check)
     assert reasons >= {REASON["NONE"], REASON["ESTOP"], REASON["WATCHDOG"], REASON["LIMIT"]}
+    assert decelerated >= {REASON["WATCHDOG"], REASON["LIMIT"]}, "decelerated stops of both kinds"

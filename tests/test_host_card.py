@@ -264,3 +264,35 @@ def test_watchdog_stops_a_move_the_host_forgets(card, transport):
     card.watchdog(0)
     card.clear_stop()
     assert card.stop_reason() == ("NONE", ())
+
+
+@pytest.mark.parametrize("ramp_step", [0, 300])
+def test_hold_and_resume_keep_the_path(card, transport, ramp_step):
+    """hold() returns once the pins are still; nothing moves until resume();
+    the pins then finish the path the DDA's model gives, step for step."""
+    first = len(transport.pins.rises)
+    card.write("RAMP_START", 500)
+    card.write("RAMP_STEP", ramp_step)
+    card.set("FEED_RATE", 6000)
+    card.drive(True)
+    try:
+        card.line(700, 260)
+        card.arc(centre=(-90, 0), end=(-180, 0), ccw=True)
+        transport.sleep(60e-6)
+        position = card.hold()
+        held_rises = len(transport.pins.rises)
+        transport.sleep(100e-6)
+        assert card.position() == position and len(transport.pins.rises) == held_rises, "a step while held"
+        assert card.field("MACHINE_CONTROL", "DRIVE_ENABLE") == 1, "hold keeps the drive bit"
+        card.resume()
+        card.wait_done(timeout=5e-3)
+    finally:
+        card.resume()
+        card.write("RAMP_STEP", 0)
+    rises = transport.pins.rises[first:]
+    path = [(0, 0)]
+    for _, step_x, step_y, dir_x, dir_y in rises:
+        path.append((path[-1][0] + (1 if dir_x else -1) * step_x, path[-1][1] + (1 if dir_y else -1) * step_y))
+    assert 0 < held_rises - first < len(rises), "the hold came mid-path"
+    expected = expected_path([LineCommand(700, 260), ArcCommand(90, 0, -90, 0, ccw=True, variant=3)])
+    assert path == expected and card.position() == expected[-1]

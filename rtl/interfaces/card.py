@@ -192,13 +192,15 @@ class RampSettings:
 
 class FeedPort:
     """The feed rate's seam with the motion: the card drives ``run`` (a path
-    is under way) and ``hold`` (the pulse outputs are full), the DDA
+    is under way), ``hold`` (the pulse outputs are full) and ``pause`` (feed
+    hold: MACHINE_CONTROL.HOLD or a decelerated stop), the DDA
     ``stop_left`` (``DdaPort.stop_left`` of ``coord_width``); the feed rate
-    drives ``tick`` (one clock per iteration)."""
+    drives ``tick`` (one clock per iteration) and ``held`` (the rate is zero
+    on a ``pause``)."""
 
     def __init__(self, coord_width=COORD_WIDTH, **given):
-        adopt(self, given, run=Signal(bool(0)), hold=Signal(bool(0)), stop_left=DdaPort(coord_width).stop_left,
-               tick=Signal(bool(0)))
+        adopt(self, given, run=Signal(bool(0)), hold=Signal(bool(0)), pause=Signal(bool(0)),
+               stop_left=DdaPort(coord_width).stop_left, tick=Signal(bool(0)), held=Signal(bool(0)))
 
 
 class DirectPulseCommand:

@@ -31,18 +31,22 @@ class MachineGuard:
     The card drives ``active`` (the filtered inputs, ``InputConditioning``),
     ``drive_request`` (MACHINE_CONTROL.DRIVE_ENABLE), ``clear_stop``
     (COMMAND.CLEAR_STOP, one clock), ``watchdog_load`` (one clock per
-    WATCHDOG write) with ``watchdog_timeout`` (its value, clocks; 0: off).
+    WATCHDOG write) with ``watchdog_timeout`` (its value, clocks; 0: off),
+    ``ramp`` (RAMP_STEP is not 0: a watchdog or limit stop decelerates) and
+    ``held`` (``FeedPort.held``, and no step on its way to the pins).
     The guard drives ``halt`` (no new STEP edge, no command, no direct
-    pulse: stopped, or the E-stop input active), ``stopped`` (the latch),
-    ``stop_event`` (one clock, as the latch sets), ``reason`` and ``limits``
-    (STOP_REASON), ``drive_enable`` (the pin, from a flip-flop) and
-    ``watchdog_left`` (clocks before the watchdog expires)."""
+    pulse: stopped, or the E-stop input active), ``stopping`` (a
+    decelerated stop is under way: the feed rate pauses), ``stopped`` (the
+    latch), ``stop_event`` (one clock, as the latch sets), ``reason`` and
+    ``limits`` (STOP_REASON), ``drive_enable`` (the pin, from a flip-flop)
+    and ``watchdog_left`` (clocks before the watchdog expires)."""
 
     def __init__(self, **given):
         reason, watchdog = regmap.register("STOP_REASON"), regmap.register("WATCHDOG")
         adopt(self, given, active=Signal(intbv(0)[len(MACHINE_INPUTS):]), drive_request=Signal(bool(0)),
                clear_stop=Signal(bool(0)), watchdog_load=Signal(bool(0)),
-               watchdog_timeout=Signal(intbv(0)[watchdog.width:]), halt=Signal(bool(0)),
+               watchdog_timeout=Signal(intbv(0)[watchdog.width:]), ramp=Signal(bool(0)), held=Signal(bool(0)),
+               halt=Signal(bool(0)), stopping=Signal(bool(0)),
                stopped=Signal(bool(0)), stop_event=Signal(bool(0)),
                reason=Signal(intbv(0)[reason.field("REASON").width:]),
                limits=Signal(intbv(0)[reason.field("LIMITS").width:]), drive_enable=Signal(bool(0)),
