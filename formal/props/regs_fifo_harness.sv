@@ -49,11 +49,12 @@ module regs_fifo_harness #(
     // The machine inputs (E-STOP, limits, home): free, or with
     // MACHINE_RUNNING at rest, with their polarity and the watchdog left as
     // reset (no write to INPUT_POLARITY or WATCHDOG), so the guard never
-    // stops the card: the groups that follow every command or every step
-    // to its end judge a running machine (docs/machine.md for the stops).
+    // stops the card, and no HOME (0x7C), which holds the commands while it
+    // homes: the groups that follow every command or every step to its end
+    // judge a running machine (docs/machine.md for the stops and homing).
 `ifdef MACHINE_RUNNING
     wire [6:0] machine_in = 7'd0;
-    always @(*) assume(!(l_we && !l_space && (l_addr == 16'h006C || l_addr == 16'h0078)));
+    always @(*) assume(!(l_we && !l_space && (l_addr == 16'h006C || l_addr == 16'h0078 || l_addr == 16'h007C)));
 `else
     (* anyseq *) wire [6:0] machine_in;
 `endif
