@@ -301,7 +301,7 @@ reg [31:0] card_core0_regs_fifo1_written_data;
 reg [31:0] card_core0_regs_fifo1_written_mask;
 reg [31:0] card_core0_regs_fifo1_read_end;
 reg [1:0] card_core0_regs_fifo1_control;
-wire card_core0_regs_fifo1_home_busy;
+reg card_core0_regs_fifo1_home_busy;
 reg card_core0_regs_fifo1_command_strobe;
 reg [3:0] card_core0_regs_fifo1_command;
 reg card_core0_regs_fifo1_guard_stopped;
@@ -827,15 +827,16 @@ reg card_core0_regs_fifo1_homing1_negative;
 reg card_core0_regs_fifo1_homing1_not_found;
 reg [23:0] card_core0_regs_fifo1_homing1_operand;
 reg [1:0] card_core0_regs_fifo1_homing1_phase;
-wire card_core0_regs_fifo1_homing1_positive;
+reg card_core0_regs_fifo1_homing1_positive;
 reg card_core0_regs_fifo1_homing1_refused;
+reg card_core0_regs_fifo1_homing1_seek_next;
 reg card_core0_regs_fifo1_homing1_seeking;
 wire [23:0] card_core0_regs_fifo1_homing1_signed_count;
 reg [2:0] card_core0_regs_fifo1_homing1_state;
 reg card_core0_regs_fifo1_homing1_switch;
-wire card_core0_regs_fifo1_homing1_port_load;
-wire [15:0] card_core0_regs_fifo1_homing1_port_period;
-wire signed [23:0] card_core0_regs_fifo1_homing1_port_count;
+reg card_core0_regs_fifo1_homing1_port_load;
+reg signed [23:0] card_core0_regs_fifo1_homing1_port_count;
+reg [15:0] card_core0_regs_fifo1_homing1_port_period;
 reg card_core0_regs_fifo1_homing1_port_ended;
 wire [1:0] card_core0_regs_fifo1__status1_quadrant;
 reg [4:0] card_core0_dda_arc1_dda_setup1_acc_bits;
@@ -5156,10 +5157,11 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
 end
 
 
-always @(card_core0_regs_fifo1_reg_word73_shown, card_core0_regs_fifo1_reg_word72_shown, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_home_inputs, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
+always @(card_core0_regs_fifo1_reg_word73_shown, card_core0_regs_fifo1_reg_word72_shown, card_core0_regs_fifo1_home_inputs, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
     card_core0_regs_fifo1_homing1_switch = card_core0_regs_fifo1_homing1_axis ? card_core0_regs_fifo1_home_inputs[1] : card_core0_regs_fifo1_home_inputs[0];
     card_core0_regs_fifo1_homing1_seeking = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b010));
-    if ((card_core0_regs_fifo1_homing1_state == 3'b101)) begin
+    card_core0_regs_fifo1_homing1_seek_next = ((card_core0_regs_fifo1_homing1_state == 3'b000) || (card_core0_regs_fifo1_homing1_state == 3'b001) || ((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)));
+    if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
         card_core0_regs_fifo1_homing1_magnitude = {8'h0, card_core0_regs_fifo1_reg_word72_shown};
     end
     else begin
@@ -5168,11 +5170,16 @@ always @(card_core0_regs_fifo1_reg_word73_shown, card_core0_regs_fifo1_reg_word7
 end
 
 
-
-assign card_core0_regs_fifo1_homing1_positive = (card_core0_regs_fifo1_homing1_seeking != card_core0_regs_fifo1_homing1_negative);
-assign card_core0_regs_fifo1_home_busy = (card_core0_regs_fifo1_homing1_state != 3'b000);
-assign card_core0_regs_fifo1_homing1_port_load = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b011) || (card_core0_regs_fifo1_homing1_state == 3'b101));
-assign card_core0_regs_fifo1_homing1_port_period = card_core0_regs_fifo1_homing1_seeking ? card_core0_regs_fifo1_reg_word70_shown : card_core0_regs_fifo1_reg_word71_shown;
+always @(card_core0_regs_fifo1_reg_word68__store47_word_value, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_negative) begin: card_core0_regs_fifo1_homing1_command
+    if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
+        card_core0_regs_fifo1_homing1_positive = (!card_core0_regs_fifo1_reg_word68__store47_word_value[1]);
+    end
+    else begin
+        card_core0_regs_fifo1_homing1_positive = card_core0_regs_fifo1_homing1_negative;
+    end
+    card_core0_regs_fifo1_home_busy = (card_core0_regs_fifo1_homing1_state != 3'b000);
+    card_core0_regs_fifo1_homing1_port_load = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b011) || (card_core0_regs_fifo1_homing1_state == 3'b101));
+end
 
 
 always @(card_core0_regs_fifo1_homing1_positive, card_core0_regs_fifo1_homing1_magnitude) begin: card_core0_regs_fifo1_homing1_sign
@@ -5191,8 +5198,21 @@ end
 assign card_core0_regs_fifo1_homing1_signed_count = (card_core0_regs_fifo1_homing1_operand + card_core0_regs_fifo1_homing1_addend);
 
 
-
-assign card_core0_regs_fifo1_homing1_port_count = $signed(card_core0_regs_fifo1_homing1_signed_count);
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_next_load
+    if (reset == 0) begin
+        card_core0_regs_fifo1_homing1_port_period <= 1;
+        card_core0_regs_fifo1_homing1_port_count <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_homing1_port_count <= $signed(card_core0_regs_fifo1_homing1_signed_count);
+        if (card_core0_regs_fifo1_homing1_seek_next) begin
+            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word70_shown;
+        end
+        else begin
+            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word71_shown;
+        end
+    end
+end
 
 
 always @(card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_edges

@@ -213,7 +213,7 @@ reg [31:0] written_data;
 reg [31:0] written_mask;
 reg [31:0] read_end;
 reg [1:0] control;
-wire home_busy;
+reg home_busy;
 reg command_strobe;
 reg [3:0] command;
 reg guard_stopped;
@@ -718,15 +718,16 @@ reg homing0_negative;
 reg homing0_not_found;
 reg [23:0] homing0_operand;
 reg [1:0] homing0_phase;
-wire homing0_positive;
+reg homing0_positive;
 reg homing0_refused;
+reg homing0_seek_next;
 reg homing0_seeking;
 wire [23:0] homing0_signed_count;
 reg [2:0] homing0_state;
 reg homing0_switch;
-wire homing0_port_load;
-wire [15:0] homing0_port_period;
-wire signed [23:0] homing0_port_count;
+reg homing0_port_load;
+reg signed [23:0] homing0_port_count;
+reg [15:0] homing0_port_period;
 reg homing0_port_ended;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
@@ -3882,10 +3883,11 @@ always @(posedge clock, negedge reset) begin: machine_guard0_watchdog
 end
 
 
-always @(reg_word36_shown, reg_word35_shown, homing0_axis, home_inputs, homing0_state) begin: homing0_select
+always @(reg_word36_shown, reg_word35_shown, home_inputs, homing0_axis, homing0_switch, homing0_state) begin: homing0_select
     homing0_switch = homing0_axis ? home_inputs[1] : home_inputs[0];
     homing0_seeking = ((homing0_state == 3'b001) || (homing0_state == 3'b010));
-    if ((homing0_state == 3'b101)) begin
+    homing0_seek_next = ((homing0_state == 3'b000) || (homing0_state == 3'b001) || ((homing0_state == 3'b010) && (!homing0_switch)));
+    if ((homing0_state == 3'b100)) begin
         homing0_magnitude = {8'h0, reg_word35_shown};
     end
     else begin
@@ -3894,11 +3896,16 @@ always @(reg_word36_shown, reg_word35_shown, homing0_axis, home_inputs, homing0_
 end
 
 
-
-assign homing0_positive = (homing0_seeking != homing0_negative);
-assign home_busy = (homing0_state != 3'b000);
-assign homing0_port_load = ((homing0_state == 3'b001) || (homing0_state == 3'b011) || (homing0_state == 3'b101));
-assign homing0_port_period = homing0_seeking ? reg_word33_shown : reg_word34_shown;
+always @(reg_word31__store21_word_value, homing0_state, homing0_negative) begin: homing0_command
+    if ((homing0_state == 3'b000)) begin
+        homing0_positive = (!reg_word31__store21_word_value[1]);
+    end
+    else begin
+        homing0_positive = homing0_negative;
+    end
+    home_busy = (homing0_state != 3'b000);
+    homing0_port_load = ((homing0_state == 3'b001) || (homing0_state == 3'b011) || (homing0_state == 3'b101));
+end
 
 
 always @(homing0_positive, homing0_magnitude) begin: homing0_sign
@@ -3917,8 +3924,21 @@ end
 assign homing0_signed_count = (homing0_operand + homing0_addend);
 
 
-
-assign homing0_port_count = $signed(homing0_signed_count);
+always @(posedge clock, negedge reset) begin: homing0_next_load
+    if (reset == 0) begin
+        homing0_port_period <= 1;
+        homing0_port_count <= 0;
+    end
+    else begin
+        homing0_port_count <= $signed(homing0_signed_count);
+        if (homing0_seek_next) begin
+            homing0_port_period <= reg_word33_shown;
+        end
+        else begin
+            homing0_port_period <= reg_word34_shown;
+        end
+    end
+end
 
 
 always @(homing0_axis, homing0_switch, homing0_state) begin: homing0_edges

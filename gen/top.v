@@ -325,7 +325,7 @@ reg [31:0] card1_card_core1_regs_fifo2_written_data;
 reg [31:0] card1_card_core1_regs_fifo2_written_mask;
 reg [31:0] card1_card_core1_regs_fifo2_read_end;
 reg [1:0] card1_card_core1_regs_fifo2_control;
-wire card1_card_core1_regs_fifo2_home_busy;
+reg card1_card_core1_regs_fifo2_home_busy;
 reg card1_card_core1_regs_fifo2_command_strobe;
 reg [3:0] card1_card_core1_regs_fifo2_command;
 reg card1_card_core1_regs_fifo2_guard_stopped;
@@ -851,15 +851,16 @@ reg card1_card_core1_regs_fifo2_homing2_negative;
 reg card1_card_core1_regs_fifo2_homing2_not_found;
 reg [23:0] card1_card_core1_regs_fifo2_homing2_operand;
 reg [1:0] card1_card_core1_regs_fifo2_homing2_phase;
-wire card1_card_core1_regs_fifo2_homing2_positive;
+reg card1_card_core1_regs_fifo2_homing2_positive;
 reg card1_card_core1_regs_fifo2_homing2_refused;
+reg card1_card_core1_regs_fifo2_homing2_seek_next;
 reg card1_card_core1_regs_fifo2_homing2_seeking;
 wire [23:0] card1_card_core1_regs_fifo2_homing2_signed_count;
 reg [2:0] card1_card_core1_regs_fifo2_homing2_state;
 reg card1_card_core1_regs_fifo2_homing2_switch;
-wire card1_card_core1_regs_fifo2_homing2_port_load;
-wire [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
-wire signed [23:0] card1_card_core1_regs_fifo2_homing2_port_count;
+reg card1_card_core1_regs_fifo2_homing2_port_load;
+reg signed [23:0] card1_card_core1_regs_fifo2_homing2_port_count;
+reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
 reg card1_card_core1_regs_fifo2_homing2_port_ended;
 wire [1:0] card1_card_core1_regs_fifo2__status2_quadrant;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_acc_bits;
@@ -5988,10 +5989,11 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word110_shown, card1_card_core1_regs_fifo2_reg_word109_shown, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_home_inputs, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
+always @(card1_card_core1_regs_fifo2_reg_word110_shown, card1_card_core1_regs_fifo2_reg_word109_shown, card1_card_core1_regs_fifo2_home_inputs, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
     card1_card_core1_regs_fifo2_homing2_switch = card1_card_core1_regs_fifo2_homing2_axis ? card1_card_core1_regs_fifo2_home_inputs[1] : card1_card_core1_regs_fifo2_home_inputs[0];
     card1_card_core1_regs_fifo2_homing2_seeking = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b010));
-    if ((card1_card_core1_regs_fifo2_homing2_state == 3'b101)) begin
+    card1_card_core1_regs_fifo2_homing2_seek_next = ((card1_card_core1_regs_fifo2_homing2_state == 3'b000) || (card1_card_core1_regs_fifo2_homing2_state == 3'b001) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)));
+    if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
         card1_card_core1_regs_fifo2_homing2_magnitude = {8'h0, card1_card_core1_regs_fifo2_reg_word109_shown};
     end
     else begin
@@ -6000,11 +6002,16 @@ always @(card1_card_core1_regs_fifo2_reg_word110_shown, card1_card_core1_regs_fi
 end
 
 
-
-assign card1_card_core1_regs_fifo2_homing2_positive = (card1_card_core1_regs_fifo2_homing2_seeking != card1_card_core1_regs_fifo2_homing2_negative);
-assign card1_card_core1_regs_fifo2_home_busy = (card1_card_core1_regs_fifo2_homing2_state != 3'b000);
-assign card1_card_core1_regs_fifo2_homing2_port_load = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b011) || (card1_card_core1_regs_fifo2_homing2_state == 3'b101));
-assign card1_card_core1_regs_fifo2_homing2_port_period = card1_card_core1_regs_fifo2_homing2_seeking ? card1_card_core1_regs_fifo2_reg_word107_shown : card1_card_core1_regs_fifo2_reg_word108_shown;
+always @(card1_card_core1_regs_fifo2_reg_word105__store73_word_value, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_negative) begin: card1_card_core1_regs_fifo2_homing2_command
+    if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
+        card1_card_core1_regs_fifo2_homing2_positive = (!card1_card_core1_regs_fifo2_reg_word105__store73_word_value[1]);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_homing2_positive = card1_card_core1_regs_fifo2_homing2_negative;
+    end
+    card1_card_core1_regs_fifo2_home_busy = (card1_card_core1_regs_fifo2_homing2_state != 3'b000);
+    card1_card_core1_regs_fifo2_homing2_port_load = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b011) || (card1_card_core1_regs_fifo2_homing2_state == 3'b101));
+end
 
 
 always @(card1_card_core1_regs_fifo2_homing2_positive, card1_card_core1_regs_fifo2_homing2_magnitude) begin: card1_card_core1_regs_fifo2_homing2_sign
@@ -6023,8 +6030,21 @@ end
 assign card1_card_core1_regs_fifo2_homing2_signed_count = (card1_card_core1_regs_fifo2_homing2_operand + card1_card_core1_regs_fifo2_homing2_addend);
 
 
-
-assign card1_card_core1_regs_fifo2_homing2_port_count = $signed(card1_card_core1_regs_fifo2_homing2_signed_count);
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing2_next_load
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_homing2_port_period <= 1;
+        card1_card_core1_regs_fifo2_homing2_port_count <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_homing2_port_count <= $signed(card1_card_core1_regs_fifo2_homing2_signed_count);
+        if (card1_card_core1_regs_fifo2_homing2_seek_next) begin
+            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word107_shown;
+        end
+        else begin
+            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word108_shown;
+        end
+    end
+end
 
 
 always @(card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_edges

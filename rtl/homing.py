@@ -47,8 +47,10 @@ def homing(clock, reset, port):
     state = Signal(state_t.IDLE)
     axis, negative = Signal(bool(0)), Signal(bool(0))
     done, not_found, refused = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
-    switch, positive, seeking = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
-    # the count is |distance| or its two's complement: one adder, ~magnitude + 1
+    switch, positive, seeking, seek_next = (Signal(bool(0)) for _ in range(4))
+    # The count of the next load, |distance| or its two's complement (one
+    # adder, ~magnitude + 1), and the period are registered: the direct-pulse
+    # generator's own adders then start from flip-flops.
     count_bits = len(port.count)
     magnitude, operand, addend = (Signal(intbv(0)[count_bits:]) for _ in range(3))
     signed_count = Signal(modbv(0)[count_bits:])
@@ -62,7 +64,9 @@ def homing(clock, reset, port):
     def select():
         switch.next = port.home[1] if axis else port.home[0]
         seeking.next = state == state_t.SEEK_LOAD or state == state_t.SEEK
-        if state == state_t.BACKOFF_LOAD:
+        seek_next.next = state == state_t.IDLE or state == state_t.SEEK_LOAD or (state == state_t.SEEK and not switch)
+        # the load after IDLE is the seek's, after SEEK the release's, after RELEASE the back-off's
+        if state == state_t.RELEASE:
             magnitude.next = concat(intbv(0)[backoff_pad:], port.backoff)
         else:
             magnitude.next = concat(intbv(0)[search_pad:], port.search)
@@ -70,10 +74,12 @@ def homing(clock, reset, port):
     @always_comb
     def command():
         # the seek goes towards the switch, the release and the back-off away from it
-        positive.next = seeking != negative
+        if state == state_t.IDLE:
+            positive.next = not port.request[negative_bit]
+        else:
+            positive.next = negative
         port.busy.next = state != state_t.IDLE
         port.load.next = state == state_t.SEEK_LOAD or state == state_t.TURN or state == state_t.BACKOFF_LOAD
-        port.period.next = port.seek_period if seeking else port.release_period
 
     @always_comb
     def sign():
@@ -88,9 +94,13 @@ def homing(clock, reset, port):
     def negate():
         signed_count.next = operand + addend
 
-    @always_comb
-    def signed():
+    @always_seq(clock.posedge, reset=reset)
+    def next_load():
         port.count.next = signed_count.signed()
+        if seek_next:
+            port.period.next = port.seek_period
+        else:
+            port.period.next = port.release_period
 
     @always_comb
     def edges():
@@ -180,7 +190,7 @@ def homing(clock, reset, port):
                 port.ended.next = 1
                 state.next = state_t.IDLE
 
-    return select, command, sign, negate, signed, edges, phases, show, sequence
+    return select, command, sign, negate, next_load, edges, phases, show, sequence
 
 
 def homing_ports():
