@@ -251,12 +251,12 @@ reg card_core0_core_clear;
 wire card_core0_dda_reset;
 reg [31:0] card_core0_regs_fifo1_fifo_dout;
 reg card_core0_regs_fifo1_fifo_pop;
-wire card_core0_regs_fifo1_fifo_empty;
 reg card_core0_regs_fifo1_set_strobe;
 reg [3:0] card_core0_regs_fifo1_set_index;
 reg [31:0] card_core0_regs_fifo1_set_value;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
+reg [1:0] card_core0_regs_fifo1_home_zero;
 reg card_core0_regs_fifo1_busy_before;
 reg card_core0_regs_fifo1_done_flag;
 reg card_core0_regs_fifo1_low_before;
@@ -266,15 +266,19 @@ reg [31:0] card_core0_regs_fifo1_byte_mask;
 wire card_core0_regs_fifo1_clear_error;
 wire card_core0_regs_fifo1_clear_position;
 wire card_core0_regs_fifo1_clear_stop;
+wire card_core0_regs_fifo1_direct_clear;
 wire card_core0_regs_fifo1_direct_mode;
 wire card_core0_regs_fifo1_direct_ready;
 wire card_core0_regs_fifo1_discard_on_clear;
 wire card_core0_regs_fifo1_enable;
+wire card_core0_regs_fifo1_fifo_empty;
 wire card_core0_regs_fifo1_fifo_flush;
 wire card_core0_regs_fifo1_fifo_full;
 wire [9:0] card_core0_regs_fifo1_fifo_level;
 reg card_core0_regs_fifo1_halt;
 wire card_core0_regs_fifo1_hold;
+wire card_core0_regs_fifo1_home_idle;
+wire [1:0] card_core0_regs_fifo1_home_inputs;
 reg card_core0_regs_fifo1_io_read;
 reg card_core0_regs_fifo1_io_write;
 reg card_core0_regs_fifo1_io_written;
@@ -299,6 +303,7 @@ reg [31:0] card_core0_regs_fifo1_written_data;
 reg [31:0] card_core0_regs_fifo1_written_mask;
 reg [31:0] card_core0_regs_fifo1_read_end;
 reg [1:0] card_core0_regs_fifo1_control;
+reg card_core0_regs_fifo1_home_busy;
 reg card_core0_regs_fifo1_command_strobe;
 reg [3:0] card_core0_regs_fifo1_command;
 wire card_core0_regs_fifo1_feed_pause;
@@ -308,6 +313,8 @@ wire card_core0_regs_fifo1_guard_ramp;
 reg [15:0] card_core0_regs_fifo1_ramp_step;
 reg card_core0_regs_fifo1_feed_held;
 reg card_core0_regs_fifo1_guard_stopped;
+reg card_core0_regs_fifo1_home_cut;
+reg [6:0] card_core0_regs_fifo1_conditioning_active;
 reg card_core0_regs_fifo1_guard_stop_event;
 wire card_core0_regs_fifo1_requests_step_x;
 wire card_core0_regs_fifo1_requests_step_y;
@@ -336,152 +343,92 @@ wire card_core0_regs_fifo1_sync_fifo1_last_beyond;
 wire card_core0_regs_fifo1_sync_fifo1_one_word;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_read_addr;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_write_addr;
-wire [31:0] card_core0_regs_fifo1_reg_word31_shown;
-wire card_core0_regs_fifo1_reg_word31_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word31_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word31_chain_out_data;
-wire [31:0] card_core0_regs_fifo1_reg_word31_chain_in_data;
-wire card_core0_regs_fifo1_reg_word31_chain_out_clamped;
-wire card_core0_regs_fifo1_reg_word31_chain_in_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word32_honoured;
-wire card_core0_regs_fifo1_reg_word32_out_of_range;
-reg card_core0_regs_fifo1_reg_word32_clamped;
-wire card_core0_regs_fifo1_reg_word32_mine;
-wire card_core0_regs_fifo1_reg_word32_mine_write;
-wire card_core0_regs_fifo1_reg_word32_set_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word32_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word32_written;
-reg [31:0] card_core0_regs_fifo1_reg_word32_chain_out_data;
-wire card_core0_regs_fifo1_reg_word32_chain_out_clamped;
-wire [3:0] card_core0_regs_fifo1_reg_word33_honoured;
-wire card_core0_regs_fifo1_reg_word33_out_of_range;
-wire [3:0] card_core0_regs_fifo1_reg_word33_shown;
-reg card_core0_regs_fifo1_reg_word33_clamped;
-wire card_core0_regs_fifo1_reg_word33_mine;
-wire card_core0_regs_fifo1_reg_word33_mine_write;
-wire [31:0] card_core0_regs_fifo1_reg_word33_shown_wide;
-wire [3:0] card_core0_regs_fifo1_reg_word33_written;
-reg [31:0] card_core0_regs_fifo1_reg_word33_chain_out_data;
-wire card_core0_regs_fifo1_reg_word33_chain_out_clamped;
-reg [31:0] card_core0_regs_fifo1_reg_word34_shown;
-wire card_core0_regs_fifo1_reg_word34_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word34_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word34_chain_out_data;
-wire card_core0_regs_fifo1_reg_word34_chain_out_clamped;
-wire [6:0] card_core0_regs_fifo1_reg_word35_honoured;
-wire card_core0_regs_fifo1_reg_word35_out_of_range;
-reg [6:0] card_core0_regs_fifo1_reg_word35_shown;
-reg card_core0_regs_fifo1_reg_word35_clamped;
-wire card_core0_regs_fifo1_reg_word35_mine;
-wire card_core0_regs_fifo1_reg_word35_mine_write;
-wire card_core0_regs_fifo1_reg_word35_set_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word35_shown_wide;
-reg [6:0] card_core0_regs_fifo1_reg_word35_written;
-reg [31:0] card_core0_regs_fifo1_reg_word35_chain_out_data;
-wire card_core0_regs_fifo1_reg_word35_chain_out_clamped;
-wire [6:0] card_core0_regs_fifo1_reg_word36_honoured;
-reg [6:0] card_core0_regs_fifo1_reg_word36_shown;
-wire card_core0_regs_fifo1_reg_word36_mine;
-wire card_core0_regs_fifo1_reg_word36_mine_write;
-wire [31:0] card_core0_regs_fifo1_reg_word36_shown_wide;
-wire [6:0] card_core0_regs_fifo1_reg_word36_written;
-reg [31:0] card_core0_regs_fifo1_reg_word36_chain_out_data;
-wire card_core0_regs_fifo1_reg_word36_chain_out_clamped;
-reg [6:0] card_core0_regs_fifo1_reg_word36__store24_word_hw;
-wire [15:0] card_core0_regs_fifo1_reg_word37_honoured;
-wire card_core0_regs_fifo1_reg_word37_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word37_shown;
-reg card_core0_regs_fifo1_reg_word37_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word37_shown;
 wire card_core0_regs_fifo1_reg_word37_mine;
-wire card_core0_regs_fifo1_reg_word37_mine_write;
-wire card_core0_regs_fifo1_reg_word37_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word37_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word37_written;
 reg [31:0] card_core0_regs_fifo1_reg_word37_chain_out_data;
+wire [31:0] card_core0_regs_fifo1_reg_word37_chain_in_data;
 wire card_core0_regs_fifo1_reg_word37_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word38_shown;
+wire card_core0_regs_fifo1_reg_word37_chain_in_clamped;
+wire [1:0] card_core0_regs_fifo1_reg_word38_honoured;
+wire card_core0_regs_fifo1_reg_word38_out_of_range;
+reg card_core0_regs_fifo1_reg_word38_clamped;
 wire card_core0_regs_fifo1_reg_word38_mine;
+wire card_core0_regs_fifo1_reg_word38_mine_write;
+wire card_core0_regs_fifo1_reg_word38_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word38_shown_wide;
+reg [1:0] card_core0_regs_fifo1_reg_word38_written;
 reg [31:0] card_core0_regs_fifo1_reg_word38_chain_out_data;
 wire card_core0_regs_fifo1_reg_word38_chain_out_clamped;
-wire [31:0] card_core0_regs_fifo1_reg_word39_shown;
+wire [3:0] card_core0_regs_fifo1_reg_word39_honoured;
+wire card_core0_regs_fifo1_reg_word39_out_of_range;
+wire [3:0] card_core0_regs_fifo1_reg_word39_shown;
+reg card_core0_regs_fifo1_reg_word39_clamped;
 wire card_core0_regs_fifo1_reg_word39_mine;
+wire card_core0_regs_fifo1_reg_word39_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word39_shown_wide;
+wire [3:0] card_core0_regs_fifo1_reg_word39_written;
 reg [31:0] card_core0_regs_fifo1_reg_word39_chain_out_data;
 wire card_core0_regs_fifo1_reg_word39_chain_out_clamped;
-wire [31:0] card_core0_regs_fifo1_reg_word40_shown;
+reg [31:0] card_core0_regs_fifo1_reg_word40_shown;
 wire card_core0_regs_fifo1_reg_word40_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word40_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word40_chain_out_data;
 wire card_core0_regs_fifo1_reg_word40_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word41_honoured;
-reg card_core0_regs_fifo1_reg_word41_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word41_shown;
+wire [7:0] card_core0_regs_fifo1_reg_word41_honoured;
+wire card_core0_regs_fifo1_reg_word41_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word41_shown;
 reg card_core0_regs_fifo1_reg_word41_clamped;
 wire card_core0_regs_fifo1_reg_word41_mine;
 wire card_core0_regs_fifo1_reg_word41_mine_write;
+wire card_core0_regs_fifo1_reg_word41_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word41_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word41_written;
+reg [7:0] card_core0_regs_fifo1_reg_word41_written;
 reg [31:0] card_core0_regs_fifo1_reg_word41_chain_out_data;
 wire card_core0_regs_fifo1_reg_word41_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word42_honoured;
-reg card_core0_regs_fifo1_reg_word42_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word42_shown;
-reg card_core0_regs_fifo1_reg_word42_clamped;
+wire [7:0] card_core0_regs_fifo1_reg_word42_honoured;
+reg [7:0] card_core0_regs_fifo1_reg_word42_shown;
 wire card_core0_regs_fifo1_reg_word42_mine;
 wire card_core0_regs_fifo1_reg_word42_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word42_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word42_written;
+wire [7:0] card_core0_regs_fifo1_reg_word42_written;
 reg [31:0] card_core0_regs_fifo1_reg_word42_chain_out_data;
 wire card_core0_regs_fifo1_reg_word42_chain_out_clamped;
+reg [7:0] card_core0_regs_fifo1_reg_word42__store29_word_hw;
 wire [15:0] card_core0_regs_fifo1_reg_word43_honoured;
 wire card_core0_regs_fifo1_reg_word43_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word43_shown;
 reg card_core0_regs_fifo1_reg_word43_clamped;
 wire card_core0_regs_fifo1_reg_word43_mine;
 wire card_core0_regs_fifo1_reg_word43_mine_write;
+wire card_core0_regs_fifo1_reg_word43_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word43_shown_wide;
 reg [15:0] card_core0_regs_fifo1_reg_word43_written;
 reg [31:0] card_core0_regs_fifo1_reg_word43_chain_out_data;
 wire card_core0_regs_fifo1_reg_word43_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word44_honoured;
-reg card_core0_regs_fifo1_reg_word44_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word44_shown;
-reg card_core0_regs_fifo1_reg_word44_clamped;
+reg [15:0] card_core0_regs_fifo1_reg_word44_shown;
 wire card_core0_regs_fifo1_reg_word44_mine;
-wire card_core0_regs_fifo1_reg_word44_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word44_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word44_written;
 reg [31:0] card_core0_regs_fifo1_reg_word44_chain_out_data;
 wire card_core0_regs_fifo1_reg_word44_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word45_honoured;
-reg card_core0_regs_fifo1_reg_word45_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word45_shown;
-reg card_core0_regs_fifo1_reg_word45_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word45_shown;
 wire card_core0_regs_fifo1_reg_word45_mine;
-wire card_core0_regs_fifo1_reg_word45_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word45_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word45_written;
 reg [31:0] card_core0_regs_fifo1_reg_word45_chain_out_data;
 wire card_core0_regs_fifo1_reg_word45_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word46_honoured;
-reg card_core0_regs_fifo1_reg_word46_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word46_shown;
-reg card_core0_regs_fifo1_reg_word46_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word46_shown;
 wire card_core0_regs_fifo1_reg_word46_mine;
-wire card_core0_regs_fifo1_reg_word46_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word46_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word46_written;
 reg [31:0] card_core0_regs_fifo1_reg_word46_chain_out_data;
 wire card_core0_regs_fifo1_reg_word46_chain_out_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word47_honoured;
-wire card_core0_regs_fifo1_reg_word47_out_of_range;
-reg [1:0] card_core0_regs_fifo1_reg_word47_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word47_honoured;
+reg card_core0_regs_fifo1_reg_word47_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word47_shown;
 reg card_core0_regs_fifo1_reg_word47_clamped;
 wire card_core0_regs_fifo1_reg_word47_mine;
 wire card_core0_regs_fifo1_reg_word47_mine_write;
-wire card_core0_regs_fifo1_reg_word47_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word47_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word47_written;
+reg [31:0] card_core0_regs_fifo1_reg_word47_written;
 reg [31:0] card_core0_regs_fifo1_reg_word47_chain_out_data;
 wire card_core0_regs_fifo1_reg_word47_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word48_honoured;
@@ -494,119 +441,240 @@ wire [31:0] card_core0_regs_fifo1_reg_word48_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word48_written;
 reg [31:0] card_core0_regs_fifo1_reg_word48_chain_out_data;
 wire card_core0_regs_fifo1_reg_word48_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word49_honoured;
-reg card_core0_regs_fifo1_reg_word49_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word49_shown;
+wire [15:0] card_core0_regs_fifo1_reg_word49_honoured;
+wire card_core0_regs_fifo1_reg_word49_out_of_range;
 reg card_core0_regs_fifo1_reg_word49_clamped;
 wire card_core0_regs_fifo1_reg_word49_mine;
 wire card_core0_regs_fifo1_reg_word49_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word49_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word49_written;
+reg [15:0] card_core0_regs_fifo1_reg_word49_written;
 reg [31:0] card_core0_regs_fifo1_reg_word49_chain_out_data;
 wire card_core0_regs_fifo1_reg_word49_chain_out_clamped;
-reg [23:0] card_core0_regs_fifo1_reg_word50_honoured;
+reg [7:0] card_core0_regs_fifo1_reg_word50_honoured;
 reg card_core0_regs_fifo1_reg_word50_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word50_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word50_shown;
 reg card_core0_regs_fifo1_reg_word50_clamped;
 wire card_core0_regs_fifo1_reg_word50_mine;
 wire card_core0_regs_fifo1_reg_word50_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word50_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word50_written;
+reg [31:0] card_core0_regs_fifo1_reg_word50_written;
 reg [31:0] card_core0_regs_fifo1_reg_word50_chain_out_data;
 wire card_core0_regs_fifo1_reg_word50_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word50__store35_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word50__store35_word_value;
-reg [23:0] card_core0_regs_fifo1_reg_word51_honoured;
+reg [7:0] card_core0_regs_fifo1_reg_word51_honoured;
 reg card_core0_regs_fifo1_reg_word51_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word51_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word51_shown;
 reg card_core0_regs_fifo1_reg_word51_clamped;
 wire card_core0_regs_fifo1_reg_word51_mine;
 wire card_core0_regs_fifo1_reg_word51_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word51_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word51_written;
+reg [31:0] card_core0_regs_fifo1_reg_word51_written;
 reg [31:0] card_core0_regs_fifo1_reg_word51_chain_out_data;
 wire card_core0_regs_fifo1_reg_word51_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word51__store36_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word51__store36_word_value;
-wire [31:0] card_core0_regs_fifo1_reg_word52_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word52_honoured;
+reg card_core0_regs_fifo1_reg_word52_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word52_shown;
+reg card_core0_regs_fifo1_reg_word52_clamped;
 wire card_core0_regs_fifo1_reg_word52_mine;
+wire card_core0_regs_fifo1_reg_word52_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word52_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word52_written;
 reg [31:0] card_core0_regs_fifo1_reg_word52_chain_out_data;
 wire card_core0_regs_fifo1_reg_word52_chain_out_clamped;
-wire [15:0] card_core0_regs_fifo1_reg_word53_shown;
+wire [1:0] card_core0_regs_fifo1_reg_word53_honoured;
+wire card_core0_regs_fifo1_reg_word53_out_of_range;
+reg [1:0] card_core0_regs_fifo1_reg_word53_shown;
+reg card_core0_regs_fifo1_reg_word53_clamped;
 wire card_core0_regs_fifo1_reg_word53_mine;
+wire card_core0_regs_fifo1_reg_word53_mine_write;
+wire card_core0_regs_fifo1_reg_word53_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word53_shown_wide;
+reg [1:0] card_core0_regs_fifo1_reg_word53_written;
 reg [31:0] card_core0_regs_fifo1_reg_word53_chain_out_data;
 wire card_core0_regs_fifo1_reg_word53_chain_out_clamped;
-wire [27:0] card_core0_regs_fifo1_reg_word54_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word54_honoured;
+reg card_core0_regs_fifo1_reg_word54_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word54_shown;
+reg card_core0_regs_fifo1_reg_word54_clamped;
 wire card_core0_regs_fifo1_reg_word54_mine;
+wire card_core0_regs_fifo1_reg_word54_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word54_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word54_written;
 reg [31:0] card_core0_regs_fifo1_reg_word54_chain_out_data;
 wire card_core0_regs_fifo1_reg_word54_chain_out_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word55_honoured;
-wire card_core0_regs_fifo1_reg_word55_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word55_honoured;
+reg card_core0_regs_fifo1_reg_word55_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word55_shown;
 reg card_core0_regs_fifo1_reg_word55_clamped;
 wire card_core0_regs_fifo1_reg_word55_mine;
 wire card_core0_regs_fifo1_reg_word55_mine_write;
-wire card_core0_regs_fifo1_reg_word55_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word55_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word55_written;
+reg [31:0] card_core0_regs_fifo1_reg_word55_written;
 reg [31:0] card_core0_regs_fifo1_reg_word55_chain_out_data;
 wire card_core0_regs_fifo1_reg_word55_chain_out_clamped;
-reg [19:0] card_core0_regs_fifo1_reg_word56_shown;
+reg [23:0] card_core0_regs_fifo1_reg_word56_honoured;
+reg card_core0_regs_fifo1_reg_word56_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word56_shown;
+reg card_core0_regs_fifo1_reg_word56_clamped;
 wire card_core0_regs_fifo1_reg_word56_mine;
+wire card_core0_regs_fifo1_reg_word56_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word56_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word56_written;
 reg [31:0] card_core0_regs_fifo1_reg_word56_chain_out_data;
 wire card_core0_regs_fifo1_reg_word56_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word57_shown;
+reg card_core0_regs_fifo1_reg_word56__store40_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word56__store40_word_value;
+reg [23:0] card_core0_regs_fifo1_reg_word57_honoured;
+reg card_core0_regs_fifo1_reg_word57_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word57_shown;
+reg card_core0_regs_fifo1_reg_word57_clamped;
 wire card_core0_regs_fifo1_reg_word57_mine;
+wire card_core0_regs_fifo1_reg_word57_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word57_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word57_written;
 reg [31:0] card_core0_regs_fifo1_reg_word57_chain_out_data;
 wire card_core0_regs_fifo1_reg_word57_chain_out_clamped;
-wire [6:0] card_core0_regs_fifo1_reg_word58_honoured;
-wire card_core0_regs_fifo1_reg_word58_out_of_range;
-reg [6:0] card_core0_regs_fifo1_reg_word58_shown;
-reg card_core0_regs_fifo1_reg_word58_clamped;
+reg card_core0_regs_fifo1_reg_word57__store41_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word57__store41_word_value;
+wire [31:0] card_core0_regs_fifo1_reg_word58_shown;
 wire card_core0_regs_fifo1_reg_word58_mine;
-wire card_core0_regs_fifo1_reg_word58_mine_write;
-wire card_core0_regs_fifo1_reg_word58_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word58_shown_wide;
-reg [6:0] card_core0_regs_fifo1_reg_word58_written;
 reg [31:0] card_core0_regs_fifo1_reg_word58_chain_out_data;
 wire card_core0_regs_fifo1_reg_word58_chain_out_clamped;
-reg [3:0] card_core0_regs_fifo1_reg_word59_honoured;
-reg card_core0_regs_fifo1_reg_word59_out_of_range;
-reg [3:0] card_core0_regs_fifo1_reg_word59_shown;
-reg card_core0_regs_fifo1_reg_word59_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word59_shown;
 wire card_core0_regs_fifo1_reg_word59_mine;
-wire card_core0_regs_fifo1_reg_word59_mine_write;
-wire card_core0_regs_fifo1_reg_word59_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word59_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word59_written;
 reg [31:0] card_core0_regs_fifo1_reg_word59_chain_out_data;
 wire card_core0_regs_fifo1_reg_word59_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word60_honoured;
-reg card_core0_regs_fifo1_reg_word60_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word60_shown;
-reg card_core0_regs_fifo1_reg_word60_clamped;
+wire [27:0] card_core0_regs_fifo1_reg_word60_shown;
 wire card_core0_regs_fifo1_reg_word60_mine;
-wire card_core0_regs_fifo1_reg_word60_mine_write;
-wire card_core0_regs_fifo1_reg_word60_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word60_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word60_written;
 reg [31:0] card_core0_regs_fifo1_reg_word60_chain_out_data;
 wire card_core0_regs_fifo1_reg_word60_chain_out_clamped;
-wire [23:0] card_core0_regs_fifo1_reg_word61_honoured;
+wire [1:0] card_core0_regs_fifo1_reg_word61_honoured;
 wire card_core0_regs_fifo1_reg_word61_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word61_shown;
 reg card_core0_regs_fifo1_reg_word61_clamped;
 wire card_core0_regs_fifo1_reg_word61_mine;
 wire card_core0_regs_fifo1_reg_word61_mine_write;
+wire card_core0_regs_fifo1_reg_word61_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word61_shown_wide;
-wire [23:0] card_core0_regs_fifo1_reg_word61_written;
+reg [1:0] card_core0_regs_fifo1_reg_word61_written;
+reg [31:0] card_core0_regs_fifo1_reg_word61_chain_out_data;
 wire card_core0_regs_fifo1_reg_word61_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word61__store41_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word61__store41_word_value;
+reg [19:0] card_core0_regs_fifo1_reg_word62_shown;
+wire card_core0_regs_fifo1_reg_word62_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word62_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word62_chain_out_data;
+wire card_core0_regs_fifo1_reg_word62_chain_out_clamped;
+reg [7:0] card_core0_regs_fifo1_reg_word63_shown;
+wire card_core0_regs_fifo1_reg_word63_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word63_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word63_chain_out_data;
+wire card_core0_regs_fifo1_reg_word63_chain_out_clamped;
+wire [6:0] card_core0_regs_fifo1_reg_word64_honoured;
+wire card_core0_regs_fifo1_reg_word64_out_of_range;
+reg [6:0] card_core0_regs_fifo1_reg_word64_shown;
+reg card_core0_regs_fifo1_reg_word64_clamped;
+wire card_core0_regs_fifo1_reg_word64_mine;
+wire card_core0_regs_fifo1_reg_word64_mine_write;
+wire card_core0_regs_fifo1_reg_word64_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word64_shown_wide;
+reg [6:0] card_core0_regs_fifo1_reg_word64_written;
+reg [31:0] card_core0_regs_fifo1_reg_word64_chain_out_data;
+wire card_core0_regs_fifo1_reg_word64_chain_out_clamped;
+reg [3:0] card_core0_regs_fifo1_reg_word65_honoured;
+reg card_core0_regs_fifo1_reg_word65_out_of_range;
+reg [3:0] card_core0_regs_fifo1_reg_word65_shown;
+reg card_core0_regs_fifo1_reg_word65_clamped;
+wire card_core0_regs_fifo1_reg_word65_mine;
+wire card_core0_regs_fifo1_reg_word65_mine_write;
+wire card_core0_regs_fifo1_reg_word65_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word65_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word65_written;
+reg [31:0] card_core0_regs_fifo1_reg_word65_chain_out_data;
+wire card_core0_regs_fifo1_reg_word65_chain_out_clamped;
+reg [15:0] card_core0_regs_fifo1_reg_word66_honoured;
+reg card_core0_regs_fifo1_reg_word66_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word66_shown;
+reg card_core0_regs_fifo1_reg_word66_clamped;
+wire card_core0_regs_fifo1_reg_word66_mine;
+wire card_core0_regs_fifo1_reg_word66_mine_write;
+wire card_core0_regs_fifo1_reg_word66_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word66_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word66_written;
+reg [31:0] card_core0_regs_fifo1_reg_word66_chain_out_data;
+wire card_core0_regs_fifo1_reg_word66_chain_out_clamped;
+wire [23:0] card_core0_regs_fifo1_reg_word67_honoured;
+wire card_core0_regs_fifo1_reg_word67_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word67_shown;
+reg card_core0_regs_fifo1_reg_word67_clamped;
+wire card_core0_regs_fifo1_reg_word67_mine;
+wire card_core0_regs_fifo1_reg_word67_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word67_shown_wide;
+wire [23:0] card_core0_regs_fifo1_reg_word67_written;
+reg [31:0] card_core0_regs_fifo1_reg_word67_chain_out_data;
+wire card_core0_regs_fifo1_reg_word67_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word67__store46_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word67__store46_word_value;
+wire [1:0] card_core0_regs_fifo1_reg_word68_honoured;
+wire card_core0_regs_fifo1_reg_word68_out_of_range;
+reg [1:0] card_core0_regs_fifo1_reg_word68_shown;
+reg card_core0_regs_fifo1_reg_word68_clamped;
+wire card_core0_regs_fifo1_reg_word68_mine;
+wire card_core0_regs_fifo1_reg_word68_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word68_shown_wide;
+wire [1:0] card_core0_regs_fifo1_reg_word68_written;
+reg [31:0] card_core0_regs_fifo1_reg_word68_chain_out_data;
+wire card_core0_regs_fifo1_reg_word68_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word68__store47_word_strobe;
+reg [1:0] card_core0_regs_fifo1_reg_word68__store47_word_value;
+reg [5:0] card_core0_regs_fifo1_reg_word69_shown;
+wire card_core0_regs_fifo1_reg_word69_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word69_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word69_chain_out_data;
+wire card_core0_regs_fifo1_reg_word69_chain_out_clamped;
+reg [15:0] card_core0_regs_fifo1_reg_word70_honoured;
+reg card_core0_regs_fifo1_reg_word70_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word70_shown;
+reg card_core0_regs_fifo1_reg_word70_clamped;
+wire card_core0_regs_fifo1_reg_word70_mine;
+wire card_core0_regs_fifo1_reg_word70_mine_write;
+wire card_core0_regs_fifo1_reg_word70_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word70_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word70_written;
+reg [31:0] card_core0_regs_fifo1_reg_word70_chain_out_data;
+wire card_core0_regs_fifo1_reg_word70_chain_out_clamped;
+reg [15:0] card_core0_regs_fifo1_reg_word71_honoured;
+reg card_core0_regs_fifo1_reg_word71_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word71_shown;
+reg card_core0_regs_fifo1_reg_word71_clamped;
+wire card_core0_regs_fifo1_reg_word71_mine;
+wire card_core0_regs_fifo1_reg_word71_mine_write;
+wire card_core0_regs_fifo1_reg_word71_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word71_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word71_written;
+reg [31:0] card_core0_regs_fifo1_reg_word71_chain_out_data;
+wire card_core0_regs_fifo1_reg_word71_chain_out_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word72_honoured;
+wire card_core0_regs_fifo1_reg_word72_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word72_shown;
+reg card_core0_regs_fifo1_reg_word72_clamped;
+wire card_core0_regs_fifo1_reg_word72_mine;
+wire card_core0_regs_fifo1_reg_word72_mine_write;
+wire card_core0_regs_fifo1_reg_word72_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word72_shown_wide;
+reg [15:0] card_core0_regs_fifo1_reg_word72_written;
+reg [31:0] card_core0_regs_fifo1_reg_word72_chain_out_data;
+wire card_core0_regs_fifo1_reg_word72_chain_out_clamped;
+reg [22:0] card_core0_regs_fifo1_reg_word73_honoured;
+reg card_core0_regs_fifo1_reg_word73_out_of_range;
+reg [22:0] card_core0_regs_fifo1_reg_word73_shown;
+reg card_core0_regs_fifo1_reg_word73_clamped;
+wire card_core0_regs_fifo1_reg_word73_mine;
+wire card_core0_regs_fifo1_reg_word73_mine_write;
+wire card_core0_regs_fifo1_reg_word73_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word73_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word73_written;
+wire card_core0_regs_fifo1_reg_word73_chain_out_clamped;
 wire card_core0_regs_fifo1_sequencer1_arriving_coord_fits;
 reg [2:0] card_core0_regs_fifo1_sequencer1_arriving_count;
 wire card_core0_regs_fifo1_sequencer1_arriving_count_fits;
@@ -694,6 +762,7 @@ reg card_core0_regs_fifo1_direct_pulse2_pending;
 reg card_core0_regs_fifo1_direct_pulse2_waiting;
 reg card_core0_regs_fifo1_direct_pulse2_command_load;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse2_command_count;
+reg [15:0] card_core0_regs_fifo1_direct_pulse2_command_period;
 reg [23:0] card_core0_regs_fifo1_direct_pulse3_count_addend;
 reg [23:0] card_core0_regs_fifo1_direct_pulse3_count_operand;
 wire [23:0] card_core0_regs_fifo1_direct_pulse3_counted;
@@ -704,6 +773,7 @@ reg card_core0_regs_fifo1_direct_pulse3_pending;
 reg card_core0_regs_fifo1_direct_pulse3_waiting;
 reg card_core0_regs_fifo1_direct_pulse3_command_load;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse3_command_count;
+reg [15:0] card_core0_regs_fifo1_direct_pulse3_command_period;
 reg [2:0] card_core0_regs_fifo1_pulse_out1_count;
 reg signed [31:0] card_core0_regs_fifo1_pulse_out1_delta_x;
 reg signed [31:0] card_core0_regs_fifo1_pulse_out1_delta_y;
@@ -735,7 +805,6 @@ reg [6:0] card_core0_regs_fifo1_input_filter1_sync;
 wire [6:0] card_core0_regs_fifo1_input_filter1_taken;
 wire [6:0] card_core0_regs_fifo1_input_filter1_inputs_pins;
 reg [6:0] card_core0_regs_fifo1_input_filter1_inputs_raw;
-reg [6:0] card_core0_regs_fifo1_input_filter1_inputs_active;
 reg card_core0_regs_fifo1_input_filter1_inputs_changed;
 reg [3:0] card_core0_regs_fifo1_input_filter1__input_count7_held;
 wire card_core0_regs_fifo1_input_filter1__input_count7_taken;
@@ -756,6 +825,25 @@ wire card_core0_regs_fifo1_machine_guard1_expired;
 wire [3:0] card_core0_regs_fifo1_machine_guard1_hits;
 reg [1:0] card_core0_regs_fifo1_machine_guard1_guard_reason;
 reg [3:0] card_core0_regs_fifo1_machine_guard1_guard_limits;
+reg [23:0] card_core0_regs_fifo1_homing1_addend;
+reg card_core0_regs_fifo1_homing1_axis;
+reg card_core0_regs_fifo1_homing1_done;
+reg [23:0] card_core0_regs_fifo1_homing1_magnitude;
+reg card_core0_regs_fifo1_homing1_negative;
+reg card_core0_regs_fifo1_homing1_not_found;
+reg [23:0] card_core0_regs_fifo1_homing1_operand;
+reg [1:0] card_core0_regs_fifo1_homing1_phase;
+reg card_core0_regs_fifo1_homing1_positive;
+reg card_core0_regs_fifo1_homing1_refused;
+reg card_core0_regs_fifo1_homing1_seek_next;
+reg card_core0_regs_fifo1_homing1_seeking;
+wire [23:0] card_core0_regs_fifo1_homing1_signed_count;
+reg [2:0] card_core0_regs_fifo1_homing1_state;
+reg card_core0_regs_fifo1_homing1_switch;
+reg card_core0_regs_fifo1_homing1_port_load;
+reg signed [23:0] card_core0_regs_fifo1_homing1_port_count;
+reg [15:0] card_core0_regs_fifo1_homing1_port_period;
+reg card_core0_regs_fifo1_homing1_port_ended;
 wire [1:0] card_core0_regs_fifo1__status1_quadrant;
 reg [4:0] card_core0_dda_arc1_dda_setup1_acc_bits;
 reg card_core0_dda_arc1_dda_setup1_carry;
@@ -921,30 +1009,36 @@ reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word31_shown = 32'd3719037187;
-assign card_core0_regs_fifo1_reg_word31_chain_in_data = 32'd0;
-assign card_core0_regs_fifo1_reg_word31_chain_in_clamped = 1'd0;
-assign card_core0_regs_fifo1_reg_word32_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word32_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word33_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word33_shown = 4'd0;
-assign card_core0_regs_fifo1_reg_word35_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word35_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word37_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word37_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word37_shown = 32'd3719037187;
+assign card_core0_regs_fifo1_reg_word37_chain_in_data = 32'd0;
+assign card_core0_regs_fifo1_reg_word37_chain_in_clamped = 1'd0;
+assign card_core0_regs_fifo1_reg_word38_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word38_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word39_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word39_shown = 4'd0;
+assign card_core0_regs_fifo1_reg_word41_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word41_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word43_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word47_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word47_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word52_shown = 32'd33333333;
-assign card_core0_regs_fifo1_reg_word53_shown = 16'd512;
-assign card_core0_regs_fifo1_reg_word54_shown = 28'd786968;
-assign card_core0_regs_fifo1_reg_word55_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word55_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word58_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word58_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word59_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word60_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word43_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word49_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word53_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word53_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word58_shown = 32'd33333333;
+assign card_core0_regs_fifo1_reg_word59_shown = 16'd512;
+assign card_core0_regs_fifo1_reg_word60_shown = 28'd786968;
 assign card_core0_regs_fifo1_reg_word61_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word61_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word64_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word64_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word65_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word66_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word67_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word68_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word70_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word71_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word72_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word72_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word73_set_mine = 1'd0;
 assign card_core0_regs_fifo1_input_filter1_taken[6] = card_core0_regs_fifo1_input_filter1__input_count13_taken;
 assign card_core0_regs_fifo1_input_filter1_taken[5] = card_core0_regs_fifo1_input_filter1__input_count12_taken;
 assign card_core0_regs_fifo1_input_filter1_taken[4] = card_core0_regs_fifo1_input_filter1__input_count11_taken;
@@ -1051,7 +1145,7 @@ always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_
     reg mem_hit;
     code = pci_slave1_cbe_q;
     config_hit = (pci_slave1_idsel_q && (!pci_slave1_ad_q[0]) && (!pci_slave1_ad_q[1]) && (pci_slave1_ad_q[11-1:8] == 0) && ((code == 10) || (code == 11)));
-    io_hit = (pci_slave1_io_enable && ((code == 2) || (code == 3)) && (pci_slave1_ad_q[32-1:16] == 0) && (pci_slave1_ad_q[16-1:7] == pci_slave1_bar0[16-1:7]));
+    io_hit = (pci_slave1_io_enable && ((code == 2) || (code == 3)) && (pci_slave1_ad_q[32-1:16] == 0) && (pci_slave1_ad_q[16-1:8] == pci_slave1_bar0[16-1:8]));
     mem_hit = (pci_slave1_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)) && (pci_slave1_ad_q[32-1:12] == pci_slave1_bar1[32-1:12]));
     pci_slave1_claim = ((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (config_hit || io_hit || mem_hit));
     pci_slave1_claim_config = config_hit;
@@ -1067,7 +1161,7 @@ always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_start_offset
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
     end
     else if (((code == 2) || (code == 3))) begin
-        pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h1f);
+        pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
     end
     else begin
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3ff);
@@ -1919,7 +2013,7 @@ end
 
 
 
-assign pci_slave1_pci_config1_bar0_read = ((pci_slave1_bar0 & 16'hff80) | 16'h1);
+assign pci_slave1_pci_config1_bar0_read = ((pci_slave1_bar0 & 16'hff00) | 16'h1);
 
 
 always @(pci_slave1_pci_config1_signaled_system_error, pci_slave1_parity_response, pci_slave1_config_irq, pci_slave1_config_index, pci_slave1_pci_config1_bar0_read, pci_slave1_pci_config1_interrupt_line, pci_slave1_interrupt_disable, pci_slave1_pci_config1_signaled_target_abort, pci_slave1_pci_config1_detected_parity_error, pci_slave1_io_enable, pci_slave1_serr_enable, pci_slave1_bar1, pci_slave1_mem_enable) begin: pci_slave1_pci_config1_config_read
@@ -2046,317 +2140,29 @@ assign pci_slave1_pci_control1_control_case0_0_target_room = card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word31_mine = (pci_slave1_pci_requests1_local_addr == 0);
+assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_pci_requests1_local_addr == 0);
 
 
-always @(card_core0_regs_fifo1_reg_word31_mine, card_core0_regs_fifo1_reg_word31_shown_wide, card_core0_regs_fifo1_reg_word31_chain_in_data) begin: card_core0_regs_fifo1_reg_word31_read_chain
-    if (card_core0_regs_fifo1_reg_word31_mine) begin
-        card_core0_regs_fifo1_reg_word31_chain_out_data = (card_core0_regs_fifo1_reg_word31_chain_in_data | card_core0_regs_fifo1_reg_word31_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word31_chain_out_data = card_core0_regs_fifo1_reg_word31_chain_in_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word31_shown_wide = card_core0_regs_fifo1_reg_word31_shown;
-
-
-
-assign card_core0_regs_fifo1_reg_word31_chain_out_clamped = card_core0_regs_fifo1_reg_word31_chain_in_clamped;
-
-
-
-assign card_core0_regs_fifo1_reg_word32_mine = (pci_slave1_pci_requests1_local_addr == 4);
-
-
-always @(card_core0_regs_fifo1_reg_word32_mine, card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word31_chain_out_data) begin: card_core0_regs_fifo1_reg_word32_read_chain
-    if (card_core0_regs_fifo1_reg_word32_mine) begin
-        card_core0_regs_fifo1_reg_word32_chain_out_data = (card_core0_regs_fifo1_reg_word31_chain_out_data | card_core0_regs_fifo1_reg_word32_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word32_chain_out_data = card_core0_regs_fifo1_reg_word31_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word32_shown_wide = {30'h0, card_core0_regs_fifo1_control};
-
-
-
-assign card_core0_regs_fifo1_reg_word32_mine_write = (card_core0_regs_fifo1_written_addr == 4);
-
-
-always @(card_core0_regs_fifo1_reg_word32_shown_wide, card_core0_regs_fifo1_reg_word32_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word32_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word32_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word32_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word32_written = ((card_core0_regs_fifo1_reg_word32_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word32_honoured = card_core0_regs_fifo1_reg_word32_written[2-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word32_chain_out_clamped = (card_core0_regs_fifo1_reg_word31_chain_out_clamped || card_core0_regs_fifo1_reg_word32_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word32__store21_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_control <= 0;
-        card_core0_regs_fifo1_reg_word32_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word32_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word32_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word32_mine_write))) begin
-            card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word32_honoured;
-            card_core0_regs_fifo1_reg_word32_clamped <= card_core0_regs_fifo1_reg_word32_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word33_mine = (pci_slave1_pci_requests1_local_addr == 8);
-
-
-always @(card_core0_regs_fifo1_reg_word33_mine, card_core0_regs_fifo1_reg_word33_shown_wide, card_core0_regs_fifo1_reg_word32_chain_out_data) begin: card_core0_regs_fifo1_reg_word33_read_chain
-    if (card_core0_regs_fifo1_reg_word33_mine) begin
-        card_core0_regs_fifo1_reg_word33_chain_out_data = (card_core0_regs_fifo1_reg_word32_chain_out_data | card_core0_regs_fifo1_reg_word33_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word33_chain_out_data = card_core0_regs_fifo1_reg_word32_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word33_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word33_shown};
-
-
-
-assign card_core0_regs_fifo1_reg_word33_mine_write = (card_core0_regs_fifo1_written_addr == 8);
-
-
-
-assign card_core0_regs_fifo1_reg_word33_written = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
-
-
-
-assign card_core0_regs_fifo1_reg_word33_honoured = card_core0_regs_fifo1_reg_word33_written[4-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word33_chain_out_clamped = (card_core0_regs_fifo1_reg_word32_chain_out_clamped || card_core0_regs_fifo1_reg_word33_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word33__store22_pulse_on_write
-    if (reset == 0) begin
-        card_core0_regs_fifo1_command_strobe <= 0;
-        card_core0_regs_fifo1_command <= 0;
-        card_core0_regs_fifo1_reg_word33_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_command_strobe <= 1'b0;
-        card_core0_regs_fifo1_reg_word33_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word33_mine_write)) begin
-            card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word33_honoured;
-            card_core0_regs_fifo1_command_strobe <= 1'b1;
-            card_core0_regs_fifo1_reg_word33_clamped <= card_core0_regs_fifo1_reg_word33_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word34_mine = (pci_slave1_pci_requests1_local_addr == 12);
-
-
-always @(card_core0_regs_fifo1_reg_word34_mine, card_core0_regs_fifo1_reg_word34_shown_wide, card_core0_regs_fifo1_reg_word33_chain_out_data) begin: card_core0_regs_fifo1_reg_word34_read_chain
-    if (card_core0_regs_fifo1_reg_word34_mine) begin
-        card_core0_regs_fifo1_reg_word34_chain_out_data = (card_core0_regs_fifo1_reg_word33_chain_out_data | card_core0_regs_fifo1_reg_word34_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word34_chain_out_data = card_core0_regs_fifo1_reg_word33_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word34_shown_wide = card_core0_regs_fifo1_reg_word34_shown;
-
-
-
-assign card_core0_regs_fifo1_reg_word34_chain_out_clamped = card_core0_regs_fifo1_reg_word33_chain_out_clamped;
-
-
-
-assign card_core0_regs_fifo1_reg_word35_mine = (pci_slave1_pci_requests1_local_addr == 16);
-
-
-always @(card_core0_regs_fifo1_reg_word35_mine, card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word34_chain_out_data) begin: card_core0_regs_fifo1_reg_word35_read_chain
-    if (card_core0_regs_fifo1_reg_word35_mine) begin
-        card_core0_regs_fifo1_reg_word35_chain_out_data = (card_core0_regs_fifo1_reg_word34_chain_out_data | card_core0_regs_fifo1_reg_word35_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word35_chain_out_data = card_core0_regs_fifo1_reg_word34_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word35_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word35_shown};
-
-
-
-assign card_core0_regs_fifo1_reg_word35_mine_write = (card_core0_regs_fifo1_written_addr == 16);
-
-
-always @(card_core0_regs_fifo1_reg_word35_shown_wide, card_core0_regs_fifo1_reg_word35_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word35_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word35_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word35_written = card_core0_regs_fifo1_set_value[7-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word35_written = ((card_core0_regs_fifo1_reg_word35_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word35_honoured = card_core0_regs_fifo1_reg_word35_written[7-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word35_chain_out_clamped = (card_core0_regs_fifo1_reg_word34_chain_out_clamped || card_core0_regs_fifo1_reg_word35_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word35__store23_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word35_shown <= 0;
-        card_core0_regs_fifo1_reg_word35_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word35_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word35_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word35_mine_write))) begin
-            card_core0_regs_fifo1_reg_word35_shown <= card_core0_regs_fifo1_reg_word35_honoured;
-            card_core0_regs_fifo1_reg_word35_clamped <= card_core0_regs_fifo1_reg_word35_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word36_mine = (pci_slave1_pci_requests1_local_addr == 20);
-
-
-always @(card_core0_regs_fifo1_reg_word36_mine, card_core0_regs_fifo1_reg_word36_shown_wide, card_core0_regs_fifo1_reg_word35_chain_out_data) begin: card_core0_regs_fifo1_reg_word36_read_chain
-    if (card_core0_regs_fifo1_reg_word36_mine) begin
-        card_core0_regs_fifo1_reg_word36_chain_out_data = (card_core0_regs_fifo1_reg_word35_chain_out_data | card_core0_regs_fifo1_reg_word36_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word36_chain_out_data = card_core0_regs_fifo1_reg_word35_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word36_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word36_shown};
-
-
-
-assign card_core0_regs_fifo1_reg_word36_mine_write = (card_core0_regs_fifo1_written_addr == 20);
-
-
-
-assign card_core0_regs_fifo1_reg_word36_written = (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]);
-
-
-
-assign card_core0_regs_fifo1_reg_word36_honoured = card_core0_regs_fifo1_reg_word36_written[7-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word36_chain_out_clamped = card_core0_regs_fifo1_reg_word35_chain_out_clamped;
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word36__store24_clear_on_one
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word36_shown <= 0;
-    end
-    else begin
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word36_mine_write)) begin
-            card_core0_regs_fifo1_reg_word36_shown <= ((card_core0_regs_fifo1_reg_word36_shown & (~card_core0_regs_fifo1_reg_word36_honoured)) | card_core0_regs_fifo1_reg_word36__store24_word_hw);
-        end
-        else begin
-            card_core0_regs_fifo1_reg_word36_shown <= (card_core0_regs_fifo1_reg_word36_shown | card_core0_regs_fifo1_reg_word36__store24_word_hw);
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_pci_requests1_local_addr == 24);
-
-
-always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word36_chain_out_data) begin: card_core0_regs_fifo1_reg_word37_read_chain
+always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word37_chain_in_data) begin: card_core0_regs_fifo1_reg_word37_read_chain
     if (card_core0_regs_fifo1_reg_word37_mine) begin
-        card_core0_regs_fifo1_reg_word37_chain_out_data = (card_core0_regs_fifo1_reg_word36_chain_out_data | card_core0_regs_fifo1_reg_word37_shown_wide);
+        card_core0_regs_fifo1_reg_word37_chain_out_data = (card_core0_regs_fifo1_reg_word37_chain_in_data | card_core0_regs_fifo1_reg_word37_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word37_chain_out_data = card_core0_regs_fifo1_reg_word36_chain_out_data;
+        card_core0_regs_fifo1_reg_word37_chain_out_data = card_core0_regs_fifo1_reg_word37_chain_in_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word37_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word37_shown};
+assign card_core0_regs_fifo1_reg_word37_shown_wide = card_core0_regs_fifo1_reg_word37_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word37_mine_write = (card_core0_regs_fifo1_written_addr == 24);
-
-
-always @(card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word37_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word37_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word37_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word37_written = card_core0_regs_fifo1_set_value[16-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word37_written = ((card_core0_regs_fifo1_reg_word37_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word37_chain_out_clamped = card_core0_regs_fifo1_reg_word37_chain_in_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word37_honoured = card_core0_regs_fifo1_reg_word37_written[16-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word37_chain_out_clamped = (card_core0_regs_fifo1_reg_word36_chain_out_clamped || card_core0_regs_fifo1_reg_word37_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word37__store25_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word37_shown <= 0;
-        card_core0_regs_fifo1_reg_word37_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word37_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word37_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word37_mine_write))) begin
-            card_core0_regs_fifo1_reg_word37_shown <= card_core0_regs_fifo1_reg_word37_honoured;
-            card_core0_regs_fifo1_reg_word37_clamped <= card_core0_regs_fifo1_reg_word37_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_pci_requests1_local_addr == 28);
+assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_pci_requests1_local_addr == 4);
 
 
 always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_chain_out_data) begin: card_core0_regs_fifo1_reg_word38_read_chain
@@ -2370,15 +2176,48 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word38_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word38_shown};
+assign card_core0_regs_fifo1_reg_word38_shown_wide = {30'h0, card_core0_regs_fifo1_control};
 
 
 
-assign card_core0_regs_fifo1_reg_word38_chain_out_clamped = card_core0_regs_fifo1_reg_word37_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word38_mine_write = (card_core0_regs_fifo1_written_addr == 4);
+
+
+always @(card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word38_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word38_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word38_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word38_written = card_core0_regs_fifo1_set_value[2-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word38_written = ((card_core0_regs_fifo1_reg_word38_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 32);
+assign card_core0_regs_fifo1_reg_word38_honoured = card_core0_regs_fifo1_reg_word38_written[2-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word38_chain_out_clamped = (card_core0_regs_fifo1_reg_word37_chain_out_clamped || card_core0_regs_fifo1_reg_word38_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word38__store26_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_control <= 0;
+        card_core0_regs_fifo1_reg_word38_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word38_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word38_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word38_mine_write))) begin
+            card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word38_honoured;
+            card_core0_regs_fifo1_reg_word38_clamped <= card_core0_regs_fifo1_reg_word38_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 8);
 
 
 always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_chain_out_data) begin: card_core0_regs_fifo1_reg_word39_read_chain
@@ -2392,15 +2231,45 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word39_shown_wide = card_core0_regs_fifo1_reg_word39_shown;
+assign card_core0_regs_fifo1_reg_word39_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word39_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word39_chain_out_clamped = card_core0_regs_fifo1_reg_word38_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word39_mine_write = (card_core0_regs_fifo1_written_addr == 8);
 
 
 
-assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 36);
+assign card_core0_regs_fifo1_reg_word39_written = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word39_honoured = card_core0_regs_fifo1_reg_word39_written[4-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word39_chain_out_clamped = (card_core0_regs_fifo1_reg_word38_chain_out_clamped || card_core0_regs_fifo1_reg_word39_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word39__store27_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_command_strobe <= 0;
+        card_core0_regs_fifo1_command <= 0;
+        card_core0_regs_fifo1_reg_word39_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_command_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word39_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word39_mine_write)) begin
+            card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word39_honoured;
+            card_core0_regs_fifo1_command_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word39_clamped <= card_core0_regs_fifo1_reg_word39_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 12);
 
 
 always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_chain_out_data) begin: card_core0_regs_fifo1_reg_word40_read_chain
@@ -2422,7 +2291,7 @@ assign card_core0_regs_fifo1_reg_word40_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 40);
+assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_chain_out_data) begin: card_core0_regs_fifo1_reg_word41_read_chain
@@ -2436,50 +2305,39 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word41_shown};
+assign card_core0_regs_fifo1_reg_word41_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word41_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 40);
+assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 16);
 
 
-always @(card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word41_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word41_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word41_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word41_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word41_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word41_written = card_core0_regs_fifo1_set_value[8-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word41_written = ((card_core0_regs_fifo1_reg_word41_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word41_written = ((card_core0_regs_fifo1_reg_word41_shown_wide[8-1:0] & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word41_written) begin: card_core0_regs_fifo1_reg_word41__limit26_clamp_unsigned
-    card_core0_regs_fifo1_reg_word41_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word41_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word41_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word41_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word41_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word41_written[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word41_honoured = 32768;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word41_honoured = card_core0_regs_fifo1_reg_word41_written[16-1:0];
-        card_core0_regs_fifo1_reg_word41_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word41_honoured = card_core0_regs_fifo1_reg_word41_written[8-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word41_chain_out_clamped = (card_core0_regs_fifo1_reg_word40_chain_out_clamped || card_core0_regs_fifo1_reg_word41_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__store26_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__store28_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word41_shown <= 4096;
+        card_core0_regs_fifo1_reg_word41_shown <= 0;
         card_core0_regs_fifo1_reg_word41_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word41_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write))) begin
+        if (((card_core0_regs_fifo1_reg_word41_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write))) begin
             card_core0_regs_fifo1_reg_word41_shown <= card_core0_regs_fifo1_reg_word41_honoured;
             card_core0_regs_fifo1_reg_word41_clamped <= card_core0_regs_fifo1_reg_word41_out_of_range;
         end
@@ -2488,7 +2346,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 44);
+assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 20);
 
 
 always @(card_core0_regs_fifo1_reg_word42_mine, card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word41_chain_out_data) begin: card_core0_regs_fifo1_reg_word42_read_chain
@@ -2502,59 +2360,42 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word42_shown};
+assign card_core0_regs_fifo1_reg_word42_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word42_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_written_addr == 44);
-
-
-always @(card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word42_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
-        card_core0_regs_fifo1_reg_word42_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word42_written = ((card_core0_regs_fifo1_reg_word42_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word42_written) begin: card_core0_regs_fifo1_reg_word42__limit27_clamp_unsigned
-    card_core0_regs_fifo1_reg_word42_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word42_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word42_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word42_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word42_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word42_written[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word42_honoured = 32768;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_written[16-1:0];
-        card_core0_regs_fifo1_reg_word42_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_written_addr == 20);
 
 
 
-assign card_core0_regs_fifo1_reg_word42_chain_out_clamped = (card_core0_regs_fifo1_reg_word41_chain_out_clamped || card_core0_regs_fifo1_reg_word42_clamped);
+assign card_core0_regs_fifo1_reg_word42_written = (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word42__store27_hold_rw
+
+assign card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_written[8-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word42_chain_out_clamped = card_core0_regs_fifo1_reg_word41_chain_out_clamped;
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word42__store29_clear_on_one
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word42_shown <= 4096;
-        card_core0_regs_fifo1_reg_word42_clamped <= 0;
+        card_core0_regs_fifo1_reg_word42_shown <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word42_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word42_mine_write))) begin
-            card_core0_regs_fifo1_reg_word42_shown <= card_core0_regs_fifo1_reg_word42_honoured;
-            card_core0_regs_fifo1_reg_word42_clamped <= card_core0_regs_fifo1_reg_word42_out_of_range;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word42_mine_write)) begin
+            card_core0_regs_fifo1_reg_word42_shown <= ((card_core0_regs_fifo1_reg_word42_shown & (~card_core0_regs_fifo1_reg_word42_honoured)) | card_core0_regs_fifo1_reg_word42__store29_word_hw);
+        end
+        else begin
+            card_core0_regs_fifo1_reg_word42_shown <= (card_core0_regs_fifo1_reg_word42_shown | card_core0_regs_fifo1_reg_word42__store29_word_hw);
         end
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 48);
+assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 24);
 
 
 always @(card_core0_regs_fifo1_reg_word43_mine, card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word42_chain_out_data) begin: card_core0_regs_fifo1_reg_word43_read_chain
@@ -2568,15 +2409,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_shown_wide = {16'h0, card_core0_regs_fifo1_ramp_step};
+assign card_core0_regs_fifo1_reg_word43_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word43_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_written_addr == 48);
+assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_written_addr == 24);
 
 
-always @(card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word43_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
+always @(card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word43_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word43_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word43_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
         card_core0_regs_fifo1_reg_word43_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
@@ -2593,15 +2434,15 @@ assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_wor
 assign card_core0_regs_fifo1_reg_word43_chain_out_clamped = (card_core0_regs_fifo1_reg_word42_chain_out_clamped || card_core0_regs_fifo1_reg_word43_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word43__store28_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word43__store30_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_ramp_step <= 0;
+        card_core0_regs_fifo1_reg_word43_shown <= 0;
         card_core0_regs_fifo1_reg_word43_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word43_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word43_mine_write))) begin
-            card_core0_regs_fifo1_ramp_step <= card_core0_regs_fifo1_reg_word43_honoured;
+        if (((card_core0_regs_fifo1_reg_word43_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word43_mine_write))) begin
+            card_core0_regs_fifo1_reg_word43_shown <= card_core0_regs_fifo1_reg_word43_honoured;
             card_core0_regs_fifo1_reg_word43_clamped <= card_core0_regs_fifo1_reg_word43_out_of_range;
         end
     end
@@ -2609,7 +2450,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 52);
+assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 28);
 
 
 always @(card_core0_regs_fifo1_reg_word44_mine, card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_reg_word43_chain_out_data) begin: card_core0_regs_fifo1_reg_word44_read_chain
@@ -2623,59 +2464,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word44_shown};
+assign card_core0_regs_fifo1_reg_word44_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word44_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word44_mine_write = (card_core0_regs_fifo1_written_addr == 52);
-
-
-always @(card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word44_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
-        card_core0_regs_fifo1_reg_word44_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word44_written = ((card_core0_regs_fifo1_reg_word44_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word44_written) begin: card_core0_regs_fifo1_reg_word44__limit29_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word44_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word44_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word44_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word44_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word44_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word44_honoured = 255;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word44_honoured = card_core0_regs_fifo1_reg_word44_written[8-1:0];
-        card_core0_regs_fifo1_reg_word44_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word44_chain_out_clamped = card_core0_regs_fifo1_reg_word43_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word44_chain_out_clamped = (card_core0_regs_fifo1_reg_word43_chain_out_clamped || card_core0_regs_fifo1_reg_word44_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word44__store29_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word44_shown <= 1;
-        card_core0_regs_fifo1_reg_word44_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word44_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word44_mine_write))) begin
-            card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_reg_word44_honoured;
-            card_core0_regs_fifo1_reg_word44_clamped <= card_core0_regs_fifo1_reg_word44_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 56);
+assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 32);
 
 
 always @(card_core0_regs_fifo1_reg_word45_mine, card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word44_chain_out_data) begin: card_core0_regs_fifo1_reg_word45_read_chain
@@ -2689,59 +2486,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word45_shown};
+assign card_core0_regs_fifo1_reg_word45_shown_wide = card_core0_regs_fifo1_reg_word45_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word45_mine_write = (card_core0_regs_fifo1_written_addr == 56);
-
-
-always @(card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word45_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
-        card_core0_regs_fifo1_reg_word45_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word45_written = ((card_core0_regs_fifo1_reg_word45_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word45_written) begin: card_core0_regs_fifo1_reg_word45__limit30_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word45_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word45_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word45_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word45_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word45_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word45_honoured = 255;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_written[8-1:0];
-        card_core0_regs_fifo1_reg_word45_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word45_chain_out_clamped = card_core0_regs_fifo1_reg_word44_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word45_chain_out_clamped = (card_core0_regs_fifo1_reg_word44_chain_out_clamped || card_core0_regs_fifo1_reg_word45_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word45__store30_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word45_shown <= 1;
-        card_core0_regs_fifo1_reg_word45_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word45_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word45_mine_write))) begin
-            card_core0_regs_fifo1_reg_word45_shown <= card_core0_regs_fifo1_reg_word45_honoured;
-            card_core0_regs_fifo1_reg_word45_clamped <= card_core0_regs_fifo1_reg_word45_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 60);
+assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 36);
 
 
 always @(card_core0_regs_fifo1_reg_word46_mine, card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_reg_word45_chain_out_data) begin: card_core0_regs_fifo1_reg_word46_read_chain
@@ -2755,59 +2508,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word46_shown};
+assign card_core0_regs_fifo1_reg_word46_shown_wide = card_core0_regs_fifo1_reg_word46_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word46_mine_write = (card_core0_regs_fifo1_written_addr == 60);
-
-
-always @(card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word46_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
-        card_core0_regs_fifo1_reg_word46_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word46_written = ((card_core0_regs_fifo1_reg_word46_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word46_written) begin: card_core0_regs_fifo1_reg_word46__limit31_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word46_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word46_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word46_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word46_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word46_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word46_honoured = 255;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word46_honoured = card_core0_regs_fifo1_reg_word46_written[8-1:0];
-        card_core0_regs_fifo1_reg_word46_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = card_core0_regs_fifo1_reg_word45_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = (card_core0_regs_fifo1_reg_word45_chain_out_clamped || card_core0_regs_fifo1_reg_word46_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word46__store31_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word46_shown <= 1;
-        card_core0_regs_fifo1_reg_word46_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word46_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word46_mine_write))) begin
-            card_core0_regs_fifo1_reg_word46_shown <= card_core0_regs_fifo1_reg_word46_honoured;
-            card_core0_regs_fifo1_reg_word46_clamped <= card_core0_regs_fifo1_reg_word46_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 64);
+assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_chain_out_data) begin: card_core0_regs_fifo1_reg_word47_read_chain
@@ -2821,39 +2530,50 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word47_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word47_shown};
+assign card_core0_regs_fifo1_reg_word47_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word47_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word47_mine_write = (card_core0_regs_fifo1_written_addr == 64);
+assign card_core0_regs_fifo1_reg_word47_mine_write = (card_core0_regs_fifo1_written_addr == 40);
 
 
-always @(card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word47_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word47_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word47_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word47_written = card_core0_regs_fifo1_set_value[2-1:0];
+always @(card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word47_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word47_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word47_written = ((card_core0_regs_fifo1_reg_word47_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+        card_core0_regs_fifo1_reg_word47_written = ((card_core0_regs_fifo1_reg_word47_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card_core0_regs_fifo1_reg_word47_honoured = card_core0_regs_fifo1_reg_word47_written[2-1:0];
+always @(card_core0_regs_fifo1_reg_word47_written) begin: card_core0_regs_fifo1_reg_word47__limit31_clamp_unsigned
+    card_core0_regs_fifo1_reg_word47_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word47_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word47_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word47_honoured = 1;
+    end
+    else if (((card_core0_regs_fifo1_reg_word47_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word47_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word47_honoured = 32768;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word47_honoured = card_core0_regs_fifo1_reg_word47_written[16-1:0];
+        card_core0_regs_fifo1_reg_word47_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = (card_core0_regs_fifo1_reg_word46_chain_out_clamped || card_core0_regs_fifo1_reg_word47_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word47__store32_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word47__store31_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word47_shown <= 0;
+        card_core0_regs_fifo1_reg_word47_shown <= 4096;
         card_core0_regs_fifo1_reg_word47_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word47_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word47_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word47_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word47_mine_write))) begin
             card_core0_regs_fifo1_reg_word47_shown <= card_core0_regs_fifo1_reg_word47_honoured;
             card_core0_regs_fifo1_reg_word47_clamped <= card_core0_regs_fifo1_reg_word47_out_of_range;
         end
@@ -2862,7 +2582,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word48_mine = (pci_slave1_pci_requests1_local_addr == 68);
+assign card_core0_regs_fifo1_reg_word48_mine = (pci_slave1_pci_requests1_local_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word48_mine, card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_reg_word47_chain_out_data) begin: card_core0_regs_fifo1_reg_word48_read_chain
@@ -2880,11 +2600,11 @@ assign card_core0_regs_fifo1_reg_word48_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word48_mine_write = (card_core0_regs_fifo1_written_addr == 68);
+assign card_core0_regs_fifo1_reg_word48_mine_write = (card_core0_regs_fifo1_written_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word48_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
         card_core0_regs_fifo1_reg_word48_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -2893,13 +2613,13 @@ always @(card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word48_written) begin: card_core0_regs_fifo1_reg_word48__limit33_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word48_written) begin: card_core0_regs_fifo1_reg_word48__limit32_clamp_unsigned
     card_core0_regs_fifo1_reg_word48_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word48_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word48_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word48_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word48_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word48_honoured = 65535;
+    else if (((card_core0_regs_fifo1_reg_word48_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word48_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word48_honoured = 32768;
     end
     else begin
         card_core0_regs_fifo1_reg_word48_honoured = card_core0_regs_fifo1_reg_word48_written[16-1:0];
@@ -2912,14 +2632,14 @@ end
 assign card_core0_regs_fifo1_reg_word48_chain_out_clamped = (card_core0_regs_fifo1_reg_word47_chain_out_clamped || card_core0_regs_fifo1_reg_word48_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word48__store33_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word48__store32_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word48_shown <= 2;
+        card_core0_regs_fifo1_reg_word48_shown <= 4096;
         card_core0_regs_fifo1_reg_word48_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word48_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word48_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word48_mine_write))) begin
             card_core0_regs_fifo1_reg_word48_shown <= card_core0_regs_fifo1_reg_word48_honoured;
             card_core0_regs_fifo1_reg_word48_clamped <= card_core0_regs_fifo1_reg_word48_out_of_range;
         end
@@ -2928,7 +2648,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word49_mine = (pci_slave1_pci_requests1_local_addr == 72);
+assign card_core0_regs_fifo1_reg_word49_mine = (pci_slave1_pci_requests1_local_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word49_mine, card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_reg_word48_chain_out_data) begin: card_core0_regs_fifo1_reg_word49_read_chain
@@ -2942,51 +2662,40 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word49_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word49_shown};
+assign card_core0_regs_fifo1_reg_word49_shown_wide = {16'h0, card_core0_regs_fifo1_ramp_step};
 
 
 
-assign card_core0_regs_fifo1_reg_word49_mine_write = (card_core0_regs_fifo1_written_addr == 72);
+assign card_core0_regs_fifo1_reg_word49_mine_write = (card_core0_regs_fifo1_written_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word49_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
-        card_core0_regs_fifo1_reg_word49_written = card_core0_regs_fifo1_set_value[32-1:0];
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
+        card_core0_regs_fifo1_reg_word49_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word49_written = ((card_core0_regs_fifo1_reg_word49_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word49_written = ((card_core0_regs_fifo1_reg_word49_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word49_written) begin: card_core0_regs_fifo1_reg_word49__limit34_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word49_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word49_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word49_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word49_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word49_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word49_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word49_honoured = card_core0_regs_fifo1_reg_word49_written[16-1:0];
-        card_core0_regs_fifo1_reg_word49_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word49_honoured = card_core0_regs_fifo1_reg_word49_written[16-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word49_chain_out_clamped = (card_core0_regs_fifo1_reg_word48_chain_out_clamped || card_core0_regs_fifo1_reg_word49_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word49__store34_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word49__store33_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word49_shown <= 2;
+        card_core0_regs_fifo1_ramp_step <= 0;
         card_core0_regs_fifo1_reg_word49_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word49_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word49_mine_write))) begin
-            card_core0_regs_fifo1_reg_word49_shown <= card_core0_regs_fifo1_reg_word49_honoured;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word49_mine_write))) begin
+            card_core0_regs_fifo1_ramp_step <= card_core0_regs_fifo1_reg_word49_honoured;
             card_core0_regs_fifo1_reg_word49_clamped <= card_core0_regs_fifo1_reg_word49_out_of_range;
         end
     end
@@ -2994,7 +2703,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word50_mine = (pci_slave1_pci_requests1_local_addr == 76);
+assign card_core0_regs_fifo1_reg_word50_mine = (pci_slave1_pci_requests1_local_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word50_mine, card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_reg_word49_chain_out_data) begin: card_core0_regs_fifo1_reg_word50_read_chain
@@ -3008,29 +2717,34 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word50_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word50_shown};
+assign card_core0_regs_fifo1_reg_word50_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word50_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word50_mine_write = (card_core0_regs_fifo1_written_addr == 76);
+assign card_core0_regs_fifo1_reg_word50_mine_write = (card_core0_regs_fifo1_written_addr == 52);
 
 
-
-assign card_core0_regs_fifo1_reg_word50_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word50_written) begin: card_core0_regs_fifo1_reg_word50__limit35_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word50_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word50_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word50_honoured = card_core0_regs_fifo1_reg_word50_written[24-1:0];
-        card_core0_regs_fifo1_reg_word50_out_of_range = 1'b0;
-    end
-    else if (card_core0_regs_fifo1_reg_word50_written[31]) begin
-        card_core0_regs_fifo1_reg_word50_honoured = 8388608;
-        card_core0_regs_fifo1_reg_word50_out_of_range = 1'b1;
+always @(card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word50_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
+        card_core0_regs_fifo1_reg_word50_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word50_honoured = 8388607;
-        card_core0_regs_fifo1_reg_word50_out_of_range = 1'b1;
+        card_core0_regs_fifo1_reg_word50_written = ((card_core0_regs_fifo1_reg_word50_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word50_written) begin: card_core0_regs_fifo1_reg_word50__limit34_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word50_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word50_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word50_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word50_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word50_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word50_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word50_honoured = card_core0_regs_fifo1_reg_word50_written[8-1:0];
+        card_core0_regs_fifo1_reg_word50_out_of_range = 1'b0;
     end
 end
 
@@ -3039,18 +2753,15 @@ end
 assign card_core0_regs_fifo1_reg_word50_chain_out_clamped = (card_core0_regs_fifo1_reg_word49_chain_out_clamped || card_core0_regs_fifo1_reg_word50_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word50__store35_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word50__store34_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word50__store35_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word50__store35_word_value <= 0;
+        card_core0_regs_fifo1_reg_word50_shown <= 1;
         card_core0_regs_fifo1_reg_word50_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word50__store35_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word50_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word50_mine_write)) begin
-            card_core0_regs_fifo1_reg_word50__store35_word_value <= card_core0_regs_fifo1_reg_word50_honoured;
-            card_core0_regs_fifo1_reg_word50__store35_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word50_mine_write))) begin
+            card_core0_regs_fifo1_reg_word50_shown <= card_core0_regs_fifo1_reg_word50_honoured;
             card_core0_regs_fifo1_reg_word50_clamped <= card_core0_regs_fifo1_reg_word50_out_of_range;
         end
     end
@@ -3058,7 +2769,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word51_mine = (pci_slave1_pci_requests1_local_addr == 80);
+assign card_core0_regs_fifo1_reg_word51_mine = (pci_slave1_pci_requests1_local_addr == 56);
 
 
 always @(card_core0_regs_fifo1_reg_word51_mine, card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_reg_word50_chain_out_data) begin: card_core0_regs_fifo1_reg_word51_read_chain
@@ -3072,29 +2783,34 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word51_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word51_shown};
+assign card_core0_regs_fifo1_reg_word51_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word51_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_written_addr == 80);
+assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_written_addr == 56);
 
 
-
-assign card_core0_regs_fifo1_reg_word51_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit36_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word51_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word51_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written[24-1:0];
-        card_core0_regs_fifo1_reg_word51_out_of_range = 1'b0;
-    end
-    else if (card_core0_regs_fifo1_reg_word51_written[31]) begin
-        card_core0_regs_fifo1_reg_word51_honoured = 8388608;
-        card_core0_regs_fifo1_reg_word51_out_of_range = 1'b1;
+always @(card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word51_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
+        card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word51_honoured = 8388607;
-        card_core0_regs_fifo1_reg_word51_out_of_range = 1'b1;
+        card_core0_regs_fifo1_reg_word51_written = ((card_core0_regs_fifo1_reg_word51_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit35_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word51_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word51_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word51_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word51_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word51_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word51_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written[8-1:0];
+        card_core0_regs_fifo1_reg_word51_out_of_range = 1'b0;
     end
 end
 
@@ -3103,18 +2819,15 @@ end
 assign card_core0_regs_fifo1_reg_word51_chain_out_clamped = (card_core0_regs_fifo1_reg_word50_chain_out_clamped || card_core0_regs_fifo1_reg_word51_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word51__store36_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word51__store35_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word51__store36_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word51__store36_word_value <= 0;
+        card_core0_regs_fifo1_reg_word51_shown <= 1;
         card_core0_regs_fifo1_reg_word51_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word51__store36_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word51_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word51_mine_write)) begin
-            card_core0_regs_fifo1_reg_word51__store36_word_value <= card_core0_regs_fifo1_reg_word51_honoured;
-            card_core0_regs_fifo1_reg_word51__store36_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word51_mine_write))) begin
+            card_core0_regs_fifo1_reg_word51_shown <= card_core0_regs_fifo1_reg_word51_honoured;
             card_core0_regs_fifo1_reg_word51_clamped <= card_core0_regs_fifo1_reg_word51_out_of_range;
         end
     end
@@ -3122,7 +2835,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word52_mine = (pci_slave1_pci_requests1_local_addr == 84);
+assign card_core0_regs_fifo1_reg_word52_mine = (pci_slave1_pci_requests1_local_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word52_mine, card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_reg_word51_chain_out_data) begin: card_core0_regs_fifo1_reg_word52_read_chain
@@ -3136,15 +2849,59 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word52_shown_wide = card_core0_regs_fifo1_reg_word52_shown;
+assign card_core0_regs_fifo1_reg_word52_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word52_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word52_chain_out_clamped = card_core0_regs_fifo1_reg_word51_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word52_mine_write = (card_core0_regs_fifo1_written_addr == 60);
+
+
+always @(card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word52_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
+        card_core0_regs_fifo1_reg_word52_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word52_written = ((card_core0_regs_fifo1_reg_word52_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word52_written) begin: card_core0_regs_fifo1_reg_word52__limit36_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word52_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word52_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word52_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word52_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word52_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word52_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word52_honoured = card_core0_regs_fifo1_reg_word52_written[8-1:0];
+        card_core0_regs_fifo1_reg_word52_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word53_mine = (pci_slave1_pci_requests1_local_addr == 88);
+assign card_core0_regs_fifo1_reg_word52_chain_out_clamped = (card_core0_regs_fifo1_reg_word51_chain_out_clamped || card_core0_regs_fifo1_reg_word52_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word52__store36_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word52_shown <= 1;
+        card_core0_regs_fifo1_reg_word52_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word52_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word52_mine_write))) begin
+            card_core0_regs_fifo1_reg_word52_shown <= card_core0_regs_fifo1_reg_word52_honoured;
+            card_core0_regs_fifo1_reg_word52_clamped <= card_core0_regs_fifo1_reg_word52_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word53_mine = (pci_slave1_pci_requests1_local_addr == 64);
 
 
 always @(card_core0_regs_fifo1_reg_word53_mine, card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_reg_word52_chain_out_data) begin: card_core0_regs_fifo1_reg_word53_read_chain
@@ -3158,15 +2915,48 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word53_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word53_shown};
+assign card_core0_regs_fifo1_reg_word53_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word53_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word53_chain_out_clamped = card_core0_regs_fifo1_reg_word52_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word53_mine_write = (card_core0_regs_fifo1_written_addr == 64);
+
+
+always @(card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_reg_word53_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word53_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word53_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_set_value[2-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word53_written = ((card_core0_regs_fifo1_reg_word53_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word54_mine = (pci_slave1_pci_requests1_local_addr == 92);
+assign card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written[2-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word53_chain_out_clamped = (card_core0_regs_fifo1_reg_word52_chain_out_clamped || card_core0_regs_fifo1_reg_word53_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word53__store37_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word53_shown <= 0;
+        card_core0_regs_fifo1_reg_word53_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word53_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word53_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word53_mine_write))) begin
+            card_core0_regs_fifo1_reg_word53_shown <= card_core0_regs_fifo1_reg_word53_honoured;
+            card_core0_regs_fifo1_reg_word53_clamped <= card_core0_regs_fifo1_reg_word53_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word54_mine = (pci_slave1_pci_requests1_local_addr == 68);
 
 
 always @(card_core0_regs_fifo1_reg_word54_mine, card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_reg_word53_chain_out_data) begin: card_core0_regs_fifo1_reg_word54_read_chain
@@ -3180,15 +2970,59 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word54_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word54_shown};
+assign card_core0_regs_fifo1_reg_word54_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word54_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word54_chain_out_clamped = card_core0_regs_fifo1_reg_word53_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word54_mine_write = (card_core0_regs_fifo1_written_addr == 68);
+
+
+always @(card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word54_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+        card_core0_regs_fifo1_reg_word54_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word54_written = ((card_core0_regs_fifo1_reg_word54_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word54_written) begin: card_core0_regs_fifo1_reg_word54__limit38_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word54_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word54_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word54_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word54_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word54_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word54_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word54_honoured = card_core0_regs_fifo1_reg_word54_written[16-1:0];
+        card_core0_regs_fifo1_reg_word54_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_mine = (pci_slave1_pci_requests1_local_addr == 96);
+assign card_core0_regs_fifo1_reg_word54_chain_out_clamped = (card_core0_regs_fifo1_reg_word53_chain_out_clamped || card_core0_regs_fifo1_reg_word54_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word54__store38_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word54_shown <= 2;
+        card_core0_regs_fifo1_reg_word54_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word54_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word54_mine_write))) begin
+            card_core0_regs_fifo1_reg_word54_shown <= card_core0_regs_fifo1_reg_word54_honoured;
+            card_core0_regs_fifo1_reg_word54_clamped <= card_core0_regs_fifo1_reg_word54_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word55_mine = (pci_slave1_pci_requests1_local_addr == 72);
 
 
 always @(card_core0_regs_fifo1_reg_word55_mine, card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word54_chain_out_data) begin: card_core0_regs_fifo1_reg_word55_read_chain
@@ -3202,40 +3036,51 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_shown_wide = {30'h0, card_core0_regs_fifo1_machine_control};
+assign card_core0_regs_fifo1_reg_word55_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word55_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_written_addr == 96);
+assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_written_addr == 72);
 
 
-always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word55_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[2-1:0];
+always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[2-1:0];
+always @(card_core0_regs_fifo1_reg_word55_written) begin: card_core0_regs_fifo1_reg_word55__limit39_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word55_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word55_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word55_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word55_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word55_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word55_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[16-1:0];
+        card_core0_regs_fifo1_reg_word55_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card_core0_regs_fifo1_reg_word55_chain_out_clamped = (card_core0_regs_fifo1_reg_word54_chain_out_clamped || card_core0_regs_fifo1_reg_word55_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word55__store37_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word55__store39_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_machine_control <= 0;
+        card_core0_regs_fifo1_reg_word55_shown <= 2;
         card_core0_regs_fifo1_reg_word55_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word55_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word55_mine_write))) begin
-            card_core0_regs_fifo1_machine_control <= card_core0_regs_fifo1_reg_word55_honoured;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word55_mine_write))) begin
+            card_core0_regs_fifo1_reg_word55_shown <= card_core0_regs_fifo1_reg_word55_honoured;
             card_core0_regs_fifo1_reg_word55_clamped <= card_core0_regs_fifo1_reg_word55_out_of_range;
         end
     end
@@ -3243,7 +3088,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word56_mine = (pci_slave1_pci_requests1_local_addr == 100);
+assign card_core0_regs_fifo1_reg_word56_mine = (pci_slave1_pci_requests1_local_addr == 76);
 
 
 always @(card_core0_regs_fifo1_reg_word56_mine, card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_reg_word55_chain_out_data) begin: card_core0_regs_fifo1_reg_word56_read_chain
@@ -3257,15 +3102,57 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word56_shown_wide = {12'h0, card_core0_regs_fifo1_reg_word56_shown};
+assign card_core0_regs_fifo1_reg_word56_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word56_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word56_chain_out_clamped = card_core0_regs_fifo1_reg_word55_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_written_addr == 76);
 
 
 
-assign card_core0_regs_fifo1_reg_word57_mine = (pci_slave1_pci_requests1_local_addr == 104);
+assign card_core0_regs_fifo1_reg_word56_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit40_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word56_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word56_written[32-1:(24 - 1)] == 511))) begin
+        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written[24-1:0];
+        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b0;
+    end
+    else if (card_core0_regs_fifo1_reg_word56_written[31]) begin
+        card_core0_regs_fifo1_reg_word56_honoured = 8388608;
+        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b1;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word56_honoured = 8388607;
+        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word56_chain_out_clamped = (card_core0_regs_fifo1_reg_word55_chain_out_clamped || card_core0_regs_fifo1_reg_word56_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word56__store40_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word56__store40_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word56__store40_word_value <= 0;
+        card_core0_regs_fifo1_reg_word56_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word56__store40_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word56_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word56_mine_write)) begin
+            card_core0_regs_fifo1_reg_word56__store40_word_value <= card_core0_regs_fifo1_reg_word56_honoured;
+            card_core0_regs_fifo1_reg_word56__store40_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word56_clamped <= card_core0_regs_fifo1_reg_word56_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word57_mine = (pci_slave1_pci_requests1_local_addr == 80);
 
 
 always @(card_core0_regs_fifo1_reg_word57_mine, card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_reg_word56_chain_out_data) begin: card_core0_regs_fifo1_reg_word57_read_chain
@@ -3279,15 +3166,57 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word57_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word57_shown};
+assign card_core0_regs_fifo1_reg_word57_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word57_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word57_chain_out_clamped = card_core0_regs_fifo1_reg_word56_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_written_addr == 80);
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine = (pci_slave1_pci_requests1_local_addr == 108);
+assign card_core0_regs_fifo1_reg_word57_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word57_written) begin: card_core0_regs_fifo1_reg_word57__limit41_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word57_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word57_written[32-1:(24 - 1)] == 511))) begin
+        card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_written[24-1:0];
+        card_core0_regs_fifo1_reg_word57_out_of_range = 1'b0;
+    end
+    else if (card_core0_regs_fifo1_reg_word57_written[31]) begin
+        card_core0_regs_fifo1_reg_word57_honoured = 8388608;
+        card_core0_regs_fifo1_reg_word57_out_of_range = 1'b1;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word57_honoured = 8388607;
+        card_core0_regs_fifo1_reg_word57_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word57_chain_out_clamped = (card_core0_regs_fifo1_reg_word56_chain_out_clamped || card_core0_regs_fifo1_reg_word57_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word57__store41_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word57__store41_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word57__store41_word_value <= 0;
+        card_core0_regs_fifo1_reg_word57_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word57__store41_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word57_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word57_mine_write)) begin
+            card_core0_regs_fifo1_reg_word57__store41_word_value <= card_core0_regs_fifo1_reg_word57_honoured;
+            card_core0_regs_fifo1_reg_word57__store41_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word57_clamped <= card_core0_regs_fifo1_reg_word57_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word58_mine = (pci_slave1_pci_requests1_local_addr == 84);
 
 
 always @(card_core0_regs_fifo1_reg_word58_mine, card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_reg_word57_chain_out_data) begin: card_core0_regs_fifo1_reg_word58_read_chain
@@ -3301,48 +3230,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word58_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word58_shown};
+assign card_core0_regs_fifo1_reg_word58_shown_wide = card_core0_regs_fifo1_reg_word58_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine_write = (card_core0_regs_fifo1_written_addr == 108);
-
-
-always @(card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_reg_word58_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word58_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word58_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word58_written = card_core0_regs_fifo1_set_value[7-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word58_written = ((card_core0_regs_fifo1_reg_word58_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word58_chain_out_clamped = card_core0_regs_fifo1_reg_word57_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word58_honoured = card_core0_regs_fifo1_reg_word58_written[7-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word58_chain_out_clamped = (card_core0_regs_fifo1_reg_word57_chain_out_clamped || card_core0_regs_fifo1_reg_word58_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word58__store38_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word58_shown <= 0;
-        card_core0_regs_fifo1_reg_word58_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word58_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word58_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word58_mine_write))) begin
-            card_core0_regs_fifo1_reg_word58_shown <= card_core0_regs_fifo1_reg_word58_honoured;
-            card_core0_regs_fifo1_reg_word58_clamped <= card_core0_regs_fifo1_reg_word58_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word59_mine = (pci_slave1_pci_requests1_local_addr == 112);
+assign card_core0_regs_fifo1_reg_word59_mine = (pci_slave1_pci_requests1_local_addr == 88);
 
 
 always @(card_core0_regs_fifo1_reg_word59_mine, card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_reg_word58_chain_out_data) begin: card_core0_regs_fifo1_reg_word59_read_chain
@@ -3356,59 +3252,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word59_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word59_shown};
+assign card_core0_regs_fifo1_reg_word59_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word59_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine_write = (card_core0_regs_fifo1_written_addr == 112);
-
-
-always @(card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_reg_word59_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word59_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word59_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word59_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word59_written = ((card_core0_regs_fifo1_reg_word59_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word59_written) begin: card_core0_regs_fifo1_reg_word59__limit39_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word59_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word59_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word59_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word59_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word59_written[32-1:4] != 0)) begin
-        card_core0_regs_fifo1_reg_word59_honoured = 15;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word59_honoured = card_core0_regs_fifo1_reg_word59_written[4-1:0];
-        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word59_chain_out_clamped = card_core0_regs_fifo1_reg_word58_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word59_chain_out_clamped = (card_core0_regs_fifo1_reg_word58_chain_out_clamped || card_core0_regs_fifo1_reg_word59_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word59__store39_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word59_shown <= 3;
-        card_core0_regs_fifo1_reg_word59_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word59_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word59_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word59_mine_write))) begin
-            card_core0_regs_fifo1_reg_word59_shown <= card_core0_regs_fifo1_reg_word59_honoured;
-            card_core0_regs_fifo1_reg_word59_clamped <= card_core0_regs_fifo1_reg_word59_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word60_mine = (pci_slave1_pci_requests1_local_addr == 116);
+assign card_core0_regs_fifo1_reg_word60_mine = (pci_slave1_pci_requests1_local_addr == 92);
 
 
 always @(card_core0_regs_fifo1_reg_word60_mine, card_core0_regs_fifo1_reg_word60_shown_wide, card_core0_regs_fifo1_reg_word59_chain_out_data) begin: card_core0_regs_fifo1_reg_word60_read_chain
@@ -3422,104 +3274,673 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word60_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word60_shown};
+assign card_core0_regs_fifo1_reg_word60_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word60_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word60_mine_write = (card_core0_regs_fifo1_written_addr == 116);
-
-
-always @(card_core0_regs_fifo1_reg_word60_shown_wide, card_core0_regs_fifo1_reg_word60_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word60_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word60_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word60_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word60_written = ((card_core0_regs_fifo1_reg_word60_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word60_written) begin: card_core0_regs_fifo1_reg_word60__limit40_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word60_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word60_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word60_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word60_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word60_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word60_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word60_honoured = card_core0_regs_fifo1_reg_word60_written[16-1:0];
-        card_core0_regs_fifo1_reg_word60_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word60_chain_out_clamped = card_core0_regs_fifo1_reg_word59_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word60_chain_out_clamped = (card_core0_regs_fifo1_reg_word59_chain_out_clamped || card_core0_regs_fifo1_reg_word60_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word60__store40_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word60_shown <= 1;
-        card_core0_regs_fifo1_reg_word60_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word60_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word60_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word60_mine_write))) begin
-            card_core0_regs_fifo1_reg_word60_shown <= card_core0_regs_fifo1_reg_word60_honoured;
-            card_core0_regs_fifo1_reg_word60_clamped <= card_core0_regs_fifo1_reg_word60_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word61_mine = (pci_slave1_pci_requests1_local_addr == 120);
+assign card_core0_regs_fifo1_reg_word61_mine = (pci_slave1_pci_requests1_local_addr == 96);
 
 
 always @(card_core0_regs_fifo1_reg_word61_mine, card_core0_regs_fifo1_reg_word61_shown_wide, card_core0_regs_fifo1_reg_word60_chain_out_data) begin: card_core0_regs_fifo1_reg_word61_read_chain
     if (card_core0_regs_fifo1_reg_word61_mine) begin
-        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word60_chain_out_data | card_core0_regs_fifo1_reg_word61_shown_wide);
+        card_core0_regs_fifo1_reg_word61_chain_out_data = (card_core0_regs_fifo1_reg_word60_chain_out_data | card_core0_regs_fifo1_reg_word61_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word60_chain_out_data;
+        card_core0_regs_fifo1_reg_word61_chain_out_data = card_core0_regs_fifo1_reg_word60_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word61_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word61_shown};
+assign card_core0_regs_fifo1_reg_word61_shown_wide = {30'h0, card_core0_regs_fifo1_machine_control};
 
 
 
-assign card_core0_regs_fifo1_reg_word61_mine_write = (card_core0_regs_fifo1_written_addr == 120);
+assign card_core0_regs_fifo1_reg_word61_mine_write = (card_core0_regs_fifo1_written_addr == 96);
+
+
+always @(card_core0_regs_fifo1_reg_word61_shown_wide, card_core0_regs_fifo1_reg_word61_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word61_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word61_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word61_written = card_core0_regs_fifo1_set_value[2-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word61_written = ((card_core0_regs_fifo1_reg_word61_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word61_written = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
-
-
-
-assign card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_word61_written[24-1:0];
+assign card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_word61_written[2-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word61_chain_out_clamped = (card_core0_regs_fifo1_reg_word60_chain_out_clamped || card_core0_regs_fifo1_reg_word61_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word61__store41_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word61__store42_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word61__store41_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word61__store41_word_value <= 0;
+        card_core0_regs_fifo1_machine_control <= 0;
         card_core0_regs_fifo1_reg_word61_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word61__store41_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word61_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word61_mine_write)) begin
-            card_core0_regs_fifo1_reg_word61__store41_word_value <= card_core0_regs_fifo1_reg_word61_honoured;
-            card_core0_regs_fifo1_reg_word61__store41_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_reg_word61_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word61_mine_write))) begin
+            card_core0_regs_fifo1_machine_control <= card_core0_regs_fifo1_reg_word61_honoured;
             card_core0_regs_fifo1_reg_word61_clamped <= card_core0_regs_fifo1_reg_word61_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word62_mine = (pci_slave1_pci_requests1_local_addr == 100);
+
+
+always @(card_core0_regs_fifo1_reg_word62_mine, card_core0_regs_fifo1_reg_word62_shown_wide, card_core0_regs_fifo1_reg_word61_chain_out_data) begin: card_core0_regs_fifo1_reg_word62_read_chain
+    if (card_core0_regs_fifo1_reg_word62_mine) begin
+        card_core0_regs_fifo1_reg_word62_chain_out_data = (card_core0_regs_fifo1_reg_word61_chain_out_data | card_core0_regs_fifo1_reg_word62_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word62_chain_out_data = card_core0_regs_fifo1_reg_word61_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word62_shown_wide = {12'h0, card_core0_regs_fifo1_reg_word62_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word62_chain_out_clamped = card_core0_regs_fifo1_reg_word61_chain_out_clamped;
+
+
+
+assign card_core0_regs_fifo1_reg_word63_mine = (pci_slave1_pci_requests1_local_addr == 104);
+
+
+always @(card_core0_regs_fifo1_reg_word63_mine, card_core0_regs_fifo1_reg_word63_shown_wide, card_core0_regs_fifo1_reg_word62_chain_out_data) begin: card_core0_regs_fifo1_reg_word63_read_chain
+    if (card_core0_regs_fifo1_reg_word63_mine) begin
+        card_core0_regs_fifo1_reg_word63_chain_out_data = (card_core0_regs_fifo1_reg_word62_chain_out_data | card_core0_regs_fifo1_reg_word63_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word63_chain_out_data = card_core0_regs_fifo1_reg_word62_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word63_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word63_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word63_chain_out_clamped = card_core0_regs_fifo1_reg_word62_chain_out_clamped;
+
+
+
+assign card_core0_regs_fifo1_reg_word64_mine = (pci_slave1_pci_requests1_local_addr == 108);
+
+
+always @(card_core0_regs_fifo1_reg_word64_mine, card_core0_regs_fifo1_reg_word64_shown_wide, card_core0_regs_fifo1_reg_word63_chain_out_data) begin: card_core0_regs_fifo1_reg_word64_read_chain
+    if (card_core0_regs_fifo1_reg_word64_mine) begin
+        card_core0_regs_fifo1_reg_word64_chain_out_data = (card_core0_regs_fifo1_reg_word63_chain_out_data | card_core0_regs_fifo1_reg_word64_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word64_chain_out_data = card_core0_regs_fifo1_reg_word63_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word64_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word64_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word64_mine_write = (card_core0_regs_fifo1_written_addr == 108);
+
+
+always @(card_core0_regs_fifo1_reg_word64_shown_wide, card_core0_regs_fifo1_reg_word64_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word64_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word64_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word64_written = card_core0_regs_fifo1_set_value[7-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word64_written = ((card_core0_regs_fifo1_reg_word64_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word64_honoured = card_core0_regs_fifo1_reg_word64_written[7-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word64_chain_out_clamped = (card_core0_regs_fifo1_reg_word63_chain_out_clamped || card_core0_regs_fifo1_reg_word64_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word64__store43_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word64_shown <= 0;
+        card_core0_regs_fifo1_reg_word64_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word64_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word64_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word64_mine_write))) begin
+            card_core0_regs_fifo1_reg_word64_shown <= card_core0_regs_fifo1_reg_word64_honoured;
+            card_core0_regs_fifo1_reg_word64_clamped <= card_core0_regs_fifo1_reg_word64_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word65_mine = (pci_slave1_pci_requests1_local_addr == 112);
+
+
+always @(card_core0_regs_fifo1_reg_word65_mine, card_core0_regs_fifo1_reg_word65_shown_wide, card_core0_regs_fifo1_reg_word64_chain_out_data) begin: card_core0_regs_fifo1_reg_word65_read_chain
+    if (card_core0_regs_fifo1_reg_word65_mine) begin
+        card_core0_regs_fifo1_reg_word65_chain_out_data = (card_core0_regs_fifo1_reg_word64_chain_out_data | card_core0_regs_fifo1_reg_word65_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word65_chain_out_data = card_core0_regs_fifo1_reg_word64_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word65_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word65_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word65_mine_write = (card_core0_regs_fifo1_written_addr == 112);
+
+
+always @(card_core0_regs_fifo1_reg_word65_shown_wide, card_core0_regs_fifo1_reg_word65_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word65_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word65_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word65_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word65_written = ((card_core0_regs_fifo1_reg_word65_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word65_written) begin: card_core0_regs_fifo1_reg_word65__limit44_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word65_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word65_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word65_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word65_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word65_written[32-1:4] != 0)) begin
+        card_core0_regs_fifo1_reg_word65_honoured = 15;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word65_honoured = card_core0_regs_fifo1_reg_word65_written[4-1:0];
+        card_core0_regs_fifo1_reg_word65_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word65_chain_out_clamped = (card_core0_regs_fifo1_reg_word64_chain_out_clamped || card_core0_regs_fifo1_reg_word65_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word65__store44_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word65_shown <= 3;
+        card_core0_regs_fifo1_reg_word65_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word65_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word65_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word65_mine_write))) begin
+            card_core0_regs_fifo1_reg_word65_shown <= card_core0_regs_fifo1_reg_word65_honoured;
+            card_core0_regs_fifo1_reg_word65_clamped <= card_core0_regs_fifo1_reg_word65_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word66_mine = (pci_slave1_pci_requests1_local_addr == 116);
+
+
+always @(card_core0_regs_fifo1_reg_word66_mine, card_core0_regs_fifo1_reg_word66_shown_wide, card_core0_regs_fifo1_reg_word65_chain_out_data) begin: card_core0_regs_fifo1_reg_word66_read_chain
+    if (card_core0_regs_fifo1_reg_word66_mine) begin
+        card_core0_regs_fifo1_reg_word66_chain_out_data = (card_core0_regs_fifo1_reg_word65_chain_out_data | card_core0_regs_fifo1_reg_word66_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word66_chain_out_data = card_core0_regs_fifo1_reg_word65_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word66_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word66_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word66_mine_write = (card_core0_regs_fifo1_written_addr == 116);
+
+
+always @(card_core0_regs_fifo1_reg_word66_shown_wide, card_core0_regs_fifo1_reg_word66_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word66_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word66_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word66_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word66_written = ((card_core0_regs_fifo1_reg_word66_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word66_written) begin: card_core0_regs_fifo1_reg_word66__limit45_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word66_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word66_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word66_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word66_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word66_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word66_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word66_honoured = card_core0_regs_fifo1_reg_word66_written[16-1:0];
+        card_core0_regs_fifo1_reg_word66_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word66_chain_out_clamped = (card_core0_regs_fifo1_reg_word65_chain_out_clamped || card_core0_regs_fifo1_reg_word66_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word66__store45_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word66_shown <= 1;
+        card_core0_regs_fifo1_reg_word66_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word66_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word66_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word66_mine_write))) begin
+            card_core0_regs_fifo1_reg_word66_shown <= card_core0_regs_fifo1_reg_word66_honoured;
+            card_core0_regs_fifo1_reg_word66_clamped <= card_core0_regs_fifo1_reg_word66_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word67_mine = (pci_slave1_pci_requests1_local_addr == 120);
+
+
+always @(card_core0_regs_fifo1_reg_word67_mine, card_core0_regs_fifo1_reg_word67_shown_wide, card_core0_regs_fifo1_reg_word66_chain_out_data) begin: card_core0_regs_fifo1_reg_word67_read_chain
+    if (card_core0_regs_fifo1_reg_word67_mine) begin
+        card_core0_regs_fifo1_reg_word67_chain_out_data = (card_core0_regs_fifo1_reg_word66_chain_out_data | card_core0_regs_fifo1_reg_word67_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word67_chain_out_data = card_core0_regs_fifo1_reg_word66_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word67_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word67_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word67_mine_write = (card_core0_regs_fifo1_written_addr == 120);
+
+
+
+assign card_core0_regs_fifo1_reg_word67_written = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word67_honoured = card_core0_regs_fifo1_reg_word67_written[24-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word67_chain_out_clamped = (card_core0_regs_fifo1_reg_word66_chain_out_clamped || card_core0_regs_fifo1_reg_word67_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word67__store46_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word67__store46_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word67__store46_word_value <= 0;
+        card_core0_regs_fifo1_reg_word67_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word67__store46_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word67_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word67_mine_write)) begin
+            card_core0_regs_fifo1_reg_word67__store46_word_value <= card_core0_regs_fifo1_reg_word67_honoured;
+            card_core0_regs_fifo1_reg_word67__store46_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word67_clamped <= card_core0_regs_fifo1_reg_word67_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word68_mine = (pci_slave1_pci_requests1_local_addr == 124);
+
+
+always @(card_core0_regs_fifo1_reg_word68_mine, card_core0_regs_fifo1_reg_word68_shown_wide, card_core0_regs_fifo1_reg_word67_chain_out_data) begin: card_core0_regs_fifo1_reg_word68_read_chain
+    if (card_core0_regs_fifo1_reg_word68_mine) begin
+        card_core0_regs_fifo1_reg_word68_chain_out_data = (card_core0_regs_fifo1_reg_word67_chain_out_data | card_core0_regs_fifo1_reg_word68_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word68_chain_out_data = card_core0_regs_fifo1_reg_word67_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word68_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word68_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word68_mine_write = (card_core0_regs_fifo1_written_addr == 124);
+
+
+
+assign card_core0_regs_fifo1_reg_word68_written = (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_written[2-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word68_chain_out_clamped = (card_core0_regs_fifo1_reg_word67_chain_out_clamped || card_core0_regs_fifo1_reg_word68_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word68__store47_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word68__store47_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word68__store47_word_value <= 0;
+        card_core0_regs_fifo1_reg_word68_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word68__store47_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word68_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word68_mine_write)) begin
+            card_core0_regs_fifo1_reg_word68__store47_word_value <= card_core0_regs_fifo1_reg_word68_honoured;
+            card_core0_regs_fifo1_reg_word68__store47_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word68_clamped <= card_core0_regs_fifo1_reg_word68_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word69_mine = (pci_slave1_pci_requests1_local_addr == 128);
+
+
+always @(card_core0_regs_fifo1_reg_word69_mine, card_core0_regs_fifo1_reg_word69_shown_wide, card_core0_regs_fifo1_reg_word68_chain_out_data) begin: card_core0_regs_fifo1_reg_word69_read_chain
+    if (card_core0_regs_fifo1_reg_word69_mine) begin
+        card_core0_regs_fifo1_reg_word69_chain_out_data = (card_core0_regs_fifo1_reg_word68_chain_out_data | card_core0_regs_fifo1_reg_word69_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word69_chain_out_data = card_core0_regs_fifo1_reg_word68_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word69_shown_wide = {26'h0, card_core0_regs_fifo1_reg_word69_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word69_chain_out_clamped = card_core0_regs_fifo1_reg_word68_chain_out_clamped;
+
+
+
+assign card_core0_regs_fifo1_reg_word70_mine = (pci_slave1_pci_requests1_local_addr == 132);
+
+
+always @(card_core0_regs_fifo1_reg_word70_mine, card_core0_regs_fifo1_reg_word70_shown_wide, card_core0_regs_fifo1_reg_word69_chain_out_data) begin: card_core0_regs_fifo1_reg_word70_read_chain
+    if (card_core0_regs_fifo1_reg_word70_mine) begin
+        card_core0_regs_fifo1_reg_word70_chain_out_data = (card_core0_regs_fifo1_reg_word69_chain_out_data | card_core0_regs_fifo1_reg_word70_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word70_chain_out_data = card_core0_regs_fifo1_reg_word69_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word70_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word70_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word70_mine_write = (card_core0_regs_fifo1_written_addr == 132);
+
+
+always @(card_core0_regs_fifo1_reg_word70_shown_wide, card_core0_regs_fifo1_reg_word70_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word70_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word70_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word70_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word70_written = ((card_core0_regs_fifo1_reg_word70_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word70_written) begin: card_core0_regs_fifo1_reg_word70__limit48_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word70_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word70_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word70_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word70_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word70_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word70_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_written[16-1:0];
+        card_core0_regs_fifo1_reg_word70_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word70_chain_out_clamped = (card_core0_regs_fifo1_reg_word69_chain_out_clamped || card_core0_regs_fifo1_reg_word70_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word70__store48_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word70_shown <= 100;
+        card_core0_regs_fifo1_reg_word70_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word70_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word70_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word70_mine_write))) begin
+            card_core0_regs_fifo1_reg_word70_shown <= card_core0_regs_fifo1_reg_word70_honoured;
+            card_core0_regs_fifo1_reg_word70_clamped <= card_core0_regs_fifo1_reg_word70_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word71_mine = (pci_slave1_pci_requests1_local_addr == 136);
+
+
+always @(card_core0_regs_fifo1_reg_word71_mine, card_core0_regs_fifo1_reg_word71_shown_wide, card_core0_regs_fifo1_reg_word70_chain_out_data) begin: card_core0_regs_fifo1_reg_word71_read_chain
+    if (card_core0_regs_fifo1_reg_word71_mine) begin
+        card_core0_regs_fifo1_reg_word71_chain_out_data = (card_core0_regs_fifo1_reg_word70_chain_out_data | card_core0_regs_fifo1_reg_word71_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word71_chain_out_data = card_core0_regs_fifo1_reg_word70_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word71_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word71_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word71_mine_write = (card_core0_regs_fifo1_written_addr == 136);
+
+
+always @(card_core0_regs_fifo1_reg_word71_shown_wide, card_core0_regs_fifo1_reg_word71_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word71_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word71_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word71_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word71_written = ((card_core0_regs_fifo1_reg_word71_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word71_written) begin: card_core0_regs_fifo1_reg_word71__limit49_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word71_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word71_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word71_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word71_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word71_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word71_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word71_honoured = card_core0_regs_fifo1_reg_word71_written[16-1:0];
+        card_core0_regs_fifo1_reg_word71_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word71_chain_out_clamped = (card_core0_regs_fifo1_reg_word70_chain_out_clamped || card_core0_regs_fifo1_reg_word71_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word71__store49_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word71_shown <= 1000;
+        card_core0_regs_fifo1_reg_word71_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word71_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word71_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word71_mine_write))) begin
+            card_core0_regs_fifo1_reg_word71_shown <= card_core0_regs_fifo1_reg_word71_honoured;
+            card_core0_regs_fifo1_reg_word71_clamped <= card_core0_regs_fifo1_reg_word71_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word72_mine = (pci_slave1_pci_requests1_local_addr == 140);
+
+
+always @(card_core0_regs_fifo1_reg_word72_mine, card_core0_regs_fifo1_reg_word72_shown_wide, card_core0_regs_fifo1_reg_word71_chain_out_data) begin: card_core0_regs_fifo1_reg_word72_read_chain
+    if (card_core0_regs_fifo1_reg_word72_mine) begin
+        card_core0_regs_fifo1_reg_word72_chain_out_data = (card_core0_regs_fifo1_reg_word71_chain_out_data | card_core0_regs_fifo1_reg_word72_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word72_chain_out_data = card_core0_regs_fifo1_reg_word71_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word72_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word72_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_written_addr == 140);
+
+
+always @(card_core0_regs_fifo1_reg_word72_shown_wide, card_core0_regs_fifo1_reg_word72_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word72_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word72_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word72_written = card_core0_regs_fifo1_set_value[16-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word72_written = ((card_core0_regs_fifo1_reg_word72_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written[16-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word72_chain_out_clamped = (card_core0_regs_fifo1_reg_word71_chain_out_clamped || card_core0_regs_fifo1_reg_word72_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word72__store50_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word72_shown <= 0;
+        card_core0_regs_fifo1_reg_word72_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word72_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word72_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word72_mine_write))) begin
+            card_core0_regs_fifo1_reg_word72_shown <= card_core0_regs_fifo1_reg_word72_honoured;
+            card_core0_regs_fifo1_reg_word72_clamped <= card_core0_regs_fifo1_reg_word72_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word73_mine = (pci_slave1_pci_requests1_local_addr == 144);
+
+
+always @(card_core0_regs_fifo1_reg_word73_mine, card_core0_regs_fifo1_reg_word73_shown_wide, card_core0_regs_fifo1_reg_word72_chain_out_data) begin: card_core0_regs_fifo1_reg_word73_read_chain
+    if (card_core0_regs_fifo1_reg_word73_mine) begin
+        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word72_chain_out_data | card_core0_regs_fifo1_reg_word73_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word72_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word73_shown_wide = {9'h0, card_core0_regs_fifo1_reg_word73_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word73_mine_write = (card_core0_regs_fifo1_written_addr == 144);
+
+
+always @(card_core0_regs_fifo1_reg_word73_shown_wide, card_core0_regs_fifo1_reg_word73_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word73_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word73_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word73_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word73_written = ((card_core0_regs_fifo1_reg_word73_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word73_written) begin: card_core0_regs_fifo1_reg_word73__limit51_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word73_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word73_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word73_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word73_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word73_written[32-1:23] != 0)) begin
+        card_core0_regs_fifo1_reg_word73_honoured = 8388607;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word73_honoured = card_core0_regs_fifo1_reg_word73_written[23-1:0];
+        card_core0_regs_fifo1_reg_word73_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word73_chain_out_clamped = (card_core0_regs_fifo1_reg_word72_chain_out_clamped || card_core0_regs_fifo1_reg_word73_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word73__store51_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word73_shown <= 65535;
+        card_core0_regs_fifo1_reg_word73_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word73_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word73_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word73_mine_write))) begin
+            card_core0_regs_fifo1_reg_word73_shown <= card_core0_regs_fifo1_reg_word73_honoured;
+            card_core0_regs_fifo1_reg_word73_clamped <= card_core0_regs_fifo1_reg_word73_out_of_range;
         end
     end
 end
@@ -4012,13 +4433,13 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_r
         card_core0_regs_fifo1_feed_rate1_raise_limit <= 0;
     end
     else begin
-        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word41_shown;
-        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word42_shown;
+        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word47_shown;
+        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word48_shown;
         card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_ramp_step;
         card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_ramp_step == 0);
-        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word41_shown}) - $signed({1'b0, card_core0_regs_fifo1_ramp_step}));
-        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word41_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
-        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word42_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
+        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word47_shown}) - $signed({1'b0, card_core0_regs_fifo1_ramp_step}));
+        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word47_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
+        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word48_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
     end
 end
 
@@ -4147,9 +4568,9 @@ end
 assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending);
 
 
-always @(card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count, card_core0_regs_fifo1_reg_word50_shown) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
+always @(card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count, card_core0_regs_fifo1_reg_word56_shown) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
     if ((!card_core0_regs_fifo1_direct_pulse2_command_load)) begin
-        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word50_shown;
+        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word56_shown;
         card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
     end
     else if ((card_core0_regs_fifo1_direct_pulse2_command_count < 0)) begin
@@ -4163,12 +4584,12 @@ always @(card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1
 end
 
 
-always @(card_core0_regs_fifo1_reg_word48_shown, card_core0_regs_fifo1_direct_pulse2_waiting, card_core0_regs_fifo1_direct_pulse2_gap) begin: card_core0_regs_fifo1_direct_pulse2_gap_operands
+always @(card_core0_regs_fifo1_direct_pulse2_command_period, card_core0_regs_fifo1_direct_pulse2_waiting, card_core0_regs_fifo1_direct_pulse2_gap) begin: card_core0_regs_fifo1_direct_pulse2_gap_operands
     if (card_core0_regs_fifo1_direct_pulse2_waiting) begin
         card_core0_regs_fifo1_direct_pulse2_gap_operand = card_core0_regs_fifo1_direct_pulse2_gap;
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse2_gap_operand = card_core0_regs_fifo1_reg_word48_shown;
+        card_core0_regs_fifo1_direct_pulse2_gap_operand = card_core0_regs_fifo1_direct_pulse2_command_period;
     end
 end
 
@@ -4183,18 +4604,18 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         card_core0_regs_fifo1_direct_dir_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_waiting <= 0;
         card_core0_regs_fifo1_direct_pulse2_pending <= 0;
-        card_core0_regs_fifo1_reg_word50_shown <= 0;
+        card_core0_regs_fifo1_reg_word56_shown <= 0;
         card_core0_regs_fifo1_direct_request_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_x <= 0;
-        if (card_core0_core_clear) begin
-            card_core0_regs_fifo1_reg_word50_shown <= 0;
+        if (card_core0_regs_fifo1_direct_clear) begin
+            card_core0_regs_fifo1_reg_word56_shown <= 0;
             card_core0_regs_fifo1_direct_pulse2_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse2_command_load) begin
-            card_core0_regs_fifo1_reg_word50_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+            card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
             card_core0_regs_fifo1_direct_dir_x <= (card_core0_regs_fifo1_direct_pulse2_command_count >= 0);
             card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_command_count != 0);
             card_core0_regs_fifo1_direct_pulse2_gap <= 0;
@@ -4207,10 +4628,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             end
             else if (card_core0_regs_fifo1_direct_ready) begin
                 card_core0_regs_fifo1_direct_request_x <= 1;
-                card_core0_regs_fifo1_reg_word50_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
-                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word50_shown != 1);
+                card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word56_shown != 1);
                 card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
-                card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_reg_word48_shown != 1);
+                card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_direct_pulse2_command_period != 1);
             end
         end
     end
@@ -4221,9 +4642,9 @@ end
 assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending);
 
 
-always @(card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count, card_core0_regs_fifo1_reg_word51_shown) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
+always @(card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count, card_core0_regs_fifo1_reg_word57_shown) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
     if ((!card_core0_regs_fifo1_direct_pulse3_command_load)) begin
-        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word51_shown;
+        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word57_shown;
         card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
     end
     else if ((card_core0_regs_fifo1_direct_pulse3_command_count < 0)) begin
@@ -4237,12 +4658,12 @@ always @(card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1
 end
 
 
-always @(card_core0_regs_fifo1_reg_word49_shown, card_core0_regs_fifo1_direct_pulse3_waiting, card_core0_regs_fifo1_direct_pulse3_gap) begin: card_core0_regs_fifo1_direct_pulse3_gap_operands
+always @(card_core0_regs_fifo1_direct_pulse3_command_period, card_core0_regs_fifo1_direct_pulse3_waiting, card_core0_regs_fifo1_direct_pulse3_gap) begin: card_core0_regs_fifo1_direct_pulse3_gap_operands
     if (card_core0_regs_fifo1_direct_pulse3_waiting) begin
         card_core0_regs_fifo1_direct_pulse3_gap_operand = card_core0_regs_fifo1_direct_pulse3_gap;
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse3_gap_operand = card_core0_regs_fifo1_reg_word49_shown;
+        card_core0_regs_fifo1_direct_pulse3_gap_operand = card_core0_regs_fifo1_direct_pulse3_command_period;
     end
 end
 
@@ -4257,18 +4678,18 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         card_core0_regs_fifo1_direct_dir_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_waiting <= 0;
         card_core0_regs_fifo1_direct_pulse3_pending <= 0;
-        card_core0_regs_fifo1_reg_word51_shown <= 0;
+        card_core0_regs_fifo1_reg_word57_shown <= 0;
         card_core0_regs_fifo1_direct_request_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_y <= 0;
-        if (card_core0_core_clear) begin
-            card_core0_regs_fifo1_reg_word51_shown <= 0;
+        if (card_core0_regs_fifo1_direct_clear) begin
+            card_core0_regs_fifo1_reg_word57_shown <= 0;
             card_core0_regs_fifo1_direct_pulse3_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse3_command_load) begin
-            card_core0_regs_fifo1_reg_word51_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+            card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
             card_core0_regs_fifo1_direct_dir_y <= (card_core0_regs_fifo1_direct_pulse3_command_count >= 0);
             card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_command_count != 0);
             card_core0_regs_fifo1_direct_pulse3_gap <= 0;
@@ -4281,10 +4702,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             end
             else if (card_core0_regs_fifo1_direct_ready) begin
                 card_core0_regs_fifo1_direct_request_y <= 1;
-                card_core0_regs_fifo1_reg_word51_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
-                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word51_shown != 1);
+                card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word57_shown != 1);
                 card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
-                card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_reg_word49_shown != 1);
+                card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_command_period != 1);
             end
         end
     end
@@ -4300,12 +4721,12 @@ assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_cou
 assign card_core0_regs_fifo1_pulse_out1_head = card_core0_regs_fifo1_pulse_out1_queue[0];
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_reg_word45_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_reg_word44_shown, card_core0_regs_fifo1_pulse_clear) begin: card_core0_regs_fifo1_pulse_out1_decide
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_reg_word51_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_reg_word50_shown, card_core0_regs_fifo1_pulse_clear) begin: card_core0_regs_fifo1_pulse_out1_decide
     card_core0_regs_fifo1_pulse_out1_turn = ((card_core0_regs_fifo1_pulse_out1_count != 0) && ((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
     card_core0_regs_fifo1_pulse_out1_take = 1'b0;
-    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_regs_fifo1_pulse_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word44_shown))) begin
+    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_regs_fifo1_pulse_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word50_shown))) begin
         if ((card_core0_regs_fifo1_pulse_out1_phase == 2'b01)) begin
-            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word45_shown);
+            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word51_shown);
         end
         else if ((card_core0_regs_fifo1_pulse_out1_count != 0)) begin
             card_core0_regs_fifo1_pulse_out1_take = (!((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
@@ -4314,9 +4735,9 @@ always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pu
 end
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_reg_word44_shown, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_take, card_core0_regs_fifo1_reg_word46_shown) begin: card_core0_regs_fifo1_pulse_out1_restart
-    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word46_shown)));
-    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word44_shown));
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_reg_word50_shown, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_take, card_core0_regs_fifo1_reg_word52_shown) begin: card_core0_regs_fifo1_pulse_out1_restart
+    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word52_shown)));
+    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word50_shown));
     card_core0_regs_fifo1_pulse_out1_phase_step = 0;
     if ((card_core0_regs_fifo1_pulse_out1_phase_clocks != 255)) begin
         card_core0_regs_fifo1_pulse_out1_phase_step = 1;
@@ -4452,17 +4873,29 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_d
     else begin
         pins_step_x <= card_core0_regs_fifo1_pulse_out1_level_x;
         pins_step_y <= card_core0_regs_fifo1_pulse_out1_level_y;
-        pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word47_shown[0]);
-        pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word47_shown[1]);
+        pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word53_shown[0]);
+        pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word53_shown[1]);
         if (card_core0_regs_fifo1_clear_position) begin
             card_core0_regs_fifo1_pulse_out1_position_x <= 0;
             card_core0_regs_fifo1_position_y <= 0;
         end
         else begin
-            if ((card_core0_regs_fifo1_pulse_out1_level_x && (!pins_step_x))) begin
+            if (card_core0_regs_fifo1_home_zero[0]) begin
+                card_core0_regs_fifo1_pulse_out1_position_x <= 0;
+                if ((card_core0_regs_fifo1_pulse_out1_level_x && (!pins_step_x))) begin
+                    card_core0_regs_fifo1_pulse_out1_position_x <= card_core0_regs_fifo1_pulse_out1_delta_x;
+                end
+            end
+            else if ((card_core0_regs_fifo1_pulse_out1_level_x && (!pins_step_x))) begin
                 card_core0_regs_fifo1_pulse_out1_position_x <= (card_core0_regs_fifo1_pulse_out1_position_x + card_core0_regs_fifo1_pulse_out1_delta_x);
             end
-            if ((card_core0_regs_fifo1_pulse_out1_level_y && (!pins_step_y))) begin
+            if (card_core0_regs_fifo1_home_zero[1]) begin
+                card_core0_regs_fifo1_position_y <= 0;
+                if ((card_core0_regs_fifo1_pulse_out1_level_y && (!pins_step_y))) begin
+                    card_core0_regs_fifo1_position_y <= card_core0_regs_fifo1_pulse_out1_delta_y;
+                end
+            end
+            else if ((card_core0_regs_fifo1_pulse_out1_level_y && (!pins_step_y))) begin
                 card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y + card_core0_regs_fifo1_pulse_out1_delta_y);
             end
         end
@@ -4483,7 +4916,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1_level = (card_core0_regs_fifo1_input_filter1_inputs_raw ^ card_core0_regs_fifo1_reg_word58_shown);
+assign card_core0_regs_fifo1_input_filter1_level = (card_core0_regs_fifo1_input_filter1_inputs_raw ^ card_core0_regs_fifo1_reg_word64_shown);
 assign card_core0_regs_fifo1_input_filter1_sample = (card_core0_regs_fifo1_input_filter1_prescale == 0);
 
 
@@ -4493,7 +4926,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter
     end
     else begin
         if (card_core0_regs_fifo1_input_filter1_sample) begin
-            card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_reg_word60_shown - 1);
+            card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_reg_word66_shown - 1);
         end
         else begin
             card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_input_filter1_prescale - 1);
@@ -4505,10 +4938,10 @@ end
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1_follow
     if (reset == 0) begin
         card_core0_regs_fifo1_input_filter1_inputs_changed <= 0;
-        card_core0_regs_fifo1_input_filter1_inputs_active <= 0;
+        card_core0_regs_fifo1_conditioning_active <= 0;
     end
     else begin
-        card_core0_regs_fifo1_input_filter1_inputs_active <= (card_core0_regs_fifo1_input_filter1_inputs_active ^ card_core0_regs_fifo1_input_filter1_taken);
+        card_core0_regs_fifo1_conditioning_active <= (card_core0_regs_fifo1_conditioning_active ^ card_core0_regs_fifo1_input_filter1_taken);
         card_core0_regs_fifo1_input_filter1_inputs_changed <= (card_core0_regs_fifo1_input_filter1_taken != 0);
     end
 end
@@ -4519,7 +4952,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter
         card_core0_regs_fifo1_input_filter1__input_count7_held <= 0;
     end
     else begin
-        if ((card_core0_regs_fifo1_input_filter1_level[0] == card_core0_regs_fifo1_input_filter1_inputs_active[0])) begin
+        if ((card_core0_regs_fifo1_input_filter1_level[0] == card_core0_regs_fifo1_conditioning_active[0])) begin
             card_core0_regs_fifo1_input_filter1__input_count7_held <= 0;
         end
         else if (card_core0_regs_fifo1_input_filter1_sample) begin
@@ -4535,7 +4968,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count7_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[0] != card_core0_regs_fifo1_input_filter1_inputs_active[0]) && ((card_core0_regs_fifo1_input_filter1__input_count7_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count7_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[0] != card_core0_regs_fifo1_conditioning_active[0]) && ((card_core0_regs_fifo1_input_filter1__input_count7_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count8_count_samples
@@ -4543,7 +4976,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter
         card_core0_regs_fifo1_input_filter1__input_count8_held <= 0;
     end
     else begin
-        if ((card_core0_regs_fifo1_input_filter1_level[1] == card_core0_regs_fifo1_input_filter1_inputs_active[1])) begin
+        if ((card_core0_regs_fifo1_input_filter1_level[1] == card_core0_regs_fifo1_conditioning_active[1])) begin
             card_core0_regs_fifo1_input_filter1__input_count8_held <= 0;
         end
         else if (card_core0_regs_fifo1_input_filter1_sample) begin
@@ -4559,7 +4992,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count8_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[1] != card_core0_regs_fifo1_input_filter1_inputs_active[1]) && ((card_core0_regs_fifo1_input_filter1__input_count8_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count8_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[1] != card_core0_regs_fifo1_conditioning_active[1]) && ((card_core0_regs_fifo1_input_filter1__input_count8_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count9_count_samples
@@ -4567,7 +5000,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter
         card_core0_regs_fifo1_input_filter1__input_count9_held <= 0;
     end
     else begin
-        if ((card_core0_regs_fifo1_input_filter1_level[2] == card_core0_regs_fifo1_input_filter1_inputs_active[2])) begin
+        if ((card_core0_regs_fifo1_input_filter1_level[2] == card_core0_regs_fifo1_conditioning_active[2])) begin
             card_core0_regs_fifo1_input_filter1__input_count9_held <= 0;
         end
         else if (card_core0_regs_fifo1_input_filter1_sample) begin
@@ -4583,7 +5016,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count9_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[2] != card_core0_regs_fifo1_input_filter1_inputs_active[2]) && ((card_core0_regs_fifo1_input_filter1__input_count9_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count9_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[2] != card_core0_regs_fifo1_conditioning_active[2]) && ((card_core0_regs_fifo1_input_filter1__input_count9_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count10_count_samples
@@ -4591,7 +5024,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter
         card_core0_regs_fifo1_input_filter1__input_count10_held <= 0;
     end
     else begin
-        if ((card_core0_regs_fifo1_input_filter1_level[3] == card_core0_regs_fifo1_input_filter1_inputs_active[3])) begin
+        if ((card_core0_regs_fifo1_input_filter1_level[3] == card_core0_regs_fifo1_conditioning_active[3])) begin
             card_core0_regs_fifo1_input_filter1__input_count10_held <= 0;
         end
         else if (card_core0_regs_fifo1_input_filter1_sample) begin
@@ -4607,7 +5040,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count10_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[3] != card_core0_regs_fifo1_input_filter1_inputs_active[3]) && ((card_core0_regs_fifo1_input_filter1__input_count10_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count10_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[3] != card_core0_regs_fifo1_conditioning_active[3]) && ((card_core0_regs_fifo1_input_filter1__input_count10_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count11_count_samples
@@ -4615,7 +5048,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter
         card_core0_regs_fifo1_input_filter1__input_count11_held <= 0;
     end
     else begin
-        if ((card_core0_regs_fifo1_input_filter1_level[4] == card_core0_regs_fifo1_input_filter1_inputs_active[4])) begin
+        if ((card_core0_regs_fifo1_input_filter1_level[4] == card_core0_regs_fifo1_conditioning_active[4])) begin
             card_core0_regs_fifo1_input_filter1__input_count11_held <= 0;
         end
         else if (card_core0_regs_fifo1_input_filter1_sample) begin
@@ -4631,7 +5064,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count11_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[4] != card_core0_regs_fifo1_input_filter1_inputs_active[4]) && ((card_core0_regs_fifo1_input_filter1__input_count11_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count11_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[4] != card_core0_regs_fifo1_conditioning_active[4]) && ((card_core0_regs_fifo1_input_filter1__input_count11_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count12_count_samples
@@ -4639,7 +5072,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter
         card_core0_regs_fifo1_input_filter1__input_count12_held <= 0;
     end
     else begin
-        if ((card_core0_regs_fifo1_input_filter1_level[5] == card_core0_regs_fifo1_input_filter1_inputs_active[5])) begin
+        if ((card_core0_regs_fifo1_input_filter1_level[5] == card_core0_regs_fifo1_conditioning_active[5])) begin
             card_core0_regs_fifo1_input_filter1__input_count12_held <= 0;
         end
         else if (card_core0_regs_fifo1_input_filter1_sample) begin
@@ -4655,7 +5088,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count12_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[5] != card_core0_regs_fifo1_input_filter1_inputs_active[5]) && ((card_core0_regs_fifo1_input_filter1__input_count12_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count12_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[5] != card_core0_regs_fifo1_conditioning_active[5]) && ((card_core0_regs_fifo1_input_filter1__input_count12_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count13_count_samples
@@ -4663,7 +5096,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter
         card_core0_regs_fifo1_input_filter1__input_count13_held <= 0;
     end
     else begin
-        if ((card_core0_regs_fifo1_input_filter1_level[6] == card_core0_regs_fifo1_input_filter1_inputs_active[6])) begin
+        if ((card_core0_regs_fifo1_input_filter1_level[6] == card_core0_regs_fifo1_conditioning_active[6])) begin
             card_core0_regs_fifo1_input_filter1__input_count13_held <= 0;
         end
         else if (card_core0_regs_fifo1_input_filter1_sample) begin
@@ -4679,13 +5112,13 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count13_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[6] != card_core0_regs_fifo1_input_filter1_inputs_active[6]) && ((card_core0_regs_fifo1_input_filter1__input_count13_held + 1) >= card_core0_regs_fifo1_reg_word59_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count13_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[6] != card_core0_regs_fifo1_conditioning_active[6]) && ((card_core0_regs_fifo1_input_filter1__input_count13_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
 
 
 
-assign card_core0_regs_fifo1_machine_guard1_estop = card_core0_regs_fifo1_input_filter1_inputs_active[0];
-assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_reg_word61_shown == 1) && (!card_core0_regs_fifo1_reg_word61__store41_word_strobe));
-assign card_core0_regs_fifo1_machine_guard1_hits = {(card_core0_regs_fifo1_requests_step_y && (!card_core0_regs_fifo1_requests_dir_y) && card_core0_regs_fifo1_input_filter1_inputs_active[4]), (card_core0_regs_fifo1_requests_step_y && card_core0_regs_fifo1_requests_dir_y && card_core0_regs_fifo1_input_filter1_inputs_active[3]), (card_core0_regs_fifo1_requests_step_x && (!card_core0_regs_fifo1_requests_dir_x) && card_core0_regs_fifo1_input_filter1_inputs_active[2]), (card_core0_regs_fifo1_requests_step_x && card_core0_regs_fifo1_requests_dir_x && card_core0_regs_fifo1_input_filter1_inputs_active[1])};
+assign card_core0_regs_fifo1_machine_guard1_estop = card_core0_regs_fifo1_conditioning_active[0];
+assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_reg_word67_shown == 1) && (!card_core0_regs_fifo1_reg_word67__store46_word_strobe));
+assign card_core0_regs_fifo1_machine_guard1_hits = {(card_core0_regs_fifo1_requests_step_y && (!card_core0_regs_fifo1_requests_dir_y) && card_core0_regs_fifo1_conditioning_active[4]), (card_core0_regs_fifo1_requests_step_y && card_core0_regs_fifo1_requests_dir_y && card_core0_regs_fifo1_conditioning_active[3]), (card_core0_regs_fifo1_requests_step_x && (!card_core0_regs_fifo1_requests_dir_x) && card_core0_regs_fifo1_conditioning_active[2]), (card_core0_regs_fifo1_requests_step_x && card_core0_regs_fifo1_requests_dir_x && card_core0_regs_fifo1_conditioning_active[1])};
 
 
 always @(card_core0_regs_fifo1_machine_guard1_hits, card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_requests_step_x, card_core0_regs_fifo1_requests_dir_y, card_core0_regs_fifo1_guard_ramp, card_core0_regs_fifo1_requests_step_y, card_core0_regs_fifo1_requests_dir_x, card_core0_regs_fifo1_machine_guard1_estop) begin: card_core0_regs_fifo1_machine_guard1_gate
@@ -4752,34 +5185,225 @@ end
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guard1_watchdog
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word61_shown <= 0;
+        card_core0_regs_fifo1_reg_word67_shown <= 0;
     end
     else begin
-        if (card_core0_regs_fifo1_reg_word61__store41_word_strobe) begin
-            card_core0_regs_fifo1_reg_word61_shown <= card_core0_regs_fifo1_reg_word61__store41_word_value;
+        if (card_core0_regs_fifo1_reg_word67__store46_word_strobe) begin
+            card_core0_regs_fifo1_reg_word67_shown <= card_core0_regs_fifo1_reg_word67__store46_word_value;
         end
-        else if ((card_core0_regs_fifo1_reg_word61_shown != 0)) begin
-            card_core0_regs_fifo1_reg_word61_shown <= (card_core0_regs_fifo1_reg_word61_shown - 1);
+        else if ((card_core0_regs_fifo1_reg_word67_shown != 0)) begin
+            card_core0_regs_fifo1_reg_word67_shown <= (card_core0_regs_fifo1_reg_word67_shown - 1);
         end
     end
 end
 
 
-always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_input_filter1_inputs_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1__machine_words1_assemble
+always @(card_core0_regs_fifo1_reg_word73_shown, card_core0_regs_fifo1_reg_word72_shown, card_core0_regs_fifo1_home_inputs, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
+    card_core0_regs_fifo1_homing1_switch = card_core0_regs_fifo1_homing1_axis ? card_core0_regs_fifo1_home_inputs[1] : card_core0_regs_fifo1_home_inputs[0];
+    card_core0_regs_fifo1_homing1_seeking = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b010));
+    card_core0_regs_fifo1_homing1_seek_next = ((card_core0_regs_fifo1_homing1_state == 3'b000) || (card_core0_regs_fifo1_homing1_state == 3'b001) || ((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)));
+    if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
+        card_core0_regs_fifo1_homing1_magnitude = {8'h0, card_core0_regs_fifo1_reg_word72_shown};
+    end
+    else begin
+        card_core0_regs_fifo1_homing1_magnitude = {1'h0, card_core0_regs_fifo1_reg_word73_shown};
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word68__store47_word_value, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_negative) begin: card_core0_regs_fifo1_homing1_command
+    if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
+        card_core0_regs_fifo1_homing1_positive = (!card_core0_regs_fifo1_reg_word68__store47_word_value[1]);
+    end
+    else begin
+        card_core0_regs_fifo1_homing1_positive = card_core0_regs_fifo1_homing1_negative;
+    end
+    card_core0_regs_fifo1_home_busy = (card_core0_regs_fifo1_homing1_state != 3'b000);
+    card_core0_regs_fifo1_homing1_port_load = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b011) || (card_core0_regs_fifo1_homing1_state == 3'b101));
+end
+
+
+always @(card_core0_regs_fifo1_homing1_positive, card_core0_regs_fifo1_homing1_magnitude) begin: card_core0_regs_fifo1_homing1_sign
+    if (card_core0_regs_fifo1_homing1_positive) begin
+        card_core0_regs_fifo1_homing1_operand = card_core0_regs_fifo1_homing1_magnitude;
+        card_core0_regs_fifo1_homing1_addend = 0;
+    end
+    else begin
+        card_core0_regs_fifo1_homing1_operand = (~card_core0_regs_fifo1_homing1_magnitude);
+        card_core0_regs_fifo1_homing1_addend = 1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_homing1_signed_count = (card_core0_regs_fifo1_homing1_operand + card_core0_regs_fifo1_homing1_addend);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_next_load
+    if (reset == 0) begin
+        card_core0_regs_fifo1_homing1_port_period <= 1;
+        card_core0_regs_fifo1_homing1_port_count <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_homing1_port_count <= $signed(card_core0_regs_fifo1_homing1_signed_count);
+        if (card_core0_regs_fifo1_homing1_seek_next) begin
+            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word70_shown;
+        end
+        else begin
+            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word71_shown;
+        end
+    end
+end
+
+
+always @(card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_edges
+    reg released;
+    released = ((card_core0_regs_fifo1_homing1_state == 3'b100) && (!card_core0_regs_fifo1_homing1_switch));
+    card_core0_regs_fifo1_home_cut = (((card_core0_regs_fifo1_homing1_state == 3'b010) && card_core0_regs_fifo1_homing1_switch) || released);
+    card_core0_regs_fifo1_home_zero = 0;
+    if (released) begin
+        if (card_core0_regs_fifo1_homing1_axis) begin
+            card_core0_regs_fifo1_home_zero = 2;
+        end
+        else begin
+            card_core0_regs_fifo1_home_zero = 1;
+        end
+    end
+end
+
+
+always @(card_core0_regs_fifo1_homing1_seeking, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_phases
+    if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
+        card_core0_regs_fifo1_homing1_phase = 0;
+    end
+    else if (card_core0_regs_fifo1_homing1_seeking) begin
+        card_core0_regs_fifo1_homing1_phase = 1;
+    end
+    else if (((card_core0_regs_fifo1_homing1_state == 3'b011) || (card_core0_regs_fifo1_homing1_state == 3'b100))) begin
+        card_core0_regs_fifo1_homing1_phase = 2;
+    end
+    else begin
+        card_core0_regs_fifo1_homing1_phase = 3;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_homing1_negative, card_core0_regs_fifo1_homing1_phase, card_core0_regs_fifo1_homing1_done, card_core0_regs_fifo1_homing1_refused, card_core0_regs_fifo1_reg_word68__store47_word_strobe, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_not_found) begin: card_core0_regs_fifo1_homing1_show
+    reg [2-1:0] asked;
+    reg [6-1:0] word;
+    asked = 2'h0;
+    asked[0] = card_core0_regs_fifo1_homing1_axis;
+    asked[1] = card_core0_regs_fifo1_homing1_negative;
+    card_core0_regs_fifo1_reg_word68_shown = asked;
+    word = 6'h0;
+    word[0] = ((card_core0_regs_fifo1_homing1_state != 3'b000) || card_core0_regs_fifo1_reg_word68__store47_word_strobe);
+    word[1] = card_core0_regs_fifo1_homing1_done;
+    word[2] = card_core0_regs_fifo1_homing1_not_found;
+    word[3] = card_core0_regs_fifo1_homing1_refused;
+    word[4+:2] = card_core0_regs_fifo1_homing1_phase;
+    card_core0_regs_fifo1_reg_word69_shown = word;
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequence
+    reg drained;
+    if (reset == 0) begin
+        card_core0_regs_fifo1_homing1_negative <= 0;
+        card_core0_regs_fifo1_homing1_not_found <= 0;
+        card_core0_regs_fifo1_homing1_done <= 0;
+        card_core0_regs_fifo1_homing1_refused <= 0;
+        card_core0_regs_fifo1_homing1_axis <= 0;
+        card_core0_regs_fifo1_homing1_state <= 3'b000;
+        card_core0_regs_fifo1_homing1_port_ended <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_homing1_port_ended <= 0;
+        drained = ((!card_core0_regs_fifo1_pulse_busy) && (!card_core0_regs_fifo1_out_active));
+        if (card_core0_core_clear) begin
+            card_core0_regs_fifo1_homing1_state <= 3'b000;
+        end
+        else if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
+            if (card_core0_regs_fifo1_reg_word68__store47_word_strobe) begin
+                card_core0_regs_fifo1_homing1_axis <= card_core0_regs_fifo1_reg_word68__store47_word_value[0];
+                card_core0_regs_fifo1_homing1_negative <= card_core0_regs_fifo1_reg_word68__store47_word_value[1];
+                card_core0_regs_fifo1_homing1_done <= 0;
+                card_core0_regs_fifo1_homing1_not_found <= 0;
+                card_core0_regs_fifo1_homing1_refused <= (!card_core0_regs_fifo1_home_idle);
+                card_core0_regs_fifo1_homing1_port_ended <= (!card_core0_regs_fifo1_home_idle);
+                if (card_core0_regs_fifo1_home_idle) begin
+                    card_core0_regs_fifo1_homing1_state <= 3'b001;
+                end
+            end
+        end
+        else begin
+            if (card_core0_regs_fifo1_reg_word68__store47_word_strobe) begin
+                card_core0_regs_fifo1_homing1_refused <= 1;
+                card_core0_regs_fifo1_homing1_port_ended <= 1;
+            end
+            if ((card_core0_regs_fifo1_homing1_state == 3'b001)) begin
+                card_core0_regs_fifo1_homing1_state <= 3'b010;
+            end
+            else if ((card_core0_regs_fifo1_homing1_state == 3'b010)) begin
+                if (card_core0_regs_fifo1_homing1_switch) begin
+                    card_core0_regs_fifo1_homing1_state <= 3'b011;
+                end
+                else if (drained) begin
+                    card_core0_regs_fifo1_homing1_not_found <= 1;
+                    card_core0_regs_fifo1_homing1_port_ended <= 1;
+                    card_core0_regs_fifo1_homing1_state <= 3'b000;
+                end
+            end
+            else if ((card_core0_regs_fifo1_homing1_state == 3'b011)) begin
+                card_core0_regs_fifo1_homing1_state <= 3'b100;
+            end
+            else if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
+                if ((!card_core0_regs_fifo1_homing1_switch)) begin
+                    if ((card_core0_regs_fifo1_reg_word72_shown != 0)) begin
+                        card_core0_regs_fifo1_homing1_state <= 3'b101;
+                    end
+                    else begin
+                        card_core0_regs_fifo1_homing1_state <= 3'b111;
+                    end
+                end
+                else if (drained) begin
+                    card_core0_regs_fifo1_homing1_not_found <= 1;
+                    card_core0_regs_fifo1_homing1_port_ended <= 1;
+                    card_core0_regs_fifo1_homing1_state <= 3'b000;
+                end
+            end
+            else if ((card_core0_regs_fifo1_homing1_state == 3'b101)) begin
+                card_core0_regs_fifo1_homing1_state <= 3'b110;
+            end
+            else if ((card_core0_regs_fifo1_homing1_state == 3'b110)) begin
+                if ((!card_core0_regs_fifo1_pulse_busy)) begin
+                    card_core0_regs_fifo1_homing1_state <= 3'b111;
+                end
+            end
+            else if ((!card_core0_regs_fifo1_out_active)) begin
+                card_core0_regs_fifo1_homing1_done <= 1;
+                card_core0_regs_fifo1_homing1_port_ended <= 1;
+                card_core0_regs_fifo1_homing1_state <= 3'b000;
+            end
+        end
+    end
+end
+
+
+always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1__machine_words1_assemble
     reg [20-1:0] word;
     reg [8-1:0] why;
     word = 20'h0;
     word[0+:7] = card_core0_regs_fifo1_input_filter1_inputs_raw;
-    word[8+:7] = card_core0_regs_fifo1_input_filter1_inputs_active;
+    word[8+:7] = card_core0_regs_fifo1_conditioning_active;
     word[16] = card_core0_regs_fifo1_guard_stopped;
     word[17] = pins_drive_enable;
     word[18] = card_core0_regs_fifo1_settled;
     word[19] = card_core0_regs_fifo1_guard_stopping;
-    card_core0_regs_fifo1_reg_word56_shown = word;
+    card_core0_regs_fifo1_reg_word62_shown = word;
     why = 8'h0;
     why[0+:2] = card_core0_regs_fifo1_machine_guard1_guard_reason;
     why[4+:4] = card_core0_regs_fifo1_machine_guard1_guard_limits;
-    card_core0_regs_fifo1_reg_word57_shown = why;
+    card_core0_regs_fifo1_reg_word63_shown = why;
 end
 
 
@@ -4834,7 +5458,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_enable = (card_core0_regs_fifo1_control[0] && (!card_core0_regs_fifo1_control[1]) && (!card_core0_regs_fifo1_halt));
+assign card_core0_regs_fifo1_enable = (card_core0_regs_fifo1_control[0] && (!card_core0_regs_fifo1_control[1]) && (!card_core0_regs_fifo1_halt) && (!card_core0_regs_fifo1_home_busy));
 assign card_core0_regs_fifo1_direct_mode = card_core0_regs_fifo1_control[1];
 assign card_core0_regs_fifo1_clear_error = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[1]);
 assign card_core0_regs_fifo1_clear_position = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[2]);
@@ -4845,6 +5469,9 @@ assign card_core0_regs_fifo1_settled = (card_core0_regs_fifo1_feed_held && (!car
 assign card_core0_regs_fifo1_direct_ready = (card_core0_regs_fifo1_out_ready && (!card_core0_regs_fifo1_guard_stopping));
 assign card_core0_regs_fifo1_pulse_clear = (card_core0_core_clear || card_core0_regs_fifo1_halt);
 assign card_core0_regs_fifo1_sequencer_clear = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped);
+assign card_core0_regs_fifo1_home_idle = ((!card_core0_regs_fifo1_any_busy) && card_core0_regs_fifo1_fifo_empty && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_halt));
+assign card_core0_regs_fifo1_direct_clear = (card_core0_core_clear || card_core0_regs_fifo1_home_cut);
+assign card_core0_regs_fifo1_home_inputs = card_core0_regs_fifo1_conditioning_active[5+:2];
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_soft_reset
@@ -4892,7 +5519,7 @@ assign card_core0_regs_fifo1_pulse_busy = (card_core0_regs_fifo1_direct_busy_x |
 assign card_core0_regs_fifo1_outputs_busy = (card_core0_regs_fifo1_requests_step_x || card_core0_regs_fifo1_requests_step_y || card_core0_regs_fifo1_requested_before || card_core0_regs_fifo1_out_active_before);
 assign card_core0_regs_fifo1_hold = (!card_core0_regs_fifo1_out_ready);
 assign card_core0_regs_fifo1_dda_advance = (card_core0_regs_fifo1_tick && card_core0_regs_fifo1_out_ready && card_core0_regs_fifo1_motion_run);
-assign card_core0_regs_fifo1_any_busy = (card_core0_regs_fifo1_seq_busy || card_core0_regs_fifo1_direct_busy_x || card_core0_regs_fifo1_direct_busy_y || card_core0_regs_fifo1_out_active || card_core0_regs_fifo1_dda_busy);
+assign card_core0_regs_fifo1_any_busy = (card_core0_regs_fifo1_seq_busy || card_core0_regs_fifo1_direct_busy_x || card_core0_regs_fifo1_direct_busy_y || card_core0_regs_fifo1_out_active || card_core0_regs_fifo1_dda_busy || card_core0_regs_fifo1_home_busy);
 
 
 
@@ -4906,10 +5533,16 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_reg_word50__store35_word_strobe, card_core0_regs_fifo1_reg_word50__store35_word_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source2_choose_source
-    if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_reg_word50__store35_word_strobe && (!card_core0_regs_fifo1_halt));
-        card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word50__store35_word_value);
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word68_shown[0], card_core0_regs_fifo1_reg_word56__store40_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word56__store40_word_value, card_core0_regs_fifo1_reg_word54_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source2_choose_source
+    card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word54_shown;
+    if (card_core0_regs_fifo1_home_busy) begin
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word68_shown[0] == 0));
+        card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_homing1_port_count;
+        card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_homing1_port_period;
+    end
+    else if (card_core0_regs_fifo1_direct_mode) begin
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_reg_word56__store40_word_strobe && (!card_core0_regs_fifo1_halt));
+        card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word56__store40_word_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse2_command_load = card_core0_regs_fifo1_seq_load;
@@ -4918,10 +5551,16 @@ always @(card_core0_regs_fifo1_reg_word50__store35_word_strobe, card_core0_regs_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word51__store36_word_strobe, card_core0_regs_fifo1_reg_word51__store36_word_value, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source3_choose_source
-    if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_reg_word51__store36_word_strobe && (!card_core0_regs_fifo1_halt));
-        card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word51__store36_word_value);
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word68_shown[0], card_core0_regs_fifo1_reg_word57__store41_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word57__store41_word_value, card_core0_regs_fifo1_reg_word55_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source3_choose_source
+    card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word55_shown;
+    if (card_core0_regs_fifo1_home_busy) begin
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word68_shown[0] == 1));
+        card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_homing1_port_count;
+        card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_homing1_port_period;
+    end
+    else if (card_core0_regs_fifo1_direct_mode) begin
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_reg_word57__store41_word_strobe && (!card_core0_regs_fifo1_halt));
+        card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word57__store41_word_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse3_command_load = card_core0_regs_fifo1_seq_load;
@@ -4958,7 +5597,7 @@ always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_done_flag, card
     word[9] = card_core0_regs_fifo1_fifo_full;
     word[10] = card_core0_regs_fifo1_guard_stopped;
     word[32-1:16] = card_core0_regs_fifo1_level_wide;
-    card_core0_regs_fifo1_reg_word34_shown = word;
+    card_core0_regs_fifo1_reg_word40_shown = word;
 end
 
 
@@ -4966,39 +5605,40 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1__interrupts1
     if (reset == 0) begin
         card_core0_regs_fifo1_error_before <= 0;
         card_core0_regs_fifo1_low_before <= 0;
-        card_core0_regs_fifo1_reg_word38_shown <= 0;
+        card_core0_regs_fifo1_reg_word44_shown <= 0;
     end
     else begin
         card_core0_regs_fifo1_error_before <= (card_core0_regs_fifo1_error_code != 0);
-        card_core0_regs_fifo1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word37_shown);
+        card_core0_regs_fifo1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word43_shown);
         if (card_core0_regs_fifo1_sequencer1_mark_strobe) begin
-            card_core0_regs_fifo1_reg_word38_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
+            card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
         end
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word61_chain_out_clamped, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_reg_word37_shown, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_input_filter1_inputs_changed, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_busy_before, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_low_before) begin: card_core0_regs_fifo1__interrupts1_detect
-    reg [7-1:0] word;
-    word = 7'h0;
+always @(card_core0_regs_fifo1_reg_word73_chain_out_clamped, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_reg_word43_shown, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_input_filter1_inputs_changed, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_busy_before, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_low_before) begin: card_core0_regs_fifo1__interrupts1_detect
+    reg [8-1:0] word;
+    word = 8'h0;
     word[0] = (card_core0_regs_fifo1_busy_before && (!card_core0_regs_fifo1_any_busy));
-    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word37_shown) && (!card_core0_regs_fifo1_low_before));
+    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word43_shown) && (!card_core0_regs_fifo1_low_before));
     word[2] = ((card_core0_regs_fifo1_error_code != 0) && (!card_core0_regs_fifo1_error_before));
     word[3] = card_core0_regs_fifo1_sequencer1_mark_strobe;
-    word[4] = card_core0_regs_fifo1_reg_word61_chain_out_clamped;
+    word[4] = card_core0_regs_fifo1_reg_word73_chain_out_clamped;
     word[5] = card_core0_regs_fifo1_guard_stop_event;
     word[6] = card_core0_regs_fifo1_input_filter1_inputs_changed;
-    card_core0_regs_fifo1_reg_word36__store24_word_hw = word;
+    word[7] = card_core0_regs_fifo1_homing1_port_ended;
+    card_core0_regs_fifo1_reg_word42__store29_word_hw = word;
 end
 
 
 
-assign irq = ((card_core0_regs_fifo1_reg_word36_shown & card_core0_regs_fifo1_reg_word35_shown) != 0);
+assign irq = ((card_core0_regs_fifo1_reg_word42_shown & card_core0_regs_fifo1_reg_word41_shown) != 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word39_shown = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
-assign card_core0_regs_fifo1_reg_word40_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
+assign card_core0_regs_fifo1_reg_word45_shown = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
+assign card_core0_regs_fifo1_reg_word46_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
 
 
 always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_magnitudes

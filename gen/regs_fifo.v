@@ -163,12 +163,12 @@ input pins_home_y;
 
 reg [31:0] fifo_dout;
 reg fifo_pop;
-wire fifo_empty;
 reg set_strobe;
 reg [3:0] set_index;
 reg [31:0] set_value;
 reg [3:0] error_code;
 reg seq_load;
+reg [1:0] home_zero;
 reg busy_before;
 reg done_flag;
 reg low_before;
@@ -178,15 +178,19 @@ reg [31:0] byte_mask;
 wire clear_error;
 wire clear_position;
 wire clear_stop;
+wire direct_clear;
 wire direct_mode;
 wire direct_ready;
 wire discard_on_clear;
 wire enable;
+wire fifo_empty;
 wire fifo_flush;
 wire fifo_full;
 wire [9:0] fifo_level;
 reg halt;
 wire hold;
+wire home_idle;
+wire [1:0] home_inputs;
 reg io_read;
 reg io_write;
 reg io_written;
@@ -211,6 +215,7 @@ reg [31:0] written_data;
 reg [31:0] written_mask;
 reg [31:0] read_end;
 reg [1:0] control;
+reg home_busy;
 reg command_strobe;
 reg [3:0] command;
 wire feed_pause;
@@ -220,6 +225,8 @@ wire guard_ramp;
 reg [15:0] ramp_step;
 reg feed_held;
 reg guard_stopped;
+reg home_cut;
+reg [6:0] conditioning_active;
 reg guard_stop_event;
 wire requests_step_x;
 wire requests_step_y;
@@ -274,26 +281,26 @@ wire reg_word3_mine;
 wire [31:0] reg_word3_shown_wide;
 reg [31:0] reg_word3_chain_out_data;
 wire reg_word3_chain_out_clamped;
-wire [6:0] reg_word4_honoured;
+wire [7:0] reg_word4_honoured;
 wire reg_word4_out_of_range;
-reg [6:0] reg_word4_shown;
+reg [7:0] reg_word4_shown;
 reg reg_word4_clamped;
 wire reg_word4_mine;
 wire reg_word4_mine_write;
 wire reg_word4_set_mine;
 wire [31:0] reg_word4_shown_wide;
-reg [6:0] reg_word4_written;
+reg [7:0] reg_word4_written;
 reg [31:0] reg_word4_chain_out_data;
 wire reg_word4_chain_out_clamped;
-wire [6:0] reg_word5_honoured;
-reg [6:0] reg_word5_shown;
+wire [7:0] reg_word5_honoured;
+reg [7:0] reg_word5_shown;
 wire reg_word5_mine;
 wire reg_word5_mine_write;
 wire [31:0] reg_word5_shown_wide;
-wire [6:0] reg_word5_written;
+wire [7:0] reg_word5_written;
 reg [31:0] reg_word5_chain_out_data;
 wire reg_word5_chain_out_clamped;
-reg [6:0] reg_word5__store3_word_hw;
+reg [7:0] reg_word5__store3_word_hw;
 wire [15:0] reg_word6_honoured;
 wire reg_word6_out_of_range;
 reg [15:0] reg_word6_shown;
@@ -510,9 +517,70 @@ wire reg_word30_mine;
 wire reg_word30_mine_write;
 wire [31:0] reg_word30_shown_wide;
 wire [23:0] reg_word30_written;
+reg [31:0] reg_word30_chain_out_data;
 wire reg_word30_chain_out_clamped;
 reg reg_word30__store20_word_strobe;
 reg [23:0] reg_word30__store20_word_value;
+wire [1:0] reg_word31_honoured;
+wire reg_word31_out_of_range;
+reg [1:0] reg_word31_shown;
+reg reg_word31_clamped;
+wire reg_word31_mine;
+wire reg_word31_mine_write;
+wire [31:0] reg_word31_shown_wide;
+wire [1:0] reg_word31_written;
+reg [31:0] reg_word31_chain_out_data;
+wire reg_word31_chain_out_clamped;
+reg reg_word31__store21_word_strobe;
+reg [1:0] reg_word31__store21_word_value;
+reg [5:0] reg_word32_shown;
+wire reg_word32_mine;
+wire [31:0] reg_word32_shown_wide;
+reg [31:0] reg_word32_chain_out_data;
+wire reg_word32_chain_out_clamped;
+reg [15:0] reg_word33_honoured;
+reg reg_word33_out_of_range;
+reg [15:0] reg_word33_shown;
+reg reg_word33_clamped;
+wire reg_word33_mine;
+wire reg_word33_mine_write;
+wire reg_word33_set_mine;
+wire [31:0] reg_word33_shown_wide;
+reg [31:0] reg_word33_written;
+reg [31:0] reg_word33_chain_out_data;
+wire reg_word33_chain_out_clamped;
+reg [15:0] reg_word34_honoured;
+reg reg_word34_out_of_range;
+reg [15:0] reg_word34_shown;
+reg reg_word34_clamped;
+wire reg_word34_mine;
+wire reg_word34_mine_write;
+wire reg_word34_set_mine;
+wire [31:0] reg_word34_shown_wide;
+reg [31:0] reg_word34_written;
+reg [31:0] reg_word34_chain_out_data;
+wire reg_word34_chain_out_clamped;
+wire [15:0] reg_word35_honoured;
+wire reg_word35_out_of_range;
+reg [15:0] reg_word35_shown;
+reg reg_word35_clamped;
+wire reg_word35_mine;
+wire reg_word35_mine_write;
+wire reg_word35_set_mine;
+wire [31:0] reg_word35_shown_wide;
+reg [15:0] reg_word35_written;
+reg [31:0] reg_word35_chain_out_data;
+wire reg_word35_chain_out_clamped;
+reg [22:0] reg_word36_honoured;
+reg reg_word36_out_of_range;
+reg [22:0] reg_word36_shown;
+reg reg_word36_clamped;
+wire reg_word36_mine;
+wire reg_word36_mine_write;
+wire reg_word36_set_mine;
+wire [31:0] reg_word36_shown_wide;
+reg [31:0] reg_word36_written;
+wire reg_word36_chain_out_clamped;
 wire sequencer0_arriving_coord_fits;
 reg [2:0] sequencer0_arriving_count;
 wire sequencer0_arriving_count_fits;
@@ -585,6 +653,7 @@ reg direct_pulse0_pending;
 reg direct_pulse0_waiting;
 reg direct_pulse0_command_load;
 reg signed [23:0] direct_pulse0_command_count;
+reg [15:0] direct_pulse0_command_period;
 reg [23:0] direct_pulse1_count_addend;
 reg [23:0] direct_pulse1_count_operand;
 wire [23:0] direct_pulse1_counted;
@@ -595,6 +664,7 @@ reg direct_pulse1_pending;
 reg direct_pulse1_waiting;
 reg direct_pulse1_command_load;
 reg signed [23:0] direct_pulse1_command_count;
+reg [15:0] direct_pulse1_command_period;
 reg [2:0] pulse_out0_count;
 reg signed [31:0] pulse_out0_delta_x;
 reg signed [31:0] pulse_out0_delta_y;
@@ -626,7 +696,6 @@ reg [6:0] input_filter0_sync;
 wire [6:0] input_filter0_taken;
 wire [6:0] input_filter0_inputs_pins;
 reg [6:0] input_filter0_inputs_raw;
-reg [6:0] input_filter0_inputs_active;
 reg input_filter0_inputs_changed;
 reg [3:0] input_filter0__input_count0_held;
 wire input_filter0__input_count0_taken;
@@ -647,6 +716,25 @@ wire machine_guard0_expired;
 wire [3:0] machine_guard0_hits;
 reg [1:0] machine_guard0_guard_reason;
 reg [3:0] machine_guard0_guard_limits;
+reg [23:0] homing0_addend;
+reg homing0_axis;
+reg homing0_done;
+reg [23:0] homing0_magnitude;
+reg homing0_negative;
+reg homing0_not_found;
+reg [23:0] homing0_operand;
+reg [1:0] homing0_phase;
+reg homing0_positive;
+reg homing0_refused;
+reg homing0_seek_next;
+reg homing0_seeking;
+wire [23:0] homing0_signed_count;
+reg [2:0] homing0_state;
+reg homing0_switch;
+reg homing0_port_load;
+reg signed [23:0] homing0_port_count;
+reg [15:0] homing0_port_period;
+reg homing0_port_ended;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
@@ -674,6 +762,12 @@ assign reg_word27_set_mine = 1'd0;
 assign reg_word28_set_mine = 1'd0;
 assign reg_word29_set_mine = 1'd0;
 assign reg_word30_out_of_range = 1'd0;
+assign reg_word31_out_of_range = 1'd0;
+assign reg_word33_set_mine = 1'd0;
+assign reg_word34_set_mine = 1'd0;
+assign reg_word35_out_of_range = 1'd0;
+assign reg_word35_set_mine = 1'd0;
+assign reg_word36_set_mine = 1'd0;
 assign input_filter0_taken[6] = input_filter0__input_count6_taken;
 assign input_filter0_taken[5] = input_filter0__input_count5_taken;
 assign input_filter0_taken[4] = input_filter0__input_count4_taken;
@@ -937,7 +1031,7 @@ end
 
 
 
-assign reg_word4_shown_wide = {25'h0, reg_word4_shown};
+assign reg_word4_shown_wide = {24'h0, reg_word4_shown};
 
 
 
@@ -946,16 +1040,16 @@ assign reg_word4_mine_write = (written_addr == 16);
 
 always @(reg_word4_shown_wide, reg_word4_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word4_merge_bytes
     if ((reg_word4_set_mine && (set_index == 0))) begin
-        reg_word4_written = set_value[7-1:0];
+        reg_word4_written = set_value[8-1:0];
     end
     else begin
-        reg_word4_written = ((reg_word4_shown_wide[7-1:0] & (~written_mask[7-1:0])) | (written_data[7-1:0] & written_mask[7-1:0]));
+        reg_word4_written = ((reg_word4_shown_wide[8-1:0] & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
     end
 end
 
 
 
-assign reg_word4_honoured = reg_word4_written[7-1:0];
+assign reg_word4_honoured = reg_word4_written[8-1:0];
 
 
 
@@ -992,7 +1086,7 @@ end
 
 
 
-assign reg_word5_shown_wide = {25'h0, reg_word5_shown};
+assign reg_word5_shown_wide = {24'h0, reg_word5_shown};
 
 
 
@@ -1000,11 +1094,11 @@ assign reg_word5_mine_write = (written_addr == 20);
 
 
 
-assign reg_word5_written = (written_data[7-1:0] & written_mask[7-1:0]);
+assign reg_word5_written = (written_data[8-1:0] & written_mask[8-1:0]);
 
 
 
-assign reg_word5_honoured = reg_word5_written[7-1:0];
+assign reg_word5_honoured = reg_word5_written[8-1:0];
 
 
 
@@ -2205,10 +2299,10 @@ assign reg_word30_mine = (local_addr == 120);
 
 always @(reg_word30_mine, reg_word30_shown_wide, reg_word29_chain_out_data) begin: reg_word30_read_chain
     if (reg_word30_mine) begin
-        read_end = (reg_word29_chain_out_data | reg_word30_shown_wide);
+        reg_word30_chain_out_data = (reg_word29_chain_out_data | reg_word30_shown_wide);
     end
     else begin
-        read_end = reg_word29_chain_out_data;
+        reg_word30_chain_out_data = reg_word29_chain_out_data;
     end
 end
 
@@ -2246,6 +2340,333 @@ always @(posedge clock, negedge reset) begin: reg_word30__store20_pulse_on_write
             reg_word30__store20_word_value <= reg_word30_honoured;
             reg_word30__store20_word_strobe <= 1'b1;
             reg_word30_clamped <= reg_word30_out_of_range;
+        end
+    end
+end
+
+
+
+assign reg_word31_mine = (local_addr == 124);
+
+
+always @(reg_word31_mine, reg_word31_shown_wide, reg_word30_chain_out_data) begin: reg_word31_read_chain
+    if (reg_word31_mine) begin
+        reg_word31_chain_out_data = (reg_word30_chain_out_data | reg_word31_shown_wide);
+    end
+    else begin
+        reg_word31_chain_out_data = reg_word30_chain_out_data;
+    end
+end
+
+
+
+assign reg_word31_shown_wide = {30'h0, reg_word31_shown};
+
+
+
+assign reg_word31_mine_write = (written_addr == 124);
+
+
+
+assign reg_word31_written = (written_data[2-1:0] & written_mask[2-1:0]);
+
+
+
+assign reg_word31_honoured = reg_word31_written[2-1:0];
+
+
+
+assign reg_word31_chain_out_clamped = (reg_word30_chain_out_clamped || reg_word31_clamped);
+
+
+always @(posedge clock, negedge reset) begin: reg_word31__store21_pulse_on_write
+    if (reset == 0) begin
+        reg_word31__store21_word_strobe <= 0;
+        reg_word31__store21_word_value <= 0;
+        reg_word31_clamped <= 0;
+    end
+    else begin
+        reg_word31__store21_word_strobe <= 1'b0;
+        reg_word31_clamped <= 1'b0;
+        if ((io_written && reg_word31_mine_write)) begin
+            reg_word31__store21_word_value <= reg_word31_honoured;
+            reg_word31__store21_word_strobe <= 1'b1;
+            reg_word31_clamped <= reg_word31_out_of_range;
+        end
+    end
+end
+
+
+
+assign reg_word32_mine = (local_addr == 128);
+
+
+always @(reg_word32_mine, reg_word32_shown_wide, reg_word31_chain_out_data) begin: reg_word32_read_chain
+    if (reg_word32_mine) begin
+        reg_word32_chain_out_data = (reg_word31_chain_out_data | reg_word32_shown_wide);
+    end
+    else begin
+        reg_word32_chain_out_data = reg_word31_chain_out_data;
+    end
+end
+
+
+
+assign reg_word32_shown_wide = {26'h0, reg_word32_shown};
+
+
+
+assign reg_word32_chain_out_clamped = reg_word31_chain_out_clamped;
+
+
+
+assign reg_word33_mine = (local_addr == 132);
+
+
+always @(reg_word33_mine, reg_word33_shown_wide, reg_word32_chain_out_data) begin: reg_word33_read_chain
+    if (reg_word33_mine) begin
+        reg_word33_chain_out_data = (reg_word32_chain_out_data | reg_word33_shown_wide);
+    end
+    else begin
+        reg_word33_chain_out_data = reg_word32_chain_out_data;
+    end
+end
+
+
+
+assign reg_word33_shown_wide = {16'h0, reg_word33_shown};
+
+
+
+assign reg_word33_mine_write = (written_addr == 132);
+
+
+always @(reg_word33_shown_wide, reg_word33_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word33_merge_bytes
+    if ((reg_word33_set_mine && (set_index == 0))) begin
+        reg_word33_written = set_value[32-1:0];
+    end
+    else begin
+        reg_word33_written = ((reg_word33_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+    end
+end
+
+
+always @(reg_word33_written) begin: reg_word33__limit22_clamp_unsigned_power_of_two
+    reg_word33_out_of_range = 1'b1;
+    if (((reg_word33_written[32-1:1] == 0) && (reg_word33_written[1-1:0] < 1))) begin
+        reg_word33_honoured = 1;
+    end
+    else if ((reg_word33_written[32-1:16] != 0)) begin
+        reg_word33_honoured = 65535;
+    end
+    else begin
+        reg_word33_honoured = reg_word33_written[16-1:0];
+        reg_word33_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign reg_word33_chain_out_clamped = (reg_word32_chain_out_clamped || reg_word33_clamped);
+
+
+always @(posedge clock, negedge reset) begin: reg_word33__store22_hold_rw
+    if (reset == 0) begin
+        reg_word33_shown <= 100;
+        reg_word33_clamped <= 0;
+    end
+    else begin
+        reg_word33_clamped <= 1'b0;
+        if (((reg_word33_set_mine && (set_index == 0)) || (io_written && reg_word33_mine_write))) begin
+            reg_word33_shown <= reg_word33_honoured;
+            reg_word33_clamped <= reg_word33_out_of_range;
+        end
+    end
+end
+
+
+
+assign reg_word34_mine = (local_addr == 136);
+
+
+always @(reg_word34_mine, reg_word34_shown_wide, reg_word33_chain_out_data) begin: reg_word34_read_chain
+    if (reg_word34_mine) begin
+        reg_word34_chain_out_data = (reg_word33_chain_out_data | reg_word34_shown_wide);
+    end
+    else begin
+        reg_word34_chain_out_data = reg_word33_chain_out_data;
+    end
+end
+
+
+
+assign reg_word34_shown_wide = {16'h0, reg_word34_shown};
+
+
+
+assign reg_word34_mine_write = (written_addr == 136);
+
+
+always @(reg_word34_shown_wide, reg_word34_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word34_merge_bytes
+    if ((reg_word34_set_mine && (set_index == 0))) begin
+        reg_word34_written = set_value[32-1:0];
+    end
+    else begin
+        reg_word34_written = ((reg_word34_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+    end
+end
+
+
+always @(reg_word34_written) begin: reg_word34__limit23_clamp_unsigned_power_of_two
+    reg_word34_out_of_range = 1'b1;
+    if (((reg_word34_written[32-1:1] == 0) && (reg_word34_written[1-1:0] < 1))) begin
+        reg_word34_honoured = 1;
+    end
+    else if ((reg_word34_written[32-1:16] != 0)) begin
+        reg_word34_honoured = 65535;
+    end
+    else begin
+        reg_word34_honoured = reg_word34_written[16-1:0];
+        reg_word34_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign reg_word34_chain_out_clamped = (reg_word33_chain_out_clamped || reg_word34_clamped);
+
+
+always @(posedge clock, negedge reset) begin: reg_word34__store23_hold_rw
+    if (reset == 0) begin
+        reg_word34_shown <= 1000;
+        reg_word34_clamped <= 0;
+    end
+    else begin
+        reg_word34_clamped <= 1'b0;
+        if (((reg_word34_set_mine && (set_index == 0)) || (io_written && reg_word34_mine_write))) begin
+            reg_word34_shown <= reg_word34_honoured;
+            reg_word34_clamped <= reg_word34_out_of_range;
+        end
+    end
+end
+
+
+
+assign reg_word35_mine = (local_addr == 140);
+
+
+always @(reg_word35_mine, reg_word35_shown_wide, reg_word34_chain_out_data) begin: reg_word35_read_chain
+    if (reg_word35_mine) begin
+        reg_word35_chain_out_data = (reg_word34_chain_out_data | reg_word35_shown_wide);
+    end
+    else begin
+        reg_word35_chain_out_data = reg_word34_chain_out_data;
+    end
+end
+
+
+
+assign reg_word35_shown_wide = {16'h0, reg_word35_shown};
+
+
+
+assign reg_word35_mine_write = (written_addr == 140);
+
+
+always @(reg_word35_shown_wide, reg_word35_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word35_merge_bytes
+    if ((reg_word35_set_mine && (set_index == 0))) begin
+        reg_word35_written = set_value[16-1:0];
+    end
+    else begin
+        reg_word35_written = ((reg_word35_shown_wide[16-1:0] & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+    end
+end
+
+
+
+assign reg_word35_honoured = reg_word35_written[16-1:0];
+
+
+
+assign reg_word35_chain_out_clamped = (reg_word34_chain_out_clamped || reg_word35_clamped);
+
+
+always @(posedge clock, negedge reset) begin: reg_word35__store24_hold_rw
+    if (reset == 0) begin
+        reg_word35_shown <= 0;
+        reg_word35_clamped <= 0;
+    end
+    else begin
+        reg_word35_clamped <= 1'b0;
+        if (((reg_word35_set_mine && (set_index == 0)) || (io_written && reg_word35_mine_write))) begin
+            reg_word35_shown <= reg_word35_honoured;
+            reg_word35_clamped <= reg_word35_out_of_range;
+        end
+    end
+end
+
+
+
+assign reg_word36_mine = (local_addr == 144);
+
+
+always @(reg_word36_mine, reg_word36_shown_wide, reg_word35_chain_out_data) begin: reg_word36_read_chain
+    if (reg_word36_mine) begin
+        read_end = (reg_word35_chain_out_data | reg_word36_shown_wide);
+    end
+    else begin
+        read_end = reg_word35_chain_out_data;
+    end
+end
+
+
+
+assign reg_word36_shown_wide = {9'h0, reg_word36_shown};
+
+
+
+assign reg_word36_mine_write = (written_addr == 144);
+
+
+always @(reg_word36_shown_wide, reg_word36_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word36_merge_bytes
+    if ((reg_word36_set_mine && (set_index == 0))) begin
+        reg_word36_written = set_value[32-1:0];
+    end
+    else begin
+        reg_word36_written = ((reg_word36_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+    end
+end
+
+
+always @(reg_word36_written) begin: reg_word36__limit25_clamp_unsigned_power_of_two
+    reg_word36_out_of_range = 1'b1;
+    if (((reg_word36_written[32-1:1] == 0) && (reg_word36_written[1-1:0] < 1))) begin
+        reg_word36_honoured = 1;
+    end
+    else if ((reg_word36_written[32-1:23] != 0)) begin
+        reg_word36_honoured = 8388607;
+    end
+    else begin
+        reg_word36_honoured = reg_word36_written[23-1:0];
+        reg_word36_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign reg_word36_chain_out_clamped = (reg_word35_chain_out_clamped || reg_word36_clamped);
+
+
+always @(posedge clock, negedge reset) begin: reg_word36__store25_hold_rw
+    if (reset == 0) begin
+        reg_word36_shown <= 65535;
+        reg_word36_clamped <= 0;
+    end
+    else begin
+        reg_word36_clamped <= 1'b0;
+        if (((reg_word36_set_mine && (set_index == 0)) || (io_written && reg_word36_mine_write))) begin
+            reg_word36_shown <= reg_word36_honoured;
+            reg_word36_clamped <= reg_word36_out_of_range;
         end
     end
 end
@@ -2889,12 +3310,12 @@ always @(direct_pulse0_command_load, direct_pulse0_command_count, reg_word19_sho
 end
 
 
-always @(reg_word17_shown, direct_pulse0_waiting, direct_pulse0_gap) begin: direct_pulse0_gap_operands
+always @(direct_pulse0_command_period, direct_pulse0_waiting, direct_pulse0_gap) begin: direct_pulse0_gap_operands
     if (direct_pulse0_waiting) begin
         direct_pulse0_gap_operand = direct_pulse0_gap;
     end
     else begin
-        direct_pulse0_gap_operand = reg_word17_shown;
+        direct_pulse0_gap_operand = direct_pulse0_command_period;
     end
 end
 
@@ -2915,7 +3336,7 @@ always @(posedge clock, negedge reset) begin: direct_pulse0_emit
     end
     else begin
         direct_request_x <= 0;
-        if (core_clear) begin
+        if (direct_clear) begin
             reg_word19_shown <= 0;
             direct_pulse0_pending <= 0;
         end
@@ -2936,7 +3357,7 @@ always @(posedge clock, negedge reset) begin: direct_pulse0_emit
                 reg_word19_shown <= direct_pulse0_counted;
                 direct_pulse0_pending <= (reg_word19_shown != 1);
                 direct_pulse0_gap <= direct_pulse0_gap_less;
-                direct_pulse0_waiting <= (reg_word17_shown != 1);
+                direct_pulse0_waiting <= (direct_pulse0_command_period != 1);
             end
         end
     end
@@ -2963,12 +3384,12 @@ always @(direct_pulse1_command_load, direct_pulse1_command_count, reg_word20_sho
 end
 
 
-always @(reg_word18_shown, direct_pulse1_waiting, direct_pulse1_gap) begin: direct_pulse1_gap_operands
+always @(direct_pulse1_command_period, direct_pulse1_waiting, direct_pulse1_gap) begin: direct_pulse1_gap_operands
     if (direct_pulse1_waiting) begin
         direct_pulse1_gap_operand = direct_pulse1_gap;
     end
     else begin
-        direct_pulse1_gap_operand = reg_word18_shown;
+        direct_pulse1_gap_operand = direct_pulse1_command_period;
     end
 end
 
@@ -2989,7 +3410,7 @@ always @(posedge clock, negedge reset) begin: direct_pulse1_emit
     end
     else begin
         direct_request_y <= 0;
-        if (core_clear) begin
+        if (direct_clear) begin
             reg_word20_shown <= 0;
             direct_pulse1_pending <= 0;
         end
@@ -3010,7 +3431,7 @@ always @(posedge clock, negedge reset) begin: direct_pulse1_emit
                 reg_word20_shown <= direct_pulse1_counted;
                 direct_pulse1_pending <= (reg_word20_shown != 1);
                 direct_pulse1_gap <= direct_pulse1_gap_less;
-                direct_pulse1_waiting <= (reg_word18_shown != 1);
+                direct_pulse1_waiting <= (direct_pulse1_command_period != 1);
             end
         end
     end
@@ -3185,10 +3606,22 @@ always @(posedge clock, negedge reset) begin: pulse_out0_drive_pins
             position_y <= 0;
         end
         else begin
-            if ((pulse_out0_level_x && (!pins_step_x))) begin
+            if (home_zero[0]) begin
+                pulse_out0_position_x <= 0;
+                if ((pulse_out0_level_x && (!pins_step_x))) begin
+                    pulse_out0_position_x <= pulse_out0_delta_x;
+                end
+            end
+            else if ((pulse_out0_level_x && (!pins_step_x))) begin
                 pulse_out0_position_x <= (pulse_out0_position_x + pulse_out0_delta_x);
             end
-            if ((pulse_out0_level_y && (!pins_step_y))) begin
+            if (home_zero[1]) begin
+                position_y <= 0;
+                if ((pulse_out0_level_y && (!pins_step_y))) begin
+                    position_y <= pulse_out0_delta_y;
+                end
+            end
+            else if ((pulse_out0_level_y && (!pins_step_y))) begin
                 position_y <= (position_y + pulse_out0_delta_y);
             end
         end
@@ -3231,10 +3664,10 @@ end
 always @(posedge clock, negedge reset) begin: input_filter0_follow
     if (reset == 0) begin
         input_filter0_inputs_changed <= 0;
-        input_filter0_inputs_active <= 0;
+        conditioning_active <= 0;
     end
     else begin
-        input_filter0_inputs_active <= (input_filter0_inputs_active ^ input_filter0_taken);
+        conditioning_active <= (conditioning_active ^ input_filter0_taken);
         input_filter0_inputs_changed <= (input_filter0_taken != 0);
     end
 end
@@ -3245,7 +3678,7 @@ always @(posedge clock, negedge reset) begin: input_filter0__input_count0_count_
         input_filter0__input_count0_held <= 0;
     end
     else begin
-        if ((input_filter0_level[0] == input_filter0_inputs_active[0])) begin
+        if ((input_filter0_level[0] == conditioning_active[0])) begin
             input_filter0__input_count0_held <= 0;
         end
         else if (input_filter0_sample) begin
@@ -3261,7 +3694,7 @@ end
 
 
 
-assign input_filter0__input_count0_taken = (input_filter0_sample && (input_filter0_level[0] != input_filter0_inputs_active[0]) && ((input_filter0__input_count0_held + 1) >= reg_word28_shown));
+assign input_filter0__input_count0_taken = (input_filter0_sample && (input_filter0_level[0] != conditioning_active[0]) && ((input_filter0__input_count0_held + 1) >= reg_word28_shown));
 
 
 always @(posedge clock, negedge reset) begin: input_filter0__input_count1_count_samples
@@ -3269,7 +3702,7 @@ always @(posedge clock, negedge reset) begin: input_filter0__input_count1_count_
         input_filter0__input_count1_held <= 0;
     end
     else begin
-        if ((input_filter0_level[1] == input_filter0_inputs_active[1])) begin
+        if ((input_filter0_level[1] == conditioning_active[1])) begin
             input_filter0__input_count1_held <= 0;
         end
         else if (input_filter0_sample) begin
@@ -3285,7 +3718,7 @@ end
 
 
 
-assign input_filter0__input_count1_taken = (input_filter0_sample && (input_filter0_level[1] != input_filter0_inputs_active[1]) && ((input_filter0__input_count1_held + 1) >= reg_word28_shown));
+assign input_filter0__input_count1_taken = (input_filter0_sample && (input_filter0_level[1] != conditioning_active[1]) && ((input_filter0__input_count1_held + 1) >= reg_word28_shown));
 
 
 always @(posedge clock, negedge reset) begin: input_filter0__input_count2_count_samples
@@ -3293,7 +3726,7 @@ always @(posedge clock, negedge reset) begin: input_filter0__input_count2_count_
         input_filter0__input_count2_held <= 0;
     end
     else begin
-        if ((input_filter0_level[2] == input_filter0_inputs_active[2])) begin
+        if ((input_filter0_level[2] == conditioning_active[2])) begin
             input_filter0__input_count2_held <= 0;
         end
         else if (input_filter0_sample) begin
@@ -3309,7 +3742,7 @@ end
 
 
 
-assign input_filter0__input_count2_taken = (input_filter0_sample && (input_filter0_level[2] != input_filter0_inputs_active[2]) && ((input_filter0__input_count2_held + 1) >= reg_word28_shown));
+assign input_filter0__input_count2_taken = (input_filter0_sample && (input_filter0_level[2] != conditioning_active[2]) && ((input_filter0__input_count2_held + 1) >= reg_word28_shown));
 
 
 always @(posedge clock, negedge reset) begin: input_filter0__input_count3_count_samples
@@ -3317,7 +3750,7 @@ always @(posedge clock, negedge reset) begin: input_filter0__input_count3_count_
         input_filter0__input_count3_held <= 0;
     end
     else begin
-        if ((input_filter0_level[3] == input_filter0_inputs_active[3])) begin
+        if ((input_filter0_level[3] == conditioning_active[3])) begin
             input_filter0__input_count3_held <= 0;
         end
         else if (input_filter0_sample) begin
@@ -3333,7 +3766,7 @@ end
 
 
 
-assign input_filter0__input_count3_taken = (input_filter0_sample && (input_filter0_level[3] != input_filter0_inputs_active[3]) && ((input_filter0__input_count3_held + 1) >= reg_word28_shown));
+assign input_filter0__input_count3_taken = (input_filter0_sample && (input_filter0_level[3] != conditioning_active[3]) && ((input_filter0__input_count3_held + 1) >= reg_word28_shown));
 
 
 always @(posedge clock, negedge reset) begin: input_filter0__input_count4_count_samples
@@ -3341,7 +3774,7 @@ always @(posedge clock, negedge reset) begin: input_filter0__input_count4_count_
         input_filter0__input_count4_held <= 0;
     end
     else begin
-        if ((input_filter0_level[4] == input_filter0_inputs_active[4])) begin
+        if ((input_filter0_level[4] == conditioning_active[4])) begin
             input_filter0__input_count4_held <= 0;
         end
         else if (input_filter0_sample) begin
@@ -3357,7 +3790,7 @@ end
 
 
 
-assign input_filter0__input_count4_taken = (input_filter0_sample && (input_filter0_level[4] != input_filter0_inputs_active[4]) && ((input_filter0__input_count4_held + 1) >= reg_word28_shown));
+assign input_filter0__input_count4_taken = (input_filter0_sample && (input_filter0_level[4] != conditioning_active[4]) && ((input_filter0__input_count4_held + 1) >= reg_word28_shown));
 
 
 always @(posedge clock, negedge reset) begin: input_filter0__input_count5_count_samples
@@ -3365,7 +3798,7 @@ always @(posedge clock, negedge reset) begin: input_filter0__input_count5_count_
         input_filter0__input_count5_held <= 0;
     end
     else begin
-        if ((input_filter0_level[5] == input_filter0_inputs_active[5])) begin
+        if ((input_filter0_level[5] == conditioning_active[5])) begin
             input_filter0__input_count5_held <= 0;
         end
         else if (input_filter0_sample) begin
@@ -3381,7 +3814,7 @@ end
 
 
 
-assign input_filter0__input_count5_taken = (input_filter0_sample && (input_filter0_level[5] != input_filter0_inputs_active[5]) && ((input_filter0__input_count5_held + 1) >= reg_word28_shown));
+assign input_filter0__input_count5_taken = (input_filter0_sample && (input_filter0_level[5] != conditioning_active[5]) && ((input_filter0__input_count5_held + 1) >= reg_word28_shown));
 
 
 always @(posedge clock, negedge reset) begin: input_filter0__input_count6_count_samples
@@ -3389,7 +3822,7 @@ always @(posedge clock, negedge reset) begin: input_filter0__input_count6_count_
         input_filter0__input_count6_held <= 0;
     end
     else begin
-        if ((input_filter0_level[6] == input_filter0_inputs_active[6])) begin
+        if ((input_filter0_level[6] == conditioning_active[6])) begin
             input_filter0__input_count6_held <= 0;
         end
         else if (input_filter0_sample) begin
@@ -3405,13 +3838,13 @@ end
 
 
 
-assign input_filter0__input_count6_taken = (input_filter0_sample && (input_filter0_level[6] != input_filter0_inputs_active[6]) && ((input_filter0__input_count6_held + 1) >= reg_word28_shown));
+assign input_filter0__input_count6_taken = (input_filter0_sample && (input_filter0_level[6] != conditioning_active[6]) && ((input_filter0__input_count6_held + 1) >= reg_word28_shown));
 
 
 
-assign machine_guard0_estop = input_filter0_inputs_active[0];
+assign machine_guard0_estop = conditioning_active[0];
 assign machine_guard0_expired = ((reg_word30_shown == 1) && (!reg_word30__store20_word_strobe));
-assign machine_guard0_hits = {(requests_step_y && (!requests_dir_y) && input_filter0_inputs_active[4]), (requests_step_y && requests_dir_y && input_filter0_inputs_active[3]), (requests_step_x && (!requests_dir_x) && input_filter0_inputs_active[2]), (requests_step_x && requests_dir_x && input_filter0_inputs_active[1])};
+assign machine_guard0_hits = {(requests_step_y && (!requests_dir_y) && conditioning_active[4]), (requests_step_y && requests_dir_y && conditioning_active[3]), (requests_step_x && (!requests_dir_x) && conditioning_active[2]), (requests_step_x && requests_dir_x && conditioning_active[1])};
 
 
 always @(machine_guard0_hits, guard_stopped, requests_step_x, requests_dir_y, guard_ramp, requests_step_y, requests_dir_x, machine_guard0_estop) begin: machine_guard0_gate
@@ -3491,12 +3924,203 @@ always @(posedge clock, negedge reset) begin: machine_guard0_watchdog
 end
 
 
-always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_enable, input_filter0_inputs_active, settled, machine_guard0_guard_limits, machine_guard0_guard_reason) begin: _machine_words0_assemble
+always @(reg_word36_shown, reg_word35_shown, home_inputs, homing0_axis, homing0_switch, homing0_state) begin: homing0_select
+    homing0_switch = homing0_axis ? home_inputs[1] : home_inputs[0];
+    homing0_seeking = ((homing0_state == 3'b001) || (homing0_state == 3'b010));
+    homing0_seek_next = ((homing0_state == 3'b000) || (homing0_state == 3'b001) || ((homing0_state == 3'b010) && (!homing0_switch)));
+    if ((homing0_state == 3'b100)) begin
+        homing0_magnitude = {8'h0, reg_word35_shown};
+    end
+    else begin
+        homing0_magnitude = {1'h0, reg_word36_shown};
+    end
+end
+
+
+always @(reg_word31__store21_word_value, homing0_state, homing0_negative) begin: homing0_command
+    if ((homing0_state == 3'b000)) begin
+        homing0_positive = (!reg_word31__store21_word_value[1]);
+    end
+    else begin
+        homing0_positive = homing0_negative;
+    end
+    home_busy = (homing0_state != 3'b000);
+    homing0_port_load = ((homing0_state == 3'b001) || (homing0_state == 3'b011) || (homing0_state == 3'b101));
+end
+
+
+always @(homing0_positive, homing0_magnitude) begin: homing0_sign
+    if (homing0_positive) begin
+        homing0_operand = homing0_magnitude;
+        homing0_addend = 0;
+    end
+    else begin
+        homing0_operand = (~homing0_magnitude);
+        homing0_addend = 1;
+    end
+end
+
+
+
+assign homing0_signed_count = (homing0_operand + homing0_addend);
+
+
+always @(posedge clock, negedge reset) begin: homing0_next_load
+    if (reset == 0) begin
+        homing0_port_period <= 1;
+        homing0_port_count <= 0;
+    end
+    else begin
+        homing0_port_count <= $signed(homing0_signed_count);
+        if (homing0_seek_next) begin
+            homing0_port_period <= reg_word33_shown;
+        end
+        else begin
+            homing0_port_period <= reg_word34_shown;
+        end
+    end
+end
+
+
+always @(homing0_axis, homing0_switch, homing0_state) begin: homing0_edges
+    reg released;
+    released = ((homing0_state == 3'b100) && (!homing0_switch));
+    home_cut = (((homing0_state == 3'b010) && homing0_switch) || released);
+    home_zero = 0;
+    if (released) begin
+        if (homing0_axis) begin
+            home_zero = 2;
+        end
+        else begin
+            home_zero = 1;
+        end
+    end
+end
+
+
+always @(homing0_seeking, homing0_state) begin: homing0_phases
+    if ((homing0_state == 3'b000)) begin
+        homing0_phase = 0;
+    end
+    else if (homing0_seeking) begin
+        homing0_phase = 1;
+    end
+    else if (((homing0_state == 3'b011) || (homing0_state == 3'b100))) begin
+        homing0_phase = 2;
+    end
+    else begin
+        homing0_phase = 3;
+    end
+end
+
+
+always @(homing0_negative, homing0_phase, homing0_done, homing0_refused, reg_word31__store21_word_strobe, homing0_axis, homing0_state, homing0_not_found) begin: homing0_show
+    reg [2-1:0] asked;
+    reg [6-1:0] word;
+    asked = 2'h0;
+    asked[0] = homing0_axis;
+    asked[1] = homing0_negative;
+    reg_word31_shown = asked;
+    word = 6'h0;
+    word[0] = ((homing0_state != 3'b000) || reg_word31__store21_word_strobe);
+    word[1] = homing0_done;
+    word[2] = homing0_not_found;
+    word[3] = homing0_refused;
+    word[4+:2] = homing0_phase;
+    reg_word32_shown = word;
+end
+
+
+always @(posedge clock, negedge reset) begin: homing0_sequence
+    reg drained;
+    if (reset == 0) begin
+        homing0_negative <= 0;
+        homing0_not_found <= 0;
+        homing0_done <= 0;
+        homing0_refused <= 0;
+        homing0_axis <= 0;
+        homing0_state <= 3'b000;
+        homing0_port_ended <= 0;
+    end
+    else begin
+        homing0_port_ended <= 0;
+        drained = ((!pulse_busy) && (!out_active));
+        if (core_clear) begin
+            homing0_state <= 3'b000;
+        end
+        else if ((homing0_state == 3'b000)) begin
+            if (reg_word31__store21_word_strobe) begin
+                homing0_axis <= reg_word31__store21_word_value[0];
+                homing0_negative <= reg_word31__store21_word_value[1];
+                homing0_done <= 0;
+                homing0_not_found <= 0;
+                homing0_refused <= (!home_idle);
+                homing0_port_ended <= (!home_idle);
+                if (home_idle) begin
+                    homing0_state <= 3'b001;
+                end
+            end
+        end
+        else begin
+            if (reg_word31__store21_word_strobe) begin
+                homing0_refused <= 1;
+                homing0_port_ended <= 1;
+            end
+            if ((homing0_state == 3'b001)) begin
+                homing0_state <= 3'b010;
+            end
+            else if ((homing0_state == 3'b010)) begin
+                if (homing0_switch) begin
+                    homing0_state <= 3'b011;
+                end
+                else if (drained) begin
+                    homing0_not_found <= 1;
+                    homing0_port_ended <= 1;
+                    homing0_state <= 3'b000;
+                end
+            end
+            else if ((homing0_state == 3'b011)) begin
+                homing0_state <= 3'b100;
+            end
+            else if ((homing0_state == 3'b100)) begin
+                if ((!homing0_switch)) begin
+                    if ((reg_word35_shown != 0)) begin
+                        homing0_state <= 3'b101;
+                    end
+                    else begin
+                        homing0_state <= 3'b111;
+                    end
+                end
+                else if (drained) begin
+                    homing0_not_found <= 1;
+                    homing0_port_ended <= 1;
+                    homing0_state <= 3'b000;
+                end
+            end
+            else if ((homing0_state == 3'b101)) begin
+                homing0_state <= 3'b110;
+            end
+            else if ((homing0_state == 3'b110)) begin
+                if ((!pulse_busy)) begin
+                    homing0_state <= 3'b111;
+                end
+            end
+            else if ((!out_active)) begin
+                homing0_done <= 1;
+                homing0_port_ended <= 1;
+                homing0_state <= 3'b000;
+            end
+        end
+    end
+end
+
+
+always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_enable, conditioning_active, settled, machine_guard0_guard_limits, machine_guard0_guard_reason) begin: _machine_words0_assemble
     reg [20-1:0] word;
     reg [8-1:0] why;
     word = 20'h0;
     word[0+:7] = input_filter0_inputs_raw;
-    word[8+:7] = input_filter0_inputs_active;
+    word[8+:7] = conditioning_active;
     word[16] = guard_stopped;
     word[17] = pins_drive_enable;
     word[18] = settled;
@@ -3560,7 +4184,7 @@ end
 
 
 
-assign enable = (control[0] && (!control[1]) && (!halt));
+assign enable = (control[0] && (!control[1]) && (!halt) && (!home_busy));
 assign direct_mode = control[1];
 assign clear_error = (command_strobe && command[1]);
 assign clear_position = (command_strobe && command[2]);
@@ -3571,6 +4195,9 @@ assign settled = (feed_held && (!tick) && (!outputs_busy));
 assign direct_ready = (out_ready && (!guard_stopping));
 assign pulse_clear = (core_clear || halt);
 assign sequencer_clear = (core_clear || guard_stopped);
+assign home_idle = ((!any_busy) && fifo_empty && (!guard_stopped) && (!halt));
+assign direct_clear = (core_clear || home_cut);
+assign home_inputs = conditioning_active[5+:2];
 
 
 always @(posedge clock, negedge reset) begin: soft_reset
@@ -3618,7 +4245,7 @@ assign pulse_busy = (direct_busy_x || direct_busy_y);
 assign outputs_busy = (requests_step_x || requests_step_y || requested_before || out_active_before);
 assign hold = (!out_ready);
 assign dda_advance = (tick && out_ready && motion_run);
-assign any_busy = (seq_busy || direct_busy_x || direct_busy_y || out_active || dda_busy);
+assign any_busy = (seq_busy || direct_busy_x || direct_busy_y || out_active || dda_busy || home_busy);
 
 
 
@@ -3632,8 +4259,14 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(reg_word19__store14_word_strobe, reg_word19__store14_word_value, seq_load, sequencer0_pulses_count_x, direct_mode, halt) begin: _axis_source0_choose_source
-    if (direct_mode) begin
+always @(homing0_port_count, reg_word31_shown[0], reg_word19__store14_word_strobe, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, seq_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: _axis_source0_choose_source
+    direct_pulse0_command_period = reg_word17_shown;
+    if (home_busy) begin
+        direct_pulse0_command_load = (homing0_port_load && (reg_word31_shown[0] == 0));
+        direct_pulse0_command_count = homing0_port_count;
+        direct_pulse0_command_period = homing0_port_period;
+    end
+    else if (direct_mode) begin
         direct_pulse0_command_load = (reg_word19__store14_word_strobe && (!halt));
         direct_pulse0_command_count = $signed(reg_word19__store14_word_value);
     end
@@ -3644,8 +4277,14 @@ always @(reg_word19__store14_word_strobe, reg_word19__store14_word_value, seq_lo
 end
 
 
-always @(reg_word20__store15_word_strobe, reg_word20__store15_word_value, seq_load, sequencer0_pulses_count_y, direct_mode, halt) begin: _axis_source1_choose_source
-    if (direct_mode) begin
+always @(homing0_port_count, reg_word31_shown[0], reg_word20__store15_word_strobe, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, seq_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: _axis_source1_choose_source
+    direct_pulse1_command_period = reg_word18_shown;
+    if (home_busy) begin
+        direct_pulse1_command_load = (homing0_port_load && (reg_word31_shown[0] == 1));
+        direct_pulse1_command_count = homing0_port_count;
+        direct_pulse1_command_period = homing0_port_period;
+    end
+    else if (direct_mode) begin
         direct_pulse1_command_load = (reg_word20__store15_word_strobe && (!halt));
         direct_pulse1_command_count = $signed(reg_word20__store15_word_value);
     end
@@ -3704,16 +4343,17 @@ always @(posedge clock, negedge reset) begin: _interrupts0_remember
 end
 
 
-always @(reg_word30_chain_out_clamped, error_code, reg_word6_shown, sequencer0_mark_strobe, error_before, any_busy, input_filter0_inputs_changed, level_wide, busy_before, guard_stop_event, low_before) begin: _interrupts0_detect
-    reg [7-1:0] word;
-    word = 7'h0;
+always @(reg_word36_chain_out_clamped, error_code, reg_word6_shown, sequencer0_mark_strobe, error_before, any_busy, input_filter0_inputs_changed, level_wide, homing0_port_ended, busy_before, guard_stop_event, low_before) begin: _interrupts0_detect
+    reg [8-1:0] word;
+    word = 8'h0;
     word[0] = (busy_before && (!any_busy));
     word[1] = ((level_wide < reg_word6_shown) && (!low_before));
     word[2] = ((error_code != 0) && (!error_before));
     word[3] = sequencer0_mark_strobe;
-    word[4] = reg_word30_chain_out_clamped;
+    word[4] = reg_word36_chain_out_clamped;
     word[5] = guard_stop_event;
     word[6] = input_filter0_inputs_changed;
+    word[7] = homing0_port_ended;
     reg_word5__store3_word_hw = word;
 end
 

@@ -275,12 +275,12 @@ reg card1_card_core1_core_clear;
 wire card1_card_core1_dda_reset;
 reg [31:0] card1_card_core1_regs_fifo2_fifo_dout;
 reg card1_card_core1_regs_fifo2_fifo_pop;
-wire card1_card_core1_regs_fifo2_fifo_empty;
 reg card1_card_core1_regs_fifo2_set_strobe;
 reg [3:0] card1_card_core1_regs_fifo2_set_index;
 reg [31:0] card1_card_core1_regs_fifo2_set_value;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
+reg [1:0] card1_card_core1_regs_fifo2_home_zero;
 reg card1_card_core1_regs_fifo2_busy_before;
 reg card1_card_core1_regs_fifo2_done_flag;
 reg card1_card_core1_regs_fifo2_low_before;
@@ -290,15 +290,19 @@ reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
 wire card1_card_core1_regs_fifo2_clear_error;
 wire card1_card_core1_regs_fifo2_clear_position;
 wire card1_card_core1_regs_fifo2_clear_stop;
+wire card1_card_core1_regs_fifo2_direct_clear;
 wire card1_card_core1_regs_fifo2_direct_mode;
 wire card1_card_core1_regs_fifo2_direct_ready;
 wire card1_card_core1_regs_fifo2_discard_on_clear;
 wire card1_card_core1_regs_fifo2_enable;
+wire card1_card_core1_regs_fifo2_fifo_empty;
 wire card1_card_core1_regs_fifo2_fifo_flush;
 wire card1_card_core1_regs_fifo2_fifo_full;
 wire [9:0] card1_card_core1_regs_fifo2_fifo_level;
 reg card1_card_core1_regs_fifo2_halt;
 wire card1_card_core1_regs_fifo2_hold;
+wire card1_card_core1_regs_fifo2_home_idle;
+wire [1:0] card1_card_core1_regs_fifo2_home_inputs;
 reg card1_card_core1_regs_fifo2_io_read;
 reg card1_card_core1_regs_fifo2_io_write;
 reg card1_card_core1_regs_fifo2_io_written;
@@ -323,6 +327,7 @@ reg [31:0] card1_card_core1_regs_fifo2_written_data;
 reg [31:0] card1_card_core1_regs_fifo2_written_mask;
 reg [31:0] card1_card_core1_regs_fifo2_read_end;
 reg [1:0] card1_card_core1_regs_fifo2_control;
+reg card1_card_core1_regs_fifo2_home_busy;
 reg card1_card_core1_regs_fifo2_command_strobe;
 reg [3:0] card1_card_core1_regs_fifo2_command;
 wire card1_card_core1_regs_fifo2_feed_pause;
@@ -332,6 +337,8 @@ wire card1_card_core1_regs_fifo2_guard_ramp;
 reg [15:0] card1_card_core1_regs_fifo2_ramp_step;
 reg card1_card_core1_regs_fifo2_feed_held;
 reg card1_card_core1_regs_fifo2_guard_stopped;
+reg card1_card_core1_regs_fifo2_home_cut;
+reg [6:0] card1_card_core1_regs_fifo2_conditioning_active;
 reg card1_card_core1_regs_fifo2_guard_stop_event;
 wire card1_card_core1_regs_fifo2_requests_step_x;
 wire card1_card_core1_regs_fifo2_requests_step_y;
@@ -360,253 +367,152 @@ wire card1_card_core1_regs_fifo2_sync_fifo2_last_beyond;
 wire card1_card_core1_regs_fifo2_sync_fifo2_one_word;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_read_addr;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_write_addr;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word62_shown;
-wire card1_card_core1_regs_fifo2_reg_word62_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word62_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word62_chain_out_data;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word62_chain_in_data;
-wire card1_card_core1_regs_fifo2_reg_word62_chain_out_clamped;
-wire card1_card_core1_regs_fifo2_reg_word62_chain_in_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word63_honoured;
-wire card1_card_core1_regs_fifo2_reg_word63_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word63_clamped;
-wire card1_card_core1_regs_fifo2_reg_word63_mine;
-wire card1_card_core1_regs_fifo2_reg_word63_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word63_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word63_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word63_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word63_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word63_chain_out_clamped;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word64_honoured;
-wire card1_card_core1_regs_fifo2_reg_word64_out_of_range;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word64_shown;
-reg card1_card_core1_regs_fifo2_reg_word64_clamped;
-wire card1_card_core1_regs_fifo2_reg_word64_mine;
-wire card1_card_core1_regs_fifo2_reg_word64_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word64_shown_wide;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word64_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word64_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word64_chain_out_clamped;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word65_shown;
-wire card1_card_core1_regs_fifo2_reg_word65_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word65_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word65_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word65_chain_out_clamped;
-wire [6:0] card1_card_core1_regs_fifo2_reg_word66_honoured;
-wire card1_card_core1_regs_fifo2_reg_word66_out_of_range;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word66_shown;
-reg card1_card_core1_regs_fifo2_reg_word66_clamped;
-wire card1_card_core1_regs_fifo2_reg_word66_mine;
-wire card1_card_core1_regs_fifo2_reg_word66_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word66_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word66_shown_wide;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word66_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word66_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word66_chain_out_clamped;
-wire [6:0] card1_card_core1_regs_fifo2_reg_word67_honoured;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word67_shown;
-wire card1_card_core1_regs_fifo2_reg_word67_mine;
-wire card1_card_core1_regs_fifo2_reg_word67_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word67_shown_wide;
-wire [6:0] card1_card_core1_regs_fifo2_reg_word67_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word67_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word67_chain_out_clamped;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word67__store45_word_hw;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word68_honoured;
-wire card1_card_core1_regs_fifo2_reg_word68_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word68_shown;
-reg card1_card_core1_regs_fifo2_reg_word68_clamped;
-wire card1_card_core1_regs_fifo2_reg_word68_mine;
-wire card1_card_core1_regs_fifo2_reg_word68_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word68_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word68_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word68_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word68_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word68_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word69_shown;
-wire card1_card_core1_regs_fifo2_reg_word69_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word69_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word69_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word69_chain_out_clamped;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word70_shown;
-wire card1_card_core1_regs_fifo2_reg_word70_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word70_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word70_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word70_chain_out_clamped;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word71_shown;
-wire card1_card_core1_regs_fifo2_reg_word71_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word71_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word71_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word71_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word72_honoured;
-reg card1_card_core1_regs_fifo2_reg_word72_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word72_shown;
-reg card1_card_core1_regs_fifo2_reg_word72_clamped;
-wire card1_card_core1_regs_fifo2_reg_word72_mine;
-wire card1_card_core1_regs_fifo2_reg_word72_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word72_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word72_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word72_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word72_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word73_honoured;
-reg card1_card_core1_regs_fifo2_reg_word73_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word73_shown;
-reg card1_card_core1_regs_fifo2_reg_word73_clamped;
-wire card1_card_core1_regs_fifo2_reg_word73_mine;
-wire card1_card_core1_regs_fifo2_reg_word73_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word73_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word73_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word73_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word73_chain_out_clamped;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word74_honoured;
-wire card1_card_core1_regs_fifo2_reg_word74_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word74_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word74_shown;
 wire card1_card_core1_regs_fifo2_reg_word74_mine;
-wire card1_card_core1_regs_fifo2_reg_word74_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word74_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word74_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word74_chain_out_data;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word74_chain_in_data;
 wire card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word75_honoured;
-reg card1_card_core1_regs_fifo2_reg_word75_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word75_shown;
+wire card1_card_core1_regs_fifo2_reg_word74_chain_in_clamped;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word75_honoured;
+wire card1_card_core1_regs_fifo2_reg_word75_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word75_clamped;
 wire card1_card_core1_regs_fifo2_reg_word75_mine;
 wire card1_card_core1_regs_fifo2_reg_word75_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word75_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word75_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word75_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word75_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word75_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word75_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word76_honoured;
-reg card1_card_core1_regs_fifo2_reg_word76_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word76_shown;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word76_honoured;
+wire card1_card_core1_regs_fifo2_reg_word76_out_of_range;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word76_shown;
 reg card1_card_core1_regs_fifo2_reg_word76_clamped;
 wire card1_card_core1_regs_fifo2_reg_word76_mine;
 wire card1_card_core1_regs_fifo2_reg_word76_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word76_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word76_written;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word76_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word76_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word77_honoured;
-reg card1_card_core1_regs_fifo2_reg_word77_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word77_shown;
-reg card1_card_core1_regs_fifo2_reg_word77_clamped;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word77_shown;
 wire card1_card_core1_regs_fifo2_reg_word77_mine;
-wire card1_card_core1_regs_fifo2_reg_word77_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word77_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word77_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word77_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word78_honoured;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word78_honoured;
 wire card1_card_core1_regs_fifo2_reg_word78_out_of_range;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word78_shown;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word78_shown;
 reg card1_card_core1_regs_fifo2_reg_word78_clamped;
 wire card1_card_core1_regs_fifo2_reg_word78_mine;
 wire card1_card_core1_regs_fifo2_reg_word78_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word78_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word78_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word78_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word78_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word78_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word79_honoured;
-reg card1_card_core1_regs_fifo2_reg_word79_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word79_shown;
-reg card1_card_core1_regs_fifo2_reg_word79_clamped;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word79_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word79_shown;
 wire card1_card_core1_regs_fifo2_reg_word79_mine;
 wire card1_card_core1_regs_fifo2_reg_word79_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word79_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word79_written;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word79_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word79_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word80_honoured;
-reg card1_card_core1_regs_fifo2_reg_word80_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word79__store55_word_hw;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word80_honoured;
+wire card1_card_core1_regs_fifo2_reg_word80_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word80_shown;
 reg card1_card_core1_regs_fifo2_reg_word80_clamped;
 wire card1_card_core1_regs_fifo2_reg_word80_mine;
 wire card1_card_core1_regs_fifo2_reg_word80_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word80_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word80_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word80_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word80_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word80_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word81_honoured;
-reg card1_card_core1_regs_fifo2_reg_word81_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word81_shown;
-reg card1_card_core1_regs_fifo2_reg_word81_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word81_shown;
 wire card1_card_core1_regs_fifo2_reg_word81_mine;
-wire card1_card_core1_regs_fifo2_reg_word81_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word81_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word81_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word81_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word81__store56_word_value;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word82_honoured;
-reg card1_card_core1_regs_fifo2_reg_word82_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word82_shown;
-reg card1_card_core1_regs_fifo2_reg_word82_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word82_shown;
 wire card1_card_core1_regs_fifo2_reg_word82_mine;
-wire card1_card_core1_regs_fifo2_reg_word82_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word82_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word82_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word82_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word82__store57_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word82__store57_word_value;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word83_shown;
 wire card1_card_core1_regs_fifo2_reg_word83_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word83_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word83_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word84_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word84_honoured;
+reg card1_card_core1_regs_fifo2_reg_word84_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word84_shown;
+reg card1_card_core1_regs_fifo2_reg_word84_clamped;
 wire card1_card_core1_regs_fifo2_reg_word84_mine;
+wire card1_card_core1_regs_fifo2_reg_word84_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word84_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word84_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word84_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped;
-wire [27:0] card1_card_core1_regs_fifo2_reg_word85_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word85_honoured;
+reg card1_card_core1_regs_fifo2_reg_word85_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word85_shown;
+reg card1_card_core1_regs_fifo2_reg_word85_clamped;
 wire card1_card_core1_regs_fifo2_reg_word85_mine;
+wire card1_card_core1_regs_fifo2_reg_word85_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word85_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word85_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word85_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
 wire card1_card_core1_regs_fifo2_reg_word86_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word86_clamped;
 wire card1_card_core1_regs_fifo2_reg_word86_mine;
 wire card1_card_core1_regs_fifo2_reg_word86_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word86_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word86_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word86_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word86_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
-reg [19:0] card1_card_core1_regs_fifo2_reg_word87_shown;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word87_honoured;
+reg card1_card_core1_regs_fifo2_reg_word87_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word87_shown;
+reg card1_card_core1_regs_fifo2_reg_word87_clamped;
 wire card1_card_core1_regs_fifo2_reg_word87_mine;
+wire card1_card_core1_regs_fifo2_reg_word87_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word87_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word87_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word87_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word88_honoured;
+reg card1_card_core1_regs_fifo2_reg_word88_out_of_range;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word88_shown;
+reg card1_card_core1_regs_fifo2_reg_word88_clamped;
 wire card1_card_core1_regs_fifo2_reg_word88_mine;
+wire card1_card_core1_regs_fifo2_reg_word88_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word88_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word88_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word88_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped;
-wire [6:0] card1_card_core1_regs_fifo2_reg_word89_honoured;
-wire card1_card_core1_regs_fifo2_reg_word89_out_of_range;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word89_shown;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word89_honoured;
+reg card1_card_core1_regs_fifo2_reg_word89_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word89_shown;
 reg card1_card_core1_regs_fifo2_reg_word89_clamped;
 wire card1_card_core1_regs_fifo2_reg_word89_mine;
 wire card1_card_core1_regs_fifo2_reg_word89_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word89_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word89_shown_wide;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word89_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word89_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word89_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped;
-reg [3:0] card1_card_core1_regs_fifo2_reg_word90_honoured;
-reg card1_card_core1_regs_fifo2_reg_word90_out_of_range;
-reg [3:0] card1_card_core1_regs_fifo2_reg_word90_shown;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word90_honoured;
+wire card1_card_core1_regs_fifo2_reg_word90_out_of_range;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word90_shown;
 reg card1_card_core1_regs_fifo2_reg_word90_clamped;
 wire card1_card_core1_regs_fifo2_reg_word90_mine;
 wire card1_card_core1_regs_fifo2_reg_word90_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word90_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word90_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word90_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word90_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word90_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word91_honoured;
@@ -615,22 +521,184 @@ reg [15:0] card1_card_core1_regs_fifo2_reg_word91_shown;
 reg card1_card_core1_regs_fifo2_reg_word91_clamped;
 wire card1_card_core1_regs_fifo2_reg_word91_mine;
 wire card1_card_core1_regs_fifo2_reg_word91_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word91_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word91_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word91_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word91_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped;
-wire [23:0] card1_card_core1_regs_fifo2_reg_word92_honoured;
-wire card1_card_core1_regs_fifo2_reg_word92_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word92_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word92_honoured;
+reg card1_card_core1_regs_fifo2_reg_word92_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word92_shown;
 reg card1_card_core1_regs_fifo2_reg_word92_clamped;
 wire card1_card_core1_regs_fifo2_reg_word92_mine;
 wire card1_card_core1_regs_fifo2_reg_word92_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word92_shown_wide;
-wire [23:0] card1_card_core1_regs_fifo2_reg_word92_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word92_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word92_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word92__store62_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word92__store62_word_value;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word93_honoured;
+reg card1_card_core1_regs_fifo2_reg_word93_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word93_shown;
+reg card1_card_core1_regs_fifo2_reg_word93_clamped;
+wire card1_card_core1_regs_fifo2_reg_word93_mine;
+wire card1_card_core1_regs_fifo2_reg_word93_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word93_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word93_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word93_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word93__store66_word_value;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
+reg card1_card_core1_regs_fifo2_reg_word94_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word94_shown;
+reg card1_card_core1_regs_fifo2_reg_word94_clamped;
+wire card1_card_core1_regs_fifo2_reg_word94_mine;
+wire card1_card_core1_regs_fifo2_reg_word94_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word94_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word94_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word94_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word94__store67_word_value;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word95_shown;
+wire card1_card_core1_regs_fifo2_reg_word95_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word95_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word95_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word96_shown;
+wire card1_card_core1_regs_fifo2_reg_word96_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word96_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word96_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped;
+wire [27:0] card1_card_core1_regs_fifo2_reg_word97_shown;
+wire card1_card_core1_regs_fifo2_reg_word97_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word97_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word97_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word98_honoured;
+wire card1_card_core1_regs_fifo2_reg_word98_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word98_clamped;
+wire card1_card_core1_regs_fifo2_reg_word98_mine;
+wire card1_card_core1_regs_fifo2_reg_word98_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word98_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word98_shown_wide;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word98_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word98_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped;
+reg [19:0] card1_card_core1_regs_fifo2_reg_word99_shown;
+wire card1_card_core1_regs_fifo2_reg_word99_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word99_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word99_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word100_shown;
+wire card1_card_core1_regs_fifo2_reg_word100_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word100_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word100_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word101_honoured;
+wire card1_card_core1_regs_fifo2_reg_word101_out_of_range;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word101_shown;
+reg card1_card_core1_regs_fifo2_reg_word101_clamped;
+wire card1_card_core1_regs_fifo2_reg_word101_mine;
+wire card1_card_core1_regs_fifo2_reg_word101_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word101_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word101_shown_wide;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word101_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word101_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped;
+reg [3:0] card1_card_core1_regs_fifo2_reg_word102_honoured;
+reg card1_card_core1_regs_fifo2_reg_word102_out_of_range;
+reg [3:0] card1_card_core1_regs_fifo2_reg_word102_shown;
+reg card1_card_core1_regs_fifo2_reg_word102_clamped;
+wire card1_card_core1_regs_fifo2_reg_word102_mine;
+wire card1_card_core1_regs_fifo2_reg_word102_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word102_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word102_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word102_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word102_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word103_honoured;
+reg card1_card_core1_regs_fifo2_reg_word103_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word103_shown;
+reg card1_card_core1_regs_fifo2_reg_word103_clamped;
+wire card1_card_core1_regs_fifo2_reg_word103_mine;
+wire card1_card_core1_regs_fifo2_reg_word103_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word103_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word103_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word103_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word103_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word104_honoured;
+wire card1_card_core1_regs_fifo2_reg_word104_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word104_shown;
+reg card1_card_core1_regs_fifo2_reg_word104_clamped;
+wire card1_card_core1_regs_fifo2_reg_word104_mine;
+wire card1_card_core1_regs_fifo2_reg_word104_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word104_shown_wide;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word104_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word104_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word104__store72_word_value;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word105_honoured;
+wire card1_card_core1_regs_fifo2_reg_word105_out_of_range;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word105_shown;
+reg card1_card_core1_regs_fifo2_reg_word105_clamped;
+wire card1_card_core1_regs_fifo2_reg_word105_mine;
+wire card1_card_core1_regs_fifo2_reg_word105_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word105_shown_wide;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word105_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word105_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word105__store73_word_value;
+reg [5:0] card1_card_core1_regs_fifo2_reg_word106_shown;
+wire card1_card_core1_regs_fifo2_reg_word106_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word106_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word106_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word107_honoured;
+reg card1_card_core1_regs_fifo2_reg_word107_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word107_shown;
+reg card1_card_core1_regs_fifo2_reg_word107_clamped;
+wire card1_card_core1_regs_fifo2_reg_word107_mine;
+wire card1_card_core1_regs_fifo2_reg_word107_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word107_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word107_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word107_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word107_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word108_honoured;
+reg card1_card_core1_regs_fifo2_reg_word108_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word108_shown;
+reg card1_card_core1_regs_fifo2_reg_word108_clamped;
+wire card1_card_core1_regs_fifo2_reg_word108_mine;
+wire card1_card_core1_regs_fifo2_reg_word108_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word108_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word108_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word108_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word108_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word109_honoured;
+wire card1_card_core1_regs_fifo2_reg_word109_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word109_shown;
+reg card1_card_core1_regs_fifo2_reg_word109_clamped;
+wire card1_card_core1_regs_fifo2_reg_word109_mine;
+wire card1_card_core1_regs_fifo2_reg_word109_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word109_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word109_shown_wide;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word109_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word109_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped;
+reg [22:0] card1_card_core1_regs_fifo2_reg_word110_honoured;
+reg card1_card_core1_regs_fifo2_reg_word110_out_of_range;
+reg [22:0] card1_card_core1_regs_fifo2_reg_word110_shown;
+reg card1_card_core1_regs_fifo2_reg_word110_clamped;
+wire card1_card_core1_regs_fifo2_reg_word110_mine;
+wire card1_card_core1_regs_fifo2_reg_word110_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word110_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word110_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word110_written;
+wire card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_arriving_count;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits;
@@ -718,6 +786,7 @@ reg card1_card_core1_regs_fifo2_direct_pulse4_pending;
 reg card1_card_core1_regs_fifo2_direct_pulse4_waiting;
 reg card1_card_core1_regs_fifo2_direct_pulse4_command_load;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse4_command_count;
+reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_command_period;
 reg [23:0] card1_card_core1_regs_fifo2_direct_pulse5_count_addend;
 reg [23:0] card1_card_core1_regs_fifo2_direct_pulse5_count_operand;
 wire [23:0] card1_card_core1_regs_fifo2_direct_pulse5_counted;
@@ -728,6 +797,7 @@ reg card1_card_core1_regs_fifo2_direct_pulse5_pending;
 reg card1_card_core1_regs_fifo2_direct_pulse5_waiting;
 reg card1_card_core1_regs_fifo2_direct_pulse5_command_load;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse5_command_count;
+reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_command_period;
 reg [2:0] card1_card_core1_regs_fifo2_pulse_out2_count;
 reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_delta_x;
 reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_delta_y;
@@ -759,7 +829,6 @@ reg [6:0] card1_card_core1_regs_fifo2_input_filter2_sync;
 wire [6:0] card1_card_core1_regs_fifo2_input_filter2_taken;
 wire [6:0] card1_card_core1_regs_fifo2_input_filter2_inputs_pins;
 reg [6:0] card1_card_core1_regs_fifo2_input_filter2_inputs_raw;
-reg [6:0] card1_card_core1_regs_fifo2_input_filter2_inputs_active;
 reg card1_card_core1_regs_fifo2_input_filter2_inputs_changed;
 reg [3:0] card1_card_core1_regs_fifo2_input_filter2__input_count14_held;
 wire card1_card_core1_regs_fifo2_input_filter2__input_count14_taken;
@@ -780,6 +849,25 @@ wire card1_card_core1_regs_fifo2_machine_guard2_expired;
 wire [3:0] card1_card_core1_regs_fifo2_machine_guard2_hits;
 reg [1:0] card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
 reg [3:0] card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
+reg [23:0] card1_card_core1_regs_fifo2_homing2_addend;
+reg card1_card_core1_regs_fifo2_homing2_axis;
+reg card1_card_core1_regs_fifo2_homing2_done;
+reg [23:0] card1_card_core1_regs_fifo2_homing2_magnitude;
+reg card1_card_core1_regs_fifo2_homing2_negative;
+reg card1_card_core1_regs_fifo2_homing2_not_found;
+reg [23:0] card1_card_core1_regs_fifo2_homing2_operand;
+reg [1:0] card1_card_core1_regs_fifo2_homing2_phase;
+reg card1_card_core1_regs_fifo2_homing2_positive;
+reg card1_card_core1_regs_fifo2_homing2_refused;
+reg card1_card_core1_regs_fifo2_homing2_seek_next;
+reg card1_card_core1_regs_fifo2_homing2_seeking;
+wire [23:0] card1_card_core1_regs_fifo2_homing2_signed_count;
+reg [2:0] card1_card_core1_regs_fifo2_homing2_state;
+reg card1_card_core1_regs_fifo2_homing2_switch;
+reg card1_card_core1_regs_fifo2_homing2_port_load;
+reg signed [23:0] card1_card_core1_regs_fifo2_homing2_port_count;
+reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
+reg card1_card_core1_regs_fifo2_homing2_port_ended;
 wire [1:0] card1_card_core1_regs_fifo2__status2_quadrant;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_acc_bits;
 reg card1_card_core1_dda_arc2_dda_setup2_carry;
@@ -945,30 +1033,36 @@ reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word62_shown = 32'd3719037187;
-assign card1_card_core1_regs_fifo2_reg_word62_chain_in_data = 32'd0;
-assign card1_card_core1_regs_fifo2_reg_word62_chain_in_clamped = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word63_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word63_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word64_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word64_shown = 4'd0;
-assign card1_card_core1_regs_fifo2_reg_word66_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word66_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word68_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word68_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word74_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word74_shown = 32'd3719037187;
+assign card1_card_core1_regs_fifo2_reg_word74_chain_in_data = 32'd0;
+assign card1_card_core1_regs_fifo2_reg_word74_chain_in_clamped = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word75_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word75_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word76_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word76_shown = 4'd0;
 assign card1_card_core1_regs_fifo2_reg_word78_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word78_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word83_shown = 32'd33333333;
-assign card1_card_core1_regs_fifo2_reg_word84_shown = 16'd512;
-assign card1_card_core1_regs_fifo2_reg_word85_shown = 28'd17564184;
+assign card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word80_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word86_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word86_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word89_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word89_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word90_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word90_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word91_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word92_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word95_shown = 32'd33333333;
+assign card1_card_core1_regs_fifo2_reg_word96_shown = 16'd512;
+assign card1_card_core1_regs_fifo2_reg_word97_shown = 28'd17564184;
+assign card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word98_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word101_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word102_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word103_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word104_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word105_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word107_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word108_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word109_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word109_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word110_set_mine = 1'd0;
 
 
 
@@ -1609,7 +1703,7 @@ always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_sl
     reg mem_hit;
     code = pci_pads0_registered_pad5_from_pin;
     config_hit = (pci_pads0_registered_pad6_from_pin && (!pci_pads0_registered_pad0_from_pin[0]) && (!pci_pads0_registered_pad0_from_pin[1]) && (pci_pads0_registered_pad0_from_pin[11-1:8] == 0) && ((code == 10) || (code == 11)));
-    io_hit = (card1_pci_slave2_io_enable && ((code == 2) || (code == 3)) && (pci_pads0_registered_pad0_from_pin[32-1:16] == 0) && (pci_pads0_registered_pad0_from_pin[16-1:7] == card1_pci_slave2_bar0[16-1:7]));
+    io_hit = (card1_pci_slave2_io_enable && ((code == 2) || (code == 3)) && (pci_pads0_registered_pad0_from_pin[32-1:16] == 0) && (pci_pads0_registered_pad0_from_pin[16-1:8] == card1_pci_slave2_bar0[16-1:8]));
     mem_hit = (card1_pci_slave2_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)) && (pci_pads0_registered_pad0_from_pin[32-1:12] == card1_pci_slave2_bar1[32-1:12]));
     card1_pci_slave2_claim = ((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (config_hit || io_hit || mem_hit));
     card1_pci_slave2_claim_config = config_hit;
@@ -1625,7 +1719,7 @@ always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin)
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
     end
     else if (((code == 2) || (code == 3))) begin
-        card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h1f);
+        card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
     end
     else begin
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3ff);
@@ -2751,7 +2845,7 @@ end
 
 
 
-assign card1_pci_slave2_pci_config2_bar0_read = ((card1_pci_slave2_bar0 & 16'hff80) | 16'h1);
+assign card1_pci_slave2_pci_config2_bar0_read = ((card1_pci_slave2_bar0 & 16'hff00) | 16'h1);
 
 
 always @(card1_pci_slave2_pci_config2_signaled_system_error, card1_pci_slave2_parity_response, card1_pci_slave2_config_irq, card1_pci_slave2_config_index, card1_pci_slave2_pci_config2_bar0_read, card1_pci_slave2_pci_config2_interrupt_line, card1_pci_slave2_interrupt_disable, card1_pci_slave2_pci_config2_signaled_target_abort, card1_pci_slave2_pci_config2_detected_parity_error, card1_pci_slave2_io_enable, card1_pci_slave2_serr_enable, card1_pci_slave2_bar1, card1_pci_slave2_mem_enable) begin: card1_pci_slave2_pci_config2_config_read
@@ -2878,570 +2972,29 @@ assign card1_pci_slave2_pci_control2_control_case0_0_1_target_room = card1_card_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word62_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
+assign card1_card_core1_regs_fifo2_reg_word74_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word62_mine, card1_card_core1_regs_fifo2_reg_word62_shown_wide, card1_card_core1_regs_fifo2_reg_word62_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word62_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word62_mine) begin
-        card1_card_core1_regs_fifo2_reg_word62_chain_out_data = (card1_card_core1_regs_fifo2_reg_word62_chain_in_data | card1_card_core1_regs_fifo2_reg_word62_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word62_chain_out_data = card1_card_core1_regs_fifo2_reg_word62_chain_in_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word62_shown_wide = card1_card_core1_regs_fifo2_reg_word62_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word62_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word62_chain_in_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word63_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word63_mine, card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_reg_word62_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word63_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word63_mine) begin
-        card1_card_core1_regs_fifo2_reg_word63_chain_out_data = (card1_card_core1_regs_fifo2_reg_word62_chain_out_data | card1_card_core1_regs_fifo2_reg_word63_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word63_chain_out_data = card1_card_core1_regs_fifo2_reg_word62_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word63_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word63_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word63_shown_wide, card1_card_core1_regs_fifo2_reg_word63_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word63_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word63_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word63_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word63_written = ((card1_card_core1_regs_fifo2_reg_word63_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word63_honoured = card1_card_core1_regs_fifo2_reg_word63_written[2-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word63_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word62_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word63_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word63__store42_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_control <= 0;
-        card1_card_core1_regs_fifo2_reg_word63_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word63_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word63_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word63_mine_write))) begin
-            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word63_honoured;
-            card1_card_core1_regs_fifo2_reg_word63_clamped <= card1_card_core1_regs_fifo2_reg_word63_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word64_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word64_mine, card1_card_core1_regs_fifo2_reg_word64_shown_wide, card1_card_core1_regs_fifo2_reg_word63_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word64_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word64_mine) begin
-        card1_card_core1_regs_fifo2_reg_word64_chain_out_data = (card1_card_core1_regs_fifo2_reg_word63_chain_out_data | card1_card_core1_regs_fifo2_reg_word64_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word64_chain_out_data = card1_card_core1_regs_fifo2_reg_word63_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word64_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word64_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word64_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word64_written = (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word64_honoured = card1_card_core1_regs_fifo2_reg_word64_written[4-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word64_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word63_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word64_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word64__store43_pulse_on_write
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_command_strobe <= 0;
-        card1_card_core1_regs_fifo2_command <= 0;
-        card1_card_core1_regs_fifo2_reg_word64_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word64_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word64_mine_write)) begin
-            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word64_honoured;
-            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word64_clamped <= card1_card_core1_regs_fifo2_reg_word64_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word65_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word65_mine, card1_card_core1_regs_fifo2_reg_word65_shown_wide, card1_card_core1_regs_fifo2_reg_word64_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word65_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word65_mine) begin
-        card1_card_core1_regs_fifo2_reg_word65_chain_out_data = (card1_card_core1_regs_fifo2_reg_word64_chain_out_data | card1_card_core1_regs_fifo2_reg_word65_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word65_chain_out_data = card1_card_core1_regs_fifo2_reg_word64_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word65_shown_wide = card1_card_core1_regs_fifo2_reg_word65_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word65_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word64_chain_out_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word66_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word66_mine, card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_reg_word65_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word66_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word66_mine) begin
-        card1_card_core1_regs_fifo2_reg_word66_chain_out_data = (card1_card_core1_regs_fifo2_reg_word65_chain_out_data | card1_card_core1_regs_fifo2_reg_word66_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word66_chain_out_data = card1_card_core1_regs_fifo2_reg_word65_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word66_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word66_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word66_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word66_shown_wide, card1_card_core1_regs_fifo2_reg_word66_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word66_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word66_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word66_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word66_written = ((card1_card_core1_regs_fifo2_reg_word66_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word66_honoured = card1_card_core1_regs_fifo2_reg_word66_written[7-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word66_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word65_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word66_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word66__store44_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word66_shown <= 0;
-        card1_card_core1_regs_fifo2_reg_word66_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word66_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word66_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word66_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word66_shown <= card1_card_core1_regs_fifo2_reg_word66_honoured;
-            card1_card_core1_regs_fifo2_reg_word66_clamped <= card1_card_core1_regs_fifo2_reg_word66_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word67_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word67_mine, card1_card_core1_regs_fifo2_reg_word67_shown_wide, card1_card_core1_regs_fifo2_reg_word66_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word67_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word67_mine) begin
-        card1_card_core1_regs_fifo2_reg_word67_chain_out_data = (card1_card_core1_regs_fifo2_reg_word66_chain_out_data | card1_card_core1_regs_fifo2_reg_word67_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word67_chain_out_data = card1_card_core1_regs_fifo2_reg_word66_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word67_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word67_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word67_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word67_written = (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word67_honoured = card1_card_core1_regs_fifo2_reg_word67_written[7-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word67_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word66_chain_out_clamped;
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word67__store45_clear_on_one
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word67_shown <= 0;
-    end
-    else begin
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word67_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word67_shown <= ((card1_card_core1_regs_fifo2_reg_word67_shown & (~card1_card_core1_regs_fifo2_reg_word67_honoured)) | card1_card_core1_regs_fifo2_reg_word67__store45_word_hw);
-        end
-        else begin
-            card1_card_core1_regs_fifo2_reg_word67_shown <= (card1_card_core1_regs_fifo2_reg_word67_shown | card1_card_core1_regs_fifo2_reg_word67__store45_word_hw);
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word68_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word68_mine, card1_card_core1_regs_fifo2_reg_word68_shown_wide, card1_card_core1_regs_fifo2_reg_word67_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word68_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word68_mine) begin
-        card1_card_core1_regs_fifo2_reg_word68_chain_out_data = (card1_card_core1_regs_fifo2_reg_word67_chain_out_data | card1_card_core1_regs_fifo2_reg_word68_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word68_chain_out_data = card1_card_core1_regs_fifo2_reg_word67_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word68_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word68_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word68_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word68_shown_wide, card1_card_core1_regs_fifo2_reg_word68_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word68_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word68_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word68_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word68_written = ((card1_card_core1_regs_fifo2_reg_word68_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word68_honoured = card1_card_core1_regs_fifo2_reg_word68_written[16-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word68_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word67_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word68_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word68__store46_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word68_shown <= 0;
-        card1_card_core1_regs_fifo2_reg_word68_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word68_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word68_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word68_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word68_shown <= card1_card_core1_regs_fifo2_reg_word68_honoured;
-            card1_card_core1_regs_fifo2_reg_word68_clamped <= card1_card_core1_regs_fifo2_reg_word68_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word69_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word69_mine, card1_card_core1_regs_fifo2_reg_word69_shown_wide, card1_card_core1_regs_fifo2_reg_word68_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word69_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word69_mine) begin
-        card1_card_core1_regs_fifo2_reg_word69_chain_out_data = (card1_card_core1_regs_fifo2_reg_word68_chain_out_data | card1_card_core1_regs_fifo2_reg_word69_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word69_chain_out_data = card1_card_core1_regs_fifo2_reg_word68_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word69_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word69_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word69_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word68_chain_out_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word70_mine = (card1_pci_slave2_pci_requests2_local_addr == 32);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word70_mine, card1_card_core1_regs_fifo2_reg_word70_shown_wide, card1_card_core1_regs_fifo2_reg_word69_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word70_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word70_mine) begin
-        card1_card_core1_regs_fifo2_reg_word70_chain_out_data = (card1_card_core1_regs_fifo2_reg_word69_chain_out_data | card1_card_core1_regs_fifo2_reg_word70_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word70_chain_out_data = card1_card_core1_regs_fifo2_reg_word69_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word70_shown_wide = card1_card_core1_regs_fifo2_reg_word70_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word70_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word69_chain_out_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word71_mine = (card1_pci_slave2_pci_requests2_local_addr == 36);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word71_mine, card1_card_core1_regs_fifo2_reg_word71_shown_wide, card1_card_core1_regs_fifo2_reg_word70_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word71_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word71_mine) begin
-        card1_card_core1_regs_fifo2_reg_word71_chain_out_data = (card1_card_core1_regs_fifo2_reg_word70_chain_out_data | card1_card_core1_regs_fifo2_reg_word71_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word71_chain_out_data = card1_card_core1_regs_fifo2_reg_word70_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word71_shown_wide = card1_card_core1_regs_fifo2_reg_word71_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word71_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word70_chain_out_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word72_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word72_mine, card1_card_core1_regs_fifo2_reg_word72_shown_wide, card1_card_core1_regs_fifo2_reg_word71_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word72_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word72_mine) begin
-        card1_card_core1_regs_fifo2_reg_word72_chain_out_data = (card1_card_core1_regs_fifo2_reg_word71_chain_out_data | card1_card_core1_regs_fifo2_reg_word72_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word72_chain_out_data = card1_card_core1_regs_fifo2_reg_word71_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word72_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word72_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word72_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word72_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word72_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word72_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word72_written = ((card1_card_core1_regs_fifo2_reg_word72_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word72_written) begin: card1_card_core1_regs_fifo2_reg_word72__limit47_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word72_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word72_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word72_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word72_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word72_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word72_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word72_honoured = 32768;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word72_honoured = card1_card_core1_regs_fifo2_reg_word72_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word72_out_of_range = 1'b0;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word72_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word71_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word72_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word72__store47_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word72_shown <= 4096;
-        card1_card_core1_regs_fifo2_reg_word72_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word72_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word72_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word72_shown <= card1_card_core1_regs_fifo2_reg_word72_honoured;
-            card1_card_core1_regs_fifo2_reg_word72_clamped <= card1_card_core1_regs_fifo2_reg_word72_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word73_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word73_mine, card1_card_core1_regs_fifo2_reg_word73_shown_wide, card1_card_core1_regs_fifo2_reg_word72_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word73_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word73_mine) begin
-        card1_card_core1_regs_fifo2_reg_word73_chain_out_data = (card1_card_core1_regs_fifo2_reg_word72_chain_out_data | card1_card_core1_regs_fifo2_reg_word73_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word73_chain_out_data = card1_card_core1_regs_fifo2_reg_word72_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word73_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word73_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word73_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word73_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word73_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
-        card1_card_core1_regs_fifo2_reg_word73_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word73_written = ((card1_card_core1_regs_fifo2_reg_word73_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word73_written) begin: card1_card_core1_regs_fifo2_reg_word73__limit48_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word73_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word73_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word73_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word73_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word73_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word73_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word73_honoured = 32768;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word73_honoured = card1_card_core1_regs_fifo2_reg_word73_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word73_out_of_range = 1'b0;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word73_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word72_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word73_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word73__store48_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word73_shown <= 4096;
-        card1_card_core1_regs_fifo2_reg_word73_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word73_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word73_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word73_shown <= card1_card_core1_regs_fifo2_reg_word73_honoured;
-            card1_card_core1_regs_fifo2_reg_word73_clamped <= card1_card_core1_regs_fifo2_reg_word73_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word74_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word74_mine, card1_card_core1_regs_fifo2_reg_word74_shown_wide, card1_card_core1_regs_fifo2_reg_word73_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word74_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word74_mine, card1_card_core1_regs_fifo2_reg_word74_shown_wide, card1_card_core1_regs_fifo2_reg_word74_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word74_read_chain
     if (card1_card_core1_regs_fifo2_reg_word74_mine) begin
-        card1_card_core1_regs_fifo2_reg_word74_chain_out_data = (card1_card_core1_regs_fifo2_reg_word73_chain_out_data | card1_card_core1_regs_fifo2_reg_word74_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word74_chain_out_data = (card1_card_core1_regs_fifo2_reg_word74_chain_in_data | card1_card_core1_regs_fifo2_reg_word74_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word74_chain_out_data = card1_card_core1_regs_fifo2_reg_word73_chain_out_data;
+        card1_card_core1_regs_fifo2_reg_word74_chain_out_data = card1_card_core1_regs_fifo2_reg_word74_chain_in_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word74_shown_wide = {16'h0, card1_card_core1_regs_fifo2_ramp_step};
+assign card1_card_core1_regs_fifo2_reg_word74_shown_wide = card1_card_core1_regs_fifo2_reg_word74_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word74_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word74_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word74_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
-        card1_card_core1_regs_fifo2_reg_word74_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word74_written = ((card1_card_core1_regs_fifo2_reg_word74_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word74_chain_in_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word74_honoured = card1_card_core1_regs_fifo2_reg_word74_written[16-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word73_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word74_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word74__store49_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_ramp_step <= 0;
-        card1_card_core1_regs_fifo2_reg_word74_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word74_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word74_mine_write))) begin
-            card1_card_core1_regs_fifo2_ramp_step <= card1_card_core1_regs_fifo2_reg_word74_honoured;
-            card1_card_core1_regs_fifo2_reg_word74_clamped <= card1_card_core1_regs_fifo2_reg_word74_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word75_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
+assign card1_card_core1_regs_fifo2_reg_word75_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word75_mine, card1_card_core1_regs_fifo2_reg_word75_shown_wide, card1_card_core1_regs_fifo2_reg_word74_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word75_read_chain
@@ -3455,51 +3008,40 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word75_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word75_shown};
+assign card1_card_core1_regs_fifo2_reg_word75_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word75_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
+assign card1_card_core1_regs_fifo2_reg_word75_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word75_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word75_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
-        card1_card_core1_regs_fifo2_reg_word75_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word75_shown_wide, card1_card_core1_regs_fifo2_reg_word75_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word75_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word75_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word75_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word75_written = ((card1_card_core1_regs_fifo2_reg_word75_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word75_written = ((card1_card_core1_regs_fifo2_reg_word75_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word75_written) begin: card1_card_core1_regs_fifo2_reg_word75__limit50_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word75_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word75_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word75_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word75_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word75_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word75_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word75_honoured = card1_card_core1_regs_fifo2_reg_word75_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word75_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word75_honoured = card1_card_core1_regs_fifo2_reg_word75_written[2-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word75_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word75_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word75__store50_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word75__store52_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word75_shown <= 1;
+        card1_card_core1_regs_fifo2_control <= 0;
         card1_card_core1_regs_fifo2_reg_word75_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word75_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word75_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word75_shown <= card1_card_core1_regs_fifo2_reg_word75_honoured;
+        if (((card1_card_core1_regs_fifo2_reg_word75_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word75_mine_write))) begin
+            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word75_honoured;
             card1_card_core1_regs_fifo2_reg_word75_clamped <= card1_card_core1_regs_fifo2_reg_word75_out_of_range;
         end
     end
@@ -3507,7 +3049,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word76_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word76_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word76_mine, card1_card_core1_regs_fifo2_reg_word76_shown_wide, card1_card_core1_regs_fifo2_reg_word75_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word76_read_chain
@@ -3521,51 +3063,37 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word76_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word76_shown};
+assign card1_card_core1_regs_fifo2_reg_word76_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word76_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word76_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word76_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word76_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word76_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
-        card1_card_core1_regs_fifo2_reg_word76_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word76_written = ((card1_card_core1_regs_fifo2_reg_word76_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word76_written = (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word76_written) begin: card1_card_core1_regs_fifo2_reg_word76__limit51_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word76_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word76_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word76_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word76_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word76_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word76_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word76_honoured = card1_card_core1_regs_fifo2_reg_word76_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word76_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word76_honoured = card1_card_core1_regs_fifo2_reg_word76_written[4-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word75_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word76_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word76__store51_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word76__store53_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word76_shown <= 1;
+        card1_card_core1_regs_fifo2_command_strobe <= 0;
+        card1_card_core1_regs_fifo2_command <= 0;
         card1_card_core1_regs_fifo2_reg_word76_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word76_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word76_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word76_shown <= card1_card_core1_regs_fifo2_reg_word76_honoured;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word76_mine_write)) begin
+            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word76_honoured;
+            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word76_clamped <= card1_card_core1_regs_fifo2_reg_word76_out_of_range;
         end
     end
@@ -3573,7 +3101,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word77_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word77_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word77_mine, card1_card_core1_regs_fifo2_reg_word77_shown_wide, card1_card_core1_regs_fifo2_reg_word76_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word77_read_chain
@@ -3587,59 +3115,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word77_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word77_shown};
+assign card1_card_core1_regs_fifo2_reg_word77_shown_wide = card1_card_core1_regs_fifo2_reg_word77_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word77_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word77_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word77_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
-        card1_card_core1_regs_fifo2_reg_word77_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word77_written = ((card1_card_core1_regs_fifo2_reg_word77_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word77_written) begin: card1_card_core1_regs_fifo2_reg_word77__limit52_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word77_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word77_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word77_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word77_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word77_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word77_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word77_honoured = card1_card_core1_regs_fifo2_reg_word77_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word77_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word77_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word77__store52_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word77_shown <= 1;
-        card1_card_core1_regs_fifo2_reg_word77_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word77_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word77_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word77_shown <= card1_card_core1_regs_fifo2_reg_word77_honoured;
-            card1_card_core1_regs_fifo2_reg_word77_clamped <= card1_card_core1_regs_fifo2_reg_word77_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word78_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word78_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word78_mine, card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word77_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word78_read_chain
@@ -3653,32 +3137,32 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word78_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word78_shown};
+assign card1_card_core1_regs_fifo2_reg_word78_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word78_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word78_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word78_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word78_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word78_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word78_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word78_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+        card1_card_core1_regs_fifo2_reg_word78_written = card1_card_core1_regs_fifo2_set_value[8-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word78_written = ((card1_card_core1_regs_fifo2_reg_word78_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word78_written = ((card1_card_core1_regs_fifo2_reg_word78_shown_wide[8-1:0] & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word78_honoured = card1_card_core1_regs_fifo2_reg_word78_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word78_honoured = card1_card_core1_regs_fifo2_reg_word78_written[8-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word78_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word78__store53_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word78__store54_hold_rw
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_reg_word78_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word78_clamped <= 0;
@@ -3694,7 +3178,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word79_mine = (card1_pci_slave2_pci_requests2_local_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word79_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word79_mine, card1_card_core1_regs_fifo2_reg_word79_shown_wide, card1_card_core1_regs_fifo2_reg_word78_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word79_read_chain
@@ -3708,59 +3192,42 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word79_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word79_shown};
+assign card1_card_core1_regs_fifo2_reg_word79_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word79_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word79_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word79_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word79_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
-        card1_card_core1_regs_fifo2_reg_word79_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word79_written = ((card1_card_core1_regs_fifo2_reg_word79_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word79_written) begin: card1_card_core1_regs_fifo2_reg_word79__limit54_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word79_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word79_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word79_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word79_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word79_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word79_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word79_honoured = card1_card_core1_regs_fifo2_reg_word79_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word79_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word79_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word79_clamped);
+assign card1_card_core1_regs_fifo2_reg_word79_written = (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word79__store54_hold_rw
+
+assign card1_card_core1_regs_fifo2_reg_word79_honoured = card1_card_core1_regs_fifo2_reg_word79_written[8-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped;
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word79__store55_clear_on_one
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word79_shown <= 2;
-        card1_card_core1_regs_fifo2_reg_word79_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word79_shown <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word79_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word79_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word79_shown <= card1_card_core1_regs_fifo2_reg_word79_honoured;
-            card1_card_core1_regs_fifo2_reg_word79_clamped <= card1_card_core1_regs_fifo2_reg_word79_out_of_range;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word79_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word79_shown <= ((card1_card_core1_regs_fifo2_reg_word79_shown & (~card1_card_core1_regs_fifo2_reg_word79_honoured)) | card1_card_core1_regs_fifo2_reg_word79__store55_word_hw);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_reg_word79_shown <= (card1_card_core1_regs_fifo2_reg_word79_shown | card1_card_core1_regs_fifo2_reg_word79__store55_word_hw);
         end
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word80_mine = (card1_pci_slave2_pci_requests2_local_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word80_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word80_mine, card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_reg_word79_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word80_read_chain
@@ -3778,46 +3245,35 @@ assign card1_card_core1_regs_fifo2_reg_word80_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word80_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word80_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word80_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
-        card1_card_core1_regs_fifo2_reg_word80_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_reg_word80_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word80_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word80_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word80_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word80_written = ((card1_card_core1_regs_fifo2_reg_word80_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word80_written = ((card1_card_core1_regs_fifo2_reg_word80_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word80_written) begin: card1_card_core1_regs_fifo2_reg_word80__limit55_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word80_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word80_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word80_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word80_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word80_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word80_honoured = card1_card_core1_regs_fifo2_reg_word80_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word80_honoured = card1_card_core1_regs_fifo2_reg_word80_written[16-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word80_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word80__store55_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word80__store56_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word80_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word80_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word80_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word80_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word80_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word80_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word80_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word80_shown <= card1_card_core1_regs_fifo2_reg_word80_honoured;
             card1_card_core1_regs_fifo2_reg_word80_clamped <= card1_card_core1_regs_fifo2_reg_word80_out_of_range;
         end
@@ -3826,7 +3282,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word81_mine = (card1_pci_slave2_pci_requests2_local_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word81_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word81_mine, card1_card_core1_regs_fifo2_reg_word81_shown_wide, card1_card_core1_regs_fifo2_reg_word80_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word81_read_chain
@@ -3840,57 +3296,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word81_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word81_shown};
+assign card1_card_core1_regs_fifo2_reg_word81_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word81_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word81_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word81_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word81_written) begin: card1_card_core1_regs_fifo2_reg_word81__limit56_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word81_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word81_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word81_honoured = card1_card_core1_regs_fifo2_reg_word81_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word81_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word81_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word81_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word81_out_of_range = 1'b1;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word81_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word81_out_of_range = 1'b1;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word81_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word81__store56_pulse_on_write
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word81__store56_word_value <= 0;
-        card1_card_core1_regs_fifo2_reg_word81_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word81_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word81_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word81__store56_word_value <= card1_card_core1_regs_fifo2_reg_word81_honoured;
-            card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word81_clamped <= card1_card_core1_regs_fifo2_reg_word81_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_pci_slave2_pci_requests2_local_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_pci_slave2_pci_requests2_local_addr == 32);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word82_mine, card1_card_core1_regs_fifo2_reg_word82_shown_wide, card1_card_core1_regs_fifo2_reg_word81_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word82_read_chain
@@ -3904,57 +3318,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word82_shown};
+assign card1_card_core1_regs_fifo2_reg_word82_shown_wide = card1_card_core1_regs_fifo2_reg_word82_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word82_written) begin: card1_card_core1_regs_fifo2_reg_word82__limit57_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word82_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word82_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word82_honoured = card1_card_core1_regs_fifo2_reg_word82_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word82_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word82_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word82_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word82_out_of_range = 1'b1;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word82_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word82_out_of_range = 1'b1;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word82_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word82__store57_pulse_on_write
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word82__store57_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word82__store57_word_value <= 0;
-        card1_card_core1_regs_fifo2_reg_word82_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word82__store57_word_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word82_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word82_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word82__store57_word_value <= card1_card_core1_regs_fifo2_reg_word82_honoured;
-            card1_card_core1_regs_fifo2_reg_word82__store57_word_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word82_clamped <= card1_card_core1_regs_fifo2_reg_word82_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
+assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_pci_slave2_pci_requests2_local_addr == 36);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word83_mine, card1_card_core1_regs_fifo2_reg_word83_shown_wide, card1_card_core1_regs_fifo2_reg_word82_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word83_read_chain
@@ -3976,7 +3348,7 @@ assign card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
+assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word84_mine, card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_reg_word83_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word84_read_chain
@@ -3994,11 +3366,55 @@ assign card1_card_core1_regs_fifo2_reg_word84_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word84_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word84_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word84_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word84_written = ((card1_card_core1_regs_fifo2_reg_word84_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word84_written) begin: card1_card_core1_regs_fifo2_reg_word84__limit57_clamp_unsigned
+    card1_card_core1_regs_fifo2_reg_word84_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word84_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word84_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word84_honoured = 1;
+    end
+    else if (((card1_card_core1_regs_fifo2_reg_word84_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word84_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word84_honoured = 32768;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word84_honoured = card1_card_core1_regs_fifo2_reg_word84_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word84_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
+assign card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word84_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word84__store57_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word84_shown <= 4096;
+        card1_card_core1_regs_fifo2_reg_word84_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word84_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word84_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word84_shown <= card1_card_core1_regs_fifo2_reg_word84_honoured;
+            card1_card_core1_regs_fifo2_reg_word84_clamped <= card1_card_core1_regs_fifo2_reg_word84_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word85_mine, card1_card_core1_regs_fifo2_reg_word85_shown_wide, card1_card_core1_regs_fifo2_reg_word84_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word85_read_chain
@@ -4012,15 +3428,59 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word85_shown};
+assign card1_card_core1_regs_fifo2_reg_word85_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word85_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word85_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word85_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word85_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
+        card1_card_core1_regs_fifo2_reg_word85_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word85_written = ((card1_card_core1_regs_fifo2_reg_word85_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word85_written) begin: card1_card_core1_regs_fifo2_reg_word85__limit58_clamp_unsigned
+    card1_card_core1_regs_fifo2_reg_word85_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word85_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word85_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word85_honoured = 1;
+    end
+    else if (((card1_card_core1_regs_fifo2_reg_word85_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word85_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word85_honoured = 32768;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word85_honoured = card1_card_core1_regs_fifo2_reg_word85_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word85_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_mine = (card1_pci_slave2_pci_requests2_local_addr == 96);
+assign card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word85_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word85__store58_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word85_shown <= 4096;
+        card1_card_core1_regs_fifo2_reg_word85_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word85_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word85_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word85_shown <= card1_card_core1_regs_fifo2_reg_word85_honoured;
+            card1_card_core1_regs_fifo2_reg_word85_clamped <= card1_card_core1_regs_fifo2_reg_word85_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word86_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word86_mine, card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word85_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word86_read_chain
@@ -4034,40 +3494,40 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = {30'h0, card1_card_core1_regs_fifo2_machine_control};
+assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = {16'h0, card1_card_core1_regs_fifo2_ramp_step};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_mine_write = (card1_card_core1_regs_fifo2_written_addr == 96);
+assign card1_card_core1_regs_fifo2_reg_word86_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word86_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word86_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word86_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word86_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
+        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[16-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word86_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word86__store58_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word86__store59_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_machine_control <= 0;
+        card1_card_core1_regs_fifo2_ramp_step <= 0;
         card1_card_core1_regs_fifo2_reg_word86_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word86_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word86_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word86_mine_write))) begin
-            card1_card_core1_regs_fifo2_machine_control <= card1_card_core1_regs_fifo2_reg_word86_honoured;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word86_mine_write))) begin
+            card1_card_core1_regs_fifo2_ramp_step <= card1_card_core1_regs_fifo2_reg_word86_honoured;
             card1_card_core1_regs_fifo2_reg_word86_clamped <= card1_card_core1_regs_fifo2_reg_word86_out_of_range;
         end
     end
@@ -4075,7 +3535,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_mine = (card1_pci_slave2_pci_requests2_local_addr == 100);
+assign card1_card_core1_regs_fifo2_reg_word87_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word87_mine, card1_card_core1_regs_fifo2_reg_word87_shown_wide, card1_card_core1_regs_fifo2_reg_word86_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word87_read_chain
@@ -4089,15 +3549,59 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = {12'h0, card1_card_core1_regs_fifo2_reg_word87_shown};
+assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word87_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word87_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word87_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word87_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
+        card1_card_core1_regs_fifo2_reg_word87_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word87_written = ((card1_card_core1_regs_fifo2_reg_word87_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word87_written) begin: card1_card_core1_regs_fifo2_reg_word87__limit60_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word87_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word87_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word87_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word87_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word87_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word87_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word87_honoured = card1_card_core1_regs_fifo2_reg_word87_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word87_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_pci_slave2_pci_requests2_local_addr == 104);
+assign card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word87_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word87__store60_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word87_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word87_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word87_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word87_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word87_shown <= card1_card_core1_regs_fifo2_reg_word87_honoured;
+            card1_card_core1_regs_fifo2_reg_word87_clamped <= card1_card_core1_regs_fifo2_reg_word87_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word88_mine, card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_reg_word87_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word88_read_chain
@@ -4115,11 +3619,55 @@ assign card1_card_core1_regs_fifo2_reg_word88_shown_wide = {24'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word88_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word88_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
+        card1_card_core1_regs_fifo2_reg_word88_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word88_written = ((card1_card_core1_regs_fifo2_reg_word88_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word88_written) begin: card1_card_core1_regs_fifo2_reg_word88__limit61_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word88_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word88_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word88_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word88_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word88_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word88_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word88_honoured = card1_card_core1_regs_fifo2_reg_word88_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word88_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_pci_slave2_pci_requests2_local_addr == 108);
+assign card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word88_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word88__store61_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word88_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word88_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word88_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word88_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word88_shown <= card1_card_core1_regs_fifo2_reg_word88_honoured;
+            card1_card_core1_regs_fifo2_reg_word88_clamped <= card1_card_core1_regs_fifo2_reg_word88_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word89_mine, card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_reg_word88_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word89_read_chain
@@ -4133,39 +3681,50 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word89_shown};
+assign card1_card_core1_regs_fifo2_reg_word89_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word89_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_mine_write = (card1_card_core1_regs_fifo2_written_addr == 108);
+assign card1_card_core1_regs_fifo2_reg_word89_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_reg_word89_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word89_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word89_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word89_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word89_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
+        card1_card_core1_regs_fifo2_reg_word89_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word89_written = ((card1_card_core1_regs_fifo2_reg_word89_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
+        card1_card_core1_regs_fifo2_reg_word89_written = ((card1_card_core1_regs_fifo2_reg_word89_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word89_honoured = card1_card_core1_regs_fifo2_reg_word89_written[7-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word89_written) begin: card1_card_core1_regs_fifo2_reg_word89__limit62_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word89_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word89_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word89_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word89_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word89_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word89_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word89_honoured = card1_card_core1_regs_fifo2_reg_word89_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word89_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word89_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word89__store59_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word89__store62_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word89_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word89_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word89_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word89_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word89_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word89_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word89_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word89_shown <= card1_card_core1_regs_fifo2_reg_word89_honoured;
             card1_card_core1_regs_fifo2_reg_word89_clamped <= card1_card_core1_regs_fifo2_reg_word89_out_of_range;
         end
@@ -4174,7 +3733,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_mine = (card1_pci_slave2_pci_requests2_local_addr == 112);
+assign card1_card_core1_regs_fifo2_reg_word90_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word90_mine, card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word89_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word90_read_chain
@@ -4188,45 +3747,34 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word90_shown};
+assign card1_card_core1_regs_fifo2_reg_word90_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word90_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_mine_write = (card1_card_core1_regs_fifo2_written_addr == 112);
+assign card1_card_core1_regs_fifo2_reg_word90_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word90_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word90_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word90_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word90_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+        card1_card_core1_regs_fifo2_reg_word90_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word90_written = ((card1_card_core1_regs_fifo2_reg_word90_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word90_written = ((card1_card_core1_regs_fifo2_reg_word90_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word90_written) begin: card1_card_core1_regs_fifo2_reg_word90__limit60_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word90_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word90_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word90_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word90_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word90_written[32-1:4] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word90_honoured = 15;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word90_honoured = card1_card_core1_regs_fifo2_reg_word90_written[4-1:0];
-        card1_card_core1_regs_fifo2_reg_word90_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word90_honoured = card1_card_core1_regs_fifo2_reg_word90_written[2-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word90_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word90__store60_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word90__store63_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word90_shown <= 3;
+        card1_card_core1_regs_fifo2_reg_word90_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word90_clamped <= 0;
     end
     else begin
@@ -4240,7 +3788,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_mine = (card1_pci_slave2_pci_requests2_local_addr == 116);
+assign card1_card_core1_regs_fifo2_reg_word91_mine = (card1_pci_slave2_pci_requests2_local_addr == 68);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word91_mine, card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_reg_word90_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word91_read_chain
@@ -4258,11 +3806,11 @@ assign card1_card_core1_regs_fifo2_reg_word91_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_mine_write = (card1_card_core1_regs_fifo2_written_addr == 116);
+assign card1_card_core1_regs_fifo2_reg_word91_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_reg_word91_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word91_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word91_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+always @(card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word91_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
         card1_card_core1_regs_fifo2_reg_word91_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -4271,7 +3819,7 @@ always @(card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word91_written) begin: card1_card_core1_regs_fifo2_reg_word91__limit61_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word91_written) begin: card1_card_core1_regs_fifo2_reg_word91__limit64_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word91_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word91_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word91_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word91_honoured = 1;
@@ -4290,14 +3838,14 @@ end
 assign card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word91_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word91__store61_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word91__store64_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word91_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word91_shown <= 2;
         card1_card_core1_regs_fifo2_reg_word91_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word91_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word91_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word91_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word91_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word91_shown <= card1_card_core1_regs_fifo2_reg_word91_honoured;
             card1_card_core1_regs_fifo2_reg_word91_clamped <= card1_card_core1_regs_fifo2_reg_word91_out_of_range;
         end
@@ -4306,52 +3854,925 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_pci_slave2_pci_requests2_local_addr == 120);
+assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_pci_slave2_pci_requests2_local_addr == 72);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word92_mine, card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_reg_word91_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word92_read_chain
     if (card1_card_core1_regs_fifo2_reg_word92_mine) begin
-        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word91_chain_out_data | card1_card_core1_regs_fifo2_reg_word92_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word92_chain_out_data = (card1_card_core1_regs_fifo2_reg_word91_chain_out_data | card1_card_core1_regs_fifo2_reg_word92_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word91_chain_out_data;
+        card1_card_core1_regs_fifo2_reg_word92_chain_out_data = card1_card_core1_regs_fifo2_reg_word91_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word92_shown};
+assign card1_card_core1_regs_fifo2_reg_word92_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word92_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_mine_write = (card1_card_core1_regs_fifo2_written_addr == 120);
+assign card1_card_core1_regs_fifo2_reg_word92_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
 
 
+always @(card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word92_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
+        card1_card_core1_regs_fifo2_reg_word92_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word92_written = ((card1_card_core1_regs_fifo2_reg_word92_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
 
-assign card1_card_core1_regs_fifo2_reg_word92_written = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
 
-
-
-assign card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written[24-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word92_written) begin: card1_card_core1_regs_fifo2_reg_word92__limit65_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word92_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word92_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word92_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word92_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word92_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word92_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word92_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word92_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word92__store62_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word92__store65_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word92__store62_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word92__store62_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word92_shown <= 2;
         card1_card_core1_regs_fifo2_reg_word92_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word92__store62_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word92_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word92_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word92__store62_word_value <= card1_card_core1_regs_fifo2_reg_word92_honoured;
-            card1_card_core1_regs_fifo2_reg_word92__store62_word_strobe <= 1'b1;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word92_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word92_shown <= card1_card_core1_regs_fifo2_reg_word92_honoured;
             card1_card_core1_regs_fifo2_reg_word92_clamped <= card1_card_core1_regs_fifo2_reg_word92_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93_mine = (card1_pci_slave2_pci_requests2_local_addr == 76);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word93_mine, card1_card_core1_regs_fifo2_reg_word93_shown_wide, card1_card_core1_regs_fifo2_reg_word92_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word93_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word93_mine) begin
+        card1_card_core1_regs_fifo2_reg_word93_chain_out_data = (card1_card_core1_regs_fifo2_reg_word92_chain_out_data | card1_card_core1_regs_fifo2_reg_word93_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word93_chain_out_data = card1_card_core1_regs_fifo2_reg_word92_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word93_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word93_written) begin: card1_card_core1_regs_fifo2_reg_word93__limit66_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word93_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word93_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word93_honoured = card1_card_core1_regs_fifo2_reg_word93_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word93_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word93_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word93_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word93_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word93__store66_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word93__store66_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word93_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word93_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word93_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word93__store66_word_value <= card1_card_core1_regs_fifo2_reg_word93_honoured;
+            card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word93_clamped <= card1_card_core1_regs_fifo2_reg_word93_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94_mine = (card1_pci_slave2_pci_requests2_local_addr == 80);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word94_mine, card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_reg_word93_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word94_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word94_mine) begin
+        card1_card_core1_regs_fifo2_reg_word94_chain_out_data = (card1_card_core1_regs_fifo2_reg_word93_chain_out_data | card1_card_core1_regs_fifo2_reg_word94_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word94_chain_out_data = card1_card_core1_regs_fifo2_reg_word93_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word94_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word94_written) begin: card1_card_core1_regs_fifo2_reg_word94__limit67_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word94_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word94_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word94_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word94_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word94_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word94_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word94__store67_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word94__store67_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word94_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word94_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word94_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word94__store67_word_value <= card1_card_core1_regs_fifo2_reg_word94_honoured;
+            card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word94_clamped <= card1_card_core1_regs_fifo2_reg_word94_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word95_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word95_mine, card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_reg_word94_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word95_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word95_mine) begin
+        card1_card_core1_regs_fifo2_reg_word95_chain_out_data = (card1_card_core1_regs_fifo2_reg_word94_chain_out_data | card1_card_core1_regs_fifo2_reg_word95_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word95_chain_out_data = card1_card_core1_regs_fifo2_reg_word94_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word95_shown_wide = card1_card_core1_regs_fifo2_reg_word95_shown;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word96_mine, card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_reg_word95_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word96_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word96_mine) begin
+        card1_card_core1_regs_fifo2_reg_word96_chain_out_data = (card1_card_core1_regs_fifo2_reg_word95_chain_out_data | card1_card_core1_regs_fifo2_reg_word96_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word96_chain_out_data = card1_card_core1_regs_fifo2_reg_word95_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word96_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word97_mine, card1_card_core1_regs_fifo2_reg_word97_shown_wide, card1_card_core1_regs_fifo2_reg_word96_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word97_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word97_mine) begin
+        card1_card_core1_regs_fifo2_reg_word97_chain_out_data = (card1_card_core1_regs_fifo2_reg_word96_chain_out_data | card1_card_core1_regs_fifo2_reg_word97_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word97_chain_out_data = card1_card_core1_regs_fifo2_reg_word96_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word97_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word98_mine = (card1_pci_slave2_pci_requests2_local_addr == 96);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word98_mine, card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word97_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word98_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word98_mine) begin
+        card1_card_core1_regs_fifo2_reg_word98_chain_out_data = (card1_card_core1_regs_fifo2_reg_word97_chain_out_data | card1_card_core1_regs_fifo2_reg_word98_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word98_chain_out_data = card1_card_core1_regs_fifo2_reg_word97_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word98_shown_wide = {30'h0, card1_card_core1_regs_fifo2_machine_control};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word98_mine_write = (card1_card_core1_regs_fifo2_written_addr == 96);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word98_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word98_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word98_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word98_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word98_written = ((card1_card_core1_regs_fifo2_reg_word98_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_fifo2_reg_word98_written[2-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word98_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word98__store68_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_machine_control <= 0;
+        card1_card_core1_regs_fifo2_reg_word98_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word98_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word98_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word98_mine_write))) begin
+            card1_card_core1_regs_fifo2_machine_control <= card1_card_core1_regs_fifo2_reg_word98_honoured;
+            card1_card_core1_regs_fifo2_reg_word98_clamped <= card1_card_core1_regs_fifo2_reg_word98_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word99_mine = (card1_pci_slave2_pci_requests2_local_addr == 100);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word99_mine, card1_card_core1_regs_fifo2_reg_word99_shown_wide, card1_card_core1_regs_fifo2_reg_word98_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word99_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word99_mine) begin
+        card1_card_core1_regs_fifo2_reg_word99_chain_out_data = (card1_card_core1_regs_fifo2_reg_word98_chain_out_data | card1_card_core1_regs_fifo2_reg_word99_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word99_chain_out_data = card1_card_core1_regs_fifo2_reg_word98_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word99_shown_wide = {12'h0, card1_card_core1_regs_fifo2_reg_word99_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100_mine = (card1_pci_slave2_pci_requests2_local_addr == 104);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word100_mine, card1_card_core1_regs_fifo2_reg_word100_shown_wide, card1_card_core1_regs_fifo2_reg_word99_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word100_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word100_mine) begin
+        card1_card_core1_regs_fifo2_reg_word100_chain_out_data = (card1_card_core1_regs_fifo2_reg_word99_chain_out_data | card1_card_core1_regs_fifo2_reg_word100_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word100_chain_out_data = card1_card_core1_regs_fifo2_reg_word99_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word100_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word101_mine = (card1_pci_slave2_pci_requests2_local_addr == 108);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word101_mine, card1_card_core1_regs_fifo2_reg_word101_shown_wide, card1_card_core1_regs_fifo2_reg_word100_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word101_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word101_mine) begin
+        card1_card_core1_regs_fifo2_reg_word101_chain_out_data = (card1_card_core1_regs_fifo2_reg_word100_chain_out_data | card1_card_core1_regs_fifo2_reg_word101_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word101_chain_out_data = card1_card_core1_regs_fifo2_reg_word100_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word101_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word101_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word101_mine_write = (card1_card_core1_regs_fifo2_written_addr == 108);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word101_shown_wide, card1_card_core1_regs_fifo2_reg_word101_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word101_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word101_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word101_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word101_written = ((card1_card_core1_regs_fifo2_reg_word101_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word101_honoured = card1_card_core1_regs_fifo2_reg_word101_written[7-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word101_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word101__store69_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word101_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word101_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word101_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word101_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word101_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word101_shown <= card1_card_core1_regs_fifo2_reg_word101_honoured;
+            card1_card_core1_regs_fifo2_reg_word101_clamped <= card1_card_core1_regs_fifo2_reg_word101_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word102_mine = (card1_pci_slave2_pci_requests2_local_addr == 112);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word102_mine, card1_card_core1_regs_fifo2_reg_word102_shown_wide, card1_card_core1_regs_fifo2_reg_word101_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word102_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word102_mine) begin
+        card1_card_core1_regs_fifo2_reg_word102_chain_out_data = (card1_card_core1_regs_fifo2_reg_word101_chain_out_data | card1_card_core1_regs_fifo2_reg_word102_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word102_chain_out_data = card1_card_core1_regs_fifo2_reg_word101_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word102_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word102_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word102_mine_write = (card1_card_core1_regs_fifo2_written_addr == 112);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word102_shown_wide, card1_card_core1_regs_fifo2_reg_word102_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word102_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word102_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word102_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word102_written = ((card1_card_core1_regs_fifo2_reg_word102_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word102_written) begin: card1_card_core1_regs_fifo2_reg_word102__limit70_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word102_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word102_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word102_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word102_written[32-1:4] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word102_honoured = 15;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word102_honoured = card1_card_core1_regs_fifo2_reg_word102_written[4-1:0];
+        card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word102_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word102__store70_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word102_shown <= 3;
+        card1_card_core1_regs_fifo2_reg_word102_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word102_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word102_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word102_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word102_shown <= card1_card_core1_regs_fifo2_reg_word102_honoured;
+            card1_card_core1_regs_fifo2_reg_word102_clamped <= card1_card_core1_regs_fifo2_reg_word102_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word103_mine = (card1_pci_slave2_pci_requests2_local_addr == 116);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word103_mine, card1_card_core1_regs_fifo2_reg_word103_shown_wide, card1_card_core1_regs_fifo2_reg_word102_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word103_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word103_mine) begin
+        card1_card_core1_regs_fifo2_reg_word103_chain_out_data = (card1_card_core1_regs_fifo2_reg_word102_chain_out_data | card1_card_core1_regs_fifo2_reg_word103_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word103_chain_out_data = card1_card_core1_regs_fifo2_reg_word102_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word103_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word103_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word103_mine_write = (card1_card_core1_regs_fifo2_written_addr == 116);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word103_shown_wide, card1_card_core1_regs_fifo2_reg_word103_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word103_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word103_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word103_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word103_written = ((card1_card_core1_regs_fifo2_reg_word103_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word103_written) begin: card1_card_core1_regs_fifo2_reg_word103__limit71_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word103_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word103_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word103_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word103_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word103_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word103_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word103_honoured = card1_card_core1_regs_fifo2_reg_word103_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word103_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word103_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word103__store71_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word103_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word103_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word103_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word103_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word103_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word103_shown <= card1_card_core1_regs_fifo2_reg_word103_honoured;
+            card1_card_core1_regs_fifo2_reg_word103_clamped <= card1_card_core1_regs_fifo2_reg_word103_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word104_mine = (card1_pci_slave2_pci_requests2_local_addr == 120);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word104_mine, card1_card_core1_regs_fifo2_reg_word104_shown_wide, card1_card_core1_regs_fifo2_reg_word103_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word104_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word104_mine) begin
+        card1_card_core1_regs_fifo2_reg_word104_chain_out_data = (card1_card_core1_regs_fifo2_reg_word103_chain_out_data | card1_card_core1_regs_fifo2_reg_word104_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word104_chain_out_data = card1_card_core1_regs_fifo2_reg_word103_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word104_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word104_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word104_mine_write = (card1_card_core1_regs_fifo2_written_addr == 120);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word104_written = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word104_honoured = card1_card_core1_regs_fifo2_reg_word104_written[24-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word104_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word104__store72_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word104__store72_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word104_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word104_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word104_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word104__store72_word_value <= card1_card_core1_regs_fifo2_reg_word104_honoured;
+            card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word104_clamped <= card1_card_core1_regs_fifo2_reg_word104_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word105_mine = (card1_pci_slave2_pci_requests2_local_addr == 124);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word105_mine, card1_card_core1_regs_fifo2_reg_word105_shown_wide, card1_card_core1_regs_fifo2_reg_word104_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word105_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word105_mine) begin
+        card1_card_core1_regs_fifo2_reg_word105_chain_out_data = (card1_card_core1_regs_fifo2_reg_word104_chain_out_data | card1_card_core1_regs_fifo2_reg_word105_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word105_chain_out_data = card1_card_core1_regs_fifo2_reg_word104_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word105_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word105_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word105_mine_write = (card1_card_core1_regs_fifo2_written_addr == 124);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word105_written = (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word105_honoured = card1_card_core1_regs_fifo2_reg_word105_written[2-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word105_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word105__store73_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word105__store73_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word105_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word105_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word105_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word105__store73_word_value <= card1_card_core1_regs_fifo2_reg_word105_honoured;
+            card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word105_clamped <= card1_card_core1_regs_fifo2_reg_word105_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word106_mine = (card1_pci_slave2_pci_requests2_local_addr == 128);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word106_mine, card1_card_core1_regs_fifo2_reg_word106_shown_wide, card1_card_core1_regs_fifo2_reg_word105_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word106_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word106_mine) begin
+        card1_card_core1_regs_fifo2_reg_word106_chain_out_data = (card1_card_core1_regs_fifo2_reg_word105_chain_out_data | card1_card_core1_regs_fifo2_reg_word106_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word106_chain_out_data = card1_card_core1_regs_fifo2_reg_word105_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word106_shown_wide = {26'h0, card1_card_core1_regs_fifo2_reg_word106_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word107_mine = (card1_pci_slave2_pci_requests2_local_addr == 132);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word107_mine, card1_card_core1_regs_fifo2_reg_word107_shown_wide, card1_card_core1_regs_fifo2_reg_word106_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word107_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word107_mine) begin
+        card1_card_core1_regs_fifo2_reg_word107_chain_out_data = (card1_card_core1_regs_fifo2_reg_word106_chain_out_data | card1_card_core1_regs_fifo2_reg_word107_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word107_chain_out_data = card1_card_core1_regs_fifo2_reg_word106_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word107_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word107_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word107_mine_write = (card1_card_core1_regs_fifo2_written_addr == 132);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word107_shown_wide, card1_card_core1_regs_fifo2_reg_word107_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word107_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word107_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word107_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word107_written = ((card1_card_core1_regs_fifo2_reg_word107_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word107_written) begin: card1_card_core1_regs_fifo2_reg_word107__limit74_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word107_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word107_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word107_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word107_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word107_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word107_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word107_honoured = card1_card_core1_regs_fifo2_reg_word107_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word107_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word107_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word107__store74_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word107_shown <= 100;
+        card1_card_core1_regs_fifo2_reg_word107_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word107_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word107_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word107_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word107_shown <= card1_card_core1_regs_fifo2_reg_word107_honoured;
+            card1_card_core1_regs_fifo2_reg_word107_clamped <= card1_card_core1_regs_fifo2_reg_word107_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word108_mine = (card1_pci_slave2_pci_requests2_local_addr == 136);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word108_mine, card1_card_core1_regs_fifo2_reg_word108_shown_wide, card1_card_core1_regs_fifo2_reg_word107_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word108_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word108_mine) begin
+        card1_card_core1_regs_fifo2_reg_word108_chain_out_data = (card1_card_core1_regs_fifo2_reg_word107_chain_out_data | card1_card_core1_regs_fifo2_reg_word108_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word108_chain_out_data = card1_card_core1_regs_fifo2_reg_word107_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word108_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word108_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word108_mine_write = (card1_card_core1_regs_fifo2_written_addr == 136);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word108_shown_wide, card1_card_core1_regs_fifo2_reg_word108_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word108_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word108_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word108_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word108_written = ((card1_card_core1_regs_fifo2_reg_word108_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word108_written) begin: card1_card_core1_regs_fifo2_reg_word108__limit75_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word108_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word108_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word108_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word108_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word108_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word108_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word108_honoured = card1_card_core1_regs_fifo2_reg_word108_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word108_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word108_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word108__store75_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word108_shown <= 1000;
+        card1_card_core1_regs_fifo2_reg_word108_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word108_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word108_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word108_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word108_shown <= card1_card_core1_regs_fifo2_reg_word108_honoured;
+            card1_card_core1_regs_fifo2_reg_word108_clamped <= card1_card_core1_regs_fifo2_reg_word108_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word109_mine = (card1_pci_slave2_pci_requests2_local_addr == 140);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word109_mine, card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word108_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word109_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word109_mine) begin
+        card1_card_core1_regs_fifo2_reg_word109_chain_out_data = (card1_card_core1_regs_fifo2_reg_word108_chain_out_data | card1_card_core1_regs_fifo2_reg_word109_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word109_chain_out_data = card1_card_core1_regs_fifo2_reg_word108_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word109_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word109_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word109_mine_write = (card1_card_core1_regs_fifo2_written_addr == 140);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word109_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word109_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word109_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word109_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word109_written = ((card1_card_core1_regs_fifo2_reg_word109_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_written[16-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word109_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word109__store76_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word109_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word109_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word109_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word109_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word109_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word109_shown <= card1_card_core1_regs_fifo2_reg_word109_honoured;
+            card1_card_core1_regs_fifo2_reg_word109_clamped <= card1_card_core1_regs_fifo2_reg_word109_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word110_mine = (card1_pci_slave2_pci_requests2_local_addr == 144);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word110_mine, card1_card_core1_regs_fifo2_reg_word110_shown_wide, card1_card_core1_regs_fifo2_reg_word109_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word110_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word110_mine) begin
+        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word109_chain_out_data | card1_card_core1_regs_fifo2_reg_word110_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word109_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word110_shown_wide = {9'h0, card1_card_core1_regs_fifo2_reg_word110_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word110_mine_write = (card1_card_core1_regs_fifo2_written_addr == 144);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word110_shown_wide, card1_card_core1_regs_fifo2_reg_word110_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word110_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word110_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word110_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word110_written = ((card1_card_core1_regs_fifo2_reg_word110_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word110_written) begin: card1_card_core1_regs_fifo2_reg_word110__limit77_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word110_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word110_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word110_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word110_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word110_written[32-1:23] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word110_honoured = 8388607;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word110_honoured = card1_card_core1_regs_fifo2_reg_word110_written[23-1:0];
+        card1_card_core1_regs_fifo2_reg_word110_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word110_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word110__store77_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word110_shown <= 65535;
+        card1_card_core1_regs_fifo2_reg_word110_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word110_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word110_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word110_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word110_shown <= card1_card_core1_regs_fifo2_reg_word110_honoured;
+            card1_card_core1_regs_fifo2_reg_word110_clamped <= card1_card_core1_regs_fifo2_reg_word110_out_of_range;
         end
     end
 end
@@ -4844,13 +5265,13 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
         card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word72_shown;
-        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word73_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word84_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word85_shown;
         card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_ramp_step;
         card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_ramp_step == 0);
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word72_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_ramp_step}));
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word72_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word73_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
+        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word84_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_ramp_step}));
+        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word84_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
+        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word85_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
     end
 end
 
@@ -4979,9 +5400,9 @@ end
 assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending);
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count, card1_card_core1_regs_fifo2_reg_word81_shown) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count, card1_card_core1_regs_fifo2_reg_word93_shown) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
     if ((!card1_card_core1_regs_fifo2_direct_pulse4_command_load)) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word81_shown;
+        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word93_shown;
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
     end
     else if ((card1_card_core1_regs_fifo2_direct_pulse4_command_count < 0)) begin
@@ -4995,12 +5416,12 @@ always @(card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word79_shown, card1_card_core1_regs_fifo2_direct_pulse4_waiting, card1_card_core1_regs_fifo2_direct_pulse4_gap) begin: card1_card_core1_regs_fifo2_direct_pulse4_gap_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse4_command_period, card1_card_core1_regs_fifo2_direct_pulse4_waiting, card1_card_core1_regs_fifo2_direct_pulse4_gap) begin: card1_card_core1_regs_fifo2_direct_pulse4_gap_operands
     if (card1_card_core1_regs_fifo2_direct_pulse4_waiting) begin
         card1_card_core1_regs_fifo2_direct_pulse4_gap_operand = card1_card_core1_regs_fifo2_direct_pulse4_gap;
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse4_gap_operand = card1_card_core1_regs_fifo2_reg_word79_shown;
+        card1_card_core1_regs_fifo2_direct_pulse4_gap_operand = card1_card_core1_regs_fifo2_direct_pulse4_command_period;
     end
 end
 
@@ -5015,18 +5436,18 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_dir_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
-        card1_card_core1_regs_fifo2_reg_word81_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word93_shown <= 0;
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
-        if (card1_card_core1_core_clear) begin
-            card1_card_core1_regs_fifo2_reg_word81_shown <= 0;
+        if (card1_card_core1_regs_fifo2_direct_clear) begin
+            card1_card_core1_regs_fifo2_reg_word93_shown <= 0;
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_command_load) begin
-            card1_card_core1_regs_fifo2_reg_word81_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+            card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
             card1_card_core1_regs_fifo2_direct_dir_x <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count >= 0);
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
@@ -5039,10 +5460,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             end
             else if (card1_card_core1_regs_fifo2_direct_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_x <= 1;
-                card1_card_core1_regs_fifo2_reg_word81_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
-                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word81_shown != 1);
+                card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word93_shown != 1);
                 card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
-                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_reg_word79_shown != 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_direct_pulse4_command_period != 1);
             end
         end
     end
@@ -5053,9 +5474,9 @@ end
 assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending);
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count, card1_card_core1_regs_fifo2_reg_word82_shown) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count, card1_card_core1_regs_fifo2_reg_word94_shown) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
     if ((!card1_card_core1_regs_fifo2_direct_pulse5_command_load)) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word82_shown;
+        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word94_shown;
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
     end
     else if ((card1_card_core1_regs_fifo2_direct_pulse5_command_count < 0)) begin
@@ -5069,12 +5490,12 @@ always @(card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word80_shown, card1_card_core1_regs_fifo2_direct_pulse5_waiting, card1_card_core1_regs_fifo2_direct_pulse5_gap) begin: card1_card_core1_regs_fifo2_direct_pulse5_gap_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse5_command_period, card1_card_core1_regs_fifo2_direct_pulse5_waiting, card1_card_core1_regs_fifo2_direct_pulse5_gap) begin: card1_card_core1_regs_fifo2_direct_pulse5_gap_operands
     if (card1_card_core1_regs_fifo2_direct_pulse5_waiting) begin
         card1_card_core1_regs_fifo2_direct_pulse5_gap_operand = card1_card_core1_regs_fifo2_direct_pulse5_gap;
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse5_gap_operand = card1_card_core1_regs_fifo2_reg_word80_shown;
+        card1_card_core1_regs_fifo2_direct_pulse5_gap_operand = card1_card_core1_regs_fifo2_direct_pulse5_command_period;
     end
 end
 
@@ -5089,18 +5510,18 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_dir_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
-        card1_card_core1_regs_fifo2_reg_word82_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word94_shown <= 0;
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
-        if (card1_card_core1_core_clear) begin
-            card1_card_core1_regs_fifo2_reg_word82_shown <= 0;
+        if (card1_card_core1_regs_fifo2_direct_clear) begin
+            card1_card_core1_regs_fifo2_reg_word94_shown <= 0;
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_command_load) begin
-            card1_card_core1_regs_fifo2_reg_word82_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+            card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
             card1_card_core1_regs_fifo2_direct_dir_y <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count >= 0);
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
@@ -5113,10 +5534,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             end
             else if (card1_card_core1_regs_fifo2_direct_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_y <= 1;
-                card1_card_core1_regs_fifo2_reg_word82_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
-                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word82_shown != 1);
+                card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word94_shown != 1);
                 card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
-                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_reg_word80_shown != 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_command_period != 1);
             end
         end
     end
@@ -5132,12 +5553,12 @@ assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pu
 assign card1_card_core1_regs_fifo2_pulse_out2_head = card1_card_core1_regs_fifo2_pulse_out2_queue[0];
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_reg_word76_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_reg_word75_shown, card1_card_core1_regs_fifo2_pulse_clear) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_reg_word88_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_reg_word87_shown, card1_card_core1_regs_fifo2_pulse_clear) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
     card1_card_core1_regs_fifo2_pulse_out2_turn = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) && ((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
     card1_card_core1_regs_fifo2_pulse_out2_take = 1'b0;
-    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_regs_fifo2_pulse_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word75_shown))) begin
+    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_regs_fifo2_pulse_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word87_shown))) begin
         if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b01)) begin
-            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word76_shown);
+            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word88_shown);
         end
         else if ((card1_card_core1_regs_fifo2_pulse_out2_count != 0)) begin
             card1_card_core1_regs_fifo2_pulse_out2_take = (!((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
@@ -5146,9 +5567,9 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_r
 end
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_reg_word75_shown, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_take, card1_card_core1_regs_fifo2_reg_word77_shown) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
-    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word77_shown)));
-    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word75_shown));
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_reg_word87_shown, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_take, card1_card_core1_regs_fifo2_reg_word89_shown) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
+    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word89_shown)));
+    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word87_shown));
     card1_card_core1_regs_fifo2_pulse_out2_phase_step = 0;
     if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks != 255)) begin
         card1_card_core1_regs_fifo2_pulse_out2_phase_step = 1;
@@ -5284,17 +5705,29 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
     else begin
         motor_step_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
         motor_step_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
-        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word78_shown[0]);
-        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word78_shown[1]);
+        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word90_shown[0]);
+        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word90_shown[1]);
         if (card1_card_core1_regs_fifo2_clear_position) begin
             card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
             card1_card_core1_regs_fifo2_position_y <= 0;
         end
         else begin
-            if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!motor_step_x))) begin
+            if (card1_card_core1_regs_fifo2_home_zero[0]) begin
+                card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
+                if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!motor_step_x))) begin
+                    card1_card_core1_regs_fifo2_pulse_out2_position_x <= card1_card_core1_regs_fifo2_pulse_out2_delta_x;
+                end
+            end
+            else if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!motor_step_x))) begin
                 card1_card_core1_regs_fifo2_pulse_out2_position_x <= (card1_card_core1_regs_fifo2_pulse_out2_position_x + card1_card_core1_regs_fifo2_pulse_out2_delta_x);
             end
-            if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!motor_step_y))) begin
+            if (card1_card_core1_regs_fifo2_home_zero[1]) begin
+                card1_card_core1_regs_fifo2_position_y <= 0;
+                if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!motor_step_y))) begin
+                    card1_card_core1_regs_fifo2_position_y <= card1_card_core1_regs_fifo2_pulse_out2_delta_y;
+                end
+            end
+            else if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!motor_step_y))) begin
                 card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y + card1_card_core1_regs_fifo2_pulse_out2_delta_y);
             end
         end
@@ -5315,7 +5748,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2_level = (card1_card_core1_regs_fifo2_input_filter2_inputs_raw ^ card1_card_core1_regs_fifo2_reg_word89_shown);
+assign card1_card_core1_regs_fifo2_input_filter2_level = (card1_card_core1_regs_fifo2_input_filter2_inputs_raw ^ card1_card_core1_regs_fifo2_reg_word101_shown);
 assign card1_card_core1_regs_fifo2_input_filter2_sample = (card1_card_core1_regs_fifo2_input_filter2_prescale == 0);
 
 
@@ -5325,7 +5758,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_
     end
     else begin
         if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
-            card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_reg_word91_shown - 1);
+            card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_reg_word103_shown - 1);
         end
         else begin
             card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_input_filter2_prescale - 1);
@@ -5337,10 +5770,10 @@ end
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2_follow
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_input_filter2_inputs_changed <= 0;
-        card1_card_core1_regs_fifo2_input_filter2_inputs_active <= 0;
+        card1_card_core1_regs_fifo2_conditioning_active <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_input_filter2_inputs_active <= (card1_card_core1_regs_fifo2_input_filter2_inputs_active ^ card1_card_core1_regs_fifo2_input_filter2_taken);
+        card1_card_core1_regs_fifo2_conditioning_active <= (card1_card_core1_regs_fifo2_conditioning_active ^ card1_card_core1_regs_fifo2_input_filter2_taken);
         card1_card_core1_regs_fifo2_input_filter2_inputs_changed <= (card1_card_core1_regs_fifo2_input_filter2_taken != 0);
     end
 end
@@ -5351,7 +5784,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_
         card1_card_core1_regs_fifo2_input_filter2__input_count14_held <= 0;
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_input_filter2_level[0] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[0])) begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[0] == card1_card_core1_regs_fifo2_conditioning_active[0])) begin
             card1_card_core1_regs_fifo2_input_filter2__input_count14_held <= 0;
         end
         else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
@@ -5367,7 +5800,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count14_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[0] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[0]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count14_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count14_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[0] != card1_card_core1_regs_fifo2_conditioning_active[0]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count14_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count15_count_samples
@@ -5375,7 +5808,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_
         card1_card_core1_regs_fifo2_input_filter2__input_count15_held <= 0;
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_input_filter2_level[1] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[1])) begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[1] == card1_card_core1_regs_fifo2_conditioning_active[1])) begin
             card1_card_core1_regs_fifo2_input_filter2__input_count15_held <= 0;
         end
         else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
@@ -5391,7 +5824,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count15_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[1] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[1]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count15_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count15_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[1] != card1_card_core1_regs_fifo2_conditioning_active[1]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count15_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count16_count_samples
@@ -5399,7 +5832,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_
         card1_card_core1_regs_fifo2_input_filter2__input_count16_held <= 0;
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_input_filter2_level[2] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[2])) begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[2] == card1_card_core1_regs_fifo2_conditioning_active[2])) begin
             card1_card_core1_regs_fifo2_input_filter2__input_count16_held <= 0;
         end
         else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
@@ -5415,7 +5848,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count16_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[2] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[2]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count16_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count16_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[2] != card1_card_core1_regs_fifo2_conditioning_active[2]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count16_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count17_count_samples
@@ -5423,7 +5856,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_
         card1_card_core1_regs_fifo2_input_filter2__input_count17_held <= 0;
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_input_filter2_level[3] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[3])) begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[3] == card1_card_core1_regs_fifo2_conditioning_active[3])) begin
             card1_card_core1_regs_fifo2_input_filter2__input_count17_held <= 0;
         end
         else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
@@ -5439,7 +5872,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count17_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[3] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[3]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count17_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count17_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[3] != card1_card_core1_regs_fifo2_conditioning_active[3]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count17_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count18_count_samples
@@ -5447,7 +5880,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_
         card1_card_core1_regs_fifo2_input_filter2__input_count18_held <= 0;
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_input_filter2_level[4] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[4])) begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[4] == card1_card_core1_regs_fifo2_conditioning_active[4])) begin
             card1_card_core1_regs_fifo2_input_filter2__input_count18_held <= 0;
         end
         else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
@@ -5463,7 +5896,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count18_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[4] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[4]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count18_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count18_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[4] != card1_card_core1_regs_fifo2_conditioning_active[4]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count18_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count19_count_samples
@@ -5471,7 +5904,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_
         card1_card_core1_regs_fifo2_input_filter2__input_count19_held <= 0;
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_input_filter2_level[5] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[5])) begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[5] == card1_card_core1_regs_fifo2_conditioning_active[5])) begin
             card1_card_core1_regs_fifo2_input_filter2__input_count19_held <= 0;
         end
         else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
@@ -5487,7 +5920,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count19_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[5] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[5]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count19_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count19_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[5] != card1_card_core1_regs_fifo2_conditioning_active[5]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count19_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count20_count_samples
@@ -5495,7 +5928,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_
         card1_card_core1_regs_fifo2_input_filter2__input_count20_held <= 0;
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_input_filter2_level[6] == card1_card_core1_regs_fifo2_input_filter2_inputs_active[6])) begin
+        if ((card1_card_core1_regs_fifo2_input_filter2_level[6] == card1_card_core1_regs_fifo2_conditioning_active[6])) begin
             card1_card_core1_regs_fifo2_input_filter2__input_count20_held <= 0;
         end
         else if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
@@ -5511,13 +5944,13 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count20_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[6] != card1_card_core1_regs_fifo2_input_filter2_inputs_active[6]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count20_held + 1) >= card1_card_core1_regs_fifo2_reg_word90_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count20_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[6] != card1_card_core1_regs_fifo2_conditioning_active[6]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count20_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
 
 
 
-assign card1_card_core1_regs_fifo2_machine_guard2_estop = card1_card_core1_regs_fifo2_input_filter2_inputs_active[0];
-assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_reg_word92_shown == 1) && (!card1_card_core1_regs_fifo2_reg_word92__store62_word_strobe));
-assign card1_card_core1_regs_fifo2_machine_guard2_hits = {(card1_card_core1_regs_fifo2_requests_step_y && (!card1_card_core1_regs_fifo2_requests_dir_y) && card1_card_core1_regs_fifo2_input_filter2_inputs_active[4]), (card1_card_core1_regs_fifo2_requests_step_y && card1_card_core1_regs_fifo2_requests_dir_y && card1_card_core1_regs_fifo2_input_filter2_inputs_active[3]), (card1_card_core1_regs_fifo2_requests_step_x && (!card1_card_core1_regs_fifo2_requests_dir_x) && card1_card_core1_regs_fifo2_input_filter2_inputs_active[2]), (card1_card_core1_regs_fifo2_requests_step_x && card1_card_core1_regs_fifo2_requests_dir_x && card1_card_core1_regs_fifo2_input_filter2_inputs_active[1])};
+assign card1_card_core1_regs_fifo2_machine_guard2_estop = card1_card_core1_regs_fifo2_conditioning_active[0];
+assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_reg_word104_shown == 1) && (!card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe));
+assign card1_card_core1_regs_fifo2_machine_guard2_hits = {(card1_card_core1_regs_fifo2_requests_step_y && (!card1_card_core1_regs_fifo2_requests_dir_y) && card1_card_core1_regs_fifo2_conditioning_active[4]), (card1_card_core1_regs_fifo2_requests_step_y && card1_card_core1_regs_fifo2_requests_dir_y && card1_card_core1_regs_fifo2_conditioning_active[3]), (card1_card_core1_regs_fifo2_requests_step_x && (!card1_card_core1_regs_fifo2_requests_dir_x) && card1_card_core1_regs_fifo2_conditioning_active[2]), (card1_card_core1_regs_fifo2_requests_step_x && card1_card_core1_regs_fifo2_requests_dir_x && card1_card_core1_regs_fifo2_conditioning_active[1])};
 
 
 always @(card1_card_core1_regs_fifo2_machine_guard2_hits, card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_requests_step_x, card1_card_core1_regs_fifo2_requests_dir_y, card1_card_core1_regs_fifo2_guard_ramp, card1_card_core1_regs_fifo2_requests_step_y, card1_card_core1_regs_fifo2_requests_dir_x, card1_card_core1_regs_fifo2_machine_guard2_estop) begin: card1_card_core1_regs_fifo2_machine_guard2_gate
@@ -5584,34 +6017,225 @@ end
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machine_guard2_watchdog
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word92_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word104_shown <= 0;
     end
     else begin
-        if (card1_card_core1_regs_fifo2_reg_word92__store62_word_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word92_shown <= card1_card_core1_regs_fifo2_reg_word92__store62_word_value;
+        if (card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe) begin
+            card1_card_core1_regs_fifo2_reg_word104_shown <= card1_card_core1_regs_fifo2_reg_word104__store72_word_value;
         end
-        else if ((card1_card_core1_regs_fifo2_reg_word92_shown != 0)) begin
-            card1_card_core1_regs_fifo2_reg_word92_shown <= (card1_card_core1_regs_fifo2_reg_word92_shown - 1);
+        else if ((card1_card_core1_regs_fifo2_reg_word104_shown != 0)) begin
+            card1_card_core1_regs_fifo2_reg_word104_shown <= (card1_card_core1_regs_fifo2_reg_word104_shown - 1);
         end
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_input_filter2_inputs_active, card1_card_core1_regs_fifo2_settled, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2__machine_words2_assemble
+always @(card1_card_core1_regs_fifo2_reg_word110_shown, card1_card_core1_regs_fifo2_reg_word109_shown, card1_card_core1_regs_fifo2_home_inputs, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
+    card1_card_core1_regs_fifo2_homing2_switch = card1_card_core1_regs_fifo2_homing2_axis ? card1_card_core1_regs_fifo2_home_inputs[1] : card1_card_core1_regs_fifo2_home_inputs[0];
+    card1_card_core1_regs_fifo2_homing2_seeking = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b010));
+    card1_card_core1_regs_fifo2_homing2_seek_next = ((card1_card_core1_regs_fifo2_homing2_state == 3'b000) || (card1_card_core1_regs_fifo2_homing2_state == 3'b001) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)));
+    if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
+        card1_card_core1_regs_fifo2_homing2_magnitude = {8'h0, card1_card_core1_regs_fifo2_reg_word109_shown};
+    end
+    else begin
+        card1_card_core1_regs_fifo2_homing2_magnitude = {1'h0, card1_card_core1_regs_fifo2_reg_word110_shown};
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word105__store73_word_value, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_negative) begin: card1_card_core1_regs_fifo2_homing2_command
+    if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
+        card1_card_core1_regs_fifo2_homing2_positive = (!card1_card_core1_regs_fifo2_reg_word105__store73_word_value[1]);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_homing2_positive = card1_card_core1_regs_fifo2_homing2_negative;
+    end
+    card1_card_core1_regs_fifo2_home_busy = (card1_card_core1_regs_fifo2_homing2_state != 3'b000);
+    card1_card_core1_regs_fifo2_homing2_port_load = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b011) || (card1_card_core1_regs_fifo2_homing2_state == 3'b101));
+end
+
+
+always @(card1_card_core1_regs_fifo2_homing2_positive, card1_card_core1_regs_fifo2_homing2_magnitude) begin: card1_card_core1_regs_fifo2_homing2_sign
+    if (card1_card_core1_regs_fifo2_homing2_positive) begin
+        card1_card_core1_regs_fifo2_homing2_operand = card1_card_core1_regs_fifo2_homing2_magnitude;
+        card1_card_core1_regs_fifo2_homing2_addend = 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_homing2_operand = (~card1_card_core1_regs_fifo2_homing2_magnitude);
+        card1_card_core1_regs_fifo2_homing2_addend = 1;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_homing2_signed_count = (card1_card_core1_regs_fifo2_homing2_operand + card1_card_core1_regs_fifo2_homing2_addend);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing2_next_load
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_homing2_port_period <= 1;
+        card1_card_core1_regs_fifo2_homing2_port_count <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_homing2_port_count <= $signed(card1_card_core1_regs_fifo2_homing2_signed_count);
+        if (card1_card_core1_regs_fifo2_homing2_seek_next) begin
+            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word107_shown;
+        end
+        else begin
+            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word108_shown;
+        end
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_edges
+    reg released;
+    released = ((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && (!card1_card_core1_regs_fifo2_homing2_switch));
+    card1_card_core1_regs_fifo2_home_cut = (((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && card1_card_core1_regs_fifo2_homing2_switch) || released);
+    card1_card_core1_regs_fifo2_home_zero = 0;
+    if (released) begin
+        if (card1_card_core1_regs_fifo2_homing2_axis) begin
+            card1_card_core1_regs_fifo2_home_zero = 2;
+        end
+        else begin
+            card1_card_core1_regs_fifo2_home_zero = 1;
+        end
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_homing2_seeking, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_phases
+    if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
+        card1_card_core1_regs_fifo2_homing2_phase = 0;
+    end
+    else if (card1_card_core1_regs_fifo2_homing2_seeking) begin
+        card1_card_core1_regs_fifo2_homing2_phase = 1;
+    end
+    else if (((card1_card_core1_regs_fifo2_homing2_state == 3'b011) || (card1_card_core1_regs_fifo2_homing2_state == 3'b100))) begin
+        card1_card_core1_regs_fifo2_homing2_phase = 2;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_homing2_phase = 3;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_homing2_negative, card1_card_core1_regs_fifo2_homing2_phase, card1_card_core1_regs_fifo2_homing2_done, card1_card_core1_regs_fifo2_homing2_refused, card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_not_found) begin: card1_card_core1_regs_fifo2_homing2_show
+    reg [2-1:0] asked;
+    reg [6-1:0] word;
+    asked = 2'h0;
+    asked[0] = card1_card_core1_regs_fifo2_homing2_axis;
+    asked[1] = card1_card_core1_regs_fifo2_homing2_negative;
+    card1_card_core1_regs_fifo2_reg_word105_shown = asked;
+    word = 6'h0;
+    word[0] = ((card1_card_core1_regs_fifo2_homing2_state != 3'b000) || card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe);
+    word[1] = card1_card_core1_regs_fifo2_homing2_done;
+    word[2] = card1_card_core1_regs_fifo2_homing2_not_found;
+    word[3] = card1_card_core1_regs_fifo2_homing2_refused;
+    word[4+:2] = card1_card_core1_regs_fifo2_homing2_phase;
+    card1_card_core1_regs_fifo2_reg_word106_shown = word;
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing2_sequence
+    reg drained;
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_homing2_negative <= 0;
+        card1_card_core1_regs_fifo2_homing2_not_found <= 0;
+        card1_card_core1_regs_fifo2_homing2_done <= 0;
+        card1_card_core1_regs_fifo2_homing2_refused <= 0;
+        card1_card_core1_regs_fifo2_homing2_axis <= 0;
+        card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
+        card1_card_core1_regs_fifo2_homing2_port_ended <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_homing2_port_ended <= 0;
+        drained = ((!card1_card_core1_regs_fifo2_pulse_busy) && (!card1_card_core1_regs_fifo2_out_active));
+        if (card1_card_core1_core_clear) begin
+            card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
+        end
+        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
+            if (card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe) begin
+                card1_card_core1_regs_fifo2_homing2_axis <= card1_card_core1_regs_fifo2_reg_word105__store73_word_value[0];
+                card1_card_core1_regs_fifo2_homing2_negative <= card1_card_core1_regs_fifo2_reg_word105__store73_word_value[1];
+                card1_card_core1_regs_fifo2_homing2_done <= 0;
+                card1_card_core1_regs_fifo2_homing2_not_found <= 0;
+                card1_card_core1_regs_fifo2_homing2_refused <= (!card1_card_core1_regs_fifo2_home_idle);
+                card1_card_core1_regs_fifo2_homing2_port_ended <= (!card1_card_core1_regs_fifo2_home_idle);
+                if (card1_card_core1_regs_fifo2_home_idle) begin
+                    card1_card_core1_regs_fifo2_homing2_state <= 3'b001;
+                end
+            end
+        end
+        else begin
+            if (card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe) begin
+                card1_card_core1_regs_fifo2_homing2_refused <= 1;
+                card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
+            end
+            if ((card1_card_core1_regs_fifo2_homing2_state == 3'b001)) begin
+                card1_card_core1_regs_fifo2_homing2_state <= 3'b010;
+            end
+            else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b010)) begin
+                if (card1_card_core1_regs_fifo2_homing2_switch) begin
+                    card1_card_core1_regs_fifo2_homing2_state <= 3'b011;
+                end
+                else if (drained) begin
+                    card1_card_core1_regs_fifo2_homing2_not_found <= 1;
+                    card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
+                    card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
+                end
+            end
+            else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b011)) begin
+                card1_card_core1_regs_fifo2_homing2_state <= 3'b100;
+            end
+            else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
+                if ((!card1_card_core1_regs_fifo2_homing2_switch)) begin
+                    if ((card1_card_core1_regs_fifo2_reg_word109_shown != 0)) begin
+                        card1_card_core1_regs_fifo2_homing2_state <= 3'b101;
+                    end
+                    else begin
+                        card1_card_core1_regs_fifo2_homing2_state <= 3'b111;
+                    end
+                end
+                else if (drained) begin
+                    card1_card_core1_regs_fifo2_homing2_not_found <= 1;
+                    card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
+                    card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
+                end
+            end
+            else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b101)) begin
+                card1_card_core1_regs_fifo2_homing2_state <= 3'b110;
+            end
+            else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b110)) begin
+                if ((!card1_card_core1_regs_fifo2_pulse_busy)) begin
+                    card1_card_core1_regs_fifo2_homing2_state <= 3'b111;
+                end
+            end
+            else if ((!card1_card_core1_regs_fifo2_out_active)) begin
+                card1_card_core1_regs_fifo2_homing2_done <= 1;
+                card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
+                card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
+            end
+        end
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_conditioning_active, card1_card_core1_regs_fifo2_settled, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2__machine_words2_assemble
     reg [20-1:0] word;
     reg [8-1:0] why;
     word = 20'h0;
     word[0+:7] = card1_card_core1_regs_fifo2_input_filter2_inputs_raw;
-    word[8+:7] = card1_card_core1_regs_fifo2_input_filter2_inputs_active;
+    word[8+:7] = card1_card_core1_regs_fifo2_conditioning_active;
     word[16] = card1_card_core1_regs_fifo2_guard_stopped;
     word[17] = motor_drive_enable;
     word[18] = card1_card_core1_regs_fifo2_settled;
     word[19] = card1_card_core1_regs_fifo2_guard_stopping;
-    card1_card_core1_regs_fifo2_reg_word87_shown = word;
+    card1_card_core1_regs_fifo2_reg_word99_shown = word;
     why = 8'h0;
     why[0+:2] = card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
     why[4+:4] = card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
-    card1_card_core1_regs_fifo2_reg_word88_shown = why;
+    card1_card_core1_regs_fifo2_reg_word100_shown = why;
 end
 
 
@@ -5666,7 +6290,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_enable = (card1_card_core1_regs_fifo2_control[0] && (!card1_card_core1_regs_fifo2_control[1]) && (!card1_card_core1_regs_fifo2_halt));
+assign card1_card_core1_regs_fifo2_enable = (card1_card_core1_regs_fifo2_control[0] && (!card1_card_core1_regs_fifo2_control[1]) && (!card1_card_core1_regs_fifo2_halt) && (!card1_card_core1_regs_fifo2_home_busy));
 assign card1_card_core1_regs_fifo2_direct_mode = card1_card_core1_regs_fifo2_control[1];
 assign card1_card_core1_regs_fifo2_clear_error = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[1]);
 assign card1_card_core1_regs_fifo2_clear_position = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[2]);
@@ -5677,6 +6301,9 @@ assign card1_card_core1_regs_fifo2_settled = (card1_card_core1_regs_fifo2_feed_h
 assign card1_card_core1_regs_fifo2_direct_ready = (card1_card_core1_regs_fifo2_out_ready && (!card1_card_core1_regs_fifo2_guard_stopping));
 assign card1_card_core1_regs_fifo2_pulse_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_halt);
 assign card1_card_core1_regs_fifo2_sequencer_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped);
+assign card1_card_core1_regs_fifo2_home_idle = ((!card1_card_core1_regs_fifo2_any_busy) && card1_card_core1_regs_fifo2_fifo_empty && (!card1_card_core1_regs_fifo2_guard_stopped) && (!card1_card_core1_regs_fifo2_halt));
+assign card1_card_core1_regs_fifo2_direct_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_home_cut);
+assign card1_card_core1_regs_fifo2_home_inputs = card1_card_core1_regs_fifo2_conditioning_active[5+:2];
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_soft_reset
@@ -5724,7 +6351,7 @@ assign card1_card_core1_regs_fifo2_pulse_busy = (card1_card_core1_regs_fifo2_dir
 assign card1_card_core1_regs_fifo2_outputs_busy = (card1_card_core1_regs_fifo2_requests_step_x || card1_card_core1_regs_fifo2_requests_step_y || card1_card_core1_regs_fifo2_requested_before || card1_card_core1_regs_fifo2_out_active_before);
 assign card1_card_core1_regs_fifo2_hold = (!card1_card_core1_regs_fifo2_out_ready);
 assign card1_card_core1_regs_fifo2_dda_advance = (card1_card_core1_regs_fifo2_tick && card1_card_core1_regs_fifo2_out_ready && card1_card_core1_regs_fifo2_motion_run);
-assign card1_card_core1_regs_fifo2_any_busy = (card1_card_core1_regs_fifo2_seq_busy || card1_card_core1_regs_fifo2_direct_busy_x || card1_card_core1_regs_fifo2_direct_busy_y || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy);
+assign card1_card_core1_regs_fifo2_any_busy = (card1_card_core1_regs_fifo2_seq_busy || card1_card_core1_regs_fifo2_direct_busy_x || card1_card_core1_regs_fifo2_direct_busy_y || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy || card1_card_core1_regs_fifo2_home_busy);
 
 
 
@@ -5738,10 +6365,16 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe, card1_card_core1_regs_fifo2_reg_word81__store56_word_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
-    if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe && (!card1_card_core1_regs_fifo2_halt));
-        card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word81__store56_word_value);
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word105_shown[0], card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word93__store66_word_value, card1_card_core1_regs_fifo2_reg_word91_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
+    card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word91_shown;
+    if (card1_card_core1_regs_fifo2_home_busy) begin
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word105_shown[0] == 0));
+        card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
+        card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_homing2_port_period;
+    end
+    else if (card1_card_core1_regs_fifo2_direct_mode) begin
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe && (!card1_card_core1_regs_fifo2_halt));
+        card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word93__store66_word_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_command_load = card1_card_core1_regs_fifo2_seq_load;
@@ -5750,10 +6383,16 @@ always @(card1_card_core1_regs_fifo2_reg_word81__store56_word_strobe, card1_card
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word82__store57_word_strobe, card1_card_core1_regs_fifo2_reg_word82__store57_word_value, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
-    if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_reg_word82__store57_word_strobe && (!card1_card_core1_regs_fifo2_halt));
-        card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word82__store57_word_value);
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word105_shown[0], card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word94__store67_word_value, card1_card_core1_regs_fifo2_reg_word92_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
+    card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word92_shown;
+    if (card1_card_core1_regs_fifo2_home_busy) begin
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word105_shown[0] == 1));
+        card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
+        card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_homing2_port_period;
+    end
+    else if (card1_card_core1_regs_fifo2_direct_mode) begin
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe && (!card1_card_core1_regs_fifo2_halt));
+        card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word94__store67_word_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_command_load = card1_card_core1_regs_fifo2_seq_load;
@@ -5790,7 +6429,7 @@ always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_don
     word[9] = card1_card_core1_regs_fifo2_fifo_full;
     word[10] = card1_card_core1_regs_fifo2_guard_stopped;
     word[32-1:16] = card1_card_core1_regs_fifo2_level_wide;
-    card1_card_core1_regs_fifo2_reg_word65_shown = word;
+    card1_card_core1_regs_fifo2_reg_word77_shown = word;
 end
 
 
@@ -5798,39 +6437,40 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2__inter
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_error_before <= 0;
         card1_card_core1_regs_fifo2_low_before <= 0;
-        card1_card_core1_regs_fifo2_reg_word69_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word81_shown <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_error_before <= (card1_card_core1_regs_fifo2_error_code != 0);
-        card1_card_core1_regs_fifo2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word68_shown);
+        card1_card_core1_regs_fifo2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word80_shown);
         if (card1_card_core1_regs_fifo2_sequencer2_mark_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word69_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
+            card1_card_core1_regs_fifo2_reg_word81_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
         end
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_reg_word68_shown, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_input_filter2_inputs_changed, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_busy_before, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_low_before) begin: card1_card_core1_regs_fifo2__interrupts2_detect
-    reg [7-1:0] word;
-    word = 7'h0;
+always @(card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_reg_word80_shown, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_input_filter2_inputs_changed, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_homing2_port_ended, card1_card_core1_regs_fifo2_busy_before, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_low_before) begin: card1_card_core1_regs_fifo2__interrupts2_detect
+    reg [8-1:0] word;
+    word = 8'h0;
     word[0] = (card1_card_core1_regs_fifo2_busy_before && (!card1_card_core1_regs_fifo2_any_busy));
-    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word68_shown) && (!card1_card_core1_regs_fifo2_low_before));
+    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word80_shown) && (!card1_card_core1_regs_fifo2_low_before));
     word[2] = ((card1_card_core1_regs_fifo2_error_code != 0) && (!card1_card_core1_regs_fifo2_error_before));
     word[3] = card1_card_core1_regs_fifo2_sequencer2_mark_strobe;
-    word[4] = card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped;
+    word[4] = card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped;
     word[5] = card1_card_core1_regs_fifo2_guard_stop_event;
     word[6] = card1_card_core1_regs_fifo2_input_filter2_inputs_changed;
-    card1_card_core1_regs_fifo2_reg_word67__store45_word_hw = word;
+    word[7] = card1_card_core1_regs_fifo2_homing2_port_ended;
+    card1_card_core1_regs_fifo2_reg_word79__store55_word_hw = word;
 end
 
 
 
-assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word67_shown & card1_card_core1_regs_fifo2_reg_word66_shown) != 0);
+assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word79_shown & card1_card_core1_regs_fifo2_reg_word78_shown) != 0);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word70_shown = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
-assign card1_card_core1_regs_fifo2_reg_word71_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word82_shown = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word83_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
 always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_magnitudes

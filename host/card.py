@@ -21,7 +21,8 @@ docs/instructions.md).  Times are converted with the card's CLOCK_HZ, sizes
 come from FIFO_SIZE and BUILD: the host needs no knowledge of the build.
 
 The machine side (docs/machine.md): ``drive``, ``inputs``, ``watchdog``,
-``estop_state``, ``limits``, ``stop_reason``, ``clear_stop``.  A card the
+``estop_state``, ``limits``, ``stop_reason``, ``clear_stop``, ``home``
+(``host.homing``).  A card the
 guard has stopped raises ``MachineStopped`` from ``check`` and ``wait_done``.
 """
 import bisect
@@ -32,6 +33,7 @@ from rtl import instructions as isa
 from rtl import registers as regmap
 from sim.dda_model import ArcCommand, plan_arc
 
+from host import homing
 from host.machine import Machine
 
 MAJOR = regmap.VERSION >> 8
@@ -124,8 +126,8 @@ class Card:
             raise IdentityError(f"{where}: register map {major}.{minor} has no capability registers "
                                 "(1.1 added them): load a newer bitstream")
         if minor < MINOR:
-            raise IdentityError(f"{where}: register map {major}.{minor} has no machine guard "
-                                f"(1.{MINOR} added it): load a newer bitstream")
+            raise IdentityError(f"{where}: register map {major}.{minor} lacks what 1.{MINOR} added "
+                                "(the machine guard in 1.2, homing in 1.3): load a newer bitstream")
         build = self.read("BUILD")
         ids = self.transport.config_read(0)
         variants = regmap.field_value("BUILD", "DDA_VARIANTS", build)
@@ -418,6 +420,10 @@ class Card:
         self._forget()
         if self.field("STATUS", "STOPPED"):
             raise MachineStopped(*self.stop_reason())
+
+    def home(self, axis, direction="negative", **settings):
+        """HOME one axis; the position (``host.homing.home`` says how)."""
+        return homing.home(self, axis, direction, **settings)
 
     def _forget(self):
         self._written = 0

@@ -22,7 +22,8 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
     room for ``in_flight`` more (the steps already on their way from the
     interpolator when ``ready`` falls); ``active``: a step is queued or on
     the pins.  ``clear`` drops the queue (a pulse already high ends
-    normally); ``clear_position`` zeroes the positions.  Timing, shared by
+    normally); ``clear_position`` zeroes the positions, ``zero`` one axis's
+    (a step rising at that edge counts as its first).  Timing, shared by
     both axes so that a diagonal step leaves on both pins in the same clock:
     ``width``: STEP high time and minimum low time in clocks (>= 1);
     ``setup``: clocks DIR is stable before a STEP leading edge (>= 1);
@@ -169,9 +170,18 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
             position.x.next = 0
             position.y.next = 0
         else:
-            if level_x and not pins.step_x:
+            # zero: the axis counts from 0, with the step that rises at this edge
+            if control.zero[0]:
+                position.x.next = 0
+                if level_x and not pins.step_x:
+                    position.x.next = delta_x
+            elif level_x and not pins.step_x:
                 position.x.next = position.x + delta_x
-            if level_y and not pins.step_y:
+            if control.zero[1]:
+                position.y.next = 0
+                if level_y and not pins.step_y:
+                    position.y.next = delta_y
+            elif level_y and not pins.step_y:
                 position.y.next = position.y + delta_y
 
     return room, peek, decide, restart, count_clocks, step_phases, fill, slots, step_sense, drive_pins

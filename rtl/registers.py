@@ -44,7 +44,7 @@ VERSIONS = (
     (0x0102, "the machine inputs and the guard (MACHINE_CONTROL .. WATCHDOG, COMMAND.CLEAR_STOP, "
              "STATUS.STOPPED, INT_STATUS.STOPPED and INPUT; docs/machine.md)"),
     (0x0103, "feed hold and the decelerated stop (MACHINE_CONTROL.HOLD, MACHINE_STATUS.HELD and "
-             "STOPPING)"),
+             "STOPPING); homing (HOME .. HOME_SEARCH, INT_STATUS.HOMED; docs/machine.md)"),
 )
 VERSION = VERSIONS[-1][0]
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock
@@ -134,6 +134,7 @@ _INT_FIELDS = (
     Field("CLAMPED", 4, 1, "a register write was out of range and was clamped"),
     Field("STOPPED", 5, 1, "the machine guard stopped the card (STOP_REASON says why)"),
     Field("INPUT", 6, 1, "a filtered machine input changed (MACHINE_STATUS.ACTIVE)"),
+    Field("HOMED", 7, 1, "a HOME ended: done, not found or refused (HOME_STATUS says which)"),
 )
 
 # The machine inputs, bit n of INPUT_POLARITY and of MACHINE_STATUS's RAW and ACTIVE.
@@ -145,6 +146,8 @@ LIMIT_NAMES = INPUT_NAMES[1:5]  # STOP_REASON.LIMITS bit n: LIMIT_NAMES[n]
 STOP_REASONS = ("NONE", "ESTOP", "WATCHDOG", "LIMIT")  # STOP_REASON.REASON codes
 _REASON_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(STOP_REASONS))
 WATCHDOG_BITS = 24
+HOME_SEARCH_BITS = 23  # a search fits a signed 24-bit direct-pulse count
+HOME_PHASES = ("IDLE", "SEEK", "RELEASE", "BACKOFF")  # HOME_STATUS.PHASE codes
 
 REGISTERS = (
     Register("ID", 0x00, "RO", (ID_MAGIC << 16) | VERSION, "identity and version", (
@@ -264,6 +267,28 @@ REGISTERS = (
     Register("WATCHDOG", 0x78, "WP", 0,
              "host watchdog: write the timeout in clocks (0: off) at least that often; reads the clocks left",
              _one("CLOCKS", WATCHDOG_BITS, "clocks until the guard stops the card (reason WATCHDOG)")),
+    Register("HOME", 0x7C, "WP", 0, "home one axis (docs/machine.md); reads what the last HOME asked", (
+        Field("AXIS", 0, 1, "0: X, 1: Y"),
+        Field("NEGATIVE", 1, 1, "1: the switch is towards negative positions"),
+    )),
+    Register("HOME_STATUS", 0x80, "RO", 0, "the homing's state", (
+        Field("BUSY", 0, 1, "homing under way (from the clock the HOME write is taken)"),
+        Field("DONE", 1, 1, "the last HOME ended with the position zeroed at the release point"),
+        Field("NOT_FOUND", 2, 1, "the switch did not trip (or release) within HOME_SEARCH steps"),
+        Field("REFUSED", 3, 1, "a HOME came while the card was not idle, was stopped, or was homing"),
+        Field("PHASE", 4, 2, ", ".join(f"{code} {name}" for code, name in enumerate(HOME_PHASES))),
+    )),
+    Register("HOME_SEEK_PERIOD", 0x84, "RW", 100, "clocks between steps towards the home switch",
+             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
+    Register("HOME_RELEASE_PERIOD", 0x88, "RW", 1000,
+             "clocks between steps off the switch and of the back-off",
+             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
+    Register("HOME_BACKOFF", 0x8C, "RW", 0, "steps on past the release point once the position is zeroed there",
+             _one("STEPS", 16, "0..65535")),
+    Register("HOME_SEARCH", 0x90, "RW", 0xFFFF,
+             "steps the switch must trip within, and release within after it tripped",
+             _one("STEPS", HOME_SEARCH_BITS, f"1..{(1 << HOME_SEARCH_BITS) - 1}"),
+             minimum=1, maximum=(1 << HOME_SEARCH_BITS) - 1),
 )
 
 IO_BAR_BITS = max(2, (max(r.offset for r in REGISTERS) + WORD_BYTES - 1).bit_length())

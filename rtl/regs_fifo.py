@@ -5,8 +5,9 @@ from rtl import parameters
 from rtl import registers as regmap
 from rtl.direct_pulse import direct_pulse
 from rtl.feed_rate import feed_rate
+from rtl.homing import homing
 from rtl.input_filter import input_filter
-from rtl.interfaces import (ERROR_BITS, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead,
+from rtl.interfaces import (ERROR_BITS, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing,
                             InputConditioning, LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus,
                             RegisterWord, SequencerControl, SetPort, StepPositions, StepRequest, card_reset)
 from rtl.dda_build import variants_choice
@@ -99,13 +100,14 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     pulse_busy, outputs_busy, seq_load = pulses.busy, pulses.outputs_busy, pulses.load
     requests, granted = AxisPulses(), AxisPulses()
     halt, pulse_clear, clear_stop = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
-    outputs = PulseControl(clear=pulse_clear, clear_position=clear_position, width=values["STEP_WIDTH"],
+    home_idle, direct_clear = Signal(bool(0)), Signal(bool(0))
+    home_zero, home_inputs = Signal(intbv(0)[2:]), Signal(intbv(0)[2:])
+    outputs = PulseControl(clear=pulse_clear, clear_position=clear_position, zero=home_zero, width=values["STEP_WIDTH"],
                            setup=values["DIR_SETUP"], hold=values["DIR_HOLD"],
                            polarity_x=values["DIR_POLARITY"](0), polarity_y=values["DIR_POLARITY"](1))
     out_ready, out_active = outputs.ready, outputs.active
     position = StepPositions()
-    direct = [DirectPulseCommand(period=values[f"PULSE_PERIOD_{name}"], clear=core_clear,
-                                 remaining=hw[f"PULSE_COUNT_{name}"]) for name in "XY"]
+    direct = [DirectPulseCommand(clear=direct_clear, remaining=hw[f"PULSE_COUNT_{name}"]) for name in "XY"]
     settled, direct_ready = Signal(bool(0)), Signal(bool(1))   # guard.held; direct pulses wait while stopping
     direct_out = [StepRequest(ready=direct_ready) for _ in "XY"]
     axis_load, axis_count, direct_busy = ([d.load for d in direct], [d.count for d in direct],
@@ -139,7 +141,13 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
                          clear_stop=clear_stop, held=settled,
                          watchdog_load=strobes["WATCHDOG"], watchdog_timeout=values["WATCHDOG"], halt=halt,
                          drive_enable=pins.drive_enable, watchdog_left=hw["WATCHDOG"])
+    home = Homing(start=strobes["HOME"], request=values["HOME"], seek_period=values["HOME_SEEK_PERIOD"],
+                  release_period=values["HOME_RELEASE_PERIOD"], backoff=values["HOME_BACKOFF"],
+                  search=values["HOME_SEARCH"], idle=home_idle, clear=core_clear, pulse_busy=pulse_busy,
+                  outputs_active=out_active, zero=home_zero, taken=hw["HOME"], state=hw["HOME_STATUS"],
+                  home=home_inputs)
     units += [input_filter(clock, reset, conditioning), machine_guard(clock, reset, guard, requests, granted),
+              homing(clock, reset, home),
               _machine_words(conditioning, guard, hw["MACHINE_STATUS"], hw["STOP_REASON"])]
 
     read_end, clamp_end = chain[-1].data, chain[-1].clamped
@@ -149,6 +157,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     reset_bit, clear_bit, zero_bit, release_bit = (_bit("COMMAND", f) for f in ("SOFT_RESET", "CLEAR_ERROR",
                                                                                 "CLEAR_POSITION", "CLEAR_STOP"))
     pos_x_offset = regmap.offset("POS_X")
+    home_x = regmap.INPUT_NAMES.index("HOME_X")
     command_offset = regmap.offset("COMMAND")
 
     @always_comb
@@ -193,7 +202,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
 
     @always_comb
     def control_bits():
-        enable.next = control[enable_bit] and not control[mode_bit] and not halt
+        enable.next = control[enable_bit] and not control[mode_bit] and not halt and not home.busy
         direct_mode.next = control[mode_bit]
         clear_error.next = command_strobe and command[clear_bit]
         clear_position.next = command_strobe and command[zero_bit]
@@ -208,6 +217,10 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         pulse_clear.next = core_clear or halt
         # held while stopped: the sequencer takes no word from the FIFO
         sequencer_clear.next = core_clear or guard.stopped
+        # HOME starts only with nothing queued, moving or stopped; its cut clears the direct pulses
+        home_idle.next = not any_busy and fifo_empty and not guard.stopped and not halt
+        direct_clear.next = core_clear or home.cut
+        home_inputs.next = conditioning.active[home_x + 2:home_x]
 
     @always_seq(clock.posedge, reset=reset)
     def soft_reset():
@@ -266,7 +279,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         outputs_busy.next = requests.step_x or requests.step_y or requested_before or out_active_before
         hold.next = not out_ready
         dda.advance.next = tick and out_ready and motion_run
-        any_busy.next = seq_busy or direct_busy_x or direct_busy_y or out_active or dda.busy
+        any_busy.next = seq_busy or direct_busy_x or direct_busy_y or out_active or dda.busy or home.busy
 
     @always_comb
     def merge_requests():
@@ -281,25 +294,34 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     for axis, name in enumerate("XY"):
         units.append(_axis_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"],
                                   seq_load, (pulses.count_x, pulses.count_y)[axis], halt, axis_load[axis],
-                                  axis_count[axis]))
+                                  axis_count[axis], home, hw["HOME"](_bit("HOME", "AXIS")), axis, values[f"PULSE_PERIOD_{name}"],
+                                  direct[axis].period))
     units.append(_status(clock, reset, any_busy, busy_before, done_flag, dda.quadrant, error_code,
                          fifo_empty, fifo_full, level_wide, guard.stopped, hw["STATUS"]))
     units.append(_interrupts(clock, reset, any_busy, busy_before, error_code, error_before, mark.strobe,
                          mark.tag, hw["MARK_TAG"], level_wide, values["LOW_WATER"], low_before, clamp_end,
-                         guard.stop_event, conditioning.changed, hw["INT_STATUS"], values["INT_STATUS"],
+                         guard.stop_event, conditioning.changed, home.ended, hw["INT_STATUS"], values["INT_STATUS"],
                          values["INT_ENABLE"], irq))
     units.append(_positions(position.x, pos_y_snapshot, hw["POS_X"], hw["POS_Y"]))
     return units
 
 
 @block
-def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, halt, load, count):
+def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, halt, load, count,
+                 home, home_axis, axis, pulse_period, period):
     """Direct pulses come from PULSE_COUNT_* in direct mode, from PULSE commands
-    otherwise; none start while the guard halts."""
+    otherwise; none start while the guard halts.  While homing, the homing
+    sequencer drives those of the axis it homes (``home_axis``, this is ``axis``)
+    and the others wait."""
 
     @always_comb
     def choose_source():
-        if direct_mode:
+        period.next = pulse_period
+        if home.busy:
+            load.next = home.load and home_axis == axis
+            count.next = home.count
+            period.next = home.period
+        elif direct_mode:
             load.next = count_strobe and not halt
             count.next = count_value.signed()
         else:
@@ -345,11 +367,11 @@ def _status(clock, reset, any_busy, busy_before, done_flag, quadrant, error_code
 @block
 def _interrupts(clock, reset, any_busy, busy_before, error_code, error_before, mark_strobe, mark_tag,
                 mark_register, fifo_level, low_water, low_before, clamp_end, stop_event, input_changed,
-                set_bits, int_status, int_enable, irq):
+                home_ended, set_bits, int_status, int_enable, irq):
     """INT_STATUS events (one clock each) and the INTA# level."""
     done_bit, low_bit, error_bit = _bit("INT_STATUS", "DONE"), _bit("INT_STATUS", "LOW_WATER"), _bit("INT_STATUS", "ERROR")
     mark_bit, clamp_bit = _bit("INT_STATUS", "MARK"), _bit("INT_STATUS", "CLAMPED")
-    stopped_bit, input_bit = _bit("INT_STATUS", "STOPPED"), _bit("INT_STATUS", "INPUT")
+    stopped_bit, input_bit, homed_bit = _bit("INT_STATUS", "STOPPED"), _bit("INT_STATUS", "INPUT"), _bit("INT_STATUS", "HOMED")
 
     @always_seq(clock.posedge, reset=reset)
     def remember():
@@ -368,6 +390,7 @@ def _interrupts(clock, reset, any_busy, busy_before, error_code, error_before, m
         word[clamp_bit] = clamp_end
         word[stopped_bit] = stop_event
         word[input_bit] = input_changed
+        word[homed_bit] = home_ended
         set_bits.next = word
 
     @always_comb

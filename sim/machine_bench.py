@@ -3,7 +3,8 @@
 ``run_machine`` runs a scenario on ``card_core`` (MyHDL, or its Verilog in
 Icarus) like ``sim.card_bench.run_core``, and hands the scenario the
 machine's pins as well as the bus driver, so that it can press the E-stop
-or trip a limit at a chosen clock (``set_input``).
+or trip a limit at a chosen clock (``set_input``); ``home_switch`` is a
+home switch the axis position moves (``sim.homing_model.BouncingSwitch``).
 """
 from dataclasses import dataclass, field
 
@@ -53,8 +54,30 @@ def set_input(pins, pin_log, machine_log, name, level):
     return pin_log.clock
 
 
-def run_machine(name, scenario, cosim=False, fifo_depth=FIFO_DEPTH):
-    """Run ``scenario(driver, pins, pin_log, machine_log)``; (pin log, machine log)."""
+@block
+def home_switch(clock, pins, switch, axis):
+    """Drive the home pin of ``axis`` ("x" or "y") from ``switch``, moved by
+    that axis's STEP/DIR pins (sampled at falling edges, as ``PinLog`` does;
+    the level is set one time unit later, for the next rising edge)."""
+    step, direction, home = (getattr(pins, f"{name}_{axis}") for name in ("step", "dir", "home"))
+
+    @instance
+    def follow():
+        before = False
+        while True:
+            yield clock.negedge
+            rose = bool(step) and not before
+            before = bool(step)
+            level = switch.clock(rose, bool(direction))
+            yield delay(1)
+            home.next = level
+
+    return follow
+
+
+def run_machine(name, scenario, cosim=False, fifo_depth=FIFO_DEPTH, switches=()):
+    """Run ``scenario(driver, pins, pin_log, machine_log)`` with home
+    ``switches`` ([(axis, BouncingSwitch)]); (pin log, machine log)."""
     ports = card_core_ports(fifo_depth=fifo_depth)
     pin_log, machine_log, failures = PinLog(), MachineLog(), []
     pins = ports["pins"]
@@ -62,16 +85,18 @@ def run_machine(name, scenario, cosim=False, fifo_depth=FIFO_DEPTH):
     def with_pins(driver):
         yield from scenario(driver, pins, pin_log, machine_log)
 
-    run_traced(_machine_bench(ports, with_pins, pin_log, machine_log, failures, cosim, fifo_depth),
+    run_traced(_machine_bench(ports, with_pins, pin_log, machine_log, failures, cosim, fifo_depth, switches),
                f"machine_{name}_{'icarus' if cosim else 'myhdl'}")
     return pin_log, machine_log
 
 
 @block
-def _machine_bench(ports, scenario, pin_log, machine_log, failures, cosim, fifo_depth):
-    """``core_bench`` (its pin-model check off: the guard holds steps back) and the DRIVE_ENABLE capture."""
+def _machine_bench(ports, scenario, pin_log, machine_log, failures, cosim, fifo_depth, switches):
+    """``core_bench`` (its pin-model check off: the guard holds steps back), the
+    DRIVE_ENABLE capture and the home switches."""
+    clock, pins = ports["clock"], ports["pins"]
     return (core_bench(ports, scenario, pin_log, failures, cosim, False, fifo_depth),
-            drive_capture(ports["clock"], ports["pins"], machine_log))
+            drive_capture(clock, pins, machine_log), [home_switch(clock, pins, switch, axis) for axis, switch in switches])
 
 
 def pulse_widths(pin_log, pin="step_x"):

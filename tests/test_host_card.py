@@ -15,6 +15,7 @@ from sim.card_bench import expected_path
 from sim.card_jobs import check_pin_timing
 from sim.dda_model import ArcCommand, LineCommand
 from host.card import Card, CardError, IdentityError, MachineStopped
+from host.homing import HomingError
 from host.sim_transport import SimTransport
 from host.transport import Transport
 
@@ -71,7 +72,8 @@ class FakeRegisters(Transport):
     (0x12340101, "not a DDA card"),
     (regmap.ID_MAGIC << 16 | 0x0201, "register map 2.1; this host software speaks 1.x"),
     (regmap.ID_MAGIC << 16 | 0x0100, "no capability registers"),
-    (regmap.ID_MAGIC << 16 | 0x0101, "no machine guard"),
+    (regmap.ID_MAGIC << 16 | 0x0101, "lacks what 1.3 added"),
+    (regmap.ID_MAGIC << 16 | 0x0102, "lacks what 1.3 added"),
 ])
 def test_identification_refuses_other_cards_and_versions(id_word, text):
     with pytest.raises(IdentityError, match=text):
@@ -296,3 +298,41 @@ def test_hold_and_resume_keep_the_path(card, transport, ramp_step):
     assert 0 < held_rises - first < len(rises), "the hold came mid-path"
     expected = expected_path([LineCommand(700, 260), ArcCommand(90, 0, -90, 0, ccw=True, variant=3)])
     assert path == expected and card.position() == expected[-1]
+
+
+HOME_REGISTERS = ("HOME_SEEK_PERIOD", "HOME_RELEASE_PERIOD", "HOME_BACKOFF", "HOME_SEARCH")
+
+
+def test_home_without_a_switch_steps_the_search_at_the_seek_rate(card, transport):
+    """The harness's home inputs stay open: the seek runs out, NOT_FOUND, nothing zeroed.
+    (A period of 100 clocks: longer than a pulse and its low time, 2 x STEP_WIDTH;
+    the first two steps leave late by the DIR change, DIR_HOLD and DIR_SETUP.)"""
+    first = len(transport.pins.rises)
+    with pytest.raises(HomingError, match="NOT_FOUND") as failed:
+        card.home("Y", direction="negative", seek_rate=CLOCK_HZ / 100, search=40)
+    assert failed.value.reason == "NOT_FOUND" and failed.value.axis == "Y"
+    assert [card.read(name) for name in HOME_REGISTERS] == [100, round(CLOCK_HZ / 1000.0), 0, 40]
+    rises = transport.pins.rises[first:]
+    assert len(rises) == 40 and all(r[2] and not r[1] and not r[4] for r in rises), "40 steps, Y-"
+    assert {b[0] - a[0] for a, b in zip(rises[2:], rises[3:])} == {100}
+    assert card.position() == (0, -40)
+
+
+def test_home_while_a_move_runs_is_refused_and_the_move_goes_on(card, transport):
+    card.set("FEED_RATE", 2000)
+    card.line(3000, 0)
+    transport.sleep(1e-4)
+    with pytest.raises(HomingError, match="REFUSED"):
+        card.home("X")
+    card.wait_done()
+    assert card.position() == (3000, 0)
+
+
+@pytest.mark.parametrize("settings", [dict(axis="Z"), dict(axis="X", direction="up"), dict(axis="X", seek_rate=1),
+                                      dict(axis="X", release_rate=3 * CLOCK_HZ), dict(axis="X", backoff=-1),
+                                      dict(axis="X", search=0), dict(axis="X", search=1 << 23)])
+def test_home_values_are_checked_before_anything_is_written(card, settings):
+    before = [card.read(name) for name in HOME_REGISTERS + ("HOME", "HOME_STATUS")]
+    with pytest.raises(ValueError):
+        card.home(**settings)
+    assert [card.read(name) for name in HOME_REGISTERS + ("HOME", "HOME_STATUS")] == before

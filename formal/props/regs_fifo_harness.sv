@@ -49,12 +49,13 @@ module regs_fifo_harness #(
     // The machine inputs (E-STOP, limits, home): free, or with
     // MACHINE_RUNNING at rest, with their polarity and the watchdog left as
     // reset (no write to INPUT_POLARITY or WATCHDOG), so the guard never
-    // stops the card, and MACHINE_CONTROL.HOLD never set, so the feed never
-    // holds: the groups that follow every command or every step to its end
-    // judge a running machine (docs/machine.md for the stops and the hold).
+    // stops the card, MACHINE_CONTROL.HOLD never set, so the feed never
+    // holds, and no HOME (0x7C), which holds the commands while it homes:
+    // the groups that follow every command or every step to its end judge a
+    // running machine (docs/machine.md for the stops, the hold and homing).
 `ifdef MACHINE_RUNNING
     wire [6:0] machine_in = 7'd0;
-    always @(*) assume(!(l_we && !l_space && (l_addr == 16'h006C || l_addr == 16'h0078)));
+    always @(*) assume(!(l_we && !l_space && (l_addr == 16'h006C || l_addr == 16'h0078 || l_addr == 16'h007C)));
     always @(*) assume(!(l_we && !l_space && l_addr == 16'h0060 && l_be[0] && l_wdata[1]));
 `else
     (* anyseq *) wire [6:0] machine_in;

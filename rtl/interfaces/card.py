@@ -155,14 +155,15 @@ class PulseControl:
     """Settings and status of the pulse outputs (``rtl/pulse_out.py``).
 
     The registers drive ``clear`` (drop the queue), ``clear_position``
-    (zero the positions), ``width``, ``setup`` and ``hold`` (STEP_WIDTH,
+    (zero the positions), ``zero`` (bit 0 X, bit 1 Y: zero that axis's
+    position, counting a step that rises in that clock), ``width``, ``setup`` and ``hold`` (STEP_WIDTH,
     DIR_SETUP, DIR_HOLD, in clocks) and ``polarity_x``/``polarity_y``
     (DIR_POLARITY); the pulse outputs drive ``ready`` (the queue takes the
     steps on their way) and ``active`` (a step is queued or on the pins).
     """
 
     def __init__(self, **given):
-        adopt(self, given, clear=Signal(bool(0)), clear_position=Signal(bool(0)),
+        adopt(self, given, clear=Signal(bool(0)), clear_position=Signal(bool(0)), zero=Signal(intbv(0)[2:]),
                width=Signal(intbv(1)[TIMING_BITS:]), setup=Signal(intbv(1)[TIMING_BITS:]),
                hold=Signal(intbv(1)[TIMING_BITS:]), polarity_x=Signal(bool(0)), polarity_y=Signal(bool(0)),
                ready=Signal(bool(1)), active=Signal(bool(0)))
