@@ -287,6 +287,8 @@ reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 wire card_core0_regs_fifo1_pulse_busy;
 wire card_core0_regs_fifo1_pulse_clear;
 reg card_core0_regs_fifo1_push;
+reg card_core0_regs_fifo1_read_waited;
+reg [31:0] card_core0_regs_fifo1_read_word;
 reg card_core0_regs_fifo1_requested_before;
 wire card_core0_regs_fifo1_seq_busy;
 wire card_core0_regs_fifo1_sequencer_clear;
@@ -4740,7 +4742,7 @@ always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_input_filter
 end
 
 
-always @(pci_slave1_local_re, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_be, pci_slave1_pci_requests1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
+always @(pci_slave1_local_re, card_core0_regs_fifo1_read_waited, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_be, pci_slave1_pci_requests1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
     if (pci_slave1_pci_requests1_local_be[0]) begin
@@ -4757,19 +4759,31 @@ always @(pci_slave1_local_re, card_core0_regs_fifo1_io_written, pci_slave1_pci_r
     end
     card_core0_regs_fifo1_byte_mask = mask;
     card_core0_regs_fifo1_io_write = (pci_slave1_local_we && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written));
-    card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written) && (!card_core0_regs_fifo1_read_waited));
     card_core0_regs_fifo1_push = (pci_slave1_local_we && pci_slave1_pci_requests1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_pci_requests1_local_be != 0) && (!card_core0_regs_fifo1_io_written));
 end
 
 
-always @(card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_write, pci_slave1_pci_requests1_local_space, card_core0_regs_fifo1_read_end, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_answer_bus
-    pci_slave1_local_ready = ((!(pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full)) && (!card_core0_regs_fifo1_io_written));
+always @(card_core0_regs_fifo1_read_waited, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_write, pci_slave1_pci_requests1_local_space, card_core0_regs_fifo1_read_word, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_answer_bus
+    pci_slave1_local_ready = ((pci_slave1_pci_requests1_local_write || pci_slave1_pci_requests1_local_space || card_core0_regs_fifo1_read_waited) && (!card_core0_regs_fifo1_io_written) && (!(pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full)));
     pci_slave1_local_retry = (pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
     if (pci_slave1_pci_requests1_local_space) begin
         pci_slave1_local_rdata = 0;
     end
     else begin
-        pci_slave1_local_rdata = card_core0_regs_fifo1_read_end;
+        pci_slave1_local_rdata = card_core0_regs_fifo1_read_word;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_read_stage
+    if (reset == 0) begin
+        card_core0_regs_fifo1_read_word <= 0;
+        card_core0_regs_fifo1_read_waited <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_read_waited <= card_core0_regs_fifo1_io_read;
+        card_core0_regs_fifo1_read_word <= card_core0_regs_fifo1_read_end;
     end
 end
 

@@ -311,6 +311,8 @@ reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 wire card1_card_core1_regs_fifo2_pulse_busy;
 wire card1_card_core1_regs_fifo2_pulse_clear;
 reg card1_card_core1_regs_fifo2_push;
+reg card1_card_core1_regs_fifo2_read_waited;
+reg [31:0] card1_card_core1_regs_fifo2_read_word;
 reg card1_card_core1_regs_fifo2_requested_before;
 wire card1_card_core1_regs_fifo2_seq_busy;
 wire card1_card_core1_regs_fifo2_sequencer_clear;
@@ -5572,7 +5574,7 @@ always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_
 end
 
 
-always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_be, card1_pci_slave2_pci_requests2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
+always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_read_waited, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_be, card1_pci_slave2_pci_requests2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
     if (card1_pci_slave2_pci_requests2_local_be[0]) begin
@@ -5589,19 +5591,31 @@ always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_io_written, card
     end
     card1_card_core1_regs_fifo2_byte_mask = mask;
     card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_local_we && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
-    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written) && (!card1_card_core1_regs_fifo2_read_waited));
     card1_card_core1_regs_fifo2_push = (card1_pci_slave2_local_we && card1_pci_slave2_pci_requests2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_pci_requests2_local_be != 0) && (!card1_card_core1_regs_fifo2_io_written));
 end
 
 
-always @(card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_write, card1_pci_slave2_pci_requests2_local_space, card1_card_core1_regs_fifo2_read_end, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_answer_bus
-    card1_pci_slave2_local_ready = ((!(card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full)) && (!card1_card_core1_regs_fifo2_io_written));
+always @(card1_card_core1_regs_fifo2_read_waited, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_write, card1_pci_slave2_pci_requests2_local_space, card1_card_core1_regs_fifo2_read_word, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_answer_bus
+    card1_pci_slave2_local_ready = ((card1_pci_slave2_pci_requests2_local_write || card1_pci_slave2_pci_requests2_local_space || card1_card_core1_regs_fifo2_read_waited) && (!card1_card_core1_regs_fifo2_io_written) && (!(card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full)));
     card1_pci_slave2_local_retry = (card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
     if (card1_pci_slave2_pci_requests2_local_space) begin
         card1_pci_slave2_local_rdata = 0;
     end
     else begin
-        card1_pci_slave2_local_rdata = card1_card_core1_regs_fifo2_read_end;
+        card1_pci_slave2_local_rdata = card1_card_core1_regs_fifo2_read_word;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_read_stage
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_read_word <= 0;
+        card1_card_core1_regs_fifo2_read_waited <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_read_waited <= card1_card_core1_regs_fifo2_io_read;
+        card1_card_core1_regs_fifo2_read_word <= card1_card_core1_regs_fifo2_read_end;
     end
 end
 
