@@ -123,9 +123,15 @@ reg [3:0] pci_slave1_h_be;
 reg [3:0] pci_slave1_s_be;
 reg pci_slave1_write_done_q;
 reg pci_slave1_config_write_q;
+reg pci_slave1_io_enable;
+reg pci_slave1_mem_enable;
 reg pci_slave1_parity_response;
 reg pci_slave1_serr_enable;
+reg [15:0] pci_slave1_bar0;
+reg [31:0] pci_slave1_bar1;
 reg pci_slave1_fatal;
+wire pci_slave1_address_phase;
+reg pci_slave1_read_command;
 wire pci_slave1_write_done_next;
 wire pci_slave1_config_write_next;
 wire pci_slave1_posting;
@@ -148,11 +154,8 @@ reg pci_slave1_ad_parity_q;
 reg [31:0] pci_slave1_ad_q;
 reg pci_slave1_address_fault;
 wire pci_slave1_address_fault_next;
-wire pci_slave1_address_phase;
 reg pci_slave1_at_last;
 reg pci_slave1_b_valid;
-reg [15:0] pci_slave1_bar0;
-reg [31:0] pci_slave1_bar1;
 reg pci_slave1_before_last;
 reg [3:0] pci_slave1_cbe_q;
 reg pci_slave1_claim;
@@ -173,11 +176,9 @@ reg pci_slave1_idsel_q;
 reg pci_slave1_initial_wait_over;
 reg pci_slave1_interrupt_disable;
 reg [1:0] pci_slave1_io_byte;
-reg pci_slave1_io_enable;
 reg pci_slave1_irdy_q;
 reg pci_slave1_is_config;
 reg pci_slave1_is_read;
-reg pci_slave1_mem_enable;
 wire pci_slave1_parity_error_next;
 reg pci_slave1_parity_error_q;
 wire pci_slave1_perr_next;
@@ -185,7 +186,6 @@ wire pci_slave1_perr_oe_next;
 reg pci_slave1_perr_q;
 reg [9:0] pci_slave1_phase_addr;
 wire pci_slave1_phase_step;
-reg pci_slave1_read_command;
 reg [31:0] pci_slave1_read_source;
 reg [9:0] pci_slave1_req_addr;
 reg pci_slave1_req_addr_stale;
@@ -1040,7 +1040,7 @@ always @(pci_slave1_ad_out_q) begin: pci_slave1_pci_parity1_ad_out_parity_tree
 end
 
 
-always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_io_enable, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_mem_enable, pci_slave1_state) begin: pci_slave1_decode
+always @(pci_slave1_bar1, pci_slave1_mem_enable, pci_slave1_address_phase, pci_slave1_state, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_io_enable, pci_slave1_ad_q) begin: pci_slave1_pci_decode1_decode_address
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
@@ -1056,7 +1056,7 @@ always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_
 end
 
 
-always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_start_offset
+always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_pci_decode1_start_offset
     reg [4-1:0] code;
     code = pci_slave1_cbe_q;
     if (((code == 10) || (code == 11))) begin

@@ -118,9 +118,15 @@ reg [3:0] card1_pci_slave2_h_be;
 reg [3:0] card1_pci_slave2_s_be;
 reg card1_pci_slave2_write_done_q;
 reg card1_pci_slave2_config_write_q;
+reg card1_pci_slave2_io_enable;
+reg card1_pci_slave2_mem_enable;
 reg card1_pci_slave2_parity_response;
 reg card1_pci_slave2_serr_enable;
+reg [15:0] card1_pci_slave2_bar0;
+reg [31:0] card1_pci_slave2_bar1;
 reg card1_pci_slave2_fatal;
+wire card1_pci_slave2_address_phase;
+reg card1_pci_slave2_read_command;
 wire card1_pci_slave2_write_done_next;
 wire card1_pci_slave2_config_write_next;
 wire card1_pci_slave2_posting;
@@ -142,11 +148,8 @@ reg [31:0] card1_pci_slave2_ad_out_q;
 reg card1_pci_slave2_ad_parity_q;
 reg card1_pci_slave2_address_fault;
 wire card1_pci_slave2_address_fault_next;
-wire card1_pci_slave2_address_phase;
 reg card1_pci_slave2_at_last;
 reg card1_pci_slave2_b_valid;
-reg [15:0] card1_pci_slave2_bar0;
-reg [31:0] card1_pci_slave2_bar1;
 reg card1_pci_slave2_before_last;
 reg card1_pci_slave2_claim;
 reg card1_pci_slave2_claim_config;
@@ -165,11 +168,9 @@ wire card1_pci_slave2_got;
 reg card1_pci_slave2_initial_wait_over;
 reg card1_pci_slave2_interrupt_disable;
 reg [1:0] card1_pci_slave2_io_byte;
-reg card1_pci_slave2_io_enable;
 reg card1_pci_slave2_irdy_q;
 reg card1_pci_slave2_is_config;
 reg card1_pci_slave2_is_read;
-reg card1_pci_slave2_mem_enable;
 wire card1_pci_slave2_parity_error_next;
 reg card1_pci_slave2_parity_error_q;
 wire card1_pci_slave2_perr_next;
@@ -177,7 +178,6 @@ wire card1_pci_slave2_perr_oe_next;
 reg card1_pci_slave2_perr_q;
 reg [9:0] card1_pci_slave2_phase_addr;
 wire card1_pci_slave2_phase_step;
-reg card1_pci_slave2_read_command;
 reg [31:0] card1_pci_slave2_read_source;
 reg [9:0] card1_pci_slave2_req_addr;
 reg card1_pci_slave2_req_addr_stale;
@@ -1598,7 +1598,7 @@ always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_pci_parity2_ad_out_p
 end
 
 
-always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_slave2_address_phase, card1_pci_slave2_io_enable, card1_pci_slave2_bar0, pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_mem_enable, card1_pci_slave2_state) begin: card1_pci_slave2_decode
+always @(card1_pci_slave2_bar1, card1_pci_slave2_mem_enable, card1_pci_slave2_address_phase, card1_pci_slave2_state, card1_pci_slave2_bar0, pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_io_enable, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_decode2_decode_address
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
@@ -1614,7 +1614,7 @@ always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_sl
 end
 
 
-always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_start_offset
+always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_decode2_start_offset
     reg [4-1:0] code;
     code = pci_pads0_registered_pad5_from_pin;
     if (((code == 10) || (code == 11))) begin
