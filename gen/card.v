@@ -777,7 +777,6 @@ reg [2:0] card_core0_dda_arc1_dda_setup1_state;
 reg [4:0] card_core0_dda_arc1_dda_setup1_step;
 wire [48:0] card_core0_dda_arc1_dda_setup1_total;
 reg [1:0] card_core0_dda_arc1_dda_setup1_twice;
-wire card_core0_dda_arc1_dda_setup1_plan_taken;
 reg card_core0_dda_arc1_dda_setup1_plan_x_inward_end;
 reg card_core0_dda_arc1_dda_setup1_plan_x_inward;
 reg [24:0] card_core0_dda_arc1_dda_setup1_root_root;
@@ -823,6 +822,7 @@ reg [47:0] card_core0_dda_arc1_dda_setup1_dda_root1_radicand;
 reg [25:0] card_core0_dda_arc1_dda_setup1_dda_root1_remainder;
 reg card_core0_dda_arc1_dda_setup1_dda_root1_started;
 reg [4:0] card_core0_dda_arc1_dda_setup1_dda_root1_steps;
+wire card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken;
 reg card_core0_dda_arc1_dda_check1_variant_built;
 wire card_core0_dda_arc1_dda_check1_move_offer;
 wire card_core0_dda_arc1_dda_check1_move_take;
@@ -5184,7 +5184,7 @@ always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_root1_digits
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_dda_start, card_core0_dda_arc1_dda_setup1_plan_taken, card_core0_dda_arc1_dda_setup1_step, card_core0_regs_fifo1_sequencer1_dda_line, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_sequence
+always @(card_core0_regs_fifo1_sequencer1_dda_start, card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken, card_core0_dda_arc1_dda_setup1_step, card_core0_regs_fifo1_sequencer1_dda_line, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_dda_sequence1_advance
     card_core0_dda_arc1_dda_setup1_next_state = card_core0_dda_arc1_dda_setup1_state;
     card_core0_dda_arc1_dda_setup1_next_step = 0;
     card_core0_dda_arc1_dda_setup1_next_square = card_core0_dda_arc1_dda_setup1_square;
@@ -5235,7 +5235,7 @@ always @(card_core0_regs_fifo1_sequencer1_dda_start, card_core0_dda_arc1_dda_set
             card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
         end
     end
-    else if (card_core0_dda_arc1_dda_setup1_plan_taken) begin
+    else if (card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken) begin
         card_core0_dda_arc1_dda_setup1_next_state = 3'b000;
     end
 end
@@ -5674,7 +5674,7 @@ end
 
 
 assign card_core0_dda_arc1_dda_check1_move_offer = card_core0_dda_arc1_dda_setup1_plan_done;
-assign card_core0_dda_arc1_dda_setup1_plan_taken = card_core0_dda_arc1_dda_check1_move_take;
+assign card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken = card_core0_dda_arc1_dda_check1_move_take;
 
 
 always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead, card_core0_dda_arc1_dda_check1_variant_built, card_core0_dda_arc1_dda_setup1_plan_beyond, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_plan_too_wide, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre, card_core0_dda_arc1_dda_setup1_plan_off_circle, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_validate

@@ -801,7 +801,6 @@ reg [2:0] card1_card_core1_dda_arc2_dda_setup2_state;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_step;
 wire [48:0] card1_card_core1_dda_arc2_dda_setup2_total;
 reg [1:0] card1_card_core1_dda_arc2_dda_setup2_twice;
-wire card1_card_core1_dda_arc2_dda_setup2_plan_taken;
 reg card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end;
 reg card1_card_core1_dda_arc2_dda_setup2_plan_x_inward;
 reg [24:0] card1_card_core1_dda_arc2_dda_setup2_root_root;
@@ -847,6 +846,7 @@ reg [47:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand;
 reg [25:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_started;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps;
+wire card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken;
 reg card1_card_core1_dda_arc2_dda_check2_variant_built;
 wire card1_card_core1_dda_arc2_dda_check2_move_offer;
 wire card1_card_core1_dda_arc2_dda_check2_move_take;
@@ -6016,7 +6016,7 @@ always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_di
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_dda_arc2_dda_setup2_plan_taken, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_regs_fifo2_sequencer2_dda_line, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_sequence
+always @(card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_regs_fifo2_sequencer2_dda_line, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_advance
     card1_card_core1_dda_arc2_dda_setup2_next_state = card1_card_core1_dda_arc2_dda_setup2_state;
     card1_card_core1_dda_arc2_dda_setup2_next_step = 0;
     card1_card_core1_dda_arc2_dda_setup2_next_square = card1_card_core1_dda_arc2_dda_setup2_square;
@@ -6067,7 +6067,7 @@ always @(card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_dda_
             card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
         end
     end
-    else if (card1_card_core1_dda_arc2_dda_setup2_plan_taken) begin
+    else if (card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken) begin
         card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b000;
     end
 end
@@ -6506,7 +6506,7 @@ end
 
 
 assign card1_card_core1_dda_arc2_dda_check2_move_offer = card1_card_core1_dda_arc2_dda_setup2_plan_done;
-assign card1_card_core1_dda_arc2_dda_setup2_plan_taken = card1_card_core1_dda_arc2_dda_check2_move_take;
+assign card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken = card1_card_core1_dda_arc2_dda_check2_move_take;
 
 
 always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead, card1_card_core1_dda_arc2_dda_check2_variant_built, card1_card_core1_dda_arc2_dda_setup2_plan_beyond, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_plan_too_wide, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre, card1_card_core1_dda_arc2_dda_setup2_plan_off_circle, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_validate
