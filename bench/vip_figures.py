@@ -28,7 +28,8 @@ import time
 
 from sim.paths import ROOT
 from sim.pci_delayed_target import DelayedTarget
-from sim.pci_host_core import MEM_READ, MEM_WRITE, HostCore, Request
+from sim.pci_host_core import HostCore
+from sim.pci_host_types import MEM_READ, MEM_WRITE, Request
 from sim.pci_loop import PythonBus
 from sim.pci_master import PciMaster, random_waits
 

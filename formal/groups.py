@@ -125,7 +125,8 @@ PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "i
 REGS_FILES = ["local_bus_rules.sv", "regs_fifo_harness.sv"]
 REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value",
                        "direct_request_x", "direct_request_y")
-REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written")
+REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
+                     "read_waited")
 PCI_HELPERS = dict(expose=PCI_SLAVE_REGISTERS, includes=("pci_slave_invariants.vh",),
                    defines={"PCI_SLAVE_INVARIANTS": None})
 

@@ -7,7 +7,7 @@ bits outside its fields; ID reads its constant; every RW register has a model
 that takes bus writes (byte enables honoured, the merged value clamped to
 min..max, one clock after the bus transfer as docs/registers.md and
 rtl/regs_fifo.py say) and SET commands (the value clamped), and every read
-of it returns the model; a bit of a write-one-to-clear register read as 1
+of it returns the model as it was in the read's wait clock; a bit of a write-one-to-clear register read as 1
 reads 1 until a write of 1 to it; offsets the table does not list read 0.
 """
 from rtl import registers as regmap
@@ -64,6 +64,8 @@ def table_properties():
             lines.append(f"            model_{upper} <= clamp_{upper}(({{{32 - width}'h0, model_{upper}}} & ~stage_mask)"
                          f" | (stage_data & stage_mask));")
             lines.append("    end")
+            lines.append(f"    reg [{width - 1}:0] model_{upper}_read = {width}'d{reg.reset};   // a read returns its wait clock's value")
+            lines.append(f"    always @(posedge clock) model_{upper}_read <= model_{upper};")
         if reg.access == "W1C":
             lines += [f"    reg [31:0] {upper}_before = 0, {upper}_cleared = 0;   // last read, bits written 1 since",
                       f"    wire [31:0] {upper}_clearing = (stage_write && stage_addr == 16'h{reg.offset:04X})"
@@ -84,7 +86,7 @@ def table_properties():
         if reg.access == "W1C":
             lines.append(f"        reg_{upper}_set_until_cleared: assert(({upper}_before & ~{upper}_cleared & ~l_rdata) == 32'h0);")
         if reg.access == "RW":
-            lines.append(f"        reg_{upper}_reads_model: assert(l_rdata == {{{32 - reg.width}'h0, model_{upper}}});")
+            lines.append(f"        reg_{upper}_reads_model: assert(l_rdata == {{{32 - reg.width}'h0, model_{upper}_read}});")
         lines.append("    end")
     size = 1 << regmap.IO_BAR_BITS
     unlisted = " && ".join(f"l_addr != 16'h{offset:04X}" for offset in listed)

@@ -123,9 +123,15 @@ reg [3:0] pci_slave1_h_be;
 reg [3:0] pci_slave1_s_be;
 reg pci_slave1_write_done_q;
 reg pci_slave1_config_write_q;
+reg pci_slave1_io_enable;
+reg pci_slave1_mem_enable;
 reg pci_slave1_parity_response;
 reg pci_slave1_serr_enable;
+reg [15:0] pci_slave1_bar0;
+reg [31:0] pci_slave1_bar1;
 reg pci_slave1_fatal;
+wire pci_slave1_address_phase;
+reg pci_slave1_read_command;
 wire pci_slave1_write_done_next;
 wire pci_slave1_config_write_next;
 wire pci_slave1_posting;
@@ -148,11 +154,8 @@ reg pci_slave1_ad_parity_q;
 reg [31:0] pci_slave1_ad_q;
 reg pci_slave1_address_fault;
 wire pci_slave1_address_fault_next;
-wire pci_slave1_address_phase;
 reg pci_slave1_at_last;
 reg pci_slave1_b_valid;
-reg [15:0] pci_slave1_bar0;
-reg [31:0] pci_slave1_bar1;
 reg pci_slave1_before_last;
 reg [3:0] pci_slave1_cbe_q;
 reg pci_slave1_claim;
@@ -173,11 +176,9 @@ reg pci_slave1_idsel_q;
 reg pci_slave1_initial_wait_over;
 reg pci_slave1_interrupt_disable;
 reg [1:0] pci_slave1_io_byte;
-reg pci_slave1_io_enable;
 reg pci_slave1_irdy_q;
 reg pci_slave1_is_config;
 reg pci_slave1_is_read;
-reg pci_slave1_mem_enable;
 wire pci_slave1_parity_error_next;
 reg pci_slave1_parity_error_q;
 wire pci_slave1_perr_next;
@@ -185,7 +186,6 @@ wire pci_slave1_perr_oe_next;
 reg pci_slave1_perr_q;
 reg [9:0] pci_slave1_phase_addr;
 wire pci_slave1_phase_step;
-reg pci_slave1_read_command;
 reg [31:0] pci_slave1_read_source;
 reg [9:0] pci_slave1_req_addr;
 reg pci_slave1_req_addr_stale;
@@ -292,6 +292,8 @@ reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 wire card_core0_regs_fifo1_pulse_busy;
 wire card_core0_regs_fifo1_pulse_clear;
 reg card_core0_regs_fifo1_push;
+reg card_core0_regs_fifo1_read_waited;
+reg [31:0] card_core0_regs_fifo1_read_word;
 reg card_core0_regs_fifo1_requested_before;
 wire card_core0_regs_fifo1_seq_busy;
 wire card_core0_regs_fifo1_sequencer_clear;
@@ -869,7 +871,6 @@ reg [2:0] card_core0_dda_arc1_dda_setup1_state;
 reg [4:0] card_core0_dda_arc1_dda_setup1_step;
 wire [48:0] card_core0_dda_arc1_dda_setup1_total;
 reg [1:0] card_core0_dda_arc1_dda_setup1_twice;
-wire card_core0_dda_arc1_dda_setup1_plan_taken;
 reg card_core0_dda_arc1_dda_setup1_plan_x_inward_end;
 reg card_core0_dda_arc1_dda_setup1_plan_x_inward;
 reg [24:0] card_core0_dda_arc1_dda_setup1_root_root;
@@ -915,6 +916,7 @@ reg [47:0] card_core0_dda_arc1_dda_setup1_dda_root1_radicand;
 reg [25:0] card_core0_dda_arc1_dda_setup1_dda_root1_remainder;
 reg card_core0_dda_arc1_dda_setup1_dda_root1_started;
 reg [4:0] card_core0_dda_arc1_dda_setup1_dda_root1_steps;
+wire card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken;
 reg card_core0_dda_arc1_dda_check1_variant_built;
 wire card_core0_dda_arc1_dda_check1_move_offer;
 wire card_core0_dda_arc1_dda_check1_move_take;
@@ -1138,7 +1140,7 @@ always @(pci_slave1_ad_out_q) begin: pci_slave1_pci_parity1_ad_out_parity_tree
 end
 
 
-always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_io_enable, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_mem_enable, pci_slave1_state) begin: pci_slave1_decode
+always @(pci_slave1_bar1, pci_slave1_mem_enable, pci_slave1_address_phase, pci_slave1_state, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_io_enable, pci_slave1_ad_q) begin: pci_slave1_pci_decode1_decode_address
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
@@ -1154,7 +1156,7 @@ always @(pci_slave1_bar1, pci_slave1_ad_q, pci_slave1_address_phase, pci_slave1_
 end
 
 
-always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_start_offset
+always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_pci_decode1_start_offset
     reg [4-1:0] code;
     code = pci_slave1_cbe_q;
     if (((code == 10) || (code == 11))) begin
@@ -5407,7 +5409,7 @@ always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stoppi
 end
 
 
-always @(pci_slave1_local_re, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_be, pci_slave1_pci_requests1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
+always @(pci_slave1_local_re, card_core0_regs_fifo1_read_waited, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_be, pci_slave1_pci_requests1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
     if (pci_slave1_pci_requests1_local_be[0]) begin
@@ -5424,19 +5426,31 @@ always @(pci_slave1_local_re, card_core0_regs_fifo1_io_written, pci_slave1_pci_r
     end
     card_core0_regs_fifo1_byte_mask = mask;
     card_core0_regs_fifo1_io_write = (pci_slave1_local_we && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written));
-    card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written) && (!card_core0_regs_fifo1_read_waited));
     card_core0_regs_fifo1_push = (pci_slave1_local_we && pci_slave1_pci_requests1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_pci_requests1_local_be != 0) && (!card_core0_regs_fifo1_io_written));
 end
 
 
-always @(card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_write, pci_slave1_pci_requests1_local_space, card_core0_regs_fifo1_read_end, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_answer_bus
-    pci_slave1_local_ready = ((!(pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full)) && (!card_core0_regs_fifo1_io_written));
+always @(card_core0_regs_fifo1_read_waited, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_write, pci_slave1_pci_requests1_local_space, card_core0_regs_fifo1_read_word, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_answer_bus
+    pci_slave1_local_ready = ((pci_slave1_pci_requests1_local_write || pci_slave1_pci_requests1_local_space || card_core0_regs_fifo1_read_waited) && (!card_core0_regs_fifo1_io_written) && (!(pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full)));
     pci_slave1_local_retry = (pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
     if (pci_slave1_pci_requests1_local_space) begin
         pci_slave1_local_rdata = 0;
     end
     else begin
-        pci_slave1_local_rdata = card_core0_regs_fifo1_read_end;
+        pci_slave1_local_rdata = card_core0_regs_fifo1_read_word;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_read_stage
+    if (reset == 0) begin
+        card_core0_regs_fifo1_read_word <= 0;
+        card_core0_regs_fifo1_read_waited <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_read_waited <= card_core0_regs_fifo1_io_read;
+        card_core0_regs_fifo1_read_word <= card_core0_regs_fifo1_read_end;
     end
 end
 
@@ -5857,7 +5871,7 @@ always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_root1_digits
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_dda_start, card_core0_dda_arc1_dda_setup1_plan_taken, card_core0_dda_arc1_dda_setup1_step, card_core0_regs_fifo1_sequencer1_dda_line, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_sequence
+always @(card_core0_regs_fifo1_sequencer1_dda_start, card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken, card_core0_dda_arc1_dda_setup1_step, card_core0_regs_fifo1_sequencer1_dda_line, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_dda_sequence1_advance
     card_core0_dda_arc1_dda_setup1_next_state = card_core0_dda_arc1_dda_setup1_state;
     card_core0_dda_arc1_dda_setup1_next_step = 0;
     card_core0_dda_arc1_dda_setup1_next_square = card_core0_dda_arc1_dda_setup1_square;
@@ -5908,7 +5922,7 @@ always @(card_core0_regs_fifo1_sequencer1_dda_start, card_core0_dda_arc1_dda_set
             card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
         end
     end
-    else if (card_core0_dda_arc1_dda_setup1_plan_taken) begin
+    else if (card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken) begin
         card_core0_dda_arc1_dda_setup1_next_state = 3'b000;
     end
 end
@@ -6347,7 +6361,7 @@ end
 
 
 assign card_core0_dda_arc1_dda_check1_move_offer = card_core0_dda_arc1_dda_setup1_plan_done;
-assign card_core0_dda_arc1_dda_setup1_plan_taken = card_core0_dda_arc1_dda_check1_move_take;
+assign card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken = card_core0_dda_arc1_dda_check1_move_take;
 
 
 always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead, card_core0_dda_arc1_dda_check1_variant_built, card_core0_dda_arc1_dda_setup1_plan_beyond, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_plan_too_wide, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre, card_core0_dda_arc1_dda_setup1_plan_off_circle, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_validate

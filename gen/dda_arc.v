@@ -120,7 +120,6 @@ reg [2:0] dda_setup0_state;
 reg [4:0] dda_setup0_step;
 wire [48:0] dda_setup0_total;
 reg [1:0] dda_setup0_twice;
-wire dda_setup0_plan_taken;
 reg dda_setup0_plan_x_inward_end;
 reg dda_setup0_plan_x_inward;
 reg [24:0] dda_setup0_root_root;
@@ -166,6 +165,7 @@ reg [47:0] dda_setup0_dda_root0_radicand;
 reg [25:0] dda_setup0_dda_root0_remainder;
 reg dda_setup0_dda_root0_started;
 reg [4:0] dda_setup0_dda_root0_steps;
+wire dda_setup0_dda_sequence0_plan_taken;
 reg dda_check0_variant_built;
 wire dda_check0_move_offer;
 wire dda_check0_move_take;
@@ -476,7 +476,7 @@ always @(posedge clock) begin: dda_setup0_dda_root0_digits
 end
 
 
-always @(cmd_start, dda_setup0_plan_taken, dda_setup0_step, cmd_line, dda_setup0_square, dda_setup0_state) begin: dda_setup0_sequence
+always @(cmd_start, dda_setup0_dda_sequence0_plan_taken, dda_setup0_step, cmd_line, dda_setup0_square, dda_setup0_state) begin: dda_setup0_dda_sequence0_advance
     dda_setup0_next_state = dda_setup0_state;
     dda_setup0_next_step = 0;
     dda_setup0_next_square = dda_setup0_square;
@@ -527,7 +527,7 @@ always @(cmd_start, dda_setup0_plan_taken, dda_setup0_step, cmd_line, dda_setup0
             dda_setup0_next_step = (dda_setup0_step + 1);
         end
     end
-    else if (dda_setup0_plan_taken) begin
+    else if (dda_setup0_dda_sequence0_plan_taken) begin
         dda_setup0_next_state = 3'b000;
     end
 end
@@ -966,7 +966,7 @@ end
 
 
 assign dda_check0_move_offer = dda_setup0_plan_done;
-assign dda_setup0_plan_taken = dda_check0_move_take;
+assign dda_setup0_dda_sequence0_plan_taken = dda_check0_move_take;
 
 
 always @(dda_setup0_dda_latch0_plan_ahead, dda_check0_variant_built, dda_setup0_plan_beyond, dda_setup0_plan_radius, dda_setup0_plan_too_wide, dda_setup0_dda_latch0_plan_line, dda_setup0_dda_latch0_plan_centre, dda_setup0_plan_off_circle, dda_setup0_dda_latch0_plan_variant) begin: dda_check0_validate

@@ -153,9 +153,15 @@ reg [3:0] h_be;
 reg [3:0] s_be;
 reg write_done_q;
 reg config_write_q;
+reg io_enable;
+reg mem_enable;
 reg parity_response;
 reg serr_enable;
+reg [15:0] bar0;
+reg [31:0] bar1;
 reg fatal;
+wire address_phase;
+reg read_command;
 wire write_done_next;
 wire config_write_next;
 wire posting;
@@ -178,11 +184,8 @@ reg ad_parity_q;
 reg [31:0] ad_q;
 reg address_fault;
 wire address_fault_next;
-wire address_phase;
 reg at_last;
 reg b_valid;
-reg [15:0] bar0;
-reg [31:0] bar1;
 reg before_last;
 reg [3:0] cbe_q;
 reg claim;
@@ -203,11 +206,9 @@ reg idsel_q;
 reg initial_wait_over;
 reg interrupt_disable;
 reg [1:0] io_byte;
-reg io_enable;
 reg irdy_q;
 reg is_config;
 reg is_read;
-reg mem_enable;
 wire parity_error_next;
 reg parity_error_q;
 wire perr_next;
@@ -215,7 +216,6 @@ wire perr_oe_next;
 reg perr_q;
 reg [9:0] phase_addr;
 wire phase_step;
-reg read_command;
 reg [31:0] read_source;
 reg [9:0] req_addr;
 reg req_addr_stale;
@@ -352,7 +352,7 @@ always @(ad_out_q) begin: pci_parity0_ad_out_parity_tree
 end
 
 
-always @(bar1, ad_q, address_phase, io_enable, bar0, cbe_q, idsel_q, mem_enable, state) begin: decode
+always @(bar1, mem_enable, address_phase, state, bar0, cbe_q, idsel_q, io_enable, ad_q) begin: pci_decode0_decode_address
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
@@ -368,7 +368,7 @@ always @(bar1, ad_q, address_phase, io_enable, bar0, cbe_q, idsel_q, mem_enable,
 end
 
 
-always @(cbe_q, ad_q) begin: start_offset
+always @(cbe_q, ad_q) begin: pci_decode0_start_offset
     reg [4-1:0] code;
     code = cbe_q;
     if (((code == 10) || (code == 11))) begin

@@ -80,13 +80,20 @@ module regs_fifo (
 // Local bus: I/O and FIFO writes complete in the clock they are requested,
 // a full FIFO answers retry; an I/O write reaches the registers one clock
 // later, and a request in that clock waits one clock (PCI never asks that
-// soon); ``room`` is the FIFO's own flag (three places free or more):
+// soon); an I/O read waits one clock: the registers' read chain ends in a
+// register (``read_word``), so the PCI target's AD register is fed from a
+// flip-flop, and a read's side effect (POS_X holds POS_Y) happens once, at
+// the edge that takes the word; ``room`` is the FIFO's own flag (three
+// places free or more):
 //     clock    _/~\_/~\_/~\_/~\_
 //     we       _/~~~~~~~~~~~\___
 //     space    _/~~~~~~~~~~~\___     memory BAR
 //     ready    _/~~~~~~~\_______
 //     retry    _________/~~~\___     FIFO full
 //     room     ~~~~~\___________     three places free at first
+// 
+//     re       _/~~~~~~~\_______     I/O BAR
+//     ready    _____/~~~\_______     read_word taken at the first edge
 
 input clock;
 input reset;
@@ -204,6 +211,8 @@ reg signed [31:0] pos_y_snapshot;
 wire pulse_busy;
 wire pulse_clear;
 reg push;
+reg read_waited;
+reg [31:0] read_word;
 reg requested_before;
 wire seq_busy;
 wire sequencer_clear;
@@ -4133,7 +4142,7 @@ always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_ena
 end
 
 
-always @(local_re, io_written, local_be, local_space, local_we, fifo_full) begin: decode_bus
+always @(local_re, read_waited, io_written, local_be, local_space, local_we, fifo_full) begin: decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
     if (local_be[0]) begin
@@ -4150,19 +4159,31 @@ always @(local_re, io_written, local_be, local_space, local_we, fifo_full) begin
     end
     byte_mask = mask;
     io_write = (local_we && (!local_space) && (!io_written));
-    io_read = (local_re && (!local_space) && (!io_written));
+    io_read = (local_re && (!local_space) && (!io_written) && (!read_waited));
     push = (local_we && local_space && (!fifo_full) && (local_be != 0) && (!io_written));
 end
 
 
-always @(io_written, local_write, local_space, read_end, fifo_full) begin: answer_bus
-    local_ready = ((!(local_write && local_space && fifo_full)) && (!io_written));
+always @(read_waited, io_written, local_write, local_space, read_word, fifo_full) begin: answer_bus
+    local_ready = ((local_write || local_space || read_waited) && (!io_written) && (!(local_write && local_space && fifo_full)));
     local_retry = (local_write && local_space && fifo_full && (!io_written));
     if (local_space) begin
         local_rdata = 0;
     end
     else begin
-        local_rdata = read_end;
+        local_rdata = read_word;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: read_stage
+    if (reset == 0) begin
+        read_word <= 0;
+        read_waited <= 0;
+    end
+    else begin
+        read_waited <= io_read;
+        read_word <= read_end;
     end
 end
 

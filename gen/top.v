@@ -118,9 +118,15 @@ reg [3:0] card1_pci_slave2_h_be;
 reg [3:0] card1_pci_slave2_s_be;
 reg card1_pci_slave2_write_done_q;
 reg card1_pci_slave2_config_write_q;
+reg card1_pci_slave2_io_enable;
+reg card1_pci_slave2_mem_enable;
 reg card1_pci_slave2_parity_response;
 reg card1_pci_slave2_serr_enable;
+reg [15:0] card1_pci_slave2_bar0;
+reg [31:0] card1_pci_slave2_bar1;
 reg card1_pci_slave2_fatal;
+wire card1_pci_slave2_address_phase;
+reg card1_pci_slave2_read_command;
 wire card1_pci_slave2_write_done_next;
 wire card1_pci_slave2_config_write_next;
 wire card1_pci_slave2_posting;
@@ -142,11 +148,8 @@ reg [31:0] card1_pci_slave2_ad_out_q;
 reg card1_pci_slave2_ad_parity_q;
 reg card1_pci_slave2_address_fault;
 wire card1_pci_slave2_address_fault_next;
-wire card1_pci_slave2_address_phase;
 reg card1_pci_slave2_at_last;
 reg card1_pci_slave2_b_valid;
-reg [15:0] card1_pci_slave2_bar0;
-reg [31:0] card1_pci_slave2_bar1;
 reg card1_pci_slave2_before_last;
 reg card1_pci_slave2_claim;
 reg card1_pci_slave2_claim_config;
@@ -165,11 +168,9 @@ wire card1_pci_slave2_got;
 reg card1_pci_slave2_initial_wait_over;
 reg card1_pci_slave2_interrupt_disable;
 reg [1:0] card1_pci_slave2_io_byte;
-reg card1_pci_slave2_io_enable;
 reg card1_pci_slave2_irdy_q;
 reg card1_pci_slave2_is_config;
 reg card1_pci_slave2_is_read;
-reg card1_pci_slave2_mem_enable;
 wire card1_pci_slave2_parity_error_next;
 reg card1_pci_slave2_parity_error_q;
 wire card1_pci_slave2_perr_next;
@@ -177,7 +178,6 @@ wire card1_pci_slave2_perr_oe_next;
 reg card1_pci_slave2_perr_q;
 reg [9:0] card1_pci_slave2_phase_addr;
 wire card1_pci_slave2_phase_step;
-reg card1_pci_slave2_read_command;
 reg [31:0] card1_pci_slave2_read_source;
 reg [9:0] card1_pci_slave2_req_addr;
 reg card1_pci_slave2_req_addr_stale;
@@ -316,6 +316,8 @@ reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 wire card1_card_core1_regs_fifo2_pulse_busy;
 wire card1_card_core1_regs_fifo2_pulse_clear;
 reg card1_card_core1_regs_fifo2_push;
+reg card1_card_core1_regs_fifo2_read_waited;
+reg [31:0] card1_card_core1_regs_fifo2_read_word;
 reg card1_card_core1_regs_fifo2_requested_before;
 wire card1_card_core1_regs_fifo2_seq_busy;
 wire card1_card_core1_regs_fifo2_sequencer_clear;
@@ -893,7 +895,6 @@ reg [2:0] card1_card_core1_dda_arc2_dda_setup2_state;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_step;
 wire [48:0] card1_card_core1_dda_arc2_dda_setup2_total;
 reg [1:0] card1_card_core1_dda_arc2_dda_setup2_twice;
-wire card1_card_core1_dda_arc2_dda_setup2_plan_taken;
 reg card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end;
 reg card1_card_core1_dda_arc2_dda_setup2_plan_x_inward;
 reg [24:0] card1_card_core1_dda_arc2_dda_setup2_root_root;
@@ -939,6 +940,7 @@ reg [47:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand;
 reg [25:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_started;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps;
+wire card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken;
 reg card1_card_core1_dda_arc2_dda_check2_variant_built;
 wire card1_card_core1_dda_arc2_dda_check2_move_offer;
 wire card1_card_core1_dda_arc2_dda_check2_move_take;
@@ -1696,7 +1698,7 @@ always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_pci_parity2_ad_out_p
 end
 
 
-always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_slave2_address_phase, card1_pci_slave2_io_enable, card1_pci_slave2_bar0, pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_mem_enable, card1_pci_slave2_state) begin: card1_pci_slave2_decode
+always @(card1_pci_slave2_bar1, card1_pci_slave2_mem_enable, card1_pci_slave2_address_phase, card1_pci_slave2_state, card1_pci_slave2_bar0, pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_io_enable, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_decode2_decode_address
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
@@ -1712,7 +1714,7 @@ always @(card1_pci_slave2_bar1, pci_pads0_registered_pad0_from_pin, card1_pci_sl
 end
 
 
-always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_start_offset
+always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_decode2_start_offset
     reg [4-1:0] code;
     code = pci_pads0_registered_pad5_from_pin;
     if (((code == 10) || (code == 11))) begin
@@ -6239,7 +6241,7 @@ always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_
 end
 
 
-always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_be, card1_pci_slave2_pci_requests2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
+always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_read_waited, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_be, card1_pci_slave2_pci_requests2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
     if (card1_pci_slave2_pci_requests2_local_be[0]) begin
@@ -6256,19 +6258,31 @@ always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_io_written, card
     end
     card1_card_core1_regs_fifo2_byte_mask = mask;
     card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_local_we && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
-    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written) && (!card1_card_core1_regs_fifo2_read_waited));
     card1_card_core1_regs_fifo2_push = (card1_pci_slave2_local_we && card1_pci_slave2_pci_requests2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_pci_requests2_local_be != 0) && (!card1_card_core1_regs_fifo2_io_written));
 end
 
 
-always @(card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_write, card1_pci_slave2_pci_requests2_local_space, card1_card_core1_regs_fifo2_read_end, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_answer_bus
-    card1_pci_slave2_local_ready = ((!(card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full)) && (!card1_card_core1_regs_fifo2_io_written));
+always @(card1_card_core1_regs_fifo2_read_waited, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_write, card1_pci_slave2_pci_requests2_local_space, card1_card_core1_regs_fifo2_read_word, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_answer_bus
+    card1_pci_slave2_local_ready = ((card1_pci_slave2_pci_requests2_local_write || card1_pci_slave2_pci_requests2_local_space || card1_card_core1_regs_fifo2_read_waited) && (!card1_card_core1_regs_fifo2_io_written) && (!(card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full)));
     card1_pci_slave2_local_retry = (card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
     if (card1_pci_slave2_pci_requests2_local_space) begin
         card1_pci_slave2_local_rdata = 0;
     end
     else begin
-        card1_pci_slave2_local_rdata = card1_card_core1_regs_fifo2_read_end;
+        card1_pci_slave2_local_rdata = card1_card_core1_regs_fifo2_read_word;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_read_stage
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_read_word <= 0;
+        card1_card_core1_regs_fifo2_read_waited <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_read_waited <= card1_card_core1_regs_fifo2_io_read;
+        card1_card_core1_regs_fifo2_read_word <= card1_card_core1_regs_fifo2_read_end;
     end
 end
 
@@ -6689,7 +6703,7 @@ always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_di
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_dda_arc2_dda_setup2_plan_taken, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_regs_fifo2_sequencer2_dda_line, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_sequence
+always @(card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_regs_fifo2_sequencer2_dda_line, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_advance
     card1_card_core1_dda_arc2_dda_setup2_next_state = card1_card_core1_dda_arc2_dda_setup2_state;
     card1_card_core1_dda_arc2_dda_setup2_next_step = 0;
     card1_card_core1_dda_arc2_dda_setup2_next_square = card1_card_core1_dda_arc2_dda_setup2_square;
@@ -6740,7 +6754,7 @@ always @(card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_dda_
             card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
         end
     end
-    else if (card1_card_core1_dda_arc2_dda_setup2_plan_taken) begin
+    else if (card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken) begin
         card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b000;
     end
 end
@@ -7179,7 +7193,7 @@ end
 
 
 assign card1_card_core1_dda_arc2_dda_check2_move_offer = card1_card_core1_dda_arc2_dda_setup2_plan_done;
-assign card1_card_core1_dda_arc2_dda_setup2_plan_taken = card1_card_core1_dda_arc2_dda_check2_move_take;
+assign card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken = card1_card_core1_dda_arc2_dda_check2_move_take;
 
 
 always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead, card1_card_core1_dda_arc2_dda_check2_variant_built, card1_card_core1_dda_arc2_dda_setup2_plan_beyond, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_plan_too_wide, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre, card1_card_core1_dda_arc2_dda_setup2_plan_off_circle, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_validate

@@ -12,7 +12,7 @@ import math
 from rtl.parameters import PARAMETERS
 from sim.card_e2e import DEFAULT_FIFO
 from sim.card_session import CardSession
-from sim.pci_host_core import HostError
+from sim.pci_host_types import HostError
 from sim.vlt.model import Stop
 
 from host.transport import SIM_KINDS, Transport, TransportError, check_access, check_value

@@ -6,7 +6,8 @@ from rtl import registers as regmap
 from rtl.card_core import CORE_PARAMETERS, card_core
 from rtl.interfaces import LocalBus, MotorPins, PciBus, card_reset
 from rtl.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, PCI_IDS, VARIANTS
-from rtl.pci_slave import local_addr_width, pci_slave
+from rtl.pci_slave import pci_slave
+from rtl.pci_target_build import local_addr_width
 
 MEM_BAR_BITS = 12  # 4 KiB FIFO window: a host burst of up to 1024 words
 CARD_PARAMETERS = (*CORE_PARAMETERS, *PCI_IDS)

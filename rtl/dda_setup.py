@@ -1,17 +1,17 @@
 """DDA setup stage: a taken command worked out on one adder for its check."""
-from myhdl import Signal, always, always_comb, always_seq, block, concat, enum, intbv, modbv
+from myhdl import Signal, always, always_comb, always_seq, block, concat, intbv, modbv
 
 from rtl.dda_build import PAPER_VARIANTS
 from rtl.dda_latch import dda_latch
 from rtl.dda_root import dda_root
-from rtl.interfaces import DdaRoot
+from rtl.dda_sequence import POST_STEPS, dda_sequence, t_setup
+from rtl.interfaces import DdaRoot, SetupSequence
 
 # what the adder's accumulator does in a clock, and its operand register
 G_HOLD, G_ADD, G_ZERO, G_ONES = range(4)
 M_HOLD, M_SHIFT, M_LOAD = range(3)
 # operand sources: the magnitudes and the root t
 SRC_XS, SRC_YS, SRC_XE, SRC_YE, SRC_ROOT = range(5)
-PRE_STEPS, LIMIT_STEPS, POST_STEPS = 7, 5, 13
 
 
 @block
@@ -59,11 +59,10 @@ def dda_setup(clock, reset, cmd, plan):
     thr_width = plan.threshold_width
     paper = bool(cmd.variants & PAPER_VARIANTS)
 
-    t_state = enum("S_IDLE", "S_LINE", "S_PRE", "S_SQUARE", "S_LIMIT", "S_POST", "S_DONE")
-    state, next_state = Signal(t_state.S_IDLE), Signal(t_state.S_IDLE)
-    step_max = max(width, POST_STEPS)
-    step, next_step = Signal(intbv(0, min=0, max=step_max)), Signal(intbv(0, min=0, max=step_max))
-    square, next_square = Signal(modbv(0)[2:]), Signal(modbv(0)[2:])
+    # the phase: state, step and square, and their next values (``rtl/dda_sequence.py``)
+    sequence = SetupSequence(t_setup.S_IDLE, max(width, POST_STEPS))
+    state, step, square = sequence.state, sequence.step, sequence.square
+    next_state, next_step, next_square = sequence.next_state, sequence.next_step, sequence.next_square
 
     gap = Signal(modbv(0)[gap_width:])
     operand = Signal(modbv(0)[gap_width:])
@@ -86,46 +85,8 @@ def dda_setup(clock, reset, cmd, plan):
     major = Signal(intbv(0)[major_width:])
 
     latch = dda_latch(clock, reset, cmd, plan)
+    phase = dda_sequence(cmd, plan, sequence)
     square_root = dda_root(clock, reset, root)
-
-    @always_comb
-    def sequence():
-        # the next state, step and square: the carry register is set from them
-        next_state.next = state
-        next_step.next = 0
-        next_square.next = square
-        if state == t_state.S_IDLE:
-            next_square.next = 0
-            if cmd.start:
-                next_state.next = t_state.S_PRE
-                if cmd.line:
-                    next_state.next = t_state.S_LINE
-        elif state == t_state.S_LINE:
-            next_state.next = t_state.S_DONE
-        elif state == t_state.S_PRE:
-            if step == PRE_STEPS - 1:
-                next_state.next = t_state.S_SQUARE
-            else:
-                next_step.next = step + 1
-        elif state == t_state.S_SQUARE:
-            if step == width - 1:
-                next_square.next = square + 1
-                if square == 3:
-                    next_state.next = t_state.S_LIMIT
-            else:
-                next_step.next = step + 1
-        elif state == t_state.S_LIMIT:
-            if step == LIMIT_STEPS - 1:
-                next_state.next = t_state.S_POST
-            else:
-                next_step.next = step + 1
-        elif state == t_state.S_POST:
-            if step == POST_STEPS - 1:
-                next_state.next = t_state.S_DONE
-            else:
-                next_step.next = step + 1
-        elif plan.taken:
-            next_state.next = t_state.S_IDLE
 
     @always_comb
     def control():
@@ -139,7 +100,7 @@ def dda_setup(clock, reset, cmd, plan):
         g_op[:] = G_HOLD
         o_op[:] = M_LOAD
         src[:] = SRC_XS
-        if state == t_state.S_PRE:
+        if state == t_setup.S_PRE:
             # xs, -ys (m), +ys, -xe (xs vs xe), 0, ys, -ye (ys vs ye), then -1 for the squares
             if step == 1 or step == 3 or step == 5:
                 inv = True
@@ -158,7 +119,7 @@ def dda_setup(clock, reset, cmd, plan):
                 g_op[:] = G_ONES
             elif step != 0:
                 g_op[:] = G_ADD
-        elif state == t_state.S_SQUARE:
+        elif state == t_setup.S_SQUARE:
             o_op[:] = M_SHIFT
             inv = square < 2
             if multiplier[0]:
@@ -172,7 +133,7 @@ def dda_setup(clock, reset, cmd, plan):
                     src[:] = SRC_XS
                     if m_is_y:
                         src[:] = SRC_YS
-        elif state == t_state.S_LIMIT:
+        elif state == t_setup.S_LIMIT:
             o_op[:] = M_SHIFT
             if step == 0:
                 inv = True
@@ -186,7 +147,7 @@ def dda_setup(clock, reset, cmd, plan):
                 g_op[:] = G_ZERO
                 o_op[:] = M_LOAD
                 src[:] = SRC_ROOT
-        elif state == t_state.S_POST:
+        elif state == t_setup.S_POST:
             g_op[:] = G_ADD
             if step == 0:
                 # t + 1 (Rq), then -2 |e| for the inward test
@@ -250,13 +211,13 @@ def dda_setup(clock, reset, cmd, plan):
         # the carry of the next clock's addition: +1 of a subtraction, r of 2 Rq = t + r
         # (-2 Rq = ~t + ~r), +1 of t + 1
         cin = False
-        if next_state == t_state.S_PRE:
+        if next_state == t_setup.S_PRE:
             cin = next_step == 2 or next_step == 4 or next_step == 6
-        elif next_state == t_state.S_SQUARE:
+        elif next_state == t_setup.S_SQUARE:
             cin = next_square < 2
-        elif next_state == t_state.S_LIMIT:
+        elif next_state == t_setup.S_LIMIT:
             cin = next_step == 4
-        elif next_state == t_state.S_POST:
+        elif next_state == t_setup.S_POST:
             if next_step == 0:
                 cin = True
             elif next_step == 2:
@@ -314,7 +275,7 @@ def dda_setup(clock, reset, cmd, plan):
     def adder():
         total.next = gap + operand + concat(intbv(0)[gap_width - 1:], carry)
         root.radicand.next = ~gap[2 * width:]
-        root.load.next = state == t_state.S_SQUARE and square == 2 and step == 0
+        root.load.next = state == t_setup.S_SQUARE and square == 2 and step == 0
 
     @always(clock.posedge)
     def datapath():
@@ -334,11 +295,11 @@ def dda_setup(clock, reset, cmd, plan):
             if invert and source_on:
                 loaded[:] = ~loaded
             operand.next = loaded
-        if state == t_state.S_SQUARE and step != width - 1:
+        if state == t_setup.S_SQUARE and step != width - 1:
             multiplier.next = multiplier >> 1
-        elif state == t_state.S_PRE or state == t_state.S_SQUARE:
+        elif state == t_setup.S_PRE or state == t_setup.S_SQUARE:
             multiplier.next = source_value[width:]
-        if state == t_state.S_IDLE:
+        if state == t_setup.S_IDLE:
             gap.next = 0
 
     @always_seq(clock.posedge, reset=reset)
@@ -359,7 +320,7 @@ def dda_setup(clock, reset, cmd, plan):
         # a clock as the root's length grows (n = 0); a line's T
         shift = False
         grew.next = root.grows
-        if state == t_state.S_IDLE and cmd.start:
+        if state == t_setup.S_IDLE and cmd.start:
             plan.threshold.next = 0
             plan.too_wide.next = False
             acc_bits.next = cmd.acc_bits
@@ -367,10 +328,10 @@ def dda_setup(clock, reset, cmd, plan):
                 ones_left.next = concat(False, cmd.acc_bits) + concat(False, cmd.lambda_shift)
             else:
                 ones_left.next = concat(False, cmd.lambda_shift)
-        elif state == t_state.S_LINE:
+        elif state == t_setup.S_LINE:
             plan.threshold.next = major[thr_width:]
         elif paper:
-            if state == t_state.S_SQUARE and ones_left != 0:
+            if state == t_setup.S_SQUARE and ones_left != 0:
                 shift = True
                 ones_left.next = ones_left - 1
             elif acc_bits == 0 and grew:
@@ -384,9 +345,9 @@ def dda_setup(clock, reset, cmd, plan):
     def captures():
         # results read from the adder's total at the edge that forms them
         sign = total[gap_width - 1]
-        if state == t_state.S_IDLE:
+        if state == t_setup.S_IDLE:
             plan.off_circle.next = False
-        elif state == t_state.S_PRE:
+        elif state == t_setup.S_PRE:
             if step == 2:
                 m_is_y.next = sign
             elif step == 4:
@@ -395,10 +356,10 @@ def dda_setup(clock, reset, cmd, plan):
             elif step == 6:
                 plan.start_below_y.next = sign
                 plan.start_same_y.next = total[width + 1:] == 0
-        elif state == t_state.S_LIMIT:
+        elif state == t_setup.S_LIMIT:
             if (step == 1 and not sign) or (step == 4 and sign):
                 plan.off_circle.next = True
-        elif state == t_state.S_POST:
+        elif state == t_setup.S_POST:
             if step == 0:
                 plan.radius.next = total[width + 2:1]
             elif step == 2:
@@ -408,7 +369,7 @@ def dda_setup(clock, reset, cmd, plan):
                 pick_x.next = not total[left_width - 1]
             elif step == 12:
                 plan.totals_max.next = total[left_width:]
-        elif state == t_state.S_LINE:
+        elif state == t_setup.S_LINE:
             plan.totals_diff.next = major[left_width:].signed()
             plan.totals_max.next = major[left_width:]
         else:
@@ -416,8 +377,8 @@ def dda_setup(clock, reset, cmd, plan):
 
     @always_comb
     def status():
-        cmd.ready.next = state == t_state.S_IDLE
-        plan.done.next = state == t_state.S_DONE
+        cmd.ready.next = state == t_setup.S_IDLE
+        plan.done.next = state == t_setup.S_DONE
 
-    return (latch, square_root, sequence, control, carry_in, rq_terms, select_source, adder, datapath,
+    return (latch, square_root, phase, control, carry_in, rq_terms, select_source, adder, datapath,
             sequencer, line_major, threshold, captures, status)

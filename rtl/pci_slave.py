@@ -23,57 +23,17 @@ set-up do not).  The registered address makes DEVSEL# timing MEDIUM.
 from myhdl import (ConcatSignal, Signal, always_comb, always_seq, block, instances, intbv,
                    modbv)
 
-from rtl import parameters
-from rtl.interfaces import (ConfigSpace, LocalBus, PciBus, TargetBuffers, TargetControlNext, TargetParity,
-                            TargetRequests, TargetState, card_reset)
+from rtl.interfaces import (ConfigSpace, LocalBus, PciBus, TargetBuffers, TargetControlNext, TargetDecode,
+                            TargetParity, TargetRequests, TargetState, card_reset)
 from rtl.pci_config import CONFIG_PARAMETERS, pci_config
-from rtl.parameters import PCI_IDS, ParameterError
+from rtl.pci_decode import pci_decode
+from rtl.pci_target_build import (INITIAL_WAIT_LIMIT, SUBSEQUENT_WAIT_LIMIT, check_params, last_dword,
+                                  local_addr_width)
 from rtl.pin_lut import pin_lut
 from rtl.pci_buffers import pci_buffers
 from rtl.pci_control import pci_control, t_state
 from rtl.pci_parity import pci_parity
 from rtl.pci_requests import pci_requests
-
-# Commands (C/BE# in the address phase) the target claims.
-CMD_IO_READ, CMD_IO_WRITE = 0x2, 0x3
-CMD_MEM_READ, CMD_MEM_WRITE = 0x6, 0x7
-CMD_CONFIG_READ, CMD_CONFIG_WRITE = 0xA, 0xB
-CMD_MEM_READ_MULTIPLE, CMD_MEM_READ_LINE, CMD_MEM_WRITE_INVALIDATE = 0xC, 0xE, 0xF
-
-# Latency budget: clocks a data phase may wait for TRDY#, counted from the
-# claim (first phase) or from the last completion.  STOP# then comes out so
-# that it is sampled 14 clocks after FRAME# (PCI allows 16) or 7 clocks after
-# the last completed phase (PCI allows 8).
-INITIAL_WAIT_LIMIT = 11
-SUBSEQUENT_WAIT_LIMIT = 5
-
-# Build parameters of the stand-alone unit (defaults and ranges: rtl/parameters.py);
-# ``io_registers`` says where the boundary flip-flops are (see ``pci_slave``).
-SLAVE_PARAMETERS = (*PCI_IDS, "io_bar_bits", "mem_bar_bits", "device")
-
-
-def check_params(params):
-    """``params`` completed with the defaults; ValueError on a bad one."""
-    unknown = set(params) - {*SLAVE_PARAMETERS, "io_registers"}
-    if unknown:
-        raise ValueError(f"pci_slave: unknown parameters {sorted(unknown)}")
-    io_registers = params.get("io_registers", False)
-    if not isinstance(io_registers, bool):
-        raise ValueError(f"pci_slave: io_registers must be True or False, not {io_registers!r}")
-    builds = {name: value for name, value in params.items() if name != "io_registers"}
-    try:
-        values = parameters.check(dict(parameters.defaults(SLAVE_PARAMETERS), **builds))
-    except ParameterError as error:
-        raise ValueError(f"pci_slave: {error}") from None
-    return dict(values, io_registers=io_registers)
-
-
-def local_addr_width(io_bar_bits=parameters.PARAMETERS["io_bar_bits"].default,
-                     mem_bar_bits=parameters.PARAMETERS["mem_bar_bits"].default):
-    """Address bits of ``LocalBus`` the target drives: the larger BAR, and at
-    least the 256 bytes of configuration space (one counter serves all)."""
-    return max(io_bar_bits, mem_bar_bits, 8)
-
 
 def pci_slave_ports(**params):
     """Fresh ports of ``pci_slave`` for ``params`` (conversion and benches)."""
@@ -135,8 +95,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     width = local_addr_width(io_bits, mem_bits) - 2   # dword address counters
     if len(local.addr) != width + 2:
         raise ValueError(f"pci_slave: local.addr must have {width + 2} bits, has {len(local.addr)}")
-    mem_last = (1 << (mem_bits - 2)) - 1               # last dword of BAR1
-    config_mask, io_mask = 0x3F, (1 << (io_bits - 2)) - 1
+    mem_last = last_dword(mem_bits)                    # last dword of BAR1
 
     # --- input register: the bus as sampled at the last edge ---
     ad_q = pci.ad_in if io_registers else Signal(intbv(0)[32:])
@@ -249,35 +208,11 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     parity_unit = pci_parity(pci.par_in, parity, device=device)
 
     # ------------------------------------------------------------ decoding
-    @always_comb
-    def decode():
-        code = cbe_q
-        config_hit = (idsel_q and not ad_q[0] and not ad_q[1] and ad_q[11:8] == 0
-                      and (code == CMD_CONFIG_READ or code == CMD_CONFIG_WRITE))
-        io_hit = (io_enable and (code == CMD_IO_READ or code == CMD_IO_WRITE)
-                  and ad_q[32:16] == 0 and ad_q[16:io_bits] == bar0[16:io_bits])
-        mem_hit = (mem_enable
-                   and (code == CMD_MEM_READ or code == CMD_MEM_WRITE
-                        or code == CMD_MEM_READ_MULTIPLE or code == CMD_MEM_READ_LINE
-                        or code == CMD_MEM_WRITE_INVALIDATE)
-                   and ad_q[32:mem_bits] == bar1[32:mem_bits])
-        claim.next = state == t_state.S_IDLE and address_phase and (config_hit or io_hit or mem_hit)
-        claim_config.next = config_hit
-        claim_io.next = io_hit
-        read_command.next = not cbe_q[0]
-
-    @always_comb
-    def start_offset():
-        # the dword inside the BAR, or of the configuration header; chosen by
-        # the command alone: it counts only with a claim, which has the same
-        # command, and the BAR compares stay off the path to the counters
-        code = cbe_q
-        if code == CMD_CONFIG_READ or code == CMD_CONFIG_WRITE:
-            start_addr.next = ad_q[width + 2:2] & intbv(config_mask)[width:]
-        elif code == CMD_IO_READ or code == CMD_IO_WRITE:
-            start_addr.next = ad_q[width + 2:2] & intbv(io_mask)[width:]
-        else:
-            start_addr.next = ad_q[width + 2:2] & intbv(mem_last)[width:]
+    decoder = TargetDecode(t_state.S_IDLE, width, ad=ad_q, cbe=cbe_q, idsel=idsel_q, io_enable=io_enable,
+                           mem_enable=mem_enable, bar0=bar0, bar1=bar1, state=state,
+                           address_phase=address_phase, claim=claim, claim_config=claim_config,
+                           claim_io=claim_io, read_command=read_command, start_addr=start_addr)
+    decode_unit = pci_decode(decoder, io_bits=io_bits, mem_bits=mem_bits)
 
     # A data phase completes when the IRDY# pin and TRDY# (trdy_q) are both
     # low; each register it changes has its next value in one LUT after the pin.

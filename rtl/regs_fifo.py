@@ -55,18 +55,27 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     Local bus: I/O and FIFO writes complete in the clock they are requested,
     a full FIFO answers retry; an I/O write reaches the registers one clock
     later, and a request in that clock waits one clock (PCI never asks that
-    soon); ``room`` is the FIFO's own flag (three places free or more):
+    soon); an I/O read waits one clock: the registers' read chain ends in a
+    register (``read_word``), so the PCI target's AD register is fed from a
+    flip-flop, and a read's side effect (POS_X holds POS_Y) happens once, at
+    the edge that takes the word; ``room`` is the FIFO's own flag (three
+    places free or more):
         clock    _/~\\_/~\\_/~\\_/~\\_
         we       _/~~~~~~~~~~~\\___
         space    _/~~~~~~~~~~~\\___     memory BAR
         ready    _/~~~~~~~\\_______
         retry    _________/~~~\\___     FIFO full
         room     ~~~~~\\___________     three places free at first
+
+        re       _/~~~~~~~\\_______     I/O BAR
+        ready    _____/~~~\\_______     read_word taken at the first edge
     """
     build = parameters.check(dict(fifo_depth=fifo_depth, clock_hz=clock_hz, device=device,
                                   coord_width=dda.coord_width, variants=variants_choice(dda.variants)))
     specs = regmap.REGISTERS
     io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
+    # a register read: the word is taken at the edge after the request, answered ready in the next clock
+    read_waited, read_word = Signal(bool(0)), Signal(intbv(0)[32:])
     byte_mask = Signal(intbv(0)[32:])
     # an I/O write reaches the registers one clock after the bus transfer (see write_stage)
     io_written = Signal(bool(0))
@@ -174,22 +183,29 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         byte_mask.next = mask
         # transfers happen only while answered ready: not in the clock after an I/O write
         io_write.next = local.we and not local.space and not io_written
-        io_read.next = local.re and not local.space and not io_written
+        io_read.next = local.re and not local.space and not io_written and not read_waited
         push.next = local.we and local.space and not fifo_full and local.be != 0 and not io_written
 
     @always_comb
     def answer_bus():
         # from the request's direction, not from we/re: see LocalBus; a request in
         # the clock after an I/O write waits one clock, so it sees that write's effect
-        local.ready.next = not (local.write and local.space and fifo_full) and not io_written
+        local.ready.next = ((local.write or local.space or read_waited) and not io_written
+                            and not (local.write and local.space and fifo_full))
         local.retry.next = local.write and local.space and fifo_full and not io_written
-        # read data follows the address and the space alone (the target samples
-        # it only with re and ready, and re, its late request logic, stays off
-        # the read mux); the space joins after the chain, one LUT from the end
+        # read data from a flip-flop (the target samples it only with re and
+        # ready); the memory BAR reads zero
         if local.space:
             local.rdata.next = 0
         else:
-            local.rdata.next = read_end
+            local.rdata.next = read_word
+
+    @always_seq(clock.posedge, reset=reset)
+    def read_stage():
+        # the chain follows the address alone; re, the target's late request
+        # logic, reaches only read_waited
+        read_waited.next = io_read
+        read_word.next = read_end
 
     @always_seq(clock.posedge, reset=reset)
     def write_stage():
@@ -288,7 +304,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         requests.dir_x.next = steps.dir_x if steps.step_x else direct_dir_x
         requests.dir_y.next = steps.dir_y if steps.step_y else direct_dir_y
 
-    units += [decode_bus, answer_bus, write_stage, control_bits, soft_reset, fifo_emptying, outputs_before, snapshot,
+    units += [decode_bus, answer_bus, read_stage, write_stage, control_bits, soft_reset, fifo_emptying, outputs_before, snapshot,
               pulse_activity,
               merge_requests, widen_level if level_pad else copy_level]
     for axis, name in enumerate("XY"):

@@ -30,7 +30,7 @@ from rtl.card import CARD_PARAMETERS, card, slave_params
 from rtl.interfaces import MotorPins, PciBus, PciPins, card_reset
 from rtl.parameters import DEVICE, PARAMETERS, PCI_IDS, ParameterError
 from rtl.pci_pads import pci_pads
-from rtl.pci_slave import SLAVE_PARAMETERS
+from rtl.pci_target_build import SLAVE_PARAMETERS
 from rtl.registers import STOP_REASONS
 from rtl.regs_fifo import REGS_FIFO_PARAMETERS
 

@@ -29,7 +29,7 @@ from rtl.parameters import CLOCK_HZ
 
 from sim.card_e2e import DEFAULT_FIFO, DEVICE, CardUnderTest, card_verilog, wait
 from sim.pci_bench import CLOCK_PERIOD, TARGET_DEVICE, PciBench, pci_testbench
-from sim.pci_host_core import Clocks
+from sim.pci_host_types import Clocks
 from sim.vlt.bench import VerilatorBench
 from sim.vlt.card import VerilatedCard
 from sim.waves import trace_stem

@@ -28,7 +28,7 @@ from cocotb.triggers import Event, FallingEdge
 from cocotb.types import Logic, LogicArray
 
 from sim.pci_checker import ProtocolChecker
-from sim.pci_host_core import Clocks, Request
+from sim.pci_host_types import Clocks, Request
 from sim.pci_lines import LINE_WIDTHS, OPEN_DRAIN, PULLED_UP, BusSample
 from sim.pci_master import PciMaster
 

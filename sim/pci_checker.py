@@ -30,95 +30,14 @@ target's Parity Error Response is set; read: when the master's is), SERR#
 two edges after a bad address when the target's SERR# Enable and Parity
 Error Response are set, each for exactly one clock per error.
 """
-from dataclasses import dataclass, field
-
 from sim.pci_lines import OPEN_DRAIN, SUSTAINED_TRISTATE, even_parity
-
-RULES = {
-    1: "write data held while the target waits",
-    2: "read data held while the master waits",
-    3: "C/BE# held through the data phase",
-    4: "FRAME# asserted while IRDY# is still asserted",
-    5: "IRDY# asserted without FRAME#",
-    6: "FRAME# deasserted without IRDY#",
-    7: "FRAME# held until the data phase completes",
-    8: "IRDY# held until the data phase completes",
-    9: "STOP# held while FRAME# is asserted",
-    10: "STOP# deasserted once FRAME# is gone",
-    11: "DEVSEL#, TRDY#, STOP# held while the master waits",
-    12: "TRDY#/STOP# only with DEVSEL# (target abort excepted)",
-    13: "DEVSEL# held until the last data phase, then deasserted",
-    14: "PAR correct, PERR#/SERR# exactly when due",
-    15: "latency (IRDY# 8, first TRDY#/STOP# 16, later 8, DEVSEL# by clock 5)",
-    16: "no contention, a turnaround clock between drivers",
-    17: "sustained tri-state lines driven high before release",
-    18: "lines released during reset",
-    19: "no X or Z on a line while it is driven",
-}
+from sim.pci_records import RULES, ProtocolViolation, TransactionRecord, Violation, hex_word
 
 CONFIG_WRITE = 0xB
 COMMAND_REGISTER = 0x04
 PARITY_RESPONSE = 1 << 6
 SERR_ENABLE = 1 << 8
 MASTER_ABORT_EDGE = 4
-
-
-class ProtocolViolation(AssertionError):
-    """A PCI rule was broken: ``rule`` (number), ``time``, ``detail``;
-    ``clock``: the checker's edge count; ``violations``: every recorded one
-    (record mode)."""
-
-    def __init__(self, rule, time, detail, clock=None, violations=()):
-        self.rule, self.time, self.detail, self.clock = rule, time, detail, clock
-        self.violations = list(violations)
-        at = f"t={time}" if clock is None else f"t={time} (clock {clock})"
-        super().__init__(f"PCI rule {rule} ({RULES[rule]}) broken at {at}: {detail}")
-
-
-@dataclass(frozen=True)
-class Violation:
-    """One recorded violation: the bus as sampled at that edge."""
-
-    rule: int
-    time: int
-    clock: int
-    detail: str
-    values: dict
-    drivers: dict
-
-    def __str__(self):
-        lines = " ".join(f"{line}={_hex(value)}" for line, value in self.values.items())
-        return f"clock {self.clock} t={self.time} rule {self.rule} ({RULES[self.rule]}): {self.detail} [{lines}]"
-
-
-@dataclass
-class TransactionRecord:
-    """What the monitor saw of one transaction (clocks are edge counts
-    after the address edge)."""
-
-    start: int                 # time of the address edge
-    command: int
-    address: int
-    start_edge: int = 0
-    devsel_clock: int = None
-    first_trdy_clock: int = None
-    first_stop_clock: int = None
-    data_phases: int = 0        # data transferred (IRDY# and TRDY#)
-    end: int = None
-    end_edge: int = None
-    target_abort: bool = False
-    last_completion_edge: int = None
-    ended: bool = False
-    phase_start_edge: int = 0
-    completions: list = field(default_factory=list)
-
-    @property
-    def write(self):
-        return bool(self.command & 1)
-
-    @property
-    def master_abort(self):
-        return self.devsel_clock is None
 
 
 def _asserted(value):
@@ -285,10 +204,10 @@ class ProtocolChecker:
             if not _asserted(sample.irdy):
                 self.fail(8, "IRDY# deasserted before the data phase completed")
             if current.write and sample.ad != previous.ad:
-                self.fail(1, f"AD changed from {_hex(previous.ad)} to {_hex(sample.ad)} "
+                self.fail(1, f"AD changed from {hex_word(previous.ad)} to {hex_word(sample.ad)} "
                              "in a write wait state")
         if sample.cbe != previous.cbe:
-            self.fail(3, f"C/BE# changed from {_hex(previous.cbe)} to {_hex(sample.cbe)} within a data phase")
+            self.fail(3, f"C/BE# changed from {hex_word(previous.cbe)} to {hex_word(sample.cbe)} within a data phase")
 
     # ----- rules 2, 9-13: target ----------------------------------------------------
     def _check_target(self, previous, before, sample, now_info):
@@ -305,7 +224,7 @@ class ProtocolChecker:
                 if sample.values[line] != previous.values[line]:
                     self.fail(11, f"{line.upper()}# changed while TRDY#/STOP# waited for IRDY#")
             if not current.write and _asserted(previous.trdy) and sample.ad != previous.ad:
-                self.fail(2, f"AD changed from {_hex(previous.ad)} to {_hex(sample.ad)} in a read wait state")
+                self.fail(2, f"AD changed from {hex_word(previous.ad)} to {hex_word(sample.ad)} in a read wait state")
         self._check_devsel(previous, before, sample, now_info)
 
     def _check_devsel(self, previous, before, sample, now_info):
@@ -415,7 +334,3 @@ class ProtocolChecker:
         for line, names in sample.drivers.items():
             if names:
                 self.fail(18, f"{line.upper()} driven by {sorted(names)} during reset")
-
-
-def _hex(value):
-    return "z" if value is None else f"{value:#x}"

@@ -23,11 +23,11 @@ Configuration addresses are Type 0 with IDSEL of device ``d`` on AD[16+d]
 from myhdl import Signal, block, instance, now
 
 from sim.pci_bus import PciAgent
-from sim.pci_host_core import (CONFIG_READ, CONFIG_WRITE, DUAL_ADDRESS, INTERRUPT_ACK,  # noqa: F401
-                               IO_READ, IO_WRITE, MASTER_ABORT_EDGE, MEM_READ, MEM_READ_LINE,
-                               MEM_READ_MULTIPLE, MEM_WRITE, MEM_WRITE_INVALIDATE, MEMORY_READS,
-                               MEMORY_WRITES, SPECIAL_CYCLE, TARGET_TIMEOUT_EDGES, BusTransaction,
-                               Clocks, HostCore, HostError, Request, Termination)
+from sim.pci_host_core import HostCore, MASTER_ABORT_EDGE, TARGET_TIMEOUT_EDGES  # noqa: F401
+from sim.pci_host_types import (CONFIG_READ, CONFIG_WRITE, DUAL_ADDRESS, INTERRUPT_ACK,  # noqa: F401
+                                IO_READ, IO_WRITE, MEM_READ, MEM_READ_LINE, MEM_READ_MULTIPLE, MEM_WRITE,
+                                MEM_WRITE_INVALIDATE, MEMORY_READS, MEMORY_WRITES, SPECIAL_CYCLE,
+                                BusTransaction, Clocks, HostError, Request, Termination)
 from sim.pci_master import (COMMAND_INTERRUPT_DISABLE, COMMAND_IO, COMMAND_MEMORY,  # noqa: F401
                             COMMAND_PARITY_RESPONSE, COMMAND_SERR_ENABLE, PciDevice, PciMaster,
                             Result, byte_enables, config_address, io_address_bits, random_waits)

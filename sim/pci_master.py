@@ -26,9 +26,9 @@ Configuration addresses are Type 0 with IDSEL of device ``d`` on AD[16+d].
 import random
 from dataclasses import dataclass, field
 
-from sim.pci_host_core import (CONFIG_READ, CONFIG_WRITE, IO_READ, IO_WRITE, MEM_READ, MEM_WRITE,
-                               MEMORY_READS, MEMORY_WRITES, Clocks, HostCore, HostError, Request,
-                               Termination)
+from sim.pci_host_core import HostCore
+from sim.pci_host_types import (CONFIG_READ, CONFIG_WRITE, IO_READ, IO_WRITE, MEM_READ, MEM_WRITE,
+                                MEMORY_READS, MEMORY_WRITES, Clocks, HostError, Request, Termination)
 
 COMMAND_IO = 1 << 0
 COMMAND_MEMORY = 1 << 1

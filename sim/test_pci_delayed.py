@@ -9,7 +9,7 @@ import random
 import pytest
 
 from sim.pci_delayed_target import DEVICE_ID, VENDOR_ID, DelayedTarget
-from sim.pci_host_core import HostError, Termination
+from sim.pci_host_types import HostError, Termination
 from sim.pci_loop import PythonBus
 from sim.pci_master import PciMaster, random_waits
 

@@ -5,7 +5,8 @@ timing of the host's drive (FRAME#, IRDY#, AD, C/BE#, PAR one clock after
 its AD) and the data moved."""
 import pytest
 
-from sim.pci_host_core import MEM_READ, MEM_WRITE, HostCore, Request, Termination, run_scenario
+from sim.pci_host_core import HostCore, run_scenario
+from sim.pci_host_types import MEM_READ, MEM_WRITE, Request, Termination
 from sim.pci_lines import even_parity
 from sim.pci_master import PciMaster
 

@@ -9,7 +9,8 @@ import pytest
 from myhdl import Signal, always_comb, always_seq, block
 
 from rtl.interfaces import LocalBus, PciBus
-from rtl.pci_slave import local_addr_width, pci_slave, pci_slave_ports
+from rtl.pci_slave import pci_slave, pci_slave_ports
+from rtl.pci_target_build import local_addr_width
 from sim.local_memory import LocalMemory, local_memory
 from sim.pci_bench import PciBench
 from sim.pci_host import COMMAND_IO, COMMAND_MEMORY, COMMAND_PARITY_RESPONSE, MEM_READ, Termination

@@ -2,8 +2,10 @@
 // sequencer, pulse outputs) behind a free requester that keeps the LocalBus
 // rules, with a free interpolator on its DDA port.  Checked here:
 //   * the LocalBus responder rules (local_bus_rules.sv, back-end side);
-//   * register accesses are answered at once (never retry; not ready only in
-//     the clock after an I/O write, as rtl/regs_fifo.py documents);
+//   * register accesses never retry; a write is answered at once, a read
+//     after one wait clock, as rtl/regs_fifo.py documents (either waits one
+//     clock more in the clock after an I/O write); a read returns the
+//     registers as they were in its wait clock (`*_read` below);
 //   * the FIFO: a model counts the words the bus pushed (a memory-BAR write
 //     answered ready with a byte enabled) and the sequencer took; STATUS
 //     tells the truth about level, empty and full; no acknowledged word is
@@ -89,12 +91,12 @@ module regs_fifo_harness #(
 `else
         .sync_fifo0_is_full(sync_fifo0_is_full),
 `endif
-        .io_written(io_written)
+        .io_written(io_written), .read_waited(read_waited)
 `endif
         );
 `ifdef REGS_FIFO_INVARIANTS
     wire [9:0] sync_fifo0_count;
-    wire sync_fifo0_is_empty, sync_fifo0_is_full, io_written;
+    wire sync_fifo0_is_empty, sync_fifo0_is_full, io_written, read_waited;
     wire [2:0] sync_fifo0_free;
     wire sync_fifo0_free_beyond;
 `endif
@@ -115,6 +117,9 @@ module regs_fifo_harness #(
     // ------------------------------------------------------------ register access
     wire read_now = l_re && l_ready && !l_space;
     wire io_write_now = l_we && l_ready && !l_space;
+    // a register read asked in the last clock, not in the clock after an I/O write
+    reg read_asked = 0;
+    always @(posedge clock) read_asked <= reset_n && l_re && !l_space && !l_ready && !stage_write;
     reg stage_write = 0;
     reg [15:0] stage_addr = 0;
     reg [31:0] stage_data = 0, stage_mask = 0;
@@ -127,7 +132,8 @@ module regs_fifo_harness #(
     always @(posedge clock) if (reset_n) begin
         if ((l_we || l_re) && !l_space) begin
             rf_registers_never_retry: assert(!l_retry);
-            rf_registers_answer_at_once: assert(l_ready || stage_write);
+            if (l_we) begin rf_registers_write_at_once: assert(l_ready || stage_write); end
+            if (l_re) begin rf_registers_read_after_one_wait: assert(l_ready == read_asked); end
         end
     end
 `include "regs_table.vh"
@@ -136,11 +142,13 @@ module regs_fifo_harness #(
     wire push = l_we && l_ready && l_space && l_be != 4'h0;
     reg [10:0] level = 0;       // words the bus pushed and the sequencer has not taken
     wire pop = fifo_pop && level != 0;
+    reg [10:0] level_read = 0;  // a read returns STATUS of its wait clock
     always @(posedge clock) begin
         if (!reset_n || fifo_flush)
             level <= 0;
         else
             level <= level + push - pop;
+        level_read <= level;
     end
     always @(posedge clock) if (reset_n) begin
         rf_level_at_most_depth: assert(level <= DEPTH);
@@ -148,9 +156,9 @@ module regs_fifo_harness #(
         if (push) begin rf_push_not_flushed: assert(!fifo_flush); end
         if (l_we && l_space && !stage_write) begin rf_full_answers_retry: assert(l_retry == (level == DEPTH) && l_ready == !l_retry); end
         if (read_now && l_addr == 16'h000C) begin
-            rf_status_level: assert(l_rdata[31:16] == level);
-            rf_status_empty: assert(l_rdata[8] == (level == 0));
-            rf_status_full: assert(l_rdata[9] == (level == DEPTH));
+            rf_status_level: assert(l_rdata[31:16] == level_read);
+            rf_status_empty: assert(l_rdata[8] == (level_read == 0));
+            rf_status_full: assert(l_rdata[9] == (level_read == DEPTH));
         end
     end
 
@@ -313,7 +321,7 @@ module regs_fifo_harness #(
     // COMMAND.CLEAR_POSITION zeroes it (docs/registers.md, rtl/pulse_out.py)
     reg p_pins_step_x = 0, cleared_position = 0, clear_position_due = 0;
     reg [1:0] p_polarity = 0;
-    reg [31:0] position_x = 0;
+    reg [31:0] position_x = 0, position_x_read = 0;
     wire step_x_rose = pins_step_x && !p_pins_step_x && !cleared_position;
     wire [31:0] position_x_now = position_x + (step_x_rose ? ((pins_dir_x ^ p_polarity[0]) ? 32'd1 : 32'hffffffff) : 32'd0);
     always @(posedge clock) begin
@@ -322,9 +330,10 @@ module regs_fifo_harness #(
         clear_position_due <= reset_n && stage_write && stage_addr == 16'h0008 && stage_data[2] && stage_mask[2];
         cleared_position <= !reset_n || clear_position_due;
         position_x <= (!reset_n || clear_position_due) ? 32'd0 : position_x_now;
+        position_x_read <= position_x_now;
     end
     always @(posedge clock) if (reset_n && read_now && l_addr == 16'h0020) begin
-        pulse_position_x: assert(l_rdata == position_x_now);
+        pulse_position_x: assert(l_rdata == position_x_read);
     end
 `ifdef PULSE_PACED
     // every step request leaves on its pin: while one waits, a STEP edge

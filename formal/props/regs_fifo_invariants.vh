@@ -1,7 +1,7 @@
 // Helper invariants of rtl/regs_fifo.py and rtl/sync_fifo.py that let
 // k-induction close; included into regs_fifo_harness when
 // REGS_FIFO_INVARIANTS is defined.  They tie the FIFO's own count and flags
-// and the register write stage (made ports by yosys `expose`) to the models
+// and the register write and read stages (made ports by yosys `expose`) to the models
 // of the harness; they are asserted, so they are proved too, and they name
 // today's registers.
     always @(posedge clock) if (reset_n) begin
@@ -20,4 +20,5 @@
                                && sync_fifo0_is_full == (sync_fifo0_count == DEPTH));
 `endif
         inv_write_stage: assert(io_written == stage_write);
+        inv_read_stage: assert(read_waited == read_asked);
     end

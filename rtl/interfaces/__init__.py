@@ -13,9 +13,9 @@ lines are 0 when asserted).
 """
 from rtl.interfaces.bundle import card_reset
 from rtl.interfaces.pci import (PciBus, LocalBus, PciPins, TargetControlNext, ConfigSpace, TargetState,
-                                TargetParity, TargetBuffers, TargetRequests)
-from rtl.interfaces.dda import (DdaPort, DdaPlan, DdaRoot, DdaMove, DdaStep, AxisPulses, TARGET_ZERO,
-                                TARGET_RADIUS, TARGET_END)
+                                TargetDecode, TargetParity, TargetBuffers, TargetRequests)
+from rtl.interfaces.dda import (DdaPort, DdaPlan, DdaRoot, SetupSequence, DdaMove, DdaStep, AxisPulses,
+                                TARGET_ZERO, TARGET_RADIUS, TARGET_END)
 from rtl.interfaces.machine import Homing, InputConditioning, MachineGuard
 from rtl.interfaces.card import (MotorPins, MACHINE_INPUTS, SET_INDEX_BITS, MARK_TAG_BITS, ERROR_BITS,
                                  PULSE_COUNT_BITS, TIMING_BITS, FifoRead, SequencerControl, PulseCommand,
@@ -26,8 +26,8 @@ from rtl.interfaces.card import (MotorPins, MACHINE_INPUTS, SET_INDEX_BITS, MARK
 
 __all__ = [
     "card_reset", "PciBus", "LocalBus", "PciPins", "TargetControlNext", "ConfigSpace", "TargetState",
-    "TargetParity", "TargetBuffers", "TargetRequests", "DdaPort", "DdaPlan", "DdaRoot", "DdaMove",
-    "DdaStep", "AxisPulses", "TARGET_ZERO", "TARGET_RADIUS", "TARGET_END", "Homing", "InputConditioning",
+    "TargetDecode", "TargetParity", "TargetBuffers", "TargetRequests", "DdaPort", "DdaPlan", "DdaRoot", "SetupSequence",
+    "DdaMove", "DdaStep", "AxisPulses", "TARGET_ZERO", "TARGET_RADIUS", "TARGET_END", "Homing", "InputConditioning",
     "MachineGuard", "MotorPins", "MACHINE_INPUTS", "SET_INDEX_BITS", "MARK_TAG_BITS", "ERROR_BITS",
     "PULSE_COUNT_BITS", "TIMING_BITS", "FifoRead", "SequencerControl", "PulseCommand", "SetPort",
     "MarkPort", "RegisterBus", "RegisterWord", "ReadChain", "PulseControl", "StepPositions",

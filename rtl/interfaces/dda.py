@@ -142,6 +142,20 @@ class DdaRoot:
         self.grows = Signal(bool(0))
 
 
+class SetupSequence:
+    """The setup stage's phase (``rtl/dda_sequence.py``): its registers
+    ``state`` (``idle`` is the state enum's idle item), ``step`` (clocks
+    into the phase, below ``step_max``) and ``square`` (which of the four
+    squares), and their next values ``next_state``, ``next_step``,
+    ``next_square``."""
+
+    def __init__(self, idle, step_max):
+        self.state, self.next_state = Signal(idle), Signal(idle)
+        self.step = Signal(intbv(0, min=0, max=step_max))
+        self.next_step = Signal(intbv(0, min=0, max=step_max))
+        self.square, self.next_square = Signal(modbv(0)[2:]), Signal(modbv(0)[2:])
+
+
 class DdaMove:
     """The checked move, from the check (``rtl/dda_check.py``) to the run
     (``rtl/dda_run.py``), and the handshake that hands it over.

@@ -1,6 +1,6 @@
 """The PCI side: the bus as the cores see it, the pads, the target's back-end
 bus and the bundles between the target's units."""
-from myhdl import Signal, TristateSignal, intbv
+from myhdl import Signal, TristateSignal, intbv, modbv
 
 from rtl.interfaces.bundle import adopt
 
@@ -192,6 +192,28 @@ class TargetState:
     def __init__(self, idle, **given):
         adopt(self, given, state=Signal(idle), buffered=Signal(intbv(0, min=0, max=4)),
                **{name: Signal(bool(0)) for name in self.BOOLS})
+
+
+class TargetDecode:
+    """The PCI target's address decoder (``rtl/pci_decode.py``); ``idle`` is
+    the state enum's idle item, ``width`` the bits of a dword offset, and the
+    target wires in the signals it has.
+
+    From the target: ``ad``, ``cbe``, ``idsel`` (the input registers, bus
+    polarity), ``io_enable``, ``mem_enable``, ``bar0``, ``bar1`` (the
+    configuration header), ``state``, ``address_phase`` (the input register
+    holds an address).  To it: ``claim`` (an address phase this target
+    claims), ``claim_config``, ``claim_io`` (which space it hits),
+    ``read_command`` (C/BE#[0] low) and ``start_addr`` (the dword offset the
+    address names in its space)."""
+
+    def __init__(self, idle, width, **given):
+        self.idle = idle
+        adopt(self, given, ad=Signal(intbv(0)[32:]), cbe=Signal(intbv(0xF)[4:]), idsel=Signal(bool(0)),
+               io_enable=Signal(bool(0)), mem_enable=Signal(bool(0)), bar0=Signal(intbv(0)[16:]),
+               bar1=Signal(intbv(0)[32:]), state=Signal(idle), address_phase=Signal(bool(0)),
+               claim=Signal(bool(0)), claim_config=Signal(bool(0)), claim_io=Signal(bool(0)),
+               read_command=Signal(bool(0)), start_addr=Signal(modbv(0)[width:]))
 
 
 class TargetParity:

@@ -17,7 +17,7 @@ the checker otherwise.
 """
 from sim.pci_bench import CLOCK_PERIOD, RESET_CLOCKS, TARGET_DEVICE
 from sim.pci_checker import ProtocolChecker
-from sim.pci_host_core import Clocks, Request
+from sim.pci_host_types import Clocks, Request
 from sim.pci_lines import BusSample
 from sim.pci_master import PciMaster
 from sim.vlt.card import CardWait
