@@ -76,12 +76,12 @@ endmodule
 # `python -m formal.mutation` scores; indices into them) that change the
 # unit's outputs; each must be rejected by the group named, bounded to its
 # depth.  pci_slave (20 mutants): m002, m005, m007 by the protocol rules.
-# regs_fifo (16 mutants of the card with the machine side): m005, m006, m007
-# by the register table's rules.
+# regs_fifo (16 mutants of the card with the machine side and feed hold):
+# m010, m012, m014 by the register table's rules.
 MUTANT_LISTS = {"pci_slave": 20, "regs_fifo": 16}
 FIXED_MUTANTS = (("pci_slave", 2, "pci_protocol", 12), ("pci_slave", 5, "pci_protocol", 12),
-                 ("pci_slave", 7, "pci_protocol", 12), ("regs_fifo", 5, "regs_fifo_table", 10),
-                 ("regs_fifo", 6, "regs_fifo_table", 10), ("regs_fifo", 7, "regs_fifo_table", 10))
+                 ("pci_slave", 7, "pci_protocol", 12), ("regs_fifo", 10, "regs_fifo_table", 10),
+                 ("regs_fifo", 12, "regs_fifo_table", 10), ("regs_fifo", 14, "regs_fifo_table", 10))
 MITER_DEPTH = 12
 
 
