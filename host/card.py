@@ -346,20 +346,15 @@ class Card:
 
     def hold(self, timeout=1.0):
         """Feed hold (MACHINE_CONTROL.HOLD): the path ramps down to zero on
-        RAMP_STEP (at once without a ramp) and waits where it is; returns the
-        position once MACHINE_STATUS.HELD says its last step has left, or
-        ``None`` with ``timeout`` None (not waited for).  MachineStopped if the
-        guard stops the card meanwhile, TimeoutError after ``timeout`` s."""
+        RAMP_STEP and waits; the position once MACHINE_STATUS.HELD (its last
+        step has left).  MachineStopped if the guard stops the card meanwhile."""
         self._machine_control(HOLD=1)
-        if timeout is None:
-            return None
         deadline = self.transport.now() + timeout
         while not self.field("MACHINE_STATUS", "HELD"):
             self.check()
-            left = deadline - self.transport.now()
-            if left <= 0:
+            if self.transport.now() >= deadline:
                 raise TimeoutError(f"the feed did not hold within {timeout} s")
-            self.transport.sleep(min(left, POLL_SECONDS))
+            self.transport.sleep(POLL_SECONDS)
         return self.position()
 
     def resume(self):
@@ -367,11 +362,8 @@ class Card:
         self._machine_control(HOLD=0)
 
     def _machine_control(self, **fields):
-        word = self.read("MACHINE_CONTROL")
-        for name, value in fields.items():
-            field = regmap.register("MACHINE_CONTROL").field(name)
-            word = word & ~field.mask | value << field.lsb
-        self.write("MACHINE_CONTROL", word)
+        word = self.read("MACHINE_CONTROL") & ~regmap.field_of("MACHINE_CONTROL", **{f: -1 for f in fields})
+        self.write("MACHINE_CONTROL", word | regmap.field_of("MACHINE_CONTROL", **fields))
 
     def inputs(self, active_low=(), filter_ns=100, sample_ns=None):
         """Input conditioning: ``active_low`` names the inputs wired active low
