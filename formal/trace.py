@@ -6,55 +6,32 @@ Signals are matched by the end of their hierarchical name (``trdy_n`` finds
 """
 import sys
 
-from vcd.reader import TokenKind, tokenize
+from sim.waves import Waveform, find
+
+# SymbiYosys writes a step every 10 time units, the clock high at +0 / low at +5
+STEP_TIME = 10
 
 
-def read_vcd(path):
-    """(names, steps): ``names`` maps each id code to its full names,
-    ``steps`` is a list of {id code: value string}, one per sampled step."""
-    names, scope, values, changes = {}, [], {}, []
-    time = None
-    with open(path, "rb") as stream:
-        for token in tokenize(stream):
-            if token.kind is TokenKind.SCOPE:
-                scope.append(token.scope.ident)
-            elif token.kind is TokenKind.UPSCOPE:
-                scope.pop()
-            elif token.kind is TokenKind.VAR:
-                names.setdefault(token.var.id_code, []).append(".".join(scope + [token.var.reference]))
-            elif token.kind is TokenKind.CHANGE_TIME:
-                if time is not None:
-                    changes.append((time, dict(values)))
-                time = token.time_change
-            elif token.kind is TokenKind.CHANGE_SCALAR:
-                values[token.data.id_code] = str(token.data.value)
-            elif token.kind is TokenKind.CHANGE_VECTOR:
-                value = token.data.value
-                values[token.data.id_code] = f"{value:x}" if isinstance(value, int) else str(value)
-    if time is not None:
-        changes.append((time, dict(values)))
-    # SymbiYosys writes a step every 10 time units, the clock high at +0 / low at +5
-    steps = [state for t, state in changes if t % 10 == 0]
-    return names, steps
+def _text(value):
+    return f"{value:x}" if isinstance(value, int) else str(value)
 
 
 def table(path, wanted=()):
     """The trace as text lines."""
-    names, steps = read_vcd(path)
-    everything = [(name, code) for code, full in names.items() for name in full]
+    wave = Waveform(path)
     if wanted:
-        chosen = []
-        for w in wanted:
-            found = [item for item in everything if item[0].endswith("." + w) or item[0] == w]
-            if found:
-                chosen.append(min(found, key=lambda item: item[0].count(".")))
+        chosen = [name for name in (find(wave.changes, w) for w in wanted) if name is not None]
     else:
-        chosen = sorted(item for item in everything if item[0].count(".") == 1)
-    lines = ["step " + " ".join(name.split(".")[-1] for name, _ in chosen)]
-    for index, state in enumerate(steps):
+        chosen = sorted(name for name in wave.changes if name.count(".") == 1)
+    last = max((times[-1] for times, _ in wave.changes.values() if times), default=0)
+    lines = ["step " + " ".join(name.split(".")[-1] for name in chosen)]
+    for index in range(last // STEP_TIME + 1):
         cells = []
-        for name, code in chosen:
-            value = state.get(code, "x")
+        for name in chosen:
+            try:
+                value = _text(wave.at(name, index * STEP_TIME))
+            except ValueError:
+                value = "x"
             cells.append(value.rjust(len(name.split(".")[-1])))
         lines.append(f"{index:4d} " + " ".join(cells))
     return lines

@@ -253,6 +253,10 @@
 #define DDA_BAR0_SIZE 128u /* I/O: function registers */
 #define DDA_BAR1_SIZE 4096u /* memory: the command FIFO window */
 #define DDA_FIFO_DEPTH 512u /* words */
+
+#define DDA_STOP_ESTOP 1u /* STOP_REASON.REASON */
+#define DDA_STOP_WATCHDOG 2u /* STOP_REASON.REASON */
+#define DDA_STOP_LIMIT 3u /* STOP_REASON.REASON */
 #define DDA_OPCODE_SHIFT 28u
 #define DDA_CMD_LINE 0x1u
 #define DDA_CMD_LINE_OPERANDS 2u

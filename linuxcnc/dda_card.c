@@ -15,14 +15,26 @@
  * is kept `keep_ahead` periods ahead: the position asked for in period k
  * is reached at the end of period k + keep_ahead - 1.  `read` gives position-fb from
  * the card's step counters and STATUS's FIFO level and error.  A FIFO found
- * empty while running, or a card error, sets `error`, stops the queue and
- * needs enable to fall and rise again.  See docs/linuxcnc.md.
+ * empty while running, a card error or the card's own stop (its E-stop
+ * input, watchdog or a limit) sets `error`, stops the queue and needs enable
+ * to fall and rise again.
+ *
+ * Machine I/O: `drive-enable` goes to MACHINE_CONTROL.DRIVE_ENABLE (the
+ * card's DRIVE_ENABLE pin, which the card itself drops when it stops);
+ * while the queue runs, every period rewrites WATCHDOG with
+ * `watchdog.timeout-ns` in card clocks, so a PC that stops driving the card
+ * has it stop on its own within that time.  A watchdog stop sets
+ * `watchdog.has-bit`, which holds the card stopped (and `error` high) until
+ * it is written false.  Each period's DWELL is trimmed from the FIFO level
+ * so that the card's crystal, some ppm off the PC's timer, neither drains
+ * nor fills the queue.  See docs/linuxcnc.md.
  */
 #include "rtapi.h"
 #include "rtapi_app.h"
 #include "rtapi_math.h"
 #include "hal.h"
 #include "dda_transport.h"
+#include "dda_state.h"
 
 MODULE_AUTHOR("PCI DDA card authors");
 MODULE_DESCRIPTION("HAL driver of the PCI DDA card");
@@ -35,46 +47,30 @@ RTAPI_MP_INT(keep_ahead, "servo periods queued ahead in the card's FIFO");
 static int period_overhead = 8;
 RTAPI_MP_INT(period_overhead, "card clocks a period's LINE and DWELL take beyond their own");
 
-#define AXES 2
-#define FASTEST_ITERATION 2  /* clocks: the DDA iterates at most every other clock */
 static const uint32_t POS_REGS[AXES] = {DDA_POS_X, DDA_POS_Y};
-
-struct stepgen {
-    hal_float_t *position_cmd, *velocity_cmd, *position_fb, *velocity_fb;
-    hal_s32_t *counts;
-    hal_bit_t *enable;
-    hal_float_t position_scale, maxvel, maxaccel;
-    hal_u32_t steplen, stepspace, dirsetup, dirhold;
-    int32_t sent;          /* steps queued so far (driver's coordinates) */
-    int32_t offset;        /* driver's steps minus the card's counter */
-    int32_t last_counts;
-    int forward;           /* the DIR pin's side: the last move's direction (reset: backward) */
-};
-
-struct card {
-    struct stepgen axis[AXES];
-    hal_s32_t *fifo_level;
-    hal_u32_t *underruns;
-    hal_bit_t *error;
-    hal_s32_t *error_code;
-    hal_u32_t *clock;              /* simulation: card clocks at the end of this period */
-    hal_bit_t *estop_in;           /* machine I/O: act once the card has those registers */
-    hal_bit_t *drive_enable;
-    hal_bit_t *watchdog_has_bit;
-    hal_u32_t watchdog_timeout_ns;
-    uint32_t clock_hz;
-    uint32_t iteration;            /* clocks per DDA iteration, a power of two: FEED_RATE 65536 / it */
-    uint64_t fraction;             /* ns x Hz carried between periods (below 1e9) */
-    int running;
-    struct dda_transport transport;
-};
-
 static int comp_id;
 static struct card *card;
 
 static int clocks_of_ns(uint32_t ns)
 {
     return (int)(((uint64_t)ns * card->clock_hz + 999999999u) / 1000000000u);
+}
+
+/* WATCHDOG's count: the timeout in whole card clocks (rounded up), at most what the register holds. */
+static uint32_t watchdog_clocks(struct card *c)
+{
+    uint64_t clocks = ((uint64_t)c->watchdog_timeout_ns * c->clock_hz + 999999999u) / 1000000000u;
+    return clocks > DDA_WATCHDOG_CLOCKS_MASK ? DDA_WATCHDOG_CLOCKS_MASK : (uint32_t)clocks;
+}
+
+/* The queue stops now: nothing more leaves the FIFO, the watchdog is off. */
+static void halt_card(struct card *c)
+{
+    c->running = 0;
+    *c->drift_trim = 0;
+    dda_write32(&c->transport, DDA_CONTROL, 0);
+    dda_write32(&c->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK);
+    dda_write32(&c->transport, DDA_WATCHDOG, 0);
 }
 
 /* The nearest step: the rounding of each period is made afresh from the absolute position. */
@@ -87,22 +83,76 @@ static void stop(struct card *c, int code)
 {
     *c->error = 1;
     *c->error_code = code;
-    c->running = 0;
-    dda_write32(&c->transport, DDA_CONTROL, 0);
-    dda_write32(&c->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK);
+    halt_card(c);
+}
+
+static const char *reason_name(int reason)
+{
+    switch (reason) {
+    case DDA_STOP_ESTOP: return "its E-stop input";
+    case DDA_STOP_WATCHDOG: return "its watchdog (the servo thread stopped writing it in time)";
+    case DDA_STOP_LIMIT: return "a limit switch";
+    default: return "an unknown reason";
+    }
+}
+
+/* The card's guard holds it stopped (STATUS.STOPPED): why, on stop-reason.  When that
+ * stops the machine (`stopping`): error -3, and a watchdog stop sets has-bit. */
+static void card_stopped(struct card *c, int stopping)
+{
+    uint32_t why = 0;
+    dda_read32(&c->transport, DDA_STOP_REASON, &why);
+    *c->stop_reason = (int32_t)((why & DDA_STOP_REASON_REASON_MASK) >> DDA_STOP_REASON_REASON_SHIFT);
+    if (!stopping)
+        return;
+    if (*c->stop_reason == DDA_STOP_WATCHDOG)
+        *c->watchdog_has_bit = 1;
+    stop(c, -3);
+    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: the card stopped the machine: %s\n", reason_name(*c->stop_reason));
+}
+
+/* The card's crystal and the PC's timer differ (~100 ppm): left alone the queue
+ * would slowly drain or fill.  The whole periods still in the FIFO at the read
+ * (its level against the words of each period queued, newest first) are held
+ * where they stood at the first read after start: fewer, the card runs fast and
+ * each DWELL is lengthened by a step; more, it runs slow and each is shortened.
+ * The count moves only when the card's period boundary crosses the read, so the
+ * queue stays within a period of where it started.  */
+static void trim_drift(struct card *c, int32_t level)
+{
+    int32_t words = 0;
+    int depth = 0;
+    while (depth < TRIM_RING && (uint32_t)depth < c->periods_queued) {
+        words += c->period_words[(c->periods_queued - 1 - depth) % TRIM_RING];
+        if (words > level)
+            break;
+        depth++;
+    }
+    if (c->depth_start < 0)
+        c->depth_start = depth;
+    c->trim_sign = depth < c->depth_start ? 1 : depth > c->depth_start ? -1 : 0;
 }
 
 static void read_card(void *arg, long period)
 {
     struct card *c = arg;
-    uint32_t status, pos;
+    uint32_t status, machine, pos;
     int i;
     (void)period;
-    if (dda_read32(&c->transport, DDA_STATUS, &status) < 0) {
+    if (dda_read32(&c->transport, DDA_STATUS, &status) < 0
+        || dda_read32(&c->transport, DDA_MACHINE_STATUS, &machine) < 0) {
         *c->error = 1;
         return;
     }
     *c->fifo_level = (int32_t)((status & DDA_STATUS_FIFO_LEVEL_MASK) >> DDA_STATUS_FIFO_LEVEL_SHIFT);
+    *c->estop_active = ((machine & DDA_MACHINE_STATUS_ACTIVE_MASK) >> DDA_MACHINE_STATUS_ACTIVE_SHIFT
+                        & DDA_INPUT_POLARITY_ESTOP_MASK) != 0;
+    if (c->running)
+        trim_drift(c, *c->fifo_level);
+    if (status & DDA_STATUS_STOPPED_MASK)
+        card_stopped(c, c->running);
+    else
+        *c->stop_reason = 0;
     if (c->running && (status & DDA_STATUS_ERROR_MASK)) {
         stop(c, (int)((status & DDA_STATUS_ERROR_MASK) >> DDA_STATUS_ERROR_SHIFT));
         rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: the card stopped with error %d\n", *c->error_code);
@@ -127,11 +177,22 @@ static void read_card(void *arg, long period)
     }
 }
 
+/* Set up and start the queue: 0; -1 the card cannot be reached; 1 the card holds
+ * itself stopped (its E-stop input is active): error, nothing started. */
 static int start(struct card *c)
 {
     uint32_t words[DDA_CMD_SET_WORDS * 4];
+    uint32_t status = 0;
     unsigned n = 0;
     int i;
+    /* release a stop of the card's own; it holds while its E-stop input is active */
+    if (dda_write32(&c->transport, DDA_COMMAND, DDA_COMMAND_CLEAR_STOP_MASK) < 0
+        || dda_read32(&c->transport, DDA_STATUS, &status) < 0)
+        return -1;
+    if (status & DDA_STATUS_STOPPED_MASK) {
+        card_stopped(c, 1);
+        return 1;
+    }
     c->iteration = FASTEST_ITERATION;
     while (c->iteration < 65536u
            && c->iteration < (uint32_t)(clocks_of_ns(c->axis[0].steplen) + clocks_of_ns(c->axis[0].stepspace)))
@@ -146,7 +207,11 @@ static int start(struct card *c)
         s->forward = 0;  /* the soft reset before start put the DIR pins back */
         s->offset = s->sent - (*s->counts - s->offset);
     }
-    if (dda_write32(&c->transport, DDA_RAMP_STEP, 0) < 0 || dda_fifo_write(&c->transport, words, n) < 0)
+    c->depth_start = -1;
+    c->trim_sign = 0;
+    /* no ramp: the trajectory planner has shaped the motion, and a stop is immediate */
+    if (dda_write32(&c->transport, DDA_RAMP_STEP, 0) < 0 || dda_fifo_write(&c->transport, words, n) < 0
+        || dda_write32(&c->transport, DDA_WATCHDOG, watchdog_clocks(c)) < 0)
         return -1;
     c->running = 1;
     return 0;
@@ -164,6 +229,7 @@ static int queue_period(struct card *c, uint32_t clocks)
     int32_t delta[AXES];
     int32_t longest = 0;
     int64_t dwell = clocks;
+    int32_t step = (int32_t)(clocks >> TRIM_SHIFT) > 1 ? (int32_t)(clocks >> TRIM_SHIFT) : 1;
     int reversal = 0;
     unsigned n = 0;
     int i;
@@ -180,6 +246,8 @@ static int queue_period(struct card *c, uint32_t clocks)
                  + (reversal ? clocks_of_ns(c->axis[0].dirsetup) : 0);
         n = dda_cmd_line(words, delta[0], delta[1], 0);
     }
+    *c->drift_trim = c->trim_sign * step;
+    dwell += *c->drift_trim;
     if (dwell < 0) {
         rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %d steps in one period is more than the card makes in "
                         "%u clocks: lower maxvel or position-scale\n", longest, clocks);
@@ -188,6 +256,7 @@ static int queue_period(struct card *c, uint32_t clocks)
     n += dda_cmd_dwell(&words[n], (uint32_t)dwell);
     if (dda_fifo_write(&c->transport, words, n) < 0)
         return -1;
+    c->period_words[c->periods_queued++ % TRIM_RING] = (uint8_t)n;
     for (i = 0; i < AXES; i++) {
         c->axis[i].sent += delta[i];
         if (delta[i] != 0)
@@ -202,27 +271,34 @@ static void write_card(void *arg, long period)
     uint64_t ticks = c->fraction + (uint64_t)period * c->clock_hz;
     uint32_t clocks = (uint32_t)(ticks / 1000000000u);
     uint32_t now = 0;
-    int enabled = *c->axis[0].enable && *c->axis[1].enable && *c->estop_in;
-    int i;
+    int enabled = *c->axis[0].enable && *c->axis[1].enable && *c->estop_in && !*c->watchdog_has_bit;
+    int drive = *c->drive_enable != 0;
+    int i, started;
     c->fraction = ticks % 1000000000u;
+    if (drive != c->drive_written
+        && dda_write32(&c->transport, DDA_MACHINE_CONTROL,
+                       drive ? DDA_MACHINE_CONTROL_DRIVE_ENABLE_MASK : 0) == 0)
+        c->drive_written = drive;
     if (!enabled) {
-        if (c->running) {
-            c->running = 0;
-            dda_write32(&c->transport, DDA_CONTROL, 0);
-            dda_write32(&c->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK);
-        }
-        *c->error = 0;
-        *c->error_code = 0;
+        if (c->running)
+            halt_card(c);
+        /* a watchdog stop holds the error until has-bit is written false */
+        *c->error = *c->watchdog_has_bit;
+        *c->error_code = *c->watchdog_has_bit ? -3 : 0;
     } else if (!c->running && !*c->error) {
-        if (start(c) < 0) {
+        started = start(c);
+        if (started < 0) {
             stop(c, -2);
-        } else {
-            for (i = 0; i < keep_ahead; i++)
+        } else if (started == 0) {
+            for (i = 0; i < keep_ahead && c->running; i++)
                 if (queue_period(c, clocks) < 0)
                     stop(c, -2);
-            dda_write32(&c->transport, DDA_CONTROL, DDA_CONTROL_ENABLE_MASK);
+            if (c->running)
+                dda_write32(&c->transport, DDA_CONTROL, DDA_CONTROL_ENABLE_MASK);
         }
-    } else if (queue_period(c, clocks) < 0) {
+    } else if (c->running && dda_write32(&c->transport, DDA_WATCHDOG, watchdog_clocks(c)) < 0) {
+        stop(c, -2);
+    } else if (c->running && queue_period(c, clocks) < 0) {
         stop(c, -2);
     }
     if (dda_advance(&c->transport, clocks, &now) < 0)
@@ -263,9 +339,12 @@ static int export_card(struct card *c)
     r |= hal_pin_bit_newf(HAL_OUT, &c->error, comp_id, "%s.error", p);
     r |= hal_pin_s32_newf(HAL_OUT, &c->error_code, comp_id, "%s.error-code", p);
     r |= hal_pin_u32_newf(HAL_OUT, &c->clock, comp_id, "%s.clock", p);
+    r |= hal_pin_s32_newf(HAL_OUT, &c->drift_trim, comp_id, "%s.drift-trim", p);
     r |= hal_pin_bit_newf(HAL_IN, &c->estop_in, comp_id, "%s.estop-in", p);
     r |= hal_pin_bit_newf(HAL_IN, &c->drive_enable, comp_id, "%s.drive-enable", p);
-    r |= hal_pin_bit_newf(HAL_OUT, &c->watchdog_has_bit, comp_id, "%s.watchdog.has-bit", p);
+    r |= hal_pin_bit_newf(HAL_OUT, &c->estop_active, comp_id, "%s.estop-active", p);
+    r |= hal_pin_s32_newf(HAL_OUT, &c->stop_reason, comp_id, "%s.stop-reason", p);
+    r |= hal_pin_bit_newf(HAL_IO, &c->watchdog_has_bit, comp_id, "%s.watchdog.has-bit", p);
     r |= hal_param_u32_newf(HAL_RW, &c->watchdog_timeout_ns, comp_id, "%s.watchdog.timeout-ns", p);
     c->watchdog_timeout_ns = 5000000;
     *c->estop_in = 1;
@@ -299,9 +378,11 @@ int rtapi_app_main(void)
         hal_exit(comp_id);
         return -ENODEV;
     }
-    /* whatever a previous session left queued stops here */
+    /* whatever a previous session left queued stops here, its drives off */
     if (dda_write32(&card->transport, DDA_CONTROL, 0) < 0
         || dda_write32(&card->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK) < 0
+        || dda_write32(&card->transport, DDA_WATCHDOG, 0) < 0
+        || dda_write32(&card->transport, DDA_MACHINE_CONTROL, 0) < 0
         || export_card(card) < 0) {
         dda_transport_close(&card->transport);
         hal_exit(comp_id);
@@ -314,8 +395,8 @@ int rtapi_app_main(void)
 
 void rtapi_app_exit(void)
 {
-    dda_write32(&card->transport, DDA_CONTROL, 0);
-    dda_write32(&card->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK);
+    halt_card(card);
+    dda_write32(&card->transport, DDA_MACHINE_CONTROL, 0);
     dda_transport_close(&card->transport);
     hal_exit(comp_id);
 }

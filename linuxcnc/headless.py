@@ -60,6 +60,7 @@ def main(argv):
         command.program_open(program)
         command.auto(linuxcnc.AUTO_RUN, 0)
         wait_for(stat, lambda s: s.interp_state != linuxcnc.INTERP_IDLE, f"{program} to start")
+        print(f"headless: {program} running", flush=True)
         if seconds:
             time.sleep(float(seconds))
             if estop:

@@ -25,12 +25,13 @@ from pathlib import Path
 
 from myhdl import Signal, ToVerilogWarning, block
 
-from rtl import instructions, parameters, registers
+from rtl import instructions, parameters, register_docs
 from rtl.card import CARD_PARAMETERS, card, slave_params
 from rtl.interfaces import MotorPins, PciBus, PciPins, card_reset
 from rtl.parameters import DEVICE, PARAMETERS, PCI_IDS, ParameterError
 from rtl.pci_pads import pci_pads
 from rtl.pci_target_build import SLAVE_PARAMETERS
+from rtl.registers import STOP_REASONS
 from rtl.regs_fifo import REGS_FIFO_PARAMETERS
 
 GEN_DIR = Path(__file__).resolve().parent.parent / "gen"
@@ -111,9 +112,11 @@ def write_c_header(out_dir=GEN_DIR, **values):
     identity += [f"#define DDA_BAR0_SIZE {1 << bars['io_bar_bits']}u /* I/O: function registers */",
                  f"#define DDA_BAR1_SIZE {1 << bars['mem_bar_bits']}u /* memory: the command FIFO window */",
                  f"#define DDA_FIFO_DEPTH {settings['fifo_depth']}u /* words */", ""]
+    identity += [f"#define DDA_STOP_{name} {code}u /* STOP_REASON.REASON */"
+                 for code, name in enumerate(STOP_REASONS) if code] + [""]
     target = Path(out_dir) / C_HEADER
     target.parent.mkdir(parents=True, exist_ok=True)
-    target.write_text(registers.c_header(extra="\n".join(identity) + instructions.c_defines() + "\n"
+    target.write_text(register_docs.c_header(extra="\n".join(identity) + instructions.c_defines() + "\n"
                                          + instructions.c_builders(), values=settings))
     return target
 

@@ -9,7 +9,7 @@ and each must be rejected by a proof.
 import pytest
 
 from formal import groups as catalogue
-from formal import mutation
+from formal import mutation, trace
 from formal.sby import Task, run, tools_available
 
 pytestmark = [pytest.mark.formal,
@@ -70,6 +70,10 @@ endmodule
     assert result.status == "FAIL"
     assert result.failed == ["never_nine"]
     assert result.trace is not None and result.trace.exists()
+    # the shortest counterexample counts from reset, one step per clock, to 9
+    rows = trace.table(result.trace, ["count"])
+    assert rows[0].split() == ["step", "count"]
+    assert [int(row.split()[1], 16) for row in rows[1:11]] == list(range(10))
 
 
 # Mutants of the generated files (yosys `mutate -list N -seed 1`, the lists
