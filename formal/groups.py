@@ -185,10 +185,10 @@ GROUPS = [
           text="LINE, ARC, SET and DWELL executed as the FIFO words say, in order (bounded)"),
     Group("dda_lines", "dda_arc", ["dda_harness.sv"], "dda_harness", ("dda_",), mode="bmc", depth=20,
           defines={"DDA_LINES": None, "DDA_FULL_SPEED": None}, **DDA,
-          text="every line of the narrow DDA from reset to its end (bounded past the longest)"),
+          text="lines of the 6-bit DDA: steps, end point, end counters, finishing (bounded)"),
     Group("dda_arcs", "dda_arc", ["dda_harness.sv"], "dda_harness", ("dda_",), mode="bmc", depth=53,
           defines={"DDA_ARCS": None}, fast=False, **DDA,
-          text="arcs of the narrow DDA: steps, end point, refusals (bounded)"),
+          text="arcs of the 6-bit DDA: set-up and first iteration, refusals (bounded)"),
     Group("pci_covers", "pci_slave", PCI_FILES, "pci_target_harness", (), mode="cover", depth=24,
           parameters=PCI_PARAMETERS, text="each kind of transaction is reachable"),
 ]
