@@ -114,6 +114,15 @@ def expected_steps(path):
     return events
 
 
+def step_clocks(clocks, states, first, last):
+    """[(clock after ``first``, pin state)] of every clock with a STEP high, from the
+    recorded edges (``clocks``, ``states``: pin changes only) up to clock ``last``:
+    a state with STEP high lasts until the next edge, one step for each clock."""
+    ends = [int(clock) for clock in clocks[1:]] + [last + 1]
+    return [(clock - first, int(state) & 0xF) for start, state, end in zip(clocks, states, ends)
+            if state & (STEP_X | STEP_Y) for clock in range(int(start), end)]
+
+
 class NarrowDda:
     """The Verilated narrow ``dda_arc``, one move at a time."""
 
@@ -169,7 +178,7 @@ class NarrowDda:
 
     def _steps(self, first):
         clocks, states = self.model.take_edges()
-        return [(int(c) - first, int(s) & 0xF) for c, s in zip(clocks, states) if s & (STEP_X | STEP_Y)]
+        return step_clocks(clocks, states, first, self.model.clocks)
 
     def offset(self, command):
         """Clocks from the ``start`` edge to the edge of iteration 0 of ``command``

@@ -10,7 +10,8 @@ import itertools
 import pytest
 
 from rtl.dda_build import DEFAULT_VARIANTS, IMPROVED
-from sim.dda_exhaustive import NARROW_WIDTH, check_move, every_arc, every_line, narrow_dda, run_all
+from sim.dda_exhaustive import (DIR_Y, NARROW_WIDTH, STEP_X, STEP_Y, check_move, every_arc, every_line,
+                                narrow_dda, run_all, step_clocks)
 from sim.dda_model import ArcCommand, LineCommand
 from sim.dda_plan import plan_arc, setup_clocks
 
@@ -57,6 +58,13 @@ def test_a_step_off_its_clock_is_a_mismatch(dda):
     check_move(dda, LineCommand(5, -3), tally)
     check_move(dda, ArcCommand(3, 0, 0, 3), tally)
     assert len(tally.mismatches) == 2
+
+
+def test_a_step_held_two_clocks_counts_twice():
+    """The harness records pin changes only: STEP high for two clocks is two steps."""
+    assert step_clocks([5, 7, 9, 10], [STEP_X, 0, STEP_Y | DIR_Y, DIR_Y], 2, 12) == \
+        [(3, STEP_X), (4, STEP_X), (7, STEP_Y | DIR_Y)]
+    assert step_clocks([5], [STEP_X], 2, 6) == [(3, STEP_X), (4, STEP_X)]
 
 
 def test_an_accepted_arc_judged_as_refused_is_a_mismatch(dda):
