@@ -1,7 +1,8 @@
 """The narrowest DDA build against the golden model, move by move, on Verilator.
 
 ``sim/dda_exhaustive.py`` runs every legal arc and every line of the
-6-bit build; the whole run (about 1.5 million arcs in each of two variants)
+6-bit build; the whole run (1,527,408 legal arcs in each of two variants,
+about an hour of CPU each)
 is in the slow set (``python -m bench.dda_exhaustive`` prints its figures),
 the default suite runs every line and every arc up to radius 4.
 """
