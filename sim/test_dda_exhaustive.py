@@ -2,7 +2,7 @@
 
 ``sim/dda_exhaustive.py`` runs every legal arc and every line of the
 6-bit build; the whole run (1,527,408 legal arcs in each of two variants,
-about an hour of CPU each)
+about 50 minutes each at load 5)
 is in the slow set (``python -m bench.dda_exhaustive`` prints its figures),
 the default suite runs every line and every arc up to radius 4.
 """
