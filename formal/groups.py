@@ -13,6 +13,7 @@ from pathlib import Path
 
 from formal.regs_props import table_properties
 from formal.sby import Task
+from sim.dda_exhaustive import NARROW_WIDTH, convert_narrow
 
 PROPS = Path(__file__).resolve().parent / "props"
 ROOT = Path(__file__).resolve().parent.parent
@@ -63,6 +64,7 @@ class Group:
     expose: tuple = ()        # registers of the unit made ports for helper invariants
     includes: tuple = ()      # files the harness includes
     generated: dict = field(default_factory=dict)   # included files written from Python
+    convert: object = None    # writes the unit's file into build/formal/generated (not gen/); its path
 
     def sources(self, gen_dir):
         written = []
@@ -73,7 +75,8 @@ class Group:
             if not path.exists() or path.read_text() != text:
                 path.write_text(text)
             written.append(path)
-        return [Path(gen_dir) / f"{self.unit}.v", *(PROPS / name for name in self.harness),
+        unit_file = self.convert() if self.convert else Path(gen_dir) / f"{self.unit}.v"
+        return [unit_file, *(PROPS / name for name in self.harness),
                 *(PROPS / name for name in self.includes), *written]
 
     def task(self, gen_dir, unit_file=None):
@@ -127,6 +130,15 @@ REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set
                        "direct_request_x", "direct_request_y")
 REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
                      "read_waited")
+
+
+def narrow_dda():
+    """``dda_arc.v`` of the narrowest build (NARROW_WIDTH-bit coordinates, the
+    default variants), converted from rtl/ into the work folder; its path."""
+    return convert_narrow(GENERATED / f"dda_w{NARROW_WIDTH}")
+
+
+DDA = dict(convert=narrow_dda, parameters=dict(W=NARROW_WIDTH))
 PCI_HELPERS = dict(expose=PCI_SLAVE_REGISTERS, includes=("pci_slave_invariants.vh",),
                    defines={"PCI_SLAVE_INVARIANTS": None})
 
@@ -172,6 +184,12 @@ GROUPS = [
           depth=14, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
           defines={"COMMANDS_WITHOUT_CLEAR": None, "MACHINE_RUNNING": None},
           text="LINE, ARC, SET and DWELL executed as the FIFO words say, in order (bounded)"),
+    Group("dda_lines", "dda_arc", ["dda_harness.sv"], "dda_harness", ("dda_",), mode="bmc", depth=20,
+          defines={"DDA_LINES": None, "DDA_FULL_SPEED": None}, **DDA,
+          text="lines of the 6-bit DDA: steps, end point, end counters, finishing (bounded)"),
+    Group("dda_arcs", "dda_arc", ["dda_harness.sv"], "dda_harness", ("dda_",), mode="bmc", depth=53,
+          defines={"DDA_ARCS": None}, fast=False, **DDA,
+          text="arcs of the 6-bit DDA: set-up and first iteration, refusals (bounded)"),
     Group("pci_covers", "pci_slave", PCI_FILES, "pci_target_harness", (), mode="cover", depth=24,
           parameters=PCI_PARAMETERS, text="each kind of transaction is reachable"),
 ]

@@ -8,7 +8,8 @@ the datapath widths that follow from them.
 
 * ``coord_width``: signed width of the coordinates.  The card's range is
   the parameter's; the interpolator alone also runs narrower, down to
-  ``DDA_MIN_WIDTH`` (its narrow-width bench runs at 10 bits).
+  ``DDA_MIN_WIDTH`` (its narrow-width bench runs at 10 bits; at 6 bits every
+  legal move is co-simulated, ``sim/dda_exhaustive.py``, and the proofs run).
 * ``variants``: the parameter's choices, ``improved,precise`` (the default:
   the paper's improved DDA and the precise mode) or ``all`` (the paper's
   traditional and weighted DDA as well, to reproduce its figures), here as
@@ -25,7 +26,7 @@ ALL_VARIANTS = VARIANT_SETS["all"]
 DEFAULT_VARIANTS = VARIANT_SETS[parameters.VARIANTS.default]
 
 COORD_WIDTH = parameters.COORD_WIDTH.default
-DDA_MIN_WIDTH = 8
+DDA_MIN_WIDTH = 6
 
 # n + k of the paper's variants may reach coord_width + this (threshold 2**(n + k))
 MAX_THRESHOLD_EXTRA = 4

@@ -6,6 +6,8 @@ the ``slow`` marker.  A few fixed mutants of the PCI target and the back end che
 proofs can fail: each one changes the unit's outputs (a miter says so)
 and each must be rejected by a proof.
 """
+import re
+
 import pytest
 
 from formal import groups as catalogue
@@ -113,3 +115,28 @@ def test_fixed_mutant_is_rejected(unit, index, judge, depth, mutation_lists):
     mutation.write_mutant(work, unit_file, mutant.command, same_name)
     mutation.judge(mutant, [catalogue.group(judge)], catalogue.GEN_DIR, same_name, work, depth)
     assert mutant.verdict == "rejected", mutant.command
+
+
+# Defects put by hand into the 6-bit DDA the DDA groups convert (a line's X
+# steps going the wrong way; X stepping whenever Y does): each must fail
+# `dda_lines` with a rule named.  Patterns, since the converter numbers the
+# instance prefix (dda_run0_...) by the conversions before it in the process.
+DDA_DEFECTS = {
+    "line_x_backwards": (r"steps_dir_x <= (dda_run0\w*_right);", r"steps_dir_x <= (!\1);",
+                         {"dda_line_x_towards_end", "dda_ends_at_end_point"}),
+    "x_steps_with_y": (r"steps_step_x <= (dda_run0\w*)_go_x;", r"steps_step_x <= (\1_go_x | \1_go_y);",
+                       {"dda_line_x_towards_end", "dda_ends_at_end_point"}),
+}
+
+
+@pytest.mark.parametrize("name", DDA_DEFECTS)
+def test_dda_defect_is_caught(name, tmp_path):
+    pattern, replacement, rules = DDA_DEFECTS[name]
+    group = catalogue.group("dda_lines")
+    text, count = re.subn(pattern, replacement, catalogue.narrow_dda().read_text())
+    assert count == 1, f"the converter no longer writes {pattern!r} once: pick the defect anew"
+    mutant = tmp_path / "mutant" / "dda_arc.v"
+    mutant.parent.mkdir()
+    mutant.write_text(text)
+    result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
+    assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
