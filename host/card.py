@@ -20,10 +20,10 @@ instruction register fetches the next command while the DDA checks an arc,
 docs/instructions.md).  Times are converted with the card's CLOCK_HZ, sizes
 come from FIFO_SIZE and BUILD: the host needs no knowledge of the build.
 
-The machine side (docs/machine.md): ``drive``, ``inputs``, ``watchdog``,
-``estop_state``, ``limits``, ``stop_reason``, ``clear_stop``, ``home``
-(``host.homing``).  A card the
-guard has stopped raises ``MachineStopped`` from ``check`` and ``wait_done``.
+The machine side (docs/machine.md) comes from ``host.machine_io``: ``drive``,
+``hold``, ``resume``, ``inputs``, ``watchdog``, ``estop_state``, ``limits``,
+``stop_reason``, ``clear_stop``, ``home``.  A card the guard has stopped
+raises ``MachineStopped`` from ``check`` and ``wait_done``.
 """
 import bisect
 import math
@@ -33,12 +33,12 @@ from rtl import instructions as isa
 from rtl import registers as regmap
 from sim.dda_model import ArcCommand, plan_arc
 
-from host import homing
 from host.machine import Machine
+from host.machine_io import MachineIO, MachineStopped
+from host.transport import POLL_SECONDS
 
 MAJOR = regmap.VERSION >> 8
 MINOR = regmap.VERSION & 0xFF
-POLL_SECONDS = 50e-6  # card time between two looks at STATUS when no interrupt is enabled
 ARC_OPCODE = isa.encode("ARC", 1, 0, 1, 0)[0] >> 28
 ERROR_NAMES = {code: name for code, name, _ in isa.ERRORS}
 
@@ -50,16 +50,6 @@ class CardError(RuntimeError):
     def __init__(self, name, code, command):
         super().__init__(f"the card refused {command}: {name}" if command else f"card error {name}")
         self.name, self.code, self.command = name, code, command
-
-
-class MachineStopped(RuntimeError):
-    """The card's guard stopped the machine: ``reason`` (``ESTOP``,
-    ``WATCHDOG`` or ``LIMIT``) and ``limits`` (the limits stepped towards)."""
-
-    def __init__(self, reason, limits=()):
-        which = f" ({', '.join(limits)})" if limits else ""
-        super().__init__(f"the card stopped the machine: {reason}{which}")
-        self.reason, self.limits = reason, tuple(limits)
 
 
 class IdentityError(RuntimeError):
@@ -84,7 +74,7 @@ def error_name(code):
     return ERROR_NAMES.get(code, f"UNKNOWN_{code}")
 
 
-class Card:
+class Card(MachineIO):
     """The card behind ``transport``, identified on construction."""
 
     def __init__(self, transport):
@@ -338,84 +328,6 @@ class Card:
         self.transport.write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", SOFT_RESET=1))
         self._forget()
         return self.position()
-
-    # ----- the machine side (docs/machine.md) -------------------------------------
-    def drive(self, enable=True):
-        """MACHINE_CONTROL.DRIVE_ENABLE: the DRIVE_ENABLE pin follows it while the card is not stopped."""
-        self._machine_control(DRIVE_ENABLE=int(enable))
-
-    def hold(self, timeout=1.0):
-        """Feed hold (MACHINE_CONTROL.HOLD): the path ramps down to zero on
-        RAMP_STEP and waits; the position once MACHINE_STATUS.HELD (its last
-        step has left).  MachineStopped if the guard stops the card meanwhile."""
-        self._machine_control(HOLD=1)
-        deadline = self.transport.now() + timeout
-        while not self.field("MACHINE_STATUS", "HELD"):
-            self.check()
-            if self.transport.now() >= deadline:
-                raise TimeoutError(f"the feed did not hold within {timeout} s")
-            self.transport.sleep(POLL_SECONDS)
-        return self.position()
-
-    def resume(self):
-        """Release the feed hold: the path ramps up again from RAMP_START and goes on exactly."""
-        self._machine_control(HOLD=0)
-
-    def _machine_control(self, **fields):
-        word = self.read("MACHINE_CONTROL") & ~regmap.field_of("MACHINE_CONTROL", **{f: -1 for f in fields})
-        self.write("MACHINE_CONTROL", word | regmap.field_of("MACHINE_CONTROL", **fields))
-
-    def inputs(self, active_low=(), filter_ns=100, sample_ns=None):
-        """Input conditioning: ``active_low`` names the inputs wired active low
-        (``ESTOP``, ``LIMIT_POS_X`` ..., as in INPUT_POLARITY); an input's new
-        level counts once it held for ``filter_ns`` (INPUT_FILTER samples
-        ``sample_ns`` apart, default: the shortest spacing that needs at most
-        15); the filter time honoured, in ns."""
-        polarity = regmap.field_of("INPUT_POLARITY", **{name: 1 for name in active_low})
-        clocks = max(self.clocks(filter_ns), 1)
-        tick = self.clocks(sample_ns) if sample_ns else math.ceil(clocks / 15)
-        samples = min(max(math.ceil(clocks / max(tick, 1)), 1), 15)
-        self.write("INPUT_POLARITY", polarity)
-        self.write("INPUT_TICK", tick)
-        self.write("INPUT_FILTER", samples)
-        return samples * tick * 1e9 / self.identity.clock_hz
-
-    def watchdog(self, seconds):
-        """WATCHDOG: the card stops (reason WATCHDOG) unless this is called
-        again within ``seconds``; 0 turns it off.  Returns the clocks written."""
-        clocks = self.clocks(seconds * 1e9) if seconds else 0
-        self.write("WATCHDOG", clocks)
-        return clocks
-
-    def estop_state(self):
-        """True while the (filtered) E-stop input is active."""
-        return bool(self.field("MACHINE_STATUS", "ACTIVE") & 1 << regmap.INPUT_NAMES.index("ESTOP"))
-
-    def limits(self):
-        """The names of the limit inputs active now (filtered), e.g. ``("LIMIT_POS_X",)``."""
-        active = self.field("MACHINE_STATUS", "ACTIVE")
-        return tuple(name for bit, name in enumerate(regmap.INPUT_NAMES)
-                     if name.startswith("LIMIT") and active >> bit & 1)
-
-    def stop_reason(self):
-        """(reason, limits): STOP_REASON as names, ``("NONE", ())`` while not stopped."""
-        word = self.read("STOP_REASON")
-        reason = regmap.STOP_REASONS[regmap.field_value("STOP_REASON", "REASON", word)]
-        hit = regmap.field_value("STOP_REASON", "LIMITS", word)
-        return reason, tuple(name for bit, name in enumerate(regmap.LIMIT_NAMES) if hit >> bit & 1)
-
-    def clear_stop(self):
-        """COMMAND.CLEAR_STOP; MachineStopped if the card stays stopped (the
-        E-stop input still active).  The FIFO was emptied at the stop: the
-        record of queued words starts afresh."""
-        self.transport.write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", CLEAR_STOP=1))
-        self._forget()
-        if self.field("STATUS", "STOPPED"):
-            raise MachineStopped(*self.stop_reason())
-
-    def home(self, axis, direction="negative", **settings):
-        """HOME one axis; the position (``host.homing.home`` says how)."""
-        return homing.home(self, axis, direction, **settings)
 
     def _forget(self):
         self._written = 0

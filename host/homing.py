@@ -8,9 +8,10 @@ steps/s); every value is checked before any register is written.
 """
 from rtl import registers as regmap
 
+from host.transport import POLL_SECONDS
+
 AXES = ("X", "Y")
 DIRECTIONS = ("positive", "negative")   # where the switch is
-POLL_SECONDS = 50e-6
 
 
 class HomingError(RuntimeError):

@@ -22,6 +22,7 @@ picks one from a ``--card`` value.
 
 SIM_KINDS = ("myhdl", "icarus", "verilator")
 ACCESS_SIZES = (1, 2, 4)
+POLL_SECONDS = 50e-6  # card time between two looks at a status register when no interrupt is enabled
 
 
 class TransportError(RuntimeError):

@@ -1,0 +1,105 @@
+"""The machine side of the card API (docs/machine.md): drive enable, feed
+hold, input conditioning, the watchdog, the guard's state and homing.
+
+``host.card.Card`` takes these methods from ``MachineIO``; they use the
+card's ``read``, ``write``, ``field``, ``clocks``, ``check``, ``position``,
+``identity`` and ``transport``.
+"""
+import math
+
+from rtl import registers as regmap
+
+from host import homing
+from host.transport import POLL_SECONDS
+
+
+class MachineStopped(RuntimeError):
+    """The card's guard stopped the machine: ``reason`` (``ESTOP``,
+    ``WATCHDOG`` or ``LIMIT``) and ``limits`` (the limits stepped towards)."""
+
+    def __init__(self, reason, limits=()):
+        which = f" ({', '.join(limits)})" if limits else ""
+        super().__init__(f"the card stopped the machine: {reason}{which}")
+        self.reason, self.limits = reason, tuple(limits)
+
+
+
+class MachineIO:
+    """Drive enable, feed hold, inputs, watchdog, stop state and homing of a ``Card``."""
+
+    def drive(self, enable=True):
+        """MACHINE_CONTROL.DRIVE_ENABLE: the DRIVE_ENABLE pin follows it while the card is not stopped."""
+        self._machine_control(DRIVE_ENABLE=int(enable))
+
+    def hold(self, timeout=1.0):
+        """Feed hold (MACHINE_CONTROL.HOLD): the path ramps down to zero on
+        RAMP_STEP and waits; the position once MACHINE_STATUS.HELD (its last
+        step has left).  MachineStopped if the guard stops the card meanwhile."""
+        self._machine_control(HOLD=1)
+        deadline = self.transport.now() + timeout
+        while not self.field("MACHINE_STATUS", "HELD"):
+            self.check()
+            if self.transport.now() >= deadline:
+                raise TimeoutError(f"the feed did not hold within {timeout} s")
+            self.transport.sleep(POLL_SECONDS)
+        return self.position()
+
+    def resume(self):
+        """Release the feed hold: the path ramps up again from RAMP_START and goes on exactly."""
+        self._machine_control(HOLD=0)
+
+    def _machine_control(self, **fields):
+        word = self.read("MACHINE_CONTROL") & ~regmap.field_of("MACHINE_CONTROL", **{f: -1 for f in fields})
+        self.write("MACHINE_CONTROL", word | regmap.field_of("MACHINE_CONTROL", **fields))
+
+    def inputs(self, active_low=(), filter_ns=100, sample_ns=None):
+        """Input conditioning: ``active_low`` names the inputs wired active low
+        (``ESTOP``, ``LIMIT_POS_X`` ..., as in INPUT_POLARITY); an input's new
+        level counts once it held for ``filter_ns`` (INPUT_FILTER samples
+        ``sample_ns`` apart, default: the shortest spacing that needs at most
+        15); the filter time honoured, in ns."""
+        polarity = regmap.field_of("INPUT_POLARITY", **{name: 1 for name in active_low})
+        clocks = max(self.clocks(filter_ns), 1)
+        tick = self.clocks(sample_ns) if sample_ns else math.ceil(clocks / 15)
+        samples = min(max(math.ceil(clocks / max(tick, 1)), 1), 15)
+        self.write("INPUT_POLARITY", polarity)
+        self.write("INPUT_TICK", tick)
+        self.write("INPUT_FILTER", samples)
+        return samples * tick * 1e9 / self.identity.clock_hz
+
+    def watchdog(self, seconds):
+        """WATCHDOG: the card stops (reason WATCHDOG) unless this is called
+        again within ``seconds``; 0 turns it off.  Returns the clocks written."""
+        clocks = self.clocks(seconds * 1e9) if seconds else 0
+        self.write("WATCHDOG", clocks)
+        return clocks
+
+    def estop_state(self):
+        """True while the (filtered) E-stop input is active."""
+        return bool(self.field("MACHINE_STATUS", "ACTIVE") & 1 << regmap.INPUT_NAMES.index("ESTOP"))
+
+    def limits(self):
+        """The names of the limit inputs active now (filtered), e.g. ``("LIMIT_POS_X",)``."""
+        active = self.field("MACHINE_STATUS", "ACTIVE")
+        return tuple(name for bit, name in enumerate(regmap.INPUT_NAMES)
+                     if name.startswith("LIMIT") and active >> bit & 1)
+
+    def stop_reason(self):
+        """(reason, limits): STOP_REASON as names, ``("NONE", ())`` while not stopped."""
+        word = self.read("STOP_REASON")
+        reason = regmap.STOP_REASONS[regmap.field_value("STOP_REASON", "REASON", word)]
+        hit = regmap.field_value("STOP_REASON", "LIMITS", word)
+        return reason, tuple(name for bit, name in enumerate(regmap.LIMIT_NAMES) if hit >> bit & 1)
+
+    def clear_stop(self):
+        """COMMAND.CLEAR_STOP; MachineStopped if the card stays stopped (the
+        E-stop input still active).  The FIFO was emptied at the stop: the
+        record of queued words starts afresh."""
+        self.transport.write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", CLEAR_STOP=1))
+        self._forget()
+        if self.field("STATUS", "STOPPED"):
+            raise MachineStopped(*self.stop_reason())
+
+    def home(self, axis, direction="negative", **settings):
+        """HOME one axis; the position (``host.homing.home`` says how)."""
+        return homing.home(self, axis, direction, **settings)
