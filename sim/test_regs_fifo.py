@@ -29,7 +29,11 @@ def setup_motion(driver, control=1, feed=regmap.RATE_MAX):
 def test_register_semantics(seed):
     rng = random.Random(seed)
     model = RegisterModel()
-    writable = [r for r in regmap.REGISTERS if r.access in ("RW",) and r.name != "CONTROL"]
+    # INPUT_POLARITY left out: a new polarity changes the filtered inputs, which
+    # raises INT_STATUS.INPUT whenever the filter (INPUT_FILTER x INPUT_TICK
+    # clocks, both written at random here) takes the new level; its events are
+    # the input filter bench's to judge (sim/test_machine_units.py, `changed`)
+    writable = [r for r in regmap.REGISTERS if r.access in ("RW",) and r.name not in ("CONTROL", "INPUT_POLARITY")]
     checks = []
 
     def scenario(driver):
