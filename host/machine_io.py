@@ -93,8 +93,8 @@ class MachineIO:
 
     def clear_stop(self):
         """COMMAND.CLEAR_STOP; MachineStopped if the card stays stopped (the
-        E-stop input still active).  The FIFO was emptied at the stop: the
-        record of queued words starts afresh."""
+        E-stop input still active).  CLEAR_STOP empties the FIFO: the record
+        of queued words starts afresh."""
         self.transport.write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", CLEAR_STOP=1))
         self._forget()
         if self.field("STATUS", "STOPPED"):

@@ -162,8 +162,8 @@ REGISTERS = (
         Field("SOFT_RESET", 0, 1, "stop motion at once, empty the FIFO, reset the DDA, clear the error"),
         Field("CLEAR_ERROR", 1, 1, "clear STATUS.ERROR; execution resumes with the next queued word"),
         Field("CLEAR_POSITION", 2, 1, "zero POS_X and POS_Y"),
-        Field("CLEAR_STOP", 3, 1, "release the machine guard's stop (ignored while the E-stop input "
-              "is active)"),
+        Field("CLEAR_STOP", 3, 1, "release the machine guard's stop (not while the E-stop input is "
+              "active); written while stopped, it empties the FIFO of the words written before it"),
     )),
     # after reset: idle, no error, the FIFO empty
     Register("STATUS", 0x0C, "RO", 1 << 8, "what the card is doing", (
