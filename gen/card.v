@@ -257,10 +257,6 @@ reg [31:0] card_core0_regs_fifo1_set_value;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
 reg [1:0] card_core0_regs_fifo1_home_zero;
-reg card_core0_regs_fifo1_busy_before;
-reg card_core0_regs_fifo1_done_flag;
-reg card_core0_regs_fifo1_low_before;
-reg card_core0_regs_fifo1_error_before;
 wire card_core0_regs_fifo1_any_busy;
 reg [31:0] card_core0_regs_fifo1_byte_mask;
 wire card_core0_regs_fifo1_clear_error;
@@ -846,7 +842,11 @@ reg card_core0_regs_fifo1_homing1_port_load;
 reg signed [23:0] card_core0_regs_fifo1_homing1_port_count;
 reg [15:0] card_core0_regs_fifo1_homing1_port_period;
 reg card_core0_regs_fifo1_homing1_port_ended;
-wire [1:0] card_core0_regs_fifo1__status1_quadrant;
+reg card_core0_regs_fifo1_status_words1_busy_before;
+reg card_core0_regs_fifo1_status_words1_done_flag;
+reg card_core0_regs_fifo1_status_words1_error_before;
+reg card_core0_regs_fifo1_status_words1_low_before;
+wire [1:0] card_core0_regs_fifo1_status_words1_words_quadrant;
 reg [4:0] card_core0_dda_arc1_dda_setup1_acc_bits;
 reg card_core0_dda_arc1_dda_setup1_carry;
 reg [48:0] card_core0_dda_arc1_dda_setup1_gap;
@@ -5391,24 +5391,6 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
 end
 
 
-always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1__machine_words1_assemble
-    reg [20-1:0] word;
-    reg [8-1:0] why;
-    word = 20'h0;
-    word[0+:7] = card_core0_regs_fifo1_input_filter1_inputs_raw;
-    word[8+:7] = card_core0_regs_fifo1_conditioning_active;
-    word[16] = card_core0_regs_fifo1_guard_stopped;
-    word[17] = pins_drive_enable;
-    word[18] = card_core0_regs_fifo1_settled;
-    word[19] = card_core0_regs_fifo1_guard_stopping;
-    card_core0_regs_fifo1_reg_word62_shown = word;
-    why = 8'h0;
-    why[0+:2] = card_core0_regs_fifo1_machine_guard1_guard_reason;
-    why[4+:4] = card_core0_regs_fifo1_machine_guard1_guard_limits;
-    card_core0_regs_fifo1_reg_word63_shown = why;
-end
-
-
 always @(pci_slave1_local_re, card_core0_regs_fifo1_read_waited, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_be, pci_slave1_pci_requests1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
@@ -5583,29 +5565,37 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_wor
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1__status1_track_done
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_status_words1_remember
     if (reset == 0) begin
-        card_core0_regs_fifo1_done_flag <= 0;
-        card_core0_regs_fifo1_busy_before <= 0;
+        card_core0_regs_fifo1_status_words1_done_flag <= 0;
+        card_core0_regs_fifo1_status_words1_error_before <= 0;
+        card_core0_regs_fifo1_reg_word44_shown <= 0;
+        card_core0_regs_fifo1_status_words1_busy_before <= 0;
+        card_core0_regs_fifo1_status_words1_low_before <= 0;
     end
     else begin
-        card_core0_regs_fifo1_busy_before <= card_core0_regs_fifo1_any_busy;
+        card_core0_regs_fifo1_status_words1_busy_before <= card_core0_regs_fifo1_any_busy;
         if (card_core0_regs_fifo1_any_busy) begin
-            card_core0_regs_fifo1_done_flag <= 0;
+            card_core0_regs_fifo1_status_words1_done_flag <= 0;
         end
-        else if (card_core0_regs_fifo1_busy_before) begin
-            card_core0_regs_fifo1_done_flag <= 1;
+        else if (card_core0_regs_fifo1_status_words1_busy_before) begin
+            card_core0_regs_fifo1_status_words1_done_flag <= 1;
+        end
+        card_core0_regs_fifo1_status_words1_error_before <= (card_core0_regs_fifo1_error_code != 0);
+        card_core0_regs_fifo1_status_words1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word43_shown);
+        if (card_core0_regs_fifo1_sequencer1_mark_strobe) begin
+            card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
         end
     end
 end
 
 
-always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_done_flag, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1__status1_quadrant, card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1__status1_assemble
+always @(card_core0_regs_fifo1_status_words1_done_flag, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_fifo_full, card_core0_regs_fifo1_status_words1_words_quadrant, card_core0_regs_fifo1_fifo_empty) begin: card_core0_regs_fifo1_status_words1_assemble_status
     reg [32-1:0] word;
     word = 32'h0;
     word[0] = card_core0_regs_fifo1_any_busy;
-    word[1] = card_core0_regs_fifo1_done_flag;
-    word[2+:2] = card_core0_regs_fifo1__status1_quadrant;
+    word[1] = card_core0_regs_fifo1_status_words1_done_flag;
+    word[2+:2] = card_core0_regs_fifo1_status_words1_words_quadrant;
     word[4+:4] = card_core0_regs_fifo1_error_code;
     word[8] = card_core0_regs_fifo1_fifo_empty;
     word[9] = card_core0_regs_fifo1_fifo_full;
@@ -5615,28 +5605,12 @@ always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_done_flag, card
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1__interrupts1_remember
-    if (reset == 0) begin
-        card_core0_regs_fifo1_error_before <= 0;
-        card_core0_regs_fifo1_low_before <= 0;
-        card_core0_regs_fifo1_reg_word44_shown <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_error_before <= (card_core0_regs_fifo1_error_code != 0);
-        card_core0_regs_fifo1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word43_shown);
-        if (card_core0_regs_fifo1_sequencer1_mark_strobe) begin
-            card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
-        end
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word73_chain_out_clamped, card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_reg_word43_shown, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_input_filter1_inputs_changed, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_busy_before, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_low_before) begin: card_core0_regs_fifo1__interrupts1_detect
+always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_status_words1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_reg_word43_shown, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_reg_word73_chain_out_clamped, card_core0_regs_fifo1_status_words1_busy_before, card_core0_regs_fifo1_status_words1_low_before, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_input_filter1_inputs_changed) begin: card_core0_regs_fifo1_status_words1_detect_events
     reg [8-1:0] word;
     word = 8'h0;
-    word[0] = (card_core0_regs_fifo1_busy_before && (!card_core0_regs_fifo1_any_busy));
-    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word43_shown) && (!card_core0_regs_fifo1_low_before));
-    word[2] = ((card_core0_regs_fifo1_error_code != 0) && (!card_core0_regs_fifo1_error_before));
+    word[0] = (card_core0_regs_fifo1_status_words1_busy_before && (!card_core0_regs_fifo1_any_busy));
+    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word43_shown) && (!card_core0_regs_fifo1_status_words1_low_before));
+    word[2] = ((card_core0_regs_fifo1_error_code != 0) && (!card_core0_regs_fifo1_status_words1_error_before));
     word[3] = card_core0_regs_fifo1_sequencer1_mark_strobe;
     word[4] = card_core0_regs_fifo1_reg_word73_chain_out_clamped;
     word[5] = card_core0_regs_fifo1_guard_stop_event;
@@ -5648,6 +5622,24 @@ end
 
 
 assign irq = ((card_core0_regs_fifo1_reg_word42_shown & card_core0_regs_fifo1_reg_word41_shown) != 0);
+
+
+always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1_status_words1_assemble_machine
+    reg [20-1:0] word;
+    reg [8-1:0] why;
+    word = 20'h0;
+    word[0+:7] = card_core0_regs_fifo1_input_filter1_inputs_raw;
+    word[8+:7] = card_core0_regs_fifo1_conditioning_active;
+    word[16] = card_core0_regs_fifo1_guard_stopped;
+    word[17] = pins_drive_enable;
+    word[18] = card_core0_regs_fifo1_settled;
+    word[19] = card_core0_regs_fifo1_guard_stopping;
+    card_core0_regs_fifo1_reg_word62_shown = word;
+    why = 8'h0;
+    why[0+:2] = card_core0_regs_fifo1_machine_guard1_guard_reason;
+    why[4+:4] = card_core0_regs_fifo1_machine_guard1_guard_limits;
+    card_core0_regs_fifo1_reg_word63_shown = why;
+end
 
 
 
@@ -6978,7 +6970,7 @@ end
 
 
 
-assign card_core0_regs_fifo1__status1_quadrant = card_core0_dda_arc1_dda_run1_quadrant;
+assign card_core0_regs_fifo1_status_words1_words_quadrant = card_core0_dda_arc1_dda_run1_quadrant;
 assign card_core0_regs_fifo1_dda_busy = ((!card_core0_regs_fifo1_sequencer1_dda_ready) || (card_core0_dda_arc1_dda_run1_active && (!(card_core0_dda_arc1_dda_run1_step_pending && card_core0_dda_arc1_dda_run1_step_finished))));
 
 endmodule

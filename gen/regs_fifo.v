@@ -68,7 +68,9 @@ module regs_fifo (
 // stop resets and holds the sequencer, the direct pulses and the pulse
 // outputs and resets the DDA; the FIFO keeps its words until
 // COMMAND.CLEAR_STOP empties it, docs/machine.md); ``irq`` (level, to
-// INTA#: INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
+// INTA#: INT_STATUS & INT_ENABLE, from ``status_words``, which also
+// assembles STATUS, MACHINE_STATUS, STOP_REASON, MARK_TAG and POS_X/Y);
+// ``core_clear`` (one registered clock on
 // COMMAND.SOFT_RESET or a stop: the top resets the DDA with it).
 // Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
 // two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
@@ -176,10 +178,6 @@ reg [31:0] set_value;
 reg [3:0] error_code;
 reg seq_load;
 reg [1:0] home_zero;
-reg busy_before;
-reg done_flag;
-reg low_before;
-reg error_before;
 wire any_busy;
 reg [31:0] byte_mask;
 wire clear_error;
@@ -744,6 +742,10 @@ reg homing0_port_load;
 reg signed [23:0] homing0_port_count;
 reg [15:0] homing0_port_period;
 reg homing0_port_ended;
+reg status_words0_busy_before;
+reg status_words0_done_flag;
+reg status_words0_error_before;
+reg status_words0_low_before;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
@@ -4124,24 +4126,6 @@ always @(posedge clock, negedge reset) begin: homing0_sequence
 end
 
 
-always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_enable, conditioning_active, settled, machine_guard0_guard_limits, machine_guard0_guard_reason) begin: _machine_words0_assemble
-    reg [20-1:0] word;
-    reg [8-1:0] why;
-    word = 20'h0;
-    word[0+:7] = input_filter0_inputs_raw;
-    word[8+:7] = conditioning_active;
-    word[16] = guard_stopped;
-    word[17] = pins_drive_enable;
-    word[18] = settled;
-    word[19] = guard_stopping;
-    reg_word25_shown = word;
-    why = 8'h0;
-    why[0+:2] = machine_guard0_guard_reason;
-    why[4+:4] = machine_guard0_guard_limits;
-    reg_word26_shown = why;
-end
-
-
 always @(local_re, read_waited, io_written, local_be, local_space, local_we, fifo_full) begin: decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
@@ -4316,28 +4300,36 @@ always @(homing0_port_count, reg_word31_shown[0], reg_word20__store15_word_strob
 end
 
 
-always @(posedge clock, negedge reset) begin: _status0_track_done
+always @(posedge clock, negedge reset) begin: status_words0_remember
     if (reset == 0) begin
-        done_flag <= 0;
-        busy_before <= 0;
+        status_words0_done_flag <= 0;
+        status_words0_error_before <= 0;
+        reg_word7_shown <= 0;
+        status_words0_busy_before <= 0;
+        status_words0_low_before <= 0;
     end
     else begin
-        busy_before <= any_busy;
+        status_words0_busy_before <= any_busy;
         if (any_busy) begin
-            done_flag <= 0;
+            status_words0_done_flag <= 0;
         end
-        else if (busy_before) begin
-            done_flag <= 1;
+        else if (status_words0_busy_before) begin
+            status_words0_done_flag <= 1;
+        end
+        status_words0_error_before <= (error_code != 0);
+        status_words0_low_before <= (level_wide < reg_word6_shown);
+        if (sequencer0_mark_strobe) begin
+            reg_word7_shown <= sequencer0_mark_tag;
         end
     end
 end
 
 
-always @(fifo_empty, done_flag, error_code, any_busy, dda_quadrant, guard_stopped, level_wide, fifo_full) begin: _status0_assemble
+always @(status_words0_done_flag, error_code, guard_stopped, any_busy, level_wide, fifo_full, dda_quadrant, fifo_empty) begin: status_words0_assemble_status
     reg [32-1:0] word;
     word = 32'h0;
     word[0] = any_busy;
-    word[1] = done_flag;
+    word[1] = status_words0_done_flag;
     word[2+:2] = dda_quadrant;
     word[4+:4] = error_code;
     word[8] = fifo_empty;
@@ -4348,28 +4340,12 @@ always @(fifo_empty, done_flag, error_code, any_busy, dda_quadrant, guard_stoppe
 end
 
 
-always @(posedge clock, negedge reset) begin: _interrupts0_remember
-    if (reset == 0) begin
-        error_before <= 0;
-        low_before <= 0;
-        reg_word7_shown <= 0;
-    end
-    else begin
-        error_before <= (error_code != 0);
-        low_before <= (level_wide < reg_word6_shown);
-        if (sequencer0_mark_strobe) begin
-            reg_word7_shown <= sequencer0_mark_tag;
-        end
-    end
-end
-
-
-always @(reg_word36_chain_out_clamped, error_code, reg_word6_shown, sequencer0_mark_strobe, error_before, any_busy, input_filter0_inputs_changed, level_wide, homing0_port_ended, busy_before, guard_stop_event, low_before) begin: _interrupts0_detect
+always @(error_code, sequencer0_mark_strobe, status_words0_error_before, any_busy, reg_word6_shown, level_wide, guard_stop_event, reg_word36_chain_out_clamped, status_words0_busy_before, status_words0_low_before, homing0_port_ended, input_filter0_inputs_changed) begin: status_words0_detect_events
     reg [8-1:0] word;
     word = 8'h0;
-    word[0] = (busy_before && (!any_busy));
-    word[1] = ((level_wide < reg_word6_shown) && (!low_before));
-    word[2] = ((error_code != 0) && (!error_before));
+    word[0] = (status_words0_busy_before && (!any_busy));
+    word[1] = ((level_wide < reg_word6_shown) && (!status_words0_low_before));
+    word[2] = ((error_code != 0) && (!status_words0_error_before));
     word[3] = sequencer0_mark_strobe;
     word[4] = reg_word36_chain_out_clamped;
     word[5] = guard_stop_event;
@@ -4381,6 +4357,24 @@ end
 
 
 assign irq = ((reg_word5_shown & reg_word4_shown) != 0);
+
+
+always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_enable, conditioning_active, settled, machine_guard0_guard_limits, machine_guard0_guard_reason) begin: status_words0_assemble_machine
+    reg [20-1:0] word;
+    reg [8-1:0] why;
+    word = 20'h0;
+    word[0+:7] = input_filter0_inputs_raw;
+    word[8+:7] = conditioning_active;
+    word[16] = guard_stopped;
+    word[17] = pins_drive_enable;
+    word[18] = settled;
+    word[19] = guard_stopping;
+    reg_word25_shown = word;
+    why = 8'h0;
+    why[0+:2] = machine_guard0_guard_reason;
+    why[4+:4] = machine_guard0_guard_limits;
+    reg_word26_shown = why;
+end
 
 
 

@@ -281,10 +281,6 @@ reg [31:0] card1_card_core1_regs_fifo2_set_value;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
 reg [1:0] card1_card_core1_regs_fifo2_home_zero;
-reg card1_card_core1_regs_fifo2_busy_before;
-reg card1_card_core1_regs_fifo2_done_flag;
-reg card1_card_core1_regs_fifo2_low_before;
-reg card1_card_core1_regs_fifo2_error_before;
 wire card1_card_core1_regs_fifo2_any_busy;
 reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
 wire card1_card_core1_regs_fifo2_clear_error;
@@ -870,7 +866,11 @@ reg card1_card_core1_regs_fifo2_homing2_port_load;
 reg signed [23:0] card1_card_core1_regs_fifo2_homing2_port_count;
 reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
 reg card1_card_core1_regs_fifo2_homing2_port_ended;
-wire [1:0] card1_card_core1_regs_fifo2__status2_quadrant;
+reg card1_card_core1_regs_fifo2_status_words2_busy_before;
+reg card1_card_core1_regs_fifo2_status_words2_done_flag;
+reg card1_card_core1_regs_fifo2_status_words2_error_before;
+reg card1_card_core1_regs_fifo2_status_words2_low_before;
+wire [1:0] card1_card_core1_regs_fifo2_status_words2_words_quadrant;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_acc_bits;
 reg card1_card_core1_dda_arc2_dda_setup2_carry;
 reg [48:0] card1_card_core1_dda_arc2_dda_setup2_gap;
@@ -6223,24 +6223,6 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
 end
 
 
-always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_conditioning_active, card1_card_core1_regs_fifo2_settled, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2__machine_words2_assemble
-    reg [20-1:0] word;
-    reg [8-1:0] why;
-    word = 20'h0;
-    word[0+:7] = card1_card_core1_regs_fifo2_input_filter2_inputs_raw;
-    word[8+:7] = card1_card_core1_regs_fifo2_conditioning_active;
-    word[16] = card1_card_core1_regs_fifo2_guard_stopped;
-    word[17] = motor_drive_enable;
-    word[18] = card1_card_core1_regs_fifo2_settled;
-    word[19] = card1_card_core1_regs_fifo2_guard_stopping;
-    card1_card_core1_regs_fifo2_reg_word99_shown = word;
-    why = 8'h0;
-    why[0+:2] = card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
-    why[4+:4] = card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
-    card1_card_core1_regs_fifo2_reg_word100_shown = why;
-end
-
-
 always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_read_waited, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_be, card1_pci_slave2_pci_requests2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
@@ -6415,29 +6397,37 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2__status2_track_done
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_status_words2_remember
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_done_flag <= 0;
-        card1_card_core1_regs_fifo2_busy_before <= 0;
+        card1_card_core1_regs_fifo2_status_words2_done_flag <= 0;
+        card1_card_core1_regs_fifo2_status_words2_error_before <= 0;
+        card1_card_core1_regs_fifo2_reg_word81_shown <= 0;
+        card1_card_core1_regs_fifo2_status_words2_busy_before <= 0;
+        card1_card_core1_regs_fifo2_status_words2_low_before <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_busy_before <= card1_card_core1_regs_fifo2_any_busy;
+        card1_card_core1_regs_fifo2_status_words2_busy_before <= card1_card_core1_regs_fifo2_any_busy;
         if (card1_card_core1_regs_fifo2_any_busy) begin
-            card1_card_core1_regs_fifo2_done_flag <= 0;
+            card1_card_core1_regs_fifo2_status_words2_done_flag <= 0;
         end
-        else if (card1_card_core1_regs_fifo2_busy_before) begin
-            card1_card_core1_regs_fifo2_done_flag <= 1;
+        else if (card1_card_core1_regs_fifo2_status_words2_busy_before) begin
+            card1_card_core1_regs_fifo2_status_words2_done_flag <= 1;
+        end
+        card1_card_core1_regs_fifo2_status_words2_error_before <= (card1_card_core1_regs_fifo2_error_code != 0);
+        card1_card_core1_regs_fifo2_status_words2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word80_shown);
+        if (card1_card_core1_regs_fifo2_sequencer2_mark_strobe) begin
+            card1_card_core1_regs_fifo2_reg_word81_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
         end
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_done_flag, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2__status2_quadrant, card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2__status2_assemble
+always @(card1_card_core1_regs_fifo2_status_words2_done_flag, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_fifo_full, card1_card_core1_regs_fifo2_status_words2_words_quadrant, card1_card_core1_regs_fifo2_fifo_empty) begin: card1_card_core1_regs_fifo2_status_words2_assemble_status
     reg [32-1:0] word;
     word = 32'h0;
     word[0] = card1_card_core1_regs_fifo2_any_busy;
-    word[1] = card1_card_core1_regs_fifo2_done_flag;
-    word[2+:2] = card1_card_core1_regs_fifo2__status2_quadrant;
+    word[1] = card1_card_core1_regs_fifo2_status_words2_done_flag;
+    word[2+:2] = card1_card_core1_regs_fifo2_status_words2_words_quadrant;
     word[4+:4] = card1_card_core1_regs_fifo2_error_code;
     word[8] = card1_card_core1_regs_fifo2_fifo_empty;
     word[9] = card1_card_core1_regs_fifo2_fifo_full;
@@ -6447,28 +6437,12 @@ always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_don
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2__interrupts2_remember
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_error_before <= 0;
-        card1_card_core1_regs_fifo2_low_before <= 0;
-        card1_card_core1_regs_fifo2_reg_word81_shown <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_error_before <= (card1_card_core1_regs_fifo2_error_code != 0);
-        card1_card_core1_regs_fifo2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word80_shown);
-        if (card1_card_core1_regs_fifo2_sequencer2_mark_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word81_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
-        end
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped, card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_reg_word80_shown, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_input_filter2_inputs_changed, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_homing2_port_ended, card1_card_core1_regs_fifo2_busy_before, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_low_before) begin: card1_card_core1_regs_fifo2__interrupts2_detect
+always @(card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_status_words2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_reg_word80_shown, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped, card1_card_core1_regs_fifo2_status_words2_busy_before, card1_card_core1_regs_fifo2_status_words2_low_before, card1_card_core1_regs_fifo2_homing2_port_ended, card1_card_core1_regs_fifo2_input_filter2_inputs_changed) begin: card1_card_core1_regs_fifo2_status_words2_detect_events
     reg [8-1:0] word;
     word = 8'h0;
-    word[0] = (card1_card_core1_regs_fifo2_busy_before && (!card1_card_core1_regs_fifo2_any_busy));
-    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word80_shown) && (!card1_card_core1_regs_fifo2_low_before));
-    word[2] = ((card1_card_core1_regs_fifo2_error_code != 0) && (!card1_card_core1_regs_fifo2_error_before));
+    word[0] = (card1_card_core1_regs_fifo2_status_words2_busy_before && (!card1_card_core1_regs_fifo2_any_busy));
+    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word80_shown) && (!card1_card_core1_regs_fifo2_status_words2_low_before));
+    word[2] = ((card1_card_core1_regs_fifo2_error_code != 0) && (!card1_card_core1_regs_fifo2_status_words2_error_before));
     word[3] = card1_card_core1_regs_fifo2_sequencer2_mark_strobe;
     word[4] = card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped;
     word[5] = card1_card_core1_regs_fifo2_guard_stop_event;
@@ -6480,6 +6454,24 @@ end
 
 
 assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word79_shown & card1_card_core1_regs_fifo2_reg_word78_shown) != 0);
+
+
+always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_conditioning_active, card1_card_core1_regs_fifo2_settled, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2_status_words2_assemble_machine
+    reg [20-1:0] word;
+    reg [8-1:0] why;
+    word = 20'h0;
+    word[0+:7] = card1_card_core1_regs_fifo2_input_filter2_inputs_raw;
+    word[8+:7] = card1_card_core1_regs_fifo2_conditioning_active;
+    word[16] = card1_card_core1_regs_fifo2_guard_stopped;
+    word[17] = motor_drive_enable;
+    word[18] = card1_card_core1_regs_fifo2_settled;
+    word[19] = card1_card_core1_regs_fifo2_guard_stopping;
+    card1_card_core1_regs_fifo2_reg_word99_shown = word;
+    why = 8'h0;
+    why[0+:2] = card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
+    why[4+:4] = card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
+    card1_card_core1_regs_fifo2_reg_word100_shown = why;
+end
 
 
 
@@ -7810,7 +7802,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2__status2_quadrant = card1_card_core1_dda_arc2_dda_run2_quadrant;
+assign card1_card_core1_regs_fifo2_status_words2_words_quadrant = card1_card_core1_dda_arc2_dda_run2_quadrant;
 assign card1_card_core1_regs_fifo2_dda_busy = ((!card1_card_core1_regs_fifo2_sequencer2_dda_ready) || (card1_card_core1_dda_arc2_dda_run2_active && (!(card1_card_core1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_arc2_dda_run2_step_finished))));
 
 endmodule

@@ -7,18 +7,19 @@ from rtl.direct_pulse import direct_pulse
 from rtl.feed_rate import feed_rate
 from rtl.homing import homing
 from rtl.input_filter import input_filter
-from rtl.interfaces import (ERROR_BITS, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing,
+from rtl.interfaces import (AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing,
                             InputConditioning, LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus,
-                            RegisterWord, SequencerControl, SetPort, StepPositions, StepRequest, card_reset)
+                            RegisterWord, SequencerControl, SetPort, StatusWords, StepPositions, StepRequest,
+                            card_reset)
 from rtl.dda_build import variants_choice
 from rtl.machine_guard import machine_guard
 from rtl.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, VARIANTS
 from rtl.pulse_out import pulse_out
 from rtl.reg_word import reg_word
 from rtl.sequencer import sequencer
+from rtl.status_words import status_words
 from rtl.sync_fifo import sync_fifo
 
-INT_BITS = len(regmap.register("INT_STATUS").fields)
 REGS_FIFO_PARAMETERS = ("fifo_depth", "clock_hz", "device", "coord_width", "variants")  # the last two: of dda
 
 
@@ -43,7 +44,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     stop resets and holds the sequencer, the direct pulses and the pulse
     outputs and resets the DDA; the FIFO keeps its words until
     COMMAND.CLEAR_STOP empties it, docs/machine.md); ``irq`` (level, to
-    INTA#: INT_STATUS & INT_ENABLE); ``core_clear`` (one registered clock on
+    INTA#: INT_STATUS & INT_ENABLE, from ``status_words``, which also
+    assembles STATUS, MACHINE_STATUS, STOP_REASON, MARK_TAG and POS_X/Y);
+    ``core_clear`` (one registered clock on
     COMMAND.SOFT_RESET or a stop: the top resets the DDA with it).
     Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
     two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
@@ -126,7 +129,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     tick, hold = feed.tick, feed.hold
     fifo_flush, soft_reset_taken = Signal(bool(0)), Signal(bool(0))
     requested_before, out_active_before = Signal(bool(0)), Signal(bool(0))
-    any_busy, busy_before, done_flag, low_before, error_before = (Signal(bool(0)) for _ in range(5))
+    any_busy = Signal(bool(0))
     pos_y_snapshot = Signal(position.y.val)
 
     drive_bit, hold_bit = _bit("MACHINE_CONTROL", "DRIVE_ENABLE"), _bit("MACHINE_CONTROL", "HOLD")
@@ -156,8 +159,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
                   outputs_active=out_active, zero=home_zero, taken=hw["HOME"], state=hw["HOME_STATUS"],
                   home=home_inputs)
     units += [input_filter(clock, reset, conditioning), machine_guard(clock, reset, guard, requests, granted),
-              homing(clock, reset, home),
-              _machine_words(conditioning, guard, hw["MACHINE_STATUS"], hw["STOP_REASON"])]
+              homing(clock, reset, home)]
 
     read_end, clamp_end = chain[-1].data, chain[-1].clamped
     control, command, command_strobe = values["CONTROL"], values["COMMAND"], strobes["COMMAND"]
@@ -312,13 +314,14 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
                                   seq_load, (pulses.count_x, pulses.count_y)[axis], halt, axis_load[axis],
                                   axis_count[axis], home, hw["HOME"](_bit("HOME", "AXIS")), axis, values[f"PULSE_PERIOD_{name}"],
                                   direct[axis].period))
-    units.append(_status(clock, reset, any_busy, busy_before, done_flag, dda.quadrant, error_code,
-                         fifo_empty, fifo_full, level_wide, guard.stopped, hw["STATUS"]))
-    units.append(_interrupts(clock, reset, any_busy, busy_before, error_code, error_before, mark.strobe,
-                         mark.tag, hw["MARK_TAG"], level_wide, values["LOW_WATER"], low_before, clamp_end,
-                         guard.stop_event, conditioning.changed, home.ended, hw["INT_STATUS"], values["INT_STATUS"],
-                         values["INT_ENABLE"], irq))
-    units.append(_positions(position.x, pos_y_snapshot, hw["POS_X"], hw["POS_Y"]))
+    status = StatusWords(busy=any_busy, quadrant=dda.quadrant, error_code=error_code, fifo_empty=fifo_empty,
+                         fifo_full=fifo_full, fifo_level=level_wide, clamped=clamp_end, home_ended=home.ended,
+                         low_water=values["LOW_WATER"], int_status=values["INT_STATUS"],
+                         int_enable=values["INT_ENABLE"], position_x=position.x, position_y=pos_y_snapshot,
+                         status=hw["STATUS"], int_set=hw["INT_STATUS"], mark_tag=hw["MARK_TAG"],
+                         machine_status=hw["MACHINE_STATUS"], stop_reason=hw["STOP_REASON"], pos_x=hw["POS_X"],
+                         pos_y=hw["POS_Y"], irq=irq)
+    units.append(status_words(clock, reset, words=status, guard=guard, conditioning=conditioning, mark=mark))
     return units
 
 
@@ -345,114 +348,6 @@ def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, ha
             count.next = seq_count
 
     return choose_source
-
-
-@block
-def _status(clock, reset, any_busy, busy_before, done_flag, quadrant, error_code, fifo_empty,
-            fifo_full, fifo_level, stopped, status):
-    """STATUS: DONE is set when the card goes idle and cleared when it gets busy."""
-    busy_bit, done_bit = _bit("STATUS", "BUSY"), _bit("STATUS", "DONE")
-    quadrant_lsb, error_lsb = _bit("STATUS", "QUADRANT"), _bit("STATUS", "ERROR")
-    empty_bit, full_bit, level_lsb = _bit("STATUS", "FIFO_EMPTY"), _bit("STATUS", "FIFO_FULL"), _bit("STATUS", "FIFO_LEVEL")
-    stopped_bit = _bit("STATUS", "STOPPED")
-
-    @always_seq(clock.posedge, reset=reset)
-    def track_done():
-        busy_before.next = any_busy
-        if any_busy:
-            done_flag.next = 0
-        elif busy_before:
-            done_flag.next = 1
-
-    @always_comb
-    def assemble():
-        word = intbv(0)[32:]
-        word[busy_bit] = any_busy
-        word[done_bit] = done_flag
-        word[quadrant_lsb + 2:quadrant_lsb] = quadrant
-        word[error_lsb + ERROR_BITS:error_lsb] = error_code
-        word[empty_bit] = fifo_empty
-        word[full_bit] = fifo_full
-        word[stopped_bit] = stopped
-        word[32:level_lsb] = fifo_level
-        status.next = word
-
-    return [track_done, assemble]
-
-
-@block
-def _interrupts(clock, reset, any_busy, busy_before, error_code, error_before, mark_strobe, mark_tag,
-                mark_register, fifo_level, low_water, low_before, clamp_end, stop_event, input_changed,
-                home_ended, set_bits, int_status, int_enable, irq):
-    """INT_STATUS events (one clock each) and the INTA# level."""
-    done_bit, low_bit, error_bit = _bit("INT_STATUS", "DONE"), _bit("INT_STATUS", "LOW_WATER"), _bit("INT_STATUS", "ERROR")
-    mark_bit, clamp_bit = _bit("INT_STATUS", "MARK"), _bit("INT_STATUS", "CLAMPED")
-    stopped_bit, input_bit, homed_bit = _bit("INT_STATUS", "STOPPED"), _bit("INT_STATUS", "INPUT"), _bit("INT_STATUS", "HOMED")
-
-    @always_seq(clock.posedge, reset=reset)
-    def remember():
-        error_before.next = error_code != 0
-        low_before.next = fifo_level < low_water
-        if mark_strobe:
-            mark_register.next = mark_tag
-
-    @always_comb
-    def detect():
-        word = intbv(0)[INT_BITS:]
-        word[done_bit] = busy_before and not any_busy
-        word[low_bit] = fifo_level < low_water and not low_before
-        word[error_bit] = error_code != 0 and not error_before
-        word[mark_bit] = mark_strobe
-        word[clamp_bit] = clamp_end
-        word[stopped_bit] = stop_event
-        word[input_bit] = input_changed
-        word[homed_bit] = home_ended
-        set_bits.next = word
-
-    @always_comb
-    def request():
-        irq.next = (int_status & int_enable) != 0
-
-    return [remember, detect, request]
-
-
-@block
-def _machine_words(conditioning, guard, machine_status, stop_reason):
-    """MACHINE_STATUS and STOP_REASON from the input filter and the guard."""
-    raw_lsb, active_lsb = _bit("MACHINE_STATUS", "RAW"), _bit("MACHINE_STATUS", "ACTIVE")
-    stopped_bit, drive_bit = _bit("MACHINE_STATUS", "STOPPED"), _bit("MACHINE_STATUS", "DRIVE_ENABLE")
-    held_bit, stopping_bit = _bit("MACHINE_STATUS", "HELD"), _bit("MACHINE_STATUS", "STOPPING")
-    reason_lsb, limits_lsb = _bit("STOP_REASON", "REASON"), _bit("STOP_REASON", "LIMITS")
-    inputs, reason_bits, limit_bits = len(conditioning.raw), len(guard.reason), len(guard.limits)
-
-    @always_comb
-    def assemble():
-        word = intbv(0)[len(machine_status):]
-        word[raw_lsb + inputs:raw_lsb] = conditioning.raw
-        word[active_lsb + inputs:active_lsb] = conditioning.active
-        word[stopped_bit] = guard.stopped
-        word[drive_bit] = guard.drive_enable
-        word[held_bit] = guard.held
-        word[stopping_bit] = guard.stopping
-        machine_status.next = word
-        why = intbv(0)[len(stop_reason):]
-        why[reason_lsb + reason_bits:reason_lsb] = guard.reason
-        why[limits_lsb + limit_bits:limits_lsb] = guard.limits
-        stop_reason.next = why
-
-    return assemble
-
-
-@block
-def _positions(position_x, snapshot_y, pos_x, pos_y):
-    """POS_X reads the live X count; POS_Y the Y count captured with it."""
-
-    @always_comb
-    def show():
-        pos_x.next = position_x[32:]
-        pos_y.next = snapshot_y[32:]
-
-    return show
 
 
 def regs_fifo_ports(coord_width=COORD_WIDTH.default, variants=VARIANTS.default, **build):

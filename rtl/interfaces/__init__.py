@@ -20,7 +20,7 @@ from rtl.interfaces.machine import Homing, InputConditioning, MachineGuard
 from rtl.interfaces.card import (MotorPins, MACHINE_INPUTS, SET_INDEX_BITS, MARK_TAG_BITS, ERROR_BITS,
                                  PULSE_COUNT_BITS, TIMING_BITS, FifoRead, SequencerControl, PulseCommand,
                                  SetPort, MarkPort, RegisterBus, RegisterWord, ReadChain, PulseControl,
-                                 StepPositions, RampSettings, FeedPort, DirectPulseCommand, StepRequest,
+                                 StepPositions, RampSettings, FeedPort, DirectPulseCommand, StepRequest, StatusWords,
                                  INPUT_ESTOP, INPUT_LIMIT_POS_X, INPUT_LIMIT_NEG_X, INPUT_LIMIT_POS_Y,
                                  INPUT_LIMIT_NEG_Y)
 
@@ -31,6 +31,6 @@ __all__ = [
     "MachineGuard", "MotorPins", "MACHINE_INPUTS", "SET_INDEX_BITS", "MARK_TAG_BITS", "ERROR_BITS",
     "PULSE_COUNT_BITS", "TIMING_BITS", "FifoRead", "SequencerControl", "PulseCommand", "SetPort",
     "MarkPort", "RegisterBus", "RegisterWord", "ReadChain", "PulseControl", "StepPositions",
-    "RampSettings", "FeedPort", "DirectPulseCommand", "StepRequest", "INPUT_ESTOP", "INPUT_LIMIT_POS_X",
+    "RampSettings", "FeedPort", "DirectPulseCommand", "StepRequest", "StatusWords", "INPUT_ESTOP", "INPUT_LIMIT_POS_X",
     "INPUT_LIMIT_NEG_X", "INPUT_LIMIT_POS_Y", "INPUT_LIMIT_NEG_Y"
 ]

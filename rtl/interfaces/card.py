@@ -226,3 +226,34 @@ class StepRequest:
 
     def __init__(self, **given):
         adopt(self, given, step=Signal(bool(0)), dir=Signal(bool(0)), ready=Signal(bool(1)))
+
+
+class StatusWords:
+    """What the status registers read (``rtl/status_words.py``), each as wide
+    as its register in ``rtl/registers.py``.
+
+    The card drives ``busy`` (a command queued or running, a direct pulse,
+    a step on its way, a move or a HOME under way), ``quadrant`` (the
+    DDA's), ``error_code`` (the sequencer's), ``fifo_empty``, ``fifo_full``
+    and ``fifo_level`` (words), ``clamped`` (one clock: a register write was
+    clamped), ``home_ended`` (one clock as a HOME ends), ``low_water``,
+    ``int_status`` and ``int_enable`` (the registers' values), ``position_x``
+    (the live X count) and ``position_y`` (the Y count captured with the last
+    POS_X read); the unit drives ``status`` (STATUS), ``int_set`` (the
+    INT_STATUS bits to set), ``mark_tag``, ``machine_status``,
+    ``stop_reason``, ``pos_x``, ``pos_y`` (what those registers read) and
+    ``irq`` (INTA#, active high: an enabled INT_STATUS bit is set)."""
+
+    def __init__(self, **given):
+        def word(name):
+            return Signal(intbv(0)[regmap.register(name).width:])
+        step_count = dict(min=-(1 << 31), max=1 << 31)
+        adopt(self, given, busy=Signal(bool(0)), quadrant=Signal(intbv(0)[2:]),
+               error_code=Signal(intbv(0)[ERROR_BITS:]), fifo_empty=Signal(bool(1)), fifo_full=Signal(bool(0)),
+               fifo_level=Signal(intbv(0)[regmap.register("STATUS").field("FIFO_LEVEL").width:]),
+               clamped=Signal(bool(0)), home_ended=Signal(bool(0)), low_water=word("LOW_WATER"),
+               int_status=word("INT_STATUS"), int_enable=word("INT_ENABLE"),
+               position_x=Signal(modbv(0, **step_count)), position_y=Signal(modbv(0, **step_count)),
+               status=word("STATUS"), int_set=word("INT_STATUS"), mark_tag=word("MARK_TAG"),
+               machine_status=word("MACHINE_STATUS"), stop_reason=word("STOP_REASON"), pos_x=word("POS_X"),
+               pos_y=word("POS_Y"), irq=Signal(bool(0)))
