@@ -125,7 +125,7 @@ PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "i
                        "pci_config0_detected_parity_error", "parity_error_q",
                        "pci_config0_interrupt_line", "h_data", "spare_data", "ad_q", "h_be", "s_be",
                        "cbe_q", "req_addr", "ad_out_q")
-REGS_FILES = ["local_bus_rules.sv", "regs_fifo_harness.sv"]
+REGS_FILES = ["local_bus_rules.sv", "pulse_rules.sv", "regs_fifo_harness.sv"]
 REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value",
                        "direct_request_x", "direct_request_y")
 REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
@@ -169,7 +169,7 @@ GROUPS = [
           text="every register as rtl/registers.py says (bounded)"),
     Group("regs_fifo_pulses", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_",), mode="bmc",
           depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
-          defines={"PULSE_TIMING_BY_SET": None},
+          defines={"PULSE_TIMING_BY_SET": None, "POSITION_WITHOUT_HOMING": None},
           text="STEP widths, DIR set-up and hold (bounded)"),
     Group("regs_fifo_pulse_progress", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_request_leaves",),
           mode="bmc", depth=20, fast=False, expose=REGS_FIFO_REGISTERS,
