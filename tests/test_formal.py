@@ -82,12 +82,14 @@ endmodule
 # `python -m formal.mutation` scores; indices into them) that change the
 # unit's outputs; each must be rejected by the group named, bounded to its
 # depth.  pci_slave (20 mutants): m002, m005, m007 by the protocol rules.
-# regs_fifo (16 mutants of the card with the machine side, feed hold, homing
-# and the registered read): m000, m009, m010 by the register table's rules.
+# regs_fifo (16 mutants of the card with the status registers in their own
+# unit, rtl/status_words.py): m000 (RAMP_START's clamp test), m002 (a bit of
+# DIR_SETUP's read data inverted), m003 (STEP_WIDTH's written value) by the
+# register table's rules.
 MUTANT_LISTS = {"pci_slave": 20, "regs_fifo": 16}
 FIXED_MUTANTS = (("pci_slave", 2, "pci_protocol", 12), ("pci_slave", 5, "pci_protocol", 12),
                  ("pci_slave", 7, "pci_protocol", 12), ("regs_fifo", 0, "regs_fifo_table", 10),
-                 ("regs_fifo", 9, "regs_fifo_table", 10), ("regs_fifo", 10, "regs_fifo_table", 10))
+                 ("regs_fifo", 2, "regs_fifo_table", 10), ("regs_fifo", 3, "regs_fifo_table", 10))
 MITER_DEPTH = 12
 
 
