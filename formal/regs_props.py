@@ -8,7 +8,8 @@ that takes bus writes (byte enables honoured, the merged value clamped to
 min..max, one clock after the bus transfer as docs/registers.md and
 rtl/regs_fifo.py say) and SET commands (the value clamped), and every read
 of it returns the model as it was in the read's wait clock; a bit of a write-one-to-clear register read as 1
-reads 1 until a write of 1 to it; offsets the table does not list read 0.
+reads 1 until a write of 1 to it; INT_STATUS.CLAMPED reads 1 only after a
+write out of a register's range; offsets the table does not list read 0.
 """
 from rtl import registers as regmap
 
@@ -37,6 +38,39 @@ def _clamp_function(reg):
                   f"        else {name} = value[{width - 1}:0];"]
     lines.append("    endfunction")
     return lines
+
+
+def _clamped_only_after_a_clamp():
+    """INT_STATUS.CLAMPED reads 1 only after a write out of a register's
+    min..max (docs/registers.md: such a write is clamped and sets it): a bus
+    write whose merged value is out of range, a SET whose value is; a write to
+    a WP register with a range counts whatever its value (its range is signed;
+    counting more writes only weakens the rule, never fails it wrongly)."""
+    causes = []
+    for reg in regmap.REGISTERS:
+        if reg.minimum is None and reg.maximum is None:
+            continue
+        write = f"stage_write && stage_addr == 16'h{reg.offset:04X}"
+        if reg.access != "RW":
+            causes.append(f"({write})")
+            continue
+        upper, width = reg.name.lower(), reg.width
+        merged = f"(({{{32 - width}'h0, model_{upper}}} & ~stage_mask) | (stage_data & stage_mask))"
+        causes.append(f"({write} && clamp_{upper}({merged}) != {merged})")
+        if reg.set_index is not None:
+            causes.append(f"(set_strobe && set_index == 4'd{reg.set_index} "
+                          f"&& {{{32 - width}'h0, clamp_{upper}(set_value)}} != set_value)")
+    status = regmap.register("INT_STATUS")
+    bit = status.field("CLAMPED").lsb
+    return ["    // INT_STATUS.CLAMPED only after a write was clamped (a bus write or a SET out of range)",
+            "    reg clamp_seen = 0;",
+            "    always @(posedge clock) begin",
+            "        if (!reset_n) clamp_seen <= 0;",
+            "        else if (" + "\n                 || ".join(causes) + ") clamp_seen <= 1;",
+            "    end",
+            f"    always @(posedge clock) if (reset_n && read_now && l_addr == 16'h{status.offset:04X}) begin",
+            f"        reg_int_status_clamped_after_a_clamp: assert(!l_rdata[{bit}] || clamp_seen);",
+            "    end"]
 
 
 def table_properties():
@@ -88,6 +122,7 @@ def table_properties():
         if reg.access == "RW":
             lines.append(f"        reg_{upper}_reads_model: assert(l_rdata == {{{32 - reg.width}'h0, model_{upper}_read}});")
         lines.append("    end")
+    lines += _clamped_only_after_a_clamp()
     size = 1 << regmap.IO_BAR_BITS
     unlisted = " && ".join(f"l_addr != 16'h{offset:04X}" for offset in listed)
     lines += ["    // offsets the table does not list read 0 (docs/registers.md)",
