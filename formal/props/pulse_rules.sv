@@ -2,7 +2,8 @@
 // (regs_fifo_harness.sv): STEP high and low for at least STEP_WIDTH clocks,
 // DIR set-up and hold around a STEP pulse (pulse_axis_rules; docs/registers.md),
 // no STEP pulse without a step request (pulse_requests), and every request on
-// its pin within one step period (pulse_progress, used with PULSE_PACED).
+// its pin within one step period (pulse_progress, used with PULSE_PACED);
+// in direct mode, no more pulses than a count written (direct_count_rules).
 `default_nettype none
 
 module pulse_axis_rules (
@@ -87,5 +88,33 @@ module pulse_progress (
     end
     always @(posedge clock) if (reset_n) begin
         pulse_request_leaves: assert(quiet <= period);
+    end
+endmodule
+
+// A count written (``count_write``, the signed ``count``, judged when
+// ``judge``) allows at most |count| requests, clamped to 24 signed bits, until
+// ``drop`` or the next write; one more is allowed, as a request in the clock
+// of the write may still be the previous count's.
+module direct_count_rules (
+    input wire clock, input wire reset_n, input wire drop, input wire count_write, input wire judge,
+    input wire [31:0] count, input wire request
+);
+    wire signed [31:0] count_signed = count;
+    wire [24:0] count_size = count_signed < -32'sd8388608 ? 25'd8388608
+                           : count_signed > 32'sd8388607 ? 25'd8388607
+                           : count_signed < 0 ? -count_signed[24:0] : count_signed[24:0];
+    reg judged = 0;
+    reg [25:0] left = 0;
+    always @(posedge clock) begin
+        if (!reset_n || drop)
+            judged <= 0;
+        else if (count_write) begin
+            judged <= judge;
+            left <= count_size + 1;
+        end else if (request && left != 0)
+            left <= left - 1;
+    end
+    always @(posedge clock) if (reset_n && judged && !count_write) begin
+        if (request) begin direct_count_not_exceeded: assert(left != 0); end
     end
 endmodule

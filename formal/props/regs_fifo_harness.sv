@@ -345,31 +345,16 @@ module regs_fifo_harness #(
     always @(*) assume(!(l_we && !l_space && l_addr == 16'h007C));
 `endif
 `ifdef DIRECT_COUNTS
-    // direct mode (docs/registers.md): a write of a signed count n to
-    // PULSE_COUNT_X gives |n| X pulses (n clamped to the register's range);
-    // judged from a write taken with CONTROL.MODE = 1 and all bytes enabled,
-    // until MODE is cleared, a COMMAND write (SOFT_RESET drops the pulses) or
-    // the next such write; one request more is allowed, as a request in the
-    // clock of the write may still be the previous count's.  With
-    // MACHINE_RUNNING nothing halts the card and no HOME takes the pulses.
-    wire signed [31:0] count_written = stage_data;
-    wire [24:0] count_size = count_written < -32'sd8388608 ? 25'd8388608
-                           : count_written > 32'sd8388607 ? 25'd8388607
-                           : count_written < 0 ? -count_written[24:0] : count_written[24:0];
-    reg direct_judged = 0;
-    reg [25:0] direct_left = 0;
-    always @(posedge clock) begin
-        if (!reset_n || !model_control[1] || (stage_write && stage_addr == 16'h0008))
-            direct_judged <= 0;
-        else if (stage_write && stage_addr == 16'h004C) begin
-            direct_judged <= stage_mask == 32'hFFFFFFFF;
-            direct_left <= count_size + 1;
-        end else if (direct_request_x && direct_left != 0)
-            direct_left <= direct_left - 1;
-    end
-    always @(posedge clock) if (reset_n && direct_judged && !(stage_write && stage_addr == 16'h004C)) begin
-        if (direct_request_x) begin direct_count_not_exceeded: assert(direct_left != 0); end
-    end
+    // direct mode (docs/registers.md): a PULSE_COUNT_X write of a signed n
+    // gives no more than |n| X pulses (pulse_rules.sv), judged from a write
+    // taken with CONTROL.MODE = 1 and all bytes enabled, until MODE is
+    // cleared, a COMMAND write (SOFT_RESET drops the pulses) or the next
+    // write.  With MACHINE_RUNNING nothing halts the card and no HOME takes
+    // the pulses.
+    direct_count_rules x_direct (.clock(clock), .reset_n(reset_n),
+        .drop(!model_control[1] || (stage_write && stage_addr == 16'h0008)),
+        .count_write(stage_write && stage_addr == 16'h004C), .judge(stage_mask == 32'hFFFFFFFF),
+        .count(stage_data), .request(direct_request_x));
 `endif
 `ifdef PULSE_PACED
     // every step request leaves on its pin: while one waits, a STEP edge
