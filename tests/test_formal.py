@@ -140,3 +140,29 @@ def test_dda_defect_is_caught(name, tmp_path):
     mutant.write_text(text)
     result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
     assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
+
+
+# Defects put by hand into a copy of gen/card.v, the whole card: the FIFO's
+# read pointer advancing twice per word (a word skipped, the next taken out
+# of order); STATUS.FIFO_LEVEL one more than the words in the FIFO.  Each must
+# fail its card group with a rule named.
+CARD_DEFECTS = {
+    "read_pointer_twice": ("card_fifo_order",
+                           r"(sync_fifo1_read_addr <= \(card_core0_regs_fifo1_sync_fifo1_read_addr \+ )1\);",
+                           r"\g<1>2);", {"card_fifo_in_order", "card_fifo_taken_was_written"}),
+    "level_off_by_one": ("card_status", r"(word\[32-1:16\] = card_core0_regs_fifo1_level_wide);",
+                         r"\1 + 1;", {"card_status_level", "card_status_empty"}),
+}
+
+
+@pytest.mark.parametrize("name", CARD_DEFECTS)
+def test_card_defect_is_caught(name, tmp_path):
+    judge, pattern, replacement, rules = CARD_DEFECTS[name]
+    group = catalogue.group(judge)
+    text, count = re.subn(pattern, replacement, (catalogue.GEN_DIR / "card.v").read_text())
+    assert count == 1, f"gen/card.v no longer has {pattern!r} once: pick the defect anew"
+    mutant = tmp_path / "mutant" / "card.v"
+    mutant.parent.mkdir()
+    mutant.write_text(text)
+    result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
+    assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
