@@ -166,3 +166,19 @@ def test_card_defect_is_caught(name, tmp_path):
     mutant.write_text(text)
     result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
     assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
+
+
+@pytest.mark.slow
+def test_card_error_defect_is_caught(tmp_path):
+    """STATUS.ERROR stuck at NONE on the whole card: a malformed first
+    command is not reported, and `card_status_error` rejects it."""
+    group = catalogue.group("card_status_error")
+    pattern = r"word\[4\+:4\] = card_core0_regs_fifo1_error_code;"
+    text, count = re.subn(pattern, "word[4+:4] = 4'h0;", (catalogue.GEN_DIR / "card.v").read_text())
+    assert count == 1, f"gen/card.v no longer has {pattern!r} once: pick the defect anew"
+    mutant = tmp_path / "mutant" / "card.v"
+    mutant.parent.mkdir()
+    mutant.write_text(text)
+    result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
+    rules = {"card_status_error_bad_opcode", "card_status_error_reserved_bits"}
+    assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)

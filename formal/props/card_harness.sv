@@ -223,7 +223,7 @@ module card_harness #(
     wire read_empty = ad[STATUS_FIFO_EMPTY_LSB], read_full = ad[STATUS_FIFO_FULL_LSB];
     always @(posedge clock) if (reset_n && status_read) begin
         // docs/registers.md STATUS.FIFO_LEVEL: words in the FIFO
-        card_status_level: assert(read_level <= level_at_address && read_level >= level - take);
+        card_status_level: assert(read_level <= level_at_address && read_level + take >= level);
         // STATUS.FIFO_EMPTY: the FIFO holds no word; STATUS.FIFO_FULL: it is full
         card_status_empty: assert(read_empty == (read_level == 0));
         card_status_full: assert(read_full == (read_level == DEPTH));
