@@ -114,7 +114,8 @@ class Group:
                     files=sources)
 
 
-PCI_FILES = ["pci_rules.sv", "local_bus_rules.sv", "pci_target_harness.sv"]
+# pci_target_local.vh: the harness's local-side properties, included by it
+PCI_FILES = ["pci_rules.sv", "local_bus_rules.sv", "pci_target_local.vh", "pci_target_harness.sv"]
 PCI_PARAMETERS = pci_harness_parameters(io_bits=6, mem_bits=12)
 # registers of pci_slave the helper invariants (props/pci_slave_invariants.vh) read
 # the configuration header's own registers carry the instance name the
