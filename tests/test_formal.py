@@ -4,7 +4,8 @@ The fast groups run by default (each a k-induction or a bounded check of
 one unit's generated Verilog); the rest, and the mutation campaign, carry
 the ``slow`` marker.  A few fixed mutants of the PCI target and the back end check that the
 proofs can fail: each one changes the unit's outputs (a miter says so)
-and each must be rejected by a proof.
+and each must be rejected by a proof; so must a few defects put by hand
+into a copy of the whole card (gen/card.v).
 """
 import re
 
