@@ -4,7 +4,8 @@ The fast groups run by default (each a k-induction or a bounded check of
 one unit's generated Verilog); the rest, and the mutation campaign, carry
 the ``slow`` marker.  A few fixed mutants of the PCI target and the back end check that the
 proofs can fail: each one changes the unit's outputs (a miter says so)
-and each must be rejected by a proof.
+and each must be rejected by a proof; so must a few defects put by hand
+into a copy of the whole card (gen/card.v).
 """
 import re
 
@@ -141,4 +142,46 @@ def test_dda_defect_is_caught(name, tmp_path):
     mutant.parent.mkdir()
     mutant.write_text(text)
     result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
+    assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
+
+
+# Defects put by hand into a copy of gen/card.v, the whole card: the FIFO's
+# read pointer advancing twice per word (a word skipped, the next taken out
+# of order); STATUS.FIFO_LEVEL one more than the words in the FIFO.  Each must
+# fail its card group with a rule named.
+CARD_DEFECTS = {
+    "read_pointer_twice": ("card_fifo_order",
+                           r"(sync_fifo1_read_addr <= \(card_core0_regs_fifo1_sync_fifo1_read_addr \+ )1\);",
+                           r"\g<1>2);", {"card_fifo_in_order", "card_fifo_taken_was_written"}),
+    "level_off_by_one": ("card_status", r"(word\[32-1:16\] = card_core0_regs_fifo1_level_wide);",
+                         r"\1 + 1;", {"card_status_level", "card_status_empty"}),
+}
+
+
+@pytest.mark.parametrize("name", CARD_DEFECTS)
+def test_card_defect_is_caught(name, tmp_path):
+    judge, pattern, replacement, rules = CARD_DEFECTS[name]
+    group = catalogue.group(judge)
+    text, count = re.subn(pattern, replacement, (catalogue.GEN_DIR / "card.v").read_text())
+    assert count == 1, f"gen/card.v no longer has {pattern!r} once: pick the defect anew"
+    mutant = tmp_path / "mutant" / "card.v"
+    mutant.parent.mkdir()
+    mutant.write_text(text)
+    result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
+    assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
+
+
+@pytest.mark.slow
+def test_card_error_defect_is_caught(tmp_path):
+    """STATUS.ERROR stuck at NONE on the whole card: a malformed first
+    command is not reported, and `card_status_error` rejects it."""
+    group = catalogue.group("card_status_error")
+    pattern = r"word\[4\+:4\] = card_core0_regs_fifo1_error_code;"
+    text, count = re.subn(pattern, "word[4+:4] = 4'h0;", (catalogue.GEN_DIR / "card.v").read_text())
+    assert count == 1, f"gen/card.v no longer has {pattern!r} once: pick the defect anew"
+    mutant = tmp_path / "mutant" / "card.v"
+    mutant.parent.mkdir()
+    mutant.write_text(text)
+    result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
+    rules = {"card_status_error_bad_opcode", "card_status_error_reserved_bits"}
     assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)

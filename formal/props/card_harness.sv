@@ -1,0 +1,301 @@
+// The whole card (gen/card.v: PCI target, back end, sequencer and DDA in one
+// netlist, what users synthesise) on a formal bus: a free initiator that
+// keeps PCI's initiator rules (pci_rules.sv, CHECK_TARGET = 1: the
+// initiator's rules assumed; the target's rules are proved on the target
+// alone and dropped here).  Checked across the seam between target and back
+// end, on the bus the host sees:
+//   * FIFO order (issue 16: "every dword written with IRDY# and TRDY# both
+//     asserted reaches the sequencer in order, none twice"): the N-th dword
+//     written on the bus into BAR1 (N a free constant) is the N-th word the
+//     sequencer takes from the FIFO, with its value; no word is taken that
+//     was not written;
+//   * STATUS truth (docs/registers.md STATUS, issue 16: "the status register
+//     tells the truth about FIFO level and errors"): an I/O read of STATUS
+//     completed on the bus carries a FIFO_LEVEL that the count of words
+//     written on the bus minus words taken had during the transaction,
+//     FIFO_EMPTY and FIFO_FULL as that level says, and the ERROR code of
+//     docs/instructions.md for the first command.
+// The register offsets, STATUS fields, error codes and opcodes come from
+// card_table.vh, generated from rtl/registers.py and rtl/instructions.py by
+// formal/card_props.py.  Where the sequencer takes a word (its FIFO pop, the
+// FIFO's empty flag and output register) is inside the card: yosys `expose`
+// makes those signals ports, so the generated file is read unchanged.
+//
+// Limits of the environment (each a restriction of what the bus does):
+//   * no I/O write to COMMAND (SOFT_RESET, CLEAR_ERROR and CLEAR_STOP empty
+//     the FIFO, which the shadows do not follow);
+//   * with MACHINE_RUNNING: machine inputs at rest and no I/O write to
+//     MACHINE_CONTROL, INPUT_POLARITY, WATCHDOG or HOME, so the guard never
+//     stops, holds or homes the card (the error properties need the
+//     sequencer to run); otherwise the machine inputs are free.
+`default_nettype none
+
+module card_harness #(
+    parameter IO_BITS = 8,
+    parameter MEM_BITS = 12,
+    parameter DEPTH = 512,
+    parameter ERROR_LATENCY = 4    // clocks from a malformed command to STATUS.ERROR
+) (
+    input wire clock,
+    input wire reset_n,
+    // the initiator
+    input wire [31:0] m_ad, input wire [3:0] m_cbe_n, input wire m_par,
+    input wire m_frame_n, input wire m_irdy_n, input wire m_idsel
+);
+`include "card_table.vh"
+    // the chosen data phase of the order shadow
+    (* anyconst *) reg [3:0] chosen;
+
+    // ------------------------------------------------------------ the card
+    wire [31:0] t_ad;
+    wire t_ad_oe, t_par, t_par_oe, t_trdy_n, t_trdy_oe, t_devsel_n, t_devsel_oe;
+    wire t_stop_n, t_stop_oe, t_perr_n, t_perr_oe, t_serr_n, t_serr_oe, t_inta_n, t_inta_oe;
+    wire step_x, dir_x, step_y, dir_y, drive_enable;
+    // exposed signals of the card: the sequencer's pop, the FIFO's empty flag and output
+    wire fifo_pop, fifo_empty;
+    wire [31:0] fifo_dout;
+
+`ifdef MACHINE_RUNNING
+    wire [6:0] machine_in = 7'd0;
+`else
+    (* anyseq *) wire [6:0] machine_in;
+`endif
+
+    // this card is the only target: the lines are its drivers or the initiator's
+    wire [31:0] ad = t_ad_oe ? t_ad : m_ad;
+    wire par = t_par_oe ? t_par : m_par;
+    wire trdy_n = t_trdy_oe ? t_trdy_n : 1'b1;
+    wire devsel_n = t_devsel_oe ? t_devsel_n : 1'b1;
+    wire stop_n = t_stop_oe ? t_stop_n : 1'b1;
+    wire perr_n = t_perr_oe ? t_perr_n : 1'b1;
+    wire serr_n = t_serr_oe ? t_serr_n : 1'b1;
+
+    card dut (
+        .clock(clock), .reset(reset_n),
+        .pci_ad_in(ad), .pci_ad_out(t_ad), .pci_ad_oe(t_ad_oe), .pci_cbe_in(m_cbe_n),
+        .pci_par_in(par), .pci_par_out(t_par), .pci_par_oe(t_par_oe),
+        .pci_frame_in(m_frame_n), .pci_irdy_in(m_irdy_n), .pci_idsel_in(m_idsel),
+        .pci_trdy_out(t_trdy_n), .pci_trdy_oe(t_trdy_oe), .pci_devsel_out(t_devsel_n),
+        .pci_devsel_oe(t_devsel_oe), .pci_stop_out(t_stop_n), .pci_stop_oe(t_stop_oe),
+        .pci_perr_out(t_perr_n), .pci_perr_oe(t_perr_oe), .pci_serr_out(t_serr_n),
+        .pci_serr_oe(t_serr_oe), .pci_inta_out(t_inta_n), .pci_inta_oe(t_inta_oe),
+        .pins_step_x(step_x), .pins_dir_x(dir_x), .pins_step_y(step_y), .pins_dir_y(dir_y),
+        .pins_drive_enable(drive_enable), .pins_estop(machine_in[0]),
+        .pins_limit_pos_x(machine_in[1]), .pins_limit_neg_x(machine_in[2]),
+        .pins_limit_pos_y(machine_in[3]), .pins_limit_neg_y(machine_in[4]),
+        .pins_home_x(machine_in[5]), .pins_home_y(machine_in[6]),
+        .card_core0_regs_fifo1_fifo_pop(fifo_pop), .card_core0_regs_fifo1_fifo_empty(fifo_empty),
+        .card_core0_regs_fifo1_fifo_dout(fifo_dout));
+
+    reg started = 0;
+    always @(posedge clock) started <= 1;
+    always @(*) if (!started) assume(!reset_n);
+
+    // ------------------------------------------------------------ the bus
+    // the configuration a target decodes with (6.2.2 Command, 6.2.5 BARs),
+    // written by the configuration writes seen on the bus (as in
+    // pci_target_harness.sv, where the target's decode is proved against it)
+    localparam [15:0] IO_WRITABLE = 16'hFFFF << IO_BITS;
+    localparam [31:0] MEM_WRITABLE = 32'hFFFFFFFF << MEM_BITS;
+    reg io_enable = 0, mem_enable = 0, parity_response = 0, serr_enable = 0;
+    reg [15:0] bar0 = 0;
+    reg [31:0] bar1 = 0;
+    wire [3:0] command = m_cbe_n;
+    wire cmd_config = command == 4'hA || command == 4'hB;
+    wire cmd_io = command == 4'h2 || command == 4'h3;
+    wire cmd_mem = command == 4'h6 || command == 4'h7 || command == 4'hC || command == 4'hE
+                   || command == 4'hF;
+    wire config_hit = m_idsel && ad[1:0] == 2'b00 && ad[10:8] == 3'b000 && cmd_config;
+    wire io_hit = io_enable && cmd_io && ad[31:16] == 16'h0
+                  && (ad[15:0] & IO_WRITABLE) == (bar0 & IO_WRITABLE);
+    wire mem_hit = mem_enable && cmd_mem && (ad & MEM_WRITABLE) == (bar1 & MEM_WRITABLE);
+
+    wire address_edge, data_edge, completion, transfer, last_completion, txn_hit;
+    wire addr_parity_error, target_abort, target_claimed, par_wrong;
+    wire [3:0] since_completion, txn_command;
+    wire [31:0] txn_address;
+    wire [15:0] txn_transfers;
+    wire [5:0] clk_now;
+    pci_rules #(.CHECK_TARGET(1)) bus (
+        .clock(clock), .reset_n(reset_n),
+        .ad(ad), .cbe_n(m_cbe_n), .par(par), .frame_n(m_frame_n), .irdy_n(m_irdy_n),
+        .trdy_n(trdy_n), .devsel_n(devsel_n), .stop_n(stop_n), .perr_n(perr_n), .serr_n(serr_n),
+        .t_ad(t_ad), .t_ad_oe(t_ad_oe), .t_par(t_par), .t_par_oe(t_par_oe),
+        .t_trdy_n(t_trdy_n), .t_trdy_oe(t_trdy_oe), .t_devsel_n(t_devsel_n),
+        .t_devsel_oe(t_devsel_oe), .t_stop_n(t_stop_n), .t_stop_oe(t_stop_oe),
+        .t_perr_n(t_perr_n), .t_perr_oe(t_perr_oe), .t_serr_n(t_serr_n), .t_serr_oe(t_serr_oe),
+        .m_ad(m_ad), .m_cbe_n(m_cbe_n), .m_frame_n(m_frame_n), .m_irdy_n(m_irdy_n),
+        .decoded(config_hit || io_hit || mem_hit), .parity_response(parity_response),
+        .serr_enable(serr_enable),
+        .address_edge(address_edge), .data_edge(data_edge), .completion(completion),
+        .transfer(transfer), .last_completion(last_completion), .txn_hit(txn_hit),
+        .txn_command(txn_command), .txn_address(txn_address), .txn_transfers(txn_transfers),
+        .clk_now(clk_now), .addr_parity_error(addr_parity_error), .target_abort(target_abort),
+        .target_claimed(target_claimed), .since_completion(since_completion),
+        .par_wrong(par_wrong));
+
+    wire txn_config = txn_command[3:1] == 3'b101;
+    wire txn_io = txn_command[3:1] == 3'b001;
+    wire txn_write = txn_command[0];
+    wire our_transfer = transfer && txn_hit;
+    wire [5:0] config_dword = txn_address[7:2] + txn_transfers[5:0];
+    wire [5:0] io_dword = txn_address[IO_BITS-1:2];
+    always @(posedge clock) begin
+        if (!reset_n) begin
+            io_enable <= 0; mem_enable <= 0; parity_response <= 0; serr_enable <= 0;
+            bar0 <= 0; bar1 <= 0;
+        end else if (our_transfer && txn_config && txn_write) begin
+            case (config_dword)
+                6'd1: begin
+                    if (!m_cbe_n[0]) begin
+                        io_enable <= ad[0]; mem_enable <= ad[1]; parity_response <= ad[6];
+                    end
+                    if (!m_cbe_n[1]) serr_enable <= ad[8];
+                end
+                6'd4: begin
+                    if (!m_cbe_n[0]) bar0[7:0] <= ad[7:0];
+                    if (!m_cbe_n[1]) bar0[15:8] <= ad[15:8];
+                end
+                6'd5: begin
+                    if (!m_cbe_n[0]) bar1[7:0] <= ad[7:0];
+                    if (!m_cbe_n[1]) bar1[15:8] <= ad[15:8];
+                    if (!m_cbe_n[2]) bar1[23:16] <= ad[23:16];
+                    if (!m_cbe_n[3]) bar1[31:24] <= ad[31:24];
+                end
+                default: ;
+            endcase
+        end
+    end
+
+    // the limits of the environment (above), on the address phase of an I/O write
+    wire [5:0] address_dword = ad[IO_BITS-1:2];
+    wire io_write_address = address_edge && command == 4'h3;
+    always @(*) begin
+        if (io_write_address) assume(address_dword != DWORD_COMMAND);
+`ifdef MACHINE_RUNNING
+        if (io_write_address) assume(address_dword != DWORD_MACHINE_CONTROL
+                                     && address_dword != DWORD_INPUT_POLARITY
+                                     && address_dword != DWORD_WATCHDOG && address_dword != DWORD_HOME);
+`endif
+    end
+
+    // ------------------------------------------------------------ words written and taken
+    // docs/instructions.md: every data phase into BAR1 with at least one byte
+    // enabled pushes one word into the FIFO
+    wire bus_push = our_transfer && txn_write && !txn_io && !txn_config && m_cbe_n != 4'hF;
+    wire take = fifo_pop && !fifo_empty;   // the sequencer takes a word
+    reg [7:0] written = 0, taken = 0;      // since reset (the bounded runs stay far below 256)
+    wire [7:0] level = written - taken;    // words written on the bus and not taken
+    reg [31:0] chosen_word = 0;
+    reg arriving = 0;                      // the chosen word is on the FIFO's output now
+    always @(posedge clock) begin
+        if (!reset_n) begin
+            written <= 0;
+            taken <= 0;
+            arriving <= 0;
+        end else begin
+            written <= written + bus_push;
+            taken <= taken + take;
+            if (bus_push && written == chosen)
+                chosen_word <= ad;
+            arriving <= take && taken == chosen;
+        end
+    end
+    always @(posedge clock) if (reset_n) begin
+        // issue 16: no word taken that was not written on the bus (the first
+        // data phase of a write reaches the back end before its TRDY#,
+        // docs/pci.md, so the sequencer may take it at the edge the phase completes)
+        if (take) begin card_fifo_taken_was_written: assert(taken < written + bus_push); end
+        // issue 16: the N-th dword written (IRDY# and TRDY#) is the N-th word
+        // the sequencer takes, in order, none twice
+        if (arriving) begin card_fifo_in_order: assert(fifo_dout == chosen_word); end
+    end
+
+    // ------------------------------------------------------------ STATUS
+    // the level during the transaction: no word is written on the bus during
+    // an I/O read (and the target delivers its posted dwords before a new
+    // transaction, docs/pci.md), so it only falls from the address edge on
+    reg [7:0] level_at_address = 0;
+    always @(posedge clock) if (address_edge) level_at_address <= level;
+    wire status_read = our_transfer && txn_io && !txn_write && io_dword == DWORD_STATUS;
+    wire [STATUS_FIFO_LEVEL_WIDTH-1:0] read_level = ad[STATUS_FIFO_LEVEL_LSB +: STATUS_FIFO_LEVEL_WIDTH];
+    wire [STATUS_ERROR_WIDTH-1:0] read_error = ad[STATUS_ERROR_LSB +: STATUS_ERROR_WIDTH];
+    wire read_empty = ad[STATUS_FIFO_EMPTY_LSB], read_full = ad[STATUS_FIFO_FULL_LSB];
+    always @(posedge clock) if (reset_n && status_read) begin
+        // docs/registers.md STATUS.FIFO_LEVEL: words in the FIFO
+        card_status_level: assert(read_level <= level_at_address && read_level + take >= level);
+        // STATUS.FIFO_EMPTY: the FIFO holds no word; STATUS.FIFO_FULL: it is full
+        card_status_empty: assert(read_empty == (read_level == 0));
+        card_status_full: assert(read_full == (read_level == DEPTH));
+    end
+
+    // ------------------------------------------------------------ STATUS.ERROR
+    // The first word written after reset is the first header the sequencer
+    // takes (no COMMAND write empties the FIFO).  docs/instructions.md: an
+    // opcode not in the table gives BAD_OPCODE, a header bit outside the
+    // opcode's fields RESERVED_BITS; the sequencer checks a command when its
+    // operand words have arrived and executes it once CONTROL.ENABLE is set.
+    reg [31:0] first_written = 0;   // the first word the host wrote: the first header
+    reg [31:0] first_header = 0;    // that word, once the sequencer has taken its first word
+    reg [2:0] operands_due = 0;     // operand words of the first command not yet taken
+    reg first_taken = 0;            // the first command's words have all been taken
+    reg control_enable = 0;         // CONTROL.ENABLE and not MODE, as written on the bus
+    reg [4:0] ready_for = 0;        // clocks since the first command was taken with ENABLE set
+    // (the sequencer may take it at the edge its data phase completes)
+    wire [31:0] first_word = (bus_push && written == 0) ? ad : first_written;
+    wire [3:0] first_opcode = first_header[31:OPCODE_LSB];
+    wire first_bad_opcode = !opcode_known(first_opcode);
+    wire first_reserved = !first_bad_opcode && (first_header & ~header_mask(first_opcode)) != 0;
+    always @(posedge clock) begin
+        if (!reset_n) begin
+            operands_due <= 0;
+            first_taken <= 0;
+            control_enable <= 0;
+            ready_for <= 0;
+        end else begin
+            if (bus_push && written == 0)
+                first_written <= ad;
+            if (take && taken == 0) begin
+                first_header <= first_word;
+                operands_due <= operand_words(first_word[31:OPCODE_LSB]);
+                first_taken <= !opcode_known(first_word[31:OPCODE_LSB])
+                               || operand_words(first_word[31:OPCODE_LSB]) == 0;
+            end else if (take && operands_due != 0) begin
+                operands_due <= operands_due - 1;
+                if (operands_due == 1) first_taken <= 1;
+            end
+            if (our_transfer && txn_io && txn_write && io_dword == DWORD_CONTROL && !m_cbe_n[0])
+                control_enable <= ad[CONTROL_ENABLE] && !ad[CONTROL_MODE];
+            if (!(first_taken && control_enable))
+                ready_for <= 0;
+            else if (ready_for != 5'h1f)
+                ready_for <= ready_for + 1;
+        end
+    end
+    reg [4:0] ready_at_address = 0;
+    reg before_any_take = 0;
+    always @(posedge clock) if (address_edge) begin
+        ready_at_address <= ready_for;
+        before_any_take <= taken == 0 && !take;
+    end
+    always @(posedge clock) if (reset_n && status_read) begin
+        // STATUS.ERROR 0: none, while no command has been taken
+        if (before_any_take) begin card_status_error_none: assert(read_error == ERROR_NONE); end
+        if (ready_at_address >= ERROR_LATENCY) begin
+            if (first_bad_opcode) begin card_status_error_bad_opcode: assert(read_error == ERROR_BAD_OPCODE); end
+            if (first_reserved) begin card_status_error_reserved_bits: assert(read_error == ERROR_RESERVED_BITS); end
+        end
+    end
+
+    // ------------------------------------------------------------ reachable within the depths
+    // (group card_covers): a burst's second word taken in order, a STATUS
+    // read with words in the FIFO, a STATUS read showing a malformed command
+    always @(posedge clock) if (reset_n) begin
+        card_cover_second_word: cover(arriving && chosen == 1 && fifo_dout == chosen_word);
+        card_cover_status_with_words: cover(status_read && read_level != 0 && !read_empty);
+        card_cover_status_bad_opcode: cover(status_read && ready_at_address >= ERROR_LATENCY
+                                            && read_error == ERROR_BAD_OPCODE);
+        card_cover_status_reserved_bits: cover(status_read && ready_at_address >= ERROR_LATENCY
+                                               && read_error == ERROR_RESERVED_BITS);
+    end
+endmodule
