@@ -4329,7 +4329,6 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
         card_core0_regs_fifo1_sequencer1_mark_strobe <= 0;
         card_core0_regs_fifo1_sequencer1_dda_start <= 0;
         card_core0_regs_fifo1_set_strobe <= 0;
-        card_core0_regs_fifo1_sequencer1_dwell_left <= 0;
         card_core0_regs_fifo1_sequencer1_state <= 3'b000;
     end
     else begin
@@ -4366,7 +4365,6 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
             end
             else if ((card_core0_regs_fifo1_sequencer1_opcode == 5)) begin
                 card_core0_regs_fifo1_sequencer1_state <= 3'b011;
-                card_core0_regs_fifo1_sequencer1_dwell_left <= card_core0_regs_fifo1_sequencer1_operand_0;
             end
             else begin
                 card_core0_regs_fifo1_sequencer1_state <= 3'b000;
@@ -4383,7 +4381,19 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
         else if (card_core0_regs_fifo1_sequencer1_state_over) begin
             card_core0_regs_fifo1_sequencer1_state <= 3'b000;
         end
-        else if (((card_core0_regs_fifo1_sequencer1_state == 3'b011) && (!card_core0_regs_fifo1_outputs_busy) && (card_core0_regs_fifo1_sequencer1_dwell_left != 0))) begin
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_dwell_count
+    if (reset == 0) begin
+        card_core0_regs_fifo1_sequencer1_dwell_left <= 0;
+    end
+    else begin
+        if (((card_core0_regs_fifo1_sequencer1_state != 3'b011) || card_core0_regs_fifo1_sequencer1_state_over)) begin
+            card_core0_regs_fifo1_sequencer1_dwell_left <= card_core0_regs_fifo1_sequencer1_operand_0;
+        end
+        else if (((!card_core0_regs_fifo1_outputs_busy) && (card_core0_regs_fifo1_sequencer1_dwell_left != 0))) begin
             card_core0_regs_fifo1_sequencer1_dwell_left <= (card_core0_regs_fifo1_sequencer1_dwell_left - 1);
         end
     end

@@ -3064,7 +3064,6 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
         sequencer0_mark_strobe <= 0;
         dda_start <= 0;
         set_strobe <= 0;
-        sequencer0_dwell_left <= 0;
         sequencer0_state <= 3'b000;
     end
     else begin
@@ -3101,7 +3100,6 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
             end
             else if ((sequencer0_opcode == 5)) begin
                 sequencer0_state <= 3'b011;
-                sequencer0_dwell_left <= sequencer0_operand_0;
             end
             else begin
                 sequencer0_state <= 3'b000;
@@ -3118,7 +3116,19 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
         else if (sequencer0_state_over) begin
             sequencer0_state <= 3'b000;
         end
-        else if (((sequencer0_state == 3'b011) && (!outputs_busy) && (sequencer0_dwell_left != 0))) begin
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: sequencer0_dwell_count
+    if (reset == 0) begin
+        sequencer0_dwell_left <= 0;
+    end
+    else begin
+        if (((sequencer0_state != 3'b011) || sequencer0_state_over)) begin
+            sequencer0_dwell_left <= sequencer0_operand_0;
+        end
+        else if (((!outputs_busy) && (sequencer0_dwell_left != 0))) begin
             sequencer0_dwell_left <= (sequencer0_dwell_left - 1);
         end
     end

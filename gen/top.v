@@ -5161,7 +5161,6 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
         card1_card_core1_regs_fifo2_sequencer2_mark_strobe <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dda_start <= 0;
         card1_card_core1_regs_fifo2_set_strobe <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_dwell_left <= 0;
         card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
     end
     else begin
@@ -5198,7 +5197,6 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
             end
             else if ((card1_card_core1_regs_fifo2_sequencer2_opcode == 5)) begin
                 card1_card_core1_regs_fifo2_sequencer2_state <= 3'b011;
-                card1_card_core1_regs_fifo2_sequencer2_dwell_left <= card1_card_core1_regs_fifo2_sequencer2_operand_0;
             end
             else begin
                 card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
@@ -5215,7 +5213,19 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
         else if (card1_card_core1_regs_fifo2_sequencer2_state_over) begin
             card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
         end
-        else if (((card1_card_core1_regs_fifo2_sequencer2_state == 3'b011) && (!card1_card_core1_regs_fifo2_outputs_busy) && (card1_card_core1_regs_fifo2_sequencer2_dwell_left != 0))) begin
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_dwell_count
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_sequencer2_dwell_left <= 0;
+    end
+    else begin
+        if (((card1_card_core1_regs_fifo2_sequencer2_state != 3'b011) || card1_card_core1_regs_fifo2_sequencer2_state_over)) begin
+            card1_card_core1_regs_fifo2_sequencer2_dwell_left <= card1_card_core1_regs_fifo2_sequencer2_operand_0;
+        end
+        else if (((!card1_card_core1_regs_fifo2_outputs_busy) && (card1_card_core1_regs_fifo2_sequencer2_dwell_left != 0))) begin
             card1_card_core1_regs_fifo2_sequencer2_dwell_left <= (card1_card_core1_regs_fifo2_sequencer2_dwell_left - 1);
         end
     end
