@@ -983,6 +983,8 @@ reg [30:0] card_core0_dda_arc1_dda_run1_sum_y;
 reg card_core0_dda_arc1_dda_run1_tail;
 reg card_core0_dda_arc1_dda_run1_tail_taken;
 wire card_core0_dda_arc1_dda_run1_taking;
+reg [1:0] card_core0_dda_arc1_dda_run1_target_x;
+reg [1:0] card_core0_dda_arc1_dda_run1_target_y;
 reg [27:0] card_core0_dda_arc1_dda_run1_threshold;
 reg card_core0_dda_arc1_dda_run1_threshold_carry;
 reg card_core0_dda_arc1_dda_run1_up;
@@ -6712,6 +6714,28 @@ always @(card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_s
 end
 
 
+always @(card_core0_dda_arc1_dda_run1_radius, card_core0_dda_arc1_dda_run1_target_y, card_core0_dda_arc1_dda_run1_end_y, card_core0_dda_arc1_dda_run1_target_x, card_core0_dda_arc1_dda_run1_end_x) begin: card_core0_dda_arc1_dda_run1_goals
+    card_core0_dda_arc1_dda_run1_goal_x = 0;
+    case (card_core0_dda_arc1_dda_run1_target_x)
+        'h1: begin
+            card_core0_dda_arc1_dda_run1_goal_x = card_core0_dda_arc1_dda_run1_radius;
+        end
+        'h2: begin
+            card_core0_dda_arc1_dda_run1_goal_x = card_core0_dda_arc1_dda_run1_end_x;
+        end
+    endcase
+    card_core0_dda_arc1_dda_run1_goal_y = 0;
+    case (card_core0_dda_arc1_dda_run1_target_y)
+        'h1: begin
+            card_core0_dda_arc1_dda_run1_goal_y = card_core0_dda_arc1_dda_run1_radius;
+        end
+        'h2: begin
+            card_core0_dda_arc1_dda_run1_goal_y = card_core0_dda_arc1_dda_run1_end_y;
+        end
+    endcase
+end
+
+
 always @(card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_goal_x, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_goal_y) begin: card_core0_dda_arc1_dda_run1_end_tests
     reg [24-1:0] diff_x;
     reg [24-1:0] diff_y;
@@ -6812,11 +6836,12 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         card_core0_regs_fifo1_sequencer1_dda_done <= 0;
         card_core0_dda_arc1_dda_run1_step_blend <= 0;
         card_core0_dda_arc1_dda_run1_step_step_y <= 0;
-        card_core0_dda_arc1_dda_run1_goal_y <= 0;
         card_core0_dda_arc1_dda_run1_step_pending <= 0;
         card_core0_dda_arc1_dda_run1_variant <= 3;
         card_core0_regs_fifo1_steps_step_x <= 0;
+        card_core0_dda_arc1_dda_run1_target_y <= 0;
         card_core0_dda_arc1_dda_run1_crossings <= 0;
+        card_core0_dda_arc1_dda_run1_target_x <= 0;
         card_core0_dda_arc1_dda_run1_step_new_piece <= 0;
         card_core0_dda_arc1_dda_run1_first <= 0;
         card_core0_regs_fifo1_steps_dir_x <= 0;
@@ -6829,7 +6854,6 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         card_core0_dda_arc1_dda_run1_tail_taken <= 0;
         card_core0_dda_arc1_dda_run1_step_x_inward <= 0;
         card_core0_dda_arc1_dda_run1_step_line <= 0;
-        card_core0_dda_arc1_dda_run1_goal_x <= 0;
         card_core0_dda_arc1_dda_run1_ccw <= 0;
         card_core0_dda_arc1_dda_run1_step_step_x <= 0;
         card_core0_dda_arc1_dda_run1_step_finished <= 0;
@@ -6873,16 +6897,16 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
                     card_core0_dda_arc1_dda_run1_quadrant <= (card_core0_dda_arc1_dda_run1_quadrant - 1);
                 end
                 if ((card_core0_dda_arc1_dda_run1_crossings == 1)) begin
-                    card_core0_dda_arc1_dda_run1_goal_x <= card_core0_dda_arc1_dda_run1_end_x;
-                    card_core0_dda_arc1_dda_run1_goal_y <= card_core0_dda_arc1_dda_run1_end_y;
+                    card_core0_dda_arc1_dda_run1_target_x <= 2;
+                    card_core0_dda_arc1_dda_run1_target_y <= 2;
                 end
                 else if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
-                    card_core0_dda_arc1_dda_run1_goal_x <= card_core0_dda_arc1_dda_run1_radius;
-                    card_core0_dda_arc1_dda_run1_goal_y <= 0;
+                    card_core0_dda_arc1_dda_run1_target_x <= 1;
+                    card_core0_dda_arc1_dda_run1_target_y <= 0;
                 end
                 else begin
-                    card_core0_dda_arc1_dda_run1_goal_x <= 0;
-                    card_core0_dda_arc1_dda_run1_goal_y <= card_core0_dda_arc1_dda_run1_radius;
+                    card_core0_dda_arc1_dda_run1_target_x <= 0;
+                    card_core0_dda_arc1_dda_run1_target_y <= 1;
                 end
             end
         end
@@ -6898,24 +6922,8 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             card_core0_dda_arc1_dda_run1_quadrant <= card_core0_dda_arc1_dda_check1_move_quadrant;
             card_core0_dda_arc1_dda_run1_step_x_inward <= card_core0_dda_arc1_dda_check1_move_x_inward;
             card_core0_dda_arc1_dda_run1_crossings <= card_core0_dda_arc1_dda_check1_move_crossings;
-            card_core0_dda_arc1_dda_run1_goal_x <= 0;
-            case (card_core0_dda_arc1_dda_check1_move_target_x)
-                'h1: begin
-                    card_core0_dda_arc1_dda_run1_goal_x <= card_core0_dda_arc1_dda_check1_move_radius;
-                end
-                'h2: begin
-                    card_core0_dda_arc1_dda_run1_goal_x <= card_core0_dda_arc1_dda_check1_move_end_x;
-                end
-            endcase
-            card_core0_dda_arc1_dda_run1_goal_y <= 0;
-            case (card_core0_dda_arc1_dda_check1_move_target_y)
-                'h1: begin
-                    card_core0_dda_arc1_dda_run1_goal_y <= card_core0_dda_arc1_dda_check1_move_radius;
-                end
-                'h2: begin
-                    card_core0_dda_arc1_dda_run1_goal_y <= card_core0_dda_arc1_dda_check1_move_end_y;
-                end
-            endcase
+            card_core0_dda_arc1_dda_run1_target_x <= card_core0_dda_arc1_dda_check1_move_target_x;
+            card_core0_dda_arc1_dda_run1_target_y <= card_core0_dda_arc1_dda_check1_move_target_y;
             card_core0_dda_arc1_dda_run1_threshold_carry <= card_core0_dda_arc1_dda_check1_move_line;
         end
         if ((card_core0_dda_arc1_dda_check1_move_take && card_core0_dda_arc1_dda_check1_move_zero)) begin

@@ -232,6 +232,8 @@ reg [30:0] dda_run0_sum_y;
 reg dda_run0_tail;
 reg dda_run0_tail_taken;
 wire dda_run0_taking;
+reg [1:0] dda_run0_target_x;
+reg [1:0] dda_run0_target_y;
 reg [27:0] dda_run0_threshold;
 reg dda_run0_threshold_carry;
 reg dda_run0_up;
@@ -1304,6 +1306,28 @@ always @(dda_run0_step_mag_y, dda_run0_step_x_inward, dda_run0_step_mag_x) begin
 end
 
 
+always @(dda_run0_radius, dda_run0_target_y, dda_run0_end_y, dda_run0_target_x, dda_run0_end_x) begin: dda_run0_goals
+    dda_run0_goal_x = 0;
+    case (dda_run0_target_x)
+        'h1: begin
+            dda_run0_goal_x = dda_run0_radius;
+        end
+        'h2: begin
+            dda_run0_goal_x = dda_run0_end_x;
+        end
+    endcase
+    dda_run0_goal_y = 0;
+    case (dda_run0_target_y)
+        'h1: begin
+            dda_run0_goal_y = dda_run0_radius;
+        end
+        'h2: begin
+            dda_run0_goal_y = dda_run0_end_y;
+        end
+    endcase
+end
+
+
 always @(dda_run0_step_x_inward, dda_run0_step_mag_y, dda_run0_goal_x, dda_run0_step_mag_x, dda_run0_goal_y) begin: dda_run0_end_tests
     reg [24-1:0] diff_x;
     reg [24-1:0] diff_y;
@@ -1404,11 +1428,12 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
         cmd_done <= 0;
         dda_run0_step_blend <= 0;
         dda_run0_step_step_y <= 0;
-        dda_run0_goal_y <= 0;
         dda_run0_step_pending <= 0;
         dda_run0_variant <= 3;
         steps_step_x <= 0;
+        dda_run0_target_y <= 0;
         dda_run0_crossings <= 0;
+        dda_run0_target_x <= 0;
         dda_run0_step_new_piece <= 0;
         dda_run0_first <= 0;
         steps_dir_x <= 0;
@@ -1421,7 +1446,6 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
         dda_run0_tail_taken <= 0;
         dda_run0_step_x_inward <= 0;
         dda_run0_step_line <= 0;
-        dda_run0_goal_x <= 0;
         dda_run0_ccw <= 0;
         dda_run0_step_step_x <= 0;
         dda_run0_step_finished <= 0;
@@ -1465,16 +1489,16 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
                     dda_run0_quadrant <= (dda_run0_quadrant - 1);
                 end
                 if ((dda_run0_crossings == 1)) begin
-                    dda_run0_goal_x <= dda_run0_end_x;
-                    dda_run0_goal_y <= dda_run0_end_y;
+                    dda_run0_target_x <= 2;
+                    dda_run0_target_y <= 2;
                 end
                 else if (dda_run0_step_x_inward) begin
-                    dda_run0_goal_x <= dda_run0_radius;
-                    dda_run0_goal_y <= 0;
+                    dda_run0_target_x <= 1;
+                    dda_run0_target_y <= 0;
                 end
                 else begin
-                    dda_run0_goal_x <= 0;
-                    dda_run0_goal_y <= dda_run0_radius;
+                    dda_run0_target_x <= 0;
+                    dda_run0_target_y <= 1;
                 end
             end
         end
@@ -1490,24 +1514,8 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
             dda_run0_quadrant <= dda_check0_move_quadrant;
             dda_run0_step_x_inward <= dda_check0_move_x_inward;
             dda_run0_crossings <= dda_check0_move_crossings;
-            dda_run0_goal_x <= 0;
-            case (dda_check0_move_target_x)
-                'h1: begin
-                    dda_run0_goal_x <= dda_check0_move_radius;
-                end
-                'h2: begin
-                    dda_run0_goal_x <= dda_check0_move_end_x;
-                end
-            endcase
-            dda_run0_goal_y <= 0;
-            case (dda_check0_move_target_y)
-                'h1: begin
-                    dda_run0_goal_y <= dda_check0_move_radius;
-                end
-                'h2: begin
-                    dda_run0_goal_y <= dda_check0_move_end_y;
-                end
-            endcase
+            dda_run0_target_x <= dda_check0_move_target_x;
+            dda_run0_target_y <= dda_check0_move_target_y;
             dda_run0_threshold_carry <= dda_check0_move_line;
         end
         if ((dda_check0_move_take && dda_check0_move_zero)) begin

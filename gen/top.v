@@ -1007,6 +1007,8 @@ reg [30:0] card1_card_core1_dda_arc2_dda_run2_sum_y;
 reg card1_card_core1_dda_arc2_dda_run2_tail;
 reg card1_card_core1_dda_arc2_dda_run2_tail_taken;
 wire card1_card_core1_dda_arc2_dda_run2_taking;
+reg [1:0] card1_card_core1_dda_arc2_dda_run2_target_x;
+reg [1:0] card1_card_core1_dda_arc2_dda_run2_target_y;
 reg [27:0] card1_card_core1_dda_arc2_dda_run2_threshold;
 reg card1_card_core1_dda_arc2_dda_run2_threshold_carry;
 reg card1_card_core1_dda_arc2_dda_run2_up;
@@ -7544,6 +7546,28 @@ always @(card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc
 end
 
 
+always @(card1_card_core1_dda_arc2_dda_run2_radius, card1_card_core1_dda_arc2_dda_run2_target_y, card1_card_core1_dda_arc2_dda_run2_end_y, card1_card_core1_dda_arc2_dda_run2_target_x, card1_card_core1_dda_arc2_dda_run2_end_x) begin: card1_card_core1_dda_arc2_dda_run2_goals
+    card1_card_core1_dda_arc2_dda_run2_goal_x = 0;
+    case (card1_card_core1_dda_arc2_dda_run2_target_x)
+        'h1: begin
+            card1_card_core1_dda_arc2_dda_run2_goal_x = card1_card_core1_dda_arc2_dda_run2_radius;
+        end
+        'h2: begin
+            card1_card_core1_dda_arc2_dda_run2_goal_x = card1_card_core1_dda_arc2_dda_run2_end_x;
+        end
+    endcase
+    card1_card_core1_dda_arc2_dda_run2_goal_y = 0;
+    case (card1_card_core1_dda_arc2_dda_run2_target_y)
+        'h1: begin
+            card1_card_core1_dda_arc2_dda_run2_goal_y = card1_card_core1_dda_arc2_dda_run2_radius;
+        end
+        'h2: begin
+            card1_card_core1_dda_arc2_dda_run2_goal_y = card1_card_core1_dda_arc2_dda_run2_end_y;
+        end
+    endcase
+end
+
+
 always @(card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_goal_x, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_goal_y) begin: card1_card_core1_dda_arc2_dda_run2_end_tests
     reg [24-1:0] diff_x;
     reg [24-1:0] diff_y;
@@ -7644,11 +7668,12 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_blend <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_step_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_goal_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_pending <= 0;
         card1_card_core1_dda_arc2_dda_run2_variant <= 3;
         card1_card_core1_regs_fifo2_steps_step_x <= 0;
+        card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_crossings <= 0;
+        card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_new_piece <= 0;
         card1_card_core1_dda_arc2_dda_run2_first <= 0;
         card1_card_core1_regs_fifo2_steps_dir_x <= 0;
@@ -7661,7 +7686,6 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_dda_arc2_dda_run2_tail_taken <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_x_inward <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_line <= 0;
-        card1_card_core1_dda_arc2_dda_run2_goal_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_ccw <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_step_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_finished <= 0;
@@ -7705,16 +7729,16 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
                     card1_card_core1_dda_arc2_dda_run2_quadrant <= (card1_card_core1_dda_arc2_dda_run2_quadrant - 1);
                 end
                 if ((card1_card_core1_dda_arc2_dda_run2_crossings == 1)) begin
-                    card1_card_core1_dda_arc2_dda_run2_goal_x <= card1_card_core1_dda_arc2_dda_run2_end_x;
-                    card1_card_core1_dda_arc2_dda_run2_goal_y <= card1_card_core1_dda_arc2_dda_run2_end_y;
+                    card1_card_core1_dda_arc2_dda_run2_target_x <= 2;
+                    card1_card_core1_dda_arc2_dda_run2_target_y <= 2;
                 end
                 else if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
-                    card1_card_core1_dda_arc2_dda_run2_goal_x <= card1_card_core1_dda_arc2_dda_run2_radius;
-                    card1_card_core1_dda_arc2_dda_run2_goal_y <= 0;
+                    card1_card_core1_dda_arc2_dda_run2_target_x <= 1;
+                    card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
                 end
                 else begin
-                    card1_card_core1_dda_arc2_dda_run2_goal_x <= 0;
-                    card1_card_core1_dda_arc2_dda_run2_goal_y <= card1_card_core1_dda_arc2_dda_run2_radius;
+                    card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
+                    card1_card_core1_dda_arc2_dda_run2_target_y <= 1;
                 end
             end
         end
@@ -7730,24 +7754,8 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             card1_card_core1_dda_arc2_dda_run2_quadrant <= card1_card_core1_dda_arc2_dda_check2_move_quadrant;
             card1_card_core1_dda_arc2_dda_run2_step_x_inward <= card1_card_core1_dda_arc2_dda_check2_move_x_inward;
             card1_card_core1_dda_arc2_dda_run2_crossings <= card1_card_core1_dda_arc2_dda_check2_move_crossings;
-            card1_card_core1_dda_arc2_dda_run2_goal_x <= 0;
-            case (card1_card_core1_dda_arc2_dda_check2_move_target_x)
-                'h1: begin
-                    card1_card_core1_dda_arc2_dda_run2_goal_x <= card1_card_core1_dda_arc2_dda_check2_move_radius;
-                end
-                'h2: begin
-                    card1_card_core1_dda_arc2_dda_run2_goal_x <= card1_card_core1_dda_arc2_dda_check2_move_end_x;
-                end
-            endcase
-            card1_card_core1_dda_arc2_dda_run2_goal_y <= 0;
-            case (card1_card_core1_dda_arc2_dda_check2_move_target_y)
-                'h1: begin
-                    card1_card_core1_dda_arc2_dda_run2_goal_y <= card1_card_core1_dda_arc2_dda_check2_move_radius;
-                end
-                'h2: begin
-                    card1_card_core1_dda_arc2_dda_run2_goal_y <= card1_card_core1_dda_arc2_dda_check2_move_end_y;
-                end
-            endcase
+            card1_card_core1_dda_arc2_dda_run2_target_x <= card1_card_core1_dda_arc2_dda_check2_move_target_x;
+            card1_card_core1_dda_arc2_dda_run2_target_y <= card1_card_core1_dda_arc2_dda_check2_move_target_y;
             card1_card_core1_dda_arc2_dda_run2_threshold_carry <= card1_card_core1_dda_arc2_dda_check2_move_line;
         end
         if ((card1_card_core1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_arc2_dda_check2_move_zero)) begin

@@ -60,11 +60,9 @@ def dda_run(clock, reset, cmd, move, steps):
     right, up = Signal(bool(0)), Signal(bool(0))
     quadrant = Signal(modbv(0)[2:])
     crossings = Signal(intbv(0)[3:])
+    target_x, target_y = Signal(intbv(0)[2:]), Signal(intbv(0)[2:])
     end_x, end_y = Signal(intbv(0)[width:]), Signal(intbv(0)[width:])
     radius = Signal(intbv(0)[width:])
-    # each axis's target (0, Rq or the end point), registered when the piece begins, so that
-    # the end tests start at flip-flops
-    goal_x, goal_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
     threshold = Signal(intbv(0)[thr_width:])
     threshold_carry = Signal(bool(0))
     acc_x, acc_y = (Signal(intbv(0, min=-(1 << (acc_width - 1)), max=1 << (acc_width - 1))) for _ in range(2))
@@ -79,6 +77,7 @@ def dda_run(clock, reset, cmd, move, steps):
     stepped_x, stepped_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
     go_x, go_y, tail, finished, next_piece = (Signal(bool(0)) for _ in range(5))
     at_x, at_y, near_x, near_y = (Signal(bool(0)) for _ in range(4))
+    goal_x, goal_y = Signal(modbv(0)[width:]), Signal(modbv(0)[width:])
     ahead_x, ahead_y = Signal(bool(0)), Signal(bool(0))
     # without the traditional variant its branches are never taken: its sum is the plain one
     trad_x = Signal(modbv(0)[acc_width + 1:]) if has_traditional else sum_x
@@ -165,6 +164,19 @@ def dda_run(clock, reset, cmd, move, steps):
             op_y[:] = 1
         stepped_x.next = step.mag_x + op_x
         stepped_y.next = step.mag_y + op_y
+
+    @always_comb
+    def goals():
+        goal_x.next = 0
+        if target_x == TARGET_RADIUS:
+            goal_x.next = radius
+        elif target_x == TARGET_END:
+            goal_x.next = end_x
+        goal_y.next = 0
+        if target_y == TARGET_RADIUS:
+            goal_y.next = radius
+        elif target_y == TARGET_END:
+            goal_y.next = end_y
 
     @always_comb
     def end_tests():
@@ -279,14 +291,14 @@ def dda_run(clock, reset, cmd, move, steps):
                 else:
                     quadrant.next = quadrant - 1
                 if crossings == 1:
-                    goal_x.next = end_x
-                    goal_y.next = end_y
+                    target_x.next = TARGET_END
+                    target_y.next = TARGET_END
                 elif step.x_inward:
-                    goal_x.next = radius
-                    goal_y.next = 0
+                    target_x.next = TARGET_RADIUS
+                    target_y.next = 0
                 else:
-                    goal_x.next = 0
-                    goal_y.next = radius
+                    target_x.next = 0
+                    target_y.next = TARGET_RADIUS
         if move.take and not move.error and not move.zero:
             active.next = True
             first.next = move.acc_carry
@@ -299,16 +311,8 @@ def dda_run(clock, reset, cmd, move, steps):
             quadrant.next = move.quadrant
             step.x_inward.next = move.x_inward
             crossings.next = move.crossings
-            goal_x.next = 0
-            if move.target_x == TARGET_RADIUS:
-                goal_x.next = move.radius
-            elif move.target_x == TARGET_END:
-                goal_x.next = move.end_x
-            goal_y.next = 0
-            if move.target_y == TARGET_RADIUS:
-                goal_y.next = move.radius
-            elif move.target_y == TARGET_END:
-                goal_y.next = move.end_y
+            target_x.next = move.target_x
+            target_y.next = move.target_y
             threshold_carry.next = move.line
         if move.take and move.zero:
             cmd.done.next = True
@@ -359,5 +363,5 @@ def dda_run(clock, reset, cmd, move, steps):
         cmd.quadrant.next = quadrant
         cmd.busy.next = not cmd.ready or (active and not (step.pending and step.finished))
 
-    return (variant_logic, accumulate, overflow, magnitudes, end_tests, decide, handover, iterate, datapath,
+    return (variant_logic, accumulate, overflow, magnitudes, goals, end_tests, decide, handover, iterate, datapath,
             errors, status)
