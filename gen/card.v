@@ -1764,7 +1764,7 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
         if (((pci_slave1_local_re || pci_slave1_local_we) && pci_slave1_local_ready)) begin
             pci_slave1_req_addr <= (pci_slave1_req_addr + 1);
         end
-        else if (((pci_slave1_state == 4'b0000) && (!pci_slave1_draining))) begin
+        else if (((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (!pci_slave1_draining))) begin
             pci_slave1_req_addr <= pci_slave1_start_addr;
             pci_slave1_req_addr_stale <= 1'b0;
         end

@@ -976,7 +976,7 @@ always @(posedge clock, negedge reset) begin: transaction
         if (((local_re || local_we) && local_ready)) begin
             req_addr <= (req_addr + 1);
         end
-        else if (((state == 4'b0000) && (!draining))) begin
+        else if (((state == 4'b0000) && address_phase && (!draining))) begin
             req_addr <= start_addr;
             req_addr_stale <= 1'b0;
         end

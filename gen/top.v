@@ -2382,7 +2382,7 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
         if (((card1_pci_slave2_local_re || card1_pci_slave2_local_we) && card1_pci_slave2_local_ready)) begin
             card1_pci_slave2_req_addr <= (card1_pci_slave2_req_addr + 1);
         end
-        else if (((card1_pci_slave2_state == 4'b0000) && (!card1_pci_slave2_draining))) begin
+        else if (((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (!card1_pci_slave2_draining))) begin
             card1_pci_slave2_req_addr <= card1_pci_slave2_start_addr;
             card1_pci_slave2_req_addr_stale <= 1'b0;
         end

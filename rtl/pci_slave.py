@@ -305,11 +305,12 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 fetching.next = False
         if claim:
             req_addr_stale.next = draining
-        # In Idle with no posted data left, req_addr follows the address on
-        # the bus: a claim finds it loaded, without the BAR compare before it.
+        # An address phase in Idle with no posted data left loads req_addr,
+        # claimed or not: a claim finds it loaded, without the BAR compare
+        # before it (only an address phase, so it never takes a floating bus).
         if (local.re or local.we) and local.ready:
             req_addr.next = req_addr + 1
-        elif state == t_state.S_IDLE and not draining:
+        elif state == t_state.S_IDLE and address_phase and not draining:
             req_addr.next = start_addr
             req_addr_stale.next = False
         elif req_addr_stale and not draining:
