@@ -130,7 +130,6 @@ reg pci_slave1_serr_enable;
 reg [15:0] pci_slave1_bar0;
 reg [31:0] pci_slave1_bar1;
 reg pci_slave1_fatal;
-wire pci_slave1_address_phase;
 reg pci_slave1_read_command;
 wire pci_slave1_write_done_next;
 wire pci_slave1_config_write_next;
@@ -154,6 +153,7 @@ reg pci_slave1_ad_parity_q;
 reg [31:0] pci_slave1_ad_q;
 reg pci_slave1_address_fault;
 wire pci_slave1_address_fault_next;
+wire pci_slave1_address_phase;
 reg pci_slave1_at_last;
 reg pci_slave1_b_valid;
 reg pci_slave1_before_last;
@@ -1738,7 +1738,7 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
             end
         end
         pci_slave1_address_fault <= pci_slave1_address_fault_next;
-        if (pci_slave1_claim) begin
+        if (((pci_slave1_state == 4'b0000) && pci_slave1_address_phase)) begin
             pci_slave1_is_read <= (!pci_slave1_cbe_q[0]);
             pci_slave1_is_config <= pci_slave1_claim_config;
             pci_slave1_space_mem <= ((!pci_slave1_claim_config) && (!pci_slave1_claim_io));
@@ -1746,7 +1746,6 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
             pci_slave1_first_pending <= 1'b1;
             pci_slave1_fetching <= ((!pci_slave1_cbe_q[0]) && (!pci_slave1_claim_config));
             pci_slave1_io_byte <= pci_slave1_ad_q[2-1:0];
-            pci_slave1_req_addr_stale <= pci_slave1_draining;
         end
         else begin
             if ((pci_slave1_got || pci_slave1_accepted)) begin
@@ -1759,17 +1758,21 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
                 pci_slave1_fetching <= 1'b0;
             end
         end
+        if (pci_slave1_claim) begin
+            pci_slave1_req_addr_stale <= pci_slave1_draining;
+        end
         if (((pci_slave1_local_re || pci_slave1_local_we) && pci_slave1_local_ready)) begin
             pci_slave1_req_addr <= (pci_slave1_req_addr + 1);
         end
-        else if ((pci_slave1_claim && (!pci_slave1_draining))) begin
+        else if (((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (!pci_slave1_draining))) begin
             pci_slave1_req_addr <= pci_slave1_start_addr;
+            pci_slave1_req_addr_stale <= 1'b0;
         end
         else if ((pci_slave1_req_addr_stale && (!pci_slave1_draining))) begin
             pci_slave1_req_addr <= pci_slave1_phase_addr;
             pci_slave1_req_addr_stale <= 1'b0;
         end
-        if ((pci_slave1_claim || (!pci_slave1_waiting))) begin
+        if ((!pci_slave1_waiting)) begin
             pci_slave1_wait_count <= 0;
             pci_slave1_initial_wait_over <= 1'b0;
             pci_slave1_subsequent_wait_over <= 1'b0;
@@ -4331,7 +4334,6 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
         card_core0_regs_fifo1_sequencer1_mark_strobe <= 0;
         card_core0_regs_fifo1_sequencer1_dda_start <= 0;
         card_core0_regs_fifo1_set_strobe <= 0;
-        card_core0_regs_fifo1_sequencer1_dwell_left <= 0;
         card_core0_regs_fifo1_sequencer1_state <= 3'b000;
     end
     else begin
@@ -4368,7 +4370,6 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
             end
             else if ((card_core0_regs_fifo1_sequencer1_opcode == 5)) begin
                 card_core0_regs_fifo1_sequencer1_state <= 3'b011;
-                card_core0_regs_fifo1_sequencer1_dwell_left <= card_core0_regs_fifo1_sequencer1_operand_0;
             end
             else begin
                 card_core0_regs_fifo1_sequencer1_state <= 3'b000;
@@ -4385,7 +4386,19 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_e
         else if (card_core0_regs_fifo1_sequencer1_state_over) begin
             card_core0_regs_fifo1_sequencer1_state <= 3'b000;
         end
-        else if (((card_core0_regs_fifo1_sequencer1_state == 3'b011) && (!card_core0_regs_fifo1_outputs_busy) && (card_core0_regs_fifo1_sequencer1_dwell_left != 0))) begin
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_dwell_count
+    if (reset == 0) begin
+        card_core0_regs_fifo1_sequencer1_dwell_left <= 0;
+    end
+    else begin
+        if (((card_core0_regs_fifo1_sequencer1_state != 3'b011) || card_core0_regs_fifo1_sequencer1_state_over)) begin
+            card_core0_regs_fifo1_sequencer1_dwell_left <= card_core0_regs_fifo1_sequencer1_operand_0;
+        end
+        else if (((!card_core0_regs_fifo1_outputs_busy) && (card_core0_regs_fifo1_sequencer1_dwell_left != 0))) begin
             card_core0_regs_fifo1_sequencer1_dwell_left <= (card_core0_regs_fifo1_sequencer1_dwell_left - 1);
         end
     end

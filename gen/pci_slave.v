@@ -160,7 +160,6 @@ reg serr_enable;
 reg [15:0] bar0;
 reg [31:0] bar1;
 reg fatal;
-wire address_phase;
 reg read_command;
 wire write_done_next;
 wire config_write_next;
@@ -184,6 +183,7 @@ reg ad_parity_q;
 reg [31:0] ad_q;
 reg address_fault;
 wire address_fault_next;
+wire address_phase;
 reg at_last;
 reg b_valid;
 reg before_last;
@@ -950,7 +950,7 @@ always @(posedge clock, negedge reset) begin: transaction
             end
         end
         address_fault <= address_fault_next;
-        if (claim) begin
+        if (((state == 4'b0000) && address_phase)) begin
             is_read <= (!cbe_q[0]);
             is_config <= claim_config;
             space_mem <= ((!claim_config) && (!claim_io));
@@ -958,7 +958,6 @@ always @(posedge clock, negedge reset) begin: transaction
             first_pending <= 1'b1;
             fetching <= ((!cbe_q[0]) && (!claim_config));
             io_byte <= ad_q[2-1:0];
-            req_addr_stale <= draining;
         end
         else begin
             if ((got || accepted)) begin
@@ -971,17 +970,21 @@ always @(posedge clock, negedge reset) begin: transaction
                 fetching <= 1'b0;
             end
         end
+        if (claim) begin
+            req_addr_stale <= draining;
+        end
         if (((local_re || local_we) && local_ready)) begin
             req_addr <= (req_addr + 1);
         end
-        else if ((claim && (!draining))) begin
+        else if (((state == 4'b0000) && address_phase && (!draining))) begin
             req_addr <= start_addr;
+            req_addr_stale <= 1'b0;
         end
         else if ((req_addr_stale && (!draining))) begin
             req_addr <= phase_addr;
             req_addr_stale <= 1'b0;
         end
-        if ((claim || (!waiting))) begin
+        if ((!waiting)) begin
             wait_count <= 0;
             initial_wait_over <= 1'b0;
             subsequent_wait_over <= 1'b0;

@@ -3066,7 +3066,6 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
         sequencer0_mark_strobe <= 0;
         dda_start <= 0;
         set_strobe <= 0;
-        sequencer0_dwell_left <= 0;
         sequencer0_state <= 3'b000;
     end
     else begin
@@ -3103,7 +3102,6 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
             end
             else if ((sequencer0_opcode == 5)) begin
                 sequencer0_state <= 3'b011;
-                sequencer0_dwell_left <= sequencer0_operand_0;
             end
             else begin
                 sequencer0_state <= 3'b000;
@@ -3120,7 +3118,19 @@ always @(posedge clock, negedge reset) begin: sequencer0_execute
         else if (sequencer0_state_over) begin
             sequencer0_state <= 3'b000;
         end
-        else if (((sequencer0_state == 3'b011) && (!outputs_busy) && (sequencer0_dwell_left != 0))) begin
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: sequencer0_dwell_count
+    if (reset == 0) begin
+        sequencer0_dwell_left <= 0;
+    end
+    else begin
+        if (((sequencer0_state != 3'b011) || sequencer0_state_over)) begin
+            sequencer0_dwell_left <= sequencer0_operand_0;
+        end
+        else if (((!outputs_busy) && (sequencer0_dwell_left != 0))) begin
             sequencer0_dwell_left <= (sequencer0_dwell_left - 1);
         end
     end

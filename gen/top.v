@@ -125,7 +125,6 @@ reg card1_pci_slave2_serr_enable;
 reg [15:0] card1_pci_slave2_bar0;
 reg [31:0] card1_pci_slave2_bar1;
 reg card1_pci_slave2_fatal;
-wire card1_pci_slave2_address_phase;
 reg card1_pci_slave2_read_command;
 wire card1_pci_slave2_write_done_next;
 wire card1_pci_slave2_config_write_next;
@@ -148,6 +147,7 @@ reg [31:0] card1_pci_slave2_ad_out_q;
 reg card1_pci_slave2_ad_parity_q;
 reg card1_pci_slave2_address_fault;
 wire card1_pci_slave2_address_fault_next;
+wire card1_pci_slave2_address_phase;
 reg card1_pci_slave2_at_last;
 reg card1_pci_slave2_b_valid;
 reg card1_pci_slave2_before_last;
@@ -2356,7 +2356,7 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
             end
         end
         card1_pci_slave2_address_fault <= card1_pci_slave2_address_fault_next;
-        if (card1_pci_slave2_claim) begin
+        if (((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase)) begin
             card1_pci_slave2_is_read <= (!pci_pads0_registered_pad5_from_pin[0]);
             card1_pci_slave2_is_config <= card1_pci_slave2_claim_config;
             card1_pci_slave2_space_mem <= ((!card1_pci_slave2_claim_config) && (!card1_pci_slave2_claim_io));
@@ -2364,7 +2364,6 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
             card1_pci_slave2_first_pending <= 1'b1;
             card1_pci_slave2_fetching <= ((!pci_pads0_registered_pad5_from_pin[0]) && (!card1_pci_slave2_claim_config));
             card1_pci_slave2_io_byte <= pci_pads0_registered_pad0_from_pin[2-1:0];
-            card1_pci_slave2_req_addr_stale <= card1_pci_slave2_draining;
         end
         else begin
             if ((card1_pci_slave2_got || card1_pci_slave2_accepted)) begin
@@ -2377,17 +2376,21 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
                 card1_pci_slave2_fetching <= 1'b0;
             end
         end
+        if (card1_pci_slave2_claim) begin
+            card1_pci_slave2_req_addr_stale <= card1_pci_slave2_draining;
+        end
         if (((card1_pci_slave2_local_re || card1_pci_slave2_local_we) && card1_pci_slave2_local_ready)) begin
             card1_pci_slave2_req_addr <= (card1_pci_slave2_req_addr + 1);
         end
-        else if ((card1_pci_slave2_claim && (!card1_pci_slave2_draining))) begin
+        else if (((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (!card1_pci_slave2_draining))) begin
             card1_pci_slave2_req_addr <= card1_pci_slave2_start_addr;
+            card1_pci_slave2_req_addr_stale <= 1'b0;
         end
         else if ((card1_pci_slave2_req_addr_stale && (!card1_pci_slave2_draining))) begin
             card1_pci_slave2_req_addr <= card1_pci_slave2_phase_addr;
             card1_pci_slave2_req_addr_stale <= 1'b0;
         end
-        if ((card1_pci_slave2_claim || (!card1_pci_slave2_waiting))) begin
+        if ((!card1_pci_slave2_waiting)) begin
             card1_pci_slave2_wait_count <= 0;
             card1_pci_slave2_initial_wait_over <= 1'b0;
             card1_pci_slave2_subsequent_wait_over <= 1'b0;
@@ -5163,7 +5166,6 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
         card1_card_core1_regs_fifo2_sequencer2_mark_strobe <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dda_start <= 0;
         card1_card_core1_regs_fifo2_set_strobe <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_dwell_left <= 0;
         card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
     end
     else begin
@@ -5200,7 +5202,6 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
             end
             else if ((card1_card_core1_regs_fifo2_sequencer2_opcode == 5)) begin
                 card1_card_core1_regs_fifo2_sequencer2_state <= 3'b011;
-                card1_card_core1_regs_fifo2_sequencer2_dwell_left <= card1_card_core1_regs_fifo2_sequencer2_operand_0;
             end
             else begin
                 card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
@@ -5217,7 +5218,19 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
         else if (card1_card_core1_regs_fifo2_sequencer2_state_over) begin
             card1_card_core1_regs_fifo2_sequencer2_state <= 3'b000;
         end
-        else if (((card1_card_core1_regs_fifo2_sequencer2_state == 3'b011) && (!card1_card_core1_regs_fifo2_outputs_busy) && (card1_card_core1_regs_fifo2_sequencer2_dwell_left != 0))) begin
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_dwell_count
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_sequencer2_dwell_left <= 0;
+    end
+    else begin
+        if (((card1_card_core1_regs_fifo2_sequencer2_state != 3'b011) || card1_card_core1_regs_fifo2_sequencer2_state_over)) begin
+            card1_card_core1_regs_fifo2_sequencer2_dwell_left <= card1_card_core1_regs_fifo2_sequencer2_operand_0;
+        end
+        else if (((!card1_card_core1_regs_fifo2_outputs_busy) && (card1_card_core1_regs_fifo2_sequencer2_dwell_left != 0))) begin
             card1_card_core1_regs_fifo2_sequencer2_dwell_left <= (card1_card_core1_regs_fifo2_sequencer2_dwell_left - 1);
         end
     end

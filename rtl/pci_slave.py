@@ -285,7 +285,10 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 at_last.next = before_last
                 before_last.next = phase_addr == mem_last - 2
         address_fault.next = address_fault_next
-        if claim:
+        # The transaction's kind is taken at every address phase in Idle,
+        # claimed or not: Idle reads none of it, and the BAR compares stay
+        # off these registers (only the state and the bus lines wait for them).
+        if state == t_state.S_IDLE and address_phase:
             is_read.next = not cbe_q[0]
             is_config.next = claim_config
             space_mem.next = not claim_config and not claim_io
@@ -293,7 +296,6 @@ def pci_slave(clock, reset, pci, local, irq, **params):
             first_pending.next = True
             fetching.next = not cbe_q[0] and not claim_config
             io_byte.next = ad_q[2:0]
-            req_addr_stale.next = draining
         else:
             if got or accepted:
                 first_pending.next = first_pending and draining
@@ -301,14 +303,21 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 fetching.next = False
             if local.re and local.retry and not first_pending:
                 fetching.next = False
+        if claim:
+            req_addr_stale.next = draining
+        # An address phase in Idle with no posted data left loads req_addr,
+        # claimed or not: a claim finds it loaded, without the BAR compare
+        # before it (only an address phase, so it never takes a floating bus).
         if (local.re or local.we) and local.ready:
             req_addr.next = req_addr + 1
-        elif claim and not draining:
+        elif state == t_state.S_IDLE and address_phase and not draining:
             req_addr.next = start_addr
+            req_addr_stale.next = False
         elif req_addr_stale and not draining:
             req_addr.next = phase_addr
             req_addr_stale.next = False
-        if claim or not waiting:
+        # Idle (the only state with a claim) never waits
+        if not waiting:
             wait_count.next = 0
             initial_wait_over.next = False
             subsequent_wait_over.next = False

@@ -296,7 +296,6 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
                 pulses.load.next = 1
             elif opcode == dwell_op:
                 state.next = seq_t.S_DWELL
-                dwell_left.next = operand_0
             else:
                 state.next = seq_t.S_IDLE
                 if opcode == set_op:
@@ -305,7 +304,16 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
                     mark.strobe.next = 1
         elif state_over:
             state.next = seq_t.S_IDLE
-        elif state == seq_t.S_DWELL and not pulses.outputs_busy and dwell_left != 0:
+
+    @always_seq(clock.posedge, reset=reset)
+    def dwell_count():
+        # The count only matters in DWELL, so it takes the operand whenever
+        # a DWELL can begin at this edge (outside DWELL or at its end; the
+        # operand is the next instruction's) and counts down inside it: the
+        # issue and the clear (STOP) stay out of its 32-bit enable.
+        if state != seq_t.S_DWELL or state_over:
+            dwell_left.next = operand_0
+        elif not pulses.outputs_busy and dwell_left != 0:
             dwell_left.next = dwell_left - 1
 
     @always_comb
@@ -344,7 +352,7 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
     fits = [_fits(fifo.dout, arriving_coord_fits, coord_width), _fits(fifo.dout, arriving_count_fits, count_bits)]
     return (fits, lookup_arriving, lookup_arriving_kind, lookup_count, lookup_valid, lookup_mask_high, lookup_mask_low,
             lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request, discarding, fetch, check, motion_status,
-            completion, readiness, issuing, execute, present, report)
+            completion, readiness, issuing, execute, dwell_count, present, report)
 
 
 @block

@@ -240,6 +240,23 @@ def test_stream_commands_set_mark_dwell_pulse():
     assert widths == {3}, widths
 
 
+@pytest.mark.parametrize("first, second", [(150, 90), (1, 200), (0, 120)])
+def test_back_to_back_dwells_wait_both(first, second):
+    # a DWELL issued as the one before it ends waits its own clocks in full
+    stream = (command_words(LineCommand(1, 0)) + isa.encode("DWELL", first) + isa.encode("DWELL", second)
+              + command_words(LineCommand(1, 0)))
+
+    def scenario(driver):
+        yield from setup_motion(driver)
+        yield from driver.push_all(stream)
+        yield from wait_idle(driver)
+
+    log, _ = run_core("regs_dwells", scenario, check_pins=False)
+    x_rises = [r[0] for r in log.rises if r[1]]
+    assert len(x_rises) == 2
+    assert first + second < x_rises[1] - x_rises[0] < first + second + 20, "the DWELLs did not wait their clocks"
+
+
 def test_position_snapshot_is_coherent_while_moving():
     reads = []
 
