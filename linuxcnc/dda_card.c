@@ -35,6 +35,7 @@
 #include "hal.h"
 #include "dda_transport.h"
 #include "dda_state.h"
+#include "dda_pins.h"
 
 MODULE_AUTHOR("PCI DDA card authors");
 MODULE_DESCRIPTION("HAL driver of the PCI DDA card");
@@ -306,34 +307,12 @@ static void write_card(void *arg, long period)
     *c->clock = now;
 }
 
-static int export_axis(struct stepgen *s, int i)
-{
-    const char *p = "dda-card.0.stepgen";
-    int r = 0;
-    r |= hal_pin_float_newf(HAL_IN, &s->position_cmd, comp_id, "%s.%02d.position-cmd", p, i);
-    r |= hal_pin_float_newf(HAL_IN, &s->velocity_cmd, comp_id, "%s.%02d.velocity-cmd", p, i);
-    r |= hal_pin_float_newf(HAL_OUT, &s->position_fb, comp_id, "%s.%02d.position-fb", p, i);
-    r |= hal_pin_float_newf(HAL_OUT, &s->velocity_fb, comp_id, "%s.%02d.velocity-fb", p, i);
-    r |= hal_pin_s32_newf(HAL_OUT, &s->counts, comp_id, "%s.%02d.counts", p, i);
-    r |= hal_pin_bit_newf(HAL_IN, &s->enable, comp_id, "%s.%02d.enable", p, i);
-    r |= hal_param_float_newf(HAL_RW, &s->position_scale, comp_id, "%s.%02d.position-scale", p, i);
-    r |= hal_param_float_newf(HAL_RW, &s->maxvel, comp_id, "%s.%02d.maxvel", p, i);
-    r |= hal_param_float_newf(HAL_RW, &s->maxaccel, comp_id, "%s.%02d.maxaccel", p, i);
-    r |= hal_param_u32_newf(HAL_RW, &s->steplen, comp_id, "%s.%02d.steplen", p, i);
-    r |= hal_param_u32_newf(HAL_RW, &s->stepspace, comp_id, "%s.%02d.stepspace", p, i);
-    r |= hal_param_u32_newf(HAL_RW, &s->dirsetup, comp_id, "%s.%02d.dirsetup", p, i);
-    r |= hal_param_u32_newf(HAL_RW, &s->dirhold, comp_id, "%s.%02d.dirhold", p, i);
-    s->position_scale = 1.0;
-    s->steplen = s->stepspace = s->dirsetup = s->dirhold = 1000;
-    return r;
-}
-
 static int export_card(struct card *c)
 {
     const char *p = "dda-card.0";
     int r = 0, i;
     for (i = 0; i < AXES; i++)
-        r |= export_axis(&c->axis[i], i);
+        r |= dda_export_axis(comp_id, &c->axis[i], i);
     r |= hal_pin_s32_newf(HAL_OUT, &c->fifo_level, comp_id, "%s.fifo-level", p);
     r |= hal_pin_u32_newf(HAL_OUT, &c->underruns, comp_id, "%s.underruns", p);
     r |= hal_pin_bit_newf(HAL_OUT, &c->error, comp_id, "%s.error", p);
