@@ -83,11 +83,14 @@ endmodule
 # unit's outputs; each must be rejected by the group named, bounded to its
 # depth.  pci_slave (20 mutants): m002, m005, m007 by the protocol rules.
 # regs_fifo (16 mutants of the card with the machine side, feed hold, homing
-# and the registered read): m000, m009, m010 by the register table's rules.
+# and the registered read, since the direct pulses' busy covers their last
+# request): m009, m010, m012 by the register table's rules, m011 (the HOME_Y
+# input's synchroniser stuck at 1) by the input filter's reaction.
 MUTANT_LISTS = {"pci_slave": 20, "regs_fifo": 16}
 FIXED_MUTANTS = (("pci_slave", 2, "pci_protocol", 12), ("pci_slave", 5, "pci_protocol", 12),
-                 ("pci_slave", 7, "pci_protocol", 12), ("regs_fifo", 0, "regs_fifo_table", 10),
-                 ("regs_fifo", 9, "regs_fifo_table", 10), ("regs_fifo", 10, "regs_fifo_table", 10))
+                 ("pci_slave", 7, "pci_protocol", 12), ("regs_fifo", 9, "regs_fifo_table", 10),
+                 ("regs_fifo", 10, "regs_fifo_table", 10), ("regs_fifo", 11, "machine_reaction", 20),
+                 ("regs_fifo", 12, "regs_fifo_table", 10))
 MITER_DEPTH = 12
 
 
@@ -139,4 +142,29 @@ def test_dda_defect_is_caught(name, tmp_path):
     mutant.parent.mkdir()
     mutant.write_text(text)
     result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
+    assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
+
+
+# Defects put by hand into a copy of gen/regs_fifo.v's machine side: each must
+# fail its machine group with the rule named (docs/machine.md).
+MACHINE_DEFECTS = {
+    "clear_stop_during_estop": ("machine_stop", "else if ((clear_stop && (!machine_guard0_estop))) begin",
+                                "else if (clear_stop) begin", {"ms_estop_clear_refused"}),
+    "zero_while_seeking": ("machine_homing", "released = ((homing0_state == 3'b100) && (!homing0_switch));",
+                           "released = ((homing0_state == 3'b010) && (!homing0_switch));",
+                           {"hm_zero_at_release"}),
+    "held_at_any_rate": ("machine_hold", "assign settled = (feed_held && (!tick) && (!outputs_busy));",
+                         "assign settled = ((!tick) && (!outputs_busy));", {"fh_held_rate_zero"}),
+}
+
+
+@pytest.mark.parametrize("name", MACHINE_DEFECTS)
+def test_machine_defect_is_caught(name, tmp_path):
+    judge, original, defect, rules = MACHINE_DEFECTS[name]
+    text = (catalogue.GEN_DIR / "regs_fifo.v").read_text()
+    assert text.count(original) == 1, f"gen/regs_fifo.v no longer has {original!r} once: pick the defect anew"
+    mutant = tmp_path / "mutant" / "regs_fifo.v"
+    mutant.parent.mkdir()
+    mutant.write_text(text.replace(original, defect))
+    result = run(catalogue.group(judge).task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
     assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
