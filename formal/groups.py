@@ -145,6 +145,21 @@ CARD = dict(expose=CARD_SIGNALS, generated={"card_table.vh": card_constants}, mo
 CARD_FILES = ["pci_rules.sv", "card_harness.sv"]
 CARD_ORDER_DEPTH, CARD_STATUS_DEPTH, CARD_ERROR_DEPTH = 18, 20, 28
 
+# the machine side (props/machine_harness.sv): the guard's, the filter's, the
+# feed rate's and the homing unit's own registers and ports, and the step
+# requests before and after the guard's gate
+MACHINE_FILES = ["local_bus_rules.sv", "machine_harness.sv"]
+MACHINE_REGISTERS = ("fifo_pop", "fifo_flush", "set_strobe", "set_index", "set_value", "direct_request_x",
+                     "direct_request_y", "guard_stopped", "guard_stopping", "settled", "conditioning_active",
+                     "machine_guard0_guard_reason", "machine_guard0_guard_limits", "feed_rate0_rate",
+                     "homing0_state", "homing0_axis", "homing0_refused", "homing0_not_found", "home_zero",
+                     "requests_step_x", "requests_step_y", "requests_dir_x", "requests_dir_y",
+                     "pulse_out0_request_step_x", "pulse_out0_request_step_y",
+                     "ramp_step", "machine_control", "feed_held",
+                     "sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
+                     "direct_pulse0_pending", "direct_pulse1_pending")
+MACHINE = dict(expose=MACHINE_REGISTERS, generated={"regs_table.vh": table_properties})
+
 
 def narrow_dda():
     """``dda_arc.v`` of the narrowest build (NARROW_WIDTH-bit coordinates, the
@@ -202,6 +217,20 @@ GROUPS = [
           depth=14, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
           defines={"COMMANDS_WITHOUT_CLEAR": None, "MACHINE_RUNNING": None},
           text="LINE, ARC, SET and DWELL executed as the FIFO words say, in order (bounded)"),
+    Group("machine_stop", "regs_fifo", MACHINE_FILES, "machine_harness", ("ms_", "minv_"), **MACHINE,
+          text="E-stop, limits and the stop latch (docs/machine.md)"),
+    Group("machine_reaction", "regs_fifo", MACHINE_FILES, "machine_harness", ("mr_",), mode="bmc", depth=20,
+          **MACHINE, text="the input filter's reaction, E-stop pin to STEP and DRIVE_ENABLE (bounded)"),
+    Group("machine_watchdog", "regs_fifo", MACHINE_FILES, "machine_harness", ("mw_",), mode="bmc",
+          depth=16, defines={"WATCHDOG_SMALL": 8}, **MACHINE,
+          text="the watchdog stops in time, never early (bounded, timeouts below 8)"),
+    Group("machine_hold", "regs_fifo", MACHINE_FILES, "machine_harness", ("fh_", "minv_"), **MACHINE,
+          defines={"PATH_ONLY": None},
+          text="feed hold and the decelerated stop (docs/machine.md)"),
+    Group("machine_homing", "regs_fifo", MACHINE_FILES, "machine_harness", ("hm_", "minv_"), **MACHINE,
+          text="homing: zero only at the release, refusals, one axis (docs/machine.md)"),
+    Group("machine_homing_pins", "regs_fifo", MACHINE_FILES, "machine_harness", ("hp_",), mode="bmc", depth=20,
+          **MACHINE, text="homing: no STEP on the other axis's pin (bounded)"),
     Group("dda_lines", "dda_arc", ["dda_harness.sv"], "dda_harness", ("dda_",), mode="bmc", depth=20,
           defines={"DDA_LINES": None, "DDA_FULL_SPEED": None}, **DDA,
           text="lines of the 6-bit DDA: steps, end point, end counters, finishing (bounded)"),

@@ -4580,7 +4580,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending);
+assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending || card_core0_regs_fifo1_direct_request_x);
 
 
 always @(card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count, card_core0_regs_fifo1_reg_word56_shown) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
@@ -4654,7 +4654,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending);
+assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending || card_core0_regs_fifo1_direct_request_y);
 
 
 always @(card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count, card_core0_regs_fifo1_reg_word57_shown) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
@@ -5324,18 +5324,24 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
     reg drained;
     if (reset == 0) begin
         card_core0_regs_fifo1_homing1_negative <= 0;
-        card_core0_regs_fifo1_homing1_not_found <= 0;
         card_core0_regs_fifo1_homing1_done <= 0;
-        card_core0_regs_fifo1_homing1_refused <= 0;
-        card_core0_regs_fifo1_homing1_axis <= 0;
         card_core0_regs_fifo1_homing1_state <= 3'b000;
         card_core0_regs_fifo1_homing1_port_ended <= 0;
+        card_core0_regs_fifo1_homing1_axis <= 0;
+        card_core0_regs_fifo1_homing1_refused <= 0;
+        card_core0_regs_fifo1_homing1_not_found <= 0;
     end
     else begin
         card_core0_regs_fifo1_homing1_port_ended <= 0;
         drained = ((!card_core0_regs_fifo1_pulse_busy) && (!card_core0_regs_fifo1_out_active));
         if (card_core0_core_clear) begin
             card_core0_regs_fifo1_homing1_state <= 3'b000;
+            if (card_core0_regs_fifo1_reg_word68__store47_word_strobe) begin
+                card_core0_regs_fifo1_homing1_done <= 0;
+                card_core0_regs_fifo1_homing1_not_found <= 0;
+                card_core0_regs_fifo1_homing1_refused <= 1;
+                card_core0_regs_fifo1_homing1_port_ended <= 1;
+            end
         end
         else if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
             if (card_core0_regs_fifo1_reg_word68__store47_word_strobe) begin

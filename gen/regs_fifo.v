@@ -3312,7 +3312,7 @@ end
 
 
 
-assign direct_busy_x = (direct_pulse0_command_load || direct_pulse0_pending);
+assign direct_busy_x = (direct_pulse0_command_load || direct_pulse0_pending || direct_request_x);
 
 
 always @(direct_pulse0_command_load, direct_pulse0_command_count, reg_word19_shown) begin: direct_pulse0_count_operands
@@ -3386,7 +3386,7 @@ end
 
 
 
-assign direct_busy_y = (direct_pulse1_command_load || direct_pulse1_pending);
+assign direct_busy_y = (direct_pulse1_command_load || direct_pulse1_pending || direct_request_y);
 
 
 always @(direct_pulse1_command_load, direct_pulse1_command_count, reg_word20_shown) begin: direct_pulse1_count_operands
@@ -4056,18 +4056,24 @@ always @(posedge clock, negedge reset) begin: homing0_sequence
     reg drained;
     if (reset == 0) begin
         homing0_negative <= 0;
-        homing0_not_found <= 0;
         homing0_done <= 0;
-        homing0_refused <= 0;
-        homing0_axis <= 0;
         homing0_state <= 3'b000;
         homing0_port_ended <= 0;
+        homing0_axis <= 0;
+        homing0_refused <= 0;
+        homing0_not_found <= 0;
     end
     else begin
         homing0_port_ended <= 0;
         drained = ((!pulse_busy) && (!out_active));
         if (core_clear) begin
             homing0_state <= 3'b000;
+            if (reg_word31__store21_word_strobe) begin
+                homing0_done <= 0;
+                homing0_not_found <= 0;
+                homing0_refused <= 1;
+                homing0_port_ended <= 1;
+            end
         end
         else if ((homing0_state == 3'b000)) begin
             if (reg_word31__store21_word_strobe) begin

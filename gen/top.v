@@ -5412,7 +5412,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending);
+assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending || card1_card_core1_regs_fifo2_direct_request_x);
 
 
 always @(card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count, card1_card_core1_regs_fifo2_reg_word93_shown) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
@@ -5486,7 +5486,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending);
+assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending || card1_card_core1_regs_fifo2_direct_request_y);
 
 
 always @(card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count, card1_card_core1_regs_fifo2_reg_word94_shown) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
@@ -6156,18 +6156,24 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
     reg drained;
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_homing2_negative <= 0;
-        card1_card_core1_regs_fifo2_homing2_not_found <= 0;
         card1_card_core1_regs_fifo2_homing2_done <= 0;
-        card1_card_core1_regs_fifo2_homing2_refused <= 0;
-        card1_card_core1_regs_fifo2_homing2_axis <= 0;
         card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
         card1_card_core1_regs_fifo2_homing2_port_ended <= 0;
+        card1_card_core1_regs_fifo2_homing2_axis <= 0;
+        card1_card_core1_regs_fifo2_homing2_refused <= 0;
+        card1_card_core1_regs_fifo2_homing2_not_found <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_homing2_port_ended <= 0;
         drained = ((!card1_card_core1_regs_fifo2_pulse_busy) && (!card1_card_core1_regs_fifo2_out_active));
         if (card1_card_core1_core_clear) begin
             card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
+            if (card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe) begin
+                card1_card_core1_regs_fifo2_homing2_done <= 0;
+                card1_card_core1_regs_fifo2_homing2_not_found <= 0;
+                card1_card_core1_regs_fifo2_homing2_refused <= 1;
+                card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
+            end
         end
         else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
             if (card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe) begin

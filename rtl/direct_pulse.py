@@ -14,7 +14,7 @@ def direct_pulse(clock, reset, command, out):
     ``out``: ``StepRequest``) is made every ``period`` clocks (>= 1) while
     ``out.ready``, the first one the clock after ``load``.  ``remaining``
     counts what is left, ``busy`` is high from ``load`` until the last
-    request.  ``clear`` stops.
+    request, that request's clock included.  ``clear`` stops.
 
     count 2, period 3:
         clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
@@ -40,7 +40,9 @@ def direct_pulse(clock, reset, command, out):
 
     @always_comb
     def activity():
-        command.busy.next = command.load or pending
+        # the clock of the last request too: that step is not yet in the pulse
+        # outputs, so the card is not idle (a HOME then is refused)
+        command.busy.next = command.load or pending or out.step
 
     @always_comb
     def count_operands():

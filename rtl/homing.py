@@ -28,8 +28,8 @@ def homing(clock, reset, port):
     If the generator runs out of steps and the outputs are empty before the
     switch trips (SEEK) or releases (RELEASE): NOT_FOUND, and the position is
     not zeroed.  A ``start`` while not ``idle`` (or while homing) is REFUSED
-    and changes nothing else.  ``clear`` (a stop, SOFT_RESET) ends homing at
-    once with neither DONE nor NOT_FOUND.  ``ended`` marks every end.
+    and changes nothing else, also in the clock of a ``clear``.  ``clear``
+    (a stop, SOFT_RESET) ends homing at once with neither DONE nor NOT_FOUND.  ``ended`` marks every end.
     ``taken`` is what HOME reads (AXIS, NEGATIVE), ``state`` what
     HOME_STATUS reads: BUSY (also in the clock of ``start``: a read right
     after the HOME write never sees the HOME before it), DONE, NOT_FOUND,
@@ -145,6 +145,13 @@ def homing(clock, reset, port):
         drained = not port.pulse_busy and not port.outputs_active
         if port.clear:
             state.next = state_t.IDLE
+            if port.start:
+                # a HOME in the clock a stop (or SOFT_RESET) clears the card:
+                # the card is not idle, so it is refused, and says so
+                done.next = 0
+                not_found.next = 0
+                refused.next = 1
+                port.ended.next = 1
         elif state == state_t.IDLE:
             if port.start:
                 axis.next = port.request[axis_bit]

@@ -208,7 +208,8 @@ class DirectPulseModel:
         self.request = False
 
     def busy(self, load):
-        return bool(load) or self.remaining != 0
+        # the last request's own clock counts (the step is not yet in the outputs)
+        return bool(load) or self.remaining != 0 or self.request
 
     def clock(self, load=False, count=0, period=1, ready=True, clear=False):
         self.request = False

@@ -185,3 +185,28 @@ def test_card_error_defect_is_caught(tmp_path):
     result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
     rules = {"card_status_error_bad_opcode", "card_status_error_reserved_bits"}
     assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
+
+
+# Defects put by hand into a copy of gen/regs_fifo.v's machine side: each must
+# fail its machine group with the rule named (docs/machine.md).
+MACHINE_DEFECTS = {
+    "clear_stop_during_estop": ("machine_stop", "else if ((clear_stop && (!machine_guard0_estop))) begin",
+                                "else if (clear_stop) begin", {"ms_estop_clear_refused"}),
+    "zero_while_seeking": ("machine_homing", "released = ((homing0_state == 3'b100) && (!homing0_switch));",
+                           "released = ((homing0_state == 3'b010) && (!homing0_switch));",
+                           {"hm_zero_at_release"}),
+    "held_at_any_rate": ("machine_hold", "assign settled = (feed_held && (!tick) && (!outputs_busy));",
+                         "assign settled = ((!tick) && (!outputs_busy));", {"fh_held_rate_zero"}),
+}
+
+
+@pytest.mark.parametrize("name", MACHINE_DEFECTS)
+def test_machine_defect_is_caught(name, tmp_path):
+    judge, original, defect, rules = MACHINE_DEFECTS[name]
+    text = (catalogue.GEN_DIR / "regs_fifo.v").read_text()
+    assert text.count(original) == 1, f"gen/regs_fifo.v no longer has {original!r} once: pick the defect anew"
+    mutant = tmp_path / "mutant" / "regs_fifo.v"
+    mutant.parent.mkdir()
+    mutant.write_text(text.replace(original, defect))
+    result = run(catalogue.group(judge).task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
+    assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)

@@ -1,0 +1,384 @@
+// The machine side of the card's back end (gen/regs_fifo.v: input filter,
+// machine guard, feed hold, homing) behind a free requester that keeps the
+// LocalBus rules, a free interpolator and free machine inputs.  The
+// properties are the statements of docs/machine.md (docs/formal.md lists
+// them with their groups):
+//   mr_*  the input filter's reaction, E-stop pin to STEP and DRIVE_ENABLE;
+//   ms_*  E-stop, limits and the stop latch;   mw_*  the watchdog;
+//   fh_*  feed hold and the decelerated stop;
+//   hm_*, hp_*  homing;   minv_*  helper invariants for k-induction.
+// The guard's, the filter's, the feed rate's and the homing unit's own
+// registers and ports (stopped, stopping, reason, held, the rate, the
+// homing state, the zero, the step requests before and after the guard's
+// gate) and a few of the FIFO's are made ports by yosys `expose`, so the
+// generated file is read unchanged.  The register models (model_*) come
+// from the register table (regs_table.vh).
+//
+// Environment: INPUT_POLARITY, INPUT_FILTER and INPUT_TICK keep their reset
+// values (0, 3 samples, 1 clock: the settings of the docs' reaction table);
+// WATCHDOG is written whole (all byte enables).
+`default_nettype none
+
+module machine_harness #(
+    parameter COORD_WIDTH = 24,
+    parameter FILTER = 3            // INPUT_FILTER as reset
+) (
+    input wire clock,
+    input wire reset_n,
+    input wire l_space, input wire [15:0] l_addr, input wire [3:0] l_be, input wire [31:0] l_wdata,
+    input wire l_we, input wire l_re, input wire l_write,
+    input wire dda_busy, input wire dda_done, input wire dda_error, input wire [1:0] dda_quadrant,
+    input wire dda_ready, input wire [COORD_WIDTH+2:0] dda_stop_left,
+    input wire steps_step_x, input wire steps_step_y, input wire steps_dir_x, input wire steps_dir_y,
+    input wire [6:0] machine_in
+);
+    wire [31:0] l_rdata;
+    wire l_ready, l_retry, l_room, irq, core_clear;
+    wire dda_start, dda_line, dda_ccw, dda_blend, dda_advance;
+    wire [1:0] dda_variant;
+    wire [4:0] dda_lambda_shift, dda_acc_bits;
+    wire [COORD_WIDTH-1:0] dda_xs, dda_ys, dda_xe, dda_ye;
+    wire pins_step_x, pins_dir_x, pins_step_y, pins_dir_y, pins_drive_enable;
+    // exposed registers and ports of the units
+    wire fifo_pop, fifo_flush, set_strobe, direct_request_x, direct_request_y;
+    wire [3:0] set_index;
+    wire [31:0] set_value;
+    wire guard_stopped, guard_stopping, settled;
+    wire [6:0] conditioning_active;
+    wire [1:0] machine_guard0_guard_reason;
+    wire [3:0] machine_guard0_guard_limits;
+    wire [15:0] feed_rate0_rate;
+    wire [2:0] homing0_state;
+    wire homing0_axis, homing0_refused, homing0_not_found;
+    wire [1:0] home_zero;
+    wire requests_step_x, requests_step_y, requests_dir_x, requests_dir_y;
+    wire pulse_out0_request_step_x, pulse_out0_request_step_y;
+    wire [15:0] ramp_step;
+    wire feed_held;
+    wire [9:0] sync_fifo0_count;
+    wire sync_fifo0_is_empty, sync_fifo0_is_full, sync_fifo0_free_beyond, io_written;
+    wire [2:0] sync_fifo0_free;
+    wire direct_pulse0_pending, direct_pulse1_pending;
+    wire [1:0] machine_control;
+
+    regs_fifo dut (
+        .clock(clock), .reset(reset_n), .irq(irq), .core_clear(core_clear),
+        .local_space(l_space), .local_addr(l_addr), .local_be(l_be), .local_wdata(l_wdata),
+        .local_we(l_we), .local_re(l_re), .local_write(l_write), .local_rdata(l_rdata),
+        .local_ready(l_ready), .local_retry(l_retry),
+`ifdef LOCAL_ROOM
+        .local_room(l_room),
+`endif
+        .dda_start(dda_start), .dda_line(dda_line), .dda_variant(dda_variant),
+        .dda_lambda_shift(dda_lambda_shift), .dda_acc_bits(dda_acc_bits), .dda_ccw(dda_ccw),
+        .dda_blend(dda_blend), .dda_xs(dda_xs), .dda_ys(dda_ys), .dda_xe(dda_xe), .dda_ye(dda_ye),
+        .dda_advance(dda_advance), .dda_busy(dda_busy), .dda_done(dda_done), .dda_error(dda_error),
+        .dda_quadrant(dda_quadrant), .dda_ready(dda_ready), .dda_stop_left(dda_stop_left),
+        .steps_step_x(steps_step_x), .steps_step_y(steps_step_y), .steps_dir_x(steps_dir_x),
+        .steps_dir_y(steps_dir_y), .pins_step_x(pins_step_x), .pins_dir_x(pins_dir_x),
+        .pins_step_y(pins_step_y), .pins_dir_y(pins_dir_y), .pins_drive_enable(pins_drive_enable),
+        .pins_estop(machine_in[0]), .pins_limit_pos_x(machine_in[1]), .pins_limit_neg_x(machine_in[2]),
+        .pins_limit_pos_y(machine_in[3]), .pins_limit_neg_y(machine_in[4]), .pins_home_x(machine_in[5]),
+        .pins_home_y(machine_in[6]),
+        .fifo_pop(fifo_pop), .fifo_flush(fifo_flush), .set_strobe(set_strobe), .set_index(set_index),
+        .set_value(set_value), .direct_request_x(direct_request_x), .direct_request_y(direct_request_y),
+        .guard_stopped(guard_stopped), .guard_stopping(guard_stopping), .settled(settled),
+        .conditioning_active(conditioning_active), .machine_guard0_guard_reason(machine_guard0_guard_reason),
+        .machine_guard0_guard_limits(machine_guard0_guard_limits), .feed_rate0_rate(feed_rate0_rate),
+        .homing0_state(homing0_state), .homing0_axis(homing0_axis), .homing0_refused(homing0_refused),
+        .homing0_not_found(homing0_not_found), .home_zero(home_zero),
+        .requests_step_x(requests_step_x), .requests_step_y(requests_step_y),
+        .requests_dir_x(requests_dir_x), .requests_dir_y(requests_dir_y),
+        .pulse_out0_request_step_x(pulse_out0_request_step_x),
+        .pulse_out0_request_step_y(pulse_out0_request_step_y),
+        .ramp_step(ramp_step), .machine_control(machine_control),
+        .feed_held(feed_held), .sync_fifo0_count(sync_fifo0_count), .sync_fifo0_is_empty(sync_fifo0_is_empty),
+`ifdef LOCAL_ROOM
+        .sync_fifo0_free(sync_fifo0_free), .sync_fifo0_free_beyond(sync_fifo0_free_beyond),
+`else
+        .sync_fifo0_is_full(sync_fifo0_is_full),
+`endif
+        .io_written(io_written), .direct_pulse0_pending(direct_pulse0_pending),
+        .direct_pulse1_pending(direct_pulse1_pending));
+
+    reg started = 0;
+    always @(posedge clock) started <= 1;
+    always @(*) if (!started) assume(!reset_n);
+
+    local_bus_rules #(.CHECK_REQUESTER(0), .ADDR_WIDTH(16)) bus (
+        .clock(clock), .reset_n(reset_n), .space(l_space), .addr(l_addr), .be(l_be),
+        .wdata(l_wdata), .we(l_we), .re(l_re), .write(l_write), .ready(l_ready), .retry(l_retry),
+        .room(l_room), .promised(promised));
+    wire [2:0] promised;
+`ifndef LOCAL_ROOM
+    assign l_room = 1'b0;
+`endif
+
+    // ------------------------------------------------------------ environment
+    wire read_now = l_re && l_ready && !l_space;
+    wire io_write_now = l_we && l_ready && !l_space;
+    reg stage_write = 0;
+    reg [15:0] stage_addr = 0;
+    reg [31:0] stage_data = 0, stage_mask = 0;
+    always @(posedge clock) begin
+        stage_write <= reset_n && io_write_now;
+        stage_addr <= l_addr;
+        stage_data <= l_wdata;
+        stage_mask <= {{8{l_be[3]}}, {8{l_be[2]}}, {8{l_be[1]}}, {8{l_be[0]}}};
+    end
+`include "regs_table.vh"
+    always @(*) begin
+        // the inputs' conditioning as reset: the reaction times of docs/machine.md
+        assume(!(l_we && !l_space && (l_addr == 16'h006C || l_addr == 16'h0070 || l_addr == 16'h0074)));
+        if (l_we && !l_space && l_addr == 16'h0078) assume(l_be == 4'hF);
+`ifdef WATCHDOG_SMALL
+        if (l_we && !l_space && l_addr == 16'h0078) assume(l_wdata < `WATCHDOG_SMALL);
+`endif
+    end
+    // the interpolator (rtl/dda_arc.py): busy only after a start until core_clear,
+    // steps only while busy and only in the clock after an `advance` (a feed tick)
+    reg dda_started = 0, p_advance = 0;
+    always @(posedge clock) begin
+        p_advance <= dda_advance;
+        if (!reset_n || core_clear) dda_started <= 0;
+        else if (dda_start) dda_started <= 1;
+    end
+    always @(*) begin
+        if (!dda_started) assume(!dda_busy);
+        if (!dda_busy || !p_advance) assume(!steps_step_x && !steps_step_y);
+    end
+`ifdef PATH_ONLY
+    // the hold acts on the path only (direct pulses run on: docs/machine.md)
+    always @(*) assume(!direct_request_x && !direct_request_y);
+`endif
+
+    // ------------------------------------------------------------ history
+    reg p_step_x = 0, p_step_y = 0, p_stopped = 0, pp_stopped = 0, p_stopping = 0, p_held = 0, p_drive = 0;
+    reg [6:0] p_active = 0;
+    reg [15:0] p_ramp = 0, pp_ramp = 0;
+    reg [1:0] p_control = 0;
+    reg [1:0] p_reason = 0;
+    always @(posedge clock) begin
+        p_step_x <= pins_step_x; p_step_y <= pins_step_y;
+        p_stopped <= guard_stopped; pp_stopped <= p_stopped; p_stopping <= guard_stopping; p_held <= settled;
+        p_drive <= pins_drive_enable; p_active <= conditioning_active;
+        p_ramp <= model_ramp_step; pp_ramp <= p_ramp; p_control <= model_machine_control;
+        p_reason <= machine_guard0_guard_reason;
+    end
+    wire rise_x = pins_step_x && !p_step_x, rise_y = pins_step_y && !p_step_y;
+    wire stop_rose = guard_stopped && !p_stopped;
+    reg past_reset = 0;         // a clock out of reset: the p_* registers are valid
+    always @(posedge clock) past_reset <= reset_n;
+    wire judged = reset_n && past_reset;
+
+    // helper invariants (k-induction): the unit's RAMP_STEP and
+    // MACHINE_CONTROL registers hold what the table's models say
+    always @(posedge clock) if (reset_n) begin
+        minv_registers: assert(ramp_step == model_ramp_step && machine_control == model_machine_control);
+        // the FIFO's own count: the words pushed and not taken
+        minv_fifo_level: assert(sync_fifo0_count == level && level <= 512 && io_written == stage_write);
+`ifdef LOCAL_ROOM
+        minv_fifo_flags: assert(sync_fifo0_is_empty == (sync_fifo0_count == 0)
+                                && sync_fifo0_free[0] == (sync_fifo0_count < 512)
+                                && sync_fifo0_free[1] == (sync_fifo0_count < 511)
+                                && sync_fifo0_free[2] == (sync_fifo0_count < 510)
+                                && sync_fifo0_free_beyond == (sync_fifo0_count < 509)
+                                && promised <= 512 - sync_fifo0_count);
+`else
+        minv_fifo_flags: assert(sync_fifo0_is_empty == (sync_fifo0_count == 0)
+                                && sync_fifo0_is_full == (sync_fifo0_count == 512));
+`endif
+        // the feed rate's own hold flag: held at rate 0
+        minv_feed_held: assert(!feed_held || feed_rate0_rate == 0);
+    end
+
+    // ------------------------------------------------------------ E-stop and the stop latch
+    // each input: clocks its pin has been at its level (the filter's reaction)
+    wire [27:0] same_for;        // per input, 4 bits: clocks at its level
+    genvar i;
+    generate for (i = 0; i < 7; i = i + 1) begin : inputs
+        input_reaction #(.FILTER(FILTER)) reaction (.clock(clock), .reset_n(reset_n), .judged(judged),
+            .pin(machine_in[i]), .active(conditioning_active[i]), .same_for(same_for[4*i+3:4*i]));
+    end endgenerate
+    
+    always @(posedge clock) if (judged) begin
+        // "E-stop: no new STEP rise after INPUT_FILTER + 3 clocks, DRIVE_ENABLE
+        // low at INPUT_FILTER + 3 clocks" from the clock the pin changes (the
+        // pin's first clock at its level is clock 0, same_for 1)
+        // (sim/test_machine_card.py: a rise at clock 6 is the last allowed)
+        if (machine_in[0] && same_for[3:0] >= FILTER + 5) begin mr_estop_no_step: assert(!rise_x && !rise_y); end
+        if (machine_in[0] && same_for[3:0] >= FILTER + 4) begin mr_estop_drive_low: assert(!pins_drive_enable); end
+        // "the guard latches a stop at the edge after its cause: 1 ESTOP"
+        if (p_active[0]) begin
+            ms_estop_stops: assert(guard_stopped && (p_stopped || machine_guard0_guard_reason == 2'd1));
+            // CLEAR_STOP refused while the E-stop input is active
+            if (p_stopped) begin ms_estop_clear_refused: assert(machine_guard0_guard_reason == p_reason); end
+        end
+        // "No new STEP edge starts ... DRIVE_ENABLE falls at the edge the latch sets"
+        // (a pulse the outputs started in the clock before the latch rises on
+        // the pin, a register later, in the clock after it)
+        if (p_stopped && pp_stopped) begin ms_stopped_no_step: assert(!rise_x && !rise_y); end
+        if (guard_stopped) begin ms_stopped_drive_low: assert(!pins_drive_enable); end
+        if (guard_stopped) begin ms_stopped_has_reason: assert(machine_guard0_guard_reason != 0); end
+        // "STOP_REASON reads the cause from the edge STOPPING rises" (WATCHDOG or LIMIT)
+        if (guard_stopping) begin ms_stopping_has_reason: assert(!guard_stopped && machine_guard0_guard_reason[1]); end
+    end
+
+    // ------------------------------------------------------------ limits
+    // a step request towards an active limit (without a ramp) is dropped
+    // whole and latches the stop with reason LIMIT; requests away pass
+    wire [3:0] towards = {requests_step_y && !requests_dir_y && conditioning_active[4],
+                          requests_step_y && requests_dir_y && conditioning_active[3],
+                          requests_step_x && !requests_dir_x && conditioning_active[2],
+                          requests_step_x && requests_dir_x && conditioning_active[1]};
+    reg [3:0] p_towards = 0;
+    reg p_halted = 0;
+    always @(posedge clock) begin
+        p_towards <= towards;
+        p_halted <= guard_stopped || conditioning_active[0];
+    end
+    wire ramp_off = model_ramp_step == 0 && p_ramp == 0;
+    always @(posedge clock) if (judged) begin
+        if (towards != 0 && ramp_off) begin
+            ms_limit_dropped: assert(!pulse_out0_request_step_x && !pulse_out0_request_step_y);
+        end
+        if (towards == 0 && !guard_stopped && !conditioning_active[0]) begin
+            ms_away_passes: assert(pulse_out0_request_step_x == requests_step_x
+                                   && pulse_out0_request_step_y == requests_step_y);
+        end
+        if (p_towards != 0 && p_ramp == 0 && pp_ramp == 0 && !p_halted && !p_stopping) begin
+            ms_limit_stops: assert(guard_stopped && (machine_guard0_guard_reason == 2'd2
+                || (machine_guard0_guard_reason == 2'd3 && machine_guard0_guard_limits == p_towards)));
+        end
+    end
+
+    // ------------------------------------------------------------ watchdog
+    // "Writing WATCHDOG loads the count ... stops TIMEOUT clocks after the
+    // write reaches the register (within 3)": from the clock the bus write is
+    // answered; the stop is judged when nothing else stopped the card since
+    // (a write reaches the register up to 3 clocks after its bus clock, so
+    // a stop may still come from the write before it: prev_*)
+    reg wd_armed = 0, wd_quiet = 0, prev_armed = 0, wd_fired = 0;
+    reg [23:0] wd_timeout = 0, prev_timeout = 0;
+    reg [24:0] wd_elapsed = 0, prev_elapsed = 0;
+    always @(posedge clock) begin
+        if (!reset_n) begin
+            wd_armed <= 0; wd_quiet <= 0; wd_elapsed <= 0; prev_armed <= 0;
+        end else begin
+            if (io_write_now && l_addr == 16'h0078) begin
+                wd_armed <= l_wdata[23:0] != 0; wd_timeout <= l_wdata[23:0]; wd_elapsed <= 0;
+                wd_quiet <= !guard_stopped && !guard_stopping; wd_fired <= 0;
+                prev_armed <= wd_armed; prev_timeout <= wd_timeout; prev_elapsed <= wd_elapsed + 1;
+            end else begin
+                if (stop_rose && machine_guard0_guard_reason == 2'd2) wd_fired <= 1;
+                if (!wd_elapsed[24]) wd_elapsed <= wd_elapsed + 1;
+                if (conditioning_active[4:0] != 0 || model_ramp_step != 0 || towards != 0
+                    || (guard_stopped && machine_guard0_guard_reason != 2'd2))
+                    wd_quiet <= 0;
+            end
+            if (!prev_elapsed[24]) prev_elapsed <= prev_elapsed + 1;
+        end
+    end
+    always @(posedge clock) if (judged) begin
+        // wd_elapsed is 0 in the clock after the bus write: T + 2 is the
+        // write's clock + TIMEOUT + 3 (DRIVE_ENABLE: ms_stopped_drive_low)
+        if (wd_armed && wd_quiet && wd_elapsed == wd_timeout + 2) begin
+            mw_watchdog_stops: assert(wd_fired || (stop_rose && machine_guard0_guard_reason == 2'd2));
+        end
+        if (stop_rose && machine_guard0_guard_reason == 2'd2 && !p_stopping) begin
+            mw_watchdog_not_early: assert((wd_armed && wd_elapsed >= wd_timeout)
+                                          || (wd_elapsed <= 3 && prev_armed && prev_elapsed >= prev_timeout));
+        end
+    end
+
+    // ------------------------------------------------------------ feed hold, decelerated stop
+    always @(posedge clock) if (judged) begin
+        // "HELD is 1 once the rate is zero and the last step has left the pins"
+        if (settled) begin fh_held_rate_zero: assert(feed_rate0_rate == 0 && !pins_step_x && !pins_step_y); end
+        if (p_held) begin fh_held_no_step: assert(!rise_x && !rise_y); end
+        // "With RAMP_STEP = 0 the rate is zero in the clock after the register takes HOLD"
+        if (p_control[1] && p_ramp == 0 && pp_ramp == 0) begin fh_hold_at_once: assert(feed_rate0_rate == 0); end
+        // "the guard sets STOPPING ... the stop latches at the edge after HELD rises"
+        if (stop_rose && machine_guard0_guard_reason != 2'd1 && p_ramp != 0 && pp_ramp != 0) begin
+            fh_stopping_precedes: assert(p_stopping && p_held);
+        end
+        // "DRIVE_ENABLE stays high until the latch" (the host asking for it, no E-stop)
+        if (guard_stopping && !guard_stopped && p_control[0] && !p_active[0]) begin
+            fh_drive_while_stopping: assert(pins_drive_enable);
+        end
+        // the latch after a decelerated stop: the last step has left the pins
+        if (stop_rose && p_stopping && machine_guard0_guard_reason != 2'd1) begin
+            fh_stop_after_last_step: assert(!pins_step_x && !pins_step_y && !p_step_x && !p_step_y);
+        end
+    end
+
+    // ------------------------------------------------------------ homing
+    localparam HOME_IDLE = 3'd0, HOME_RELEASE = 3'd4;
+    // the HOME write reaches the register (its strobe) the clock after its stage
+    reg home_strobe = 0;
+    always @(posedge clock) home_strobe <= reset_n && stage_write && stage_addr == 16'h007C;
+    reg p_home_strobe = 0, zeroed = 0, p_not_found = 0, p_not_idle = 0;
+    reg [2:0] p_home_state = 0;
+    // FIFO words the sequencer has not taken (a command queued)
+    reg [10:0] level = 0;
+    wire push = l_we && l_ready && l_space && l_be != 4'h0;
+    always @(posedge clock) begin
+        level <= (!reset_n || fifo_flush) ? 11'd0 : level + push - (fifo_pop && level != 0);
+        p_home_strobe <= home_strobe; p_home_state <= homing0_state; p_not_found <= homing0_not_found;
+        p_not_idle <= guard_stopped || conditioning_active[0] || homing0_state != HOME_IDLE || level != 0
+                      || pins_step_x || pins_step_y;
+        if (!reset_n || (homing0_state == HOME_IDLE && home_strobe)) zeroed <= 0;
+        else if (home_zero != 0) zeroed <= 1;
+    end
+    always @(posedge clock) if (judged) begin
+        // "In the clock the sequencer sees it [the filtered input inactive] it
+        // stops the steps and zeroes that axis's position" (release only)
+        if (home_zero != 0) begin
+            hm_zero_at_release: assert(homing0_state == HOME_RELEASE
+                && home_zero == (homing0_axis ? 2'd2 : 2'd1)
+                && !conditioning_active[homing0_axis ? 6 : 5]);
+        end
+        // "NOT_FOUND ... the position is not zeroed"
+        if (homing0_not_found && !p_not_found) begin hm_not_found_not_zeroed: assert(!zeroed); end
+        // "3. Back-off ... then DONE": after the zero only the back-off follows
+        if (zeroed && homing0_state != HOME_IDLE) begin hm_back_off_after_zero: assert(homing0_state >= 3'd5); end
+        // "REFUSED: HOME written while the card was not idle, stopped, E-stop, homing"
+        if (p_home_strobe && p_not_idle) begin
+            hm_refused: assert(homing0_refused && (p_home_state != HOME_IDLE || homing0_state == HOME_IDLE));
+        end
+        // homing steps only the chosen axis
+        if (homing0_state != HOME_IDLE) begin
+            hm_chosen_axis: assert(homing0_axis ? (!direct_request_x && !direct_pulse0_pending)
+                                                : (!direct_request_y && !direct_pulse1_pending));
+            // on the pins (bounded: the pulse outputs' queue has no helper invariant)
+            hp_chosen_axis_pins: assert(homing0_axis ? !rise_x : !rise_y);
+        end
+    end
+endmodule
+
+// One machine input (INPUT_TICK 1, INPUT_POLARITY 0): "a pin that changes
+// in the clock before edge e is ACTIVE after edge e + INPUT_FILTER + 1",
+// so ACTIVE equals a level the pin has kept for FILTER + 3 clocks; and "a
+// new level counts once INPUT_FILTER samples in a row saw it": ACTIVE takes
+// a level only when the pin had it in the FILTER clocks that reached the
+// filter's samples (the synchroniser's two clocks and the filter's register
+// before them).
+module input_reaction #(parameter FILTER = 3) (
+    input wire clock, input wire reset_n, input wire judged, input wire pin, input wire active,
+    output wire [3:0] same_for
+);
+    reg p_pin = 0, p_active = 0;
+    reg [3:0] same_before = 0;                  // same_for of the last clock
+    reg [FILTER+2:0] history = 0;               // history[k-1]: the pin k clocks ago
+    assign same_for = pin != p_pin ? 4'd1 : (same_before == 4'hF ? same_before : same_before + 1);
+    always @(posedge clock) begin
+        p_pin <= pin; p_active <= active;
+        history <= {history[FILTER+1:0], pin};
+        same_before <= reset_n ? same_for : 4'd0;
+    end
+    wire [FILTER-1:0] sampled = history[FILTER+1:2];  // the pin 3 .. FILTER + 2 clocks ago
+    always @(posedge clock) if (judged) begin
+        if (same_for >= FILTER + 3) begin mr_filter_follows: assert(active == pin); end
+        if (active != p_active) begin mr_filter_not_early: assert(sampled == {FILTER{active}}); end
+    end
+endmodule
