@@ -285,9 +285,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 at_last.next = before_last
                 before_last.next = phase_addr == mem_last - 2
         address_fault.next = address_fault_next
-        # The transaction's kind is taken at every address phase in Idle,
-        # claimed or not: Idle reads none of it, and the BAR compares stay
-        # off these registers (only the state and the bus lines wait for them).
+        # taken at every address phase in Idle, claimed or not (Idle reads none
+        # of it): the BAR compares reach only the state and the bus lines
         if state == t_state.S_IDLE and address_phase:
             is_read.next = not cbe_q[0]
             is_config.next = claim_config
@@ -305,9 +304,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 fetching.next = False
         if claim:
             req_addr_stale.next = draining
-        # An address phase in Idle with no posted data left loads req_addr,
-        # claimed or not: a claim finds it loaded, without the BAR compare
-        # before it (only an address phase, so it never takes a floating bus).
+        # loaded at an address phase in Idle, claimed or not, with no posted
+        # data left: a claim finds it loaded, the BAR compare not before it
         if (local.re or local.we) and local.ready:
             req_addr.next = req_addr + 1
         elif state == t_state.S_IDLE and address_phase and not draining:
