@@ -82,15 +82,16 @@ endmodule
 # Mutants of the generated files (yosys `mutate -list N -seed 1`, the lists
 # `python -m formal.mutation` scores; indices into them) that change the
 # unit's outputs; each must be rejected by the group named, bounded to its
-# depth.  pci_slave (20 mutants): m002, m005, m007 by the protocol rules.
-# regs_fifo (16 mutants of the card with the status registers in their own
-# unit, rtl/status_words.py): m000 (RAMP_START's clamp test), m002 (a bit of
-# DIR_SETUP's read data inverted), m003 (STEP_WIDTH's written value) by the
-# register table's rules.
+# depth.  pci_slave (20 mutants): m000 (the local write enable's drain term
+# inverted), m002 (bit 9 of the request address's increment stuck at 1), m005
+# (bit 15 of the read source stuck at 1) by the protocol rules.  regs_fifo (16
+# mutants): m002 (bit 17 of INPUT_TICK's merged write inverted), m004 (bit 16
+# of DIR_SETUP on the read chain inverted), m006 (PULSE_COUNT_X's clamp flag
+# stuck at 1) by the register table's rules.
 MUTANT_LISTS = {"pci_slave": 20, "regs_fifo": 16}
-FIXED_MUTANTS = (("pci_slave", 2, "pci_protocol", 12), ("pci_slave", 5, "pci_protocol", 12),
-                 ("pci_slave", 7, "pci_protocol", 12), ("regs_fifo", 0, "regs_fifo_table", 10),
-                 ("regs_fifo", 2, "regs_fifo_table", 10), ("regs_fifo", 3, "regs_fifo_table", 10))
+FIXED_MUTANTS = (("pci_slave", 0, "pci_protocol", 12), ("pci_slave", 2, "pci_protocol", 12),
+                 ("pci_slave", 5, "pci_protocol", 12), ("regs_fifo", 2, "regs_fifo_table", 10),
+                 ("regs_fifo", 4, "regs_fifo_table", 10), ("regs_fifo", 6, "regs_fifo_table", 10))
 MITER_DEPTH = 12
 
 
