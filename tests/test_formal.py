@@ -121,6 +121,18 @@ def test_fixed_mutant_is_rejected(unit, index, judge, depth, mutation_lists):
     assert mutant.verdict == "rejected", mutant.command
 
 
+def assert_defect_rejected(judge, source, pattern, replacement, rules, tmp_path):
+    """Put one defect into a copy of ``source`` (``pattern`` must match once)
+    and check that group ``judge`` fails on it with one of ``rules``."""
+    text, count = re.subn(pattern, replacement, source.read_text())
+    assert count == 1, f"{source.name} no longer has {pattern!r} once: pick the defect anew"
+    mutant = tmp_path / "mutant" / source.name
+    mutant.parent.mkdir()
+    mutant.write_text(text)
+    result = run(catalogue.group(judge).task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
+    assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
+
+
 # Defects put by hand into the 6-bit DDA the DDA groups convert (a line's X
 # steps going the wrong way; X stepping whenever Y does): each must fail
 # `dda_lines` with a rule named.  Patterns, since the converter numbers the
@@ -136,14 +148,7 @@ DDA_DEFECTS = {
 @pytest.mark.parametrize("name", DDA_DEFECTS)
 def test_dda_defect_is_caught(name, tmp_path):
     pattern, replacement, rules = DDA_DEFECTS[name]
-    group = catalogue.group("dda_lines")
-    text, count = re.subn(pattern, replacement, catalogue.narrow_dda().read_text())
-    assert count == 1, f"the converter no longer writes {pattern!r} once: pick the defect anew"
-    mutant = tmp_path / "mutant" / "dda_arc.v"
-    mutant.parent.mkdir()
-    mutant.write_text(text)
-    result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
-    assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
+    assert_defect_rejected("dda_lines", catalogue.narrow_dda(), pattern, replacement, rules, tmp_path)
 
 
 # Defects put by hand into a copy of gen/card.v, the whole card: the FIFO's
@@ -162,30 +167,16 @@ CARD_DEFECTS = {
 @pytest.mark.parametrize("name", CARD_DEFECTS)
 def test_card_defect_is_caught(name, tmp_path):
     judge, pattern, replacement, rules = CARD_DEFECTS[name]
-    group = catalogue.group(judge)
-    text, count = re.subn(pattern, replacement, (catalogue.GEN_DIR / "card.v").read_text())
-    assert count == 1, f"gen/card.v no longer has {pattern!r} once: pick the defect anew"
-    mutant = tmp_path / "mutant" / "card.v"
-    mutant.parent.mkdir()
-    mutant.write_text(text)
-    result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
-    assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
+    assert_defect_rejected(judge, catalogue.GEN_DIR / "card.v", pattern, replacement, rules, tmp_path)
 
 
 @pytest.mark.slow
 def test_card_error_defect_is_caught(tmp_path):
     """STATUS.ERROR stuck at NONE on the whole card: a malformed first
     command is not reported, and `card_status_error` rejects it."""
-    group = catalogue.group("card_status_error")
-    pattern = r"word\[4\+:4\] = card_core0_regs_fifo1_error_code;"
-    text, count = re.subn(pattern, "word[4+:4] = 4'h0;", (catalogue.GEN_DIR / "card.v").read_text())
-    assert count == 1, f"gen/card.v no longer has {pattern!r} once: pick the defect anew"
-    mutant = tmp_path / "mutant" / "card.v"
-    mutant.parent.mkdir()
-    mutant.write_text(text)
-    result = run(group.task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
-    rules = {"card_status_error_bad_opcode", "card_status_error_reserved_bits"}
-    assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
+    assert_defect_rejected("card_status_error", catalogue.GEN_DIR / "card.v",
+                           r"word\[4\+:4\] = card_core0_regs_fifo1_error_code;", "word[4+:4] = 4'h0;",
+                           {"card_status_error_bad_opcode", "card_status_error_reserved_bits"}, tmp_path)
 
 
 # Defects put by hand into a copy of gen/regs_fifo.v's machine side: each must
@@ -204,10 +195,5 @@ MACHINE_DEFECTS = {
 @pytest.mark.parametrize("name", MACHINE_DEFECTS)
 def test_machine_defect_is_caught(name, tmp_path):
     judge, original, defect, rules = MACHINE_DEFECTS[name]
-    text = (catalogue.GEN_DIR / "regs_fifo.v").read_text()
-    assert text.count(original) == 1, f"gen/regs_fifo.v no longer has {original!r} once: pick the defect anew"
-    mutant = tmp_path / "mutant" / "regs_fifo.v"
-    mutant.parent.mkdir()
-    mutant.write_text(text.replace(original, defect))
-    result = run(catalogue.group(judge).task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
-    assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
+    assert_defect_rejected(judge, catalogue.GEN_DIR / "regs_fifo.v", re.escape(original), lambda _: defect,
+                           rules, tmp_path)
