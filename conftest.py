@@ -1,5 +1,5 @@
 """Lets ``pytest`` find ``rtl`` and ``sim`` from a plain checkout, and names
-each test's waveforms after the test (``sim/waves.py``)."""
+each test's waveforms after the test (``sim/backends/waves.py``)."""
 import sys
 from pathlib import Path
 

@@ -20,11 +20,11 @@ import warnings
 
 from myhdl import ToVerilogWarning, now
 
-from rtl import instructions as isa
-from rtl import registers as regmap
-from sim.card_bench import HALF_PERIOD, command_words, run_core
-from sim.card_e2e import finish, program, run_card
-from sim.dda_model import LineCommand
+from models import instructions as isa
+from models import registers as regmap
+from models.dda_model import LineCommand
+from sim.card.card_bench import HALF_PERIOD, command_words, run_core
+from sim.card.card_e2e import finish, program, run_card
 
 PCI_HZ = 33e6
 CLOCK_PERIOD = 30  # time units per PCI clock in the PCI bench
@@ -116,9 +116,9 @@ def e2e_speed(kind, steps=1500):
 def synthesis():
     """The synthesis figures of the whole top, as ``python -m fpgaflow`` prints them."""
     from fpgaflow import SWEEP_SEEDS, format_figures, synthesize_closing
-    from sim.paths import GEN
+    from rtl.convert import GEN_DIR
 
-    if not (GEN / "top.v").exists():
+    if not (GEN_DIR / "top.v").exists():
         return "gen/top.v missing: run python -m rtl.top --convert"
     figures = synthesize_closing("top", range(1, 1 + SWEEP_SEEDS))
     return "\n" + format_figures(figures) + f"\n   placement seed {figures['seed']}"

@@ -20,12 +20,12 @@ import time
 
 from myhdl import StopSimulation, block, instance
 
+from models.dda_model import ArcCommand
+from rtl.convert import GEN_DIR
 from rtl.dda_arc import dda_arc, dda_arc_ports
-from sim.cosim import cosimulate
-from sim.dda_bench import Record, dda_bench
-from sim.dda_model import ArcCommand
-from sim.paths import GEN
-from sim.clocking import clock_source
+from sim.backends.clocking import clock_source
+from sim.backends.icarus import cosimulate
+from sim.card.dda_bench import Record, dda_bench
 
 
 @block
@@ -84,7 +84,7 @@ def main(argv=None):
     print(f"precise quarter arc, R = {args.radius}, advance always high; "
           f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
     print(f"{'simulator':<34} {'clocks':>8} {'seconds':>8} {'clocks/s':>10} {'per Python CPU s':>17}")
-    for label, verilog in (("MyHDL", None), ("Icarus co-simulation", [GEN / "dda_arc.v"])):
+    for label, verilog in (("MyHDL", None), ("Icarus co-simulation", [GEN_DIR / "dda_arc.v"])):
         for checked in (False, True):
             clocks, elapsed, cpu = measure(command, verilog, checked)
             name = f"{label}{' + model check' if checked else ''}"

@@ -1,7 +1,7 @@
 """Accuracy table of the DDA interpolator: ``python -m bench.dda_table``.
 
 Quarter arc (R, 0) -> (0, R), counter-clockwise, step 1, from the golden
-model (``sim/dda_model.py``; the RTL equals it clock for clock):
+model (``models/dda_model.py``; the RTL equals it clock for clock):
 
 * the paper's configuration of each variant (figures 6, 7, 10) beside the
   paper's V_arc; for weighted and improved also the same settings with the
@@ -17,9 +17,8 @@ the setup.
 """
 import sys
 
-from sim.dda_model import (IMPROVED, PAPER_V_ARC, PRECISE, TRADITIONAL,
-                           VARIANT_NAMES, WEIGHTED, ArcCommand, iterate, metrics,
-                           paper_configuration, setup_clocks)
+from models.dda_model import (IMPROVED, PAPER_V_ARC, PRECISE, TRADITIONAL, VARIANT_NAMES, WEIGHTED, ArcCommand, iterate,
+                              metrics, paper_configuration, setup_clocks)
 
 RADII = (100, 1000, 10000, 100000)
 HEADER = (f"{'configuration':<44} {'R':>7} {'V_arc':>8} {'paper':>8} {'max err':>8} "

@@ -9,16 +9,16 @@ after the cause and the clocks from the cause to the last STEP rise and,
 for the stops, to DRIVE_ENABLE low.  The cause's clock: the bus write's
 last clock (HOLD, WATCHDOG + its timeout), the clock the filtered limit
 input is active (its pin's change + INPUT_FILTER + 2).  Beside them, the
-feed rate model's (``sim.machine_model.paused_ticks``) iterations and
+feed rate model's (``models.machine_model.paused_ticks``) iterations and
 clocks from a pause to the rate's stop, at that rate.
 """
 import argparse
 
-from rtl import registers as regmap
-from sim.card_bench import command_words
-from sim.dda_model import LineCommand
-from sim.machine_bench import REACTION, WIDTH, drive_at, run_machine, set_input, wait_clocks, write
-from sim.machine_model import paused_ticks
+from models import registers as regmap
+from models.dda_model import LineCommand
+from models.machine_model import paused_ticks
+from sim.card.card_bench import command_words
+from sim.card.machine_bench import REACTION, WIDTH, drive_at, run_machine, set_input, wait_clocks, write
 
 TARGET = 8192
 RAMPS = ((1024, 512), (1024, 2048), (1024, 0))

@@ -3,7 +3,7 @@
 * the examples (``examples/part.ngc``, ``examples/drawing.svg``) at the
   default machine (200 steps/mm, 33 MHz, 24-bit coordinates): segments,
   commands, words, steps, the largest deviation of the card's step path
-  (``sim.dda_model``) from the drawing, job time at the planned rates;
+  (``models.dda_model``) from the drawing, job time at the planned rates;
 * seeded random LinuxCNC-accepted arcs (circles, spirals at and near the
   radius-mismatch limit, full circles) at 20 steps/mm: commands per arc and
   the largest deviation by kind;
@@ -19,8 +19,8 @@ from host.cli import summary
 from host.geometry import Arc, Line
 from host.machine import Machine
 from host.planner import plan
-from sim.dda_model import ArcCommand
-from sim.paths import ROOT
+from models.dda_model import ArcCommand
+from rtl.convert import ROOT
 
 ARCS = 400
 

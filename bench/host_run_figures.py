@@ -5,25 +5,25 @@
   and 40 steps/mm (so that a job is millions of clocks, not billions): what
   it prints (segments, words, steps on the pins, deviation, job time,
   simulated clocks, wall time);
-* a short streamed job (``host.synthetic.streaming_job``, 40 segments) on
+* a short streamed job (``bench.host_jobs.streaming_job``, 40 segments) on
   MyHDL, Icarus and Verilator: clocks, wall time, pins against the model;
 * the long streamed job (``--segments``, default 100,000) on Verilator:
   segments, words, bursts, interrupts, clocks, wall and CPU time, and the
-  starvation measure on the pins (``host.pins``): junctions measured, gaps.
+  starvation measure on the pins (``host.pin_measure``): junctions measured, gaps.
 """
 import argparse
 import subprocess
 import sys
 import time
 
+from bench.host_jobs import streaming_job
 from host.card import Card
 from host.check import check
-from host.pins import junction_gaps, period_violations, pin_moves
+from host.pin_measure import junction_gaps, period_violations, pin_moves
 from host.planner import plan
-from host.sim_transport import SimTransport
 from host.stream import stream
-from host.synthetic import streaming_job
-from sim.paths import ROOT
+from host.transports.simulated import SimTransport
+from rtl.convert import ROOT
 
 FAST = ("--feed-override", "100000", "--steps-per-mm", "40", "--acceleration", "2000000", "--start-feed", "60000")
 PULSES = dict(step_width_ns=30, dir_setup_ns=30, dir_hold_ns=30)

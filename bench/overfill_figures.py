@@ -1,6 +1,6 @@
 """Overfill figures of the card: ``python -m bench.overfill_figures [--kind verilog|myhdl] [--depth N]``.
 
-Runs the overfill bench (``sim/card_overfill.py``) on the default build
+Runs the overfill bench (``sim/card/card_overfill.py``) on the default build
 (FIFO depth 512: ``gen/top.v`` in Icarus, or ``rtl.card`` in MyHDL, which
 also records the FIFO's write port) and prints, for
 
@@ -24,8 +24,8 @@ import warnings
 
 from myhdl import ToVerilogWarning
 
-from sim.card_overfill import Overfill, run_overfill
-from sim.fifo_scoreboard import DEFAULT_FIFO, LINE_WORDS
+from sim.card.card_overfill import Overfill, run_overfill
+from sim.card.fifo_scoreboard import DEFAULT_FIFO, LINE_WORDS
 
 CASES = {
     "queue disabled, linear bursts of 256 dwords": dict(stop="disabled", resume="enable", factor=2,

@@ -17,9 +17,8 @@ import argparse
 import sys
 
 from fpgaflow import synthesize
-from sim.pci_bench import PciBench
-from sim.pci_host import (COMMAND_IO, COMMAND_MEMORY, MEM_READ,
-                          MEM_READ_MULTIPLE)
+from sim.pci.bench import PciBench
+from sim.pci.host import COMMAND_IO, COMMAND_MEMORY, MEM_READ, MEM_READ_MULTIPLE
 
 PCI_MHZ = 33
 IO_BASE, MEM_BASE = 0x1000, 0x80000000

@@ -21,9 +21,9 @@ import matplotlib
 matplotlib.use("Agg")  # before pyplot: no display needed
 import matplotlib.pyplot as plt  # noqa: E402
 
-from sim.dda_model import (IMPROVED, PRECISE, TRADITIONAL, VARIANT_NAMES, WEIGHTED,  # noqa: E402
+from models.dda_model import (IMPROVED, PRECISE, TRADITIONAL, VARIANT_NAMES, WEIGHTED,  # noqa: E402
                            ArcCommand, iterate, metrics, paper_configuration)
-from sim.paths import build_dir  # noqa: E402
+from rtl.convert import build_dir  # noqa: E402
 
 
 def ideal_arc(axes, radius, start=0.0, stop=math.pi / 2):

@@ -2,14 +2,14 @@
 
 Three jobs, each on MyHDL, Icarus (``top.v`` with its pads) and Verilator
 (``card.v``), driven end to end by the behavioural PCI host with the
-protocol monitor on every bus clock (``sim/card_e2e.py``):
+protocol monitor on every bus clock (``sim/card/card_e2e.py``):
 
 * a long arc: one precise quarter arc, no bus traffic while it runs;
 * a burst of 1,000 LINE commands: 3,000 words written back to back into
   the 512-word FIFO in bursts of up to 1,024 words (the 4 KiB window), which
   the host resumes after every retry and disconnect while the moves drain
   it;
-* a random job of 10,000 segments (``sim/card_jobs.py``): LINE and ARC
+* a random job of 10,000 segments (``sim/card/card_jobs.py``): LINE and ARC
   moves with SET, DWELL and MARK, streamed as host software does (burst
   what fits, sleep until LOW_WATER, read every MARK back).
 
@@ -33,14 +33,14 @@ from pathlib import Path
 
 from myhdl import ToVerilogWarning
 
-from rtl import registers as regmap
-from sim.card_bench import command_words
-from sim.card_e2e import DEFAULT_FIFO, finish, program, run_card
-from sim.card_jobs import LONGEST_WAIT, random_job, streaming_scenario
-from sim.dda_model import ArcCommand, LineCommand
-from sim.paths import GEN
-from sim.vlt.build import _build, find_tool
-from sim.vlt.card import VerilatedCard
+from models import registers as regmap
+from models.dda_model import ArcCommand, LineCommand
+from rtl.convert import GEN_DIR
+from sim.backends.verilator.build import _build, find_tool
+from sim.backends.verilator.card import VerilatedCard
+from sim.card.card_bench import command_words
+from sim.card.card_e2e import DEFAULT_FIFO, finish, program, run_card
+from sim.card.card_jobs import LONGEST_WAIT, random_job, streaming_scenario
 
 BACKENDS = ("myhdl", "icarus", "verilator")
 LABELS = {"myhdl": "MyHDL", "icarus": "Icarus", "verilator": "Verilator"}
@@ -121,7 +121,7 @@ def build_seconds():
     tool = find_tool()
     with tempfile.TemporaryDirectory() as work:
         start, children = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN)
-        _build(Path(work), [GEN / "card.v"], "card", None, (), tool)
+        _build(Path(work), [GEN_DIR / "card.v"], "card", None, (), tool)
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu = after.ru_utime + after.ru_stime - children.ru_utime - children.ru_stime
         return time.perf_counter() - start, cpu, tool.version

@@ -15,10 +15,10 @@ host saw, data errors, clocks, wall time.
 ``--xz``: clocks the X/Z detector watched and reported on the generated
 Verilog in float mode: ``gen/pci_slave.v`` under 300 random transactions,
 ``gen/top.v`` enumerated, programmed and running an arc (the benches of
-``sim/pci_random_traffic.py`` and ``sim/card_e2e.py``), and the example
+``sim/card/pci_slave_traffic.py`` and ``sim/card/card_e2e.py``), and the example
 target of ``docs/verification.md``.
 
-``--cocotb``: the cocotb test of ``gen/card.v`` (``sim/cocotb_card.py``):
+``--cocotb``: the cocotb test of ``gen/card.v`` (``sim/card/cocotb_card.py``):
 its result and wall time.
 """
 import argparse
@@ -26,12 +26,12 @@ import random
 import sys
 import time
 
-from sim.paths import ROOT
-from sim.pci_delayed_target import DelayedTarget
-from sim.pci_host_core import HostCore
-from sim.pci_host_types import MEM_READ, MEM_WRITE, Request
-from sim.pci_loop import PythonBus
-from sim.pci_master import PciMaster, random_waits
+from rtl.convert import ROOT
+from sim.pci.delayed_target import DelayedTarget
+from sim.pci.host_core import HostCore
+from sim.pci.host_types import MEM_READ, MEM_WRITE, Request
+from sim.pci.loop import PythonBus
+from sim.pci.master import PciMaster, random_waits
 
 BURST = 256
 LENGTHS = (1, 16, 64, 256)
@@ -97,11 +97,11 @@ def print_delayed():
 
 
 def print_xz():
-    from sim.pci_bench import PciBench
-    from sim.card_e2e import DEFAULT_FIFO, motion_scenario, run_card
-    from sim.dda_model import ArcCommand
-    from sim.scratch_example import scenario, scratch_target
-    from sim.pci_random_traffic import run_random
+    from models.dda_model import ArcCommand
+    from sim.card.card_e2e import DEFAULT_FIFO, motion_scenario, run_card
+    from sim.card.pci_slave_traffic import run_random
+    from sim.pci.bench import PciBench
+    from sim.pci.example_target import scenario, scratch_target
 
     quarter_arc = ArcCommand(40, 0, 0, 40, ccw=True)
     print("X/Z detector in float mode (clocks with a line X or Z while driven / clocks watched):")
@@ -117,15 +117,15 @@ def print_xz():
 def print_cocotb():
     from cocotb_tools.runner import get_results, get_runner
 
-    from sim.paths import GEN, build_dir
+    from rtl.convert import GEN_DIR, build_dir
 
     runner = get_runner("icarus")
     build = build_dir("cocotb", "figures")
     start = time.perf_counter()
-    runner.build(sources=[GEN / "card.v"], hdl_toplevel="card", build_dir=build, timescale=("1ns", "1ps"),
+    runner.build(sources=[GEN_DIR / "card.v"], hdl_toplevel="card", build_dir=build, timescale=("1ns", "1ps"),
                  always=True)
     built = time.perf_counter()
-    results = runner.test(test_module="sim.cocotb_card", hdl_toplevel="card", build_dir=build,
+    results = runner.test(test_module="sim.card.cocotb_card", hdl_toplevel="card", build_dir=build,
                           test_dir=build, extra_env={"PYTHONPATH": str(ROOT)})
     tests, failures = get_results(results)
     done = time.perf_counter()

@@ -1,5 +1,5 @@
 """Constants of the whole-card properties, generated from the register table
-(rtl/registers.py) and the command set (rtl/instructions.py), as the RTL
+(models/registers.py) and the command set (models/instructions.py), as the RTL
 decoder, docs and C header are.
 
 ``card_constants()`` returns the body that ``props/card_harness.sv``
@@ -8,8 +8,8 @@ and the machine registers the harness keeps at rest, the STATUS fields, the
 error codes, and per opcode whether it is in the table, its header mask and
 its number of operand words.
 """
-from rtl import instructions as isa
-from rtl import registers as regmap
+from models import instructions as isa
+from models import registers as regmap
 
 STATUS_FIELDS = ("ERROR", "FIFO_EMPTY", "FIFO_FULL", "FIFO_LEVEL")
 # registers whose writes could stop, hold or home the card (docs/machine.md)
@@ -22,7 +22,7 @@ def _dword(name):
 
 def card_constants():
     """The generated include of card_harness.sv."""
-    lines = ["// Generated from rtl/registers.py and rtl/instructions.py by formal/card_props.py;",
+    lines = ["// Generated from models/registers.py and models/instructions.py by formal/card_props.py;",
              "// do not edit.  Included into card_harness."]
     for name in ("CONTROL", "COMMAND", "STATUS", *MACHINE_REGISTERS):
         lines.append(f"    localparam [5:0] DWORD_{name} = 6'd{_dword(name)};   // {regmap.offset(name):#04x}")

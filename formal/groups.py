@@ -14,7 +14,8 @@ from pathlib import Path
 from formal.card_props import card_constants
 from formal.regs_props import table_properties
 from formal.sby import Task
-from sim.dda_exhaustive import NARROW_WIDTH, convert_narrow
+from models.dda_build import DDA_MIN_WIDTH as NARROW_WIDTH
+from rtl.convert import convert_narrow_dda
 
 PROPS = Path(__file__).resolve().parent / "props"
 ROOT = Path(__file__).resolve().parent.parent
@@ -119,7 +120,7 @@ PCI_FILES = ["pci_rules.sv", "local_bus_rules.sv", "pci_target_local.vh", "pci_t
 PCI_PARAMETERS = pci_harness_parameters(io_bits=6, mem_bits=12)
 # registers of pci_slave the helper invariants (props/pci_slave_invariants.vh) read
 # the configuration header's own registers carry the instance name the
-# converter gives them (``pci_config0_``, rtl/pci_config.py)
+# converter gives them (``pci_config0_``, rtl/pci/pci_config.py)
 PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "initial_wait_over",
                        "subsequent_wait_over", "first_phase", "is_read", "is_config", "space_mem",
                        "io_enable", "mem_enable", "parity_response", "serr_enable",
@@ -137,7 +138,7 @@ REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_f
                      "read_waited")
 
 # signals of gen/card.v the card harness reads: where the sequencer takes a
-# word from the FIFO (rtl/sequencer.py fifo.pop, the FIFO's empty flag and
+# word from the FIFO (rtl/regs/sequencer.py fifo.pop, the FIFO's empty flag and
 # output register), under the instance names the converter gives them
 CARD_SIGNALS = ("card_core0_regs_fifo1_fifo_pop", "card_core0_regs_fifo1_fifo_empty",
                 "card_core0_regs_fifo1_fifo_dout")
@@ -164,7 +165,7 @@ MACHINE = dict(expose=MACHINE_REGISTERS, generated={"regs_table.vh": table_prope
 def narrow_dda():
     """``dda_arc.v`` of the narrowest build (NARROW_WIDTH-bit coordinates, the
     default variants), converted from rtl/ into the work folder; its path."""
-    return convert_narrow(GENERATED / f"dda_w{NARROW_WIDTH}")
+    return convert_narrow_dda(GENERATED / f"dda_w{NARROW_WIDTH}")
 
 
 DDA = dict(convert=narrow_dda, parameters=dict(W=NARROW_WIDTH))
@@ -195,7 +196,7 @@ GROUPS = [
           text="back end: LocalBus answers, registers never wait, FIFO level, STATUS, nothing lost"),
     Group("regs_fifo_table", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("reg_",), mode="bmc",
           depth=10, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
-          text="every register as rtl/registers.py says (bounded)"),
+          text="every register as models/registers.py says (bounded)"),
     Group("regs_fifo_pulses", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_",), mode="bmc",
           depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
           defines={"PULSE_TIMING_BY_SET": None, "POSITION_WITHOUT_HOMING": None},

@@ -1,4 +1,4 @@
-"""Register properties generated from the register table (rtl/registers.py),
+"""Register properties generated from the register table (models/registers.py),
 as the RTL decoder, docs/registers.md and the C header are.
 
 ``table_properties()`` returns the body that ``props/regs_fifo_harness.sv``
@@ -11,7 +11,7 @@ of it returns the model as it was in the read's wait clock; a bit of a write-one
 reads 1 until a write of 1 to it; INT_STATUS.CLAMPED reads 1 only after a
 write out of a register's range; offsets the table does not list read 0.
 """
-from rtl import registers as regmap
+from models import registers as regmap
 
 COMMAND_READS_ZERO = ("COMMAND",)   # "one-shot actions (read as 0)"
 
@@ -75,7 +75,7 @@ def _clamped_only_after_a_clamp():
 
 def table_properties():
     """The generated include: models and assertions for every register."""
-    lines = ["// Generated from rtl/registers.py by formal/regs_props.py; do not edit.",
+    lines = ["// Generated from models/registers.py by formal/regs_props.py; do not edit.",
              "// Included into regs_fifo_harness: reads (read_now, l_addr, l_rdata), the",
              "// bus write of the last clock (stage_*), SET commands (set_strobe, set_index,",
              "// set_value)."]

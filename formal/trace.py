@@ -6,7 +6,7 @@ Signals are matched by the end of their hierarchical name (``trdy_n`` finds
 """
 import sys
 
-from sim.waves import Waveform, find
+from sim.backends.waves import Waveform, find
 
 # SymbiYosys writes a step every 10 time units, the clock high at +0 / low at +5
 STEP_TIME = 10

@@ -16,10 +16,10 @@ Modules: ``tools`` (running yosys and nextpnr), ``family``, ``ice40`` and
 ``table`` (cells per unit and register group), ``report`` (text).
 """
 from fpgaflow.ecp5 import ECP5
-from fpgaflow.flow import (FAMILIES, PCI_MHZ, SWEEP_SEEDS, available_units, closes_timing, netlist_figures,
-                           synthesize, synthesize_closing)
+from fpgaflow.flow import (FAMILIES, PCI_MHZ, SWEEP_SEEDS, available_units, closes_timing, netlist_figures, synthesize,
+                           synthesize_closing)
 from fpgaflow.ice40 import ICE40
-from fpgaflow.pins import PCI33_CLOCK_TO_OUT_NS, PCI33_SETUP_NS, pin_budget_misses, worst_pci_pins
+from fpgaflow.pin_timing import PCI33_CLOCK_TO_OUT_NS, PCI33_SETUP_NS, pin_budget_misses, worst_pci_pins
 from fpgaflow.report import format_figures
 from fpgaflow.table import cell_table, format_table
 from fpgaflow.tools import CLOCK_PORT, SynthError, run_yosys

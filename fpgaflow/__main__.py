@@ -4,11 +4,11 @@ import re
 import sys
 from pathlib import Path
 
-from fpgaflow.flow import (FAMILIES, GEN, PCI_MHZ, SWEEP_SEEDS, available_units, synthesize, synthesize_closing,
-                           synthesised)
+from fpgaflow.flow import FAMILIES, PCI_MHZ, SWEEP_SEEDS, available_units, synthesised, synthesize, synthesize_closing
 from fpgaflow.report import format_figures, format_pad_figures, format_sweep
 from fpgaflow.table import cell_table, format_table
 from fpgaflow.tools import TIMEOUT_S, SynthError
+from rtl.convert import GEN_DIR
 
 
 def _parser():
@@ -33,7 +33,7 @@ def _parser():
                              "group, largest first (fpgaflow/table.py says how they are attributed)")
     parser.add_argument("--rows", type=int, default=40, metavar="N",
                         help="register groups listed by --table (default: 40)")
-    parser.add_argument("--gen", type=Path, default=GEN, help="folder with the Verilog (default: gen/)")
+    parser.add_argument("--gen", type=Path, default=GEN_DIR, help="folder with the Verilog (default: gen/)")
     parser.add_argument("--timeout", type=int, default=TIMEOUT_S,
                         help=f"CPU seconds each tool may take, wall time four times that (default: {TIMEOUT_S})")
     parser.add_argument("--wrap", action="store_true",

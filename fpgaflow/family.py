@@ -3,7 +3,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from fpgaflow.tools import SynthError
-from sim.paths import ROOT
+from rtl.convert import ROOT
 
 CONSTRAINTS = ROOT / "constraints"
 

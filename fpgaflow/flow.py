@@ -11,13 +11,13 @@ from pathlib import Path
 
 from fpgaflow.ecp5 import ECP5
 from fpgaflow.ice40 import ICE40
-from fpgaflow.paths import critical_path, io_report, register_names, worst_paths
-from fpgaflow.pins import pin_budget_misses, pin_timing
+from fpgaflow.pin_timing import pin_budget_misses, pin_timing
+from fpgaflow.timing_paths import critical_path, io_report, register_names, worst_paths
 from fpgaflow.tools import (CLOCK_PORT, TIMEOUT_S, SynthError, bit_names, load_module, port_bits, relative, run,
                             run_yosys, unit_sources)
 from fpgaflow.wrapper import WRAPPER_SUFFIX, is_wrapper_register, unit_ports, wrapper_verilog
-from sim.paths import BUILD as BUILD_ROOT
-from sim.paths import GEN
+from rtl.convert import BUILD_DIR as BUILD_ROOT
+from rtl.convert import GEN_DIR
 
 BUILD = BUILD_ROOT / "synth"
 FAMILIES = {family.key: family for family in (ICE40, ECP5)}
@@ -34,9 +34,9 @@ def family_named(family):
     return family
 
 
-def available_units(gen_dir=GEN):
+def available_units(gen_dir=GEN_DIR):
     """Units that have Verilog in ``gen_dir``: ``top`` alone if present."""
-    from rtl.top import UNITS
+    from rtl.convert import UNITS
 
     if (Path(gen_dir) / "top.v").exists():
         return ["top"]
@@ -122,7 +122,7 @@ def work_folder(unit, family, wrap=False, build=None):
     return work
 
 
-def synthesised(unit, *, family=ICE40, gen_dir=GEN, wrap=False, build=None, timeout=TIMEOUT_S):
+def synthesised(unit, *, family=ICE40, gen_dir=GEN_DIR, wrap=False, build=None, timeout=TIMEOUT_S):
     """yosys's netlist of ``unit`` ready for nextpnr, and what the later steps need.
 
     Keys: ``name`` (the top synthesised: ``unit`` or its wrapper), ``work``,
@@ -152,7 +152,7 @@ def synthesised(unit, *, family=ICE40, gen_dir=GEN, wrap=False, build=None, time
             "constraints": constraints}
 
 
-def synthesize(unit, *, family=ICE40, gen_dir=GEN, freq=PCI_MHZ, seed=1, timeout=TIMEOUT_S, wrap=False,
+def synthesize(unit, *, family=ICE40, gen_dir=GEN_DIR, freq=PCI_MHZ, seed=1, timeout=TIMEOUT_S, wrap=False,
                paths=1, skip=None, build=None, stage=None):
     """Synthesise, place and route ``unit`` on ``family`` (a ``Family`` or its key); return its figures.
 

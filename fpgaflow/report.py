@@ -1,6 +1,6 @@
 """The figures of ``flow.synthesize`` as text, one format for every family."""
 from fpgaflow.flow import FAMILIES, PCI_MHZ
-from fpgaflow.pins import PCI33_CLOCK_TO_OUT_NS, PCI33_SETUP_NS, PCI_PREFIX, pin_groups, worst_pci_pins
+from fpgaflow.pin_timing import PCI33_CLOCK_TO_OUT_NS, PCI33_SETUP_NS, PCI_PREFIX, pin_groups, worst_pci_pins
 from fpgaflow.wrapper import is_wrapper_register, wrapper_own
 
 

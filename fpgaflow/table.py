@@ -31,10 +31,11 @@ import sys
 from collections import defaultdict
 from pathlib import Path
 
-from fpgaflow.flow import GEN, PCI_MHZ, family_named, run_nextpnr, synthesised, work_folder
+from fpgaflow.flow import PCI_MHZ, family_named, run_nextpnr, synthesised, work_folder
 from fpgaflow.ice40 import ICE40
-from fpgaflow.paths import register_names, rtl_net_names
+from fpgaflow.timing_paths import register_names, rtl_net_names
 from fpgaflow.tools import TIMEOUT_S, load_module
+from rtl.convert import GEN_DIR
 
 _BIT_INDEX = re.compile(r"(\[\d+\])+$")
 _MADE_BY_SYNTHESIS = re.compile(r"_(SB_|TRELLIS_|LUT4_|CCU2C_|PFUMX_|L6MUX21_|DP16KD_)|\$")
@@ -50,7 +51,7 @@ def rtl_blocks(rtl_dir=None):
 
         rtl_dir = Path(rtl.__file__).parent
     blocks = {}
-    for path in sorted(Path(rtl_dir).glob("*.py")):
+    for path in sorted(Path(rtl_dir).rglob("*.py")):
         for node in ast.walk(ast.parse(path.read_text())):
             if isinstance(node, ast.FunctionDef) and any(
                     getattr(d, "id", getattr(d, "attr", None)) == "block" for d in node.decorator_list):
@@ -213,7 +214,7 @@ class CellTable:
         return sorted(rows, key=lambda row: (-row[2], -row[3], row[0]))
 
 
-def cell_table(unit, *, family=ICE40, gen_dir=GEN, wrap=False, build=None, timeout=TIMEOUT_S, blocks=None):
+def cell_table(unit, *, family=ICE40, gen_dir=GEN_DIR, wrap=False, build=None, timeout=TIMEOUT_S, blocks=None):
     """``CellTable`` of ``unit``: synthesised and packed (no placement: the cell counts are final
     after packing).  Work files go to ``<build>/<unit>/`` (``build`` defaults to ``build/synth/cells/``)."""
     family = family_named(family)

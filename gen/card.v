@@ -45,7 +45,7 @@ module card (
 // 
 // Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci``
 // (``PciBus``), ``pins`` (``MotorPins``).  Parameters
-// (``rtl/parameters.py``): ``fifo_depth``, ``coord_width``, ``clock_hz``,
+// (``models/parameters.py``): ``fifo_depth``, ``coord_width``, ``clock_hz``,
 // ``variants``, ``device`` (the PCI target's one-LUT paths: plain logic or
 // iCE40 cells) and the PCI IDs (``vendor_id``, ``device_id``, ...);
 // ``io_registers`` (``pci_slave``'s: True when the top's pads hold the PCI

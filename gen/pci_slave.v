@@ -51,11 +51,11 @@ module pci_slave (
 // Parameters: vendor_id, device_id, revision_id, class_code (24 bits),
 // subsystem_vendor_id, subsystem_id; io_bar_bits (BAR0 is 2**io_bar_bits
 // bytes), mem_bar_bits (BAR1 is 2**mem_bar_bits bytes); device (how the
-// one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pin_lut.py``);
-// defaults and ranges in ``rtl/parameters.py``;
+// one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pci/pin_lut.py``);
+// defaults and ranges in ``models/parameters.py``;
 // io_registers (False: the core's own flip-flops sample AD and IDSEL and
 // drive AD, PAR, TRDY#, DEVSEL#, STOP#, PERR#; True: the I/O cells of
-// ``rtl.pci_pads`` hold those registers, so ``pci.ad_in``/``idsel_in``
+// ``rtl.pci.pci_pads`` hold those registers, so ``pci.ad_in``/``idsel_in``
 // arrive registered and those ``*_out`` carry the value for after the next
 // edge; bus timing is the same).
 // 

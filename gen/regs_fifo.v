@@ -57,7 +57,7 @@ module regs_fifo (
 // The card behind the PCI target: everything of the paper's figure 1 but the DDA.
 // 
 // Ports: ``local`` (the target's back end; I/O BAR = the registers of
-// ``rtl/registers.py``, memory BAR = the FIFO: every data phase with a byte
+// ``models/registers.py``, memory BAR = the FIFO: every data phase with a byte
 // enabled pushes one word; ``local.room`` is high while the FIFO has
 // three free places, the promise the target needs before it acknowledges
 // a posted dword, and a write to a full FIFO answers ``retry``, so the
@@ -72,7 +72,7 @@ module regs_fifo (
 // assembles STATUS, MACHINE_STATUS, STOP_REASON, MARK_TAG and POS_X/Y);
 // ``core_clear`` (one registered clock on
 // COMMAND.SOFT_RESET or a stop: the top resets the DDA with it).
-// Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
+// Parameters (``models/parameters.py``): ``fifo_depth`` (words, a power of
 // two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
 // ``clock_hz`` and ``device`` only set capability registers (CLOCK_HZ,
 // BUILD; FIFO_SIZE, BUILD.COORD_WIDTH and BUILD.DDA_VARIANTS come from

@@ -36,9 +36,9 @@ module top (
 // Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci_pins``
 // (``PciPins``: AD, C/BE#, PAR, FRAME#, IRDY#, TRDY#, DEVSEL#, STOP#, IDSEL,
 // PERR#, SERR#, INTA# as on the bus), ``motor`` (``MotorPins``: STEP/DIR).
-// Parameters: those of ``card`` (``rtl/parameters.py``).  ``device``
+// Parameters: those of ``card`` (``models/parameters.py``).  ``device``
 // ``ice40`` (the top's default): the PCI boundary flip-flops are the iCE40
-// I/O cells' registers (``rtl/pci_pads.py``; the target is told so) and
+// I/O cells' registers (``rtl/pci/pci_pads.py``; the target is told so) and
 // the target's pin paths are iCE40 LUTs; ``generic``: plain tri-states
 // and plain logic.  ``rtl/card.py`` is the same card with split ports, for
 // benches.

@@ -10,7 +10,7 @@
 
 Every command is checked on the host before a word is queued (ValueError,
 nothing sent): coordinates against the card's coordinate width, arcs against
-the DDA's acceptance rule (``sim.dda_model.plan_arc``), register values
+the DDA's acceptance rule (``models.dda_model.plan_arc``), register values
 against the register table.  What the card still refuses comes back as a
 ``CardError`` carrying the card's error name and the command that caused it:
 the API keeps a record of the words queued since the last stop, and the
@@ -29,13 +29,12 @@ import bisect
 import math
 from dataclasses import dataclass
 
-from rtl import instructions as isa
-from rtl import registers as regmap
-from sim.dda_model import ArcCommand, plan_arc
-
 from host.machine import Machine
 from host.machine_io import MachineIO, MachineStopped
-from host.transport import POLL_SECONDS
+from host.transports.base import POLL_SECONDS
+from models import instructions as isa
+from models import registers as regmap
+from models.dda_model import ArcCommand, plan_arc
 
 MAJOR = regmap.VERSION >> 8
 MINOR = regmap.VERSION & 0xFF

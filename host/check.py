@@ -1,7 +1,7 @@
 """The planned path as the card makes it, measured against the drawing.
 
 ``check(plan)`` runs every LINE and ARC through the DDA's golden model
-(``sim.dda_model.iterate``: the exact step path of the card), rebuilds the
+(``models.dda_model.iterate``: the exact step path of the card), rebuilds the
 positions in steps, and measures each point's distance to the primitive the
 command came from.  It also counts iterations per run and turns them into
 the job time at the planned feed rates.
@@ -10,8 +10,8 @@ import math
 from dataclasses import dataclass, field
 
 from host.planner import DwellCommand
-from rtl.registers import RATE_ONE
-from sim.dda_model import ArcCommand, LineCommand, iterate
+from models.dda_model import ArcCommand, LineCommand, iterate
+from models.registers import RATE_ONE
 
 
 @dataclass

@@ -23,8 +23,8 @@ from host.check import check
 from host.errors import ProgramError
 from host.machine import DEFAULT_CLOCK_HZ, DEFAULT_COORD_WIDTH, Machine
 from host.planner import encode_command, plan
-from host.transport import TransportError
-from rtl.registers import RATE_MAX
+from host.transports.base import TransportError
+from models.registers import RATE_MAX
 
 PROG = "python -m host"
 

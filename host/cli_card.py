@@ -15,11 +15,11 @@ from pathlib import Path
 from host import gcode, svg
 from host.card import Card
 from host.check import check
-from host.pins import deviation, junction_gaps, pin_moves
+from host.pin_measure import deviation, junction_gaps, pin_moves
 from host.planner import plan
 from host.selftest import selftest
 from host.stream import Stopped, stream
-from host.transport import SIM_KINDS, open_transport
+from host.transports import SIM_KINDS, open_transport
 
 STOP_EXIT = 130  # the shell's code for a job ended by SIGINT
 

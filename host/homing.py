@@ -6,9 +6,8 @@ Rates are in steps per second, converted to clocks with the card's
 CLOCK_HZ (the periods are 16-bit: at 33 MHz the slowest rate is 509
 steps/s); every value is checked before any register is written.
 """
-from rtl import registers as regmap
-
-from host.transport import POLL_SECONDS
+from host.transports.base import POLL_SECONDS
+from models import registers as regmap
 
 AXES = ("X", "Y")
 DIRECTIONS = ("positive", "negative")   # where the switch is

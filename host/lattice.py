@@ -4,7 +4,7 @@ Every command starts where the one before ended (an integer step position)
 and ends exactly on the rounded end point of its primitive, so rounding
 never accumulates.  An ARC is given relative to its centre, so the centre is
 an integer point too; the card accepts it when the end lies within one step
-of the start radius (``sim.dda_model.plan_arc``, the card's rule, decides).
+of the start radius (``models.dda_model.plan_arc``, the card's rule, decides).
 
 ``arc_commands`` maps a circular arc or a LinuxCNC spiral:
 
@@ -30,7 +30,7 @@ into equal parts.
 import math
 
 from host.errors import ProgramError
-from sim.dda_model import ArcCommand, LineCommand, plan_arc
+from models.dda_model import ArcCommand, LineCommand, plan_arc
 
 RADIUS_STEP = 0.25  # steps: most radius change of one spiral piece
 LINE_SPAN = 2          # steps: a piece this short is a LINE

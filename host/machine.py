@@ -8,7 +8,7 @@ reads them from the capability registers (``Card.configure`` returns the
 import math
 from dataclasses import dataclass
 
-from rtl.registers import RATE_MAX, RATE_ONE
+from models.registers import RATE_MAX, RATE_ONE
 
 DEFAULT_CLOCK_HZ = 33_000_000
 DEFAULT_COORD_WIDTH = 24  # rtl.top's default

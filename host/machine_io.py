@@ -7,10 +7,9 @@ card's ``read``, ``write``, ``field``, ``clocks``, ``check``, ``position``,
 """
 import math
 
-from rtl import registers as regmap
-
 from host import homing
-from host.transport import POLL_SECONDS
+from host.transports.base import POLL_SECONDS
+from models import registers as regmap
 
 
 class MachineStopped(RuntimeError):

@@ -28,10 +28,10 @@ from dataclasses import dataclass, field, replace
 from host import geometry
 from host.lattice import arc_commands, line_commands
 from host.machine import Machine
-from rtl.feed_rate import DECEL_MARGIN
-from rtl.instructions import encode
-from rtl.registers import RATE_ONE, register
-from sim.dda_model import ArcCommand, LineCommand, iterator_for
+from models.dda_model import ArcCommand, LineCommand, iterator_for
+from models.instructions import encode
+from models.registers import RATE_ONE, register
+from rtl.regs.feed_rate import DECEL_MARGIN
 
 DWELL_MAX = (1 << 32) - 1
 TAG_MODULUS = 1 << 16

@@ -13,9 +13,9 @@
 
 Each check gives (name, None) or (name, what went wrong).
 """
-from rtl import instructions as isa
-from rtl import registers as regmap
-from sim.dda_model import ArcCommand, LineCommand
+from models import instructions as isa
+from models import registers as regmap
+from models.dda_model import ArcCommand, LineCommand
 
 WALK = ("LOW_WATER", "FEED_RATE", "RAMP_START", "RAMP_STEP", "STEP_WIDTH", "DIR_SETUP", "DIR_HOLD",
         "DIR_POLARITY", "PULSE_PERIOD_X", "PULSE_PERIOD_Y")

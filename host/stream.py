@@ -17,9 +17,8 @@ program line whose command the card refused.
 """
 from dataclasses import dataclass, field
 
-from rtl import registers as regmap
-
 from host.planner import encode_command
+from models import registers as regmap
 
 SLICE_SECONDS = 0.02  # card time between two looks at should_stop while waiting
 

@@ -42,7 +42,7 @@ MODULE_DESCRIPTION("HAL driver of the PCI DDA card");
 MODULE_LICENSE("GPL");
 
 static char *sim = "";
-RTAPI_MP_STRING(sim, "Unix socket of python -m host.cardserver (empty: the real card on PCI)");
+RTAPI_MP_STRING(sim, "Unix socket of python -m sim.card.card_server (empty: the real card on PCI)");
 static int keep_ahead = 4;
 RTAPI_MP_INT(keep_ahead, "servo periods queued ahead in the card's FIFO");
 static int period_overhead = 8;

@@ -1,5 +1,5 @@
 /* Transports of the dda_card HAL driver: the real card on PCI, or the
- * simulated card served by `python -m host.cardserver` on a Unix socket.
+ * simulated card served by `python -m sim.card.card_server` on a Unix socket.
  *
  * Copyright the PCI DDA card authors.  GPL-2.0-or-later (see COPYING here).
  *
@@ -37,7 +37,7 @@ struct dda_transport {
     char name[64];
 };
 
-/* ---- simulation: three-word requests, two-word answers (host/cardserver.py) ---- */
+/* ---- simulation: three-word requests, two-word answers (sim/card/card_server.py) ---- */
 
 static int dda_sim_exchange(struct dda_transport *t, uint32_t op, uint32_t a, uint32_t b,
                             const uint32_t *words, uint32_t *value)
@@ -80,7 +80,7 @@ static int dda_sim_open(struct dda_transport *t, const char *path)
     snprintf(t->name, sizeof t->name, "simulated card at %s", path);
     if (t->sock < 0 || connect(t->sock, (struct sockaddr *)&address, sizeof address) < 0) {
         rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: sim=%s: no card server (%s): start "
-                        "python -m host.cardserver --socket %s first\n", path, strerror(errno), path);
+                        "python -m sim.card.card_server --socket %s first\n", path, strerror(errno), path);
         if (t->sock >= 0)
             close(t->sock);
         t->sock = -1;

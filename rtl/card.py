@@ -1,13 +1,13 @@
 """The whole card with split PCI ports: PCI target + registers, FIFO, sequencer, pulses, DDA."""
 from myhdl import Signal, block
 
-from rtl import parameters
-from rtl import registers as regmap
+from models import parameters
+from models import registers as regmap
+from models.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, PCI_IDS, VARIANTS
 from rtl.card_core import CORE_PARAMETERS, card_core
 from rtl.interfaces import LocalBus, MotorPins, PciBus, card_reset
-from rtl.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, PCI_IDS, VARIANTS
+from rtl.pci.pci_target_build import local_addr_width
 from rtl.pci_slave import pci_slave
-from rtl.pci_target_build import local_addr_width
 
 MEM_BAR_BITS = 12  # 4 KiB FIFO window: a host burst of up to 1024 words
 CARD_PARAMETERS = (*CORE_PARAMETERS, *PCI_IDS)
@@ -26,7 +26,7 @@ def card(clock, reset, pci, pins, *, fifo_depth=FIFO_DEPTH.default, coord_width=
 
     Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci``
     (``PciBus``), ``pins`` (``MotorPins``).  Parameters
-    (``rtl/parameters.py``): ``fifo_depth``, ``coord_width``, ``clock_hz``,
+    (``models/parameters.py``): ``fifo_depth``, ``coord_width``, ``clock_hz``,
     ``variants``, ``device`` (the PCI target's one-LUT paths: plain logic or
     iCE40 cells) and the PCI IDs (``vendor_id``, ``device_id``, ...);
     ``io_registers`` (``pci_slave``'s: True when the top's pads hold the PCI

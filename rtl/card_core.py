@@ -1,10 +1,10 @@
 """The card behind the PCI target: registers, FIFO, sequencer, pulse outputs and the DDA."""
 from myhdl import ResetSignal, Signal, always_comb, block
 
-from rtl import parameters
+from models import parameters
+from models.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, VARIANTS
 from rtl.dda_arc import dda_arc
 from rtl.interfaces import AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
-from rtl.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, VARIANTS
 from rtl.regs_fifo import regs_fifo
 
 CORE_PARAMETERS = ("fifo_depth", "coord_width", "clock_hz", "variants", "device")
@@ -18,7 +18,7 @@ def card_core(clock, reset, local, irq, pins, *, fifo_depth=FIFO_DEPTH.default, 
     Ports: ``local`` (the PCI target's back end), ``irq`` (to INTA#),
     ``pins`` (STEP/DIR).  COMMAND.SOFT_RESET resets the DDA through its
     asynchronous reset, driven from a flip-flop of ``regs_fifo`` (no glitch)
-    and combined with RST#.  Parameters (``rtl/parameters.py``):
+    and combined with RST#.  Parameters (``models/parameters.py``):
     ``fifo_depth``, ``coord_width`` and ``variants`` (the build of the
     ``DdaPort`` made here: the interpolator has only the variants named, the
     sequencer refuses an ARC for another, BUILD reports them); ``clock_hz``

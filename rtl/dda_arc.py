@@ -1,13 +1,13 @@
 """DDA arc and line interpolator: setup, check and run, joined by their bundles.
 
-The golden model is ``sim/dda_model.py``; ``docs/dda.md`` gives the algorithm,
+The golden model is ``models/dda_model.py``; ``docs/dda.md`` gives the algorithm,
 the hardware and the handshake.
 """
 from myhdl import Signal, block
 
-from rtl.dda_check import dda_check
-from rtl.dda_run import dda_run
-from rtl.dda_setup import dda_setup
+from rtl.dda.dda_check import dda_check
+from rtl.dda.dda_run import dda_run
+from rtl.dda.dda_setup import dda_setup
 from rtl.interfaces import AxisPulses, DdaMove, DdaPlan, DdaPort, card_reset
 
 

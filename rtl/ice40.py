@@ -1,14 +1,14 @@
 """Verilog of the iCE40 primitives the ``ice40`` build instantiates; nothing else uses them.
 
-- ``sb_io``: the I/O cell, for the PCI pads (``rtl/pci_pads.py``), whose
+- ``sb_io``: the I/O cell, for the PCI pads (``rtl/pci/pci_pads.py``), whose
   registers hold the PCI target's boundary flip-flops;
 - ``sb_lut4``: a logic cell's LUT, for the PCI target's one-LUT paths from
-  FRAME#, IRDY# and PAR (``rtl/pin_lut.py``), so that synthesis merges no
+  FRAME#, IRDY# and PAR (``rtl/pci/pin_lut.py``), so that synthesis merges no
   logic into them.
 
 Both are written as user-defined Verilog by the blocks that use them; the
 ``generic`` build writes plain Verilog in their place.  yosys's
-``cells_sim.v`` (``sim/top_harness.py``) simulates them.
+``cells_sim.v`` (``sim/card/top_harness.py``) simulates them.
 """
 
 # SB_IO PIN_TYPE: output mode in bits 5:2, input mode in bits 1:0.

@@ -20,20 +20,20 @@ registered parity and the C/BE# input register, one LUT level after
 flip-flops on the way out, where PCI's 11 ns leave room (the 7 ns of
 set-up do not).  The registered address makes DEVSEL# timing MEDIUM.
 """
-from myhdl import (ConcatSignal, Signal, always_comb, always_seq, block, instances, intbv,
-                   modbv)
+from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, instances, intbv, modbv
 
-from rtl.interfaces import (ConfigSpace, LocalBus, PciBus, TargetBuffers, TargetControlNext, TargetDecode,
-                            TargetParity, TargetRequests, TargetState, card_reset)
-from rtl.pci_config import CONFIG_PARAMETERS, pci_config
-from rtl.pci_decode import pci_decode
-from rtl.pci_target_build import (INITIAL_WAIT_LIMIT, SUBSEQUENT_WAIT_LIMIT, check_params, last_dword,
-                                  local_addr_width)
-from rtl.pin_lut import pin_lut
-from rtl.pci_buffers import pci_buffers
-from rtl.pci_control import pci_control, t_state
-from rtl.pci_parity import pci_parity
-from rtl.pci_requests import pci_requests
+from rtl.interfaces import (ConfigSpace, LocalBus, PciBus, TargetBuffers, TargetControlNext, TargetDecode, TargetParity,
+                            TargetRequests, TargetState, card_reset)
+from rtl.pci.pci_buffers import pci_buffers
+from rtl.pci.pci_config import CONFIG_PARAMETERS, pci_config
+from rtl.pci.pci_control import pci_control, t_state
+from rtl.pci.pci_decode import pci_decode
+from rtl.pci.pci_parity import pci_parity
+from rtl.pci.pci_requests import pci_requests
+from rtl.pci.pci_target_build import (INITIAL_WAIT_LIMIT, SUBSEQUENT_WAIT_LIMIT, check_params, last_dword,
+                                      local_addr_width)
+from rtl.pci.pin_lut import pin_lut
+
 
 def pci_slave_ports(**params):
     """Fresh ports of ``pci_slave`` for ``params`` (conversion and benches)."""
@@ -55,11 +55,11 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     Parameters: vendor_id, device_id, revision_id, class_code (24 bits),
     subsystem_vendor_id, subsystem_id; io_bar_bits (BAR0 is 2**io_bar_bits
     bytes), mem_bar_bits (BAR1 is 2**mem_bar_bits bytes); device (how the
-    one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pin_lut.py``);
-    defaults and ranges in ``rtl/parameters.py``;
+    one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pci/pin_lut.py``);
+    defaults and ranges in ``models/parameters.py``;
     io_registers (False: the core's own flip-flops sample AD and IDSEL and
     drive AD, PAR, TRDY#, DEVSEL#, STOP#, PERR#; True: the I/O cells of
-    ``rtl.pci_pads`` hold those registers, so ``pci.ad_in``/``idsel_in``
+    ``rtl.pci.pci_pads`` hold those registers, so ``pci.ad_in``/``idsel_in``
     arrive registered and those ``*_out`` carry the value for after the next
     edge; bus timing is the same).
 
@@ -106,7 +106,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     irdy_q = Signal(bool(1))
 
     # --- bus outputs: next value and register (the pads may hold the latter) ---
-    # next values: for each case of the pins (``rtl/pci_control.py``), chosen by them
+    # next values: for each case of the pins (``rtl/pci/pci_control.py``), chosen by them
     chosen = TargetControlNext(t_state.S_IDLE)
     state_next, trdy_next, stop_next = chosen.state, chosen.trdy, chosen.stop
     devsel_next, drive_next, ad_oe_next = chosen.devsel, chosen.drive, chosen.ad_oe
@@ -140,7 +140,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     # --- read data: the AD register, fed by a one-dword skid register B;
     # --- posted write data: ad_q, then the head (h) and second (s) entries.
     # B and s share one register: reads and writes never use it at once.
-    # (``rtl/pci_buffers.py``)
+    # (``rtl/pci/pci_buffers.py``)
     b_valid = Signal(bool(0))
     wq_valid = Signal(bool(0))        # ad_q holds a posted dword
     h_valid, s_valid = Signal(bool(0)), Signal(bool(0))
@@ -148,7 +148,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     h_be, s_be = Signal(intbv(0)[4:]), Signal(intbv(0)[4:])
     write_done_q = Signal(bool(0))    # ad_q holds data of a completed write phase
 
-    # --- configuration header (``rtl/pci_config.py``), its lines named here ---
+    # --- configuration header (``rtl/pci/pci_config.py``), its lines named here ---
     config = ConfigSpace()
     config_write_q = config.write
     io_enable, mem_enable = config.io_enable, config.mem_enable
@@ -158,7 +158,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     parity_error_q = config.parity_error  # a parity error was detected at the last edge
 
     # --- combinational ---
-    # parity (``rtl/pci_parity.py``): PAR out, and the next values the PAR pin decides
+    # parity (``rtl/pci/pci_parity.py``): PAR out, and the next values the PAR pin decides
     parity = TargetParity(ad=ad_q, cbe=cbe_q, frame_q=frame_q, frame_qq=frame_qq, serr_enable=serr_enable,
                           parity_response=parity_response, write_done=write_done_q, perr_q=perr_q,
                           ad_out=ad_out_q, ad_out_parity_q=ad_parity_q, par_out=pci.par_out)

@@ -1,24 +1,24 @@
 """Function registers, data FIFO, instruction register and pulse outputs of the card."""
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, concat, intbv
 
-from rtl import parameters
-from rtl import registers as regmap
-from rtl.direct_pulse import direct_pulse
-from rtl.feed_rate import feed_rate
-from rtl.homing import homing
-from rtl.input_filter import input_filter
-from rtl.interfaces import (AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing,
-                            InputConditioning, LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus,
-                            RegisterWord, SequencerControl, SetPort, StatusWords, StepPositions, StepRequest,
-                            card_reset)
-from rtl.dda_build import variants_choice
-from rtl.machine_guard import machine_guard
-from rtl.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, VARIANTS
-from rtl.pulse_out import pulse_out
-from rtl.reg_word import reg_word
-from rtl.sequencer import sequencer
-from rtl.status_words import status_words
-from rtl.sync_fifo import sync_fifo
+from models import parameters
+from models import registers as regmap
+from models.dda_build import variants_choice
+from models.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, VARIANTS
+from rtl.interfaces import (AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing, InputConditioning,
+                            LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings,
+                            ReadChain, RegisterBus, RegisterWord, SequencerControl, SetPort, StatusWords, StepPositions,
+                            StepRequest, card_reset)
+from rtl.machine.homing import homing
+from rtl.machine.input_filter import input_filter
+from rtl.machine.machine_guard import machine_guard
+from rtl.regs.direct_pulse import direct_pulse
+from rtl.regs.feed_rate import feed_rate
+from rtl.regs.pulse_out import pulse_out
+from rtl.regs.reg_word import reg_word
+from rtl.regs.sequencer import sequencer
+from rtl.regs.status_words import status_words
+from rtl.regs.sync_fifo import sync_fifo
 
 REGS_FIFO_PARAMETERS = ("fifo_depth", "clock_hz", "device", "coord_width", "variants")  # the last two: of dda
 
@@ -33,7 +33,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     """The card behind the PCI target: everything of the paper's figure 1 but the DDA.
 
     Ports: ``local`` (the target's back end; I/O BAR = the registers of
-    ``rtl/registers.py``, memory BAR = the FIFO: every data phase with a byte
+    ``models/registers.py``, memory BAR = the FIFO: every data phase with a byte
     enabled pushes one word; ``local.room`` is high while the FIFO has
     three free places, the promise the target needs before it acknowledges
     a posted dword, and a write to a full FIFO answers ``retry``, so the
@@ -48,7 +48,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     assembles STATUS, MACHINE_STATUS, STOP_REASON, MARK_TAG and POS_X/Y);
     ``core_clear`` (one registered clock on
     COMMAND.SOFT_RESET or a stop: the top resets the DDA with it).
-    Parameters (``rtl/parameters.py``): ``fifo_depth`` (words, a power of
+    Parameters (``models/parameters.py``): ``fifo_depth`` (words, a power of
     two; 512 words of 32 bits are four iCE40 4-Kbit block RAMs);
     ``clock_hz`` and ``device`` only set capability registers (CLOCK_HZ,
     BUILD; FIFO_SIZE, BUILD.COORD_WIDTH and BUILD.DDA_VARIANTS come from

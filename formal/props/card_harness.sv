@@ -16,7 +16,7 @@
 //     FIFO_EMPTY and FIFO_FULL as that level says, and the ERROR code of
 //     docs/instructions.md for the first command.
 // The register offsets, STATUS fields, error codes and opcodes come from
-// card_table.vh, generated from rtl/registers.py and rtl/instructions.py by
+// card_table.vh, generated from models/registers.py and models/instructions.py by
 // formal/card_props.py.  Where the sequencer takes a word (its FIFO pop, the
 // FIFO's empty flag and output register) is inside the card: yosys `expose`
 // makes those signals ports, so the generated file is read unchanged.

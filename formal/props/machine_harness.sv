@@ -205,7 +205,7 @@ module machine_harness #(
         // "E-stop: no new STEP rise after INPUT_FILTER + 3 clocks, DRIVE_ENABLE
         // low at INPUT_FILTER + 3 clocks" from the clock the pin changes (the
         // pin's first clock at its level is clock 0, same_for 1)
-        // (sim/test_machine_card.py: a rise at clock 6 is the last allowed)
+        // (sim/card/test_machine_card.py: a rise at clock 6 is the last allowed)
         if (machine_in[0] && same_for[3:0] >= FILTER + 5) begin mr_estop_no_step: assert(!rise_x && !rise_y); end
         if (machine_in[0] && same_for[3:0] >= FILTER + 4) begin mr_estop_drive_low: assert(!pins_drive_enable); end
         // "the guard latches a stop at the edge after its cause: 1 ESTOP"

@@ -13,7 +13,7 @@
 //
 // Each rule's label begins with its area; the comment names the clause of the
 // PCI Local Bus Specification 2.3 (section numbers; "App. C" for the protocol
-// rules of Appendix C) and the rule of sim/pci_checker.py it matches (rN).
+// rules of Appendix C) and the rule of sim/pci/checker.py it matches (rN).
 //
 // Not covered: fast back-to-back transactions (an idle clock is assumed
 // between transactions, as the project's benches do), 64-bit extensions,

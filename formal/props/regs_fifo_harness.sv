@@ -13,7 +13,7 @@
 //     flush in the same clock); words reach the sequencer in order, none
 //     twice (a chosen-one shadow);
 //   * every register as the table says (regs_table.vh, generated from
-//     rtl/registers.py by formal/regs_props.py);
+//     models/registers.py by formal/regs_props.py);
 //   * the pulse outputs: STEP widths, DIR set-up and hold, no STEP without a
 //     request, every request on its pin (the modules of pulse_rules.sv), and
 //     POS_X counting the STEP pulses.
@@ -321,7 +321,7 @@ module regs_fifo_harness #(
         .step(pins_step_y));
     // POS_X counts the STEP pulses that left the X pin, +1 where DIR (without
     // DIR_POLARITY) is high, -1 where low, at the edge the pin rises;
-    // COMMAND.CLEAR_POSITION zeroes it (docs/registers.md, rtl/pulse_out.py)
+    // COMMAND.CLEAR_POSITION zeroes it (docs/registers.md, rtl/regs/pulse_out.py)
     reg p_pins_step_x = 0, cleared_position = 0, clear_position_due = 0;
     reg [1:0] p_polarity = 0;
     reg [31:0] position_x = 0, position_x_read = 0;
@@ -341,7 +341,7 @@ module regs_fifo_harness #(
 `ifdef POSITION_WITHOUT_HOMING
     // HOME zeroes the homed axis's position where its filtered switch
     // releases (docs/machine.md), which this model does not follow: no HOME
-    // (0x7C) here; sim/test_homing.py checks the zeroing
+    // (0x7C) here; sim/card/test_homing.py checks the zeroing
     always @(*) assume(!(l_we && !l_space && l_addr == 16'h007C));
 `endif
 `ifdef DIRECT_COUNTS

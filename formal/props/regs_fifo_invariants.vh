@@ -1,4 +1,4 @@
-// Helper invariants of rtl/regs_fifo.py and rtl/sync_fifo.py that let
+// Helper invariants of rtl/regs_fifo.py and rtl/regs/sync_fifo.py that let
 // k-induction close; included into regs_fifo_harness when
 // REGS_FIFO_INVARIANTS is defined.  They tie the FIFO's own count and flags
 // and the register write and read stages (made ports by yosys `expose`) to the models

@@ -1,9 +1,9 @@
 """The card's units behind the registers: FIFO, sequencer, register words, feed rate, pulse outputs."""
 from myhdl import Signal, intbv, modbv
 
-from rtl import instructions as isa
-from rtl import registers as regmap
-from rtl.dda_build import COORD_WIDTH
+from models import instructions as isa
+from models import registers as regmap
+from models.dda_build import COORD_WIDTH
 from rtl.interfaces.bundle import adopt
 from rtl.interfaces.dda import DdaPort
 
@@ -14,7 +14,7 @@ class MotorPins:
     polarity), ``drive_enable`` (out, from a flip-flop: the drives may
     run), and the machine's inputs, in the order of ``MACHINE_INPUTS``
     (E-stop, the limit switches, the home switches: pin levels as wired,
-    asynchronous; ``rtl/input_filter.py`` conditions them)."""
+    asynchronous; ``rtl/machine/input_filter.py`` conditions them)."""
 
     def __init__(self):
         self.step_x = Signal(bool(0))
@@ -126,7 +126,7 @@ class RegisterBus:
 
 class RegisterWord:
     """One function register's signals to the hardware, as wide as the
-    register ``spec`` (a ``rtl.registers.Register``): the hardware drives
+    register ``spec`` (a ``models.registers.Register``): the hardware drives
     ``hw`` (RO and WP: what reads return; W1C: bits it sets; W1S: bits it
     clears; ``hw_reset``: its value before the hardware drives it, the build
     word of a capability register); the register drives ``value``
@@ -152,7 +152,7 @@ class ReadChain:
 
 
 class PulseControl:
-    """Settings and status of the pulse outputs (``rtl/pulse_out.py``).
+    """Settings and status of the pulse outputs (``rtl/regs/pulse_out.py``).
 
     The registers drive ``clear`` (drop the queue), ``clear_position``
     (zero the positions), ``zero`` (bit 0 X, bit 1 Y: zero that axis's
@@ -182,7 +182,7 @@ class StepPositions:
 class RampSettings:
     """The feed rate's settings, driven by the registers FEED_RATE
     (``target``), RAMP_START (``ramp_start``) and RAMP_STEP (``ramp_step``);
-    the feed rate (``rtl/feed_rate.py``) reads them."""
+    the feed rate (``rtl/regs/feed_rate.py``) reads them."""
 
     def __init__(self, **given):
         def rate(name):
@@ -229,8 +229,8 @@ class StepRequest:
 
 
 class StatusWords:
-    """What the status registers read (``rtl/status_words.py``), each as wide
-    as its register in ``rtl/registers.py``.
+    """What the status registers read (``rtl/regs/status_words.py``), each as wide
+    as its register in ``models/registers.py``.
 
     The card drives ``busy`` (a command queued or running, a direct pulse,
     a step on its way, a move or a HOME under way), ``quadrant`` (the

@@ -1,8 +1,8 @@
 """The interpolator's bundles: the card's port to it and the ones between its units."""
 from myhdl import Signal, intbv, modbv
 
-from rtl.dda_build import (COORD_WIDTH, DEFAULT_VARIANTS, PRECISE, accumulator_width, check_coord_width,
-                           left_width, threshold_width, variant_set)
+from models.dda_build import (COORD_WIDTH, DEFAULT_VARIANTS, PRECISE, accumulator_width, check_coord_width, left_width,
+                              threshold_width, variant_set)
 
 
 class DdaPort:
@@ -35,8 +35,8 @@ class DdaPort:
     ``blend`` = 0, the all-ones value while the running move blends or none
     runs; the feed-rate ramp decelerates on it).
 
-    Build parameters (``rtl/parameters.py``), read by every block that takes
-    the port: ``coord_width`` (``rtl.dda_build.check_coord_width``: the
+    Build parameters (``models/parameters.py``), read by every block that takes
+    the port: ``coord_width`` (``models.dda_build.check_coord_width``: the
     card's range, or narrower for the interpolator alone) and ``variants``
     (a set of variant codes; given as the parameter's choice,
     ``improved,precise`` or ``all``, or as its codes).
@@ -72,8 +72,8 @@ class DdaPort:
 
 
 class DdaPlan:
-    """What the DDA's setup stage (``rtl/dda_setup.py``) knows of the move it prepared,
-    for the check (``rtl/dda_check.py``); every signal is a setup register.
+    """What the DDA's setup stage (``rtl/dda/dda_setup.py``) knows of the move it prepared,
+    for the check (``rtl/dda/dda_check.py``); every signal is a setup register.
 
     ``done`` says the rest is complete (it stays until ``taken``: the run
     takes the move at this edge; the check drives ``taken``).  The command: ``line``, ``variant``, ``ccw``, ``blend``, the
@@ -125,7 +125,7 @@ class DdaPlan:
 
 
 class DdaRoot:
-    """The setup stage's square root (``rtl/dda_root.py``).
+    """The setup stage's square root (``rtl/dda/dda_root.py``).
 
     ``load``: take ``radicand`` (2W bits) at this edge; the root then forms
     one bit a clock for W + 1 clocks, and ``root`` holds t = 2 isqrt + r
@@ -143,7 +143,7 @@ class DdaRoot:
 
 
 class SetupSequence:
-    """The setup stage's phase (``rtl/dda_sequence.py``): its registers
+    """The setup stage's phase (``rtl/dda/dda_sequence.py``): its registers
     ``state`` (``idle`` is the state enum's idle item), ``step`` (clocks
     into the phase, below ``step_max``) and ``square`` (which of the four
     squares), and their next values ``next_state``, ``next_step``,
@@ -157,8 +157,8 @@ class SetupSequence:
 
 
 class DdaMove:
-    """The checked move, from the check (``rtl/dda_check.py``) to the run
-    (``rtl/dda_run.py``), and the handshake that hands it over.
+    """The checked move, from the check (``rtl/dda/dda_check.py``) to the run
+    (``rtl/dda/dda_run.py``), and the handshake that hands it over.
 
     ``offer``: a checked move waits; ``take`` (from the run): the run takes it
     at this clock edge (the setup stage is then free).  ``error``: rejected
@@ -211,7 +211,7 @@ TARGET_ZERO, TARGET_RADIUS, TARGET_END = range(3)
 
 
 class DdaStep:
-    """The run's iteration as its units share it (``rtl/dda_run.py`` drives it).
+    """The run's iteration as its units share it (``rtl/dda/dda_run.py`` drives it).
 
     From the run: ``pending`` (the second clock of an iteration: the
     registered decision is applied at its end), the decision ``step_x``,
@@ -219,8 +219,8 @@ class DdaStep:
     piece: the next begins when it is applied), the move's ``line`` and ``blend``,
     ``x_inward`` and the magnitudes ``mag_x``, ``mag_y``, all registers.
     To the run: ``inward_near`` and ``outward_near`` (the precise mode's
-    choice, ``rtl/dda_nearest.py``) and ``last`` (a line's last iteration,
-    ``rtl/dda_left.py``).
+    choice, ``rtl/dda/dda_nearest.py``) and ``last`` (a line's last iteration,
+    ``rtl/dda/dda_left.py``).
     """
 
     def __init__(self, move):

@@ -1,13 +1,13 @@
 """The machine side: input conditioning, E-stop, limits, watchdog, drive enable."""
 from myhdl import Signal, intbv
 
-from rtl import registers as regmap
+from models import registers as regmap
 from rtl.interfaces.bundle import adopt
 from rtl.interfaces.card import MACHINE_INPUTS
 
 
 class InputConditioning:
-    """The machine inputs' conditioning (``rtl/input_filter.py``).
+    """The machine inputs' conditioning (``rtl/machine/input_filter.py``).
 
     The card drives ``pins`` (the input pins as one vector, bit n the input
     n of ``MACHINE_INPUTS``), ``polarity`` (INPUT_POLARITY: 1 inverts that
@@ -26,7 +26,7 @@ class InputConditioning:
 
 
 class MachineGuard:
-    """The machine guard's seam with the registers (``rtl/machine_guard.py``).
+    """The machine guard's seam with the registers (``rtl/machine/machine_guard.py``).
 
     The card drives ``active`` (the filtered inputs, ``InputConditioning``),
     ``drive_request`` (MACHINE_CONTROL.DRIVE_ENABLE), ``clear_stop``
@@ -54,7 +54,7 @@ class MachineGuard:
 
 
 class Homing:
-    """The homing sequencer's seam with the card (``rtl/homing.py``).
+    """The homing sequencer's seam with the card (``rtl/machine/homing.py``).
 
     The card drives ``start`` (one clock per HOME write) with ``request``
     (HOME's AXIS and NEGATIVE bits as written), ``seek_period``,

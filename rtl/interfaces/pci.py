@@ -96,7 +96,7 @@ class PciPins:
     leaves it (the bench's bus model resolves the drivers and the pull-ups),
     and every pin can be the ``PACKAGE_PIN`` of an iCE40 I/O cell.  The
     target drives AD, PAR, TRDY#, DEVSEL#, STOP#, PERR#, SERR# and INTA#;
-    it only reads C/BE#, FRAME#, IRDY# and IDSEL.  Only ``rtl/pci_pads.py``
+    it only reads C/BE#, FRAME#, IRDY# and IDSEL.  Only ``rtl/pci/pci_pads.py``
     joins these to a ``PciBus``.
     """
 
@@ -133,7 +133,7 @@ class TargetControlNext:
 
 
 class ConfigSpace:
-    """The PCI target's configuration header (``rtl/pci_config.py``) and the
+    """The PCI target's configuration header (``rtl/pci/pci_config.py``) and the
     transaction logic around it (``rtl/pci_slave.py``).
 
     To the header: ``write`` (a configuration write data phase completed at
@@ -166,7 +166,7 @@ class ConfigSpace:
 
 
 class TargetState:
-    """What the PCI target's next-state logic (``rtl/pci_control.py``) reads:
+    """What the PCI target's next-state logic (``rtl/pci/pci_control.py``) reads:
     the target's registers and its back end's answer, all settled before the
     FRAME# and IRDY# pins arrive.  ``state`` is the state enum (``idle`` its
     idle item); the target wires in the signals it has (``given``).
@@ -195,7 +195,7 @@ class TargetState:
 
 
 class TargetDecode:
-    """The PCI target's address decoder (``rtl/pci_decode.py``); ``idle`` is
+    """The PCI target's address decoder (``rtl/pci/pci_decode.py``); ``idle`` is
     the state enum's idle item, ``width`` the bits of a dword offset, and the
     target wires in the signals it has.
 
@@ -217,7 +217,7 @@ class TargetDecode:
 
 
 class TargetParity:
-    """The PCI target's parity (``rtl/pci_parity.py``).
+    """The PCI target's parity (``rtl/pci/pci_parity.py``).
 
     From the target's registers: ``ad``, ``cbe`` (the input registers, bus
     polarity), ``frame_q`` / ``frame_qq`` (FRAME# one and two edges back),
@@ -242,7 +242,7 @@ class TargetParity:
 
 
 class TargetBuffers:
-    """The PCI target's data buffers (``rtl/pci_buffers.py``); ``idle`` is
+    """The PCI target's data buffers (``rtl/pci/pci_buffers.py``); ``idle`` is
     the state enum's idle item, the target wires in the signals it has.
 
     From the target: ``ad``, ``cbe`` (input registers, bus polarity),
@@ -270,7 +270,7 @@ class TargetBuffers:
 
 
 class TargetRequests:
-    """The PCI target's request logic (``rtl/pci_requests.py``); ``idle`` is
+    """The PCI target's request logic (``rtl/pci/pci_requests.py``); ``idle`` is
     the state enum's idle item, ``width`` the bits of a dword address; the
     target wires in the signals it has.
 

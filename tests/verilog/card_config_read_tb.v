@@ -1,6 +1,6 @@
 // Smoke test of the generated card (gen/card.v): reset, then one PCI
 // configuration read of dword 0 (Device ID, Vendor ID), as a PCI master does it.
-// Run through FuseSoC (pci_dda_card.core, target sim); tests/test_fusesoc.py.
+// Run through FuseSoC (pci_dda_card.core, target sim); tests/fpgaflow/test_fusesoc.py.
 //
 // clock    _/~\_/~\_/~\_/~\_/~\_/~\_
 // FRAME#   ~~\___/~~~~~~~~~~~~~~~~~~    address phase: AD = 0, C/BE# = 1010, IDSEL

@@ -1,0 +1,359 @@
+"""The card's function registers (I/O BAR), described once.
+
+``REGISTERS`` is the single table.  From it come the RTL decoder
+(``rtl/regs_fifo.py`` builds one ``reg_word`` per entry), ``docs/registers.md``
+and the C header the converter writes into ``gen/`` (both
+``models/register_docs.py``) and the map the host benches use (``offset``, ``field_value``,
+``field_of``).
+
+Access kinds:
+
+- ``RO``: read only; writes are ignored.  The value comes from the hardware.
+- ``RW``: read/write, byte enables honoured.  A value outside the register's
+  ``minimum``/``maximum`` is clamped to the nearest bound (the register reads
+  back what the hardware honours) and ``INT_STATUS.CLAMPED`` is set.
+- ``W1C``: hardware sets bits, writing 1 clears them.
+- ``W1S``: writing 1 sets bits, the hardware clears them when it has acted.
+- ``WP`` (write pulse): a write gives a one-clock pulse of the written value
+  to the hardware; reads return a hardware value (e.g. what is left to do).
+
+Registers with a ``set_index`` can also be written from the command stream by
+the ``SET`` instruction (``docs/instructions.md``).
+
+The capability registers (CLOCK_HZ, FIFO_SIZE, BUILD) are RO fields whose
+``build`` names the build parameter (``models/parameters.py``) they hold, so a
+host reads what it needs instead of knowing the build; ``build_word`` gives
+their value for a build, and the ``reset`` of the table is the default
+build's top.
+
+ID.VERSION: the major version (bits 15:8) changes when a register or field
+moves or changes meaning, the minor version (bits 7:0) when registers or
+fields are added; ``VERSIONS`` says what each version added.
+"""
+from dataclasses import dataclass, field
+
+from models import parameters
+
+ACCESS_KINDS = ("RO", "RW", "W1C", "W1S", "WP")
+WORD_BYTES = 4
+ID_MAGIC = 0xDDAC
+# What each register-map version added (docs/registers.md lists it).
+VERSIONS = (
+    (0x0100, "the register map"),
+    (0x0101, "CLOCK_HZ, FIFO_SIZE and BUILD"),
+    (0x0102, "the machine inputs and the guard (MACHINE_CONTROL .. WATCHDOG, COMMAND.CLEAR_STOP, "
+             "STATUS.STOPPED, INT_STATUS.STOPPED and INPUT; docs/machine.md)"),
+    (0x0103, "feed hold and the decelerated stop (MACHINE_CONTROL.HOLD, MACHINE_STATUS.HELD and "
+             "STOPPING); homing (HOME .. HOME_SEARCH, INT_STATUS.HOMED; docs/machine.md)"),
+)
+VERSION = VERSIONS[-1][0]
+RATE_ONE = 1 << 16  # feed rate of one iteration per clock
+RATE_MAX = RATE_ONE // 2  # the DDA takes an iteration at most every other clock
+
+
+@dataclass(frozen=True)
+class Field:
+    name: str
+    lsb: int
+    width: int
+    text: str
+    signed: bool = False
+    build: str = None  # the build parameter whose value the field holds (RO only)
+
+    @property
+    def mask(self):
+        return ((1 << self.width) - 1) << self.lsb
+
+
+@dataclass(frozen=True)
+class Register:
+    name: str
+    offset: int
+    access: str
+    reset: int
+    text: str
+    fields: tuple = field(default_factory=tuple)
+    minimum: int = None
+    maximum: int = None
+    set_index: int = None
+
+    @property
+    def width(self):
+        return max(f.lsb + f.width for f in self.fields)
+
+    @property
+    def signed(self):
+        return len(self.fields) == 1 and self.fields[0].signed
+
+    def field(self, name):
+        for item in self.fields:
+            if item.name == name:
+                return item
+        raise ValueError(f"register {self.name} has no field {name}")
+
+
+def _one(name, width, text, signed=False):
+    """A register that holds one value in its low bits."""
+    return (Field(name, 0, width, text, signed),)
+
+
+def build_word(reg, values):
+    """The value of ``reg`` in a card built with ``values`` ({build parameter:
+    value}; the defaults of ``models/parameters.py`` for the rest): its reset
+    value with every ``build`` field holding its parameter's code."""
+    word = reg.reset
+    for item in reg.fields:
+        if item.build is None:
+            continue
+        value = values.get(item.build, parameters.PARAMETERS[item.build].default)
+        code = parameters.encode(item.build, value)
+        if not 0 <= code < 1 << item.width:
+            raise ValueError(f"{reg.name}.{item.name}: {item.build} = {value} does not fit {item.width} bits")
+        word = (word & ~item.mask) | code << item.lsb
+    return word
+
+
+def _capability(name, offset, text, fields):
+    """A read-only register of build facts; its reset value is that of the
+    default build's top (``gen/top.v``, built for iCE40)."""
+    constants = sum(value << item.lsb for item, value in fields)
+    reg = Register(name, offset, "RO", constants, text, tuple(item for item, _ in fields))
+    top = {item.build: parameters.PARAMETERS[item.build].default_for("top") for item in reg.fields if item.build}
+    return Register(name, offset, "RO", build_word(reg, top), text, reg.fields)
+
+
+_VARIANT_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(parameters.VARIANT_NAMES))
+_DEVICE_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(parameters.DEVICES))
+
+
+_INT_FIELDS = (
+    Field("DONE", 0, 1, "motion done: the command queue ran empty after motion"),
+    Field("LOW_WATER", 1, 1, "FIFO level fell below LOW_WATER"),
+    Field("ERROR", 2, 1, "a command was rejected (STATUS.ERROR says why)"),
+    Field("MARK", 3, 1, "a MARK command was reached (MARK_TAG says which)"),
+    Field("CLAMPED", 4, 1, "a register write was out of range and was clamped"),
+    Field("STOPPED", 5, 1, "the machine guard stopped the card (STOP_REASON says why)"),
+    Field("INPUT", 6, 1, "a filtered machine input changed (MACHINE_STATUS.ACTIVE)"),
+    Field("HOMED", 7, 1, "a HOME ended: done, not found or refused (HOME_STATUS says which)"),
+)
+
+# The machine inputs, bit n of INPUT_POLARITY and of MACHINE_STATUS's RAW and ACTIVE.
+_INPUT_TEXT = (("ESTOP", "emergency stop"), ("LIMIT_POS_X", "X limit, positive end"),
+               ("LIMIT_NEG_X", "X limit, negative end"), ("LIMIT_POS_Y", "Y limit, positive end"),
+               ("LIMIT_NEG_Y", "Y limit, negative end"), ("HOME_X", "X home switch"), ("HOME_Y", "Y home switch"))
+INPUT_NAMES = tuple(name for name, _ in _INPUT_TEXT)
+LIMIT_NAMES = INPUT_NAMES[1:5]  # STOP_REASON.LIMITS bit n: LIMIT_NAMES[n]
+STOP_REASONS = ("NONE", "ESTOP", "WATCHDOG", "LIMIT")  # STOP_REASON.REASON codes
+_REASON_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(STOP_REASONS))
+WATCHDOG_BITS = 24
+HOME_SEARCH_BITS = 23  # a search fits a signed 24-bit direct-pulse count
+HOME_PHASES = ("IDLE", "SEEK", "RELEASE", "BACKOFF")  # HOME_STATUS.PHASE codes
+
+REGISTERS = (
+    Register("ID", 0x00, "RO", (ID_MAGIC << 16) | VERSION, "identity and version", (
+        Field("VERSION", 0, 16, "register-map version, major in bits 15:8"),
+        Field("MAGIC", 16, 16, "0xDDAC: this card"),
+    )),
+    Register("CONTROL", 0x04, "RW", 0, "operating mode", (
+        Field("ENABLE", 0, 1, "1: execute commands (0 holds the queue; words still enter the FIFO)"),
+        Field("MODE", 1, 1, "0: DDA interpolation from the FIFO, 1: direct pulses from PULSE_COUNT_*"),
+    )),
+    Register("COMMAND", 0x08, "WP", 0, "one-shot actions (read as 0)", (
+        Field("SOFT_RESET", 0, 1, "stop motion at once, empty the FIFO, reset the DDA, clear the error"),
+        Field("CLEAR_ERROR", 1, 1, "clear STATUS.ERROR; execution resumes with the next queued word"),
+        Field("CLEAR_POSITION", 2, 1, "zero POS_X and POS_Y"),
+        Field("CLEAR_STOP", 3, 1, "release the machine guard's stop (not while the E-stop input is "
+              "active); written while stopped, it empties the FIFO of the words written before it"),
+    )),
+    # after reset: idle, no error, the FIFO empty
+    Register("STATUS", 0x0C, "RO", 1 << 8, "what the card is doing", (
+        Field("BUSY", 0, 1, "a command is executing or queued"),
+        Field("DONE", 1, 1, "the queue ran empty after motion (cleared when a command starts)"),
+        Field("QUADRANT", 2, 2, "quadrant of the arc's moving point, 0..3 for I..IV"),
+        Field("ERROR", 4, 4, "error code, 0: none (docs/instructions.md lists them)"),
+        Field("FIFO_EMPTY", 8, 1, "the FIFO holds no word"),
+        Field("FIFO_FULL", 9, 1, "the FIFO is full: memory writes are retried"),
+        Field("STOPPED", 10, 1, "the machine guard holds the card stopped (STOP_REASON says why)"),
+        Field("FIFO_LEVEL", 16, 16, "words in the FIFO"),
+    )),
+    Register("INT_ENABLE", 0x10, "RW", 0, "interrupt enables (INTA# = any enabled status bit)", _INT_FIELDS),
+    Register("INT_STATUS", 0x14, "W1C", 0, "interrupt status, write 1 to clear", _INT_FIELDS),
+    Register("LOW_WATER", 0x18, "RW", 0, "FIFO low-water mark",
+             _one("LEVEL", 16, "LOW_WATER interrupt when the FIFO level falls below this")),
+    Register("MARK_TAG", 0x1C, "RO", 0, "tag of the last MARK reached",
+             _one("TAG", 16, "the MARK command's tag")),
+    Register("POS_X", 0x20, "RO", 0, "X position in steps; reading it snapshots POS_Y",
+             _one("STEPS", 32, "steps that left the X pins, signed", signed=True)),
+    Register("POS_Y", 0x24, "RO", 0, "Y position captured by the last POS_X read",
+             _one("STEPS", 32, "steps that left the Y pins, signed", signed=True)),
+    Register("FEED_RATE", 0x28, "RW", 4096,
+             "target iteration rate, in 1/65536 per clock (ramps: docs/instructions.md)",
+             _one("RATE", 16, "iterations per clock times 65536 (32768: one every other clock, the most)"),
+             minimum=1, maximum=RATE_MAX, set_index=0),
+    Register("RAMP_START", 0x2C, "RW", 4096,
+             "iteration rate a move starts with, and ends with unless it blends, when RAMP_STEP is not 0",
+             _one("RATE", 16, "iterations per clock times 65536 (at most 32768)"),
+             minimum=1, maximum=RATE_MAX, set_index=1),
+    Register("RAMP_STEP", 0x30, "RW", 0,
+             "rate change per iteration: up towards FEED_RATE, down to RAMP_START before a stop (0: no ramp)",
+             _one("STEP", 16, "added to the rate each iteration until FEED_RATE; subtracted as the end nears"),
+             set_index=2),
+    Register("STEP_WIDTH", 0x34, "RW", 1, "STEP high time, also its minimum low time, in clocks",
+             _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=3),
+    Register("DIR_SETUP", 0x38, "RW", 1, "DIR stable before the STEP leading edge, in clocks",
+             _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=4),
+    Register("DIR_HOLD", 0x3C, "RW", 1, "DIR stable after the STEP trailing edge, in clocks",
+             _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=5),
+    Register("DIR_POLARITY", 0x40, "RW", 0, "DIR pin polarity", (
+        Field("X", 0, 1, "1: invert the X DIR pin"),
+        Field("Y", 1, 1, "1: invert the Y DIR pin"),
+    )),
+    Register("PULSE_PERIOD_X", 0x44, "RW", 2, "clocks between direct X pulses",
+             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF, set_index=6),
+    Register("PULSE_PERIOD_Y", 0x48, "RW", 2, "clocks between direct Y pulses",
+             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF, set_index=7),
+    Register("PULSE_COUNT_X", 0x4C, "WP", 0, "direct mode: write a signed count of X pulses; read what is left",
+             _one("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
+                  signed=True), minimum=-(1 << 23), maximum=(1 << 23) - 1),
+    Register("PULSE_COUNT_Y", 0x50, "WP", 0, "direct mode: write a signed count of Y pulses; read what is left",
+             _one("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
+                  signed=True), minimum=-(1 << 23), maximum=(1 << 23) - 1),
+    _capability("CLOCK_HZ", 0x54, "clock the card was built for (build parameter clock_hz)", (
+        (Field("HZ", 0, 32, "PCI clock in Hz: the host converts times (DWELL, STEP_WIDTH, DIR_*, "
+               "rates) with it", build="clock_hz"), 0),
+    )),
+    _capability("FIFO_SIZE", 0x58, "size of the data FIFO (build parameter fifo_depth)", (
+        (Field("WORDS", 0, 16, "32-bit words the FIFO holds", build="fifo_depth"), 0),
+    )),
+    _capability("BUILD", 0x5C, "options the card was built with", (
+        (Field("COORD_WIDTH", 0, 8, "signed coordinate width of LINE and ARC operands, in bits "
+               "(build parameter coord_width)", build="coord_width"), 0),
+        (Field("AXES", 8, 4, "axes with STEP/DIR pins (2: X, Y)"), parameters.AXES),
+        (Field("DDA_VARIANTS", 16, 4, f"bit n set: ARC.VARIANT n is built ({_VARIANT_CODES}; "
+               "build parameter variants)", build="variants"), 0),
+        (Field("DEVICE", 24, 4, f"FPGA family of the Verilog ({_DEVICE_CODES}; build parameter device)",
+               build="device"), 0),
+    )),
+    Register("MACHINE_CONTROL", 0x60, "RW", 0, "the machine's outputs", (
+        Field("DRIVE_ENABLE", 0, 1, "1: raise the DRIVE_ENABLE pin while the card is not stopped"),
+        Field("HOLD", 1, 1, "feed hold: 1 ramps the path's rate down to zero (RAMP_STEP) and waits, "
+              "0 ramps it up again; the path continues exactly"),
+    )),
+    Register("MACHINE_STATUS", 0x64, "RO", 0, "the machine's inputs and the guard", (
+        Field("RAW", 0, 7, "input pins after the synchroniser, as wired (bit n: input n of INPUT_POLARITY)"),
+        Field("ACTIVE", 8, 7, "inputs filtered, polarity applied: 1 active (bit n: input n)"),
+        Field("STOPPED", 16, 1, "the guard holds the card stopped (STOP_REASON says why)"),
+        Field("DRIVE_ENABLE", 17, 1, "the DRIVE_ENABLE pin"),
+        Field("HELD", 18, 1, "the path's rate is zero on a feed hold or a decelerated stop and its last "
+              "step has left the pins"),
+        Field("STOPPING", 19, 1, "a decelerated stop (WATCHDOG or LIMIT with RAMP_STEP not 0) ramps down; "
+              "STOPPED follows once HELD"),
+    )),
+    Register("STOP_REASON", 0x68, "RO", 0,
+             "why the guard stops or stopped the card (0 when neither STOPPING nor STOPPED)", (
+        Field("REASON", 0, 2, f"{_REASON_CODES}"),
+        Field("LIMITS", 4, 4, "LIMIT: the limits stepped towards (bit n: " + ", ".join(
+            f"{bit} {name}" for bit, name in enumerate(LIMIT_NAMES)) + ")"),
+    )),
+    Register("INPUT_POLARITY", 0x6C, "RW", 0, "input polarity: 1 makes that input active low",
+             tuple(Field(name, bit, 1, f"1: the {text} input is active low")
+                   for bit, (name, text) in enumerate(_INPUT_TEXT))),
+    Register("INPUT_FILTER", 0x70, "RW", 3,
+             "glitch filter: an input's new level counts once it held for this many samples",
+             _one("SAMPLES", 4, "1..15 samples, INPUT_TICK clocks apart (1: the first sample takes it)"),
+             minimum=1, maximum=15),
+    Register("INPUT_TICK", 0x74, "RW", 1, "clocks between the input filter's samples",
+             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
+    Register("WATCHDOG", 0x78, "WP", 0,
+             "host watchdog: write the timeout in clocks (0: off) at least that often; reads the clocks left",
+             _one("CLOCKS", WATCHDOG_BITS, "clocks until the guard stops the card (reason WATCHDOG)")),
+    Register("HOME", 0x7C, "WP", 0, "home one axis (docs/machine.md); reads what the last HOME asked", (
+        Field("AXIS", 0, 1, "0: X, 1: Y"),
+        Field("NEGATIVE", 1, 1, "1: the switch is towards negative positions"),
+    )),
+    Register("HOME_STATUS", 0x80, "RO", 0, "the homing's state", (
+        Field("BUSY", 0, 1, "homing under way (from the clock the HOME write is taken)"),
+        Field("DONE", 1, 1, "the last HOME ended with the position zeroed at the release point"),
+        Field("NOT_FOUND", 2, 1, "the switch did not trip (or release) within HOME_SEARCH steps"),
+        Field("REFUSED", 3, 1, "a HOME came while the card was not idle, was stopped, or was homing"),
+        Field("PHASE", 4, 2, ", ".join(f"{code} {name}" for code, name in enumerate(HOME_PHASES))),
+    )),
+    Register("HOME_SEEK_PERIOD", 0x84, "RW", 100, "clocks between steps towards the home switch",
+             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
+    Register("HOME_RELEASE_PERIOD", 0x88, "RW", 1000,
+             "clocks between steps off the switch and of the back-off",
+             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
+    Register("HOME_BACKOFF", 0x8C, "RW", 0, "steps on past the release point once the position is zeroed there",
+             _one("STEPS", 16, "0..65535")),
+    Register("HOME_SEARCH", 0x90, "RW", 0xFFFF,
+             "steps the switch must trip within, and release within after it tripped",
+             _one("STEPS", HOME_SEARCH_BITS, f"1..{(1 << HOME_SEARCH_BITS) - 1}"),
+             minimum=1, maximum=(1 << HOME_SEARCH_BITS) - 1),
+)
+
+IO_BAR_BITS = max(2, (max(r.offset for r in REGISTERS) + WORD_BYTES - 1).bit_length())
+SET_TARGETS = {r.set_index: r for r in REGISTERS if r.set_index is not None}
+_BY_NAME = {r.name: r for r in REGISTERS}
+
+
+def register(name):
+    """The register called ``name``."""
+    try:
+        return _BY_NAME[name]
+    except KeyError:
+        raise ValueError(f"no register {name}") from None
+
+
+def offset(name):
+    """Byte offset of register ``name`` in the I/O BAR."""
+    return register(name).offset
+
+
+def field_value(reg_name, field_name, word):
+    """The value of one field in a word read from ``reg_name``."""
+    item = register(reg_name).field(field_name)
+    value = (word >> item.lsb) & ((1 << item.width) - 1)
+    if item.signed and value >> (item.width - 1):
+        value -= 1 << item.width
+    return value
+
+
+def field_of(reg_name, **values):
+    """The word that puts ``values`` ({field: value}) into ``reg_name``."""
+    reg = register(reg_name)
+    word = 0
+    for name, value in values.items():
+        item = reg.field(name)
+        word |= (value << item.lsb) & item.mask
+    return word
+
+
+def check_table(registers=REGISTERS):
+    """Raise ValueError when the table contradicts itself."""
+    offsets, set_indices = set(), set()
+    for reg in registers:
+        if reg.access not in ACCESS_KINDS:
+            raise ValueError(f"{reg.name}: unknown access {reg.access}")
+        if reg.offset % WORD_BYTES or reg.offset in offsets:
+            raise ValueError(f"{reg.name}: offset {reg.offset:#x} misaligned or used twice")
+        offsets.add(reg.offset)
+        used = 0
+        for item in reg.fields:
+            if item.mask & used or item.lsb + item.width > 32:
+                raise ValueError(f"{reg.name}.{item.name}: overlaps or exceeds 32 bits")
+            used |= item.mask
+        if reg.reset & ~used & 0xFFFFFFFF:
+            raise ValueError(f"{reg.name}: reset value sets bits outside its fields")
+        if reg.set_index is not None:
+            if reg.set_index in set_indices or reg.access != "RW":
+                raise ValueError(f"{reg.name}: SET index reused or register not RW")
+            set_indices.add(reg.set_index)
+        if (reg.minimum is not None or reg.maximum is not None) and len(reg.fields) != 1:
+            raise ValueError(f"{reg.name}: only one-field registers can clamp")
+        for item in reg.fields:
+            if item.build is not None and (reg.access != "RO" or item.build not in parameters.PARAMETERS):
+                raise ValueError(f"{reg.name}.{item.name}: a build field is read-only and names a "
+                                 f"build parameter, not {item.build!r}")
+
+
+check_table()

@@ -1,0 +1,205 @@
+"""Homing: seek the home switch, step off it slowly, zero the position where it releases."""
+from myhdl import Signal, always_comb, always_seq, block, concat, enum, intbv, modbv
+
+from models import registers as regmap
+from rtl.interfaces import Homing, card_reset
+
+PHASE_IDLE, PHASE_SEEK, PHASE_RELEASE, PHASE_BACKOFF = (regmap.HOME_PHASES.index(name)
+                                                        for name in ("IDLE", "SEEK", "RELEASE", "BACKOFF"))
+
+
+@block
+def homing(clock, reset, port):
+    """One HOME at a time, on one axis, through that axis's direct pulses.
+
+    Ports (``rtl/interfaces/``): ``port`` (``Homing``).  A ``start`` while
+    ``idle`` homes the axis ``request`` names (bit 0: 0 X, 1 Y; bit 1
+    NEGATIVE: the switch is towards negative positions):
+
+    1. SEEK: ``load`` HOME_SEARCH steps towards the switch at
+       ``seek_period``; when the filtered switch is active, ``cut`` them.
+    2. RELEASE: ``load`` HOME_SEARCH steps the other way at
+       ``release_period``; when the switch is inactive again, ``cut`` them
+       and ``zero`` the axis's position in the same clock: the position
+       counts the steps whose STEP rises from the next edge on.
+    3. BACKOFF: ``load`` HOME_BACKOFF steps on, at ``release_period``
+       (skipped when 0); then wait until the pulse outputs are empty: DONE.
+
+    If the generator runs out of steps and the outputs are empty before the
+    switch trips (SEEK) or releases (RELEASE): NOT_FOUND, and the position is
+    not zeroed.  A ``start`` while not ``idle`` (or while homing) is REFUSED
+    and changes nothing else, also in the clock of a ``clear``.  ``clear``
+    (a stop, SOFT_RESET) ends homing at once with neither DONE nor NOT_FOUND.  ``ended`` marks every end.
+    ``taken`` is what HOME reads (AXIS, NEGATIVE), ``state`` what
+    HOME_STATUS reads: BUSY (also in the clock of ``start``: a read right
+    after the HOME write never sees the HOME before it), DONE, NOT_FOUND,
+    REFUSED, PHASE.
+
+    Switch trips in SEEK, releases in RELEASE:
+        clock    _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
+        home     _/~~~~~~~~~~~~~~~~~~~~~\\_________
+        state    =SEEK==X=TURN=X=RELEASE===X=BACKOFF_LOAD=
+        cut      _/~~~\\_______________/~~~\\______
+        load     _____/~~~\\____________________/~
+        zero     _____________________/~~~\\______
+    """
+    state_t = enum("IDLE", "SEEK_LOAD", "SEEK", "TURN", "RELEASE", "BACKOFF_LOAD", "BACKOFF", "SETTLE")
+    state = Signal(state_t.IDLE)
+    axis, negative = Signal(bool(0)), Signal(bool(0))
+    done, not_found, refused = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    switch, positive, seeking, seek_next = (Signal(bool(0)) for _ in range(4))
+    # The count of the next load, |distance| or its two's complement (one
+    # adder, ~magnitude + 1), and the period are registered: the direct-pulse
+    # generator's own adders then start from flip-flops.
+    count_bits = len(port.count)
+    magnitude, operand, addend = (Signal(intbv(0)[count_bits:]) for _ in range(3))
+    signed_count = Signal(modbv(0)[count_bits:])
+    backoff_pad, search_pad = count_bits - len(port.backoff), count_bits - len(port.search)
+    phase = Signal(intbv(0)[2:])
+    axis_bit, negative_bit = (regmap.register("HOME").field(name).lsb for name in ("AXIS", "NEGATIVE"))
+    busy_bit, done_bit, not_found_bit, refused_bit, phase_lsb = (
+        regmap.register("HOME_STATUS").field(name).lsb for name in ("BUSY", "DONE", "NOT_FOUND", "REFUSED", "PHASE"))
+
+    @always_comb
+    def select():
+        switch.next = port.home[1] if axis else port.home[0]
+        seeking.next = state == state_t.SEEK_LOAD or state == state_t.SEEK
+        seek_next.next = state == state_t.IDLE or state == state_t.SEEK_LOAD or (state == state_t.SEEK and not switch)
+        # the load after IDLE is the seek's, after SEEK the release's, after RELEASE the back-off's
+        if state == state_t.RELEASE:
+            magnitude.next = concat(intbv(0)[backoff_pad:], port.backoff)
+        else:
+            magnitude.next = concat(intbv(0)[search_pad:], port.search)
+
+    @always_comb
+    def command():
+        # the seek goes towards the switch, the release and the back-off away from it
+        if state == state_t.IDLE:
+            positive.next = not port.request[negative_bit]
+        else:
+            positive.next = negative
+        port.busy.next = state != state_t.IDLE
+        port.load.next = state == state_t.SEEK_LOAD or state == state_t.TURN or state == state_t.BACKOFF_LOAD
+
+    @always_comb
+    def sign():
+        if positive:
+            operand.next = magnitude
+            addend.next = 0
+        else:
+            operand.next = ~magnitude
+            addend.next = 1
+
+    @always_comb
+    def negate():
+        signed_count.next = operand + addend
+
+    @always_seq(clock.posedge, reset=reset)
+    def next_load():
+        port.count.next = signed_count.signed()
+        if seek_next:
+            port.period.next = port.seek_period
+        else:
+            port.period.next = port.release_period
+
+    @always_comb
+    def edges():
+        released = state == state_t.RELEASE and not switch
+        port.cut.next = (state == state_t.SEEK and switch) or released
+        port.zero.next = 0
+        if released:
+            if axis:
+                port.zero.next = 2
+            else:
+                port.zero.next = 1
+
+    @always_comb
+    def phases():
+        if state == state_t.IDLE:
+            phase.next = PHASE_IDLE
+        elif seeking:
+            phase.next = PHASE_SEEK
+        elif state == state_t.TURN or state == state_t.RELEASE:
+            phase.next = PHASE_RELEASE
+        else:
+            phase.next = PHASE_BACKOFF
+
+    @always_comb
+    def show():
+        asked = intbv(0)[len(port.taken):]
+        asked[axis_bit] = axis
+        asked[negative_bit] = negative
+        port.taken.next = asked
+        word = intbv(0)[len(port.state):]
+        # a read in the clock the HOME write is taken shows it busy already
+        word[busy_bit] = state != state_t.IDLE or port.start
+        word[done_bit] = done
+        word[not_found_bit] = not_found
+        word[refused_bit] = refused
+        word[phase_lsb + 2:phase_lsb] = phase
+        port.state.next = word
+
+    @always_seq(clock.posedge, reset=reset)
+    def sequence():
+        port.ended.next = 0
+        drained = not port.pulse_busy and not port.outputs_active
+        if port.clear:
+            state.next = state_t.IDLE
+            if port.start:
+                # a HOME in the clock a stop (or SOFT_RESET) clears the card:
+                # the card is not idle, so it is refused, and says so
+                done.next = 0
+                not_found.next = 0
+                refused.next = 1
+                port.ended.next = 1
+        elif state == state_t.IDLE:
+            if port.start:
+                axis.next = port.request[axis_bit]
+                negative.next = port.request[negative_bit]
+                done.next = 0
+                not_found.next = 0
+                refused.next = not port.idle
+                port.ended.next = not port.idle
+                if port.idle:
+                    state.next = state_t.SEEK_LOAD
+        else:
+            if port.start:
+                refused.next = 1
+                port.ended.next = 1
+            if state == state_t.SEEK_LOAD:
+                state.next = state_t.SEEK
+            elif state == state_t.SEEK:
+                if switch:
+                    state.next = state_t.TURN
+                elif drained:
+                    not_found.next = 1
+                    port.ended.next = 1
+                    state.next = state_t.IDLE
+            elif state == state_t.TURN:
+                state.next = state_t.RELEASE
+            elif state == state_t.RELEASE:
+                if not switch:
+                    if port.backoff != 0:
+                        state.next = state_t.BACKOFF_LOAD
+                    else:
+                        state.next = state_t.SETTLE
+                elif drained:
+                    not_found.next = 1
+                    port.ended.next = 1
+                    state.next = state_t.IDLE
+            elif state == state_t.BACKOFF_LOAD:
+                state.next = state_t.BACKOFF
+            elif state == state_t.BACKOFF:
+                if not port.pulse_busy:
+                    state.next = state_t.SETTLE
+            elif not port.outputs_active:   # SETTLE
+                done.next = 1
+                port.ended.next = 1
+                state.next = state_t.IDLE
+
+    return select, command, sign, negate, next_load, edges, phases, show, sequence
+
+
+def homing_ports():
+    """Fresh ports of ``homing`` for conversion and benches."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(), port=Homing())

@@ -1,0 +1,128 @@
+"""The machine guard: E-stop latch, host watchdog, limit gates and drive enable."""
+from myhdl import Signal, always_comb, always_seq, block, concat, intbv
+
+from models import registers as regmap
+from rtl.interfaces import (INPUT_ESTOP, INPUT_LIMIT_NEG_X, INPUT_LIMIT_NEG_Y, INPUT_LIMIT_POS_X, INPUT_LIMIT_POS_Y,
+                            AxisPulses, MachineGuard, card_reset)
+
+REASON_ESTOP, REASON_WATCHDOG, REASON_LIMIT = (regmap.STOP_REASONS.index(name)
+                                               for name in ("ESTOP", "WATCHDOG", "LIMIT"))
+
+
+@block
+def machine_guard(clock, reset, guard, request, granted):
+    """Stops the card, in hardware, when the machine or the host says so.
+
+    Ports (``rtl/interfaces/``): ``guard`` (``MachineGuard``); ``request``
+    (``AxisPulses``: the step requests of the DDA and the direct pulses);
+    ``granted`` (``AxisPulses``: those that may go to the pulse outputs).
+
+    Causes, each latching ``stopped`` at the edge after it (first one wins,
+    in this order; ``reason`` and ``limits`` say which):
+
+    1. ESTOP: the filtered E-stop input is active.
+    2. WATCHDOG: ``watchdog_left`` reaches 0.  A ``watchdog_load`` sets it
+       to ``watchdog_timeout`` (0: off); it counts down by one every clock.
+    3. LIMIT: a step request towards an active limit (``limits``: which).
+
+    A WATCHDOG or LIMIT cause while ``ramp`` is high (RAMP_STEP not 0)
+    starts a decelerated stop instead: ``stopping`` rises at the edge after
+    it (``reason`` and ``limits`` with it), the feed rate ramps down on it,
+    and ``stopped`` latches at the edge after ``held`` (the rate is zero
+    and the last step has left the pins) is seen.  Until then every step request passes, those towards an
+    active limit included, so the path slows down on itself; an E-stop
+    still latches at once.
+
+    ``halt`` (stopped, or the E-stop input active: a register's output,
+    so at once) holds back every step request; without a ramp a request
+    towards an active limit is dropped too, whole, so the step that would
+    hit the limit never reaches the pins, while requests away from it pass.
+    ``clear_stop`` releases the latch (``reason`` and ``limits`` read 0
+    again) unless the E-stop input is active.  ``drive_enable`` (the pin,
+    from a flip-flop) is ``drive_request`` while not stopped, low from the
+    edge the latch sets at (and while the E-stop input is active).
+
+    E-stop active (watchdog off):
+        clock         _/~\\_/~\\_/~\\_/~\\_
+        active[0]     _/~~~~~~~~~~~~~~~
+        halt          _/~~~~~~~~~~~~~~~
+        stopped       _____/~~~~~~~~~~~
+        stop_event    _____/~~~\\_______
+        drive_enable  ~~~~~\\___________
+
+    Watchdog expiry with a ramp (``held`` after the feed rate's ramp):
+        clock         _/~\\_/~\\_/~\\_ .. _/~\\_/~\\_/~\\_
+        expired       _/~~~\\_______ .. _____________
+        stopping      _____/~~~~~~~ .. ~~~~~~~\\_____
+        held          _____________ .. _/~~~~~~~~~~~
+        stopped       _____________ .. _______/~~~~~
+        drive_enable  ~~~~~~~~~~~~~ .. ~~~~~~~\\_____
+    """
+    limit_bits = len(guard.limits)
+    hits = Signal(intbv(0)[limit_bits:])
+    estop, expired = Signal(bool(0)), Signal(bool(0))
+
+    @always_comb
+    def causes():
+        estop.next = guard.active[INPUT_ESTOP]
+        expired.next = guard.watchdog_left == 1 and not guard.watchdog_load
+        hits.next = concat(
+            request.step_y and not request.dir_y and guard.active[INPUT_LIMIT_NEG_Y],
+            request.step_y and request.dir_y and guard.active[INPUT_LIMIT_POS_Y],
+            request.step_x and not request.dir_x and guard.active[INPUT_LIMIT_NEG_X],
+            request.step_x and request.dir_x and guard.active[INPUT_LIMIT_POS_X])
+
+    @always_comb
+    def gate():
+        guard.halt.next = guard.stopped or estop
+        passes = not (guard.stopped or estop) and (hits == 0 or guard.ramp)
+        granted.step_x.next = request.step_x and passes
+        granted.step_y.next = request.step_y and passes
+        granted.dir_x.next = request.dir_x
+        granted.dir_y.next = request.dir_y
+
+    @always_seq(clock.posedge, reset=reset)
+    def latch():
+        stopped = bool(guard.stopped)
+        guard.stop_event.next = 0
+        if not guard.stopped:
+            if estop:
+                stopped = True
+                guard.stopping.next = 0
+                guard.reason.next = REASON_ESTOP
+                guard.limits.next = 0
+            elif guard.stopping:
+                stopped = bool(guard.held)
+            elif expired or hits != 0:
+                stopped = not guard.ramp
+                guard.stopping.next = guard.ramp
+                guard.limits.next = 0
+                if expired:
+                    guard.reason.next = REASON_WATCHDOG
+                else:
+                    guard.reason.next = REASON_LIMIT
+                    guard.limits.next = hits
+            if stopped:
+                guard.stopping.next = 0
+                guard.stop_event.next = 1
+        elif guard.clear_stop and not estop:
+            stopped = False
+            guard.reason.next = 0
+            guard.limits.next = 0
+        guard.stopped.next = stopped
+        guard.drive_enable.next = guard.drive_request != 0 and not stopped and not estop
+
+    @always_seq(clock.posedge, reset=reset)
+    def watchdog():
+        if guard.watchdog_load:
+            guard.watchdog_left.next = guard.watchdog_timeout
+        elif guard.watchdog_left != 0:
+            guard.watchdog_left.next = guard.watchdog_left - 1
+
+    return causes, gate, latch, watchdog
+
+
+def machine_guard_ports():
+    """Fresh ports of ``machine_guard`` for conversion and benches."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(), guard=MachineGuard(), request=AxisPulses(),
+                granted=AxisPulses())

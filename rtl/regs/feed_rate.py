@@ -1,0 +1,189 @@
+"""Iteration clock enable of the interpolator: a trapezoidal rate ramp."""
+from myhdl import Signal, always_comb, always_seq, block, concat, intbv, modbv
+
+from models.parameters import COORD_WIDTH
+from models.registers import RATE_MAX, RATE_ONE
+from rtl.interfaces import FeedPort, RampSettings, card_reset
+
+RATE_BITS = RATE_MAX.bit_length()  # 16: the rate is at most one iteration every other clock
+PHASE_BITS = RATE_ONE.bit_length() - 1
+COUNT_BITS = 16  # ramp ticks: at most one per unit of rate
+DECEL_MARGIN = 2  # iterations: the registered comparison and a stop_left one iteration late
+
+
+@block
+def feed_rate(clock, reset, settings, feed):
+    """Phase accumulator giving ``tick`` on ``rate``/65536 of the clocks, with
+    a linear ramp up to ``target`` and down again before the path stops.
+
+    Ports (``rtl/interfaces/``): ``settings`` (``RampSettings``:
+    ``target``, the rate to reach, 1..32768; ``ramp_start``, the rate a move
+    starts and stops with, 1..32768; ``ramp_step``, the rate change per
+    tick, 0: the rate is ``target`` at once); ``feed`` (``FeedPort``:
+    ``run``, a move is under way, low resets the accumulator and the ramp
+    count and loads the starting rate; ``hold``, freeze: the pulse outputs
+    are full; ``stop_left``, the DDA's lower bound of the iterations before
+    the path stops; ``tick``, registered, one clock per iteration, never two
+    clocks in a row).
+
+    Rules, applied at every tick to the rate of the next iteration:
+
+    1. ``ramp_step`` = 0: the rate becomes ``target``; the ramp count is 0.
+    2. deceleration (``stop_left`` <= ramp count + DECEL_MARGIN, compared one
+       clock earlier): with a ramp count of 1, or when one more step would go
+       below ``ramp_start``, the rate becomes ``ramp_start``; otherwise it
+       drops by ``ramp_step``; the count goes down by one.  With a count of 0
+       the rate stays.
+    3. rate below ``target``: up by ``ramp_step``, at most to ``target``;
+       the count goes up by one (a clamped last increment counts as one).
+    4. rate above ``target``: down by ``ramp_step``, at least to ``target``;
+       the count goes down by one (not below 0).
+
+    Feed hold (``pause``): while it is high every tick decelerates as in
+    rule 2, and the tick that finds the count at 0 sets the rate to 0
+    (``held``): the path waits where it is, the phase kept.  With
+    ``ramp_step`` = 0 the rate is 0 in the clock after ``pause`` rises,
+    without a tick in that clock.  A held rate comes back, in the clock after
+    ``pause`` falls, at ``ramp_start`` (``target`` with ``ramp_step`` = 0)
+    and ramps up again from a count of 0.  ``pause`` while ``run`` is low
+    loads 0, so a move that starts on hold waits.
+
+    The count is the number of ticks the rate needs to come back down to
+    ``ramp_start``; deceleration begins when the iterations left are no more
+    than that (plus the margin), so a path ends at ``ramp_start``: the speed
+    ramps up and down linearly with the distance travelled.  ``run`` stays
+    high across chained segments, so the ramp does not restart between them.
+
+    Every decision uses registers only: ``target``, ``ramp_start`` and
+    ``ramp_step`` are taken one clock late together with their sums (the
+    limits), so between two registers there is one adder or comparator and a
+    multiplexer.  A settings change reaches the ramp one clock later.
+
+    rate 32768 (every other clock):
+        clock  _/~\\_/~\\_/~\\_/~\\_/~\\_
+        run    _/~~~~~~~~~~~~~~~~~~~
+        tick   _______/~~~\\___/~~~\\_
+
+    feed hold, ramp_step = 0:
+        clock  _/~\\_/~\\_/~\\_/~\\_/~\\_
+        pause  _/~~~~~~~~~~~\\_______
+        held   _____/~~~~~~~~~~~\\___
+        rate   =X===X=0=========X===
+    """
+    step_bits = len(settings.ramp_step)
+    rate = Signal(intbv(0, min=0, max=RATE_MAX + 1))
+    phase = Signal(intbv(0)[PHASE_BITS:])
+    total = Signal(intbv(0)[PHASE_BITS + 1:])
+    count = Signal(intbv(DECEL_MARGIN, min=0, max=1 << COUNT_BITS))  # ramp ticks + DECEL_MARGIN
+    count_up, count_down = (Signal(intbv(0, min=0, max=1 << COUNT_BITS)) for _ in range(2))
+    count_empty, count_last = Signal(bool(1)), Signal(bool(0))
+    decelerate = Signal(bool(0))
+    # settings and their sums, registered
+    target_s, start_s = (Signal(intbv(0, min=0, max=RATE_MAX + 1)) for _ in range(2))
+    step_s = Signal(intbv(0)[step_bits:])
+    step_zero = Signal(bool(1))
+    raise_limit = Signal(intbv(0, min=-(1 << step_bits), max=RATE_MAX + 1))  # target - step
+    lower_limit = Signal(intbv(0)[step_bits + 1:])  # target + step
+    floor_limit = Signal(intbv(0)[step_bits + 1:])  # ramp_start + step
+    # candidates, from the registers; taken only when in range, so they may wrap
+    raised, lowered = Signal(modbv(0)[RATE_BITS:]), Signal(modbv(0)[RATE_BITS:])
+    can_raise, can_lower, above_floor, below, above = (Signal(bool(0)) for _ in range(5))
+    left_pad = len(feed.stop_left) - COUNT_BITS
+    if left_pad < 1:
+        raise ValueError(f"stop_left must be wider than {COUNT_BITS} bits")
+
+    @always_seq(clock.posedge, reset=reset)
+    def register_settings():
+        target_s.next = settings.target
+        start_s.next = settings.ramp_start
+        step_s.next = settings.ramp_step
+        step_zero.next = settings.ramp_step == 0
+        raise_limit.next = concat(False, settings.target).signed() - concat(False, settings.ramp_step).signed()
+        lower_limit.next = concat(False, settings.target) + concat(False, settings.ramp_step)
+        floor_limit.next = concat(False, settings.ramp_start) + concat(False, settings.ramp_step)
+
+    @always_seq(clock.posedge, reset=reset)
+    def end_ahead():
+        decelerate.next = feed.stop_left <= concat(intbv(0)[left_pad:], count)
+
+    @always_comb
+    def candidates():
+        total.next = concat(False, phase) + concat(False, rate)
+        raised.next = rate + step_s
+        lowered.next = rate - step_s
+        can_raise.next = concat(False, rate).signed() <= raise_limit
+        can_lower.next = concat(False, rate) >= lower_limit
+        above_floor.next = concat(False, rate) >= floor_limit
+        below.next = rate < target_s
+        above.next = rate > target_s
+        count_empty.next = count == DECEL_MARGIN
+        count_last.next = count == DECEL_MARGIN + 1
+
+    @always_comb
+    def count_steps():
+        count_up.next = count + 1
+        if count_empty:
+            count_down.next = count
+        else:
+            count_down.next = count - 1
+
+    @always_seq(clock.posedge, reset=reset)
+    def accumulate():
+        feed.tick.next = 0
+        if not feed.run:
+            phase.next = 0
+            count.next = DECEL_MARGIN
+            feed.held.next = feed.pause
+            if feed.pause:
+                rate.next = 0
+            elif step_zero:
+                rate.next = target_s
+            else:
+                rate.next = start_s
+        elif feed.held:
+            if not feed.pause:
+                feed.held.next = 0
+                if step_zero:
+                    rate.next = target_s
+                else:
+                    rate.next = start_s
+        elif step_zero and feed.pause:
+            rate.next = 0
+            feed.held.next = 1
+        elif not feed.hold:
+            phase.next = total[PHASE_BITS:]
+            if total[PHASE_BITS]:
+                feed.tick.next = 1
+                if step_zero:
+                    rate.next = target_s
+                    count.next = DECEL_MARGIN
+                elif decelerate or feed.pause:
+                    if not count_empty:
+                        count.next = count_down
+                        if count_last or not above_floor:
+                            rate.next = start_s
+                        else:
+                            rate.next = lowered
+                    elif feed.pause:
+                        rate.next = 0
+                        feed.held.next = 1
+                elif below:
+                    count.next = count_up
+                    if can_raise:
+                        rate.next = raised
+                    else:
+                        rate.next = target_s
+                elif above:
+                    count.next = count_down
+                    if can_lower:
+                        rate.next = lowered
+                    else:
+                        rate.next = target_s
+
+    return register_settings, end_ahead, candidates, count_steps, accumulate
+
+
+def feed_rate_ports(coord_width=COORD_WIDTH.default):
+    """Fresh ports of ``feed_rate`` for conversion and benches: ``feed.stop_left``
+    as the ``DdaPort`` of ``coord_width`` carries it."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(), settings=RampSettings(), feed=FeedPort(coord_width))

@@ -1,0 +1,219 @@
+"""One function register, built from its entry in ``models/registers.py``."""
+from myhdl import Signal, always_comb, always_seq, block, concat, intbv
+
+from models.registers import Register
+from rtl.interfaces import ReadChain, RegisterBus, RegisterWord, SetPort, card_reset
+
+
+@block
+def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out):
+    """The register ``word.spec`` (a ``models.registers.Register``) on the I/O bus.
+
+    Ports (``rtl/interfaces/``): ``bus`` (``RegisterBus``: ``addr`` of
+    reads; ``write_addr``, ``write``, ``byte_mask`` and ``wdata`` of a
+    write); ``set_port`` (``SetPort``: the SET command's write); ``word``
+    (``RegisterWord``: ``hw`` is what RO and WP registers read, the bits a
+    W1C register sets, the bits a W1S register clears; ``value`` the
+    register, of WP the last value written; ``strobe`` one clock per WP
+    write; its ``spec`` says which register this is); ``chain_in`` and
+    ``chain_out`` (``ReadChain``): ``chain_out.clamped`` is
+    ``chain_in.clamped`` or'ed with a one-clock flag raised when a write to
+    this register was out of range and was clamped; the read data of the
+    registers before this one comes in on ``chain_in.data`` and leaves, with
+    this register's when ``bus.addr`` is its offset, on ``chain_out.data``
+    (a chain of ORs, so the decoder is generated from the table; reads have
+    no side effect here, and whether the bus reads at all is decided after
+    the chain's end).
+
+        clock     _/~\\_/~\\_/~\\_
+        bus.write _/~~~\\_______     bus.write_addr = spec.offset
+        value     =====X=new====
+        strobe    _____/~~~\\___     (WP only)
+    """
+    spec = word.spec
+    width, offset = spec.width, spec.offset
+    checked = spec.minimum is not None or spec.maximum is not None
+    mine = Signal(bool(0))
+    mine_write = Signal(bool(0))
+    written = Signal(intbv(0)[32:] if checked else intbv(0)[width:])
+    shown_wide = Signal(intbv(0)[32:])
+    honoured = Signal(intbv(0)[width:])
+    out_of_range = Signal(bool(0))
+    clamped = Signal(bool(0))
+    set_mine = set_port.strobe if spec.set_index is not None else Signal(bool(0))
+    set_target = spec.set_index if spec.set_index is not None else 0
+    stored = spec.access in ("RW", "W1C", "W1S", "WP")
+    shown = word.value if spec.access in ("RW", "W1C", "W1S") else word.hw
+
+    @always_comb
+    def select():
+        mine.next = bus.addr == offset
+
+    @always_comb
+    def select_write():
+        mine_write.next = bus.write_addr == offset
+
+    @always_comb
+    def read_chain():
+        if mine:
+            chain_out.data.next = chain_in.data | shown_wide
+        else:
+            chain_out.data.next = chain_in.data
+
+    @always_comb
+    def clamp_chain():
+        chain_out.clamped.next = chain_in.clamped or clamped
+
+    @always_comb
+    def clamp_pass():
+        chain_out.clamped.next = chain_in.clamped
+
+    span = 32 if checked else width
+
+    @always_comb
+    def merge_bytes():
+        if set_mine and set_port.index == set_target:
+            written.next = set_port.value[span:]
+        else:
+            written.next = (shown_wide[span:] & ~bus.byte_mask[span:]) | (bus.wdata[span:] & bus.byte_mask[span:])
+
+    @always_comb
+    def mask_bytes():
+        written.next = bus.wdata[span:] & bus.byte_mask[span:]
+
+    merge = merge_bytes if spec.access == "RW" else mask_bytes  # RW: shown_wide is the register
+    generators = [select, read_chain, _widen(shown, shown_wide)]
+    if not stored:
+        return generators + [clamp_pass]
+    generators += [select_write, merge, _limit(written, honoured, out_of_range, spec)]
+    generators.append(clamp_chain if spec.access in ("RW", "WP") else clamp_pass)
+    generators.append(_store(clock, reset, mine_write, bus, set_mine, set_port, set_target, written, honoured,
+                             out_of_range, word, clamped, spec))
+    return generators
+
+
+@block
+def _widen(narrow, wide):
+    """``wide`` (32 bits) is ``narrow`` zero-extended."""
+    pad = len(wide) - len(narrow)
+
+    @always_comb
+    def extend():
+        wide.next = concat(intbv(0)[pad:], narrow)
+
+    @always_comb
+    def copy():
+        wide.next = narrow
+
+    return extend if pad else copy
+
+
+@block
+def _limit(written, honoured, out_of_range, spec):
+    """``honoured``: ``written`` clamped to the register's range (or cut to its width)."""
+    width = spec.width
+    low = spec.minimum if spec.minimum is not None else (-(1 << (width - 1)) if spec.signed else 0)
+    high = spec.maximum if spec.maximum is not None else (
+        (1 << (width - 1)) - 1 if spec.signed else (1 << width) - 1)
+    checked = spec.minimum is not None or spec.maximum is not None
+    low_bits, high_bits = low & ((1 << width) - 1), high & ((1 << width) - 1)
+
+    if not checked:
+        @always_comb
+        def cut():
+            honoured.next = written[width:]
+        return cut
+
+    if spec.signed:
+        if (low, high) != (-(1 << (width - 1)), (1 << (width - 1)) - 1):
+            raise ValueError(f"{spec.name}: a signed register clamps to its full width only")
+        ones = (1 << (33 - width)) - 1
+
+        @always_comb
+        def clamp_signed():
+            # in range when bits 31..width-1 are copies of the sign: no comparator needed
+            if written[32:width - 1] == 0 or written[32:width - 1] == ones:
+                honoured.next = written[width:]
+                out_of_range.next = False
+            elif written[31]:
+                honoured.next = low_bits
+                out_of_range.next = True
+            else:
+                honoured.next = high_bits
+                out_of_range.next = True
+        return clamp_signed
+
+    high_top, low_top = high.bit_length(), max(low.bit_length(), 1)
+
+    @always_comb
+    def clamp_unsigned():
+        # compare only the bits a bound has; any higher bit set is out of range
+        out_of_range.next = True
+        if written[32:low_top] == 0 and written[low_top:] < low:
+            honoured.next = low_bits
+        elif written[32:high_top] != 0 or written[high_top:] > high:
+            honoured.next = high_bits
+        else:
+            honoured.next = written[width:]
+            out_of_range.next = False
+
+    @always_comb
+    def clamp_unsigned_power_of_two():
+        # high is 2**high_top - 1: above it exactly when a higher bit is set
+        out_of_range.next = True
+        if written[32:low_top] == 0 and written[low_top:] < low:
+            honoured.next = low_bits
+        elif written[32:high_top] != 0:
+            honoured.next = high_bits
+        else:
+            honoured.next = written[width:]
+            out_of_range.next = False
+
+    return clamp_unsigned_power_of_two if high == (1 << high_top) - 1 else clamp_unsigned
+
+
+@block
+def _store(clock, reset, mine, bus, set_mine, set_port, set_target, written, honoured, out_of_range, word, clamped,
+           spec):
+    """The register's flip-flops, by access kind."""
+    kind = spec.access
+
+    @always_seq(clock.posedge, reset=reset)
+    def hold_rw():
+        clamped.next = False
+        if (set_mine and set_port.index == set_target) or (bus.write and mine):
+            word.value.next = honoured
+            clamped.next = out_of_range
+
+    @always_seq(clock.posedge, reset=reset)
+    def clear_on_one():
+        if bus.write and mine:
+            word.value.next = (word.value & ~honoured) | word.hw
+        else:
+            word.value.next = word.value | word.hw
+
+    @always_seq(clock.posedge, reset=reset)
+    def set_on_one():
+        if bus.write and mine:
+            word.value.next = (word.value & ~word.hw) | honoured
+        else:
+            word.value.next = word.value & ~word.hw
+
+    @always_seq(clock.posedge, reset=reset)
+    def pulse_on_write():
+        word.strobe.next = False
+        clamped.next = False
+        if bus.write and mine:
+            word.value.next = honoured
+            word.strobe.next = True
+            clamped.next = out_of_range
+
+    return {"RW": hold_rw, "W1C": clear_on_one, "W1S": set_on_one, "WP": pulse_on_write}[kind]
+
+
+def reg_word_ports(spec):
+    """Fresh ports of ``reg_word`` for ``spec`` (a ``models.registers.Register``)."""
+    if not isinstance(spec, Register):
+        raise ValueError("spec must be a models.registers.Register")
+    return dict(clock=Signal(bool(0)), reset=card_reset(), bus=RegisterBus(), set_port=SetPort(),
+                word=RegisterWord(spec), chain_in=ReadChain(), chain_out=ReadChain())

@@ -1,0 +1,231 @@
+"""End-to-end card bench on three back ends: the behavioural PCI host drives the
+whole card with the protocol monitor watching every clock.
+
+Back ends (``kind``):
+
+* ``"myhdl"``: ``rtl/card.py`` (split PCI ports) in MyHDL's simulator;
+* ``"icarus"``: the generated top level with its PCI pads (``top.v``, iCE40
+  ``SB_IO`` cells from yosys's cell model) in Icarus, through
+  ``sim/card/top_harness.py``; ``gen/top.v`` (``$DDA_CARD_GEN/top.v`` if set) for
+  the default FIFO, a fresh conversion otherwise;
+* ``"verilator"``: the generated ``card`` (``gen/card.v``, a fresh
+  conversion for another FIFO depth) compiled by Verilator, on the host
+  engine and the protocol checker with no simulator in Python
+  (``sim/backends/verilator/pci_bus.py``); waits run in compiled code.
+
+A scenario is written once for all three: a generator ``scenario(bench,
+target, out)`` that calls the host's transactions and the helpers below;
+``wait(bench, target, ...)`` is the one way to let clocks pass (a number of
+clocks, INTA#, STEP rises), the same clock for clock on every back end.  The
+STEP/DIR pins land in ``target.log`` (a ``PinLog``) with their clock numbers
+(rising edges since the start).
+"""
+import hashlib
+import os
+import shutil
+import tempfile
+
+from myhdl import __version__ as myhdl_version
+from myhdl import always, block
+
+from models import registers as regmap
+from models.parameters import CLOCK_HZ, PARAMETERS
+from rtl.card import card, card_ports
+from rtl.convert import GEN_DIR, ROOT, build_dir, convert_unit
+from rtl.interfaces import MotorPins
+from sim.backends.verilator.card import ArrayPinLog, CardWait, VerilatedCard, card_waiter
+from sim.backends.verilator.model import Stop
+from sim.backends.verilator.pci_bus import VerilatorBench
+from sim.backends.waves import Waveform, trace_stem
+from sim.card.card_bench import PinLog, command_words, pin_capture, write_motion_view
+from sim.card.top_harness import TopHarness, convert_top, generated_top, top_on_bus
+from sim.pci.bench import TARGET_DEVICE, WAVE_GROUPS, PciBench
+
+KINDS = ("myhdl", "icarus", "verilator")
+DEVICE = 0
+SMALL_FIFO = 16
+DEFAULT_FIFO = PARAMETERS["fifo_depth"].default
+INTA_LIMIT = 200000
+
+
+def card_verilog(fifo_depth, clock_hz=CLOCK_HZ.default):
+    """``card.v`` for ``fifo_depth`` and ``clock_hz`` (what CLOCK_HZ reports):
+    ``gen/card.v`` for the defaults, else a conversion kept in
+    ``build/vlt/conv`` under a hash of the RTL sources."""
+    if fifo_depth == DEFAULT_FIFO and clock_hz == CLOCK_HZ.default:
+        return GEN_DIR / "card.v"
+    digest = hashlib.sha256(f"{myhdl_version} fifo_depth={fifo_depth} clock_hz={clock_hz}".encode())
+    for source in sorted((ROOT / "rtl").rglob("*.py")):
+        digest.update(str(source.relative_to(ROOT)).encode() + source.read_bytes())
+    folder = build_dir("vlt", "conv", f"card-{digest.hexdigest()[:20]}")
+    verilog = folder / "card.v"
+    if not verilog.exists():
+        staging = tempfile.mkdtemp(prefix=".card-", dir=build_dir("vlt", "conv"))
+        written = convert_unit("card", {"fifo_depth": fifo_depth, "clock_hz": clock_hz}, staging)
+        os.replace(written, verilog)  # whole: a parallel worker finds the file complete or not at all
+        shutil.rmtree(staging, ignore_errors=True)
+    return verilog
+
+
+class CardUnderTest:
+    """The card under test, with what the scenario needs to see: ``log`` (its
+    pins), ``wait`` (the bench's ``CardWait``), ``samples`` (MyHDL and
+    Icarus: the bus of every clock, values and drivers), ``io`` / ``mem``
+    (BAR bases, set once enumerated).  Called with a ``PciBench``, it is
+    that bench's target (MyHDL, Icarus)."""
+
+    def __init__(self, kind, fifo_depth):
+        if kind not in KINDS:
+            raise ValueError(f"unknown card kind {kind!r}: use one of {', '.join(KINDS)}")
+        self.kind, self.fifo_depth = kind, fifo_depth
+        self.log = ArrayPinLog() if kind == "verilator" else PinLog()
+        self.wait = CardWait(signal=kind != "verilator")
+        self.samples = []
+        self.io = self.mem = None
+
+    def __call__(self, bench):
+        idsel_bit = 16 + TARGET_DEVICE
+        if self.kind == "icarus":
+            top = generated_top() if self.fifo_depth == DEFAULT_FIFO else convert_top(fifo_depth=self.fifo_depth)
+            harness = TopHarness(top, idsel_bit=idsel_bit)
+            agent, motor = harness.card, MotorPins()
+            def core(b):  # the X/Z report needs the bus model, which exists only later
+                return top_on_bus, (b.clock, b.reset, b.host.agent, harness, motor), {"segment": b.segment}
+        else:
+            ports = card_ports(fifo_depth=self.fifo_depth)
+            ports["clock"], ports["reset"] = bench.clock, bench.reset
+            agent, motor = ports["pci"], ports["pins"]
+
+            def core(_):
+                return card, (), dict(ports, fifo_depth=self.fifo_depth)
+        capture = (pin_capture, (bench.clock, motor, self.log))
+        waiter = (card_waiter, (bench.clock, self.wait, bench, self.log))
+        return agent, lambda b: [core(b), capture, (bus_record, (b, self.samples)), waiter]
+
+
+@block
+def bus_record(bench, samples):
+    """Append the segment's sample (values and drivers) at every rising edge."""
+
+    @always(bench.clock.posedge)
+    def record():
+        samples.append(bench.segment.sample())
+
+    return record
+
+
+def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=True, card_trace=None, card_trace_window=None,
+             monitor=True):
+    """Enumerate the card, run ``scenario(bench, target, out)``; (out, pin log,
+    waveform or None, bench).  ``trace``: the bench's VCD (MyHDL, Icarus);
+    ``card_trace`` ("vcd" or "fst", Verilator only): the card's own waves of
+    the clocks ``card_trace_window`` (first, last), named as the other back
+    ends name their bench's (``sim.backends.waves.trace_stem``; the path is
+    ``bench.trace_path``, the VCD comes back as the waveform); ``monitor`` (Verilator only; the MyHDL benches always
+    check): the protocol checker on every bus clock."""
+    target = CardUnderTest(kind, fifo_depth)
+    host_options = dict(max_retries=1 << 20)
+    verilated = None
+    if kind == "verilator":
+        verilated = VerilatedCard(card_verilog(fifo_depth), trace=card_trace, idsel_bit=16 + TARGET_DEVICE)
+        bench = VerilatorBench(verilated, target, host_options=host_options, monitor=monitor)
+        if card_trace:
+            first, last = card_trace_window or (0, 1 << 62)
+            folder, stem = trace_stem(f"{name}_{kind}")
+            bench.trace_path = folder / f"{stem}.{card_trace}"
+            verilated.model.trace(bench.trace_path, first, last)
+    elif card_trace or not monitor:
+        raise ValueError("card_trace and monitor=False are for the Verilator card")
+    else:
+        bench = PciBench(target=target, host_options=host_options)
+    out = {}
+
+    def wrapped(b):
+        devices = yield from b.host.enumerate_bus(devices=[DEVICE])
+        out["device"] = devices[0]
+        bars = {("io" if bar["io"] else "mem"): bar for bar in devices[0].bars}
+        target.io, target.mem = bars["io"]["base"], bars["mem"]["base"]
+        out["bars"] = bars
+        yield from scenario(b, target, out)
+
+    try:
+        vcd = bench.run(wrapped, f"{name}_{kind}", trace=trace)
+    finally:
+        if verilated is not None:
+            verilated.model.close()
+    if vcd is None:
+        traced = getattr(bench, "trace_path", None)
+        return out, target.log, Waveform(traced) if card_trace == "vcd" else None, bench
+    wave = Waveform(vcd)
+    write_motion_view(vcd, WAVE_GROUPS, wave)
+    return out, target.log, wave, bench
+
+
+def wait(bench, target, clocks=INTA_LIMIT, inta=False, steps=0):
+    """Let up to ``clocks`` clocks pass, fewer if INTA# is sampled low
+    (``inta``) or ``steps`` more STEP rises are recorded; (clocks, ``Stop``)."""
+    target.wait.ask(clocks, inta, steps)
+    yield target.wait.event
+    return target.wait.waited, target.wait.reason
+
+
+def clocks(bench, target, count):
+    """Exactly ``count`` clocks."""
+    yield from wait(bench, target, count)
+
+
+def wait_inta(bench, target, limit=INTA_LIMIT):
+    """Clocks until INTA# is sampled low."""
+    waited, reason = yield from wait(bench, target, limit, inta=True)
+    if reason is not Stop.INTERRUPT:
+        raise AssertionError(f"INTA# never asserted in {waited} clocks")
+    return waited
+
+
+def io_write(bench, target, name, value):
+    result = yield from bench.host.io_write(target.io + regmap.offset(name), value & 0xFFFFFFFF)
+    assert result.complete, f"I/O write of {name} ended {result.termination}"
+
+
+def io_read(bench, target, name):
+    result = yield from bench.host.io_read(target.io + regmap.offset(name))
+    assert result.complete, f"I/O read of {name} ended {result.termination}"
+    return result.value
+
+
+def program(bench, target, feed=regmap.RATE_MAX, control=1, interrupts=("DONE",), ramp_start=None,
+            ramp_step=None):
+    """FEED_RATE (and the ramp, if given), INT_ENABLE, CONTROL."""
+    yield from io_write(bench, target, "FEED_RATE", feed)
+    for name, value in (("RAMP_START", ramp_start), ("RAMP_STEP", ramp_step)):
+        if value is not None:
+            yield from io_write(bench, target, name, value)
+    yield from io_write(bench, target, "INT_ENABLE", regmap.field_of("INT_ENABLE", **{n: 1 for n in interrupts}))
+    yield from io_write(bench, target, "CONTROL", control)
+
+
+def read_position(bench, target):
+    x = yield from io_read(bench, target, "POS_X")
+    y = yield from io_read(bench, target, "POS_Y")
+    return regmap.field_value("POS_X", "STEPS", x), regmap.field_value("POS_Y", "STEPS", y)
+
+
+def finish(bench, target, out, limit=INTA_LIMIT):
+    """Wait for INTA#, then read status and position; acknowledge."""
+    out["inta_clocks"] = yield from wait_inta(bench, target, limit)
+    out["status"] = yield from io_read(bench, target, "STATUS")
+    out["int_status"] = yield from io_read(bench, target, "INT_STATUS")
+    out["position"] = yield from read_position(bench, target)
+    yield from io_write(bench, target, "INT_STATUS", out["int_status"])
+
+
+def motion_scenario(commands, feed=regmap.RATE_MAX, **ramp):
+    """Program, burst ``commands`` (model commands or word lists) into the FIFO, finish."""
+    words = [w for c in commands for w in (c if isinstance(c, list) else command_words(c))]
+
+    def scenario(bench, target, out):
+        yield from program(bench, target, feed, **ramp)
+        out["burst"] = yield from bench.host.mem_write(target.mem, words)
+        yield from finish(bench, target, out)
+
+    return scenario

@@ -1,0 +1,233 @@
+"""The simulated card served on a Unix socket, for the LinuxCNC driver's tests.
+
+``python -m sim.card.card_server --socket PATH --log FILE [--clock-hz N] [--free-run CLOCKS]``
+opens ``CardSession("verilator", clock_hz=N)`` (a card built to report N in
+CLOCK_HZ), listens on PATH, serves one client and, when the client goes,
+writes FILE: the card clock of every ADVANCE, register write and FIFO burst,
+the STEP/DIR pin rises, the changes of the DRIVE_ENABLE pin and the card's
+final state (STATUS, MACHINE_STATUS, STOP_REASON, POS_X, POS_Y read after
+the end).
+
+``--ppm N`` runs the card's clock N ppm fast (negative: slow) against the
+ADVANCEs, as a real card's crystal differs from the PC's timer: each ADVANCE
+of a clocks runs a (1 + N / 1e6) clocks, the fractions carried.
+
+A real card goes on without its PC: with ``--free-run CLOCKS`` the server,
+once the client has gone (socket closed, however it died), runs the card on
+its own for CLOCKS more clocks before it reads the final state, so a test
+sees what the card's watchdog does when the driver stops advancing it.
+DRIVE_ENABLE is sampled at the end of every request (a change inside an
+ADVANCE is recorded at its end) and at every clock of the free run while it
+is high, so its fall there is recorded at its clock (numbered as the rises).
+
+The protocol is lock-step: simulated time moves only inside requests, and
+the driver asks for one servo period of card clocks (ADVANCE) in each of its
+periods, so card time and servo time agree whatever the wall clock does.
+Every request is three little-endian 32-bit words, ``op, a, b``; FIFO is
+followed by ``a`` data words.  Every answer is two words, ``status, value``
+(status 0: done; else ``value`` is the length of a UTF-8 message that follows).
+
+    op 1 READ    a = BAR0 offset           value = the register
+    op 2 WRITE   a = BAR0 offset, b = value
+    op 3 FIFO    a = word count, words     (one burst into BAR1)
+    op 4 ADVANCE a = card clocks           value = card clocks since the server opened
+                                           the card, low 32 bits: the card runs until
+                                           they equal the sum of all ADVANCEs (the bus
+                                           accesses of the period count in it)
+"""
+import argparse
+import json
+import os
+import socket
+import struct
+import sys
+
+from models import registers as regmap
+from models.parameters import CLOCK_HZ
+from sim.card.card_session import AccessError, CardSession
+
+READ, WRITE, FIFO, ADVANCE = 1, 2, 3, 4
+WORD = struct.Struct("<I")
+REQUEST = struct.Struct("<III")
+ANSWER = struct.Struct("<II")
+MAX_BURST = 4096  # words in one FIFO request
+MAX_FREE_RUN = 1 << 30  # clocks
+PPM_ONE = 1_000_000
+MAX_PPM = 100_000
+DRIVE_PIN = "pins_drive_enable"  # the card's DRIVE_ENABLE output, as MyHDL names the top's port
+FINAL_REGISTERS = ("STATUS", "MACHINE_STATUS", "STOP_REASON", "POS_X", "POS_Y")
+
+
+class ProtocolError(RuntimeError):
+    """A request the server cannot take."""
+
+
+def receive(connection, size):
+    """Exactly ``size`` bytes, or None when the client closed the socket first."""
+    chunks = bytearray()
+    while len(chunks) < size:
+        chunk = connection.recv(size - len(chunks))
+        if not chunk:
+            return None
+        chunks += chunk
+    return bytes(chunks)
+
+
+class CardServer:
+    """One client's requests on ``session`` (a Verilator ``CardSession`` built for ``clock_hz``).
+    Clocks are card clocks since the server opened the card: ``advances``
+    (clock before, clock after), ``fifo`` (clock, words), ``writes`` (clock
+    at the end of the access, offset, value), ``drive``
+    (clock, DRIVE_ENABLE level) at every change, ``free_run`` and ``final``
+    once ``finish`` has run."""
+
+    def __init__(self, session, clock_hz, ppm=0):
+        self.session, self.clock_hz = session, clock_hz
+        self.ppm, self.ppm_fraction = ppm, 0
+        self.model = session.bench.model
+        self.start = session.clocks
+        self.advances = []
+        self.fifo = []
+        self.writes = []
+        self.drive = []
+        self.free_run = None
+        self.final = None
+        self.deadline = 0  # card clocks the ADVANCEs so far add up to
+
+    def now(self):
+        return self.session.clocks - self.start
+
+    def _sample_drive(self):
+        level = int(self.model[DRIVE_PIN])
+        if not self.drive or self.drive[-1][1] != level:
+            self.drive.append((self.now(), level))
+        return level
+
+    def handle(self, op, a, b, payload):
+        session = self.session
+        if op == READ:
+            return session.read(a)
+        if op == WRITE:
+            session.write(a, b)
+            self.writes.append((self.now(), a, b))
+            return 0
+        if op == FIFO:
+            self.fifo.append((self.now(), payload))
+            session.fifo_write(payload)
+            return 0
+        if op == ADVANCE:
+            # The period's bus accesses took card clocks too: run to the period's end, not a more.
+            # A card clock ppm fast runs a(1 + ppm / 1e6) clocks, the fraction carried.
+            scaled = a * (PPM_ONE + self.ppm) + self.ppm_fraction
+            self.deadline += scaled // PPM_ONE
+            self.ppm_fraction = scaled % PPM_ONE
+            before = session.clocks - self.start
+            if self.deadline > before:
+                session.wait(self.deadline - before)
+            after = session.clocks - self.start
+            self.advances.append((before, after))
+            return after & 0xFFFFFFFF
+        raise ProtocolError(f"unknown request {op}")
+
+    def serve(self, connection):
+        """Answer requests until the client closes the socket (or dies: a reset or broken pipe)."""
+        self._sample_drive()
+        try:
+            self._serve(connection)
+        except (ConnectionResetError, BrokenPipeError):
+            pass
+
+    def _serve(self, connection):
+        while True:
+            header = receive(connection, REQUEST.size)
+            if header is None:
+                return
+            op, a, b = REQUEST.unpack(header)
+            payload = []
+            if op == FIFO:
+                if a > MAX_BURST:
+                    raise ProtocolError(f"a FIFO burst of {a} words is more than {MAX_BURST}")
+                data = receive(connection, 4 * a)
+                if data is None:
+                    return
+                payload = list(struct.unpack(f"<{a}I", data))
+            try:
+                value = self.handle(op, a, b, payload)
+            except (AccessError, ValueError, ProtocolError) as error:
+                self._sample_drive()
+                message = str(error).encode()
+                connection.sendall(ANSWER.pack(1, len(message)) + message)
+                continue
+            self._sample_drive()
+            connection.sendall(ANSWER.pack(0, value))
+
+    def finish(self, free_run=0):
+        """The client has gone: run the card on its own for ``free_run`` clocks
+        (clock by clock while DRIVE_ENABLE is high, then the rest at once), then
+        read its final state over the bus."""
+        self.free_run = dict(start=self.now(), clocks=free_run)
+        ran = 0
+        while ran < free_run and self._sample_drive():
+            self.session.wait(1)
+            ran += 1
+        self._sample_drive()
+        if ran < free_run:
+            self.session.wait(free_run - ran)
+        self._sample_drive()
+        self.free_run["end"] = self.now()
+        self.final = {name: self.session.read(regmap.offset(name)) for name in FINAL_REGISTERS}
+
+    def record(self):
+        """What the test compares: clocks are card clocks since the server opened the card."""
+        rises = [(int(r[0]) - self.start, *map(int, r[1:])) for r in self.session.log.rises]
+        return dict(clock_hz=self.clock_hz, advances=self.advances, rises=rises, fifo=self.fifo,
+                    writes=self.writes, drive=self.drive, free_run=self.free_run, final=self.final)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python -m sim.card.card_server", description=__doc__.splitlines()[0])
+    parser.add_argument("--socket", required=True, help="Unix socket to listen on (must not exist)")
+    parser.add_argument("--log", required=True, help="JSON file written when the client has gone")
+    parser.add_argument("--clock-hz", type=int, default=CLOCK_HZ.default,
+                        help=f"clock the simulated card reports in CLOCK_HZ (default {CLOCK_HZ.default})")
+    parser.add_argument("--free-run", type=int, default=0, metavar="CLOCKS",
+                        help="clocks the card runs on its own after the client has gone (default 0)")
+    parser.add_argument("--ppm", type=int, default=0,
+                        help="the card's clock this many ppm fast (negative: slow) against the ADVANCEs "
+                             "(a real card's crystal against the PC's timer; default 0)")
+    args = parser.parse_args(argv)
+    if not 1 <= args.clock_hz <= 0xFFFFFFFF:
+        parser.error(f"--clock-hz must be 1..{0xFFFFFFFF}, not {args.clock_hz}")
+    if not 0 <= args.free_run <= MAX_FREE_RUN:
+        parser.error(f"--free-run must be 0..{MAX_FREE_RUN} clocks, not {args.free_run}")
+    if not -MAX_PPM <= args.ppm <= MAX_PPM:
+        parser.error(f"--ppm must be {-MAX_PPM}..{MAX_PPM}, not {args.ppm}")
+    if os.path.exists(args.socket):
+        parser.error(f"{args.socket} exists: remove it or choose another path")
+    session = CardSession("verilator", clock_hz=args.clock_hz)
+    try:
+        server = CardServer(session, args.clock_hz, args.ppm)
+        listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        listener.bind(args.socket)
+        os.chmod(args.socket, 0o666)  # the driver runs as LinuxCNC's (ordinary) user
+        listener.listen(1)
+        print(f"card server listening on {args.socket}", flush=True)
+        connection, _ = listener.accept()
+        try:
+            server.serve(connection)
+        finally:
+            connection.close()
+            listener.close()
+            os.unlink(args.socket)
+        try:
+            server.finish(args.free_run)
+        finally:
+            with open(args.log, "w") as log:
+                json.dump(server.record(), log)
+    finally:
+        session.close()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,140 @@
+"""``models/parameters.py``: each range is the hardware's, stated once; units and
+``*_ports`` factories take their defaults from it and their widths from their ports."""
+import dataclasses
+import re
+import shutil
+import subprocess
+
+import pytest
+from myhdl import intbv
+
+from models import parameters
+from models.parameters import COORD_WIDTH, FIFO_DEPTH, PARAMETERS, ParameterError
+from rtl.card import card_ports
+from rtl.card_core import card_core_ports
+from rtl.convert import ROOT, convert_unit
+from rtl.dda_arc import dda_arc, dda_arc_ports
+from rtl.interfaces import DdaPort
+from rtl.pci.pci_pads import pci_pads_ports
+from rtl.pci_slave import pci_slave_ports
+from rtl.regs.feed_rate import COUNT_BITS, feed_rate, feed_rate_ports
+from rtl.regs.sequencer import sequencer_ports
+from rtl.regs_fifo import regs_fifo_ports
+from rtl.top import top_ports
+
+
+def test_the_narrowest_coordinates_are_the_narrowest_the_feed_rate_takes():
+    """STOP_LEFT (coord_width + 3 bits) must be wider than the ramp's 16-bit count."""
+    assert COUNT_BITS == 16 and COORD_WIDTH.minimum == 14
+    narrow = feed_rate_ports()
+    narrow["feed"].stop_left = DdaPort(COORD_WIDTH.minimum - 1).stop_left
+    with pytest.raises(ValueError, match="stop_left must be wider"):
+        feed_rate(**narrow)
+    feed_rate(**feed_rate_ports(COORD_WIDTH.minimum))
+
+
+def _lint(path, top):
+    verilator = shutil.which("verilator")
+    assert verilator, "verilator not found: install it (Debian package verilator)"
+    return subprocess.run([verilator, "--lint-only", "-Wall", str(path), "--top-module", top],
+                          capture_output=True, text=True, timeout=600)
+
+
+def test_one_bit_wider_coordinates_than_the_widest_give_verilog_verilator_refuses(tmp_path, monkeypatch):
+    """The reason for COORD_WIDTH.maximum: STOP_LEFT's reset value above 32 bits."""
+    wider = dataclasses.replace(COORD_WIDTH, maximum=COORD_WIDTH.maximum + 1)
+    monkeypatch.setattr(parameters, "COORD_WIDTH", wider)  # the DDA reads its limit from the table
+    widest = _lint(convert_unit("dda_arc", {"coord_width": COORD_WIDTH.maximum}, tmp_path / "widest"), "dda_arc")
+    assert widest.returncode == 0, widest.stderr
+    beyond = dda_arc(**dda_arc_ports(COORD_WIDTH.maximum + 1))
+    beyond.convert(hdl="Verilog", path=str(tmp_path), name="dda_arc")
+    result = _lint(tmp_path / "dda_arc.v", "dda_arc")
+    # the all-ones reset value of STOP_LEFT's count (dda_left's larger), 2**33 - 1
+    assert result.returncode != 0 and "Too many digits" in result.stderr and str((1 << 33) - 1) in result.stderr
+
+
+def test_the_fifo_depth_fills_status_fifo_level_at_the_top_of_its_range():
+    from models import registers as regmap
+
+    level_bits = regmap.register("STATUS").field("FIFO_LEVEL").width
+    assert FIFO_DEPTH.maximum + 1 <= 1 << level_bits < 2 * FIFO_DEPTH.maximum + 1
+
+
+@pytest.mark.parametrize("name", sorted(p.name for p in PARAMETERS.values() if p.choices is None))
+def test_integer_bounds_are_taken_and_their_neighbours_refused(name):
+    parameter = PARAMETERS[name]
+    assert parameter.check(parameter.minimum) == parameter.minimum
+    assert parameter.check(parameter.maximum) == parameter.maximum
+    for value in (parameter.minimum - 1, parameter.maximum + 1, True, "1", 1.0):
+        with pytest.raises(ParameterError, match=name):
+            parameter.check(value)
+
+
+def test_device_limit_applies_to_its_device_only():
+    assert FIFO_DEPTH.check(32768, "generic") == 32768
+    assert FIFO_DEPTH.check(4096, "ice40") == 4096
+    with pytest.raises(ParameterError, match="ice40"):
+        FIFO_DEPTH.check(8192, "ice40")
+
+
+def test_every_default_is_within_its_range():
+    for parameter in PARAMETERS.values():
+        parameter.check(parameter.default)
+        for device in parameters.DEVICES:
+            parameter.check(parameter.default, device)
+
+
+def test_no_default_is_restated_in_rtl():
+    """Every default of an integer parameter lives in models/parameters.py only."""
+    sources = list((ROOT / "rtl").rglob("*.py"))
+    for parameter in PARAMETERS.values():
+        if parameter.choices is not None:
+            continue
+        pattern = re.compile(rf"\b{parameter.name}\s*=\s*({parameter.default}|0x0*{parameter.default:x}|"
+                             rf"0x0*{parameter.default:X})\b")
+        for path in sources:
+            assert not pattern.search(path.read_text()), f"{path.name} restates {parameter.name}'s default"
+
+
+@pytest.mark.parametrize("width", [COORD_WIDTH.minimum, 20])
+def test_ports_factories_follow_the_coordinate_width(width):
+    for ports in (dda_arc_ports(width), regs_fifo_ports(coord_width=width), sequencer_ports(width)):
+        port = ports["dda"] if "dda" in ports else ports["cmd"]
+        assert port.coord_width == width and len(port.xs) == width
+    assert len(feed_rate_ports(width)["feed"].stop_left) == width + 3
+
+
+def test_dda_takes_its_width_from_its_port(tmp_path):
+    path = convert_unit("dda_arc", {"coord_width": 17}, tmp_path)
+    text = path.read_text()
+    assert "input signed [16:0] cmd_xs;" in text
+    # accumulators: coord_width + 6 bits (improved); the instance prefix varies
+    assert re.search(r"reg signed \[22:0\] dda_run\w*_acc_x;", text)
+
+
+def test_pad_ports_factory_checks_its_build():
+    with pytest.raises(ValueError, match="io_registers"):
+        pci_pads_ports(io_registers=1)
+
+
+@pytest.mark.parametrize("factory, params, message", [
+    (card_ports, dict(fifo_depth=3), "fifo_depth"),
+    (card_ports, dict(device="ice40", fifo_depth=8192), "ice40"),
+    (card_ports, dict(io_bar_bits=6), "io_bar_bits"),
+    (card_core_ports, dict(vendor_id=1), "vendor_id"),
+    (top_ports, dict(clock_hz=0), "clock_hz"),
+    (top_ports, dict(variants="weighted"), "variants"),
+    (regs_fifo_ports, dict(coord_width=13), "coord_width"),
+    (pci_slave_ports, dict(device="ecp5"), "device"),
+    (pci_slave_ports, dict(fifo_depth=512), "unknown"),
+])
+def test_ports_factories_check_their_parameters(factory, params, message):
+    with pytest.raises(ValueError, match=message):
+        factory(**params)
+
+
+def test_ports_factories_refuse_what_the_interface_refuses():
+    with pytest.raises(ValueError, match="coord_width"):
+        dda_arc_ports(COORD_WIDTH.maximum + 1)
+    with pytest.raises(ValueError, match="coord_width"):
+        DdaPort(intbv(24))

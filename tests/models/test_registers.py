@@ -1,0 +1,105 @@
+"""The register table and the command set: consistency, and every file made from them."""
+import shutil
+import subprocess
+from dataclasses import replace
+
+import pytest
+
+from models import instructions as isa
+from models import register_docs
+from models import registers as regmap
+from rtl.convert import C_HEADER, GEN_DIR, ROOT, write_c_header
+
+
+def test_table_is_consistent():
+    regmap.check_table()
+    assert regmap.IO_BAR_BITS == 8  # 0x90 is the last offset: a 256-byte I/O BAR, the most PCI allows
+
+
+@pytest.mark.parametrize("change, message", [
+    (dict(offset=0x06), "misaligned"),
+    (dict(access="RX"), "unknown access"),
+    (dict(reset=1 << 20), "reset value"),
+])
+def test_bad_table_entries_are_refused(change, message):
+    bad = replace(regmap.register("LOW_WATER"), **change)
+    with pytest.raises(ValueError, match=message):
+        regmap.check_table(tuple(bad if r.name == "LOW_WATER" else r for r in regmap.REGISTERS))
+
+
+def test_duplicate_offset_is_refused():
+    twin = replace(regmap.register("LOW_WATER"), name="TWIN")
+    with pytest.raises(ValueError, match="used twice"):
+        regmap.check_table(regmap.REGISTERS + (twin,))
+
+
+# What the registers the hardware sets say right after reset (their descriptions in
+# docs/registers.md): nothing has happened yet.
+RESET_MEANING = {
+    "ID": 0xDDAC << 16 | regmap.VERSION,
+    "COMMAND": 0,  # one-shot actions read as 0
+    "STATUS": 1 << 8,  # idle, not done, no error, FIFO_EMPTY, level 0
+    "INT_STATUS": 0,
+    "MARK_TAG": 0,
+    "POS_X": 0,
+    "POS_Y": 0,
+    "PULSE_COUNT_X": 0,  # no direct pulse to go
+    "PULSE_COUNT_Y": 0,
+}
+
+
+def test_reset_values_mean_what_the_registers_say():
+    """sim/card/test_card_e2e.py reads the same values from the card after RST#."""
+    assert {name: regmap.register(name).reset for name in RESET_MEANING} == RESET_MEANING
+    assert regmap.field_value("STATUS", "FIFO_EMPTY", RESET_MEANING["STATUS"]) == 1
+    for reg in regmap.REGISTERS:
+        if reg.minimum is not None:
+            assert reg.minimum <= regmap.field_value(reg.name, reg.fields[0].name, reg.reset) <= reg.maximum
+
+
+def test_field_helpers_round_trip():
+    word = regmap.field_of("STATUS", BUSY=1, ERROR=3, FIFO_LEVEL=300)
+    assert word == 1 | 3 << 4 | 300 << 16
+    assert regmap.field_value("STATUS", "FIFO_LEVEL", word) == 300
+    assert regmap.field_value("POS_X", "STEPS", 0xFFFFFFFE) == -2
+    with pytest.raises(ValueError, match="no field"):
+        regmap.field_of("STATUS", SPEED=1)
+    with pytest.raises(ValueError, match="no register"):
+        regmap.offset("NOPE")
+
+
+def test_encode_checks_its_input():
+    assert isa.encode("ARC", 1, 2, 3, 4, CCW=1, VARIANT=2) == [0x2 << 28 | 1 | 2 << 1, 1, 2, 3, 4]
+    assert isa.encode("LINE", -1, 2)[1] == 0xFFFFFFFF
+    with pytest.raises(ValueError, match="takes 2 operands"):
+        isa.encode("LINE", 1)
+    with pytest.raises(ValueError, match="does not fit"):
+        isa.encode("MARK", TAG=1 << 16)
+    with pytest.raises(ValueError, match="unknown command"):
+        isa.encode("JUMP")
+
+
+def test_docs_are_generated_from_the_tables():
+    docs = ROOT / "docs"
+    assert (docs / "registers.md").read_text() == register_docs.markdown() + "\n", \
+        "docs/registers.md is stale: run python -m models.register_docs"
+    guide = (docs / "instructions.md").read_text()
+    assert guide == register_docs.refreshed_instructions_doc(guide), \
+        "docs/instructions.md is stale: run python -m models.register_docs"
+
+
+def test_c_header_compiles_and_matches_the_table(tmp_path):
+    header = write_c_header(tmp_path)
+    assert (GEN_DIR / C_HEADER).read_text() == header.read_text(), \
+        "gen/dda_card.h is stale: run python -m rtl.top --convert"
+    compiler = shutil.which("gcc") or shutil.which("cc")
+    if compiler is None:
+        pytest.skip("no C compiler")
+    probe = tmp_path / "probe.c"
+    checks = [f'_Static_assert(DDA_{r.name} == {r.offset}u, "{r.name}");' for r in regmap.REGISTERS]
+    checks.append(f"_Static_assert(DDA_STATUS_FIFO_LEVEL_MASK == {regmap.register('STATUS').field('FIFO_LEVEL').mask}u, \"mask\");")
+    checks.append(f"_Static_assert(DDA_CMD_ARC == {isa.BY_NAME['ARC'].code}u, \"opcode\");")
+    probe.write_text(f'#include "{header.name}"\n' + "\n".join(checks) + "\nint main(void) { return 0; }\n")
+    result = subprocess.run([compiler, "-std=c11", "-Wall", "-Werror", "-I", str(tmp_path), str(probe),
+                             "-o", str(tmp_path / "probe")], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr

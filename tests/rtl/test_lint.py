@@ -1,0 +1,106 @@
+"""Every Verilog file of every build is clean under ``verilator --lint-only -Wall``
+and compiles in Icarus; the ``generic`` build has no vendor primitive.
+
+Builds: ``gen/`` (the default: units and card generic, the top for iCE40),
+and, converted into a work folder by the command line, ``generic`` at the
+top of the parameter ranges and ``ice40`` at the bottom.  Files with iCE40
+LUTs are linted twice: for simulators and with ``SYNTHESIS`` defined (the
+``SB_LUT4`` branch).  Waivers live in ``tests/verilator.vlt``, each with its
+reason.  The iCE40 cells (``SB_IO``, ``SB_LUT4``) are given to both tools as
+empty black boxes with their real ports and parameters.
+"""
+import re
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+from rtl.convert import GEN_DIR, ROOT, UNITS
+
+WAIVERS = ROOT / "tests" / "verilator.vlt"
+
+BUILDS = {
+    "gen": None,
+    "generic": ["--device", "generic", "--coord-width", "29", "--fifo-depth", "32768", "--variants", "all",
+                "--clock-hz", "1", "--vendor-id", "0xFFFE"],
+    "ice40": ["--device", "ice40", "--coord-width", "14", "--fifo-depth", "4", "--clock-hz", "33333333"],
+}
+SOURCES = [(build, unit) for build in BUILDS for unit in UNITS]
+
+# the SB_IO black box of the FuseSoC lint target, and the LUT cell of the ice40 build
+SB_IO_BLACKBOX = ROOT / "tests" / "verilog" / "sb_io_blackbox.v"
+SB_LUT4_BLACKBOX = """\
+module SB_LUT4 (output O, input I0, input I1, input I2, input I3);
+  parameter [15:0] LUT_INIT = 16'h0000;
+endmodule
+"""
+
+
+@pytest.fixture(scope="module")
+def blackbox(tmp_path_factory):
+    path = tmp_path_factory.mktemp("cells") / "sb_io_blackbox.v"
+    path.write_text(SB_IO_BLACKBOX.read_text() + SB_LUT4_BLACKBOX)
+    return path
+
+
+@pytest.fixture(scope="module")
+def build_folders(tmp_path_factory):
+    """Build name -> folder, converted on first use."""
+    folders = {"gen": GEN_DIR}
+    work = tmp_path_factory.mktemp("builds")
+
+    def folder(build):
+        if build not in folders:
+            out = work / build
+            result = subprocess.run([sys.executable, "-m", "rtl.top", "--convert", "--out", str(out),
+                                     *BUILDS[build]], cwd=ROOT, capture_output=True, text=True, timeout=1800)
+            assert result.returncode == 0, result.stderr
+            folders[build] = out
+        return folders[build]
+
+    return folder
+
+
+def _tool(name):
+    path = shutil.which(name)
+    assert path, f"{name} not found: install it (Debian package {name})"
+    return path
+
+
+@pytest.mark.parametrize("build, unit", SOURCES, ids=[f"{b}-{u}" for b, u in SOURCES])
+def test_verilator_lint_is_clean(build, unit, build_folders, blackbox):
+    source = build_folders(build) / f"{unit}.v"
+    has_luts = "SB_LUT4" in source.read_text()
+    for defines in ([], ["-DSYNTHESIS"]) if has_luts else ([],):
+        result = subprocess.run([_tool("verilator"), "--lint-only", "-Wall", *defines, str(WAIVERS),
+                                 str(source), str(blackbox), "--top-module", unit],
+                                capture_output=True, text=True, timeout=600)
+        assert result.returncode == 0, f"{' '.join(defines)}\n{result.stderr}"
+
+
+@pytest.mark.parametrize("build, unit", SOURCES, ids=[f"{b}-{u}" for b, u in SOURCES])
+def test_icarus_compiles(build, unit, build_folders, blackbox, tmp_path):
+    source = build_folders(build) / f"{unit}.v"
+    result = subprocess.run([_tool("iverilog"), "-g2005", "-Wall", "-o", str(tmp_path / "out.vvp"),
+                             "-s", unit, str(source), str(blackbox)],
+                            capture_output=True, text=True, timeout=600)
+    assert result.returncode == 0, result.stderr
+
+
+# unit -> the iCE40 cells its Verilog instantiates, per build
+VENDOR_CELLS = {
+    "gen": {"top": {"SB_IO", "SB_LUT4"}},
+    "generic": {},
+    "ice40": {"pci_slave": {"SB_LUT4"}, "card": {"SB_LUT4"}, "top": {"SB_IO", "SB_LUT4"}},
+}
+
+
+@pytest.mark.parametrize("build", sorted(BUILDS))
+def test_vendor_primitives_only_where_the_device_asks(build, build_folders):
+    folder = build_folders(build)
+    for unit in UNITS:
+        text = (folder / f"{unit}.v").read_text()
+        cells = set(re.findall(r"^\s*(SB_\w+)\s*#?\s*\(", text, re.MULTILINE))
+        assert cells == VENDOR_CELLS[build].get(unit, set()), f"{build}/{unit}.v: {sorted(cells)}"
+        assert ("`ifdef SYNTHESIS" in text) == ("SB_LUT4" in cells), f"{build}/{unit}.v"

@@ -1,0 +1,151 @@
+"""The card server the LinuxCNC driver's tests use: its protocol on the Verilator card."""
+import json
+import socket
+import struct
+import subprocess
+import sys
+
+import pytest
+
+from models import registers as regmap
+from sim.card.card_server import ADVANCE, ANSWER, FIFO, READ, REQUEST, WRITE, main
+
+CLOCK_HZ = 1_000_000
+LINE_5_M3 = [1 << 28, 5, (-3) & 0xFFFFFFFF]  # LINE (5, -3) (docs/instructions.md)
+LONG_LINE = 2000  # X steps: at the reset FEED_RATE (one iteration every 16 clocks) 32,000 clocks
+WATCHDOG_CLOCKS = 3000
+WATCHDOG_SLACK = 3  # docs/machine.md: the stop comes TIMEOUT clocks after the write, within 3
+FREE_RUN = 20_000
+
+
+class Client:
+    def __init__(self, tmp_path, *options):
+        self.path, self.log = tmp_path / "card.sock", tmp_path / "card.json"
+        self.process = subprocess.Popen(
+            [sys.executable, "-m", "sim.card.card_server", "--socket", str(self.path), "--log", str(self.log),
+             "--clock-hz", str(CLOCK_HZ), *options], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        assert "listening" in self.process.stdout.readline()
+        self.connection = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        self.connection.connect(str(self.path))
+
+    def ask(self, op, a=0, b=0, words=()):
+        """(value, None) or (None, the server's message)."""
+        self.connection.sendall(REQUEST.pack(op, a, b) + struct.pack(f"<{len(words)}I", *words))
+        status, value = ANSWER.unpack(self.connection.recv(ANSWER.size, socket.MSG_WAITALL))
+        if status:
+            return None, self.connection.recv(value, socket.MSG_WAITALL).decode()
+        return value, None
+
+    def finish(self):
+        """Go away; the server's log."""
+        self.connection.close()
+        assert self.process.wait(timeout=60) == 0
+        assert not self.path.exists()
+        return json.loads(self.log.read_text())
+
+
+@pytest.fixture
+def client(tmp_path):
+    client = Client(tmp_path)
+    yield client
+    client.connection.close()
+    client.process.kill()
+
+
+def test_registers_fifo_and_lock_step_time(client):
+    assert client.ask(READ, regmap.offset("ID")) == (regmap.register("ID").reset, None)
+    assert client.ask(READ, regmap.offset("CLOCK_HZ")) == (CLOCK_HZ, None)
+    assert client.ask(WRITE, regmap.offset("CONTROL"), 1) == (0, None)
+    assert client.ask(FIFO, len(LINE_5_M3), words=LINE_5_M3) == (0, None)
+    # card time is the sum of the ADVANCEs, the bus accesses before them included
+    assert client.ask(ADVANCE, 1000) == (1000, None)
+    assert client.ask(ADVANCE, 500) == (1500, None)
+    record = client.finish()
+    assert record["clock_hz"] == CLOCK_HZ
+    assert [after for _, after in record["advances"]] == [1000, 1500]
+    x = sum((1 if r[3] else -1) * r[1] for r in record["rises"])
+    y = sum((1 if r[4] else -1) * r[2] for r in record["rises"])
+    assert (x, y) == (5, -3)
+    assert all(0 < r[0] < 1000 for r in record["rises"])
+
+
+def test_bad_requests_are_answered_with_the_reason(client):
+    value, error = client.ask(READ, 0x200)
+    assert value is None and "0x200" in error
+    value, error = client.ask(9)
+    assert value is None and "unknown request 9" in error
+    assert client.ask(READ, regmap.offset("ID")) == (regmap.register("ID").reset, None)  # still serving
+    client.finish()
+
+
+@pytest.mark.parametrize("ppm, ends", [(1500, [1001, 2003, 3004]), (-1500, [998, 1997, 2995])])
+def test_a_card_clock_ppm_fast_or_slow_runs_more_or_fewer_clocks_per_advance(tmp_path, ppm, ends):
+    """--ppm: each ADVANCE of 1000 clocks runs 1000 (1 + ppm / 1e6) card clocks, the fractions carried."""
+    client = Client(tmp_path, "--ppm", str(ppm))
+    assert [client.ask(ADVANCE, 1000)[0] for _ in ends] == ends
+    client.finish()
+
+
+def field(name, register, value):
+    item = next(f for f in regmap.register(register).fields if f.name == name)
+    return (value & item.mask) >> item.lsb
+
+
+@pytest.mark.parametrize("gone", ["closed", "killed"])
+def test_a_card_left_alone_is_stopped_by_its_watchdog(tmp_path, gone):
+    """The client goes mid-move; the server runs the card on its own (--free-run),
+    as a real card goes on without its PC: the watchdog the client wrote last
+    stops the steps and drops DRIVE_ENABLE WATCHDOG clocks after that write
+    (docs/machine.md), the card says why, and the pins went no further than
+    the queue and agree with the step counter."""
+    client = Client(tmp_path, "--free-run", str(FREE_RUN))
+    drive = regmap.field_of("MACHINE_CONTROL", DRIVE_ENABLE=1)
+    assert client.ask(WRITE, regmap.offset("MACHINE_CONTROL"), drive) == (0, None)
+    assert client.ask(FIFO, 3, words=[1 << 28, LONG_LINE, 0]) == (0, None)
+    assert client.ask(WRITE, regmap.offset("CONTROL"), 1) == (0, None)
+    started, _ = client.ask(ADVANCE, 1000)
+    assert client.ask(WRITE, regmap.offset("WATCHDOG"), WATCHDOG_CLOCKS) == (0, None)
+    if gone == "killed":  # a client that dies with a request half sent
+        client.connection.sendall(REQUEST.pack(ADVANCE, 1000, 0)[:5])
+    record = client.finish()
+    written = record["free_run"]["start"]  # the watchdog write was the last request
+    assert started <= written < started + 100
+    assert record["writes"][-1] == [written, regmap.offset("WATCHDOG"), WATCHDOG_CLOCKS]
+    assert record["free_run"]["end"] >= written + FREE_RUN
+    assert record["drive"][0][1] == 0 and record["drive"][1][1] == 1 and record["drive"][1][0] < started
+    assert len(record["drive"]) == 3, f"DRIVE_ENABLE changed more than once after it rose: {record['drive']}"
+    fell, level = record["drive"][2]
+    assert level == 0 and written + WATCHDOG_CLOCKS - WATCHDOG_SLACK <= fell <= written + WATCHDOG_CLOCKS + WATCHDOG_SLACK
+    rises = [r[0] for r in record["rises"]]
+    assert rises and rises[-1] <= fell, "a step after the watchdog's stop"
+    assert rises[-1] > fell - 100, "the card was not moving when its watchdog ran out"
+    final = record["final"]
+    assert field("REASON", "STOP_REASON", final["STOP_REASON"]) == regmap.STOP_REASONS.index("WATCHDOG")
+    assert field("STOPPED", "STATUS", final["STATUS"]) == 1
+    assert field("DRIVE_ENABLE", "MACHINE_STATUS", final["MACHINE_STATUS"]) == 0
+    assert final["POS_X"] == len(rises) < LONG_LINE and final["POS_Y"] == 0
+    print(f"\nwatchdog {WATCHDOG_CLOCKS} clocks: DRIVE_ENABLE low {fell - written} clocks after the last "
+          f"write, last step {fell - rises[-1]} clocks before, {len(rises)} of {LONG_LINE} steps made")
+
+
+def test_without_free_run_the_card_stays_where_the_client_left_it(client):
+    assert client.ask(FIFO, 3, words=[1 << 28, LONG_LINE, 0]) == (0, None)
+    assert client.ask(WRITE, regmap.offset("CONTROL"), 1) == (0, None)
+    assert client.ask(ADVANCE, 1000) == (1000, None)
+    record = client.finish()
+    assert record["free_run"] == dict(start=1000, clocks=0, end=1000)
+    assert record["fifo"] == [[record["fifo"][0][0], [1 << 28, LONG_LINE, 0]]]
+    # only the final reads' few bus clocks ran after the last ADVANCE (16 clocks a step)
+    assert 1000 // 16 - 1 <= len(record["rises"]) <= (1000 + 100) // 16
+    assert 0 <= len(record["rises"]) - record["final"]["POS_X"] <= 1
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--clock-hz", "0"], "--clock-hz must be"), (["--clock-hz", str(1 << 32)], "--clock-hz must be"),
+    (["--free-run", "-1"], "--free-run must be"), (["--free-run", str((1 << 30) + 1)], "--free-run must be"),
+    (["--ppm", "100001"], "--ppm must be"), (["--ppm", "-100001"], "--ppm must be")])
+def test_bad_options_are_refused_before_anything_is_written(tmp_path, capsys, argv, message):
+    with pytest.raises(SystemExit):
+        main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), *argv])
+    assert message in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
