@@ -1,13 +1,7 @@
-"""Lets ``pytest`` find ``rtl`` and ``sim`` from a plain checkout, and names
-each test's waveforms after the test (``sim/backends/waves.py``)."""
-import sys
-from pathlib import Path
-
+"""Names each test's waveforms after the test (``sim/backends/waves.py``)."""
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from sim import waves  # noqa: E402  (needs the path above)
+from sim.backends import waves
 
 
 @pytest.fixture(autouse=True)

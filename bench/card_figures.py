@@ -22,8 +22,9 @@ from myhdl import ToVerilogWarning, now
 
 from models import instructions as isa
 from models import registers as regmap
+from models.commands import command_words
 from models.dda_model import LineCommand
-from sim.card.card_bench import HALF_PERIOD, command_words, run_core
+from sim.card.card_bench import HALF_PERIOD, run_core
 from sim.card.card_e2e import finish, program, run_card
 
 PCI_HZ = 33e6

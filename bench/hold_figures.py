@@ -15,9 +15,9 @@ clocks from a pause to the rate's stop, at that rate.
 import argparse
 
 from models import registers as regmap
+from models.commands import command_words
 from models.dda_model import LineCommand
 from models.machine_model import paused_ticks
-from sim.card.card_bench import command_words
 from sim.card.machine_bench import REACTION, WIDTH, drive_at, run_machine, set_input, wait_clocks, write
 
 TARGET = 8192

@@ -21,8 +21,8 @@ import matplotlib
 matplotlib.use("Agg")  # before pyplot: no display needed
 import matplotlib.pyplot as plt  # noqa: E402
 
-from models.dda_model import (IMPROVED, PRECISE, TRADITIONAL, VARIANT_NAMES, WEIGHTED,  # noqa: E402
-                           ArcCommand, iterate, metrics, paper_configuration)
+from models.dda_model import (IMPROVED, PRECISE, TRADITIONAL, VARIANT_NAMES, WEIGHTED, ArcCommand,  # noqa: E402
+                              iterate, metrics, paper_configuration)
 from rtl.convert import build_dir  # noqa: E402
 
 

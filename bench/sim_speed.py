@@ -34,11 +34,11 @@ from pathlib import Path
 from myhdl import ToVerilogWarning
 
 from models import registers as regmap
+from models.commands import command_words
 from models.dda_model import ArcCommand, LineCommand
 from rtl.convert import GEN_DIR
 from sim.backends.verilator.build import _build, find_tool
 from sim.backends.verilator.card import VerilatedCard
-from sim.card.card_bench import command_words
 from sim.card.card_e2e import DEFAULT_FIFO, finish, program, run_card
 from sim.card.card_jobs import LONGEST_WAIT, random_job, streaming_scenario
 

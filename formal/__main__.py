@@ -18,8 +18,9 @@ from pathlib import Path
 
 from formal import groups as catalogue
 from formal.sby import run, tools_available
+from rtl.convert import BUILD_DIR, GEN_DIR
 
-WORK_DIR = catalogue.ROOT / "build" / "formal"
+WORK_DIR = BUILD_DIR / "formal"
 
 
 def depth_text(result):
@@ -70,7 +71,7 @@ def run_groups(chosen, gen_dir, work_dir=WORK_DIR, jobs=1):
 
 def _parser():
     parser = argparse.ArgumentParser(prog="python -m formal", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--gen", type=Path, default=catalogue.GEN_DIR,
+    parser.add_argument("--gen", type=Path, default=GEN_DIR,
                         help="folder with the generated Verilog to prove (default: gen/)")
     parser.add_argument("--group", action="append", default=[], help="run only this group (repeatable)")
     parser.add_argument("--fast", action="store_true", help="only the groups of the default test suite")

@@ -14,18 +14,16 @@ from pathlib import Path
 from formal.card_props import card_constants
 from formal.regs_props import table_properties
 from formal.sby import Task
+from models import parameters
 from models.dda_build import DDA_MIN_WIDTH as NARROW_WIDTH
-from rtl.convert import convert_narrow_dda
+from models.parameters import PCI_IDS as PCI_ID_NAMES
+from rtl.convert import BUILD_DIR, convert_narrow_dda
 
 PROPS = Path(__file__).resolve().parent / "props"
-ROOT = Path(__file__).resolve().parent.parent
-GEN_DIR = ROOT / "gen"
-GENERATED = ROOT / "build" / "formal" / "generated"
+GENERATED = BUILD_DIR / "formal" / "generated"
 
-# The unit's parameters as `python -m rtl.top --convert` writes gen/ by
-# default (rtl/top.py PARAMETERS; the card sizes BAR0 from its register table).
-PCI_IDS = dict(vendor_id=0x1234, device_id=0xDDA0, revision_id=0x01, class_code=0x088000,
-               subsystem_vendor_id=0x1234, subsystem_id=0x0001)
+# The unit's IDs as `python -m rtl.top --convert` writes gen/ by default.
+PCI_IDS = parameters.defaults(PCI_ID_NAMES)
 
 
 def pci_harness_parameters(io_bits, mem_bits, ids=PCI_IDS):

@@ -28,6 +28,7 @@ from pathlib import Path
 
 from formal import groups as catalogue
 from formal.sby import TOOLS, Task, run
+from rtl.convert import BUILD_DIR, GEN_DIR
 
 YOSYS = TOOLS["YOSYS"]
 
@@ -174,11 +175,11 @@ def judge(mutant, unit_groups_list, gen_dir, mutant_file, work, bmc_depth, modes
     mutant.verdict = "survived"
 
 
-def score_unit(unit, count, seed, gen_dir=catalogue.GEN_DIR, work=None, miter_depth=12,
+def score_unit(unit, count, seed, gen_dir=GEN_DIR, work=None, miter_depth=12,
                bmc_depth=16, indices=None, log=print, judges=None, modes=("bmc",), miter_timeout=None):
     """Mutants of ``unit`` and their verdicts (``judges``: group names that
     pass on the original; default: find them by running every group)."""
-    work = Path(work or catalogue.ROOT / "build" / "formal" / "mutation" / unit)
+    work = Path(work or BUILD_DIR / "formal" / "mutation" / unit)
     unit_file = Path(gen_dir) / f"{unit}.v"
     commands = list_mutations(unit_file, work, count, seed)
     port_list = ports(work, unit_file)
@@ -225,7 +226,7 @@ def main(argv=None):
     parser.add_argument("units", nargs="*", default=["pci_slave"], help="units to mutate (default pci_slave)")
     parser.add_argument("--count", type=int, default=20, help="mutations per unit (default 20)")
     parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--gen", type=Path, default=catalogue.GEN_DIR)
+    parser.add_argument("--gen", type=Path, default=GEN_DIR)
     parser.add_argument("--judge", action="append", default=[],
                         help="group that judges the mutants (repeatable; default: the unit's groups "
                              "that pass on the original)")

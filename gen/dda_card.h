@@ -307,6 +307,15 @@
 #define DDA_STOP_ESTOP 1u /* STOP_REASON.REASON */
 #define DDA_STOP_WATCHDOG 2u /* STOP_REASON.REASON */
 #define DDA_STOP_LIMIT 3u /* STOP_REASON.REASON */
+
+/* The simulated card's socket protocol (sim/card/card_server.py) */
+#define DDA_SIM_READ 1u /* a = BAR0 offset; answer: the register */
+#define DDA_SIM_WRITE 2u /* a = BAR0 offset, b = value; answer: 0 */
+#define DDA_SIM_FIFO 3u /* a = word count, then the words (one burst into BAR1); answer: 0 */
+#define DDA_SIM_ADVANCE 4u /* a = card clocks; answer: card clocks since the server opened the card, low 32 bits */
+#define DDA_SIM_REQUEST_WORDS 3u
+#define DDA_SIM_ANSWER_WORDS 2u
+#define DDA_SIM_MAX_BURST 4096u /* words in one FIFO request */
 #define DDA_OPCODE_SHIFT 28u
 #define DDA_CMD_LINE 0x1u
 #define DDA_CMD_LINE_OPERANDS 2u

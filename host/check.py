@@ -9,7 +9,7 @@ the job time at the planned feed rates.
 import math
 from dataclasses import dataclass, field
 
-from host.planner import DwellCommand
+from models.commands import DwellCommand
 from models.dda_model import ArcCommand, LineCommand, iterate
 from models.registers import RATE_ONE
 

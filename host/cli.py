@@ -22,8 +22,9 @@ from host.card import CardError, IdentityError
 from host.check import check
 from host.errors import ProgramError
 from host.machine import DEFAULT_CLOCK_HZ, DEFAULT_COORD_WIDTH, Machine
-from host.planner import encode_command, plan
+from host.planner import plan
 from host.transports.base import TransportError
+from models.commands import command_words
 from models.registers import RATE_MAX
 
 PROG = "python -m host"
@@ -136,7 +137,7 @@ def _plan(options):
     for line in summary(planned, result):
         print(line)
     if options.words:
-        options.words.write_text("".join(f"{w:08x}\n" for e in planned.entries for w in encode_command(e.command)))
+        options.words.write_text("".join(f"{w:08x}\n" for e in planned.entries for w in command_words(e.command)))
         print(f"words:      {options.words}")
     if options.preview:
         from host.preview import draw

@@ -28,29 +28,13 @@ from dataclasses import dataclass, field, replace
 from host import geometry
 from host.lattice import arc_commands, line_commands
 from host.machine import Machine
+from models.card_model import DECEL_MARGIN
+from models.commands import DwellCommand, MarkCommand, SetCommand, command_words, stream_words
 from models.dda_model import ArcCommand, LineCommand, iterator_for
-from models.instructions import encode
-from models.registers import RATE_ONE, register
-from rtl.regs.feed_rate import DECEL_MARGIN
+from models.registers import RATE_ONE
 
 DWELL_MAX = (1 << 32) - 1
 TAG_MODULUS = 1 << 16
-
-
-@dataclass(frozen=True)
-class SetCommand:
-    register: str
-    value: int
-
-
-@dataclass(frozen=True)
-class DwellCommand:
-    clocks: int
-
-
-@dataclass(frozen=True)
-class MarkCommand:
-    tag: int
 
 
 @dataclass(frozen=True)
@@ -89,26 +73,10 @@ class Plan:
     end: tuple = (0, 0)
 
     def words(self):
-        return [word for entry in self.entries for word in encode_command(entry.command)]
+        return stream_words(entry.command for entry in self.entries)
 
     def moves(self):
         return [e for e in self.entries if isinstance(e.command, (LineCommand, ArcCommand))]
-
-
-def encode_command(command):
-    """The FIFO words of one command."""
-    if isinstance(command, LineCommand):
-        return encode("LINE", command.dx, command.dy, BLEND=int(command.blend))
-    if isinstance(command, ArcCommand):
-        return encode("ARC", command.xs, command.ys, command.xe, command.ye, CCW=int(command.ccw),
-                      VARIANT=command.variant, BLEND=int(command.blend))
-    if isinstance(command, SetCommand):
-        return encode("SET", command.value, INDEX=register(command.register).set_index)
-    if isinstance(command, DwellCommand):
-        return encode("DWELL", command.clocks)
-    if isinstance(command, MarkCommand):
-        return encode("MARK", TAG=command.tag)
-    raise ValueError(f"not a command: {command!r}")
 
 
 def plan(drawing, machine=Machine()):
@@ -233,7 +201,7 @@ def _emit(result, stream):
 
     def add(command, where="", primitive=None, run=None):
         entries.append(Entry(command, where, primitive, run))
-        state["words"] += len(encode_command(command))
+        state["words"] += len(command_words(command))
 
     def mark(force=False):
         if force or state["words"] >= machine.mark_interval:

@@ -17,8 +17,8 @@ program line whose command the card refused.
 """
 from dataclasses import dataclass, field
 
-from host.planner import encode_command
 from models import registers as regmap
+from models.commands import command_words
 
 SLICE_SECONDS = 0.02  # card time between two looks at should_stop while waiting
 
@@ -43,7 +43,7 @@ def command_list(plan):
     commands = []
     for entry in plan.entries:
         kind = type(entry.command).__name__.replace("Command", "").upper()
-        commands.append((encode_command(entry.command), f"{entry.where or 'the job'}: {kind}"))
+        commands.append((command_words(entry.command), f"{entry.where or 'the job'}: {kind}"))
     return commands
 
 

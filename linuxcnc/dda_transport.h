@@ -24,10 +24,6 @@
 #include "rtapi_pci.h"
 #include "../gen/dda_card.h"  /* via -I of this folder: the generated header, never retyped */
 
-#define DDA_SIM_READ 1u
-#define DDA_SIM_WRITE 2u
-#define DDA_SIM_FIFO 3u
-#define DDA_SIM_ADVANCE 4u
 #define DDA_MAX_BURST 64u /* words one period writes at most */
 
 struct dda_transport {

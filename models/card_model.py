@@ -15,6 +15,8 @@ from collections import deque
 
 from models import registers as regmap
 
+DECEL_MARGIN = 2  # iterations: the registered comparison and a stop_left one iteration late
+
 FAR_PAST = -(1 << 20)
 TIMING_LIMIT = 255
 
@@ -146,7 +148,7 @@ class FeedRateModel:
     clock ``pause`` is presented bringing no tick.
     """
 
-    def __init__(self, margin=2):
+    def __init__(self, margin=DECEL_MARGIN):
         self.margin = margin
         self.rate = 0
         self.phase = 0

@@ -29,7 +29,7 @@ from pathlib import Path
 
 from myhdl import ToVerilogWarning
 
-from models import instructions, parameters, register_docs
+from models import card_socket, instructions, parameters, register_docs
 from models.dda_build import DDA_MIN_WIDTH, DEFAULT_VARIANTS
 from models.parameters import DEVICE, PARAMETERS, PCI_IDS, ParameterError
 from models.registers import STOP_REASONS
@@ -88,8 +88,8 @@ def build_settings(values):
 def write_c_header(out_dir=GEN_DIR, **values):
     """Write the C header of the top built with ``values`` (build parameters,
     the top's defaults for the rest): PCI identity and BAR sizes of the card,
-    register map (reset values of this build), command set and command
-    builders; return its path."""
+    stop reasons, the simulated card's socket protocol, register map (reset
+    values of this build), command set and command builders; return its path."""
     settings = unit_settings(values, "top")
     bars = slave_params()
     identity = [f"#define DDA_PCI_{name.upper()} {PARAMETERS[name].shown(settings[name])}u" for name in PCI_IDS]
@@ -98,6 +98,7 @@ def write_c_header(out_dir=GEN_DIR, **values):
                  f"#define DDA_FIFO_DEPTH {settings['fifo_depth']}u /* words */", ""]
     identity += [f"#define DDA_STOP_{name} {code}u /* STOP_REASON.REASON */"
                  for code, name in enumerate(STOP_REASONS) if code] + [""]
+    identity += ["/* The simulated card's socket protocol (sim/card/card_server.py) */", card_socket.c_defines()]
     target = Path(out_dir) / C_HEADER
     target.parent.mkdir(parents=True, exist_ok=True)
     target.write_text(register_docs.c_header(extra="\n".join(identity) + instructions.c_defines() + "\n"

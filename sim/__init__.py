@@ -1,1 +1,3 @@
-"""Golden models, behavioural bus models and test benches (never imported by rtl/)."""
+"""Verification above the RTL: the PCI verification IP (``pci/``), the card's benches
+(``card/``) and the simulation back ends (``backends/``).  Never imported by ``rtl/`` or
+``models/``; ``host`` uses it only in its simulated transport."""

@@ -1,6 +1,7 @@
 """Iteration clock enable of the interpolator: a trapezoidal rate ramp."""
 from myhdl import Signal, always_comb, always_seq, block, concat, intbv, modbv
 
+from models.card_model import DECEL_MARGIN
 from models.parameters import COORD_WIDTH
 from models.registers import RATE_MAX, RATE_ONE
 from rtl.interfaces import FeedPort, RampSettings, card_reset
@@ -8,7 +9,6 @@ from rtl.interfaces import FeedPort, RampSettings, card_reset
 RATE_BITS = RATE_MAX.bit_length()  # 16: the rate is at most one iteration every other clock
 PHASE_BITS = RATE_ONE.bit_length() - 1
 COUNT_BITS = 16  # ramp ticks: at most one per unit of rate
-DECEL_MARGIN = 2  # iterations: the registered comparison and a stop_left one iteration late
 
 
 @block

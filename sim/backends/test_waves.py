@@ -250,7 +250,7 @@ def test_a_bare_vector_name_is_caught(tmp_path):
 
 def test_files_are_named_after_the_test():
     first, second = default_view(), default_view()
-    folder = waves.waves_dir() / "sim" / "test_waves"
+    folder = waves.waves_dir() / "sim" / "backends" / "test_waves"
     assert first == folder / "test_files_are_named_after_the_test.vcd"
     assert second == folder / "test_files_are_named_after_the_test.2.vcd"
     assert second.with_name("test_files_are_named_after_the_test.2.gtkw").exists()

@@ -6,7 +6,7 @@ from myhdl import StopSimulation, block, delay, instance, now
 from models import instructions as isa
 from models import registers as regmap
 from models.card_model import PulseOutModel
-from models.dda_model import ArcCommand, LineCommand, iterate
+from models.dda_model import ArcCommand, iterate
 from rtl.card_core import card_core, card_core_ports
 from sim.backends.clocking import clock_source
 from sim.backends.icarus import convert_and_cosimulate
@@ -221,11 +221,3 @@ def expected_path(commands, coord_width=24):
         else:
             points += [(x0 + x, y0 + y) for x, y in path.points()[1:]]
     return points
-
-
-def command_words(command):
-    """FIFO words of a model command."""
-    if isinstance(command, LineCommand):
-        return isa.encode("LINE", command.dx, command.dy)
-    return isa.encode("ARC", command.xs, command.ys, command.xe, command.ye, CCW=int(command.ccw),
-                      VARIANT=command.variant, LAMBDA=command.lambda_shift, ACC_BITS=command.acc_bits)

@@ -29,6 +29,7 @@ from myhdl import __version__ as myhdl_version
 from myhdl import always, block
 
 from models import registers as regmap
+from models.commands import command_words
 from models.parameters import CLOCK_HZ, PARAMETERS
 from rtl.card import card, card_ports
 from rtl.convert import GEN_DIR, ROOT, build_dir, convert_unit
@@ -37,7 +38,7 @@ from sim.backends.verilator.card import ArrayPinLog, CardWait, VerilatedCard, ca
 from sim.backends.verilator.model import Stop
 from sim.backends.verilator.pci_bus import VerilatorBench
 from sim.backends.waves import Waveform, trace_stem
-from sim.card.card_bench import PinLog, command_words, pin_capture, write_motion_view
+from sim.card.card_bench import PinLog, pin_capture, write_motion_view
 from sim.card.top_harness import TopHarness, convert_top, generated_top, top_on_bus
 from sim.pci.bench import TARGET_DEVICE, WAVE_GROUPS, PciBench
 

@@ -11,12 +11,13 @@ for, its tag and the position read back.  ``expected_steps`` and
 rules of ``models.card_model.PulseOutModel`` (STEP width, DIR set-up and hold).
 """
 import random
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from models import instructions as isa
 from models import registers as regmap
+from models.commands import command_words
 from models.dda_model import ArcCommand, LineCommand, iterate, plan_arc
 from sim.card.card_bench import PIN_BITS
 from sim.card.card_e2e import io_read, io_write, read_position, wait_inta
@@ -55,12 +56,6 @@ def _random_move(rng, max_line, max_scale):
         return arc
 
 
-def move_words(command, blend=False):
-    if isinstance(command, LineCommand):
-        return isa.encode("LINE", command.dx, command.dy, BLEND=int(blend))
-    return isa.encode("ARC", command.xs, command.ys, command.xe, command.ye, CCW=int(command.ccw), VARIANT=3,
-                      BLEND=int(blend))
-
 
 def random_job(seed, segments, max_line=40, max_scale=8, feeds=(regmap.RATE_MAX, regmap.RATE_MAX),
                dwell=0, mark_every=50, mark_dwell=2000):
@@ -79,7 +74,7 @@ def random_job(seed, segments, max_line=40, max_scale=8, feeds=(regmap.RATE_MAX,
         if dwell and rng.random() < 0.02:
             job.words += isa.encode("DWELL", rng.randint(1, dwell))
         move = _random_move(rng, max_line, max_scale)
-        job.words += move_words(move, blend=rng.random() < 0.5)
+        job.words += command_words(replace(move, blend=rng.random() < 0.5))
         job.moves.append(move)
         dx, dy = (move.dx, move.dy) if isinstance(move, LineCommand) else (move.xe - move.xs, move.ye - move.ys)
         x, y = x + dx, y + dy

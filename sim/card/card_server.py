@@ -43,14 +43,13 @@ import struct
 import sys
 
 from models import registers as regmap
+from models.card_socket import ADVANCE, ANSWER_WORDS, FIFO, MAX_BURST, READ, REQUEST_WORDS, WRITE
 from models.parameters import CLOCK_HZ
 from sim.card.card_session import AccessError, CardSession
 
-READ, WRITE, FIFO, ADVANCE = 1, 2, 3, 4
 WORD = struct.Struct("<I")
-REQUEST = struct.Struct("<III")
-ANSWER = struct.Struct("<II")
-MAX_BURST = 4096  # words in one FIFO request
+REQUEST = struct.Struct("<" + "I" * REQUEST_WORDS)
+ANSWER = struct.Struct("<" + "I" * ANSWER_WORDS)
 MAX_FREE_RUN = 1 << 30  # clocks
 PPM_ONE = 1_000_000
 MAX_PPM = 100_000

@@ -18,10 +18,11 @@ import pytest
 
 from models import instructions as isa
 from models import registers as regmap
+from models.commands import command_words
 from models.dda_model import ArcCommand, LineCommand, iterate, metrics, v_arc
 from rtl.convert import GEN_DIR
 from sim.backends.verilator.model import Stop
-from sim.card.card_bench import command_words, expected_path
+from sim.card.card_bench import expected_path
 from sim.card.card_e2e import (DEFAULT_FIFO, DEVICE, KINDS, SMALL_FIFO, clocks, finish, io_read, io_write,
                                motion_scenario, program, run_card, wait)
 from sim.pci.host import Termination

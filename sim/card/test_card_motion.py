@@ -11,12 +11,15 @@ Icarus (``verilog``).  Golden values: paths and iterations from
 clocks per iteration), pin timing from ``PulseOutModel`` every clock (on
 the MyHDL card, whose registers it reads).
 """
+from dataclasses import replace
+
 import pytest
 from myhdl import Signal, block, instance
 
 from models import instructions as isa
 from models import registers as regmap
 from models.card_model import DdaContractModel
+from models.commands import command_words
 from models.dda_build import DEFAULT_VARIANTS
 from models.dda_model import TRADITIONAL, ArcCommand, LineCommand, iterate, setup_clocks
 from rtl.card_core import card_core, card_core_ports
@@ -107,11 +110,7 @@ def run_motion(name, kind, scenario):
 
 
 def words(command, blend=False):
-    if isinstance(command, LineCommand):
-        return isa.encode("LINE", command.dx, command.dy, BLEND=int(blend))
-    return isa.encode("ARC", command.xs, command.ys, command.xe, command.ye, CCW=int(command.ccw),
-                      VARIANT=command.variant, LAMBDA=command.lambda_shift, ACC_BITS=command.acc_bits,
-                      BLEND=int(blend))
+    return command_words(replace(command, blend=blend))
 
 
 def field(name, field_name, word):

@@ -3,11 +3,11 @@ clock for clock, on every back end as the golden model says."""
 import pytest
 
 from models import registers as regmap
+from models.commands import command_words
 from models.dda_model import ArcCommand, LineCommand
 from sim.backends.verilator.model import Stop
 from sim.card.card_bench import expected_path
 from sim.card.card_e2e import KINDS, io_read, io_write, program
-from sim.card.card_jobs import move_words
 from sim.card.card_session import CardSession
 
 MOVES = [LineCommand(7, -3), ArcCommand(5, 0, 0, 5, ccw=True, variant=3), LineCommand(-2, 9)]
@@ -19,7 +19,7 @@ def session_run(kind):
     try:
         bench, target = session.bench, session.target
         session.call(program(bench, target))
-        words = [w for move in MOVES for w in move_words(move)]
+        words = [w for move in MOVES for w in command_words(move)]
         session.call(bench.host.mem_write(session.mem, words))
         _, reason = session.wait(20000, inta=True)
         x = session.call(io_read(bench, target, "POS_X"))

@@ -10,10 +10,11 @@ as its Verilog in Icarus.
 import pytest
 
 from models import registers as regmap
+from models.commands import command_words
 from models.dda_model import LineCommand
 from models.homing_model import BouncingSwitch, expected_homing
 from models.machine_model import REASON
-from sim.card.card_bench import command_words, read_position, wait_idle
+from sim.card.card_bench import read_position, wait_idle
 from sim.card.homing_bench import BACKOFF, RELEASE, SAMPLES, SEEK, arm, home, homing_run, outcome, wait_homed
 from sim.card.machine_bench import read, run_machine, set_input, write
 

@@ -12,10 +12,11 @@ import pytest
 from myhdl import delay
 
 from models import registers as regmap
+from models.commands import command_words
 from models.dda_model import ArcCommand, LineCommand
 from models.machine_model import REASON
 from rtl.regs.pulse_out import QUEUE_DEPTH
-from sim.card.card_bench import command_words, expected_path, read_position, wait_idle
+from sim.card.card_bench import expected_path, read_position, wait_idle
 from sim.card.machine_bench import (REACTION, WIDTH, assert_exact, assert_stopped, clear_stop, drive_at, field, read,
                                     run_machine, set_input, snapshot, wait_clocks, write)
 

@@ -11,9 +11,10 @@ import random
 import pytest
 
 from models import registers as regmap
+from models.commands import command_words
 from models.dda_model import ArcCommand, LineCommand
 from models.machine_model import paused_ticks
-from sim.card.card_bench import command_words, expected_path, read_position, wait_idle
+from sim.card.card_bench import expected_path, read_position, wait_idle
 from sim.card.machine_bench import (REACTION, WIDTH, assert_exact, assert_stopped, clear_stop, drive_at, field, read,
                                     run_machine, set_input, snapshot, wait_clocks, write)
 

@@ -11,9 +11,9 @@ import pytest
 from models import instructions as isa
 from models import registers as regmap
 from models.card_model import RegisterModel
+from models.commands import command_words
 from models.dda_model import ArcCommand, LineCommand
-from sim.card.card_bench import (FIFO_DEPTH, TIMING, command_words, expected_path, read_position, run_core, wait_error,
-                                 wait_idle)
+from sim.card.card_bench import FIFO_DEPTH, TIMING, expected_path, read_position, run_core, wait_error, wait_idle
 
 
 def field(name, field_name, word):

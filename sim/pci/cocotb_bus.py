@@ -28,7 +28,7 @@ from cocotb.triggers import Event, FallingEdge
 from cocotb.types import Logic, LogicArray
 
 from sim.pci.checker import ProtocolChecker
-from sim.pci.host_types import Clocks, Request
+from sim.pci.host_core import CLOCK, scenario_steps
 from sim.pci.lines import LINE_WIDTHS, OPEN_DRAIN, PULLED_UP, BusSample
 from sim.pci.master import PciMaster
 
@@ -130,20 +130,17 @@ class CocotbPciBus:
 
     async def run(self, scenario):
         """Run a host scenario (a generator of host waits); its result."""
+        steps = scenario_steps(scenario)
         while True:
             try:
-                item = next(scenario)
+                item = next(steps)
             except StopIteration as stop:
                 return stop.value
-            if isinstance(item, Request):
-                while not item.done:
-                    self._completion.clear()
-                    await self._completion.wait()
-            elif isinstance(item, Clocks):
-                for _ in range(item.count):
-                    await FallingEdge(self.clock)
+            if item is CLOCK:
+                await FallingEdge(self.clock)
             else:
-                raise TypeError(f"the scenario yielded {item!r}: only host waits run under cocotb")
+                self._completion.clear()
+                await self._completion.wait()
 
 
 def split_pins(verilog_files, top, prefix="pci_"):

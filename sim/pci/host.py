@@ -23,7 +23,7 @@ Configuration addresses are Type 0 with IDSEL of device ``d`` on AD[16+d]
 from myhdl import Signal, block, instance, now
 
 from sim.pci.bus import PciAgent
-from sim.pci.host_core import MASTER_ABORT_EDGE, TARGET_TIMEOUT_EDGES, HostCore  # noqa: F401
+from sim.pci.host_core import CLOCK, MASTER_ABORT_EDGE, TARGET_TIMEOUT_EDGES, HostCore, scenario_steps  # noqa: F401
 from sim.pci.host_types import (CONFIG_READ, CONFIG_WRITE, DUAL_ADDRESS, INTERRUPT_ACK, IO_READ, IO_WRITE,  # noqa: F401
                                 MEM_READ, MEM_READ_LINE, MEM_READ_MULTIPLE, MEM_WRITE, MEM_WRITE_INVALIDATE,
                                 MEMORY_READS, MEMORY_WRITES, SPECIAL_CYCLE, BusTransaction, Clocks, HostError, Request,
@@ -54,20 +54,20 @@ def run_scenario(host, scenario):
     """Run the generator ``scenario`` inside a MyHDL process (``yield from
     run_scenario(host, scenario)``): the host core's wait objects become
     MyHDL waits on ``host``'s clock, anything else is yielded as it is."""
-    clock = host.clock
+    steps = scenario_steps(scenario, other=_as_it_is)
     while True:
         try:
-            item = next(scenario)
+            item = next(steps)
         except StopIteration as stop:
             return stop.value
         if isinstance(item, Request):
-            while not item.done:
-                yield host.completion
-        elif isinstance(item, Clocks):
-            for _ in range(item.count):
-                yield clock.posedge
+            yield host.completion
         else:
-            yield item
+            yield host.clock.posedge if item is CLOCK else item
+
+
+def _as_it_is(item):
+    yield item
 
 
 @block

@@ -316,22 +316,58 @@ class HostCore:
         return Termination.DISCONNECT if transaction.data else Termination.RETRY
 
 
-def run_scenario(scenario, clock_edge):
-    """Run ``scenario`` (a generator of the host's wait objects) for a front
-    end that advances its simulator itself: ``clock_edge()`` runs the
-    simulation up to and through the next rising edge, stepping the core
-    there.  Returns the scenario's return value.  A scenario that yields
-    anything but a ``Request`` or ``Clocks`` is refused (``TypeError``)."""
+CLOCK = "clock"  # what ``scenario_steps`` yields for one rising edge to wait for
+
+
+def scenario_steps(scenario, other=None, on_step=None):
+    """The one engine that runs a scenario (a generator of the host's wait
+    objects) for every front end; a generator that returns the scenario's value.
+
+    It yields ``CLOCK`` for each rising edge a ``Clocks`` asks for and the
+    ``Request`` itself for each wait until that request is done; a front end
+    turns these into its simulator's waits (``run_scenario`` below, MyHDL's
+    ``sim.pci.host.run_scenario``, cocotb's ``CocotbPciBus.run``, the
+    Verilator bench).  Anything else the scenario yields goes to
+    ``other(item)``, a generator whose waits are yielded as they are and
+    whose value is sent back into the scenario; without ``other`` it is
+    refused (``TypeError``).  ``on_step()``, if given, runs before each step
+    of the scenario."""
+    value = None
     while True:
+        if on_step is not None:
+            on_step()
         try:
-            item = next(scenario)
+            item = scenario.send(value)
         except StopIteration as stop:
             return stop.value
+        value = None
         if isinstance(item, Request):
             while not item.done:
-                clock_edge()
+                yield item
         elif isinstance(item, Clocks):
             for _ in range(item.count):
-                clock_edge()
+                yield CLOCK
+        elif other is not None:
+            value = yield from other(item)
         else:
             raise TypeError(f"the scenario yielded {item!r}: only Request and Clocks are host waits")
+
+
+def run_steps(steps, wait):
+    """Run ``steps`` (from ``scenario_steps``) with ``wait(item)`` for each
+    item it yields; its value."""
+    while True:
+        try:
+            item = next(steps)
+        except StopIteration as stop:
+            return stop.value
+        wait(item)
+
+
+def run_scenario(scenario, clock_edge):
+    """Run ``scenario`` for a front end that advances its simulator itself:
+    ``clock_edge()`` runs the simulation up to and through the next rising
+    edge, stepping the core there.  Returns the scenario's value; a scenario
+    that yields anything but a ``Request`` or ``Clocks`` is refused
+    (``TypeError``)."""
+    return run_steps(scenario_steps(scenario), lambda _: clock_edge())

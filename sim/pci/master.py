@@ -26,8 +26,8 @@ Configuration addresses are Type 0 with IDSEL of device ``d`` on AD[16+d].
 import random
 from dataclasses import dataclass, field
 
-from models.pci import (COMMAND_INTERRUPT_DISABLE,  # noqa: F401 (offered; to scenarios with the transactions)
-                        COMMAND_IO, COMMAND_MEMORY, COMMAND_PARITY_RESPONSE, COMMAND_SERR_ENABLE)
+from models.pci import COMMAND_INTERRUPT_DISABLE  # noqa: F401 (offered; to scenarios with the transactions)
+from models.pci import COMMAND_IO, COMMAND_MEMORY, COMMAND_PARITY_RESPONSE, COMMAND_SERR_ENABLE
 from sim.pci.host_core import HostCore
 from sim.pci.host_types import (CONFIG_READ, CONFIG_WRITE, IO_READ, IO_WRITE, MEM_READ, MEM_WRITE, MEMORY_READS,
                                 MEMORY_WRITES, Clocks, HostError, Request, Termination)

@@ -1,1 +1,1 @@
-""""""
+"""The formal proofs (``formal/``) in the test suite."""

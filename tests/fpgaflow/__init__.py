@@ -1,1 +1,1 @@
-""""""
+"""Tests of the synthesis flow (``fpgaflow/``), the pin files and the FuseSoC core."""

@@ -1,1 +1,1 @@
-""""""
+"""Tests of the host software (``host/``)."""

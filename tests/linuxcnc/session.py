@@ -25,7 +25,7 @@ import pytest
 
 from tests.linuxcnc.compare import pin_positions, read_samples
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 USER = "dda-cnc"
 CLOCK_HZ = 1_000_000
 SCALE = 100.0
@@ -93,16 +93,19 @@ def configure(run):
     driver = f"\nloadrt dda_card sim={run}/card.sock keep_ahead={KEEP_AHEAD}\n"
     (run / "dda_xy.hal").write_text(hal.replace("\nloadrt dda_card\n", driver))
     ini = (run / "dda_xy.ini").read_text()
-    ini = ini.replace("DISPLAY = axis", f"DISPLAY = {ROOT}/linuxcnc/headless.py")
+    # Everything LinuxCNC's user runs or reads is copied here: the checkout may sit in a folder
+    # that user cannot enter (a 0700 temporary folder, a 0750 home folder).
+    shutil.copy(ROOT / "linuxcnc" / "headless.py", run / "headless.py")
+    ini = ini.replace("DISPLAY = axis", f"DISPLAY = {run}/headless.py")
     ini = ini.replace("HALFILE = dda_xy.hal", "HALFILE = dda_xy.hal\nHALFILE = record.hal")
     (run / "dda_xy.ini").write_text(ini)
     (run / "record.hal").write_text(RECORD_HAL.format(samples=run / "samples.txt"))
     (run / "record.sh").write_text('#!/bin/sh\nexec halsampler -t > "$1"\n')
     (run / "record.sh").chmod(0o755)
-    for program in (ROOT / "tests" / "gcode").glob("lcnc_*.ngc"):
+    for program in (Path(__file__).parent / "gcode").glob("lcnc_*.ngc"):
         shutil.copy(program, run / program.name)
     for path in run.iterdir():
-        path.chmod(0o777 if path.suffix == ".sh" else 0o666)
+        path.chmod(0o777 if path.suffix in (".sh", ".py") else 0o666)
 
 
 def card_server(run, *options):

@@ -19,7 +19,7 @@ from sim.backends.verilator.card import CardWait
 from sim.backends.verilator.model import LINES, Stop
 from sim.pci.bench import CLOCK_PERIOD, RESET_CLOCKS, TARGET_DEVICE
 from sim.pci.checker import ProtocolChecker
-from sim.pci.host_types import Clocks, Request
+from sim.pci.host_core import run_steps, scenario_steps
 from sim.pci.lines import BusSample
 from sim.pci.master import PciMaster
 
@@ -107,25 +107,16 @@ class VerilatorBench:
         self.card.collect_pins(self.target.log)
 
     def _trampoline(self, scenario):
-        value = None
-        while True:
-            self.card.collect_pins(self.target.log)
-            try:
-                item = scenario.send(value)
-            except StopIteration as stop:
-                return stop.value
-            value = None
-            if isinstance(item, Request):
-                while not item.done:
-                    self.clock_edge()
-            elif isinstance(item, Clocks):
-                for _ in range(item.count):
-                    self.clock_edge()
-            elif isinstance(item, CardWait):
-                self._wait(item)
-            else:
-                raise TypeError(f"the scenario yielded {item!r}: the Verilator bench knows Request, Clocks "
-                                "and CardWait")
+        steps = scenario_steps(scenario, other=self._card_wait,
+                               on_step=lambda: self.card.collect_pins(self.target.log))
+        return run_steps(steps, lambda _: self.clock_edge())
+
+    def _card_wait(self, item):
+        if not isinstance(item, CardWait):
+            raise TypeError(f"the scenario yielded {item!r}: the Verilator bench knows Request, Clocks "
+                            "and CardWait")
+        self._wait(item)
+        yield from ()
 
     def _wait(self, wait):
         """Clock ``wait`` out: compiled while the bus is quiet, else clock by clock."""
