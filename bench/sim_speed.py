@@ -38,7 +38,7 @@ from models.commands import command_words
 from models.dda_model import ArcCommand, LineCommand
 from rtl.convert import GEN_DIR
 from sim.backends.verilator.build import _build, find_tool
-from sim.backends.verilator.card import VerilatedCard
+from sim.backends.verilator.verilated_card import VerilatedCard
 from sim.card.card_e2e import DEFAULT_FIFO, finish, program, run_card
 from sim.card.card_jobs import LONGEST_WAIT, random_job, streaming_scenario
 

@@ -6,7 +6,7 @@ from models import registers as regmap
 from models.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, PCI_IDS, VARIANTS
 from rtl.card_core import CORE_PARAMETERS, card_core
 from rtl.interfaces import LocalBus, MotorPins, PciBus, card_reset
-from rtl.pci.pci_target_build import local_addr_width
+from rtl.pci.pci_slave_build import local_addr_width
 from rtl.pci_slave import pci_slave
 
 MEM_BAR_BITS = 12  # 4 KiB FIFO window: a host burst of up to 1024 words

@@ -34,7 +34,7 @@ from models.dda_build import DDA_MIN_WIDTH, DEFAULT_VARIANTS
 from models.parameters import DEVICE, PARAMETERS, PCI_IDS, ParameterError
 from models.registers import STOP_REASONS
 from rtl.card import CARD_PARAMETERS, slave_params
-from rtl.pci.pci_target_build import SLAVE_PARAMETERS
+from rtl.pci.pci_slave_build import SLAVE_PARAMETERS
 from rtl.regs_fifo import REGS_FIFO_PARAMETERS
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -142,8 +142,17 @@ def convert_block(unit, instance, out_dir):
         instance.convert(hdl="Verilog", path=work, name=unit, testbench=False)
         text = (Path(work) / f"{unit}.v").read_text()
     target = out_dir / f"{unit}.v"
-    target.write_text(_strip_run_details(text))
+    write_whole(target, _strip_run_details(text))
     return target
+
+
+def write_whole(path, text):
+    """Write ``text`` to ``path`` through a temporary file renamed into place, so a
+    reader (another test worker) finds the old file or the new one, never half of one."""
+    path = Path(path)
+    with tempfile.NamedTemporaryFile("w", dir=path.parent, prefix=f".{path.name}.", delete=False) as staged:
+        staged.write(text)
+    os.replace(staged.name, path)
 
 
 def convert_unit(unit, params, out_dir):

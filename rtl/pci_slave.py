@@ -30,7 +30,7 @@ from rtl.pci.pci_control import pci_control, t_state
 from rtl.pci.pci_decode import pci_decode
 from rtl.pci.pci_parity import pci_parity
 from rtl.pci.pci_requests import pci_requests
-from rtl.pci.pci_target_build import (INITIAL_WAIT_LIMIT, SUBSEQUENT_WAIT_LIMIT, check_params, last_dword,
+from rtl.pci.pci_slave_build import (INITIAL_WAIT_LIMIT, SUBSEQUENT_WAIT_LIMIT, check_params, last_dword,
                                       local_addr_width)
 from rtl.pci.pin_lut import pin_lut
 

@@ -8,7 +8,7 @@ from flip-flops through this logic (DEVSEL# medium).
 """
 from myhdl import always_comb, block, intbv
 
-from rtl.pci.pci_target_build import (CMD_CONFIG_READ, CMD_CONFIG_WRITE, CMD_IO_READ, CMD_IO_WRITE, CMD_MEM_READ,
+from rtl.pci.pci_slave_build import (CMD_CONFIG_READ, CMD_CONFIG_WRITE, CMD_IO_READ, CMD_IO_WRITE, CMD_MEM_READ,
                                       CMD_MEM_READ_LINE, CMD_MEM_READ_MULTIPLE, CMD_MEM_WRITE, CMD_MEM_WRITE_INVALIDATE,
                                       CONFIG_DWORDS, last_dword)
 

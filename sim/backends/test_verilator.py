@@ -12,7 +12,7 @@ from models.parameters import PARAMETERS
 from rtl.convert import GEN_DIR
 from sim.backends.verilator import build
 from sim.backends.verilator.build import VerilatorError, build_model, model_key, ports_of
-from sim.backends.verilator.card import VerilatedCard
+from sim.backends.verilator.verilated_card import VerilatedCard
 from sim.backends.verilator.model import LINES, Stop, VerilatedModel
 from sim.card.card_e2e import motion_scenario, run_card
 from sim.pci.bus import LINE_WIDTHS, BusSample, even_parity
@@ -229,6 +229,7 @@ def test_waves_of_a_window(tmp_path):
     assert min(times[1:]) >= (first - 1) * period and max(times) <= last * period
 
 
+@pytest.mark.slow(reason="a third compile of the traced card; the VCD window test checks tracing")
 def test_waves_in_fst():
     """The FST build writes its window too (GTKWave reads it; here only its size is judged)."""
     _, log, _, bench = run_card("verilator", motion_scenario([LineCommand(4, 1)]), "vlt_trace", trace=False,

@@ -34,7 +34,7 @@ from models.parameters import CLOCK_HZ, PARAMETERS
 from rtl.card import card, card_ports
 from rtl.convert import GEN_DIR, ROOT, build_dir, convert_unit
 from rtl.interfaces import MotorPins
-from sim.backends.verilator.card import ArrayPinLog, CardWait, VerilatedCard, card_waiter
+from sim.backends.verilator.verilated_card import ArrayPinLog, CardWait, VerilatedCard, card_waiter
 from sim.backends.verilator.model import Stop
 from sim.backends.verilator.pci_bus import VerilatorBench
 from sim.backends.waves import Waveform, trace_stem

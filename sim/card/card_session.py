@@ -32,7 +32,7 @@ from myhdl import now
 
 from models.parameters import CLOCK_HZ
 from models.pci import CONFIG_BYTES, check_access, check_value
-from sim.backends.verilator.card import VerilatedCard
+from sim.backends.verilator.verilated_card import VerilatedCard
 from sim.backends.verilator.pci_bus import VerilatorBench
 from sim.backends.waves import trace_stem
 from sim.card.card_e2e import DEFAULT_FIFO, DEVICE, CardUnderTest, card_verilog, wait

@@ -90,13 +90,15 @@ def read_build(kind, build, device, tmp_path):
 
 
 @pytest.mark.parametrize("kind, build, device", [
-    ("myhdl", CHOSEN, "ice40"),
-    ("myhdl", SMALLEST, "generic"),
-    ("card.v", CHOSEN, "generic"),
-    ("top.v", CHOSEN, "ice40"),
-    ("gen/card.v", DEFAULT, "generic"),
-    ("gen/top.v", DEFAULT, "ice40"),
-], ids=["myhdl-chosen", "myhdl-smallest", "card_v-chosen", "top_v-chosen", "gen-card_v", "gen-top_v"])
+    pytest.param("myhdl", CHOSEN, "ice40", id="myhdl-chosen", marks=pytest.mark.slow(
+        reason="the chosen build runs as card.v by default; MyHDL reads the smallest one")),
+    pytest.param("myhdl", SMALLEST, "generic", id="myhdl-smallest"),
+    pytest.param("card.v", CHOSEN, "generic", id="card_v-chosen"),
+    pytest.param("top.v", CHOSEN, "ice40", id="top_v-chosen", marks=pytest.mark.slow(
+        reason="another conversion of the chosen build; gen/top.v covers the top's path by default")),
+    pytest.param("gen/card.v", DEFAULT, "generic", id="gen-card_v"),
+    pytest.param("gen/top.v", DEFAULT, "ice40", id="gen-top_v"),
+])
 def test_capability_registers_read_back_the_build(kind, build, device, tmp_path):
     words = read_build(kind, build, device, tmp_path)
     for name, word in expected_words(build, device).items():

@@ -99,6 +99,23 @@ SCENARIOS = {  # name -> (scenario, FIFO depth)
 }
 
 
+# A scenario co-simulated in Icarus takes about half a minute: the default suite runs two of
+# them there (the enumeration and arc program, a chain of lines into an arc, with the
+# FIFO overfilled in the slow set too); every scenario runs on MyHDL and Verilator.
+ICARUS_SCENARIOS = ("arc", "chain")
+SLOW_ICARUS = pytest.mark.slow(reason="another ~30 s Icarus co-simulation of a scenario the MyHDL and "
+                                      "Verilator cards already run")
+
+
+def on(name, kinds=KINDS):
+    """``(name, kind)`` cases of scenario ``name``: Icarus beyond ICARUS_SCENARIOS in the slow set;
+    each scenario's cases run on one worker, which runs its MyHDL reference once."""
+    group = pytest.mark.xdist_group(f"card_e2e_{name}")
+    return [pytest.param(name, kind, marks=[group] + (
+        [SLOW_ICARUS] if kind == "icarus" and name not in ICARUS_SCENARIOS else []), id=f"{name}-{kind}")
+        for kind in kinds]
+
+
 @functools.lru_cache(maxsize=None)
 def run(name, kind):
     """(out, pin log) of scenario ``name`` on ``kind``, run once per process."""
@@ -107,8 +124,7 @@ def run(name, kind):
     return out, log
 
 
-@pytest.mark.parametrize("kind", KINDS[1:])
-@pytest.mark.parametrize("name", list(SCENARIOS))
+@pytest.mark.parametrize("name,kind", [case for name in SCENARIOS for case in on(name, KINDS[1:])])
 def test_pins_identical_on_every_back_end(name, kind):
     """Every STEP/DIR edge at the same clock as on the MyHDL card."""
     _, log = run(name, kind)
@@ -118,9 +134,9 @@ def test_pins_identical_on_every_back_end(name, kind):
     assert log.rises == reference.rises
 
 
-@pytest.mark.parametrize("kind", KINDS)
-def test_enumerate_program_arc(kind):
-    out, log = run("arc", kind)
+@pytest.mark.parametrize("name,kind", on("arc"))
+def test_enumerate_program_arc(name, kind):
+    out, log = run(name, kind)
     device = out["device"]
     assert (device.vendor_id, device.device_id, device.interrupt_pin) == (0x1234, 0xDDA0, 1)
     assert out["bars"]["io"]["size"] == 1 << regmap.IO_BAR_BITS
@@ -194,9 +210,9 @@ def test_top_level_pins_match_the_split_port_card_clock_for_clock():
         assert top_sample == card_sample, f"clock {clock}: top {top_sample} != card {card_sample}"
 
 
-@pytest.mark.parametrize("kind", KINDS)
-def test_chained_segments_no_gap_between_lines(kind):
-    out, log = run("chain", kind)
+@pytest.mark.parametrize("name,kind", on("chain"))
+def test_chained_segments_no_gap_between_lines(name, kind):
+    out, log = run(name, kind)
     assert log.path() == expected_path(CHAIN)
     assert out["position"] == expected_path(CHAIN)[-1]
     line_rises = sum(max(abs(c.dx), abs(c.dy)) for c in CHAIN[:3])
@@ -215,11 +231,11 @@ def _gap(rate):
     return regmap.RATE_ONE / rate
 
 
-@pytest.mark.parametrize("kind", KINDS)
-def test_long_line_ramps_up_and_down(kind):
+@pytest.mark.parametrize("name,kind", on("ramp"))
+def test_long_line_ramps_up_and_down(name, kind):
     """Intervals shrink, stay at FEED_RATE, grow back; the first and the last are
     those of RAMP_START (to one clock) and the deceleration mirrors the ramp up."""
-    out, log = run("ramp", kind)
+    out, log = run(name, kind)
     assert out["position"] == (300, 120) == log.path()[-1]
     gaps = _x_gaps(log)
     assert len(gaps) == 299
@@ -234,8 +250,7 @@ def test_long_line_ramps_up_and_down(kind):
     assert abs(low - (len(gaps) - 1 - high)) <= 3, (low, high)
 
 
-@pytest.mark.parametrize("kind", KINDS)
-@pytest.mark.parametrize("name", ["blend", "stop"])
+@pytest.mark.parametrize("name,kind", on("blend") + on("stop"))
 def test_blend_keeps_speed_across_the_boundary(name, kind):
     """BLEND = 1: the intervals around the boundary stay those of FEED_RATE;
     BLEND = 0: the first line slows down to RAMP_START before it."""
@@ -250,9 +265,9 @@ def test_blend_keeps_speed_across_the_boundary(name, kind):
     assert abs(gaps[-1] - _gap(RAMP["ramp_start"])) <= 1, gaps[-4:]
 
 
-@pytest.mark.parametrize("kind", KINDS)
-def test_long_burst_fills_fifo_nothing_lost(kind):
-    out, log = run("fifo_full", kind)
+@pytest.mark.parametrize("name,kind", on("fifo_full"))
+def test_long_burst_fills_fifo_nothing_lost(name, kind):
+    out, log = run(name, kind)
     words = sum(len(command_words(c)) for c in FULL)
     assert words > 2 * SMALL_FIFO
     stops = [t.termination for t in out["burst"].transactions]
@@ -262,27 +277,27 @@ def test_long_burst_fills_fifo_nothing_lost(kind):
     assert out["position"] == expected_path(FULL)[-1]
 
 
-@pytest.mark.parametrize("kind", KINDS)
-def test_direct_pulse_mode(kind):
-    out, log = run("direct_pulses", kind)
+@pytest.mark.parametrize("name,kind", on("direct_pulses"))
+def test_direct_pulse_mode(name, kind):
+    out, log = run(name, kind)
     assert out["position"] == (7, -4)
     assert sum(r[1] for r in log.rises) == 7 and sum(r[2] for r in log.rises) == 4
 
 
-@pytest.mark.parametrize("kind", KINDS)
-@pytest.mark.parametrize("code", list(BAD))
-def test_malformed_command_error_interrupt(code, kind):
+@pytest.mark.parametrize("name,kind", [case for code in BAD for case in on(f"error_{code.lower()}")])
+def test_malformed_command_error_interrupt(name, kind):
     """The move before the bad command completes, the error is the bad
     command's, nothing after it runs."""
-    out, log = run(f"error_{code.lower()}", kind)
+    code = name.removeprefix("error_").upper()
+    out, log = run(name, kind)
     assert regmap.field_value("STATUS", "ERROR", out["status"]) == isa.ERROR_CODE[code]
     assert regmap.field_value("INT_STATUS", "ERROR", out["int_status"]) == 1
     assert out["position"] == (GOOD.dx, GOOD.dy) == log.path()[-1]
 
 
-@pytest.mark.parametrize("kind", KINDS)
-def test_soft_reset_mid_motion(kind):
-    out, log = run("soft_reset", kind)
+@pytest.mark.parametrize("name,kind", on("soft_reset"))
+def test_soft_reset_mid_motion(name, kind):
+    out, log = run(name, kind)
     assert regmap.field_value("STATUS", "BUSY", out["status"]) == 0
     assert 0 < out["rises"] == out["rises_later"]
     assert out["x"] == log.path()[-1][0] and 0 < out["x"] < 300

@@ -37,6 +37,11 @@ STEADY = regmap.RATE_MAX  # one iteration every other clock: a step every other 
 
 
 DDAS = ["contract", "rtl", "verilog"]
+# The Icarus co-simulation of the card core (``verilog``) takes about 15 s a bench: the default
+# suite runs it for the ramp and the chain; the other benches run it in the slow set.
+SLOW_VERILOG = pytest.mark.slow(reason="another Icarus run of the card core; the ramp and the chain check "
+                                       "its Verilog by default")
+DDAS_BUT_SLOW_VERILOG = ["contract", "rtl", pytest.param("verilog", marks=SLOW_VERILOG)]
 
 
 def _command_of(dda):
@@ -165,7 +170,7 @@ def test_long_line_ramps_up_and_down(kind):
     assert low <= ramp and abs(low - (len(gaps) - 1 - high)) <= 3, (low, high, ramp)
 
 
-@pytest.mark.parametrize("kind", DDAS)
+@pytest.mark.parametrize("kind", DDAS_BUT_SLOW_VERILOG)
 @pytest.mark.parametrize("blend", [True, False], ids=["blend", "stop"])
 def test_blend_keeps_speed_across_the_boundary(kind, blend):
     """BLEND = 1: the intervals around the boundary stay those of FEED_RATE;
@@ -231,7 +236,7 @@ def test_chained_moves_lose_no_iteration(kind):
     assert not late, f"rises off their iteration slot (rise index, clocks): {late[:5]}"
 
 
-@pytest.mark.parametrize("kind", DDAS)
+@pytest.mark.parametrize("kind", DDAS_BUT_SLOW_VERILOG)
 def test_rejected_arc_in_a_chain(kind):
     """The line before a rejected arc completes, the error is the arc's, the
     line queued after it runs once CLEAR_ERROR is written."""
@@ -259,7 +264,7 @@ def test_rejected_arc_in_a_chain(kind):
     assert results["after"] == (93, 14)
 
 
-@pytest.mark.parametrize("kind", DDAS)
+@pytest.mark.parametrize("kind", DDAS_BUT_SLOW_VERILOG)
 def test_arc_of_a_variant_not_built_is_refused(kind):
     """The default build has the improved and precise variants: an ARC asking for the
     traditional one is RANGE, nothing of it moves, the line after it runs once
@@ -283,7 +288,7 @@ def test_arc_of_a_variant_not_built_is_refused(kind):
     assert results["after"] == (3, 2)
 
 
-@pytest.mark.parametrize("kind", DDAS)
+@pytest.mark.parametrize("kind", DDAS_BUT_SLOW_VERILOG)
 def test_bad_opcode_discards_the_fifo_on_clear(kind):
     """After BAD_OPCODE the words behind the bad header (here a LINE's operands
     and more commands) are dropped by CLEAR_ERROR, not executed; words written

@@ -141,8 +141,15 @@ BENCHES = {
 }
 
 
-@pytest.mark.parametrize("build", sorted(BUILDS))
-@pytest.mark.parametrize("name", sorted(BENCHES))
+def _rtl_cases():
+    """Every bench on the default build; on the build with all four variants the paper's
+    arcs by default, the other benches (the same moves on the wider datapath) in the slow set."""
+    wider = pytest.mark.slow(reason="the default build's bench again on the all-variants datapath")
+    return [pytest.param(name, build, marks=[wider] if build == "all" and name != "paper" else [])
+            for build in sorted(BUILDS) for name in sorted(BENCHES)]
+
+
+@pytest.mark.parametrize("name,build", _rtl_cases())
 def test_rtl_equals_model_on_every_clock(name, build):
     # overlapped commands (each started as soon as the setup stage is free) in two benches;
     # the default build rejects the commands for the paper's traditional and weighted variants

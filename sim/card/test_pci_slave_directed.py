@@ -9,7 +9,7 @@ import pytest
 from myhdl import Signal, always_comb, always_seq, block
 
 from rtl.interfaces import LocalBus, PciBus
-from rtl.pci.pci_target_build import local_addr_width
+from rtl.pci.pci_slave_build import local_addr_width
 from rtl.pci_slave import pci_slave, pci_slave_ports
 from sim.card.local_memory import LocalMemory, local_memory
 from sim.pci.bench import PciBench

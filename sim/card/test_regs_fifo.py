@@ -25,7 +25,7 @@ def setup_motion(driver, control=1, feed=regmap.RATE_MAX):
     yield from driver.io_write(regmap.offset("CONTROL"), control)
 
 
-@pytest.mark.parametrize("seed", [11, 12])
+@pytest.mark.parametrize("seed", [11, pytest.param(12, marks=pytest.mark.slow(reason="a second seed of the same walk"))])
 def test_register_semantics(seed):
     rng = random.Random(seed)
     model = RegisterModel()
@@ -81,7 +81,10 @@ MOTIONS = {
 }
 
 
-@pytest.mark.parametrize("name", sorted(MOTIONS))
+@pytest.mark.parametrize("name", [
+    "arc_then_line", "arc_crossing_cw",
+    *(pytest.param(name, marks=pytest.mark.slow(reason="lines and a quarter arc: the other two cover both kinds"))
+      for name in ("arc_quarter", "lines"))])
 def test_motion_matches_model(name):
     commands = MOTIONS[name]
     results = {}
@@ -127,7 +130,11 @@ MALFORMED = {  # case: (error code, words)
 }
 
 
-@pytest.mark.parametrize("case", sorted(MALFORMED))
+@pytest.mark.parametrize("case", [
+    "coordinate", "opcode",
+    *(pytest.param(case, marks=pytest.mark.slow(reason="their error codes also run end to end on MyHDL and "
+                                                      "Verilator, sim/card/test_card_e2e.py"))
+      for case in ("off_circle", "reserved", "set_index"))])
 def test_malformed_command_stops_until_cleared(case):
     code, bad = MALFORMED[case]
     good = command_words(LineCommand(4, 2))
@@ -153,7 +160,10 @@ def test_malformed_command_stops_until_cleared(case):
     assert wave.edges("irq", "1"), "INTA# request never raised"
 
 
-@pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
+@pytest.mark.parametrize("cosim", [
+    pytest.param(False, id="myhdl", marks=pytest.mark.slow(reason="the Icarus run checks the generated Verilog; "
+                                                                  "direct pulses on MyHDL run end to end")),
+    pytest.param(True, id="icarus")])
 def test_direct_pulse_mode(cosim):
     results = {}
     period = 7
@@ -240,7 +250,9 @@ def test_stream_commands_set_mark_dwell_pulse():
     assert widths == {3}, widths
 
 
-@pytest.mark.parametrize("first, second", [(150, 90), (1, 200), (0, 120)])
+@pytest.mark.parametrize("first, second", [
+    (1, 200), *(pytest.param(*pair, marks=pytest.mark.slow(reason="more pairs of lengths of the same rule"))
+                for pair in ((150, 90), (0, 120)))])
 def test_back_to_back_dwells_wait_both(first, second):
     # a DWELL issued as the one before it ends waits its own clocks in full
     stream = (command_words(LineCommand(1, 0)) + isa.encode("DWELL", first) + isa.encode("DWELL", second)

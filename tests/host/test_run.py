@@ -31,7 +31,8 @@ def figure(text, label, pattern):
     return match.groups()
 
 
-@pytest.mark.parametrize("example", ["part.ngc", "drawing.svg"])
+@pytest.mark.parametrize("example", ["part.ngc", pytest.param("drawing.svg", marks=pytest.mark.slow(
+    reason="the SVG front end's planning is tested in tests/host/test_svg.py; this runs the same pins check"))])
 def test_examples_run_on_verilator_as_planned(example, tmp_path):
     picture = tmp_path / "pins.png"
     result = run_host("run", EXAMPLES / example, "--sim", "verilator", *FAST, "--preview", picture)
@@ -51,7 +52,9 @@ def test_examples_run_on_verilator_as_planned(example, tmp_path):
     assert picture.stat().st_size > 10_000
 
 
-@pytest.mark.parametrize("kind", ["verilator", "myhdl", "icarus"])
+@pytest.mark.parametrize("kind", ["verilator", *(pytest.param(kind, marks=pytest.mark.slow(
+    reason="half a minute of MyHDL or Icarus clocks; these transports are tested in tests/host/test_transports.py"))
+    for kind in ("myhdl", "icarus"))])
 def test_info_and_selftest_on_every_simulator(kind):
     info = run_host("info", "--card", kind)
     assert info.returncode == 0, info.stderr

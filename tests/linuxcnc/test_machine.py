@@ -24,7 +24,9 @@ WATCHDOG_SLACK = 3  # docs/machine.md: the stop comes TIMEOUT clocks after the w
 FREE_RUN = 20 * PERIOD_CLOCKS  # clocks the card runs on its own once LinuxCNC is gone
 KILL_AFTER = 1.5  # s into lcnc_kill.ngc (a 3.4 s rapid)
 
-pytestmark = [pytest.mark.linuxcnc, pytest.mark.skipif(missing() is not None, reason=str(missing()))]
+# one LinuxCNC per host: every LinuxCNC test runs on one xdist worker, in turn
+pytestmark = [pytest.mark.linuxcnc, pytest.mark.xdist_group("linuxcnc"),
+              pytest.mark.skipif(missing() is not None, reason=str(missing()))]
 
 
 @pytest.fixture
@@ -140,7 +142,8 @@ def test_watchdog_has_bit_holds_the_card_until_written_false(linuxcnc_alone):
     shutil.rmtree(run, ignore_errors=True)
 
 
-@pytest.mark.parametrize("ppm", [2000, -2000])
+@pytest.mark.parametrize("ppm", [2000, pytest.param(-2000, marks=pytest.mark.slow(
+    reason="a slow card clock: the same trim the other way, another LinuxCNC run"))])
 def test_clock_drift_is_trimmed_from_the_fifo_level(linuxcnc_alone, ppm):
     """The card's clock ``ppm`` fast or slow against the servo periods (card server
     --ppm; 2000 ppm drains or fills the queue by a period in half a second): the

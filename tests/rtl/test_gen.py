@@ -1,9 +1,13 @@
 """``gen/`` holds exactly what ``python -m rtl.top --convert`` writes now.
 
-The converter runs in-process into a temporary folder (its ``--out``), so the
-comparison covers every file it writes, the C header included.
+The converter's command line runs into a temporary folder (its ``--out``), so
+the comparison covers every file it writes, the C header included.
 """
-from rtl.convert import GEN_DIR, main
+import pytest
+
+from rtl.convert import GEN_DIR
+
+pytestmark = pytest.mark.xdist_group("default_build")
 
 
 def _files(folder):
@@ -11,10 +15,9 @@ def _files(folder):
             if path.is_file() and not path.name.startswith(".")}
 
 
-def test_gen_is_what_the_converter_writes(tmp_path, capsys):
-    assert main(["--convert", "--out", str(tmp_path)]) == 0
-    capsys.readouterr()
-    fresh, committed = _files(tmp_path), _files(GEN_DIR)
+def test_gen_is_what_the_converter_writes(default_build_by_the_cli):
+    out, _ = default_build_by_the_cli
+    fresh, committed = _files(out), _files(GEN_DIR)
     missing = sorted(set(fresh) - set(committed))
     extra = sorted(set(committed) - set(fresh))
     stale = sorted(name for name in set(fresh) & set(committed) if fresh[name] != committed[name])

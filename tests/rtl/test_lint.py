@@ -27,6 +27,8 @@ BUILDS = {
     "ice40": ["--device", "ice40", "--coord-width", "14", "--fifo-depth", "4", "--clock-hz", "33333333"],
 }
 SOURCES = [(build, unit) for build in BUILDS for unit in UNITS]
+# Each build is converted once per worker: the module's tests share one.
+pytestmark = pytest.mark.xdist_group("lint")
 
 # the SB_IO black box of the FuseSoC lint target, and the LUT cell of the ice40 build
 SB_IO_BLACKBOX = ROOT / "tests" / "verilog" / "sb_io_blackbox.v"

@@ -8,14 +8,14 @@ resolved with it, the card clocked, the segment as sampled out).
 that the end-to-end scenarios use (``host``, ``checker``, ``run``).  RST# is
 held for the same clocks as there, so the card's clocks line up with the
 other back ends'.  A scenario may yield, besides the host's ``Request`` and
-``Clocks``, a ``CardWait`` (``sim.backends.verilator.card``): it runs in compiled code while
+``Clocks``, a ``CardWait`` (``sim.backends.verilator.verilated_card``): it runs in compiled code while
 the host is quiet (nothing queued, every line released), clock by clock with
 the checker otherwise.
 
     per bus clock:  core.drive --> step_bus --> sample --> checker, core.step
     a quiet wait:   model.run(limit, INTA#, STEP rises)   (no Python per clock)
 """
-from sim.backends.verilator.card import CardWait
+from sim.backends.verilator.verilated_card import CardWait
 from sim.backends.verilator.model import LINES, Stop
 from sim.pci.bench import CLOCK_PERIOD, RESET_CLOCKS, TARGET_DEVICE
 from sim.pci.checker import ProtocolChecker
