@@ -1,10 +1,10 @@
-"""Clock-level golden model of the DDA unit: ``DdaMachine``."""
+"""Clock-level golden model of the DDA unit: ``ClockedDda``."""
 from models.dda_build import ALL_VARIANTS, left_width
 from models.dda_model import iterations_left_bound, iterator_for
 from models.dda_plan import LineCommand, setup_clocks
 
 
-class DdaMachine:
+class ClockedDda:
     """Clock-level model of ``rtl/dda_arc.py``: call ``clock()`` once per rising edge.
 
     ``clock(start, advance, command)`` takes the inputs sampled at the edge

@@ -7,7 +7,7 @@ Two levels:
   set-up of ``models/dda_plan.py`` (``plan_arc``).  ``metrics(path)``
   (``models/dda_measure.py``) measures it (V_arc of the paper's eq. 12, radial
   errors, sawteeth, ...).
-* ``DdaMachine`` (``models/dda_clocked.py``) adds the clock: start / setup / run
+* ``ClockedDda`` (``models/dda_clocked.py``) adds the clock: start / setup / run
   / done, the ``advance`` enable and the registered outputs, exactly as the
   hardware does them; the benches compare it with the RTL on every clock.
 

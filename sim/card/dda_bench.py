@@ -1,4 +1,4 @@
-"""Clock-by-clock bench of ``rtl/dda_arc.py`` against ``models.dda_clocked.DdaMachine``.
+"""Clock-by-clock bench of ``rtl/dda_arc.py`` against ``models.dda_clocked.ClockedDda``.
 
 ``dda_bench(ports, commands, record, ...)`` drives a list of commands through
 the ``DdaPort`` (start pulse when ready, one after the other or overlapped, a
@@ -13,7 +13,7 @@ import random
 
 from myhdl import StopSimulation, block, instance
 
-from models.dda_clocked import DdaMachine
+from models.dda_clocked import ClockedDda
 from models.dda_model import ArcCommand, LineCommand, plan_arc
 from rtl.dda_arc import dda_arc
 from sim.backends.clocking import clock_source
@@ -88,7 +88,7 @@ def dda_bench(ports, commands, record, *, verilog=None, seed=1, advance_rate=0.7
     """
     clock, reset, cmd, steps = ports["clock"], ports["reset"], ports["cmd"], ports["steps"]
     rng = random.Random(seed)
-    model = DdaMachine(cmd.coord_width, cmd.variants)
+    model = ClockedDda(cmd.coord_width, cmd.variants)
 
     clock_driver = clock_source(clock, 2 * HALF_PERIOD)
 
