@@ -8,7 +8,7 @@ import pytest
 from rtl.convert import ROOT
 
 DOC = ROOT / "docs" / "verification.md"
-EXAMPLES = ("a second clock domain and watched outputs",)
+EXAMPLES = ("host options", "a second clock domain and watched outputs")
 
 
 def examples():
