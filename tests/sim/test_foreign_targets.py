@@ -115,3 +115,28 @@ def test_a_second_clock_domain_and_watched_outputs():
 def test_an_output_the_target_has_not_is_refused():
     with pytest.raises(CosimError, match="two_clock_top has no output wb_nothing"):
         PciBench(target=split_target("two_clock_top", outputs=["wb_nothing"]))
+
+
+class FakePort:
+    """A DUT port as cocotb shows it: its value as a string of 0/1/x/z."""
+
+    def __init__(self, text):
+        self.value = text
+
+    def __len__(self):
+        return len(self.value)
+
+
+@pytest.mark.parametrize("enables, level, expected", [
+    ("1" * 32, "0" * 16 + "1" * 16, (0xFFFF, True, False)),         # all enabled
+    ("0" * 32, "x" * 32, (0, False, False)),                        # released: its X does not count
+    ("0" * 16 + "1" * 16, "1" * 32, (0xFFFF, True, True)),          # driven only in part
+    ("1" * 31 + "z", "1" * 32, (0xFFFFFFFE, True, True)),           # an enable bit Z
+    ("1" * 32, "x" + "0" * 31, (0, True, True)),                    # X on an enabled bit
+])
+def test_the_cocotb_front_end_reads_per_bit_enables_alike(enables, level, expected):
+    from sim.pci.cocotb_bus import _drive
+
+    assert _drive(FakePort(level), FakePort(enables), False, 32) == expected
+    inverted = "".join({"0": "1", "1": "0"}.get(c, c) for c in enables)
+    assert _drive(FakePort(level), FakePort(inverted), True, 32) == expected
