@@ -14,7 +14,8 @@ function ``bench -> list`` called once the bus model exists.
 
 Verilog targets run in float mode (``floating=True``): an AD, C/BE# or PAR
 line nobody drives reaches them as ``z``, and an X/Z detector on every line
-they drive reports to the monitor (rule 19).  The monitor stops at the
+they drive reports to the monitor (rule 19; rule 20 for X/Z the host takes
+as read data).  The monitor stops at the
 first violation (``monitor="stop"``) or records every one and fails the run
 at its end with a summary (``monitor="record"``).
 """

@@ -11,7 +11,7 @@ falling edge, when every line has settled, it reads the target's drive,
 resolves each line with the host's (pull-ups on the control lines; in float
 mode, the default, AD, C/BE# and PAR reach the target as ``z`` when nobody
 drives them), writes the target's inputs, feeds the protocol checker the
-sample (with the lines the target drove as X or Z: rule 19) and steps the
+sample (with the lines the target drove as X or Z: rules 19, 20) and steps the
 host core, whose drive counts from the next rising edge.  The target's
 outputs must come from its flip-flops (as PCI's timing wants), not straight
 from its inputs.

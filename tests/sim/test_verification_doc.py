@@ -6,6 +6,7 @@ import re
 import pytest
 
 from rtl.convert import ROOT
+from sim.pci.records import RULES
 
 DOC = ROOT / "docs" / "verification.md"
 EXAMPLES = ("host options", "a second clock domain and watched outputs")
@@ -25,3 +26,9 @@ def test_every_named_example_is_run_here():
 def test_the_example_runs(name, monkeypatch):
     monkeypatch.chdir(ROOT)
     exec(compile(examples()[name], f"docs/verification.md ({name})", "exec"), {})
+
+
+def test_the_rules_table_is_the_checkers():
+    table = DOC.read_text().split("| rule | what it holds the bus to |")[1].split("\n\n")[0]
+    rows = re.findall(r"^\| (\d+) \| (.+?) \|$", table, re.M)
+    assert {int(number): text for number, text in rows} == RULES
