@@ -10,6 +10,9 @@ master wait states) and prints
 * for configuration, I/O and memory reads and writes: the edges from the one
   that samples the address (FRAME# asserted) to the ones that sample DEVSEL#
   and the first TRDY#;
+* the same on the whole card, whose I/O space is its function registers
+  (``sim/card/register_latency.py``: ``gen/card.v`` and ``gen/top.v`` in
+  Icarus, the MyHDL card);
 * ``pci_slave`` alone on iCE40 HX8K (``fpgaflow``): logic cells, flip-flops
   and fmax (from ``gen/pci_slave.v``).
 """
@@ -17,6 +20,7 @@ import argparse
 import sys
 
 from fpgaflow import synthesize
+from sim.card import register_latency
 from sim.pci.bench import PciBench
 from sim.pci.host import COMMAND_IO, COMMAND_MEMORY, MEM_READ, MEM_READ_MULTIPLE
 
@@ -75,10 +79,19 @@ def print_bursts(bursts):
 
 
 def print_latencies(latencies):
-    print("Clocks from FRAME# asserted to DEVSEL# / first TRDY# asserted (= edges after the"
-          " address edge at which they are sampled):")
+    print("pci_slave, zero-latency back end: clocks from FRAME# asserted to DEVSEL# / first TRDY#"
+          " asserted (= edges after the address edge at which they are sampled):")
     for name, (devsel, trdy) in latencies.items():
         print(f"  {name:<22} DEVSEL# {devsel}   TRDY# {trdy}")
+
+
+def print_card_latencies(kinds):
+    print("The card: clocks after the address phase to DEVSEL# / first TRDY# "
+          "(I/O: STATUS read, FEED_RATE written; memory: the FIFO window):")
+    figures = {kind: register_latency.measure(kind) for kind in kinds}
+    print(f"  {'':22}" + "".join(f"{kind:>12}" for kind in kinds))
+    for access in register_latency.ACCESSES:
+        print(f"  {access:<22}" + "".join(f"{'A+%d / A+%d' % figures[kind][access]:>12}" for kind in kinds))
 
 
 def print_synthesis(freq):
@@ -94,12 +107,16 @@ def main(argv=None):
     parser.add_argument("--target", choices=("myhdl", "verilog"), default="myhdl",
                         help="simulate the MyHDL design or gen/pci_slave.v (default: myhdl)")
     parser.add_argument("--no-synth", action="store_true", help="skip the iCE40 figures")
+    parser.add_argument("--card", nargs="*", choices=register_latency.KINDS, default=list(register_latency.KINDS),
+                        help="the card's builds whose access latency to measure (default: all; none: skip)")
     parser.add_argument("--synth-freq", type=float, default=100.0,
                         help="clock nextpnr places for, MHz (default: 100)")
     args = parser.parse_args(argv)
     bursts, latencies = measure(args.target)
     print_bursts(bursts)
     print_latencies(latencies)
+    if args.card:
+        print_card_latencies(args.card)
     if not args.no_synth:
         print_synthesis(args.synth_freq)
     return 0

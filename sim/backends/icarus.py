@@ -13,6 +13,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import warnings
 from pathlib import Path
 
 from myhdl import Cosimulation
@@ -26,10 +27,18 @@ _DECLARATION = re.compile(
     r"([\w\s,]+?)\s*(?=;|\)\s*;|,\s*(?:input|output|inout)\b|$)", re.S)
 _PARAMETER = re.compile(r"\b(?:parameter|localparam)\s+(?:integer\s+)?(\w+)\s*=\s*([^,;)]+)")
 _COMMENTS = re.compile(r"//[^\n]*|/\*.*?\*/", re.S)
+_ATTRIBUTES = re.compile(r"\(\*(?!\)).*?\*\)", re.S)   # (* keep *), not @(*)
+_SUBROUTINES = re.compile(r"\bfunction\b.*?\bendfunction\b|\btask\b.*?\bendtask\b", re.S)
+_PORT_INFO = re.compile(r'\s*\.port_info\s+\d+\s+/(INPUT|OUTPUT|INOUT)\s+(\d+)\s+"([^"]+)"')
+_PORT_WIDTH_WARNING = re.compile(r"warning: Port .* expects \d+ bits?, got \d+")
 
 
 class CosimError(RuntimeError):
     """Icarus or the VPI module could not be built or run."""
+
+
+class CosimWarning(UserWarning):
+    """Icarus warned while compiling a design for co-simulation."""
 
 
 def vpi_module():
@@ -73,27 +82,72 @@ def read_verilog(path):
 
 
 def port_directions(verilog_text, module):
-    """``[(direction, range, name)]`` of a module's ports, in declaration
-    order; both port styles (ANSI ``module m(input [7:0] a, ...)`` and
-    declarations in the body).  Ranges over parameters with plain integer
-    values are evaluated (``[WIDTH-1:0]`` becomes ``[31:0]``)."""
-    text = _COMMENTS.sub(" ", verilog_text)
+    """``[(direction, range, name)]`` of a module's ports, in port order;
+    both port styles (ANSI ``module m(input [7:0] a, ...)`` and the names in
+    the header with their declarations in the body, where the inputs of a
+    ``function`` or ``task`` are not ports).  Comments and attributes are
+    skipped; ranges over parameters with plain integer values are evaluated
+    (``[WIDTH-1:0]`` becomes ``[31:0]``).  No preprocessor: a design with
+    macros or `` `ifdef`` in its ports is read by ``elaborated_ports``."""
+    text = _ATTRIBUTES.sub(" ", _COMMENTS.sub(" ", verilog_text))
     match = re.search(rf"\bmodule\s+{module}\b(.*?)\bendmodule\b", text, re.S)
     if not match:
         raise CosimError(f"module {module} not found")
     body = match.group(1)
     parameters = {name: value.strip() for name, value in _PARAMETER.findall(body)}
     header, rest = _port_list(body)
-    source = header if _DIRECTION.search(header) else rest
-    ports = []
-    for direction, kinds, width, names in _DECLARATION.findall(source):
+    ansi = bool(_DIRECTION.search(header))
+    declared = {}
+    for direction, kinds, width, names in _DECLARATION.findall(header if ansi else _SUBROUTINES.sub(" ", rest)):
         signed = "signed " if "signed" in kinds.split() else ""
         for name in re.split(r"[\s,]+", names.strip()):
             if name:
-                ports.append((direction, signed + _evaluate_range(width, parameters, module), name))
-    if not ports and header.strip():
-        raise CosimError(f"cannot read the port declarations of {module}")
+                declared[name] = (direction, signed + _evaluate_range(width, parameters, module), name)
+    if ansi:
+        return list(declared.values())
+    order = [name.strip() for name in header.split(",") if name.strip()]
+    missing = [name for name in order if name not in declared]
+    if missing:
+        raise CosimError(f"cannot read the port declarations of {module}: no direction for {missing}")
+    return [declared[name] for name in order]
+
+
+def elaborated_ports(verilog_files, module, libraries=(), defines=(), include_dirs=()):
+    """``[(direction, range, name)]`` of ``module``'s ports as Icarus
+    elaborates it, in port order: the simulator's own reading, with the
+    design's defines, include folders and libraries (macros, `` `ifdef``,
+    functions, any constant expression in a range).  Ranges come back as
+    ``[width-1:0]``."""
+    with tempfile.TemporaryDirectory(prefix=f"{module}_ports_", dir=build_dir("cosim")) as work:
+        image = Path(work) / "ports.vvp"
+        result = subprocess.run(["iverilog", *_options(libraries, defines, include_dirs), "-s", module,
+                                 "-o", str(image), *map(str, verilog_files)], capture_output=True, text=True)
+        if result.returncode:
+            raise CosimError(f"Icarus cannot elaborate {module}:\n{result.stdout}{result.stderr}")
+        lines = image.read_text(errors="replace").splitlines()
+    root = re.compile(rf'^\S+ \.scope module, "{re.escape(module)}" "{re.escape(module)}" \d+ \d+;$')
+    start = next((index for index, line in enumerate(lines) if root.match(line)), None)
+    if start is None:
+        raise CosimError(f"Icarus elaborated no module {module}")
+    ports = []
+    for line in lines[start + 1:]:
+        if line.startswith("S_"):
+            break
+        found = _PORT_INFO.match(line)
+        if found:
+            direction, width, name = found.groups()
+            ports.append((direction.lower(), _range(int(width)), name))
     return ports
+
+
+def _range(width):
+    return f"[{width - 1}:0] " if width > 1 else ""
+
+
+def port_width(declared_range):
+    """Bits of a port from its ``(direction, range, name)`` range text."""
+    bounds = re.search(r"\[\s*(-?\d+)\s*:\s*(-?\d+)\s*\]", declared_range)
+    return abs(int(bounds.group(1)) - int(bounds.group(2))) + 1 if bounds else 1
 
 
 def _port_list(body):
@@ -191,17 +245,35 @@ def icarus_cosimulation(name, wrapper_module, wrapper_text, signals, verilog_fil
     wrapper = work / f"{wrapper_module}.v"
     wrapper.write_text(wrapper_text)
     image = work / f"{name}.vvp"
-    if isinstance(defines, dict):
-        defines = [name if value is None else f"{name}={value}" for name, value in defines.items()]
-    options = [f"-D{define}" for define in defines]
-    options += [f"-I{Path(folder)}" for folder in include_dirs]
-    for library in libraries:
-        options += ["-l", str(library)]
-    _run(["iverilog", "-g2005", *options, "-s", wrapper_module, "-o", str(image), str(wrapper),
-          *map(str, verilog_files)])
+    result = _run(["iverilog", *_options(libraries, defines, include_dirs), "-s", wrapper_module,
+                   "-o", str(image), str(wrapper), *map(str, verilog_files)])
+    _report_warnings(name, wrapper, result.stdout + result.stderr)
     cosim = Cosimulation(f"vvp -m {vpi_module()} {image}", **signals)
     cosim.name = name  # lets MyHDL's tracer list it among a bench's instances
     return cosim
+
+
+def _options(libraries, defines, include_dirs):
+    """iverilog's language, ``-D``, ``-I`` and ``-l`` options."""
+    if isinstance(defines, dict):
+        defines = [name if value is None else f"{name}={value}" for name, value in defines.items()]
+    options = ["-g2005", *(f"-D{define}" for define in defines)]
+    options += [f"-I{Path(folder)}" for folder in include_dirs]
+    for library in libraries:
+        options += ["-l", str(library)]
+    return options
+
+
+def _report_warnings(name, wrapper, output):
+    """Icarus's warnings on a compile that succeeded: a port width mismatch
+    in the generated wrapper is a wiring error (``CosimError``); any other
+    warning is passed on (``CosimWarning``), never dropped."""
+    text = output.strip()
+    if not text:
+        return
+    if any(_PORT_WIDTH_WARNING.search(line) and line.startswith(str(wrapper)) for line in text.splitlines()):
+        raise CosimError(f"{name}: the wrapper's port widths do not match the design:\n{text}")
+    warnings.warn(f"Icarus on {name}:\n{text}", CosimWarning, stacklevel=3)
 
 
 def convert_module(block_factory, module, ports, **params):

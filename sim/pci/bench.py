@@ -14,11 +14,12 @@ function ``bench -> list`` called once the bus model exists.
 
 Verilog targets run in float mode (``floating=True``): an AD, C/BE# or PAR
 line nobody drives reaches them as ``z``, and an X/Z detector on every line
-they drive reports to the monitor (rule 19).  The monitor stops at the
+they drive reports to the monitor (rule 19; rule 20 for X/Z the host takes
+as read data).  The monitor stops at the
 first violation (``monitor="stop"``) or records every one and fails the run
 at its end with a summary (``monitor="record"``).
 """
-from myhdl import Signal, StopSimulation, block, instance, now
+from myhdl import Signal, StopSimulation, block, instance, intbv, now
 
 from rtl.convert import GEN_DIR
 from rtl.interfaces import card_reset
@@ -59,7 +60,8 @@ class PciBench:
     a device 2^25 clocks before its first configuration access, Trhfa, so
     a slow target may need more, or an ``enumerate_bus(settle_clocks=...)``
     that retries master-aborted reads); ``floating``: float mode of
-    Verilog targets."""
+    Verilog targets.  ``outputs``: ``{name: Signal}`` of the outputs a
+    ``VerilogTarget`` names in its ``outputs``, for a scenario to watch."""
 
     def __init__(self, target="myhdl", slave_params=None, memory=None, host_options=None,
                  allow_parity_errors=False, monitor="stop", settle_clocks=SETTLE_CLOCKS,
@@ -77,8 +79,11 @@ class PciBench:
         self.ports = None
         self.memory = memory
         self.other_blocks = []
+        self.outputs = {}
         if isinstance(target, VerilogTarget):
             agent = TargetAgent([line for line in LINE_WIDTHS if target.drives(line)])
+            self.outputs = {name: Signal(bool(0)) if width == 1 else Signal(intbv(0)[width:])
+                            for name, width in target.output_widths().items()}
         elif callable(target):
             agent, self.other_blocks = target(self)
         else:
@@ -105,7 +110,7 @@ class PciBench:
         """[(block factory, args)] of the target side, or a ready Cosimulation
         in place of a factory (MyHDL wants blocks created in the bench body)."""
         if isinstance(self.target, VerilogTarget):
-            return [(self._target_cosimulation(self.target), None)]
+            return [(self._target_cosimulation(self.target, self.outputs), None)]
         if callable(self.target):
             blocks = self.other_blocks
             return blocks(self) if callable(blocks) else blocks

@@ -12,6 +12,11 @@ runs it in a MyHDL bench.  Two modes:
   drivers at that edge); ``summary()`` counts them by rule and
   ``raise_recorded()`` raises one ``ProtocolViolation`` for them all.
 
+A four-state front end's X/Z report (``BusSample.unknown``) is rule 19,
+except X or Z on AD at an edge where the master takes read data (a read,
+IRDY#, TRDY# and DEVSEL# asserted): that is data corruption, rule 20 (a
+two-state master reads the X as 0 or 1 and goes on).
+
 The checker also snoops configuration writes to the Command register of the
 watched device (Parity Error Response, SERR# Enable) to know when PERR# and
 SERR# are due, and keeps a summary of every transaction (``transactions``)
@@ -45,7 +50,7 @@ def _asserted(value):
 
 
 class ProtocolChecker:
-    """The 18 rules over a stream of samples.
+    """The rules of ``RULES`` over a stream of samples.
 
     target_device: device number whose IDSEL is AD[16+n] (for Command
     register snooping); master_parity_response: the master's own Parity
@@ -58,7 +63,8 @@ class ProtocolChecker:
             raise ValueError(f"monitor mode must be 'stop' or 'record', not {mode!r}")
         self.mode = mode
         self.violations = []
-        self.unknown_clocks = 0   # edges with an X/Z report (rule 19)
+        self.unknown_clocks = 0   # edges with an X/Z report (rules 19 and 20)
+        self.corrupt_read_clocks = 0   # of them, edges whose read data was X/Z (rule 20)
         self.target_device = target_device
         self.master_parity_response = master_parity_response
         self.allow_parity_errors = allow_parity_errors
@@ -106,9 +112,7 @@ class ProtocolChecker:
         self.edges += 1
         self.sample = sample
         if sample.unknown:
-            self.unknown_clocks += 1
-            self.fail(19, f"{', '.join(sorted(line.upper() for line in sample.unknown))} X or Z "
-                          "while driven")
+            self._report_unknown(sample, in_reset)
         if in_reset:
             self._check_reset(sample)
             self._reset_state()
@@ -125,6 +129,21 @@ class ProtocolChecker:
         self._check_latency(sample, info)
         self._check_reports(sample)
         self.previous, self.previous_info = sample, info
+
+    def _report_unknown(self, sample, in_reset):
+        """Rule 20 for X/Z on AD that the master takes as read data, rule 19
+        for every other X/Z report."""
+        self.unknown_clocks += 1
+        current = self.current
+        lines = set(sample.unknown)
+        if "ad" in lines and not in_reset and current is not None and not current.ended \
+                and not current.write and all(_asserted(sample.values[line]) for line in ("irdy", "trdy", "devsel")):
+            self.corrupt_read_clocks += 1
+            lines.discard("ad")
+            self.fail(20, f"AD X or Z taken as read data ({current.command:#x} at {current.address:#x}, "
+                          f"data phase {current.data_phases + 1})")
+        if lines:
+            self.fail(19, f"{', '.join(sorted(line.upper() for line in lines))} X or Z while driven")
 
     # ----- transaction tracking --------------------------------------------------
     def _track(self, previous, sample):

@@ -4,13 +4,14 @@ and a monitor on a target's pins in any simulator cocotb runs.
 
 ``CocotbPciBus(dut, pins, clock, reset)`` joins the host to a target with
 split PCI ports (the pin map of ``sim.pci.verilog_target``: ``{line: (in, out,
-oe)}``, a ``~`` before an active-low enable; ``split_pins`` builds it for
-the converter's ``pci_<line>_in/_out/_oe`` names).  Once per clock, at the
+oe)}``, a ``~`` before an active-low enable, which is one bit or one per
+bit of the line; ``split_pins`` builds it for the converter's
+``pci_<line>_in/_out/_oe`` names).  Once per clock, at the
 falling edge, when every line has settled, it reads the target's drive,
 resolves each line with the host's (pull-ups on the control lines; in float
 mode, the default, AD, C/BE# and PAR reach the target as ``z`` when nobody
 drives them), writes the target's inputs, feeds the protocol checker the
-sample (with the lines the target drove as X or Z: rule 19) and steps the
+sample (with the lines the target drove as X or Z: rules 19, 20) and steps the
 host core, whose drive counts from the next rising edge.  The target's
 outputs must come from its flip-flops (as PCI's timing wants), not straight
 from its inputs.
@@ -34,11 +35,31 @@ from sim.pci.master import PciMaster
 
 
 def _read(handle):
-    """(value with X/Z read as 0, whether any bit was X/Z or other unknown)."""
+    """(value with X/Z read as 0, mask of the bits that were X/Z or other unknown)."""
     text = str(handle.value)
-    if text.isdigit() and set(text) <= {"0", "1"}:
-        return int(text, 2), False
-    return int("".join(c if c in "01" else "0" for c in text), 2), True
+    if set(text) <= {"0", "1"}:
+        return int(text, 2), 0
+    return (int("".join(c if c in "01" else "0" for c in text), 2),
+            int("".join("0" if c in "01" else "1" for c in text), 2))
+
+
+def _drive(port_out, port_oe, inverted, width):
+    """(value, driven, X/Z report) of a split output: one enable for the
+    line, or one per bit (driven while any bit is, each bit's value only
+    where it is; reported when only some bits are, or on an X/Z enable or an
+    X/Z on an enabled bit)."""
+    full = (1 << width) - 1
+    level, level_unknown = _read(port_out)
+    if port_oe is None:
+        return level, True, bool(level_unknown)
+    enable, enable_unknown = _read(port_oe)
+    per_bit = len(port_oe) == width > 1
+    mask = full if per_bit else 1
+    enable = ((enable ^ mask) if inverted else enable) & ~enable_unknown   # an X/Z enable enables nothing
+    if not per_bit:
+        return level, bool(enable), bool(enable_unknown) or bool(enable and level_unknown)
+    partial = enable not in (0, full)
+    return level & enable, bool(enable), bool(enable_unknown) or partial or bool(level_unknown & enable)
 
 
 class CocotbPciBus:
@@ -59,9 +80,12 @@ class CocotbPciBus:
         self.ports = {}
         for line, (in_name, out_name, oe_name) in pins.items():
             inverted = bool(oe_name) and oe_name.startswith("~")
+            enable = getattr(dut, oe_name.lstrip("~")) if oe_name else None
+            if enable is not None and out_name and len(enable) not in (1, LINE_WIDTHS[line]):
+                raise ValueError(f"output enable {oe_name.lstrip('~')} of {line.upper()} is {len(enable)} "
+                                 f"bits; give one enable (1 bit) or one per bit ({LINE_WIDTHS[line]} bits)")
             self.ports[line] = (getattr(dut, in_name) if in_name else None,
-                                getattr(dut, out_name) if out_name else None,
-                                getattr(dut, oe_name.lstrip("~")) if oe_name else None, inverted)
+                                getattr(dut, out_name) if out_name else None, enable, inverted)
         self._completion = Event()
         self._task = None
 
@@ -99,10 +123,8 @@ class CocotbPciBus:
                 value = getattr(drive, f"{line}_out")
             port_in, port_out, port_oe, inverted = self.ports.get(line, (None, None, None, False))
             if port_out is not None:
-                enable, enable_unknown = _read(port_oe) if port_oe is not None else (1, False)
-                enable ^= inverted
-                level, level_unknown = _read(port_out)
-                if enable_unknown or (enable and level_unknown):
+                level, enable, unsure = _drive(port_out, port_oe, inverted, width)
+                if unsure:
                     unknown.add(line)
                 if enable:
                     names.append("target")

@@ -24,6 +24,7 @@ RULES = {
     17: "sustained tri-state lines driven high before release",
     18: "lines released during reset",
     19: "no X or Z on a line while it is driven",
+    20: "no X or Z in read data the master takes (data corruption)",
 }
 
 class ProtocolViolation(AssertionError):

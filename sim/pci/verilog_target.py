@@ -16,20 +16,27 @@ generated Verilog module that
 * watches every line while the target drives it: an output enable that is
   X or Z, an X or Z on an enabled line, or a multi-bit line driven in part
   sets that line's bit of ``unknown``; the bus model hands it to the monitor
-  in each sample, which reports rule 19 with the clock.
+  in each sample, which reports rule 19 with the clock (rule 20 for X/Z
+  that the host takes as read data);
+* hands the target's further outputs named in ``outputs`` to MyHDL as they are.
 
 Pin map: ``{line: port}`` for a tri-state (``inout``) port, or ``{line:
 (in, out, oe)}`` for split ports (any of them None: the target neither reads
-nor drives that way).  A name starting with ``~`` is active low (an enable
-``~ad_oe_n``), also for ``reset`` (RST# itself is active low: ``reset="rst_n"``;
-an active-high reset input is ``"~rst"``).  Lines: ``sim.pci.lines.LINE_WIDTHS``.
+nor drives that way).  An enable is one bit for the whole line or one bit
+per bit of the line (32 on AD, 4 on C/BE#); any other width, or a port whose
+width is not the line's, is refused.  A name starting with ``~`` is active
+low (an enable ``~ad_oe_n``), also for ``reset`` (RST# itself is active low:
+``reset="rst_n"``; an active-high reset input is ``"~rst"``).  Lines:
+``sim.pci.lines.LINE_WIDTHS``.  The ports are read as Icarus elaborates the
+target (``sim.backends.icarus.elaborated_ports``).
 """
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from myhdl import Signal, intbv
 
-from sim.backends.icarus import CosimError, icarus_cosimulation, port_directions, read_verilog
+from sim.backends.icarus import (CosimError, elaborated_ports, icarus_cosimulation, port_directions, port_width,
+                                 read_verilog)
 from sim.pci.lines import FLOATING, LINE_WIDTHS, PULLED_UP
 
 HOST_ONLY = ("cbe", "frame", "irdy")   # a target reads these, never drives them
@@ -41,8 +48,9 @@ class VerilogTarget:
     (the pin map above), ``clock`` and ``reset`` port names, ``idsel`` port
     (None: the target has none), ``defines`` (names or a dict),
     ``include_dirs``, ``libraries`` (files compiled only where instantiated),
-    ``ties`` (``{port: value}`` for other inputs; other outputs are left
-    open)."""
+    ``ties`` (``{port: value}`` for other inputs), ``outputs`` (names of
+    other outputs the bench offers as Signals, ``PciBench.outputs``; the
+    rest are left open)."""
 
     files: list
     top: str
@@ -54,6 +62,7 @@ class VerilogTarget:
     include_dirs: list = field(default_factory=list)
     libraries: list = field(default_factory=list)
     ties: dict = field(default_factory=dict)
+    outputs: list = field(default_factory=list)
 
     def __post_init__(self):
         unknown = set(self.pins) - set(LINE_WIDTHS)
@@ -74,6 +83,24 @@ class VerilogTarget:
         if isinstance(pin, str):
             return line not in HOST_ONLY
         return pin is not None and pin[1] is not None
+
+    def ports(self):
+        """``[(direction, range, name)]`` of the top module, as Icarus
+        elaborates it with these defines, include folders and libraries."""
+        if not hasattr(self, "_ports"):
+            self._ports = elaborated_ports(self.files, self.top, self.libraries, self.defines,
+                                           self.include_dirs)
+        return self._ports
+
+    def output_widths(self):
+        """``{name: bits}`` of the ``outputs`` the bench watches."""
+        declared = {name: (direction, port_width(rng)) for direction, rng, name in self.ports()}
+        widths = {}
+        for name in self.outputs:
+            if name not in declared or declared[name][0] != "output":
+                raise CosimError(f"{self.top} has no output {name}")
+            widths[name] = declared[name][1]
+        return widths
 
 
 class TargetAgent:
@@ -114,14 +141,17 @@ WRAPPER = "pci_target_wrapper"
 
 def wrapper_verilog(target, declared, idsel_bit, floating, others=()):
     """Text of the wrapper module; ``others``: names of further ports of the
-    target that go to MyHDL as they are (a back-end bus)."""
-    directions = {name: (direction, width) for direction, width, name in declared}
+    target that go to MyHDL as they are (a back-end bus, outputs to watch)."""
+    widths = {name: port_width(rng) for _, rng, name in declared}
+    directions = {name: (direction, rng) for direction, rng, name in declared}
     decls = {"clock": "input clock;", "reset": "input reset;"}  # MyHDL-side port -> declaration
     body, connect, unknown = [], {}, []
     reset_port, reset_value = _port(target.reset)
     for name in (target.clock, reset_port, *others, *target.ties):
         if name not in directions:
             raise CosimError(f"{target.top} has no port {name}")
+    for name in (target.clock, reset_port, target.idsel):
+        _check_width(target, name, None, 1, widths)
     connect[target.clock] = "clock"
     connect[reset_port] = "!reset" if reset_value.startswith("!") else "reset"
     for line, width in LINE_WIDTHS.items():
@@ -129,14 +159,15 @@ def wrapper_verilog(target, declared, idsel_bit, floating, others=()):
         if pin is None:
             continue
         if isinstance(pin, str):
+            _check_width(target, pin, line, width, widths)
             source = _tristate(line, width, pin, decls, body, connect, unknown)
         else:
-            source = _split(line, width, pin, floating, decls, body, connect, unknown)
+            source = _split(target, line, width, pin, floating, widths, decls, body, connect, unknown)
         if line == "ad" and target.idsel is not None:
             connect[target.idsel] = f"{source}[{idsel_bit}]"
     for name in others:
-        direction, width = directions[name]
-        decls[name] = f"{direction} {width}{name};"
+        direction, rng = directions[name]
+        decls[name] = f"{direction} {rng}{name};"
         connect[name] = name
     decls["unknown"] = f"output {_range(max(1, len(unknown)))}unknown;"
     body.append("assign unknown = {" + ", ".join(f"({u})" for u in reversed(unknown)) + "};"
@@ -156,6 +187,25 @@ def wrapper_verilog(target, declared, idsel_bit, floating, others=()):
                       f"    $to_myhdl({', '.join(outputs)});", "end",
                       f"{target.top} dut(\n    {connections}\n);", "endmodule", ""])
     return text, list(decls)
+
+
+def _check_width(target, port, line, width, widths, enable=False):
+    """Refuse a port of ``line`` (None: clock, reset, IDSEL) whose width
+    does not fit: ``width`` bits, or for an output enable 1 or ``width``."""
+    if port is None:
+        return
+    name = _port(port)[0]
+    if name not in widths:
+        raise CosimError(f"{target.top} has no port {name}")
+    bits = widths[name]
+    allowed = (1, width) if enable else (width,)
+    if bits in allowed:
+        return
+    what = f"PCI's {line.upper()}" if line else "a one-bit signal"
+    if enable:
+        raise CosimError(f"{target.top}: output enable {name} of {line.upper()} is {bits} bits; "
+                         f"give one enable (1 bit) or one per bit ({width} bits)")
+    raise CosimError(f"{target.top}: port {name} is {bits} bits, {what} has {width}")
 
 
 def _tristate(line, width, pin, decls, body, connect, unknown):
@@ -182,7 +232,7 @@ def _tristate(line, width, pin, decls, body, connect, unknown):
     return net
 
 
-def _split(line, width, pin, floating, decls, body, connect, unknown):
+def _split(target, line, width, pin, floating, widths, decls, body, connect, unknown):
     """Split in / out / oe ports; returns the net the target reads (or None)."""
     in_port, out_port, oe_port = pin
     rng = _range(width)
@@ -196,25 +246,44 @@ def _split(line, width, pin, floating, decls, body, connect, unknown):
         else:
             body.append(f"wire {rng}{source} = bus_{line};")
         if in_port is not None:
+            _check_width(target, in_port, line, width, widths)
             connect[in_port] = source
     if out_port is None:
         return source
+    _check_width(target, out_port, line, width, widths)
+    _check_width(target, oe_port, line, width, widths, enable=True)
     decls[f"{line}_out"] = f"output {rng}{line}_out;"
     decls[f"{line}_oe"] = f"output {line}_oe;"
     body.append(f"wire {rng}drive_{line};")
     connect[out_port] = f"drive_{line}"
-    body.append(f"assign {line}_out = drive_{line};")
+    per_bit = oe_port is not None and width > 1 and widths[_port(oe_port)[0]] == width
     if oe_port is None:
         enable = "1'b1"
     else:
         oe_name, value = _port(oe_port)
-        body.append(f"wire enable_{line};")
-        connect[oe_name] = f"enable_{line}"
-        enable = f"!enable_{line}" if value.startswith("!") else f"enable_{line}"
+        if oe_name not in connect:   # one net per enable port: lines may share one
+            body.append(f"wire {rng if per_bit else ''}enable_{oe_name};")
+            connect[oe_name] = f"enable_{oe_name}"
+        enable = f"~{connect[oe_name]}" if value.startswith("!") else connect[oe_name]
+    if per_bit:
+        _per_bit_drive(line, rng, enable, body, unknown)
+        return source
+    body.append(f"assign {line}_out = drive_{line};")
     body.append(f"assign {line}_oe = {enable} === 1'b1;")
     unknown.append(f"(({enable}) !== 1'b0 && ({enable}) !== 1'b1) || "
                    f"(({enable}) === 1'b1 && ^drive_{line} === 1'bx)")
     return source
+
+
+def _per_bit_drive(line, rng, enable, body, unknown):
+    """A line with one enable per bit: driven while any bit is enabled, each
+    bit's value only where it is; reported when an enable is X or Z, when
+    only some bits are enabled, or when an enabled bit is X or Z."""
+    body.append(f"wire {rng}bit_oe_{line} = {enable};")
+    body.append(f"assign {line}_oe = |bit_oe_{line} === 1'b1;")
+    body.append(f"assign {line}_out = drive_{line} & bit_oe_{line};")
+    unknown.append(f"(^bit_oe_{line} === 1'bx) || (|bit_oe_{line} === 1'b1 && &bit_oe_{line} !== 1'b1) || "
+                   f"(^(drive_{line} & bit_oe_{line}) === 1'bx)")
 
 
 def watched_lines(target):
@@ -235,8 +304,7 @@ def pci_target_cosimulation(target, clock, reset, agent, segment, host_agent, id
     watched = watched_lines(target)
     unknown = Signal(intbv(0)[max(1, len(watched)):])
     files = [Path(f) for f in target.files]
-    text = "\n".join(read_verilog(f) for f in files)
-    declared = port_directions(text, target.top)
+    declared = target.ports()
     wrapper, names = wrapper_verilog(target, declared, idsel_bit, floating, others)
     bus = segment.lines
     signals = {"clock": clock, "reset": reset, "unknown": unknown, **others}
