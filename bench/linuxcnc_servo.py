@@ -12,7 +12,8 @@ LinuxCNC's ordinary user ``dda-cnc``, on the card server
 - with ``--strace``: every system call of rtapi_app's threads over the
   run, by name, per period (the servo thread's own sleep included);
 - ``servo-thread.time`` over the run (``sampler``, every period): mean and
-  max, and ``servo-thread.tmax``, in the TSC clocks LinuxCNC counts them
+  max, and ``servo-thread.tmax``, and the driver's functions' own
+  ``dda-card.0.read.time`` / ``write.time`` (write waits for the ADVANCE), in the TSC clocks LinuxCNC counts them
   in and in microseconds at the TSC's rate (/proc/cpuinfo's "cpu MHz" with
   constant_tsc).  The time includes the card server's simulation of each
   period (ADVANCE waits for it): an upper bound of the driver's own cost.
@@ -38,7 +39,7 @@ VELOCITY = (2000.0, -1000.0)  # steps/s of X and Y (position-scale 1)
 HAL = """loadrt threads name1=servo-thread period1=1000000
 loadrt dda_card sim={socket}
 loadrt integ count=2
-loadrt sampler depth=4096 cfg=s
+loadrt sampler depth=4096 cfg=sss
 addf dda-card.0.read servo-thread
 addf integ.0 servo-thread
 addf integ.1 servo-thread
@@ -49,6 +50,8 @@ setp integ.1.in {vy}
 net x-cmd integ.0.out => dda-card.0.stepgen.00.position-cmd
 net y-cmd integ.1.out => dda-card.0.stepgen.01.position-cmd
 net thread-time servo-thread.time => sampler.0.pin.0
+net read-time dda-card.0.read.time => sampler.0.pin.1
+net write-time dda-card.0.write.time => sampler.0.pin.2
 setp dda-card.0.stepgen.00.enable 1
 setp dda-card.0.stepgen.01.enable 1
 start
@@ -107,11 +110,12 @@ def run(periods, trace):
         if strace is not None:
             strace.wait(timeout=60)
     values = [line for line in output.split() if line.lstrip("-").isdigit() or line in ("TRUE", "FALSE")]
-    times = [int(line.split()[-1]) for line in samples.read_text().splitlines()]
+    columns = list(zip(*(map(int, line.split()[-3:]) for line in samples.read_text().splitlines())))
     record = json.loads(log.read_text())
     calls = (folder / "strace.txt").read_text() if trace else None
     shutil.rmtree(folder, ignore_errors=True)
-    return dict(tmax=int(values[-2]), error=values[-1], times=times, requests=record.get("requests"),
+    return dict(tmax=int(values[-2]), error=values[-1], times=list(columns[0]), read=list(columns[1]),
+                write=list(columns[2]), requests=record.get("requests"),
                 advances=len(record["advances"]), strace=calls, output=output)
 
 
@@ -143,6 +147,10 @@ def main(argv=None):
     print(f"servo-thread.time: mean {mean:.0f} clocks" + (scale.format(mean / mhz)) +
           f", max {worst} clocks" + (scale.format(worst / mhz)) + f" ({len(times)} periods)")
     print(f"servo-thread.tmax: {result['tmax']} clocks" + (scale.format(result['tmax'] / mhz)))
+    for name in ("read", "write"):
+        own = result[name][10:]
+        print(f"dda-card.0.{name}.time: mean {statistics.mean(own):.0f} clocks" + scale.format(statistics.mean(own) / mhz)
+              + f", max {max(own)} clocks" + scale.format(max(own) / mhz))
     if result["strace"]:
         print_strace(result["strace"], result["advances"])
     return 0

@@ -213,3 +213,32 @@ def test_refused_at_load(linuxcnc_alone, options, message):
     assert message in result.stdout + result.stderr
     shutil.rmtree(run, ignore_errors=True)
 
+
+
+DIR_SETUP_CLOCKS = 200  # long enough to see on the pins at 1 MHz
+DIR_KEPT = (
+    f"setp {S}.00.dirsetup {DIR_SETUP_CLOCKS * 1000}\nsetp {S}.00.maxvel 10000\n"
+    + "".join(f"setp {S}.00.enable 1\n" + until("dda-card.0.fifo-level", "not:0")
+              + f"setp {S}.00.position-cmd {target}\n" + until(f"{S}.00.counts", str(target))
+              + f"setp {S}.00.enable 0\n" + until("dda-card.0.fifo-level", "0") for target in (100, 200))
+)
+
+
+def test_the_dir_level_is_kept_across_enables(linuxcnc_alone):
+    """Two forward moves, the queue stopped and started between them: the DIR pin keeps its
+    level through the soft reset, so the second move's first period must not be planned
+    with DIR_SETUP clocks the card does not spend (its steps would then come DIR_SETUP
+    clocks early in every later period).  The offset of each period's first step from the
+    period's start stays put."""
+    run = run_folder()
+    _, _, record = run_script(run, DIR_KEPT)
+    second_start = [clock for clock, words in record["fifo"]
+                    if words[0] >> isa.OPCODE_LSB == isa.BY_NAME["SET"].code][1]
+    ends = [after for _, after in record["advances"]]
+    offsets = {}
+    for clock in (r[0] for r in record["rises"] if r[1] and r[0] > second_start):
+        k = max(i for i, end in enumerate(ends) if end < clock)
+        offsets.setdefault(k, clock - ends[k])
+    moving = list(offsets.values())
+    assert len(moving) >= 10 and max(moving) - min(moving) <= 2, moving
+    shutil.rmtree(run, ignore_errors=True)
