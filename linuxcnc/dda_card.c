@@ -41,6 +41,8 @@
 #include "dda_state.h"
 #include "dda_pins.h"
 #include "dda_checks.h"
+#include "dda_faults.h"
+#include "dda_axis.h"
 
 MODULE_AUTHOR("PCI DDA card authors");
 MODULE_DESCRIPTION("HAL driver of the PCI DDA card");
@@ -108,25 +110,6 @@ static void card_stopped(struct card *c, int stopping)
     rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: the card stopped the machine: %s\n", reason_name(*c->stop_reason));
 }
 
-/* A fault that stands whatever enable does: the transport failed, the card gone, a
- * watchdog stop held by has_bit; else 0. */
-static int standing_fault(struct card *c)
-{
-    if (c->transport.failed)
-        return FAULT_TRANSPORT;
-    if (c->gone)
-        return FAULT_CARD_GONE;
-    return *c->watchdog_has_bit ? FAULT_CARD_STOPPED : 0;
-}
-
-/* A card gone from the bus (pulled, its slot unpowered) reads all-ones, which STATUS
- * (reserved bits 0) never does; ID reading all-ones too confirms it. */
-static int card_gone(struct card *c, uint32_t status)
-{
-    uint32_t id = 0;
-    return status == 0xFFFFFFFFu && (dda_read32(&c->transport, DDA_ID, &id) < 0 || id == 0xFFFFFFFFu);
-}
-
 /* The card's crystal and the PC's timer differ (~100 ppm): left alone the queue
  * would slowly drain or fill.  The whole periods still in the FIFO at the read
  * (its level against the words of each period queued, newest first) are held
@@ -147,15 +130,6 @@ static void trim_drift(struct card *c, int32_t level)
     if (c->depth_start < 0)
         c->depth_start = depth;
     c->trim_sign = depth < c->depth_start ? 1 : depth > c->depth_start ? -1 : 0;
-}
-
-/* position-scale 0 would put every target at step 0: forced to 1, as hostmot2 does. */
-static void check_scale(struct stepgen *s, int i)
-{
-    if (s->position_scale != 0.0)
-        return;
-    s->position_scale = 1.0;
-    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: stepgen.%02d.position-scale 0 is no scale: set to 1\n", i);
 }
 
 static void read_card(void *arg, long period)
@@ -209,8 +183,6 @@ static void read_card(void *arg, long period)
         *s->position_fb = (double)(card_steps + s->offset) / s->position_scale;
     }
 }
-
-#include "dda_axis.h"
 
 /* `count` words into the FIFO if it has room for them (it never makes the bus wait). */
 static int queue_words(struct card *c, const uint32_t *words, unsigned count)
