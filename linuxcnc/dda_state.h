@@ -7,23 +7,45 @@
 #define DDA_STATE_H
 
 #include "hal.h"
+#include "dda_math.h"
 #include "dda_transport.h"
 
 #define AXES 2
-#define FASTEST_ITERATION 2  /* clocks: the DDA iterates at most every other clock */
 #define TRIM_RING 64         /* periods of FIFO words remembered: more than keep_ahead can be */
 #define TRIM_SHIFT 8         /* the drift loop's step: a period's clocks / 256 (at least 1) */
+#define START_WORDS (6 * DDA_CMD_SET_WORDS) /* the SETs of a start, at most */
+#define PERIOD_WORDS (DDA_CMD_LINE_WORDS + DDA_CMD_DWELL_WORDS) /* a period's burst, at most */
+
+/* error-code: the card's STATUS.ERROR (1..4, docs/instructions.md), or the driver's own */
+enum dda_fault {
+    FAULT_FIFO_DRY = -1,       /* the FIFO ran dry while running: the servo thread fell behind */
+    FAULT_TOO_FAST = -2,       /* a period with more steps than the card makes in it */
+    FAULT_CARD_STOPPED = -3,   /* the card stopped itself (stop-reason says why) */
+    FAULT_TRANSPORT = -4,      /* the transport failed (a sysfs file gone, the card server gone or stalled) */
+    FAULT_CARD_GONE = -5,      /* the card reads all-ones: it left the bus */
+    FAULT_BAD_COMMAND = -6,    /* position-cmd is not a number, or beyond 2^53 steps: the axis holds */
+    FAULT_FIFO_FULL = -7,      /* no room in the FIFO for a period: the card is not taking commands */
+    FAULT_SETTING = -8,        /* a step timing or step_type the card cannot do (said at enable) */
+};
+
+/* Timing parameters (ns) in the order the card's registers take them. */
+enum dda_timing { STEPLEN, STEPSPACE, DIRSETUP, DIRHOLD, TIMINGS };
 
 struct stepgen {
     hal_float_t *position_cmd, *velocity_cmd, *position_fb, *velocity_fb;
     hal_s32_t *counts;
-    hal_bit_t *enable;
+    hal_bit_t *enable, *position_reset, *control_type;
     hal_float_t position_scale, maxvel, maxaccel;
-    hal_u32_t steplen, stepspace, dirsetup, dirhold;
-    int32_t sent;          /* steps queued so far (driver's coordinates) */
-    int32_t offset;        /* driver's steps minus the card's counter */
-    int32_t last_counts;
-    int forward;           /* the DIR pin's side: the last move's direction (reset: backward) */
+    hal_u32_t timing[TIMINGS];     /* steplen, stepspace, dirsetup, dirhold (ns) */
+    hal_u32_t step_type;
+    int64_t sent;                  /* steps queued so far (driver's coordinates) */
+    int64_t offset;                /* driver's steps minus the card's counter, unwrapped */
+    int64_t card;                  /* the card's step counter unwrapped into 64 bits (last good read) */
+    struct dda_follower follow;    /* the commanded position within maxvel / maxaccel (machine units) */
+    double last_target;            /* position mode: the last period's position-cmd */
+    int queued;                    /* the axis is being queued (enabled while the queue runs) */
+    int refused;                   /* its position-cmd was refused (said once) */
+    int dir;                       /* its DIR level: 1 forward, 0 backward, -1 not known (after load) */
 };
 
 struct card {
@@ -41,14 +63,19 @@ struct card {
     hal_u32_t watchdog_timeout_ns;
     int drive_written;             /* DRIVE_ENABLE as last written */
     uint32_t clock_hz;
+    uint32_t fifo_size;            /* FIFO_SIZE: words the FIFO holds */
+    int32_t max_delta;             /* steps a LINE takes per axis (BUILD.COORD_WIDTH, signed) */
+    uint32_t timing_clocks[TIMINGS]; /* what the card was set to at the last start */
     uint32_t iteration;            /* clocks per DDA iteration, a power of two: FEED_RATE 65536 / it */
     uint64_t fraction;             /* ns x Hz carried between periods (below 1e9) */
+    uint32_t room;                 /* FIFO words free: at the read, less what was written since */
     hal_s32_t *drift_trim;         /* clocks added to this period's DWELL (the clock-drift loop) */
     uint8_t period_words[TRIM_RING]; /* FIFO words of the last periods queued, by period number */
     uint32_t periods_queued;
     int depth_start;               /* whole periods in the FIFO at the first read after start, -1 before */
     int trim_sign;                 /* +1 lengthen, -1 shorten, 0 keep this period's DWELL */
     int running;
+    int gone;                      /* the last read found the card all-ones */
     struct dda_transport transport;
 };
 

@@ -5,9 +5,14 @@ for the interrupt.  No kernel module of our own.
   ``/sys/bus/pci/devices`` (``--card pci``), or named
   (``--card pci:DDDD:BB:DD.F``); its decoders are turned on by writing 1
   to ``enable``.
-* BAR0 (I/O, the registers): ``pread`` / ``pwrite`` of exactly 1, 2 or 4
-  bytes at the register's offset in ``resource0``; the kernel turns each
-  into one in/out instruction (I/O BARs cannot be mapped on x86).
+* The registers: through a memory BAR that aliases them when the card has
+  one (BAR2 on cards that do: ``resource2`` mapped, every access a single
+  aligned load or store of its size, no system call), else through BAR0
+  (I/O): ``pread`` / ``pwrite`` of exactly 1, 2 or 4 bytes at the
+  register's offset in ``resource0``; the kernel turns each into one
+  in/out instruction (I/O BARs cannot be mapped on x86).  A memory BAR
+  whose ID differs from BAR0's is no alias and is not used; a card whose
+  registers are reachable neither way is refused with both reasons.
 * BAR1 (memory, the FIFO window): ``resource1`` mapped with ``mmap``
   (``O_SYNC``, not the write-combining ``resource1_wc``); every word is one
   aligned 32-bit store through a ``memoryview`` cast to ``I``, never a
@@ -35,6 +40,7 @@ import time
 from pathlib import Path
 
 from host.transports.base import Transport, TransportError
+from models import registers as regmap
 from models.parameters import PARAMETERS
 from models.pci import check_access, check_value
 
@@ -43,6 +49,9 @@ DEVICE_ID = PARAMETERS["device_id"].default
 COMMAND = 0x04
 INTERRUPT_DISABLE = 1 << 10
 IORESOURCE_IO = 0x100
+IORESOURCE_MEM = 0x200
+REGS_BAR = 2  # the memory BAR that aliases the registers, on cards that have one
+REGISTER_BYTES = 1 << regmap.IO_BAR_BITS
 ADDRESS = re.compile(r"^(?:[0-9a-f]{4}:)?[0-9a-f]{2}:[0-1][0-9a-f]\.[0-7]$")
 DOCS = "docs/host.md, 'A real card'"
 open_file = os.open  # every file is opened through here (the tests stand in for the kernel's refusals)
@@ -98,7 +107,7 @@ class SysfsTransport(Transport):
         self.address = self.path.name
         self.name = f"PCI card {self.address}"
         self.ids = (vendor_id, device_id)
-        self._fds, self._map = [], None
+        self._fds, self._map, self._regs_map, self._regs = [], None, None, None
         try:
             self._open()
         except BaseException:
@@ -108,9 +117,9 @@ class SysfsTransport(Transport):
 
     def _open(self):
         self._write_file(self.path / "enable", b"1")
-        self._check_io_bar()
-        self.io_fd = self._fd(self.path / "resource0", os.O_RDWR)
-        self.io_size = os.fstat(self.io_fd).st_size
+        bars = self._bars()
+        self._check_io_bar(bars)
+        self._open_registers(bars)
         mem_fd = self._fd(self.path / "resource1", os.O_RDWR | os.O_SYNC)
         self.mem_size = os.fstat(mem_fd).st_size
         self._map = mmap.mmap(mem_fd, self.mem_size, mmap.MAP_SHARED, mmap.PROT_READ | mmap.PROT_WRITE)
@@ -118,14 +127,58 @@ class SysfsTransport(Transport):
         self.config_fd = self._fd(self.path / "config", os.O_RDWR)
         self.uio_fd = self._fd(self._uio(), os.O_RDONLY | os.O_NONBLOCK)
 
-    def _check_io_bar(self):
-        """``resource`` lists start, end and flags per BAR: BAR0 must be I/O."""
+    def _bars(self):
+        """(start, end, flags) per BAR from ``resource``, or None when it cannot be read."""
         try:
-            first = (self.path / "resource").read_text().split("\n")[0].split()
+            lines = (self.path / "resource").read_text().splitlines()
         except OSError:
-            return
-        if len(first) == 3 and not int(first[2], 16) & IORESOURCE_IO:
+            return None
+        return [tuple(int(v, 16) for v in line.split()) for line in lines if len(line.split()) == 3]
+
+    def _check_io_bar(self, bars):
+        """BAR0 must be I/O, or unassigned (a host or bridge without I/O space)."""
+        if bars and bars[0][2] and not bars[0][2] & IORESOURCE_IO:
             raise TransportError(f"{self.address}: BAR0 is not an I/O BAR: another bitstream?")
+
+    def _open_registers(self, bars):
+        """The registers through the memory BAR that aliases them, else BAR0's pread/pwrite."""
+        self.io_fd, refused = None, None
+        try:
+            self.io_fd = self._fd(self.path / "resource0", os.O_RDWR)
+            self.io_size = os.fstat(self.io_fd).st_size
+        except TransportError as error:
+            refused = error
+        why = self._map_registers(bars)
+        if why is None:
+            return
+        if self.io_fd is None:
+            raise TransportError(f"{self.address}: the registers are reachable neither through a memory BAR "
+                                 f"(BAR{REGS_BAR}: {why}) nor through BAR0 ({refused})")
+
+    def _map_registers(self, bars):
+        """Map BAR2 when it is a memory BAR holding the registers and reads BAR0's ID: None
+        (``_regs`` set), else why not."""
+        if not bars or len(bars) <= REGS_BAR or not bars[REGS_BAR][2] & IORESOURCE_MEM:
+            return "the card has none"
+        start, end, _ = bars[REGS_BAR]
+        if end - start + 1 < REGISTER_BYTES:
+            return f"{end - start + 1} bytes, fewer than the registers' {REGISTER_BYTES}"
+        fd = self._fd(self.path / f"resource{REGS_BAR}", os.O_RDWR | os.O_SYNC)
+        size = os.fstat(fd).st_size
+        self._regs_map = mmap.mmap(fd, size, mmap.MAP_SHARED, mmap.PROT_READ | mmap.PROT_WRITE)
+        view = memoryview(self._regs_map)
+        regs = {4: view.cast("I"), 2: view.cast("H"), 1: view}  # released in this order
+        if self.io_fd is not None:
+            identity = int.from_bytes(os.pread(self.io_fd, 4, regmap.offset("ID")), "little")
+            if regs[4][regmap.offset("ID") // 4] != identity:
+                for item in regs.values():
+                    item.release()
+                return "it reads another ID than BAR0: no alias of the registers"
+            os.close(self.io_fd)  # every access goes through the mapping
+            self._fds.remove(self.io_fd)
+            self.io_fd = None
+        self._regs, self.io_size = regs, size
+        return None
 
     def _uio(self):
         """``/dev/uioN`` of the card, or how to bind ``uio_pci_generic``."""
@@ -177,8 +230,15 @@ class SysfsTransport(Transport):
         self._fds.remove(fd)
 
     # ----- the interface -----------------------------------------------------------
+    @property
+    def registers_mapped(self):
+        """True when the registers are reached through a mapped memory BAR (no system call)."""
+        return self._regs is not None
+
     def read(self, offset, size=4):
         check_access(offset, size, self.io_size)
+        if self._regs is not None:
+            return self._regs[size][offset // size]  # one aligned load of that size
         data = os.pread(self.io_fd, size, offset)
         if len(data) != size:
             raise TransportError(f"{self.address}: BAR0 read at {offset:#x} gave {len(data)} of {size} bytes")
@@ -187,6 +247,9 @@ class SysfsTransport(Transport):
     def write(self, offset, value, size=4):
         check_access(offset, size, self.io_size)
         check_value(value, size)
+        if self._regs is not None:
+            self._regs[size][offset // size] = value  # one aligned store of that size
+            return
         if os.pwrite(self.io_fd, value.to_bytes(size, "little"), offset) != size:
             raise TransportError(f"{self.address}: BAR0 write at {offset:#x} was cut short")
 
@@ -239,6 +302,12 @@ class SysfsTransport(Transport):
         if self._map is not None:
             self._map.close()
             self._map = None
+        for view in (self._regs or {}).values():
+            view.release()
+        self._regs = None
+        if self._regs_map is not None:
+            self._regs_map.close()
+            self._regs_map = None
         for fd in self._fds:
             os.close(fd)
         self._fds = []

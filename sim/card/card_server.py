@@ -12,6 +12,16 @@ the end).
 ADVANCEs, as a real card's crystal differs from the PC's timer: each ADVANCE
 of a clocks runs a (1 + N / 1e6) clocks, the fractions carried.
 
+``--fail KIND@N`` makes the card or the server fail after the N-th ADVANCE,
+for the driver's fault tests: ``unplug`` (the card left the bus: every READ
+answers all-ones, as a master abort does, WRITE and FIFO are lost; card
+time still runs), ``freeze`` (the card's clock stops: ADVANCE answers but
+runs nothing, so the FIFO no longer drains), ``stall`` (the server stops
+answering but keeps the socket open, until the client goes) or ``hang-up``
+(the server closes the socket, as when it dies).  ``lost`` records the
+requests an unplugged card did not take: (clock, op).  ``requests`` in the record counts the requests
+of each period: those since the ADVANCE before, this one included.
+
 A real card goes on without its PC: with ``--free-run CLOCKS`` the server,
 once the client has gone (socket closed, however it died), runs the card on
 its own for CLOCKS more clocks before it reads the final state, so a test
@@ -55,6 +65,8 @@ PPM_ONE = 1_000_000
 MAX_PPM = 100_000
 DRIVE_PIN = "pins_drive_enable"  # the card's DRIVE_ENABLE output, as MyHDL names the top's port
 FINAL_REGISTERS = ("STATUS", "MACHINE_STATUS", "STOP_REASON", "POS_X", "POS_Y")
+FAILURES = ("unplug", "freeze", "stall", "hang-up")
+ALL_ONES = 0xFFFFFFFF  # what a read of a card gone from the bus returns (master abort)
 
 
 class ProtocolError(RuntimeError):
@@ -80,9 +92,13 @@ class CardServer:
     (clock, DRIVE_ENABLE level) at every change, ``free_run`` and ``final``
     once ``finish`` has run."""
 
-    def __init__(self, session, clock_hz, ppm=0):
+    def __init__(self, session, clock_hz, ppm=0, failure=None):
         self.session, self.clock_hz = session, clock_hz
         self.ppm, self.ppm_fraction = ppm, 0
+        self.failure = failure  # (kind, after how many ADVANCEs) or None
+        self.requests = []
+        self.lost = []
+        self._since_advance = 0
         self.model = session.bench.model
         self.start = session.clocks
         self.advances = []
@@ -102,8 +118,22 @@ class CardServer:
             self.drive.append((self.now(), level))
         return level
 
+    def failing(self, kind):
+        return self.failure is not None and self.failure[0] == kind and len(self.advances) >= self.failure[1]
+
     def handle(self, op, a, b, payload):
         session = self.session
+        self._since_advance += 1
+        if op == ADVANCE:
+            self.requests.append(self._since_advance)
+            self._since_advance = 0
+        if self.failing("unplug") and op in (READ, WRITE, FIFO):
+            if op != READ:
+                self.lost.append((self.now(), op))
+            return ALL_ONES if op == READ else 0
+        if self.failing("freeze") and op == ADVANCE:
+            self.advances.append((self.now(), self.now()))
+            return self.now() & 0xFFFFFFFF
         if op == READ:
             return session.read(a)
         if op == WRITE:
@@ -138,6 +168,12 @@ class CardServer:
 
     def _serve(self, connection):
         while True:
+            if self.failing("hang-up"):
+                return
+            if self.failing("stall"):
+                while receive(connection, 1) is not None:  # no answer any more; wait for the client to go
+                    pass
+                return
             header = receive(connection, REQUEST.size)
             if header is None:
                 return
@@ -179,8 +215,8 @@ class CardServer:
     def record(self):
         """What the test compares: clocks are card clocks since the server opened the card."""
         rises = [(int(r[0]) - self.start, *map(int, r[1:])) for r in self.session.log.rises]
-        return dict(clock_hz=self.clock_hz, advances=self.advances, rises=rises, fifo=self.fifo,
-                    writes=self.writes, drive=self.drive, free_run=self.free_run, final=self.final)
+        return dict(clock_hz=self.clock_hz, advances=self.advances, requests=self.requests, lost=self.lost, rises=rises,
+                    fifo=self.fifo, writes=self.writes, drive=self.drive, free_run=self.free_run, final=self.final)
 
 
 def main(argv=None):
@@ -194,7 +230,15 @@ def main(argv=None):
     parser.add_argument("--ppm", type=int, default=0,
                         help="the card's clock this many ppm fast (negative: slow) against the ADVANCEs "
                              "(a real card's crystal against the PC's timer; default 0)")
+    parser.add_argument("--fail", metavar="KIND@N",
+                        help=f"fail after the N-th ADVANCE: {', '.join(FAILURES)} (see above; default: never)")
     args = parser.parse_args(argv)
+    failure = None
+    if args.fail is not None:
+        kind, _, after = args.fail.partition("@")
+        if kind not in FAILURES or not after.isdigit():
+            parser.error(f"--fail must be KIND@N with KIND one of {', '.join(FAILURES)}, not {args.fail}")
+        failure = (kind, int(after))
     if not 1 <= args.clock_hz <= 0xFFFFFFFF:
         parser.error(f"--clock-hz must be 1..{0xFFFFFFFF}, not {args.clock_hz}")
     if not 0 <= args.free_run <= MAX_FREE_RUN:
@@ -205,7 +249,7 @@ def main(argv=None):
         parser.error(f"{args.socket} exists: remove it or choose another path")
     session = CardSession("verilator", clock_hz=args.clock_hz)
     try:
-        server = CardServer(session, args.clock_hz, args.ppm)
+        server = CardServer(session, args.clock_hz, args.ppm, failure)
         listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
         listener.bind(args.socket)
         os.chmod(args.socket, 0o666)  # the driver runs as LinuxCNC's (ordinary) user

@@ -17,20 +17,34 @@ from models.instructions import encode
 ADDRESS = "0000:03:00.0"
 
 
-def fake_card(root, address=ADDRESS, ids=(VENDOR_ID, DEVICE_ID), uio="uio0", registers=True):
-    """A card's sysfs folder (and /dev/uioN, a named pipe) under ``root``; the folder."""
+def register_bytes(registers=True):
+    """The card's register block after reset (zeros: another bitstream)."""
+    bar0 = bytearray(1 << regmap.IO_BAR_BITS)
+    if registers:
+        for reg in regmap.REGISTERS:
+            bar0[reg.offset:reg.offset + 4] = reg.reset.to_bytes(4, "little")
+    return bar0
+
+
+def fake_card(root, address=ADDRESS, ids=(VENDOR_ID, DEVICE_ID), uio="uio0", registers=True, bar2=False, bar0=True):
+    """A card's sysfs folder (and /dev/uioN, a named pipe) under ``root``; the folder.
+    ``bar2``: the memory BAR aliasing the registers; ``bar0`` False: BAR0 unassigned
+    (a host without I/O space), no ``resource0``."""
     folder = root / "sys" / "bus" / "pci" / "devices" / address
     folder.mkdir(parents=True)
     (folder / "vendor").write_text(f"0x{ids[0]:04x}\n")
     (folder / "device").write_text(f"0x{ids[1]:04x}\n")
     (folder / "enable").write_text("0\n")
-    (folder / "resource").write_text("0x0000000000001000 0x000000000000107f 0x0000000000040101\n"
-                                     "0x00000000fe000000 0x00000000fe000fff 0x0000000000040200\n")
-    bar0 = bytearray(1 << regmap.IO_BAR_BITS)
-    if registers:  # what the card's registers read after reset
-        for reg in regmap.REGISTERS:
-            bar0[reg.offset:reg.offset + 4] = reg.reset.to_bytes(4, "little")
-    (folder / "resource0").write_bytes(bytes(bar0))
+    lines = ["0x0000000000001000 0x00000000000010ff 0x0000000000040101" if bar0 else
+             "0x0000000000000000 0x0000000000000000 0x0000000000000000",
+             "0x00000000fe000000 0x00000000fe000fff 0x0000000000040200"]
+    if bar2:
+        lines.append("0x00000000fe001000 0x00000000fe0010ff 0x0000000000040200")
+    (folder / "resource").write_text("\n".join(lines) + "\n")
+    if bar0:
+        (folder / "resource0").write_bytes(bytes(register_bytes(registers)))
+    if bar2:
+        (folder / "resource2").write_bytes(bytes(register_bytes(registers)))
     (folder / "resource1").write_bytes(bytes(4096))
     config = bytearray(256)
     config[0:4] = (ids[1] << 16 | ids[0]).to_bytes(4, "little")
@@ -59,6 +73,7 @@ def opened(root, address=None):
 def test_registers_are_1_2_4_byte_accesses_of_resource0(tree):
     root, folder, _ = tree
     with opened(root) as transport:
+        assert not transport.registers_mapped
         assert (folder / "enable").read_text().strip() == "1"
         assert transport.read(regmap.offset("ID")) == regmap.ID_MAGIC << 16 | regmap.VERSION
         assert transport.read(regmap.offset("ID") + 2, 2) == regmap.ID_MAGIC
@@ -68,6 +83,62 @@ def test_registers_are_1_2_4_byte_accesses_of_resource0(tree):
         assert data[0x18:0x1C] == bytes([0x34, 0xAB, 0, 0])
         with pytest.raises(ValueError):
             transport.read(2)
+
+
+def no_system_calls(monkeypatch):
+    """pread/pwrite refused from here on: an access that makes one fails the test."""
+    def refused(*args):
+        raise AssertionError("a register access made a system call")
+    monkeypatch.setattr(sysfs.os, "pread", refused)
+    monkeypatch.setattr(sysfs.os, "pwrite", refused)
+
+
+@pytest.mark.parametrize("bar0", [True, False])
+def test_registers_through_the_mapped_memory_bar_without_system_calls(tmp_path, monkeypatch, bar0):
+    """A card with BAR2 aliasing the registers (and BAR0 as well, or none: a host without
+    I/O space): every register access is one load or store in the mapping of resource2."""
+    folder = fake_card(tmp_path, bar2=True, bar0=bar0)
+    writer = os.open(tmp_path / "dev" / "uio0", os.O_RDWR)
+    try:
+        with opened(tmp_path) as transport:
+            assert transport.registers_mapped
+            no_system_calls(monkeypatch)
+            assert transport.read(regmap.offset("ID")) == regmap.ID_MAGIC << 16 | regmap.VERSION
+            assert transport.read(regmap.offset("ID") + 2, 2) == regmap.ID_MAGIC
+            transport.write(regmap.offset("LOW_WATER"), 0x1234)
+            transport.write(regmap.offset("LOW_WATER") + 1, 0xAB, 1)
+            assert transport.read(regmap.offset("LOW_WATER")) == 0xAB34
+            with pytest.raises(ValueError):
+                transport.read(2)
+            monkeypatch.undo()
+            data = (folder / "resource2").read_bytes()
+            assert data[0x18:0x1C] == bytes([0x34, 0xAB, 0, 0])
+            identity = Card(transport).identity
+            assert identity.fifo_words == regmap.register("FIFO_SIZE").reset
+    finally:
+        os.close(writer)
+
+
+def test_a_memory_bar_that_reads_another_id_is_not_used(tmp_path):
+    folder = fake_card(tmp_path, bar2=True)
+    (folder / "resource2").write_bytes(bytes(register_bytes(registers=False)))
+    writer = os.open(tmp_path / "dev" / "uio0", os.O_RDWR)
+    try:
+        with opened(tmp_path) as transport:
+            assert not transport.registers_mapped
+            assert transport.read(regmap.offset("ID")) == regmap.ID_MAGIC << 16 | regmap.VERSION
+    finally:
+        os.close(writer)
+
+
+def test_registers_reachable_neither_way_are_refused_with_both_reasons(tree, monkeypatch):
+    root, folder, _ = tree
+    refuse(monkeypatch, "resource0", errno.EACCES)
+    with pytest.raises(TransportError) as error:
+        opened(root)
+    message = str(error.value)
+    assert "neither through a memory BAR (BAR2: the card has none)" in message
+    assert str(folder / "resource0") in message and "udev rule" in message
 
 
 def test_fifo_words_are_32_bit_stores_into_resource1(tree):

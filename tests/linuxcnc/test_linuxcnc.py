@@ -23,7 +23,7 @@ from tests.linuxcnc.session import (KEEP_AHEAD, PERIOD_CLOCKS, SCALE, as_user, c
                                     run_folder, run_linuxcnc)
 
 DELAY_PERIODS = KEEP_AHEAD - 1  # the period's command is done at the end of period k + keep_ahead - 1
-STEP_CYCLE_CLOCKS = 4  # STEPLEN + STEPSPACE of the sample configuration (2000 + 2000 ns) at CLOCK_HZ
+STEP_CYCLE_CLOCKS = 4  # the card's step cycle for the sample configuration (2000 + 2000 ns) at CLOCK_HZ
 
 # one LinuxCNC per host: every LinuxCNC test runs on one xdist worker, in turn
 pytestmark = [pytest.mark.linuxcnc, pytest.mark.xdist_group("linuxcnc"),

@@ -1,6 +1,6 @@
 """The dda_card driver's machine I/O and clock-drift loop under LinuxCNC, on the simulated card.
 
-A LinuxCNC killed mid-move (the card's watchdog stops it), watchdog.has-bit
+A LinuxCNC killed mid-move (the card's watchdog stops it), watchdog.has_bit
 (halrun), the card's clock fast or slow against the servo periods (the
 drift loop).  docs/linuxcnc.md, "The test".
 """
@@ -50,7 +50,7 @@ def test_killed_linuxcnc_is_stopped_by_the_card_watchdog(linuxcnc_alone):
     run = run_folder()
     configure(run)
     with open(run / "record.hal", "a") as hal:
-        hal.write(f"setp dda-card.0.watchdog.timeout-ns {WATCHDOG_NS}\n")
+        hal.write(f"setp dda-card.0.watchdog.timeout_ns {WATCHDOG_NS}\n")
     started = time.monotonic()
     record = run_and_kill(run, run / "lcnc_kill.ngc", KILL_AFTER, FREE_RUN)
     last = record["advances"][-1][1]  # the end of the last period the driver advanced the card
@@ -91,31 +91,33 @@ HAS_BIT_HAL = """loadrt threads name1=servo-thread period1=1000000
 loadrt dda_card sim={socket}
 addf dda-card.0.read servo-thread
 addf dda-card.0.write servo-thread
-setp dda-card.0.watchdog.timeout-ns 500000
+setp dda-card.0.watchdog.timeout_ns 500000
 setp dda-card.0.stepgen.00.enable 1
 setp dda-card.0.stepgen.01.enable 1
 setp dda-card.0.drive-enable 1
 start
 loadusr -w sleep 0.3
 {show}
-setp dda-card.0.watchdog.timeout-ns 5000000
-setp dda-card.0.watchdog.has-bit 0
+setp dda-card.0.watchdog.timeout_ns 5000000
+setp dda-card.0.watchdog.has_bit 0
 loadusr -w sleep 0.2
 getp dda-card.0.error
 setp dda-card.0.stepgen.00.enable 0
+setp dda-card.0.stepgen.01.enable 0
 loadusr -w sleep 0.2
 setp dda-card.0.stepgen.00.enable 1
+setp dda-card.0.stepgen.01.enable 1
 loadusr -w sleep 0.3
 {show}
 """
-SHOWN = ("watchdog.has-bit", "error", "error-code", "stop-reason")
+SHOWN = ("watchdog.has_bit", "error", "error-code", "stop-reason")
 
 
 def test_watchdog_has_bit_holds_the_card_until_written_false(linuxcnc_alone):
     """A watchdog shorter than the servo period bites in the first period (lock-step: the
-    card runs a whole period after each write): has-bit, error -3, stop-reason 2, the
-    card's DRIVE_ENABLE low.  Writing has-bit false alone does not restart (error stays
-    until enable falls); after enable falls and rises with a 5 ms watchdog the queue runs,
+    card runs a whole period after each write): has_bit, error -3, stop-reason 2, the
+    card's DRIVE_ENABLE low.  Writing has_bit false alone does not restart (error stays
+    until the enables fall); after they fall and rise with a 5 ms watchdog the queue runs,
     the card released (COMMAND.CLEAR_STOP) and DRIVE_ENABLE high again."""
     run = run_folder()
     show = "\n".join(f"getp dda-card.0.{pin}" for pin in SHOWN)
@@ -130,10 +132,10 @@ def test_watchdog_has_bit_holds_the_card_until_written_false(linuxcnc_alone):
         server.kill()
     values = [line for line in result.stdout.split() if line in ("TRUE", "FALSE") or line.lstrip("-").isdigit()]
     stopped, held, running = dict(zip(SHOWN, values[:4])), values[4], dict(zip(SHOWN, values[5:]))
-    assert stopped == {"watchdog.has-bit": "TRUE", "error": "TRUE", "error-code": "-3", "stop-reason": "2"}
+    assert stopped == {"watchdog.has_bit": "TRUE", "error": "TRUE", "error-code": "-3", "stop-reason": "2"}
     assert "the card stopped the machine: its watchdog" in result.stdout + result.stderr
-    assert held == "TRUE", "has-bit written false restarted the card without enable falling"
-    assert running == {"watchdog.has-bit": "FALSE", "error": "FALSE", "error-code": "0", "stop-reason": "0"}
+    assert held == "TRUE", "has_bit written false restarted the card without the enables falling"
+    assert running == {"watchdog.has_bit": "FALSE", "error": "FALSE", "error-code": "0", "stop-reason": "0"}
     record = json.loads((run / "card.json").read_text())
     levels = [level for _, level in record["drive"]]
     assert levels == [0, 1, 0, 1, 0], f"DRIVE_ENABLE: on, the watchdog's stop, on again, unload: {record['drive']}"

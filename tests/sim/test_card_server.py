@@ -63,6 +63,7 @@ def test_registers_fifo_and_lock_step_time(client):
     record = client.finish()
     assert record["clock_hz"] == CLOCK_HZ
     assert [after for _, after in record["advances"]] == [1000, 1500]
+    assert record["requests"] == [5, 1]  # the requests of each period, its ADVANCE included
     x = sum((1 if r[3] else -1) * r[1] for r in record["rises"])
     y = sum((1 if r[4] else -1) * r[2] for r in record["rises"])
     assert (x, y) == (5, -3)
@@ -148,4 +149,44 @@ def test_bad_options_are_refused_before_anything_is_written(tmp_path, capsys, ar
     with pytest.raises(SystemExit):
         main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), *argv])
     assert message in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_unplugged_card_reads_all_ones_and_loses_writes(tmp_path):
+    client = Client(tmp_path, "--fail", "unplug@1")
+    assert client.ask(READ, regmap.offset("ID")) == (regmap.register("ID").reset, None)
+    client.ask(ADVANCE, 100)
+    assert client.ask(READ, regmap.offset("ID")) == (0xFFFFFFFF, None)
+    assert client.ask(WRITE, regmap.offset("CONTROL"), 1) == (0, None)
+    assert client.ask(FIFO, 3, words=LINE_5_M3) == (0, None)
+    record = client.finish()
+    assert [op for _, op in record["lost"]] == [WRITE, FIFO] and record["fifo"] == [] and record["writes"] == []
+
+
+def test_a_frozen_card_does_not_run(tmp_path):
+    client = Client(tmp_path, "--fail", "freeze@1")
+    assert client.ask(ADVANCE, 1000) == (1000, None)
+    assert client.ask(FIFO, 3, words=LINE_5_M3) == (0, None)
+    assert client.ask(WRITE, regmap.offset("CONTROL"), 1) == (0, None)
+    stopped, _ = client.ask(ADVANCE, 1000)
+    assert stopped < 1100, "the card ran on"  # only the accesses' own bus clocks
+    assert len(client.finish()["rises"]) < 5, "the card made its LINE though frozen"
+
+
+def test_a_stalled_server_keeps_the_socket_but_answers_no_more(tmp_path):
+    """(--fail hang-up closes the socket instead: tests/linuxcnc/test_halrun.py.)"""
+    client = Client(tmp_path, "--fail", "stall@1")
+    client.ask(ADVANCE, 100)
+    client.connection.settimeout(0.5)
+    client.connection.sendall(REQUEST.pack(READ, regmap.offset("ID"), 0))
+    with pytest.raises(socket.timeout):
+        client.connection.recv(ANSWER.size)
+    client.finish()
+
+
+@pytest.mark.parametrize("value", ["melt@3", "unplug", "unplug@x"])
+def test_bad_failures_are_refused(tmp_path, capsys, value):
+    with pytest.raises(SystemExit):
+        main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), "--fail", value])
+    assert "--fail must be KIND@N" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []

@@ -1,0 +1,41 @@
+/* The dda_card driver's fault checks: the faults that stand whatever
+ * enable does, a card gone from the bus, a position-scale of 0.
+ * error-code values: dda_state.h.  Included by dda_card.c.
+ *
+ * Copyright the PCI DDA card authors.  GPL-2.0-or-later (see COPYING here).
+ */
+#ifndef DDA_FAULTS_H
+#define DDA_FAULTS_H
+
+#include "dda_checks.h"
+#include "dda_state.h"
+
+/* A fault that stands whatever enable does: the transport failed, the card gone, a
+ * watchdog stop held by has_bit; else 0. */
+static int standing_fault(struct card *c)
+{
+    if (c->transport.failed)
+        return FAULT_TRANSPORT;
+    if (c->gone)
+        return FAULT_CARD_GONE;
+    return *c->watchdog_has_bit ? FAULT_CARD_STOPPED : 0;
+}
+
+/* A card gone from the bus (pulled, its slot unpowered) reads all-ones, which STATUS
+ * (reserved bits 0) never does; ID reading all-ones too confirms it. */
+static int card_gone(struct card *c, uint32_t status)
+{
+    uint32_t id = 0;
+    return status == 0xFFFFFFFFu && (dda_read32(&c->transport, DDA_ID, &id) < 0 || id == 0xFFFFFFFFu);
+}
+
+/* position-scale 0 would put every target at step 0: forced to 1, as hostmot2 does. */
+static void check_scale(struct stepgen *s, int i)
+{
+    if (s->position_scale != 0.0)
+        return;
+    s->position_scale = 1.0;
+    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: stepgen.%02d.position-scale 0 is no scale: set to 1\n", i);
+}
+
+#endif /* DDA_FAULTS_H */
