@@ -18,7 +18,7 @@ from sim.card.card_jobs import check_pin_timing, expected_steps, random_job, ris
 SOAK_CLOCKS = 10 ** 8
 
 
-@pytest.mark.slow
+@pytest.mark.slow(reason="a soak of 10**8 clocks")
 @pytest.mark.parametrize("seed", [2026])
 def test_random_job_soak_on_verilator(seed):
     job = random_job(seed, 12000, feeds=(regmap.RATE_ONE // 2048, regmap.RATE_MAX), dwell=200000)

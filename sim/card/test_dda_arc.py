@@ -260,7 +260,7 @@ def test_arc_setup_time_and_steps_read_back_from_the_vcd():
     assert wave.at("cmd_quadrant", record.clocks * 2 * HALF_PERIOD) == 0
 
 
-@pytest.mark.slow
+@pytest.mark.slow(reason="long random arcs: more of what the default benches check on every clock")
 @pytest.mark.parametrize("seed", range(4))
 def test_rtl_random_arcs_long(seed):
     rng = random.Random(seed)
@@ -271,7 +271,7 @@ def test_rtl_random_arcs_long(seed):
     check_moves(record, variants=BUILDS[build])
 
 
-@pytest.mark.slow
+@pytest.mark.slow(reason="long random arcs in Icarus: more of what the default co-simulation checks")
 @pytest.mark.parametrize("build", sorted(BUILDS))
 def test_generated_verilog_random_arcs_long(build):
     seed = sorted(BUILDS).index(build)

@@ -74,7 +74,7 @@ def test_an_accepted_arc_judged_as_refused_is_a_mismatch(dda):
     assert len(tally.mismatches) == 1 and "refused move" in tally.mismatches[0]
 
 
-@pytest.mark.slow
+@pytest.mark.slow(reason="every legal arc of the 6-bit build, minutes on Verilator; the default suite runs every line and a sample of arcs")
 @pytest.mark.parametrize("kind", ["precise", "improved", "refused"])
 def test_every_arc_equals_the_model(dda, kind):
     """Every legal arc of the width (every start, every end the set-up

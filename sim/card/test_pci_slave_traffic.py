@@ -15,7 +15,7 @@ def test_random_traffic_short(target):
     assert any(r.master_abort for r in records) and any(r.target_abort for r in records)
 
 
-@pytest.mark.slow
+@pytest.mark.slow(reason="10,000 random transactions; the short run is in the default suite")
 @pytest.mark.parametrize("target", ["myhdl", "verilog"])
 def test_random_traffic_long(target):
     bench, board = run_random(target, 10_000, seed=2026)

@@ -68,7 +68,7 @@ def test_a_hundred_retries_per_delayed_read(length):
     assert retried >= 100 * length
 
 
-@pytest.mark.slow
+@pytest.mark.slow(reason="up to a hundred retries per dword; a few retries per dword run by default")
 @pytest.mark.parametrize("prefetch", [0, 8])
 def test_every_burst_length_with_up_to_a_hundred_retries_per_dword(prefetch):
     sweep(range(1, 257), lambda rng: rng.randint(0, 100), prefetch, seed=100 + prefetch)

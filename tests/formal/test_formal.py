@@ -39,13 +39,13 @@ def test_fast_group_proves(name, tmp_path):
     _prove(name, tmp_path)
 
 
-@pytest.mark.slow
+@pytest.mark.slow(reason="proofs of minutes (docs/formal.md lists them with their seconds)")
 @pytest.mark.parametrize("name", SLOW)
 def test_slow_group_proves(name, tmp_path):
     _prove(name, tmp_path)
 
 
-@pytest.mark.slow
+@pytest.mark.slow(reason="an unbounded proof of several minutes")
 def test_fifo_path(tmp_path):
     """Nothing acknowledged is dropped; register access never waits behind the FIFO.
 
@@ -176,7 +176,7 @@ def test_card_defect_is_caught(name, tmp_path):
     assert_defect_rejected(judge, GEN_DIR / "card.v", pattern, replacement, rules, tmp_path)
 
 
-@pytest.mark.slow
+@pytest.mark.slow(reason="the whole card at depth 28: minutes")
 def test_card_error_defect_is_caught(tmp_path):
     """STATUS.ERROR stuck at NONE on the whole card: a malformed first
     command is not reported, and `card_status_error` rejects it."""

@@ -76,7 +76,7 @@ def test_refuses_ice40_cells(tmp_path):
         fpgaflow.synthesize("ice40_cell_unit", family="ecp5", gen_dir=tmp_path, build=tmp_path / "ecp5")
 
 
-@pytest.mark.slow
+@pytest.mark.slow(reason="a conversion and about 1.5 minutes of place and route a seed; the ECP5 flow on a small unit runs by default")
 def test_generic_top_places_on_ecp5_and_meets_the_pci_clock(tmp_path):
     # about 1.5 minutes of CPU a seed on top of the conversion: in the slow set
     gen = tmp_path / "gen"

@@ -50,7 +50,7 @@ def test_a_job_many_times_the_fifo_streams_with_no_gap_on_the_pins():
     assert consumed == sorted(consumed) and calls[-1] == (len(planned.words()), len(planned.words()))
 
 
-@pytest.mark.slow
+@pytest.mark.slow(reason="100,000 segments; the short streams run by default")
 def test_100000_segments_stream_with_no_gap_on_the_pins():
     planned, model, result, rises, _, clocks = run_stream("verilator", 100_000, seed=7)
     assert len(planned.drawing) == 100_000

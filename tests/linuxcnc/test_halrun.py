@@ -19,7 +19,9 @@ from models import instructions as isa
 from models import registers as regmap
 from tests.linuxcnc.session import PERIOD_CLOCKS, as_user, card_server, missing, one_linuxcnc, run_folder
 
-pytestmark = [pytest.mark.linuxcnc, pytest.mark.skipif(missing() is not None, reason=str(missing()))]
+# one LinuxCNC (or halrun) per host: every such test runs on one xdist worker, in turn
+pytestmark = [pytest.mark.linuxcnc, pytest.mark.xdist_group("linuxcnc"),
+              pytest.mark.skipif(missing() is not None, reason=str(missing()))]
 
 HELPERS = {
     # until.sh PIN VALUE: wait (at most 60 s) until halcmd getp PIN prints VALUE (not:VALUE: anything else)
@@ -157,10 +159,9 @@ FAULTS = {  # --fail kind: (error-code, what the driver says once)
 }
 
 
-# hang-up fails the transport as a stall does (the socket's send or receive), so it runs
-# with the slow set only; the others are each a fault of their own
-@pytest.mark.parametrize("kind", [pytest.param(kind, marks=[pytest.mark.slow] if kind == "hang-up" else [])
-                                  for kind in FAULTS])
+@pytest.mark.parametrize("kind", [pytest.param(kind, marks=[pytest.mark.slow(
+    reason="hang-up fails the transport as a stall does (the socket's send or receive)")] if kind == "hang-up" else [])
+    for kind in FAULTS])
 def test_a_card_or_server_that_stops_answering(linuxcnc_alone, kind):
     """After 300 periods the card leaves the bus (reads all-ones), or its clock stops (the
     FIFO fills), or the server stalls or hangs up: error with a code of its own, said once,
