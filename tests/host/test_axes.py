@@ -21,7 +21,7 @@ from host.geometry import Arc, Line
 from host.machine import Machine
 from host.planner import plan
 from models.commands import decode_words
-from models.dda_axes import MoveIterator, iterate_axes
+from models.dda_axes import iterate_axes
 from models.dda_model import iterate
 from models.dda_plan import ArcCommand, AxesLineCommand, LineCommand
 from models.registers import RATE_ONE
@@ -218,14 +218,6 @@ def test_a_helix_steeper_than_the_arcs_iterations_becomes_3d_lines():
     assert check(planned).max_deviation_mm <= machine.chord_tolerance + (0.5 + math.sqrt(3) / 2) / 200
 
 
-def test_move_iterator_takes_every_planned_command_of_the_mill():
-    from rtl.convert import ROOT
-    machine = Machine(steps_per_mm=(200.0,) * 3)
-    planned = plan(parse((ROOT / "examples" / "mill.ngc").read_text(), "mill.ngc", 3), machine)
-    for _, command in decoded_moves(planned):
-        MoveIterator(command, 3, machine.coord_width)  # the card's RANGE rules and the DDA's acceptance
-
-
 def run_host(*args):
     from rtl.convert import ROOT
     return subprocess.run([sys.executable, "-m", "host", *map(str, args)], cwd=ROOT, capture_output=True,
@@ -239,8 +231,8 @@ def one_error_line(result):
 
 
 def test_plan_for_a_three_axis_card_and_the_refusal_on_the_default_one(tmp_path):
-    from rtl.convert import ROOT
-    mill, words = ROOT / "examples" / "mill.ngc", tmp_path / "words.txt"
+    mill, words = tmp_path / "mill.ngc", tmp_path / "words.txt"
+    mill.write_text("G0 X1 Y1\nG1 Z-1 F100\nG18 G2 X3 Z-1 I1 K0\nG17 G3 X3 Y1 Z-2 I-1 J0\nG0 Z0\n")
     result = run_host("plan", mill, "--axes", "3", "--words", words)
     assert result.returncode == 0, result.stderr
     assert re.search(r"^steps:\s+X \d+, Y \d+, Z \d+;", result.stdout, re.M)
@@ -248,7 +240,7 @@ def test_plan_for_a_three_axis_card_and_the_refusal_on_the_default_one(tmp_path)
     words.unlink()
     refused = run_host("plan", mill, "--words", words)  # the default card: two axes
     assert refused.returncode != 0 and not words.exists()
-    assert re.fullmatch(r"python -m host: error: mill\.ngc:\d+: axis Z: the card has 2 axes \(X, Y\)",
+    assert re.fullmatch(r"python -m host: error: mill\.ngc:2: axis Z: the card has 2 axes \(X, Y\)",
                         one_error_line(refused))
     bad = run_host("plan", mill, "--axes", "3", "--steps-per-mm", "200,200")
     assert bad.returncode == 2 and "2 values for 3 axes" in one_error_line(bad)
