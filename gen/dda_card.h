@@ -316,15 +316,27 @@
 #define DDA_SIM_REQUEST_WORDS 3u
 #define DDA_SIM_ANSWER_WORDS 2u
 #define DDA_SIM_MAX_BURST 4096u /* words in one FIFO request */
+#define DDA_AXES_MAX 6u /* axis index i: X Y Z A B C */
+#define DDA_AXIS_X 0u
+#define DDA_AXIS_Y 1u
+#define DDA_AXIS_Z 2u
+#define DDA_AXIS_A 3u
+#define DDA_AXIS_B 4u
+#define DDA_AXIS_C 5u
 #define DDA_OPCODE_SHIFT 28u
+#define DDA_CMD_MAX_WORDS 10u /* the longest command of the N-axis form */
 #define DDA_CMD_LINE 0x1u
 #define DDA_CMD_LINE_OPERANDS 2u
 #define DDA_CMD_LINE_WORDS 3u
+#define DDA_CMD_LINE_MAX_WORDS 7u
 #define DDA_CMD_LINE_BLEND_SHIFT 16u
 #define DDA_CMD_LINE_BLEND_MASK 0x00010000u
+#define DDA_CMD_LINE_AXES_SHIFT 20u
+#define DDA_CMD_LINE_AXES_MASK 0x03F00000u
 #define DDA_CMD_ARC 0x2u
 #define DDA_CMD_ARC_OPERANDS 4u
 #define DDA_CMD_ARC_WORDS 5u
+#define DDA_CMD_ARC_MAX_WORDS 10u
 #define DDA_CMD_ARC_CCW_SHIFT 0u
 #define DDA_CMD_ARC_CCW_MASK 0x00000001u
 #define DDA_CMD_ARC_VARIANT_SHIFT 1u
@@ -335,9 +347,18 @@
 #define DDA_CMD_ARC_ACC_BITS_MASK 0x00001F00u
 #define DDA_CMD_ARC_BLEND_SHIFT 16u
 #define DDA_CMD_ARC_BLEND_MASK 0x00010000u
+#define DDA_CMD_ARC_U_AXIS_SHIFT 13u
+#define DDA_CMD_ARC_U_AXIS_MASK 0x0000E000u
+#define DDA_CMD_ARC_V_AXIS_SHIFT 17u
+#define DDA_CMD_ARC_V_AXIS_MASK 0x000E0000u
+#define DDA_CMD_ARC_HELIX_SHIFT 20u
+#define DDA_CMD_ARC_HELIX_MASK 0x03F00000u
 #define DDA_CMD_PULSE 0x3u
 #define DDA_CMD_PULSE_OPERANDS 2u
 #define DDA_CMD_PULSE_WORDS 3u
+#define DDA_CMD_PULSE_MAX_WORDS 7u
+#define DDA_CMD_PULSE_AXES_SHIFT 20u
+#define DDA_CMD_PULSE_AXES_MASK 0x03F00000u
 #define DDA_CMD_SET 0x4u
 #define DDA_CMD_SET_OPERANDS 1u
 #define DDA_CMD_SET_WORDS 2u
@@ -363,7 +384,7 @@
  * words[] and returns how many; it returns 0 and writes nothing when a header
  * field does not fit its width.  Signed operands are steps (two's complement). */
 
-/* LINE: straight move by (DX, DY) steps (signed, must fit the coordinate width). */
+/* LINE: straight move by (DX, DY) steps (signed, must fit the coordinate width); N-axis form: by one displacement per axis in AXES, all axes ending together (docs/axes.md). */
 static inline unsigned dda_cmd_line(uint32_t words[DDA_CMD_LINE_WORDS],
     int32_t dx,
     int32_t dy,
@@ -377,7 +398,7 @@ static inline unsigned dda_cmd_line(uint32_t words[DDA_CMD_LINE_WORDS],
     return DDA_CMD_LINE_WORDS;
 }
 
-/* ARC: arc about the centre from (XS, YS) to (XE, YE), centre-relative signed steps. */
+/* ARC: arc about the centre from (XS, YS) to (XE, YE), centre-relative signed steps; N-axis form: in the plane (U_AXIS, V_AXIS), XS .. YE its (u, v) coordinates, the HELIX axes moving linearly with the arc's ITERATIONS (docs/axes.md). */
 static inline unsigned dda_cmd_arc(uint32_t words[DDA_CMD_ARC_WORDS],
     int32_t xs,
     int32_t ys,
@@ -399,7 +420,7 @@ static inline unsigned dda_cmd_arc(uint32_t words[DDA_CMD_ARC_WORDS],
     return DDA_CMD_ARC_WORDS;
 }
 
-/* PULSE: direct pulses: signed counts per axis at PULSE_PERIOD_X / _Y, both axes at once. */
+/* PULSE: direct pulses: signed counts per axis at PULSE_PERIOD_X / _Y, both axes at once; N-axis form: one count per axis in AXES, at that axis's PULSE_PERIOD. */
 static inline unsigned dda_cmd_pulse(uint32_t words[DDA_CMD_PULSE_WORDS],
     int32_t count_x,
     int32_t count_y)
@@ -439,6 +460,76 @@ static inline unsigned dda_cmd_mark(uint32_t words[DDA_CMD_MARK_WORDS],
         return 0u;
     words[0] = (DDA_CMD_MARK << DDA_OPCODE_SHIFT) | (tag << DDA_CMD_MARK_TAG_SHIFT);
     return DDA_CMD_MARK_WORDS;
+}
+
+/* LINE, N-axis form (docs/axes.md): d[i] is axis i's operand, read for the axes
+ * in AXES only (AXES = 0: X, Y). */
+static inline unsigned dda_cmd_line_axes(uint32_t words[DDA_CMD_LINE_MAX_WORDS],
+    uint32_t axes,
+    const int32_t d[DDA_AXES_MAX],
+    uint32_t blend)
+{
+    uint32_t chosen = axes ? axes : 0x3u;
+    unsigned length = 1u;
+    if (axes > 0x3Fu || blend > 0x1u)
+        return 0u;
+    words[0] = (DDA_CMD_LINE << DDA_OPCODE_SHIFT) | (axes << DDA_CMD_LINE_AXES_SHIFT) | (blend << DDA_CMD_LINE_BLEND_SHIFT);
+    for (unsigned axis = 0u; axis < DDA_AXES_MAX; axis++)
+        if ((chosen >> axis) & 1u)
+            words[length++] = (uint32_t)d[axis];
+    return length;
+}
+
+/* ARC, N-axis form (docs/axes.md): d[i] is axis i's operand, read for the axes
+ * in HELIX only (HELIX = 0: no axis operands). */
+static inline unsigned dda_cmd_arc_helix(uint32_t words[DDA_CMD_ARC_MAX_WORDS],
+    int32_t xs,
+    int32_t ys,
+    int32_t xe,
+    int32_t ye,
+    uint32_t iterations,
+    uint32_t helix,
+    const int32_t d[DDA_AXES_MAX],
+    uint32_t ccw,
+    uint32_t variant,
+    uint32_t lambda,
+    uint32_t acc_bits,
+    uint32_t blend,
+    uint32_t u_axis,
+    uint32_t v_axis)
+{
+    unsigned length = 1u;
+    if (helix > 0x3Fu || ccw > 0x1u || variant > 0x3u || lambda > 0x1Fu || acc_bits > 0x1Fu || blend > 0x1u || u_axis > 0x7u || v_axis > 0x7u)
+        return 0u;
+    words[0] = (DDA_CMD_ARC << DDA_OPCODE_SHIFT) | (helix << DDA_CMD_ARC_HELIX_SHIFT) | (ccw << DDA_CMD_ARC_CCW_SHIFT) | (variant << DDA_CMD_ARC_VARIANT_SHIFT) | (lambda << DDA_CMD_ARC_LAMBDA_SHIFT) | (acc_bits << DDA_CMD_ARC_ACC_BITS_SHIFT) | (blend << DDA_CMD_ARC_BLEND_SHIFT) | (u_axis << DDA_CMD_ARC_U_AXIS_SHIFT) | (v_axis << DDA_CMD_ARC_V_AXIS_SHIFT);
+    words[length++] = (uint32_t)xs;
+    words[length++] = (uint32_t)ys;
+    words[length++] = (uint32_t)xe;
+    words[length++] = (uint32_t)ye;
+    if (helix != 0u) {
+        words[length++] = (uint32_t)iterations;
+    }
+    for (unsigned axis = 0u; axis < DDA_AXES_MAX; axis++)
+        if ((helix >> axis) & 1u)
+            words[length++] = (uint32_t)d[axis];
+    return length;
+}
+
+/* PULSE, N-axis form (docs/axes.md): count[i] is axis i's operand, read for the axes
+ * in AXES only (AXES = 0: X, Y). */
+static inline unsigned dda_cmd_pulse_axes(uint32_t words[DDA_CMD_PULSE_MAX_WORDS],
+    uint32_t axes,
+    const int32_t count[DDA_AXES_MAX])
+{
+    uint32_t chosen = axes ? axes : 0x3u;
+    unsigned length = 1u;
+    if (axes > 0x3Fu)
+        return 0u;
+    words[0] = (DDA_CMD_PULSE << DDA_OPCODE_SHIFT) | (axes << DDA_CMD_PULSE_AXES_SHIFT);
+    for (unsigned axis = 0u; axis < DDA_AXES_MAX; axis++)
+        if ((chosen >> axis) & 1u)
+            words[length++] = (uint32_t)count[axis];
+    return length;
 }
 
 #endif /* DDA_REGISTERS_H */

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from host.machine import Machine
 from host.machine_io import MachineIO, MachineStopped
 from host.transports.base import POLL_SECONDS
+from models.axes import names
 from models import instructions as isa
 from models import registers as regmap
 from models.dda_model import ArcCommand, plan_arc
@@ -145,6 +146,9 @@ class Card(MachineIO):
             timing[name] = clocks
         if any(p not in (0, 1) for p in polarity) or len(polarity) != 2:
             raise ValueError(f"polarity is two values 0 or 1, not {polarity}")
+        if len(steps_per_mm) > self.identity.axes:
+            raise ValueError(f"steps per mm for {len(steps_per_mm)} axes: the card has {self.identity.axes} "
+                             f"({names(range(self.identity.axes))})")
         machine = Machine(steps_per_mm=tuple(steps_per_mm), clock_hz=self.identity.clock_hz,
                           coord_width=self.identity.coord_width, rapid=rapid, acceleration=acceleration,
                           start_feed=start_feed, mark_interval=mark_interval)

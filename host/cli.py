@@ -24,7 +24,9 @@ from host.errors import ProgramError
 from host.machine import DEFAULT_CLOCK_HZ, DEFAULT_COORD_WIDTH, Machine
 from host.planner import plan
 from host.transports.base import TransportError
+from models.axes import AXIS_NAMES
 from models.commands import command_words
+from models.parameters import AXES
 from models.registers import RATE_MAX
 
 PROG = "python -m host"
@@ -38,12 +40,29 @@ def positive(text):
 
 
 def scales(text):
-    """``X`` or ``X,Y`` steps per mm."""
+    """Steps per mm (per degree for A, B, C): one value for every axis, or one per axis."""
     parts = text.split(",")
-    if len(parts) not in (1, 2):
-        raise argparse.ArgumentTypeError(f"{text!r}: give X or X,Y")
-    values = [positive(p) for p in parts]
-    return (values[0], values[-1])
+    if not 1 <= len(parts) <= len(AXIS_NAMES):
+        raise argparse.ArgumentTypeError(f"{text!r}: give one value, or one per axis ({','.join(AXIS_NAMES)})")
+    return tuple(positive(p) for p in parts)
+
+
+def axis_count(text):
+    """The ``axes`` build parameter's value (models/parameters.py)."""
+    try:
+        return AXES.parse(text)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
+def per_axis(values, axes, refuse):
+    """``values`` (from ``scales``) for ``axes`` axes: one value for all, or exactly one each."""
+    if len(values) == 1:
+        return values * axes
+    if len(values) != axes:
+        refuse(f"--steps-per-mm: {len(values)} values for {axes} axes ({', '.join(AXIS_NAMES[:axes])}): "
+               "give one value, or one per axis")
+    return values
 
 
 def width(text):
@@ -72,8 +91,13 @@ def parser():
     commands = top.add_subparsers(dest="command", required=True, parser_class=_Parser)
     plan_cmd = commands.add_parser("plan", help="plan FILE and measure the path against the drawing")
     plan_cmd.add_argument("file", type=Path, help="G-code program, or an .svg drawing")
-    plan_cmd.add_argument("--steps-per-mm", type=scales, default=(200.0, 200.0), metavar="X[,Y]",
-                          help="steps per mm of each axis (default 200)")
+    plan_cmd.add_argument("--axes", type=axis_count, default=AXES.default,
+                          help=f"plan for a card with this many axes, X, Y, Z, A, B, C in order: "
+                               f"{AXES.bounds()} (default {AXES.default}); a program naming another axis is "
+                               "refused with its line")
+    plan_cmd.add_argument("--steps-per-mm", type=scales, default=(200.0,), metavar="X[,Y,...]",
+                          help="steps per mm of each axis (per degree for A, B, C): one value for all, or "
+                               "one per axis (default 200)")
     plan_cmd.add_argument("--clock-hz", type=positive, default=DEFAULT_CLOCK_HZ,
                           help=f"the card's clock frequency (default {DEFAULT_CLOCK_HZ})")
     plan_cmd.add_argument("--coord-width", type=width, default=DEFAULT_COORD_WIDTH,
@@ -90,13 +114,13 @@ def parser():
     plan_cmd.add_argument("--list", action="store_true", help="print every command")
     plan_cmd.add_argument("--words", type=Path, help="write the FIFO words here (hex, one a line)")
     plan_cmd.add_argument("--preview", type=Path, help="draw the path over the drawing into this PNG")
-    cli_card.add_commands(commands, positive, scales, count)
+    cli_card.add_commands(commands, positive, scales, count, axis_count)
     return top
 
 
 def main(argv=None):
     options = parser().parse_args(argv)
-    command = {"plan": _plan, "run": lambda o: cli_card.run_command(o, _refuse),
+    command = {"plan": _plan, "run": lambda o: cli_card.run_command(o, _refuse, per_axis),
                "info": lambda o: cli_card.info_command(o, _refuse),
                "selftest": lambda o: cli_card.selftest_command(o, _refuse)}[options.command]
     try:
@@ -121,14 +145,14 @@ def _plan(options):
             _refuse(f"{out}: its folder does not exist")
     if options.preview and importlib.util.find_spec("matplotlib") is None:
         _refuse("--preview needs matplotlib: pip install -e '.[plot]'")
-    machine = Machine(steps_per_mm=options.steps_per_mm, clock_hz=options.clock_hz,
+    machine = Machine(steps_per_mm=per_axis(options.steps_per_mm, options.axes, _refuse), clock_hz=options.clock_hz,
                       coord_width=options.coord_width, rapid=options.rapid,
                       acceleration=options.acceleration, start_feed=options.start_feed,
                       mark_interval=options.mark_interval)
     if options.file.suffix.lower() == ".svg":
         drawing = svg.parse(str(options.file), options.tolerance, options.feed, options.file.name)
     else:
-        drawing = gcode.parse(options.file.read_text(), options.file.name)
+        drawing = gcode.parse(options.file.read_text(), options.file.name, options.axes)
     planned = plan(drawing, machine)
     result = check(planned)
     if options.list:
@@ -161,8 +185,8 @@ def summary(planned, result):
         f"{len(planned.words())} words",
         f"runs:       {len(planned.runs)} (stops between them), {sum(r.capped for r in planned.runs)} "
         f"slowed so that their last move can decelerate",
-        f"steps:      X {result.steps[0]}, Y {result.steps[1]}; {result.iterations} DDA iterations; "
-        f"ends at {result.end}",
+        f"steps:      {', '.join(f'{AXIS_NAMES[a]} {n}' for a, n in enumerate(result.steps))}; "
+        f"{result.iterations} DDA iterations; ends at {result.end}",
         f"deviation:  max {result.max_deviation_mm:.5f} mm = {result.max_deviation_steps:.3f} steps "
         f"(at {result.worst_where})",
         f"feed:       fed runs at {', '.join(f'{f:g}' for f in feeds) or '-'} mm/min "

@@ -15,6 +15,7 @@ from pathlib import Path
 from host import gcode, svg
 from host.card import Card
 from host.check import check
+from host.geometry import dimension
 from host.pin_measure import deviation, junction_gaps, pin_moves
 from host.planner import plan
 from host.selftest import selftest
@@ -22,9 +23,10 @@ from host.stream import Stopped, stream
 from host.transports import SIM_KINDS, open_transport
 
 STOP_EXIT = 130  # the shell's code for a job ended by SIGINT
+SIMULATED_AXES = (2,)  # the builds a simulated card can be today (the N-axis card is not built yet)
 
 
-def add_commands(commands, positive, scales, count):
+def add_commands(commands, positive, scales, count, axis_count):
     """The ``run``, ``info`` and ``selftest`` sub-commands on ``commands`` (argparse sub-parsers)."""
     def card_options(sub):
         sub.add_argument("--card", default="verilator",
@@ -34,8 +36,13 @@ def add_commands(commands, positive, scales, count):
     run = commands.add_parser("run", help="run FILE on a card, streaming it through the FIFO")
     run.add_argument("file", help="G-code program, or an .svg drawing")
     card_options(run)
-    run.add_argument("--steps-per-mm", type=scales, default=(200.0, 200.0), metavar="X[,Y]",
-                     help="steps per mm of each axis (default 200)")
+    run.add_argument("--axes", type=axis_count,
+                     help="the card's axes: a simulated card of this build (2 only, for now: the N-axis card "
+                          "is not built yet); a real card must report it in BUILD.AXES (default: what the card "
+                          "reports)")
+    run.add_argument("--steps-per-mm", type=scales, default=(200.0,), metavar="X[,Y,...]",
+                     help="steps per mm of each axis (per degree for A, B, C): one value for all, or one per "
+                          "axis of the card (default 200)")
     run.add_argument("--rapid", type=positive, default=3000.0, help="rapid feed, mm/min (default 3000)")
     run.add_argument("--acceleration", type=positive, default=500.0, help="mm/s^2 (default 500)")
     run.add_argument("--start-feed", type=positive, default=60.0,
@@ -62,10 +69,13 @@ def card_spec(options, refuse):
     return spec
 
 
-def run_command(options, refuse):
+def run_command(options, refuse, per_axis):
     """``run``; the exit code."""
     spec = card_spec(options, refuse)
     path = Path(options.file)
+    if options.axes is not None and spec in SIM_KINDS and options.axes not in SIMULATED_AXES:
+        refuse(f"--axes {options.axes}: the simulated card has {', '.join(map(str, SIMULATED_AXES))} axes; the "
+               "N-axis card is not built yet (plan for it with: python -m host plan FILE --axes N)")
     if not path.is_file():
         refuse(f"{path}: no such file")
     if options.preview:
@@ -85,7 +95,13 @@ def run_command(options, refuse):
     wall = time.monotonic()
     with open_transport(spec) as transport:
         card = Card(transport)
-        machine = card.configure(steps_per_mm=options.steps_per_mm, step_width_ns=options.step_width_ns,
+        axes = card.identity.axes
+        if options.axes is not None and options.axes != axes:
+            raise ValueError(f"--axes {options.axes}: the card reports {axes} axes (BUILD.AXES)")
+        if path.suffix.lower() != ".svg" and dimension(drawing) > axes:
+            gcode.parse(path.read_text(), path.name, axes)  # refuses the first line that needs more axes
+        machine = card.configure(steps_per_mm=per_axis(options.steps_per_mm, axes, _raise),
+                                 step_width_ns=options.step_width_ns,
                                  dir_setup_ns=options.dir_setup_ns, dir_hold_ns=options.dir_hold_ns,
                                  rapid=options.rapid * scale, acceleration=options.acceleration,
                                  start_feed=options.start_feed, mark_interval=options.mark_interval)
@@ -136,6 +152,10 @@ def _pins_report(planned, model, transport, first_rise, preview, dir_setup):
              title=f"the card's STEP/DIR pins (blue: fed, orange: rapid) over the drawing (grey); "
                    f"max deviation {steps:.2f} steps")
         print(f"preview:    {preview}")
+
+
+def _raise(message):
+    raise ValueError(message)
 
 
 class _StopRequest:

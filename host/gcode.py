@@ -1,11 +1,20 @@
-"""G-code front end: a program's lines -> ``geometry`` primitives in millimetres.
+"""G-code front end: a program's lines -> ``geometry`` primitives in millimetres (degrees for A, B, C).
 
-Supported: G0, G1, G2/G3 (centre format I/J, radius format R, negative R for
-the longer arc), G4 P (seconds), G17 (G18/G19 are refused: the card has X and
-Y only), G20/G21, G90/G91, G90.1/G91.1, F (units per minute), M2/M30 (the end:
-lines after it are not read), N (ignored), comments.  The modal state starts
-as LinuxCNC's: G17 G21 G90 G91.1, no motion mode, no feed, at (0, 0).  Every
-refusal names the line (``ProgramError``).
+Supported: G0, G1 (X, Y, Z, A, B, C: lines through every axis named),
+G2/G3 in the plane G17 (XY, offsets I and J), G18 (ZX, K and I) or G19 (YZ,
+J and K) (centre format; radius format R, negative R for the longer arc; the
+axes outside the plane that move make a helix; P, a whole number of turns,
+P1 the default), G4 P (seconds), G20/G21 (linear axes only: A, B, C stay in
+degrees), G90/G91, G90.1/G91.1, F (units per minute), M2/M30 (the end: lines
+after it are not read), N (ignored), comments.  The modal state starts as
+LinuxCNC's: G17 G21 G90 G91.1, no motion mode, no feed, at 0 on every axis.
+Every refusal names the line (``ProgramError``); ``parse(..., axes=N)``
+refuses, at its line, every word of an axis a card with N axes does not have
+and every arc in a plane it cannot turn in.
+
+The points have as many axes as the program names (``geometry``): an XY
+program gives (x, y) points, exactly as a two-axis program always did.  An
+arc of P turns is one ``Arc`` per turn (the card runs one ARC per turn).
 
 Arcs are checked as LinuxCNC checks them: a centre-format arc is refused when
 its start and end radii differ by more than 0.5 mm, or by more than 0.005 mm
@@ -17,7 +26,8 @@ from dataclasses import dataclass, replace
 
 from host.errors import ProgramError
 from host.gcode_words import read_lines
-from host.geometry import SAME_POINT, Arc, Dwell, Line
+from host.geometry import SAME_POINT, TAU, Arc, Dwell, Line
+from models.axes import AXIS_NAMES, MAX_AXES, PLANES, ROTARY_NAMES, names
 
 MM_PER_INCH = 25.4
 ARC_RADIUS_LIMIT = 0.5       # mm
@@ -34,10 +44,11 @@ GROUPS = {  # G codes in tenths -> modal group
     40: "dwell",
 }
 M_CODES = {20: "M2", 300: "M30"}
-AXIS_WORDS = ("X", "Y")
-ARC_WORDS = ("I", "J", "R")
-KNOWN_WORDS = set("GMNFXYIJRP")
-REFUSED_AXES = set("ZABCUVW")
+AXIS_WORDS = AXIS_NAMES
+OFFSET_WORDS = ("I", "J", "K")  # centre offsets along X, Y, Z
+ARC_WORDS = OFFSET_WORDS + ("R",)
+KNOWN_WORDS = set("GMNFRP") | set(AXIS_WORDS) | set(OFFSET_WORDS)
+REFUSED_AXES = set("UVW")
 
 
 @dataclass(frozen=True)
@@ -45,30 +56,54 @@ class State:
     motion: int = None      # 0, 10, 20, 30 (tenths), None until a motion word
     absolute: bool = True   # G90
     arc_absolute: bool = False  # G90.1
-    scale: float = 1.0      # mm per program unit (G21: 1, G20: 25.4)
+    scale: float = 1.0      # mm per program unit of a linear axis (G21: 1, G20: 25.4)
     feed: float = None      # mm/min
-    position: tuple = (0.0, 0.0)
+    plane: int = 17         # G17, G18, G19
+    position: tuple = (0.0,) * MAX_AXES
 
 
-def parse(text, name="<program>"):
-    """The primitives of G-code program ``text`` (``name`` labels errors)."""
-    state, drawing = State(), []
+def parse(text, name="<program>", axes=MAX_AXES):
+    """The primitives of G-code program ``text`` (``name`` labels errors) for a
+    card with ``axes`` axes (X, Y, ... in order)."""
+    state, drawing, used = State(), [], 2
     for where, line_words in read_lines(text, name):
         if not line_words:
             continue
-        state, items, ended = _line(state, line_words, where)
+        state, items, ended, needed = _line(state, line_words, where, axes)
         drawing += items
+        used = max(used, needed)
         if ended:
             break
-    return drawing
+    return [_trimmed(item, used) for item in drawing]
 
 
-def _line(state, line_words, where):
-    """(new state, primitives, program ended) of one line."""
+def _trimmed(item, axes):
+    """``item`` with points of ``axes`` axes (the program never named the others: they stay 0)."""
+    if isinstance(item, Dwell):
+        return item
+    return replace(item, start=item.start[:axes], end=item.end[:axes])
+
+
+def _needed(values, state, where, axes):
+    """The axes this line needs (one past the highest); ProgramError past the card's ``axes``."""
+    needed = [AXIS_WORDS.index(letter) + 1 for letter in AXIS_WORDS if letter in values]
+    for letter in AXIS_WORDS:
+        if letter in values and AXIS_WORDS.index(letter) >= axes:
+            raise ProgramError(where, f"axis {letter}: the card has {axes} axes ({names(range(axes))})")
+    if state.motion in (20, 30) and (any(k in values for k in AXIS_WORDS + ARC_WORDS)):
+        plane = PLANES[state.plane]
+        if max(plane) >= axes:
+            raise ProgramError(where, f"an arc in G{state.plane} ({names(plane)}) needs axis "
+                                      f"{AXIS_WORDS[max(plane)]}: the card has {axes} axes ({names(range(axes))})")
+        needed.append(max(plane) + 1)
+    return max(needed, default=2)
+
+
+def _line(state, line_words, where, axes):
+    """(new state, primitives, program ended, axes needed) of one line."""
     codes, values = _sort_words(line_words, where)
-    for code in codes.values():
-        if code == 180 or code == 190:
-            raise ProgramError(where, f"G{code // 10}: only the XY plane (G17) is supported")
+    if "plane" in codes:
+        state = replace(state, plane=codes["plane"] // 10)
     if "units" in codes:
         state = replace(state, scale=MM_PER_INCH if codes["units"] == 200 else 1.0)
     if "distance" in codes:
@@ -81,18 +116,19 @@ def _line(state, line_words, where):
         state = replace(state, feed=values["F"] * state.scale)
     if "motion" in codes:
         state = replace(state, motion=codes["motion"])
+    needed = _needed(values, state, where, axes)
     items = []
     if "dwell" in codes:
         items.append(_dwell(values, where))
-    elif "P" in values:
-        raise ProgramError(where, "P without G4")
+    elif "P" in values and state.motion not in (20, 30):
+        raise ProgramError(where, "P without G4 (seconds) or G2/G3 (turns)")
     moving = any(k in values for k in AXIS_WORDS + ARC_WORDS)
     if moving and "dwell" in codes:
         raise ProgramError(where, "G4 cannot share a line with a move")
     if moving or codes.get("motion") in (20, 30):
-        state, move = _move(state, values, where)
-        items.append(move)
-    return state, items, "M" in values
+        state, moves = _move(state, values, where)
+        items += moves
+    return state, items, "M" in values, needed
 
 
 def _sort_words(line_words, where):
@@ -114,7 +150,7 @@ def _sort_words(line_words, where):
         elif letter == "N":
             continue
         elif letter in REFUSED_AXES:
-            raise ProgramError(where, f"axis {letter}: the card drives X and Y only")
+            raise ProgramError(where, f"axis {letter}: the card's axes are {', '.join(AXIS_WORDS)}")
         elif letter not in KNOWN_WORDS:
             raise ProgramError(where, f"word {word} is not supported")
         elif letter in values:
@@ -133,20 +169,21 @@ def _dwell(values, where):
 
 
 def _target(state, values):
-    """The end point of a move in mm."""
-    x, y = state.position
+    """The end point of a move in mm (degrees for A, B, C), every axis."""
     point = []
-    for letter, current in zip(AXIS_WORDS, (x, y)):
+    for letter, current in zip(AXIS_WORDS, state.position):
+        scale = 1.0 if letter in ROTARY_NAMES else state.scale
         if letter not in values:
             point.append(current)
         elif state.absolute:
-            point.append(values[letter] * state.scale)
+            point.append(values[letter] * scale)
         else:
-            point.append(current + values[letter] * state.scale)
+            point.append(current + values[letter] * scale)
     return tuple(point)
 
 
 def _move(state, values, where):
+    """(new state, primitives) of a move."""
     motion = state.motion
     if motion is None:
         raise ProgramError(where, "a move with no motion mode (G0, G1, G2 or G3) in effect")
@@ -157,33 +194,74 @@ def _move(state, values, where):
         raise ProgramError(where, f"G{motion // 10} needs a feed: no F word yet")
     end = _target(state, values)
     if motion == 0:
-        move = Line(state.position, end, None, where)
+        moves = [Line(state.position, end, None, where)]
     elif motion == 10:
-        move = Line(state.position, end, state.feed, where)
+        moves = [Line(state.position, end, state.feed, where)]
     else:
-        move = _arc(state, values, end, motion == 30, where)
-    return replace(state, position=end), move
+        moves = _arc(state, values, end, motion == 30, where)
+    return replace(state, position=end), moves
 
 
 def _arc(state, values, end, ccw, where):
-    start, scale = state.position, state.scale
+    """The primitives of an arc: one per turn."""
+    start, scale, plane = state.position, state.scale, PLANES[state.plane]
+    u, v = plane
+    offsets = OFFSET_WORDS[u], OFFSET_WORDS[v]
+    stray = [k for k in OFFSET_WORDS if k in values and k not in offsets]
+    if stray:
+        raise ProgramError(where, f"{stray[0]} is not an offset of the G{state.plane} plane "
+                                  f"({names(plane)}): use {offsets[0]} and {offsets[1]}")
+    ends = (start[u], start[v]), (end[u], end[v])
     if "R" in values:
-        if "I" in values or "J" in values:
-            raise ProgramError(where, "an arc takes R or I/J, not both")
-        if not any(k in values for k in AXIS_WORDS):
-            raise ProgramError(where, "a radius-format arc needs an end point (X or Y)")
-        centre = _radius_centre(start, end, values["R"] * scale, ccw, where)
+        if any(k in values for k in offsets):
+            raise ProgramError(where, f"an arc takes R or {offsets[0]}/{offsets[1]}, not both")
+        if not any(AXIS_WORDS[k] in values for k in plane):
+            raise ProgramError(where, f"a radius-format arc needs an end point ({AXIS_WORDS[u]} or "
+                                      f"{AXIS_WORDS[v]})")
+        centre = _radius_centre(*ends, values["R"] * scale, ccw, where)
     else:
-        if "I" not in values and "J" not in values:
-            raise ProgramError(where, f"G{2 if not ccw else 3} needs I/J (centre) or R (radius)")
+        if not any(k in values for k in offsets):
+            raise ProgramError(where, f"G{2 if not ccw else 3} needs {offsets[0]}/{offsets[1]} (centre) "
+                                      "or R (radius)")
         if state.arc_absolute:
-            if "I" not in values or "J" not in values:
-                raise ProgramError(where, "with G90.1 the centre needs both I and J")
-            centre = values["I"] * scale, values["J"] * scale
+            if not all(k in values for k in offsets):
+                raise ProgramError(where, f"with G90.1 the centre needs both {offsets[0]} and {offsets[1]}")
+            centre = values[offsets[0]] * scale, values[offsets[1]] * scale
         else:
-            centre = start[0] + values.get("I", 0.0) * scale, start[1] + values.get("J", 0.0) * scale
-        _check_radii(start, end, centre, where)
-    return Arc(start, end, centre, ccw, state.feed, where)
+            centre = (ends[0][0] + values.get(offsets[0], 0.0) * scale,
+                      ends[0][1] + values.get(offsets[1], 0.0) * scale)
+        _check_radii(*ends, centre, where)
+    return _turns(Arc(start, end, centre, ccw, state.feed, where, plane), _turn_count(values, where))
+
+
+def _turn_count(values, where):
+    if "P" not in values:
+        return 1
+    turns = values["P"]
+    if turns != int(turns) or turns < 1:
+        raise ProgramError(where, f"P{turns:g}: the turns of an arc are a whole number, at least 1")
+    return int(turns)
+
+
+def _turns(arc, turns):
+    """``arc`` with ``turns - 1`` more full turns, as one ``Arc`` per turn: the
+    radius and the helix change linearly over the whole angle."""
+    if turns == 1:
+        return [arc]
+    total = arc.sweep + TAU * (turns - 1)
+    r0, r1 = arc.start_radius, arc.end_radius
+    su, sv = arc.in_plane(arc.start)
+    cu, cv = arc.centre
+    u, v = arc.plane
+    points = [arc.start]
+    for turn in range(1, turns):
+        fraction = TAU * turn / total
+        ratio = (r0 + (r1 - r0) * fraction) / r0
+        point = [s + (e - s) * fraction for s, e in zip(arc.start, arc.end)]
+        point[u], point[v] = cu + (su - cu) * ratio, cv + (sv - cv) * ratio
+        points.append(tuple(point))
+    points.append(arc.end)
+    return [replace(arc, start=a, end=b) for a, b in zip(points, points[1:])]
 
 
 def _check_radii(start, end, centre, where):

@@ -25,12 +25,16 @@ of the start radius (``models.dda_model.plan_arc``, the card's rule, decides).
    pieces instead of moving the whole arc.
 
 A radius beyond the coordinate width is refused; a line beyond it is cut
-into equal parts.
+into equal parts.  Lines run through every axis of their points
+(``AxesLineCommand`` when an axis other than X and Y moves); arcs are mapped
+in their plane's (u, v) coordinates here, the planner adds the plane and the
+helix (``host/helix.py``).
 """
 import math
 
 from host.errors import ProgramError
 from models.dda_model import ArcCommand, LineCommand, plan_arc
+from models.dda_plan import AxesLineCommand
 
 RADIUS_STEP = 0.25  # steps: most radius change of one spiral piece
 LINE_SPAN = 2          # steps: a piece this short is a LINE
@@ -41,21 +45,28 @@ MAX_DEPTH = 40
 
 
 def line_commands(start, end, coord_limit):
-    """LINEs from ``start`` to ``end`` (step positions), cut to fit ``coord_limit``."""
-    dx, dy = end[0] - start[0], end[1] - start[1]
-    parts = max(1, -(-max(abs(dx), abs(dy)) // coord_limit))
-    commands, previous = [], (0, 0)
+    """LINEs from ``start`` to ``end`` (step positions, any number of axes), cut to fit ``coord_limit``."""
+    deltas = [e - s for s, e in zip(start, end)]
+    parts = max(1, -(-max(abs(d) for d in deltas) // coord_limit))
+    commands, previous = [], (0,) * len(deltas)
     for i in range(1, parts + 1):
-        here = (_nearest(dx * i / parts), _nearest(dy * i / parts))
+        here = tuple(_nearest(d * i / parts) for d in deltas)
         if here != previous:
-            commands.append(LineCommand(here[0] - previous[0], here[1] - previous[1]))
+            commands.append(line_command([a - b for a, b in zip(here, previous)]))
         previous = here
     return commands
 
 
+def line_command(deltas):
+    """A ``LineCommand`` when only X and Y move, else an ``AxesLineCommand``."""
+    if any(deltas[2:]):
+        return AxesLineCommand(tuple(deltas))
+    return LineCommand(deltas[0], deltas[1])
+
+
 def arc_commands(arc, start, end, scale, coord_width):
-    """Commands for ``arc`` (a ``geometry.Arc`` in mm) from step position ``start``
-    to ``end`` with ``scale`` steps per mm on both axes."""
+    """Commands for ``arc`` (a ``geometry.Arc`` in mm) in its plane, from the step
+    position ``start`` to ``end`` (both (u, v)) with ``scale`` steps per mm on both axes."""
     ideal_centre = (arc.centre[0] * scale, arc.centre[1] * scale)
     start_radius, end_radius = arc.start_radius * scale, arc.end_radius * scale
     limit = (1 << (coord_width - 1)) - 2
@@ -108,7 +119,7 @@ class _ArcMapper:
     def lattice_point(self, angle):
         """Of the lattice points next to the ideal point at ``angle``, the one whose
         distance from the lattice centre is nearest the ideal point's."""
-        x, y = self.arc.point_at(angle)
+        x, y = self.arc.plane_point_at(angle)
         x, y = x * self.scale, y * self.scale
         radius = math.dist((x, y), self.centre)
         base = _nearest(x), _nearest(y)
@@ -124,7 +135,7 @@ class _ArcMapper:
             plan_arc(command, self.coord_width)
         except ValueError:
             return None
-        if abs(_turn(command, self.arc.ccw) - (angle_to - angle_from)) > SWEEP_SLACK:
+        if abs(turn(command, self.arc.ccw) - (angle_to - angle_from)) > SWEEP_SLACK:
             return None
         return command if self.radius_error(start, angle_from, angle_to) <= RADIUS_SLACK else None
 
@@ -134,7 +145,7 @@ class _ArcMapper:
         radius = math.dist(start, self.centre)
         worst = 0.0
         for i in range(RADIUS_SAMPLES + 1):
-            x, y = self.arc.point_at(angle_from + (angle_to - angle_from) * i / RADIUS_SAMPLES)
+            x, y = self.arc.plane_point_at(angle_from + (angle_to - angle_from) * i / RADIUS_SAMPLES)
             worst = max(worst, abs(math.dist((x * self.scale, y * self.scale), self.centre) - radius))
         return worst
 
@@ -154,7 +165,7 @@ class _ArcMapper:
                 + self.pieces(middle, end, middle_angle, angle_to, depth + 1))
 
 
-def _turn(command, ccw):
+def turn(command, ccw):
     """Angle an ARC command turns through, in (0, 2 pi]."""
     if (command.xs, command.ys) == (command.xe, command.ye):
         return math.tau

@@ -4,10 +4,15 @@ Lengths in millimetres, feeds in mm/min, acceleration in mm/s^2.  The card's
 clock frequency and coordinate width are build parameters: the card API
 reads them from the capability registers (``Card.configure`` returns the
 ``Machine``); ``python -m host plan`` takes them as options.
+
+The machine's axes are the card's first ones, X, Y, Z, A, B, C in that order
+(``models/axes.py``), one entry of ``steps_per_mm`` each: steps per mm of
+a linear axis (X, Y, Z), steps per degree of a rotary one (A, B, C).
 """
 import math
 from dataclasses import dataclass
 
+from models.axes import MAX_AXES, XY, names
 from models.registers import RATE_MAX, RATE_ONE
 
 DEFAULT_CLOCK_HZ = 33_000_000
@@ -16,7 +21,7 @@ DEFAULT_COORD_WIDTH = 24  # rtl.top's default
 
 @dataclass(frozen=True)
 class Machine:
-    steps_per_mm: tuple = (200.0, 200.0)   # X, Y
+    steps_per_mm: tuple = (200.0, 200.0)   # X, Y (, Z, A, B, C): per mm, per degree for A, B, C
     clock_hz: float = DEFAULT_CLOCK_HZ
     coord_width: int = DEFAULT_COORD_WIDTH
     rapid: float = 3000.0        # mm/min for G0 and pen-up moves
@@ -27,7 +32,9 @@ class Machine:
 
     def __post_init__(self):
         checks = (
-            (len(self.steps_per_mm) == 2 and all(k > 0 for k in self.steps_per_mm), "steps per mm must be positive"),
+            (2 <= len(self.steps_per_mm) <= MAX_AXES, f"steps per mm are given for 2..{MAX_AXES} axes, "
+             f"not {len(self.steps_per_mm)}"),
+            (all(k > 0 for k in self.steps_per_mm), "steps per mm must be positive"),
             (self.clock_hz > 0, "the clock frequency must be positive"),
             (8 <= self.coord_width <= 32, "the coordinate width must be 8..32 bits"),
             (self.rapid > 0, "the rapid feed must be positive"),
@@ -41,9 +48,22 @@ class Machine:
                 raise ValueError(message)
 
     @property
+    def axes(self):
+        """The number of axes (X, Y, ... in order)."""
+        return len(self.steps_per_mm)
+
+    @property
+    def axis_names(self):
+        return names(range(self.axes))
+
+    def square_plane(self, plane):
+        """The plane's two axes have the same scale: circles in it stay circles in steps."""
+        return self.steps_per_mm[plane[0]] == self.steps_per_mm[plane[1]]
+
+    @property
     def square(self):
-        """Both axes have the same scale: circles stay circles in steps."""
-        return self.steps_per_mm[0] == self.steps_per_mm[1]
+        """X and Y have the same scale."""
+        return self.square_plane(XY)
 
     @property
     def coord_limit(self):

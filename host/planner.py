@@ -5,9 +5,12 @@ Rules (docs/host.md explains them):
 * Units to steps: every primitive ends on its end point rounded to the
   nearest step (``Machine.steps``); each command starts where the last one
   ended, so no rounding error is carried from one move to the next.
-* Arcs onto the lattice: ``host.lattice``.  When the two axes' scales
-  differ, a circle is an ellipse in steps: arcs become chords within
-  ``Machine.chord_tolerance``.
+* Arcs onto the lattice: ``host.lattice``, in any plane and with a helix
+  ``host.helix``.  When the plane's two axes' scales differ, a circle is an
+  ellipse in steps: arcs become chords within ``Machine.chord_tolerance``.
+* Axes: a drawing may move as many axes as the machine has (``Machine.axes``);
+  a move of another axis is refused with its source line before anything
+  is planned.  A move on X and Y alone is the two-axis command.
 * Runs: moves joined by BLEND.  A junction blends when both moves are fed
   (or both rapid) at the same feed and the velocity jump at the corner,
   ``2 v sin(angle / 2)``, is at most the start speed (the jump the machine
@@ -26,12 +29,19 @@ import math
 from dataclasses import dataclass, field, replace
 
 from host import geometry
-from host.lattice import arc_commands, line_commands
+from host.errors import ProgramError
+from host.helix import plane_arc_commands
+from host.lattice import line_commands, turn
 from host.machine import Machine
+from models.axes import AXIS_NAMES
 from models.card_model import DECEL_MARGIN
 from models.commands import DwellCommand, MarkCommand, SetCommand, command_words, stream_words
-from models.dda_model import ArcCommand, LineCommand, iterator_for
+from models.dda_axes import MoveIterator
+from models.dda_model import ArcCommand, LineCommand
+from models.dda_plan import AxesLineCommand
 from models.registers import RATE_ONE
+
+MOVES = (LineCommand, AxesLineCommand, ArcCommand)
 
 DWELL_MAX = (1 << 32) - 1
 TAG_MODULUS = 1 << 16
@@ -76,14 +86,16 @@ class Plan:
         return stream_words(entry.command for entry in self.entries)
 
     def moves(self):
-        return [e for e in self.entries if isinstance(e.command, (LineCommand, ArcCommand))]
+        return [e for e in self.entries if isinstance(e.command, MOVES)]
 
 
 def plan(drawing, machine=Machine()):
-    """The ``Plan`` of ``drawing`` (a list of ``geometry`` primitives) on ``machine``."""
+    """The ``Plan`` of ``drawing`` (a list of ``geometry`` primitives) on ``machine``;
+    ProgramError for a primitive that moves an axis the machine does not have."""
+    drawing = fit_axes(drawing, machine)
     groups = _move_groups(drawing, machine)
     result = Plan(machine, drawing)
-    position, runs, stream = (0, 0), [], []
+    position, runs, stream = (0,) * geometry.dimension(drawing), [], []
     previous = None
     for index, item in enumerate(drawing):
         if isinstance(item, geometry.Dwell):
@@ -109,17 +121,35 @@ def plan(drawing, machine=Machine()):
     return result
 
 
+def fit_axes(drawing, machine):
+    """``drawing`` with points of at most the machine's axes; ProgramError at the
+    first primitive that moves, or puts an arc in, an axis beyond them."""
+    axes = machine.axes
+    if geometry.dimension(drawing) <= axes:
+        return drawing
+    for item in drawing:
+        if isinstance(item, geometry.Dwell):
+            continue
+        beyond = [a for a in range(axes, len(item.start)) if item.start[a] or item.end[a]]
+        beyond += [a for a in getattr(item, "plane", ()) if a >= axes]
+        if beyond:
+            raise ProgramError(item.where, f"axis {AXIS_NAMES[min(beyond)]}: the machine has {axes} axes "
+                                           f"({machine.axis_names})")
+    return [item if isinstance(item, geometry.Dwell) else replace(item, start=item.start[:axes], end=item.end[:axes])
+            for item in drawing]
+
+
 def _move_groups(drawing, machine):
     """{primitive index: (commands, end step position)} with the rounding carried forward."""
-    groups, position = {}, (0, 0)
+    groups, position = {}, (0,) * geometry.dimension(drawing)
     for index, item in enumerate(drawing):
         if isinstance(item, geometry.Dwell):
             continue
         end = machine.steps(item.end)
         if isinstance(item, geometry.Line):
             commands = line_commands(position, end, machine.coord_limit)
-        elif machine.square:
-            commands = arc_commands(item, position, end, machine.steps_per_mm[0], machine.coord_width)
+        elif machine.square_plane(item.plane):
+            commands = plane_arc_commands(item, position, end, machine)
         else:
             commands = _chords(item, position, end, machine)
         groups[index] = ([replace(c, blend=True) for c in commands], end)
@@ -155,11 +185,23 @@ def _blends(before, after, machine):
 
 def mm_per_iteration(command, machine):
     """Path length of one DDA iteration: a LINE steps its major axis every
-    iteration; a precise ARC moves about R / (R + 1) step per iteration, at most one."""
-    kx, ky = machine.steps_per_mm
+    iteration (the length along X, Y, Z, or the rotary axes when only they
+    move: ``geometry.path_length``); a precise ARC moves about R / (R + 1)
+    step per iteration in its plane, at most one, and a helix's iteration is
+    longer by the helix's length over the plane's (its linear axes)."""
+    scales = machine.steps_per_mm
     if isinstance(command, LineCommand):
+        kx, ky = scales[0], scales[1]
         return math.hypot(command.dx / kx, command.dy / ky) / max(abs(command.dx), abs(command.dy))
-    return 1 / kx
+    if isinstance(command, AxesLineCommand):
+        mm = [d / k for d, k in zip(command.deltas, scales)]
+        return geometry.path_length(mm) / max(abs(d) for d in command.deltas)
+    scale = scales[command.plane[0]]
+    rise = [command.helix[axis] / scales[axis] for axis in command.helix_axes if axis < geometry.LINEAR_AXES]
+    if not rise:
+        return 1 / scale
+    plane_mm = math.hypot(command.xs, command.ys) * turn(command, command.ccw) / scale
+    return math.hypot(plane_mm, *rise) / plane_mm / scale
 
 
 def run_settings(run, moves, machine):
@@ -183,7 +225,7 @@ def run_settings(run, moves, machine):
         return
     top_speed = machine.iterations_per_second(run.feed_rate) * run.mm_per_iteration
     run.ramp_step = max(1, math.floor(machine.acceleration * RATE_ONE / (top_speed * machine.clock_hz)))
-    room = max(iterator_for(moves[-1]).steps_left()) - 1 - DECEL_MARGIN
+    room = max(MoveIterator(moves[-1], machine.axes, machine.coord_width).steps_left()) - 1 - DECEL_MARGIN
     if math.ceil((run.feed_rate - run.ramp_start) / run.ramp_step) > room:
         run.feed_rate = max(run.ramp_start, run.ramp_start + run.ramp_step * max(room, 0))
         run.capped = True

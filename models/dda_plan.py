@@ -7,6 +7,7 @@ iterators of ``models/dda_model.py`` run from it.
 import math
 from dataclasses import dataclass
 
+from models.axes import XY
 from models.dda_build import ALL_VARIANTS, MAX_THRESHOLD_EXTRA, PRECISE, TRADITIONAL, VARIANT_NAMES
 
 ERROR_EXTRA_BITS = 6   # radial error term width beyond coord_width
@@ -88,6 +89,12 @@ class ArcCommand:
     ``acc_bits`` is the paper's accumulator width n (0: normalised, n = the
     bit length of the radius); ``lambda_shift`` is k, lambda = 2**-k.  Both
     only matter for the paper's variants.
+
+    N axes (docs/axes.md): ``plane`` (u, v) names the axes the arc's x and y
+    are (``models/axes.py``: (0, 1) is X, Y); ``helix`` holds a displacement
+    per axis (indexed by axis, 0 for the plane's two) that moves linearly
+    with the arc's iterations; ``iterations``, the arc's iteration count K
+    (``models.dda_axes.arc_iterations``), must be given with a helix.
     """
     xs: int
     ys: int
@@ -98,6 +105,14 @@ class ArcCommand:
     lambda_shift: int = 0
     acc_bits: int = 0
     blend: bool = False
+    plane: tuple = XY
+    helix: tuple = ()
+    iterations: int = None
+
+    @property
+    def helix_axes(self):
+        """The axes with a helix displacement not 0, ascending."""
+        return tuple(axis for axis, steps in enumerate(self.helix) if steps)
 
 
 @dataclass(frozen=True)
@@ -109,6 +124,19 @@ class LineCommand:
     """
     dx: int
     dy: int
+    blend: bool = False
+
+    @property
+    def deltas(self):
+        return (self.dx, self.dy)
+
+
+@dataclass(frozen=True)
+class AxesLineCommand:
+    """A straight move by ``deltas`` (steps, indexed by axis: X, Y, Z, A, B, C;
+    ``models/axes.py``) from the current position, every axis ending
+    together (docs/axes.md); ``blend`` as for ``LineCommand``."""
+    deltas: tuple
     blend: bool = False
 
 

@@ -13,11 +13,12 @@ Values are Python ints and strings; ``encode`` turns ``device`` and
 """
 from dataclasses import dataclass, field
 
+from models.axes import AXIS_NAMES, MAX_AXES
+
 DEVICES = ("generic", "ice40")  # BUILD.DEVICE codes 0, 1
 # ARC.VARIANT codes 0..3 (models/instructions.py); BUILD.DDA_VARIANTS has bit n for code n
 VARIANT_NAMES = ("traditional", "weighted", "improved", "precise")
 VARIANT_SETS = {"improved,precise": ("improved", "precise"), "all": VARIANT_NAMES}
-AXES = 2
 
 
 class ParameterError(ValueError):
@@ -131,6 +132,10 @@ _TABLE = (
               choices=tuple(VARIANT_SETS), reason="improved,precise: the paper's improved DDA and the "
               "precise mode; all: the paper's traditional and weighted DDA as well, to reproduce its "
               "figures"),
+    Parameter("axes", 2, f"axes with STEP/DIR outputs, reported in BUILD.AXES: the first N of "
+              f"{' '.join(AXIS_NAMES)} (docs/axes.md)", 2, MAX_AXES,
+              reason=f"2: an arc needs a plane of two axes; {MAX_AXES}: the axis names "
+              f"{' '.join(AXIS_NAMES)} and the {MAX_AXES}-bit axis masks of LINE.AXES, ARC.HELIX and PULSE.AXES"),
     Parameter("coord_width", 24, "signed coordinate width of the DDA, in bits", 14, 29,
               reason="14: STOP_LEFT, coord_width + 3 bits, must be wider than the feed-rate ramp's "
               "16-bit count; 29: wider coordinates give STOP_LEFT a reset value above 32 bits, which "
@@ -158,8 +163,8 @@ _TABLE = (
 )
 PARAMETERS = {p.name: p for p in _TABLE}
 PCI_IDS = ("vendor_id", "device_id", "revision_id", "class_code", "subsystem_vendor_id", "subsystem_id")
-DEVICE, VARIANTS, COORD_WIDTH, FIFO_DEPTH, CLOCK_HZ = (
-    PARAMETERS[name] for name in ("device", "variants", "coord_width", "fifo_depth", "clock_hz"))
+DEVICE, VARIANTS, AXES, COORD_WIDTH, FIFO_DEPTH, CLOCK_HZ = (
+    PARAMETERS[name] for name in ("device", "variants", "axes", "coord_width", "fifo_depth", "clock_hz"))
 
 
 def defaults(names, unit=None):

@@ -228,7 +228,8 @@ REGISTERS = (
     _capability("BUILD", 0x5C, "options the card was built with", (
         (Field("COORD_WIDTH", 0, 8, "signed coordinate width of LINE and ARC operands, in bits "
                "(build parameter coord_width)", build="coord_width"), 0),
-        (Field("AXES", 8, 4, "axes with STEP/DIR pins (2: X, Y)"), parameters.AXES),
+        (Field("AXES", 8, 4, "axes with STEP/DIR pins, X, Y, Z, A, B, C in that order (build parameter "
+               "axes; docs/axes.md)", build="axes"), 0),
         (Field("DDA_VARIANTS", 16, 4, f"bit n set: ARC.VARIANT n is built ({_VARIANT_CODES}; "
                "build parameter variants)", build="variants"), 0),
         (Field("DEVICE", 24, 4, f"FPGA family of the Verilog ({_DEVICE_CODES}; build parameter device)",

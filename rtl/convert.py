@@ -29,7 +29,7 @@ from pathlib import Path
 
 from myhdl import ToVerilogWarning
 
-from models import card_socket, instructions, parameters, register_docs
+from models import card_socket, instruction_c, parameters, register_docs
 from models.dda_build import DDA_MIN_WIDTH, DEFAULT_VARIANTS
 from models.parameters import DEVICE, PARAMETERS, PCI_IDS, ParameterError
 from models.registers import STOP_REASONS
@@ -80,6 +80,19 @@ def unit_settings(values, unit):
                              error.parameter) from None
 
 
+# Build parameters the table already holds but the RTL does not build yet: the values it builds.
+NOT_BUILT_YET = {"axes": ((2,), "the N-axis card is not built yet: the RTL drives X and Y only; "
+                                "the models and the host plan for N axes (docs/axes.md)")}
+
+
+def check_built(values):
+    """ParameterError if ``values`` asks for a build the RTL cannot make yet."""
+    for name, (built, why) in NOT_BUILT_YET.items():
+        if name in values and values[name] not in built:
+            raise ParameterError(f"must be {' or '.join(map(str, built))} for now, not {values[name]}: {why}",
+                                 PARAMETERS[name])
+
+
 def build_settings(values):
     """``{unit: settings}`` of every unit for the command line's ``values``."""
     return {unit: unit_settings(values, unit) for unit in UNITS}
@@ -101,8 +114,8 @@ def write_c_header(out_dir=GEN_DIR, **values):
     identity += ["/* The simulated card's socket protocol (sim/card/card_server.py) */", card_socket.c_defines()]
     target = Path(out_dir) / C_HEADER
     target.parent.mkdir(parents=True, exist_ok=True)
-    target.write_text(register_docs.c_header(extra="\n".join(identity) + instructions.c_defines() + "\n"
-                                         + instructions.c_builders(), values=settings))
+    target.write_text(register_docs.c_header(extra="\n".join(identity) + instruction_c.c_defines() + "\n"
+                                         + instruction_c.c_builders(), values=settings))
     return target
 
 
@@ -230,6 +243,7 @@ def convert_all(out_dir=GEN_DIR, **values):
     replaces ``out_dir`` only once all are written (and is removed if not).
     """
     settings = build_settings(values)
+    check_built(values)
     out_dir = check_output(out_dir)
     blocks = {unit: unit_block(unit, settings[unit]) for unit in UNITS}
     out_dir.parent.mkdir(parents=True, exist_ok=True)
@@ -274,9 +288,13 @@ def _parser():
                         help="output folder, replaced whole: a new one, or one with only Verilog and "
                              "C headers in it (default: gen/)")
     for parameter in PARAMETERS.values():
+        text = parameter.describe()
+        if parameter.name in NOT_BUILT_YET:
+            built, why = NOT_BUILT_YET[parameter.name]
+            text += f"; built for now: {' or '.join(map(str, built))} ({why})"
         parser.add_argument(parameter.option, type=_argument_type(parameter), default=None,
                             metavar="VALUE" if parameter.choices is None else "{" + ",".join(parameter.choices) + "}",
-                            help=parameter.describe().replace("%", "%%"))
+                            help=text.replace("%", "%%"))
     return parser
 
 
@@ -299,6 +317,7 @@ def main(argv=None):
     values = {name: getattr(args, name) for name in PARAMETERS if getattr(args, name) is not None}
     try:
         build_settings(values)
+        check_built(values)
         check_output(args.out)
     except ParameterError as error:
         parser.error(f"argument {error.parameter.option}: {error.problem}" if error.parameter else str(error))

@@ -62,10 +62,10 @@ def test_missing_file_and_missing_output_folder(tmp_path):
 
 def test_a_bad_program_line_is_one_error_naming_it(tmp_path):
     program = tmp_path / "bad.ngc"
-    program.write_text("G0 X1\nG1 X2 F100\nG18\n")
+    program.write_text("G0 X1\nG1 X2 F100\nG1 Z1\n")
     words = tmp_path / "words.txt"
-    result = run_host("plan", program, "--words", words)
-    assert_one_line_error(result, "bad.ngc:3: G18")
+    result = run_host("plan", program, "--words", words)  # the default card: two axes
+    assert_one_line_error(result, "bad.ngc:3: axis Z: the card has 2 axes (X, Y)")
     assert not words.exists()
 
 

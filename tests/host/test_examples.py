@@ -1,15 +1,17 @@
 """The examples plan clean: every command accepted by the DDA model, the path
 ends on the drawing's rounded end, within half a step of the drawing plus its
-rounding (ideal geometry from ``host.geometry``, steps from ``models.dda_model``)."""
+rounding (ideal geometry from ``host.geometry``, steps from ``models.dda_model``;
+the three-axis ``mill.ngc`` on a three-axis card, ``models.dda_axes``)."""
 import math
 
 import pytest
 
 from host import gcode, svg
 from host.check import check
-from host.geometry import Arc
+from host.geometry import Arc, Line
 from host.machine import Machine
 from host.planner import plan
+from models.dda_axes import MoveIterator
 from models.dda_model import ArcCommand, plan_arc
 from rtl.convert import ROOT
 
@@ -45,3 +47,26 @@ def test_the_gcode_example_has_what_it_promises():
     assert any(a.sweep > math.pi + 0.1 and a.ccw for a in arcs)
     assert any(a.sweep > math.pi + 0.1 and not a.ccw for a in arcs)
     assert any(abs(a.start_radius - a.end_radius) > 0.001 for a in arcs)
+
+
+def test_the_mill_example_plans_clean_on_a_three_axis_card():
+    drawing = gcode.parse((ROOT / "examples" / "mill.ngc").read_text(), "mill.ngc", axes=3)
+    machine = Machine(steps_per_mm=(200.0,) * 3)
+    planned = plan(drawing, machine)
+    helical = []
+    for entry in planned.moves():
+        MoveIterator(entry.command, 3, machine.coord_width)  # the card's rules and the DDA's acceptance
+        if isinstance(entry.command, ArcCommand) and entry.command.helix_axes:
+            helical.append(entry.command)
+    result = check(planned)
+    assert result.end == tuple(math.floor(v * 200 + 0.5) for v in drawing[-1].end)
+    # a 3-D line: half a step on each minor axis and the rounding of its ends; an arc: half a step
+    # and the rounding radially, along the helix axis its bound (docs/axes.md) and the rounding
+    steepest = max(abs(c.helix[2]) / c.iterations for c in helical)
+    bound = max(math.sqrt(2) / 2 + math.sqrt(3) / 2, math.hypot(0.5 + ROUNDING, 1.0 + 2.5 * steepest))
+    assert result.max_deviation_steps <= bound
+    assert result.job_seconds == pytest.approx(result.ideal_seconds, rel=0.1)
+    # what it promises: 3-D lines, a helical bore, arcs in G18 and G19
+    planes = {item.plane for item in drawing if isinstance(item, Arc)}
+    assert {(0, 1), (2, 0), (1, 2)} <= planes and len(helical) >= 3
+    assert any(isinstance(i, Line) and i.start[2] != i.end[2] and i.start[:2] != i.end[:2] for i in drawing)

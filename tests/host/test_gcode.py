@@ -110,13 +110,13 @@ def test_linuxcnc_radius_mismatch_rule(start_radius, difference, accepted):
 
 
 @pytest.mark.parametrize("program, line, message", [
-    ("G0 X1\nG18\n", 2, "only the XY plane"),
-    ("G19 G0 X1\n", 1, "only the XY plane"),
+    ("G18 G1 F10\nG2 X1 Z1 J1\n", 2, "J is not an offset of the G18 plane"),
+    ("G1 F10\nG3 X1 Y1 I1 P1.5\n", 2, "whole number"),
     ("G1 X1\n", 1, "needs a feed"),
     ("X1\n", 1, "no motion mode"),
     ("G0 X1\nG1 X2 F0\n", 2, "must be positive"),
     ("G0 X1 Q2\n", 1, "word Q2 is not supported"),
-    ("G0 X1 Z2\n", 1, "axis Z"),
+    ("G0 X1 U2\n", 1, "axis U"),
     ("G28\n", 1, "G28 is not supported"),
     ("M3\n", 1, "M3 is not supported"),
     ("G0 X1 X2\n", 1, "X appears twice"),

@@ -2,10 +2,12 @@
 command builders that give the words ``models.instructions.encode`` gives.
 
 A C program (and the same as C++) built with every warning as an error calls
-each builder with seeded random and edge operands and header fields, and prints
-the words; every word is compared with the Python encoder.  A header field
-that does not fit is refused by both (``encode`` raises, the builder returns
-0 and writes nothing).
+each builder, the two-axis ones (``dda_cmd_line``, ...) and the N-axis ones
+(``dda_cmd_line_axes``, ``dda_cmd_arc_helix``, ``dda_cmd_pulse_axes``: an
+array indexed by axis), with seeded random and edge operands and header
+fields, and prints the words; every word is compared with the Python
+encoder.  A header field that does not fit is refused by both (``encode``
+raises, the builder returns 0 and writes nothing).
 """
 import random
 import shutil
@@ -14,6 +16,7 @@ import subprocess
 import pytest
 
 from models import instructions as isa
+from models.axes import MAX_AXES, axes_of
 from models.registers import IO_BAR_BITS
 from rtl.card import MEM_BAR_BITS
 from rtl.convert import write_c_header
@@ -71,6 +74,49 @@ def c_call(op, operands, fields):
     return f"    report(dda_cmd_{op.name.lower()}({', '.join(arguments)}), words);"
 
 
+def random_axis_calls(seed):
+    """(opcode, fixed operands, array indexed by axis, header fields) for the N-axis builders."""
+    rng = random.Random(seed)
+    calls = []
+    for op in (o for o in isa.OPCODES if o.axis_operands):
+        spec = op.axis_operands
+        for index in range(CALLS_PER_OPCODE):
+            fixed = [operand(rng, name in isa.SIGNED_OPERANDS) for name in op.fixed_operands + spec.lead]
+            array = [operand(rng, True) for _ in range(MAX_AXES)]
+            fields = {}
+            for name, _, width, _ in op.fields:
+                limit = (1 << width) - 1
+                fields[name] = rng.choice([0, limit, rng.randint(0, limit), rng.randint(0, limit)])
+            if index % 10 == 9:
+                name, _, width, _ = rng.choice(op.fields)
+                fields[name] = rng.choice([1 << width, (1 << 32) - 1])
+            calls.append((op, fixed, array, fields))
+    return calls
+
+
+def c_axis_call(op, fixed, array, fields):
+    spec = op.axis_operands
+    names = op.fixed_operands + spec.lead
+    arguments = ["words"] + [c_literal(value, name in isa.SIGNED_OPERANDS) for name, value in zip(names, fixed)]
+    arguments += [f"{fields[spec.field]}u", "axis_values"]
+    arguments += [f"{fields[name]}u" for name, _, _, _ in op.fields if name != spec.field]
+    values = ", ".join(c_literal(v, True) for v in array)
+    return (f"    {{ const int32_t axis_values[DDA_AXES_MAX] = {{{values}}};\n"
+            f"      report(dda_cmd_{spec.builder}({', '.join(arguments)}), words); }}")
+
+
+def python_axis_words(op, fixed, array, fields):
+    """``isa.encode``'s words for an N-axis builder's call: the fixed operands, the
+    lead operands when the mask is not 0, the array's values of the mask's axes."""
+    spec = op.axis_operands
+    mask = fields[spec.field]
+    operands = list(fixed[:len(op.fixed_operands)])
+    if mask:
+        operands += fixed[len(op.fixed_operands):]
+    operands += [array[axis] for axis in axes_of(mask or spec.zero_mask)]
+    return isa.encode(op.name, *operands, **fields)
+
+
 def c_literal(value, signed):
     if not signed:
         return f"{value}u"
@@ -105,6 +151,35 @@ def test_command_builders_give_the_words_of_the_python_encoder(kind, tmp_path):
         assert [int(w, 16) for w in words] == wanted and int(count) == len(wanted), \
             f"{op.name} {operands} {fields}: C {line}, Python {[hex(w) for w in wanted]}"
     assert refused >= CALLS_PER_OPCODE // 10 * sum(1 for op in isa.OPCODES if op.header_fields)
+
+
+@pytest.mark.parametrize("kind", sorted(COMPILERS))
+def test_n_axis_builders_give_the_words_of_the_python_encoder(kind, tmp_path):
+    header = write_c_header(tmp_path)
+    calls = random_axis_calls(seed=26)
+    source = "\n".join([
+        '#include <stdio.h>', '#include "dda_card.h"', "",
+        "static void report(unsigned count, const uint32_t *words)", "{",
+        '    printf("%u", count);',
+        "    for (unsigned i = 0; i < count; i++)", '        printf(" %08lx", (unsigned long)words[i]);',
+        '    printf("\\n");', "}", "",
+        "int main(void)", "{", "    uint32_t words[DDA_CMD_MAX_WORDS];",
+        *[c_axis_call(*call) for call in calls],
+        "    return 0;", "}", ""])
+    lines = compile_and_run(kind, header, source, tmp_path).splitlines()
+    assert len(lines) == len(calls)
+    refused = 0
+    for (op, fixed, array, fields), line in zip(calls, lines):
+        count, *words = line.split()
+        try:
+            wanted = python_axis_words(op, fixed, array, fields)
+        except ValueError:
+            assert count == "0" and not words, f"{op.name} {fixed} {array} {fields}: {line}"
+            refused += 1
+            continue
+        assert [int(w, 16) for w in words] == wanted and int(count) == len(wanted), \
+            f"{op.name} {fixed} {array} {fields}: C {line}, Python {[hex(w) for w in wanted]}"
+    assert refused >= CALLS_PER_OPCODE // 10 * 3
 
 
 def test_a_refused_command_writes_nothing(tmp_path):

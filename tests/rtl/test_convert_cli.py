@@ -14,7 +14,7 @@ import sys
 
 import pytest
 
-from models.parameters import PARAMETERS
+from models.parameters import PARAMETERS, ParameterError
 from rtl import convert
 from rtl.convert import C_HEADER, ROOT, UNITS, build_settings, convert_all, main
 
@@ -22,6 +22,7 @@ PROG = "python -m rtl.top"
 
 # option -> (words --help must show, values just inside the range)
 RANGES = {
+    "--axes": ("2..6", ["2", "6"]),  # X Y Z A B C (issue 26); the converter builds 2 for now (below)
     "--coord-width": ("14..29", ["14", "29"]),
     "--fifo-depth": ("a power of two, 4..32,768", ["4", "4096"]),
     "--clock-hz": ("1..33,333,333", ["1", "33333333"]),
@@ -39,6 +40,7 @@ RANGES = {
 
 # option -> values outside the range (edges on both sides, wrong types)
 BAD_VALUES = {
+    "--axes": ["1", "7", "0", "-2", "2.0", "x", ""],
     "--coord-width": ["13", "30", "4", "48", "24.0", "abc", ""],
     "--fifo-depth": ["2", "1", "0", "-4", "3", "48", "65536", "32768.0", "x200"],
     "--clock-hz": ["0", "33333334", "-1", "33.3e6"],
@@ -128,6 +130,16 @@ def test_fifo_deeper_than_the_ice40_block_ram_is_refused_for_ice40(capsys, tmp_p
     # the generic build has no such limit
     settings = build_settings({"device": "generic", "fifo_depth": 32768})
     assert settings["top"]["fifo_depth"] == 32768
+
+
+@pytest.mark.parametrize("axes", ["3", "6"])
+def test_an_n_axis_card_is_refused_until_its_rtl_exists(axes, capsys, tmp_path):
+    out = tmp_path / "out"
+    line = refused_in_process(capsys, "--convert", "--out", str(out), "--axes", axes)
+    assert "argument --axes:" in line and "not built yet" in line and "2" in line
+    assert not out.exists() and not leftovers(tmp_path)
+    with pytest.raises(ParameterError, match="not built yet"):
+        convert_all(out, axes=int(axes))
 
 
 def test_out_naming_a_file_is_one_line(capsys, tmp_path):
