@@ -179,7 +179,7 @@ REGISTERS = (
     Register("INT_ENABLE", 0x10, "RW", 0, "interrupt enables (INTA# = any enabled status bit)", _INT_FIELDS),
     Register("INT_STATUS", 0x14, "W1C", 0, "interrupt status, write 1 to clear", _INT_FIELDS),
     Register("LOW_WATER", 0x18, "RW", 0, "FIFO low-water mark",
-             _one("LEVEL", 16, "LOW_WATER interrupt when the FIFO level falls below this")),
+             _one("LEVEL", 16, "LOW_WATER interrupt when the FIFO level falls below this"), minimum=0, maximum=0xFFFF),
     Register("MARK_TAG", 0x1C, "RO", 0, "tag of the last MARK reached",
              _one("TAG", 16, "the MARK command's tag")),
     Register("POS_X", 0x20, "RO", 0, "X position in steps; reading it snapshots POS_Y",
@@ -197,7 +197,7 @@ REGISTERS = (
     Register("RAMP_STEP", 0x30, "RW", 0,
              "rate change per iteration: up towards FEED_RATE, down to RAMP_START before a stop (0: no ramp)",
              _one("STEP", 16, "added to the rate each iteration until FEED_RATE; subtracted as the end nears"),
-             set_index=2),
+             minimum=0, maximum=0xFFFF, set_index=2),
     Register("STEP_WIDTH", 0x34, "RW", 1, "STEP high time, also its minimum low time, in clocks",
              _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=3),
     Register("DIR_SETUP", 0x38, "RW", 1, "DIR stable before the STEP leading edge, in clocks",
@@ -266,7 +266,9 @@ REGISTERS = (
              _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
     Register("WATCHDOG", 0x78, "WP", 0,
              "host watchdog: write the timeout in clocks (0: off) at least that often; reads the clocks left",
-             _one("CLOCKS", WATCHDOG_BITS, "clocks until the guard stops the card (reason WATCHDOG)")),
+             _one("CLOCKS", WATCHDOG_BITS, "clocks until the guard stops the card (reason WATCHDOG); a write "
+                  f"above {(1 << WATCHDOG_BITS) - 1} loads {(1 << WATCHDOG_BITS) - 1}"),
+             minimum=0, maximum=(1 << WATCHDOG_BITS) - 1),
     Register("HOME", 0x7C, "WP", 0, "home one axis (docs/machine.md); reads what the last HOME asked", (
         Field("AXIS", 0, 1, "0: X, 1: Y"),
         Field("NEGATIVE", 1, 1, "1: the switch is towards negative positions"),
@@ -284,7 +286,7 @@ REGISTERS = (
              "clocks between steps off the switch and of the back-off",
              _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
     Register("HOME_BACKOFF", 0x8C, "RW", 0, "steps on past the release point once the position is zeroed there",
-             _one("STEPS", 16, "0..65535")),
+             _one("STEPS", 16, "0..65535"), minimum=0, maximum=0xFFFF),
     Register("HOME_SEARCH", 0x90, "RW", 0xFFFF,
              "steps the switch must trip within, and release within after it tripped",
              _one("STEPS", HOME_SEARCH_BITS, f"1..{(1 << HOME_SEARCH_BITS) - 1}"),
@@ -350,6 +352,11 @@ def check_table(registers=REGISTERS):
             set_indices.add(reg.set_index)
         if (reg.minimum is not None or reg.maximum is not None) and len(reg.fields) != 1:
             raise ValueError(f"{reg.name}: only one-field registers can clamp")
+        if reg.access in ("RW", "WP") and len(reg.fields) == 1 and reg.fields[0].width > 1 and (
+                reg.minimum is None or reg.maximum is None):
+            # a number the host writes: without a range a too-large write would be cut to the
+            # field's width (a WATCHDOG of 2**24 would read 0: off) instead of clamped and flagged
+            raise ValueError(f"{reg.name}: a one-value register the host writes declares its range")
         for item in reg.fields:
             if item.build is not None and (reg.access != "RO" or item.build not in parameters.PARAMETERS):
                 raise ValueError(f"{reg.name}.{item.name}: a build field is read-only and names a "

@@ -65,7 +65,8 @@ class Homing:
     ``pulse_busy`` (a direct-pulse generator is busy) and ``outputs_active``
     (a step is queued in the pulse outputs or on the pins).  The sequencer
     drives ``busy``, the homed axis's direct-pulse command (``load`` one
-    clock with ``count``, signed, at ``period``; ``cut`` clears it),
+    clock with ``count``, signed, at ``period``; ``cut`` clears it;
+    ``retarget`` makes |``count``| its steps still to go, timing kept),
     ``zero`` (one clock: zero the homed axis's position; bit 0 X),
     ``ended`` (one clock as a HOME ends: done, not found or refused),
     ``taken`` (what HOME reads: the AXIS and NEGATIVE of the last HOME) and
@@ -81,5 +82,5 @@ class Homing:
                home=Signal(intbv(0)[2:]), idle=Signal(bool(0)), clear=Signal(bool(0)),
                pulse_busy=Signal(bool(0)), outputs_active=Signal(bool(0)), busy=Signal(bool(0)),
                load=Signal(bool(0)), count=Signal(intbv(0, min=-(1 << (count - 1)), max=1 << (count - 1))),
-               period=Signal(intbv(1)[seek.width:]), cut=Signal(bool(0)), zero=Signal(intbv(0)[2:]),
+               period=Signal(intbv(1)[seek.width:]), cut=Signal(bool(0)), retarget=Signal(bool(0)), zero=Signal(intbv(0)[2:]),
                ended=Signal(bool(0)), taken=Signal(intbv(0)[home.width:]), state=Signal(intbv(0)[status.width:]))

@@ -169,7 +169,30 @@ def _limit(written, honoured, out_of_range, spec):
             honoured.next = written[width:]
             out_of_range.next = False
 
-    return clamp_unsigned_power_of_two if high == (1 << high_top) - 1 else clamp_unsigned
+    @always_comb
+    def clamp_above_power_of_two():
+        # low is 0 (nothing below it) and high is 2**high_top - 1: out of range when a higher bit is set
+        out_of_range.next = True
+        if written[32:high_top] != 0:
+            honoured.next = high_bits
+        else:
+            honoured.next = written[width:]
+            out_of_range.next = False
+
+    @always_comb
+    def clamp_above():
+        # low is 0: only the upper bound is compared
+        out_of_range.next = True
+        if written[32:high_top] != 0 or written[high_top:] > high:
+            honoured.next = high_bits
+        else:
+            honoured.next = written[width:]
+            out_of_range.next = False
+
+    power_of_two = high == (1 << high_top) - 1
+    if low == 0:
+        return clamp_above_power_of_two if power_of_two else clamp_above
+    return clamp_unsigned_power_of_two if power_of_two else clamp_unsigned
 
 
 @block
