@@ -257,24 +257,26 @@ reg [31:0] card_core0_regs_fifo1_set_value;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
 reg [1:0] card_core0_regs_fifo1_home_zero;
+reg [23:0] card_core0_regs_fifo1_watchdog_left;
 wire card_core0_regs_fifo1_any_busy;
 reg [31:0] card_core0_regs_fifo1_byte_mask;
-wire card_core0_regs_fifo1_clear_error;
-wire card_core0_regs_fifo1_clear_position;
-wire card_core0_regs_fifo1_clear_stop;
-wire card_core0_regs_fifo1_direct_clear;
-wire card_core0_regs_fifo1_direct_mode;
-wire card_core0_regs_fifo1_direct_ready;
+reg card_core0_regs_fifo1_clear_error;
+reg card_core0_regs_fifo1_clear_position;
+reg card_core0_regs_fifo1_clear_stop;
+reg card_core0_regs_fifo1_direct_clear;
+reg card_core0_regs_fifo1_direct_mode;
+reg card_core0_regs_fifo1_direct_ready;
 wire card_core0_regs_fifo1_discard_on_clear;
-wire card_core0_regs_fifo1_enable;
+reg [1:0] card_core0_regs_fifo1_drive_cleared;
+reg card_core0_regs_fifo1_enable;
 wire card_core0_regs_fifo1_fifo_empty;
 wire card_core0_regs_fifo1_fifo_flush;
 wire card_core0_regs_fifo1_fifo_full;
 wire [9:0] card_core0_regs_fifo1_fifo_level;
 reg card_core0_regs_fifo1_halt;
 wire card_core0_regs_fifo1_hold;
-wire card_core0_regs_fifo1_home_idle;
-wire [1:0] card_core0_regs_fifo1_home_inputs;
+reg card_core0_regs_fifo1_home_idle;
+reg [1:0] card_core0_regs_fifo1_home_inputs;
 reg card_core0_regs_fifo1_io_read;
 reg card_core0_regs_fifo1_io_write;
 reg card_core0_regs_fifo1_io_written;
@@ -286,15 +288,15 @@ wire card_core0_regs_fifo1_out_ready;
 wire card_core0_regs_fifo1_outputs_busy;
 reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 wire card_core0_regs_fifo1_pulse_busy;
-wire card_core0_regs_fifo1_pulse_clear;
+reg card_core0_regs_fifo1_pulse_clear;
 reg card_core0_regs_fifo1_push;
 reg card_core0_regs_fifo1_read_waited;
 reg [31:0] card_core0_regs_fifo1_read_word;
-wire card_core0_regs_fifo1_releasing;
+reg card_core0_regs_fifo1_releasing;
 reg card_core0_regs_fifo1_requested_before;
 wire card_core0_regs_fifo1_seq_busy;
-wire card_core0_regs_fifo1_sequencer_clear;
-wire card_core0_regs_fifo1_settled;
+reg card_core0_regs_fifo1_sequencer_clear;
+reg card_core0_regs_fifo1_settled;
 reg card_core0_regs_fifo1_soft_reset_taken;
 reg card_core0_regs_fifo1_tick;
 reg [11:0] card_core0_regs_fifo1_written_addr;
@@ -307,10 +309,10 @@ reg card_core0_regs_fifo1_command_strobe;
 reg [3:0] card_core0_regs_fifo1_command;
 reg card_core0_regs_fifo1_guard_stopped;
 reg [6:0] card_core0_regs_fifo1_conditioning_active;
-wire card_core0_regs_fifo1_feed_pause;
+reg card_core0_regs_fifo1_feed_pause;
 reg [1:0] card_core0_regs_fifo1_machine_control;
 reg card_core0_regs_fifo1_guard_stopping;
-wire card_core0_regs_fifo1_guard_ramp;
+reg card_core0_regs_fifo1_guard_ramp;
 reg [15:0] card_core0_regs_fifo1_ramp_step;
 reg card_core0_regs_fifo1_feed_held;
 reg card_core0_regs_fifo1_home_cut;
@@ -604,7 +606,6 @@ reg [31:0] card_core0_regs_fifo1_reg_word66_chain_out_data;
 wire card_core0_regs_fifo1_reg_word66_chain_out_clamped;
 reg [23:0] card_core0_regs_fifo1_reg_word67_honoured;
 reg card_core0_regs_fifo1_reg_word67_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word67_shown;
 reg card_core0_regs_fifo1_reg_word67_clamped;
 wire card_core0_regs_fifo1_reg_word67_mine;
 wire card_core0_regs_fifo1_reg_word67_mine_write;
@@ -796,6 +797,7 @@ reg [7:0] card_core0_regs_fifo1_pulse_out1_phase_step;
 reg card_core0_regs_fifo1_pulse_out1_starts;
 reg card_core0_regs_fifo1_pulse_out1_take;
 reg card_core0_regs_fifo1_pulse_out1_turn;
+wire card_core0_regs_fifo1_pulse_out1_control_pulsing;
 reg card_core0_regs_fifo1_pulse_out1_request_step_x;
 reg card_core0_regs_fifo1_pulse_out1_request_step_y;
 reg card_core0_regs_fifo1_pulse_out1_request_dir_y;
@@ -836,11 +838,11 @@ reg card_core0_regs_fifo1_homing1_gave_up;
 reg [23:0] card_core0_regs_fifo1_homing1_magnitude;
 reg card_core0_regs_fifo1_homing1_negative;
 reg card_core0_regs_fifo1_homing1_not_found;
+reg card_core0_regs_fifo1_homing1_opened;
 reg [23:0] card_core0_regs_fifo1_homing1_operand;
 reg [1:0] card_core0_regs_fifo1_homing1_phase;
 reg card_core0_regs_fifo1_homing1_positive;
 reg card_core0_regs_fifo1_homing1_refused;
-reg card_core0_regs_fifo1_homing1_released;
 reg card_core0_regs_fifo1_homing1_seek_next;
 reg card_core0_regs_fifo1_homing1_seeking;
 wire [23:0] card_core0_regs_fifo1_homing1_signed_count;
@@ -1020,7 +1022,7 @@ reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word37_shown = 32'd3719037187;
+assign card_core0_regs_fifo1_reg_word37_shown = 32'd3719037440;
 assign card_core0_regs_fifo1_reg_word37_chain_in_data = 32'd0;
 assign card_core0_regs_fifo1_reg_word37_chain_in_clamped = 1'd0;
 assign card_core0_regs_fifo1_reg_word38_out_of_range = 1'd0;
@@ -3347,7 +3349,7 @@ assign card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_wor
 assign card_core0_regs_fifo1_reg_word61_chain_out_clamped = (card_core0_regs_fifo1_reg_word60_chain_out_clamped || card_core0_regs_fifo1_reg_word61_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word61__store42_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word61__store42_hold_rw_cleared
     if (reset == 0) begin
         card_core0_regs_fifo1_machine_control <= 0;
         card_core0_regs_fifo1_reg_word61_clamped <= 0;
@@ -3355,8 +3357,11 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word61__
     else begin
         card_core0_regs_fifo1_reg_word61_clamped <= 1'b0;
         if (((card_core0_regs_fifo1_reg_word61_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word61_mine_write))) begin
-            card_core0_regs_fifo1_machine_control <= card_core0_regs_fifo1_reg_word61_honoured;
+            card_core0_regs_fifo1_machine_control <= (card_core0_regs_fifo1_reg_word61_honoured & (~(card_core0_regs_fifo1_drive_cleared & 1)));
             card_core0_regs_fifo1_reg_word61_clamped <= card_core0_regs_fifo1_reg_word61_out_of_range;
+        end
+        else begin
+            card_core0_regs_fifo1_machine_control <= (card_core0_regs_fifo1_machine_control & (~(card_core0_regs_fifo1_drive_cleared & 1)));
         end
     end
 end
@@ -3608,7 +3613,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word67_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word67_shown};
+assign card_core0_regs_fifo1_reg_word67_shown_wide = {8'h0, card_core0_regs_fifo1_watchdog_left};
 
 
 
@@ -4805,6 +4810,7 @@ end
 
 assign card_core0_regs_fifo1_out_ready = ($signed({1'b0, card_core0_regs_fifo1_pulse_out1_count}) <= (4 - 2));
 assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_count != 0) || (card_core0_regs_fifo1_pulse_out1_phase != 2'b00) || pins_step_x || pins_step_y);
+assign card_core0_regs_fifo1_pulse_out1_control_pulsing = (card_core0_regs_fifo1_pulse_out1_take || (card_core0_regs_fifo1_pulse_out1_phase == 2'b10) || pins_step_x || pins_step_y);
 
 
 
@@ -5207,7 +5213,7 @@ assign card_core0_regs_fifo1_input_filter1__input_count13_taken = (card_core0_re
 
 
 assign card_core0_regs_fifo1_machine_guard1_estop = card_core0_regs_fifo1_conditioning_active[0];
-assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_reg_word67_shown == 1) && (!card_core0_regs_fifo1_reg_word67__store46_word_strobe));
+assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_watchdog_left == 1) && (!card_core0_regs_fifo1_reg_word67__store46_word_strobe));
 assign card_core0_regs_fifo1_machine_guard1_hits = {(card_core0_regs_fifo1_requests_step_y && (!card_core0_regs_fifo1_requests_dir_y) && card_core0_regs_fifo1_conditioning_active[4]), (card_core0_regs_fifo1_requests_step_y && card_core0_regs_fifo1_requests_dir_y && card_core0_regs_fifo1_conditioning_active[3]), (card_core0_regs_fifo1_requests_step_x && (!card_core0_regs_fifo1_requests_dir_x) && card_core0_regs_fifo1_conditioning_active[2]), (card_core0_regs_fifo1_requests_step_x && card_core0_regs_fifo1_requests_dir_x && card_core0_regs_fifo1_conditioning_active[1])};
 
 
@@ -5268,21 +5274,21 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
             card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
         end
         card_core0_regs_fifo1_guard_stopped <= stopped;
-        pins_drive_enable <= ((card_core0_regs_fifo1_machine_control[0] != 0) && (!stopped) && (!card_core0_regs_fifo1_machine_guard1_estop));
+        pins_drive_enable <= (((card_core0_regs_fifo1_machine_control[0] != 0) && (!stopped) && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_machine_guard1_estop)) || (pins_drive_enable && card_core0_regs_fifo1_pulse_out1_control_pulsing));
     end
 end
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guard1_watchdog
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word67_shown <= 0;
+        card_core0_regs_fifo1_watchdog_left <= 0;
     end
     else begin
         if (card_core0_regs_fifo1_reg_word67__store46_word_strobe) begin
-            card_core0_regs_fifo1_reg_word67_shown <= card_core0_regs_fifo1_reg_word67__store46_word_value;
+            card_core0_regs_fifo1_watchdog_left <= card_core0_regs_fifo1_reg_word67__store46_word_value;
         end
-        else if ((card_core0_regs_fifo1_reg_word67_shown != 0)) begin
-            card_core0_regs_fifo1_reg_word67_shown <= (card_core0_regs_fifo1_reg_word67_shown - 1);
+        else if ((card_core0_regs_fifo1_watchdog_left != 0)) begin
+            card_core0_regs_fifo1_watchdog_left <= (card_core0_regs_fifo1_watchdog_left - 1);
         end
     end
 end
@@ -5348,14 +5354,16 @@ end
 
 always @(card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_edges
     reg drained;
+    reg released;
     drained = ((!card_core0_regs_fifo1_pulse_busy) && (!card_core0_regs_fifo1_out_active));
-    card_core0_regs_fifo1_homing1_released = ((card_core0_regs_fifo1_homing1_state == 3'b100) && (!card_core0_regs_fifo1_homing1_switch));
+    released = ((card_core0_regs_fifo1_homing1_state == 3'b100) && (!card_core0_regs_fifo1_homing1_switch));
+    card_core0_regs_fifo1_homing1_opened = released;
     card_core0_regs_fifo1_homing1_gave_up = (drained && (((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)) || ((card_core0_regs_fifo1_homing1_state == 3'b100) && card_core0_regs_fifo1_homing1_switch)));
     card_core0_regs_fifo1_homing1_finished = ((card_core0_regs_fifo1_homing1_state == 3'b110) && (!card_core0_regs_fifo1_out_active));
     card_core0_regs_fifo1_home_cut = ((card_core0_regs_fifo1_homing1_state == 3'b010) && card_core0_regs_fifo1_homing1_switch);
-    card_core0_regs_fifo1_homing1_port_retarget = ((card_core0_regs_fifo1_homing1_state == 3'b100) && (!card_core0_regs_fifo1_homing1_switch));
+    card_core0_regs_fifo1_homing1_port_retarget = released;
     card_core0_regs_fifo1_home_zero = 0;
-    if (((card_core0_regs_fifo1_homing1_state == 3'b100) && (!card_core0_regs_fifo1_homing1_switch))) begin
+    if (released) begin
         if (card_core0_regs_fifo1_homing1_axis) begin
             card_core0_regs_fifo1_home_zero = 2;
         end
@@ -5471,7 +5479,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
             card_core0_regs_fifo1_homing1_state <= 3'b100;
         end
         else if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
-            if (card_core0_regs_fifo1_homing1_released) begin
+            if (card_core0_regs_fifo1_homing1_opened) begin
                 if ((card_core0_regs_fifo1_reg_word72_shown != 0)) begin
                     card_core0_regs_fifo1_homing1_state <= 3'b101;
                 end
@@ -5551,22 +5559,27 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_write_stage
 end
 
 
-
-assign card_core0_regs_fifo1_enable = (card_core0_regs_fifo1_control[0] && (!card_core0_regs_fifo1_control[1]) && (!card_core0_regs_fifo1_halt) && (!card_core0_regs_fifo1_home_busy));
-assign card_core0_regs_fifo1_direct_mode = card_core0_regs_fifo1_control[1];
-assign card_core0_regs_fifo1_clear_error = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[1]);
-assign card_core0_regs_fifo1_clear_position = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[2]);
-assign card_core0_regs_fifo1_clear_stop = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[3]);
-assign card_core0_regs_fifo1_releasing = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[3] && card_core0_regs_fifo1_guard_stopped && (!card_core0_regs_fifo1_conditioning_active[0]));
-assign card_core0_regs_fifo1_feed_pause = (card_core0_regs_fifo1_machine_control[1] || card_core0_regs_fifo1_guard_stopping);
-assign card_core0_regs_fifo1_guard_ramp = (card_core0_regs_fifo1_ramp_step != 0);
-assign card_core0_regs_fifo1_settled = (card_core0_regs_fifo1_feed_held && (!card_core0_regs_fifo1_tick) && (!card_core0_regs_fifo1_outputs_busy));
-assign card_core0_regs_fifo1_direct_ready = (card_core0_regs_fifo1_out_ready && (!card_core0_regs_fifo1_guard_stopping));
-assign card_core0_regs_fifo1_pulse_clear = (card_core0_core_clear || card_core0_regs_fifo1_halt);
-assign card_core0_regs_fifo1_sequencer_clear = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped);
-assign card_core0_regs_fifo1_home_idle = ((!card_core0_regs_fifo1_any_busy) && card_core0_regs_fifo1_fifo_empty && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_halt));
-assign card_core0_regs_fifo1_direct_clear = (card_core0_core_clear || card_core0_regs_fifo1_home_cut);
-assign card_core0_regs_fifo1_home_inputs = card_core0_regs_fifo1_conditioning_active[5+:2];
+always @(card_core0_regs_fifo1_feed_held, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_out_ready, card_core0_core_clear, card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_command, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_home_cut, card_core0_regs_fifo1_outputs_busy, card_core0_regs_fifo1_control, card_core0_regs_fifo1_tick, card_core0_regs_fifo1_ramp_step, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_command_strobe, card_core0_regs_fifo1_halt, card_core0_regs_fifo1_machine_control) begin: card_core0_regs_fifo1_control_bits
+    card_core0_regs_fifo1_enable = (card_core0_regs_fifo1_control[0] && (!card_core0_regs_fifo1_control[1]) && (!card_core0_regs_fifo1_halt) && (!card_core0_regs_fifo1_home_busy));
+    card_core0_regs_fifo1_direct_mode = card_core0_regs_fifo1_control[1];
+    card_core0_regs_fifo1_clear_error = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[1]);
+    card_core0_regs_fifo1_clear_position = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[2]);
+    card_core0_regs_fifo1_clear_stop = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[3]);
+    card_core0_regs_fifo1_releasing = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[3] && card_core0_regs_fifo1_guard_stopped && (!card_core0_regs_fifo1_conditioning_active[0]));
+    card_core0_regs_fifo1_feed_pause = (card_core0_regs_fifo1_machine_control[1] || card_core0_regs_fifo1_guard_stopping);
+    card_core0_regs_fifo1_guard_ramp = (card_core0_regs_fifo1_ramp_step != 0);
+    card_core0_regs_fifo1_settled = (card_core0_regs_fifo1_feed_held && (!card_core0_regs_fifo1_tick) && (!card_core0_regs_fifo1_outputs_busy));
+    card_core0_regs_fifo1_direct_ready = (card_core0_regs_fifo1_out_ready && (!card_core0_regs_fifo1_guard_stopping));
+    card_core0_regs_fifo1_pulse_clear = (card_core0_core_clear || card_core0_regs_fifo1_halt);
+    card_core0_regs_fifo1_sequencer_clear = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped);
+    card_core0_regs_fifo1_home_idle = ((!card_core0_regs_fifo1_any_busy) && card_core0_regs_fifo1_fifo_empty && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_halt));
+    card_core0_regs_fifo1_direct_clear = (card_core0_core_clear || card_core0_regs_fifo1_home_cut);
+    card_core0_regs_fifo1_home_inputs = card_core0_regs_fifo1_conditioning_active[5+:2];
+    card_core0_regs_fifo1_drive_cleared = 0;
+    if (card_core0_regs_fifo1_guard_stopped) begin
+        card_core0_regs_fifo1_drive_cleared = 1;
+    end
+end
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_soft_reset

@@ -178,24 +178,26 @@ reg [31:0] set_value;
 reg [3:0] error_code;
 reg seq_load;
 reg [1:0] home_zero;
+reg [23:0] watchdog_left;
 wire any_busy;
 reg [31:0] byte_mask;
-wire clear_error;
-wire clear_position;
-wire clear_stop;
-wire direct_clear;
-wire direct_mode;
-wire direct_ready;
+reg clear_error;
+reg clear_position;
+reg clear_stop;
+reg direct_clear;
+reg direct_mode;
+reg direct_ready;
 wire discard_on_clear;
-wire enable;
+reg [1:0] drive_cleared;
+reg enable;
 wire fifo_empty;
 wire fifo_flush;
 wire fifo_full;
 wire [9:0] fifo_level;
 reg halt;
 wire hold;
-wire home_idle;
-wire [1:0] home_inputs;
+reg home_idle;
+reg [1:0] home_inputs;
 reg io_read;
 reg io_write;
 reg io_written;
@@ -207,15 +209,15 @@ wire out_ready;
 wire outputs_busy;
 reg signed [31:0] pos_y_snapshot;
 wire pulse_busy;
-wire pulse_clear;
+reg pulse_clear;
 reg push;
 reg read_waited;
 reg [31:0] read_word;
-wire releasing;
+reg releasing;
 reg requested_before;
 wire seq_busy;
-wire sequencer_clear;
-wire settled;
+reg sequencer_clear;
+reg settled;
 reg soft_reset_taken;
 reg tick;
 reg [15:0] written_addr;
@@ -228,10 +230,10 @@ reg command_strobe;
 reg [3:0] command;
 reg guard_stopped;
 reg [6:0] conditioning_active;
-wire feed_pause;
+reg feed_pause;
 reg [1:0] machine_control;
 reg guard_stopping;
-wire guard_ramp;
+reg guard_ramp;
 reg [15:0] ramp_step;
 reg feed_held;
 reg home_cut;
@@ -519,7 +521,6 @@ reg [31:0] reg_word29_chain_out_data;
 wire reg_word29_chain_out_clamped;
 reg [23:0] reg_word30_honoured;
 reg reg_word30_out_of_range;
-reg [23:0] reg_word30_shown;
 reg reg_word30_clamped;
 wire reg_word30_mine;
 wire reg_word30_mine_write;
@@ -696,6 +697,7 @@ reg [7:0] pulse_out0_phase_step;
 reg pulse_out0_starts;
 reg pulse_out0_take;
 reg pulse_out0_turn;
+wire pulse_out0_control_pulsing;
 reg pulse_out0_request_step_x;
 reg pulse_out0_request_step_y;
 reg pulse_out0_request_dir_y;
@@ -736,11 +738,11 @@ reg homing0_gave_up;
 reg [23:0] homing0_magnitude;
 reg homing0_negative;
 reg homing0_not_found;
+reg homing0_opened;
 reg [23:0] homing0_operand;
 reg [1:0] homing0_phase;
 reg homing0_positive;
 reg homing0_refused;
-reg homing0_released;
 reg homing0_seek_next;
 reg homing0_seeking;
 wire [23:0] homing0_signed_count;
@@ -758,7 +760,7 @@ reg status_words0_low_before;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_shown = 32'd3719037187;
+assign reg_word0_shown = 32'd3719037440;
 assign reg_word0_chain_in_data = 32'd0;
 assign reg_word0_chain_in_clamped = 1'd0;
 assign reg_word1_out_of_range = 1'd0;
@@ -2079,7 +2081,7 @@ assign reg_word24_honoured = reg_word24_written[2-1:0];
 assign reg_word24_chain_out_clamped = (reg_word23_chain_out_clamped || reg_word24_clamped);
 
 
-always @(posedge clock, negedge reset) begin: reg_word24__store16_hold_rw
+always @(posedge clock, negedge reset) begin: reg_word24__store16_hold_rw_cleared
     if (reset == 0) begin
         machine_control <= 0;
         reg_word24_clamped <= 0;
@@ -2087,8 +2089,11 @@ always @(posedge clock, negedge reset) begin: reg_word24__store16_hold_rw
     else begin
         reg_word24_clamped <= 1'b0;
         if (((reg_word24_set_mine && (set_index == 0)) || (io_written && reg_word24_mine_write))) begin
-            machine_control <= reg_word24_honoured;
+            machine_control <= (reg_word24_honoured & (~(drive_cleared & 1)));
             reg_word24_clamped <= reg_word24_out_of_range;
+        end
+        else begin
+            machine_control <= (machine_control & (~(drive_cleared & 1)));
         end
     end
 end
@@ -2340,7 +2345,7 @@ end
 
 
 
-assign reg_word30_shown_wide = {8'h0, reg_word30_shown};
+assign reg_word30_shown_wide = {8'h0, watchdog_left};
 
 
 
@@ -3537,6 +3542,7 @@ end
 
 assign out_ready = ($signed({1'b0, pulse_out0_count}) <= (4 - 2));
 assign out_active = ((pulse_out0_count != 0) || (pulse_out0_phase != 2'b00) || pins_step_x || pins_step_y);
+assign pulse_out0_control_pulsing = (pulse_out0_take || (pulse_out0_phase == 2'b10) || pins_step_x || pins_step_y);
 
 
 
@@ -3939,7 +3945,7 @@ assign input_filter0__input_count6_taken = (input_filter0_sample && (input_filte
 
 
 assign machine_guard0_estop = conditioning_active[0];
-assign machine_guard0_expired = ((reg_word30_shown == 1) && (!reg_word30__store20_word_strobe));
+assign machine_guard0_expired = ((watchdog_left == 1) && (!reg_word30__store20_word_strobe));
 assign machine_guard0_hits = {(requests_step_y && (!requests_dir_y) && conditioning_active[4]), (requests_step_y && requests_dir_y && conditioning_active[3]), (requests_step_x && (!requests_dir_x) && conditioning_active[2]), (requests_step_x && requests_dir_x && conditioning_active[1])};
 
 
@@ -4000,21 +4006,21 @@ always @(posedge clock, negedge reset) begin: machine_guard0_latch
             machine_guard0_guard_limits <= 0;
         end
         guard_stopped <= stopped;
-        pins_drive_enable <= ((machine_control[0] != 0) && (!stopped) && (!machine_guard0_estop));
+        pins_drive_enable <= (((machine_control[0] != 0) && (!stopped) && (!guard_stopped) && (!machine_guard0_estop)) || (pins_drive_enable && pulse_out0_control_pulsing));
     end
 end
 
 
 always @(posedge clock, negedge reset) begin: machine_guard0_watchdog
     if (reset == 0) begin
-        reg_word30_shown <= 0;
+        watchdog_left <= 0;
     end
     else begin
         if (reg_word30__store20_word_strobe) begin
-            reg_word30_shown <= reg_word30__store20_word_value;
+            watchdog_left <= reg_word30__store20_word_value;
         end
-        else if ((reg_word30_shown != 0)) begin
-            reg_word30_shown <= (reg_word30_shown - 1);
+        else if ((watchdog_left != 0)) begin
+            watchdog_left <= (watchdog_left - 1);
         end
     end
 end
@@ -4080,14 +4086,16 @@ end
 
 always @(out_active, pulse_busy, homing0_axis, homing0_switch, homing0_state) begin: homing0_edges
     reg drained;
+    reg released;
     drained = ((!pulse_busy) && (!out_active));
-    homing0_released = ((homing0_state == 3'b100) && (!homing0_switch));
+    released = ((homing0_state == 3'b100) && (!homing0_switch));
+    homing0_opened = released;
     homing0_gave_up = (drained && (((homing0_state == 3'b010) && (!homing0_switch)) || ((homing0_state == 3'b100) && homing0_switch)));
     homing0_finished = ((homing0_state == 3'b110) && (!out_active));
     home_cut = ((homing0_state == 3'b010) && homing0_switch);
-    homing0_port_retarget = ((homing0_state == 3'b100) && (!homing0_switch));
+    homing0_port_retarget = released;
     home_zero = 0;
-    if (((homing0_state == 3'b100) && (!homing0_switch))) begin
+    if (released) begin
         if (homing0_axis) begin
             home_zero = 2;
         end
@@ -4203,7 +4211,7 @@ always @(posedge clock, negedge reset) begin: homing0_sequence
             homing0_state <= 3'b100;
         end
         else if ((homing0_state == 3'b100)) begin
-            if (homing0_released) begin
+            if (homing0_opened) begin
                 if ((reg_word35_shown != 0)) begin
                     homing0_state <= 3'b101;
                 end
@@ -4283,22 +4291,27 @@ always @(posedge clock, negedge reset) begin: write_stage
 end
 
 
-
-assign enable = (control[0] && (!control[1]) && (!halt) && (!home_busy));
-assign direct_mode = control[1];
-assign clear_error = (command_strobe && command[1]);
-assign clear_position = (command_strobe && command[2]);
-assign clear_stop = (command_strobe && command[3]);
-assign releasing = (command_strobe && command[3] && guard_stopped && (!conditioning_active[0]));
-assign feed_pause = (machine_control[1] || guard_stopping);
-assign guard_ramp = (ramp_step != 0);
-assign settled = (feed_held && (!tick) && (!outputs_busy));
-assign direct_ready = (out_ready && (!guard_stopping));
-assign pulse_clear = (core_clear || halt);
-assign sequencer_clear = (core_clear || guard_stopped);
-assign home_idle = ((!any_busy) && fifo_empty && (!guard_stopped) && (!halt));
-assign direct_clear = (core_clear || home_cut);
-assign home_inputs = conditioning_active[5+:2];
+always @(feed_held, fifo_empty, out_ready, core_clear, guard_stopped, command, any_busy, guard_stopping, home_cut, outputs_busy, control, tick, ramp_step, conditioning_active, home_busy, command_strobe, halt, machine_control) begin: control_bits
+    enable = (control[0] && (!control[1]) && (!halt) && (!home_busy));
+    direct_mode = control[1];
+    clear_error = (command_strobe && command[1]);
+    clear_position = (command_strobe && command[2]);
+    clear_stop = (command_strobe && command[3]);
+    releasing = (command_strobe && command[3] && guard_stopped && (!conditioning_active[0]));
+    feed_pause = (machine_control[1] || guard_stopping);
+    guard_ramp = (ramp_step != 0);
+    settled = (feed_held && (!tick) && (!outputs_busy));
+    direct_ready = (out_ready && (!guard_stopping));
+    pulse_clear = (core_clear || halt);
+    sequencer_clear = (core_clear || guard_stopped);
+    home_idle = ((!any_busy) && fifo_empty && (!guard_stopped) && (!halt));
+    direct_clear = (core_clear || home_cut);
+    home_inputs = conditioning_active[5+:2];
+    drive_cleared = 0;
+    if (guard_stopped) begin
+        drive_cleared = 1;
+    end
+end
 
 
 always @(posedge clock, negedge reset) begin: soft_reset

@@ -281,24 +281,26 @@ reg [31:0] card1_card_core1_regs_fifo2_set_value;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
 reg [1:0] card1_card_core1_regs_fifo2_home_zero;
+reg [23:0] card1_card_core1_regs_fifo2_watchdog_left;
 wire card1_card_core1_regs_fifo2_any_busy;
 reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
-wire card1_card_core1_regs_fifo2_clear_error;
-wire card1_card_core1_regs_fifo2_clear_position;
-wire card1_card_core1_regs_fifo2_clear_stop;
-wire card1_card_core1_regs_fifo2_direct_clear;
-wire card1_card_core1_regs_fifo2_direct_mode;
-wire card1_card_core1_regs_fifo2_direct_ready;
+reg card1_card_core1_regs_fifo2_clear_error;
+reg card1_card_core1_regs_fifo2_clear_position;
+reg card1_card_core1_regs_fifo2_clear_stop;
+reg card1_card_core1_regs_fifo2_direct_clear;
+reg card1_card_core1_regs_fifo2_direct_mode;
+reg card1_card_core1_regs_fifo2_direct_ready;
 wire card1_card_core1_regs_fifo2_discard_on_clear;
-wire card1_card_core1_regs_fifo2_enable;
+reg [1:0] card1_card_core1_regs_fifo2_drive_cleared;
+reg card1_card_core1_regs_fifo2_enable;
 wire card1_card_core1_regs_fifo2_fifo_empty;
 wire card1_card_core1_regs_fifo2_fifo_flush;
 wire card1_card_core1_regs_fifo2_fifo_full;
 wire [9:0] card1_card_core1_regs_fifo2_fifo_level;
 reg card1_card_core1_regs_fifo2_halt;
 wire card1_card_core1_regs_fifo2_hold;
-wire card1_card_core1_regs_fifo2_home_idle;
-wire [1:0] card1_card_core1_regs_fifo2_home_inputs;
+reg card1_card_core1_regs_fifo2_home_idle;
+reg [1:0] card1_card_core1_regs_fifo2_home_inputs;
 reg card1_card_core1_regs_fifo2_io_read;
 reg card1_card_core1_regs_fifo2_io_write;
 reg card1_card_core1_regs_fifo2_io_written;
@@ -310,15 +312,15 @@ wire card1_card_core1_regs_fifo2_out_ready;
 wire card1_card_core1_regs_fifo2_outputs_busy;
 reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 wire card1_card_core1_regs_fifo2_pulse_busy;
-wire card1_card_core1_regs_fifo2_pulse_clear;
+reg card1_card_core1_regs_fifo2_pulse_clear;
 reg card1_card_core1_regs_fifo2_push;
 reg card1_card_core1_regs_fifo2_read_waited;
 reg [31:0] card1_card_core1_regs_fifo2_read_word;
-wire card1_card_core1_regs_fifo2_releasing;
+reg card1_card_core1_regs_fifo2_releasing;
 reg card1_card_core1_regs_fifo2_requested_before;
 wire card1_card_core1_regs_fifo2_seq_busy;
-wire card1_card_core1_regs_fifo2_sequencer_clear;
-wire card1_card_core1_regs_fifo2_settled;
+reg card1_card_core1_regs_fifo2_sequencer_clear;
+reg card1_card_core1_regs_fifo2_settled;
 reg card1_card_core1_regs_fifo2_soft_reset_taken;
 reg card1_card_core1_regs_fifo2_tick;
 reg [11:0] card1_card_core1_regs_fifo2_written_addr;
@@ -331,10 +333,10 @@ reg card1_card_core1_regs_fifo2_command_strobe;
 reg [3:0] card1_card_core1_regs_fifo2_command;
 reg card1_card_core1_regs_fifo2_guard_stopped;
 reg [6:0] card1_card_core1_regs_fifo2_conditioning_active;
-wire card1_card_core1_regs_fifo2_feed_pause;
+reg card1_card_core1_regs_fifo2_feed_pause;
 reg [1:0] card1_card_core1_regs_fifo2_machine_control;
 reg card1_card_core1_regs_fifo2_guard_stopping;
-wire card1_card_core1_regs_fifo2_guard_ramp;
+reg card1_card_core1_regs_fifo2_guard_ramp;
 reg [15:0] card1_card_core1_regs_fifo2_ramp_step;
 reg card1_card_core1_regs_fifo2_feed_held;
 reg card1_card_core1_regs_fifo2_home_cut;
@@ -628,7 +630,6 @@ reg [31:0] card1_card_core1_regs_fifo2_reg_word103_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word104_honoured;
 reg card1_card_core1_regs_fifo2_reg_word104_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word104_shown;
 reg card1_card_core1_regs_fifo2_reg_word104_clamped;
 wire card1_card_core1_regs_fifo2_reg_word104_mine;
 wire card1_card_core1_regs_fifo2_reg_word104_mine_write;
@@ -820,6 +821,7 @@ reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_step;
 reg card1_card_core1_regs_fifo2_pulse_out2_starts;
 reg card1_card_core1_regs_fifo2_pulse_out2_take;
 reg card1_card_core1_regs_fifo2_pulse_out2_turn;
+wire card1_card_core1_regs_fifo2_pulse_out2_control_pulsing;
 reg card1_card_core1_regs_fifo2_pulse_out2_request_step_x;
 reg card1_card_core1_regs_fifo2_pulse_out2_request_step_y;
 reg card1_card_core1_regs_fifo2_pulse_out2_request_dir_y;
@@ -860,11 +862,11 @@ reg card1_card_core1_regs_fifo2_homing2_gave_up;
 reg [23:0] card1_card_core1_regs_fifo2_homing2_magnitude;
 reg card1_card_core1_regs_fifo2_homing2_negative;
 reg card1_card_core1_regs_fifo2_homing2_not_found;
+reg card1_card_core1_regs_fifo2_homing2_opened;
 reg [23:0] card1_card_core1_regs_fifo2_homing2_operand;
 reg [1:0] card1_card_core1_regs_fifo2_homing2_phase;
 reg card1_card_core1_regs_fifo2_homing2_positive;
 reg card1_card_core1_regs_fifo2_homing2_refused;
-reg card1_card_core1_regs_fifo2_homing2_released;
 reg card1_card_core1_regs_fifo2_homing2_seek_next;
 reg card1_card_core1_regs_fifo2_homing2_seeking;
 wire [23:0] card1_card_core1_regs_fifo2_homing2_signed_count;
@@ -1044,7 +1046,7 @@ reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word74_shown = 32'd3719037187;
+assign card1_card_core1_regs_fifo2_reg_word74_shown = 32'd3719037440;
 assign card1_card_core1_regs_fifo2_reg_word74_chain_in_data = 32'd0;
 assign card1_card_core1_regs_fifo2_reg_word74_chain_in_clamped = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word75_out_of_range = 1'd0;
@@ -4179,7 +4181,7 @@ assign card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_f
 assign card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word98_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word98__store68_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word98__store68_hold_rw_cleared
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_machine_control <= 0;
         card1_card_core1_regs_fifo2_reg_word98_clamped <= 0;
@@ -4187,8 +4189,11 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     else begin
         card1_card_core1_regs_fifo2_reg_word98_clamped <= 1'b0;
         if (((card1_card_core1_regs_fifo2_reg_word98_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word98_mine_write))) begin
-            card1_card_core1_regs_fifo2_machine_control <= card1_card_core1_regs_fifo2_reg_word98_honoured;
+            card1_card_core1_regs_fifo2_machine_control <= (card1_card_core1_regs_fifo2_reg_word98_honoured & (~(card1_card_core1_regs_fifo2_drive_cleared & 1)));
             card1_card_core1_regs_fifo2_reg_word98_clamped <= card1_card_core1_regs_fifo2_reg_word98_out_of_range;
+        end
+        else begin
+            card1_card_core1_regs_fifo2_machine_control <= (card1_card_core1_regs_fifo2_machine_control & (~(card1_card_core1_regs_fifo2_drive_cleared & 1)));
         end
     end
 end
@@ -4440,7 +4445,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word104_shown};
+assign card1_card_core1_regs_fifo2_reg_word104_shown_wide = {8'h0, card1_card_core1_regs_fifo2_watchdog_left};
 
 
 
@@ -5637,6 +5642,7 @@ end
 
 assign card1_card_core1_regs_fifo2_out_ready = ($signed({1'b0, card1_card_core1_regs_fifo2_pulse_out2_count}) <= (4 - 2));
 assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) || (card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b00) || motor_step_x || motor_step_y);
+assign card1_card_core1_regs_fifo2_pulse_out2_control_pulsing = (card1_card_core1_regs_fifo2_pulse_out2_take || (card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) || motor_step_x || motor_step_y);
 
 
 
@@ -6039,7 +6045,7 @@ assign card1_card_core1_regs_fifo2_input_filter2__input_count20_taken = (card1_c
 
 
 assign card1_card_core1_regs_fifo2_machine_guard2_estop = card1_card_core1_regs_fifo2_conditioning_active[0];
-assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_reg_word104_shown == 1) && (!card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe));
+assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_watchdog_left == 1) && (!card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe));
 assign card1_card_core1_regs_fifo2_machine_guard2_hits = {(card1_card_core1_regs_fifo2_requests_step_y && (!card1_card_core1_regs_fifo2_requests_dir_y) && card1_card_core1_regs_fifo2_conditioning_active[4]), (card1_card_core1_regs_fifo2_requests_step_y && card1_card_core1_regs_fifo2_requests_dir_y && card1_card_core1_regs_fifo2_conditioning_active[3]), (card1_card_core1_regs_fifo2_requests_step_x && (!card1_card_core1_regs_fifo2_requests_dir_x) && card1_card_core1_regs_fifo2_conditioning_active[2]), (card1_card_core1_regs_fifo2_requests_step_x && card1_card_core1_regs_fifo2_requests_dir_x && card1_card_core1_regs_fifo2_conditioning_active[1])};
 
 
@@ -6100,21 +6106,21 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
             card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
         end
         card1_card_core1_regs_fifo2_guard_stopped <= stopped;
-        motor_drive_enable <= ((card1_card_core1_regs_fifo2_machine_control[0] != 0) && (!stopped) && (!card1_card_core1_regs_fifo2_machine_guard2_estop));
+        motor_drive_enable <= (((card1_card_core1_regs_fifo2_machine_control[0] != 0) && (!stopped) && (!card1_card_core1_regs_fifo2_guard_stopped) && (!card1_card_core1_regs_fifo2_machine_guard2_estop)) || (motor_drive_enable && card1_card_core1_regs_fifo2_pulse_out2_control_pulsing));
     end
 end
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machine_guard2_watchdog
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word104_shown <= 0;
+        card1_card_core1_regs_fifo2_watchdog_left <= 0;
     end
     else begin
         if (card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word104_shown <= card1_card_core1_regs_fifo2_reg_word104__store72_word_value;
+            card1_card_core1_regs_fifo2_watchdog_left <= card1_card_core1_regs_fifo2_reg_word104__store72_word_value;
         end
-        else if ((card1_card_core1_regs_fifo2_reg_word104_shown != 0)) begin
-            card1_card_core1_regs_fifo2_reg_word104_shown <= (card1_card_core1_regs_fifo2_reg_word104_shown - 1);
+        else if ((card1_card_core1_regs_fifo2_watchdog_left != 0)) begin
+            card1_card_core1_regs_fifo2_watchdog_left <= (card1_card_core1_regs_fifo2_watchdog_left - 1);
         end
     end
 end
@@ -6180,14 +6186,16 @@ end
 
 always @(card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_edges
     reg drained;
+    reg released;
     drained = ((!card1_card_core1_regs_fifo2_pulse_busy) && (!card1_card_core1_regs_fifo2_out_active));
-    card1_card_core1_regs_fifo2_homing2_released = ((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && (!card1_card_core1_regs_fifo2_homing2_switch));
+    released = ((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && (!card1_card_core1_regs_fifo2_homing2_switch));
+    card1_card_core1_regs_fifo2_homing2_opened = released;
     card1_card_core1_regs_fifo2_homing2_gave_up = (drained && (((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && card1_card_core1_regs_fifo2_homing2_switch)));
     card1_card_core1_regs_fifo2_homing2_finished = ((card1_card_core1_regs_fifo2_homing2_state == 3'b110) && (!card1_card_core1_regs_fifo2_out_active));
     card1_card_core1_regs_fifo2_home_cut = ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && card1_card_core1_regs_fifo2_homing2_switch);
-    card1_card_core1_regs_fifo2_homing2_port_retarget = ((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && (!card1_card_core1_regs_fifo2_homing2_switch));
+    card1_card_core1_regs_fifo2_homing2_port_retarget = released;
     card1_card_core1_regs_fifo2_home_zero = 0;
-    if (((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && (!card1_card_core1_regs_fifo2_homing2_switch))) begin
+    if (released) begin
         if (card1_card_core1_regs_fifo2_homing2_axis) begin
             card1_card_core1_regs_fifo2_home_zero = 2;
         end
@@ -6303,7 +6311,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
             card1_card_core1_regs_fifo2_homing2_state <= 3'b100;
         end
         else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
-            if (card1_card_core1_regs_fifo2_homing2_released) begin
+            if (card1_card_core1_regs_fifo2_homing2_opened) begin
                 if ((card1_card_core1_regs_fifo2_reg_word109_shown != 0)) begin
                     card1_card_core1_regs_fifo2_homing2_state <= 3'b101;
                 end
@@ -6383,22 +6391,27 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_write_
 end
 
 
-
-assign card1_card_core1_regs_fifo2_enable = (card1_card_core1_regs_fifo2_control[0] && (!card1_card_core1_regs_fifo2_control[1]) && (!card1_card_core1_regs_fifo2_halt) && (!card1_card_core1_regs_fifo2_home_busy));
-assign card1_card_core1_regs_fifo2_direct_mode = card1_card_core1_regs_fifo2_control[1];
-assign card1_card_core1_regs_fifo2_clear_error = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[1]);
-assign card1_card_core1_regs_fifo2_clear_position = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[2]);
-assign card1_card_core1_regs_fifo2_clear_stop = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[3]);
-assign card1_card_core1_regs_fifo2_releasing = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[3] && card1_card_core1_regs_fifo2_guard_stopped && (!card1_card_core1_regs_fifo2_conditioning_active[0]));
-assign card1_card_core1_regs_fifo2_feed_pause = (card1_card_core1_regs_fifo2_machine_control[1] || card1_card_core1_regs_fifo2_guard_stopping);
-assign card1_card_core1_regs_fifo2_guard_ramp = (card1_card_core1_regs_fifo2_ramp_step != 0);
-assign card1_card_core1_regs_fifo2_settled = (card1_card_core1_regs_fifo2_feed_held && (!card1_card_core1_regs_fifo2_tick) && (!card1_card_core1_regs_fifo2_outputs_busy));
-assign card1_card_core1_regs_fifo2_direct_ready = (card1_card_core1_regs_fifo2_out_ready && (!card1_card_core1_regs_fifo2_guard_stopping));
-assign card1_card_core1_regs_fifo2_pulse_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_halt);
-assign card1_card_core1_regs_fifo2_sequencer_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped);
-assign card1_card_core1_regs_fifo2_home_idle = ((!card1_card_core1_regs_fifo2_any_busy) && card1_card_core1_regs_fifo2_fifo_empty && (!card1_card_core1_regs_fifo2_guard_stopped) && (!card1_card_core1_regs_fifo2_halt));
-assign card1_card_core1_regs_fifo2_direct_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_home_cut);
-assign card1_card_core1_regs_fifo2_home_inputs = card1_card_core1_regs_fifo2_conditioning_active[5+:2];
+always @(card1_card_core1_regs_fifo2_feed_held, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_out_ready, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_command, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_home_cut, card1_card_core1_regs_fifo2_outputs_busy, card1_card_core1_regs_fifo2_control, card1_card_core1_regs_fifo2_tick, card1_card_core1_regs_fifo2_ramp_step, card1_card_core1_regs_fifo2_conditioning_active, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_command_strobe, card1_card_core1_regs_fifo2_halt, card1_card_core1_regs_fifo2_machine_control) begin: card1_card_core1_regs_fifo2_control_bits
+    card1_card_core1_regs_fifo2_enable = (card1_card_core1_regs_fifo2_control[0] && (!card1_card_core1_regs_fifo2_control[1]) && (!card1_card_core1_regs_fifo2_halt) && (!card1_card_core1_regs_fifo2_home_busy));
+    card1_card_core1_regs_fifo2_direct_mode = card1_card_core1_regs_fifo2_control[1];
+    card1_card_core1_regs_fifo2_clear_error = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[1]);
+    card1_card_core1_regs_fifo2_clear_position = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[2]);
+    card1_card_core1_regs_fifo2_clear_stop = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[3]);
+    card1_card_core1_regs_fifo2_releasing = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[3] && card1_card_core1_regs_fifo2_guard_stopped && (!card1_card_core1_regs_fifo2_conditioning_active[0]));
+    card1_card_core1_regs_fifo2_feed_pause = (card1_card_core1_regs_fifo2_machine_control[1] || card1_card_core1_regs_fifo2_guard_stopping);
+    card1_card_core1_regs_fifo2_guard_ramp = (card1_card_core1_regs_fifo2_ramp_step != 0);
+    card1_card_core1_regs_fifo2_settled = (card1_card_core1_regs_fifo2_feed_held && (!card1_card_core1_regs_fifo2_tick) && (!card1_card_core1_regs_fifo2_outputs_busy));
+    card1_card_core1_regs_fifo2_direct_ready = (card1_card_core1_regs_fifo2_out_ready && (!card1_card_core1_regs_fifo2_guard_stopping));
+    card1_card_core1_regs_fifo2_pulse_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_halt);
+    card1_card_core1_regs_fifo2_sequencer_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped);
+    card1_card_core1_regs_fifo2_home_idle = ((!card1_card_core1_regs_fifo2_any_busy) && card1_card_core1_regs_fifo2_fifo_empty && (!card1_card_core1_regs_fifo2_guard_stopped) && (!card1_card_core1_regs_fifo2_halt));
+    card1_card_core1_regs_fifo2_direct_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_home_cut);
+    card1_card_core1_regs_fifo2_home_inputs = card1_card_core1_regs_fifo2_conditioning_active[5+:2];
+    card1_card_core1_regs_fifo2_drive_cleared = 0;
+    if (card1_card_core1_regs_fifo2_guard_stopped) begin
+        card1_card_core1_regs_fifo2_drive_cleared = 1;
+    end
+end
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_soft_reset

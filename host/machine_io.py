@@ -27,7 +27,13 @@ class MachineIO:
     """Drive enable, feed hold, inputs, watchdog, stop state and homing of a ``Card``."""
 
     def drive(self, enable=True):
-        """MACHINE_CONTROL.DRIVE_ENABLE: the DRIVE_ENABLE pin follows it while the card is not stopped."""
+        """MACHINE_CONTROL.DRIVE_ENABLE: the DRIVE_ENABLE pin follows it while
+        the card is not stopped.  A stop clears it and the card keeps no 1
+        while stopped, so ``drive(True)`` on a stopped card raises
+        ``MachineStopped`` with nothing written: ``clear_stop()`` first, then
+        ``drive(True)`` re-energises the drives."""
+        if enable and self.field("STATUS", "STOPPED"):
+            raise MachineStopped(*self.stop_reason())
         self._machine_control(DRIVE_ENABLE=int(enable))
 
     def hold(self, timeout=1.0):
@@ -92,12 +98,14 @@ class MachineIO:
 
     def clear_stop(self):
         """COMMAND.CLEAR_STOP; MachineStopped if the card stays stopped (the
-        E-stop input still active).  CLEAR_STOP empties the FIFO: the record
-        of queued words starts afresh."""
+        E-stop input still active: the refused CLEAR_STOP changed nothing, the
+        FIFO kept its words).  A successful CLEAR_STOP empties the FIFO (the
+        record of queued words starts afresh) and leaves the drives off:
+        ``drive(True)`` enables them again."""
         self.transport.write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", CLEAR_STOP=1))
-        self._forget()
         if self.field("STATUS", "STOPPED"):
             raise MachineStopped(*self.stop_reason())
+        self._forget()
 
     def home(self, axis, direction="negative", **settings):
         """HOME one axis; the position (``host.homing.home`` says how)."""

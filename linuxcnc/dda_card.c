@@ -20,7 +20,8 @@
  * to fall and rise again.
  *
  * Machine I/O: `drive-enable` goes to MACHINE_CONTROL.DRIVE_ENABLE (the
- * card's DRIVE_ENABLE pin, which the card itself drops when it stops);
+ * card's DRIVE_ENABLE pin, which the card itself drops when it stops and
+ * keeps low after COMMAND.CLEAR_STOP: the restart writes it again);
  * while the queue runs, every period rewrites WATCHDOG with
  * `watchdog.timeout-ns` in card clocks, so a PC that stops driving the card
  * has it stop on its own within that time.  A watchdog stop sets
@@ -194,6 +195,12 @@ static int start(struct card *c)
         card_stopped(c, 1);
         return 1;
     }
+    /* a stop cleared MACHINE_CONTROL.DRIVE_ENABLE and CLEAR_STOP does not set it
+     * again: the drives come back only with this new write of the HAL pin */
+    c->drive_written = *c->drive_enable != 0;
+    if (dda_write32(&c->transport, DDA_MACHINE_CONTROL,
+                    c->drive_written ? DDA_MACHINE_CONTROL_DRIVE_ENABLE_MASK : 0) < 0)
+        return -1;
     c->iteration = FASTEST_ITERATION;
     while (c->iteration < 65536u
            && c->iteration < (uint32_t)(clocks_of_ns(c->axis[0].steplen) + clocks_of_ns(c->axis[0].stepspace)))

@@ -11,7 +11,9 @@ Access kinds:
 - ``RO``: read only; writes are ignored.  The value comes from the hardware.
 - ``RW``: read/write, byte enables honoured.  A value outside the register's
   ``minimum``/``maximum`` is clamped to the nearest bound (the register reads
-  back what the hardware honours) and ``INT_STATUS.CLAMPED`` is set.
+  back what the hardware honours) and ``INT_STATUS.CLAMPED`` is set.  A
+  field with ``cleared`` (the event, in words) is cleared by the hardware
+  and held at 0 while that holds: a write of 1 meanwhile is not kept.
 - ``W1C``: hardware sets bits, writing 1 clears them.
 - ``W1S``: writing 1 sets bits, the hardware clears them when it has acted.
 - ``WP`` (write pulse): a write gives a one-clock pulse of the written value
@@ -45,6 +47,10 @@ VERSIONS = (
              "STATUS.STOPPED, INT_STATUS.STOPPED and INPUT; docs/machine.md)"),
     (0x0103, "feed hold and the decelerated stop (MACHINE_CONTROL.HOLD, MACHINE_STATUS.HELD and "
              "STOPPING); homing (HOME .. HOME_SEARCH, INT_STATUS.HOMED; docs/machine.md)"),
+    (0x0200, "a stop clears MACHINE_CONTROL.DRIVE_ENABLE (CLEAR_STOP no longer re-energises the drives: "
+             "the host writes it again); WATCHDOG, LOW_WATER, RAMP_STEP and HOME_BACKOFF clamp a write "
+             "above their range instead of cutting it; a refused CLEAR_STOP keeps the FIFO; "
+             "DRIVE_ENABLE stays high until a STEP pulse under way has ended (docs/machine.md)"),
 )
 VERSION = VERSIONS[-1][0]
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock
@@ -59,6 +65,7 @@ class Field:
     text: str
     signed: bool = False
     build: str = None  # the build parameter whose value the field holds (RO only)
+    cleared: str = None  # RW only: what clears the field and holds it at 0 (the hardware's ``hw`` bits)
 
     @property
     def mask(self):
@@ -235,7 +242,9 @@ REGISTERS = (
                build="device"), 0),
     )),
     Register("MACHINE_CONTROL", 0x60, "RW", 0, "the machine's outputs", (
-        Field("DRIVE_ENABLE", 0, 1, "1: raise the DRIVE_ENABLE pin while the card is not stopped"),
+        Field("DRIVE_ENABLE", 0, 1, "1: raise the DRIVE_ENABLE pin (a pulse under way keeps it high to its end); "
+              "after a stop the host writes 1 again once CLEAR_STOP has released it",
+              cleared="a stop of the guard, while STATUS.STOPPED"),
         Field("HOLD", 1, 1, "feed hold: 1 ramps the path's rate down to zero (RAMP_STEP) and waits, "
               "0 ramps it up again; the path continues exactly"),
     )),
@@ -358,6 +367,8 @@ def check_table(registers=REGISTERS):
             # field's width (a WATCHDOG of 2**24 would read 0: off) instead of clamped and flagged
             raise ValueError(f"{reg.name}: a one-value register the host writes declares its range")
         for item in reg.fields:
+            if item.cleared is not None and reg.access != "RW":
+                raise ValueError(f"{reg.name}.{item.name}: only an RW field is cleared by the hardware")
             if item.build is not None and (reg.access != "RO" or item.build not in parameters.PARAMETERS):
                 raise ValueError(f"{reg.name}.{item.name}: a build field is read-only and names a "
                                  f"build parameter, not {item.build!r}")

@@ -133,6 +133,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     pos_y_snapshot = Signal(position.y.val)
 
     drive_bit, hold_bit = _bit("MACHINE_CONTROL", "DRIVE_ENABLE"), _bit("MACHINE_CONTROL", "HOLD")
+    drive_cleared, drive_mask = hw["MACHINE_CONTROL"], regmap.register("MACHINE_CONTROL").field("DRIVE_ENABLE").mask
+    watchdog_left = hw["WATCHDOG"]   # named here, as the formal harness knows it
     units = [sync_fifo(clock, reset, push, local.wdata, fifo_pop, fifo_dout, fifo_flush, fifo_level,
                        fifo_empty, fifo_full, local.room, depth=fifo_depth)]
     for i, spec in enumerate(specs):
@@ -150,9 +152,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     conditioning = InputConditioning(pins=ConcatSignal(*reversed(pins.inputs())), polarity=values["INPUT_POLARITY"],
                                      samples=values["INPUT_FILTER"], tick=values["INPUT_TICK"])
     guard = MachineGuard(active=conditioning.active, drive_request=values["MACHINE_CONTROL"](drive_bit),
-                         clear_stop=clear_stop, held=settled,
+                         clear_stop=clear_stop, held=settled, pulsing=outputs.pulsing,
                          watchdog_load=strobes["WATCHDOG"], watchdog_timeout=values["WATCHDOG"], halt=halt,
-                         drive_enable=pins.drive_enable, watchdog_left=hw["WATCHDOG"])
+                         drive_enable=pins.drive_enable, watchdog_left=watchdog_left)
     home = Homing(start=strobes["HOME"], request=values["HOME"], seek_period=values["HOME_SEEK_PERIOD"],
                   release_period=values["HOME_RELEASE_PERIOD"], backoff=values["HOME_BACKOFF"],
                   search=values["HOME_SEARCH"], idle=home_idle, clear=core_clear, pulse_busy=pulse_busy,
@@ -240,6 +242,10 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         home_idle.next = not any_busy and fifo_empty and not guard.stopped and not halt
         direct_clear.next = core_clear or home.cut
         home_inputs.next = conditioning.active[home_x + 2:home_x]
+        # a stop clears MACHINE_CONTROL.DRIVE_ENABLE and holds it at 0: CLEAR_STOP does not re-energise
+        drive_cleared.next = 0
+        if guard.stopped:
+            drive_cleared.next = drive_mask
 
     @always_seq(clock.posedge, reset=reset)
     def soft_reset():

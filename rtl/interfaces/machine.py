@@ -32,8 +32,9 @@ class MachineGuard:
     ``drive_request`` (MACHINE_CONTROL.DRIVE_ENABLE), ``clear_stop``
     (COMMAND.CLEAR_STOP, one clock), ``watchdog_load`` (one clock per
     WATCHDOG write) with ``watchdog_timeout`` (its value, clocks; 0: off),
-    ``ramp`` (RAMP_STEP is not 0: a watchdog or limit stop decelerates) and
-    ``held`` (``FeedPort.held``, and no step on its way to the pins).
+    ``ramp`` (RAMP_STEP is not 0: a watchdog or limit stop decelerates),
+    ``held`` (``FeedPort.held``, and no step on its way to the pins) and
+    ``pulsing`` (``PulseControl.pulsing``: a STEP pulse starts, or is high).
     The guard drives ``halt`` (no new STEP edge, no command, no direct
     pulse: stopped, or the E-stop input active), ``stopping`` (a
     decelerated stop is under way: the feed rate pauses), ``stopped`` (the
@@ -46,6 +47,7 @@ class MachineGuard:
         adopt(self, given, active=Signal(intbv(0)[len(MACHINE_INPUTS):]), drive_request=Signal(bool(0)),
                clear_stop=Signal(bool(0)), watchdog_load=Signal(bool(0)),
                watchdog_timeout=Signal(intbv(0)[watchdog.width:]), ramp=Signal(bool(0)), held=Signal(bool(0)),
+               pulsing=Signal(bool(0)),
                halt=Signal(bool(0)), stopping=Signal(bool(0)),
                stopped=Signal(bool(0)), stop_event=Signal(bool(0)),
                reason=Signal(intbv(0)[reason.field("REASON").width:]),

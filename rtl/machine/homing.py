@@ -54,7 +54,7 @@ def homing(clock, reset, port):
     axis, negative = Signal(bool(0)), Signal(bool(0))
     done, not_found, refused = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
     switch, positive, seeking, seek_next = (Signal(bool(0)) for _ in range(4))
-    released, gave_up, finished = (Signal(bool(0)) for _ in range(3))
+    opened, gave_up, finished = (Signal(bool(0)) for _ in range(3))   # opened: the switch released in RELEASE
     # The count of the next load or retarget, |distance| or its two's
     # complement (one adder, ~magnitude + 1), and the period are registered:
     # the direct-pulse generator's own adders then start from flip-flops.
@@ -112,13 +112,14 @@ def homing(clock, reset, port):
     @always_comb
     def edges():
         drained = not port.pulse_busy and not port.outputs_active
-        released.next = state == state_t.RELEASE and not switch
+        released = state == state_t.RELEASE and not switch
+        opened.next = released
         gave_up.next = drained and ((state == state_t.SEEK and not switch) or (state == state_t.RELEASE and switch))
         finished.next = state == state_t.SETTLE and not port.outputs_active
         port.cut.next = state == state_t.SEEK and switch
-        port.retarget.next = state == state_t.RELEASE and not switch
+        port.retarget.next = released
         port.zero.next = 0
-        if state == state_t.RELEASE and not switch:
+        if released:
             if axis:
                 port.zero.next = 2
             else:
@@ -195,7 +196,7 @@ def homing(clock, reset, port):
         elif state == state_t.TURN:
             state.next = state_t.RELEASE
         elif state == state_t.RELEASE:
-            if released:
+            if opened:
                 if port.backoff != 0:
                     state.next = state_t.BACKOFF
                 else:

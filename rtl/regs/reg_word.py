@@ -15,7 +15,8 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out):
     (``RegisterWord``: ``hw`` is what RO and WP registers read, the bits a
     W1C register sets, the bits a W1S register clears; ``value`` the
     register, of WP the last value written; ``strobe`` one clock per WP
-    write; its ``spec`` says which register this is); ``chain_in`` and
+    write; ``hw`` of an RW register clears its fields with ``cleared`` and
+    holds them at 0; its ``spec`` says which register this is); ``chain_in`` and
     ``chain_out`` (``ReadChain``): ``chain_out.clamped`` is
     ``chain_in.clamped`` or'ed with a one-clock flag raised when a write to
     this register was out of range and was clamped; the read data of the
@@ -200,6 +201,7 @@ def _store(clock, reset, mine, bus, set_mine, set_port, set_target, written, hon
            spec):
     """The register's flip-flops, by access kind."""
     kind = spec.access
+    cleared_mask = sum(item.mask for item in spec.fields if item.cleared is not None)
 
     @always_seq(clock.posedge, reset=reset)
     def hold_rw():
@@ -207,6 +209,16 @@ def _store(clock, reset, mine, bus, set_mine, set_port, set_target, written, hon
         if (set_mine and set_port.index == set_target) or (bus.write and mine):
             word.value.next = honoured
             clamped.next = out_of_range
+
+    @always_seq(clock.posedge, reset=reset)
+    def hold_rw_cleared():
+        # the fields with ``cleared``: the hardware's hw bits clear them, a write meanwhile included
+        clamped.next = False
+        if (set_mine and set_port.index == set_target) or (bus.write and mine):
+            word.value.next = honoured & ~(word.hw & cleared_mask)
+            clamped.next = out_of_range
+        else:
+            word.value.next = word.value & ~(word.hw & cleared_mask)
 
     @always_seq(clock.posedge, reset=reset)
     def clear_on_one():
@@ -231,6 +243,8 @@ def _store(clock, reset, mine, bus, set_mine, set_port, set_target, written, hon
             word.strobe.next = True
             clamped.next = out_of_range
 
+    if kind == "RW" and cleared_mask:
+        return hold_rw_cleared
     return {"RW": hold_rw, "W1C": clear_on_one, "W1S": set_on_one, "WP": pulse_on_write}[kind]
 
 

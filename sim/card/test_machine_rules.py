@@ -13,9 +13,9 @@ from models import registers as regmap
 from models.card_model import RegisterModel
 from models.commands import command_words
 from models.dda_model import LineCommand
-from models.machine_model import REASON
-from sim.card.machine_bench import (WIDTH, clear_stop, field, read, run_machine, set_input, snapshot, wait_clocks,
-                                    write)
+from models.machine_model import REASON, reaction_clocks
+from sim.card.machine_bench import (STOP_CAUSES, clear_stop, drive_at, field, pulses_outside_drive, read, run_machine,
+                                    set_input, snapshot, stop_cycles, wait_clocks, write)
 
 MODES = [False, True]
 MODE_IDS = ["myhdl", "icarus"]
@@ -76,3 +76,56 @@ def test_refused_clear_stop_keeps_the_fifo(cosim):
     assert field("STATUS", "STOPPED", refused["STATUS"]) == 1
     assert field("STATUS", "FIFO_LEVEL", cleared["STATUS"]) == 0 and cleared["STOP_REASON"] == 0
     assert not pin_log.rises and cleared["position"] == (0, 0)
+
+
+@pytest.mark.parametrize("cosim,waits", [(False, range(6)), (True, range(2))], ids=["myhdl", "icarus"])
+def test_every_counted_step_inside_drive_enable(cosim, waits):
+    """For every stop cause, each a few clocks apart so that a pulse starts in
+    the cause's clock once: every STEP pulse rises and falls while
+    DRIVE_ENABLE is high, POS counts exactly the pins' rises, and CLEAR_STOP
+    does not re-energise: DRIVE_ENABLE (pin and register) stays low, a write
+    of 1 while stopped included, until the host writes it again."""
+    results = []
+    pin_log, machine_log = run_machine("drive_rule", stop_cycles(results, waits), cosim)
+    *cycles, end = results
+    assert len(cycles) == len(STOP_CAUSES) * len(waits)
+    assert pulses_outside_drive(pin_log, machine_log) == []
+    assert end["position"] == pin_log.path()[-1]
+    for cycle in cycles:
+        reason = "WATCHDOG" if cycle["cause"] == "decelerated" else cycle["cause"].upper()
+        assert field("STOP_REASON", "REASON", cycle["stopped"]["STOP_REASON"]) == REASON[reason]
+        assert field("MACHINE_CONTROL", "DRIVE_ENABLE", cycle["control_stopped"]) == 0, "a stop clears it"
+        cleared = cycle["cleared"]
+        assert field("STATUS", "STOPPED", cleared["STATUS"]) == 0, cycle["cause"]
+        assert field("MACHINE_STATUS", "DRIVE_ENABLE", cleared["MACHINE_STATUS"]) == 0, "not re-energised"
+        assert field("MACHINE_CONTROL", "DRIVE_ENABLE", cycle["control_cleared"]) == 0
+        assert field("MACHINE_STATUS", "DRIVE_ENABLE", cycle["enabled"]) == 1, "the new write enables"
+    assert len(pin_log.rises) > 4 * len(cycles), "each stop came with the line under way"
+
+
+@pytest.mark.parametrize("cosim", MODES, ids=MODE_IDS)
+def test_estop_reaction_with_a_slow_filter(cosim):
+    """INPUT_TICK 8, INPUT_FILTER 3 (the outside bench's 26 clocks): pressed at
+    every phase of the filter's prescaler, DRIVE_ENABLE falls within
+    ``reaction_clocks`` and takes each value of it."""
+    samples, tick = 3, 8
+    presses = []
+
+    def scenario(driver, pins, pin_log, machine_log):
+        for name, value in (("INPUT_FILTER", samples), ("INPUT_TICK", tick), ("MACHINE_CONTROL", 1)):
+            yield from write(driver, name, value)
+        for wait in range(2 * tick):
+            yield from wait_clocks(driver, 4 + wait)   # DRIVE_ENABLE high again first
+            presses.append((yield from set_input(pins, pin_log, machine_log, "estop", 1)))
+            yield from wait_clocks(driver, 2 * samples * tick)
+            yield from set_input(pins, pin_log, machine_log, "estop", 0)
+            yield from wait_clocks(driver, 2 * samples * tick)
+            yield from clear_stop(driver)
+            yield from write(driver, "MACHINE_CONTROL", 1)
+            yield from wait_clocks(driver, 3)
+
+    _, machine_log = run_machine("estop_reaction_tick", scenario, cosim)
+    reactions = [next(c for c in range(at, at + 100) if not drive_at(machine_log, c)) - at for at in presses]
+    first, last = reaction_clocks(samples, tick)
+    assert set(reactions) == set(range(first, last + 1)), reactions
+    assert 26 in reactions

@@ -264,8 +264,17 @@ def test_watchdog_stops_a_move_the_host_forgets(card, transport):
     assert position == (sum(r[1] for r in rises), sum(r[2] for r in rises)) and 0 < position[0] < 5000
     assert regmap.field_value("MACHINE_STATUS", "DRIVE_ENABLE", card.read("MACHINE_STATUS")) == 0
     card.watchdog(0)
+    with pytest.raises(MachineStopped, match="WATCHDOG"):
+        card.drive(True)   # not kept while stopped: refused before anything is written
     card.clear_stop()
     assert card.stop_reason() == ("NONE", ())
+    # CLEAR_STOP does not re-energise: the drives stay off until drive(True)
+    transport.sleep(1e-6)
+    assert card.field("MACHINE_STATUS", "DRIVE_ENABLE") == 0 and card.field("MACHINE_CONTROL", "DRIVE_ENABLE") == 0
+    card.drive(True)
+    transport.sleep(1e-6)
+    assert card.field("MACHINE_STATUS", "DRIVE_ENABLE") == 1
+    card.drive(False)
 
 
 @pytest.mark.parametrize("ramp_step", [0, 300])
