@@ -111,12 +111,9 @@ class Card(MachineIO):
         major, minor = version >> 8, version & 0xFF
         if major != MAJOR:
             raise IdentityError(f"{where}: register map {major}.{minor}; this host software speaks {MAJOR}.x")
-        if minor < 1:
-            raise IdentityError(f"{where}: register map {major}.{minor} has no capability registers "
-                                "(1.1 added them): load a newer bitstream")
         if minor < MINOR:
-            raise IdentityError(f"{where}: register map {major}.{minor} lacks what 1.{MINOR} added "
-                                "(the machine guard in 1.2, homing in 1.3): load a newer bitstream")
+            raise IdentityError(f"{where}: register map {major}.{minor} lacks what {MAJOR}.{MINOR} added "
+                                "(models/registers.py, VERSIONS): load a newer bitstream")
         build = self.read("BUILD")
         ids = self.transport.config_read(0)
         variants = regmap.field_value("BUILD", "DDA_VARIANTS", build)
