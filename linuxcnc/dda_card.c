@@ -24,7 +24,10 @@
  * keeps low after COMMAND.CLEAR_STOP: the restart writes it again);
  * while the queue runs, every period rewrites WATCHDOG with
  * `watchdog.timeout-ns` in card clocks, so a PC that stops driving the card
- * has it stop on its own within that time.  A watchdog stop sets
+ * has it stop on its own within that time.  `input.<name>` (estop,
+ * limit-pos-x .. limit-neg-y, home-x, home-y) are the card's filtered
+ * inputs (MACHINE_STATUS.ACTIVE), read every period: LinuxCNC's home-sw-in
+ * and limit pins take them.  A watchdog stop sets
  * `watchdog.has-bit`, which holds the card stopped (and `error` high) until
  * it is written false.  Each period's DWELL is trimmed from the FIFO level
  * so that the card's crystal, some ppm off the PC's timer, neither drains
@@ -50,6 +53,9 @@ static int period_overhead = 8;
 RTAPI_MP_INT(period_overhead, "card clocks a period's LINE and DWELL take beyond their own");
 
 static const uint32_t POS_REGS[AXES] = {DDA_POS_X, DDA_POS_Y};
+/* the input.<name> pins, bit n of MACHINE_STATUS.ACTIVE (INPUT_POLARITY's order) */
+static const char *const INPUT_PINS[DDA_INPUTS] = {"estop", "limit-pos-x", "limit-neg-x", "limit-pos-y",
+                                                   "limit-neg-y", "home-x", "home-y"};
 static int comp_id;
 static struct card *card;
 
@@ -149,6 +155,8 @@ static void read_card(void *arg, long period)
     *c->fifo_level = (int32_t)((status & DDA_STATUS_FIFO_LEVEL_MASK) >> DDA_STATUS_FIFO_LEVEL_SHIFT);
     *c->estop_active = ((machine & DDA_MACHINE_STATUS_ACTIVE_MASK) >> DDA_MACHINE_STATUS_ACTIVE_SHIFT
                         & DDA_INPUT_POLARITY_ESTOP_MASK) != 0;
+    for (i = 0; i < DDA_INPUTS; i++)
+        *c->inputs[i] = ((machine & DDA_MACHINE_STATUS_ACTIVE_MASK) >> DDA_MACHINE_STATUS_ACTIVE_SHIFT >> i) & 1;
     if (c->running)
         trim_drift(c, *c->fifo_level);
     if (status & DDA_STATUS_STOPPED_MASK)
@@ -329,6 +337,8 @@ static int export_card(struct card *c)
     r |= hal_pin_bit_newf(HAL_IN, &c->estop_in, comp_id, "%s.estop-in", p);
     r |= hal_pin_bit_newf(HAL_IN, &c->drive_enable, comp_id, "%s.drive-enable", p);
     r |= hal_pin_bit_newf(HAL_OUT, &c->estop_active, comp_id, "%s.estop-active", p);
+    for (i = 0; i < DDA_INPUTS; i++)
+        r |= hal_pin_bit_newf(HAL_OUT, &c->inputs[i], comp_id, "%s.input.%s", p, INPUT_PINS[i]);
     r |= hal_pin_s32_newf(HAL_OUT, &c->stop_reason, comp_id, "%s.stop-reason", p);
     r |= hal_pin_bit_newf(HAL_IO, &c->watchdog_has_bit, comp_id, "%s.watchdog.has-bit", p);
     r |= hal_param_u32_newf(HAL_RW, &c->watchdog_timeout_ns, comp_id, "%s.watchdog.timeout-ns", p);
