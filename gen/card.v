@@ -4810,7 +4810,7 @@ end
 
 assign card_core0_regs_fifo1_out_ready = ($signed({1'b0, card_core0_regs_fifo1_pulse_out1_count}) <= (4 - 2));
 assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_count != 0) || (card_core0_regs_fifo1_pulse_out1_phase != 2'b00) || pins_step_x || pins_step_y);
-assign card_core0_regs_fifo1_pulse_out1_control_pulsing = (card_core0_regs_fifo1_pulse_out1_take || (card_core0_regs_fifo1_pulse_out1_phase == 2'b10) || pins_step_x || pins_step_y);
+assign card_core0_regs_fifo1_pulse_out1_control_pulsing = (card_core0_regs_fifo1_pulse_out1_take || card_core0_regs_fifo1_pulse_out1_level_x || card_core0_regs_fifo1_pulse_out1_level_y || pins_step_x || pins_step_y);
 
 
 

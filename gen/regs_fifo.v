@@ -3542,7 +3542,7 @@ end
 
 assign out_ready = ($signed({1'b0, pulse_out0_count}) <= (4 - 2));
 assign out_active = ((pulse_out0_count != 0) || (pulse_out0_phase != 2'b00) || pins_step_x || pins_step_y);
-assign pulse_out0_control_pulsing = (pulse_out0_take || (pulse_out0_phase == 2'b10) || pins_step_x || pins_step_y);
+assign pulse_out0_control_pulsing = (pulse_out0_take || pulse_out0_level_x || pulse_out0_level_y || pins_step_x || pins_step_y);
 
 
 

@@ -5642,7 +5642,7 @@ end
 
 assign card1_card_core1_regs_fifo2_out_ready = ($signed({1'b0, card1_card_core1_regs_fifo2_pulse_out2_count}) <= (4 - 2));
 assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) || (card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b00) || motor_step_x || motor_step_y);
-assign card1_card_core1_regs_fifo2_pulse_out2_control_pulsing = (card1_card_core1_regs_fifo2_pulse_out2_take || (card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) || motor_step_x || motor_step_y);
+assign card1_card_core1_regs_fifo2_pulse_out2_control_pulsing = (card1_card_core1_regs_fifo2_pulse_out2_take || card1_card_core1_regs_fifo2_pulse_out2_level_x || card1_card_core1_regs_fifo2_pulse_out2_level_y || motor_step_x || motor_step_y);
 
 
 

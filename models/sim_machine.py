@@ -48,6 +48,9 @@ class Switch:
     seed: int = 1
 
     def check(self, name):
+        numbers = (self.position, self.hysteresis, self.bounce, self.longest_run, self.seed)
+        if not all(isinstance(value, int) and not isinstance(value, bool) for value in numbers):
+            raise ValueError(f"{name}: position, hysteresis, bounce, longest_run and seed are whole numbers")
         if self.hysteresis < 0 or self.bounce < 0 or self.longest_run < 1:
             raise ValueError(f"{name}: hysteresis and bounce must not be negative, longest_run at least 1")
         if not -(1 << 62) < self.position < 1 << 62 or not 0 <= self.seed <= MASK32:

@@ -188,8 +188,8 @@ MACHINE_DEFECTS = {
     "zero_while_seeking": ("machine_homing", "released = ((homing0_state == 3'b100) && (!homing0_switch));",
                            "released = ((homing0_state == 3'b010) && (!homing0_switch));",
                            {"hm_zero_at_release"}),
-    "held_at_any_rate": ("machine_hold", "assign settled = (feed_held && (!tick) && (!outputs_busy));",
-                         "assign settled = ((!tick) && (!outputs_busy));", {"fh_held_rate_zero"}),
+    "held_at_any_rate": ("machine_hold", "    settled = (feed_held && (!tick) && (!outputs_busy));",
+                         "    settled = ((!tick) && (!outputs_busy));", {"fh_held_rate_zero"}),
     # issue 28: DRIVE_ENABLE falling under a STEP pulse; CLEAR_STOP re-energising
     # (MACHINE_CONTROL.DRIVE_ENABLE not cleared by the stop); WATCHDOG cut to 24 bits
     "drive_falls_under_a_pulse": ("machine_drive", " || (pins_drive_enable && pulse_out0_control_pulsing));",

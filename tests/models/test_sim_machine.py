@@ -75,7 +75,8 @@ def test_estop_and_active_low_wiring():
 
 
 @pytest.mark.parametrize("bad", [dict(switches={"ESTOP": Switch(1)}), dict(switches={"HOME_X": 5}),
-                                 dict(switches={"HOME_X": Switch(1, longest_run=0)}), dict(start=(0,))])
+                                 dict(switches={"HOME_X": Switch(1, longest_run=0)}), dict(start=(0,)),
+                                 dict(switches={"HOME_X": Switch(1.5)})])
 def test_bad_configuration_is_refused(bad):
     with pytest.raises(ValueError):
         MachineConfig(**bad)
