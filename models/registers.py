@@ -244,7 +244,7 @@ REGISTERS = (
     Register("MACHINE_CONTROL", 0x60, "RW", 0, "the machine's outputs", (
         Field("DRIVE_ENABLE", 0, 1, "1: raise the DRIVE_ENABLE pin (a pulse under way keeps it high to its end); "
               "after a stop the host writes 1 again once CLEAR_STOP has released it",
-              cleared="a stop of the guard, while STATUS.STOPPED"),
+              cleared="at a stop of the guard, and held at 0 while STATUS.STOPPED"),
         Field("HOLD", 1, 1, "feed hold: 1 ramps the path's rate down to zero (RAMP_STEP) and waits, "
               "0 ramps it up again; the path continues exactly"),
     )),

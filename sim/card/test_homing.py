@@ -67,7 +67,8 @@ def test_home_with_bouncing_switch(axis, negative, cosim, seed):
 SLOW_FILTER = dict(samples=15, tick=8)
 
 
-@pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
+# the Verilog run is slow: test_home_with_bouncing_switch checks every gap on the Verilog too
+@pytest.mark.parametrize("cosim", [False, pytest.param(True, marks=pytest.mark.slow)], ids=["myhdl", "icarus"])
 def test_release_and_backoff_spacing_with_a_slow_filter(cosim):
     switch = BouncingSwitch(trip=9, hysteresis=1, chatter=14, longest_run=3, seed=11)
     pin_log, words = homing_run("home_slow_filter", cosim, 0, False, switch, **SLOW_FILTER)

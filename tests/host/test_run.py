@@ -116,13 +116,15 @@ def test_a_missing_file_is_refused():
     assert result.returncode == 2 and "no such file" in result.stderr
 
 
-def test_info_shows_the_machine_side_with_a_simulated_machine(tmp_path):
-    """``info --machine`` on MyHDL (the machine as a MyHDL process): HOME_X's switch
+# MyHDL (the machine as a MyHDL process) is slow: Verilator (the compiled harness) by default
+@pytest.mark.parametrize("kind", ["verilator", pytest.param("myhdl", marks=pytest.mark.slow)])
+def test_info_shows_the_machine_side_with_a_simulated_machine(tmp_path, kind):
+    """``info --machine``: HOME_X's switch
     closed where the axis stands reads active through the filter, and the guard,
     drives, watchdog and homing lines say the card is at rest."""
     machine = tmp_path / "machine.json"
     machine.write_text(MachineConfig(switches={"HOME_X": Switch(0, positive=False)}).to_json())
-    info = run_host("info", "--card", "myhdl", "--machine", machine)
+    info = run_host("info", "--card", kind, "--machine", machine)
     assert info.returncode == 0, info.stderr
     for line in ("inputs:      active HOME_X (after INPUT_POLARITY and the filter); pins high HOME_X",
                  "guard:       running", "drives:      DRIVE_ENABLE pin low, MACHINE_CONTROL.DRIVE_ENABLE 0; hold off",
