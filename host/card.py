@@ -22,8 +22,10 @@ come from FIFO_SIZE and BUILD: the host needs no knowledge of the build.
 
 The machine side (docs/machine.md) comes from ``host.machine_io``: ``drive``,
 ``hold``, ``resume``, ``inputs``, ``watchdog``, ``estop_state``, ``limits``,
-``stop_reason``, ``clear_stop``, ``home``.  A card the guard has stopped
-raises ``MachineStopped`` from ``check`` and ``wait_done``.
+``stop_reason``, ``clear_stop`` (the drives stay off after it: ``drive``
+again), ``home``, ``machine_side``, ``machine`` (a simulated card's simulated
+machine).  A card the guard has stopped raises ``MachineStopped`` from
+``check`` and ``wait_done``.
 """
 import bisect
 import math
