@@ -131,7 +131,7 @@ PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "i
                        "cbe_q", "req_addr", "ad_out_q")
 REGS_FILES = ["local_bus_rules.sv", "pulse_rules.sv", "regs_fifo_harness.sv"]
 REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value",
-                       "direct_request_x", "direct_request_y")
+                       "direct_request_x", "direct_request_y", "guard_stopped")
 REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
                      "read_waited")
 
@@ -156,7 +156,7 @@ MACHINE_REGISTERS = ("fifo_pop", "fifo_flush", "set_strobe", "set_index", "set_v
                      "pulse_out0_request_step_x", "pulse_out0_request_step_y",
                      "ramp_step", "machine_control", "feed_held",
                      "sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
-                     "direct_pulse0_pending", "direct_pulse1_pending")
+                     "direct_pulse0_pending", "direct_pulse1_pending", "watchdog_left")
 MACHINE = dict(expose=MACHINE_REGISTERS, generated={"regs_table.vh": table_properties})
 
 
@@ -223,6 +223,10 @@ GROUPS = [
     Group("machine_watchdog", "regs_fifo", MACHINE_FILES, "machine_harness", ("mw_",), mode="bmc",
           depth=16, defines={"WATCHDOG_SMALL": 8}, **MACHINE,
           text="the watchdog stops in time, never early (bounded, timeouts below 8)"),
+    Group("machine_watchdog_write", "regs_fifo", MACHINE_FILES, "machine_harness", ("mwl_",), mode="bmc",
+          depth=12, **MACHINE, text="a WATCHDOG write loads its value clamped to 24 bits: only 0 turns it off (bounded)"),
+    Group("machine_drive", "regs_fifo", MACHINE_FILES, "machine_harness", ("md_", "minv_"), **MACHINE,
+          text="no counted STEP outside DRIVE_ENABLE; only a new write re-energises after a stop"),
     Group("machine_hold", "regs_fifo", MACHINE_FILES, "machine_harness", ("fh_", "minv_"), **MACHINE,
           defines={"PATH_ONLY": None},
           text="feed hold and the decelerated stop (docs/machine.md)"),

@@ -14,6 +14,9 @@ write out of a register's range; offsets the table does not list read 0.
 from models import registers as regmap
 
 COMMAND_READS_ZERO = ("COMMAND",)   # "one-shot actions (read as 0)"
+# The harness signal that clears each RW field with ``cleared`` (the condition
+# rtl/regs_fifo.py drives the register's hw bits with): its model clears it too.
+CLEARED_BY = {("MACHINE_CONTROL", "DRIVE_ENABLE"): "guard_stopped"}
 
 
 def _mask(reg):
@@ -73,6 +76,20 @@ def _clamped_only_after_a_clamp():
             "    end"]
 
 
+def _cleared_mask(reg):
+    """The Verilog expression of the bits the hardware clears in ``reg`` now ("" if none)."""
+    terms = []
+    for item in reg.fields:
+        if item.cleared is None:
+            continue
+        try:
+            signal = CLEARED_BY[(reg.name, item.name)]
+        except KeyError:
+            raise ValueError(f"{reg.name}.{item.name} is cleared by the hardware: CLEARED_BY names no signal") from None
+        terms.append(f"({signal} ? {reg.width}'h{item.mask:X} : {reg.width}'h0)")
+    return " | ".join(terms)
+
+
 def table_properties():
     """The generated include: models and assertions for every register."""
     lines = ["// Generated from models/registers.py by formal/regs_props.py; do not edit.",
@@ -94,9 +111,13 @@ def table_properties():
             if reg.set_index is not None:
                 lines.append(f"        else if (set_strobe && set_index == 4'd{reg.set_index}) "
                              f"model_{upper} <= clamp_{upper}(set_value);")
+            cleared = _cleared_mask(reg)
+            keep = f" & ~({cleared})" if cleared else ""
             lines.append(f"        else if (stage_write && stage_addr == 16'h{reg.offset:04X})")
             lines.append(f"            model_{upper} <= clamp_{upper}(({{{32 - width}'h0, model_{upper}}} & ~stage_mask)"
-                         f" | (stage_data & stage_mask));")
+                         f" | (stage_data & stage_mask)){keep};")
+            if cleared:
+                lines.append(f"        else model_{upper} <= model_{upper}{keep};   // the hardware clears it")
             lines.append("    end")
             lines.append(f"    reg [{width - 1}:0] model_{upper}_read = {width}'d{reg.reset};   // a read returns its wait clock's value")
             lines.append(f"    always @(posedge clock) model_{upper}_read <= model_{upper};")

@@ -257,24 +257,26 @@ reg [31:0] card_core0_regs_fifo1_set_value;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
 reg [1:0] card_core0_regs_fifo1_home_zero;
+reg [23:0] card_core0_regs_fifo1_watchdog_left;
 wire card_core0_regs_fifo1_any_busy;
 reg [31:0] card_core0_regs_fifo1_byte_mask;
-wire card_core0_regs_fifo1_clear_error;
-wire card_core0_regs_fifo1_clear_position;
-wire card_core0_regs_fifo1_clear_stop;
-wire card_core0_regs_fifo1_direct_clear;
-wire card_core0_regs_fifo1_direct_mode;
-wire card_core0_regs_fifo1_direct_ready;
+reg card_core0_regs_fifo1_clear_error;
+reg card_core0_regs_fifo1_clear_position;
+reg card_core0_regs_fifo1_clear_stop;
+reg card_core0_regs_fifo1_direct_clear;
+reg card_core0_regs_fifo1_direct_mode;
+reg card_core0_regs_fifo1_direct_ready;
 wire card_core0_regs_fifo1_discard_on_clear;
-wire card_core0_regs_fifo1_enable;
+reg [1:0] card_core0_regs_fifo1_drive_cleared;
+reg card_core0_regs_fifo1_enable;
 wire card_core0_regs_fifo1_fifo_empty;
 wire card_core0_regs_fifo1_fifo_flush;
 wire card_core0_regs_fifo1_fifo_full;
 wire [9:0] card_core0_regs_fifo1_fifo_level;
 reg card_core0_regs_fifo1_halt;
 wire card_core0_regs_fifo1_hold;
-wire card_core0_regs_fifo1_home_idle;
-wire [1:0] card_core0_regs_fifo1_home_inputs;
+reg card_core0_regs_fifo1_home_idle;
+reg [1:0] card_core0_regs_fifo1_home_inputs;
 reg card_core0_regs_fifo1_io_read;
 reg card_core0_regs_fifo1_io_write;
 reg card_core0_regs_fifo1_io_written;
@@ -286,14 +288,15 @@ wire card_core0_regs_fifo1_out_ready;
 wire card_core0_regs_fifo1_outputs_busy;
 reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 wire card_core0_regs_fifo1_pulse_busy;
-wire card_core0_regs_fifo1_pulse_clear;
+reg card_core0_regs_fifo1_pulse_clear;
 reg card_core0_regs_fifo1_push;
 reg card_core0_regs_fifo1_read_waited;
 reg [31:0] card_core0_regs_fifo1_read_word;
+reg card_core0_regs_fifo1_releasing;
 reg card_core0_regs_fifo1_requested_before;
 wire card_core0_regs_fifo1_seq_busy;
-wire card_core0_regs_fifo1_sequencer_clear;
-wire card_core0_regs_fifo1_settled;
+reg card_core0_regs_fifo1_sequencer_clear;
+reg card_core0_regs_fifo1_settled;
 reg card_core0_regs_fifo1_soft_reset_taken;
 reg card_core0_regs_fifo1_tick;
 reg [11:0] card_core0_regs_fifo1_written_addr;
@@ -304,15 +307,15 @@ reg [1:0] card_core0_regs_fifo1_control;
 reg card_core0_regs_fifo1_home_busy;
 reg card_core0_regs_fifo1_command_strobe;
 reg [3:0] card_core0_regs_fifo1_command;
-wire card_core0_regs_fifo1_feed_pause;
+reg card_core0_regs_fifo1_guard_stopped;
+reg [6:0] card_core0_regs_fifo1_conditioning_active;
+reg card_core0_regs_fifo1_feed_pause;
 reg [1:0] card_core0_regs_fifo1_machine_control;
 reg card_core0_regs_fifo1_guard_stopping;
-wire card_core0_regs_fifo1_guard_ramp;
+reg card_core0_regs_fifo1_guard_ramp;
 reg [15:0] card_core0_regs_fifo1_ramp_step;
 reg card_core0_regs_fifo1_feed_held;
-reg card_core0_regs_fifo1_guard_stopped;
 reg card_core0_regs_fifo1_home_cut;
-reg [6:0] card_core0_regs_fifo1_conditioning_active;
 reg card_core0_regs_fifo1_guard_stop_event;
 wire card_core0_regs_fifo1_requests_step_x;
 wire card_core0_regs_fifo1_requests_step_y;
@@ -393,15 +396,15 @@ wire [7:0] card_core0_regs_fifo1_reg_word42_written;
 reg [31:0] card_core0_regs_fifo1_reg_word42_chain_out_data;
 wire card_core0_regs_fifo1_reg_word42_chain_out_clamped;
 reg [7:0] card_core0_regs_fifo1_reg_word42__store29_word_hw;
-wire [15:0] card_core0_regs_fifo1_reg_word43_honoured;
-wire card_core0_regs_fifo1_reg_word43_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word43_honoured;
+reg card_core0_regs_fifo1_reg_word43_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word43_shown;
 reg card_core0_regs_fifo1_reg_word43_clamped;
 wire card_core0_regs_fifo1_reg_word43_mine;
 wire card_core0_regs_fifo1_reg_word43_mine_write;
 wire card_core0_regs_fifo1_reg_word43_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word43_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word43_written;
+reg [31:0] card_core0_regs_fifo1_reg_word43_written;
 reg [31:0] card_core0_regs_fifo1_reg_word43_chain_out_data;
 wire card_core0_regs_fifo1_reg_word43_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word44_shown;
@@ -439,13 +442,13 @@ wire [31:0] card_core0_regs_fifo1_reg_word48_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word48_written;
 reg [31:0] card_core0_regs_fifo1_reg_word48_chain_out_data;
 wire card_core0_regs_fifo1_reg_word48_chain_out_clamped;
-wire [15:0] card_core0_regs_fifo1_reg_word49_honoured;
-wire card_core0_regs_fifo1_reg_word49_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word49_honoured;
+reg card_core0_regs_fifo1_reg_word49_out_of_range;
 reg card_core0_regs_fifo1_reg_word49_clamped;
 wire card_core0_regs_fifo1_reg_word49_mine;
 wire card_core0_regs_fifo1_reg_word49_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word49_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word49_written;
+reg [31:0] card_core0_regs_fifo1_reg_word49_written;
 reg [31:0] card_core0_regs_fifo1_reg_word49_chain_out_data;
 wire card_core0_regs_fifo1_reg_word49_chain_out_clamped;
 reg [7:0] card_core0_regs_fifo1_reg_word50_honoured;
@@ -601,14 +604,13 @@ wire [31:0] card_core0_regs_fifo1_reg_word66_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word66_written;
 reg [31:0] card_core0_regs_fifo1_reg_word66_chain_out_data;
 wire card_core0_regs_fifo1_reg_word66_chain_out_clamped;
-wire [23:0] card_core0_regs_fifo1_reg_word67_honoured;
-wire card_core0_regs_fifo1_reg_word67_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word67_shown;
+reg [23:0] card_core0_regs_fifo1_reg_word67_honoured;
+reg card_core0_regs_fifo1_reg_word67_out_of_range;
 reg card_core0_regs_fifo1_reg_word67_clamped;
 wire card_core0_regs_fifo1_reg_word67_mine;
 wire card_core0_regs_fifo1_reg_word67_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word67_shown_wide;
-wire [23:0] card_core0_regs_fifo1_reg_word67_written;
+wire [31:0] card_core0_regs_fifo1_reg_word67_written;
 reg [31:0] card_core0_regs_fifo1_reg_word67_chain_out_data;
 wire card_core0_regs_fifo1_reg_word67_chain_out_clamped;
 reg card_core0_regs_fifo1_reg_word67__store46_word_strobe;
@@ -652,15 +654,15 @@ wire [31:0] card_core0_regs_fifo1_reg_word71_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word71_written;
 reg [31:0] card_core0_regs_fifo1_reg_word71_chain_out_data;
 wire card_core0_regs_fifo1_reg_word71_chain_out_clamped;
-wire [15:0] card_core0_regs_fifo1_reg_word72_honoured;
-wire card_core0_regs_fifo1_reg_word72_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word72_honoured;
+reg card_core0_regs_fifo1_reg_word72_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word72_shown;
 reg card_core0_regs_fifo1_reg_word72_clamped;
 wire card_core0_regs_fifo1_reg_word72_mine;
 wire card_core0_regs_fifo1_reg_word72_mine_write;
 wire card_core0_regs_fifo1_reg_word72_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word72_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word72_written;
+reg [31:0] card_core0_regs_fifo1_reg_word72_written;
 reg [31:0] card_core0_regs_fifo1_reg_word72_chain_out_data;
 wire card_core0_regs_fifo1_reg_word72_chain_out_clamped;
 reg [22:0] card_core0_regs_fifo1_reg_word73_honoured;
@@ -757,8 +759,10 @@ reg [15:0] card_core0_regs_fifo1_direct_pulse2_gap;
 wire [15:0] card_core0_regs_fifo1_direct_pulse2_gap_less;
 reg [15:0] card_core0_regs_fifo1_direct_pulse2_gap_operand;
 reg card_core0_regs_fifo1_direct_pulse2_pending;
+wire card_core0_regs_fifo1_direct_pulse2_stepping;
 reg card_core0_regs_fifo1_direct_pulse2_waiting;
 reg card_core0_regs_fifo1_direct_pulse2_command_load;
+reg card_core0_regs_fifo1_direct_pulse2_command_retarget;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse2_command_count;
 reg [15:0] card_core0_regs_fifo1_direct_pulse2_command_period;
 reg [23:0] card_core0_regs_fifo1_direct_pulse3_count_addend;
@@ -768,8 +772,10 @@ reg [15:0] card_core0_regs_fifo1_direct_pulse3_gap;
 wire [15:0] card_core0_regs_fifo1_direct_pulse3_gap_less;
 reg [15:0] card_core0_regs_fifo1_direct_pulse3_gap_operand;
 reg card_core0_regs_fifo1_direct_pulse3_pending;
+wire card_core0_regs_fifo1_direct_pulse3_stepping;
 reg card_core0_regs_fifo1_direct_pulse3_waiting;
 reg card_core0_regs_fifo1_direct_pulse3_command_load;
+reg card_core0_regs_fifo1_direct_pulse3_command_retarget;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse3_command_count;
 reg [15:0] card_core0_regs_fifo1_direct_pulse3_command_period;
 reg [2:0] card_core0_regs_fifo1_pulse_out1_count;
@@ -791,6 +797,7 @@ reg [7:0] card_core0_regs_fifo1_pulse_out1_phase_step;
 reg card_core0_regs_fifo1_pulse_out1_starts;
 reg card_core0_regs_fifo1_pulse_out1_take;
 reg card_core0_regs_fifo1_pulse_out1_turn;
+wire card_core0_regs_fifo1_pulse_out1_control_pulsing;
 reg card_core0_regs_fifo1_pulse_out1_request_step_x;
 reg card_core0_regs_fifo1_pulse_out1_request_step_y;
 reg card_core0_regs_fifo1_pulse_out1_request_dir_y;
@@ -826,9 +833,12 @@ reg [3:0] card_core0_regs_fifo1_machine_guard1_guard_limits;
 reg [23:0] card_core0_regs_fifo1_homing1_addend;
 reg card_core0_regs_fifo1_homing1_axis;
 reg card_core0_regs_fifo1_homing1_done;
+reg card_core0_regs_fifo1_homing1_finished;
+reg card_core0_regs_fifo1_homing1_gave_up;
 reg [23:0] card_core0_regs_fifo1_homing1_magnitude;
 reg card_core0_regs_fifo1_homing1_negative;
 reg card_core0_regs_fifo1_homing1_not_found;
+reg card_core0_regs_fifo1_homing1_opened;
 reg [23:0] card_core0_regs_fifo1_homing1_operand;
 reg [1:0] card_core0_regs_fifo1_homing1_phase;
 reg card_core0_regs_fifo1_homing1_positive;
@@ -841,6 +851,7 @@ reg card_core0_regs_fifo1_homing1_switch;
 reg card_core0_regs_fifo1_homing1_port_load;
 reg signed [23:0] card_core0_regs_fifo1_homing1_port_count;
 reg [15:0] card_core0_regs_fifo1_homing1_port_period;
+reg card_core0_regs_fifo1_homing1_port_retarget;
 reg card_core0_regs_fifo1_homing1_port_ended;
 reg card_core0_regs_fifo1_status_words1_busy_before;
 reg card_core0_regs_fifo1_status_words1_done_flag;
@@ -1011,7 +1022,7 @@ reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word37_shown = 32'd3719037187;
+assign card_core0_regs_fifo1_reg_word37_shown = 32'd3719037440;
 assign card_core0_regs_fifo1_reg_word37_chain_in_data = 32'd0;
 assign card_core0_regs_fifo1_reg_word37_chain_in_clamped = 1'd0;
 assign card_core0_regs_fifo1_reg_word38_out_of_range = 1'd0;
@@ -1020,9 +1031,7 @@ assign card_core0_regs_fifo1_reg_word39_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word39_shown = 4'd0;
 assign card_core0_regs_fifo1_reg_word41_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word41_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word43_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word43_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word49_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word53_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word53_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word58_shown = 32'd33333333;
@@ -1034,11 +1043,9 @@ assign card_core0_regs_fifo1_reg_word64_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word64_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word65_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word66_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word67_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word68_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word70_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word71_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word72_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word72_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word73_set_mine = 1'd0;
 assign card_core0_regs_fifo1_input_filter1_taken[6] = card_core0_regs_fifo1_input_filter1__input_count13_taken;
@@ -2423,16 +2430,24 @@ assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_writ
 
 always @(card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word43_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word43_merge_bytes
     if ((card_core0_regs_fifo1_reg_word43_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word43_written = card_core0_regs_fifo1_set_value[16-1:0];
+        card_core0_regs_fifo1_reg_word43_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word43_written = ((card_core0_regs_fifo1_reg_word43_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+        card_core0_regs_fifo1_reg_word43_written = ((card_core0_regs_fifo1_reg_word43_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[16-1:0];
+always @(card_core0_regs_fifo1_reg_word43_written) begin: card_core0_regs_fifo1_reg_word43__limit30_clamp_above_power_of_two
+    card_core0_regs_fifo1_reg_word43_out_of_range = 1'b1;
+    if ((card_core0_regs_fifo1_reg_word43_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word43_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[16-1:0];
+        card_core0_regs_fifo1_reg_word43_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -2676,16 +2691,24 @@ assign card_core0_regs_fifo1_reg_word49_mine_write = (card_core0_regs_fifo1_writ
 
 always @(card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word49_merge_bytes
     if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
-        card_core0_regs_fifo1_reg_word49_written = card_core0_regs_fifo1_set_value[16-1:0];
+        card_core0_regs_fifo1_reg_word49_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word49_written = ((card_core0_regs_fifo1_reg_word49_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+        card_core0_regs_fifo1_reg_word49_written = ((card_core0_regs_fifo1_reg_word49_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card_core0_regs_fifo1_reg_word49_honoured = card_core0_regs_fifo1_reg_word49_written[16-1:0];
+always @(card_core0_regs_fifo1_reg_word49_written) begin: card_core0_regs_fifo1_reg_word49__limit33_clamp_above_power_of_two
+    card_core0_regs_fifo1_reg_word49_out_of_range = 1'b1;
+    if ((card_core0_regs_fifo1_reg_word49_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word49_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word49_honoured = card_core0_regs_fifo1_reg_word49_written[16-1:0];
+        card_core0_regs_fifo1_reg_word49_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -3326,7 +3349,7 @@ assign card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_wor
 assign card_core0_regs_fifo1_reg_word61_chain_out_clamped = (card_core0_regs_fifo1_reg_word60_chain_out_clamped || card_core0_regs_fifo1_reg_word61_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word61__store42_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word61__store42_hold_rw_cleared
     if (reset == 0) begin
         card_core0_regs_fifo1_machine_control <= 0;
         card_core0_regs_fifo1_reg_word61_clamped <= 0;
@@ -3334,8 +3357,11 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word61__
     else begin
         card_core0_regs_fifo1_reg_word61_clamped <= 1'b0;
         if (((card_core0_regs_fifo1_reg_word61_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word61_mine_write))) begin
-            card_core0_regs_fifo1_machine_control <= card_core0_regs_fifo1_reg_word61_honoured;
+            card_core0_regs_fifo1_machine_control <= (card_core0_regs_fifo1_reg_word61_honoured & (~(card_core0_regs_fifo1_drive_cleared & 1)));
             card_core0_regs_fifo1_reg_word61_clamped <= card_core0_regs_fifo1_reg_word61_out_of_range;
+        end
+        else begin
+            card_core0_regs_fifo1_machine_control <= (card_core0_regs_fifo1_machine_control & (~(card_core0_regs_fifo1_drive_cleared & 1)));
         end
     end
 end
@@ -3587,7 +3613,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word67_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word67_shown};
+assign card_core0_regs_fifo1_reg_word67_shown_wide = {8'h0, card_core0_regs_fifo1_watchdog_left};
 
 
 
@@ -3595,11 +3621,19 @@ assign card_core0_regs_fifo1_reg_word67_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word67_written = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+assign card_core0_regs_fifo1_reg_word67_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
 
 
-
-assign card_core0_regs_fifo1_reg_word67_honoured = card_core0_regs_fifo1_reg_word67_written[24-1:0];
+always @(card_core0_regs_fifo1_reg_word67_written) begin: card_core0_regs_fifo1_reg_word67__limit46_clamp_above_power_of_two
+    card_core0_regs_fifo1_reg_word67_out_of_range = 1'b1;
+    if ((card_core0_regs_fifo1_reg_word67_written[32-1:24] != 0)) begin
+        card_core0_regs_fifo1_reg_word67_honoured = 16777215;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word67_honoured = card_core0_regs_fifo1_reg_word67_written[24-1:0];
+        card_core0_regs_fifo1_reg_word67_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -3854,16 +3888,24 @@ assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_writ
 
 always @(card_core0_regs_fifo1_reg_word72_shown_wide, card_core0_regs_fifo1_reg_word72_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word72_merge_bytes
     if ((card_core0_regs_fifo1_reg_word72_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word72_written = card_core0_regs_fifo1_set_value[16-1:0];
+        card_core0_regs_fifo1_reg_word72_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word72_written = ((card_core0_regs_fifo1_reg_word72_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+        card_core0_regs_fifo1_reg_word72_written = ((card_core0_regs_fifo1_reg_word72_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written[16-1:0];
+always @(card_core0_regs_fifo1_reg_word72_written) begin: card_core0_regs_fifo1_reg_word72__limit50_clamp_above_power_of_two
+    card_core0_regs_fifo1_reg_word72_out_of_range = 1'b1;
+    if ((card_core0_regs_fifo1_reg_word72_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word72_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written[16-1:0];
+        card_core0_regs_fifo1_reg_word72_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -4583,18 +4625,28 @@ end
 assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending || card_core0_regs_fifo1_direct_request_x);
 
 
-always @(card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count, card_core0_regs_fifo1_reg_word56_shown) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
-    if ((!card_core0_regs_fifo1_direct_pulse2_command_load)) begin
+
+assign card_core0_regs_fifo1_direct_pulse2_stepping = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse2_command_load) && (!card_core0_regs_fifo1_direct_pulse2_waiting) && card_core0_regs_fifo1_direct_ready && ((card_core0_regs_fifo1_direct_pulse2_command_retarget && (card_core0_regs_fifo1_direct_pulse2_command_count != 0)) || ((!card_core0_regs_fifo1_direct_pulse2_command_retarget) && card_core0_regs_fifo1_direct_pulse2_pending)));
+
+
+always @(card_core0_regs_fifo1_direct_pulse2_command_retarget, card_core0_regs_fifo1_reg_word56_shown, card_core0_regs_fifo1_direct_pulse2_stepping, card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
+    if (((!card_core0_regs_fifo1_direct_pulse2_command_load) && (!card_core0_regs_fifo1_direct_pulse2_command_retarget))) begin
         card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word56_shown;
         card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
     end
     else if ((card_core0_regs_fifo1_direct_pulse2_command_count < 0)) begin
         card_core0_regs_fifo1_direct_pulse2_count_operand = (~card_core0_regs_fifo1_direct_pulse2_command_count[24-1:0]);
         card_core0_regs_fifo1_direct_pulse2_count_addend = 1;
+        if (card_core0_regs_fifo1_direct_pulse2_stepping) begin
+            card_core0_regs_fifo1_direct_pulse2_count_addend = 0;
+        end
     end
     else begin
         card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_direct_pulse2_command_count[24-1:0];
         card_core0_regs_fifo1_direct_pulse2_count_addend = 0;
+        if (card_core0_regs_fifo1_direct_pulse2_stepping) begin
+            card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
+        end
     end
 end
 
@@ -4636,17 +4688,26 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             card_core0_regs_fifo1_direct_pulse2_gap <= 0;
             card_core0_regs_fifo1_direct_pulse2_waiting <= 0;
         end
-        else if (card_core0_regs_fifo1_direct_pulse2_pending) begin
+        else if (card_core0_regs_fifo1_direct_pulse2_stepping) begin
+            card_core0_regs_fifo1_direct_request_x <= 1;
+            card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+            if (card_core0_regs_fifo1_direct_pulse2_command_retarget) begin
+                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_counted != 0);
+            end
+            else begin
+                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word56_shown != 1);
+            end
+            card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
+            card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_direct_pulse2_command_period != 1);
+        end
+        else begin
+            if (card_core0_regs_fifo1_direct_pulse2_command_retarget) begin
+                card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_command_count != 0);
+            end
             if (card_core0_regs_fifo1_direct_pulse2_waiting) begin
                 card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
                 card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_direct_pulse2_gap != 1);
-            end
-            else if (card_core0_regs_fifo1_direct_ready) begin
-                card_core0_regs_fifo1_direct_request_x <= 1;
-                card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
-                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word56_shown != 1);
-                card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
-                card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_direct_pulse2_command_period != 1);
             end
         end
     end
@@ -4657,18 +4718,28 @@ end
 assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending || card_core0_regs_fifo1_direct_request_y);
 
 
-always @(card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count, card_core0_regs_fifo1_reg_word57_shown) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
-    if ((!card_core0_regs_fifo1_direct_pulse3_command_load)) begin
+
+assign card_core0_regs_fifo1_direct_pulse3_stepping = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse3_command_load) && (!card_core0_regs_fifo1_direct_pulse3_waiting) && card_core0_regs_fifo1_direct_ready && ((card_core0_regs_fifo1_direct_pulse3_command_retarget && (card_core0_regs_fifo1_direct_pulse3_command_count != 0)) || ((!card_core0_regs_fifo1_direct_pulse3_command_retarget) && card_core0_regs_fifo1_direct_pulse3_pending)));
+
+
+always @(card_core0_regs_fifo1_direct_pulse3_command_retarget, card_core0_regs_fifo1_reg_word57_shown, card_core0_regs_fifo1_direct_pulse3_stepping, card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
+    if (((!card_core0_regs_fifo1_direct_pulse3_command_load) && (!card_core0_regs_fifo1_direct_pulse3_command_retarget))) begin
         card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word57_shown;
         card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
     end
     else if ((card_core0_regs_fifo1_direct_pulse3_command_count < 0)) begin
         card_core0_regs_fifo1_direct_pulse3_count_operand = (~card_core0_regs_fifo1_direct_pulse3_command_count[24-1:0]);
         card_core0_regs_fifo1_direct_pulse3_count_addend = 1;
+        if (card_core0_regs_fifo1_direct_pulse3_stepping) begin
+            card_core0_regs_fifo1_direct_pulse3_count_addend = 0;
+        end
     end
     else begin
         card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_direct_pulse3_command_count[24-1:0];
         card_core0_regs_fifo1_direct_pulse3_count_addend = 0;
+        if (card_core0_regs_fifo1_direct_pulse3_stepping) begin
+            card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
+        end
     end
 end
 
@@ -4710,17 +4781,26 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             card_core0_regs_fifo1_direct_pulse3_gap <= 0;
             card_core0_regs_fifo1_direct_pulse3_waiting <= 0;
         end
-        else if (card_core0_regs_fifo1_direct_pulse3_pending) begin
+        else if (card_core0_regs_fifo1_direct_pulse3_stepping) begin
+            card_core0_regs_fifo1_direct_request_y <= 1;
+            card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+            if (card_core0_regs_fifo1_direct_pulse3_command_retarget) begin
+                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_counted != 0);
+            end
+            else begin
+                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word57_shown != 1);
+            end
+            card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
+            card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_command_period != 1);
+        end
+        else begin
+            if (card_core0_regs_fifo1_direct_pulse3_command_retarget) begin
+                card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_command_count != 0);
+            end
             if (card_core0_regs_fifo1_direct_pulse3_waiting) begin
                 card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
                 card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_gap != 1);
-            end
-            else if (card_core0_regs_fifo1_direct_ready) begin
-                card_core0_regs_fifo1_direct_request_y <= 1;
-                card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
-                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word57_shown != 1);
-                card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
-                card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_command_period != 1);
             end
         end
     end
@@ -4730,6 +4810,7 @@ end
 
 assign card_core0_regs_fifo1_out_ready = ($signed({1'b0, card_core0_regs_fifo1_pulse_out1_count}) <= (4 - 2));
 assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_count != 0) || (card_core0_regs_fifo1_pulse_out1_phase != 2'b00) || pins_step_x || pins_step_y);
+assign card_core0_regs_fifo1_pulse_out1_control_pulsing = (card_core0_regs_fifo1_pulse_out1_take || card_core0_regs_fifo1_pulse_out1_level_x || card_core0_regs_fifo1_pulse_out1_level_y || pins_step_x || pins_step_y);
 
 
 
@@ -5132,7 +5213,7 @@ assign card_core0_regs_fifo1_input_filter1__input_count13_taken = (card_core0_re
 
 
 assign card_core0_regs_fifo1_machine_guard1_estop = card_core0_regs_fifo1_conditioning_active[0];
-assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_reg_word67_shown == 1) && (!card_core0_regs_fifo1_reg_word67__store46_word_strobe));
+assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_watchdog_left == 1) && (!card_core0_regs_fifo1_reg_word67__store46_word_strobe));
 assign card_core0_regs_fifo1_machine_guard1_hits = {(card_core0_regs_fifo1_requests_step_y && (!card_core0_regs_fifo1_requests_dir_y) && card_core0_regs_fifo1_conditioning_active[4]), (card_core0_regs_fifo1_requests_step_y && card_core0_regs_fifo1_requests_dir_y && card_core0_regs_fifo1_conditioning_active[3]), (card_core0_regs_fifo1_requests_step_x && (!card_core0_regs_fifo1_requests_dir_x) && card_core0_regs_fifo1_conditioning_active[2]), (card_core0_regs_fifo1_requests_step_x && card_core0_regs_fifo1_requests_dir_x && card_core0_regs_fifo1_conditioning_active[1])};
 
 
@@ -5193,21 +5274,21 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
             card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
         end
         card_core0_regs_fifo1_guard_stopped <= stopped;
-        pins_drive_enable <= ((card_core0_regs_fifo1_machine_control[0] != 0) && (!stopped) && (!card_core0_regs_fifo1_machine_guard1_estop));
+        pins_drive_enable <= (((card_core0_regs_fifo1_machine_control[0] != 0) && (!stopped) && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_machine_guard1_estop)) || (pins_drive_enable && card_core0_regs_fifo1_pulse_out1_control_pulsing));
     end
 end
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guard1_watchdog
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word67_shown <= 0;
+        card_core0_regs_fifo1_watchdog_left <= 0;
     end
     else begin
         if (card_core0_regs_fifo1_reg_word67__store46_word_strobe) begin
-            card_core0_regs_fifo1_reg_word67_shown <= card_core0_regs_fifo1_reg_word67__store46_word_value;
+            card_core0_regs_fifo1_watchdog_left <= card_core0_regs_fifo1_reg_word67__store46_word_value;
         end
-        else if ((card_core0_regs_fifo1_reg_word67_shown != 0)) begin
-            card_core0_regs_fifo1_reg_word67_shown <= (card_core0_regs_fifo1_reg_word67_shown - 1);
+        else if ((card_core0_regs_fifo1_watchdog_left != 0)) begin
+            card_core0_regs_fifo1_watchdog_left <= (card_core0_regs_fifo1_watchdog_left - 1);
         end
     end
 end
@@ -5217,7 +5298,7 @@ always @(card_core0_regs_fifo1_reg_word73_shown, card_core0_regs_fifo1_reg_word7
     card_core0_regs_fifo1_homing1_switch = card_core0_regs_fifo1_homing1_axis ? card_core0_regs_fifo1_home_inputs[1] : card_core0_regs_fifo1_home_inputs[0];
     card_core0_regs_fifo1_homing1_seeking = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b010));
     card_core0_regs_fifo1_homing1_seek_next = ((card_core0_regs_fifo1_homing1_state == 3'b000) || (card_core0_regs_fifo1_homing1_state == 3'b001) || ((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)));
-    if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
+    if (((card_core0_regs_fifo1_homing1_state == 3'b011) || (card_core0_regs_fifo1_homing1_state == 3'b100))) begin
         card_core0_regs_fifo1_homing1_magnitude = {8'h0, card_core0_regs_fifo1_reg_word72_shown};
     end
     else begin
@@ -5234,7 +5315,7 @@ always @(card_core0_regs_fifo1_reg_word68__store47_word_value, card_core0_regs_f
         card_core0_regs_fifo1_homing1_positive = card_core0_regs_fifo1_homing1_negative;
     end
     card_core0_regs_fifo1_home_busy = (card_core0_regs_fifo1_homing1_state != 3'b000);
-    card_core0_regs_fifo1_homing1_port_load = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b011) || (card_core0_regs_fifo1_homing1_state == 3'b101));
+    card_core0_regs_fifo1_homing1_port_load = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b011));
 end
 
 
@@ -5271,10 +5352,16 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_next
 end
 
 
-always @(card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_edges
+always @(card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_edges
+    reg drained;
     reg released;
+    drained = ((!card_core0_regs_fifo1_pulse_busy) && (!card_core0_regs_fifo1_out_active));
     released = ((card_core0_regs_fifo1_homing1_state == 3'b100) && (!card_core0_regs_fifo1_homing1_switch));
-    card_core0_regs_fifo1_home_cut = (((card_core0_regs_fifo1_homing1_state == 3'b010) && card_core0_regs_fifo1_homing1_switch) || released);
+    card_core0_regs_fifo1_homing1_opened = released;
+    card_core0_regs_fifo1_homing1_gave_up = (drained && (((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)) || ((card_core0_regs_fifo1_homing1_state == 3'b100) && card_core0_regs_fifo1_homing1_switch)));
+    card_core0_regs_fifo1_homing1_finished = ((card_core0_regs_fifo1_homing1_state == 3'b110) && (!card_core0_regs_fifo1_out_active));
+    card_core0_regs_fifo1_home_cut = ((card_core0_regs_fifo1_homing1_state == 3'b010) && card_core0_regs_fifo1_homing1_switch);
+    card_core0_regs_fifo1_homing1_port_retarget = released;
     card_core0_regs_fifo1_home_zero = 0;
     if (released) begin
         if (card_core0_regs_fifo1_homing1_axis) begin
@@ -5320,12 +5407,10 @@ always @(card_core0_regs_fifo1_homing1_negative, card_core0_regs_fifo1_homing1_p
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequence
-    reg drained;
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_outcome
     if (reset == 0) begin
         card_core0_regs_fifo1_homing1_negative <= 0;
         card_core0_regs_fifo1_homing1_done <= 0;
-        card_core0_regs_fifo1_homing1_state <= 3'b000;
         card_core0_regs_fifo1_homing1_port_ended <= 0;
         card_core0_regs_fifo1_homing1_axis <= 0;
         card_core0_regs_fifo1_homing1_refused <= 0;
@@ -5333,9 +5418,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
     end
     else begin
         card_core0_regs_fifo1_homing1_port_ended <= 0;
-        drained = ((!card_core0_regs_fifo1_pulse_busy) && (!card_core0_regs_fifo1_out_active));
         if (card_core0_core_clear) begin
-            card_core0_regs_fifo1_homing1_state <= 3'b000;
             if (card_core0_regs_fifo1_reg_word68__store47_word_strobe) begin
                 card_core0_regs_fifo1_homing1_done <= 0;
                 card_core0_regs_fifo1_homing1_not_found <= 0;
@@ -5351,9 +5434,6 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
                 card_core0_regs_fifo1_homing1_not_found <= 0;
                 card_core0_regs_fifo1_homing1_refused <= (!card_core0_regs_fifo1_home_idle);
                 card_core0_regs_fifo1_homing1_port_ended <= (!card_core0_regs_fifo1_home_idle);
-                if (card_core0_regs_fifo1_home_idle) begin
-                    card_core0_regs_fifo1_homing1_state <= 3'b001;
-                end
             end
         end
         else begin
@@ -5361,49 +5441,56 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
                 card_core0_regs_fifo1_homing1_refused <= 1;
                 card_core0_regs_fifo1_homing1_port_ended <= 1;
             end
-            if ((card_core0_regs_fifo1_homing1_state == 3'b001)) begin
-                card_core0_regs_fifo1_homing1_state <= 3'b010;
+            if (card_core0_regs_fifo1_homing1_gave_up) begin
+                card_core0_regs_fifo1_homing1_not_found <= 1;
+                card_core0_regs_fifo1_homing1_port_ended <= 1;
             end
-            else if ((card_core0_regs_fifo1_homing1_state == 3'b010)) begin
-                if (card_core0_regs_fifo1_homing1_switch) begin
-                    card_core0_regs_fifo1_homing1_state <= 3'b011;
-                end
-                else if (drained) begin
-                    card_core0_regs_fifo1_homing1_not_found <= 1;
-                    card_core0_regs_fifo1_homing1_port_ended <= 1;
-                    card_core0_regs_fifo1_homing1_state <= 3'b000;
-                end
-            end
-            else if ((card_core0_regs_fifo1_homing1_state == 3'b011)) begin
-                card_core0_regs_fifo1_homing1_state <= 3'b100;
-            end
-            else if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
-                if ((!card_core0_regs_fifo1_homing1_switch)) begin
-                    if ((card_core0_regs_fifo1_reg_word72_shown != 0)) begin
-                        card_core0_regs_fifo1_homing1_state <= 3'b101;
-                    end
-                    else begin
-                        card_core0_regs_fifo1_homing1_state <= 3'b111;
-                    end
-                end
-                else if (drained) begin
-                    card_core0_regs_fifo1_homing1_not_found <= 1;
-                    card_core0_regs_fifo1_homing1_port_ended <= 1;
-                    card_core0_regs_fifo1_homing1_state <= 3'b000;
-                end
-            end
-            else if ((card_core0_regs_fifo1_homing1_state == 3'b101)) begin
-                card_core0_regs_fifo1_homing1_state <= 3'b110;
-            end
-            else if ((card_core0_regs_fifo1_homing1_state == 3'b110)) begin
-                if ((!card_core0_regs_fifo1_pulse_busy)) begin
-                    card_core0_regs_fifo1_homing1_state <= 3'b111;
-                end
-            end
-            else if ((!card_core0_regs_fifo1_out_active)) begin
+            else if (card_core0_regs_fifo1_homing1_finished) begin
                 card_core0_regs_fifo1_homing1_done <= 1;
                 card_core0_regs_fifo1_homing1_port_ended <= 1;
-                card_core0_regs_fifo1_homing1_state <= 3'b000;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequence
+    if (reset == 0) begin
+        card_core0_regs_fifo1_homing1_state <= 3'b000;
+    end
+    else begin
+        if ((card_core0_core_clear || card_core0_regs_fifo1_homing1_gave_up || card_core0_regs_fifo1_homing1_finished)) begin
+            card_core0_regs_fifo1_homing1_state <= 3'b000;
+        end
+        else if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
+            if ((card_core0_regs_fifo1_reg_word68__store47_word_strobe && card_core0_regs_fifo1_home_idle)) begin
+                card_core0_regs_fifo1_homing1_state <= 3'b001;
+            end
+        end
+        else if ((card_core0_regs_fifo1_homing1_state == 3'b001)) begin
+            card_core0_regs_fifo1_homing1_state <= 3'b010;
+        end
+        else if ((card_core0_regs_fifo1_homing1_state == 3'b010)) begin
+            if (card_core0_regs_fifo1_homing1_switch) begin
+                card_core0_regs_fifo1_homing1_state <= 3'b011;
+            end
+        end
+        else if ((card_core0_regs_fifo1_homing1_state == 3'b011)) begin
+            card_core0_regs_fifo1_homing1_state <= 3'b100;
+        end
+        else if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
+            if (card_core0_regs_fifo1_homing1_opened) begin
+                if ((card_core0_regs_fifo1_reg_word72_shown != 0)) begin
+                    card_core0_regs_fifo1_homing1_state <= 3'b101;
+                end
+                else begin
+                    card_core0_regs_fifo1_homing1_state <= 3'b110;
+                end
+            end
+        end
+        else if ((card_core0_regs_fifo1_homing1_state == 3'b101)) begin
+            if ((!card_core0_regs_fifo1_pulse_busy)) begin
+                card_core0_regs_fifo1_homing1_state <= 3'b110;
             end
         end
     end
@@ -5472,21 +5559,27 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_write_stage
 end
 
 
-
-assign card_core0_regs_fifo1_enable = (card_core0_regs_fifo1_control[0] && (!card_core0_regs_fifo1_control[1]) && (!card_core0_regs_fifo1_halt) && (!card_core0_regs_fifo1_home_busy));
-assign card_core0_regs_fifo1_direct_mode = card_core0_regs_fifo1_control[1];
-assign card_core0_regs_fifo1_clear_error = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[1]);
-assign card_core0_regs_fifo1_clear_position = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[2]);
-assign card_core0_regs_fifo1_clear_stop = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[3]);
-assign card_core0_regs_fifo1_feed_pause = (card_core0_regs_fifo1_machine_control[1] || card_core0_regs_fifo1_guard_stopping);
-assign card_core0_regs_fifo1_guard_ramp = (card_core0_regs_fifo1_ramp_step != 0);
-assign card_core0_regs_fifo1_settled = (card_core0_regs_fifo1_feed_held && (!card_core0_regs_fifo1_tick) && (!card_core0_regs_fifo1_outputs_busy));
-assign card_core0_regs_fifo1_direct_ready = (card_core0_regs_fifo1_out_ready && (!card_core0_regs_fifo1_guard_stopping));
-assign card_core0_regs_fifo1_pulse_clear = (card_core0_core_clear || card_core0_regs_fifo1_halt);
-assign card_core0_regs_fifo1_sequencer_clear = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped);
-assign card_core0_regs_fifo1_home_idle = ((!card_core0_regs_fifo1_any_busy) && card_core0_regs_fifo1_fifo_empty && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_halt));
-assign card_core0_regs_fifo1_direct_clear = (card_core0_core_clear || card_core0_regs_fifo1_home_cut);
-assign card_core0_regs_fifo1_home_inputs = card_core0_regs_fifo1_conditioning_active[5+:2];
+always @(card_core0_regs_fifo1_feed_held, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_out_ready, card_core0_core_clear, card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_command, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_home_cut, card_core0_regs_fifo1_outputs_busy, card_core0_regs_fifo1_control, card_core0_regs_fifo1_tick, card_core0_regs_fifo1_ramp_step, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_command_strobe, card_core0_regs_fifo1_halt, card_core0_regs_fifo1_machine_control) begin: card_core0_regs_fifo1_control_bits
+    card_core0_regs_fifo1_enable = (card_core0_regs_fifo1_control[0] && (!card_core0_regs_fifo1_control[1]) && (!card_core0_regs_fifo1_halt) && (!card_core0_regs_fifo1_home_busy));
+    card_core0_regs_fifo1_direct_mode = card_core0_regs_fifo1_control[1];
+    card_core0_regs_fifo1_clear_error = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[1]);
+    card_core0_regs_fifo1_clear_position = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[2]);
+    card_core0_regs_fifo1_clear_stop = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[3]);
+    card_core0_regs_fifo1_releasing = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[3] && card_core0_regs_fifo1_guard_stopped && (!card_core0_regs_fifo1_conditioning_active[0]));
+    card_core0_regs_fifo1_feed_pause = (card_core0_regs_fifo1_machine_control[1] || card_core0_regs_fifo1_guard_stopping);
+    card_core0_regs_fifo1_guard_ramp = (card_core0_regs_fifo1_ramp_step != 0);
+    card_core0_regs_fifo1_settled = (card_core0_regs_fifo1_feed_held && (!card_core0_regs_fifo1_tick) && (!card_core0_regs_fifo1_outputs_busy));
+    card_core0_regs_fifo1_direct_ready = (card_core0_regs_fifo1_out_ready && (!card_core0_regs_fifo1_guard_stopping));
+    card_core0_regs_fifo1_pulse_clear = (card_core0_core_clear || card_core0_regs_fifo1_halt);
+    card_core0_regs_fifo1_sequencer_clear = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped);
+    card_core0_regs_fifo1_home_idle = ((!card_core0_regs_fifo1_any_busy) && card_core0_regs_fifo1_fifo_empty && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_halt));
+    card_core0_regs_fifo1_direct_clear = (card_core0_core_clear || card_core0_regs_fifo1_home_cut);
+    card_core0_regs_fifo1_home_inputs = card_core0_regs_fifo1_conditioning_active[5+:2];
+    card_core0_regs_fifo1_drive_cleared = 0;
+    if (card_core0_regs_fifo1_guard_stopped) begin
+        card_core0_regs_fifo1_drive_cleared = 1;
+    end
+end
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_soft_reset
@@ -5502,7 +5595,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_fifo_flush = (card_core0_regs_fifo1_soft_reset_taken || (card_core0_regs_fifo1_io_written && (card_core0_regs_fifo1_written_addr == 8) && ((card_core0_regs_fifo1_discard_on_clear && card_core0_regs_fifo1_written_data[1] && card_core0_regs_fifo1_written_mask[1]) || (card_core0_regs_fifo1_guard_stopped && card_core0_regs_fifo1_written_data[3] && card_core0_regs_fifo1_written_mask[3]))));
+assign card_core0_regs_fifo1_fifo_flush = (card_core0_regs_fifo1_soft_reset_taken || card_core0_regs_fifo1_releasing || (card_core0_regs_fifo1_io_written && (card_core0_regs_fifo1_written_addr == 8) && card_core0_regs_fifo1_discard_on_clear && card_core0_regs_fifo1_written_data[1] && card_core0_regs_fifo1_written_mask[1]));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_outputs_before
@@ -5548,8 +5641,9 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word68_shown[0], card_core0_regs_fifo1_reg_word56__store40_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word56__store40_word_value, card_core0_regs_fifo1_reg_word54_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source2_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word68_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word56__store40_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word56__store40_word_value, card_core0_regs_fifo1_reg_word54_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source2_choose_source
     card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word54_shown;
+    card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word68_shown[0] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
         card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word68_shown[0] == 0));
         card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_homing1_port_count;
@@ -5566,8 +5660,9 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_wor
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word68_shown[0], card_core0_regs_fifo1_reg_word57__store41_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word57__store41_word_value, card_core0_regs_fifo1_reg_word55_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source3_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word68_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word57__store41_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word57__store41_word_value, card_core0_regs_fifo1_reg_word55_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source3_choose_source
     card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word55_shown;
+    card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word68_shown[0] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
         card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word68_shown[0] == 1));
         card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_homing1_port_count;

@@ -178,24 +178,26 @@ reg [31:0] set_value;
 reg [3:0] error_code;
 reg seq_load;
 reg [1:0] home_zero;
+reg [23:0] watchdog_left;
 wire any_busy;
 reg [31:0] byte_mask;
-wire clear_error;
-wire clear_position;
-wire clear_stop;
-wire direct_clear;
-wire direct_mode;
-wire direct_ready;
+reg clear_error;
+reg clear_position;
+reg clear_stop;
+reg direct_clear;
+reg direct_mode;
+reg direct_ready;
 wire discard_on_clear;
-wire enable;
+reg [1:0] drive_cleared;
+reg enable;
 wire fifo_empty;
 wire fifo_flush;
 wire fifo_full;
 wire [9:0] fifo_level;
 reg halt;
 wire hold;
-wire home_idle;
-wire [1:0] home_inputs;
+reg home_idle;
+reg [1:0] home_inputs;
 reg io_read;
 reg io_write;
 reg io_written;
@@ -207,14 +209,15 @@ wire out_ready;
 wire outputs_busy;
 reg signed [31:0] pos_y_snapshot;
 wire pulse_busy;
-wire pulse_clear;
+reg pulse_clear;
 reg push;
 reg read_waited;
 reg [31:0] read_word;
+reg releasing;
 reg requested_before;
 wire seq_busy;
-wire sequencer_clear;
-wire settled;
+reg sequencer_clear;
+reg settled;
 reg soft_reset_taken;
 reg tick;
 reg [15:0] written_addr;
@@ -225,15 +228,15 @@ reg [1:0] control;
 reg home_busy;
 reg command_strobe;
 reg [3:0] command;
-wire feed_pause;
+reg guard_stopped;
+reg [6:0] conditioning_active;
+reg feed_pause;
 reg [1:0] machine_control;
 reg guard_stopping;
-wire guard_ramp;
+reg guard_ramp;
 reg [15:0] ramp_step;
 reg feed_held;
-reg guard_stopped;
 reg home_cut;
-reg [6:0] conditioning_active;
 reg guard_stop_event;
 wire requests_step_x;
 wire requests_step_y;
@@ -308,15 +311,15 @@ wire [7:0] reg_word5_written;
 reg [31:0] reg_word5_chain_out_data;
 wire reg_word5_chain_out_clamped;
 reg [7:0] reg_word5__store3_word_hw;
-wire [15:0] reg_word6_honoured;
-wire reg_word6_out_of_range;
+reg [15:0] reg_word6_honoured;
+reg reg_word6_out_of_range;
 reg [15:0] reg_word6_shown;
 reg reg_word6_clamped;
 wire reg_word6_mine;
 wire reg_word6_mine_write;
 wire reg_word6_set_mine;
 wire [31:0] reg_word6_shown_wide;
-reg [15:0] reg_word6_written;
+reg [31:0] reg_word6_written;
 reg [31:0] reg_word6_chain_out_data;
 wire reg_word6_chain_out_clamped;
 reg [15:0] reg_word7_shown;
@@ -354,13 +357,13 @@ wire [31:0] reg_word11_shown_wide;
 reg [31:0] reg_word11_written;
 reg [31:0] reg_word11_chain_out_data;
 wire reg_word11_chain_out_clamped;
-wire [15:0] reg_word12_honoured;
-wire reg_word12_out_of_range;
+reg [15:0] reg_word12_honoured;
+reg reg_word12_out_of_range;
 reg reg_word12_clamped;
 wire reg_word12_mine;
 wire reg_word12_mine_write;
 wire [31:0] reg_word12_shown_wide;
-reg [15:0] reg_word12_written;
+reg [31:0] reg_word12_written;
 reg [31:0] reg_word12_chain_out_data;
 wire reg_word12_chain_out_clamped;
 reg [7:0] reg_word13_honoured;
@@ -516,14 +519,13 @@ wire [31:0] reg_word29_shown_wide;
 reg [31:0] reg_word29_written;
 reg [31:0] reg_word29_chain_out_data;
 wire reg_word29_chain_out_clamped;
-wire [23:0] reg_word30_honoured;
-wire reg_word30_out_of_range;
-reg [23:0] reg_word30_shown;
+reg [23:0] reg_word30_honoured;
+reg reg_word30_out_of_range;
 reg reg_word30_clamped;
 wire reg_word30_mine;
 wire reg_word30_mine_write;
 wire [31:0] reg_word30_shown_wide;
-wire [23:0] reg_word30_written;
+wire [31:0] reg_word30_written;
 reg [31:0] reg_word30_chain_out_data;
 wire reg_word30_chain_out_clamped;
 reg reg_word30__store20_word_strobe;
@@ -567,15 +569,15 @@ wire [31:0] reg_word34_shown_wide;
 reg [31:0] reg_word34_written;
 reg [31:0] reg_word34_chain_out_data;
 wire reg_word34_chain_out_clamped;
-wire [15:0] reg_word35_honoured;
-wire reg_word35_out_of_range;
+reg [15:0] reg_word35_honoured;
+reg reg_word35_out_of_range;
 reg [15:0] reg_word35_shown;
 reg reg_word35_clamped;
 wire reg_word35_mine;
 wire reg_word35_mine_write;
 wire reg_word35_set_mine;
 wire [31:0] reg_word35_shown_wide;
-reg [15:0] reg_word35_written;
+reg [31:0] reg_word35_written;
 reg [31:0] reg_word35_chain_out_data;
 wire reg_word35_chain_out_clamped;
 reg [22:0] reg_word36_honoured;
@@ -657,8 +659,10 @@ reg [15:0] direct_pulse0_gap;
 wire [15:0] direct_pulse0_gap_less;
 reg [15:0] direct_pulse0_gap_operand;
 reg direct_pulse0_pending;
+wire direct_pulse0_stepping;
 reg direct_pulse0_waiting;
 reg direct_pulse0_command_load;
+reg direct_pulse0_command_retarget;
 reg signed [23:0] direct_pulse0_command_count;
 reg [15:0] direct_pulse0_command_period;
 reg [23:0] direct_pulse1_count_addend;
@@ -668,8 +672,10 @@ reg [15:0] direct_pulse1_gap;
 wire [15:0] direct_pulse1_gap_less;
 reg [15:0] direct_pulse1_gap_operand;
 reg direct_pulse1_pending;
+wire direct_pulse1_stepping;
 reg direct_pulse1_waiting;
 reg direct_pulse1_command_load;
+reg direct_pulse1_command_retarget;
 reg signed [23:0] direct_pulse1_command_count;
 reg [15:0] direct_pulse1_command_period;
 reg [2:0] pulse_out0_count;
@@ -691,6 +697,7 @@ reg [7:0] pulse_out0_phase_step;
 reg pulse_out0_starts;
 reg pulse_out0_take;
 reg pulse_out0_turn;
+wire pulse_out0_control_pulsing;
 reg pulse_out0_request_step_x;
 reg pulse_out0_request_step_y;
 reg pulse_out0_request_dir_y;
@@ -726,9 +733,12 @@ reg [3:0] machine_guard0_guard_limits;
 reg [23:0] homing0_addend;
 reg homing0_axis;
 reg homing0_done;
+reg homing0_finished;
+reg homing0_gave_up;
 reg [23:0] homing0_magnitude;
 reg homing0_negative;
 reg homing0_not_found;
+reg homing0_opened;
 reg [23:0] homing0_operand;
 reg [1:0] homing0_phase;
 reg homing0_positive;
@@ -741,6 +751,7 @@ reg homing0_switch;
 reg homing0_port_load;
 reg signed [23:0] homing0_port_count;
 reg [15:0] homing0_port_period;
+reg homing0_port_retarget;
 reg homing0_port_ended;
 reg status_words0_busy_before;
 reg status_words0_done_flag;
@@ -749,7 +760,7 @@ reg status_words0_low_before;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_shown = 32'd3719037187;
+assign reg_word0_shown = 32'd3719037440;
 assign reg_word0_chain_in_data = 32'd0;
 assign reg_word0_chain_in_clamped = 1'd0;
 assign reg_word1_out_of_range = 1'd0;
@@ -758,9 +769,7 @@ assign reg_word2_out_of_range = 1'd0;
 assign reg_word2_shown = 4'd0;
 assign reg_word4_out_of_range = 1'd0;
 assign reg_word4_set_mine = 1'd0;
-assign reg_word6_out_of_range = 1'd0;
 assign reg_word6_set_mine = 1'd0;
-assign reg_word12_out_of_range = 1'd0;
 assign reg_word16_out_of_range = 1'd0;
 assign reg_word16_set_mine = 1'd0;
 assign reg_word21_shown = 32'd33333333;
@@ -772,11 +781,9 @@ assign reg_word27_out_of_range = 1'd0;
 assign reg_word27_set_mine = 1'd0;
 assign reg_word28_set_mine = 1'd0;
 assign reg_word29_set_mine = 1'd0;
-assign reg_word30_out_of_range = 1'd0;
 assign reg_word31_out_of_range = 1'd0;
 assign reg_word33_set_mine = 1'd0;
 assign reg_word34_set_mine = 1'd0;
-assign reg_word35_out_of_range = 1'd0;
 assign reg_word35_set_mine = 1'd0;
 assign reg_word36_set_mine = 1'd0;
 assign input_filter0_taken[6] = input_filter0__input_count6_taken;
@@ -1155,16 +1162,24 @@ assign reg_word6_mine_write = (written_addr == 24);
 
 always @(reg_word6_shown_wide, reg_word6_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word6_merge_bytes
     if ((reg_word6_set_mine && (set_index == 0))) begin
-        reg_word6_written = set_value[16-1:0];
+        reg_word6_written = set_value[32-1:0];
     end
     else begin
-        reg_word6_written = ((reg_word6_shown_wide[16-1:0] & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+        reg_word6_written = ((reg_word6_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
     end
 end
 
 
-
-assign reg_word6_honoured = reg_word6_written[16-1:0];
+always @(reg_word6_written) begin: reg_word6__limit4_clamp_above_power_of_two
+    reg_word6_out_of_range = 1'b1;
+    if ((reg_word6_written[32-1:16] != 0)) begin
+        reg_word6_honoured = 65535;
+    end
+    else begin
+        reg_word6_honoured = reg_word6_written[16-1:0];
+        reg_word6_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -1408,16 +1423,24 @@ assign reg_word12_mine_write = (written_addr == 48);
 
 always @(reg_word12_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word12_merge_bytes
     if ((set_strobe && (set_index == 2))) begin
-        reg_word12_written = set_value[16-1:0];
+        reg_word12_written = set_value[32-1:0];
     end
     else begin
-        reg_word12_written = ((reg_word12_shown_wide[16-1:0] & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+        reg_word12_written = ((reg_word12_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
     end
 end
 
 
-
-assign reg_word12_honoured = reg_word12_written[16-1:0];
+always @(reg_word12_written) begin: reg_word12__limit7_clamp_above_power_of_two
+    reg_word12_out_of_range = 1'b1;
+    if ((reg_word12_written[32-1:16] != 0)) begin
+        reg_word12_honoured = 65535;
+    end
+    else begin
+        reg_word12_honoured = reg_word12_written[16-1:0];
+        reg_word12_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -2058,7 +2081,7 @@ assign reg_word24_honoured = reg_word24_written[2-1:0];
 assign reg_word24_chain_out_clamped = (reg_word23_chain_out_clamped || reg_word24_clamped);
 
 
-always @(posedge clock, negedge reset) begin: reg_word24__store16_hold_rw
+always @(posedge clock, negedge reset) begin: reg_word24__store16_hold_rw_cleared
     if (reset == 0) begin
         machine_control <= 0;
         reg_word24_clamped <= 0;
@@ -2066,8 +2089,11 @@ always @(posedge clock, negedge reset) begin: reg_word24__store16_hold_rw
     else begin
         reg_word24_clamped <= 1'b0;
         if (((reg_word24_set_mine && (set_index == 0)) || (io_written && reg_word24_mine_write))) begin
-            machine_control <= reg_word24_honoured;
+            machine_control <= (reg_word24_honoured & (~(drive_cleared & 1)));
             reg_word24_clamped <= reg_word24_out_of_range;
+        end
+        else begin
+            machine_control <= (machine_control & (~(drive_cleared & 1)));
         end
     end
 end
@@ -2319,7 +2345,7 @@ end
 
 
 
-assign reg_word30_shown_wide = {8'h0, reg_word30_shown};
+assign reg_word30_shown_wide = {8'h0, watchdog_left};
 
 
 
@@ -2327,11 +2353,19 @@ assign reg_word30_mine_write = (written_addr == 120);
 
 
 
-assign reg_word30_written = (written_data[24-1:0] & written_mask[24-1:0]);
+assign reg_word30_written = (written_data[32-1:0] & written_mask[32-1:0]);
 
 
-
-assign reg_word30_honoured = reg_word30_written[24-1:0];
+always @(reg_word30_written) begin: reg_word30__limit20_clamp_above_power_of_two
+    reg_word30_out_of_range = 1'b1;
+    if ((reg_word30_written[32-1:24] != 0)) begin
+        reg_word30_honoured = 16777215;
+    end
+    else begin
+        reg_word30_honoured = reg_word30_written[24-1:0];
+        reg_word30_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -2586,16 +2620,24 @@ assign reg_word35_mine_write = (written_addr == 140);
 
 always @(reg_word35_shown_wide, reg_word35_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word35_merge_bytes
     if ((reg_word35_set_mine && (set_index == 0))) begin
-        reg_word35_written = set_value[16-1:0];
+        reg_word35_written = set_value[32-1:0];
     end
     else begin
-        reg_word35_written = ((reg_word35_shown_wide[16-1:0] & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+        reg_word35_written = ((reg_word35_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
     end
 end
 
 
-
-assign reg_word35_honoured = reg_word35_written[16-1:0];
+always @(reg_word35_written) begin: reg_word35__limit24_clamp_above_power_of_two
+    reg_word35_out_of_range = 1'b1;
+    if ((reg_word35_written[32-1:16] != 0)) begin
+        reg_word35_honoured = 65535;
+    end
+    else begin
+        reg_word35_honoured = reg_word35_written[16-1:0];
+        reg_word35_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -3315,18 +3357,28 @@ end
 assign direct_busy_x = (direct_pulse0_command_load || direct_pulse0_pending || direct_request_x);
 
 
-always @(direct_pulse0_command_load, direct_pulse0_command_count, reg_word19_shown) begin: direct_pulse0_count_operands
-    if ((!direct_pulse0_command_load)) begin
+
+assign direct_pulse0_stepping = ((!direct_clear) && (!direct_pulse0_command_load) && (!direct_pulse0_waiting) && direct_ready && ((direct_pulse0_command_retarget && (direct_pulse0_command_count != 0)) || ((!direct_pulse0_command_retarget) && direct_pulse0_pending)));
+
+
+always @(direct_pulse0_command_retarget, reg_word19_shown, direct_pulse0_stepping, direct_pulse0_command_load, direct_pulse0_command_count) begin: direct_pulse0_count_operands
+    if (((!direct_pulse0_command_load) && (!direct_pulse0_command_retarget))) begin
         direct_pulse0_count_operand = reg_word19_shown;
         direct_pulse0_count_addend = 16777215;
     end
     else if ((direct_pulse0_command_count < 0)) begin
         direct_pulse0_count_operand = (~direct_pulse0_command_count[24-1:0]);
         direct_pulse0_count_addend = 1;
+        if (direct_pulse0_stepping) begin
+            direct_pulse0_count_addend = 0;
+        end
     end
     else begin
         direct_pulse0_count_operand = direct_pulse0_command_count[24-1:0];
         direct_pulse0_count_addend = 0;
+        if (direct_pulse0_stepping) begin
+            direct_pulse0_count_addend = 16777215;
+        end
     end
 end
 
@@ -3368,17 +3420,26 @@ always @(posedge clock, negedge reset) begin: direct_pulse0_emit
             direct_pulse0_gap <= 0;
             direct_pulse0_waiting <= 0;
         end
-        else if (direct_pulse0_pending) begin
+        else if (direct_pulse0_stepping) begin
+            direct_request_x <= 1;
+            reg_word19_shown <= direct_pulse0_counted;
+            if (direct_pulse0_command_retarget) begin
+                direct_pulse0_pending <= (direct_pulse0_counted != 0);
+            end
+            else begin
+                direct_pulse0_pending <= (reg_word19_shown != 1);
+            end
+            direct_pulse0_gap <= direct_pulse0_gap_less;
+            direct_pulse0_waiting <= (direct_pulse0_command_period != 1);
+        end
+        else begin
+            if (direct_pulse0_command_retarget) begin
+                reg_word19_shown <= direct_pulse0_counted;
+                direct_pulse0_pending <= (direct_pulse0_command_count != 0);
+            end
             if (direct_pulse0_waiting) begin
                 direct_pulse0_gap <= direct_pulse0_gap_less;
                 direct_pulse0_waiting <= (direct_pulse0_gap != 1);
-            end
-            else if (direct_ready) begin
-                direct_request_x <= 1;
-                reg_word19_shown <= direct_pulse0_counted;
-                direct_pulse0_pending <= (reg_word19_shown != 1);
-                direct_pulse0_gap <= direct_pulse0_gap_less;
-                direct_pulse0_waiting <= (direct_pulse0_command_period != 1);
             end
         end
     end
@@ -3389,18 +3450,28 @@ end
 assign direct_busy_y = (direct_pulse1_command_load || direct_pulse1_pending || direct_request_y);
 
 
-always @(direct_pulse1_command_load, direct_pulse1_command_count, reg_word20_shown) begin: direct_pulse1_count_operands
-    if ((!direct_pulse1_command_load)) begin
+
+assign direct_pulse1_stepping = ((!direct_clear) && (!direct_pulse1_command_load) && (!direct_pulse1_waiting) && direct_ready && ((direct_pulse1_command_retarget && (direct_pulse1_command_count != 0)) || ((!direct_pulse1_command_retarget) && direct_pulse1_pending)));
+
+
+always @(direct_pulse1_command_retarget, reg_word20_shown, direct_pulse1_stepping, direct_pulse1_command_load, direct_pulse1_command_count) begin: direct_pulse1_count_operands
+    if (((!direct_pulse1_command_load) && (!direct_pulse1_command_retarget))) begin
         direct_pulse1_count_operand = reg_word20_shown;
         direct_pulse1_count_addend = 16777215;
     end
     else if ((direct_pulse1_command_count < 0)) begin
         direct_pulse1_count_operand = (~direct_pulse1_command_count[24-1:0]);
         direct_pulse1_count_addend = 1;
+        if (direct_pulse1_stepping) begin
+            direct_pulse1_count_addend = 0;
+        end
     end
     else begin
         direct_pulse1_count_operand = direct_pulse1_command_count[24-1:0];
         direct_pulse1_count_addend = 0;
+        if (direct_pulse1_stepping) begin
+            direct_pulse1_count_addend = 16777215;
+        end
     end
 end
 
@@ -3442,17 +3513,26 @@ always @(posedge clock, negedge reset) begin: direct_pulse1_emit
             direct_pulse1_gap <= 0;
             direct_pulse1_waiting <= 0;
         end
-        else if (direct_pulse1_pending) begin
+        else if (direct_pulse1_stepping) begin
+            direct_request_y <= 1;
+            reg_word20_shown <= direct_pulse1_counted;
+            if (direct_pulse1_command_retarget) begin
+                direct_pulse1_pending <= (direct_pulse1_counted != 0);
+            end
+            else begin
+                direct_pulse1_pending <= (reg_word20_shown != 1);
+            end
+            direct_pulse1_gap <= direct_pulse1_gap_less;
+            direct_pulse1_waiting <= (direct_pulse1_command_period != 1);
+        end
+        else begin
+            if (direct_pulse1_command_retarget) begin
+                reg_word20_shown <= direct_pulse1_counted;
+                direct_pulse1_pending <= (direct_pulse1_command_count != 0);
+            end
             if (direct_pulse1_waiting) begin
                 direct_pulse1_gap <= direct_pulse1_gap_less;
                 direct_pulse1_waiting <= (direct_pulse1_gap != 1);
-            end
-            else if (direct_ready) begin
-                direct_request_y <= 1;
-                reg_word20_shown <= direct_pulse1_counted;
-                direct_pulse1_pending <= (reg_word20_shown != 1);
-                direct_pulse1_gap <= direct_pulse1_gap_less;
-                direct_pulse1_waiting <= (direct_pulse1_command_period != 1);
             end
         end
     end
@@ -3462,6 +3542,7 @@ end
 
 assign out_ready = ($signed({1'b0, pulse_out0_count}) <= (4 - 2));
 assign out_active = ((pulse_out0_count != 0) || (pulse_out0_phase != 2'b00) || pins_step_x || pins_step_y);
+assign pulse_out0_control_pulsing = (pulse_out0_take || pulse_out0_level_x || pulse_out0_level_y || pins_step_x || pins_step_y);
 
 
 
@@ -3864,7 +3945,7 @@ assign input_filter0__input_count6_taken = (input_filter0_sample && (input_filte
 
 
 assign machine_guard0_estop = conditioning_active[0];
-assign machine_guard0_expired = ((reg_word30_shown == 1) && (!reg_word30__store20_word_strobe));
+assign machine_guard0_expired = ((watchdog_left == 1) && (!reg_word30__store20_word_strobe));
 assign machine_guard0_hits = {(requests_step_y && (!requests_dir_y) && conditioning_active[4]), (requests_step_y && requests_dir_y && conditioning_active[3]), (requests_step_x && (!requests_dir_x) && conditioning_active[2]), (requests_step_x && requests_dir_x && conditioning_active[1])};
 
 
@@ -3925,21 +4006,21 @@ always @(posedge clock, negedge reset) begin: machine_guard0_latch
             machine_guard0_guard_limits <= 0;
         end
         guard_stopped <= stopped;
-        pins_drive_enable <= ((machine_control[0] != 0) && (!stopped) && (!machine_guard0_estop));
+        pins_drive_enable <= (((machine_control[0] != 0) && (!stopped) && (!guard_stopped) && (!machine_guard0_estop)) || (pins_drive_enable && pulse_out0_control_pulsing));
     end
 end
 
 
 always @(posedge clock, negedge reset) begin: machine_guard0_watchdog
     if (reset == 0) begin
-        reg_word30_shown <= 0;
+        watchdog_left <= 0;
     end
     else begin
         if (reg_word30__store20_word_strobe) begin
-            reg_word30_shown <= reg_word30__store20_word_value;
+            watchdog_left <= reg_word30__store20_word_value;
         end
-        else if ((reg_word30_shown != 0)) begin
-            reg_word30_shown <= (reg_word30_shown - 1);
+        else if ((watchdog_left != 0)) begin
+            watchdog_left <= (watchdog_left - 1);
         end
     end
 end
@@ -3949,7 +4030,7 @@ always @(reg_word36_shown, reg_word35_shown, home_inputs, homing0_axis, homing0_
     homing0_switch = homing0_axis ? home_inputs[1] : home_inputs[0];
     homing0_seeking = ((homing0_state == 3'b001) || (homing0_state == 3'b010));
     homing0_seek_next = ((homing0_state == 3'b000) || (homing0_state == 3'b001) || ((homing0_state == 3'b010) && (!homing0_switch)));
-    if ((homing0_state == 3'b100)) begin
+    if (((homing0_state == 3'b011) || (homing0_state == 3'b100))) begin
         homing0_magnitude = {8'h0, reg_word35_shown};
     end
     else begin
@@ -3966,7 +4047,7 @@ always @(reg_word31__store21_word_value, homing0_state, homing0_negative) begin:
         homing0_positive = homing0_negative;
     end
     home_busy = (homing0_state != 3'b000);
-    homing0_port_load = ((homing0_state == 3'b001) || (homing0_state == 3'b011) || (homing0_state == 3'b101));
+    homing0_port_load = ((homing0_state == 3'b001) || (homing0_state == 3'b011));
 end
 
 
@@ -4003,10 +4084,16 @@ always @(posedge clock, negedge reset) begin: homing0_next_load
 end
 
 
-always @(homing0_axis, homing0_switch, homing0_state) begin: homing0_edges
+always @(out_active, pulse_busy, homing0_axis, homing0_switch, homing0_state) begin: homing0_edges
+    reg drained;
     reg released;
+    drained = ((!pulse_busy) && (!out_active));
     released = ((homing0_state == 3'b100) && (!homing0_switch));
-    home_cut = (((homing0_state == 3'b010) && homing0_switch) || released);
+    homing0_opened = released;
+    homing0_gave_up = (drained && (((homing0_state == 3'b010) && (!homing0_switch)) || ((homing0_state == 3'b100) && homing0_switch)));
+    homing0_finished = ((homing0_state == 3'b110) && (!out_active));
+    home_cut = ((homing0_state == 3'b010) && homing0_switch);
+    homing0_port_retarget = released;
     home_zero = 0;
     if (released) begin
         if (homing0_axis) begin
@@ -4052,12 +4139,10 @@ always @(homing0_negative, homing0_phase, homing0_done, homing0_refused, reg_wor
 end
 
 
-always @(posedge clock, negedge reset) begin: homing0_sequence
-    reg drained;
+always @(posedge clock, negedge reset) begin: homing0_outcome
     if (reset == 0) begin
         homing0_negative <= 0;
         homing0_done <= 0;
-        homing0_state <= 3'b000;
         homing0_port_ended <= 0;
         homing0_axis <= 0;
         homing0_refused <= 0;
@@ -4065,9 +4150,7 @@ always @(posedge clock, negedge reset) begin: homing0_sequence
     end
     else begin
         homing0_port_ended <= 0;
-        drained = ((!pulse_busy) && (!out_active));
         if (core_clear) begin
-            homing0_state <= 3'b000;
             if (reg_word31__store21_word_strobe) begin
                 homing0_done <= 0;
                 homing0_not_found <= 0;
@@ -4083,9 +4166,6 @@ always @(posedge clock, negedge reset) begin: homing0_sequence
                 homing0_not_found <= 0;
                 homing0_refused <= (!home_idle);
                 homing0_port_ended <= (!home_idle);
-                if (home_idle) begin
-                    homing0_state <= 3'b001;
-                end
             end
         end
         else begin
@@ -4093,49 +4173,56 @@ always @(posedge clock, negedge reset) begin: homing0_sequence
                 homing0_refused <= 1;
                 homing0_port_ended <= 1;
             end
-            if ((homing0_state == 3'b001)) begin
-                homing0_state <= 3'b010;
+            if (homing0_gave_up) begin
+                homing0_not_found <= 1;
+                homing0_port_ended <= 1;
             end
-            else if ((homing0_state == 3'b010)) begin
-                if (homing0_switch) begin
-                    homing0_state <= 3'b011;
-                end
-                else if (drained) begin
-                    homing0_not_found <= 1;
-                    homing0_port_ended <= 1;
-                    homing0_state <= 3'b000;
-                end
-            end
-            else if ((homing0_state == 3'b011)) begin
-                homing0_state <= 3'b100;
-            end
-            else if ((homing0_state == 3'b100)) begin
-                if ((!homing0_switch)) begin
-                    if ((reg_word35_shown != 0)) begin
-                        homing0_state <= 3'b101;
-                    end
-                    else begin
-                        homing0_state <= 3'b111;
-                    end
-                end
-                else if (drained) begin
-                    homing0_not_found <= 1;
-                    homing0_port_ended <= 1;
-                    homing0_state <= 3'b000;
-                end
-            end
-            else if ((homing0_state == 3'b101)) begin
-                homing0_state <= 3'b110;
-            end
-            else if ((homing0_state == 3'b110)) begin
-                if ((!pulse_busy)) begin
-                    homing0_state <= 3'b111;
-                end
-            end
-            else if ((!out_active)) begin
+            else if (homing0_finished) begin
                 homing0_done <= 1;
                 homing0_port_ended <= 1;
-                homing0_state <= 3'b000;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: homing0_sequence
+    if (reset == 0) begin
+        homing0_state <= 3'b000;
+    end
+    else begin
+        if ((core_clear || homing0_gave_up || homing0_finished)) begin
+            homing0_state <= 3'b000;
+        end
+        else if ((homing0_state == 3'b000)) begin
+            if ((reg_word31__store21_word_strobe && home_idle)) begin
+                homing0_state <= 3'b001;
+            end
+        end
+        else if ((homing0_state == 3'b001)) begin
+            homing0_state <= 3'b010;
+        end
+        else if ((homing0_state == 3'b010)) begin
+            if (homing0_switch) begin
+                homing0_state <= 3'b011;
+            end
+        end
+        else if ((homing0_state == 3'b011)) begin
+            homing0_state <= 3'b100;
+        end
+        else if ((homing0_state == 3'b100)) begin
+            if (homing0_opened) begin
+                if ((reg_word35_shown != 0)) begin
+                    homing0_state <= 3'b101;
+                end
+                else begin
+                    homing0_state <= 3'b110;
+                end
+            end
+        end
+        else if ((homing0_state == 3'b101)) begin
+            if ((!pulse_busy)) begin
+                homing0_state <= 3'b110;
             end
         end
     end
@@ -4204,21 +4291,27 @@ always @(posedge clock, negedge reset) begin: write_stage
 end
 
 
-
-assign enable = (control[0] && (!control[1]) && (!halt) && (!home_busy));
-assign direct_mode = control[1];
-assign clear_error = (command_strobe && command[1]);
-assign clear_position = (command_strobe && command[2]);
-assign clear_stop = (command_strobe && command[3]);
-assign feed_pause = (machine_control[1] || guard_stopping);
-assign guard_ramp = (ramp_step != 0);
-assign settled = (feed_held && (!tick) && (!outputs_busy));
-assign direct_ready = (out_ready && (!guard_stopping));
-assign pulse_clear = (core_clear || halt);
-assign sequencer_clear = (core_clear || guard_stopped);
-assign home_idle = ((!any_busy) && fifo_empty && (!guard_stopped) && (!halt));
-assign direct_clear = (core_clear || home_cut);
-assign home_inputs = conditioning_active[5+:2];
+always @(feed_held, fifo_empty, out_ready, core_clear, guard_stopped, command, any_busy, guard_stopping, home_cut, outputs_busy, control, tick, ramp_step, conditioning_active, home_busy, command_strobe, halt, machine_control) begin: control_bits
+    enable = (control[0] && (!control[1]) && (!halt) && (!home_busy));
+    direct_mode = control[1];
+    clear_error = (command_strobe && command[1]);
+    clear_position = (command_strobe && command[2]);
+    clear_stop = (command_strobe && command[3]);
+    releasing = (command_strobe && command[3] && guard_stopped && (!conditioning_active[0]));
+    feed_pause = (machine_control[1] || guard_stopping);
+    guard_ramp = (ramp_step != 0);
+    settled = (feed_held && (!tick) && (!outputs_busy));
+    direct_ready = (out_ready && (!guard_stopping));
+    pulse_clear = (core_clear || halt);
+    sequencer_clear = (core_clear || guard_stopped);
+    home_idle = ((!any_busy) && fifo_empty && (!guard_stopped) && (!halt));
+    direct_clear = (core_clear || home_cut);
+    home_inputs = conditioning_active[5+:2];
+    drive_cleared = 0;
+    if (guard_stopped) begin
+        drive_cleared = 1;
+    end
+end
 
 
 always @(posedge clock, negedge reset) begin: soft_reset
@@ -4234,7 +4327,7 @@ end
 
 
 
-assign fifo_flush = (soft_reset_taken || (io_written && (written_addr == 8) && ((discard_on_clear && written_data[1] && written_mask[1]) || (guard_stopped && written_data[3] && written_mask[3]))));
+assign fifo_flush = (soft_reset_taken || releasing || (io_written && (written_addr == 8) && discard_on_clear && written_data[1] && written_mask[1]));
 
 
 always @(posedge clock, negedge reset) begin: outputs_before
@@ -4280,8 +4373,9 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(homing0_port_count, reg_word31_shown[0], reg_word19__store14_word_strobe, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, seq_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: _axis_source0_choose_source
+always @(homing0_port_count, reg_word31_shown[0], homing0_port_retarget, reg_word19__store14_word_strobe, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, seq_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: _axis_source0_choose_source
     direct_pulse0_command_period = reg_word17_shown;
+    direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[0] == 0));
     if (home_busy) begin
         direct_pulse0_command_load = (homing0_port_load && (reg_word31_shown[0] == 0));
         direct_pulse0_command_count = homing0_port_count;
@@ -4298,8 +4392,9 @@ always @(homing0_port_count, reg_word31_shown[0], reg_word19__store14_word_strob
 end
 
 
-always @(homing0_port_count, reg_word31_shown[0], reg_word20__store15_word_strobe, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, seq_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: _axis_source1_choose_source
+always @(homing0_port_count, reg_word31_shown[0], homing0_port_retarget, reg_word20__store15_word_strobe, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, seq_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: _axis_source1_choose_source
     direct_pulse1_command_period = reg_word18_shown;
+    direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[0] == 1));
     if (home_busy) begin
         direct_pulse1_command_load = (homing0_port_load && (reg_word31_shown[0] == 1));
         direct_pulse1_command_count = homing0_port_count;

@@ -281,24 +281,26 @@ reg [31:0] card1_card_core1_regs_fifo2_set_value;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
 reg [1:0] card1_card_core1_regs_fifo2_home_zero;
+reg [23:0] card1_card_core1_regs_fifo2_watchdog_left;
 wire card1_card_core1_regs_fifo2_any_busy;
 reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
-wire card1_card_core1_regs_fifo2_clear_error;
-wire card1_card_core1_regs_fifo2_clear_position;
-wire card1_card_core1_regs_fifo2_clear_stop;
-wire card1_card_core1_regs_fifo2_direct_clear;
-wire card1_card_core1_regs_fifo2_direct_mode;
-wire card1_card_core1_regs_fifo2_direct_ready;
+reg card1_card_core1_regs_fifo2_clear_error;
+reg card1_card_core1_regs_fifo2_clear_position;
+reg card1_card_core1_regs_fifo2_clear_stop;
+reg card1_card_core1_regs_fifo2_direct_clear;
+reg card1_card_core1_regs_fifo2_direct_mode;
+reg card1_card_core1_regs_fifo2_direct_ready;
 wire card1_card_core1_regs_fifo2_discard_on_clear;
-wire card1_card_core1_regs_fifo2_enable;
+reg [1:0] card1_card_core1_regs_fifo2_drive_cleared;
+reg card1_card_core1_regs_fifo2_enable;
 wire card1_card_core1_regs_fifo2_fifo_empty;
 wire card1_card_core1_regs_fifo2_fifo_flush;
 wire card1_card_core1_regs_fifo2_fifo_full;
 wire [9:0] card1_card_core1_regs_fifo2_fifo_level;
 reg card1_card_core1_regs_fifo2_halt;
 wire card1_card_core1_regs_fifo2_hold;
-wire card1_card_core1_regs_fifo2_home_idle;
-wire [1:0] card1_card_core1_regs_fifo2_home_inputs;
+reg card1_card_core1_regs_fifo2_home_idle;
+reg [1:0] card1_card_core1_regs_fifo2_home_inputs;
 reg card1_card_core1_regs_fifo2_io_read;
 reg card1_card_core1_regs_fifo2_io_write;
 reg card1_card_core1_regs_fifo2_io_written;
@@ -310,14 +312,15 @@ wire card1_card_core1_regs_fifo2_out_ready;
 wire card1_card_core1_regs_fifo2_outputs_busy;
 reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 wire card1_card_core1_regs_fifo2_pulse_busy;
-wire card1_card_core1_regs_fifo2_pulse_clear;
+reg card1_card_core1_regs_fifo2_pulse_clear;
 reg card1_card_core1_regs_fifo2_push;
 reg card1_card_core1_regs_fifo2_read_waited;
 reg [31:0] card1_card_core1_regs_fifo2_read_word;
+reg card1_card_core1_regs_fifo2_releasing;
 reg card1_card_core1_regs_fifo2_requested_before;
 wire card1_card_core1_regs_fifo2_seq_busy;
-wire card1_card_core1_regs_fifo2_sequencer_clear;
-wire card1_card_core1_regs_fifo2_settled;
+reg card1_card_core1_regs_fifo2_sequencer_clear;
+reg card1_card_core1_regs_fifo2_settled;
 reg card1_card_core1_regs_fifo2_soft_reset_taken;
 reg card1_card_core1_regs_fifo2_tick;
 reg [11:0] card1_card_core1_regs_fifo2_written_addr;
@@ -328,15 +331,15 @@ reg [1:0] card1_card_core1_regs_fifo2_control;
 reg card1_card_core1_regs_fifo2_home_busy;
 reg card1_card_core1_regs_fifo2_command_strobe;
 reg [3:0] card1_card_core1_regs_fifo2_command;
-wire card1_card_core1_regs_fifo2_feed_pause;
+reg card1_card_core1_regs_fifo2_guard_stopped;
+reg [6:0] card1_card_core1_regs_fifo2_conditioning_active;
+reg card1_card_core1_regs_fifo2_feed_pause;
 reg [1:0] card1_card_core1_regs_fifo2_machine_control;
 reg card1_card_core1_regs_fifo2_guard_stopping;
-wire card1_card_core1_regs_fifo2_guard_ramp;
+reg card1_card_core1_regs_fifo2_guard_ramp;
 reg [15:0] card1_card_core1_regs_fifo2_ramp_step;
 reg card1_card_core1_regs_fifo2_feed_held;
-reg card1_card_core1_regs_fifo2_guard_stopped;
 reg card1_card_core1_regs_fifo2_home_cut;
-reg [6:0] card1_card_core1_regs_fifo2_conditioning_active;
 reg card1_card_core1_regs_fifo2_guard_stop_event;
 wire card1_card_core1_regs_fifo2_requests_step_x;
 wire card1_card_core1_regs_fifo2_requests_step_y;
@@ -417,15 +420,15 @@ wire [7:0] card1_card_core1_regs_fifo2_reg_word79_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word79_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word79__store55_word_hw;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word80_honoured;
-wire card1_card_core1_regs_fifo2_reg_word80_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word80_honoured;
+reg card1_card_core1_regs_fifo2_reg_word80_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word80_shown;
 reg card1_card_core1_regs_fifo2_reg_word80_clamped;
 wire card1_card_core1_regs_fifo2_reg_word80_mine;
 wire card1_card_core1_regs_fifo2_reg_word80_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word80_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word80_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word80_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word80_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word80_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word81_shown;
@@ -463,13 +466,13 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word85_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word85_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word85_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
-wire card1_card_core1_regs_fifo2_reg_word86_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
+reg card1_card_core1_regs_fifo2_reg_word86_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word86_clamped;
 wire card1_card_core1_regs_fifo2_reg_word86_mine;
 wire card1_card_core1_regs_fifo2_reg_word86_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word86_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word86_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word86_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word87_honoured;
@@ -625,14 +628,13 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word103_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word103_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word103_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped;
-wire [23:0] card1_card_core1_regs_fifo2_reg_word104_honoured;
-wire card1_card_core1_regs_fifo2_reg_word104_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word104_shown;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word104_honoured;
+reg card1_card_core1_regs_fifo2_reg_word104_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word104_clamped;
 wire card1_card_core1_regs_fifo2_reg_word104_mine;
 wire card1_card_core1_regs_fifo2_reg_word104_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word104_shown_wide;
-wire [23:0] card1_card_core1_regs_fifo2_reg_word104_written;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word104_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word104_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped;
 reg card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe;
@@ -676,15 +678,15 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word108_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word108_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word108_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word109_honoured;
-wire card1_card_core1_regs_fifo2_reg_word109_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word109_honoured;
+reg card1_card_core1_regs_fifo2_reg_word109_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word109_shown;
 reg card1_card_core1_regs_fifo2_reg_word109_clamped;
 wire card1_card_core1_regs_fifo2_reg_word109_mine;
 wire card1_card_core1_regs_fifo2_reg_word109_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word109_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word109_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word109_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word109_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word109_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped;
 reg [22:0] card1_card_core1_regs_fifo2_reg_word110_honoured;
@@ -781,8 +783,10 @@ reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap;
 wire [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap_operand;
 reg card1_card_core1_regs_fifo2_direct_pulse4_pending;
+wire card1_card_core1_regs_fifo2_direct_pulse4_stepping;
 reg card1_card_core1_regs_fifo2_direct_pulse4_waiting;
 reg card1_card_core1_regs_fifo2_direct_pulse4_command_load;
+reg card1_card_core1_regs_fifo2_direct_pulse4_command_retarget;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse4_command_count;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_command_period;
 reg [23:0] card1_card_core1_regs_fifo2_direct_pulse5_count_addend;
@@ -792,8 +796,10 @@ reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap;
 wire [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap_operand;
 reg card1_card_core1_regs_fifo2_direct_pulse5_pending;
+wire card1_card_core1_regs_fifo2_direct_pulse5_stepping;
 reg card1_card_core1_regs_fifo2_direct_pulse5_waiting;
 reg card1_card_core1_regs_fifo2_direct_pulse5_command_load;
+reg card1_card_core1_regs_fifo2_direct_pulse5_command_retarget;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse5_command_count;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_command_period;
 reg [2:0] card1_card_core1_regs_fifo2_pulse_out2_count;
@@ -815,6 +821,7 @@ reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_step;
 reg card1_card_core1_regs_fifo2_pulse_out2_starts;
 reg card1_card_core1_regs_fifo2_pulse_out2_take;
 reg card1_card_core1_regs_fifo2_pulse_out2_turn;
+wire card1_card_core1_regs_fifo2_pulse_out2_control_pulsing;
 reg card1_card_core1_regs_fifo2_pulse_out2_request_step_x;
 reg card1_card_core1_regs_fifo2_pulse_out2_request_step_y;
 reg card1_card_core1_regs_fifo2_pulse_out2_request_dir_y;
@@ -850,9 +857,12 @@ reg [3:0] card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
 reg [23:0] card1_card_core1_regs_fifo2_homing2_addend;
 reg card1_card_core1_regs_fifo2_homing2_axis;
 reg card1_card_core1_regs_fifo2_homing2_done;
+reg card1_card_core1_regs_fifo2_homing2_finished;
+reg card1_card_core1_regs_fifo2_homing2_gave_up;
 reg [23:0] card1_card_core1_regs_fifo2_homing2_magnitude;
 reg card1_card_core1_regs_fifo2_homing2_negative;
 reg card1_card_core1_regs_fifo2_homing2_not_found;
+reg card1_card_core1_regs_fifo2_homing2_opened;
 reg [23:0] card1_card_core1_regs_fifo2_homing2_operand;
 reg [1:0] card1_card_core1_regs_fifo2_homing2_phase;
 reg card1_card_core1_regs_fifo2_homing2_positive;
@@ -865,6 +875,7 @@ reg card1_card_core1_regs_fifo2_homing2_switch;
 reg card1_card_core1_regs_fifo2_homing2_port_load;
 reg signed [23:0] card1_card_core1_regs_fifo2_homing2_port_count;
 reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
+reg card1_card_core1_regs_fifo2_homing2_port_retarget;
 reg card1_card_core1_regs_fifo2_homing2_port_ended;
 reg card1_card_core1_regs_fifo2_status_words2_busy_before;
 reg card1_card_core1_regs_fifo2_status_words2_done_flag;
@@ -1035,7 +1046,7 @@ reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word74_shown = 32'd3719037187;
+assign card1_card_core1_regs_fifo2_reg_word74_shown = 32'd3719037440;
 assign card1_card_core1_regs_fifo2_reg_word74_chain_in_data = 32'd0;
 assign card1_card_core1_regs_fifo2_reg_word74_chain_in_clamped = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word75_out_of_range = 1'd0;
@@ -1044,9 +1055,7 @@ assign card1_card_core1_regs_fifo2_reg_word76_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word76_shown = 4'd0;
 assign card1_card_core1_regs_fifo2_reg_word78_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word78_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word80_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word86_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word90_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word90_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word95_shown = 32'd33333333;
@@ -1058,11 +1067,9 @@ assign card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word101_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word102_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word103_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word104_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word105_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word107_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word108_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word109_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word109_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word110_set_mine = 1'd0;
 
@@ -3255,16 +3262,24 @@ assign card1_card_core1_regs_fifo2_reg_word80_mine_write = (card1_card_core1_reg
 
 always @(card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_reg_word80_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word80_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word80_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word80_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word80_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word80_written = ((card1_card_core1_regs_fifo2_reg_word80_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+        card1_card_core1_regs_fifo2_reg_word80_written = ((card1_card_core1_regs_fifo2_reg_word80_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word80_honoured = card1_card_core1_regs_fifo2_reg_word80_written[16-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word80_written) begin: card1_card_core1_regs_fifo2_reg_word80__limit56_clamp_above_power_of_two
+    card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'b1;
+    if ((card1_card_core1_regs_fifo2_reg_word80_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word80_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word80_honoured = card1_card_core1_regs_fifo2_reg_word80_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -3508,16 +3523,24 @@ assign card1_card_core1_regs_fifo2_reg_word86_mine_write = (card1_card_core1_reg
 
 always @(card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word86_merge_bytes
     if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
-        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[16-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word86_written) begin: card1_card_core1_regs_fifo2_reg_word86__limit59_clamp_above_power_of_two
+    card1_card_core1_regs_fifo2_reg_word86_out_of_range = 1'b1;
+    if ((card1_card_core1_regs_fifo2_reg_word86_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word86_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word86_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -4158,7 +4181,7 @@ assign card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_f
 assign card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word98_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word98__store68_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word98__store68_hold_rw_cleared
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_machine_control <= 0;
         card1_card_core1_regs_fifo2_reg_word98_clamped <= 0;
@@ -4166,8 +4189,11 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_wo
     else begin
         card1_card_core1_regs_fifo2_reg_word98_clamped <= 1'b0;
         if (((card1_card_core1_regs_fifo2_reg_word98_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word98_mine_write))) begin
-            card1_card_core1_regs_fifo2_machine_control <= card1_card_core1_regs_fifo2_reg_word98_honoured;
+            card1_card_core1_regs_fifo2_machine_control <= (card1_card_core1_regs_fifo2_reg_word98_honoured & (~(card1_card_core1_regs_fifo2_drive_cleared & 1)));
             card1_card_core1_regs_fifo2_reg_word98_clamped <= card1_card_core1_regs_fifo2_reg_word98_out_of_range;
+        end
+        else begin
+            card1_card_core1_regs_fifo2_machine_control <= (card1_card_core1_regs_fifo2_machine_control & (~(card1_card_core1_regs_fifo2_drive_cleared & 1)));
         end
     end
 end
@@ -4419,7 +4445,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word104_shown};
+assign card1_card_core1_regs_fifo2_reg_word104_shown_wide = {8'h0, card1_card_core1_regs_fifo2_watchdog_left};
 
 
 
@@ -4427,11 +4453,19 @@ assign card1_card_core1_regs_fifo2_reg_word104_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_written = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word104_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word104_honoured = card1_card_core1_regs_fifo2_reg_word104_written[24-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word104_written) begin: card1_card_core1_regs_fifo2_reg_word104__limit72_clamp_above_power_of_two
+    card1_card_core1_regs_fifo2_reg_word104_out_of_range = 1'b1;
+    if ((card1_card_core1_regs_fifo2_reg_word104_written[32-1:24] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word104_honoured = 16777215;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word104_honoured = card1_card_core1_regs_fifo2_reg_word104_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word104_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -4686,16 +4720,24 @@ assign card1_card_core1_regs_fifo2_reg_word109_mine_write = (card1_card_core1_re
 
 always @(card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word109_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word109_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word109_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word109_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word109_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word109_written = ((card1_card_core1_regs_fifo2_reg_word109_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+        card1_card_core1_regs_fifo2_reg_word109_written = ((card1_card_core1_regs_fifo2_reg_word109_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_written[16-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word109_written) begin: card1_card_core1_regs_fifo2_reg_word109__limit76_clamp_above_power_of_two
+    card1_card_core1_regs_fifo2_reg_word109_out_of_range = 1'b1;
+    if ((card1_card_core1_regs_fifo2_reg_word109_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word109_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word109_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -5415,18 +5457,28 @@ end
 assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending || card1_card_core1_regs_fifo2_direct_request_x);
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count, card1_card_core1_regs_fifo2_reg_word93_shown) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
-    if ((!card1_card_core1_regs_fifo2_direct_pulse4_command_load)) begin
+
+assign card1_card_core1_regs_fifo2_direct_pulse4_stepping = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse4_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse4_waiting) && card1_card_core1_regs_fifo2_direct_ready && ((card1_card_core1_regs_fifo2_direct_pulse4_command_retarget && (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0)) || ((!card1_card_core1_regs_fifo2_direct_pulse4_command_retarget) && card1_card_core1_regs_fifo2_direct_pulse4_pending)));
+
+
+always @(card1_card_core1_regs_fifo2_direct_pulse4_command_retarget, card1_card_core1_regs_fifo2_reg_word93_shown, card1_card_core1_regs_fifo2_direct_pulse4_stepping, card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
+    if (((!card1_card_core1_regs_fifo2_direct_pulse4_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse4_command_retarget))) begin
         card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word93_shown;
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
     end
     else if ((card1_card_core1_regs_fifo2_direct_pulse4_command_count < 0)) begin
         card1_card_core1_regs_fifo2_direct_pulse4_count_operand = (~card1_card_core1_regs_fifo2_direct_pulse4_command_count[24-1:0]);
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 1;
+        if (card1_card_core1_regs_fifo2_direct_pulse4_stepping) begin
+            card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 0;
+        end
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_direct_pulse4_command_count[24-1:0];
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 0;
+        if (card1_card_core1_regs_fifo2_direct_pulse4_stepping) begin
+            card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
+        end
     end
 end
 
@@ -5468,17 +5520,26 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
             card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
         end
-        else if (card1_card_core1_regs_fifo2_direct_pulse4_pending) begin
+        else if (card1_card_core1_regs_fifo2_direct_pulse4_stepping) begin
+            card1_card_core1_regs_fifo2_direct_request_x <= 1;
+            card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+            if (card1_card_core1_regs_fifo2_direct_pulse4_command_retarget) begin
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_counted != 0);
+            end
+            else begin
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word93_shown != 1);
+            end
+            card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
+            card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_direct_pulse4_command_period != 1);
+        end
+        else begin
+            if (card1_card_core1_regs_fifo2_direct_pulse4_command_retarget) begin
+                card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0);
+            end
             if (card1_card_core1_regs_fifo2_direct_pulse4_waiting) begin
                 card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_direct_pulse4_gap != 1);
-            end
-            else if (card1_card_core1_regs_fifo2_direct_ready) begin
-                card1_card_core1_regs_fifo2_direct_request_x <= 1;
-                card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
-                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word93_shown != 1);
-                card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
-                card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_direct_pulse4_command_period != 1);
             end
         end
     end
@@ -5489,18 +5550,28 @@ end
 assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending || card1_card_core1_regs_fifo2_direct_request_y);
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count, card1_card_core1_regs_fifo2_reg_word94_shown) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
-    if ((!card1_card_core1_regs_fifo2_direct_pulse5_command_load)) begin
+
+assign card1_card_core1_regs_fifo2_direct_pulse5_stepping = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse5_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse5_waiting) && card1_card_core1_regs_fifo2_direct_ready && ((card1_card_core1_regs_fifo2_direct_pulse5_command_retarget && (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0)) || ((!card1_card_core1_regs_fifo2_direct_pulse5_command_retarget) && card1_card_core1_regs_fifo2_direct_pulse5_pending)));
+
+
+always @(card1_card_core1_regs_fifo2_direct_pulse5_command_retarget, card1_card_core1_regs_fifo2_reg_word94_shown, card1_card_core1_regs_fifo2_direct_pulse5_stepping, card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
+    if (((!card1_card_core1_regs_fifo2_direct_pulse5_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse5_command_retarget))) begin
         card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word94_shown;
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
     end
     else if ((card1_card_core1_regs_fifo2_direct_pulse5_command_count < 0)) begin
         card1_card_core1_regs_fifo2_direct_pulse5_count_operand = (~card1_card_core1_regs_fifo2_direct_pulse5_command_count[24-1:0]);
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 1;
+        if (card1_card_core1_regs_fifo2_direct_pulse5_stepping) begin
+            card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 0;
+        end
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_direct_pulse5_command_count[24-1:0];
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 0;
+        if (card1_card_core1_regs_fifo2_direct_pulse5_stepping) begin
+            card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
+        end
     end
 end
 
@@ -5542,17 +5613,26 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
             card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
         end
-        else if (card1_card_core1_regs_fifo2_direct_pulse5_pending) begin
+        else if (card1_card_core1_regs_fifo2_direct_pulse5_stepping) begin
+            card1_card_core1_regs_fifo2_direct_request_y <= 1;
+            card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+            if (card1_card_core1_regs_fifo2_direct_pulse5_command_retarget) begin
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_counted != 0);
+            end
+            else begin
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word94_shown != 1);
+            end
+            card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
+            card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_command_period != 1);
+        end
+        else begin
+            if (card1_card_core1_regs_fifo2_direct_pulse5_command_retarget) begin
+                card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0);
+            end
             if (card1_card_core1_regs_fifo2_direct_pulse5_waiting) begin
                 card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_gap != 1);
-            end
-            else if (card1_card_core1_regs_fifo2_direct_ready) begin
-                card1_card_core1_regs_fifo2_direct_request_y <= 1;
-                card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
-                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word94_shown != 1);
-                card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
-                card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_command_period != 1);
             end
         end
     end
@@ -5562,6 +5642,7 @@ end
 
 assign card1_card_core1_regs_fifo2_out_ready = ($signed({1'b0, card1_card_core1_regs_fifo2_pulse_out2_count}) <= (4 - 2));
 assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) || (card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b00) || motor_step_x || motor_step_y);
+assign card1_card_core1_regs_fifo2_pulse_out2_control_pulsing = (card1_card_core1_regs_fifo2_pulse_out2_take || card1_card_core1_regs_fifo2_pulse_out2_level_x || card1_card_core1_regs_fifo2_pulse_out2_level_y || motor_step_x || motor_step_y);
 
 
 
@@ -5964,7 +6045,7 @@ assign card1_card_core1_regs_fifo2_input_filter2__input_count20_taken = (card1_c
 
 
 assign card1_card_core1_regs_fifo2_machine_guard2_estop = card1_card_core1_regs_fifo2_conditioning_active[0];
-assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_reg_word104_shown == 1) && (!card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe));
+assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_watchdog_left == 1) && (!card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe));
 assign card1_card_core1_regs_fifo2_machine_guard2_hits = {(card1_card_core1_regs_fifo2_requests_step_y && (!card1_card_core1_regs_fifo2_requests_dir_y) && card1_card_core1_regs_fifo2_conditioning_active[4]), (card1_card_core1_regs_fifo2_requests_step_y && card1_card_core1_regs_fifo2_requests_dir_y && card1_card_core1_regs_fifo2_conditioning_active[3]), (card1_card_core1_regs_fifo2_requests_step_x && (!card1_card_core1_regs_fifo2_requests_dir_x) && card1_card_core1_regs_fifo2_conditioning_active[2]), (card1_card_core1_regs_fifo2_requests_step_x && card1_card_core1_regs_fifo2_requests_dir_x && card1_card_core1_regs_fifo2_conditioning_active[1])};
 
 
@@ -6025,21 +6106,21 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
             card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
         end
         card1_card_core1_regs_fifo2_guard_stopped <= stopped;
-        motor_drive_enable <= ((card1_card_core1_regs_fifo2_machine_control[0] != 0) && (!stopped) && (!card1_card_core1_regs_fifo2_machine_guard2_estop));
+        motor_drive_enable <= (((card1_card_core1_regs_fifo2_machine_control[0] != 0) && (!stopped) && (!card1_card_core1_regs_fifo2_guard_stopped) && (!card1_card_core1_regs_fifo2_machine_guard2_estop)) || (motor_drive_enable && card1_card_core1_regs_fifo2_pulse_out2_control_pulsing));
     end
 end
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machine_guard2_watchdog
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word104_shown <= 0;
+        card1_card_core1_regs_fifo2_watchdog_left <= 0;
     end
     else begin
         if (card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word104_shown <= card1_card_core1_regs_fifo2_reg_word104__store72_word_value;
+            card1_card_core1_regs_fifo2_watchdog_left <= card1_card_core1_regs_fifo2_reg_word104__store72_word_value;
         end
-        else if ((card1_card_core1_regs_fifo2_reg_word104_shown != 0)) begin
-            card1_card_core1_regs_fifo2_reg_word104_shown <= (card1_card_core1_regs_fifo2_reg_word104_shown - 1);
+        else if ((card1_card_core1_regs_fifo2_watchdog_left != 0)) begin
+            card1_card_core1_regs_fifo2_watchdog_left <= (card1_card_core1_regs_fifo2_watchdog_left - 1);
         end
     end
 end
@@ -6049,7 +6130,7 @@ always @(card1_card_core1_regs_fifo2_reg_word110_shown, card1_card_core1_regs_fi
     card1_card_core1_regs_fifo2_homing2_switch = card1_card_core1_regs_fifo2_homing2_axis ? card1_card_core1_regs_fifo2_home_inputs[1] : card1_card_core1_regs_fifo2_home_inputs[0];
     card1_card_core1_regs_fifo2_homing2_seeking = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b010));
     card1_card_core1_regs_fifo2_homing2_seek_next = ((card1_card_core1_regs_fifo2_homing2_state == 3'b000) || (card1_card_core1_regs_fifo2_homing2_state == 3'b001) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)));
-    if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
+    if (((card1_card_core1_regs_fifo2_homing2_state == 3'b011) || (card1_card_core1_regs_fifo2_homing2_state == 3'b100))) begin
         card1_card_core1_regs_fifo2_homing2_magnitude = {8'h0, card1_card_core1_regs_fifo2_reg_word109_shown};
     end
     else begin
@@ -6066,7 +6147,7 @@ always @(card1_card_core1_regs_fifo2_reg_word105__store73_word_value, card1_card
         card1_card_core1_regs_fifo2_homing2_positive = card1_card_core1_regs_fifo2_homing2_negative;
     end
     card1_card_core1_regs_fifo2_home_busy = (card1_card_core1_regs_fifo2_homing2_state != 3'b000);
-    card1_card_core1_regs_fifo2_homing2_port_load = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b011) || (card1_card_core1_regs_fifo2_homing2_state == 3'b101));
+    card1_card_core1_regs_fifo2_homing2_port_load = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b011));
 end
 
 
@@ -6103,10 +6184,16 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_edges
+always @(card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_edges
+    reg drained;
     reg released;
+    drained = ((!card1_card_core1_regs_fifo2_pulse_busy) && (!card1_card_core1_regs_fifo2_out_active));
     released = ((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && (!card1_card_core1_regs_fifo2_homing2_switch));
-    card1_card_core1_regs_fifo2_home_cut = (((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && card1_card_core1_regs_fifo2_homing2_switch) || released);
+    card1_card_core1_regs_fifo2_homing2_opened = released;
+    card1_card_core1_regs_fifo2_homing2_gave_up = (drained && (((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && card1_card_core1_regs_fifo2_homing2_switch)));
+    card1_card_core1_regs_fifo2_homing2_finished = ((card1_card_core1_regs_fifo2_homing2_state == 3'b110) && (!card1_card_core1_regs_fifo2_out_active));
+    card1_card_core1_regs_fifo2_home_cut = ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && card1_card_core1_regs_fifo2_homing2_switch);
+    card1_card_core1_regs_fifo2_homing2_port_retarget = released;
     card1_card_core1_regs_fifo2_home_zero = 0;
     if (released) begin
         if (card1_card_core1_regs_fifo2_homing2_axis) begin
@@ -6152,12 +6239,10 @@ always @(card1_card_core1_regs_fifo2_homing2_negative, card1_card_core1_regs_fif
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing2_sequence
-    reg drained;
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing2_outcome
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_homing2_negative <= 0;
         card1_card_core1_regs_fifo2_homing2_done <= 0;
-        card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
         card1_card_core1_regs_fifo2_homing2_port_ended <= 0;
         card1_card_core1_regs_fifo2_homing2_axis <= 0;
         card1_card_core1_regs_fifo2_homing2_refused <= 0;
@@ -6165,9 +6250,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
     end
     else begin
         card1_card_core1_regs_fifo2_homing2_port_ended <= 0;
-        drained = ((!card1_card_core1_regs_fifo2_pulse_busy) && (!card1_card_core1_regs_fifo2_out_active));
         if (card1_card_core1_core_clear) begin
-            card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
             if (card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe) begin
                 card1_card_core1_regs_fifo2_homing2_done <= 0;
                 card1_card_core1_regs_fifo2_homing2_not_found <= 0;
@@ -6183,9 +6266,6 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
                 card1_card_core1_regs_fifo2_homing2_not_found <= 0;
                 card1_card_core1_regs_fifo2_homing2_refused <= (!card1_card_core1_regs_fifo2_home_idle);
                 card1_card_core1_regs_fifo2_homing2_port_ended <= (!card1_card_core1_regs_fifo2_home_idle);
-                if (card1_card_core1_regs_fifo2_home_idle) begin
-                    card1_card_core1_regs_fifo2_homing2_state <= 3'b001;
-                end
             end
         end
         else begin
@@ -6193,49 +6273,56 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
                 card1_card_core1_regs_fifo2_homing2_refused <= 1;
                 card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
             end
-            if ((card1_card_core1_regs_fifo2_homing2_state == 3'b001)) begin
-                card1_card_core1_regs_fifo2_homing2_state <= 3'b010;
+            if (card1_card_core1_regs_fifo2_homing2_gave_up) begin
+                card1_card_core1_regs_fifo2_homing2_not_found <= 1;
+                card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
             end
-            else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b010)) begin
-                if (card1_card_core1_regs_fifo2_homing2_switch) begin
-                    card1_card_core1_regs_fifo2_homing2_state <= 3'b011;
-                end
-                else if (drained) begin
-                    card1_card_core1_regs_fifo2_homing2_not_found <= 1;
-                    card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
-                    card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
-                end
-            end
-            else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b011)) begin
-                card1_card_core1_regs_fifo2_homing2_state <= 3'b100;
-            end
-            else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
-                if ((!card1_card_core1_regs_fifo2_homing2_switch)) begin
-                    if ((card1_card_core1_regs_fifo2_reg_word109_shown != 0)) begin
-                        card1_card_core1_regs_fifo2_homing2_state <= 3'b101;
-                    end
-                    else begin
-                        card1_card_core1_regs_fifo2_homing2_state <= 3'b111;
-                    end
-                end
-                else if (drained) begin
-                    card1_card_core1_regs_fifo2_homing2_not_found <= 1;
-                    card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
-                    card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
-                end
-            end
-            else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b101)) begin
-                card1_card_core1_regs_fifo2_homing2_state <= 3'b110;
-            end
-            else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b110)) begin
-                if ((!card1_card_core1_regs_fifo2_pulse_busy)) begin
-                    card1_card_core1_regs_fifo2_homing2_state <= 3'b111;
-                end
-            end
-            else if ((!card1_card_core1_regs_fifo2_out_active)) begin
+            else if (card1_card_core1_regs_fifo2_homing2_finished) begin
                 card1_card_core1_regs_fifo2_homing2_done <= 1;
                 card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
-                card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing2_sequence
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
+    end
+    else begin
+        if ((card1_card_core1_core_clear || card1_card_core1_regs_fifo2_homing2_gave_up || card1_card_core1_regs_fifo2_homing2_finished)) begin
+            card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
+        end
+        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
+            if ((card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe && card1_card_core1_regs_fifo2_home_idle)) begin
+                card1_card_core1_regs_fifo2_homing2_state <= 3'b001;
+            end
+        end
+        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b001)) begin
+            card1_card_core1_regs_fifo2_homing2_state <= 3'b010;
+        end
+        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b010)) begin
+            if (card1_card_core1_regs_fifo2_homing2_switch) begin
+                card1_card_core1_regs_fifo2_homing2_state <= 3'b011;
+            end
+        end
+        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b011)) begin
+            card1_card_core1_regs_fifo2_homing2_state <= 3'b100;
+        end
+        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
+            if (card1_card_core1_regs_fifo2_homing2_opened) begin
+                if ((card1_card_core1_regs_fifo2_reg_word109_shown != 0)) begin
+                    card1_card_core1_regs_fifo2_homing2_state <= 3'b101;
+                end
+                else begin
+                    card1_card_core1_regs_fifo2_homing2_state <= 3'b110;
+                end
+            end
+        end
+        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b101)) begin
+            if ((!card1_card_core1_regs_fifo2_pulse_busy)) begin
+                card1_card_core1_regs_fifo2_homing2_state <= 3'b110;
             end
         end
     end
@@ -6304,21 +6391,27 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_write_
 end
 
 
-
-assign card1_card_core1_regs_fifo2_enable = (card1_card_core1_regs_fifo2_control[0] && (!card1_card_core1_regs_fifo2_control[1]) && (!card1_card_core1_regs_fifo2_halt) && (!card1_card_core1_regs_fifo2_home_busy));
-assign card1_card_core1_regs_fifo2_direct_mode = card1_card_core1_regs_fifo2_control[1];
-assign card1_card_core1_regs_fifo2_clear_error = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[1]);
-assign card1_card_core1_regs_fifo2_clear_position = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[2]);
-assign card1_card_core1_regs_fifo2_clear_stop = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[3]);
-assign card1_card_core1_regs_fifo2_feed_pause = (card1_card_core1_regs_fifo2_machine_control[1] || card1_card_core1_regs_fifo2_guard_stopping);
-assign card1_card_core1_regs_fifo2_guard_ramp = (card1_card_core1_regs_fifo2_ramp_step != 0);
-assign card1_card_core1_regs_fifo2_settled = (card1_card_core1_regs_fifo2_feed_held && (!card1_card_core1_regs_fifo2_tick) && (!card1_card_core1_regs_fifo2_outputs_busy));
-assign card1_card_core1_regs_fifo2_direct_ready = (card1_card_core1_regs_fifo2_out_ready && (!card1_card_core1_regs_fifo2_guard_stopping));
-assign card1_card_core1_regs_fifo2_pulse_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_halt);
-assign card1_card_core1_regs_fifo2_sequencer_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped);
-assign card1_card_core1_regs_fifo2_home_idle = ((!card1_card_core1_regs_fifo2_any_busy) && card1_card_core1_regs_fifo2_fifo_empty && (!card1_card_core1_regs_fifo2_guard_stopped) && (!card1_card_core1_regs_fifo2_halt));
-assign card1_card_core1_regs_fifo2_direct_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_home_cut);
-assign card1_card_core1_regs_fifo2_home_inputs = card1_card_core1_regs_fifo2_conditioning_active[5+:2];
+always @(card1_card_core1_regs_fifo2_feed_held, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_out_ready, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_command, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_home_cut, card1_card_core1_regs_fifo2_outputs_busy, card1_card_core1_regs_fifo2_control, card1_card_core1_regs_fifo2_tick, card1_card_core1_regs_fifo2_ramp_step, card1_card_core1_regs_fifo2_conditioning_active, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_command_strobe, card1_card_core1_regs_fifo2_halt, card1_card_core1_regs_fifo2_machine_control) begin: card1_card_core1_regs_fifo2_control_bits
+    card1_card_core1_regs_fifo2_enable = (card1_card_core1_regs_fifo2_control[0] && (!card1_card_core1_regs_fifo2_control[1]) && (!card1_card_core1_regs_fifo2_halt) && (!card1_card_core1_regs_fifo2_home_busy));
+    card1_card_core1_regs_fifo2_direct_mode = card1_card_core1_regs_fifo2_control[1];
+    card1_card_core1_regs_fifo2_clear_error = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[1]);
+    card1_card_core1_regs_fifo2_clear_position = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[2]);
+    card1_card_core1_regs_fifo2_clear_stop = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[3]);
+    card1_card_core1_regs_fifo2_releasing = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[3] && card1_card_core1_regs_fifo2_guard_stopped && (!card1_card_core1_regs_fifo2_conditioning_active[0]));
+    card1_card_core1_regs_fifo2_feed_pause = (card1_card_core1_regs_fifo2_machine_control[1] || card1_card_core1_regs_fifo2_guard_stopping);
+    card1_card_core1_regs_fifo2_guard_ramp = (card1_card_core1_regs_fifo2_ramp_step != 0);
+    card1_card_core1_regs_fifo2_settled = (card1_card_core1_regs_fifo2_feed_held && (!card1_card_core1_regs_fifo2_tick) && (!card1_card_core1_regs_fifo2_outputs_busy));
+    card1_card_core1_regs_fifo2_direct_ready = (card1_card_core1_regs_fifo2_out_ready && (!card1_card_core1_regs_fifo2_guard_stopping));
+    card1_card_core1_regs_fifo2_pulse_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_halt);
+    card1_card_core1_regs_fifo2_sequencer_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped);
+    card1_card_core1_regs_fifo2_home_idle = ((!card1_card_core1_regs_fifo2_any_busy) && card1_card_core1_regs_fifo2_fifo_empty && (!card1_card_core1_regs_fifo2_guard_stopped) && (!card1_card_core1_regs_fifo2_halt));
+    card1_card_core1_regs_fifo2_direct_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_home_cut);
+    card1_card_core1_regs_fifo2_home_inputs = card1_card_core1_regs_fifo2_conditioning_active[5+:2];
+    card1_card_core1_regs_fifo2_drive_cleared = 0;
+    if (card1_card_core1_regs_fifo2_guard_stopped) begin
+        card1_card_core1_regs_fifo2_drive_cleared = 1;
+    end
+end
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_soft_reset
@@ -6334,7 +6427,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_fifo_flush = (card1_card_core1_regs_fifo2_soft_reset_taken || (card1_card_core1_regs_fifo2_io_written && (card1_card_core1_regs_fifo2_written_addr == 8) && ((card1_card_core1_regs_fifo2_discard_on_clear && card1_card_core1_regs_fifo2_written_data[1] && card1_card_core1_regs_fifo2_written_mask[1]) || (card1_card_core1_regs_fifo2_guard_stopped && card1_card_core1_regs_fifo2_written_data[3] && card1_card_core1_regs_fifo2_written_mask[3]))));
+assign card1_card_core1_regs_fifo2_fifo_flush = (card1_card_core1_regs_fifo2_soft_reset_taken || card1_card_core1_regs_fifo2_releasing || (card1_card_core1_regs_fifo2_io_written && (card1_card_core1_regs_fifo2_written_addr == 8) && card1_card_core1_regs_fifo2_discard_on_clear && card1_card_core1_regs_fifo2_written_data[1] && card1_card_core1_regs_fifo2_written_mask[1]));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_outputs_before
@@ -6380,8 +6473,9 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word105_shown[0], card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word93__store66_word_value, card1_card_core1_regs_fifo2_reg_word91_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word105_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word93__store66_word_value, card1_card_core1_regs_fifo2_reg_word91_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
     card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word91_shown;
+    card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word105_shown[0] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
         card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word105_shown[0] == 0));
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
@@ -6398,8 +6492,9 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word105_shown[0], card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word94__store67_word_value, card1_card_core1_regs_fifo2_reg_word92_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word105_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word94__store67_word_value, card1_card_core1_regs_fifo2_reg_word92_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
     card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word92_shown;
+    card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word105_shown[0] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
         card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word105_shown[0] == 1));
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_homing2_port_count;

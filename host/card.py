@@ -22,8 +22,10 @@ come from FIFO_SIZE and BUILD: the host needs no knowledge of the build.
 
 The machine side (docs/machine.md) comes from ``host.machine_io``: ``drive``,
 ``hold``, ``resume``, ``inputs``, ``watchdog``, ``estop_state``, ``limits``,
-``stop_reason``, ``clear_stop``, ``home``.  A card the guard has stopped
-raises ``MachineStopped`` from ``check`` and ``wait_done``.
+``stop_reason``, ``clear_stop`` (the drives stay off after it: ``drive``
+again), ``home``, ``machine_side``, ``machine`` (a simulated card's simulated
+machine).  A card the guard has stopped raises ``MachineStopped`` from
+``check`` and ``wait_done``.
 """
 import bisect
 import math
@@ -112,12 +114,9 @@ class Card(MachineIO):
         major, minor = version >> 8, version & 0xFF
         if major != MAJOR:
             raise IdentityError(f"{where}: register map {major}.{minor}; this host software speaks {MAJOR}.x")
-        if minor < 1:
-            raise IdentityError(f"{where}: register map {major}.{minor} has no capability registers "
-                                "(1.1 added them): load a newer bitstream")
         if minor < MINOR:
-            raise IdentityError(f"{where}: register map {major}.{minor} lacks what 1.{MINOR} added "
-                                "(the machine guard in 1.2, homing in 1.3): load a newer bitstream")
+            raise IdentityError(f"{where}: register map {major}.{minor} lacks what {MAJOR}.{MINOR} added "
+                                "(models/registers.py, VERSIONS): load a newer bitstream")
         build = self.read("BUILD")
         ids = self.transport.config_read(0)
         variants = regmap.field_value("BUILD", "DDA_VARIANTS", build)

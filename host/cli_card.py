@@ -21,6 +21,7 @@ from host.planner import plan
 from host.selftest import selftest
 from host.stream import Stopped, stream
 from host.transports import SIM_KINDS, open_transport
+from models.sim_machine import MachineConfig
 
 STOP_EXIT = 130  # the shell's code for a job ended by SIGINT
 SIMULATED_AXES = (2,)  # the builds a simulated card can be today (the N-axis card is not built yet)
@@ -32,6 +33,8 @@ def add_commands(commands, positive, scales, count, axis_count):
         sub.add_argument("--card", default="verilator",
                          help=f"{', '.join(SIM_KINDS)} (simulated), pci or pci:DDDD:BB:DD.F (default verilator)")
         sub.add_argument("--sim", choices=SIM_KINDS, help="the simulated card of this kind (same as --card KIND)")
+        sub.add_argument("--machine", help="simulated card: a simulated machine on its inputs, from this JSON file "
+                                           "(switches, E-stop, drives; docs/machine.md)")
 
     run = commands.add_parser("run", help="run FILE on a card, streaming it through the FIFO")
     run.add_argument("file", help="G-code program, or an .svg drawing")
@@ -69,6 +72,21 @@ def card_spec(options, refuse):
     return spec
 
 
+def transport_options(options, spec, refuse):
+    """The transport's options: ``machine`` from ``--machine`` (checked before the card is opened)."""
+    if not options.machine:
+        return {}
+    if spec not in SIM_KINDS:
+        refuse("--machine needs a simulated card: a real card has a real machine")
+    path = Path(options.machine)
+    if not path.is_file():
+        refuse(f"--machine {path}: no such file")
+    try:
+        return {"machine": MachineConfig.from_json(path.read_text())}
+    except ValueError as error:
+        refuse(f"--machine {path}: {error}")
+
+
 def run_command(options, refuse, per_axis):
     """``run``; the exit code."""
     spec = card_spec(options, refuse)
@@ -93,7 +111,7 @@ def run_command(options, refuse, per_axis):
     drawing = [dataclasses.replace(item, feed=item.feed * scale) if getattr(item, "feed", None) else item
                for item in drawing]
     wall = time.monotonic()
-    with open_transport(spec) as transport:
+    with open_transport(spec, **transport_options(options, spec, refuse)) as transport:
         card = Card(transport)
         axes = card.identity.axes
         if options.axes is not None and options.axes != axes:
@@ -191,7 +209,7 @@ def _progress_bar():
 
 def info_command(options, refuse):
     spec = card_spec(options, refuse)
-    with open_transport(spec) as transport:
+    with open_transport(spec, **transport_options(options, spec, refuse)) as transport:
         card = Card(transport)
         ident = card.identity
         print(f"card:        {transport.name}")
@@ -202,12 +220,37 @@ def info_command(options, refuse):
         print(f"coordinates: {ident.coord_width} bits; axes {ident.axes}; DDA variants {list(ident.variants)}; "
               f"device {ident.device}")
         print(f"status:      {card.status():#010x}; position {card.position()}; last MARK {card.last_mark()}")
+        _machine_report(card)
     return 0
+
+
+def _machine_report(card):
+    """``info``'s machine side: inputs, the guard, DRIVE_ENABLE, the watchdog, homing."""
+    side = card.machine_side()
+    reason, limits = side["stop"]
+    state = "STOPPED" if side["stopped"] else "STOPPING" if side["stopping"] else None
+    which = f", {', '.join(limits)}" if limits else ""
+    stop = f"{state} ({reason}{which})" if state else "running"
+    pin, asked = side["drive_enable"]
+    homing = side["homing"]
+    outcome = next((name for name in ("DONE", "NOT_FOUND", "REFUSED") if homing[name]), "none")
+    print(f"inputs:      active {', '.join(side['inputs']) or 'none'} (after INPUT_POLARITY and the filter); "
+          f"pins high {', '.join(side['raw']) or 'none'}")
+    print(f"guard:       {stop}")
+    print(f"drives:      DRIVE_ENABLE pin {'high' if pin else 'low'}, MACHINE_CONTROL.DRIVE_ENABLE {int(asked)}; "
+          f"hold {'on' if side['hold'][0] else 'off'}{' (held)' if side['hold'][1] else ''}")
+    print(f"watchdog:    {side['watchdog']} clocks left" if side["watchdog"] else "watchdog:    off")
+    print(f"homing:      {'busy, ' + homing['PHASE'] if homing['BUSY'] else 'idle'}; last HOME axis "
+          f"{homing['AXIS']}: {outcome}")
+    if card.machine is not None:
+        state = card.machine.state()
+        print(f"sim machine: positions {state.positions}, steps lost to a disabled drive {state.lost}, "
+              f"E-stop {'pressed' if state.estop else 'released'}")
 
 
 def selftest_command(options, refuse):
     spec = card_spec(options, refuse)
-    with open_transport(spec) as transport:
+    with open_transport(spec, **transport_options(options, spec, refuse)) as transport:
         card = Card(transport)
         failures = 0
         for name, problem in selftest(card):

@@ -27,7 +27,13 @@ class MachineIO:
     """Drive enable, feed hold, inputs, watchdog, stop state and homing of a ``Card``."""
 
     def drive(self, enable=True):
-        """MACHINE_CONTROL.DRIVE_ENABLE: the DRIVE_ENABLE pin follows it while the card is not stopped."""
+        """MACHINE_CONTROL.DRIVE_ENABLE: the DRIVE_ENABLE pin follows it while
+        the card is not stopped.  A stop clears it and the card keeps no 1
+        while stopped, so ``drive(True)`` on a stopped card raises
+        ``MachineStopped`` with nothing written: ``clear_stop()`` first, then
+        ``drive(True)`` re-energises the drives."""
+        if enable and self.field("STATUS", "STOPPED"):
+            raise MachineStopped(*self.stop_reason())
         self._machine_control(DRIVE_ENABLE=int(enable))
 
     def hold(self, timeout=1.0):
@@ -92,12 +98,45 @@ class MachineIO:
 
     def clear_stop(self):
         """COMMAND.CLEAR_STOP; MachineStopped if the card stays stopped (the
-        E-stop input still active).  CLEAR_STOP empties the FIFO: the record
-        of queued words starts afresh."""
+        E-stop input still active: the refused CLEAR_STOP changed nothing, the
+        FIFO kept its words).  A successful CLEAR_STOP empties the FIFO (the
+        record of queued words starts afresh) and leaves the drives off:
+        ``drive(True)`` enables them again."""
         self.transport.write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", CLEAR_STOP=1))
-        self._forget()
         if self.field("STATUS", "STOPPED"):
             raise MachineStopped(*self.stop_reason())
+        self._forget()
+
+    @property
+    def machine(self):
+        """The simulated machine on a simulated card's inputs (``press_estop``,
+        ``release_estop``, ``state()``: docs/machine.md), None on a real card
+        or a simulation without one."""
+        return self.transport.machine
+
+    def machine_side(self):
+        """What the machine side shows now, by name: ``inputs`` (the filtered
+        inputs active, after INPUT_POLARITY), ``raw`` (the pins as wired),
+        ``stop`` (STOP_REASON as names, ``STOPPING`` or ``STOPPED`` too),
+        ``drive_enable`` (the pin and MACHINE_CONTROL's request), ``hold``,
+        ``watchdog`` (clocks left, 0: off) and ``homing`` (HOME_STATUS)."""
+        status, control = self.read("MACHINE_STATUS"), self.read("MACHINE_CONTROL")
+        active, raw = (regmap.field_value("MACHINE_STATUS", name, status) for name in ("ACTIVE", "RAW"))
+        home = self.read("HOME_STATUS")
+        homing = {name: regmap.field_value("HOME_STATUS", name, home) for name in ("BUSY", "DONE", "NOT_FOUND",
+                                                                                  "REFUSED")}
+        return dict(
+            inputs=tuple(name for bit, name in enumerate(regmap.INPUT_NAMES) if active >> bit & 1),
+            raw=tuple(name for bit, name in enumerate(regmap.INPUT_NAMES) if raw >> bit & 1),
+            stop=self.stop_reason(), stopped=bool(regmap.field_value("MACHINE_STATUS", "STOPPED", status)),
+            stopping=bool(regmap.field_value("MACHINE_STATUS", "STOPPING", status)),
+            drive_enable=(bool(regmap.field_value("MACHINE_STATUS", "DRIVE_ENABLE", status)),
+                          bool(regmap.field_value("MACHINE_CONTROL", "DRIVE_ENABLE", control))),
+            hold=(bool(regmap.field_value("MACHINE_CONTROL", "HOLD", control)),
+                  bool(regmap.field_value("MACHINE_STATUS", "HELD", status))),
+            watchdog=self.read("WATCHDOG"),
+            homing=dict(homing, PHASE=regmap.HOME_PHASES[regmap.field_value("HOME_STATUS", "PHASE", home)],
+                        AXIS="XY"[self.field("HOME", "AXIS")]))
 
     def home(self, axis, direction="negative", **settings):
         """HOME one axis; the position (``host.homing.home`` says how)."""

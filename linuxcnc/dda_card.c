@@ -24,10 +24,14 @@
  * raises `error` and holds that axis.  error-code: dda_state.h.
  *
  * Machine I/O: `drive-enable` goes to MACHINE_CONTROL.DRIVE_ENABLE (the
- * card's DRIVE_ENABLE pin, which the card itself drops when it stops);
+ * card's DRIVE_ENABLE pin, which the card itself drops when it stops and
+ * keeps low after COMMAND.CLEAR_STOP: the restart writes it again);
  * while the queue runs, every period rewrites WATCHDOG with
  * `watchdog.timeout_ns` in card clocks, so a PC that stops driving the card
- * has it stop on its own within that time.  A watchdog stop sets
+ * has it stop on its own within that time.  `input.<name>` (estop,
+ * limit-pos-x .. limit-neg-y, home-x, home-y) are the card's filtered
+ * inputs (MACHINE_STATUS.ACTIVE), read every period: LinuxCNC's home-sw-in
+ * and limit pins take them.  A watchdog stop sets
  * `watchdog.has_bit`, which holds the card stopped (and `error` high) until
  * it is written false.  Each period's DWELL is trimmed from the FIFO level
  * so that the card's crystal, some ppm off the PC's timer, neither drains
@@ -159,6 +163,8 @@ static void read_card(void *arg, long period)
     *c->fifo_level = level;
     c->room = (uint32_t)level < c->fifo_size ? c->fifo_size - (uint32_t)level : 0;
     *c->estop_active = (FIELD(machine, DDA_MACHINE_STATUS_ACTIVE) & DDA_INPUT_POLARITY_ESTOP_MASK) != 0;
+    for (i = 0; i < DDA_INPUTS; i++)
+        *c->inputs[i] = (FIELD(machine, DDA_MACHINE_STATUS_ACTIVE) >> i) & 1;
     if (c->running)
         trim_drift(c, level);
     if (status & DDA_STATUS_STOPPED_MASK)
@@ -216,6 +222,12 @@ static int start(struct card *c)
         card_stopped(c, 1);
         return 1;
     }
+    /* a stop cleared MACHINE_CONTROL.DRIVE_ENABLE and CLEAR_STOP does not set it
+     * again: the drives come back only with this new write of the HAL pin */
+    c->drive_written = *c->drive_enable != 0;
+    if (dda_write32(&c->transport, DDA_MACHINE_CONTROL,
+                    c->drive_written ? DDA_MACHINE_CONTROL_DRIVE_ENABLE_MASK : 0) < 0)
+        return -1;
     c->iteration = dda_iteration_clocks(dda_step_cycle(t[STEPLEN], t[STEPSPACE], HAS_STEP_SPACE));
     n += dda_cmd_set(&words[n], DDA_SLOWEST_ITERATION / c->iteration, DDA_FEED_RATE_SET_INDEX);
     n += dda_cmd_set(&words[n], t[STEPLEN], DDA_STEP_WIDTH_SET_INDEX);

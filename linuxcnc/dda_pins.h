@@ -10,6 +10,9 @@
 #include "dda_state.h"
 
 static const char *const TIMING_NAMES[TIMINGS] = {"steplen", "stepspace", "dirsetup", "dirhold"};
+/* the input.<name> pins, bit n of MACHINE_STATUS.ACTIVE (INPUT_POLARITY's order) */
+static const char *const INPUT_PINS[DDA_INPUTS] = {"estop", "limit-pos-x", "limit-neg-x", "limit-pos-y",
+                                                   "limit-neg-y", "home-x", "home-y"};
 
 static int dda_export_axis(int comp_id, struct stepgen *s, int i)
 {
@@ -51,6 +54,8 @@ static int dda_export_card(int comp_id, struct card *c)
     r |= hal_pin_bit_newf(HAL_IN, &c->estop_in, comp_id, "%s.estop-in", p);
     r |= hal_pin_bit_newf(HAL_IN, &c->drive_enable, comp_id, "%s.drive-enable", p);
     r |= hal_pin_bit_newf(HAL_OUT, &c->estop_active, comp_id, "%s.estop-active", p);
+    for (i = 0; i < DDA_INPUTS; i++)
+        r |= hal_pin_bit_newf(HAL_OUT, &c->inputs[i], comp_id, "%s.input.%s", p, INPUT_PINS[i]);
     r |= hal_pin_s32_newf(HAL_OUT, &c->stop_reason, comp_id, "%s.stop-reason", p);
     r |= hal_pin_bit_newf(HAL_IO, &c->watchdog_has_bit, comp_id, "%s.watchdog.has_bit", p);
     r |= hal_param_u32_newf(HAL_RW, &c->watchdog_timeout_ns, comp_id, "%s.watchdog.timeout_ns", p);

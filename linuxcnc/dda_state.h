@@ -13,6 +13,7 @@
 #define AXES 2
 #define TRIM_RING 64         /* periods of FIFO words remembered: more than keep_ahead can be */
 #define TRIM_SHIFT 8         /* the drift loop's step: a period's clocks / 256 (at least 1) */
+#define DDA_INPUTS 7         /* MACHINE_STATUS.ACTIVE's bits: E-stop, limits, home switches */
 #define START_WORDS (6 * DDA_CMD_SET_WORDS) /* the SETs of a start, at most */
 #define PERIOD_WORDS (DDA_CMD_LINE_WORDS + DDA_CMD_DWELL_WORDS) /* a period's burst, at most */
 
@@ -58,6 +59,7 @@ struct card {
     hal_bit_t *estop_in;           /* low: the queue stops (LinuxCNC's E-stop chain) */
     hal_bit_t *drive_enable;       /* MACHINE_CONTROL.DRIVE_ENABLE */
     hal_bit_t *estop_active;       /* the card's E-stop input (MACHINE_STATUS.ACTIVE) */
+    hal_bit_t *inputs[DDA_INPUTS]; /* the card's filtered inputs (MACHINE_STATUS.ACTIVE): input.<name> */
     hal_s32_t *stop_reason;        /* STOP_REASON.REASON: why the card holds itself stopped */
     hal_bit_t *watchdog_has_bit;   /* the card's watchdog stopped it; written false to go on */
     hal_u32_t watchdog_timeout_ns;

@@ -213,16 +213,20 @@ class DirectPulseModel:
         # the last request's own clock counts (the step is not yet in the outputs)
         return bool(load) or self.remaining != 0 or self.request
 
-    def clock(self, load=False, count=0, period=1, ready=True, clear=False):
+    def clock(self, load=False, count=0, period=1, ready=True, clear=False, retarget=False):
+        """``retarget``: |``count``| pulses are left from now on, in the direction
+        and at the period's count under way (a request now is the first of them)."""
         self.request = False
         if clear:
             self.remaining = 0
         elif load:
             self.remaining, self.direction, self.wait = abs(count), count >= 0, 0
-        elif self.remaining:
+        else:
+            if retarget:
+                self.remaining = abs(count)
             if self.wait:
                 self.wait -= 1
-            elif ready:
+            elif self.remaining and ready:
                 self.request = True
                 self.remaining -= 1
                 self.wait = period - 1

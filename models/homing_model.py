@@ -92,13 +92,13 @@ class HomingExpectation:
     backoff: list            # rises after it
 
 
-def expected_homing(rises, axis, levels, samples, negative):
+def expected_homing(rises, axis, levels, samples, negative, tick=1):
     """What HOME on ``axis`` (0 X, 1 Y) must do, given the pins' ``rises``
     (``PinLog.rises``) and the switch's pin ``levels``: the position counts
     from 0 the steps whose STEP rises after the edge at which the filtered
     switch input goes inactive (the sequencer sees it in the clock after
     that edge and zeroes at the next, with a step rising there)."""
-    changes = filtered_changes(levels, samples)
+    changes = filtered_changes(levels, samples, tick)
     trip_edge = next(edge for edge, active in changes if active)
     release_edge = next(edge for edge, active in changes if not active and edge > trip_edge)
     towards = not negative

@@ -6,6 +6,7 @@ Written from the rules in the blocks' docstrings and ``docs/machine.md``
 * ``InputFilterModel``: synchroniser, polarity and glitch filter (``rtl/machine/input_filter.py``).
 * ``MachineGuardModel``: E-stop latch, watchdog, limits, drive enable (``rtl/machine/machine_guard.py``).
 * ``paused_ticks``: the iterations of a long move on a feed hold (``FeedRateModel``).
+* ``reaction_clocks``: the E-stop's reaction time, pin to DRIVE_ENABLE low (docs/machine.md).
 """
 from models import registers as regmap
 from models.card_model import FeedRateModel
@@ -58,7 +59,9 @@ class MachineGuardModel:
     (that request itself is dropped).  While stopped, or while the E-stop
     input is active, no step request passes (``halt``).  ``clear_stop``
     releases the latch unless the E-stop input is active.  DRIVE_ENABLE
-    follows ``drive_request`` one clock late, low while stopped or E-stop.
+    follows ``drive_request`` one clock late, low while stopped or E-stop,
+    except that once high it stays high while ``pulsing`` (a STEP pulse
+    starts at the coming edge or is high): the drive sees every step.
 
     With ``ramp`` (RAMP_STEP not 0) a watchdog or limit cause does not stop
     at once: ``stopping`` is set (the feed rate decelerates), every step
@@ -94,10 +97,11 @@ class MachineGuardModel:
         return tuple(steps)
 
     def clock(self, active=0, steps=(False, False), dirs=(False, False), drive_request=False,
-              clear_stop=False, watchdog_load=False, watchdog_timeout=0, ramp=False, held=False):
+              clear_stop=False, watchdog_load=False, watchdog_timeout=0, ramp=False, held=False, pulsing=False):
         estop = bool(active >> INPUT["ESTOP"] & 1)
         expired = self.watchdog_left == 1 and not watchdog_load
         hits = self.limit_hits(active, steps, dirs)
+        was_stopped = self.stopped
         self.stop_event = False
         if not self.stopped:
             if estop:
@@ -113,7 +117,8 @@ class MachineGuardModel:
                 self.stopping, self.stop_event = False, True
         elif clear_stop and not estop:
             self.stopped, self.reason, self.limits = False, 0, 0
-        self.drive_enable = drive_request and not self.stopped and not estop
+        self.drive_enable = ((drive_request and not self.stopped and not was_stopped and not estop)
+                             or (self.drive_enable and pulsing))
         if watchdog_load:
             self.watchdog_left = watchdog_timeout
         elif self.watchdog_left:
@@ -135,3 +140,17 @@ def paused_ticks(target, ramp_start, ramp_step, pause_at, limit=1 << 20):
         if model.held:
             return ticks
     raise AssertionError(f"the rate did not reach zero in {limit} clocks")
+
+
+def reaction_clocks(samples, tick):
+    """(fewest, most) clocks from the clock in which the E-stop pin changes to
+    the one in which DRIVE_ENABLE reads low, no STEP pulse under way.
+
+    The synchroniser takes the pin at the next edge and shows it one edge
+    later (2); the first sample that sees it comes 0 .. tick - 1 clocks on
+    (the shared prescaler's phase), ``samples`` - 1 more follow ``tick``
+    clocks apart, ACTIVE changes at the edge after the last (1), the latch and
+    DRIVE_ENABLE's flip-flop at the next (1): (samples - 1) x tick + 4 + wait.
+    """
+    first = (max(samples, 1) - 1) * tick + 4
+    return first, first + tick - 1

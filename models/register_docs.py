@@ -46,6 +46,8 @@ def markdown():
         for item in reg.fields:
             bits = f"{item.lsb + item.width - 1}:{item.lsb}" if item.width > 1 else f"{item.lsb}"
             kind = " (signed)" if item.signed else ""
+            if item.cleared is not None:
+                kind += f"; cleared by the hardware {item.cleared}"
             lines.append(f"| {bits} | {item.name} | {item.text}{kind} |")
         lines.append("")
     return "\n".join(lines)

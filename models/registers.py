@@ -11,7 +11,9 @@ Access kinds:
 - ``RO``: read only; writes are ignored.  The value comes from the hardware.
 - ``RW``: read/write, byte enables honoured.  A value outside the register's
   ``minimum``/``maximum`` is clamped to the nearest bound (the register reads
-  back what the hardware honours) and ``INT_STATUS.CLAMPED`` is set.
+  back what the hardware honours) and ``INT_STATUS.CLAMPED`` is set.  A
+  field with ``cleared`` (the event, in words) is cleared by the hardware
+  and held at 0 while that holds: a write of 1 meanwhile is not kept.
 - ``W1C``: hardware sets bits, writing 1 clears them.
 - ``W1S``: writing 1 sets bits, the hardware clears them when it has acted.
 - ``WP`` (write pulse): a write gives a one-clock pulse of the written value
@@ -45,6 +47,10 @@ VERSIONS = (
              "STATUS.STOPPED, INT_STATUS.STOPPED and INPUT; docs/machine.md)"),
     (0x0103, "feed hold and the decelerated stop (MACHINE_CONTROL.HOLD, MACHINE_STATUS.HELD and "
              "STOPPING); homing (HOME .. HOME_SEARCH, INT_STATUS.HOMED; docs/machine.md)"),
+    (0x0200, "a stop clears MACHINE_CONTROL.DRIVE_ENABLE (CLEAR_STOP no longer re-energises the drives: "
+             "the host writes it again); WATCHDOG, LOW_WATER, RAMP_STEP and HOME_BACKOFF clamp a write "
+             "above their range instead of cutting it; a refused CLEAR_STOP keeps the FIFO; "
+             "DRIVE_ENABLE stays high until a STEP pulse under way has ended (docs/machine.md)"),
 )
 VERSION = VERSIONS[-1][0]
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock
@@ -59,6 +65,7 @@ class Field:
     text: str
     signed: bool = False
     build: str = None  # the build parameter whose value the field holds (RO only)
+    cleared: str = None  # RW only: what clears the field and holds it at 0 (the hardware's ``hw`` bits)
 
     @property
     def mask(self):
@@ -179,7 +186,7 @@ REGISTERS = (
     Register("INT_ENABLE", 0x10, "RW", 0, "interrupt enables (INTA# = any enabled status bit)", _INT_FIELDS),
     Register("INT_STATUS", 0x14, "W1C", 0, "interrupt status, write 1 to clear", _INT_FIELDS),
     Register("LOW_WATER", 0x18, "RW", 0, "FIFO low-water mark",
-             _one("LEVEL", 16, "LOW_WATER interrupt when the FIFO level falls below this")),
+             _one("LEVEL", 16, "LOW_WATER interrupt when the FIFO level falls below this"), minimum=0, maximum=0xFFFF),
     Register("MARK_TAG", 0x1C, "RO", 0, "tag of the last MARK reached",
              _one("TAG", 16, "the MARK command's tag")),
     Register("POS_X", 0x20, "RO", 0, "X position in steps; reading it snapshots POS_Y",
@@ -197,7 +204,7 @@ REGISTERS = (
     Register("RAMP_STEP", 0x30, "RW", 0,
              "rate change per iteration: up towards FEED_RATE, down to RAMP_START before a stop (0: no ramp)",
              _one("STEP", 16, "added to the rate each iteration until FEED_RATE; subtracted as the end nears"),
-             set_index=2),
+             minimum=0, maximum=0xFFFF, set_index=2),
     Register("STEP_WIDTH", 0x34, "RW", 1, "STEP high time, also its minimum low time, in clocks",
              _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=3),
     Register("DIR_SETUP", 0x38, "RW", 1, "DIR stable before the STEP leading edge, in clocks",
@@ -236,7 +243,9 @@ REGISTERS = (
                build="device"), 0),
     )),
     Register("MACHINE_CONTROL", 0x60, "RW", 0, "the machine's outputs", (
-        Field("DRIVE_ENABLE", 0, 1, "1: raise the DRIVE_ENABLE pin while the card is not stopped"),
+        Field("DRIVE_ENABLE", 0, 1, "1: raise the DRIVE_ENABLE pin (a pulse under way keeps it high to its end); "
+              "after a stop the host writes 1 again once CLEAR_STOP has released it",
+              cleared="at a stop of the guard, and held at 0 while STATUS.STOPPED"),
         Field("HOLD", 1, 1, "feed hold: 1 ramps the path's rate down to zero (RAMP_STEP) and waits, "
               "0 ramps it up again; the path continues exactly"),
     )),
@@ -267,7 +276,9 @@ REGISTERS = (
              _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
     Register("WATCHDOG", 0x78, "WP", 0,
              "host watchdog: write the timeout in clocks (0: off) at least that often; reads the clocks left",
-             _one("CLOCKS", WATCHDOG_BITS, "clocks until the guard stops the card (reason WATCHDOG)")),
+             _one("CLOCKS", WATCHDOG_BITS, "clocks until the guard stops the card (reason WATCHDOG); a write "
+                  f"above {(1 << WATCHDOG_BITS) - 1} loads {(1 << WATCHDOG_BITS) - 1}"),
+             minimum=0, maximum=(1 << WATCHDOG_BITS) - 1),
     Register("HOME", 0x7C, "WP", 0, "home one axis (docs/machine.md); reads what the last HOME asked", (
         Field("AXIS", 0, 1, "0: X, 1: Y"),
         Field("NEGATIVE", 1, 1, "1: the switch is towards negative positions"),
@@ -285,7 +296,7 @@ REGISTERS = (
              "clocks between steps off the switch and of the back-off",
              _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
     Register("HOME_BACKOFF", 0x8C, "RW", 0, "steps on past the release point once the position is zeroed there",
-             _one("STEPS", 16, "0..65535")),
+             _one("STEPS", 16, "0..65535"), minimum=0, maximum=0xFFFF),
     Register("HOME_SEARCH", 0x90, "RW", 0xFFFF,
              "steps the switch must trip within, and release within after it tripped",
              _one("STEPS", HOME_SEARCH_BITS, f"1..{(1 << HOME_SEARCH_BITS) - 1}"),
@@ -351,7 +362,14 @@ def check_table(registers=REGISTERS):
             set_indices.add(reg.set_index)
         if (reg.minimum is not None or reg.maximum is not None) and len(reg.fields) != 1:
             raise ValueError(f"{reg.name}: only one-field registers can clamp")
+        if reg.access in ("RW", "WP") and len(reg.fields) == 1 and reg.fields[0].width > 1 and (
+                reg.minimum is None or reg.maximum is None):
+            # a number the host writes: without a range a too-large write would be cut to the
+            # field's width (a WATCHDOG of 2**24 would read 0: off) instead of clamped and flagged
+            raise ValueError(f"{reg.name}: a one-value register the host writes declares its range")
         for item in reg.fields:
+            if item.cleared is not None and reg.access != "RW":
+                raise ValueError(f"{reg.name}.{item.name}: only an RW field is cleared by the hardware")
             if item.build is not None and (reg.access != "RO" or item.build not in parameters.PARAMETERS):
                 raise ValueError(f"{reg.name}.{item.name}: a build field is read-only and names a "
                                  f"build parameter, not {item.build!r}")

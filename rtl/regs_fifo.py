@@ -111,7 +111,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     pulses = PulseCommand()
     pulse_busy, outputs_busy, seq_load = pulses.busy, pulses.outputs_busy, pulses.load
     requests, granted = AxisPulses(), AxisPulses()
-    halt, pulse_clear, clear_stop = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    halt, pulse_clear, clear_stop, releasing = (Signal(bool(0)) for _ in range(4))
     home_idle, direct_clear = Signal(bool(0)), Signal(bool(0))
     home_zero, home_inputs = Signal(intbv(0)[2:]), Signal(intbv(0)[2:])
     outputs = PulseControl(clear=pulse_clear, clear_position=clear_position, zero=home_zero, width=values["STEP_WIDTH"],
@@ -133,6 +133,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     pos_y_snapshot = Signal(position.y.val)
 
     drive_bit, hold_bit = _bit("MACHINE_CONTROL", "DRIVE_ENABLE"), _bit("MACHINE_CONTROL", "HOLD")
+    drive_cleared, drive_mask = hw["MACHINE_CONTROL"], regmap.register("MACHINE_CONTROL").field("DRIVE_ENABLE").mask
+    watchdog_left = hw["WATCHDOG"]   # named here, as the formal harness knows it
     units = [sync_fifo(clock, reset, push, local.wdata, fifo_pop, fifo_dout, fifo_flush, fifo_level,
                        fifo_empty, fifo_full, local.room, depth=fifo_depth)]
     for i, spec in enumerate(specs):
@@ -150,9 +152,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     conditioning = InputConditioning(pins=ConcatSignal(*reversed(pins.inputs())), polarity=values["INPUT_POLARITY"],
                                      samples=values["INPUT_FILTER"], tick=values["INPUT_TICK"])
     guard = MachineGuard(active=conditioning.active, drive_request=values["MACHINE_CONTROL"](drive_bit),
-                         clear_stop=clear_stop, held=settled,
+                         clear_stop=clear_stop, held=settled, pulsing=outputs.pulsing,
                          watchdog_load=strobes["WATCHDOG"], watchdog_timeout=values["WATCHDOG"], halt=halt,
-                         drive_enable=pins.drive_enable, watchdog_left=hw["WATCHDOG"])
+                         drive_enable=pins.drive_enable, watchdog_left=watchdog_left)
     home = Homing(start=strobes["HOME"], request=values["HOME"], seek_period=values["HOME_SEEK_PERIOD"],
                   release_period=values["HOME_RELEASE_PERIOD"], backoff=values["HOME_BACKOFF"],
                   search=values["HOME_SEARCH"], idle=home_idle, clear=core_clear, pulse_busy=pulse_busy,
@@ -168,7 +170,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     reset_bit, clear_bit, zero_bit, release_bit = (_bit("COMMAND", f) for f in ("SOFT_RESET", "CLEAR_ERROR",
                                                                                 "CLEAR_POSITION", "CLEAR_STOP"))
     pos_x_offset = regmap.offset("POS_X")
-    home_x = regmap.INPUT_NAMES.index("HOME_X")
+    home_x, estop = regmap.INPUT_NAMES.index("HOME_X"), regmap.INPUT_NAMES.index("ESTOP")
     command_offset = regmap.offset("COMMAND")
 
     @always_comb
@@ -225,6 +227,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         clear_error.next = command_strobe and command[clear_bit]
         clear_position.next = command_strobe and command[zero_bit]
         clear_stop.next = command_strobe and command[release_bit]
+        releasing.next = command_strobe and command[release_bit] and guard.stopped and not conditioning.active[estop]
         # feed hold: the host's HOLD bit or the guard's decelerated stop, which latches
         # once the rate is zero and the last step has left the pins
         feed.pause.next = machine_control[hold_bit] or guard.stopping
@@ -239,6 +242,10 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         home_idle.next = not any_busy and fifo_empty and not guard.stopped and not halt
         direct_clear.next = core_clear or home.cut
         home_inputs.next = conditioning.active[home_x + 2:home_x]
+        # a stop clears MACHINE_CONTROL.DRIVE_ENABLE and holds it at 0: CLEAR_STOP does not re-energise
+        drive_cleared.next = 0
+        if guard.stopped:
+            drive_cleared.next = drive_mask
 
     @always_seq(clock.posedge, reset=reset)
     def soft_reset():
@@ -256,12 +263,14 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         # that takes its bus write (then the strobe, then core_clear): no word
         # arrives in between, as the target holds no posted dword when it starts
         # a register access, and the next transaction's address phase comes at
-        # e + 2 at the earliest, its first dword two clocks later.  CLEAR_STOP,
-        # while stopped, empties it as CLEAR_ERROR does: the stop may have cut a
-        # command in two, and words written since are dropped with it
-        fifo_flush.next = soft_reset_taken or (io_written and written_addr == command_offset and (
-            (discard_on_clear and written_data[clear_bit] and written_mask[clear_bit])
-            or (guard.stopped and written_data[release_bit] and written_mask[release_bit])))
+        # e + 2 at the earliest, its first dword two clocks later.  A CLEAR_STOP
+        # that releases the stop empties it in the clock the guard takes it (the
+        # strobe's, as SOFT_RESET's, no word arrives then): the stop may have cut
+        # a command in two, and words written since are dropped with it; one the
+        # guard refuses (the E-stop input active) changes nothing
+        fifo_flush.next = soft_reset_taken or releasing or (
+            io_written and written_addr == command_offset and discard_on_clear and written_data[clear_bit]
+            and written_mask[clear_bit])
 
     level_pad = level_bits - len(fifo_level)
 
@@ -313,7 +322,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         units.append(_axis_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"],
                                   seq_load, (pulses.count_x, pulses.count_y)[axis], halt, axis_load[axis],
                                   axis_count[axis], home, hw["HOME"](_bit("HOME", "AXIS")), axis, values[f"PULSE_PERIOD_{name}"],
-                                  direct[axis].period))
+                                  direct[axis].period, direct[axis].retarget))
     status = StatusWords(busy=any_busy, quadrant=dda.quadrant, error_code=error_code, fifo_empty=fifo_empty,
                          fifo_full=fifo_full, fifo_level=level_wide, clamped=clamp_end, home_ended=home.ended,
                          low_water=values["LOW_WATER"], int_status=values["INT_STATUS"],
@@ -327,7 +336,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
 
 @block
 def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, halt, load, count,
-                 home, home_axis, axis, pulse_period, period):
+                 home, home_axis, axis, pulse_period, period, retarget):
     """Direct pulses come from PULSE_COUNT_* in direct mode, from PULSE commands
     otherwise; none start while the guard halts.  While homing, the homing
     sequencer drives those of the axis it homes (``home_axis``, this is ``axis``)
@@ -336,6 +345,7 @@ def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, ha
     @always_comb
     def choose_source():
         period.next = pulse_period
+        retarget.next = home.busy and home.retarget and home_axis == axis
         if home.busy:
             load.next = home.load and home_axis == axis
             count.next = home.count

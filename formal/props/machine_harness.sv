@@ -4,7 +4,8 @@
 // properties are the statements of docs/machine.md (docs/formal.md lists
 // them with their groups):
 //   mr_*  the input filter's reaction, E-stop pin to STEP and DRIVE_ENABLE;
-//   ms_*  E-stop, limits and the stop latch;   mw_*  the watchdog;
+//   ms_*  E-stop, limits and the stop latch;   mw_*, mwl_*  the watchdog;
+//   md_*  DRIVE_ENABLE: around every STEP pulse, and only a write re-energises;
 //   fh_*  feed hold and the decelerated stop;
 //   hm_*, hp_*  homing;   minv_*  helper invariants for k-induction.
 // The guard's, the filter's, the feed rate's and the homing unit's own
@@ -59,6 +60,7 @@ module machine_harness #(
     wire sync_fifo0_is_empty, sync_fifo0_is_full, sync_fifo0_free_beyond, io_written;
     wire [2:0] sync_fifo0_free;
     wire direct_pulse0_pending, direct_pulse1_pending;
+    wire [23:0] watchdog_left;
     wire [1:0] machine_control;
 
     regs_fifo dut (
@@ -99,7 +101,7 @@ module machine_harness #(
         .sync_fifo0_is_full(sync_fifo0_is_full),
 `endif
         .io_written(io_written), .direct_pulse0_pending(direct_pulse0_pending),
-        .direct_pulse1_pending(direct_pulse1_pending));
+        .direct_pulse1_pending(direct_pulse1_pending), .watchdog_left(watchdog_left));
 
     reg started = 0;
     always @(posedge clock) started <= 1;
@@ -171,6 +173,14 @@ module machine_harness #(
     always @(posedge clock) past_reset <= reset_n;
     wire judged = reset_n && past_reset;
 
+    // a MACHINE_CONTROL write of DRIVE_ENABLE = 1 taken by the register (the
+    // clock after its stage) since the card was last stopped (md_*)
+    reg rearmed = 0;
+    always @(posedge clock) begin
+        if (!reset_n || guard_stopped) rearmed <= 0;
+        else if (stage_write && stage_addr == 16'h0060 && stage_data[0] && stage_mask[0]) rearmed <= 1;
+    end
+
     // helper invariants (k-induction): the unit's RAMP_STEP and
     // MACHINE_CONTROL registers hold what the table's models say
     always @(posedge clock) if (reset_n) begin
@@ -190,6 +200,8 @@ module machine_harness #(
 `endif
         // the feed rate's own hold flag: held at rate 0
         minv_feed_held: assert(!feed_held || feed_rate0_rate == 0);
+        // MACHINE_CONTROL.DRIVE_ENABLE is 1 only by a write since the last stop
+        minv_drive_rearmed: assert(!machine_control[0] || rearmed);
     end
 
     // ------------------------------------------------------------ E-stop and the stop latch
@@ -207,7 +219,9 @@ module machine_harness #(
         // pin's first clock at its level is clock 0, same_for 1)
         // (sim/card/test_machine_card.py: a rise at clock 6 is the last allowed)
         if (machine_in[0] && same_for[3:0] >= FILTER + 5) begin mr_estop_no_step: assert(!rise_x && !rise_y); end
-        if (machine_in[0] && same_for[3:0] >= FILTER + 4) begin mr_estop_drive_low: assert(!pins_drive_enable); end
+        // (or, with a STEP pulse under way, the clock after its STEP fell: md_*)
+        if (machine_in[0] && same_for[3:0] >= FILTER + 4 && !pins_step_x && !pins_step_y && !p_step_x && !p_step_y)
+        begin mr_estop_drive_low: assert(!pins_drive_enable); end
         // "the guard latches a stop at the edge after its cause: 1 ESTOP"
         if (p_active[0]) begin
             ms_estop_stops: assert(guard_stopped && (p_stopped || machine_guard0_guard_reason == 2'd1));
@@ -218,7 +232,10 @@ module machine_harness #(
         // (a pulse the outputs started in the clock before the latch rises on
         // the pin, a register later, in the clock after it)
         if (p_stopped && pp_stopped) begin ms_stopped_no_step: assert(!rise_x && !rise_y); end
-        if (guard_stopped) begin ms_stopped_drive_low: assert(!pins_drive_enable); end
+        // (a STEP pulse under way keeps it high to the clock after its fall: md_*)
+        if (p_stopped && !pins_step_x && !pins_step_y && !p_step_x && !p_step_y) begin
+            ms_stopped_drive_low: assert(!pins_drive_enable);
+        end
         if (guard_stopped) begin ms_stopped_has_reason: assert(machine_guard0_guard_reason != 0); end
         // "STOP_REASON reads the cause from the edge STOPPING rises" (WATCHDOG or LIMIT)
         if (guard_stopping) begin ms_stopping_has_reason: assert(!guard_stopped && machine_guard0_guard_reason[1]); end
@@ -310,6 +327,38 @@ module machine_harness #(
         if (stop_rose && p_stopping && machine_guard0_guard_reason != 2'd1) begin
             fh_stop_after_last_step: assert(!pins_step_x && !pins_step_y && !p_step_x && !p_step_y);
         end
+    end
+
+    // ------------------------------------------------------------ DRIVE_ENABLE around every counted STEP
+    // "every STEP the card counts (POS counts the rises) rises and ends its
+    // high time while DRIVE_ENABLE is high": DRIVE_ENABLE never falls while a
+    // STEP pin is high or in the clock after its fall (with ms_stopped_no_step:
+    // once stopped, only the pulse started before the latch rises, inside
+    // DRIVE_ENABLE if it was high before).  "After a stop, DRIVE_ENABLE rises
+    // only after a new MACHINE_CONTROL write of DRIVE_ENABLE = 1" (rearmed).
+    always @(posedge clock) if (judged) begin
+        if (p_drive && !pins_drive_enable) begin
+            md_drive_holds_pulse: assert(!pins_step_x && !pins_step_y && !p_step_x && !p_step_y);
+        end
+        if (pins_drive_enable && !p_drive) begin md_drive_needs_write: assert(rearmed && !guard_stopped); end
+    end
+
+    // ------------------------------------------------------------ WATCHDOG writes
+    // "a write loads the count with the value written (0 turns the watchdog
+    // off) ... clamped to the largest timeout": the write reaches the register
+    // the clock after its stage, the guard's count the clock after that
+    reg [31:0] wd_stage_value = 0, wd_loaded_value = 0;
+    reg wd_stage = 0, wd_loaded = 0;
+    always @(posedge clock) begin
+        wd_stage <= reset_n && stage_write && stage_addr == 16'h0078;
+        wd_stage_value <= stage_data;
+        wd_loaded <= reset_n && wd_stage;
+        wd_loaded_value <= wd_stage_value;
+    end
+    always @(posedge clock) if (judged && wd_loaded) begin
+        mwl_write_loads_clamped: assert(watchdog_left == (wd_loaded_value > 32'hFFFFFF ? 24'hFFFFFF
+                                                                                   : wd_loaded_value[23:0]));
+        if (wd_loaded_value != 0) begin mwl_only_zero_turns_off: assert(watchdog_left != 0); end
     end
 
     // ------------------------------------------------------------ homing

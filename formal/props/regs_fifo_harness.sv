@@ -47,7 +47,7 @@ module regs_fifo_harness #(
     wire [COORD_WIDTH-1:0] dda_xs, dda_ys, dda_xe, dda_ye;
     wire pins_step_x, pins_dir_x, pins_step_y, pins_dir_y;
     // exposed registers of the unit
-    wire fifo_pop, fifo_flush, set_strobe, direct_request_x, direct_request_y;
+    wire fifo_pop, fifo_flush, set_strobe, direct_request_x, direct_request_y, guard_stopped;
     wire [3:0] set_index;
     wire [31:0] set_value, fifo_dout;
 
@@ -86,7 +86,7 @@ module regs_fifo_harness #(
         .pins_limit_neg_y(machine_in[4]), .pins_home_x(machine_in[5]), .pins_home_y(machine_in[6]),
         .fifo_pop(fifo_pop), .fifo_flush(fifo_flush), .fifo_dout(fifo_dout),
         .set_strobe(set_strobe), .set_index(set_index), .set_value(set_value),
-        .direct_request_x(direct_request_x), .direct_request_y(direct_request_y)
+        .direct_request_x(direct_request_x), .direct_request_y(direct_request_y), .guard_stopped(guard_stopped)
 `ifdef REGS_FIFO_INVARIANTS
         , .sync_fifo0_count(sync_fifo0_count), .sync_fifo0_is_empty(sync_fifo0_is_empty),
 `ifdef LOCAL_ROOM

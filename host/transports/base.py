@@ -13,6 +13,7 @@ about which card it is:
 | ``sleep(seconds)`` / ``now()`` | let card time pass / card time since opening, in seconds |
 | ``clocks`` | card clocks since opening (simulations; None on a real card) |
 | ``pins`` | the STEP/DIR pin log (simulations; None on a real card) |
+| ``machine`` | the simulated machine on the card's inputs (``SimTransport(..., machine=...)``; else None) |
 
 The implementations are listed in ``host/transports/__init__.py``, whose
 ``open_transport`` picks one.
@@ -63,6 +64,8 @@ class Transport:
     @property
     def pins(self):
         return None
+
+    machine = None   # a simulated card's machine (switches, E-stop, drives), when it has one
 
     def close(self):
         """Release the card; the transport is unusable afterwards."""

@@ -5,7 +5,10 @@ is reset and enumerated by the behavioural PCI host (``sim.pci.master``),
 with the protocol checker on every bus clock, and each call below runs one
 access to its end.  Simulated time passes only inside calls; ``now()`` is
 the card's clocks over ``clock_hz`` (the clock the card is built for, as
-CLOCK_HZ reads).  ``pins`` is the STEP/DIR log (``sim.card.card_bench.PinLog``).
+CLOCK_HZ reads).  ``pins`` is the STEP/DIR log (``sim.card.card_bench.PinLog``);
+``machine`` the simulated machine on the card's inputs (``SimTransport(...,
+machine=config)``, a ``models.sim_machine.MachineConfig``; docs/machine.md,
+"Simulated machine"): ``press_estop``, ``release_estop``, ``state()``.
 """
 import math
 
@@ -20,16 +23,18 @@ class SimTransport(Transport):
     """The card of ``kind`` (``myhdl``, ``icarus``, ``verilator``) with
     ``fifo_depth`` words of FIFO; ``monitor``: the protocol checker on
     Verilator (always on for the others); ``clock_hz``: the Verilator card is
-    built for it (its CLOCK_HZ reads it), the others for the default."""
+    built for it (its CLOCK_HZ reads it), the others for the default;
+    ``machine``: a ``MachineConfig``, the simulated machine on the inputs."""
 
-    def __init__(self, kind, fifo_depth=DEFAULT_FIFO, clock_hz=CLOCK_HZ.default, monitor=True):
+    def __init__(self, kind, fifo_depth=DEFAULT_FIFO, clock_hz=CLOCK_HZ.default, monitor=True, machine=None):
         if kind not in SIM_KINDS:
             raise ValueError(f"unknown simulator {kind!r}: use one of {', '.join(SIM_KINDS)}")
         self.name = f"simulated card ({kind})"
         self.kind = kind
         self.clock_hz = clock_hz
         clock = dict(clock_hz=clock_hz) if kind == "verilator" else {}
-        self.session = CardSession(kind, fifo_depth, monitor=monitor, **clock)
+        self.session = CardSession(kind, fifo_depth, monitor=monitor, machine=machine, **clock)
+        self.machine = self.session.machine
         self.device = self.session.device
         self.io_size = self.session.bars["io"]["size"]
         self.mem_size = self.session.bars["mem"]["size"]

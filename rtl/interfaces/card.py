@@ -128,7 +128,7 @@ class RegisterWord:
     """One function register's signals to the hardware, as wide as the
     register ``spec`` (a ``models.registers.Register``): the hardware drives
     ``hw`` (RO and WP: what reads return; W1C: bits it sets; W1S: bits it
-    clears; ``hw_reset``: its value before the hardware drives it, the build
+    clears; RW: the bits of its ``cleared`` fields it clears; ``hw_reset``: its value before the hardware drives it, the build
     word of a capability register); the register drives ``value``
     (RW/W1C/W1S: the register; WP: the last value written) and ``strobe``
     (WP: one clock per write)."""
@@ -159,14 +159,16 @@ class PulseControl:
     position, counting a step that rises in that clock), ``width``, ``setup`` and ``hold`` (STEP_WIDTH,
     DIR_SETUP, DIR_HOLD, in clocks) and ``polarity_x``/``polarity_y``
     (DIR_POLARITY); the pulse outputs drive ``ready`` (the queue takes the
-    steps on their way) and ``active`` (a step is queued or on the pins).
+    steps on their way), ``active`` (a step is queued or on the pins) and
+    ``pulsing`` (a STEP pulse starts at the coming edge, is high inside or is
+    high on the pins: the machine guard keeps DRIVE_ENABLE for it).
     """
 
     def __init__(self, **given):
         adopt(self, given, clear=Signal(bool(0)), clear_position=Signal(bool(0)), zero=Signal(intbv(0)[2:]),
                width=Signal(intbv(1)[TIMING_BITS:]), setup=Signal(intbv(1)[TIMING_BITS:]),
                hold=Signal(intbv(1)[TIMING_BITS:]), polarity_x=Signal(bool(0)), polarity_y=Signal(bool(0)),
-               ready=Signal(bool(1)), active=Signal(bool(0)))
+               ready=Signal(bool(1)), active=Signal(bool(0)), pulsing=Signal(bool(0)))
 
 
 class StepPositions:
@@ -207,15 +209,17 @@ class FeedPort:
 class DirectPulseCommand:
     """One axis's direct pulses, seen from the card: it drives ``load`` (one
     clock) with ``count`` (signed pulses, the sign their direction),
-    ``period`` (clocks between pulses, PULSE_PERIOD_*) and ``clear`` (soft
-    reset); the generator drives ``remaining`` (pulses still to go) and
-    ``busy`` (from ``load`` until the last request)."""
+    ``period`` (clocks between pulses, PULSE_PERIOD_*), ``clear`` (soft
+    reset) and ``retarget`` (one clock: ``count``'s size becomes the pulses
+    still to go, in the direction under way, the period's timing goes on:
+    homing's back-off); the generator drives ``remaining`` (pulses still to
+    go) and ``busy`` (from ``load`` until the last request)."""
 
     def __init__(self, **given):
         bounds = dict(min=-(1 << (PULSE_COUNT_BITS - 1)), max=1 << (PULSE_COUNT_BITS - 1))
         period = regmap.register("PULSE_PERIOD_X")
         adopt(self, given, load=Signal(bool(0)), count=Signal(intbv(0, **bounds)),
-               period=Signal(intbv(period.reset)[period.width:]), clear=Signal(bool(0)),
+               period=Signal(intbv(period.reset)[period.width:]), clear=Signal(bool(0)), retarget=Signal(bool(0)),
                remaining=Signal(intbv(0)[PULSE_COUNT_BITS:]), busy=Signal(bool(0)))
 
 

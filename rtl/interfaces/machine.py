@@ -32,8 +32,9 @@ class MachineGuard:
     ``drive_request`` (MACHINE_CONTROL.DRIVE_ENABLE), ``clear_stop``
     (COMMAND.CLEAR_STOP, one clock), ``watchdog_load`` (one clock per
     WATCHDOG write) with ``watchdog_timeout`` (its value, clocks; 0: off),
-    ``ramp`` (RAMP_STEP is not 0: a watchdog or limit stop decelerates) and
-    ``held`` (``FeedPort.held``, and no step on its way to the pins).
+    ``ramp`` (RAMP_STEP is not 0: a watchdog or limit stop decelerates),
+    ``held`` (``FeedPort.held``, and no step on its way to the pins) and
+    ``pulsing`` (``PulseControl.pulsing``: a STEP pulse starts, or is high).
     The guard drives ``halt`` (no new STEP edge, no command, no direct
     pulse: stopped, or the E-stop input active), ``stopping`` (a
     decelerated stop is under way: the feed rate pauses), ``stopped`` (the
@@ -46,6 +47,7 @@ class MachineGuard:
         adopt(self, given, active=Signal(intbv(0)[len(MACHINE_INPUTS):]), drive_request=Signal(bool(0)),
                clear_stop=Signal(bool(0)), watchdog_load=Signal(bool(0)),
                watchdog_timeout=Signal(intbv(0)[watchdog.width:]), ramp=Signal(bool(0)), held=Signal(bool(0)),
+               pulsing=Signal(bool(0)),
                halt=Signal(bool(0)), stopping=Signal(bool(0)),
                stopped=Signal(bool(0)), stop_event=Signal(bool(0)),
                reason=Signal(intbv(0)[reason.field("REASON").width:]),
@@ -65,7 +67,8 @@ class Homing:
     ``pulse_busy`` (a direct-pulse generator is busy) and ``outputs_active``
     (a step is queued in the pulse outputs or on the pins).  The sequencer
     drives ``busy``, the homed axis's direct-pulse command (``load`` one
-    clock with ``count``, signed, at ``period``; ``cut`` clears it),
+    clock with ``count``, signed, at ``period``; ``cut`` clears it;
+    ``retarget`` makes |``count``| its steps still to go, timing kept),
     ``zero`` (one clock: zero the homed axis's position; bit 0 X),
     ``ended`` (one clock as a HOME ends: done, not found or refused),
     ``taken`` (what HOME reads: the AXIS and NEGATIVE of the last HOME) and
@@ -81,5 +84,5 @@ class Homing:
                home=Signal(intbv(0)[2:]), idle=Signal(bool(0)), clear=Signal(bool(0)),
                pulse_busy=Signal(bool(0)), outputs_active=Signal(bool(0)), busy=Signal(bool(0)),
                load=Signal(bool(0)), count=Signal(intbv(0, min=-(1 << (count - 1)), max=1 << (count - 1))),
-               period=Signal(intbv(1)[seek.width:]), cut=Signal(bool(0)), zero=Signal(intbv(0)[2:]),
+               period=Signal(intbv(1)[seek.width:]), cut=Signal(bool(0)), retarget=Signal(bool(0)), zero=Signal(intbv(0)[2:]),
                ended=Signal(bool(0)), taken=Signal(intbv(0)[home.width:]), state=Signal(intbv(0)[status.width:]))

@@ -19,38 +19,45 @@ def homing(clock, reset, port):
     1. SEEK: ``load`` HOME_SEARCH steps towards the switch at
        ``seek_period``; when the filtered switch is active, ``cut`` them.
     2. RELEASE: ``load`` HOME_SEARCH steps the other way at
-       ``release_period``; when the switch is inactive again, ``cut`` them
-       and ``zero`` the axis's position in the same clock: the position
-       counts the steps whose STEP rises from the next edge on.
-    3. BACKOFF: ``load`` HOME_BACKOFF steps on, at ``release_period``
-       (skipped when 0); then wait until the pulse outputs are empty: DONE.
+       ``release_period``; when the switch is inactive again, ``retarget``
+       the generator to HOME_BACKOFF steps and ``zero`` the axis's position
+       in the same clock: the position counts the steps whose STEP rises
+       from the next edge on.
+    3. BACKOFF: the generator goes on with those steps at the period's count
+       under way, so the first back-off step comes ``release_period`` after
+       the last release step (none when 0); then wait until the pulse
+       outputs are empty: DONE.
 
     If the generator runs out of steps and the outputs are empty before the
     switch trips (SEEK) or releases (RELEASE): NOT_FOUND, and the position is
     not zeroed.  A ``start`` while not ``idle`` (or while homing) is REFUSED
     and changes nothing else, also in the clock of a ``clear``.  ``clear``
-    (a stop, SOFT_RESET) ends homing at once with neither DONE nor NOT_FOUND.  ``ended`` marks every end.
-    ``taken`` is what HOME reads (AXIS, NEGATIVE), ``state`` what
-    HOME_STATUS reads: BUSY (also in the clock of ``start``: a read right
-    after the HOME write never sees the HOME before it), DONE, NOT_FOUND,
-    REFUSED, PHASE.
+    (a stop, SOFT_RESET) ends homing at once with neither DONE nor
+    NOT_FOUND.  ``ended`` marks every end.  ``taken`` is what HOME reads
+    (AXIS, NEGATIVE), ``state`` what HOME_STATUS reads: BUSY (also in the
+    clock of ``start``: a read right after the HOME write never sees the
+    HOME before it), DONE, NOT_FOUND, REFUSED, PHASE.
 
-    Switch trips in SEEK, releases in RELEASE:
-        clock    _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
-        home     _/~~~~~~~~~~~~~~~~~~~~~\\_________
-        state    =SEEK==X=TURN=X=RELEASE===X=BACKOFF_LOAD=
-        cut      _/~~~\\_______________/~~~\\______
-        load     _____/~~~\\____________________/~
-        zero     _____________________/~~~\\______
+    Switch trips in SEEK, releases in RELEASE (``count``: the next load's
+    or retarget's, registered):
+        clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
+        home      _/~~~~~~~~~~~~~~~~~~~~~\\_________
+        state     =SEEK==X=TURN=X=RELEASE===X=BACKOFF===
+        cut       _/~~~\\___________________________
+        load      _____/~~~\\_______________________
+        count     =search====X=backoff=============
+        retarget  _____________________/~~~\\_______
+        zero      _____________________/~~~\\_______
     """
-    state_t = enum("IDLE", "SEEK_LOAD", "SEEK", "TURN", "RELEASE", "BACKOFF_LOAD", "BACKOFF", "SETTLE")
+    state_t = enum("IDLE", "SEEK_LOAD", "SEEK", "TURN", "RELEASE", "BACKOFF", "SETTLE")
     state = Signal(state_t.IDLE)
     axis, negative = Signal(bool(0)), Signal(bool(0))
     done, not_found, refused = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
     switch, positive, seeking, seek_next = (Signal(bool(0)) for _ in range(4))
-    # The count of the next load, |distance| or its two's complement (one
-    # adder, ~magnitude + 1), and the period are registered: the direct-pulse
-    # generator's own adders then start from flip-flops.
+    opened, gave_up, finished = (Signal(bool(0)) for _ in range(3))   # opened: the switch released in RELEASE
+    # The count of the next load or retarget, |distance| or its two's
+    # complement (one adder, ~magnitude + 1), and the period are registered:
+    # the direct-pulse generator's own adders then start from flip-flops.
     count_bits = len(port.count)
     magnitude, operand, addend = (Signal(intbv(0)[count_bits:]) for _ in range(3))
     signed_count = Signal(modbv(0)[count_bits:])
@@ -65,8 +72,8 @@ def homing(clock, reset, port):
         switch.next = port.home[1] if axis else port.home[0]
         seeking.next = state == state_t.SEEK_LOAD or state == state_t.SEEK
         seek_next.next = state == state_t.IDLE or state == state_t.SEEK_LOAD or (state == state_t.SEEK and not switch)
-        # the load after IDLE is the seek's, after SEEK the release's, after RELEASE the back-off's
-        if state == state_t.RELEASE:
+        # the load after IDLE is the seek's, after SEEK the release's; the retarget in RELEASE the back-off's
+        if state == state_t.TURN or state == state_t.RELEASE:
             magnitude.next = concat(intbv(0)[backoff_pad:], port.backoff)
         else:
             magnitude.next = concat(intbv(0)[search_pad:], port.search)
@@ -79,7 +86,7 @@ def homing(clock, reset, port):
         else:
             positive.next = negative
         port.busy.next = state != state_t.IDLE
-        port.load.next = state == state_t.SEEK_LOAD or state == state_t.TURN or state == state_t.BACKOFF_LOAD
+        port.load.next = state == state_t.SEEK_LOAD or state == state_t.TURN
 
     @always_comb
     def sign():
@@ -104,8 +111,13 @@ def homing(clock, reset, port):
 
     @always_comb
     def edges():
+        drained = not port.pulse_busy and not port.outputs_active
         released = state == state_t.RELEASE and not switch
-        port.cut.next = (state == state_t.SEEK and switch) or released
+        opened.next = released
+        gave_up.next = drained and ((state == state_t.SEEK and not switch) or (state == state_t.RELEASE and switch))
+        finished.next = state == state_t.SETTLE and not port.outputs_active
+        port.cut.next = state == state_t.SEEK and switch
+        port.retarget.next = released
         port.zero.next = 0
         if released:
             if axis:
@@ -140,11 +152,9 @@ def homing(clock, reset, port):
         port.state.next = word
 
     @always_seq(clock.posedge, reset=reset)
-    def sequence():
+    def outcome():
         port.ended.next = 0
-        drained = not port.pulse_busy and not port.outputs_active
         if port.clear:
-            state.next = state_t.IDLE
             if port.start:
                 # a HOME in the clock a stop (or SOFT_RESET) clears the card:
                 # the card is not idle, so it is refused, and says so
@@ -160,44 +170,42 @@ def homing(clock, reset, port):
                 not_found.next = 0
                 refused.next = not port.idle
                 port.ended.next = not port.idle
-                if port.idle:
-                    state.next = state_t.SEEK_LOAD
         else:
             if port.start:
                 refused.next = 1
                 port.ended.next = 1
-            if state == state_t.SEEK_LOAD:
-                state.next = state_t.SEEK
-            elif state == state_t.SEEK:
-                if switch:
-                    state.next = state_t.TURN
-                elif drained:
-                    not_found.next = 1
-                    port.ended.next = 1
-                    state.next = state_t.IDLE
-            elif state == state_t.TURN:
-                state.next = state_t.RELEASE
-            elif state == state_t.RELEASE:
-                if not switch:
-                    if port.backoff != 0:
-                        state.next = state_t.BACKOFF_LOAD
-                    else:
-                        state.next = state_t.SETTLE
-                elif drained:
-                    not_found.next = 1
-                    port.ended.next = 1
-                    state.next = state_t.IDLE
-            elif state == state_t.BACKOFF_LOAD:
-                state.next = state_t.BACKOFF
-            elif state == state_t.BACKOFF:
-                if not port.pulse_busy:
-                    state.next = state_t.SETTLE
-            elif not port.outputs_active:   # SETTLE
+            if gave_up:
+                not_found.next = 1
+                port.ended.next = 1
+            elif finished:
                 done.next = 1
                 port.ended.next = 1
-                state.next = state_t.IDLE
 
-    return select, command, sign, negate, next_load, edges, phases, show, sequence
+    @always_seq(clock.posedge, reset=reset)
+    def sequence():
+        if port.clear or gave_up or finished:
+            state.next = state_t.IDLE
+        elif state == state_t.IDLE:
+            if port.start and port.idle:
+                state.next = state_t.SEEK_LOAD
+        elif state == state_t.SEEK_LOAD:
+            state.next = state_t.SEEK
+        elif state == state_t.SEEK:
+            if switch:
+                state.next = state_t.TURN
+        elif state == state_t.TURN:
+            state.next = state_t.RELEASE
+        elif state == state_t.RELEASE:
+            if opened:
+                if port.backoff != 0:
+                    state.next = state_t.BACKOFF
+                else:
+                    state.next = state_t.SETTLE
+        elif state == state_t.BACKOFF:
+            if not port.pulse_busy:
+                state.next = state_t.SETTLE
+
+    return select, command, sign, negate, next_load, edges, phases, show, outcome, sequence
 
 
 def homing_ports():

@@ -39,8 +39,13 @@ def machine_guard(clock, reset, guard, request, granted):
     hit the limit never reaches the pins, while requests away from it pass.
     ``clear_stop`` releases the latch (``reason`` and ``limits`` read 0
     again) unless the E-stop input is active.  ``drive_enable`` (the pin,
-    from a flip-flop) is ``drive_request`` while not stopped, low from the
-    edge the latch sets at (and while the E-stop input is active).
+    from a flip-flop) is ``drive_request`` while not stopped (the card
+    clears MACHINE_CONTROL.DRIVE_ENABLE at a stop, so it stays low after a
+    ``clear_stop`` until the host writes it again), low from the edge the
+    latch sets at (and while the E-stop input is active) unless ``pulsing``:
+    a STEP pulse that starts or is high keeps it high, to the edge after
+    that STEP has fallen on the pins, so a drive that obeys its enable at
+    once sees every step the card counts.
 
     E-stop active (watchdog off):
         clock         _/~\\_/~\\_/~\\_/~\\_
@@ -49,6 +54,14 @@ def machine_guard(clock, reset, guard, request, granted):
         stopped       _____/~~~~~~~~~~~
         stop_event    _____/~~~\\_______
         drive_enable  ~~~~~\\___________
+
+    A watchdog expiry (no ramp) with a pulse starting (STEP_WIDTH 2):
+        clock         _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
+        expired       _/~~~\\_________________
+        pulsing       _/~~~~~~~~~~~~~~~\\_____
+        step (pin)    _________/~~~~~~~\\_____
+        stopped       _____/~~~~~~~~~~~~~~~~~
+        drive_enable  ~~~~~~~~~~~~~~~~~~~~~\\_
 
     Watchdog expiry with a ramp (``held`` after the feed rate's ramp):
         clock         _/~\\_/~\\_/~\\_ .. _/~\\_/~\\_/~\\_
@@ -110,7 +123,11 @@ def machine_guard(clock, reset, guard, request, granted):
             guard.reason.next = 0
             guard.limits.next = 0
         guard.stopped.next = stopped
-        guard.drive_enable.next = guard.drive_request != 0 and not stopped and not estop
+        # a pulse that starts or is high keeps the drives enabled to its end (the pin falls a clock later);
+        # the request counts from the clock after a release only (MACHINE_CONTROL.DRIVE_ENABLE is cleared
+        # while stopped, so a CLEAR_STOP never re-energises by itself)
+        guard.drive_enable.next = ((guard.drive_request != 0 and not stopped and not guard.stopped and not estop)
+                                   or (guard.drive_enable and guard.pulsing))
 
     @always_seq(clock.posedge, reset=reset)
     def watchdog():

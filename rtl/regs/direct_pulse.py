@@ -14,7 +14,10 @@ def direct_pulse(clock, reset, command, out):
     ``out``: ``StepRequest``) is made every ``period`` clocks (>= 1) while
     ``out.ready``, the first one the clock after ``load``.  ``remaining``
     counts what is left, ``busy`` is high from ``load`` until the last
-    request, that request's clock included.  ``clear`` stops.
+    request, that request's clock included.  ``clear`` stops.  ``retarget``
+    makes |``count``| what is left from this clock on (a request in this
+    clock is the first of them; 0 stops), without touching the direction or
+    the period's count: the next request comes when it would have come.
 
     count 2, period 3:
         clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
@@ -29,6 +32,7 @@ def direct_pulse(clock, reset, command, out):
     # instead of a 24-bit (16-bit) zero test.
     pending = Signal(bool(0))
     waiting = Signal(bool(0))
+    stepping = Signal(bool(0))   # a request at the coming edge
     # One adder per counter: remaining takes |count| (count ^ sign + sign) on
     # a load and remaining - 1 on a request; gap takes period - 1 on a
     # request and gap - 1 while waiting.
@@ -45,16 +49,28 @@ def direct_pulse(clock, reset, command, out):
         command.busy.next = command.load or pending or out.step
 
     @always_comb
+    def decide():
+        # a retarget of 0 stops at once, a request in its clock included
+        stepping.next = (not command.clear and not command.load and not waiting and out.ready
+                         and ((command.retarget and command.count != 0) or (not command.retarget and pending)))
+
+    @always_comb
     def count_operands():
-        if not command.load:
+        # |count| on a load or a retarget (less one with a request in the retarget's clock),
+        # remaining - 1 otherwise
+        if not command.load and not command.retarget:
             count_operand.next = command.remaining
             count_addend.next = all_ones
         elif command.count < 0:
             count_operand.next = ~command.count[count_bits:]
             count_addend.next = 1
+            if stepping:
+                count_addend.next = 0
         else:
             count_operand.next = command.count[count_bits:]
             count_addend.next = 0
+            if stepping:
+                count_addend.next = all_ones
 
     @always_comb
     def gap_operands():
@@ -80,18 +96,24 @@ def direct_pulse(clock, reset, command, out):
             pending.next = command.count != 0
             gap.next = 0
             waiting.next = 0
-        elif pending:
-            if waiting:
+        elif stepping:
+            out.step.next = 1
+            command.remaining.next = counted
+            if command.retarget:
+                pending.next = counted != 0
+            else:
+                pending.next = command.remaining != 1
+            gap.next = gap_less
+            waiting.next = command.period != 1
+        else:
+            if command.retarget:
+                command.remaining.next = counted
+                pending.next = command.count != 0
+            if waiting:   # the period's count runs on after the last request too (a retarget may follow)
                 gap.next = gap_less
                 waiting.next = gap != 1
-            elif out.ready:
-                out.step.next = 1
-                command.remaining.next = counted
-                pending.next = command.remaining != 1
-                gap.next = gap_less
-                waiting.next = command.period != 1
 
-    return activity, count_operands, gap_operands, sums, emit
+    return activity, decide, count_operands, gap_operands, sums, emit
 
 
 def direct_pulse_ports():

@@ -63,6 +63,7 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
     def room():
         control.ready.next = count <= queue_depth - in_flight
         control.active.next = count != 0 or phase != phase_t.P_IDLE or pins.step_x or pins.step_y
+        control.pulsing.next = take or level_x or level_y or pins.step_x or pins.step_y
 
     @always_comb
     def peek():

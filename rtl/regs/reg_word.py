@@ -15,7 +15,8 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out):
     (``RegisterWord``: ``hw`` is what RO and WP registers read, the bits a
     W1C register sets, the bits a W1S register clears; ``value`` the
     register, of WP the last value written; ``strobe`` one clock per WP
-    write; its ``spec`` says which register this is); ``chain_in`` and
+    write; ``hw`` of an RW register clears its fields with ``cleared`` and
+    holds them at 0; its ``spec`` says which register this is); ``chain_in`` and
     ``chain_out`` (``ReadChain``): ``chain_out.clamped`` is
     ``chain_in.clamped`` or'ed with a one-clock flag raised when a write to
     this register was out of range and was clamped; the read data of the
@@ -169,7 +170,30 @@ def _limit(written, honoured, out_of_range, spec):
             honoured.next = written[width:]
             out_of_range.next = False
 
-    return clamp_unsigned_power_of_two if high == (1 << high_top) - 1 else clamp_unsigned
+    @always_comb
+    def clamp_above_power_of_two():
+        # low is 0 (nothing below it) and high is 2**high_top - 1: out of range when a higher bit is set
+        out_of_range.next = True
+        if written[32:high_top] != 0:
+            honoured.next = high_bits
+        else:
+            honoured.next = written[width:]
+            out_of_range.next = False
+
+    @always_comb
+    def clamp_above():
+        # low is 0: only the upper bound is compared
+        out_of_range.next = True
+        if written[32:high_top] != 0 or written[high_top:] > high:
+            honoured.next = high_bits
+        else:
+            honoured.next = written[width:]
+            out_of_range.next = False
+
+    power_of_two = high == (1 << high_top) - 1
+    if low == 0:
+        return clamp_above_power_of_two if power_of_two else clamp_above
+    return clamp_unsigned_power_of_two if power_of_two else clamp_unsigned
 
 
 @block
@@ -177,6 +201,7 @@ def _store(clock, reset, mine, bus, set_mine, set_port, set_target, written, hon
            spec):
     """The register's flip-flops, by access kind."""
     kind = spec.access
+    cleared_mask = sum(item.mask for item in spec.fields if item.cleared is not None)
 
     @always_seq(clock.posedge, reset=reset)
     def hold_rw():
@@ -184,6 +209,16 @@ def _store(clock, reset, mine, bus, set_mine, set_port, set_target, written, hon
         if (set_mine and set_port.index == set_target) or (bus.write and mine):
             word.value.next = honoured
             clamped.next = out_of_range
+
+    @always_seq(clock.posedge, reset=reset)
+    def hold_rw_cleared():
+        # the fields with ``cleared``: the hardware's hw bits clear them, a write meanwhile included
+        clamped.next = False
+        if (set_mine and set_port.index == set_target) or (bus.write and mine):
+            word.value.next = honoured & ~(word.hw & cleared_mask)
+            clamped.next = out_of_range
+        else:
+            word.value.next = word.value & ~(word.hw & cleared_mask)
 
     @always_seq(clock.posedge, reset=reset)
     def clear_on_one():
@@ -208,6 +243,8 @@ def _store(clock, reset, mine, bus, set_mine, set_port, set_target, written, hon
             word.strobe.next = True
             clamped.next = out_of_range
 
+    if kind == "RW" and cleared_mask:
+        return hold_rw_cleared
     return {"RW": hold_rw, "W1C": clear_on_one, "W1S": set_on_one, "WP": pulse_on_write}[kind]
 
 

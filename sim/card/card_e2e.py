@@ -39,6 +39,7 @@ from sim.backends.verilator.model import Stop
 from sim.backends.verilator.pci_bus import VerilatorBench
 from sim.backends.waves import Waveform, trace_stem
 from sim.card.card_bench import PinLog, pin_capture, write_motion_view
+from sim.card.sim_machine import machine_process
 from sim.card.top_harness import TopHarness, convert_top, generated_top, top_on_bus
 from sim.pci.bench import TARGET_DEVICE, WAVE_GROUPS, PciBench
 
@@ -75,10 +76,11 @@ class CardUnderTest:
     (BAR bases, set once enumerated).  Called with a ``PciBench``, it is
     that bench's target (MyHDL, Icarus)."""
 
-    def __init__(self, kind, fifo_depth):
+    def __init__(self, kind, fifo_depth, machine=None):
         if kind not in KINDS:
             raise ValueError(f"unknown card kind {kind!r}: use one of {', '.join(KINDS)}")
         self.kind, self.fifo_depth = kind, fifo_depth
+        self.machine = machine   # a SimMachine on the input pins (MyHDL, Icarus; Verilator: in the harness)
         self.log = ArrayPinLog() if kind == "verilator" else PinLog()
         self.wait = CardWait(signal=kind != "verilator")
         self.samples = []
@@ -101,7 +103,8 @@ class CardUnderTest:
                 return card, (), dict(ports, fifo_depth=self.fifo_depth)
         capture = (pin_capture, (bench.clock, motor, self.log))
         waiter = (card_waiter, (bench.clock, self.wait, bench, self.log))
-        return agent, lambda b: [core(b), capture, (bus_record, (b, self.samples)), waiter]
+        extra = [(machine_process, (bench.clock, motor, self.machine))] if self.machine is not None else []
+        return agent, lambda b: [core(b), capture, (bus_record, (b, self.samples)), waiter, *extra]
 
 
 @block

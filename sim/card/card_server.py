@@ -1,6 +1,7 @@
 """The simulated card served on a Unix socket, for the LinuxCNC driver's tests.
 
-``python -m sim.card.card_server --socket PATH --log FILE [--clock-hz N] [--free-run CLOCKS]``
+``python -m sim.card.card_server --socket PATH --log FILE [--clock-hz N] [--free-run CLOCKS]
+[--ppm N] [--machine FILE [--estop CLOCK ...]]``
 opens ``CardSession("verilator", clock_hz=N)`` (a card built to report N in
 CLOCK_HZ), listens on PATH, serves one client and, when the client goes,
 writes FILE: the card clock of every ADVANCE, register write and FIFO burst,
@@ -21,6 +22,14 @@ answering but keeps the socket open, until the client goes) or ``hang-up``
 (the server closes the socket, as when it dies).  ``lost`` records the
 requests an unplugged card did not take: (clock, op).  ``requests`` in the record counts the requests
 of each period: those since the ADVANCE before, this one included.
+
+``--machine FILE`` puts the simulated machine of FILE (a
+``models.sim_machine.MachineConfig`` as JSON: home and limit switches, E-stop
+wiring, drives; docs/machine.md) on the card's inputs, run in the compiled
+clock loop; ``--estop CLOCK`` (repeatable) toggles its E-stop at that card
+clock (pressed at the first, released at the second, ...), inside an
+ADVANCE if one spans it.  The log then has ``machine``: the machine's
+positions, the steps its drives lost (DRIVE_ENABLE low), its input pins.
 
 A real card goes on without its PC: with ``--free-run CLOCKS`` the server,
 once the client has gone (socket closed, however it died), runs the card on
@@ -55,6 +64,7 @@ import sys
 from models import registers as regmap
 from models.card_socket import ADVANCE, ANSWER_WORDS, FIFO, MAX_BURST, READ, REQUEST_WORDS, WRITE
 from models.parameters import CLOCK_HZ
+from models.sim_machine import MachineConfig
 from sim.card.card_session import AccessError, CardSession
 
 WORD = struct.Struct("<I")
@@ -92,8 +102,10 @@ class CardServer:
     (clock, DRIVE_ENABLE level) at every change, ``free_run`` and ``final``
     once ``finish`` has run."""
 
-    def __init__(self, session, clock_hz, ppm=0, failure=None):
+    def __init__(self, session, clock_hz, ppm=0, failure=None, estop=()):
         self.session, self.clock_hz = session, clock_hz
+        self.estop = sorted(estop)   # card clocks the E-stop toggles at (pressed first)
+        self.pressed = False
         self.ppm, self.ppm_fraction = ppm, 0
         self.failure = failure  # (kind, after how many ADVANCEs) or None
         self.requests = []
@@ -151,12 +163,22 @@ class CardServer:
             self.deadline += scaled // PPM_ONE
             self.ppm_fraction = scaled % PPM_ONE
             before = session.clocks - self.start
-            if self.deadline > before:
-                session.wait(self.deadline - before)
+            self._run_to(self.deadline)
             after = session.clocks - self.start
             self.advances.append((before, after))
             return after & 0xFFFFFFFF
         raise ProtocolError(f"unknown request {op}")
+
+    def _run_to(self, deadline):
+        """Run the card to clock ``deadline``, toggling the machine's E-stop at its clocks on the way."""
+        while self.estop and self.estop[0] <= deadline:
+            at = self.estop.pop(0)
+            if at > self.now():
+                self.session.wait(at - self.now())
+            self.pressed = not self.pressed
+            self.session.machine.press_estop(self.pressed)
+        if deadline > self.now():
+            self.session.wait(deadline - self.now())
 
     def serve(self, connection):
         """Answer requests until the client closes the socket (or dies: a reset or broken pipe)."""
@@ -215,8 +237,14 @@ class CardServer:
     def record(self):
         """What the test compares: clocks are card clocks since the server opened the card."""
         rises = [(int(r[0]) - self.start, *map(int, r[1:])) for r in self.session.log.rises]
-        return dict(clock_hz=self.clock_hz, advances=self.advances, requests=self.requests, lost=self.lost, rises=rises,
-                    fifo=self.fifo, writes=self.writes, drive=self.drive, free_run=self.free_run, final=self.final)
+        record = dict(clock_hz=self.clock_hz, advances=self.advances, requests=self.requests, lost=self.lost,
+                      rises=rises, fifo=self.fifo, writes=self.writes, drive=self.drive, free_run=self.free_run,
+                      final=self.final)
+        if self.session.machine is not None:
+            state = self.session.machine.state()
+            record["machine"] = dict(positions=state.positions, lost=state.lost, inputs=state.inputs,
+                                     estop=state.estop)
+        return record
 
 
 def main(argv=None):
@@ -232,6 +260,10 @@ def main(argv=None):
                              "(a real card's crystal against the PC's timer; default 0)")
     parser.add_argument("--fail", metavar="KIND@N",
                         help=f"fail after the N-th ADVANCE: {', '.join(FAILURES)} (see above; default: never)")
+    parser.add_argument("--machine", help="a simulated machine on the card's inputs, from this JSON file "
+                                          "(models.sim_machine.MachineConfig)")
+    parser.add_argument("--estop", type=int, action="append", default=[], metavar="CLOCK",
+                        help="toggle the simulated machine's E-stop at this card clock (repeatable; needs --machine)")
     args = parser.parse_args(argv)
     failure = None
     if args.fail is not None:
@@ -239,6 +271,17 @@ def main(argv=None):
         if kind not in FAILURES or not after.isdigit():
             parser.error(f"--fail must be KIND@N with KIND one of {', '.join(FAILURES)}, not {args.fail}")
         failure = (kind, int(after))
+    machine = None
+    if args.machine:
+        try:
+            with open(args.machine) as config:
+                machine = MachineConfig.from_json(config.read())
+        except (OSError, ValueError) as error:
+            parser.error(f"--machine {args.machine}: {error}")
+    if args.estop and machine is None:
+        parser.error("--estop needs --machine: the E-stop is the simulated machine's")
+    if any(clock < 0 for clock in args.estop):
+        parser.error("--estop clocks are card clocks since the server opened the card, not negative")
     if not 1 <= args.clock_hz <= 0xFFFFFFFF:
         parser.error(f"--clock-hz must be 1..{0xFFFFFFFF}, not {args.clock_hz}")
     if not 0 <= args.free_run <= MAX_FREE_RUN:
@@ -247,9 +290,9 @@ def main(argv=None):
         parser.error(f"--ppm must be {-MAX_PPM}..{MAX_PPM}, not {args.ppm}")
     if os.path.exists(args.socket):
         parser.error(f"{args.socket} exists: remove it or choose another path")
-    session = CardSession("verilator", clock_hz=args.clock_hz)
+    session = CardSession("verilator", clock_hz=args.clock_hz, machine=machine)
     try:
-        server = CardServer(session, args.clock_hz, args.ppm, failure)
+        server = CardServer(session, args.clock_hz, args.ppm, failure, args.estop)
         listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
         listener.bind(args.socket)
         os.chmod(args.socket, 0o666)  # the driver runs as LinuxCNC's (ordinary) user

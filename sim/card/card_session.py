@@ -35,7 +35,9 @@ from models.pci import CONFIG_BYTES, check_access, check_value
 from sim.backends.verilator.verilated_card import VerilatedCard
 from sim.backends.verilator.pci_bus import VerilatorBench
 from sim.backends.waves import trace_stem
+from models.sim_machine import SimMachine
 from sim.card.card_e2e import DEFAULT_FIFO, DEVICE, CardUnderTest, card_verilog, wait
+from sim.card.sim_machine import MachineHandle
 from sim.pci.bench import CLOCK_PERIOD, TARGET_DEVICE, PciBench, pci_testbench
 from sim.pci.host_types import Clocks, HostError
 
@@ -52,7 +54,10 @@ class CardSession:
     arguments (default: ``max_retries`` = ``RETRIES``); ``trace``: the bench's
     VCD (MyHDL, Icarus; ``name`` names it); ``monitor``: the protocol checker
     on Verilator (always on for the others); ``clock_hz``: what the card's
-    CLOCK_HZ reports (Verilator; the others build the default).
+    CLOCK_HZ reports (Verilator; the others build the default); ``machine``: a
+    ``models.sim_machine.MachineConfig``, the simulated machine on the card's
+    input pins (``self.machine``, a ``sim.card.sim_machine.MachineHandle``;
+    None without one: the inputs stay low).
 
     ``host`` (a ``PciMaster``), ``target`` (a ``CardUnderTest``: ``log``,
     ``io``, ``mem``), ``device`` (``PciDevice``), ``io`` / ``mem`` (BAR
@@ -60,15 +65,20 @@ class CardSession:
     """
 
     def __init__(self, kind, fifo_depth=DEFAULT_FIFO, host_options=None, trace=False, name="card_session",
-                 monitor=True, clock_hz=CLOCK_HZ.default):
+                 monitor=True, clock_hz=CLOCK_HZ.default, machine=None):
         self.kind = kind
-        self.target = CardUnderTest(kind, fifo_depth)
+        simulated = SimMachine(machine) if machine is not None and kind != "verilator" else None
+        self.target = CardUnderTest(kind, fifo_depth, machine=simulated)
         options = dict(max_retries=RETRIES)
         options.update(host_options or {})
         if kind == "verilator":
             self._runner = _VerilatorRunner(self.target, fifo_depth, options, monitor, clock_hz)
+            if machine is not None:
+                self._runner.card.start_machine(machine)
         else:
             self._runner = _MyhdlRunner(self.target, options, trace, f"{name}_{kind}")
+        self.machine = None if machine is None else MachineHandle(
+            machine, model=self._runner.card.model if kind == "verilator" else None, machine=simulated)
         self.host = self._runner.bench.host
         self.bench = self._runner.bench
         self.closed = False

@@ -12,9 +12,10 @@ BACKOFF = 5
 AXES = "xy"
 
 
-def arm(driver, backoff=BACKOFF, search=200):
+def arm(driver, backoff=BACKOFF, search=200, samples=SAMPLES, tick=1):
     """The HOME_* registers, the filter, STEP_WIDTH, the drives on, INT_ENABLE.HOMED."""
-    for name, value in (("STEP_WIDTH", WIDTH), ("INPUT_FILTER", SAMPLES), ("HOME_SEEK_PERIOD", SEEK),
+    for name, value in (("STEP_WIDTH", WIDTH), ("INPUT_FILTER", samples), ("INPUT_TICK", tick),
+                        ("HOME_SEEK_PERIOD", SEEK),
                         ("HOME_RELEASE_PERIOD", RELEASE), ("HOME_BACKOFF", backoff), ("HOME_SEARCH", search),
                         ("MACHINE_CONTROL", 1), ("INT_ENABLE", regmap.field_of("INT_ENABLE", HOMED=1))):
         yield from write(driver, name, value)
@@ -39,12 +40,14 @@ def outcome(word):
     return {name: regmap.field_value("HOME_STATUS", name, word) for name in ("BUSY", "DONE", "NOT_FOUND", "REFUSED", "PHASE")}
 
 
-def homing_run(name, cosim, axis, negative, switch, backoff=BACKOFF, search=200, during=None):
-    """HOME with ``switch`` on ``axis``; (pin log, registers read at the end)."""
+def homing_run(name, cosim, axis, negative, switch, backoff=BACKOFF, search=200, during=None, samples=SAMPLES,
+               tick=1):
+    """HOME with ``switch`` on ``axis``, the filter at ``samples`` x ``tick``;
+    (pin log, registers read at the end)."""
     words = {}
 
     def scenario(driver, pins, pin_log, machine_log):
-        yield from arm(driver, backoff, search)
+        yield from arm(driver, backoff, search, samples, tick)
         yield from home(driver, axis, negative)
         if during:
             yield from during(driver, pins, pin_log, machine_log, words)

@@ -11,6 +11,8 @@ from dataclasses import dataclass, field
 from myhdl import block, delay, instance
 
 from models import registers as regmap
+from models.commands import command_words
+from models.dda_model import LineCommand
 from models.machine_model import REASON
 from rtl.card_core import card_core_ports
 from sim.backends.waves import run_traced
@@ -114,6 +116,35 @@ def pulse_widths(pin_log, pin="step_x"):
     return widths
 
 
+def step_pulses(pin_log):
+    """(rise, fall) clocks of every STEP pulse of both pins (``PinLog``
+    numbering: high from clock rise, low again in clock fall; a pulse still
+    high at the end has fall None)."""
+    pulses = []
+    for bit in (1, 4):   # step_x, step_y (PIN_BITS)
+        rose, before = None, 0
+        for clock, state in pin_log.edges:
+            high, was = bool(state & bit), bool(before & bit)
+            if high and not was:
+                rose = clock
+            elif was and not high:
+                pulses.append((rose, clock))
+                rose = None
+            before = state
+        if rose is not None:
+            pulses.append((rose, None))
+    return sorted(pulses)
+
+
+def pulses_outside_drive(pin_log, machine_log):
+    """The STEP pulses during which DRIVE_ENABLE was low in some clock from
+    the rise to the clock the STEP pin is low again (that one included: the
+    drive may count on either edge)."""
+    end = len(machine_log.drive)
+    return [(rise, fall) for rise, fall in step_pulses(pin_log)
+            if not all(drive_at(machine_log, clock) for clock in range(rise, min(fall or end, end) + 1))]
+
+
 def read(driver, name):
     word = yield from driver.io_read(regmap.offset(name))
     return word
@@ -166,3 +197,70 @@ def assert_exact(pin_log, position, commands, width=WIDTH):
     assert path == expected_path(commands)[:len(path)]
     assert path[-1] == position
     assert set(pulse_widths(pin_log, "step_x") + pulse_widths(pin_log, "step_y")) <= {width}, "a partial pulse"
+
+
+STOP_CAUSES = ("watchdog", "estop", "limit", "decelerated")
+
+
+def stop_and_clear(driver, pins, pin_log, machine_log, cause, wait, results):
+    """A line towards X+, stopped ``wait`` clocks in by ``cause`` (``STOP_CAUSES``;
+    "decelerated": the watchdog with RAMP_STEP set), the input released, CLEAR_STOP,
+    then MACHINE_CONTROL.DRIVE_ENABLE written again; what the registers said at each
+    step goes to ``results`` (a list of dicts)."""
+    ramp = cause == "decelerated"
+    yield from write(driver, "RAMP_STEP", 512 if ramp else 0)
+    yield from driver.push_all(command_words(LineCommand(150, 40)))
+    yield from wait_clocks(driver, 60 + wait)
+    record = dict(cause=cause, at=pin_log.clock)
+    if cause in ("watchdog", "decelerated"):
+        yield from write(driver, "WATCHDOG", 1)
+    else:
+        yield from set_input(pins, pin_log, machine_log, "estop" if cause == "estop" else "limit_pos_x", 1)
+    for _ in range(200):
+        status = yield from read(driver, "STATUS")
+        if field("STATUS", "STOPPED", status):
+            break
+    record["stopped"] = yield from snapshot(driver)
+    record["control_stopped"] = yield from read(driver, "MACHINE_CONTROL")
+    if cause in ("estop", "limit"):
+        yield from set_input(pins, pin_log, machine_log, "estop" if cause == "estop" else "limit_pos_x", 0)
+        yield from wait_clocks(driver, 3 * REACTION)
+    yield from write(driver, "MACHINE_CONTROL", 1)    # while stopped: not kept
+    yield from clear_stop(driver)
+    record["cleared"] = yield from snapshot(driver)
+    record["control_cleared"] = yield from read(driver, "MACHINE_CONTROL")
+    yield from write(driver, "MACHINE_CONTROL", 1)
+    yield from wait_clocks(driver, 3)
+    record["enabled"] = yield from read(driver, "MACHINE_STATUS")
+    results.append(record)
+
+
+def stop_cycles(results, waits=range(6)):
+    """A scenario: ``stop_and_clear`` for every cause, ``waits`` clocks into the line."""
+    def scenario(driver, pins, pin_log, machine_log):
+        for name, value in (("FEED_RATE", regmap.RATE_MAX // 2), ("RAMP_START", 1024), ("STEP_WIDTH", WIDTH),
+                            ("CONTROL", 1), ("MACHINE_CONTROL", 1)):
+            yield from write(driver, name, value)
+        for cause in STOP_CAUSES:
+            for wait in waits:
+                yield from stop_and_clear(driver, pins, pin_log, machine_log, cause, wait, results)
+        results.append(dict(position=(yield from read_position(driver))))
+    return scenario
+
+
+def drive_margins(pin_log, machine_log, at, until):
+    """(clocks from the last STEP rise to DRIVE_ENABLE low, from that STEP's fall to it)
+    for the stop caused at clock ``at`` (the first DRIVE_ENABLE fall after it, before ``until``)."""
+    fell = next(clock for clock in range(at + 1, until) if not drive_at(machine_log, clock))
+    rise, fall = max((p for p in step_pulses(pin_log) if p[0] < fell), default=(None, None))
+    if rise is None:
+        return None, None
+    return fell - rise, fell - fall
+
+
+def drive_low_at(pin_log, latch):
+    """The clock DRIVE_ENABLE reads low for a stop that would drop it at clock
+    ``latch``: a STEP pulse that rose by then keeps it high to the clock after
+    its fall (docs/machine.md)."""
+    falls = [fall for rise, fall in step_pulses(pin_log) if rise <= latch and fall is not None and fall >= latch]
+    return max([latch] + [fall + 1 for fall in falls])

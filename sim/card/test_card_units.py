@@ -212,17 +212,19 @@ def test_direct_pulse_counts(cosim):
         assert int(command.remaining) == model.remaining
         if model.request:
             assert bool(out.dir) == model.direction
+        # retarget: homing's back-off, the count changed under way, its timing kept
         inputs = dict(load=model.remaining == 0 and rng.random() < 0.1,
                       count=rng.randint(-20, 20), period=rng.randint(1, 5),
                       ready=rng.random() < 0.8, clear=rng.random() < 0.003)
+        inputs["retarget"] = not inputs["load"] and rng.random() < 0.03
         assert bool(command.busy) == model.busy(bool(command.load))
         for key, value in inputs.items():
             getattr(out if key == "ready" else command, key).next = value
         model.clock(**inputs)
 
     _run(f"direct_pulse_{'icarus' if cosim else 'myhdl'}", _dut(direct_pulse, "direct_pulse", ports, cosim),
-         ports, step, 1500, {"direct": ["command_load", "command_count", "command_period", "out_step",
-                                        "command_remaining"]})
+         ports, step, 1500, {"direct": ["command_load", "command_retarget", "command_count", "command_period",
+                                        "out_step", "command_remaining"]})
 
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])

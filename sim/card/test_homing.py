@@ -54,9 +54,32 @@ def test_home_with_bouncing_switch(axis, negative, cosim, seed):
     # the set step rates, from the pins (the first step in a new direction leaves
     # late by the DIR change, DIR_HOLD and DIR_SETUP: DIR is positive after reset)
     assert set(gaps(expect.seek[1:])) == {SEEK}
-    assert len(expect.release) > 2 and set(gaps(expect.release[1:])) == {RELEASE}
-    assert len(expect.backoff) == BACKOFF and set(gaps(expect.backoff)) == {RELEASE}
+    # every step off the switch and of the back-off at the release period, the
+    # gap from the last release step to the first back-off step included
+    assert len(expect.release) > 2 and len(expect.backoff) == BACKOFF
+    assert gaps(expect.release[1:] + expect.backoff) == [RELEASE] * (len(expect.release) + BACKOFF - 2)
     assert expect.trip_edge < expect.release[0][0] and expect.release[-1][0] < expect.release_edge
+
+
+# A filter slower than the release period (15 samples 8 clocks apart: 120
+# clocks against 60): the filter sees the switch open after more steps have
+# left, the spacing must not change.
+SLOW_FILTER = dict(samples=15, tick=8)
+
+
+# the Verilog run is slow: test_home_with_bouncing_switch checks every gap on the Verilog too
+@pytest.mark.parametrize("cosim", [False, pytest.param(True, marks=pytest.mark.slow)], ids=["myhdl", "icarus"])
+def test_release_and_backoff_spacing_with_a_slow_filter(cosim):
+    switch = BouncingSwitch(trip=9, hysteresis=1, chatter=14, longest_run=3, seed=11)
+    pin_log, words = homing_run("home_slow_filter", cosim, 0, False, switch, **SLOW_FILTER)
+    expect = expected_homing(pin_log.rises, 0, switch.levels, SLOW_FILTER["samples"], False, SLOW_FILTER["tick"])
+    assert outcome(words["HOME_STATUS"]) == dict(BUSY=0, DONE=1, NOT_FOUND=0, REFUSED=0, PHASE=0)
+    assert words["position"] == (expect.position, 0)
+    # zeroed where the filter saw the switch open, past its release point; steps
+    # already requested then count from there, then HOME_BACKOFF more
+    assert expect.zero_point < switch.release_point
+    assert len(expect.backoff) >= BACKOFF and expect.position == -len(expect.backoff)
+    assert gaps(expect.release[1:] + expect.backoff) == [RELEASE] * (len(expect.release) + len(expect.backoff) - 2)
 
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])

@@ -119,7 +119,8 @@ def _guard_inputs(rng, model, index, state):
     return dict(active=state["active"], steps=steps, dirs=dirs, drive_request=rng.random() < 0.9,
                 clear_stop=model.stopped and rng.random() < 0.05, watchdog_load=load,
                 watchdog_timeout=rng.choice([0, 3, 40, 150]) if load else state.get("timeout", 0),
-                ramp=state["ramp"], held=model.stopping and rng.random() < 0.1)
+                ramp=state["ramp"], held=model.stopping and rng.random() < 0.1,
+                pulsing=rng.random() < 0.4)
 
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
@@ -145,7 +146,7 @@ def test_machine_guard_against_model(seed, cosim):
         guard.active.next = given["active"]
         request.step_x.next, request.step_y.next = given["steps"]
         request.dir_x.next, request.dir_y.next = given["dirs"]
-        for name in ("drive_request", "clear_stop", "watchdog_load", "watchdog_timeout", "ramp", "held"):
+        for name in ("drive_request", "clear_stop", "watchdog_load", "watchdog_timeout", "ramp", "held", "pulsing"):
             getattr(guard, name).next = given[name]
         pending[:] = [model.granted(given["active"], given["steps"], given["dirs"], given["ramp"]),
                       model.halt(given["active"])]

@@ -193,8 +193,17 @@ MACHINE_DEFECTS = {
     "zero_while_seeking": ("machine_homing", "released = ((homing0_state == 3'b100) && (!homing0_switch));",
                            "released = ((homing0_state == 3'b010) && (!homing0_switch));",
                            {"hm_zero_at_release"}),
-    "held_at_any_rate": ("machine_hold", "assign settled = (feed_held && (!tick) && (!outputs_busy));",
-                         "assign settled = ((!tick) && (!outputs_busy));", {"fh_held_rate_zero"}),
+    "held_at_any_rate": ("machine_hold", "    settled = (feed_held && (!tick) && (!outputs_busy));",
+                         "    settled = ((!tick) && (!outputs_busy));", {"fh_held_rate_zero"}),
+    # issue 28: DRIVE_ENABLE falling under a STEP pulse; CLEAR_STOP re-energising
+    # (MACHINE_CONTROL.DRIVE_ENABLE not cleared by the stop); WATCHDOG cut to 24 bits
+    "drive_falls_under_a_pulse": ("machine_drive", " || (pins_drive_enable && pulse_out0_control_pulsing));",
+                                  ");", {"md_drive_holds_pulse"}),
+    "clear_stop_reenergises": ("machine_drive", "drive_cleared = 1;", "drive_cleared = 0;",
+                               {"md_drive_needs_write", "minv_drive_rearmed"}),
+    "watchdog_cut_to_24_bits": ("machine_watchdog_write", "reg_word30_honoured = 16777215;",
+                                "reg_word30_honoured = reg_word30_written[24-1:0];",
+                                {"mwl_write_loads_clamped", "mwl_only_zero_turns_off"}),
 }
 
 

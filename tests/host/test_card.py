@@ -68,12 +68,16 @@ class FakeRegisters(Transport):
         return 0
 
 
+MAJOR = regmap.VERSION >> 8
+
+
+# a card of another major version, newer or older (1.3: before a stop cleared
+# MACHINE_CONTROL.DRIVE_ENABLE), is refused
 @pytest.mark.parametrize("id_word, text", [
     (0x12340101, "not a DDA card"),
-    (regmap.ID_MAGIC << 16 | 0x0201, "register map 2.1; this host software speaks 1.x"),
-    (regmap.ID_MAGIC << 16 | 0x0100, "no capability registers"),
-    (regmap.ID_MAGIC << 16 | 0x0101, "lacks what 1.3 added"),
-    (regmap.ID_MAGIC << 16 | 0x0102, "lacks what 1.3 added"),
+    (regmap.ID_MAGIC << 16 | (MAJOR + 1) << 8 | 1, f"register map {MAJOR + 1}.1; this host software speaks {MAJOR}.x"),
+    (regmap.ID_MAGIC << 16 | 0x0103, f"register map 1.3; this host software speaks {MAJOR}.x"),
+    (regmap.ID_MAGIC << 16 | 0x0100, f"register map 1.0; this host software speaks {MAJOR}.x"),
 ])
 def test_identification_refuses_other_cards_and_versions(id_word, text):
     with pytest.raises(IdentityError, match=text):
@@ -264,8 +268,17 @@ def test_watchdog_stops_a_move_the_host_forgets(card, transport):
     assert position == (sum(r[1] for r in rises), sum(r[2] for r in rises)) and 0 < position[0] < 5000
     assert regmap.field_value("MACHINE_STATUS", "DRIVE_ENABLE", card.read("MACHINE_STATUS")) == 0
     card.watchdog(0)
+    with pytest.raises(MachineStopped, match="WATCHDOG"):
+        card.drive(True)   # not kept while stopped: refused before anything is written
     card.clear_stop()
     assert card.stop_reason() == ("NONE", ())
+    # CLEAR_STOP does not re-energise: the drives stay off until drive(True)
+    transport.sleep(1e-6)
+    assert card.field("MACHINE_STATUS", "DRIVE_ENABLE") == 0 and card.field("MACHINE_CONTROL", "DRIVE_ENABLE") == 0
+    card.drive(True)
+    transport.sleep(1e-6)
+    assert card.field("MACHINE_STATUS", "DRIVE_ENABLE") == 1
+    card.drive(False)
 
 
 @pytest.mark.parametrize("ramp_step", [0, 300])

@@ -13,6 +13,7 @@ from host.card import Card
 from host.selftest import selftest
 from host.transports.simulated import SimTransport
 from models import registers as regmap
+from models.sim_machine import MachineConfig, Switch
 from rtl.convert import ROOT
 
 EXAMPLES = ROOT / "examples"
@@ -116,3 +117,27 @@ def test_bad_run_options_are_refused_before_the_card_is_opened(args, text):
 def test_a_missing_file_is_refused():
     result = run_host("run", ROOT / "none.ngc", timeout=60)
     assert result.returncode == 2 and "no such file" in result.stderr
+
+
+# MyHDL (the machine as a MyHDL process) is slow: Verilator (the compiled harness) by default
+@pytest.mark.parametrize("kind", ["verilator", pytest.param("myhdl", marks=pytest.mark.slow)])
+def test_info_shows_the_machine_side_with_a_simulated_machine(tmp_path, kind):
+    """``info --machine``: HOME_X's switch
+    closed where the axis stands reads active through the filter, and the guard,
+    drives, watchdog and homing lines say the card is at rest."""
+    machine = tmp_path / "machine.json"
+    machine.write_text(MachineConfig(switches={"HOME_X": Switch(0, positive=False)}).to_json())
+    info = run_host("info", "--card", kind, "--machine", machine)
+    assert info.returncode == 0, info.stderr
+    for line in ("inputs:      active HOME_X (after INPUT_POLARITY and the filter); pins high HOME_X",
+                 "guard:       running", "drives:      DRIVE_ENABLE pin low, MACHINE_CONTROL.DRIVE_ENABLE 0; hold off",
+                 "watchdog:    off", "homing:      idle; last HOME axis X: none",
+                 "sim machine: positions (0, 0), steps lost to a disabled drive (0, 0), E-stop released"):
+        assert line in info.stdout, info.stdout
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"switches": {"HOME_X": {"position": "here"}}}')
+    for card, path, message in (("pci", machine, "--machine needs a simulated card"),
+                                ("verilator", bad, "HOME_X: position, hysteresis, bounce, longest_run and seed are whole"),
+                                ("verilator", tmp_path / "none.json", "no such file")):
+        refused = run_host("info", "--card", card, "--machine", path)
+        assert refused.returncode == 2 and message in refused.stderr, refused.stderr

@@ -11,6 +11,7 @@ import time
 import pytest
 
 from models import registers as regmap
+from models.sim_machine import MachineConfig, Switch
 from tests.linuxcnc.compare import pin_positions, queued_position
 from tests.linuxcnc.session import (CLOCK_HZ, PERIOD_CLOCKS, SCALE, as_user, card_server, configure, missing,
                                     one_linuxcnc, run_and_kill, run_folder, run_linuxcnc)
@@ -168,4 +169,52 @@ def test_clock_drift_is_trimmed_from_the_fifo_level(linuxcnc_alone, ppm):
     assert (pins[1][-1], pins[2][-1]) == (round(samples[-1][0] * SCALE), round(samples[-1][1] * SCALE))
     print(f"\n{ppm:+} ppm: {last - first + 1} periods, drift {drift} clocks, trimmed {trimmed}, the queue "
           f"within {worst} clocks of its start, FIFO {min(levels)}..{max(levels)} words, no underrun")
+    shutil.rmtree(run, ignore_errors=True)
+
+
+# The simulated machine of the homing test: a home switch 5 mm along +X and one
+# 3 mm along -Y (SCALE steps per mm), each with hysteresis and contact bounce.
+HOME_SWITCHES = MachineConfig(switches={
+    "HOME_X": Switch(500, positive=True, hysteresis=20, bounce=40, longest_run=5, seed=3),
+    "HOME_Y": Switch(-300, positive=False, hysteresis=10, bounce=30, longest_run=4, seed=8)})
+HOMING_INI = {"JOINT_0": dict(HOME_SEARCH_VEL=5, HOME_LATCH_VEL=0.5),
+              "JOINT_1": dict(HOME_SEARCH_VEL=-5, HOME_LATCH_VEL=-0.5)}
+HOMING_HAL = """
+# the card's home inputs to LinuxCNC's homing (issue 28's simulated machine drives them)
+net home-x dda-card.0.input.home-x => joint.0.home-sw-in
+net home-y dda-card.0.input.home-y => joint.1.home-sw-in
+"""
+
+
+def test_linuxcnc_homes_on_the_simulated_machines_switches(linuxcnc_alone):
+    """LinuxCNC homes both joints on their home switches (search at 5 mm/s, latch on
+    the switch's closing at 0.5 mm/s), read through the driver's input.home-* pins
+    from the card's filtered inputs, which the card server's simulated machine
+    (--machine) drives from the axes' positions.  Homed, each joint stands at its
+    HOME (0), which LinuxCNC put at the latch: the machine is within a step of where
+    its switch closes, no step lost, and LinuxCNC's motor command is there."""
+    run = run_folder()
+    configure(run)
+    ini = (run / "dda_xy.ini").read_text()
+    for joint, settings in HOMING_INI.items():
+        head, _, tail = ini.partition(f"[{joint}]")
+        for key, value in settings.items():
+            tail = tail.replace(f"{key} = 0", f"{key} = {value}", 1)
+        ini = head + f"[{joint}]" + tail
+    (run / "dda_xy.ini").write_text(ini)
+    with open(run / "dda_xy.hal", "a") as hal:
+        hal.write(HOMING_HAL)
+    (run / "machine.json").write_text(HOME_SWITCHES.to_json())
+    for path in ("dda_xy.ini", "dda_xy.hal", "machine.json"):
+        (run / path).chmod(0o666)
+    samples, pins, record = run_linuxcnc(run, [], "--machine", str(run / "machine.json"))
+    machine = record["machine"]
+    assert machine["lost"] == [0, 0]
+    trips = [HOME_SWITCHES.switches[name].position for name in ("HOME_X", "HOME_Y")]
+    assert all(abs(got - trip) <= 1 for got, trip in zip(machine["positions"], trips)), (machine, trips)
+    # the pins agree with the machine (the drives were on for every step)
+    assert [pins[1][-1], pins[2][-1]] == machine["positions"]
+    # LinuxCNC's motor command (its joint at HOME plus the offset the latch set) is where the machine is
+    assert all(abs(samples[-1][axis] * SCALE - machine["positions"][axis]) <= 1 for axis in range(2)), samples[-1]
+    print(f"\nhomed: machine at {machine['positions']} steps, the switches close at {trips}")
     shutil.rmtree(run, ignore_errors=True)

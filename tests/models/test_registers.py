@@ -8,6 +8,7 @@ import pytest
 from models import instructions as isa
 from models import register_docs
 from models import registers as regmap
+from models.card_model import RegisterModel
 from rtl.convert import C_HEADER, GEN_DIR, ROOT, write_c_header
 
 
@@ -25,6 +26,17 @@ def test_bad_table_entries_are_refused(change, message):
     bad = replace(regmap.register("LOW_WATER"), **change)
     with pytest.raises(ValueError, match=message):
         regmap.check_table(tuple(bad if r.name == "LOW_WATER" else r for r in regmap.REGISTERS))
+
+
+def test_a_number_the_host_writes_declares_its_range():
+    """Without a range a write too large for the field would be cut to its width
+    (WATCHDOG 2**24 read 0: off) instead of clamped and flagged."""
+    unbounded = replace(regmap.register("WATCHDOG"), minimum=None, maximum=None)
+    with pytest.raises(ValueError, match="declares its range"):
+        regmap.check_table(tuple(unbounded if r.name == "WATCHDOG" else r for r in regmap.REGISTERS))
+    model = RegisterModel()
+    assert model.write("WATCHDOG", 1 << regmap.WATCHDOG_BITS), "clamped, and INT_STATUS.CLAMPED says so"
+    assert model.honour(regmap.register("WATCHDOG"), 0x1001388) == ((1 << regmap.WATCHDOG_BITS) - 1, True)
 
 
 def test_duplicate_offset_is_refused():

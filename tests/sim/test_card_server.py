@@ -8,6 +8,7 @@ import sys
 import pytest
 
 from models import registers as regmap
+from models.sim_machine import MachineConfig, Switch
 from sim.card.card_server import ADVANCE, ANSWER, FIFO, READ, REQUEST, WRITE, main
 
 CLOCK_HZ = 1_000_000
@@ -190,3 +191,41 @@ def test_bad_failures_are_refused(tmp_path, capsys, value):
         main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), "--fail", value])
     assert "--fail must be KIND@N" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_simulated_machine_and_estop_schedule(tmp_path):
+    """--machine: a home switch at X 3 the line crosses (MACHINE_STATUS shows it while
+    the machine is on it); --estop: pressed at clock 30,000 (the card stops, ESTOP),
+    released at 40,000; the log has the machine's positions and lost steps."""
+    config = MachineConfig(switches={"HOME_X": Switch(3, hysteresis=1, bounce=4, seed=2)})
+    (tmp_path / "machine.json").write_text(config.to_json())
+    client = Client(tmp_path, "--machine", str(tmp_path / "machine.json"), "--estop", "30000", "--estop", "40000")
+    try:
+        assert client.ask(WRITE, regmap.offset("MACHINE_CONTROL"), 1) == (0, None)
+        assert client.ask(WRITE, regmap.offset("CONTROL"), 1) == (0, None)
+        assert client.ask(FIFO, 3, words=[1 << 28, 5, 0]) == (0, None)
+        client.ask(ADVANCE, 2000)
+        status, _ = client.ask(READ, regmap.offset("MACHINE_STATUS"))
+        assert regmap.field_value("MACHINE_STATUS", "ACTIVE", status) == 1 << regmap.INPUT_NAMES.index("HOME_X")
+        client.ask(ADVANCE, 33000)
+        reason, _ = client.ask(READ, regmap.offset("STOP_REASON"))
+        client.ask(ADVANCE, 10000)
+        record = client.finish()
+    finally:
+        client.connection.close()
+        client.process.kill()
+    assert regmap.field_value("STOP_REASON", "REASON", reason) == regmap.STOP_REASONS.index("ESTOP")
+    assert record["machine"] == dict(positions=[5, 0], lost=[0, 0], inputs=1 << regmap.INPUT_NAMES.index("HOME_X"),
+                                     estop=False)
+    assert [level for _, level in record["drive"]] == [0, 1, 0], "on, then the E-stop's stop"
+    assert record["drive"][-1][0] == record["advances"][1][1], "sampled at the end of the ADVANCE spanning 30,000"
+
+
+def test_machine_options_are_checked(tmp_path, capsys):
+    with pytest.raises(SystemExit):
+        main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), "--estop", "5"])
+    assert "--estop needs --machine" in capsys.readouterr().err
+    (tmp_path / "bad.json").write_text('{"switches": {"ESTOP": {"position": 1}}}')
+    with pytest.raises(SystemExit):
+        main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), "--machine", str(tmp_path / "bad.json")])
+    assert "no switch input 'ESTOP'" in capsys.readouterr().err

@@ -31,6 +31,7 @@ from rtl.convert import build_dir
 
 HERE = Path(__file__).resolve().parent
 HARNESS = HERE / "harness.cpp"
+HARNESS_HEADERS = (HERE / "sim_machine.h",)   # included by the harness: part of its key
 PREFIX = "Vmodel"
 LIBRARY = "libmodel.so"
 TOOL_ENVIRONMENT = "DDA_CARD_VERILATOR"
@@ -108,7 +109,7 @@ def model_key(verilog_files, top, trace, tool, defines=()):
     """Hash of everything a built model depends on."""
     digest = hashlib.sha256()
     parts = [top, str(trace), tool.command, tool.version, *VERILATOR_OPTIONS, *MAKE_OPTIONS, *defines,
-             HARNESS.read_bytes(), Path(__file__).read_bytes()]
+             HARNESS.read_bytes(), *(header.read_bytes() for header in HARNESS_HEADERS), Path(__file__).read_bytes()]
     parts += [Path(f).read_bytes() for f in verilog_files]
     for part in parts:
         data = part if isinstance(part, bytes) else part.encode()

@@ -1,5 +1,7 @@
 // Compiled harness around a Verilated card: the clock loop, the PCI segment
-// resolution and the STEP/DIR capture, behind a C interface for ctypes.
+// resolution, the STEP/DIR capture and the simulated machine (drives,
+// switches, E-stop: models/sim_machine.py is its definition, clock for
+// clock), behind a C interface for ctypes.
 //
 // The model's ports come from vc_ports.h, written by sim/vlt/build.py from
 // the model's own header (name, width, direction, address).  Nothing here
@@ -20,6 +22,7 @@
 
 #include "verilated.h"
 #include "vc_ports.h"
+#include "sim_machine.h"
 #if VC_TRACE == 1
 #include "verilated_vcd_c.h"
 typedef VerilatedVcdC TraceFile;
@@ -50,6 +53,7 @@ enum Reason { LIMIT = 0, INTERRUPT = 1, STEPS = 2, BUS = 3 };
 
 uint64_t mask(int width) { return width >= 64 ? ~0ULL : (1ULL << width) - 1; }
 
+
 uint64_t read_port(const Port& port) {
     if (port.width <= 8) return *static_cast<uint8_t*>(port.address);
     if (port.width <= 16) return *static_cast<uint16_t*>(port.address);
@@ -78,6 +82,7 @@ struct Card {
     unsigned pin_state = 0;
     std::vector<uint64_t> edge_clocks;
     std::vector<uint8_t> edge_states;
+    Machine machine;
 #if VC_TRACE
     std::unique_ptr<TraceFile> trace;
     uint64_t trace_from = 0, trace_to = 0, half_period = 15;
@@ -89,6 +94,37 @@ struct Card {
 
     uint64_t get(int index) const { return read_port(ports[index]); }
     void set(int index, uint64_t value) { write_port(ports[index], value); }
+
+    // The machine's inputs to the card's ports (the next rising edge takes
+    // them); a change of them or of DRIVE_ENABLE (bit 7) is recorded.
+    void drive_inputs(bool enabled) {
+        Machine& m = machine;
+        unsigned word = m.word() | (enabled ? 0x80u : 0u);
+        for (int input = 0; input < INPUTS; ++input)
+            if (m.inputs[input] >= 0) set(m.inputs[input], (word >> input) & 1);
+        if (word != m.pins) {
+            m.change_clocks.push_back(clocks);
+            m.change_pins.push_back(static_cast<uint8_t>(word));
+            m.pins = word;
+        }
+    }
+
+    // One clock of models/sim_machine.py's SimMachine on the pins after an edge.
+    void machine_clock(unsigned state) {
+        Machine& m = machine;
+        bool enabled = m.drive >= 0 && get(m.drive);
+        for (int axis = 0; axis < 2; ++axis) {
+            bool step = (state >> (axis ? STEP_Y : STEP_X)) & 1;
+            bool dir = (state >> (axis ? DIR_Y : DIR_X)) & 1;
+            bool rose = step && !m.step_before[axis];
+            m.step_before[axis] = step;
+            if (rose && enabled) m.position[axis] += dir == m.dir_positive[axis] ? 1 : -1;
+            else if (rose) ++m.lost[axis];
+        }
+        for (int input = 1; input < INPUTS; ++input)
+            if (m.contacts[input].present) m.contacts[input].clock(m.position[kInputAxis[input]]);
+        drive_inputs(enabled);
+    }
 
     void dump(uint64_t time) {
 #if VC_TRACE
@@ -120,6 +156,7 @@ struct Card {
             edge_states.push_back(static_cast<uint8_t>(state));
             pin_state = state;
         }
+        if (machine.on) machine_clock(state);
         set(clock, 0);
         model->eval();
 #if VC_TRACE
@@ -310,6 +347,74 @@ int vc_run(void* handle, uint64_t limit, int until_interrupt, uint64_t steps, ui
     }
     *done = count;
     return reason;
+}
+
+// The simulated machine: `inputs` (INPUTS port indices, -1 where absent) and
+// the DRIVE_ENABLE port; axes start at start_x, start_y; dir_positive: bit n,
+// the DIR level that moves axis n forward.  Switches are added with
+// vc_machine_switch before; the inputs are driven from now on.
+void vc_machine_start(void* handle, const int* inputs, int drive, int64_t start_x, int64_t start_y,
+                      int dir_positive, int estop_active_low) {
+    Card* card = static_cast<Card*>(handle);
+    Machine& m = card->machine;
+    for (int input = 0; input < INPUTS; ++input) m.inputs[input] = inputs[input];
+    m.drive = drive;
+    m.position[0] = start_x;
+    m.position[1] = start_y;
+    m.dir_positive[0] = dir_positive & 1;
+    m.dir_positive[1] = (dir_positive >> 1) & 1;
+    m.estop_active_low = estop_active_low;
+    for (int input = 1; input < INPUTS; ++input) {
+        Contact& c = m.contacts[input];
+        if (c.present) c.level = c.closed = c.reads_closed(m.position[kInputAxis[input]], false);
+    }
+    m.step_before[0] = (card->pin_state >> STEP_X) & 1;
+    m.step_before[1] = (card->pin_state >> STEP_Y) & 1;
+    m.on = true;
+    m.pins = ~0u;   // the first word is recorded
+    card->drive_inputs(m.drive >= 0 && card->get(m.drive));
+}
+
+void vc_machine_switch(void* handle, int input, int64_t position, int positive, int64_t hysteresis,
+                       int64_t bounce, int64_t longest_run, int active_low, uint32_t seed) {
+    Contact& c = static_cast<Card*>(handle)->machine.contacts[input];
+    c.present = true;
+    c.position = position;
+    c.positive = positive;
+    c.hysteresis = hysteresis;
+    c.bounce = bounce;
+    c.longest_run = longest_run;
+    c.active_low = active_low;
+    c.state = seed ? seed : 1;
+    c.chatter_left = c.run_left = 0;
+}
+
+void vc_machine_estop(void* handle, int pressed) {
+    Card* card = static_cast<Card*>(handle);
+    Machine& m = card->machine;
+    m.estop = pressed;
+    if (m.on) card->drive_inputs(m.drive >= 0 && card->get(m.drive));
+}
+
+// positions (2), lost steps (2), the input word, the changes recorded.
+void vc_machine_state(void* handle, int64_t* position, uint64_t* lost, uint64_t* pins) {
+    Machine& m = static_cast<Card*>(handle)->machine;
+    position[0] = m.position[0];
+    position[1] = m.position[1];
+    lost[0] = m.lost[0];
+    lost[1] = m.lost[1];
+    pins[0] = m.pins & 0x7F;
+    pins[1] = m.change_clocks.size();
+}
+
+// Move the recorded changes out: (clock, word the next edge takes | DRIVE_ENABLE
+// as sampled after edge `clock`, bit 7).
+void vc_machine_take_changes(void* handle, uint64_t* clocks, uint8_t* words) {
+    Machine& m = static_cast<Card*>(handle)->machine;
+    std::memcpy(clocks, m.change_clocks.data(), m.change_clocks.size() * sizeof(uint64_t));
+    std::memcpy(words, m.change_pins.data(), m.change_pins.size());
+    m.change_clocks.clear();
+    m.change_pins.clear();
 }
 
 uint64_t vc_edge_count(void* handle) { return static_cast<Card*>(handle)->edge_clocks.size(); }

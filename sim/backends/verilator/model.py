@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from models.sim_machine import INPUTS
 from sim.backends.verilator.build import VerilatorError
 
 LINES = ("ad", "cbe", "par", "frame", "irdy", "trdy", "devsel", "stop", "perr", "serr", "inta")
@@ -46,6 +47,12 @@ _SIGNATURES = {
     "vc_edge_count": (_u64, [_p]),
     "vc_take_edges": (None, [_p, _u64_array, _u8_array]),
     "vc_trace_open": (_int, [_p, ctypes.c_char_p, _u64, _u64, _u64]),
+    "vc_machine_start": (None, [_p, _int_array, _int, ctypes.c_int64, ctypes.c_int64, _int, _int]),
+    "vc_machine_switch": (None, [_p, _int, ctypes.c_int64, _int, ctypes.c_int64, ctypes.c_int64, ctypes.c_int64,
+                                 _int, ctypes.c_uint32]),
+    "vc_machine_estop": (None, [_p, _int]),
+    "vc_machine_state": (None, [_p, ctypes.POINTER(ctypes.c_int64), ctypes.POINTER(_u64), ctypes.POINTER(_u64)]),
+    "vc_machine_take_changes": (None, [_p, _u64_array, _u8_array]),
     "vc_trace_close": (None, [_p]),
 }
 _LIBRARIES = {}
@@ -194,6 +201,39 @@ class VerilatedModel:
         if count:
             self._lib.vc_take_edges(self._handle, clocks, states)
         return clocks, states
+
+    # ----- the simulated machine (models/sim_machine.py) -----------------------
+    def start_machine(self, config, inputs, drive):
+        """Drive the machine inputs ``inputs`` (port names in ``INPUT_NAMES``
+        order) from ``config`` (a ``MachineConfig``), every clock in the
+        harness, the drives following port ``drive`` (DRIVE_ENABLE)."""
+        for name, switch in config.switches.items():
+            self._lib.vc_machine_switch(self._handle, INPUTS.index(name), switch.position, int(switch.positive),
+                                        switch.hysteresis, switch.bounce, switch.longest_run,
+                                        int(switch.active_low), switch.seed)
+        ports = np.array([self.input_index(name) for name in inputs], dtype=np.intc)
+        directions = int(config.dir_positive[0]) | int(config.dir_positive[1]) << 1
+        self._lib.vc_machine_start(self._handle, ports, self.index(drive), config.start[0], config.start[1],
+                                   directions, int(config.estop_active_low))
+
+    def press_estop(self, pressed=True):
+        self._lib.vc_machine_estop(self._handle, int(bool(pressed)))
+
+    def machine_state(self):
+        """(positions, lost steps, input word) of the simulated machine."""
+        position, lost, pins = (ctypes.c_int64 * 2)(), (_u64 * 2)(), (_u64 * 2)()
+        self._lib.vc_machine_state(self._handle, position, lost, pins)
+        return (position[0], position[1]), (lost[0], lost[1]), pins[0]
+
+    def take_machine_changes(self):
+        """(clocks, words) of the input word's changes since the last call: the
+        word set after the rising edge ``clocks`` counts, taken by the next."""
+        position, lost, pins = (ctypes.c_int64 * 2)(), (_u64 * 2)(), (_u64 * 2)()
+        self._lib.vc_machine_state(self._handle, position, lost, pins)
+        clocks, words = np.empty(pins[1], np.uint64), np.empty(pins[1], np.uint8)
+        if pins[1]:
+            self._lib.vc_machine_take_changes(self._handle, clocks, words)
+        return clocks, words
 
     # ----- waves --------------------------------------------------------------
     def trace(self, path, first=0, last=1 << 62, half_period=15):

@@ -13,6 +13,7 @@ INTA#, STEP rises): run in compiled code there, counted edge by edge by
 import numpy as np
 from myhdl import Signal, block, instance
 
+from models.sim_machine import INPUTS
 from rtl.convert import GEN_DIR
 from sim.backends.verilator.build import VerilatorError, build_model
 from sim.backends.verilator.model import LINES, PINS, Stop, VerilatedModel
@@ -51,6 +52,11 @@ class VerilatedCard:
             raise VerilatorError(f"{self.verilog} has no pci_ad_in: not the split-port card")
         model.bind_bus(lines, "pci_idsel_in", idsel_bit)
         self.lines = lines
+
+    def start_machine(self, config):
+        """The simulated machine of ``config`` (``models.sim_machine.MachineConfig``)
+        on the card's input pins, run in the compiled clock loop."""
+        self.model.start_machine(config, [f"pins_{name.lower()}" for name in INPUTS], "pins_drive_enable")
 
     def collect_pins(self, log):
         """Move the edges recorded so far into ``log`` (an ``ArrayPinLog``)."""

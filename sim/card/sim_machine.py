@@ -1,0 +1,77 @@
+"""The simulated machine (``models/sim_machine.py``) on each back end, and one handle to it.
+
+* Verilator: the compiled harness runs it in its clock loop
+  (``VerilatedCard.start_machine``): no Python per clock.
+* MyHDL and Icarus: ``machine_process`` runs the golden model itself, at each
+  falling edge on the pins after the rising edge before it, and sets the
+  input pins for the next rising edge.
+
+``MachineHandle`` is what a session, the host's simulated transport and the
+card server hand to a user's test: ``press_estop``, ``release_estop``,
+``state()`` (positions, steps lost to a disabled drive, the input pins).
+"""
+from dataclasses import dataclass
+
+from myhdl import block, delay, instance
+
+from models.sim_machine import INPUTS
+
+
+@dataclass(frozen=True)
+class MachineState:
+    """The simulated machine now: ``positions`` (steps its axes moved to),
+    ``lost`` (STEP rises per axis that came while DRIVE_ENABLE was low),
+    ``inputs`` (the pins, bit n: ``INPUT_NAMES[n]``) and ``estop`` (pressed)."""
+    positions: tuple
+    lost: tuple
+    inputs: int
+    estop: bool
+
+    def pin(self, name):
+        return bool(self.inputs >> INPUTS.index(name) & 1)
+
+
+@block
+def machine_process(clock, pins, machine):
+    """``machine`` (a ``SimMachine``) on ``pins`` (``MotorPins``)."""
+    inputs = [getattr(pins, name.lower()) for name in INPUTS]
+
+    @instance
+    def run():
+        while True:
+            yield clock.negedge
+            word = machine.clock(bool(pins.step_x), bool(pins.dir_x), bool(pins.step_y), bool(pins.dir_y),
+                                 bool(pins.drive_enable))
+            yield delay(1)
+            for bit, pin in enumerate(inputs):
+                pin.next = bool(word >> bit & 1)
+
+    return run
+
+
+class MachineHandle:
+    """The machine of a simulated card: on Verilator ``model`` (a
+    ``VerilatedModel`` running it), else ``machine`` (the ``SimMachine`` a
+    ``machine_process`` runs)."""
+
+    def __init__(self, config, model=None, machine=None):
+        self.config, self._model, self._machine = config, model, machine
+        self._estop = False
+
+    def press_estop(self, pressed=True):
+        """Press (or release) the E-stop: the pin changes before the next rising edge."""
+        self._estop = bool(pressed)
+        if self._model is not None:
+            self._model.press_estop(pressed)
+        else:
+            self._machine.press_estop(pressed)
+
+    def release_estop(self):
+        self.press_estop(False)
+
+    def state(self):
+        if self._model is not None:
+            positions, lost, inputs = self._model.machine_state()
+        else:
+            positions, lost, inputs = tuple(self._machine.positions), tuple(self._machine.lost), self._machine.pins
+        return MachineState(tuple(positions), tuple(lost), int(inputs), self._estop)
