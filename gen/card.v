@@ -223,19 +223,28 @@ reg pci_slave1_pci_requests1_local_write;
 reg [31:0] pci_slave1_pci_requests1_local_wdata;
 reg [3:0] pci_slave1_pci_requests1_local_be;
 reg [11:0] pci_slave1_pci_requests1_local_addr;
-reg [3:0] pci_slave1_pci_control1_control_case0_0_out_state;
+reg pci_slave1_pci_control1_control_case0_0_exhausted;
+reg pci_slave1_pci_control1_control_case0_0_last_data;
+reg pci_slave1_pci_control1_control_case0_0_ready_for_phase;
 wire pci_slave1_pci_control1_control_case0_0_target_room;
+reg [3:0] pci_slave1_pci_control1_control_case0_0_out_state;
 reg pci_slave1_pci_control1_control_case0_0_out_trdy;
 reg pci_slave1_pci_control1_control_case0_0_out_stop;
 reg pci_slave1_pci_control1_control_case0_0_out_devsel;
 reg pci_slave1_pci_control1_control_case0_0_out_drive;
 reg pci_slave1_pci_control1_control_case0_0_out_ad_oe;
+reg pci_slave1_pci_control1_control_case1_0_exhausted;
+reg pci_slave1_pci_control1_control_case1_0_last_data;
+reg pci_slave1_pci_control1_control_case1_0_ready_for_phase;
 reg [3:0] pci_slave1_pci_control1_control_case1_0_out_state;
 reg pci_slave1_pci_control1_control_case1_0_out_trdy;
 reg pci_slave1_pci_control1_control_case1_0_out_stop;
 reg pci_slave1_pci_control1_control_case1_0_out_devsel;
 reg pci_slave1_pci_control1_control_case1_0_out_drive;
 reg pci_slave1_pci_control1_control_case1_0_out_ad_oe;
+reg pci_slave1_pci_control1_control_case2_0_exhausted;
+reg pci_slave1_pci_control1_control_case2_0_last_data;
+reg pci_slave1_pci_control1_control_case2_0_ready_for_phase;
 reg [3:0] pci_slave1_pci_control1_control_case2_0_out_state;
 reg pci_slave1_pci_control1_control_case2_0_out_trdy;
 reg pci_slave1_pci_control1_control_case2_0_out_stop;
@@ -1272,51 +1281,39 @@ always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_first_ph
 end
 
 
-always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_read_command, pci_slave1_b_valid, pci_slave1_stop_q, pci_slave1_single, pci_slave1_state, pci_slave1_hold_retry, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_burst_got, pci_slave1_claim_config, pci_slave1_fatal, pci_slave1_devsel_q, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_claim, pci_ad_oe, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_is_read, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case0_0_control
+always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave1_first_phase, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_trdy_q, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_at_last, pci_slave1_is_read, pci_slave1_b_valid) begin: pci_slave1_pci_control1_control_case0_0_outlook
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
-    reg devsel;
-    reg drive;
-    reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
     reg buffer_room;
     done = (1'b0 && (!pci_slave1_trdy_q));
-    hold = ((!1'b0) && (!pci_slave1_trdy_q));
-    trdy = (pci_slave1_trdy_q != 0);
-    stop = (pci_slave1_stop_q != 0);
-    devsel = (pci_slave1_devsel_q != 0);
-    drive = (pci_devsel_oe != 0);
-    ad_oe = (pci_ad_oe != 0);
-    pci_slave1_pci_control1_control_case0_0_out_state = pci_slave1_state;
-    last_data = (pci_slave1_single || pci_slave1_at_last);
     if (done) begin
-        last_data = (pci_slave1_single || pci_slave1_before_last);
+        pci_slave1_pci_control1_control_case0_0_last_data = (pci_slave1_single || pci_slave1_before_last);
     end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
+    else begin
+        pci_slave1_pci_control1_control_case0_0_last_data = (pci_slave1_single || pci_slave1_at_last);
+    end
     if (pci_slave1_is_read) begin
-        ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
-        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
+        pci_slave1_pci_control1_control_case0_0_ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
+        pci_slave1_pci_control1_control_case0_0_exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
     end
     else begin
         buffer_room = (pci_slave1_buffered_next <= 1);
         if ((done && (!pci_slave1_first_phase))) begin
             buffer_room = (pci_slave1_buffered_next == 0);
         end
-        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
+        pci_slave1_pci_control1_control_case0_0_ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
+        pci_slave1_pci_control1_control_case0_0_exhausted = 1'b0;
     end
+end
+
+
+always @(pci_slave1_claim, pci_slave1_claim_config, pci_slave1_state, pci_slave1_fatal, pci_slave1_pci_control1_control_case0_0_exhausted, pci_slave1_hold_retry, pci_slave1_pci_control1_control_case0_0_ready_for_phase, pci_slave1_trdy_q, pci_slave1_is_read, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_stop_q, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case0_0_next_state
+    reg done;
+    reg hold;
+    done = (1'b0 && (!pci_slave1_trdy_q));
+    hold = ((!1'b0) && (!pci_slave1_trdy_q));
+    pci_slave1_pci_control1_control_case0_0_out_state = pci_slave1_state;
     if ((pci_slave1_state == 4'b0000)) begin
-        drive = 1'b0;
-        ad_oe = 1'b0;
         if (pci_slave1_claim) begin
-            drive = 1'b1;
-            devsel = 1'b0;
-            ad_oe = (pci_slave1_read_command != 0);
             if (pci_slave1_claim_config) begin
                 pci_slave1_pci_control1_control_case0_0_out_state = 4'b0001;
             end
@@ -1331,22 +1328,15 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
     else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
         if (pci_slave1_fatal) begin
             pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((pci_slave1_state == 4'b0001)) begin
             pci_slave1_pci_control1_control_case0_0_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b1);
         end
         else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
             pci_slave1_pci_control1_control_case0_0_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
         end
         else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
             pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (pci_slave1_is_read) begin
             pci_slave1_pci_control1_control_case0_0_out_state = 4'b0100;
@@ -1357,23 +1347,71 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
             // pass
         end
         else if ((done && ((!1'b1) || (!pci_slave1_stop_q)))) begin
-            trdy = 1'b1;
             if (1'b1) begin
                 pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
             end
             else begin
                 pci_slave1_pci_control1_control_case0_0_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
+        else if (pci_slave1_pci_control1_control_case0_0_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || pci_slave1_timeout)) begin
+        else if ((pci_slave1_pci_control1_control_case0_0_exhausted || pci_slave1_timeout)) begin
             pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
+        end
+    end
+    else if ((pci_slave1_state == 4'b0111)) begin
+        if ((!1'b1)) begin
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b1000;
+        end
+    end
+    else begin
+        pci_slave1_pci_control1_control_case0_0_out_state = 4'b0000;
+    end
+end
+
+
+always @(pci_slave1_fatal, pci_slave1_state, pci_slave1_pci_control1_control_case0_0_exhausted, pci_slave1_hold_retry, pci_slave1_trdy_q, pci_slave1_pci_control1_control_case0_0_last_data, pci_slave1_hold_got, pci_slave1_pci_control1_control_case0_0_ready_for_phase, pci_slave1_stop_q, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case0_0_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b0 && (!pci_slave1_trdy_q));
+    hold = ((!1'b0) && (!pci_slave1_trdy_q));
+    trdy = (pci_slave1_trdy_q != 0);
+    stop = (pci_slave1_stop_q != 0);
+    if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
+        if (pci_slave1_fatal) begin
+            stop = 1'b0;
+        end
+        else if ((pci_slave1_state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b1);
+        end
+        else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(pci_slave1_pci_control1_control_case0_0_last_data && 1'b1));
+        end
+        else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((pci_slave1_state == 4'b0101) || (pci_slave1_state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b1) || (!pci_slave1_stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b1)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (pci_slave1_pci_control1_control_case0_0_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(pci_slave1_pci_control1_control_case0_0_last_data && 1'b1));
+        end
+        else if ((pci_slave1_pci_control1_control_case0_0_exhausted || pci_slave1_timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1383,63 +1421,24 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
     end
     else if ((pci_slave1_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            pci_slave1_pci_control1_control_case0_0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        pci_slave1_pci_control1_control_case0_0_out_state = 4'b0000;
-        drive = 1'b0;
     end
     pci_slave1_pci_control1_control_case0_0_out_trdy = trdy;
     pci_slave1_pci_control1_control_case0_0_out_stop = stop;
-    pci_slave1_pci_control1_control_case0_0_out_devsel = devsel;
-    pci_slave1_pci_control1_control_case0_0_out_drive = drive;
-    pci_slave1_pci_control1_control_case0_0_out_ad_oe = ad_oe;
 end
 
 
-always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_read_command, pci_slave1_b_valid, pci_slave1_stop_q, pci_slave1_single, pci_slave1_state, pci_slave1_hold_retry, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_burst_got, pci_slave1_claim_config, pci_slave1_fatal, pci_slave1_devsel_q, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_claim, pci_ad_oe, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_is_read, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case1_0_control
+always @(pci_slave1_claim, pci_ad_oe, pci_slave1_state, pci_slave1_fatal, pci_slave1_devsel_q, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_read_command) begin: pci_slave1_pci_control1_control_case0_0_next_devsel_drive
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
     reg devsel;
     reg drive;
     reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
-    reg buffer_room;
-    done = (1'b1 && (!pci_slave1_trdy_q));
-    hold = ((!1'b1) && (!pci_slave1_trdy_q));
-    trdy = (pci_slave1_trdy_q != 0);
-    stop = (pci_slave1_stop_q != 0);
+    done = (1'b0 && (!pci_slave1_trdy_q));
     devsel = (pci_slave1_devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_slave1_pci_control1_control_case1_0_out_state = pci_slave1_state;
-    last_data = (pci_slave1_single || pci_slave1_at_last);
-    if (done) begin
-        last_data = (pci_slave1_single || pci_slave1_before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (pci_slave1_is_read) begin
-        ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
-        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
-    end
-    else begin
-        buffer_room = (pci_slave1_buffered_next <= 1);
-        if ((done && (!pci_slave1_first_phase))) begin
-            buffer_room = (pci_slave1_buffered_next == 0);
-        end
-        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
-    end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
@@ -1447,6 +1446,59 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
             drive = 1'b1;
             devsel = 1'b0;
             ad_oe = (pci_slave1_read_command != 0);
+        end
+    end
+    else if ((pci_slave1_state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
+        if (pci_slave1_fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b1) && ((pci_slave1_state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
+    pci_slave1_pci_control1_control_case0_0_out_devsel = devsel;
+    pci_slave1_pci_control1_control_case0_0_out_drive = drive;
+    pci_slave1_pci_control1_control_case0_0_out_ad_oe = ad_oe;
+end
+
+
+always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave1_first_phase, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_trdy_q, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_at_last, pci_slave1_is_read, pci_slave1_b_valid) begin: pci_slave1_pci_control1_control_case1_0_outlook
+    reg done;
+    reg buffer_room;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    if (done) begin
+        pci_slave1_pci_control1_control_case1_0_last_data = (pci_slave1_single || pci_slave1_before_last);
+    end
+    else begin
+        pci_slave1_pci_control1_control_case1_0_last_data = (pci_slave1_single || pci_slave1_at_last);
+    end
+    if (pci_slave1_is_read) begin
+        pci_slave1_pci_control1_control_case1_0_ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
+        pci_slave1_pci_control1_control_case1_0_exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
+    end
+    else begin
+        buffer_room = (pci_slave1_buffered_next <= 1);
+        if ((done && (!pci_slave1_first_phase))) begin
+            buffer_room = (pci_slave1_buffered_next == 0);
+        end
+        pci_slave1_pci_control1_control_case1_0_ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
+        pci_slave1_pci_control1_control_case1_0_exhausted = 1'b0;
+    end
+end
+
+
+always @(pci_slave1_claim, pci_slave1_claim_config, pci_slave1_state, pci_slave1_fatal, pci_slave1_pci_control1_control_case1_0_exhausted, pci_slave1_hold_retry, pci_slave1_pci_control1_control_case1_0_ready_for_phase, pci_slave1_trdy_q, pci_slave1_is_read, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_stop_q, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case1_0_next_state
+    reg done;
+    reg hold;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    hold = ((!1'b1) && (!pci_slave1_trdy_q));
+    pci_slave1_pci_control1_control_case1_0_out_state = pci_slave1_state;
+    if ((pci_slave1_state == 4'b0000)) begin
+        if (pci_slave1_claim) begin
             if (pci_slave1_claim_config) begin
                 pci_slave1_pci_control1_control_case1_0_out_state = 4'b0001;
             end
@@ -1461,22 +1513,15 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
     else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
         if (pci_slave1_fatal) begin
             pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((pci_slave1_state == 4'b0001)) begin
             pci_slave1_pci_control1_control_case1_0_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b0);
         end
         else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
             pci_slave1_pci_control1_control_case1_0_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b0));
         end
         else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
             pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (pci_slave1_is_read) begin
             pci_slave1_pci_control1_control_case1_0_out_state = 4'b0100;
@@ -1487,23 +1532,71 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
             // pass
         end
         else if ((done && ((!1'b0) || (!pci_slave1_stop_q)))) begin
-            trdy = 1'b1;
             if (1'b0) begin
                 pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
             end
             else begin
                 pci_slave1_pci_control1_control_case1_0_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b0));
+        else if (pci_slave1_pci_control1_control_case1_0_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || pci_slave1_timeout)) begin
+        else if ((pci_slave1_pci_control1_control_case1_0_exhausted || pci_slave1_timeout)) begin
             pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
+        end
+    end
+    else if ((pci_slave1_state == 4'b0111)) begin
+        if ((!1'b0)) begin
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b1000;
+        end
+    end
+    else begin
+        pci_slave1_pci_control1_control_case1_0_out_state = 4'b0000;
+    end
+end
+
+
+always @(pci_slave1_fatal, pci_slave1_state, pci_slave1_pci_control1_control_case1_0_exhausted, pci_slave1_hold_retry, pci_slave1_trdy_q, pci_slave1_pci_control1_control_case1_0_last_data, pci_slave1_hold_got, pci_slave1_pci_control1_control_case1_0_ready_for_phase, pci_slave1_stop_q, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case1_0_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    hold = ((!1'b1) && (!pci_slave1_trdy_q));
+    trdy = (pci_slave1_trdy_q != 0);
+    stop = (pci_slave1_stop_q != 0);
+    if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
+        if (pci_slave1_fatal) begin
+            stop = 1'b0;
+        end
+        else if ((pci_slave1_state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b0);
+        end
+        else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(pci_slave1_pci_control1_control_case1_0_last_data && 1'b0));
+        end
+        else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((pci_slave1_state == 4'b0101) || (pci_slave1_state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b0) || (!pci_slave1_stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b0)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (pci_slave1_pci_control1_control_case1_0_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(pci_slave1_pci_control1_control_case1_0_last_data && 1'b0));
+        end
+        else if ((pci_slave1_pci_control1_control_case1_0_exhausted || pci_slave1_timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1513,63 +1606,24 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
     end
     else if ((pci_slave1_state == 4'b0111)) begin
         if ((!1'b0)) begin
-            pci_slave1_pci_control1_control_case1_0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        pci_slave1_pci_control1_control_case1_0_out_state = 4'b0000;
-        drive = 1'b0;
     end
     pci_slave1_pci_control1_control_case1_0_out_trdy = trdy;
     pci_slave1_pci_control1_control_case1_0_out_stop = stop;
-    pci_slave1_pci_control1_control_case1_0_out_devsel = devsel;
-    pci_slave1_pci_control1_control_case1_0_out_drive = drive;
-    pci_slave1_pci_control1_control_case1_0_out_ad_oe = ad_oe;
 end
 
 
-always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_read_command, pci_slave1_b_valid, pci_slave1_stop_q, pci_slave1_single, pci_slave1_state, pci_slave1_hold_retry, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_burst_got, pci_slave1_claim_config, pci_slave1_fatal, pci_slave1_devsel_q, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_claim, pci_ad_oe, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_is_read, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case2_0_control
+always @(pci_slave1_claim, pci_ad_oe, pci_slave1_state, pci_slave1_fatal, pci_slave1_devsel_q, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_read_command) begin: pci_slave1_pci_control1_control_case1_0_next_devsel_drive
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
     reg devsel;
     reg drive;
     reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
-    reg buffer_room;
     done = (1'b1 && (!pci_slave1_trdy_q));
-    hold = ((!1'b1) && (!pci_slave1_trdy_q));
-    trdy = (pci_slave1_trdy_q != 0);
-    stop = (pci_slave1_stop_q != 0);
     devsel = (pci_slave1_devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_slave1_pci_control1_control_case2_0_out_state = pci_slave1_state;
-    last_data = (pci_slave1_single || pci_slave1_at_last);
-    if (done) begin
-        last_data = (pci_slave1_single || pci_slave1_before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (pci_slave1_is_read) begin
-        ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
-        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
-    end
-    else begin
-        buffer_room = (pci_slave1_buffered_next <= 1);
-        if ((done && (!pci_slave1_first_phase))) begin
-            buffer_room = (pci_slave1_buffered_next == 0);
-        end
-        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
-    end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
@@ -1577,6 +1631,59 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
             drive = 1'b1;
             devsel = 1'b0;
             ad_oe = (pci_slave1_read_command != 0);
+        end
+    end
+    else if ((pci_slave1_state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
+        if (pci_slave1_fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b0) && ((pci_slave1_state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
+    pci_slave1_pci_control1_control_case1_0_out_devsel = devsel;
+    pci_slave1_pci_control1_control_case1_0_out_drive = drive;
+    pci_slave1_pci_control1_control_case1_0_out_ad_oe = ad_oe;
+end
+
+
+always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave1_first_phase, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_trdy_q, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_at_last, pci_slave1_is_read, pci_slave1_b_valid) begin: pci_slave1_pci_control1_control_case2_0_outlook
+    reg done;
+    reg buffer_room;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    if (done) begin
+        pci_slave1_pci_control1_control_case2_0_last_data = (pci_slave1_single || pci_slave1_before_last);
+    end
+    else begin
+        pci_slave1_pci_control1_control_case2_0_last_data = (pci_slave1_single || pci_slave1_at_last);
+    end
+    if (pci_slave1_is_read) begin
+        pci_slave1_pci_control1_control_case2_0_ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
+        pci_slave1_pci_control1_control_case2_0_exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
+    end
+    else begin
+        buffer_room = (pci_slave1_buffered_next <= 1);
+        if ((done && (!pci_slave1_first_phase))) begin
+            buffer_room = (pci_slave1_buffered_next == 0);
+        end
+        pci_slave1_pci_control1_control_case2_0_ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
+        pci_slave1_pci_control1_control_case2_0_exhausted = 1'b0;
+    end
+end
+
+
+always @(pci_slave1_claim, pci_slave1_claim_config, pci_slave1_state, pci_slave1_fatal, pci_slave1_pci_control1_control_case2_0_exhausted, pci_slave1_hold_retry, pci_slave1_pci_control1_control_case2_0_ready_for_phase, pci_slave1_trdy_q, pci_slave1_is_read, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_stop_q, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case2_0_next_state
+    reg done;
+    reg hold;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    hold = ((!1'b1) && (!pci_slave1_trdy_q));
+    pci_slave1_pci_control1_control_case2_0_out_state = pci_slave1_state;
+    if ((pci_slave1_state == 4'b0000)) begin
+        if (pci_slave1_claim) begin
             if (pci_slave1_claim_config) begin
                 pci_slave1_pci_control1_control_case2_0_out_state = 4'b0001;
             end
@@ -1591,22 +1698,15 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
     else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
         if (pci_slave1_fatal) begin
             pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((pci_slave1_state == 4'b0001)) begin
             pci_slave1_pci_control1_control_case2_0_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b1);
         end
         else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
             pci_slave1_pci_control1_control_case2_0_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
         end
         else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
             pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (pci_slave1_is_read) begin
             pci_slave1_pci_control1_control_case2_0_out_state = 4'b0100;
@@ -1617,23 +1717,71 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
             // pass
         end
         else if ((done && ((!1'b1) || (!pci_slave1_stop_q)))) begin
-            trdy = 1'b1;
             if (1'b1) begin
                 pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
             end
             else begin
                 pci_slave1_pci_control1_control_case2_0_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
+        else if (pci_slave1_pci_control1_control_case2_0_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || pci_slave1_timeout)) begin
+        else if ((pci_slave1_pci_control1_control_case2_0_exhausted || pci_slave1_timeout)) begin
             pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
+        end
+    end
+    else if ((pci_slave1_state == 4'b0111)) begin
+        if ((!1'b1)) begin
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b1000;
+        end
+    end
+    else begin
+        pci_slave1_pci_control1_control_case2_0_out_state = 4'b0000;
+    end
+end
+
+
+always @(pci_slave1_fatal, pci_slave1_state, pci_slave1_pci_control1_control_case2_0_exhausted, pci_slave1_hold_retry, pci_slave1_trdy_q, pci_slave1_pci_control1_control_case2_0_last_data, pci_slave1_hold_got, pci_slave1_pci_control1_control_case2_0_ready_for_phase, pci_slave1_stop_q, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case2_0_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    hold = ((!1'b1) && (!pci_slave1_trdy_q));
+    trdy = (pci_slave1_trdy_q != 0);
+    stop = (pci_slave1_stop_q != 0);
+    if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
+        if (pci_slave1_fatal) begin
+            stop = 1'b0;
+        end
+        else if ((pci_slave1_state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b1);
+        end
+        else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(pci_slave1_pci_control1_control_case2_0_last_data && 1'b1));
+        end
+        else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((pci_slave1_state == 4'b0101) || (pci_slave1_state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b1) || (!pci_slave1_stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b1)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (pci_slave1_pci_control1_control_case2_0_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(pci_slave1_pci_control1_control_case2_0_last_data && 1'b1));
+        end
+        else if ((pci_slave1_pci_control1_control_case2_0_exhausted || pci_slave1_timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1643,19 +1791,45 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
     end
     else if ((pci_slave1_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            pci_slave1_pci_control1_control_case2_0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        pci_slave1_pci_control1_control_case2_0_out_state = 4'b0000;
-        drive = 1'b0;
     end
     pci_slave1_pci_control1_control_case2_0_out_trdy = trdy;
     pci_slave1_pci_control1_control_case2_0_out_stop = stop;
+end
+
+
+always @(pci_slave1_claim, pci_ad_oe, pci_slave1_state, pci_slave1_fatal, pci_slave1_devsel_q, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_read_command) begin: pci_slave1_pci_control1_control_case2_0_next_devsel_drive
+    reg done;
+    reg devsel;
+    reg drive;
+    reg ad_oe;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    devsel = (pci_slave1_devsel_q != 0);
+    drive = (pci_devsel_oe != 0);
+    ad_oe = (pci_ad_oe != 0);
+    if ((pci_slave1_state == 4'b0000)) begin
+        drive = 1'b0;
+        ad_oe = 1'b0;
+        if (pci_slave1_claim) begin
+            drive = 1'b1;
+            devsel = 1'b0;
+            ad_oe = (pci_slave1_read_command != 0);
+        end
+    end
+    else if ((pci_slave1_state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
+        if (pci_slave1_fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b1) && ((pci_slave1_state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
     pci_slave1_pci_control1_control_case2_0_out_devsel = devsel;
     pci_slave1_pci_control1_control_case2_0_out_drive = drive;
     pci_slave1_pci_control1_control_case2_0_out_ad_oe = ad_oe;
@@ -1701,30 +1875,19 @@ wire pci_slave1_ad_oe_next_y0 = pci_slave1_pci_control1_control_case2_0_out_ad_o
 assign pci_slave1_ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_y0 ? 1'b1 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_transaction
+always @(posedge clock, negedge reset) begin: pci_slave1_phase_registers
     if (reset == 0) begin
-        pci_slave1_req_addr <= 0;
-        pci_slave1_is_config <= 0;
-        pci_slave1_space_mem <= 0;
-        pci_slave1_first_pending <= 0;
-        pci_slave1_initial_wait_over <= 0;
         pci_slave1_before_last <= 0;
-        pci_slave1_io_byte <= 0;
-        pci_slave1_single <= 0;
-        pci_slave1_req_addr_stale <= 0;
         pci_slave1_address_fault <= 0;
         pci_slave1_at_last <= 0;
-        pci_slave1_subsequent_wait_over <= 0;
-        pci_slave1_is_read <= 0;
         pci_slave1_first_phase <= 0;
-        pci_slave1_wait_count <= 0;
-        pci_slave1_fetching <= 0;
         pci_slave1_state <= 4'b0000;
         pci_slave1_phase_addr <= 0;
     end
     else begin
         pci_slave1_state <= pci_slave1_state_next;
         pci_slave1_first_phase <= pci_slave1_first_phase_next;
+        pci_slave1_address_fault <= pci_slave1_address_fault_next;
         if (pci_slave1_phase_step) begin
             if (pci_slave1_claim) begin
                 pci_slave1_phase_addr <= pci_slave1_start_addr;
@@ -1737,7 +1900,21 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
                 pci_slave1_before_last <= ($signed({1'b0, pci_slave1_phase_addr}) == (1023 - 2));
             end
         end
-        pci_slave1_address_fault <= pci_slave1_address_fault_next;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pci_slave1_transaction_kind
+    if (reset == 0) begin
+        pci_slave1_is_config <= 0;
+        pci_slave1_first_pending <= 0;
+        pci_slave1_space_mem <= 0;
+        pci_slave1_io_byte <= 0;
+        pci_slave1_single <= 0;
+        pci_slave1_is_read <= 0;
+        pci_slave1_fetching <= 0;
+    end
+    else begin
         if (((pci_slave1_state == 4'b0000) && pci_slave1_address_phase)) begin
             pci_slave1_is_read <= (!pci_slave1_cbe_q[0]);
             pci_slave1_is_config <= pci_slave1_claim_config;
@@ -1758,6 +1935,16 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
                 pci_slave1_fetching <= 1'b0;
             end
         end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pci_slave1_request_address
+    if (reset == 0) begin
+        pci_slave1_req_addr <= 0;
+        pci_slave1_req_addr_stale <= 0;
+    end
+    else begin
         if (pci_slave1_claim) begin
             pci_slave1_req_addr_stale <= pci_slave1_draining;
         end
@@ -1772,6 +1959,17 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
             pci_slave1_req_addr <= pci_slave1_phase_addr;
             pci_slave1_req_addr_stale <= 1'b0;
         end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pci_slave1_latency_count
+    if (reset == 0) begin
+        pci_slave1_subsequent_wait_over <= 0;
+        pci_slave1_wait_count <= 0;
+        pci_slave1_initial_wait_over <= 0;
+    end
+    else begin
         if ((!pci_slave1_waiting)) begin
             pci_slave1_wait_count <= 0;
             pci_slave1_initial_wait_over <= 1'b0;

@@ -243,18 +243,27 @@ wire config_irq;
 reg pci_parity0_bus_parity;
 wire pci_parity0_perr_armed;
 wire pci_parity0_serr_armed;
+reg pci_control0_control_case0_exhausted;
+reg pci_control0_control_case0_last_data;
+reg pci_control0_control_case0_ready_for_phase;
 reg [3:0] pci_control0_control_case0_out_state;
 reg pci_control0_control_case0_out_trdy;
 reg pci_control0_control_case0_out_stop;
 reg pci_control0_control_case0_out_devsel;
 reg pci_control0_control_case0_out_drive;
 reg pci_control0_control_case0_out_ad_oe;
+reg pci_control0_control_case1_exhausted;
+reg pci_control0_control_case1_last_data;
+reg pci_control0_control_case1_ready_for_phase;
 reg [3:0] pci_control0_control_case1_out_state;
 reg pci_control0_control_case1_out_trdy;
 reg pci_control0_control_case1_out_stop;
 reg pci_control0_control_case1_out_devsel;
 reg pci_control0_control_case1_out_drive;
 reg pci_control0_control_case1_out_ad_oe;
+reg pci_control0_control_case2_exhausted;
+reg pci_control0_control_case2_last_data;
+reg pci_control0_control_case2_ready_for_phase;
 reg [3:0] pci_control0_control_case2_out_state;
 reg pci_control0_control_case2_out_trdy;
 reg pci_control0_control_case2_out_stop;
@@ -484,51 +493,39 @@ always @(subsequent_wait_over, stop_q, first_phase, initial_wait_over, state, tr
 end
 
 
-always @(fetching, is_config, before_last, buffered_next, read_command, b_valid, stop_q, single, state, hold_retry, pci_devsel_oe, trdy_q, at_last, first_phase, burst_got, claim_config, fatal, devsel_q, hold_got, claim_io, claim, pci_ad_oe, local_room, is_read, timeout, hold_accepted) begin: pci_control0_control_case0_control
+always @(burst_got, single, fetching, first_phase, is_config, before_last, buffered_next, trdy_q, local_room, at_last, is_read, b_valid) begin: pci_control0_control_case0_outlook
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
-    reg devsel;
-    reg drive;
-    reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
     reg buffer_room;
     done = (1'b0 && (!trdy_q));
-    hold = ((!1'b0) && (!trdy_q));
-    trdy = (trdy_q != 0);
-    stop = (stop_q != 0);
-    devsel = (devsel_q != 0);
-    drive = (pci_devsel_oe != 0);
-    ad_oe = (pci_ad_oe != 0);
-    pci_control0_control_case0_out_state = state;
-    last_data = (single || at_last);
     if (done) begin
-        last_data = (single || before_last);
+        pci_control0_control_case0_last_data = (single || before_last);
     end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
+    else begin
+        pci_control0_control_case0_last_data = (single || at_last);
+    end
     if (is_read) begin
-        ready_for_phase = (b_valid || burst_got);
-        exhausted = ((!b_valid) && (!burst_got) && (!fetching));
+        pci_control0_control_case0_ready_for_phase = (b_valid || burst_got);
+        pci_control0_control_case0_exhausted = ((!b_valid) && (!burst_got) && (!fetching));
     end
     else begin
         buffer_room = (buffered_next <= 1);
         if ((done && (!first_phase))) begin
             buffer_room = (buffered_next == 0);
         end
-        ready_for_phase = (is_config || (buffer_room && local_room));
+        pci_control0_control_case0_ready_for_phase = (is_config || (buffer_room && local_room));
+        pci_control0_control_case0_exhausted = 1'b0;
     end
+end
+
+
+always @(claim, claim_config, state, fatal, pci_control0_control_case0_exhausted, hold_retry, pci_control0_control_case0_ready_for_phase, trdy_q, is_read, hold_got, claim_io, stop_q, timeout, hold_accepted) begin: pci_control0_control_case0_next_state
+    reg done;
+    reg hold;
+    done = (1'b0 && (!trdy_q));
+    hold = ((!1'b0) && (!trdy_q));
+    pci_control0_control_case0_out_state = state;
     if ((state == 4'b0000)) begin
-        drive = 1'b0;
-        ad_oe = 1'b0;
         if (claim) begin
-            drive = 1'b1;
-            devsel = 1'b0;
-            ad_oe = (read_command != 0);
             if (claim_config) begin
                 pci_control0_control_case0_out_state = 4'b0001;
             end
@@ -543,22 +540,15 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
     else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
         if (fatal) begin
             pci_control0_control_case0_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((state == 4'b0001)) begin
             pci_control0_control_case0_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b1);
         end
         else if ((hold_got || hold_accepted)) begin
             pci_control0_control_case0_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
         end
         else if ((hold_retry || timeout)) begin
             pci_control0_control_case0_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (is_read) begin
             pci_control0_control_case0_out_state = 4'b0100;
@@ -569,23 +559,71 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
             // pass
         end
         else if ((done && ((!1'b1) || (!stop_q)))) begin
-            trdy = 1'b1;
             if (1'b1) begin
                 pci_control0_control_case0_out_state = 4'b0111;
             end
             else begin
                 pci_control0_control_case0_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
+        else if (pci_control0_control_case0_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || timeout)) begin
+        else if ((pci_control0_control_case0_exhausted || timeout)) begin
             pci_control0_control_case0_out_state = 4'b0111;
+        end
+    end
+    else if ((state == 4'b0111)) begin
+        if ((!1'b1)) begin
+            pci_control0_control_case0_out_state = 4'b1000;
+        end
+    end
+    else begin
+        pci_control0_control_case0_out_state = 4'b0000;
+    end
+end
+
+
+always @(fatal, state, pci_control0_control_case0_exhausted, hold_retry, trdy_q, pci_control0_control_case0_last_data, hold_got, pci_control0_control_case0_ready_for_phase, stop_q, timeout, hold_accepted) begin: pci_control0_control_case0_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b0 && (!trdy_q));
+    hold = ((!1'b0) && (!trdy_q));
+    trdy = (trdy_q != 0);
+    stop = (stop_q != 0);
+    if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
+        if (fatal) begin
+            stop = 1'b0;
+        end
+        else if ((state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b1);
+        end
+        else if ((hold_got || hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(pci_control0_control_case0_last_data && 1'b1));
+        end
+        else if ((hold_retry || timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((state == 4'b0101) || (state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b1) || (!stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b1)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (pci_control0_control_case0_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(pci_control0_control_case0_last_data && 1'b1));
+        end
+        else if ((pci_control0_control_case0_exhausted || timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -595,63 +633,24 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
     end
     else if ((state == 4'b0111)) begin
         if ((!1'b1)) begin
-            pci_control0_control_case0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        pci_control0_control_case0_out_state = 4'b0000;
-        drive = 1'b0;
     end
     pci_control0_control_case0_out_trdy = trdy;
     pci_control0_control_case0_out_stop = stop;
-    pci_control0_control_case0_out_devsel = devsel;
-    pci_control0_control_case0_out_drive = drive;
-    pci_control0_control_case0_out_ad_oe = ad_oe;
 end
 
 
-always @(fetching, is_config, before_last, buffered_next, read_command, b_valid, stop_q, single, state, hold_retry, pci_devsel_oe, trdy_q, at_last, first_phase, burst_got, claim_config, fatal, devsel_q, hold_got, claim_io, claim, pci_ad_oe, local_room, is_read, timeout, hold_accepted) begin: pci_control0_control_case1_control
+always @(claim, pci_ad_oe, state, fatal, devsel_q, pci_devsel_oe, trdy_q, read_command) begin: pci_control0_control_case0_next_devsel_drive
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
     reg devsel;
     reg drive;
     reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
-    reg buffer_room;
-    done = (1'b1 && (!trdy_q));
-    hold = ((!1'b1) && (!trdy_q));
-    trdy = (trdy_q != 0);
-    stop = (stop_q != 0);
+    done = (1'b0 && (!trdy_q));
     devsel = (devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_control0_control_case1_out_state = state;
-    last_data = (single || at_last);
-    if (done) begin
-        last_data = (single || before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (is_read) begin
-        ready_for_phase = (b_valid || burst_got);
-        exhausted = ((!b_valid) && (!burst_got) && (!fetching));
-    end
-    else begin
-        buffer_room = (buffered_next <= 1);
-        if ((done && (!first_phase))) begin
-            buffer_room = (buffered_next == 0);
-        end
-        ready_for_phase = (is_config || (buffer_room && local_room));
-    end
     if ((state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
@@ -659,6 +658,59 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
             drive = 1'b1;
             devsel = 1'b0;
             ad_oe = (read_command != 0);
+        end
+    end
+    else if ((state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
+        if (fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b1) && ((state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
+    pci_control0_control_case0_out_devsel = devsel;
+    pci_control0_control_case0_out_drive = drive;
+    pci_control0_control_case0_out_ad_oe = ad_oe;
+end
+
+
+always @(burst_got, single, fetching, first_phase, is_config, before_last, buffered_next, trdy_q, local_room, at_last, is_read, b_valid) begin: pci_control0_control_case1_outlook
+    reg done;
+    reg buffer_room;
+    done = (1'b1 && (!trdy_q));
+    if (done) begin
+        pci_control0_control_case1_last_data = (single || before_last);
+    end
+    else begin
+        pci_control0_control_case1_last_data = (single || at_last);
+    end
+    if (is_read) begin
+        pci_control0_control_case1_ready_for_phase = (b_valid || burst_got);
+        pci_control0_control_case1_exhausted = ((!b_valid) && (!burst_got) && (!fetching));
+    end
+    else begin
+        buffer_room = (buffered_next <= 1);
+        if ((done && (!first_phase))) begin
+            buffer_room = (buffered_next == 0);
+        end
+        pci_control0_control_case1_ready_for_phase = (is_config || (buffer_room && local_room));
+        pci_control0_control_case1_exhausted = 1'b0;
+    end
+end
+
+
+always @(claim, claim_config, state, fatal, pci_control0_control_case1_exhausted, hold_retry, pci_control0_control_case1_ready_for_phase, trdy_q, is_read, hold_got, claim_io, stop_q, timeout, hold_accepted) begin: pci_control0_control_case1_next_state
+    reg done;
+    reg hold;
+    done = (1'b1 && (!trdy_q));
+    hold = ((!1'b1) && (!trdy_q));
+    pci_control0_control_case1_out_state = state;
+    if ((state == 4'b0000)) begin
+        if (claim) begin
             if (claim_config) begin
                 pci_control0_control_case1_out_state = 4'b0001;
             end
@@ -673,22 +725,15 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
     else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
         if (fatal) begin
             pci_control0_control_case1_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((state == 4'b0001)) begin
             pci_control0_control_case1_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b0);
         end
         else if ((hold_got || hold_accepted)) begin
             pci_control0_control_case1_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b0));
         end
         else if ((hold_retry || timeout)) begin
             pci_control0_control_case1_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (is_read) begin
             pci_control0_control_case1_out_state = 4'b0100;
@@ -699,23 +744,71 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
             // pass
         end
         else if ((done && ((!1'b0) || (!stop_q)))) begin
-            trdy = 1'b1;
             if (1'b0) begin
                 pci_control0_control_case1_out_state = 4'b0111;
             end
             else begin
                 pci_control0_control_case1_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b0));
+        else if (pci_control0_control_case1_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || timeout)) begin
+        else if ((pci_control0_control_case1_exhausted || timeout)) begin
             pci_control0_control_case1_out_state = 4'b0111;
+        end
+    end
+    else if ((state == 4'b0111)) begin
+        if ((!1'b0)) begin
+            pci_control0_control_case1_out_state = 4'b1000;
+        end
+    end
+    else begin
+        pci_control0_control_case1_out_state = 4'b0000;
+    end
+end
+
+
+always @(fatal, state, pci_control0_control_case1_exhausted, hold_retry, trdy_q, pci_control0_control_case1_last_data, hold_got, pci_control0_control_case1_ready_for_phase, stop_q, timeout, hold_accepted) begin: pci_control0_control_case1_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b1 && (!trdy_q));
+    hold = ((!1'b1) && (!trdy_q));
+    trdy = (trdy_q != 0);
+    stop = (stop_q != 0);
+    if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
+        if (fatal) begin
+            stop = 1'b0;
+        end
+        else if ((state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b0);
+        end
+        else if ((hold_got || hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(pci_control0_control_case1_last_data && 1'b0));
+        end
+        else if ((hold_retry || timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((state == 4'b0101) || (state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b0) || (!stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b0)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (pci_control0_control_case1_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(pci_control0_control_case1_last_data && 1'b0));
+        end
+        else if ((pci_control0_control_case1_exhausted || timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -725,63 +818,24 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
     end
     else if ((state == 4'b0111)) begin
         if ((!1'b0)) begin
-            pci_control0_control_case1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        pci_control0_control_case1_out_state = 4'b0000;
-        drive = 1'b0;
     end
     pci_control0_control_case1_out_trdy = trdy;
     pci_control0_control_case1_out_stop = stop;
-    pci_control0_control_case1_out_devsel = devsel;
-    pci_control0_control_case1_out_drive = drive;
-    pci_control0_control_case1_out_ad_oe = ad_oe;
 end
 
 
-always @(fetching, is_config, before_last, buffered_next, read_command, b_valid, stop_q, single, state, hold_retry, pci_devsel_oe, trdy_q, at_last, first_phase, burst_got, claim_config, fatal, devsel_q, hold_got, claim_io, claim, pci_ad_oe, local_room, is_read, timeout, hold_accepted) begin: pci_control0_control_case2_control
+always @(claim, pci_ad_oe, state, fatal, devsel_q, pci_devsel_oe, trdy_q, read_command) begin: pci_control0_control_case1_next_devsel_drive
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
     reg devsel;
     reg drive;
     reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
-    reg buffer_room;
     done = (1'b1 && (!trdy_q));
-    hold = ((!1'b1) && (!trdy_q));
-    trdy = (trdy_q != 0);
-    stop = (stop_q != 0);
     devsel = (devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_control0_control_case2_out_state = state;
-    last_data = (single || at_last);
-    if (done) begin
-        last_data = (single || before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (is_read) begin
-        ready_for_phase = (b_valid || burst_got);
-        exhausted = ((!b_valid) && (!burst_got) && (!fetching));
-    end
-    else begin
-        buffer_room = (buffered_next <= 1);
-        if ((done && (!first_phase))) begin
-            buffer_room = (buffered_next == 0);
-        end
-        ready_for_phase = (is_config || (buffer_room && local_room));
-    end
     if ((state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
@@ -789,6 +843,59 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
             drive = 1'b1;
             devsel = 1'b0;
             ad_oe = (read_command != 0);
+        end
+    end
+    else if ((state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
+        if (fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b0) && ((state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
+    pci_control0_control_case1_out_devsel = devsel;
+    pci_control0_control_case1_out_drive = drive;
+    pci_control0_control_case1_out_ad_oe = ad_oe;
+end
+
+
+always @(burst_got, single, fetching, first_phase, is_config, before_last, buffered_next, trdy_q, local_room, at_last, is_read, b_valid) begin: pci_control0_control_case2_outlook
+    reg done;
+    reg buffer_room;
+    done = (1'b1 && (!trdy_q));
+    if (done) begin
+        pci_control0_control_case2_last_data = (single || before_last);
+    end
+    else begin
+        pci_control0_control_case2_last_data = (single || at_last);
+    end
+    if (is_read) begin
+        pci_control0_control_case2_ready_for_phase = (b_valid || burst_got);
+        pci_control0_control_case2_exhausted = ((!b_valid) && (!burst_got) && (!fetching));
+    end
+    else begin
+        buffer_room = (buffered_next <= 1);
+        if ((done && (!first_phase))) begin
+            buffer_room = (buffered_next == 0);
+        end
+        pci_control0_control_case2_ready_for_phase = (is_config || (buffer_room && local_room));
+        pci_control0_control_case2_exhausted = 1'b0;
+    end
+end
+
+
+always @(claim, claim_config, state, fatal, pci_control0_control_case2_exhausted, hold_retry, pci_control0_control_case2_ready_for_phase, trdy_q, is_read, hold_got, claim_io, stop_q, timeout, hold_accepted) begin: pci_control0_control_case2_next_state
+    reg done;
+    reg hold;
+    done = (1'b1 && (!trdy_q));
+    hold = ((!1'b1) && (!trdy_q));
+    pci_control0_control_case2_out_state = state;
+    if ((state == 4'b0000)) begin
+        if (claim) begin
             if (claim_config) begin
                 pci_control0_control_case2_out_state = 4'b0001;
             end
@@ -803,22 +910,15 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
     else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
         if (fatal) begin
             pci_control0_control_case2_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((state == 4'b0001)) begin
             pci_control0_control_case2_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b1);
         end
         else if ((hold_got || hold_accepted)) begin
             pci_control0_control_case2_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
         end
         else if ((hold_retry || timeout)) begin
             pci_control0_control_case2_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (is_read) begin
             pci_control0_control_case2_out_state = 4'b0100;
@@ -829,23 +929,71 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
             // pass
         end
         else if ((done && ((!1'b1) || (!stop_q)))) begin
-            trdy = 1'b1;
             if (1'b1) begin
                 pci_control0_control_case2_out_state = 4'b0111;
             end
             else begin
                 pci_control0_control_case2_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
+        else if (pci_control0_control_case2_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || timeout)) begin
+        else if ((pci_control0_control_case2_exhausted || timeout)) begin
             pci_control0_control_case2_out_state = 4'b0111;
+        end
+    end
+    else if ((state == 4'b0111)) begin
+        if ((!1'b1)) begin
+            pci_control0_control_case2_out_state = 4'b1000;
+        end
+    end
+    else begin
+        pci_control0_control_case2_out_state = 4'b0000;
+    end
+end
+
+
+always @(fatal, state, pci_control0_control_case2_exhausted, hold_retry, trdy_q, pci_control0_control_case2_last_data, hold_got, pci_control0_control_case2_ready_for_phase, stop_q, timeout, hold_accepted) begin: pci_control0_control_case2_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b1 && (!trdy_q));
+    hold = ((!1'b1) && (!trdy_q));
+    trdy = (trdy_q != 0);
+    stop = (stop_q != 0);
+    if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
+        if (fatal) begin
+            stop = 1'b0;
+        end
+        else if ((state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b1);
+        end
+        else if ((hold_got || hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(pci_control0_control_case2_last_data && 1'b1));
+        end
+        else if ((hold_retry || timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((state == 4'b0101) || (state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b1) || (!stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b1)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (pci_control0_control_case2_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(pci_control0_control_case2_last_data && 1'b1));
+        end
+        else if ((pci_control0_control_case2_exhausted || timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -855,19 +1003,45 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
     end
     else if ((state == 4'b0111)) begin
         if ((!1'b1)) begin
-            pci_control0_control_case2_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        pci_control0_control_case2_out_state = 4'b0000;
-        drive = 1'b0;
     end
     pci_control0_control_case2_out_trdy = trdy;
     pci_control0_control_case2_out_stop = stop;
+end
+
+
+always @(claim, pci_ad_oe, state, fatal, devsel_q, pci_devsel_oe, trdy_q, read_command) begin: pci_control0_control_case2_next_devsel_drive
+    reg done;
+    reg devsel;
+    reg drive;
+    reg ad_oe;
+    done = (1'b1 && (!trdy_q));
+    devsel = (devsel_q != 0);
+    drive = (pci_devsel_oe != 0);
+    ad_oe = (pci_ad_oe != 0);
+    if ((state == 4'b0000)) begin
+        drive = 1'b0;
+        ad_oe = 1'b0;
+        if (claim) begin
+            drive = 1'b1;
+            devsel = 1'b0;
+            ad_oe = (read_command != 0);
+        end
+    end
+    else if ((state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
+        if (fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b1) && ((state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
     pci_control0_control_case2_out_devsel = devsel;
     pci_control0_control_case2_out_drive = drive;
     pci_control0_control_case2_out_ad_oe = ad_oe;
@@ -913,30 +1087,19 @@ wire ad_oe_next_y0 = pci_control0_control_case2_out_ad_oe ^ pci_control0_control
 assign ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (ad_oe_next_y0 ? 1'b1 : (ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
-always @(posedge clock, negedge reset) begin: transaction
+always @(posedge clock, negedge reset) begin: phase_registers
     if (reset == 0) begin
-        req_addr <= 0;
-        is_config <= 0;
-        space_mem <= 0;
-        first_pending <= 0;
-        initial_wait_over <= 0;
         before_last <= 0;
-        io_byte <= 0;
-        single <= 0;
-        req_addr_stale <= 0;
         address_fault <= 0;
         at_last <= 0;
-        subsequent_wait_over <= 0;
-        is_read <= 0;
         first_phase <= 0;
-        wait_count <= 0;
-        fetching <= 0;
         state <= 4'b0000;
         phase_addr <= 0;
     end
     else begin
         state <= state_next;
         first_phase <= first_phase_next;
+        address_fault <= address_fault_next;
         if (phase_step) begin
             if (claim) begin
                 phase_addr <= start_addr;
@@ -949,7 +1112,21 @@ always @(posedge clock, negedge reset) begin: transaction
                 before_last <= ($signed({1'b0, phase_addr}) == (1023 - 2));
             end
         end
-        address_fault <= address_fault_next;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: transaction_kind
+    if (reset == 0) begin
+        is_config <= 0;
+        first_pending <= 0;
+        space_mem <= 0;
+        io_byte <= 0;
+        single <= 0;
+        is_read <= 0;
+        fetching <= 0;
+    end
+    else begin
         if (((state == 4'b0000) && address_phase)) begin
             is_read <= (!cbe_q[0]);
             is_config <= claim_config;
@@ -970,6 +1147,16 @@ always @(posedge clock, negedge reset) begin: transaction
                 fetching <= 1'b0;
             end
         end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: request_address
+    if (reset == 0) begin
+        req_addr <= 0;
+        req_addr_stale <= 0;
+    end
+    else begin
         if (claim) begin
             req_addr_stale <= draining;
         end
@@ -984,6 +1171,17 @@ always @(posedge clock, negedge reset) begin: transaction
             req_addr <= phase_addr;
             req_addr_stale <= 1'b0;
         end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: latency_count
+    if (reset == 0) begin
+        subsequent_wait_over <= 0;
+        wait_count <= 0;
+        initial_wait_over <= 0;
+    end
+    else begin
         if ((!waiting)) begin
             wait_count <= 0;
             initial_wait_over <= 1'b0;

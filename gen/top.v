@@ -215,19 +215,28 @@ reg card1_pci_slave2_pci_requests2_local_write;
 reg [31:0] card1_pci_slave2_pci_requests2_local_wdata;
 reg [3:0] card1_pci_slave2_pci_requests2_local_be;
 reg [11:0] card1_pci_slave2_pci_requests2_local_addr;
-reg [3:0] card1_pci_slave2_pci_control2_control_case0_0_1_out_state;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_exhausted;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_last_data;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase;
 wire card1_pci_slave2_pci_control2_control_case0_0_1_target_room;
+reg [3:0] card1_pci_slave2_pci_control2_control_case0_0_1_out_state;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_out_stop;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_out_drive;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_out_ad_oe;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_exhausted;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_last_data;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase;
 reg [3:0] card1_pci_slave2_pci_control2_control_case1_0_1_out_state;
 reg card1_pci_slave2_pci_control2_control_case1_0_1_out_trdy;
 reg card1_pci_slave2_pci_control2_control_case1_0_1_out_stop;
 reg card1_pci_slave2_pci_control2_control_case1_0_1_out_devsel;
 reg card1_pci_slave2_pci_control2_control_case1_0_1_out_drive;
 reg card1_pci_slave2_pci_control2_control_case1_0_1_out_ad_oe;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_exhausted;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_last_data;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase;
 reg [3:0] card1_pci_slave2_pci_control2_control_case2_0_1_out_state;
 reg card1_pci_slave2_pci_control2_control_case2_0_1_out_trdy;
 reg card1_pci_slave2_pci_control2_control_case2_0_1_out_stop;
@@ -1854,51 +1863,39 @@ always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_p
 end
 
 
-always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_read_command, card1_pci_slave2_b_valid, card1_pci_slave2_stop_q, card1_pci_slave2_single, card1_pci_slave2_state, card1_pci_slave2_hold_retry, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_burst_got, card1_pci_slave2_claim_config, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_is_read, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case0_0_1_control
+always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_fetching, card1_pci_slave2_first_phase, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_trdy_q, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_at_last, card1_pci_slave2_is_read, card1_pci_slave2_b_valid) begin: card1_pci_slave2_pci_control2_control_case0_0_1_outlook
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
-    reg devsel;
-    reg drive;
-    reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
     reg buffer_room;
     done = (1'b0 && (!card1_pci_slave2_trdy_q));
-    hold = ((!1'b0) && (!card1_pci_slave2_trdy_q));
-    trdy = (card1_pci_slave2_trdy_q != 0);
-    stop = (card1_pci_slave2_stop_q != 0);
-    devsel = (card1_pci_slave2_devsel_q != 0);
-    drive = (pci_pads0_registered_pad2_enable != 0);
-    ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card1_pci_slave2_pci_control2_control_case0_0_1_out_state = card1_pci_slave2_state;
-    last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     if (done) begin
-        last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
+        card1_pci_slave2_pci_control2_control_case0_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
     end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
+    else begin
+        card1_pci_slave2_pci_control2_control_case0_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
+    end
     if (card1_pci_slave2_is_read) begin
-        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
-        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
+        card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
+        card1_pci_slave2_pci_control2_control_case0_0_1_exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
     end
     else begin
         buffer_room = (card1_pci_slave2_buffered_next <= 1);
         if ((done && (!card1_pci_slave2_first_phase))) begin
             buffer_room = (card1_pci_slave2_buffered_next == 0);
         end
-        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
+        card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
+        card1_pci_slave2_pci_control2_control_case0_0_1_exhausted = 1'b0;
     end
+end
+
+
+always @(card1_pci_slave2_claim, card1_pci_slave2_claim_config, card1_pci_slave2_state, card1_pci_slave2_fatal, card1_pci_slave2_pci_control2_control_case0_0_1_exhausted, card1_pci_slave2_hold_retry, card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase, card1_pci_slave2_trdy_q, card1_pci_slave2_is_read, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_stop_q, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case0_0_1_next_state
+    reg done;
+    reg hold;
+    done = (1'b0 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b0) && (!card1_pci_slave2_trdy_q));
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_state = card1_pci_slave2_state;
     if ((card1_pci_slave2_state == 4'b0000)) begin
-        drive = 1'b0;
-        ad_oe = 1'b0;
         if (card1_pci_slave2_claim) begin
-            drive = 1'b1;
-            devsel = 1'b0;
-            ad_oe = (card1_pci_slave2_read_command != 0);
             if (card1_pci_slave2_claim_config) begin
                 card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0001;
             end
@@ -1913,22 +1910,15 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
     else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
         if (card1_pci_slave2_fatal) begin
             card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((card1_pci_slave2_state == 4'b0001)) begin
             card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b1);
         end
         else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
             card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
         end
         else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (card1_pci_slave2_is_read) begin
             card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0100;
@@ -1939,23 +1929,71 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
             // pass
         end
         else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
-            trdy = 1'b1;
             if (1'b1) begin
                 card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
             end
             else begin
                 card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
+        else if (card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || card1_pci_slave2_timeout)) begin
+        else if ((card1_pci_slave2_pci_control2_control_case0_0_1_exhausted || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
+        end
+    end
+    else if ((card1_pci_slave2_state == 4'b0111)) begin
+        if ((!1'b1)) begin
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b1000;
+        end
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0000;
+    end
+end
+
+
+always @(card1_pci_slave2_fatal, card1_pci_slave2_state, card1_pci_slave2_pci_control2_control_case0_0_1_exhausted, card1_pci_slave2_hold_retry, card1_pci_slave2_trdy_q, card1_pci_slave2_pci_control2_control_case0_0_1_last_data, card1_pci_slave2_hold_got, card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase, card1_pci_slave2_stop_q, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case0_0_1_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b0 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b0) && (!card1_pci_slave2_trdy_q));
+    trdy = (card1_pci_slave2_trdy_q != 0);
+    stop = (card1_pci_slave2_stop_q != 0);
+    if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            stop = 1'b0;
+        end
+        else if ((card1_pci_slave2_state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b1);
+        end
+        else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(card1_pci_slave2_pci_control2_control_case0_0_1_last_data && 1'b1));
+        end
+        else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b1)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(card1_pci_slave2_pci_control2_control_case0_0_1_last_data && 1'b1));
+        end
+        else if ((card1_pci_slave2_pci_control2_control_case0_0_1_exhausted || card1_pci_slave2_timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1965,63 +2003,24 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
     end
     else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0000;
-        drive = 1'b0;
     end
     card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy = trdy;
     card1_pci_slave2_pci_control2_control_case0_0_1_out_stop = stop;
-    card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel = devsel;
-    card1_pci_slave2_pci_control2_control_case0_0_1_out_drive = drive;
-    card1_pci_slave2_pci_control2_control_case0_0_1_out_ad_oe = ad_oe;
 end
 
 
-always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_read_command, card1_pci_slave2_b_valid, card1_pci_slave2_stop_q, card1_pci_slave2_single, card1_pci_slave2_state, card1_pci_slave2_hold_retry, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_burst_got, card1_pci_slave2_claim_config, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_is_read, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case1_0_1_control
+always @(card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_state, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_read_command) begin: card1_pci_slave2_pci_control2_control_case0_0_1_next_devsel_drive
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
     reg devsel;
     reg drive;
     reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
-    reg buffer_room;
-    done = (1'b1 && (!card1_pci_slave2_trdy_q));
-    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
-    trdy = (card1_pci_slave2_trdy_q != 0);
-    stop = (card1_pci_slave2_stop_q != 0);
+    done = (1'b0 && (!card1_pci_slave2_trdy_q));
     devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card1_pci_slave2_pci_control2_control_case1_0_1_out_state = card1_pci_slave2_state;
-    last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
-    if (done) begin
-        last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (card1_pci_slave2_is_read) begin
-        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
-        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
-    end
-    else begin
-        buffer_room = (card1_pci_slave2_buffered_next <= 1);
-        if ((done && (!card1_pci_slave2_first_phase))) begin
-            buffer_room = (card1_pci_slave2_buffered_next == 0);
-        end
-        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
-    end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
@@ -2029,6 +2028,59 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
             drive = 1'b1;
             devsel = 1'b0;
             ad_oe = (card1_pci_slave2_read_command != 0);
+        end
+    end
+    else if ((card1_pci_slave2_state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b1) && ((card1_pci_slave2_state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel = devsel;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_drive = drive;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_ad_oe = ad_oe;
+end
+
+
+always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_fetching, card1_pci_slave2_first_phase, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_trdy_q, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_at_last, card1_pci_slave2_is_read, card1_pci_slave2_b_valid) begin: card1_pci_slave2_pci_control2_control_case1_0_1_outlook
+    reg done;
+    reg buffer_room;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    if (done) begin
+        card1_pci_slave2_pci_control2_control_case1_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case1_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
+    end
+    if (card1_pci_slave2_is_read) begin
+        card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
+        card1_pci_slave2_pci_control2_control_case1_0_1_exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
+    end
+    else begin
+        buffer_room = (card1_pci_slave2_buffered_next <= 1);
+        if ((done && (!card1_pci_slave2_first_phase))) begin
+            buffer_room = (card1_pci_slave2_buffered_next == 0);
+        end
+        card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
+        card1_pci_slave2_pci_control2_control_case1_0_1_exhausted = 1'b0;
+    end
+end
+
+
+always @(card1_pci_slave2_claim, card1_pci_slave2_claim_config, card1_pci_slave2_state, card1_pci_slave2_fatal, card1_pci_slave2_pci_control2_control_case1_0_1_exhausted, card1_pci_slave2_hold_retry, card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase, card1_pci_slave2_trdy_q, card1_pci_slave2_is_read, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_stop_q, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case1_0_1_next_state
+    reg done;
+    reg hold;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_state = card1_pci_slave2_state;
+    if ((card1_pci_slave2_state == 4'b0000)) begin
+        if (card1_pci_slave2_claim) begin
             if (card1_pci_slave2_claim_config) begin
                 card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0001;
             end
@@ -2043,22 +2095,15 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
     else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
         if (card1_pci_slave2_fatal) begin
             card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((card1_pci_slave2_state == 4'b0001)) begin
             card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b0);
         end
         else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
             card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b0));
         end
         else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (card1_pci_slave2_is_read) begin
             card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0100;
@@ -2069,23 +2114,71 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
             // pass
         end
         else if ((done && ((!1'b0) || (!card1_pci_slave2_stop_q)))) begin
-            trdy = 1'b1;
             if (1'b0) begin
                 card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
             end
             else begin
                 card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b0));
+        else if (card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || card1_pci_slave2_timeout)) begin
+        else if ((card1_pci_slave2_pci_control2_control_case1_0_1_exhausted || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
+        end
+    end
+    else if ((card1_pci_slave2_state == 4'b0111)) begin
+        if ((!1'b0)) begin
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b1000;
+        end
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0000;
+    end
+end
+
+
+always @(card1_pci_slave2_fatal, card1_pci_slave2_state, card1_pci_slave2_pci_control2_control_case1_0_1_exhausted, card1_pci_slave2_hold_retry, card1_pci_slave2_trdy_q, card1_pci_slave2_pci_control2_control_case1_0_1_last_data, card1_pci_slave2_hold_got, card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase, card1_pci_slave2_stop_q, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case1_0_1_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
+    trdy = (card1_pci_slave2_trdy_q != 0);
+    stop = (card1_pci_slave2_stop_q != 0);
+    if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            stop = 1'b0;
+        end
+        else if ((card1_pci_slave2_state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b0);
+        end
+        else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(card1_pci_slave2_pci_control2_control_case1_0_1_last_data && 1'b0));
+        end
+        else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b0) || (!card1_pci_slave2_stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b0)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(card1_pci_slave2_pci_control2_control_case1_0_1_last_data && 1'b0));
+        end
+        else if ((card1_pci_slave2_pci_control2_control_case1_0_1_exhausted || card1_pci_slave2_timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -2095,63 +2188,24 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
     end
     else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b0)) begin
-            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0000;
-        drive = 1'b0;
     end
     card1_pci_slave2_pci_control2_control_case1_0_1_out_trdy = trdy;
     card1_pci_slave2_pci_control2_control_case1_0_1_out_stop = stop;
-    card1_pci_slave2_pci_control2_control_case1_0_1_out_devsel = devsel;
-    card1_pci_slave2_pci_control2_control_case1_0_1_out_drive = drive;
-    card1_pci_slave2_pci_control2_control_case1_0_1_out_ad_oe = ad_oe;
 end
 
 
-always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_read_command, card1_pci_slave2_b_valid, card1_pci_slave2_stop_q, card1_pci_slave2_single, card1_pci_slave2_state, card1_pci_slave2_hold_retry, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_burst_got, card1_pci_slave2_claim_config, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_is_read, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case2_0_1_control
+always @(card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_state, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_read_command) begin: card1_pci_slave2_pci_control2_control_case1_0_1_next_devsel_drive
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
     reg devsel;
     reg drive;
     reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
-    reg buffer_room;
     done = (1'b1 && (!card1_pci_slave2_trdy_q));
-    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
-    trdy = (card1_pci_slave2_trdy_q != 0);
-    stop = (card1_pci_slave2_stop_q != 0);
     devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card1_pci_slave2_pci_control2_control_case2_0_1_out_state = card1_pci_slave2_state;
-    last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
-    if (done) begin
-        last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (card1_pci_slave2_is_read) begin
-        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
-        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
-    end
-    else begin
-        buffer_room = (card1_pci_slave2_buffered_next <= 1);
-        if ((done && (!card1_pci_slave2_first_phase))) begin
-            buffer_room = (card1_pci_slave2_buffered_next == 0);
-        end
-        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
-    end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
@@ -2159,6 +2213,59 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
             drive = 1'b1;
             devsel = 1'b0;
             ad_oe = (card1_pci_slave2_read_command != 0);
+        end
+    end
+    else if ((card1_pci_slave2_state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b0) && ((card1_pci_slave2_state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_devsel = devsel;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_drive = drive;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_ad_oe = ad_oe;
+end
+
+
+always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_fetching, card1_pci_slave2_first_phase, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_trdy_q, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_at_last, card1_pci_slave2_is_read, card1_pci_slave2_b_valid) begin: card1_pci_slave2_pci_control2_control_case2_0_1_outlook
+    reg done;
+    reg buffer_room;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    if (done) begin
+        card1_pci_slave2_pci_control2_control_case2_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case2_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
+    end
+    if (card1_pci_slave2_is_read) begin
+        card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
+        card1_pci_slave2_pci_control2_control_case2_0_1_exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
+    end
+    else begin
+        buffer_room = (card1_pci_slave2_buffered_next <= 1);
+        if ((done && (!card1_pci_slave2_first_phase))) begin
+            buffer_room = (card1_pci_slave2_buffered_next == 0);
+        end
+        card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
+        card1_pci_slave2_pci_control2_control_case2_0_1_exhausted = 1'b0;
+    end
+end
+
+
+always @(card1_pci_slave2_claim, card1_pci_slave2_claim_config, card1_pci_slave2_state, card1_pci_slave2_fatal, card1_pci_slave2_pci_control2_control_case2_0_1_exhausted, card1_pci_slave2_hold_retry, card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase, card1_pci_slave2_trdy_q, card1_pci_slave2_is_read, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_stop_q, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case2_0_1_next_state
+    reg done;
+    reg hold;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_state = card1_pci_slave2_state;
+    if ((card1_pci_slave2_state == 4'b0000)) begin
+        if (card1_pci_slave2_claim) begin
             if (card1_pci_slave2_claim_config) begin
                 card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0001;
             end
@@ -2173,22 +2280,15 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
     else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
         if (card1_pci_slave2_fatal) begin
             card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((card1_pci_slave2_state == 4'b0001)) begin
             card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b1);
         end
         else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
             card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
         end
         else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (card1_pci_slave2_is_read) begin
             card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0100;
@@ -2199,23 +2299,71 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
             // pass
         end
         else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
-            trdy = 1'b1;
             if (1'b1) begin
                 card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
             end
             else begin
                 card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
+        else if (card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || card1_pci_slave2_timeout)) begin
+        else if ((card1_pci_slave2_pci_control2_control_case2_0_1_exhausted || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
+        end
+    end
+    else if ((card1_pci_slave2_state == 4'b0111)) begin
+        if ((!1'b1)) begin
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b1000;
+        end
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0000;
+    end
+end
+
+
+always @(card1_pci_slave2_fatal, card1_pci_slave2_state, card1_pci_slave2_pci_control2_control_case2_0_1_exhausted, card1_pci_slave2_hold_retry, card1_pci_slave2_trdy_q, card1_pci_slave2_pci_control2_control_case2_0_1_last_data, card1_pci_slave2_hold_got, card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase, card1_pci_slave2_stop_q, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case2_0_1_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
+    trdy = (card1_pci_slave2_trdy_q != 0);
+    stop = (card1_pci_slave2_stop_q != 0);
+    if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            stop = 1'b0;
+        end
+        else if ((card1_pci_slave2_state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b1);
+        end
+        else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(card1_pci_slave2_pci_control2_control_case2_0_1_last_data && 1'b1));
+        end
+        else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b1)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(card1_pci_slave2_pci_control2_control_case2_0_1_last_data && 1'b1));
+        end
+        else if ((card1_pci_slave2_pci_control2_control_case2_0_1_exhausted || card1_pci_slave2_timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -2225,19 +2373,45 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
     end
     else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0000;
-        drive = 1'b0;
     end
     card1_pci_slave2_pci_control2_control_case2_0_1_out_trdy = trdy;
     card1_pci_slave2_pci_control2_control_case2_0_1_out_stop = stop;
+end
+
+
+always @(card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_state, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_read_command) begin: card1_pci_slave2_pci_control2_control_case2_0_1_next_devsel_drive
+    reg done;
+    reg devsel;
+    reg drive;
+    reg ad_oe;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    devsel = (card1_pci_slave2_devsel_q != 0);
+    drive = (pci_pads0_registered_pad2_enable != 0);
+    ad_oe = (pci_pads0_registered_pad0_enable != 0);
+    if ((card1_pci_slave2_state == 4'b0000)) begin
+        drive = 1'b0;
+        ad_oe = 1'b0;
+        if (card1_pci_slave2_claim) begin
+            drive = 1'b1;
+            devsel = 1'b0;
+            ad_oe = (card1_pci_slave2_read_command != 0);
+        end
+    end
+    else if ((card1_pci_slave2_state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b1) && ((card1_pci_slave2_state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
     card1_pci_slave2_pci_control2_control_case2_0_1_out_devsel = devsel;
     card1_pci_slave2_pci_control2_control_case2_0_1_out_drive = drive;
     card1_pci_slave2_pci_control2_control_case2_0_1_out_ad_oe = ad_oe;
@@ -2319,30 +2493,19 @@ assign card1_pci_slave2_ad_oe_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0
 `endif
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_phase_registers
     if (reset == 0) begin
-        card1_pci_slave2_req_addr <= 0;
-        card1_pci_slave2_is_config <= 0;
-        card1_pci_slave2_space_mem <= 0;
-        card1_pci_slave2_first_pending <= 0;
-        card1_pci_slave2_initial_wait_over <= 0;
         card1_pci_slave2_before_last <= 0;
-        card1_pci_slave2_io_byte <= 0;
-        card1_pci_slave2_single <= 0;
-        card1_pci_slave2_req_addr_stale <= 0;
         card1_pci_slave2_address_fault <= 0;
         card1_pci_slave2_at_last <= 0;
-        card1_pci_slave2_subsequent_wait_over <= 0;
-        card1_pci_slave2_is_read <= 0;
         card1_pci_slave2_first_phase <= 0;
-        card1_pci_slave2_wait_count <= 0;
-        card1_pci_slave2_fetching <= 0;
         card1_pci_slave2_state <= 4'b0000;
         card1_pci_slave2_phase_addr <= 0;
     end
     else begin
         card1_pci_slave2_state <= card1_pci_slave2_state_next;
         card1_pci_slave2_first_phase <= card1_pci_slave2_first_phase_next;
+        card1_pci_slave2_address_fault <= card1_pci_slave2_address_fault_next;
         if (card1_pci_slave2_phase_step) begin
             if (card1_pci_slave2_claim) begin
                 card1_pci_slave2_phase_addr <= card1_pci_slave2_start_addr;
@@ -2355,7 +2518,21 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
                 card1_pci_slave2_before_last <= ($signed({1'b0, card1_pci_slave2_phase_addr}) == (1023 - 2));
             end
         end
-        card1_pci_slave2_address_fault <= card1_pci_slave2_address_fault_next;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction_kind
+    if (reset == 0) begin
+        card1_pci_slave2_is_config <= 0;
+        card1_pci_slave2_first_pending <= 0;
+        card1_pci_slave2_space_mem <= 0;
+        card1_pci_slave2_io_byte <= 0;
+        card1_pci_slave2_single <= 0;
+        card1_pci_slave2_is_read <= 0;
+        card1_pci_slave2_fetching <= 0;
+    end
+    else begin
         if (((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase)) begin
             card1_pci_slave2_is_read <= (!pci_pads0_registered_pad5_from_pin[0]);
             card1_pci_slave2_is_config <= card1_pci_slave2_claim_config;
@@ -2376,6 +2553,16 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
                 card1_pci_slave2_fetching <= 1'b0;
             end
         end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_request_address
+    if (reset == 0) begin
+        card1_pci_slave2_req_addr <= 0;
+        card1_pci_slave2_req_addr_stale <= 0;
+    end
+    else begin
         if (card1_pci_slave2_claim) begin
             card1_pci_slave2_req_addr_stale <= card1_pci_slave2_draining;
         end
@@ -2390,6 +2577,17 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
             card1_pci_slave2_req_addr <= card1_pci_slave2_phase_addr;
             card1_pci_slave2_req_addr_stale <= 1'b0;
         end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_latency_count
+    if (reset == 0) begin
+        card1_pci_slave2_subsequent_wait_over <= 0;
+        card1_pci_slave2_wait_count <= 0;
+        card1_pci_slave2_initial_wait_over <= 0;
+    end
+    else begin
         if ((!card1_pci_slave2_waiting)) begin
             card1_pci_slave2_wait_count <= 0;
             card1_pci_slave2_initial_wait_over <= 1'b0;

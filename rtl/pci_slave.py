@@ -272,9 +272,10 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     next_state = pci_control(pci.frame_in, pci.irdy_in, target, chosen, device=device)
 
     @always_seq(clock.posedge, reset=reset)
-    def transaction():
+    def phase_registers():
         state.next = state_next
         first_phase.next = first_phase_next
+        address_fault.next = address_fault_next
         if phase_step:   # the claim, or a completed phase of a memory burst
             if claim:
                 phase_addr.next = start_addr
@@ -284,7 +285,9 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 phase_addr.next = phase_addr + 1
                 at_last.next = before_last
                 before_last.next = phase_addr == mem_last - 2
-        address_fault.next = address_fault_next
+
+    @always_seq(clock.posedge, reset=reset)
+    def transaction_kind():
         # taken at every address phase in Idle, claimed or not (Idle reads none
         # of it): the BAR compares reach only the state and the bus lines
         if state == t_state.S_IDLE and address_phase:
@@ -302,6 +305,9 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 fetching.next = False
             if local.re and local.retry and not first_pending:
                 fetching.next = False
+
+    @always_seq(clock.posedge, reset=reset)
+    def request_address():
         if claim:
             req_addr_stale.next = draining
         # loaded at an address phase in Idle, claimed or not, with no posted
@@ -314,6 +320,9 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         elif req_addr_stale and not draining:
             req_addr.next = phase_addr
             req_addr_stale.next = False
+
+    @always_seq(clock.posedge, reset=reset)
+    def latency_count():
         # Idle (the only state with a claim) never waits
         if not waiting:
             wait_count.next = 0
