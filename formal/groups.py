@@ -122,7 +122,7 @@ PCI_PARAMETERS = pci_harness_parameters(io_bits=6, mem_bits=12)
 PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "initial_wait_over",
                        "subsequent_wait_over", "first_phase", "is_read", "is_config", "space_mem",
                        "io_enable", "mem_enable", "parity_response", "serr_enable",
-                       "interrupt_disable", "bar0", "bar1", "config_write_q", "phase_addr",
+                       "interrupt_disable", "bar0", "bar1", "bar2", "config_write_q", "phase_addr",
                        "at_last", "before_last", "h_valid", "s_valid", "wq_valid", "b_valid",
                        "fetching", "first_pending", "req_addr_stale", "single", "frame_q",
                        "pci_config0_signaled_target_abort", "pci_config0_signaled_system_error",

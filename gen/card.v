@@ -129,6 +129,7 @@ reg pci_slave1_parity_response;
 reg pci_slave1_serr_enable;
 reg [15:0] pci_slave1_bar0;
 reg [31:0] pci_slave1_bar1;
+reg [31:0] pci_slave1_bar2;
 reg pci_slave1_fatal;
 reg pci_slave1_read_command;
 wire pci_slave1_write_done_next;
@@ -159,6 +160,7 @@ reg pci_slave1_b_valid;
 reg pci_slave1_before_last;
 reg [3:0] pci_slave1_cbe_q;
 reg pci_slave1_claim;
+reg pci_slave1_claim_alias;
 reg pci_slave1_claim_config;
 reg pci_slave1_claim_io;
 wire pci_slave1_devsel_next;
@@ -1149,29 +1151,37 @@ always @(pci_slave1_ad_out_q) begin: pci_slave1_pci_parity1_ad_out_parity_tree
 end
 
 
-always @(pci_slave1_bar1, pci_slave1_mem_enable, pci_slave1_address_phase, pci_slave1_state, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_io_enable, pci_slave1_ad_q) begin: pci_slave1_pci_decode1_decode_address
+always @(pci_slave1_bar2, pci_slave1_bar1, pci_slave1_mem_enable, pci_slave1_address_phase, pci_slave1_state, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_io_enable, pci_slave1_ad_q) begin: pci_slave1_pci_decode1_decode_address
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
+    reg mem_command;
     reg mem_hit;
+    reg alias_hit;
     code = pci_slave1_cbe_q;
     config_hit = (pci_slave1_idsel_q && (!pci_slave1_ad_q[0]) && (!pci_slave1_ad_q[1]) && (pci_slave1_ad_q[11-1:8] == 0) && ((code == 10) || (code == 11)));
     io_hit = (pci_slave1_io_enable && ((code == 2) || (code == 3)) && (pci_slave1_ad_q[32-1:16] == 0) && (pci_slave1_ad_q[16-1:8] == pci_slave1_bar0[16-1:8]));
-    mem_hit = (pci_slave1_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)) && (pci_slave1_ad_q[32-1:12] == pci_slave1_bar1[32-1:12]));
-    pci_slave1_claim = ((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (config_hit || io_hit || mem_hit));
+    mem_command = (pci_slave1_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)));
+    mem_hit = (mem_command && (pci_slave1_ad_q[32-1:12] == pci_slave1_bar1[32-1:12]));
+    alias_hit = (mem_command && (pci_slave1_ad_q[32-1:8] == pci_slave1_bar2[32-1:8]) && (!mem_hit));
+    pci_slave1_claim = ((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (config_hit || io_hit || mem_hit || alias_hit));
     pci_slave1_claim_config = config_hit;
     pci_slave1_claim_io = io_hit;
+    pci_slave1_claim_alias = alias_hit;
     pci_slave1_read_command = (!pci_slave1_cbe_q[0]);
 end
 
 
-always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_pci_decode1_start_offset
+always @(pci_slave1_cbe_q, pci_slave1_claim_alias, pci_slave1_ad_q) begin: pci_slave1_pci_decode1_start_offset
     reg [4-1:0] code;
     code = pci_slave1_cbe_q;
     if (((code == 10) || (code == 11))) begin
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
     end
     else if (((code == 2) || (code == 3))) begin
+        pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
+    end
+    else if (pci_slave1_claim_alias) begin
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
     end
     else begin
@@ -1281,7 +1291,7 @@ always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_first_ph
 end
 
 
-always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave1_first_phase, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_trdy_q, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_at_last, pci_slave1_is_read, pci_slave1_b_valid) begin: pci_slave1_pci_control1_control_case0_0_outlook
+always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_trdy_q, pci_slave1_b_valid, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_at_last, pci_slave1_is_read, pci_slave1_first_phase) begin: pci_slave1_pci_control1_control_case0_0_outlook
     reg done;
     reg buffer_room;
     done = (1'b0 && (!pci_slave1_trdy_q));
@@ -1291,15 +1301,15 @@ always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave
     else begin
         pci_slave1_pci_control1_control_case0_0_last_data = (pci_slave1_single || pci_slave1_at_last);
     end
+    buffer_room = (pci_slave1_buffered_next <= 1);
+    if ((done && (!pci_slave1_first_phase))) begin
+        buffer_room = (pci_slave1_buffered_next == 0);
+    end
     if (pci_slave1_is_read) begin
         pci_slave1_pci_control1_control_case0_0_ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
         pci_slave1_pci_control1_control_case0_0_exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
     end
     else begin
-        buffer_room = (pci_slave1_buffered_next <= 1);
-        if ((done && (!pci_slave1_first_phase))) begin
-            buffer_room = (pci_slave1_buffered_next == 0);
-        end
         pci_slave1_pci_control1_control_case0_0_ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
         pci_slave1_pci_control1_control_case0_0_exhausted = 1'b0;
     end
@@ -1466,7 +1476,7 @@ always @(pci_slave1_claim, pci_ad_oe, pci_slave1_state, pci_slave1_fatal, pci_sl
 end
 
 
-always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave1_first_phase, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_trdy_q, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_at_last, pci_slave1_is_read, pci_slave1_b_valid) begin: pci_slave1_pci_control1_control_case1_0_outlook
+always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_trdy_q, pci_slave1_b_valid, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_at_last, pci_slave1_is_read, pci_slave1_first_phase) begin: pci_slave1_pci_control1_control_case1_0_outlook
     reg done;
     reg buffer_room;
     done = (1'b1 && (!pci_slave1_trdy_q));
@@ -1476,15 +1486,15 @@ always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave
     else begin
         pci_slave1_pci_control1_control_case1_0_last_data = (pci_slave1_single || pci_slave1_at_last);
     end
+    buffer_room = (pci_slave1_buffered_next <= 1);
+    if ((done && (!pci_slave1_first_phase))) begin
+        buffer_room = (pci_slave1_buffered_next == 0);
+    end
     if (pci_slave1_is_read) begin
         pci_slave1_pci_control1_control_case1_0_ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
         pci_slave1_pci_control1_control_case1_0_exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
     end
     else begin
-        buffer_room = (pci_slave1_buffered_next <= 1);
-        if ((done && (!pci_slave1_first_phase))) begin
-            buffer_room = (pci_slave1_buffered_next == 0);
-        end
         pci_slave1_pci_control1_control_case1_0_ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
         pci_slave1_pci_control1_control_case1_0_exhausted = 1'b0;
     end
@@ -1651,7 +1661,7 @@ always @(pci_slave1_claim, pci_ad_oe, pci_slave1_state, pci_slave1_fatal, pci_sl
 end
 
 
-always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave1_first_phase, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_trdy_q, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_at_last, pci_slave1_is_read, pci_slave1_b_valid) begin: pci_slave1_pci_control1_control_case2_0_outlook
+always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_trdy_q, pci_slave1_b_valid, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_at_last, pci_slave1_is_read, pci_slave1_first_phase) begin: pci_slave1_pci_control1_control_case2_0_outlook
     reg done;
     reg buffer_room;
     done = (1'b1 && (!pci_slave1_trdy_q));
@@ -1661,15 +1671,15 @@ always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave
     else begin
         pci_slave1_pci_control1_control_case2_0_last_data = (pci_slave1_single || pci_slave1_at_last);
     end
+    buffer_room = (pci_slave1_buffered_next <= 1);
+    if ((done && (!pci_slave1_first_phase))) begin
+        buffer_room = (pci_slave1_buffered_next == 0);
+    end
     if (pci_slave1_is_read) begin
         pci_slave1_pci_control1_control_case2_0_ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
         pci_slave1_pci_control1_control_case2_0_exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
     end
     else begin
-        buffer_room = (pci_slave1_buffered_next <= 1);
-        if ((done && (!pci_slave1_first_phase))) begin
-            buffer_room = (pci_slave1_buffered_next == 0);
-        end
         pci_slave1_pci_control1_control_case2_0_ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
         pci_slave1_pci_control1_control_case2_0_exhausted = 1'b0;
     end
@@ -1918,8 +1928,8 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction_kind
         if (((pci_slave1_state == 4'b0000) && pci_slave1_address_phase)) begin
             pci_slave1_is_read <= (!pci_slave1_cbe_q[0]);
             pci_slave1_is_config <= pci_slave1_claim_config;
-            pci_slave1_space_mem <= ((!pci_slave1_claim_config) && (!pci_slave1_claim_io));
-            pci_slave1_single <= (pci_slave1_claim_config || pci_slave1_claim_io || pci_slave1_ad_q[0] || pci_slave1_ad_q[1]);
+            pci_slave1_space_mem <= ((!pci_slave1_claim_config) && (!pci_slave1_claim_io) && (!pci_slave1_claim_alias));
+            pci_slave1_single <= (pci_slave1_claim_config || pci_slave1_claim_io || pci_slave1_claim_alias || pci_slave1_ad_q[0] || pci_slave1_ad_q[1]);
             pci_slave1_first_pending <= 1'b1;
             pci_slave1_fetching <= ((!pci_slave1_cbe_q[0]) && (!pci_slave1_claim_config));
             pci_slave1_io_byte <= pci_slave1_ad_q[2-1:0];
@@ -2149,6 +2159,7 @@ always @(posedge clock, negedge reset) begin: pci_slave1_pci_config1_config_regi
         pci_slave1_pci_config1_signaled_system_error <= 0;
         pci_slave1_pci_config1_interrupt_line <= 0;
         pci_slave1_interrupt_disable <= 0;
+        pci_slave1_bar2 <= 0;
         pci_slave1_pci_config1_signaled_target_abort <= 0;
         pci_slave1_bar0 <= 0;
         pci_slave1_pci_config1_detected_parity_error <= 0;
@@ -2201,6 +2212,20 @@ always @(posedge clock, negedge reset) begin: pci_slave1_pci_config1_config_regi
                         pci_slave1_bar1[32-1:24] <= pci_slave1_config_data[32-1:24];
                     end
                 end
+                'h6: begin
+                    if ((!pci_slave1_config_cbe_n[0])) begin
+                        pci_slave1_bar2[8-1:0] <= pci_slave1_config_data[8-1:0];
+                    end
+                    if ((!pci_slave1_config_cbe_n[1])) begin
+                        pci_slave1_bar2[16-1:8] <= pci_slave1_config_data[16-1:8];
+                    end
+                    if ((!pci_slave1_config_cbe_n[2])) begin
+                        pci_slave1_bar2[24-1:16] <= pci_slave1_config_data[24-1:16];
+                    end
+                    if ((!pci_slave1_config_cbe_n[3])) begin
+                        pci_slave1_bar2[32-1:24] <= pci_slave1_config_data[32-1:24];
+                    end
+                end
                 'hf: begin
                     if ((!pci_slave1_config_cbe_n[0])) begin
                         pci_slave1_pci_config1_interrupt_line <= pci_slave1_config_data[8-1:0];
@@ -2219,7 +2244,7 @@ end
 assign pci_slave1_pci_config1_bar0_read = ((pci_slave1_bar0 & 16'hff00) | 16'h1);
 
 
-always @(pci_slave1_pci_config1_signaled_system_error, pci_slave1_parity_response, pci_slave1_config_irq, pci_slave1_config_index, pci_slave1_pci_config1_bar0_read, pci_slave1_pci_config1_interrupt_line, pci_slave1_interrupt_disable, pci_slave1_pci_config1_signaled_target_abort, pci_slave1_pci_config1_detected_parity_error, pci_slave1_io_enable, pci_slave1_serr_enable, pci_slave1_bar1, pci_slave1_mem_enable) begin: pci_slave1_pci_config1_config_read
+always @(pci_slave1_pci_config1_signaled_system_error, pci_slave1_parity_response, pci_slave1_config_irq, pci_slave1_config_index, pci_slave1_pci_config1_bar0_read, pci_slave1_pci_config1_interrupt_line, pci_slave1_interrupt_disable, pci_slave1_bar2, pci_slave1_pci_config1_signaled_target_abort, pci_slave1_pci_config1_detected_parity_error, pci_slave1_io_enable, pci_slave1_serr_enable, pci_slave1_bar1, pci_slave1_mem_enable) begin: pci_slave1_pci_config1_config_read
     case (pci_slave1_config_index)
         'h0: begin
             pci_slave1_config_rdata = 32'hdda01234;
@@ -2235,6 +2260,9 @@ always @(pci_slave1_pci_config1_signaled_system_error, pci_slave1_parity_respons
         end
         'h5: begin
             pci_slave1_config_rdata = (pci_slave1_bar1 & 32'hfffff000);
+        end
+        'h6: begin
+            pci_slave1_config_rdata = (pci_slave1_bar2 & 32'hffffff00);
         end
         'hb: begin
             pci_slave1_config_rdata = 32'h11234;

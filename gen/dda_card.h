@@ -1,4 +1,4 @@
-/* Host interface of the PCI DDA card: function registers (I/O BAR) and more.
+/* Host interface of the PCI DDA card: function registers (I/O BAR0, memory BAR2) and more.
  * Generated from rtl/ by python -m rtl.top --convert; do not edit. */
 #ifndef DDA_REGISTERS_H
 #define DDA_REGISTERS_H
@@ -302,6 +302,7 @@
 #define DDA_PCI_SUBSYSTEM_ID 0x0001u
 #define DDA_BAR0_SIZE 256u /* I/O: function registers */
 #define DDA_BAR1_SIZE 4096u /* memory: the command FIFO window */
+#define DDA_BAR2_SIZE 256u /* memory: the function registers again, at BAR0's offsets */
 #define DDA_FIFO_DEPTH 512u /* words */
 
 #define DDA_STOP_ESTOP 1u /* STOP_REASON.REASON */

@@ -45,12 +45,15 @@ module pci_slave (
 // 
 // Ports: ``clock`` PCI CLK; ``reset`` RST# (``card_reset()``); ``pci`` a
 // ``PciBus``; ``local`` a ``LocalBus`` of ``local_addr_width()`` address
-// bits (space 0: BAR0, I/O; space 1: BAR1, memory); ``irq`` level interrupt
+// bits (space 0: the registers, through BAR0, I/O, or its alias BAR2,
+// memory, BAR0's size; space 1: BAR1, memory); ``irq`` level interrupt
 // request, drives INTA# unless Command.Interrupt Disable is set.
 // 
 // Parameters: vendor_id, device_id, revision_id, class_code (24 bits),
 // subsystem_vendor_id, subsystem_id; io_bar_bits (BAR0 is 2**io_bar_bits
-// bytes), mem_bar_bits (BAR1 is 2**mem_bar_bits bytes); device (how the
+// bytes; BAR2 the same, 16 bytes at least, BAR0 repeating in them),
+// mem_bar_bits (BAR1 is
+// 2**mem_bar_bits bytes); device (how the
 // one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pci/pin_lut.py``);
 // defaults and ranges in ``models/parameters.py``;
 // io_registers (False: the core's own flip-flops sample AD and IDSEL and
@@ -159,6 +162,7 @@ reg parity_response;
 reg serr_enable;
 reg [15:0] bar0;
 reg [31:0] bar1;
+reg [31:0] bar2;
 reg fatal;
 reg read_command;
 wire write_done_next;
@@ -189,6 +193,7 @@ reg b_valid;
 reg before_last;
 reg [3:0] cbe_q;
 reg claim;
+reg claim_alias;
 reg claim_config;
 reg claim_io;
 wire devsel_next;
@@ -361,29 +366,37 @@ always @(ad_out_q) begin: pci_parity0_ad_out_parity_tree
 end
 
 
-always @(bar1, mem_enable, address_phase, state, bar0, cbe_q, idsel_q, io_enable, ad_q) begin: pci_decode0_decode_address
+always @(bar2, bar1, mem_enable, address_phase, state, bar0, cbe_q, idsel_q, io_enable, ad_q) begin: pci_decode0_decode_address
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
+    reg mem_command;
     reg mem_hit;
+    reg alias_hit;
     code = cbe_q;
     config_hit = (idsel_q && (!ad_q[0]) && (!ad_q[1]) && (ad_q[11-1:8] == 0) && ((code == 10) || (code == 11)));
     io_hit = (io_enable && ((code == 2) || (code == 3)) && (ad_q[32-1:16] == 0) && (ad_q[16-1:6] == bar0[16-1:6]));
-    mem_hit = (mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)) && (ad_q[32-1:12] == bar1[32-1:12]));
-    claim = ((state == 4'b0000) && address_phase && (config_hit || io_hit || mem_hit));
+    mem_command = (mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)));
+    mem_hit = (mem_command && (ad_q[32-1:12] == bar1[32-1:12]));
+    alias_hit = (mem_command && (ad_q[32-1:6] == bar2[32-1:6]) && (!mem_hit));
+    claim = ((state == 4'b0000) && address_phase && (config_hit || io_hit || mem_hit || alias_hit));
     claim_config = config_hit;
     claim_io = io_hit;
+    claim_alias = alias_hit;
     read_command = (!cbe_q[0]);
 end
 
 
-always @(cbe_q, ad_q) begin: pci_decode0_start_offset
+always @(cbe_q, claim_alias, ad_q) begin: pci_decode0_start_offset
     reg [4-1:0] code;
     code = cbe_q;
     if (((code == 10) || (code == 11))) begin
         start_addr = (ad_q[(10 + 2)-1:2] & 10'h3f);
     end
     else if (((code == 2) || (code == 3))) begin
+        start_addr = (ad_q[(10 + 2)-1:2] & 10'hf);
+    end
+    else if (claim_alias) begin
         start_addr = (ad_q[(10 + 2)-1:2] & 10'hf);
     end
     else begin
@@ -493,7 +506,7 @@ always @(subsequent_wait_over, stop_q, first_phase, initial_wait_over, state, tr
 end
 
 
-always @(burst_got, single, fetching, first_phase, is_config, before_last, buffered_next, trdy_q, local_room, at_last, is_read, b_valid) begin: pci_control0_control_case0_outlook
+always @(burst_got, single, fetching, is_config, before_last, buffered_next, trdy_q, b_valid, local_room, at_last, is_read, first_phase) begin: pci_control0_control_case0_outlook
     reg done;
     reg buffer_room;
     done = (1'b0 && (!trdy_q));
@@ -503,15 +516,15 @@ always @(burst_got, single, fetching, first_phase, is_config, before_last, buffe
     else begin
         pci_control0_control_case0_last_data = (single || at_last);
     end
+    buffer_room = (buffered_next <= 1);
+    if ((done && (!first_phase))) begin
+        buffer_room = (buffered_next == 0);
+    end
     if (is_read) begin
         pci_control0_control_case0_ready_for_phase = (b_valid || burst_got);
         pci_control0_control_case0_exhausted = ((!b_valid) && (!burst_got) && (!fetching));
     end
     else begin
-        buffer_room = (buffered_next <= 1);
-        if ((done && (!first_phase))) begin
-            buffer_room = (buffered_next == 0);
-        end
         pci_control0_control_case0_ready_for_phase = (is_config || (buffer_room && local_room));
         pci_control0_control_case0_exhausted = 1'b0;
     end
@@ -678,7 +691,7 @@ always @(claim, pci_ad_oe, state, fatal, devsel_q, pci_devsel_oe, trdy_q, read_c
 end
 
 
-always @(burst_got, single, fetching, first_phase, is_config, before_last, buffered_next, trdy_q, local_room, at_last, is_read, b_valid) begin: pci_control0_control_case1_outlook
+always @(burst_got, single, fetching, is_config, before_last, buffered_next, trdy_q, b_valid, local_room, at_last, is_read, first_phase) begin: pci_control0_control_case1_outlook
     reg done;
     reg buffer_room;
     done = (1'b1 && (!trdy_q));
@@ -688,15 +701,15 @@ always @(burst_got, single, fetching, first_phase, is_config, before_last, buffe
     else begin
         pci_control0_control_case1_last_data = (single || at_last);
     end
+    buffer_room = (buffered_next <= 1);
+    if ((done && (!first_phase))) begin
+        buffer_room = (buffered_next == 0);
+    end
     if (is_read) begin
         pci_control0_control_case1_ready_for_phase = (b_valid || burst_got);
         pci_control0_control_case1_exhausted = ((!b_valid) && (!burst_got) && (!fetching));
     end
     else begin
-        buffer_room = (buffered_next <= 1);
-        if ((done && (!first_phase))) begin
-            buffer_room = (buffered_next == 0);
-        end
         pci_control0_control_case1_ready_for_phase = (is_config || (buffer_room && local_room));
         pci_control0_control_case1_exhausted = 1'b0;
     end
@@ -863,7 +876,7 @@ always @(claim, pci_ad_oe, state, fatal, devsel_q, pci_devsel_oe, trdy_q, read_c
 end
 
 
-always @(burst_got, single, fetching, first_phase, is_config, before_last, buffered_next, trdy_q, local_room, at_last, is_read, b_valid) begin: pci_control0_control_case2_outlook
+always @(burst_got, single, fetching, is_config, before_last, buffered_next, trdy_q, b_valid, local_room, at_last, is_read, first_phase) begin: pci_control0_control_case2_outlook
     reg done;
     reg buffer_room;
     done = (1'b1 && (!trdy_q));
@@ -873,15 +886,15 @@ always @(burst_got, single, fetching, first_phase, is_config, before_last, buffe
     else begin
         pci_control0_control_case2_last_data = (single || at_last);
     end
+    buffer_room = (buffered_next <= 1);
+    if ((done && (!first_phase))) begin
+        buffer_room = (buffered_next == 0);
+    end
     if (is_read) begin
         pci_control0_control_case2_ready_for_phase = (b_valid || burst_got);
         pci_control0_control_case2_exhausted = ((!b_valid) && (!burst_got) && (!fetching));
     end
     else begin
-        buffer_room = (buffered_next <= 1);
-        if ((done && (!first_phase))) begin
-            buffer_room = (buffered_next == 0);
-        end
         pci_control0_control_case2_ready_for_phase = (is_config || (buffer_room && local_room));
         pci_control0_control_case2_exhausted = 1'b0;
     end
@@ -1130,8 +1143,8 @@ always @(posedge clock, negedge reset) begin: transaction_kind
         if (((state == 4'b0000) && address_phase)) begin
             is_read <= (!cbe_q[0]);
             is_config <= claim_config;
-            space_mem <= ((!claim_config) && (!claim_io));
-            single <= (claim_config || claim_io || ad_q[0] || ad_q[1]);
+            space_mem <= ((!claim_config) && (!claim_io) && (!claim_alias));
+            single <= (claim_config || claim_io || claim_alias || ad_q[0] || ad_q[1]);
             first_pending <= 1'b1;
             fetching <= ((!cbe_q[0]) && (!claim_config));
             io_byte <= ad_q[2-1:0];
@@ -1361,6 +1374,7 @@ always @(posedge clock, negedge reset) begin: pci_config0_config_registers
         pci_config0_signaled_system_error <= 0;
         pci_config0_interrupt_line <= 0;
         interrupt_disable <= 0;
+        bar2 <= 0;
         pci_config0_signaled_target_abort <= 0;
         bar0 <= 0;
         pci_config0_detected_parity_error <= 0;
@@ -1413,6 +1427,20 @@ always @(posedge clock, negedge reset) begin: pci_config0_config_registers
                         bar1[32-1:24] <= config_data[32-1:24];
                     end
                 end
+                'h6: begin
+                    if ((!config_cbe_n[0])) begin
+                        bar2[8-1:0] <= config_data[8-1:0];
+                    end
+                    if ((!config_cbe_n[1])) begin
+                        bar2[16-1:8] <= config_data[16-1:8];
+                    end
+                    if ((!config_cbe_n[2])) begin
+                        bar2[24-1:16] <= config_data[24-1:16];
+                    end
+                    if ((!config_cbe_n[3])) begin
+                        bar2[32-1:24] <= config_data[32-1:24];
+                    end
+                end
                 'hf: begin
                     if ((!config_cbe_n[0])) begin
                         pci_config0_interrupt_line <= config_data[8-1:0];
@@ -1431,7 +1459,7 @@ end
 assign pci_config0_bar0_read = ((bar0 & 16'hffc0) | 16'h1);
 
 
-always @(pci_config0_signaled_system_error, parity_response, config_irq, config_index, pci_config0_bar0_read, pci_config0_interrupt_line, interrupt_disable, pci_config0_signaled_target_abort, pci_config0_detected_parity_error, io_enable, serr_enable, bar1, mem_enable) begin: pci_config0_config_read
+always @(pci_config0_signaled_system_error, parity_response, config_irq, config_index, pci_config0_bar0_read, pci_config0_interrupt_line, interrupt_disable, bar2, pci_config0_signaled_target_abort, pci_config0_detected_parity_error, io_enable, serr_enable, bar1, mem_enable) begin: pci_config0_config_read
     case (config_index)
         'h0: begin
             config_rdata = 32'hdda01234;
@@ -1447,6 +1475,9 @@ always @(pci_config0_signaled_system_error, parity_response, config_irq, config_
         end
         'h5: begin
             config_rdata = (bar1 & 32'hfffff000);
+        end
+        'h6: begin
+            config_rdata = (bar2 & 32'hffffffc0);
         end
         'hb: begin
             config_rdata = 32'h11234;

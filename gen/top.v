@@ -124,6 +124,7 @@ reg card1_pci_slave2_parity_response;
 reg card1_pci_slave2_serr_enable;
 reg [15:0] card1_pci_slave2_bar0;
 reg [31:0] card1_pci_slave2_bar1;
+reg [31:0] card1_pci_slave2_bar2;
 reg card1_pci_slave2_fatal;
 reg card1_pci_slave2_read_command;
 wire card1_pci_slave2_write_done_next;
@@ -152,6 +153,7 @@ reg card1_pci_slave2_at_last;
 reg card1_pci_slave2_b_valid;
 reg card1_pci_slave2_before_last;
 reg card1_pci_slave2_claim;
+reg card1_pci_slave2_claim_alias;
 reg card1_pci_slave2_claim_config;
 reg card1_pci_slave2_claim_io;
 wire card1_pci_slave2_devsel_next;
@@ -1707,29 +1709,37 @@ always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_pci_parity2_ad_out_p
 end
 
 
-always @(card1_pci_slave2_bar1, card1_pci_slave2_mem_enable, card1_pci_slave2_address_phase, card1_pci_slave2_state, card1_pci_slave2_bar0, pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_io_enable, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_decode2_decode_address
+always @(card1_pci_slave2_bar2, card1_pci_slave2_bar1, card1_pci_slave2_mem_enable, card1_pci_slave2_address_phase, card1_pci_slave2_state, card1_pci_slave2_bar0, pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_io_enable, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_decode2_decode_address
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
+    reg mem_command;
     reg mem_hit;
+    reg alias_hit;
     code = pci_pads0_registered_pad5_from_pin;
     config_hit = (pci_pads0_registered_pad6_from_pin && (!pci_pads0_registered_pad0_from_pin[0]) && (!pci_pads0_registered_pad0_from_pin[1]) && (pci_pads0_registered_pad0_from_pin[11-1:8] == 0) && ((code == 10) || (code == 11)));
     io_hit = (card1_pci_slave2_io_enable && ((code == 2) || (code == 3)) && (pci_pads0_registered_pad0_from_pin[32-1:16] == 0) && (pci_pads0_registered_pad0_from_pin[16-1:8] == card1_pci_slave2_bar0[16-1:8]));
-    mem_hit = (card1_pci_slave2_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)) && (pci_pads0_registered_pad0_from_pin[32-1:12] == card1_pci_slave2_bar1[32-1:12]));
-    card1_pci_slave2_claim = ((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (config_hit || io_hit || mem_hit));
+    mem_command = (card1_pci_slave2_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)));
+    mem_hit = (mem_command && (pci_pads0_registered_pad0_from_pin[32-1:12] == card1_pci_slave2_bar1[32-1:12]));
+    alias_hit = (mem_command && (pci_pads0_registered_pad0_from_pin[32-1:8] == card1_pci_slave2_bar2[32-1:8]) && (!mem_hit));
+    card1_pci_slave2_claim = ((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (config_hit || io_hit || mem_hit || alias_hit));
     card1_pci_slave2_claim_config = config_hit;
     card1_pci_slave2_claim_io = io_hit;
+    card1_pci_slave2_claim_alias = alias_hit;
     card1_pci_slave2_read_command = (!pci_pads0_registered_pad5_from_pin[0]);
 end
 
 
-always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_decode2_start_offset
+always @(pci_pads0_registered_pad5_from_pin, card1_pci_slave2_claim_alias, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_decode2_start_offset
     reg [4-1:0] code;
     code = pci_pads0_registered_pad5_from_pin;
     if (((code == 10) || (code == 11))) begin
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
     end
     else if (((code == 2) || (code == 3))) begin
+        card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
+    end
+    else if (card1_pci_slave2_claim_alias) begin
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
     end
     else begin
@@ -1863,7 +1873,7 @@ always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_p
 end
 
 
-always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_fetching, card1_pci_slave2_first_phase, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_trdy_q, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_at_last, card1_pci_slave2_is_read, card1_pci_slave2_b_valid) begin: card1_pci_slave2_pci_control2_control_case0_0_1_outlook
+always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_trdy_q, card1_pci_slave2_b_valid, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_at_last, card1_pci_slave2_is_read, card1_pci_slave2_first_phase) begin: card1_pci_slave2_pci_control2_control_case0_0_1_outlook
     reg done;
     reg buffer_room;
     done = (1'b0 && (!card1_pci_slave2_trdy_q));
@@ -1873,15 +1883,15 @@ always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_f
     else begin
         card1_pci_slave2_pci_control2_control_case0_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     end
+    buffer_room = (card1_pci_slave2_buffered_next <= 1);
+    if ((done && (!card1_pci_slave2_first_phase))) begin
+        buffer_room = (card1_pci_slave2_buffered_next == 0);
+    end
     if (card1_pci_slave2_is_read) begin
         card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
         card1_pci_slave2_pci_control2_control_case0_0_1_exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
     end
     else begin
-        buffer_room = (card1_pci_slave2_buffered_next <= 1);
-        if ((done && (!card1_pci_slave2_first_phase))) begin
-            buffer_room = (card1_pci_slave2_buffered_next == 0);
-        end
         card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
         card1_pci_slave2_pci_control2_control_case0_0_1_exhausted = 1'b0;
     end
@@ -2048,7 +2058,7 @@ always @(card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_sla
 end
 
 
-always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_fetching, card1_pci_slave2_first_phase, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_trdy_q, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_at_last, card1_pci_slave2_is_read, card1_pci_slave2_b_valid) begin: card1_pci_slave2_pci_control2_control_case1_0_1_outlook
+always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_trdy_q, card1_pci_slave2_b_valid, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_at_last, card1_pci_slave2_is_read, card1_pci_slave2_first_phase) begin: card1_pci_slave2_pci_control2_control_case1_0_1_outlook
     reg done;
     reg buffer_room;
     done = (1'b1 && (!card1_pci_slave2_trdy_q));
@@ -2058,15 +2068,15 @@ always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_f
     else begin
         card1_pci_slave2_pci_control2_control_case1_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     end
+    buffer_room = (card1_pci_slave2_buffered_next <= 1);
+    if ((done && (!card1_pci_slave2_first_phase))) begin
+        buffer_room = (card1_pci_slave2_buffered_next == 0);
+    end
     if (card1_pci_slave2_is_read) begin
         card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
         card1_pci_slave2_pci_control2_control_case1_0_1_exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
     end
     else begin
-        buffer_room = (card1_pci_slave2_buffered_next <= 1);
-        if ((done && (!card1_pci_slave2_first_phase))) begin
-            buffer_room = (card1_pci_slave2_buffered_next == 0);
-        end
         card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
         card1_pci_slave2_pci_control2_control_case1_0_1_exhausted = 1'b0;
     end
@@ -2233,7 +2243,7 @@ always @(card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_sla
 end
 
 
-always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_fetching, card1_pci_slave2_first_phase, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_trdy_q, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_at_last, card1_pci_slave2_is_read, card1_pci_slave2_b_valid) begin: card1_pci_slave2_pci_control2_control_case2_0_1_outlook
+always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_trdy_q, card1_pci_slave2_b_valid, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_at_last, card1_pci_slave2_is_read, card1_pci_slave2_first_phase) begin: card1_pci_slave2_pci_control2_control_case2_0_1_outlook
     reg done;
     reg buffer_room;
     done = (1'b1 && (!card1_pci_slave2_trdy_q));
@@ -2243,15 +2253,15 @@ always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_f
     else begin
         card1_pci_slave2_pci_control2_control_case2_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     end
+    buffer_room = (card1_pci_slave2_buffered_next <= 1);
+    if ((done && (!card1_pci_slave2_first_phase))) begin
+        buffer_room = (card1_pci_slave2_buffered_next == 0);
+    end
     if (card1_pci_slave2_is_read) begin
         card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
         card1_pci_slave2_pci_control2_control_case2_0_1_exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
     end
     else begin
-        buffer_room = (card1_pci_slave2_buffered_next <= 1);
-        if ((done && (!card1_pci_slave2_first_phase))) begin
-            buffer_room = (card1_pci_slave2_buffered_next == 0);
-        end
         card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
         card1_pci_slave2_pci_control2_control_case2_0_1_exhausted = 1'b0;
     end
@@ -2536,8 +2546,8 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction_kind
         if (((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase)) begin
             card1_pci_slave2_is_read <= (!pci_pads0_registered_pad5_from_pin[0]);
             card1_pci_slave2_is_config <= card1_pci_slave2_claim_config;
-            card1_pci_slave2_space_mem <= ((!card1_pci_slave2_claim_config) && (!card1_pci_slave2_claim_io));
-            card1_pci_slave2_single <= (card1_pci_slave2_claim_config || card1_pci_slave2_claim_io || pci_pads0_registered_pad0_from_pin[0] || pci_pads0_registered_pad0_from_pin[1]);
+            card1_pci_slave2_space_mem <= ((!card1_pci_slave2_claim_config) && (!card1_pci_slave2_claim_io) && (!card1_pci_slave2_claim_alias));
+            card1_pci_slave2_single <= (card1_pci_slave2_claim_config || card1_pci_slave2_claim_io || card1_pci_slave2_claim_alias || pci_pads0_registered_pad0_from_pin[0] || pci_pads0_registered_pad0_from_pin[1]);
             card1_pci_slave2_first_pending <= 1'b1;
             card1_pci_slave2_fetching <= ((!pci_pads0_registered_pad5_from_pin[0]) && (!card1_pci_slave2_claim_config));
             card1_pci_slave2_io_byte <= pci_pads0_registered_pad0_from_pin[2-1:0];
@@ -2981,6 +2991,7 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_config2_confi
         card1_pci_slave2_pci_config2_signaled_system_error <= 0;
         card1_pci_slave2_pci_config2_interrupt_line <= 0;
         card1_pci_slave2_interrupt_disable <= 0;
+        card1_pci_slave2_bar2 <= 0;
         card1_pci_slave2_pci_config2_signaled_target_abort <= 0;
         card1_pci_slave2_bar0 <= 0;
         card1_pci_slave2_pci_config2_detected_parity_error <= 0;
@@ -3033,6 +3044,20 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_config2_confi
                         card1_pci_slave2_bar1[32-1:24] <= card1_pci_slave2_config_data[32-1:24];
                     end
                 end
+                'h6: begin
+                    if ((!card1_pci_slave2_config_cbe_n[0])) begin
+                        card1_pci_slave2_bar2[8-1:0] <= card1_pci_slave2_config_data[8-1:0];
+                    end
+                    if ((!card1_pci_slave2_config_cbe_n[1])) begin
+                        card1_pci_slave2_bar2[16-1:8] <= card1_pci_slave2_config_data[16-1:8];
+                    end
+                    if ((!card1_pci_slave2_config_cbe_n[2])) begin
+                        card1_pci_slave2_bar2[24-1:16] <= card1_pci_slave2_config_data[24-1:16];
+                    end
+                    if ((!card1_pci_slave2_config_cbe_n[3])) begin
+                        card1_pci_slave2_bar2[32-1:24] <= card1_pci_slave2_config_data[32-1:24];
+                    end
+                end
                 'hf: begin
                     if ((!card1_pci_slave2_config_cbe_n[0])) begin
                         card1_pci_slave2_pci_config2_interrupt_line <= card1_pci_slave2_config_data[8-1:0];
@@ -3051,7 +3076,7 @@ end
 assign card1_pci_slave2_pci_config2_bar0_read = ((card1_pci_slave2_bar0 & 16'hff00) | 16'h1);
 
 
-always @(card1_pci_slave2_pci_config2_signaled_system_error, card1_pci_slave2_parity_response, card1_pci_slave2_config_irq, card1_pci_slave2_config_index, card1_pci_slave2_pci_config2_bar0_read, card1_pci_slave2_pci_config2_interrupt_line, card1_pci_slave2_interrupt_disable, card1_pci_slave2_pci_config2_signaled_target_abort, card1_pci_slave2_pci_config2_detected_parity_error, card1_pci_slave2_io_enable, card1_pci_slave2_serr_enable, card1_pci_slave2_bar1, card1_pci_slave2_mem_enable) begin: card1_pci_slave2_pci_config2_config_read
+always @(card1_pci_slave2_pci_config2_signaled_system_error, card1_pci_slave2_parity_response, card1_pci_slave2_config_irq, card1_pci_slave2_config_index, card1_pci_slave2_pci_config2_bar0_read, card1_pci_slave2_pci_config2_interrupt_line, card1_pci_slave2_interrupt_disable, card1_pci_slave2_bar2, card1_pci_slave2_pci_config2_signaled_target_abort, card1_pci_slave2_pci_config2_detected_parity_error, card1_pci_slave2_io_enable, card1_pci_slave2_serr_enable, card1_pci_slave2_bar1, card1_pci_slave2_mem_enable) begin: card1_pci_slave2_pci_config2_config_read
     case (card1_pci_slave2_config_index)
         'h0: begin
             card1_pci_slave2_config_rdata = 32'hdda01234;
@@ -3067,6 +3092,9 @@ always @(card1_pci_slave2_pci_config2_signaled_system_error, card1_pci_slave2_pa
         end
         'h5: begin
             card1_pci_slave2_config_rdata = (card1_pci_slave2_bar1 & 32'hfffff000);
+        end
+        'h6: begin
+            card1_pci_slave2_config_rdata = (card1_pci_slave2_bar2 & 32'hffffff00);
         end
         'hb: begin
             card1_pci_slave2_config_rdata = 32'h11234;

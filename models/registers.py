@@ -1,4 +1,4 @@
-"""The card's function registers (I/O BAR), described once.
+"""The card's function registers (I/O BAR0, and memory BAR2 at the same offsets), described once.
 
 ``REGISTERS`` is the single table.  From it come the RTL decoder
 (``rtl/regs_fifo.py`` builds one ``reg_word`` per entry), ``docs/registers.md``

@@ -84,21 +84,21 @@ def pci_control(frame_pin, irdy_pin, target, chosen, *, device):
                 last_data.next = target.single or target.before_last
             else:
                 last_data.next = target.single or target.at_last
+            # The write credit: TRDY# for a posted phase needs a place
+            # here and the back end's promise (``room``) to take
+            # its next three writes.  This target asserts it only while
+            # it holds at most two posted dwords (one when a phase
+            # completes at the same edge), so at most three acknowledged
+            # dwords ever wait for the back end, all promised; only its
+            # own writes use the promise.  Without it the phase waits,
+            # and the latency rules end the burst.
+            buffer_room = target.buffered <= 1
+            if done and not target.first_phase:
+                buffer_room = target.buffered == 0
             if target.is_read:
                 ready_for_phase.next = target.b_valid or target.burst_got
                 exhausted.next = not target.b_valid and not target.burst_got and not target.fetching
             else:
-                # The write credit: TRDY# for a posted phase needs a place
-                # here and the back end's promise (``room``) to take
-                # its next three writes.  This target asserts it only while
-                # it holds at most two posted dwords (one when a phase
-                # completes at the same edge), so at most three acknowledged
-                # dwords ever wait for the back end, all promised; only its
-                # own writes use the promise.  Without it the phase waits,
-                # and the latency rules end the burst.
-                buffer_room = target.buffered <= 1
-                if done and not target.first_phase:
-                    buffer_room = target.buffered == 0
                 ready_for_phase.next = target.is_config or (buffer_room and target.room)
                 exhausted.next = False
 
