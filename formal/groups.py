@@ -194,6 +194,7 @@ GROUPS = [
           text="back end: LocalBus answers, registers never wait, FIFO level, STATUS, nothing lost"),
     Group("regs_fifo_table", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("reg_",), mode="bmc",
           depth=10, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          defines={"STEP_MODES_FREE": None},   # STEP_MODE written too (the pins are judged elsewhere)
           text="every register as models/registers.py says (bounded)"),
     Group("regs_fifo_pulses", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_",), mode="bmc",
           depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},

@@ -352,116 +352,97 @@ wire card_core0_regs_fifo1_sync_fifo1_last_beyond;
 wire card_core0_regs_fifo1_sync_fifo1_one_word;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_read_addr;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_write_addr;
-wire [31:0] card_core0_regs_fifo1_reg_word37_shown;
-wire card_core0_regs_fifo1_reg_word37_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word37_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word37_chain_out_data;
-wire [31:0] card_core0_regs_fifo1_reg_word37_chain_in_data;
-wire card_core0_regs_fifo1_reg_word37_chain_out_clamped;
-wire card_core0_regs_fifo1_reg_word37_chain_in_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word38_honoured;
-wire card_core0_regs_fifo1_reg_word38_out_of_range;
-reg card_core0_regs_fifo1_reg_word38_clamped;
-wire card_core0_regs_fifo1_reg_word38_mine;
-wire card_core0_regs_fifo1_reg_word38_mine_write;
-wire card_core0_regs_fifo1_reg_word38_set_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word38_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word38_written;
-reg [31:0] card_core0_regs_fifo1_reg_word38_chain_out_data;
-wire card_core0_regs_fifo1_reg_word38_chain_out_clamped;
-wire [3:0] card_core0_regs_fifo1_reg_word39_honoured;
-wire card_core0_regs_fifo1_reg_word39_out_of_range;
-wire [3:0] card_core0_regs_fifo1_reg_word39_shown;
-reg card_core0_regs_fifo1_reg_word39_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word39_shown;
 wire card_core0_regs_fifo1_reg_word39_mine;
-wire card_core0_regs_fifo1_reg_word39_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word39_shown_wide;
-wire [3:0] card_core0_regs_fifo1_reg_word39_written;
 reg [31:0] card_core0_regs_fifo1_reg_word39_chain_out_data;
+wire [31:0] card_core0_regs_fifo1_reg_word39_chain_in_data;
 wire card_core0_regs_fifo1_reg_word39_chain_out_clamped;
-reg [31:0] card_core0_regs_fifo1_reg_word40_shown;
+wire card_core0_regs_fifo1_reg_word39_chain_in_clamped;
+wire [1:0] card_core0_regs_fifo1_reg_word40_honoured;
+wire card_core0_regs_fifo1_reg_word40_out_of_range;
+reg card_core0_regs_fifo1_reg_word40_clamped;
 wire card_core0_regs_fifo1_reg_word40_mine;
+wire card_core0_regs_fifo1_reg_word40_mine_write;
+wire card_core0_regs_fifo1_reg_word40_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word40_shown_wide;
+reg [1:0] card_core0_regs_fifo1_reg_word40_written;
 reg [31:0] card_core0_regs_fifo1_reg_word40_chain_out_data;
 wire card_core0_regs_fifo1_reg_word40_chain_out_clamped;
-wire [7:0] card_core0_regs_fifo1_reg_word41_honoured;
+wire [3:0] card_core0_regs_fifo1_reg_word41_honoured;
 wire card_core0_regs_fifo1_reg_word41_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word41_shown;
+wire [3:0] card_core0_regs_fifo1_reg_word41_shown;
 reg card_core0_regs_fifo1_reg_word41_clamped;
 wire card_core0_regs_fifo1_reg_word41_mine;
 wire card_core0_regs_fifo1_reg_word41_mine_write;
-wire card_core0_regs_fifo1_reg_word41_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word41_shown_wide;
-reg [7:0] card_core0_regs_fifo1_reg_word41_written;
+wire [3:0] card_core0_regs_fifo1_reg_word41_written;
 reg [31:0] card_core0_regs_fifo1_reg_word41_chain_out_data;
 wire card_core0_regs_fifo1_reg_word41_chain_out_clamped;
-wire [7:0] card_core0_regs_fifo1_reg_word42_honoured;
-reg [7:0] card_core0_regs_fifo1_reg_word42_shown;
+reg [31:0] card_core0_regs_fifo1_reg_word42_shown;
 wire card_core0_regs_fifo1_reg_word42_mine;
-wire card_core0_regs_fifo1_reg_word42_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word42_shown_wide;
-wire [7:0] card_core0_regs_fifo1_reg_word42_written;
 reg [31:0] card_core0_regs_fifo1_reg_word42_chain_out_data;
 wire card_core0_regs_fifo1_reg_word42_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word42__store29_word_hw;
-wire [15:0] card_core0_regs_fifo1_reg_word43_honoured;
+wire [7:0] card_core0_regs_fifo1_reg_word43_honoured;
 wire card_core0_regs_fifo1_reg_word43_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word43_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word43_shown;
 reg card_core0_regs_fifo1_reg_word43_clamped;
 wire card_core0_regs_fifo1_reg_word43_mine;
 wire card_core0_regs_fifo1_reg_word43_mine_write;
 wire card_core0_regs_fifo1_reg_word43_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word43_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word43_written;
+reg [7:0] card_core0_regs_fifo1_reg_word43_written;
 reg [31:0] card_core0_regs_fifo1_reg_word43_chain_out_data;
 wire card_core0_regs_fifo1_reg_word43_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word44_shown;
+wire [7:0] card_core0_regs_fifo1_reg_word44_honoured;
+reg [7:0] card_core0_regs_fifo1_reg_word44_shown;
 wire card_core0_regs_fifo1_reg_word44_mine;
+wire card_core0_regs_fifo1_reg_word44_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word44_shown_wide;
+wire [7:0] card_core0_regs_fifo1_reg_word44_written;
 reg [31:0] card_core0_regs_fifo1_reg_word44_chain_out_data;
 wire card_core0_regs_fifo1_reg_word44_chain_out_clamped;
-wire [31:0] card_core0_regs_fifo1_reg_word45_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word44__store31_word_hw;
+wire [15:0] card_core0_regs_fifo1_reg_word45_honoured;
+wire card_core0_regs_fifo1_reg_word45_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word45_shown;
+reg card_core0_regs_fifo1_reg_word45_clamped;
 wire card_core0_regs_fifo1_reg_word45_mine;
+wire card_core0_regs_fifo1_reg_word45_mine_write;
+wire card_core0_regs_fifo1_reg_word45_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word45_shown_wide;
+reg [15:0] card_core0_regs_fifo1_reg_word45_written;
 reg [31:0] card_core0_regs_fifo1_reg_word45_chain_out_data;
 wire card_core0_regs_fifo1_reg_word45_chain_out_clamped;
-wire [31:0] card_core0_regs_fifo1_reg_word46_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word46_shown;
 wire card_core0_regs_fifo1_reg_word46_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word46_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word46_chain_out_data;
 wire card_core0_regs_fifo1_reg_word46_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word47_honoured;
-reg card_core0_regs_fifo1_reg_word47_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word47_shown;
-reg card_core0_regs_fifo1_reg_word47_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word47_shown;
 wire card_core0_regs_fifo1_reg_word47_mine;
-wire card_core0_regs_fifo1_reg_word47_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word47_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word47_written;
 reg [31:0] card_core0_regs_fifo1_reg_word47_chain_out_data;
 wire card_core0_regs_fifo1_reg_word47_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word48_honoured;
-reg card_core0_regs_fifo1_reg_word48_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word48_shown;
-reg card_core0_regs_fifo1_reg_word48_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word48_shown;
 wire card_core0_regs_fifo1_reg_word48_mine;
-wire card_core0_regs_fifo1_reg_word48_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word48_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word48_written;
 reg [31:0] card_core0_regs_fifo1_reg_word48_chain_out_data;
 wire card_core0_regs_fifo1_reg_word48_chain_out_clamped;
-wire [15:0] card_core0_regs_fifo1_reg_word49_honoured;
-wire card_core0_regs_fifo1_reg_word49_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word49_honoured;
+reg card_core0_regs_fifo1_reg_word49_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word49_shown;
 reg card_core0_regs_fifo1_reg_word49_clamped;
 wire card_core0_regs_fifo1_reg_word49_mine;
 wire card_core0_regs_fifo1_reg_word49_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word49_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word49_written;
+reg [31:0] card_core0_regs_fifo1_reg_word49_written;
 reg [31:0] card_core0_regs_fifo1_reg_word49_chain_out_data;
 wire card_core0_regs_fifo1_reg_word49_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word50_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word50_honoured;
 reg card_core0_regs_fifo1_reg_word50_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word50_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word50_shown;
 reg card_core0_regs_fifo1_reg_word50_clamped;
 wire card_core0_regs_fifo1_reg_word50_mine;
 wire card_core0_regs_fifo1_reg_word50_mine_write;
@@ -469,14 +450,13 @@ wire [31:0] card_core0_regs_fifo1_reg_word50_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word50_written;
 reg [31:0] card_core0_regs_fifo1_reg_word50_chain_out_data;
 wire card_core0_regs_fifo1_reg_word50_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word51_honoured;
-reg card_core0_regs_fifo1_reg_word51_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word51_shown;
+wire [15:0] card_core0_regs_fifo1_reg_word51_honoured;
+wire card_core0_regs_fifo1_reg_word51_out_of_range;
 reg card_core0_regs_fifo1_reg_word51_clamped;
 wire card_core0_regs_fifo1_reg_word51_mine;
 wire card_core0_regs_fifo1_reg_word51_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word51_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word51_written;
+reg [15:0] card_core0_regs_fifo1_reg_word51_written;
 reg [31:0] card_core0_regs_fifo1_reg_word51_chain_out_data;
 wire card_core0_regs_fifo1_reg_word51_chain_out_clamped;
 reg [7:0] card_core0_regs_fifo1_reg_word52_honoured;
@@ -489,20 +469,19 @@ wire [31:0] card_core0_regs_fifo1_reg_word52_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word52_written;
 reg [31:0] card_core0_regs_fifo1_reg_word52_chain_out_data;
 wire card_core0_regs_fifo1_reg_word52_chain_out_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word53_honoured;
-wire card_core0_regs_fifo1_reg_word53_out_of_range;
-reg [1:0] card_core0_regs_fifo1_reg_word53_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word53_honoured;
+reg card_core0_regs_fifo1_reg_word53_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word53_shown;
 reg card_core0_regs_fifo1_reg_word53_clamped;
 wire card_core0_regs_fifo1_reg_word53_mine;
 wire card_core0_regs_fifo1_reg_word53_mine_write;
-wire card_core0_regs_fifo1_reg_word53_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word53_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word53_written;
+reg [31:0] card_core0_regs_fifo1_reg_word53_written;
 reg [31:0] card_core0_regs_fifo1_reg_word53_chain_out_data;
 wire card_core0_regs_fifo1_reg_word53_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word54_honoured;
+reg [7:0] card_core0_regs_fifo1_reg_word54_honoured;
 reg card_core0_regs_fifo1_reg_word54_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word54_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word54_shown;
 reg card_core0_regs_fifo1_reg_word54_clamped;
 wire card_core0_regs_fifo1_reg_word54_mine;
 wire card_core0_regs_fifo1_reg_word54_mine_write;
@@ -510,180 +489,222 @@ wire [31:0] card_core0_regs_fifo1_reg_word54_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word54_written;
 reg [31:0] card_core0_regs_fifo1_reg_word54_chain_out_data;
 wire card_core0_regs_fifo1_reg_word54_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word55_honoured;
-reg card_core0_regs_fifo1_reg_word55_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word55_shown;
+wire [1:0] card_core0_regs_fifo1_reg_word55_honoured;
+wire card_core0_regs_fifo1_reg_word55_out_of_range;
+reg [1:0] card_core0_regs_fifo1_reg_word55_shown;
 reg card_core0_regs_fifo1_reg_word55_clamped;
 wire card_core0_regs_fifo1_reg_word55_mine;
 wire card_core0_regs_fifo1_reg_word55_mine_write;
+wire card_core0_regs_fifo1_reg_word55_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word55_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word55_written;
+reg [1:0] card_core0_regs_fifo1_reg_word55_written;
 reg [31:0] card_core0_regs_fifo1_reg_word55_chain_out_data;
 wire card_core0_regs_fifo1_reg_word55_chain_out_clamped;
-reg [23:0] card_core0_regs_fifo1_reg_word56_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word56_honoured;
 reg card_core0_regs_fifo1_reg_word56_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word56_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word56_shown;
 reg card_core0_regs_fifo1_reg_word56_clamped;
 wire card_core0_regs_fifo1_reg_word56_mine;
 wire card_core0_regs_fifo1_reg_word56_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word56_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word56_written;
+reg [31:0] card_core0_regs_fifo1_reg_word56_written;
 reg [31:0] card_core0_regs_fifo1_reg_word56_chain_out_data;
 wire card_core0_regs_fifo1_reg_word56_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word56__store40_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word56__store40_word_value;
-reg [23:0] card_core0_regs_fifo1_reg_word57_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word57_honoured;
 reg card_core0_regs_fifo1_reg_word57_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word57_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word57_shown;
 reg card_core0_regs_fifo1_reg_word57_clamped;
 wire card_core0_regs_fifo1_reg_word57_mine;
 wire card_core0_regs_fifo1_reg_word57_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word57_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word57_written;
+reg [31:0] card_core0_regs_fifo1_reg_word57_written;
 reg [31:0] card_core0_regs_fifo1_reg_word57_chain_out_data;
 wire card_core0_regs_fifo1_reg_word57_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word57__store41_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word57__store41_word_value;
-wire [31:0] card_core0_regs_fifo1_reg_word58_shown;
+reg [23:0] card_core0_regs_fifo1_reg_word58_honoured;
+reg card_core0_regs_fifo1_reg_word58_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word58_shown;
+reg card_core0_regs_fifo1_reg_word58_clamped;
 wire card_core0_regs_fifo1_reg_word58_mine;
+wire card_core0_regs_fifo1_reg_word58_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word58_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word58_written;
 reg [31:0] card_core0_regs_fifo1_reg_word58_chain_out_data;
 wire card_core0_regs_fifo1_reg_word58_chain_out_clamped;
-wire [15:0] card_core0_regs_fifo1_reg_word59_shown;
+reg card_core0_regs_fifo1_reg_word58__store42_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word58__store42_word_value;
+reg [23:0] card_core0_regs_fifo1_reg_word59_honoured;
+reg card_core0_regs_fifo1_reg_word59_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word59_shown;
+reg card_core0_regs_fifo1_reg_word59_clamped;
 wire card_core0_regs_fifo1_reg_word59_mine;
+wire card_core0_regs_fifo1_reg_word59_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word59_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word59_written;
 reg [31:0] card_core0_regs_fifo1_reg_word59_chain_out_data;
 wire card_core0_regs_fifo1_reg_word59_chain_out_clamped;
-wire [27:0] card_core0_regs_fifo1_reg_word60_shown;
+reg card_core0_regs_fifo1_reg_word59__store43_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word59__store43_word_value;
+wire [31:0] card_core0_regs_fifo1_reg_word60_shown;
 wire card_core0_regs_fifo1_reg_word60_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word60_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word60_chain_out_data;
 wire card_core0_regs_fifo1_reg_word60_chain_out_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word61_honoured;
-wire card_core0_regs_fifo1_reg_word61_out_of_range;
-reg card_core0_regs_fifo1_reg_word61_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word61_shown;
 wire card_core0_regs_fifo1_reg_word61_mine;
-wire card_core0_regs_fifo1_reg_word61_mine_write;
-wire card_core0_regs_fifo1_reg_word61_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word61_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word61_written;
 reg [31:0] card_core0_regs_fifo1_reg_word61_chain_out_data;
 wire card_core0_regs_fifo1_reg_word61_chain_out_clamped;
-reg [19:0] card_core0_regs_fifo1_reg_word62_shown;
+wire [27:0] card_core0_regs_fifo1_reg_word62_shown;
 wire card_core0_regs_fifo1_reg_word62_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word62_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word62_chain_out_data;
 wire card_core0_regs_fifo1_reg_word62_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word63_shown;
+wire [1:0] card_core0_regs_fifo1_reg_word63_honoured;
+wire card_core0_regs_fifo1_reg_word63_out_of_range;
+reg card_core0_regs_fifo1_reg_word63_clamped;
 wire card_core0_regs_fifo1_reg_word63_mine;
+wire card_core0_regs_fifo1_reg_word63_mine_write;
+wire card_core0_regs_fifo1_reg_word63_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word63_shown_wide;
+reg [1:0] card_core0_regs_fifo1_reg_word63_written;
 reg [31:0] card_core0_regs_fifo1_reg_word63_chain_out_data;
 wire card_core0_regs_fifo1_reg_word63_chain_out_clamped;
-wire [6:0] card_core0_regs_fifo1_reg_word64_honoured;
-wire card_core0_regs_fifo1_reg_word64_out_of_range;
-reg [6:0] card_core0_regs_fifo1_reg_word64_shown;
-reg card_core0_regs_fifo1_reg_word64_clamped;
+reg [19:0] card_core0_regs_fifo1_reg_word64_shown;
 wire card_core0_regs_fifo1_reg_word64_mine;
-wire card_core0_regs_fifo1_reg_word64_mine_write;
-wire card_core0_regs_fifo1_reg_word64_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word64_shown_wide;
-reg [6:0] card_core0_regs_fifo1_reg_word64_written;
 reg [31:0] card_core0_regs_fifo1_reg_word64_chain_out_data;
 wire card_core0_regs_fifo1_reg_word64_chain_out_clamped;
-reg [3:0] card_core0_regs_fifo1_reg_word65_honoured;
-reg card_core0_regs_fifo1_reg_word65_out_of_range;
-reg [3:0] card_core0_regs_fifo1_reg_word65_shown;
-reg card_core0_regs_fifo1_reg_word65_clamped;
+reg [7:0] card_core0_regs_fifo1_reg_word65_shown;
 wire card_core0_regs_fifo1_reg_word65_mine;
-wire card_core0_regs_fifo1_reg_word65_mine_write;
-wire card_core0_regs_fifo1_reg_word65_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word65_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word65_written;
 reg [31:0] card_core0_regs_fifo1_reg_word65_chain_out_data;
 wire card_core0_regs_fifo1_reg_word65_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word66_honoured;
-reg card_core0_regs_fifo1_reg_word66_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word66_shown;
+wire [6:0] card_core0_regs_fifo1_reg_word66_honoured;
+wire card_core0_regs_fifo1_reg_word66_out_of_range;
+reg [6:0] card_core0_regs_fifo1_reg_word66_shown;
 reg card_core0_regs_fifo1_reg_word66_clamped;
 wire card_core0_regs_fifo1_reg_word66_mine;
 wire card_core0_regs_fifo1_reg_word66_mine_write;
 wire card_core0_regs_fifo1_reg_word66_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word66_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word66_written;
+reg [6:0] card_core0_regs_fifo1_reg_word66_written;
 reg [31:0] card_core0_regs_fifo1_reg_word66_chain_out_data;
 wire card_core0_regs_fifo1_reg_word66_chain_out_clamped;
-wire [23:0] card_core0_regs_fifo1_reg_word67_honoured;
-wire card_core0_regs_fifo1_reg_word67_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word67_shown;
+reg [3:0] card_core0_regs_fifo1_reg_word67_honoured;
+reg card_core0_regs_fifo1_reg_word67_out_of_range;
+reg [3:0] card_core0_regs_fifo1_reg_word67_shown;
 reg card_core0_regs_fifo1_reg_word67_clamped;
 wire card_core0_regs_fifo1_reg_word67_mine;
 wire card_core0_regs_fifo1_reg_word67_mine_write;
+wire card_core0_regs_fifo1_reg_word67_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word67_shown_wide;
-wire [23:0] card_core0_regs_fifo1_reg_word67_written;
+reg [31:0] card_core0_regs_fifo1_reg_word67_written;
 reg [31:0] card_core0_regs_fifo1_reg_word67_chain_out_data;
 wire card_core0_regs_fifo1_reg_word67_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word67__store46_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word67__store46_word_value;
-wire [1:0] card_core0_regs_fifo1_reg_word68_honoured;
-wire card_core0_regs_fifo1_reg_word68_out_of_range;
-reg [1:0] card_core0_regs_fifo1_reg_word68_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word68_honoured;
+reg card_core0_regs_fifo1_reg_word68_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word68_shown;
 reg card_core0_regs_fifo1_reg_word68_clamped;
 wire card_core0_regs_fifo1_reg_word68_mine;
 wire card_core0_regs_fifo1_reg_word68_mine_write;
+wire card_core0_regs_fifo1_reg_word68_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word68_shown_wide;
-wire [1:0] card_core0_regs_fifo1_reg_word68_written;
+reg [31:0] card_core0_regs_fifo1_reg_word68_written;
 reg [31:0] card_core0_regs_fifo1_reg_word68_chain_out_data;
 wire card_core0_regs_fifo1_reg_word68_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word68__store47_word_strobe;
-reg [1:0] card_core0_regs_fifo1_reg_word68__store47_word_value;
-reg [5:0] card_core0_regs_fifo1_reg_word69_shown;
+wire [23:0] card_core0_regs_fifo1_reg_word69_honoured;
+wire card_core0_regs_fifo1_reg_word69_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word69_shown;
+reg card_core0_regs_fifo1_reg_word69_clamped;
 wire card_core0_regs_fifo1_reg_word69_mine;
+wire card_core0_regs_fifo1_reg_word69_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word69_shown_wide;
+wire [23:0] card_core0_regs_fifo1_reg_word69_written;
 reg [31:0] card_core0_regs_fifo1_reg_word69_chain_out_data;
 wire card_core0_regs_fifo1_reg_word69_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word70_honoured;
-reg card_core0_regs_fifo1_reg_word70_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word70_shown;
+reg card_core0_regs_fifo1_reg_word69__store48_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word69__store48_word_value;
+wire [1:0] card_core0_regs_fifo1_reg_word70_honoured;
+wire card_core0_regs_fifo1_reg_word70_out_of_range;
+reg [1:0] card_core0_regs_fifo1_reg_word70_shown;
 reg card_core0_regs_fifo1_reg_word70_clamped;
 wire card_core0_regs_fifo1_reg_word70_mine;
 wire card_core0_regs_fifo1_reg_word70_mine_write;
-wire card_core0_regs_fifo1_reg_word70_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word70_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word70_written;
+wire [1:0] card_core0_regs_fifo1_reg_word70_written;
 reg [31:0] card_core0_regs_fifo1_reg_word70_chain_out_data;
 wire card_core0_regs_fifo1_reg_word70_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word71_honoured;
-reg card_core0_regs_fifo1_reg_word71_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word71_shown;
-reg card_core0_regs_fifo1_reg_word71_clamped;
+reg card_core0_regs_fifo1_reg_word70__store49_word_strobe;
+reg [1:0] card_core0_regs_fifo1_reg_word70__store49_word_value;
+reg [5:0] card_core0_regs_fifo1_reg_word71_shown;
 wire card_core0_regs_fifo1_reg_word71_mine;
-wire card_core0_regs_fifo1_reg_word71_mine_write;
-wire card_core0_regs_fifo1_reg_word71_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word71_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word71_written;
 reg [31:0] card_core0_regs_fifo1_reg_word71_chain_out_data;
 wire card_core0_regs_fifo1_reg_word71_chain_out_clamped;
-wire [15:0] card_core0_regs_fifo1_reg_word72_honoured;
-wire card_core0_regs_fifo1_reg_word72_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word72_honoured;
+reg card_core0_regs_fifo1_reg_word72_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word72_shown;
 reg card_core0_regs_fifo1_reg_word72_clamped;
 wire card_core0_regs_fifo1_reg_word72_mine;
 wire card_core0_regs_fifo1_reg_word72_mine_write;
 wire card_core0_regs_fifo1_reg_word72_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word72_shown_wide;
-reg [15:0] card_core0_regs_fifo1_reg_word72_written;
+reg [31:0] card_core0_regs_fifo1_reg_word72_written;
 reg [31:0] card_core0_regs_fifo1_reg_word72_chain_out_data;
 wire card_core0_regs_fifo1_reg_word72_chain_out_clamped;
-reg [22:0] card_core0_regs_fifo1_reg_word73_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word73_honoured;
 reg card_core0_regs_fifo1_reg_word73_out_of_range;
-reg [22:0] card_core0_regs_fifo1_reg_word73_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word73_shown;
 reg card_core0_regs_fifo1_reg_word73_clamped;
 wire card_core0_regs_fifo1_reg_word73_mine;
 wire card_core0_regs_fifo1_reg_word73_mine_write;
 wire card_core0_regs_fifo1_reg_word73_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word73_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word73_written;
+reg [31:0] card_core0_regs_fifo1_reg_word73_chain_out_data;
 wire card_core0_regs_fifo1_reg_word73_chain_out_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word74_honoured;
+wire card_core0_regs_fifo1_reg_word74_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word74_shown;
+reg card_core0_regs_fifo1_reg_word74_clamped;
+wire card_core0_regs_fifo1_reg_word74_mine;
+wire card_core0_regs_fifo1_reg_word74_mine_write;
+wire card_core0_regs_fifo1_reg_word74_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word74_shown_wide;
+reg [15:0] card_core0_regs_fifo1_reg_word74_written;
+reg [31:0] card_core0_regs_fifo1_reg_word74_chain_out_data;
+wire card_core0_regs_fifo1_reg_word74_chain_out_clamped;
+reg [22:0] card_core0_regs_fifo1_reg_word75_honoured;
+reg card_core0_regs_fifo1_reg_word75_out_of_range;
+reg [22:0] card_core0_regs_fifo1_reg_word75_shown;
+reg card_core0_regs_fifo1_reg_word75_clamped;
+wire card_core0_regs_fifo1_reg_word75_mine;
+wire card_core0_regs_fifo1_reg_word75_mine_write;
+wire card_core0_regs_fifo1_reg_word75_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word75_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word75_written;
+reg [31:0] card_core0_regs_fifo1_reg_word75_chain_out_data;
+wire card_core0_regs_fifo1_reg_word75_chain_out_clamped;
+reg [7:0] card_core0_regs_fifo1_reg_word76_honoured;
+reg card_core0_regs_fifo1_reg_word76_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word76_shown;
+reg card_core0_regs_fifo1_reg_word76_clamped;
+wire card_core0_regs_fifo1_reg_word76_mine;
+wire card_core0_regs_fifo1_reg_word76_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word76_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word76_written;
+reg [31:0] card_core0_regs_fifo1_reg_word76_chain_out_data;
+wire card_core0_regs_fifo1_reg_word76_chain_out_clamped;
+reg [1:0] card_core0_regs_fifo1_reg_word77_honoured;
+reg card_core0_regs_fifo1_reg_word77_out_of_range;
+reg [1:0] card_core0_regs_fifo1_reg_word77_shown;
+reg card_core0_regs_fifo1_reg_word77_clamped;
+wire card_core0_regs_fifo1_reg_word77_mine;
+wire card_core0_regs_fifo1_reg_word77_mine_write;
+wire card_core0_regs_fifo1_reg_word77_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word77_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word77_written;
+wire card_core0_regs_fifo1_reg_word77_chain_out_clamped;
 wire card_core0_regs_fifo1_sequencer1_arriving_coord_fits;
 reg [2:0] card_core0_regs_fifo1_sequencer1_arriving_count;
 wire card_core0_regs_fifo1_sequencer1_arriving_count_fits;
@@ -799,9 +820,17 @@ reg [7:0] card_core0_regs_fifo1_pulse_out1_low_step;
 reg [1:0] card_core0_regs_fifo1_pulse_out1_phase;
 reg [7:0] card_core0_regs_fifo1_pulse_out1_phase_clocks;
 reg [7:0] card_core0_regs_fifo1_pulse_out1_phase_step;
+reg card_core0_regs_fifo1_pulse_out1_pulse_x;
+reg card_core0_regs_fifo1_pulse_out1_pulse_y;
+reg [1:0] card_core0_regs_fifo1_pulse_out1_quad_next_x;
+reg [1:0] card_core0_regs_fifo1_pulse_out1_quad_next_y;
+reg [1:0] card_core0_regs_fifo1_pulse_out1_quad_x;
+reg [1:0] card_core0_regs_fifo1_pulse_out1_quad_y;
 reg card_core0_regs_fifo1_pulse_out1_starts;
 reg card_core0_regs_fifo1_pulse_out1_take;
 reg card_core0_regs_fifo1_pulse_out1_turn;
+reg card_core0_regs_fifo1_pulse_out1_up_x;
+reg card_core0_regs_fifo1_pulse_out1_up_y;
 reg card_core0_regs_fifo1_pulse_out1_request_step_x;
 reg card_core0_regs_fifo1_pulse_out1_request_step_y;
 reg card_core0_regs_fifo1_pulse_out1_request_dir_y;
@@ -1022,36 +1051,37 @@ reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word37_shown = 32'd3719037187;
-assign card_core0_regs_fifo1_reg_word37_chain_in_data = 32'd0;
-assign card_core0_regs_fifo1_reg_word37_chain_in_clamped = 1'd0;
-assign card_core0_regs_fifo1_reg_word38_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word38_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word39_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word39_shown = 4'd0;
+assign card_core0_regs_fifo1_reg_word39_shown = 32'd3719037188;
+assign card_core0_regs_fifo1_reg_word39_chain_in_data = 32'd0;
+assign card_core0_regs_fifo1_reg_word39_chain_in_clamped = 1'd0;
+assign card_core0_regs_fifo1_reg_word40_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word40_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word41_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word41_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word41_shown = 4'd0;
 assign card_core0_regs_fifo1_reg_word43_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word43_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word49_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word53_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word53_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word58_shown = 32'd33333333;
-assign card_core0_regs_fifo1_reg_word59_shown = 16'd512;
-assign card_core0_regs_fifo1_reg_word60_shown = 28'd786968;
-assign card_core0_regs_fifo1_reg_word61_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word61_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word64_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word64_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word65_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word45_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word45_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word51_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word55_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word55_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word60_shown = 32'd33333333;
+assign card_core0_regs_fifo1_reg_word61_shown = 16'd512;
+assign card_core0_regs_fifo1_reg_word62_shown = 28'd786968;
+assign card_core0_regs_fifo1_reg_word63_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word63_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word66_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word66_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word67_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word68_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word70_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word71_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word72_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word67_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word68_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word69_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word70_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word72_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word73_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word74_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word74_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word75_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word77_set_mine = 1'd0;
 assign card_core0_regs_fifo1_input_filter1_taken[6] = card_core0_regs_fifo1_input_filter1__input_count13_taken;
 assign card_core0_regs_fifo1_input_filter1_taken[5] = card_core0_regs_fifo1_input_filter1__input_count12_taken;
 assign card_core0_regs_fifo1_input_filter1_taken[4] = card_core0_regs_fifo1_input_filter1__input_count11_taken;
@@ -2371,136 +2401,29 @@ assign pci_slave1_pci_control1_control_case0_0_target_room = card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_pci_requests1_local_addr == 0);
+assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 0);
 
 
-always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word37_chain_in_data) begin: card_core0_regs_fifo1_reg_word37_read_chain
-    if (card_core0_regs_fifo1_reg_word37_mine) begin
-        card_core0_regs_fifo1_reg_word37_chain_out_data = (card_core0_regs_fifo1_reg_word37_chain_in_data | card_core0_regs_fifo1_reg_word37_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word37_chain_out_data = card_core0_regs_fifo1_reg_word37_chain_in_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word37_shown_wide = card_core0_regs_fifo1_reg_word37_shown;
-
-
-
-assign card_core0_regs_fifo1_reg_word37_chain_out_clamped = card_core0_regs_fifo1_reg_word37_chain_in_clamped;
-
-
-
-assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_pci_requests1_local_addr == 4);
-
-
-always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_chain_out_data) begin: card_core0_regs_fifo1_reg_word38_read_chain
-    if (card_core0_regs_fifo1_reg_word38_mine) begin
-        card_core0_regs_fifo1_reg_word38_chain_out_data = (card_core0_regs_fifo1_reg_word37_chain_out_data | card_core0_regs_fifo1_reg_word38_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word38_chain_out_data = card_core0_regs_fifo1_reg_word37_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word38_shown_wide = {30'h0, card_core0_regs_fifo1_control};
-
-
-
-assign card_core0_regs_fifo1_reg_word38_mine_write = (card_core0_regs_fifo1_written_addr == 4);
-
-
-always @(card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word38_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word38_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word38_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word38_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word38_written = ((card_core0_regs_fifo1_reg_word38_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word38_honoured = card_core0_regs_fifo1_reg_word38_written[2-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word38_chain_out_clamped = (card_core0_regs_fifo1_reg_word37_chain_out_clamped || card_core0_regs_fifo1_reg_word38_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word38__store26_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_control <= 0;
-        card_core0_regs_fifo1_reg_word38_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word38_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word38_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word38_mine_write))) begin
-            card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word38_honoured;
-            card_core0_regs_fifo1_reg_word38_clamped <= card_core0_regs_fifo1_reg_word38_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 8);
-
-
-always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_chain_out_data) begin: card_core0_regs_fifo1_reg_word39_read_chain
+always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word39_chain_in_data) begin: card_core0_regs_fifo1_reg_word39_read_chain
     if (card_core0_regs_fifo1_reg_word39_mine) begin
-        card_core0_regs_fifo1_reg_word39_chain_out_data = (card_core0_regs_fifo1_reg_word38_chain_out_data | card_core0_regs_fifo1_reg_word39_shown_wide);
+        card_core0_regs_fifo1_reg_word39_chain_out_data = (card_core0_regs_fifo1_reg_word39_chain_in_data | card_core0_regs_fifo1_reg_word39_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word39_chain_out_data = card_core0_regs_fifo1_reg_word38_chain_out_data;
+        card_core0_regs_fifo1_reg_word39_chain_out_data = card_core0_regs_fifo1_reg_word39_chain_in_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word39_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word39_shown};
+assign card_core0_regs_fifo1_reg_word39_shown_wide = card_core0_regs_fifo1_reg_word39_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word39_mine_write = (card_core0_regs_fifo1_written_addr == 8);
+assign card_core0_regs_fifo1_reg_word39_chain_out_clamped = card_core0_regs_fifo1_reg_word39_chain_in_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word39_written = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
-
-
-
-assign card_core0_regs_fifo1_reg_word39_honoured = card_core0_regs_fifo1_reg_word39_written[4-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word39_chain_out_clamped = (card_core0_regs_fifo1_reg_word38_chain_out_clamped || card_core0_regs_fifo1_reg_word39_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word39__store27_pulse_on_write
-    if (reset == 0) begin
-        card_core0_regs_fifo1_command_strobe <= 0;
-        card_core0_regs_fifo1_command <= 0;
-        card_core0_regs_fifo1_reg_word39_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_command_strobe <= 1'b0;
-        card_core0_regs_fifo1_reg_word39_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word39_mine_write)) begin
-            card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word39_honoured;
-            card_core0_regs_fifo1_command_strobe <= 1'b1;
-            card_core0_regs_fifo1_reg_word39_clamped <= card_core0_regs_fifo1_reg_word39_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 12);
+assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 4);
 
 
 always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_chain_out_data) begin: card_core0_regs_fifo1_reg_word40_read_chain
@@ -2514,15 +2437,48 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word40_shown_wide = card_core0_regs_fifo1_reg_word40_shown;
+assign card_core0_regs_fifo1_reg_word40_shown_wide = {30'h0, card_core0_regs_fifo1_control};
 
 
 
-assign card_core0_regs_fifo1_reg_word40_chain_out_clamped = card_core0_regs_fifo1_reg_word39_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word40_mine_write = (card_core0_regs_fifo1_written_addr == 4);
+
+
+always @(card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word40_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word40_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word40_written = card_core0_regs_fifo1_set_value[2-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word40_written = ((card_core0_regs_fifo1_reg_word40_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 16);
+assign card_core0_regs_fifo1_reg_word40_honoured = card_core0_regs_fifo1_reg_word40_written[2-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word40_chain_out_clamped = (card_core0_regs_fifo1_reg_word39_chain_out_clamped || card_core0_regs_fifo1_reg_word40_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word40__store28_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_control <= 0;
+        card_core0_regs_fifo1_reg_word40_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word40_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word40_mine_write))) begin
+            card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word40_honoured;
+            card_core0_regs_fifo1_reg_word40_clamped <= card_core0_regs_fifo1_reg_word40_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 8);
 
 
 always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_chain_out_data) begin: card_core0_regs_fifo1_reg_word41_read_chain
@@ -2536,40 +2492,37 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word41_shown};
+assign card_core0_regs_fifo1_reg_word41_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word41_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 16);
-
-
-always @(card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word41_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word41_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word41_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word41_written = card_core0_regs_fifo1_set_value[8-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word41_written = ((card_core0_regs_fifo1_reg_word41_shown_wide[8-1:0] & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 8);
 
 
 
-assign card_core0_regs_fifo1_reg_word41_honoured = card_core0_regs_fifo1_reg_word41_written[8-1:0];
+assign card_core0_regs_fifo1_reg_word41_written = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word41_honoured = card_core0_regs_fifo1_reg_word41_written[4-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word41_chain_out_clamped = (card_core0_regs_fifo1_reg_word40_chain_out_clamped || card_core0_regs_fifo1_reg_word41_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__store28_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__store29_pulse_on_write
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word41_shown <= 0;
+        card_core0_regs_fifo1_command_strobe <= 0;
+        card_core0_regs_fifo1_command <= 0;
         card_core0_regs_fifo1_reg_word41_clamped <= 0;
     end
     else begin
+        card_core0_regs_fifo1_command_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word41_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word41_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write))) begin
-            card_core0_regs_fifo1_reg_word41_shown <= card_core0_regs_fifo1_reg_word41_honoured;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write)) begin
+            card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word41_honoured;
+            card_core0_regs_fifo1_command_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word41_clamped <= card_core0_regs_fifo1_reg_word41_out_of_range;
         end
     end
@@ -2577,7 +2530,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 20);
+assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 12);
 
 
 always @(card_core0_regs_fifo1_reg_word42_mine, card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word41_chain_out_data) begin: card_core0_regs_fifo1_reg_word42_read_chain
@@ -2591,42 +2544,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word42_shown};
-
-
-
-assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_written_addr == 20);
-
-
-
-assign card_core0_regs_fifo1_reg_word42_written = (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]);
-
-
-
-assign card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_written[8-1:0];
+assign card_core0_regs_fifo1_reg_word42_shown_wide = card_core0_regs_fifo1_reg_word42_shown;
 
 
 
 assign card_core0_regs_fifo1_reg_word42_chain_out_clamped = card_core0_regs_fifo1_reg_word41_chain_out_clamped;
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word42__store29_clear_on_one
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word42_shown <= 0;
-    end
-    else begin
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word42_mine_write)) begin
-            card_core0_regs_fifo1_reg_word42_shown <= ((card_core0_regs_fifo1_reg_word42_shown & (~card_core0_regs_fifo1_reg_word42_honoured)) | card_core0_regs_fifo1_reg_word42__store29_word_hw);
-        end
-        else begin
-            card_core0_regs_fifo1_reg_word42_shown <= (card_core0_regs_fifo1_reg_word42_shown | card_core0_regs_fifo1_reg_word42__store29_word_hw);
-        end
-    end
-end
 
-
-
-assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 24);
+assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word43_mine, card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word42_chain_out_data) begin: card_core0_regs_fifo1_reg_word43_read_chain
@@ -2640,25 +2566,25 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word43_shown};
+assign card_core0_regs_fifo1_reg_word43_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word43_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_written_addr == 24);
+assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_written_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word43_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word43_merge_bytes
     if ((card_core0_regs_fifo1_reg_word43_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word43_written = card_core0_regs_fifo1_set_value[16-1:0];
+        card_core0_regs_fifo1_reg_word43_written = card_core0_regs_fifo1_set_value[8-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word43_written = ((card_core0_regs_fifo1_reg_word43_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+        card_core0_regs_fifo1_reg_word43_written = ((card_core0_regs_fifo1_reg_word43_shown_wide[8-1:0] & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[16-1:0];
+assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[8-1:0];
 
 
 
@@ -2681,7 +2607,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 28);
+assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 20);
 
 
 always @(card_core0_regs_fifo1_reg_word44_mine, card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_reg_word43_chain_out_data) begin: card_core0_regs_fifo1_reg_word44_read_chain
@@ -2695,15 +2621,42 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word44_shown};
+assign card_core0_regs_fifo1_reg_word44_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word44_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word44_mine_write = (card_core0_regs_fifo1_written_addr == 20);
+
+
+
+assign card_core0_regs_fifo1_reg_word44_written = (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word44_honoured = card_core0_regs_fifo1_reg_word44_written[8-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word44_chain_out_clamped = card_core0_regs_fifo1_reg_word43_chain_out_clamped;
 
 
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word44__store31_clear_on_one
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word44_shown <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word44_mine_write)) begin
+            card_core0_regs_fifo1_reg_word44_shown <= ((card_core0_regs_fifo1_reg_word44_shown & (~card_core0_regs_fifo1_reg_word44_honoured)) | card_core0_regs_fifo1_reg_word44__store31_word_hw);
+        end
+        else begin
+            card_core0_regs_fifo1_reg_word44_shown <= (card_core0_regs_fifo1_reg_word44_shown | card_core0_regs_fifo1_reg_word44__store31_word_hw);
+        end
+    end
+end
 
-assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 32);
+
+
+assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 24);
 
 
 always @(card_core0_regs_fifo1_reg_word45_mine, card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word44_chain_out_data) begin: card_core0_regs_fifo1_reg_word45_read_chain
@@ -2717,15 +2670,48 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_shown_wide = card_core0_regs_fifo1_reg_word45_shown;
+assign card_core0_regs_fifo1_reg_word45_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word45_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word45_chain_out_clamped = card_core0_regs_fifo1_reg_word44_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word45_mine_write = (card_core0_regs_fifo1_written_addr == 24);
+
+
+always @(card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word45_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word45_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word45_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word45_written = card_core0_regs_fifo1_set_value[16-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word45_written = ((card_core0_regs_fifo1_reg_word45_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 36);
+assign card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_written[16-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word45_chain_out_clamped = (card_core0_regs_fifo1_reg_word44_chain_out_clamped || card_core0_regs_fifo1_reg_word45_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word45__store32_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word45_shown <= 0;
+        card_core0_regs_fifo1_reg_word45_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word45_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word45_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word45_mine_write))) begin
+            card_core0_regs_fifo1_reg_word45_shown <= card_core0_regs_fifo1_reg_word45_honoured;
+            card_core0_regs_fifo1_reg_word45_clamped <= card_core0_regs_fifo1_reg_word45_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 28);
 
 
 always @(card_core0_regs_fifo1_reg_word46_mine, card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_reg_word45_chain_out_data) begin: card_core0_regs_fifo1_reg_word46_read_chain
@@ -2739,7 +2725,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_shown_wide = card_core0_regs_fifo1_reg_word46_shown;
+assign card_core0_regs_fifo1_reg_word46_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word46_shown};
 
 
 
@@ -2747,7 +2733,7 @@ assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 40);
+assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 32);
 
 
 always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_chain_out_data) begin: card_core0_regs_fifo1_reg_word47_read_chain
@@ -2761,59 +2747,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word47_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word47_shown};
+assign card_core0_regs_fifo1_reg_word47_shown_wide = card_core0_regs_fifo1_reg_word47_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word47_mine_write = (card_core0_regs_fifo1_written_addr == 40);
-
-
-always @(card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word47_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word47_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word47_written = ((card_core0_regs_fifo1_reg_word47_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word47_written) begin: card_core0_regs_fifo1_reg_word47__limit31_clamp_unsigned
-    card_core0_regs_fifo1_reg_word47_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word47_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word47_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word47_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word47_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word47_written[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word47_honoured = 32768;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word47_honoured = card_core0_regs_fifo1_reg_word47_written[16-1:0];
-        card_core0_regs_fifo1_reg_word47_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = card_core0_regs_fifo1_reg_word46_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = (card_core0_regs_fifo1_reg_word46_chain_out_clamped || card_core0_regs_fifo1_reg_word47_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word47__store31_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word47_shown <= 4096;
-        card_core0_regs_fifo1_reg_word47_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word47_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word47_mine_write))) begin
-            card_core0_regs_fifo1_reg_word47_shown <= card_core0_regs_fifo1_reg_word47_honoured;
-            card_core0_regs_fifo1_reg_word47_clamped <= card_core0_regs_fifo1_reg_word47_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word48_mine = (pci_slave1_pci_requests1_local_addr == 44);
+assign card_core0_regs_fifo1_reg_word48_mine = (pci_slave1_pci_requests1_local_addr == 36);
 
 
 always @(card_core0_regs_fifo1_reg_word48_mine, card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_reg_word47_chain_out_data) begin: card_core0_regs_fifo1_reg_word48_read_chain
@@ -2827,59 +2769,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word48_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word48_shown};
+assign card_core0_regs_fifo1_reg_word48_shown_wide = card_core0_regs_fifo1_reg_word48_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word48_mine_write = (card_core0_regs_fifo1_written_addr == 44);
-
-
-always @(card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word48_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
-        card_core0_regs_fifo1_reg_word48_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word48_written = ((card_core0_regs_fifo1_reg_word48_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word48_written) begin: card_core0_regs_fifo1_reg_word48__limit32_clamp_unsigned
-    card_core0_regs_fifo1_reg_word48_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word48_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word48_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word48_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word48_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word48_written[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word48_honoured = 32768;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word48_honoured = card_core0_regs_fifo1_reg_word48_written[16-1:0];
-        card_core0_regs_fifo1_reg_word48_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word48_chain_out_clamped = card_core0_regs_fifo1_reg_word47_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word48_chain_out_clamped = (card_core0_regs_fifo1_reg_word47_chain_out_clamped || card_core0_regs_fifo1_reg_word48_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word48__store32_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word48_shown <= 4096;
-        card_core0_regs_fifo1_reg_word48_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word48_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word48_mine_write))) begin
-            card_core0_regs_fifo1_reg_word48_shown <= card_core0_regs_fifo1_reg_word48_honoured;
-            card_core0_regs_fifo1_reg_word48_clamped <= card_core0_regs_fifo1_reg_word48_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word49_mine = (pci_slave1_pci_requests1_local_addr == 48);
+assign card_core0_regs_fifo1_reg_word49_mine = (pci_slave1_pci_requests1_local_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word49_mine, card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_reg_word48_chain_out_data) begin: card_core0_regs_fifo1_reg_word49_read_chain
@@ -2893,25 +2791,36 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word49_shown_wide = {16'h0, card_core0_regs_fifo1_ramp_step};
+assign card_core0_regs_fifo1_reg_word49_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word49_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word49_mine_write = (card_core0_regs_fifo1_written_addr == 48);
+assign card_core0_regs_fifo1_reg_word49_mine_write = (card_core0_regs_fifo1_written_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word49_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
-        card_core0_regs_fifo1_reg_word49_written = card_core0_regs_fifo1_set_value[16-1:0];
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word49_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word49_written = ((card_core0_regs_fifo1_reg_word49_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+        card_core0_regs_fifo1_reg_word49_written = ((card_core0_regs_fifo1_reg_word49_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card_core0_regs_fifo1_reg_word49_honoured = card_core0_regs_fifo1_reg_word49_written[16-1:0];
+always @(card_core0_regs_fifo1_reg_word49_written) begin: card_core0_regs_fifo1_reg_word49__limit33_clamp_unsigned
+    card_core0_regs_fifo1_reg_word49_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word49_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word49_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word49_honoured = 1;
+    end
+    else if (((card_core0_regs_fifo1_reg_word49_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word49_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word49_honoured = 32768;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word49_honoured = card_core0_regs_fifo1_reg_word49_written[16-1:0];
+        card_core0_regs_fifo1_reg_word49_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -2920,13 +2829,13 @@ assign card_core0_regs_fifo1_reg_word49_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word49__store33_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_ramp_step <= 0;
+        card_core0_regs_fifo1_reg_word49_shown <= 4096;
         card_core0_regs_fifo1_reg_word49_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word49_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word49_mine_write))) begin
-            card_core0_regs_fifo1_ramp_step <= card_core0_regs_fifo1_reg_word49_honoured;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word49_mine_write))) begin
+            card_core0_regs_fifo1_reg_word49_shown <= card_core0_regs_fifo1_reg_word49_honoured;
             card_core0_regs_fifo1_reg_word49_clamped <= card_core0_regs_fifo1_reg_word49_out_of_range;
         end
     end
@@ -2934,7 +2843,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word50_mine = (pci_slave1_pci_requests1_local_addr == 52);
+assign card_core0_regs_fifo1_reg_word50_mine = (pci_slave1_pci_requests1_local_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word50_mine, card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_reg_word49_chain_out_data) begin: card_core0_regs_fifo1_reg_word50_read_chain
@@ -2948,15 +2857,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word50_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word50_shown};
+assign card_core0_regs_fifo1_reg_word50_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word50_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word50_mine_write = (card_core0_regs_fifo1_written_addr == 52);
+assign card_core0_regs_fifo1_reg_word50_mine_write = (card_core0_regs_fifo1_written_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word50_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
         card_core0_regs_fifo1_reg_word50_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -2965,16 +2874,16 @@ always @(card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word50_written) begin: card_core0_regs_fifo1_reg_word50__limit34_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word50_written) begin: card_core0_regs_fifo1_reg_word50__limit34_clamp_unsigned
     card_core0_regs_fifo1_reg_word50_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word50_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word50_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word50_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word50_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word50_honoured = 255;
+    else if (((card_core0_regs_fifo1_reg_word50_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word50_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word50_honoured = 32768;
     end
     else begin
-        card_core0_regs_fifo1_reg_word50_honoured = card_core0_regs_fifo1_reg_word50_written[8-1:0];
+        card_core0_regs_fifo1_reg_word50_honoured = card_core0_regs_fifo1_reg_word50_written[16-1:0];
         card_core0_regs_fifo1_reg_word50_out_of_range = 1'b0;
     end
 end
@@ -2986,12 +2895,12 @@ assign card_core0_regs_fifo1_reg_word50_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word50__store34_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word50_shown <= 1;
+        card_core0_regs_fifo1_reg_word50_shown <= 4096;
         card_core0_regs_fifo1_reg_word50_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word50_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word50_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word50_mine_write))) begin
             card_core0_regs_fifo1_reg_word50_shown <= card_core0_regs_fifo1_reg_word50_honoured;
             card_core0_regs_fifo1_reg_word50_clamped <= card_core0_regs_fifo1_reg_word50_out_of_range;
         end
@@ -3000,7 +2909,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word51_mine = (pci_slave1_pci_requests1_local_addr == 56);
+assign card_core0_regs_fifo1_reg_word51_mine = (pci_slave1_pci_requests1_local_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word51_mine, card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_reg_word50_chain_out_data) begin: card_core0_regs_fifo1_reg_word51_read_chain
@@ -3014,36 +2923,25 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word51_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word51_shown};
+assign card_core0_regs_fifo1_reg_word51_shown_wide = {16'h0, card_core0_regs_fifo1_ramp_step};
 
 
 
-assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_written_addr == 56);
+assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_written_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word51_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
-        card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_set_value[32-1:0];
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
+        card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word51_written = ((card_core0_regs_fifo1_reg_word51_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word51_written = ((card_core0_regs_fifo1_reg_word51_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit35_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word51_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word51_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word51_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word51_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word51_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word51_honoured = 255;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written[8-1:0];
-        card_core0_regs_fifo1_reg_word51_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written[16-1:0];
 
 
 
@@ -3052,13 +2950,13 @@ assign card_core0_regs_fifo1_reg_word51_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word51__store35_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word51_shown <= 1;
+        card_core0_regs_fifo1_ramp_step <= 0;
         card_core0_regs_fifo1_reg_word51_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word51_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word51_mine_write))) begin
-            card_core0_regs_fifo1_reg_word51_shown <= card_core0_regs_fifo1_reg_word51_honoured;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word51_mine_write))) begin
+            card_core0_regs_fifo1_ramp_step <= card_core0_regs_fifo1_reg_word51_honoured;
             card_core0_regs_fifo1_reg_word51_clamped <= card_core0_regs_fifo1_reg_word51_out_of_range;
         end
     end
@@ -3066,7 +2964,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word52_mine = (pci_slave1_pci_requests1_local_addr == 60);
+assign card_core0_regs_fifo1_reg_word52_mine = (pci_slave1_pci_requests1_local_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word52_mine, card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_reg_word51_chain_out_data) begin: card_core0_regs_fifo1_reg_word52_read_chain
@@ -3084,11 +2982,11 @@ assign card_core0_regs_fifo1_reg_word52_shown_wide = {24'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word52_mine_write = (card_core0_regs_fifo1_written_addr == 60);
+assign card_core0_regs_fifo1_reg_word52_mine_write = (card_core0_regs_fifo1_written_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word52_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
         card_core0_regs_fifo1_reg_word52_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -3123,7 +3021,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word52__
     end
     else begin
         card_core0_regs_fifo1_reg_word52_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word52_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word52_mine_write))) begin
             card_core0_regs_fifo1_reg_word52_shown <= card_core0_regs_fifo1_reg_word52_honoured;
             card_core0_regs_fifo1_reg_word52_clamped <= card_core0_regs_fifo1_reg_word52_out_of_range;
         end
@@ -3132,7 +3030,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word53_mine = (pci_slave1_pci_requests1_local_addr == 64);
+assign card_core0_regs_fifo1_reg_word53_mine = (pci_slave1_pci_requests1_local_addr == 56);
 
 
 always @(card_core0_regs_fifo1_reg_word53_mine, card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_reg_word52_chain_out_data) begin: card_core0_regs_fifo1_reg_word53_read_chain
@@ -3146,25 +3044,36 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word53_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word53_shown};
+assign card_core0_regs_fifo1_reg_word53_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word53_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word53_mine_write = (card_core0_regs_fifo1_written_addr == 64);
+assign card_core0_regs_fifo1_reg_word53_mine_write = (card_core0_regs_fifo1_written_addr == 56);
 
 
-always @(card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_reg_word53_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word53_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word53_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_set_value[2-1:0];
+always @(card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word53_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
+        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word53_written = ((card_core0_regs_fifo1_reg_word53_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+        card_core0_regs_fifo1_reg_word53_written = ((card_core0_regs_fifo1_reg_word53_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written[2-1:0];
+always @(card_core0_regs_fifo1_reg_word53_written) begin: card_core0_regs_fifo1_reg_word53__limit37_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word53_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word53_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word53_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word53_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word53_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word53_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written[8-1:0];
+        card_core0_regs_fifo1_reg_word53_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -3173,12 +3082,12 @@ assign card_core0_regs_fifo1_reg_word53_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word53__store37_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word53_shown <= 0;
+        card_core0_regs_fifo1_reg_word53_shown <= 1;
         card_core0_regs_fifo1_reg_word53_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word53_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word53_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word53_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word53_mine_write))) begin
             card_core0_regs_fifo1_reg_word53_shown <= card_core0_regs_fifo1_reg_word53_honoured;
             card_core0_regs_fifo1_reg_word53_clamped <= card_core0_regs_fifo1_reg_word53_out_of_range;
         end
@@ -3187,7 +3096,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word54_mine = (pci_slave1_pci_requests1_local_addr == 68);
+assign card_core0_regs_fifo1_reg_word54_mine = (pci_slave1_pci_requests1_local_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word54_mine, card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_reg_word53_chain_out_data) begin: card_core0_regs_fifo1_reg_word54_read_chain
@@ -3201,15 +3110,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word54_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word54_shown};
+assign card_core0_regs_fifo1_reg_word54_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word54_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word54_mine_write = (card_core0_regs_fifo1_written_addr == 68);
+assign card_core0_regs_fifo1_reg_word54_mine_write = (card_core0_regs_fifo1_written_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word54_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
         card_core0_regs_fifo1_reg_word54_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -3223,11 +3132,11 @@ always @(card_core0_regs_fifo1_reg_word54_written) begin: card_core0_regs_fifo1_
     if (((card_core0_regs_fifo1_reg_word54_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word54_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word54_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word54_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word54_honoured = 65535;
+    else if ((card_core0_regs_fifo1_reg_word54_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word54_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word54_honoured = card_core0_regs_fifo1_reg_word54_written[16-1:0];
+        card_core0_regs_fifo1_reg_word54_honoured = card_core0_regs_fifo1_reg_word54_written[8-1:0];
         card_core0_regs_fifo1_reg_word54_out_of_range = 1'b0;
     end
 end
@@ -3239,12 +3148,12 @@ assign card_core0_regs_fifo1_reg_word54_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word54__store38_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word54_shown <= 2;
+        card_core0_regs_fifo1_reg_word54_shown <= 1;
         card_core0_regs_fifo1_reg_word54_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word54_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word54_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word54_mine_write))) begin
             card_core0_regs_fifo1_reg_word54_shown <= card_core0_regs_fifo1_reg_word54_honoured;
             card_core0_regs_fifo1_reg_word54_clamped <= card_core0_regs_fifo1_reg_word54_out_of_range;
         end
@@ -3253,7 +3162,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_mine = (pci_slave1_pci_requests1_local_addr == 72);
+assign card_core0_regs_fifo1_reg_word55_mine = (pci_slave1_pci_requests1_local_addr == 64);
 
 
 always @(card_core0_regs_fifo1_reg_word55_mine, card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word54_chain_out_data) begin: card_core0_regs_fifo1_reg_word55_read_chain
@@ -3267,36 +3176,25 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word55_shown};
+assign card_core0_regs_fifo1_reg_word55_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word55_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_written_addr == 72);
+assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_written_addr == 64);
 
 
-always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
-        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word55_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[2-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word55_written) begin: card_core0_regs_fifo1_reg_word55__limit39_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word55_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word55_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word55_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word55_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word55_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word55_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[16-1:0];
-        card_core0_regs_fifo1_reg_word55_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[2-1:0];
 
 
 
@@ -3305,12 +3203,12 @@ assign card_core0_regs_fifo1_reg_word55_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word55__store39_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word55_shown <= 2;
+        card_core0_regs_fifo1_reg_word55_shown <= 0;
         card_core0_regs_fifo1_reg_word55_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word55_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word55_mine_write))) begin
+        if (((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word55_mine_write))) begin
             card_core0_regs_fifo1_reg_word55_shown <= card_core0_regs_fifo1_reg_word55_honoured;
             card_core0_regs_fifo1_reg_word55_clamped <= card_core0_regs_fifo1_reg_word55_out_of_range;
         end
@@ -3319,7 +3217,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word56_mine = (pci_slave1_pci_requests1_local_addr == 76);
+assign card_core0_regs_fifo1_reg_word56_mine = (pci_slave1_pci_requests1_local_addr == 68);
 
 
 always @(card_core0_regs_fifo1_reg_word56_mine, card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_reg_word55_chain_out_data) begin: card_core0_regs_fifo1_reg_word56_read_chain
@@ -3333,29 +3231,34 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word56_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word56_shown};
+assign card_core0_regs_fifo1_reg_word56_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word56_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_written_addr == 76);
+assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_written_addr == 68);
 
 
-
-assign card_core0_regs_fifo1_reg_word56_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit40_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word56_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word56_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written[24-1:0];
-        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b0;
-    end
-    else if (card_core0_regs_fifo1_reg_word56_written[31]) begin
-        card_core0_regs_fifo1_reg_word56_honoured = 8388608;
-        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b1;
+always @(card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word56_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+        card_core0_regs_fifo1_reg_word56_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word56_honoured = 8388607;
-        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b1;
+        card_core0_regs_fifo1_reg_word56_written = ((card_core0_regs_fifo1_reg_word56_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit40_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word56_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word56_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word56_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word56_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word56_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word56_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written[16-1:0];
+        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b0;
     end
 end
 
@@ -3364,18 +3267,15 @@ end
 assign card_core0_regs_fifo1_reg_word56_chain_out_clamped = (card_core0_regs_fifo1_reg_word55_chain_out_clamped || card_core0_regs_fifo1_reg_word56_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word56__store40_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word56__store40_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word56__store40_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word56__store40_word_value <= 0;
+        card_core0_regs_fifo1_reg_word56_shown <= 2;
         card_core0_regs_fifo1_reg_word56_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word56__store40_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word56_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word56_mine_write)) begin
-            card_core0_regs_fifo1_reg_word56__store40_word_value <= card_core0_regs_fifo1_reg_word56_honoured;
-            card_core0_regs_fifo1_reg_word56__store40_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word56_mine_write))) begin
+            card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_reg_word56_honoured;
             card_core0_regs_fifo1_reg_word56_clamped <= card_core0_regs_fifo1_reg_word56_out_of_range;
         end
     end
@@ -3383,7 +3283,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word57_mine = (pci_slave1_pci_requests1_local_addr == 80);
+assign card_core0_regs_fifo1_reg_word57_mine = (pci_slave1_pci_requests1_local_addr == 72);
 
 
 always @(card_core0_regs_fifo1_reg_word57_mine, card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_reg_word56_chain_out_data) begin: card_core0_regs_fifo1_reg_word57_read_chain
@@ -3397,29 +3297,34 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word57_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word57_shown};
+assign card_core0_regs_fifo1_reg_word57_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word57_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_written_addr == 80);
+assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_written_addr == 72);
 
 
-
-assign card_core0_regs_fifo1_reg_word57_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word57_written) begin: card_core0_regs_fifo1_reg_word57__limit41_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word57_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word57_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_written[24-1:0];
-        card_core0_regs_fifo1_reg_word57_out_of_range = 1'b0;
-    end
-    else if (card_core0_regs_fifo1_reg_word57_written[31]) begin
-        card_core0_regs_fifo1_reg_word57_honoured = 8388608;
-        card_core0_regs_fifo1_reg_word57_out_of_range = 1'b1;
+always @(card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word57_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
+        card_core0_regs_fifo1_reg_word57_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word57_honoured = 8388607;
-        card_core0_regs_fifo1_reg_word57_out_of_range = 1'b1;
+        card_core0_regs_fifo1_reg_word57_written = ((card_core0_regs_fifo1_reg_word57_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word57_written) begin: card_core0_regs_fifo1_reg_word57__limit41_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word57_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word57_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word57_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word57_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word57_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word57_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_written[16-1:0];
+        card_core0_regs_fifo1_reg_word57_out_of_range = 1'b0;
     end
 end
 
@@ -3428,18 +3333,15 @@ end
 assign card_core0_regs_fifo1_reg_word57_chain_out_clamped = (card_core0_regs_fifo1_reg_word56_chain_out_clamped || card_core0_regs_fifo1_reg_word57_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word57__store41_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word57__store41_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word57__store41_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word57__store41_word_value <= 0;
+        card_core0_regs_fifo1_reg_word57_shown <= 2;
         card_core0_regs_fifo1_reg_word57_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word57__store41_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word57_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word57_mine_write)) begin
-            card_core0_regs_fifo1_reg_word57__store41_word_value <= card_core0_regs_fifo1_reg_word57_honoured;
-            card_core0_regs_fifo1_reg_word57__store41_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word57_mine_write))) begin
+            card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_reg_word57_honoured;
             card_core0_regs_fifo1_reg_word57_clamped <= card_core0_regs_fifo1_reg_word57_out_of_range;
         end
     end
@@ -3447,7 +3349,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine = (pci_slave1_pci_requests1_local_addr == 84);
+assign card_core0_regs_fifo1_reg_word58_mine = (pci_slave1_pci_requests1_local_addr == 76);
 
 
 always @(card_core0_regs_fifo1_reg_word58_mine, card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_reg_word57_chain_out_data) begin: card_core0_regs_fifo1_reg_word58_read_chain
@@ -3461,15 +3363,57 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word58_shown_wide = card_core0_regs_fifo1_reg_word58_shown;
+assign card_core0_regs_fifo1_reg_word58_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word58_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word58_chain_out_clamped = card_core0_regs_fifo1_reg_word57_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word58_mine_write = (card_core0_regs_fifo1_written_addr == 76);
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine = (pci_slave1_pci_requests1_local_addr == 88);
+assign card_core0_regs_fifo1_reg_word58_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word58_written) begin: card_core0_regs_fifo1_reg_word58__limit42_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word58_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word58_written[32-1:(24 - 1)] == 511))) begin
+        card_core0_regs_fifo1_reg_word58_honoured = card_core0_regs_fifo1_reg_word58_written[24-1:0];
+        card_core0_regs_fifo1_reg_word58_out_of_range = 1'b0;
+    end
+    else if (card_core0_regs_fifo1_reg_word58_written[31]) begin
+        card_core0_regs_fifo1_reg_word58_honoured = 8388608;
+        card_core0_regs_fifo1_reg_word58_out_of_range = 1'b1;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word58_honoured = 8388607;
+        card_core0_regs_fifo1_reg_word58_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word58_chain_out_clamped = (card_core0_regs_fifo1_reg_word57_chain_out_clamped || card_core0_regs_fifo1_reg_word58_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word58__store42_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word58__store42_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word58__store42_word_value <= 0;
+        card_core0_regs_fifo1_reg_word58_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word58__store42_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word58_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word58_mine_write)) begin
+            card_core0_regs_fifo1_reg_word58__store42_word_value <= card_core0_regs_fifo1_reg_word58_honoured;
+            card_core0_regs_fifo1_reg_word58__store42_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word58_clamped <= card_core0_regs_fifo1_reg_word58_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word59_mine = (pci_slave1_pci_requests1_local_addr == 80);
 
 
 always @(card_core0_regs_fifo1_reg_word59_mine, card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_reg_word58_chain_out_data) begin: card_core0_regs_fifo1_reg_word59_read_chain
@@ -3483,15 +3427,57 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word59_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word59_shown};
+assign card_core0_regs_fifo1_reg_word59_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word59_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word59_chain_out_clamped = card_core0_regs_fifo1_reg_word58_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word59_mine_write = (card_core0_regs_fifo1_written_addr == 80);
 
 
 
-assign card_core0_regs_fifo1_reg_word60_mine = (pci_slave1_pci_requests1_local_addr == 92);
+assign card_core0_regs_fifo1_reg_word59_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word59_written) begin: card_core0_regs_fifo1_reg_word59__limit43_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word59_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word59_written[32-1:(24 - 1)] == 511))) begin
+        card_core0_regs_fifo1_reg_word59_honoured = card_core0_regs_fifo1_reg_word59_written[24-1:0];
+        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b0;
+    end
+    else if (card_core0_regs_fifo1_reg_word59_written[31]) begin
+        card_core0_regs_fifo1_reg_word59_honoured = 8388608;
+        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b1;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word59_honoured = 8388607;
+        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word59_chain_out_clamped = (card_core0_regs_fifo1_reg_word58_chain_out_clamped || card_core0_regs_fifo1_reg_word59_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word59__store43_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word59__store43_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word59__store43_word_value <= 0;
+        card_core0_regs_fifo1_reg_word59_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word59__store43_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word59_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word59_mine_write)) begin
+            card_core0_regs_fifo1_reg_word59__store43_word_value <= card_core0_regs_fifo1_reg_word59_honoured;
+            card_core0_regs_fifo1_reg_word59__store43_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word59_clamped <= card_core0_regs_fifo1_reg_word59_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word60_mine = (pci_slave1_pci_requests1_local_addr == 84);
 
 
 always @(card_core0_regs_fifo1_reg_word60_mine, card_core0_regs_fifo1_reg_word60_shown_wide, card_core0_regs_fifo1_reg_word59_chain_out_data) begin: card_core0_regs_fifo1_reg_word60_read_chain
@@ -3505,7 +3491,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word60_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word60_shown};
+assign card_core0_regs_fifo1_reg_word60_shown_wide = card_core0_regs_fifo1_reg_word60_shown;
 
 
 
@@ -3513,7 +3499,7 @@ assign card_core0_regs_fifo1_reg_word60_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word61_mine = (pci_slave1_pci_requests1_local_addr == 96);
+assign card_core0_regs_fifo1_reg_word61_mine = (pci_slave1_pci_requests1_local_addr == 88);
 
 
 always @(card_core0_regs_fifo1_reg_word61_mine, card_core0_regs_fifo1_reg_word61_shown_wide, card_core0_regs_fifo1_reg_word60_chain_out_data) begin: card_core0_regs_fifo1_reg_word61_read_chain
@@ -3527,48 +3513,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word61_shown_wide = {30'h0, card_core0_regs_fifo1_machine_control};
+assign card_core0_regs_fifo1_reg_word61_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word61_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word61_mine_write = (card_core0_regs_fifo1_written_addr == 96);
-
-
-always @(card_core0_regs_fifo1_reg_word61_shown_wide, card_core0_regs_fifo1_reg_word61_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word61_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word61_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word61_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word61_written = ((card_core0_regs_fifo1_reg_word61_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word61_chain_out_clamped = card_core0_regs_fifo1_reg_word60_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_word61_written[2-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word61_chain_out_clamped = (card_core0_regs_fifo1_reg_word60_chain_out_clamped || card_core0_regs_fifo1_reg_word61_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word61__store42_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_machine_control <= 0;
-        card_core0_regs_fifo1_reg_word61_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word61_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word61_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word61_mine_write))) begin
-            card_core0_regs_fifo1_machine_control <= card_core0_regs_fifo1_reg_word61_honoured;
-            card_core0_regs_fifo1_reg_word61_clamped <= card_core0_regs_fifo1_reg_word61_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word62_mine = (pci_slave1_pci_requests1_local_addr == 100);
+assign card_core0_regs_fifo1_reg_word62_mine = (pci_slave1_pci_requests1_local_addr == 92);
 
 
 always @(card_core0_regs_fifo1_reg_word62_mine, card_core0_regs_fifo1_reg_word62_shown_wide, card_core0_regs_fifo1_reg_word61_chain_out_data) begin: card_core0_regs_fifo1_reg_word62_read_chain
@@ -3582,7 +3535,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word62_shown_wide = {12'h0, card_core0_regs_fifo1_reg_word62_shown};
+assign card_core0_regs_fifo1_reg_word62_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word62_shown};
 
 
 
@@ -3590,7 +3543,7 @@ assign card_core0_regs_fifo1_reg_word62_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word63_mine = (pci_slave1_pci_requests1_local_addr == 104);
+assign card_core0_regs_fifo1_reg_word63_mine = (pci_slave1_pci_requests1_local_addr == 96);
 
 
 always @(card_core0_regs_fifo1_reg_word63_mine, card_core0_regs_fifo1_reg_word63_shown_wide, card_core0_regs_fifo1_reg_word62_chain_out_data) begin: card_core0_regs_fifo1_reg_word63_read_chain
@@ -3604,15 +3557,48 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word63_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word63_shown};
+assign card_core0_regs_fifo1_reg_word63_shown_wide = {30'h0, card_core0_regs_fifo1_machine_control};
 
 
 
-assign card_core0_regs_fifo1_reg_word63_chain_out_clamped = card_core0_regs_fifo1_reg_word62_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word63_mine_write = (card_core0_regs_fifo1_written_addr == 96);
+
+
+always @(card_core0_regs_fifo1_reg_word63_shown_wide, card_core0_regs_fifo1_reg_word63_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word63_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word63_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word63_written = card_core0_regs_fifo1_set_value[2-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word63_written = ((card_core0_regs_fifo1_reg_word63_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word64_mine = (pci_slave1_pci_requests1_local_addr == 108);
+assign card_core0_regs_fifo1_reg_word63_honoured = card_core0_regs_fifo1_reg_word63_written[2-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word63_chain_out_clamped = (card_core0_regs_fifo1_reg_word62_chain_out_clamped || card_core0_regs_fifo1_reg_word63_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word63__store44_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_machine_control <= 0;
+        card_core0_regs_fifo1_reg_word63_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word63_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word63_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word63_mine_write))) begin
+            card_core0_regs_fifo1_machine_control <= card_core0_regs_fifo1_reg_word63_honoured;
+            card_core0_regs_fifo1_reg_word63_clamped <= card_core0_regs_fifo1_reg_word63_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word64_mine = (pci_slave1_pci_requests1_local_addr == 100);
 
 
 always @(card_core0_regs_fifo1_reg_word64_mine, card_core0_regs_fifo1_reg_word64_shown_wide, card_core0_regs_fifo1_reg_word63_chain_out_data) begin: card_core0_regs_fifo1_reg_word64_read_chain
@@ -3626,48 +3612,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word64_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word64_shown};
+assign card_core0_regs_fifo1_reg_word64_shown_wide = {12'h0, card_core0_regs_fifo1_reg_word64_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word64_mine_write = (card_core0_regs_fifo1_written_addr == 108);
-
-
-always @(card_core0_regs_fifo1_reg_word64_shown_wide, card_core0_regs_fifo1_reg_word64_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word64_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word64_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word64_written = card_core0_regs_fifo1_set_value[7-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word64_written = ((card_core0_regs_fifo1_reg_word64_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word64_chain_out_clamped = card_core0_regs_fifo1_reg_word63_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word64_honoured = card_core0_regs_fifo1_reg_word64_written[7-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word64_chain_out_clamped = (card_core0_regs_fifo1_reg_word63_chain_out_clamped || card_core0_regs_fifo1_reg_word64_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word64__store43_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word64_shown <= 0;
-        card_core0_regs_fifo1_reg_word64_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word64_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word64_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word64_mine_write))) begin
-            card_core0_regs_fifo1_reg_word64_shown <= card_core0_regs_fifo1_reg_word64_honoured;
-            card_core0_regs_fifo1_reg_word64_clamped <= card_core0_regs_fifo1_reg_word64_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word65_mine = (pci_slave1_pci_requests1_local_addr == 112);
+assign card_core0_regs_fifo1_reg_word65_mine = (pci_slave1_pci_requests1_local_addr == 104);
 
 
 always @(card_core0_regs_fifo1_reg_word65_mine, card_core0_regs_fifo1_reg_word65_shown_wide, card_core0_regs_fifo1_reg_word64_chain_out_data) begin: card_core0_regs_fifo1_reg_word65_read_chain
@@ -3681,59 +3634,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word65_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word65_shown};
+assign card_core0_regs_fifo1_reg_word65_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word65_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word65_mine_write = (card_core0_regs_fifo1_written_addr == 112);
-
-
-always @(card_core0_regs_fifo1_reg_word65_shown_wide, card_core0_regs_fifo1_reg_word65_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word65_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word65_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word65_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word65_written = ((card_core0_regs_fifo1_reg_word65_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word65_written) begin: card_core0_regs_fifo1_reg_word65__limit44_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word65_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word65_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word65_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word65_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word65_written[32-1:4] != 0)) begin
-        card_core0_regs_fifo1_reg_word65_honoured = 15;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word65_honoured = card_core0_regs_fifo1_reg_word65_written[4-1:0];
-        card_core0_regs_fifo1_reg_word65_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word65_chain_out_clamped = card_core0_regs_fifo1_reg_word64_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word65_chain_out_clamped = (card_core0_regs_fifo1_reg_word64_chain_out_clamped || card_core0_regs_fifo1_reg_word65_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word65__store44_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word65_shown <= 3;
-        card_core0_regs_fifo1_reg_word65_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word65_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word65_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word65_mine_write))) begin
-            card_core0_regs_fifo1_reg_word65_shown <= card_core0_regs_fifo1_reg_word65_honoured;
-            card_core0_regs_fifo1_reg_word65_clamped <= card_core0_regs_fifo1_reg_word65_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word66_mine = (pci_slave1_pci_requests1_local_addr == 116);
+assign card_core0_regs_fifo1_reg_word66_mine = (pci_slave1_pci_requests1_local_addr == 108);
 
 
 always @(card_core0_regs_fifo1_reg_word66_mine, card_core0_regs_fifo1_reg_word66_shown_wide, card_core0_regs_fifo1_reg_word65_chain_out_data) begin: card_core0_regs_fifo1_reg_word66_read_chain
@@ -3747,36 +3656,25 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word66_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word66_shown};
+assign card_core0_regs_fifo1_reg_word66_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word66_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word66_mine_write = (card_core0_regs_fifo1_written_addr == 116);
+assign card_core0_regs_fifo1_reg_word66_mine_write = (card_core0_regs_fifo1_written_addr == 108);
 
 
 always @(card_core0_regs_fifo1_reg_word66_shown_wide, card_core0_regs_fifo1_reg_word66_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word66_merge_bytes
     if ((card_core0_regs_fifo1_reg_word66_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word66_written = card_core0_regs_fifo1_set_value[32-1:0];
+        card_core0_regs_fifo1_reg_word66_written = card_core0_regs_fifo1_set_value[7-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word66_written = ((card_core0_regs_fifo1_reg_word66_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word66_written = ((card_core0_regs_fifo1_reg_word66_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word66_written) begin: card_core0_regs_fifo1_reg_word66__limit45_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word66_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word66_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word66_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word66_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word66_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word66_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word66_honoured = card_core0_regs_fifo1_reg_word66_written[16-1:0];
-        card_core0_regs_fifo1_reg_word66_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word66_honoured = card_core0_regs_fifo1_reg_word66_written[7-1:0];
 
 
 
@@ -3785,7 +3683,7 @@ assign card_core0_regs_fifo1_reg_word66_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word66__store45_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word66_shown <= 1;
+        card_core0_regs_fifo1_reg_word66_shown <= 0;
         card_core0_regs_fifo1_reg_word66_clamped <= 0;
     end
     else begin
@@ -3799,7 +3697,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word67_mine = (pci_slave1_pci_requests1_local_addr == 120);
+assign card_core0_regs_fifo1_reg_word67_mine = (pci_slave1_pci_requests1_local_addr == 112);
 
 
 always @(card_core0_regs_fifo1_reg_word67_mine, card_core0_regs_fifo1_reg_word67_shown_wide, card_core0_regs_fifo1_reg_word66_chain_out_data) begin: card_core0_regs_fifo1_reg_word67_read_chain
@@ -3813,37 +3711,51 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word67_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word67_shown};
+assign card_core0_regs_fifo1_reg_word67_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word67_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word67_mine_write = (card_core0_regs_fifo1_written_addr == 120);
+assign card_core0_regs_fifo1_reg_word67_mine_write = (card_core0_regs_fifo1_written_addr == 112);
 
 
+always @(card_core0_regs_fifo1_reg_word67_shown_wide, card_core0_regs_fifo1_reg_word67_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word67_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word67_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word67_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word67_written = ((card_core0_regs_fifo1_reg_word67_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
 
-assign card_core0_regs_fifo1_reg_word67_written = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
 
-
-
-assign card_core0_regs_fifo1_reg_word67_honoured = card_core0_regs_fifo1_reg_word67_written[24-1:0];
+always @(card_core0_regs_fifo1_reg_word67_written) begin: card_core0_regs_fifo1_reg_word67__limit46_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word67_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word67_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word67_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word67_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word67_written[32-1:4] != 0)) begin
+        card_core0_regs_fifo1_reg_word67_honoured = 15;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word67_honoured = card_core0_regs_fifo1_reg_word67_written[4-1:0];
+        card_core0_regs_fifo1_reg_word67_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card_core0_regs_fifo1_reg_word67_chain_out_clamped = (card_core0_regs_fifo1_reg_word66_chain_out_clamped || card_core0_regs_fifo1_reg_word67_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word67__store46_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word67__store46_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word67__store46_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word67__store46_word_value <= 0;
+        card_core0_regs_fifo1_reg_word67_shown <= 3;
         card_core0_regs_fifo1_reg_word67_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word67__store46_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word67_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word67_mine_write)) begin
-            card_core0_regs_fifo1_reg_word67__store46_word_value <= card_core0_regs_fifo1_reg_word67_honoured;
-            card_core0_regs_fifo1_reg_word67__store46_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_reg_word67_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word67_mine_write))) begin
+            card_core0_regs_fifo1_reg_word67_shown <= card_core0_regs_fifo1_reg_word67_honoured;
             card_core0_regs_fifo1_reg_word67_clamped <= card_core0_regs_fifo1_reg_word67_out_of_range;
         end
     end
@@ -3851,7 +3763,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word68_mine = (pci_slave1_pci_requests1_local_addr == 124);
+assign card_core0_regs_fifo1_reg_word68_mine = (pci_slave1_pci_requests1_local_addr == 116);
 
 
 always @(card_core0_regs_fifo1_reg_word68_mine, card_core0_regs_fifo1_reg_word68_shown_wide, card_core0_regs_fifo1_reg_word67_chain_out_data) begin: card_core0_regs_fifo1_reg_word68_read_chain
@@ -3865,37 +3777,51 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word68_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word68_shown};
+assign card_core0_regs_fifo1_reg_word68_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word68_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word68_mine_write = (card_core0_regs_fifo1_written_addr == 124);
+assign card_core0_regs_fifo1_reg_word68_mine_write = (card_core0_regs_fifo1_written_addr == 116);
 
 
+always @(card_core0_regs_fifo1_reg_word68_shown_wide, card_core0_regs_fifo1_reg_word68_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word68_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word68_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word68_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word68_written = ((card_core0_regs_fifo1_reg_word68_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
 
-assign card_core0_regs_fifo1_reg_word68_written = (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]);
 
-
-
-assign card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_written[2-1:0];
+always @(card_core0_regs_fifo1_reg_word68_written) begin: card_core0_regs_fifo1_reg_word68__limit47_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word68_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word68_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word68_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word68_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word68_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word68_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_written[16-1:0];
+        card_core0_regs_fifo1_reg_word68_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card_core0_regs_fifo1_reg_word68_chain_out_clamped = (card_core0_regs_fifo1_reg_word67_chain_out_clamped || card_core0_regs_fifo1_reg_word68_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word68__store47_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word68__store47_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word68__store47_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word68__store47_word_value <= 0;
+        card_core0_regs_fifo1_reg_word68_shown <= 1;
         card_core0_regs_fifo1_reg_word68_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word68__store47_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word68_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word68_mine_write)) begin
-            card_core0_regs_fifo1_reg_word68__store47_word_value <= card_core0_regs_fifo1_reg_word68_honoured;
-            card_core0_regs_fifo1_reg_word68__store47_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_reg_word68_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word68_mine_write))) begin
+            card_core0_regs_fifo1_reg_word68_shown <= card_core0_regs_fifo1_reg_word68_honoured;
             card_core0_regs_fifo1_reg_word68_clamped <= card_core0_regs_fifo1_reg_word68_out_of_range;
         end
     end
@@ -3903,7 +3829,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word69_mine = (pci_slave1_pci_requests1_local_addr == 128);
+assign card_core0_regs_fifo1_reg_word69_mine = (pci_slave1_pci_requests1_local_addr == 120);
 
 
 always @(card_core0_regs_fifo1_reg_word69_mine, card_core0_regs_fifo1_reg_word69_shown_wide, card_core0_regs_fifo1_reg_word68_chain_out_data) begin: card_core0_regs_fifo1_reg_word69_read_chain
@@ -3917,15 +3843,45 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word69_shown_wide = {26'h0, card_core0_regs_fifo1_reg_word69_shown};
+assign card_core0_regs_fifo1_reg_word69_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word69_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word69_chain_out_clamped = card_core0_regs_fifo1_reg_word68_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word69_mine_write = (card_core0_regs_fifo1_written_addr == 120);
 
 
 
-assign card_core0_regs_fifo1_reg_word70_mine = (pci_slave1_pci_requests1_local_addr == 132);
+assign card_core0_regs_fifo1_reg_word69_written = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word69_honoured = card_core0_regs_fifo1_reg_word69_written[24-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word69_chain_out_clamped = (card_core0_regs_fifo1_reg_word68_chain_out_clamped || card_core0_regs_fifo1_reg_word69_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word69__store48_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word69__store48_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word69__store48_word_value <= 0;
+        card_core0_regs_fifo1_reg_word69_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word69__store48_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word69_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word69_mine_write)) begin
+            card_core0_regs_fifo1_reg_word69__store48_word_value <= card_core0_regs_fifo1_reg_word69_honoured;
+            card_core0_regs_fifo1_reg_word69__store48_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word69_clamped <= card_core0_regs_fifo1_reg_word69_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word70_mine = (pci_slave1_pci_requests1_local_addr == 124);
 
 
 always @(card_core0_regs_fifo1_reg_word70_mine, card_core0_regs_fifo1_reg_word70_shown_wide, card_core0_regs_fifo1_reg_word69_chain_out_data) begin: card_core0_regs_fifo1_reg_word70_read_chain
@@ -3939,51 +3895,37 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word70_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word70_shown};
+assign card_core0_regs_fifo1_reg_word70_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word70_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word70_mine_write = (card_core0_regs_fifo1_written_addr == 132);
+assign card_core0_regs_fifo1_reg_word70_mine_write = (card_core0_regs_fifo1_written_addr == 124);
 
 
-always @(card_core0_regs_fifo1_reg_word70_shown_wide, card_core0_regs_fifo1_reg_word70_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word70_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word70_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word70_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word70_written = ((card_core0_regs_fifo1_reg_word70_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word70_written = (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]);
 
 
-always @(card_core0_regs_fifo1_reg_word70_written) begin: card_core0_regs_fifo1_reg_word70__limit48_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word70_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word70_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word70_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word70_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word70_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word70_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_written[16-1:0];
-        card_core0_regs_fifo1_reg_word70_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_written[2-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word70_chain_out_clamped = (card_core0_regs_fifo1_reg_word69_chain_out_clamped || card_core0_regs_fifo1_reg_word70_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word70__store48_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word70__store49_pulse_on_write
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word70_shown <= 100;
+        card_core0_regs_fifo1_reg_word70__store49_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word70__store49_word_value <= 0;
         card_core0_regs_fifo1_reg_word70_clamped <= 0;
     end
     else begin
+        card_core0_regs_fifo1_reg_word70__store49_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word70_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word70_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word70_mine_write))) begin
-            card_core0_regs_fifo1_reg_word70_shown <= card_core0_regs_fifo1_reg_word70_honoured;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word70_mine_write)) begin
+            card_core0_regs_fifo1_reg_word70__store49_word_value <= card_core0_regs_fifo1_reg_word70_honoured;
+            card_core0_regs_fifo1_reg_word70__store49_word_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word70_clamped <= card_core0_regs_fifo1_reg_word70_out_of_range;
         end
     end
@@ -3991,7 +3933,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word71_mine = (pci_slave1_pci_requests1_local_addr == 136);
+assign card_core0_regs_fifo1_reg_word71_mine = (pci_slave1_pci_requests1_local_addr == 128);
 
 
 always @(card_core0_regs_fifo1_reg_word71_mine, card_core0_regs_fifo1_reg_word71_shown_wide, card_core0_regs_fifo1_reg_word70_chain_out_data) begin: card_core0_regs_fifo1_reg_word71_read_chain
@@ -4005,59 +3947,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word71_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word71_shown};
+assign card_core0_regs_fifo1_reg_word71_shown_wide = {26'h0, card_core0_regs_fifo1_reg_word71_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word71_mine_write = (card_core0_regs_fifo1_written_addr == 136);
-
-
-always @(card_core0_regs_fifo1_reg_word71_shown_wide, card_core0_regs_fifo1_reg_word71_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word71_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word71_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word71_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word71_written = ((card_core0_regs_fifo1_reg_word71_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word71_written) begin: card_core0_regs_fifo1_reg_word71__limit49_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word71_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word71_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word71_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word71_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word71_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word71_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word71_honoured = card_core0_regs_fifo1_reg_word71_written[16-1:0];
-        card_core0_regs_fifo1_reg_word71_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word71_chain_out_clamped = card_core0_regs_fifo1_reg_word70_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word71_chain_out_clamped = (card_core0_regs_fifo1_reg_word70_chain_out_clamped || card_core0_regs_fifo1_reg_word71_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word71__store49_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word71_shown <= 1000;
-        card_core0_regs_fifo1_reg_word71_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word71_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word71_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word71_mine_write))) begin
-            card_core0_regs_fifo1_reg_word71_shown <= card_core0_regs_fifo1_reg_word71_honoured;
-            card_core0_regs_fifo1_reg_word71_clamped <= card_core0_regs_fifo1_reg_word71_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word72_mine = (pci_slave1_pci_requests1_local_addr == 140);
+assign card_core0_regs_fifo1_reg_word72_mine = (pci_slave1_pci_requests1_local_addr == 132);
 
 
 always @(card_core0_regs_fifo1_reg_word72_mine, card_core0_regs_fifo1_reg_word72_shown_wide, card_core0_regs_fifo1_reg_word71_chain_out_data) begin: card_core0_regs_fifo1_reg_word72_read_chain
@@ -4075,21 +3973,32 @@ assign card_core0_regs_fifo1_reg_word72_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_written_addr == 140);
+assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_written_addr == 132);
 
 
 always @(card_core0_regs_fifo1_reg_word72_shown_wide, card_core0_regs_fifo1_reg_word72_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word72_merge_bytes
     if ((card_core0_regs_fifo1_reg_word72_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word72_written = card_core0_regs_fifo1_set_value[16-1:0];
+        card_core0_regs_fifo1_reg_word72_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word72_written = ((card_core0_regs_fifo1_reg_word72_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+        card_core0_regs_fifo1_reg_word72_written = ((card_core0_regs_fifo1_reg_word72_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written[16-1:0];
+always @(card_core0_regs_fifo1_reg_word72_written) begin: card_core0_regs_fifo1_reg_word72__limit50_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word72_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word72_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word72_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word72_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word72_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word72_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written[16-1:0];
+        card_core0_regs_fifo1_reg_word72_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -4098,7 +4007,7 @@ assign card_core0_regs_fifo1_reg_word72_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word72__store50_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word72_shown <= 0;
+        card_core0_regs_fifo1_reg_word72_shown <= 100;
         card_core0_regs_fifo1_reg_word72_clamped <= 0;
     end
     else begin
@@ -4112,25 +4021,25 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word73_mine = (pci_slave1_pci_requests1_local_addr == 144);
+assign card_core0_regs_fifo1_reg_word73_mine = (pci_slave1_pci_requests1_local_addr == 136);
 
 
 always @(card_core0_regs_fifo1_reg_word73_mine, card_core0_regs_fifo1_reg_word73_shown_wide, card_core0_regs_fifo1_reg_word72_chain_out_data) begin: card_core0_regs_fifo1_reg_word73_read_chain
     if (card_core0_regs_fifo1_reg_word73_mine) begin
-        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word72_chain_out_data | card_core0_regs_fifo1_reg_word73_shown_wide);
+        card_core0_regs_fifo1_reg_word73_chain_out_data = (card_core0_regs_fifo1_reg_word72_chain_out_data | card_core0_regs_fifo1_reg_word73_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word72_chain_out_data;
+        card_core0_regs_fifo1_reg_word73_chain_out_data = card_core0_regs_fifo1_reg_word72_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word73_shown_wide = {9'h0, card_core0_regs_fifo1_reg_word73_shown};
+assign card_core0_regs_fifo1_reg_word73_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word73_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word73_mine_write = (card_core0_regs_fifo1_written_addr == 144);
+assign card_core0_regs_fifo1_reg_word73_mine_write = (card_core0_regs_fifo1_written_addr == 136);
 
 
 always @(card_core0_regs_fifo1_reg_word73_shown_wide, card_core0_regs_fifo1_reg_word73_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word73_merge_bytes
@@ -4148,11 +4057,11 @@ always @(card_core0_regs_fifo1_reg_word73_written) begin: card_core0_regs_fifo1_
     if (((card_core0_regs_fifo1_reg_word73_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word73_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word73_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word73_written[32-1:23] != 0)) begin
-        card_core0_regs_fifo1_reg_word73_honoured = 8388607;
+    else if ((card_core0_regs_fifo1_reg_word73_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word73_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word73_honoured = card_core0_regs_fifo1_reg_word73_written[23-1:0];
+        card_core0_regs_fifo1_reg_word73_honoured = card_core0_regs_fifo1_reg_word73_written[16-1:0];
         card_core0_regs_fifo1_reg_word73_out_of_range = 1'b0;
     end
 end
@@ -4164,7 +4073,7 @@ assign card_core0_regs_fifo1_reg_word73_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word73__store51_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word73_shown <= 65535;
+        card_core0_regs_fifo1_reg_word73_shown <= 1000;
         card_core0_regs_fifo1_reg_word73_clamped <= 0;
     end
     else begin
@@ -4172,6 +4081,259 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word73__
         if (((card_core0_regs_fifo1_reg_word73_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word73_mine_write))) begin
             card_core0_regs_fifo1_reg_word73_shown <= card_core0_regs_fifo1_reg_word73_honoured;
             card_core0_regs_fifo1_reg_word73_clamped <= card_core0_regs_fifo1_reg_word73_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word74_mine = (pci_slave1_pci_requests1_local_addr == 140);
+
+
+always @(card_core0_regs_fifo1_reg_word74_mine, card_core0_regs_fifo1_reg_word74_shown_wide, card_core0_regs_fifo1_reg_word73_chain_out_data) begin: card_core0_regs_fifo1_reg_word74_read_chain
+    if (card_core0_regs_fifo1_reg_word74_mine) begin
+        card_core0_regs_fifo1_reg_word74_chain_out_data = (card_core0_regs_fifo1_reg_word73_chain_out_data | card_core0_regs_fifo1_reg_word74_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word74_chain_out_data = card_core0_regs_fifo1_reg_word73_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word74_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word74_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word74_mine_write = (card_core0_regs_fifo1_written_addr == 140);
+
+
+always @(card_core0_regs_fifo1_reg_word74_shown_wide, card_core0_regs_fifo1_reg_word74_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word74_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word74_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word74_written = card_core0_regs_fifo1_set_value[16-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word74_written = ((card_core0_regs_fifo1_reg_word74_shown_wide[16-1:0] & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word74_honoured = card_core0_regs_fifo1_reg_word74_written[16-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word74_chain_out_clamped = (card_core0_regs_fifo1_reg_word73_chain_out_clamped || card_core0_regs_fifo1_reg_word74_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word74__store52_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word74_shown <= 0;
+        card_core0_regs_fifo1_reg_word74_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word74_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word74_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word74_mine_write))) begin
+            card_core0_regs_fifo1_reg_word74_shown <= card_core0_regs_fifo1_reg_word74_honoured;
+            card_core0_regs_fifo1_reg_word74_clamped <= card_core0_regs_fifo1_reg_word74_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word75_mine = (pci_slave1_pci_requests1_local_addr == 144);
+
+
+always @(card_core0_regs_fifo1_reg_word75_mine, card_core0_regs_fifo1_reg_word75_shown_wide, card_core0_regs_fifo1_reg_word74_chain_out_data) begin: card_core0_regs_fifo1_reg_word75_read_chain
+    if (card_core0_regs_fifo1_reg_word75_mine) begin
+        card_core0_regs_fifo1_reg_word75_chain_out_data = (card_core0_regs_fifo1_reg_word74_chain_out_data | card_core0_regs_fifo1_reg_word75_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word75_chain_out_data = card_core0_regs_fifo1_reg_word74_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word75_shown_wide = {9'h0, card_core0_regs_fifo1_reg_word75_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word75_mine_write = (card_core0_regs_fifo1_written_addr == 144);
+
+
+always @(card_core0_regs_fifo1_reg_word75_shown_wide, card_core0_regs_fifo1_reg_word75_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word75_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word75_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word75_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word75_written = ((card_core0_regs_fifo1_reg_word75_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word75_written) begin: card_core0_regs_fifo1_reg_word75__limit53_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word75_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word75_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word75_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word75_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word75_written[32-1:23] != 0)) begin
+        card_core0_regs_fifo1_reg_word75_honoured = 8388607;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word75_honoured = card_core0_regs_fifo1_reg_word75_written[23-1:0];
+        card_core0_regs_fifo1_reg_word75_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word75_chain_out_clamped = (card_core0_regs_fifo1_reg_word74_chain_out_clamped || card_core0_regs_fifo1_reg_word75_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word75__store53_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word75_shown <= 65535;
+        card_core0_regs_fifo1_reg_word75_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word75_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word75_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word75_mine_write))) begin
+            card_core0_regs_fifo1_reg_word75_shown <= card_core0_regs_fifo1_reg_word75_honoured;
+            card_core0_regs_fifo1_reg_word75_clamped <= card_core0_regs_fifo1_reg_word75_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word76_mine = (pci_slave1_pci_requests1_local_addr == 148);
+
+
+always @(card_core0_regs_fifo1_reg_word76_mine, card_core0_regs_fifo1_reg_word76_shown_wide, card_core0_regs_fifo1_reg_word75_chain_out_data) begin: card_core0_regs_fifo1_reg_word76_read_chain
+    if (card_core0_regs_fifo1_reg_word76_mine) begin
+        card_core0_regs_fifo1_reg_word76_chain_out_data = (card_core0_regs_fifo1_reg_word75_chain_out_data | card_core0_regs_fifo1_reg_word76_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word76_chain_out_data = card_core0_regs_fifo1_reg_word75_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word76_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word76_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word76_mine_write = (card_core0_regs_fifo1_written_addr == 148);
+
+
+always @(card_core0_regs_fifo1_reg_word76_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word76_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8))) begin
+        card_core0_regs_fifo1_reg_word76_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word76_written = ((card_core0_regs_fifo1_reg_word76_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word76_written) begin: card_core0_regs_fifo1_reg_word76__limit54_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word76_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word76_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word76_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word76_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word76_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word76_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word76_honoured = card_core0_regs_fifo1_reg_word76_written[8-1:0];
+        card_core0_regs_fifo1_reg_word76_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word76_chain_out_clamped = (card_core0_regs_fifo1_reg_word75_chain_out_clamped || card_core0_regs_fifo1_reg_word76_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word76__store54_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word76_shown <= 1;
+        card_core0_regs_fifo1_reg_word76_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word76_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word76_mine_write))) begin
+            card_core0_regs_fifo1_reg_word76_shown <= card_core0_regs_fifo1_reg_word76_honoured;
+            card_core0_regs_fifo1_reg_word76_clamped <= card_core0_regs_fifo1_reg_word76_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word77_mine = (pci_slave1_pci_requests1_local_addr == 152);
+
+
+always @(card_core0_regs_fifo1_reg_word77_mine, card_core0_regs_fifo1_reg_word77_shown_wide, card_core0_regs_fifo1_reg_word76_chain_out_data) begin: card_core0_regs_fifo1_reg_word77_read_chain
+    if (card_core0_regs_fifo1_reg_word77_mine) begin
+        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word76_chain_out_data | card_core0_regs_fifo1_reg_word77_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word76_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word77_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word77_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word77_mine_write = (card_core0_regs_fifo1_written_addr == 152);
+
+
+always @(card_core0_regs_fifo1_reg_word77_shown_wide, card_core0_regs_fifo1_reg_word77_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word77_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word77_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word77_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word77_written = ((card_core0_regs_fifo1_reg_word77_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word77_written) begin: card_core0_regs_fifo1_reg_word77__limit55_clamp_unsigned
+    card_core0_regs_fifo1_reg_word77_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word77_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word77_written[1-1:0] < 0))) begin
+        card_core0_regs_fifo1_reg_word77_honoured = 0;
+    end
+    else if (((card_core0_regs_fifo1_reg_word77_written[32-1:2] != 0) || (card_core0_regs_fifo1_reg_word77_written[2-1:0] > 2))) begin
+        card_core0_regs_fifo1_reg_word77_honoured = 2;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word77_honoured = card_core0_regs_fifo1_reg_word77_written[2-1:0];
+        card_core0_regs_fifo1_reg_word77_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word77_chain_out_clamped = (card_core0_regs_fifo1_reg_word76_chain_out_clamped || card_core0_regs_fifo1_reg_word77_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word77__store55_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word77_shown <= 0;
+        card_core0_regs_fifo1_reg_word77_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word77_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word77_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word77_mine_write))) begin
+            card_core0_regs_fifo1_reg_word77_shown <= card_core0_regs_fifo1_reg_word77_honoured;
+            card_core0_regs_fifo1_reg_word77_clamped <= card_core0_regs_fifo1_reg_word77_out_of_range;
         end
     end
 end
@@ -4371,7 +4533,7 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
         5: card_core0_regs_fifo1_sequencer1_set_known = 1;
         6: card_core0_regs_fifo1_sequencer1_set_known = 1;
         7: card_core0_regs_fifo1_sequencer1_set_known = 1;
-        8: card_core0_regs_fifo1_sequencer1_set_known = 0;
+        8: card_core0_regs_fifo1_sequencer1_set_known = 1;
         9: card_core0_regs_fifo1_sequencer1_set_known = 0;
         10: card_core0_regs_fifo1_sequencer1_set_known = 0;
         11: card_core0_regs_fifo1_sequencer1_set_known = 0;
@@ -4674,13 +4836,13 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_r
         card_core0_regs_fifo1_feed_rate1_raise_limit <= 0;
     end
     else begin
-        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word47_shown;
-        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word48_shown;
+        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word49_shown;
+        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word50_shown;
         card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_ramp_step;
         card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_ramp_step == 0);
-        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word47_shown}) - $signed({1'b0, card_core0_regs_fifo1_ramp_step}));
-        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word47_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
-        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word48_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
+        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word49_shown}) - $signed({1'b0, card_core0_regs_fifo1_ramp_step}));
+        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word49_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
+        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word50_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
     end
 end
 
@@ -4809,9 +4971,9 @@ end
 assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending || card_core0_regs_fifo1_direct_request_x);
 
 
-always @(card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count, card_core0_regs_fifo1_reg_word56_shown) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
+always @(card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count, card_core0_regs_fifo1_reg_word58_shown) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
     if ((!card_core0_regs_fifo1_direct_pulse2_command_load)) begin
-        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word56_shown;
+        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word58_shown;
         card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
     end
     else if ((card_core0_regs_fifo1_direct_pulse2_command_count < 0)) begin
@@ -4845,18 +5007,18 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         card_core0_regs_fifo1_direct_dir_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_waiting <= 0;
         card_core0_regs_fifo1_direct_pulse2_pending <= 0;
-        card_core0_regs_fifo1_reg_word56_shown <= 0;
+        card_core0_regs_fifo1_reg_word58_shown <= 0;
         card_core0_regs_fifo1_direct_request_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_x <= 0;
         if (card_core0_regs_fifo1_direct_clear) begin
-            card_core0_regs_fifo1_reg_word56_shown <= 0;
+            card_core0_regs_fifo1_reg_word58_shown <= 0;
             card_core0_regs_fifo1_direct_pulse2_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse2_command_load) begin
-            card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+            card_core0_regs_fifo1_reg_word58_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
             card_core0_regs_fifo1_direct_dir_x <= (card_core0_regs_fifo1_direct_pulse2_command_count >= 0);
             card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_command_count != 0);
             card_core0_regs_fifo1_direct_pulse2_gap <= 0;
@@ -4869,8 +5031,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             end
             else if (card_core0_regs_fifo1_direct_ready) begin
                 card_core0_regs_fifo1_direct_request_x <= 1;
-                card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
-                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word56_shown != 1);
+                card_core0_regs_fifo1_reg_word58_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word58_shown != 1);
                 card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
                 card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_direct_pulse2_command_period != 1);
             end
@@ -4883,9 +5045,9 @@ end
 assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending || card_core0_regs_fifo1_direct_request_y);
 
 
-always @(card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count, card_core0_regs_fifo1_reg_word57_shown) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
+always @(card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count, card_core0_regs_fifo1_reg_word59_shown) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
     if ((!card_core0_regs_fifo1_direct_pulse3_command_load)) begin
-        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word57_shown;
+        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word59_shown;
         card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
     end
     else if ((card_core0_regs_fifo1_direct_pulse3_command_count < 0)) begin
@@ -4919,18 +5081,18 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         card_core0_regs_fifo1_direct_dir_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_waiting <= 0;
         card_core0_regs_fifo1_direct_pulse3_pending <= 0;
-        card_core0_regs_fifo1_reg_word57_shown <= 0;
+        card_core0_regs_fifo1_reg_word59_shown <= 0;
         card_core0_regs_fifo1_direct_request_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_y <= 0;
         if (card_core0_regs_fifo1_direct_clear) begin
-            card_core0_regs_fifo1_reg_word57_shown <= 0;
+            card_core0_regs_fifo1_reg_word59_shown <= 0;
             card_core0_regs_fifo1_direct_pulse3_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse3_command_load) begin
-            card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+            card_core0_regs_fifo1_reg_word59_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
             card_core0_regs_fifo1_direct_dir_y <= (card_core0_regs_fifo1_direct_pulse3_command_count >= 0);
             card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_command_count != 0);
             card_core0_regs_fifo1_direct_pulse3_gap <= 0;
@@ -4943,8 +5105,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             end
             else if (card_core0_regs_fifo1_direct_ready) begin
                 card_core0_regs_fifo1_direct_request_y <= 1;
-                card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
-                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word57_shown != 1);
+                card_core0_regs_fifo1_reg_word59_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word59_shown != 1);
                 card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
                 card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_command_period != 1);
             end
@@ -4955,19 +5117,19 @@ end
 
 
 assign card_core0_regs_fifo1_out_ready = ($signed({1'b0, card_core0_regs_fifo1_pulse_out1_count}) <= (4 - 2));
-assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_count != 0) || (card_core0_regs_fifo1_pulse_out1_phase != 2'b00) || pins_step_x || pins_step_y);
+assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_count != 0) || (card_core0_regs_fifo1_pulse_out1_phase != 2'b00) || card_core0_regs_fifo1_pulse_out1_pulse_x || card_core0_regs_fifo1_pulse_out1_pulse_y);
 
 
 
 assign card_core0_regs_fifo1_pulse_out1_head = card_core0_regs_fifo1_pulse_out1_queue[0];
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_reg_word51_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_reg_word50_shown, card_core0_regs_fifo1_pulse_clear) begin: card_core0_regs_fifo1_pulse_out1_decide
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_reg_word53_shown, card_core0_regs_fifo1_reg_word76_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_clear) begin: card_core0_regs_fifo1_pulse_out1_decide
     card_core0_regs_fifo1_pulse_out1_turn = ((card_core0_regs_fifo1_pulse_out1_count != 0) && ((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
     card_core0_regs_fifo1_pulse_out1_take = 1'b0;
-    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_regs_fifo1_pulse_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word50_shown))) begin
+    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_regs_fifo1_pulse_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word76_shown))) begin
         if ((card_core0_regs_fifo1_pulse_out1_phase == 2'b01)) begin
-            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word51_shown);
+            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word53_shown);
         end
         else if ((card_core0_regs_fifo1_pulse_out1_count != 0)) begin
             card_core0_regs_fifo1_pulse_out1_take = (!((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
@@ -4976,9 +5138,9 @@ always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pu
 end
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_reg_word50_shown, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_take, card_core0_regs_fifo1_reg_word52_shown) begin: card_core0_regs_fifo1_pulse_out1_restart
-    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word52_shown)));
-    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word50_shown));
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_reg_word52_shown, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_take, card_core0_regs_fifo1_reg_word54_shown) begin: card_core0_regs_fifo1_pulse_out1_restart
+    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word54_shown)));
+    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word52_shown));
     card_core0_regs_fifo1_pulse_out1_phase_step = 0;
     if ((card_core0_regs_fifo1_pulse_out1_phase_clocks != 255)) begin
         card_core0_regs_fifo1_pulse_out1_phase_step = 1;
@@ -5102,20 +5264,76 @@ always @(card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pul
 end
 
 
+always @(card_core0_regs_fifo1_reg_word55_shown[1], card_core0_regs_fifo1_reg_word55_shown[0], card_core0_regs_fifo1_pulse_out1_level_y, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_quad_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_pulse_out1_pulse_x, card_core0_regs_fifo1_pulse_out1_level_x, card_core0_regs_fifo1_pulse_out1_quad_y, card_core0_regs_fifo1_pulse_out1_pulse_y) begin: card_core0_regs_fifo1_pulse_out1_pin_direction
+    card_core0_regs_fifo1_pulse_out1_up_x = (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word55_shown[0]);
+    card_core0_regs_fifo1_pulse_out1_up_y = (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word55_shown[1]);
+    card_core0_regs_fifo1_pulse_out1_quad_next_x = card_core0_regs_fifo1_pulse_out1_quad_x;
+    if ((card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_pulse_x))) begin
+        if ((card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word55_shown[0])) begin
+            card_core0_regs_fifo1_pulse_out1_quad_next_x = (card_core0_regs_fifo1_pulse_out1_quad_x + 1);
+        end
+        else begin
+            card_core0_regs_fifo1_pulse_out1_quad_next_x = (card_core0_regs_fifo1_pulse_out1_quad_x - 1);
+        end
+    end
+    card_core0_regs_fifo1_pulse_out1_quad_next_y = card_core0_regs_fifo1_pulse_out1_quad_y;
+    if ((card_core0_regs_fifo1_pulse_out1_level_y && (!card_core0_regs_fifo1_pulse_out1_pulse_y))) begin
+        if ((card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word55_shown[1])) begin
+            card_core0_regs_fifo1_pulse_out1_quad_next_y = (card_core0_regs_fifo1_pulse_out1_quad_y + 1);
+        end
+        else begin
+            card_core0_regs_fifo1_pulse_out1_quad_next_y = (card_core0_regs_fifo1_pulse_out1_quad_y - 1);
+        end
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_drive_pins
     if (reset == 0) begin
         pins_step_x <= 0;
         pins_dir_x <= 0;
         pins_dir_y <= 0;
-        card_core0_regs_fifo1_position_y <= 0;
-        card_core0_regs_fifo1_pulse_out1_position_x <= 0;
+        card_core0_regs_fifo1_pulse_out1_quad_x <= 0;
+        card_core0_regs_fifo1_pulse_out1_pulse_x <= 0;
+        card_core0_regs_fifo1_pulse_out1_quad_y <= 0;
         pins_step_y <= 0;
+        card_core0_regs_fifo1_pulse_out1_pulse_y <= 0;
     end
     else begin
-        pins_step_x <= card_core0_regs_fifo1_pulse_out1_level_x;
-        pins_step_y <= card_core0_regs_fifo1_pulse_out1_level_y;
-        pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word53_shown[0]);
-        pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word53_shown[1]);
+        card_core0_regs_fifo1_pulse_out1_pulse_x <= card_core0_regs_fifo1_pulse_out1_level_x;
+        card_core0_regs_fifo1_pulse_out1_pulse_y <= card_core0_regs_fifo1_pulse_out1_level_y;
+        card_core0_regs_fifo1_pulse_out1_quad_x <= card_core0_regs_fifo1_pulse_out1_quad_next_x;
+        card_core0_regs_fifo1_pulse_out1_quad_y <= card_core0_regs_fifo1_pulse_out1_quad_next_y;
+        case (card_core0_regs_fifo1_reg_word77_shown)
+            'h1: begin
+                pins_step_x <= (card_core0_regs_fifo1_pulse_out1_level_x && card_core0_regs_fifo1_pulse_out1_up_x);
+                pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_up_x));
+                pins_step_y <= (card_core0_regs_fifo1_pulse_out1_level_y && card_core0_regs_fifo1_pulse_out1_up_y);
+                pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_level_y && (!card_core0_regs_fifo1_pulse_out1_up_y));
+            end
+            'h2: begin
+                pins_step_x <= (card_core0_regs_fifo1_pulse_out1_quad_next_x[0] ^ card_core0_regs_fifo1_pulse_out1_quad_next_x[1]);
+                pins_dir_x <= card_core0_regs_fifo1_pulse_out1_quad_next_x[1];
+                pins_step_y <= (card_core0_regs_fifo1_pulse_out1_quad_next_y[0] ^ card_core0_regs_fifo1_pulse_out1_quad_next_y[1]);
+                pins_dir_y <= card_core0_regs_fifo1_pulse_out1_quad_next_y[1];
+            end
+            default: begin
+                pins_step_x <= card_core0_regs_fifo1_pulse_out1_level_x;
+                pins_dir_x <= card_core0_regs_fifo1_pulse_out1_up_x;
+                pins_step_y <= card_core0_regs_fifo1_pulse_out1_level_y;
+                pins_dir_y <= card_core0_regs_fifo1_pulse_out1_up_y;
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_count_positions
+    if (reset == 0) begin
+        card_core0_regs_fifo1_position_y <= 0;
+        card_core0_regs_fifo1_pulse_out1_position_x <= 0;
+    end
+    else begin
         if (card_core0_regs_fifo1_clear_position) begin
             card_core0_regs_fifo1_pulse_out1_position_x <= 0;
             card_core0_regs_fifo1_position_y <= 0;
@@ -5123,20 +5341,20 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_d
         else begin
             if (card_core0_regs_fifo1_home_zero[0]) begin
                 card_core0_regs_fifo1_pulse_out1_position_x <= 0;
-                if ((card_core0_regs_fifo1_pulse_out1_level_x && (!pins_step_x))) begin
+                if ((card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_pulse_x))) begin
                     card_core0_regs_fifo1_pulse_out1_position_x <= card_core0_regs_fifo1_pulse_out1_delta_x;
                 end
             end
-            else if ((card_core0_regs_fifo1_pulse_out1_level_x && (!pins_step_x))) begin
+            else if ((card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_pulse_x))) begin
                 card_core0_regs_fifo1_pulse_out1_position_x <= (card_core0_regs_fifo1_pulse_out1_position_x + card_core0_regs_fifo1_pulse_out1_delta_x);
             end
             if (card_core0_regs_fifo1_home_zero[1]) begin
                 card_core0_regs_fifo1_position_y <= 0;
-                if ((card_core0_regs_fifo1_pulse_out1_level_y && (!pins_step_y))) begin
+                if ((card_core0_regs_fifo1_pulse_out1_level_y && (!card_core0_regs_fifo1_pulse_out1_pulse_y))) begin
                     card_core0_regs_fifo1_position_y <= card_core0_regs_fifo1_pulse_out1_delta_y;
                 end
             end
-            else if ((card_core0_regs_fifo1_pulse_out1_level_y && (!pins_step_y))) begin
+            else if ((card_core0_regs_fifo1_pulse_out1_level_y && (!card_core0_regs_fifo1_pulse_out1_pulse_y))) begin
                 card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y + card_core0_regs_fifo1_pulse_out1_delta_y);
             end
         end
@@ -5157,7 +5375,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1_level = (card_core0_regs_fifo1_input_filter1_inputs_raw ^ card_core0_regs_fifo1_reg_word64_shown);
+assign card_core0_regs_fifo1_input_filter1_level = (card_core0_regs_fifo1_input_filter1_inputs_raw ^ card_core0_regs_fifo1_reg_word66_shown);
 assign card_core0_regs_fifo1_input_filter1_sample = (card_core0_regs_fifo1_input_filter1_prescale == 0);
 
 
@@ -5167,7 +5385,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter
     end
     else begin
         if (card_core0_regs_fifo1_input_filter1_sample) begin
-            card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_reg_word66_shown - 1);
+            card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_reg_word68_shown - 1);
         end
         else begin
             card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_input_filter1_prescale - 1);
@@ -5209,7 +5427,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count7_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[0] != card_core0_regs_fifo1_conditioning_active[0]) && ((card_core0_regs_fifo1_input_filter1__input_count7_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count7_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[0] != card_core0_regs_fifo1_conditioning_active[0]) && ((card_core0_regs_fifo1_input_filter1__input_count7_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count8_count_samples
@@ -5233,7 +5451,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count8_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[1] != card_core0_regs_fifo1_conditioning_active[1]) && ((card_core0_regs_fifo1_input_filter1__input_count8_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count8_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[1] != card_core0_regs_fifo1_conditioning_active[1]) && ((card_core0_regs_fifo1_input_filter1__input_count8_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count9_count_samples
@@ -5257,7 +5475,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count9_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[2] != card_core0_regs_fifo1_conditioning_active[2]) && ((card_core0_regs_fifo1_input_filter1__input_count9_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count9_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[2] != card_core0_regs_fifo1_conditioning_active[2]) && ((card_core0_regs_fifo1_input_filter1__input_count9_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count10_count_samples
@@ -5281,7 +5499,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count10_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[3] != card_core0_regs_fifo1_conditioning_active[3]) && ((card_core0_regs_fifo1_input_filter1__input_count10_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count10_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[3] != card_core0_regs_fifo1_conditioning_active[3]) && ((card_core0_regs_fifo1_input_filter1__input_count10_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count11_count_samples
@@ -5305,7 +5523,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count11_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[4] != card_core0_regs_fifo1_conditioning_active[4]) && ((card_core0_regs_fifo1_input_filter1__input_count11_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count11_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[4] != card_core0_regs_fifo1_conditioning_active[4]) && ((card_core0_regs_fifo1_input_filter1__input_count11_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count12_count_samples
@@ -5329,7 +5547,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count12_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[5] != card_core0_regs_fifo1_conditioning_active[5]) && ((card_core0_regs_fifo1_input_filter1__input_count12_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count12_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[5] != card_core0_regs_fifo1_conditioning_active[5]) && ((card_core0_regs_fifo1_input_filter1__input_count12_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count13_count_samples
@@ -5353,12 +5571,12 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count13_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[6] != card_core0_regs_fifo1_conditioning_active[6]) && ((card_core0_regs_fifo1_input_filter1__input_count13_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count13_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[6] != card_core0_regs_fifo1_conditioning_active[6]) && ((card_core0_regs_fifo1_input_filter1__input_count13_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 
 assign card_core0_regs_fifo1_machine_guard1_estop = card_core0_regs_fifo1_conditioning_active[0];
-assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_reg_word67_shown == 1) && (!card_core0_regs_fifo1_reg_word67__store46_word_strobe));
+assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_reg_word69_shown == 1) && (!card_core0_regs_fifo1_reg_word69__store48_word_strobe));
 assign card_core0_regs_fifo1_machine_guard1_hits = {(card_core0_regs_fifo1_requests_step_y && (!card_core0_regs_fifo1_requests_dir_y) && card_core0_regs_fifo1_conditioning_active[4]), (card_core0_regs_fifo1_requests_step_y && card_core0_regs_fifo1_requests_dir_y && card_core0_regs_fifo1_conditioning_active[3]), (card_core0_regs_fifo1_requests_step_x && (!card_core0_regs_fifo1_requests_dir_x) && card_core0_regs_fifo1_conditioning_active[2]), (card_core0_regs_fifo1_requests_step_x && card_core0_regs_fifo1_requests_dir_x && card_core0_regs_fifo1_conditioning_active[1])};
 
 
@@ -5426,35 +5644,35 @@ end
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guard1_watchdog
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word67_shown <= 0;
+        card_core0_regs_fifo1_reg_word69_shown <= 0;
     end
     else begin
-        if (card_core0_regs_fifo1_reg_word67__store46_word_strobe) begin
-            card_core0_regs_fifo1_reg_word67_shown <= card_core0_regs_fifo1_reg_word67__store46_word_value;
+        if (card_core0_regs_fifo1_reg_word69__store48_word_strobe) begin
+            card_core0_regs_fifo1_reg_word69_shown <= card_core0_regs_fifo1_reg_word69__store48_word_value;
         end
-        else if ((card_core0_regs_fifo1_reg_word67_shown != 0)) begin
-            card_core0_regs_fifo1_reg_word67_shown <= (card_core0_regs_fifo1_reg_word67_shown - 1);
+        else if ((card_core0_regs_fifo1_reg_word69_shown != 0)) begin
+            card_core0_regs_fifo1_reg_word69_shown <= (card_core0_regs_fifo1_reg_word69_shown - 1);
         end
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word73_shown, card_core0_regs_fifo1_reg_word72_shown, card_core0_regs_fifo1_home_inputs, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
+always @(card_core0_regs_fifo1_reg_word75_shown, card_core0_regs_fifo1_reg_word74_shown, card_core0_regs_fifo1_home_inputs, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
     card_core0_regs_fifo1_homing1_switch = card_core0_regs_fifo1_homing1_axis ? card_core0_regs_fifo1_home_inputs[1] : card_core0_regs_fifo1_home_inputs[0];
     card_core0_regs_fifo1_homing1_seeking = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b010));
     card_core0_regs_fifo1_homing1_seek_next = ((card_core0_regs_fifo1_homing1_state == 3'b000) || (card_core0_regs_fifo1_homing1_state == 3'b001) || ((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)));
     if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
-        card_core0_regs_fifo1_homing1_magnitude = {8'h0, card_core0_regs_fifo1_reg_word72_shown};
+        card_core0_regs_fifo1_homing1_magnitude = {8'h0, card_core0_regs_fifo1_reg_word74_shown};
     end
     else begin
-        card_core0_regs_fifo1_homing1_magnitude = {1'h0, card_core0_regs_fifo1_reg_word73_shown};
+        card_core0_regs_fifo1_homing1_magnitude = {1'h0, card_core0_regs_fifo1_reg_word75_shown};
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word68__store47_word_value, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_negative) begin: card_core0_regs_fifo1_homing1_command
+always @(card_core0_regs_fifo1_reg_word70__store49_word_value, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_negative) begin: card_core0_regs_fifo1_homing1_command
     if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
-        card_core0_regs_fifo1_homing1_positive = (!card_core0_regs_fifo1_reg_word68__store47_word_value[1]);
+        card_core0_regs_fifo1_homing1_positive = (!card_core0_regs_fifo1_reg_word70__store49_word_value[1]);
     end
     else begin
         card_core0_regs_fifo1_homing1_positive = card_core0_regs_fifo1_homing1_negative;
@@ -5488,10 +5706,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_next
     else begin
         card_core0_regs_fifo1_homing1_port_count <= $signed(card_core0_regs_fifo1_homing1_signed_count);
         if (card_core0_regs_fifo1_homing1_seek_next) begin
-            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word70_shown;
+            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word72_shown;
         end
         else begin
-            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word71_shown;
+            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word73_shown;
         end
     end
 end
@@ -5529,20 +5747,20 @@ always @(card_core0_regs_fifo1_homing1_seeking, card_core0_regs_fifo1_homing1_st
 end
 
 
-always @(card_core0_regs_fifo1_homing1_negative, card_core0_regs_fifo1_homing1_phase, card_core0_regs_fifo1_homing1_done, card_core0_regs_fifo1_homing1_refused, card_core0_regs_fifo1_reg_word68__store47_word_strobe, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_not_found) begin: card_core0_regs_fifo1_homing1_show
+always @(card_core0_regs_fifo1_homing1_negative, card_core0_regs_fifo1_homing1_phase, card_core0_regs_fifo1_homing1_done, card_core0_regs_fifo1_homing1_refused, card_core0_regs_fifo1_reg_word70__store49_word_strobe, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_not_found) begin: card_core0_regs_fifo1_homing1_show
     reg [2-1:0] asked;
     reg [6-1:0] word;
     asked = 2'h0;
     asked[0] = card_core0_regs_fifo1_homing1_axis;
     asked[1] = card_core0_regs_fifo1_homing1_negative;
-    card_core0_regs_fifo1_reg_word68_shown = asked;
+    card_core0_regs_fifo1_reg_word70_shown = asked;
     word = 6'h0;
-    word[0] = ((card_core0_regs_fifo1_homing1_state != 3'b000) || card_core0_regs_fifo1_reg_word68__store47_word_strobe);
+    word[0] = ((card_core0_regs_fifo1_homing1_state != 3'b000) || card_core0_regs_fifo1_reg_word70__store49_word_strobe);
     word[1] = card_core0_regs_fifo1_homing1_done;
     word[2] = card_core0_regs_fifo1_homing1_not_found;
     word[3] = card_core0_regs_fifo1_homing1_refused;
     word[4+:2] = card_core0_regs_fifo1_homing1_phase;
-    card_core0_regs_fifo1_reg_word69_shown = word;
+    card_core0_regs_fifo1_reg_word71_shown = word;
 end
 
 
@@ -5562,7 +5780,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
         drained = ((!card_core0_regs_fifo1_pulse_busy) && (!card_core0_regs_fifo1_out_active));
         if (card_core0_core_clear) begin
             card_core0_regs_fifo1_homing1_state <= 3'b000;
-            if (card_core0_regs_fifo1_reg_word68__store47_word_strobe) begin
+            if (card_core0_regs_fifo1_reg_word70__store49_word_strobe) begin
                 card_core0_regs_fifo1_homing1_done <= 0;
                 card_core0_regs_fifo1_homing1_not_found <= 0;
                 card_core0_regs_fifo1_homing1_refused <= 1;
@@ -5570,9 +5788,9 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
             end
         end
         else if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
-            if (card_core0_regs_fifo1_reg_word68__store47_word_strobe) begin
-                card_core0_regs_fifo1_homing1_axis <= card_core0_regs_fifo1_reg_word68__store47_word_value[0];
-                card_core0_regs_fifo1_homing1_negative <= card_core0_regs_fifo1_reg_word68__store47_word_value[1];
+            if (card_core0_regs_fifo1_reg_word70__store49_word_strobe) begin
+                card_core0_regs_fifo1_homing1_axis <= card_core0_regs_fifo1_reg_word70__store49_word_value[0];
+                card_core0_regs_fifo1_homing1_negative <= card_core0_regs_fifo1_reg_word70__store49_word_value[1];
                 card_core0_regs_fifo1_homing1_done <= 0;
                 card_core0_regs_fifo1_homing1_not_found <= 0;
                 card_core0_regs_fifo1_homing1_refused <= (!card_core0_regs_fifo1_home_idle);
@@ -5583,7 +5801,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
             end
         end
         else begin
-            if (card_core0_regs_fifo1_reg_word68__store47_word_strobe) begin
+            if (card_core0_regs_fifo1_reg_word70__store49_word_strobe) begin
                 card_core0_regs_fifo1_homing1_refused <= 1;
                 card_core0_regs_fifo1_homing1_port_ended <= 1;
             end
@@ -5605,7 +5823,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
             end
             else if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
                 if ((!card_core0_regs_fifo1_homing1_switch)) begin
-                    if ((card_core0_regs_fifo1_reg_word72_shown != 0)) begin
+                    if ((card_core0_regs_fifo1_reg_word74_shown != 0)) begin
                         card_core0_regs_fifo1_homing1_state <= 3'b101;
                     end
                     else begin
@@ -5774,16 +5992,16 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word68_shown[0], card_core0_regs_fifo1_reg_word56__store40_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word56__store40_word_value, card_core0_regs_fifo1_reg_word54_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source2_choose_source
-    card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word54_shown;
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_reg_word58__store42_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word58__store42_word_value, card_core0_regs_fifo1_reg_word56_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source2_choose_source
+    card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word56_shown;
     if (card_core0_regs_fifo1_home_busy) begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word68_shown[0] == 0));
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word70_shown[0] == 0));
         card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_homing1_port_count;
         card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_homing1_port_period;
     end
     else if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_reg_word56__store40_word_strobe && (!card_core0_regs_fifo1_halt));
-        card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word56__store40_word_value);
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_reg_word58__store42_word_strobe && (!card_core0_regs_fifo1_halt));
+        card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word58__store42_word_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse2_command_load = card_core0_regs_fifo1_seq_load;
@@ -5792,16 +6010,16 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_wor
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word68_shown[0], card_core0_regs_fifo1_reg_word57__store41_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word57__store41_word_value, card_core0_regs_fifo1_reg_word55_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source3_choose_source
-    card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word55_shown;
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_reg_word59__store43_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word59__store43_word_value, card_core0_regs_fifo1_reg_word57_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source3_choose_source
+    card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word57_shown;
     if (card_core0_regs_fifo1_home_busy) begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word68_shown[0] == 1));
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word70_shown[0] == 1));
         card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_homing1_port_count;
         card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_homing1_port_period;
     end
     else if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_reg_word57__store41_word_strobe && (!card_core0_regs_fifo1_halt));
-        card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word57__store41_word_value);
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_reg_word59__store43_word_strobe && (!card_core0_regs_fifo1_halt));
+        card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word59__store43_word_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse3_command_load = card_core0_regs_fifo1_seq_load;
@@ -5814,7 +6032,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_status_words
     if (reset == 0) begin
         card_core0_regs_fifo1_status_words1_done_flag <= 0;
         card_core0_regs_fifo1_status_words1_error_before <= 0;
-        card_core0_regs_fifo1_reg_word44_shown <= 0;
+        card_core0_regs_fifo1_reg_word46_shown <= 0;
         card_core0_regs_fifo1_status_words1_busy_before <= 0;
         card_core0_regs_fifo1_status_words1_low_before <= 0;
     end
@@ -5827,9 +6045,9 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_status_words
             card_core0_regs_fifo1_status_words1_done_flag <= 1;
         end
         card_core0_regs_fifo1_status_words1_error_before <= (card_core0_regs_fifo1_error_code != 0);
-        card_core0_regs_fifo1_status_words1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word43_shown);
+        card_core0_regs_fifo1_status_words1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word45_shown);
         if (card_core0_regs_fifo1_sequencer1_mark_strobe) begin
-            card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
+            card_core0_regs_fifo1_reg_word46_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
         end
     end
 end
@@ -5846,27 +6064,27 @@ always @(card_core0_regs_fifo1_status_words1_done_flag, card_core0_regs_fifo1_er
     word[9] = card_core0_regs_fifo1_fifo_full;
     word[10] = card_core0_regs_fifo1_guard_stopped;
     word[32-1:16] = card_core0_regs_fifo1_level_wide;
-    card_core0_regs_fifo1_reg_word40_shown = word;
+    card_core0_regs_fifo1_reg_word42_shown = word;
 end
 
 
-always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_status_words1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_reg_word43_shown, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_reg_word73_chain_out_clamped, card_core0_regs_fifo1_status_words1_busy_before, card_core0_regs_fifo1_status_words1_low_before, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_input_filter1_inputs_changed) begin: card_core0_regs_fifo1_status_words1_detect_events
+always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_status_words1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_reg_word45_shown, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_reg_word77_chain_out_clamped, card_core0_regs_fifo1_status_words1_busy_before, card_core0_regs_fifo1_status_words1_low_before, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_input_filter1_inputs_changed) begin: card_core0_regs_fifo1_status_words1_detect_events
     reg [8-1:0] word;
     word = 8'h0;
     word[0] = (card_core0_regs_fifo1_status_words1_busy_before && (!card_core0_regs_fifo1_any_busy));
-    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word43_shown) && (!card_core0_regs_fifo1_status_words1_low_before));
+    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word45_shown) && (!card_core0_regs_fifo1_status_words1_low_before));
     word[2] = ((card_core0_regs_fifo1_error_code != 0) && (!card_core0_regs_fifo1_status_words1_error_before));
     word[3] = card_core0_regs_fifo1_sequencer1_mark_strobe;
-    word[4] = card_core0_regs_fifo1_reg_word73_chain_out_clamped;
+    word[4] = card_core0_regs_fifo1_reg_word77_chain_out_clamped;
     word[5] = card_core0_regs_fifo1_guard_stop_event;
     word[6] = card_core0_regs_fifo1_input_filter1_inputs_changed;
     word[7] = card_core0_regs_fifo1_homing1_port_ended;
-    card_core0_regs_fifo1_reg_word42__store29_word_hw = word;
+    card_core0_regs_fifo1_reg_word44__store31_word_hw = word;
 end
 
 
 
-assign irq = ((card_core0_regs_fifo1_reg_word42_shown & card_core0_regs_fifo1_reg_word41_shown) != 0);
+assign irq = ((card_core0_regs_fifo1_reg_word44_shown & card_core0_regs_fifo1_reg_word43_shown) != 0);
 
 
 always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1_status_words1_assemble_machine
@@ -5879,17 +6097,17 @@ always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stoppi
     word[17] = pins_drive_enable;
     word[18] = card_core0_regs_fifo1_settled;
     word[19] = card_core0_regs_fifo1_guard_stopping;
-    card_core0_regs_fifo1_reg_word62_shown = word;
+    card_core0_regs_fifo1_reg_word64_shown = word;
     why = 8'h0;
     why[0+:2] = card_core0_regs_fifo1_machine_guard1_guard_reason;
     why[4+:4] = card_core0_regs_fifo1_machine_guard1_guard_limits;
-    card_core0_regs_fifo1_reg_word63_shown = why;
+    card_core0_regs_fifo1_reg_word65_shown = why;
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_shown = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
-assign card_core0_regs_fifo1_reg_word46_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
+assign card_core0_regs_fifo1_reg_word47_shown = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
+assign card_core0_regs_fifo1_reg_word48_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
 
 
 always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_magnitudes

@@ -376,126 +376,87 @@ wire card1_card_core1_regs_fifo2_sync_fifo2_last_beyond;
 wire card1_card_core1_regs_fifo2_sync_fifo2_one_word;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_read_addr;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_write_addr;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word74_shown;
-wire card1_card_core1_regs_fifo2_reg_word74_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word74_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word74_chain_out_data;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word74_chain_in_data;
-wire card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped;
-wire card1_card_core1_regs_fifo2_reg_word74_chain_in_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word75_honoured;
-wire card1_card_core1_regs_fifo2_reg_word75_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word75_clamped;
-wire card1_card_core1_regs_fifo2_reg_word75_mine;
-wire card1_card_core1_regs_fifo2_reg_word75_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word75_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word75_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word75_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word75_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word75_chain_out_clamped;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word76_honoured;
-wire card1_card_core1_regs_fifo2_reg_word76_out_of_range;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word76_shown;
-reg card1_card_core1_regs_fifo2_reg_word76_clamped;
-wire card1_card_core1_regs_fifo2_reg_word76_mine;
-wire card1_card_core1_regs_fifo2_reg_word76_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word76_shown_wide;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word76_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word76_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word77_shown;
-wire card1_card_core1_regs_fifo2_reg_word77_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word77_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word77_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped;
-wire [7:0] card1_card_core1_regs_fifo2_reg_word78_honoured;
-wire card1_card_core1_regs_fifo2_reg_word78_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word78_shown;
-reg card1_card_core1_regs_fifo2_reg_word78_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word78_shown;
 wire card1_card_core1_regs_fifo2_reg_word78_mine;
-wire card1_card_core1_regs_fifo2_reg_word78_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word78_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word78_shown_wide;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word78_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word78_chain_out_data;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word78_chain_in_data;
 wire card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped;
-wire [7:0] card1_card_core1_regs_fifo2_reg_word79_honoured;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word79_shown;
+wire card1_card_core1_regs_fifo2_reg_word78_chain_in_clamped;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word79_honoured;
+wire card1_card_core1_regs_fifo2_reg_word79_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word79_clamped;
 wire card1_card_core1_regs_fifo2_reg_word79_mine;
 wire card1_card_core1_regs_fifo2_reg_word79_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word79_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word79_shown_wide;
-wire [7:0] card1_card_core1_regs_fifo2_reg_word79_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word79_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word79_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word79__store55_word_hw;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word80_honoured;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word80_honoured;
 wire card1_card_core1_regs_fifo2_reg_word80_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word80_shown;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word80_shown;
 reg card1_card_core1_regs_fifo2_reg_word80_clamped;
 wire card1_card_core1_regs_fifo2_reg_word80_mine;
 wire card1_card_core1_regs_fifo2_reg_word80_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word80_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word80_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word80_written;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word80_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word80_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word81_shown;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word81_shown;
 wire card1_card_core1_regs_fifo2_reg_word81_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word81_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word81_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word82_shown;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word82_honoured;
+wire card1_card_core1_regs_fifo2_reg_word82_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word82_shown;
+reg card1_card_core1_regs_fifo2_reg_word82_clamped;
 wire card1_card_core1_regs_fifo2_reg_word82_mine;
+wire card1_card_core1_regs_fifo2_reg_word82_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word82_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word82_shown_wide;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word82_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word82_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word83_shown;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word83_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word83_shown;
 wire card1_card_core1_regs_fifo2_reg_word83_mine;
+wire card1_card_core1_regs_fifo2_reg_word83_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word83_shown_wide;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word83_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word83_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word84_honoured;
-reg card1_card_core1_regs_fifo2_reg_word84_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word83__store59_word_hw;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word84_honoured;
+wire card1_card_core1_regs_fifo2_reg_word84_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word84_shown;
 reg card1_card_core1_regs_fifo2_reg_word84_clamped;
 wire card1_card_core1_regs_fifo2_reg_word84_mine;
 wire card1_card_core1_regs_fifo2_reg_word84_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word84_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word84_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word84_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word84_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word84_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word85_honoured;
-reg card1_card_core1_regs_fifo2_reg_word85_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word85_shown;
-reg card1_card_core1_regs_fifo2_reg_word85_clamped;
 wire card1_card_core1_regs_fifo2_reg_word85_mine;
-wire card1_card_core1_regs_fifo2_reg_word85_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word85_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word85_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word85_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
-wire card1_card_core1_regs_fifo2_reg_word86_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word86_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown;
 wire card1_card_core1_regs_fifo2_reg_word86_mine;
-wire card1_card_core1_regs_fifo2_reg_word86_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word86_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word86_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word87_honoured;
-reg card1_card_core1_regs_fifo2_reg_word87_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word87_shown;
-reg card1_card_core1_regs_fifo2_reg_word87_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word87_shown;
 wire card1_card_core1_regs_fifo2_reg_word87_mine;
-wire card1_card_core1_regs_fifo2_reg_word87_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word87_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word87_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word87_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word88_honoured;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word88_honoured;
 reg card1_card_core1_regs_fifo2_reg_word88_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word88_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word88_shown;
 reg card1_card_core1_regs_fifo2_reg_word88_clamped;
 wire card1_card_core1_regs_fifo2_reg_word88_mine;
 wire card1_card_core1_regs_fifo2_reg_word88_mine_write;
@@ -503,9 +464,9 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word88_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word88_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word88_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word89_honoured;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word89_honoured;
 reg card1_card_core1_regs_fifo2_reg_word89_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word89_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word89_shown;
 reg card1_card_core1_regs_fifo2_reg_word89_clamped;
 wire card1_card_core1_regs_fifo2_reg_word89_mine;
 wire card1_card_core1_regs_fifo2_reg_word89_mine_write;
@@ -513,20 +474,18 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word89_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word89_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word89_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word90_honoured;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word90_honoured;
 wire card1_card_core1_regs_fifo2_reg_word90_out_of_range;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word90_shown;
 reg card1_card_core1_regs_fifo2_reg_word90_clamped;
 wire card1_card_core1_regs_fifo2_reg_word90_mine;
 wire card1_card_core1_regs_fifo2_reg_word90_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word90_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word90_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word90_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word90_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word90_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word91_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word91_honoured;
 reg card1_card_core1_regs_fifo2_reg_word91_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word91_shown;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word91_shown;
 reg card1_card_core1_regs_fifo2_reg_word91_clamped;
 wire card1_card_core1_regs_fifo2_reg_word91_mine;
 wire card1_card_core1_regs_fifo2_reg_word91_mine_write;
@@ -534,9 +493,9 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word91_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word91_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word91_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word92_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word92_honoured;
 reg card1_card_core1_regs_fifo2_reg_word92_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word92_shown;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word92_shown;
 reg card1_card_core1_regs_fifo2_reg_word92_clamped;
 wire card1_card_core1_regs_fifo2_reg_word92_mine;
 wire card1_card_core1_regs_fifo2_reg_word92_mine_write;
@@ -544,125 +503,126 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word92_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word92_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word92_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word93_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word93_honoured;
 reg card1_card_core1_regs_fifo2_reg_word93_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word93_shown;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word93_shown;
 reg card1_card_core1_regs_fifo2_reg_word93_clamped;
 wire card1_card_core1_regs_fifo2_reg_word93_mine;
 wire card1_card_core1_regs_fifo2_reg_word93_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word93_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word93_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word93_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word93_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word93__store66_word_value;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
-reg card1_card_core1_regs_fifo2_reg_word94_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word94_shown;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
+wire card1_card_core1_regs_fifo2_reg_word94_out_of_range;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word94_shown;
 reg card1_card_core1_regs_fifo2_reg_word94_clamped;
 wire card1_card_core1_regs_fifo2_reg_word94_mine;
 wire card1_card_core1_regs_fifo2_reg_word94_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word94_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word94_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word94_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word94_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word94_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word94__store67_word_value;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word95_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word95_honoured;
+reg card1_card_core1_regs_fifo2_reg_word95_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word95_shown;
+reg card1_card_core1_regs_fifo2_reg_word95_clamped;
 wire card1_card_core1_regs_fifo2_reg_word95_mine;
+wire card1_card_core1_regs_fifo2_reg_word95_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word95_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word95_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word95_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word96_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word96_honoured;
+reg card1_card_core1_regs_fifo2_reg_word96_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word96_shown;
+reg card1_card_core1_regs_fifo2_reg_word96_clamped;
 wire card1_card_core1_regs_fifo2_reg_word96_mine;
+wire card1_card_core1_regs_fifo2_reg_word96_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word96_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word96_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word96_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped;
-wire [27:0] card1_card_core1_regs_fifo2_reg_word97_shown;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word97_honoured;
+reg card1_card_core1_regs_fifo2_reg_word97_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word97_shown;
+reg card1_card_core1_regs_fifo2_reg_word97_clamped;
 wire card1_card_core1_regs_fifo2_reg_word97_mine;
+wire card1_card_core1_regs_fifo2_reg_word97_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word97_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word97_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word97_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word98_honoured;
-wire card1_card_core1_regs_fifo2_reg_word98_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word97__store70_word_value;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word98_honoured;
+reg card1_card_core1_regs_fifo2_reg_word98_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word98_shown;
 reg card1_card_core1_regs_fifo2_reg_word98_clamped;
 wire card1_card_core1_regs_fifo2_reg_word98_mine;
 wire card1_card_core1_regs_fifo2_reg_word98_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word98_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word98_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word98_written;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word98_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word98_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped;
-reg [19:0] card1_card_core1_regs_fifo2_reg_word99_shown;
+reg card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word98__store71_word_value;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word99_shown;
 wire card1_card_core1_regs_fifo2_reg_word99_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word99_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word99_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word100_shown;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word100_shown;
 wire card1_card_core1_regs_fifo2_reg_word100_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word100_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word100_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped;
-wire [6:0] card1_card_core1_regs_fifo2_reg_word101_honoured;
-wire card1_card_core1_regs_fifo2_reg_word101_out_of_range;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word101_shown;
-reg card1_card_core1_regs_fifo2_reg_word101_clamped;
+wire [27:0] card1_card_core1_regs_fifo2_reg_word101_shown;
 wire card1_card_core1_regs_fifo2_reg_word101_mine;
-wire card1_card_core1_regs_fifo2_reg_word101_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word101_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word101_shown_wide;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word101_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word101_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped;
-reg [3:0] card1_card_core1_regs_fifo2_reg_word102_honoured;
-reg card1_card_core1_regs_fifo2_reg_word102_out_of_range;
-reg [3:0] card1_card_core1_regs_fifo2_reg_word102_shown;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word102_honoured;
+wire card1_card_core1_regs_fifo2_reg_word102_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word102_clamped;
 wire card1_card_core1_regs_fifo2_reg_word102_mine;
 wire card1_card_core1_regs_fifo2_reg_word102_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word102_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word102_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word102_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word102_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word102_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word103_honoured;
-reg card1_card_core1_regs_fifo2_reg_word103_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word103_shown;
-reg card1_card_core1_regs_fifo2_reg_word103_clamped;
+reg [19:0] card1_card_core1_regs_fifo2_reg_word103_shown;
 wire card1_card_core1_regs_fifo2_reg_word103_mine;
-wire card1_card_core1_regs_fifo2_reg_word103_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word103_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word103_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word103_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word103_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped;
-wire [23:0] card1_card_core1_regs_fifo2_reg_word104_honoured;
-wire card1_card_core1_regs_fifo2_reg_word104_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word104_shown;
-reg card1_card_core1_regs_fifo2_reg_word104_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word104_shown;
 wire card1_card_core1_regs_fifo2_reg_word104_mine;
-wire card1_card_core1_regs_fifo2_reg_word104_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word104_shown_wide;
-wire [23:0] card1_card_core1_regs_fifo2_reg_word104_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word104_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word104__store72_word_value;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word105_honoured;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word105_honoured;
 wire card1_card_core1_regs_fifo2_reg_word105_out_of_range;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word105_shown;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word105_shown;
 reg card1_card_core1_regs_fifo2_reg_word105_clamped;
 wire card1_card_core1_regs_fifo2_reg_word105_mine;
 wire card1_card_core1_regs_fifo2_reg_word105_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word105_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word105_shown_wide;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word105_written;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word105_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word105_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word105__store73_word_value;
-reg [5:0] card1_card_core1_regs_fifo2_reg_word106_shown;
+reg [3:0] card1_card_core1_regs_fifo2_reg_word106_honoured;
+reg card1_card_core1_regs_fifo2_reg_word106_out_of_range;
+reg [3:0] card1_card_core1_regs_fifo2_reg_word106_shown;
+reg card1_card_core1_regs_fifo2_reg_word106_clamped;
 wire card1_card_core1_regs_fifo2_reg_word106_mine;
+wire card1_card_core1_regs_fifo2_reg_word106_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word106_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word106_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word106_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word106_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word107_honoured;
@@ -676,38 +636,99 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word107_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word107_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word107_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word108_honoured;
-reg card1_card_core1_regs_fifo2_reg_word108_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word108_shown;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word108_honoured;
+wire card1_card_core1_regs_fifo2_reg_word108_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word108_shown;
 reg card1_card_core1_regs_fifo2_reg_word108_clamped;
 wire card1_card_core1_regs_fifo2_reg_word108_mine;
 wire card1_card_core1_regs_fifo2_reg_word108_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word108_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word108_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word108_written;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word108_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word108_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word109_honoured;
+reg card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word108__store76_word_value;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word109_honoured;
 wire card1_card_core1_regs_fifo2_reg_word109_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word109_shown;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word109_shown;
 reg card1_card_core1_regs_fifo2_reg_word109_clamped;
 wire card1_card_core1_regs_fifo2_reg_word109_mine;
 wire card1_card_core1_regs_fifo2_reg_word109_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word109_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word109_shown_wide;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word109_written;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word109_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word109_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped;
-reg [22:0] card1_card_core1_regs_fifo2_reg_word110_honoured;
-reg card1_card_core1_regs_fifo2_reg_word110_out_of_range;
-reg [22:0] card1_card_core1_regs_fifo2_reg_word110_shown;
-reg card1_card_core1_regs_fifo2_reg_word110_clamped;
+reg card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word109__store77_word_value;
+reg [5:0] card1_card_core1_regs_fifo2_reg_word110_shown;
 wire card1_card_core1_regs_fifo2_reg_word110_mine;
-wire card1_card_core1_regs_fifo2_reg_word110_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word110_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word110_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word110_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word110_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word111_honoured;
+reg card1_card_core1_regs_fifo2_reg_word111_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word111_shown;
+reg card1_card_core1_regs_fifo2_reg_word111_clamped;
+wire card1_card_core1_regs_fifo2_reg_word111_mine;
+wire card1_card_core1_regs_fifo2_reg_word111_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word111_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word111_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word111_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word111_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word111_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word112_honoured;
+reg card1_card_core1_regs_fifo2_reg_word112_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word112_shown;
+reg card1_card_core1_regs_fifo2_reg_word112_clamped;
+wire card1_card_core1_regs_fifo2_reg_word112_mine;
+wire card1_card_core1_regs_fifo2_reg_word112_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word112_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word112_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word112_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word112_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word113_honoured;
+wire card1_card_core1_regs_fifo2_reg_word113_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word113_shown;
+reg card1_card_core1_regs_fifo2_reg_word113_clamped;
+wire card1_card_core1_regs_fifo2_reg_word113_mine;
+wire card1_card_core1_regs_fifo2_reg_word113_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word113_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word113_shown_wide;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word113_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word113_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word113_chain_out_clamped;
+reg [22:0] card1_card_core1_regs_fifo2_reg_word114_honoured;
+reg card1_card_core1_regs_fifo2_reg_word114_out_of_range;
+reg [22:0] card1_card_core1_regs_fifo2_reg_word114_shown;
+reg card1_card_core1_regs_fifo2_reg_word114_clamped;
+wire card1_card_core1_regs_fifo2_reg_word114_mine;
+wire card1_card_core1_regs_fifo2_reg_word114_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word114_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word114_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word114_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word114_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word114_chain_out_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word115_honoured;
+reg card1_card_core1_regs_fifo2_reg_word115_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word115_shown;
+reg card1_card_core1_regs_fifo2_reg_word115_clamped;
+wire card1_card_core1_regs_fifo2_reg_word115_mine;
+wire card1_card_core1_regs_fifo2_reg_word115_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word115_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word115_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word115_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word115_chain_out_clamped;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word116_honoured;
+reg card1_card_core1_regs_fifo2_reg_word116_out_of_range;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word116_shown;
+reg card1_card_core1_regs_fifo2_reg_word116_clamped;
+wire card1_card_core1_regs_fifo2_reg_word116_mine;
+wire card1_card_core1_regs_fifo2_reg_word116_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word116_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word116_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word116_written;
+wire card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_arriving_count;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits;
@@ -823,9 +844,17 @@ reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_low_step;
 reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_phase;
 reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_clocks;
 reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_step;
+reg card1_card_core1_regs_fifo2_pulse_out2_pulse_x;
+reg card1_card_core1_regs_fifo2_pulse_out2_pulse_y;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_quad_next_x;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_quad_next_y;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_quad_x;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_quad_y;
 reg card1_card_core1_regs_fifo2_pulse_out2_starts;
 reg card1_card_core1_regs_fifo2_pulse_out2_take;
 reg card1_card_core1_regs_fifo2_pulse_out2_turn;
+reg card1_card_core1_regs_fifo2_pulse_out2_up_x;
+reg card1_card_core1_regs_fifo2_pulse_out2_up_y;
 reg card1_card_core1_regs_fifo2_pulse_out2_request_step_x;
 reg card1_card_core1_regs_fifo2_pulse_out2_request_step_y;
 reg card1_card_core1_regs_fifo2_pulse_out2_request_dir_y;
@@ -1046,36 +1075,37 @@ reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word74_shown = 32'd3719037187;
-assign card1_card_core1_regs_fifo2_reg_word74_chain_in_data = 32'd0;
-assign card1_card_core1_regs_fifo2_reg_word74_chain_in_clamped = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word75_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word75_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word76_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word76_shown = 4'd0;
-assign card1_card_core1_regs_fifo2_reg_word78_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word78_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word78_shown = 32'd3719037188;
+assign card1_card_core1_regs_fifo2_reg_word78_chain_in_data = 32'd0;
+assign card1_card_core1_regs_fifo2_reg_word78_chain_in_clamped = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word79_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word79_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word80_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word86_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word80_shown = 4'd0;
+assign card1_card_core1_regs_fifo2_reg_word82_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word82_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word84_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word84_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word90_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word90_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word95_shown = 32'd33333333;
-assign card1_card_core1_regs_fifo2_reg_word96_shown = 16'd512;
-assign card1_card_core1_regs_fifo2_reg_word97_shown = 28'd17564184;
-assign card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word98_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word101_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word94_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word99_shown = 32'd33333333;
+assign card1_card_core1_regs_fifo2_reg_word100_shown = 16'd512;
+assign card1_card_core1_regs_fifo2_reg_word101_shown = 28'd17564184;
+assign card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word102_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word103_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word104_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word105_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word105_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word106_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word107_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word108_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word108_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word109_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word109_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word110_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word111_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word112_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word113_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word113_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word114_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word116_set_mine = 1'd0;
 
 
 
@@ -3203,213 +3233,29 @@ assign card1_pci_slave2_pci_control2_control_case0_0_1_target_room = card1_card_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word74_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
+assign card1_card_core1_regs_fifo2_reg_word78_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word74_mine, card1_card_core1_regs_fifo2_reg_word74_shown_wide, card1_card_core1_regs_fifo2_reg_word74_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word74_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word74_mine) begin
-        card1_card_core1_regs_fifo2_reg_word74_chain_out_data = (card1_card_core1_regs_fifo2_reg_word74_chain_in_data | card1_card_core1_regs_fifo2_reg_word74_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word74_chain_out_data = card1_card_core1_regs_fifo2_reg_word74_chain_in_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word74_shown_wide = card1_card_core1_regs_fifo2_reg_word74_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word74_chain_in_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word75_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word75_mine, card1_card_core1_regs_fifo2_reg_word75_shown_wide, card1_card_core1_regs_fifo2_reg_word74_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word75_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word75_mine) begin
-        card1_card_core1_regs_fifo2_reg_word75_chain_out_data = (card1_card_core1_regs_fifo2_reg_word74_chain_out_data | card1_card_core1_regs_fifo2_reg_word75_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word75_chain_out_data = card1_card_core1_regs_fifo2_reg_word74_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word75_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word75_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word75_shown_wide, card1_card_core1_regs_fifo2_reg_word75_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word75_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word75_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word75_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word75_written = ((card1_card_core1_regs_fifo2_reg_word75_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word75_honoured = card1_card_core1_regs_fifo2_reg_word75_written[2-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word75_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word75_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word75__store52_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_control <= 0;
-        card1_card_core1_regs_fifo2_reg_word75_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word75_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word75_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word75_mine_write))) begin
-            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word75_honoured;
-            card1_card_core1_regs_fifo2_reg_word75_clamped <= card1_card_core1_regs_fifo2_reg_word75_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word76_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word76_mine, card1_card_core1_regs_fifo2_reg_word76_shown_wide, card1_card_core1_regs_fifo2_reg_word75_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word76_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word76_mine) begin
-        card1_card_core1_regs_fifo2_reg_word76_chain_out_data = (card1_card_core1_regs_fifo2_reg_word75_chain_out_data | card1_card_core1_regs_fifo2_reg_word76_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word76_chain_out_data = card1_card_core1_regs_fifo2_reg_word75_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word76_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word76_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word76_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word76_written = (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word76_honoured = card1_card_core1_regs_fifo2_reg_word76_written[4-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word75_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word76_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word76__store53_pulse_on_write
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_command_strobe <= 0;
-        card1_card_core1_regs_fifo2_command <= 0;
-        card1_card_core1_regs_fifo2_reg_word76_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word76_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word76_mine_write)) begin
-            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word76_honoured;
-            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word76_clamped <= card1_card_core1_regs_fifo2_reg_word76_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word77_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word77_mine, card1_card_core1_regs_fifo2_reg_word77_shown_wide, card1_card_core1_regs_fifo2_reg_word76_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word77_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word77_mine) begin
-        card1_card_core1_regs_fifo2_reg_word77_chain_out_data = (card1_card_core1_regs_fifo2_reg_word76_chain_out_data | card1_card_core1_regs_fifo2_reg_word77_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word77_chain_out_data = card1_card_core1_regs_fifo2_reg_word76_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word77_shown_wide = card1_card_core1_regs_fifo2_reg_word77_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word78_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word78_mine, card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word77_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word78_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word78_mine, card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word78_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word78_read_chain
     if (card1_card_core1_regs_fifo2_reg_word78_mine) begin
-        card1_card_core1_regs_fifo2_reg_word78_chain_out_data = (card1_card_core1_regs_fifo2_reg_word77_chain_out_data | card1_card_core1_regs_fifo2_reg_word78_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word78_chain_out_data = (card1_card_core1_regs_fifo2_reg_word78_chain_in_data | card1_card_core1_regs_fifo2_reg_word78_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word78_chain_out_data = card1_card_core1_regs_fifo2_reg_word77_chain_out_data;
+        card1_card_core1_regs_fifo2_reg_word78_chain_out_data = card1_card_core1_regs_fifo2_reg_word78_chain_in_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word78_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word78_shown};
+assign card1_card_core1_regs_fifo2_reg_word78_shown_wide = card1_card_core1_regs_fifo2_reg_word78_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word78_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word78_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word78_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word78_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word78_written = card1_card_core1_regs_fifo2_set_value[8-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word78_written = ((card1_card_core1_regs_fifo2_reg_word78_shown_wide[8-1:0] & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word78_chain_in_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word78_honoured = card1_card_core1_regs_fifo2_reg_word78_written[8-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word78_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word78__store54_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word78_shown <= 0;
-        card1_card_core1_regs_fifo2_reg_word78_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word78_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word78_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word78_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word78_shown <= card1_card_core1_regs_fifo2_reg_word78_honoured;
-            card1_card_core1_regs_fifo2_reg_word78_clamped <= card1_card_core1_regs_fifo2_reg_word78_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word79_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
+assign card1_card_core1_regs_fifo2_reg_word79_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word79_mine, card1_card_core1_regs_fifo2_reg_word79_shown_wide, card1_card_core1_regs_fifo2_reg_word78_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word79_read_chain
@@ -3423,42 +3269,48 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word79_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word79_shown};
+assign card1_card_core1_regs_fifo2_reg_word79_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word79_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
+assign card1_card_core1_regs_fifo2_reg_word79_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word79_written = (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word79_honoured = card1_card_core1_regs_fifo2_reg_word79_written[8-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped;
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word79__store55_clear_on_one
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word79_shown <= 0;
+always @(card1_card_core1_regs_fifo2_reg_word79_shown_wide, card1_card_core1_regs_fifo2_reg_word79_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word79_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word79_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word79_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word79_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word79_shown <= ((card1_card_core1_regs_fifo2_reg_word79_shown & (~card1_card_core1_regs_fifo2_reg_word79_honoured)) | card1_card_core1_regs_fifo2_reg_word79__store55_word_hw);
-        end
-        else begin
-            card1_card_core1_regs_fifo2_reg_word79_shown <= (card1_card_core1_regs_fifo2_reg_word79_shown | card1_card_core1_regs_fifo2_reg_word79__store55_word_hw);
+        card1_card_core1_regs_fifo2_reg_word79_written = ((card1_card_core1_regs_fifo2_reg_word79_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word79_honoured = card1_card_core1_regs_fifo2_reg_word79_written[2-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word79_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word79__store56_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_control <= 0;
+        card1_card_core1_regs_fifo2_reg_word79_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word79_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word79_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word79_mine_write))) begin
+            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word79_honoured;
+            card1_card_core1_regs_fifo2_reg_word79_clamped <= card1_card_core1_regs_fifo2_reg_word79_out_of_range;
         end
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word80_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
+assign card1_card_core1_regs_fifo2_reg_word80_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word80_mine, card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_reg_word79_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word80_read_chain
@@ -3472,40 +3324,37 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word80_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word80_shown};
+assign card1_card_core1_regs_fifo2_reg_word80_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word80_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word80_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_reg_word80_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word80_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word80_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word80_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word80_written = ((card1_card_core1_regs_fifo2_reg_word80_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word80_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word80_honoured = card1_card_core1_regs_fifo2_reg_word80_written[16-1:0];
+assign card1_card_core1_regs_fifo2_reg_word80_written = (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word80_honoured = card1_card_core1_regs_fifo2_reg_word80_written[4-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word80_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word80__store56_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word80__store57_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word80_shown <= 0;
+        card1_card_core1_regs_fifo2_command_strobe <= 0;
+        card1_card_core1_regs_fifo2_command <= 0;
         card1_card_core1_regs_fifo2_reg_word80_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word80_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word80_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word80_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word80_shown <= card1_card_core1_regs_fifo2_reg_word80_honoured;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word80_mine_write)) begin
+            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word80_honoured;
+            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word80_clamped <= card1_card_core1_regs_fifo2_reg_word80_out_of_range;
         end
     end
@@ -3513,7 +3362,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word81_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
+assign card1_card_core1_regs_fifo2_reg_word81_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word81_mine, card1_card_core1_regs_fifo2_reg_word81_shown_wide, card1_card_core1_regs_fifo2_reg_word80_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word81_read_chain
@@ -3527,7 +3376,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word81_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word81_shown};
+assign card1_card_core1_regs_fifo2_reg_word81_shown_wide = card1_card_core1_regs_fifo2_reg_word81_shown;
 
 
 
@@ -3535,7 +3384,7 @@ assign card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_pci_slave2_pci_requests2_local_addr == 32);
+assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word82_mine, card1_card_core1_regs_fifo2_reg_word82_shown_wide, card1_card_core1_regs_fifo2_reg_word81_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word82_read_chain
@@ -3549,15 +3398,48 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_shown_wide = card1_card_core1_regs_fifo2_reg_word82_shown;
+assign card1_card_core1_regs_fifo2_reg_word82_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word82_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word82_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word82_shown_wide, card1_card_core1_regs_fifo2_reg_word82_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word82_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word82_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word82_written = card1_card_core1_regs_fifo2_set_value[8-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word82_written = ((card1_card_core1_regs_fifo2_reg_word82_shown_wide[8-1:0] & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_pci_slave2_pci_requests2_local_addr == 36);
+assign card1_card_core1_regs_fifo2_reg_word82_honoured = card1_card_core1_regs_fifo2_reg_word82_written[8-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word82_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word82__store58_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word82_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word82_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word82_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word82_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word82_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word82_shown <= card1_card_core1_regs_fifo2_reg_word82_honoured;
+            card1_card_core1_regs_fifo2_reg_word82_clamped <= card1_card_core1_regs_fifo2_reg_word82_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word83_mine, card1_card_core1_regs_fifo2_reg_word83_shown_wide, card1_card_core1_regs_fifo2_reg_word82_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word83_read_chain
@@ -3571,15 +3453,42 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word83_shown_wide = card1_card_core1_regs_fifo2_reg_word83_shown;
+assign card1_card_core1_regs_fifo2_reg_word83_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word83_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_written = (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_honoured = card1_card_core1_regs_fifo2_reg_word83_written[8-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped;
 
 
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word83__store59_clear_on_one
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word83_shown <= 0;
+    end
+    else begin
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word83_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word83_shown <= ((card1_card_core1_regs_fifo2_reg_word83_shown & (~card1_card_core1_regs_fifo2_reg_word83_honoured)) | card1_card_core1_regs_fifo2_reg_word83__store59_word_hw);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_reg_word83_shown <= (card1_card_core1_regs_fifo2_reg_word83_shown | card1_card_core1_regs_fifo2_reg_word83__store59_word_hw);
+        end
+    end
+end
 
-assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
+
+
+assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word84_mine, card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_reg_word83_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word84_read_chain
@@ -3597,46 +3506,35 @@ assign card1_card_core1_regs_fifo2_reg_word84_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
+assign card1_card_core1_regs_fifo2_reg_word84_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word84_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word84_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_reg_word84_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word84_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word84_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word84_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word84_written = ((card1_card_core1_regs_fifo2_reg_word84_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word84_written = ((card1_card_core1_regs_fifo2_reg_word84_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word84_written) begin: card1_card_core1_regs_fifo2_reg_word84__limit57_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word84_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word84_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word84_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word84_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word84_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word84_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word84_honoured = 32768;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word84_honoured = card1_card_core1_regs_fifo2_reg_word84_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word84_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word84_honoured = card1_card_core1_regs_fifo2_reg_word84_written[16-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word84_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word84__store57_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word84__store60_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word84_shown <= 4096;
+        card1_card_core1_regs_fifo2_reg_word84_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word84_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word84_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word84_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word84_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word84_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word84_shown <= card1_card_core1_regs_fifo2_reg_word84_honoured;
             card1_card_core1_regs_fifo2_reg_word84_clamped <= card1_card_core1_regs_fifo2_reg_word84_out_of_range;
         end
@@ -3645,7 +3543,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
+assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word85_mine, card1_card_core1_regs_fifo2_reg_word85_shown_wide, card1_card_core1_regs_fifo2_reg_word84_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word85_read_chain
@@ -3663,55 +3561,11 @@ assign card1_card_core1_regs_fifo2_reg_word85_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word85_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word85_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
-        card1_card_core1_regs_fifo2_reg_word85_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word85_written = ((card1_card_core1_regs_fifo2_reg_word85_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word85_written) begin: card1_card_core1_regs_fifo2_reg_word85__limit58_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word85_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word85_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word85_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word85_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word85_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word85_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word85_honoured = 32768;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word85_honoured = card1_card_core1_regs_fifo2_reg_word85_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word85_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word85_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word85__store58_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word85_shown <= 4096;
-        card1_card_core1_regs_fifo2_reg_word85_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word85_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word85_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word85_shown <= card1_card_core1_regs_fifo2_reg_word85_honoured;
-            card1_card_core1_regs_fifo2_reg_word85_clamped <= card1_card_core1_regs_fifo2_reg_word85_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word86_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
+assign card1_card_core1_regs_fifo2_reg_word86_mine = (card1_pci_slave2_pci_requests2_local_addr == 32);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word86_mine, card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word85_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word86_read_chain
@@ -3725,48 +3579,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = {16'h0, card1_card_core1_regs_fifo2_ramp_step};
+assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = card1_card_core1_regs_fifo2_reg_word86_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word86_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
-        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[16-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word86_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word86__store59_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_ramp_step <= 0;
-        card1_card_core1_regs_fifo2_reg_word86_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word86_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word86_mine_write))) begin
-            card1_card_core1_regs_fifo2_ramp_step <= card1_card_core1_regs_fifo2_reg_word86_honoured;
-            card1_card_core1_regs_fifo2_reg_word86_clamped <= card1_card_core1_regs_fifo2_reg_word86_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word87_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
+assign card1_card_core1_regs_fifo2_reg_word87_mine = (card1_pci_slave2_pci_requests2_local_addr == 36);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word87_mine, card1_card_core1_regs_fifo2_reg_word87_shown_wide, card1_card_core1_regs_fifo2_reg_word86_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word87_read_chain
@@ -3780,59 +3601,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word87_shown};
+assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = card1_card_core1_regs_fifo2_reg_word87_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word87_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word87_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
-        card1_card_core1_regs_fifo2_reg_word87_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word87_written = ((card1_card_core1_regs_fifo2_reg_word87_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word87_written) begin: card1_card_core1_regs_fifo2_reg_word87__limit60_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word87_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word87_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word87_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word87_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word87_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word87_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word87_honoured = card1_card_core1_regs_fifo2_reg_word87_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word87_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word87_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word87__store60_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word87_shown <= 1;
-        card1_card_core1_regs_fifo2_reg_word87_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word87_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word87_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word87_shown <= card1_card_core1_regs_fifo2_reg_word87_honoured;
-            card1_card_core1_regs_fifo2_reg_word87_clamped <= card1_card_core1_regs_fifo2_reg_word87_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word88_mine, card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_reg_word87_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word88_read_chain
@@ -3846,15 +3623,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word88_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word88_shown};
+assign card1_card_core1_regs_fifo2_reg_word88_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word88_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word88_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word88_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word88_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word88_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -3863,16 +3640,16 @@ always @(card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word88_written) begin: card1_card_core1_regs_fifo2_reg_word88__limit61_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word88_written) begin: card1_card_core1_regs_fifo2_reg_word88__limit61_clamp_unsigned
     card1_card_core1_regs_fifo2_reg_word88_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word88_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word88_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word88_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word88_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word88_honoured = 255;
+    else if (((card1_card_core1_regs_fifo2_reg_word88_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word88_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word88_honoured = 32768;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word88_honoured = card1_card_core1_regs_fifo2_reg_word88_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word88_honoured = card1_card_core1_regs_fifo2_reg_word88_written[16-1:0];
         card1_card_core1_regs_fifo2_reg_word88_out_of_range = 1'b0;
     end
 end
@@ -3884,12 +3661,12 @@ assign card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word88__store61_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word88_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word88_shown <= 4096;
         card1_card_core1_regs_fifo2_reg_word88_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word88_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word88_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word88_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word88_shown <= card1_card_core1_regs_fifo2_reg_word88_honoured;
             card1_card_core1_regs_fifo2_reg_word88_clamped <= card1_card_core1_regs_fifo2_reg_word88_out_of_range;
         end
@@ -3898,7 +3675,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word89_mine, card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_reg_word88_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word89_read_chain
@@ -3912,15 +3689,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word89_shown};
+assign card1_card_core1_regs_fifo2_reg_word89_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word89_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word89_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word89_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
         card1_card_core1_regs_fifo2_reg_word89_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -3929,16 +3706,16 @@ always @(card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word89_written) begin: card1_card_core1_regs_fifo2_reg_word89__limit62_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word89_written) begin: card1_card_core1_regs_fifo2_reg_word89__limit62_clamp_unsigned
     card1_card_core1_regs_fifo2_reg_word89_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word89_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word89_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word89_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word89_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word89_honoured = 255;
+    else if (((card1_card_core1_regs_fifo2_reg_word89_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word89_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word89_honoured = 32768;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word89_honoured = card1_card_core1_regs_fifo2_reg_word89_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word89_honoured = card1_card_core1_regs_fifo2_reg_word89_written[16-1:0];
         card1_card_core1_regs_fifo2_reg_word89_out_of_range = 1'b0;
     end
 end
@@ -3950,12 +3727,12 @@ assign card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word89__store62_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word89_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word89_shown <= 4096;
         card1_card_core1_regs_fifo2_reg_word89_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word89_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word89_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word89_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word89_shown <= card1_card_core1_regs_fifo2_reg_word89_honoured;
             card1_card_core1_regs_fifo2_reg_word89_clamped <= card1_card_core1_regs_fifo2_reg_word89_out_of_range;
         end
@@ -3964,7 +3741,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word90_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word90_mine, card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word89_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word90_read_chain
@@ -3978,25 +3755,25 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word90_shown};
+assign card1_card_core1_regs_fifo2_reg_word90_shown_wide = {16'h0, card1_card_core1_regs_fifo2_ramp_step};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word90_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word90_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word90_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word90_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word90_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word90_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
+        card1_card_core1_regs_fifo2_reg_word90_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word90_written = ((card1_card_core1_regs_fifo2_reg_word90_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word90_written = ((card1_card_core1_regs_fifo2_reg_word90_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_honoured = card1_card_core1_regs_fifo2_reg_word90_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word90_honoured = card1_card_core1_regs_fifo2_reg_word90_written[16-1:0];
 
 
 
@@ -4005,13 +3782,13 @@ assign card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word90__store63_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word90_shown <= 0;
+        card1_card_core1_regs_fifo2_ramp_step <= 0;
         card1_card_core1_regs_fifo2_reg_word90_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word90_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word90_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word90_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word90_shown <= card1_card_core1_regs_fifo2_reg_word90_honoured;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word90_mine_write))) begin
+            card1_card_core1_regs_fifo2_ramp_step <= card1_card_core1_regs_fifo2_reg_word90_honoured;
             card1_card_core1_regs_fifo2_reg_word90_clamped <= card1_card_core1_regs_fifo2_reg_word90_out_of_range;
         end
     end
@@ -4019,7 +3796,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_mine = (card1_pci_slave2_pci_requests2_local_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word91_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word91_mine, card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_reg_word90_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word91_read_chain
@@ -4033,15 +3810,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word91_shown};
+assign card1_card_core1_regs_fifo2_reg_word91_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word91_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word91_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word91_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
         card1_card_core1_regs_fifo2_reg_word91_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -4055,11 +3832,11 @@ always @(card1_card_core1_regs_fifo2_reg_word91_written) begin: card1_card_core1
     if (((card1_card_core1_regs_fifo2_reg_word91_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word91_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word91_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word91_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word91_honoured = 65535;
+    else if ((card1_card_core1_regs_fifo2_reg_word91_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word91_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word91_honoured = card1_card_core1_regs_fifo2_reg_word91_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word91_honoured = card1_card_core1_regs_fifo2_reg_word91_written[8-1:0];
         card1_card_core1_regs_fifo2_reg_word91_out_of_range = 1'b0;
     end
 end
@@ -4071,12 +3848,12 @@ assign card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word91__store64_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word91_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word91_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word91_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word91_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word91_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word91_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word91_shown <= card1_card_core1_regs_fifo2_reg_word91_honoured;
             card1_card_core1_regs_fifo2_reg_word91_clamped <= card1_card_core1_regs_fifo2_reg_word91_out_of_range;
         end
@@ -4085,7 +3862,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_pci_slave2_pci_requests2_local_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word92_mine, card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_reg_word91_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word92_read_chain
@@ -4099,15 +3876,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word92_shown};
+assign card1_card_core1_regs_fifo2_reg_word92_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word92_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word92_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word92_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
         card1_card_core1_regs_fifo2_reg_word92_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -4121,11 +3898,11 @@ always @(card1_card_core1_regs_fifo2_reg_word92_written) begin: card1_card_core1
     if (((card1_card_core1_regs_fifo2_reg_word92_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word92_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word92_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word92_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word92_honoured = 65535;
+    else if ((card1_card_core1_regs_fifo2_reg_word92_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word92_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written[8-1:0];
         card1_card_core1_regs_fifo2_reg_word92_out_of_range = 1'b0;
     end
 end
@@ -4137,12 +3914,12 @@ assign card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word92__store65_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word92_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word92_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word92_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word92_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word92_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word92_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word92_shown <= card1_card_core1_regs_fifo2_reg_word92_honoured;
             card1_card_core1_regs_fifo2_reg_word92_clamped <= card1_card_core1_regs_fifo2_reg_word92_out_of_range;
         end
@@ -4151,7 +3928,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word93_mine = (card1_pci_slave2_pci_requests2_local_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word93_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word93_mine, card1_card_core1_regs_fifo2_reg_word93_shown_wide, card1_card_core1_regs_fifo2_reg_word92_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word93_read_chain
@@ -4165,29 +3942,34 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word93_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word93_shown};
+assign card1_card_core1_regs_fifo2_reg_word93_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word93_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word93_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word93_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word93_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word93_written) begin: card1_card_core1_regs_fifo2_reg_word93__limit66_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word93_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word93_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word93_honoured = card1_card_core1_regs_fifo2_reg_word93_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word93_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word93_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b1;
+always @(card1_card_core1_regs_fifo2_reg_word93_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word93_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
+        card1_card_core1_regs_fifo2_reg_word93_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word93_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word93_written = ((card1_card_core1_regs_fifo2_reg_word93_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word93_written) begin: card1_card_core1_regs_fifo2_reg_word93__limit66_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word93_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word93_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word93_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word93_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word93_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word93_honoured = card1_card_core1_regs_fifo2_reg_word93_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b0;
     end
 end
 
@@ -4196,18 +3978,15 @@ end
 assign card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word93_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word93__store66_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word93__store66_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word93__store66_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word93_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word93_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word93_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word93_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word93__store66_word_value <= card1_card_core1_regs_fifo2_reg_word93_honoured;
-            card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe <= 1'b1;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word93_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_reg_word93_honoured;
             card1_card_core1_regs_fifo2_reg_word93_clamped <= card1_card_core1_regs_fifo2_reg_word93_out_of_range;
         end
     end
@@ -4215,7 +3994,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_mine = (card1_pci_slave2_pci_requests2_local_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word94_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word94_mine, card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_reg_word93_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word94_read_chain
@@ -4229,49 +4008,40 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word94_shown};
+assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word94_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word94_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word94_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word94_written) begin: card1_card_core1_regs_fifo2_reg_word94__limit67_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word94_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word94_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word94_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word94_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b1;
+always @(card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_reg_word94_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word94_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word94_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word94_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word94_written = ((card1_card_core1_regs_fifo2_reg_word94_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[2-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word94_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word94__store67_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word94__store67_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word94__store67_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word94_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word94_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word94_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word94_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word94__store67_word_value <= card1_card_core1_regs_fifo2_reg_word94_honoured;
-            card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe <= 1'b1;
+        if (((card1_card_core1_regs_fifo2_reg_word94_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word94_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_reg_word94_honoured;
             card1_card_core1_regs_fifo2_reg_word94_clamped <= card1_card_core1_regs_fifo2_reg_word94_out_of_range;
         end
     end
@@ -4279,7 +4049,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
+assign card1_card_core1_regs_fifo2_reg_word95_mine = (card1_pci_slave2_pci_requests2_local_addr == 68);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word95_mine, card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_reg_word94_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word95_read_chain
@@ -4293,15 +4063,59 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_shown_wide = card1_card_core1_regs_fifo2_reg_word95_shown;
+assign card1_card_core1_regs_fifo2_reg_word95_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word95_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word95_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word95_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+        card1_card_core1_regs_fifo2_reg_word95_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word95_written = ((card1_card_core1_regs_fifo2_reg_word95_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word95_written) begin: card1_card_core1_regs_fifo2_reg_word95__limit68_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word95_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word95_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word95_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word95_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word95_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word95_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word95_honoured = card1_card_core1_regs_fifo2_reg_word95_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word95_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
+assign card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word95_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word95__store68_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word95_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word95_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word95_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word95_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word95_shown <= card1_card_core1_regs_fifo2_reg_word95_honoured;
+            card1_card_core1_regs_fifo2_reg_word95_clamped <= card1_card_core1_regs_fifo2_reg_word95_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96_mine = (card1_pci_slave2_pci_requests2_local_addr == 72);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word96_mine, card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_reg_word95_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word96_read_chain
@@ -4319,11 +4133,55 @@ assign card1_card_core1_regs_fifo2_reg_word96_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word96_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word96_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
+        card1_card_core1_regs_fifo2_reg_word96_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word96_written = ((card1_card_core1_regs_fifo2_reg_word96_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word96_written) begin: card1_card_core1_regs_fifo2_reg_word96__limit69_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word96_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word96_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word96_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word96_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word96_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word96_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word96_honoured = card1_card_core1_regs_fifo2_reg_word96_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word96_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
+assign card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word96_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word96__store69_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word96_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word96_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word96_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word96_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word96_shown <= card1_card_core1_regs_fifo2_reg_word96_honoured;
+            card1_card_core1_regs_fifo2_reg_word96_clamped <= card1_card_core1_regs_fifo2_reg_word96_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97_mine = (card1_pci_slave2_pci_requests2_local_addr == 76);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word97_mine, card1_card_core1_regs_fifo2_reg_word97_shown_wide, card1_card_core1_regs_fifo2_reg_word96_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word97_read_chain
@@ -4337,15 +4195,57 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word97_shown};
+assign card1_card_core1_regs_fifo2_reg_word97_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word97_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word97_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_mine = (card1_pci_slave2_pci_requests2_local_addr == 96);
+assign card1_card_core1_regs_fifo2_reg_word97_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word97_written) begin: card1_card_core1_regs_fifo2_reg_word97__limit70_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word97_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word97_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word97_honoured = card1_card_core1_regs_fifo2_reg_word97_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word97_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word97_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word97_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word97_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word97__store70_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word97__store70_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word97_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word97_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word97_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word97__store70_word_value <= card1_card_core1_regs_fifo2_reg_word97_honoured;
+            card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word97_clamped <= card1_card_core1_regs_fifo2_reg_word97_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word98_mine = (card1_pci_slave2_pci_requests2_local_addr == 80);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word98_mine, card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word97_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word98_read_chain
@@ -4359,40 +4259,49 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_shown_wide = {30'h0, card1_card_core1_regs_fifo2_machine_control};
+assign card1_card_core1_regs_fifo2_reg_word98_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word98_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_mine_write = (card1_card_core1_regs_fifo2_written_addr == 96);
+assign card1_card_core1_regs_fifo2_reg_word98_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word98_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word98_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word98_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word98_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word98_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word98_written) begin: card1_card_core1_regs_fifo2_reg_word98__limit71_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word98_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word98_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_fifo2_reg_word98_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word98_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word98_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'b1;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word98_written = ((card1_card_core1_regs_fifo2_reg_word98_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word98_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'b1;
     end
 end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_fifo2_reg_word98_written[2-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word98_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word98__store68_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word98__store71_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_machine_control <= 0;
+        card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word98__store71_word_value <= 0;
         card1_card_core1_regs_fifo2_reg_word98_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word98_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word98_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word98_mine_write))) begin
-            card1_card_core1_regs_fifo2_machine_control <= card1_card_core1_regs_fifo2_reg_word98_honoured;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word98_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word98__store71_word_value <= card1_card_core1_regs_fifo2_reg_word98_honoured;
+            card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word98_clamped <= card1_card_core1_regs_fifo2_reg_word98_out_of_range;
         end
     end
@@ -4400,7 +4309,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_mine = (card1_pci_slave2_pci_requests2_local_addr == 100);
+assign card1_card_core1_regs_fifo2_reg_word99_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word99_mine, card1_card_core1_regs_fifo2_reg_word99_shown_wide, card1_card_core1_regs_fifo2_reg_word98_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word99_read_chain
@@ -4414,7 +4323,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_shown_wide = {12'h0, card1_card_core1_regs_fifo2_reg_word99_shown};
+assign card1_card_core1_regs_fifo2_reg_word99_shown_wide = card1_card_core1_regs_fifo2_reg_word99_shown;
 
 
 
@@ -4422,7 +4331,7 @@ assign card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_mine = (card1_pci_slave2_pci_requests2_local_addr == 104);
+assign card1_card_core1_regs_fifo2_reg_word100_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word100_mine, card1_card_core1_regs_fifo2_reg_word100_shown_wide, card1_card_core1_regs_fifo2_reg_word99_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word100_read_chain
@@ -4436,7 +4345,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word100_shown};
+assign card1_card_core1_regs_fifo2_reg_word100_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word100_shown};
 
 
 
@@ -4444,7 +4353,7 @@ assign card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_mine = (card1_pci_slave2_pci_requests2_local_addr == 108);
+assign card1_card_core1_regs_fifo2_reg_word101_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word101_mine, card1_card_core1_regs_fifo2_reg_word101_shown_wide, card1_card_core1_regs_fifo2_reg_word100_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word101_read_chain
@@ -4458,48 +4367,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word101_shown};
+assign card1_card_core1_regs_fifo2_reg_word101_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word101_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_mine_write = (card1_card_core1_regs_fifo2_written_addr == 108);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word101_shown_wide, card1_card_core1_regs_fifo2_reg_word101_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word101_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word101_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word101_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word101_written = ((card1_card_core1_regs_fifo2_reg_word101_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_honoured = card1_card_core1_regs_fifo2_reg_word101_written[7-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word101_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word101__store69_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word101_shown <= 0;
-        card1_card_core1_regs_fifo2_reg_word101_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word101_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word101_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word101_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word101_shown <= card1_card_core1_regs_fifo2_reg_word101_honoured;
-            card1_card_core1_regs_fifo2_reg_word101_clamped <= card1_card_core1_regs_fifo2_reg_word101_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word102_mine = (card1_pci_slave2_pci_requests2_local_addr == 112);
+assign card1_card_core1_regs_fifo2_reg_word102_mine = (card1_pci_slave2_pci_requests2_local_addr == 96);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word102_mine, card1_card_core1_regs_fifo2_reg_word102_shown_wide, card1_card_core1_regs_fifo2_reg_word101_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word102_read_chain
@@ -4513,51 +4389,40 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word102_shown};
+assign card1_card_core1_regs_fifo2_reg_word102_shown_wide = {30'h0, card1_card_core1_regs_fifo2_machine_control};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_mine_write = (card1_card_core1_regs_fifo2_written_addr == 112);
+assign card1_card_core1_regs_fifo2_reg_word102_mine_write = (card1_card_core1_regs_fifo2_written_addr == 96);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word102_shown_wide, card1_card_core1_regs_fifo2_reg_word102_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word102_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word102_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word102_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+        card1_card_core1_regs_fifo2_reg_word102_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word102_written = ((card1_card_core1_regs_fifo2_reg_word102_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word102_written = ((card1_card_core1_regs_fifo2_reg_word102_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word102_written) begin: card1_card_core1_regs_fifo2_reg_word102__limit70_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word102_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word102_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word102_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word102_written[32-1:4] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word102_honoured = 15;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word102_honoured = card1_card_core1_regs_fifo2_reg_word102_written[4-1:0];
-        card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word102_honoured = card1_card_core1_regs_fifo2_reg_word102_written[2-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word102_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word102__store70_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word102__store72_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word102_shown <= 3;
+        card1_card_core1_regs_fifo2_machine_control <= 0;
         card1_card_core1_regs_fifo2_reg_word102_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word102_clamped <= 1'b0;
         if (((card1_card_core1_regs_fifo2_reg_word102_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word102_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word102_shown <= card1_card_core1_regs_fifo2_reg_word102_honoured;
+            card1_card_core1_regs_fifo2_machine_control <= card1_card_core1_regs_fifo2_reg_word102_honoured;
             card1_card_core1_regs_fifo2_reg_word102_clamped <= card1_card_core1_regs_fifo2_reg_word102_out_of_range;
         end
     end
@@ -4565,7 +4430,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word103_mine = (card1_pci_slave2_pci_requests2_local_addr == 116);
+assign card1_card_core1_regs_fifo2_reg_word103_mine = (card1_pci_slave2_pci_requests2_local_addr == 100);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word103_mine, card1_card_core1_regs_fifo2_reg_word103_shown_wide, card1_card_core1_regs_fifo2_reg_word102_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word103_read_chain
@@ -4579,59 +4444,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word103_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word103_shown};
+assign card1_card_core1_regs_fifo2_reg_word103_shown_wide = {12'h0, card1_card_core1_regs_fifo2_reg_word103_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word103_mine_write = (card1_card_core1_regs_fifo2_written_addr == 116);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word103_shown_wide, card1_card_core1_regs_fifo2_reg_word103_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word103_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word103_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word103_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word103_written = ((card1_card_core1_regs_fifo2_reg_word103_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word103_written) begin: card1_card_core1_regs_fifo2_reg_word103__limit71_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word103_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word103_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word103_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word103_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word103_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word103_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word103_honoured = card1_card_core1_regs_fifo2_reg_word103_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word103_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word103_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word103__store71_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word103_shown <= 1;
-        card1_card_core1_regs_fifo2_reg_word103_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word103_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word103_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word103_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word103_shown <= card1_card_core1_regs_fifo2_reg_word103_honoured;
-            card1_card_core1_regs_fifo2_reg_word103_clamped <= card1_card_core1_regs_fifo2_reg_word103_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word104_mine = (card1_pci_slave2_pci_requests2_local_addr == 120);
+assign card1_card_core1_regs_fifo2_reg_word104_mine = (card1_pci_slave2_pci_requests2_local_addr == 104);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word104_mine, card1_card_core1_regs_fifo2_reg_word104_shown_wide, card1_card_core1_regs_fifo2_reg_word103_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word104_read_chain
@@ -4645,45 +4466,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word104_shown};
+assign card1_card_core1_regs_fifo2_reg_word104_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word104_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_mine_write = (card1_card_core1_regs_fifo2_written_addr == 120);
+assign card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_written = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word104_honoured = card1_card_core1_regs_fifo2_reg_word104_written[24-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word104_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word104__store72_pulse_on_write
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word104__store72_word_value <= 0;
-        card1_card_core1_regs_fifo2_reg_word104_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word104_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word104_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word104__store72_word_value <= card1_card_core1_regs_fifo2_reg_word104_honoured;
-            card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word104_clamped <= card1_card_core1_regs_fifo2_reg_word104_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word105_mine = (card1_pci_slave2_pci_requests2_local_addr == 124);
+assign card1_card_core1_regs_fifo2_reg_word105_mine = (card1_pci_slave2_pci_requests2_local_addr == 108);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word105_mine, card1_card_core1_regs_fifo2_reg_word105_shown_wide, card1_card_core1_regs_fifo2_reg_word104_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word105_read_chain
@@ -4697,37 +4488,40 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word105_shown};
+assign card1_card_core1_regs_fifo2_reg_word105_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word105_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_mine_write = (card1_card_core1_regs_fifo2_written_addr == 124);
+assign card1_card_core1_regs_fifo2_reg_word105_mine_write = (card1_card_core1_regs_fifo2_written_addr == 108);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word105_shown_wide, card1_card_core1_regs_fifo2_reg_word105_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word105_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word105_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word105_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word105_written = ((card1_card_core1_regs_fifo2_reg_word105_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_written = (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word105_honoured = card1_card_core1_regs_fifo2_reg_word105_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word105_honoured = card1_card_core1_regs_fifo2_reg_word105_written[7-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word105_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word105__store73_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word105__store73_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word105__store73_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word105_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word105_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word105_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word105_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word105__store73_word_value <= card1_card_core1_regs_fifo2_reg_word105_honoured;
-            card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe <= 1'b1;
+        if (((card1_card_core1_regs_fifo2_reg_word105_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word105_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word105_shown <= card1_card_core1_regs_fifo2_reg_word105_honoured;
             card1_card_core1_regs_fifo2_reg_word105_clamped <= card1_card_core1_regs_fifo2_reg_word105_out_of_range;
         end
     end
@@ -4735,7 +4529,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_mine = (card1_pci_slave2_pci_requests2_local_addr == 128);
+assign card1_card_core1_regs_fifo2_reg_word106_mine = (card1_pci_slave2_pci_requests2_local_addr == 112);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word106_mine, card1_card_core1_regs_fifo2_reg_word106_shown_wide, card1_card_core1_regs_fifo2_reg_word105_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word106_read_chain
@@ -4749,15 +4543,59 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_shown_wide = {26'h0, card1_card_core1_regs_fifo2_reg_word106_shown};
+assign card1_card_core1_regs_fifo2_reg_word106_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word106_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word106_mine_write = (card1_card_core1_regs_fifo2_written_addr == 112);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word106_shown_wide, card1_card_core1_regs_fifo2_reg_word106_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word106_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word106_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word106_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word106_written = ((card1_card_core1_regs_fifo2_reg_word106_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word106_written) begin: card1_card_core1_regs_fifo2_reg_word106__limit74_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word106_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word106_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word106_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word106_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word106_written[32-1:4] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word106_honoured = 15;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word106_honoured = card1_card_core1_regs_fifo2_reg_word106_written[4-1:0];
+        card1_card_core1_regs_fifo2_reg_word106_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word107_mine = (card1_pci_slave2_pci_requests2_local_addr == 132);
+assign card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word106_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word106__store74_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word106_shown <= 3;
+        card1_card_core1_regs_fifo2_reg_word106_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word106_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word106_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word106_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word106_shown <= card1_card_core1_regs_fifo2_reg_word106_honoured;
+            card1_card_core1_regs_fifo2_reg_word106_clamped <= card1_card_core1_regs_fifo2_reg_word106_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word107_mine = (card1_pci_slave2_pci_requests2_local_addr == 116);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word107_mine, card1_card_core1_regs_fifo2_reg_word107_shown_wide, card1_card_core1_regs_fifo2_reg_word106_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word107_read_chain
@@ -4775,7 +4613,7 @@ assign card1_card_core1_regs_fifo2_reg_word107_shown_wide = {16'h0, card1_card_c
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word107_mine_write = (card1_card_core1_regs_fifo2_written_addr == 132);
+assign card1_card_core1_regs_fifo2_reg_word107_mine_write = (card1_card_core1_regs_fifo2_written_addr == 116);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word107_shown_wide, card1_card_core1_regs_fifo2_reg_word107_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word107_merge_bytes
@@ -4788,7 +4626,7 @@ always @(card1_card_core1_regs_fifo2_reg_word107_shown_wide, card1_card_core1_re
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word107_written) begin: card1_card_core1_regs_fifo2_reg_word107__limit74_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word107_written) begin: card1_card_core1_regs_fifo2_reg_word107__limit75_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word107_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word107_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word107_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word107_honoured = 1;
@@ -4807,9 +4645,9 @@ end
 assign card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word107_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word107__store74_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word107__store75_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word107_shown <= 100;
+        card1_card_core1_regs_fifo2_reg_word107_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word107_clamped <= 0;
     end
     else begin
@@ -4823,7 +4661,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word108_mine = (card1_pci_slave2_pci_requests2_local_addr == 136);
+assign card1_card_core1_regs_fifo2_reg_word108_mine = (card1_pci_slave2_pci_requests2_local_addr == 120);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word108_mine, card1_card_core1_regs_fifo2_reg_word108_shown_wide, card1_card_core1_regs_fifo2_reg_word107_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word108_read_chain
@@ -4837,51 +4675,37 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word108_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word108_shown};
+assign card1_card_core1_regs_fifo2_reg_word108_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word108_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word108_mine_write = (card1_card_core1_regs_fifo2_written_addr == 136);
+assign card1_card_core1_regs_fifo2_reg_word108_mine_write = (card1_card_core1_regs_fifo2_written_addr == 120);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word108_shown_wide, card1_card_core1_regs_fifo2_reg_word108_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word108_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word108_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word108_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word108_written = ((card1_card_core1_regs_fifo2_reg_word108_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word108_written = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word108_written) begin: card1_card_core1_regs_fifo2_reg_word108__limit75_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word108_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word108_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word108_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word108_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word108_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word108_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word108_honoured = card1_card_core1_regs_fifo2_reg_word108_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word108_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word108_honoured = card1_card_core1_regs_fifo2_reg_word108_written[24-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word108_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word108__store75_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word108__store76_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word108_shown <= 1000;
+        card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word108__store76_word_value <= 0;
         card1_card_core1_regs_fifo2_reg_word108_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word108_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word108_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word108_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word108_shown <= card1_card_core1_regs_fifo2_reg_word108_honoured;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word108_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word108__store76_word_value <= card1_card_core1_regs_fifo2_reg_word108_honoured;
+            card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word108_clamped <= card1_card_core1_regs_fifo2_reg_word108_out_of_range;
         end
     end
@@ -4889,7 +4713,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_mine = (card1_pci_slave2_pci_requests2_local_addr == 140);
+assign card1_card_core1_regs_fifo2_reg_word109_mine = (card1_pci_slave2_pci_requests2_local_addr == 124);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word109_mine, card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word108_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word109_read_chain
@@ -4903,40 +4727,37 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word109_shown};
+assign card1_card_core1_regs_fifo2_reg_word109_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word109_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_mine_write = (card1_card_core1_regs_fifo2_written_addr == 140);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word109_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word109_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word109_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word109_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word109_written = ((card1_card_core1_regs_fifo2_reg_word109_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word109_mine_write = (card1_card_core1_regs_fifo2_written_addr == 124);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_written[16-1:0];
+assign card1_card_core1_regs_fifo2_reg_word109_written = (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_written[2-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word109_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word109__store76_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word109__store77_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word109_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word109__store77_word_value <= 0;
         card1_card_core1_regs_fifo2_reg_word109_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word109_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word109_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word109_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word109_shown <= card1_card_core1_regs_fifo2_reg_word109_honoured;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word109_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word109__store77_word_value <= card1_card_core1_regs_fifo2_reg_word109_honoured;
+            card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word109_clamped <= card1_card_core1_regs_fifo2_reg_word109_out_of_range;
         end
     end
@@ -4944,66 +4765,407 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_mine = (card1_pci_slave2_pci_requests2_local_addr == 144);
+assign card1_card_core1_regs_fifo2_reg_word110_mine = (card1_pci_slave2_pci_requests2_local_addr == 128);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word110_mine, card1_card_core1_regs_fifo2_reg_word110_shown_wide, card1_card_core1_regs_fifo2_reg_word109_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word110_read_chain
     if (card1_card_core1_regs_fifo2_reg_word110_mine) begin
-        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word109_chain_out_data | card1_card_core1_regs_fifo2_reg_word110_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word110_chain_out_data = (card1_card_core1_regs_fifo2_reg_word109_chain_out_data | card1_card_core1_regs_fifo2_reg_word110_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word109_chain_out_data;
+        card1_card_core1_regs_fifo2_reg_word110_chain_out_data = card1_card_core1_regs_fifo2_reg_word109_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_shown_wide = {9'h0, card1_card_core1_regs_fifo2_reg_word110_shown};
+assign card1_card_core1_regs_fifo2_reg_word110_shown_wide = {26'h0, card1_card_core1_regs_fifo2_reg_word110_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_mine_write = (card1_card_core1_regs_fifo2_written_addr == 144);
+assign card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped;
 
 
-always @(card1_card_core1_regs_fifo2_reg_word110_shown_wide, card1_card_core1_regs_fifo2_reg_word110_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word110_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word110_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word110_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word111_mine = (card1_pci_slave2_pci_requests2_local_addr == 132);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word111_mine, card1_card_core1_regs_fifo2_reg_word111_shown_wide, card1_card_core1_regs_fifo2_reg_word110_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word111_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word111_mine) begin
+        card1_card_core1_regs_fifo2_reg_word111_chain_out_data = (card1_card_core1_regs_fifo2_reg_word110_chain_out_data | card1_card_core1_regs_fifo2_reg_word111_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word110_written = ((card1_card_core1_regs_fifo2_reg_word110_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word110_written) begin: card1_card_core1_regs_fifo2_reg_word110__limit77_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word110_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word110_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word110_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word110_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word110_written[32-1:23] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word110_honoured = 8388607;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word110_honoured = card1_card_core1_regs_fifo2_reg_word110_written[23-1:0];
-        card1_card_core1_regs_fifo2_reg_word110_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word111_chain_out_data = card1_card_core1_regs_fifo2_reg_word110_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word110_clamped);
+assign card1_card_core1_regs_fifo2_reg_word111_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word111_shown};
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word110__store77_hold_rw
+
+assign card1_card_core1_regs_fifo2_reg_word111_mine_write = (card1_card_core1_regs_fifo2_written_addr == 132);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word111_shown_wide, card1_card_core1_regs_fifo2_reg_word111_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word111_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word111_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word111_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word111_written = ((card1_card_core1_regs_fifo2_reg_word111_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word111_written) begin: card1_card_core1_regs_fifo2_reg_word111__limit78_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word111_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word111_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word111_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word111_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word111_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word111_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word111_honoured = card1_card_core1_regs_fifo2_reg_word111_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word111_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word111_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word111_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word111__store78_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word110_shown <= 65535;
-        card1_card_core1_regs_fifo2_reg_word110_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word111_shown <= 100;
+        card1_card_core1_regs_fifo2_reg_word111_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word110_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word110_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word110_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word110_shown <= card1_card_core1_regs_fifo2_reg_word110_honoured;
-            card1_card_core1_regs_fifo2_reg_word110_clamped <= card1_card_core1_regs_fifo2_reg_word110_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word111_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word111_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word111_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word111_shown <= card1_card_core1_regs_fifo2_reg_word111_honoured;
+            card1_card_core1_regs_fifo2_reg_word111_clamped <= card1_card_core1_regs_fifo2_reg_word111_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word112_mine = (card1_pci_slave2_pci_requests2_local_addr == 136);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word112_mine, card1_card_core1_regs_fifo2_reg_word112_shown_wide, card1_card_core1_regs_fifo2_reg_word111_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word112_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word112_mine) begin
+        card1_card_core1_regs_fifo2_reg_word112_chain_out_data = (card1_card_core1_regs_fifo2_reg_word111_chain_out_data | card1_card_core1_regs_fifo2_reg_word112_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word112_chain_out_data = card1_card_core1_regs_fifo2_reg_word111_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word112_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word112_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word112_mine_write = (card1_card_core1_regs_fifo2_written_addr == 136);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word112_shown_wide, card1_card_core1_regs_fifo2_reg_word112_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word112_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word112_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word112_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word112_written = ((card1_card_core1_regs_fifo2_reg_word112_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word112_written) begin: card1_card_core1_regs_fifo2_reg_word112__limit79_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word112_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word112_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word112_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word112_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word112_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word112_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word112_honoured = card1_card_core1_regs_fifo2_reg_word112_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word112_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word111_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word112_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word112__store79_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word112_shown <= 1000;
+        card1_card_core1_regs_fifo2_reg_word112_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word112_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word112_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word112_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word112_shown <= card1_card_core1_regs_fifo2_reg_word112_honoured;
+            card1_card_core1_regs_fifo2_reg_word112_clamped <= card1_card_core1_regs_fifo2_reg_word112_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word113_mine = (card1_pci_slave2_pci_requests2_local_addr == 140);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word113_mine, card1_card_core1_regs_fifo2_reg_word113_shown_wide, card1_card_core1_regs_fifo2_reg_word112_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word113_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word113_mine) begin
+        card1_card_core1_regs_fifo2_reg_word113_chain_out_data = (card1_card_core1_regs_fifo2_reg_word112_chain_out_data | card1_card_core1_regs_fifo2_reg_word113_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word113_chain_out_data = card1_card_core1_regs_fifo2_reg_word112_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word113_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word113_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word113_mine_write = (card1_card_core1_regs_fifo2_written_addr == 140);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word113_shown_wide, card1_card_core1_regs_fifo2_reg_word113_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word113_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word113_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word113_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word113_written = ((card1_card_core1_regs_fifo2_reg_word113_shown_wide[16-1:0] & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word113_honoured = card1_card_core1_regs_fifo2_reg_word113_written[16-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word113_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word113_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word113__store80_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word113_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word113_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word113_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word113_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word113_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word113_shown <= card1_card_core1_regs_fifo2_reg_word113_honoured;
+            card1_card_core1_regs_fifo2_reg_word113_clamped <= card1_card_core1_regs_fifo2_reg_word113_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word114_mine = (card1_pci_slave2_pci_requests2_local_addr == 144);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word114_mine, card1_card_core1_regs_fifo2_reg_word114_shown_wide, card1_card_core1_regs_fifo2_reg_word113_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word114_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word114_mine) begin
+        card1_card_core1_regs_fifo2_reg_word114_chain_out_data = (card1_card_core1_regs_fifo2_reg_word113_chain_out_data | card1_card_core1_regs_fifo2_reg_word114_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word114_chain_out_data = card1_card_core1_regs_fifo2_reg_word113_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word114_shown_wide = {9'h0, card1_card_core1_regs_fifo2_reg_word114_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word114_mine_write = (card1_card_core1_regs_fifo2_written_addr == 144);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word114_shown_wide, card1_card_core1_regs_fifo2_reg_word114_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word114_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word114_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word114_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word114_written = ((card1_card_core1_regs_fifo2_reg_word114_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word114_written) begin: card1_card_core1_regs_fifo2_reg_word114__limit81_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word114_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word114_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word114_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word114_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word114_written[32-1:23] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word114_honoured = 8388607;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word114_honoured = card1_card_core1_regs_fifo2_reg_word114_written[23-1:0];
+        card1_card_core1_regs_fifo2_reg_word114_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word114_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word113_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word114_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word114__store81_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word114_shown <= 65535;
+        card1_card_core1_regs_fifo2_reg_word114_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word114_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word114_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word114_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word114_shown <= card1_card_core1_regs_fifo2_reg_word114_honoured;
+            card1_card_core1_regs_fifo2_reg_word114_clamped <= card1_card_core1_regs_fifo2_reg_word114_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word115_mine = (card1_pci_slave2_pci_requests2_local_addr == 148);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word115_mine, card1_card_core1_regs_fifo2_reg_word115_shown_wide, card1_card_core1_regs_fifo2_reg_word114_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word115_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word115_mine) begin
+        card1_card_core1_regs_fifo2_reg_word115_chain_out_data = (card1_card_core1_regs_fifo2_reg_word114_chain_out_data | card1_card_core1_regs_fifo2_reg_word115_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word115_chain_out_data = card1_card_core1_regs_fifo2_reg_word114_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word115_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word115_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word115_mine_write = (card1_card_core1_regs_fifo2_written_addr == 148);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word115_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word115_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 8))) begin
+        card1_card_core1_regs_fifo2_reg_word115_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word115_written = ((card1_card_core1_regs_fifo2_reg_word115_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word115_written) begin: card1_card_core1_regs_fifo2_reg_word115__limit82_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word115_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word115_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word115_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word115_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word115_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word115_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word115_honoured = card1_card_core1_regs_fifo2_reg_word115_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word115_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word115_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word114_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word115_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word115__store82_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word115_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word115_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word115_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 8)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word115_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word115_shown <= card1_card_core1_regs_fifo2_reg_word115_honoured;
+            card1_card_core1_regs_fifo2_reg_word115_clamped <= card1_card_core1_regs_fifo2_reg_word115_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word116_mine = (card1_pci_slave2_pci_requests2_local_addr == 152);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word116_mine, card1_card_core1_regs_fifo2_reg_word116_shown_wide, card1_card_core1_regs_fifo2_reg_word115_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word116_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word116_mine) begin
+        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word115_chain_out_data | card1_card_core1_regs_fifo2_reg_word116_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word115_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word116_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word116_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word116_mine_write = (card1_card_core1_regs_fifo2_written_addr == 152);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word116_shown_wide, card1_card_core1_regs_fifo2_reg_word116_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word116_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word116_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word116_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word116_written = ((card1_card_core1_regs_fifo2_reg_word116_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word116_written) begin: card1_card_core1_regs_fifo2_reg_word116__limit83_clamp_unsigned
+    card1_card_core1_regs_fifo2_reg_word116_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word116_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word116_written[1-1:0] < 0))) begin
+        card1_card_core1_regs_fifo2_reg_word116_honoured = 0;
+    end
+    else if (((card1_card_core1_regs_fifo2_reg_word116_written[32-1:2] != 0) || (card1_card_core1_regs_fifo2_reg_word116_written[2-1:0] > 2))) begin
+        card1_card_core1_regs_fifo2_reg_word116_honoured = 2;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word116_honoured = card1_card_core1_regs_fifo2_reg_word116_written[2-1:0];
+        card1_card_core1_regs_fifo2_reg_word116_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word115_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word116_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word116__store83_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word116_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word116_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word116_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word116_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word116_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word116_shown <= card1_card_core1_regs_fifo2_reg_word116_honoured;
+            card1_card_core1_regs_fifo2_reg_word116_clamped <= card1_card_core1_regs_fifo2_reg_word116_out_of_range;
         end
     end
 end
@@ -5203,7 +5365,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
         5: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
         6: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
         7: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
-        8: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
         9: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
         10: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
         11: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
@@ -5506,13 +5668,13 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
         card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word84_shown;
-        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word85_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word88_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word89_shown;
         card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_ramp_step;
         card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_ramp_step == 0);
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word84_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_ramp_step}));
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word84_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word85_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
+        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word88_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_ramp_step}));
+        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word88_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
+        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word89_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
     end
 end
 
@@ -5641,9 +5803,9 @@ end
 assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending || card1_card_core1_regs_fifo2_direct_request_x);
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count, card1_card_core1_regs_fifo2_reg_word93_shown) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count, card1_card_core1_regs_fifo2_reg_word97_shown) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
     if ((!card1_card_core1_regs_fifo2_direct_pulse4_command_load)) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word93_shown;
+        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word97_shown;
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
     end
     else if ((card1_card_core1_regs_fifo2_direct_pulse4_command_count < 0)) begin
@@ -5677,18 +5839,18 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_dir_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
-        card1_card_core1_regs_fifo2_reg_word93_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word97_shown <= 0;
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         if (card1_card_core1_regs_fifo2_direct_clear) begin
-            card1_card_core1_regs_fifo2_reg_word93_shown <= 0;
+            card1_card_core1_regs_fifo2_reg_word97_shown <= 0;
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_command_load) begin
-            card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+            card1_card_core1_regs_fifo2_reg_word97_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
             card1_card_core1_regs_fifo2_direct_dir_x <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count >= 0);
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
@@ -5701,8 +5863,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             end
             else if (card1_card_core1_regs_fifo2_direct_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_x <= 1;
-                card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
-                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word93_shown != 1);
+                card1_card_core1_regs_fifo2_reg_word97_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word97_shown != 1);
                 card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_direct_pulse4_command_period != 1);
             end
@@ -5715,9 +5877,9 @@ end
 assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending || card1_card_core1_regs_fifo2_direct_request_y);
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count, card1_card_core1_regs_fifo2_reg_word94_shown) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count, card1_card_core1_regs_fifo2_reg_word98_shown) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
     if ((!card1_card_core1_regs_fifo2_direct_pulse5_command_load)) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word94_shown;
+        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word98_shown;
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
     end
     else if ((card1_card_core1_regs_fifo2_direct_pulse5_command_count < 0)) begin
@@ -5751,18 +5913,18 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_dir_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
-        card1_card_core1_regs_fifo2_reg_word94_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word98_shown <= 0;
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         if (card1_card_core1_regs_fifo2_direct_clear) begin
-            card1_card_core1_regs_fifo2_reg_word94_shown <= 0;
+            card1_card_core1_regs_fifo2_reg_word98_shown <= 0;
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_command_load) begin
-            card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+            card1_card_core1_regs_fifo2_reg_word98_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
             card1_card_core1_regs_fifo2_direct_dir_y <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count >= 0);
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
@@ -5775,8 +5937,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             end
             else if (card1_card_core1_regs_fifo2_direct_ready) begin
                 card1_card_core1_regs_fifo2_direct_request_y <= 1;
-                card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
-                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word94_shown != 1);
+                card1_card_core1_regs_fifo2_reg_word98_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word98_shown != 1);
                 card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_command_period != 1);
             end
@@ -5787,19 +5949,19 @@ end
 
 
 assign card1_card_core1_regs_fifo2_out_ready = ($signed({1'b0, card1_card_core1_regs_fifo2_pulse_out2_count}) <= (4 - 2));
-assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) || (card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b00) || motor_step_x || motor_step_y);
+assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) || (card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b00) || card1_card_core1_regs_fifo2_pulse_out2_pulse_x || card1_card_core1_regs_fifo2_pulse_out2_pulse_y);
 
 
 
 assign card1_card_core1_regs_fifo2_pulse_out2_head = card1_card_core1_regs_fifo2_pulse_out2_queue[0];
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_reg_word88_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_reg_word87_shown, card1_card_core1_regs_fifo2_pulse_clear) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_reg_word92_shown, card1_card_core1_regs_fifo2_reg_word115_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_clear) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
     card1_card_core1_regs_fifo2_pulse_out2_turn = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) && ((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
     card1_card_core1_regs_fifo2_pulse_out2_take = 1'b0;
-    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_regs_fifo2_pulse_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word87_shown))) begin
+    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_regs_fifo2_pulse_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word115_shown))) begin
         if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b01)) begin
-            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word88_shown);
+            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word92_shown);
         end
         else if ((card1_card_core1_regs_fifo2_pulse_out2_count != 0)) begin
             card1_card_core1_regs_fifo2_pulse_out2_take = (!((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
@@ -5808,9 +5970,9 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_r
 end
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_reg_word87_shown, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_take, card1_card_core1_regs_fifo2_reg_word89_shown) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
-    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word89_shown)));
-    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word87_shown));
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_reg_word91_shown, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_take, card1_card_core1_regs_fifo2_reg_word93_shown) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
+    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word93_shown)));
+    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word91_shown));
     card1_card_core1_regs_fifo2_pulse_out2_phase_step = 0;
     if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks != 255)) begin
         card1_card_core1_regs_fifo2_pulse_out2_phase_step = 1;
@@ -5934,20 +6096,76 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_re
 end
 
 
+always @(card1_card_core1_regs_fifo2_reg_word94_shown[1], card1_card_core1_regs_fifo2_reg_word94_shown[0], card1_card_core1_regs_fifo2_pulse_out2_level_y, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_quad_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_pulse_out2_pulse_x, card1_card_core1_regs_fifo2_pulse_out2_level_x, card1_card_core1_regs_fifo2_pulse_out2_quad_y, card1_card_core1_regs_fifo2_pulse_out2_pulse_y) begin: card1_card_core1_regs_fifo2_pulse_out2_pin_direction
+    card1_card_core1_regs_fifo2_pulse_out2_up_x = (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word94_shown[0]);
+    card1_card_core1_regs_fifo2_pulse_out2_up_y = (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word94_shown[1]);
+    card1_card_core1_regs_fifo2_pulse_out2_quad_next_x = card1_card_core1_regs_fifo2_pulse_out2_quad_x;
+    if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_x))) begin
+        if ((card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word94_shown[0])) begin
+            card1_card_core1_regs_fifo2_pulse_out2_quad_next_x = (card1_card_core1_regs_fifo2_pulse_out2_quad_x + 1);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_pulse_out2_quad_next_x = (card1_card_core1_regs_fifo2_pulse_out2_quad_x - 1);
+        end
+    end
+    card1_card_core1_regs_fifo2_pulse_out2_quad_next_y = card1_card_core1_regs_fifo2_pulse_out2_quad_y;
+    if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_y))) begin
+        if ((card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word94_shown[1])) begin
+            card1_card_core1_regs_fifo2_pulse_out2_quad_next_y = (card1_card_core1_regs_fifo2_pulse_out2_quad_y + 1);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_pulse_out2_quad_next_y = (card1_card_core1_regs_fifo2_pulse_out2_quad_y - 1);
+        end
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_drive_pins
     if (reset == 0) begin
         motor_step_x <= 0;
         motor_dir_x <= 0;
         motor_dir_y <= 0;
-        card1_card_core1_regs_fifo2_position_y <= 0;
-        card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_quad_x <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_pulse_x <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_quad_y <= 0;
         motor_step_y <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_pulse_y <= 0;
     end
     else begin
-        motor_step_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
-        motor_step_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
-        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word90_shown[0]);
-        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word90_shown[1]);
+        card1_card_core1_regs_fifo2_pulse_out2_pulse_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
+        card1_card_core1_regs_fifo2_pulse_out2_pulse_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
+        card1_card_core1_regs_fifo2_pulse_out2_quad_x <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_x;
+        card1_card_core1_regs_fifo2_pulse_out2_quad_y <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_y;
+        case (card1_card_core1_regs_fifo2_reg_word116_shown)
+            'h1: begin
+                motor_step_x <= (card1_card_core1_regs_fifo2_pulse_out2_level_x && card1_card_core1_regs_fifo2_pulse_out2_up_x);
+                motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_up_x));
+                motor_step_y <= (card1_card_core1_regs_fifo2_pulse_out2_level_y && card1_card_core1_regs_fifo2_pulse_out2_up_y);
+                motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_level_y && (!card1_card_core1_regs_fifo2_pulse_out2_up_y));
+            end
+            'h2: begin
+                motor_step_x <= (card1_card_core1_regs_fifo2_pulse_out2_quad_next_x[0] ^ card1_card_core1_regs_fifo2_pulse_out2_quad_next_x[1]);
+                motor_dir_x <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_x[1];
+                motor_step_y <= (card1_card_core1_regs_fifo2_pulse_out2_quad_next_y[0] ^ card1_card_core1_regs_fifo2_pulse_out2_quad_next_y[1]);
+                motor_dir_y <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_y[1];
+            end
+            default: begin
+                motor_step_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
+                motor_dir_x <= card1_card_core1_regs_fifo2_pulse_out2_up_x;
+                motor_step_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
+                motor_dir_y <= card1_card_core1_regs_fifo2_pulse_out2_up_y;
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_count_positions
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_position_y <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
+    end
+    else begin
         if (card1_card_core1_regs_fifo2_clear_position) begin
             card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
             card1_card_core1_regs_fifo2_position_y <= 0;
@@ -5955,20 +6173,20 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
         else begin
             if (card1_card_core1_regs_fifo2_home_zero[0]) begin
                 card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
-                if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!motor_step_x))) begin
+                if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_x))) begin
                     card1_card_core1_regs_fifo2_pulse_out2_position_x <= card1_card_core1_regs_fifo2_pulse_out2_delta_x;
                 end
             end
-            else if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!motor_step_x))) begin
+            else if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_x))) begin
                 card1_card_core1_regs_fifo2_pulse_out2_position_x <= (card1_card_core1_regs_fifo2_pulse_out2_position_x + card1_card_core1_regs_fifo2_pulse_out2_delta_x);
             end
             if (card1_card_core1_regs_fifo2_home_zero[1]) begin
                 card1_card_core1_regs_fifo2_position_y <= 0;
-                if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!motor_step_y))) begin
+                if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_y))) begin
                     card1_card_core1_regs_fifo2_position_y <= card1_card_core1_regs_fifo2_pulse_out2_delta_y;
                 end
             end
-            else if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!motor_step_y))) begin
+            else if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_y))) begin
                 card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y + card1_card_core1_regs_fifo2_pulse_out2_delta_y);
             end
         end
@@ -5989,7 +6207,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2_level = (card1_card_core1_regs_fifo2_input_filter2_inputs_raw ^ card1_card_core1_regs_fifo2_reg_word101_shown);
+assign card1_card_core1_regs_fifo2_input_filter2_level = (card1_card_core1_regs_fifo2_input_filter2_inputs_raw ^ card1_card_core1_regs_fifo2_reg_word105_shown);
 assign card1_card_core1_regs_fifo2_input_filter2_sample = (card1_card_core1_regs_fifo2_input_filter2_prescale == 0);
 
 
@@ -5999,7 +6217,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_
     end
     else begin
         if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
-            card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_reg_word103_shown - 1);
+            card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_reg_word107_shown - 1);
         end
         else begin
             card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_input_filter2_prescale - 1);
@@ -6041,7 +6259,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count14_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[0] != card1_card_core1_regs_fifo2_conditioning_active[0]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count14_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count14_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[0] != card1_card_core1_regs_fifo2_conditioning_active[0]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count14_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count15_count_samples
@@ -6065,7 +6283,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count15_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[1] != card1_card_core1_regs_fifo2_conditioning_active[1]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count15_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count15_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[1] != card1_card_core1_regs_fifo2_conditioning_active[1]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count15_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count16_count_samples
@@ -6089,7 +6307,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count16_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[2] != card1_card_core1_regs_fifo2_conditioning_active[2]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count16_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count16_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[2] != card1_card_core1_regs_fifo2_conditioning_active[2]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count16_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count17_count_samples
@@ -6113,7 +6331,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count17_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[3] != card1_card_core1_regs_fifo2_conditioning_active[3]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count17_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count17_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[3] != card1_card_core1_regs_fifo2_conditioning_active[3]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count17_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count18_count_samples
@@ -6137,7 +6355,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count18_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[4] != card1_card_core1_regs_fifo2_conditioning_active[4]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count18_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count18_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[4] != card1_card_core1_regs_fifo2_conditioning_active[4]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count18_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count19_count_samples
@@ -6161,7 +6379,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count19_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[5] != card1_card_core1_regs_fifo2_conditioning_active[5]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count19_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count19_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[5] != card1_card_core1_regs_fifo2_conditioning_active[5]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count19_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count20_count_samples
@@ -6185,12 +6403,12 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count20_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[6] != card1_card_core1_regs_fifo2_conditioning_active[6]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count20_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count20_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[6] != card1_card_core1_regs_fifo2_conditioning_active[6]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count20_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 
 assign card1_card_core1_regs_fifo2_machine_guard2_estop = card1_card_core1_regs_fifo2_conditioning_active[0];
-assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_reg_word104_shown == 1) && (!card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe));
+assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_reg_word108_shown == 1) && (!card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe));
 assign card1_card_core1_regs_fifo2_machine_guard2_hits = {(card1_card_core1_regs_fifo2_requests_step_y && (!card1_card_core1_regs_fifo2_requests_dir_y) && card1_card_core1_regs_fifo2_conditioning_active[4]), (card1_card_core1_regs_fifo2_requests_step_y && card1_card_core1_regs_fifo2_requests_dir_y && card1_card_core1_regs_fifo2_conditioning_active[3]), (card1_card_core1_regs_fifo2_requests_step_x && (!card1_card_core1_regs_fifo2_requests_dir_x) && card1_card_core1_regs_fifo2_conditioning_active[2]), (card1_card_core1_regs_fifo2_requests_step_x && card1_card_core1_regs_fifo2_requests_dir_x && card1_card_core1_regs_fifo2_conditioning_active[1])};
 
 
@@ -6258,35 +6476,35 @@ end
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machine_guard2_watchdog
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word104_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word108_shown <= 0;
     end
     else begin
-        if (card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word104_shown <= card1_card_core1_regs_fifo2_reg_word104__store72_word_value;
+        if (card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe) begin
+            card1_card_core1_regs_fifo2_reg_word108_shown <= card1_card_core1_regs_fifo2_reg_word108__store76_word_value;
         end
-        else if ((card1_card_core1_regs_fifo2_reg_word104_shown != 0)) begin
-            card1_card_core1_regs_fifo2_reg_word104_shown <= (card1_card_core1_regs_fifo2_reg_word104_shown - 1);
+        else if ((card1_card_core1_regs_fifo2_reg_word108_shown != 0)) begin
+            card1_card_core1_regs_fifo2_reg_word108_shown <= (card1_card_core1_regs_fifo2_reg_word108_shown - 1);
         end
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word110_shown, card1_card_core1_regs_fifo2_reg_word109_shown, card1_card_core1_regs_fifo2_home_inputs, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
+always @(card1_card_core1_regs_fifo2_reg_word114_shown, card1_card_core1_regs_fifo2_reg_word113_shown, card1_card_core1_regs_fifo2_home_inputs, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
     card1_card_core1_regs_fifo2_homing2_switch = card1_card_core1_regs_fifo2_homing2_axis ? card1_card_core1_regs_fifo2_home_inputs[1] : card1_card_core1_regs_fifo2_home_inputs[0];
     card1_card_core1_regs_fifo2_homing2_seeking = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b010));
     card1_card_core1_regs_fifo2_homing2_seek_next = ((card1_card_core1_regs_fifo2_homing2_state == 3'b000) || (card1_card_core1_regs_fifo2_homing2_state == 3'b001) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)));
     if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
-        card1_card_core1_regs_fifo2_homing2_magnitude = {8'h0, card1_card_core1_regs_fifo2_reg_word109_shown};
+        card1_card_core1_regs_fifo2_homing2_magnitude = {8'h0, card1_card_core1_regs_fifo2_reg_word113_shown};
     end
     else begin
-        card1_card_core1_regs_fifo2_homing2_magnitude = {1'h0, card1_card_core1_regs_fifo2_reg_word110_shown};
+        card1_card_core1_regs_fifo2_homing2_magnitude = {1'h0, card1_card_core1_regs_fifo2_reg_word114_shown};
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word105__store73_word_value, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_negative) begin: card1_card_core1_regs_fifo2_homing2_command
+always @(card1_card_core1_regs_fifo2_reg_word109__store77_word_value, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_negative) begin: card1_card_core1_regs_fifo2_homing2_command
     if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
-        card1_card_core1_regs_fifo2_homing2_positive = (!card1_card_core1_regs_fifo2_reg_word105__store73_word_value[1]);
+        card1_card_core1_regs_fifo2_homing2_positive = (!card1_card_core1_regs_fifo2_reg_word109__store77_word_value[1]);
     end
     else begin
         card1_card_core1_regs_fifo2_homing2_positive = card1_card_core1_regs_fifo2_homing2_negative;
@@ -6320,10 +6538,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
     else begin
         card1_card_core1_regs_fifo2_homing2_port_count <= $signed(card1_card_core1_regs_fifo2_homing2_signed_count);
         if (card1_card_core1_regs_fifo2_homing2_seek_next) begin
-            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word107_shown;
+            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word111_shown;
         end
         else begin
-            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word108_shown;
+            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word112_shown;
         end
     end
 end
@@ -6361,20 +6579,20 @@ always @(card1_card_core1_regs_fifo2_homing2_seeking, card1_card_core1_regs_fifo
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_negative, card1_card_core1_regs_fifo2_homing2_phase, card1_card_core1_regs_fifo2_homing2_done, card1_card_core1_regs_fifo2_homing2_refused, card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_not_found) begin: card1_card_core1_regs_fifo2_homing2_show
+always @(card1_card_core1_regs_fifo2_homing2_negative, card1_card_core1_regs_fifo2_homing2_phase, card1_card_core1_regs_fifo2_homing2_done, card1_card_core1_regs_fifo2_homing2_refused, card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_not_found) begin: card1_card_core1_regs_fifo2_homing2_show
     reg [2-1:0] asked;
     reg [6-1:0] word;
     asked = 2'h0;
     asked[0] = card1_card_core1_regs_fifo2_homing2_axis;
     asked[1] = card1_card_core1_regs_fifo2_homing2_negative;
-    card1_card_core1_regs_fifo2_reg_word105_shown = asked;
+    card1_card_core1_regs_fifo2_reg_word109_shown = asked;
     word = 6'h0;
-    word[0] = ((card1_card_core1_regs_fifo2_homing2_state != 3'b000) || card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe);
+    word[0] = ((card1_card_core1_regs_fifo2_homing2_state != 3'b000) || card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe);
     word[1] = card1_card_core1_regs_fifo2_homing2_done;
     word[2] = card1_card_core1_regs_fifo2_homing2_not_found;
     word[3] = card1_card_core1_regs_fifo2_homing2_refused;
     word[4+:2] = card1_card_core1_regs_fifo2_homing2_phase;
-    card1_card_core1_regs_fifo2_reg_word106_shown = word;
+    card1_card_core1_regs_fifo2_reg_word110_shown = word;
 end
 
 
@@ -6394,7 +6612,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
         drained = ((!card1_card_core1_regs_fifo2_pulse_busy) && (!card1_card_core1_regs_fifo2_out_active));
         if (card1_card_core1_core_clear) begin
             card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
-            if (card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe) begin
+            if (card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe) begin
                 card1_card_core1_regs_fifo2_homing2_done <= 0;
                 card1_card_core1_regs_fifo2_homing2_not_found <= 0;
                 card1_card_core1_regs_fifo2_homing2_refused <= 1;
@@ -6402,9 +6620,9 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
             end
         end
         else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
-            if (card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe) begin
-                card1_card_core1_regs_fifo2_homing2_axis <= card1_card_core1_regs_fifo2_reg_word105__store73_word_value[0];
-                card1_card_core1_regs_fifo2_homing2_negative <= card1_card_core1_regs_fifo2_reg_word105__store73_word_value[1];
+            if (card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe) begin
+                card1_card_core1_regs_fifo2_homing2_axis <= card1_card_core1_regs_fifo2_reg_word109__store77_word_value[0];
+                card1_card_core1_regs_fifo2_homing2_negative <= card1_card_core1_regs_fifo2_reg_word109__store77_word_value[1];
                 card1_card_core1_regs_fifo2_homing2_done <= 0;
                 card1_card_core1_regs_fifo2_homing2_not_found <= 0;
                 card1_card_core1_regs_fifo2_homing2_refused <= (!card1_card_core1_regs_fifo2_home_idle);
@@ -6415,7 +6633,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
             end
         end
         else begin
-            if (card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe) begin
+            if (card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe) begin
                 card1_card_core1_regs_fifo2_homing2_refused <= 1;
                 card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
             end
@@ -6437,7 +6655,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
             end
             else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
                 if ((!card1_card_core1_regs_fifo2_homing2_switch)) begin
-                    if ((card1_card_core1_regs_fifo2_reg_word109_shown != 0)) begin
+                    if ((card1_card_core1_regs_fifo2_reg_word113_shown != 0)) begin
                         card1_card_core1_regs_fifo2_homing2_state <= 3'b101;
                     end
                     else begin
@@ -6606,16 +6824,16 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word105_shown[0], card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word93__store66_word_value, card1_card_core1_regs_fifo2_reg_word91_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
-    card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word91_shown;
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word97__store70_word_value, card1_card_core1_regs_fifo2_reg_word95_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
+    card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word95_shown;
     if (card1_card_core1_regs_fifo2_home_busy) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word105_shown[0] == 0));
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 0));
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
         card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_homing2_port_period;
     end
     else if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe && (!card1_card_core1_regs_fifo2_halt));
-        card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word93__store66_word_value);
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe && (!card1_card_core1_regs_fifo2_halt));
+        card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word97__store70_word_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_command_load = card1_card_core1_regs_fifo2_seq_load;
@@ -6624,16 +6842,16 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word105_shown[0], card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word94__store67_word_value, card1_card_core1_regs_fifo2_reg_word92_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
-    card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word92_shown;
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word98__store71_word_value, card1_card_core1_regs_fifo2_reg_word96_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
+    card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word96_shown;
     if (card1_card_core1_regs_fifo2_home_busy) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word105_shown[0] == 1));
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 1));
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
         card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_homing2_port_period;
     end
     else if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe && (!card1_card_core1_regs_fifo2_halt));
-        card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word94__store67_word_value);
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe && (!card1_card_core1_regs_fifo2_halt));
+        card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word98__store71_word_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_command_load = card1_card_core1_regs_fifo2_seq_load;
@@ -6646,7 +6864,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_status
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_status_words2_done_flag <= 0;
         card1_card_core1_regs_fifo2_status_words2_error_before <= 0;
-        card1_card_core1_regs_fifo2_reg_word81_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word85_shown <= 0;
         card1_card_core1_regs_fifo2_status_words2_busy_before <= 0;
         card1_card_core1_regs_fifo2_status_words2_low_before <= 0;
     end
@@ -6659,9 +6877,9 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_status
             card1_card_core1_regs_fifo2_status_words2_done_flag <= 1;
         end
         card1_card_core1_regs_fifo2_status_words2_error_before <= (card1_card_core1_regs_fifo2_error_code != 0);
-        card1_card_core1_regs_fifo2_status_words2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word80_shown);
+        card1_card_core1_regs_fifo2_status_words2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word84_shown);
         if (card1_card_core1_regs_fifo2_sequencer2_mark_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word81_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
+            card1_card_core1_regs_fifo2_reg_word85_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
         end
     end
 end
@@ -6678,27 +6896,27 @@ always @(card1_card_core1_regs_fifo2_status_words2_done_flag, card1_card_core1_r
     word[9] = card1_card_core1_regs_fifo2_fifo_full;
     word[10] = card1_card_core1_regs_fifo2_guard_stopped;
     word[32-1:16] = card1_card_core1_regs_fifo2_level_wide;
-    card1_card_core1_regs_fifo2_reg_word77_shown = word;
+    card1_card_core1_regs_fifo2_reg_word81_shown = word;
 end
 
 
-always @(card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_status_words2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_reg_word80_shown, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped, card1_card_core1_regs_fifo2_status_words2_busy_before, card1_card_core1_regs_fifo2_status_words2_low_before, card1_card_core1_regs_fifo2_homing2_port_ended, card1_card_core1_regs_fifo2_input_filter2_inputs_changed) begin: card1_card_core1_regs_fifo2_status_words2_detect_events
+always @(card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_status_words2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_reg_word84_shown, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped, card1_card_core1_regs_fifo2_status_words2_busy_before, card1_card_core1_regs_fifo2_status_words2_low_before, card1_card_core1_regs_fifo2_homing2_port_ended, card1_card_core1_regs_fifo2_input_filter2_inputs_changed) begin: card1_card_core1_regs_fifo2_status_words2_detect_events
     reg [8-1:0] word;
     word = 8'h0;
     word[0] = (card1_card_core1_regs_fifo2_status_words2_busy_before && (!card1_card_core1_regs_fifo2_any_busy));
-    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word80_shown) && (!card1_card_core1_regs_fifo2_status_words2_low_before));
+    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word84_shown) && (!card1_card_core1_regs_fifo2_status_words2_low_before));
     word[2] = ((card1_card_core1_regs_fifo2_error_code != 0) && (!card1_card_core1_regs_fifo2_status_words2_error_before));
     word[3] = card1_card_core1_regs_fifo2_sequencer2_mark_strobe;
-    word[4] = card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped;
+    word[4] = card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped;
     word[5] = card1_card_core1_regs_fifo2_guard_stop_event;
     word[6] = card1_card_core1_regs_fifo2_input_filter2_inputs_changed;
     word[7] = card1_card_core1_regs_fifo2_homing2_port_ended;
-    card1_card_core1_regs_fifo2_reg_word79__store55_word_hw = word;
+    card1_card_core1_regs_fifo2_reg_word83__store59_word_hw = word;
 end
 
 
 
-assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word79_shown & card1_card_core1_regs_fifo2_reg_word78_shown) != 0);
+assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word83_shown & card1_card_core1_regs_fifo2_reg_word82_shown) != 0);
 
 
 always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_conditioning_active, card1_card_core1_regs_fifo2_settled, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2_status_words2_assemble_machine
@@ -6711,17 +6929,17 @@ always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_
     word[17] = motor_drive_enable;
     word[18] = card1_card_core1_regs_fifo2_settled;
     word[19] = card1_card_core1_regs_fifo2_guard_stopping;
-    card1_card_core1_regs_fifo2_reg_word99_shown = word;
+    card1_card_core1_regs_fifo2_reg_word103_shown = word;
     why = 8'h0;
     why[0+:2] = card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
     why[4+:4] = card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
-    card1_card_core1_regs_fifo2_reg_word100_shown = why;
+    card1_card_core1_regs_fifo2_reg_word104_shown = why;
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_shown = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
-assign card1_card_core1_regs_fifo2_reg_word83_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word86_shown = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word87_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
 always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_magnitudes

@@ -115,6 +115,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     home_idle, direct_clear = Signal(bool(0)), Signal(bool(0))
     home_zero, home_inputs = Signal(intbv(0)[2:]), Signal(intbv(0)[2:])
     outputs = PulseControl(clear=pulse_clear, clear_position=clear_position, zero=home_zero, width=values["STEP_WIDTH"],
+                           space=values["STEP_SPACE"], mode=values["STEP_MODE"],
                            setup=values["DIR_SETUP"], hold=values["DIR_HOLD"],
                            polarity_x=values["DIR_POLARITY"](0), polarity_y=values["DIR_POLARITY"](1))
     out_ready, out_active = outputs.ready, outputs.active

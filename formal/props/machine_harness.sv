@@ -130,6 +130,8 @@ module machine_harness #(
     always @(*) begin
         // the inputs' conditioning as reset: the reaction times of docs/machine.md
         assume(!(l_we && !l_space && (l_addr == 16'h006C || l_addr == 16'h0070 || l_addr == 16'h0074)));
+        // the STEP pins' rules here are those of step/dir mode, STEP_MODE's reset
+        assume(!(l_we && !l_space && l_addr == 16'h0098));
         if (l_we && !l_space && l_addr == 16'h0078) assume(l_be == 4'hF);
 `ifdef WATCHDOG_SMALL
         if (l_we && !l_space && l_addr == 16'h0078) assume(l_wdata < `WATCHDOG_SMALL);
