@@ -154,7 +154,8 @@ MACHINE_REGISTERS = ("fifo_pop", "fifo_flush", "set_strobe", "set_index", "set_v
                      "homing0_state", "homing0_axis", "homing0_refused", "homing0_not_found", "home_zero",
                      "requests_step_x", "requests_step_y", "requests_dir_x", "requests_dir_y",
                      "pulse_out0_request_step_x", "pulse_out0_request_step_y",
-                     "ramp_step", "machine_control", "feed_held",
+                     "ramp_step", "machine_control", "feed_held", "step_mode", "pulse_out0_pulse_x",
+                     "pulse_out0_pulse_y",
                      "sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
                      "direct_pulse0_pending", "direct_pulse1_pending")
 MACHINE = dict(expose=MACHINE_REGISTERS, generated={"regs_table.vh": table_properties})

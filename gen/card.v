@@ -268,6 +268,7 @@ reg [31:0] card_core0_regs_fifo1_set_value;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
 reg [1:0] card_core0_regs_fifo1_home_zero;
+reg [1:0] card_core0_regs_fifo1_step_mode;
 wire card_core0_regs_fifo1_any_busy;
 reg [31:0] card_core0_regs_fifo1_byte_mask;
 wire card_core0_regs_fifo1_clear_error;
@@ -697,7 +698,6 @@ reg [31:0] card_core0_regs_fifo1_reg_word76_chain_out_data;
 wire card_core0_regs_fifo1_reg_word76_chain_out_clamped;
 reg [1:0] card_core0_regs_fifo1_reg_word77_honoured;
 reg card_core0_regs_fifo1_reg_word77_out_of_range;
-reg [1:0] card_core0_regs_fifo1_reg_word77_shown;
 reg card_core0_regs_fifo1_reg_word77_clamped;
 wire card_core0_regs_fifo1_reg_word77_mine;
 wire card_core0_regs_fifo1_reg_word77_mine_write;
@@ -4288,7 +4288,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word77_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word77_shown};
+assign card_core0_regs_fifo1_reg_word77_shown_wide = {30'h0, card_core0_regs_fifo1_step_mode};
 
 
 
@@ -4326,13 +4326,13 @@ assign card_core0_regs_fifo1_reg_word77_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word77__store55_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word77_shown <= 0;
+        card_core0_regs_fifo1_step_mode <= 0;
         card_core0_regs_fifo1_reg_word77_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word77_clamped <= 1'b0;
         if (((card_core0_regs_fifo1_reg_word77_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word77_mine_write))) begin
-            card_core0_regs_fifo1_reg_word77_shown <= card_core0_regs_fifo1_reg_word77_honoured;
+            card_core0_regs_fifo1_step_mode <= card_core0_regs_fifo1_reg_word77_honoured;
             card_core0_regs_fifo1_reg_word77_clamped <= card_core0_regs_fifo1_reg_word77_out_of_range;
         end
     end
@@ -5304,7 +5304,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_d
         card_core0_regs_fifo1_pulse_out1_pulse_y <= card_core0_regs_fifo1_pulse_out1_level_y;
         card_core0_regs_fifo1_pulse_out1_quad_x <= card_core0_regs_fifo1_pulse_out1_quad_next_x;
         card_core0_regs_fifo1_pulse_out1_quad_y <= card_core0_regs_fifo1_pulse_out1_quad_next_y;
-        case (card_core0_regs_fifo1_reg_word77_shown)
+        case (card_core0_regs_fifo1_step_mode)
             'h1: begin
                 pins_step_x <= (card_core0_regs_fifo1_pulse_out1_level_x && card_core0_regs_fifo1_pulse_out1_up_x);
                 pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_up_x));

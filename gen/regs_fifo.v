@@ -178,6 +178,7 @@ reg [31:0] set_value;
 reg [3:0] error_code;
 reg seq_load;
 reg [1:0] home_zero;
+reg [1:0] step_mode;
 wire any_busy;
 reg [31:0] byte_mask;
 wire clear_error;
@@ -601,7 +602,6 @@ reg [31:0] reg_word37_chain_out_data;
 wire reg_word37_chain_out_clamped;
 reg [1:0] reg_word38_honoured;
 reg reg_word38_out_of_range;
-reg [1:0] reg_word38_shown;
 reg reg_word38_clamped;
 wire reg_word38_mine;
 wire reg_word38_mine_write;
@@ -2794,7 +2794,7 @@ end
 
 
 
-assign reg_word38_shown_wide = {30'h0, reg_word38_shown};
+assign reg_word38_shown_wide = {30'h0, step_mode};
 
 
 
@@ -2832,13 +2832,13 @@ assign reg_word38_chain_out_clamped = (reg_word37_chain_out_clamped || reg_word3
 
 always @(posedge clock, negedge reset) begin: reg_word38__store27_hold_rw
     if (reset == 0) begin
-        reg_word38_shown <= 0;
+        step_mode <= 0;
         reg_word38_clamped <= 0;
     end
     else begin
         reg_word38_clamped <= 1'b0;
         if (((reg_word38_set_mine && (set_index == 0)) || (io_written && reg_word38_mine_write))) begin
-            reg_word38_shown <= reg_word38_honoured;
+            step_mode <= reg_word38_honoured;
             reg_word38_clamped <= reg_word38_out_of_range;
         end
     end
@@ -3810,7 +3810,7 @@ always @(posedge clock, negedge reset) begin: pulse_out0_drive_pins
         pulse_out0_pulse_y <= pulse_out0_level_y;
         pulse_out0_quad_x <= pulse_out0_quad_next_x;
         pulse_out0_quad_y <= pulse_out0_quad_next_y;
-        case (reg_word38_shown)
+        case (step_mode)
             'h1: begin
                 pins_step_x <= (pulse_out0_level_x && pulse_out0_up_x);
                 pins_dir_x <= (pulse_out0_level_x && (!pulse_out0_up_x));

@@ -292,6 +292,7 @@ reg [31:0] card1_card_core1_regs_fifo2_set_value;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
 reg [1:0] card1_card_core1_regs_fifo2_home_zero;
+reg [1:0] card1_card_core1_regs_fifo2_step_mode;
 wire card1_card_core1_regs_fifo2_any_busy;
 reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
 wire card1_card_core1_regs_fifo2_clear_error;
@@ -721,7 +722,6 @@ reg [31:0] card1_card_core1_regs_fifo2_reg_word115_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word115_chain_out_clamped;
 reg [1:0] card1_card_core1_regs_fifo2_reg_word116_honoured;
 reg card1_card_core1_regs_fifo2_reg_word116_out_of_range;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word116_shown;
 reg card1_card_core1_regs_fifo2_reg_word116_clamped;
 wire card1_card_core1_regs_fifo2_reg_word116_mine;
 wire card1_card_core1_regs_fifo2_reg_word116_mine_write;
@@ -5120,7 +5120,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word116_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word116_shown};
+assign card1_card_core1_regs_fifo2_reg_word116_shown_wide = {30'h0, card1_card_core1_regs_fifo2_step_mode};
 
 
 
@@ -5158,13 +5158,13 @@ assign card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped = (card1_card_c
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word116__store83_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word116_shown <= 0;
+        card1_card_core1_regs_fifo2_step_mode <= 0;
         card1_card_core1_regs_fifo2_reg_word116_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word116_clamped <= 1'b0;
         if (((card1_card_core1_regs_fifo2_reg_word116_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word116_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word116_shown <= card1_card_core1_regs_fifo2_reg_word116_honoured;
+            card1_card_core1_regs_fifo2_step_mode <= card1_card_core1_regs_fifo2_reg_word116_honoured;
             card1_card_core1_regs_fifo2_reg_word116_clamped <= card1_card_core1_regs_fifo2_reg_word116_out_of_range;
         end
     end
@@ -6136,7 +6136,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
         card1_card_core1_regs_fifo2_pulse_out2_pulse_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
         card1_card_core1_regs_fifo2_pulse_out2_quad_x <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_x;
         card1_card_core1_regs_fifo2_pulse_out2_quad_y <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_y;
-        case (card1_card_core1_regs_fifo2_reg_word116_shown)
+        case (card1_card_core1_regs_fifo2_step_mode)
             'h1: begin
                 motor_step_x <= (card1_card_core1_regs_fifo2_pulse_out2_level_x && card1_card_core1_regs_fifo2_pulse_out2_up_x);
                 motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_up_x));

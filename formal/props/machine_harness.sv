@@ -60,6 +60,8 @@ module machine_harness #(
     wire [2:0] sync_fifo0_free;
     wire direct_pulse0_pending, direct_pulse1_pending;
     wire [1:0] machine_control;
+    wire [1:0] step_mode;
+    wire pulse_out0_pulse_x, pulse_out0_pulse_y;
 
     regs_fifo dut (
         .clock(clock), .reset(reset_n), .irq(irq), .core_clear(core_clear),
@@ -91,7 +93,8 @@ module machine_harness #(
         .requests_dir_x(requests_dir_x), .requests_dir_y(requests_dir_y),
         .pulse_out0_request_step_x(pulse_out0_request_step_x),
         .pulse_out0_request_step_y(pulse_out0_request_step_y),
-        .ramp_step(ramp_step), .machine_control(machine_control),
+        .ramp_step(ramp_step), .machine_control(machine_control), .step_mode(step_mode),
+        .pulse_out0_pulse_x(pulse_out0_pulse_x), .pulse_out0_pulse_y(pulse_out0_pulse_y),
         .feed_held(feed_held), .sync_fifo0_count(sync_fifo0_count), .sync_fifo0_is_empty(sync_fifo0_is_empty),
 `ifdef LOCAL_ROOM
         .sync_fifo0_free(sync_fifo0_free), .sync_fifo0_free_beyond(sync_fifo0_free_beyond),
@@ -192,6 +195,10 @@ module machine_harness #(
 `endif
         // the feed rate's own hold flag: held at rate 0
         minv_feed_held: assert(!feed_held || feed_rate0_rate == 0);
+        // STEP_MODE as reset (step/dir: no bus write of it here), so the
+        // STEP pins carry the pulse outputs' own pulses
+        minv_step_dir: assert(step_mode == model_step_mode && step_mode == 0
+                              && pins_step_x == pulse_out0_pulse_x && pins_step_y == pulse_out0_pulse_y);
     end
 
     // ------------------------------------------------------------ E-stop and the stop latch
