@@ -122,7 +122,7 @@ PCI_PARAMETERS = pci_harness_parameters(io_bits=6, mem_bits=12)
 PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "initial_wait_over",
                        "subsequent_wait_over", "first_phase", "is_read", "is_config", "space_mem",
                        "io_enable", "mem_enable", "parity_response", "serr_enable",
-                       "interrupt_disable", "bar0", "bar1", "config_write_q", "phase_addr",
+                       "interrupt_disable", "bar0", "bar1", "bar2", "config_write_q", "phase_addr",
                        "at_last", "before_last", "h_valid", "s_valid", "wq_valid", "b_valid",
                        "fetching", "first_pending", "req_addr_stale", "single", "frame_q",
                        "pci_config0_signaled_target_abort", "pci_config0_signaled_system_error",
@@ -154,7 +154,8 @@ MACHINE_REGISTERS = ("fifo_pop", "fifo_flush", "set_strobe", "set_index", "set_v
                      "homing0_state", "homing0_axis", "homing0_refused", "homing0_not_found", "home_zero",
                      "requests_step_x", "requests_step_y", "requests_dir_x", "requests_dir_y",
                      "pulse_out0_request_step_x", "pulse_out0_request_step_y",
-                     "ramp_step", "machine_control", "feed_held",
+                     "ramp_step", "machine_control", "feed_held", "step_mode", "pulse_out0_pulse_x",
+                     "pulse_out0_pulse_y",
                      "sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
                      "direct_pulse0_pending", "direct_pulse1_pending", "watchdog_left")
 MACHINE = dict(expose=MACHINE_REGISTERS, generated={"regs_table.vh": table_properties})
@@ -194,6 +195,7 @@ GROUPS = [
           text="back end: LocalBus answers, registers never wait, FIFO level, STATUS, nothing lost"),
     Group("regs_fifo_table", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("reg_",), mode="bmc",
           depth=10, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          defines={"STEP_MODES_FREE": None},   # STEP_MODE written too (the pins are judged elsewhere)
           text="every register as models/registers.py says (bounded)"),
     Group("regs_fifo_pulses", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_",), mode="bmc",
           depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},

@@ -91,9 +91,10 @@ def ports(work, unit_file):
     return [(name, port["direction"], len(port["bits"])) for name, port in module["ports"].items()]
 
 
-def miter_text(module, port_list, reset="reset"):
-    """A harness asserting that ``module`` and ``<module>_mutant`` give the same
-    outputs for the same inputs, from a reset in the first clock (RST#, active low)."""
+def miter_text(module, port_list, reset="reset", other=None):
+    """A harness asserting that ``module`` and ``other`` (default
+    ``<module>_mutant``) give the same outputs for the same inputs, from a
+    reset in the first clock (RST#, active low)."""
     decl, gold, mutant, compare = [], [], [], []
     for name, direction, width in port_list:
         vector = f"[{width - 1}:0] " if width > 1 else ""
@@ -113,7 +114,7 @@ def miter_text(module, port_list, reset="reset"):
 );
 {wires}
     {module} gold ({', '.join(gold)});
-    {module}_mutant mutant ({', '.join(mutant)});
+    {other or module + '_mutant'} mutant ({', '.join(mutant)});
     reg started = 0;
     always @(posedge clock) started <= 1;
     always @(*) if (!started) assume(!{reset});

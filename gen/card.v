@@ -129,6 +129,7 @@ reg pci_slave1_parity_response;
 reg pci_slave1_serr_enable;
 reg [15:0] pci_slave1_bar0;
 reg [31:0] pci_slave1_bar1;
+reg [31:0] pci_slave1_bar2;
 reg pci_slave1_fatal;
 reg pci_slave1_read_command;
 wire pci_slave1_write_done_next;
@@ -159,6 +160,7 @@ reg pci_slave1_b_valid;
 reg pci_slave1_before_last;
 reg [3:0] pci_slave1_cbe_q;
 reg pci_slave1_claim;
+reg pci_slave1_claim_alias;
 reg pci_slave1_claim_config;
 reg pci_slave1_claim_io;
 wire pci_slave1_devsel_next;
@@ -223,19 +225,28 @@ reg pci_slave1_pci_requests1_local_write;
 reg [31:0] pci_slave1_pci_requests1_local_wdata;
 reg [3:0] pci_slave1_pci_requests1_local_be;
 reg [11:0] pci_slave1_pci_requests1_local_addr;
-reg [3:0] pci_slave1_pci_control1_control_case0_0_out_state;
+reg pci_slave1_pci_control1_control_case0_0_exhausted;
+reg pci_slave1_pci_control1_control_case0_0_last_data;
+reg pci_slave1_pci_control1_control_case0_0_ready_for_phase;
 wire pci_slave1_pci_control1_control_case0_0_target_room;
+reg [3:0] pci_slave1_pci_control1_control_case0_0_out_state;
 reg pci_slave1_pci_control1_control_case0_0_out_trdy;
 reg pci_slave1_pci_control1_control_case0_0_out_stop;
 reg pci_slave1_pci_control1_control_case0_0_out_devsel;
 reg pci_slave1_pci_control1_control_case0_0_out_drive;
 reg pci_slave1_pci_control1_control_case0_0_out_ad_oe;
+reg pci_slave1_pci_control1_control_case1_0_exhausted;
+reg pci_slave1_pci_control1_control_case1_0_last_data;
+reg pci_slave1_pci_control1_control_case1_0_ready_for_phase;
 reg [3:0] pci_slave1_pci_control1_control_case1_0_out_state;
 reg pci_slave1_pci_control1_control_case1_0_out_trdy;
 reg pci_slave1_pci_control1_control_case1_0_out_stop;
 reg pci_slave1_pci_control1_control_case1_0_out_devsel;
 reg pci_slave1_pci_control1_control_case1_0_out_drive;
 reg pci_slave1_pci_control1_control_case1_0_out_ad_oe;
+reg pci_slave1_pci_control1_control_case2_0_exhausted;
+reg pci_slave1_pci_control1_control_case2_0_last_data;
+reg pci_slave1_pci_control1_control_case2_0_ready_for_phase;
 reg [3:0] pci_slave1_pci_control1_control_case2_0_out_state;
 reg pci_slave1_pci_control1_control_case2_0_out_trdy;
 reg pci_slave1_pci_control1_control_case2_0_out_stop;
@@ -257,6 +268,7 @@ reg [31:0] card_core0_regs_fifo1_set_value;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
 reg [1:0] card_core0_regs_fifo1_home_zero;
+reg [1:0] card_core0_regs_fifo1_step_mode;
 reg [23:0] card_core0_regs_fifo1_watchdog_left;
 wire card_core0_regs_fifo1_any_busy;
 reg [31:0] card_core0_regs_fifo1_byte_mask;
@@ -344,106 +356,87 @@ wire card_core0_regs_fifo1_sync_fifo1_last_beyond;
 wire card_core0_regs_fifo1_sync_fifo1_one_word;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_read_addr;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_write_addr;
-wire [31:0] card_core0_regs_fifo1_reg_word37_shown;
-wire card_core0_regs_fifo1_reg_word37_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word37_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word37_chain_out_data;
-wire [31:0] card_core0_regs_fifo1_reg_word37_chain_in_data;
-wire card_core0_regs_fifo1_reg_word37_chain_out_clamped;
-wire card_core0_regs_fifo1_reg_word37_chain_in_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word38_honoured;
-wire card_core0_regs_fifo1_reg_word38_out_of_range;
-reg card_core0_regs_fifo1_reg_word38_clamped;
-wire card_core0_regs_fifo1_reg_word38_mine;
-wire card_core0_regs_fifo1_reg_word38_mine_write;
-wire card_core0_regs_fifo1_reg_word38_set_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word38_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word38_written;
-reg [31:0] card_core0_regs_fifo1_reg_word38_chain_out_data;
-wire card_core0_regs_fifo1_reg_word38_chain_out_clamped;
-wire [3:0] card_core0_regs_fifo1_reg_word39_honoured;
-wire card_core0_regs_fifo1_reg_word39_out_of_range;
-wire [3:0] card_core0_regs_fifo1_reg_word39_shown;
-reg card_core0_regs_fifo1_reg_word39_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word39_shown;
 wire card_core0_regs_fifo1_reg_word39_mine;
-wire card_core0_regs_fifo1_reg_word39_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word39_shown_wide;
-wire [3:0] card_core0_regs_fifo1_reg_word39_written;
 reg [31:0] card_core0_regs_fifo1_reg_word39_chain_out_data;
+wire [31:0] card_core0_regs_fifo1_reg_word39_chain_in_data;
 wire card_core0_regs_fifo1_reg_word39_chain_out_clamped;
-reg [31:0] card_core0_regs_fifo1_reg_word40_shown;
+wire card_core0_regs_fifo1_reg_word39_chain_in_clamped;
+wire [1:0] card_core0_regs_fifo1_reg_word40_honoured;
+wire card_core0_regs_fifo1_reg_word40_out_of_range;
+reg card_core0_regs_fifo1_reg_word40_clamped;
 wire card_core0_regs_fifo1_reg_word40_mine;
+wire card_core0_regs_fifo1_reg_word40_mine_write;
+wire card_core0_regs_fifo1_reg_word40_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word40_shown_wide;
+reg [1:0] card_core0_regs_fifo1_reg_word40_written;
 reg [31:0] card_core0_regs_fifo1_reg_word40_chain_out_data;
 wire card_core0_regs_fifo1_reg_word40_chain_out_clamped;
-wire [7:0] card_core0_regs_fifo1_reg_word41_honoured;
+wire [3:0] card_core0_regs_fifo1_reg_word41_honoured;
 wire card_core0_regs_fifo1_reg_word41_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word41_shown;
+wire [3:0] card_core0_regs_fifo1_reg_word41_shown;
 reg card_core0_regs_fifo1_reg_word41_clamped;
 wire card_core0_regs_fifo1_reg_word41_mine;
 wire card_core0_regs_fifo1_reg_word41_mine_write;
-wire card_core0_regs_fifo1_reg_word41_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word41_shown_wide;
-reg [7:0] card_core0_regs_fifo1_reg_word41_written;
+wire [3:0] card_core0_regs_fifo1_reg_word41_written;
 reg [31:0] card_core0_regs_fifo1_reg_word41_chain_out_data;
 wire card_core0_regs_fifo1_reg_word41_chain_out_clamped;
-wire [7:0] card_core0_regs_fifo1_reg_word42_honoured;
-reg [7:0] card_core0_regs_fifo1_reg_word42_shown;
+reg [31:0] card_core0_regs_fifo1_reg_word42_shown;
 wire card_core0_regs_fifo1_reg_word42_mine;
-wire card_core0_regs_fifo1_reg_word42_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word42_shown_wide;
-wire [7:0] card_core0_regs_fifo1_reg_word42_written;
 reg [31:0] card_core0_regs_fifo1_reg_word42_chain_out_data;
 wire card_core0_regs_fifo1_reg_word42_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word42__store29_word_hw;
-reg [15:0] card_core0_regs_fifo1_reg_word43_honoured;
-reg card_core0_regs_fifo1_reg_word43_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word43_shown;
+wire [7:0] card_core0_regs_fifo1_reg_word43_honoured;
+wire card_core0_regs_fifo1_reg_word43_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word43_shown;
 reg card_core0_regs_fifo1_reg_word43_clamped;
 wire card_core0_regs_fifo1_reg_word43_mine;
 wire card_core0_regs_fifo1_reg_word43_mine_write;
 wire card_core0_regs_fifo1_reg_word43_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word43_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word43_written;
+reg [7:0] card_core0_regs_fifo1_reg_word43_written;
 reg [31:0] card_core0_regs_fifo1_reg_word43_chain_out_data;
 wire card_core0_regs_fifo1_reg_word43_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word44_shown;
+wire [7:0] card_core0_regs_fifo1_reg_word44_honoured;
+reg [7:0] card_core0_regs_fifo1_reg_word44_shown;
 wire card_core0_regs_fifo1_reg_word44_mine;
+wire card_core0_regs_fifo1_reg_word44_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word44_shown_wide;
+wire [7:0] card_core0_regs_fifo1_reg_word44_written;
 reg [31:0] card_core0_regs_fifo1_reg_word44_chain_out_data;
 wire card_core0_regs_fifo1_reg_word44_chain_out_clamped;
-wire [31:0] card_core0_regs_fifo1_reg_word45_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word44__store31_word_hw;
+reg [15:0] card_core0_regs_fifo1_reg_word45_honoured;
+reg card_core0_regs_fifo1_reg_word45_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word45_shown;
+reg card_core0_regs_fifo1_reg_word45_clamped;
 wire card_core0_regs_fifo1_reg_word45_mine;
+wire card_core0_regs_fifo1_reg_word45_mine_write;
+wire card_core0_regs_fifo1_reg_word45_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word45_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word45_written;
 reg [31:0] card_core0_regs_fifo1_reg_word45_chain_out_data;
 wire card_core0_regs_fifo1_reg_word45_chain_out_clamped;
-wire [31:0] card_core0_regs_fifo1_reg_word46_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word46_shown;
 wire card_core0_regs_fifo1_reg_word46_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word46_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word46_chain_out_data;
 wire card_core0_regs_fifo1_reg_word46_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word47_honoured;
-reg card_core0_regs_fifo1_reg_word47_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word47_shown;
-reg card_core0_regs_fifo1_reg_word47_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word47_shown;
 wire card_core0_regs_fifo1_reg_word47_mine;
-wire card_core0_regs_fifo1_reg_word47_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word47_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word47_written;
 reg [31:0] card_core0_regs_fifo1_reg_word47_chain_out_data;
 wire card_core0_regs_fifo1_reg_word47_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word48_honoured;
-reg card_core0_regs_fifo1_reg_word48_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word48_shown;
-reg card_core0_regs_fifo1_reg_word48_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word48_shown;
 wire card_core0_regs_fifo1_reg_word48_mine;
-wire card_core0_regs_fifo1_reg_word48_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word48_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word48_written;
 reg [31:0] card_core0_regs_fifo1_reg_word48_chain_out_data;
 wire card_core0_regs_fifo1_reg_word48_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word49_honoured;
 reg card_core0_regs_fifo1_reg_word49_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word49_shown;
 reg card_core0_regs_fifo1_reg_word49_clamped;
 wire card_core0_regs_fifo1_reg_word49_mine;
 wire card_core0_regs_fifo1_reg_word49_mine_write;
@@ -451,9 +444,9 @@ wire [31:0] card_core0_regs_fifo1_reg_word49_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word49_written;
 reg [31:0] card_core0_regs_fifo1_reg_word49_chain_out_data;
 wire card_core0_regs_fifo1_reg_word49_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word50_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word50_honoured;
 reg card_core0_regs_fifo1_reg_word50_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word50_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word50_shown;
 reg card_core0_regs_fifo1_reg_word50_clamped;
 wire card_core0_regs_fifo1_reg_word50_mine;
 wire card_core0_regs_fifo1_reg_word50_mine_write;
@@ -461,9 +454,8 @@ wire [31:0] card_core0_regs_fifo1_reg_word50_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word50_written;
 reg [31:0] card_core0_regs_fifo1_reg_word50_chain_out_data;
 wire card_core0_regs_fifo1_reg_word50_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word51_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word51_honoured;
 reg card_core0_regs_fifo1_reg_word51_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word51_shown;
 reg card_core0_regs_fifo1_reg_word51_clamped;
 wire card_core0_regs_fifo1_reg_word51_mine;
 wire card_core0_regs_fifo1_reg_word51_mine_write;
@@ -481,20 +473,19 @@ wire [31:0] card_core0_regs_fifo1_reg_word52_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word52_written;
 reg [31:0] card_core0_regs_fifo1_reg_word52_chain_out_data;
 wire card_core0_regs_fifo1_reg_word52_chain_out_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word53_honoured;
-wire card_core0_regs_fifo1_reg_word53_out_of_range;
-reg [1:0] card_core0_regs_fifo1_reg_word53_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word53_honoured;
+reg card_core0_regs_fifo1_reg_word53_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word53_shown;
 reg card_core0_regs_fifo1_reg_word53_clamped;
 wire card_core0_regs_fifo1_reg_word53_mine;
 wire card_core0_regs_fifo1_reg_word53_mine_write;
-wire card_core0_regs_fifo1_reg_word53_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word53_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word53_written;
+reg [31:0] card_core0_regs_fifo1_reg_word53_written;
 reg [31:0] card_core0_regs_fifo1_reg_word53_chain_out_data;
 wire card_core0_regs_fifo1_reg_word53_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word54_honoured;
+reg [7:0] card_core0_regs_fifo1_reg_word54_honoured;
 reg card_core0_regs_fifo1_reg_word54_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word54_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word54_shown;
 reg card_core0_regs_fifo1_reg_word54_clamped;
 wire card_core0_regs_fifo1_reg_word54_mine;
 wire card_core0_regs_fifo1_reg_word54_mine_write;
@@ -502,156 +493,155 @@ wire [31:0] card_core0_regs_fifo1_reg_word54_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word54_written;
 reg [31:0] card_core0_regs_fifo1_reg_word54_chain_out_data;
 wire card_core0_regs_fifo1_reg_word54_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word55_honoured;
-reg card_core0_regs_fifo1_reg_word55_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word55_shown;
+wire [1:0] card_core0_regs_fifo1_reg_word55_honoured;
+wire card_core0_regs_fifo1_reg_word55_out_of_range;
+reg [1:0] card_core0_regs_fifo1_reg_word55_shown;
 reg card_core0_regs_fifo1_reg_word55_clamped;
 wire card_core0_regs_fifo1_reg_word55_mine;
 wire card_core0_regs_fifo1_reg_word55_mine_write;
+wire card_core0_regs_fifo1_reg_word55_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word55_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word55_written;
+reg [1:0] card_core0_regs_fifo1_reg_word55_written;
 reg [31:0] card_core0_regs_fifo1_reg_word55_chain_out_data;
 wire card_core0_regs_fifo1_reg_word55_chain_out_clamped;
-reg [23:0] card_core0_regs_fifo1_reg_word56_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word56_honoured;
 reg card_core0_regs_fifo1_reg_word56_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word56_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word56_shown;
 reg card_core0_regs_fifo1_reg_word56_clamped;
 wire card_core0_regs_fifo1_reg_word56_mine;
 wire card_core0_regs_fifo1_reg_word56_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word56_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word56_written;
+reg [31:0] card_core0_regs_fifo1_reg_word56_written;
 reg [31:0] card_core0_regs_fifo1_reg_word56_chain_out_data;
 wire card_core0_regs_fifo1_reg_word56_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word56__store40_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word56__store40_word_value;
-reg [23:0] card_core0_regs_fifo1_reg_word57_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word57_honoured;
 reg card_core0_regs_fifo1_reg_word57_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word57_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word57_shown;
 reg card_core0_regs_fifo1_reg_word57_clamped;
 wire card_core0_regs_fifo1_reg_word57_mine;
 wire card_core0_regs_fifo1_reg_word57_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word57_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word57_written;
+reg [31:0] card_core0_regs_fifo1_reg_word57_written;
 reg [31:0] card_core0_regs_fifo1_reg_word57_chain_out_data;
 wire card_core0_regs_fifo1_reg_word57_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word57__store41_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word57__store41_word_value;
-wire [31:0] card_core0_regs_fifo1_reg_word58_shown;
+reg [23:0] card_core0_regs_fifo1_reg_word58_honoured;
+reg card_core0_regs_fifo1_reg_word58_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word58_shown;
+reg card_core0_regs_fifo1_reg_word58_clamped;
 wire card_core0_regs_fifo1_reg_word58_mine;
+wire card_core0_regs_fifo1_reg_word58_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word58_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word58_written;
 reg [31:0] card_core0_regs_fifo1_reg_word58_chain_out_data;
 wire card_core0_regs_fifo1_reg_word58_chain_out_clamped;
-wire [15:0] card_core0_regs_fifo1_reg_word59_shown;
+reg card_core0_regs_fifo1_reg_word58__store42_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word58__store42_word_value;
+reg [23:0] card_core0_regs_fifo1_reg_word59_honoured;
+reg card_core0_regs_fifo1_reg_word59_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word59_shown;
+reg card_core0_regs_fifo1_reg_word59_clamped;
 wire card_core0_regs_fifo1_reg_word59_mine;
+wire card_core0_regs_fifo1_reg_word59_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word59_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word59_written;
 reg [31:0] card_core0_regs_fifo1_reg_word59_chain_out_data;
 wire card_core0_regs_fifo1_reg_word59_chain_out_clamped;
-wire [27:0] card_core0_regs_fifo1_reg_word60_shown;
+reg card_core0_regs_fifo1_reg_word59__store43_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word59__store43_word_value;
+wire [31:0] card_core0_regs_fifo1_reg_word60_shown;
 wire card_core0_regs_fifo1_reg_word60_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word60_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word60_chain_out_data;
 wire card_core0_regs_fifo1_reg_word60_chain_out_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word61_honoured;
-wire card_core0_regs_fifo1_reg_word61_out_of_range;
-reg card_core0_regs_fifo1_reg_word61_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word61_shown;
 wire card_core0_regs_fifo1_reg_word61_mine;
-wire card_core0_regs_fifo1_reg_word61_mine_write;
-wire card_core0_regs_fifo1_reg_word61_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word61_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word61_written;
 reg [31:0] card_core0_regs_fifo1_reg_word61_chain_out_data;
 wire card_core0_regs_fifo1_reg_word61_chain_out_clamped;
-reg [19:0] card_core0_regs_fifo1_reg_word62_shown;
+wire [27:0] card_core0_regs_fifo1_reg_word62_shown;
 wire card_core0_regs_fifo1_reg_word62_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word62_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word62_chain_out_data;
 wire card_core0_regs_fifo1_reg_word62_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word63_shown;
+wire [1:0] card_core0_regs_fifo1_reg_word63_honoured;
+wire card_core0_regs_fifo1_reg_word63_out_of_range;
+reg card_core0_regs_fifo1_reg_word63_clamped;
 wire card_core0_regs_fifo1_reg_word63_mine;
+wire card_core0_regs_fifo1_reg_word63_mine_write;
+wire card_core0_regs_fifo1_reg_word63_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word63_shown_wide;
+reg [1:0] card_core0_regs_fifo1_reg_word63_written;
 reg [31:0] card_core0_regs_fifo1_reg_word63_chain_out_data;
 wire card_core0_regs_fifo1_reg_word63_chain_out_clamped;
-wire [6:0] card_core0_regs_fifo1_reg_word64_honoured;
-wire card_core0_regs_fifo1_reg_word64_out_of_range;
-reg [6:0] card_core0_regs_fifo1_reg_word64_shown;
-reg card_core0_regs_fifo1_reg_word64_clamped;
+reg [19:0] card_core0_regs_fifo1_reg_word64_shown;
 wire card_core0_regs_fifo1_reg_word64_mine;
-wire card_core0_regs_fifo1_reg_word64_mine_write;
-wire card_core0_regs_fifo1_reg_word64_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word64_shown_wide;
-reg [6:0] card_core0_regs_fifo1_reg_word64_written;
 reg [31:0] card_core0_regs_fifo1_reg_word64_chain_out_data;
 wire card_core0_regs_fifo1_reg_word64_chain_out_clamped;
-reg [3:0] card_core0_regs_fifo1_reg_word65_honoured;
-reg card_core0_regs_fifo1_reg_word65_out_of_range;
-reg [3:0] card_core0_regs_fifo1_reg_word65_shown;
-reg card_core0_regs_fifo1_reg_word65_clamped;
+reg [7:0] card_core0_regs_fifo1_reg_word65_shown;
 wire card_core0_regs_fifo1_reg_word65_mine;
-wire card_core0_regs_fifo1_reg_word65_mine_write;
-wire card_core0_regs_fifo1_reg_word65_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word65_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word65_written;
 reg [31:0] card_core0_regs_fifo1_reg_word65_chain_out_data;
 wire card_core0_regs_fifo1_reg_word65_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word66_honoured;
-reg card_core0_regs_fifo1_reg_word66_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word66_shown;
+wire [6:0] card_core0_regs_fifo1_reg_word66_honoured;
+wire card_core0_regs_fifo1_reg_word66_out_of_range;
+reg [6:0] card_core0_regs_fifo1_reg_word66_shown;
 reg card_core0_regs_fifo1_reg_word66_clamped;
 wire card_core0_regs_fifo1_reg_word66_mine;
 wire card_core0_regs_fifo1_reg_word66_mine_write;
 wire card_core0_regs_fifo1_reg_word66_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word66_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word66_written;
+reg [6:0] card_core0_regs_fifo1_reg_word66_written;
 reg [31:0] card_core0_regs_fifo1_reg_word66_chain_out_data;
 wire card_core0_regs_fifo1_reg_word66_chain_out_clamped;
-reg [23:0] card_core0_regs_fifo1_reg_word67_honoured;
+reg [3:0] card_core0_regs_fifo1_reg_word67_honoured;
 reg card_core0_regs_fifo1_reg_word67_out_of_range;
+reg [3:0] card_core0_regs_fifo1_reg_word67_shown;
 reg card_core0_regs_fifo1_reg_word67_clamped;
 wire card_core0_regs_fifo1_reg_word67_mine;
 wire card_core0_regs_fifo1_reg_word67_mine_write;
+wire card_core0_regs_fifo1_reg_word67_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word67_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word67_written;
+reg [31:0] card_core0_regs_fifo1_reg_word67_written;
 reg [31:0] card_core0_regs_fifo1_reg_word67_chain_out_data;
 wire card_core0_regs_fifo1_reg_word67_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word67__store46_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word67__store46_word_value;
-wire [1:0] card_core0_regs_fifo1_reg_word68_honoured;
-wire card_core0_regs_fifo1_reg_word68_out_of_range;
-reg [1:0] card_core0_regs_fifo1_reg_word68_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word68_honoured;
+reg card_core0_regs_fifo1_reg_word68_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word68_shown;
 reg card_core0_regs_fifo1_reg_word68_clamped;
 wire card_core0_regs_fifo1_reg_word68_mine;
 wire card_core0_regs_fifo1_reg_word68_mine_write;
+wire card_core0_regs_fifo1_reg_word68_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word68_shown_wide;
-wire [1:0] card_core0_regs_fifo1_reg_word68_written;
+reg [31:0] card_core0_regs_fifo1_reg_word68_written;
 reg [31:0] card_core0_regs_fifo1_reg_word68_chain_out_data;
 wire card_core0_regs_fifo1_reg_word68_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word68__store47_word_strobe;
-reg [1:0] card_core0_regs_fifo1_reg_word68__store47_word_value;
-reg [5:0] card_core0_regs_fifo1_reg_word69_shown;
+reg [23:0] card_core0_regs_fifo1_reg_word69_honoured;
+reg card_core0_regs_fifo1_reg_word69_out_of_range;
+reg card_core0_regs_fifo1_reg_word69_clamped;
 wire card_core0_regs_fifo1_reg_word69_mine;
+wire card_core0_regs_fifo1_reg_word69_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word69_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word69_written;
 reg [31:0] card_core0_regs_fifo1_reg_word69_chain_out_data;
 wire card_core0_regs_fifo1_reg_word69_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word70_honoured;
-reg card_core0_regs_fifo1_reg_word70_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word70_shown;
+reg card_core0_regs_fifo1_reg_word69__store48_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word69__store48_word_value;
+wire [1:0] card_core0_regs_fifo1_reg_word70_honoured;
+wire card_core0_regs_fifo1_reg_word70_out_of_range;
+reg [1:0] card_core0_regs_fifo1_reg_word70_shown;
 reg card_core0_regs_fifo1_reg_word70_clamped;
 wire card_core0_regs_fifo1_reg_word70_mine;
 wire card_core0_regs_fifo1_reg_word70_mine_write;
-wire card_core0_regs_fifo1_reg_word70_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word70_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word70_written;
+wire [1:0] card_core0_regs_fifo1_reg_word70_written;
 reg [31:0] card_core0_regs_fifo1_reg_word70_chain_out_data;
 wire card_core0_regs_fifo1_reg_word70_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word71_honoured;
-reg card_core0_regs_fifo1_reg_word71_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word71_shown;
-reg card_core0_regs_fifo1_reg_word71_clamped;
+reg card_core0_regs_fifo1_reg_word70__store49_word_strobe;
+reg [1:0] card_core0_regs_fifo1_reg_word70__store49_word_value;
+reg [5:0] card_core0_regs_fifo1_reg_word71_shown;
 wire card_core0_regs_fifo1_reg_word71_mine;
-wire card_core0_regs_fifo1_reg_word71_mine_write;
-wire card_core0_regs_fifo1_reg_word71_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word71_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word71_written;
 reg [31:0] card_core0_regs_fifo1_reg_word71_chain_out_data;
 wire card_core0_regs_fifo1_reg_word71_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word72_honoured;
@@ -665,16 +655,58 @@ wire [31:0] card_core0_regs_fifo1_reg_word72_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word72_written;
 reg [31:0] card_core0_regs_fifo1_reg_word72_chain_out_data;
 wire card_core0_regs_fifo1_reg_word72_chain_out_clamped;
-reg [22:0] card_core0_regs_fifo1_reg_word73_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word73_honoured;
 reg card_core0_regs_fifo1_reg_word73_out_of_range;
-reg [22:0] card_core0_regs_fifo1_reg_word73_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word73_shown;
 reg card_core0_regs_fifo1_reg_word73_clamped;
 wire card_core0_regs_fifo1_reg_word73_mine;
 wire card_core0_regs_fifo1_reg_word73_mine_write;
 wire card_core0_regs_fifo1_reg_word73_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word73_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word73_written;
+reg [31:0] card_core0_regs_fifo1_reg_word73_chain_out_data;
 wire card_core0_regs_fifo1_reg_word73_chain_out_clamped;
+reg [15:0] card_core0_regs_fifo1_reg_word74_honoured;
+reg card_core0_regs_fifo1_reg_word74_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word74_shown;
+reg card_core0_regs_fifo1_reg_word74_clamped;
+wire card_core0_regs_fifo1_reg_word74_mine;
+wire card_core0_regs_fifo1_reg_word74_mine_write;
+wire card_core0_regs_fifo1_reg_word74_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word74_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word74_written;
+reg [31:0] card_core0_regs_fifo1_reg_word74_chain_out_data;
+wire card_core0_regs_fifo1_reg_word74_chain_out_clamped;
+reg [22:0] card_core0_regs_fifo1_reg_word75_honoured;
+reg card_core0_regs_fifo1_reg_word75_out_of_range;
+reg [22:0] card_core0_regs_fifo1_reg_word75_shown;
+reg card_core0_regs_fifo1_reg_word75_clamped;
+wire card_core0_regs_fifo1_reg_word75_mine;
+wire card_core0_regs_fifo1_reg_word75_mine_write;
+wire card_core0_regs_fifo1_reg_word75_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word75_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word75_written;
+reg [31:0] card_core0_regs_fifo1_reg_word75_chain_out_data;
+wire card_core0_regs_fifo1_reg_word75_chain_out_clamped;
+reg [7:0] card_core0_regs_fifo1_reg_word76_honoured;
+reg card_core0_regs_fifo1_reg_word76_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word76_shown;
+reg card_core0_regs_fifo1_reg_word76_clamped;
+wire card_core0_regs_fifo1_reg_word76_mine;
+wire card_core0_regs_fifo1_reg_word76_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word76_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word76_written;
+reg [31:0] card_core0_regs_fifo1_reg_word76_chain_out_data;
+wire card_core0_regs_fifo1_reg_word76_chain_out_clamped;
+reg [1:0] card_core0_regs_fifo1_reg_word77_honoured;
+reg card_core0_regs_fifo1_reg_word77_out_of_range;
+reg card_core0_regs_fifo1_reg_word77_clamped;
+wire card_core0_regs_fifo1_reg_word77_mine;
+wire card_core0_regs_fifo1_reg_word77_mine_write;
+wire card_core0_regs_fifo1_reg_word77_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word77_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word77_written;
+wire card_core0_regs_fifo1_reg_word77_chain_out_clamped;
 wire card_core0_regs_fifo1_sequencer1_arriving_coord_fits;
 reg [2:0] card_core0_regs_fifo1_sequencer1_arriving_count;
 wire card_core0_regs_fifo1_sequencer1_arriving_count_fits;
@@ -794,9 +826,17 @@ reg [7:0] card_core0_regs_fifo1_pulse_out1_low_step;
 reg [1:0] card_core0_regs_fifo1_pulse_out1_phase;
 reg [7:0] card_core0_regs_fifo1_pulse_out1_phase_clocks;
 reg [7:0] card_core0_regs_fifo1_pulse_out1_phase_step;
+reg card_core0_regs_fifo1_pulse_out1_pulse_x;
+reg card_core0_regs_fifo1_pulse_out1_pulse_y;
+reg [1:0] card_core0_regs_fifo1_pulse_out1_quad_next_x;
+reg [1:0] card_core0_regs_fifo1_pulse_out1_quad_next_y;
+reg [1:0] card_core0_regs_fifo1_pulse_out1_quad_x;
+reg [1:0] card_core0_regs_fifo1_pulse_out1_quad_y;
 reg card_core0_regs_fifo1_pulse_out1_starts;
 reg card_core0_regs_fifo1_pulse_out1_take;
 reg card_core0_regs_fifo1_pulse_out1_turn;
+reg card_core0_regs_fifo1_pulse_out1_up_x;
+reg card_core0_regs_fifo1_pulse_out1_up_y;
 wire card_core0_regs_fifo1_pulse_out1_control_pulsing;
 reg card_core0_regs_fifo1_pulse_out1_request_step_x;
 reg card_core0_regs_fifo1_pulse_out1_request_step_y;
@@ -1022,32 +1062,33 @@ reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word37_shown = 32'd3719037440;
-assign card_core0_regs_fifo1_reg_word37_chain_in_data = 32'd0;
-assign card_core0_regs_fifo1_reg_word37_chain_in_clamped = 1'd0;
-assign card_core0_regs_fifo1_reg_word38_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word38_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word39_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word39_shown = 4'd0;
+assign card_core0_regs_fifo1_reg_word39_shown = 32'd3719037441;
+assign card_core0_regs_fifo1_reg_word39_chain_in_data = 32'd0;
+assign card_core0_regs_fifo1_reg_word39_chain_in_clamped = 1'd0;
+assign card_core0_regs_fifo1_reg_word40_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word40_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word41_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word41_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word41_shown = 4'd0;
+assign card_core0_regs_fifo1_reg_word43_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word43_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word53_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word53_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word58_shown = 32'd33333333;
-assign card_core0_regs_fifo1_reg_word59_shown = 16'd512;
-assign card_core0_regs_fifo1_reg_word60_shown = 28'd786968;
-assign card_core0_regs_fifo1_reg_word61_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word61_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word64_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word64_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word65_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word45_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word55_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word55_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word60_shown = 32'd33333333;
+assign card_core0_regs_fifo1_reg_word61_shown = 16'd512;
+assign card_core0_regs_fifo1_reg_word62_shown = 28'd786968;
+assign card_core0_regs_fifo1_reg_word63_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word63_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word66_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word66_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word68_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word70_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word71_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word67_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word68_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word70_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word72_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word73_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word74_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word75_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word77_set_mine = 1'd0;
 assign card_core0_regs_fifo1_input_filter1_taken[6] = card_core0_regs_fifo1_input_filter1__input_count13_taken;
 assign card_core0_regs_fifo1_input_filter1_taken[5] = card_core0_regs_fifo1_input_filter1__input_count12_taken;
 assign card_core0_regs_fifo1_input_filter1_taken[4] = card_core0_regs_fifo1_input_filter1__input_count11_taken;
@@ -1147,29 +1188,37 @@ always @(pci_slave1_ad_out_q) begin: pci_slave1_pci_parity1_ad_out_parity_tree
 end
 
 
-always @(pci_slave1_bar1, pci_slave1_mem_enable, pci_slave1_address_phase, pci_slave1_state, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_io_enable, pci_slave1_ad_q) begin: pci_slave1_pci_decode1_decode_address
+always @(pci_slave1_bar2, pci_slave1_bar1, pci_slave1_mem_enable, pci_slave1_address_phase, pci_slave1_state, pci_slave1_bar0, pci_slave1_cbe_q, pci_slave1_idsel_q, pci_slave1_io_enable, pci_slave1_ad_q) begin: pci_slave1_pci_decode1_decode_address
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
+    reg mem_command;
     reg mem_hit;
+    reg alias_hit;
     code = pci_slave1_cbe_q;
     config_hit = (pci_slave1_idsel_q && (!pci_slave1_ad_q[0]) && (!pci_slave1_ad_q[1]) && (pci_slave1_ad_q[11-1:8] == 0) && ((code == 10) || (code == 11)));
     io_hit = (pci_slave1_io_enable && ((code == 2) || (code == 3)) && (pci_slave1_ad_q[32-1:16] == 0) && (pci_slave1_ad_q[16-1:8] == pci_slave1_bar0[16-1:8]));
-    mem_hit = (pci_slave1_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)) && (pci_slave1_ad_q[32-1:12] == pci_slave1_bar1[32-1:12]));
-    pci_slave1_claim = ((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (config_hit || io_hit || mem_hit));
+    mem_command = (pci_slave1_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)));
+    mem_hit = (mem_command && (pci_slave1_ad_q[32-1:12] == pci_slave1_bar1[32-1:12]));
+    alias_hit = (mem_command && (pci_slave1_ad_q[32-1:8] == pci_slave1_bar2[32-1:8]) && (!mem_hit));
+    pci_slave1_claim = ((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (config_hit || io_hit || mem_hit || alias_hit));
     pci_slave1_claim_config = config_hit;
     pci_slave1_claim_io = io_hit;
+    pci_slave1_claim_alias = alias_hit;
     pci_slave1_read_command = (!pci_slave1_cbe_q[0]);
 end
 
 
-always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_pci_decode1_start_offset
+always @(pci_slave1_cbe_q, pci_slave1_claim_alias, pci_slave1_ad_q) begin: pci_slave1_pci_decode1_start_offset
     reg [4-1:0] code;
     code = pci_slave1_cbe_q;
     if (((code == 10) || (code == 11))) begin
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
     end
     else if (((code == 2) || (code == 3))) begin
+        pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
+    end
+    else if (pci_slave1_claim_alias) begin
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
     end
     else begin
@@ -1279,51 +1328,39 @@ always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_first_ph
 end
 
 
-always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_read_command, pci_slave1_b_valid, pci_slave1_stop_q, pci_slave1_single, pci_slave1_state, pci_slave1_hold_retry, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_burst_got, pci_slave1_claim_config, pci_slave1_fatal, pci_slave1_devsel_q, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_claim, pci_ad_oe, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_is_read, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case0_0_control
+always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_trdy_q, pci_slave1_b_valid, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_at_last, pci_slave1_is_read, pci_slave1_first_phase) begin: pci_slave1_pci_control1_control_case0_0_outlook
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
-    reg devsel;
-    reg drive;
-    reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
     reg buffer_room;
     done = (1'b0 && (!pci_slave1_trdy_q));
-    hold = ((!1'b0) && (!pci_slave1_trdy_q));
-    trdy = (pci_slave1_trdy_q != 0);
-    stop = (pci_slave1_stop_q != 0);
-    devsel = (pci_slave1_devsel_q != 0);
-    drive = (pci_devsel_oe != 0);
-    ad_oe = (pci_ad_oe != 0);
-    pci_slave1_pci_control1_control_case0_0_out_state = pci_slave1_state;
-    last_data = (pci_slave1_single || pci_slave1_at_last);
     if (done) begin
-        last_data = (pci_slave1_single || pci_slave1_before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (pci_slave1_is_read) begin
-        ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
-        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
+        pci_slave1_pci_control1_control_case0_0_last_data = (pci_slave1_single || pci_slave1_before_last);
     end
     else begin
-        buffer_room = (pci_slave1_buffered_next <= 1);
-        if ((done && (!pci_slave1_first_phase))) begin
-            buffer_room = (pci_slave1_buffered_next == 0);
-        end
-        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
+        pci_slave1_pci_control1_control_case0_0_last_data = (pci_slave1_single || pci_slave1_at_last);
     end
+    buffer_room = (pci_slave1_buffered_next <= 1);
+    if ((done && (!pci_slave1_first_phase))) begin
+        buffer_room = (pci_slave1_buffered_next == 0);
+    end
+    if (pci_slave1_is_read) begin
+        pci_slave1_pci_control1_control_case0_0_ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
+        pci_slave1_pci_control1_control_case0_0_exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
+    end
+    else begin
+        pci_slave1_pci_control1_control_case0_0_ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
+        pci_slave1_pci_control1_control_case0_0_exhausted = 1'b0;
+    end
+end
+
+
+always @(pci_slave1_claim, pci_slave1_claim_config, pci_slave1_state, pci_slave1_fatal, pci_slave1_pci_control1_control_case0_0_exhausted, pci_slave1_hold_retry, pci_slave1_pci_control1_control_case0_0_ready_for_phase, pci_slave1_trdy_q, pci_slave1_is_read, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_stop_q, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case0_0_next_state
+    reg done;
+    reg hold;
+    done = (1'b0 && (!pci_slave1_trdy_q));
+    hold = ((!1'b0) && (!pci_slave1_trdy_q));
+    pci_slave1_pci_control1_control_case0_0_out_state = pci_slave1_state;
     if ((pci_slave1_state == 4'b0000)) begin
-        drive = 1'b0;
-        ad_oe = 1'b0;
         if (pci_slave1_claim) begin
-            drive = 1'b1;
-            devsel = 1'b0;
-            ad_oe = (pci_slave1_read_command != 0);
             if (pci_slave1_claim_config) begin
                 pci_slave1_pci_control1_control_case0_0_out_state = 4'b0001;
             end
@@ -1338,22 +1375,15 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
     else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
         if (pci_slave1_fatal) begin
             pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((pci_slave1_state == 4'b0001)) begin
             pci_slave1_pci_control1_control_case0_0_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b1);
         end
         else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
             pci_slave1_pci_control1_control_case0_0_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
         end
         else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
             pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (pci_slave1_is_read) begin
             pci_slave1_pci_control1_control_case0_0_out_state = 4'b0100;
@@ -1364,23 +1394,71 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
             // pass
         end
         else if ((done && ((!1'b1) || (!pci_slave1_stop_q)))) begin
-            trdy = 1'b1;
             if (1'b1) begin
                 pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
             end
             else begin
                 pci_slave1_pci_control1_control_case0_0_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
+        else if (pci_slave1_pci_control1_control_case0_0_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || pci_slave1_timeout)) begin
+        else if ((pci_slave1_pci_control1_control_case0_0_exhausted || pci_slave1_timeout)) begin
             pci_slave1_pci_control1_control_case0_0_out_state = 4'b0111;
+        end
+    end
+    else if ((pci_slave1_state == 4'b0111)) begin
+        if ((!1'b1)) begin
+            pci_slave1_pci_control1_control_case0_0_out_state = 4'b1000;
+        end
+    end
+    else begin
+        pci_slave1_pci_control1_control_case0_0_out_state = 4'b0000;
+    end
+end
+
+
+always @(pci_slave1_fatal, pci_slave1_state, pci_slave1_pci_control1_control_case0_0_exhausted, pci_slave1_hold_retry, pci_slave1_trdy_q, pci_slave1_pci_control1_control_case0_0_last_data, pci_slave1_hold_got, pci_slave1_pci_control1_control_case0_0_ready_for_phase, pci_slave1_stop_q, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case0_0_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b0 && (!pci_slave1_trdy_q));
+    hold = ((!1'b0) && (!pci_slave1_trdy_q));
+    trdy = (pci_slave1_trdy_q != 0);
+    stop = (pci_slave1_stop_q != 0);
+    if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
+        if (pci_slave1_fatal) begin
+            stop = 1'b0;
+        end
+        else if ((pci_slave1_state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b1);
+        end
+        else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(pci_slave1_pci_control1_control_case0_0_last_data && 1'b1));
+        end
+        else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((pci_slave1_state == 4'b0101) || (pci_slave1_state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b1) || (!pci_slave1_stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b1)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (pci_slave1_pci_control1_control_case0_0_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(pci_slave1_pci_control1_control_case0_0_last_data && 1'b1));
+        end
+        else if ((pci_slave1_pci_control1_control_case0_0_exhausted || pci_slave1_timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1390,63 +1468,24 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
     end
     else if ((pci_slave1_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            pci_slave1_pci_control1_control_case0_0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        pci_slave1_pci_control1_control_case0_0_out_state = 4'b0000;
-        drive = 1'b0;
     end
     pci_slave1_pci_control1_control_case0_0_out_trdy = trdy;
     pci_slave1_pci_control1_control_case0_0_out_stop = stop;
-    pci_slave1_pci_control1_control_case0_0_out_devsel = devsel;
-    pci_slave1_pci_control1_control_case0_0_out_drive = drive;
-    pci_slave1_pci_control1_control_case0_0_out_ad_oe = ad_oe;
 end
 
 
-always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_read_command, pci_slave1_b_valid, pci_slave1_stop_q, pci_slave1_single, pci_slave1_state, pci_slave1_hold_retry, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_burst_got, pci_slave1_claim_config, pci_slave1_fatal, pci_slave1_devsel_q, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_claim, pci_ad_oe, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_is_read, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case1_0_control
+always @(pci_slave1_claim, pci_ad_oe, pci_slave1_state, pci_slave1_fatal, pci_slave1_devsel_q, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_read_command) begin: pci_slave1_pci_control1_control_case0_0_next_devsel_drive
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
     reg devsel;
     reg drive;
     reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
-    reg buffer_room;
-    done = (1'b1 && (!pci_slave1_trdy_q));
-    hold = ((!1'b1) && (!pci_slave1_trdy_q));
-    trdy = (pci_slave1_trdy_q != 0);
-    stop = (pci_slave1_stop_q != 0);
+    done = (1'b0 && (!pci_slave1_trdy_q));
     devsel = (pci_slave1_devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_slave1_pci_control1_control_case1_0_out_state = pci_slave1_state;
-    last_data = (pci_slave1_single || pci_slave1_at_last);
-    if (done) begin
-        last_data = (pci_slave1_single || pci_slave1_before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (pci_slave1_is_read) begin
-        ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
-        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
-    end
-    else begin
-        buffer_room = (pci_slave1_buffered_next <= 1);
-        if ((done && (!pci_slave1_first_phase))) begin
-            buffer_room = (pci_slave1_buffered_next == 0);
-        end
-        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
-    end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
@@ -1454,6 +1493,59 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
             drive = 1'b1;
             devsel = 1'b0;
             ad_oe = (pci_slave1_read_command != 0);
+        end
+    end
+    else if ((pci_slave1_state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
+        if (pci_slave1_fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b1) && ((pci_slave1_state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
+    pci_slave1_pci_control1_control_case0_0_out_devsel = devsel;
+    pci_slave1_pci_control1_control_case0_0_out_drive = drive;
+    pci_slave1_pci_control1_control_case0_0_out_ad_oe = ad_oe;
+end
+
+
+always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_trdy_q, pci_slave1_b_valid, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_at_last, pci_slave1_is_read, pci_slave1_first_phase) begin: pci_slave1_pci_control1_control_case1_0_outlook
+    reg done;
+    reg buffer_room;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    if (done) begin
+        pci_slave1_pci_control1_control_case1_0_last_data = (pci_slave1_single || pci_slave1_before_last);
+    end
+    else begin
+        pci_slave1_pci_control1_control_case1_0_last_data = (pci_slave1_single || pci_slave1_at_last);
+    end
+    buffer_room = (pci_slave1_buffered_next <= 1);
+    if ((done && (!pci_slave1_first_phase))) begin
+        buffer_room = (pci_slave1_buffered_next == 0);
+    end
+    if (pci_slave1_is_read) begin
+        pci_slave1_pci_control1_control_case1_0_ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
+        pci_slave1_pci_control1_control_case1_0_exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
+    end
+    else begin
+        pci_slave1_pci_control1_control_case1_0_ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
+        pci_slave1_pci_control1_control_case1_0_exhausted = 1'b0;
+    end
+end
+
+
+always @(pci_slave1_claim, pci_slave1_claim_config, pci_slave1_state, pci_slave1_fatal, pci_slave1_pci_control1_control_case1_0_exhausted, pci_slave1_hold_retry, pci_slave1_pci_control1_control_case1_0_ready_for_phase, pci_slave1_trdy_q, pci_slave1_is_read, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_stop_q, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case1_0_next_state
+    reg done;
+    reg hold;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    hold = ((!1'b1) && (!pci_slave1_trdy_q));
+    pci_slave1_pci_control1_control_case1_0_out_state = pci_slave1_state;
+    if ((pci_slave1_state == 4'b0000)) begin
+        if (pci_slave1_claim) begin
             if (pci_slave1_claim_config) begin
                 pci_slave1_pci_control1_control_case1_0_out_state = 4'b0001;
             end
@@ -1468,22 +1560,15 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
     else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
         if (pci_slave1_fatal) begin
             pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((pci_slave1_state == 4'b0001)) begin
             pci_slave1_pci_control1_control_case1_0_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b0);
         end
         else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
             pci_slave1_pci_control1_control_case1_0_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b0));
         end
         else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
             pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (pci_slave1_is_read) begin
             pci_slave1_pci_control1_control_case1_0_out_state = 4'b0100;
@@ -1494,23 +1579,71 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
             // pass
         end
         else if ((done && ((!1'b0) || (!pci_slave1_stop_q)))) begin
-            trdy = 1'b1;
             if (1'b0) begin
                 pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
             end
             else begin
                 pci_slave1_pci_control1_control_case1_0_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b0));
+        else if (pci_slave1_pci_control1_control_case1_0_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || pci_slave1_timeout)) begin
+        else if ((pci_slave1_pci_control1_control_case1_0_exhausted || pci_slave1_timeout)) begin
             pci_slave1_pci_control1_control_case1_0_out_state = 4'b0111;
+        end
+    end
+    else if ((pci_slave1_state == 4'b0111)) begin
+        if ((!1'b0)) begin
+            pci_slave1_pci_control1_control_case1_0_out_state = 4'b1000;
+        end
+    end
+    else begin
+        pci_slave1_pci_control1_control_case1_0_out_state = 4'b0000;
+    end
+end
+
+
+always @(pci_slave1_fatal, pci_slave1_state, pci_slave1_pci_control1_control_case1_0_exhausted, pci_slave1_hold_retry, pci_slave1_trdy_q, pci_slave1_pci_control1_control_case1_0_last_data, pci_slave1_hold_got, pci_slave1_pci_control1_control_case1_0_ready_for_phase, pci_slave1_stop_q, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case1_0_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    hold = ((!1'b1) && (!pci_slave1_trdy_q));
+    trdy = (pci_slave1_trdy_q != 0);
+    stop = (pci_slave1_stop_q != 0);
+    if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
+        if (pci_slave1_fatal) begin
+            stop = 1'b0;
+        end
+        else if ((pci_slave1_state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b0);
+        end
+        else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(pci_slave1_pci_control1_control_case1_0_last_data && 1'b0));
+        end
+        else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((pci_slave1_state == 4'b0101) || (pci_slave1_state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b0) || (!pci_slave1_stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b0)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (pci_slave1_pci_control1_control_case1_0_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(pci_slave1_pci_control1_control_case1_0_last_data && 1'b0));
+        end
+        else if ((pci_slave1_pci_control1_control_case1_0_exhausted || pci_slave1_timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1520,63 +1653,24 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
     end
     else if ((pci_slave1_state == 4'b0111)) begin
         if ((!1'b0)) begin
-            pci_slave1_pci_control1_control_case1_0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        pci_slave1_pci_control1_control_case1_0_out_state = 4'b0000;
-        drive = 1'b0;
     end
     pci_slave1_pci_control1_control_case1_0_out_trdy = trdy;
     pci_slave1_pci_control1_control_case1_0_out_stop = stop;
-    pci_slave1_pci_control1_control_case1_0_out_devsel = devsel;
-    pci_slave1_pci_control1_control_case1_0_out_drive = drive;
-    pci_slave1_pci_control1_control_case1_0_out_ad_oe = ad_oe;
 end
 
 
-always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_read_command, pci_slave1_b_valid, pci_slave1_stop_q, pci_slave1_single, pci_slave1_state, pci_slave1_hold_retry, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_at_last, pci_slave1_first_phase, pci_slave1_burst_got, pci_slave1_claim_config, pci_slave1_fatal, pci_slave1_devsel_q, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_claim, pci_ad_oe, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_is_read, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case2_0_control
+always @(pci_slave1_claim, pci_ad_oe, pci_slave1_state, pci_slave1_fatal, pci_slave1_devsel_q, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_read_command) begin: pci_slave1_pci_control1_control_case1_0_next_devsel_drive
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
     reg devsel;
     reg drive;
     reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
-    reg buffer_room;
     done = (1'b1 && (!pci_slave1_trdy_q));
-    hold = ((!1'b1) && (!pci_slave1_trdy_q));
-    trdy = (pci_slave1_trdy_q != 0);
-    stop = (pci_slave1_stop_q != 0);
     devsel = (pci_slave1_devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_slave1_pci_control1_control_case2_0_out_state = pci_slave1_state;
-    last_data = (pci_slave1_single || pci_slave1_at_last);
-    if (done) begin
-        last_data = (pci_slave1_single || pci_slave1_before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (pci_slave1_is_read) begin
-        ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
-        exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
-    end
-    else begin
-        buffer_room = (pci_slave1_buffered_next <= 1);
-        if ((done && (!pci_slave1_first_phase))) begin
-            buffer_room = (pci_slave1_buffered_next == 0);
-        end
-        ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
-    end
     if ((pci_slave1_state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
@@ -1584,6 +1678,59 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
             drive = 1'b1;
             devsel = 1'b0;
             ad_oe = (pci_slave1_read_command != 0);
+        end
+    end
+    else if ((pci_slave1_state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
+        if (pci_slave1_fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b0) && ((pci_slave1_state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
+    pci_slave1_pci_control1_control_case1_0_out_devsel = devsel;
+    pci_slave1_pci_control1_control_case1_0_out_drive = drive;
+    pci_slave1_pci_control1_control_case1_0_out_ad_oe = ad_oe;
+end
+
+
+always @(pci_slave1_burst_got, pci_slave1_single, pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_slave1_buffered_next, pci_slave1_trdy_q, pci_slave1_b_valid, pci_slave1_pci_control1_control_case0_0_target_room, pci_slave1_at_last, pci_slave1_is_read, pci_slave1_first_phase) begin: pci_slave1_pci_control1_control_case2_0_outlook
+    reg done;
+    reg buffer_room;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    if (done) begin
+        pci_slave1_pci_control1_control_case2_0_last_data = (pci_slave1_single || pci_slave1_before_last);
+    end
+    else begin
+        pci_slave1_pci_control1_control_case2_0_last_data = (pci_slave1_single || pci_slave1_at_last);
+    end
+    buffer_room = (pci_slave1_buffered_next <= 1);
+    if ((done && (!pci_slave1_first_phase))) begin
+        buffer_room = (pci_slave1_buffered_next == 0);
+    end
+    if (pci_slave1_is_read) begin
+        pci_slave1_pci_control1_control_case2_0_ready_for_phase = (pci_slave1_b_valid || pci_slave1_burst_got);
+        pci_slave1_pci_control1_control_case2_0_exhausted = ((!pci_slave1_b_valid) && (!pci_slave1_burst_got) && (!pci_slave1_fetching));
+    end
+    else begin
+        pci_slave1_pci_control1_control_case2_0_ready_for_phase = (pci_slave1_is_config || (buffer_room && pci_slave1_pci_control1_control_case0_0_target_room));
+        pci_slave1_pci_control1_control_case2_0_exhausted = 1'b0;
+    end
+end
+
+
+always @(pci_slave1_claim, pci_slave1_claim_config, pci_slave1_state, pci_slave1_fatal, pci_slave1_pci_control1_control_case2_0_exhausted, pci_slave1_hold_retry, pci_slave1_pci_control1_control_case2_0_ready_for_phase, pci_slave1_trdy_q, pci_slave1_is_read, pci_slave1_hold_got, pci_slave1_claim_io, pci_slave1_stop_q, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case2_0_next_state
+    reg done;
+    reg hold;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    hold = ((!1'b1) && (!pci_slave1_trdy_q));
+    pci_slave1_pci_control1_control_case2_0_out_state = pci_slave1_state;
+    if ((pci_slave1_state == 4'b0000)) begin
+        if (pci_slave1_claim) begin
             if (pci_slave1_claim_config) begin
                 pci_slave1_pci_control1_control_case2_0_out_state = 4'b0001;
             end
@@ -1598,22 +1745,15 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
     else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
         if (pci_slave1_fatal) begin
             pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((pci_slave1_state == 4'b0001)) begin
             pci_slave1_pci_control1_control_case2_0_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b1);
         end
         else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
             pci_slave1_pci_control1_control_case2_0_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
         end
         else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
             pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (pci_slave1_is_read) begin
             pci_slave1_pci_control1_control_case2_0_out_state = 4'b0100;
@@ -1624,23 +1764,71 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
             // pass
         end
         else if ((done && ((!1'b1) || (!pci_slave1_stop_q)))) begin
-            trdy = 1'b1;
             if (1'b1) begin
                 pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
             end
             else begin
                 pci_slave1_pci_control1_control_case2_0_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
+        else if (pci_slave1_pci_control1_control_case2_0_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || pci_slave1_timeout)) begin
+        else if ((pci_slave1_pci_control1_control_case2_0_exhausted || pci_slave1_timeout)) begin
             pci_slave1_pci_control1_control_case2_0_out_state = 4'b0111;
+        end
+    end
+    else if ((pci_slave1_state == 4'b0111)) begin
+        if ((!1'b1)) begin
+            pci_slave1_pci_control1_control_case2_0_out_state = 4'b1000;
+        end
+    end
+    else begin
+        pci_slave1_pci_control1_control_case2_0_out_state = 4'b0000;
+    end
+end
+
+
+always @(pci_slave1_fatal, pci_slave1_state, pci_slave1_pci_control1_control_case2_0_exhausted, pci_slave1_hold_retry, pci_slave1_trdy_q, pci_slave1_pci_control1_control_case2_0_last_data, pci_slave1_hold_got, pci_slave1_pci_control1_control_case2_0_ready_for_phase, pci_slave1_stop_q, pci_slave1_timeout, pci_slave1_hold_accepted) begin: pci_slave1_pci_control1_control_case2_0_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    hold = ((!1'b1) && (!pci_slave1_trdy_q));
+    trdy = (pci_slave1_trdy_q != 0);
+    stop = (pci_slave1_stop_q != 0);
+    if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
+        if (pci_slave1_fatal) begin
+            stop = 1'b0;
+        end
+        else if ((pci_slave1_state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b1);
+        end
+        else if ((pci_slave1_hold_got || pci_slave1_hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(pci_slave1_pci_control1_control_case2_0_last_data && 1'b1));
+        end
+        else if ((pci_slave1_hold_retry || pci_slave1_timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((pci_slave1_state == 4'b0101) || (pci_slave1_state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b1) || (!pci_slave1_stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b1)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (pci_slave1_pci_control1_control_case2_0_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(pci_slave1_pci_control1_control_case2_0_last_data && 1'b1));
+        end
+        else if ((pci_slave1_pci_control1_control_case2_0_exhausted || pci_slave1_timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1650,19 +1838,45 @@ always @(pci_slave1_fetching, pci_slave1_is_config, pci_slave1_before_last, pci_
     end
     else if ((pci_slave1_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            pci_slave1_pci_control1_control_case2_0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        pci_slave1_pci_control1_control_case2_0_out_state = 4'b0000;
-        drive = 1'b0;
     end
     pci_slave1_pci_control1_control_case2_0_out_trdy = trdy;
     pci_slave1_pci_control1_control_case2_0_out_stop = stop;
+end
+
+
+always @(pci_slave1_claim, pci_ad_oe, pci_slave1_state, pci_slave1_fatal, pci_slave1_devsel_q, pci_devsel_oe, pci_slave1_trdy_q, pci_slave1_read_command) begin: pci_slave1_pci_control1_control_case2_0_next_devsel_drive
+    reg done;
+    reg devsel;
+    reg drive;
+    reg ad_oe;
+    done = (1'b1 && (!pci_slave1_trdy_q));
+    devsel = (pci_slave1_devsel_q != 0);
+    drive = (pci_devsel_oe != 0);
+    ad_oe = (pci_ad_oe != 0);
+    if ((pci_slave1_state == 4'b0000)) begin
+        drive = 1'b0;
+        ad_oe = 1'b0;
+        if (pci_slave1_claim) begin
+            drive = 1'b1;
+            devsel = 1'b0;
+            ad_oe = (pci_slave1_read_command != 0);
+        end
+    end
+    else if ((pci_slave1_state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((pci_slave1_state == 4'b0001) || (pci_slave1_state == 4'b0010) || (pci_slave1_state == 4'b0011) || (pci_slave1_state == 4'b0100))) begin
+        if (pci_slave1_fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b1) && ((pci_slave1_state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
     pci_slave1_pci_control1_control_case2_0_out_devsel = devsel;
     pci_slave1_pci_control1_control_case2_0_out_drive = drive;
     pci_slave1_pci_control1_control_case2_0_out_ad_oe = ad_oe;
@@ -1708,30 +1922,19 @@ wire pci_slave1_ad_oe_next_y0 = pci_slave1_pci_control1_control_case2_0_out_ad_o
 assign pci_slave1_ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_y0 ? 1'b1 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_transaction
+always @(posedge clock, negedge reset) begin: pci_slave1_phase_registers
     if (reset == 0) begin
-        pci_slave1_req_addr <= 0;
-        pci_slave1_is_config <= 0;
-        pci_slave1_space_mem <= 0;
-        pci_slave1_first_pending <= 0;
-        pci_slave1_initial_wait_over <= 0;
         pci_slave1_before_last <= 0;
-        pci_slave1_io_byte <= 0;
-        pci_slave1_single <= 0;
-        pci_slave1_req_addr_stale <= 0;
         pci_slave1_address_fault <= 0;
         pci_slave1_at_last <= 0;
-        pci_slave1_subsequent_wait_over <= 0;
-        pci_slave1_is_read <= 0;
         pci_slave1_first_phase <= 0;
-        pci_slave1_wait_count <= 0;
-        pci_slave1_fetching <= 0;
         pci_slave1_state <= 4'b0000;
         pci_slave1_phase_addr <= 0;
     end
     else begin
         pci_slave1_state <= pci_slave1_state_next;
         pci_slave1_first_phase <= pci_slave1_first_phase_next;
+        pci_slave1_address_fault <= pci_slave1_address_fault_next;
         if (pci_slave1_phase_step) begin
             if (pci_slave1_claim) begin
                 pci_slave1_phase_addr <= pci_slave1_start_addr;
@@ -1744,12 +1947,26 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
                 pci_slave1_before_last <= ($signed({1'b0, pci_slave1_phase_addr}) == (1023 - 2));
             end
         end
-        pci_slave1_address_fault <= pci_slave1_address_fault_next;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pci_slave1_transaction_kind
+    if (reset == 0) begin
+        pci_slave1_is_config <= 0;
+        pci_slave1_first_pending <= 0;
+        pci_slave1_space_mem <= 0;
+        pci_slave1_io_byte <= 0;
+        pci_slave1_single <= 0;
+        pci_slave1_is_read <= 0;
+        pci_slave1_fetching <= 0;
+    end
+    else begin
         if (((pci_slave1_state == 4'b0000) && pci_slave1_address_phase)) begin
             pci_slave1_is_read <= (!pci_slave1_cbe_q[0]);
             pci_slave1_is_config <= pci_slave1_claim_config;
-            pci_slave1_space_mem <= ((!pci_slave1_claim_config) && (!pci_slave1_claim_io));
-            pci_slave1_single <= (pci_slave1_claim_config || pci_slave1_claim_io || pci_slave1_ad_q[0] || pci_slave1_ad_q[1]);
+            pci_slave1_space_mem <= ((!pci_slave1_claim_config) && (!pci_slave1_claim_io) && (!pci_slave1_claim_alias));
+            pci_slave1_single <= (pci_slave1_claim_config || pci_slave1_claim_io || pci_slave1_claim_alias || pci_slave1_ad_q[0] || pci_slave1_ad_q[1]);
             pci_slave1_first_pending <= 1'b1;
             pci_slave1_fetching <= ((!pci_slave1_cbe_q[0]) && (!pci_slave1_claim_config));
             pci_slave1_io_byte <= pci_slave1_ad_q[2-1:0];
@@ -1765,6 +1982,16 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
                 pci_slave1_fetching <= 1'b0;
             end
         end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pci_slave1_request_address
+    if (reset == 0) begin
+        pci_slave1_req_addr <= 0;
+        pci_slave1_req_addr_stale <= 0;
+    end
+    else begin
         if (pci_slave1_claim) begin
             pci_slave1_req_addr_stale <= pci_slave1_draining;
         end
@@ -1779,6 +2006,17 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction
             pci_slave1_req_addr <= pci_slave1_phase_addr;
             pci_slave1_req_addr_stale <= 1'b0;
         end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pci_slave1_latency_count
+    if (reset == 0) begin
+        pci_slave1_subsequent_wait_over <= 0;
+        pci_slave1_wait_count <= 0;
+        pci_slave1_initial_wait_over <= 0;
+    end
+    else begin
         if ((!pci_slave1_waiting)) begin
             pci_slave1_wait_count <= 0;
             pci_slave1_initial_wait_over <= 1'b0;
@@ -1958,6 +2196,7 @@ always @(posedge clock, negedge reset) begin: pci_slave1_pci_config1_config_regi
         pci_slave1_pci_config1_signaled_system_error <= 0;
         pci_slave1_pci_config1_interrupt_line <= 0;
         pci_slave1_interrupt_disable <= 0;
+        pci_slave1_bar2 <= 0;
         pci_slave1_pci_config1_signaled_target_abort <= 0;
         pci_slave1_bar0 <= 0;
         pci_slave1_pci_config1_detected_parity_error <= 0;
@@ -2010,6 +2249,20 @@ always @(posedge clock, negedge reset) begin: pci_slave1_pci_config1_config_regi
                         pci_slave1_bar1[32-1:24] <= pci_slave1_config_data[32-1:24];
                     end
                 end
+                'h6: begin
+                    if ((!pci_slave1_config_cbe_n[0])) begin
+                        pci_slave1_bar2[8-1:0] <= pci_slave1_config_data[8-1:0];
+                    end
+                    if ((!pci_slave1_config_cbe_n[1])) begin
+                        pci_slave1_bar2[16-1:8] <= pci_slave1_config_data[16-1:8];
+                    end
+                    if ((!pci_slave1_config_cbe_n[2])) begin
+                        pci_slave1_bar2[24-1:16] <= pci_slave1_config_data[24-1:16];
+                    end
+                    if ((!pci_slave1_config_cbe_n[3])) begin
+                        pci_slave1_bar2[32-1:24] <= pci_slave1_config_data[32-1:24];
+                    end
+                end
                 'hf: begin
                     if ((!pci_slave1_config_cbe_n[0])) begin
                         pci_slave1_pci_config1_interrupt_line <= pci_slave1_config_data[8-1:0];
@@ -2028,7 +2281,7 @@ end
 assign pci_slave1_pci_config1_bar0_read = ((pci_slave1_bar0 & 16'hff00) | 16'h1);
 
 
-always @(pci_slave1_pci_config1_signaled_system_error, pci_slave1_parity_response, pci_slave1_config_irq, pci_slave1_config_index, pci_slave1_pci_config1_bar0_read, pci_slave1_pci_config1_interrupt_line, pci_slave1_interrupt_disable, pci_slave1_pci_config1_signaled_target_abort, pci_slave1_pci_config1_detected_parity_error, pci_slave1_io_enable, pci_slave1_serr_enable, pci_slave1_bar1, pci_slave1_mem_enable) begin: pci_slave1_pci_config1_config_read
+always @(pci_slave1_pci_config1_signaled_system_error, pci_slave1_parity_response, pci_slave1_config_irq, pci_slave1_config_index, pci_slave1_pci_config1_bar0_read, pci_slave1_pci_config1_interrupt_line, pci_slave1_interrupt_disable, pci_slave1_bar2, pci_slave1_pci_config1_signaled_target_abort, pci_slave1_pci_config1_detected_parity_error, pci_slave1_io_enable, pci_slave1_serr_enable, pci_slave1_bar1, pci_slave1_mem_enable) begin: pci_slave1_pci_config1_config_read
     case (pci_slave1_config_index)
         'h0: begin
             pci_slave1_config_rdata = 32'hdda01234;
@@ -2044,6 +2297,9 @@ always @(pci_slave1_pci_config1_signaled_system_error, pci_slave1_parity_respons
         end
         'h5: begin
             pci_slave1_config_rdata = (pci_slave1_bar1 & 32'hfffff000);
+        end
+        'h6: begin
+            pci_slave1_config_rdata = (pci_slave1_bar2 & 32'hffffff00);
         end
         'hb: begin
             pci_slave1_config_rdata = 32'h11234;
@@ -2152,136 +2408,29 @@ assign pci_slave1_pci_control1_control_case0_0_target_room = card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word37_mine = (pci_slave1_pci_requests1_local_addr == 0);
+assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 0);
 
 
-always @(card_core0_regs_fifo1_reg_word37_mine, card_core0_regs_fifo1_reg_word37_shown_wide, card_core0_regs_fifo1_reg_word37_chain_in_data) begin: card_core0_regs_fifo1_reg_word37_read_chain
-    if (card_core0_regs_fifo1_reg_word37_mine) begin
-        card_core0_regs_fifo1_reg_word37_chain_out_data = (card_core0_regs_fifo1_reg_word37_chain_in_data | card_core0_regs_fifo1_reg_word37_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word37_chain_out_data = card_core0_regs_fifo1_reg_word37_chain_in_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word37_shown_wide = card_core0_regs_fifo1_reg_word37_shown;
-
-
-
-assign card_core0_regs_fifo1_reg_word37_chain_out_clamped = card_core0_regs_fifo1_reg_word37_chain_in_clamped;
-
-
-
-assign card_core0_regs_fifo1_reg_word38_mine = (pci_slave1_pci_requests1_local_addr == 4);
-
-
-always @(card_core0_regs_fifo1_reg_word38_mine, card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word37_chain_out_data) begin: card_core0_regs_fifo1_reg_word38_read_chain
-    if (card_core0_regs_fifo1_reg_word38_mine) begin
-        card_core0_regs_fifo1_reg_word38_chain_out_data = (card_core0_regs_fifo1_reg_word37_chain_out_data | card_core0_regs_fifo1_reg_word38_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word38_chain_out_data = card_core0_regs_fifo1_reg_word37_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word38_shown_wide = {30'h0, card_core0_regs_fifo1_control};
-
-
-
-assign card_core0_regs_fifo1_reg_word38_mine_write = (card_core0_regs_fifo1_written_addr == 4);
-
-
-always @(card_core0_regs_fifo1_reg_word38_shown_wide, card_core0_regs_fifo1_reg_word38_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word38_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word38_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word38_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word38_written = ((card_core0_regs_fifo1_reg_word38_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word38_honoured = card_core0_regs_fifo1_reg_word38_written[2-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word38_chain_out_clamped = (card_core0_regs_fifo1_reg_word37_chain_out_clamped || card_core0_regs_fifo1_reg_word38_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word38__store26_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_control <= 0;
-        card_core0_regs_fifo1_reg_word38_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word38_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word38_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word38_mine_write))) begin
-            card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word38_honoured;
-            card_core0_regs_fifo1_reg_word38_clamped <= card_core0_regs_fifo1_reg_word38_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 8);
-
-
-always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word38_chain_out_data) begin: card_core0_regs_fifo1_reg_word39_read_chain
+always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word39_chain_in_data) begin: card_core0_regs_fifo1_reg_word39_read_chain
     if (card_core0_regs_fifo1_reg_word39_mine) begin
-        card_core0_regs_fifo1_reg_word39_chain_out_data = (card_core0_regs_fifo1_reg_word38_chain_out_data | card_core0_regs_fifo1_reg_word39_shown_wide);
+        card_core0_regs_fifo1_reg_word39_chain_out_data = (card_core0_regs_fifo1_reg_word39_chain_in_data | card_core0_regs_fifo1_reg_word39_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word39_chain_out_data = card_core0_regs_fifo1_reg_word38_chain_out_data;
+        card_core0_regs_fifo1_reg_word39_chain_out_data = card_core0_regs_fifo1_reg_word39_chain_in_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word39_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word39_shown};
+assign card_core0_regs_fifo1_reg_word39_shown_wide = card_core0_regs_fifo1_reg_word39_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word39_mine_write = (card_core0_regs_fifo1_written_addr == 8);
+assign card_core0_regs_fifo1_reg_word39_chain_out_clamped = card_core0_regs_fifo1_reg_word39_chain_in_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word39_written = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
-
-
-
-assign card_core0_regs_fifo1_reg_word39_honoured = card_core0_regs_fifo1_reg_word39_written[4-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word39_chain_out_clamped = (card_core0_regs_fifo1_reg_word38_chain_out_clamped || card_core0_regs_fifo1_reg_word39_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word39__store27_pulse_on_write
-    if (reset == 0) begin
-        card_core0_regs_fifo1_command_strobe <= 0;
-        card_core0_regs_fifo1_command <= 0;
-        card_core0_regs_fifo1_reg_word39_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_command_strobe <= 1'b0;
-        card_core0_regs_fifo1_reg_word39_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word39_mine_write)) begin
-            card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word39_honoured;
-            card_core0_regs_fifo1_command_strobe <= 1'b1;
-            card_core0_regs_fifo1_reg_word39_clamped <= card_core0_regs_fifo1_reg_word39_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 12);
+assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 4);
 
 
 always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_chain_out_data) begin: card_core0_regs_fifo1_reg_word40_read_chain
@@ -2295,15 +2444,48 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word40_shown_wide = card_core0_regs_fifo1_reg_word40_shown;
+assign card_core0_regs_fifo1_reg_word40_shown_wide = {30'h0, card_core0_regs_fifo1_control};
 
 
 
-assign card_core0_regs_fifo1_reg_word40_chain_out_clamped = card_core0_regs_fifo1_reg_word39_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word40_mine_write = (card_core0_regs_fifo1_written_addr == 4);
+
+
+always @(card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word40_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word40_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word40_written = card_core0_regs_fifo1_set_value[2-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word40_written = ((card_core0_regs_fifo1_reg_word40_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 16);
+assign card_core0_regs_fifo1_reg_word40_honoured = card_core0_regs_fifo1_reg_word40_written[2-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word40_chain_out_clamped = (card_core0_regs_fifo1_reg_word39_chain_out_clamped || card_core0_regs_fifo1_reg_word40_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word40__store28_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_control <= 0;
+        card_core0_regs_fifo1_reg_word40_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word40_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word40_mine_write))) begin
+            card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word40_honoured;
+            card_core0_regs_fifo1_reg_word40_clamped <= card_core0_regs_fifo1_reg_word40_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 8);
 
 
 always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_chain_out_data) begin: card_core0_regs_fifo1_reg_word41_read_chain
@@ -2317,40 +2499,37 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word41_shown};
+assign card_core0_regs_fifo1_reg_word41_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word41_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 16);
-
-
-always @(card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word41_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word41_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word41_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word41_written = card_core0_regs_fifo1_set_value[8-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word41_written = ((card_core0_regs_fifo1_reg_word41_shown_wide[8-1:0] & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 8);
 
 
 
-assign card_core0_regs_fifo1_reg_word41_honoured = card_core0_regs_fifo1_reg_word41_written[8-1:0];
+assign card_core0_regs_fifo1_reg_word41_written = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word41_honoured = card_core0_regs_fifo1_reg_word41_written[4-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word41_chain_out_clamped = (card_core0_regs_fifo1_reg_word40_chain_out_clamped || card_core0_regs_fifo1_reg_word41_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__store28_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__store29_pulse_on_write
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word41_shown <= 0;
+        card_core0_regs_fifo1_command_strobe <= 0;
+        card_core0_regs_fifo1_command <= 0;
         card_core0_regs_fifo1_reg_word41_clamped <= 0;
     end
     else begin
+        card_core0_regs_fifo1_command_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word41_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word41_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write))) begin
-            card_core0_regs_fifo1_reg_word41_shown <= card_core0_regs_fifo1_reg_word41_honoured;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write)) begin
+            card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word41_honoured;
+            card_core0_regs_fifo1_command_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word41_clamped <= card_core0_regs_fifo1_reg_word41_out_of_range;
         end
     end
@@ -2358,7 +2537,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 20);
+assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 12);
 
 
 always @(card_core0_regs_fifo1_reg_word42_mine, card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word41_chain_out_data) begin: card_core0_regs_fifo1_reg_word42_read_chain
@@ -2372,42 +2551,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word42_shown};
-
-
-
-assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_written_addr == 20);
-
-
-
-assign card_core0_regs_fifo1_reg_word42_written = (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]);
-
-
-
-assign card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_written[8-1:0];
+assign card_core0_regs_fifo1_reg_word42_shown_wide = card_core0_regs_fifo1_reg_word42_shown;
 
 
 
 assign card_core0_regs_fifo1_reg_word42_chain_out_clamped = card_core0_regs_fifo1_reg_word41_chain_out_clamped;
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word42__store29_clear_on_one
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word42_shown <= 0;
-    end
-    else begin
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word42_mine_write)) begin
-            card_core0_regs_fifo1_reg_word42_shown <= ((card_core0_regs_fifo1_reg_word42_shown & (~card_core0_regs_fifo1_reg_word42_honoured)) | card_core0_regs_fifo1_reg_word42__store29_word_hw);
-        end
-        else begin
-            card_core0_regs_fifo1_reg_word42_shown <= (card_core0_regs_fifo1_reg_word42_shown | card_core0_regs_fifo1_reg_word42__store29_word_hw);
-        end
-    end
-end
 
-
-
-assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 24);
+assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word43_mine, card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word42_chain_out_data) begin: card_core0_regs_fifo1_reg_word43_read_chain
@@ -2421,33 +2573,25 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word43_shown};
+assign card_core0_regs_fifo1_reg_word43_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word43_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_written_addr == 24);
+assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_written_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word43_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word43_merge_bytes
     if ((card_core0_regs_fifo1_reg_word43_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word43_written = card_core0_regs_fifo1_set_value[32-1:0];
+        card_core0_regs_fifo1_reg_word43_written = card_core0_regs_fifo1_set_value[8-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word43_written = ((card_core0_regs_fifo1_reg_word43_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word43_written = ((card_core0_regs_fifo1_reg_word43_shown_wide[8-1:0] & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word43_written) begin: card_core0_regs_fifo1_reg_word43__limit30_clamp_above_power_of_two
-    card_core0_regs_fifo1_reg_word43_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word43_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word43_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[16-1:0];
-        card_core0_regs_fifo1_reg_word43_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[8-1:0];
 
 
 
@@ -2470,7 +2614,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 28);
+assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 20);
 
 
 always @(card_core0_regs_fifo1_reg_word44_mine, card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_reg_word43_chain_out_data) begin: card_core0_regs_fifo1_reg_word44_read_chain
@@ -2484,15 +2628,42 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word44_shown};
+assign card_core0_regs_fifo1_reg_word44_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word44_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word44_mine_write = (card_core0_regs_fifo1_written_addr == 20);
+
+
+
+assign card_core0_regs_fifo1_reg_word44_written = (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word44_honoured = card_core0_regs_fifo1_reg_word44_written[8-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word44_chain_out_clamped = card_core0_regs_fifo1_reg_word43_chain_out_clamped;
 
 
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word44__store31_clear_on_one
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word44_shown <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word44_mine_write)) begin
+            card_core0_regs_fifo1_reg_word44_shown <= ((card_core0_regs_fifo1_reg_word44_shown & (~card_core0_regs_fifo1_reg_word44_honoured)) | card_core0_regs_fifo1_reg_word44__store31_word_hw);
+        end
+        else begin
+            card_core0_regs_fifo1_reg_word44_shown <= (card_core0_regs_fifo1_reg_word44_shown | card_core0_regs_fifo1_reg_word44__store31_word_hw);
+        end
+    end
+end
 
-assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 32);
+
+
+assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 24);
 
 
 always @(card_core0_regs_fifo1_reg_word45_mine, card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word44_chain_out_data) begin: card_core0_regs_fifo1_reg_word45_read_chain
@@ -2506,15 +2677,56 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_shown_wide = card_core0_regs_fifo1_reg_word45_shown;
+assign card_core0_regs_fifo1_reg_word45_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word45_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word45_chain_out_clamped = card_core0_regs_fifo1_reg_word44_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word45_mine_write = (card_core0_regs_fifo1_written_addr == 24);
+
+
+always @(card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word45_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word45_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word45_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word45_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word45_written = ((card_core0_regs_fifo1_reg_word45_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word45_written) begin: card_core0_regs_fifo1_reg_word45__limit32_clamp_above_power_of_two
+    card_core0_regs_fifo1_reg_word45_out_of_range = 1'b1;
+    if ((card_core0_regs_fifo1_reg_word45_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word45_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_written[16-1:0];
+        card_core0_regs_fifo1_reg_word45_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 36);
+assign card_core0_regs_fifo1_reg_word45_chain_out_clamped = (card_core0_regs_fifo1_reg_word44_chain_out_clamped || card_core0_regs_fifo1_reg_word45_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word45__store32_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word45_shown <= 0;
+        card_core0_regs_fifo1_reg_word45_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word45_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word45_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word45_mine_write))) begin
+            card_core0_regs_fifo1_reg_word45_shown <= card_core0_regs_fifo1_reg_word45_honoured;
+            card_core0_regs_fifo1_reg_word45_clamped <= card_core0_regs_fifo1_reg_word45_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 28);
 
 
 always @(card_core0_regs_fifo1_reg_word46_mine, card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_reg_word45_chain_out_data) begin: card_core0_regs_fifo1_reg_word46_read_chain
@@ -2528,7 +2740,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_shown_wide = card_core0_regs_fifo1_reg_word46_shown;
+assign card_core0_regs_fifo1_reg_word46_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word46_shown};
 
 
 
@@ -2536,7 +2748,7 @@ assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 40);
+assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 32);
 
 
 always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_chain_out_data) begin: card_core0_regs_fifo1_reg_word47_read_chain
@@ -2550,59 +2762,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word47_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word47_shown};
+assign card_core0_regs_fifo1_reg_word47_shown_wide = card_core0_regs_fifo1_reg_word47_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word47_mine_write = (card_core0_regs_fifo1_written_addr == 40);
-
-
-always @(card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word47_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word47_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word47_written = ((card_core0_regs_fifo1_reg_word47_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word47_written) begin: card_core0_regs_fifo1_reg_word47__limit31_clamp_unsigned
-    card_core0_regs_fifo1_reg_word47_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word47_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word47_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word47_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word47_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word47_written[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word47_honoured = 32768;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word47_honoured = card_core0_regs_fifo1_reg_word47_written[16-1:0];
-        card_core0_regs_fifo1_reg_word47_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = card_core0_regs_fifo1_reg_word46_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = (card_core0_regs_fifo1_reg_word46_chain_out_clamped || card_core0_regs_fifo1_reg_word47_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word47__store31_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word47_shown <= 4096;
-        card_core0_regs_fifo1_reg_word47_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word47_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word47_mine_write))) begin
-            card_core0_regs_fifo1_reg_word47_shown <= card_core0_regs_fifo1_reg_word47_honoured;
-            card_core0_regs_fifo1_reg_word47_clamped <= card_core0_regs_fifo1_reg_word47_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word48_mine = (pci_slave1_pci_requests1_local_addr == 44);
+assign card_core0_regs_fifo1_reg_word48_mine = (pci_slave1_pci_requests1_local_addr == 36);
 
 
 always @(card_core0_regs_fifo1_reg_word48_mine, card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_reg_word47_chain_out_data) begin: card_core0_regs_fifo1_reg_word48_read_chain
@@ -2616,59 +2784,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word48_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word48_shown};
+assign card_core0_regs_fifo1_reg_word48_shown_wide = card_core0_regs_fifo1_reg_word48_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word48_mine_write = (card_core0_regs_fifo1_written_addr == 44);
-
-
-always @(card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word48_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
-        card_core0_regs_fifo1_reg_word48_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word48_written = ((card_core0_regs_fifo1_reg_word48_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word48_written) begin: card_core0_regs_fifo1_reg_word48__limit32_clamp_unsigned
-    card_core0_regs_fifo1_reg_word48_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word48_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word48_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word48_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word48_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word48_written[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word48_honoured = 32768;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word48_honoured = card_core0_regs_fifo1_reg_word48_written[16-1:0];
-        card_core0_regs_fifo1_reg_word48_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word48_chain_out_clamped = card_core0_regs_fifo1_reg_word47_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word48_chain_out_clamped = (card_core0_regs_fifo1_reg_word47_chain_out_clamped || card_core0_regs_fifo1_reg_word48_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word48__store32_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word48_shown <= 4096;
-        card_core0_regs_fifo1_reg_word48_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word48_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word48_mine_write))) begin
-            card_core0_regs_fifo1_reg_word48_shown <= card_core0_regs_fifo1_reg_word48_honoured;
-            card_core0_regs_fifo1_reg_word48_clamped <= card_core0_regs_fifo1_reg_word48_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word49_mine = (pci_slave1_pci_requests1_local_addr == 48);
+assign card_core0_regs_fifo1_reg_word49_mine = (pci_slave1_pci_requests1_local_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word49_mine, card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_reg_word48_chain_out_data) begin: card_core0_regs_fifo1_reg_word49_read_chain
@@ -2682,15 +2806,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word49_shown_wide = {16'h0, card_core0_regs_fifo1_ramp_step};
+assign card_core0_regs_fifo1_reg_word49_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word49_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word49_mine_write = (card_core0_regs_fifo1_written_addr == 48);
+assign card_core0_regs_fifo1_reg_word49_mine_write = (card_core0_regs_fifo1_written_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word49_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
         card_core0_regs_fifo1_reg_word49_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -2699,10 +2823,13 @@ always @(card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word49_written) begin: card_core0_regs_fifo1_reg_word49__limit33_clamp_above_power_of_two
+always @(card_core0_regs_fifo1_reg_word49_written) begin: card_core0_regs_fifo1_reg_word49__limit33_clamp_unsigned
     card_core0_regs_fifo1_reg_word49_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word49_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word49_honoured = 65535;
+    if (((card_core0_regs_fifo1_reg_word49_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word49_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word49_honoured = 1;
+    end
+    else if (((card_core0_regs_fifo1_reg_word49_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word49_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word49_honoured = 32768;
     end
     else begin
         card_core0_regs_fifo1_reg_word49_honoured = card_core0_regs_fifo1_reg_word49_written[16-1:0];
@@ -2717,13 +2844,13 @@ assign card_core0_regs_fifo1_reg_word49_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word49__store33_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_ramp_step <= 0;
+        card_core0_regs_fifo1_reg_word49_shown <= 4096;
         card_core0_regs_fifo1_reg_word49_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word49_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word49_mine_write))) begin
-            card_core0_regs_fifo1_ramp_step <= card_core0_regs_fifo1_reg_word49_honoured;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word49_mine_write))) begin
+            card_core0_regs_fifo1_reg_word49_shown <= card_core0_regs_fifo1_reg_word49_honoured;
             card_core0_regs_fifo1_reg_word49_clamped <= card_core0_regs_fifo1_reg_word49_out_of_range;
         end
     end
@@ -2731,7 +2858,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word50_mine = (pci_slave1_pci_requests1_local_addr == 52);
+assign card_core0_regs_fifo1_reg_word50_mine = (pci_slave1_pci_requests1_local_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word50_mine, card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_reg_word49_chain_out_data) begin: card_core0_regs_fifo1_reg_word50_read_chain
@@ -2745,15 +2872,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word50_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word50_shown};
+assign card_core0_regs_fifo1_reg_word50_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word50_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word50_mine_write = (card_core0_regs_fifo1_written_addr == 52);
+assign card_core0_regs_fifo1_reg_word50_mine_write = (card_core0_regs_fifo1_written_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word50_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
         card_core0_regs_fifo1_reg_word50_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -2762,16 +2889,16 @@ always @(card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word50_written) begin: card_core0_regs_fifo1_reg_word50__limit34_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word50_written) begin: card_core0_regs_fifo1_reg_word50__limit34_clamp_unsigned
     card_core0_regs_fifo1_reg_word50_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word50_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word50_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word50_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word50_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word50_honoured = 255;
+    else if (((card_core0_regs_fifo1_reg_word50_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word50_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word50_honoured = 32768;
     end
     else begin
-        card_core0_regs_fifo1_reg_word50_honoured = card_core0_regs_fifo1_reg_word50_written[8-1:0];
+        card_core0_regs_fifo1_reg_word50_honoured = card_core0_regs_fifo1_reg_word50_written[16-1:0];
         card_core0_regs_fifo1_reg_word50_out_of_range = 1'b0;
     end
 end
@@ -2783,12 +2910,12 @@ assign card_core0_regs_fifo1_reg_word50_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word50__store34_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word50_shown <= 1;
+        card_core0_regs_fifo1_reg_word50_shown <= 4096;
         card_core0_regs_fifo1_reg_word50_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word50_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word50_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word50_mine_write))) begin
             card_core0_regs_fifo1_reg_word50_shown <= card_core0_regs_fifo1_reg_word50_honoured;
             card_core0_regs_fifo1_reg_word50_clamped <= card_core0_regs_fifo1_reg_word50_out_of_range;
         end
@@ -2797,7 +2924,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word51_mine = (pci_slave1_pci_requests1_local_addr == 56);
+assign card_core0_regs_fifo1_reg_word51_mine = (pci_slave1_pci_requests1_local_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word51_mine, card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_reg_word50_chain_out_data) begin: card_core0_regs_fifo1_reg_word51_read_chain
@@ -2811,15 +2938,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word51_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word51_shown};
+assign card_core0_regs_fifo1_reg_word51_shown_wide = {16'h0, card_core0_regs_fifo1_ramp_step};
 
 
 
-assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_written_addr == 56);
+assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_written_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word51_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
         card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -2828,16 +2955,13 @@ always @(card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit35_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit35_clamp_above_power_of_two
     card_core0_regs_fifo1_reg_word51_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word51_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word51_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word51_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word51_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word51_honoured = 255;
+    if ((card_core0_regs_fifo1_reg_word51_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word51_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written[8-1:0];
+        card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written[16-1:0];
         card_core0_regs_fifo1_reg_word51_out_of_range = 1'b0;
     end
 end
@@ -2849,13 +2973,13 @@ assign card_core0_regs_fifo1_reg_word51_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word51__store35_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word51_shown <= 1;
+        card_core0_regs_fifo1_ramp_step <= 0;
         card_core0_regs_fifo1_reg_word51_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word51_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word51_mine_write))) begin
-            card_core0_regs_fifo1_reg_word51_shown <= card_core0_regs_fifo1_reg_word51_honoured;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word51_mine_write))) begin
+            card_core0_regs_fifo1_ramp_step <= card_core0_regs_fifo1_reg_word51_honoured;
             card_core0_regs_fifo1_reg_word51_clamped <= card_core0_regs_fifo1_reg_word51_out_of_range;
         end
     end
@@ -2863,7 +2987,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word52_mine = (pci_slave1_pci_requests1_local_addr == 60);
+assign card_core0_regs_fifo1_reg_word52_mine = (pci_slave1_pci_requests1_local_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word52_mine, card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_reg_word51_chain_out_data) begin: card_core0_regs_fifo1_reg_word52_read_chain
@@ -2881,11 +3005,11 @@ assign card_core0_regs_fifo1_reg_word52_shown_wide = {24'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word52_mine_write = (card_core0_regs_fifo1_written_addr == 60);
+assign card_core0_regs_fifo1_reg_word52_mine_write = (card_core0_regs_fifo1_written_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word52_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
         card_core0_regs_fifo1_reg_word52_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -2920,7 +3044,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word52__
     end
     else begin
         card_core0_regs_fifo1_reg_word52_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word52_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word52_mine_write))) begin
             card_core0_regs_fifo1_reg_word52_shown <= card_core0_regs_fifo1_reg_word52_honoured;
             card_core0_regs_fifo1_reg_word52_clamped <= card_core0_regs_fifo1_reg_word52_out_of_range;
         end
@@ -2929,7 +3053,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word53_mine = (pci_slave1_pci_requests1_local_addr == 64);
+assign card_core0_regs_fifo1_reg_word53_mine = (pci_slave1_pci_requests1_local_addr == 56);
 
 
 always @(card_core0_regs_fifo1_reg_word53_mine, card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_reg_word52_chain_out_data) begin: card_core0_regs_fifo1_reg_word53_read_chain
@@ -2943,25 +3067,36 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word53_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word53_shown};
+assign card_core0_regs_fifo1_reg_word53_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word53_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word53_mine_write = (card_core0_regs_fifo1_written_addr == 64);
+assign card_core0_regs_fifo1_reg_word53_mine_write = (card_core0_regs_fifo1_written_addr == 56);
 
 
-always @(card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_reg_word53_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word53_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word53_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_set_value[2-1:0];
+always @(card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word53_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
+        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word53_written = ((card_core0_regs_fifo1_reg_word53_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+        card_core0_regs_fifo1_reg_word53_written = ((card_core0_regs_fifo1_reg_word53_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written[2-1:0];
+always @(card_core0_regs_fifo1_reg_word53_written) begin: card_core0_regs_fifo1_reg_word53__limit37_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word53_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word53_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word53_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word53_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word53_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word53_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written[8-1:0];
+        card_core0_regs_fifo1_reg_word53_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -2970,12 +3105,12 @@ assign card_core0_regs_fifo1_reg_word53_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word53__store37_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word53_shown <= 0;
+        card_core0_regs_fifo1_reg_word53_shown <= 1;
         card_core0_regs_fifo1_reg_word53_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word53_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word53_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word53_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word53_mine_write))) begin
             card_core0_regs_fifo1_reg_word53_shown <= card_core0_regs_fifo1_reg_word53_honoured;
             card_core0_regs_fifo1_reg_word53_clamped <= card_core0_regs_fifo1_reg_word53_out_of_range;
         end
@@ -2984,7 +3119,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word54_mine = (pci_slave1_pci_requests1_local_addr == 68);
+assign card_core0_regs_fifo1_reg_word54_mine = (pci_slave1_pci_requests1_local_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word54_mine, card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_reg_word53_chain_out_data) begin: card_core0_regs_fifo1_reg_word54_read_chain
@@ -2998,15 +3133,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word54_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word54_shown};
+assign card_core0_regs_fifo1_reg_word54_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word54_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word54_mine_write = (card_core0_regs_fifo1_written_addr == 68);
+assign card_core0_regs_fifo1_reg_word54_mine_write = (card_core0_regs_fifo1_written_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word54_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
         card_core0_regs_fifo1_reg_word54_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -3020,11 +3155,11 @@ always @(card_core0_regs_fifo1_reg_word54_written) begin: card_core0_regs_fifo1_
     if (((card_core0_regs_fifo1_reg_word54_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word54_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word54_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word54_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word54_honoured = 65535;
+    else if ((card_core0_regs_fifo1_reg_word54_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word54_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word54_honoured = card_core0_regs_fifo1_reg_word54_written[16-1:0];
+        card_core0_regs_fifo1_reg_word54_honoured = card_core0_regs_fifo1_reg_word54_written[8-1:0];
         card_core0_regs_fifo1_reg_word54_out_of_range = 1'b0;
     end
 end
@@ -3036,12 +3171,12 @@ assign card_core0_regs_fifo1_reg_word54_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word54__store38_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word54_shown <= 2;
+        card_core0_regs_fifo1_reg_word54_shown <= 1;
         card_core0_regs_fifo1_reg_word54_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word54_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word54_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word54_mine_write))) begin
             card_core0_regs_fifo1_reg_word54_shown <= card_core0_regs_fifo1_reg_word54_honoured;
             card_core0_regs_fifo1_reg_word54_clamped <= card_core0_regs_fifo1_reg_word54_out_of_range;
         end
@@ -3050,7 +3185,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_mine = (pci_slave1_pci_requests1_local_addr == 72);
+assign card_core0_regs_fifo1_reg_word55_mine = (pci_slave1_pci_requests1_local_addr == 64);
 
 
 always @(card_core0_regs_fifo1_reg_word55_mine, card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word54_chain_out_data) begin: card_core0_regs_fifo1_reg_word55_read_chain
@@ -3064,36 +3199,25 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word55_shown};
+assign card_core0_regs_fifo1_reg_word55_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word55_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_written_addr == 72);
+assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_written_addr == 64);
 
 
-always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
-        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word55_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[2-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word55_written) begin: card_core0_regs_fifo1_reg_word55__limit39_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word55_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word55_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word55_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word55_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word55_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word55_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[16-1:0];
-        card_core0_regs_fifo1_reg_word55_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[2-1:0];
 
 
 
@@ -3102,12 +3226,12 @@ assign card_core0_regs_fifo1_reg_word55_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word55__store39_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word55_shown <= 2;
+        card_core0_regs_fifo1_reg_word55_shown <= 0;
         card_core0_regs_fifo1_reg_word55_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word55_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word55_mine_write))) begin
+        if (((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word55_mine_write))) begin
             card_core0_regs_fifo1_reg_word55_shown <= card_core0_regs_fifo1_reg_word55_honoured;
             card_core0_regs_fifo1_reg_word55_clamped <= card_core0_regs_fifo1_reg_word55_out_of_range;
         end
@@ -3116,7 +3240,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word56_mine = (pci_slave1_pci_requests1_local_addr == 76);
+assign card_core0_regs_fifo1_reg_word56_mine = (pci_slave1_pci_requests1_local_addr == 68);
 
 
 always @(card_core0_regs_fifo1_reg_word56_mine, card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_reg_word55_chain_out_data) begin: card_core0_regs_fifo1_reg_word56_read_chain
@@ -3130,29 +3254,34 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word56_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word56_shown};
+assign card_core0_regs_fifo1_reg_word56_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word56_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_written_addr == 76);
+assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_written_addr == 68);
 
 
-
-assign card_core0_regs_fifo1_reg_word56_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit40_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word56_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word56_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written[24-1:0];
-        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b0;
-    end
-    else if (card_core0_regs_fifo1_reg_word56_written[31]) begin
-        card_core0_regs_fifo1_reg_word56_honoured = 8388608;
-        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b1;
+always @(card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word56_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+        card_core0_regs_fifo1_reg_word56_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word56_honoured = 8388607;
-        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b1;
+        card_core0_regs_fifo1_reg_word56_written = ((card_core0_regs_fifo1_reg_word56_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit40_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word56_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word56_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word56_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word56_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word56_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word56_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written[16-1:0];
+        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b0;
     end
 end
 
@@ -3161,18 +3290,15 @@ end
 assign card_core0_regs_fifo1_reg_word56_chain_out_clamped = (card_core0_regs_fifo1_reg_word55_chain_out_clamped || card_core0_regs_fifo1_reg_word56_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word56__store40_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word56__store40_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word56__store40_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word56__store40_word_value <= 0;
+        card_core0_regs_fifo1_reg_word56_shown <= 2;
         card_core0_regs_fifo1_reg_word56_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word56__store40_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word56_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word56_mine_write)) begin
-            card_core0_regs_fifo1_reg_word56__store40_word_value <= card_core0_regs_fifo1_reg_word56_honoured;
-            card_core0_regs_fifo1_reg_word56__store40_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word56_mine_write))) begin
+            card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_reg_word56_honoured;
             card_core0_regs_fifo1_reg_word56_clamped <= card_core0_regs_fifo1_reg_word56_out_of_range;
         end
     end
@@ -3180,7 +3306,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word57_mine = (pci_slave1_pci_requests1_local_addr == 80);
+assign card_core0_regs_fifo1_reg_word57_mine = (pci_slave1_pci_requests1_local_addr == 72);
 
 
 always @(card_core0_regs_fifo1_reg_word57_mine, card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_reg_word56_chain_out_data) begin: card_core0_regs_fifo1_reg_word57_read_chain
@@ -3194,29 +3320,34 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word57_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word57_shown};
+assign card_core0_regs_fifo1_reg_word57_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word57_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_written_addr == 80);
+assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_written_addr == 72);
 
 
-
-assign card_core0_regs_fifo1_reg_word57_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word57_written) begin: card_core0_regs_fifo1_reg_word57__limit41_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word57_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word57_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_written[24-1:0];
-        card_core0_regs_fifo1_reg_word57_out_of_range = 1'b0;
-    end
-    else if (card_core0_regs_fifo1_reg_word57_written[31]) begin
-        card_core0_regs_fifo1_reg_word57_honoured = 8388608;
-        card_core0_regs_fifo1_reg_word57_out_of_range = 1'b1;
+always @(card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word57_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
+        card_core0_regs_fifo1_reg_word57_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word57_honoured = 8388607;
-        card_core0_regs_fifo1_reg_word57_out_of_range = 1'b1;
+        card_core0_regs_fifo1_reg_word57_written = ((card_core0_regs_fifo1_reg_word57_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word57_written) begin: card_core0_regs_fifo1_reg_word57__limit41_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word57_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word57_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word57_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word57_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word57_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word57_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_written[16-1:0];
+        card_core0_regs_fifo1_reg_word57_out_of_range = 1'b0;
     end
 end
 
@@ -3225,18 +3356,15 @@ end
 assign card_core0_regs_fifo1_reg_word57_chain_out_clamped = (card_core0_regs_fifo1_reg_word56_chain_out_clamped || card_core0_regs_fifo1_reg_word57_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word57__store41_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word57__store41_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word57__store41_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word57__store41_word_value <= 0;
+        card_core0_regs_fifo1_reg_word57_shown <= 2;
         card_core0_regs_fifo1_reg_word57_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word57__store41_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word57_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word57_mine_write)) begin
-            card_core0_regs_fifo1_reg_word57__store41_word_value <= card_core0_regs_fifo1_reg_word57_honoured;
-            card_core0_regs_fifo1_reg_word57__store41_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word57_mine_write))) begin
+            card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_reg_word57_honoured;
             card_core0_regs_fifo1_reg_word57_clamped <= card_core0_regs_fifo1_reg_word57_out_of_range;
         end
     end
@@ -3244,7 +3372,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine = (pci_slave1_pci_requests1_local_addr == 84);
+assign card_core0_regs_fifo1_reg_word58_mine = (pci_slave1_pci_requests1_local_addr == 76);
 
 
 always @(card_core0_regs_fifo1_reg_word58_mine, card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_reg_word57_chain_out_data) begin: card_core0_regs_fifo1_reg_word58_read_chain
@@ -3258,15 +3386,57 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word58_shown_wide = card_core0_regs_fifo1_reg_word58_shown;
+assign card_core0_regs_fifo1_reg_word58_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word58_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word58_chain_out_clamped = card_core0_regs_fifo1_reg_word57_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word58_mine_write = (card_core0_regs_fifo1_written_addr == 76);
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine = (pci_slave1_pci_requests1_local_addr == 88);
+assign card_core0_regs_fifo1_reg_word58_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word58_written) begin: card_core0_regs_fifo1_reg_word58__limit42_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word58_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word58_written[32-1:(24 - 1)] == 511))) begin
+        card_core0_regs_fifo1_reg_word58_honoured = card_core0_regs_fifo1_reg_word58_written[24-1:0];
+        card_core0_regs_fifo1_reg_word58_out_of_range = 1'b0;
+    end
+    else if (card_core0_regs_fifo1_reg_word58_written[31]) begin
+        card_core0_regs_fifo1_reg_word58_honoured = 8388608;
+        card_core0_regs_fifo1_reg_word58_out_of_range = 1'b1;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word58_honoured = 8388607;
+        card_core0_regs_fifo1_reg_word58_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word58_chain_out_clamped = (card_core0_regs_fifo1_reg_word57_chain_out_clamped || card_core0_regs_fifo1_reg_word58_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word58__store42_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word58__store42_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word58__store42_word_value <= 0;
+        card_core0_regs_fifo1_reg_word58_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word58__store42_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word58_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word58_mine_write)) begin
+            card_core0_regs_fifo1_reg_word58__store42_word_value <= card_core0_regs_fifo1_reg_word58_honoured;
+            card_core0_regs_fifo1_reg_word58__store42_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word58_clamped <= card_core0_regs_fifo1_reg_word58_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word59_mine = (pci_slave1_pci_requests1_local_addr == 80);
 
 
 always @(card_core0_regs_fifo1_reg_word59_mine, card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_reg_word58_chain_out_data) begin: card_core0_regs_fifo1_reg_word59_read_chain
@@ -3280,15 +3450,57 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word59_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word59_shown};
+assign card_core0_regs_fifo1_reg_word59_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word59_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word59_chain_out_clamped = card_core0_regs_fifo1_reg_word58_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word59_mine_write = (card_core0_regs_fifo1_written_addr == 80);
 
 
 
-assign card_core0_regs_fifo1_reg_word60_mine = (pci_slave1_pci_requests1_local_addr == 92);
+assign card_core0_regs_fifo1_reg_word59_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word59_written) begin: card_core0_regs_fifo1_reg_word59__limit43_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word59_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word59_written[32-1:(24 - 1)] == 511))) begin
+        card_core0_regs_fifo1_reg_word59_honoured = card_core0_regs_fifo1_reg_word59_written[24-1:0];
+        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b0;
+    end
+    else if (card_core0_regs_fifo1_reg_word59_written[31]) begin
+        card_core0_regs_fifo1_reg_word59_honoured = 8388608;
+        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b1;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word59_honoured = 8388607;
+        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word59_chain_out_clamped = (card_core0_regs_fifo1_reg_word58_chain_out_clamped || card_core0_regs_fifo1_reg_word59_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word59__store43_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word59__store43_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word59__store43_word_value <= 0;
+        card_core0_regs_fifo1_reg_word59_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word59__store43_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word59_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word59_mine_write)) begin
+            card_core0_regs_fifo1_reg_word59__store43_word_value <= card_core0_regs_fifo1_reg_word59_honoured;
+            card_core0_regs_fifo1_reg_word59__store43_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word59_clamped <= card_core0_regs_fifo1_reg_word59_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word60_mine = (pci_slave1_pci_requests1_local_addr == 84);
 
 
 always @(card_core0_regs_fifo1_reg_word60_mine, card_core0_regs_fifo1_reg_word60_shown_wide, card_core0_regs_fifo1_reg_word59_chain_out_data) begin: card_core0_regs_fifo1_reg_word60_read_chain
@@ -3302,7 +3514,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word60_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word60_shown};
+assign card_core0_regs_fifo1_reg_word60_shown_wide = card_core0_regs_fifo1_reg_word60_shown;
 
 
 
@@ -3310,7 +3522,7 @@ assign card_core0_regs_fifo1_reg_word60_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word61_mine = (pci_slave1_pci_requests1_local_addr == 96);
+assign card_core0_regs_fifo1_reg_word61_mine = (pci_slave1_pci_requests1_local_addr == 88);
 
 
 always @(card_core0_regs_fifo1_reg_word61_mine, card_core0_regs_fifo1_reg_word61_shown_wide, card_core0_regs_fifo1_reg_word60_chain_out_data) begin: card_core0_regs_fifo1_reg_word61_read_chain
@@ -3324,51 +3536,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word61_shown_wide = {30'h0, card_core0_regs_fifo1_machine_control};
+assign card_core0_regs_fifo1_reg_word61_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word61_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word61_mine_write = (card_core0_regs_fifo1_written_addr == 96);
-
-
-always @(card_core0_regs_fifo1_reg_word61_shown_wide, card_core0_regs_fifo1_reg_word61_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word61_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word61_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word61_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word61_written = ((card_core0_regs_fifo1_reg_word61_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word61_chain_out_clamped = card_core0_regs_fifo1_reg_word60_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_word61_written[2-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word61_chain_out_clamped = (card_core0_regs_fifo1_reg_word60_chain_out_clamped || card_core0_regs_fifo1_reg_word61_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word61__store42_hold_rw_cleared
-    if (reset == 0) begin
-        card_core0_regs_fifo1_machine_control <= 0;
-        card_core0_regs_fifo1_reg_word61_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word61_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word61_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word61_mine_write))) begin
-            card_core0_regs_fifo1_machine_control <= (card_core0_regs_fifo1_reg_word61_honoured & (~(card_core0_regs_fifo1_drive_cleared & 1)));
-            card_core0_regs_fifo1_reg_word61_clamped <= card_core0_regs_fifo1_reg_word61_out_of_range;
-        end
-        else begin
-            card_core0_regs_fifo1_machine_control <= (card_core0_regs_fifo1_machine_control & (~(card_core0_regs_fifo1_drive_cleared & 1)));
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word62_mine = (pci_slave1_pci_requests1_local_addr == 100);
+assign card_core0_regs_fifo1_reg_word62_mine = (pci_slave1_pci_requests1_local_addr == 92);
 
 
 always @(card_core0_regs_fifo1_reg_word62_mine, card_core0_regs_fifo1_reg_word62_shown_wide, card_core0_regs_fifo1_reg_word61_chain_out_data) begin: card_core0_regs_fifo1_reg_word62_read_chain
@@ -3382,7 +3558,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word62_shown_wide = {12'h0, card_core0_regs_fifo1_reg_word62_shown};
+assign card_core0_regs_fifo1_reg_word62_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word62_shown};
 
 
 
@@ -3390,7 +3566,7 @@ assign card_core0_regs_fifo1_reg_word62_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word63_mine = (pci_slave1_pci_requests1_local_addr == 104);
+assign card_core0_regs_fifo1_reg_word63_mine = (pci_slave1_pci_requests1_local_addr == 96);
 
 
 always @(card_core0_regs_fifo1_reg_word63_mine, card_core0_regs_fifo1_reg_word63_shown_wide, card_core0_regs_fifo1_reg_word62_chain_out_data) begin: card_core0_regs_fifo1_reg_word63_read_chain
@@ -3404,15 +3580,51 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word63_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word63_shown};
+assign card_core0_regs_fifo1_reg_word63_shown_wide = {30'h0, card_core0_regs_fifo1_machine_control};
 
 
 
-assign card_core0_regs_fifo1_reg_word63_chain_out_clamped = card_core0_regs_fifo1_reg_word62_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word63_mine_write = (card_core0_regs_fifo1_written_addr == 96);
+
+
+always @(card_core0_regs_fifo1_reg_word63_shown_wide, card_core0_regs_fifo1_reg_word63_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word63_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word63_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word63_written = card_core0_regs_fifo1_set_value[2-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word63_written = ((card_core0_regs_fifo1_reg_word63_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word64_mine = (pci_slave1_pci_requests1_local_addr == 108);
+assign card_core0_regs_fifo1_reg_word63_honoured = card_core0_regs_fifo1_reg_word63_written[2-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word63_chain_out_clamped = (card_core0_regs_fifo1_reg_word62_chain_out_clamped || card_core0_regs_fifo1_reg_word63_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word63__store44_hold_rw_cleared
+    if (reset == 0) begin
+        card_core0_regs_fifo1_machine_control <= 0;
+        card_core0_regs_fifo1_reg_word63_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word63_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word63_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word63_mine_write))) begin
+            card_core0_regs_fifo1_machine_control <= (card_core0_regs_fifo1_reg_word63_honoured & (~(card_core0_regs_fifo1_drive_cleared & 1)));
+            card_core0_regs_fifo1_reg_word63_clamped <= card_core0_regs_fifo1_reg_word63_out_of_range;
+        end
+        else begin
+            card_core0_regs_fifo1_machine_control <= (card_core0_regs_fifo1_machine_control & (~(card_core0_regs_fifo1_drive_cleared & 1)));
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word64_mine = (pci_slave1_pci_requests1_local_addr == 100);
 
 
 always @(card_core0_regs_fifo1_reg_word64_mine, card_core0_regs_fifo1_reg_word64_shown_wide, card_core0_regs_fifo1_reg_word63_chain_out_data) begin: card_core0_regs_fifo1_reg_word64_read_chain
@@ -3426,48 +3638,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word64_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word64_shown};
+assign card_core0_regs_fifo1_reg_word64_shown_wide = {12'h0, card_core0_regs_fifo1_reg_word64_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word64_mine_write = (card_core0_regs_fifo1_written_addr == 108);
-
-
-always @(card_core0_regs_fifo1_reg_word64_shown_wide, card_core0_regs_fifo1_reg_word64_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word64_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word64_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word64_written = card_core0_regs_fifo1_set_value[7-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word64_written = ((card_core0_regs_fifo1_reg_word64_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word64_chain_out_clamped = card_core0_regs_fifo1_reg_word63_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word64_honoured = card_core0_regs_fifo1_reg_word64_written[7-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word64_chain_out_clamped = (card_core0_regs_fifo1_reg_word63_chain_out_clamped || card_core0_regs_fifo1_reg_word64_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word64__store43_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word64_shown <= 0;
-        card_core0_regs_fifo1_reg_word64_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word64_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word64_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word64_mine_write))) begin
-            card_core0_regs_fifo1_reg_word64_shown <= card_core0_regs_fifo1_reg_word64_honoured;
-            card_core0_regs_fifo1_reg_word64_clamped <= card_core0_regs_fifo1_reg_word64_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word65_mine = (pci_slave1_pci_requests1_local_addr == 112);
+assign card_core0_regs_fifo1_reg_word65_mine = (pci_slave1_pci_requests1_local_addr == 104);
 
 
 always @(card_core0_regs_fifo1_reg_word65_mine, card_core0_regs_fifo1_reg_word65_shown_wide, card_core0_regs_fifo1_reg_word64_chain_out_data) begin: card_core0_regs_fifo1_reg_word65_read_chain
@@ -3481,59 +3660,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word65_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word65_shown};
+assign card_core0_regs_fifo1_reg_word65_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word65_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word65_mine_write = (card_core0_regs_fifo1_written_addr == 112);
-
-
-always @(card_core0_regs_fifo1_reg_word65_shown_wide, card_core0_regs_fifo1_reg_word65_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word65_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word65_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word65_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word65_written = ((card_core0_regs_fifo1_reg_word65_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word65_written) begin: card_core0_regs_fifo1_reg_word65__limit44_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word65_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word65_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word65_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word65_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word65_written[32-1:4] != 0)) begin
-        card_core0_regs_fifo1_reg_word65_honoured = 15;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word65_honoured = card_core0_regs_fifo1_reg_word65_written[4-1:0];
-        card_core0_regs_fifo1_reg_word65_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word65_chain_out_clamped = card_core0_regs_fifo1_reg_word64_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word65_chain_out_clamped = (card_core0_regs_fifo1_reg_word64_chain_out_clamped || card_core0_regs_fifo1_reg_word65_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word65__store44_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word65_shown <= 3;
-        card_core0_regs_fifo1_reg_word65_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word65_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word65_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word65_mine_write))) begin
-            card_core0_regs_fifo1_reg_word65_shown <= card_core0_regs_fifo1_reg_word65_honoured;
-            card_core0_regs_fifo1_reg_word65_clamped <= card_core0_regs_fifo1_reg_word65_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word66_mine = (pci_slave1_pci_requests1_local_addr == 116);
+assign card_core0_regs_fifo1_reg_word66_mine = (pci_slave1_pci_requests1_local_addr == 108);
 
 
 always @(card_core0_regs_fifo1_reg_word66_mine, card_core0_regs_fifo1_reg_word66_shown_wide, card_core0_regs_fifo1_reg_word65_chain_out_data) begin: card_core0_regs_fifo1_reg_word66_read_chain
@@ -3547,36 +3682,25 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word66_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word66_shown};
+assign card_core0_regs_fifo1_reg_word66_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word66_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word66_mine_write = (card_core0_regs_fifo1_written_addr == 116);
+assign card_core0_regs_fifo1_reg_word66_mine_write = (card_core0_regs_fifo1_written_addr == 108);
 
 
 always @(card_core0_regs_fifo1_reg_word66_shown_wide, card_core0_regs_fifo1_reg_word66_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word66_merge_bytes
     if ((card_core0_regs_fifo1_reg_word66_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word66_written = card_core0_regs_fifo1_set_value[32-1:0];
+        card_core0_regs_fifo1_reg_word66_written = card_core0_regs_fifo1_set_value[7-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word66_written = ((card_core0_regs_fifo1_reg_word66_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word66_written = ((card_core0_regs_fifo1_reg_word66_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word66_written) begin: card_core0_regs_fifo1_reg_word66__limit45_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word66_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word66_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word66_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word66_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word66_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word66_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word66_honoured = card_core0_regs_fifo1_reg_word66_written[16-1:0];
-        card_core0_regs_fifo1_reg_word66_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word66_honoured = card_core0_regs_fifo1_reg_word66_written[7-1:0];
 
 
 
@@ -3585,7 +3709,7 @@ assign card_core0_regs_fifo1_reg_word66_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word66__store45_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word66_shown <= 1;
+        card_core0_regs_fifo1_reg_word66_shown <= 0;
         card_core0_regs_fifo1_reg_word66_clamped <= 0;
     end
     else begin
@@ -3599,7 +3723,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word67_mine = (pci_slave1_pci_requests1_local_addr == 120);
+assign card_core0_regs_fifo1_reg_word67_mine = (pci_slave1_pci_requests1_local_addr == 112);
 
 
 always @(card_core0_regs_fifo1_reg_word67_mine, card_core0_regs_fifo1_reg_word67_shown_wide, card_core0_regs_fifo1_reg_word66_chain_out_data) begin: card_core0_regs_fifo1_reg_word67_read_chain
@@ -3613,24 +3737,33 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word67_shown_wide = {8'h0, card_core0_regs_fifo1_watchdog_left};
+assign card_core0_regs_fifo1_reg_word67_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word67_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word67_mine_write = (card_core0_regs_fifo1_written_addr == 120);
+assign card_core0_regs_fifo1_reg_word67_mine_write = (card_core0_regs_fifo1_written_addr == 112);
 
 
-
-assign card_core0_regs_fifo1_reg_word67_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word67_written) begin: card_core0_regs_fifo1_reg_word67__limit46_clamp_above_power_of_two
-    card_core0_regs_fifo1_reg_word67_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word67_written[32-1:24] != 0)) begin
-        card_core0_regs_fifo1_reg_word67_honoured = 16777215;
+always @(card_core0_regs_fifo1_reg_word67_shown_wide, card_core0_regs_fifo1_reg_word67_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word67_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word67_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word67_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word67_honoured = card_core0_regs_fifo1_reg_word67_written[24-1:0];
+        card_core0_regs_fifo1_reg_word67_written = ((card_core0_regs_fifo1_reg_word67_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word67_written) begin: card_core0_regs_fifo1_reg_word67__limit46_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word67_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word67_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word67_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word67_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word67_written[32-1:4] != 0)) begin
+        card_core0_regs_fifo1_reg_word67_honoured = 15;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word67_honoured = card_core0_regs_fifo1_reg_word67_written[4-1:0];
         card_core0_regs_fifo1_reg_word67_out_of_range = 1'b0;
     end
 end
@@ -3640,18 +3773,15 @@ end
 assign card_core0_regs_fifo1_reg_word67_chain_out_clamped = (card_core0_regs_fifo1_reg_word66_chain_out_clamped || card_core0_regs_fifo1_reg_word67_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word67__store46_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word67__store46_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word67__store46_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word67__store46_word_value <= 0;
+        card_core0_regs_fifo1_reg_word67_shown <= 3;
         card_core0_regs_fifo1_reg_word67_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word67__store46_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word67_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word67_mine_write)) begin
-            card_core0_regs_fifo1_reg_word67__store46_word_value <= card_core0_regs_fifo1_reg_word67_honoured;
-            card_core0_regs_fifo1_reg_word67__store46_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_reg_word67_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word67_mine_write))) begin
+            card_core0_regs_fifo1_reg_word67_shown <= card_core0_regs_fifo1_reg_word67_honoured;
             card_core0_regs_fifo1_reg_word67_clamped <= card_core0_regs_fifo1_reg_word67_out_of_range;
         end
     end
@@ -3659,7 +3789,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word68_mine = (pci_slave1_pci_requests1_local_addr == 124);
+assign card_core0_regs_fifo1_reg_word68_mine = (pci_slave1_pci_requests1_local_addr == 116);
 
 
 always @(card_core0_regs_fifo1_reg_word68_mine, card_core0_regs_fifo1_reg_word68_shown_wide, card_core0_regs_fifo1_reg_word67_chain_out_data) begin: card_core0_regs_fifo1_reg_word68_read_chain
@@ -3673,37 +3803,51 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word68_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word68_shown};
+assign card_core0_regs_fifo1_reg_word68_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word68_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word68_mine_write = (card_core0_regs_fifo1_written_addr == 124);
+assign card_core0_regs_fifo1_reg_word68_mine_write = (card_core0_regs_fifo1_written_addr == 116);
 
 
+always @(card_core0_regs_fifo1_reg_word68_shown_wide, card_core0_regs_fifo1_reg_word68_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word68_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word68_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word68_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word68_written = ((card_core0_regs_fifo1_reg_word68_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
 
-assign card_core0_regs_fifo1_reg_word68_written = (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]);
 
-
-
-assign card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_written[2-1:0];
+always @(card_core0_regs_fifo1_reg_word68_written) begin: card_core0_regs_fifo1_reg_word68__limit47_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word68_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word68_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word68_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word68_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word68_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word68_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_written[16-1:0];
+        card_core0_regs_fifo1_reg_word68_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card_core0_regs_fifo1_reg_word68_chain_out_clamped = (card_core0_regs_fifo1_reg_word67_chain_out_clamped || card_core0_regs_fifo1_reg_word68_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word68__store47_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word68__store47_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word68__store47_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word68__store47_word_value <= 0;
+        card_core0_regs_fifo1_reg_word68_shown <= 1;
         card_core0_regs_fifo1_reg_word68_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word68__store47_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word68_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word68_mine_write)) begin
-            card_core0_regs_fifo1_reg_word68__store47_word_value <= card_core0_regs_fifo1_reg_word68_honoured;
-            card_core0_regs_fifo1_reg_word68__store47_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_reg_word68_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word68_mine_write))) begin
+            card_core0_regs_fifo1_reg_word68_shown <= card_core0_regs_fifo1_reg_word68_honoured;
             card_core0_regs_fifo1_reg_word68_clamped <= card_core0_regs_fifo1_reg_word68_out_of_range;
         end
     end
@@ -3711,7 +3855,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word69_mine = (pci_slave1_pci_requests1_local_addr == 128);
+assign card_core0_regs_fifo1_reg_word69_mine = (pci_slave1_pci_requests1_local_addr == 120);
 
 
 always @(card_core0_regs_fifo1_reg_word69_mine, card_core0_regs_fifo1_reg_word69_shown_wide, card_core0_regs_fifo1_reg_word68_chain_out_data) begin: card_core0_regs_fifo1_reg_word69_read_chain
@@ -3725,15 +3869,53 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word69_shown_wide = {26'h0, card_core0_regs_fifo1_reg_word69_shown};
+assign card_core0_regs_fifo1_reg_word69_shown_wide = {8'h0, card_core0_regs_fifo1_watchdog_left};
 
 
 
-assign card_core0_regs_fifo1_reg_word69_chain_out_clamped = card_core0_regs_fifo1_reg_word68_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word69_mine_write = (card_core0_regs_fifo1_written_addr == 120);
 
 
 
-assign card_core0_regs_fifo1_reg_word70_mine = (pci_slave1_pci_requests1_local_addr == 132);
+assign card_core0_regs_fifo1_reg_word69_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word69_written) begin: card_core0_regs_fifo1_reg_word69__limit48_clamp_above_power_of_two
+    card_core0_regs_fifo1_reg_word69_out_of_range = 1'b1;
+    if ((card_core0_regs_fifo1_reg_word69_written[32-1:24] != 0)) begin
+        card_core0_regs_fifo1_reg_word69_honoured = 16777215;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word69_honoured = card_core0_regs_fifo1_reg_word69_written[24-1:0];
+        card_core0_regs_fifo1_reg_word69_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word69_chain_out_clamped = (card_core0_regs_fifo1_reg_word68_chain_out_clamped || card_core0_regs_fifo1_reg_word69_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word69__store48_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word69__store48_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word69__store48_word_value <= 0;
+        card_core0_regs_fifo1_reg_word69_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word69__store48_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word69_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word69_mine_write)) begin
+            card_core0_regs_fifo1_reg_word69__store48_word_value <= card_core0_regs_fifo1_reg_word69_honoured;
+            card_core0_regs_fifo1_reg_word69__store48_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word69_clamped <= card_core0_regs_fifo1_reg_word69_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word70_mine = (pci_slave1_pci_requests1_local_addr == 124);
 
 
 always @(card_core0_regs_fifo1_reg_word70_mine, card_core0_regs_fifo1_reg_word70_shown_wide, card_core0_regs_fifo1_reg_word69_chain_out_data) begin: card_core0_regs_fifo1_reg_word70_read_chain
@@ -3747,51 +3929,37 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word70_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word70_shown};
+assign card_core0_regs_fifo1_reg_word70_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word70_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word70_mine_write = (card_core0_regs_fifo1_written_addr == 132);
+assign card_core0_regs_fifo1_reg_word70_mine_write = (card_core0_regs_fifo1_written_addr == 124);
 
 
-always @(card_core0_regs_fifo1_reg_word70_shown_wide, card_core0_regs_fifo1_reg_word70_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word70_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word70_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word70_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word70_written = ((card_core0_regs_fifo1_reg_word70_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word70_written = (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]);
 
 
-always @(card_core0_regs_fifo1_reg_word70_written) begin: card_core0_regs_fifo1_reg_word70__limit48_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word70_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word70_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word70_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word70_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word70_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word70_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_written[16-1:0];
-        card_core0_regs_fifo1_reg_word70_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_written[2-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word70_chain_out_clamped = (card_core0_regs_fifo1_reg_word69_chain_out_clamped || card_core0_regs_fifo1_reg_word70_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word70__store48_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word70__store49_pulse_on_write
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word70_shown <= 100;
+        card_core0_regs_fifo1_reg_word70__store49_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word70__store49_word_value <= 0;
         card_core0_regs_fifo1_reg_word70_clamped <= 0;
     end
     else begin
+        card_core0_regs_fifo1_reg_word70__store49_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word70_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word70_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word70_mine_write))) begin
-            card_core0_regs_fifo1_reg_word70_shown <= card_core0_regs_fifo1_reg_word70_honoured;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word70_mine_write)) begin
+            card_core0_regs_fifo1_reg_word70__store49_word_value <= card_core0_regs_fifo1_reg_word70_honoured;
+            card_core0_regs_fifo1_reg_word70__store49_word_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word70_clamped <= card_core0_regs_fifo1_reg_word70_out_of_range;
         end
     end
@@ -3799,7 +3967,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word71_mine = (pci_slave1_pci_requests1_local_addr == 136);
+assign card_core0_regs_fifo1_reg_word71_mine = (pci_slave1_pci_requests1_local_addr == 128);
 
 
 always @(card_core0_regs_fifo1_reg_word71_mine, card_core0_regs_fifo1_reg_word71_shown_wide, card_core0_regs_fifo1_reg_word70_chain_out_data) begin: card_core0_regs_fifo1_reg_word71_read_chain
@@ -3813,59 +3981,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word71_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word71_shown};
+assign card_core0_regs_fifo1_reg_word71_shown_wide = {26'h0, card_core0_regs_fifo1_reg_word71_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word71_mine_write = (card_core0_regs_fifo1_written_addr == 136);
-
-
-always @(card_core0_regs_fifo1_reg_word71_shown_wide, card_core0_regs_fifo1_reg_word71_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word71_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word71_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word71_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word71_written = ((card_core0_regs_fifo1_reg_word71_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word71_written) begin: card_core0_regs_fifo1_reg_word71__limit49_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word71_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word71_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word71_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word71_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word71_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word71_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word71_honoured = card_core0_regs_fifo1_reg_word71_written[16-1:0];
-        card_core0_regs_fifo1_reg_word71_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word71_chain_out_clamped = card_core0_regs_fifo1_reg_word70_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word71_chain_out_clamped = (card_core0_regs_fifo1_reg_word70_chain_out_clamped || card_core0_regs_fifo1_reg_word71_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word71__store49_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word71_shown <= 1000;
-        card_core0_regs_fifo1_reg_word71_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word71_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word71_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word71_mine_write))) begin
-            card_core0_regs_fifo1_reg_word71_shown <= card_core0_regs_fifo1_reg_word71_honoured;
-            card_core0_regs_fifo1_reg_word71_clamped <= card_core0_regs_fifo1_reg_word71_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word72_mine = (pci_slave1_pci_requests1_local_addr == 140);
+assign card_core0_regs_fifo1_reg_word72_mine = (pci_slave1_pci_requests1_local_addr == 132);
 
 
 always @(card_core0_regs_fifo1_reg_word72_mine, card_core0_regs_fifo1_reg_word72_shown_wide, card_core0_regs_fifo1_reg_word71_chain_out_data) begin: card_core0_regs_fifo1_reg_word72_read_chain
@@ -3883,7 +4007,7 @@ assign card_core0_regs_fifo1_reg_word72_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_written_addr == 140);
+assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_written_addr == 132);
 
 
 always @(card_core0_regs_fifo1_reg_word72_shown_wide, card_core0_regs_fifo1_reg_word72_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word72_merge_bytes
@@ -3896,9 +4020,12 @@ always @(card_core0_regs_fifo1_reg_word72_shown_wide, card_core0_regs_fifo1_reg_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word72_written) begin: card_core0_regs_fifo1_reg_word72__limit50_clamp_above_power_of_two
+always @(card_core0_regs_fifo1_reg_word72_written) begin: card_core0_regs_fifo1_reg_word72__limit50_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word72_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word72_written[32-1:16] != 0)) begin
+    if (((card_core0_regs_fifo1_reg_word72_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word72_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word72_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word72_written[32-1:16] != 0)) begin
         card_core0_regs_fifo1_reg_word72_honoured = 65535;
     end
     else begin
@@ -3914,7 +4041,7 @@ assign card_core0_regs_fifo1_reg_word72_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word72__store50_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word72_shown <= 0;
+        card_core0_regs_fifo1_reg_word72_shown <= 100;
         card_core0_regs_fifo1_reg_word72_clamped <= 0;
     end
     else begin
@@ -3928,25 +4055,25 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word73_mine = (pci_slave1_pci_requests1_local_addr == 144);
+assign card_core0_regs_fifo1_reg_word73_mine = (pci_slave1_pci_requests1_local_addr == 136);
 
 
 always @(card_core0_regs_fifo1_reg_word73_mine, card_core0_regs_fifo1_reg_word73_shown_wide, card_core0_regs_fifo1_reg_word72_chain_out_data) begin: card_core0_regs_fifo1_reg_word73_read_chain
     if (card_core0_regs_fifo1_reg_word73_mine) begin
-        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word72_chain_out_data | card_core0_regs_fifo1_reg_word73_shown_wide);
+        card_core0_regs_fifo1_reg_word73_chain_out_data = (card_core0_regs_fifo1_reg_word72_chain_out_data | card_core0_regs_fifo1_reg_word73_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word72_chain_out_data;
+        card_core0_regs_fifo1_reg_word73_chain_out_data = card_core0_regs_fifo1_reg_word72_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word73_shown_wide = {9'h0, card_core0_regs_fifo1_reg_word73_shown};
+assign card_core0_regs_fifo1_reg_word73_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word73_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word73_mine_write = (card_core0_regs_fifo1_written_addr == 144);
+assign card_core0_regs_fifo1_reg_word73_mine_write = (card_core0_regs_fifo1_written_addr == 136);
 
 
 always @(card_core0_regs_fifo1_reg_word73_shown_wide, card_core0_regs_fifo1_reg_word73_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word73_merge_bytes
@@ -3964,11 +4091,11 @@ always @(card_core0_regs_fifo1_reg_word73_written) begin: card_core0_regs_fifo1_
     if (((card_core0_regs_fifo1_reg_word73_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word73_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word73_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word73_written[32-1:23] != 0)) begin
-        card_core0_regs_fifo1_reg_word73_honoured = 8388607;
+    else if ((card_core0_regs_fifo1_reg_word73_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word73_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word73_honoured = card_core0_regs_fifo1_reg_word73_written[23-1:0];
+        card_core0_regs_fifo1_reg_word73_honoured = card_core0_regs_fifo1_reg_word73_written[16-1:0];
         card_core0_regs_fifo1_reg_word73_out_of_range = 1'b0;
     end
 end
@@ -3980,7 +4107,7 @@ assign card_core0_regs_fifo1_reg_word73_chain_out_clamped = (card_core0_regs_fif
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word73__store51_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word73_shown <= 65535;
+        card_core0_regs_fifo1_reg_word73_shown <= 1000;
         card_core0_regs_fifo1_reg_word73_clamped <= 0;
     end
     else begin
@@ -3988,6 +4115,264 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word73__
         if (((card_core0_regs_fifo1_reg_word73_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word73_mine_write))) begin
             card_core0_regs_fifo1_reg_word73_shown <= card_core0_regs_fifo1_reg_word73_honoured;
             card_core0_regs_fifo1_reg_word73_clamped <= card_core0_regs_fifo1_reg_word73_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word74_mine = (pci_slave1_pci_requests1_local_addr == 140);
+
+
+always @(card_core0_regs_fifo1_reg_word74_mine, card_core0_regs_fifo1_reg_word74_shown_wide, card_core0_regs_fifo1_reg_word73_chain_out_data) begin: card_core0_regs_fifo1_reg_word74_read_chain
+    if (card_core0_regs_fifo1_reg_word74_mine) begin
+        card_core0_regs_fifo1_reg_word74_chain_out_data = (card_core0_regs_fifo1_reg_word73_chain_out_data | card_core0_regs_fifo1_reg_word74_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word74_chain_out_data = card_core0_regs_fifo1_reg_word73_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word74_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word74_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word74_mine_write = (card_core0_regs_fifo1_written_addr == 140);
+
+
+always @(card_core0_regs_fifo1_reg_word74_shown_wide, card_core0_regs_fifo1_reg_word74_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word74_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word74_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word74_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word74_written = ((card_core0_regs_fifo1_reg_word74_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word74_written) begin: card_core0_regs_fifo1_reg_word74__limit52_clamp_above_power_of_two
+    card_core0_regs_fifo1_reg_word74_out_of_range = 1'b1;
+    if ((card_core0_regs_fifo1_reg_word74_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word74_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word74_honoured = card_core0_regs_fifo1_reg_word74_written[16-1:0];
+        card_core0_regs_fifo1_reg_word74_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word74_chain_out_clamped = (card_core0_regs_fifo1_reg_word73_chain_out_clamped || card_core0_regs_fifo1_reg_word74_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word74__store52_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word74_shown <= 0;
+        card_core0_regs_fifo1_reg_word74_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word74_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word74_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word74_mine_write))) begin
+            card_core0_regs_fifo1_reg_word74_shown <= card_core0_regs_fifo1_reg_word74_honoured;
+            card_core0_regs_fifo1_reg_word74_clamped <= card_core0_regs_fifo1_reg_word74_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word75_mine = (pci_slave1_pci_requests1_local_addr == 144);
+
+
+always @(card_core0_regs_fifo1_reg_word75_mine, card_core0_regs_fifo1_reg_word75_shown_wide, card_core0_regs_fifo1_reg_word74_chain_out_data) begin: card_core0_regs_fifo1_reg_word75_read_chain
+    if (card_core0_regs_fifo1_reg_word75_mine) begin
+        card_core0_regs_fifo1_reg_word75_chain_out_data = (card_core0_regs_fifo1_reg_word74_chain_out_data | card_core0_regs_fifo1_reg_word75_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word75_chain_out_data = card_core0_regs_fifo1_reg_word74_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word75_shown_wide = {9'h0, card_core0_regs_fifo1_reg_word75_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word75_mine_write = (card_core0_regs_fifo1_written_addr == 144);
+
+
+always @(card_core0_regs_fifo1_reg_word75_shown_wide, card_core0_regs_fifo1_reg_word75_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word75_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word75_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word75_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word75_written = ((card_core0_regs_fifo1_reg_word75_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word75_written) begin: card_core0_regs_fifo1_reg_word75__limit53_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word75_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word75_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word75_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word75_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word75_written[32-1:23] != 0)) begin
+        card_core0_regs_fifo1_reg_word75_honoured = 8388607;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word75_honoured = card_core0_regs_fifo1_reg_word75_written[23-1:0];
+        card_core0_regs_fifo1_reg_word75_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word75_chain_out_clamped = (card_core0_regs_fifo1_reg_word74_chain_out_clamped || card_core0_regs_fifo1_reg_word75_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word75__store53_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word75_shown <= 65535;
+        card_core0_regs_fifo1_reg_word75_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word75_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word75_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word75_mine_write))) begin
+            card_core0_regs_fifo1_reg_word75_shown <= card_core0_regs_fifo1_reg_word75_honoured;
+            card_core0_regs_fifo1_reg_word75_clamped <= card_core0_regs_fifo1_reg_word75_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word76_mine = (pci_slave1_pci_requests1_local_addr == 148);
+
+
+always @(card_core0_regs_fifo1_reg_word76_mine, card_core0_regs_fifo1_reg_word76_shown_wide, card_core0_regs_fifo1_reg_word75_chain_out_data) begin: card_core0_regs_fifo1_reg_word76_read_chain
+    if (card_core0_regs_fifo1_reg_word76_mine) begin
+        card_core0_regs_fifo1_reg_word76_chain_out_data = (card_core0_regs_fifo1_reg_word75_chain_out_data | card_core0_regs_fifo1_reg_word76_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word76_chain_out_data = card_core0_regs_fifo1_reg_word75_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word76_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word76_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word76_mine_write = (card_core0_regs_fifo1_written_addr == 148);
+
+
+always @(card_core0_regs_fifo1_reg_word76_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word76_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8))) begin
+        card_core0_regs_fifo1_reg_word76_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word76_written = ((card_core0_regs_fifo1_reg_word76_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word76_written) begin: card_core0_regs_fifo1_reg_word76__limit54_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word76_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word76_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word76_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word76_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word76_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word76_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word76_honoured = card_core0_regs_fifo1_reg_word76_written[8-1:0];
+        card_core0_regs_fifo1_reg_word76_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word76_chain_out_clamped = (card_core0_regs_fifo1_reg_word75_chain_out_clamped || card_core0_regs_fifo1_reg_word76_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word76__store54_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word76_shown <= 1;
+        card_core0_regs_fifo1_reg_word76_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word76_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word76_mine_write))) begin
+            card_core0_regs_fifo1_reg_word76_shown <= card_core0_regs_fifo1_reg_word76_honoured;
+            card_core0_regs_fifo1_reg_word76_clamped <= card_core0_regs_fifo1_reg_word76_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word77_mine = (pci_slave1_pci_requests1_local_addr == 152);
+
+
+always @(card_core0_regs_fifo1_reg_word77_mine, card_core0_regs_fifo1_reg_word77_shown_wide, card_core0_regs_fifo1_reg_word76_chain_out_data) begin: card_core0_regs_fifo1_reg_word77_read_chain
+    if (card_core0_regs_fifo1_reg_word77_mine) begin
+        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word76_chain_out_data | card_core0_regs_fifo1_reg_word77_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word76_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word77_shown_wide = {30'h0, card_core0_regs_fifo1_step_mode};
+
+
+
+assign card_core0_regs_fifo1_reg_word77_mine_write = (card_core0_regs_fifo1_written_addr == 152);
+
+
+always @(card_core0_regs_fifo1_reg_word77_shown_wide, card_core0_regs_fifo1_reg_word77_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word77_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word77_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word77_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word77_written = ((card_core0_regs_fifo1_reg_word77_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word77_written) begin: card_core0_regs_fifo1_reg_word77__limit55_clamp_above
+    card_core0_regs_fifo1_reg_word77_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word77_written[32-1:2] != 0) || (card_core0_regs_fifo1_reg_word77_written[2-1:0] > 2))) begin
+        card_core0_regs_fifo1_reg_word77_honoured = 2;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word77_honoured = card_core0_regs_fifo1_reg_word77_written[2-1:0];
+        card_core0_regs_fifo1_reg_word77_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word77_chain_out_clamped = (card_core0_regs_fifo1_reg_word76_chain_out_clamped || card_core0_regs_fifo1_reg_word77_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word77__store55_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_step_mode <= 0;
+        card_core0_regs_fifo1_reg_word77_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word77_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word77_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word77_mine_write))) begin
+            card_core0_regs_fifo1_step_mode <= card_core0_regs_fifo1_reg_word77_honoured;
+            card_core0_regs_fifo1_reg_word77_clamped <= card_core0_regs_fifo1_reg_word77_out_of_range;
         end
     end
 end
@@ -4187,7 +4572,7 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
         5: card_core0_regs_fifo1_sequencer1_set_known = 1;
         6: card_core0_regs_fifo1_sequencer1_set_known = 1;
         7: card_core0_regs_fifo1_sequencer1_set_known = 1;
-        8: card_core0_regs_fifo1_sequencer1_set_known = 0;
+        8: card_core0_regs_fifo1_sequencer1_set_known = 1;
         9: card_core0_regs_fifo1_sequencer1_set_known = 0;
         10: card_core0_regs_fifo1_sequencer1_set_known = 0;
         11: card_core0_regs_fifo1_sequencer1_set_known = 0;
@@ -4490,13 +4875,13 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_r
         card_core0_regs_fifo1_feed_rate1_raise_limit <= 0;
     end
     else begin
-        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word47_shown;
-        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word48_shown;
+        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word49_shown;
+        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word50_shown;
         card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_ramp_step;
         card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_ramp_step == 0);
-        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word47_shown}) - $signed({1'b0, card_core0_regs_fifo1_ramp_step}));
-        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word47_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
-        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word48_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
+        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word49_shown}) - $signed({1'b0, card_core0_regs_fifo1_ramp_step}));
+        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word49_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
+        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word50_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
     end
 end
 
@@ -4629,9 +5014,9 @@ assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse
 assign card_core0_regs_fifo1_direct_pulse2_stepping = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse2_command_load) && (!card_core0_regs_fifo1_direct_pulse2_waiting) && card_core0_regs_fifo1_direct_ready && ((card_core0_regs_fifo1_direct_pulse2_command_retarget && (card_core0_regs_fifo1_direct_pulse2_command_count != 0)) || ((!card_core0_regs_fifo1_direct_pulse2_command_retarget) && card_core0_regs_fifo1_direct_pulse2_pending)));
 
 
-always @(card_core0_regs_fifo1_direct_pulse2_command_retarget, card_core0_regs_fifo1_reg_word56_shown, card_core0_regs_fifo1_direct_pulse2_stepping, card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
+always @(card_core0_regs_fifo1_direct_pulse2_command_retarget, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_direct_pulse2_stepping, card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
     if (((!card_core0_regs_fifo1_direct_pulse2_command_load) && (!card_core0_regs_fifo1_direct_pulse2_command_retarget))) begin
-        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word56_shown;
+        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word58_shown;
         card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
     end
     else if ((card_core0_regs_fifo1_direct_pulse2_command_count < 0)) begin
@@ -4671,18 +5056,18 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         card_core0_regs_fifo1_direct_dir_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_waiting <= 0;
         card_core0_regs_fifo1_direct_pulse2_pending <= 0;
-        card_core0_regs_fifo1_reg_word56_shown <= 0;
+        card_core0_regs_fifo1_reg_word58_shown <= 0;
         card_core0_regs_fifo1_direct_request_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_x <= 0;
         if (card_core0_regs_fifo1_direct_clear) begin
-            card_core0_regs_fifo1_reg_word56_shown <= 0;
+            card_core0_regs_fifo1_reg_word58_shown <= 0;
             card_core0_regs_fifo1_direct_pulse2_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse2_command_load) begin
-            card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+            card_core0_regs_fifo1_reg_word58_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
             card_core0_regs_fifo1_direct_dir_x <= (card_core0_regs_fifo1_direct_pulse2_command_count >= 0);
             card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_command_count != 0);
             card_core0_regs_fifo1_direct_pulse2_gap <= 0;
@@ -4690,19 +5075,19 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         end
         else if (card_core0_regs_fifo1_direct_pulse2_stepping) begin
             card_core0_regs_fifo1_direct_request_x <= 1;
-            card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+            card_core0_regs_fifo1_reg_word58_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
             if (card_core0_regs_fifo1_direct_pulse2_command_retarget) begin
                 card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_counted != 0);
             end
             else begin
-                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word56_shown != 1);
+                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word58_shown != 1);
             end
             card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
             card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_direct_pulse2_command_period != 1);
         end
         else begin
             if (card_core0_regs_fifo1_direct_pulse2_command_retarget) begin
-                card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+                card_core0_regs_fifo1_reg_word58_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
                 card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_command_count != 0);
             end
             if (card_core0_regs_fifo1_direct_pulse2_waiting) begin
@@ -4722,9 +5107,9 @@ assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse
 assign card_core0_regs_fifo1_direct_pulse3_stepping = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse3_command_load) && (!card_core0_regs_fifo1_direct_pulse3_waiting) && card_core0_regs_fifo1_direct_ready && ((card_core0_regs_fifo1_direct_pulse3_command_retarget && (card_core0_regs_fifo1_direct_pulse3_command_count != 0)) || ((!card_core0_regs_fifo1_direct_pulse3_command_retarget) && card_core0_regs_fifo1_direct_pulse3_pending)));
 
 
-always @(card_core0_regs_fifo1_direct_pulse3_command_retarget, card_core0_regs_fifo1_reg_word57_shown, card_core0_regs_fifo1_direct_pulse3_stepping, card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
+always @(card_core0_regs_fifo1_direct_pulse3_command_retarget, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_direct_pulse3_stepping, card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
     if (((!card_core0_regs_fifo1_direct_pulse3_command_load) && (!card_core0_regs_fifo1_direct_pulse3_command_retarget))) begin
-        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word57_shown;
+        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word59_shown;
         card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
     end
     else if ((card_core0_regs_fifo1_direct_pulse3_command_count < 0)) begin
@@ -4764,18 +5149,18 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         card_core0_regs_fifo1_direct_dir_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_waiting <= 0;
         card_core0_regs_fifo1_direct_pulse3_pending <= 0;
-        card_core0_regs_fifo1_reg_word57_shown <= 0;
+        card_core0_regs_fifo1_reg_word59_shown <= 0;
         card_core0_regs_fifo1_direct_request_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_y <= 0;
         if (card_core0_regs_fifo1_direct_clear) begin
-            card_core0_regs_fifo1_reg_word57_shown <= 0;
+            card_core0_regs_fifo1_reg_word59_shown <= 0;
             card_core0_regs_fifo1_direct_pulse3_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse3_command_load) begin
-            card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+            card_core0_regs_fifo1_reg_word59_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
             card_core0_regs_fifo1_direct_dir_y <= (card_core0_regs_fifo1_direct_pulse3_command_count >= 0);
             card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_command_count != 0);
             card_core0_regs_fifo1_direct_pulse3_gap <= 0;
@@ -4783,19 +5168,19 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         end
         else if (card_core0_regs_fifo1_direct_pulse3_stepping) begin
             card_core0_regs_fifo1_direct_request_y <= 1;
-            card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+            card_core0_regs_fifo1_reg_word59_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
             if (card_core0_regs_fifo1_direct_pulse3_command_retarget) begin
                 card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_counted != 0);
             end
             else begin
-                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word57_shown != 1);
+                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word59_shown != 1);
             end
             card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
             card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_command_period != 1);
         end
         else begin
             if (card_core0_regs_fifo1_direct_pulse3_command_retarget) begin
-                card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+                card_core0_regs_fifo1_reg_word59_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
                 card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_command_count != 0);
             end
             if (card_core0_regs_fifo1_direct_pulse3_waiting) begin
@@ -4809,20 +5194,20 @@ end
 
 
 assign card_core0_regs_fifo1_out_ready = ($signed({1'b0, card_core0_regs_fifo1_pulse_out1_count}) <= (4 - 2));
-assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_count != 0) || (card_core0_regs_fifo1_pulse_out1_phase != 2'b00) || pins_step_x || pins_step_y);
-assign card_core0_regs_fifo1_pulse_out1_control_pulsing = (card_core0_regs_fifo1_pulse_out1_take || card_core0_regs_fifo1_pulse_out1_level_x || card_core0_regs_fifo1_pulse_out1_level_y || pins_step_x || pins_step_y);
+assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_count != 0) || (card_core0_regs_fifo1_pulse_out1_phase != 2'b00) || card_core0_regs_fifo1_pulse_out1_pulse_x || card_core0_regs_fifo1_pulse_out1_pulse_y);
+assign card_core0_regs_fifo1_pulse_out1_control_pulsing = (card_core0_regs_fifo1_pulse_out1_take || card_core0_regs_fifo1_pulse_out1_level_x || card_core0_regs_fifo1_pulse_out1_level_y || card_core0_regs_fifo1_pulse_out1_pulse_x || card_core0_regs_fifo1_pulse_out1_pulse_y);
 
 
 
 assign card_core0_regs_fifo1_pulse_out1_head = card_core0_regs_fifo1_pulse_out1_queue[0];
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_reg_word51_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_reg_word50_shown, card_core0_regs_fifo1_pulse_clear) begin: card_core0_regs_fifo1_pulse_out1_decide
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_reg_word53_shown, card_core0_regs_fifo1_reg_word76_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_clear) begin: card_core0_regs_fifo1_pulse_out1_decide
     card_core0_regs_fifo1_pulse_out1_turn = ((card_core0_regs_fifo1_pulse_out1_count != 0) && ((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
     card_core0_regs_fifo1_pulse_out1_take = 1'b0;
-    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_regs_fifo1_pulse_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word50_shown))) begin
+    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_regs_fifo1_pulse_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word76_shown))) begin
         if ((card_core0_regs_fifo1_pulse_out1_phase == 2'b01)) begin
-            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word51_shown);
+            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word53_shown);
         end
         else if ((card_core0_regs_fifo1_pulse_out1_count != 0)) begin
             card_core0_regs_fifo1_pulse_out1_take = (!((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
@@ -4831,9 +5216,9 @@ always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pu
 end
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_reg_word50_shown, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_take, card_core0_regs_fifo1_reg_word52_shown) begin: card_core0_regs_fifo1_pulse_out1_restart
-    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word52_shown)));
-    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word50_shown));
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_reg_word52_shown, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_take, card_core0_regs_fifo1_reg_word54_shown) begin: card_core0_regs_fifo1_pulse_out1_restart
+    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word54_shown)));
+    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word52_shown));
     card_core0_regs_fifo1_pulse_out1_phase_step = 0;
     if ((card_core0_regs_fifo1_pulse_out1_phase_clocks != 255)) begin
         card_core0_regs_fifo1_pulse_out1_phase_step = 1;
@@ -4957,20 +5342,76 @@ always @(card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pul
 end
 
 
+always @(card_core0_regs_fifo1_reg_word55_shown[1], card_core0_regs_fifo1_reg_word55_shown[0], card_core0_regs_fifo1_pulse_out1_level_y, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_quad_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_pulse_out1_pulse_x, card_core0_regs_fifo1_pulse_out1_level_x, card_core0_regs_fifo1_pulse_out1_quad_y, card_core0_regs_fifo1_pulse_out1_pulse_y) begin: card_core0_regs_fifo1_pulse_out1_pin_direction
+    card_core0_regs_fifo1_pulse_out1_up_x = (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word55_shown[0]);
+    card_core0_regs_fifo1_pulse_out1_up_y = (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word55_shown[1]);
+    card_core0_regs_fifo1_pulse_out1_quad_next_x = card_core0_regs_fifo1_pulse_out1_quad_x;
+    if ((card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_pulse_x))) begin
+        if ((card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word55_shown[0])) begin
+            card_core0_regs_fifo1_pulse_out1_quad_next_x = (card_core0_regs_fifo1_pulse_out1_quad_x + 1);
+        end
+        else begin
+            card_core0_regs_fifo1_pulse_out1_quad_next_x = (card_core0_regs_fifo1_pulse_out1_quad_x - 1);
+        end
+    end
+    card_core0_regs_fifo1_pulse_out1_quad_next_y = card_core0_regs_fifo1_pulse_out1_quad_y;
+    if ((card_core0_regs_fifo1_pulse_out1_level_y && (!card_core0_regs_fifo1_pulse_out1_pulse_y))) begin
+        if ((card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word55_shown[1])) begin
+            card_core0_regs_fifo1_pulse_out1_quad_next_y = (card_core0_regs_fifo1_pulse_out1_quad_y + 1);
+        end
+        else begin
+            card_core0_regs_fifo1_pulse_out1_quad_next_y = (card_core0_regs_fifo1_pulse_out1_quad_y - 1);
+        end
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_drive_pins
     if (reset == 0) begin
         pins_step_x <= 0;
         pins_dir_x <= 0;
         pins_dir_y <= 0;
-        card_core0_regs_fifo1_position_y <= 0;
-        card_core0_regs_fifo1_pulse_out1_position_x <= 0;
+        card_core0_regs_fifo1_pulse_out1_quad_x <= 0;
+        card_core0_regs_fifo1_pulse_out1_pulse_x <= 0;
+        card_core0_regs_fifo1_pulse_out1_quad_y <= 0;
         pins_step_y <= 0;
+        card_core0_regs_fifo1_pulse_out1_pulse_y <= 0;
     end
     else begin
-        pins_step_x <= card_core0_regs_fifo1_pulse_out1_level_x;
-        pins_step_y <= card_core0_regs_fifo1_pulse_out1_level_y;
-        pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word53_shown[0]);
-        pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word53_shown[1]);
+        card_core0_regs_fifo1_pulse_out1_pulse_x <= card_core0_regs_fifo1_pulse_out1_level_x;
+        card_core0_regs_fifo1_pulse_out1_pulse_y <= card_core0_regs_fifo1_pulse_out1_level_y;
+        card_core0_regs_fifo1_pulse_out1_quad_x <= card_core0_regs_fifo1_pulse_out1_quad_next_x;
+        card_core0_regs_fifo1_pulse_out1_quad_y <= card_core0_regs_fifo1_pulse_out1_quad_next_y;
+        case (card_core0_regs_fifo1_step_mode)
+            'h1: begin
+                pins_step_x <= (card_core0_regs_fifo1_pulse_out1_level_x && card_core0_regs_fifo1_pulse_out1_up_x);
+                pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_up_x));
+                pins_step_y <= (card_core0_regs_fifo1_pulse_out1_level_y && card_core0_regs_fifo1_pulse_out1_up_y);
+                pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_level_y && (!card_core0_regs_fifo1_pulse_out1_up_y));
+            end
+            'h2: begin
+                pins_step_x <= (card_core0_regs_fifo1_pulse_out1_quad_next_x[0] ^ card_core0_regs_fifo1_pulse_out1_quad_next_x[1]);
+                pins_dir_x <= card_core0_regs_fifo1_pulse_out1_quad_next_x[1];
+                pins_step_y <= (card_core0_regs_fifo1_pulse_out1_quad_next_y[0] ^ card_core0_regs_fifo1_pulse_out1_quad_next_y[1]);
+                pins_dir_y <= card_core0_regs_fifo1_pulse_out1_quad_next_y[1];
+            end
+            default: begin
+                pins_step_x <= card_core0_regs_fifo1_pulse_out1_level_x;
+                pins_dir_x <= card_core0_regs_fifo1_pulse_out1_up_x;
+                pins_step_y <= card_core0_regs_fifo1_pulse_out1_level_y;
+                pins_dir_y <= card_core0_regs_fifo1_pulse_out1_up_y;
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_count_positions
+    if (reset == 0) begin
+        card_core0_regs_fifo1_position_y <= 0;
+        card_core0_regs_fifo1_pulse_out1_position_x <= 0;
+    end
+    else begin
         if (card_core0_regs_fifo1_clear_position) begin
             card_core0_regs_fifo1_pulse_out1_position_x <= 0;
             card_core0_regs_fifo1_position_y <= 0;
@@ -4978,20 +5419,20 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_d
         else begin
             if (card_core0_regs_fifo1_home_zero[0]) begin
                 card_core0_regs_fifo1_pulse_out1_position_x <= 0;
-                if ((card_core0_regs_fifo1_pulse_out1_level_x && (!pins_step_x))) begin
+                if ((card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_pulse_x))) begin
                     card_core0_regs_fifo1_pulse_out1_position_x <= card_core0_regs_fifo1_pulse_out1_delta_x;
                 end
             end
-            else if ((card_core0_regs_fifo1_pulse_out1_level_x && (!pins_step_x))) begin
+            else if ((card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_pulse_x))) begin
                 card_core0_regs_fifo1_pulse_out1_position_x <= (card_core0_regs_fifo1_pulse_out1_position_x + card_core0_regs_fifo1_pulse_out1_delta_x);
             end
             if (card_core0_regs_fifo1_home_zero[1]) begin
                 card_core0_regs_fifo1_position_y <= 0;
-                if ((card_core0_regs_fifo1_pulse_out1_level_y && (!pins_step_y))) begin
+                if ((card_core0_regs_fifo1_pulse_out1_level_y && (!card_core0_regs_fifo1_pulse_out1_pulse_y))) begin
                     card_core0_regs_fifo1_position_y <= card_core0_regs_fifo1_pulse_out1_delta_y;
                 end
             end
-            else if ((card_core0_regs_fifo1_pulse_out1_level_y && (!pins_step_y))) begin
+            else if ((card_core0_regs_fifo1_pulse_out1_level_y && (!card_core0_regs_fifo1_pulse_out1_pulse_y))) begin
                 card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y + card_core0_regs_fifo1_pulse_out1_delta_y);
             end
         end
@@ -5012,7 +5453,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1_level = (card_core0_regs_fifo1_input_filter1_inputs_raw ^ card_core0_regs_fifo1_reg_word64_shown);
+assign card_core0_regs_fifo1_input_filter1_level = (card_core0_regs_fifo1_input_filter1_inputs_raw ^ card_core0_regs_fifo1_reg_word66_shown);
 assign card_core0_regs_fifo1_input_filter1_sample = (card_core0_regs_fifo1_input_filter1_prescale == 0);
 
 
@@ -5022,7 +5463,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter
     end
     else begin
         if (card_core0_regs_fifo1_input_filter1_sample) begin
-            card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_reg_word66_shown - 1);
+            card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_reg_word68_shown - 1);
         end
         else begin
             card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_input_filter1_prescale - 1);
@@ -5064,7 +5505,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count7_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[0] != card_core0_regs_fifo1_conditioning_active[0]) && ((card_core0_regs_fifo1_input_filter1__input_count7_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count7_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[0] != card_core0_regs_fifo1_conditioning_active[0]) && ((card_core0_regs_fifo1_input_filter1__input_count7_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count8_count_samples
@@ -5088,7 +5529,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count8_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[1] != card_core0_regs_fifo1_conditioning_active[1]) && ((card_core0_regs_fifo1_input_filter1__input_count8_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count8_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[1] != card_core0_regs_fifo1_conditioning_active[1]) && ((card_core0_regs_fifo1_input_filter1__input_count8_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count9_count_samples
@@ -5112,7 +5553,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count9_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[2] != card_core0_regs_fifo1_conditioning_active[2]) && ((card_core0_regs_fifo1_input_filter1__input_count9_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count9_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[2] != card_core0_regs_fifo1_conditioning_active[2]) && ((card_core0_regs_fifo1_input_filter1__input_count9_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count10_count_samples
@@ -5136,7 +5577,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count10_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[3] != card_core0_regs_fifo1_conditioning_active[3]) && ((card_core0_regs_fifo1_input_filter1__input_count10_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count10_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[3] != card_core0_regs_fifo1_conditioning_active[3]) && ((card_core0_regs_fifo1_input_filter1__input_count10_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count11_count_samples
@@ -5160,7 +5601,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count11_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[4] != card_core0_regs_fifo1_conditioning_active[4]) && ((card_core0_regs_fifo1_input_filter1__input_count11_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count11_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[4] != card_core0_regs_fifo1_conditioning_active[4]) && ((card_core0_regs_fifo1_input_filter1__input_count11_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count12_count_samples
@@ -5184,7 +5625,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count12_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[5] != card_core0_regs_fifo1_conditioning_active[5]) && ((card_core0_regs_fifo1_input_filter1__input_count12_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count12_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[5] != card_core0_regs_fifo1_conditioning_active[5]) && ((card_core0_regs_fifo1_input_filter1__input_count12_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count13_count_samples
@@ -5208,12 +5649,12 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count13_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[6] != card_core0_regs_fifo1_conditioning_active[6]) && ((card_core0_regs_fifo1_input_filter1__input_count13_held + 1) >= card_core0_regs_fifo1_reg_word65_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count13_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[6] != card_core0_regs_fifo1_conditioning_active[6]) && ((card_core0_regs_fifo1_input_filter1__input_count13_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
 
 
 
 assign card_core0_regs_fifo1_machine_guard1_estop = card_core0_regs_fifo1_conditioning_active[0];
-assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_watchdog_left == 1) && (!card_core0_regs_fifo1_reg_word67__store46_word_strobe));
+assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_watchdog_left == 1) && (!card_core0_regs_fifo1_reg_word69__store48_word_strobe));
 assign card_core0_regs_fifo1_machine_guard1_hits = {(card_core0_regs_fifo1_requests_step_y && (!card_core0_regs_fifo1_requests_dir_y) && card_core0_regs_fifo1_conditioning_active[4]), (card_core0_regs_fifo1_requests_step_y && card_core0_regs_fifo1_requests_dir_y && card_core0_regs_fifo1_conditioning_active[3]), (card_core0_regs_fifo1_requests_step_x && (!card_core0_regs_fifo1_requests_dir_x) && card_core0_regs_fifo1_conditioning_active[2]), (card_core0_regs_fifo1_requests_step_x && card_core0_regs_fifo1_requests_dir_x && card_core0_regs_fifo1_conditioning_active[1])};
 
 
@@ -5284,8 +5725,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
         card_core0_regs_fifo1_watchdog_left <= 0;
     end
     else begin
-        if (card_core0_regs_fifo1_reg_word67__store46_word_strobe) begin
-            card_core0_regs_fifo1_watchdog_left <= card_core0_regs_fifo1_reg_word67__store46_word_value;
+        if (card_core0_regs_fifo1_reg_word69__store48_word_strobe) begin
+            card_core0_regs_fifo1_watchdog_left <= card_core0_regs_fifo1_reg_word69__store48_word_value;
         end
         else if ((card_core0_regs_fifo1_watchdog_left != 0)) begin
             card_core0_regs_fifo1_watchdog_left <= (card_core0_regs_fifo1_watchdog_left - 1);
@@ -5294,22 +5735,22 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
 end
 
 
-always @(card_core0_regs_fifo1_reg_word73_shown, card_core0_regs_fifo1_reg_word72_shown, card_core0_regs_fifo1_home_inputs, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
+always @(card_core0_regs_fifo1_reg_word75_shown, card_core0_regs_fifo1_reg_word74_shown, card_core0_regs_fifo1_home_inputs, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
     card_core0_regs_fifo1_homing1_switch = card_core0_regs_fifo1_homing1_axis ? card_core0_regs_fifo1_home_inputs[1] : card_core0_regs_fifo1_home_inputs[0];
     card_core0_regs_fifo1_homing1_seeking = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b010));
     card_core0_regs_fifo1_homing1_seek_next = ((card_core0_regs_fifo1_homing1_state == 3'b000) || (card_core0_regs_fifo1_homing1_state == 3'b001) || ((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)));
     if (((card_core0_regs_fifo1_homing1_state == 3'b011) || (card_core0_regs_fifo1_homing1_state == 3'b100))) begin
-        card_core0_regs_fifo1_homing1_magnitude = {8'h0, card_core0_regs_fifo1_reg_word72_shown};
+        card_core0_regs_fifo1_homing1_magnitude = {8'h0, card_core0_regs_fifo1_reg_word74_shown};
     end
     else begin
-        card_core0_regs_fifo1_homing1_magnitude = {1'h0, card_core0_regs_fifo1_reg_word73_shown};
+        card_core0_regs_fifo1_homing1_magnitude = {1'h0, card_core0_regs_fifo1_reg_word75_shown};
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word68__store47_word_value, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_negative) begin: card_core0_regs_fifo1_homing1_command
+always @(card_core0_regs_fifo1_reg_word70__store49_word_value, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_negative) begin: card_core0_regs_fifo1_homing1_command
     if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
-        card_core0_regs_fifo1_homing1_positive = (!card_core0_regs_fifo1_reg_word68__store47_word_value[1]);
+        card_core0_regs_fifo1_homing1_positive = (!card_core0_regs_fifo1_reg_word70__store49_word_value[1]);
     end
     else begin
         card_core0_regs_fifo1_homing1_positive = card_core0_regs_fifo1_homing1_negative;
@@ -5343,10 +5784,10 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_next
     else begin
         card_core0_regs_fifo1_homing1_port_count <= $signed(card_core0_regs_fifo1_homing1_signed_count);
         if (card_core0_regs_fifo1_homing1_seek_next) begin
-            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word70_shown;
+            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word72_shown;
         end
         else begin
-            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word71_shown;
+            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word73_shown;
         end
     end
 end
@@ -5390,20 +5831,20 @@ always @(card_core0_regs_fifo1_homing1_seeking, card_core0_regs_fifo1_homing1_st
 end
 
 
-always @(card_core0_regs_fifo1_homing1_negative, card_core0_regs_fifo1_homing1_phase, card_core0_regs_fifo1_homing1_done, card_core0_regs_fifo1_homing1_refused, card_core0_regs_fifo1_reg_word68__store47_word_strobe, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_not_found) begin: card_core0_regs_fifo1_homing1_show
+always @(card_core0_regs_fifo1_homing1_negative, card_core0_regs_fifo1_homing1_phase, card_core0_regs_fifo1_homing1_done, card_core0_regs_fifo1_homing1_refused, card_core0_regs_fifo1_reg_word70__store49_word_strobe, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_not_found) begin: card_core0_regs_fifo1_homing1_show
     reg [2-1:0] asked;
     reg [6-1:0] word;
     asked = 2'h0;
     asked[0] = card_core0_regs_fifo1_homing1_axis;
     asked[1] = card_core0_regs_fifo1_homing1_negative;
-    card_core0_regs_fifo1_reg_word68_shown = asked;
+    card_core0_regs_fifo1_reg_word70_shown = asked;
     word = 6'h0;
-    word[0] = ((card_core0_regs_fifo1_homing1_state != 3'b000) || card_core0_regs_fifo1_reg_word68__store47_word_strobe);
+    word[0] = ((card_core0_regs_fifo1_homing1_state != 3'b000) || card_core0_regs_fifo1_reg_word70__store49_word_strobe);
     word[1] = card_core0_regs_fifo1_homing1_done;
     word[2] = card_core0_regs_fifo1_homing1_not_found;
     word[3] = card_core0_regs_fifo1_homing1_refused;
     word[4+:2] = card_core0_regs_fifo1_homing1_phase;
-    card_core0_regs_fifo1_reg_word69_shown = word;
+    card_core0_regs_fifo1_reg_word71_shown = word;
 end
 
 
@@ -5419,7 +5860,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_outc
     else begin
         card_core0_regs_fifo1_homing1_port_ended <= 0;
         if (card_core0_core_clear) begin
-            if (card_core0_regs_fifo1_reg_word68__store47_word_strobe) begin
+            if (card_core0_regs_fifo1_reg_word70__store49_word_strobe) begin
                 card_core0_regs_fifo1_homing1_done <= 0;
                 card_core0_regs_fifo1_homing1_not_found <= 0;
                 card_core0_regs_fifo1_homing1_refused <= 1;
@@ -5427,9 +5868,9 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_outc
             end
         end
         else if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
-            if (card_core0_regs_fifo1_reg_word68__store47_word_strobe) begin
-                card_core0_regs_fifo1_homing1_axis <= card_core0_regs_fifo1_reg_word68__store47_word_value[0];
-                card_core0_regs_fifo1_homing1_negative <= card_core0_regs_fifo1_reg_word68__store47_word_value[1];
+            if (card_core0_regs_fifo1_reg_word70__store49_word_strobe) begin
+                card_core0_regs_fifo1_homing1_axis <= card_core0_regs_fifo1_reg_word70__store49_word_value[0];
+                card_core0_regs_fifo1_homing1_negative <= card_core0_regs_fifo1_reg_word70__store49_word_value[1];
                 card_core0_regs_fifo1_homing1_done <= 0;
                 card_core0_regs_fifo1_homing1_not_found <= 0;
                 card_core0_regs_fifo1_homing1_refused <= (!card_core0_regs_fifo1_home_idle);
@@ -5437,7 +5878,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_outc
             end
         end
         else begin
-            if (card_core0_regs_fifo1_reg_word68__store47_word_strobe) begin
+            if (card_core0_regs_fifo1_reg_word70__store49_word_strobe) begin
                 card_core0_regs_fifo1_homing1_refused <= 1;
                 card_core0_regs_fifo1_homing1_port_ended <= 1;
             end
@@ -5463,7 +5904,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
             card_core0_regs_fifo1_homing1_state <= 3'b000;
         end
         else if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
-            if ((card_core0_regs_fifo1_reg_word68__store47_word_strobe && card_core0_regs_fifo1_home_idle)) begin
+            if ((card_core0_regs_fifo1_reg_word70__store49_word_strobe && card_core0_regs_fifo1_home_idle)) begin
                 card_core0_regs_fifo1_homing1_state <= 3'b001;
             end
         end
@@ -5480,7 +5921,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
         end
         else if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
             if (card_core0_regs_fifo1_homing1_opened) begin
-                if ((card_core0_regs_fifo1_reg_word72_shown != 0)) begin
+                if ((card_core0_regs_fifo1_reg_word74_shown != 0)) begin
                     card_core0_regs_fifo1_homing1_state <= 3'b101;
                 end
                 else begin
@@ -5641,17 +6082,17 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word68_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word56__store40_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word56__store40_word_value, card_core0_regs_fifo1_reg_word54_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source2_choose_source
-    card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word54_shown;
-    card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word68_shown[0] == 0));
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word58__store42_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word58__store42_word_value, card_core0_regs_fifo1_reg_word56_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source2_choose_source
+    card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word56_shown;
+    card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word70_shown[0] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word68_shown[0] == 0));
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word70_shown[0] == 0));
         card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_homing1_port_count;
         card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_homing1_port_period;
     end
     else if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_reg_word56__store40_word_strobe && (!card_core0_regs_fifo1_halt));
-        card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word56__store40_word_value);
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_reg_word58__store42_word_strobe && (!card_core0_regs_fifo1_halt));
+        card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word58__store42_word_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse2_command_load = card_core0_regs_fifo1_seq_load;
@@ -5660,17 +6101,17 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_wor
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word68_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word57__store41_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word57__store41_word_value, card_core0_regs_fifo1_reg_word55_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source3_choose_source
-    card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word55_shown;
-    card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word68_shown[0] == 1));
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word59__store43_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word59__store43_word_value, card_core0_regs_fifo1_reg_word57_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source3_choose_source
+    card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word57_shown;
+    card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word70_shown[0] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word68_shown[0] == 1));
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word70_shown[0] == 1));
         card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_homing1_port_count;
         card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_homing1_port_period;
     end
     else if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_reg_word57__store41_word_strobe && (!card_core0_regs_fifo1_halt));
-        card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word57__store41_word_value);
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_reg_word59__store43_word_strobe && (!card_core0_regs_fifo1_halt));
+        card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word59__store43_word_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse3_command_load = card_core0_regs_fifo1_seq_load;
@@ -5683,7 +6124,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_status_words
     if (reset == 0) begin
         card_core0_regs_fifo1_status_words1_done_flag <= 0;
         card_core0_regs_fifo1_status_words1_error_before <= 0;
-        card_core0_regs_fifo1_reg_word44_shown <= 0;
+        card_core0_regs_fifo1_reg_word46_shown <= 0;
         card_core0_regs_fifo1_status_words1_busy_before <= 0;
         card_core0_regs_fifo1_status_words1_low_before <= 0;
     end
@@ -5696,9 +6137,9 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_status_words
             card_core0_regs_fifo1_status_words1_done_flag <= 1;
         end
         card_core0_regs_fifo1_status_words1_error_before <= (card_core0_regs_fifo1_error_code != 0);
-        card_core0_regs_fifo1_status_words1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word43_shown);
+        card_core0_regs_fifo1_status_words1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word45_shown);
         if (card_core0_regs_fifo1_sequencer1_mark_strobe) begin
-            card_core0_regs_fifo1_reg_word44_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
+            card_core0_regs_fifo1_reg_word46_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
         end
     end
 end
@@ -5715,27 +6156,27 @@ always @(card_core0_regs_fifo1_status_words1_done_flag, card_core0_regs_fifo1_er
     word[9] = card_core0_regs_fifo1_fifo_full;
     word[10] = card_core0_regs_fifo1_guard_stopped;
     word[32-1:16] = card_core0_regs_fifo1_level_wide;
-    card_core0_regs_fifo1_reg_word40_shown = word;
+    card_core0_regs_fifo1_reg_word42_shown = word;
 end
 
 
-always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_status_words1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_reg_word43_shown, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_reg_word73_chain_out_clamped, card_core0_regs_fifo1_status_words1_busy_before, card_core0_regs_fifo1_status_words1_low_before, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_input_filter1_inputs_changed) begin: card_core0_regs_fifo1_status_words1_detect_events
+always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_status_words1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_reg_word45_shown, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_reg_word77_chain_out_clamped, card_core0_regs_fifo1_status_words1_busy_before, card_core0_regs_fifo1_status_words1_low_before, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_input_filter1_inputs_changed) begin: card_core0_regs_fifo1_status_words1_detect_events
     reg [8-1:0] word;
     word = 8'h0;
     word[0] = (card_core0_regs_fifo1_status_words1_busy_before && (!card_core0_regs_fifo1_any_busy));
-    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word43_shown) && (!card_core0_regs_fifo1_status_words1_low_before));
+    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word45_shown) && (!card_core0_regs_fifo1_status_words1_low_before));
     word[2] = ((card_core0_regs_fifo1_error_code != 0) && (!card_core0_regs_fifo1_status_words1_error_before));
     word[3] = card_core0_regs_fifo1_sequencer1_mark_strobe;
-    word[4] = card_core0_regs_fifo1_reg_word73_chain_out_clamped;
+    word[4] = card_core0_regs_fifo1_reg_word77_chain_out_clamped;
     word[5] = card_core0_regs_fifo1_guard_stop_event;
     word[6] = card_core0_regs_fifo1_input_filter1_inputs_changed;
     word[7] = card_core0_regs_fifo1_homing1_port_ended;
-    card_core0_regs_fifo1_reg_word42__store29_word_hw = word;
+    card_core0_regs_fifo1_reg_word44__store31_word_hw = word;
 end
 
 
 
-assign irq = ((card_core0_regs_fifo1_reg_word42_shown & card_core0_regs_fifo1_reg_word41_shown) != 0);
+assign irq = ((card_core0_regs_fifo1_reg_word44_shown & card_core0_regs_fifo1_reg_word43_shown) != 0);
 
 
 always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1_status_words1_assemble_machine
@@ -5748,17 +6189,17 @@ always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stoppi
     word[17] = pins_drive_enable;
     word[18] = card_core0_regs_fifo1_settled;
     word[19] = card_core0_regs_fifo1_guard_stopping;
-    card_core0_regs_fifo1_reg_word62_shown = word;
+    card_core0_regs_fifo1_reg_word64_shown = word;
     why = 8'h0;
     why[0+:2] = card_core0_regs_fifo1_machine_guard1_guard_reason;
     why[4+:4] = card_core0_regs_fifo1_machine_guard1_guard_limits;
-    card_core0_regs_fifo1_reg_word63_shown = why;
+    card_core0_regs_fifo1_reg_word65_shown = why;
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_shown = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
-assign card_core0_regs_fifo1_reg_word46_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
+assign card_core0_regs_fifo1_reg_word47_shown = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
+assign card_core0_regs_fifo1_reg_word48_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
 
 
 always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_magnitudes

@@ -1,4 +1,4 @@
-/* Host interface of the PCI DDA card: function registers (I/O BAR) and more.
+/* Host interface of the PCI DDA card: function registers (I/O BAR0, memory BAR2) and more.
  * Generated from rtl/ by python -m rtl.top --convert; do not edit. */
 #ifndef DDA_REGISTERS_H
 #define DDA_REGISTERS_H
@@ -6,7 +6,7 @@
 #define DDA_IO_BAR_SIZE 256u
 
 #define DDA_ID 0x00u
-#define DDA_ID_RESET 0xDDAC0200u
+#define DDA_ID_RESET 0xDDAC0201u
 #define DDA_ID_VERSION_SHIFT 0u
 #define DDA_ID_VERSION_MASK 0x0000FFFFu
 #define DDA_ID_MAGIC_SHIFT 16u
@@ -294,6 +294,17 @@
 #define DDA_HOME_SEARCH_STEPS_SHIFT 0u
 #define DDA_HOME_SEARCH_STEPS_MASK 0x007FFFFFu
 
+#define DDA_STEP_SPACE 0x94u
+#define DDA_STEP_SPACE_RESET 0x00000001u
+#define DDA_STEP_SPACE_CLOCKS_SHIFT 0u
+#define DDA_STEP_SPACE_CLOCKS_MASK 0x000000FFu
+#define DDA_STEP_SPACE_SET_INDEX 8u
+
+#define DDA_STEP_MODE 0x98u
+#define DDA_STEP_MODE_RESET 0x00000000u
+#define DDA_STEP_MODE_MODE_SHIFT 0u
+#define DDA_STEP_MODE_MODE_MASK 0x00000003u
+
 #define DDA_PCI_VENDOR_ID 0x1234u
 #define DDA_PCI_DEVICE_ID 0xDDA0u
 #define DDA_PCI_REVISION_ID 0x01u
@@ -302,6 +313,7 @@
 #define DDA_PCI_SUBSYSTEM_ID 0x0001u
 #define DDA_BAR0_SIZE 256u /* I/O: function registers */
 #define DDA_BAR1_SIZE 4096u /* memory: the command FIFO window */
+#define DDA_BAR2_SIZE 256u /* memory: the function registers again, at BAR0's offsets */
 #define DDA_FIFO_DEPTH 512u /* words */
 
 #define DDA_STOP_ESTOP 1u /* STOP_REASON.REASON */

@@ -45,12 +45,15 @@ module pci_slave (
 // 
 // Ports: ``clock`` PCI CLK; ``reset`` RST# (``card_reset()``); ``pci`` a
 // ``PciBus``; ``local`` a ``LocalBus`` of ``local_addr_width()`` address
-// bits (space 0: BAR0, I/O; space 1: BAR1, memory); ``irq`` level interrupt
+// bits (space 0: the registers, through BAR0, I/O, or its alias BAR2,
+// memory, BAR0's size; space 1: BAR1, memory); ``irq`` level interrupt
 // request, drives INTA# unless Command.Interrupt Disable is set.
 // 
 // Parameters: vendor_id, device_id, revision_id, class_code (24 bits),
 // subsystem_vendor_id, subsystem_id; io_bar_bits (BAR0 is 2**io_bar_bits
-// bytes), mem_bar_bits (BAR1 is 2**mem_bar_bits bytes); device (how the
+// bytes; BAR2 the same, 16 bytes at least, BAR0 repeating in them),
+// mem_bar_bits (BAR1 is
+// 2**mem_bar_bits bytes); device (how the
 // one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pci/pin_lut.py``);
 // defaults and ranges in ``models/parameters.py``;
 // io_registers (False: the core's own flip-flops sample AD and IDSEL and
@@ -159,6 +162,7 @@ reg parity_response;
 reg serr_enable;
 reg [15:0] bar0;
 reg [31:0] bar1;
+reg [31:0] bar2;
 reg fatal;
 reg read_command;
 wire write_done_next;
@@ -189,6 +193,7 @@ reg b_valid;
 reg before_last;
 reg [3:0] cbe_q;
 reg claim;
+reg claim_alias;
 reg claim_config;
 reg claim_io;
 wire devsel_next;
@@ -243,18 +248,27 @@ wire config_irq;
 reg pci_parity0_bus_parity;
 wire pci_parity0_perr_armed;
 wire pci_parity0_serr_armed;
+reg pci_control0_control_case0_exhausted;
+reg pci_control0_control_case0_last_data;
+reg pci_control0_control_case0_ready_for_phase;
 reg [3:0] pci_control0_control_case0_out_state;
 reg pci_control0_control_case0_out_trdy;
 reg pci_control0_control_case0_out_stop;
 reg pci_control0_control_case0_out_devsel;
 reg pci_control0_control_case0_out_drive;
 reg pci_control0_control_case0_out_ad_oe;
+reg pci_control0_control_case1_exhausted;
+reg pci_control0_control_case1_last_data;
+reg pci_control0_control_case1_ready_for_phase;
 reg [3:0] pci_control0_control_case1_out_state;
 reg pci_control0_control_case1_out_trdy;
 reg pci_control0_control_case1_out_stop;
 reg pci_control0_control_case1_out_devsel;
 reg pci_control0_control_case1_out_drive;
 reg pci_control0_control_case1_out_ad_oe;
+reg pci_control0_control_case2_exhausted;
+reg pci_control0_control_case2_last_data;
+reg pci_control0_control_case2_ready_for_phase;
 reg [3:0] pci_control0_control_case2_out_state;
 reg pci_control0_control_case2_out_trdy;
 reg pci_control0_control_case2_out_stop;
@@ -352,29 +366,37 @@ always @(ad_out_q) begin: pci_parity0_ad_out_parity_tree
 end
 
 
-always @(bar1, mem_enable, address_phase, state, bar0, cbe_q, idsel_q, io_enable, ad_q) begin: pci_decode0_decode_address
+always @(bar2, bar1, mem_enable, address_phase, state, bar0, cbe_q, idsel_q, io_enable, ad_q) begin: pci_decode0_decode_address
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
+    reg mem_command;
     reg mem_hit;
+    reg alias_hit;
     code = cbe_q;
     config_hit = (idsel_q && (!ad_q[0]) && (!ad_q[1]) && (ad_q[11-1:8] == 0) && ((code == 10) || (code == 11)));
     io_hit = (io_enable && ((code == 2) || (code == 3)) && (ad_q[32-1:16] == 0) && (ad_q[16-1:6] == bar0[16-1:6]));
-    mem_hit = (mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)) && (ad_q[32-1:12] == bar1[32-1:12]));
-    claim = ((state == 4'b0000) && address_phase && (config_hit || io_hit || mem_hit));
+    mem_command = (mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)));
+    mem_hit = (mem_command && (ad_q[32-1:12] == bar1[32-1:12]));
+    alias_hit = (mem_command && (ad_q[32-1:6] == bar2[32-1:6]) && (!mem_hit));
+    claim = ((state == 4'b0000) && address_phase && (config_hit || io_hit || mem_hit || alias_hit));
     claim_config = config_hit;
     claim_io = io_hit;
+    claim_alias = alias_hit;
     read_command = (!cbe_q[0]);
 end
 
 
-always @(cbe_q, ad_q) begin: pci_decode0_start_offset
+always @(cbe_q, claim_alias, ad_q) begin: pci_decode0_start_offset
     reg [4-1:0] code;
     code = cbe_q;
     if (((code == 10) || (code == 11))) begin
         start_addr = (ad_q[(10 + 2)-1:2] & 10'h3f);
     end
     else if (((code == 2) || (code == 3))) begin
+        start_addr = (ad_q[(10 + 2)-1:2] & 10'hf);
+    end
+    else if (claim_alias) begin
         start_addr = (ad_q[(10 + 2)-1:2] & 10'hf);
     end
     else begin
@@ -484,51 +506,39 @@ always @(subsequent_wait_over, stop_q, first_phase, initial_wait_over, state, tr
 end
 
 
-always @(fetching, is_config, before_last, buffered_next, read_command, b_valid, stop_q, single, state, hold_retry, pci_devsel_oe, trdy_q, at_last, first_phase, burst_got, claim_config, fatal, devsel_q, hold_got, claim_io, claim, pci_ad_oe, local_room, is_read, timeout, hold_accepted) begin: pci_control0_control_case0_control
+always @(burst_got, single, fetching, is_config, before_last, buffered_next, trdy_q, b_valid, local_room, at_last, is_read, first_phase) begin: pci_control0_control_case0_outlook
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
-    reg devsel;
-    reg drive;
-    reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
     reg buffer_room;
     done = (1'b0 && (!trdy_q));
-    hold = ((!1'b0) && (!trdy_q));
-    trdy = (trdy_q != 0);
-    stop = (stop_q != 0);
-    devsel = (devsel_q != 0);
-    drive = (pci_devsel_oe != 0);
-    ad_oe = (pci_ad_oe != 0);
-    pci_control0_control_case0_out_state = state;
-    last_data = (single || at_last);
     if (done) begin
-        last_data = (single || before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (is_read) begin
-        ready_for_phase = (b_valid || burst_got);
-        exhausted = ((!b_valid) && (!burst_got) && (!fetching));
+        pci_control0_control_case0_last_data = (single || before_last);
     end
     else begin
-        buffer_room = (buffered_next <= 1);
-        if ((done && (!first_phase))) begin
-            buffer_room = (buffered_next == 0);
-        end
-        ready_for_phase = (is_config || (buffer_room && local_room));
+        pci_control0_control_case0_last_data = (single || at_last);
     end
+    buffer_room = (buffered_next <= 1);
+    if ((done && (!first_phase))) begin
+        buffer_room = (buffered_next == 0);
+    end
+    if (is_read) begin
+        pci_control0_control_case0_ready_for_phase = (b_valid || burst_got);
+        pci_control0_control_case0_exhausted = ((!b_valid) && (!burst_got) && (!fetching));
+    end
+    else begin
+        pci_control0_control_case0_ready_for_phase = (is_config || (buffer_room && local_room));
+        pci_control0_control_case0_exhausted = 1'b0;
+    end
+end
+
+
+always @(claim, claim_config, state, fatal, pci_control0_control_case0_exhausted, hold_retry, pci_control0_control_case0_ready_for_phase, trdy_q, is_read, hold_got, claim_io, stop_q, timeout, hold_accepted) begin: pci_control0_control_case0_next_state
+    reg done;
+    reg hold;
+    done = (1'b0 && (!trdy_q));
+    hold = ((!1'b0) && (!trdy_q));
+    pci_control0_control_case0_out_state = state;
     if ((state == 4'b0000)) begin
-        drive = 1'b0;
-        ad_oe = 1'b0;
         if (claim) begin
-            drive = 1'b1;
-            devsel = 1'b0;
-            ad_oe = (read_command != 0);
             if (claim_config) begin
                 pci_control0_control_case0_out_state = 4'b0001;
             end
@@ -543,22 +553,15 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
     else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
         if (fatal) begin
             pci_control0_control_case0_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((state == 4'b0001)) begin
             pci_control0_control_case0_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b1);
         end
         else if ((hold_got || hold_accepted)) begin
             pci_control0_control_case0_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
         end
         else if ((hold_retry || timeout)) begin
             pci_control0_control_case0_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (is_read) begin
             pci_control0_control_case0_out_state = 4'b0100;
@@ -569,23 +572,71 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
             // pass
         end
         else if ((done && ((!1'b1) || (!stop_q)))) begin
-            trdy = 1'b1;
             if (1'b1) begin
                 pci_control0_control_case0_out_state = 4'b0111;
             end
             else begin
                 pci_control0_control_case0_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
+        else if (pci_control0_control_case0_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || timeout)) begin
+        else if ((pci_control0_control_case0_exhausted || timeout)) begin
             pci_control0_control_case0_out_state = 4'b0111;
+        end
+    end
+    else if ((state == 4'b0111)) begin
+        if ((!1'b1)) begin
+            pci_control0_control_case0_out_state = 4'b1000;
+        end
+    end
+    else begin
+        pci_control0_control_case0_out_state = 4'b0000;
+    end
+end
+
+
+always @(fatal, state, pci_control0_control_case0_exhausted, hold_retry, trdy_q, pci_control0_control_case0_last_data, hold_got, pci_control0_control_case0_ready_for_phase, stop_q, timeout, hold_accepted) begin: pci_control0_control_case0_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b0 && (!trdy_q));
+    hold = ((!1'b0) && (!trdy_q));
+    trdy = (trdy_q != 0);
+    stop = (stop_q != 0);
+    if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
+        if (fatal) begin
+            stop = 1'b0;
+        end
+        else if ((state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b1);
+        end
+        else if ((hold_got || hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(pci_control0_control_case0_last_data && 1'b1));
+        end
+        else if ((hold_retry || timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((state == 4'b0101) || (state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b1) || (!stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b1)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (pci_control0_control_case0_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(pci_control0_control_case0_last_data && 1'b1));
+        end
+        else if ((pci_control0_control_case0_exhausted || timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -595,63 +646,24 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
     end
     else if ((state == 4'b0111)) begin
         if ((!1'b1)) begin
-            pci_control0_control_case0_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        pci_control0_control_case0_out_state = 4'b0000;
-        drive = 1'b0;
     end
     pci_control0_control_case0_out_trdy = trdy;
     pci_control0_control_case0_out_stop = stop;
-    pci_control0_control_case0_out_devsel = devsel;
-    pci_control0_control_case0_out_drive = drive;
-    pci_control0_control_case0_out_ad_oe = ad_oe;
 end
 
 
-always @(fetching, is_config, before_last, buffered_next, read_command, b_valid, stop_q, single, state, hold_retry, pci_devsel_oe, trdy_q, at_last, first_phase, burst_got, claim_config, fatal, devsel_q, hold_got, claim_io, claim, pci_ad_oe, local_room, is_read, timeout, hold_accepted) begin: pci_control0_control_case1_control
+always @(claim, pci_ad_oe, state, fatal, devsel_q, pci_devsel_oe, trdy_q, read_command) begin: pci_control0_control_case0_next_devsel_drive
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
     reg devsel;
     reg drive;
     reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
-    reg buffer_room;
-    done = (1'b1 && (!trdy_q));
-    hold = ((!1'b1) && (!trdy_q));
-    trdy = (trdy_q != 0);
-    stop = (stop_q != 0);
+    done = (1'b0 && (!trdy_q));
     devsel = (devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_control0_control_case1_out_state = state;
-    last_data = (single || at_last);
-    if (done) begin
-        last_data = (single || before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (is_read) begin
-        ready_for_phase = (b_valid || burst_got);
-        exhausted = ((!b_valid) && (!burst_got) && (!fetching));
-    end
-    else begin
-        buffer_room = (buffered_next <= 1);
-        if ((done && (!first_phase))) begin
-            buffer_room = (buffered_next == 0);
-        end
-        ready_for_phase = (is_config || (buffer_room && local_room));
-    end
     if ((state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
@@ -659,6 +671,59 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
             drive = 1'b1;
             devsel = 1'b0;
             ad_oe = (read_command != 0);
+        end
+    end
+    else if ((state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
+        if (fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b1) && ((state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
+    pci_control0_control_case0_out_devsel = devsel;
+    pci_control0_control_case0_out_drive = drive;
+    pci_control0_control_case0_out_ad_oe = ad_oe;
+end
+
+
+always @(burst_got, single, fetching, is_config, before_last, buffered_next, trdy_q, b_valid, local_room, at_last, is_read, first_phase) begin: pci_control0_control_case1_outlook
+    reg done;
+    reg buffer_room;
+    done = (1'b1 && (!trdy_q));
+    if (done) begin
+        pci_control0_control_case1_last_data = (single || before_last);
+    end
+    else begin
+        pci_control0_control_case1_last_data = (single || at_last);
+    end
+    buffer_room = (buffered_next <= 1);
+    if ((done && (!first_phase))) begin
+        buffer_room = (buffered_next == 0);
+    end
+    if (is_read) begin
+        pci_control0_control_case1_ready_for_phase = (b_valid || burst_got);
+        pci_control0_control_case1_exhausted = ((!b_valid) && (!burst_got) && (!fetching));
+    end
+    else begin
+        pci_control0_control_case1_ready_for_phase = (is_config || (buffer_room && local_room));
+        pci_control0_control_case1_exhausted = 1'b0;
+    end
+end
+
+
+always @(claim, claim_config, state, fatal, pci_control0_control_case1_exhausted, hold_retry, pci_control0_control_case1_ready_for_phase, trdy_q, is_read, hold_got, claim_io, stop_q, timeout, hold_accepted) begin: pci_control0_control_case1_next_state
+    reg done;
+    reg hold;
+    done = (1'b1 && (!trdy_q));
+    hold = ((!1'b1) && (!trdy_q));
+    pci_control0_control_case1_out_state = state;
+    if ((state == 4'b0000)) begin
+        if (claim) begin
             if (claim_config) begin
                 pci_control0_control_case1_out_state = 4'b0001;
             end
@@ -673,22 +738,15 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
     else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
         if (fatal) begin
             pci_control0_control_case1_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((state == 4'b0001)) begin
             pci_control0_control_case1_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b0);
         end
         else if ((hold_got || hold_accepted)) begin
             pci_control0_control_case1_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b0));
         end
         else if ((hold_retry || timeout)) begin
             pci_control0_control_case1_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (is_read) begin
             pci_control0_control_case1_out_state = 4'b0100;
@@ -699,23 +757,71 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
             // pass
         end
         else if ((done && ((!1'b0) || (!stop_q)))) begin
-            trdy = 1'b1;
             if (1'b0) begin
                 pci_control0_control_case1_out_state = 4'b0111;
             end
             else begin
                 pci_control0_control_case1_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b0));
+        else if (pci_control0_control_case1_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || timeout)) begin
+        else if ((pci_control0_control_case1_exhausted || timeout)) begin
             pci_control0_control_case1_out_state = 4'b0111;
+        end
+    end
+    else if ((state == 4'b0111)) begin
+        if ((!1'b0)) begin
+            pci_control0_control_case1_out_state = 4'b1000;
+        end
+    end
+    else begin
+        pci_control0_control_case1_out_state = 4'b0000;
+    end
+end
+
+
+always @(fatal, state, pci_control0_control_case1_exhausted, hold_retry, trdy_q, pci_control0_control_case1_last_data, hold_got, pci_control0_control_case1_ready_for_phase, stop_q, timeout, hold_accepted) begin: pci_control0_control_case1_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b1 && (!trdy_q));
+    hold = ((!1'b1) && (!trdy_q));
+    trdy = (trdy_q != 0);
+    stop = (stop_q != 0);
+    if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
+        if (fatal) begin
+            stop = 1'b0;
+        end
+        else if ((state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b0);
+        end
+        else if ((hold_got || hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(pci_control0_control_case1_last_data && 1'b0));
+        end
+        else if ((hold_retry || timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((state == 4'b0101) || (state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b0) || (!stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b0)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (pci_control0_control_case1_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(pci_control0_control_case1_last_data && 1'b0));
+        end
+        else if ((pci_control0_control_case1_exhausted || timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -725,63 +831,24 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
     end
     else if ((state == 4'b0111)) begin
         if ((!1'b0)) begin
-            pci_control0_control_case1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        pci_control0_control_case1_out_state = 4'b0000;
-        drive = 1'b0;
     end
     pci_control0_control_case1_out_trdy = trdy;
     pci_control0_control_case1_out_stop = stop;
-    pci_control0_control_case1_out_devsel = devsel;
-    pci_control0_control_case1_out_drive = drive;
-    pci_control0_control_case1_out_ad_oe = ad_oe;
 end
 
 
-always @(fetching, is_config, before_last, buffered_next, read_command, b_valid, stop_q, single, state, hold_retry, pci_devsel_oe, trdy_q, at_last, first_phase, burst_got, claim_config, fatal, devsel_q, hold_got, claim_io, claim, pci_ad_oe, local_room, is_read, timeout, hold_accepted) begin: pci_control0_control_case2_control
+always @(claim, pci_ad_oe, state, fatal, devsel_q, pci_devsel_oe, trdy_q, read_command) begin: pci_control0_control_case1_next_devsel_drive
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
     reg devsel;
     reg drive;
     reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
-    reg buffer_room;
     done = (1'b1 && (!trdy_q));
-    hold = ((!1'b1) && (!trdy_q));
-    trdy = (trdy_q != 0);
-    stop = (stop_q != 0);
     devsel = (devsel_q != 0);
     drive = (pci_devsel_oe != 0);
     ad_oe = (pci_ad_oe != 0);
-    pci_control0_control_case2_out_state = state;
-    last_data = (single || at_last);
-    if (done) begin
-        last_data = (single || before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (is_read) begin
-        ready_for_phase = (b_valid || burst_got);
-        exhausted = ((!b_valid) && (!burst_got) && (!fetching));
-    end
-    else begin
-        buffer_room = (buffered_next <= 1);
-        if ((done && (!first_phase))) begin
-            buffer_room = (buffered_next == 0);
-        end
-        ready_for_phase = (is_config || (buffer_room && local_room));
-    end
     if ((state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
@@ -789,6 +856,59 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
             drive = 1'b1;
             devsel = 1'b0;
             ad_oe = (read_command != 0);
+        end
+    end
+    else if ((state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
+        if (fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b0) && ((state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
+    pci_control0_control_case1_out_devsel = devsel;
+    pci_control0_control_case1_out_drive = drive;
+    pci_control0_control_case1_out_ad_oe = ad_oe;
+end
+
+
+always @(burst_got, single, fetching, is_config, before_last, buffered_next, trdy_q, b_valid, local_room, at_last, is_read, first_phase) begin: pci_control0_control_case2_outlook
+    reg done;
+    reg buffer_room;
+    done = (1'b1 && (!trdy_q));
+    if (done) begin
+        pci_control0_control_case2_last_data = (single || before_last);
+    end
+    else begin
+        pci_control0_control_case2_last_data = (single || at_last);
+    end
+    buffer_room = (buffered_next <= 1);
+    if ((done && (!first_phase))) begin
+        buffer_room = (buffered_next == 0);
+    end
+    if (is_read) begin
+        pci_control0_control_case2_ready_for_phase = (b_valid || burst_got);
+        pci_control0_control_case2_exhausted = ((!b_valid) && (!burst_got) && (!fetching));
+    end
+    else begin
+        pci_control0_control_case2_ready_for_phase = (is_config || (buffer_room && local_room));
+        pci_control0_control_case2_exhausted = 1'b0;
+    end
+end
+
+
+always @(claim, claim_config, state, fatal, pci_control0_control_case2_exhausted, hold_retry, pci_control0_control_case2_ready_for_phase, trdy_q, is_read, hold_got, claim_io, stop_q, timeout, hold_accepted) begin: pci_control0_control_case2_next_state
+    reg done;
+    reg hold;
+    done = (1'b1 && (!trdy_q));
+    hold = ((!1'b1) && (!trdy_q));
+    pci_control0_control_case2_out_state = state;
+    if ((state == 4'b0000)) begin
+        if (claim) begin
             if (claim_config) begin
                 pci_control0_control_case2_out_state = 4'b0001;
             end
@@ -803,22 +923,15 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
     else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
         if (fatal) begin
             pci_control0_control_case2_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((state == 4'b0001)) begin
             pci_control0_control_case2_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b1);
         end
         else if ((hold_got || hold_accepted)) begin
             pci_control0_control_case2_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
         end
         else if ((hold_retry || timeout)) begin
             pci_control0_control_case2_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (is_read) begin
             pci_control0_control_case2_out_state = 4'b0100;
@@ -829,23 +942,71 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
             // pass
         end
         else if ((done && ((!1'b1) || (!stop_q)))) begin
-            trdy = 1'b1;
             if (1'b1) begin
                 pci_control0_control_case2_out_state = 4'b0111;
             end
             else begin
                 pci_control0_control_case2_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
+        else if (pci_control0_control_case2_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || timeout)) begin
+        else if ((pci_control0_control_case2_exhausted || timeout)) begin
             pci_control0_control_case2_out_state = 4'b0111;
+        end
+    end
+    else if ((state == 4'b0111)) begin
+        if ((!1'b1)) begin
+            pci_control0_control_case2_out_state = 4'b1000;
+        end
+    end
+    else begin
+        pci_control0_control_case2_out_state = 4'b0000;
+    end
+end
+
+
+always @(fatal, state, pci_control0_control_case2_exhausted, hold_retry, trdy_q, pci_control0_control_case2_last_data, hold_got, pci_control0_control_case2_ready_for_phase, stop_q, timeout, hold_accepted) begin: pci_control0_control_case2_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b1 && (!trdy_q));
+    hold = ((!1'b1) && (!trdy_q));
+    trdy = (trdy_q != 0);
+    stop = (stop_q != 0);
+    if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
+        if (fatal) begin
+            stop = 1'b0;
+        end
+        else if ((state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b1);
+        end
+        else if ((hold_got || hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(pci_control0_control_case2_last_data && 1'b1));
+        end
+        else if ((hold_retry || timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((state == 4'b0101) || (state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b1) || (!stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b1)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (pci_control0_control_case2_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(pci_control0_control_case2_last_data && 1'b1));
+        end
+        else if ((pci_control0_control_case2_exhausted || timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -855,19 +1016,45 @@ always @(fetching, is_config, before_last, buffered_next, read_command, b_valid,
     end
     else if ((state == 4'b0111)) begin
         if ((!1'b1)) begin
-            pci_control0_control_case2_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        pci_control0_control_case2_out_state = 4'b0000;
-        drive = 1'b0;
     end
     pci_control0_control_case2_out_trdy = trdy;
     pci_control0_control_case2_out_stop = stop;
+end
+
+
+always @(claim, pci_ad_oe, state, fatal, devsel_q, pci_devsel_oe, trdy_q, read_command) begin: pci_control0_control_case2_next_devsel_drive
+    reg done;
+    reg devsel;
+    reg drive;
+    reg ad_oe;
+    done = (1'b1 && (!trdy_q));
+    devsel = (devsel_q != 0);
+    drive = (pci_devsel_oe != 0);
+    ad_oe = (pci_ad_oe != 0);
+    if ((state == 4'b0000)) begin
+        drive = 1'b0;
+        ad_oe = 1'b0;
+        if (claim) begin
+            drive = 1'b1;
+            devsel = 1'b0;
+            ad_oe = (read_command != 0);
+        end
+    end
+    else if ((state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((state == 4'b0001) || (state == 4'b0010) || (state == 4'b0011) || (state == 4'b0100))) begin
+        if (fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b1) && ((state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
     pci_control0_control_case2_out_devsel = devsel;
     pci_control0_control_case2_out_drive = drive;
     pci_control0_control_case2_out_ad_oe = ad_oe;
@@ -913,30 +1100,19 @@ wire ad_oe_next_y0 = pci_control0_control_case2_out_ad_oe ^ pci_control0_control
 assign ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (ad_oe_next_y0 ? 1'b1 : (ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
-always @(posedge clock, negedge reset) begin: transaction
+always @(posedge clock, negedge reset) begin: phase_registers
     if (reset == 0) begin
-        req_addr <= 0;
-        is_config <= 0;
-        space_mem <= 0;
-        first_pending <= 0;
-        initial_wait_over <= 0;
         before_last <= 0;
-        io_byte <= 0;
-        single <= 0;
-        req_addr_stale <= 0;
         address_fault <= 0;
         at_last <= 0;
-        subsequent_wait_over <= 0;
-        is_read <= 0;
         first_phase <= 0;
-        wait_count <= 0;
-        fetching <= 0;
         state <= 4'b0000;
         phase_addr <= 0;
     end
     else begin
         state <= state_next;
         first_phase <= first_phase_next;
+        address_fault <= address_fault_next;
         if (phase_step) begin
             if (claim) begin
                 phase_addr <= start_addr;
@@ -949,12 +1125,26 @@ always @(posedge clock, negedge reset) begin: transaction
                 before_last <= ($signed({1'b0, phase_addr}) == (1023 - 2));
             end
         end
-        address_fault <= address_fault_next;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: transaction_kind
+    if (reset == 0) begin
+        is_config <= 0;
+        first_pending <= 0;
+        space_mem <= 0;
+        io_byte <= 0;
+        single <= 0;
+        is_read <= 0;
+        fetching <= 0;
+    end
+    else begin
         if (((state == 4'b0000) && address_phase)) begin
             is_read <= (!cbe_q[0]);
             is_config <= claim_config;
-            space_mem <= ((!claim_config) && (!claim_io));
-            single <= (claim_config || claim_io || ad_q[0] || ad_q[1]);
+            space_mem <= ((!claim_config) && (!claim_io) && (!claim_alias));
+            single <= (claim_config || claim_io || claim_alias || ad_q[0] || ad_q[1]);
             first_pending <= 1'b1;
             fetching <= ((!cbe_q[0]) && (!claim_config));
             io_byte <= ad_q[2-1:0];
@@ -970,6 +1160,16 @@ always @(posedge clock, negedge reset) begin: transaction
                 fetching <= 1'b0;
             end
         end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: request_address
+    if (reset == 0) begin
+        req_addr <= 0;
+        req_addr_stale <= 0;
+    end
+    else begin
         if (claim) begin
             req_addr_stale <= draining;
         end
@@ -984,6 +1184,17 @@ always @(posedge clock, negedge reset) begin: transaction
             req_addr <= phase_addr;
             req_addr_stale <= 1'b0;
         end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: latency_count
+    if (reset == 0) begin
+        subsequent_wait_over <= 0;
+        wait_count <= 0;
+        initial_wait_over <= 0;
+    end
+    else begin
         if ((!waiting)) begin
             wait_count <= 0;
             initial_wait_over <= 1'b0;
@@ -1163,6 +1374,7 @@ always @(posedge clock, negedge reset) begin: pci_config0_config_registers
         pci_config0_signaled_system_error <= 0;
         pci_config0_interrupt_line <= 0;
         interrupt_disable <= 0;
+        bar2 <= 0;
         pci_config0_signaled_target_abort <= 0;
         bar0 <= 0;
         pci_config0_detected_parity_error <= 0;
@@ -1215,6 +1427,20 @@ always @(posedge clock, negedge reset) begin: pci_config0_config_registers
                         bar1[32-1:24] <= config_data[32-1:24];
                     end
                 end
+                'h6: begin
+                    if ((!config_cbe_n[0])) begin
+                        bar2[8-1:0] <= config_data[8-1:0];
+                    end
+                    if ((!config_cbe_n[1])) begin
+                        bar2[16-1:8] <= config_data[16-1:8];
+                    end
+                    if ((!config_cbe_n[2])) begin
+                        bar2[24-1:16] <= config_data[24-1:16];
+                    end
+                    if ((!config_cbe_n[3])) begin
+                        bar2[32-1:24] <= config_data[32-1:24];
+                    end
+                end
                 'hf: begin
                     if ((!config_cbe_n[0])) begin
                         pci_config0_interrupt_line <= config_data[8-1:0];
@@ -1233,7 +1459,7 @@ end
 assign pci_config0_bar0_read = ((bar0 & 16'hffc0) | 16'h1);
 
 
-always @(pci_config0_signaled_system_error, parity_response, config_irq, config_index, pci_config0_bar0_read, pci_config0_interrupt_line, interrupt_disable, pci_config0_signaled_target_abort, pci_config0_detected_parity_error, io_enable, serr_enable, bar1, mem_enable) begin: pci_config0_config_read
+always @(pci_config0_signaled_system_error, parity_response, config_irq, config_index, pci_config0_bar0_read, pci_config0_interrupt_line, interrupt_disable, bar2, pci_config0_signaled_target_abort, pci_config0_detected_parity_error, io_enable, serr_enable, bar1, mem_enable) begin: pci_config0_config_read
     case (config_index)
         'h0: begin
             config_rdata = 32'hdda01234;
@@ -1249,6 +1475,9 @@ always @(pci_config0_signaled_system_error, parity_response, config_irq, config_
         end
         'h5: begin
             config_rdata = (bar1 & 32'hfffff000);
+        end
+        'h6: begin
+            config_rdata = (bar2 & 32'hffffffc0);
         end
         'hb: begin
             config_rdata = 32'h11234;

@@ -178,6 +178,7 @@ reg [31:0] set_value;
 reg [3:0] error_code;
 reg seq_load;
 reg [1:0] home_zero;
+reg [1:0] step_mode;
 reg [23:0] watchdog_left;
 wire any_busy;
 reg [31:0] byte_mask;
@@ -589,7 +590,27 @@ wire reg_word36_mine_write;
 wire reg_word36_set_mine;
 wire [31:0] reg_word36_shown_wide;
 reg [31:0] reg_word36_written;
+reg [31:0] reg_word36_chain_out_data;
 wire reg_word36_chain_out_clamped;
+reg [7:0] reg_word37_honoured;
+reg reg_word37_out_of_range;
+reg [7:0] reg_word37_shown;
+reg reg_word37_clamped;
+wire reg_word37_mine;
+wire reg_word37_mine_write;
+wire [31:0] reg_word37_shown_wide;
+reg [31:0] reg_word37_written;
+reg [31:0] reg_word37_chain_out_data;
+wire reg_word37_chain_out_clamped;
+reg [1:0] reg_word38_honoured;
+reg reg_word38_out_of_range;
+reg reg_word38_clamped;
+wire reg_word38_mine;
+wire reg_word38_mine_write;
+wire reg_word38_set_mine;
+wire [31:0] reg_word38_shown_wide;
+reg [31:0] reg_word38_written;
+wire reg_word38_chain_out_clamped;
 wire sequencer0_arriving_coord_fits;
 reg [2:0] sequencer0_arriving_count;
 wire sequencer0_arriving_count_fits;
@@ -694,9 +715,17 @@ reg [7:0] pulse_out0_low_step;
 reg [1:0] pulse_out0_phase;
 reg [7:0] pulse_out0_phase_clocks;
 reg [7:0] pulse_out0_phase_step;
+reg pulse_out0_pulse_x;
+reg pulse_out0_pulse_y;
+reg [1:0] pulse_out0_quad_next_x;
+reg [1:0] pulse_out0_quad_next_y;
+reg [1:0] pulse_out0_quad_x;
+reg [1:0] pulse_out0_quad_y;
 reg pulse_out0_starts;
 reg pulse_out0_take;
 reg pulse_out0_turn;
+reg pulse_out0_up_x;
+reg pulse_out0_up_y;
 wire pulse_out0_control_pulsing;
 reg pulse_out0_request_step_x;
 reg pulse_out0_request_step_y;
@@ -760,7 +789,7 @@ reg status_words0_low_before;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_shown = 32'd3719037440;
+assign reg_word0_shown = 32'd3719037441;
 assign reg_word0_chain_in_data = 32'd0;
 assign reg_word0_chain_in_clamped = 1'd0;
 assign reg_word1_out_of_range = 1'd0;
@@ -786,6 +815,7 @@ assign reg_word33_set_mine = 1'd0;
 assign reg_word34_set_mine = 1'd0;
 assign reg_word35_set_mine = 1'd0;
 assign reg_word36_set_mine = 1'd0;
+assign reg_word38_set_mine = 1'd0;
 assign input_filter0_taken[6] = input_filter0__input_count6_taken;
 assign input_filter0_taken[5] = input_filter0__input_count5_taken;
 assign input_filter0_taken[4] = input_filter0__input_count4_taken;
@@ -2665,10 +2695,10 @@ assign reg_word36_mine = (local_addr == 144);
 
 always @(reg_word36_mine, reg_word36_shown_wide, reg_word35_chain_out_data) begin: reg_word36_read_chain
     if (reg_word36_mine) begin
-        read_end = (reg_word35_chain_out_data | reg_word36_shown_wide);
+        reg_word36_chain_out_data = (reg_word35_chain_out_data | reg_word36_shown_wide);
     end
     else begin
-        read_end = reg_word35_chain_out_data;
+        reg_word36_chain_out_data = reg_word35_chain_out_data;
     end
 end
 
@@ -2720,6 +2750,135 @@ always @(posedge clock, negedge reset) begin: reg_word36__store25_hold_rw
         if (((reg_word36_set_mine && (set_index == 0)) || (io_written && reg_word36_mine_write))) begin
             reg_word36_shown <= reg_word36_honoured;
             reg_word36_clamped <= reg_word36_out_of_range;
+        end
+    end
+end
+
+
+
+assign reg_word37_mine = (local_addr == 148);
+
+
+always @(reg_word37_mine, reg_word37_shown_wide, reg_word36_chain_out_data) begin: reg_word37_read_chain
+    if (reg_word37_mine) begin
+        reg_word37_chain_out_data = (reg_word36_chain_out_data | reg_word37_shown_wide);
+    end
+    else begin
+        reg_word37_chain_out_data = reg_word36_chain_out_data;
+    end
+end
+
+
+
+assign reg_word37_shown_wide = {24'h0, reg_word37_shown};
+
+
+
+assign reg_word37_mine_write = (written_addr == 148);
+
+
+always @(reg_word37_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word37_merge_bytes
+    if ((set_strobe && (set_index == 8))) begin
+        reg_word37_written = set_value[32-1:0];
+    end
+    else begin
+        reg_word37_written = ((reg_word37_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+    end
+end
+
+
+always @(reg_word37_written) begin: reg_word37__limit26_clamp_unsigned_power_of_two
+    reg_word37_out_of_range = 1'b1;
+    if (((reg_word37_written[32-1:1] == 0) && (reg_word37_written[1-1:0] < 1))) begin
+        reg_word37_honoured = 1;
+    end
+    else if ((reg_word37_written[32-1:8] != 0)) begin
+        reg_word37_honoured = 255;
+    end
+    else begin
+        reg_word37_honoured = reg_word37_written[8-1:0];
+        reg_word37_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign reg_word37_chain_out_clamped = (reg_word36_chain_out_clamped || reg_word37_clamped);
+
+
+always @(posedge clock, negedge reset) begin: reg_word37__store26_hold_rw
+    if (reset == 0) begin
+        reg_word37_shown <= 1;
+        reg_word37_clamped <= 0;
+    end
+    else begin
+        reg_word37_clamped <= 1'b0;
+        if (((set_strobe && (set_index == 8)) || (io_written && reg_word37_mine_write))) begin
+            reg_word37_shown <= reg_word37_honoured;
+            reg_word37_clamped <= reg_word37_out_of_range;
+        end
+    end
+end
+
+
+
+assign reg_word38_mine = (local_addr == 152);
+
+
+always @(reg_word38_mine, reg_word38_shown_wide, reg_word37_chain_out_data) begin: reg_word38_read_chain
+    if (reg_word38_mine) begin
+        read_end = (reg_word37_chain_out_data | reg_word38_shown_wide);
+    end
+    else begin
+        read_end = reg_word37_chain_out_data;
+    end
+end
+
+
+
+assign reg_word38_shown_wide = {30'h0, step_mode};
+
+
+
+assign reg_word38_mine_write = (written_addr == 152);
+
+
+always @(reg_word38_shown_wide, reg_word38_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word38_merge_bytes
+    if ((reg_word38_set_mine && (set_index == 0))) begin
+        reg_word38_written = set_value[32-1:0];
+    end
+    else begin
+        reg_word38_written = ((reg_word38_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+    end
+end
+
+
+always @(reg_word38_written) begin: reg_word38__limit27_clamp_above
+    reg_word38_out_of_range = 1'b1;
+    if (((reg_word38_written[32-1:2] != 0) || (reg_word38_written[2-1:0] > 2))) begin
+        reg_word38_honoured = 2;
+    end
+    else begin
+        reg_word38_honoured = reg_word38_written[2-1:0];
+        reg_word38_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign reg_word38_chain_out_clamped = (reg_word37_chain_out_clamped || reg_word38_clamped);
+
+
+always @(posedge clock, negedge reset) begin: reg_word38__store27_hold_rw
+    if (reset == 0) begin
+        step_mode <= 0;
+        reg_word38_clamped <= 0;
+    end
+    else begin
+        reg_word38_clamped <= 1'b0;
+        if (((reg_word38_set_mine && (set_index == 0)) || (io_written && reg_word38_mine_write))) begin
+            step_mode <= reg_word38_honoured;
+            reg_word38_clamped <= reg_word38_out_of_range;
         end
     end
 end
@@ -2919,7 +3078,7 @@ always @(fifo_dout) begin: sequencer0_lookup_set
         5: sequencer0_set_known = 1;
         6: sequencer0_set_known = 1;
         7: sequencer0_set_known = 1;
-        8: sequencer0_set_known = 0;
+        8: sequencer0_set_known = 1;
         9: sequencer0_set_known = 0;
         10: sequencer0_set_known = 0;
         11: sequencer0_set_known = 0;
@@ -3541,18 +3700,18 @@ end
 
 
 assign out_ready = ($signed({1'b0, pulse_out0_count}) <= (4 - 2));
-assign out_active = ((pulse_out0_count != 0) || (pulse_out0_phase != 2'b00) || pins_step_x || pins_step_y);
-assign pulse_out0_control_pulsing = (pulse_out0_take || pulse_out0_level_x || pulse_out0_level_y || pins_step_x || pins_step_y);
+assign out_active = ((pulse_out0_count != 0) || (pulse_out0_phase != 2'b00) || pulse_out0_pulse_x || pulse_out0_pulse_y);
+assign pulse_out0_control_pulsing = (pulse_out0_take || pulse_out0_level_x || pulse_out0_level_y || pulse_out0_pulse_x || pulse_out0_pulse_y);
 
 
 
 assign pulse_out0_head = pulse_out0_queue[0];
 
 
-always @(pulse_out0_phase_clocks, pulse_out0_head, pulse_out0_phase, pulse_out0_count, pulse_out0_dir_level_x, pulse_out0_dir_level_y, reg_word14_shown, pulse_out0_low_clocks, reg_word13_shown, pulse_clear) begin: pulse_out0_decide
+always @(pulse_out0_phase_clocks, pulse_out0_head, pulse_out0_phase, pulse_out0_count, pulse_out0_dir_level_x, pulse_out0_dir_level_y, reg_word14_shown, reg_word37_shown, pulse_out0_low_clocks, pulse_clear) begin: pulse_out0_decide
     pulse_out0_turn = ((pulse_out0_count != 0) && ((pulse_out0_head[0] && (pulse_out0_head[2] != pulse_out0_dir_level_x)) || (pulse_out0_head[1] && (pulse_out0_head[3] != pulse_out0_dir_level_y))));
     pulse_out0_take = 1'b0;
-    if (((pulse_out0_phase != 2'b10) && (!pulse_clear) && (pulse_out0_low_clocks >= reg_word13_shown))) begin
+    if (((pulse_out0_phase != 2'b10) && (!pulse_clear) && (pulse_out0_low_clocks >= reg_word37_shown))) begin
         if ((pulse_out0_phase == 2'b01)) begin
             pulse_out0_take = (pulse_out0_phase_clocks >= reg_word14_shown);
         end
@@ -3689,20 +3848,76 @@ always @(pulse_out0_dir_level_x, pulse_out0_dir_level_y) begin: pulse_out0_step_
 end
 
 
+always @(reg_word16_shown[1], reg_word16_shown[0], pulse_out0_level_y, pulse_out0_dir_level_x, pulse_out0_quad_x, pulse_out0_dir_level_y, pulse_out0_pulse_x, pulse_out0_level_x, pulse_out0_quad_y, pulse_out0_pulse_y) begin: pulse_out0_pin_direction
+    pulse_out0_up_x = (pulse_out0_dir_level_x ^ reg_word16_shown[0]);
+    pulse_out0_up_y = (pulse_out0_dir_level_y ^ reg_word16_shown[1]);
+    pulse_out0_quad_next_x = pulse_out0_quad_x;
+    if ((pulse_out0_level_x && (!pulse_out0_pulse_x))) begin
+        if ((pulse_out0_dir_level_x ^ reg_word16_shown[0])) begin
+            pulse_out0_quad_next_x = (pulse_out0_quad_x + 1);
+        end
+        else begin
+            pulse_out0_quad_next_x = (pulse_out0_quad_x - 1);
+        end
+    end
+    pulse_out0_quad_next_y = pulse_out0_quad_y;
+    if ((pulse_out0_level_y && (!pulse_out0_pulse_y))) begin
+        if ((pulse_out0_dir_level_y ^ reg_word16_shown[1])) begin
+            pulse_out0_quad_next_y = (pulse_out0_quad_y + 1);
+        end
+        else begin
+            pulse_out0_quad_next_y = (pulse_out0_quad_y - 1);
+        end
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: pulse_out0_drive_pins
     if (reset == 0) begin
         pins_step_x <= 0;
         pins_dir_x <= 0;
         pins_dir_y <= 0;
-        position_y <= 0;
-        pulse_out0_position_x <= 0;
+        pulse_out0_quad_x <= 0;
+        pulse_out0_pulse_x <= 0;
+        pulse_out0_quad_y <= 0;
         pins_step_y <= 0;
+        pulse_out0_pulse_y <= 0;
     end
     else begin
-        pins_step_x <= pulse_out0_level_x;
-        pins_step_y <= pulse_out0_level_y;
-        pins_dir_x <= (pulse_out0_dir_level_x ^ reg_word16_shown[0]);
-        pins_dir_y <= (pulse_out0_dir_level_y ^ reg_word16_shown[1]);
+        pulse_out0_pulse_x <= pulse_out0_level_x;
+        pulse_out0_pulse_y <= pulse_out0_level_y;
+        pulse_out0_quad_x <= pulse_out0_quad_next_x;
+        pulse_out0_quad_y <= pulse_out0_quad_next_y;
+        case (step_mode)
+            'h1: begin
+                pins_step_x <= (pulse_out0_level_x && pulse_out0_up_x);
+                pins_dir_x <= (pulse_out0_level_x && (!pulse_out0_up_x));
+                pins_step_y <= (pulse_out0_level_y && pulse_out0_up_y);
+                pins_dir_y <= (pulse_out0_level_y && (!pulse_out0_up_y));
+            end
+            'h2: begin
+                pins_step_x <= (pulse_out0_quad_next_x[0] ^ pulse_out0_quad_next_x[1]);
+                pins_dir_x <= pulse_out0_quad_next_x[1];
+                pins_step_y <= (pulse_out0_quad_next_y[0] ^ pulse_out0_quad_next_y[1]);
+                pins_dir_y <= pulse_out0_quad_next_y[1];
+            end
+            default: begin
+                pins_step_x <= pulse_out0_level_x;
+                pins_dir_x <= pulse_out0_up_x;
+                pins_step_y <= pulse_out0_level_y;
+                pins_dir_y <= pulse_out0_up_y;
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pulse_out0_count_positions
+    if (reset == 0) begin
+        position_y <= 0;
+        pulse_out0_position_x <= 0;
+    end
+    else begin
         if (clear_position) begin
             pulse_out0_position_x <= 0;
             position_y <= 0;
@@ -3710,20 +3925,20 @@ always @(posedge clock, negedge reset) begin: pulse_out0_drive_pins
         else begin
             if (home_zero[0]) begin
                 pulse_out0_position_x <= 0;
-                if ((pulse_out0_level_x && (!pins_step_x))) begin
+                if ((pulse_out0_level_x && (!pulse_out0_pulse_x))) begin
                     pulse_out0_position_x <= pulse_out0_delta_x;
                 end
             end
-            else if ((pulse_out0_level_x && (!pins_step_x))) begin
+            else if ((pulse_out0_level_x && (!pulse_out0_pulse_x))) begin
                 pulse_out0_position_x <= (pulse_out0_position_x + pulse_out0_delta_x);
             end
             if (home_zero[1]) begin
                 position_y <= 0;
-                if ((pulse_out0_level_y && (!pins_step_y))) begin
+                if ((pulse_out0_level_y && (!pulse_out0_pulse_y))) begin
                     position_y <= pulse_out0_delta_y;
                 end
             end
-            else if ((pulse_out0_level_y && (!pins_step_y))) begin
+            else if ((pulse_out0_level_y && (!pulse_out0_pulse_y))) begin
                 position_y <= (position_y + pulse_out0_delta_y);
             end
         end
@@ -4451,14 +4666,14 @@ always @(status_words0_done_flag, error_code, guard_stopped, any_busy, level_wid
 end
 
 
-always @(error_code, sequencer0_mark_strobe, status_words0_error_before, any_busy, reg_word6_shown, level_wide, guard_stop_event, reg_word36_chain_out_clamped, status_words0_busy_before, status_words0_low_before, homing0_port_ended, input_filter0_inputs_changed) begin: status_words0_detect_events
+always @(error_code, sequencer0_mark_strobe, status_words0_error_before, any_busy, reg_word6_shown, level_wide, guard_stop_event, reg_word38_chain_out_clamped, status_words0_busy_before, status_words0_low_before, homing0_port_ended, input_filter0_inputs_changed) begin: status_words0_detect_events
     reg [8-1:0] word;
     word = 8'h0;
     word[0] = (status_words0_busy_before && (!any_busy));
     word[1] = ((level_wide < reg_word6_shown) && (!status_words0_low_before));
     word[2] = ((error_code != 0) && (!status_words0_error_before));
     word[3] = sequencer0_mark_strobe;
-    word[4] = reg_word36_chain_out_clamped;
+    word[4] = reg_word38_chain_out_clamped;
     word[5] = guard_stop_event;
     word[6] = input_filter0_inputs_changed;
     word[7] = homing0_port_ended;

@@ -124,6 +124,7 @@ reg card1_pci_slave2_parity_response;
 reg card1_pci_slave2_serr_enable;
 reg [15:0] card1_pci_slave2_bar0;
 reg [31:0] card1_pci_slave2_bar1;
+reg [31:0] card1_pci_slave2_bar2;
 reg card1_pci_slave2_fatal;
 reg card1_pci_slave2_read_command;
 wire card1_pci_slave2_write_done_next;
@@ -152,6 +153,7 @@ reg card1_pci_slave2_at_last;
 reg card1_pci_slave2_b_valid;
 reg card1_pci_slave2_before_last;
 reg card1_pci_slave2_claim;
+reg card1_pci_slave2_claim_alias;
 reg card1_pci_slave2_claim_config;
 reg card1_pci_slave2_claim_io;
 wire card1_pci_slave2_devsel_next;
@@ -215,19 +217,28 @@ reg card1_pci_slave2_pci_requests2_local_write;
 reg [31:0] card1_pci_slave2_pci_requests2_local_wdata;
 reg [3:0] card1_pci_slave2_pci_requests2_local_be;
 reg [11:0] card1_pci_slave2_pci_requests2_local_addr;
-reg [3:0] card1_pci_slave2_pci_control2_control_case0_0_1_out_state;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_exhausted;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_last_data;
+reg card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase;
 wire card1_pci_slave2_pci_control2_control_case0_0_1_target_room;
+reg [3:0] card1_pci_slave2_pci_control2_control_case0_0_1_out_state;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_out_stop;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_out_drive;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_out_ad_oe;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_exhausted;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_last_data;
+reg card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase;
 reg [3:0] card1_pci_slave2_pci_control2_control_case1_0_1_out_state;
 reg card1_pci_slave2_pci_control2_control_case1_0_1_out_trdy;
 reg card1_pci_slave2_pci_control2_control_case1_0_1_out_stop;
 reg card1_pci_slave2_pci_control2_control_case1_0_1_out_devsel;
 reg card1_pci_slave2_pci_control2_control_case1_0_1_out_drive;
 reg card1_pci_slave2_pci_control2_control_case1_0_1_out_ad_oe;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_exhausted;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_last_data;
+reg card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase;
 reg [3:0] card1_pci_slave2_pci_control2_control_case2_0_1_out_state;
 reg card1_pci_slave2_pci_control2_control_case2_0_1_out_trdy;
 reg card1_pci_slave2_pci_control2_control_case2_0_1_out_stop;
@@ -281,6 +292,7 @@ reg [31:0] card1_card_core1_regs_fifo2_set_value;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
 reg [1:0] card1_card_core1_regs_fifo2_home_zero;
+reg [1:0] card1_card_core1_regs_fifo2_step_mode;
 reg [23:0] card1_card_core1_regs_fifo2_watchdog_left;
 wire card1_card_core1_regs_fifo2_any_busy;
 reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
@@ -368,126 +380,87 @@ wire card1_card_core1_regs_fifo2_sync_fifo2_last_beyond;
 wire card1_card_core1_regs_fifo2_sync_fifo2_one_word;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_read_addr;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_write_addr;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word74_shown;
-wire card1_card_core1_regs_fifo2_reg_word74_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word74_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word74_chain_out_data;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word74_chain_in_data;
-wire card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped;
-wire card1_card_core1_regs_fifo2_reg_word74_chain_in_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word75_honoured;
-wire card1_card_core1_regs_fifo2_reg_word75_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word75_clamped;
-wire card1_card_core1_regs_fifo2_reg_word75_mine;
-wire card1_card_core1_regs_fifo2_reg_word75_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word75_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word75_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word75_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word75_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word75_chain_out_clamped;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word76_honoured;
-wire card1_card_core1_regs_fifo2_reg_word76_out_of_range;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word76_shown;
-reg card1_card_core1_regs_fifo2_reg_word76_clamped;
-wire card1_card_core1_regs_fifo2_reg_word76_mine;
-wire card1_card_core1_regs_fifo2_reg_word76_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word76_shown_wide;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word76_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word76_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word77_shown;
-wire card1_card_core1_regs_fifo2_reg_word77_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word77_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word77_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped;
-wire [7:0] card1_card_core1_regs_fifo2_reg_word78_honoured;
-wire card1_card_core1_regs_fifo2_reg_word78_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word78_shown;
-reg card1_card_core1_regs_fifo2_reg_word78_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word78_shown;
 wire card1_card_core1_regs_fifo2_reg_word78_mine;
-wire card1_card_core1_regs_fifo2_reg_word78_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word78_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word78_shown_wide;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word78_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word78_chain_out_data;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word78_chain_in_data;
 wire card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped;
-wire [7:0] card1_card_core1_regs_fifo2_reg_word79_honoured;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word79_shown;
+wire card1_card_core1_regs_fifo2_reg_word78_chain_in_clamped;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word79_honoured;
+wire card1_card_core1_regs_fifo2_reg_word79_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word79_clamped;
 wire card1_card_core1_regs_fifo2_reg_word79_mine;
 wire card1_card_core1_regs_fifo2_reg_word79_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word79_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word79_shown_wide;
-wire [7:0] card1_card_core1_regs_fifo2_reg_word79_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word79_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word79_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word79__store55_word_hw;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word80_honoured;
-reg card1_card_core1_regs_fifo2_reg_word80_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word80_shown;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word80_honoured;
+wire card1_card_core1_regs_fifo2_reg_word80_out_of_range;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word80_shown;
 reg card1_card_core1_regs_fifo2_reg_word80_clamped;
 wire card1_card_core1_regs_fifo2_reg_word80_mine;
 wire card1_card_core1_regs_fifo2_reg_word80_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word80_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word80_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word80_written;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word80_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word80_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word81_shown;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word81_shown;
 wire card1_card_core1_regs_fifo2_reg_word81_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word81_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word81_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word82_shown;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word82_honoured;
+wire card1_card_core1_regs_fifo2_reg_word82_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word82_shown;
+reg card1_card_core1_regs_fifo2_reg_word82_clamped;
 wire card1_card_core1_regs_fifo2_reg_word82_mine;
+wire card1_card_core1_regs_fifo2_reg_word82_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word82_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word82_shown_wide;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word82_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word82_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word83_shown;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word83_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word83_shown;
 wire card1_card_core1_regs_fifo2_reg_word83_mine;
+wire card1_card_core1_regs_fifo2_reg_word83_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word83_shown_wide;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word83_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word83_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word83__store59_word_hw;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word84_honoured;
 reg card1_card_core1_regs_fifo2_reg_word84_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word84_shown;
 reg card1_card_core1_regs_fifo2_reg_word84_clamped;
 wire card1_card_core1_regs_fifo2_reg_word84_mine;
 wire card1_card_core1_regs_fifo2_reg_word84_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word84_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word84_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word84_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word84_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word85_honoured;
-reg card1_card_core1_regs_fifo2_reg_word85_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word85_shown;
-reg card1_card_core1_regs_fifo2_reg_word85_clamped;
 wire card1_card_core1_regs_fifo2_reg_word85_mine;
-wire card1_card_core1_regs_fifo2_reg_word85_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word85_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word85_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word85_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
-reg card1_card_core1_regs_fifo2_reg_word86_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word86_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown;
 wire card1_card_core1_regs_fifo2_reg_word86_mine;
-wire card1_card_core1_regs_fifo2_reg_word86_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word86_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word86_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word87_honoured;
-reg card1_card_core1_regs_fifo2_reg_word87_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word87_shown;
-reg card1_card_core1_regs_fifo2_reg_word87_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word87_shown;
 wire card1_card_core1_regs_fifo2_reg_word87_mine;
-wire card1_card_core1_regs_fifo2_reg_word87_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word87_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word87_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word87_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word88_honoured;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word88_honoured;
 reg card1_card_core1_regs_fifo2_reg_word88_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word88_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word88_shown;
 reg card1_card_core1_regs_fifo2_reg_word88_clamped;
 wire card1_card_core1_regs_fifo2_reg_word88_mine;
 wire card1_card_core1_regs_fifo2_reg_word88_mine_write;
@@ -495,9 +468,9 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word88_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word88_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word88_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word89_honoured;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word89_honoured;
 reg card1_card_core1_regs_fifo2_reg_word89_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word89_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word89_shown;
 reg card1_card_core1_regs_fifo2_reg_word89_clamped;
 wire card1_card_core1_regs_fifo2_reg_word89_mine;
 wire card1_card_core1_regs_fifo2_reg_word89_mine_write;
@@ -505,20 +478,18 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word89_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word89_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word89_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word90_honoured;
-wire card1_card_core1_regs_fifo2_reg_word90_out_of_range;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word90_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word90_honoured;
+reg card1_card_core1_regs_fifo2_reg_word90_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word90_clamped;
 wire card1_card_core1_regs_fifo2_reg_word90_mine;
 wire card1_card_core1_regs_fifo2_reg_word90_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word90_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word90_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word90_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word90_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word90_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word91_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word91_honoured;
 reg card1_card_core1_regs_fifo2_reg_word91_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word91_shown;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word91_shown;
 reg card1_card_core1_regs_fifo2_reg_word91_clamped;
 wire card1_card_core1_regs_fifo2_reg_word91_mine;
 wire card1_card_core1_regs_fifo2_reg_word91_mine_write;
@@ -526,9 +497,9 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word91_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word91_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word91_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word92_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word92_honoured;
 reg card1_card_core1_regs_fifo2_reg_word92_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word92_shown;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word92_shown;
 reg card1_card_core1_regs_fifo2_reg_word92_clamped;
 wire card1_card_core1_regs_fifo2_reg_word92_mine;
 wire card1_card_core1_regs_fifo2_reg_word92_mine_write;
@@ -536,124 +507,126 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word92_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word92_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word92_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word93_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word93_honoured;
 reg card1_card_core1_regs_fifo2_reg_word93_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word93_shown;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word93_shown;
 reg card1_card_core1_regs_fifo2_reg_word93_clamped;
 wire card1_card_core1_regs_fifo2_reg_word93_mine;
 wire card1_card_core1_regs_fifo2_reg_word93_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word93_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word93_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word93_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word93_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word93__store66_word_value;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
-reg card1_card_core1_regs_fifo2_reg_word94_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word94_shown;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
+wire card1_card_core1_regs_fifo2_reg_word94_out_of_range;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word94_shown;
 reg card1_card_core1_regs_fifo2_reg_word94_clamped;
 wire card1_card_core1_regs_fifo2_reg_word94_mine;
 wire card1_card_core1_regs_fifo2_reg_word94_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word94_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word94_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word94_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word94_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word94_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word94__store67_word_value;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word95_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word95_honoured;
+reg card1_card_core1_regs_fifo2_reg_word95_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word95_shown;
+reg card1_card_core1_regs_fifo2_reg_word95_clamped;
 wire card1_card_core1_regs_fifo2_reg_word95_mine;
+wire card1_card_core1_regs_fifo2_reg_word95_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word95_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word95_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word95_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word96_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word96_honoured;
+reg card1_card_core1_regs_fifo2_reg_word96_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word96_shown;
+reg card1_card_core1_regs_fifo2_reg_word96_clamped;
 wire card1_card_core1_regs_fifo2_reg_word96_mine;
+wire card1_card_core1_regs_fifo2_reg_word96_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word96_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word96_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word96_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped;
-wire [27:0] card1_card_core1_regs_fifo2_reg_word97_shown;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word97_honoured;
+reg card1_card_core1_regs_fifo2_reg_word97_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word97_shown;
+reg card1_card_core1_regs_fifo2_reg_word97_clamped;
 wire card1_card_core1_regs_fifo2_reg_word97_mine;
+wire card1_card_core1_regs_fifo2_reg_word97_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word97_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word97_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word97_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word98_honoured;
-wire card1_card_core1_regs_fifo2_reg_word98_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word97__store70_word_value;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word98_honoured;
+reg card1_card_core1_regs_fifo2_reg_word98_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word98_shown;
 reg card1_card_core1_regs_fifo2_reg_word98_clamped;
 wire card1_card_core1_regs_fifo2_reg_word98_mine;
 wire card1_card_core1_regs_fifo2_reg_word98_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word98_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word98_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word98_written;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word98_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word98_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped;
-reg [19:0] card1_card_core1_regs_fifo2_reg_word99_shown;
+reg card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word98__store71_word_value;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word99_shown;
 wire card1_card_core1_regs_fifo2_reg_word99_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word99_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word99_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word100_shown;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word100_shown;
 wire card1_card_core1_regs_fifo2_reg_word100_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word100_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word100_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped;
-wire [6:0] card1_card_core1_regs_fifo2_reg_word101_honoured;
-wire card1_card_core1_regs_fifo2_reg_word101_out_of_range;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word101_shown;
-reg card1_card_core1_regs_fifo2_reg_word101_clamped;
+wire [27:0] card1_card_core1_regs_fifo2_reg_word101_shown;
 wire card1_card_core1_regs_fifo2_reg_word101_mine;
-wire card1_card_core1_regs_fifo2_reg_word101_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word101_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word101_shown_wide;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word101_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word101_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped;
-reg [3:0] card1_card_core1_regs_fifo2_reg_word102_honoured;
-reg card1_card_core1_regs_fifo2_reg_word102_out_of_range;
-reg [3:0] card1_card_core1_regs_fifo2_reg_word102_shown;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word102_honoured;
+wire card1_card_core1_regs_fifo2_reg_word102_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word102_clamped;
 wire card1_card_core1_regs_fifo2_reg_word102_mine;
 wire card1_card_core1_regs_fifo2_reg_word102_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word102_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word102_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word102_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word102_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word102_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word103_honoured;
-reg card1_card_core1_regs_fifo2_reg_word103_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word103_shown;
-reg card1_card_core1_regs_fifo2_reg_word103_clamped;
+reg [19:0] card1_card_core1_regs_fifo2_reg_word103_shown;
 wire card1_card_core1_regs_fifo2_reg_word103_mine;
-wire card1_card_core1_regs_fifo2_reg_word103_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word103_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word103_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word103_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word103_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word104_honoured;
-reg card1_card_core1_regs_fifo2_reg_word104_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word104_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word104_shown;
 wire card1_card_core1_regs_fifo2_reg_word104_mine;
-wire card1_card_core1_regs_fifo2_reg_word104_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word104_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word104_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word104_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word104__store72_word_value;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word105_honoured;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word105_honoured;
 wire card1_card_core1_regs_fifo2_reg_word105_out_of_range;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word105_shown;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word105_shown;
 reg card1_card_core1_regs_fifo2_reg_word105_clamped;
 wire card1_card_core1_regs_fifo2_reg_word105_mine;
 wire card1_card_core1_regs_fifo2_reg_word105_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word105_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word105_shown_wide;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word105_written;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word105_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word105_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word105__store73_word_value;
-reg [5:0] card1_card_core1_regs_fifo2_reg_word106_shown;
+reg [3:0] card1_card_core1_regs_fifo2_reg_word106_honoured;
+reg card1_card_core1_regs_fifo2_reg_word106_out_of_range;
+reg [3:0] card1_card_core1_regs_fifo2_reg_word106_shown;
+reg card1_card_core1_regs_fifo2_reg_word106_clamped;
 wire card1_card_core1_regs_fifo2_reg_word106_mine;
+wire card1_card_core1_regs_fifo2_reg_word106_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word106_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word106_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word106_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word106_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word107_honoured;
@@ -667,38 +640,97 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word107_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word107_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word107_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word108_honoured;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word108_honoured;
 reg card1_card_core1_regs_fifo2_reg_word108_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word108_shown;
 reg card1_card_core1_regs_fifo2_reg_word108_clamped;
 wire card1_card_core1_regs_fifo2_reg_word108_mine;
 wire card1_card_core1_regs_fifo2_reg_word108_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word108_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word108_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word108_written;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word108_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word108_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word109_honoured;
-reg card1_card_core1_regs_fifo2_reg_word109_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word109_shown;
+reg card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word108__store76_word_value;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word109_honoured;
+wire card1_card_core1_regs_fifo2_reg_word109_out_of_range;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word109_shown;
 reg card1_card_core1_regs_fifo2_reg_word109_clamped;
 wire card1_card_core1_regs_fifo2_reg_word109_mine;
 wire card1_card_core1_regs_fifo2_reg_word109_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word109_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word109_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word109_written;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word109_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word109_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped;
-reg [22:0] card1_card_core1_regs_fifo2_reg_word110_honoured;
-reg card1_card_core1_regs_fifo2_reg_word110_out_of_range;
-reg [22:0] card1_card_core1_regs_fifo2_reg_word110_shown;
-reg card1_card_core1_regs_fifo2_reg_word110_clamped;
+reg card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word109__store77_word_value;
+reg [5:0] card1_card_core1_regs_fifo2_reg_word110_shown;
 wire card1_card_core1_regs_fifo2_reg_word110_mine;
-wire card1_card_core1_regs_fifo2_reg_word110_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word110_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word110_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word110_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word110_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word111_honoured;
+reg card1_card_core1_regs_fifo2_reg_word111_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word111_shown;
+reg card1_card_core1_regs_fifo2_reg_word111_clamped;
+wire card1_card_core1_regs_fifo2_reg_word111_mine;
+wire card1_card_core1_regs_fifo2_reg_word111_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word111_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word111_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word111_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word111_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word111_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word112_honoured;
+reg card1_card_core1_regs_fifo2_reg_word112_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word112_shown;
+reg card1_card_core1_regs_fifo2_reg_word112_clamped;
+wire card1_card_core1_regs_fifo2_reg_word112_mine;
+wire card1_card_core1_regs_fifo2_reg_word112_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word112_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word112_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word112_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word112_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word113_honoured;
+reg card1_card_core1_regs_fifo2_reg_word113_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word113_shown;
+reg card1_card_core1_regs_fifo2_reg_word113_clamped;
+wire card1_card_core1_regs_fifo2_reg_word113_mine;
+wire card1_card_core1_regs_fifo2_reg_word113_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word113_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word113_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word113_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word113_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word113_chain_out_clamped;
+reg [22:0] card1_card_core1_regs_fifo2_reg_word114_honoured;
+reg card1_card_core1_regs_fifo2_reg_word114_out_of_range;
+reg [22:0] card1_card_core1_regs_fifo2_reg_word114_shown;
+reg card1_card_core1_regs_fifo2_reg_word114_clamped;
+wire card1_card_core1_regs_fifo2_reg_word114_mine;
+wire card1_card_core1_regs_fifo2_reg_word114_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word114_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word114_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word114_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word114_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word114_chain_out_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word115_honoured;
+reg card1_card_core1_regs_fifo2_reg_word115_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word115_shown;
+reg card1_card_core1_regs_fifo2_reg_word115_clamped;
+wire card1_card_core1_regs_fifo2_reg_word115_mine;
+wire card1_card_core1_regs_fifo2_reg_word115_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word115_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word115_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word115_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word115_chain_out_clamped;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word116_honoured;
+reg card1_card_core1_regs_fifo2_reg_word116_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word116_clamped;
+wire card1_card_core1_regs_fifo2_reg_word116_mine;
+wire card1_card_core1_regs_fifo2_reg_word116_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word116_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word116_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word116_written;
+wire card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_arriving_count;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits;
@@ -818,9 +850,17 @@ reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_low_step;
 reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_phase;
 reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_clocks;
 reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_step;
+reg card1_card_core1_regs_fifo2_pulse_out2_pulse_x;
+reg card1_card_core1_regs_fifo2_pulse_out2_pulse_y;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_quad_next_x;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_quad_next_y;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_quad_x;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_quad_y;
 reg card1_card_core1_regs_fifo2_pulse_out2_starts;
 reg card1_card_core1_regs_fifo2_pulse_out2_take;
 reg card1_card_core1_regs_fifo2_pulse_out2_turn;
+reg card1_card_core1_regs_fifo2_pulse_out2_up_x;
+reg card1_card_core1_regs_fifo2_pulse_out2_up_y;
 wire card1_card_core1_regs_fifo2_pulse_out2_control_pulsing;
 reg card1_card_core1_regs_fifo2_pulse_out2_request_step_x;
 reg card1_card_core1_regs_fifo2_pulse_out2_request_step_y;
@@ -1046,32 +1086,33 @@ reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word74_shown = 32'd3719037440;
-assign card1_card_core1_regs_fifo2_reg_word74_chain_in_data = 32'd0;
-assign card1_card_core1_regs_fifo2_reg_word74_chain_in_clamped = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word75_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word75_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word76_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word76_shown = 4'd0;
-assign card1_card_core1_regs_fifo2_reg_word78_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word78_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word80_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word90_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word90_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word95_shown = 32'd33333333;
-assign card1_card_core1_regs_fifo2_reg_word96_shown = 16'd512;
-assign card1_card_core1_regs_fifo2_reg_word97_shown = 28'd17564184;
-assign card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word98_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word101_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word78_shown = 32'd3719037441;
+assign card1_card_core1_regs_fifo2_reg_word78_chain_in_data = 32'd0;
+assign card1_card_core1_regs_fifo2_reg_word78_chain_in_clamped = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word79_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word79_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word80_shown = 4'd0;
+assign card1_card_core1_regs_fifo2_reg_word82_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word82_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word84_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word94_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word99_shown = 32'd33333333;
+assign card1_card_core1_regs_fifo2_reg_word100_shown = 16'd512;
+assign card1_card_core1_regs_fifo2_reg_word101_shown = 28'd17564184;
+assign card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word102_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word103_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word105_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word105_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word106_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word107_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word108_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word109_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word110_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word109_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word111_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word112_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word113_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word114_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word116_set_mine = 1'd0;
 
 
 
@@ -1705,29 +1746,37 @@ always @(card1_pci_slave2_ad_out_q) begin: card1_pci_slave2_pci_parity2_ad_out_p
 end
 
 
-always @(card1_pci_slave2_bar1, card1_pci_slave2_mem_enable, card1_pci_slave2_address_phase, card1_pci_slave2_state, card1_pci_slave2_bar0, pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_io_enable, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_decode2_decode_address
+always @(card1_pci_slave2_bar2, card1_pci_slave2_bar1, card1_pci_slave2_mem_enable, card1_pci_slave2_address_phase, card1_pci_slave2_state, card1_pci_slave2_bar0, pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad6_from_pin, card1_pci_slave2_io_enable, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_decode2_decode_address
     reg [4-1:0] code;
     reg config_hit;
     reg io_hit;
+    reg mem_command;
     reg mem_hit;
+    reg alias_hit;
     code = pci_pads0_registered_pad5_from_pin;
     config_hit = (pci_pads0_registered_pad6_from_pin && (!pci_pads0_registered_pad0_from_pin[0]) && (!pci_pads0_registered_pad0_from_pin[1]) && (pci_pads0_registered_pad0_from_pin[11-1:8] == 0) && ((code == 10) || (code == 11)));
     io_hit = (card1_pci_slave2_io_enable && ((code == 2) || (code == 3)) && (pci_pads0_registered_pad0_from_pin[32-1:16] == 0) && (pci_pads0_registered_pad0_from_pin[16-1:8] == card1_pci_slave2_bar0[16-1:8]));
-    mem_hit = (card1_pci_slave2_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)) && (pci_pads0_registered_pad0_from_pin[32-1:12] == card1_pci_slave2_bar1[32-1:12]));
-    card1_pci_slave2_claim = ((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (config_hit || io_hit || mem_hit));
+    mem_command = (card1_pci_slave2_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)));
+    mem_hit = (mem_command && (pci_pads0_registered_pad0_from_pin[32-1:12] == card1_pci_slave2_bar1[32-1:12]));
+    alias_hit = (mem_command && (pci_pads0_registered_pad0_from_pin[32-1:8] == card1_pci_slave2_bar2[32-1:8]) && (!mem_hit));
+    card1_pci_slave2_claim = ((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (config_hit || io_hit || mem_hit || alias_hit));
     card1_pci_slave2_claim_config = config_hit;
     card1_pci_slave2_claim_io = io_hit;
+    card1_pci_slave2_claim_alias = alias_hit;
     card1_pci_slave2_read_command = (!pci_pads0_registered_pad5_from_pin[0]);
 end
 
 
-always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_decode2_start_offset
+always @(pci_pads0_registered_pad5_from_pin, card1_pci_slave2_claim_alias, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_decode2_start_offset
     reg [4-1:0] code;
     code = pci_pads0_registered_pad5_from_pin;
     if (((code == 10) || (code == 11))) begin
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
     end
     else if (((code == 2) || (code == 3))) begin
+        card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
+    end
+    else if (card1_pci_slave2_claim_alias) begin
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
     end
     else begin
@@ -1861,51 +1910,39 @@ always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_p
 end
 
 
-always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_read_command, card1_pci_slave2_b_valid, card1_pci_slave2_stop_q, card1_pci_slave2_single, card1_pci_slave2_state, card1_pci_slave2_hold_retry, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_burst_got, card1_pci_slave2_claim_config, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_is_read, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case0_0_1_control
+always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_trdy_q, card1_pci_slave2_b_valid, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_at_last, card1_pci_slave2_is_read, card1_pci_slave2_first_phase) begin: card1_pci_slave2_pci_control2_control_case0_0_1_outlook
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
-    reg devsel;
-    reg drive;
-    reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
     reg buffer_room;
     done = (1'b0 && (!card1_pci_slave2_trdy_q));
-    hold = ((!1'b0) && (!card1_pci_slave2_trdy_q));
-    trdy = (card1_pci_slave2_trdy_q != 0);
-    stop = (card1_pci_slave2_stop_q != 0);
-    devsel = (card1_pci_slave2_devsel_q != 0);
-    drive = (pci_pads0_registered_pad2_enable != 0);
-    ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card1_pci_slave2_pci_control2_control_case0_0_1_out_state = card1_pci_slave2_state;
-    last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     if (done) begin
-        last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (card1_pci_slave2_is_read) begin
-        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
-        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
+        card1_pci_slave2_pci_control2_control_case0_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
     end
     else begin
-        buffer_room = (card1_pci_slave2_buffered_next <= 1);
-        if ((done && (!card1_pci_slave2_first_phase))) begin
-            buffer_room = (card1_pci_slave2_buffered_next == 0);
-        end
-        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
+        card1_pci_slave2_pci_control2_control_case0_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
     end
+    buffer_room = (card1_pci_slave2_buffered_next <= 1);
+    if ((done && (!card1_pci_slave2_first_phase))) begin
+        buffer_room = (card1_pci_slave2_buffered_next == 0);
+    end
+    if (card1_pci_slave2_is_read) begin
+        card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
+        card1_pci_slave2_pci_control2_control_case0_0_1_exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
+        card1_pci_slave2_pci_control2_control_case0_0_1_exhausted = 1'b0;
+    end
+end
+
+
+always @(card1_pci_slave2_claim, card1_pci_slave2_claim_config, card1_pci_slave2_state, card1_pci_slave2_fatal, card1_pci_slave2_pci_control2_control_case0_0_1_exhausted, card1_pci_slave2_hold_retry, card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase, card1_pci_slave2_trdy_q, card1_pci_slave2_is_read, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_stop_q, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case0_0_1_next_state
+    reg done;
+    reg hold;
+    done = (1'b0 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b0) && (!card1_pci_slave2_trdy_q));
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_state = card1_pci_slave2_state;
     if ((card1_pci_slave2_state == 4'b0000)) begin
-        drive = 1'b0;
-        ad_oe = 1'b0;
         if (card1_pci_slave2_claim) begin
-            drive = 1'b1;
-            devsel = 1'b0;
-            ad_oe = (card1_pci_slave2_read_command != 0);
             if (card1_pci_slave2_claim_config) begin
                 card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0001;
             end
@@ -1920,22 +1957,15 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
     else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
         if (card1_pci_slave2_fatal) begin
             card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((card1_pci_slave2_state == 4'b0001)) begin
             card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b1);
         end
         else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
             card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
         end
         else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (card1_pci_slave2_is_read) begin
             card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0100;
@@ -1946,23 +1976,71 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
             // pass
         end
         else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
-            trdy = 1'b1;
             if (1'b1) begin
                 card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
             end
             else begin
                 card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
+        else if (card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || card1_pci_slave2_timeout)) begin
+        else if ((card1_pci_slave2_pci_control2_control_case0_0_1_exhausted || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0111;
+        end
+    end
+    else if ((card1_pci_slave2_state == 4'b0111)) begin
+        if ((!1'b1)) begin
+            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b1000;
+        end
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0000;
+    end
+end
+
+
+always @(card1_pci_slave2_fatal, card1_pci_slave2_state, card1_pci_slave2_pci_control2_control_case0_0_1_exhausted, card1_pci_slave2_hold_retry, card1_pci_slave2_trdy_q, card1_pci_slave2_pci_control2_control_case0_0_1_last_data, card1_pci_slave2_hold_got, card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase, card1_pci_slave2_stop_q, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case0_0_1_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b0 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b0) && (!card1_pci_slave2_trdy_q));
+    trdy = (card1_pci_slave2_trdy_q != 0);
+    stop = (card1_pci_slave2_stop_q != 0);
+    if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            stop = 1'b0;
+        end
+        else if ((card1_pci_slave2_state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b1);
+        end
+        else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(card1_pci_slave2_pci_control2_control_case0_0_1_last_data && 1'b1));
+        end
+        else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b1)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(card1_pci_slave2_pci_control2_control_case0_0_1_last_data && 1'b1));
+        end
+        else if ((card1_pci_slave2_pci_control2_control_case0_0_1_exhausted || card1_pci_slave2_timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -1972,63 +2050,24 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
     end
     else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        card1_pci_slave2_pci_control2_control_case0_0_1_out_state = 4'b0000;
-        drive = 1'b0;
     end
     card1_pci_slave2_pci_control2_control_case0_0_1_out_trdy = trdy;
     card1_pci_slave2_pci_control2_control_case0_0_1_out_stop = stop;
-    card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel = devsel;
-    card1_pci_slave2_pci_control2_control_case0_0_1_out_drive = drive;
-    card1_pci_slave2_pci_control2_control_case0_0_1_out_ad_oe = ad_oe;
 end
 
 
-always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_read_command, card1_pci_slave2_b_valid, card1_pci_slave2_stop_q, card1_pci_slave2_single, card1_pci_slave2_state, card1_pci_slave2_hold_retry, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_burst_got, card1_pci_slave2_claim_config, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_is_read, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case1_0_1_control
+always @(card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_state, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_read_command) begin: card1_pci_slave2_pci_control2_control_case0_0_1_next_devsel_drive
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
     reg devsel;
     reg drive;
     reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
-    reg buffer_room;
-    done = (1'b1 && (!card1_pci_slave2_trdy_q));
-    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
-    trdy = (card1_pci_slave2_trdy_q != 0);
-    stop = (card1_pci_slave2_stop_q != 0);
+    done = (1'b0 && (!card1_pci_slave2_trdy_q));
     devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card1_pci_slave2_pci_control2_control_case1_0_1_out_state = card1_pci_slave2_state;
-    last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
-    if (done) begin
-        last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (card1_pci_slave2_is_read) begin
-        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
-        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
-    end
-    else begin
-        buffer_room = (card1_pci_slave2_buffered_next <= 1);
-        if ((done && (!card1_pci_slave2_first_phase))) begin
-            buffer_room = (card1_pci_slave2_buffered_next == 0);
-        end
-        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
-    end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
@@ -2036,6 +2075,59 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
             drive = 1'b1;
             devsel = 1'b0;
             ad_oe = (card1_pci_slave2_read_command != 0);
+        end
+    end
+    else if ((card1_pci_slave2_state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b1) && ((card1_pci_slave2_state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_devsel = devsel;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_drive = drive;
+    card1_pci_slave2_pci_control2_control_case0_0_1_out_ad_oe = ad_oe;
+end
+
+
+always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_trdy_q, card1_pci_slave2_b_valid, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_at_last, card1_pci_slave2_is_read, card1_pci_slave2_first_phase) begin: card1_pci_slave2_pci_control2_control_case1_0_1_outlook
+    reg done;
+    reg buffer_room;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    if (done) begin
+        card1_pci_slave2_pci_control2_control_case1_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case1_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
+    end
+    buffer_room = (card1_pci_slave2_buffered_next <= 1);
+    if ((done && (!card1_pci_slave2_first_phase))) begin
+        buffer_room = (card1_pci_slave2_buffered_next == 0);
+    end
+    if (card1_pci_slave2_is_read) begin
+        card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
+        card1_pci_slave2_pci_control2_control_case1_0_1_exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
+        card1_pci_slave2_pci_control2_control_case1_0_1_exhausted = 1'b0;
+    end
+end
+
+
+always @(card1_pci_slave2_claim, card1_pci_slave2_claim_config, card1_pci_slave2_state, card1_pci_slave2_fatal, card1_pci_slave2_pci_control2_control_case1_0_1_exhausted, card1_pci_slave2_hold_retry, card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase, card1_pci_slave2_trdy_q, card1_pci_slave2_is_read, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_stop_q, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case1_0_1_next_state
+    reg done;
+    reg hold;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_state = card1_pci_slave2_state;
+    if ((card1_pci_slave2_state == 4'b0000)) begin
+        if (card1_pci_slave2_claim) begin
             if (card1_pci_slave2_claim_config) begin
                 card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0001;
             end
@@ -2050,22 +2142,15 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
     else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
         if (card1_pci_slave2_fatal) begin
             card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((card1_pci_slave2_state == 4'b0001)) begin
             card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b0);
         end
         else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
             card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b0));
         end
         else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (card1_pci_slave2_is_read) begin
             card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0100;
@@ -2076,23 +2161,71 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
             // pass
         end
         else if ((done && ((!1'b0) || (!card1_pci_slave2_stop_q)))) begin
-            trdy = 1'b1;
             if (1'b0) begin
                 card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
             end
             else begin
                 card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b0));
+        else if (card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || card1_pci_slave2_timeout)) begin
+        else if ((card1_pci_slave2_pci_control2_control_case1_0_1_exhausted || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0111;
+        end
+    end
+    else if ((card1_pci_slave2_state == 4'b0111)) begin
+        if ((!1'b0)) begin
+            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b1000;
+        end
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0000;
+    end
+end
+
+
+always @(card1_pci_slave2_fatal, card1_pci_slave2_state, card1_pci_slave2_pci_control2_control_case1_0_1_exhausted, card1_pci_slave2_hold_retry, card1_pci_slave2_trdy_q, card1_pci_slave2_pci_control2_control_case1_0_1_last_data, card1_pci_slave2_hold_got, card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase, card1_pci_slave2_stop_q, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case1_0_1_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
+    trdy = (card1_pci_slave2_trdy_q != 0);
+    stop = (card1_pci_slave2_stop_q != 0);
+    if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            stop = 1'b0;
+        end
+        else if ((card1_pci_slave2_state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b0);
+        end
+        else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(card1_pci_slave2_pci_control2_control_case1_0_1_last_data && 1'b0));
+        end
+        else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b0) || (!card1_pci_slave2_stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b0)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (card1_pci_slave2_pci_control2_control_case1_0_1_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(card1_pci_slave2_pci_control2_control_case1_0_1_last_data && 1'b0));
+        end
+        else if ((card1_pci_slave2_pci_control2_control_case1_0_1_exhausted || card1_pci_slave2_timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -2102,63 +2235,24 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
     end
     else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b0)) begin
-            card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        card1_pci_slave2_pci_control2_control_case1_0_1_out_state = 4'b0000;
-        drive = 1'b0;
     end
     card1_pci_slave2_pci_control2_control_case1_0_1_out_trdy = trdy;
     card1_pci_slave2_pci_control2_control_case1_0_1_out_stop = stop;
-    card1_pci_slave2_pci_control2_control_case1_0_1_out_devsel = devsel;
-    card1_pci_slave2_pci_control2_control_case1_0_1_out_drive = drive;
-    card1_pci_slave2_pci_control2_control_case1_0_1_out_ad_oe = ad_oe;
 end
 
 
-always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_read_command, card1_pci_slave2_b_valid, card1_pci_slave2_stop_q, card1_pci_slave2_single, card1_pci_slave2_state, card1_pci_slave2_hold_retry, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_at_last, card1_pci_slave2_first_phase, card1_pci_slave2_burst_got, card1_pci_slave2_claim_config, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_is_read, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case2_0_1_control
+always @(card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_state, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_read_command) begin: card1_pci_slave2_pci_control2_control_case1_0_1_next_devsel_drive
     reg done;
-    reg hold;
-    reg trdy;
-    reg stop;
     reg devsel;
     reg drive;
     reg ad_oe;
-    reg last_data;
-    reg ready_for_phase;
-    reg exhausted;
-    reg buffer_room;
     done = (1'b1 && (!card1_pci_slave2_trdy_q));
-    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
-    trdy = (card1_pci_slave2_trdy_q != 0);
-    stop = (card1_pci_slave2_stop_q != 0);
     devsel = (card1_pci_slave2_devsel_q != 0);
     drive = (pci_pads0_registered_pad2_enable != 0);
     ad_oe = (pci_pads0_registered_pad0_enable != 0);
-    card1_pci_slave2_pci_control2_control_case2_0_1_out_state = card1_pci_slave2_state;
-    last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
-    if (done) begin
-        last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
-    end
-    ready_for_phase = 1'b0;
-    exhausted = 1'b0;
-    buffer_room = 1'b0;
-    if (card1_pci_slave2_is_read) begin
-        ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
-        exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
-    end
-    else begin
-        buffer_room = (card1_pci_slave2_buffered_next <= 1);
-        if ((done && (!card1_pci_slave2_first_phase))) begin
-            buffer_room = (card1_pci_slave2_buffered_next == 0);
-        end
-        ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
-    end
     if ((card1_pci_slave2_state == 4'b0000)) begin
         drive = 1'b0;
         ad_oe = 1'b0;
@@ -2166,6 +2260,59 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
             drive = 1'b1;
             devsel = 1'b0;
             ad_oe = (card1_pci_slave2_read_command != 0);
+        end
+    end
+    else if ((card1_pci_slave2_state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b0) && ((card1_pci_slave2_state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_devsel = devsel;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_drive = drive;
+    card1_pci_slave2_pci_control2_control_case1_0_1_out_ad_oe = ad_oe;
+end
+
+
+always @(card1_pci_slave2_burst_got, card1_pci_slave2_single, card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2_before_last, card1_pci_slave2_buffered_next, card1_pci_slave2_trdy_q, card1_pci_slave2_b_valid, card1_pci_slave2_pci_control2_control_case0_0_1_target_room, card1_pci_slave2_at_last, card1_pci_slave2_is_read, card1_pci_slave2_first_phase) begin: card1_pci_slave2_pci_control2_control_case2_0_1_outlook
+    reg done;
+    reg buffer_room;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    if (done) begin
+        card1_pci_slave2_pci_control2_control_case2_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_before_last);
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case2_0_1_last_data = (card1_pci_slave2_single || card1_pci_slave2_at_last);
+    end
+    buffer_room = (card1_pci_slave2_buffered_next <= 1);
+    if ((done && (!card1_pci_slave2_first_phase))) begin
+        buffer_room = (card1_pci_slave2_buffered_next == 0);
+    end
+    if (card1_pci_slave2_is_read) begin
+        card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase = (card1_pci_slave2_b_valid || card1_pci_slave2_burst_got);
+        card1_pci_slave2_pci_control2_control_case2_0_1_exhausted = ((!card1_pci_slave2_b_valid) && (!card1_pci_slave2_burst_got) && (!card1_pci_slave2_fetching));
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase = (card1_pci_slave2_is_config || (buffer_room && card1_pci_slave2_pci_control2_control_case0_0_1_target_room));
+        card1_pci_slave2_pci_control2_control_case2_0_1_exhausted = 1'b0;
+    end
+end
+
+
+always @(card1_pci_slave2_claim, card1_pci_slave2_claim_config, card1_pci_slave2_state, card1_pci_slave2_fatal, card1_pci_slave2_pci_control2_control_case2_0_1_exhausted, card1_pci_slave2_hold_retry, card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase, card1_pci_slave2_trdy_q, card1_pci_slave2_is_read, card1_pci_slave2_hold_got, card1_pci_slave2_claim_io, card1_pci_slave2_stop_q, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case2_0_1_next_state
+    reg done;
+    reg hold;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
+    card1_pci_slave2_pci_control2_control_case2_0_1_out_state = card1_pci_slave2_state;
+    if ((card1_pci_slave2_state == 4'b0000)) begin
+        if (card1_pci_slave2_claim) begin
             if (card1_pci_slave2_claim_config) begin
                 card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0001;
             end
@@ -2180,22 +2327,15 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
     else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
         if (card1_pci_slave2_fatal) begin
             card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
-            devsel = 1'b1;
-            stop = 1'b0;
         end
         else if ((card1_pci_slave2_state == 4'b0001)) begin
             card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0101;
-            trdy = 1'b0;
-            stop = (!1'b1);
         end
         else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
             card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0110;
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
         end
         else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
-            stop = 1'b0;
         end
         else if (card1_pci_slave2_is_read) begin
             card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0100;
@@ -2206,23 +2346,71 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
             // pass
         end
         else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
-            trdy = 1'b1;
             if (1'b1) begin
                 card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
             end
             else begin
                 card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b1000;
-                stop = 1'b1;
-                devsel = 1'b1;
-                ad_oe = 1'b0;
             end
         end
-        else if (ready_for_phase) begin
-            trdy = 1'b0;
-            stop = (!(last_data && 1'b1));
+        else if (card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase) begin
+            // pass
         end
-        else if ((exhausted || card1_pci_slave2_timeout)) begin
+        else if ((card1_pci_slave2_pci_control2_control_case2_0_1_exhausted || card1_pci_slave2_timeout)) begin
             card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0111;
+        end
+    end
+    else if ((card1_pci_slave2_state == 4'b0111)) begin
+        if ((!1'b1)) begin
+            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b1000;
+        end
+    end
+    else begin
+        card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0000;
+    end
+end
+
+
+always @(card1_pci_slave2_fatal, card1_pci_slave2_state, card1_pci_slave2_pci_control2_control_case2_0_1_exhausted, card1_pci_slave2_hold_retry, card1_pci_slave2_trdy_q, card1_pci_slave2_pci_control2_control_case2_0_1_last_data, card1_pci_slave2_hold_got, card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase, card1_pci_slave2_stop_q, card1_pci_slave2_timeout, card1_pci_slave2_hold_accepted) begin: card1_pci_slave2_pci_control2_control_case2_0_1_next_trdy_stop
+    reg done;
+    reg hold;
+    reg trdy;
+    reg stop;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    hold = ((!1'b1) && (!card1_pci_slave2_trdy_q));
+    trdy = (card1_pci_slave2_trdy_q != 0);
+    stop = (card1_pci_slave2_stop_q != 0);
+    if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            stop = 1'b0;
+        end
+        else if ((card1_pci_slave2_state == 4'b0001)) begin
+            trdy = 1'b0;
+            stop = (!1'b1);
+        end
+        else if ((card1_pci_slave2_hold_got || card1_pci_slave2_hold_accepted)) begin
+            trdy = 1'b0;
+            stop = (!(card1_pci_slave2_pci_control2_control_case2_0_1_last_data && 1'b1));
+        end
+        else if ((card1_pci_slave2_hold_retry || card1_pci_slave2_timeout)) begin
+            stop = 1'b0;
+        end
+    end
+    else if (((card1_pci_slave2_state == 4'b0101) || (card1_pci_slave2_state == 4'b0110))) begin
+        if (hold) begin
+            // pass
+        end
+        else if ((done && ((!1'b1) || (!card1_pci_slave2_stop_q)))) begin
+            trdy = 1'b1;
+            if ((!1'b1)) begin
+                stop = 1'b1;
+            end
+        end
+        else if (card1_pci_slave2_pci_control2_control_case2_0_1_ready_for_phase) begin
+            trdy = 1'b0;
+            stop = (!(card1_pci_slave2_pci_control2_control_case2_0_1_last_data && 1'b1));
+        end
+        else if ((card1_pci_slave2_pci_control2_control_case2_0_1_exhausted || card1_pci_slave2_timeout)) begin
             trdy = 1'b1;
             stop = 1'b0;
         end
@@ -2232,19 +2420,45 @@ always @(card1_pci_slave2_fetching, card1_pci_slave2_is_config, card1_pci_slave2
     end
     else if ((card1_pci_slave2_state == 4'b0111)) begin
         if ((!1'b1)) begin
-            card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b1000;
             trdy = 1'b1;
             stop = 1'b1;
-            devsel = 1'b1;
-            ad_oe = 1'b0;
         end
-    end
-    else begin
-        card1_pci_slave2_pci_control2_control_case2_0_1_out_state = 4'b0000;
-        drive = 1'b0;
     end
     card1_pci_slave2_pci_control2_control_case2_0_1_out_trdy = trdy;
     card1_pci_slave2_pci_control2_control_case2_0_1_out_stop = stop;
+end
+
+
+always @(card1_pci_slave2_claim, pci_pads0_registered_pad0_enable, card1_pci_slave2_state, card1_pci_slave2_fatal, card1_pci_slave2_devsel_q, pci_pads0_registered_pad2_enable, card1_pci_slave2_trdy_q, card1_pci_slave2_read_command) begin: card1_pci_slave2_pci_control2_control_case2_0_1_next_devsel_drive
+    reg done;
+    reg devsel;
+    reg drive;
+    reg ad_oe;
+    done = (1'b1 && (!card1_pci_slave2_trdy_q));
+    devsel = (card1_pci_slave2_devsel_q != 0);
+    drive = (pci_pads0_registered_pad2_enable != 0);
+    ad_oe = (pci_pads0_registered_pad0_enable != 0);
+    if ((card1_pci_slave2_state == 4'b0000)) begin
+        drive = 1'b0;
+        ad_oe = 1'b0;
+        if (card1_pci_slave2_claim) begin
+            drive = 1'b1;
+            devsel = 1'b0;
+            ad_oe = (card1_pci_slave2_read_command != 0);
+        end
+    end
+    else if ((card1_pci_slave2_state == 4'b1000)) begin
+        drive = 1'b0;
+    end
+    else if (((card1_pci_slave2_state == 4'b0001) || (card1_pci_slave2_state == 4'b0010) || (card1_pci_slave2_state == 4'b0011) || (card1_pci_slave2_state == 4'b0100))) begin
+        if (card1_pci_slave2_fatal) begin
+            devsel = 1'b1;
+        end
+    end
+    else if (((!1'b1) && ((card1_pci_slave2_state == 4'b0111) || done))) begin
+        devsel = 1'b1;
+        ad_oe = 1'b0;
+    end
     card1_pci_slave2_pci_control2_control_case2_0_1_out_devsel = devsel;
     card1_pci_slave2_pci_control2_control_case2_0_1_out_drive = drive;
     card1_pci_slave2_pci_control2_control_case2_0_1_out_ad_oe = ad_oe;
@@ -2326,30 +2540,19 @@ assign card1_pci_slave2_ad_oe_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0
 `endif
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_phase_registers
     if (reset == 0) begin
-        card1_pci_slave2_req_addr <= 0;
-        card1_pci_slave2_is_config <= 0;
-        card1_pci_slave2_space_mem <= 0;
-        card1_pci_slave2_first_pending <= 0;
-        card1_pci_slave2_initial_wait_over <= 0;
         card1_pci_slave2_before_last <= 0;
-        card1_pci_slave2_io_byte <= 0;
-        card1_pci_slave2_single <= 0;
-        card1_pci_slave2_req_addr_stale <= 0;
         card1_pci_slave2_address_fault <= 0;
         card1_pci_slave2_at_last <= 0;
-        card1_pci_slave2_subsequent_wait_over <= 0;
-        card1_pci_slave2_is_read <= 0;
         card1_pci_slave2_first_phase <= 0;
-        card1_pci_slave2_wait_count <= 0;
-        card1_pci_slave2_fetching <= 0;
         card1_pci_slave2_state <= 4'b0000;
         card1_pci_slave2_phase_addr <= 0;
     end
     else begin
         card1_pci_slave2_state <= card1_pci_slave2_state_next;
         card1_pci_slave2_first_phase <= card1_pci_slave2_first_phase_next;
+        card1_pci_slave2_address_fault <= card1_pci_slave2_address_fault_next;
         if (card1_pci_slave2_phase_step) begin
             if (card1_pci_slave2_claim) begin
                 card1_pci_slave2_phase_addr <= card1_pci_slave2_start_addr;
@@ -2362,12 +2565,26 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
                 card1_pci_slave2_before_last <= ($signed({1'b0, card1_pci_slave2_phase_addr}) == (1023 - 2));
             end
         end
-        card1_pci_slave2_address_fault <= card1_pci_slave2_address_fault_next;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction_kind
+    if (reset == 0) begin
+        card1_pci_slave2_is_config <= 0;
+        card1_pci_slave2_first_pending <= 0;
+        card1_pci_slave2_space_mem <= 0;
+        card1_pci_slave2_io_byte <= 0;
+        card1_pci_slave2_single <= 0;
+        card1_pci_slave2_is_read <= 0;
+        card1_pci_slave2_fetching <= 0;
+    end
+    else begin
         if (((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase)) begin
             card1_pci_slave2_is_read <= (!pci_pads0_registered_pad5_from_pin[0]);
             card1_pci_slave2_is_config <= card1_pci_slave2_claim_config;
-            card1_pci_slave2_space_mem <= ((!card1_pci_slave2_claim_config) && (!card1_pci_slave2_claim_io));
-            card1_pci_slave2_single <= (card1_pci_slave2_claim_config || card1_pci_slave2_claim_io || pci_pads0_registered_pad0_from_pin[0] || pci_pads0_registered_pad0_from_pin[1]);
+            card1_pci_slave2_space_mem <= ((!card1_pci_slave2_claim_config) && (!card1_pci_slave2_claim_io) && (!card1_pci_slave2_claim_alias));
+            card1_pci_slave2_single <= (card1_pci_slave2_claim_config || card1_pci_slave2_claim_io || card1_pci_slave2_claim_alias || pci_pads0_registered_pad0_from_pin[0] || pci_pads0_registered_pad0_from_pin[1]);
             card1_pci_slave2_first_pending <= 1'b1;
             card1_pci_slave2_fetching <= ((!pci_pads0_registered_pad5_from_pin[0]) && (!card1_pci_slave2_claim_config));
             card1_pci_slave2_io_byte <= pci_pads0_registered_pad0_from_pin[2-1:0];
@@ -2383,6 +2600,16 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
                 card1_pci_slave2_fetching <= 1'b0;
             end
         end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_request_address
+    if (reset == 0) begin
+        card1_pci_slave2_req_addr <= 0;
+        card1_pci_slave2_req_addr_stale <= 0;
+    end
+    else begin
         if (card1_pci_slave2_claim) begin
             card1_pci_slave2_req_addr_stale <= card1_pci_slave2_draining;
         end
@@ -2397,6 +2624,17 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction
             card1_pci_slave2_req_addr <= card1_pci_slave2_phase_addr;
             card1_pci_slave2_req_addr_stale <= 1'b0;
         end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_latency_count
+    if (reset == 0) begin
+        card1_pci_slave2_subsequent_wait_over <= 0;
+        card1_pci_slave2_wait_count <= 0;
+        card1_pci_slave2_initial_wait_over <= 0;
+    end
+    else begin
         if ((!card1_pci_slave2_waiting)) begin
             card1_pci_slave2_wait_count <= 0;
             card1_pci_slave2_initial_wait_over <= 1'b0;
@@ -2790,6 +3028,7 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_config2_confi
         card1_pci_slave2_pci_config2_signaled_system_error <= 0;
         card1_pci_slave2_pci_config2_interrupt_line <= 0;
         card1_pci_slave2_interrupt_disable <= 0;
+        card1_pci_slave2_bar2 <= 0;
         card1_pci_slave2_pci_config2_signaled_target_abort <= 0;
         card1_pci_slave2_bar0 <= 0;
         card1_pci_slave2_pci_config2_detected_parity_error <= 0;
@@ -2842,6 +3081,20 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_config2_confi
                         card1_pci_slave2_bar1[32-1:24] <= card1_pci_slave2_config_data[32-1:24];
                     end
                 end
+                'h6: begin
+                    if ((!card1_pci_slave2_config_cbe_n[0])) begin
+                        card1_pci_slave2_bar2[8-1:0] <= card1_pci_slave2_config_data[8-1:0];
+                    end
+                    if ((!card1_pci_slave2_config_cbe_n[1])) begin
+                        card1_pci_slave2_bar2[16-1:8] <= card1_pci_slave2_config_data[16-1:8];
+                    end
+                    if ((!card1_pci_slave2_config_cbe_n[2])) begin
+                        card1_pci_slave2_bar2[24-1:16] <= card1_pci_slave2_config_data[24-1:16];
+                    end
+                    if ((!card1_pci_slave2_config_cbe_n[3])) begin
+                        card1_pci_slave2_bar2[32-1:24] <= card1_pci_slave2_config_data[32-1:24];
+                    end
+                end
                 'hf: begin
                     if ((!card1_pci_slave2_config_cbe_n[0])) begin
                         card1_pci_slave2_pci_config2_interrupt_line <= card1_pci_slave2_config_data[8-1:0];
@@ -2860,7 +3113,7 @@ end
 assign card1_pci_slave2_pci_config2_bar0_read = ((card1_pci_slave2_bar0 & 16'hff00) | 16'h1);
 
 
-always @(card1_pci_slave2_pci_config2_signaled_system_error, card1_pci_slave2_parity_response, card1_pci_slave2_config_irq, card1_pci_slave2_config_index, card1_pci_slave2_pci_config2_bar0_read, card1_pci_slave2_pci_config2_interrupt_line, card1_pci_slave2_interrupt_disable, card1_pci_slave2_pci_config2_signaled_target_abort, card1_pci_slave2_pci_config2_detected_parity_error, card1_pci_slave2_io_enable, card1_pci_slave2_serr_enable, card1_pci_slave2_bar1, card1_pci_slave2_mem_enable) begin: card1_pci_slave2_pci_config2_config_read
+always @(card1_pci_slave2_pci_config2_signaled_system_error, card1_pci_slave2_parity_response, card1_pci_slave2_config_irq, card1_pci_slave2_config_index, card1_pci_slave2_pci_config2_bar0_read, card1_pci_slave2_pci_config2_interrupt_line, card1_pci_slave2_interrupt_disable, card1_pci_slave2_bar2, card1_pci_slave2_pci_config2_signaled_target_abort, card1_pci_slave2_pci_config2_detected_parity_error, card1_pci_slave2_io_enable, card1_pci_slave2_serr_enable, card1_pci_slave2_bar1, card1_pci_slave2_mem_enable) begin: card1_pci_slave2_pci_config2_config_read
     case (card1_pci_slave2_config_index)
         'h0: begin
             card1_pci_slave2_config_rdata = 32'hdda01234;
@@ -2876,6 +3129,9 @@ always @(card1_pci_slave2_pci_config2_signaled_system_error, card1_pci_slave2_pa
         end
         'h5: begin
             card1_pci_slave2_config_rdata = (card1_pci_slave2_bar1 & 32'hfffff000);
+        end
+        'h6: begin
+            card1_pci_slave2_config_rdata = (card1_pci_slave2_bar2 & 32'hffffff00);
         end
         'hb: begin
             card1_pci_slave2_config_rdata = 32'h11234;
@@ -2984,213 +3240,29 @@ assign card1_pci_slave2_pci_control2_control_case0_0_1_target_room = card1_card_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word74_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
+assign card1_card_core1_regs_fifo2_reg_word78_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word74_mine, card1_card_core1_regs_fifo2_reg_word74_shown_wide, card1_card_core1_regs_fifo2_reg_word74_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word74_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word74_mine) begin
-        card1_card_core1_regs_fifo2_reg_word74_chain_out_data = (card1_card_core1_regs_fifo2_reg_word74_chain_in_data | card1_card_core1_regs_fifo2_reg_word74_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word74_chain_out_data = card1_card_core1_regs_fifo2_reg_word74_chain_in_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word74_shown_wide = card1_card_core1_regs_fifo2_reg_word74_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word74_chain_in_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word75_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word75_mine, card1_card_core1_regs_fifo2_reg_word75_shown_wide, card1_card_core1_regs_fifo2_reg_word74_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word75_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word75_mine) begin
-        card1_card_core1_regs_fifo2_reg_word75_chain_out_data = (card1_card_core1_regs_fifo2_reg_word74_chain_out_data | card1_card_core1_regs_fifo2_reg_word75_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word75_chain_out_data = card1_card_core1_regs_fifo2_reg_word74_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word75_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word75_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word75_shown_wide, card1_card_core1_regs_fifo2_reg_word75_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word75_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word75_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word75_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word75_written = ((card1_card_core1_regs_fifo2_reg_word75_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word75_honoured = card1_card_core1_regs_fifo2_reg_word75_written[2-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word75_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word74_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word75_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word75__store52_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_control <= 0;
-        card1_card_core1_regs_fifo2_reg_word75_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word75_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word75_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word75_mine_write))) begin
-            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word75_honoured;
-            card1_card_core1_regs_fifo2_reg_word75_clamped <= card1_card_core1_regs_fifo2_reg_word75_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word76_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word76_mine, card1_card_core1_regs_fifo2_reg_word76_shown_wide, card1_card_core1_regs_fifo2_reg_word75_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word76_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word76_mine) begin
-        card1_card_core1_regs_fifo2_reg_word76_chain_out_data = (card1_card_core1_regs_fifo2_reg_word75_chain_out_data | card1_card_core1_regs_fifo2_reg_word76_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word76_chain_out_data = card1_card_core1_regs_fifo2_reg_word75_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word76_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word76_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word76_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word76_written = (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word76_honoured = card1_card_core1_regs_fifo2_reg_word76_written[4-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word75_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word76_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word76__store53_pulse_on_write
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_command_strobe <= 0;
-        card1_card_core1_regs_fifo2_command <= 0;
-        card1_card_core1_regs_fifo2_reg_word76_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word76_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word76_mine_write)) begin
-            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word76_honoured;
-            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word76_clamped <= card1_card_core1_regs_fifo2_reg_word76_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word77_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word77_mine, card1_card_core1_regs_fifo2_reg_word77_shown_wide, card1_card_core1_regs_fifo2_reg_word76_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word77_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word77_mine) begin
-        card1_card_core1_regs_fifo2_reg_word77_chain_out_data = (card1_card_core1_regs_fifo2_reg_word76_chain_out_data | card1_card_core1_regs_fifo2_reg_word77_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word77_chain_out_data = card1_card_core1_regs_fifo2_reg_word76_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word77_shown_wide = card1_card_core1_regs_fifo2_reg_word77_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word76_chain_out_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word78_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word78_mine, card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word77_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word78_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word78_mine, card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word78_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word78_read_chain
     if (card1_card_core1_regs_fifo2_reg_word78_mine) begin
-        card1_card_core1_regs_fifo2_reg_word78_chain_out_data = (card1_card_core1_regs_fifo2_reg_word77_chain_out_data | card1_card_core1_regs_fifo2_reg_word78_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word78_chain_out_data = (card1_card_core1_regs_fifo2_reg_word78_chain_in_data | card1_card_core1_regs_fifo2_reg_word78_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word78_chain_out_data = card1_card_core1_regs_fifo2_reg_word77_chain_out_data;
+        card1_card_core1_regs_fifo2_reg_word78_chain_out_data = card1_card_core1_regs_fifo2_reg_word78_chain_in_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word78_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word78_shown};
+assign card1_card_core1_regs_fifo2_reg_word78_shown_wide = card1_card_core1_regs_fifo2_reg_word78_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word78_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word78_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word78_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word78_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word78_written = card1_card_core1_regs_fifo2_set_value[8-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word78_written = ((card1_card_core1_regs_fifo2_reg_word78_shown_wide[8-1:0] & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word78_chain_in_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word78_honoured = card1_card_core1_regs_fifo2_reg_word78_written[8-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word77_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word78_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word78__store54_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word78_shown <= 0;
-        card1_card_core1_regs_fifo2_reg_word78_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word78_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word78_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word78_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word78_shown <= card1_card_core1_regs_fifo2_reg_word78_honoured;
-            card1_card_core1_regs_fifo2_reg_word78_clamped <= card1_card_core1_regs_fifo2_reg_word78_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word79_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
+assign card1_card_core1_regs_fifo2_reg_word79_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word79_mine, card1_card_core1_regs_fifo2_reg_word79_shown_wide, card1_card_core1_regs_fifo2_reg_word78_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word79_read_chain
@@ -3204,42 +3276,48 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word79_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word79_shown};
+assign card1_card_core1_regs_fifo2_reg_word79_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word79_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
+assign card1_card_core1_regs_fifo2_reg_word79_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word79_written = (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word79_honoured = card1_card_core1_regs_fifo2_reg_word79_written[8-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped;
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word79__store55_clear_on_one
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word79_shown <= 0;
+always @(card1_card_core1_regs_fifo2_reg_word79_shown_wide, card1_card_core1_regs_fifo2_reg_word79_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word79_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word79_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word79_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word79_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word79_shown <= ((card1_card_core1_regs_fifo2_reg_word79_shown & (~card1_card_core1_regs_fifo2_reg_word79_honoured)) | card1_card_core1_regs_fifo2_reg_word79__store55_word_hw);
-        end
-        else begin
-            card1_card_core1_regs_fifo2_reg_word79_shown <= (card1_card_core1_regs_fifo2_reg_word79_shown | card1_card_core1_regs_fifo2_reg_word79__store55_word_hw);
+        card1_card_core1_regs_fifo2_reg_word79_written = ((card1_card_core1_regs_fifo2_reg_word79_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word79_honoured = card1_card_core1_regs_fifo2_reg_word79_written[2-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word79_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word79__store56_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_control <= 0;
+        card1_card_core1_regs_fifo2_reg_word79_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word79_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word79_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word79_mine_write))) begin
+            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word79_honoured;
+            card1_card_core1_regs_fifo2_reg_word79_clamped <= card1_card_core1_regs_fifo2_reg_word79_out_of_range;
         end
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word80_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
+assign card1_card_core1_regs_fifo2_reg_word80_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word80_mine, card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_reg_word79_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word80_read_chain
@@ -3253,48 +3331,37 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word80_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word80_shown};
+assign card1_card_core1_regs_fifo2_reg_word80_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word80_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word80_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
+assign card1_card_core1_regs_fifo2_reg_word80_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_reg_word80_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word80_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word80_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word80_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word80_written = ((card1_card_core1_regs_fifo2_reg_word80_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word80_written = (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word80_written) begin: card1_card_core1_regs_fifo2_reg_word80__limit56_clamp_above_power_of_two
-    card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word80_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word80_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word80_honoured = card1_card_core1_regs_fifo2_reg_word80_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word80_honoured = card1_card_core1_regs_fifo2_reg_word80_written[4-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word80_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word80__store56_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word80__store57_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word80_shown <= 0;
+        card1_card_core1_regs_fifo2_command_strobe <= 0;
+        card1_card_core1_regs_fifo2_command <= 0;
         card1_card_core1_regs_fifo2_reg_word80_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word80_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word80_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word80_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word80_shown <= card1_card_core1_regs_fifo2_reg_word80_honoured;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word80_mine_write)) begin
+            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word80_honoured;
+            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word80_clamped <= card1_card_core1_regs_fifo2_reg_word80_out_of_range;
         end
     end
@@ -3302,7 +3369,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word81_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
+assign card1_card_core1_regs_fifo2_reg_word81_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word81_mine, card1_card_core1_regs_fifo2_reg_word81_shown_wide, card1_card_core1_regs_fifo2_reg_word80_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word81_read_chain
@@ -3316,7 +3383,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word81_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word81_shown};
+assign card1_card_core1_regs_fifo2_reg_word81_shown_wide = card1_card_core1_regs_fifo2_reg_word81_shown;
 
 
 
@@ -3324,7 +3391,7 @@ assign card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_pci_slave2_pci_requests2_local_addr == 32);
+assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word82_mine, card1_card_core1_regs_fifo2_reg_word82_shown_wide, card1_card_core1_regs_fifo2_reg_word81_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word82_read_chain
@@ -3338,15 +3405,48 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_shown_wide = card1_card_core1_regs_fifo2_reg_word82_shown;
+assign card1_card_core1_regs_fifo2_reg_word82_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word82_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word82_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word82_shown_wide, card1_card_core1_regs_fifo2_reg_word82_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word82_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word82_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word82_written = card1_card_core1_regs_fifo2_set_value[8-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word82_written = ((card1_card_core1_regs_fifo2_reg_word82_shown_wide[8-1:0] & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_pci_slave2_pci_requests2_local_addr == 36);
+assign card1_card_core1_regs_fifo2_reg_word82_honoured = card1_card_core1_regs_fifo2_reg_word82_written[8-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word82_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word82__store58_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word82_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word82_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word82_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word82_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word82_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word82_shown <= card1_card_core1_regs_fifo2_reg_word82_honoured;
+            card1_card_core1_regs_fifo2_reg_word82_clamped <= card1_card_core1_regs_fifo2_reg_word82_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word83_mine, card1_card_core1_regs_fifo2_reg_word83_shown_wide, card1_card_core1_regs_fifo2_reg_word82_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word83_read_chain
@@ -3360,15 +3460,42 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word83_shown_wide = card1_card_core1_regs_fifo2_reg_word83_shown;
+assign card1_card_core1_regs_fifo2_reg_word83_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word83_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_written = (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_honoured = card1_card_core1_regs_fifo2_reg_word83_written[8-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped;
 
 
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word83__store59_clear_on_one
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word83_shown <= 0;
+    end
+    else begin
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word83_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word83_shown <= ((card1_card_core1_regs_fifo2_reg_word83_shown & (~card1_card_core1_regs_fifo2_reg_word83_honoured)) | card1_card_core1_regs_fifo2_reg_word83__store59_word_hw);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_reg_word83_shown <= (card1_card_core1_regs_fifo2_reg_word83_shown | card1_card_core1_regs_fifo2_reg_word83__store59_word_hw);
+        end
+    end
+end
 
-assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
+
+
+assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word84_mine, card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_reg_word83_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word84_read_chain
@@ -3386,11 +3513,11 @@ assign card1_card_core1_regs_fifo2_reg_word84_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
+assign card1_card_core1_regs_fifo2_reg_word84_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word84_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+always @(card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_reg_word84_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word84_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word84_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word84_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -3399,13 +3526,10 @@ always @(card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word84_written) begin: card1_card_core1_regs_fifo2_reg_word84__limit57_clamp_unsigned
+always @(card1_card_core1_regs_fifo2_reg_word84_written) begin: card1_card_core1_regs_fifo2_reg_word84__limit60_clamp_above_power_of_two
     card1_card_core1_regs_fifo2_reg_word84_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word84_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word84_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word84_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word84_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word84_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word84_honoured = 32768;
+    if ((card1_card_core1_regs_fifo2_reg_word84_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word84_honoured = 65535;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word84_honoured = card1_card_core1_regs_fifo2_reg_word84_written[16-1:0];
@@ -3418,14 +3542,14 @@ end
 assign card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word84_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word84__store57_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word84__store60_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word84_shown <= 4096;
+        card1_card_core1_regs_fifo2_reg_word84_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word84_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word84_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word84_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word84_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word84_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word84_shown <= card1_card_core1_regs_fifo2_reg_word84_honoured;
             card1_card_core1_regs_fifo2_reg_word84_clamped <= card1_card_core1_regs_fifo2_reg_word84_out_of_range;
         end
@@ -3434,7 +3558,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
+assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word85_mine, card1_card_core1_regs_fifo2_reg_word85_shown_wide, card1_card_core1_regs_fifo2_reg_word84_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word85_read_chain
@@ -3452,55 +3576,11 @@ assign card1_card_core1_regs_fifo2_reg_word85_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word85_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word85_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
-        card1_card_core1_regs_fifo2_reg_word85_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word85_written = ((card1_card_core1_regs_fifo2_reg_word85_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word85_written) begin: card1_card_core1_regs_fifo2_reg_word85__limit58_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word85_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word85_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word85_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word85_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word85_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word85_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word85_honoured = 32768;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word85_honoured = card1_card_core1_regs_fifo2_reg_word85_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word85_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word85_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word85__store58_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word85_shown <= 4096;
-        card1_card_core1_regs_fifo2_reg_word85_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word85_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word85_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word85_shown <= card1_card_core1_regs_fifo2_reg_word85_honoured;
-            card1_card_core1_regs_fifo2_reg_word85_clamped <= card1_card_core1_regs_fifo2_reg_word85_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word86_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
+assign card1_card_core1_regs_fifo2_reg_word86_mine = (card1_pci_slave2_pci_requests2_local_addr == 32);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word86_mine, card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word85_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word86_read_chain
@@ -3514,56 +3594,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = {16'h0, card1_card_core1_regs_fifo2_ramp_step};
+assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = card1_card_core1_regs_fifo2_reg_word86_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word86_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
-        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word86_written) begin: card1_card_core1_regs_fifo2_reg_word86__limit59_clamp_above_power_of_two
-    card1_card_core1_regs_fifo2_reg_word86_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word86_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word86_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word86_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word86_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word86__store59_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_ramp_step <= 0;
-        card1_card_core1_regs_fifo2_reg_word86_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word86_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word86_mine_write))) begin
-            card1_card_core1_regs_fifo2_ramp_step <= card1_card_core1_regs_fifo2_reg_word86_honoured;
-            card1_card_core1_regs_fifo2_reg_word86_clamped <= card1_card_core1_regs_fifo2_reg_word86_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word87_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
+assign card1_card_core1_regs_fifo2_reg_word87_mine = (card1_pci_slave2_pci_requests2_local_addr == 36);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word87_mine, card1_card_core1_regs_fifo2_reg_word87_shown_wide, card1_card_core1_regs_fifo2_reg_word86_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word87_read_chain
@@ -3577,59 +3616,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word87_shown};
+assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = card1_card_core1_regs_fifo2_reg_word87_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word87_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word87_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
-        card1_card_core1_regs_fifo2_reg_word87_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word87_written = ((card1_card_core1_regs_fifo2_reg_word87_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word87_written) begin: card1_card_core1_regs_fifo2_reg_word87__limit60_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word87_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word87_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word87_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word87_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word87_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word87_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word87_honoured = card1_card_core1_regs_fifo2_reg_word87_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word87_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word87_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word87__store60_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word87_shown <= 1;
-        card1_card_core1_regs_fifo2_reg_word87_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word87_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word87_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word87_shown <= card1_card_core1_regs_fifo2_reg_word87_honoured;
-            card1_card_core1_regs_fifo2_reg_word87_clamped <= card1_card_core1_regs_fifo2_reg_word87_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word88_mine, card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_reg_word87_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word88_read_chain
@@ -3643,15 +3638,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word88_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word88_shown};
+assign card1_card_core1_regs_fifo2_reg_word88_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word88_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word88_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word88_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word88_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word88_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -3660,16 +3655,16 @@ always @(card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word88_written) begin: card1_card_core1_regs_fifo2_reg_word88__limit61_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word88_written) begin: card1_card_core1_regs_fifo2_reg_word88__limit61_clamp_unsigned
     card1_card_core1_regs_fifo2_reg_word88_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word88_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word88_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word88_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word88_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word88_honoured = 255;
+    else if (((card1_card_core1_regs_fifo2_reg_word88_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word88_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word88_honoured = 32768;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word88_honoured = card1_card_core1_regs_fifo2_reg_word88_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word88_honoured = card1_card_core1_regs_fifo2_reg_word88_written[16-1:0];
         card1_card_core1_regs_fifo2_reg_word88_out_of_range = 1'b0;
     end
 end
@@ -3681,12 +3676,12 @@ assign card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word88__store61_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word88_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word88_shown <= 4096;
         card1_card_core1_regs_fifo2_reg_word88_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word88_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word88_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word88_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word88_shown <= card1_card_core1_regs_fifo2_reg_word88_honoured;
             card1_card_core1_regs_fifo2_reg_word88_clamped <= card1_card_core1_regs_fifo2_reg_word88_out_of_range;
         end
@@ -3695,7 +3690,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word89_mine, card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_reg_word88_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word89_read_chain
@@ -3709,15 +3704,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word89_shown};
+assign card1_card_core1_regs_fifo2_reg_word89_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word89_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word89_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word89_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
         card1_card_core1_regs_fifo2_reg_word89_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -3726,16 +3721,16 @@ always @(card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word89_written) begin: card1_card_core1_regs_fifo2_reg_word89__limit62_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word89_written) begin: card1_card_core1_regs_fifo2_reg_word89__limit62_clamp_unsigned
     card1_card_core1_regs_fifo2_reg_word89_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word89_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word89_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word89_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word89_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word89_honoured = 255;
+    else if (((card1_card_core1_regs_fifo2_reg_word89_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word89_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word89_honoured = 32768;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word89_honoured = card1_card_core1_regs_fifo2_reg_word89_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word89_honoured = card1_card_core1_regs_fifo2_reg_word89_written[16-1:0];
         card1_card_core1_regs_fifo2_reg_word89_out_of_range = 1'b0;
     end
 end
@@ -3747,12 +3742,12 @@ assign card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word89__store62_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word89_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word89_shown <= 4096;
         card1_card_core1_regs_fifo2_reg_word89_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word89_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word89_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word89_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word89_shown <= card1_card_core1_regs_fifo2_reg_word89_honoured;
             card1_card_core1_regs_fifo2_reg_word89_clamped <= card1_card_core1_regs_fifo2_reg_word89_out_of_range;
         end
@@ -3761,7 +3756,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word90_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word90_mine, card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word89_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word90_read_chain
@@ -3775,25 +3770,33 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word90_shown};
+assign card1_card_core1_regs_fifo2_reg_word90_shown_wide = {16'h0, card1_card_core1_regs_fifo2_ramp_step};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word90_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word90_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word90_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word90_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word90_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word90_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
+        card1_card_core1_regs_fifo2_reg_word90_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word90_written = ((card1_card_core1_regs_fifo2_reg_word90_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word90_written = ((card1_card_core1_regs_fifo2_reg_word90_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word90_honoured = card1_card_core1_regs_fifo2_reg_word90_written[2-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word90_written) begin: card1_card_core1_regs_fifo2_reg_word90__limit63_clamp_above_power_of_two
+    card1_card_core1_regs_fifo2_reg_word90_out_of_range = 1'b1;
+    if ((card1_card_core1_regs_fifo2_reg_word90_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word90_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word90_honoured = card1_card_core1_regs_fifo2_reg_word90_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word90_out_of_range = 1'b0;
+    end
+end
 
 
 
@@ -3802,13 +3805,13 @@ assign card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word90__store63_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word90_shown <= 0;
+        card1_card_core1_regs_fifo2_ramp_step <= 0;
         card1_card_core1_regs_fifo2_reg_word90_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word90_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word90_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word90_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word90_shown <= card1_card_core1_regs_fifo2_reg_word90_honoured;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word90_mine_write))) begin
+            card1_card_core1_regs_fifo2_ramp_step <= card1_card_core1_regs_fifo2_reg_word90_honoured;
             card1_card_core1_regs_fifo2_reg_word90_clamped <= card1_card_core1_regs_fifo2_reg_word90_out_of_range;
         end
     end
@@ -3816,7 +3819,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_mine = (card1_pci_slave2_pci_requests2_local_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word91_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word91_mine, card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_reg_word90_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word91_read_chain
@@ -3830,15 +3833,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word91_shown};
+assign card1_card_core1_regs_fifo2_reg_word91_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word91_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word91_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word91_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
         card1_card_core1_regs_fifo2_reg_word91_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -3852,11 +3855,11 @@ always @(card1_card_core1_regs_fifo2_reg_word91_written) begin: card1_card_core1
     if (((card1_card_core1_regs_fifo2_reg_word91_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word91_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word91_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word91_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word91_honoured = 65535;
+    else if ((card1_card_core1_regs_fifo2_reg_word91_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word91_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word91_honoured = card1_card_core1_regs_fifo2_reg_word91_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word91_honoured = card1_card_core1_regs_fifo2_reg_word91_written[8-1:0];
         card1_card_core1_regs_fifo2_reg_word91_out_of_range = 1'b0;
     end
 end
@@ -3868,12 +3871,12 @@ assign card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word91__store64_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word91_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word91_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word91_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word91_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word91_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word91_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word91_shown <= card1_card_core1_regs_fifo2_reg_word91_honoured;
             card1_card_core1_regs_fifo2_reg_word91_clamped <= card1_card_core1_regs_fifo2_reg_word91_out_of_range;
         end
@@ -3882,7 +3885,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_pci_slave2_pci_requests2_local_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word92_mine, card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_reg_word91_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word92_read_chain
@@ -3896,15 +3899,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word92_shown};
+assign card1_card_core1_regs_fifo2_reg_word92_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word92_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word92_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word92_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
         card1_card_core1_regs_fifo2_reg_word92_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -3918,11 +3921,11 @@ always @(card1_card_core1_regs_fifo2_reg_word92_written) begin: card1_card_core1
     if (((card1_card_core1_regs_fifo2_reg_word92_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word92_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word92_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word92_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word92_honoured = 65535;
+    else if ((card1_card_core1_regs_fifo2_reg_word92_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word92_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written[8-1:0];
         card1_card_core1_regs_fifo2_reg_word92_out_of_range = 1'b0;
     end
 end
@@ -3934,12 +3937,12 @@ assign card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped = (card1_card_co
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word92__store65_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word92_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word92_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word92_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word92_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word92_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word92_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word92_shown <= card1_card_core1_regs_fifo2_reg_word92_honoured;
             card1_card_core1_regs_fifo2_reg_word92_clamped <= card1_card_core1_regs_fifo2_reg_word92_out_of_range;
         end
@@ -3948,7 +3951,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word93_mine = (card1_pci_slave2_pci_requests2_local_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word93_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word93_mine, card1_card_core1_regs_fifo2_reg_word93_shown_wide, card1_card_core1_regs_fifo2_reg_word92_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word93_read_chain
@@ -3962,29 +3965,34 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word93_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word93_shown};
+assign card1_card_core1_regs_fifo2_reg_word93_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word93_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word93_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word93_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word93_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word93_written) begin: card1_card_core1_regs_fifo2_reg_word93__limit66_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word93_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word93_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word93_honoured = card1_card_core1_regs_fifo2_reg_word93_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word93_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word93_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b1;
+always @(card1_card_core1_regs_fifo2_reg_word93_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word93_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
+        card1_card_core1_regs_fifo2_reg_word93_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word93_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word93_written = ((card1_card_core1_regs_fifo2_reg_word93_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word93_written) begin: card1_card_core1_regs_fifo2_reg_word93__limit66_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word93_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word93_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word93_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word93_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word93_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word93_honoured = card1_card_core1_regs_fifo2_reg_word93_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b0;
     end
 end
 
@@ -3993,18 +4001,15 @@ end
 assign card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word93_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word93__store66_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word93__store66_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word93__store66_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word93_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word93_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word93_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word93_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word93__store66_word_value <= card1_card_core1_regs_fifo2_reg_word93_honoured;
-            card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe <= 1'b1;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word93_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_reg_word93_honoured;
             card1_card_core1_regs_fifo2_reg_word93_clamped <= card1_card_core1_regs_fifo2_reg_word93_out_of_range;
         end
     end
@@ -4012,7 +4017,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_mine = (card1_pci_slave2_pci_requests2_local_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word94_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word94_mine, card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_reg_word93_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word94_read_chain
@@ -4026,49 +4031,40 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word94_shown};
+assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word94_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word94_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word94_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word94_written) begin: card1_card_core1_regs_fifo2_reg_word94__limit67_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word94_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word94_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word94_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word94_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b1;
+always @(card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_reg_word94_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word94_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word94_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word94_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word94_written = ((card1_card_core1_regs_fifo2_reg_word94_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[2-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word94_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word94__store67_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word94__store67_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word94__store67_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word94_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word94_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word94_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word94_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word94__store67_word_value <= card1_card_core1_regs_fifo2_reg_word94_honoured;
-            card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe <= 1'b1;
+        if (((card1_card_core1_regs_fifo2_reg_word94_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word94_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_reg_word94_honoured;
             card1_card_core1_regs_fifo2_reg_word94_clamped <= card1_card_core1_regs_fifo2_reg_word94_out_of_range;
         end
     end
@@ -4076,7 +4072,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
+assign card1_card_core1_regs_fifo2_reg_word95_mine = (card1_pci_slave2_pci_requests2_local_addr == 68);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word95_mine, card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_reg_word94_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word95_read_chain
@@ -4090,15 +4086,59 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_shown_wide = card1_card_core1_regs_fifo2_reg_word95_shown;
+assign card1_card_core1_regs_fifo2_reg_word95_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word95_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word95_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word95_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+        card1_card_core1_regs_fifo2_reg_word95_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word95_written = ((card1_card_core1_regs_fifo2_reg_word95_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word95_written) begin: card1_card_core1_regs_fifo2_reg_word95__limit68_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word95_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word95_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word95_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word95_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word95_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word95_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word95_honoured = card1_card_core1_regs_fifo2_reg_word95_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word95_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
+assign card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word95_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word95__store68_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word95_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word95_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word95_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word95_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word95_shown <= card1_card_core1_regs_fifo2_reg_word95_honoured;
+            card1_card_core1_regs_fifo2_reg_word95_clamped <= card1_card_core1_regs_fifo2_reg_word95_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96_mine = (card1_pci_slave2_pci_requests2_local_addr == 72);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word96_mine, card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_reg_word95_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word96_read_chain
@@ -4116,11 +4156,55 @@ assign card1_card_core1_regs_fifo2_reg_word96_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word96_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word96_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
+        card1_card_core1_regs_fifo2_reg_word96_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word96_written = ((card1_card_core1_regs_fifo2_reg_word96_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word96_written) begin: card1_card_core1_regs_fifo2_reg_word96__limit69_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word96_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word96_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word96_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word96_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word96_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word96_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word96_honoured = card1_card_core1_regs_fifo2_reg_word96_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word96_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
+assign card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word96_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word96__store69_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word96_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word96_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word96_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word96_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word96_shown <= card1_card_core1_regs_fifo2_reg_word96_honoured;
+            card1_card_core1_regs_fifo2_reg_word96_clamped <= card1_card_core1_regs_fifo2_reg_word96_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97_mine = (card1_pci_slave2_pci_requests2_local_addr == 76);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word97_mine, card1_card_core1_regs_fifo2_reg_word97_shown_wide, card1_card_core1_regs_fifo2_reg_word96_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word97_read_chain
@@ -4134,15 +4218,57 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word97_shown};
+assign card1_card_core1_regs_fifo2_reg_word97_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word97_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word97_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_mine = (card1_pci_slave2_pci_requests2_local_addr == 96);
+assign card1_card_core1_regs_fifo2_reg_word97_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word97_written) begin: card1_card_core1_regs_fifo2_reg_word97__limit70_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word97_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word97_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word97_honoured = card1_card_core1_regs_fifo2_reg_word97_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word97_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word97_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word97_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word97_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word97__store70_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word97__store70_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word97_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word97_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word97_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word97__store70_word_value <= card1_card_core1_regs_fifo2_reg_word97_honoured;
+            card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word97_clamped <= card1_card_core1_regs_fifo2_reg_word97_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word98_mine = (card1_pci_slave2_pci_requests2_local_addr == 80);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word98_mine, card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word97_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word98_read_chain
@@ -4156,51 +4282,57 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_shown_wide = {30'h0, card1_card_core1_regs_fifo2_machine_control};
+assign card1_card_core1_regs_fifo2_reg_word98_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word98_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_mine_write = (card1_card_core1_regs_fifo2_written_addr == 96);
+assign card1_card_core1_regs_fifo2_reg_word98_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word98_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word98_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word98_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word98_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word98_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word98_written) begin: card1_card_core1_regs_fifo2_reg_word98__limit71_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word98_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word98_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_fifo2_reg_word98_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word98_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word98_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'b1;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word98_written = ((card1_card_core1_regs_fifo2_reg_word98_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word98_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'b1;
     end
 end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_fifo2_reg_word98_written[2-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word98_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word98__store68_hold_rw_cleared
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word98__store71_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_machine_control <= 0;
+        card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word98__store71_word_value <= 0;
         card1_card_core1_regs_fifo2_reg_word98_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word98_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word98_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word98_mine_write))) begin
-            card1_card_core1_regs_fifo2_machine_control <= (card1_card_core1_regs_fifo2_reg_word98_honoured & (~(card1_card_core1_regs_fifo2_drive_cleared & 1)));
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word98_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word98__store71_word_value <= card1_card_core1_regs_fifo2_reg_word98_honoured;
+            card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word98_clamped <= card1_card_core1_regs_fifo2_reg_word98_out_of_range;
-        end
-        else begin
-            card1_card_core1_regs_fifo2_machine_control <= (card1_card_core1_regs_fifo2_machine_control & (~(card1_card_core1_regs_fifo2_drive_cleared & 1)));
         end
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_mine = (card1_pci_slave2_pci_requests2_local_addr == 100);
+assign card1_card_core1_regs_fifo2_reg_word99_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word99_mine, card1_card_core1_regs_fifo2_reg_word99_shown_wide, card1_card_core1_regs_fifo2_reg_word98_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word99_read_chain
@@ -4214,7 +4346,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_shown_wide = {12'h0, card1_card_core1_regs_fifo2_reg_word99_shown};
+assign card1_card_core1_regs_fifo2_reg_word99_shown_wide = card1_card_core1_regs_fifo2_reg_word99_shown;
 
 
 
@@ -4222,7 +4354,7 @@ assign card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_mine = (card1_pci_slave2_pci_requests2_local_addr == 104);
+assign card1_card_core1_regs_fifo2_reg_word100_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word100_mine, card1_card_core1_regs_fifo2_reg_word100_shown_wide, card1_card_core1_regs_fifo2_reg_word99_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word100_read_chain
@@ -4236,7 +4368,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word100_shown};
+assign card1_card_core1_regs_fifo2_reg_word100_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word100_shown};
 
 
 
@@ -4244,7 +4376,7 @@ assign card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_mine = (card1_pci_slave2_pci_requests2_local_addr == 108);
+assign card1_card_core1_regs_fifo2_reg_word101_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word101_mine, card1_card_core1_regs_fifo2_reg_word101_shown_wide, card1_card_core1_regs_fifo2_reg_word100_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word101_read_chain
@@ -4258,48 +4390,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word101_shown};
+assign card1_card_core1_regs_fifo2_reg_word101_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word101_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_mine_write = (card1_card_core1_regs_fifo2_written_addr == 108);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word101_shown_wide, card1_card_core1_regs_fifo2_reg_word101_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word101_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word101_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word101_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word101_written = ((card1_card_core1_regs_fifo2_reg_word101_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_honoured = card1_card_core1_regs_fifo2_reg_word101_written[7-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word101_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word101__store69_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word101_shown <= 0;
-        card1_card_core1_regs_fifo2_reg_word101_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word101_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word101_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word101_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word101_shown <= card1_card_core1_regs_fifo2_reg_word101_honoured;
-            card1_card_core1_regs_fifo2_reg_word101_clamped <= card1_card_core1_regs_fifo2_reg_word101_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word102_mine = (card1_pci_slave2_pci_requests2_local_addr == 112);
+assign card1_card_core1_regs_fifo2_reg_word102_mine = (card1_pci_slave2_pci_requests2_local_addr == 96);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word102_mine, card1_card_core1_regs_fifo2_reg_word102_shown_wide, card1_card_core1_regs_fifo2_reg_word101_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word102_read_chain
@@ -4313,59 +4412,51 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word102_shown};
+assign card1_card_core1_regs_fifo2_reg_word102_shown_wide = {30'h0, card1_card_core1_regs_fifo2_machine_control};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_mine_write = (card1_card_core1_regs_fifo2_written_addr == 112);
+assign card1_card_core1_regs_fifo2_reg_word102_mine_write = (card1_card_core1_regs_fifo2_written_addr == 96);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word102_shown_wide, card1_card_core1_regs_fifo2_reg_word102_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word102_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word102_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word102_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+        card1_card_core1_regs_fifo2_reg_word102_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word102_written = ((card1_card_core1_regs_fifo2_reg_word102_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word102_written = ((card1_card_core1_regs_fifo2_reg_word102_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word102_written) begin: card1_card_core1_regs_fifo2_reg_word102__limit70_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word102_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word102_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word102_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word102_written[32-1:4] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word102_honoured = 15;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word102_honoured = card1_card_core1_regs_fifo2_reg_word102_written[4-1:0];
-        card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word102_honoured = card1_card_core1_regs_fifo2_reg_word102_written[2-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word102_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word102__store70_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word102__store72_hold_rw_cleared
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word102_shown <= 3;
+        card1_card_core1_regs_fifo2_machine_control <= 0;
         card1_card_core1_regs_fifo2_reg_word102_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word102_clamped <= 1'b0;
         if (((card1_card_core1_regs_fifo2_reg_word102_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word102_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word102_shown <= card1_card_core1_regs_fifo2_reg_word102_honoured;
+            card1_card_core1_regs_fifo2_machine_control <= (card1_card_core1_regs_fifo2_reg_word102_honoured & (~(card1_card_core1_regs_fifo2_drive_cleared & 1)));
             card1_card_core1_regs_fifo2_reg_word102_clamped <= card1_card_core1_regs_fifo2_reg_word102_out_of_range;
+        end
+        else begin
+            card1_card_core1_regs_fifo2_machine_control <= (card1_card_core1_regs_fifo2_machine_control & (~(card1_card_core1_regs_fifo2_drive_cleared & 1)));
         end
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word103_mine = (card1_pci_slave2_pci_requests2_local_addr == 116);
+assign card1_card_core1_regs_fifo2_reg_word103_mine = (card1_pci_slave2_pci_requests2_local_addr == 100);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word103_mine, card1_card_core1_regs_fifo2_reg_word103_shown_wide, card1_card_core1_regs_fifo2_reg_word102_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word103_read_chain
@@ -4379,59 +4470,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word103_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word103_shown};
+assign card1_card_core1_regs_fifo2_reg_word103_shown_wide = {12'h0, card1_card_core1_regs_fifo2_reg_word103_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word103_mine_write = (card1_card_core1_regs_fifo2_written_addr == 116);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word103_shown_wide, card1_card_core1_regs_fifo2_reg_word103_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word103_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word103_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word103_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word103_written = ((card1_card_core1_regs_fifo2_reg_word103_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word103_written) begin: card1_card_core1_regs_fifo2_reg_word103__limit71_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word103_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word103_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word103_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word103_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word103_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word103_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word103_honoured = card1_card_core1_regs_fifo2_reg_word103_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word103_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word103_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word103__store71_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word103_shown <= 1;
-        card1_card_core1_regs_fifo2_reg_word103_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word103_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word103_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word103_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word103_shown <= card1_card_core1_regs_fifo2_reg_word103_honoured;
-            card1_card_core1_regs_fifo2_reg_word103_clamped <= card1_card_core1_regs_fifo2_reg_word103_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word104_mine = (card1_pci_slave2_pci_requests2_local_addr == 120);
+assign card1_card_core1_regs_fifo2_reg_word104_mine = (card1_pci_slave2_pci_requests2_local_addr == 104);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word104_mine, card1_card_core1_regs_fifo2_reg_word104_shown_wide, card1_card_core1_regs_fifo2_reg_word103_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word104_read_chain
@@ -4445,53 +4492,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_shown_wide = {8'h0, card1_card_core1_regs_fifo2_watchdog_left};
+assign card1_card_core1_regs_fifo2_reg_word104_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word104_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_mine_write = (card1_card_core1_regs_fifo2_written_addr == 120);
+assign card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word104_written) begin: card1_card_core1_regs_fifo2_reg_word104__limit72_clamp_above_power_of_two
-    card1_card_core1_regs_fifo2_reg_word104_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word104_written[32-1:24] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word104_honoured = 16777215;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word104_honoured = card1_card_core1_regs_fifo2_reg_word104_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word104_out_of_range = 1'b0;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word104_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word104__store72_pulse_on_write
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word104__store72_word_value <= 0;
-        card1_card_core1_regs_fifo2_reg_word104_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word104_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word104_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word104__store72_word_value <= card1_card_core1_regs_fifo2_reg_word104_honoured;
-            card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word104_clamped <= card1_card_core1_regs_fifo2_reg_word104_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word105_mine = (card1_pci_slave2_pci_requests2_local_addr == 124);
+assign card1_card_core1_regs_fifo2_reg_word105_mine = (card1_pci_slave2_pci_requests2_local_addr == 108);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word105_mine, card1_card_core1_regs_fifo2_reg_word105_shown_wide, card1_card_core1_regs_fifo2_reg_word104_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word105_read_chain
@@ -4505,37 +4514,40 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word105_shown};
+assign card1_card_core1_regs_fifo2_reg_word105_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word105_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_mine_write = (card1_card_core1_regs_fifo2_written_addr == 124);
+assign card1_card_core1_regs_fifo2_reg_word105_mine_write = (card1_card_core1_regs_fifo2_written_addr == 108);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word105_shown_wide, card1_card_core1_regs_fifo2_reg_word105_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word105_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word105_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word105_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word105_written = ((card1_card_core1_regs_fifo2_reg_word105_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_written = (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word105_honoured = card1_card_core1_regs_fifo2_reg_word105_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word105_honoured = card1_card_core1_regs_fifo2_reg_word105_written[7-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word105_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word105__store73_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word105__store73_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word105__store73_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word105_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word105_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word105_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word105_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word105__store73_word_value <= card1_card_core1_regs_fifo2_reg_word105_honoured;
-            card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe <= 1'b1;
+        if (((card1_card_core1_regs_fifo2_reg_word105_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word105_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word105_shown <= card1_card_core1_regs_fifo2_reg_word105_honoured;
             card1_card_core1_regs_fifo2_reg_word105_clamped <= card1_card_core1_regs_fifo2_reg_word105_out_of_range;
         end
     end
@@ -4543,7 +4555,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_mine = (card1_pci_slave2_pci_requests2_local_addr == 128);
+assign card1_card_core1_regs_fifo2_reg_word106_mine = (card1_pci_slave2_pci_requests2_local_addr == 112);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word106_mine, card1_card_core1_regs_fifo2_reg_word106_shown_wide, card1_card_core1_regs_fifo2_reg_word105_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word106_read_chain
@@ -4557,15 +4569,59 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_shown_wide = {26'h0, card1_card_core1_regs_fifo2_reg_word106_shown};
+assign card1_card_core1_regs_fifo2_reg_word106_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word106_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word106_mine_write = (card1_card_core1_regs_fifo2_written_addr == 112);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word106_shown_wide, card1_card_core1_regs_fifo2_reg_word106_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word106_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word106_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word106_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word106_written = ((card1_card_core1_regs_fifo2_reg_word106_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word106_written) begin: card1_card_core1_regs_fifo2_reg_word106__limit74_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word106_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word106_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word106_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word106_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word106_written[32-1:4] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word106_honoured = 15;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word106_honoured = card1_card_core1_regs_fifo2_reg_word106_written[4-1:0];
+        card1_card_core1_regs_fifo2_reg_word106_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word107_mine = (card1_pci_slave2_pci_requests2_local_addr == 132);
+assign card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word106_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word106__store74_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word106_shown <= 3;
+        card1_card_core1_regs_fifo2_reg_word106_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word106_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word106_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word106_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word106_shown <= card1_card_core1_regs_fifo2_reg_word106_honoured;
+            card1_card_core1_regs_fifo2_reg_word106_clamped <= card1_card_core1_regs_fifo2_reg_word106_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word107_mine = (card1_pci_slave2_pci_requests2_local_addr == 116);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word107_mine, card1_card_core1_regs_fifo2_reg_word107_shown_wide, card1_card_core1_regs_fifo2_reg_word106_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word107_read_chain
@@ -4583,7 +4639,7 @@ assign card1_card_core1_regs_fifo2_reg_word107_shown_wide = {16'h0, card1_card_c
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word107_mine_write = (card1_card_core1_regs_fifo2_written_addr == 132);
+assign card1_card_core1_regs_fifo2_reg_word107_mine_write = (card1_card_core1_regs_fifo2_written_addr == 116);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word107_shown_wide, card1_card_core1_regs_fifo2_reg_word107_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word107_merge_bytes
@@ -4596,7 +4652,7 @@ always @(card1_card_core1_regs_fifo2_reg_word107_shown_wide, card1_card_core1_re
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word107_written) begin: card1_card_core1_regs_fifo2_reg_word107__limit74_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word107_written) begin: card1_card_core1_regs_fifo2_reg_word107__limit75_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word107_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word107_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word107_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word107_honoured = 1;
@@ -4615,9 +4671,9 @@ end
 assign card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word107_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word107__store74_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word107__store75_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word107_shown <= 100;
+        card1_card_core1_regs_fifo2_reg_word107_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word107_clamped <= 0;
     end
     else begin
@@ -4631,7 +4687,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word108_mine = (card1_pci_slave2_pci_requests2_local_addr == 136);
+assign card1_card_core1_regs_fifo2_reg_word108_mine = (card1_pci_slave2_pci_requests2_local_addr == 120);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word108_mine, card1_card_core1_regs_fifo2_reg_word108_shown_wide, card1_card_core1_regs_fifo2_reg_word107_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word108_read_chain
@@ -4645,33 +4701,24 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word108_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word108_shown};
+assign card1_card_core1_regs_fifo2_reg_word108_shown_wide = {8'h0, card1_card_core1_regs_fifo2_watchdog_left};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word108_mine_write = (card1_card_core1_regs_fifo2_written_addr == 136);
+assign card1_card_core1_regs_fifo2_reg_word108_mine_write = (card1_card_core1_regs_fifo2_written_addr == 120);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word108_shown_wide, card1_card_core1_regs_fifo2_reg_word108_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word108_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word108_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word108_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word108_written = ((card1_card_core1_regs_fifo2_reg_word108_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word108_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word108_written) begin: card1_card_core1_regs_fifo2_reg_word108__limit75_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word108_written) begin: card1_card_core1_regs_fifo2_reg_word108__limit76_clamp_above_power_of_two
     card1_card_core1_regs_fifo2_reg_word108_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word108_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word108_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word108_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word108_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word108_honoured = 65535;
+    if ((card1_card_core1_regs_fifo2_reg_word108_written[32-1:24] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word108_honoured = 16777215;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word108_honoured = card1_card_core1_regs_fifo2_reg_word108_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word108_honoured = card1_card_core1_regs_fifo2_reg_word108_written[24-1:0];
         card1_card_core1_regs_fifo2_reg_word108_out_of_range = 1'b0;
     end
 end
@@ -4681,15 +4728,18 @@ end
 assign card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word108_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word108__store75_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word108__store76_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word108_shown <= 1000;
+        card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word108__store76_word_value <= 0;
         card1_card_core1_regs_fifo2_reg_word108_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word108_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word108_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word108_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word108_shown <= card1_card_core1_regs_fifo2_reg_word108_honoured;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word108_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word108__store76_word_value <= card1_card_core1_regs_fifo2_reg_word108_honoured;
+            card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word108_clamped <= card1_card_core1_regs_fifo2_reg_word108_out_of_range;
         end
     end
@@ -4697,7 +4747,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_mine = (card1_pci_slave2_pci_requests2_local_addr == 140);
+assign card1_card_core1_regs_fifo2_reg_word109_mine = (card1_pci_slave2_pci_requests2_local_addr == 124);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word109_mine, card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word108_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word109_read_chain
@@ -4711,48 +4761,37 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word109_shown};
+assign card1_card_core1_regs_fifo2_reg_word109_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word109_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_mine_write = (card1_card_core1_regs_fifo2_written_addr == 140);
+assign card1_card_core1_regs_fifo2_reg_word109_mine_write = (card1_card_core1_regs_fifo2_written_addr == 124);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word109_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word109_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word109_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word109_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word109_written = ((card1_card_core1_regs_fifo2_reg_word109_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word109_written = (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word109_written) begin: card1_card_core1_regs_fifo2_reg_word109__limit76_clamp_above_power_of_two
-    card1_card_core1_regs_fifo2_reg_word109_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word109_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word109_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word109_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_written[2-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word109_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word109__store76_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word109__store77_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word109_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word109__store77_word_value <= 0;
         card1_card_core1_regs_fifo2_reg_word109_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word109_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word109_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word109_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word109_shown <= card1_card_core1_regs_fifo2_reg_word109_honoured;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word109_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word109__store77_word_value <= card1_card_core1_regs_fifo2_reg_word109_honoured;
+            card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word109_clamped <= card1_card_core1_regs_fifo2_reg_word109_out_of_range;
         end
     end
@@ -4760,66 +4799,412 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_mine = (card1_pci_slave2_pci_requests2_local_addr == 144);
+assign card1_card_core1_regs_fifo2_reg_word110_mine = (card1_pci_slave2_pci_requests2_local_addr == 128);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word110_mine, card1_card_core1_regs_fifo2_reg_word110_shown_wide, card1_card_core1_regs_fifo2_reg_word109_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word110_read_chain
     if (card1_card_core1_regs_fifo2_reg_word110_mine) begin
-        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word109_chain_out_data | card1_card_core1_regs_fifo2_reg_word110_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word110_chain_out_data = (card1_card_core1_regs_fifo2_reg_word109_chain_out_data | card1_card_core1_regs_fifo2_reg_word110_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word109_chain_out_data;
+        card1_card_core1_regs_fifo2_reg_word110_chain_out_data = card1_card_core1_regs_fifo2_reg_word109_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_shown_wide = {9'h0, card1_card_core1_regs_fifo2_reg_word110_shown};
+assign card1_card_core1_regs_fifo2_reg_word110_shown_wide = {26'h0, card1_card_core1_regs_fifo2_reg_word110_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_mine_write = (card1_card_core1_regs_fifo2_written_addr == 144);
+assign card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped;
 
 
-always @(card1_card_core1_regs_fifo2_reg_word110_shown_wide, card1_card_core1_regs_fifo2_reg_word110_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word110_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word110_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word110_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word111_mine = (card1_pci_slave2_pci_requests2_local_addr == 132);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word111_mine, card1_card_core1_regs_fifo2_reg_word111_shown_wide, card1_card_core1_regs_fifo2_reg_word110_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word111_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word111_mine) begin
+        card1_card_core1_regs_fifo2_reg_word111_chain_out_data = (card1_card_core1_regs_fifo2_reg_word110_chain_out_data | card1_card_core1_regs_fifo2_reg_word111_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word110_written = ((card1_card_core1_regs_fifo2_reg_word110_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word110_written) begin: card1_card_core1_regs_fifo2_reg_word110__limit77_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word110_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word110_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word110_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word110_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word110_written[32-1:23] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word110_honoured = 8388607;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word110_honoured = card1_card_core1_regs_fifo2_reg_word110_written[23-1:0];
-        card1_card_core1_regs_fifo2_reg_word110_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word111_chain_out_data = card1_card_core1_regs_fifo2_reg_word110_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word110_clamped);
+assign card1_card_core1_regs_fifo2_reg_word111_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word111_shown};
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word110__store77_hold_rw
+
+assign card1_card_core1_regs_fifo2_reg_word111_mine_write = (card1_card_core1_regs_fifo2_written_addr == 132);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word111_shown_wide, card1_card_core1_regs_fifo2_reg_word111_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word111_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word111_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word111_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word111_written = ((card1_card_core1_regs_fifo2_reg_word111_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word111_written) begin: card1_card_core1_regs_fifo2_reg_word111__limit78_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word111_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word111_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word111_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word111_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word111_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word111_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word111_honoured = card1_card_core1_regs_fifo2_reg_word111_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word111_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word111_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word111_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word111__store78_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word110_shown <= 65535;
-        card1_card_core1_regs_fifo2_reg_word110_clamped <= 0;
+        card1_card_core1_regs_fifo2_reg_word111_shown <= 100;
+        card1_card_core1_regs_fifo2_reg_word111_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word110_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word110_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word110_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word110_shown <= card1_card_core1_regs_fifo2_reg_word110_honoured;
-            card1_card_core1_regs_fifo2_reg_word110_clamped <= card1_card_core1_regs_fifo2_reg_word110_out_of_range;
+        card1_card_core1_regs_fifo2_reg_word111_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word111_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word111_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word111_shown <= card1_card_core1_regs_fifo2_reg_word111_honoured;
+            card1_card_core1_regs_fifo2_reg_word111_clamped <= card1_card_core1_regs_fifo2_reg_word111_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word112_mine = (card1_pci_slave2_pci_requests2_local_addr == 136);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word112_mine, card1_card_core1_regs_fifo2_reg_word112_shown_wide, card1_card_core1_regs_fifo2_reg_word111_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word112_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word112_mine) begin
+        card1_card_core1_regs_fifo2_reg_word112_chain_out_data = (card1_card_core1_regs_fifo2_reg_word111_chain_out_data | card1_card_core1_regs_fifo2_reg_word112_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word112_chain_out_data = card1_card_core1_regs_fifo2_reg_word111_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word112_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word112_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word112_mine_write = (card1_card_core1_regs_fifo2_written_addr == 136);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word112_shown_wide, card1_card_core1_regs_fifo2_reg_word112_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word112_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word112_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word112_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word112_written = ((card1_card_core1_regs_fifo2_reg_word112_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word112_written) begin: card1_card_core1_regs_fifo2_reg_word112__limit79_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word112_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word112_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word112_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word112_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word112_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word112_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word112_honoured = card1_card_core1_regs_fifo2_reg_word112_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word112_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word111_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word112_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word112__store79_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word112_shown <= 1000;
+        card1_card_core1_regs_fifo2_reg_word112_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word112_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word112_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word112_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word112_shown <= card1_card_core1_regs_fifo2_reg_word112_honoured;
+            card1_card_core1_regs_fifo2_reg_word112_clamped <= card1_card_core1_regs_fifo2_reg_word112_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word113_mine = (card1_pci_slave2_pci_requests2_local_addr == 140);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word113_mine, card1_card_core1_regs_fifo2_reg_word113_shown_wide, card1_card_core1_regs_fifo2_reg_word112_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word113_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word113_mine) begin
+        card1_card_core1_regs_fifo2_reg_word113_chain_out_data = (card1_card_core1_regs_fifo2_reg_word112_chain_out_data | card1_card_core1_regs_fifo2_reg_word113_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word113_chain_out_data = card1_card_core1_regs_fifo2_reg_word112_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word113_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word113_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word113_mine_write = (card1_card_core1_regs_fifo2_written_addr == 140);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word113_shown_wide, card1_card_core1_regs_fifo2_reg_word113_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word113_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word113_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word113_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word113_written = ((card1_card_core1_regs_fifo2_reg_word113_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word113_written) begin: card1_card_core1_regs_fifo2_reg_word113__limit80_clamp_above_power_of_two
+    card1_card_core1_regs_fifo2_reg_word113_out_of_range = 1'b1;
+    if ((card1_card_core1_regs_fifo2_reg_word113_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word113_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word113_honoured = card1_card_core1_regs_fifo2_reg_word113_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word113_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word113_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word113_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word113__store80_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word113_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word113_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word113_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word113_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word113_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word113_shown <= card1_card_core1_regs_fifo2_reg_word113_honoured;
+            card1_card_core1_regs_fifo2_reg_word113_clamped <= card1_card_core1_regs_fifo2_reg_word113_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word114_mine = (card1_pci_slave2_pci_requests2_local_addr == 144);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word114_mine, card1_card_core1_regs_fifo2_reg_word114_shown_wide, card1_card_core1_regs_fifo2_reg_word113_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word114_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word114_mine) begin
+        card1_card_core1_regs_fifo2_reg_word114_chain_out_data = (card1_card_core1_regs_fifo2_reg_word113_chain_out_data | card1_card_core1_regs_fifo2_reg_word114_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word114_chain_out_data = card1_card_core1_regs_fifo2_reg_word113_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word114_shown_wide = {9'h0, card1_card_core1_regs_fifo2_reg_word114_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word114_mine_write = (card1_card_core1_regs_fifo2_written_addr == 144);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word114_shown_wide, card1_card_core1_regs_fifo2_reg_word114_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word114_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word114_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word114_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word114_written = ((card1_card_core1_regs_fifo2_reg_word114_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word114_written) begin: card1_card_core1_regs_fifo2_reg_word114__limit81_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word114_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word114_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word114_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word114_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word114_written[32-1:23] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word114_honoured = 8388607;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word114_honoured = card1_card_core1_regs_fifo2_reg_word114_written[23-1:0];
+        card1_card_core1_regs_fifo2_reg_word114_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word114_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word113_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word114_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word114__store81_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word114_shown <= 65535;
+        card1_card_core1_regs_fifo2_reg_word114_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word114_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word114_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word114_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word114_shown <= card1_card_core1_regs_fifo2_reg_word114_honoured;
+            card1_card_core1_regs_fifo2_reg_word114_clamped <= card1_card_core1_regs_fifo2_reg_word114_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word115_mine = (card1_pci_slave2_pci_requests2_local_addr == 148);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word115_mine, card1_card_core1_regs_fifo2_reg_word115_shown_wide, card1_card_core1_regs_fifo2_reg_word114_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word115_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word115_mine) begin
+        card1_card_core1_regs_fifo2_reg_word115_chain_out_data = (card1_card_core1_regs_fifo2_reg_word114_chain_out_data | card1_card_core1_regs_fifo2_reg_word115_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word115_chain_out_data = card1_card_core1_regs_fifo2_reg_word114_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word115_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word115_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word115_mine_write = (card1_card_core1_regs_fifo2_written_addr == 148);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word115_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word115_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 8))) begin
+        card1_card_core1_regs_fifo2_reg_word115_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word115_written = ((card1_card_core1_regs_fifo2_reg_word115_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word115_written) begin: card1_card_core1_regs_fifo2_reg_word115__limit82_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word115_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word115_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word115_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word115_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word115_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word115_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word115_honoured = card1_card_core1_regs_fifo2_reg_word115_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word115_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word115_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word114_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word115_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word115__store82_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word115_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word115_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word115_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 8)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word115_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word115_shown <= card1_card_core1_regs_fifo2_reg_word115_honoured;
+            card1_card_core1_regs_fifo2_reg_word115_clamped <= card1_card_core1_regs_fifo2_reg_word115_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word116_mine = (card1_pci_slave2_pci_requests2_local_addr == 152);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word116_mine, card1_card_core1_regs_fifo2_reg_word116_shown_wide, card1_card_core1_regs_fifo2_reg_word115_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word116_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word116_mine) begin
+        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word115_chain_out_data | card1_card_core1_regs_fifo2_reg_word116_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word115_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word116_shown_wide = {30'h0, card1_card_core1_regs_fifo2_step_mode};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word116_mine_write = (card1_card_core1_regs_fifo2_written_addr == 152);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word116_shown_wide, card1_card_core1_regs_fifo2_reg_word116_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word116_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word116_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word116_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word116_written = ((card1_card_core1_regs_fifo2_reg_word116_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word116_written) begin: card1_card_core1_regs_fifo2_reg_word116__limit83_clamp_above
+    card1_card_core1_regs_fifo2_reg_word116_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word116_written[32-1:2] != 0) || (card1_card_core1_regs_fifo2_reg_word116_written[2-1:0] > 2))) begin
+        card1_card_core1_regs_fifo2_reg_word116_honoured = 2;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word116_honoured = card1_card_core1_regs_fifo2_reg_word116_written[2-1:0];
+        card1_card_core1_regs_fifo2_reg_word116_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word115_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word116_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word116__store83_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_step_mode <= 0;
+        card1_card_core1_regs_fifo2_reg_word116_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word116_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word116_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word116_mine_write))) begin
+            card1_card_core1_regs_fifo2_step_mode <= card1_card_core1_regs_fifo2_reg_word116_honoured;
+            card1_card_core1_regs_fifo2_reg_word116_clamped <= card1_card_core1_regs_fifo2_reg_word116_out_of_range;
         end
     end
 end
@@ -5019,7 +5404,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
         5: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
         6: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
         7: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
-        8: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_set_known = 1;
         9: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
         10: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
         11: card1_card_core1_regs_fifo2_sequencer2_set_known = 0;
@@ -5322,13 +5707,13 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
         card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word84_shown;
-        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word85_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word88_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word89_shown;
         card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_ramp_step;
         card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_ramp_step == 0);
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word84_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_ramp_step}));
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word84_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word85_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
+        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word88_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_ramp_step}));
+        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word88_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
+        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word89_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
     end
 end
 
@@ -5461,9 +5846,9 @@ assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_direct_pulse4_stepping = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse4_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse4_waiting) && card1_card_core1_regs_fifo2_direct_ready && ((card1_card_core1_regs_fifo2_direct_pulse4_command_retarget && (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0)) || ((!card1_card_core1_regs_fifo2_direct_pulse4_command_retarget) && card1_card_core1_regs_fifo2_direct_pulse4_pending)));
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse4_command_retarget, card1_card_core1_regs_fifo2_reg_word93_shown, card1_card_core1_regs_fifo2_direct_pulse4_stepping, card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse4_command_retarget, card1_card_core1_regs_fifo2_reg_word97_shown, card1_card_core1_regs_fifo2_direct_pulse4_stepping, card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
     if (((!card1_card_core1_regs_fifo2_direct_pulse4_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse4_command_retarget))) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word93_shown;
+        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word97_shown;
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
     end
     else if ((card1_card_core1_regs_fifo2_direct_pulse4_command_count < 0)) begin
@@ -5503,18 +5888,18 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_dir_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
-        card1_card_core1_regs_fifo2_reg_word93_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word97_shown <= 0;
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         if (card1_card_core1_regs_fifo2_direct_clear) begin
-            card1_card_core1_regs_fifo2_reg_word93_shown <= 0;
+            card1_card_core1_regs_fifo2_reg_word97_shown <= 0;
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_command_load) begin
-            card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+            card1_card_core1_regs_fifo2_reg_word97_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
             card1_card_core1_regs_fifo2_direct_dir_x <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count >= 0);
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
@@ -5522,19 +5907,19 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_stepping) begin
             card1_card_core1_regs_fifo2_direct_request_x <= 1;
-            card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+            card1_card_core1_regs_fifo2_reg_word97_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
             if (card1_card_core1_regs_fifo2_direct_pulse4_command_retarget) begin
                 card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_counted != 0);
             end
             else begin
-                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word93_shown != 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word97_shown != 1);
             end
             card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
             card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_direct_pulse4_command_period != 1);
         end
         else begin
             if (card1_card_core1_regs_fifo2_direct_pulse4_command_retarget) begin
-                card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+                card1_card_core1_regs_fifo2_reg_word97_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
                 card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0);
             end
             if (card1_card_core1_regs_fifo2_direct_pulse4_waiting) begin
@@ -5554,9 +5939,9 @@ assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_direct_pulse5_stepping = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse5_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse5_waiting) && card1_card_core1_regs_fifo2_direct_ready && ((card1_card_core1_regs_fifo2_direct_pulse5_command_retarget && (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0)) || ((!card1_card_core1_regs_fifo2_direct_pulse5_command_retarget) && card1_card_core1_regs_fifo2_direct_pulse5_pending)));
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse5_command_retarget, card1_card_core1_regs_fifo2_reg_word94_shown, card1_card_core1_regs_fifo2_direct_pulse5_stepping, card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse5_command_retarget, card1_card_core1_regs_fifo2_reg_word98_shown, card1_card_core1_regs_fifo2_direct_pulse5_stepping, card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
     if (((!card1_card_core1_regs_fifo2_direct_pulse5_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse5_command_retarget))) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word94_shown;
+        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word98_shown;
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
     end
     else if ((card1_card_core1_regs_fifo2_direct_pulse5_command_count < 0)) begin
@@ -5596,18 +5981,18 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_dir_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
-        card1_card_core1_regs_fifo2_reg_word94_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word98_shown <= 0;
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         if (card1_card_core1_regs_fifo2_direct_clear) begin
-            card1_card_core1_regs_fifo2_reg_word94_shown <= 0;
+            card1_card_core1_regs_fifo2_reg_word98_shown <= 0;
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_command_load) begin
-            card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+            card1_card_core1_regs_fifo2_reg_word98_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
             card1_card_core1_regs_fifo2_direct_dir_y <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count >= 0);
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
@@ -5615,19 +6000,19 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_stepping) begin
             card1_card_core1_regs_fifo2_direct_request_y <= 1;
-            card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+            card1_card_core1_regs_fifo2_reg_word98_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
             if (card1_card_core1_regs_fifo2_direct_pulse5_command_retarget) begin
                 card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_counted != 0);
             end
             else begin
-                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word94_shown != 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word98_shown != 1);
             end
             card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
             card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_command_period != 1);
         end
         else begin
             if (card1_card_core1_regs_fifo2_direct_pulse5_command_retarget) begin
-                card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+                card1_card_core1_regs_fifo2_reg_word98_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
                 card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0);
             end
             if (card1_card_core1_regs_fifo2_direct_pulse5_waiting) begin
@@ -5641,20 +6026,20 @@ end
 
 
 assign card1_card_core1_regs_fifo2_out_ready = ($signed({1'b0, card1_card_core1_regs_fifo2_pulse_out2_count}) <= (4 - 2));
-assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) || (card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b00) || motor_step_x || motor_step_y);
-assign card1_card_core1_regs_fifo2_pulse_out2_control_pulsing = (card1_card_core1_regs_fifo2_pulse_out2_take || card1_card_core1_regs_fifo2_pulse_out2_level_x || card1_card_core1_regs_fifo2_pulse_out2_level_y || motor_step_x || motor_step_y);
+assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) || (card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b00) || card1_card_core1_regs_fifo2_pulse_out2_pulse_x || card1_card_core1_regs_fifo2_pulse_out2_pulse_y);
+assign card1_card_core1_regs_fifo2_pulse_out2_control_pulsing = (card1_card_core1_regs_fifo2_pulse_out2_take || card1_card_core1_regs_fifo2_pulse_out2_level_x || card1_card_core1_regs_fifo2_pulse_out2_level_y || card1_card_core1_regs_fifo2_pulse_out2_pulse_x || card1_card_core1_regs_fifo2_pulse_out2_pulse_y);
 
 
 
 assign card1_card_core1_regs_fifo2_pulse_out2_head = card1_card_core1_regs_fifo2_pulse_out2_queue[0];
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_reg_word88_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_reg_word87_shown, card1_card_core1_regs_fifo2_pulse_clear) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_reg_word92_shown, card1_card_core1_regs_fifo2_reg_word115_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_clear) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
     card1_card_core1_regs_fifo2_pulse_out2_turn = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) && ((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
     card1_card_core1_regs_fifo2_pulse_out2_take = 1'b0;
-    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_regs_fifo2_pulse_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word87_shown))) begin
+    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_regs_fifo2_pulse_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word115_shown))) begin
         if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b01)) begin
-            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word88_shown);
+            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word92_shown);
         end
         else if ((card1_card_core1_regs_fifo2_pulse_out2_count != 0)) begin
             card1_card_core1_regs_fifo2_pulse_out2_take = (!((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
@@ -5663,9 +6048,9 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_r
 end
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_reg_word87_shown, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_take, card1_card_core1_regs_fifo2_reg_word89_shown) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
-    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word89_shown)));
-    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word87_shown));
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_reg_word91_shown, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_take, card1_card_core1_regs_fifo2_reg_word93_shown) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
+    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word93_shown)));
+    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word91_shown));
     card1_card_core1_regs_fifo2_pulse_out2_phase_step = 0;
     if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks != 255)) begin
         card1_card_core1_regs_fifo2_pulse_out2_phase_step = 1;
@@ -5789,20 +6174,76 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_re
 end
 
 
+always @(card1_card_core1_regs_fifo2_reg_word94_shown[1], card1_card_core1_regs_fifo2_reg_word94_shown[0], card1_card_core1_regs_fifo2_pulse_out2_level_y, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_quad_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_pulse_out2_pulse_x, card1_card_core1_regs_fifo2_pulse_out2_level_x, card1_card_core1_regs_fifo2_pulse_out2_quad_y, card1_card_core1_regs_fifo2_pulse_out2_pulse_y) begin: card1_card_core1_regs_fifo2_pulse_out2_pin_direction
+    card1_card_core1_regs_fifo2_pulse_out2_up_x = (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word94_shown[0]);
+    card1_card_core1_regs_fifo2_pulse_out2_up_y = (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word94_shown[1]);
+    card1_card_core1_regs_fifo2_pulse_out2_quad_next_x = card1_card_core1_regs_fifo2_pulse_out2_quad_x;
+    if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_x))) begin
+        if ((card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word94_shown[0])) begin
+            card1_card_core1_regs_fifo2_pulse_out2_quad_next_x = (card1_card_core1_regs_fifo2_pulse_out2_quad_x + 1);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_pulse_out2_quad_next_x = (card1_card_core1_regs_fifo2_pulse_out2_quad_x - 1);
+        end
+    end
+    card1_card_core1_regs_fifo2_pulse_out2_quad_next_y = card1_card_core1_regs_fifo2_pulse_out2_quad_y;
+    if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_y))) begin
+        if ((card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word94_shown[1])) begin
+            card1_card_core1_regs_fifo2_pulse_out2_quad_next_y = (card1_card_core1_regs_fifo2_pulse_out2_quad_y + 1);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_pulse_out2_quad_next_y = (card1_card_core1_regs_fifo2_pulse_out2_quad_y - 1);
+        end
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_drive_pins
     if (reset == 0) begin
         motor_step_x <= 0;
         motor_dir_x <= 0;
         motor_dir_y <= 0;
-        card1_card_core1_regs_fifo2_position_y <= 0;
-        card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_quad_x <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_pulse_x <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_quad_y <= 0;
         motor_step_y <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_pulse_y <= 0;
     end
     else begin
-        motor_step_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
-        motor_step_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
-        motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word90_shown[0]);
-        motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word90_shown[1]);
+        card1_card_core1_regs_fifo2_pulse_out2_pulse_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
+        card1_card_core1_regs_fifo2_pulse_out2_pulse_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
+        card1_card_core1_regs_fifo2_pulse_out2_quad_x <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_x;
+        card1_card_core1_regs_fifo2_pulse_out2_quad_y <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_y;
+        case (card1_card_core1_regs_fifo2_step_mode)
+            'h1: begin
+                motor_step_x <= (card1_card_core1_regs_fifo2_pulse_out2_level_x && card1_card_core1_regs_fifo2_pulse_out2_up_x);
+                motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_up_x));
+                motor_step_y <= (card1_card_core1_regs_fifo2_pulse_out2_level_y && card1_card_core1_regs_fifo2_pulse_out2_up_y);
+                motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_level_y && (!card1_card_core1_regs_fifo2_pulse_out2_up_y));
+            end
+            'h2: begin
+                motor_step_x <= (card1_card_core1_regs_fifo2_pulse_out2_quad_next_x[0] ^ card1_card_core1_regs_fifo2_pulse_out2_quad_next_x[1]);
+                motor_dir_x <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_x[1];
+                motor_step_y <= (card1_card_core1_regs_fifo2_pulse_out2_quad_next_y[0] ^ card1_card_core1_regs_fifo2_pulse_out2_quad_next_y[1]);
+                motor_dir_y <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_y[1];
+            end
+            default: begin
+                motor_step_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
+                motor_dir_x <= card1_card_core1_regs_fifo2_pulse_out2_up_x;
+                motor_step_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
+                motor_dir_y <= card1_card_core1_regs_fifo2_pulse_out2_up_y;
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_count_positions
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_position_y <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
+    end
+    else begin
         if (card1_card_core1_regs_fifo2_clear_position) begin
             card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
             card1_card_core1_regs_fifo2_position_y <= 0;
@@ -5810,20 +6251,20 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
         else begin
             if (card1_card_core1_regs_fifo2_home_zero[0]) begin
                 card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
-                if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!motor_step_x))) begin
+                if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_x))) begin
                     card1_card_core1_regs_fifo2_pulse_out2_position_x <= card1_card_core1_regs_fifo2_pulse_out2_delta_x;
                 end
             end
-            else if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!motor_step_x))) begin
+            else if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_x))) begin
                 card1_card_core1_regs_fifo2_pulse_out2_position_x <= (card1_card_core1_regs_fifo2_pulse_out2_position_x + card1_card_core1_regs_fifo2_pulse_out2_delta_x);
             end
             if (card1_card_core1_regs_fifo2_home_zero[1]) begin
                 card1_card_core1_regs_fifo2_position_y <= 0;
-                if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!motor_step_y))) begin
+                if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_y))) begin
                     card1_card_core1_regs_fifo2_position_y <= card1_card_core1_regs_fifo2_pulse_out2_delta_y;
                 end
             end
-            else if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!motor_step_y))) begin
+            else if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_y))) begin
                 card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y + card1_card_core1_regs_fifo2_pulse_out2_delta_y);
             end
         end
@@ -5844,7 +6285,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2_level = (card1_card_core1_regs_fifo2_input_filter2_inputs_raw ^ card1_card_core1_regs_fifo2_reg_word101_shown);
+assign card1_card_core1_regs_fifo2_input_filter2_level = (card1_card_core1_regs_fifo2_input_filter2_inputs_raw ^ card1_card_core1_regs_fifo2_reg_word105_shown);
 assign card1_card_core1_regs_fifo2_input_filter2_sample = (card1_card_core1_regs_fifo2_input_filter2_prescale == 0);
 
 
@@ -5854,7 +6295,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_
     end
     else begin
         if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
-            card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_reg_word103_shown - 1);
+            card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_reg_word107_shown - 1);
         end
         else begin
             card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_input_filter2_prescale - 1);
@@ -5896,7 +6337,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count14_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[0] != card1_card_core1_regs_fifo2_conditioning_active[0]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count14_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count14_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[0] != card1_card_core1_regs_fifo2_conditioning_active[0]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count14_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count15_count_samples
@@ -5920,7 +6361,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count15_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[1] != card1_card_core1_regs_fifo2_conditioning_active[1]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count15_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count15_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[1] != card1_card_core1_regs_fifo2_conditioning_active[1]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count15_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count16_count_samples
@@ -5944,7 +6385,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count16_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[2] != card1_card_core1_regs_fifo2_conditioning_active[2]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count16_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count16_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[2] != card1_card_core1_regs_fifo2_conditioning_active[2]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count16_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count17_count_samples
@@ -5968,7 +6409,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count17_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[3] != card1_card_core1_regs_fifo2_conditioning_active[3]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count17_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count17_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[3] != card1_card_core1_regs_fifo2_conditioning_active[3]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count17_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count18_count_samples
@@ -5992,7 +6433,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count18_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[4] != card1_card_core1_regs_fifo2_conditioning_active[4]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count18_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count18_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[4] != card1_card_core1_regs_fifo2_conditioning_active[4]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count18_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count19_count_samples
@@ -6016,7 +6457,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count19_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[5] != card1_card_core1_regs_fifo2_conditioning_active[5]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count19_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count19_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[5] != card1_card_core1_regs_fifo2_conditioning_active[5]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count19_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count20_count_samples
@@ -6040,12 +6481,12 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count20_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[6] != card1_card_core1_regs_fifo2_conditioning_active[6]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count20_held + 1) >= card1_card_core1_regs_fifo2_reg_word102_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count20_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[6] != card1_card_core1_regs_fifo2_conditioning_active[6]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count20_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
 
 
 
 assign card1_card_core1_regs_fifo2_machine_guard2_estop = card1_card_core1_regs_fifo2_conditioning_active[0];
-assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_watchdog_left == 1) && (!card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe));
+assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_watchdog_left == 1) && (!card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe));
 assign card1_card_core1_regs_fifo2_machine_guard2_hits = {(card1_card_core1_regs_fifo2_requests_step_y && (!card1_card_core1_regs_fifo2_requests_dir_y) && card1_card_core1_regs_fifo2_conditioning_active[4]), (card1_card_core1_regs_fifo2_requests_step_y && card1_card_core1_regs_fifo2_requests_dir_y && card1_card_core1_regs_fifo2_conditioning_active[3]), (card1_card_core1_regs_fifo2_requests_step_x && (!card1_card_core1_regs_fifo2_requests_dir_x) && card1_card_core1_regs_fifo2_conditioning_active[2]), (card1_card_core1_regs_fifo2_requests_step_x && card1_card_core1_regs_fifo2_requests_dir_x && card1_card_core1_regs_fifo2_conditioning_active[1])};
 
 
@@ -6116,8 +6557,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
         card1_card_core1_regs_fifo2_watchdog_left <= 0;
     end
     else begin
-        if (card1_card_core1_regs_fifo2_reg_word104__store72_word_strobe) begin
-            card1_card_core1_regs_fifo2_watchdog_left <= card1_card_core1_regs_fifo2_reg_word104__store72_word_value;
+        if (card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe) begin
+            card1_card_core1_regs_fifo2_watchdog_left <= card1_card_core1_regs_fifo2_reg_word108__store76_word_value;
         end
         else if ((card1_card_core1_regs_fifo2_watchdog_left != 0)) begin
             card1_card_core1_regs_fifo2_watchdog_left <= (card1_card_core1_regs_fifo2_watchdog_left - 1);
@@ -6126,22 +6567,22 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word110_shown, card1_card_core1_regs_fifo2_reg_word109_shown, card1_card_core1_regs_fifo2_home_inputs, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
+always @(card1_card_core1_regs_fifo2_reg_word114_shown, card1_card_core1_regs_fifo2_reg_word113_shown, card1_card_core1_regs_fifo2_home_inputs, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
     card1_card_core1_regs_fifo2_homing2_switch = card1_card_core1_regs_fifo2_homing2_axis ? card1_card_core1_regs_fifo2_home_inputs[1] : card1_card_core1_regs_fifo2_home_inputs[0];
     card1_card_core1_regs_fifo2_homing2_seeking = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b010));
     card1_card_core1_regs_fifo2_homing2_seek_next = ((card1_card_core1_regs_fifo2_homing2_state == 3'b000) || (card1_card_core1_regs_fifo2_homing2_state == 3'b001) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)));
     if (((card1_card_core1_regs_fifo2_homing2_state == 3'b011) || (card1_card_core1_regs_fifo2_homing2_state == 3'b100))) begin
-        card1_card_core1_regs_fifo2_homing2_magnitude = {8'h0, card1_card_core1_regs_fifo2_reg_word109_shown};
+        card1_card_core1_regs_fifo2_homing2_magnitude = {8'h0, card1_card_core1_regs_fifo2_reg_word113_shown};
     end
     else begin
-        card1_card_core1_regs_fifo2_homing2_magnitude = {1'h0, card1_card_core1_regs_fifo2_reg_word110_shown};
+        card1_card_core1_regs_fifo2_homing2_magnitude = {1'h0, card1_card_core1_regs_fifo2_reg_word114_shown};
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word105__store73_word_value, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_negative) begin: card1_card_core1_regs_fifo2_homing2_command
+always @(card1_card_core1_regs_fifo2_reg_word109__store77_word_value, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_negative) begin: card1_card_core1_regs_fifo2_homing2_command
     if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
-        card1_card_core1_regs_fifo2_homing2_positive = (!card1_card_core1_regs_fifo2_reg_word105__store73_word_value[1]);
+        card1_card_core1_regs_fifo2_homing2_positive = (!card1_card_core1_regs_fifo2_reg_word109__store77_word_value[1]);
     end
     else begin
         card1_card_core1_regs_fifo2_homing2_positive = card1_card_core1_regs_fifo2_homing2_negative;
@@ -6175,10 +6616,10 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
     else begin
         card1_card_core1_regs_fifo2_homing2_port_count <= $signed(card1_card_core1_regs_fifo2_homing2_signed_count);
         if (card1_card_core1_regs_fifo2_homing2_seek_next) begin
-            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word107_shown;
+            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word111_shown;
         end
         else begin
-            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word108_shown;
+            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word112_shown;
         end
     end
 end
@@ -6222,20 +6663,20 @@ always @(card1_card_core1_regs_fifo2_homing2_seeking, card1_card_core1_regs_fifo
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_negative, card1_card_core1_regs_fifo2_homing2_phase, card1_card_core1_regs_fifo2_homing2_done, card1_card_core1_regs_fifo2_homing2_refused, card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_not_found) begin: card1_card_core1_regs_fifo2_homing2_show
+always @(card1_card_core1_regs_fifo2_homing2_negative, card1_card_core1_regs_fifo2_homing2_phase, card1_card_core1_regs_fifo2_homing2_done, card1_card_core1_regs_fifo2_homing2_refused, card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_not_found) begin: card1_card_core1_regs_fifo2_homing2_show
     reg [2-1:0] asked;
     reg [6-1:0] word;
     asked = 2'h0;
     asked[0] = card1_card_core1_regs_fifo2_homing2_axis;
     asked[1] = card1_card_core1_regs_fifo2_homing2_negative;
-    card1_card_core1_regs_fifo2_reg_word105_shown = asked;
+    card1_card_core1_regs_fifo2_reg_word109_shown = asked;
     word = 6'h0;
-    word[0] = ((card1_card_core1_regs_fifo2_homing2_state != 3'b000) || card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe);
+    word[0] = ((card1_card_core1_regs_fifo2_homing2_state != 3'b000) || card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe);
     word[1] = card1_card_core1_regs_fifo2_homing2_done;
     word[2] = card1_card_core1_regs_fifo2_homing2_not_found;
     word[3] = card1_card_core1_regs_fifo2_homing2_refused;
     word[4+:2] = card1_card_core1_regs_fifo2_homing2_phase;
-    card1_card_core1_regs_fifo2_reg_word106_shown = word;
+    card1_card_core1_regs_fifo2_reg_word110_shown = word;
 end
 
 
@@ -6251,7 +6692,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
     else begin
         card1_card_core1_regs_fifo2_homing2_port_ended <= 0;
         if (card1_card_core1_core_clear) begin
-            if (card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe) begin
+            if (card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe) begin
                 card1_card_core1_regs_fifo2_homing2_done <= 0;
                 card1_card_core1_regs_fifo2_homing2_not_found <= 0;
                 card1_card_core1_regs_fifo2_homing2_refused <= 1;
@@ -6259,9 +6700,9 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
             end
         end
         else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
-            if (card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe) begin
-                card1_card_core1_regs_fifo2_homing2_axis <= card1_card_core1_regs_fifo2_reg_word105__store73_word_value[0];
-                card1_card_core1_regs_fifo2_homing2_negative <= card1_card_core1_regs_fifo2_reg_word105__store73_word_value[1];
+            if (card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe) begin
+                card1_card_core1_regs_fifo2_homing2_axis <= card1_card_core1_regs_fifo2_reg_word109__store77_word_value[0];
+                card1_card_core1_regs_fifo2_homing2_negative <= card1_card_core1_regs_fifo2_reg_word109__store77_word_value[1];
                 card1_card_core1_regs_fifo2_homing2_done <= 0;
                 card1_card_core1_regs_fifo2_homing2_not_found <= 0;
                 card1_card_core1_regs_fifo2_homing2_refused <= (!card1_card_core1_regs_fifo2_home_idle);
@@ -6269,7 +6710,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
             end
         end
         else begin
-            if (card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe) begin
+            if (card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe) begin
                 card1_card_core1_regs_fifo2_homing2_refused <= 1;
                 card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
             end
@@ -6295,7 +6736,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
             card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
         end
         else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
-            if ((card1_card_core1_regs_fifo2_reg_word105__store73_word_strobe && card1_card_core1_regs_fifo2_home_idle)) begin
+            if ((card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe && card1_card_core1_regs_fifo2_home_idle)) begin
                 card1_card_core1_regs_fifo2_homing2_state <= 3'b001;
             end
         end
@@ -6312,7 +6753,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
         end
         else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
             if (card1_card_core1_regs_fifo2_homing2_opened) begin
-                if ((card1_card_core1_regs_fifo2_reg_word109_shown != 0)) begin
+                if ((card1_card_core1_regs_fifo2_reg_word113_shown != 0)) begin
                     card1_card_core1_regs_fifo2_homing2_state <= 3'b101;
                 end
                 else begin
@@ -6473,17 +6914,17 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word105_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word93__store66_word_value, card1_card_core1_regs_fifo2_reg_word91_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
-    card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word91_shown;
-    card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word105_shown[0] == 0));
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word97__store70_word_value, card1_card_core1_regs_fifo2_reg_word95_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
+    card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word95_shown;
+    card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word105_shown[0] == 0));
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 0));
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
         card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_homing2_port_period;
     end
     else if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_reg_word93__store66_word_strobe && (!card1_card_core1_regs_fifo2_halt));
-        card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word93__store66_word_value);
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe && (!card1_card_core1_regs_fifo2_halt));
+        card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word97__store70_word_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_command_load = card1_card_core1_regs_fifo2_seq_load;
@@ -6492,17 +6933,17 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word105_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word94__store67_word_value, card1_card_core1_regs_fifo2_reg_word92_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
-    card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word92_shown;
-    card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word105_shown[0] == 1));
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word98__store71_word_value, card1_card_core1_regs_fifo2_reg_word96_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
+    card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word96_shown;
+    card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word105_shown[0] == 1));
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 1));
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
         card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_homing2_port_period;
     end
     else if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_reg_word94__store67_word_strobe && (!card1_card_core1_regs_fifo2_halt));
-        card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word94__store67_word_value);
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe && (!card1_card_core1_regs_fifo2_halt));
+        card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word98__store71_word_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_command_load = card1_card_core1_regs_fifo2_seq_load;
@@ -6515,7 +6956,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_status
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_status_words2_done_flag <= 0;
         card1_card_core1_regs_fifo2_status_words2_error_before <= 0;
-        card1_card_core1_regs_fifo2_reg_word81_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word85_shown <= 0;
         card1_card_core1_regs_fifo2_status_words2_busy_before <= 0;
         card1_card_core1_regs_fifo2_status_words2_low_before <= 0;
     end
@@ -6528,9 +6969,9 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_status
             card1_card_core1_regs_fifo2_status_words2_done_flag <= 1;
         end
         card1_card_core1_regs_fifo2_status_words2_error_before <= (card1_card_core1_regs_fifo2_error_code != 0);
-        card1_card_core1_regs_fifo2_status_words2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word80_shown);
+        card1_card_core1_regs_fifo2_status_words2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word84_shown);
         if (card1_card_core1_regs_fifo2_sequencer2_mark_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word81_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
+            card1_card_core1_regs_fifo2_reg_word85_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
         end
     end
 end
@@ -6547,27 +6988,27 @@ always @(card1_card_core1_regs_fifo2_status_words2_done_flag, card1_card_core1_r
     word[9] = card1_card_core1_regs_fifo2_fifo_full;
     word[10] = card1_card_core1_regs_fifo2_guard_stopped;
     word[32-1:16] = card1_card_core1_regs_fifo2_level_wide;
-    card1_card_core1_regs_fifo2_reg_word77_shown = word;
+    card1_card_core1_regs_fifo2_reg_word81_shown = word;
 end
 
 
-always @(card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_status_words2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_reg_word80_shown, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped, card1_card_core1_regs_fifo2_status_words2_busy_before, card1_card_core1_regs_fifo2_status_words2_low_before, card1_card_core1_regs_fifo2_homing2_port_ended, card1_card_core1_regs_fifo2_input_filter2_inputs_changed) begin: card1_card_core1_regs_fifo2_status_words2_detect_events
+always @(card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_status_words2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_reg_word84_shown, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped, card1_card_core1_regs_fifo2_status_words2_busy_before, card1_card_core1_regs_fifo2_status_words2_low_before, card1_card_core1_regs_fifo2_homing2_port_ended, card1_card_core1_regs_fifo2_input_filter2_inputs_changed) begin: card1_card_core1_regs_fifo2_status_words2_detect_events
     reg [8-1:0] word;
     word = 8'h0;
     word[0] = (card1_card_core1_regs_fifo2_status_words2_busy_before && (!card1_card_core1_regs_fifo2_any_busy));
-    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word80_shown) && (!card1_card_core1_regs_fifo2_status_words2_low_before));
+    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word84_shown) && (!card1_card_core1_regs_fifo2_status_words2_low_before));
     word[2] = ((card1_card_core1_regs_fifo2_error_code != 0) && (!card1_card_core1_regs_fifo2_status_words2_error_before));
     word[3] = card1_card_core1_regs_fifo2_sequencer2_mark_strobe;
-    word[4] = card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped;
+    word[4] = card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped;
     word[5] = card1_card_core1_regs_fifo2_guard_stop_event;
     word[6] = card1_card_core1_regs_fifo2_input_filter2_inputs_changed;
     word[7] = card1_card_core1_regs_fifo2_homing2_port_ended;
-    card1_card_core1_regs_fifo2_reg_word79__store55_word_hw = word;
+    card1_card_core1_regs_fifo2_reg_word83__store59_word_hw = word;
 end
 
 
 
-assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word79_shown & card1_card_core1_regs_fifo2_reg_word78_shown) != 0);
+assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word83_shown & card1_card_core1_regs_fifo2_reg_word82_shown) != 0);
 
 
 always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_conditioning_active, card1_card_core1_regs_fifo2_settled, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2_status_words2_assemble_machine
@@ -6580,17 +7021,17 @@ always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_
     word[17] = motor_drive_enable;
     word[18] = card1_card_core1_regs_fifo2_settled;
     word[19] = card1_card_core1_regs_fifo2_guard_stopping;
-    card1_card_core1_regs_fifo2_reg_word99_shown = word;
+    card1_card_core1_regs_fifo2_reg_word103_shown = word;
     why = 8'h0;
     why[0+:2] = card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
     why[4+:4] = card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
-    card1_card_core1_regs_fifo2_reg_word100_shown = why;
+    card1_card_core1_regs_fifo2_reg_word104_shown = why;
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_shown = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
-assign card1_card_core1_regs_fifo2_reg_word83_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word86_shown = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word87_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
 always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_magnitudes

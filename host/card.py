@@ -116,7 +116,8 @@ class Card(MachineIO):
             raise IdentityError(f"{where}: register map {major}.{minor}; this host software speaks {MAJOR}.x")
         if minor < MINOR:
             raise IdentityError(f"{where}: register map {major}.{minor} lacks what {MAJOR}.{MINOR} added "
-                                "(models/registers.py, VERSIONS): load a newer bitstream")
+                                "(models/registers.py, VERSIONS: STEP_SPACE and STEP_MODE in 2.1): "
+                                "load a newer bitstream")
         build = self.read("BUILD")
         ids = self.transport.config_read(0)
         variants = regmap.field_value("BUILD", "DDA_VARIANTS", build)
@@ -130,12 +131,16 @@ class Card(MachineIO):
         return math.ceil(nanoseconds * self.identity.clock_hz / 1e9 - 1e-9)
 
     def configure(self, steps_per_mm=(200.0, 200.0), step_width_ns=1000, dir_setup_ns=1000, dir_hold_ns=1000,
-                  polarity=(0, 0), rapid=3000.0, acceleration=500.0, start_feed=60.0, mark_interval=256):
-        """Pulse timing (ns, converted with CLOCK_HZ, each 1..255 clocks) and DIR
-        polarity into the card; the ``Machine`` the planner needs (feeds in
+                  polarity=(0, 0), rapid=3000.0, acceleration=500.0, start_feed=60.0, mark_interval=256,
+                  step_space_ns=None):
+        """Pulse timing (ns, converted with CLOCK_HZ, each 1..255 clocks: STEP
+        high, STEP low between steps (``step_space_ns``, default the high
+        time), DIR set-up and hold) and DIR polarity into the card; the ``Machine`` the planner needs (feeds in
         mm/min, acceleration in mm/s^2).  Every value is checked before any is written."""
         timing = {}
-        for name, ns in (("STEP_WIDTH", step_width_ns), ("DIR_SETUP", dir_setup_ns), ("DIR_HOLD", dir_hold_ns)):
+        space_ns = step_width_ns if step_space_ns is None else step_space_ns
+        for name, ns in (("STEP_WIDTH", step_width_ns), ("STEP_SPACE", space_ns), ("DIR_SETUP", dir_setup_ns),
+                         ("DIR_HOLD", dir_hold_ns)):
             reg = regmap.register(name)
             clocks = max(reg.minimum, self.clocks(ns))
             if clocks > reg.maximum:

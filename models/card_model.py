@@ -14,11 +14,13 @@ state machines, so a bench comparing the two checks the RTL against the spec.
 from collections import deque
 
 from models import registers as regmap
+from models.registers import STEP_MODES
 
 DECEL_MARGIN = 2  # iterations: the registered comparison and a stop_left one iteration late
 
 FAR_PAST = -(1 << 20)
 TIMING_LIMIT = 255
+QUADRATURE_AB = ((False, False), (True, False), (True, True), (False, True))   # (A, B) of counts 0..3
 
 
 class FifoModel:
@@ -57,10 +59,19 @@ class PulseOutModel:
 
     Rules (clocks counted between the edges where the internal levels change;
     the pins follow one clock later): the steps of one iteration leave
-    together; STEP is high ``width`` clocks and low at least ``width`` clocks;
-    DIR changes only while STEP is low, at least ``hold`` clocks after the
-    last fall, and at least ``setup`` clocks before the next rise;
-    ``position`` changes with the STEP pin's rise.
+    together; a step's pulse is high ``width`` clocks and low at least
+    ``space`` clocks (STEP_SPACE; None: ``width``, the card before it)
+    before the next; the direction changes only while the pulse is low, at
+    least ``hold`` clocks after the last fall, and at least ``setup`` clocks
+    before the next rise; ``position`` changes with the pulse's rise.
+
+    ``mode`` (STEP_MODE, ``models.registers.STEP_MODES``) says what the pins
+    carry; ``pin_dir`` is the direction after ``polarity`` (DIR_POLARITY):
+    0 step/dir: STEP the pulse, DIR ``pin_dir``; 1 up/down: STEP the pulses
+    of steps with ``pin_dir`` high, DIR those with it low; 2 quadrature:
+    a 2-bit count per axis moves at each pulse's rise (up with ``pin_dir``
+    high), and STEP, DIR show it as A, B (00, 10, 11, 01, up: A leads), so
+    one pin changes per step, a step period after the last change.
     """
 
     def __init__(self, queue_depth=4, in_flight=2):
@@ -71,6 +82,8 @@ class PulseOutModel:
         self.direction = [True, True]
         self.rise_edge = self.fall_edge = self.dir_edge = FAR_PAST
         self.in_setup = False
+        self.pulses = (False, False)   # the step pulses as step/dir mode puts them on STEP
+        self.quadrature = [0, 0]       # the quadrature counts, 0..3
         self.step_pins = (False, False)
         self.dir_pins = (False, False)
         self.positions = [0, 0]
@@ -81,14 +94,17 @@ class PulseOutModel:
 
     @property
     def active(self):
-        return bool(self.queue) or self.in_setup or any(self.high) or any(self.step_pins)
+        return bool(self.queue) or self.in_setup or any(self.high) or any(self.pulses)
 
     def _needs_turn(self, entry):
         steps, dirs = entry
         return any(steps[a] and dirs[a] != self.direction[a] for a in range(2))
 
     def clock(self, steps=(False, False), dirs=(False, False), clear=False, clear_position=False,
-              width=1, setup=1, hold=1, polarity=(False, False)):
+              width=1, setup=1, hold=1, polarity=(False, False), space=None, mode=0):
+        if mode not in range(len(STEP_MODES)):
+            raise ValueError(f"step mode must be one of 0..{len(STEP_MODES) - 1}, not {mode}")
+        space = width if space is None else space
         self.edge += 1
         n = self.edge
         level_before, dir_before = self.high, tuple(self.direction)
@@ -101,11 +117,11 @@ class PulseOutModel:
         elif self.in_setup:
             if clear:
                 self.in_setup = False
-            elif min(n - self.dir_edge, TIMING_LIMIT) >= setup and low_time >= width:
+            elif min(n - self.dir_edge, TIMING_LIMIT) >= setup and low_time >= space:
                 rise = True
         elif self.queue and not clear:
             if not self._needs_turn(self.queue[0]):
-                rise = low_time >= width
+                rise = low_time >= space
             elif low_time >= hold:
                 head_steps, head_dirs = self.queue[0]
                 for axis in range(2):
@@ -122,13 +138,24 @@ class PulseOutModel:
             if len(self.queue) == self.queue_depth:
                 raise AssertionError("step request into a full pulse queue")
             self.queue.append((tuple(map(bool, steps)), tuple(map(bool, dirs))))
+        pin_dir = tuple(dir_before[a] != bool(polarity[a]) for a in range(2))
         for axis in range(2):
+            rises = level_before[axis] and not self.pulses[axis]
             if clear_position:
                 self.positions[axis] = 0
-            elif level_before[axis] and not self.step_pins[axis]:
+            elif rises:
                 self.positions[axis] += 1 if dir_before[axis] else -1
-        self.step_pins = level_before
-        self.dir_pins = tuple(dir_before[a] != bool(polarity[a]) for a in range(2))
+            if rises:
+                self.quadrature[axis] = (self.quadrature[axis] + (1 if pin_dir[axis] else -1)) % 4
+        self.pulses = level_before
+        if mode == 0:
+            self.step_pins, self.dir_pins = level_before, pin_dir
+        elif mode == 1:
+            self.step_pins = tuple(level_before[a] and pin_dir[a] for a in range(2))
+            self.dir_pins = tuple(level_before[a] and not pin_dir[a] for a in range(2))
+        else:
+            self.step_pins = tuple(QUADRATURE_AB[count][0] for count in self.quadrature)
+            self.dir_pins = tuple(QUADRATURE_AB[count][1] for count in self.quadrature)
 
 
 class FeedRateModel:

@@ -10,12 +10,16 @@ from models.registers import IO_BAR_BITS, REGISTERS, VERSION, VERSIONS, build_wo
 def markdown():
     """``docs/registers.md``."""
     lines = [
-        "# Function registers (I/O BAR)",
+        "# Function registers (I/O BAR0, memory BAR2)",
         "",
         "Generated from `models/registers.py` by `python -m models.register_docs`; do not edit.",
         "",
-        f"The I/O BAR is {1 << IO_BAR_BITS} bytes (`io_bar_bits` = {IO_BAR_BITS}); registers are",
-        "32-bit, dword aligned.  Unlisted offsets read 0 and ignore writes.",
+        f"The I/O BAR (BAR0) is {1 << IO_BAR_BITS} bytes (`io_bar_bits` = {IO_BAR_BITS}); registers are",
+        "32-bit, dword aligned.  Unlisted offsets read 0 and ignore writes.  BAR2, a",
+        "32-bit non-prefetchable memory BAR of the same size, holds the same registers at the",
+        "same offsets with the same behaviour (byte enables, clamping, write 1 to clear, read",
+        "side effects), for hosts without port I/O; a burst into it moves one dword and is",
+        "disconnected (docs/pci.md).",
         "",
         "CLOCK_HZ, FIFO_SIZE and BUILD hold the parameters the card was built with",
         "(`python -m rtl.top --help` lists them); their reset column shows the default build's",
@@ -68,7 +72,7 @@ def c_header(prefix="DDA", extra="", values=None):
     defaults)."""
     guard = f"{prefix}_REGISTERS_H"
     lines = [
-        "/* Host interface of the PCI DDA card: function registers (I/O BAR) and more.",
+        "/* Host interface of the PCI DDA card: function registers (I/O BAR0, memory BAR2) and more.",
         " * Generated from rtl/ by python -m rtl.top --convert; do not edit. */",
         f"#ifndef {guard}",
         f"#define {guard}",

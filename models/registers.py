@@ -1,4 +1,4 @@
-"""The card's function registers (I/O BAR), described once.
+"""The card's function registers (I/O BAR0, and memory BAR2 at the same offsets), described once.
 
 ``REGISTERS`` is the single table.  From it come the RTL decoder
 (``rtl/regs_fifo.py`` builds one ``reg_word`` per entry), ``docs/registers.md``
@@ -51,10 +51,14 @@ VERSIONS = (
              "the host writes it again); WATCHDOG, LOW_WATER, RAMP_STEP and HOME_BACKOFF clamp a write "
              "above their range instead of cutting it; a refused CLEAR_STOP keeps the FIFO; "
              "DRIVE_ENABLE stays high until a STEP pulse under way has ended (docs/machine.md)"),
+    (0x0201, "STEP_SPACE (the STEP low time; STEP_WIDTH is the high time only) and STEP_MODE (step/dir, "
+             "up/down, quadrature); the registers also in memory space, BAR2 (docs/pci.md)"),
 )
 VERSION = VERSIONS[-1][0]
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock
 RATE_MAX = RATE_ONE // 2  # the DDA takes an iteration at most every other clock
+STEP_WIDTH_RESET = 1      # STEP_WIDTH's reset, and STEP_SPACE's: the timing of the cards before STEP_SPACE
+STEP_MODES = ("STEP_DIR", "UP_DOWN", "QUADRATURE")   # STEP_MODE.MODE codes
 
 
 @dataclass(frozen=True)
@@ -205,7 +209,8 @@ REGISTERS = (
              "rate change per iteration: up towards FEED_RATE, down to RAMP_START before a stop (0: no ramp)",
              _one("STEP", 16, "added to the rate each iteration until FEED_RATE; subtracted as the end nears"),
              minimum=0, maximum=0xFFFF, set_index=2),
-    Register("STEP_WIDTH", 0x34, "RW", 1, "STEP high time, also its minimum low time, in clocks",
+    Register("STEP_WIDTH", 0x34, "RW", STEP_WIDTH_RESET,
+             "STEP high time in clocks (the low time between steps: STEP_SPACE)",
              _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=3),
     Register("DIR_SETUP", 0x38, "RW", 1, "DIR stable before the STEP leading edge, in clocks",
              _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=4),
@@ -301,6 +306,15 @@ REGISTERS = (
              "steps the switch must trip within, and release within after it tripped",
              _one("STEPS", HOME_SEARCH_BITS, f"1..{(1 << HOME_SEARCH_BITS) - 1}"),
              minimum=1, maximum=(1 << HOME_SEARCH_BITS) - 1),
+    Register("STEP_SPACE", 0x94, "RW", STEP_WIDTH_RESET, "minimum STEP low time between two steps, in clocks",
+             _one("CLOCKS", 8, "1..255 (reset: STEP_WIDTH's reset, so one value times both as before)"),
+             minimum=1, maximum=255, set_index=8),
+    Register("STEP_MODE", 0x98, "RW", 0, "what the STEP and DIR pins of every axis carry (hostmot2's step_type)",
+             _one("MODE", 2, "0 step/dir; 1 up/down: STEP pulses the steps whose DIR would be high, DIR the "
+                  "others; 2 quadrature: STEP, DIR an A/B pair, one change per step (A leads while DIR would "
+                  "be high, a change a step period after the last); every mode keeps STEP_WIDTH, "
+                  "STEP_SPACE, and DIR_HOLD + DIR_SETUP at a reversal; change it only while no step is "
+                  "queued"), minimum=0, maximum=2),
 )
 
 IO_BAR_BITS = max(2, (max(r.offset for r in REGISTERS) + WORD_BYTES - 1).bit_length())

@@ -34,7 +34,7 @@ from models.dda_build import DDA_MIN_WIDTH, DEFAULT_VARIANTS
 from models.parameters import DEVICE, PARAMETERS, PCI_IDS, ParameterError
 from models.registers import STOP_REASONS
 from rtl.card import CARD_PARAMETERS, slave_params
-from rtl.pci.pci_slave_build import SLAVE_PARAMETERS
+from rtl.pci.pci_slave_build import SLAVE_PARAMETERS, alias_bar_bits
 from rtl.regs_fifo import REGS_FIFO_PARAMETERS
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -108,6 +108,8 @@ def write_c_header(out_dir=GEN_DIR, **values):
     identity = [f"#define DDA_PCI_{name.upper()} {PARAMETERS[name].shown(settings[name])}u" for name in PCI_IDS]
     identity += [f"#define DDA_BAR0_SIZE {1 << bars['io_bar_bits']}u /* I/O: function registers */",
                  f"#define DDA_BAR1_SIZE {1 << bars['mem_bar_bits']}u /* memory: the command FIFO window */",
+                 f"#define DDA_BAR2_SIZE {1 << alias_bar_bits(bars['io_bar_bits'])}u"
+                 " /* memory: the function registers again, at BAR0's offsets */",
                  f"#define DDA_FIFO_DEPTH {settings['fifo_depth']}u /* words */", ""]
     identity += [f"#define DDA_STOP_{name} {code}u /* STOP_REASON.REASON */"
                  for code, name in enumerate(STOP_REASONS) if code] + [""]

@@ -49,12 +49,15 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     Ports: ``clock`` PCI CLK; ``reset`` RST# (``card_reset()``); ``pci`` a
     ``PciBus``; ``local`` a ``LocalBus`` of ``local_addr_width()`` address
-    bits (space 0: BAR0, I/O; space 1: BAR1, memory); ``irq`` level interrupt
+    bits (space 0: the registers, through BAR0, I/O, or its alias BAR2,
+    memory, BAR0's size; space 1: BAR1, memory); ``irq`` level interrupt
     request, drives INTA# unless Command.Interrupt Disable is set.
 
     Parameters: vendor_id, device_id, revision_id, class_code (24 bits),
     subsystem_vendor_id, subsystem_id; io_bar_bits (BAR0 is 2**io_bar_bits
-    bytes), mem_bar_bits (BAR1 is 2**mem_bar_bits bytes); device (how the
+    bytes; BAR2 the same, 16 bytes at least, BAR0 repeating in them),
+    mem_bar_bits (BAR1 is
+    2**mem_bar_bits bytes); device (how the
     one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pci/pin_lut.py``);
     defaults and ranges in ``models/parameters.py``;
     io_registers (False: the core's own flip-flops sample AD and IDSEL and
@@ -153,7 +156,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     config_write_q = config.write
     io_enable, mem_enable = config.io_enable, config.mem_enable
     parity_response, serr_enable = config.parity_response, config.serr_enable
-    interrupt_disable, bar0, bar1 = config.interrupt_disable, config.bar0, config.bar1
+    interrupt_disable, bar0, bar1, bar2 = config.interrupt_disable, config.bar0, config.bar1, config.bar2
     fatal = config.target_abort       # target abort now
     parity_error_q = config.parity_error  # a parity error was detected at the last edge
 
@@ -166,7 +169,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     perr_next, perr_oe_next, serr_oe_next = parity.perr_next, parity.perr_oe_next, parity.serr_oe_next
     address_fault_next, parity_error_next = parity.address_fault_next, parity.parity_error_next
     claim = Signal(bool(0))
-    claim_config, claim_io = Signal(bool(0)), Signal(bool(0))
+    claim_config, claim_io, claim_alias = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
     read_command = Signal(bool(0))    # C/BE#[0] low in the address phase
     # next values of registers that a data phase (IRDY# pin) changes
     first_phase_next, phase_step = Signal(bool(0)), Signal(bool(0))
@@ -209,9 +212,10 @@ def pci_slave(clock, reset, pci, local, irq, **params):
 
     # ------------------------------------------------------------ decoding
     decoder = TargetDecode(t_state.S_IDLE, width, ad=ad_q, cbe=cbe_q, idsel=idsel_q, io_enable=io_enable,
-                           mem_enable=mem_enable, bar0=bar0, bar1=bar1, state=state,
+                           mem_enable=mem_enable, bar0=bar0, bar1=bar1, bar2=bar2, state=state,
                            address_phase=address_phase, claim=claim, claim_config=claim_config,
-                           claim_io=claim_io, read_command=read_command, start_addr=start_addr)
+                           claim_io=claim_io, claim_alias=claim_alias, read_command=read_command,
+                           start_addr=start_addr)
     decode_unit = pci_decode(decoder, io_bits=io_bits, mem_bits=mem_bits)
 
     # A data phase completes when the IRDY# pin and TRDY# (trdy_q) are both
@@ -272,9 +276,10 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     next_state = pci_control(pci.frame_in, pci.irdy_in, target, chosen, device=device)
 
     @always_seq(clock.posedge, reset=reset)
-    def transaction():
+    def phase_registers():
         state.next = state_next
         first_phase.next = first_phase_next
+        address_fault.next = address_fault_next
         if phase_step:   # the claim, or a completed phase of a memory burst
             if claim:
                 phase_addr.next = start_addr
@@ -284,14 +289,18 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 phase_addr.next = phase_addr + 1
                 at_last.next = before_last
                 before_last.next = phase_addr == mem_last - 2
-        address_fault.next = address_fault_next
+
+    @always_seq(clock.posedge, reset=reset)
+    def transaction_kind():
         # taken at every address phase in Idle, claimed or not (Idle reads none
         # of it): the BAR compares reach only the state and the bus lines
         if state == t_state.S_IDLE and address_phase:
             is_read.next = not cbe_q[0]
             is_config.next = claim_config
-            space_mem.next = not claim_config and not claim_io
-            single.next = claim_config or claim_io or ad_q[0] or ad_q[1]
+            # BAR2 reaches the registers (space 0) as BAR0 does, one dword a
+            # transaction: a burst is disconnected after its first data phase
+            space_mem.next = not claim_config and not claim_io and not claim_alias
+            single.next = claim_config or claim_io or claim_alias or ad_q[0] or ad_q[1]
             first_pending.next = True
             fetching.next = not cbe_q[0] and not claim_config
             io_byte.next = ad_q[2:0]
@@ -302,6 +311,9 @@ def pci_slave(clock, reset, pci, local, irq, **params):
                 fetching.next = False
             if local.re and local.retry and not first_pending:
                 fetching.next = False
+
+    @always_seq(clock.posedge, reset=reset)
+    def request_address():
         if claim:
             req_addr_stale.next = draining
         # loaded at an address phase in Idle, claimed or not, with no posted
@@ -314,6 +326,9 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         elif req_addr_stale and not draining:
             req_addr.next = phase_addr
             req_addr_stale.next = False
+
+    @always_seq(clock.posedge, reset=reset)
+    def latency_count():
         # Idle (the only state with a claim) never waits
         if not waiting:
             wait_count.next = 0

@@ -114,7 +114,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     halt, pulse_clear, clear_stop, releasing = (Signal(bool(0)) for _ in range(4))
     home_idle, direct_clear = Signal(bool(0)), Signal(bool(0))
     home_zero, home_inputs = Signal(intbv(0)[2:]), Signal(intbv(0)[2:])
+    step_mode = values["STEP_MODE"]   # named at this level, as the formal harnesses know it
     outputs = PulseControl(clear=pulse_clear, clear_position=clear_position, zero=home_zero, width=values["STEP_WIDTH"],
+                           space=values["STEP_SPACE"], mode=step_mode,
                            setup=values["DIR_SETUP"], hold=values["DIR_HOLD"],
                            polarity_x=values["DIR_POLARITY"](0), polarity_y=values["DIR_POLARITY"](1))
     out_ready, out_active = outputs.ready, outputs.active

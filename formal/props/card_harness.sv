@@ -10,8 +10,9 @@
 //     sequencer takes from the FIFO, with its value; no word is taken that
 //     was not written;
 //   * STATUS truth (docs/registers.md STATUS, issue 16: "the status register
-//     tells the truth about FIFO level and errors"): an I/O read of STATUS
-//     completed on the bus carries a FIFO_LEVEL that the count of words
+//     tells the truth about FIFO level and errors"): a read of STATUS
+//     completed on the bus, through the I/O BAR0 or its memory alias BAR2,
+//     carries a FIFO_LEVEL that the count of words
 //     written on the bus minus words taken had during the transaction,
 //     FIFO_EMPTY and FIFO_FULL as that level says, and the ERROR code of
 //     docs/instructions.md for the first command.
@@ -22,9 +23,9 @@
 // makes those signals ports, so the generated file is read unchanged.
 //
 // Limits of the environment (each a restriction of what the bus does):
-//   * no I/O write to COMMAND (SOFT_RESET, CLEAR_ERROR and CLEAR_STOP empty
-//     the FIFO, which the shadows do not follow);
-//   * with MACHINE_RUNNING: machine inputs at rest and no I/O write to
+//   * no register write (BAR0 or BAR2) to COMMAND (SOFT_RESET, CLEAR_ERROR
+//     and CLEAR_STOP empty the FIFO, which the shadows do not follow);
+//   * with MACHINE_RUNNING: machine inputs at rest and no register write to
 //     MACHINE_CONTROL, INPUT_POLARITY, WATCHDOG or HOME, so the guard never
 //     stops, holds or homes the card (the error properties need the
 //     sequencer to run); otherwise the machine inputs are free.
@@ -97,9 +98,11 @@ module card_harness #(
     // pci_target_harness.sv, where the target's decode is proved against it)
     localparam [15:0] IO_WRITABLE = 16'hFFFF << IO_BITS;
     localparam [31:0] MEM_WRITABLE = 32'hFFFFFFFF << MEM_BITS;
+    localparam ALIAS_BITS = IO_BITS > 4 ? IO_BITS : 4;    // BAR2: BAR0's registers in memory space
+    localparam [31:0] ALIAS_WRITABLE = 32'hFFFFFFFF << ALIAS_BITS;
     reg io_enable = 0, mem_enable = 0, parity_response = 0, serr_enable = 0;
     reg [15:0] bar0 = 0;
-    reg [31:0] bar1 = 0;
+    reg [31:0] bar1 = 0, bar2 = 0;
     wire [3:0] command = m_cbe_n;
     wire cmd_config = command == 4'hA || command == 4'hB;
     wire cmd_io = command == 4'h2 || command == 4'h3;
@@ -109,6 +112,7 @@ module card_harness #(
     wire io_hit = io_enable && cmd_io && ad[31:16] == 16'h0
                   && (ad[15:0] & IO_WRITABLE) == (bar0 & IO_WRITABLE);
     wire mem_hit = mem_enable && cmd_mem && (ad & MEM_WRITABLE) == (bar1 & MEM_WRITABLE);
+    wire alias_hit = mem_enable && cmd_mem && !mem_hit && (ad & ALIAS_WRITABLE) == (bar2 & ALIAS_WRITABLE);
 
     wire address_edge, data_edge, completion, transfer, last_completion, txn_hit;
     wire addr_parity_error, target_abort, target_claimed, par_wrong;
@@ -125,7 +129,7 @@ module card_harness #(
         .t_devsel_oe(t_devsel_oe), .t_stop_n(t_stop_n), .t_stop_oe(t_stop_oe),
         .t_perr_n(t_perr_n), .t_perr_oe(t_perr_oe), .t_serr_n(t_serr_n), .t_serr_oe(t_serr_oe),
         .m_ad(m_ad), .m_cbe_n(m_cbe_n), .m_frame_n(m_frame_n), .m_irdy_n(m_irdy_n),
-        .decoded(config_hit || io_hit || mem_hit), .parity_response(parity_response),
+        .decoded(config_hit || io_hit || mem_hit || alias_hit), .parity_response(parity_response),
         .serr_enable(serr_enable),
         .address_edge(address_edge), .data_edge(data_edge), .completion(completion),
         .transfer(transfer), .last_completion(last_completion), .txn_hit(txn_hit),
@@ -136,6 +140,9 @@ module card_harness #(
 
     wire txn_config = txn_command[3:1] == 3'b101;
     wire txn_io = txn_command[3:1] == 3'b001;
+    reg txn_alias = 0;                      // a BAR2 transaction, taken at its address edge
+    always @(posedge clock) if (address_edge) txn_alias <= alias_hit;
+    wire txn_regs = txn_io || txn_alias;    // the function registers, through BAR0 or BAR2
     wire txn_write = txn_command[0];
     wire our_transfer = transfer && txn_hit;
     wire [5:0] config_dword = txn_address[7:2] + txn_transfers[5:0];
@@ -143,7 +150,7 @@ module card_harness #(
     always @(posedge clock) begin
         if (!reset_n) begin
             io_enable <= 0; mem_enable <= 0; parity_response <= 0; serr_enable <= 0;
-            bar0 <= 0; bar1 <= 0;
+            bar0 <= 0; bar1 <= 0; bar2 <= 0;
         end else if (our_transfer && txn_config && txn_write) begin
             case (config_dword)
                 6'd1: begin
@@ -162,14 +169,20 @@ module card_harness #(
                     if (!m_cbe_n[2]) bar1[23:16] <= ad[23:16];
                     if (!m_cbe_n[3]) bar1[31:24] <= ad[31:24];
                 end
+                6'd6: begin
+                    if (!m_cbe_n[0]) bar2[7:0] <= ad[7:0];
+                    if (!m_cbe_n[1]) bar2[15:8] <= ad[15:8];
+                    if (!m_cbe_n[2]) bar2[23:16] <= ad[23:16];
+                    if (!m_cbe_n[3]) bar2[31:24] <= ad[31:24];
+                end
                 default: ;
             endcase
         end
     end
 
-    // the limits of the environment (above), on the address phase of an I/O write
+    // the limits of the environment (above), on the address phase of a register write
     wire [5:0] address_dword = ad[IO_BITS-1:2];
-    wire io_write_address = address_edge && command == 4'h3;
+    wire io_write_address = address_edge && (command == 4'h3 || (alias_hit && command[0]));
     always @(*) begin
         if (io_write_address) assume(address_dword != DWORD_COMMAND);
 `ifdef MACHINE_RUNNING
@@ -182,7 +195,7 @@ module card_harness #(
     // ------------------------------------------------------------ words written and taken
     // docs/instructions.md: every data phase into BAR1 with at least one byte
     // enabled pushes one word into the FIFO
-    wire bus_push = our_transfer && txn_write && !txn_io && !txn_config && m_cbe_n != 4'hF;
+    wire bus_push = our_transfer && txn_write && !txn_regs && !txn_config && m_cbe_n != 4'hF;
     wire take = fifo_pop && !fifo_empty;   // the sequencer takes a word
     reg [7:0] written = 0, taken = 0;      // since reset (the bounded runs stay far below 256)
     wire [7:0] level = written - taken;    // words written on the bus and not taken
@@ -213,11 +226,11 @@ module card_harness #(
 
     // ------------------------------------------------------------ STATUS
     // the level during the transaction: no word is written on the bus during
-    // an I/O read (and the target delivers its posted dwords before a new
+    // a register read (and the target delivers its posted dwords before a new
     // transaction, docs/pci.md), so it only falls from the address edge on
     reg [7:0] level_at_address = 0;
     always @(posedge clock) if (address_edge) level_at_address <= level;
-    wire status_read = our_transfer && txn_io && !txn_write && io_dword == DWORD_STATUS;
+    wire status_read = our_transfer && txn_regs && !txn_write && io_dword == DWORD_STATUS;
     wire [STATUS_FIFO_LEVEL_WIDTH-1:0] read_level = ad[STATUS_FIFO_LEVEL_LSB +: STATUS_FIFO_LEVEL_WIDTH];
     wire [STATUS_ERROR_WIDTH-1:0] read_error = ad[STATUS_ERROR_LSB +: STATUS_ERROR_WIDTH];
     wire read_empty = ad[STATUS_FIFO_EMPTY_LSB], read_full = ad[STATUS_FIFO_FULL_LSB];
@@ -264,7 +277,7 @@ module card_harness #(
                 operands_due <= operands_due - 1;
                 if (operands_due == 1) first_taken <= 1;
             end
-            if (our_transfer && txn_io && txn_write && io_dword == DWORD_CONTROL && !m_cbe_n[0])
+            if (our_transfer && txn_regs && txn_write && io_dword == DWORD_CONTROL && !m_cbe_n[0])
                 control_enable <= ad[CONTROL_ENABLE] && !ad[CONTROL_MODE];
             if (!(first_taken && control_enable))
                 ready_for <= 0;
@@ -293,6 +306,7 @@ module card_harness #(
     always @(posedge clock) if (reset_n) begin
         card_cover_second_word: cover(arriving && chosen == 1 && fifo_dout == chosen_word);
         card_cover_status_with_words: cover(status_read && read_level != 0 && !read_empty);
+        card_cover_status_through_bar2: cover(status_read && txn_alias && read_level != 0);
         card_cover_status_bad_opcode: cover(status_read && ready_at_address >= ERROR_LATENCY
                                             && read_error == ERROR_BAD_OPCODE);
         card_cover_status_reserved_bits: cover(status_read && ready_at_address >= ERROR_LATENCY

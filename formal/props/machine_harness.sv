@@ -62,6 +62,8 @@ module machine_harness #(
     wire direct_pulse0_pending, direct_pulse1_pending;
     wire [23:0] watchdog_left;
     wire [1:0] machine_control;
+    wire [1:0] step_mode;
+    wire pulse_out0_pulse_x, pulse_out0_pulse_y;
 
     regs_fifo dut (
         .clock(clock), .reset(reset_n), .irq(irq), .core_clear(core_clear),
@@ -93,7 +95,8 @@ module machine_harness #(
         .requests_dir_x(requests_dir_x), .requests_dir_y(requests_dir_y),
         .pulse_out0_request_step_x(pulse_out0_request_step_x),
         .pulse_out0_request_step_y(pulse_out0_request_step_y),
-        .ramp_step(ramp_step), .machine_control(machine_control),
+        .ramp_step(ramp_step), .machine_control(machine_control), .step_mode(step_mode),
+        .pulse_out0_pulse_x(pulse_out0_pulse_x), .pulse_out0_pulse_y(pulse_out0_pulse_y),
         .feed_held(feed_held), .sync_fifo0_count(sync_fifo0_count), .sync_fifo0_is_empty(sync_fifo0_is_empty),
 `ifdef LOCAL_ROOM
         .sync_fifo0_free(sync_fifo0_free), .sync_fifo0_free_beyond(sync_fifo0_free_beyond),
@@ -132,6 +135,8 @@ module machine_harness #(
     always @(*) begin
         // the inputs' conditioning as reset: the reaction times of docs/machine.md
         assume(!(l_we && !l_space && (l_addr == 16'h006C || l_addr == 16'h0070 || l_addr == 16'h0074)));
+        // the STEP pins' rules here are those of step/dir mode, STEP_MODE's reset
+        assume(!(l_we && !l_space && l_addr == 16'h0098));
         if (l_we && !l_space && l_addr == 16'h0078) assume(l_be == 4'hF);
 `ifdef WATCHDOG_SMALL
         if (l_we && !l_space && l_addr == 16'h0078) assume(l_wdata < `WATCHDOG_SMALL);
@@ -202,6 +207,10 @@ module machine_harness #(
         minv_feed_held: assert(!feed_held || feed_rate0_rate == 0);
         // MACHINE_CONTROL.DRIVE_ENABLE is 1 only by a write since the last stop
         minv_drive_rearmed: assert(!machine_control[0] || rearmed);
+        // STEP_MODE as reset (step/dir: no bus write of it here), so the
+        // STEP pins carry the pulse outputs' own pulses
+        minv_step_dir: assert(step_mode == model_step_mode && step_mode == 0
+                              && pins_step_x == pulse_out0_pulse_x && pins_step_y == pulse_out0_pulse_y);
     end
 
     // ------------------------------------------------------------ E-stop and the stop latch

@@ -18,13 +18,13 @@
     wire i_io_enable, i_mem_enable, i_parity_response, i_serr_enable, i_interrupt_disable;
     wire i_config_write_q;
     wire [15:0] i_bar0;
-    wire [31:0] i_bar1;
+    wire [31:0] i_bar1, i_bar2;
     wire [7:0] i_interrupt_line;
     wire [31:0] i_h_data, i_spare_data, i_ad_q;
     wire [3:0] i_h_be, i_s_be, i_cbe_q;
     wire [LOCAL_WIDTH-3:0] i_req_addr;
     wire [31:0] i_ad_out_q;
-    wire [LOCAL_WIDTH-3:0] i_read_start = txn_io ? io_dword : txn_address[MEM_BITS-1:2];
+    wire [LOCAL_WIDTH-3:0] i_read_start = txn_regs ? io_dword : txn_address[MEM_BITS-1:2];
     wire [LOCAL_WIDTH-3:0] i_phase_addr;
     wire i_at_last, i_before_last;
     wire i_single, i_frame_q;
@@ -49,11 +49,11 @@
         if (i_claimed) begin
             inv_claimed_in_transaction: assert(data_edge && txn_hit && clk_now >= 2);
             inv_direction: assert(i_is_read == !txn_write);
-            inv_kind: assert(i_is_config == txn_config && i_space_mem == (!txn_config && !txn_io));
+            inv_kind: assert(i_is_config == txn_config && i_space_mem == (!txn_config && !txn_regs));
             inv_first_phase: assert(i_first_phase == (txn_transfers == 0));
             inv_claimed_command: assert(txn_config || txn_io || txn_command == 4'h6 || txn_command == 4'h7
                                         || txn_command == 4'hC || txn_command == 4'hE || txn_command == 4'hF);
-            inv_burst_inside_bar: assert(txn_config || txn_io ? txn_transfers <= 1
+            inv_burst_inside_bar: assert(txn_config || txn_regs ? txn_transfers <= 1
                                          : {1'b0, txn_address[MEM_BITS-1:2]} + txn_transfers <= MEM_LAST + 1);
             inv_phase_address: assert(i_phase_addr == (txn_config ? i_config_dword : phase_dword));
         end
@@ -75,6 +75,7 @@
                                       && i_interrupt_disable == interrupt_disable);
             inv_bar_model: assert((i_bar0 & IO_WRITABLE) == (bar0 & IO_WRITABLE)
                                   && (i_bar1 & MEM_WRITABLE) == (bar1 & MEM_WRITABLE)
+                                  && (i_bar2 & ALIAS_WRITABLE) == (bar2 & ALIAS_WRITABLE)
                                   && i_interrupt_line == interrupt_line);
         end
         // a single-phase access (or the last dword of BAR1) asserts TRDY# without
@@ -82,7 +83,7 @@
         if (i_claimed && (i_single || i_at_last) && !i_trdy_q && i_stop_q) begin
             inv_single_phase_last: assert(i_frame_q && m_frame_n);
         end
-        if (i_claimed) begin inv_single_kind: assert(i_single == (txn_config || txn_io || txn_address[1:0] != 2'b00)); end
+        if (i_claimed) begin inv_single_kind: assert(i_single == (txn_config || txn_regs || txn_address[1:0] != 2'b00)); end
         // read-ahead and the posting queue
         if (i_fetching) begin inv_fetch_in_read: assert(i_is_read && !i_is_config); end
         if (i_fetching && !i_space_mem) begin inv_io_fetches_once: assert(i_first_pending); end
@@ -116,15 +117,15 @@
         if (i_state == 4'd6 && i_is_read && !i_is_config) begin
             inv_read_fetched: assert(local_reads == txn_transfers + !i_trdy_q + i_b_valid);
             if (i_b_valid) begin inv_skid_behind_ad: assert(!i_trdy_q); end
-            if (!i_trdy_q && watch_space == !txn_io && watch_dword == phase_dword) begin
+            if (!i_trdy_q && watch_space == !txn_regs && watch_dword == phase_dword) begin
                 inv_ad_holds_watched: assert(watched_valid && i_ad_out_q == watched_data);
             end
-            if (i_b_valid && watch_space == !txn_io && watch_dword == phase_dword + 1'b1) begin
+            if (i_b_valid && watch_space == !txn_regs && watch_dword == phase_dword + 1'b1) begin
                 inv_skid_holds_watched: assert(watched_valid && i_spare_data == watched_data);
             end
         end
         if (watched_valid && data_edge) begin
-            inv_watched_fetched: assert(txn_hit && !txn_write && !txn_config && watch_space == !txn_io
+            inv_watched_fetched: assert(txn_hit && !txn_write && !txn_config && watch_space == !txn_regs
                                         && {6'b0, watch_dword - i_read_start} < local_reads);
         end
         inv_last_flags: assert(i_at_last == (i_phase_addr == MEM_LAST)

@@ -13,7 +13,11 @@
 //     with its offset, byte enables and data (a chosen-one shadow); read data
 //     reach AD unchanged in the phase that asked for them; no local read
 //     outside a read of this target;
-//   * I/O accesses are not retried when the registers answer;
+//   * BAR2, the registers' memory alias (docs/pci.md): decoded and sized as
+//     the configuration model says, its accesses reach the back end as the
+//     I/O access at the same offset does (space 0, the bus's byte enables),
+//     one data phase per transaction;
+//   * register accesses (I/O, BAR2) are not retried when the registers answer;
 //   * every dword acknowledged on the bus reaches the back end.
 `default_nettype none
 
@@ -84,7 +88,7 @@ module pci_target_harness #(
         .is_read(i_is_read), .is_config(i_is_config), .space_mem(i_space_mem),
         .io_enable(i_io_enable), .mem_enable(i_mem_enable), .parity_response(i_parity_response),
         .serr_enable(i_serr_enable), .interrupt_disable(i_interrupt_disable), .bar0(i_bar0),
-        .bar1(i_bar1), .config_write_q(i_config_write_q), .phase_addr(i_phase_addr),
+        .bar1(i_bar1), .bar2(i_bar2), .config_write_q(i_config_write_q), .phase_addr(i_phase_addr),
         .at_last(i_at_last), .before_last(i_before_last), .h_valid(i_h_valid), .s_valid(i_s_valid),
         .wq_valid(i_wq_valid), .b_valid(i_b_valid), .fetching(i_fetching),
         .first_pending(i_first_pending), .req_addr_stale(i_req_addr_stale), .single(i_single),
@@ -104,9 +108,12 @@ module pci_target_harness #(
     // ------------------------------------------------------------ configuration model
     localparam [15:0] IO_WRITABLE = 16'hFFFF << IO_BITS;
     localparam [31:0] MEM_WRITABLE = 32'hFFFFFFFF << MEM_BITS;
+    // BAR2: BAR0's size in memory space, 16 bytes at least (6.2.5.1)
+    localparam ALIAS_BITS = IO_BITS > 4 ? IO_BITS : 4;
+    localparam [31:0] ALIAS_WRITABLE = 32'hFFFFFFFF << ALIAS_BITS;
     reg io_enable = 0, mem_enable = 0, parity_response = 0, serr_enable = 0, interrupt_disable = 0;
     reg [15:0] bar0 = 0;
-    reg [31:0] bar1 = 0;
+    reg [31:0] bar1 = 0, bar2 = 0;
     reg [7:0] interrupt_line = 0;
     reg signaled_target_abort = 0, signaled_system_error = 0, detected_parity_error = 0;
     reg status_event = 0;    // a status bit was set in this transaction
@@ -120,7 +127,9 @@ module pci_target_harness #(
     wire io_hit = io_enable && cmd_io && ad[31:16] == 16'h0
                   && (ad[15:0] & IO_WRITABLE) == (bar0 & IO_WRITABLE);
     wire mem_hit = mem_enable && cmd_mem && (ad & MEM_WRITABLE) == (bar1 & MEM_WRITABLE);
-    wire decoded = config_hit || io_hit || mem_hit;
+    // docs/pci.md: BAR1 answers an address a host let BAR1 and BAR2 share
+    wire alias_hit = mem_enable && cmd_mem && !mem_hit && (ad & ALIAS_WRITABLE) == (bar2 & ALIAS_WRITABLE);
+    wire decoded = config_hit || io_hit || mem_hit || alias_hit;
 
     wire address_edge, data_edge, completion, transfer, last_completion, txn_hit;
     wire addr_parity_error, target_abort, target_claimed, par_wrong;
@@ -158,6 +167,10 @@ module pci_target_harness #(
 
     wire txn_config = txn_command[3:1] == 3'b101;
     wire txn_io = txn_command[3:1] == 3'b001;
+    // a BAR2 transaction (taken at its address edge): the registers, as txn_io
+    reg txn_alias = 0;
+    always @(posedge clock) if (address_edge) txn_alias <= alias_hit;
+    wire txn_regs = txn_io || txn_alias;
     wire txn_write = txn_command[0];
     wire our_transfer = transfer && txn_hit;
     wire [5:0] config_dword = txn_address[7:2] + txn_transfers[5:0];
@@ -167,7 +180,7 @@ module pci_target_harness #(
     always @(posedge clock) begin
         if (!reset_n) begin
             io_enable <= 0; mem_enable <= 0; parity_response <= 0; serr_enable <= 0;
-            interrupt_disable <= 0; bar0 <= 0; bar1 <= 0; interrupt_line <= 0;
+            interrupt_disable <= 0; bar0 <= 0; bar1 <= 0; bar2 <= 0; interrupt_line <= 0;
             signaled_target_abort <= 0; signaled_system_error <= 0; detected_parity_error <= 0;
             status_event <= 0;
         end else begin
@@ -197,6 +210,12 @@ module pci_target_harness #(
                         if (!be_n[1]) bar1[15:8] <= ad[15:8];
                         if (!be_n[2]) bar1[23:16] <= ad[23:16];
                         if (!be_n[3]) bar1[31:24] <= ad[31:24];
+                    end
+                    6'd6: begin
+                        if (!be_n[0]) bar2[7:0] <= ad[7:0];
+                        if (!be_n[1]) bar2[15:8] <= ad[15:8];
+                        if (!be_n[2]) bar2[23:16] <= ad[23:16];
+                        if (!be_n[3]) bar2[31:24] <= ad[31:24];
                     end
                     6'd15: if (!be_n[0]) interrupt_line <= ad[7:0];
                     default: ;
@@ -237,6 +256,7 @@ module pci_target_harness #(
             6'd2: expected_config = CLASS_WORD;
             6'd4: expected_config = {16'h0000, bar0 & IO_WRITABLE} | 32'h1;
             6'd5: expected_config = bar1 & MEM_WRITABLE;
+            6'd6: expected_config = bar2 & ALIAS_WRITABLE;
             6'd11: expected_config = SUBSYSTEM_WORD;
             6'd15: expected_config = {16'h0000, 8'h01, interrupt_line};
             default: expected_config = 32'h0;
@@ -306,9 +326,18 @@ module pci_target_harness #(
 
 `include "pci_target_local.vh"
 
+    // ------------------------------------------------------------ BAR2
+    // docs/pci.md: one data phase per BAR2 transaction (disconnect with data)
+    always @(posedge clock) if (reset_n) begin
+        if (our_transfer && txn_alias) begin t_alias_one_phase: assert(txn_transfers == 0); end
+        cover_alias_read: cover(our_transfer && txn_alias && !txn_write);
+        // a burst's first data phase with STOP#: disconnect with data
+        cover_alias_write_burst_disconnected: cover(our_transfer && txn_alias && txn_write && !m_frame_n && !stop_n);
+    end
+
     // ------------------------------------------------------------ I/O never waits behind the FIFO
     // When the registers answer every request (ready within two clocks, never
-    // retry), an I/O access is not retried: it completes with data.
+    // retry), an I/O or BAR2 access is not retried: it completes with data.
     reg regs_slow = 0, io_waited = 0;
     always @(posedge clock) begin
         if (!reset_n || address_edge) begin
@@ -321,7 +350,7 @@ module pci_target_harness #(
         end
     end
     always @(posedge clock) if (reset_n) begin
-        if (data_edge && txn_hit && txn_io && !regs_slow && txn_transfers == 0 && !abort_due) begin
+        if (data_edge && txn_hit && txn_regs && !regs_slow && txn_transfers == 0 && !abort_due) begin
             io_not_retried_when_registers_answer: assert(!(t_stop_oe && !t_stop_n && (t_trdy_n || !t_trdy_oe)));
         end
     end

@@ -10,12 +10,13 @@
     // once, in order, with its offset, byte enables and data.  The first data
     // phase of a write goes to the back end before TRDY# (at most one ahead);
     // later ones are posted (at most POSTED_MAX acknowledged and not yet taken).
+    // I/O and BAR2 (txn_regs) reach the registers, space 0, at BAR0's offset
     wire [LOCAL_WIDTH-3:0] io_dword = txn_address[IO_BITS-1:2];
     wire [LOCAL_WIDTH-3:0] mem_dword = txn_address[MEM_BITS-1:2] + txn_transfers;
-    wire [LOCAL_WIDTH-3:0] phase_dword = txn_io ? io_dword : mem_dword;
+    wire [LOCAL_WIDTH-3:0] phase_dword = txn_regs ? io_dword : mem_dword;
     wire bus_write = our_transfer && txn_write && !txn_config;
     wire local_write = l_we && l_ready;
-    wire [LOCAL_WIDTH+36:0] bus_word = {!txn_io, phase_dword, 2'b00, ~m_cbe_n, ad};
+    wire [LOCAL_WIDTH+36:0] bus_word = {!txn_regs, phase_dword, 2'b00, ~m_cbe_n, ad};
     wire [LOCAL_WIDTH+36:0] local_word = {l_space, l_addr, l_be, l_wdata};
 
     reg signed [3:0] pending = 0;   // bus write phases not taken yet (-1: one taken ahead)
@@ -98,7 +99,7 @@
     reg [15:0] local_reads = 0;      // back-end reads taken in this transaction
     wire local_read = l_re && l_ready;
     wire bus_read = our_transfer && !txn_write && !txn_config;
-    wire [LOCAL_WIDTH-3:0] read_dword = txn_io ? io_dword
+    wire [LOCAL_WIDTH-3:0] read_dword = txn_regs ? io_dword
                                         : txn_address[MEM_BITS-1:2] + local_reads;
     always @(posedge clock) begin
         if (!reset_n || address_edge) begin
@@ -117,12 +118,12 @@
     always @(posedge clock) if (reset_n) begin
         if (local_read) begin
             read_only_in_read_transaction: assert(data_edge && txn_hit && !txn_write && !txn_config);
-            read_of_the_next_dword: assert(l_space == !txn_io && l_addr == {read_dword, 2'b00});
-            read_ahead_at_most_two: assert(local_reads <= txn_transfers + (txn_io ? 0 : 1));
+            read_of_the_next_dword: assert(l_space == !txn_regs && l_addr == {read_dword, 2'b00});
+            read_ahead_at_most_two: assert(local_reads <= txn_transfers + (txn_regs ? 0 : 1));
             // docs/pci.md: reads of BAR1 fetch whole dwords
             if (l_space) begin read_whole_dwords: assert(l_be == 4'hF); end
         end
-        if (bus_read && !txn_io == watch_space && phase_dword == watch_dword) begin
+        if (bus_read && !txn_regs == watch_space && phase_dword == watch_dword) begin
             read_data_reach_ad: assert(watched_valid && ad == watched_data);
         end
     end

@@ -1,5 +1,6 @@
 // The pulse outputs' rules, one axis per instance, for the card's harness
-// (regs_fifo_harness.sv): STEP high and low for at least STEP_WIDTH clocks,
+// (regs_fifo_harness.sv): STEP high for at least STEP_WIDTH clocks and low
+// for at least STEP_SPACE (step/dir mode),
 // DIR set-up and hold around a STEP pulse (pulse_axis_rules; docs/registers.md),
 // no STEP pulse without a step request (pulse_requests), and every request on
 // its pin within one step period (pulse_progress, used with PULSE_PACED);
@@ -8,12 +9,12 @@
 
 module pulse_axis_rules (
     input wire clock, input wire reset_n, input wire step, input wire dir,
-    input wire [7:0] width, input wire [7:0] setup, input wire [7:0] hold,
+    input wire [7:0] width, input wire [7:0] space, input wire [7:0] setup, input wire [7:0] hold,
     input wire settings_written
 );
     reg p_step = 0, p_dir = 0, judged = 0, setup_judged = 0, hold_judged = 0;
     reg [8:0] high = 0, low = 9'h1ff, dir_age = 9'h1ff, since_fall = 9'h1ff;
-    reg [7:0] width_then = 1, setup_then = 1, hold_then = 1;
+    reg [7:0] width_then = 1, space_then = 1, setup_then = 1, hold_then = 1;
     always @(posedge clock) begin
         p_step <= step;
         p_dir <= dir;
@@ -26,6 +27,7 @@ module pulse_axis_rules (
             since_fall <= (p_step && !step) ? 1 : (since_fall == 9'h1ff ? since_fall : since_fall + 1);
             if (step != p_step) begin
                 width_then <= width;
+                space_then <= space;
                 judged <= !settings_written;
             end else if (settings_written)
                 judged <= 0;
@@ -44,7 +46,7 @@ module pulse_axis_rules (
     end
     always @(posedge clock) if (reset_n && judged && !settings_written) begin
         if (p_step && !step) begin pulse_high_width: assert(high >= width_then); end
-        if (!p_step && step && low != 9'h1ff) begin pulse_low_width: assert(low >= width_then); end
+        if (!p_step && step && low != 9'h1ff) begin pulse_low_width: assert(low >= space_then); end
         if (!p_step && step) begin pulse_dir_setup: assert(dir == p_dir && (!setup_judged || dir_age >= setup_then)); end
         if (dir != p_dir && since_fall != 9'h1ff) begin pulse_dir_hold: assert(!p_step && (!hold_judged || since_fall >= hold_then)); end
     end

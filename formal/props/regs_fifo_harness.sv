@@ -302,16 +302,16 @@ module regs_fifo_harness #(
         if (!dda_busy) assume(!steps_step_x && !steps_step_y);
     end
     // ------------------------------------------------------------ pulse outputs
-    // STEP high for at least STEP_WIDTH clocks and low for at least as long;
+    // STEP high for at least STEP_WIDTH clocks and low for at least STEP_SPACE;
     // DIR stable DIR_SETUP clocks before a STEP leading edge and DIR_HOLD
     // clocks after its trailing edge (docs/registers.md), judged with the
     // settings in force when the interval began (a bus write to a timing
     // register in the interval leaves it unjudged; a SET does not)
     pulse_axis_rules x_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_x), .dir(pins_dir_x),
-        .width(model_step_width), .setup(model_dir_setup), .hold(model_dir_hold),
+        .width(model_step_width), .space(model_step_space), .setup(model_dir_setup), .hold(model_dir_hold),
         .settings_written(timing_written));
     pulse_axis_rules y_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_y), .dir(pins_dir_y),
-        .width(model_step_width), .setup(model_dir_setup), .hold(model_dir_hold),
+        .width(model_step_width), .space(model_step_space), .setup(model_dir_setup), .hold(model_dir_hold),
         .settings_written(timing_written));
     // every STEP pulse on a pin answers a step request: of the interpolator
     // (steps_step_*) or of the direct pulse generator (PULSE, PULSE_COUNT_*)
@@ -362,16 +362,18 @@ module regs_fifo_harness #(
     // set-up, STEP high and low) and a few clocks of the queue.  The
     // interpolator steps only after an `advance` (the feed rate, given only
     // while the queue has room: rtl/dda_arc.py), the timing stays as reset
-    // (no SET of STEP_WIDTH, DIR_SETUP, DIR_HOLD), nothing drops the queue
+    // (no SET of STEP_WIDTH, DIR_SETUP, DIR_HOLD, STEP_SPACE), nothing drops the queue
     // (no COMMAND write)
     reg p_advance = 0;
     always @(posedge clock) p_advance <= dda_advance;
     always @(*) begin
         if (!p_advance) assume(!steps_step_x && !steps_step_y);
-        assume(!(set_strobe && (set_index == 4'd3 || set_index == 4'd4 || set_index == 4'd5)));
+        assume(!(set_strobe && (set_index == 4'd3 || set_index == 4'd4 || set_index == 4'd5
+                                || set_index == 4'd8)));
         assume(!(l_we && !l_space && l_addr == 16'h0008));
     end
-    wire [9:0] step_period = 2 * model_step_width + model_dir_setup + model_dir_hold + `PULSE_QUEUE_CLOCKS;
+    wire [9:0] step_period = model_step_width + model_step_space + model_dir_setup + model_dir_hold
+                             + `PULSE_QUEUE_CLOCKS;
     pulse_progress x_progress (.clock(clock), .reset_n(reset_n), .request(steps_step_x || direct_request_x),
         .step(pins_step_x), .period(step_period));
     pulse_progress y_progress (.clock(clock), .reset_n(reset_n), .request(steps_step_y || direct_request_y),
@@ -380,15 +382,21 @@ module regs_fifo_harness #(
 `ifdef PULSE_TIMING_BY_SET
     // the host sets the pulse timing between moves (SET, which waits until the
     // outputs are idle) and the DIR polarity before: no bus write of
-    // STEP_WIDTH, DIR_SETUP, DIR_HOLD, DIR_POLARITY
+    // STEP_WIDTH, DIR_SETUP, DIR_HOLD, DIR_POLARITY, STEP_SPACE
     always @(*) assume(!(l_we && !l_space && (l_addr == 16'h0034 || l_addr == 16'h0038
-                                               || l_addr == 16'h003C || l_addr == 16'h0040)));
+                                               || l_addr == 16'h003C || l_addr == 16'h0040
+                                               || l_addr == 16'h0094)));
 `endif
     // a SET of a timing register waits until the outputs are quiet and never
     // changes a pulse under way (docs/instructions.md): it leaves nothing
     // unjudged, each interval keeps the setting in force when it began
     wire timing_written = stage_write && (stage_addr == 16'h0034 || stage_addr == 16'h0038
-                                          || stage_addr == 16'h003C);
+                                          || stage_addr == 16'h003C || stage_addr == 16'h0094);
+`ifndef STEP_MODES_FREE
+    // the pins' rules here are those of step/dir mode, STEP_MODE's reset: no
+    // bus write of STEP_MODE (the other modes: sim/card/test_card_units.py)
+    always @(*) assume(!(l_we && !l_space && l_addr == 16'h0098));
+`endif
 `ifdef REGS_FIFO_INVARIANTS
 `include "regs_fifo_invariants.vh"
 `endif

@@ -53,6 +53,7 @@ PULSE_COUNT_BITS = regmap.register("PULSE_COUNT_X").width
 
 
 TIMING_BITS = regmap.register("STEP_WIDTH").width
+STEP_MODE_BITS = regmap.register("STEP_MODE").width
 
 
 class FifoRead:
@@ -156,18 +157,19 @@ class PulseControl:
 
     The registers drive ``clear`` (drop the queue), ``clear_position``
     (zero the positions), ``zero`` (bit 0 X, bit 1 Y: zero that axis's
-    position, counting a step that rises in that clock), ``width``, ``setup`` and ``hold`` (STEP_WIDTH,
-    DIR_SETUP, DIR_HOLD, in clocks) and ``polarity_x``/``polarity_y``
-    (DIR_POLARITY); the pulse outputs drive ``ready`` (the queue takes the
-    steps on their way), ``active`` (a step is queued or on the pins) and
-    ``pulsing`` (a STEP pulse starts at the coming edge, is high inside or is
-    high on the pins: the machine guard keeps DRIVE_ENABLE for it).
+    position, counting a step that rises in that clock), ``width``, ``space``, ``setup`` and ``hold``
+    (STEP_WIDTH, STEP_SPACE, DIR_SETUP, DIR_HOLD, in clocks), ``mode`` (STEP_MODE) and
+    ``polarity_x``/``polarity_y`` (DIR_POLARITY); the pulse outputs drive ``ready`` (the queue takes the
+    steps on their way), ``active`` (a step is queued or on the pins) and ``pulsing`` (a STEP pulse
+    starts at the coming edge, is high inside or is high on the pins: the machine guard keeps
+    DRIVE_ENABLE for it).
     """
 
     def __init__(self, **given):
         adopt(self, given, clear=Signal(bool(0)), clear_position=Signal(bool(0)), zero=Signal(intbv(0)[2:]),
-               width=Signal(intbv(1)[TIMING_BITS:]), setup=Signal(intbv(1)[TIMING_BITS:]),
-               hold=Signal(intbv(1)[TIMING_BITS:]), polarity_x=Signal(bool(0)), polarity_y=Signal(bool(0)),
+               width=Signal(intbv(1)[TIMING_BITS:]), space=Signal(intbv(1)[TIMING_BITS:]),
+               setup=Signal(intbv(1)[TIMING_BITS:]), hold=Signal(intbv(1)[TIMING_BITS:]),
+               mode=Signal(intbv(0)[STEP_MODE_BITS:]), polarity_x=Signal(bool(0)), polarity_y=Signal(bool(0)),
                ready=Signal(bool(1)), active=Signal(bool(0)), pulsing=Signal(bool(0)))
 
 

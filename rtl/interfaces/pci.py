@@ -47,7 +47,8 @@ class LocalBus:
     ``ready`` is high) or ``retry`` (nothing happens: the back end cannot serve
     the request now and the target terminates with retry or disconnect).
 
-    ``space`` 0 is the I/O BAR (function registers), 1 the memory BAR (data
+    ``space`` 0 is the function registers (BAR0, I/O, and its alias BAR2,
+    memory: the back end cannot tell them apart), 1 the memory BAR1 (data
     FIFO window).  ``addr`` is the byte offset inside the BAR, dword aligned.
     ``be`` are active-high byte enables.  ``write`` gives the direction of a
     request (1: ``we``) from the target's flip-flops, ahead of ``we``/``re``:
@@ -143,7 +144,7 @@ class ConfigSpace:
     driven) and ``parity_error`` (a parity error was detected at the last
     edge), and ``irq`` (Status.Interrupt Status).  From it: the Command bits
     the target obeys, the BARs as written (``bar0`` 16 bits of PC I/O space,
-    ``bar1`` 32), and ``rdata``, the dword ``index`` names as a configuration
+    ``bar1`` and ``bar2`` 32), and ``rdata``, the dword ``index`` names as a configuration
     read returns it."""
 
     def __init__(self):
@@ -162,6 +163,7 @@ class ConfigSpace:
         self.interrupt_disable = Signal(bool(0))
         self.bar0 = Signal(intbv(0)[16:])
         self.bar1 = Signal(intbv(0)[32:])
+        self.bar2 = Signal(intbv(0)[32:])
         self.rdata = Signal(intbv(0)[32:])
 
 
@@ -200,10 +202,11 @@ class TargetDecode:
     target wires in the signals it has.
 
     From the target: ``ad``, ``cbe``, ``idsel`` (the input registers, bus
-    polarity), ``io_enable``, ``mem_enable``, ``bar0``, ``bar1`` (the
+    polarity), ``io_enable``, ``mem_enable``, ``bar0``, ``bar1``, ``bar2`` (the
     configuration header), ``state``, ``address_phase`` (the input register
     holds an address).  To it: ``claim`` (an address phase this target
-    claims), ``claim_config``, ``claim_io`` (which space it hits),
+    claims), ``claim_config``, ``claim_io``, ``claim_alias`` (which space it
+    hits: configuration, BAR0, BAR2; none of them is BAR1),
     ``read_command`` (C/BE#[0] low) and ``start_addr`` (the dword offset the
     address names in its space)."""
 
@@ -211,8 +214,9 @@ class TargetDecode:
         self.idle = idle
         adopt(self, given, ad=Signal(intbv(0)[32:]), cbe=Signal(intbv(0xF)[4:]), idsel=Signal(bool(0)),
                io_enable=Signal(bool(0)), mem_enable=Signal(bool(0)), bar0=Signal(intbv(0)[16:]),
-               bar1=Signal(intbv(0)[32:]), state=Signal(idle), address_phase=Signal(bool(0)),
-               claim=Signal(bool(0)), claim_config=Signal(bool(0)), claim_io=Signal(bool(0)),
+               bar1=Signal(intbv(0)[32:]), bar2=Signal(intbv(0)[32:]), state=Signal(idle),
+               address_phase=Signal(bool(0)), claim=Signal(bool(0)), claim_config=Signal(bool(0)),
+               claim_io=Signal(bool(0)), claim_alias=Signal(bool(0)),
                read_command=Signal(bool(0)), start_addr=Signal(modbv(0)[width:]))
 
 

@@ -10,6 +10,8 @@ Dwords implemented (PCI Local Bus 2.3, section 6.1; docs/pci.md):
     2  Class Code | Revision ID              read only, from the build
     4  BAR0: I/O, 2**io_bar_bits bytes       bits above the size writable
     5  BAR1: memory, 2**mem_bar_bits bytes   32-bit, not prefetchable
+    6  BAR2: memory, BAR0's size (16 bytes   32-bit, not prefetchable: the
+       at least)                             registers of BAR0 again
     11 Subsystem ID | Subsystem Vendor ID    read only, from the build
     15 Interrupt Pin (INTA#) | Line           Line read/write
     every other dword reads 0, writes are ignored
@@ -27,12 +29,13 @@ from myhdl import Signal, always_comb, always_seq, block, concat, instances, int
 
 from models import parameters
 from models.parameters import PCI_IDS
+from rtl.pci.pci_slave_build import alias_bar_bits
 
-CONFIG_ID, CONFIG_COMMAND_STATUS, CONFIG_CLASS, CONFIG_BAR0, CONFIG_BAR1 = 0, 1, 2, 4, 5
+CONFIG_ID, CONFIG_COMMAND_STATUS, CONFIG_CLASS, CONFIG_BAR0, CONFIG_BAR1, CONFIG_BAR2 = 0, 1, 2, 4, 5, 6
 CONFIG_SUBSYSTEM, CONFIG_INTERRUPT = 11, 15
 STATUS_DEVSEL_MEDIUM = 0b01   # Status[10:9]
 INTERRUPT_PIN_INTA = 1
-BAR_IO_SPACE = 1              # BAR bit 0: I/O space (BAR1: 0, memory, 32-bit, non-prefetchable)
+BAR_IO_SPACE = 1              # BAR bit 0: I/O space (BAR1, BAR2: 0, memory, 32-bit, non-prefetchable)
 CONFIG_PARAMETERS = (*PCI_IDS, "io_bar_bits", "mem_bar_bits")
 
 
@@ -50,6 +53,7 @@ def pci_config(clock, reset, config, **params):
     subsystem_word = values["subsystem_id"] << 16 | values["subsystem_vendor_id"]
     io_bar_writable = (0xFFFF << values["io_bar_bits"]) & 0xFFFF   # BAR0[31:16] hardwired to 0 (PC I/O)
     mem_bar_writable = (0xFFFFFFFF << values["mem_bar_bits"]) & 0xFFFFFFFF
+    alias_bar_writable = (0xFFFFFFFF << alias_bar_bits(values["io_bar_bits"])) & 0xFFFFFFFF
 
     signaled_target_abort = Signal(bool(0))
     signaled_system_error = Signal(bool(0))
@@ -91,6 +95,15 @@ def pci_config(clock, reset, config, **params):
                     config.bar1.next[24:16] = data[24:16]
                 if not cbe_n[3]:
                     config.bar1.next[32:24] = data[32:24]
+            elif config.index == CONFIG_BAR2:
+                if not cbe_n[0]:
+                    config.bar2.next[8:0] = data[8:0]
+                if not cbe_n[1]:
+                    config.bar2.next[16:8] = data[16:8]
+                if not cbe_n[2]:
+                    config.bar2.next[24:16] = data[24:16]
+                if not cbe_n[3]:
+                    config.bar2.next[32:24] = data[32:24]
             elif config.index == CONFIG_INTERRUPT:
                 if not cbe_n[0]:
                     interrupt_line.next = data[8:0]
@@ -118,6 +131,8 @@ def pci_config(clock, reset, config, **params):
             config.rdata.next = concat(intbv(0)[16:], bar0_read)
         elif config.index == CONFIG_BAR1:
             config.rdata.next = config.bar1 & intbv(mem_bar_writable)[32:]
+        elif config.index == CONFIG_BAR2:
+            config.rdata.next = config.bar2 & intbv(alias_bar_writable)[32:]
         elif config.index == CONFIG_SUBSYSTEM:
             config.rdata.next = intbv(subsystem_word)[32:]
         elif config.index == CONFIG_INTERRUPT:

@@ -21,6 +21,15 @@ SUBSEQUENT_WAIT_LIMIT = 5
 CONFIG_DWORDS = 64   # the configuration header's 256 bytes
 
 
+MEMORY_BAR_MIN_BITS = 4   # a memory BAR's bits [3:0] are its type: 16 bytes at least (PCI 2.3, 6.2.5.1)
+
+
+def alias_bar_bits(io_bar_bits):
+    """Bits of BAR2, the memory alias of BAR0's registers: BAR0's size, at
+    least a memory BAR's 16 bytes (a smaller BAR0 then repeats in it)."""
+    return max(io_bar_bits, MEMORY_BAR_MIN_BITS)
+
+
 def last_dword(bar_bits):
     """The offset of the last dword of a BAR of 2**bar_bits bytes (a mask of dword offsets)."""
     return (1 << (bar_bits - 2)) - 1

@@ -1,9 +1,12 @@
-"""Registered STEP/DIR outputs of both axes with pulse width, DIR set-up/hold and polarity."""
+"""Registered STEP/DIR outputs of both axes with pulse width and space, DIR set-up/hold, polarity
+and the pins' mode (step/dir, up/down, quadrature)."""
 from myhdl import Signal, always_comb, always_seq, block, concat, enum, intbv, modbv
 
+from models import registers as regmap
 from rtl.interfaces import AxisPulses, MotorPins, PulseControl, StepPositions, card_reset
 
 ENTRY_BITS = 4  # step_x, step_y, dir_x, dir_y
+MODE_UP_DOWN, MODE_QUADRATURE = (regmap.STEP_MODES.index(name) for name in ("UP_DOWN", "QUADRATURE"))
 QUEUE_DEPTH, IN_FLIGHT = 4, 2
 
 
@@ -25,14 +28,18 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
     normally); ``clear_position`` zeroes the positions, ``zero`` one axis's
     (a step rising at that edge counts as its first).  Timing, shared by
     both axes so that a diagonal step leaves on both pins in the same clock:
-    ``width``: STEP high time and minimum low time in clocks (>= 1);
-    ``setup``: clocks DIR is stable before a STEP leading edge (>= 1);
-    ``hold``: clocks DIR stays stable after a STEP trailing edge (>= 1);
-    ``polarity_*``: 1 inverts that DIR pin.  ``pins``: ``MotorPins``.
+    ``width``: a step's pulse high time in clocks (>= 1); ``space``: its
+    minimum low time before the next (>= 1); ``setup``: clocks the direction
+    is stable before a pulse's leading edge (>= 1); ``hold``: clocks it
+    stays stable after the trailing edge (>= 1); ``polarity_*``: 1 inverts
+    that axis's direction on the pins.  ``mode`` (``models.card_model.PulseOutModel``
+    says it in full): 0 step/dir (STEP the pulse, DIR the direction); 1
+    up/down (STEP the pulses going up, DIR those going down); 2 quadrature
+    (STEP, DIR an A/B pair stepped once per pulse).  ``pins``: ``MotorPins``.
     ``position`` (``StepPositions``: ``x``, ``y``, signed) counts the steps
-    at the edge where the STEP pin rises, so it tells what left the pins.
+    at the edge where the pulse rises on the pins, so it tells what left them.
 
-    width 1, setup 1, hold 1; X steps +, then -:
+    step/dir mode, width 1, space 1, setup 1, hold 1; X steps +, then -:
         clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
         request   _/~~~\\___/~~~\\_____________
         step_x    _______/~~~\\___________/~~~\\_
@@ -47,6 +54,10 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
     count = Signal(intbv(0, min=0, max=queue_depth + 1))
     head = Signal(intbv(0)[ENTRY_BITS:])
     level_x, level_y = Signal(bool(0)), Signal(bool(0))
+    pulse_x, pulse_y = Signal(bool(0)), Signal(bool(0))   # the pulses, as step/dir mode's STEP pins
+    quad_x, quad_y = Signal(modbv(0)[2:]), Signal(modbv(0)[2:])   # quadrature counts (A = bit 0 ^ bit 1, B = bit 1)
+    quad_next_x, quad_next_y = Signal(modbv(0)[2:]), Signal(modbv(0)[2:])
+    up_x, up_y = Signal(bool(1)), Signal(bool(1))   # the direction on the pins (after polarity)
     dir_level_x, dir_level_y = Signal(bool(1)), Signal(bool(1))
     timing_bits = len(control.width)
     phase_clocks = Signal(intbv(0)[timing_bits:])
@@ -62,8 +73,8 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
     @always_comb
     def room():
         control.ready.next = count <= queue_depth - in_flight
-        control.active.next = count != 0 or phase != phase_t.P_IDLE or pins.step_x or pins.step_y
-        control.pulsing.next = take or level_x or level_y or pins.step_x or pins.step_y
+        control.active.next = count != 0 or phase != phase_t.P_IDLE or pulse_x or pulse_y
+        control.pulsing.next = take or level_x or level_y or pulse_x or pulse_y
 
     @always_comb
     def peek():
@@ -73,7 +84,7 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
     def decide():
         turn.next = count != 0 and ((head[0] and head[2] != dir_level_x) or (head[1] and head[3] != dir_level_y))
         take.next = False
-        if phase != phase_t.P_HIGH and not control.clear and low_clocks >= control.width:
+        if phase != phase_t.P_HIGH and not control.clear and low_clocks >= control.space:
             if phase == phase_t.P_SETUP:
                 take.next = phase_clocks >= control.setup
             elif count != 0:
@@ -161,12 +172,49 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
         if not dir_level_y:
             delta_y.next = -1
 
+    @always_comb
+    def pin_direction():
+        # the pins' direction, and the quadrature counts after this edge:
+        # one count up or down where a pulse rises
+        up_x.next = dir_level_x ^ control.polarity_x
+        up_y.next = dir_level_y ^ control.polarity_y
+        quad_next_x.next = quad_x
+        if level_x and not pulse_x:
+            if dir_level_x ^ control.polarity_x:
+                quad_next_x.next = quad_x + 1
+            else:
+                quad_next_x.next = quad_x - 1
+        quad_next_y.next = quad_y
+        if level_y and not pulse_y:
+            if dir_level_y ^ control.polarity_y:
+                quad_next_y.next = quad_y + 1
+            else:
+                quad_next_y.next = quad_y - 1
+
     @always_seq(clock.posedge, reset=reset)
     def drive_pins():
-        pins.step_x.next = level_x
-        pins.step_y.next = level_y
-        pins.dir_x.next = dir_level_x ^ control.polarity_x
-        pins.dir_y.next = dir_level_y ^ control.polarity_y
+        pulse_x.next = level_x
+        pulse_y.next = level_y
+        quad_x.next = quad_next_x
+        quad_y.next = quad_next_y
+        if control.mode == MODE_UP_DOWN:
+            pins.step_x.next = level_x and up_x
+            pins.dir_x.next = level_x and not up_x
+            pins.step_y.next = level_y and up_y
+            pins.dir_y.next = level_y and not up_y
+        elif control.mode == MODE_QUADRATURE:
+            pins.step_x.next = quad_next_x[0] ^ quad_next_x[1]
+            pins.dir_x.next = quad_next_x[1]
+            pins.step_y.next = quad_next_y[0] ^ quad_next_y[1]
+            pins.dir_y.next = quad_next_y[1]
+        else:
+            pins.step_x.next = level_x
+            pins.dir_x.next = up_x
+            pins.step_y.next = level_y
+            pins.dir_y.next = up_y
+
+    @always_seq(clock.posedge, reset=reset)
+    def count_positions():
         if control.clear_position:
             position.x.next = 0
             position.y.next = 0
@@ -174,18 +222,19 @@ def pulse_out(clock, reset, request, control, pins, position, *, queue_depth=QUE
             # zero: the axis counts from 0, with the step that rises at this edge
             if control.zero[0]:
                 position.x.next = 0
-                if level_x and not pins.step_x:
+                if level_x and not pulse_x:
                     position.x.next = delta_x
-            elif level_x and not pins.step_x:
+            elif level_x and not pulse_x:
                 position.x.next = position.x + delta_x
             if control.zero[1]:
                 position.y.next = 0
-                if level_y and not pins.step_y:
+                if level_y and not pulse_y:
                     position.y.next = delta_y
-            elif level_y and not pins.step_y:
+            elif level_y and not pulse_y:
                 position.y.next = position.y + delta_y
 
-    return room, peek, decide, restart, count_clocks, step_phases, fill, slots, step_sense, drive_pins
+    return (room, peek, decide, restart, count_clocks, step_phases, fill, slots, step_sense, pin_direction,
+            drive_pins, count_positions)
 
 
 def pulse_out_ports(queue_depth=QUEUE_DEPTH, in_flight=IN_FLIGHT):

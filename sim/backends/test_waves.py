@@ -93,7 +93,7 @@ def card_view():
 
     def scenario(bench):
         device = (yield from bench.host.enumerate_bus(devices=[0]))[0]
-        bars = {("io" if bar["io"] else "mem"): bar["base"] for bar in device.bars}
+        bars = {"io": device.bar(0)["base"], "mem": device.bar(1)["base"]}
         yield from bench.host.io_write(bars["io"] + regmap.offset("FEED_RATE"), regmap.RATE_MAX)
         yield from bench.host.io_write(bars["io"] + regmap.offset("CONTROL"), 1)
         yield from bench.host.mem_write(bars["mem"], isa.encode("LINE", LINE.dx, LINE.dy))

@@ -48,6 +48,8 @@ DEVICE = 0
 SMALL_FIFO = 16
 DEFAULT_FIFO = PARAMETERS["fifo_depth"].default
 INTA_LIMIT = 200000
+# the card's BARs by role: the registers (I/O), the FIFO window, the registers again in memory space
+BAR_ROLES = {"io": 0, "mem": 1, "alias": 2}
 
 
 def card_verilog(fifo_depth, clock_hz=CLOCK_HZ.default):
@@ -69,11 +71,16 @@ def card_verilog(fifo_depth, clock_hz=CLOCK_HZ.default):
     return verilog
 
 
+def card_bars(device):
+    """{role: BAR as enumerated} of the card (``BAR_ROLES``); ``device`` a ``PciDevice``."""
+    return {role: device.bar(index) for role, index in BAR_ROLES.items()}
+
+
 class CardUnderTest:
     """The card under test, with what the scenario needs to see: ``log`` (its
     pins), ``wait`` (the bench's ``CardWait``), ``samples`` (MyHDL and
-    Icarus: the bus of every clock, values and drivers), ``io`` / ``mem``
-    (BAR bases, set once enumerated).  Called with a ``PciBench``, it is
+    Icarus: the bus of every clock, values and drivers), ``io`` / ``mem`` /
+    ``alias`` (BAR0..2 bases, set once enumerated).  Called with a ``PciBench``, it is
     that bench's target (MyHDL, Icarus)."""
 
     def __init__(self, kind, fifo_depth, machine=None):
@@ -84,7 +91,7 @@ class CardUnderTest:
         self.log = ArrayPinLog() if kind == "verilator" else PinLog()
         self.wait = CardWait(signal=kind != "verilator")
         self.samples = []
-        self.io = self.mem = None
+        self.io = self.mem = self.alias = None
 
     def __call__(self, bench):
         idsel_bit = 16 + TARGET_DEVICE
@@ -147,8 +154,8 @@ def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=True, card_trace
     def wrapped(b):
         devices = yield from b.host.enumerate_bus(devices=[DEVICE])
         out["device"] = devices[0]
-        bars = {("io" if bar["io"] else "mem"): bar for bar in devices[0].bars}
-        target.io, target.mem = bars["io"]["base"], bars["mem"]["base"]
+        bars = card_bars(devices[0])
+        target.io, target.mem, target.alias = (bars[role]["base"] for role in ("io", "mem", "alias"))
         out["bars"] = bars
         yield from scenario(b, target, out)
 

@@ -143,11 +143,12 @@ def rise_steps(log):
     return [_step(sx, sy, dx, dy) for _, sx, sy, dx, dy in log.rises]
 
 
-def check_pin_timing(edges, width=1, setup=1, hold=1):
-    """Every STEP pulse exactly ``width`` clocks high and at least ``width``
-    low; DIR changes only while STEP is low, ``hold`` clocks or more after a
+def check_pin_timing(edges, width=1, setup=1, hold=1, space=None):
+    """Every STEP pulse exactly ``width`` clocks high and at least ``space``
+    (STEP_SPACE; None: ``width``) low; DIR changes only while STEP is low, ``hold`` clocks or more after a
     fall and ``setup`` or more before a rise (``PulseOutModel``'s rules).
     ``edges``: a PinLog's (clock, state); returns the first violation or None."""
+    space = width if space is None else space
     last_rise, last_fall, last_dir = {}, {}, {}
     state = 0
     for clock, new in edges:
@@ -160,7 +161,7 @@ def check_pin_timing(edges, width=1, setup=1, hold=1):
                     return f"DIR {axis} changed {clock - last_fall[axis]} clocks after STEP fell at clock {clock}"
                 last_dir[axis] = clock
             if new & step and not state & step:
-                if clock - last_fall.get(axis, -(1 << 40)) < width:
+                if clock - last_fall.get(axis, -(1 << 40)) < space:
                     return f"STEP {axis} low only {clock - last_fall[axis]} clocks before clock {clock}"
                 if clock - last_dir.get(axis, -(1 << 40)) < setup:
                     return f"STEP {axis} rose {clock - last_dir[axis]} clocks after DIR at clock {clock}"

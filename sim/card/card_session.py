@@ -36,12 +36,13 @@ from sim.backends.verilator.verilated_card import VerilatedCard
 from sim.backends.verilator.pci_bus import VerilatorBench
 from sim.backends.waves import trace_stem
 from models.sim_machine import SimMachine
-from sim.card.card_e2e import DEFAULT_FIFO, DEVICE, CardUnderTest, card_verilog, wait
+from sim.card.card_e2e import DEFAULT_FIFO, DEVICE, CardUnderTest, card_bars, card_verilog, wait
 from sim.card.sim_machine import MachineHandle
 from sim.pci.bench import CLOCK_PERIOD, TARGET_DEVICE, PciBench, pci_testbench
 from sim.pci.host_types import Clocks, HostError
 
 RETRIES = 4096  # retries in a row before an access gives up (a FIFO that stays full)
+REGISTER_BARS = (0, 2)   # the function registers: BAR0 (I/O) or its alias BAR2 (memory)
 
 
 class AccessError(RuntimeError):
@@ -57,16 +58,22 @@ class CardSession:
     CLOCK_HZ reports (Verilator; the others build the default); ``machine``: a
     ``models.sim_machine.MachineConfig``, the simulated machine on the card's
     input pins (``self.machine``, a ``sim.card.sim_machine.MachineHandle``;
-    None without one: the inputs stay low).
+    None without one: the inputs stay low); ``register_bar``: the BAR
+    ``read`` and ``write`` use, 0 (I/O) or 2 (the same registers at the same
+    offsets in memory space, as a host maps them where it has no port I/O).
 
     ``host`` (a ``PciMaster``), ``target`` (a ``CardUnderTest``: ``log``,
-    ``io``, ``mem``), ``device`` (``PciDevice``), ``io`` / ``mem`` (BAR
+    ``io``, ``mem``, ``alias``), ``device`` (``PciDevice``), ``bars`` (by
+    role: ``io``, ``mem``, ``alias``), ``io`` / ``mem`` / ``alias`` (BAR0..2
     bases), ``clocks`` (card clocks so far).
     """
 
     def __init__(self, kind, fifo_depth=DEFAULT_FIFO, host_options=None, trace=False, name="card_session",
-                 monitor=True, clock_hz=CLOCK_HZ.default, machine=None):
+                 monitor=True, clock_hz=CLOCK_HZ.default, machine=None, register_bar=0):
+        if register_bar not in REGISTER_BARS:
+            raise ValueError(f"register_bar must be 0 (I/O) or 2 (memory), not {register_bar!r}")
         self.kind = kind
+        self.register_bar = register_bar
         simulated = SimMachine(machine) if machine is not None and kind != "verilator" else None
         self.target = CardUnderTest(kind, fifo_depth, machine=simulated)
         options = dict(max_retries=RETRIES)
@@ -87,10 +94,10 @@ class CardSession:
         except BaseException:
             self.close()
             raise
-        bars = {("io" if bar["io"] else "mem"): bar for bar in self.device.bars}
-        self.bars = bars
-        self.io = self.target.io = bars["io"]["base"]
-        self.mem = self.target.mem = bars["mem"]["base"]
+        self.bars = card_bars(self.device)
+        self.io = self.target.io = self.bars["io"]["base"]
+        self.mem = self.target.mem = self.bars["mem"]["base"]
+        self.alias = self.target.alias = self.bars["alias"]["base"]
 
     @property
     def log(self):
@@ -120,15 +127,21 @@ class CardSession:
         return result
 
     def read(self, offset, size=4):
-        """``size`` bytes of the I/O BAR (the function registers) at ``offset``."""
+        """``size`` bytes of the function registers at ``offset`` (through ``register_bar``)."""
         check_access(offset, size, self.bars["io"]["size"])
+        if self.register_bar == 2:
+            return self._complete(self.host.mem_read(self.alias + offset, size=size),
+                                  f"BAR2 read at {offset:#x}").value
         return self._complete(self.host.io_read(self.io + offset, size), f"I/O read at {offset:#x}").value
 
     def write(self, offset, value, size=4):
-        """Write ``size`` bytes of the I/O BAR at ``offset``."""
+        """Write ``size`` bytes of the function registers at ``offset`` (through ``register_bar``)."""
         check_access(offset, size, self.bars["io"]["size"])
         check_value(value, size)
-        self._complete(self.host.io_write(self.io + offset, value, size), f"I/O write at {offset:#x}")
+        if self.register_bar == 2:
+            self._complete(self.host.mem_write(self.alias + offset, value, size), f"BAR2 write at {offset:#x}")
+        else:
+            self._complete(self.host.io_write(self.io + offset, value, size), f"I/O write at {offset:#x}")
 
     def fifo_write(self, words):
         """All of ``words`` as one burst into the memory BAR (resumed after a

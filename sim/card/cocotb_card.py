@@ -59,8 +59,7 @@ async def card_enumerate_registers_fifo_move(dut):
     (device,) = await bus.run(host.enumerate_bus(devices=[0]))
     assert (device.vendor_id, device.device_id) == (PARAMETERS["vendor_id"].default, PARAMETERS["device_id"].default)
     assert device.class_code == PARAMETERS["class_code"].default
-    bars = {("io" if bar["io"] else "mem"): bar for bar in device.bars}
-    io, mem = bars["io"]["base"], bars["mem"]["base"]
+    io, mem = device.bar(0)["base"], device.bar(1)["base"]
     status = await bus.run(host.config_read(0, 0x04))
     assert status.value >> 16 & 0x8000 == 0  # no parity error detected: no X latched in Status
 

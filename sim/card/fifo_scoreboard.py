@@ -125,9 +125,8 @@ def run_bench(kind, fifo_depth, scenario, run, name, trace=False):
 
     def wrapped(b):
         devices = yield from b.host.enumerate_bus(devices=[TARGET_DEVICE])
-        bases = {("io" if bar["io"] else "mem"): bar["base"] for bar in devices[0].bars}
         start = b.host.core.edge
-        yield from scenario(b, bases["io"], bases["mem"])
+        yield from scenario(b, devices[0].bar(0)["base"], devices[0].bar(1)["base"])
         run.clocks = b.host.core.edge - start
 
     bench.run(wrapped, name, trace=trace)

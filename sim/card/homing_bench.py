@@ -14,8 +14,8 @@ AXES = "xy"
 
 def arm(driver, backoff=BACKOFF, search=200, samples=SAMPLES, tick=1):
     """The HOME_* registers, the filter, STEP_WIDTH, the drives on, INT_ENABLE.HOMED."""
-    for name, value in (("STEP_WIDTH", WIDTH), ("INPUT_FILTER", samples), ("INPUT_TICK", tick),
-                        ("HOME_SEEK_PERIOD", SEEK),
+    for name, value in (("STEP_WIDTH", WIDTH), ("STEP_SPACE", WIDTH), ("INPUT_FILTER", samples),
+                        ("INPUT_TICK", tick), ("HOME_SEEK_PERIOD", SEEK),
                         ("HOME_RELEASE_PERIOD", RELEASE), ("HOME_BACKOFF", backoff), ("HOME_SEARCH", search),
                         ("MACHINE_CONTROL", 1), ("INT_ENABLE", regmap.field_of("INT_ENABLE", HOMED=1))):
         yield from write(driver, name, value)

@@ -10,8 +10,9 @@ from sim.pci.host import (COMMAND_INTERRUPT_DISABLE, COMMAND_IO, COMMAND_MEMORY,
 
 TARGETS = ["myhdl", "verilog"]
 DEVICE = 0
-IO_BASE, MEM_BASE = 0x1000, 0x80000000
+IO_BASE, MEM_BASE, ALIAS_BASE = 0x1000, 0x80000000, 0x90000000
 IO_SIZE, MEM_SIZE = 64, 4096          # contract defaults: io_bar_bits=6, mem_bar_bits=12
+ALIAS_SIZE = IO_SIZE                  # BAR2: BAR0's registers in memory space
 VENDOR_ID, DEVICE_ID, CLASS_CODE = 0x1234, 0xDDA0, 0x088000
 IMPLEMENTED_COMMAND = (COMMAND_IO | COMMAND_MEMORY | COMMAND_PARITY_RESPONSE
                        | COMMAND_SERR_ENABLE | COMMAND_INTERRUPT_DISABLE)
@@ -36,9 +37,10 @@ def run(target, scenario, name, **options):
 
 
 def setup(host, command=COMMAND_IO | COMMAND_MEMORY):
-    """Place BAR0 at IO_BASE and BAR1 at MEM_BASE, enable ``command``."""
+    """Place BAR0 at IO_BASE, BAR1 at MEM_BASE and BAR2 at ALIAS_BASE, enable ``command``."""
     yield from host.config_write(DEVICE, 0x10, IO_BASE)
     yield from host.config_write(DEVICE, 0x14, MEM_BASE)
+    yield from host.config_write(DEVICE, 0x18, ALIAS_BASE)
     yield from host.config_write(DEVICE, 0x04, command, be=0x3)
 
 

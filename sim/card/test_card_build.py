@@ -64,7 +64,7 @@ def read_build(kind, build, device, tmp_path):
 
     def scenario(b):
         found = yield from b.host.enumerate_bus(devices=[DEVICE])
-        bars = {("io" if bar["io"] else "mem"): bar["base"] for bar in found[0].bars}
+        bars = {"io": found[0].bar(0)["base"], "mem": found[0].bar(1)["base"]}
         for name in ("ID", "CLOCK_HZ", "FIFO_SIZE", "BUILD"):
             result = yield from b.host.io_read(bars["io"] + regmap.offset(name))
             assert result.complete, f"{name}: {result.termination}"

@@ -190,7 +190,9 @@ def test_after_reset_every_register_reads_as_documented(kind):
         header["DDA_PCI_VENDOR_ID"], header["DDA_PCI_DEVICE_ID"], header["DDA_PCI_REVISION_ID"],
         header["DDA_PCI_CLASS_CODE"])
     assert out["subsystem"] == header["DDA_PCI_SUBSYSTEM_ID"] << 16 | header["DDA_PCI_SUBSYSTEM_VENDOR_ID"]
-    assert (bars["io"]["size"], bars["mem"]["size"]) == (header["DDA_BAR0_SIZE"], header["DDA_BAR1_SIZE"])
+    assert (bars["io"]["size"], bars["mem"]["size"], bars["alias"]["size"]) == (
+        header["DDA_BAR0_SIZE"], header["DDA_BAR1_SIZE"], header["DDA_BAR2_SIZE"])
+    assert not bars["alias"]["io"] and not bars["alias"]["prefetchable"]
 
 
 def test_top_level_pins_match_the_split_port_card_clock_for_clock():

@@ -59,12 +59,15 @@ def _run(name, dut, ports, step, cycles, groups):
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
 @pytest.mark.parametrize("seed", [1, 2])
 def test_pulse_out_timing(seed, cosim):
+    """Random steps and settings (STEP_WIDTH, STEP_SPACE, DIR_SETUP, DIR_HOLD,
+    DIR_POLARITY, and STEP_MODE: step/dir, up/down, quadrature, changed with
+    the queue empty as docs/registers.md asks) against the model every clock."""
     rng = random.Random(seed)
     ports = pulse_out_ports()
     request, control, pins, position = ports["request"], ports["control"], ports["pins"], ports["position"]
     model = PulseOutModel()
     timing = {}
-    rises = []
+    rises, pulses = [], []   # rises of the STEP_X pin; X pulses, by the mode they left in
 
     def step(index):
         if index == 0:
@@ -74,9 +77,12 @@ def test_pulse_out_timing(seed, cosim):
         assert [int(position.x), int(position.y)] == model.positions, f"clock {index}"
         assert bool(control.ready) == model.ready and bool(control.active) == model.active
         if index % 300 == 0:
-            timing.update(width=rng.randint(1, 4), setup=rng.randint(1, 4), hold=rng.randint(1, 4))
+            timing.update(width=rng.randint(1, 4), space=rng.randint(1, 6), setup=rng.randint(1, 4),
+                          hold=rng.randint(1, 4))
             timing["polarity"] = (rng.random() < 0.5, rng.random() < 0.5)
-        wanted = model.ready and rng.random() < 0.6
+        if index % 300 == 20:   # the queue has run empty (no requests since 280)
+            timing["mode"] = (index // 300 + seed) % 3
+        wanted = model.ready and rng.random() < 0.6 and index % 300 < 280
         steps = (wanted and rng.random() < 0.7, wanted and rng.random() < 0.5)
         dirs = (rng.random() < 0.7, rng.random() < 0.4)
         flags = dict(clear=rng.random() < 0.005, clear_position=rng.random() < 0.003)
@@ -87,16 +93,18 @@ def test_pulse_out_timing(seed, cosim):
                 control.polarity_x.next, control.polarity_y.next = value
             else:
                 getattr(control, key).next = value
-        was_high = model.step_pins[0]
+        was_high, pulse_before = model.step_pins[0], model.pulses[0]
         model.clock(steps, dirs, **flags, **timing)
         if model.step_pins[0] and not was_high:
             rises.append(index)
+        if model.pulses[0] and not pulse_before:
+            pulses.append(timing.get("mode", 0))
 
     wave, cosim = _run(f"pulse_out_{seed}_{'icarus' if cosim else 'myhdl'}",
                        _dut(pulse_out, "pulse_out", ports, cosim), ports, step, 1200,
                        {"request": ["request_step_x", "request_dir_x", "control_ready"],
                         "pins": ["pins_step_x", "pins_dir_x", "pins_step_y", "pins_dir_y", "position_x"]})
-    assert len(rises) > 100
+    assert all(pulses.count(mode) > 20 for mode in range(3)), "every STEP_MODE carried steps"
     if not cosim:
         assert len(wave.edges("pins_step_x", "1")) == len(rises)
 

@@ -25,8 +25,8 @@ MODE_IDS = ["myhdl", "icarus"]
 
 
 def arm(driver, feed=regmap.RATE_MAX // 2):
-    for name, value in (("FEED_RATE", feed), ("RAMP_STEP", 0), ("STEP_WIDTH", WIDTH), ("CONTROL", 1),
-                        ("MACHINE_CONTROL", 1), ("INT_ENABLE", regmap.field_of("INT_ENABLE", STOPPED=1))):
+    for name, value in (("FEED_RATE", feed), ("RAMP_STEP", 0), ("STEP_WIDTH", WIDTH), ("STEP_SPACE", WIDTH),
+                        ("CONTROL", 1), ("MACHINE_CONTROL", 1), ("INT_ENABLE", regmap.field_of("INT_ENABLE", STOPPED=1))):
         yield from write(driver, name, value)
 
 

@@ -26,7 +26,7 @@ ITERATION = regmap.RATE_ONE // RAMP["target"]   # clocks: a limit is hit at the 
 
 def arm_ramped(driver):
     for name, value in (("FEED_RATE", RAMP["target"]), ("RAMP_START", RAMP["ramp_start"]),
-                        ("RAMP_STEP", RAMP["ramp_step"]), ("STEP_WIDTH", WIDTH), ("CONTROL", 1),
+                        ("RAMP_STEP", RAMP["ramp_step"]), ("STEP_WIDTH", WIDTH), ("STEP_SPACE", WIDTH), ("CONTROL", 1),
                         ("MACHINE_CONTROL", regmap.field_of("MACHINE_CONTROL", DRIVE_ENABLE=1)),
                         ("INT_ENABLE", regmap.field_of("INT_ENABLE", STOPPED=1))):
         yield from write(driver, name, value)

@@ -34,7 +34,8 @@ def test_identity_and_header(target):
     assert (regs[0x04] >> 16) & (3 << 9) == STATUS_DEVSEL_MEDIUM
     assert (regs[0x04] >> 16) & (1 << 4) == 0             # no capabilities list
     assert regs[0x10] & 1 == 1 and regs[0x14] & 0xF == 0  # I/O BAR; 32-bit non-prefetchable
-    implemented = {0x00, 0x04, 0x08, 0x0C, 0x10, 0x14, 0x2C, 0x3C}
+    assert regs[0x18] & 0xF == 0                          # BAR2 (the registers' alias) likewise
+    implemented = {0x00, 0x04, 0x08, 0x0C, 0x10, 0x14, 0x18, 0x2C, 0x3C}
     assert all(regs[r] == 0 for r in range(0, 0x100, 4) if r not in implemented)
     for edge in address_edges(wave)[:3]:
         assert sampled(wave, "bus_devsel", edge + CLOCK_PERIOD) == "1"
@@ -93,7 +94,7 @@ def test_enumeration_sizes_and_places_the_bars(target):
     assert (device.device, device.vendor_id, device.device_id) == (DEVICE, VENDOR_ID, DEVICE_ID)
     assert device.interrupt_pin == 1 and device.class_code == CLASS_CODE
     assert [(bar["index"], bar["io"], bar["size"], bar["base"]) for bar in device.bars] == [
-        (0, True, IO_SIZE, 0x2000), (1, False, MEM_SIZE, 0xC0000000)]
+        (0, True, IO_SIZE, 0x2000), (1, False, MEM_SIZE, 0xC0000000), (2, False, IO_SIZE, 0xC0000000 + MEM_SIZE)]
     assert bench.memory.read(0, 8) == 0x11223344 and bench.memory.read(1, 0x10) == 0x55667788
 
 
@@ -104,7 +105,7 @@ def test_bar_sizes_follow_the_parameters(target):
 
     out, _, _ = run(target, scenario, "pci_bar_sizes",
                     slave_params={"io_bar_bits": 4, "mem_bar_bits": 8})
-    assert [bar["size"] for bar in out["devices"][0].bars] == [16, 256]
+    assert [bar["size"] for bar in out["devices"][0].bars] == [16, 256, 16]
 
 
 @pytest.mark.parametrize("target", TARGETS)

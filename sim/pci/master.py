@@ -97,6 +97,13 @@ class PciDevice:
     interrupt_pin: int
     command: int
 
+    def bar(self, index):
+        """The BAR of ``index`` (0..5) as enumeration found it; KeyError if it has none."""
+        for bar in self.bars:
+            if bar["index"] == index:
+                return bar
+        raise KeyError(f"device {self.device} has no BAR{index}")
+
 
 def byte_enables(address, size):
     """Active-high byte enables of a ``size``-byte access at ``address``."""

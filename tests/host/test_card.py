@@ -78,6 +78,7 @@ MAJOR = regmap.VERSION >> 8
     (regmap.ID_MAGIC << 16 | (MAJOR + 1) << 8 | 1, f"register map {MAJOR + 1}.1; this host software speaks {MAJOR}.x"),
     (regmap.ID_MAGIC << 16 | 0x0103, f"register map 1.3; this host software speaks {MAJOR}.x"),
     (regmap.ID_MAGIC << 16 | 0x0100, f"register map 1.0; this host software speaks {MAJOR}.x"),
+    (regmap.ID_MAGIC << 16 | 0x0200, "register map 2.0 lacks what 2.1 added"),   # no STEP_SPACE: configure writes it
 ])
 def test_identification_refuses_other_cards_and_versions(id_word, text):
     with pytest.raises(IdentityError, match=text):
@@ -96,10 +97,12 @@ def high_times(edges, bit):
     return times
 
 
-@pytest.mark.parametrize("width_ns, setup_ns, hold_ns", [(2000, 500, 300), (30, 1, 7000)])
-def test_pulse_timing_in_nanoseconds_is_met_on_the_pins(card, transport, width_ns, setup_ns, hold_ns):
-    card.configure(step_width_ns=width_ns, dir_setup_ns=setup_ns, dir_hold_ns=hold_ns)
-    expect = [max(1, math.ceil(ns * 1e-9 * CLOCK_HZ - 1e-9)) for ns in (width_ns, setup_ns, hold_ns)]
+@pytest.mark.parametrize("width_ns, setup_ns, hold_ns, space_ns", [(2000, 500, 300, None), (30, 1, 7000, 3000)])
+def test_pulse_timing_in_nanoseconds_is_met_on_the_pins(card, transport, width_ns, setup_ns, hold_ns, space_ns):
+    card.configure(step_width_ns=width_ns, dir_setup_ns=setup_ns, dir_hold_ns=hold_ns, step_space_ns=space_ns)
+    # the low time between steps is the high time unless STEP_SPACE is given
+    expect = [max(1, math.ceil(ns * 1e-9 * CLOCK_HZ - 1e-9))
+              for ns in (width_ns, setup_ns, hold_ns, width_ns if space_ns is None else space_ns)]
     first = len(transport.pins.edges)
     card.line(6, -4)
     card.line(-5, 3)
@@ -107,6 +110,7 @@ def test_pulse_timing_in_nanoseconds_is_met_on_the_pins(card, transport, width_n
     edges = transport.pins.edges[first:]
     assert set(high_times(edges, 1)) == {expect[0]}  # STEP X
     assert check_pin_timing(edges, *expect) is None
+    assert card.read("STEP_SPACE") == expect[3]
     assert card.position() == (1, -1)
 
 

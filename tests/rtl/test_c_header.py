@@ -198,14 +198,17 @@ def test_a_refused_command_writes_nothing(tmp_path):
 def test_pci_identity_and_bar_sizes_follow_the_build(tmp_path):
     """A build with other IDs: the header says what the converter was given, and
     the BAR sizes the card decodes (``rtl/card.py``: I/O from the register map,
-    a 4 KiB memory window)."""
+    a 4 KiB memory window, BAR0's registers again in memory space)."""
     header = write_c_header(tmp_path, **BUILD)
     checks = [f"_Static_assert(DDA_PCI_{name.upper()} == {value}u, \"{name}\");"
               for name, value in BUILD.items() if name != "fifo_depth"]
     checks += [f"_Static_assert(DDA_FIFO_DEPTH == {BUILD['fifo_depth']}u, \"fifo_depth\");",
                f"_Static_assert(DDA_BAR0_SIZE == {1 << IO_BAR_BITS}u, \"BAR0\");",
                "_Static_assert(DDA_BAR1_SIZE == 4096u, \"BAR1\");",
-               f"_Static_assert(DDA_BAR1_SIZE == {1 << MEM_BAR_BITS}u, \"BAR1 of the card\");"]
+               f"_Static_assert(DDA_BAR1_SIZE == {1 << MEM_BAR_BITS}u, \"BAR1 of the card\");",
+               # BAR2, the registers' memory alias: BAR0's size (PCI 2.3 wants 16 bytes at least)
+               f"_Static_assert(DDA_BAR2_SIZE == {max(1 << IO_BAR_BITS, 16)}u, \"BAR2\");",
+               "_Static_assert(DDA_BAR2_SIZE == DDA_BAR0_SIZE, \"BAR2 aliases BAR0\");"]
     compiler = COMPILERS["c"][0]
     if compiler is None:
         pytest.skip("no C compiler")
