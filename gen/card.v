@@ -890,12 +890,19 @@ reg card_core0_dda_arc1_dda_setup1_plan_beyond;
 reg signed [26:0] card_core0_dda_arc1_dda_setup1_plan_totals_diff;
 reg [26:0] card_core0_dda_arc1_dda_setup1_plan_totals_max;
 wire card_core0_dda_arc1_dda_setup1_plan_done;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_end_odd;
 reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
 reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs;
 reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye;
 reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys;
 reg card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs;
 reg card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys;
+reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant;
+reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_turn;
+wire card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe;
+wire card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs;
+wire card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye;
+wire card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys;
 reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line;
 reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant;
 reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw;
@@ -5724,97 +5731,100 @@ always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_latch
 end
 
 
-always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_geometry
+
+assign card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs = (card_core0_dda_arc1_dda_setup1_plan_mag_xs == 0);
+assign card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys = (card_core0_dda_arc1_dda_setup1_plan_mag_ys == 0);
+assign card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe = (card_core0_dda_arc1_dda_setup1_plan_mag_xe == 0);
+assign card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye = (card_core0_dda_arc1_dda_setup1_plan_mag_ye == 0);
+
+
+always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw, card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye, card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe, card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys, card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys, card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs, card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_quadrants
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
-    reg [2-1:0] turn;
-    reg ahead;
-    reg zero_xs;
-    reg zero_ys;
-    reg zero_xe;
-    reg zero_ye;
     q_s = 2'h0;
     q_e = 2'h0;
-    turn = 2'h0;
-    ahead = 1'b0;
-    zero_xs = (card_core0_dda_arc1_dda_setup1_plan_mag_xs == 0);
-    zero_ys = (card_core0_dda_arc1_dda_setup1_plan_mag_ys == 0);
-    zero_xe = (card_core0_dda_arc1_dda_setup1_plan_mag_xe == 0);
-    zero_ye = (card_core0_dda_arc1_dda_setup1_plan_mag_ye == 0);
     if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw) begin
-        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
             q_s = 0;
         end
-        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!zero_ys))) begin
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys))) begin
             q_s = 1;
         end
-        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys || zero_ys))) begin
+        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys))) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!zero_ye))) begin
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye))) begin
             q_e = 0;
         end
         else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
             q_e = 1;
         end
-        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || zero_xe) && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye)) begin
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe) && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye)) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        turn = (q_e - q_s);
+        card_core0_dda_arc1_dda_setup1_dda_latch1_turn = (q_e - q_s);
     end
     else begin
-        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!zero_ys))) begin
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys))) begin
             q_s = 0;
         end
         else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
             q_s = 1;
         end
-        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || zero_xs) && card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys)) begin
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs) && card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys)) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
             q_e = 0;
         end
-        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!zero_ye))) begin
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye))) begin
             q_e = 1;
         end
-        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye || zero_ye))) begin
+        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye))) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        turn = (q_s - q_e);
+        card_core0_dda_arc1_dda_setup1_dda_latch1_turn = (q_s - q_e);
     end
-    if ((q_s[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw)) begin
+    card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant = q_s;
+    card_core0_dda_arc1_dda_setup1_dda_latch1_end_odd = q_e[0];
+end
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_geometry
+    reg ahead;
+    ahead = 1'b0;
+    if ((card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw)) begin
         ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_x) && (card_core0_dda_arc1_dda_setup1_plan_start_below_y || card_core0_dda_arc1_dda_setup1_plan_start_same_y));
     end
     else begin
         ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_y) && (card_core0_dda_arc1_dda_setup1_plan_start_below_x || card_core0_dda_arc1_dda_setup1_plan_start_same_x));
     end
-    ahead = (ahead && (!(card_core0_dda_arc1_dda_setup1_plan_start_same_x && card_core0_dda_arc1_dda_setup1_plan_start_same_y)) && (turn == 0));
+    ahead = (ahead && (!(card_core0_dda_arc1_dda_setup1_plan_start_same_x && card_core0_dda_arc1_dda_setup1_plan_start_same_y)) && (card_core0_dda_arc1_dda_setup1_dda_latch1_turn == 0));
     card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead <= ahead;
-    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings <= {1'b0, turn};
-    if (((turn == 0) && (!ahead))) begin
+    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings <= {1'b0, card_core0_dda_arc1_dda_setup1_dda_latch1_turn};
+    if (((card_core0_dda_arc1_dda_setup1_dda_latch1_turn == 0) && (!ahead))) begin
         card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings <= 4;
     end
-    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant <= q_s;
-    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward <= (q_s[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
-    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end <= (q_e[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
+    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant <= card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant;
+    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward <= (card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
+    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end <= (card_core0_dda_arc1_dda_setup1_dda_latch1_end_odd != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
     if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= (zero_xe && zero_ye);
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= (card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe && card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye);
     end
     else begin
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= ((card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs && card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys) || (card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe && card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye));
     end
 end
 

@@ -139,12 +139,19 @@ reg dda_setup0_plan_beyond;
 reg signed [26:0] dda_setup0_plan_totals_diff;
 reg [26:0] dda_setup0_plan_totals_max;
 wire dda_setup0_plan_done;
+reg dda_setup0_dda_latch0_end_odd;
 reg [23:0] dda_setup0_dda_latch0_mag_xe;
 reg [23:0] dda_setup0_dda_latch0_mag_xs;
 reg [23:0] dda_setup0_dda_latch0_mag_ye;
 reg [23:0] dda_setup0_dda_latch0_mag_ys;
 reg dda_setup0_dda_latch0_neg_xs;
 reg dda_setup0_dda_latch0_neg_ys;
+reg [1:0] dda_setup0_dda_latch0_start_quadrant;
+reg [1:0] dda_setup0_dda_latch0_turn;
+wire dda_setup0_dda_latch0_zero_xe;
+wire dda_setup0_dda_latch0_zero_xs;
+wire dda_setup0_dda_latch0_zero_ye;
+wire dda_setup0_dda_latch0_zero_ys;
 reg dda_setup0_dda_latch0_plan_line;
 reg [1:0] dda_setup0_dda_latch0_plan_variant;
 reg dda_setup0_dda_latch0_plan_ccw;
@@ -318,97 +325,100 @@ always @(posedge clock) begin: dda_setup0_dda_latch0_latch
 end
 
 
-always @(posedge clock) begin: dda_setup0_dda_latch0_geometry
+
+assign dda_setup0_dda_latch0_zero_xs = (dda_setup0_plan_mag_xs == 0);
+assign dda_setup0_dda_latch0_zero_ys = (dda_setup0_plan_mag_ys == 0);
+assign dda_setup0_dda_latch0_zero_xe = (dda_setup0_plan_mag_xe == 0);
+assign dda_setup0_dda_latch0_zero_ye = (dda_setup0_plan_mag_ye == 0);
+
+
+always @(dda_setup0_dda_latch0_plan_neg_ye, dda_setup0_dda_latch0_plan_ccw, dda_setup0_dda_latch0_zero_ye, dda_setup0_dda_latch0_zero_xs, dda_setup0_dda_latch0_plan_neg_xe, dda_setup0_dda_latch0_zero_ys, dda_setup0_dda_latch0_neg_ys, dda_setup0_dda_latch0_neg_xs, dda_setup0_dda_latch0_zero_xe) begin: dda_setup0_dda_latch0_quadrants
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
-    reg [2-1:0] turn;
-    reg ahead;
-    reg zero_xs;
-    reg zero_ys;
-    reg zero_xe;
-    reg zero_ye;
     q_s = 2'h0;
     q_e = 2'h0;
-    turn = 2'h0;
-    ahead = 1'b0;
-    zero_xs = (dda_setup0_plan_mag_xs == 0);
-    zero_ys = (dda_setup0_plan_mag_ys == 0);
-    zero_xe = (dda_setup0_plan_mag_xe == 0);
-    zero_ye = (dda_setup0_plan_mag_ye == 0);
     if (dda_setup0_dda_latch0_plan_ccw) begin
-        if (((!dda_setup0_dda_latch0_neg_xs) && (!zero_xs) && (!dda_setup0_dda_latch0_neg_ys))) begin
+        if (((!dda_setup0_dda_latch0_neg_xs) && (!dda_setup0_dda_latch0_zero_xs) && (!dda_setup0_dda_latch0_neg_ys))) begin
             q_s = 0;
         end
-        else if (((dda_setup0_dda_latch0_neg_xs || zero_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!zero_ys))) begin
+        else if (((dda_setup0_dda_latch0_neg_xs || dda_setup0_dda_latch0_zero_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!dda_setup0_dda_latch0_zero_ys))) begin
             q_s = 1;
         end
-        else if ((dda_setup0_dda_latch0_neg_xs && (dda_setup0_dda_latch0_neg_ys || zero_ys))) begin
+        else if ((dda_setup0_dda_latch0_neg_xs && (dda_setup0_dda_latch0_neg_ys || dda_setup0_dda_latch0_zero_ys))) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!zero_ye))) begin
+        if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!dda_setup0_dda_latch0_zero_ye))) begin
             q_e = 0;
         end
         else if ((dda_setup0_dda_latch0_plan_neg_xe && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
             q_e = 1;
         end
-        else if (((dda_setup0_dda_latch0_plan_neg_xe || zero_xe) && dda_setup0_dda_latch0_plan_neg_ye)) begin
+        else if (((dda_setup0_dda_latch0_plan_neg_xe || dda_setup0_dda_latch0_zero_xe) && dda_setup0_dda_latch0_plan_neg_ye)) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        turn = (q_e - q_s);
+        dda_setup0_dda_latch0_turn = (q_e - q_s);
     end
     else begin
-        if (((!dda_setup0_dda_latch0_neg_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!zero_ys))) begin
+        if (((!dda_setup0_dda_latch0_neg_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!dda_setup0_dda_latch0_zero_ys))) begin
             q_s = 0;
         end
         else if ((dda_setup0_dda_latch0_neg_xs && (!dda_setup0_dda_latch0_neg_ys))) begin
             q_s = 1;
         end
-        else if (((dda_setup0_dda_latch0_neg_xs || zero_xs) && dda_setup0_dda_latch0_neg_ys)) begin
+        else if (((dda_setup0_dda_latch0_neg_xs || dda_setup0_dda_latch0_zero_xs) && dda_setup0_dda_latch0_neg_ys)) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
+        if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!dda_setup0_dda_latch0_zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
             q_e = 0;
         end
-        else if (((dda_setup0_dda_latch0_plan_neg_xe || zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!zero_ye))) begin
+        else if (((dda_setup0_dda_latch0_plan_neg_xe || dda_setup0_dda_latch0_zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!dda_setup0_dda_latch0_zero_ye))) begin
             q_e = 1;
         end
-        else if ((dda_setup0_dda_latch0_plan_neg_xe && (dda_setup0_dda_latch0_plan_neg_ye || zero_ye))) begin
+        else if ((dda_setup0_dda_latch0_plan_neg_xe && (dda_setup0_dda_latch0_plan_neg_ye || dda_setup0_dda_latch0_zero_ye))) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        turn = (q_s - q_e);
+        dda_setup0_dda_latch0_turn = (q_s - q_e);
     end
-    if ((q_s[0] != dda_setup0_dda_latch0_plan_ccw)) begin
+    dda_setup0_dda_latch0_start_quadrant = q_s;
+    dda_setup0_dda_latch0_end_odd = q_e[0];
+end
+
+
+always @(posedge clock) begin: dda_setup0_dda_latch0_geometry
+    reg ahead;
+    ahead = 1'b0;
+    if ((dda_setup0_dda_latch0_start_quadrant[0] != dda_setup0_dda_latch0_plan_ccw)) begin
         ahead = ((!dda_setup0_plan_start_below_x) && (dda_setup0_plan_start_below_y || dda_setup0_plan_start_same_y));
     end
     else begin
         ahead = ((!dda_setup0_plan_start_below_y) && (dda_setup0_plan_start_below_x || dda_setup0_plan_start_same_x));
     end
-    ahead = (ahead && (!(dda_setup0_plan_start_same_x && dda_setup0_plan_start_same_y)) && (turn == 0));
+    ahead = (ahead && (!(dda_setup0_plan_start_same_x && dda_setup0_plan_start_same_y)) && (dda_setup0_dda_latch0_turn == 0));
     dda_setup0_dda_latch0_plan_ahead <= ahead;
-    dda_setup0_dda_latch0_plan_crossings <= {1'b0, turn};
-    if (((turn == 0) && (!ahead))) begin
+    dda_setup0_dda_latch0_plan_crossings <= {1'b0, dda_setup0_dda_latch0_turn};
+    if (((dda_setup0_dda_latch0_turn == 0) && (!ahead))) begin
         dda_setup0_dda_latch0_plan_crossings <= 4;
     end
-    dda_setup0_dda_latch0_plan_quadrant <= q_s;
-    dda_setup0_dda_latch0_plan_x_inward <= (q_s[0] != dda_setup0_dda_latch0_plan_ccw);
-    dda_setup0_dda_latch0_plan_x_inward_end <= (q_e[0] != dda_setup0_dda_latch0_plan_ccw);
+    dda_setup0_dda_latch0_plan_quadrant <= dda_setup0_dda_latch0_start_quadrant;
+    dda_setup0_dda_latch0_plan_x_inward <= (dda_setup0_dda_latch0_start_quadrant[0] != dda_setup0_dda_latch0_plan_ccw);
+    dda_setup0_dda_latch0_plan_x_inward_end <= (dda_setup0_dda_latch0_end_odd != dda_setup0_dda_latch0_plan_ccw);
     if (dda_setup0_dda_latch0_plan_line) begin
-        dda_setup0_dda_latch0_plan_centre <= (zero_xe && zero_ye);
+        dda_setup0_dda_latch0_plan_centre <= (dda_setup0_dda_latch0_zero_xe && dda_setup0_dda_latch0_zero_ye);
     end
     else begin
-        dda_setup0_dda_latch0_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+        dda_setup0_dda_latch0_plan_centre <= ((dda_setup0_dda_latch0_zero_xs && dda_setup0_dda_latch0_zero_ys) || (dda_setup0_dda_latch0_zero_xe && dda_setup0_dda_latch0_zero_ye));
     end
 end
 

@@ -914,12 +914,19 @@ reg card1_card_core1_dda_arc2_dda_setup2_plan_beyond;
 reg signed [26:0] card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff;
 reg [26:0] card1_card_core1_dda_arc2_dda_setup2_plan_totals_max;
 wire card1_card_core1_dda_arc2_dda_setup2_plan_done;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_end_odd;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn;
+wire card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe;
+wire card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs;
+wire card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye;
+wire card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line;
 reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw;
@@ -6556,97 +6563,100 @@ always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_l
 end
 
 
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_geometry
+
+assign card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs == 0);
+assign card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys == 0);
+assign card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe == 0);
+assign card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye == 0);
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_quadrants
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
-    reg [2-1:0] turn;
-    reg ahead;
-    reg zero_xs;
-    reg zero_ys;
-    reg zero_xe;
-    reg zero_ye;
     q_s = 2'h0;
     q_e = 2'h0;
-    turn = 2'h0;
-    ahead = 1'b0;
-    zero_xs = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs == 0);
-    zero_ys = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys == 0);
-    zero_xe = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe == 0);
-    zero_ye = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye == 0);
     if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw) begin
-        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
             q_s = 0;
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!zero_ys))) begin
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys))) begin
             q_s = 1;
         end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys || zero_ys))) begin
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys))) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!zero_ye))) begin
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye))) begin
             q_e = 0;
         end
         else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
             q_e = 1;
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || zero_xe) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye)) begin
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye)) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        turn = (q_e - q_s);
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn = (q_e - q_s);
     end
     else begin
-        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!zero_ys))) begin
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys))) begin
             q_s = 0;
         end
         else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
             q_s = 1;
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || zero_xs) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys)) begin
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys)) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
             q_e = 0;
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!zero_ye))) begin
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye))) begin
             q_e = 1;
         end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye || zero_ye))) begin
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye))) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        turn = (q_s - q_e);
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn = (q_s - q_e);
     end
-    if ((q_s[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw)) begin
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant = q_s;
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_end_odd = q_e[0];
+end
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_geometry
+    reg ahead;
+    ahead = 1'b0;
+    if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw)) begin
         ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y));
     end
     else begin
         ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x));
     end
-    ahead = (ahead && (!(card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x && card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y)) && (turn == 0));
+    ahead = (ahead && (!(card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x && card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y)) && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn == 0));
     card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead <= ahead;
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings <= {1'b0, turn};
-    if (((turn == 0) && (!ahead))) begin
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings <= {1'b0, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn};
+    if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn == 0) && (!ahead))) begin
         card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings <= 4;
     end
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant <= q_s;
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward <= (q_s[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end <= (q_e[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant;
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward <= (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end <= (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_end_odd != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
     if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= (zero_xe && zero_ye);
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye);
     end
     else begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys) || (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye));
     end
 end
 
