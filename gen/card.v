@@ -6854,31 +6854,17 @@ assign card_core0_dda_arc1_dda_check1_move_take = (card_core0_dda_arc1_dda_check
 assign card_core0_dda_arc1_dda_run1_taking = (card_core0_dda_arc1_dda_run1_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_arc1_dda_run1_step_pending));
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_iterate
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_decision
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_run1_threshold_carry <= 0;
-        card_core0_regs_fifo1_sequencer1_dda_done <= 0;
-        card_core0_dda_arc1_dda_run1_step_blend <= 0;
-        card_core0_dda_arc1_dda_run1_step_step_y <= 0;
-        card_core0_dda_arc1_dda_run1_step_pending <= 0;
-        card_core0_dda_arc1_dda_run1_variant <= 3;
-        card_core0_regs_fifo1_steps_step_x <= 0;
-        card_core0_dda_arc1_dda_run1_target_y <= 0;
-        card_core0_dda_arc1_dda_run1_crossings <= 0;
-        card_core0_dda_arc1_dda_run1_target_x <= 0;
         card_core0_dda_arc1_dda_run1_step_new_piece <= 0;
-        card_core0_dda_arc1_dda_run1_first <= 0;
+        card_core0_dda_arc1_dda_run1_step_pending <= 0;
+        card_core0_dda_arc1_dda_run1_tail_taken <= 0;
+        card_core0_regs_fifo1_steps_step_x <= 0;
+        card_core0_regs_fifo1_sequencer1_dda_done <= 0;
         card_core0_regs_fifo1_steps_dir_x <= 0;
         card_core0_regs_fifo1_steps_dir_y <= 0;
-        card_core0_dda_arc1_dda_run1_quadrant <= 0;
         card_core0_regs_fifo1_steps_step_y <= 0;
-        card_core0_dda_arc1_dda_run1_right <= 0;
-        card_core0_dda_arc1_dda_run1_up <= 0;
-        card_core0_dda_arc1_dda_run1_active <= 0;
-        card_core0_dda_arc1_dda_run1_tail_taken <= 0;
-        card_core0_dda_arc1_dda_run1_step_x_inward <= 0;
-        card_core0_dda_arc1_dda_run1_step_line <= 0;
-        card_core0_dda_arc1_dda_run1_ccw <= 0;
+        card_core0_dda_arc1_dda_run1_step_step_y <= 0;
         card_core0_dda_arc1_dda_run1_step_step_x <= 0;
         card_core0_dda_arc1_dda_run1_step_finished <= 0;
     end
@@ -6905,6 +6891,33 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             card_core0_dda_arc1_dda_run1_step_finished <= card_core0_dda_arc1_dda_run1_finished;
             card_core0_dda_arc1_dda_run1_tail_taken <= card_core0_dda_arc1_dda_run1_tail;
             card_core0_dda_arc1_dda_run1_step_new_piece <= card_core0_dda_arc1_dda_run1_next_piece;
+        end
+        if ((card_core0_dda_arc1_dda_check1_move_take && card_core0_dda_arc1_dda_check1_move_zero)) begin
+            card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_running_move
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_dda_run1_active <= 0;
+        card_core0_dda_arc1_dda_run1_variant <= 3;
+        card_core0_dda_arc1_dda_run1_threshold_carry <= 0;
+        card_core0_dda_arc1_dda_run1_first <= 0;
+        card_core0_dda_arc1_dda_run1_step_x_inward <= 0;
+        card_core0_dda_arc1_dda_run1_quadrant <= 0;
+        card_core0_dda_arc1_dda_run1_target_y <= 0;
+        card_core0_dda_arc1_dda_run1_step_blend <= 0;
+        card_core0_dda_arc1_dda_run1_crossings <= 0;
+        card_core0_dda_arc1_dda_run1_target_x <= 0;
+        card_core0_dda_arc1_dda_run1_step_line <= 0;
+        card_core0_dda_arc1_dda_run1_ccw <= 0;
+        card_core0_dda_arc1_dda_run1_right <= 0;
+        card_core0_dda_arc1_dda_run1_up <= 0;
+    end
+    else begin
+        if (card_core0_dda_arc1_dda_run1_taking) begin
             card_core0_dda_arc1_dda_run1_first <= 1'b0;
         end
         else if (card_core0_dda_arc1_dda_run1_step_pending) begin
@@ -6951,7 +6964,6 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             card_core0_dda_arc1_dda_run1_threshold_carry <= card_core0_dda_arc1_dda_check1_move_line;
         end
         if ((card_core0_dda_arc1_dda_check1_move_take && card_core0_dda_arc1_dda_check1_move_zero)) begin
-            card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
             card_core0_dda_arc1_dda_run1_quadrant <= 0;
         end
     end

@@ -1448,31 +1448,17 @@ assign dda_check0_move_take = (dda_check0_move_offer && ((!dda_run0_active) || (
 assign dda_run0_taking = (dda_run0_active && cmd_advance && (!dda_run0_step_pending));
 
 
-always @(posedge clock, negedge reset) begin: dda_run0_iterate
+always @(posedge clock, negedge reset) begin: dda_run0_decision
     if (reset == 0) begin
-        dda_run0_threshold_carry <= 0;
-        cmd_done <= 0;
-        dda_run0_step_blend <= 0;
-        dda_run0_step_step_y <= 0;
-        dda_run0_step_pending <= 0;
-        dda_run0_variant <= 3;
-        steps_step_x <= 0;
-        dda_run0_target_y <= 0;
-        dda_run0_crossings <= 0;
-        dda_run0_target_x <= 0;
         dda_run0_step_new_piece <= 0;
-        dda_run0_first <= 0;
+        dda_run0_step_pending <= 0;
+        dda_run0_tail_taken <= 0;
+        steps_step_x <= 0;
+        cmd_done <= 0;
         steps_dir_x <= 0;
         steps_dir_y <= 0;
-        dda_run0_quadrant <= 0;
         steps_step_y <= 0;
-        dda_run0_right <= 0;
-        dda_run0_up <= 0;
-        dda_run0_active <= 0;
-        dda_run0_tail_taken <= 0;
-        dda_run0_step_x_inward <= 0;
-        dda_run0_step_line <= 0;
-        dda_run0_ccw <= 0;
+        dda_run0_step_step_y <= 0;
         dda_run0_step_step_x <= 0;
         dda_run0_step_finished <= 0;
     end
@@ -1499,6 +1485,33 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
             dda_run0_step_finished <= dda_run0_finished;
             dda_run0_tail_taken <= dda_run0_tail;
             dda_run0_step_new_piece <= dda_run0_next_piece;
+        end
+        if ((dda_check0_move_take && dda_check0_move_zero)) begin
+            cmd_done <= 1'b1;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: dda_run0_running_move
+    if (reset == 0) begin
+        dda_run0_active <= 0;
+        dda_run0_variant <= 3;
+        dda_run0_threshold_carry <= 0;
+        dda_run0_first <= 0;
+        dda_run0_step_x_inward <= 0;
+        dda_run0_quadrant <= 0;
+        dda_run0_target_y <= 0;
+        dda_run0_step_blend <= 0;
+        dda_run0_crossings <= 0;
+        dda_run0_target_x <= 0;
+        dda_run0_step_line <= 0;
+        dda_run0_ccw <= 0;
+        dda_run0_right <= 0;
+        dda_run0_up <= 0;
+    end
+    else begin
+        if (dda_run0_taking) begin
             dda_run0_first <= 1'b0;
         end
         else if (dda_run0_step_pending) begin
@@ -1545,7 +1558,6 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
             dda_run0_threshold_carry <= dda_check0_move_line;
         end
         if ((dda_check0_move_take && dda_check0_move_zero)) begin
-            cmd_done <= 1'b1;
             dda_run0_quadrant <= 0;
         end
     end

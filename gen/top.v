@@ -7686,31 +7686,17 @@ assign card1_card_core1_dda_arc2_dda_check2_move_take = (card1_card_core1_dda_ar
 assign card1_card_core1_dda_arc2_dda_run2_taking = (card1_card_core1_dda_arc2_dda_run2_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_arc2_dda_run2_step_pending));
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_iterate
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_decision
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_run2_threshold_carry <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_blend <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_step_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_pending <= 0;
-        card1_card_core1_dda_arc2_dda_run2_variant <= 3;
-        card1_card_core1_regs_fifo2_steps_step_x <= 0;
-        card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_crossings <= 0;
-        card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_new_piece <= 0;
-        card1_card_core1_dda_arc2_dda_run2_first <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_pending <= 0;
+        card1_card_core1_dda_arc2_dda_run2_tail_taken <= 0;
+        card1_card_core1_regs_fifo2_steps_step_x <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
         card1_card_core1_regs_fifo2_steps_dir_x <= 0;
         card1_card_core1_regs_fifo2_steps_dir_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_quadrant <= 0;
         card1_card_core1_regs_fifo2_steps_step_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_right <= 0;
-        card1_card_core1_dda_arc2_dda_run2_up <= 0;
-        card1_card_core1_dda_arc2_dda_run2_active <= 0;
-        card1_card_core1_dda_arc2_dda_run2_tail_taken <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_x_inward <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_line <= 0;
-        card1_card_core1_dda_arc2_dda_run2_ccw <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_step_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_step_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_finished <= 0;
     end
@@ -7737,6 +7723,33 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             card1_card_core1_dda_arc2_dda_run2_step_finished <= card1_card_core1_dda_arc2_dda_run2_finished;
             card1_card_core1_dda_arc2_dda_run2_tail_taken <= card1_card_core1_dda_arc2_dda_run2_tail;
             card1_card_core1_dda_arc2_dda_run2_step_new_piece <= card1_card_core1_dda_arc2_dda_run2_next_piece;
+        end
+        if ((card1_card_core1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
+            card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_running_move
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_dda_run2_active <= 0;
+        card1_card_core1_dda_arc2_dda_run2_variant <= 3;
+        card1_card_core1_dda_arc2_dda_run2_threshold_carry <= 0;
+        card1_card_core1_dda_arc2_dda_run2_first <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_x_inward <= 0;
+        card1_card_core1_dda_arc2_dda_run2_quadrant <= 0;
+        card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_blend <= 0;
+        card1_card_core1_dda_arc2_dda_run2_crossings <= 0;
+        card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_line <= 0;
+        card1_card_core1_dda_arc2_dda_run2_ccw <= 0;
+        card1_card_core1_dda_arc2_dda_run2_right <= 0;
+        card1_card_core1_dda_arc2_dda_run2_up <= 0;
+    end
+    else begin
+        if (card1_card_core1_dda_arc2_dda_run2_taking) begin
             card1_card_core1_dda_arc2_dda_run2_first <= 1'b0;
         end
         else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
@@ -7783,7 +7796,6 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             card1_card_core1_dda_arc2_dda_run2_threshold_carry <= card1_card_core1_dda_arc2_dda_check2_move_line;
         end
         if ((card1_card_core1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
-            card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
             card1_card_core1_dda_arc2_dda_run2_quadrant <= 0;
         end
     end
