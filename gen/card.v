@@ -728,6 +728,7 @@ reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_y;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mark_tag;
 wire card_core0_regs_fifo1_feed_rate1_above;
 wire card_core0_regs_fifo1_feed_rate1_above_floor;
+wire card_core0_regs_fifo1_feed_rate1_advancing;
 wire card_core0_regs_fifo1_feed_rate1_below;
 wire card_core0_regs_fifo1_feed_rate1_can_lower;
 wire card_core0_regs_fifo1_feed_rate1_can_raise;
@@ -4500,19 +4501,65 @@ always @(card_core0_regs_fifo1_feed_rate1_count_empty, card_core0_regs_fifo1_fee
 end
 
 
+
+assign card_core0_regs_fifo1_feed_rate1_advancing = (card_core0_regs_fifo1_motion_run && (!card_core0_regs_fifo1_feed_held) && (!(card_core0_regs_fifo1_feed_rate1_step_zero && card_core0_regs_fifo1_feed_pause)) && (!card_core0_regs_fifo1_hold));
+
+
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_accumulate
     if (reset == 0) begin
         card_core0_regs_fifo1_tick <= 0;
         card_core0_regs_fifo1_feed_rate1_phase <= 0;
-        card_core0_regs_fifo1_feed_rate1_rate <= 0;
-        card_core0_regs_fifo1_feed_rate1_count <= 2;
-        card_core0_regs_fifo1_feed_held <= 0;
     end
     else begin
         card_core0_regs_fifo1_tick <= 0;
         if ((!card_core0_regs_fifo1_motion_run)) begin
             card_core0_regs_fifo1_feed_rate1_phase <= 0;
+        end
+        else if (card_core0_regs_fifo1_feed_rate1_advancing) begin
+            card_core0_regs_fifo1_feed_rate1_phase <= card_core0_regs_fifo1_feed_rate1_total[16-1:0];
+            if (card_core0_regs_fifo1_feed_rate1_total[16]) begin
+                card_core0_regs_fifo1_tick <= 1;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_ramp_count
+    if (reset == 0) begin
+        card_core0_regs_fifo1_feed_rate1_count <= 2;
+    end
+    else begin
+        if ((!card_core0_regs_fifo1_motion_run)) begin
             card_core0_regs_fifo1_feed_rate1_count <= 2;
+        end
+        else if ((card_core0_regs_fifo1_feed_rate1_advancing && card_core0_regs_fifo1_feed_rate1_total[16])) begin
+            if (card_core0_regs_fifo1_feed_rate1_step_zero) begin
+                card_core0_regs_fifo1_feed_rate1_count <= 2;
+            end
+            else if ((card_core0_regs_fifo1_feed_rate1_decelerate || card_core0_regs_fifo1_feed_pause)) begin
+                if ((!card_core0_regs_fifo1_feed_rate1_count_empty)) begin
+                    card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
+                end
+            end
+            else if (card_core0_regs_fifo1_feed_rate1_below) begin
+                card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_up;
+            end
+            else if (card_core0_regs_fifo1_feed_rate1_above) begin
+                card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_ramp_rate
+    if (reset == 0) begin
+        card_core0_regs_fifo1_feed_rate1_rate <= 0;
+        card_core0_regs_fifo1_feed_held <= 0;
+    end
+    else begin
+        if ((!card_core0_regs_fifo1_motion_run)) begin
             card_core0_regs_fifo1_feed_held <= card_core0_regs_fifo1_feed_pause;
             if (card_core0_regs_fifo1_feed_pause) begin
                 card_core0_regs_fifo1_feed_rate1_rate <= 0;
@@ -4539,46 +4586,38 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_a
             card_core0_regs_fifo1_feed_rate1_rate <= 0;
             card_core0_regs_fifo1_feed_held <= 1;
         end
-        else if ((!card_core0_regs_fifo1_hold)) begin
-            card_core0_regs_fifo1_feed_rate1_phase <= card_core0_regs_fifo1_feed_rate1_total[16-1:0];
-            if (card_core0_regs_fifo1_feed_rate1_total[16]) begin
-                card_core0_regs_fifo1_tick <= 1;
-                if (card_core0_regs_fifo1_feed_rate1_step_zero) begin
-                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
-                    card_core0_regs_fifo1_feed_rate1_count <= 2;
-                end
-                else if ((card_core0_regs_fifo1_feed_rate1_decelerate || card_core0_regs_fifo1_feed_pause)) begin
-                    if ((!card_core0_regs_fifo1_feed_rate1_count_empty)) begin
-                        card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
-                        if ((card_core0_regs_fifo1_feed_rate1_count_last || (!card_core0_regs_fifo1_feed_rate1_above_floor))) begin
-                            card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_start_s;
-                        end
-                        else begin
-                            card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_lowered;
-                        end
-                    end
-                    else if (card_core0_regs_fifo1_feed_pause) begin
-                        card_core0_regs_fifo1_feed_rate1_rate <= 0;
-                        card_core0_regs_fifo1_feed_held <= 1;
-                    end
-                end
-                else if (card_core0_regs_fifo1_feed_rate1_below) begin
-                    card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_up;
-                    if (card_core0_regs_fifo1_feed_rate1_can_raise) begin
-                        card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_raised;
+        else if (((!card_core0_regs_fifo1_hold) && card_core0_regs_fifo1_feed_rate1_total[16])) begin
+            if (card_core0_regs_fifo1_feed_rate1_step_zero) begin
+                card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
+            end
+            else if ((card_core0_regs_fifo1_feed_rate1_decelerate || card_core0_regs_fifo1_feed_pause)) begin
+                if ((!card_core0_regs_fifo1_feed_rate1_count_empty)) begin
+                    if ((card_core0_regs_fifo1_feed_rate1_count_last || (!card_core0_regs_fifo1_feed_rate1_above_floor))) begin
+                        card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_start_s;
                     end
                     else begin
-                        card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
-                    end
-                end
-                else if (card_core0_regs_fifo1_feed_rate1_above) begin
-                    card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
-                    if (card_core0_regs_fifo1_feed_rate1_can_lower) begin
                         card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_lowered;
                     end
-                    else begin
-                        card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
-                    end
+                end
+                else if (card_core0_regs_fifo1_feed_pause) begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= 0;
+                    card_core0_regs_fifo1_feed_held <= 1;
+                end
+            end
+            else if (card_core0_regs_fifo1_feed_rate1_below) begin
+                if (card_core0_regs_fifo1_feed_rate1_can_raise) begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_raised;
+                end
+                else begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
+                end
+            end
+            else if (card_core0_regs_fifo1_feed_rate1_above) begin
+                if (card_core0_regs_fifo1_feed_rate1_can_lower) begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_lowered;
+                end
+                else begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
                 end
             end
         end

@@ -752,6 +752,7 @@ reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mark_tag;
 wire card1_card_core1_regs_fifo2_feed_rate2_above;
 wire card1_card_core1_regs_fifo2_feed_rate2_above_floor;
+wire card1_card_core1_regs_fifo2_feed_rate2_advancing;
 wire card1_card_core1_regs_fifo2_feed_rate2_below;
 wire card1_card_core1_regs_fifo2_feed_rate2_can_lower;
 wire card1_card_core1_regs_fifo2_feed_rate2_can_raise;
@@ -5332,19 +5333,65 @@ always @(card1_card_core1_regs_fifo2_feed_rate2_count_empty, card1_card_core1_re
 end
 
 
+
+assign card1_card_core1_regs_fifo2_feed_rate2_advancing = (card1_card_core1_regs_fifo2_motion_run && (!card1_card_core1_regs_fifo2_feed_held) && (!(card1_card_core1_regs_fifo2_feed_rate2_step_zero && card1_card_core1_regs_fifo2_feed_pause)) && (!card1_card_core1_regs_fifo2_hold));
+
+
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_accumulate
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_tick <= 0;
         card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
-        card1_card_core1_regs_fifo2_feed_held <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_tick <= 0;
         if ((!card1_card_core1_regs_fifo2_motion_run)) begin
             card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_feed_rate2_advancing) begin
+            card1_card_core1_regs_fifo2_feed_rate2_phase <= card1_card_core1_regs_fifo2_feed_rate2_total[16-1:0];
+            if (card1_card_core1_regs_fifo2_feed_rate2_total[16]) begin
+                card1_card_core1_regs_fifo2_tick <= 1;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_ramp_count
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
+    end
+    else begin
+        if ((!card1_card_core1_regs_fifo2_motion_run)) begin
             card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
+        end
+        else if ((card1_card_core1_regs_fifo2_feed_rate2_advancing && card1_card_core1_regs_fifo2_feed_rate2_total[16])) begin
+            if (card1_card_core1_regs_fifo2_feed_rate2_step_zero) begin
+                card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
+            end
+            else if ((card1_card_core1_regs_fifo2_feed_rate2_decelerate || card1_card_core1_regs_fifo2_feed_pause)) begin
+                if ((!card1_card_core1_regs_fifo2_feed_rate2_count_empty)) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
+                end
+            end
+            else if (card1_card_core1_regs_fifo2_feed_rate2_below) begin
+                card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_up;
+            end
+            else if (card1_card_core1_regs_fifo2_feed_rate2_above) begin
+                card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_ramp_rate
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
+        card1_card_core1_regs_fifo2_feed_held <= 0;
+    end
+    else begin
+        if ((!card1_card_core1_regs_fifo2_motion_run)) begin
             card1_card_core1_regs_fifo2_feed_held <= card1_card_core1_regs_fifo2_feed_pause;
             if (card1_card_core1_regs_fifo2_feed_pause) begin
                 card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
@@ -5371,46 +5418,38 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
             card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
             card1_card_core1_regs_fifo2_feed_held <= 1;
         end
-        else if ((!card1_card_core1_regs_fifo2_hold)) begin
-            card1_card_core1_regs_fifo2_feed_rate2_phase <= card1_card_core1_regs_fifo2_feed_rate2_total[16-1:0];
-            if (card1_card_core1_regs_fifo2_feed_rate2_total[16]) begin
-                card1_card_core1_regs_fifo2_tick <= 1;
-                if (card1_card_core1_regs_fifo2_feed_rate2_step_zero) begin
-                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
-                    card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
-                end
-                else if ((card1_card_core1_regs_fifo2_feed_rate2_decelerate || card1_card_core1_regs_fifo2_feed_pause)) begin
-                    if ((!card1_card_core1_regs_fifo2_feed_rate2_count_empty)) begin
-                        card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
-                        if ((card1_card_core1_regs_fifo2_feed_rate2_count_last || (!card1_card_core1_regs_fifo2_feed_rate2_above_floor))) begin
-                            card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_start_s;
-                        end
-                        else begin
-                            card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_lowered;
-                        end
-                    end
-                    else if (card1_card_core1_regs_fifo2_feed_pause) begin
-                        card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
-                        card1_card_core1_regs_fifo2_feed_held <= 1;
-                    end
-                end
-                else if (card1_card_core1_regs_fifo2_feed_rate2_below) begin
-                    card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_up;
-                    if (card1_card_core1_regs_fifo2_feed_rate2_can_raise) begin
-                        card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_raised;
+        else if (((!card1_card_core1_regs_fifo2_hold) && card1_card_core1_regs_fifo2_feed_rate2_total[16])) begin
+            if (card1_card_core1_regs_fifo2_feed_rate2_step_zero) begin
+                card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
+            end
+            else if ((card1_card_core1_regs_fifo2_feed_rate2_decelerate || card1_card_core1_regs_fifo2_feed_pause)) begin
+                if ((!card1_card_core1_regs_fifo2_feed_rate2_count_empty)) begin
+                    if ((card1_card_core1_regs_fifo2_feed_rate2_count_last || (!card1_card_core1_regs_fifo2_feed_rate2_above_floor))) begin
+                        card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_start_s;
                     end
                     else begin
-                        card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
-                    end
-                end
-                else if (card1_card_core1_regs_fifo2_feed_rate2_above) begin
-                    card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
-                    if (card1_card_core1_regs_fifo2_feed_rate2_can_lower) begin
                         card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_lowered;
                     end
-                    else begin
-                        card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
-                    end
+                end
+                else if (card1_card_core1_regs_fifo2_feed_pause) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
+                    card1_card_core1_regs_fifo2_feed_held <= 1;
+                end
+            end
+            else if (card1_card_core1_regs_fifo2_feed_rate2_below) begin
+                if (card1_card_core1_regs_fifo2_feed_rate2_can_raise) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_raised;
+                end
+                else begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
+                end
+            end
+            else if (card1_card_core1_regs_fifo2_feed_rate2_above) begin
+                if (card1_card_core1_regs_fifo2_feed_rate2_can_lower) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_lowered;
+                end
+                else begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
                 end
             end
         end
