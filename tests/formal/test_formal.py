@@ -14,6 +14,7 @@ import pytest
 from formal import groups as catalogue
 from formal import mutation, trace
 from formal.sby import Task, run, tools_available
+from rtl.convert import GEN_DIR
 
 pytestmark = [pytest.mark.formal,
               pytest.mark.skipif(tools_available() is not None, reason=str(tools_available()))]
@@ -25,7 +26,7 @@ SLOW = [group.name for group in catalogue.GROUPS if not group.fast and group.nam
 
 def _prove(name, tmp_path):
     group = catalogue.group(name)
-    result = run(group.task(catalogue.GEN_DIR), tmp_path)
+    result = run(group.task(GEN_DIR), tmp_path)
     detail = f"{result.status}: failed {result.failed}, missed covers {result.missed}, trace {result.trace}"
     if group.mode == "cover":
         assert result.passed and not result.missed, detail
@@ -52,8 +53,8 @@ def test_fifo_path(tmp_path):
     posted dwords the FIFO then refuses while it is full (issue 10): the
     basecase finds a run from reset with an acknowledged dword not taken
     for 8 clocks.  With the credit the group is a proof."""
-    result = run(catalogue.group("pci_fifo_path").task(catalogue.GEN_DIR), tmp_path)
-    if catalogue.has_write_credit(catalogue.GEN_DIR / "pci_slave.v"):
+    result = run(catalogue.group("pci_fifo_path").task(GEN_DIR), tmp_path)
+    if catalogue.has_write_credit(GEN_DIR / "pci_slave.v"):
         assert result.passed, f"{result.status}: failed {result.failed}, trace {result.trace}"
     else:
         assert result.status == "FAIL" and "acknowledged_write_drains" in result.failed, result.status
@@ -100,7 +101,7 @@ def mutation_lists(tmp_path_factory):
     lists = {}
     for unit, count in MUTANT_LISTS.items():
         work = tmp_path_factory.mktemp(f"mutants_{unit}")
-        unit_file = catalogue.GEN_DIR / f"{unit}.v"
+        unit_file = GEN_DIR / f"{unit}.v"
         commands = mutation.list_mutations(unit_file, work, count, 1)
         lists[unit] = (work, unit_file, commands, mutation.ports(work, unit_file))
     return lists
@@ -117,7 +118,7 @@ def test_fixed_mutant_is_rejected(unit, index, judge, depth, mutation_lists):
     assert mutation.is_observable(work, unit_file, renamed, port_list, MITER_DEPTH), mutant.command
     same_name = folder / f"{unit}.v"
     mutation.write_mutant(work, unit_file, mutant.command, same_name)
-    mutation.judge(mutant, [catalogue.group(judge)], catalogue.GEN_DIR, same_name, work, depth)
+    mutation.judge(mutant, [catalogue.group(judge)], GEN_DIR, same_name, work, depth)
     assert mutant.verdict == "rejected", mutant.command
 
 
@@ -129,7 +130,7 @@ def assert_defect_rejected(judge, source, pattern, replacement, rules, tmp_path)
     mutant = tmp_path / "mutant" / source.name
     mutant.parent.mkdir()
     mutant.write_text(text)
-    result = run(catalogue.group(judge).task(catalogue.GEN_DIR, unit_file=mutant), tmp_path)
+    result = run(catalogue.group(judge).task(GEN_DIR, unit_file=mutant), tmp_path)
     assert result.status == "FAIL" and set(result.failed) & rules, (result.status, result.failed)
 
 
@@ -167,14 +168,14 @@ CARD_DEFECTS = {
 @pytest.mark.parametrize("name", CARD_DEFECTS)
 def test_card_defect_is_caught(name, tmp_path):
     judge, pattern, replacement, rules = CARD_DEFECTS[name]
-    assert_defect_rejected(judge, catalogue.GEN_DIR / "card.v", pattern, replacement, rules, tmp_path)
+    assert_defect_rejected(judge, GEN_DIR / "card.v", pattern, replacement, rules, tmp_path)
 
 
 @pytest.mark.slow
 def test_card_error_defect_is_caught(tmp_path):
     """STATUS.ERROR stuck at NONE on the whole card: a malformed first
     command is not reported, and `card_status_error` rejects it."""
-    assert_defect_rejected("card_status_error", catalogue.GEN_DIR / "card.v",
+    assert_defect_rejected("card_status_error", GEN_DIR / "card.v",
                            r"word\[4\+:4\] = card_core0_regs_fifo1_error_code;", "word[4+:4] = 4'h0;",
                            {"card_status_error_bad_opcode", "card_status_error_reserved_bits"}, tmp_path)
 
@@ -195,5 +196,5 @@ MACHINE_DEFECTS = {
 @pytest.mark.parametrize("name", MACHINE_DEFECTS)
 def test_machine_defect_is_caught(name, tmp_path):
     judge, original, defect, rules = MACHINE_DEFECTS[name]
-    assert_defect_rejected(judge, catalogue.GEN_DIR / "regs_fifo.v", re.escape(original), lambda _: defect,
+    assert_defect_rejected(judge, GEN_DIR / "regs_fifo.v", re.escape(original), lambda _: defect,
                            rules, tmp_path)
