@@ -47,6 +47,7 @@ from rtl.convert import BUILD_DIR
 WORK_DIR = BUILD_DIR / "formal" / "equivalence"
 IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 OUTPUT_PREFIX = "same_"
+MARKER = "EQUIVALENCE"     # names a work folder this module may replace
 INDUCTION_FAILED = re.compile(r"induction: .*Assert failed in \S+: (\S+)")
 
 
@@ -197,15 +198,19 @@ def miter_text(unit, inputs, outputs, registers, paired=(), reset="reset", reset
 def check(unit, old_file, new_file, mode="prove", depth=4, work=None, match_registers=True,
           reset="reset", reset_active=0, timeout=3600):
     """Prove ``new_file`` equivalent to ``old_file`` (module ``unit`` in both); a ``Verdict``."""
+    texts = [Path(source).read_text() for source in (old_file, new_file)]
+    for source, text in zip((old_file, new_file), texts):
+        if not re.search(rf"^\s*module\s+{re.escape(unit)}\b", text, re.MULTILINE):
+            raise ValueError(f"{source} defines no module {unit}")
     work = Path(work or WORK_DIR / unit)
+    if work.exists() and any(work.iterdir()) and not (work / MARKER).exists():
+        raise ValueError(f"{work} holds files of something else: name a new folder")
     if work.exists():
         shutil.rmtree(work)
     work.mkdir(parents=True)
+    (work / MARKER).write_text("work folder of python -m formal.equivalence, replaced by each run\n")
     old_name, new_name = f"{unit}_old.v", f"{unit}_new.v"
-    for source, name in ((old_file, old_name), (new_file, new_name)):
-        text = Path(source).read_text()
-        if not re.search(rf"^\s*module\s+{re.escape(unit)}\b", text, re.MULTILINE):
-            raise ValueError(f"{source} defines no module {unit}")
+    for name, text in zip((old_name, new_name), texts):
         (work / name).write_text(text)
     inputs, outputs, registers, paired = plan_ports(work, unit, old_name, new_name, match_registers)
     miter = work / "equivalence_miter.sv"

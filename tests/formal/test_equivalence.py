@@ -67,3 +67,13 @@ def test_a_visible_defect_gives_a_counterexample(original, tmp_path):
     assert verdict.status == "FAIL" and not verdict.equivalent
     assert verdict.outputs and set(verdict.outputs) <= {"feed_tick", "feed_held"}, verdict.text()
     assert verdict.trace is not None and verdict.trace.exists()
+
+
+def test_a_folder_of_other_files_is_refused(original, tmp_path):
+    """``--work`` naming a folder that holds something else is refused before
+    anything in it is touched."""
+    kept = tmp_path / "notes.txt"
+    kept.write_text("not a miter's")
+    with pytest.raises(ValueError, match="holds files of something else"):
+        equivalence.check(UNIT, original, original, work=tmp_path)
+    assert kept.read_text() == "not a miter's"
