@@ -1,178 +1,275 @@
-"""Are two Verilog versions of a unit the same circuit at their ports?
+"""Equivalence of two versions of a unit's Verilog: a miter proved with SymbiYosys.
 
-    python -m formal.equivalence OLD.v NEW.v --top UNIT [--depth N] [--registers]
+    python -m formal.equivalence --unit dda_arc OLD.v NEW.v
+    git show BASE:gen/dda_arc.v > old.v && python -m formal.equivalence --unit dda_arc old.v gen/dda_arc.v
 
-A miter (formal/mutation.py's) drives both versions with the same inputs,
-resets both in the first clock (the ``--reset`` port, active low) and
-asserts at every later clock that every output is the same.  With
-``--registers`` it also asserts that the registers both versions have under
-the same name and width hold the same value: a stronger claim, for a change
-that keeps the registers (splitting processes, renaming logic), and one that
-lets the k-induction close at a small depth.
+Both files define the module ``--unit``; the new one is renamed
+``<unit>_new`` as it is read.  The miter instantiates both with the same
+inputs, holds the reset in the first clock and asserts, at every clock
+after it, that each output of the two is the same (``same_<output>``).
 
-It first tries a k-induction of ``--depth`` steps (SymbiYosys ``prove``):
-PASS is equivalence for every run from reset.  If the induction does not
-close, a bounded check of ``--bmc-depth`` clocks says how far the two agree
-at least; a counterexample (the two differ) ends the run with its trace.
-Exit status 0 only for an unbounded proof, 2 for a bounded one, 1 when the
-versions differ or a run failed.
+Register correspondence (the default): memories are made registers, one
+a word (yosys ``memory_map``), and the registers both versions have under
+the same name and width are made ports (``expose -dff -shared``); they
+are assumed equal in the first clock (both copies power up in the same
+state, whatever it is, registers without a reset included) and asserted
+equal, with the outputs, in every clock after the reset.  For a
+refactoring that keeps its registers a k-induction then closes: at k = 1
+when every register is paired, at k = 2 when some register of one
+version is reloaded in every clock.  Proved, the claim is: from any
+common power-up state and for every input sequence, the two versions
+give the same outputs clock for clock after a reset.  ``--outputs-only``
+drops the correspondence: the copies power up independently and only the
+outputs are compared (a bounded check is then what usually finishes).
+The checks are combinational in each clock after the first (the reset's).
+
+Verdicts: ``equivalent`` (a k-induction closed: unbounded; or a bounded
+check passed: to its depth), ``different`` (an output differs: the
+counterexample's step and outputs), ``registers differ`` (outputs agree so
+far but a shared register does not: the correspondence does not hold),
+``not proved`` (the induction step failed: from a common state the
+versions part within k clocks, a real difference or one no run from the
+reset reaches; or time ran out).
+Work files go to ``build/formal/equivalence/<unit>/``.
 """
 import argparse
 import json
+import re
 import shutil
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
-from formal.mutation import miter_text, ports, yosys
-from formal.sby import Result, Task, run, tools_available
+from formal.mutation import yosys
+from formal.sby import Task, run, short_name, tools_available
 from rtl.convert import BUILD_DIR
 
-# yosys cell types whose output is a register after `prep`
-REGISTER_CELLS = ("$dff", "$adff", "$sdff", "$dffe", "$adffe", "$sdffe", "$sdffce", "$dffsr", "$dffsre",
-                  "$aldff", "$aldffe")
-NEW_SUFFIX = "_new"
+WORK_DIR = BUILD_DIR / "formal" / "equivalence"
+IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+OUTPUT_PREFIX = "same_"
+MARKER = "EQUIVALENCE"     # names a work folder this module may replace
+INDUCTION_FAILED = re.compile(r"induction: .*Assert failed in \S+: (\S+)")
+
+
+@dataclass
+class Port:
+    name: str
+    direction: str
+    width: int
+    local: str = ""     # the miter's name for it (a register's name may hold brackets: a memory word)
+
+    def __post_init__(self):
+        self.local = self.local or re.sub(r"\W", "_", self.name)
+
+    @property
+    def reference(self):
+        """The port as Verilog names it (an escaped identifier where needed)."""
+        return self.name if IDENTIFIER.match(self.name) else f"\\{self.name} "
 
 
 @dataclass
 class Verdict:
-    status: str          # "equivalent", "bounded", "different", "error"
-    proof: Result        # the k-induction
-    bounded: Result = None
-    compared: tuple = ()  # what the miter compares: outputs, then registers
+    status: str                  # sby's: PASS, FAIL, UNKNOWN, TIMEOUT, ERROR
+    mode: str
+    depth: int
+    seconds: float
+    outputs: list = field(default_factory=list)      # outputs that differ
+    registers: list = field(default_factory=list)    # shared registers that differ
+    step: int = None
+    matched: list = field(default_factory=list)       # the shared registers compared
+    trace: Path = None
+    induction: bool = False                           # the names come from a failed induction step
 
     @property
-    def result(self):
-        return self.bounded or self.proof
+    def equivalent(self):
+        return self.status == "PASS"
 
     def text(self):
-        outputs = sum(1 for kind, _ in self.compared if kind == "output")
-        registers = len(self.compared) - outputs
-        what = f"{outputs} outputs" + (f" and {registers} registers" if registers else "")
-        if self.status == "equivalent":
-            return (f"equivalent: {what} equal at every clock after reset "
-                    f"(k-induction, depth {self.proof.task.depth}, unbounded; {self.proof.seconds:.0f} s)")
-        if self.status == "bounded":
-            return (f"equal for {self.bounded.task.depth} clocks after reset ({what}; bounded check, "
-                    f"{self.bounded.seconds:.0f} s); the k-induction of depth {self.proof.task.depth} "
-                    f"did not close ({self.proof.status}, {self.proof.seconds:.0f} s)")
-        if self.status == "different":
-            result = self.result
-            return (f"different: {', '.join(sorted(set(result.failed)))} at step {result.step}; "
-                    f"trace {result.trace}")
-        return f"error: {self.result.status}\n{self.result.log[-3000:]}"
+        if self.status == "PASS":
+            reach = "unbounded (k-induction)" if self.mode == "prove" else f"bounded to {self.depth} clocks"
+            return f"equivalent, {reach}"
+        if self.induction:
+            return (f"not proved: from a common state {', '.join((self.outputs + self.registers)[:6])} "
+                    f"part within k = {self.depth} clocks (a difference, or one the reset never "
+                    "reaches: a deeper --depth, or a bounded check, tells)")
+        if self.outputs:
+            return f"different: {', '.join(self.outputs)} at step {self.step} from the reset"
+        if self.registers:
+            return (f"registers differ: {', '.join(self.registers[:6])} at step {self.step} from the reset "
+                    "(outputs agree so far; try --outputs-only)")
+        if self.status == "UNKNOWN":
+            return f"not proved: the induction did not close at k = {self.depth}"
+        if self.status == "TIMEOUT":
+            return "not proved: time ran out"
+        return f"not proved: sby ended {self.status}"
 
 
-def register_widths(work, unit_file, top):
-    """{name: width} of the registers of ``top`` in ``unit_file`` (a copy in ``work``)."""
-    yosys(f"read_verilog -formal {Path(unit_file).name}; prep -top {top}; write_json registers.json", work)
-    module = json.loads((work / "registers.json").read_text())["modules"][top]
-    names = {}
-    for netname, net in module["netnames"].items():
-        if not net.get("hide_name"):
-            names.setdefault(tuple(net["bits"]), netname)
-    found = {}
-    for cell in module["cells"].values():
-        if cell["type"] in REGISTER_CELLS:
-            bits = tuple(cell["connections"]["Q"])
-            if bits in names:
-                found[names[bits]] = len(bits)
-    return found
+def read_script(unit, old_name, new_name, match_registers):
+    """yosys commands reading both versions (the new one renamed), and the
+    shared registers made ports when ``match_registers``."""
+    script = [f"read_verilog -formal {new_name}", f"rename {unit} {unit}_new",
+              f"read_verilog -formal {old_name}", "prep"]
+    if match_registers:
+        # memories become registers, one a word, so that their words are paired too; each
+        # paired register R becomes an output R (its value) and an input R.i (what its
+        # readers read)
+        script += ["memory_map", f"expose -cut -dff -shared {unit} {unit}_new"]
+    return script
 
 
-def prepare(old, new, top, work):
-    """Copies of both versions in ``work``: ``<top>.v`` (module ``top``) and
-    ``<top>_new.v`` (module ``<top>_new``); their ports, the same for both."""
-    for folder in ("old", "new"):
-        (work / folder).mkdir(parents=True, exist_ok=True)
-    shutil.copyfile(old, work / "old" / f"{top}.v")
-    shutil.copyfile(new, work / "new" / f"{top}.v")
-    yosys(f"read_verilog -formal {top}.v; prep -flatten -top {top}; rename {top} {top}{NEW_SUFFIX}; "
-          f"write_verilog -noattr ../{top}{NEW_SUFFIX}.v", work / "new")
-    shutil.copyfile(old, work / f"{top}.v")
-    old_ports, new_ports = ports(work / "old", work / "old" / f"{top}.v"), ports(work / "new", work / "new" / f"{top}.v")
-    if sorted(old_ports) != sorted(new_ports):
-        raise ValueError(f"the two versions of {top} have different ports: "
-                         f"{sorted(set(old_ports) ^ set(new_ports))}")
-    return old_ports
+def module_ports(json_file, module):
+    ports = json.loads(Path(json_file).read_text())["modules"][module]["ports"]
+    return [Port(name, port["direction"], len(port["bits"])) for name, port in ports.items()]
 
 
-def build_miter(old, new, top, work, reset="reset", registers=False):
-    """The miter's files and yosys script in ``work``; (sources, script, compared)."""
-    port_list = prepare(old, new, top, work)
-    if reset not in {name for name, direction, _ in port_list if direction == "input"}:
-        raise ValueError(f"{top} has no input {reset!r} (--reset names the active-low reset)")
-    compared = [("output", name) for name, direction, _ in port_list if direction == "output"]
-    script = []
-    if registers:
-        old_regs = register_widths(work / "old", work / "old" / f"{top}.v", top)
-        new_regs = register_widths(work / "new", work / "new" / f"{top}.v", top)
-        shared = sorted(name for name, width in old_regs.items()
-                        if new_regs.get(name) == width and name not in {p[0] for p in port_list})
-        if shared:
-            script.append("expose " + " ".join(f"{module}/w:{name}" for module in (top, top + NEW_SUFFIX)
-                                               for name in shared))
-            port_list = port_list + [(name, "output", old_regs[name]) for name in shared]
-            compared += [("register", name) for name in shared]
-    (work / "miter.sv").write_text(miter_text(top, port_list, reset=reset, other=top + NEW_SUFFIX))
-    script.append("prep -top miter")
-    return [work / f"{top}.v", work / f"{top}{NEW_SUFFIX}.v", work / "miter.sv"], script, tuple(compared)
+def plan_ports(work, unit, old_name, new_name, match_registers):
+    """(inputs, outputs, registers, paired) of the miter: the two versions'
+    ports must agree; ``registers`` are the registers made ports that both
+    have (same width), ``paired`` every register whose readers were cut
+    from it in both (those and the output ports that are registers)."""
+    script = read_script(unit, old_name, new_name, False)
+    script.append("write_json before.json")
+    if match_registers:
+        script += read_script(unit, old_name, new_name, True)[-2:] + ["write_json after.json"]
+    yosys("; ".join(script), work)
+    old, new = module_ports(work / "before.json", unit), module_ports(work / "before.json", f"{unit}_new")
+    if {(p.name, p.direction, p.width) for p in old} != {(p.name, p.direction, p.width) for p in new}:
+        only_old = sorted(p.name for p in old if p not in new)
+        only_new = sorted(p.name for p in new if p not in old)
+        raise ValueError(f"the two versions of {unit} have different ports: old only {only_old}, "
+                         f"new only {only_new}")
+    bad = [p.name for p in old if not IDENTIFIER.match(p.name)]
+    if bad:
+        raise ValueError(f"ports the miter cannot name: {bad}")
+    inputs = [p for p in old if p.direction == "input"]
+    outputs = [p for p in old if p.direction != "input"]
+    if any(p.direction == "inout" for p in old):
+        raise ValueError(f"{unit} has inout ports: compare its core, not its pads")
+    registers, paired = [], []
+    if match_registers:
+        known = {p.name for p in old}
+        cut_old, cut_new = (module_ports(work / "after.json", name) for name in (unit, f"{unit}_new"))
+        registers = [p for p in cut_old if p.name not in known and p.direction == "output"
+                     and (p.name, p.direction, p.width) in {(q.name, q.direction, q.width) for q in cut_new}]
+        taken = {p.local for p in old} | {"clock", "started"}
+        for port in registers:
+            while port.local in taken:
+                port.local += "_"
+            taken.add(port.local)
+        readers_old = {(p.name, p.width) for p in cut_old if p.direction == "input" and p.name not in known}
+        readers_new = {(p.name, p.width) for p in cut_new if p.direction == "input" and p.name not in known}
+        if readers_old != readers_new:
+            raise ValueError(f"registers paired by name but not by width: {sorted(readers_old ^ readers_new)[:6]}")
+        paired = [p for p in outputs + registers if (f"{p.name}.i", p.width) in readers_old]
+    return inputs, outputs, registers, paired
 
 
-def check(old, new, top, depth=4, bmc_depth=30, reset="reset", registers=False, work=None,
-          timeout=3600):
-    """The ``Verdict`` on ``old`` and ``new`` (Verilog files of unit ``top``)."""
-    work = Path(work or BUILD_DIR / "formal" / "equivalence" / top)
+def vector(width):
+    return f"[{width - 1}:0] " if width > 1 else ""
+
+
+def miter_text(unit, inputs, outputs, registers, paired=(), reset="reset", reset_active=0):
+    """The harness ``equivalence_miter``: ``unit`` (``before``) and
+    ``<unit>_new`` (``after``) on the same inputs, reset in the first clock,
+    outputs and ``registers`` asserted equal after it.  The readers of each
+    ``paired`` register read the old version's register in both copies."""
+    if reset not in {p.name for p in inputs}:
+        raise ValueError(f"{unit} has no input {reset!r} (name the reset with --reset)")
+    compared = outputs + registers
+    lines = ["module equivalence_miter ("]
+    lines.append(",\n".join(f"    input wire {vector(p.width)}{p.name}" for p in inputs))
+    lines.append(");")
+    for port in compared:
+        lines.append(f"    wire {vector(port.width)}before_{port.local}, after_{port.local};")
+    for instance, module in (("before", unit), ("after", f"{unit}_new")):
+        connections = [f".{p.name}({p.name})" for p in inputs]
+        connections += [f".{p.reference}({instance}_{p.local})" for p in compared]
+        connections += [f".{Port(p.name + '.i', 'input', p.width).reference}(before_{p.local})" for p in paired]
+        lines.append(f"    {module} {instance} (\n        " + ",\n        ".join(connections) + ");")
+    lines += ["    reg started = 0;", "    always @(posedge clock) started <= 1;",
+              "    always @(*) if (!started) begin",
+              f"        assume({reset} == 1'b{reset_active});", "    end",
+              "    always @(*) if (started) begin"]
+    lines += [f"        {OUTPUT_PREFIX}{p.local}: assert(before_{p.local} == after_{p.local});" for p in compared]
+    lines += ["    end", "endmodule", ""]
+    return "\n".join(lines)
+
+
+def check(unit, old_file, new_file, mode="prove", depth=4, work=None, match_registers=True,
+          reset="reset", reset_active=0, timeout=3600):
+    """Prove ``new_file`` equivalent to ``old_file`` (module ``unit`` in both); a ``Verdict``."""
+    texts = [Path(source).read_text() for source in (old_file, new_file)]
+    for source, text in zip((old_file, new_file), texts):
+        if not re.search(rf"^\s*module\s+{re.escape(unit)}\b", text, re.MULTILINE):
+            raise ValueError(f"{source} defines no module {unit}")
+    work = Path(work or WORK_DIR / unit)
+    if work.exists() and any(work.iterdir()) and not (work / MARKER).exists():
+        raise ValueError(f"{work} holds files of something else: name a new folder")
     if work.exists():
         shutil.rmtree(work)
     work.mkdir(parents=True)
-    sources, script, compared = build_miter(Path(old), Path(new), top, work, reset, registers)
-
-    def task(mode, steps):
-        made = Task(name=f"{top}_{mode}", mode=mode, depth=steps, top="miter", sources=sources, script=script)
-        made.timeout = timeout
-        return made
-
-    proof = run(task("prove", depth), work)
-    if proof.passed:
-        return Verdict("equivalent", proof, compared=compared)
-    if proof.status == "FAIL" and proof.failed:
-        return Verdict("different", proof, compared=compared)
-    bounded = run(task("bmc", bmc_depth), work)
-    if bounded.passed:
-        return Verdict("bounded", proof, bounded, compared)
-    return Verdict("different" if bounded.failed else "error", proof, bounded, compared)
+    (work / MARKER).write_text("work folder of python -m formal.equivalence, replaced by each run\n")
+    old_name, new_name = f"{unit}_old.v", f"{unit}_new.v"
+    for name, text in zip((old_name, new_name), texts):
+        (work / name).write_text(text)
+    inputs, outputs, registers, paired = plan_ports(work, unit, old_name, new_name, match_registers)
+    miter = work / "equivalence_miter.sv"
+    miter.write_text(miter_text(unit, inputs, outputs, registers, paired, reset, reset_active))
+    task = Task(name=f"{unit}_{mode}", mode=mode, depth=depth, top="equivalence_miter", sources=[],
+                script=read_script(unit, old_name, new_name, match_registers)
+                + [f"read_verilog -formal -sv {miter.name}", "prep -top equivalence_miter",
+                   # one netlist: what the two versions compute alike from the same registers merges
+                   "flatten", "opt -fast -keepdc"],
+                files=[work / old_name, work / new_name, miter], timeout=timeout)
+    result = run(task, work)
+    failed, induction = result.failed, False
+    if result.status == "UNKNOWN":
+        failed, induction = [short_name(name) for name in INDUCTION_FAILED.findall(result.log)], True
+        result.trace = work / task.name / "engine_0" / "trace_induct.vcd"
+    failed = {name[len(OUTPUT_PREFIX):] for name in failed}
+    return Verdict(result.status, mode, depth, result.seconds, step=result.step, matched=[p.name for p in registers],
+                   outputs=[p.name for p in outputs if p.local in failed],
+                   registers=[p.name for p in registers if p.local in failed],
+                   trace=result.trace if result.trace and result.trace.exists() else None, induction=induction)
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m formal.equivalence", description=__doc__.split("\n\n")[0])
-    parser.add_argument("old", type=Path, help="the unit's Verilog before the change")
-    parser.add_argument("new", type=Path, help="the unit's Verilog after it")
-    parser.add_argument("--top", required=True, help="the unit's module name (the same in both files)")
-    parser.add_argument("--depth", type=int, default=4, help="k of the k-induction (default 4)")
-    parser.add_argument("--bmc-depth", type=int, default=30,
-                        help="clocks of the bounded check when the induction does not close (default 30)")
-    parser.add_argument("--reset", default="reset", help="the active-low reset input (default reset)")
-    parser.add_argument("--registers", action="store_true",
-                        help="also compare the registers both versions have under one name and width")
-    parser.add_argument("--timeout", type=int, default=3600, help="seconds each run may take (default 3600)")
+    parser.add_argument("old", type=Path, help="the Verilog before the change")
+    parser.add_argument("new", type=Path, help="the Verilog after the change")
+    parser.add_argument("--unit", required=True, help="the module both files define (e.g. dda_arc)")
+    parser.add_argument("--mode", choices=("prove", "bmc"), default="prove",
+                        help="prove: k-induction (unbounded when it closes, default); bmc: bounded")
+    parser.add_argument("--depth", type=int, default=4,
+                        help="k of the induction, or the clocks of the bounded check (default 4)")
+    parser.add_argument("--outputs-only", action="store_true",
+                        help="compare the outputs only, from independent states (no register correspondence)")
+    parser.add_argument("--reset", default="reset", help="the reset input, held in the first clock (default reset)")
+    parser.add_argument("--reset-active", type=int, choices=(0, 1), default=0,
+                        help="the reset's active level (default 0: the card's RST#)")
+    parser.add_argument("--timeout", type=int, default=3600, help="seconds sby may take (default 3600)")
+    parser.add_argument("--work", type=Path, default=None, help="work folder (default build/formal/equivalence/UNIT)")
     args = parser.parse_args(argv)
+    if args.depth < 1:
+        parser.error("argument --depth: must be at least 1")
     for path in (args.old, args.new):
         if not path.is_file():
-            parser.error(f"no file {path}")
-    if args.depth < 1 or args.bmc_depth < 1:
-        parser.error("--depth and --bmc-depth must be at least 1")
+            parser.error(f"{path}: no such file")
     missing = tools_available()
     if missing:
         parser.error(missing)
     try:
-        verdict = check(args.old, args.new, args.top, args.depth, args.bmc_depth, args.reset, args.registers,
-                        timeout=args.timeout)
+        verdict = check(args.unit, args.old, args.new, mode=args.mode, depth=args.depth, work=args.work,
+                        match_registers=not args.outputs_only, reset=args.reset,
+                        reset_active=args.reset_active, timeout=args.timeout)
     except (ValueError, RuntimeError) as error:
-        print(f"python -m formal.equivalence: {error}", file=sys.stderr)
-        return 1
-    print(f"{args.top}: {verdict.text()}")
-    return {"equivalent": 0, "bounded": 2}.get(verdict.status, 1)
+        parser.exit(2, f"{parser.prog}: error: {error}\n")
+    engine = "smtbmc yices " + ("k-induction" if args.mode == "prove" else "bmc")
+    print(f"{args.unit}: {verdict.text()} ({engine}, depth {args.depth}, "
+          f"{len(verdict.matched)} shared registers compared, {verdict.seconds:.0f} s)")
+    if verdict.trace is not None:
+        print(f"counterexample: {verdict.trace}")
+    return 0 if verdict.equivalent else 1
 
 
 if __name__ == "__main__":

@@ -762,6 +762,7 @@ reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_y;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mark_tag;
 wire card_core0_regs_fifo1_feed_rate1_above;
 wire card_core0_regs_fifo1_feed_rate1_above_floor;
+wire card_core0_regs_fifo1_feed_rate1_advancing;
 wire card_core0_regs_fifo1_feed_rate1_below;
 wire card_core0_regs_fifo1_feed_rate1_can_lower;
 wire card_core0_regs_fifo1_feed_rate1_can_raise;
@@ -921,15 +922,11 @@ reg [1:0] card_core0_dda_arc1_dda_setup1_square;
 reg [2:0] card_core0_dda_arc1_dda_setup1_state;
 reg [4:0] card_core0_dda_arc1_dda_setup1_step;
 wire [48:0] card_core0_dda_arc1_dda_setup1_total;
-reg [1:0] card_core0_dda_arc1_dda_setup1_twice;
-reg card_core0_dda_arc1_dda_setup1_plan_x_inward_end;
-reg card_core0_dda_arc1_dda_setup1_plan_x_inward;
-reg [24:0] card_core0_dda_arc1_dda_setup1_root_root;
-reg [2:0] card_core0_dda_arc1_dda_setup1_plan_crossings;
 reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_xs;
 reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_ys;
 reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_xe;
 reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_ye;
+reg [24:0] card_core0_dda_arc1_dda_setup1_root_root;
 wire [47:0] card_core0_dda_arc1_dda_setup1_root_radicand;
 wire card_core0_dda_arc1_dda_setup1_root_load;
 reg card_core0_dda_arc1_dda_setup1_root_grows;
@@ -945,12 +942,19 @@ reg card_core0_dda_arc1_dda_setup1_plan_beyond;
 reg signed [26:0] card_core0_dda_arc1_dda_setup1_plan_totals_diff;
 reg [26:0] card_core0_dda_arc1_dda_setup1_plan_totals_max;
 wire card_core0_dda_arc1_dda_setup1_plan_done;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_end_odd;
 reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
 reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs;
 reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye;
 reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys;
 reg card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs;
 reg card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys;
+reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant;
+reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_turn;
+wire card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe;
+wire card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs;
+wire card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye;
+wire card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys;
 reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line;
 reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant;
 reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw;
@@ -958,7 +962,10 @@ reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend;
 reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe;
 reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye;
 reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead;
+reg [2:0] card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings;
 reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward;
+reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end;
 reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre;
 reg card_core0_dda_arc1_dda_setup1_dda_root1_all_ones;
 reg card_core0_dda_arc1_dda_setup1_dda_root1_fits;
@@ -968,6 +975,7 @@ reg [25:0] card_core0_dda_arc1_dda_setup1_dda_root1_remainder;
 reg card_core0_dda_arc1_dda_setup1_dda_root1_started;
 reg [4:0] card_core0_dda_arc1_dda_setup1_dda_root1_steps;
 wire card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken;
+reg [1:0] card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice;
 reg card_core0_dda_arc1_dda_check1_variant_built;
 wire card_core0_dda_arc1_dda_check1_move_offer;
 wire card_core0_dda_arc1_dda_check1_move_take;
@@ -4920,19 +4928,65 @@ always @(card_core0_regs_fifo1_feed_rate1_count_empty, card_core0_regs_fifo1_fee
 end
 
 
+
+assign card_core0_regs_fifo1_feed_rate1_advancing = (card_core0_regs_fifo1_motion_run && (!card_core0_regs_fifo1_feed_held) && (!(card_core0_regs_fifo1_feed_rate1_step_zero && card_core0_regs_fifo1_feed_pause)) && (!card_core0_regs_fifo1_hold));
+
+
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_accumulate
     if (reset == 0) begin
         card_core0_regs_fifo1_tick <= 0;
         card_core0_regs_fifo1_feed_rate1_phase <= 0;
-        card_core0_regs_fifo1_feed_rate1_rate <= 0;
-        card_core0_regs_fifo1_feed_rate1_count <= 2;
-        card_core0_regs_fifo1_feed_held <= 0;
     end
     else begin
         card_core0_regs_fifo1_tick <= 0;
         if ((!card_core0_regs_fifo1_motion_run)) begin
             card_core0_regs_fifo1_feed_rate1_phase <= 0;
+        end
+        else if (card_core0_regs_fifo1_feed_rate1_advancing) begin
+            card_core0_regs_fifo1_feed_rate1_phase <= card_core0_regs_fifo1_feed_rate1_total[16-1:0];
+            if (card_core0_regs_fifo1_feed_rate1_total[16]) begin
+                card_core0_regs_fifo1_tick <= 1;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_ramp_count
+    if (reset == 0) begin
+        card_core0_regs_fifo1_feed_rate1_count <= 2;
+    end
+    else begin
+        if ((!card_core0_regs_fifo1_motion_run)) begin
             card_core0_regs_fifo1_feed_rate1_count <= 2;
+        end
+        else if ((card_core0_regs_fifo1_feed_rate1_advancing && card_core0_regs_fifo1_feed_rate1_total[16])) begin
+            if (card_core0_regs_fifo1_feed_rate1_step_zero) begin
+                card_core0_regs_fifo1_feed_rate1_count <= 2;
+            end
+            else if ((card_core0_regs_fifo1_feed_rate1_decelerate || card_core0_regs_fifo1_feed_pause)) begin
+                if ((!card_core0_regs_fifo1_feed_rate1_count_empty)) begin
+                    card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
+                end
+            end
+            else if (card_core0_regs_fifo1_feed_rate1_below) begin
+                card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_up;
+            end
+            else if (card_core0_regs_fifo1_feed_rate1_above) begin
+                card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_ramp_rate
+    if (reset == 0) begin
+        card_core0_regs_fifo1_feed_rate1_rate <= 0;
+        card_core0_regs_fifo1_feed_held <= 0;
+    end
+    else begin
+        if ((!card_core0_regs_fifo1_motion_run)) begin
             card_core0_regs_fifo1_feed_held <= card_core0_regs_fifo1_feed_pause;
             if (card_core0_regs_fifo1_feed_pause) begin
                 card_core0_regs_fifo1_feed_rate1_rate <= 0;
@@ -4959,46 +5013,38 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_a
             card_core0_regs_fifo1_feed_rate1_rate <= 0;
             card_core0_regs_fifo1_feed_held <= 1;
         end
-        else if ((!card_core0_regs_fifo1_hold)) begin
-            card_core0_regs_fifo1_feed_rate1_phase <= card_core0_regs_fifo1_feed_rate1_total[16-1:0];
-            if (card_core0_regs_fifo1_feed_rate1_total[16]) begin
-                card_core0_regs_fifo1_tick <= 1;
-                if (card_core0_regs_fifo1_feed_rate1_step_zero) begin
-                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
-                    card_core0_regs_fifo1_feed_rate1_count <= 2;
-                end
-                else if ((card_core0_regs_fifo1_feed_rate1_decelerate || card_core0_regs_fifo1_feed_pause)) begin
-                    if ((!card_core0_regs_fifo1_feed_rate1_count_empty)) begin
-                        card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
-                        if ((card_core0_regs_fifo1_feed_rate1_count_last || (!card_core0_regs_fifo1_feed_rate1_above_floor))) begin
-                            card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_start_s;
-                        end
-                        else begin
-                            card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_lowered;
-                        end
-                    end
-                    else if (card_core0_regs_fifo1_feed_pause) begin
-                        card_core0_regs_fifo1_feed_rate1_rate <= 0;
-                        card_core0_regs_fifo1_feed_held <= 1;
-                    end
-                end
-                else if (card_core0_regs_fifo1_feed_rate1_below) begin
-                    card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_up;
-                    if (card_core0_regs_fifo1_feed_rate1_can_raise) begin
-                        card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_raised;
+        else if (((!card_core0_regs_fifo1_hold) && card_core0_regs_fifo1_feed_rate1_total[16])) begin
+            if (card_core0_regs_fifo1_feed_rate1_step_zero) begin
+                card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
+            end
+            else if ((card_core0_regs_fifo1_feed_rate1_decelerate || card_core0_regs_fifo1_feed_pause)) begin
+                if ((!card_core0_regs_fifo1_feed_rate1_count_empty)) begin
+                    if ((card_core0_regs_fifo1_feed_rate1_count_last || (!card_core0_regs_fifo1_feed_rate1_above_floor))) begin
+                        card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_start_s;
                     end
                     else begin
-                        card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
-                    end
-                end
-                else if (card_core0_regs_fifo1_feed_rate1_above) begin
-                    card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
-                    if (card_core0_regs_fifo1_feed_rate1_can_lower) begin
                         card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_lowered;
                     end
-                    else begin
-                        card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
-                    end
+                end
+                else if (card_core0_regs_fifo1_feed_pause) begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= 0;
+                    card_core0_regs_fifo1_feed_held <= 1;
+                end
+            end
+            else if (card_core0_regs_fifo1_feed_rate1_below) begin
+                if (card_core0_regs_fifo1_feed_rate1_can_raise) begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_raised;
+                end
+                else begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
+                end
+            end
+            else if (card_core0_regs_fifo1_feed_rate1_above) begin
+                if (card_core0_regs_fifo1_feed_rate1_can_lower) begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_lowered;
+                end
+                else begin
+                    card_core0_regs_fifo1_feed_rate1_rate <= card_core0_regs_fifo1_feed_rate1_target_s;
                 end
             end
         end
@@ -6260,97 +6306,100 @@ always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_latch
 end
 
 
-always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_geometry
+
+assign card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs = (card_core0_dda_arc1_dda_setup1_plan_mag_xs == 0);
+assign card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys = (card_core0_dda_arc1_dda_setup1_plan_mag_ys == 0);
+assign card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe = (card_core0_dda_arc1_dda_setup1_plan_mag_xe == 0);
+assign card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye = (card_core0_dda_arc1_dda_setup1_plan_mag_ye == 0);
+
+
+always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw, card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye, card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe, card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys, card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys, card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs, card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_quadrants
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
-    reg [2-1:0] turn;
-    reg ahead;
-    reg zero_xs;
-    reg zero_ys;
-    reg zero_xe;
-    reg zero_ye;
     q_s = 2'h0;
     q_e = 2'h0;
-    turn = 2'h0;
-    ahead = 1'b0;
-    zero_xs = (card_core0_dda_arc1_dda_setup1_plan_mag_xs == 0);
-    zero_ys = (card_core0_dda_arc1_dda_setup1_plan_mag_ys == 0);
-    zero_xe = (card_core0_dda_arc1_dda_setup1_plan_mag_xe == 0);
-    zero_ye = (card_core0_dda_arc1_dda_setup1_plan_mag_ye == 0);
     if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw) begin
-        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
             q_s = 0;
         end
-        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!zero_ys))) begin
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys))) begin
             q_s = 1;
         end
-        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys || zero_ys))) begin
+        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys))) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!zero_ye))) begin
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye))) begin
             q_e = 0;
         end
         else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
             q_e = 1;
         end
-        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || zero_xe) && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye)) begin
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe) && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye)) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        turn = (q_e - q_s);
+        card_core0_dda_arc1_dda_setup1_dda_latch1_turn = (q_e - q_s);
     end
     else begin
-        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!zero_ys))) begin
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys))) begin
             q_s = 0;
         end
         else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
             q_s = 1;
         end
-        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || zero_xs) && card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys)) begin
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs) && card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys)) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
+        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
             q_e = 0;
         end
-        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!zero_ye))) begin
+        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye))) begin
             q_e = 1;
         end
-        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye || zero_ye))) begin
+        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye))) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        turn = (q_s - q_e);
+        card_core0_dda_arc1_dda_setup1_dda_latch1_turn = (q_s - q_e);
     end
-    if ((q_s[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw)) begin
+    card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant = q_s;
+    card_core0_dda_arc1_dda_setup1_dda_latch1_end_odd = q_e[0];
+end
+
+
+always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_geometry
+    reg ahead;
+    ahead = 1'b0;
+    if ((card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw)) begin
         ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_x) && (card_core0_dda_arc1_dda_setup1_plan_start_below_y || card_core0_dda_arc1_dda_setup1_plan_start_same_y));
     end
     else begin
         ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_y) && (card_core0_dda_arc1_dda_setup1_plan_start_below_x || card_core0_dda_arc1_dda_setup1_plan_start_same_x));
     end
-    ahead = (ahead && (!(card_core0_dda_arc1_dda_setup1_plan_start_same_x && card_core0_dda_arc1_dda_setup1_plan_start_same_y)) && (turn == 0));
+    ahead = (ahead && (!(card_core0_dda_arc1_dda_setup1_plan_start_same_x && card_core0_dda_arc1_dda_setup1_plan_start_same_y)) && (card_core0_dda_arc1_dda_setup1_dda_latch1_turn == 0));
     card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead <= ahead;
-    card_core0_dda_arc1_dda_setup1_plan_crossings <= {1'b0, turn};
-    if (((turn == 0) && (!ahead))) begin
-        card_core0_dda_arc1_dda_setup1_plan_crossings <= 4;
+    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings <= {1'b0, card_core0_dda_arc1_dda_setup1_dda_latch1_turn};
+    if (((card_core0_dda_arc1_dda_setup1_dda_latch1_turn == 0) && (!ahead))) begin
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings <= 4;
     end
-    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant <= q_s;
-    card_core0_dda_arc1_dda_setup1_plan_x_inward <= (q_s[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
-    card_core0_dda_arc1_dda_setup1_plan_x_inward_end <= (q_e[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
+    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant <= card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant;
+    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward <= (card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
+    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end <= (card_core0_dda_arc1_dda_setup1_dda_latch1_end_odd != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
     if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= (zero_xe && zero_ye);
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= (card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe && card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye);
     end
     else begin
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= ((card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs && card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys) || (card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe && card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye));
     end
 end
 
@@ -6475,38 +6524,15 @@ always @(card_core0_regs_fifo1_sequencer1_dda_start, card_core0_dda_arc1_dda_set
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_multiplier, card_core0_dda_arc1_dda_setup1_twice, card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_m_is_y, card_core0_dda_arc1_dda_setup1_pick_x, card_core0_dda_arc1_dda_setup1_plan_x_inward_end, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_control
+always @(card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_multiplier, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_dda_setup_control1_operations
     reg [2-1:0] g_op;
     reg [2-1:0] o_op;
-    reg [3-1:0] src;
-    reg on;
-    reg inv;
     g_op = 2'h0;
     o_op = 2'h0;
-    src = 3'h0;
-    on = 1'b1;
-    inv = 1'b0;
     g_op = 0;
     o_op = 2;
-    src = 0;
     case (card_core0_dda_arc1_dda_setup1_state)
         3'b010: begin
-            if (((card_core0_dda_arc1_dda_setup1_step == 1) || (card_core0_dda_arc1_dda_setup1_step == 3) || (card_core0_dda_arc1_dda_setup1_step == 5))) begin
-                inv = 1'b1;
-            end
-            if (((card_core0_dda_arc1_dda_setup1_step == 0) || (card_core0_dda_arc1_dda_setup1_step == 6))) begin
-                src = 0;
-                inv = (card_core0_dda_arc1_dda_setup1_step == 6);
-            end
-            else if (((card_core0_dda_arc1_dda_setup1_step == 1) || (card_core0_dda_arc1_dda_setup1_step == 2) || (card_core0_dda_arc1_dda_setup1_step == 4))) begin
-                src = 1;
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 3)) begin
-                src = 2;
-            end
-            else begin
-                src = 3;
-            end
             if ((card_core0_dda_arc1_dda_setup1_step == 4)) begin
                 g_op = 2;
             end
@@ -6519,109 +6545,44 @@ always @(card_core0_dda_arc1_dda_setup1_multiplier, card_core0_dda_arc1_dda_setu
         end
         3'b011: begin
             o_op = 1;
-            inv = (card_core0_dda_arc1_dda_setup1_square < 2);
             if (card_core0_dda_arc1_dda_setup1_multiplier[0]) begin
                 g_op = 1;
             end
             if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
                 o_op = 2;
-                inv = ((card_core0_dda_arc1_dda_setup1_square == 0) || (card_core0_dda_arc1_dda_setup1_square == 3));
-                src = (card_core0_dda_arc1_dda_setup1_square + 1);
-                if ((card_core0_dda_arc1_dda_setup1_square == 3)) begin
-                    src = 0;
-                    if (card_core0_dda_arc1_dda_setup1_m_is_y) begin
-                        src = 1;
-                    end
-                end
             end
         end
         3'b100: begin
             o_op = 1;
             case (card_core0_dda_arc1_dda_setup1_step)
-                'h0: begin
-                    inv = 1'b1;
-                end
                 'h1: begin
                     g_op = 1;
                     o_op = 2;
-                    src = 0;
-                    if (card_core0_dda_arc1_dda_setup1_m_is_y) begin
-                        src = 1;
-                    end
                 end
                 'h4: begin
                     g_op = 2;
                     o_op = 2;
-                    src = 4;
                 end
             endcase
         end
         3'b101: begin
             g_op = 1;
-            if ((card_core0_dda_arc1_dda_setup1_step == 0)) begin
-                src = 3;
-                if (card_core0_dda_arc1_dda_setup1_plan_x_inward_end) begin
-                    src = 2;
+            case (card_core0_dda_arc1_dda_setup1_step)
+                'h1: begin
+                    g_op = 0;
+                    o_op = 1;
                 end
-                inv = 1'b1;
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 1)) begin
-                g_op = 0;
-                o_op = 1;
-                inv = 1'b1;
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_step <= 5)) begin
-                inv = (!card_core0_dda_arc1_dda_setup1_plan_x_inward);
-                case (card_core0_dda_arc1_dda_setup1_step)
-                    'h2: begin
-                        g_op = 2;
-                        src = 0;
-                    end
-                    'h3: begin
-                        src = 1;
-                    end
-                    default: begin
-                        src = 2;
-                        if ((card_core0_dda_arc1_dda_setup1_step == 5)) begin
-                            src = 3;
-                        end
-                        inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward_end == 1);
-                    end
-                endcase
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 6)) begin
-                src = 4;
-                on = (card_core0_dda_arc1_dda_setup1_plan_x_inward != card_core0_dda_arc1_dda_setup1_plan_x_inward_end);
-                inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward == 1);
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 7)) begin
-                g_op = 2;
-                o_op = 0;
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 8)) begin
-                g_op = 0;
-                src = 1;
-                inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward == 1);
-                if (card_core0_dda_arc1_dda_setup1_pick_x) begin
-                    src = 0;
-                    inv = (!card_core0_dda_arc1_dda_setup1_plan_x_inward);
+                'h2: begin
+                    g_op = 2;
                 end
-            end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 9)) begin
-                src = 3;
-                inv = (!card_core0_dda_arc1_dda_setup1_plan_x_inward_end);
-                if (card_core0_dda_arc1_dda_setup1_pick_x) begin
-                    src = 2;
-                    inv = (card_core0_dda_arc1_dda_setup1_plan_x_inward_end == 1);
+                'h7: begin
+                    g_op = 2;
+                    o_op = 0;
                 end
-            end
-            else begin
-                src = 4;
-                on = (card_core0_dda_arc1_dda_setup1_twice != 0);
-                if ((card_core0_dda_arc1_dda_setup1_step == 11)) begin
-                    on = (card_core0_dda_arc1_dda_setup1_twice == 2);
+                'h8: begin
+                    g_op = 0;
                 end
-            end
+            endcase
         end
         default: begin
             o_op = 0;
@@ -6629,13 +6590,117 @@ always @(card_core0_dda_arc1_dda_setup1_multiplier, card_core0_dda_arc1_dda_setu
     endcase
     card_core0_dda_arc1_dda_setup1_gap_op = g_op;
     card_core0_dda_arc1_dda_setup1_operand_op = o_op;
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice, card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_pick_x, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_arc1_dda_setup1_m_is_y, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_dda_setup_control1_operand_source
+    reg [3-1:0] src;
+    reg on;
+    src = 3'h0;
+    on = 1'b1;
+    src = 0;
+    case (card_core0_dda_arc1_dda_setup1_state)
+        3'b010: begin
+            if (((card_core0_dda_arc1_dda_setup1_step == 1) || (card_core0_dda_arc1_dda_setup1_step == 2) || (card_core0_dda_arc1_dda_setup1_step == 4))) begin
+                src = 1;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 3)) begin
+                src = 2;
+            end
+            else if (((card_core0_dda_arc1_dda_setup1_step != 0) && (card_core0_dda_arc1_dda_setup1_step != 6))) begin
+                src = 3;
+            end
+        end
+        3'b011: begin
+            if ((($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1)) && (card_core0_dda_arc1_dda_setup1_square != 3))) begin
+                src = (card_core0_dda_arc1_dda_setup1_square + 1);
+            end
+            else if ((($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1)) && card_core0_dda_arc1_dda_setup1_m_is_y)) begin
+                src = 1;
+            end
+        end
+        3'b100: begin
+            if (((card_core0_dda_arc1_dda_setup1_step == 1) && card_core0_dda_arc1_dda_setup1_m_is_y)) begin
+                src = 1;
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 4)) begin
+                src = 4;
+            end
+        end
+        3'b101: begin
+            if (((card_core0_dda_arc1_dda_setup1_step == 0) || (card_core0_dda_arc1_dda_setup1_step == 5) || ((card_core0_dda_arc1_dda_setup1_step == 9) && (!card_core0_dda_arc1_dda_setup1_pick_x)))) begin
+                src = 3;
+            end
+            if ((((card_core0_dda_arc1_dda_setup1_step == 0) && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end) || (card_core0_dda_arc1_dda_setup1_step == 4) || ((card_core0_dda_arc1_dda_setup1_step == 9) && card_core0_dda_arc1_dda_setup1_pick_x))) begin
+                src = 2;
+            end
+            if (((card_core0_dda_arc1_dda_setup1_step == 3) || ((card_core0_dda_arc1_dda_setup1_step == 8) && (!card_core0_dda_arc1_dda_setup1_pick_x)))) begin
+                src = 1;
+            end
+            if (((card_core0_dda_arc1_dda_setup1_step == 6) || (card_core0_dda_arc1_dda_setup1_step >= 10))) begin
+                src = 4;
+            end
+            if ((card_core0_dda_arc1_dda_setup1_step == 6)) begin
+                on = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end);
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step >= 10)) begin
+                on = (card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice != 0);
+                if ((card_core0_dda_arc1_dda_setup1_step == 11)) begin
+                    on = (card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice == 2);
+                end
+            end
+        end
+        default: begin
+            src = 0;
+        end
+    endcase
     card_core0_dda_arc1_dda_setup1_source = src;
     card_core0_dda_arc1_dda_setup1_source_on = on;
+end
+
+
+always @(card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_pick_x, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_dda_setup_control1_inversion
+    reg inv;
+    inv = 1'b0;
+    case (card_core0_dda_arc1_dda_setup1_state)
+        3'b010: begin
+            inv = ((card_core0_dda_arc1_dda_setup1_step == 1) || (card_core0_dda_arc1_dda_setup1_step == 3) || (card_core0_dda_arc1_dda_setup1_step == 5) || (card_core0_dda_arc1_dda_setup1_step == 6));
+        end
+        3'b011: begin
+            inv = (card_core0_dda_arc1_dda_setup1_square < 2);
+            if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
+                inv = ((card_core0_dda_arc1_dda_setup1_square == 0) || (card_core0_dda_arc1_dda_setup1_square == 3));
+            end
+        end
+        3'b100: begin
+            inv = (card_core0_dda_arc1_dda_setup1_step == 0);
+        end
+        3'b101: begin
+            if (((card_core0_dda_arc1_dda_setup1_step == 0) || (card_core0_dda_arc1_dda_setup1_step == 1))) begin
+                inv = 1'b1;
+            end
+            else if (((card_core0_dda_arc1_dda_setup1_step == 2) || (card_core0_dda_arc1_dda_setup1_step == 3) || ((card_core0_dda_arc1_dda_setup1_step == 8) && card_core0_dda_arc1_dda_setup1_pick_x))) begin
+                inv = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward);
+            end
+            else if (((card_core0_dda_arc1_dda_setup1_step == 4) || (card_core0_dda_arc1_dda_setup1_step == 5) || ((card_core0_dda_arc1_dda_setup1_step == 9) && card_core0_dda_arc1_dda_setup1_pick_x))) begin
+                inv = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end == 1);
+            end
+            else if (((card_core0_dda_arc1_dda_setup1_step == 6) || (card_core0_dda_arc1_dda_setup1_step == 8))) begin
+                inv = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward == 1);
+            end
+            else if ((card_core0_dda_arc1_dda_setup1_step == 9)) begin
+                inv = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end);
+            end
+        end
+        default: begin
+            inv = 1'b0;
+        end
+    endcase
     card_core0_dda_arc1_dda_setup1_invert = inv;
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_carry_in
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_dda_setup_control1_carry_in
     reg cin;
     if (card_core0_dda_reset == 0) begin
         card_core0_dda_arc1_dda_setup1_carry <= 0;
@@ -6660,25 +6725,25 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
                     cin = (card_core0_dda_arc1_dda_setup1_root_root[0] == 1);
                 end
                 else if (((card_core0_dda_arc1_dda_setup1_next_step == 3) || (card_core0_dda_arc1_dda_setup1_next_step == 4))) begin
-                    cin = (!card_core0_dda_arc1_dda_setup1_plan_x_inward);
+                    cin = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward);
                 end
                 else if (((card_core0_dda_arc1_dda_setup1_next_step == 5) || (card_core0_dda_arc1_dda_setup1_next_step == 6))) begin
-                    cin = (card_core0_dda_arc1_dda_setup1_plan_x_inward_end == 1);
+                    cin = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end == 1);
                 end
                 else if ((card_core0_dda_arc1_dda_setup1_next_step == 7)) begin
-                    cin = ((card_core0_dda_arc1_dda_setup1_plan_x_inward != card_core0_dda_arc1_dda_setup1_plan_x_inward_end) && (card_core0_dda_arc1_dda_setup1_root_root[0] != card_core0_dda_arc1_dda_setup1_plan_x_inward));
+                    cin = ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end) && (card_core0_dda_arc1_dda_setup1_root_root[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward));
                 end
                 else if ((card_core0_dda_arc1_dda_setup1_next_step == 9)) begin
-                    cin = (card_core0_dda_arc1_dda_setup1_pick_x != card_core0_dda_arc1_dda_setup1_plan_x_inward);
+                    cin = (card_core0_dda_arc1_dda_setup1_pick_x != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward);
                 end
                 else if ((card_core0_dda_arc1_dda_setup1_next_step == 10)) begin
-                    cin = (card_core0_dda_arc1_dda_setup1_pick_x == card_core0_dda_arc1_dda_setup1_plan_x_inward_end);
+                    cin = (card_core0_dda_arc1_dda_setup1_pick_x == card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end);
                 end
                 else if ((card_core0_dda_arc1_dda_setup1_next_step == 11)) begin
-                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] && (card_core0_dda_arc1_dda_setup1_twice != 0));
+                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] && (card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice != 0));
                 end
                 else if ((card_core0_dda_arc1_dda_setup1_next_step == 12)) begin
-                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] && (card_core0_dda_arc1_dda_setup1_twice == 2));
+                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] && (card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice == 2));
                 end
             end
             default: begin
@@ -6690,19 +6755,19 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_crossings, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_plan_x_inward_end, card_core0_dda_arc1_dda_setup1_pick_x) begin: card_core0_dda_arc1_dda_setup1_rq_terms
+always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end, card_core0_dda_arc1_dda_setup1_pick_x) begin: card_core0_dda_arc1_dda_setup1_dda_setup_control1_rq_terms
     reg [3-1:0] count;
     count = 3'h0;
-    count = (card_core0_dda_arc1_dda_setup1_plan_crossings - 1);
-    if ((card_core0_dda_arc1_dda_setup1_plan_x_inward != card_core0_dda_arc1_dda_setup1_pick_x)) begin
+    count = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings - 1);
+    if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward != card_core0_dda_arc1_dda_setup1_pick_x)) begin
         count = (count + 1);
     end
-    if ((card_core0_dda_arc1_dda_setup1_plan_x_inward_end == card_core0_dda_arc1_dda_setup1_pick_x)) begin
+    if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end == card_core0_dda_arc1_dda_setup1_pick_x)) begin
         count = (count + 1);
     end
-    card_core0_dda_arc1_dda_setup1_twice = count[3-1:1];
-    if ((card_core0_dda_arc1_dda_setup1_plan_crossings == 0)) begin
-        card_core0_dda_arc1_dda_setup1_twice = 0;
+    card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice = count[3-1:1];
+    if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings == 0)) begin
+        card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice = 0;
     end
 end
 
@@ -6928,25 +6993,25 @@ always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead, card_core0_dda_ar
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend, card_core0_dda_arc1_dda_setup1_plan_crossings, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_geometry
+always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_geometry
     card_core0_dda_arc1_dda_check1_move_line = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line;
     card_core0_dda_arc1_dda_check1_move_variant = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant;
     card_core0_dda_arc1_dda_check1_move_ccw = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw;
     card_core0_dda_arc1_dda_check1_move_blend = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend;
     card_core0_dda_arc1_dda_check1_move_right = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe);
     card_core0_dda_arc1_dda_check1_move_up = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye);
-    card_core0_dda_arc1_dda_check1_move_x_inward = card_core0_dda_arc1_dda_setup1_plan_x_inward;
+    card_core0_dda_arc1_dda_check1_move_x_inward = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward;
     card_core0_dda_arc1_dda_check1_move_quadrant = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant;
-    card_core0_dda_arc1_dda_check1_move_crossings = card_core0_dda_arc1_dda_setup1_plan_crossings;
+    card_core0_dda_arc1_dda_check1_move_crossings = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings;
     if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
         card_core0_dda_arc1_dda_check1_move_quadrant = 0;
         card_core0_dda_arc1_dda_check1_move_crossings = 0;
     end
-    if ((card_core0_dda_arc1_dda_setup1_plan_crossings == 0)) begin
+    if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings == 0)) begin
         card_core0_dda_arc1_dda_check1_move_target_x = 2;
         card_core0_dda_arc1_dda_check1_move_target_y = 2;
     end
-    else if (card_core0_dda_arc1_dda_setup1_plan_x_inward) begin
+    else if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward) begin
         card_core0_dda_arc1_dda_check1_move_target_x = 0;
         card_core0_dda_arc1_dda_check1_move_target_y = 1;
     end
@@ -6995,7 +7060,7 @@ always @(card_core0_dda_arc1_dda_setup1_plan_threshold, card_core0_dda_arc1_dda_
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_plan_x_inward, card_core0_dda_arc1_dda_setup1_plan_mag_ys) begin: card_core0_dda_arc1_dda_check1_precise_terms
+always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_arc1_dda_setup1_plan_mag_ys) begin: card_core0_dda_arc1_dda_check1_precise_terms
     reg [27-1:0] inward;
     reg [27-1:0] outward;
     reg [27-1:0] bias_in;
@@ -7006,7 +7071,7 @@ always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_set
     bias_out = 27'h0;
     inward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_ys};
     outward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_xs};
-    if (card_core0_dda_arc1_dda_setup1_plan_x_inward) begin
+    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward) begin
         inward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_xs};
         outward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_ys};
     end
@@ -7364,31 +7429,17 @@ assign card_core0_dda_arc1_dda_check1_move_take = (card_core0_dda_arc1_dda_check
 assign card_core0_dda_arc1_dda_run1_taking = (card_core0_dda_arc1_dda_run1_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_arc1_dda_run1_step_pending));
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_iterate
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_decision
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_run1_threshold_carry <= 0;
-        card_core0_regs_fifo1_sequencer1_dda_done <= 0;
-        card_core0_dda_arc1_dda_run1_step_blend <= 0;
-        card_core0_dda_arc1_dda_run1_step_step_y <= 0;
-        card_core0_dda_arc1_dda_run1_step_pending <= 0;
-        card_core0_dda_arc1_dda_run1_variant <= 3;
-        card_core0_regs_fifo1_steps_step_x <= 0;
-        card_core0_dda_arc1_dda_run1_target_y <= 0;
-        card_core0_dda_arc1_dda_run1_crossings <= 0;
-        card_core0_dda_arc1_dda_run1_target_x <= 0;
         card_core0_dda_arc1_dda_run1_step_new_piece <= 0;
-        card_core0_dda_arc1_dda_run1_first <= 0;
+        card_core0_dda_arc1_dda_run1_step_pending <= 0;
+        card_core0_dda_arc1_dda_run1_tail_taken <= 0;
+        card_core0_regs_fifo1_steps_step_x <= 0;
+        card_core0_regs_fifo1_sequencer1_dda_done <= 0;
         card_core0_regs_fifo1_steps_dir_x <= 0;
         card_core0_regs_fifo1_steps_dir_y <= 0;
-        card_core0_dda_arc1_dda_run1_quadrant <= 0;
         card_core0_regs_fifo1_steps_step_y <= 0;
-        card_core0_dda_arc1_dda_run1_right <= 0;
-        card_core0_dda_arc1_dda_run1_up <= 0;
-        card_core0_dda_arc1_dda_run1_active <= 0;
-        card_core0_dda_arc1_dda_run1_tail_taken <= 0;
-        card_core0_dda_arc1_dda_run1_step_x_inward <= 0;
-        card_core0_dda_arc1_dda_run1_step_line <= 0;
-        card_core0_dda_arc1_dda_run1_ccw <= 0;
+        card_core0_dda_arc1_dda_run1_step_step_y <= 0;
         card_core0_dda_arc1_dda_run1_step_step_x <= 0;
         card_core0_dda_arc1_dda_run1_step_finished <= 0;
     end
@@ -7415,6 +7466,33 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             card_core0_dda_arc1_dda_run1_step_finished <= card_core0_dda_arc1_dda_run1_finished;
             card_core0_dda_arc1_dda_run1_tail_taken <= card_core0_dda_arc1_dda_run1_tail;
             card_core0_dda_arc1_dda_run1_step_new_piece <= card_core0_dda_arc1_dda_run1_next_piece;
+        end
+        if ((card_core0_dda_arc1_dda_check1_move_take && card_core0_dda_arc1_dda_check1_move_zero)) begin
+            card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_running_move
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_arc1_dda_run1_active <= 0;
+        card_core0_dda_arc1_dda_run1_variant <= 3;
+        card_core0_dda_arc1_dda_run1_threshold_carry <= 0;
+        card_core0_dda_arc1_dda_run1_first <= 0;
+        card_core0_dda_arc1_dda_run1_step_x_inward <= 0;
+        card_core0_dda_arc1_dda_run1_quadrant <= 0;
+        card_core0_dda_arc1_dda_run1_target_y <= 0;
+        card_core0_dda_arc1_dda_run1_step_blend <= 0;
+        card_core0_dda_arc1_dda_run1_crossings <= 0;
+        card_core0_dda_arc1_dda_run1_target_x <= 0;
+        card_core0_dda_arc1_dda_run1_step_line <= 0;
+        card_core0_dda_arc1_dda_run1_ccw <= 0;
+        card_core0_dda_arc1_dda_run1_right <= 0;
+        card_core0_dda_arc1_dda_run1_up <= 0;
+    end
+    else begin
+        if (card_core0_dda_arc1_dda_run1_taking) begin
             card_core0_dda_arc1_dda_run1_first <= 1'b0;
         end
         else if (card_core0_dda_arc1_dda_run1_step_pending) begin
@@ -7461,7 +7539,6 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
             card_core0_dda_arc1_dda_run1_threshold_carry <= card_core0_dda_arc1_dda_check1_move_line;
         end
         if ((card_core0_dda_arc1_dda_check1_move_take && card_core0_dda_arc1_dda_check1_move_zero)) begin
-            card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
             card_core0_dda_arc1_dda_run1_quadrant <= 0;
         end
     end

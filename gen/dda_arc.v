@@ -119,15 +119,11 @@ reg [1:0] dda_setup0_square;
 reg [2:0] dda_setup0_state;
 reg [4:0] dda_setup0_step;
 wire [48:0] dda_setup0_total;
-reg [1:0] dda_setup0_twice;
-reg dda_setup0_plan_x_inward_end;
-reg dda_setup0_plan_x_inward;
-reg [24:0] dda_setup0_root_root;
-reg [2:0] dda_setup0_plan_crossings;
 reg [23:0] dda_setup0_plan_mag_xs;
 reg [23:0] dda_setup0_plan_mag_ys;
 reg [23:0] dda_setup0_plan_mag_xe;
 reg [23:0] dda_setup0_plan_mag_ye;
+reg [24:0] dda_setup0_root_root;
 wire [47:0] dda_setup0_root_radicand;
 wire dda_setup0_root_load;
 reg dda_setup0_root_grows;
@@ -143,12 +139,19 @@ reg dda_setup0_plan_beyond;
 reg signed [26:0] dda_setup0_plan_totals_diff;
 reg [26:0] dda_setup0_plan_totals_max;
 wire dda_setup0_plan_done;
+reg dda_setup0_dda_latch0_end_odd;
 reg [23:0] dda_setup0_dda_latch0_mag_xe;
 reg [23:0] dda_setup0_dda_latch0_mag_xs;
 reg [23:0] dda_setup0_dda_latch0_mag_ye;
 reg [23:0] dda_setup0_dda_latch0_mag_ys;
 reg dda_setup0_dda_latch0_neg_xs;
 reg dda_setup0_dda_latch0_neg_ys;
+reg [1:0] dda_setup0_dda_latch0_start_quadrant;
+reg [1:0] dda_setup0_dda_latch0_turn;
+wire dda_setup0_dda_latch0_zero_xe;
+wire dda_setup0_dda_latch0_zero_xs;
+wire dda_setup0_dda_latch0_zero_ye;
+wire dda_setup0_dda_latch0_zero_ys;
 reg dda_setup0_dda_latch0_plan_line;
 reg [1:0] dda_setup0_dda_latch0_plan_variant;
 reg dda_setup0_dda_latch0_plan_ccw;
@@ -156,7 +159,10 @@ reg dda_setup0_dda_latch0_plan_blend;
 reg dda_setup0_dda_latch0_plan_neg_xe;
 reg dda_setup0_dda_latch0_plan_neg_ye;
 reg dda_setup0_dda_latch0_plan_ahead;
+reg [2:0] dda_setup0_dda_latch0_plan_crossings;
 reg [1:0] dda_setup0_dda_latch0_plan_quadrant;
+reg dda_setup0_dda_latch0_plan_x_inward;
+reg dda_setup0_dda_latch0_plan_x_inward_end;
 reg dda_setup0_dda_latch0_plan_centre;
 reg dda_setup0_dda_root0_all_ones;
 reg dda_setup0_dda_root0_fits;
@@ -166,6 +172,7 @@ reg [25:0] dda_setup0_dda_root0_remainder;
 reg dda_setup0_dda_root0_started;
 reg [4:0] dda_setup0_dda_root0_steps;
 wire dda_setup0_dda_sequence0_plan_taken;
+reg [1:0] dda_setup0_dda_setup_control0_twice;
 reg dda_check0_variant_built;
 wire dda_check0_move_offer;
 wire dda_check0_move_take;
@@ -318,97 +325,100 @@ always @(posedge clock) begin: dda_setup0_dda_latch0_latch
 end
 
 
-always @(posedge clock) begin: dda_setup0_dda_latch0_geometry
+
+assign dda_setup0_dda_latch0_zero_xs = (dda_setup0_plan_mag_xs == 0);
+assign dda_setup0_dda_latch0_zero_ys = (dda_setup0_plan_mag_ys == 0);
+assign dda_setup0_dda_latch0_zero_xe = (dda_setup0_plan_mag_xe == 0);
+assign dda_setup0_dda_latch0_zero_ye = (dda_setup0_plan_mag_ye == 0);
+
+
+always @(dda_setup0_dda_latch0_plan_neg_ye, dda_setup0_dda_latch0_plan_ccw, dda_setup0_dda_latch0_zero_ye, dda_setup0_dda_latch0_zero_xs, dda_setup0_dda_latch0_plan_neg_xe, dda_setup0_dda_latch0_zero_ys, dda_setup0_dda_latch0_neg_ys, dda_setup0_dda_latch0_neg_xs, dda_setup0_dda_latch0_zero_xe) begin: dda_setup0_dda_latch0_quadrants
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
-    reg [2-1:0] turn;
-    reg ahead;
-    reg zero_xs;
-    reg zero_ys;
-    reg zero_xe;
-    reg zero_ye;
     q_s = 2'h0;
     q_e = 2'h0;
-    turn = 2'h0;
-    ahead = 1'b0;
-    zero_xs = (dda_setup0_plan_mag_xs == 0);
-    zero_ys = (dda_setup0_plan_mag_ys == 0);
-    zero_xe = (dda_setup0_plan_mag_xe == 0);
-    zero_ye = (dda_setup0_plan_mag_ye == 0);
     if (dda_setup0_dda_latch0_plan_ccw) begin
-        if (((!dda_setup0_dda_latch0_neg_xs) && (!zero_xs) && (!dda_setup0_dda_latch0_neg_ys))) begin
+        if (((!dda_setup0_dda_latch0_neg_xs) && (!dda_setup0_dda_latch0_zero_xs) && (!dda_setup0_dda_latch0_neg_ys))) begin
             q_s = 0;
         end
-        else if (((dda_setup0_dda_latch0_neg_xs || zero_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!zero_ys))) begin
+        else if (((dda_setup0_dda_latch0_neg_xs || dda_setup0_dda_latch0_zero_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!dda_setup0_dda_latch0_zero_ys))) begin
             q_s = 1;
         end
-        else if ((dda_setup0_dda_latch0_neg_xs && (dda_setup0_dda_latch0_neg_ys || zero_ys))) begin
+        else if ((dda_setup0_dda_latch0_neg_xs && (dda_setup0_dda_latch0_neg_ys || dda_setup0_dda_latch0_zero_ys))) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!zero_ye))) begin
+        if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!dda_setup0_dda_latch0_zero_ye))) begin
             q_e = 0;
         end
         else if ((dda_setup0_dda_latch0_plan_neg_xe && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
             q_e = 1;
         end
-        else if (((dda_setup0_dda_latch0_plan_neg_xe || zero_xe) && dda_setup0_dda_latch0_plan_neg_ye)) begin
+        else if (((dda_setup0_dda_latch0_plan_neg_xe || dda_setup0_dda_latch0_zero_xe) && dda_setup0_dda_latch0_plan_neg_ye)) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        turn = (q_e - q_s);
+        dda_setup0_dda_latch0_turn = (q_e - q_s);
     end
     else begin
-        if (((!dda_setup0_dda_latch0_neg_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!zero_ys))) begin
+        if (((!dda_setup0_dda_latch0_neg_xs) && (!dda_setup0_dda_latch0_neg_ys) && (!dda_setup0_dda_latch0_zero_ys))) begin
             q_s = 0;
         end
         else if ((dda_setup0_dda_latch0_neg_xs && (!dda_setup0_dda_latch0_neg_ys))) begin
             q_s = 1;
         end
-        else if (((dda_setup0_dda_latch0_neg_xs || zero_xs) && dda_setup0_dda_latch0_neg_ys)) begin
+        else if (((dda_setup0_dda_latch0_neg_xs || dda_setup0_dda_latch0_zero_xs) && dda_setup0_dda_latch0_neg_ys)) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
+        if (((!dda_setup0_dda_latch0_plan_neg_xe) && (!dda_setup0_dda_latch0_zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye))) begin
             q_e = 0;
         end
-        else if (((dda_setup0_dda_latch0_plan_neg_xe || zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!zero_ye))) begin
+        else if (((dda_setup0_dda_latch0_plan_neg_xe || dda_setup0_dda_latch0_zero_xe) && (!dda_setup0_dda_latch0_plan_neg_ye) && (!dda_setup0_dda_latch0_zero_ye))) begin
             q_e = 1;
         end
-        else if ((dda_setup0_dda_latch0_plan_neg_xe && (dda_setup0_dda_latch0_plan_neg_ye || zero_ye))) begin
+        else if ((dda_setup0_dda_latch0_plan_neg_xe && (dda_setup0_dda_latch0_plan_neg_ye || dda_setup0_dda_latch0_zero_ye))) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        turn = (q_s - q_e);
+        dda_setup0_dda_latch0_turn = (q_s - q_e);
     end
-    if ((q_s[0] != dda_setup0_dda_latch0_plan_ccw)) begin
+    dda_setup0_dda_latch0_start_quadrant = q_s;
+    dda_setup0_dda_latch0_end_odd = q_e[0];
+end
+
+
+always @(posedge clock) begin: dda_setup0_dda_latch0_geometry
+    reg ahead;
+    ahead = 1'b0;
+    if ((dda_setup0_dda_latch0_start_quadrant[0] != dda_setup0_dda_latch0_plan_ccw)) begin
         ahead = ((!dda_setup0_plan_start_below_x) && (dda_setup0_plan_start_below_y || dda_setup0_plan_start_same_y));
     end
     else begin
         ahead = ((!dda_setup0_plan_start_below_y) && (dda_setup0_plan_start_below_x || dda_setup0_plan_start_same_x));
     end
-    ahead = (ahead && (!(dda_setup0_plan_start_same_x && dda_setup0_plan_start_same_y)) && (turn == 0));
+    ahead = (ahead && (!(dda_setup0_plan_start_same_x && dda_setup0_plan_start_same_y)) && (dda_setup0_dda_latch0_turn == 0));
     dda_setup0_dda_latch0_plan_ahead <= ahead;
-    dda_setup0_plan_crossings <= {1'b0, turn};
-    if (((turn == 0) && (!ahead))) begin
-        dda_setup0_plan_crossings <= 4;
+    dda_setup0_dda_latch0_plan_crossings <= {1'b0, dda_setup0_dda_latch0_turn};
+    if (((dda_setup0_dda_latch0_turn == 0) && (!ahead))) begin
+        dda_setup0_dda_latch0_plan_crossings <= 4;
     end
-    dda_setup0_dda_latch0_plan_quadrant <= q_s;
-    dda_setup0_plan_x_inward <= (q_s[0] != dda_setup0_dda_latch0_plan_ccw);
-    dda_setup0_plan_x_inward_end <= (q_e[0] != dda_setup0_dda_latch0_plan_ccw);
+    dda_setup0_dda_latch0_plan_quadrant <= dda_setup0_dda_latch0_start_quadrant;
+    dda_setup0_dda_latch0_plan_x_inward <= (dda_setup0_dda_latch0_start_quadrant[0] != dda_setup0_dda_latch0_plan_ccw);
+    dda_setup0_dda_latch0_plan_x_inward_end <= (dda_setup0_dda_latch0_end_odd != dda_setup0_dda_latch0_plan_ccw);
     if (dda_setup0_dda_latch0_plan_line) begin
-        dda_setup0_dda_latch0_plan_centre <= (zero_xe && zero_ye);
+        dda_setup0_dda_latch0_plan_centre <= (dda_setup0_dda_latch0_zero_xe && dda_setup0_dda_latch0_zero_ye);
     end
     else begin
-        dda_setup0_dda_latch0_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+        dda_setup0_dda_latch0_plan_centre <= ((dda_setup0_dda_latch0_zero_xs && dda_setup0_dda_latch0_zero_ys) || (dda_setup0_dda_latch0_zero_xe && dda_setup0_dda_latch0_zero_ye));
     end
 end
 
@@ -533,38 +543,15 @@ always @(cmd_start, dda_setup0_dda_sequence0_plan_taken, dda_setup0_step, cmd_li
 end
 
 
-always @(dda_setup0_multiplier, dda_setup0_twice, dda_setup0_step, dda_setup0_m_is_y, dda_setup0_pick_x, dda_setup0_plan_x_inward_end, dda_setup0_plan_x_inward, dda_setup0_square, dda_setup0_state) begin: dda_setup0_control
+always @(dda_setup0_step, dda_setup0_multiplier, dda_setup0_state) begin: dda_setup0_dda_setup_control0_operations
     reg [2-1:0] g_op;
     reg [2-1:0] o_op;
-    reg [3-1:0] src;
-    reg on;
-    reg inv;
     g_op = 2'h0;
     o_op = 2'h0;
-    src = 3'h0;
-    on = 1'b1;
-    inv = 1'b0;
     g_op = 0;
     o_op = 2;
-    src = 0;
     case (dda_setup0_state)
         3'b010: begin
-            if (((dda_setup0_step == 1) || (dda_setup0_step == 3) || (dda_setup0_step == 5))) begin
-                inv = 1'b1;
-            end
-            if (((dda_setup0_step == 0) || (dda_setup0_step == 6))) begin
-                src = 0;
-                inv = (dda_setup0_step == 6);
-            end
-            else if (((dda_setup0_step == 1) || (dda_setup0_step == 2) || (dda_setup0_step == 4))) begin
-                src = 1;
-            end
-            else if ((dda_setup0_step == 3)) begin
-                src = 2;
-            end
-            else begin
-                src = 3;
-            end
             if ((dda_setup0_step == 4)) begin
                 g_op = 2;
             end
@@ -577,109 +564,44 @@ always @(dda_setup0_multiplier, dda_setup0_twice, dda_setup0_step, dda_setup0_m_
         end
         3'b011: begin
             o_op = 1;
-            inv = (dda_setup0_square < 2);
             if (dda_setup0_multiplier[0]) begin
                 g_op = 1;
             end
             if (($signed({1'b0, dda_setup0_step}) == (24 - 1))) begin
                 o_op = 2;
-                inv = ((dda_setup0_square == 0) || (dda_setup0_square == 3));
-                src = (dda_setup0_square + 1);
-                if ((dda_setup0_square == 3)) begin
-                    src = 0;
-                    if (dda_setup0_m_is_y) begin
-                        src = 1;
-                    end
-                end
             end
         end
         3'b100: begin
             o_op = 1;
             case (dda_setup0_step)
-                'h0: begin
-                    inv = 1'b1;
-                end
                 'h1: begin
                     g_op = 1;
                     o_op = 2;
-                    src = 0;
-                    if (dda_setup0_m_is_y) begin
-                        src = 1;
-                    end
                 end
                 'h4: begin
                     g_op = 2;
                     o_op = 2;
-                    src = 4;
                 end
             endcase
         end
         3'b101: begin
             g_op = 1;
-            if ((dda_setup0_step == 0)) begin
-                src = 3;
-                if (dda_setup0_plan_x_inward_end) begin
-                    src = 2;
+            case (dda_setup0_step)
+                'h1: begin
+                    g_op = 0;
+                    o_op = 1;
                 end
-                inv = 1'b1;
-            end
-            else if ((dda_setup0_step == 1)) begin
-                g_op = 0;
-                o_op = 1;
-                inv = 1'b1;
-            end
-            else if ((dda_setup0_step <= 5)) begin
-                inv = (!dda_setup0_plan_x_inward);
-                case (dda_setup0_step)
-                    'h2: begin
-                        g_op = 2;
-                        src = 0;
-                    end
-                    'h3: begin
-                        src = 1;
-                    end
-                    default: begin
-                        src = 2;
-                        if ((dda_setup0_step == 5)) begin
-                            src = 3;
-                        end
-                        inv = (dda_setup0_plan_x_inward_end == 1);
-                    end
-                endcase
-            end
-            else if ((dda_setup0_step == 6)) begin
-                src = 4;
-                on = (dda_setup0_plan_x_inward != dda_setup0_plan_x_inward_end);
-                inv = (dda_setup0_plan_x_inward == 1);
-            end
-            else if ((dda_setup0_step == 7)) begin
-                g_op = 2;
-                o_op = 0;
-            end
-            else if ((dda_setup0_step == 8)) begin
-                g_op = 0;
-                src = 1;
-                inv = (dda_setup0_plan_x_inward == 1);
-                if (dda_setup0_pick_x) begin
-                    src = 0;
-                    inv = (!dda_setup0_plan_x_inward);
+                'h2: begin
+                    g_op = 2;
                 end
-            end
-            else if ((dda_setup0_step == 9)) begin
-                src = 3;
-                inv = (!dda_setup0_plan_x_inward_end);
-                if (dda_setup0_pick_x) begin
-                    src = 2;
-                    inv = (dda_setup0_plan_x_inward_end == 1);
+                'h7: begin
+                    g_op = 2;
+                    o_op = 0;
                 end
-            end
-            else begin
-                src = 4;
-                on = (dda_setup0_twice != 0);
-                if ((dda_setup0_step == 11)) begin
-                    on = (dda_setup0_twice == 2);
+                'h8: begin
+                    g_op = 0;
                 end
-            end
+            endcase
         end
         default: begin
             o_op = 0;
@@ -687,13 +609,117 @@ always @(dda_setup0_multiplier, dda_setup0_twice, dda_setup0_step, dda_setup0_m_
     endcase
     dda_setup0_gap_op = g_op;
     dda_setup0_operand_op = o_op;
+end
+
+
+always @(dda_setup0_dda_setup_control0_twice, dda_setup0_step, dda_setup0_pick_x, dda_setup0_square, dda_setup0_dda_latch0_plan_x_inward_end, dda_setup0_dda_latch0_plan_x_inward, dda_setup0_m_is_y, dda_setup0_state) begin: dda_setup0_dda_setup_control0_operand_source
+    reg [3-1:0] src;
+    reg on;
+    src = 3'h0;
+    on = 1'b1;
+    src = 0;
+    case (dda_setup0_state)
+        3'b010: begin
+            if (((dda_setup0_step == 1) || (dda_setup0_step == 2) || (dda_setup0_step == 4))) begin
+                src = 1;
+            end
+            else if ((dda_setup0_step == 3)) begin
+                src = 2;
+            end
+            else if (((dda_setup0_step != 0) && (dda_setup0_step != 6))) begin
+                src = 3;
+            end
+        end
+        3'b011: begin
+            if ((($signed({1'b0, dda_setup0_step}) == (24 - 1)) && (dda_setup0_square != 3))) begin
+                src = (dda_setup0_square + 1);
+            end
+            else if ((($signed({1'b0, dda_setup0_step}) == (24 - 1)) && dda_setup0_m_is_y)) begin
+                src = 1;
+            end
+        end
+        3'b100: begin
+            if (((dda_setup0_step == 1) && dda_setup0_m_is_y)) begin
+                src = 1;
+            end
+            else if ((dda_setup0_step == 4)) begin
+                src = 4;
+            end
+        end
+        3'b101: begin
+            if (((dda_setup0_step == 0) || (dda_setup0_step == 5) || ((dda_setup0_step == 9) && (!dda_setup0_pick_x)))) begin
+                src = 3;
+            end
+            if ((((dda_setup0_step == 0) && dda_setup0_dda_latch0_plan_x_inward_end) || (dda_setup0_step == 4) || ((dda_setup0_step == 9) && dda_setup0_pick_x))) begin
+                src = 2;
+            end
+            if (((dda_setup0_step == 3) || ((dda_setup0_step == 8) && (!dda_setup0_pick_x)))) begin
+                src = 1;
+            end
+            if (((dda_setup0_step == 6) || (dda_setup0_step >= 10))) begin
+                src = 4;
+            end
+            if ((dda_setup0_step == 6)) begin
+                on = (dda_setup0_dda_latch0_plan_x_inward != dda_setup0_dda_latch0_plan_x_inward_end);
+            end
+            else if ((dda_setup0_step >= 10)) begin
+                on = (dda_setup0_dda_setup_control0_twice != 0);
+                if ((dda_setup0_step == 11)) begin
+                    on = (dda_setup0_dda_setup_control0_twice == 2);
+                end
+            end
+        end
+        default: begin
+            src = 0;
+        end
+    endcase
     dda_setup0_source = src;
     dda_setup0_source_on = on;
+end
+
+
+always @(dda_setup0_step, dda_setup0_pick_x, dda_setup0_dda_latch0_plan_x_inward_end, dda_setup0_dda_latch0_plan_x_inward, dda_setup0_square, dda_setup0_state) begin: dda_setup0_dda_setup_control0_inversion
+    reg inv;
+    inv = 1'b0;
+    case (dda_setup0_state)
+        3'b010: begin
+            inv = ((dda_setup0_step == 1) || (dda_setup0_step == 3) || (dda_setup0_step == 5) || (dda_setup0_step == 6));
+        end
+        3'b011: begin
+            inv = (dda_setup0_square < 2);
+            if (($signed({1'b0, dda_setup0_step}) == (24 - 1))) begin
+                inv = ((dda_setup0_square == 0) || (dda_setup0_square == 3));
+            end
+        end
+        3'b100: begin
+            inv = (dda_setup0_step == 0);
+        end
+        3'b101: begin
+            if (((dda_setup0_step == 0) || (dda_setup0_step == 1))) begin
+                inv = 1'b1;
+            end
+            else if (((dda_setup0_step == 2) || (dda_setup0_step == 3) || ((dda_setup0_step == 8) && dda_setup0_pick_x))) begin
+                inv = (!dda_setup0_dda_latch0_plan_x_inward);
+            end
+            else if (((dda_setup0_step == 4) || (dda_setup0_step == 5) || ((dda_setup0_step == 9) && dda_setup0_pick_x))) begin
+                inv = (dda_setup0_dda_latch0_plan_x_inward_end == 1);
+            end
+            else if (((dda_setup0_step == 6) || (dda_setup0_step == 8))) begin
+                inv = (dda_setup0_dda_latch0_plan_x_inward == 1);
+            end
+            else if ((dda_setup0_step == 9)) begin
+                inv = (!dda_setup0_dda_latch0_plan_x_inward_end);
+            end
+        end
+        default: begin
+            inv = 1'b0;
+        end
+    endcase
     dda_setup0_invert = inv;
 end
 
 
-always @(posedge clock, negedge reset) begin: dda_setup0_carry_in
+always @(posedge clock, negedge reset) begin: dda_setup0_dda_setup_control0_carry_in
     reg cin;
     if (reset == 0) begin
         dda_setup0_carry <= 0;
@@ -718,25 +744,25 @@ always @(posedge clock, negedge reset) begin: dda_setup0_carry_in
                     cin = (dda_setup0_root_root[0] == 1);
                 end
                 else if (((dda_setup0_next_step == 3) || (dda_setup0_next_step == 4))) begin
-                    cin = (!dda_setup0_plan_x_inward);
+                    cin = (!dda_setup0_dda_latch0_plan_x_inward);
                 end
                 else if (((dda_setup0_next_step == 5) || (dda_setup0_next_step == 6))) begin
-                    cin = (dda_setup0_plan_x_inward_end == 1);
+                    cin = (dda_setup0_dda_latch0_plan_x_inward_end == 1);
                 end
                 else if ((dda_setup0_next_step == 7)) begin
-                    cin = ((dda_setup0_plan_x_inward != dda_setup0_plan_x_inward_end) && (dda_setup0_root_root[0] != dda_setup0_plan_x_inward));
+                    cin = ((dda_setup0_dda_latch0_plan_x_inward != dda_setup0_dda_latch0_plan_x_inward_end) && (dda_setup0_root_root[0] != dda_setup0_dda_latch0_plan_x_inward));
                 end
                 else if ((dda_setup0_next_step == 9)) begin
-                    cin = (dda_setup0_pick_x != dda_setup0_plan_x_inward);
+                    cin = (dda_setup0_pick_x != dda_setup0_dda_latch0_plan_x_inward);
                 end
                 else if ((dda_setup0_next_step == 10)) begin
-                    cin = (dda_setup0_pick_x == dda_setup0_plan_x_inward_end);
+                    cin = (dda_setup0_pick_x == dda_setup0_dda_latch0_plan_x_inward_end);
                 end
                 else if ((dda_setup0_next_step == 11)) begin
-                    cin = (dda_setup0_root_root[0] && (dda_setup0_twice != 0));
+                    cin = (dda_setup0_root_root[0] && (dda_setup0_dda_setup_control0_twice != 0));
                 end
                 else if ((dda_setup0_next_step == 12)) begin
-                    cin = (dda_setup0_root_root[0] && (dda_setup0_twice == 2));
+                    cin = (dda_setup0_root_root[0] && (dda_setup0_dda_setup_control0_twice == 2));
                 end
             end
             default: begin
@@ -748,19 +774,19 @@ always @(posedge clock, negedge reset) begin: dda_setup0_carry_in
 end
 
 
-always @(dda_setup0_plan_crossings, dda_setup0_plan_x_inward, dda_setup0_plan_x_inward_end, dda_setup0_pick_x) begin: dda_setup0_rq_terms
+always @(dda_setup0_dda_latch0_plan_crossings, dda_setup0_dda_latch0_plan_x_inward, dda_setup0_dda_latch0_plan_x_inward_end, dda_setup0_pick_x) begin: dda_setup0_dda_setup_control0_rq_terms
     reg [3-1:0] count;
     count = 3'h0;
-    count = (dda_setup0_plan_crossings - 1);
-    if ((dda_setup0_plan_x_inward != dda_setup0_pick_x)) begin
+    count = (dda_setup0_dda_latch0_plan_crossings - 1);
+    if ((dda_setup0_dda_latch0_plan_x_inward != dda_setup0_pick_x)) begin
         count = (count + 1);
     end
-    if ((dda_setup0_plan_x_inward_end == dda_setup0_pick_x)) begin
+    if ((dda_setup0_dda_latch0_plan_x_inward_end == dda_setup0_pick_x)) begin
         count = (count + 1);
     end
-    dda_setup0_twice = count[3-1:1];
-    if ((dda_setup0_plan_crossings == 0)) begin
-        dda_setup0_twice = 0;
+    dda_setup0_dda_setup_control0_twice = count[3-1:1];
+    if ((dda_setup0_dda_latch0_plan_crossings == 0)) begin
+        dda_setup0_dda_setup_control0_twice = 0;
     end
 end
 
@@ -986,25 +1012,25 @@ always @(dda_setup0_dda_latch0_plan_ahead, dda_check0_variant_built, dda_setup0_
 end
 
 
-always @(dda_setup0_dda_latch0_plan_neg_ye, dda_setup0_dda_latch0_plan_quadrant, dda_setup0_dda_latch0_plan_ccw, dda_setup0_dda_latch0_plan_neg_xe, dda_setup0_dda_latch0_plan_line, dda_setup0_dda_latch0_plan_blend, dda_setup0_plan_crossings, dda_setup0_plan_x_inward, dda_setup0_dda_latch0_plan_variant) begin: dda_check0_geometry
+always @(dda_setup0_dda_latch0_plan_neg_ye, dda_setup0_dda_latch0_plan_quadrant, dda_setup0_dda_latch0_plan_ccw, dda_setup0_dda_latch0_plan_neg_xe, dda_setup0_dda_latch0_plan_line, dda_setup0_dda_latch0_plan_blend, dda_setup0_dda_latch0_plan_crossings, dda_setup0_dda_latch0_plan_x_inward, dda_setup0_dda_latch0_plan_variant) begin: dda_check0_geometry
     dda_check0_move_line = dda_setup0_dda_latch0_plan_line;
     dda_check0_move_variant = dda_setup0_dda_latch0_plan_variant;
     dda_check0_move_ccw = dda_setup0_dda_latch0_plan_ccw;
     dda_check0_move_blend = dda_setup0_dda_latch0_plan_blend;
     dda_check0_move_right = (!dda_setup0_dda_latch0_plan_neg_xe);
     dda_check0_move_up = (!dda_setup0_dda_latch0_plan_neg_ye);
-    dda_check0_move_x_inward = dda_setup0_plan_x_inward;
+    dda_check0_move_x_inward = dda_setup0_dda_latch0_plan_x_inward;
     dda_check0_move_quadrant = dda_setup0_dda_latch0_plan_quadrant;
-    dda_check0_move_crossings = dda_setup0_plan_crossings;
+    dda_check0_move_crossings = dda_setup0_dda_latch0_plan_crossings;
     if (dda_setup0_dda_latch0_plan_line) begin
         dda_check0_move_quadrant = 0;
         dda_check0_move_crossings = 0;
     end
-    if ((dda_setup0_plan_crossings == 0)) begin
+    if ((dda_setup0_dda_latch0_plan_crossings == 0)) begin
         dda_check0_move_target_x = 2;
         dda_check0_move_target_y = 2;
     end
-    else if (dda_setup0_plan_x_inward) begin
+    else if (dda_setup0_dda_latch0_plan_x_inward) begin
         dda_check0_move_target_x = 0;
         dda_check0_move_target_y = 1;
     end
@@ -1053,7 +1079,7 @@ always @(dda_setup0_plan_threshold, dda_setup0_plan_radius, dda_setup0_dda_latch
 end
 
 
-always @(dda_setup0_plan_mag_xs, dda_setup0_plan_x_inward, dda_setup0_plan_mag_ys) begin: dda_check0_precise_terms
+always @(dda_setup0_plan_mag_xs, dda_setup0_dda_latch0_plan_x_inward, dda_setup0_plan_mag_ys) begin: dda_check0_precise_terms
     reg [27-1:0] inward;
     reg [27-1:0] outward;
     reg [27-1:0] bias_in;
@@ -1064,7 +1090,7 @@ always @(dda_setup0_plan_mag_xs, dda_setup0_plan_x_inward, dda_setup0_plan_mag_y
     bias_out = 27'h0;
     inward = {3'h0, dda_setup0_plan_mag_ys};
     outward = {3'h0, dda_setup0_plan_mag_xs};
-    if (dda_setup0_plan_x_inward) begin
+    if (dda_setup0_dda_latch0_plan_x_inward) begin
         inward = {3'h0, dda_setup0_plan_mag_xs};
         outward = {3'h0, dda_setup0_plan_mag_ys};
     end
@@ -1422,31 +1448,17 @@ assign dda_check0_move_take = (dda_check0_move_offer && ((!dda_run0_active) || (
 assign dda_run0_taking = (dda_run0_active && cmd_advance && (!dda_run0_step_pending));
 
 
-always @(posedge clock, negedge reset) begin: dda_run0_iterate
+always @(posedge clock, negedge reset) begin: dda_run0_decision
     if (reset == 0) begin
-        dda_run0_threshold_carry <= 0;
-        cmd_done <= 0;
-        dda_run0_step_blend <= 0;
-        dda_run0_step_step_y <= 0;
-        dda_run0_step_pending <= 0;
-        dda_run0_variant <= 3;
-        steps_step_x <= 0;
-        dda_run0_target_y <= 0;
-        dda_run0_crossings <= 0;
-        dda_run0_target_x <= 0;
         dda_run0_step_new_piece <= 0;
-        dda_run0_first <= 0;
+        dda_run0_step_pending <= 0;
+        dda_run0_tail_taken <= 0;
+        steps_step_x <= 0;
+        cmd_done <= 0;
         steps_dir_x <= 0;
         steps_dir_y <= 0;
-        dda_run0_quadrant <= 0;
         steps_step_y <= 0;
-        dda_run0_right <= 0;
-        dda_run0_up <= 0;
-        dda_run0_active <= 0;
-        dda_run0_tail_taken <= 0;
-        dda_run0_step_x_inward <= 0;
-        dda_run0_step_line <= 0;
-        dda_run0_ccw <= 0;
+        dda_run0_step_step_y <= 0;
         dda_run0_step_step_x <= 0;
         dda_run0_step_finished <= 0;
     end
@@ -1473,6 +1485,33 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
             dda_run0_step_finished <= dda_run0_finished;
             dda_run0_tail_taken <= dda_run0_tail;
             dda_run0_step_new_piece <= dda_run0_next_piece;
+        end
+        if ((dda_check0_move_take && dda_check0_move_zero)) begin
+            cmd_done <= 1'b1;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: dda_run0_running_move
+    if (reset == 0) begin
+        dda_run0_active <= 0;
+        dda_run0_variant <= 3;
+        dda_run0_threshold_carry <= 0;
+        dda_run0_first <= 0;
+        dda_run0_step_x_inward <= 0;
+        dda_run0_quadrant <= 0;
+        dda_run0_target_y <= 0;
+        dda_run0_step_blend <= 0;
+        dda_run0_crossings <= 0;
+        dda_run0_target_x <= 0;
+        dda_run0_step_line <= 0;
+        dda_run0_ccw <= 0;
+        dda_run0_right <= 0;
+        dda_run0_up <= 0;
+    end
+    else begin
+        if (dda_run0_taking) begin
             dda_run0_first <= 1'b0;
         end
         else if (dda_run0_step_pending) begin
@@ -1519,7 +1558,6 @@ always @(posedge clock, negedge reset) begin: dda_run0_iterate
             dda_run0_threshold_carry <= dda_check0_move_line;
         end
         if ((dda_check0_move_take && dda_check0_move_zero)) begin
-            cmd_done <= 1'b1;
             dda_run0_quadrant <= 0;
         end
     end

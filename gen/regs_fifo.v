@@ -652,6 +652,7 @@ reg signed [23:0] sequencer0_pulses_count_y;
 reg [15:0] sequencer0_mark_tag;
 wire feed_rate0_above;
 wire feed_rate0_above_floor;
+wire feed_rate0_advancing;
 wire feed_rate0_below;
 wire feed_rate0_can_lower;
 wire feed_rate0_can_raise;
@@ -3426,19 +3427,65 @@ always @(feed_rate0_count_empty, feed_rate0_count) begin: feed_rate0_count_steps
 end
 
 
+
+assign feed_rate0_advancing = (motion_run && (!feed_held) && (!(feed_rate0_step_zero && feed_pause)) && (!hold));
+
+
 always @(posedge clock, negedge reset) begin: feed_rate0_accumulate
     if (reset == 0) begin
         tick <= 0;
         feed_rate0_phase <= 0;
-        feed_rate0_rate <= 0;
-        feed_rate0_count <= 2;
-        feed_held <= 0;
     end
     else begin
         tick <= 0;
         if ((!motion_run)) begin
             feed_rate0_phase <= 0;
+        end
+        else if (feed_rate0_advancing) begin
+            feed_rate0_phase <= feed_rate0_total[16-1:0];
+            if (feed_rate0_total[16]) begin
+                tick <= 1;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: feed_rate0_ramp_count
+    if (reset == 0) begin
+        feed_rate0_count <= 2;
+    end
+    else begin
+        if ((!motion_run)) begin
             feed_rate0_count <= 2;
+        end
+        else if ((feed_rate0_advancing && feed_rate0_total[16])) begin
+            if (feed_rate0_step_zero) begin
+                feed_rate0_count <= 2;
+            end
+            else if ((feed_rate0_decelerate || feed_pause)) begin
+                if ((!feed_rate0_count_empty)) begin
+                    feed_rate0_count <= feed_rate0_count_down;
+                end
+            end
+            else if (feed_rate0_below) begin
+                feed_rate0_count <= feed_rate0_count_up;
+            end
+            else if (feed_rate0_above) begin
+                feed_rate0_count <= feed_rate0_count_down;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: feed_rate0_ramp_rate
+    if (reset == 0) begin
+        feed_rate0_rate <= 0;
+        feed_held <= 0;
+    end
+    else begin
+        if ((!motion_run)) begin
             feed_held <= feed_pause;
             if (feed_pause) begin
                 feed_rate0_rate <= 0;
@@ -3465,46 +3512,38 @@ always @(posedge clock, negedge reset) begin: feed_rate0_accumulate
             feed_rate0_rate <= 0;
             feed_held <= 1;
         end
-        else if ((!hold)) begin
-            feed_rate0_phase <= feed_rate0_total[16-1:0];
-            if (feed_rate0_total[16]) begin
-                tick <= 1;
-                if (feed_rate0_step_zero) begin
-                    feed_rate0_rate <= feed_rate0_target_s;
-                    feed_rate0_count <= 2;
-                end
-                else if ((feed_rate0_decelerate || feed_pause)) begin
-                    if ((!feed_rate0_count_empty)) begin
-                        feed_rate0_count <= feed_rate0_count_down;
-                        if ((feed_rate0_count_last || (!feed_rate0_above_floor))) begin
-                            feed_rate0_rate <= feed_rate0_start_s;
-                        end
-                        else begin
-                            feed_rate0_rate <= feed_rate0_lowered;
-                        end
-                    end
-                    else if (feed_pause) begin
-                        feed_rate0_rate <= 0;
-                        feed_held <= 1;
-                    end
-                end
-                else if (feed_rate0_below) begin
-                    feed_rate0_count <= feed_rate0_count_up;
-                    if (feed_rate0_can_raise) begin
-                        feed_rate0_rate <= feed_rate0_raised;
+        else if (((!hold) && feed_rate0_total[16])) begin
+            if (feed_rate0_step_zero) begin
+                feed_rate0_rate <= feed_rate0_target_s;
+            end
+            else if ((feed_rate0_decelerate || feed_pause)) begin
+                if ((!feed_rate0_count_empty)) begin
+                    if ((feed_rate0_count_last || (!feed_rate0_above_floor))) begin
+                        feed_rate0_rate <= feed_rate0_start_s;
                     end
                     else begin
-                        feed_rate0_rate <= feed_rate0_target_s;
-                    end
-                end
-                else if (feed_rate0_above) begin
-                    feed_rate0_count <= feed_rate0_count_down;
-                    if (feed_rate0_can_lower) begin
                         feed_rate0_rate <= feed_rate0_lowered;
                     end
-                    else begin
-                        feed_rate0_rate <= feed_rate0_target_s;
-                    end
+                end
+                else if (feed_pause) begin
+                    feed_rate0_rate <= 0;
+                    feed_held <= 1;
+                end
+            end
+            else if (feed_rate0_below) begin
+                if (feed_rate0_can_raise) begin
+                    feed_rate0_rate <= feed_rate0_raised;
+                end
+                else begin
+                    feed_rate0_rate <= feed_rate0_target_s;
+                end
+            end
+            else if (feed_rate0_above) begin
+                if (feed_rate0_can_lower) begin
+                    feed_rate0_rate <= feed_rate0_lowered;
+                end
+                else begin
+                    feed_rate0_rate <= feed_rate0_target_s;
                 end
             end
         end

@@ -786,6 +786,7 @@ reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mark_tag;
 wire card1_card_core1_regs_fifo2_feed_rate2_above;
 wire card1_card_core1_regs_fifo2_feed_rate2_above_floor;
+wire card1_card_core1_regs_fifo2_feed_rate2_advancing;
 wire card1_card_core1_regs_fifo2_feed_rate2_below;
 wire card1_card_core1_regs_fifo2_feed_rate2_can_lower;
 wire card1_card_core1_regs_fifo2_feed_rate2_can_raise;
@@ -945,15 +946,11 @@ reg [1:0] card1_card_core1_dda_arc2_dda_setup2_square;
 reg [2:0] card1_card_core1_dda_arc2_dda_setup2_state;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_step;
 wire [48:0] card1_card_core1_dda_arc2_dda_setup2_total;
-reg [1:0] card1_card_core1_dda_arc2_dda_setup2_twice;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_x_inward;
-reg [24:0] card1_card_core1_dda_arc2_dda_setup2_root_root;
-reg [2:0] card1_card_core1_dda_arc2_dda_setup2_plan_crossings;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye;
+reg [24:0] card1_card_core1_dda_arc2_dda_setup2_root_root;
 wire [47:0] card1_card_core1_dda_arc2_dda_setup2_root_radicand;
 wire card1_card_core1_dda_arc2_dda_setup2_root_load;
 reg card1_card_core1_dda_arc2_dda_setup2_root_grows;
@@ -969,12 +966,19 @@ reg card1_card_core1_dda_arc2_dda_setup2_plan_beyond;
 reg signed [26:0] card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff;
 reg [26:0] card1_card_core1_dda_arc2_dda_setup2_plan_totals_max;
 wire card1_card_core1_dda_arc2_dda_setup2_plan_done;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_end_odd;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye;
 reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn;
+wire card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe;
+wire card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs;
+wire card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye;
+wire card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line;
 reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw;
@@ -982,7 +986,10 @@ reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead;
+reg [2:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings;
 reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward;
+reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits;
@@ -992,6 +999,7 @@ reg [25:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder;
 reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_started;
 reg [4:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps;
 wire card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken;
+reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice;
 reg card1_card_core1_dda_arc2_dda_check2_variant_built;
 wire card1_card_core1_dda_arc2_dda_check2_move_offer;
 wire card1_card_core1_dda_arc2_dda_check2_move_take;
@@ -5752,19 +5760,65 @@ always @(card1_card_core1_regs_fifo2_feed_rate2_count_empty, card1_card_core1_re
 end
 
 
+
+assign card1_card_core1_regs_fifo2_feed_rate2_advancing = (card1_card_core1_regs_fifo2_motion_run && (!card1_card_core1_regs_fifo2_feed_held) && (!(card1_card_core1_regs_fifo2_feed_rate2_step_zero && card1_card_core1_regs_fifo2_feed_pause)) && (!card1_card_core1_regs_fifo2_hold));
+
+
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_accumulate
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_tick <= 0;
         card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
-        card1_card_core1_regs_fifo2_feed_held <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_tick <= 0;
         if ((!card1_card_core1_regs_fifo2_motion_run)) begin
             card1_card_core1_regs_fifo2_feed_rate2_phase <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_feed_rate2_advancing) begin
+            card1_card_core1_regs_fifo2_feed_rate2_phase <= card1_card_core1_regs_fifo2_feed_rate2_total[16-1:0];
+            if (card1_card_core1_regs_fifo2_feed_rate2_total[16]) begin
+                card1_card_core1_regs_fifo2_tick <= 1;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_ramp_count
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
+    end
+    else begin
+        if ((!card1_card_core1_regs_fifo2_motion_run)) begin
             card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
+        end
+        else if ((card1_card_core1_regs_fifo2_feed_rate2_advancing && card1_card_core1_regs_fifo2_feed_rate2_total[16])) begin
+            if (card1_card_core1_regs_fifo2_feed_rate2_step_zero) begin
+                card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
+            end
+            else if ((card1_card_core1_regs_fifo2_feed_rate2_decelerate || card1_card_core1_regs_fifo2_feed_pause)) begin
+                if ((!card1_card_core1_regs_fifo2_feed_rate2_count_empty)) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
+                end
+            end
+            else if (card1_card_core1_regs_fifo2_feed_rate2_below) begin
+                card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_up;
+            end
+            else if (card1_card_core1_regs_fifo2_feed_rate2_above) begin
+                card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
+            end
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_ramp_rate
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
+        card1_card_core1_regs_fifo2_feed_held <= 0;
+    end
+    else begin
+        if ((!card1_card_core1_regs_fifo2_motion_run)) begin
             card1_card_core1_regs_fifo2_feed_held <= card1_card_core1_regs_fifo2_feed_pause;
             if (card1_card_core1_regs_fifo2_feed_pause) begin
                 card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
@@ -5791,46 +5845,38 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
             card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
             card1_card_core1_regs_fifo2_feed_held <= 1;
         end
-        else if ((!card1_card_core1_regs_fifo2_hold)) begin
-            card1_card_core1_regs_fifo2_feed_rate2_phase <= card1_card_core1_regs_fifo2_feed_rate2_total[16-1:0];
-            if (card1_card_core1_regs_fifo2_feed_rate2_total[16]) begin
-                card1_card_core1_regs_fifo2_tick <= 1;
-                if (card1_card_core1_regs_fifo2_feed_rate2_step_zero) begin
-                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
-                    card1_card_core1_regs_fifo2_feed_rate2_count <= 2;
-                end
-                else if ((card1_card_core1_regs_fifo2_feed_rate2_decelerate || card1_card_core1_regs_fifo2_feed_pause)) begin
-                    if ((!card1_card_core1_regs_fifo2_feed_rate2_count_empty)) begin
-                        card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
-                        if ((card1_card_core1_regs_fifo2_feed_rate2_count_last || (!card1_card_core1_regs_fifo2_feed_rate2_above_floor))) begin
-                            card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_start_s;
-                        end
-                        else begin
-                            card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_lowered;
-                        end
-                    end
-                    else if (card1_card_core1_regs_fifo2_feed_pause) begin
-                        card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
-                        card1_card_core1_regs_fifo2_feed_held <= 1;
-                    end
-                end
-                else if (card1_card_core1_regs_fifo2_feed_rate2_below) begin
-                    card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_up;
-                    if (card1_card_core1_regs_fifo2_feed_rate2_can_raise) begin
-                        card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_raised;
+        else if (((!card1_card_core1_regs_fifo2_hold) && card1_card_core1_regs_fifo2_feed_rate2_total[16])) begin
+            if (card1_card_core1_regs_fifo2_feed_rate2_step_zero) begin
+                card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
+            end
+            else if ((card1_card_core1_regs_fifo2_feed_rate2_decelerate || card1_card_core1_regs_fifo2_feed_pause)) begin
+                if ((!card1_card_core1_regs_fifo2_feed_rate2_count_empty)) begin
+                    if ((card1_card_core1_regs_fifo2_feed_rate2_count_last || (!card1_card_core1_regs_fifo2_feed_rate2_above_floor))) begin
+                        card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_start_s;
                     end
                     else begin
-                        card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
-                    end
-                end
-                else if (card1_card_core1_regs_fifo2_feed_rate2_above) begin
-                    card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
-                    if (card1_card_core1_regs_fifo2_feed_rate2_can_lower) begin
                         card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_lowered;
                     end
-                    else begin
-                        card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
-                    end
+                end
+                else if (card1_card_core1_regs_fifo2_feed_pause) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= 0;
+                    card1_card_core1_regs_fifo2_feed_held <= 1;
+                end
+            end
+            else if (card1_card_core1_regs_fifo2_feed_rate2_below) begin
+                if (card1_card_core1_regs_fifo2_feed_rate2_can_raise) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_raised;
+                end
+                else begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
+                end
+            end
+            else if (card1_card_core1_regs_fifo2_feed_rate2_above) begin
+                if (card1_card_core1_regs_fifo2_feed_rate2_can_lower) begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_lowered;
+                end
+                else begin
+                    card1_card_core1_regs_fifo2_feed_rate2_rate <= card1_card_core1_regs_fifo2_feed_rate2_target_s;
                 end
             end
         end
@@ -7092,97 +7138,100 @@ always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_l
 end
 
 
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_geometry
+
+assign card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs == 0);
+assign card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys == 0);
+assign card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe == 0);
+assign card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye == 0);
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_quadrants
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
-    reg [2-1:0] turn;
-    reg ahead;
-    reg zero_xs;
-    reg zero_ys;
-    reg zero_xe;
-    reg zero_ye;
     q_s = 2'h0;
     q_e = 2'h0;
-    turn = 2'h0;
-    ahead = 1'b0;
-    zero_xs = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs == 0);
-    zero_ys = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys == 0);
-    zero_xe = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe == 0);
-    zero_ye = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye == 0);
     if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw) begin
-        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
             q_s = 0;
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!zero_ys))) begin
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys))) begin
             q_s = 1;
         end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys || zero_ys))) begin
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys))) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!zero_ye))) begin
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye))) begin
             q_e = 0;
         end
         else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
             q_e = 1;
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || zero_xe) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye)) begin
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye)) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        turn = (q_e - q_s);
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn = (q_e - q_s);
     end
     else begin
-        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!zero_ys))) begin
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys))) begin
             q_s = 0;
         end
         else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
             q_s = 1;
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || zero_xs) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys)) begin
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys)) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
+        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
             q_e = 0;
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!zero_ye))) begin
+        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye))) begin
             q_e = 1;
         end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye || zero_ye))) begin
+        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye))) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        turn = (q_s - q_e);
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn = (q_s - q_e);
     end
-    if ((q_s[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw)) begin
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant = q_s;
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_end_odd = q_e[0];
+end
+
+
+always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_geometry
+    reg ahead;
+    ahead = 1'b0;
+    if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw)) begin
         ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y));
     end
     else begin
         ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x));
     end
-    ahead = (ahead && (!(card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x && card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y)) && (turn == 0));
+    ahead = (ahead && (!(card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x && card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y)) && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn == 0));
     card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead <= ahead;
-    card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= {1'b0, turn};
-    if (((turn == 0) && (!ahead))) begin
-        card1_card_core1_dda_arc2_dda_setup2_plan_crossings <= 4;
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings <= {1'b0, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn};
+    if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn == 0) && (!ahead))) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings <= 4;
     end
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant <= q_s;
-    card1_card_core1_dda_arc2_dda_setup2_plan_x_inward <= (q_s[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
-    card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end <= (q_e[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant;
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward <= (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
+    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end <= (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_end_odd != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
     if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= (zero_xe && zero_ye);
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye);
     end
     else begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= ((zero_xs && zero_ys) || (zero_xe && zero_ye));
+        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys) || (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye));
     end
 end
 
@@ -7307,38 +7356,15 @@ always @(card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_dda_
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_multiplier, card1_card_core1_dda_arc2_dda_setup2_twice, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dda_setup2_m_is_y, card1_card_core1_dda_arc2_dda_setup2_pick_x, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_control
+always @(card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dda_setup2_multiplier, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_operations
     reg [2-1:0] g_op;
     reg [2-1:0] o_op;
-    reg [3-1:0] src;
-    reg on;
-    reg inv;
     g_op = 2'h0;
     o_op = 2'h0;
-    src = 3'h0;
-    on = 1'b1;
-    inv = 1'b0;
     g_op = 0;
     o_op = 2;
-    src = 0;
     case (card1_card_core1_dda_arc2_dda_setup2_state)
         3'b010: begin
-            if (((card1_card_core1_dda_arc2_dda_setup2_step == 1) || (card1_card_core1_dda_arc2_dda_setup2_step == 3) || (card1_card_core1_dda_arc2_dda_setup2_step == 5))) begin
-                inv = 1'b1;
-            end
-            if (((card1_card_core1_dda_arc2_dda_setup2_step == 0) || (card1_card_core1_dda_arc2_dda_setup2_step == 6))) begin
-                src = 0;
-                inv = (card1_card_core1_dda_arc2_dda_setup2_step == 6);
-            end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_step == 1) || (card1_card_core1_dda_arc2_dda_setup2_step == 2) || (card1_card_core1_dda_arc2_dda_setup2_step == 4))) begin
-                src = 1;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 3)) begin
-                src = 2;
-            end
-            else begin
-                src = 3;
-            end
             if ((card1_card_core1_dda_arc2_dda_setup2_step == 4)) begin
                 g_op = 2;
             end
@@ -7351,109 +7377,44 @@ always @(card1_card_core1_dda_arc2_dda_setup2_multiplier, card1_card_core1_dda_a
         end
         3'b011: begin
             o_op = 1;
-            inv = (card1_card_core1_dda_arc2_dda_setup2_square < 2);
             if (card1_card_core1_dda_arc2_dda_setup2_multiplier[0]) begin
                 g_op = 1;
             end
             if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
                 o_op = 2;
-                inv = ((card1_card_core1_dda_arc2_dda_setup2_square == 0) || (card1_card_core1_dda_arc2_dda_setup2_square == 3));
-                src = (card1_card_core1_dda_arc2_dda_setup2_square + 1);
-                if ((card1_card_core1_dda_arc2_dda_setup2_square == 3)) begin
-                    src = 0;
-                    if (card1_card_core1_dda_arc2_dda_setup2_m_is_y) begin
-                        src = 1;
-                    end
-                end
             end
         end
         3'b100: begin
             o_op = 1;
             case (card1_card_core1_dda_arc2_dda_setup2_step)
-                'h0: begin
-                    inv = 1'b1;
-                end
                 'h1: begin
                     g_op = 1;
                     o_op = 2;
-                    src = 0;
-                    if (card1_card_core1_dda_arc2_dda_setup2_m_is_y) begin
-                        src = 1;
-                    end
                 end
                 'h4: begin
                     g_op = 2;
                     o_op = 2;
-                    src = 4;
                 end
             endcase
         end
         3'b101: begin
             g_op = 1;
-            if ((card1_card_core1_dda_arc2_dda_setup2_step == 0)) begin
-                src = 3;
-                if (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end) begin
-                    src = 2;
+            case (card1_card_core1_dda_arc2_dda_setup2_step)
+                'h1: begin
+                    g_op = 0;
+                    o_op = 1;
                 end
-                inv = 1'b1;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 1)) begin
-                g_op = 0;
-                o_op = 1;
-                inv = 1'b1;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step <= 5)) begin
-                inv = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
-                case (card1_card_core1_dda_arc2_dda_setup2_step)
-                    'h2: begin
-                        g_op = 2;
-                        src = 0;
-                    end
-                    'h3: begin
-                        src = 1;
-                    end
-                    default: begin
-                        src = 2;
-                        if ((card1_card_core1_dda_arc2_dda_setup2_step == 5)) begin
-                            src = 3;
-                        end
-                        inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end == 1);
-                    end
-                endcase
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 6)) begin
-                src = 4;
-                on = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end);
-                inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward == 1);
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 7)) begin
-                g_op = 2;
-                o_op = 0;
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 8)) begin
-                g_op = 0;
-                src = 1;
-                inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward == 1);
-                if (card1_card_core1_dda_arc2_dda_setup2_pick_x) begin
-                    src = 0;
-                    inv = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
+                'h2: begin
+                    g_op = 2;
                 end
-            end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 9)) begin
-                src = 3;
-                inv = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end);
-                if (card1_card_core1_dda_arc2_dda_setup2_pick_x) begin
-                    src = 2;
-                    inv = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end == 1);
+                'h7: begin
+                    g_op = 2;
+                    o_op = 0;
                 end
-            end
-            else begin
-                src = 4;
-                on = (card1_card_core1_dda_arc2_dda_setup2_twice != 0);
-                if ((card1_card_core1_dda_arc2_dda_setup2_step == 11)) begin
-                    on = (card1_card_core1_dda_arc2_dda_setup2_twice == 2);
+                'h8: begin
+                    g_op = 0;
                 end
-            end
+            endcase
         end
         default: begin
             o_op = 0;
@@ -7461,13 +7422,117 @@ always @(card1_card_core1_dda_arc2_dda_setup2_multiplier, card1_card_core1_dda_a
     endcase
     card1_card_core1_dda_arc2_dda_setup2_gap_op = g_op;
     card1_card_core1_dda_arc2_dda_setup2_operand_op = o_op;
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dda_setup2_pick_x, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_m_is_y, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_operand_source
+    reg [3-1:0] src;
+    reg on;
+    src = 3'h0;
+    on = 1'b1;
+    src = 0;
+    case (card1_card_core1_dda_arc2_dda_setup2_state)
+        3'b010: begin
+            if (((card1_card_core1_dda_arc2_dda_setup2_step == 1) || (card1_card_core1_dda_arc2_dda_setup2_step == 2) || (card1_card_core1_dda_arc2_dda_setup2_step == 4))) begin
+                src = 1;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 3)) begin
+                src = 2;
+            end
+            else if (((card1_card_core1_dda_arc2_dda_setup2_step != 0) && (card1_card_core1_dda_arc2_dda_setup2_step != 6))) begin
+                src = 3;
+            end
+        end
+        3'b011: begin
+            if ((($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1)) && (card1_card_core1_dda_arc2_dda_setup2_square != 3))) begin
+                src = (card1_card_core1_dda_arc2_dda_setup2_square + 1);
+            end
+            else if ((($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1)) && card1_card_core1_dda_arc2_dda_setup2_m_is_y)) begin
+                src = 1;
+            end
+        end
+        3'b100: begin
+            if (((card1_card_core1_dda_arc2_dda_setup2_step == 1) && card1_card_core1_dda_arc2_dda_setup2_m_is_y)) begin
+                src = 1;
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 4)) begin
+                src = 4;
+            end
+        end
+        3'b101: begin
+            if (((card1_card_core1_dda_arc2_dda_setup2_step == 0) || (card1_card_core1_dda_arc2_dda_setup2_step == 5) || ((card1_card_core1_dda_arc2_dda_setup2_step == 9) && (!card1_card_core1_dda_arc2_dda_setup2_pick_x)))) begin
+                src = 3;
+            end
+            if ((((card1_card_core1_dda_arc2_dda_setup2_step == 0) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end) || (card1_card_core1_dda_arc2_dda_setup2_step == 4) || ((card1_card_core1_dda_arc2_dda_setup2_step == 9) && card1_card_core1_dda_arc2_dda_setup2_pick_x))) begin
+                src = 2;
+            end
+            if (((card1_card_core1_dda_arc2_dda_setup2_step == 3) || ((card1_card_core1_dda_arc2_dda_setup2_step == 8) && (!card1_card_core1_dda_arc2_dda_setup2_pick_x)))) begin
+                src = 1;
+            end
+            if (((card1_card_core1_dda_arc2_dda_setup2_step == 6) || (card1_card_core1_dda_arc2_dda_setup2_step >= 10))) begin
+                src = 4;
+            end
+            if ((card1_card_core1_dda_arc2_dda_setup2_step == 6)) begin
+                on = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end);
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step >= 10)) begin
+                on = (card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice != 0);
+                if ((card1_card_core1_dda_arc2_dda_setup2_step == 11)) begin
+                    on = (card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice == 2);
+                end
+            end
+        end
+        default: begin
+            src = 0;
+        end
+    endcase
     card1_card_core1_dda_arc2_dda_setup2_source = src;
     card1_card_core1_dda_arc2_dda_setup2_source_on = on;
+end
+
+
+always @(card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dda_setup2_pick_x, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_inversion
+    reg inv;
+    inv = 1'b0;
+    case (card1_card_core1_dda_arc2_dda_setup2_state)
+        3'b010: begin
+            inv = ((card1_card_core1_dda_arc2_dda_setup2_step == 1) || (card1_card_core1_dda_arc2_dda_setup2_step == 3) || (card1_card_core1_dda_arc2_dda_setup2_step == 5) || (card1_card_core1_dda_arc2_dda_setup2_step == 6));
+        end
+        3'b011: begin
+            inv = (card1_card_core1_dda_arc2_dda_setup2_square < 2);
+            if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
+                inv = ((card1_card_core1_dda_arc2_dda_setup2_square == 0) || (card1_card_core1_dda_arc2_dda_setup2_square == 3));
+            end
+        end
+        3'b100: begin
+            inv = (card1_card_core1_dda_arc2_dda_setup2_step == 0);
+        end
+        3'b101: begin
+            if (((card1_card_core1_dda_arc2_dda_setup2_step == 0) || (card1_card_core1_dda_arc2_dda_setup2_step == 1))) begin
+                inv = 1'b1;
+            end
+            else if (((card1_card_core1_dda_arc2_dda_setup2_step == 2) || (card1_card_core1_dda_arc2_dda_setup2_step == 3) || ((card1_card_core1_dda_arc2_dda_setup2_step == 8) && card1_card_core1_dda_arc2_dda_setup2_pick_x))) begin
+                inv = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward);
+            end
+            else if (((card1_card_core1_dda_arc2_dda_setup2_step == 4) || (card1_card_core1_dda_arc2_dda_setup2_step == 5) || ((card1_card_core1_dda_arc2_dda_setup2_step == 9) && card1_card_core1_dda_arc2_dda_setup2_pick_x))) begin
+                inv = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end == 1);
+            end
+            else if (((card1_card_core1_dda_arc2_dda_setup2_step == 6) || (card1_card_core1_dda_arc2_dda_setup2_step == 8))) begin
+                inv = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward == 1);
+            end
+            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 9)) begin
+                inv = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end);
+            end
+        end
+        default: begin
+            inv = 1'b0;
+        end
+    endcase
     card1_card_core1_dda_arc2_dda_setup2_invert = inv;
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_carry_in
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_carry_in
     reg cin;
     if (card1_card_core1_dda_reset == 0) begin
         card1_card_core1_dda_arc2_dda_setup2_carry <= 0;
@@ -7492,25 +7557,25 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
                     cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] == 1);
                 end
                 else if (((card1_card_core1_dda_arc2_dda_setup2_next_step == 3) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 4))) begin
-                    cin = (!card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
+                    cin = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward);
                 end
                 else if (((card1_card_core1_dda_arc2_dda_setup2_next_step == 5) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 6))) begin
-                    cin = (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end == 1);
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end == 1);
                 end
                 else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 7)) begin
-                    cin = ((card1_card_core1_dda_arc2_dda_setup2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end) && (card1_card_core1_dda_arc2_dda_setup2_root_root[0] != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward));
+                    cin = ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end) && (card1_card_core1_dda_arc2_dda_setup2_root_root[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward));
                 end
                 else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 9)) begin
-                    cin = (card1_card_core1_dda_arc2_dda_setup2_pick_x != card1_card_core1_dda_arc2_dda_setup2_plan_x_inward);
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_pick_x != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward);
                 end
                 else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 10)) begin
-                    cin = (card1_card_core1_dda_arc2_dda_setup2_pick_x == card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end);
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_pick_x == card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end);
                 end
                 else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 11)) begin
-                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] && (card1_card_core1_dda_arc2_dda_setup2_twice != 0));
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] && (card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice != 0));
                 end
                 else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 12)) begin
-                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] && (card1_card_core1_dda_arc2_dda_setup2_twice == 2));
+                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] && (card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice == 2));
                 end
             end
             default: begin
@@ -7522,19 +7587,19 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_crossings, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_pick_x) begin: card1_card_core1_dda_arc2_dda_setup2_rq_terms
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_pick_x) begin: card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_rq_terms
     reg [3-1:0] count;
     count = 3'h0;
-    count = (card1_card_core1_dda_arc2_dda_setup2_plan_crossings - 1);
-    if ((card1_card_core1_dda_arc2_dda_setup2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_pick_x)) begin
+    count = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings - 1);
+    if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_pick_x)) begin
         count = (count + 1);
     end
-    if ((card1_card_core1_dda_arc2_dda_setup2_plan_x_inward_end == card1_card_core1_dda_arc2_dda_setup2_pick_x)) begin
+    if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end == card1_card_core1_dda_arc2_dda_setup2_pick_x)) begin
         count = (count + 1);
     end
-    card1_card_core1_dda_arc2_dda_setup2_twice = count[3-1:1];
-    if ((card1_card_core1_dda_arc2_dda_setup2_plan_crossings == 0)) begin
-        card1_card_core1_dda_arc2_dda_setup2_twice = 0;
+    card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice = count[3-1:1];
+    if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings == 0)) begin
+        card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice = 0;
     end
 end
 
@@ -7760,25 +7825,25 @@ always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead, card1_card_
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend, card1_card_core1_dda_arc2_dda_setup2_plan_crossings, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_geometry
+always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_geometry
     card1_card_core1_dda_arc2_dda_check2_move_line = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line;
     card1_card_core1_dda_arc2_dda_check2_move_variant = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant;
     card1_card_core1_dda_arc2_dda_check2_move_ccw = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw;
     card1_card_core1_dda_arc2_dda_check2_move_blend = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend;
     card1_card_core1_dda_arc2_dda_check2_move_right = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe);
     card1_card_core1_dda_arc2_dda_check2_move_up = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye);
-    card1_card_core1_dda_arc2_dda_check2_move_x_inward = card1_card_core1_dda_arc2_dda_setup2_plan_x_inward;
+    card1_card_core1_dda_arc2_dda_check2_move_x_inward = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward;
     card1_card_core1_dda_arc2_dda_check2_move_quadrant = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant;
-    card1_card_core1_dda_arc2_dda_check2_move_crossings = card1_card_core1_dda_arc2_dda_setup2_plan_crossings;
+    card1_card_core1_dda_arc2_dda_check2_move_crossings = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings;
     if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
         card1_card_core1_dda_arc2_dda_check2_move_quadrant = 0;
         card1_card_core1_dda_arc2_dda_check2_move_crossings = 0;
     end
-    if ((card1_card_core1_dda_arc2_dda_setup2_plan_crossings == 0)) begin
+    if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings == 0)) begin
         card1_card_core1_dda_arc2_dda_check2_move_target_x = 2;
         card1_card_core1_dda_arc2_dda_check2_move_target_y = 2;
     end
-    else if (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward) begin
+    else if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward) begin
         card1_card_core1_dda_arc2_dda_check2_move_target_x = 0;
         card1_card_core1_dda_arc2_dda_check2_move_target_y = 1;
     end
@@ -7827,7 +7892,7 @@ always @(card1_card_core1_dda_arc2_dda_setup2_plan_threshold, card1_card_core1_d
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys) begin: card1_card_core1_dda_arc2_dda_check2_precise_terms
+always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys) begin: card1_card_core1_dda_arc2_dda_check2_precise_terms
     reg [27-1:0] inward;
     reg [27-1:0] outward;
     reg [27-1:0] bias_in;
@@ -7838,7 +7903,7 @@ always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_
     bias_out = 27'h0;
     inward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys};
     outward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs};
-    if (card1_card_core1_dda_arc2_dda_setup2_plan_x_inward) begin
+    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward) begin
         inward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs};
         outward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys};
     end
@@ -8196,31 +8261,17 @@ assign card1_card_core1_dda_arc2_dda_check2_move_take = (card1_card_core1_dda_ar
 assign card1_card_core1_dda_arc2_dda_run2_taking = (card1_card_core1_dda_arc2_dda_run2_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_arc2_dda_run2_step_pending));
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_iterate
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_decision
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_run2_threshold_carry <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_blend <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_step_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_pending <= 0;
-        card1_card_core1_dda_arc2_dda_run2_variant <= 3;
-        card1_card_core1_regs_fifo2_steps_step_x <= 0;
-        card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_crossings <= 0;
-        card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_new_piece <= 0;
-        card1_card_core1_dda_arc2_dda_run2_first <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_pending <= 0;
+        card1_card_core1_dda_arc2_dda_run2_tail_taken <= 0;
+        card1_card_core1_regs_fifo2_steps_step_x <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
         card1_card_core1_regs_fifo2_steps_dir_x <= 0;
         card1_card_core1_regs_fifo2_steps_dir_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_quadrant <= 0;
         card1_card_core1_regs_fifo2_steps_step_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_right <= 0;
-        card1_card_core1_dda_arc2_dda_run2_up <= 0;
-        card1_card_core1_dda_arc2_dda_run2_active <= 0;
-        card1_card_core1_dda_arc2_dda_run2_tail_taken <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_x_inward <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_line <= 0;
-        card1_card_core1_dda_arc2_dda_run2_ccw <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_step_y <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_step_x <= 0;
         card1_card_core1_dda_arc2_dda_run2_step_finished <= 0;
     end
@@ -8247,6 +8298,33 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             card1_card_core1_dda_arc2_dda_run2_step_finished <= card1_card_core1_dda_arc2_dda_run2_finished;
             card1_card_core1_dda_arc2_dda_run2_tail_taken <= card1_card_core1_dda_arc2_dda_run2_tail;
             card1_card_core1_dda_arc2_dda_run2_step_new_piece <= card1_card_core1_dda_arc2_dda_run2_next_piece;
+        end
+        if ((card1_card_core1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
+            card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_running_move
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_arc2_dda_run2_active <= 0;
+        card1_card_core1_dda_arc2_dda_run2_variant <= 3;
+        card1_card_core1_dda_arc2_dda_run2_threshold_carry <= 0;
+        card1_card_core1_dda_arc2_dda_run2_first <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_x_inward <= 0;
+        card1_card_core1_dda_arc2_dda_run2_quadrant <= 0;
+        card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_blend <= 0;
+        card1_card_core1_dda_arc2_dda_run2_crossings <= 0;
+        card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
+        card1_card_core1_dda_arc2_dda_run2_step_line <= 0;
+        card1_card_core1_dda_arc2_dda_run2_ccw <= 0;
+        card1_card_core1_dda_arc2_dda_run2_right <= 0;
+        card1_card_core1_dda_arc2_dda_run2_up <= 0;
+    end
+    else begin
+        if (card1_card_core1_dda_arc2_dda_run2_taking) begin
             card1_card_core1_dda_arc2_dda_run2_first <= 1'b0;
         end
         else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
@@ -8293,7 +8371,6 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
             card1_card_core1_dda_arc2_dda_run2_threshold_carry <= card1_card_core1_dda_arc2_dda_check2_move_line;
         end
         if ((card1_card_core1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
-            card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
             card1_card_core1_dda_arc2_dda_run2_quadrant <= 0;
         end
     end

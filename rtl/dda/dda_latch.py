@@ -30,11 +30,21 @@ def dda_latch(clock, reset, cmd, plan):
     in I counter-clockwise, in IV clockwise; the end's quadrant is the one
     it is reached from.  ``crossings`` is the difference of the two (4 for
     an end in the start's quadrant that is not ahead of it).
+
+    Processes, by what they drive: ``magnitudes`` (|v| of the command
+    lines), ``latch`` (the command's registers), ``zeros`` and ``quadrants``
+    (of the latched values: the zero magnitudes, both quadrants and the
+    turns between them), ``geometry`` (the geometry's registers).
     """
     width = cmd.coord_width
     width_ones = (1 << width) - 1
     neg_xs, neg_ys = Signal(bool(0)), Signal(bool(0))
     mag_xs, mag_ys, mag_xe, mag_ye = (Signal(intbv(0)[width:]) for _ in range(4))
+    # of the latched move: which magnitudes are 0, its quadrants and the turns between them
+    zero_xs, zero_ys, zero_xe, zero_ye = (Signal(bool(0)) for _ in range(4))
+    start_quadrant = Signal(intbv(0)[2:])
+    end_odd = Signal(bool(0))  # the end's quadrant is II or IV
+    turn = Signal(modbv(0)[2:])
 
     @always_comb
     def magnitudes():
@@ -81,17 +91,19 @@ def dda_latch(clock, reset, cmd, plan):
             plan.mag_xe.next = mag_xe
             plan.mag_ye.next = mag_ye
 
-    @always(clock.posedge)
-    def geometry():
+    @always_comb
+    def zeros():
+        zero_xs.next = plan.mag_xs == 0
+        zero_ys.next = plan.mag_ys == 0
+        zero_xe.next = plan.mag_xe == 0
+        zero_ye.next = plan.mag_ye == 0
+
+    @always_comb
+    def quadrants():
+        # departure quadrant of the start, arrival quadrant of the end, and the quarter
+        # turns between them in the direction of motion
         q_s = intbv(0)[2:]
         q_e = intbv(0)[2:]
-        turn = modbv(0)[2:]
-        ahead = False
-        zero_xs = plan.mag_xs == 0
-        zero_ys = plan.mag_ys == 0
-        zero_xe = plan.mag_xe == 0
-        zero_ye = plan.mag_ye == 0
-        # departure quadrant of the start, arrival quadrant of the end
         if plan.ccw:
             if not neg_xs and not zero_xs and not neg_ys:
                 q_s[:] = 0
@@ -109,7 +121,7 @@ def dda_latch(clock, reset, cmd, plan):
                 q_e[:] = 2
             else:
                 q_e[:] = 3
-            turn[:] = q_e - q_s
+            turn.next = q_e - q_s
         else:
             if not neg_xs and not neg_ys and not zero_ys:
                 q_s[:] = 0
@@ -127,10 +139,16 @@ def dda_latch(clock, reset, cmd, plan):
                 q_e[:] = 2
             else:
                 q_e[:] = 3
-            turn[:] = q_s - q_e
+            turn.next = q_s - q_e
+        start_quadrant.next = q_s
+        end_odd.next = q_e[0]
+
+    @always(clock.posedge)
+    def geometry():
         # an end ahead in the start's quadrant is one piece: the inward magnitude does not
         # grow, the outward one does not shrink, and the end is not the start
-        if q_s[0] != plan.ccw:
+        ahead = False
+        if start_quadrant[0] != plan.ccw:
             ahead = not plan.start_below_x and (plan.start_below_y or plan.start_same_y)
         else:
             ahead = not plan.start_below_y and (plan.start_below_x or plan.start_same_x)
@@ -139,12 +157,12 @@ def dda_latch(clock, reset, cmd, plan):
         plan.crossings.next = concat(False, turn)
         if turn == 0 and not ahead:
             plan.crossings.next = 4
-        plan.quadrant.next = q_s
-        plan.x_inward.next = q_s[0] != plan.ccw
-        plan.x_inward_end.next = q_e[0] != plan.ccw
+        plan.quadrant.next = start_quadrant
+        plan.x_inward.next = start_quadrant[0] != plan.ccw
+        plan.x_inward_end.next = end_odd != plan.ccw
         if plan.line:
             plan.centre.next = zero_xe and zero_ye
         else:
             plan.centre.next = (zero_xs and zero_ys) or (zero_xe and zero_ye)
 
-    return magnitudes, latch, geometry
+    return magnitudes, latch, zeros, quadrants, geometry

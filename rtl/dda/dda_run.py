@@ -40,6 +40,16 @@ def dda_run(clock, reset, cmd, move, steps):
     ``dda_left`` (``stop_left``) follow, a new quadrant piece begins or the
     move ends and the run takes the next one.  Datapath registers, loaded
     with a move before they are read, have no reset.
+
+    Processes, by what they drive: first clock, ``accumulate`` (the sums,
+    and the second clock's differences), ``overflow``, ``traditional``,
+    ``traditional_overflow``, ``look_ahead``, ``magnitudes`` (|x|, |y| a
+    step on), ``goals`` and ``end_tests`` (the targets and the tests
+    against them), ``decide`` (the decision), ``handover`` (``move.take``,
+    ``taking``), ``decision`` (the registered decision and the outputs);
+    second clock, ``running_move`` (the move's registers and its piece) and
+    ``datapath`` (accumulators, magnitudes, the move's values); ``errors``
+    (``error``), ``status`` (``quadrant``, ``busy``).
     """
     width = move.coord_width
     acc_width = move.acc_width
@@ -255,14 +265,14 @@ def dda_run(clock, reset, cmd, move, steps):
         taking.next = active and cmd.advance and not step.pending
 
     @always_seq(clock.posedge, reset=reset)
-    def iterate():
-        # the control state: the iteration's two clocks, the decision, the quadrant pieces
+    def decision():
+        # first clock of an iteration: the decision and the outputs, registered (and the
+        # done of a line of length 0, taken)
         steps.step_x.next = False
         steps.step_y.next = False
         cmd.done.next = False
         step.pending.next = False
         if taking:
-            # first clock: the decision and the outputs, registered
             step.pending.next = True
             steps.step_x.next = go_x
             steps.step_y.next = go_y
@@ -278,9 +288,16 @@ def dda_run(clock, reset, cmd, move, steps):
             step.finished.next = finished
             tail_taken.next = tail
             step.new_piece.next = next_piece
+        if move.take and move.zero:
+            cmd.done.next = True
+
+    @always_seq(clock.posedge, reset=reset)
+    def running_move():
+        # the running move: taken with its first piece, ended or on to its next piece when
+        # its registered decision is applied (second clock)
+        if taking:
             first.next = False
         elif step.pending:
-            # second clock: the decision applied
             if step.finished:
                 active.next = False
             if step.new_piece:
@@ -315,7 +332,6 @@ def dda_run(clock, reset, cmd, move, steps):
             target_y.next = move.target_y
             threshold_carry.next = move.line
         if move.take and move.zero:
-            cmd.done.next = True
             quadrant.next = 0
 
     @always(clock.posedge)
@@ -363,5 +379,5 @@ def dda_run(clock, reset, cmd, move, steps):
         cmd.quadrant.next = quadrant
         cmd.busy.next = not cmd.ready or (active and not (step.pending and step.finished))
 
-    return (variant_logic, accumulate, overflow, magnitudes, goals, end_tests, decide, handover, iterate, datapath,
-            errors, status)
+    return (variant_logic, accumulate, overflow, magnitudes, goals, end_tests, decide, handover, decision, running_move,
+            datapath, errors, status)

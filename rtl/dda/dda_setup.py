@@ -5,13 +5,9 @@ from models.dda_build import PAPER_VARIANTS
 from rtl.dda.dda_latch import dda_latch
 from rtl.dda.dda_root import dda_root
 from rtl.dda.dda_sequence import POST_STEPS, dda_sequence, t_setup
-from rtl.interfaces import DdaRoot, SetupSequence
-
-# what the adder's accumulator does in a clock, and its operand register
-G_HOLD, G_ADD, G_ZERO, G_ONES = range(4)
-M_HOLD, M_SHIFT, M_LOAD = range(3)
-# operand sources: the magnitudes and the root t
-SRC_XS, SRC_YS, SRC_XE, SRC_YE, SRC_ROOT = range(5)
+from rtl.dda.dda_setup_control import G_ADD, G_ONES, G_ZERO, M_LOAD, M_SHIFT, SRC_XE, SRC_XS, SRC_YE, SRC_YS, \
+    dda_setup_control
+from rtl.interfaces import DdaRoot, SetupControl, SetupSequence
 
 
 @block
@@ -28,7 +24,9 @@ def dda_setup(clock, reset, cmd, plan):
     One adder of 2W + 1 bits adds an operand register (loaded from the four
     magnitudes or the root, inverted for a subtraction, and shifting left) to
     its accumulator ``gap`` in every clock; its carry is a register, set a
-    clock ahead.  A line needs one clock after the latch (its threshold), an
+    clock ahead.  The micro-program (``dda_setup_control``) says in each
+    clock what the accumulator and the operand do, from which source, and
+    the carry.  A line needs one clock after the latch (its threshold), an
     arc 4W + 25::
 
         clock  _/~\\_/~\\_ ... _/~\\_ ... _/~\\_ ... _/~\\_ ... _/~\\_/~\\_
@@ -52,6 +50,16 @@ def dda_setup(clock, reset, cmd, plan):
     ``plan.threshold``, one bit a clock: n + k ones during the squares (n =
     acc_bits), or k ones and then one for each bit of the root (n = 0); a
     line's T = max(|dx|, |dy|) is loaded there.
+
+    Sub-blocks: ``dda_latch`` (the command and its geometry),
+    ``dda_sequence`` (the phase's next values), ``dda_setup_control``,
+    ``dda_root``.  Processes, by what they drive: ``select_source`` (the
+    source's value), ``adder`` (``total``; the root's radicand and load),
+    ``datapath`` (``gap``, ``operand``, ``multiplier``), ``sequencer`` (the
+    phase), ``line_major`` (a line's max(|dx|, |dy|)), ``threshold``
+    (``plan.threshold``, ``plan.too_wide`` and their counters), ``captures``
+    (what is read from the total: the compares, ``m_is_y``, ``pick_x``, the
+    checks, ``radius``, the totals), ``status`` (``ready``, ``plan.done``).
     """
     width = cmd.coord_width
     gap_width = 2 * width + 1
@@ -67,17 +75,14 @@ def dda_setup(clock, reset, cmd, plan):
     gap = Signal(modbv(0)[gap_width:])
     operand = Signal(modbv(0)[gap_width:])
     total = Signal(modbv(0)[gap_width:])
-    carry = Signal(bool(0))
-    multiplier = Signal(intbv(0)[width:])
-    gap_op = Signal(intbv(0)[2:])
-    operand_op = Signal(intbv(0)[2:])
-    source = Signal(intbv(0)[3:])
-    source_on, invert = Signal(bool(0)), Signal(bool(0))
+    # the micro-program's lines and the flags it reads (``rtl/dda/dda_setup_control.py``)
+    control = SetupControl(width)
+    gap_op, operand_op, source, source_on = control.gap_op, control.operand_op, control.source, control.source_on
+    invert, carry, multiplier = control.invert, control.carry, control.multiplier
+    m_is_y, pick_x = control.m_is_y, control.pick_x
     source_value = Signal(intbv(0)[width + 1:])
 
     root = DdaRoot(width)
-    m_is_y, pick_x = Signal(bool(0)), Signal(bool(0))
-    twice = Signal(intbv(0)[2:])
     acc_bits = Signal(intbv(0)[5:])
     ones_left = Signal(intbv(0, min=0, max=64))
     grew = Signal(bool(0))
@@ -87,172 +92,7 @@ def dda_setup(clock, reset, cmd, plan):
     latch = dda_latch(clock, reset, cmd, plan)
     phase = dda_sequence(cmd, plan, sequence)
     square_root = dda_root(clock, reset, root)
-
-    @always_comb
-    def control():
-        # this clock's micro-operation: what the accumulator does, what the operand loads
-        # (source, inverted, or 0) or whether it shifts (``invert`` is the bit shifted in)
-        g_op = intbv(0)[2:]
-        o_op = intbv(0)[2:]
-        src = intbv(0)[3:]
-        on = True
-        inv = False
-        g_op[:] = G_HOLD
-        o_op[:] = M_LOAD
-        src[:] = SRC_XS
-        if state == t_setup.S_PRE:
-            # xs, -ys (m), +ys, -xe (xs vs xe), 0, ys, -ye (ys vs ye), then -1 for the squares
-            if step == 1 or step == 3 or step == 5:
-                inv = True
-            if step == 0 or step == 6:
-                src[:] = SRC_XS
-                inv = step == 6
-            elif step == 1 or step == 2 or step == 4:
-                src[:] = SRC_YS
-            elif step == 3:
-                src[:] = SRC_XE
-            else:
-                src[:] = SRC_YE
-            if step == 4:
-                g_op[:] = G_ZERO
-            elif step == 6:
-                g_op[:] = G_ONES
-            elif step != 0:
-                g_op[:] = G_ADD
-        elif state == t_setup.S_SQUARE:
-            o_op[:] = M_SHIFT
-            inv = square < 2
-            if multiplier[0]:
-                g_op[:] = G_ADD
-            if step == width - 1:
-                # the next square's magnitude, then ~m for the limits
-                o_op[:] = M_LOAD
-                inv = square == 0 or square == 3
-                src[:] = square + 1
-                if square == 3:
-                    src[:] = SRC_XS
-                    if m_is_y:
-                        src[:] = SRC_YS
-        elif state == t_setup.S_LIMIT:
-            o_op[:] = M_SHIFT
-            if step == 0:
-                inv = True
-            elif step == 1:
-                g_op[:] = G_ADD
-                o_op[:] = M_LOAD
-                src[:] = SRC_XS
-                if m_is_y:
-                    src[:] = SRC_YS
-            elif step == 4:
-                g_op[:] = G_ZERO
-                o_op[:] = M_LOAD
-                src[:] = SRC_ROOT
-        elif state == t_setup.S_POST:
-            g_op[:] = G_ADD
-            if step == 0:
-                # t + 1 (Rq), then -2 |e| for the inward test
-                src[:] = SRC_YE
-                if plan.x_inward_end:
-                    src[:] = SRC_XE
-                inv = True
-            elif step == 1:
-                g_op[:] = G_HOLD
-                o_op[:] = M_SHIFT
-                inv = True
-            elif step <= 5:
-                # the difference of the totals: +-(|xs| + |ys|) +-(|xe| + |ye|) +-2 Rq
-                inv = not plan.x_inward
-                if step == 2:
-                    g_op[:] = G_ZERO
-                    src[:] = SRC_XS
-                elif step == 3:
-                    src[:] = SRC_YS
-                else:
-                    src[:] = SRC_XE
-                    if step == 5:
-                        src[:] = SRC_YE
-                    inv = plan.x_inward_end == 1
-            elif step == 6:
-                src[:] = SRC_ROOT
-                on = plan.x_inward != plan.x_inward_end
-                inv = plan.x_inward == 1
-            elif step == 7:
-                g_op[:] = G_ZERO
-                o_op[:] = M_HOLD
-            elif step == 8:
-                # the larger total: the axis the difference's sign picked
-                g_op[:] = G_HOLD
-                src[:] = SRC_YS
-                inv = plan.x_inward == 1
-                if pick_x:
-                    src[:] = SRC_XS
-                    inv = not plan.x_inward
-            elif step == 9:
-                src[:] = SRC_YE
-                inv = not plan.x_inward_end
-                if pick_x:
-                    src[:] = SRC_XE
-                    inv = plan.x_inward_end == 1
-            else:
-                src[:] = SRC_ROOT
-                on = twice != 0
-                if step == 11:
-                    on = twice == 2
-        else:
-            o_op[:] = M_HOLD
-        gap_op.next = g_op
-        operand_op.next = o_op
-        source.next = src
-        source_on.next = on
-        invert.next = inv
-
-    @always_seq(clock.posedge, reset=reset)
-    def carry_in():
-        # the carry of the next clock's addition: +1 of a subtraction, r of 2 Rq = t + r
-        # (-2 Rq = ~t + ~r), +1 of t + 1
-        cin = False
-        if next_state == t_setup.S_PRE:
-            cin = next_step == 2 or next_step == 4 or next_step == 6
-        elif next_state == t_setup.S_SQUARE:
-            cin = next_square < 2
-        elif next_state == t_setup.S_LIMIT:
-            cin = next_step == 4
-        elif next_state == t_setup.S_POST:
-            if next_step == 0:
-                cin = True
-            elif next_step == 2:
-                cin = root.root[0] == 1
-            elif next_step == 3 or next_step == 4:
-                cin = not plan.x_inward
-            elif next_step == 5 or next_step == 6:
-                cin = plan.x_inward_end == 1
-            elif next_step == 7:
-                cin = plan.x_inward != plan.x_inward_end and root.root[0] != plan.x_inward
-            elif next_step == 9:
-                cin = pick_x != plan.x_inward
-            elif next_step == 10:
-                cin = pick_x == plan.x_inward_end
-            elif next_step == 11:
-                cin = root.root[0] and twice != 0
-            elif next_step == 12:
-                cin = root.root[0] and twice == 2
-        else:
-            cin = False
-        carry.next = cin
-
-    @always_comb
-    def rq_terms():
-        # k / 2 of the larger axis' k Rq: k = (crossings - 1) + 1 if it starts outward (its
-        # first piece ends at Rq) + 1 if it ends inward (its last piece starts at Rq)
-        count = modbv(0)[3:]
-        count[:] = plan.crossings - 1
-        if plan.x_inward != pick_x:
-            count[:] = count + 1
-        if plan.x_inward_end == pick_x:
-            count[:] = count + 1
-        twice.next = count[3:1]
-        if plan.crossings == 0:
-            twice.next = 0
+    program = dda_setup_control(clock, reset, plan, sequence, root, control)
 
     @always_comb
     def select_source():
@@ -380,5 +220,5 @@ def dda_setup(clock, reset, cmd, plan):
         cmd.ready.next = state == t_setup.S_IDLE
         plan.done.next = state == t_setup.S_DONE
 
-    return (latch, square_root, phase, control, carry_in, rq_terms, select_source, adder, datapath,
-            sequencer, line_major, threshold, captures, status)
+    return (latch, square_root, phase, program, select_source, adder, datapath, sequencer, line_major,
+            threshold, captures, status)

@@ -156,6 +156,30 @@ class SetupSequence:
         self.square, self.next_square = Signal(modbv(0)[2:]), Signal(modbv(0)[2:])
 
 
+class SetupControl:
+    """What the setup stage's micro-program (``rtl/dda/dda_setup_control.py``,
+    which defines the codes) tells its adder (``rtl/dda/dda_setup.py``) each
+    clock, and the flags it reads.
+
+    From the program: ``gap_op`` (the accumulator ``gap``: ``G_HOLD``,
+    ``G_ADD`` the sum, ``G_ZERO``, ``G_ONES``), ``operand_op`` (the operand
+    register: ``M_HOLD``, ``M_SHIFT`` left, ``M_LOAD``), ``source`` (what it
+    loads: ``SRC_XS``.. ``SRC_YE``, the magnitudes, or ``SRC_ROOT``, t),
+    ``source_on`` (0: it loads 0), ``invert`` (it loads the source inverted,
+    or shifts in a 1) and ``carry`` (the adder's carry-in, a register set a
+    clock ahead).  From the datapath: ``multiplier`` (W bits, shifted right
+    during a square: bit 0 says whether this clock adds), ``m_is_y`` (|xs| <
+    |ys|: m is |ys|) and ``pick_x`` (X has the larger total)."""
+
+    def __init__(self, coord_width):
+        self.gap_op, self.operand_op = Signal(intbv(0)[2:]), Signal(intbv(0)[2:])
+        self.source = Signal(intbv(0)[3:])
+        self.source_on, self.invert = Signal(bool(0)), Signal(bool(0))
+        self.carry = Signal(bool(0))
+        self.multiplier = Signal(intbv(0)[coord_width:])
+        self.m_is_y, self.pick_x = Signal(bool(0)), Signal(bool(0))
+
+
 class DdaMove:
     """The checked move, from the check (``rtl/dda/dda_check.py``) to the run
     (``rtl/dda/dda_run.py``), and the handshake that hands it over.

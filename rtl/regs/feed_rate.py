@@ -59,6 +59,12 @@ def feed_rate(clock, reset, settings, feed):
     limits), so between two registers there is one adder or comparator and a
     multiplexer.  A settings change reaches the ramp one clock later.
 
+    Processes, by what they drive: ``register_settings`` (the settings and
+    their sums), ``end_ahead`` (``decelerate``), ``candidates`` and
+    ``count_steps`` (the next rates, counts and their conditions), ``gate``
+    (``advancing``), ``accumulate`` (the phase, ``tick``), ``ramp_count``
+    (the ramp count), ``ramp_rate`` (the rate, ``held``).
+
     rate 32768 (every other clock):
         clock  _/~\\_/~\\_/~\\_/~\\_/~\\_
         run    _/~~~~~~~~~~~~~~~~~~~
@@ -78,6 +84,7 @@ def feed_rate(clock, reset, settings, feed):
     count_up, count_down = (Signal(intbv(0, min=0, max=1 << COUNT_BITS)) for _ in range(2))
     count_empty, count_last = Signal(bool(1)), Signal(bool(0))
     decelerate = Signal(bool(0))
+    advancing = Signal(bool(0))  # the phase moves on in this clock: running, not held, outputs not full
     # settings and their sums, registered
     target_s, start_s = (Signal(intbv(0, min=0, max=RATE_MAX + 1)) for _ in range(2))
     step_s = Signal(intbv(0)[step_bits:])
@@ -127,12 +134,41 @@ def feed_rate(clock, reset, settings, feed):
         else:
             count_down.next = count - 1
 
+    @always_comb
+    def gate():
+        advancing.next = feed.run and not feed.held and not (step_zero and feed.pause) and not feed.hold
+
     @always_seq(clock.posedge, reset=reset)
     def accumulate():
+        # the phase: rate/65536 of an iteration a clock, its carry the tick
         feed.tick.next = 0
         if not feed.run:
             phase.next = 0
+        elif advancing:
+            phase.next = total[PHASE_BITS:]
+            if total[PHASE_BITS]:
+                feed.tick.next = 1
+
+    @always_seq(clock.posedge, reset=reset)
+    def ramp_count():
+        # the ticks the rate needs to come back down to ramp_start (+ DECEL_MARGIN)
+        if not feed.run:
             count.next = DECEL_MARGIN
+        elif advancing and total[PHASE_BITS]:
+            if step_zero:
+                count.next = DECEL_MARGIN
+            elif decelerate or feed.pause:
+                if not count_empty:
+                    count.next = count_down
+            elif below:
+                count.next = count_up
+            elif above:
+                count.next = count_down
+
+    @always_seq(clock.posedge, reset=reset)
+    def ramp_rate():
+        # the rate of the next iteration (rules 1-4 at a tick), and the feed hold
+        if not feed.run:
             feed.held.next = feed.pause
             if feed.pause:
                 rate.next = 0
@@ -150,37 +186,30 @@ def feed_rate(clock, reset, settings, feed):
         elif step_zero and feed.pause:
             rate.next = 0
             feed.held.next = 1
-        elif not feed.hold:
-            phase.next = total[PHASE_BITS:]
-            if total[PHASE_BITS]:
-                feed.tick.next = 1
-                if step_zero:
-                    rate.next = target_s
-                    count.next = DECEL_MARGIN
-                elif decelerate or feed.pause:
-                    if not count_empty:
-                        count.next = count_down
-                        if count_last or not above_floor:
-                            rate.next = start_s
-                        else:
-                            rate.next = lowered
-                    elif feed.pause:
-                        rate.next = 0
-                        feed.held.next = 1
-                elif below:
-                    count.next = count_up
-                    if can_raise:
-                        rate.next = raised
+        elif not feed.hold and total[PHASE_BITS]:
+            if step_zero:
+                rate.next = target_s
+            elif decelerate or feed.pause:
+                if not count_empty:
+                    if count_last or not above_floor:
+                        rate.next = start_s
                     else:
-                        rate.next = target_s
-                elif above:
-                    count.next = count_down
-                    if can_lower:
                         rate.next = lowered
-                    else:
-                        rate.next = target_s
+                elif feed.pause:
+                    rate.next = 0
+                    feed.held.next = 1
+            elif below:
+                if can_raise:
+                    rate.next = raised
+                else:
+                    rate.next = target_s
+            elif above:
+                if can_lower:
+                    rate.next = lowered
+                else:
+                    rate.next = target_s
 
-    return register_settings, end_ahead, candidates, count_steps, accumulate
+    return register_settings, end_ahead, candidates, count_steps, gate, accumulate, ramp_count, ramp_rate
 
 
 def feed_rate_ports(coord_width=COORD_WIDTH.default):

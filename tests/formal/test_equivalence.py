@@ -1,93 +1,79 @@
-"""``python -m formal.equivalence``: two versions of a unit compared at their ports.
+"""The equivalence miter (``python -m formal.equivalence``) on a small unit:
+the feed-rate ramp converted on its own, against copies of its Verilog with
+an equivalent rewrite and with defects put in by hand."""
+import re
 
-Small hand-written units: a counter whose process is split in two (the
-same circuit), the same split with an off-by-one (a different one), and a
-pair with the same outputs but an internal register that drifts, which
-only ``--registers`` tells apart.
-"""
 import pytest
 
 from formal import equivalence
 from formal.sby import tools_available
+from rtl.convert import convert_unit
 
 pytestmark = [pytest.mark.formal,
               pytest.mark.skipif(tools_available() is not None, reason=str(tools_available()))]
 
-ONE_PROCESS = """module unit(input clock, input reset, input step, output reg [3:0] count, output reg wrapped);
-    always @(posedge clock or negedge reset)
-        if (!reset) begin count <= 0; wrapped <= 0; end
-        else if (step) begin count <= count + 1; wrapped <= count == 15; end
-endmodule
-"""
-TWO_PROCESSES = """module unit(input clock, input reset, input step, output reg [3:0] count, output reg wrapped);
-    always @(posedge clock or negedge reset)
-        if (!reset) count <= 0; else if (step) count <= count + 1;
-    always @(posedge clock or negedge reset)
-        if (!reset) wrapped <= 0; else if (step) wrapped <= &count;
-endmodule
-"""
-OFF_BY_ONE = TWO_PROCESSES.replace("wrapped <= &count", "wrapped <= count == 14")
-# the same outputs; the hidden register differs from the second clock on
-HIDDEN = """module unit(input clock, input reset, input step, output reg [3:0] count, output reg wrapped);
-    (* keep *) reg [1:0] spare;
-    always @(posedge clock or negedge reset)
-        if (!reset) begin count <= 0; wrapped <= 0; spare <= 0; end
-        else begin
-            spare <= spare + SPARE_STEP;
-            if (step) begin count <= count + 1; wrapped <= count == 15; end
-        end
-endmodule
-"""
+UNIT = "feed_rate"
 
 
-def _files(tmp_path, old_text, new_text):
-    (tmp_path / "old").mkdir()
-    (tmp_path / "new").mkdir()
-    old, new = tmp_path / "old" / "unit.v", tmp_path / "new" / "unit.v"
-    old.write_text(old_text)
-    new.write_text(new_text)
-    return old, new
+@pytest.fixture(scope="module")
+def original(tmp_path_factory):
+    return convert_unit(UNIT, {}, tmp_path_factory.mktemp("original"))
 
 
-def test_a_split_process_is_proved_equivalent(tmp_path):
-    old, new = _files(tmp_path, ONE_PROCESS, TWO_PROCESSES)
-    verdict = equivalence.check(old, new, "unit", depth=2, registers=True, work=tmp_path / "work")
-    assert verdict.status == "equivalent", verdict.text()
-    assert ("register", "count") not in verdict.compared   # outputs are compared as outputs
-    assert ("output", "wrapped") in verdict.compared
+def changed(original, tmp_path, *edits):
+    """A copy of ``original`` with each (pattern, replacement) applied; each pattern must match."""
+    text = original.read_text()
+    for pattern, replacement in edits:
+        text, count = re.subn(pattern, replacement, text)
+        assert count, f"{original.name} no longer has {pattern!r}: pick the change anew"
+    copy = tmp_path / "changed" / original.name
+    copy.parent.mkdir()
+    copy.write_text(text)
+    return copy
 
 
-def test_an_off_by_one_is_found_with_its_trace(tmp_path):
-    old, new = _files(tmp_path, ONE_PROCESS, OFF_BY_ONE)
-    verdict = equivalence.check(old, new, "unit", depth=2, bmc_depth=20, work=tmp_path / "work")
-    assert verdict.status == "different", verdict.text()
-    # the shortest run: the reset clock, 14 steps to count 14, the wrong flag
-    # a clock later, seen by the clocked assertion at the next edge
-    assert verdict.result.step == 17 and verdict.result.trace.exists(), verdict.text()
+def test_an_equivalent_rewrite_is_proved(original, tmp_path):
+    """Operands of a compare swapped and a register renamed (``decelerate``,
+    which the register correspondence then cannot pair: it is reloaded every
+    clock, so an induction of two clocks gets past it) prove equivalent,
+    unbounded."""
+    new = changed(original, tmp_path, (r"assign above = \(rate > target_s\);", "assign above = (target_s < rate);"),
+                  (r"\bdecelerate\b", "end_near"))
+    verdict = equivalence.check(UNIT, original, new, mode="prove", depth=2, work=tmp_path / "work")
+    assert verdict.status == "PASS" and verdict.equivalent, verdict.text()
+    assert "rate" in verdict.matched and "decelerate" not in verdict.matched, verdict.matched
 
 
-@pytest.mark.slow   # four proofs (20 s); the option's use on the target is in docs/formal.md
-def test_registers_compares_what_the_outputs_hide(tmp_path):
-    old, new = _files(tmp_path, HIDDEN.replace("SPARE_STEP", "1"), HIDDEN.replace("SPARE_STEP", "2"))
-    outputs_only = equivalence.check(old, new, "unit", depth=2, work=tmp_path / "outputs")
-    with_registers = equivalence.check(old, new, "unit", depth=2, registers=True, work=tmp_path / "registers")
-    assert outputs_only.status == "equivalent", outputs_only.text()
-    assert with_registers.status == "different", with_registers.text()
+def test_a_deep_defect_is_not_proved(original, tmp_path):
+    """The ramp's last step one count late (``count_last`` at 3 ticks, not 2):
+    from a common state the rate soon differs, so the induction fails on a
+    register and the change is not accepted."""
+    new = changed(original, tmp_path, (r"assign count_last = \(count == \(2 \+ 1\)\);",
+                                       "assign count_last = (count == (2 + 2));"))
+    verdict = equivalence.check(UNIT, original, new, mode="prove", depth=3, work=tmp_path / "work")
+    assert not verdict.equivalent, verdict.text()
+    assert verdict.status in ("FAIL", "UNKNOWN")
+    assert set(verdict.outputs + verdict.registers) & {"rate", "feed_tick", "feed_held", "count"}, verdict.text()
 
 
-@pytest.mark.parametrize("problem, args, message", [
-    ("no file", ["missing.v", "unit.v", "--top", "unit"], "no file"),
-    ("other ports", ["old/unit.v", "ports/unit.v", "--top", "unit"], "different ports"),
-    ("no reset", ["old/unit.v", "new/unit.v", "--top", "unit", "--reset", "rst_n"], "no input 'rst_n'"),
-])
-def test_bad_input_is_refused_with_a_message(problem, args, message, tmp_path, monkeypatch, capsys):
-    _files(tmp_path, ONE_PROCESS, TWO_PROCESSES)
-    (tmp_path / "ports").mkdir()
-    (tmp_path / "ports" / "unit.v").write_text(TWO_PROCESSES.replace("input step,", "input step, input hold,"))
-    monkeypatch.chdir(tmp_path)
-    try:
-        code = equivalence.main(args)
-    except SystemExit as stop:
-        code = stop.code
-    assert code != 0
-    assert message in capsys.readouterr().err, problem
+def test_a_visible_defect_gives_a_counterexample(original, tmp_path):
+    """``step_zero`` set for a step of 1 instead of 0: after the reset a run
+    with ramp_step 0 or 1 starts at the wrong rate, and the outputs-only
+    bounded miter shows the tick that differs, from a reset."""
+    new = changed(original, tmp_path, (r"step_zero <= \(settings_ramp_step == 0\);",
+                                       "step_zero <= (settings_ramp_step == 1);"))
+    verdict = equivalence.check(UNIT, original, new, mode="bmc", depth=8, match_registers=False,
+                                work=tmp_path / "work")
+    assert verdict.status == "FAIL" and not verdict.equivalent
+    assert verdict.outputs and set(verdict.outputs) <= {"feed_tick", "feed_held"}, verdict.text()
+    assert verdict.trace is not None and verdict.trace.exists()
+
+
+def test_a_folder_of_other_files_is_refused(original, tmp_path):
+    """``--work`` naming a folder that holds something else is refused before
+    anything in it is touched."""
+    kept = tmp_path / "notes.txt"
+    kept.write_text("not a miter's")
+    with pytest.raises(ValueError, match="holds files of something else"):
+        equivalence.check(UNIT, original, original, work=tmp_path)
+    assert kept.read_text() == "not a miter's"
