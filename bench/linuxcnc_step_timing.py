@@ -5,9 +5,10 @@ The installed component (``halcompile --install linuxcnc/dda_card.c``, under
 card server at the PCI clock (33.33 MHz, lock-step).  For each (steplen,
 stepspace) pair the X axis makes a move at 20 steps a period; the table gives
 the times in card clocks (each rounded up), the card's step cycle
-(steplen + max(steplen, stepspace), docs/linuxcnc.md), the iteration period
-the driver planned (65536 / the FEED_RATE it SET), what the driver before
-issue 30 planned (the power of two covering steplen + stepspace), and the
+(steplen + stepspace: STEP_WIDTH and STEP_SPACE, docs/linuxcnc.md), the
+iteration period the driver planned (65536 / the FEED_RATE it SET), the
+cycle of a card without STEP_SPACE (register map before 2.1: STEP low at
+least STEP_WIDTH too, steplen + max(steplen, stepspace)), and the
 rise-to-rise spacing measured on the STEP pin within a period's steps (the
 most common, and the least).
 """
@@ -85,14 +86,14 @@ def main():
     begun = starts(record) + [(float("inf"), None)]
     rises = [r[0] for r in record["rises"] if r[1]]
     print(f"card at {CLOCK_HZ} Hz, X moving {STEPS_PER_PERIOD} steps a period (clocks; one is 30 ns)")
-    print("| steplen, stepspace (ns) | in clocks | card's step cycle | planned p | before issue 30 | "
+    print("| steplen, stepspace (ns) | in clocks | card's step cycle | planned p | cycle without STEP_SPACE | "
           "measured rise to rise (most common, least) |")
     print("|---|---|---|---|---|---|")
     for (steplen, stepspace), (start, planned), (end, _) in zip(PAIRS, begun, begun[1:]):
         own = [r for r in rises if start <= r < end]
         gaps = collections.Counter(b - a for a, b in zip(own, own[1:]) if b - a < 2 * planned)
-        cycle = clocks(steplen) + max(clocks(steplen), clocks(stepspace))
-        before = max(2, 1 << (clocks(steplen) + clocks(stepspace) - 1).bit_length())
+        cycle = clocks(steplen) + clocks(stepspace)
+        before = clocks(steplen) + max(clocks(steplen), clocks(stepspace))
         print(f"| {steplen}, {stepspace} | {clocks(steplen)}, {clocks(stepspace)} | {cycle} | {planned} | {before} | "
               f"{gaps.most_common(1)[0][0]}, {min(gaps)} |")
     return 0

@@ -243,6 +243,10 @@ static int start(struct card *c)
     /* no ramp: the trajectory planner has shaped the motion, and a stop is immediate */
     if (dda_write32(&c->transport, DDA_RAMP_STEP, 0) < 0)
         return FAULT_TRANSPORT;
+#ifdef DDA_STEP_MODE
+    if (dda_write32(&c->transport, DDA_STEP_MODE, c->axis[0].step_type) < 0)
+        return FAULT_TRANSPORT;
+#endif
     problem = queue_words(c, words, n);
     if (problem)
         return problem;

@@ -88,8 +88,17 @@ static int dda_check_settings(struct card *c)
             rtapi_print_msg(RTAPI_MSG_INFO, "dda_card: the axes' %s differ; the card's is shared: %u ns for both\n",
                             TIMING_NAMES[k], ns);
     }
-    /* STEP_MODE (up/down, quadrature) comes with a card that has the register: write
-     * the axes' step_type to it here.  Until then the card makes step/dir only. */
+#ifdef DDA_STEP_MODE
+    /* STEP_MODE is one register for every axis (the pins of both change alike) and
+     * its codes are hostmot2's step_type: 0 step/dir, 1 up/down, 2 quadrature */
+    for (i = 0; i < AXES; i++)
+        if (a[i].step_type > DDA_STEP_MODE_MAX || a[i].step_type != a[0].step_type) {
+            rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: stepgen.%02d.step_type %u: the card makes 0 step/dir, "
+                            "1 up/down or 2 quadrature, one for both axes (stepgen.00.step_type is %u)\n",
+                            i, a[i].step_type, a[0].step_type);
+            return FAULT_SETTING;
+        }
+#else
     for (i = 0; i < AXES; i++)
         if (a[i].step_type != 0) {
             rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: stepgen.%02d.step_type %u: this card makes step/dir "
@@ -97,6 +106,7 @@ static int dda_check_settings(struct card *c)
                             i, a[i].step_type);
             return FAULT_SETTING;
         }
+#endif
     return 0;
 }
 

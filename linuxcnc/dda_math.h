@@ -11,14 +11,16 @@
 #define DDA_MATH_H
 
 #include <stdint.h>
+
+#include "../gen/dda_card.h"  /* the registers' ranges */
 #ifdef RTAPI
 #include "rtapi_math.h"
 #else
 #include <math.h>
 #endif
 
-#define DDA_TIMING_MIN 1u          /* STEP_WIDTH, DIR_SETUP, DIR_HOLD (and STEP_SPACE): 1..255 clocks */
-#define DDA_TIMING_MAX 255u
+#define DDA_TIMING_MIN ((uint32_t)DDA_STEP_WIDTH_MIN) /* STEP_WIDTH, DIR_SETUP, DIR_HOLD, STEP_SPACE: */
+#define DDA_TIMING_MAX ((uint32_t)DDA_STEP_WIDTH_MAX) /* one range, in clocks */
 #define DDA_FASTEST_ITERATION 2u   /* clocks: the DDA iterates at most every other clock */
 #define DDA_SLOWEST_ITERATION 65536u /* FEED_RATE 1 */
 #define DDA_MAX_STEPS 9007199254740992.0 /* 2^53: beyond it a double no longer holds every step */

@@ -66,7 +66,8 @@ def _blank(value):
 
 
 def c_header(prefix="DDA", extra="", values=None):
-    """The C header with offsets, field masks and shifts (``extra``: more
+    """The C header with offsets, field masks and shifts, the SET indexes and
+    the clamping bounds (``_MIN``, ``_MAX``) (``extra``: more
     definitions placed inside the include guard); the ``_RESET`` values are
     those of a card built with ``values`` (build parameters; default: the
     defaults)."""
@@ -89,6 +90,10 @@ def c_header(prefix="DDA", extra="", values=None):
             lines.append(f"#define {name}_{item.name}_MASK 0x{item.mask:08X}u")
         if reg.set_index is not None:
             lines.append(f"#define {name}_SET_INDEX {reg.set_index}u")
+        if reg.minimum is not None:
+            # a write outside MIN..MAX is clamped (and flags INT_STATUS.CLAMPED)
+            lines.append(f"#define {name}_MIN ({reg.minimum})")
+            lines.append(f"#define {name}_MAX ({reg.maximum})")
         lines.append("")
     if extra:
         lines += [extra.rstrip("\n"), ""]

@@ -9,20 +9,21 @@ foreign ``VerilogTarget`` (``card_verilog``; its split ports, the machine
 inputs tied at rest), or the benches' MyHDL card and generated top level
 (``sim.card.fifo_scoreboard.card_target``).  ``measure`` enumerates it and
 makes one access of each kind in ``ACCESSES``: configuration space, a
-function register over I/O (STATUS read, FEED_RATE written) and the FIFO
-window over memory.  ``bench/pci_figures.py`` prints the figures and
+function register over I/O (STATUS read, FEED_RATE written), the FIFO
+window over memory (BAR1) and the same registers over memory (BAR2).  ``bench/pci_figures.py`` prints the figures and
 ``tests/sim/test_register_latency.py`` holds the docs to them."""
 from models import instructions as isa
 from models import registers as regmap
 from rtl.convert import GEN_DIR
 from rtl.interfaces import MACHINE_INPUTS
 from sim.card.card_bench import PinLog
+from sim.card.card_e2e import card_bars
 from sim.card.fifo_scoreboard import DEFAULT_FIFO, card_target
 from sim.pci.bench import TARGET_DEVICE, PciBench
 from sim.pci.verilog_target import VerilogTarget, split_pins
 
 ACCESSES = ("configuration read", "configuration write", "I/O read", "I/O write", "memory read",
-            "memory write")
+            "memory write", "BAR2 read", "BAR2 write")
 KINDS = ("card.v", "myhdl", "top.v")
 
 
@@ -53,14 +54,16 @@ def measure(kind="card.v"):
     def scenario(bench):
         host = bench.host
         (device,) = yield from host.enumerate_bus(devices=[TARGET_DEVICE])
-        bars = {("io" if bar["io"] else "mem"): bar["base"] for bar in device.bars}
-        io, mem = bars["io"], bars["mem"]
+        bars = card_bars(device)
+        io, mem, alias = (bars[role]["base"] for role in ("io", "mem", "alias"))
         results["configuration read"] = yield from host.config_read(TARGET_DEVICE, 0x00)
         results["configuration write"] = yield from host.config_write(TARGET_DEVICE, 0x3C, 0x0B, be=0x1)
         results["I/O read"] = yield from host.io_read(io + regmap.offset("STATUS"))
         results["I/O write"] = yield from host.io_write(io + regmap.offset("FEED_RATE"), 1)
         results["memory read"] = yield from host.mem_read(mem)
         results["memory write"] = yield from host.mem_write(mem, isa.encode("MARK", TAG=1))  # moves nothing
+        results["BAR2 read"] = yield from host.mem_read(alias + regmap.offset("STATUS"))
+        results["BAR2 write"] = yield from host.mem_write(alias + regmap.offset("FEED_RATE"), 1)
 
     PciBench(target=card(kind)).run(scenario, f"register_latency_{kind}", trace=False)
     figures = {}

@@ -97,7 +97,7 @@ SETTINGS = (
     f"setp {S}.00.steplen 5000\nsetp {S}.00.stepspace 1000\nsetp {S}.01.steplen 300000\n"
     f"setp {S}.00.maxvel {STEPS_PER_PERIOD * 1000}\nsetp {S}.01.position-scale 0\n"
     f"setp {S}.00.enable 1\n" + until("dda-card.0.error", "TRUE") + note("dda-card.0.error-code", f"{S}.01.position-scale")
-    # 5 us high, 1 us low asked: the card holds STEP low 5 clocks too, 10 a step, so p = 16
+    # 5 us high, 1 us low asked: STEP_WIDTH 5 and STEP_SPACE 1 clocks, 6 a step, so p = 8
     + f"setp {S}.00.enable 0\n" + until("dda-card.0.error", "FALSE") + f"setp {S}.01.steplen 1000\n"
     # (the queue runs, the axis taken up at 0, before the command moves)
     f"setp {S}.00.enable 1\n" + until("dda-card.0.fifo-level", "not:0")
@@ -120,7 +120,7 @@ SETTINGS = (
 def test_settings_step_timing_wrap_and_bad_commands(linuxcnc_alone):
     """One script: a step timing the card cannot hold refused at enable naming the parameter;
     position-scale 0 forced to 1; the step cycle planned from the card's rule (p = 16 for
-    5 us / 1 us at 1 MHz) and met on the pins; maxvel limiting a jump of 2000 steps to 50 a
+    5 us / 1 us at 1 MHz: p = 8) and met on the pins; maxvel limiting a jump of 2000 steps to 50 a
     period; position-fb across 2^31 steps; a NaN position-cmd holding its axis with error -6."""
     run = run_folder()
     output, notes, record = run_script(run, SETTINGS)
@@ -128,11 +128,11 @@ def test_settings_step_timing_wrap_and_bad_commands(linuxcnc_alone):
     assert "stepgen.01.steplen 300000 ns is 300 clocks at 1000000 Hz" in output
     assert "hold 1..255 clocks (at most 255000 ns)" in output
     assert notes[f"{S}.01.position-scale"] == ["1"] and "stepgen.01.position-scale 0 is no scale" in output
-    # the plan: FEED_RATE 65536 / 16 at both starts; on the pins: 16 clocks a step in a period's run
-    assert feed_rates(record) == [65536 // 16] * 2
+    # the plan: FEED_RATE 65536 / 8 at both starts; on the pins: 8 clocks a step in a period's run
+    assert feed_rates(record) == [65536 // 8] * 2
     x_rises = [r[0] for r in record["rises"] if r[1]]
     gaps = Counter(b - a for a, b in zip(x_rises, x_rises[1:]) if b - a < PERIOD_CLOCKS // 2)
-    assert gaps.most_common(1)[0][0] == 16 and min(gaps) >= 10, gaps
+    assert gaps.most_common(1)[0][0] == 8 and min(gaps) >= 6, gaps
     ends = [after for _, after in record["advances"]]
     per_period = Counter(next(k for k, end in enumerate(ends) if end >= clock) for clock in x_rises[:2000])
     assert max(per_period.values()) <= STEPS_PER_PERIOD, "maxvel did not limit the steps of a period"
@@ -142,6 +142,35 @@ def test_settings_step_timing_wrap_and_bad_commands(linuxcnc_alone):
     assert output.count("is no position in steps") == 1
     # the card's own counter: the first move and the two across the wrap (the take-up moves nothing)
     assert record["final"]["POS_X"] == 2000 + 2147485000 - 2147483000
+    shutil.rmtree(run, ignore_errors=True)
+
+
+STEP_TYPES = (
+    # the axes ask for different step types: the card's STEP_MODE is one for both, refused at enable
+    f"setp {S}.00.step_type 1\nsetp {S}.00.enable 1\n" + until("dda-card.0.error", "TRUE")
+    + note("dda-card.0.error-code") + f"setp {S}.00.enable 0\n" + until("dda-card.0.error", "FALSE")
+    # a type beyond quadrature (2), then up/down on both axes: STEP_MODE 1 written at enable
+    + f"setp {S}.00.step_type 3\nsetp {S}.01.step_type 3\nsetp {S}.00.enable 1\n" + until("dda-card.0.error", "TRUE")
+    + f"setp {S}.00.enable 0\n" + until("dda-card.0.error", "FALSE")
+    + f"setp {S}.00.step_type 1\nsetp {S}.01.step_type 1\nsetp {S}.00.enable 1\n"
+    + until("dda-card.0.fifo-level", "not:0") + f"setp {S}.00.position-cmd 20\n" + until(f"{S}.00.counts", "20")
+    + note("dda-card.0.error")
+)
+
+
+def test_step_type_written_to_step_mode(linuxcnc_alone):
+    """hostmot2's step_type per axis: the card makes one STEP_MODE for both axes, so
+    different types are refused at enable (-8, naming the axis), as is a type the card
+    does not make; up/down on both axes is written to STEP_MODE and the axis moves."""
+    run = run_folder()
+    output, notes, record = run_script(run, STEP_TYPES)
+    assert notes["dda-card.0.error-code"] == ["-8"]
+    assert "stepgen.01.step_type 0: the card makes 0 step/dir, 1 up/down or 2 quadrature" in output
+    assert "stepgen.00.step_type 3" in output
+    assert notes["dda-card.0.error"] == ["FALSE"]
+    modes = [value for _, offset, value in record["writes"] if offset == regmap.offset("STEP_MODE")]
+    assert modes == [regmap.STEP_MODES.index("UP_DOWN")]
+    assert record["final"]["POS_X"] == 20
     shutil.rmtree(run, ignore_errors=True)
 
 

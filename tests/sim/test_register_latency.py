@@ -10,9 +10,10 @@ import pytest
 from rtl.convert import ROOT
 from sim.card.register_latency import ACCESSES, measure
 
-STATED = re.compile(r"\b(configuration read|configuration write|I/O read|I/O write|memory read|memory write) "
+STATED = re.compile(r"\b(configuration read|configuration write|I/O read|I/O write|memory read|memory write|BAR2 read"
+                    r"|BAR2 write) "
                     r"A\+(\d+)")
-TABLE_ROW = re.compile(r"^\s*\| (configuration|I/O|memory) (read|write)[^|]*\| A\+(\d+) \| A\+(\d+) \|$", re.M)
+TABLE_ROW = re.compile(r"^\s*\| (configuration|I/O|memory|BAR2) (read|write)[^|]*\| A\+(\d+) \| A\+(\d+) \|$", re.M)
 
 
 @pytest.fixture(scope="module")
