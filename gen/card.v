@@ -5123,7 +5123,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             card_core0_regs_fifo1_direct_request_x <= 1;
             card_core0_regs_fifo1_reg_word58_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
             if (card_core0_regs_fifo1_direct_pulse2_command_retarget) begin
-                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_counted != 0);
+                card_core0_regs_fifo1_direct_pulse2_pending <= (!((card_core0_regs_fifo1_direct_pulse2_command_count == 1) || (card_core0_regs_fifo1_direct_pulse2_command_count == (-1))));
             end
             else begin
                 card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word58_shown != 1);
@@ -5216,7 +5216,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
             card_core0_regs_fifo1_direct_request_y <= 1;
             card_core0_regs_fifo1_reg_word59_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
             if (card_core0_regs_fifo1_direct_pulse3_command_retarget) begin
-                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_counted != 0);
+                card_core0_regs_fifo1_direct_pulse3_pending <= (!((card_core0_regs_fifo1_direct_pulse3_command_count == 1) || (card_core0_regs_fifo1_direct_pulse3_command_count == (-1))));
             end
             else begin
                 card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word59_shown != 1);

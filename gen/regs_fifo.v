@@ -3622,7 +3622,7 @@ always @(posedge clock, negedge reset) begin: direct_pulse0_emit
             direct_request_x <= 1;
             reg_word19_shown <= direct_pulse0_counted;
             if (direct_pulse0_command_retarget) begin
-                direct_pulse0_pending <= (direct_pulse0_counted != 0);
+                direct_pulse0_pending <= (!((direct_pulse0_command_count == 1) || (direct_pulse0_command_count == (-1))));
             end
             else begin
                 direct_pulse0_pending <= (reg_word19_shown != 1);
@@ -3715,7 +3715,7 @@ always @(posedge clock, negedge reset) begin: direct_pulse1_emit
             direct_request_y <= 1;
             reg_word20_shown <= direct_pulse1_counted;
             if (direct_pulse1_command_retarget) begin
-                direct_pulse1_pending <= (direct_pulse1_counted != 0);
+                direct_pulse1_pending <= (!((direct_pulse1_command_count == 1) || (direct_pulse1_command_count == (-1))));
             end
             else begin
                 direct_pulse1_pending <= (reg_word20_shown != 1);

@@ -5955,7 +5955,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             card1_card_core1_regs_fifo2_direct_request_x <= 1;
             card1_card_core1_regs_fifo2_reg_word97_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
             if (card1_card_core1_regs_fifo2_direct_pulse4_command_retarget) begin
-                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_counted != 0);
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (!((card1_card_core1_regs_fifo2_direct_pulse4_command_count == 1) || (card1_card_core1_regs_fifo2_direct_pulse4_command_count == (-1))));
             end
             else begin
                 card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word97_shown != 1);
@@ -6048,7 +6048,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
             card1_card_core1_regs_fifo2_direct_request_y <= 1;
             card1_card_core1_regs_fifo2_reg_word98_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
             if (card1_card_core1_regs_fifo2_direct_pulse5_command_retarget) begin
-                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_counted != 0);
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (!((card1_card_core1_regs_fifo2_direct_pulse5_command_count == 1) || (card1_card_core1_regs_fifo2_direct_pulse5_command_count == (-1))));
             end
             else begin
                 card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word98_shown != 1);

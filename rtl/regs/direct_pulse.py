@@ -100,7 +100,9 @@ def direct_pulse(clock, reset, command, out):
             out.step.next = 1
             command.remaining.next = counted
             if command.retarget:
-                pending.next = counted != 0
+                # counted != 0 (|count| less this request) from count itself, so
+                # that no zero test waits for the adder's carry chain
+                pending.next = not (command.count == 1 or command.count == -1)
             else:
                 pending.next = command.remaining != 1
             gap.next = gap_less
