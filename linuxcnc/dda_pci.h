@@ -18,6 +18,8 @@
 
 #include "rtapi_pci.h"
 
+#include "dda_transport_state.h"
+
 #define DDA_FIFO_BAR 1
 #define DDA_REGS_BAR 2              /* the memory BAR aliasing the registers, on cards that have it */
 #define DDA_RESOURCE_MEM 0x200ul    /* a BAR's flags in sysfs `resource`: memory (the kernel's IORESOURCE_MEM) */

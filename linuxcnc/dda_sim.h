@@ -16,6 +16,8 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include "dda_transport_state.h"
+
 /* Why a send or receive of `wanted` bytes gave `got`. */
 static int dda_sim_broken(struct dda_transport *t, ssize_t got, size_t wanted, const char *what)
 {
