@@ -9,7 +9,7 @@ import pytest
 from myhdl import intbv
 
 from models import parameters
-from models.parameters import COORD_WIDTH, FIFO_DEPTH, PARAMETERS, ParameterError
+from models.parameters import COORD_WIDTH, FIFO_DEPTH, PARAMETERS, Build, ParameterError
 from rtl.card import card_ports
 from rtl.card_core import card_core_ports
 from rtl.convert import ROOT, convert_unit
@@ -115,6 +115,42 @@ def test_dda_takes_its_width_from_its_port(tmp_path):
 def test_pad_ports_factory_checks_its_build():
     with pytest.raises(ValueError, match="io_registers"):
         pci_pads_ports(io_registers=1)
+
+
+def test_the_build_record_holds_the_documented_defaults():
+    """docs/parameters: 512 words, 24 bits, 33.33 MHz, generic Verilog; the top for iCE40."""
+    build = Build()
+    assert (build.fifo_depth, build.coord_width, build.clock_hz, build.device) == (512, 24, 33_333_333, "generic")
+    assert (build.variants, build.vendor_id, build.device_id) == ("improved,precise", 0x1234, 0xDDA0)
+    assert Build.for_unit("top") == build.replace(device="ice40")
+    assert [field.name for field in dataclasses.fields(Build)] == list(PARAMETERS)
+
+
+@pytest.mark.parametrize("values, message", [
+    (dict(fifo_depth=3), "fifo_depth must be a power of two, 4..32,768 (4: the FIFO promises the PCI target "
+     "three free places (LocalBus.room) before it acknowledges a posted dword; STATUS.FIFO_LEVEL, 16 bits, "
+     "counts 0..depth), not 3"),
+    (dict(device="ice40", fifo_depth=8192), "fifo_depth must be at most 4,096 for ice40 (the iCE40 HX8K has "
+     "32 block RAMs of 4 Kbit, 4,096 32-bit words in all), not 8,192"),
+    (dict(clock_hz=0), "clock_hz must be 1..33,333,333 (PCI 2.3 clocks a device that does not claim 66 MHz "
+     "at up to 33.33 MHz), not 0"),
+    (dict(variants="weighted"), "variants must be improved,precise or all, not 'weighted'"),
+    (dict(device="ecp5"), "device must be generic or ice40, not 'ecp5'"),
+    (dict(vendor_id=0xFFFF), "vendor_id must be 0x0000..0xFFFE (0xFFFF reads as no device), not 0xFFFF"),
+])
+def test_a_bad_value_is_refused_where_the_build_is_made_with_the_tables_message(values, message):
+    with pytest.raises(ParameterError) as made:
+        Build(**values)
+    with pytest.raises(ParameterError) as replaced:
+        Build().replace(**values)
+    assert str(made.value) == str(replaced.value) == message
+
+
+def test_an_unknown_parameter_is_refused_by_name():
+    with pytest.raises(ParameterError, match=r"unknown build parameters \['bar_bits'\]"):
+        Build().replace(bar_bits=6)
+    with pytest.raises(ParameterError, match=r"unknown build parameters \['depth'\]"):
+        Build.for_unit("top", depth=64)
 
 
 @pytest.mark.parametrize("factory, params, message", [
