@@ -178,11 +178,6 @@ DEVICE, VARIANTS, AXES, COORD_WIDTH, FIFO_DEPTH, CLOCK_HZ = (
     PARAMETERS[name] for name in ("device", "variants", "axes", "coord_width", "fifo_depth", "clock_hz"))
 
 
-def defaults(names, unit=None):
-    """``{name: default}`` of ``names`` (for ``unit``, if it has defaults of its own)."""
-    return {name: PARAMETERS[name].default_for(unit) for name in names}
-
-
 def _known(values):
     """``values`` if it names build parameters only; ParameterError else."""
     unknown = sorted(set(values) - set(PARAMETERS))
@@ -200,14 +195,6 @@ def check(values, device=None):
     for name, value in values.items():
         PARAMETERS[name].check(value, device)
     return dict(values)
-
-
-def check_unit(unit, names, values):
-    """``check(values)`` for a unit that takes the parameters ``names``."""
-    unknown = sorted(set(values) - set(names))
-    if unknown:
-        raise ParameterError(f"{unit} takes no parameters {unknown}")
-    return check(values)
 
 
 class _BuildRecord:

@@ -1,5 +1,6 @@
-"""``models/parameters.py``: each range is the hardware's, stated once; units and
-``*_ports`` factories take their defaults from it and their widths from their ports."""
+"""``models/parameters.py``: each range is the hardware's, stated once; the
+``Build`` record made from the table is checked once, where it is made, and
+passed down; ``*_ports`` factories take their widths as plain keywords."""
 import dataclasses
 import re
 import shutil
@@ -10,17 +11,15 @@ from myhdl import intbv
 
 from models import parameters
 from models.parameters import COORD_WIDTH, FIFO_DEPTH, PARAMETERS, Build, ParameterError
-from rtl.card import card_ports
-from rtl.card_core import card_core_ports
+from rtl.card import card, card_ports
 from rtl.convert import ROOT, convert_unit
 from rtl.dda_arc import dda_arc, dda_arc_ports
 from rtl.interfaces import DdaPort
 from rtl.pci.pci_pads import pci_pads_ports
-from rtl.pci_slave import pci_slave_ports
+from rtl.pci_slave import pci_slave, pci_slave_ports
 from rtl.regs.feed_rate import COUNT_BITS, feed_rate, feed_rate_ports
 from rtl.regs.sequencer import sequencer_ports
 from rtl.regs_fifo import regs_fifo_ports
-from rtl.top import top_ports
 
 
 def test_the_narrowest_coordinates_are_the_narrowest_the_feed_rate_takes():
@@ -153,18 +152,39 @@ def test_an_unknown_parameter_is_refused_by_name():
         Build.for_unit("top", depth=64)
 
 
+# made (and checked) here, before any test counts the checks
+PASSED_DOWN = Build(fifo_depth=64, coord_width=18, variants="all", vendor_id=0x10EE, io_bar_bits=4, mem_bar_bits=8)
+
+
+@pytest.fixture
+def checks(monkeypatch):
+    """Every ``parameters.check`` call from here on: the values it was given."""
+    checked, check = [], parameters.check
+    monkeypatch.setattr(parameters, "check",
+                        lambda values, device=None: checked.append(values) or check(values, device))
+    return checked
+
+
+def test_the_target_checks_the_build_it_receives_no_more(checks):
+    pci_slave(**pci_slave_ports(4, 8), build=PASSED_DOWN)
+    assert checks == []
+
+
+@pytest.mark.slow(reason="elaborates the whole card (20 s); the target's part runs in the default suite")
+def test_a_build_passed_down_the_card_is_checked_once_where_it_is_made(checks):
+    """The card's blocks check nothing again; the one record made on the way is
+    the target's, with the card's BAR sizes in it (``slave_build``)."""
+    card(**card_ports(), build=PASSED_DOWN)
+    # docs/registers.md: BAR0 of 256 bytes; the 4 KiB FIFO window (not the stand-alone target's BARs)
+    assert checks == [dict(PASSED_DOWN.as_dict(), io_bar_bits=8, mem_bar_bits=12)]
+
+
 @pytest.mark.parametrize("factory, params, message", [
-    (card_ports, dict(fifo_depth=3), "fifo_depth"),
-    (card_ports, dict(device="ice40", fifo_depth=8192), "ice40"),
-    (card_ports, dict(io_bar_bits=6), "io_bar_bits"),
-    (card_core_ports, dict(vendor_id=1), "vendor_id"),
-    (top_ports, dict(clock_hz=0), "clock_hz"),
-    (top_ports, dict(variants="weighted"), "variants"),
     (regs_fifo_ports, dict(coord_width=13), "coord_width"),
-    (pci_slave_ports, dict(device="ecp5"), "device"),
-    (pci_slave_ports, dict(fifo_depth=512), "unknown"),
+    (pci_slave_ports, dict(io_bar_bits=9), "io_bar_bits"),
+    (pci_slave_ports, dict(mem_bar_bits=3), "mem_bar_bits"),
 ])
-def test_ports_factories_check_their_parameters(factory, params, message):
+def test_ports_factories_check_the_widths_they_take(factory, params, message):
     with pytest.raises(ValueError, match=message):
         factory(**params)
 
