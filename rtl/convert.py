@@ -7,10 +7,10 @@ other builds, simulations and flows, ignored by git; ``build_dir``).
 Every convertible unit is listed in ``UNITS`` with the build parameters it
 takes from the command line (``models/parameters.py``, the one table of
 defaults and ranges); it is converted from one ``Build`` record, those
-values and the unit's defaults for the rest.  The
-command line checks every value before anything is converted, converts into
-a temporary folder beside the output and moves it into place whole, so a
-failed run leaves the previous output as it was.  The files written are
+values and the unit's defaults for the rest.  The command line checks every
+value before anything is converted, converts into a temporary folder beside
+the output and moves it into place whole, so a failed run leaves the
+previous output as it was.  The files written are
 byte-stable (MyHDL's date line is dropped) so that a test can tell when
 ``gen/`` is stale.
 

@@ -367,5 +367,5 @@ def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants):
     """Fresh ports of ``regs_fifo`` for conversion and benches: ``dda`` of
     ``coord_width`` bits (the card's range: the feed rate needs 14 at least) and ``variants``."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(),
-                dda=DdaPort(COORD_WIDTH.check(coord_width), variants), steps=AxisPulses(), pins=MotorPins(), irq=Signal(bool(0)),
-                core_clear=Signal(bool(0)))
+                dda=DdaPort(COORD_WIDTH.check(coord_width), variants), steps=AxisPulses(), pins=MotorPins(),
+                irq=Signal(bool(0)), core_clear=Signal(bool(0)))
