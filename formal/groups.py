@@ -14,24 +14,22 @@ from pathlib import Path
 from formal.card_props import card_constants
 from formal.regs_props import table_properties
 from formal.sby import Task
-from models import parameters
 from models.dda_build import DDA_MIN_WIDTH as NARROW_WIDTH
-from models.parameters import PCI_IDS as PCI_ID_NAMES
+from models.parameters import Build
 from rtl.convert import BUILD_DIR, convert_narrow_dda, write_whole
+from rtl.pci.pci_slave_build import local_addr_width
 
 PROPS = Path(__file__).resolve().parent / "props"
 GENERATED = BUILD_DIR / "formal" / "generated"
 
-# The unit's IDs as `python -m rtl.top --convert` writes gen/ by default.
-PCI_IDS = parameters.defaults(PCI_ID_NAMES)
 
-
-def pci_harness_parameters(io_bits, mem_bits, ids=PCI_IDS):
-    """`chparam` settings of pci_target_harness for a target with these BARs and IDs."""
-    return dict(IO_BITS=io_bits, MEM_BITS=mem_bits, LOCAL_WIDTH=max(io_bits, mem_bits, 8),
-                ID_WORD=ids["device_id"] << 16 | ids["vendor_id"],
-                CLASS_WORD=ids["class_code"] << 8 | ids["revision_id"],
-                SUBSYSTEM_WORD=ids["subsystem_id"] << 16 | ids["subsystem_vendor_id"])
+def pci_harness_parameters(build):
+    """`chparam` settings of pci_target_harness for a target of ``build`` (its BARs and IDs)."""
+    return dict(IO_BITS=build.io_bar_bits, MEM_BITS=build.mem_bar_bits,
+                LOCAL_WIDTH=local_addr_width(build.io_bar_bits, build.mem_bar_bits),
+                ID_WORD=build.device_id << 16 | build.vendor_id,
+                CLASS_WORD=build.class_code << 8 | build.revision_id,
+                SUBSYSTEM_WORD=build.subsystem_id << 16 | build.subsystem_vendor_id)
 
 
 # The LocalBus write credit (`room`): a unit with the port is proved with the
@@ -115,7 +113,7 @@ class Group:
 
 # pci_target_local.vh: the harness's local-side properties, included by it
 PCI_FILES = ["pci_rules.sv", "local_bus_rules.sv", "pci_target_local.vh", "pci_target_harness.sv"]
-PCI_PARAMETERS = pci_harness_parameters(io_bits=6, mem_bits=12)
+PCI_PARAMETERS = pci_harness_parameters(Build())  # the unit as `python -m rtl.top --convert` writes gen/
 # registers of pci_slave the helper invariants (props/pci_slave_invariants.vh) read
 # the configuration header's own registers carry the instance name the
 # converter gives them (``pci_config0_``, rtl/pci/pci_config.py)

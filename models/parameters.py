@@ -1,16 +1,27 @@
 """The card's build parameters, each defined once: default, range or choices, help.
 
 ``PARAMETERS`` is the single table.  The converter's command line
-(``rtl/top.py``) is made from it, every unit takes its defaults from it (or
-its widths from the interfaces it receives), and every check of a value goes
-through ``check``, so a range is stated in one place, with its reason.  A
-limit that holds only for one device names the part it is for
-(``device_maximum``).
+(``rtl/convert.py``) is made from it, every check of a value goes through
+``check``, so a range is stated in one place, with its reason.  A limit that
+holds only for one device names the part it is for (``device_maximum``).
+
+``Build`` is the build record made from the table: one frozen dataclass with
+a field per parameter and the table's defaults, checked whole when it is
+made (``Build.for_unit`` gives a unit's defaults, ``replace`` a changed
+copy).  The top makes or receives one ``Build`` and passes it down,
+``top -> card -> card_core -> regs_fifo`` and ``card -> pci_slave ->
+pci_config``, as the keyword ``build``; no block re-declares a parameter or
+its default.  Leaf units that take a value or two keep plain keywords
+(``sync_fifo(depth=...)``, ``pin_lut(device=...)``), and blocks whose build
+shapes their ports read it from the interface they receive (``dda_arc``
+from its ``DdaPort``).  Which parameters a unit converted alone takes from
+the command line is said in one place: the converter's ``UNITS``.
 
 Values are Python ints and strings; ``encode`` turns ``device`` and
 ``variants`` into the codes the capability registers report
 (``models/registers.py``).
 """
+import dataclasses
 from dataclasses import dataclass, field
 
 from models.axes import AXIS_NAMES, MAX_AXES
@@ -167,18 +178,18 @@ DEVICE, VARIANTS, AXES, COORD_WIDTH, FIFO_DEPTH, CLOCK_HZ = (
     PARAMETERS[name] for name in ("device", "variants", "axes", "coord_width", "fifo_depth", "clock_hz"))
 
 
-def defaults(names, unit=None):
-    """``{name: default}`` of ``names`` (for ``unit``, if it has defaults of its own)."""
-    return {name: PARAMETERS[name].default_for(unit) for name in names}
+def _known(values):
+    """``values`` if it names build parameters only; ParameterError else."""
+    unknown = sorted(set(values) - set(PARAMETERS))
+    if unknown:
+        raise ParameterError(f"unknown build parameters {unknown}")
+    return values
 
 
 def check(values, device=None):
     """``values`` ({name: value}) if every one is within its bounds; the
     device limits of ``device`` (or of ``values["device"]``) apply too."""
-    unknown = sorted(set(values) - set(PARAMETERS))
-    if unknown:
-        raise ParameterError(f"unknown build parameters {unknown}")
-    device = values.get("device", device)
+    device = _known(values).get("device", device)
     if device is not None:
         DEVICE.check(device)
     for name, value in values.items():
@@ -186,12 +197,37 @@ def check(values, device=None):
     return dict(values)
 
 
-def check_unit(unit, names, values):
-    """``check(values)`` for a unit that takes the parameters ``names``."""
-    unknown = sorted(set(values) - set(names))
-    if unknown:
-        raise ParameterError(f"{unit} takes no parameters {unknown}")
-    return check(values)
+class _BuildRecord:
+    """What ``Build`` does besides holding its fields (they come from the table)."""
+
+    def __post_init__(self):
+        check(self.as_dict())
+
+    @classmethod
+    def for_unit(cls, unit, **values):
+        """The build of ``unit``: its defaults (``Parameter.default_for``), ``values`` replacing them."""
+        _known(values)
+        return cls(**{name: values.get(name, PARAMETERS[name].default_for(unit)) for name in PARAMETERS})
+
+    def replace(self, **values):
+        """A copy with ``values`` ({name: value}) replaced, checked; ParameterError on an unknown name."""
+        return dataclasses.replace(self, **_known(values))
+
+    def as_dict(self):
+        """``{name: value}`` of every parameter, in the table's order."""
+        return {name: getattr(self, name) for name in PARAMETERS}
+
+    def view(self, names):
+        """``{name: value}`` of the parameters ``names`` (a unit's share of the build)."""
+        return {name: getattr(self, name) for name in names}
+
+
+Build = dataclasses.make_dataclass(
+    "Build", [(p.name, type(p.default), field(default=p.default)) for p in _TABLE],
+    bases=(_BuildRecord,), frozen=True, namespace={"__module__": __name__})
+Build.__doc__ = """The build record: one field per build parameter of ``PARAMETERS``, its
+default the table's; every value is checked (ranges, choices, device limits)
+when a ``Build`` is made, so a block that receives one checks nothing again."""
 
 
 def variant_codes(variants):

@@ -1,35 +1,32 @@
 """The card behind the PCI target: registers, FIFO, sequencer, pulse outputs and the DDA."""
 from myhdl import ResetSignal, Signal, always_comb, block
 
-from models import parameters
-from models.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, VARIANTS
+from models.parameters import Build
 from rtl.dda_arc import dda_arc
 from rtl.interfaces import AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
 from rtl.regs_fifo import regs_fifo
 
-CORE_PARAMETERS = ("fifo_depth", "coord_width", "clock_hz", "variants", "device")
-
 
 @block
-def card_core(clock, reset, local, irq, pins, *, fifo_depth=FIFO_DEPTH.default, coord_width=COORD_WIDTH.default,
-              clock_hz=CLOCK_HZ.default, variants=VARIANTS.default, device=DEVICE.default):
+def card_core(clock, reset, local, irq, pins, *, build=Build()):
     """``regs_fifo`` and ``dda_arc`` wired together.
 
     Ports: ``local`` (the PCI target's back end), ``irq`` (to INTA#),
     ``pins`` (STEP/DIR).  COMMAND.SOFT_RESET resets the DDA through its
     asynchronous reset, driven from a flip-flop of ``regs_fifo`` (no glitch)
-    and combined with RST#.  Parameters (``models/parameters.py``):
-    ``fifo_depth``, ``coord_width`` and ``variants`` (the build of the
-    ``DdaPort`` made here: the interpolator has only the variants named, the
-    sequencer refuses an ARC for another, BUILD reports them); ``clock_hz``
-    and ``device`` go to the capability registers.
+    and combined with RST#.  Parameters: ``build`` (a ``Build``,
+    ``models/parameters.py``): its ``coord_width`` and ``variants`` make the
+    ``DdaPort`` here (the interpolator has only the variants named, the
+    sequencer refuses an ARC for another, BUILD reports them); ``regs_fifo``
+    takes the record whole (``fifo_depth``; ``clock_hz`` and ``device`` for
+    the capability registers).
 
         clock       _/~\\_/~\\_/~\\_/~\\_
         local.we    _/~~~\\__________     COMMAND <- SOFT_RESET
         core_clear  _____/~~~\\______
         dda reset   ~~~~~\\___/~~~~~~
     """
-    dda = DdaPort(coord_width, variants)
+    dda = DdaPort(build.coord_width, build.variants)
     steps = AxisPulses()
     core_clear = Signal(bool(0))
     dda_reset = ResetSignal(1, active=0, isasync=True)
@@ -38,15 +35,12 @@ def card_core(clock, reset, local, irq, pins, *, fifo_depth=FIFO_DEPTH.default, 
     def combine_resets():
         dda_reset.next = reset and not core_clear
 
-    registers = regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, fifo_depth=fifo_depth,
-                          clock_hz=clock_hz, device=device)
+    registers = regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, build=build)
     interpolator = dda_arc(clock, dda_reset, dda, steps)
     return combine_resets, registers, interpolator
 
 
-def card_core_ports(**build):
-    """Fresh ports of ``card_core`` for conversion and benches (``build``: its
-    parameters, checked; none of them changes a port)."""
-    parameters.check_unit("card_core", CORE_PARAMETERS, build)
+def card_core_ports():
+    """Fresh ports of ``card_core`` for conversion and benches (no build parameter changes a port)."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(), irq=Signal(bool(0)),
                 pins=MotorPins())

@@ -5,10 +5,12 @@ default build, written only here) and ``build/`` (``BUILD_DIR``: scratch for
 other builds, simulations and flows, ignored by git; ``build_dir``).
 
 Every convertible unit is listed in ``UNITS`` with the build parameters it
-takes (``models/parameters.py``, the one table of defaults and ranges).  The
-command line checks every value before anything is converted, converts into
-a temporary folder beside the output and moves it into place whole, so a
-failed run leaves the previous output as it was.  The files written are
+takes from the command line (``models/parameters.py``, the one table of
+defaults and ranges); it is converted from one ``Build`` record, those
+values and the unit's defaults for the rest.  The command line checks every
+value before anything is converted, converts into a temporary folder beside
+the output and moves it into place whole, so a failed run leaves the
+previous output as it was.  The files written are
 byte-stable (MyHDL's date line is dropped) so that a test can tell when
 ``gen/`` is stale.
 
@@ -31,11 +33,10 @@ from myhdl import ToVerilogWarning
 
 from models import card_socket, instruction_c, parameters, register_docs
 from models.dda_build import DDA_MIN_WIDTH, DEFAULT_VARIANTS
-from models.parameters import DEVICE, PARAMETERS, PCI_IDS, ParameterError
+from models.parameters import DEVICE, PARAMETERS, PCI_IDS, Build, ParameterError
 from models.registers import STOP_REASONS
-from rtl.card import CARD_PARAMETERS, slave_params
-from rtl.pci.pci_slave_build import SLAVE_PARAMETERS, alias_bar_bits
-from rtl.regs_fifo import REGS_FIFO_PARAMETERS
+from rtl.card import slave_build
+from rtl.pci.pci_slave_build import alias_bar_bits
 
 ROOT = Path(__file__).resolve().parent.parent
 GEN_DIR = ROOT / "gen"
@@ -43,15 +44,22 @@ BUILD_DIR = ROOT / "build"
 C_HEADER = "dda_card.h"
 PROG = "python -m rtl.top"
 
-# ``names``: the build parameters a unit takes; ``port_names``: those only its
-# ports factory takes (the block reads them from the interfaces it receives).
+# The one place that says which build parameters each unit converted alone
+# takes from the command line (``names``; the others keep the unit's defaults:
+# the card sizes its BARs from its register map, so --io-bar-bits and
+# --mem-bar-bits shape the stand-alone pci_slave only), and which of them its
+# ports factory takes as plain keywords (``port_names``: they shape its
+# ports).  The block takes the whole ``Build`` as ``build=``, but for a unit
+# whose every parameter shapes its ports (dda_arc reads its build from its
+# DdaPort).
 Unit = namedtuple("Unit", "names port_names")
+_CARD = ("fifo_depth", "coord_width", "clock_hz", "variants", "device", *PCI_IDS)
 UNITS = {
     "dda_arc": Unit(("coord_width", "variants"), ("coord_width", "variants")),
-    "pci_slave": Unit(SLAVE_PARAMETERS, ()),
-    "regs_fifo": Unit(REGS_FIFO_PARAMETERS, ("coord_width", "variants")),
-    "card": Unit(CARD_PARAMETERS, ()),
-    "top": Unit(CARD_PARAMETERS, ()),
+    "pci_slave": Unit((*PCI_IDS, "io_bar_bits", "mem_bar_bits", "device"), ("io_bar_bits", "mem_bar_bits")),
+    "regs_fifo": Unit(("fifo_depth", "clock_hz", "device", "coord_width", "variants"), ("coord_width", "variants")),
+    "card": Unit(_CARD, ()),
+    "top": Unit(_CARD, ()),
 }
 # Sub-packages of rtl/ that hold units below the tops (``unit_block`` finds a unit there too).
 SUB_PACKAGES = ("pci", "dda", "regs", "machine")
@@ -64,17 +72,16 @@ def build_dir(*parts):
     return path
 
 
-def unit_settings(values, unit):
-    """Every build parameter of ``unit``: ``values`` where given, the unit's
-    defaults for the rest; ParameterError on a bad value (device limits too)."""
+def unit_build(values, unit):
+    """The ``Build`` of ``unit``: ``values`` of the parameters it takes where
+    given, the unit's defaults for the rest; ParameterError on a bad value
+    (device limits too)."""
     parameters.check(values)
-    names = UNITS[unit].names
-    settings = {name: values.get(name, PARAMETERS[name].default_for(unit)) for name in names}
-    device = settings.get("device")
+    device = DEVICE.default_for(unit)
     try:
-        return parameters.check(settings)
+        return Build.for_unit(unit, **{name: values[name] for name in UNITS[unit].names if name in values})
     except ParameterError as error:
-        if "device" in values or device in (None, DEVICE.default):
+        if "device" in values or device == DEVICE.default:
             raise
         raise ParameterError(f"{error.problem}; without --device the {unit} is built for {device}",
                              error.parameter) from None
@@ -93,9 +100,9 @@ def check_built(values):
                                  PARAMETERS[name])
 
 
-def build_settings(values):
-    """``{unit: settings}`` of every unit for the command line's ``values``."""
-    return {unit: unit_settings(values, unit) for unit in UNITS}
+def unit_builds(values):
+    """``{unit: Build}`` of every unit for the command line's ``values``."""
+    return {unit: unit_build(values, unit) for unit in UNITS}
 
 
 def write_c_header(out_dir=GEN_DIR, **values):
@@ -103,21 +110,22 @@ def write_c_header(out_dir=GEN_DIR, **values):
     the top's defaults for the rest): PCI identity and BAR sizes of the card,
     stop reasons, the simulated card's socket protocol, register map (reset
     values of this build), command set and command builders; return its path."""
-    settings = unit_settings(values, "top")
-    bars = slave_params()
-    identity = [f"#define DDA_PCI_{name.upper()} {PARAMETERS[name].shown(settings[name])}u" for name in PCI_IDS]
-    identity += [f"#define DDA_BAR0_SIZE {1 << bars['io_bar_bits']}u /* I/O: function registers */",
-                 f"#define DDA_BAR1_SIZE {1 << bars['mem_bar_bits']}u /* memory: the command FIFO window */",
-                 f"#define DDA_BAR2_SIZE {1 << alias_bar_bits(bars['io_bar_bits'])}u"
+    build = unit_build(values, "top")
+    bars = slave_build(build)
+    identity = [f"#define DDA_PCI_{name.upper()} {PARAMETERS[name].shown(value)}u"
+                for name, value in build.view(PCI_IDS).items()]
+    identity += [f"#define DDA_BAR0_SIZE {1 << bars.io_bar_bits}u /* I/O: function registers */",
+                 f"#define DDA_BAR1_SIZE {1 << bars.mem_bar_bits}u /* memory: the command FIFO window */",
+                 f"#define DDA_BAR2_SIZE {1 << alias_bar_bits(bars.io_bar_bits)}u"
                  " /* memory: the function registers again, at BAR0's offsets */",
-                 f"#define DDA_FIFO_DEPTH {settings['fifo_depth']}u /* words */", ""]
+                 f"#define DDA_FIFO_DEPTH {build.fifo_depth}u /* words */", ""]
     identity += [f"#define DDA_STOP_{name} {code}u /* STOP_REASON.REASON */"
                  for code, name in enumerate(STOP_REASONS) if code] + [""]
     identity += ["/* The simulated card's socket protocol (sim/card/card_server.py) */", card_socket.c_defines()]
     target = Path(out_dir) / C_HEADER
     target.parent.mkdir(parents=True, exist_ok=True)
     target.write_text(register_docs.c_header(extra="\n".join(identity) + instruction_c.c_defines() + "\n"
-                                         + instruction_c.c_builders(), values=settings))
+                                         + instruction_c.c_builders(), values=build.as_dict()))
     return target
 
 
@@ -133,14 +141,20 @@ def _unit_module(unit):
 
 
 def unit_block(unit, values):
-    """The block instance of ``unit`` with fresh ports, ready to convert
-    (a unit of ``UNITS`` with its defaults for what ``values`` leaves out)."""
-    module = _unit_module(unit)
-    params, port_names = dict(values), ()
+    """The block instance of ``unit`` with fresh ports, ready to convert: a
+    unit of ``UNITS`` from its ``Build`` (``values``, its defaults for the
+    rest), another unit with ``values`` as its keyword parameters."""
     if unit in UNITS:
-        params, port_names = unit_settings(values, unit), UNITS[unit].port_names
-    ports = getattr(module, f"{unit}_ports")(**params)
-    return getattr(module, unit)(**ports, **{n: v for n, v in params.items() if n not in port_names})
+        return unit_instance(unit, unit_build(values, unit))
+    module = _unit_module(unit)
+    return getattr(module, unit)(**getattr(module, f"{unit}_ports")(**values), **values)
+
+
+def unit_instance(unit, build):
+    """The block instance of ``unit`` (of ``UNITS``) for ``build``, with fresh ports."""
+    module, (names, port_names) = _unit_module(unit), UNITS[unit]
+    block_of, ports = getattr(module, unit), getattr(module, f"{unit}_ports")(**build.view(port_names))
+    return block_of(**ports) if names == port_names else block_of(**ports, build=build)
 
 
 def _strip_run_details(text):
@@ -244,10 +258,10 @@ def convert_all(out_dir=GEN_DIR, **values):
     written; the files go to a temporary folder beside ``out_dir``, which
     replaces ``out_dir`` only once all are written (and is removed if not).
     """
-    settings = build_settings(values)
+    builds = unit_builds(values)
     check_built(values)
     out_dir = check_output(out_dir)
-    blocks = {unit: unit_block(unit, settings[unit]) for unit in UNITS}
+    blocks = {unit: unit_instance(unit, builds[unit]) for unit in UNITS}
     out_dir.parent.mkdir(parents=True, exist_ok=True)
     staged = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.new.", dir=out_dir.parent))
     _set_folder_mode(staged, out_dir)
@@ -318,7 +332,7 @@ def main(argv=None):
         parser.error("nothing to do: pass --convert")
     values = {name: getattr(args, name) for name in PARAMETERS if getattr(args, name) is not None}
     try:
-        build_settings(values)
+        unit_builds(values)
         check_built(values)
         check_output(args.out)
     except ParameterError as error:

@@ -22,29 +22,31 @@ set-up do not).  The registered address makes DEVSEL# timing MEDIUM.
 """
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, instances, intbv, modbv
 
+from models.parameters import Build
 from rtl.interfaces import (ConfigSpace, LocalBus, PciBus, TargetBuffers, TargetControlNext, TargetDecode, TargetParity,
                             TargetRequests, TargetState, card_reset)
 from rtl.pci.pci_buffers import pci_buffers
-from rtl.pci.pci_config import CONFIG_PARAMETERS, pci_config
+from rtl.pci.pci_config import pci_config
 from rtl.pci.pci_control import pci_control, t_state
 from rtl.pci.pci_decode import pci_decode
 from rtl.pci.pci_parity import pci_parity
 from rtl.pci.pci_requests import pci_requests
-from rtl.pci.pci_slave_build import (INITIAL_WAIT_LIMIT, SUBSEQUENT_WAIT_LIMIT, check_params, last_dword,
+from rtl.pci.pci_slave_build import (INITIAL_WAIT_LIMIT, SUBSEQUENT_WAIT_LIMIT, check_io_registers, last_dword,
                                       local_addr_width)
 from rtl.pci.pin_lut import pin_lut
 
 
-def pci_slave_ports(**params):
-    """Fresh ports of ``pci_slave`` for ``params`` (conversion and benches)."""
-    values = check_params(params)
+def pci_slave_ports(io_bar_bits=Build.io_bar_bits, mem_bar_bits=Build.mem_bar_bits):
+    """Fresh ports of ``pci_slave`` for BARs of these sizes (conversion and
+    benches): ``local`` has ``local_addr_width`` address bits."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), pci=PciBus(),
-                local=LocalBus(local_addr_width(values["io_bar_bits"], values["mem_bar_bits"])),
-                irq=Signal(bool(0)))
+                local=LocalBus(local_addr_width(io_bar_bits, mem_bar_bits)), irq=Signal(bool(0)))
 
 
+# ``build``: a ``Build`` (``models/parameters.py``); the parameters the docstring
+# names, but io_registers, are its fields (the docstring is gen/pci_slave.v's header).
 @block
-def pci_slave(clock, reset, pci, local, irq, **params):
+def pci_slave(clock, reset, pci, local, irq, *, build=Build(), io_registers=False):
     """The PCI target.
 
     Ports: ``clock`` PCI CLK; ``reset`` RST# (``card_reset()``); ``pci`` a
@@ -92,9 +94,8 @@ def pci_slave(clock, reset, pci, local, irq, **params):
         we      ____________/~~~\\_______/~~~~~~~~~~~ ...   D0, then D1, D2, D3 drain
         room    ~~~~~~~~~~~~~~~~~~~~~~~~~~~~\\_______ ...
     """
-    values = check_params(params)
-    io_bits, mem_bits = values["io_bar_bits"], values["mem_bar_bits"]
-    io_registers, device = values["io_registers"], values["device"]
+    io_registers = check_io_registers(io_registers)
+    io_bits, mem_bits, device = build.io_bar_bits, build.mem_bar_bits, build.device
     width = local_addr_width(io_bits, mem_bits) - 2   # dword address counters
     if len(local.addr) != width + 2:
         raise ValueError(f"pci_slave: local.addr must have {width + 2} bits, has {len(local.addr)}")
@@ -405,7 +406,7 @@ def pci_slave(clock, reset, pci, local, irq, **params):
     buffer_unit = pci_buffers(clock, reset, buffers)
 
     # ------------------------------------------------------------ configuration space
-    header = pci_config(clock, reset, config, **{name: values[name] for name in CONFIG_PARAMETERS})
+    header = pci_config(clock, reset, config, build=build)
 
     @always_comb
     def config_lines():

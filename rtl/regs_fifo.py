@@ -1,10 +1,9 @@
 """Function registers, data FIFO, instruction register and pulse outputs of the card."""
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, concat, intbv
 
-from models import parameters
 from models import registers as regmap
 from models.dda_build import variants_choice
-from models.parameters import CLOCK_HZ, COORD_WIDTH, DEVICE, FIFO_DEPTH, VARIANTS
+from models.parameters import COORD_WIDTH, Build
 from rtl.interfaces import (AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing, InputConditioning,
                             LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings,
                             ReadChain, RegisterBus, RegisterWord, SequencerControl, SetPort, StatusWords, StepPositions,
@@ -20,16 +19,16 @@ from rtl.regs.sequencer import sequencer
 from rtl.regs.status_words import status_words
 from rtl.regs.sync_fifo import sync_fifo
 
-REGS_FIFO_PARAMETERS = ("fifo_depth", "clock_hz", "device", "coord_width", "variants")  # the last two: of dda
-
 
 def _bit(name, field_name):
     return regmap.register(name).field(field_name).lsb
 
 
+# ``build``: the card's ``Build`` (``models/parameters.py``); the parameters the
+# docstring names are its fields, its coord_width and variants those of ``dda``
+# (the docstring is gen/regs_fifo.v's header).
 @block
-def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_depth=FIFO_DEPTH.default,
-              clock_hz=CLOCK_HZ.default, device=DEVICE.default):
+def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=Build()):
     """The card behind the PCI target: everything of the paper's figure 1 but the DDA.
 
     Ports: ``local`` (the target's back end; I/O BAR = the registers of
@@ -73,8 +72,10 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
         re       _/~~~~~~~\\_______     I/O BAR
         ready    _____/~~~\\_______     read_word taken at the first edge
     """
-    build = parameters.check(dict(fifo_depth=fifo_depth, clock_hz=clock_hz, device=device,
-                                  coord_width=dda.coord_width, variants=variants_choice(dda.variants)))
+    if (dda.coord_width, variants_choice(dda.variants)) != (build.coord_width, build.variants):
+        raise ValueError(f"regs_fifo: dda is a {dda.coord_width}-bit DdaPort of the variants "
+                         f"{variants_choice(dda.variants)}, the build says {build.coord_width} and {build.variants}")
+    fifo_depth = build.fifo_depth
     specs = regmap.REGISTERS
     io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
     # a register read: the word is taken at the edge after the request, answered ready in the next clock
@@ -92,7 +93,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, fifo_de
     level_wide = Signal(intbv(0)[level_bits:])
 
     # RO registers read the hardware, the capability registers the build
-    words = {r.name: RegisterWord(r, regmap.build_word(r, build) if r.access == "RO" else 0) for r in specs}
+    words = {r.name: RegisterWord(r, regmap.build_word(r, build.as_dict()) if r.access == "RO" else 0) for r in specs}
     values = {name: word.value for name, word in words.items()}
     hw = {name: word.hw for name, word in words.items()}
     strobes = {name: word.strobe for name, word in words.items()}
@@ -362,10 +363,9 @@ def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, ha
     return choose_source
 
 
-def regs_fifo_ports(coord_width=COORD_WIDTH.default, variants=VARIANTS.default, **build):
+def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants):
     """Fresh ports of ``regs_fifo`` for conversion and benches: ``dda`` of
-    ``coord_width`` bits and ``variants``; ``build``: the block's parameters, checked."""
-    parameters.check_unit("regs_fifo", REGS_FIFO_PARAMETERS, dict(build, coord_width=coord_width, variants=variants))
+    ``coord_width`` bits (the card's range: the feed rate needs 14 at least) and ``variants``."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(),
-                dda=DdaPort(coord_width, variants), steps=AxisPulses(), pins=MotorPins(), irq=Signal(bool(0)),
-                core_clear=Signal(bool(0)))
+                dda=DdaPort(COORD_WIDTH.check(coord_width), variants), steps=AxisPulses(), pins=MotorPins(),
+                irq=Signal(bool(0)), core_clear=Signal(bool(0)))

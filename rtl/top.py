@@ -7,15 +7,16 @@ import sys
 
 from myhdl import Signal, block
 
-from models import parameters
-from models.parameters import DEVICE
-from rtl.card import CARD_PARAMETERS, card
+from models.parameters import Build
+from rtl.card import card
 from rtl.interfaces import MotorPins, PciBus, PciPins, card_reset
 from rtl.pci.pci_pads import pci_pads
 
 
+# ``build``: one ``Build`` (``models/parameters.py``; ``Build.for_unit("top")``
+# unless given), passed to ``card`` whole (the docstring is gen/top.v's header).
 @block
-def top(clock, reset, pci_pins, motor, *, device=DEVICE.default_for("top"), **build):
+def top(clock, reset, pci_pins, motor, *, build=Build.for_unit("top")):
     """The card as synthesised: PCI pads (the only tri-states) around the card.
 
     Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci_pins``
@@ -30,17 +31,15 @@ def top(clock, reset, pci_pins, motor, *, device=DEVICE.default_for("top"), **bu
 
         pins <-> pci_pads <-> card (pci_slave, regs_fifo, dda_arc) --> STEP/DIR
     """
-    io_registers = DEVICE.check(device) == "ice40"
+    io_registers = build.device == "ice40"
     pci = PciBus()
     pads = pci_pads(clock, pci_pins, pci, io_registers=io_registers)
-    core = card(clock, reset, pci, motor, device=device, io_registers=io_registers, **build)
+    core = card(clock, reset, pci, motor, build=build, io_registers=io_registers)
     return pads, core
 
 
-def top_ports(**build):
-    """Fresh ports of ``top`` for conversion and benches (``build``: its
-    parameters, checked; none of them changes a port)."""
-    parameters.check_unit("top", CARD_PARAMETERS, build)
+def top_ports():
+    """Fresh ports of ``top`` for conversion and benches (no build parameter changes a port)."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), pci_pins=PciPins(), motor=MotorPins())
 
 

@@ -27,8 +27,7 @@ clock after their event::
 """
 from myhdl import Signal, always_comb, always_seq, block, concat, instances, intbv
 
-from models import parameters
-from models.parameters import PCI_IDS
+from models.parameters import Build
 from rtl.pci.pci_slave_build import alias_bar_bits
 
 CONFIG_ID, CONFIG_COMMAND_STATUS, CONFIG_CLASS, CONFIG_BAR0, CONFIG_BAR1, CONFIG_BAR2 = 0, 1, 2, 4, 5, 6
@@ -36,24 +35,22 @@ CONFIG_SUBSYSTEM, CONFIG_INTERRUPT = 11, 15
 STATUS_DEVSEL_MEDIUM = 0b01   # Status[10:9]
 INTERRUPT_PIN_INTA = 1
 BAR_IO_SPACE = 1              # BAR bit 0: I/O space (BAR1, BAR2: 0, memory, 32-bit, non-prefetchable)
-CONFIG_PARAMETERS = (*PCI_IDS, "io_bar_bits", "mem_bar_bits")
 
 
 @block
-def pci_config(clock, reset, config, **params):
+def pci_config(clock, reset, config, *, build=Build()):
     """Ports: ``clock``, ``reset``; ``config`` a ``ConfigSpace``.
 
-    Parameters: the IDs of ``models.parameters.PCI_IDS``, io_bar_bits and
-    mem_bar_bits (the BAR sizes); defaults and ranges in
-    ``models/parameters.py``.
+    Parameters: ``build`` (a ``Build``, ``models/parameters.py``), of which
+    the header reads the IDs of ``models.parameters.PCI_IDS``, io_bar_bits
+    and mem_bar_bits (the BAR sizes).
     """
-    values = parameters.check(dict(parameters.defaults(CONFIG_PARAMETERS), **params))
-    id_word = values["device_id"] << 16 | values["vendor_id"]
-    class_word = values["class_code"] << 8 | values["revision_id"]
-    subsystem_word = values["subsystem_id"] << 16 | values["subsystem_vendor_id"]
-    io_bar_writable = (0xFFFF << values["io_bar_bits"]) & 0xFFFF   # BAR0[31:16] hardwired to 0 (PC I/O)
-    mem_bar_writable = (0xFFFFFFFF << values["mem_bar_bits"]) & 0xFFFFFFFF
-    alias_bar_writable = (0xFFFFFFFF << alias_bar_bits(values["io_bar_bits"])) & 0xFFFFFFFF
+    id_word = build.device_id << 16 | build.vendor_id
+    class_word = build.class_code << 8 | build.revision_id
+    subsystem_word = build.subsystem_id << 16 | build.subsystem_vendor_id
+    io_bar_writable = (0xFFFF << build.io_bar_bits) & 0xFFFF   # BAR0[31:16] hardwired to 0 (PC I/O)
+    mem_bar_writable = (0xFFFFFFFF << build.mem_bar_bits) & 0xFFFFFFFF
+    alias_bar_writable = (0xFFFFFFFF << alias_bar_bits(build.io_bar_bits)) & 0xFFFFFFFF
 
     signaled_target_abort = Signal(bool(0))
     signaled_system_error = Signal(bool(0))

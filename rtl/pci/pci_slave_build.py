@@ -1,8 +1,8 @@
 """The PCI target's build (``rtl/pci_slave.py``): the commands it claims, its
-latency budget, its parameters, checked, and the address width of its
-back-end bus."""
-from models import parameters, pci
-from models.parameters import PCI_IDS, ParameterError
+latency budget, the check of ``io_registers`` and the address width of its
+back-end bus (its build parameters: a ``Build``, ``models/parameters.py``)."""
+from models import pci
+from models.parameters import PARAMETERS, Build
 
 # Commands (C/BE# in the address phase) the target claims (``models/pci.py``).
 CMD_IO_READ, CMD_IO_WRITE = pci.IO_READ, pci.IO_WRITE
@@ -35,29 +35,15 @@ def last_dword(bar_bits):
     return (1 << (bar_bits - 2)) - 1
 
 
-# Build parameters of the stand-alone unit (defaults and ranges: models/parameters.py);
-# ``io_registers`` says where the boundary flip-flops are (see ``pci_slave``).
-SLAVE_PARAMETERS = (*PCI_IDS, "io_bar_bits", "mem_bar_bits", "device")
-
-
-def check_params(params):
-    """``params`` completed with the defaults; ValueError on a bad one."""
-    unknown = set(params) - {*SLAVE_PARAMETERS, "io_registers"}
-    if unknown:
-        raise ValueError(f"pci_slave: unknown parameters {sorted(unknown)}")
-    io_registers = params.get("io_registers", False)
+def check_io_registers(io_registers):
+    """``io_registers`` if it is True or False (where the boundary flip-flops are, see ``pci_slave``)."""
     if not isinstance(io_registers, bool):
         raise ValueError(f"pci_slave: io_registers must be True or False, not {io_registers!r}")
-    builds = {name: value for name, value in params.items() if name != "io_registers"}
-    try:
-        values = parameters.check(dict(parameters.defaults(SLAVE_PARAMETERS), **builds))
-    except ParameterError as error:
-        raise ValueError(f"pci_slave: {error}") from None
-    return dict(values, io_registers=io_registers)
+    return io_registers
 
 
-def local_addr_width(io_bar_bits=parameters.PARAMETERS["io_bar_bits"].default,
-                     mem_bar_bits=parameters.PARAMETERS["mem_bar_bits"].default):
+def local_addr_width(io_bar_bits=Build.io_bar_bits, mem_bar_bits=Build.mem_bar_bits):
     """Address bits of ``LocalBus`` the target drives: the larger BAR, and at
-    least the 256 bytes of configuration space (one counter serves all)."""
-    return max(io_bar_bits, mem_bar_bits, 8)
+    least the 256 bytes of configuration space (one counter serves all);
+    ParameterError if a size is outside its range."""
+    return max(PARAMETERS["io_bar_bits"].check(io_bar_bits), PARAMETERS["mem_bar_bits"].check(mem_bar_bits), 8)

@@ -23,6 +23,7 @@ from myhdl import Signal, StopSimulation, always_seq, block, instance, intbv
 from models import instructions as isa
 from models import registers as regmap
 from models.dda_model import ArcCommand, LineCommand
+from models.parameters import Build
 from rtl.card import card, card_ports
 from rtl.dda_arc import dda_arc_ports
 from rtl.interfaces import card_reset
@@ -86,9 +87,9 @@ def card_view():
     log = PinLog()
 
     def target(bench):
-        ports = card_ports(fifo_depth=16)
+        ports = card_ports()
         ports["clock"], ports["reset"] = bench.clock, bench.reset
-        return ports["pci"], [(card, (), dict(ports, fifo_depth=16)),
+        return ports["pci"], [(card, (), dict(ports, build=Build(fifo_depth=16))),
                               (pin_capture, (bench.clock, ports["pins"], log))]
 
     def scenario(bench):

@@ -7,6 +7,7 @@ from models import instructions as isa
 from models import registers as regmap
 from models.card_model import PulseOutModel
 from models.dda_model import ArcCommand, iterate
+from models.parameters import Build
 from rtl.card_core import card_core, card_core_ports
 from sim.backends.clocking import clock_source
 from sim.backends.icarus import convert_and_cosimulate
@@ -128,10 +129,10 @@ def core_bench(ports, scenario, log, failures, cosim, check_pins, fifo_depth):
     """``card_core`` (MyHDL or Icarus) on the back-end bus driver, pins captured."""
     clock, reset = ports["clock"], ports["reset"]
     if cosim:
-        core = convert_and_cosimulate(card_core, "card_core", ports, fifo_depth=fifo_depth)
+        core = convert_and_cosimulate(card_core, "card_core", ports, build=Build(fifo_depth=fifo_depth))
         parts = [core, clock_and_pins(clock, ports["pins"], log)]
     else:
-        core = card_core(**ports, fifo_depth=fifo_depth)
+        core = card_core(**ports, build=Build(fifo_depth=fifo_depth))
         parts = [core, clock_and_pins(clock, ports["pins"], log)]
         if check_pins:
             parts.append(pin_model_check(clock, reset, ports["pins"], core.subs[1], TIMING, failures))
@@ -187,7 +188,7 @@ def read_position(driver):
 
 def run_core(name, scenario, cosim=False, check_pins=True, fifo_depth=FIFO_DEPTH):
     """Run ``scenario(driver)`` (a generator) on the core; (pin log, waveform)."""
-    ports = card_core_ports(fifo_depth=fifo_depth)
+    ports = card_core_ports()
     log, failures = PinLog(), []
     vcd = run_traced(core_bench(ports, scenario, log, failures, cosim, check_pins, fifo_depth), name)
     wave = Waveform(vcd)

@@ -30,7 +30,7 @@ from myhdl import always, block
 
 from models import registers as regmap
 from models.commands import command_words
-from models.parameters import CLOCK_HZ, PARAMETERS
+from models.parameters import CLOCK_HZ, PARAMETERS, Build
 from rtl.card import card, card_ports
 from rtl.convert import GEN_DIR, ROOT, build_dir, convert_unit
 from rtl.interfaces import MotorPins
@@ -102,12 +102,12 @@ class CardUnderTest:
             def core(b):  # the X/Z report needs the bus model, which exists only later
                 return top_on_bus, (b.clock, b.reset, b.host.agent, harness, motor), {"segment": b.segment}
         else:
-            ports = card_ports(fifo_depth=self.fifo_depth)
+            ports = card_ports()
             ports["clock"], ports["reset"] = bench.clock, bench.reset
             agent, motor = ports["pci"], ports["pins"]
 
             def core(_):
-                return card, (), dict(ports, fifo_depth=self.fifo_depth)
+                return card, (), dict(ports, build=Build(fifo_depth=self.fifo_depth))
         capture = (pin_capture, (bench.clock, motor, self.log))
         waiter = (card_waiter, (bench.clock, self.wait, bench, self.log))
         extra = [(machine_process, (bench.clock, motor, self.machine))] if self.machine is not None else []

@@ -14,7 +14,7 @@
 from myhdl import always, block
 
 from models import instructions as isa
-from models.parameters import FIFO_DEPTH
+from models.parameters import FIFO_DEPTH, Build
 from rtl.card import card, card_ports
 from rtl.interfaces import MotorPins
 from sim.card.card_bench import PinLog, pin_capture
@@ -75,7 +75,7 @@ def _sub_block(instance, prefix):
 def recorded_card(clock, reset, pci, pins, taken, fifo_depth):
     """``rtl.card`` with its FIFO's write port recorded: ``taken`` gets the
     word of every push, at the edge that stores it."""
-    core = card(clock, reset, pci, pins, fifo_depth=fifo_depth)
+    core = card(clock, reset, pci, pins, build=Build(fifo_depth=fifo_depth))
     registers = _sub_block(core, "regs_fifo").sigdict
     push, wdata = registers["push"], registers["local_wdata"]
 
@@ -94,7 +94,7 @@ def card_target(kind, fifo_depth, log, taken):
 
     def build(bench):
         if kind == "myhdl":
-            ports = card_ports(fifo_depth=fifo_depth)
+            ports = card_ports()
             agent, motor = ports["pci"], ports["pins"]
             core = (recorded_card, (bench.clock, bench.reset, agent, motor, taken, fifo_depth))
         elif kind == "verilog":

@@ -80,7 +80,7 @@ def home_switch(clock, pins, switch, axis):
 def run_machine(name, scenario, cosim=False, fifo_depth=FIFO_DEPTH, switches=()):
     """Run ``scenario(driver, pins, pin_log, machine_log)`` with home
     ``switches`` ([(axis, BouncingSwitch)]); (pin log, machine log)."""
-    ports = card_core_ports(fifo_depth=fifo_depth)
+    ports = card_core_ports()
     pin_log, machine_log, failures = PinLog(), MachineLog(), []
     pins = ports["pins"]
 

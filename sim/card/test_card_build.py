@@ -13,6 +13,7 @@ import pytest
 
 from models import instructions as isa
 from models import registers as regmap
+from models.parameters import Build
 from rtl.card import card, card_ports
 from rtl.convert import GEN_DIR, convert_unit
 from rtl.interfaces import MotorPins
@@ -31,7 +32,7 @@ DEVICE_CODES = {"generic": 0, "ice40": 1}
 
 def expected_words(build, device):
     """ID, CLOCK_HZ, FIFO_SIZE and BUILD as docs/registers.md defines them."""
-    return {"ID": 0xDDAC << 16 | 0x0103,
+    return {"ID": 0xDDAC << 16 | 0x0201,   # ID.VERSION 2.1
             "CLOCK_HZ": build["clock_hz"],
             "FIFO_SIZE": build["fifo_depth"],
             "BUILD": (build["coord_width"] | 2 << 8 | VARIANT_BITS[build["variants"]] << 16
@@ -52,7 +53,7 @@ def card_under_test(kind, build, device, tmp_path):
         ports = card_ports()
         ports["clock"], ports["reset"] = bench.clock, bench.reset
         if kind == "myhdl":
-            return ports["pci"], [(card, (), dict(ports, **params))]
+            return ports["pci"], [(card, (), dict(ports, build=Build(**params)))]
         verilog = GEN_DIR / "card.v" if kind.startswith("gen/") else convert_unit("card", params, tmp_path)
         return ports["pci"], [(cosimulate("card", ports, [verilog]), None)]
 

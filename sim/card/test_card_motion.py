@@ -22,6 +22,7 @@ from models.card_model import DdaContractModel
 from models.commands import command_words
 from models.dda_build import DEFAULT_VARIANTS
 from models.dda_model import TRADITIONAL, ArcCommand, LineCommand, iterate, setup_clocks
+from models.parameters import Build
 from rtl.card_core import card_core, card_core_ports
 from rtl.interfaces import AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
 from rtl.regs_fifo import regs_fifo
@@ -33,6 +34,7 @@ from sim.card.local_bus_driver import LocalBusDriver
 
 COORD_WIDTH = 24
 FIFO_DEPTH = 32
+BUILD = Build(coord_width=COORD_WIDTH, fifo_depth=FIFO_DEPTH)
 STEADY = regmap.RATE_MAX  # one iteration every other clock: a step every other clock at width 1
 
 
@@ -86,18 +88,17 @@ def motion_bench(kind, scenario, log, failures):
     if kind == "contract":
         clock, reset = Signal(bool(0)), card_reset()
         local, pins, irq = LocalBus(), MotorPins(), Signal(bool(0))
-        dda, steps, core_clear = DdaPort(COORD_WIDTH), AxisPulses(), Signal(bool(0))
-        regs = regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, fifo_depth=FIFO_DEPTH)
+        dda, steps, core_clear = DdaPort(BUILD.coord_width, BUILD.variants), AxisPulses(), Signal(bool(0))
+        regs = regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, build=BUILD)
         parts = [regs, contract_dda(clock, core_clear, dda, steps)]
     else:
-        ports = card_core_ports(fifo_depth=FIFO_DEPTH, coord_width=COORD_WIDTH)
+        ports = card_core_ports()
         clock, reset, local, pins = ports["clock"], ports["reset"], ports["local"], ports["pins"]
         if kind == "verilog":
             regs = None   # its registers are inside Icarus: the pins are judged by the tests alone
-            parts = [convert_and_cosimulate(card_core, "card_core", ports, fifo_depth=FIFO_DEPTH,
-                                            coord_width=COORD_WIDTH)]
+            parts = [convert_and_cosimulate(card_core, "card_core", ports, build=BUILD)]
         else:
-            core = card_core(**ports, fifo_depth=FIFO_DEPTH, coord_width=COORD_WIDTH)
+            core = card_core(**ports, build=BUILD)
             regs = core.subs[1]
             parts = [core]
     parts.append(clock_and_pins(clock, pins, log))

@@ -9,6 +9,7 @@ VCD back: the waveform a user opens is the one that was checked.
 """
 import pytest
 
+from models.parameters import Build
 from sim.card.pci_slave_bench import (CLASS_CODE, DEVICE, DEVICE_ID, IMPLEMENTED_COMMAND, IO_BASE, IO_SIZE,
                                       MEDIUM_DEVSEL_EDGE, MEM_BASE, MEM_SIZE, STATUS_DEVSEL_MEDIUM, TARGETS, VENDOR_ID,
                                       address_edges, run, sampled, setup)
@@ -51,7 +52,7 @@ def test_parameters_reach_the_header(target):
         for register in (0x00, 0x08, 0x2C):
             out[register] = (yield from b.host.config_read(DEVICE, register)).value
 
-    regs, _, _ = run(target, scenario, "pci_parameters", slave_params=params)
+    regs, _, _ = run(target, scenario, "pci_parameters", build=Build(**params))
     assert regs[0x00] == 0x0123ABCD and regs[0x08] == 0x0B40015A and regs[0x2C] == 0x77771AF4
 
 
@@ -104,7 +105,7 @@ def test_bar_sizes_follow_the_parameters(target):
         out["devices"] = yield from b.host.enumerate_bus(devices=[DEVICE])
 
     out, _, _ = run(target, scenario, "pci_bar_sizes",
-                    slave_params={"io_bar_bits": 4, "mem_bar_bits": 8})
+                    build=Build(io_bar_bits=4, mem_bar_bits=8))
     assert [bar["size"] for bar in out["devices"][0].bars] == [16, 256, 16]
 
 

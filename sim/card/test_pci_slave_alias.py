@@ -10,6 +10,7 @@ enables, one data phase per transaction.
 """
 import pytest
 
+from models.parameters import Build
 from sim.card.pci_slave_bench import (ALIAS_BASE, ALIAS_SIZE, DEVICE, IO_BASE, IO_SIZE, MEM_BASE, MEM_SIZE,
                                       TARGETS, run, setup)
 from sim.pci.host import COMMAND_IO, COMMAND_MEMORY, MEM_READ_LINE, MEM_WRITE_INVALIDATE, Termination
@@ -25,7 +26,7 @@ def test_bar2_is_sized_and_placed_like_a_memory_bar(target, io_bar_bits, alias_s
         out["probe"] = (yield from b.host.config_read(DEVICE, 0x18)).value
         out["devices"] = yield from b.host.enumerate_bus(devices=range(2), io_base=0x2000, mem_base=0xC0000000)
 
-    out, _, _ = run(target, scenario, f"pci_alias_bar_{io_bar_bits}", slave_params={"io_bar_bits": io_bar_bits})
+    out, _, _ = run(target, scenario, f"pci_alias_bar_{io_bar_bits}", build=Build(io_bar_bits=io_bar_bits))
     assert out["probe"] == (0xFFFFFFFF & ~(alias_size - 1)) | MEMORY_32_NOT_PREFETCHABLE
     (device,) = out["devices"]
     # the verification IP's enumeration places BAR2 after BAR1 in memory space

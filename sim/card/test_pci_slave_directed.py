@@ -8,6 +8,7 @@ rules the monitor enforces and the contract, never from the design.
 import pytest
 from myhdl import Signal, always_comb, always_seq, block
 
+from models.parameters import Build
 from rtl.interfaces import LocalBus, PciBus
 from rtl.pci.pci_slave_build import local_addr_width
 from rtl.pci_slave import pci_slave, pci_slave_ports
@@ -165,17 +166,21 @@ def test_read_ahead_stops_at_the_end_of_the_bar():
     assert all(addr < MEM_SIZE for _, space, addr, *_ in memory.log if space == 1)
 
 
-@pytest.mark.parametrize("params, message", [
+@pytest.mark.parametrize("values, message", [
     ({"vendor_id": 0x10000}, "vendor_id"),
     ({"class_code": -1}, "class_code"),
     ({"io_bar_bits": 9}, "io_bar_bits"),
     ({"mem_bar_bits": 3}, "mem_bar_bits"),
-    ({"io_registers": 1}, "io_registers"),
     ({"bar_bits": 6}, "unknown"),
 ])
-def test_bad_parameters_are_refused(params, message):
+def test_a_bad_build_of_the_target_is_refused(values, message):
     with pytest.raises(ValueError, match=message):
-        pci_slave_ports(**params)
+        Build().replace(**values)
+
+
+def test_io_registers_other_than_true_or_false_is_refused():
+    with pytest.raises(ValueError, match="io_registers"):
+        pci_slave(**pci_slave_ports(), io_registers=1)
 
 
 def test_local_bus_of_the_wrong_width_is_refused():
@@ -205,7 +210,7 @@ def test_smallest_bars_keep_the_whole_configuration_header():
             out[register] = (yield from host.config_read(DEVICE, register)).value
         out["devices"] = yield from host.enumerate_bus(devices=[DEVICE])
 
-    PciBench(target="myhdl", slave_params=params).run(scenario, "pci_directed_small_bars")
+    PciBench(target="myhdl", build=Build(**params)).run(scenario, "pci_directed_small_bars")
     assert out[0x00] == 0xDDA0 << 16 | 0x1234
     assert out[0x2C] == 0x1357 << 16 | 0xABCD
     assert out[0x3C] == 1 << 8 | 0x5A

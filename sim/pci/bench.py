@@ -21,6 +21,7 @@ at its end with a summary (``monitor="record"``).
 """
 from myhdl import Signal, StopSimulation, block, instance, intbv, now
 
+from models.parameters import Build
 from rtl.convert import GEN_DIR
 from rtl.interfaces import card_reset
 from sim.backends.clocking import clock_source
@@ -51,7 +52,7 @@ WAVE_GROUPS = {
 
 
 class PciBench:
-    """One bench.  ``slave_params``: parameters of ``pci_slave``;
+    """One bench.  ``build``: the ``Build`` of ``pci_slave`` (default: ``Build()``);
     ``memory``: the back end (a LocalMemory sized to the BARs by default);
     ``host_options``: PciHost keyword arguments; ``allow_parity_errors``:
     passed to the monitor; ``monitor``: "stop" or "record";
@@ -63,12 +64,12 @@ class PciBench:
     Verilog targets.  ``outputs``: ``{name: Signal}`` of the outputs a
     ``VerilogTarget`` names in its ``outputs``, for a scenario to watch."""
 
-    def __init__(self, target="myhdl", slave_params=None, memory=None, host_options=None,
+    def __init__(self, target="myhdl", build=None, memory=None, host_options=None,
                  allow_parity_errors=False, monitor="stop", settle_clocks=SETTLE_CLOCKS,
                  floating=True):
         if settle_clocks < 1:
             raise ValueError(f"settle_clocks must be >= 1, not {settle_clocks}")
-        self.slave_params = dict(slave_params or {})
+        self.build = Build() if build is None else build
         self.target = target
         self.settle_clocks = settle_clocks
         self.floating = floating
@@ -97,13 +98,11 @@ class PciBench:
     def _slave_ports(self):
         from rtl.pci_slave import pci_slave_ports  # here: other targets need no RTL
 
-        ports = pci_slave_ports(**self.slave_params)
+        ports = pci_slave_ports(self.build.io_bar_bits, self.build.mem_bar_bits)
         ports["clock"], ports["reset"], ports["irq"] = self.clock, self.reset, self.irq
         self.ports = ports
         if self.memory is None:
-            io_bytes = 1 << self.slave_params.get("io_bar_bits", 6)
-            mem_bytes = 1 << self.slave_params.get("mem_bar_bits", 12)
-            self.memory = LocalMemory(io_bytes, mem_bytes)
+            self.memory = LocalMemory(1 << self.build.io_bar_bits, 1 << self.build.mem_bar_bits)
         return ports["pci"]
 
     def target_blocks(self):
@@ -118,7 +117,7 @@ class PciBench:
         if self.target == "myhdl":
             from rtl.pci_slave import pci_slave
 
-            return blocks + [(pci_slave, (), dict(self.ports, **self.slave_params))]
+            return blocks + [(pci_slave, (), dict(self.ports, build=self.build))]
         if self.target == "verilog":
             return blocks + [(self._cosimulation(), None)]
         raise ValueError(f"unknown target {self.target!r}: use 'myhdl', 'verilog' or a function")
@@ -126,10 +125,10 @@ class PciBench:
     def _cosimulation(self):
         from sim.backends.icarus import convert_module
 
-        if self.slave_params:
+        if self.build != Build():
             from rtl.pci_slave import pci_slave
 
-            verilog = convert_module(pci_slave, "pci_slave", self.ports, **self.slave_params)
+            verilog = convert_module(pci_slave, "pci_slave", self.ports, build=self.build)
         else:
             verilog = GEN_DIR / "pci_slave.v"
             if not verilog.exists():

@@ -1,5 +1,6 @@
-"""``models/parameters.py``: each range is the hardware's, stated once; units and
-``*_ports`` factories take their defaults from it and their widths from their ports."""
+"""``models/parameters.py``: each range is the hardware's, stated once; the
+``Build`` record made from the table is checked once, where it is made, and
+passed down; ``*_ports`` factories take their widths as plain keywords."""
 import dataclasses
 import re
 import shutil
@@ -9,18 +10,16 @@ import pytest
 from myhdl import intbv
 
 from models import parameters
-from models.parameters import COORD_WIDTH, FIFO_DEPTH, PARAMETERS, ParameterError
-from rtl.card import card_ports
-from rtl.card_core import card_core_ports
+from models.parameters import COORD_WIDTH, FIFO_DEPTH, PARAMETERS, Build, ParameterError
+from rtl.card import card, card_ports
 from rtl.convert import ROOT, convert_unit
 from rtl.dda_arc import dda_arc, dda_arc_ports
 from rtl.interfaces import DdaPort
 from rtl.pci.pci_pads import pci_pads_ports
-from rtl.pci_slave import pci_slave_ports
+from rtl.pci_slave import pci_slave, pci_slave_ports
 from rtl.regs.feed_rate import COUNT_BITS, feed_rate, feed_rate_ports
 from rtl.regs.sequencer import sequencer_ports
 from rtl.regs_fifo import regs_fifo_ports
-from rtl.top import top_ports
 
 
 def test_the_narrowest_coordinates_are_the_narrowest_the_feed_rate_takes():
@@ -117,18 +116,75 @@ def test_pad_ports_factory_checks_its_build():
         pci_pads_ports(io_registers=1)
 
 
-@pytest.mark.parametrize("factory, params, message", [
-    (card_ports, dict(fifo_depth=3), "fifo_depth"),
-    (card_ports, dict(device="ice40", fifo_depth=8192), "ice40"),
-    (card_ports, dict(io_bar_bits=6), "io_bar_bits"),
-    (card_core_ports, dict(vendor_id=1), "vendor_id"),
-    (top_ports, dict(clock_hz=0), "clock_hz"),
-    (top_ports, dict(variants="weighted"), "variants"),
-    (regs_fifo_ports, dict(coord_width=13), "coord_width"),
-    (pci_slave_ports, dict(device="ecp5"), "device"),
-    (pci_slave_ports, dict(fifo_depth=512), "unknown"),
+def test_the_build_record_holds_the_documented_defaults():
+    """docs/parameters: 512 words, 24 bits, 33.33 MHz, generic Verilog; the top for iCE40."""
+    build = Build()
+    assert (build.fifo_depth, build.coord_width, build.clock_hz, build.device) == (512, 24, 33_333_333, "generic")
+    assert (build.variants, build.vendor_id, build.device_id) == ("improved,precise", 0x1234, 0xDDA0)
+    assert Build.for_unit("top") == build.replace(device="ice40")
+    assert [field.name for field in dataclasses.fields(Build)] == list(PARAMETERS)
+
+
+@pytest.mark.parametrize("values, message", [
+    (dict(fifo_depth=3), "fifo_depth must be a power of two, 4..32,768 (4: the FIFO promises the PCI target "
+     "three free places (LocalBus.room) before it acknowledges a posted dword; STATUS.FIFO_LEVEL, 16 bits, "
+     "counts 0..depth), not 3"),
+    (dict(device="ice40", fifo_depth=8192), "fifo_depth must be at most 4,096 for ice40 (the iCE40 HX8K has "
+     "32 block RAMs of 4 Kbit, 4,096 32-bit words in all), not 8,192"),
+    (dict(clock_hz=0), "clock_hz must be 1..33,333,333 (PCI 2.3 clocks a device that does not claim 66 MHz "
+     "at up to 33.33 MHz), not 0"),
+    (dict(variants="weighted"), "variants must be improved,precise or all, not 'weighted'"),
+    (dict(device="ecp5"), "device must be generic or ice40, not 'ecp5'"),
+    (dict(vendor_id=0xFFFF), "vendor_id must be 0x0000..0xFFFE (0xFFFF reads as no device), not 0xFFFF"),
 ])
-def test_ports_factories_check_their_parameters(factory, params, message):
+def test_a_bad_value_is_refused_where_the_build_is_made_with_the_tables_message(values, message):
+    with pytest.raises(ParameterError) as made:
+        Build(**values)
+    with pytest.raises(ParameterError) as replaced:
+        Build().replace(**values)
+    assert str(made.value) == str(replaced.value) == message
+
+
+def test_an_unknown_parameter_is_refused_by_name():
+    with pytest.raises(ParameterError, match=r"unknown build parameters \['bar_bits'\]"):
+        Build().replace(bar_bits=6)
+    with pytest.raises(ParameterError, match=r"unknown build parameters \['depth'\]"):
+        Build.for_unit("top", depth=64)
+
+
+# made (and checked) here, before any test counts the checks
+PASSED_DOWN = Build(fifo_depth=64, coord_width=18, variants="all", vendor_id=0x10EE, io_bar_bits=4, mem_bar_bits=8)
+
+
+@pytest.fixture
+def checks(monkeypatch):
+    """Every ``parameters.check`` call from here on: the values it was given."""
+    checked, check = [], parameters.check
+    monkeypatch.setattr(parameters, "check",
+                        lambda values, device=None: checked.append(values) or check(values, device))
+    return checked
+
+
+def test_the_target_checks_the_build_it_receives_no_more(checks):
+    pci_slave(**pci_slave_ports(4, 8), build=PASSED_DOWN)
+    assert checks == []
+
+
+@pytest.mark.slow(reason="elaborates the whole card (20 s); the target's part runs in the default suite")
+def test_a_build_passed_down_the_card_is_checked_once_where_it_is_made(checks):
+    """The card's blocks check nothing again; the one record made on the way is
+    the target's, with the card's BAR sizes in it (``slave_build``)."""
+    card(**card_ports(), build=PASSED_DOWN)
+    # docs/registers.md: BAR0 of 256 bytes; the 4 KiB FIFO window (not the stand-alone target's BARs)
+    assert checks == [dict(PASSED_DOWN.as_dict(), io_bar_bits=8, mem_bar_bits=12)]
+
+
+@pytest.mark.parametrize("factory, params, message", [
+    (regs_fifo_ports, dict(coord_width=13), "coord_width"),
+    (pci_slave_ports, dict(io_bar_bits=9), "io_bar_bits"),
+    (pci_slave_ports, dict(mem_bar_bits=3), "mem_bar_bits"),
+])
+def test_ports_factories_check_the_widths_they_take(factory, params, message):
     with pytest.raises(ValueError, match=message):
         factory(**params)
 

@@ -16,7 +16,7 @@ import pytest
 
 from models.parameters import PARAMETERS, ParameterError
 from rtl import convert
-from rtl.convert import C_HEADER, ROOT, UNITS, build_settings, convert_all, main
+from rtl.convert import C_HEADER, ROOT, UNITS, convert_all, main, unit_builds
 
 PROG = "python -m rtl.top"
 
@@ -115,8 +115,8 @@ def test_values_at_the_range_edges_are_taken(option):
     for text in RANGES[option][1]:
         value = PARAMETERS[name].parse(text)
         values = {name: value, "device": "generic"} if name == "fifo_depth" else {name: value}
-        settings = build_settings(values)
-        assert all(s[name] == value for s in settings.values() if name in s)
+        builds = unit_builds(values)
+        assert all(getattr(builds[unit], name) == value for unit in UNITS if name in UNITS[unit].names)
 
 
 def test_fifo_deeper_than_the_ice40_block_ram_is_refused_for_ice40(capsys, tmp_path):
@@ -128,8 +128,7 @@ def test_fifo_deeper_than_the_ice40_block_ram_is_refused_for_ice40(capsys, tmp_p
     line = refused_in_process(capsys, "--convert", "--out", str(tmp_path / "o"), "--fifo-depth", deeper)
     assert "the top is built for ice40" in line
     # the generic build has no such limit
-    settings = build_settings({"device": "generic", "fifo_depth": 32768})
-    assert settings["top"]["fifo_depth"] == 32768
+    assert unit_builds({"device": "generic", "fifo_depth": 32768})["top"].fifo_depth == 32768
 
 
 @pytest.mark.parametrize("axes", ["3", "6"])
