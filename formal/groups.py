@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from formal.card_props import card_constants
+from formal.isa_props import instruction_table
 from formal.pci_props import pci_constants
 from formal.regs_props import register_offsets, table_properties
 from formal.sby import Task
@@ -142,6 +143,8 @@ PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "i
 # models (regs_table.vh) generated from models/registers.py
 REGS_ENV_FILES = [*RESET_FILES, "regs_fifo_env.vh", "regs_fifo_ports.vh"]
 REGS_TABLES = {"regs_offsets.vh": register_offsets, "regs_table.vh": table_properties}
+ISA_TABLE = {"isa_table.vh": instruction_table}   # the opcode table (models/instructions.py)
+REGS_FIFO_TABLES = {**REGS_TABLES, **ISA_TABLE}
 REGS_FILES = ["local_bus_rules.sv", "pulse_rules.sv", *REGS_ENV_FILES, "regs_fifo_harness.sv"]
 REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value",
                        "direct_request_x", "direct_request_y", "guard_stopped")
@@ -153,7 +156,7 @@ REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_f
 # output register), under the instance names the converter gives them
 CARD_SIGNALS = ("card_core0_regs_fifo1_fifo_pop", "card_core0_regs_fifo1_fifo_empty",
                 "card_core0_regs_fifo1_fifo_dout")
-CARD = dict(expose=CARD_SIGNALS, generated={"card_table.vh": card_constants, **PCI_TABLE}, mode="bmc")
+CARD = dict(expose=CARD_SIGNALS, generated={"card_table.vh": card_constants, **ISA_TABLE, **PCI_TABLE}, mode="bmc")
 CARD_FILES = ["pci_rules.sv", *PCI_BUS_FILES, "card_harness.sv"]
 CARD_ORDER_DEPTH, CARD_STATUS_DEPTH, CARD_ERROR_DEPTH = 18, 20, 28
 
@@ -204,31 +207,31 @@ GROUPS = [
     Group("regs_fifo_path", "regs_fifo", REGS_FILES, "regs_fifo_harness",
           ("lb_", "rf_registers", "rf_level", "rf_push", "rf_full", "rf_status", "inv_"),
           expose=REGS_FIFO_REGISTERS + REGS_FIFO_HELPERS, includes=("regs_fifo_invariants.vh",),
-          defines={"REGS_FIFO_INVARIANTS": None}, generated=REGS_TABLES,
+          defines={"REGS_FIFO_INVARIANTS": None}, generated=REGS_FIFO_TABLES,
           text="back end: LocalBus answers, registers never wait, FIFO level, STATUS, nothing lost"),
     Group("regs_fifo_table", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("reg_",), mode="bmc",
-          depth=10, expose=REGS_FIFO_REGISTERS, generated=REGS_TABLES,
+          depth=10, expose=REGS_FIFO_REGISTERS, generated=REGS_FIFO_TABLES,
           defines={"STEP_MODES_FREE": None},   # STEP_MODE written too (the pins are judged elsewhere)
           text="every register as models/registers.py says (bounded)"),
     Group("regs_fifo_pulses", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_",), mode="bmc",
-          depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated=REGS_TABLES,
+          depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated=REGS_FIFO_TABLES,
           defines={"PULSE_TIMING_BY_SET": None, "POSITION_WITHOUT_HOMING": None},
           text="STEP widths, DIR set-up and hold (bounded)"),
     Group("regs_fifo_pulse_progress", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_request_leaves",),
           mode="bmc", depth=20, fast=False, expose=REGS_FIFO_REGISTERS,
-          generated=REGS_TABLES,
+          generated=REGS_FIFO_TABLES,
           defines={"PULSE_TIMING_BY_SET": None, "PULSE_PACED": None, "PULSE_QUEUE_CLOCKS": 4,
                    "MACHINE_RUNNING": None},
           text="every step request leaves on its pin within a step period (bounded)"),
     Group("regs_fifo_direct", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("direct_",), mode="bmc",
-          depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated=REGS_TABLES,
+          depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated=REGS_FIFO_TABLES,
           defines={"DIRECT_COUNTS": None, "MACHINE_RUNNING": None},
           text="direct mode: a PULSE_COUNT_X write of n gives no more than |n| X pulses (bounded)"),
     Group("regs_fifo_order", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("rf_fifo_in_order",),
-          mode="bmc", depth=12, expose=REGS_FIFO_REGISTERS, generated=REGS_TABLES,
+          mode="bmc", depth=12, expose=REGS_FIFO_REGISTERS, generated=REGS_FIFO_TABLES,
           text="FIFO words reach the sequencer in order, none twice (bounded)"),
     Group("regs_fifo_commands", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("cmd_",), mode="bmc",
-          depth=14, fast=False, expose=REGS_FIFO_REGISTERS, generated=REGS_TABLES,
+          depth=14, fast=False, expose=REGS_FIFO_REGISTERS, generated=REGS_FIFO_TABLES,
           defines={"COMMANDS_WITHOUT_CLEAR": None, "MACHINE_RUNNING": None},
           text="LINE, ARC, SET and DWELL executed as the FIFO words say, in order (bounded)"),
     Group("machine_stop", "regs_fifo", MACHINE_FILES, "machine_harness", ("ms_", "minv_"), **MACHINE,

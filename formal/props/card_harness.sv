@@ -44,6 +44,7 @@ module card_harness #(
     input wire m_frame_n, input wire m_irdy_n, input wire m_idsel
 );
 `include "card_table.vh"
+`include "isa_table.vh"
 `include "pci_table.vh"
     // the chosen data phase of the order shadow
     (* anyconst *) reg [3:0] chosen;

@@ -40,6 +40,7 @@ module regs_fifo_harness #(
     input wire choose_push, input wire choose_command
 );
 `include "regs_offsets.vh"
+`include "isa_table.vh"
     wire [31:0] fifo_dout;      // exposed: the FIFO's output register
 
     // The machine inputs (E-STOP, limits, home): free, or with
@@ -153,9 +154,9 @@ module regs_fifo_harness #(
     reg [31:0] picked_header = 0, picked_0 = 0, picked_1 = 0, picked_2 = 0, picked_3 = 0;
     reg [4:0] moves_before_dwell = 0, sets_before_dwell = 0;
     reg [31:0] dwell_elapsed = 0;       // clocks since the picked command's last word arrived
-    wire [3:0] arriving_opcode = fifo_dout[31:28];
+    wire [3:0] arriving_opcode = fifo_dout[31:OPCODE_LSB];
     wire header_in = word_in && words_left == 0 && !framing_lost;
-    wire is_move = arriving_opcode == 4'h1 || arriving_opcode == 4'h2;
+    wire is_move = arriving_opcode == OPCODE_LINE || arriving_opcode == OPCODE_ARC;
     always @(posedge clock) begin
         word_in <= reset_n && !fifo_flush && pop;
         if (!reset_n || fifo_flush) begin
@@ -163,16 +164,11 @@ module regs_fifo_harness #(
             moves_seen <= 0; moves_started <= 0; sets_seen <= 0; sets_done <= 0;
         end else begin
             if (header_in) begin
-                case (arriving_opcode)
-                    4'h1, 4'h3: words_left <= 2;       // LINE, PULSE
-                    4'h2: words_left <= 4;             // ARC
-                    4'h4, 4'h5: words_left <= 1;       // SET, DWELL
-                    4'h6: words_left <= 0;             // MARK
-                    default: framing_lost <= 1;
-                endcase
+                if (opcode_known(arriving_opcode)) words_left <= operand_words(arriving_opcode);
+                else framing_lost <= 1;
                 if (is_move) moves_seen <= moves_seen + 1;
-                if (arriving_opcode == 4'h4) sets_seen <= sets_seen + 1;
-                if (choose_command && !picked && (is_move || arriving_opcode == 4'h4 || arriving_opcode == 4'h5)) begin
+                if (arriving_opcode == OPCODE_SET) sets_seen <= sets_seen + 1;
+                if (choose_command && !picked && (is_move || arriving_opcode == OPCODE_SET || arriving_opcode == OPCODE_DWELL)) begin
                     picked <= 1;
                     moves_before_dwell <= moves_seen;
                     sets_before_dwell <= sets_seen;
@@ -199,29 +195,31 @@ module regs_fifo_harness #(
             if (set_strobe) sets_done <= sets_done + 1;
         end
     end
-    wire picked_starts = picked && picked_opcode != 4'h4 && dda_start && moves_started == picked_number;
-    wire picked_sets = picked && picked_opcode == 4'h4 && set_strobe && sets_done == picked_number;
+    wire picked_starts = picked && picked_opcode != OPCODE_SET && dda_start && moves_started == picked_number;
+    wire picked_sets = picked && picked_opcode == OPCODE_SET && set_strobe && sets_done == picked_number;
     always @(posedge clock) if (reset_n) begin
         if (dda_start) begin cmd_start_for_a_move: assert(moves_started < moves_seen); end
         if (set_strobe) begin cmd_set_for_a_set: assert(sets_done < sets_seen); end
         if (picked_starts) begin
-            cmd_move_as_written: assert(picked_whole && dda_line == (picked_opcode == 4'h1)
-                && dda_blend == picked_header[16]
-                && (picked_opcode == 4'h1
+            cmd_move_as_written: assert(picked_whole && dda_line == (picked_opcode == OPCODE_LINE)
+                && dda_blend == picked_header[LINE_BLEND_LSB]   // BLEND: one field of LINE and ARC
+                && (picked_opcode == OPCODE_LINE
                     ? dda_xs == 0 && dda_ys == 0 && dda_xe == picked_0[COORD_WIDTH-1:0]
                       && dda_ye == picked_1[COORD_WIDTH-1:0]
-                    : dda_ccw == picked_header[0] && dda_variant == picked_header[2:1]
-                      && dda_lambda_shift == picked_header[7:3] && dda_acc_bits == picked_header[12:8]
+                    : dda_ccw == picked_header[ARC_CCW_LSB]
+                      && dda_variant == picked_header[ARC_VARIANT_LSB +: ARC_VARIANT_WIDTH]
+                      && dda_lambda_shift == picked_header[ARC_LAMBDA_LSB +: ARC_LAMBDA_WIDTH]
+                      && dda_acc_bits == picked_header[ARC_ACC_BITS_LSB +: ARC_ACC_BITS_WIDTH]
                       && dda_xs == picked_0[COORD_WIDTH-1:0] && dda_ys == picked_1[COORD_WIDTH-1:0]
                       && dda_xe == picked_2[COORD_WIDTH-1:0] && dda_ye == picked_3[COORD_WIDTH-1:0]));
         end
         // DWELL n: nothing after it executes within n clocks of its operand
-        if (picked && picked_opcode == 4'h5 && ((dda_start && moves_started >= moves_before_dwell)
+        if (picked && picked_opcode == OPCODE_DWELL && ((dda_start && moves_started >= moves_before_dwell)
                                                 || (set_strobe && sets_done >= sets_before_dwell))) begin
             cmd_dwell_waits: assert(picked_whole && dwell_elapsed >= picked_0);
         end
         if (picked_sets) begin
-            cmd_set_as_written: assert(picked_whole && set_index == picked_header[3:0] && set_value == picked_0);
+            cmd_set_as_written: assert(picked_whole && set_index == picked_header[SET_INDEX_LSB +: SET_INDEX_WIDTH] && set_value == picked_0);
         end
     end
 `ifdef COMMANDS_WITHOUT_CLEAR
