@@ -20,7 +20,9 @@
 // card_table.vh, generated from models/registers.py and models/instructions.py by
 // formal/card_props.py.  Where the sequencer takes a word (its FIFO pop, the
 // FIFO's empty flag and output register) is inside the card: yosys `expose`
-// makes those signals ports, so the generated file is read unchanged.
+// makes those signals ports, so the generated file is read unchanged.  The
+// bus lines, PCI pins and bus model are pci_target_harness.sv's
+// (pci_bus_lines.vh, pci_pins.vh, pci_bus_model.vh, with pci_table.vh).
 //
 // Limits of the environment (each a restriction of what the bus does):
 //   * no register write (BAR0 or BAR2) to COMMAND (SOFT_RESET, CLEAR_ERROR

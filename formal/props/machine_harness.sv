@@ -13,7 +13,9 @@
 // homing state, the zero, the step requests before and after the guard's
 // gate) and a few of the FIFO's are made ports by yosys `expose`, so the
 // generated file is read unchanged.  The register models (model_*) come
-// from the register table (regs_table.vh).
+// from the register table (regs_table.vh); the environment and the unit's
+// common ports are regs_fifo_harness.sv's (regs_fifo_env.vh,
+// regs_fifo_ports.vh).
 //
 // Environment: INPUT_POLARITY, INPUT_FILTER and INPUT_TICK keep their reset
 // values (0, 3 samples, 1 clock: the settings of the docs' reaction table);

@@ -19,6 +19,9 @@
 //     one data phase per transaction;
 //   * register accesses (I/O, BAR2) are not retried when the registers answer;
 //   * every dword acknowledged on the bus reaches the back end.
+// The bus lines, the unit's PCI pins and the bus model (configuration,
+// decode, the transaction) are the card harness's too: pci_bus_lines.vh,
+// pci_pins.vh, pci_bus_model.vh, with pci_table.vh from models/pci.py.
 `default_nettype none
 
 module pci_target_harness #(

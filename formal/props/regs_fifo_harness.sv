@@ -19,7 +19,10 @@
 //     POS_X counting the STEP pulses.
 // The consumer side of the FIFO (the sequencer's pop, the flush) and the SET
 // command's write port are registers inside the unit: yosys `expose` makes
-// them ports, so the generated file is read unchanged.
+// them ports, so the generated file is read unchanged.  The environment
+// (requester, register stage and models, FIFO level, interpolator) and the
+// unit's common ports are machine_harness.sv's too: regs_fifo_env.vh,
+// regs_fifo_ports.vh.
 `default_nettype none
 
 module regs_fifo_harness #(
