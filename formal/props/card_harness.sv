@@ -16,9 +16,9 @@
 //     written on the bus minus words taken had during the transaction,
 //     FIFO_EMPTY and FIFO_FULL as that level says, and the ERROR code of
 //     docs/instructions.md for the first command.
-// The register offsets, STATUS fields, error codes and opcodes come from
+// The register offsets, STATUS fields and error codes come from
 // card_table.vh, generated from models/registers.py and models/instructions.py by
-// formal/card_props.py.  Where the sequencer takes a word (its FIFO pop, the
+// formal/card_props.py, the opcodes from isa_table.vh (formal/isa_props.py).  Where the sequencer takes a word (its FIFO pop, the
 // FIFO's empty flag and output register) is inside the card: yosys `expose`
 // makes those signals ports, so the generated file is read unchanged.  The
 // bus lines, PCI pins and bus model are pci_target_harness.sv's
