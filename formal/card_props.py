@@ -1,12 +1,12 @@
 """Constants of the whole-card properties, generated from the register table
-(models/registers.py) and the command set (models/instructions.py), as the RTL
-decoder, docs and C header are.
+(models/registers.py) and the command set's error codes
+(models/instructions.py), as the RTL decoder, docs and C header are.
 
 ``card_constants()`` returns the body that ``props/card_harness.sv``
 includes (``card_table.vh``): the dword offsets of CONTROL, COMMAND, STATUS
-and the machine registers the harness keeps at rest, the STATUS fields, the
-error codes, and per opcode whether it is in the table, its header mask and
-its number of operand words.
+and the machine registers the harness keeps at rest, the STATUS fields and
+the error codes.  The opcode table is ``isa_table.vh`` (formal/isa_props.py),
+which the back end's harness reads too.
 """
 from models import instructions as isa
 from models import registers as regmap
@@ -36,16 +36,4 @@ def card_constants():
                   f"    localparam STATUS_{name}_WIDTH = {item.width};"]
     for code, name, _ in isa.ERRORS:
         lines.append(f"    localparam [3:0] ERROR_{name} = 4'd{code};")
-    lines.append(f"    localparam OPCODE_LSB = {isa.OPCODE_LSB};")
-    lines += ["    // opcodes of the table: known, header mask, operand words",
-              "    function opcode_known(input [3:0] opcode);",
-              "        case (opcode)"]
-    lines += [f"            4'd{op.code}: opcode_known = 1;   // {op.name}" for op in isa.OPCODES]
-    lines += ["            default: opcode_known = 0;", "        endcase", "    endfunction",
-              "    function [31:0] header_mask(input [3:0] opcode);", "        case (opcode)"]
-    lines += [f"            4'd{op.code}: header_mask = 32'h{op.header_mask:08X};" for op in isa.OPCODES]
-    lines += ["            default: header_mask = 32'hFFFFFFFF;", "        endcase", "    endfunction",
-              "    function [2:0] operand_words(input [3:0] opcode);", "        case (opcode)"]
-    lines += [f"            4'd{op.code}: operand_words = 3'd{len(op.operands)};" for op in isa.OPCODES]
-    lines += ["            default: operand_words = 3'd0;", "        endcase", "    endfunction"]
     return "\n".join(lines) + "\n"

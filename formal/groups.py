@@ -12,7 +12,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from formal.card_props import card_constants
-from formal.regs_props import table_properties
+from formal.isa_props import instruction_table
+from formal.pci_props import pci_constants
+from formal.regs_props import register_offsets, table_properties
 from formal.sby import Task
 from models.dda_build import DDA_MIN_WIDTH as NARROW_WIDTH
 from models.parameters import Build
@@ -111,8 +113,15 @@ class Group:
                     files=sources)
 
 
+# Includes the harnesses share (docs/formal.md): harness_reset.vh (RST# in the
+# first clock, `judged`) in every harness on gen/; the PCI lines, pins and bus
+# model (pci_bus_lines.vh, pci_pins.vh, pci_bus_model.vh, with pci_table.vh
+# generated from models/pci.py) in the PCI target's and the card's.
+RESET_FILES = ["harness_reset.vh"]
+PCI_BUS_FILES = [*RESET_FILES, "pci_bus_lines.vh", "pci_pins.vh", "pci_bus_model.vh"]
+PCI_TABLE = {"pci_table.vh": pci_constants}
 # pci_target_local.vh: the harness's local-side properties, included by it
-PCI_FILES = ["pci_rules.sv", "local_bus_rules.sv", "pci_target_local.vh", "pci_target_harness.sv"]
+PCI_FILES = ["pci_rules.sv", "local_bus_rules.sv", *PCI_BUS_FILES, "pci_target_local.vh", "pci_target_harness.sv"]
 PCI_PARAMETERS = pci_harness_parameters(Build())  # the unit as `python -m rtl.top --convert` writes gen/
 # registers of pci_slave the helper invariants (props/pci_slave_invariants.vh) read
 # the configuration header's own registers carry the instance name the
@@ -127,7 +136,14 @@ PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "i
                        "pci_config0_detected_parity_error", "parity_error_q",
                        "pci_config0_interrupt_line", "h_data", "spare_data", "ad_q", "h_be", "s_be",
                        "cbe_q", "req_addr", "ad_out_q")
-REGS_FILES = ["local_bus_rules.sv", "pulse_rules.sv", "regs_fifo_harness.sv"]
+# regs_fifo_env.vh, regs_fifo_ports.vh: the environment and ports of regs_fifo
+# both its harnesses share, with the register names (regs_offsets.vh) and
+# models (regs_table.vh) generated from models/registers.py
+REGS_ENV_FILES = [*RESET_FILES, "regs_fifo_env.vh", "regs_fifo_ports.vh"]
+REGS_TABLES = {"regs_offsets.vh": register_offsets, "regs_table.vh": table_properties}
+ISA_TABLE = {"isa_table.vh": instruction_table}   # the opcode table (models/instructions.py)
+REGS_FIFO_TABLES = {**REGS_TABLES, **ISA_TABLE}
+REGS_FILES = ["local_bus_rules.sv", "pulse_rules.sv", *REGS_ENV_FILES, "regs_fifo_harness.sv"]
 REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value",
                        "direct_request_x", "direct_request_y", "guard_stopped")
 REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
@@ -138,14 +154,14 @@ REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_f
 # output register), under the instance names the converter gives them
 CARD_SIGNALS = ("card_core0_regs_fifo1_fifo_pop", "card_core0_regs_fifo1_fifo_empty",
                 "card_core0_regs_fifo1_fifo_dout")
-CARD = dict(expose=CARD_SIGNALS, generated={"card_table.vh": card_constants}, mode="bmc")
-CARD_FILES = ["pci_rules.sv", "card_harness.sv"]
+CARD = dict(expose=CARD_SIGNALS, generated={"card_table.vh": card_constants, **ISA_TABLE, **PCI_TABLE}, mode="bmc")
+CARD_FILES = ["pci_rules.sv", *PCI_BUS_FILES, "card_harness.sv"]
 CARD_ORDER_DEPTH, CARD_STATUS_DEPTH, CARD_ERROR_DEPTH = 18, 20, 28
 
 # the machine side (props/machine_harness.sv): the guard's, the filter's, the
 # feed rate's and the homing unit's own registers and ports, and the step
 # requests before and after the guard's gate
-MACHINE_FILES = ["local_bus_rules.sv", "machine_harness.sv"]
+MACHINE_FILES = ["local_bus_rules.sv", *REGS_ENV_FILES, "machine_harness.sv"]
 MACHINE_REGISTERS = ("fifo_pop", "fifo_flush", "set_strobe", "set_index", "set_value", "direct_request_x",
                      "direct_request_y", "guard_stopped", "guard_stopping", "settled", "conditioning_active",
                      "machine_guard0_guard_reason", "machine_guard0_guard_limits", "feed_rate0_rate",
@@ -156,7 +172,7 @@ MACHINE_REGISTERS = ("fifo_pop", "fifo_flush", "set_strobe", "set_index", "set_v
                      "pulse_out0_pulse_y",
                      "sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
                      "direct_pulse0_pending", "direct_pulse1_pending", "watchdog_left")
-MACHINE = dict(expose=MACHINE_REGISTERS, generated={"regs_table.vh": table_properties})
+MACHINE = dict(expose=MACHINE_REGISTERS, generated=REGS_TABLES)
 
 
 def narrow_dda():
@@ -167,7 +183,7 @@ def narrow_dda():
 
 DDA = dict(convert=narrow_dda, parameters=dict(W=NARROW_WIDTH))
 PCI_HELPERS = dict(expose=PCI_SLAVE_REGISTERS, includes=("pci_slave_invariants.vh",),
-                   defines={"PCI_SLAVE_INVARIANTS": None})
+                   defines={"PCI_SLAVE_INVARIANTS": None}, generated=PCI_TABLE)
 
 GROUPS = [
     Group("pci_protocol", "pci_slave", PCI_FILES, "pci_target_harness", ("t_", "lb_", "inv_"),
@@ -189,31 +205,31 @@ GROUPS = [
     Group("regs_fifo_path", "regs_fifo", REGS_FILES, "regs_fifo_harness",
           ("lb_", "rf_registers", "rf_level", "rf_push", "rf_full", "rf_status", "inv_"),
           expose=REGS_FIFO_REGISTERS + REGS_FIFO_HELPERS, includes=("regs_fifo_invariants.vh",),
-          defines={"REGS_FIFO_INVARIANTS": None}, generated={"regs_table.vh": table_properties},
+          defines={"REGS_FIFO_INVARIANTS": None}, generated=REGS_FIFO_TABLES,
           text="back end: LocalBus answers, registers never wait, FIFO level, STATUS, nothing lost"),
     Group("regs_fifo_table", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("reg_",), mode="bmc",
-          depth=10, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          depth=10, expose=REGS_FIFO_REGISTERS, generated=REGS_FIFO_TABLES,
           defines={"STEP_MODES_FREE": None},   # STEP_MODE written too (the pins are judged elsewhere)
           text="every register as models/registers.py says (bounded)"),
     Group("regs_fifo_pulses", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_",), mode="bmc",
-          depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated=REGS_FIFO_TABLES,
           defines={"PULSE_TIMING_BY_SET": None, "POSITION_WITHOUT_HOMING": None},
           text="STEP widths, DIR set-up and hold (bounded)"),
     Group("regs_fifo_pulse_progress", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("pulse_request_leaves",),
           mode="bmc", depth=20, fast=False, expose=REGS_FIFO_REGISTERS,
-          generated={"regs_table.vh": table_properties},
+          generated=REGS_FIFO_TABLES,
           defines={"PULSE_TIMING_BY_SET": None, "PULSE_PACED": None, "PULSE_QUEUE_CLOCKS": 4,
                    "MACHINE_RUNNING": None},
           text="every step request leaves on its pin within a step period (bounded)"),
     Group("regs_fifo_direct", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("direct_",), mode="bmc",
-          depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated=REGS_FIFO_TABLES,
           defines={"DIRECT_COUNTS": None, "MACHINE_RUNNING": None},
           text="direct mode: a PULSE_COUNT_X write of n gives no more than |n| X pulses (bounded)"),
     Group("regs_fifo_order", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("rf_fifo_in_order",),
-          mode="bmc", depth=12, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          mode="bmc", depth=12, expose=REGS_FIFO_REGISTERS, generated=REGS_FIFO_TABLES,
           text="FIFO words reach the sequencer in order, none twice (bounded)"),
     Group("regs_fifo_commands", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("cmd_",), mode="bmc",
-          depth=14, fast=False, expose=REGS_FIFO_REGISTERS, generated={"regs_table.vh": table_properties},
+          depth=14, fast=False, expose=REGS_FIFO_REGISTERS, generated=REGS_FIFO_TABLES,
           defines={"COMMANDS_WITHOUT_CLEAR": None, "MACHINE_RUNNING": None},
           text="LINE, ARC, SET and DWELL executed as the FIFO words say, in order (bounded)"),
     Group("machine_stop", "regs_fifo", MACHINE_FILES, "machine_harness", ("ms_", "minv_"), **MACHINE,
@@ -252,7 +268,7 @@ GROUPS = [
           **dict(CARD, mode="cover"), fast=False,
           text="the whole card: the sequences the card groups judge are reachable within their depths"),
     Group("pci_covers", "pci_slave", PCI_FILES, "pci_target_harness", (), mode="cover", depth=24,
-          parameters=PCI_PARAMETERS, text="each kind of transaction is reachable"),
+          parameters=PCI_PARAMETERS, generated=PCI_TABLE, text="each kind of transaction is reachable"),
 ]
 
 

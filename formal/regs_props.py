@@ -1,7 +1,9 @@
 """Register properties generated from the register table (models/registers.py),
 as the RTL decoder, docs/registers.md and the C header are.
 
-``table_properties()`` returns the body that ``props/regs_fifo_harness.sv``
+``register_offsets()`` returns the names of the offsets, SET indexes and
+fields the harnesses use (``regs_offsets.vh``).  ``table_properties()``
+returns the body that ``props/regs_fifo_harness.sv``
 includes (``regs_table.vh``): for every register, reads return zero in the
 bits outside its fields; ID reads its constant; every RW register has a model
 that takes bus writes (byte enables honoured, the merged value clamped to
@@ -88,6 +90,23 @@ def _cleared_mask(reg):
             raise ValueError(f"{reg.name}.{item.name} is cleared by the hardware: CLEARED_BY names no signal") from None
         terms.append(f"({signal} ? {reg.width}'h{item.mask:X} : {reg.width}'h0)")
     return " | ".join(terms)
+
+
+def register_offsets():
+    """The generated include ``regs_offsets.vh``: each register's offset
+    (REG_<NAME>), the SET index of those a SET command writes (SET_<NAME>),
+    and each field's place (<REG>_<FIELD>_LSB, _WIDTH), for the harnesses
+    that write and read the registers by name."""
+    lines = ["// Generated from models/registers.py by formal/regs_props.py; do not edit.",
+             "// Included into regs_fifo_harness and machine_harness."]
+    for reg in regmap.REGISTERS:
+        lines.append(f"    localparam [15:0] REG_{reg.name} = 16'h{reg.offset:04X};")
+        if reg.set_index is not None:
+            lines.append(f"    localparam [3:0] SET_{reg.name} = 4'd{reg.set_index};")
+        for item in reg.fields:
+            lines += [f"    localparam {reg.name}_{item.name}_LSB = {item.lsb};",
+                      f"    localparam {reg.name}_{item.name}_WIDTH = {item.width};"]
+    return "\n".join(lines) + "\n"
 
 
 def table_properties():

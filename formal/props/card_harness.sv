@@ -16,11 +16,13 @@
 //     written on the bus minus words taken had during the transaction,
 //     FIFO_EMPTY and FIFO_FULL as that level says, and the ERROR code of
 //     docs/instructions.md for the first command.
-// The register offsets, STATUS fields, error codes and opcodes come from
+// The register offsets, STATUS fields and error codes come from
 // card_table.vh, generated from models/registers.py and models/instructions.py by
-// formal/card_props.py.  Where the sequencer takes a word (its FIFO pop, the
+// formal/card_props.py, the opcodes from isa_table.vh (formal/isa_props.py).  Where the sequencer takes a word (its FIFO pop, the
 // FIFO's empty flag and output register) is inside the card: yosys `expose`
-// makes those signals ports, so the generated file is read unchanged.
+// makes those signals ports, so the generated file is read unchanged.  The
+// bus lines, PCI pins and bus model are pci_target_harness.sv's
+// (pci_bus_lines.vh, pci_pins.vh, pci_bus_model.vh, with pci_table.vh).
 //
 // Limits of the environment (each a restriction of what the bus does):
 //   * no register write (BAR0 or BAR2) to COMMAND (SOFT_RESET, CLEAR_ERROR
@@ -44,13 +46,15 @@ module card_harness #(
     input wire m_frame_n, input wire m_irdy_n, input wire m_idsel
 );
 `include "card_table.vh"
+`include "isa_table.vh"
+`include "pci_table.vh"
     // the chosen data phase of the order shadow
     (* anyconst *) reg [3:0] chosen;
 
     // ------------------------------------------------------------ the card
-    wire [31:0] t_ad;
-    wire t_ad_oe, t_par, t_par_oe, t_trdy_n, t_trdy_oe, t_devsel_n, t_devsel_oe;
-    wire t_stop_n, t_stop_oe, t_perr_n, t_perr_oe, t_serr_n, t_serr_oe, t_inta_n, t_inta_oe;
+    // this card is the only target: the lines are its drivers or the initiator's
+    wire o_trdy_n = 1'b1, o_devsel_n = 1'b1, o_stop_n = 1'b1;
+`include "pci_bus_lines.vh"
     wire step_x, dir_x, step_y, dir_y, drive_enable;
     // exposed signals of the card: the sequencer's pop, the FIFO's empty flag and output
     wire fifo_pop, fifo_empty;
@@ -62,25 +66,9 @@ module card_harness #(
     (* anyseq *) wire [6:0] machine_in;
 `endif
 
-    // this card is the only target: the lines are its drivers or the initiator's
-    wire [31:0] ad = t_ad_oe ? t_ad : m_ad;
-    wire par = t_par_oe ? t_par : m_par;
-    wire trdy_n = t_trdy_oe ? t_trdy_n : 1'b1;
-    wire devsel_n = t_devsel_oe ? t_devsel_n : 1'b1;
-    wire stop_n = t_stop_oe ? t_stop_n : 1'b1;
-    wire perr_n = t_perr_oe ? t_perr_n : 1'b1;
-    wire serr_n = t_serr_oe ? t_serr_n : 1'b1;
-
     card dut (
-        .clock(clock), .reset(reset_n),
-        .pci_ad_in(ad), .pci_ad_out(t_ad), .pci_ad_oe(t_ad_oe), .pci_cbe_in(m_cbe_n),
-        .pci_par_in(par), .pci_par_out(t_par), .pci_par_oe(t_par_oe),
-        .pci_frame_in(m_frame_n), .pci_irdy_in(m_irdy_n), .pci_idsel_in(m_idsel),
-        .pci_trdy_out(t_trdy_n), .pci_trdy_oe(t_trdy_oe), .pci_devsel_out(t_devsel_n),
-        .pci_devsel_oe(t_devsel_oe), .pci_stop_out(t_stop_n), .pci_stop_oe(t_stop_oe),
-        .pci_perr_out(t_perr_n), .pci_perr_oe(t_perr_oe), .pci_serr_out(t_serr_n),
-        .pci_serr_oe(t_serr_oe), .pci_inta_out(t_inta_n), .pci_inta_oe(t_inta_oe),
-        .pins_step_x(step_x), .pins_dir_x(dir_x), .pins_step_y(step_y), .pins_dir_y(dir_y),
+`include "pci_pins.vh"
+        , .pins_step_x(step_x), .pins_dir_x(dir_x), .pins_step_y(step_y), .pins_dir_y(dir_y),
         .pins_drive_enable(drive_enable), .pins_estop(machine_in[0]),
         .pins_limit_pos_x(machine_in[1]), .pins_limit_neg_x(machine_in[2]),
         .pins_limit_pos_y(machine_in[3]), .pins_limit_neg_y(machine_in[4]),
@@ -88,101 +76,19 @@ module card_harness #(
         .card_core0_regs_fifo1_fifo_pop(fifo_pop), .card_core0_regs_fifo1_fifo_empty(fifo_empty),
         .card_core0_regs_fifo1_fifo_dout(fifo_dout));
 
-    reg started = 0;
-    always @(posedge clock) started <= 1;
-    always @(*) if (!started) assume(!reset_n);
+`include "harness_reset.vh"
 
     // ------------------------------------------------------------ the bus
     // the configuration a target decodes with (6.2.2 Command, 6.2.5 BARs),
-    // written by the configuration writes seen on the bus (as in
-    // pci_target_harness.sv, where the target's decode is proved against it)
-    localparam [15:0] IO_WRITABLE = 16'hFFFF << IO_BITS;
-    localparam [31:0] MEM_WRITABLE = 32'hFFFFFFFF << MEM_BITS;
-    localparam ALIAS_BITS = IO_BITS > 4 ? IO_BITS : 4;    // BAR2: BAR0's registers in memory space
-    localparam [31:0] ALIAS_WRITABLE = 32'hFFFFFFFF << ALIAS_BITS;
-    reg io_enable = 0, mem_enable = 0, parity_response = 0, serr_enable = 0;
-    reg [15:0] bar0 = 0;
-    reg [31:0] bar1 = 0, bar2 = 0;
-    wire [3:0] command = m_cbe_n;
-    wire cmd_config = command == 4'hA || command == 4'hB;
-    wire cmd_io = command == 4'h2 || command == 4'h3;
-    wire cmd_mem = command == 4'h6 || command == 4'h7 || command == 4'hC || command == 4'hE
-                   || command == 4'hF;
-    wire config_hit = m_idsel && ad[1:0] == 2'b00 && ad[10:8] == 3'b000 && cmd_config;
-    wire io_hit = io_enable && cmd_io && ad[31:16] == 16'h0
-                  && (ad[15:0] & IO_WRITABLE) == (bar0 & IO_WRITABLE);
-    wire mem_hit = mem_enable && cmd_mem && (ad & MEM_WRITABLE) == (bar1 & MEM_WRITABLE);
-    wire alias_hit = mem_enable && cmd_mem && !mem_hit && (ad & ALIAS_WRITABLE) == (bar2 & ALIAS_WRITABLE);
-
-    wire address_edge, data_edge, completion, transfer, last_completion, txn_hit;
-    wire addr_parity_error, target_abort, target_claimed, par_wrong;
-    wire [3:0] since_completion, txn_command;
-    wire [31:0] txn_address;
-    wire [15:0] txn_transfers;
-    wire [5:0] clk_now;
-    pci_rules #(.CHECK_TARGET(1)) bus (
-        .clock(clock), .reset_n(reset_n),
-        .ad(ad), .cbe_n(m_cbe_n), .par(par), .frame_n(m_frame_n), .irdy_n(m_irdy_n),
-        .trdy_n(trdy_n), .devsel_n(devsel_n), .stop_n(stop_n), .perr_n(perr_n), .serr_n(serr_n),
-        .t_ad(t_ad), .t_ad_oe(t_ad_oe), .t_par(t_par), .t_par_oe(t_par_oe),
-        .t_trdy_n(t_trdy_n), .t_trdy_oe(t_trdy_oe), .t_devsel_n(t_devsel_n),
-        .t_devsel_oe(t_devsel_oe), .t_stop_n(t_stop_n), .t_stop_oe(t_stop_oe),
-        .t_perr_n(t_perr_n), .t_perr_oe(t_perr_oe), .t_serr_n(t_serr_n), .t_serr_oe(t_serr_oe),
-        .m_ad(m_ad), .m_cbe_n(m_cbe_n), .m_frame_n(m_frame_n), .m_irdy_n(m_irdy_n),
-        .decoded(config_hit || io_hit || mem_hit || alias_hit), .parity_response(parity_response),
-        .serr_enable(serr_enable),
-        .address_edge(address_edge), .data_edge(data_edge), .completion(completion),
-        .transfer(transfer), .last_completion(last_completion), .txn_hit(txn_hit),
-        .txn_command(txn_command), .txn_address(txn_address), .txn_transfers(txn_transfers),
-        .clk_now(clk_now), .addr_parity_error(addr_parity_error), .target_abort(target_abort),
-        .target_claimed(target_claimed), .since_completion(since_completion),
-        .par_wrong(par_wrong));
-
-    wire txn_config = txn_command[3:1] == 3'b101;
-    wire txn_io = txn_command[3:1] == 3'b001;
-    reg txn_alias = 0;                      // a BAR2 transaction, taken at its address edge
-    always @(posedge clock) if (address_edge) txn_alias <= alias_hit;
-    wire txn_regs = txn_io || txn_alias;    // the function registers, through BAR0 or BAR2
-    wire txn_write = txn_command[0];
-    wire our_transfer = transfer && txn_hit;
-    wire [5:0] config_dword = txn_address[7:2] + txn_transfers[5:0];
+    // written by the configuration writes seen on the bus, and the
+    // transaction (pci_bus_model.vh, shared with pci_target_harness.sv, where
+    // the target's decode is proved against it)
+`include "pci_bus_model.vh"
     wire [5:0] io_dword = txn_address[IO_BITS-1:2];
-    always @(posedge clock) begin
-        if (!reset_n) begin
-            io_enable <= 0; mem_enable <= 0; parity_response <= 0; serr_enable <= 0;
-            bar0 <= 0; bar1 <= 0; bar2 <= 0;
-        end else if (our_transfer && txn_config && txn_write) begin
-            case (config_dword)
-                6'd1: begin
-                    if (!m_cbe_n[0]) begin
-                        io_enable <= ad[0]; mem_enable <= ad[1]; parity_response <= ad[6];
-                    end
-                    if (!m_cbe_n[1]) serr_enable <= ad[8];
-                end
-                6'd4: begin
-                    if (!m_cbe_n[0]) bar0[7:0] <= ad[7:0];
-                    if (!m_cbe_n[1]) bar0[15:8] <= ad[15:8];
-                end
-                6'd5: begin
-                    if (!m_cbe_n[0]) bar1[7:0] <= ad[7:0];
-                    if (!m_cbe_n[1]) bar1[15:8] <= ad[15:8];
-                    if (!m_cbe_n[2]) bar1[23:16] <= ad[23:16];
-                    if (!m_cbe_n[3]) bar1[31:24] <= ad[31:24];
-                end
-                6'd6: begin
-                    if (!m_cbe_n[0]) bar2[7:0] <= ad[7:0];
-                    if (!m_cbe_n[1]) bar2[15:8] <= ad[15:8];
-                    if (!m_cbe_n[2]) bar2[23:16] <= ad[23:16];
-                    if (!m_cbe_n[3]) bar2[31:24] <= ad[31:24];
-                end
-                default: ;
-            endcase
-        end
-    end
 
     // the limits of the environment (above), on the address phase of a register write
     wire [5:0] address_dword = ad[IO_BITS-1:2];
-    wire io_write_address = address_edge && (command == 4'h3 || (alias_hit && command[0]));
+    wire io_write_address = address_edge && (command == CMD_IO_WRITE || (alias_hit && command[0]));
     always @(*) begin
         if (io_write_address) assume(address_dword != DWORD_COMMAND);
 `ifdef MACHINE_RUNNING

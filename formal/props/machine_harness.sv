@@ -13,7 +13,9 @@
 // homing state, the zero, the step requests before and after the guard's
 // gate) and a few of the FIFO's are made ports by yosys `expose`, so the
 // generated file is read unchanged.  The register models (model_*) come
-// from the register table (regs_table.vh).
+// from the register table (regs_table.vh); the environment and the unit's
+// common ports are regs_fifo_harness.sv's (regs_fifo_env.vh,
+// regs_fifo_ports.vh).
 //
 // Environment: INPUT_POLARITY, INPUT_FILTER and INPUT_TICK keep their reset
 // values (0, 3 samples, 1 clock: the settings of the docs' reaction table);
@@ -33,18 +35,11 @@ module machine_harness #(
     input wire steps_step_x, input wire steps_step_y, input wire steps_dir_x, input wire steps_dir_y,
     input wire [6:0] machine_in
 );
-    wire [31:0] l_rdata;
-    wire l_ready, l_retry, l_room, irq, core_clear;
-    wire dda_start, dda_line, dda_ccw, dda_blend, dda_advance;
-    wire [1:0] dda_variant;
-    wire [4:0] dda_lambda_shift, dda_acc_bits;
-    wire [COORD_WIDTH-1:0] dda_xs, dda_ys, dda_xe, dda_ye;
-    wire pins_step_x, pins_dir_x, pins_step_y, pins_dir_y, pins_drive_enable;
+`include "regs_offsets.vh"
+`include "regs_fifo_env.vh"
+    wire pins_drive_enable;
     // exposed registers and ports of the units
-    wire fifo_pop, fifo_flush, set_strobe, direct_request_x, direct_request_y;
-    wire [3:0] set_index;
-    wire [31:0] set_value;
-    wire guard_stopped, guard_stopping, settled;
+    wire guard_stopping, settled;
     wire [6:0] conditioning_active;
     wire [1:0] machine_guard0_guard_reason;
     wire [3:0] machine_guard0_guard_limits;
@@ -66,27 +61,9 @@ module machine_harness #(
     wire pulse_out0_pulse_x, pulse_out0_pulse_y;
 
     regs_fifo dut (
-        .clock(clock), .reset(reset_n), .irq(irq), .core_clear(core_clear),
-        .local_space(l_space), .local_addr(l_addr), .local_be(l_be), .local_wdata(l_wdata),
-        .local_we(l_we), .local_re(l_re), .local_write(l_write), .local_rdata(l_rdata),
-        .local_ready(l_ready), .local_retry(l_retry),
-`ifdef LOCAL_ROOM
-        .local_room(l_room),
-`endif
-        .dda_start(dda_start), .dda_line(dda_line), .dda_variant(dda_variant),
-        .dda_lambda_shift(dda_lambda_shift), .dda_acc_bits(dda_acc_bits), .dda_ccw(dda_ccw),
-        .dda_blend(dda_blend), .dda_xs(dda_xs), .dda_ys(dda_ys), .dda_xe(dda_xe), .dda_ye(dda_ye),
-        .dda_advance(dda_advance), .dda_busy(dda_busy), .dda_done(dda_done), .dda_error(dda_error),
-        .dda_quadrant(dda_quadrant), .dda_ready(dda_ready), .dda_stop_left(dda_stop_left),
-        .steps_step_x(steps_step_x), .steps_step_y(steps_step_y), .steps_dir_x(steps_dir_x),
-        .steps_dir_y(steps_dir_y), .pins_step_x(pins_step_x), .pins_dir_x(pins_dir_x),
-        .pins_step_y(pins_step_y), .pins_dir_y(pins_dir_y), .pins_drive_enable(pins_drive_enable),
-        .pins_estop(machine_in[0]), .pins_limit_pos_x(machine_in[1]), .pins_limit_neg_x(machine_in[2]),
-        .pins_limit_pos_y(machine_in[3]), .pins_limit_neg_y(machine_in[4]), .pins_home_x(machine_in[5]),
-        .pins_home_y(machine_in[6]),
-        .fifo_pop(fifo_pop), .fifo_flush(fifo_flush), .set_strobe(set_strobe), .set_index(set_index),
-        .set_value(set_value), .direct_request_x(direct_request_x), .direct_request_y(direct_request_y),
-        .guard_stopped(guard_stopped), .guard_stopping(guard_stopping), .settled(settled),
+`include "regs_fifo_ports.vh"
+        , .pins_drive_enable(pins_drive_enable),
+        .guard_stopping(guard_stopping), .settled(settled),
         .conditioning_active(conditioning_active), .machine_guard0_guard_reason(machine_guard0_guard_reason),
         .machine_guard0_guard_limits(machine_guard0_guard_limits), .feed_rate0_rate(feed_rate0_rate),
         .homing0_state(homing0_state), .homing0_axis(homing0_axis), .homing0_refused(homing0_refused),
@@ -106,54 +83,20 @@ module machine_harness #(
         .io_written(io_written), .direct_pulse0_pending(direct_pulse0_pending),
         .direct_pulse1_pending(direct_pulse1_pending), .watchdog_left(watchdog_left));
 
-    reg started = 0;
-    always @(posedge clock) started <= 1;
-    always @(*) if (!started) assume(!reset_n);
-
-    local_bus_rules #(.CHECK_REQUESTER(0), .ADDR_WIDTH(16)) bus (
-        .clock(clock), .reset_n(reset_n), .space(l_space), .addr(l_addr), .be(l_be),
-        .wdata(l_wdata), .we(l_we), .re(l_re), .write(l_write), .ready(l_ready), .retry(l_retry),
-        .room(l_room), .promised(promised));
-    wire [2:0] promised;
-`ifndef LOCAL_ROOM
-    assign l_room = 1'b0;
-`endif
-
     // ------------------------------------------------------------ environment
-    wire read_now = l_re && l_ready && !l_space;
-    wire io_write_now = l_we && l_ready && !l_space;
-    reg stage_write = 0;
-    reg [15:0] stage_addr = 0;
-    reg [31:0] stage_data = 0, stage_mask = 0;
-    always @(posedge clock) begin
-        stage_write <= reset_n && io_write_now;
-        stage_addr <= l_addr;
-        stage_data <= l_wdata;
-        stage_mask <= {{8{l_be[3]}}, {8{l_be[2]}}, {8{l_be[1]}}, {8{l_be[0]}}};
-    end
-`include "regs_table.vh"
     always @(*) begin
         // the inputs' conditioning as reset: the reaction times of docs/machine.md
-        assume(!(l_we && !l_space && (l_addr == 16'h006C || l_addr == 16'h0070 || l_addr == 16'h0074)));
+        assume(!(l_we && !l_space && (l_addr == REG_INPUT_POLARITY || l_addr == REG_INPUT_FILTER || l_addr == REG_INPUT_TICK)));
         // the STEP pins' rules here are those of step/dir mode, STEP_MODE's reset
-        assume(!(l_we && !l_space && l_addr == 16'h0098));
-        if (l_we && !l_space && l_addr == 16'h0078) assume(l_be == 4'hF);
+        assume(!(l_we && !l_space && l_addr == REG_STEP_MODE));
+        if (l_we && !l_space && l_addr == REG_WATCHDOG) assume(l_be == 4'hF);
 `ifdef WATCHDOG_SMALL
-        if (l_we && !l_space && l_addr == 16'h0078) assume(l_wdata < `WATCHDOG_SMALL);
+        if (l_we && !l_space && l_addr == REG_WATCHDOG) assume(l_wdata < `WATCHDOG_SMALL);
 `endif
     end
-    // the interpolator (rtl/dda_arc.py): busy only after a start until core_clear,
-    // steps only while busy and only in the clock after an `advance` (a feed tick)
-    reg dda_started = 0, p_advance = 0;
-    always @(posedge clock) begin
-        p_advance <= dda_advance;
-        if (!reset_n || core_clear) dda_started <= 0;
-        else if (dda_start) dda_started <= 1;
-    end
-    always @(*) begin
-        if (!dda_started) assume(!dda_busy);
-        if (!dda_busy || !p_advance) assume(!steps_step_x && !steps_step_y);
-    end
+    // the interpolator (regs_fifo_env.vh) steps only in the clock after an
+    // `advance` (a feed tick)
+    always @(*) if (!p_advance) assume(!steps_step_x && !steps_step_y);
 `ifdef PATH_ONLY
     // the hold acts on the path only (direct pulses run on: docs/machine.md)
     always @(*) assume(!direct_request_x && !direct_request_y);
@@ -174,16 +117,14 @@ module machine_harness #(
     end
     wire rise_x = pins_step_x && !p_step_x, rise_y = pins_step_y && !p_step_y;
     wire stop_rose = guard_stopped && !p_stopped;
-    reg past_reset = 0;         // a clock out of reset: the p_* registers are valid
-    always @(posedge clock) past_reset <= reset_n;
-    wire judged = reset_n && past_reset;
 
     // a MACHINE_CONTROL write of DRIVE_ENABLE = 1 taken by the register (the
     // clock after its stage) since the card was last stopped (md_*)
     reg rearmed = 0;
     always @(posedge clock) begin
         if (!reset_n || guard_stopped) rearmed <= 0;
-        else if (stage_write && stage_addr == 16'h0060 && stage_data[0] && stage_mask[0]) rearmed <= 1;
+        else if (stage_write && stage_addr == REG_MACHINE_CONTROL
+                 && stage_data[MACHINE_CONTROL_DRIVE_ENABLE_LSB] && stage_mask[MACHINE_CONTROL_DRIVE_ENABLE_LSB]) rearmed <= 1;
     end
 
     // helper invariants (k-induction): the unit's RAMP_STEP and
@@ -291,7 +232,7 @@ module machine_harness #(
         if (!reset_n) begin
             wd_armed <= 0; wd_quiet <= 0; wd_elapsed <= 0; prev_armed <= 0;
         end else begin
-            if (io_write_now && l_addr == 16'h0078) begin
+            if (io_write_now && l_addr == REG_WATCHDOG) begin
                 wd_armed <= l_wdata[23:0] != 0; wd_timeout <= l_wdata[23:0]; wd_elapsed <= 0;
                 wd_quiet <= !guard_stopped && !guard_stopping; wd_fired <= 0;
                 prev_armed <= wd_armed; prev_timeout <= wd_timeout; prev_elapsed <= wd_elapsed + 1;
@@ -359,7 +300,7 @@ module machine_harness #(
     reg [31:0] wd_stage_value = 0, wd_loaded_value = 0;
     reg wd_stage = 0, wd_loaded = 0;
     always @(posedge clock) begin
-        wd_stage <= reset_n && stage_write && stage_addr == 16'h0078;
+        wd_stage <= reset_n && stage_write && stage_addr == REG_WATCHDOG;
         wd_stage_value <= stage_data;
         wd_loaded <= reset_n && wd_stage;
         wd_loaded_value <= wd_stage_value;
@@ -374,14 +315,11 @@ module machine_harness #(
     localparam HOME_IDLE = 3'd0, HOME_RELEASE = 3'd4;
     // the HOME write reaches the register (its strobe) the clock after its stage
     reg home_strobe = 0;
-    always @(posedge clock) home_strobe <= reset_n && stage_write && stage_addr == 16'h007C;
+    always @(posedge clock) home_strobe <= reset_n && stage_write && stage_addr == REG_HOME;
     reg p_home_strobe = 0, zeroed = 0, p_not_found = 0, p_not_idle = 0;
     reg [2:0] p_home_state = 0;
-    // FIFO words the sequencer has not taken (a command queued)
-    reg [10:0] level = 0;
-    wire push = l_we && l_ready && l_space && l_be != 4'h0;
+    // (level, regs_fifo_env.vh: FIFO words the sequencer has not taken, a command queued)
     always @(posedge clock) begin
-        level <= (!reset_n || fifo_flush) ? 11'd0 : level + push - (fifo_pop && level != 0);
         p_home_strobe <= home_strobe; p_home_state <= homing0_state; p_not_found <= homing0_not_found;
         p_not_idle <= guard_stopped || conditioning_active[0] || homing0_state != HOME_IDLE || level != 0
                       || pins_step_x || pins_step_y;

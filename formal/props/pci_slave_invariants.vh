@@ -51,8 +51,7 @@
             inv_direction: assert(i_is_read == !txn_write);
             inv_kind: assert(i_is_config == txn_config && i_space_mem == (!txn_config && !txn_regs));
             inv_first_phase: assert(i_first_phase == (txn_transfers == 0));
-            inv_claimed_command: assert(txn_config || txn_io || txn_command == 4'h6 || txn_command == 4'h7
-                                        || txn_command == 4'hC || txn_command == 4'hE || txn_command == 4'hF);
+            inv_claimed_command: assert(txn_config || txn_io || memory_command(txn_command));
             inv_burst_inside_bar: assert(txn_config || txn_regs ? txn_transfers <= 1
                                          : {1'b0, txn_address[MEM_BITS-1:2]} + txn_transfers <= MEM_LAST + 1);
             inv_phase_address: assert(i_phase_addr == (txn_config ? i_config_dword : phase_dword));

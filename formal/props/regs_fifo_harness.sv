@@ -19,7 +19,10 @@
 //     POS_X counting the STEP pulses.
 // The consumer side of the FIFO (the sequencer's pop, the flush) and the SET
 // command's write port are registers inside the unit: yosys `expose` makes
-// them ports, so the generated file is read unchanged.
+// them ports, so the generated file is read unchanged.  The environment
+// (requester, register stage and models, FIFO level, interpolator) and the
+// unit's common ports are machine_harness.sv's too: regs_fifo_env.vh,
+// regs_fifo_ports.vh.
 `default_nettype none
 
 module regs_fifo_harness #(
@@ -39,17 +42,9 @@ module regs_fifo_harness #(
     // of the command shadow: follow the command whose header arrives now
     input wire choose_push, input wire choose_command
 );
-    wire [31:0] l_rdata;
-    wire l_ready, l_retry, l_room, irq, core_clear;
-    wire dda_start, dda_line, dda_ccw, dda_blend, dda_advance;
-    wire [1:0] dda_variant;
-    wire [4:0] dda_lambda_shift, dda_acc_bits;
-    wire [COORD_WIDTH-1:0] dda_xs, dda_ys, dda_xe, dda_ye;
-    wire pins_step_x, pins_dir_x, pins_step_y, pins_dir_y;
-    // exposed registers of the unit
-    wire fifo_pop, fifo_flush, set_strobe, direct_request_x, direct_request_y, guard_stopped;
-    wire [3:0] set_index;
-    wire [31:0] set_value, fifo_dout;
+`include "regs_offsets.vh"
+`include "isa_table.vh"
+    wire [31:0] fifo_dout;      // exposed: the FIFO's output register
 
     // The machine inputs (E-STOP, limits, home): free, or with
     // MACHINE_RUNNING at rest, with their polarity and the watchdog left as
@@ -60,33 +55,17 @@ module regs_fifo_harness #(
     // running machine (docs/machine.md for the stops, the hold and homing).
 `ifdef MACHINE_RUNNING
     wire [6:0] machine_in = 7'd0;
-    always @(*) assume(!(l_we && !l_space && (l_addr == 16'h006C || l_addr == 16'h0078 || l_addr == 16'h007C)));
-    always @(*) assume(!(l_we && !l_space && l_addr == 16'h0060 && l_be[0] && l_wdata[1]));
+    always @(*) assume(!(l_we && !l_space && (l_addr == REG_INPUT_POLARITY || l_addr == REG_WATCHDOG || l_addr == REG_HOME)));
+    always @(*) assume(!(l_we && !l_space && l_addr == REG_MACHINE_CONTROL && l_be[0] && l_wdata[MACHINE_CONTROL_HOLD_LSB]));
 `else
     (* anyseq *) wire [6:0] machine_in;
 `endif
 
+`include "regs_fifo_env.vh"
+
     regs_fifo dut (
-        .clock(clock), .reset(reset_n), .irq(irq), .core_clear(core_clear),
-        .local_space(l_space), .local_addr(l_addr), .local_be(l_be), .local_wdata(l_wdata),
-        .local_we(l_we), .local_re(l_re), .local_write(l_write), .local_rdata(l_rdata),
-        .local_ready(l_ready), .local_retry(l_retry),
-`ifdef LOCAL_ROOM
-        .local_room(l_room),
-`endif
-        .dda_start(dda_start), .dda_line(dda_line), .dda_variant(dda_variant),
-        .dda_lambda_shift(dda_lambda_shift), .dda_acc_bits(dda_acc_bits), .dda_ccw(dda_ccw),
-        .dda_blend(dda_blend), .dda_xs(dda_xs), .dda_ys(dda_ys), .dda_xe(dda_xe), .dda_ye(dda_ye),
-        .dda_advance(dda_advance), .dda_busy(dda_busy), .dda_done(dda_done), .dda_error(dda_error),
-        .dda_quadrant(dda_quadrant), .dda_ready(dda_ready), .dda_stop_left(dda_stop_left),
-        .steps_step_x(steps_step_x), .steps_step_y(steps_step_y), .steps_dir_x(steps_dir_x),
-        .steps_dir_y(steps_dir_y), .pins_step_x(pins_step_x), .pins_dir_x(pins_dir_x),
-        .pins_step_y(pins_step_y), .pins_dir_y(pins_dir_y), .pins_estop(machine_in[0]),
-        .pins_limit_pos_x(machine_in[1]), .pins_limit_neg_x(machine_in[2]), .pins_limit_pos_y(machine_in[3]),
-        .pins_limit_neg_y(machine_in[4]), .pins_home_x(machine_in[5]), .pins_home_y(machine_in[6]),
-        .fifo_pop(fifo_pop), .fifo_flush(fifo_flush), .fifo_dout(fifo_dout),
-        .set_strobe(set_strobe), .set_index(set_index), .set_value(set_value),
-        .direct_request_x(direct_request_x), .direct_request_y(direct_request_y), .guard_stopped(guard_stopped)
+`include "regs_fifo_ports.vh"
+        , .fifo_dout(fifo_dout)
 `ifdef REGS_FIFO_INVARIANTS
         , .sync_fifo0_count(sync_fifo0_count), .sync_fifo0_is_empty(sync_fifo0_is_empty),
 `ifdef LOCAL_ROOM
@@ -104,34 +83,10 @@ module regs_fifo_harness #(
     wire sync_fifo0_free_beyond;
 `endif
 
-    reg started = 0;
-    always @(posedge clock) started <= 1;
-    always @(*) if (!started) assume(!reset_n);
-
-    local_bus_rules #(.CHECK_REQUESTER(0), .ADDR_WIDTH(16)) bus (
-        .clock(clock), .reset_n(reset_n), .space(l_space), .addr(l_addr), .be(l_be),
-        .wdata(l_wdata), .we(l_we), .re(l_re), .write(l_write), .ready(l_ready), .retry(l_retry),
-        .room(l_room), .promised(promised));
-    wire [2:0] promised;
-`ifndef LOCAL_ROOM
-    assign l_room = 1'b0;
-`endif
-
     // ------------------------------------------------------------ register access
-    wire read_now = l_re && l_ready && !l_space;
-    wire io_write_now = l_we && l_ready && !l_space;
     // a register read asked in the last clock, not in the clock after an I/O write
     reg read_asked = 0;
     always @(posedge clock) read_asked <= reset_n && l_re && !l_space && !l_ready && !stage_write;
-    reg stage_write = 0;
-    reg [15:0] stage_addr = 0;
-    reg [31:0] stage_data = 0, stage_mask = 0;
-    always @(posedge clock) begin
-        stage_write <= reset_n && io_write_now;
-        stage_addr <= l_addr;
-        stage_data <= l_wdata;
-        stage_mask <= {{8{l_be[3]}}, {8{l_be[2]}}, {8{l_be[1]}}, {8{l_be[0]}}};
-    end
     always @(posedge clock) if (reset_n) begin
         if ((l_we || l_re) && !l_space) begin
             rf_registers_never_retry: assert(!l_retry);
@@ -139,29 +94,20 @@ module regs_fifo_harness #(
             if (l_re) begin rf_registers_read_after_one_wait: assert(l_ready == read_asked); end
         end
     end
-`include "regs_table.vh"
 
     // ------------------------------------------------------------ the FIFO
-    wire push = l_we && l_ready && l_space && l_be != 4'h0;
-    reg [10:0] level = 0;       // words the bus pushed and the sequencer has not taken
-    wire pop = fifo_pop && level != 0;
+    // (level, push, pop: regs_fifo_env.vh)
     reg [10:0] level_read = 0;  // a read returns STATUS of its wait clock
-    always @(posedge clock) begin
-        if (!reset_n || fifo_flush)
-            level <= 0;
-        else
-            level <= level + push - pop;
-        level_read <= level;
-    end
+    always @(posedge clock) level_read <= level;
     always @(posedge clock) if (reset_n) begin
         rf_level_at_most_depth: assert(level <= DEPTH);
         if (push) begin rf_push_only_with_room: assert(level < DEPTH || pop); end
         if (push) begin rf_push_not_flushed: assert(!fifo_flush); end
         if (l_we && l_space && !stage_write) begin rf_full_answers_retry: assert(l_retry == (level == DEPTH) && l_ready == !l_retry); end
-        if (read_now && l_addr == 16'h000C) begin
-            rf_status_level: assert(l_rdata[31:16] == level_read);
-            rf_status_empty: assert(l_rdata[8] == (level_read == 0));
-            rf_status_full: assert(l_rdata[9] == (level_read == DEPTH));
+        if (read_now && l_addr == REG_STATUS) begin
+            rf_status_level: assert(l_rdata[STATUS_FIFO_LEVEL_LSB +: STATUS_FIFO_LEVEL_WIDTH] == level_read);
+            rf_status_empty: assert(l_rdata[STATUS_FIFO_EMPTY_LSB] == (level_read == 0));
+            rf_status_full: assert(l_rdata[STATUS_FIFO_FULL_LSB] == (level_read == DEPTH));
         end
     end
 
@@ -211,9 +157,9 @@ module regs_fifo_harness #(
     reg [31:0] picked_header = 0, picked_0 = 0, picked_1 = 0, picked_2 = 0, picked_3 = 0;
     reg [4:0] moves_before_dwell = 0, sets_before_dwell = 0;
     reg [31:0] dwell_elapsed = 0;       // clocks since the picked command's last word arrived
-    wire [3:0] arriving_opcode = fifo_dout[31:28];
+    wire [3:0] arriving_opcode = fifo_dout[31:OPCODE_LSB];
     wire header_in = word_in && words_left == 0 && !framing_lost;
-    wire is_move = arriving_opcode == 4'h1 || arriving_opcode == 4'h2;
+    wire is_move = arriving_opcode == OPCODE_LINE || arriving_opcode == OPCODE_ARC;
     always @(posedge clock) begin
         word_in <= reset_n && !fifo_flush && pop;
         if (!reset_n || fifo_flush) begin
@@ -221,16 +167,11 @@ module regs_fifo_harness #(
             moves_seen <= 0; moves_started <= 0; sets_seen <= 0; sets_done <= 0;
         end else begin
             if (header_in) begin
-                case (arriving_opcode)
-                    4'h1, 4'h3: words_left <= 2;       // LINE, PULSE
-                    4'h2: words_left <= 4;             // ARC
-                    4'h4, 4'h5: words_left <= 1;       // SET, DWELL
-                    4'h6: words_left <= 0;             // MARK
-                    default: framing_lost <= 1;
-                endcase
+                if (opcode_known(arriving_opcode)) words_left <= operand_words(arriving_opcode);
+                else framing_lost <= 1;
                 if (is_move) moves_seen <= moves_seen + 1;
-                if (arriving_opcode == 4'h4) sets_seen <= sets_seen + 1;
-                if (choose_command && !picked && (is_move || arriving_opcode == 4'h4 || arriving_opcode == 4'h5)) begin
+                if (arriving_opcode == OPCODE_SET) sets_seen <= sets_seen + 1;
+                if (choose_command && !picked && (is_move || arriving_opcode == OPCODE_SET || arriving_opcode == OPCODE_DWELL)) begin
                     picked <= 1;
                     moves_before_dwell <= moves_seen;
                     sets_before_dwell <= sets_seen;
@@ -257,50 +198,38 @@ module regs_fifo_harness #(
             if (set_strobe) sets_done <= sets_done + 1;
         end
     end
-    wire picked_starts = picked && picked_opcode != 4'h4 && dda_start && moves_started == picked_number;
-    wire picked_sets = picked && picked_opcode == 4'h4 && set_strobe && sets_done == picked_number;
+    wire picked_starts = picked && picked_opcode != OPCODE_SET && dda_start && moves_started == picked_number;
+    wire picked_sets = picked && picked_opcode == OPCODE_SET && set_strobe && sets_done == picked_number;
     always @(posedge clock) if (reset_n) begin
         if (dda_start) begin cmd_start_for_a_move: assert(moves_started < moves_seen); end
         if (set_strobe) begin cmd_set_for_a_set: assert(sets_done < sets_seen); end
         if (picked_starts) begin
-            cmd_move_as_written: assert(picked_whole && dda_line == (picked_opcode == 4'h1)
-                && dda_blend == picked_header[16]
-                && (picked_opcode == 4'h1
+            cmd_move_as_written: assert(picked_whole && dda_line == (picked_opcode == OPCODE_LINE)
+                && dda_blend == picked_header[LINE_BLEND_LSB]   // BLEND: one field of LINE and ARC
+                && (picked_opcode == OPCODE_LINE
                     ? dda_xs == 0 && dda_ys == 0 && dda_xe == picked_0[COORD_WIDTH-1:0]
                       && dda_ye == picked_1[COORD_WIDTH-1:0]
-                    : dda_ccw == picked_header[0] && dda_variant == picked_header[2:1]
-                      && dda_lambda_shift == picked_header[7:3] && dda_acc_bits == picked_header[12:8]
+                    : dda_ccw == picked_header[ARC_CCW_LSB]
+                      && dda_variant == picked_header[ARC_VARIANT_LSB +: ARC_VARIANT_WIDTH]
+                      && dda_lambda_shift == picked_header[ARC_LAMBDA_LSB +: ARC_LAMBDA_WIDTH]
+                      && dda_acc_bits == picked_header[ARC_ACC_BITS_LSB +: ARC_ACC_BITS_WIDTH]
                       && dda_xs == picked_0[COORD_WIDTH-1:0] && dda_ys == picked_1[COORD_WIDTH-1:0]
                       && dda_xe == picked_2[COORD_WIDTH-1:0] && dda_ye == picked_3[COORD_WIDTH-1:0]));
         end
         // DWELL n: nothing after it executes within n clocks of its operand
-        if (picked && picked_opcode == 4'h5 && ((dda_start && moves_started >= moves_before_dwell)
+        if (picked && picked_opcode == OPCODE_DWELL && ((dda_start && moves_started >= moves_before_dwell)
                                                 || (set_strobe && sets_done >= sets_before_dwell))) begin
             cmd_dwell_waits: assert(picked_whole && dwell_elapsed >= picked_0);
         end
         if (picked_sets) begin
-            cmd_set_as_written: assert(picked_whole && set_index == picked_header[3:0] && set_value == picked_0);
+            cmd_set_as_written: assert(picked_whole && set_index == picked_header[SET_INDEX_LSB +: SET_INDEX_WIDTH] && set_value == picked_0);
         end
     end
 `ifdef COMMANDS_WITHOUT_CLEAR
     // execution resumes after CLEAR_ERROR with the command after the bad one:
     // the counts above assume no COMMAND write (soft reset, clear error)
-    always @(*) assume(!(l_we && !l_space && l_addr == 16'h0008));
+    always @(*) assume(!(l_we && !l_space && l_addr == REG_COMMAND));
 `endif
-    // ------------------------------------------------------------ the interpolator
-    // rtl/dda_arc.py: busy only from a start until its reset (core_clear
-    // resets it in the next clock), steps only while busy
-    reg dda_started = 0;
-    always @(posedge clock) begin
-        if (!reset_n || core_clear)
-            dda_started <= 0;
-        else if (dda_start)
-            dda_started <= 1;
-    end
-    always @(*) begin
-        if (!dda_started) assume(!dda_busy);
-        if (!dda_busy) assume(!steps_step_x && !steps_step_y);
-    end
     // ------------------------------------------------------------ pulse outputs
     // STEP high for at least STEP_WIDTH clocks and low for at least STEP_SPACE;
     // DIR stable DIR_SETUP clocks before a STEP leading edge and DIR_HOLD
@@ -330,19 +259,20 @@ module regs_fifo_harness #(
     always @(posedge clock) begin
         p_pins_step_x <= pins_step_x;
         p_polarity <= model_dir_polarity;
-        clear_position_due <= reset_n && stage_write && stage_addr == 16'h0008 && stage_data[2] && stage_mask[2];
+        clear_position_due <= reset_n && stage_write && stage_addr == REG_COMMAND
+                              && stage_data[COMMAND_CLEAR_POSITION_LSB] && stage_mask[COMMAND_CLEAR_POSITION_LSB];
         cleared_position <= !reset_n || clear_position_due;
         position_x <= (!reset_n || clear_position_due) ? 32'd0 : position_x_now;
         position_x_read <= position_x_now;
     end
-    always @(posedge clock) if (reset_n && read_now && l_addr == 16'h0020) begin
+    always @(posedge clock) if (reset_n && read_now && l_addr == REG_POS_X) begin
         pulse_position_x: assert(l_rdata == position_x_read);
     end
 `ifdef POSITION_WITHOUT_HOMING
     // HOME zeroes the homed axis's position where its filtered switch
     // releases (docs/machine.md), which this model does not follow: no HOME
     // (0x7C) here; sim/card/test_homing.py checks the zeroing
-    always @(*) assume(!(l_we && !l_space && l_addr == 16'h007C));
+    always @(*) assume(!(l_we && !l_space && l_addr == REG_HOME));
 `endif
 `ifdef DIRECT_COUNTS
     // direct mode (docs/registers.md): a PULSE_COUNT_X write of a signed n
@@ -352,8 +282,8 @@ module regs_fifo_harness #(
     // write.  With MACHINE_RUNNING nothing halts the card and no HOME takes
     // the pulses.
     direct_count_rules x_direct (.clock(clock), .reset_n(reset_n),
-        .drop(!model_control[1] || (stage_write && stage_addr == 16'h0008)),
-        .count_write(stage_write && stage_addr == 16'h004C), .judge(stage_mask == 32'hFFFFFFFF),
+        .drop(!model_control[CONTROL_MODE_LSB] || (stage_write && stage_addr == REG_COMMAND)),
+        .count_write(stage_write && stage_addr == REG_PULSE_COUNT_X), .judge(stage_mask == 32'hFFFFFFFF),
         .count(stage_data), .request(direct_request_x));
 `endif
 `ifdef PULSE_PACED
@@ -364,13 +294,11 @@ module regs_fifo_harness #(
     // while the queue has room: rtl/dda_arc.py), the timing stays as reset
     // (no SET of STEP_WIDTH, DIR_SETUP, DIR_HOLD, STEP_SPACE), nothing drops the queue
     // (no COMMAND write)
-    reg p_advance = 0;
-    always @(posedge clock) p_advance <= dda_advance;
     always @(*) begin
         if (!p_advance) assume(!steps_step_x && !steps_step_y);
-        assume(!(set_strobe && (set_index == 4'd3 || set_index == 4'd4 || set_index == 4'd5
-                                || set_index == 4'd8)));
-        assume(!(l_we && !l_space && l_addr == 16'h0008));
+        assume(!(set_strobe && (set_index == SET_STEP_WIDTH || set_index == SET_DIR_SETUP || set_index == SET_DIR_HOLD
+                                || set_index == SET_STEP_SPACE)));
+        assume(!(l_we && !l_space && l_addr == REG_COMMAND));
     end
     wire [9:0] step_period = model_step_width + model_step_space + model_dir_setup + model_dir_hold
                              + `PULSE_QUEUE_CLOCKS;
@@ -383,19 +311,19 @@ module regs_fifo_harness #(
     // the host sets the pulse timing between moves (SET, which waits until the
     // outputs are idle) and the DIR polarity before: no bus write of
     // STEP_WIDTH, DIR_SETUP, DIR_HOLD, DIR_POLARITY, STEP_SPACE
-    always @(*) assume(!(l_we && !l_space && (l_addr == 16'h0034 || l_addr == 16'h0038
-                                               || l_addr == 16'h003C || l_addr == 16'h0040
-                                               || l_addr == 16'h0094)));
+    always @(*) assume(!(l_we && !l_space && (l_addr == REG_STEP_WIDTH || l_addr == REG_DIR_SETUP
+                                               || l_addr == REG_DIR_HOLD || l_addr == REG_DIR_POLARITY
+                                               || l_addr == REG_STEP_SPACE)));
 `endif
     // a SET of a timing register waits until the outputs are quiet and never
     // changes a pulse under way (docs/instructions.md): it leaves nothing
     // unjudged, each interval keeps the setting in force when it began
-    wire timing_written = stage_write && (stage_addr == 16'h0034 || stage_addr == 16'h0038
-                                          || stage_addr == 16'h003C || stage_addr == 16'h0094);
+    wire timing_written = stage_write && (stage_addr == REG_STEP_WIDTH || stage_addr == REG_DIR_SETUP
+                                          || stage_addr == REG_DIR_HOLD || stage_addr == REG_STEP_SPACE);
 `ifndef STEP_MODES_FREE
     // the pins' rules here are those of step/dir mode, STEP_MODE's reset: no
     // bus write of STEP_MODE (the other modes: sim/card/test_card_units.py)
-    always @(*) assume(!(l_we && !l_space && l_addr == 16'h0098));
+    always @(*) assume(!(l_we && !l_space && l_addr == REG_STEP_MODE));
 `endif
 `ifdef REGS_FIFO_INVARIANTS
 `include "regs_fifo_invariants.vh"

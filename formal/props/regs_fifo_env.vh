@@ -1,0 +1,70 @@
+// The environment of gen/regs_fifo.v that regs_fifo_harness.sv and
+// machine_harness.sv share (included before the unit's instance, whose
+// common ports are regs_fifo_ports.vh):
+//   * the unit's outputs and the registers both harnesses expose;
+//   * RST# in the first clock (harness_reset.vh);
+//   * a free requester kept to the LocalBus rules (local_bus_rules.sv,
+//     CHECK_REQUESTER = 0: the back end's answers asserted, `lb_*`);
+//   * the register write of the last clock (`stage_*`: a register takes a
+//     bus write one clock after the transfer, rtl/regs_fifo.py) and the
+//     register models generated from the table (regs_table.vh);
+//   * the FIFO level: words the bus pushed (a memory-space write answered
+//     ready with a byte enabled) and the sequencer has not taken;
+//   * a free interpolator on the DDA port, busy only from a start until its
+//     reset (core_clear resets it in the next clock), stepping only while
+//     busy (rtl/dda_arc.py); `p_advance`: an `advance` (a feed tick) in the
+//     last clock, for the harnesses that step only after one.
+    wire [31:0] l_rdata;
+    wire l_ready, l_retry, l_room, irq, core_clear;
+    wire dda_start, dda_line, dda_ccw, dda_blend, dda_advance;
+    wire [1:0] dda_variant;
+    wire [4:0] dda_lambda_shift, dda_acc_bits;
+    wire [COORD_WIDTH-1:0] dda_xs, dda_ys, dda_xe, dda_ye;
+    wire pins_step_x, pins_dir_x, pins_step_y, pins_dir_y;
+    // exposed registers of the unit
+    wire fifo_pop, fifo_flush, set_strobe, direct_request_x, direct_request_y, guard_stopped;
+    wire [3:0] set_index;
+    wire [31:0] set_value;
+
+`include "harness_reset.vh"
+
+    local_bus_rules #(.CHECK_REQUESTER(0), .ADDR_WIDTH(16)) bus (
+        .clock(clock), .reset_n(reset_n), .space(l_space), .addr(l_addr), .be(l_be),
+        .wdata(l_wdata), .we(l_we), .re(l_re), .write(l_write), .ready(l_ready), .retry(l_retry),
+        .room(l_room), .promised(promised));
+    wire [2:0] promised;
+`ifndef LOCAL_ROOM
+    assign l_room = 1'b0;
+`endif
+
+    // ------------------------------------------------------------ register access
+    wire read_now = l_re && l_ready && !l_space;
+    wire io_write_now = l_we && l_ready && !l_space;
+    reg stage_write = 0;
+    reg [15:0] stage_addr = 0;
+    reg [31:0] stage_data = 0, stage_mask = 0;
+    always @(posedge clock) begin
+        stage_write <= reset_n && io_write_now;
+        stage_addr <= l_addr;
+        stage_data <= l_wdata;
+        stage_mask <= {{8{l_be[3]}}, {8{l_be[2]}}, {8{l_be[1]}}, {8{l_be[0]}}};
+    end
+`include "regs_table.vh"
+
+    // ------------------------------------------------------------ the FIFO level
+    wire push = l_we && l_ready && l_space && l_be != 4'h0;
+    reg [10:0] level = 0;       // words the bus pushed and the sequencer has not taken
+    wire pop = fifo_pop && level != 0;
+    always @(posedge clock) level <= (!reset_n || fifo_flush) ? 11'd0 : level + push - pop;
+
+    // ------------------------------------------------------------ the interpolator
+    reg dda_started = 0, p_advance = 0;
+    always @(posedge clock) begin
+        p_advance <= dda_advance;
+        if (!reset_n || core_clear) dda_started <= 0;
+        else if (dda_start) dda_started <= 1;
+    end
+    always @(*) begin
+        if (!dda_started) assume(!dda_busy);
+        if (!dda_busy) assume(!steps_step_x && !steps_step_y);
+    end
