@@ -21,8 +21,7 @@ import tempfile
 from pathlib import Path
 
 from bench.linuxcnc_servo import ROOT, as_user
-from models import instructions as isa
-from models import registers as regmap
+from models.commands import SetCommand, decode_words
 
 CLOCK_HZ = 33_333_333
 PAIRS = ((1000, 1000), (2000, 2000), (5000, 1000), (1000, 5000), (7650, 500), (300, 300))
@@ -52,15 +51,8 @@ def script(socket):
 
 def starts(record):
     """[(clock of the start's burst, planned iteration clocks)] from the FEED_RATE SETs."""
-    found, set_op = [], isa.BY_NAME["SET"]
-    for clock, words in record["fifo"]:
-        i = 0
-        while i < len(words):
-            op = isa.BY_CODE[words[i] >> isa.OPCODE_LSB]
-            if op is set_op and words[i] & 0xF == regmap.register("FEED_RATE").set_index:
-                found.append((clock, 65536 // words[i + 1]))
-            i += 1 + len(op.operands)
-    return found
+    return [(clock, 65536 // command.value) for clock, words in record["fifo"] for command in decode_words(words)
+            if isinstance(command, SetCommand) and command.register == "FEED_RATE"]
 
 
 def main():

@@ -15,7 +15,8 @@ from collections import Counter
 
 import pytest
 
-from models import instructions as isa
+from models.commands import SetCommand, decode_words
+from models.dda_plan import LineCommand
 from models import registers as regmap
 from tests.linuxcnc.session import PERIOD_CLOCKS, as_user, card_server, missing, one_linuxcnc, run_folder
 
@@ -78,16 +79,9 @@ def note(*pins):
 
 
 def feed_rates(record):
-    """FEED_RATE values the driver SET (docs/instructions.md, SET index 0)."""
-    rates, set_op = [], isa.BY_NAME["SET"]
-    for _, words in record["fifo"]:
-        i = 0
-        while i < len(words):
-            op = isa.BY_CODE[words[i] >> isa.OPCODE_LSB]
-            if op is set_op and words[i] & 0xF == regmap.register("FEED_RATE").set_index:
-                rates.append(words[i + 1])
-            i += 1 + len(op.operands)
-    return rates
+    """FEED_RATE values the driver SET (docs/instructions.md)."""
+    return [command.value for _, words in record["fifo"] for command in decode_words(words)
+            if isinstance(command, SetCommand) and command.register == "FEED_RATE"]
 
 
 STEPS_PER_PERIOD = 50  # maxvel 50000 steps/s at position-scale 1
@@ -267,15 +261,8 @@ AXIS_PINS = (
 
 def lines_after(record, clock):
     """dx of the LINEs queued after ``clock``."""
-    found, line = [], isa.BY_NAME["LINE"]
-    for at, words in record["fifo"]:
-        i = 0
-        while i < len(words):
-            op = isa.BY_CODE[words[i] >> isa.OPCODE_LSB]
-            if op is line and at > clock:
-                found.append(words[i + 1] - (words[i + 1] >> 31 << 32))
-            i += 1 + len(op.operands)
-    return found
+    return [command.dx for at, words in record["fifo"] if at > clock for command in decode_words(words)
+            if isinstance(command, LineCommand)]
 
 
 def test_dir_level_position_reset_and_velocity_mode(linuxcnc_alone):
@@ -287,7 +274,7 @@ def test_dir_level_position_reset_and_velocity_mode(linuxcnc_alone):
     velocity mode (control-type 1) velocity-cmd becomes the same steps every period."""
     run = run_folder()
     output, notes, record = run_script(run, AXIS_PINS)
-    starts = [clock for clock, words in record["fifo"] if words[0] >> isa.OPCODE_LSB == isa.BY_NAME["SET"].code]
+    starts = [clock for clock, words in record["fifo"] if isinstance(decode_words(words)[0], SetCommand)]
     ends = [after for _, after in record["advances"]]
     offsets = {}
     for clock in (r[0] for r in record["rises"] if r[1] and starts[1] < r[0] < starts[2]):
