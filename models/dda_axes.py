@@ -29,7 +29,7 @@ from dataclasses import dataclass, field, replace
 
 from models.axes import AXIS_NAMES, MAX_AXES, XY, names
 from models.dda_build import ALL_VARIANTS
-from models.dda_model import ArcIterator, iterations_left_bound  # noqa: F401
+from models.dda_model import ArcIterator, iterations_left_bound, run_to_end  # noqa: F401
 from models.dda_plan import ArcCommand, AxesLineCommand, LineCommand, check_width
 
 MAX_ITERATIONS = (1 << 32) - 1  # ARC's ITERATIONS operand is an unsigned 32-bit word
@@ -244,10 +244,4 @@ def move_start(command, axes):
 def iterate_axes(command, axes=None, coord_width=24, max_iterations=None, **options):
     """Run ``command`` to its end on a card with ``axes`` axes; its ``AxesPath``."""
     iterator = MoveIterator(command, axes, coord_width, **options)
-    path = AxesPath(move_start(command, iterator.axes))
-    limit = max_iterations or 1 << (coord_width + 12)
-    while not iterator.finished:
-        if len(path.steps) >= limit:
-            raise RuntimeError(f"no end after {limit} iterations")
-        path.steps.append(iterator.step())
-    return path
+    return run_to_end(iterator, AxesPath(move_start(command, iterator.axes)), max_iterations or 1 << (coord_width + 12))

@@ -302,8 +302,12 @@ def iterate(command, coord_width=24, max_iterations=None, **options):
     """Run ``command`` to its end; the ``Path``.  ValueError if rejected."""
     iterator = iterator_for(command, coord_width, **options)
     start = (command.xs, command.ys) if isinstance(command, ArcCommand) else (0, 0)
-    path = Path(start)
-    limit = max_iterations or 1 << (coord_width + 12)
+    return run_to_end(iterator, Path(start), max_iterations or 1 << (coord_width + 12))
+
+
+def run_to_end(iterator, path, limit):
+    """Append ``iterator``'s steps to ``path.steps`` until it finishes; ``path``.
+    RuntimeError after ``limit`` iterations without an end."""
     while not iterator.finished:
         if len(path.steps) >= limit:
             raise RuntimeError(f"no end after {limit} iterations")

@@ -18,7 +18,7 @@ import pytest
 from models.commands import SetCommand, decode_words
 from models.dda_plan import LineCommand
 from models import registers as regmap
-from tests.linuxcnc.session import PERIOD_CLOCKS, as_user, card_server, missing, one_linuxcnc, run_folder
+from tests.linuxcnc.session import PERIOD_CLOCKS, as_user, card_server, missing, run_folder
 
 # one LinuxCNC (or halrun) per host: every such test runs on one xdist worker, in turn
 pytestmark = [pytest.mark.linuxcnc, pytest.mark.xdist_group("linuxcnc"),
@@ -39,12 +39,6 @@ addf dda-card.0.write servo-thread
 start
 """
 S = "dda-card.0.stepgen"
-
-
-@pytest.fixture
-def linuxcnc_alone():
-    with one_linuxcnc():
-        yield
 
 
 def run_script(run, body, *server_options, driver_options=""):

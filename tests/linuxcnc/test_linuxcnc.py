@@ -19,7 +19,7 @@ import pytest
 from host.transports.base import TransportError
 from host.transports.sysfs import find_card
 from tests.linuxcnc.compare import deviations
-from tests.linuxcnc.session import (KEEP_AHEAD, PERIOD_CLOCKS, SCALE, as_user, configure, missing, one_linuxcnc,
+from tests.linuxcnc.session import (KEEP_AHEAD, PERIOD_CLOCKS, SCALE, as_user, configure, missing,
                                     run_folder, run_linuxcnc)
 
 DELAY_PERIODS = KEEP_AHEAD - 1  # the period's command is done at the end of period k + keep_ahead - 1
@@ -28,12 +28,6 @@ STEP_CYCLE_CLOCKS = 4  # the card's step cycle for the sample configuration (200
 # one LinuxCNC per host: every LinuxCNC test runs on one xdist worker, in turn
 pytestmark = [pytest.mark.linuxcnc, pytest.mark.xdist_group("linuxcnc"),
               pytest.mark.skipif(missing() is not None, reason=str(missing()))]
-
-
-@pytest.fixture
-def linuxcnc_alone():
-    with one_linuxcnc():
-        yield
 
 
 def test_without_a_card_the_driver_says_what_the_host_software_says(linuxcnc_alone):

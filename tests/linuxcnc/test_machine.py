@@ -14,7 +14,7 @@ from models import registers as regmap
 from models.sim_machine import MachineConfig, Switch
 from tests.linuxcnc.compare import pin_positions, queued_position
 from tests.linuxcnc.session import (CLOCK_HZ, PERIOD_CLOCKS, SCALE, as_user, card_server, configure, missing,
-                                    one_linuxcnc, run_and_kill, run_folder, run_linuxcnc)
+                                    run_and_kill, run_folder, run_linuxcnc)
 
 # The kill test's watchdog: the card's queue (keep_ahead - 1 periods of steps left after the
 # last ADVANCE, each period's steps at its start) outlasts it by more than a period, wherever
@@ -28,12 +28,6 @@ KILL_AFTER = 1.5  # s into lcnc_kill.ngc (a 3.4 s rapid)
 # one LinuxCNC per host: every LinuxCNC test runs on one xdist worker, in turn
 pytestmark = [pytest.mark.linuxcnc, pytest.mark.xdist_group("linuxcnc"),
               pytest.mark.skipif(missing() is not None, reason=str(missing()))]
-
-
-@pytest.fixture
-def linuxcnc_alone():
-    with one_linuxcnc():
-        yield
 
 
 def _field(register, name, value):
