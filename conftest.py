@@ -1,4 +1,5 @@
-"""Names each test's waveforms after the test (``sim/backends/waves.py``)."""
+"""Names each test's waveforms after the test (``sim/backends/waves.py``); leaves some
+cases of parametrised tests to the slow set (``SLOW_CASES``)."""
 import pytest
 
 from sim.backends import waves
@@ -8,3 +9,64 @@ from sim.backends import waves
 def _waves_named_after_the_test(request):
     with waves.named_after(request.node.nodeid):
         yield
+
+
+# Cases of parametrised tests left to the slow set, by node id, each with why:
+# the default suite keeps one case of each behaviour on each kind of model.
+SLOW_CASES = {
+    "tests/rtl/test_lint.py::test_verilator_lint_is_clean[generic-": "another build of the units gen/ holds",
+    "tests/rtl/test_lint.py::test_verilator_lint_is_clean[ice40-": "another build of the units gen/ holds",
+    "tests/rtl/test_lint.py::test_icarus_compiles[generic-": "another build of the units gen/ holds",
+    "tests/rtl/test_lint.py::test_icarus_compiles[ice40-": "another build of the units gen/ holds",
+    "tests/formal/test_formal.py::test_fast_group_proves[pci_protocol]": "a proof of about 100 s",
+    "tests/formal/test_formal.py::test_fast_group_proves[regs_fifo_table]": "a proof of about 50 s",
+    "tests/formal/test_formal.py::test_fast_group_proves[card_status]": "a proof of over 30 s",
+    "tests/formal/test_formal.py::test_fast_group_proves[card_fifo_order]": "a proof of over 20 s",
+    "tests/formal/test_formal.py::test_fast_group_proves[dda_lines]": "a proof of over 20 s",
+    "tests/formal/test_formal.py::test_dda_defect_is_caught[x_steps_with_y]": "another defect for the same group",
+    "tests/formal/test_formal.py::test_card_defect_is_caught[level_off_by_one]": "another defect for the same group",
+    "tests/formal/test_formal.py::test_machine_defect_is_caught[clear_stop_during_estop]": "one machine defect per rule "
+                                                                                          "family runs by default",
+    "tests/formal/test_formal.py::test_machine_defect_is_caught[zero_while_seeking]": "one machine defect per rule "
+                                                                                     "family runs by default",
+    "tests/formal/test_formal.py::test_machine_defect_is_caught[held_at_any_rate]": "one machine defect per rule "
+                                                                                   "family runs by default",
+    "tests/formal/test_formal.py::test_machine_defect_is_caught[clear_stop_reenergises]": "another defect for "
+                                                                                         "machine_drive",
+    "tests/fpgaflow/test_synth.py::test_routes_and_meets_the_pci_clock[top]": "place and route of the whole top "
+                                                                              "(python -m fpgaflow)",
+    "tests/fpgaflow/test_synth.py::test_pci_pins_meet_pci33_budgets[top]": "place and route of the whole top "
+                                                                           "(python -m fpgaflow)",
+    "sim/card/test_homing.py::test_home_with_bouncing_switch[Y+-icarus]": "Icarus runs X-; MyHDL every direction",
+    "sim/card/test_machine_card.py::test_limit_blocks_towards_and_allows_away[limit_neg_x-icarus]":
+        "Icarus runs limit_pos_x; MyHDL every limit",
+    "sim/card/test_machine_card.py::test_limit_blocks_towards_and_allows_away[limit_pos_y-icarus]":
+        "Icarus runs limit_pos_x; MyHDL every limit",
+    "sim/card/test_machine_card.py::test_limit_blocks_towards_and_allows_away[limit_neg_y-icarus]":
+        "Icarus runs limit_pos_x; MyHDL every limit",
+    "sim/card/test_machine_hold.py::test_watchdog_stop_decelerates[icarus]": "MyHDL runs it; Icarus runs the hold",
+    "sim/card/test_machine_hold.py::test_limit_stop_decelerates_then_backs_off[icarus]":
+        "MyHDL runs it; Icarus runs the hold",
+    "sim/card/test_card_overfill.py::test_overfill_small_fifo[verilog-bad_opcode]": "MyHDL runs it; the Verilog "
+                                                                                     "runs the other errors",
+    "sim/card/test_card_overfill.py::test_overfill_small_fifo[verilog-disabled]": "MyHDL runs it; the Verilog runs "
+                                                                                   "the other cases",
+    "sim/card/test_card_e2e.py::test_pins_identical_on_every_back_end[chain-icarus]": "Verilator compares chain's "
+                                                                                      "pins on the same Verilog",
+    "sim/card/test_card_e2e.py::test_chained_segments_no_gap_between_lines[chain-icarus]": "MyHDL and Verilator "
+                                                                                           "run it",
+    "sim/card/test_card_build.py::test_capability_registers_read_back_the_build[card_v-chosen]":
+        "a chosen build converted and run; the default builds run",
+    "tests/linuxcnc/test_halrun.py::test_a_card_or_server_that_stops_answering[stall]": "the transport's time-out "
+                                                                                        "runs at load by default",
+    "tests/linuxcnc/test_halrun.py::test_a_card_or_server_that_stops_answering[freeze]": "unplug runs by default",
+    "tests/linuxcnc/test_halrun.py::test_refused_at_load[keep_ahead=64": "keep_ahead=0 runs by default",
+}
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(items):
+    for item in items:
+        for start, reason in SLOW_CASES.items():
+            if item.nodeid.startswith(start):
+                item.add_marker(pytest.mark.slow(reason=reason))
