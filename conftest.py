@@ -61,6 +61,32 @@ SLOW_CASES = {
                                                                                         "runs at load by default",
     "tests/linuxcnc/test_halrun.py::test_a_card_or_server_that_stops_answering[freeze]": "unplug runs by default",
     "tests/linuxcnc/test_halrun.py::test_refused_at_load[keep_ahead=64": "keep_ahead=0 runs by default",
+    "sim/card/test_homing.py::test_home_with_bouncing_switch[X+-myhdl]": "X- runs on MyHDL and Icarus",
+    "sim/card/test_homing.py::test_home_with_bouncing_switch[Y+-myhdl]": "X- runs on MyHDL and Icarus",
+    "sim/card/test_homing.py::test_home_with_bouncing_switch[Y--myhdl]": "X- runs on MyHDL and Icarus",
+    "sim/card/test_machine_card.py::test_estop_mid_arc[myhdl-1]": "another phase of the arc (2 on MyHDL, 4 on Icarus)",
+    "sim/card/test_machine_card.py::test_estop_mid_arc[myhdl-3]": "another phase of the arc (2 on MyHDL, 4 on Icarus)",
+    "sim/card/test_machine_card.py::test_limit_blocks_towards_and_allows_away[limit_pos_x-myhdl]":
+        "limit_neg_y runs on MyHDL, limit_pos_x on Icarus",
+    "sim/card/test_machine_card.py::test_limit_blocks_towards_and_allows_away[limit_neg_x-myhdl]":
+        "limit_neg_y runs on MyHDL, limit_pos_x on Icarus",
+    "sim/card/test_machine_card.py::test_limit_blocks_towards_and_allows_away[limit_pos_y-myhdl]":
+        "limit_neg_y runs on MyHDL, limit_pos_x on Icarus",
+    "sim/card/test_machine_hold.py::test_hold_and_resume_keep_the_path[myhdl-2]": "another phase (1 on MyHDL, "
+                                                                                  "4 on Icarus)",
+    "sim/card/test_machine_hold.py::test_hold_and_resume_keep_the_path[myhdl-3]": "another phase (1 on MyHDL, "
+                                                                                  "4 on Icarus)",
+    "sim/card/test_card_overfill.py::test_overfill_small_fifo[verilog-dda_rejected]": "test_card_e2e runs the DDA's "
+                                                                                      "rejection on MyHDL and Verilator",
+    "sim/card/test_card_e2e.py::test_malformed_command_error_interrupt[error_reserved_bits-myhdl]":
+        "Verilator runs every error, MyHDL bad_opcode",
+    "sim/card/test_card_e2e.py::test_malformed_command_error_interrupt[error_range-myhdl]":
+        "Verilator runs every error, MyHDL bad_opcode",
+    "sim/card/test_card_e2e.py::test_malformed_command_error_interrupt[error_dda_rejected-myhdl]":
+        "Verilator runs every error, MyHDL bad_opcode",
+    "sim/card/test_card_e2e.py::test_blend_keeps_speed_across_the_boundary[blend-myhdl]": "Verilator runs blend, "
+                                                                                          "MyHDL stop",
+    "tests/rtl/test_lint.py::test_vendor_primitives_only_where_the_device_asks[ice40]": "gen/ is the ice40 build",
 }
 
 
