@@ -107,7 +107,7 @@ static void card_stopped(struct card *c, int stopping)
     if (*c->stop_reason == DDA_STOP_WATCHDOG)
         *c->watchdog_has_bit = 1;
     stop(c, FAULT_CARD_STOPPED);
-    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s stopped the machine: %s\n", c->transport.name,
+    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s: the card stopped the machine: %s\n", c->transport.name,
                     reason_name(*c->stop_reason));
 }
 
@@ -148,7 +148,8 @@ static void read_card(void *arg, long period)
         *c->stop_reason = 0;
     if (c->running && (status & DDA_STATUS_ERROR_MASK)) {
         stop(c, (int)FIELD(status, DDA_STATUS_ERROR));
-        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s stopped with error %d\n", c->transport.name, *c->error_code);
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s: the card stopped with error %d\n", c->transport.name,
+                        *c->error_code);
     } else if (c->running && !(status & DDA_STATUS_BUSY_MASK)) {
         (*c->underruns)++;
         stop(c, FAULT_FIFO_DRY);
