@@ -42,9 +42,10 @@ static void reset_position(struct stepgen *s)
 static int64_t refuse_command(struct card *c, struct stepgen *s, int i, double command)
 {
     if (!s->refused)
-        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: stepgen.%02d.%s %g at position-scale %g is no position in "
-                        "steps: the axis holds at %g\n", i, *s->control_type ? "velocity-cmd" : "position-cmd",
-                        command, s->position_scale, (double)s->sent / s->position_scale);
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: dda-card.%d.stepgen.%02d.%s %g at position-scale %g is no "
+                        "position in steps: the axis holds at %g\n", c->index, i,
+                        *s->control_type ? "velocity-cmd" : "position-cmd", command, s->position_scale,
+                        (double)s->sent / s->position_scale);
     s->refused = 1;
     *c->error = 1;
     *c->error_code = FAULT_BAD_COMMAND;

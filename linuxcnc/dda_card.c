@@ -2,10 +2,13 @@
  *
  * Copyright the PCI DDA card authors.  GPL-2.0-or-later (see COPYING here).
  *
- *   loadrt dda_card [sim=/path/to/socket] [keep_ahead=4] [period_overhead=8] [sim_timeout_ms=5000]
- *   addf dda-card.0.read servo-thread      (first in the thread)
- *   addf dda-card.0.write servo-thread     (after motion)
+ *   loadrt dda_card [sim=/path/a.sock[,/path/b.sock...]] [keep_ahead=4] [period_overhead=8] [sim_timeout_ms=5000]
+ *   addf dda-card.0.read servo-thread      (first in the thread; each card K its own dda-card.K.read)
+ *   addf dda-card.0.write servo-thread     (after motion; dda-card.K.write)
  *
+ * One driver serves several cards (dda_cards.h): the simulated cards named by
+ * `sim`, or every card on the PCI bus; each card K is `dda-card.K` with its own
+ * pins, state, faults and functions, and as many stepgens as its BUILD.AXES.
  * Each servo period `write` turns the change of every enabled axis's
  * commanded position (position-cmd, or velocity-cmd integrated when
  * control-type is 1, followed within maxvel and maxaccel: dda_math.h) into
@@ -47,13 +50,16 @@
 #include "dda_checks.h"
 #include "dda_faults.h"
 #include "dda_axis.h"
+#include "dda_drift.h"
+#include "dda_cards.h"
 
 MODULE_AUTHOR("PCI DDA card authors");
 MODULE_DESCRIPTION("HAL driver of the PCI DDA card");
 MODULE_LICENSE("GPL");
 
 static char *sim = "";
-RTAPI_MP_STRING(sim, "Unix socket of python -m sim.card.card_server (empty: the real card on PCI)");
+RTAPI_MP_STRING(sim, "Unix sockets of python -m sim.card.card_server, one a card, comma-separated "
+                "(empty: every card on PCI)");
 static int sim_timeout_ms = 5000;
 RTAPI_MP_INT(sim_timeout_ms, "simulation: the longest wait (ms) for the card server to answer");
 static int keep_ahead = 4;
@@ -61,9 +67,9 @@ RTAPI_MP_INT(keep_ahead, "servo periods queued ahead in the card's FIFO (1..63)"
 static int period_overhead = 8;
 RTAPI_MP_INT(period_overhead, "card clocks a period's LINE and DWELL take beyond their own");
 
-static const uint32_t POS_REGS[AXES] = {DDA_POS_X, DDA_POS_Y};
 static int comp_id;
-static struct card *card;
+static struct card *cards[CARDS_MAX];
+static int card_count;
 
 /* WATCHDOG's count: the timeout in whole card clocks (rounded up), at most what the register holds. */
 static uint32_t watchdog_clocks(struct card *c)
@@ -89,16 +95,6 @@ static void stop(struct card *c, int code)
     halt_card(c);
 }
 
-static const char *reason_name(int reason)
-{
-    switch (reason) {
-    case DDA_STOP_ESTOP: return "its E-stop input";
-    case DDA_STOP_WATCHDOG: return "its watchdog (the servo thread stopped writing it in time)";
-    case DDA_STOP_LIMIT: return "a limit switch";
-    default: return "an unknown reason";
-    }
-}
-
 /* The card's guard holds it stopped (STATUS.STOPPED): why, on stop-reason.  When that
  * stops the machine (`stopping`): error -3, and a watchdog stop sets has_bit. */
 static void card_stopped(struct card *c, int stopping)
@@ -111,39 +107,18 @@ static void card_stopped(struct card *c, int stopping)
     if (*c->stop_reason == DDA_STOP_WATCHDOG)
         *c->watchdog_has_bit = 1;
     stop(c, FAULT_CARD_STOPPED);
-    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: the card stopped the machine: %s\n", reason_name(*c->stop_reason));
-}
-
-/* The card's crystal and the PC's timer differ (~100 ppm): left alone the queue
- * would slowly drain or fill.  The whole periods still in the FIFO at the read
- * (its level against the words of each period queued, newest first) are held
- * where they stood at the first read after start: fewer, the card runs fast and
- * each DWELL is lengthened by a step; more, it runs slow and each is shortened.
- * The count moves only when the card's period boundary crosses the read, so the
- * queue stays within a period of where it started.  */
-static void trim_drift(struct card *c, int32_t level)
-{
-    int32_t words = 0;
-    int depth = 0;
-    while (depth < TRIM_RING && (uint32_t)depth < c->periods_queued) {
-        words += c->period_words[(c->periods_queued - 1 - depth) % TRIM_RING];
-        if (words > level)
-            break;
-        depth++;
-    }
-    if (c->depth_start < 0)
-        c->depth_start = depth;
-    c->trim_sign = depth < c->depth_start ? 1 : depth > c->depth_start ? -1 : 0;
+    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s: the card stopped the machine: %s\n", c->transport.name,
+                    reason_name(*c->stop_reason));
 }
 
 static void read_card(void *arg, long period)
 {
     struct card *c = arg;
-    uint32_t raw[AXES], status = 0, machine = 0;
+    uint32_t raw[DDA_AXES_MAX], status = 0, machine = 0;
     int i = 0, level;
-    while (i < AXES && dda_read32(&c->transport, POS_REGS[i], &raw[i]) == 0)
+    while (i < c->axes && dda_read32(&c->transport, POS_REGS[i], &raw[i]) == 0)
         i++;
-    if (i < AXES || dda_read32(&c->transport, DDA_STATUS, &status) < 0
+    if (i < c->axes || dda_read32(&c->transport, DDA_STATUS, &status) < 0
         || dda_read32(&c->transport, DDA_MACHINE_STATUS, &machine) < 0) {
         if (!*c->error || *c->error_code != FAULT_TRANSPORT)
             stop(c, FAULT_TRANSPORT);  /* position-fb keeps its last good value */
@@ -173,16 +148,18 @@ static void read_card(void *arg, long period)
         *c->stop_reason = 0;
     if (c->running && (status & DDA_STATUS_ERROR_MASK)) {
         stop(c, (int)FIELD(status, DDA_STATUS_ERROR));
-        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: the card stopped with error %d\n", *c->error_code);
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s: the card stopped with error %d\n", c->transport.name,
+                        *c->error_code);
     } else if (c->running && !(status & DDA_STATUS_BUSY_MASK)) {
         (*c->underruns)++;
         stop(c, FAULT_FIFO_DRY);
-        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: the FIFO ran dry: the servo thread fell behind\n");
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s: the FIFO ran dry: the servo thread fell behind\n",
+                        c->transport.name);
     }
-    for (i = 0; i < AXES; i++) {
+    for (i = 0; i < c->axes; i++) {
         struct stepgen *s = &c->axis[i];
         int64_t card_steps = dda_unwrap(s->card, raw[i]);
-        check_scale(s, i);
+        check_scale(c, i);
         *s->velocity_fb = (double)(card_steps - s->card) / s->position_scale / (period * 1e-9);
         s->card = card_steps;
         *s->counts = (int32_t)(uint32_t)(uint64_t)(card_steps + s->offset);  /* low 32 bits, as hostmot2's */
@@ -194,8 +171,8 @@ static void read_card(void *arg, long period)
 static int queue_words(struct card *c, const uint32_t *words, unsigned count)
 {
     if (count > c->room) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: the card's FIFO has room for %u words, not the %u of this "
-                        "period: the card is not taking commands\n", c->room, count);
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s: the card's FIFO has room for %u words, not the %u of this "
+                        "period: the card is not taking commands\n", c->transport.name, c->room, count);
         return FAULT_FIFO_FULL;
     }
     if (dda_fifo_write(&c->transport, words, count) < 0)
@@ -236,7 +213,7 @@ static int start(struct card *c)
 #endif
     n += dda_cmd_set(&words[n], t[DIRSETUP], DDA_DIR_SETUP_SET_INDEX);
     n += dda_cmd_set(&words[n], t[DIRHOLD], DDA_DIR_HOLD_SET_INDEX);
-    for (i = 0; i < AXES; i++)
+    for (i = 0; i < c->axes; i++)
         c->axis[i].queued = 0;  /* each enabled axis is taken up at its first period */
     c->depth_start = -1;
     c->trim_sign = 0;
@@ -267,13 +244,15 @@ static int start(struct card *c)
 static int queue_period(struct card *c, uint32_t clocks, double dt)
 {
     uint32_t words[PERIOD_WORDS];
-    int64_t delta[AXES], longest = 0, dwell = clocks;
+    int64_t delta[DDA_AXES_MAX], longest = 0, dwell = clocks;
+    int32_t line[DDA_AXES_MAX];
     int32_t step = (int32_t)(clocks >> TRIM_SHIFT) > 1 ? (int32_t)(clocks >> TRIM_SHIFT) : 1;
     int reversal = 0, problem, i;
     unsigned n = 0;
-    for (i = 0; i < AXES; i++) {
+    for (i = 0; i < c->axes; i++) {
         struct stepgen *s = &c->axis[i];
         delta[i] = axis_delta(c, i, dt);
+        line[i] = (int32_t)delta[i];  /* within the coordinate width: checked against max_delta below */
         if ((delta[i] < 0 ? -delta[i] : delta[i]) > longest)
             longest = delta[i] < 0 ? -delta[i] : delta[i];
         if (delta[i] != 0 && (s->dir < 0 || (delta[i] > 0) != s->dir))
@@ -282,13 +261,13 @@ static int queue_period(struct card *c, uint32_t clocks, double dt)
     if (longest > 0) {
         dwell -= (int64_t)c->iteration * longest + period_overhead + (c->iteration == DDA_FASTEST_ITERATION)
                  + (reversal ? c->timing_clocks[DIRSETUP] : 0);
-        n = dda_cmd_line(words, (int32_t)delta[0], (int32_t)delta[1], 0);
+        n = dda_cmd_line_axes(words, c->line_axes, line, 0);
     }
     *c->drift_trim = c->trim_sign * step;
     dwell += *c->drift_trim;
     if (dwell < 0 || longest > c->max_delta) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %lld steps in one period is more than the card makes in "
-                        "%u clocks: lower maxvel or position-scale\n", (long long)longest, clocks);
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s: %lld steps in one period is more than the card makes in "
+                        "%u clocks: lower maxvel or position-scale\n", c->transport.name, (long long)longest, clocks);
         return FAULT_TOO_FAST;
     }
     n += dda_cmd_dwell(&words[n], (uint32_t)dwell);
@@ -296,7 +275,7 @@ static int queue_period(struct card *c, uint32_t clocks, double dt)
     if (problem)
         return problem;
     c->period_words[c->periods_queued++ % TRIM_RING] = (uint8_t)n;
-    for (i = 0; i < AXES; i++) {
+    for (i = 0; i < c->axes; i++) {
         c->axis[i].sent += delta[i];
         if (delta[i] != 0)
             c->axis[i].dir = delta[i] > 0;
@@ -326,9 +305,11 @@ static void write_card(void *arg, long period)
     uint32_t clocks = (uint32_t)(ticks / 1000000000u);
     uint32_t now = 0;
     double dt = period * 1e-9;
-    int on = (*c->axis[0].enable || *c->axis[1].enable) && *c->estop_in && !*c->watchdog_has_bit;
     int drive = *c->drive_enable != 0;
-    int fault;
+    int fault, on = 0, i;
+    for (i = 0; i < c->axes; i++)
+        on |= *c->axis[i].enable != 0;
+    on = on && *c->estop_in && !*c->watchdog_has_bit;
     c->fraction = ticks % 1000000000u;
     if (drive != c->drive_written
         && dda_write32(&c->transport, DDA_MACHINE_CONTROL, drive ? DDA_MACHINE_CONTROL_DRIVE_ENABLE_MASK : 0) == 0)
@@ -353,9 +334,27 @@ static void write_card(void *arg, long period)
     *c->clock = now;
 }
 
+static int export_funct(void (*funct)(void *, long), int k, const char *what)
+{
+    char name[HAL_NAME_LEN + 1];
+    rtapi_snprintf(name, sizeof name, "dda-card.%d.%s", k, what);
+    return hal_export_funct(name, funct, cards[k], 1, 0, comp_id);
+}
+
+/* Each card's pins, parameters and functions: 0, or -EINVAL. */
+static int export_cards(void)
+{
+    int k;
+    for (k = 0; k < card_count; k++)
+        if (dda_export_card(comp_id, cards[k]) < 0
+            || export_funct(read_card, k, "read") < 0 || export_funct(write_card, k, "write") < 0)
+            return -EINVAL;
+    return 0;
+}
+
 int rtapi_app_main(void)
 {
-    int problem;
+    int problem, k;
     if (dda_check_keep_ahead(keep_ahead) < 0)
         return -EINVAL;
     if (sim[0] && sim_timeout_ms < 1) {
@@ -365,43 +364,29 @@ int rtapi_app_main(void)
     comp_id = hal_init("dda_card");
     if (comp_id < 0)
         return comp_id;
-    card = hal_malloc(sizeof *card);
-    if (!card) {
-        hal_exit(comp_id);
-        return -ENOMEM;
-    }
-    memset(card, 0, sizeof *card);
-    if ((sim[0] ? dda_sim_open(&card->transport, sim, sim_timeout_ms) : dda_pci_open(&card->transport)) < 0) {
-        hal_exit(comp_id);
-        return -ENODEV;
-    }
-    problem = dda_check_card(card, keep_ahead);
-    /* whatever a previous session left queued stops here, its drives off */
-    if (problem == 0
-        && (dda_write32(&card->transport, DDA_CONTROL, 0) < 0
-            || dda_write32(&card->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK) < 0
-            || dda_write32(&card->transport, DDA_WATCHDOG, 0) < 0
-            || dda_write32(&card->transport, DDA_MACHINE_CONTROL, 0) < 0))
-        problem = -ENODEV;
-    if (problem == 0 && (dda_export_card(comp_id, card) < 0
-                         || hal_export_funct("dda-card.0.read", read_card, card, 1, 0, comp_id) < 0
-                         || hal_export_funct("dda-card.0.write", write_card, card, 1, 0, comp_id) < 0))
-        problem = -EINVAL;
+    card_count = dda_open_cards(cards, sim, sim_timeout_ms, keep_ahead);
+    problem = card_count < 0 ? card_count : export_cards();
     if (problem) {
-        dda_transport_close(&card->transport);
+        if (card_count > 0)
+            dda_close_cards(cards, card_count);
         hal_exit(comp_id);
         return problem;
     }
-    rtapi_print_msg(RTAPI_MSG_INFO, "dda_card: %s, %u Hz, registers %s\n", card->transport.name, card->clock_hz,
-                    card->transport.regs ? "mapped" : card->transport.sock >= 0 ? "on the socket" : "by pread/pwrite");
+    for (k = 0; k < card_count; k++)
+        rtapi_print_msg(RTAPI_MSG_INFO, "dda_card: %s, %d axes, %u Hz, registers %s\n", cards[k]->transport.name,
+                        cards[k]->axes, cards[k]->clock_hz, cards[k]->transport.regs ? "mapped"
+                        : cards[k]->transport.sock >= 0 ? "on the socket" : "by pread/pwrite");
     hal_ready(comp_id);
     return 0;
 }
 
 void rtapi_app_exit(void)
 {
-    halt_card(card);
-    dda_write32(&card->transport, DDA_MACHINE_CONTROL, 0);
-    dda_transport_close(&card->transport);
+    int k;
+    for (k = 0; k < card_count; k++) {
+        halt_card(cards[k]);
+        dda_write32(&cards[k]->transport, DDA_MACHINE_CONTROL, 0);
+    }
+    dda_close_cards(cards, card_count);
     hal_exit(comp_id);
 }

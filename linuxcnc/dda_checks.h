@@ -30,7 +30,8 @@ static int dda_check_keep_ahead(int keep_ahead)
     return -EINVAL;
 }
 
-/* The card at load: ID (magic, major version), CLOCK_HZ, BUILD (axes, coordinate width)
+/* The card at load: ID (magic, major version), CLOCK_HZ, BUILD (its axes, as many as the
+ * driver drives; coordinate width)
  * and FIFO_SIZE (the start and keep_ahead periods fit).  0, or -ENODEV with the reason said. */
 static int dda_check_card(struct card *c, int keep_ahead)
 {
@@ -50,24 +51,34 @@ static int dda_check_card(struct card *c, int keep_ahead)
         return -ENODEV;
     }
     width = FIELD(build, DDA_BUILD_COORD_WIDTH);
-    if (FIELD(build, DDA_BUILD_AXES) != AXES || width < 2 || width > 32) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s is built for %u axes and %u-bit coordinates (BUILD %08x); "
-                        "this driver drives %d axes\n", t->name, FIELD(build, DDA_BUILD_AXES), width, build, AXES);
+    c->axes = (int)FIELD(build, DDA_BUILD_AXES);
+    if (c->axes < 2 || width < 2 || width > 32) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s reports %d axes and %u-bit coordinates (BUILD %08x): "
+                        "no card of this design\n", t->name, c->axes, width, build);
         return -ENODEV;
     }
+    if (c->axes > DRIVEN_AXES) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s has %d axes (BUILD.AXES); this driver drives %d per card: "
+                        "the registers of axes %d and up are not in gen/dda_card.h yet (docs/linuxcnc.md)\n",
+                        t->name, c->axes, DRIVEN_AXES, DRIVEN_AXES);
+        return -ENODEV;
+    }
+    /* LINE's AXES = 0 is X and Y (the form every card takes); more axes are named */
+    c->line_axes = c->axes == 2 ? 0u : (1u << c->axes) - 1u;
+    c->burst_words = (c->axes == 2 ? DDA_CMD_LINE_WORDS : 1u + (unsigned)c->axes) + DDA_CMD_DWELL_WORDS;
     c->max_delta = (int32_t)((1ull << (width - 1)) - 1);
     c->fifo_size = FIELD(fifo, DDA_FIFO_SIZE_WORDS);
-    needed = START_WORDS + (uint32_t)keep_ahead * PERIOD_WORDS;
+    needed = START_WORDS + (uint32_t)keep_ahead * c->burst_words;
     if (c->fifo_size < needed) {
         rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s: its FIFO holds %u words, keep_ahead=%d needs %u: "
                         "give at most %u\n", t->name, c->fifo_size, keep_ahead, needed,
-                        c->fifo_size < START_WORDS ? 0 : (c->fifo_size - START_WORDS) / PERIOD_WORDS);
+                        c->fifo_size < START_WORDS ? 0 : (c->fifo_size - START_WORDS) / c->burst_words);
         return -ENODEV;
     }
     return 0;
 }
 
-/* At enable: each timing register takes the larger of the two axes' values (the card's
+/* At enable: each timing register takes the largest of the axes' values (the card's
  * step timing is shared), in clocks; every axis's step_type the card can make.
  * 0, or FAULT_SETTING with the parameter named. */
 static int dda_check_settings(struct card *c)
@@ -75,35 +86,40 @@ static int dda_check_settings(struct card *c)
     const struct stepgen *a = c->axis;
     int k, i;
     for (k = 0; k < TIMINGS; k++) {
-        int larger = a[1].timing[k] > a[0].timing[k];
-        uint32_t ns = a[larger].timing[k];
+        int largest = 0, differ = 0;
+        uint32_t ns;
+        for (i = 1; i < c->axes; i++) {
+            largest = a[i].timing[k] > a[largest].timing[k] ? i : largest;
+            differ |= a[i].timing[k] != a[0].timing[k];
+        }
+        ns = a[largest].timing[k];
         if (dda_timing_clocks(ns, c->clock_hz, &c->timing_clocks[k]) < 0) {
-            rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: stepgen.%02d.%s %u ns is %llu clocks at %u Hz; the card's "
-                            "timing registers hold 1..%u clocks (at most %llu ns)\n", larger, TIMING_NAMES[k], ns,
-                            (unsigned long long)dda_clocks_of_ns(ns, c->clock_hz), c->clock_hz, DDA_TIMING_MAX,
-                            (unsigned long long)dda_timing_max_ns(c->clock_hz));
+            rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: dda-card.%d.stepgen.%02d.%s %u ns is %llu clocks at %u Hz; "
+                            "the card's timing registers hold 1..%u clocks (at most %llu ns)\n", c->index, largest,
+                            TIMING_NAMES[k], ns, (unsigned long long)dda_clocks_of_ns(ns, c->clock_hz), c->clock_hz,
+                            DDA_TIMING_MAX, (unsigned long long)dda_timing_max_ns(c->clock_hz));
             return FAULT_SETTING;
         }
-        if (a[0].timing[k] != a[1].timing[k])
-            rtapi_print_msg(RTAPI_MSG_INFO, "dda_card: the axes' %s differ; the card's is shared: %u ns for both\n",
-                            TIMING_NAMES[k], ns);
+        if (differ)
+            rtapi_print_msg(RTAPI_MSG_INFO, "dda_card: dda-card.%d: the axes' %s differ; the card's is shared: "
+                            "%u ns for all\n", c->index, TIMING_NAMES[k], ns);
     }
 #ifdef DDA_STEP_MODE
-    /* STEP_MODE is one register for every axis (the pins of both change alike) and
+    /* STEP_MODE is one register for every axis (the pins of all change alike) and
      * its codes are hostmot2's step_type: 0 step/dir, 1 up/down, 2 quadrature */
-    for (i = 0; i < AXES; i++)
+    for (i = 0; i < c->axes; i++)
         if (a[i].step_type > DDA_STEP_MODE_MAX || a[i].step_type != a[0].step_type) {
-            rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: stepgen.%02d.step_type %u: the card makes 0 step/dir, "
-                            "1 up/down or 2 quadrature, one for both axes (stepgen.00.step_type is %u)\n",
-                            i, a[i].step_type, a[0].step_type);
+            rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: dda-card.%d.stepgen.%02d.step_type %u: the card makes "
+                            "0 step/dir, 1 up/down or 2 quadrature, one for all its axes (stepgen.00.step_type "
+                            "is %u)\n", c->index, i, a[i].step_type, a[0].step_type);
             return FAULT_SETTING;
         }
 #else
-    for (i = 0; i < AXES; i++)
+    for (i = 0; i < c->axes; i++)
         if (a[i].step_type != 0) {
-            rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: stepgen.%02d.step_type %u: this card makes step/dir "
-                            "only (step_type 0); up/down and quadrature need its STEP_MODE register\n",
-                            i, a[i].step_type);
+            rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: dda-card.%d.stepgen.%02d.step_type %u: this card makes "
+                            "step/dir only (step_type 0); up/down and quadrature need its STEP_MODE register\n",
+                            c->index, i, a[i].step_type);
             return FAULT_SETTING;
         }
 #endif

@@ -1,5 +1,6 @@
 /* The dda_card driver's fault checks: the faults that stand whatever
- * enable does, a card gone from the bus, a position-scale of 0.
+ * enable does, a card gone from the bus, why the card stopped itself, a
+ * position-scale of 0.
  * error-code values: dda_state.h.  Included by dda_card.c.
  *
  * Copyright the PCI DDA card authors.  GPL-2.0-or-later (see COPYING here).
@@ -21,6 +22,17 @@ static int standing_fault(struct card *c)
     return *c->watchdog_has_bit ? FAULT_CARD_STOPPED : 0;
 }
 
+/* STOP_REASON.REASON in words. */
+static const char *reason_name(int reason)
+{
+    switch (reason) {
+    case DDA_STOP_ESTOP: return "its E-stop input";
+    case DDA_STOP_WATCHDOG: return "its watchdog (the servo thread stopped writing it in time)";
+    case DDA_STOP_LIMIT: return "a limit switch";
+    default: return "an unknown reason";
+    }
+}
+
 /* A card gone from the bus (pulled, its slot unpowered) reads all-ones, which STATUS
  * (reserved bits 0) never does; ID reading all-ones too confirms it. */
 static int card_gone(struct card *c, uint32_t status)
@@ -30,12 +42,14 @@ static int card_gone(struct card *c, uint32_t status)
 }
 
 /* position-scale 0 would put every target at step 0: forced to 1, as hostmot2 does. */
-static void check_scale(struct stepgen *s, int i)
+static void check_scale(struct card *c, int i)
 {
+    struct stepgen *s = &c->axis[i];
     if (s->position_scale != 0.0)
         return;
     s->position_scale = 1.0;
-    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: stepgen.%02d.position-scale 0 is no scale: set to 1\n", i);
+    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: dda-card.%d.stepgen.%02d.position-scale 0 is no scale: set to 1\n",
+                    c->index, i);
 }
 
 #endif /* DDA_FAULTS_H */

@@ -5,7 +5,8 @@
  * once, every access then one load or store, no system call), else
  * through BAR0, the I/O BAR, by a 4-byte pread/pwrite of its sysfs file
  * (I/O BARs cannot be mapped; each access is a system call).  A card
- * reachable by neither is refused with both reasons.  Included by
+ * reachable by neither is refused with both reasons.  Every card present is
+ * served, numbered by PCI address.  Included by
  * dda_transport.h.
  *
  * Copyright the PCI DDA card authors.  GPL-2.0-or-later (see COPYING here).
@@ -28,14 +29,15 @@ static const struct rtapi_pci_device_id dda_pci_ids[] = {
     {DDA_PCI_VENDOR_ID, DDA_PCI_DEVICE_ID, DDA_PCI_SUBSYSTEM_VENDOR_ID, DDA_PCI_SUBSYSTEM_ID, 0, 0},
     {0, 0, 0, 0, 0, 0},
 };
-static struct rtapi_pci_dev *dda_pci_found[8];
+#define DDA_PCI_FOUND_MAX 8
+static struct rtapi_pci_dev *dda_pci_found[DDA_PCI_FOUND_MAX];
 static int dda_pci_count;
 static int dda_pci_registered;
 
 static int dda_pci_probe(struct rtapi_pci_dev *dev, const struct rtapi_pci_device_id *id)
 {
     (void)id;
-    if (dda_pci_count < (int)(sizeof dda_pci_found / sizeof dda_pci_found[0]))
+    if (dda_pci_count < DDA_PCI_FOUND_MAX)
         dda_pci_found[dda_pci_count] = dev;
     dda_pci_count++;
     return 0;
@@ -90,54 +92,63 @@ static int dda_pci_map_registers(struct dda_transport *t, struct rtapi_pci_dev *
     return 0;
 }
 
-/* The one card present (several are refused), its FIFO window and its registers. */
-static struct rtapi_pci_dev *dda_pci_find(void)
+/* Every card present, in the order of their PCI addresses (dda-card.0 the lowest), as
+ * many as the driver serves: their count, or -ENODEV with the reason said. */
+static int dda_pci_find(int most)
 {
-    int i;
+    int i, j;
     dda_pci_count = 0;
     if (rtapi_pci_register_driver(&dda_pci_driver) < 0 || dda_pci_count == 0) {
         rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: no DDA card (%04x:%04x) under /sys/bus/pci/devices: "
                         "is it seated? (lspci -d %04x:%04x)\n", DDA_PCI_VENDOR_ID, DDA_PCI_DEVICE_ID,
                         DDA_PCI_VENDOR_ID, DDA_PCI_DEVICE_ID);
         rtapi_pci_unregister_driver(&dda_pci_driver);
-        return NULL;
+        return -ENODEV;
     }
     dda_pci_registered = 1;
-    if (dda_pci_count > 1) {
+    if (dda_pci_count > most) {
         rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %d DDA cards:", dda_pci_count);
-        for (i = 0; i < dda_pci_count && i < 8; i++)
+        for (i = 0; i < dda_pci_count && i < DDA_PCI_FOUND_MAX; i++)
             rtapi_print_msg(RTAPI_MSG_ERR, " %s", rtapi_pci_name(dda_pci_found[i]));
-        rtapi_print_msg(RTAPI_MSG_ERR, "; this driver runs one card per machine\n");
-        return NULL;
+        rtapi_print_msg(RTAPI_MSG_ERR, "; this driver serves at most %d\n", most);
+        return -ENODEV;
     }
-    return dda_pci_found[0];
+    for (i = 1; i < dda_pci_count; i++)  /* by address: the same numbering at every boot */
+        for (j = i; j > 0 && strcmp(rtapi_pci_name(dda_pci_found[j - 1]), rtapi_pci_name(dda_pci_found[j])) > 0; j--) {
+            struct rtapi_pci_dev *swap = dda_pci_found[j];
+            dda_pci_found[j] = dda_pci_found[j - 1];
+            dda_pci_found[j - 1] = swap;
+        }
+    return dda_pci_count;
 }
 
+/* This card's files; the driver registration stays (dda_pci_release). */
 static void dda_pci_close(struct dda_transport *t)
 {
     if (t->io_fd >= 0)
         close(t->io_fd);
     t->io_fd = -1;
     t->regs = NULL;
+}
+
+/* The driver registration, once every card is closed. */
+static void dda_pci_release(void)
+{
     if (dda_pci_registered)
         rtapi_pci_unregister_driver(&dda_pci_driver);
     dda_pci_registered = 0;
 }
 
-static int dda_pci_open(struct dda_transport *t)
+/* Card `index` of those dda_pci_find found. */
+static int dda_pci_open(struct dda_transport *t, int index)
 {
     char path[300];
     int bar0_errno;
-    struct rtapi_pci_dev *dev;
+    struct rtapi_pci_dev *dev = dda_pci_found[index];
     t->sock = -1;
     t->io_fd = -1;
     t->regs = NULL;
-    dev = dda_pci_find();
-    if (!dev) {
-        dda_pci_close(t);
-        return -ENODEV;
-    }
-    snprintf(t->name, sizeof t->name, "PCI card %s", rtapi_pci_name(dev));
+    snprintf(t->name, sizeof t->name, "dda-card.%d, PCI card %s", t->card, rtapi_pci_name(dev));
     if (rtapi_pci_enable_device(dev) < 0) {
         snprintf(path, sizeof path, "%s/enable", dev->sys_path);
         dda_pci_close(t);

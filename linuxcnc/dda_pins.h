@@ -14,10 +14,11 @@ static const char *const TIMING_NAMES[TIMINGS] = {"steplen", "stepspace", "dirse
 static const char *const INPUT_PINS[DDA_INPUTS] = {"estop", "limit-pos-x", "limit-neg-x", "limit-pos-y",
                                                    "limit-neg-y", "home-x", "home-y"};
 
-static int dda_export_axis(int comp_id, struct stepgen *s, int i)
+static int dda_export_axis(int comp_id, struct stepgen *s, int card, int i)
 {
-    const char *p = "dda-card.0.stepgen";
+    char p[HAL_NAME_LEN];
     int r = 0, k;
+    rtapi_snprintf(p, sizeof p, "dda-card.%d.stepgen", card);
     r |= hal_pin_float_newf(HAL_IN, &s->position_cmd, comp_id, "%s.%02d.position-cmd", p, i);
     r |= hal_pin_float_newf(HAL_IN, &s->velocity_cmd, comp_id, "%s.%02d.velocity-cmd", p, i);
     r |= hal_pin_float_newf(HAL_OUT, &s->position_fb, comp_id, "%s.%02d.position-fb", p, i);
@@ -39,12 +40,14 @@ static int dda_export_axis(int comp_id, struct stepgen *s, int i)
     return r;
 }
 
+/* dda-card.K's pins and parameters, stepgen.00 .. stepgen.(axes - 1) */
 static int dda_export_card(int comp_id, struct card *c)
 {
-    const char *p = "dda-card.0";
+    char p[HAL_NAME_LEN];
     int r = 0, i;
-    for (i = 0; i < AXES; i++)
-        r |= dda_export_axis(comp_id, &c->axis[i], i);
+    rtapi_snprintf(p, sizeof p, "dda-card.%d", c->index);
+    for (i = 0; i < c->axes; i++)
+        r |= dda_export_axis(comp_id, &c->axis[i], c->index, i);
     r |= hal_pin_s32_newf(HAL_OUT, &c->fifo_level, comp_id, "%s.fifo-level", p);
     r |= hal_pin_u32_newf(HAL_OUT, &c->underruns, comp_id, "%s.underruns", p);
     r |= hal_pin_bit_newf(HAL_OUT, &c->error, comp_id, "%s.error", p);

@@ -63,9 +63,9 @@ static int dda_sim_open(struct dda_transport *t, const char *path, int timeout_m
     struct timeval limit = {.tv_sec = timeout_ms / 1000, .tv_usec = (timeout_ms % 1000) * 1000};
     t->io_fd = -1;
     t->timeout_ms = timeout_ms;
-    snprintf(t->name, sizeof t->name, "simulated card at %.40s", path);
+    snprintf(t->name, sizeof t->name, "dda-card.%d, simulated card at %.80s", t->card, path);
     if (strlen(path) >= sizeof address.sun_path) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: sim=%s: the socket path is too long\n", path);
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: dda-card.%d: sim %s: the socket path is too long\n", t->card, path);
         return -EINVAL;
     }
     strcpy(address.sun_path, path);
@@ -73,8 +73,8 @@ static int dda_sim_open(struct dda_transport *t, const char *path, int timeout_m
     if (t->sock < 0 || setsockopt(t->sock, SOL_SOCKET, SO_RCVTIMEO, &limit, sizeof limit) < 0
         || setsockopt(t->sock, SOL_SOCKET, SO_SNDTIMEO, &limit, sizeof limit) < 0
         || connect(t->sock, (struct sockaddr *)&address, sizeof address) < 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: sim=%s: no card server (%s): start "
-                        "python -m sim.card.card_server --socket %s first\n", path, strerror(errno), path);
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: dda-card.%d: sim %s: no card server (%s): start "
+                        "python -m sim.card.card_server --socket %s first\n", t->card, path, strerror(errno), path);
         if (t->sock >= 0)
             close(t->sock);
         t->sock = -1;

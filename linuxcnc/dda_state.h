@@ -10,12 +10,17 @@
 #include "dda_math.h"
 #include "dda_transport.h"
 
-#define AXES 2
+#define CARDS_MAX 4          /* cards one driver serves: dda-card.0 .. dda-card.3 */
 #define TRIM_RING 64         /* periods of FIFO words remembered: more than keep_ahead can be */
 #define TRIM_SHIFT 8         /* the drift loop's step: a period's clocks / 256 (at least 1) */
 #define DDA_INPUTS 7         /* MACHINE_STATUS.ACTIVE's bits: E-stop, limits, home switches */
 #define START_WORDS (6 * DDA_CMD_SET_WORDS) /* the SETs of a start, at most */
-#define PERIOD_WORDS (DDA_CMD_LINE_WORDS + DDA_CMD_DWELL_WORDS) /* a period's burst, at most */
+#define PERIOD_WORDS (DDA_CMD_LINE_MAX_WORDS + DDA_CMD_DWELL_WORDS) /* a period's burst on any card, at most */
+
+/* Each axis's step counter, as gen/dda_card.h defines them: the driver drives as many
+ * axes as this names (X, Y); the per-axis registers of axes 2 and up are not in it. */
+static const uint32_t POS_REGS[] = {DDA_POS_X, DDA_POS_Y};
+#define DRIVEN_AXES ((int)(sizeof POS_REGS / sizeof POS_REGS[0]))
 
 /* error-code: the card's STATUS.ERROR (1..4, docs/instructions.md), or the driver's own */
 enum dda_fault {
@@ -50,7 +55,11 @@ struct stepgen {
 };
 
 struct card {
-    struct stepgen axis[AXES];
+    int index;                     /* K of dda-card.K: its place in the card list */
+    int axes;                      /* BUILD.AXES: stepgen.00 .. stepgen.(axes - 1) */
+    uint32_t line_axes;            /* LINE's AXES field: 0 (X and Y, today's form) on a two-axis card */
+    unsigned burst_words;          /* a period's burst at most: its LINE and DWELL */
+    struct stepgen axis[DDA_AXES_MAX];
     hal_s32_t *fifo_level;
     hal_u32_t *underruns;
     hal_bit_t *error;

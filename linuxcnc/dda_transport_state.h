@@ -25,7 +25,8 @@ struct dda_transport {
     volatile uint32_t *regs;      /* PCI: the registers mapped (a memory BAR aliasing BAR0), else NULL */
     volatile uint32_t *fifo;      /* PCI: BAR1 mapped */
     int failed;                   /* an access failed: said once, every call fails from then on */
-    char name[64];
+    int card;                     /* K of dda-card.K, set before open: the name says it */
+    char name[112];               /* "dda-card.K, <which card>": every message of the card says it */
 };
 
 /* The transport fails: say why, once. */

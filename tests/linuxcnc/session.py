@@ -108,10 +108,12 @@ def configure(run):
         path.chmod(0o777 if path.suffix in (".sh", ".py") else 0o666)
 
 
-def card_server(run, *options):
-    server = subprocess.Popen([sys.executable, "-m", "sim.card.card_server", "--socket", str(run / "card.sock"),
-                               "--log", str(run / "card.json"), "--clock-hz", str(CLOCK_HZ), *options],
-                              cwd=ROOT, stdout=subprocess.PIPE, stderr=open(run / "server.err", "w"), text=True)
+def card_server(run, *options, name="card"):
+    """A card server on run/NAME.sock, its record in run/NAME.json (one per simulated card)."""
+    server = subprocess.Popen([sys.executable, "-m", "sim.card.card_server", "--socket", str(run / f"{name}.sock"),
+                               "--log", str(run / f"{name}.json"), "--clock-hz", str(CLOCK_HZ), *options],
+                              cwd=ROOT, stdout=subprocess.PIPE, stderr=open(run / f"{name}-server.err", "w"),
+                              text=True)
     assert "listening" in server.stdout.readline()
     return server
 

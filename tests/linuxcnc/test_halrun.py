@@ -7,7 +7,6 @@ with the driver's read and write, pins set by ``setp`` and waited for by
 ``--fail`` makes it fail on cue.  Cheaper than a LinuxCNC run: most of the
 driver's checks are here, several in one script.
 """
-import json
 import shutil
 import socket
 import threading
@@ -18,20 +17,13 @@ import pytest
 from models.commands import SetCommand, decode_words
 from models.dda_plan import LineCommand
 from models import registers as regmap
-from tests.linuxcnc.session import PERIOD_CLOCKS, as_user, card_server, missing, run_folder
+from tests.linuxcnc.halrun import note, run_halrun, until
+from tests.linuxcnc.session import PERIOD_CLOCKS, as_user, missing, run_folder
 
 # one LinuxCNC (or halrun) per host: every such test runs on one xdist worker, in turn
 pytestmark = [pytest.mark.linuxcnc, pytest.mark.xdist_group("linuxcnc"),
               pytest.mark.skipif(missing() is not None, reason=str(missing()))]
 
-HELPERS = {
-    # until.sh PIN VALUE: wait (at most 60 s) until halcmd getp PIN prints VALUE (not:VALUE: anything else)
-    "until.sh": '#!/bin/sh\nfor i in $(seq 3000); do v=$(halcmd getp "$1"); case "$2" in\n'
-                '  not:*) [ "$v" != "${2#not:}" ] && exit 0;; *) [ "$v" = "$2" ] && exit 0;; esac; sleep 0.02\n'
-                'done\necho "until: $1 is $(halcmd getp "$1"), not $2" >&2; exit 1\n',
-    # note.sh PIN...: print PIN=value for each
-    "note.sh": '#!/bin/sh\nfor pin; do echo "note $pin=$(halcmd getp "$pin")"; done\n',
-}
 THREAD = """loadrt threads name1=servo-thread period1=1000000
 loadrt dda_card sim={socket} {options}
 addf dda-card.0.read servo-thread
@@ -42,34 +34,10 @@ S = "dda-card.0.stepgen"
 
 
 def run_script(run, body, *server_options, driver_options=""):
-    """halrun THREAD + body on a card server; (output, notes {pin: [values]}, record)."""
-    for name, text in HELPERS.items():
-        (run / name).write_text(text)
-        (run / name).chmod(0o755)
-    (run / "test.hal").write_text(THREAD.format(socket=run / "card.sock", options=driver_options) + body)
-    (run / "test.hal").chmod(0o666)
-    server = card_server(run, *server_options)
-    try:
-        result = as_user(["halrun", "-f", str(run / "test.hal")], run, 300)
-        server.wait(timeout=60)
-    finally:
-        server.kill()
-    output = result.stdout + result.stderr
-    assert result.returncode == 0, output[-3000:]
-    notes = {}
-    for line in output.splitlines():
-        if line.startswith("note "):
-            pin, _, value = line[5:].partition("=")
-            notes.setdefault(pin, []).append(value)
-    return output, notes, json.loads((run / "card.json").read_text())
-
-
-def until(pin, value):
-    return f"loadusr -w ./until.sh {pin} {value}\n"
-
-
-def note(*pins):
-    return f"loadusr -w ./note.sh {' '.join(pins)}\n"
+    """halrun THREAD + body on one card server; (output, notes {pin: [values]}, record)."""
+    script = THREAD.format(socket=run / "card.sock", options=driver_options) + body
+    output, notes, records = run_halrun(run, script, {"card": server_options})
+    return output, notes, records["card"]
 
 
 def feed_rates(record):

@@ -26,9 +26,10 @@ PROBE = r"""#include <stdarg.h>
 #include <stdlib.h>
 #include <sys/mman.h>
 #include "dda_transport.h"
+#include "dda_state.h"
 
-static struct rtapi_pci_dev dev;
-static int preads;
+static struct rtapi_pci_dev dev, several[8];
+static int preads, cards = 1;
 
 ssize_t __real_pread(int fd, void *buf, size_t n, off_t off);
 ssize_t __wrap_pread(int fd, void *buf, size_t n, off_t off) { preads++; return __real_pread(fd, buf, n, off); }
@@ -45,7 +46,13 @@ void rtapi_print_msg(msg_level_t level, const char *fmt, ...)
 }
 int rtapi_pci_register_driver(struct rtapi_pci_driver *driver)
 {
-    return driver->probe(&dev, driver->id_table);
+    int i;
+    if (cards == 1)
+        return driver->probe(&dev, driver->id_table);
+    for (i = 0; i < cards; i++)  /* as the kernel may list them: not by address */
+        if (driver->probe(&several[i], driver->id_table) < 0)
+            return -1;
+    return 0;
 }
 void rtapi_pci_unregister_driver(struct rtapi_pci_driver *driver) { (void)driver; }
 int rtapi_pci_enable_device(struct rtapi_pci_dev *d) { (void)d; return 0; }
@@ -62,11 +69,28 @@ void *rtapi_pci_ioremap_bar(struct rtapi_pci_dev *d, int bar)
     return p == MAP_FAILED ? NULL : p;
 }
 
+/* --several N: N cards on the bus, the order dda_pci_find numbers them in */
+static int number_several(int count)
+{
+    int i, found;
+    cards = count;
+    for (i = 0; i < cards; i++)
+        snprintf(several[i].dev_name, sizeof several[i].dev_name, "0000:%02x:00.0", (7 * i + 3) % 16);
+    found = dda_pci_find(CARDS_MAX);
+    for (i = 0; i < found; i++)
+        printf("dda-card.%d %s\n", i, rtapi_pci_name(dda_pci_found[i]));
+    printf("found %d\n", found);
+    dda_pci_release();
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     struct dda_transport t;
     uint32_t id = 0;
     int i;
+    if (argc == 3 && strcmp(argv[1], "--several") == 0)
+        return number_several(atoi(argv[2]));
     memset(&t, 0, sizeof t);
     snprintf(dev.sys_path, sizeof dev.sys_path, "%s", argv[1]);
     snprintf(dev.dev_name, sizeof dev.dev_name, "0000:03:00.0");
@@ -76,11 +100,12 @@ int main(int argc, char **argv)
         dev.resource[bar].end = 0x1000 + strtol(argv[i + 1], NULL, 0) - 1;
         dev.resource[bar].flags = strtoul(argv[i + 2], NULL, 0);
     }
-    if (dda_pci_open(&t) < 0) { printf("refused\n"); return 0; }
+    if (dda_pci_find(CARDS_MAX) != 1 || dda_pci_open(&t, 0) < 0) { printf("refused\n"); return 0; }
     preads = 0;
     if (dda_read32(&t, DDA_ID, &id) < 0 || dda_write32(&t, DDA_LOW_WATER, 0x1234u) < 0) { printf("failed\n"); return 0; }
     printf("id %08x mapped %d system-calls %d\n", id, t.regs != NULL, preads);
     dda_transport_close(&t);
+    dda_pci_release();
     return 0;
 }
 """
@@ -153,3 +178,18 @@ def test_registers_reachable_neither_way_are_refused(probe, tmp_path):
     assert "the registers are reachable neither through a memory BAR (BAR2: none that maps them) nor " \
            "through BAR0" in output
     assert "resource0: No such file or directory" in output and output.splitlines()[-1] == "refused"
+
+
+def test_several_cards_are_numbered_by_pci_address(probe):
+    """Cards probed out of address order: dda-card.0 is the lowest address, the same at every boot."""
+    output = subprocess.run([str(probe), "--several", "3"], capture_output=True, text=True, check=True).stdout
+    # probed as 03, 0a, 01 (7 i + 3 mod 16)
+    assert output.splitlines() == ["dda-card.0 0000:01:00.0", "dda-card.1 0000:03:00.0", "dda-card.2 0000:0a:00.0",
+                                   "found 3"]
+
+
+def test_more_cards_than_the_driver_serves_are_refused_naming_them(probe):
+    output = subprocess.run([str(probe), "--several", "5"], capture_output=True, text=True, check=True).stdout
+    assert "dda_card: 5 DDA cards: 0000:03:00.0 0000:0a:00.0 0000:01:00.0 0000:08:00.0 0000:0f:00.0; " \
+           "this driver serves at most 4" in output
+    assert output.splitlines()[-1] == "found -19"
