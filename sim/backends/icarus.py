@@ -20,6 +20,7 @@ from myhdl import Cosimulation
 from myhdl._Signal import _Signal
 
 from rtl.convert import build_dir
+from sim.backends.conversions import converted, port_key
 
 _DIRECTION = re.compile(r"\b(input|output|inout)\b")
 _DECLARATION = re.compile(
@@ -277,14 +278,19 @@ def _report_warnings(name, wrapper, output):
 
 
 def convert_module(block_factory, module, ports, **params):
-    """Convert ``block_factory(**ports, **params)`` afresh; the Verilog file."""
-    work = Path(tempfile.mkdtemp(prefix=f"{module}_conv_", dir=build_dir("cosim")))
-    block_factory(**ports, **params).convert(hdl="Verilog", path=str(work), name=module)
-    return work / f"{module}.v"
+    """The Verilog of ``block_factory(**ports, **params)`` as module ``module``: converted
+    once for these sources, ports and parameters (``sim/backends/conversions.py``)."""
+    key = f"{block_factory.__module__}.{block_factory.__qualname__} {sorted(params.items())!r} {port_key(ports)}"
+
+    def convert(folder):
+        block_factory(**ports, **params).convert(hdl="Verilog", path=str(folder), name=module)
+        return folder / f"{module}.v"
+
+    return converted(module, key, convert)
 
 
 def convert_and_cosimulate(block_factory, module, ports, **params):
-    """Convert ``block_factory(**ports, **params)`` afresh and co-simulate it.
+    """Convert ``block_factory(**ports, **params)`` (``convert_module``) and co-simulate it.
 
     For configurations other than the defaults committed in ``gen/``.
     """

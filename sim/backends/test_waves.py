@@ -18,7 +18,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from myhdl import Signal, StopSimulation, always_seq, block, instance, intbv
+from myhdl import Signal, StopSimulation, always_seq, block, instance, intbv, now
 
 from models import instructions as isa
 from models import registers as regmap
@@ -80,7 +80,7 @@ def pci_view(target):
         yield from bench.host.io_write(0x1000, 0xCAFE0123)
         yield from bench.host.io_read(0x1000)
 
-    return PciBench(target=target).run(scenario, f"view_pci_{target}")
+    return PciBench(target=target).run(scenario, f"view_pci_{target}", trace=True)
 
 
 def card_view():
@@ -100,7 +100,7 @@ def card_view():
         yield from bench.host.mem_write(bars["mem"], isa.encode("LINE", LINE.dx, LINE.dy))
         yield from bench.clocks(80)
 
-    vcd = PciBench(target=target).run(scenario, "view_card")
+    vcd = PciBench(target=target).run(scenario, "view_card", trace=True)
     assert log.rises, "the card made no step"
     write_motion_view(vcd, WAVE_GROUPS)
     return vcd
@@ -113,14 +113,14 @@ def core_view():
         yield from driver.push_all(isa.encode("LINE", LINE.dx, LINE.dy))
         yield from wait_idle(driver)
 
-    _, wave = run_core("view_core", scenario)
+    _, wave = run_core("view_core", scenario, trace=True)
     return wave.path
 
 
 def dda_view():
     ports = dda_arc_ports()
     vcd = waves.run_traced(dda_bench(ports, [ArcCommand(12, 0, 0, 12), LINE], Record(), advance_rate=0.9),
-                           "view_dda")
+                           "view_dda", trace=True)
     write_view(vcd)
     return vcd
 
@@ -144,7 +144,7 @@ def counter_bench(clock, count):
 
 
 def default_view():
-    return waves.run_traced(counter_bench(Signal(bool(0)), Signal(intbv(0)[6:])), "view_default")
+    return waves.run_traced(counter_bench(Signal(bool(0)), Signal(intbv(0)[6:])), "view_default", trace=True)
 
 
 VIEWS = {
@@ -261,6 +261,68 @@ def test_files_are_named_after_the_test():
 def test_unsafe_characters_become_underscores(label):
     vcd = default_view()
     assert vcd.name == "test_unsafe_characters_become_underscores[14_PERR__missing].vcd"
+
+
+@pytest.fixture
+def every_bench_traced():
+    """``--waves`` for one test, whatever the run was started with."""
+    before = waves.traced()
+    waves.trace_every_bench(True)
+    yield
+    waves.trace_every_bench(before)
+
+
+@pytest.fixture
+def only_checked_benches_traced():
+    """The default (no ``--waves``) for one test, whatever the run was started with."""
+    before = waves.traced()
+    waves.trace_every_bench(False)
+    yield
+    waves.trace_every_bench(before)
+
+
+@block
+def ticking_bench(clock, ticks):
+    ticking = clock_source(clock, 10)
+
+    @instance
+    def counting():
+        while len(ticks) < 20:
+            yield clock.posedge
+            ticks.append(now())
+        raise StopSimulation
+
+    return ticking, counting
+
+
+def _counter_run(trace):
+    ticks = []
+    vcd = waves.run_traced(ticking_bench(Signal(bool(0)), ticks), "policy", trace=trace)
+    return vcd, len(ticks)
+
+
+@pytest.mark.parametrize("trace", [None, False])
+def test_without_waves_a_bench_the_caller_does_not_read_runs_untraced(trace, only_checked_benches_traced):
+    folder = waves.waves_dir() / "sim" / "backends" / "test_waves"
+    stem = f"test_without_waves_a_bench_the_caller_does_not_read_runs_untraced[{trace}]"
+    for suffix in (".vcd", ".gtkw"):
+        (folder / (stem + suffix)).unlink(missing_ok=True)
+    vcd, count = _counter_run(trace)
+    assert vcd is None and count == 20, "the bench ran to its end"
+    assert not list(folder.glob(stem + ".*")), "an untraced run wrote waves"
+
+
+@pytest.mark.parametrize("every_bench", [False, True], ids=["default", "waves"])
+def test_a_bench_whose_vcd_is_read_back_is_always_traced(every_bench, request):
+    request.getfixturevalue("every_bench_traced" if every_bench else "only_checked_benches_traced")
+    vcd, count = _counter_run(True)
+    assert count == 20 and waves.end_time(vcd) > 0 and vcd.with_suffix(".gtkw").exists()
+
+
+def test_with_waves_every_bench_is_traced_but_those_never_to_be(every_bench_traced):
+    vcd, _ = _counter_run(None)
+    assert vcd is not None and waves.declarations(vcd) and vcd.with_suffix(".gtkw").exists()
+    assert _counter_run(False)[0] is None
 
 
 # ----- in GTKWave ------------------------------------------------------------------

@@ -1,9 +1,14 @@
 """VCD traces a user opens in GTKWave, their save files, and reading them back in tests.
 
 ``run_traced(bench, name)`` runs a bench with MyHDL tracing and returns the
-VCD's path; every run also gets a GTKWave save file (``.gtkw`` beside the
-VCD): the view the caller gives (``groups``), or else the bench's own
-signals.  ``write_gtkw`` (re)writes the view of a finished run.
+VCD's path; every traced run also gets a GTKWave save file (``.gtkw`` beside
+the VCD): the view the caller gives (``groups``), or else the bench's own
+signals.  Tracing costs a MyHDL run of the whole card about 40 % of its time,
+so a bench is traced when its caller reads the VCD back (``trace=True``: its
+assertions check the waveform) or when every bench's waves are asked for
+(``trace_every_bench``: pytest's ``--waves``, the root ``conftest.py``);
+otherwise it runs untraced and ``run_traced`` returns None (``trace=False``:
+never traced, for runs too long to trace).  ``write_gtkw`` (re)writes the view of a finished run.
 ``Waveform`` reads a VCD back (pyvcd's tokenizer) so that assertions check
 the very file a user opens.
 
@@ -47,10 +52,22 @@ WINDOW_SLACK = 1.03  # a view shows its window and 3 % more, so that its edges a
 UNRANGED_KINDS = {"integer", "parameter", "real", "realtime", "string", "event"}
 _UNSAFE = re.compile(r"[^A-Za-z0-9_.,=+\[\]-]")
 _current = {"test": None, "runs": 0}
+_every_bench = {"traced": False}
 
 
 def waves_dir():
     return build_dir("waves")
+
+
+def trace_every_bench(traced=True):
+    """Have every bench write its waves (``traced``), or only those whose caller reads them."""
+    _every_bench["traced"] = bool(traced)
+
+
+def traced(asked=None):
+    """Whether a run is traced: ``asked`` if the caller says (True or False), else
+    whether every bench's waves are wanted."""
+    return _every_bench["traced"] if asked is None else bool(asked)
 
 
 @contextmanager
@@ -77,15 +94,24 @@ def trace_stem(name):
     return folder, stem
 
 
-def run_traced(bench, name, duration=None, groups=None, **view):
-    """Run ``bench`` (a block instance) with a VCD trace; return the VCD path.
+def run_traced(bench, name, duration=None, groups=None, *, trace=None, **view):
+    """Run ``bench`` (a block instance); return the VCD path, or None if it ran untraced.
 
-    ``name`` is the VCD's top scope (and the file name outside pytest).  The
-    save file shows ``groups`` (``write_gtkw``'s arguments in ``view``) or
-    else the bench's own signals; it is written also when the bench fails.
-    The simulation is always closed, so that the next bench can start
-    (MyHDL allows one simulation at a time).
+    ``trace``: True when the caller reads the VCD back, False never, None
+    when every bench's waves are wanted (``traced``).  ``name`` is the VCD's top
+    scope (and the file name outside pytest).  The save file shows ``groups``
+    (``write_gtkw``'s arguments in ``view``) or else the bench's own signals;
+    it is written also when the bench fails.  The simulation is always
+    closed, so that the next bench can start (MyHDL allows one simulation at
+    a time).
     """
+    if not traced(trace):
+        try:
+            bench.run_sim(duration, quiet=1)
+        finally:
+            if bench.sim is not None and not bench.sim._finished:
+                bench.quit_sim()
+        return None
     folder, stem = trace_stem(name)
     bench.config_sim(trace=True, directory=str(folder), name=name, filename=stem, tracebackup=False)
     vcd = folder / f"{stem}.vcd"

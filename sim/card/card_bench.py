@@ -186,13 +186,15 @@ def read_position(driver):
     return regmap.field_value("POS_X", "STEPS", x), regmap.field_value("POS_Y", "STEPS", y)
 
 
-def run_core(name, scenario, cosim=False, check_pins=True, fifo_depth=FIFO_DEPTH):
-    """Run ``scenario(driver)`` (a generator) on the core; (pin log, waveform)."""
+def run_core(name, scenario, cosim=False, check_pins=True, fifo_depth=FIFO_DEPTH, trace=None):
+    """Run ``scenario(driver)`` (a generator) on the core; (pin log, waveform or None if
+    untraced: ``trace`` as ``sim.backends.waves.run_traced`` takes it)."""
     ports = card_core_ports()
     log, failures = PinLog(), []
-    vcd = run_traced(core_bench(ports, scenario, log, failures, cosim, check_pins, fifo_depth), name)
-    wave = Waveform(vcd)
-    write_motion_view(vcd, BUS_GROUPS, wave)
+    vcd = run_traced(core_bench(ports, scenario, log, failures, cosim, check_pins, fifo_depth), name, trace=trace)
+    wave = None if vcd is None else Waveform(vcd)
+    if wave is not None:
+        write_motion_view(vcd, BUS_GROUPS, wave)
     assert not failures, failures[0]
     return log, wave
 

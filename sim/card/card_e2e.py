@@ -20,20 +20,17 @@ clocks, INTA#, STEP rises), the same clock for clock on every back end.  The
 STEP/DIR pins land in ``target.log`` (a ``PinLog``) with their clock numbers
 (rising edges since the start).
 """
-import hashlib
-import os
-import shutil
-import tempfile
+import functools
 
-from myhdl import __version__ as myhdl_version
 from myhdl import always, block
 
 from models import registers as regmap
 from models.commands import command_words
 from models.parameters import CLOCK_HZ, PARAMETERS, Build
 from rtl.card import card, card_ports
-from rtl.convert import GEN_DIR, ROOT, build_dir, convert_unit
+from rtl.convert import GEN_DIR, convert_unit
 from rtl.interfaces import MotorPins
+from sim.backends.conversions import converted
 from sim.backends.verilator.verilated_card import ArrayPinLog, CardWait, VerilatedCard, card_waiter
 from sim.backends.verilator.model import Stop
 from sim.backends.verilator.pci_bus import VerilatorBench
@@ -54,21 +51,12 @@ BAR_ROLES = {"io": 0, "mem": 1, "alias": 2}
 
 def card_verilog(fifo_depth, clock_hz=CLOCK_HZ.default):
     """``card.v`` for ``fifo_depth`` and ``clock_hz`` (what CLOCK_HZ reports):
-    ``gen/card.v`` for the defaults, else a conversion kept in
-    ``build/vlt/conv`` under a hash of the RTL sources."""
+    ``gen/card.v`` for the defaults, else a conversion kept in ``build/conv``
+    (``sim/backends/conversions.py``)."""
     if fifo_depth == DEFAULT_FIFO and clock_hz == CLOCK_HZ.default:
         return GEN_DIR / "card.v"
-    digest = hashlib.sha256(f"{myhdl_version} fifo_depth={fifo_depth} clock_hz={clock_hz}".encode())
-    for source in sorted((ROOT / "rtl").rglob("*.py")):
-        digest.update(str(source.relative_to(ROOT)).encode() + source.read_bytes())
-    folder = build_dir("vlt", "conv", f"card-{digest.hexdigest()[:20]}")
-    verilog = folder / "card.v"
-    if not verilog.exists():
-        staging = tempfile.mkdtemp(prefix=".card-", dir=build_dir("vlt", "conv"))
-        written = convert_unit("card", {"fifo_depth": fifo_depth, "clock_hz": clock_hz}, staging)
-        os.replace(written, verilog)  # whole: a parallel worker finds the file complete or not at all
-        shutil.rmtree(staging, ignore_errors=True)
-    return verilog
+    params = {"fifo_depth": fifo_depth, "clock_hz": clock_hz}
+    return converted("card", repr(params), functools.partial(convert_unit, "card", params))
 
 
 def card_bars(device):
@@ -125,10 +113,11 @@ def bus_record(bench, samples):
     return record
 
 
-def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=True, card_trace=None, card_trace_window=None,
+def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=None, card_trace=None, card_trace_window=None,
              monitor=True):
     """Enumerate the card, run ``scenario(bench, target, out)``; (out, pin log,
-    waveform or None, bench).  ``trace``: the bench's VCD (MyHDL, Icarus);
+    waveform or None, bench).  ``trace``: the bench's VCD (MyHDL, Icarus), as
+    ``sim.backends.waves.run_traced`` takes it;
     ``card_trace`` ("vcd" or "fst", Verilator only): the card's own waves of
     the clocks ``card_trace_window`` (first, last), named as the other back
     ends name their bench's (``sim.backends.waves.trace_stem``; the path is

@@ -351,8 +351,9 @@ def soak(seed, fifo_depth, steps):
     return scenario, run
 
 
-def run_overfill(kind, case, trace=False):
-    """Run ``case`` (an ``Overfill``) on ``kind``; the ``OverfillRun``."""
+def run_overfill(kind, case, trace=None):
+    """Run ``case`` (an ``Overfill``) on ``kind``; the ``OverfillRun``.  ``trace`` as
+    ``sim.backends.waves.run_traced`` takes it."""
     run = OverfillRun()
     name = f"overfill_{case.stop}_{case.resume}_{case.fifo_depth}_{kind}"
     return run_bench(kind, case.fifo_depth, overfill(case, run), run, name, trace)

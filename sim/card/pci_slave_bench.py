@@ -32,7 +32,7 @@ def run(target, scenario, name, **options):
     def wrapped(b):
         yield from scenario(b, out)
 
-    vcd = bench.run(wrapped, f"{name}_{target}")
+    vcd = bench.run(wrapped, f"{name}_{target}", trace=True)
     return out, bench, Waveform(vcd)
 
 

@@ -75,7 +75,7 @@ def check_stretches(run, case):
 @pytest.mark.parametrize("kind,name", cases())
 def test_overfill_small_fifo(kind, name):
     case = CASES[name]
-    run = run_overfill(kind, case, trace=kind == "myhdl")
+    run = run_overfill(kind, case)
     check_scoreboard(run)
     check_stretches(run, case)
     assert run.offered >= case.rounds * case.factor * case.fifo_depth

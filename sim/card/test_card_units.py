@@ -49,7 +49,7 @@ def _bench(dut_spec, ports, step, cycles):
 def _run(name, dut, ports, step, cycles, groups):
     """Run traced; the MyHDL run also gets a GTKWave save file (a co-simulated
     block has no MyHDL hierarchy for the trace to show)."""
-    vcd = run_traced(_bench(dut, ports, step, cycles), name)
+    vcd = run_traced(_bench(dut, ports, step, cycles), name, trace=True)
     cosim = dut[3]
     if not cosim:
         write_gtkw(vcd, groups)

@@ -8,10 +8,10 @@ and ``all`` (converted for these tests into a folder under ``build/cosim``).  A 
 for a variant its build left out must be rejected.  Each run writes a VCD and
 a ``.gtkw`` under ``build/waves``; some checks read the VCD back.
 """
+import functools
 import math
 import os
 import random
-import tempfile
 from pathlib import Path
 
 import pytest
@@ -19,8 +19,9 @@ import pytest
 from models.dda_build import ALL_VARIANTS, DEFAULT_VARIANTS, variants_choice
 from models.dda_model import (IMPROVED, PAPER_V_ARC, PRECISE, TRADITIONAL, WEIGHTED, ArcCommand, LineCommand,
                               paper_configuration, setup_clocks, v_arc)
-from rtl.convert import GEN_DIR, build_dir, convert_unit
+from rtl.convert import GEN_DIR, convert_unit
 from rtl.dda_arc import dda_arc_ports
+from sim.backends.conversions import converted
 from sim.backends.waves import Waveform, run_traced
 from sim.card.dda_bench import HALF_PERIOD, Record, accepted, dda_bench, end_point, random_arc, write_view
 
@@ -85,30 +86,27 @@ def quadrant_crossings():
             ArcCommand(0, 30, 30, 0, variant=WEIGHTED, lambda_shift=1)]
 
 
-_CONVERTED = {}
-
-
 def verilog_of(build):
-    """The generated ``dda_arc.v`` of ``build``: ``gen/`` for the default, else converted
-    afresh into a work folder (once per test process)."""
+    """The generated ``dda_arc.v`` of ``build``: ``gen/`` for the default, else a kept
+    conversion (``sim/backends/conversions.py``)."""
     if BUILDS[build] == DEFAULT_VARIANTS:
         return VERILOG_DIR / "dda_arc.v"
-    if build not in _CONVERTED:
-        folder = Path(tempfile.mkdtemp(prefix=f"dda_{build}_", dir=build_dir("cosim")))
-        _CONVERTED[build] = convert_unit("dda_arc", {"coord_width": 24, "variants": variants_choice(BUILDS[build])}, folder)
-    return _CONVERTED[build]
+    params = {"coord_width": 24, "variants": variants_choice(BUILDS[build])}
+    return converted("dda_arc", repr(params), functools.partial(convert_unit, "dda_arc", params))
 
 
 def run_bench(name, commands, cosim=False, seed=1, advance_rate=0.7, idle_gap=3, coord_width=24,
-              overlap=False, alternate=False, build="default"):
-    """Run the bench traced; return the record and the VCD path."""
+              overlap=False, alternate=False, build="default", trace=None):
+    """Run the bench; return the record and the VCD path (None if untraced: ``trace`` as
+    ``sim.backends.waves.run_traced`` takes it)."""
     ports = dda_arc_ports(coord_width=coord_width, variants=BUILDS[build])
     record = Record()
     verilog = [verilog_of(build)] if cosim else None
     bench = dda_bench(ports, commands, record, verilog=verilog, seed=seed, advance_rate=advance_rate,
                       idle_gap=idle_gap, overlap=overlap, alternate=alternate)
-    vcd = run_traced(bench, name)
-    write_view(vcd)
+    vcd = run_traced(bench, name, trace=trace)
+    if vcd is not None:
+        write_view(vcd)
     return record, vcd
 
 
@@ -232,7 +230,7 @@ def test_narrow_width_up_to_the_largest_radius():
 
 def test_line_pulses_read_back_from_the_vcd():
     # advance in every clock: an iteration takes two, so the X pulses come every other clock
-    record, vcd = run_bench("dda_line_12_11", [LineCommand(12, 11)], advance_rate=1.0)
+    record, vcd = run_bench("dda_line_12_11", [LineCommand(12, 11)], advance_rate=1.0, trace=True)
     wave = Waveform(vcd)
     clocks = record.clocks
     for suffix, total in (("steps_step_x", 12), ("steps_step_y", 11)):
@@ -248,7 +246,7 @@ def test_line_pulses_read_back_from_the_vcd():
 
 def test_arc_setup_time_and_steps_read_back_from_the_vcd():
     command = ArcCommand(8, 0, 0, 8)
-    record, vcd = run_bench("dda_arc_8", [command], advance_rate=1.0)
+    record, vcd = run_bench("dda_arc_8", [command], advance_rate=1.0, trace=True)
     wave = Waveform(vcd)
     busy = sampled(wave, "cmd_busy", record.clocks + 2)
     step_y = sampled(wave, "steps_step_y", record.clocks + 2)

@@ -151,7 +151,7 @@ def test_malformed_command_stops_until_cleared(case):
         yield from wait_idle(driver)
         results["after"] = yield from read_position(driver)
 
-    _, wave = run_core(f"regs_malformed_{case}", scenario)
+    _, wave = run_core(f"regs_malformed_{case}", scenario, trace=True)
     assert results["error"] == isa.ERROR_CODE[code]
     assert results["held"] == (4, 2)
     # BAD_OPCODE: the stream cannot be framed, CLEAR_ERROR drops the queued words;
@@ -235,7 +235,7 @@ def test_stream_commands_set_mark_dwell_pulse():
             results[name] = yield from driver.io_read(regmap.offset(name))
         results["position"] = yield from read_position(driver)
 
-    log, wave = run_core("regs_stream", scenario, check_pins=False)
+    log, wave = run_core("regs_stream", scenario, check_pins=False, trace=True)
     assert results["STEP_WIDTH"] == 3 and results["MARK_TAG"] == tag
     assert results["DIR_SETUP"] == 255, "SET is clamped like a bus write"
     events = results["INT_STATUS"]

@@ -35,6 +35,7 @@ the monitor reports it (rule 19); without one ``top_on_bus`` raises.
 environment variable ``DDA_CARD_GEN`` (e.g. a fresh ``python3 -m rtl.top
 --convert --out build/x`` while ``gen/`` is stale).
 """
+import functools
 import os
 import re
 import tempfile
@@ -44,6 +45,7 @@ from myhdl import Signal, always, block, intbv, now
 
 from rtl.convert import GEN_DIR, build_dir
 from rtl.interfaces import MACHINE_INPUTS
+from sim.backends.conversions import converted
 from sim.backends.icarus import CosimError, cosimulate
 from sim.pci.bus import LINE_WIDTHS, OPEN_DRAIN, PULLED_UP
 
@@ -213,11 +215,11 @@ class TopHarness:
 
 
 def convert_top(**params):
-    """A fresh ``top.v`` for ``params`` (other than the committed defaults), in ``build/cosim``."""
+    """``top.v`` for ``params`` (other than the committed defaults), converted once for these
+    sources and parameters into ``build/conv`` (``sim/backends/conversions.py``)."""
     from rtl.convert import convert_unit
 
-    work = Path(tempfile.mkdtemp(prefix=f"{TOP}_conv_", dir=build_dir("cosim")))
-    return convert_unit(TOP, params, work)
+    return converted(TOP, repr(sorted(params.items())), functools.partial(convert_unit, TOP, params))
 
 
 def _module_body(text, module):

@@ -143,21 +143,16 @@ class PciBench:
         return pci_target_cosimulation(target, self.clock, self.reset, self.agent, self.segment,
                                        self.host.agent, 16 + TARGET_DEVICE, self.floating, others)
 
-    def run(self, scenario, name, trace=True, background=None):
+    def run(self, scenario, name, trace=None, background=None):
         """Run ``scenario(bench)`` to its end, ``background(bench)`` (a
         generator, e.g. an interrupt source or a reset) beside it; return the
-        VCD path (or None)."""
+        VCD path, or None if untraced.  ``trace``: True when the caller reads
+        the VCD back, False never, None when every bench's waves are wanted
+        (``sim.backends.waves.run_traced``)."""
         top = pci_testbench(self, scenario, background)
-        if not trace:
-            try:
-                top.run_sim(quiet=1)
-            finally:
-                if top.sim is not None and not top.sim._finished:
-                    top.quit_sim()
-            self.checker.raise_recorded()
-            return None
-        vcd = run_traced(top, name)
-        write_gtkw(vcd, self._wave_groups(vcd))
+        vcd = run_traced(top, name, trace=trace)
+        if vcd is not None:
+            write_gtkw(vcd, self._wave_groups(vcd))
         self.checker.raise_recorded()
         return vcd
 

@@ -35,7 +35,7 @@ def run(bench, scenario, name):
     def wrapped(b):
         yield from scenario(b, results)
 
-    vcd = bench.run(wrapped, name)
+    vcd = bench.run(wrapped, name, trace=True)
     return results, vcd
 
 
