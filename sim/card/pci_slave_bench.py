@@ -24,16 +24,17 @@ STATUS_DETECTED_PARITY_ERROR = 1 << 15
 MEDIUM_DEVSEL_EDGE = 2   # DEVSEL# sampled two edges after the address edge
 
 
-def run(target, scenario, name, **options):
-    """Run ``scenario(bench, out)``; return (out, bench, waveform)."""
+def run(target, scenario, name, trace=None, **options):
+    """Run ``scenario(bench, out)``; return (out, bench, waveform or None if untraced:
+    ``trace`` True when the test reads the waveform, as ``PciBench.run`` takes it)."""
     bench = PciBench(target=target, **options)
     out = {}
 
     def wrapped(b):
         yield from scenario(b, out)
 
-    vcd = bench.run(wrapped, f"{name}_{target}", trace=True)
-    return out, bench, Waveform(vcd)
+    vcd = bench.run(wrapped, f"{name}_{target}", trace=trace)
+    return out, bench, None if vcd is None else Waveform(vcd)
 
 
 def setup(host, command=COMMAND_IO | COMMAND_MEMORY):

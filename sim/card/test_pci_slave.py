@@ -27,7 +27,7 @@ def test_identity_and_header(target):
         for register in range(0, 0x100, 4):
             out[register] = (yield from b.host.config_read(DEVICE, register)).value
 
-    regs, _, wave = run(target, scenario, "pci_identity")
+    regs, _, wave = run(target, scenario, "pci_identity", trace=True)
     assert regs[0x00] == DEVICE_ID << 16 | VENDOR_ID
     assert regs[0x08] >> 8 == CLASS_CODE
     assert (regs[0x0C] >> 16) & 0x7F == 0                 # header type 0
@@ -199,7 +199,7 @@ def test_devsel_is_medium_for_every_claimed_command(target):
             out[f"mem {command:x}"] = yield from host.transfer(
                 command, MEM_BASE, [(0xF, 5 if command & 1 else None)] * 2)
 
-    out, _, wave = run(target, scenario, "pci_devsel_timing")
+    out, _, wave = run(target, scenario, "pci_devsel_timing", trace=True)
     for case, result in out.items():
         assert result.transactions[0].devsel_clock == MEDIUM_DEVSEL_EDGE, case
         assert result.complete, case
@@ -219,7 +219,7 @@ def test_memory_bursts_move_every_dword(target, length):
         out["write"] = yield from b.host.mem_write(MEM_BASE + 0x100, values)
         out["read"] = yield from b.host.mem_read(MEM_BASE + 0x100, length, command=MEM_READ_MULTIPLE)
 
-    out, bench, wave = run(target, scenario, f"pci_burst_{length}")
+    out, bench, wave = run(target, scenario, f"pci_burst_{length}", trace=True)
     assert out["write"].complete and out["read"].data == values
     assert [bench.memory.read(1, 0x100 + 4 * i) for i in range(length)] == values
     write_edge, read_edge = address_edges(wave)[-2:]

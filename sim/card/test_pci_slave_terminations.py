@@ -148,7 +148,7 @@ def test_write_data_parity_error(target, respond):
         yield from b.host.config_write(DEVICE, 0x04, STATUS_DETECTED_PARITY_ERROR << 16 | command)
         out["cleared"] = yield from status(b.host)
 
-    out, bench, wave = run(target, scenario, f"pci_write_parity_{respond}",
+    out, bench, wave = run(target, scenario, f"pci_write_parity_{respond}", trace=True,
                            allow_parity_errors=True)
     assert [kind for _, kind in bench.checker.parity_errors] == ["write data"]
     assert not out["clean"] & STATUS_DETECTED_PARITY_ERROR
@@ -169,7 +169,7 @@ def test_address_parity_error(target, serr_enabled):
         out["after"] = yield from status(b.host)
         out["next"] = yield from b.host.mem_write(MEM_BASE + 4, [2])
 
-    out, bench, wave = run(target, scenario, f"pci_address_parity_{serr_enabled}",
+    out, bench, wave = run(target, scenario, f"pci_address_parity_{serr_enabled}", trace=True,
                            allow_parity_errors=True)
     assert [kind for _, kind in bench.checker.parity_errors] == ["address"]
     assert out["after"] & STATUS_DETECTED_PARITY_ERROR
