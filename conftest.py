@@ -97,9 +97,6 @@ SLOW_CASES = {
         "Verilator runs every error, MyHDL bad_opcode",
     "sim/card/test_card_e2e.py::test_blend_keeps_speed_across_the_boundary[blend-myhdl]": "Verilator runs blend, "
                                                                                           "MyHDL stop",
-    **{f"sim/card/test_card_e2e.py::test_pins_identical_on_every_back_end[error_{code}-verilator]":
-       "Verilator's pins equal MyHDL's for bad_opcode; every error runs on Verilator against the instruction set"
-       for code in ("reserved_bits", "range", "dda_rejected")},
     "tests/rtl/test_lint.py::test_vendor_primitives_only_where_the_device_asks[ice40]": "gen/ is the ice40 build",
 }
 
