@@ -11,7 +11,7 @@ cores co-simulate and convert cleanly; only the pad wrapper at the top level
 has tri-states.  All PCI ``*_out`` values keep the bus polarity (active-low
 lines are 0 when asserted).
 """
-from rtl.interfaces.bundle import card_reset
+from rtl.interfaces.bundle import axis_suffixes, card_reset, named
 from rtl.interfaces.card import (ERROR_BITS, INPUT_ESTOP, INPUT_LIMIT_NEG_X, INPUT_LIMIT_NEG_Y, INPUT_LIMIT_POS_X,
                                  INPUT_LIMIT_POS_Y, MACHINE_INPUTS, MARK_TAG_BITS, PULSE_COUNT_BITS, SET_INDEX_BITS,
                                  TIMING_BITS, DirectPulseCommand, FeedPort, FifoRead, MarkPort, MotorPins, PulseCommand,
@@ -24,7 +24,8 @@ from rtl.interfaces.pci import (ConfigSpace, LocalBus, PciBus, PciPins, TargetBu
                                 TargetParity, TargetRequests, TargetState)
 
 __all__ = [
-    "card_reset", "PciBus", "LocalBus", "PciPins", "TargetControlNext", "ConfigSpace", "TargetState",
+    "card_reset", "axis_suffixes", "named", "PciBus", "LocalBus", "PciPins", "TargetControlNext", "ConfigSpace",
+    "TargetState",
     "TargetDecode", "TargetParity", "TargetBuffers", "TargetRequests", "DdaPort", "DdaPlan", "DdaRoot", "SetupSequence", "SetupControl",
     "DdaMove", "DdaStep", "AxisPulses", "TARGET_ZERO", "TARGET_RADIUS", "TARGET_END", "Homing", "InputConditioning",
     "MachineGuard", "MotorPins", "MACHINE_INPUTS", "SET_INDEX_BITS", "MARK_TAG_BITS", "ERROR_BITS",

@@ -3,6 +3,8 @@ from myhdl import Signal, intbv, modbv
 
 from models.dda_build import (COORD_WIDTH, DEFAULT_VARIANTS, PRECISE, accumulator_width, check_coord_width, left_width,
                               threshold_width, variant_set)
+from models.parameters import AXES
+from rtl.interfaces.bundle import axis_suffixes
 
 
 class DdaPort:
@@ -262,11 +264,21 @@ class DdaStep:
 
 
 class AxisPulses:
-    """Step requests for the two axes: ``step_*`` is high for one clock per
-    step, ``dir_*`` (1: positive direction) is valid in that clock."""
+    """Step requests for ``axes`` axes (``step_x``, ``step_y``, ...,
+    ``dir_x``, ``dir_y``, ...; ``models/axes.py`` names them): ``step_*`` is
+    high for one clock per step, ``dir_*`` (1: positive direction) is valid
+    in that clock."""
 
-    def __init__(self):
-        self.step_x = Signal(bool(0))
-        self.step_y = Signal(bool(0))
-        self.dir_x = Signal(bool(0))
-        self.dir_y = Signal(bool(0))
+    def __init__(self, axes=AXES.default):
+        self.axes = axes
+        for kind in ("step", "dir"):
+            for suffix in axis_suffixes(axes):
+                setattr(self, f"{kind}_{suffix}", Signal(bool(0)))
+
+    def step(self, axis):
+        """Axis ``axis``'s step request (0 X, 1 Y, ...)."""
+        return getattr(self, f"step_{axis_suffixes(self.axes)[axis]}")
+
+    def dir(self, axis):
+        """Axis ``axis``'s direction."""
+        return getattr(self, f"dir_{axis_suffixes(self.axes)[axis]}")
