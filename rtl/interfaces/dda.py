@@ -282,3 +282,31 @@ class AxisPulses:
     def dir(self, axis):
         """Axis ``axis``'s direction."""
         return getattr(self, f"dir_{axis_suffixes(self.axes)[axis]}")
+
+
+class LinearPort:
+    """The N-axis line's port (``rtl/dda/dda_linear.py``), for ``axes`` axes
+    of ``coord_width``-bit signed displacements.
+
+    The driver gives ``load`` (one clock) with each axis's
+    ``magnitude_<axis>`` (|d|, as wide as the coordinates: |-2**(W-1)| fits)
+    and ``positive_<axis>`` (the sign: 1 for d >= 0), and ``advance`` (one
+    iteration in each clock it is high, the feed rate's tick); the unit
+    drives ``busy`` (iterations left) and ``left`` (how many: the threshold
+    T = max |d| less those done, exactly the iterations the line has left)."""
+
+    def __init__(self, axes=AXES.default, coord_width=COORD_WIDTH):
+        self.axes = axes
+        self.load, self.advance, self.busy = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+        for suffix in axis_suffixes(axes):
+            setattr(self, f"magnitude_{suffix}", Signal(intbv(0)[coord_width:]))
+            setattr(self, f"positive_{suffix}", Signal(bool(0)))
+        self.left = Signal(intbv(0)[coord_width:])
+
+    def magnitude(self, axis):
+        """Axis ``axis``'s |d| (0 X, 1 Y, ...)."""
+        return getattr(self, f"magnitude_{axis_suffixes(self.axes)[axis]}")
+
+    def positive(self, axis):
+        """Axis ``axis``'s direction (1: d >= 0)."""
+        return getattr(self, f"positive_{axis_suffixes(self.axes)[axis]}")
